@@ -1,0 +1,33 @@
+# Two-command set-up: `make report` and `make test` each create .venv and install
+# the package (editable, with the dev extra) when it is missing or older than
+# pyproject.toml.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.dfa-installed
+# numba compiles the simulator kernel once and caches it here (cache=True).
+export NUMBA_CACHE_DIR := $(CURDIR)/.cache/numba
+export MPLBACKEND := Agg
+
+.PHONY: all venv report test bench clean
+
+all: test
+
+$(STAMP): pyproject.toml
+	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[dev]'
+	@touch $(STAMP)
+
+venv: $(STAMP)
+
+report: $(STAMP)
+	$(BIN)/dfa report --out reports
+
+test: $(STAMP)
+	$(BIN)/python -m pytest -q -n 2
+
+bench: $(STAMP)
+	$(BIN)/python benchmarks/run.py --out reports/benchmarks.md
+
+clean:
+	rm -rf $(VENV) .cache build *.egg-info

@@ -1,0 +1,69 @@
+"""dfa: passivity, limit cycles and stiffness limits of sampled, quantized haptic devices.
+
+Implements and extends N. Diolaiti, G. Niemeyer, F. Barbagli and J. K. Salisbury,
+"A Criterion for the Passivity of Haptic Devices", Proc. IEEE ICRA 2005.
+
+The numerical core works in the paper's dimensionless parameters (Table 1)
+μ = m/(K T²), β = b/(K T), σ = c/(K Δ); physical units appear only in
+:class:`Device`, the catalogue, the command line and report labels.
+
+Examples
+--------
+>>> import dfa
+>>> dev = dfa.get_device("Delta").device
+>>> p = dev.params(stiffness=14500.0)
+>>> r = dfa.passivity_criterion(p.beta, p.sigma, xi_dot=dev.xi_dot(0.1))
+>>> r.region, r.passive
+('e', True)
+"""
+
+from .catalogue import DEFAULT_DEVICE, CatalogueEntry, Discrepancy, catalogue, get_device
+from .criterion import (
+    REGION_DESCRIPTIONS,
+    CriterionResult,
+    CriticalLine,
+    classify_region,
+    device_criterion,
+    passivity_criterion,
+)
+from .device import Device, Params
+from .errors import DFAError, DFATypeError, DFAValueError
+from .stiffness import (
+    StiffnessLimits,
+    gil_beta_critical,
+    k_abbott_okamura,
+    k_colgate,
+    k_gil,
+    k_max_criterion,
+    max_passive_velocity,
+    stiffness_limits,
+)
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Device",
+    "Params",
+    "CatalogueEntry",
+    "Discrepancy",
+    "catalogue",
+    "get_device",
+    "DEFAULT_DEVICE",
+    "CriterionResult",
+    "CriticalLine",
+    "passivity_criterion",
+    "device_criterion",
+    "classify_region",
+    "REGION_DESCRIPTIONS",
+    "StiffnessLimits",
+    "stiffness_limits",
+    "k_max_criterion",
+    "k_colgate",
+    "k_abbott_okamura",
+    "k_gil",
+    "gil_beta_critical",
+    "max_passive_velocity",
+    "DFAError",
+    "DFAValueError",
+    "DFATypeError",
+]

@@ -1,0 +1,382 @@
+"""Command-line tool ``dfa``.
+
+Every subcommand is reachable through :func:`main` (``main(argv) -> exit code``)
+so that it can be tested without a subprocess. Bad input prints one line on
+stderr and returns exit code 2; no traceback is ever shown for it.
+
+Examples
+--------
+>>> main(["params", "--device", "impulse", "--json"])
+{"mu": 100.00000000000001, "beta": 0.125, "sigma": 0.9554140127388535}
+0
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from dataclasses import dataclass
+from typing import Callable, Sequence
+
+from .catalogue import DEFAULT_DEVICE, catalogue, get_device
+from .criterion import device_criterion, passivity_criterion
+from .device import Device, Params
+from .errors import DFAError, DFAValueError
+from .stiffness import stiffness_limits
+
+__all__ = ["main"]
+
+
+class UsageError(DFAValueError):
+    """Wrong or contradictory command-line inputs."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """ArgumentParser whose errors are one line on stderr and exit code 2."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise UsageError(f"{self.prog}: error: {message}")
+
+
+def _number(flag: str, unit: str) -> Callable[[str], float]:
+    def parse(text: str) -> float:
+        try:
+            return float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is not a number: {flag} takes a real number in {unit}"
+            ) from None
+
+    parse.__name__ = flag
+    return parse
+
+
+def _integer(flag: str) -> Callable[[str], int]:
+    def parse(text: str) -> int:
+        try:
+            return int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number: {flag} takes an integer") from None
+
+    parse.__name__ = flag
+    return parse
+
+
+_PHYS_FLAGS = {
+    "mass": ("--mass", "kg (rotary: kg·m²)"),
+    "damping": ("--damping", "N·s/m (rotary: N·m·s/rad)"),
+    "coulomb": ("--coulomb", "N (rotary: N·m)"),
+    "resolution": ("--resolution", "m (rotary: rad)"),
+    "period": ("--period", "s"),
+}
+_DIMLESS_FLAGS = {"mu": "--mu", "beta": "--beta", "sigma": "--sigma"}
+
+
+def _add_device_args(p: argparse.ArgumentParser, dimensionless: bool, speed: bool) -> None:
+    g = p.add_argument_group("device (a catalogue name, or physical values in SI units)")
+    g.add_argument("--device", metavar="NAME", help="catalogue device (case-insensitive prefix, e.g. 'phantom')")
+    for key, (flag, unit) in _PHYS_FLAGS.items():
+        g.add_argument(flag, dest=key, type=_number(flag, unit), metavar="X", help=f"{key} in {unit}; overrides the catalogue value")
+    g.add_argument("--stiffness", type=_number("--stiffness", "N/m"), metavar="K", help="virtual wall stiffness K in N/m (rotary: N·m/rad); defaults to the catalogue K")
+    g.add_argument("--rotary", action="store_true", help="physical values are rotary (rad, N·m, kg·m²)")
+    if dimensionless:
+        d = p.add_argument_group("dimensionless parameters (instead of a device)")
+        d.add_argument("--mu", type=_number("--mu", "dimensionless units"), help="μ = m/(K T²)")
+        d.add_argument("--beta", type=_number("--beta", "dimensionless units"), help="β = b/(K T)")
+        d.add_argument("--sigma", type=_number("--sigma", "dimensionless units"), help="σ = c/(K Δ)")
+    if speed:
+        s = p.add_argument_group("speed (one of)")
+        s.add_argument("--velocity", type=_number("--velocity", "m/s (rotary: rad/s)"), metavar="V", help="impact speed in m/s (rotary: rad/s)")
+        s.add_argument("--xi-dot", dest="xi_dot", type=_number("--xi-dot", "encoder ticks per sample"), metavar="V", help="impact speed ξ'0 in encoder ticks per sample")
+    p.add_argument("--json", action="store_true", help="print one JSON object on stdout")
+
+
+@dataclass(frozen=True)
+class _Inputs:
+    params: Params | None  # full (μ, β, σ) when known
+    beta: float
+    sigma: float
+    device: Device | None
+    stiffness: float | None
+    label: str
+
+
+def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = True) -> _Inputs:
+    """Turn device/physical/dimensionless flags into parameters, rejecting contradictions."""
+    phys_given = [k for k in _PHYS_FLAGS if getattr(args, k, None) is not None]
+    dim_given = [k for k in _DIMLESS_FLAGS if getattr(args, k, None) is not None] if dimensionless else []
+    if dim_given:
+        others = (["--device"] if args.device else []) + [_PHYS_FLAGS[k][0] for k in phys_given]
+        others += ["--stiffness"] if args.stiffness is not None else []
+        others += ["--velocity"] if getattr(args, "velocity", None) is not None else []
+        if others:
+            raise UsageError(
+                f"{', '.join(_DIMLESS_FLAGS[k] for k in dim_given)} cannot be combined with {', '.join(others)}: "
+                "give either dimensionless (--mu --beta --sigma, --xi-dot) or physical inputs"
+            )
+        required = ["beta", "sigma"] + (["mu"] if need_mu else [])
+        missing = [_DIMLESS_FLAGS[k] for k in required if getattr(args, k) is None]
+        if missing:
+            raise UsageError(f"missing {', '.join(missing)}: dimensionless input needs {' '.join(_DIMLESS_FLAGS[k] for k in required)}")
+        from .errors import check_nonnegative
+
+        b = check_nonnegative("beta", args.beta, "β = b/(K T) cannot be negative")
+        s = check_nonnegative("sigma", args.sigma, "σ = c/(K Δ) cannot be negative")
+        p = Params(args.mu, b, s) if args.mu is not None else None
+        return _Inputs(p, b, s, None, None, "dimensionless input")
+    values: dict[str, object] = {}
+    stiffness = args.stiffness
+    name = "custom device"
+    rotary = bool(getattr(args, "rotary", False))
+    if args.device:
+        entry = get_device(args.device)
+        values = {k: getattr(entry, k) for k in _PHYS_FLAGS}
+        name, rotary = entry.name, entry.rotary or rotary
+        if stiffness is None:
+            stiffness = entry.stiffness
+    for k in phys_given:
+        values[k] = getattr(args, k)
+    missing = [_PHYS_FLAGS[k][0] for k in _PHYS_FLAGS if values.get(k) is None]
+    if missing:
+        if args.device:
+            raise UsageError(
+                f"device {name!r} is incomplete in the catalogue: give {' '.join(missing)} explicitly"
+            )
+        if not phys_given:
+            raise UsageError(
+                "no device given: use --device NAME (see `dfa devices`), or --mass --damping --coulomb "
+                "--resolution --period"
+                + (", or --mu --beta --sigma" if dimensionless else "")
+            )
+        raise UsageError(f"missing {' '.join(missing)}: a physical device needs all of --mass --damping --coulomb --resolution --period")
+    dev = Device(name=name, rotary=rotary, **values)  # type: ignore[arg-type]
+    if stiffness is None:
+        raise UsageError(f"missing --stiffness: no catalogue stiffness for {name!r}; give K in {dev.units['stiffness']}")
+    p = dev.params(stiffness)
+    return _Inputs(p, p.beta, p.sigma, dev, float(stiffness), f"{name}, K = {stiffness:g} {dev.units['stiffness']}")
+
+
+def _speed(args: argparse.Namespace, inputs: _Inputs, required: bool = True) -> tuple[float | None, float | None]:
+    """Return (xi_dot, velocity) from --xi-dot / --velocity."""
+    v, xd = args.velocity, args.xi_dot
+    if v is not None and xd is not None:
+        raise UsageError("--velocity and --xi-dot cannot both be given: choose one speed")
+    if v is None and xd is None:
+        if required:
+            raise UsageError("missing speed: give --velocity V (m/s, rad/s) or --xi-dot V (encoder ticks per sample)")
+        return None, None
+    if v is not None:
+        if inputs.device is None:
+            raise UsageError("--velocity needs a physical device: with --mu/--beta/--sigma give --xi-dot instead")
+        return inputs.device.xi_dot(v), v
+    from .errors import check_real
+
+    xd = check_real("xi_dot", xd, "give the speed in encoder ticks per sample")
+    return xd, (inputs.device.velocity(xd) if inputs.device is not None else None)
+
+
+def _emit(obj: object) -> None:
+    print(json.dumps(obj, allow_nan=False))
+
+
+def _table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:
+    cells = [[str(c) for c in r] for r in ([header] if header else []) + list(rows)]
+    widths = [max(len(r[i]) for r in cells) for i in range(len(cells[0]))]
+    lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in cells]
+    if header:
+        lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+def _g(x: float | None, digits: int = 4) -> str:
+    if x is None:
+        return "-"
+    if isinstance(x, float) and math.isinf(x):
+        return "inf"
+    return f"{x:.{digits}g}"
+
+
+# ----------------------------------------------------------------- commands
+def _cmd_devices(args: argparse.Namespace) -> int:
+    rows = catalogue()
+    if args.json:
+        _emit([r.as_dict() for r in rows])
+        return 0
+    header = ["device", "m", "b", "c", "Δ", "T", "K", "μ", "β", "σ", "printed μ, β, σ", "flags"]
+    body = []
+    for r in rows:
+        p = r.params
+        pr = r.printed_params
+        flags = []
+        if r.incomplete:
+            flags.append("incomplete")
+        flags += [f"{d.parameter} {100 * d.relative:+.0f}%" for d in r.discrepancies]
+        body.append(
+            [
+                r.name,
+                _g(r.mass),
+                _g(r.damping),
+                _g(r.coulomb),
+                _g(r.resolution),
+                _g(r.period),
+                _g(r.stiffness),
+                _g(p.mu if p else None),
+                _g(p.beta if p else None, 3),
+                _g(p.sigma if p else None),
+                ", ".join(pr.get(k) and f"{pr[k]:g}" or "-" for k in ("mu", "beta", "sigma")) if pr else "-",
+                "; ".join(flags) or "ok",
+            ]
+        )
+    print(_table(body, header))
+    print("\nSI units (linear: kg, N·s/m, N, m, s, N/m; rotary: kg·m², N·m·s/rad, N·m, rad, s, N·m/rad).")
+    print("μ, β, σ recomputed from the physical columns (paper Table 1); flags: printed value disagrees (> 5 % and beyond its last digit).")
+    return 0
+
+
+def _cmd_params(args: argparse.Namespace) -> int:
+    inp = _resolve(args, dimensionless=True)
+    assert inp.params is not None
+    if args.json:
+        _emit(inp.params.as_dict())
+        return 0
+    print(f"{inp.label}")
+    print(_table([["μ = m/(K T²)", f"{inp.params.mu:.6g}"], ["β = b/(K T)", f"{inp.params.beta:.6g}"], ["σ = c/(K Δ)", f"{inp.params.sigma:.6g}"]]))
+    return 0
+
+
+def _cmd_check(args: argparse.Namespace) -> int:
+    inp = _resolve(args, dimensionless=True, need_mu=False)
+    xd, v = _speed(args, inp)
+    assert xd is not None
+    quantized = not args.no_quantization
+    if inp.device is not None and v is not None:
+        r = device_criterion(inp.device, inp.stiffness, v, quantized=quantized)  # type: ignore[arg-type]
+    else:
+        r = passivity_criterion(inp.beta, inp.sigma, xd, quantized=quantized)
+    if args.json:
+        _emit(r.as_dict())
+        return 0
+    vu = inp.device.units["velocity"] if inp.device else ""
+    crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
+    if r.critical_velocity is not None:
+        crit += f" ({r.critical_velocity:.4g} {vu})"
+    speed = f"{r.xi_dot:.4g} ticks/sample" + (f" ({r.velocity:.4g} {vu})" if r.velocity is not None else "")
+    print(inp.label)
+    print(
+        _table(
+            [
+                ["β, σ", f"{r.beta:.4g}, {r.sigma:.4g}"],
+                ["speed |ξ'0|", speed],
+                ["criterion", "eq. 6 (with encoder)" if quantized else "eq. 7 (no quantization)"],
+                ["region", f"{r.region}: {r.status}"],
+                ["passive", "yes" if r.passive else "no"],
+                ["margin", f"{r.margin:.4g}"],
+                ["critical speed (eq. 12)", crit],
+            ]
+        )
+    )
+    return 0
+
+
+def _cmd_stiffness(args: argparse.Namespace) -> int:
+    inp = _resolve(args, dimensionless=False)
+    dev = inp.device
+    assert dev is not None
+    xd, v = _speed(args, inp)
+    assert v is not None
+    k_given = args.stiffness  # only an explicit --stiffness is assessed
+    lim = stiffness_limits(dev, v, k_given)
+    if args.json:
+        _emit(lim.as_dict())
+        return 0
+    ku, vu = dev.units["stiffness"], dev.units["velocity"]
+    rows = [
+        ["criterion K_max at this speed (eq. 11)", f"{lim.k_max:.5g} {ku}"],
+        ["static limit 2c/Δ (eq. 9)", f"{lim.k_static:.5g} {ku}"],
+        ["Colgate-Schenkel 2b/T (eq. 8)", f"{lim.k_colgate:.5g} {ku}"],
+        ["Abbott-Okamura min(2b/T, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {ku}"],
+        ["Gil et al. (linear, exact ZOH)", f"{lim.k_gil:.5g} {ku}"],
+    ]
+    if lim.stiffness is not None:
+        mpv = {"none": "none (K > 2c/Δ)", "all speeds": "every speed (K <= 2b/T)"}.get(
+            lim.velocity_status, f"{_g(lim.max_passive_velocity)} {vu}"
+        )
+        rows.append([f"largest passive speed at K = {lim.stiffness:g}", mpv])
+        rows.append(["verdict at this speed", lim.status])
+    print(f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample)")
+    print(_table(rows))
+    return 0
+
+
+def _cmd_report(args: argparse.Namespace) -> int:
+    """Interim report: the criterion, region and stiffness limits of a device (stdout)."""
+    entry = get_device(args.device or DEFAULT_DEVICE)
+    dev = entry.device
+    k = args.stiffness if args.stiffness is not None else entry.stiffness
+    v = args.velocity if args.velocity is not None else 0.1
+    ns = argparse.Namespace(device=entry.name, stiffness=k, rotary=False, json=False, velocity=v, xi_dot=None,
+                            no_quantization=False, **{f: None for f in _PHYS_FLAGS}, mu=None, beta=None, sigma=None)
+    print(f"# dfa design summary: {dev.name}\n")
+    _cmd_params(ns)
+    print()
+    _cmd_check(ns)
+    print()
+    _cmd_stiffness(ns)
+    return 0
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="dfa",
+        description="Passivity, limit cycles and stiffness limits of sampled, quantized haptic devices "
+        "(Diolaiti, Niemeyer, Barbagli & Salisbury, ICRA 2005).",
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+
+    p = sub.add_parser("devices", help="list the device catalogue (paper Table 2)")
+    p.add_argument("--json", action="store_true", help="print one JSON list on stdout")
+    p.set_defaults(func=_cmd_devices)
+
+    p = sub.add_parser("params", help="dimensionless (μ, β, σ) of a device and stiffness (paper Table 1)")
+    _add_device_args(p, dimensionless=True, speed=False)
+    p.set_defaults(func=_cmd_params)
+
+    p = sub.add_parser("check", help="passivity criterion and region at an impact speed (eq. 6-12)")
+    _add_device_args(p, dimensionless=True, speed=True)
+    p.add_argument("--no-quantization", action="store_true", help="use eq. 7 (Δ → 0) instead of eq. 6")
+    p.set_defaults(func=_cmd_check)
+
+    p = sub.add_parser("stiffness", help="stiffness limits for design at an impact speed (eq. 8, 9, 11)")
+    _add_device_args(p, dimensionless=False, speed=True)
+    p.set_defaults(func=_cmd_stiffness)
+
+    p = sub.add_parser("report", help="design summary of a device (default: the catalogue's default device)")
+    p.add_argument("--device", metavar="NAME", help=f"catalogue device (default {DEFAULT_DEVICE})")
+    p.add_argument("--stiffness", type=_number("--stiffness", "N/m"), metavar="K", help="stiffness (default: catalogue K)")
+    p.add_argument("--velocity", type=_number("--velocity", "m/s"), metavar="V", help="impact speed (default 0.1 m/s)")
+    p.add_argument("--out", metavar="DIR", help="output folder (reserved for the full report)")
+    p.set_defaults(func=_cmd_report)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``dfa`` command line; return the exit code (0 ok, 2 bad input)."""
+    parser = _build_parser()
+    try:
+        args = parser.parse_args(list(sys.argv[1:] if argv is None else argv))
+        return int(args.func(args) or 0)
+    except DFAError as err:
+        msg = str(err)
+        if not msg.startswith("dfa"):
+            msg = f"dfa: error: {msg}"
+        print(msg.replace("\n", " "), file=sys.stderr)
+        return 2
+    except SystemExit as exc:  # --help and --version
+        return int(exc.code or 0)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,212 @@
+"""Physical device model and its dimensionless form (paper Table 1).
+
+A one-degree-of-freedom haptic device renders a virtual spring of stiffness
+``K`` (paper section 2)::
+
+    m x'' + b x' + c sgn(x') = F_H + F_A,
+    F_A(t) = -K Δ floor(x(t_h)/Δ) - K Δ/2   for t in [t_h, t_h + T)
+
+With τ = t/T, ξ = x/Δ and φ = F/(KΔ) this becomes (paper eq. 4-5)::
+
+    μ ξ'' + β ξ' + σ sgn(ξ') = φ_H + φ_A,
+    μ = m/(K T²),  β = b/(K T),  σ = c/(K Δ).
+
+All analyses in :mod:`dfa` work on :class:`Params` (μ, β, σ); physical units
+live only in :class:`Device`, the catalogue, the command line and report labels.
+
+Examples
+--------
+>>> dev = Device(mass=0.032, damping=0.02, coulomb=0.024,
+...              resolution=314e-6, period=2e-3, name="Impulse Engine")
+>>> p = dev.params(stiffness=80.0)
+>>> round(p.mu, 3), round(p.beta, 4), round(p.sigma, 4)
+(100.0, 0.125, 0.9554)
+>>> round(dev.stiffness_for_beta(0.5), 6)   # K at which β = 1/2 (Colgate-Schenkel)
+20.0
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .errors import DFAValueError, check_nonnegative, check_positive, check_real
+
+__all__ = ["Params", "Device"]
+
+
+@dataclass(frozen=True)
+class Params:
+    """Dimensionless device parameters (paper Table 1).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(K T²), > 0.
+    beta : float
+        Dimensionless viscous damping β = b/(K T), >= 0.
+    sigma : float
+        Dimensionless Coulomb friction σ = c/(K Δ), >= 0.
+    """
+
+    mu: float
+    beta: float
+    sigma: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mu", check_positive("mu", self.mu, "μ = m/(K T²) must be positive"))
+        object.__setattr__(
+            self, "beta", check_nonnegative("beta", self.beta, "β = b/(K T) cannot be negative")
+        )
+        object.__setattr__(
+            self, "sigma", check_nonnegative("sigma", self.sigma, "σ = c/(K Δ) cannot be negative")
+        )
+
+    def as_dict(self) -> dict[str, float]:
+        """Return ``{"mu": μ, "beta": β, "sigma": σ}``."""
+        return {"mu": self.mu, "beta": self.beta, "sigma": self.sigma}
+
+
+_LINEAR_UNITS = {
+    "mass": "kg",
+    "damping": "N·s/m",
+    "coulomb": "N",
+    "resolution": "m",
+    "period": "s",
+    "stiffness": "N/m",
+    "velocity": "m/s",
+    "position": "m",
+    "force": "N",
+}
+_ROTARY_UNITS = {
+    "mass": "kg·m²",
+    "damping": "N·m·s/rad",
+    "coulomb": "N·m",
+    "resolution": "rad",
+    "period": "s",
+    "stiffness": "N·m/rad",
+    "velocity": "rad/s",
+    "position": "rad",
+    "force": "N·m",
+}
+
+
+@dataclass(frozen=True)
+class Device:
+    """A physical haptic device (SI units; a rotary device uses rad, N·m, kg·m²).
+
+    Parameters
+    ----------
+    mass : float
+        Moving mass m in kg (rotary: inertia in kg·m²), > 0.
+    damping : float
+        Viscous friction b in N·s/m (rotary: N·m·s/rad), >= 0.
+    coulomb : float
+        Dynamic Coulomb friction c in N (rotary: N·m), >= 0.
+    resolution : float
+        Encoder resolution Δ in m (rotary: rad), > 0.
+    period : float
+        Sample period T in s, > 0.
+    name : str, optional
+        A label used in reports.
+    rotary : bool, optional
+        True when positions are angles and forces are torques (only changes units).
+    """
+
+    mass: float
+    damping: float
+    coulomb: float
+    resolution: float
+    period: float
+    name: str = "custom device"
+    rotary: bool = False
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mass", check_positive("mass", self.mass, "give the moving mass in kg (rotary: kg·m²)"))
+        object.__setattr__(
+            self, "damping", check_nonnegative("damping", self.damping, "give the viscous friction b in N·s/m (0 for none)")
+        )
+        object.__setattr__(
+            self, "coulomb", check_nonnegative("coulomb", self.coulomb, "give the Coulomb friction c in N (0 for none)")
+        )
+        object.__setattr__(
+            self, "resolution", check_positive("resolution", self.resolution, "give the encoder resolution Δ in m (rotary: rad)")
+        )
+        object.__setattr__(self, "period", check_positive("period", self.period, "give the sample period T in s (1 kHz: 0.001)"))
+
+    # ------------------------------------------------------------------ units
+    @property
+    def units(self) -> dict[str, str]:
+        """Unit strings of each physical quantity for this device."""
+        return dict(_ROTARY_UNITS if self.rotary else _LINEAR_UNITS)
+
+    # ------------------------------------------------------- dimensionless form
+    def params(self, stiffness: float) -> Params:
+        """Dimensionless (μ, β, σ) for a virtual spring of stiffness ``K`` (paper Table 1).
+
+        Parameters
+        ----------
+        stiffness : float
+            Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+        """
+        k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+        return Params(
+            mu=self.mass / (k * self.period**2),
+            beta=self.damping / (k * self.period),
+            sigma=self.coulomb / (k * self.resolution),
+        )
+
+    def xi_dot(self, velocity: float) -> float:
+        """Dimensionless speed ξ' = ẋ T/Δ (encoder ticks per sample) of a physical speed.
+
+        Independent of the stiffness K (spec section 2).
+        """
+        v = check_real("velocity", velocity, "give the speed in m/s (rotary: rad/s)")
+        return v * self.period / self.resolution
+
+    def velocity(self, xi_dot: float) -> float:
+        """Physical speed ẋ = ξ' Δ/T (m/s or rad/s) of a dimensionless speed."""
+        xd = check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample")
+        return xd * self.resolution / self.period
+
+    def stiffness_for_mu(self, mu: float) -> float:
+        """The stiffness K (N/m) at which μ = m/(K T²) takes the value ``mu``."""
+        return self.mass / (check_positive("mu", mu) * self.period**2)
+
+    def stiffness_for_beta(self, beta: float) -> float:
+        """The stiffness K (N/m) at which β = b/(K T) takes the value ``beta``.
+
+        For β = ½ this is the Colgate-Schenkel bound 2b/T (paper eq. 8).
+        """
+        b = check_positive("beta", beta, "β must be > 0 to solve for K")
+        if self.damping == 0.0:
+            raise DFAValueError(
+                "damping = 0.0 is invalid here: it must be > 0 to reach a given beta; "
+                "β = b/(K T) is zero for every K when b = 0"
+            )
+        return self.damping / (b * self.period)
+
+    def stiffness_for_sigma(self, sigma: float) -> float:
+        """The stiffness K (N/m) at which σ = c/(K Δ) takes the value ``sigma``.
+
+        For σ = ½ this is the static bound 2c/Δ (paper eq. 9).
+        """
+        s = check_positive("sigma", sigma, "σ must be > 0 to solve for K")
+        if self.coulomb == 0.0:
+            raise DFAValueError(
+                "coulomb = 0.0 is invalid here: it must be > 0 to reach a given sigma; "
+                "σ = c/(K Δ) is zero for every K when c = 0"
+            )
+        return self.coulomb / (s * self.resolution)
+
+    def as_dict(self) -> dict[str, object]:
+        """Physical values in SI units, with name and kind."""
+        return {
+            "name": self.name,
+            "rotary": self.rotary,
+            "mass": self.mass,
+            "damping": self.damping,
+            "coulomb": self.coulomb,
+            "resolution": self.resolution,
+            "period": self.period,
+        }
+

@@ -1,0 +1,284 @@
+"""Stiffness limits for design (paper eq. 8, 9, 11 and the published bounds of spec section 8).
+
+Solving the physical criterion (eq. 11)::
+
+    (b − K T/2)|ẋ0| + (c − K Δ/2) >= 0   and   c >= K Δ/2
+
+for K gives the largest passive stiffness at impact speed ẋ0::
+
+    K_max(ẋ0) = min( 2c/Δ, 2(b|ẋ0| + c)/(T|ẋ0| + Δ) )
+
+which falls from 2c/Δ at rest (eq. 9) towards 2b/T at high speed (eq. 8)
+when b/T < c/Δ. Published bounds for comparison:
+
+* Colgate & Schenkel (1997): K < 2b/T (no Coulomb friction, no encoder).
+* Abbott & Okamura (2005): K < min(2b/T, 2c/Δ), the ξ'0 → ∞ and ξ'0 → 0 ends of eq. 11.
+* Gil, Avello, Rubio & Flórez (2004): the exact stability limit of the linear
+  sampled spring (no encoder, no Coulomb friction), K_crit = (b/T) f(γ) with
+  f(γ) = γ(1 − δ)/(1 − δ − γδ), γ = bT/m, δ = e^{−γ}.
+
+Examples
+--------
+>>> from dfa.catalogue import get_device
+>>> dev = get_device("Impulse Engine").device
+>>> lim = stiffness_limits(dev, velocity=0.05)
+>>> round(lim.k_max, 2), round(lim.k_colgate, 2), round(lim.k_abbott_okamura, 2)
+(120.77, 20.0, 20.0)
+>>> round(gil_beta_critical(100.0), 5)                       # spec section 8
+0.49958
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .device import Device
+from .errors import DFATypeError, DFAValueError, check_positive, check_real
+
+__all__ = [
+    "StiffnessLimits",
+    "stiffness_limits",
+    "k_max_criterion",
+    "k_colgate",
+    "k_abbott_okamura",
+    "k_gil",
+    "gil_factor",
+    "gil_beta_critical",
+    "max_passive_velocity",
+]
+
+
+def _check_device(device: object) -> Device:
+    if not isinstance(device, Device):
+        raise DFATypeError(
+            f"device = {device!r} has type {type(device).__name__}: it must be a dfa.Device; "
+            "build one with dfa.Device(...) or dfa.get_device(name).device"
+        )
+    return device
+
+
+def k_max_criterion(device: Device, velocity):
+    """Largest stiffness passing the criterion at impact speed ``velocity`` (eq. 11), N/m.
+
+    Vectorised over ``velocity`` (m/s or rad/s; sign ignored).
+
+    Examples
+    --------
+    >>> from dfa.catalogue import get_device
+    >>> dev = get_device("Delta").device
+    >>> k = k_max_criterion(dev, [0.0, 1.0, 1e6])
+    >>> bool(np.isclose(k[0], 2 * dev.coulomb / dev.resolution))
+    True
+    >>> bool(np.isclose(k[-1], 2 * dev.damping / dev.period, rtol=1e-3))
+    True
+    """
+    dev = _check_device(device)
+    v = np.abs(np.asarray(velocity, dtype=float))
+    if not np.all(np.isfinite(v)):
+        raise DFAValueError(
+            f"velocity = {velocity!r} is invalid: it must be finite; give speeds in m/s (rotary: rad/s)"
+        )
+    k_static = 2.0 * dev.coulomb / dev.resolution
+    k_dyn = 2.0 * (dev.damping * v + dev.coulomb) / (dev.period * v + dev.resolution)
+    out = np.minimum(k_static, k_dyn)
+    return float(out) if out.ndim == 0 else out
+
+
+def k_colgate(device: Device) -> float:
+    """Colgate-Schenkel bound 2b/T (paper eq. 8), N/m."""
+    dev = _check_device(device)
+    return 2.0 * dev.damping / dev.period
+
+
+def k_abbott_okamura(device: Device) -> float:
+    """Abbott-Okamura bound min(2b/T, 2c/Δ), N/m."""
+    dev = _check_device(device)
+    return min(2.0 * dev.damping / dev.period, 2.0 * dev.coulomb / dev.resolution)
+
+
+def gil_factor(gamma):
+    """f(γ) = γ(1 − e^{−γ}) / (1 − (1 + γ)e^{−γ}) of Gil et al. (2004), vectorised.
+
+    Computed without cancellation for small γ (series of the denominator);
+    f(0) = 2, so K_crit → 2b/T as b T/m → 0.
+
+    Examples
+    --------
+    >>> float(gil_factor(0.0)), round(float(gil_factor(1e-9)), 9)
+    (2.0, 2.0)
+    """
+    g = np.asarray(gamma, dtype=float)
+    if np.any(g < 0) or not np.all(np.isfinite(g)):
+        raise DFAValueError(f"gamma = {gamma!r} is invalid: it must be finite and >= 0 (γ = bT/m)")
+    small = g < 0.5
+    gs = np.where(small, g, 0.0)
+    # 1 - (1+γ)e^{-γ} = Σ_{n>=2} (-1)^n (n-1) γ^n / n!  and  1 - e^{-γ} = Σ_{n>=1} (-1)^{n+1} γ^n / n!
+    num_s = np.zeros_like(gs)
+    den_s = np.zeros_like(gs)
+    term = np.ones_like(gs)  # γ^n / n!
+    for n in range(1, 30):
+        term = term * gs / n
+        sign = -1.0 if n % 2 == 0 else 1.0
+        num_s += sign * term  # (1 - e^{-γ}) / 1
+        if n >= 2:
+            den_s += -sign * (n - 1) * term
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # small: f = γ (1-δ) / g  with both series divided by γ² to keep precision
+        f_small = np.where(gs > 0, gs * num_s / np.where(den_s > 0, den_s, 1.0), 2.0)
+        gl = np.where(small, 1.0, g)
+        one_minus_delta = -np.expm1(-gl)
+        f_large = gl * one_minus_delta / (one_minus_delta - gl * np.exp(-gl))
+    out = np.where(small, f_small, f_large)
+    return float(out) if out.ndim == 0 else out
+
+
+def k_gil(device: Device) -> float:
+    """Exact stability limit of the linear sampled spring (Gil et al. 2004), N/m.
+
+    K_crit = (b/T) f(γ), γ = bT/m (see :func:`gil_factor`). Zero when b = 0: the
+    undamped sampled spring is unstable for every K > 0.
+    """
+    dev = _check_device(device)
+    gamma = dev.damping * dev.period / dev.mass
+    return dev.damping / dev.period * float(gil_factor(gamma))
+
+
+def gil_beta_critical(mu: float) -> float:
+    """Dimensionless form of the Gil et al. bound: the β below which the linear loop is unstable.
+
+    The linear sampled spring μξ'' + βξ' = −ξ(h) (no encoder, no Coulomb friction)
+    is stable iff β f(β/μ) > 1, since γ = bT/m = β/μ. β_crit → ½ as μ → ∞
+    (spec section 8: μ = 1: 0.4617, μ = 5: 0.4918, μ = 100: 0.49958).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(K T²) > 0.
+    """
+    m = check_positive("mu", mu, "μ = m/(K T²) must be positive")
+    return float(brentq(lambda b: b * gil_factor(b / m) - 1.0, 1e-12, 0.5, xtol=1e-15, rtol=1e-15))
+
+
+def max_passive_velocity(device: Device, stiffness: float) -> float | None:
+    """Largest impact speed for which stiffness K passes the criterion (eq. 11), m/s.
+
+    Returns
+    -------
+    float or None
+        ``math.inf`` when K <= 2b/T and K <= 2c/Δ (passive at every speed),
+        None when K > 2c/Δ (not passive even at rest), otherwise
+        (c − KΔ/2)/(KT/2 − b).
+    """
+    dev = _check_device(device)
+    k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+    if dev.coulomb - k * dev.resolution / 2.0 < 0.0:
+        return None
+    if k * dev.period / 2.0 <= dev.damping:
+        return math.inf
+    return (dev.coulomb - k * dev.resolution / 2.0) / (k * dev.period / 2.0 - dev.damping)
+
+
+@dataclass(frozen=True)
+class StiffnessLimits:
+    """Stiffness limits of a device at an impact speed (all N/m, rotary N·m/rad).
+
+    Attributes
+    ----------
+    device : Device
+    velocity : float
+        Impact speed |ẋ0| in m/s (rad/s).
+    xi_dot : float
+        The same speed in encoder ticks per sample.
+    k_max : float
+        Criterion limit (eq. 11) at this speed.
+    k_static : float
+        2c/Δ, the limit at rest (eq. 9).
+    k_colgate : float
+        2b/T (eq. 8, Colgate & Schenkel 1997).
+    k_abbott_okamura : float
+        min(2b/T, 2c/Δ) (Abbott & Okamura 2005).
+    k_gil : float
+        Exact limit of the linear sampled spring (Gil et al. 2004).
+    stiffness : float or None
+        The stiffness under study, if given.
+    max_passive_velocity : float or None
+        For ``stiffness``: largest passive speed (inf: every speed; None: none).
+    velocity_status : str
+        ``"not requested"``, ``"all speeds"``, ``"bounded"`` or ``"none"``.
+    status : str
+        ``"ok"`` when ``stiffness`` passes at ``velocity`` (or none was given),
+        otherwise ``"too stiff"``.
+    """
+
+    device: Device
+    velocity: float
+    xi_dot: float
+    k_max: float
+    k_static: float
+    k_colgate: float
+    k_abbott_okamura: float
+    k_gil: float
+    stiffness: float | None = None
+    max_passive_velocity: float | None = None
+    velocity_status: str = "not requested"
+    status: str = "ok"
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record (the ``dfa stiffness --json`` contract plus extras)."""
+        mpv = self.max_passive_velocity
+        return {
+            "k_max": self.k_max,
+            "k_colgate": self.k_colgate,
+            "k_abbott_okamura": self.k_abbott_okamura,
+            "k_gil": self.k_gil,
+            "k_static": self.k_static,
+            "max_passive_velocity": None if (mpv is None or math.isinf(mpv)) else mpv,
+            "max_passive_velocity_status": self.velocity_status,
+            "stiffness": self.stiffness,
+            "velocity": self.velocity,
+            "xi_dot": self.xi_dot,
+            "device": self.device.name,
+            "status": self.status,
+        }
+
+
+def stiffness_limits(device: Device, velocity: float, stiffness: float | None = None) -> StiffnessLimits:
+    """All stiffness limits of ``device`` at impact speed ``velocity``.
+
+    Parameters
+    ----------
+    device : Device
+    velocity : float
+        Impact speed ẋ0 in m/s (rotary: rad/s); its sign is ignored.
+    stiffness : float, optional
+        A stiffness K to assess: its largest passive speed is reported.
+    """
+    dev = _check_device(device)
+    v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
+    mpv: float | None = None
+    vstatus = "not requested"
+    status = "ok"
+    k = None
+    if stiffness is not None:
+        k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+        mpv = max_passive_velocity(dev, k)
+        vstatus = "none" if mpv is None else ("all speeds" if math.isinf(mpv) else "bounded")
+        status = "ok" if (mpv is not None and mpv >= v) else "too stiff"
+    return StiffnessLimits(
+        device=dev,
+        velocity=v,
+        xi_dot=dev.xi_dot(v),
+        k_max=float(k_max_criterion(dev, v)),
+        k_static=2.0 * dev.coulomb / dev.resolution,
+        k_colgate=k_colgate(dev),
+        k_abbott_okamura=k_abbott_okamura(dev),
+        k_gil=k_gil(dev),
+        stiffness=k,
+        max_passive_velocity=mpv,
+        velocity_status=vstatus,
+        status=status,
+    )

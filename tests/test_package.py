@@ -1,0 +1,25 @@
+"""Package hygiene: import graph, public API, packaging."""
+
+import subprocess
+import sys
+
+import dfa
+
+
+def test_import_dfa_does_not_load_matplotlib():
+    code = "import sys, dfa, dfa.cli; print('matplotlib' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
+    assert out == "False"
+
+
+def test_public_api_is_listed_and_importable():
+    for name in dfa.__all__:
+        assert hasattr(dfa, name), name
+    assert issubclass(dfa.DFAValueError, ValueError) and issubclass(dfa.DFATypeError, TypeError)
+
+
+def test_catalogue_is_package_data():
+    from importlib import resources
+
+    assert resources.files("dfa").joinpath("data/devices.toml").is_file()
+    assert resources.files("dfa").joinpath("py.typed").is_file()
