@@ -41,6 +41,41 @@ from .stiffness import (
 
 __version__ = "0.1.0"
 
+# Modules that need python-control are imported on first use: python-control
+# itself imports matplotlib, and `import dfa` must stay free of it.
+_LAZY = {
+    "quantizer_df": "describing",
+    "quantizer_df_inverse": "describing",
+    "quantizer_df_peak": "describing",
+    "coulomb_df": "describing",
+    "coulomb_equivalent_damping": "describing",
+    "numeric_df": "describing",
+    "QuantizerNonlinearity": "describing",
+    "CoulombNonlinearity": "describing",
+    "LOOP_MODELS": "loop",
+    "loop_response": "loop",
+    "loop_system": "loop",
+    "NyquistLocusResponse": "loop",
+    "nyquist_locus_response": "loop",
+}
+_SUBMODULES = {"describing", "loop", "criterion", "stiffness", "catalogue", "device", "errors", "cli"}
+
+
+def __getattr__(name: str):
+    import importlib
+
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    if name in _SUBMODULES:
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module 'dfa' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
+
 __all__ = [
     "Device",
     "Params",
@@ -63,6 +98,7 @@ __all__ = [
     "k_gil",
     "gil_beta_critical",
     "max_passive_velocity",
+    *_LAZY,
     "DFAError",
     "DFAValueError",
     "DFATypeError",

@@ -1,0 +1,339 @@
+"""The linearised haptic loop (paper Fig. 6, eq. 36-40) built with python-control.
+
+A limit cycle ξ = M sin ωτ of the quantized, frictional loop satisfies the
+harmonic balance (eq. 36)::
+
+    1 + D(M) · L(jω; M) = 0,
+
+where D is the quantizer describing function (eq. 41) and L the linear part:
+the device with Coulomb friction replaced by its equivalent viscous damping
+(eq. 40)::
+
+    G(s; M, ω) = 1/(μ s² + β_eq s),   β_eq = β + 4σ/(π M ω),
+
+in series with the zero-order hold and an optional computational delay of d
+samples. Three models of the hold are offered (time in samples, T = 1):
+
+``"half-delay"`` (the paper's)
+    L = e^{−jω(d + ½)} G(jω), exact in the frequency response.
+``"pade"``
+    the delay e^{−s(d + ½)} replaced by a Padé approximation of order
+    ``pade_order``: a rational model for tools that need one.
+``"zoh"`` (exact)
+    L = z^{−d} G_d(z) at z = e^{jω}, with G_d the ZOH-discretised device
+    (``control.c2d(G, 1, 'zoh')``), here in closed form::
+
+        G_d(z) = (c₁ z + c₀) / (μ (z − 1)(z − p)),   a = β_eq/μ, p = e^{−a},
+        c₁ = (a − 1 + p)/a²,   c₀ = (1 − p − a p)/a²     (c₁ = c₀ = ½ at a = 0).
+
+Examples
+--------
+>>> import numpy as np
+>>> from dfa.device import Params
+>>> p = Params(mu=5.0, beta=0.1, sigma=0.0)
+>>> L = loop_response(p, [0.1, 1.0])                      # half-delay model
+>>> bool(np.allclose(L, np.exp(-0.5j * np.array([0.1, 1.0])) / (5.0 * (1j * np.array([0.1, 1.0]))**2 + 0.1j * np.array([0.1, 1.0]))))
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import control
+import numpy as np
+
+from .describing import coulomb_equivalent_damping, quantizer_df, quantizer_df_inverse
+from .device import Params
+from .errors import DFATypeError, DFAValueError, check_choice, check_int
+
+__all__ = [
+    "LOOP_MODELS",
+    "equivalent_damping",
+    "device_tf",
+    "hold_delay_tf",
+    "device_zoh_tf",
+    "zoh_pulse_response",
+    "loop_response",
+    "loop_system",
+    "NyquistLocusResponse",
+    "nyquist_locus_response",
+]
+
+LOOP_MODELS = ("half-delay", "pade", "zoh")
+
+
+def _check_params(params: object) -> Params:
+    if not isinstance(params, Params):
+        raise DFATypeError(
+            f"params = {params!r} has type {type(params).__name__}: it must be dfa.Params(mu, beta, sigma); "
+            "use device.params(stiffness) for a physical device"
+        )
+    return params
+
+
+def _check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int]:
+    m = check_choice("model", model, LOOP_MODELS)
+    d = check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+    n = check_int("pade_order", pade_order, minimum=1, fix="use an order of 1 or more (4 is usually enough)")
+    return m, d, n
+
+
+def _omega(omega, name: str = "omega") -> np.ndarray:
+    w = np.asarray(omega, dtype=float)
+    if w.size and (not np.all(np.isfinite(w)) or np.any(w <= 0)):
+        bad = w[~(np.isfinite(w) & (w > 0))].ravel()[0]
+        raise DFAValueError(f"{name} = {bad!r} is invalid: it must be a finite frequency > 0 in rad per sample")
+    return w
+
+
+def equivalent_damping(params: Params, amplitude=None, omega=None):
+    """β_eq = β + 4σ/(πMω) of eq. 40, broadcast over ``amplitude`` M and ``omega`` ω.
+
+    With σ = 0, ``amplitude`` and ``omega`` may be omitted (β_eq = β).
+    """
+    p = _check_params(params)
+    if p.sigma == 0.0:
+        shape = np.broadcast_shapes(np.shape(amplitude) if amplitude is not None else (), np.shape(omega) if omega is not None else ())
+        return np.full(shape, p.beta) if shape else p.beta
+    if amplitude is None or omega is None:
+        raise DFAValueError(
+            f"amplitude = {amplitude!r} is invalid here: with sigma = {p.sigma} > 0 the loop depends on the "
+            "cycle's amplitude M and frequency ω (eq. 40); give both"
+        )
+    return p.beta + coulomb_equivalent_damping(p.sigma, amplitude, omega)
+
+
+def device_tf(params: Params, amplitude: float | None = None, omega: float | None = None) -> control.TransferFunction:
+    """Continuous device G(s) = 1/(μ s² + β_eq s) (time in samples) as a python-control TransferFunction.
+
+    Examples
+    --------
+    >>> from dfa.device import Params
+    >>> G = device_tf(Params(2.0, 0.5, 0.0))
+    >>> G.num[0][0].tolist(), G.den[0][0].tolist()
+    ([1.0], [2.0, 0.5, 0.0])
+    """
+    p = _check_params(params)
+    b = float(equivalent_damping(p, amplitude, omega))
+    return control.tf([1.0], [p.mu, b, 0.0])
+
+
+def hold_delay_tf(delay: int = 0, pade_order: int = 4) -> control.TransferFunction:
+    """Padé approximation of the hold's half sample plus ``delay`` samples, e^{−s(d + ½)}."""
+    _m, d, n = _check_model("pade", delay, pade_order)
+    num, den = control.pade(d + 0.5, n)
+    return control.tf(num, den)
+
+
+def device_zoh_tf(params: Params, amplitude: float | None = None, omega: float | None = None) -> control.TransferFunction:
+    """Exact ZOH discretisation (T = 1) of the device: ``control.c2d(device_tf(...), 1, 'zoh')``."""
+    return control.c2d(device_tf(params, amplitude, omega), 1.0, method="zoh")
+
+
+def _zoh_coefficients(a: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(c₁, c₀, p) of the ZOH pulse transfer function, without cancellation for small a."""
+    a = np.asarray(a, dtype=float)
+    small = a < 0.5
+    s = np.where(small, a, 0.0)
+    c1s = np.zeros_like(s)
+    c0s = np.zeros_like(s)
+    term = np.ones_like(s)  # (-a)^(n-2)/n! built up from n = 2
+    for n in range(2, 30):
+        term = term / n if n == 2 else term * (-s) / n
+        c1s += term
+        c0s += (n - 1) * term
+    al = np.where(small, 1.0, a)
+    p = np.exp(-a)
+    pl = np.exp(-al)
+    c1l = (al - 1.0 + pl) / al**2
+    c0l = (1.0 - pl - al * pl) / al**2
+    return np.where(small, c1s, c1l), np.where(small, c0s, c0l), p
+
+
+def zoh_pulse_response(mu, beta_eq, omega):
+    """G_d(e^{jω}) of the ZOH-discretised device 1/(μ s² + β_eq s), closed form (vectorised).
+
+    Parameters
+    ----------
+    mu : float or array_like
+        Dimensionless mass μ > 0.
+    beta_eq : float or array_like
+        (Equivalent) damping >= 0.
+    omega : float or array_like
+        Frequency in rad per sample, in (0, π].
+    """
+    mu = np.asarray(mu, dtype=float)
+    a = np.asarray(beta_eq, dtype=float) / mu
+    c1, c0, p = _zoh_coefficients(a)
+    z = np.exp(1j * np.asarray(omega, dtype=float))
+    return (c1 * z + c0) / (mu * (z - 1.0) * (z - p))
+
+
+def loop_response(params: Params, omega, amplitude=None, *, model: str = "half-delay", delay: int = 0, pade_order: int = 4):
+    """Frequency response L(jω; M) of the linear part of the loop (eq. 36).
+
+    Parameters
+    ----------
+    params : Params
+        Dimensionless device (μ, β, σ).
+    omega : float or array_like
+        Frequencies ω > 0 in rad per sample (ω < π for a sampled cycle).
+    amplitude : float or array_like, optional
+        Cycle amplitude M in ticks (needed when σ > 0: it sets β_eq); broadcast with ``omega``.
+    model : {"half-delay", "pade", "zoh"}
+        Model of the zero-order hold (module docstring).
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
+    pade_order : int, optional
+        Order of the Padé approximation for ``model="pade"`` (default 4).
+
+    Returns
+    -------
+    complex or numpy.ndarray of complex
+        L with the broadcast shape of ``omega`` and ``amplitude``.
+    """
+    p = _check_params(params)
+    m, d, n = _check_model(model, delay, pade_order)
+    w = _omega(omega)
+    beq = equivalent_damping(p, amplitude, w) if p.sigma > 0 else np.full(np.broadcast_shapes(w.shape, np.shape(amplitude) if amplitude is not None else ()), p.beta)
+    w = np.broadcast_to(w, np.shape(beq))
+    if m == "zoh":
+        out = zoh_pulse_response(p.mu, beq, w) * np.exp(-1j * w * d)
+    else:
+        s = 1j * w
+        g = 1.0 / (p.mu * s**2 + beq * s)
+        if m == "half-delay":
+            out = g * np.exp(-s * (d + 0.5))
+        else:
+            num, den = control.pade(d + 0.5, n)
+            out = g * np.polyval(num, s) / np.polyval(den, s)
+    out = np.asarray(out, dtype=complex)
+    return complex(out) if out.ndim == 0 else out
+
+
+def loop_system(params: Params, amplitude: float | None = None, omega: float | None = None, *,
+                model: str = "pade", delay: int = 0, pade_order: int = 4, omega_grid=None):
+    """The linear part as a python-control system, for python-control's own tools.
+
+    ``"pade"`` gives a continuous TransferFunction, ``"zoh"`` a discrete one
+    (dt = 1), and ``"half-delay"`` a FrequencyResponseData on ``omega_grid``
+    (the exact delay is not rational). With σ > 0 the rational models are
+    linearised at the given ``amplitude`` and ``omega`` (eq. 40); the FRD only
+    needs the amplitude, because the Coulomb term adds j·4σ/(πM) to 1/G at
+    every frequency.
+    """
+    p = _check_params(params)
+    m, d, n = _check_model(model, delay, pade_order)
+    if m == "pade":
+        return device_tf(p, amplitude, omega) * hold_delay_tf(d, n)
+    if m == "zoh":
+        gd = device_zoh_tf(p, amplitude, omega)
+        return gd * control.tf([1.0], [1.0] + [0.0] * d, dt=1.0) if d else gd
+    w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega_grid is None else omega_grid, "omega_grid")
+    amp = None if p.sigma == 0.0 or amplitude is None else np.full_like(w, amplitude)
+    return control.frd(loop_response(p, w, amp, model=m, delay=d), w)
+
+
+@dataclass(frozen=True)
+class NyquistLocusResponse:
+    """Data of a Nyquist plot of the loop against the critical locus −1/D(M).
+
+    Attributes
+    ----------
+    params : Params
+        The inputs.
+    model, delay, pade_order
+        Loop model (see :func:`loop_response`).
+    omega : numpy.ndarray
+        Frequencies (rad per sample) of the curves.
+    amplitudes : numpy.ndarray
+        The amplitude M at which each curve was linearised (NaN when σ = 0:
+        the curve does not depend on M).
+    curves : numpy.ndarray of complex, shape (len(amplitudes), len(omega))
+        L(jω; M) for each amplitude.
+    locus_amplitude : numpy.ndarray
+        Amplitudes M of the critical locus.
+    locus : numpy.ndarray of complex
+        −1/D(M) (on the negative real axis, since D is real).
+    crossings : tuple of (M, ω, point)
+        Harmonic-balance solutions where a curve meets the locus at its own
+        amplitude. Computed here for σ = 0 (every curve is the same); for σ > 0
+        use the limit-cycle solver.
+    status : str
+        ``"ok"``, or a note on what was not computed.
+    """
+
+    params: Params
+    model: str
+    delay: int
+    pade_order: int
+    omega: np.ndarray = field(repr=False)
+    amplitudes: np.ndarray
+    curves: np.ndarray = field(repr=False)
+    locus_amplitude: np.ndarray = field(repr=False)
+    locus: np.ndarray = field(repr=False)
+    crossings: tuple
+    status: str
+
+
+def _phase_crossings(omega: np.ndarray, curve: np.ndarray) -> list[tuple[float, float]]:
+    """(ω, Re L) where the curve crosses the negative real axis (linear interpolation on the grid)."""
+    im = curve.imag
+    out = []
+    idx = np.where(np.sign(im[:-1]) * np.sign(im[1:]) < 0)[0]
+    for i in idx:
+        t = im[i] / (im[i] - im[i + 1])
+        w = omega[i] + t * (omega[i + 1] - omega[i])
+        re = curve.real[i] + t * (curve.real[i + 1] - curve.real[i])
+        if re < 0:
+            out.append((float(w), float(re)))
+    return out
+
+
+def nyquist_locus_response(params: Params, amplitudes=None, omega=None, *, model: str = "half-delay",
+                           delay: int = 0, pade_order: int = 4, locus_amplitude=None) -> NyquistLocusResponse:
+    """Nyquist data of the loop L(jω; M) and the critical locus −1/D(M) (paper Fig. 6).
+
+    Parameters
+    ----------
+    params : Params
+        Dimensionless device.
+    amplitudes : array_like, optional
+        Amplitudes M (ticks) at which to linearise the Coulomb friction; needed
+        when σ > 0 (one curve per amplitude), ignored when σ = 0.
+    omega : array_like, optional
+        Frequencies (rad per sample); default 2000 points from 1e-3 to π.
+    locus_amplitude : array_like, optional
+        Amplitudes of the critical locus; default 0.05 to 50 ticks.
+
+    Examples
+    --------
+    >>> from dfa.device import Params
+    >>> r = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.0))
+    >>> [(round(m, 4), round(w, 4)) for m, w, pt in r.crossings]
+    [(0.7905, 0.3974), (1.0098, 0.3974)]
+    """
+    p = _check_params(params)
+    m, d, n = _check_model(model, delay, pade_order)
+    w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega)
+    la = np.asarray(np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude, dtype=float)
+    locus = -1.0 / quantizer_df(la)
+    crossings: list[tuple[float, float, complex]] = []
+    if p.sigma == 0.0:
+        amps = np.array([np.nan])
+        curves = np.atleast_2d(loop_response(p, w, model=m, delay=d, pade_order=n))
+        for wc, re in _phase_crossings(w, curves[0]):
+            roots, _complete = quantizer_df_inverse(-1.0 / re, max_amplitude=float(la.max()))
+            crossings += [(float(r), wc, complex(re, 0.0)) for r in roots]
+        status = "ok"
+    else:
+        if amplitudes is None:
+            raise DFAValueError(
+                f"amplitudes = None is invalid here: with sigma = {p.sigma} > 0 the loop depends on M (eq. 40); "
+                "give the amplitudes (ticks) at which to draw it"
+            )
+        amps = np.atleast_1d(np.asarray(amplitudes, dtype=float))
+        curves = np.vstack([loop_response(p, w, np.full_like(w, a), model=m, delay=d, pade_order=n) for a in amps])
+        status = "crossings not computed for sigma > 0: use the limit-cycle solver"
+    return NyquistLocusResponse(p, m, d, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status)

@@ -1,0 +1,144 @@
+"""The linearised loop of paper Fig. 6 / eq. 36-40: half-sample delay, Padé and exact ZOH models."""
+
+import math
+
+import control
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+import dfa
+from dfa.loop import (
+    device_tf,
+    device_zoh_tf,
+    equivalent_damping,
+    hold_delay_tf,
+    loop_response,
+    loop_system,
+    nyquist_locus_response,
+    zoh_pulse_response,
+)
+
+W = np.linspace(0.01, 3.1, 300)
+
+
+def test_eq40_device_transfer_function_and_equivalent_damping():
+    p = dfa.Params(4.0, 0.2, 0.6)
+    beq = equivalent_damping(p, 1.5, 0.3)
+    assert beq == pytest.approx(0.2 + 4 * 0.6 / (math.pi * 1.5 * 0.3))
+    G = device_tf(p, 1.5, 0.3)
+    np.testing.assert_allclose(G.den[0][0], [4.0, beq, 0.0])
+    with pytest.raises(dfa.DFAValueError, match="amplitude"):
+        equivalent_damping(p)
+
+
+@given(mu=st.floats(0.05, 500), beta=st.one_of(st.just(0.0), st.floats(1e-6, 50)), w=st.floats(0.01, math.pi))
+def test_zoh_closed_form_equals_control_c2d(mu, beta, w):
+    gd = device_zoh_tf(dfa.Params(mu, beta, 0.0))
+    z = np.exp(1j * w)
+    ref = complex(gd(z))
+    assert abs(zoh_pulse_response(mu, beta, w) - ref) <= 1e-9 * abs(ref)
+
+
+@pytest.mark.parametrize("mu, beta", [(1.0, 0.3), (5.0, 0.1), (100.0, 0.01)])
+def test_half_delay_and_exact_zoh_agree_at_low_frequency_and_differ_near_pi(mu, beta):
+    p = dfa.Params(mu, beta, 0.0)
+    w = np.array([1e-3, 1e-2, 0.05])
+    rel = np.abs(loop_response(p, w) / loop_response(p, w, model="zoh") - 1)
+    assert np.all(rel < 1e-2 * np.maximum(w / 0.05, 0.01) + 1e-6)
+    assert rel[0] < rel[1] < rel[2]  # the discrepancy grows with ω (aliasing)
+    # at the Nyquist frequency the sampled response is real; the half-delay model has a phase below −π
+    lz = loop_response(p, math.pi, model="zoh")
+    assert abs(lz.imag) < 1e-8 * abs(lz)  # e^{jπ} itself carries a 1e-16 imaginary part
+    lh = loop_response(p, math.pi)
+    assert np.angle(lh) > 0  # wrapped: phase below −π
+
+
+@pytest.mark.parametrize("mu", [0.5, 1.0, 5.0, 100.0])
+def test_exact_zoh_linear_loop_is_marginal_at_the_gil_bound(mu):
+    """Linear loop (no quantizer, σ = 0): 1 + L = 0 exactly at β = β_crit(μ) of Gil et al."""
+    b = dfa.gil_beta_critical(mu)
+    w = np.linspace(1e-3, math.pi - 1e-9, 200001)
+
+    def crossover_gain(beta):
+        L = loop_response(dfa.Params(mu, beta, 0.0), w, model="zoh")
+        i = np.where((np.sign(L.imag[:-1]) != np.sign(L.imag[1:])) & (L.real[:-1] < -0.1))[0]
+        return -L.real[i].min()
+
+    assert crossover_gain(b) == pytest.approx(1.0, abs=1e-4)
+    assert crossover_gain(b * 1.01) < 1.0 < crossover_gain(b * 0.99)
+
+
+def test_half_delay_linear_boundary_is_close_to_gil_for_large_mu():
+    # half-delay: β = μω tan(ω/2) with μω² = cos(ω/2)  ->  β → ½ like Gil's bound
+    from scipy.optimize import brentq
+
+    for mu, tol in [(100.0, 1e-3), (5.0, 2e-2)]:
+        w = brentq(lambda x: mu * x * x - math.cos(x / 2), 1e-6, math.pi)
+        assert mu * w * math.tan(w / 2) == pytest.approx(dfa.gil_beta_critical(mu), abs=tol)
+
+
+def test_pade_converges_to_half_delay():
+    p = dfa.Params(5.0, 0.2, 0.0)
+    ref = loop_response(p, W)
+    errs = [np.max(np.abs(loop_response(p, W, model="pade", pade_order=n) / ref - 1)) for n in (1, 2, 4, 6)]
+    assert errs[0] > errs[1] > errs[2] > errs[3] and errs[3] < 1e-6
+    # and the rational system from python-control has the same response
+    H = loop_system(p, model="pade", pade_order=4)
+    np.testing.assert_allclose(H(1j * W), loop_response(p, W, model="pade", pade_order=4), rtol=1e-10)
+
+
+@pytest.mark.parametrize("model", ["half-delay", "pade", "zoh"])
+def test_computational_delay_adds_whole_samples(model):
+    p = dfa.Params(5.0, 0.2, 0.3)
+    amp = np.full_like(W, 2.0)
+    l0 = loop_response(p, W, amp, model=model, pade_order=8)
+    l2 = loop_response(p, W, amp, model=model, delay=2, pade_order=8)
+    tol = 1e-12 if model != "pade" else 1e-2
+    np.testing.assert_allclose(l2, l0 * np.exp(-2j * W), rtol=tol)
+
+
+def test_zoh_discrete_system_with_delay_matches_response():
+    p = dfa.Params(5.0, 0.2, 0.0)
+    H = loop_system(p, model="zoh", delay=1)
+    assert H.dt == 1.0
+    np.testing.assert_allclose(H(np.exp(1j * W)), loop_response(p, W, model="zoh", delay=1), rtol=1e-10)
+
+
+def test_fig6_nyquist_crossings_satisfy_harmonic_balance():
+    p = dfa.Params(5.0, 0.4, 0.0)
+    r = nyquist_locus_response(p)
+    assert len(r.crossings) == 2 and r.status == "ok"
+    for m, w, _pt in r.crossings:
+        assert abs(1 + dfa.describing.quantizer_df(m) * loop_response(p, w)) < 1e-5
+    assert np.all(r.locus.imag == 0) and np.all(r.locus.real < 0)
+    s = nyquist_locus_response(dfa.Params(5.0, 0.4, 0.3), amplitudes=[0.5, 2.0])
+    assert s.curves.shape == (2, s.omega.size) and s.crossings == ()
+    with pytest.raises(dfa.DFAValueError, match="amplitudes"):
+        nyquist_locus_response(dfa.Params(5.0, 0.4, 0.3))
+
+
+@pytest.mark.parametrize(
+    "kwargs, needle",
+    [
+        (dict(model="exact"), "model"),
+        (dict(delay=-1), "delay"),
+        (dict(delay=0.5), "delay"),
+        (dict(model="pade", pade_order=0), "pade_order"),
+    ],
+)
+def test_loop_bad_input(kwargs, needle):
+    with pytest.raises(dfa.DFAValueError, match=needle):
+        loop_response(dfa.Params(1.0, 0.1, 0.0), 0.5, **kwargs)
+
+
+def test_loop_rejects_bad_frequency_and_params_type():
+    with pytest.raises(dfa.DFAValueError, match="omega"):
+        loop_response(dfa.Params(1.0, 0.1, 0.0), [0.5, -1.0])
+    with pytest.raises(dfa.DFAValueError, match="omega"):
+        loop_response(dfa.Params(1.0, 0.1, 0.0), math.nan)
+    with pytest.raises(dfa.DFATypeError, match="params"):
+        loop_response((1.0, 0.1, 0.0), 0.5)
+    with pytest.raises(dfa.DFAValueError, match="pade_order"):
+        hold_delay_tf(0, 0)
