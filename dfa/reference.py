@@ -1,0 +1,130 @@
+"""Slow, independent reference integrators of the same sampled loop.
+
+They exist to check :func:`dfa.simulate` and to measure its speed against
+(:mod:`benchmarks`); do not use them for design work.
+
+* :func:`simulate_ivp` integrates μξ'' + βξ' + σ sgn ξ' = φ numerically with
+  :func:`scipy.integrate.solve_ivp` (DOP853), sample by sample, with an event
+  at ξ' = 0 for the stick-slip logic.
+* :func:`simulate_control` runs the loop as a discrete-time
+  :class:`control.NonlinearIOSystem` (dt = 1) through python-control's
+  ``input_output_response``; its update function is the exact per-sample map
+  written in plain Python (:func:`step_python`).
+* :func:`linear_zoh_recursion` is the linear loop (no quantizer, no Coulomb
+  friction) from ``control.c2d(…, 'zoh')``: x_{h+1} = A_d x_h − B_d ξ_{h−d}.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["simulate_ivp", "step_python", "simulate_control", "linear_zoh_recursion"]
+
+
+def _force(x: float, quantize: bool) -> float:
+    return -(math.floor(x) + 0.5) if quantize else -x
+
+
+def simulate_ivp(mu, beta, sigma, xi0, xi_dot0, samples, *, quantize=True, delay=0, rtol=1e-12, atol=1e-13):
+    """Reference trajectory (ξ, ξ') at the samples 0 … samples, by solve_ivp with events."""
+    from scipy.integrate import solve_ivp
+
+    xs = np.empty(samples + 1)
+    vs = np.empty(samples + 1)
+    x, v = float(xi0), float(xi_dot0)
+    xs[0], vs[0] = x, v
+    hist = [_force(x, quantize)] * (delay + 1)
+    for h in range(samples):
+        hist = hist[1:] + [_force(x, quantize)]
+        phi = hist[0]
+        t = 0.0
+        while t < 1.0:
+            if v == 0.0:
+                if abs(phi) <= sigma:
+                    break  # stuck for the rest of the sample
+                s = math.copysign(1.0, phi)
+            else:
+                s = math.copysign(1.0, v)
+
+            def rhs(_t, y, s=s):
+                return [y[1], (phi - beta * y[1] - sigma * s) / mu]
+
+            def stop(_t, y, s=s):
+                return y[1]
+
+            stop.terminal = True
+            stop.direction = -s
+            sol = solve_ivp(rhs, (t, 1.0), [x, v], method="DOP853", rtol=rtol, atol=atol, events=stop)
+            if sol.status == 1 and sol.t_events[0].size:
+                t = float(sol.t_events[0][0])
+                x = float(sol.y_events[0][0][0])
+                v = 0.0
+            else:
+                x, v = float(sol.y[0, -1]), float(sol.y[1, -1])
+                t = 1.0
+        xs[h + 1], vs[h + 1] = x, v
+    return xs, vs
+
+
+def step_python(x, v, phi, mu, beta, sigma):
+    """The exact per-sample map in plain Python (same closed form as the compiled kernel)."""
+
+    def phi1(u):
+        return 1.0 - u / 2 + u * u / 6 if u < 1e-6 else -math.expm1(-u) / u
+
+    def phi2(u):
+        return 0.5 - u / 6 + u * u / 24 if u < 1e-4 else (math.expm1(-u) + u) / (u * u)
+
+    rate = beta / mu
+    if v == 0.0 and abs(phi) <= sigma:
+        return x, 0.0
+    s = 1.0 if (v > 0 or (v == 0 and phi > 0)) else -1.0
+    a = (phi - sigma * s) / mu
+    x1 = x + v * phi1(rate) + a * phi2(rate)
+    v1 = v * math.exp(-rate) + a * phi1(rate)
+    if v1 * s > 0 or v == 0.0:
+        return x1, v1
+    tstar = min(1.0, math.log1p(-v * beta / (a * mu)) / rate if beta > 0 else -v / a)
+    u = rate * tstar
+    x = x + v * tstar * phi1(u) + a * tstar * tstar * phi2(u)
+    tr = 1.0 - tstar
+    if abs(phi) <= sigma or tr <= 0.0:
+        return x, 0.0
+    s2 = math.copysign(1.0, phi)
+    a2 = (phi - sigma * s2) / mu
+    u2 = rate * tr
+    return x + a2 * tr * tr * phi2(u2), a2 * tr * phi1(u2)
+
+
+def simulate_control(mu, beta, sigma, xi0, xi_dot0, samples, *, quantize=True):
+    """The sampled loop as a discrete-time python-control NonlinearIOSystem, run by input_output_response."""
+    import control
+
+    def update(_t, state, _u, _params):
+        x, v = state
+        return np.array(step_python(x, v, _force(x, quantize), mu, beta, sigma))
+
+    sys = control.nlsys(update, None, inputs=0, outputs=2, states=2, dt=1, name="haptic_loop")
+    resp = control.input_output_response(sys, np.arange(samples + 1), 0, X0=[xi0, xi_dot0])
+    return resp.states[0], resp.states[1]
+
+
+def linear_zoh_recursion(mu, beta, xi0, xi_dot0, samples, *, delay=0):
+    """Linear sampled spring φ = −ξ(h − d) from the exact ZOH discretisation of 1/(μs² + βs)."""
+    import control
+
+    plant = control.ss([[0.0, 1.0], [0.0, -beta / mu]], [[0.0], [1.0 / mu]], [[1.0, 0.0]], [[0.0]])
+    d = control.c2d(plant, 1.0, method="zoh")
+    ad, bd = np.asarray(d.A), np.asarray(d.B)[:, 0]
+    xs = np.empty(samples + 1)
+    vs = np.empty(samples + 1)
+    state = np.array([xi0, xi_dot0], dtype=float)
+    xs[0], vs[0] = state
+    hist = [float(xi0)] * (delay + 1)
+    for h in range(samples):
+        hist = hist[1:] + [state[0]]
+        state = ad @ state - bd * hist[0]
+        xs[h + 1], vs[h + 1] = state
+    return xs, vs
