@@ -12,7 +12,8 @@ exact solution after a time t is, with u = β t/μ and a = F/μ::
     φ₁(u) = (1 − e^{−u})/u,   φ₂(u) = (u − 1 + e^{−u})/u²
 
 (φ₁ = 1, φ₂ = ½ at β = 0: the polynomial solution). The velocity reaches zero
-at t* = (μ/β) log1p(−ξ'₀β/F) (t* = −ξ'₀μ/F at β = 0); there the device sticks
+at t* = (μ/β) log1p(−ξ'₀β/F) = −(ξ'₀μ/F)·log1p(x)/x, x = −ξ'₀β/F
+(t* = −ξ'₀μ/F at β = 0); there the device sticks
 for the rest of the sample when |φ| <= σ, otherwise it restarts in direction
 sgn φ and cannot stop again within the sample. Energy dissipated by the
 viscous term over a phase (closed form)::
@@ -176,7 +177,7 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
             a = (phi - sigma * s) / mu
             x1 = x + v * p1 + a * p2
             v1 = v * e1 + a * p1
-            if v1 * s > 0.0 or v == 0.0:
+            if v1 * s > 0.0 or v == 0.0 or a == 0.0:  # a = 0: ξ' decays without crossing (may underflow to 0)
                 if energy:
                     dvisc = _viscous(v, a, beta, mu, 1.0)
                     dcoul = sigma * abs(x1 - x)
@@ -184,10 +185,9 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
                 v = v1
             else:
                 # velocity reaches zero at t* within this sample
-                if beta > 0.0:
-                    tstar = math.log1p(-v * beta / (a * mu)) / rate
-                else:
-                    tstar = -v / a
+                # t* = (μ/β) log1p(x) = (−ξ'/a) log1p(x)/x, x = −ξ'β/(aμ) > 0 (t* = −ξ'/a at β = 0)
+                xq = -v * beta / (a * mu)
+                tstar = (-v / a) * (math.log1p(xq) / xq if xq > 0.0 else 1.0)
                 if tstar > 1.0:
                     tstar = 1.0  # rounding guard: v1 * s <= 0 means t* <= 1
                 u = rate * tstar

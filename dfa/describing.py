@@ -274,7 +274,6 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
         n_last = int(mmax) + 1
     complete = n_last <= mmax
     n_stop = int(min(n_last, math.floor(mmax)))
-    f = lambda x: quantizer_df(x) - g  # noqa: E731
     for n in range(1, n_stop + 1):
         d_lo = quantizer_df(float(n))
         d_hi = quantizer_df(float(n + 1))
@@ -286,10 +285,14 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
             continue
         hi_end = min(float(n + 1), mmax)
         if (d_lo - g) * (dp - g) <= 0 and mp <= mmax:
-            roots.append(optimize.brentq(f, float(n), mp, xtol=1e-14, rtol=4 * np.finfo(float).eps) if d_lo != g else float(n))
+            # left branch: D has a √ singularity at n, so solve in t with M = n + t² (smooth in t)
+            t = optimize.brentq(lambda t: quantizer_df(n + t * t) - g, 0.0, math.sqrt(mp - n), xtol=1e-15, rtol=4 * np.finfo(float).eps)
+            roots.append(n + t * t)
         if mp < hi_end and (dp - g) * (quantizer_df(hi_end) - g) < 0:
-            roots.append(optimize.brentq(f, mp, hi_end, xtol=1e-14, rtol=4 * np.finfo(float).eps))
-    out = np.unique(np.round(np.array(roots, dtype=float), 13))
+            roots.append(optimize.brentq(lambda x: quantizer_df(x) - g, mp, hi_end, xtol=1e-14, rtol=4 * np.finfo(float).eps))
+    out = np.sort(np.array(roots, dtype=float))
+    if out.size > 1:  # a root at a shared bracket end can be found twice; keep the values as found
+        out = out[np.concatenate([[True], np.diff(out) > 1e-12 * out[1:]])]
     return out, bool(complete)
 
 

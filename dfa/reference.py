@@ -84,9 +84,10 @@ def step_python(x, v, phi, mu, beta, sigma):
     a = (phi - sigma * s) / mu
     x1 = x + v * phi1(rate) + a * phi2(rate)
     v1 = v * math.exp(-rate) + a * phi1(rate)
-    if v1 * s > 0 or v == 0.0:
+    if v1 * s > 0 or v == 0.0 or a == 0.0:
         return x1, v1
-    tstar = min(1.0, math.log1p(-v * beta / (a * mu)) / rate if beta > 0 else -v / a)
+    xq = -v * beta / (a * mu)
+    tstar = min(1.0, (-v / a) * (math.log1p(xq) / xq if xq > 0 else 1.0))
     u = rate * tstar
     x = x + v * tstar * phi1(u) + a * tstar * tstar * phi2(u)
     tr = 1.0 - tstar

@@ -196,3 +196,17 @@ def test_simulate_bad_input(kwargs, needle):
     args.update(kwargs)
     with pytest.raises(dfa.DFAValueError, match=needle):
         simulate(**args)
+
+
+@pytest.mark.parametrize(
+    "mu, beta, sigma, x0, v0",
+    [
+        (2.0, 5e-324, 1.0, 0.0, 1.0),  # β/μ underflows to 0: the stop time must not divide by it
+        (0.001, 0.5, 0.5, -1.0, 1.0),  # force exactly balanced by friction: ξ' decays and underflows to 0
+    ],
+)
+def test_eq4_edge_cases_found_by_hypothesis(mu, beta, sigma, x0, v0):
+    r = simulate(mu, beta, sigma, v0, 300, xi0=x0, energy=True)
+    assert r.outcome == "stable"
+    res = r.energy.balance_residual()[: r.samples_run]
+    assert np.all(np.abs(res) <= 1e-9 * max(1.0, r.energy.initial_stored))
