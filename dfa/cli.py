@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 from dataclasses import dataclass
 from typing import Callable, Sequence
@@ -310,6 +311,82 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    from .simulate import MAX_RECORD_BYTES, preload_position, simulate
+
+    inp = _resolve(args, dimensionless=True)
+    p = inp.params
+    assert p is not None
+    xd, _v = _speed(args, inp)
+    assert xd is not None
+    if args.preload and args.xi0 is not None:
+        raise UsageError("--preload and --xi0 cannot both be given: the preload sets ξ0 from the speed")
+    if args.preload:
+        x0, v0 = preload_position(p.mu, xd), 0.0
+    else:
+        x0, v0 = (0.0 if args.xi0 is None else args.xi0), xd
+    if args.trace is not None and 16 * (args.samples + 1) > MAX_RECORD_BYTES:
+        raise UsageError(
+            f"--trace with --samples {args.samples} would need {16 * (args.samples + 1) / 1024**3:.1f} GiB of trajectory "
+            f"(limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB): drop --trace or lower --samples"
+        )
+    r = simulate(p.mu, p.beta, p.sigma, v0, args.samples, xi0=x0, delay=args.delay,
+                 quantize=not args.no_quantization, record=args.trace is not None)
+    if args.trace is not None:
+        _write_trace(args.trace, r)
+    if args.json:
+        _emit(r.as_dict())
+        return 0
+    print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
+    rows = [
+        ["initial state", f"ξ0 = {x0:.5g} ticks, ξ'0 = {v0:.5g} ticks/sample" + (" (spring preload)" if args.preload else "")],
+        ["samples", f"{r.samples_run} of {r.samples} integrated" + (f", delay {r.delay}" if r.delay else "")],
+        ["outcome", r.outcome],
+        ["rest at sample", "-" if r.rest_sample is None else str(r.rest_sample)],
+        ["amplitude", f"{_g(r.amplitude)} ticks"],
+        ["frequency", "-" if r.frequency is None else f"{r.frequency:.4g} rad/sample (period {r.period:.4g} samples)"],
+        ["final state", f"ξ = {_g(r.final_xi)}, ξ' = {_g(r.final_xi_dot)}"],
+    ]
+    print(_table(rows))
+    if args.trace is not None:
+        print(f"trace written to {args.trace}")
+    return 0
+
+
+def _write_trace(path: str, r) -> None:
+    import numpy as np
+
+    try:
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write("sample,xi,xi_dot\n")
+            np.savetxt(fh, np.column_stack([np.arange(r.xi.size), r.xi, r.xi_dot]), delimiter=",", fmt=["%d", "%.17g", "%.17g"])
+    except OSError as exc:
+        raise UsageError(f"--trace {path!r} cannot be written: {exc.strerror}; choose a writable file") from None
+
+
+def _cmd_map(args: argparse.Namespace) -> int:
+    from .maps import stability_map
+
+    out_dir = os.path.dirname(os.path.abspath(args.out))
+    if not os.path.isdir(out_dir):
+        raise UsageError(f"--out {args.out!r} is invalid: folder {out_dir!r} does not exist; create it first")
+    m = stability_map(args.mu, args.xi_dot, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range),
+                      grid=args.grid, samples=args.samples, delay=args.delay, preload=args.preload,
+                      quantize=not args.no_quantization, n_jobs=args.jobs, progress=not args.quiet)
+    path = m.save(args.out)
+    if args.json:
+        d = m.as_dict()
+        d["out"] = str(path)
+        _emit(d)
+        return 0
+    print(f"stability map μ = {m.mu:g}, β in [{m.beta[0]:g}, {m.beta[-1]:g}], σ in [{m.sigma[0]:g}, {m.sigma[-1]:g}], "
+          f"{m.beta.size}×{m.sigma.size} points, {m.samples} samples" + (", spring preload" if m.preload else ""))
+    print(_table([[f"{v:g}", c["stable"], c["oscillating"], c["unstable"]] for v, c in zip(m.xi_dots, m.counts())],
+                 ["ξ'0", "stable", "oscillating", "unstable"]))
+    print(f"written to {path}")
+    return 0
+
+
 def _cmd_report(args: argparse.Namespace) -> int:
     """Interim report: the criterion, region and stiffness limits of a device (stdout)."""
     entry = get_device(args.device or DEFAULT_DEVICE)
@@ -352,6 +429,32 @@ def _build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("stiffness", help="stiffness limits for design at an impact speed (eq. 8, 9, 11)")
     _add_device_args(p, dimensionless=False, speed=True)
     p.set_defaults(func=_cmd_stiffness)
+
+    p = sub.add_parser("simulate", help="exact simulation of the sampled, quantized, frictional loop (eq. 4-5)")
+    _add_device_args(p, dimensionless=True, speed=True)
+    p.add_argument("--xi0", type=_number("--xi0", "ticks"), metavar="X", help="initial position in ticks (default 0)")
+    p.add_argument("--samples", type=_integer("--samples"), default=50_000, metavar="N", help="samples to simulate (default 50000)")
+    p.add_argument("--delay", type=_integer("--delay"), default=0, metavar="D", help="computational delay in samples (default 0)")
+    p.add_argument("--preload", action="store_true", help="start at rest with the spring preloaded to the speed's kinetic energy (section 5)")
+    p.add_argument("--no-quantization", action="store_true", help="linear spring φ = −ξ instead of the encoder staircase")
+    p.add_argument("--trace", metavar="FILE.csv", help="write sample, xi, xi_dot to a CSV file")
+    p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser("map", help="stability map over the (β, σ) plane by simulation (paper Fig. 4)")
+    p.add_argument("--mu", type=_number("--mu", "dimensionless units"), required=True, help="μ = m/(K T²)")
+    p.add_argument("--xi-dot", dest="xi_dot", type=_number("--xi-dot", "ticks per sample"), nargs="+", required=True, metavar="V", help="initial speeds ξ'0 (ticks per sample)")
+    p.add_argument("--beta-range", type=_number("--beta-range", "dimensionless units"), nargs=2, default=[0.0, 1.0], metavar=("A", "B"))
+    p.add_argument("--sigma-range", type=_number("--sigma-range", "dimensionless units"), nargs=2, default=[0.0, 2.0], metavar=("A", "B"))
+    p.add_argument("--grid", type=_integer("--grid"), default=100, metavar="N", help="points per axis (default 100)")
+    p.add_argument("--samples", type=_integer("--samples"), default=50_000, metavar="N", help="samples per run (default 50000)")
+    p.add_argument("--delay", type=_integer("--delay"), default=0, metavar="D")
+    p.add_argument("--preload", action="store_true", help="spring preload instead of an initial speed")
+    p.add_argument("--no-quantization", action="store_true")
+    p.add_argument("--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default all cores)")
+    p.add_argument("--out", required=True, metavar="FILE.npz", help="where to write the map")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--json", action="store_true", help="print counts per outcome per speed as JSON")
+    p.set_defaults(func=_cmd_map)
 
     p = sub.add_parser("report", help="design summary of a device (default: the catalogue's default device)")
     p.add_argument("--device", metavar="NAME", help=f"catalogue device (default {DEFAULT_DEVICE})")

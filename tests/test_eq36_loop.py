@@ -38,7 +38,8 @@ def test_zoh_closed_form_equals_control_c2d(mu, beta, w):
     gd = device_zoh_tf(dfa.Params(mu, beta, 0.0))
     z = np.exp(1j * w)
     ref = complex(gd(z))
-    assert abs(zoh_pulse_response(mu, beta, w) - ref) <= 1e-9 * abs(ref)
+    # absolute floor: at ω = π and β = 0 the response is exactly 0 and c2d leaves a 1e-16 residue
+    assert abs(zoh_pulse_response(mu, beta, w) - ref) <= 1e-9 * abs(ref) + 1e-13 / mu
 
 
 @pytest.mark.parametrize("mu, beta", [(1.0, 0.3), (5.0, 0.1), (100.0, 0.01)])

@@ -1,0 +1,122 @@
+"""Stability maps (paper Fig. 4) and the `dfa simulate` / `dfa map` commands."""
+
+import csv
+import json
+
+import numpy as np
+import pytest
+
+import dfa
+from dfa.cli import main
+from dfa.maps import load_map, stability_map
+from dfa.simulate import OUTCOMES, preload_position, simulate
+
+
+@pytest.fixture(scope="module")
+def small_map():
+    return stability_map(100.0, [1.0, 5.0], grid=12, samples=20_000, n_jobs=1, progress=False)
+
+
+def test_fig4_map_points_equal_single_simulations(small_map):
+    m = small_map
+    rng = np.random.default_rng(0)
+    for _ in range(6):
+        k, i, j = rng.integers(0, 2), rng.integers(0, 12), rng.integers(0, 12)
+        r = simulate(100.0, m.beta[j], m.sigma[i], m.xi_dots[k], 20_000, record=False)
+        assert OUTCOMES[m.outcome[k, i, j]] == r.outcome
+
+
+def test_fig4_map_is_deterministic_whatever_the_number_of_jobs(small_map):
+    m2 = stability_map(100.0, [1.0, 5.0], grid=12, samples=20_000, n_jobs=2, progress=False)
+    assert np.array_equal(small_map.outcome, m2.outcome)
+    assert np.array_equal(small_map.amplitude, m2.amplitude, equal_nan=True)
+
+
+def test_fig4_no_criterion_passive_point_is_unstable(small_map):
+    m = small_map
+    for k, v in enumerate(m.xi_dots):
+        passive = dfa.classify_region(m.beta[None, :], m.sigma[:, None], v)
+        passive = (passive == "a") | (passive == "e")
+        assert not np.any(passive & (m.outcome[k] == 2))
+
+
+def test_fig4_higher_speed_destabilises_more_points(small_map):
+    counts = small_map.counts()
+    assert counts[1]["unstable"] > counts[0]["unstable"]
+
+
+def test_fig4_map_save_load_round_trip(small_map, tmp_path):
+    path = small_map.save(tmp_path / "map.npz")
+    back = load_map(path)
+    assert back.xi_dots == small_map.xi_dots and back.samples == small_map.samples
+    assert np.array_equal(back.outcome, small_map.outcome)
+
+
+def test_fig4_preload_starts_at_rest_with_the_same_energy():
+    m = stability_map(100.0, [3.0], grid=3, samples=3000, n_jobs=1, progress=False, preload=True)
+    r = simulate(100.0, m.beta[1], m.sigma[1], 0.0, 3000, xi0=preload_position(100.0, 3.0), record=False)
+    assert OUTCOMES[m.outcome[0, 1, 1]] == r.outcome and m.preload
+
+
+@pytest.mark.parametrize(
+    "kwargs, needle",
+    [(dict(grid=1), "grid"), (dict(beta_range=(1.0, 0.5)), "beta_range"), (dict(xi_dots=[]), "xi_dots"),
+     (dict(n_jobs=0), "n_jobs"), (dict(mu=-1.0), "mu"), (dict(sigma_range=(0.0,)), "sigma_range")],
+)
+def test_map_bad_input(kwargs, needle):
+    args = dict(mu=100.0, xi_dots=[1.0], grid=3, samples=10, progress=False)
+    args.update(kwargs)
+    mu = args.pop("mu")
+    xi = args.pop("xi_dots")
+    with pytest.raises(dfa.DFAValueError, match=needle):
+        stability_map(mu, xi, **args)
+
+
+def test_cli_simulate_json_contract(capsys):
+    assert main(["simulate", "--mu", "100", "--beta", "0.1", "--sigma", "0.9", "--xi-dot", "2", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert set(out) >= {"outcome", "amplitude", "frequency", "final_xi", "final_xi_dot", "rest_sample"}
+    r = simulate(100.0, 0.1, 0.9, 2.0, 50_000)
+    assert out["outcome"] == r.outcome and out["rest_sample"] == r.rest_sample and out["final_xi"] == r.final_xi
+
+
+def test_cli_simulate_device_preload_and_trace(capsys, tmp_path):
+    trace = tmp_path / "t.csv"
+    assert main(["simulate", "--device", "impulse", "--velocity", "0.05", "--preload", "--samples", "500", "--trace", str(trace), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    rows = list(csv.reader(trace.open()))
+    assert rows[0] == ["sample", "xi", "xi_dot"] and len(rows) == 502
+    p = dfa.get_device("impulse").device.params(80.0)
+    x0 = preload_position(p.mu, dfa.get_device("impulse").device.xi_dot(0.05))
+    assert float(rows[1][1]) == pytest.approx(x0) and float(rows[1][2]) == 0.0
+    assert out["xi0"] == pytest.approx(x0)
+
+
+def test_cli_map_json_counts(capsys, tmp_path):
+    out_file = tmp_path / "m.npz"
+    code = main(["map", "--mu", "100", "--xi-dot", "1", "5", "--grid", "6", "--samples", "3000", "--jobs", "1", "--out", str(out_file), "--json", "--quiet"])
+    assert code == 0
+    d = json.loads(capsys.readouterr().out)
+    assert [c["xi_dot"] for c in d["counts"]] == [1.0, 5.0]
+    assert all(c["stable"] + c["oscillating"] + c["unstable"] == 36 for c in d["counts"])
+    assert load_map(out_file).counts() == [{k: c[k] for k in OUTCOMES} for c in d["counts"]]
+
+
+@pytest.mark.parametrize(
+    "argv, needle",
+    [
+        (["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--samples", "0"], "samples"),
+        (["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--delay", "-2"], "delay"),
+        (["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--samples", "many"], "--samples"),
+        (["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--xi0", "1", "--preload"], "--preload"),
+        (["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--samples", "2000000000", "--trace", "t.csv"], "drop --trace"),
+        (["map", "--mu", "100", "--xi-dot", "1", "--grid", "1", "--out", "x.npz"], "grid"),
+        (["map", "--mu", "100", "--xi-dot", "1", "--out", "/nonexistent-dir/x.npz"], "does not exist"),
+        (["map", "--mu", "100", "--xi-dot", "1"], "--out"),
+        (["map", "--mu", "0", "--xi-dot", "1", "--out", "x.npz"], "mu"),
+    ],
+)
+def test_cli_simulate_and_map_bad_input(capsys, argv, needle):
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and len(err.strip().splitlines()) == 1 and needle in err and "Traceback" not in err
