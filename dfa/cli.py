@@ -387,6 +387,62 @@ def _cmd_map(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_limit_cycles(args: argparse.Namespace) -> int:
+    from .limit_cycles import growth_threshold
+
+    inp = _resolve(args, dimensionless=True)
+    p = inp.params
+    assert p is not None
+    g = growth_threshold(p, inp.device, model=args.model, delay=args.delay, max_amplitude=args.max_amplitude)
+    res = g.result
+    if args.json:
+        d = res.as_dict()
+        d["growth_threshold"] = {"amplitude": g.amplitude, "frequency": g.frequency, "xi_dot": g.xi_dot,
+                                 "position": g.position, "velocity": g.velocity}
+        _emit(d)
+        return 0
+    print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}; model {res.model}"
+          + (f", delay {res.delay}" if res.delay else ""))
+    if not res.cycles:
+        print("no limit cycle predicted" + ("" if res.complete else f" up to {res.max_amplitude:g} ticks"))
+    else:
+        rows = [[f"{c.amplitude:.6g}", f"{c.frequency:.6g}", f"{c.period:.4g}", "stable" if c.stable else "unstable",
+                 c.family + (" (period < 8 samples)" if c.few_samples else "")] for c in res.cycles]
+        print(_table(rows, ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"]))
+    if g.amplitude is not None:
+        line = f"growth threshold: oscillations above M_u = {g.amplitude:.4g} ticks grow (speed ≈ M_u·ω = {g.xi_dot:.4g} ticks/sample"
+        if g.velocity is not None and inp.device is not None:
+            u = inp.device.units
+            line += f" = {g.velocity:.4g} {u['velocity']}; M_u = {g.position:.4g} {u['position']}"
+        print(line + ")")
+    if not res.complete:
+        print(res.status)
+    return 0
+
+
+def _cmd_contours(args: argparse.Namespace) -> int:
+    from .contours import contour_maps
+
+    if args.out is not None:
+        out_dir = os.path.dirname(os.path.abspath(args.out))
+        if not os.path.isdir(out_dir):
+            raise UsageError(f"--out {args.out!r} is invalid: folder {out_dir!r} does not exist; create it first")
+    c = contour_maps(args.mu, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range), grid=args.grid,
+                     max_amplitude=args.max_amplitude)
+    d = c.as_dict()
+    if args.out is not None:
+        d["out"] = str(c.save(args.out))
+    if args.json:
+        _emit(d)
+        return 0
+    print(f"contour maps μ = {c.mu:g}, β in [{c.beta[0]:g}, {c.beta[-1]:g}], σ in [{c.sigma[0]:g}, {c.sigma[-1]:g}], {c.beta.size}×{c.sigma.size}")
+    print(_table([["small stable (M < 1, eq. 42-43)", d["small_points"]], ["large unstable, exact D (eq. 41)", d["large_points"]],
+                  ["large unstable, closed form (eq. 44-45)", d["large_closed_points"]]], ["family", "grid points"]))
+    if args.out is not None:
+        print(f"written to {d['out']}")
+    return 0
+
+
 def _cmd_report(args: argparse.Namespace) -> int:
     """Interim report: the criterion, region and stiffness limits of a device (stdout)."""
     entry = get_device(args.device or DEFAULT_DEVICE)
@@ -455,6 +511,23 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print counts per outcome per speed as JSON")
     p.set_defaults(func=_cmd_map)
+
+    p = sub.add_parser("limit-cycles", help="limit cycles by harmonic balance with the exact describing function (eq. 36-45)")
+    _add_device_args(p, dimensionless=True, speed=False)
+    p.add_argument("--model", choices=["half-delay", "zoh", "pade"], default="half-delay", help="hold model (default half-delay; zoh is exact)")
+    p.add_argument("--delay", type=_integer("--delay"), default=0, metavar="D", help="computational delay in samples")
+    p.add_argument("--max-amplitude", type=_number("--max-amplitude", "ticks"), default=1e4, metavar="M", help="largest amplitude searched (ticks)")
+    p.set_defaults(func=_cmd_limit_cycles)
+
+    p = sub.add_parser("contours", help="amplitude/frequency maps of both cycle families (paper Fig. 7)")
+    p.add_argument("--mu", type=_number("--mu", "dimensionless units"), required=True, help="μ = m/(K T²)")
+    p.add_argument("--beta-range", type=_number("--beta-range", "dimensionless units"), nargs=2, default=[0.0, 1.0], metavar=("A", "B"))
+    p.add_argument("--sigma-range", type=_number("--sigma-range", "dimensionless units"), nargs=2, default=[0.0, 2.0], metavar=("A", "B"))
+    p.add_argument("--grid", type=_integer("--grid"), default=200, metavar="N", help="points per axis (default 200)")
+    p.add_argument("--max-amplitude", type=_number("--max-amplitude", "ticks"), default=200.0, metavar="M")
+    p.add_argument("--out", metavar="FILE.npz", help="write the maps")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=_cmd_contours)
 
     p = sub.add_parser("report", help="design summary of a device (default: the catalogue's default device)")
     p.add_argument("--device", metavar="NAME", help=f"catalogue device (default {DEFAULT_DEVICE})")

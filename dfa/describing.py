@@ -207,7 +207,7 @@ def quantizer_df(amplitude):
     """
     m = _amplitudes(amplitude)
     level, _dlevel = _level_functions()
-    with np.errstate(invalid="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # M² underflows for M < 1e-154: D = inf
         out = 0.5 * level(0.0, m) + _level_sum(m, level)
     return float(out) if out.ndim == 0 else out
 

@@ -1,0 +1,208 @@
+"""Contour maps of limit-cycle amplitude and frequency over the (β, σ) plane (paper Fig. 7).
+
+For one μ and the paper's half-sample-delay loop (d = 0), two families:
+
+* **small stable** cycles (M < 1). With D = 2/(πM), exact for M < 1, the
+  cycle is the closed form of eq. 42-43; the exact solver finds the same
+  (D has no approximation there).
+* **large unstable** cycles: the paper's closed form eq. 44-45 (D ≈ 1), and
+  the exact one: the smallest unstable cycle with M >= 1 under the exact D
+  (the growth threshold), which lies near the closed form but sees D's
+  oscillation around 1.
+
+The exact large family is vectorised. For each β the phase condition
+c(ω) = μω² tan(ω/2) − βω (= 4σ/(πM)) is tabulated once on a fine ω grid
+where it increases, so ω(M) for every σ follows by interpolation; the
+residual F(M) = D(M) − μω²/cos(ω/2) is scanned on a shared amplitude grid
+(n + t² on each integer interval) for its first rising zero crossing (F
+rising through zero marks an unstable cycle, see :mod:`dfa.limit_cycles`),
+then refined by secant steps with the exact D. Amplitudes beyond
+``max_amplitude`` are reported as NaN (outside the map's range).
+
+Examples
+--------
+>>> maps = contour_maps(5.0, grid=5)
+>>> maps.large_amplitude.shape
+(5, 5)
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .describing import quantizer_df
+from .errors import DFAValueError, check_int, check_positive
+from .limit_cycles import large_cycle_frequency
+from .maps import _check_range
+
+__all__ = ["ContourMaps", "contour_maps", "load_contours"]
+
+_ARRAYS = ("beta", "sigma", "small_amplitude", "small_frequency", "large_amplitude", "large_frequency",
+           "large_amplitude_closed", "large_frequency_closed", "small_amplitude_closed")
+
+
+@dataclass(frozen=True)
+class ContourMaps:
+    """Amplitude (ticks) and frequency (rad per sample) of both cycle families over a (β, σ) grid.
+
+    Arrays have shape (len(sigma), len(beta)); NaN where the family does not
+    exist (or, for the exact large family, lies beyond ``max_amplitude``).
+
+    Attributes
+    ----------
+    mu : float
+    beta, sigma : numpy.ndarray
+    small_amplitude, small_frequency : numpy.ndarray
+        Small stable family (eq. 42-43, exact for M < 1).
+    large_amplitude, large_frequency : numpy.ndarray
+        Smallest unstable cycle with the exact D (eq. 41).
+    large_amplitude_closed, large_frequency_closed : numpy.ndarray
+        The paper's closed form eq. 44-45 (D = 1).
+    small_amplitude_closed : numpy.ndarray
+        Eq. 42-43 without the M < 1 restriction (the paper's approximation).
+    max_amplitude : float
+    status : str
+    """
+
+    mu: float
+    beta: np.ndarray = field(repr=False)
+    sigma: np.ndarray = field(repr=False)
+    small_amplitude: np.ndarray = field(repr=False)
+    small_frequency: np.ndarray = field(repr=False)
+    large_amplitude: np.ndarray = field(repr=False)
+    large_frequency: np.ndarray = field(repr=False)
+    large_amplitude_closed: np.ndarray = field(repr=False)
+    large_frequency_closed: np.ndarray = field(repr=False)
+    small_amplitude_closed: np.ndarray = field(repr=False)
+    max_amplitude: float = 200.0
+    status: str = "ok"
+
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write all maps to a ``.npz`` file (see :func:`load_contours`)."""
+        p = Path(path)
+        np.savez_compressed(p, mu=self.mu, max_amplitude=self.max_amplitude, **{k: getattr(self, k) for k in _ARRAYS})
+        return p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready summary: grid and how many points carry each family."""
+        return {
+            "mu": self.mu,
+            "beta_range": [float(self.beta[0]), float(self.beta[-1])],
+            "sigma_range": [float(self.sigma[0]), float(self.sigma[-1])],
+            "grid": [int(self.beta.size), int(self.sigma.size)],
+            "small_points": int(np.isfinite(self.small_amplitude).sum()),
+            "large_points": int(np.isfinite(self.large_amplitude).sum()),
+            "large_closed_points": int(np.isfinite(self.large_amplitude_closed).sum()),
+            "max_amplitude": self.max_amplitude,
+        }
+
+
+def load_contours(path: str | os.PathLike) -> ContourMaps:
+    """Read maps written by :meth:`ContourMaps.save`."""
+    with np.load(path) as z:
+        return ContourMaps(mu=float(z["mu"]), max_amplitude=float(z["max_amplitude"]), **{k: z[k] for k in _ARRAYS})
+
+
+def _small_closed(mu: float, bb: np.ndarray, ss: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Eq. 43 solved for ω by vectorised bisection (its right side increases on (0, π)), then eq. 42 for M."""
+    lo = np.full(bb.shape, 1e-12)
+    hi = np.full(bb.shape, math.pi)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        f = 0.5 * np.sin(mid / 2) - bb * np.cos(mid / 2) / (2 * mu * mid) - ss
+        lo = np.where(f < 0, mid, lo)
+        hi = np.where(f < 0, hi, mid)
+    w = 0.5 * (lo + hi)
+    m = 2 * np.cos(w / 2) / (math.pi * mu * w * w)
+    bad = ss >= 0.5
+    return np.where(bad, np.nan, m), np.where(bad, np.nan, w)
+
+
+def _large_exact(mu: float, beta: np.ndarray, sigma: np.ndarray, amax: float) -> tuple[np.ndarray, np.ndarray]:
+    """Smallest unstable cycle with M >= 1 for every (σ, β), exact D (see module docstring)."""
+    n_all = np.arange(1, int(math.ceil(amax)) + 1)
+    t = np.linspace(0.0, 1.0, 17)
+    msamp = np.unique((n_all[:, None] + (t * t)[None, :]).ravel())
+    msamp = msamp[msamp <= amax]
+    dsamp = quantizer_df(msamp)
+    wgrid = np.concatenate([np.geomspace(1e-7, 1e-2, 2000, endpoint=False), np.linspace(1e-2, math.pi - 1e-6, 20000)])
+    large_m = np.full((sigma.size, beta.size), np.nan)
+    large_w = np.full((sigma.size, beta.size), np.nan)
+    rows_all = np.nonzero(sigma > 0)[0]
+    if rows_all.size == 0:
+        return large_m, large_w
+    for j, b in enumerate(beta):
+        c = mu * wgrid**2 * np.tan(wgrid / 2) - b * wgrid  # = 4σ/(πM) on the phase curve, increasing where > 0
+        ok = c > 0
+        if not ok.any():
+            continue
+        cw, ww = np.maximum.accumulate(c[ok]), wgrid[ok]  # guard monotonicity against rounding
+        target = (4.0 * sigma[rows_all, None] / math.pi) / msamp[None, :]  # (σ, M)
+        wm = np.interp(target, cw, ww, left=np.nan, right=np.nan)
+        f = dsamp[None, :] - mu * wm**2 / np.cos(wm / 2)
+        rising = (f[:, :-1] < 0) & (f[:, 1:] >= 0)
+        has = rising.any(axis=1)
+        if not has.any():
+            continue
+        kk = np.argmax(rising, axis=1)[has]
+        rows = rows_all[has]
+        ma, mb = msamp[kk], msamp[kk + 1]
+        fa, fb = f[has, kk], f[has, kk + 1]
+        sg = sigma[rows]
+        mc = mb
+        for _ in range(4):  # secant steps with the exact D, kept inside the bracket
+            with np.errstate(invalid="ignore", divide="ignore"):
+                mc = np.where(fb != fa, mb - fb * (mb - ma) / (fb - fa), mb)
+            mc = np.clip(mc, ma, mb)
+            wc = np.interp(4 * sg / (math.pi * mc), cw, ww)
+            fc = quantizer_df(mc) - mu * wc * wc / np.cos(wc / 2)
+            neg = fc < 0
+            ma, fa = np.where(neg, mc, ma), np.where(neg, fc, fa)
+            mb, fb = np.where(neg, mb, mc), np.where(neg, fb, fc)
+        large_m[rows, j] = mc
+        large_w[rows, j] = np.interp(4 * sg / (math.pi * mc), cw, ww)
+    return large_m, large_w
+
+
+def contour_maps(mu: float, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), grid: int = 200,
+                 max_amplitude: float = 200.0) -> ContourMaps:
+    """Amplitude and frequency maps of both cycle families over a (β, σ) grid (paper Fig. 7).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass (paper Fig. 7: μ = 5).
+    beta_range, sigma_range : (float, float)
+        Grid extents.
+    grid : int
+        Points per axis (>= 2).
+    max_amplitude : float
+        Largest amplitude (ticks) searched for the exact large family (>= 1).
+    """
+    m = check_positive("mu", mu, "μ = m/(K T²) must be positive")
+    b0, b1 = _check_range("beta_range", beta_range)
+    s0, s1 = _check_range("sigma_range", sigma_range)
+    g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
+    amax = check_positive("max_amplitude", max_amplitude)
+    if amax < 1.0:
+        raise DFAValueError(f"max_amplitude = {amax} is invalid: it must be >= 1 tick (the large family has M >= 1)")
+    beta = np.linspace(b0, b1, g)
+    sigma = np.linspace(s0, s1, g)
+    bb, ss = np.meshgrid(beta, sigma)
+    # closed forms (paper eq. 42-45)
+    sm_cf, sw_cf = _small_closed(m, bb, ss)
+    wl = large_cycle_frequency(m)
+    den = math.sin(wl / 2) - bb * wl
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lm_cf = np.where(den > 0, 4 * ss / (math.pi * den), np.nan)
+    lm_cf = np.where(lm_cf >= 1.0, lm_cf, np.nan)
+    lw_cf = np.where(np.isfinite(lm_cf), wl, np.nan)
+    small_m = np.where(sm_cf < 1.0, sm_cf, np.nan)
+    small_w = np.where(sm_cf < 1.0, sw_cf, np.nan)
+    large_m, large_w = _large_exact(m, beta, sigma, amax)
+    return ContourMaps(m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax)

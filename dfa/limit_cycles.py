@@ -1,0 +1,603 @@
+"""Limit cycles of the quantized, frictional loop by harmonic balance (paper section 7, eq. 36-45).
+
+A cycle ξ = M sin ωτ exists where the characteristic function
+
+    C(M, ω) = 1/L(jω; M) + D(M) = U + jV
+
+vanishes (eq. 36 divided by L), with D the exact quantizer describing function
+(eq. 41) and L the loop of :mod:`dfa.loop` (half-sample delay, Padé or exact
+ZOH, plus d samples of delay), Coulomb friction entering through
+β_eq = β + 4σ/(πMω) (eq. 40).
+
+How every root is found
+-----------------------
+The phase condition V = 0 fixes, for each ω, the equivalent damping β*(ω)
+at which the loop's phase crosses −180° (half-delay: β* = μω tan θ,
+θ = ω(d + ½), on the branches where θ mod 2π ∈ [0, π/2); other models:
+bisection, there is at most one crossing with U < 0 per ω). With σ > 0 this
+gives M(ω) = 4σ/(πω(β* − β)), cut into monotone pieces; on each piece the
+problem is one-dimensional in M: F(M) = D(M) + U(M, ω(M)) = 0. F is sampled
+on every integer interval [n, n + 1] (points n + t², resolving the √ that D
+has at each integer) and on (0, 1) geometrically, sign changes are bracketed
+and refined with :func:`scipy.optimize.brentq`, and each root is polished
+with a 2-D Newton step on (U, V). Amplitudes below 1e-9 ticks are not searched
+(as M → 0, F ≈ (2 − 4σ)/(πM) keeps one sign). The march over n stops where the envelope
+|D(M) − 1| <= 0.38⌊M⌋^{-3/2} (see :mod:`dfa.describing`) can no longer meet
+−U, or at ``max_amplitude`` (then ``complete`` is False). With σ = 0 the
+phase condition gives isolated frequencies and D(M) = −U is inverted exactly.
+
+Stability (Loeb criterion): a cycle is stable when
+∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M > 0, the sign that makes an amplitude increase
+come with a decaying envelope (s = jω convention). For the half-delay model
+∂V/∂ω < 0 at every root, so a stable cycle is one where F falls through zero.
+
+Examples
+--------
+>>> from dfa.device import Params
+>>> res = limit_cycles(Params(mu=5.0, beta=0.1, sigma=0.3))
+>>> [(round(c.amplitude, 4), round(c.frequency, 4), c.stable, c.family) for c in res.cycles][:2]
+[(0.058, 1.3172, True, 'small'), (2.1024, 0.4465, False, 'large')]
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import optimize
+
+from .describing import DF_ENVELOPE, quantizer_df, quantizer_df_derivative, quantizer_df_inverse
+from .device import Device, Params
+from .errors import DFATypeError, check_choice, check_positive
+from .loop import _check_model, _check_params, _zoh_coefficients
+
+__all__ = [
+    "LimitCycle",
+    "LimitCycleResult",
+    "limit_cycles",
+    "small_cycle_closed_form",
+    "large_cycle_closed_form",
+    "large_cycle_frequency",
+    "GrowthThreshold",
+    "growth_threshold",
+]
+
+_DF_CHOICES = ("exact", "small", "unity")
+
+#: Amplitudes below this (ticks) are not searched: there F ≈ (2 − 4σ)/(πM) keeps its sign.
+_M_FLOOR = 1e-9
+
+
+# ------------------------------------------------------------ loop inverse
+def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int):
+    """1/L(jω) for an equivalent damping β_eq (broadcast), time in samples."""
+    w = np.asarray(omega, dtype=float)
+    b = np.asarray(beq, dtype=float)
+    if model == "half-delay":
+        return np.exp(1j * w * (delay + 0.5)) * (-mu * w * w + 1j * w * b)
+    if model == "pade":
+        import control
+
+        num, den = control.pade(delay + 0.5, pade_order)
+        s = 1j * w
+        return (mu * s * s + b * s) * np.polyval(den, s) / np.polyval(num, s)
+    z = np.exp(1j * w)
+    c1, c0, p = _zoh_coefficients(b / mu)
+    return z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0)
+
+
+@dataclass(frozen=True)
+class _Loop:
+    params: Params
+    model: str
+    delay: int
+    pade_order: int
+    df: str = "exact"
+
+    def beq(self, m, w):
+        return self.params.beta + 4.0 * self.params.sigma / (math.pi * np.asarray(m) * np.asarray(w))
+
+    def inv(self, m, w):
+        return _inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order)
+
+    def d(self, m):
+        m = np.asarray(m, dtype=float)
+        if self.df == "exact":
+            return quantizer_df(m)
+        if self.df == "small":
+            return 2.0 / (math.pi * m)
+        return np.ones_like(m) if m.ndim else 1.0
+
+    def dprime(self, m):
+        if self.df == "exact":
+            return quantizer_df_derivative(m)
+        if self.df == "small":
+            return -2.0 / (math.pi * m * m)
+        return 0.0
+
+    def char(self, m, w):
+        return self.inv(m, w) + self.d(m)
+
+
+# --------------------------------------------------------------- phase curve
+_W_GRID = np.concatenate([np.geomspace(1e-5, 0.05, 600, endpoint=False), np.linspace(0.05, math.pi - 1e-9, 3000)])
+
+
+def _phase_beta(lp: _Loop, w: np.ndarray) -> np.ndarray:
+    """β*(ω): the damping at which V = 0 with U < 0 (NaN where there is none)."""
+    mu, d = lp.params.mu, lp.delay
+    if lp.model == "half-delay":
+        th = w * (d + 0.5)
+        ok = np.mod(th, 2 * math.pi) < math.pi / 2
+        with np.errstate(invalid="ignore"):
+            return np.where(ok, mu * w * np.tan(th), np.nan)
+    # numeric: scan β on a log grid, bracket the crossing of V with U < 0, bisect (vectorised)
+    bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
+    c = _inv_loop(mu, bgrid[None, :], w[:, None], lp.model, d, lp.pade_order)
+    v = c.imag
+    sc = (np.sign(v[:, :-1]) != np.sign(v[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)
+    has = sc.any(axis=1)
+    idx = np.argmax(sc, axis=1)
+    lo = bgrid[idx]
+    hi = bgrid[idx + 1]
+    vlo = v[np.arange(w.size), idx]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        vm = _inv_loop(mu, mid, w, lp.model, d, lp.pade_order).imag
+        left = np.sign(vm) == np.sign(vlo)
+        lo = np.where(left, mid, lo)
+        vlo = np.where(left, vm, vlo)
+        hi = np.where(left, hi, mid)
+    return np.where(has, 0.5 * (lo + hi), np.nan)
+
+
+def _omega_for_m(lp: _Loop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np.ndarray:
+    """Solve V(M, ω) = 0 for ω in the brackets [wa, wb] (vectorised bisection)."""
+    va = lp.inv(m, wa).imag
+    lo, hi = wa.copy(), wb.copy()
+    for _ in range(64):
+        mid = 0.5 * (lo + hi)
+        vm = lp.inv(m, mid).imag
+        same = np.sign(vm) == np.sign(va)
+        lo = np.where(same, mid, lo)
+        va = np.where(same, vm, va)
+        hi = np.where(same, hi, mid)
+    return 0.5 * (lo + hi)
+
+
+# ------------------------------------------------------------------ results
+@dataclass(frozen=True)
+class LimitCycle:
+    """One harmonic-balance solution ξ = M sin ωτ.
+
+    Attributes
+    ----------
+    amplitude : float
+        M in encoder ticks.
+    frequency : float
+        ω in rad per sample.
+    stable : bool
+        Loeb criterion (module docstring).
+    family : str
+        ``"small"`` (M < 1) or ``"large"`` (M >= 1).
+    loeb : float
+        ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M at the root.
+    residual : float
+        |1 + D(M)·L(jω; M)| at the reported root.
+    few_samples : bool
+        True when the period is under 8 samples: first-harmonic analysis is
+        least trustworthy there (validation issue).
+    """
+
+    amplitude: float
+    frequency: float
+    stable: bool
+    family: str
+    loeb: float
+    residual: float
+    few_samples: bool = False
+
+    @property
+    def period(self) -> float:
+        """Period in samples, 2π/ω."""
+        return 2.0 * math.pi / self.frequency
+
+    def as_dict(self) -> dict[str, object]:
+        return {
+            "amplitude": self.amplitude,
+            "frequency": self.frequency,
+            "period": self.period,
+            "stable": self.stable,
+            "family": self.family,
+            "loeb": self.loeb,
+            "residual": self.residual,
+            "few_samples": self.few_samples,
+        }
+
+
+@dataclass(frozen=True)
+class LimitCycleResult:
+    """All limit cycles of one operating point (an empty tuple is a valid answer).
+
+    Attributes
+    ----------
+    params : Params
+    model, delay, pade_order : loop model (see :func:`dfa.loop.loop_response`)
+    describing : str
+        ``"exact"`` (eq. 41), or the paper's approximations ``"small"`` (2/(πM)) and ``"unity"`` (1).
+    max_amplitude : float
+        Largest amplitude searched (ticks).
+    cycles : tuple of LimitCycle
+        Sorted by amplitude.
+    complete : bool
+        False when cycles may exist beyond ``max_amplitude``.
+    status : str
+    """
+
+    params: Params
+    model: str
+    delay: int
+    pade_order: int
+    describing: str
+    max_amplitude: float
+    cycles: tuple = field(default_factory=tuple)
+    complete: bool = True
+    status: str = "ok"
+
+    @property
+    def stable_cycles(self) -> tuple:
+        return tuple(c for c in self.cycles if c.stable)
+
+    @property
+    def unstable_cycles(self) -> tuple:
+        return tuple(c for c in self.cycles if not c.stable)
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record (the ``dfa limit-cycles --json`` contract plus extras)."""
+        return {
+            "cycles": [c.as_dict() for c in self.cycles],
+            "mu": self.params.mu,
+            "beta": self.params.beta,
+            "sigma": self.params.sigma,
+            "model": self.model,
+            "delay": self.delay,
+            "complete": self.complete,
+            "max_amplitude": self.max_amplitude,
+            "status": self.status,
+        }
+
+
+# ------------------------------------------------------------------- solver
+def _loeb(lp: _Loop, m: float, w: float) -> float:
+    hm = 1e-7 * max(m, 1e-3)
+    hw = 1e-7 * w
+    cm = (lp.inv(m + hm, w) - lp.inv(m - hm, w)) / (2 * hm) + lp.dprime(m)
+    cw = (lp.inv(m, w + hw) - lp.inv(m, w - hw)) / (2 * hw)
+    return float(cm.real * cw.imag - cw.real * cm.imag)
+
+
+def _polish(lp: _Loop, m: float, w: float) -> tuple[float, float]:
+    """2-D Newton on (U, V) from a bracketed root; keeps the start if Newton wanders."""
+
+    def f(x):
+        c = lp.char(x[0], x[1])
+        return [float(np.real(c)), float(np.imag(c))]
+
+    try:
+        sol = optimize.root(f, [m, w], method="hybr", options={"xtol": 1e-15})
+        mm, ww = float(sol.x[0]), float(sol.x[1])
+        if sol.success and abs(mm - m) <= 1e-6 * max(1.0, m) and abs(ww - w) <= 1e-6 * w and mm > 0 and 0 < ww < math.pi:
+            if abs(lp.char(mm, ww)) <= abs(lp.char(m, w)):
+                return mm, ww
+    except (ValueError, FloatingPointError):  # pragma: no cover
+        pass
+    return m, w
+
+
+def _make_cycle(lp: _Loop, m: float, w: float) -> LimitCycle:
+    m, w = _polish(lp, m, w)
+    inv = lp.inv(m, w)
+    lval = 1.0 / inv
+    loeb = _loeb(lp, m, w)
+    return LimitCycle(
+        amplitude=m, frequency=w, stable=loeb > 0, family="small" if m < 1.0 else "large", loeb=loeb,
+        residual=float(abs(1.0 + lp.d(m) * lval)), few_samples=bool(2 * math.pi / w < 8.0),
+    )
+
+
+def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Monotone pieces (ω, M) of the phase curve, each with an exact M = ∞ end where it reaches β* = β."""
+    w = _W_GRID
+    bs = _phase_beta(lp, w)
+    beta, sigma = lp.params.beta, lp.params.sigma
+    excess = bs - beta
+    valid = np.isfinite(excess) & (excess > 0)
+    out = []
+    i = 0
+    n = w.size
+    while i < n:
+        if not valid[i]:
+            i += 1
+            continue
+        j = i
+        while j + 1 < n and valid[j + 1]:
+            j += 1
+        ws = w[i : j + 1]
+        ms = 4 * sigma / (math.pi * ws * excess[i : j + 1])
+        # add the exact point where β* = β (M = ∞) at either end, when the curve crosses there
+        ends = []
+        for k_in, k_out in ((i, i - 1), (j, j + 1)):
+            if 0 <= k_out < n and np.isfinite(excess[k_out]) and excess[k_out] <= 0:
+                f = lambda x: float(_phase_beta(lp, np.array([x]))[0] - beta)  # noqa: E731
+                try:
+                    ends.append((k_in, optimize.brentq(f, min(w[k_in], w[k_out]), max(w[k_in], w[k_out]), xtol=1e-15)))
+                except ValueError:
+                    pass
+        if i == 0 and beta == 0.0:
+            ends.append((i, 0.0))  # every model is a double integrator at low ω: β* → 0 as ω → 0
+        for k_in, w0 in ends:
+            if k_in == i:
+                ws = np.concatenate([[w0], ws])
+                ms = np.concatenate([[np.inf], ms])
+            else:
+                ws = np.concatenate([ws, [w0]])
+                ms = np.concatenate([ms, [np.inf]])
+        # split into monotone runs of M
+        dm = np.sign(np.diff(ms))  # ±inf differences at an M = ∞ end keep their sign
+        start = 0
+        for k in range(1, dm.size + 1):
+            if k == dm.size or dm[k] != dm[start]:
+                out.append((ws[start : k + 1], ms[start : k + 1]))
+                start = k
+        i = j + 1
+    return out
+
+
+def _m_samples(lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | None, omega_of) -> tuple[np.ndarray, bool]:
+    """Sample amplitudes on [lo, hi] ∩ (0, max_amp], stopping by the envelope rule; returns (samples, complete)."""
+    pts = []
+    if lo < 1.0 and hi > _M_FLOOR:
+        pts.append(np.geomspace(max(lo, _M_FLOOR), min(1.0, hi), 400))
+    complete = True
+    if hi > 1.0:
+        n0 = max(1, int(math.floor(lo)))
+        n_end = int(math.ceil(min(hi, max_amp)))
+        n_stop = n_end
+        if lp.df == "exact" and w_inf is not None:
+            # −U at M = ∞, where β_eq = β (at ω = 0 the loop inverse is 0)
+            u_inf = 0.0 if w_inf == 0.0 else -float(np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order)))
+            # first n >= 2 beyond which the envelope |D − 1| <= 0.38 n^{-3/2} cannot meet −U (checked in doubling blocks)
+            start, size = max(2, n0), 16
+            while start < n_end:
+                ns = np.arange(start, min(n_end, start + size), dtype=float)
+                u_n = -np.real(lp.inv(ns, omega_of(ns)))
+                env = DF_ENVELOPE * ns**-1.5
+                ok = np.isfinite(u_n) & ((u_n - 1.0) * (u_inf - 1.0) > 0) & (np.minimum(abs(u_n - 1.0), abs(u_inf - 1.0)) > env)
+                if ok.any():
+                    n_stop = int(ns[np.argmax(ok)])
+                    break
+                start, size = start + size, size * 2
+            complete = n_stop < n_end or hi <= max_amp
+        elif lp.df != "exact":
+            # the paper's approximations have no integer structure: a geometric grid suffices
+            pts.append(np.geomspace(max(lo, 1.0), min(hi, max_amp), 4000))
+            return np.unique(np.concatenate(pts)), hi <= max_amp
+        else:
+            complete = hi <= max_amp
+        # n + t² resolves the √ at each integer; far out D's excursions are tiny and self-similar: fewer points
+        n_all = np.arange(n0, max(n0 + 1, n_stop + 1))
+        t_near, t_far = np.linspace(0.0, 1.0, 25), np.linspace(0.0, 1.0, 9)
+        grid = np.concatenate([(n_all[n_all <= 32][:, None] + (t_near * t_near)[None, :]).ravel(),
+                               (n_all[n_all > 32][:, None] + (t_far * t_far)[None, :]).ravel()])
+        pts.append(grid[(grid >= lo) & (grid <= min(hi, max_amp))])
+    if not pts:
+        return np.array([]), complete
+    return np.unique(np.concatenate(pts)), complete
+
+
+def _interp_omega(lp: _Loop, m: np.ndarray, ws: np.ndarray, ms: np.ndarray) -> np.ndarray:
+    order = np.argsort(ms)
+    msort, wsort = ms[order], ws[order]
+    k = np.clip(np.searchsorted(msort, m), 1, msort.size - 1)
+    return _omega_for_m(lp, m, wsort[k - 1], wsort[k])
+
+
+def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], bool]:
+    p = lp.params
+    cycles: list[LimitCycle] = []
+    complete = True
+    if p.sigma == 0.0:
+        # σ = 0: the loop does not depend on M; its phase crossings are the roots of Im(1/L) with Re(1/L) < 0
+        w = _W_GRID
+        c = lp.inv(1.0, w)
+        idx = np.where((np.sign(c.imag[:-1]) != np.sign(c.imag[1:])) & (c.real[:-1] < 0) & (c.real[1:] < 0))[0]
+        for i in idx:
+            w0 = optimize.brentq(lambda x: float(np.imag(lp.inv(1.0, x))), w[i], w[i + 1], xtol=1e-15)
+            g = -float(np.real(lp.inv(1.0, w0)))
+            if g <= 0:
+                continue
+            if lp.df == "exact":
+                roots, comp = quantizer_df_inverse(g, max_amplitude=max_amp)
+                complete &= comp
+            elif lp.df == "small":
+                roots = np.array([2.0 / (math.pi * g)])
+            else:
+                roots = np.array([]) if g != 1.0 else np.array([])
+            cycles += [_make_cycle(lp, float(r), w0) for r in roots]
+        return cycles, complete
+    for ws, ms in _pieces(lp):
+        finite = np.isfinite(ms)
+        if finite.sum() < 1:
+            continue
+        lo = float(np.min(ms[finite]))
+        hi = float(np.max(ms))
+        w_inf = float(ws[~finite][0]) if (~finite).any() else None
+
+        def omega_of(mm, ws=ws, ms=ms):
+            return _interp_omega(lp, mm, ws, ms)
+
+        samples, comp = _m_samples(lo, hi, max_amp, lp, w_inf, omega_of)
+        complete &= comp
+        if samples.size < 2:
+            continue
+        wsamp = omega_of(samples)
+        dvals = lp.d(samples)
+        f = np.real(lp.inv(samples, wsamp)) + dvals
+        # F is a difference of two terms of size ~D: a sign change with both ends at rounding level is noise
+        noise = 64 * np.finfo(float).eps * (np.abs(dvals) + np.abs(np.real(lp.inv(samples, wsamp))))
+        real = (np.abs(f[:-1]) > noise[:-1]) | (np.abs(f[1:]) > noise[1:])
+        sc = np.where(np.isfinite(f[:-1]) & np.isfinite(f[1:]) & (np.sign(f[:-1]) != np.sign(f[1:])) & real)[0]
+        for i in sc:
+            def g(mm, omega_of=omega_of):
+                return float(np.real(lp.char(mm, omega_of(np.array([mm]))[0])))
+
+            m0 = optimize.brentq(g, samples[i], samples[i + 1], xtol=1e-300, rtol=4 * np.finfo(float).eps)
+            if m0 <= _M_FLOOR * (1 + 1e-6):
+                continue  # on the search floor: the degenerate σ = ½ end of the small family (M → 0, ω → π)
+            cycles.append(_make_cycle(lp, m0, float(omega_of(np.array([m0]))[0])))
+    return cycles, complete
+
+
+def limit_cycles(params: Params, *, model: str = "half-delay", delay: int = 0, pade_order: int = 4,
+                 max_amplitude: float = 1.0e4, describing: str = "exact") -> LimitCycleResult:
+    """Every limit cycle (M, ω) of the harmonic balance 1 + D(M)L(jω; M) = 0 (eq. 36).
+
+    Parameters
+    ----------
+    params : Params
+        Dimensionless device (μ > 0, β >= 0, σ >= 0).
+    model : {"half-delay", "pade", "zoh"}
+        Model of the hold (:func:`dfa.loop.loop_response`); ``"zoh"`` is exact.
+    delay : int
+        Computational delay in samples.
+    pade_order : int
+        Order of the Padé approximation for ``model="pade"``.
+    max_amplitude : float
+        Largest amplitude searched, in ticks (default 1e4).
+    describing : {"exact", "small", "unity"}
+        ``"exact"`` uses eq. 41; ``"small"`` and ``"unity"`` replace D by the
+        paper's approximations 2/(πM) and 1 (to reproduce eq. 42-45).
+
+    Returns
+    -------
+    LimitCycleResult
+        Cycles sorted by amplitude; an empty tuple when there is none.
+    """
+    p = _check_params(params)
+    m, d, n = _check_model(model, delay, pade_order)
+    amax = check_positive("max_amplitude", max_amplitude, "give the largest amplitude to search, in ticks")
+    df = check_choice("describing", describing, _DF_CHOICES)
+    lp = _Loop(p, m, d, n, df)
+    cycles, complete = _solve(lp, amax)
+    cycles = sorted(cycles, key=lambda c: c.amplitude)
+    # de-duplicate roots found from two neighbouring brackets
+    uniq: list[LimitCycle] = []
+    for c in cycles:
+        if not uniq or abs(c.amplitude - uniq[-1].amplitude) > 1e-9 * c.amplitude or abs(c.frequency - uniq[-1].frequency) > 1e-9:
+            uniq.append(c)
+    status = "ok" if complete else f"incomplete: cycles may exist beyond max_amplitude = {amax:g} ticks"
+    return LimitCycleResult(p, m, d, n, df, amax, tuple(uniq), complete, status)
+
+
+# --------------------------------------------------------------- closed forms
+def large_cycle_frequency(mu: float) -> float:
+    """ω of the paper's large-cycle family: cos(ω/2) = μω² (eq. 44), rad per sample.
+
+    Examples
+    --------
+    >>> round(large_cycle_frequency(5.0), 5), round(large_cycle_frequency(100.0), 6)
+    (0.44175, 0.099938)
+    """
+    m = check_positive("mu", mu)
+    return float(optimize.brentq(lambda w: m * w * w - math.cos(w / 2), 0.0, math.pi, xtol=1e-16, rtol=4 * np.finfo(float).eps))
+
+
+def large_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float, float] | None:
+    """(M, ω) of the paper's large unstable cycle (eq. 44-45, D ≈ 1), or None when sin(ω/2) <= βω.
+
+    M = (4σ/π)/(sin(ω/2) − βω) with ω from :func:`large_cycle_frequency`.
+    """
+    p = Params(mu, beta, sigma)
+    w = large_cycle_frequency(p.mu)
+    den = math.sin(w / 2) - p.beta * w
+    if den <= 0:
+        return None
+    return 4 * p.sigma / (math.pi * den), w
+
+
+def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float, float] | None:
+    """(M, ω) of the paper's small stable cycle (eq. 42-43, D = 2/(πM)), or None when σ >= ½.
+
+    ω solves σ = ½ sin(ω/2) − β cos(ω/2)/(2μω) on (0, π) (the right side
+    increases from −∞ to ½), then M = 2 cos(ω/2)/(π μ ω²).
+    """
+    p = Params(mu, beta, sigma)
+    if p.sigma >= 0.5:
+        return None
+    f = lambda w: 0.5 * math.sin(w / 2) - p.beta * math.cos(w / 2) / (2 * p.mu * w) - p.sigma  # noqa: E731
+    hi = math.pi
+    lo = 1e-300 if p.beta > 0 else 0.0
+    if p.beta == 0.0:
+        w = 2 * math.asin(2 * p.sigma) if p.sigma > 0 else None
+        if w is None:
+            return None
+    else:
+        w = optimize.brentq(f, lo, hi, xtol=1e-16, rtol=4 * np.finfo(float).eps)
+    return 2 * math.cos(w / 2) / (math.pi * p.mu * w * w), w
+
+
+# --------------------------------------------------------- design threshold
+@dataclass(frozen=True)
+class GrowthThreshold:
+    """The describing function's growth threshold: the smallest unstable cycle.
+
+    Attributes
+    ----------
+    amplitude : float or None
+        M_u in ticks: oscillations larger than this are predicted to grow.
+    frequency : float or None
+        Its ω (rad per sample).
+    xi_dot : float or None
+        Matching speed amplitude M_u·ω (ticks per sample), to compare with the
+        criterion's critical speed (eq. 12).
+    position, velocity : float or None
+        The same in physical units (m or rad, m/s or rad/s) when a device was given.
+    result : LimitCycleResult
+        The full solution it came from.
+    status : str
+    """
+
+    amplitude: float | None
+    frequency: float | None
+    xi_dot: float | None
+    result: LimitCycleResult
+    position: float | None = None
+    velocity: float | None = None
+    status: str = "ok"
+
+
+def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> GrowthThreshold:
+    """Smallest unstable limit cycle M_u and its impact speed ≈ M_u·ω (beyond the paper).
+
+    Parameters
+    ----------
+    params : Params
+    device : Device, optional
+        To express M_u and M_u·ω in physical units.
+    **kwargs
+        Passed to :func:`limit_cycles` (model, delay, …).
+    """
+    if device is not None and not isinstance(device, Device):
+        raise DFATypeError(f"device = {device!r} has type {type(device).__name__}: it must be a dfa.Device")
+    res = limit_cycles(params, **kwargs)
+    unstable = res.unstable_cycles
+    if not unstable:
+        return GrowthThreshold(None, None, None, res, status="no unstable cycle predicted")
+    c = unstable[0]
+    xd = c.amplitude * c.frequency
+    pos = vel = None
+    if device is not None:
+        pos = c.amplitude * device.resolution
+        vel = device.velocity(xd)
+    return GrowthThreshold(c.amplitude, c.frequency, xd, res, pos, vel)

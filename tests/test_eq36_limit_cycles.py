@@ -1,0 +1,165 @@
+"""Limit-cycle solver: eq. 36 with the exact eq. 41, closed forms eq. 42-45, Loeb stability."""
+
+import math
+import warnings
+
+import control
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.optimize import fsolve
+
+import dfa
+from dfa.describing import QuantizerNonlinearity, quantizer_df
+from dfa.limit_cycles import (
+    growth_threshold,
+    large_cycle_closed_form,
+    large_cycle_frequency,
+    limit_cycles,
+    small_cycle_closed_form,
+)
+from dfa.loop import loop_response, loop_system
+
+params_st = st.builds(dfa.Params, st.floats(0.5, 200.0), st.floats(0.0, 0.6), st.floats(0.0, 2.5))
+
+
+def residual(p, m, w, model="half-delay", delay=0):
+    return abs(1 + quantizer_df(m) * loop_response(p, w, m, model=model, delay=delay))
+
+
+@settings(max_examples=25)
+@given(params_st, st.sampled_from(["half-delay", "zoh"]))
+def test_eq36_every_root_has_residual_below_1e10(p, model):
+    res = limit_cycles(p, model=model)
+    for c in res.cycles:
+        assert residual(p, c.amplitude, c.frequency, model) <= 1e-10
+        assert c.residual <= 1e-10
+        assert 0 < c.frequency < math.pi
+
+
+@pytest.mark.parametrize("model", ["half-delay", "zoh", "pade"])
+@pytest.mark.parametrize("p", [dfa.Params(5, 0.1, 0.3), dfa.Params(2, 0.4, 0.1), dfa.Params(155.17, 0.00207, 2.03), dfa.Params(5, 0.4, 0.0)])
+def test_eq36_roots_agree_with_independent_2d_newton(p, model):
+    res = limit_cycles(p, model=model)
+    assert res.cycles
+    for c in res.cycles:
+        def f(x):
+            z = 1 + quantizer_df(x[0]) * loop_response(p, x[1], x[0], model=model)
+            return [z.real, z.imag]
+
+        for k in (1 + 1e-4, 1 - 1e-4):
+            m, w = fsolve(f, [c.amplitude * k, c.frequency * (2 - k)], xtol=1e-13)
+            assert m == pytest.approx(c.amplitude, rel=1e-8) and w == pytest.approx(c.frequency, rel=1e-8)
+
+
+@pytest.mark.parametrize("mu, omega", [(5.0, 0.44175), (100.0, 0.099938)])
+def test_eq44_large_family_frequency(mu, omega):
+    assert large_cycle_frequency(mu) == pytest.approx(omega, abs=6e-6)
+
+
+@settings(max_examples=25)
+@given(st.floats(0.5, 300.0), st.floats(0.0, 0.45), st.floats(0.05, 3.0))
+def test_eq45_solver_with_unity_df_reproduces_closed_form(mu, beta, sigma):
+    cf = large_cycle_closed_form(mu, beta, sigma)
+    res = limit_cycles(dfa.Params(mu, beta, sigma), describing="unity")
+    if cf is None or cf[0] > 1e4:
+        return
+    big = [c for c in res.cycles if abs(c.frequency - cf[1]) < 1e-6]
+    assert len(big) == 1
+    assert big[0].amplitude == pytest.approx(cf[0], rel=1e-12) and big[0].frequency == pytest.approx(cf[1], rel=1e-12)
+    assert not big[0].stable  # eq. 45 cycles are unstable
+
+
+@settings(max_examples=25)
+@given(st.floats(0.5, 300.0), st.floats(0.0, 2.0), st.floats(0.01, 0.49))
+def test_eq43_solver_with_small_df_reproduces_closed_form(mu, beta, sigma):
+    cf = small_cycle_closed_form(mu, beta, sigma)
+    res = limit_cycles(dfa.Params(mu, beta, sigma), describing="small")
+    assert cf is not None
+    match = [c for c in res.cycles if abs(c.frequency - cf[1]) < 1e-6 * cf[1]]
+    assert len(match) == 1
+    assert match[0].amplitude == pytest.approx(cf[0], rel=1e-12) and match[0].frequency == pytest.approx(cf[1], rel=1e-12)
+    assert match[0].stable  # eq. 42-43 cycles are stable
+    # eq. 42: (2/(πM)) cos(ω/2) = μω²
+    m, w = cf
+    assert 2 / (math.pi * m) * math.cos(w / 2) == pytest.approx(mu * w * w, rel=1e-12)
+
+
+@settings(max_examples=25)
+@given(params_st)
+def test_eq36_small_cycles_stable_large_threshold_unstable_and_alternating(p):
+    res = limit_cycles(p)
+    for c in res.cycles:
+        if c.family == "small":
+            assert c.stable
+    large = [c for c in res.cycles if c.family == "large"]
+    if large:
+        assert not large[0].stable  # the smallest large cycle is the growth threshold
+    # along the single branch of the d = 0 half-delay model, stability alternates with amplitude
+    flags = [c.stable for c in res.cycles]
+    assert all(a != b for a, b in zip(flags, flags[1:]))
+
+
+def test_eq36_exact_df_adds_cycles_the_approximations_miss():
+    p = dfa.Params(2.0, 0.4, 0.1)
+    exact = limit_cycles(p).cycles
+    assert len(exact) > 2 and sum(c.stable for c in exact if c.family == "large") >= 1
+    # cycles in 1 < M < 2, where D exceeds 1
+    assert any(1 < c.amplitude < 2 for c in exact)
+
+
+def test_eq36_sigma_zero_and_beta_zero():
+    assert limit_cycles(dfa.Params(5.0, 0.0, 0.0)).cycles == ()
+    nb = limit_cycles(dfa.Params(5.0, 0.0, 0.3))
+    assert nb.cycles and all(c.residual < 1e-10 for c in nb.cycles)
+    ns = limit_cycles(dfa.Params(5.0, 0.4, 0.0))
+    assert [round(c.amplitude, 4) for c in ns.cycles] == [0.7905, 1.0098]
+    assert len({round(c.frequency, 12) for c in ns.cycles}) == 1  # σ = 0: one phase-crossover frequency
+
+
+@pytest.mark.parametrize("model", ["half-delay", "zoh"])
+def test_eq36_computational_delay(model):
+    p = dfa.Params(20.0, 0.8, 0.9)
+    res = limit_cycles(p, model=model, delay=1)
+    assert res.cycles
+    for c in res.cycles:
+        assert residual(p, c.amplitude, c.frequency, model, delay=1) <= 1e-10
+    # with one more sample of delay the linear bound moves from β ≈ ½ to β ≈ 3/2 (Diolaiti 2006)
+    assert not limit_cycles(p, model=model).cycles or limit_cycles(p, model=model).cycles != res.cycles
+
+
+def test_python_control_describing_function_response_agrees_with_solver():
+    p = dfa.Params(5.0, 0.4, 0.0)
+    H = loop_system(p, model="pade", pade_order=6)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        resp = control.describing_function_response(H, QuantizerNonlinearity(), np.linspace(0.3, 3, 400), omega=np.geomspace(1e-2, np.pi, 3000))
+    ours = limit_cycles(p, model="pade", pade_order=6).cycles
+    assert len(resp.intersections) == len(ours)
+    for (a, w), c in zip(sorted(resp.intersections), ours):
+        assert a == pytest.approx(c.amplitude, rel=1e-4) and w == pytest.approx(c.frequency, rel=1e-4)
+
+
+def test_growth_threshold_physical_units():
+    entry = dfa.get_device("Delta")
+    dev = entry.device
+    p = dev.params(entry.stiffness)
+    g = growth_threshold(p, dev)
+    assert g.amplitude == pytest.approx(limit_cycles(p).unstable_cycles[0].amplitude)
+    assert g.xi_dot == pytest.approx(g.amplitude * g.frequency)
+    assert g.position == pytest.approx(g.amplitude * dev.resolution)
+    assert g.velocity == pytest.approx(dev.velocity(g.xi_dot))
+    none = growth_threshold(dfa.Params(5.0, 0.8, 1.0))
+    assert none.amplitude is None and "no unstable" in none.status
+
+
+@pytest.mark.parametrize(
+    "kwargs, needle",
+    [(dict(model="exact"), "model"), (dict(delay=-1), "delay"), (dict(max_amplitude=0), "max_amplitude"), (dict(describing="approx"), "describing")],
+)
+def test_limit_cycles_bad_input(kwargs, needle):
+    with pytest.raises(dfa.DFAValueError, match=needle):
+        limit_cycles(dfa.Params(5.0, 0.1, 0.3), **kwargs)
+    with pytest.raises(dfa.DFATypeError):
+        limit_cycles((5.0, 0.1, 0.3))
