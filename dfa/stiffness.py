@@ -49,6 +49,8 @@ __all__ = [
     "gil_factor",
     "gil_beta_critical",
     "max_passive_velocity",
+    "StiffnessCurve",
+    "stiffness_response",
 ]
 
 
@@ -282,3 +284,58 @@ def stiffness_limits(device: Device, velocity: float, stiffness: float | None = 
         velocity_status=vstatus,
         status=status,
     )
+
+
+@dataclass(frozen=True)
+class StiffnessCurve:
+    """K_max (eq. 11) over a range of impact speeds, with the speed-independent bounds (N/m).
+
+    Attributes
+    ----------
+    device : Device
+    velocity : numpy.ndarray
+        Impact speeds (m/s or rad/s).
+    k_max : numpy.ndarray
+        Criterion limit at each speed.
+    k_static, k_colgate, k_abbott_okamura, k_gil : float
+    stiffness : float or None
+        A chosen stiffness to mark.
+    max_passive_velocity : float or None
+        Its largest passive speed (inf: every speed; None: none).
+    status : str
+    """
+
+    device: Device
+    velocity: np.ndarray
+    k_max: np.ndarray
+    k_static: float
+    k_colgate: float
+    k_abbott_okamura: float
+    k_gil: float
+    stiffness: float | None = None
+    max_passive_velocity: float | None = None
+    status: str = "ok"
+
+
+def stiffness_response(device: Device, velocity=None, stiffness: float | None = None) -> StiffnessCurve:
+    """K_max against impact speed for a device (eq. 11), for :func:`dfa.plotting.stiffness_plot`.
+
+    Parameters
+    ----------
+    device : Device
+    velocity : array_like, optional
+        Speeds in m/s (rad/s); default: 200 points spanning three decades on
+        each side of the speed Δ/T (one tick per sample).
+    stiffness : float, optional
+        A chosen stiffness to assess and mark.
+    """
+    dev = _check_device(device)
+    if velocity is None:
+        v0 = dev.resolution / dev.period
+        velocity = np.geomspace(1e-3 * v0, 1e3 * v0, 200)
+    v = np.abs(np.asarray(velocity, dtype=float))
+    if v.size == 0 or not np.all(np.isfinite(v)) or np.any(v <= 0):
+        raise DFAValueError(f"velocity = {velocity!r} is invalid: it must hold finite speeds > 0 (m/s)")
+    k = None if stiffness is None else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+    return StiffnessCurve(dev, v, np.atleast_1d(k_max_criterion(dev, v)), 2 * dev.coulomb / dev.resolution, k_colgate(dev),
+                          k_abbott_okamura(dev), k_gil(dev), k, None if k is None else max_passive_velocity(dev, k))
