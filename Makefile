@@ -21,7 +21,7 @@ $(STAMP): pyproject.toml
 venv: $(STAMP)
 
 report: $(STAMP)
-	$(BIN)/dfa report --out reports
+	$(BIN)/dfa report --out reports --format both
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q -n 2

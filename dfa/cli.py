@@ -444,19 +444,71 @@ def _cmd_contours(args: argparse.Namespace) -> int:
 
 
 def _cmd_report(args: argparse.Namespace) -> int:
-    """Interim report: the criterion, region and stiffness limits of a device (stdout)."""
-    entry = get_device(args.device or DEFAULT_DEVICE)
-    dev = entry.device
-    k = args.stiffness if args.stiffness is not None else entry.stiffness
-    v = args.velocity if args.velocity is not None else 0.1
-    ns = argparse.Namespace(device=entry.name, stiffness=k, rotary=False, json=False, velocity=v, xi_dot=None,
-                            no_quantization=False, **{f: None for f in _PHYS_FLAGS}, mu=None, beta=None, sigma=None)
-    print(f"# dfa design summary: {dev.name}\n")
-    _cmd_params(ns)
-    print()
-    _cmd_check(ns)
-    print()
-    _cmd_stiffness(ns)
+    from .report import design_report
+
+    if args.device is None and not any(getattr(args, k, None) is not None for k in _PHYS_FLAGS):
+        args.device = DEFAULT_DEVICE
+    inp = _resolve(args, dimensionless=False)
+    assert inp.device is not None
+    entry = get_device(args.device) if args.device else None
+    v = args.velocity
+    if args.xi_dot is not None:
+        if v is not None:
+            raise UsageError("--velocity and --xi-dot cannot both be given: choose one speed")
+        v = inp.device.velocity(args.xi_dot)
+    if entry is not None and not any(getattr(args, k, None) is not None for k in _PHYS_FLAGS):
+        target = entry
+    else:
+        target = inp.device
+    _check_out_dir(args.out, folder=True)
+    res = design_report(target, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=not args.quiet)
+    for pth in res.paths:
+        print(f"written {pth}")
+    return 0
+
+
+def _check_out_dir(path: str, folder: bool = False) -> None:
+    d = os.path.abspath(path) if folder else os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(d):
+        raise UsageError(f"--out {path!r} is invalid: folder {d!r} does not exist; create it first")
+
+
+def _cmd_validate(args: argparse.Namespace) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    from . import plotting
+    from .validation import validate
+
+    out = args.out
+    if not os.path.isdir(out):
+        parent = os.path.dirname(os.path.abspath(out))
+        if not os.path.isdir(parent):
+            raise UsageError(f"--out {out!r} is invalid: folder {parent!r} does not exist; create it first")
+        os.mkdir(out)
+    v = validate(quick=args.quick, n_jobs=args.jobs, progress=not args.quiet)
+    figs = {}
+    for key, fn in (("cycles", plotting.cycle_error_plot), ("speeds", plotting.critical_speed_plot)):
+        ax = fn(v)
+        name = f"validation_{key}.png"
+        ax.figure.savefig(os.path.join(out, name), dpi=120)
+        plt.close(ax.figure)
+        figs[key] = name
+    with open(os.path.join(out, "validation.md"), "w", encoding="utf-8") as fh:
+        fh.write(v.to_markdown(figs))
+    summary = v.summary()
+    with open(os.path.join(out, "validation.json"), "w", encoding="utf-8") as fh:
+        json.dump(summary, fh, indent=1, allow_nan=True)
+    if args.json:
+        _emit(json.loads(json.dumps(summary).replace("NaN", "null")))
+        return 0
+    print(f"validation written to {os.path.join(out, 'validation.md')}")
+    print(_table([["soundness violations", summary["soundness_violations"]],
+                  ["criterion rejects (share of non-unstable points)", f"{100 * summary['conservatism']:.1f} %"],
+                  ["DF growth threshold vs simulated speed, median error", f"{100 * summary['speed_df_median_error']:.2g} %"],
+                  ["criterion speed ≤ simulated in every case", "yes" if summary["speeds_ordered"] else "no"]]))
     return 0
 
 
@@ -529,12 +581,20 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true")
     p.set_defaults(func=_cmd_contours)
 
-    p = sub.add_parser("report", help="design summary of a device (default: the catalogue's default device)")
-    p.add_argument("--device", metavar="NAME", help=f"catalogue device (default {DEFAULT_DEVICE})")
-    p.add_argument("--stiffness", type=_number("--stiffness", "N/m"), metavar="K", help="stiffness (default: catalogue K)")
-    p.add_argument("--velocity", type=_number("--velocity", "m/s"), metavar="V", help="impact speed (default 0.1 m/s)")
-    p.add_argument("--out", metavar="DIR", help="output folder (reserved for the full report)")
+    p = sub.add_parser("report", help="design report of a device: verdict, limits, cycles, figures (HTML or Markdown)")
+    _add_device_args(p, dimensionless=False, speed=True)
+    p.add_argument("--out", default="reports", metavar="DIR", help="output folder (default reports)")
+    p.add_argument("--format", choices=["html", "md", "both"], default="html", help="html (self-contained), md (with PNGs) or both")
+    p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=_cmd_report)
+
+    p = sub.add_parser("validate", help="validate the predictions against exact simulation; writes validation.md")
+    p.add_argument("--quick", action="store_true", help="a reduced set (under a minute)")
+    p.add_argument("--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default all cores)")
+    p.add_argument("--out", default="reports/validation", metavar="DIR", help="output folder (default reports/validation)")
+    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.set_defaults(func=_cmd_validate)
     return parser
 
 

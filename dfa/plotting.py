@@ -140,7 +140,7 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
         ax.set_ylabel(SIGMA_LABEL)
         if titles:
             what = "preload equivalent to" if smap.preload else "initial speed"
-            ax.set_title(f"μ = {smap.mu:g}, {what} ξ'0 = {v:g} ticks/sample", fontsize=9)
+            ax.set_title(f"μ = {smap.mu:.4g}, {what} ξ'0 = {v:.3g} ticks/sample", fontsize=9)
     handles = [Patch(facecolor="#ffffff", edgecolor="0.5", label="stable"), Patch(facecolor="#bdbdbd", label="oscillating"),
                Patch(facecolor="#252525", label="unstable"),
                matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),

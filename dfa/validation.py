@@ -233,6 +233,31 @@ class ValidationResult:
         return [r["simulated"] is None or (r["criterion"] is not None and r["criterion"] <= r["simulated"] * (1 + 1e-9))
                 for r in self.speeds]
 
+    def summary(self) -> dict:
+        """Key numbers (JSON-ready), used by the design report and the tests."""
+        sp = [abs(r["df_zoh"] / r["simulated"] - 1) for r in self.speeds if r["df_zoh"] and r["simulated"]]
+        cons = [r["simulated"] / r["criterion"] for r in self.speeds if r["simulated"] and r["criterion"]]
+        short = [abs(r["frequency_error"]) for r in self.cycles
+                 if r["model"] == "zoh" and r["stable"] and r.get("confirmed") and r["period"] < 8]
+        longp = [abs(r["frequency_error"]) for r in self.cycles
+                 if r["model"] == "zoh" and r["stable"] and r.get("confirmed") and r["period"] >= 8]
+        return {
+            "quick": self.quick,
+            "soundness_violations": self.soundness_violations,
+            "soundness_passive": self.soundness.passive,
+            "soundness_points": self.soundness.points,
+            "conservatism": self.soundness.conservatism,
+            "speed_df_median_error": float(np.median(sp)) if sp else float("nan"),
+            "speed_df_worst_error": float(np.max(sp)) if sp else float("nan"),
+            "criterion_conservatism_median": float(np.median(cons)) if cons else float("nan"),
+            "criterion_conservatism_min": float(np.min(cons)) if cons else float("nan"),
+            "speeds_ordered": all(self.speeds_ordered()),
+            "short_period_frequency_error": float(np.median(short)) if short else float("nan"),
+            "long_period_frequency_error": float(np.median(longp)) if longp else float("nan"),
+            "loeb": self.loeb_summary(),
+            "cycles": self.cycle_summary(),
+        }
+
     # ----- output
     def to_markdown(self, figures: dict | None = None) -> str:
         """The validation report (tables and summary statistics)."""
