@@ -57,7 +57,7 @@ def _axes(ax=None, figsize=(5.0, 4.0)):
 
 
 def regions_plot(result: CriterionResult, ax=None, *, xi_dots: Sequence[float] = (), beta_max: float = 1.0,
-                 sigma_max: float = 2.0, legend: bool = True):
+                 sigma_max: float = 2.0, legend: bool = True, legend_loc: str = "upper right"):
     """The (β, σ) plane with regions a-e shaded for the result's speed (paper Fig. 3, eq. 10).
 
     Parameters
@@ -95,7 +95,7 @@ def regions_plot(result: CriterionResult, ax=None, *, xi_dots: Sequence[float] =
     if legend:
         handles = [Patch(facecolor=REGION_COLORS[k], edgecolor="0.5", label=f"{k}: {REGION_DESCRIPTIONS[k].split(':')[0]}") for k in "abcde"]
         lines, labels = ax.get_legend_handles_labels()
-        ax.legend(handles=handles + lines, fontsize=7, loc="upper right", framealpha=0.9)
+        ax.legend(handles=handles + lines, fontsize=7, loc=legend_loc, framealpha=0.9)
     return ax
 
 
