@@ -1,0 +1,170 @@
+"""Plots (Figs. 3-7 and beyond), the design report and the example scripts."""
+
+import os
+import re
+import subprocess
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import dfa  # noqa: E402
+from dfa import plotting  # noqa: E402
+from dfa.cli import main  # noqa: E402
+from dfa.contours import contour_maps  # noqa: E402
+from dfa.limit_cycles import limit_cycles  # noqa: E402
+from dfa.loop import nyquist_locus_response  # noqa: E402
+from dfa.maps import stability_map  # noqa: E402
+from dfa.simulate import simulate  # noqa: E402
+from dfa.stiffness import stiffness_response  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+UNIT = re.compile(r"\((–|encoder ticks|ticks|samples|s|m/s|N/m|rad/s|N·m/rad|force ticks per position tick|%|ticks per sample)\)")
+
+
+def rendered(fig, tmp_path, name):
+    path = tmp_path / f"{name}.png"
+    fig.savefig(path, dpi=60)
+    img = plt.imread(path)
+    plt.close(fig)
+    assert path.stat().st_size > 2000
+    assert img.std() > 0.01  # not a blank image
+    return img
+
+
+def assert_units(ax):
+    assert UNIT.search(ax.get_xlabel()), ax.get_xlabel()
+    assert UNIT.search(ax.get_ylabel()), ax.get_ylabel()
+
+
+def test_fig3_regions_plot(tmp_path):
+    ax = plotting.regions_plot(dfa.passivity_criterion(0.2, 1.0, 2.0), xi_dots=[1, 5])
+    assert_units(ax)
+    rendered(ax.figure, tmp_path, "regions")
+
+
+def test_fig4_stability_map_plot(tmp_path):
+    m = stability_map(100.0, [1.0, 5.0], grid=8, samples=2000, n_jobs=1, progress=False)
+    axes = plotting.stability_map_plot(m)
+    assert len(axes) == 2
+    for ax in axes:
+        assert_units(ax)
+    rendered(axes[0].figure, tmp_path, "map")
+
+
+def test_fig5_trajectory_plot(tmp_path):
+    ax = plotting.trajectory_plot(simulate(100.0, 0.1, 0.9, 2.0, 1500), period=1e-3)
+    assert_units(ax)
+    ys = sorted(line.get_ydata()[0] for line in ax.get_lines()[1:])
+    assert ys == [-1.0, 1.0]  # ±1 tick marked
+    rendered(ax.figure, tmp_path, "traj")
+    with pytest.raises(ValueError):
+        plotting.trajectory_plot(simulate(1.0, 0.1, 0.9, 2.0, 10, record=False))
+
+
+def test_fig7_contour_plot(tmp_path):
+    axes = plotting.contour_plot(contour_maps(5.0, grid=30))
+    for ax in axes:
+        assert_units(ax)
+    rendered(axes[0].figure, tmp_path, "contours")
+
+
+def test_nyquist_and_stiffness_and_validation_plots(tmp_path):
+    p = dfa.Params(2.0, 0.4, 0.1)
+    res = limit_cycles(p)
+    ax = plotting.nyquist_plot(nyquist_locus_response(p, amplitudes=[1.0, 2.0]), cycles=res)
+    assert_units(ax)
+    rendered(ax.figure, tmp_path, "nyquist")
+    dev = dfa.get_device("Delta").device
+    ax = plotting.stiffness_plot(stiffness_response(dev, stiffness=14500.0))
+    assert_units(ax)
+    assert "N/m" in ax.get_ylabel() and "m/s" in ax.get_xlabel()
+    rendered(ax.figure, tmp_path, "stiffness")
+
+
+def test_stiffness_response_bad_input():
+    with pytest.raises(dfa.DFAValueError, match="velocity"):
+        stiffness_response(dfa.get_device("Delta").device, velocity=[0.0, 1.0])
+
+
+@pytest.fixture(scope="module")
+def report_dir(tmp_path_factory):
+    out = tmp_path_factory.mktemp("report")
+    assert main(["report", "--device", "impulse", "--velocity", "0.05", "--out", str(out), "--format", "both", "--quiet"]) == 0
+    return out
+
+
+def test_report_has_every_section_and_figure(report_dir):
+    md = (report_dir / "design_report_impulse-engine.md").read_text()
+    for section in ("# Design report: Impulse Engine", "## Device", "## Passivity and stiffness limits",
+                    "## Predicted limit cycles", "## How far to trust these predictions", "**Verdict.**"):
+        assert section in md
+    figs = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", md)
+    assert len(figs) == 5
+    for f in figs:
+        assert (report_dir / f).is_file()
+
+
+def test_report_numbers_equal_the_api(report_dir):
+    md = (report_dir / "design_report_impulse-engine.md").read_text()
+    dev = dfa.get_device("impulse").device
+    lim = dfa.stiffness_limits(dev, 0.05, 80.0)
+    crit = dfa.device_criterion(dev, 80.0, 0.05)
+    assert f"| K_max at this speed (eq. 11) | {lim.k_max:.5g} N/m |" in md
+    assert f"| Gil et al. (linear sampled spring) | {lim.k_gil:.5g} N/m |" in md
+    assert f"{crit.critical_xi_dot:.4g} ticks/sample" in md
+    assert f"region {crit.region}" in md
+    g = dfa.limit_cycles.growth_threshold(dev.params(80.0), dev, model="zoh", max_amplitude=5000.0)
+    assert f"M_u = {g.amplitude:.4g} ticks" in md
+
+
+def test_report_html_is_self_contained(report_dir):
+    html = (report_dir / "design_report_impulse-engine.html").read_text()
+    assert html.count("data:image/png;base64,") == 5
+    assert not re.search(r'src="(?!data:)', html)
+    assert "<table>" in html and "Impulse Engine" in html
+
+
+def test_report_bad_input(capsys, tmp_path):
+    assert main(["report", "--device", "re35", "--out", str(tmp_path)]) == 2
+    assert "stiffness" in capsys.readouterr().err
+    assert main(["report", "--out", str(tmp_path / "missing" / "dir")]) == 2
+    assert "does not exist" in capsys.readouterr().err
+
+
+EXAMPLES = ["table2_devices", "fig3_regions", "fig4_stability_maps", "fig5_trajectories", "fig7_contours", "nyquist", "design_stiffness"]
+
+
+@pytest.mark.parametrize("name", EXAMPLES)
+def test_example_script_runs_and_writes_its_output(name, tmp_path):
+    env = dict(os.environ, MPLBACKEND="Agg")
+    proc = subprocess.run([sys.executable, os.path.join(ROOT, "examples", f"{name}.py"), "--out", str(tmp_path), "--quick"],
+                          capture_output=True, text=True, env=env, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    produced = list(tmp_path.iterdir())
+    assert produced and all(p.stat().st_size > 0 for p in produced)
+    if name != "table2_devices":
+        assert any(p.suffix == ".png" for p in produced)
+
+
+def test_examples_cover_every_paper_figure_and_table():
+    have = set(os.listdir(os.path.join(ROOT, "examples")))
+    for name in EXAMPLES:
+        assert f"{name}.py" in have
+
+
+def test_plotting_is_the_only_module_importing_matplotlib():
+    pkg = os.path.join(ROOT, "dfa")
+    for fn in os.listdir(pkg):
+        if fn.endswith(".py") and fn not in ("plotting.py", "report.py", "cli.py"):
+            src = open(os.path.join(pkg, fn), encoding="utf-8").read()
+            assert "import matplotlib" not in src, fn
+    # report and cli import matplotlib only inside the functions that draw
+    for fn in ("report.py", "cli.py"):
+        top = open(os.path.join(pkg, fn), encoding="utf-8").read().split("\ndef ")[0]
+        assert "matplotlib" not in top, fn
