@@ -301,10 +301,7 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
         ["Gil et al. (linear, exact ZOH)", f"{lim.k_gil:.5g} {ku}"],
     ]
     if lim.stiffness is not None:
-        mpv = {"none": "none (K > 2c/Δ)", "all speeds": "every speed (K <= 2b/T)"}.get(
-            lim.velocity_status, f"{_g(lim.max_passive_velocity)} {vu}"
-        )
-        rows.append([f"largest passive speed at K = {lim.stiffness:g}", mpv])
+        rows.append([f"largest passive speed at K = {lim.stiffness:g}", lim.max_passive_velocity_text()])
         rows.append(["verdict at this speed", lim.status])
     print(f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample)")
     print(_table(rows))

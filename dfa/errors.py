@@ -32,6 +32,7 @@ __all__ = [
     "check_nonnegative",
     "check_int",
     "check_choice",
+    "check_type",
 ]
 
 
@@ -134,3 +135,10 @@ def check_choice(name: str, value: Any, choices: tuple[str, ...]) -> str:
         if c.lower() == low:
             return c
     raise DFAValueError(_message(name, value, "one of " + ", ".join(repr(c) for c in choices), None))
+
+
+def check_type(name: str, value: Any, cls: type, fix: str) -> Any:
+    """Return ``value`` if it is an instance of ``cls``, else raise :class:`DFATypeError` with ``fix``."""
+    if not isinstance(value, cls):
+        raise DFATypeError(f"{name} = {value!r} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}")
+    return value

@@ -49,7 +49,7 @@ from scipy import optimize
 
 from .describing import DF_ENVELOPE, quantizer_df, quantizer_df_derivative, quantizer_df_inverse
 from .device import Device, Params
-from .errors import DFATypeError, check_choice, check_positive
+from .errors import check_choice, check_positive, check_type
 from .loop import _check_model, _check_params, _zoh_coefficients
 
 __all__ = [
@@ -588,8 +588,8 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
     **kwargs
         Passed to :func:`limit_cycles` (model, delay, …).
     """
-    if device is not None and not isinstance(device, Device):
-        raise DFATypeError(f"device = {device!r} has type {type(device).__name__}: it must be a dfa.Device")
+    if device is not None:
+        check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     res = limit_cycles(params, **kwargs)
     unstable = res.unstable_cycles
     if not unstable:

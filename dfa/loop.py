@@ -46,7 +46,7 @@ import numpy as np
 
 from .describing import coulomb_equivalent_damping, quantizer_df, quantizer_df_inverse
 from .device import Params
-from .errors import DFATypeError, DFAValueError, check_choice, check_int
+from .errors import DFAValueError, check_choice, check_int, check_type
 
 __all__ = [
     "LOOP_MODELS",
@@ -65,12 +65,7 @@ LOOP_MODELS = ("half-delay", "pade", "zoh")
 
 
 def _check_params(params: object) -> Params:
-    if not isinstance(params, Params):
-        raise DFATypeError(
-            f"params = {params!r} has type {type(params).__name__}: it must be dfa.Params(mu, beta, sigma); "
-            "use device.params(stiffness) for a physical device"
-        )
-    return params
+    return check_type("params", params, Params, "build it with dfa.Params(mu, beta, sigma) or device.params(stiffness)")
 
 
 def _check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int]:

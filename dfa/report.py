@@ -254,7 +254,7 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
         ["Colgate–Schenkel 2b/T (eq. 8)", f"{lim.k_colgate:.5g} {u['stiffness']}"],
         ["Abbott–Okamura min(2b/T, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {u['stiffness']}"],
         ["Gil et al. (linear sampled spring)", f"{lim.k_gil:.5g} {u['stiffness']}"],
-        [f"largest passive speed at K = {k:g}", {"all speeds": "every speed", "none": "none (K > 2c/Δ)"}.get(lim.velocity_status, f"{_fmt(lim.max_passive_velocity)} {u['velocity']}")],
+        [f"largest passive speed at K = {k:g}", lim.max_passive_velocity_text()],
     ])
     d.fig(*figs[0])
     d.fig(*figs[1])

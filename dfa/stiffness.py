@@ -37,7 +37,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .device import Device
-from .errors import DFATypeError, DFAValueError, check_positive, check_real
+from .errors import DFAValueError, check_positive, check_real, check_type
 
 __all__ = [
     "StiffnessLimits",
@@ -55,12 +55,7 @@ __all__ = [
 
 
 def _check_device(device: object) -> Device:
-    if not isinstance(device, Device):
-        raise DFATypeError(
-            f"device = {device!r} has type {type(device).__name__}: it must be a dfa.Device; "
-            "build one with dfa.Device(...) or dfa.get_device(name).device"
-        )
-    return device
+    return check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
 
 
 def k_max_criterion(device: Device, velocity):
@@ -228,6 +223,12 @@ class StiffnessLimits:
     max_passive_velocity: float | None = None
     velocity_status: str = "not requested"
     status: str = "ok"
+
+    def max_passive_velocity_text(self) -> str:
+        """The largest passive speed for ``stiffness`` in words, with units (for tables and reports)."""
+        unit = self.device.units["velocity"]
+        return {"none": "none (K > 2c/Δ)", "all speeds": "every speed (K <= 2b/T)", "not requested": "–"}.get(
+            self.velocity_status, f"{self.max_passive_velocity:.4g} {unit}")
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (the ``dfa stiffness --json`` contract plus extras)."""
