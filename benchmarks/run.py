@@ -22,7 +22,7 @@ sys.path.insert(0, HERE)
 import dfa  # noqa: E402
 from dfa.maps import stability_map  # noqa: E402
 from dfa.reference import simulate_control, simulate_ivp  # noqa: E402
-from dfa.simulate import simulate  # noqa: E402
+from dfa.simulation import simulate  # noqa: E402
 
 # a persistent oscillation: no early exit, every sample is integrated
 OSC = dict(mu=2.0, beta=0.4, sigma=0.1, xi_dot0=2.0)
@@ -73,7 +73,7 @@ def bench_solver(quick: bool) -> list[dict]:
     import control
 
     from dfa.describing import QuantizerNonlinearity
-    from dfa.limit_cycles import limit_cycles
+    from dfa.cycles import limit_cycles
     from dfa.loop import loop_system
 
     rows = []

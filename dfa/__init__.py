@@ -57,8 +57,25 @@ _LAZY = {
     "loop_system": "loop",
     "NyquistLocusResponse": "loop",
     "nyquist_locus_response": "loop",
+    "LimitCycle": "cycles",
+    "LimitCycleResult": "cycles",
+    "limit_cycles": "cycles",
+    "growth_threshold": "cycles",
+    "small_cycle_closed_form": "cycles",
+    "large_cycle_closed_form": "cycles",
+    "SimulationResult": "simulation",
+    "simulate": "simulation",
+    "preload_position": "simulation",
+    "StabilityMap": "maps",
+    "stability_map": "maps",
+    "load_map": "maps",
+    "ContourMaps": "contours",
+    "contour_maps": "contours",
+    "validate": "validation",
+    "design_report": "report",
 }
-_SUBMODULES = {"describing", "loop", "criterion", "stiffness", "catalogue", "device", "errors", "cli"}
+_SUBMODULES = {"describing", "loop", "criterion", "stiffness", "catalogue", "device", "errors", "cli", "cycles",
+               "simulation", "maps", "contours", "validation", "report", "plotting", "reference"}
 
 
 def __getattr__(name: str):

@@ -309,7 +309,7 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
-    from .simulate import MAX_RECORD_BYTES, preload_position, simulate
+    from .simulation import MAX_RECORD_BYTES, preload_position, simulate
 
     inp = _resolve(args, dimensionless=True)
     p = inp.params
@@ -385,7 +385,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
 
 
 def _cmd_limit_cycles(args: argparse.Namespace) -> int:
-    from .limit_cycles import growth_threshold
+    from .cycles import growth_threshold
 
     inp = _resolve(args, dimensionless=True)
     p = inp.params

@@ -15,7 +15,7 @@ c(ω) = μω² tan(ω/2) − βω (= 4σ/(πM)) is tabulated once on a fine ω g
 where it increases, so ω(M) for every σ follows by interpolation; the
 residual F(M) = D(M) − μω²/cos(ω/2) is scanned on a shared amplitude grid
 (n + t² on each integer interval) for its first rising zero crossing (F
-rising through zero marks an unstable cycle, see :mod:`dfa.limit_cycles`),
+rising through zero marks an unstable cycle, see :mod:`dfa.cycles`),
 then refined by secant steps with the exact D. Amplitudes beyond
 ``max_amplitude`` are reported as NaN (outside the map's range).
 
@@ -37,7 +37,7 @@ import numpy as np
 
 from .describing import quantizer_df
 from .errors import DFAValueError, check_int, check_positive
-from .limit_cycles import large_cycle_frequency
+from .cycles import large_cycle_frequency
 from .maps import _check_range
 
 __all__ = ["ContourMaps", "contour_maps", "load_contours"]

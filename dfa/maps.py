@@ -33,7 +33,7 @@ import numpy as np
 
 from . import _kernel
 from .errors import DFAValueError, check_int, check_nonnegative, check_positive, check_real
-from .simulate import OUTCOMES, _tail_length, preload_position
+from .simulation import OUTCOMES, _tail_length, preload_position
 
 __all__ = ["StabilityMap", "stability_map", "load_map"]
 

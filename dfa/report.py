@@ -20,10 +20,10 @@ from .catalogue import CatalogueEntry
 from .criterion import device_criterion
 from .device import Device
 from .errors import DFAValueError, check_choice, check_positive, check_real
-from .limit_cycles import growth_threshold
+from .cycles import growth_threshold
 from .loop import nyquist_locus_response
 from .maps import stability_map
-from .simulate import simulate
+from .simulation import simulate
 from .stiffness import stiffness_limits, stiffness_response
 from .validation import _first_unstable_speed
 

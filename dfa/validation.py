@@ -35,9 +35,9 @@ import numpy as np
 
 from .criterion import classify_region, passivity_criterion
 from .device import Params
-from .limit_cycles import limit_cycles
+from .cycles import limit_cycles
 from .maps import stability_map
-from .simulate import preload_position, simulate
+from .simulation import preload_position, simulate
 
 __all__ = ["ValidationResult", "validate", "cycle_checks", "critical_speeds", "soundness", "PERIOD_BINS"]
 

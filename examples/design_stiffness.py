@@ -12,7 +12,7 @@ matplotlib.use("Agg")
 
 import dfa  # noqa: E402
 from dfa.plotting import stiffness_plot  # noqa: E402
-from dfa.simulate import simulate  # noqa: E402
+from dfa.simulation import simulate  # noqa: E402
 from dfa.stiffness import stiffness_response  # noqa: E402
 
 

@@ -19,7 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import dfa  # noqa: E402
 from dfa.plotting import regions_plot, trajectory_plot  # noqa: E402
-from dfa.simulate import preload_position, simulate  # noqa: E402
+from dfa.simulation import preload_position, simulate  # noqa: E402
 
 
 def cases():

@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 
 import dfa  # noqa: E402
-from dfa.limit_cycles import limit_cycles  # noqa: E402
+from dfa.cycles import limit_cycles  # noqa: E402
 from dfa.loop import nyquist_locus_response  # noqa: E402
 from dfa.plotting import nyquist_plot  # noqa: E402
 

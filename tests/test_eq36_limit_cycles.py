@@ -12,7 +12,7 @@ from scipy.optimize import fsolve
 
 import dfa
 from dfa.describing import QuantizerNonlinearity, quantizer_df
-from dfa.limit_cycles import (
+from dfa.cycles import (
     growth_threshold,
     large_cycle_closed_form,
     large_cycle_frequency,

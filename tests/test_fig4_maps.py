@@ -9,7 +9,7 @@ import pytest
 import dfa
 from dfa.cli import main
 from dfa.maps import load_map, stability_map
-from dfa.simulate import OUTCOMES, preload_position, simulate
+from dfa.simulation import OUTCOMES, preload_position, simulate
 
 
 @pytest.fixture(scope="module")

@@ -9,7 +9,7 @@ import pytest
 import dfa
 from dfa.cli import main
 from dfa.contours import contour_maps, load_contours
-from dfa.limit_cycles import large_cycle_closed_form, limit_cycles, small_cycle_closed_form
+from dfa.cycles import large_cycle_closed_form, limit_cycles, small_cycle_closed_form
 
 
 @pytest.fixture(scope="module")

@@ -24,3 +24,14 @@ def test_catalogue_is_package_data():
 
     assert resources.files("dfa").joinpath("data/devices.toml").is_file()
     assert resources.files("dfa").joinpath("py.typed").is_file()
+
+
+def test_top_level_functions_survive_submodule_imports():
+    # a submodule named like a function would rebind dfa.<name> to the module on import
+    import dfa.cycles  # noqa: F401
+    import dfa.simulation  # noqa: F401
+
+    assert dfa.simulate.__name__ == "simulate" and callable(dfa.simulate)
+    assert dfa.limit_cycles.__name__ == "limit_cycles" and callable(dfa.limit_cycles)
+    for name in ("stability_map", "contour_maps", "validate", "design_report", "growth_threshold"):
+        assert callable(getattr(dfa, name)), name

@@ -17,10 +17,10 @@ import dfa  # noqa: E402
 from dfa import plotting  # noqa: E402
 from dfa.cli import main  # noqa: E402
 from dfa.contours import contour_maps  # noqa: E402
-from dfa.limit_cycles import limit_cycles  # noqa: E402
+from dfa.cycles import limit_cycles  # noqa: E402
 from dfa.loop import nyquist_locus_response  # noqa: E402
 from dfa.maps import stability_map  # noqa: E402
-from dfa.simulate import simulate  # noqa: E402
+from dfa.simulation import simulate  # noqa: E402
 from dfa.stiffness import stiffness_response  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -119,7 +119,7 @@ def test_report_numbers_equal_the_api(report_dir):
     assert f"| Gil et al. (linear sampled spring) | {lim.k_gil:.5g} N/m |" in md
     assert f"{crit.critical_xi_dot:.4g} ticks/sample" in md
     assert f"region {crit.region}" in md
-    g = dfa.limit_cycles.growth_threshold(dev.params(80.0), dev, model="zoh", max_amplitude=5000.0)
+    g = dfa.cycles.growth_threshold(dev.params(80.0), dev, model="zoh", max_amplitude=5000.0)
     assert f"M_u = {g.amplitude:.4g} ticks" in md
 
 
