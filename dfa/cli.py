@@ -479,6 +479,8 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     from . import plotting
     from .validation import validate
 
+    if args.jobs == 0 or args.jobs < -1:
+        raise UsageError(f"--jobs {args.jobs} is invalid: it must be -1 (all cores) or a positive count")
     out = args.out
     if not os.path.isdir(out):
         parent = os.path.dirname(os.path.abspath(out))

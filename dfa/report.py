@@ -16,6 +16,8 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from .catalogue import CatalogueEntry
 from .criterion import device_criterion
 from .device import Device
@@ -193,7 +195,8 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
     amps = [c.amplitude for c in res.cycles[:3]] if p.sigma > 0 else None
     if p.sigma > 0 and not amps:
         amps = [1.0]
-    ny = nyquist_locus_response(p, amplitudes=amps)
+    m_top = max([50.0] + [2.0 * c.amplitude for c in res.cycles])  # the locus must reach every cycle drawn
+    ny = nyquist_locus_response(p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500))
     ax = plotting.nyquist_plot(ny, cycles=res)
     save(ax.figure, "nyquist", "Nyquist plot of the linearised loop (half-sample delay) against −1/D(M), with the predicted limit cycles.")
     steps.update()

@@ -63,3 +63,8 @@ def test_loeb_sign_convention_confirmed_by_simulation(quick):
 def test_cli_validate_bad_output_folder(capsys):
     assert main(["validate", "--quick", "--out", "/nonexistent-parent/dir"]) == 2
     assert "does not exist" in capsys.readouterr().err
+
+
+def test_cli_validate_rejects_bad_jobs_before_running(capsys):
+    assert main(["validate", "--quick", "--jobs", "0", "--out", "/tmp"]) == 2
+    assert "--jobs" in capsys.readouterr().err
