@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 from scipy import optimize
@@ -77,14 +78,20 @@ def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int):
     if model == "half-delay":
         return np.exp(1j * w * (delay + 0.5)) * (-mu * w * w + 1j * w * b)
     if model == "pade":
-        import control
-
-        num, den = control.pade(delay + 0.5, pade_order)
+        num, den = _pade(delay + 0.5, pade_order)
         s = 1j * w
         return (mu * s * s + b * s) * np.polyval(den, s) / np.polyval(num, s)
     z = np.exp(1j * w)
     c1, c0, p = _zoh_coefficients(b / mu)
     return z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0)
+
+
+@lru_cache(maxsize=64)
+def _pade(t: float, order: int) -> tuple[np.ndarray, np.ndarray]:
+    import control
+
+    num, den = control.pade(t, order)
+    return np.asarray(num, dtype=float), np.asarray(den, dtype=float)
 
 
 @dataclass(frozen=True)
@@ -295,8 +302,9 @@ def _polish(lp: _Loop, m: float, w: float) -> tuple[float, float]:
     return m, w
 
 
-def _make_cycle(lp: _Loop, m: float, w: float) -> LimitCycle:
-    m, w = _polish(lp, m, w)
+def _make_cycle(lp: _Loop, m: float, w: float, polish: bool = True) -> LimitCycle:
+    if polish:
+        m, w = _polish(lp, m, w)
     inv = lp.inv(m, w)
     lval = 1.0 / inv
     loeb = _loeb(lp, m, w)
@@ -424,7 +432,8 @@ def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], bool]:
                 roots = np.array([2.0 / (math.pi * g)])
             else:
                 roots = np.array([]) if g != 1.0 else np.array([])
-            cycles += [_make_cycle(lp, float(r), w0) for r in roots]
+            # exact D inversion at an exact phase crossing: nothing to polish
+            cycles += [_make_cycle(lp, float(r), w0, polish=False) for r in roots]
         return cycles, complete
     for ws, ms in _pieces(lp):
         finite = np.isfinite(ms)
