@@ -100,6 +100,7 @@ class _Doc:
                 text = html.escape(b[1])
                 text = re.sub(r"\*\*(.+?)\*\*", r"<strong>\1</strong>", text)
                 text = re.sub(r"`(.+?)`", r"<code>\1</code>", text)
+                text = re.sub(r"(?<![*\w])\*([^*]+?)\*(?![*\w])", r"<em>\1</em>", text)
                 body.append(f"<p>{text}</p>")
             elif b[0] == "table":
                 head = "".join(f"<th>{html.escape(h)}</th>" for h in b[1])
