@@ -364,9 +364,7 @@ def _write_trace(path: str, r) -> None:
 def _cmd_map(args: argparse.Namespace) -> int:
     from .maps import stability_map
 
-    out_dir = os.path.dirname(os.path.abspath(args.out))
-    if not os.path.isdir(out_dir):
-        raise UsageError(f"--out {args.out!r} is invalid: folder {out_dir!r} does not exist; create it first")
+    _check_out_dir(args.out)
     m = stability_map(args.mu, args.xi_dot, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range),
                       grid=args.grid, samples=args.samples, delay=args.delay, preload=args.preload,
                       quantize=not args.no_quantization, n_jobs=args.jobs, progress=not args.quiet)
@@ -421,9 +419,7 @@ def _cmd_contours(args: argparse.Namespace) -> int:
     from .contours import contour_maps
 
     if args.out is not None:
-        out_dir = os.path.dirname(os.path.abspath(args.out))
-        if not os.path.isdir(out_dir):
-            raise UsageError(f"--out {args.out!r} is invalid: folder {out_dir!r} does not exist; create it first")
+        _check_out_dir(args.out)
     c = contour_maps(args.mu, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range), grid=args.grid,
                      max_amplitude=args.max_amplitude)
     d = c.as_dict()
@@ -483,9 +479,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         raise UsageError(f"--jobs {args.jobs} is invalid: it must be -1 (all cores) or a positive count")
     out = args.out
     if not os.path.isdir(out):
-        parent = os.path.dirname(os.path.abspath(out))
-        if not os.path.isdir(parent):
-            raise UsageError(f"--out {out!r} is invalid: folder {parent!r} does not exist; create it first")
+        _check_out_dir(out)  # the parent must exist; the folder itself is created
         os.mkdir(out)
     v = validate(quick=args.quick, n_jobs=args.jobs, progress=not args.quiet)
     figs = {}
