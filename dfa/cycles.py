@@ -13,18 +13,21 @@ How every root is found
 -----------------------
 The phase condition V = 0 fixes, for each ω, the equivalent damping β*(ω)
 at which the loop's phase crosses −180° (half-delay: β* = μω tan θ,
-θ = ω(d + ½), on the branches where θ mod 2π ∈ [0, π/2); other models:
-bisection, there is at most one crossing with U < 0 per ω). With σ > 0 this
+θ = ω(d + ½), on the branches where θ mod 2π ∈ [0, π/2); Padé: the same with
+θ the phase of the all-pass approximant; exact ZOH: bisection, there is at
+most one crossing with U < 0 per ω, cached per (μ, d)). With σ > 0 this
 gives M(ω) = 4σ/(πω(β* − β)), cut into monotone pieces; on each piece the
 problem is one-dimensional in M: F(M) = D(M) + U(M, ω(M)) = 0. F is sampled
 on every integer interval [n, n + 1] (points n + t², resolving the √ that D
 has at each integer) and on (0, 1) geometrically, sign changes are bracketed
-and refined with :func:`scipy.optimize.brentq`, and each root is polished
+and refined with :func:`scipy.optimize.brentq` (ω(M) by a nested scalar Brent
+solve of V = 0 inside the piece's bracket), and each root is polished
 with a 2-D Newton step on (U, V). Amplitudes below 1e-9 ticks are not searched
 (as M → 0, F ≈ (2 − 4σ)/(πM) keeps one sign). The march over n stops where the envelope
 |D(M) − 1| <= 0.38⌊M⌋^{-3/2} (see :mod:`dfa.describing`) can no longer meet
 −U, or at ``max_amplitude`` (then ``complete`` is False). With σ = 0 the
-phase condition gives isolated frequencies and D(M) = −U is inverted exactly.
+phase condition gives isolated frequencies and D(M) = −U is inverted exactly
+(compiled, :mod:`dfa._dfcore`).
 
 Stability (Loeb criterion): a cycle is stable when
 ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M > 0, the sign that makes an amplitude increase
@@ -41,6 +44,7 @@ Examples
 
 from __future__ import annotations
 
+import cmath
 import math
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -48,7 +52,8 @@ from functools import lru_cache
 import numpy as np
 from scipy import optimize
 
-from .describing import DF_ENVELOPE, quantizer_df, quantizer_df_derivative, quantizer_df_inverse
+from . import _dfcore
+from .describing import DF_ENVELOPE, quantizer_df_inverse
 from .device import Device, Params
 from .errors import check_choice, check_positive, check_type
 from .loop import _check_model, _check_params, _zoh_coefficients
@@ -70,28 +75,79 @@ _DF_CHOICES = ("exact", "small", "unity")
 _M_FLOOR = 1e-9
 
 
+#: Frequency grid (rad per sample) on which the phase curve is scanned before bracketing.
+_W_GRID = np.concatenate([np.geomspace(1e-5, 0.05, 600, endpoint=False), np.linspace(0.05, math.pi - 1e-9, 3000)])
+_W_GRID.flags.writeable = False
+
+
 # ------------------------------------------------------------ loop inverse
-def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int):
-    """1/L(jω) for an equivalent damping β_eq (broadcast), time in samples."""
-    w = np.asarray(omega, dtype=float)
-    b = np.asarray(beq, dtype=float)
+# For the half-delay and Padé models 1/L = e^{jφ(ω)}·(−μω² + jωβ_eq): the device times an
+# all-pass phase lead φ (the inverse of the hold's delay). Half-delay: φ = ω(d + ½). Padé:
+# the diagonal approximant of e^{−sτ} has num(s) = den(−s), so den(jω)/num(jω) = e^{2j·arg den(jω)}.
+# Scalars take a plain-complex path (the bracketing root finders call it thousands of times).
+
+
+@lru_cache(maxsize=64)
+def _grid_lead(model: str, delay: int, pade_order: int) -> tuple[np.ndarray, np.ndarray]:
+    """(φ, e^{jφ}) on _W_GRID, cached: the grid is scanned once per solve."""
+    lead = _lead_eval(_W_GRID, model, delay, pade_order)
+    return lead, np.exp(1j * lead)
+
+
+def _lead(w, model: str, delay: int, pade_order: int):
+    """Phase lead φ(ω) of 1/L over the device's inverse (half-delay and Padé models), rad."""
+    if w is _W_GRID:
+        return _grid_lead(model, delay, pade_order)[0]
+    return _lead_eval(w, model, delay, pade_order)
+
+
+def _rotation(w, model: str, delay: int, pade_order: int):
+    """e^{jφ(ω)} (vectorised), cached on _W_GRID."""
+    if w is _W_GRID:
+        return _grid_lead(model, delay, pade_order)[1]
+    return np.exp(1j * _lead_eval(w, model, delay, pade_order))
+
+
+def _lead_eval(w, model: str, delay: int, pade_order: int):
     if model == "half-delay":
-        return np.exp(1j * w * (delay + 0.5)) * (-mu * w * w + 1j * w * b)
-    if model == "pade":
-        num, den = _pade(delay + 0.5, pade_order)
-        s = 1j * w
-        return (mu * s * s + b * s) * np.polyval(den, s) / np.polyval(num, s)
+        return w * (delay + 0.5)
+    den = _pade(delay + 0.5, pade_order)
+    if np.ndim(w) == 0:
+        s, pd = 1j * float(w), 0j
+        for c in den:
+            pd = pd * s + c
+        return 2.0 * cmath.phase(pd)
+    return 2.0 * np.angle(np.polyval(den, 1j * np.asarray(w, dtype=float)))
+
+
+def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int):
+    """1/L(jω) for an equivalent damping β_eq (broadcast), time in samples; plain complex for scalars."""
+    if (isinstance(omega, float) or np.ndim(omega) == 0) and (isinstance(beq, float) or np.ndim(beq) == 0):
+        w, b = float(omega), float(beq)
+        if model != "zoh":
+            return cmath.exp(1j * _lead(w, model, delay, pade_order)) * complex(-mu * w * w, w * b)
+        c1, c0, p = _zoh_coefficients(b / mu)
+        z = cmath.exp(1j * w)
+        return z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0)
+    w = omega if omega is _W_GRID else np.asarray(omega, dtype=float)
+    b = np.asarray(beq, dtype=float)
+    if model != "zoh":
+        return _rotation(w, model, delay, pade_order) * (-mu * w * w + 1j * w * b)
     z = np.exp(1j * w)
     c1, c0, p = _zoh_coefficients(b / mu)
     return z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0)
 
 
 @lru_cache(maxsize=64)
-def _pade(t: float, order: int) -> tuple[np.ndarray, np.ndarray]:
+def _pade(t: float, order: int) -> tuple[float, ...]:
+    """Denominator of python-control's Padé approximant of e^{−st} (its numerator is den(−s))."""
     import control
 
     num, den = control.pade(t, order)
-    return np.asarray(num, dtype=float), np.asarray(den, dtype=float)
+    den = np.asarray(den, dtype=float)
+    if not np.allclose(np.asarray(num, dtype=float), den * (-1.0) ** np.arange(den.size)[::-1], rtol=1e-12, atol=0):
+        raise RuntimeError("control.pade returned a non-diagonal approximant")  # pragma: no cover
+    return tuple(float(c) for c in den / den[0])
 
 
 @dataclass(frozen=True)
@@ -103,45 +159,62 @@ class _Loop:
     df: str = "exact"
 
     def beq(self, m, w):
+        if isinstance(m, float) and isinstance(w, float):
+            return self.params.beta + 4.0 * self.params.sigma / (math.pi * m * w)
         return self.params.beta + 4.0 * self.params.sigma / (math.pi * np.asarray(m) * np.asarray(w))
 
     def inv(self, m, w):
         return _inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order)
 
     def d(self, m):
+        """D(M) (compiled eq. 41 for the exact describing function; M > 0 is the solver's own)."""
         m = np.asarray(m, dtype=float)
         if self.df == "exact":
-            return quantizer_df(m)
+            return _dfcore.df_array(m.ravel()).reshape(m.shape) if m.ndim else _dfcore.df_value(float(m))
         if self.df == "small":
             return 2.0 / (math.pi * m)
         return np.ones_like(m) if m.ndim else 1.0
 
     def dprime(self, m):
+        m = np.asarray(m, dtype=float)
         if self.df == "exact":
-            return quantizer_df_derivative(m)
+            return _dfcore.df_derivative_array(m.ravel()).reshape(m.shape) if m.ndim else _dfcore.df_derivative(float(m))
         if self.df == "small":
             return -2.0 / (math.pi * m * m)
-        return 0.0
+        return np.zeros_like(m) if m.ndim else 0.0
 
     def char(self, m, w):
         return self.inv(m, w) + self.d(m)
 
 
 # --------------------------------------------------------------- phase curve
-_W_GRID = np.concatenate([np.geomspace(1e-5, 0.05, 600, endpoint=False), np.linspace(0.05, math.pi - 1e-9, 3000)])
 
 
 def _phase_beta(lp: _Loop, w: np.ndarray) -> np.ndarray:
     """β*(ω): the damping at which V = 0 with U < 0 (NaN where there is none)."""
     mu, d = lp.params.mu, lp.delay
-    if lp.model == "half-delay":
-        th = w * (d + 0.5)
+    if lp.model != "zoh":
+        # V = 0 ⇔ β_eq = μω tan φ, and then U = −μω²/cos φ < 0 ⇔ cos φ > 0; β_eq >= 0 ⇒ φ mod 2π ∈ [0, π/2)
+        th = _lead(w, lp.model, d, lp.pade_order)
         ok = np.mod(th, 2 * math.pi) < math.pi / 2
         with np.errstate(invalid="ignore"):
             return np.where(ok, mu * w * np.tan(th), np.nan)
-    # numeric: scan β on a log grid, bracket the crossing of V with U < 0, bisect (vectorised)
+    if w is _W_GRID:  # β* does not depend on β or σ: a sweep at fixed μ scans the grid once
+        return _zoh_phase_beta_grid(mu, d)
+    return _zoh_phase_beta(mu, d, w)
+
+
+@lru_cache(maxsize=16)
+def _zoh_phase_beta_grid(mu: float, d: int) -> np.ndarray:
+    out = _zoh_phase_beta(mu, d, _W_GRID)
+    out.flags.writeable = False
+    return out
+
+
+def _zoh_phase_beta(mu: float, d: int, w: np.ndarray) -> np.ndarray:
+    """β*(ω) of the exact ZOH loop: scan β on a log grid, bracket V's crossing with U < 0, bisect (vectorised)."""
     bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
-    c = _inv_loop(mu, bgrid[None, :], w[:, None], lp.model, d, lp.pade_order)
+    c = _inv_loop(mu, bgrid[None, :], w[:, None], "zoh", d, 0)
     v = c.imag
     sc = (np.sign(v[:, :-1]) != np.sign(v[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)
     has = sc.any(axis=1)
@@ -149,9 +222,16 @@ def _phase_beta(lp: _Loop, w: np.ndarray) -> np.ndarray:
     lo = bgrid[idx]
     hi = bgrid[idx + 1]
     vlo = v[np.arange(w.size), idx]
+    if w.size <= 4:  # a few frequencies (the ends of a phase-curve piece): Brent on the scalar loop inverse
+        out = np.full(w.size, np.nan)
+        for i in np.flatnonzero(has):
+            wi = float(w[i])
+            out[i] = optimize.brentq(lambda b: _inv_loop(mu, b, wi, "zoh", d, 0).imag, float(lo[i]), float(hi[i]),
+                                     xtol=1e-300, rtol=4 * np.finfo(float).eps)
+        return out
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        vm = _inv_loop(mu, mid, w, lp.model, d, lp.pade_order).imag
+        vm = _inv_loop(mu, mid, w, "zoh", d, 0).imag
         left = np.sign(vm) == np.sign(vlo)
         lo = np.where(left, mid, lo)
         vlo = np.where(left, vm, vlo)
@@ -306,12 +386,27 @@ def _make_cycle(lp: _Loop, m: float, w: float, polish: bool = True) -> LimitCycl
     if polish:
         m, w = _polish(lp, m, w)
     inv = lp.inv(m, w)
-    lval = 1.0 / inv
-    loeb = _loeb(lp, m, w)
-    return LimitCycle(
-        amplitude=m, frequency=w, stable=loeb > 0, family="small" if m < 1.0 else "large", loeb=loeb,
-        residual=float(abs(1.0 + lp.d(m) * lval)), few_samples=bool(2 * math.pi / w < 8.0),
-    )
+    return _cycle(m, w, _loeb(lp, m, w), float(abs(1.0 + lp.d(m) / inv)))
+
+
+def _cycle(m: float, w: float, loeb: float, residual: float) -> LimitCycle:
+    return LimitCycle(amplitude=float(m), frequency=float(w), stable=bool(loeb > 0), family="small" if m < 1.0 else "large",
+                      loeb=float(loeb), residual=float(residual), few_samples=bool(2 * math.pi / w < 8.0))
+
+
+def _cycles_at_crossing(lp: _Loop, roots: np.ndarray, w: float) -> list[LimitCycle]:
+    """Cycles at one phase crossing ω of an amplitude-independent loop (σ = 0), all roots at once.
+
+    There ∂(1/L)/∂M = 0, so the Loeb quantity reduces to D'(M)·∂V/∂ω.
+    """
+    if roots.size == 0:
+        return []
+    inv = complex(lp.inv(1.0, w))
+    hw = 1e-7 * w
+    cw = complex((lp.inv(1.0, w + hw) - lp.inv(1.0, w - hw)) / (2 * hw))
+    loeb = np.asarray(lp.dprime(roots), dtype=float) * cw.imag
+    resid = np.abs(1.0 + np.asarray(lp.d(roots), dtype=float) / inv)
+    return [_cycle(m, w, lo, r) for m, lo, r in zip(roots.tolist(), loeb.tolist(), resid.tolist())]
 
 
 def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -404,11 +499,33 @@ def _m_samples(lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | N
     return np.unique(np.concatenate(pts)), complete
 
 
-def _interp_omega(lp: _Loop, m: np.ndarray, ws: np.ndarray, ms: np.ndarray) -> np.ndarray:
-    order = np.argsort(ms)
-    msort, wsort = ms[order], ws[order]
-    k = np.clip(np.searchsorted(msort, m), 1, msort.size - 1)
-    return _omega_for_m(lp, m, wsort[k - 1], wsort[k])
+class _PieceOmega:
+    """ω(M) on one monotone piece of the phase curve: V(M, ω) = 0 bracketed by the piece's grid."""
+
+    def __init__(self, lp: _Loop, ws: np.ndarray, ms: np.ndarray):
+        order = np.argsort(ms)
+        self.lp, self.ms, self.ws = lp, ms[order], ws[order]
+
+    def _brackets(self, m):
+        k = np.clip(np.searchsorted(self.ms, m), 1, self.ms.size - 1)
+        return self.ws[k - 1], self.ws[k]
+
+    def __call__(self, m: np.ndarray) -> np.ndarray:
+        wa, wb = self._brackets(m)
+        return _omega_for_m(self.lp, m, wa, wb)
+
+    def scalar(self, m: float) -> float:
+        """The same for one amplitude, by Brent's method on the scalar loop inverse."""
+        wa, wb = (float(x) for x in self._brackets(m))
+        lp = self.lp
+
+        def v(w):
+            return lp.inv(m, w).imag
+
+        va, vb = v(wa), v(wb)
+        if va == 0.0 or vb == 0.0 or (va < 0) == (vb < 0):  # a root on a bracket end (rounding): take the smaller |V|
+            return wa if abs(va) <= abs(vb) else wb
+        return optimize.brentq(v, wa, wb, xtol=1e-300, rtol=4 * np.finfo(float).eps)
 
 
 def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], bool]:
@@ -433,7 +550,7 @@ def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], bool]:
             else:
                 roots = np.array([]) if g != 1.0 else np.array([])
             # exact D inversion at an exact phase crossing: nothing to polish
-            cycles += [_make_cycle(lp, float(r), w0, polish=False) for r in roots]
+            cycles += _cycles_at_crossing(lp, np.asarray(roots, dtype=float), w0)
         return cycles, complete
     for ws, ms in _pieces(lp):
         finite = np.isfinite(ms)
@@ -443,9 +560,7 @@ def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], bool]:
         hi = float(np.max(ms))
         w_inf = float(ws[~finite][0]) if (~finite).any() else None
 
-        def omega_of(mm, ws=ws, ms=ms):
-            return _interp_omega(lp, mm, ws, ms)
-
+        omega_of = _PieceOmega(lp, ws, ms)
         samples, comp = _m_samples(lo, hi, max_amp, lp, w_inf, omega_of)
         complete &= comp
         if samples.size < 2:
@@ -459,12 +574,12 @@ def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], bool]:
         sc = np.where(np.isfinite(f[:-1]) & np.isfinite(f[1:]) & (np.sign(f[:-1]) != np.sign(f[1:])) & real)[0]
         for i in sc:
             def g(mm, omega_of=omega_of):
-                return float(np.real(lp.char(mm, omega_of(np.array([mm]))[0])))
+                return lp.char(mm, omega_of.scalar(mm)).real
 
             m0 = optimize.brentq(g, samples[i], samples[i + 1], xtol=1e-300, rtol=4 * np.finfo(float).eps)
             if m0 <= _M_FLOOR * (1 + 1e-6):
                 continue  # on the search floor: the degenerate σ = ½ end of the small family (M → 0, ω → π)
-            cycles.append(_make_cycle(lp, m0, float(omega_of(np.array([m0]))[0])))
+            cycles.append(_make_cycle(lp, m0, omega_of.scalar(m0)))
     return cycles, complete
 
 

@@ -49,6 +49,7 @@ import control
 import numpy as np
 from scipy import integrate, optimize
 
+from . import _dfcore
 from .errors import DFAValueError, check_nonnegative, check_positive
 
 __all__ = [
@@ -227,11 +228,10 @@ def quantizer_df_derivative(amplitude):
     return float(out) if out.ndim == 0 else out
 
 
-@lru_cache(maxsize=4096)
 def _interval_peak(n: int) -> tuple[float, float]:
-    """(M, D) of the local maximum of D on [n, n + 1] (D is unimodal there)."""
-    r = optimize.minimize_scalar(lambda x: -quantizer_df(x), bounds=(n, n + 1.0), method="bounded", options={"xatol": 1e-12 * n})
-    return float(r.x), float(-r.fun)
+    """(M, D) of the local maximum of D on [n, n + 1] (D is unimodal there; compiled, see :mod:`dfa._dfcore`)."""
+    mp, dp = _dfcore.interval_peak(int(n))
+    return float(mp), float(dp)
 
 
 def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.ndarray, bool]:
@@ -265,32 +265,15 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
     """
     g = check_positive("gain", gain, "D(M) is positive for every amplitude")
     mmax = check_positive("max_amplitude", max_amplitude)
-    roots: list[float] = []
-    if g >= 2 / math.pi and 2 / (math.pi * g) <= mmax:
-        roots.append(2 / (math.pi * g))
+    roots = [2 / (math.pi * g)] if g >= 2 / math.pi and 2 / (math.pi * g) <= mmax else []
     if g != 1.0:
         n_last = int(math.floor((DF_ENVELOPE / abs(g - 1.0)) ** (2.0 / 3.0))) + 1
     else:
         n_last = int(mmax) + 1
     complete = n_last <= mmax
     n_stop = int(min(n_last, math.floor(mmax)))
-    for n in range(1, n_stop + 1):
-        d_lo = quantizer_df(float(n))
-        d_hi = quantizer_df(float(n + 1))
-        # fast rejection: the maximum on [n, n+1] is below 1 + envelope, the minimum is an endpoint
-        if g < min(d_lo, d_hi) - 1e-15 or g > 1.0 + DF_ENVELOPE * n**-1.5 and n > 1:
-            continue
-        mp, dp = _interval_peak(n)
-        if g > dp:
-            continue
-        hi_end = min(float(n + 1), mmax)
-        if (d_lo - g) * (dp - g) <= 0 and mp <= mmax:
-            # left branch: D has a √ singularity at n, so solve in t with M = n + t² (smooth in t)
-            t = optimize.brentq(lambda t: quantizer_df(n + t * t) - g, 0.0, math.sqrt(mp - n), xtol=1e-15, rtol=4 * np.finfo(float).eps)
-            roots.append(n + t * t)
-        if mp < hi_end and (dp - g) * (quantizer_df(hi_end) - g) < 0:
-            roots.append(optimize.brentq(lambda x: quantizer_df(x) - g, mp, hi_end, xtol=1e-14, rtol=4 * np.finfo(float).eps))
-    out = np.sort(np.array(roots, dtype=float))
+    # compiled scan of the intervals [n, n + 1]: peak and both branches by Brent's method in t, M = n + t²
+    out = np.concatenate([roots, _dfcore.df_inverse(g, n_stop, mmax, DF_ENVELOPE)])
     if out.size > 1:  # a root at a shared bracket end can be found twice; keep the values as found
         out = out[np.concatenate([[True], np.diff(out) > 1e-12 * out[1:]])]
     return out, bool(complete)

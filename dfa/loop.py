@@ -130,10 +130,20 @@ def device_zoh_tf(params: Params, amplitude: float | None = None, omega: float |
 # Taylor coefficients of c₁ = Σ (−a)^{n−2}/n! and c₀ = Σ (n − 1)(−a)^{n−2}/n!, n >= 2 (16 terms: < 1e-20 at a = ½)
 _C1_SERIES = np.array([1.0 / math.factorial(n) for n in range(17, 1, -1)])
 _C0_SERIES = np.array([(n - 1.0) / math.factorial(n) for n in range(17, 1, -1)])
+_C1_TUPLE, _C0_TUPLE = tuple(_C1_SERIES.tolist()), tuple(_C0_SERIES.tolist())
 
 
 def _zoh_coefficients(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(c₁, c₀, p) of the ZOH pulse transfer function, without cancellation for small a."""
+    """(c₁, c₀, p) of the ZOH pulse transfer function, without cancellation for small a (plain floats for a float)."""
+    if isinstance(a, float):
+        p = math.exp(-a)
+        if a >= 0.5:
+            return (a - 1.0 + p) / (a * a), (1.0 - p - a * p) / (a * a), p
+        c1 = c0 = 0.0
+        for k1, k0 in zip(_C1_TUPLE, _C0_TUPLE):  # Horner in x = −a
+            c1 = c1 * -a + k1
+            c0 = c0 * -a + k0
+        return c1, c0, p
     a = np.asarray(a, dtype=float)
     p = np.exp(-a)
     small = a < 0.5

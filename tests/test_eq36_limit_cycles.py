@@ -163,3 +163,35 @@ def test_limit_cycles_bad_input(kwargs, needle):
         limit_cycles(dfa.Params(5.0, 0.1, 0.3), **kwargs)
     with pytest.raises(dfa.DFATypeError):
         limit_cycles((5.0, 0.1, 0.3))
+
+
+# ------------------------------------------- the solver's fast loop inverse (dfa.cycles)
+@settings(max_examples=60)
+@given(st.floats(0.2, 300.0), st.floats(0.0, 3.0), st.floats(1e-3, 3.1), st.sampled_from(["half-delay", "pade", "zoh"]),
+       st.integers(0, 2))
+def test_eq36_solver_loop_inverse_scalar_and_vector_paths_equal_loop_response(mu, beq, w, model, delay):
+    """The solver's 1/L (plain-complex scalar path, numpy path, Padé as an all-pass phase lead) is loop_response's."""
+    from dfa.cycles import _inv_loop
+
+    p = dfa.Params(mu, beq, 0.0)
+    ref = 1.0 / complex(loop_response(p, w, model=model, delay=delay, pade_order=6))
+    scalar = _inv_loop(mu, beq, w, model, delay, 6)
+    vector = _inv_loop(mu, np.array([beq, beq]), np.array([w, w]), model, delay, 6)
+    assert isinstance(scalar, complex)
+    tol = 1e-12 * abs(ref) + 1e-300
+    assert abs(scalar - ref) <= tol and np.all(np.abs(vector - ref) <= tol)
+
+
+@pytest.mark.parametrize("model, delay", [("half-delay", 0), ("pade", 0), ("pade", 1), ("zoh", 0), ("zoh", 1)])
+def test_eq36_phase_curve_beta_star_puts_the_loop_on_the_negative_real_axis(model, delay):
+    """β*(ω) (closed form μω tan φ for half-delay and Padé, numeric for ZOH) gives V = 0 with U < 0 (eq. 36 phase condition)."""
+    from dfa.cycles import _W_GRID, _Loop, _phase_beta
+
+    mu = 7.0
+    lp = _Loop(dfa.Params(mu, 0.0, 0.0), model, delay, 4)
+    for w in (_W_GRID, np.array(_W_GRID[::97])):  # the cached grid and a fresh array
+        bs = _phase_beta(lp, w)
+        ok = np.isfinite(bs)
+        assert ok.sum() > 100 if w is _W_GRID else ok.sum() > 3
+        inv = np.array([1.0 / complex(loop_response(dfa.Params(mu, b, 0.0), x, model=model, delay=delay)) for x, b in zip(w[ok], bs[ok])])
+        assert np.all(np.abs(inv.imag) <= 1e-9 * np.abs(inv)) and np.all(inv.real < 0)

@@ -8,7 +8,7 @@ import control
 import numpy as np
 import pytest
 import sympy as sp
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dfa
@@ -173,3 +173,55 @@ def test_describing_functions_reject_bad_amplitude(bad):
         coulomb_equivalent_damping(0.5, 1.0, bad)
     with pytest.raises(dfa.DFAValueError, match="sigma"):
         CoulombNonlinearity(-0.1)
+
+
+# ---------------------------------------------------- compiled core (dfa._dfcore)
+amplitudes_st = st.one_of(
+    st.floats(1e-3, 400.0),
+    st.builds(lambda n, e: n + e, st.integers(1, 300), st.floats(-1e-9, 1e-9)),  # next to an integer
+)
+
+
+@settings(max_examples=200)
+@given(amplitudes_st)
+def test_eq41_compiled_core_equals_sympy_lambdified(m):
+    from dfa import _dfcore
+
+    assert _dfcore.df_value(m) == pytest.approx(quantizer_df(m), rel=1e-14)
+    # D' cancels near an integer (the √ terms grow like 1/√(M − k)): compare with a tolerance that admits it
+    assert _dfcore.df_derivative(m) == pytest.approx(quantizer_df_derivative(m), rel=1e-9, abs=1e-12)
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 7, 40, 400])
+def test_eq41_compiled_interval_peak_matches_scipy_and_zero_slope(n):
+    from scipy import optimize
+
+    from dfa import _dfcore
+
+    mp, dp = _dfcore.interval_peak(n)
+    ref = optimize.minimize_scalar(lambda x: -quantizer_df(x), bounds=(n, n + 1.0), method="bounded", options={"xatol": 1e-10})
+    assert dp == pytest.approx(-ref.fun, rel=1e-14)
+    assert abs(mp - ref.x) < 1e-5  # D is flat at its peak: the location is known to ~√eps
+    assert abs(quantizer_df_derivative(mp)) < 1e-6 * abs(quantizer_df_derivative(n + 0.9))
+    assert n + 0.2 < mp < n + 0.32  # maxima near n + 0.30, at 1.242 on [1, 2] (module docstring)
+
+
+@settings(max_examples=100)
+@given(st.floats(0.65, 1.12))
+def test_eq41_compiled_inverse_agrees_with_scipy_brentq_on_every_bracket(g):
+    """The compiled Brent (a port of scipy's) converges to the roots scipy's brentq finds on the same brackets."""
+    from scipy import optimize
+
+    roots, _complete = quantizer_df_inverse(g, max_amplitude=60.0)
+    big = roots[roots > 1.0]
+    for r in big:
+        n = math.floor(r)
+        # bracket the root by the interval's monotone branch, from the independent scipy peak
+        peak = optimize.minimize_scalar(lambda x: -quantizer_df(x), bounds=(n, n + 1.0), method="bounded", options={"xatol": 1e-12}).x
+        lo, hi = (n, peak) if r < peak else (peak, n + 1.0)
+        f = lambda x: quantizer_df(x) - g  # noqa: E731
+        if f(lo) * f(hi) > 0:  # root within the peak's flat top: both agree to the peak's precision
+            assert abs(r - peak) < 1e-5
+            continue
+        ref = optimize.brentq(f, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+        assert r == pytest.approx(ref, rel=1e-11)
