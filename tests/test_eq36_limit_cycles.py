@@ -24,8 +24,8 @@ from dfa.loop import loop_response, loop_system
 params_st = st.builds(dfa.Params, st.floats(0.5, 200.0), st.floats(0.0, 0.6), st.floats(0.0, 2.5))
 
 
-def residual(p, m, w, model="half-delay", delay=0):
-    return abs(1 + quantizer_df(m) * loop_response(p, w, m, model=model, delay=delay))
+def residual(p, m, w, model="half-delay", delay=0, pade_order=4):
+    return abs(1 + quantizer_df(m) * loop_response(p, w, m, model=model, delay=delay, pade_order=pade_order))
 
 
 @settings(max_examples=25)
@@ -139,6 +139,23 @@ def test_python_control_describing_function_response_agrees_with_solver():
     assert len(resp.intersections) == len(ours)
     for (a, w), c in zip(sorted(resp.intersections), ours):
         assert a == pytest.approx(c.amplitude, rel=1e-4) and w == pytest.approx(c.frequency, rel=1e-4)
+
+
+@pytest.mark.parametrize("mu, beta", [(20.0, 0.49), (100.0, 0.495)])
+def test_python_control_finds_no_root_we_miss_with_its_default_grid(mu, beta):
+    """Many close roots (β near the linear bound): python-control's every intersection is one of ours, one to one."""
+    p = dfa.Params(mu, beta, 0.0)
+    H = loop_system(p, model="pade", pade_order=6)
+    amps = np.linspace(0.05, 10.0, 400)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        resp = control.describing_function_response(H, QuantizerNonlinearity(), amps)
+    ours = [c for c in limit_cycles(p, model="pade", pade_order=6).cycles if c.amplitude <= amps[-1]]
+    pc = sorted(resp.intersections)
+    assert len(pc) == len(ours) >= 14
+    for (a, w), c in zip(pc, ours):  # sorted one-to-one; python-control's roots are grid-limited (~1e-3)
+        assert a == pytest.approx(c.amplitude, rel=1e-2) and w == pytest.approx(c.frequency, rel=1e-3)
+        assert c.residual <= 1e-13 < residual(p, a, w, model="pade", pade_order=6)
 
 
 def test_growth_threshold_physical_units():
