@@ -52,20 +52,11 @@ def df_derivative(m):
 
 
 @njit(cache=True, error_model="numpy")
-def df_array(m):
-    """D(M) for a 1-D array of amplitudes."""
+def df_array(m, derivative=False):
+    """D(M), or dD/dM when ``derivative``, for a 1-D array of amplitudes."""
     out = np.empty(m.size)
     for i in range(m.size):
-        out[i] = df_value(m[i])
-    return out
-
-
-@njit(cache=True, error_model="numpy")
-def df_derivative_array(m):
-    """dD/dM for a 1-D array of amplitudes."""
-    out = np.empty(m.size)
-    for i in range(m.size):
-        out[i] = df_derivative(m[i])
+        out[i] = df_derivative(m[i]) if derivative else df_value(m[i])
     return out
 
 

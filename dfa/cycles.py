@@ -178,7 +178,7 @@ class _Loop:
     def dprime(self, m):
         m = np.asarray(m, dtype=float)
         if self.df == "exact":
-            return _dfcore.df_derivative_array(m.ravel()).reshape(m.shape) if m.ndim else _dfcore.df_derivative(float(m))
+            return _dfcore.df_array(m.ravel(), True).reshape(m.shape) if m.ndim else _dfcore.df_derivative(float(m))
         if self.df == "small":
             return -2.0 / (math.pi * m * m)
         return np.zeros_like(m) if m.ndim else 0.0
