@@ -167,7 +167,6 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
                 done = h
                 break
         xs = x
-        vs = v
         dvisc = 0.0
         dcoul = 0.0
         if v == 0.0 and abs(phi) <= sigma:

@@ -24,7 +24,7 @@ from typing import Callable, Sequence
 from .catalogue import DEFAULT_DEVICE, catalogue, get_device
 from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params
-from .errors import DFAError, DFAValueError
+from .errors import DFAError, DFAValueError, check_beta, check_sigma
 from .stiffness import stiffness_limits
 
 __all__ = ["main"]
@@ -121,10 +121,8 @@ def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = T
         missing = [_DIMLESS_FLAGS[k] for k in required if getattr(args, k) is None]
         if missing:
             raise UsageError(f"missing {', '.join(missing)}: dimensionless input needs {' '.join(_DIMLESS_FLAGS[k] for k in required)}")
-        from .errors import check_nonnegative
-
-        b = check_nonnegative("beta", args.beta, "β = b/(K T) cannot be negative")
-        s = check_nonnegative("sigma", args.sigma, "σ = c/(K Δ) cannot be negative")
+        b = check_beta(args.beta)
+        s = check_sigma(args.sigma)
         p = Params(args.mu, b, s) if args.mu is not None else None
         return _Inputs(p, b, s, None, None, "dimensionless input")
     values: dict[str, object] = {}

@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from .describing import quantizer_df
-from .errors import DFAValueError, check_int, check_positive
+from .errors import DFAValueError, check_int, check_mu, check_positive
 from .cycles import large_cycle_frequency
 from .maps import _check_range
 
@@ -184,7 +184,7 @@ def contour_maps(mu: float, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), gr
     max_amplitude : float
         Largest amplitude (ticks) searched for the exact large family (>= 1).
     """
-    m = check_positive("mu", mu, "μ = m/(K T²) must be positive")
+    m = check_mu(mu)
     b0, b1 = _check_range("beta_range", beta_range)
     s0, s1 = _check_range("sigma_range", sigma_range)
     g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")

@@ -45,7 +45,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .device import Device
-from .errors import check_nonnegative, check_positive, check_real
+from .errors import check_beta, check_nonnegative, check_positive, check_real, check_sigma
 
 __all__ = [
     "CriticalLine",
@@ -216,8 +216,8 @@ def passivity_criterion(beta: float, sigma: float, xi_dot: float, *, quantized: 
     -------
     CriterionResult
     """
-    b = check_nonnegative("beta", beta, "β = b/(K T) cannot be negative")
-    s = check_nonnegative("sigma", sigma, "σ = c/(K Δ) cannot be negative")
+    b = check_beta(beta)
+    s = check_sigma(sigma)
     v = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
     s0 = 0.5 if quantized else 0.0
     margin = (b - 0.5) * v + (s - s0)

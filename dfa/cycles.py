@@ -55,7 +55,7 @@ from scipy import optimize
 from . import _dfcore
 from .describing import DF_ENVELOPE, quantizer_df_inverse
 from .device import Device, Params
-from .errors import check_choice, check_positive, check_type
+from .errors import check_choice, check_mu, check_positive, check_type
 from .loop import _check_model, _check_params, _zoh_coefficients
 
 __all__ = [
@@ -633,7 +633,7 @@ def large_cycle_frequency(mu: float) -> float:
     >>> round(large_cycle_frequency(5.0), 5), round(large_cycle_frequency(100.0), 6)
     (0.44175, 0.099938)
     """
-    m = check_positive("mu", mu)
+    m = check_mu(mu)
     return float(optimize.brentq(lambda w: m * w * w - math.cos(w / 2), 0.0, math.pi, xtol=1e-16, rtol=4 * np.finfo(float).eps))
 
 

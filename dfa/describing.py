@@ -47,10 +47,10 @@ from typing import Callable, Sequence
 
 import control
 import numpy as np
-from scipy import integrate, optimize
+from scipy import integrate
 
 from . import _dfcore
-from .errors import DFAValueError, check_nonnegative, check_positive
+from .errors import DFAValueError, check_positive, check_sigma
 
 __all__ = [
     "quantizer_df",
@@ -302,7 +302,7 @@ def coulomb_df(amplitude, sigma: float):
         Dimensionless Coulomb friction σ >= 0.
     """
     a = _amplitudes(amplitude, "amplitude")
-    s = check_nonnegative("sigma", sigma, "σ = c/(K Δ) cannot be negative")
+    s = check_sigma(sigma)
     out = np.asarray(_coulomb_function()(a, s), dtype=float) * np.ones_like(a)
     return float(out) if out.ndim == 0 else out
 
@@ -413,7 +413,7 @@ class CoulombNonlinearity(control.DescribingFunctionNonlinearity):
 
     def __init__(self, sigma: float):
         super().__init__()
-        self.sigma = check_nonnegative("sigma", sigma, "σ = c/(K Δ) cannot be negative")
+        self.sigma = check_sigma(sigma)
 
     def __call__(self, v):
         out = self.sigma * np.sign(np.asarray(v, dtype=float))

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .errors import DFAValueError, check_nonnegative, check_positive, check_real
+from .errors import DFAValueError, check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
 
 __all__ = ["Params", "Device"]
 
@@ -53,13 +53,9 @@ class Params:
     sigma: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "mu", check_positive("mu", self.mu, "μ = m/(K T²) must be positive"))
-        object.__setattr__(
-            self, "beta", check_nonnegative("beta", self.beta, "β = b/(K T) cannot be negative")
-        )
-        object.__setattr__(
-            self, "sigma", check_nonnegative("sigma", self.sigma, "σ = c/(K Δ) cannot be negative")
-        )
+        object.__setattr__(self, "mu", check_mu(self.mu))
+        object.__setattr__(self, "beta", check_beta(self.beta))
+        object.__setattr__(self, "sigma", check_sigma(self.sigma))
 
     def as_dict(self) -> dict[str, float]:
         """Return ``{"mu": μ, "beta": β, "sigma": σ}``."""
@@ -170,7 +166,7 @@ class Device:
 
     def stiffness_for_mu(self, mu: float) -> float:
         """The stiffness K (N/m) at which μ = m/(K T²) takes the value ``mu``."""
-        return self.mass / (check_positive("mu", mu) * self.period**2)
+        return self.mass / (check_mu(mu) * self.period**2)
 
     def stiffness_for_beta(self, beta: float) -> float:
         """The stiffness K (N/m) at which β = b/(K T) takes the value ``beta``.

@@ -33,6 +33,9 @@ __all__ = [
     "check_int",
     "check_choice",
     "check_type",
+    "check_mu",
+    "check_beta",
+    "check_sigma",
 ]
 
 
@@ -142,3 +145,19 @@ def check_type(name: str, value: Any, cls: type, fix: str) -> Any:
     if not isinstance(value, cls):
         raise DFATypeError(f"{name} = {value!r} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}")
     return value
+
+
+# -------------------------------------------- the paper's dimensionless parameters (Table 1)
+def check_mu(value: Any, name: str = "mu") -> float:
+    """Dimensionless mass μ = m/(K T²) > 0, as a float."""
+    return check_positive(name, value, "μ = m/(K T²) must be positive")
+
+
+def check_beta(value: Any, name: str = "beta") -> float:
+    """Dimensionless viscous damping β = b/(K T) >= 0, as a float."""
+    return check_nonnegative(name, value, "β = b/(K T) cannot be negative")
+
+
+def check_sigma(value: Any, name: str = "sigma") -> float:
+    """Dimensionless Coulomb friction σ = c/(K Δ) >= 0, as a float."""
+    return check_nonnegative(name, value, "σ = c/(K Δ) cannot be negative")

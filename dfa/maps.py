@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from . import _kernel
-from .errors import DFAValueError, check_int, check_nonnegative, check_positive, check_real
+from .errors import DFAValueError, check_int, check_mu, check_nonnegative, check_positive, check_real
 from .simulation import OUTCOMES, _tail_length, preload_position
 
 __all__ = ["StabilityMap", "stability_map", "load_map"]
@@ -168,7 +168,7 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
     -------
     StabilityMap
     """
-    m = check_positive("mu", mu, "μ = m/(K T²) must be positive")
+    m = check_mu(mu)
     speeds = tuple(abs(check_real("xi_dot", v, "give initial speeds in ticks per sample")) for v in np.atleast_1d(np.asarray(xi_dots, dtype=object)))
     if not speeds:
         raise DFAValueError("xi_dots = [] is invalid: it must hold at least one initial speed")

@@ -50,7 +50,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _kernel
-from .errors import DFAValueError, check_int, check_nonnegative, check_positive, check_real
+from .errors import DFAValueError, check_beta, check_int, check_mu, check_nonnegative, check_positive, check_real, check_sigma
 
 __all__ = [
     "OUTCOMES",
@@ -95,7 +95,7 @@ def preload_position(mu: float, xi_dot: float) -> float:
     >>> round(preload_position(100.0, 0.05), 6)   # E = 0.125 < ½: first cell, slope ½
     0.25
     """
-    m = check_positive("mu", mu)
+    m = check_mu(mu)
     e = 0.5 * m * check_real("xi_dot", xi_dot) ** 2
     k = math.floor(math.sqrt(2.0 * e))
     # guard the cell index against rounding of the square root
@@ -258,9 +258,9 @@ def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int,
     -------
     SimulationResult
     """
-    m = check_positive("mu", mu, "μ = m/(K T²) must be positive")
-    b = check_nonnegative("beta", beta, "β = b/(K T) cannot be negative")
-    s = check_nonnegative("sigma", sigma, "σ = c/(K Δ) cannot be negative")
+    m = check_mu(mu)
+    b = check_beta(beta)
+    s = check_sigma(sigma)
     v0 = check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample")
     x0 = check_real("xi0", xi0, "give the initial position in ticks")
     n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")

@@ -37,7 +37,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .device import Device
-from .errors import DFAValueError, check_positive, check_real, check_type
+from .errors import DFAValueError, check_mu, check_positive, check_real, check_type
 
 __all__ = [
     "StiffnessLimits",
@@ -156,7 +156,7 @@ def gil_beta_critical(mu: float) -> float:
     mu : float
         Dimensionless mass μ = m/(K T²) > 0.
     """
-    m = check_positive("mu", mu, "μ = m/(K T²) must be positive")
+    m = check_mu(mu)
     return float(brentq(lambda b: b * gil_factor(b / m) - 1.0, 1e-12, 0.5, xtol=1e-15, rtol=1e-15))
 
 

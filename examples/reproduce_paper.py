@@ -63,7 +63,7 @@ def main(out: str, quick: bool = False) -> str:
         f"{f4['grid']} × {f4['grid']} (β, σ) points, {f4['samples']} samples each, initial speeds 1, 2, 5 and 10 ticks/sample from ξ0 = 0",
         "(the paper's speeds are illegible in the copy). Counts (stable / oscillating / unstable): "
         + "; ".join(f"ξ'0 = {v:g}: {c['stable']} / {c['oscillating']} / {c['unstable']}" for v, c in zip(fig4_stability_maps.SPEEDS, c4)) + ".",
-        f"As the paper states, the unstable (dark) area lies below the critical line and grows with the initial speed, with an irregular",
+        "As the paper states, the unstable (dark) area lies below the critical line and grows with the initial speed, with an irregular",
         f"profile; the criterion is sufficient: **{f4['violations']}** points the criterion calls passive went unstable, while it rejects",
         f"{100 * f4['conservatism']:.0f} % of the points that did not. Points with β > ½ and σ < ½ (region b) settle into sub-tick chattering",
         "(white here: below one tick), the paper's \"stable limit cycles of less than one encoder tick\".",

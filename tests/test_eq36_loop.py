@@ -2,7 +2,6 @@
 
 import math
 
-import control
 import numpy as np
 import pytest
 from hypothesis import given

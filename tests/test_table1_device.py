@@ -74,3 +74,33 @@ def test_stiffness_for_beta_needs_damping():
     dev = dfa.Device(1.0, 0.0, 0.1, 1e-5, 1e-3)
     with pytest.raises(dfa.DFAValueError, match="damping"):
         dev.stiffness_for_beta(0.5)
+
+
+@pytest.mark.parametrize(
+    "name, bad, call",
+    [
+        ("mu", -2.0, lambda v: dfa.Params(v, 0.1, 0.1)),
+        ("mu", -2.0, lambda v: dfa.simulate(v, 0.1, 0.1, 1.0, 10)),
+        ("mu", -2.0, lambda v: dfa.contour_maps(v, grid=2)),
+        ("mu", -2.0, lambda v: dfa.stability_map(v, [1.0], grid=2, samples=10, progress=False)),
+        ("beta", -0.5, lambda v: dfa.Params(1.0, v, 0.1)),
+        ("beta", -0.5, lambda v: dfa.passivity_criterion(v, 0.1, 1.0)),
+        ("beta", -0.5, lambda v: dfa.simulate(1.0, v, 0.1, 1.0, 10)),
+        ("sigma", -0.5, lambda v: dfa.Params(1.0, 0.1, v)),
+        ("sigma", -0.5, lambda v: dfa.passivity_criterion(0.1, v, 1.0)),
+        ("sigma", -0.5, lambda v: dfa.simulate(1.0, 0.1, v, 1.0, 10)),
+        ("sigma", -0.5, lambda v: dfa.coulomb_df(1.0, v)),
+    ],
+)
+def test_table1_dimensionless_parameter_rules_read_the_same_everywhere(name, bad, call):
+    """Table 1's μ > 0, β >= 0, σ >= 0: one message (name, value, rule, definition) from every entry point."""
+    from dfa.errors import check_beta, check_mu, check_sigma
+
+    checker = {"mu": check_mu, "beta": check_beta, "sigma": check_sigma}[name]
+    with pytest.raises(dfa.DFAValueError) as expected:
+        checker(bad)
+    msg = str(expected.value)
+    assert msg.startswith(f"{name} = {bad!r} is invalid: it must be a finite number") and "/(K" in msg
+    with pytest.raises(dfa.DFAValueError) as got:
+        call(bad)
+    assert str(got.value) == msg
