@@ -28,12 +28,12 @@ def residual(p, m, w, model="half-delay", delay=0, pade_order=4):
     return abs(1 + quantizer_df(m) * loop_response(p, w, m, model=model, delay=delay, pade_order=pade_order))
 
 
-@settings(max_examples=25)
-@given(params_st, st.sampled_from(["half-delay", "zoh"]))
-def test_eq36_every_root_has_residual_below_1e10(p, model):
-    res = limit_cycles(p, model=model)
+@settings(max_examples=60)
+@given(params_st, st.sampled_from(["half-delay", "pade", "zoh"]), st.integers(0, 2))
+def test_eq36_every_root_has_residual_below_1e10(p, model, delay):
+    res = limit_cycles(p, model=model, delay=delay)
     for c in res.cycles:
-        assert residual(p, c.amplitude, c.frequency, model) <= 1e-10
+        assert residual(p, c.amplitude, c.frequency, model, delay) <= 1e-10
         assert c.residual <= 1e-10
         assert 0 < c.frequency < math.pi
 
