@@ -9,7 +9,7 @@ STAMP  := $(VENV)/.dfa-installed
 export NUMBA_CACHE_DIR := $(CURDIR)/.cache/numba
 export MPLBACKEND := Agg
 
-.PHONY: all venv report test bench clean
+.PHONY: all venv report test explore bench clean
 
 all: test
 
@@ -24,7 +24,11 @@ report: $(STAMP)
 	$(BIN)/dfa report --out reports --format both
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q -n 2
+	HYPOTHESIS_PROFILE=ci $(BIN)/python -m pytest -q -n 2
+
+# Random hypothesis examples, many more of them: hunt for counterexamples on demand.
+explore: $(STAMP)
+	HYPOTHESIS_PROFILE=explore $(BIN)/python -m pytest -q -n 2 -p no:cacheprovider
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py --out reports/benchmarks.md

@@ -35,3 +35,16 @@ def test_top_level_functions_survive_submodule_imports():
     assert dfa.limit_cycles.__name__ == "limit_cycles" and callable(dfa.limit_cycles)
     for name in ("stability_map", "contour_maps", "validate", "design_report", "growth_threshold"):
         assert callable(getattr(dfa, name)), name
+
+
+def test_hypothesis_ci_profile_is_derandomised():
+    """`make test` and CI run hypothesis derandomised: a failure repeats the same way everywhere."""
+    import os
+
+    from hypothesis import settings
+
+    if os.environ.get("HYPOTHESIS_PROFILE", "ci") == "ci":
+        assert settings.default.derandomize is True
+        assert settings.default.database is None
+    assert settings.get_profile("ci").derandomize is True
+    assert settings.get_profile("explore").derandomize is False
