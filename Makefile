@@ -9,7 +9,7 @@ STAMP  := $(VENV)/.dfa-installed
 export NUMBA_CACHE_DIR := $(CURDIR)/.cache/numba
 export MPLBACKEND := Agg
 
-.PHONY: all venv report test explore bench clean
+.PHONY: all venv report test explore bench readme clean
 
 all: test
 
@@ -29,6 +29,10 @@ test: $(STAMP)
 # Random hypothesis examples, many more of them: hunt for counterexamples on demand.
 explore: $(STAMP)
 	HYPOTHESIS_PROFILE=explore $(BIN)/python -m pytest -q -n 2 -p no:cacheprovider
+
+# Rewrite the README's console examples with what the code prints now (tests check them).
+readme: $(STAMP)
+	$(BIN)/python examples/readme_console.py --write
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py --out reports/benchmarks.md
