@@ -90,7 +90,6 @@ _C1_TUPLE, _C0_TUPLE = tuple(_C1_SERIES.tolist()), tuple(_C0_SERIES.tolist())
 _DC_TUPLE = tuple(((2.0 - n) / math.factorial(n)) for n in range(17, 1, -1))
 
 
-
 def _verify_step(a: float) -> float:
     """Relative step in K for the spectral-radius check of a critical value.
 
@@ -179,7 +178,7 @@ def characteristic_polynomial(mu: float, beta: float, delay: int = 0) -> np.ndar
 def _rho(a, kappa, d: int):
     """Spectral radius of D + κN (monic, degree d + 2), vectorised over a and κ (batched companion matrices)."""
     a, kappa = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(kappa, dtype=float))
-    c1, c0, p = _zoh_coefficients(a.astype(float).ravel())
+    c1, c0, p = _zoh_coefficients(a.ravel())
     k = kappa.ravel()
     n = d + 2
     coef = np.zeros((k.size, n + 1))
@@ -194,16 +193,14 @@ def _rho(a, kappa, d: int):
     return rho.reshape(a.shape)
 
 
-def _check_arrays(mu, beta):
-    m = np.asarray(mu, dtype=float)
-    b = np.asarray(beta, dtype=float)
-    if not np.all(np.isfinite(m)) or np.any(m <= 0):
-        bad = m[~(np.isfinite(m) & (m > 0))].ravel()[0] if m.ndim else float(m)
-        check_mu(float(bad))
-    if not np.all(np.isfinite(b)) or np.any(b < 0):
-        bad = b[~(np.isfinite(b) & (b >= 0))].ravel()[0] if b.ndim else float(b)
-        check_beta(float(bad))
-    return m, b
+def _as_array(name: str, value, check) -> np.ndarray:
+    """``value`` as a float array, every element passing ``check(name, element)`` (scalars: their own type check)."""
+    if np.ndim(value) == 0:
+        return np.asarray(check(name, value))
+    arr = np.asarray(value, dtype=float)
+    for v in arr.ravel():
+        check(name, float(v))
+    return arr
 
 
 def spectral_radius(mu, beta, delay: int = 0):
@@ -226,10 +223,8 @@ def spectral_radius(mu, beta, delay: int = 0):
     >>> float(spectral_radius(1.0, 0.0)) > 1.0                  # undamped: unstable for every K
     True
     """
-    for name, v in (("mu", mu), ("beta", beta)):
-        if isinstance(v, (bool, str)):
-            (check_mu if name == "mu" else check_beta)(v)
-    m, b = _check_arrays(mu, beta)
+    m = _as_array("mu", mu, lambda n, v: check_mu(v, n))
+    b = _as_array("beta", beta, lambda n, v: check_beta(v, n))
     d = _check_delay(delay)
     out = _rho(b / m, 1.0 / m, d)
     return float(out) if out.ndim == 0 else out
@@ -317,15 +312,6 @@ def _critical_kappa_scan(a: float, d: int) -> float:
         raise DFAError(f"no stability boundary found for a = bT/m = {a!r}, delay = {d}: please report this as a bug")
     i = int(bad[0])
     return float(brentq(lambda k: float(_rho(a, k, d)) - 1.0, ks[i - 1], ks[i], xtol=1e-300, rtol=1e-14))
-
-
-def _as_array(name: str, value, check):
-    arr = np.asarray(value, dtype=float) if not isinstance(value, (bool, str)) else None
-    if arr is None or arr.ndim == 0:
-        return np.asarray(check(name, value if arr is None else float(arr)))
-    for v in arr.ravel():
-        check(name, float(v))
-    return arr
 
 
 def critical_stiffness(mass, damping, period, delay: int = 0):
