@@ -38,7 +38,6 @@ True
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import control
@@ -47,6 +46,7 @@ import numpy as np
 from .describing import coulomb_equivalent_damping, quantizer_df, quantizer_df_inverse
 from .device import Params
 from .errors import DFAValueError, check_choice, check_int, check_type
+from .linear import _zoh_coefficients  # the ZOH pulse-transfer coefficients live with the exact linear analysis
 
 __all__ = [
     "LOOP_MODELS",
@@ -125,37 +125,6 @@ def hold_delay_tf(delay: int = 0, pade_order: int = 4) -> control.TransferFuncti
 def device_zoh_tf(params: Params, amplitude: float | None = None, omega: float | None = None) -> control.TransferFunction:
     """Exact ZOH discretisation (T = 1) of the device: ``control.c2d(device_tf(...), 1, 'zoh')``."""
     return control.c2d(device_tf(params, amplitude, omega), 1.0, method="zoh")
-
-
-# Taylor coefficients of c₁ = Σ (−a)^{n−2}/n! and c₀ = Σ (n − 1)(−a)^{n−2}/n!, n >= 2 (16 terms: < 1e-20 at a = ½)
-_C1_SERIES = np.array([1.0 / math.factorial(n) for n in range(17, 1, -1)])
-_C0_SERIES = np.array([(n - 1.0) / math.factorial(n) for n in range(17, 1, -1)])
-_C1_TUPLE, _C0_TUPLE = tuple(_C1_SERIES.tolist()), tuple(_C0_SERIES.tolist())
-
-
-def _zoh_coefficients(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(c₁, c₀, p) of the ZOH pulse transfer function, without cancellation for small a (plain floats for a float)."""
-    if isinstance(a, float):
-        p = math.exp(-a)
-        if a >= 0.5:
-            return (a - 1.0 + p) / (a * a), (1.0 - p - a * p) / (a * a), p
-        c1 = c0 = 0.0
-        for k1, k0 in zip(_C1_TUPLE, _C0_TUPLE):  # Horner in x = −a
-            c1 = c1 * -a + k1
-            c0 = c0 * -a + k0
-        return c1, c0, p
-    a = np.asarray(a, dtype=float)
-    p = np.exp(-a)
-    small = a < 0.5
-    al = np.where(small, 1.0, a)
-    pl = np.where(small, 1.0, p)
-    c1 = (al - 1.0 + pl) / al**2
-    c0 = (1.0 - pl - al * pl) / al**2
-    if np.any(small):
-        x = -np.where(small, a, 0.0)
-        c1 = np.where(small, np.polyval(_C1_SERIES, x), c1)
-        c0 = np.where(small, np.polyval(_C0_SERIES, x), c0)
-    return c1, c0, p
 
 
 def zoh_pulse_response(mu, beta_eq, omega):

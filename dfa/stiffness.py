@@ -13,9 +13,11 @@ when b/T < c/Δ. Published bounds for comparison:
 
 * Colgate & Schenkel (1997): K < 2b/T (no Coulomb friction, no encoder).
 * Abbott & Okamura (2005): K < min(2b/T, 2c/Δ), the ξ'0 → ∞ and ξ'0 → 0 ends of eq. 11.
-* Gil, Avello, Rubio & Flórez (2004): the exact stability limit of the linear
-  sampled spring (no encoder, no Coulomb friction), K_crit = (b/T) f(γ) with
-  f(γ) = γ(1 − δ)/(1 − δ − γδ), γ = bT/m, δ = e^{−γ}.
+* Gil, Avello, Rubio & Flórez (2004): K_crit = (b/T) f(γ) with
+  f(γ) = γ(1 − δ)/(1 − δ − γδ), γ = bT/m, δ = e^{−γ} — one Jury condition of
+  the linear sampled spring (no encoder, no Coulomb friction). :func:`k_gil`
+  is the exact linear bound, all Jury conditions and an optional delay
+  (:mod:`dfa.linear`); it equals Gil's form for γ < 3.72 without delay.
 
 Examples
 --------
@@ -38,6 +40,7 @@ from scipy.optimize import brentq
 
 from .device import Device
 from .errors import DFAValueError, check_mu, check_positive, check_real, check_type
+from .linear import critical_beta, critical_stiffness
 
 __all__ = [
     "StiffnessLimits",
@@ -100,8 +103,12 @@ def k_abbott_okamura(device: Device) -> float:
 def gil_factor(gamma):
     """f(γ) = γ(1 − e^{−γ}) / (1 − (1 + γ)e^{−γ}) of Gil et al. (2004), vectorised.
 
-    Computed without cancellation for small γ (series of the denominator);
-    f(0) = 2, so K_crit → 2b/T as b T/m → 0.
+    The closed form of one Jury condition only (the pair of roots crossing the
+    unit circle at z = e^{±jθ}, no delay): (b/T) f(bT/m) is the stability bound
+    for bT/m < 3.7208; beyond it a root leaves through z = −1 first and the
+    bound is smaller (:func:`k_gil`, :mod:`dfa.linear`). Computed without
+    cancellation for small γ (series of the denominator); f(0) = 2, so
+    (b/T) f(γ) → 2b/T as b T/m → 0.
 
     Examples
     --------
@@ -133,31 +140,50 @@ def gil_factor(gamma):
     return float(out) if out.ndim == 0 else out
 
 
-def k_gil(device: Device) -> float:
-    """Exact stability limit of the linear sampled spring (Gil et al. 2004), N/m.
+def k_gil(device: Device, *, delay: int = 0) -> float:
+    """Exact linear bound of the sampled spring, all Jury conditions (Gil et al. 2004's closed form is one of them), N/m.
 
-    K_crit = (b/T) f(γ), γ = bT/m (see :func:`gil_factor`). Zero when b = 0: the
-    undamped sampled spring is unstable for every K > 0.
+    The smallest K at which the linear loop m ẍ + b ẋ = −K x(h − d) (ZOH, no
+    encoder, no Coulomb friction) loses stability (spec section 8;
+    :func:`dfa.linear.critical_stiffness`). Without delay it equals Gil et al.'s
+    (b/T) f(bT/m) (:func:`gil_factor`) for bT/m < 3.7208 and is smaller beyond
+    (a root leaves through z = −1). Zero when b = 0: the undamped sampled spring
+    is unstable for every K > 0.
+
+    Parameters
+    ----------
+    device : Device
+    delay : int, optional
+        Computational delay d in samples (the force of sample h uses x(h − d)).
+
+    Examples
+    --------
+    >>> from dfa.device import Device
+    >>> dev = Device(mass=0.01, damping=5.0, coulomb=0.0, resolution=1e-5, period=0.01)
+    >>> round(k_gil(dev), 1), round(5.0 / 0.01 * float(gil_factor(5.0)), 1)   # z = −1 binds
+    (1651.9, 2587.8)
     """
     dev = _check_device(device)
-    gamma = dev.damping * dev.period / dev.mass
-    return dev.damping / dev.period * float(gil_factor(gamma))
+    return float(critical_stiffness(dev.mass, dev.damping, dev.period, delay))
 
 
-def gil_beta_critical(mu: float) -> float:
-    """Dimensionless form of the Gil et al. bound: the β below which the linear loop is unstable.
+def gil_beta_critical(mu: float, *, delay: int = 0) -> float:
+    """Dimensionless form of :func:`k_gil`: the β below which the linear loop is unstable, all Jury conditions.
 
-    The linear sampled spring μξ'' + βξ' = −ξ(h) (no encoder, no Coulomb friction)
-    is stable iff β f(β/μ) > 1, since γ = bT/m = β/μ. β_crit → ½ as μ → ∞
-    (spec section 8: μ = 1: 0.4617, μ = 5: 0.4918, μ = 100: 0.49958).
+    The linear sampled spring μξ'' + βξ' = −ξ(h − d) (no encoder, no Coulomb
+    friction) is stable iff β > β_crit(μ, d) (:func:`dfa.linear.critical_beta`).
+    Without delay this is Gil et al.'s β f(β/μ) = 1 while β/μ < 3.7208
+    (spec section 8: μ = 1: 0.4617, μ = 5: 0.4918, μ = 100: 0.49958);
+    β_crit → ½ + d as μ → ∞ (Diolaiti et al. 2006).
 
     Parameters
     ----------
     mu : float
         Dimensionless mass μ = m/(K T²) > 0.
+    delay : int, optional
+        Computational delay d in samples.
     """
-    m = check_mu(mu)
-    return float(brentq(lambda b: b * gil_factor(b / m) - 1.0, 1e-12, 0.5, xtol=1e-15, rtol=1e-15))
+    return critical_beta(mu, delay)
 
 
 def max_passive_velocity(device: Device, stiffness: float) -> float | None:
@@ -199,7 +225,7 @@ class StiffnessLimits:
     k_abbott_okamura : float
         min(2b/T, 2c/Δ) (Abbott & Okamura 2005).
     k_gil : float
-        Exact limit of the linear sampled spring (Gil et al. 2004).
+        Exact linear bound of the sampled spring, all Jury conditions (:func:`k_gil`).
     stiffness : float or None
         The stiffness under study, if given.
     max_passive_velocity : float or None

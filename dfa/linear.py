@@ -1,0 +1,408 @@
+"""Exact linear stability of the sampled spring (spec section 8: Gil et al. 2004, Diolaiti et al. 2006).
+
+The device without encoder and Coulomb friction, m ẍ + b ẋ = F, rendering a
+spring whose force is held by a zero-order hold and computed from a reading d
+samples old, F_h = −K x(h − d). In the paper's dimensionless form (Table 1,
+eq. 4-5 with σ = 0 and no quantizer; time in samples)::
+
+    μ ξ'' + β ξ' = φ_h   on τ ∈ [h, h + 1),   φ_h = −ξ(h − d),   μ = m/(KT²), β = b/(KT).
+
+The exact ZOH pulse transfer of 1/(μs² + βs) is (``control.c2d(…, 'zoh')`` in
+closed form; :mod:`dfa.loop`)::
+
+    G_d(z) = (c₁ z + c₀) / (μ (z − 1)(z − p)),   a = β/μ = bT/m,   p = e^{−a},
+    c₁ = (a − 1 + p)/a²,   c₀ = (1 − p − a p)/a²       (c₁ = c₀ = ½ at a = 0),
+
+so the closed loop 1 + z^{−d} G_d(z) = 0 has the characteristic polynomial of
+degree d + 2::
+
+    χ(z) = μ z^d (z − 1)(z − p) + c₁ z + c₀.
+
+The stiffness ray. At fixed device and period, K enters only through
+κ = 1/μ = KT²/m, while a = bT/m stays fixed: χ/μ = D(z) + κ N(z) with
+D = z^d (z − 1)(z − p), N = c₁ z + c₀. For small κ every root is inside the
+unit circle when a > 0 (the integrator's root moves to 1 − κ/a); a root reaches
+the circle where κ = −D(z)/N(z) is real and positive on |z| = 1:
+
+* z = −1. −D(−1)/N(−1) = (−1)^d · 2(1 + p)/(c₁ − c₀), and c₁ − c₀ > 0 for a > 0.
+  For even d this is the crossing κ₋₁ = 2(1 + p)/(c₁ − c₀) = 2a²/(a − 2 tanh(a/2));
+  for odd d no root leaves through z = −1 at K > 0. In (μ, β) with μ = β/a,
+  κ < κ₋₁ reads 1/μ < 2a²/(a − 2 tanh(a/2)) ⇔ a − 2 tanh(a/2) < 2aβ ⇔
+
+      β > ½ − tanh(a/2)/a                                                   (the z = −1 condition)
+
+* z = e^{jθ}, 0 < θ < π. With z − 1 = 2j sin(θ/2) e^{jθ/2},
+  D(z) N(z̄) = 2j sin(θ/2) w(θ), w = e^{j(d+½)θ} [(c₁ − pc₀) + c₀ e^{jθ} − pc₁ e^{−jθ}],
+  so −D/N > 0 iff Re w = 0 and Im w > 0, where, with e₁ = c₁ − pc₀, e₀ = c₀ − pc₁::
+
+      Re w(θ) = e₁ cos((d + ½)θ) + e₀ cos((d − ½)θ) − 2c₀ sin θ sin((d + ½)θ)
+
+  (e₁ + e₀ = (1 − p)²/a and e₁ − e₀ = (1 + p)(c₁ − c₀), free of cancellation for
+  small a), and κ(θ) = 2 sin(θ/2) |e^{jθ} − p| / |c₁ e^{jθ} + c₀|. In y = cos(θ/2)
+  Re w is the Chebyshev series e₁T_{2d+1}(y) − pc₁T_{|2d−1|}(y) + c₀T_{2d+3}(y), whose
+  roots in (0, 1) give every candidate θ at once; each is then polished on Re w.
+
+The critical κ is the smallest candidate at which the spectral radius of χ
+passes 1 (checked just below and above); K_crit = κ_crit m/T². At d = 0 the
+interior crossing is Gil et al.'s closed form κ = a f(a) (:func:`dfa.stiffness.gil_factor`),
+binding for a < a* ≈ 3.72; beyond it the z = −1 condition binds and the bound is
+smaller. As a → 0, κ_crit → a/(½ + d), i.e. K_crit → b/(T(½ + d)) and
+β_crit → ½ + d (Diolaiti et al. 2006).
+
+In β at fixed μ the stable set is the interval β > β_crit(μ, d): κ_crit(a, d) is
+increasing in a (checked on a dense grid of a in [1e-4, 1e3], d = 0..6, in
+``tests/test_gil_linear_bound.py``), and the loop at (μ, β) is stable iff
+1/μ < κ_crit(β/μ, d).
+
+Examples
+--------
+>>> round(critical_stiffness(0.01, 5.0, 0.01), 1)      # a = bT/m = 5: z = −1 binds (Gil: 2587.8)
+1651.9
+>>> round(critical_beta(100.0), 5), round(critical_beta(1e6, delay=2), 4)
+(0.49958, 2.5)
+>>> characteristic_polynomial(2.0, 0.0).tolist()       # β = 0: 2(z − 1)² + ½z + ½
+[2.0, -3.5, 2.5]
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.polynomial import chebyshev
+from scipy.optimize import brentq
+
+from .errors import DFAError, DFAValueError, check_beta, check_int, check_mu, check_nonnegative, check_positive
+
+__all__ = [
+    "characteristic_polynomial",
+    "spectral_radius",
+    "linear_stable",
+    "critical_beta",
+    "critical_stiffness",
+]
+
+# Taylor coefficients of c₁ = Σ (−a)^{n−2}/n! and c₀ = Σ (n − 1)(−a)^{n−2}/n!, n >= 2 (16 terms: < 1e-20 at a = ½)
+_C1_SERIES = np.array([1.0 / math.factorial(n) for n in range(17, 1, -1)])
+_C0_SERIES = np.array([(n - 1.0) / math.factorial(n) for n in range(17, 1, -1)])
+_C1_TUPLE, _C0_TUPLE = tuple(_C1_SERIES.tolist()), tuple(_C0_SERIES.tolist())
+# c₁ − c₀ = Σ (2 − n)(−a)^{n−2}/n! (= a/6 − a²/12 + …), exact coefficients
+_DC_TUPLE = tuple(((2.0 - n) / math.factorial(n)) for n in range(17, 1, -1))
+
+
+def _verify_step(a: float) -> float:
+    """Relative step in K for the spectral-radius check of a critical value.
+
+    Across the boundary |z| changes by about a·step/2, which must stand clear of
+    the roots' rounding (~1e-16 over their ~√κ spacing): 1e-6 down to
+    a = bT/m = 1e-5, growing as 1e-11/a below (1e-3 at a = 1e-8).
+    """
+    return min(1e-2, max(1e-6, 1e-11 / a))
+
+
+def _zoh_coefficients(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(c₁, c₀, p) of the ZOH pulse transfer function, without cancellation for small a (plain floats for a float)."""
+    if isinstance(a, float):
+        p = math.exp(-a)
+        if a >= 0.5:
+            return (a - 1.0 + p) / (a * a), (1.0 - p - a * p) / (a * a), p
+        c1 = c0 = 0.0
+        for k1, k0 in zip(_C1_TUPLE, _C0_TUPLE):  # Horner in x = −a
+            c1 = c1 * -a + k1
+            c0 = c0 * -a + k0
+        return c1, c0, p
+    a = np.asarray(a, dtype=float)
+    p = np.exp(-a)
+    small = a < 0.5
+    al = np.where(small, 1.0, a)
+    pl = np.where(small, 1.0, p)
+    c1 = (al - 1.0 + pl) / al**2
+    c0 = (1.0 - pl - al * pl) / al**2
+    if np.any(small):
+        x = -np.where(small, a, 0.0)
+        c1 = np.where(small, np.polyval(_C1_SERIES, x), c1)
+        c0 = np.where(small, np.polyval(_C0_SERIES, x), c0)
+    return c1, c0, p
+
+
+def _c1_minus_c0(a: float) -> float:
+    """c₁ − c₀ = (a(1 + p) − 2(1 − p))/a² > 0 for a > 0, without cancellation (series below a = ½)."""
+    if a >= 0.5:
+        p = math.exp(-a)
+        return (a * (1.0 + p) + 2.0 * math.expm1(-a)) / (a * a)
+    s = 0.0
+    for k in _DC_TUPLE:
+        s = s * -a + k
+    return s
+
+
+def _check_delay(delay) -> int:
+    return check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+
+
+# ----------------------------------------------------------------------------- polynomial and spectral radius
+def characteristic_polynomial(mu: float, beta: float, delay: int = 0) -> np.ndarray:
+    """Closed-loop characteristic polynomial χ(z) = μ z^d (z − 1)(z − p) + c₁ z + c₀ of the sampled spring.
+
+    The exact ZOH loop of μξ'' + βξ' = −ξ(h − d) (module docstring; spec
+    section 8; Table 1 parameters, eq. 4-5 without quantizer or Coulomb friction).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(KT²) > 0.
+    beta : float
+        Dimensionless damping β = b/(KT) >= 0 (β = 0: the limit c₁ = c₀ = ½, p = 1).
+    delay : int, optional
+        Computational delay d in samples (the force of sample h uses ξ(h − d)).
+
+    Returns
+    -------
+    numpy.ndarray
+        The d + 3 coefficients, highest power first.
+
+    Examples
+    --------
+    >>> characteristic_polynomial(1.0, 0.0, delay=1).tolist()   # z(z − 1)² + ½z + ½
+    [1.0, -2.0, 1.5, 0.5]
+    """
+    m, b, d = check_mu(mu), check_beta(beta), _check_delay(delay)
+    c1, c0, p = _zoh_coefficients(b / m)
+    coef = np.zeros(d + 3)
+    coef[:3] = m, -m * (1.0 + p), m * p
+    coef[d + 1] += c1
+    coef[d + 2] += c0
+    return coef
+
+
+def _rho(a, kappa, d: int):
+    """Spectral radius of D + κN (monic, degree d + 2), vectorised over a and κ (batched companion matrices)."""
+    a, kappa = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(kappa, dtype=float))
+    c1, c0, p = _zoh_coefficients(a.ravel())
+    k = kappa.ravel()
+    n = d + 2
+    coef = np.zeros((k.size, n + 1))
+    coef[:, 0], coef[:, 1], coef[:, 2] = 1.0, -(1.0 + p), p
+    coef[:, d + 1] += k * c1
+    coef[:, d + 2] += k * c0
+    comp = np.zeros((k.size, n, n))
+    comp[:, 0, :] = -coef[:, 1:]
+    idx = np.arange(n - 1)
+    comp[:, idx + 1, idx] = 1.0
+    rho = np.max(np.abs(np.linalg.eigvals(comp)), axis=-1)
+    return rho.reshape(a.shape)
+
+
+def _as_array(name: str, value, check) -> np.ndarray:
+    """``value`` as a float array, every element passing ``check(name, element)`` (scalars: their own type check)."""
+    if np.ndim(value) == 0:
+        return np.asarray(check(name, value))
+    arr = np.asarray(value, dtype=float)
+    for v in arr.ravel():
+        check(name, float(v))
+    return arr
+
+
+def spectral_radius(mu, beta, delay: int = 0):
+    """Largest root modulus of :func:`characteristic_polynomial` (vectorised over μ and β).
+
+    Parameters
+    ----------
+    mu, beta : float or array_like
+        Dimensionless mass (> 0) and damping (>= 0), broadcast together.
+    delay : int, optional
+        Computational delay d in samples.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        max |z| over the d + 2 closed-loop poles; < 1 means asymptotically stable.
+
+    Examples
+    --------
+    >>> float(spectral_radius(1.0, 0.0)) > 1.0                  # undamped: unstable for every K
+    True
+    """
+    m = _as_array("mu", mu, lambda n, v: check_mu(v, n))
+    b = _as_array("beta", beta, lambda n, v: check_beta(v, n))
+    d = _check_delay(delay)
+    out = _rho(b / m, 1.0 / m, d)
+    return float(out) if out.ndim == 0 else out
+
+
+def linear_stable(mu, beta, delay: int = 0):
+    """True where the linear sampled spring is asymptotically stable (spectral radius < 1), vectorised.
+
+    Examples
+    --------
+    >>> linear_stable(100.0, 0.5), linear_stable(100.0, 0.49)
+    (True, False)
+    """
+    r = spectral_radius(mu, beta, delay)
+    return bool(r < 1.0) if isinstance(r, float) else r < 1.0
+
+
+# ----------------------------------------------------------------------------- boundary crossings on the stiffness ray
+def _crossings(a: float, d: int) -> list[float]:
+    """Every κ > 0 at which a root of D + κN lies on the unit circle (a > 0), ascending (module docstring)."""
+    c1, c0, p = _zoh_coefficients(a)
+    dc = _c1_minus_c0(a)
+    s = math.expm1(-a) ** 2 / a  # e₁ + e₀ = (1 − p)²/a
+    delta = (1.0 + p) * dc  # e₁ − e₀
+    e1, e0 = 0.5 * (s + delta), 0.5 * (s - delta)
+    out = [2.0 * (1.0 + p) / dc] if d % 2 == 0 else []  # z = −1
+
+    def re_w(t: float) -> float:
+        return e1 * math.cos((d + 0.5) * t) + e0 * math.cos((d - 0.5) * t) - 2.0 * c0 * math.sin(t) * math.sin((d + 0.5) * t)
+
+    def im_w(t: float) -> float:
+        return e1 * math.sin((d + 0.5) * t) + c0 * math.sin((d + 1.5) * t) - p * c1 * math.sin((d - 0.5) * t)
+
+    cheb = np.zeros(2 * d + 4)
+    cheb[2 * d + 1] += e1
+    cheb[abs(2 * d - 1)] -= p * c1
+    cheb[2 * d + 3] += c0
+    for y in chebyshev.chebroots(cheb):
+        if abs(y.imag) > 1e-6 or not 0.0 < y.real < 1.0:
+            continue
+        t = _polish(re_w, 2.0 * math.acos(y.real))
+        if not 0.0 < t < math.pi or im_w(t) <= 0.0:
+            continue
+        h = math.sin(0.5 * t)
+        num = 2.0 * h * math.sqrt(math.expm1(-a) ** 2 + 4.0 * p * h * h)  # |z − 1| |z − p|
+        den = math.sqrt(dc * dc + 4.0 * c1 * c0 * (1.0 - h * h))  # |c₁z + c₀|
+        out.append(num / den)
+    return sorted(k for k in out if k > 0.0 and math.isfinite(k))
+
+
+def _polish(f, t: float) -> float:
+    """Refine a root t of f (a candidate from the Chebyshev roots) by bisection on a sign change nearby."""
+    f0 = f(t)
+    if f0 == 0.0:
+        return t
+    for rel in (1e-10, 1e-8, 1e-6, 1e-4):
+        lo, hi = t * (1.0 - rel), min(t * (1.0 + rel), math.pi)
+        if f(lo) * f0 < 0.0:
+            return brentq(f, lo, t, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+        if f(hi) * f0 < 0.0:
+            return brentq(f, t, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+    return t  # a tangency (double root): keep the candidate; the spectral-radius check decides
+
+
+def _critical_kappa(a: float, d: int) -> float:
+    """Smallest κ = KT²/m > 0 at which the loop leaves stability, for a = bT/m >= 0, delay d."""
+    if a == 0.0:
+        return 0.0  # undamped: the double pole at z = 1 leaves the circle for every K > 0
+    step = _verify_step(a)
+    for k in _crossings(a, d):
+        if _rho(a, k * (1.0 + step), d) > 1.0:
+            if _rho(a, k * (1.0 - step), d) < 1.0:
+                return k
+            break  # unstable just below the first crossing found: one was missed
+    return _critical_kappa_scan(a, d)
+
+
+def _critical_kappa_scan(a: float, d: int) -> float:
+    """Fallback: first κ with spectral radius >= 1 on a fine geometric grid, then bisection on ρ − 1."""
+    hint = a / (0.5 + d) if a < 1.0 else 2.0 * a
+    ks = np.geomspace(1e-6 * hint, 1e3 * hint, 4000)
+    rho = _rho(a, ks, d)
+    bad = np.nonzero(rho >= 1.0)[0]
+    if bad.size == 0 or bad[0] == 0:
+        raise DFAError(f"no stability boundary found for a = bT/m = {a!r}, delay = {d}: please report this as a bug")
+    i = int(bad[0])
+    return float(brentq(lambda k: float(_rho(a, k, d)) - 1.0, ks[i - 1], ks[i], xtol=1e-300, rtol=1e-14))
+
+
+def critical_stiffness(mass, damping, period, delay: int = 0):
+    """Exact stability limit K_crit of the linear sampled spring, all Jury conditions, with delay (spec section 8).
+
+    The smallest K > 0 at which a closed-loop root of :func:`characteristic_polynomial`
+    reaches the unit circle: the least of the z = −1 crossing (even d) and the
+    crossings at z = e^{jθ}, each κ = −D/N real and positive (module docstring),
+    verified by the spectral radius at K(1 ∓ ε), ε = 1e-6 (more below bT/m = 1e-5). The loop is stable for every
+    K in (0, K_crit). Gil et al. (2004)'s closed form (b/T) f(bT/m)
+    (:func:`dfa.stiffness.gil_factor`) is the d = 0 interior crossing: it is the
+    bound for bT/m < 3.72, beyond it the z = −1 condition β > ½ − tanh(a/2)/a binds.
+    As bT/m → 0, K_crit → b/(T(½ + d)) (eq. 8 for d = 0; Diolaiti et al. 2006).
+
+    Parameters
+    ----------
+    mass : float or array_like
+        Moving mass m > 0, kg (rotary: kg·m²).
+    damping : float or array_like
+        Viscous friction b >= 0, N·s/m (rotary: N·m·s/rad).
+    period : float or array_like
+        Sampling period T > 0, s.
+    delay : int, optional
+        Computational delay d in samples: F_h = −K x(h − d).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        K_crit in N/m (rotary: N·m/rad); 0 when b = 0 (unstable for every K > 0).
+
+    Examples
+    --------
+    >>> round(critical_stiffness(0.01, 5.0, 0.01, delay=1), 1)
+    482.1
+    >>> critical_stiffness(1.0, 0.0, 1e-3)
+    0.0
+    """
+    m = _as_array("mass", mass, lambda n, v: check_positive(n, v, "give the moving mass in kg (rotary: kg·m²)"))
+    b = _as_array("damping", damping, lambda n, v: check_nonnegative(n, v, "give the viscous friction in N·s/m"))
+    t = _as_array("period", period, lambda n, v: check_positive(n, v, "give the sampling period in s"))
+    d = _check_delay(delay)
+    m, b, t = np.broadcast_arrays(m, b, t)
+    a = b * t / m
+    if not np.all(np.isfinite(a)):
+        raise DFAValueError(f"damping·period/mass = {a!r} is invalid: it must be finite; check the units")
+    kappa = np.array([_critical_kappa(float(x), d) for x in a.ravel()]).reshape(a.shape)
+    out = kappa * m / (t * t)
+    return float(out) if out.ndim == 0 else out
+
+
+def critical_beta(mu: float, delay: int = 0) -> float:
+    """The β below which the linear sampled spring is unstable at this μ, all Jury conditions (spec section 8).
+
+    Dimensionless form of :func:`critical_stiffness`: the loop at (μ, β) is stable
+    iff 1/μ < κ_crit(β/μ, d), and κ_crit is increasing in a = β/μ, so the stable
+    set in β is the interval β > β_crit(μ, d) (module docstring). d = 0 gives
+    the spec's values where Gil et al.'s condition binds (μ = 1: 0.4617, μ = 5:
+    0.4918, μ = 100: 0.49958); β_crit → ½ + d as μ → ∞ (Diolaiti et al. 2006).
+    The answer is checked by the spectral radius at β(1 ∓ ε), ε = 1e-6 (more below β/μ = 1e-5).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(KT²) > 0.
+    delay : int, optional
+        Computational delay d in samples.
+
+    Returns
+    -------
+    float
+        β_crit, dimensionless (β = b/(KT)).
+
+    Examples
+    --------
+    >>> round(critical_beta(1.0), 4), round(critical_beta(1.0, delay=1), 4)
+    (0.4617, 1.2127)
+    """
+    m, d = check_mu(mu), _check_delay(delay)
+    target = 1.0 / m
+
+    def f(a: float) -> float:
+        return _critical_kappa(a, d) - target
+
+    lo = hi = (0.5 + d) / m
+    while f(lo) >= 0.0:
+        lo *= 0.25
+    while f(hi) <= 0.0:
+        hi *= 4.0
+    a = brentq(f, lo, hi, xtol=1e-300, rtol=1e-14)
+    beta = m * a
+    step = _verify_step(a)
+    if not (_rho(a * (1.0 + step), target, d) < 1.0 < _rho(a * (1.0 - step), target, d)):
+        raise DFAError(f"critical_beta(mu={m!r}, delay={d}) = {beta!r} failed its spectral-radius check: please report this as a bug")
+    return float(beta)
