@@ -193,11 +193,11 @@ def render(sim: list[dict], fig4: dict, quick: bool, solver: list[dict] | None =
         f"μ = 100, ξ'0 ∈ {{1, 2, 5, 10}}, {g} × {g} (β, σ) grid, 5·10⁴ samples per run, all {fig4['cores']} cores: "
         f"**{fig4['seconds']:.1f} s** (goal for 100 × 100: under 30 s on 2 cores). Runs that come to rest or pass the bound stop early.",
         "",
-        "| ξ'0 | stable | oscillating | unstable |",
-        "|---:|---:|---:|---:|",
+        "| ξ'0 | rest | chatter | oscillating | unstable | undecided |",
+        "|---:|---:|---:|---:|---:|---:|",
     ]
     for v, c in zip([1, 2, 5, 10], fig4["counts"]):
-        lines.append(f"| {v} | {c['stable']} | {c['oscillating']} | {c['unstable']} |")
+        lines.append(f"| {v} | {c['rest']} | {c['chatter']} | {c['oscillating']} | {c['unstable']} | {c['undecided']} |")
     if solver:
         lines += [
             "",

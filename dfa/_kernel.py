@@ -32,12 +32,15 @@ import math
 import numpy as np
 from numba import njit
 
-# outcome codes
-STABLE = 0
-OSCILLATING = 1
-UNSTABLE = 2
+# outcome codes (also the codes of dfa.maps.StabilityMap.outcome and its .npz file)
+REST = 0         # came to rest: the absorbing state was reached
+OSCILLATING = 1  # persistent, settled cycle of amplitude >= stable_amplitude (1 tick)
+UNSTABLE = 2     # |ξ| beyond the bound, or a growing envelope
+CHATTER = 3      # never rested; persistent, settled cycle below stable_amplitude
+UNDECIDED = 4    # the envelope is still changing at the end of the run: run longer
 
-NSEG = 8  # segments of the run used to judge a growing envelope
+NSEG = 8  # segments of the run used to judge a growing or changing envelope
+NSTATS = NSEG + 10  # length of the stats array of simulate_kernel
 
 
 @njit(cache=True, inline="always")
@@ -122,9 +125,11 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
     ``rec_x``/``rec_v`` (length n + 1) and ``rec_e`` (n × 4: generated,
     viscous, Coulomb, stored energy at the end of the sample) are written only
     when they have that length; pass empty arrays otherwise. ``stats`` (length
-    NSEG + 8) receives the segment peaks of |ξ|, then the tail's min, max,
+    NSTATS) receives the segment peaks of |ξ| (at the sample instants), then
+    the tail's min, max (turning points inside samples included),
     centre-crossing count, first and last crossing time, a flag for
-    exceeding ``bound``, and the final ξ and ξ'.
+    exceeding ``bound``, the final ξ and ξ', and the tail's min and max of ξ
+    at the sample instants (the readings that set the force).
     """
     record = rec_x.shape[0] == n + 1
     energy = rec_e.shape[0] == n
@@ -136,7 +141,7 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
     f0 = -(math.floor(x0) + 0.5) if quantize else -x0
     for i in range(delay + 1):
         hist[i] = f0
-    for i in range(NSEG + 8):
+    for i in range(NSTATS):
         stats[i] = 0.0
     tail_start = n - tail_len
     tail = np.empty(max(tail_len, 1))
@@ -243,7 +248,13 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
         count = 0
         first = 0.0
         last = 0.0
+        smin = tail[0]
+        smax = tail[0]
         for i in range(1, tail_len):
+            if tail[i] < smin:
+                smin = tail[i]
+            if tail[i] > smax:
+                smax = tail[i]
             y0 = tail[i - 1] - centre
             y1 = tail[i] - centre
             if y0 < 0.0 and y1 >= 0.0:
@@ -257,6 +268,8 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
         stats[NSEG + 2] = count
         stats[NSEG + 3] = first
         stats[NSEG + 4] = last
+        stats[NSEG + 8] = smin
+        stats[NSEG + 9] = smax
     stats[NSEG + 6] = x
     stats[NSEG + 7] = v
     if record and done < n:
@@ -275,27 +288,37 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
 
 
 @njit(cache=True)
-def classify(n, done, rest, stats, stable_amplitude, growth):
-    """Outcome code and (amplitude, frequency, centre) of a run from its stats.
+def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize):
+    """Outcome code, amplitude, frequency, centre and force peak-to-peak of a run from its stats.
 
-    * unstable: |ξ| exceeded the bound, or the envelope grows: the peak of the
-      last eighth exceeds ``growth`` times the peak of the fifth eighth and the
-      peaks of the last four eighths do not decrease;
-    * stable: came to rest, or the tail's amplitude (half its peak-to-peak,
-      velocity reversals included) is below ``stable_amplitude`` ticks;
-    * oscillating: otherwise (persistent, bounded).
+    In this order (``P_k``: peak |ξ| at the sample instants in the k-th eighth of the run):
+
+    * rest: the kernel reached the absorbing state (``rest >= 0``);
+    * unstable: |ξ| exceeded the bound, or the envelope grows: P_7 exceeds
+      ``growth`` times P_4 and 1 tick, and P_4 <= P_5 <= P_6 <= P_7;
+    * undecided: the envelope has not settled: max − min of P_5, P_6, P_7
+      exceeds ``settle`` times their max, or the tail holds less than one
+      full cycle (fewer than two upward crossings of its centre);
+    * chatter: settled, amplitude (half the tail's peak-to-peak, turning
+      points included) below ``stable_amplitude`` ticks;
+    * oscillating: settled, amplitude of ``stable_amplitude`` or more.
+
+    The force peak-to-peak (units of KΔ) is (max − min) of ⌊ξ⌋ over the
+    tail's sample instants, or of ξ itself without quantization.
     """
-    amp = 0.0
     freq = np.nan
-    centre = 0.0
     if rest >= 0:
-        return STABLE, 0.0, np.nan, 0.0
+        return REST, 0.0, np.nan, 0.0, 0.0
     if stats[NSEG + 5] > 0.0:
-        return UNSTABLE, np.inf, np.nan, 0.0
+        return UNSTABLE, np.inf, np.nan, 0.0, np.inf
     tmin = stats[NSEG]
     tmax = stats[NSEG + 1]
     amp = 0.5 * (tmax - tmin)
     centre = 0.5 * (tmax + tmin)
+    if quantize:
+        fpp = math.floor(stats[NSEG + 9]) - math.floor(stats[NSEG + 8])
+    else:
+        fpp = stats[NSEG + 9] - stats[NSEG + 8]
     count = stats[NSEG + 2]
     if count >= 2 and stats[NSEG + 4] > stats[NSEG + 3]:
         freq = 2.0 * math.pi * (count - 1) / (stats[NSEG + 4] - stats[NSEG + 3])
@@ -304,23 +327,27 @@ def classify(n, done, rest, stats, stable_amplitude, growth):
         if stats[i + 1] < stats[i]:
             grow = False
     if grow:
-        return UNSTABLE, amp, freq, centre
+        return UNSTABLE, amp, freq, centre, fpp
+    hi = max(stats[NSEG - 3], stats[NSEG - 2], stats[NSEG - 1])
+    lo = min(stats[NSEG - 3], stats[NSEG - 2], stats[NSEG - 1])
+    if hi - lo > settle * hi or not count >= 2:
+        return UNDECIDED, amp, freq, centre, fpp
     if amp < stable_amplitude:
-        return STABLE, amp, freq, centre
-    return OSCILLATING, amp, freq, centre
+        return CHATTER, amp, freq, centre, fpp
+    return OSCILLATING, amp, freq, centre, fpp
 
 
 @njit(cache=True)
 def map_kernel(mu, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stable_amplitude, growth,
-               codes, amps, freqs):
+               settle, codes, amps, freqs):
     """Run one simulation per (β, σ, ξ0, ξ'0) point, recording nothing."""
     empty = np.empty(0)
     empty2 = np.empty((0, 4))
-    stats = np.empty(NSEG + 8)
+    stats = np.empty(NSTATS)
     for i in range(betas.shape[0]):
         done, rest = simulate_kernel(mu, betas[i], sigmas[i], x0s[i], v0s[i], n, delay, quantize, bound,
                                      tail_len, empty, empty, empty2, stats)
-        c, a, f, _centre = classify(n, done, rest, stats, stable_amplitude, growth)
+        c, a, f, _centre, _fpp = classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize)
         codes[i] = c
         amps[i] = a
         freqs[i] = f

@@ -197,6 +197,14 @@ def _g(x: float | None, digits: int = 4) -> str:
     return f"{x:.{digits}g}"
 
 
+_OUTCOME_TEXT = {
+    "rest": "came to rest",
+    "chatter": "never comes to rest; the force keeps toggling below one tick of motion (a buzz)",
+    "oscillating": "persistent oscillation of one tick or more",
+    "unstable": "diverged (past the bound, or a growing envelope)",
+    "undecided": "the motion is still changing at the end of the run",
+}
+
 # ----------------------------------------------------------------- commands
 def _cmd_devices(args: argparse.Namespace) -> int:
     rows = catalogue()
@@ -307,7 +315,7 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
-    from .simulation import MAX_RECORD_BYTES, preload_position, simulate
+    from .simulation import MAX_RECORD_BYTES, default_samples, preload_position, simulate
 
     inp = _resolve(args, dimensionless=True)
     p = inp.params
@@ -320,28 +328,47 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         x0, v0 = preload_position(p.mu, xd), 0.0
     else:
         x0, v0 = (0.0 if args.xi0 is None else args.xi0), xd
-    if args.trace is not None and 16 * (args.samples + 1) > MAX_RECORD_BYTES:
+    n = args.samples if args.samples is not None else default_samples(p.mu, p.beta, p.sigma, v0, x0, args.delay,
+                                                                      not args.no_quantization)
+    if args.trace is not None and 16 * (n + 1) > MAX_RECORD_BYTES:
         raise UsageError(
-            f"--trace with --samples {args.samples} would need {16 * (args.samples + 1) / 1024**3:.1f} GiB of trajectory "
+            f"--trace with --samples {n} would need {16 * (n + 1) / 1024**3:.1f} GiB of trajectory "
             f"(limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB): drop --trace or lower --samples"
         )
     r = simulate(p.mu, p.beta, p.sigma, v0, args.samples, xi0=x0, delay=args.delay,
                  quantize=not args.no_quantization, record=args.trace is not None)
     if args.trace is not None:
         _write_trace(args.trace, r)
+    phys = r.physical(inp.device, inp.stiffness) if inp.device is not None and inp.stiffness is not None else None
     if args.json:
-        _emit(r.as_dict())
+        d = r.as_dict()
+        if phys is not None:
+            d.update(device=inp.device.name, stiffness=inp.stiffness, **phys)  # type: ignore[union-attr]
+        _emit(d)
         return 0
     print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
+    freq = "-" if r.frequency is None else f"{r.frequency:.4g} rad/sample (period {r.period:.4g} samples)"
+    if phys is not None and phys["frequency_hz"] is not None:
+        freq += f", {phys['frequency_hz']:.4g} Hz"
     rows = [
         ["initial state", f"ξ0 = {x0:.5g} ticks, ξ'0 = {v0:.5g} ticks/sample" + (" (spring preload)" if args.preload else "")],
-        ["samples", f"{r.samples_run} of {r.samples} integrated" + (f", delay {r.delay}" if r.delay else "")],
-        ["outcome", r.outcome],
+        ["samples", f"{r.samples_run} of {r.samples} integrated" + (" (length from the loop's time scales)" if r.samples_auto else "")
+         + (f", delay {r.delay}" if r.delay else "")],
+        ["outcome", f"{r.outcome}: {_OUTCOME_TEXT[r.outcome]}"],
+    ]
+    if r.suggested_samples is not None:
+        rows.append(["to decide", f"run longer: --samples {r.suggested_samples}"])
+    rows += [
         ["rest at sample", "-" if r.rest_sample is None else str(r.rest_sample)],
         ["amplitude", f"{_g(r.amplitude)} ticks"],
-        ["frequency", "-" if r.frequency is None else f"{r.frequency:.4g} rad/sample (period {r.period:.4g} samples)"],
-        ["final state", f"ξ = {_g(r.final_xi)}, ξ' = {_g(r.final_xi_dot)}"],
+        ["frequency", freq],
     ]
+    if r.outcome in ("chatter", "oscillating", "undecided"):
+        force = f"{_g(r.force_peak_to_peak)} KΔ" + ("" if r.quantize else " (linear spring)")
+        if phys is not None and phys["force_peak_to_peak_si"] is not None:
+            force += f" = {phys['force_peak_to_peak_si']:.4g} {phys['force_unit']}"
+        rows.append(["force peak-to-peak", force + " (tail)"])
+    rows.append(["final state", f"ξ = {_g(r.final_xi)}, ξ' = {_g(r.final_xi_dot)}"])
     print(_table(rows))
     if args.trace is not None:
         print(f"trace written to {args.trace}")
@@ -374,8 +401,8 @@ def _cmd_map(args: argparse.Namespace) -> int:
         return 0
     print(f"stability map μ = {m.mu:g}, β in [{m.beta[0]:g}, {m.beta[-1]:g}], σ in [{m.sigma[0]:g}, {m.sigma[-1]:g}], "
           f"{m.beta.size}×{m.sigma.size} points, {m.samples} samples" + (", spring preload" if m.preload else ""))
-    print(_table([[f"{v:g}", c["stable"], c["oscillating"], c["unstable"]] for v, c in zip(m.xi_dots, m.counts())],
-                 ["ξ'0", "stable", "oscillating", "unstable"]))
+    names = ("rest", "chatter", "oscillating", "unstable", "undecided")
+    print(_table([[f"{v:g}", *(c[k] for k in names)] for v, c in zip(m.xi_dots, m.counts())], ["ξ'0", *names]))
     print(f"written to {path}")
     return 0
 
@@ -497,7 +524,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         return 0
     print(f"validation written to {os.path.join(out, 'validation.md')}")
     print(_table([["soundness violations", summary["soundness_violations"]],
-                  ["criterion rejects (share of non-unstable points)", f"{100 * summary['conservatism']:.1f} %"],
+                  ["criterion rejects (share of points that come to rest)", f"{100 * summary['conservatism']:.1f} %"],
                   ["DF growth threshold vs simulated speed, median error", f"{100 * summary['speed_df_median_error']:.2g} %"],
                   ["criterion speed ≤ simulated in every case", "yes" if summary["speeds_ordered"] else "no"]]))
     return 0
@@ -532,7 +559,8 @@ def _build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("simulate", help="exact simulation of the sampled, quantized, frictional loop (eq. 4-5)")
     _add_device_args(p, dimensionless=True, speed=True)
     p.add_argument("--xi0", type=_number("--xi0", "ticks"), metavar="X", help="initial position in ticks (default 0)")
-    p.add_argument("--samples", type=_integer("--samples"), default=50_000, metavar="N", help="samples to simulate (default 50000)")
+    p.add_argument("--samples", type=_integer("--samples"), default=None, metavar="N",
+                   help="samples to simulate (default: from the loop's time scales, 50000 to 10^7)")
     p.add_argument("--delay", type=_integer("--delay"), default=0, metavar="D", help="computational delay in samples (default 0)")
     p.add_argument("--preload", action="store_true", help="start at rest with the spring preloaded to the speed's kinetic energy (section 5)")
     p.add_argument("--no-quantization", action="store_true", help="linear spring φ = −ξ instead of the encoder staircase")

@@ -20,7 +20,26 @@ Examples
 --------
 >>> m = stability_map(100.0, [2.0], grid=4, samples=2000, n_jobs=1, progress=False)
 >>> m.outcome.shape, sorted(m.counts()[0])
-((1, 4, 4), ['oscillating', 'stable', 'unstable'])
+((1, 4, 4), ['chatter', 'oscillating', 'rest', 'undecided', 'unstable'])
+
+Outcome codes
+-------------
+``StabilityMap.outcome`` holds the kernel's codes, the index of the name in
+:data:`dfa.simulation.OUTCOMES` (rules in :mod:`dfa.simulation`):
+
+====  ===============  =====================================================
+code  name             meaning
+====  ===============  =====================================================
+0     ``rest``         came to rest (absorbing state reached)
+1     ``oscillating``  settled persistent cycle of 1 tick or more
+2     ``unstable``     diverged: past the bound, or a growing envelope
+3     ``chatter``      never rests; settled cycle below 1 tick
+4     ``undecided``    envelope still changing at the end: run longer
+====  ===============  =====================================================
+
+The ``.npz`` file stores the names in ``outcome_names`` (index = code);
+:func:`load_map` maps them back and rejects files written before these
+classes existed (their ``stable`` mixed rest with chatter).
 """
 
 from __future__ import annotations
@@ -52,7 +71,8 @@ class StabilityMap:
     beta, sigma : numpy.ndarray
         Grid axes.
     outcome : numpy.ndarray of int8, shape (len(xi_dots), len(sigma), len(beta))
-        0 stable, 1 oscillating, 2 unstable (see :data:`dfa.simulate.OUTCOMES`).
+        0 rest, 1 oscillating, 2 unstable, 3 chatter, 4 undecided (module
+        docstring; :data:`dfa.simulation.OUTCOMES`).
     amplitude, frequency : numpy.ndarray
         Measured cycle amplitude (ticks) and frequency (rad per sample); NaN where not measured.
     samples, delay, quantize, preload
@@ -98,30 +118,40 @@ class StabilityMap:
         p = Path(path)
         np.savez_compressed(
             p, mu=self.mu, xi_dots=np.asarray(self.xi_dots, dtype=float), beta=self.beta, sigma=self.sigma,
-            outcome=self.outcome, amplitude=self.amplitude, frequency=self.frequency,
+            outcome=self.outcome, outcome_names=np.array(OUTCOMES), amplitude=self.amplitude, frequency=self.frequency,
             settings=np.array([self.samples, self.delay, int(self.quantize), int(self.preload)], dtype=np.int64),
         )
         return p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
 
 
 def load_map(path: str | os.PathLike) -> StabilityMap:
-    """Read a map written by :meth:`StabilityMap.save`."""
+    """Read a map written by :meth:`StabilityMap.save` (codes mapped through the file's ``outcome_names``)."""
     with np.load(path) as z:
         samples, delay, quantize, preload = (int(v) for v in z["settings"])
+        if "outcome_names" not in z.files:
+            raise DFAValueError(
+                f"map file {str(path)!r} is invalid: it was written by an older dfa whose outcome 'stable' mixed rest "
+                "with sub-tick chatter; recompute it with `dfa map`"
+            )
+        names = [str(v) for v in z["outcome_names"]]
+        unknown = sorted(set(names) - set(OUTCOMES))
+        if unknown:
+            raise DFAValueError(f"map file {str(path)!r} is invalid: unknown outcome names {unknown}; expected {list(OUTCOMES)}")
+        lut = np.array([OUTCOMES.index(v) for v in names], dtype=np.int8)
         return StabilityMap(
             mu=float(z["mu"]), xi_dots=tuple(float(v) for v in z["xi_dots"]), beta=z["beta"], sigma=z["sigma"],
-            outcome=z["outcome"], amplitude=z["amplitude"], frequency=z["frequency"], samples=samples,
+            outcome=lut[z["outcome"]], amplitude=z["amplitude"], frequency=z["frequency"], samples=samples,
             delay=delay, quantize=bool(quantize), preload=bool(preload),
         )
 
 
-def _run_chunk(mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth):
+def _run_chunk(mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth, settle):
     n = betas.size
     codes = np.empty(n, dtype=np.int64)
     amps = np.empty(n)
     freqs = np.empty(n)
-    _kernel.map_kernel(mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, _tail_length(samples),
-                       stable_amplitude, growth, codes, amps, freqs)
+    _kernel.map_kernel(mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, _tail_length(samples, mu),
+                       stable_amplitude, growth, settle, codes, amps, freqs)
     return codes, amps, freqs
 
 
@@ -140,7 +170,7 @@ def _check_range(name: str, rng) -> tuple[float, float]:
 def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), grid: int = 100,
                   samples: int = 50_000, delay: int = 0, quantize: bool = True, preload: bool = False,
                   n_jobs: int = -1, progress: bool = True, bound: float = 1.0e6, stable_amplitude: float = 1.0,
-                  growth: float = 1.25) -> StabilityMap:
+                  growth: float = 1.25, settle: float = 1.0e-3) -> StabilityMap:
     """Simulate every point of a (β, σ) grid for each initial speed (paper Fig. 4).
 
     Parameters
@@ -155,13 +185,14 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
     grid : int
         Points per axis (>= 2).
     samples : int
-        Samples per run (paper: 5·10⁴, 50 s at 1 kHz).
+        Samples per run (paper: 5·10⁴, 50 s at 1 kHz). Fixed for the whole
+        grid; points that need longer are ``"undecided"``.
     n_jobs : int
         joblib workers (-1: all cores; 1: in this process). The result does
         not depend on it.
     progress : bool
         Show a tqdm progress bar.
-    bound, stable_amplitude, growth
+    bound, stable_amplitude, growth, settle
         Outcome rules, as in :func:`dfa.simulate`.
 
     Returns
@@ -185,6 +216,7 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
     gr = check_positive("growth", growth)
     if gr <= 1.0:
         raise DFAValueError(f"growth = {gr!r} is invalid: it must be > 1")
+    st = check_nonnegative("settle", settle)
 
     beta = np.linspace(b0, b1, g)
     sigma = np.linspace(s0, s1, g)
@@ -203,9 +235,9 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
     bounds = np.linspace(0, total, nchunks + 1).astype(int)
     chunks = [slice(bounds[i], bounds[i + 1]) for i in range(nchunks) if bounds[i + 1] > bounds[i]]
     args = (m,)
-    tail = (n, d, bool(quantize), bnd, sa, gr)
+    tail = (n, d, bool(quantize), bnd, sa, gr, st)
     # compile (or load from the on-disk cache) once here, before the workers start
-    _run_chunk(m, pts_b[:1].copy(), pts_s[:1].copy(), x0[:1].copy(), v0[:1].copy(), 1, d, bool(quantize), bnd, sa, gr)
+    _run_chunk(m, pts_b[:1].copy(), pts_s[:1].copy(), x0[:1].copy(), v0[:1].copy(), 1, d, bool(quantize), bnd, sa, gr, st)
 
     from tqdm.auto import tqdm
 

@@ -47,7 +47,18 @@ __all__ = [
 BETA_LABEL = "β = b/(K T) (–)"
 SIGMA_LABEL = "σ = c/(K Δ) (–)"
 REGION_COLORS = {"a": "#d9f0d3", "b": "#c6dbef", "c": "#f4a582", "d": "#fddbc7", "e": "#fff7bc"}
-OUTCOME_CMAP = ListedColormap(["#ffffff", "#bdbdbd", "#252525"])  # stable, oscillating, unstable
+#: Colour of each simulated outcome (paper Fig. 4: white stable, light persisting oscillation, dark unstable).
+OUTCOME_COLORS = {"rest": "#ffffff", "chatter": "#e0e0e0", "oscillating": "#a3a3a3", "unstable": "#252525",
+                  "undecided": "#e08214"}
+_OUTCOME_LABELS = {"rest": "rest (came to rest)", "chatter": "chatter (persisting, < 1 tick)",
+                   "oscillating": "oscillating (persisting, >= 1 tick)", "unstable": "unstable (diverged)",
+                   "undecided": "undecided (run too short)"}
+
+
+def _outcome_cmap() -> ListedColormap:
+    from .simulation import OUTCOMES
+
+    return ListedColormap([OUTCOME_COLORS[name] for name in OUTCOMES])  # indexed by the outcome code
 
 
 def _axes(ax=None, figsize=(5.0, 4.0)):
@@ -102,8 +113,11 @@ def regions_plot(result: CriterionResult, ax=None, *, xi_dots: Sequence[float] =
 def stability_map_plot(smap, axes=None, *, titles: bool = True):
     """Simulated outcome per (β, σ) for each initial speed (paper Fig. 4).
 
-    White: stable; grey: persisting oscillation; black: unstable. The critical
-    line of each speed is dashed, the region boundaries β = ½, σ = ½ dash-dot.
+    As in the paper, white: came to rest; light: persisting oscillation, in
+    two shades (lightest: chatter below one tick, darker: oscillating, one
+    tick or more); dark: unstable; orange: undecided (the run was too short,
+    :mod:`dfa.simulation`). The critical line of each speed is dashed, the
+    region boundaries β = ½, σ = ½ dash-dot.
 
     Parameters
     ----------
@@ -124,8 +138,9 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
     db = (b[1] - b[0]) / 2
     ds = (s[1] - s[0]) / 2
     extent = (b[0] - db, b[-1] + db, s[0] - ds, s[-1] + ds)
+    cmap = _outcome_cmap()
     for k, ax in enumerate(axes):
-        ax.imshow(smap.outcome[k], origin="lower", extent=extent, aspect="auto", cmap=OUTCOME_CMAP, vmin=-0.5, vmax=2.5,
+        ax.imshow(smap.outcome[k], origin="lower", extent=extent, aspect="auto", cmap=cmap, vmin=-0.5, vmax=cmap.N - 0.5,
                   interpolation="nearest")
         v = smap.xi_dots[k]
         bb = np.linspace(b[0], b[-1], 200)
@@ -141,9 +156,9 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
         if titles:
             what = "preload equivalent to" if smap.preload else "initial speed"
             ax.set_title(f"μ = {smap.mu:.4g}, {what} ξ'0 = {v:.3g} ticks/sample", fontsize=9)
-    handles = [Patch(facecolor="#ffffff", edgecolor="0.5", label="stable"), Patch(facecolor="#bdbdbd", label="oscillating"),
-               Patch(facecolor="#252525", label="unstable"),
-               matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),
+    handles = [Patch(facecolor=OUTCOME_COLORS[k], edgecolor="0.5", label=_OUTCOME_LABELS[k])
+               for k in ("rest", "chatter", "oscillating", "unstable", "undecided")]
+    handles += [matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),
                matplotlib.lines.Line2D([], [], color="#2166ac", ls="-.", label="β = ½, σ = ½")]
     axes[0].legend(handles=handles, fontsize=7, loc="upper right", framealpha=0.9)
     return axes

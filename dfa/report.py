@@ -119,6 +119,25 @@ class _Doc:
                 f"<style>{css}</style></head><body>{''.join(body)}</body></html>\n")
 
 
+def _outcome_sentence(r, dev: Device, k: float, v: float) -> str:
+    """The simulated outcome at the design speed in words, with the force step and frequency in physical units."""
+    u = dev.units
+    head = f"**Simulated impact at {v:g} {u['velocity']}** ({r.samples_run} of {r.samples} samples): "
+    if r.outcome == "rest":
+        return head + f"the device comes to rest at sample {r.rest_sample} ({_fmt(r.rest_sample * dev.period)} s)."
+    if r.outcome == "unstable":
+        return head + "the motion diverges (unstable)."
+    ph = r.physical(dev, k)
+    step = (f"the force toggles over {r.force_peak_to_peak:.3g} KΔ peak-to-peak ({_fmt(ph['force_peak_to_peak_si'])} {ph['force_unit']})"
+            + (f" at {ph['frequency_hz']:.4g} Hz" if ph["frequency_hz"] else ""))
+    if r.outcome == "chatter":
+        return head + f"chatter: the device never comes to rest; {step} with a motion of {r.amplitude:.2g} ticks, a buzz the user feels."
+    if r.outcome == "oscillating":
+        return head + f"a persistent oscillation of {r.amplitude:.3g} ticks ({_fmt(ph['amplitude_si'])} {u['position']}); {step}."
+    return head + (f"undecided: the motion is still changing at the end of the run (last {r.amplitude:.3g} ticks); "
+                   f"about {r.suggested_samples} samples would be needed to tell.")
+
+
 def design_report(device: Device | CatalogueEntry, stiffness: float | None = None, velocity: float | None = None, *,
                   out_dir: str | os.PathLike = "reports", fmt: str = "html", progress: bool = True, map_grid: int = 41,
                   samples: int = 30_000) -> ReportResult:
@@ -204,12 +223,15 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
     fig, axs = plt.subplots(2, 1, figsize=(7, 5.4), constrained_layout=True)
     sim_v = simulate(p.mu, p.beta, p.sigma, crit.xi_dot, n_traj)
+    # outcomes from runs as long as the loop's time scales need (dfa.simulation.default_samples)
+    full_v = simulate(p.mu, p.beta, p.sigma, crit.xi_dot, record=False)
     plotting.trajectory_plot(sim_v, ax=axs[0], period=dev.period)
-    axs[0].set_title(f"impact at {v:g} {u['velocity']} (ξ'0 = {crit.xi_dot:.3g}): {sim_v.outcome}", fontsize=9)
+    axs[0].set_title(f"impact at {v:g} {u['velocity']} (ξ'0 = {crit.xi_dot:.3g}): {full_v.outcome}", fontsize=9)
     v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
     sim_hi = simulate(p.mu, p.beta, p.sigma, v_show, n_traj)
+    full_hi = simulate(p.mu, p.beta, p.sigma, v_show, record=False)
     plotting.trajectory_plot(sim_hi, ax=axs[1], period=dev.period)
-    axs[1].set_title(f"impact at {dev.velocity(v_show):.3g} {u['velocity']} (ξ'0 = {v_show:.3g}): {sim_hi.outcome}", fontsize=9)
+    axs[1].set_title(f"impact at {dev.velocity(v_show):.3g} {u['velocity']} (ξ'0 = {v_show:.3g}): {full_hi.outcome}", fontsize=9)
     save(fig, "trajectories", "Simulated displacement (exact sampled-data integration) at the design speed and just above the simulated critical speed; dashed: ±1 tick.")
     steps.update()
     bw = max(0.25, 2 * p.beta)
@@ -295,9 +317,10 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
         s = json.loads(vjson.read_text())
         d.p(f"Across the validation set (`reports/validation/validation.md`): {s['soundness_violations']} of {s['soundness_passive']} points the "
             f"criterion calls passive went unstable in simulation; the criterion rejects {100 * s['conservatism']:.0f} % of the points that "
-            f"did not go unstable; the describing function's growth threshold is within a median {100 * s['speed_df_median_error']:.2g} % "
+            f"came to rest; the describing function's growth threshold is within a median {100 * s['speed_df_median_error']:.2g} % "
             f"of the simulated critical speed; stable cycles with periods under 8 samples are poorly predicted (median frequency error "
             f"{100 * s['short_period_frequency_error']:.2g} %).")
+    d.p(_outcome_sentence(full_v, dev, k, v))
     d.fig(*figs[3])
     d.fig(*figs[4])
     steps.update()

@@ -10,24 +10,66 @@ trajectory is recorded.
 
 Outcome of a run (``SimulationResult.outcome``)
 -----------------------------------------------
+Checked in this order; ``P_k`` is the peak |ξ| at the sample instants in the
+k-th eighth of the run (``SimulationResult.envelope``).
+
+``"rest"``
+    the device came to rest: stuck (ξ' = 0, |φ| <= σ) with every pending
+    force unchanged, the absorbing state that ends the run. Only this state
+    is reported as rest. With the encoder (``quantize``) it needs σ >= ½,
+    since |φ| = |⌊ξ⌋ + ½| >= ½ at every level: for σ < ½ a run never rests.
 ``"unstable"``
-    |ξ| exceeded ``bound`` ticks, or the envelope grows: the peak |ξ| of the
-    last eighth of the run exceeds ``growth`` (default 1.25) times the peak of
-    the fifth eighth, exceeds 1 tick, and the peaks of the last four eighths do
-    not decrease.
-``"stable"``
-    the device came to rest (stuck with every pending force unchanged: an
-    absorbing state that ends the run), or the cycle measured on the tail is
-    smaller than ``stable_amplitude`` (default 1 tick): the motion decayed below
-    one tick and stayed there.
+    |ξ| exceeded ``bound`` ticks (default 10⁶), or the envelope grows:
+    P_7 > ``growth`` (default 1.25) × P_4, P_7 > 1 tick, and
+    P_4 <= P_5 <= P_6 <= P_7.
+``"undecided"``
+    the run was too short to tell: the envelope is still changing
+    (max − min of P_5, P_6, P_7 exceeds ``settle`` (default 10⁻³) times
+    their max: a decaying transient, or growth too slow for the rule above),
+    or the tail holds less than one full cycle. The result carries
+    ``suggested_samples``, a run length to try.
+``"chatter"``
+    never rested; the envelope is settled and the cycle's amplitude is below
+    ``stable_amplitude`` (default 1 tick). The force still toggles between
+    quantization levels (``force_peak_to_peak``, usually one step KΔ): a buzz
+    the user feels (paper region b, "limit cycles of less than one tick").
 ``"oscillating"``
-    anything else: a persistent, bounded oscillation.
+    settled, persistent cycle of ``stable_amplitude`` or more.
+
+On steady cycles (μ from 1 to 1000, 4·10⁵ samples) the relative spread of
+P_5..P_7 is below 10⁻⁴; a decaying or growing envelope shows a spread well
+above 10⁻³ unless it changes by less than 0.1 % over a quarter of the run.
 
 Amplitude and frequency are measured on the tail (the last quarter of the run,
-at most 8192 samples): amplitude is half the peak-to-peak of ξ including the
-exact turning points inside samples, frequency 2π/(mean period between upward
-crossings of the centre level). They are measured for every persistent run,
-including sub-tick cycles classed ``"stable"``.
+at most max(8192, 4 periods 2π√μ) samples): amplitude is half the
+peak-to-peak of ξ including the exact turning points inside samples,
+frequency 2π/(mean period between upward crossings of the centre level).
+``force_peak_to_peak`` is max − min of ⌊ξ⌋ over the tail's sample instants
+(the force levels the controller output), in units of KΔ (of ξ itself
+without quantization); multiply by K·Δ for newtons, or use
+:meth:`SimulationResult.physical`.
+
+Default run length
+------------------
+With ``samples=None`` the run length follows the loop's own time scales
+(:func:`default_samples`). The amplitude A of a free oscillation of the
+sampled loop obeys, averaged over a period of 2π√μ samples, the
+describing-function balance
+
+    dA/dτ = −a A − c,   a = (β − ½ − d)/(2μ),   c = 2σ/(π√μ),
+
+(viscous damping less the hold's half-sample delay and the computational
+delay d, eq. 36-40; Coulomb friction removes 4σ ticks of amplitude per
+period). From the energy amplitude A₀ = √(2 H_T(0)) (eq. 18-19) this gives
+the time t_d to decay to one tick (infinite when the loop does not decay,
+or A₀ is at or above the threshold c/|a| when a < 0). The default is
+2 t_d + 40 periods, at least 50 000 samples (the paper's run, 50 s at
+1 kHz) and at most 10⁷ (about 0.2 s of computation); when even that is
+not enough the outcome is ``"undecided"`` rather than a guess. Example: the
+Impulse Engine with its mass overridden to 50 kg (μ = 1.56·10⁵, β = 0.125,
+σ = 0.955) hit at 0.1 m/s predicts t_d ≈ 1.8·10⁵ samples and rests at
+sample 181 900; 50 000 samples alone end in a slowly decaying transient of
+about 200 ticks (undecided).
 
 Before the first sample the controller's past readings are taken equal to ξ0
 (matters only with a computational delay).
@@ -36,7 +78,10 @@ Examples
 --------
 >>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000)
 >>> r.outcome, r.rest_sample is not None
-('stable', True)
+('rest', True)
+>>> r = simulate(mu=100.0, beta=0.3, sigma=0.3, xi_dot0=1.0)   # σ < ½: can never rest
+>>> r.outcome, r.force_peak_to_peak
+('chatter', 1.0)
 >>> r = simulate(mu=100.0, beta=0.0, sigma=0.2, xi_dot0=2.0, samples=20000)
 >>> r.outcome
 'unstable'
@@ -60,10 +105,16 @@ __all__ = [
     "preload_position",
     "stored_energy",
     "MAX_RECORD_BYTES",
+    "default_samples",
 ]
 
-#: Outcome names indexed by the kernel's codes.
-OUTCOMES = ("stable", "oscillating", "unstable")
+#: Outcome names indexed by the kernel's codes (the codes of ``StabilityMap.outcome``):
+#: 0 rest, 1 oscillating, 2 unstable, 3 chatter, 4 undecided.
+OUTCOMES = ("rest", "oscillating", "unstable", "chatter", "undecided")
+
+#: Bounds of the automatic run length (:func:`default_samples`).
+MIN_DEFAULT_SAMPLES = 50_000
+MAX_DEFAULT_SAMPLES = 10_000_000
 
 #: Largest trajectory (x, v and optional energy arrays) ``simulate`` will record.
 MAX_RECORD_BYTES = 2 * 1024**3
@@ -104,6 +155,55 @@ def preload_position(mu: float, xi_dot: float) -> float:
     while k > 0 and 0.5 * k * k > e:
         k -= 1
     return k + (e - 0.5 * k * k) / (k + 0.5)
+
+
+def _decay_time(mu: float, beta: float, sigma: float, amp0: float, delay: int) -> float:
+    """Samples for the averaged amplitude dA/dτ = −aA − c to fall from ``amp0`` to 1 tick (inf: never)."""
+    if amp0 <= 1.0:
+        return 0.0
+    a = (beta - 0.5 - delay) / (2.0 * mu)
+    c = 2.0 * sigma / (math.pi * math.sqrt(mu))
+    if a > 0.0:
+        return math.log((amp0 + c / a) / (1.0 + c / a)) / a
+    if a == 0.0:
+        return (amp0 - 1.0) / c if c > 0.0 else math.inf
+    threshold = c / -a  # the growth threshold: larger amplitudes grow
+    if threshold <= amp0 or threshold <= 1.0:
+        return math.inf
+    return math.log((threshold - 1.0) / (threshold - amp0)) / -a
+
+
+def default_samples(mu: float, beta: float, sigma: float, xi_dot0: float, xi0: float = 0.0, delay: int = 0,
+                    quantize: bool = True, *, cap: bool = True) -> int:
+    """Run length (samples) long enough for the outcome to show (module docstring, "Default run length").
+
+    2 t_d + 40 periods 2π√μ, where t_d is the time the averaged amplitude
+    equation dA/dτ = −(β − ½ − d)/(2μ)·A − 2σ/(π√μ) takes from the energy
+    amplitude A₀ = √(2 H_T(0)) (eq. 18-19) to one tick; at least
+    ``MIN_DEFAULT_SAMPLES`` (the paper's 5·10⁴) and, with ``cap``, at most
+    ``MAX_DEFAULT_SAMPLES`` (10⁷). Without ``cap`` an infinite t_d gives
+    ``MAX_DEFAULT_SAMPLES`` times 10.
+
+    Examples
+    --------
+    >>> default_samples(100.0, 0.3, 1.5, 2.0)            # decays within the paper's run
+    50000
+    >>> default_samples(156250.0, 0.125, 0.9554, 0.637)  # Impulse Engine at 50 kg, 0.1 m/s
+    462407
+    """
+    m = check_mu(mu)
+    b = check_beta(beta)
+    s = check_sigma(sigma)
+    v0 = check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample")
+    x0 = check_real("xi0", xi0, "give the initial position in ticks")
+    d = check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+    amp0 = math.sqrt(2.0 * float(stored_energy(x0, v0, m, bool(quantize))))
+    td = _decay_time(m, b, s, amp0, d)
+    top = MAX_DEFAULT_SAMPLES if cap else 10 * MAX_DEFAULT_SAMPLES
+    n = 2.0 * td + 40.0 * 2.0 * math.pi * math.sqrt(m)
+    if not n < top:
+        return top
+    return int(max(MIN_DEFAULT_SAMPLES, math.ceil(n)))
 
 
 @dataclass(frozen=True)
@@ -151,7 +251,8 @@ class SimulationResult:
         0 … samples (length samples + 1); after an early rest they hold the
         rest state, after an unstable early stop NaN. None if not recorded.
     outcome : str
-        ``"stable"``, ``"oscillating"`` or ``"unstable"`` (module docstring).
+        ``"rest"``, ``"chatter"``, ``"oscillating"``, ``"unstable"`` or
+        ``"undecided"`` (module docstring).
     amplitude : float
         Measured amplitude of the steady cycle in ticks (0 at rest, inf when the bound was exceeded).
     frequency : float or None
@@ -164,6 +265,17 @@ class SimulationResult:
         Samples actually integrated (fewer at rest or past the bound).
     final_xi, final_xi_dot : float
         State at the end of the run.
+    force_peak_to_peak : float
+        Peak-to-peak of the force over the tail in units of KΔ: (max − min)
+        of the levels ⌊ξ⌋ read at the tail's sample instants (of ξ without
+        quantization); 0 at rest, inf past the bound.
+    envelope : tuple of float
+        Peak |ξ| (ticks, at the sample instants) of each eighth of the run;
+        the growth and settling rules read it.
+    suggested_samples : int or None
+        For ``"undecided"``: a run length to try (at least 4 × samples).
+    samples_auto : bool
+        True when ``samples`` was chosen by :func:`default_samples`.
     energy : EnergyRecord or None
         Per-sample energy bookkeeping when requested.
     """
@@ -184,6 +296,10 @@ class SimulationResult:
     samples_run: int
     final_xi: float
     final_xi_dot: float
+    force_peak_to_peak: float = 0.0
+    envelope: tuple = ()
+    suggested_samples: int | None = None
+    samples_auto: bool = False
     xi: np.ndarray | None = field(default=None, repr=False)
     xi_dot: np.ndarray | None = field(default=None, repr=False)
     energy: EnergyRecord | None = field(default=None, repr=False)
@@ -192,6 +308,26 @@ class SimulationResult:
     def period(self) -> float | None:
         """Period of the measured cycle in samples, 2π/ω."""
         return None if not self.frequency else 2.0 * math.pi / self.frequency
+
+    def physical(self, device, stiffness: float) -> dict[str, object]:
+        """Force step and frequency in physical units for a :class:`~dfa.device.Device` at stiffness K.
+
+        Returns ``force_peak_to_peak_si`` (``force_peak_to_peak`` × KΔ, in N;
+        N·m for a rotary device), ``force_unit``, ``frequency_hz`` (ω/(2πT),
+        None when not measured) and ``amplitude_si`` (amplitude × Δ, m or rad).
+        """
+        k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+        u = device.units
+        hz = None if not self.frequency else self.frequency / (2.0 * math.pi * device.period)
+        fpp = self.force_peak_to_peak * k * device.resolution
+        amp = self.amplitude * device.resolution
+        return {
+            "force_peak_to_peak_si": fpp if math.isfinite(fpp) else None,
+            "force_unit": u["force"],
+            "frequency_hz": hz,
+            "amplitude_si": amp if math.isfinite(amp) else None,
+            "position_unit": u["position"],
+        }
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready summary (the ``dfa simulate --json`` contract plus extras)."""
@@ -209,6 +345,10 @@ class SimulationResult:
             "samples_run": self.samples_run,
             "centre": fin(self.centre),
             "period": fin(self.period),
+            "force_peak_to_peak": fin(self.force_peak_to_peak),
+            "envelope": [fin(v) for v in self.envelope],
+            "suggested_samples": self.suggested_samples,
+            "samples_auto": self.samples_auto,
             "mu": self.mu,
             "beta": self.beta,
             "sigma": self.sigma,
@@ -220,13 +360,15 @@ class SimulationResult:
         }
 
 
-def _tail_length(samples: int) -> int:
-    return int(min(8192, max(2, samples // 4)))
+def _tail_length(samples: int, mu: float) -> int:
+    """Tail measured for amplitude and frequency: a quarter of the run, at most max(8192, 4 periods)."""
+    cap = max(8192, int(4 * 2.0 * math.pi * math.sqrt(mu)))
+    return int(min(samples, min(cap, max(2, samples // 4))))
 
 
-def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int, xi0: float = 0.0, delay: int = 0,
-             quantize: bool = True, *, record: bool = True, energy: bool = False, bound: float = 1.0e6,
-             stable_amplitude: float = 1.0, growth: float = 1.25) -> SimulationResult:
+def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int | None = None, xi0: float = 0.0,
+             delay: int = 0, quantize: bool = True, *, record: bool = True, energy: bool = False, bound: float = 1.0e6,
+             stable_amplitude: float = 1.0, growth: float = 1.25, settle: float = 1.0e-3) -> SimulationResult:
     """Simulate the sampled haptic loop exactly (paper eq. 4-5) from (ξ0, ξ'0).
 
     Parameters
@@ -235,8 +377,9 @@ def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int,
         Dimensionless mass (> 0), damping (>= 0) and Coulomb friction (>= 0).
     xi_dot0 : float
         Initial velocity ξ'0 in ticks per sample.
-    samples : int
-        Number of samples to simulate (>= 1).
+    samples : int or None
+        Number of samples to simulate (>= 1); None (default): chosen from the
+        loop's time scales by :func:`default_samples` (50 000 to 10⁷).
     xi0 : float, optional
         Initial position in ticks (default 0). See :func:`preload_position`.
     delay : int, optional
@@ -250,9 +393,13 @@ def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int,
     bound : float, optional
         |ξ| (ticks) beyond which the run is declared unstable and stopped.
     stable_amplitude : float, optional
-        Tail amplitude (ticks) below which a persistent run counts as stable.
+        Tail amplitude (ticks) below which a settled cycle is ``"chatter"``
+        rather than ``"oscillating"``.
     growth : float, optional
         Envelope growth ratio that marks a run unstable (> 1).
+    settle : float, optional
+        Largest relative spread of the last three envelope peaks of a
+        settled run (>= 0); a larger spread is ``"undecided"``.
 
     Returns
     -------
@@ -263,8 +410,12 @@ def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int,
     s = check_sigma(sigma)
     v0 = check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample")
     x0 = check_real("xi0", xi0, "give the initial position in ticks")
-    n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
     d = check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+    auto = samples is None
+    if auto:
+        n = default_samples(m, b, s, v0, x0, d, bool(quantize))
+    else:
+        n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
     bnd = check_positive("bound", bound)
     if not bnd > abs(x0):
         raise DFAValueError(f"bound = {bnd!r} is invalid: it must exceed |xi0| = {abs(x0)!r}; raise the bound")
@@ -272,6 +423,7 @@ def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int,
     gr = check_positive("growth", growth)
     if gr <= 1.0:
         raise DFAValueError(f"growth = {gr!r} is invalid: it must be > 1 (a ratio of envelope peaks)")
+    st = check_nonnegative("settle", settle)
     nbytes = (16 * (n + 1) if record else 0) + (32 * n if energy else 0)
     if nbytes > MAX_RECORD_BYTES:
         raise DFAValueError(
@@ -282,10 +434,13 @@ def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int,
     rx = np.empty(n + 1) if record else np.empty(0)
     rv = np.empty(n + 1) if record else np.empty(0)
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
-    stats = np.empty(_kernel.NSEG + 8)
-    tail = _tail_length(n)
+    stats = np.empty(_kernel.NSTATS)
+    tail = _tail_length(n, m)
     done, rest = _kernel.simulate_kernel(m, b, s, x0, v0, n, d, bool(quantize), bnd, tail, rx, rv, re, stats)
-    code, amp, freq, centre = _kernel.classify(n, done, rest, stats, sa, gr)
+    code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, bool(quantize))
+    suggest = None
+    if code == _kernel.UNDECIDED:
+        suggest = max(4 * n, default_samples(m, b, s, v0, x0, d, bool(quantize), cap=False))
     fx, fv = float(stats[_kernel.NSEG + 6]), float(stats[_kernel.NSEG + 7])
     en = None
     if energy:
@@ -295,6 +450,7 @@ def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int,
         mu=m, beta=b, sigma=s, xi0=x0, xi_dot0=v0, samples=n, delay=d, quantize=bool(quantize),
         outcome=OUTCOMES[code], amplitude=float(amp), frequency=None if not np.isfinite(freq) else float(freq),
         centre=float(centre), rest_sample=None if rest < 0 else int(rest), samples_run=int(done),
-        final_xi=fx, final_xi_dot=fv, xi=rx if record else None, xi_dot=rv if record else None, energy=en,
+        final_xi=fx, final_xi_dot=fv, force_peak_to_peak=float(fpp),
+        envelope=tuple(float(v) for v in stats[:_kernel.NSEG]), suggested_samples=suggest, samples_auto=auto, xi=rx if record else None, xi_dot=rv if record else None, energy=en,
     )
 

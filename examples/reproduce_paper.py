@@ -61,12 +61,17 @@ def main(out: str, quick: bool = False) -> str:
         f"![Fig. 4]({rel(f4['path'])})",
         "",
         f"{f4['grid']} × {f4['grid']} (β, σ) points, {f4['samples']} samples each, initial speeds 1, 2, 5 and 10 ticks/sample from ξ0 = 0",
-        "(the paper's speeds are illegible in the copy). Counts (stable / oscillating / unstable): "
-        + "; ".join(f"ξ'0 = {v:g}: {c['stable']} / {c['oscillating']} / {c['unstable']}" for v, c in zip(fig4_stability_maps.SPEEDS, c4)) + ".",
+        "(the paper's speeds are illegible in the copy). Counts (rest / chatter / oscillating / unstable / undecided): "
+        + "; ".join(f"ξ'0 = {v:g}: {c['rest']} / {c['chatter']} / {c['oscillating']} / {c['unstable']} / {c['undecided']}"
+                    for v, c in zip(fig4_stability_maps.SPEEDS, c4)) + ".",
+        "White: came to rest; light: persisting oscillation (lightest: chatter, a cycle below one tick that never comes to rest",
+        "while the force keeps toggling by one step KΔ; darker: oscillating, one tick or more); dark: unstable; orange: undecided",
+        "(the envelope was still changing after the run).",
         "As the paper states, the unstable (dark) area lies below the critical line and grows with the initial speed, with an irregular",
         f"profile; the criterion is sufficient: **{f4['violations']}** points the criterion calls passive went unstable, while it rejects",
-        f"{100 * f4['conservatism']:.0f} % of the points that did not. Points with β > ½ and σ < ½ (region b) settle into sub-tick chattering",
-        "(white here: below one tick), the paper's \"stable limit cycles of less than one encoder tick\".",
+        f"{100 * f4['conservatism']:.0f} % of the points that came to rest. Points with σ < ½ can never come to rest (|⌊ξ⌋ + ½| >= ½ > σ):",
+        "region b (β > ½) and the small-speed part of region c settle into sub-tick chatter, light as in the paper's figure,",
+        "the paper's \"stable limit cycles of less than one encoder tick\".",
         "",
         "## Fig. 5: three operating points of the RE35 testbed",
         "",

@@ -135,16 +135,16 @@ def test_eq6_criterion_claim_holds_on_simulated_paths(mu, beta, sigma, v0):
 
 def test_rest_at_origin_is_exact():
     lin = simulate(5.0, 0.2, 0.0, 0.0, 100, xi0=0.0, quantize=False)
-    assert lin.rest_sample == 0 and lin.outcome == "stable" and np.all(lin.xi == 0.0) and np.all(lin.xi_dot == 0.0)
+    assert lin.rest_sample == 0 and lin.outcome == "rest" and np.all(lin.xi == 0.0) and np.all(lin.xi_dot == 0.0)
     stuck = simulate(5.0, 0.2, 0.5, 0.0, 100)  # |φ| = ½ <= σ: stiction holds at ξ = 0
     assert stuck.rest_sample == 0 and np.all(stuck.xi == 0.0)
     # σ < ½: the ½-tick offset pushes the device off ξ = 0 into a sub-tick chatter (region b/c behaviour)
     chat = simulate(5.0, 0.8, 0.2, 0.0, 20000)
-    assert chat.rest_sample is None and 0 < chat.amplitude < 1 and chat.outcome == "stable" and chat.frequency > 0
+    assert chat.rest_sample is None and 0 < chat.amplitude < 1 and chat.outcome == "chatter" and chat.frequency > 0
 
 
 def test_outcome_classes():
-    assert simulate(100.0, 0.3, 1.5, 2.0, 20000).outcome == "stable"
+    assert simulate(100.0, 0.3, 1.5, 2.0, 20000).outcome == "rest"
     unstable = simulate(100.0, 0.0, 0.2, 2.0, 20000)
     assert unstable.outcome == "unstable" and unstable.samples_run < 20000 and math.isinf(unstable.amplitude)
     osc = simulate(2.0, 0.4, 0.1, 2.0, 20000)
@@ -207,6 +207,6 @@ def test_simulate_bad_input(kwargs, needle):
 )
 def test_eq4_edge_cases_found_by_hypothesis(mu, beta, sigma, x0, v0):
     r = simulate(mu, beta, sigma, v0, 300, xi0=x0, energy=True)
-    assert r.outcome == "stable"
+    assert r.outcome == "rest"
     res = r.energy.balance_residual()[: r.samples_run]
     assert np.all(np.abs(res) <= 1e-9 * max(1.0, r.energy.initial_stored))
