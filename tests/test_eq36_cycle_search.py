@@ -266,3 +266,37 @@ def test_eq41_envelope_constant_from_the_expansion():
     lead = 4 * math.sqrt(2) / math.pi * abs(float(mpmath.zeta(-0.5)))
     assert lead == pytest.approx(0.3743, abs=1e-4) and lead < DF_ENVELOPE
     assert (1 - _dfcore.df_value(5000.0)) * 5000.0**1.5 == pytest.approx(lead, rel=1e-3)
+
+
+# ------------------------------------------------------------- validation item 5: clusters against simulation
+def test_validation_cluster_threshold_record_matches_independent_runs():
+    from dfa.validation import CLUSTER_POINTS, cluster_note, cluster_threshold
+
+    name, p = CLUSTER_POINTS[0]
+    speeds = [0.3, 0.6, 1.0, 2.3, 2.5, 9.0]
+    rec = cluster_threshold(name, p, speeds, 40_000)
+    div = [dfa.simulate(p.mu, p.beta, p.sigma, v, 40_000, record=False).outcome == "unstable" for v in speeds]
+    assert rec["first_diverging"] == speeds[div.index(True)] == 2.3  # the issue's ξ'0 ≈ 2.3
+    assert rec["last_non_diverging"] == max(v for v, d in zip(speeds, div) if not d)
+    assert rec["diverging"] == sum(div) and rec["linear_stable_zoh"] is False
+    g = growth_threshold(p, model="zoh")
+    assert rec["band_zoh"] == [g.xi_dot, g.xi_dot_high] and rec["unstable_zoh"] == g.unstable_count
+    assert rec["band_zoh"][0] < rec["first_diverging"]  # no start below the band diverged
+    cf = dfa.cycles.large_cycle_closed_form(p.mu, p.beta, p.sigma)
+    assert rec["eq45_xi_dot"] == pytest.approx(cf[0] * cf[1], rel=1e-15)
+    note = cluster_note([rec])
+    assert f"{rec['first_diverging']:.3g}" in note and f"{g.xi_dot_high:.3g}" in note and "not a threshold" in note
+
+
+def test_validation_eq45_worst_point_above_the_zoh_linear_bound_does_not_diverge():
+    """Fig. 7's worst eq. 45 ratio (exact M_u 14.6× below eq. 45): β is above the exact ZOH linear bound, and no start diverges."""
+    from dfa.linear import linear_stable
+    from dfa.validation import CLUSTER_POINTS
+
+    _name, p = CLUSTER_POINTS[1]
+    m45 = dfa.cycles.large_cycle_closed_form(p.mu, p.beta, p.sigma)[0]
+    assert m45 / limit_cycles(p).unstable_cycles[0].amplitude == pytest.approx(14.64, abs=0.01)
+    assert linear_stable(p.mu, p.beta)
+    assert not growth_threshold(p, model="zoh").grows_above
+    for v in (1.0, 7.35, 30.0):
+        assert dfa.simulate(p.mu, p.beta, p.sigma, v, 40_000, record=False).outcome != "unstable"
