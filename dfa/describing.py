@@ -251,7 +251,10 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
     D is 2/(πM) on (0, 1] and unimodal on each [n, n + 1] (minimum at the
     integers, maximum near n + 0.30), so each interval holds at most two roots,
     found by bracketing. Beyond ⌊M⌋ = (DF_ENVELOPE/|gain − 1|)^{2/3} no root
-    exists; the search stops there or at ``max_amplitude``.
+    exists; the search stops there, at ``max_amplitude`` or after
+    ``INVERSE_MAX_INTERVALS`` intervals (then ``complete`` is False). A compiled
+    Brent solve that does not converge gives ``complete=False`` and a
+    RuntimeWarning, never a bracket end posing as a root.
 
     Parameters
     ----------
@@ -265,8 +268,9 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
     roots : numpy.ndarray
         The amplitudes, increasing.
     complete : bool
-        False when roots may exist beyond ``max_amplitude`` (only when ``gain``
-        is within DF_ENVELOPE·max_amplitude^{-3/2} of 1).
+        False when roots may exist beyond ``max_amplitude`` or the interval
+        budget (only when ``gain`` is within DF_ENVELOPE·max_amplitude^{-3/2} of 1),
+        or when an interval could not be solved.
 
     Examples
     --------

@@ -274,18 +274,14 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
         d.p(line)
     g = thr["zoh"]
     if g.amplitude is not None:
-        if g.is_band:
-            d.p(f"**Growth band** (exact ZOH loop): {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
-                f"({_fmt(g.position)} to {_fmt(g.position_high)} {u['position']}); speeds M·ω = {g.xi_dot:.4g} to {g.xi_dot_high:.4g} ticks/sample "
-                f"= {_fmt(g.velocity)} to {_fmt(g.velocity_high)} {u['velocity']}. {g.meaning()}")
-        else:
-            d.p(f"**Growth threshold** (exact ZOH loop): M_u = {g.amplitude:.4g} ticks ({_fmt(g.position)} {u['position']}); "
-                f"the matching impact speed is M_u·ω = {g.xi_dot:.4g} ticks/sample = {_fmt(g.velocity)} {u['velocity']}. {g.meaning()}")
+        d.p(_growth_paragraph(g, u))
     d.fig(*figs[2])
     d.h(2, "How far to trust these predictions")
     rows = [["criterion (eq. 12), guaranteed", _fmt(crit.critical_xi_dot), f"{_fmt(crit.critical_velocity)} {u['velocity']}"],
-            ["describing function, half-delay", _fmt(thr["half-delay"].xi_dot), f"{_fmt(thr['half-delay'].velocity)} {u['velocity']}"],
-            ["describing function, exact ZOH", _fmt(thr["zoh"].xi_dot), f"{_fmt(thr['zoh'].velocity)} {u['velocity']}"],
+            *[[f"describing function, {m}" + (" (growth band)" if t.is_band else ""),
+               _fmt(t.xi_dot) + (f" to {_fmt(t.xi_dot_high)}" if t.is_band else ""),
+               f"{_fmt(t.velocity)}" + (f" to {_fmt(t.velocity_high)}" if t.is_band else "") + f" {u['velocity']}"]
+              for m, t in (("half-delay", thr["half-delay"]), ("exact ZOH", thr["zoh"]))],
             ["exact simulation (bisection on ξ'0, from ξ0 = 0)", _fmt(v_sim), f"{_fmt(dev.velocity(v_sim)) if v_sim else '–'} {u['velocity']}"]]
     d.table(["critical impact speed", "ticks/sample", "physical"], rows)
     msg = []
@@ -341,3 +337,13 @@ def _absence_lines(thr: dict) -> list[str]:
         else:
             out.append(f"{m} loop: no limit cycle is predicted (search complete).")
     return out
+
+
+def _growth_paragraph(g, u: dict) -> str:
+    """The exact-ZOH growth threshold, or band for a cluster, with its meaning (physical units from ``u``)."""
+    if g.is_band:
+        return (f"**Growth band** (exact ZOH loop): {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
+                f"({_fmt(g.position)} to {_fmt(g.position_high)} {u['position']}); speeds M·ω = {g.xi_dot:.4g} to {g.xi_dot_high:.4g} ticks/sample "
+                f"= {_fmt(g.velocity)} to {_fmt(g.velocity_high)} {u['velocity']}. {g.meaning()}")
+    return (f"**Growth threshold** (exact ZOH loop): M_u = {g.amplitude:.4g} ticks ({_fmt(g.position)} {u['position']}); "
+            f"the matching impact speed is M_u·ω = {g.xi_dot:.4g} ticks/sample = {_fmt(g.velocity)} {u['velocity']}. {g.meaning()}")

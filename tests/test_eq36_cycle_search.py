@@ -300,3 +300,29 @@ def test_validation_eq45_worst_point_above_the_zoh_linear_bound_does_not_diverge
     assert not growth_threshold(p, model="zoh").grows_above
     for v in (1.0, 7.35, 30.0):
         assert dfa.simulate(p.mu, p.beta, p.sigma, v, 40_000, record=False).outcome != "unstable"
+
+
+def test_report_growth_paragraph_prints_the_band_of_the_api():
+    from dfa.report import _growth_paragraph
+
+    dev = dfa.get_device("Delta").device
+    g = growth_threshold(CLUSTER, dev, model="zoh")
+    text = _growth_paragraph(g, dev.units)
+    assert text.startswith("**Growth band**") and f"{g.unstable_count} unstable cycles" in text
+    for x in (g.amplitude, g.amplitude_high, g.xi_dot, g.xi_dot_high):
+        assert f"{x:.4g}" in text
+    assert f"{g.velocity_high:.4g}" in text or f"{g.velocity_high:.3g}" in text
+    assert "depends on its initial condition" in text
+
+
+def test_example_cluster_threshold_quick_writes_its_note(tmp_path):
+    import os
+    import subprocess
+    import sys
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    proc = subprocess.run([sys.executable, os.path.join(root, "examples", "cluster_threshold.py"), "--quick", "--out", str(tmp_path)],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    text = (tmp_path / "cluster_threshold.md").read_text()
+    assert "first diverging" in text and "Long runs" in text
