@@ -411,8 +411,10 @@ def _cycle_lines(g, device) -> list[str]:
             lines.append(f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})")
         elif res.linear_stable is False:
             lines.append(f"no limit cycle predicted, but {lin} is unstable: amplitudes grow without bound")
+        elif res.search_bound:
+            lines.append(f"no limit cycle predicted (search complete: eq. 36 has no root beyond M = {res.search_bound:.4g} ticks)")
         else:
-            lines.append("no limit cycle predicted (search complete)")
+            lines.append("no limit cycle predicted (search complete: the loop never meets the phase condition of eq. 36)")
     else:
         rows = [[f"{c.amplitude:.6g}", f"{c.frequency:.6g}", f"{c.period:.4g}", "stable" if c.stable else "unstable",
                  c.family + (" (period < 8 samples)" if c.few_samples else "")] for c in res.cycles]

@@ -340,6 +340,10 @@ class LimitCycleResult:
         One-line message: ``"ok"`` or ``"incomplete: …"`` (why).
     status_code : SearchStatus
         How the search ended.
+    search_bound : float or None
+        When complete: the amplitude (ticks) beyond which no root of eq. 36 exists
+        (the phase curve's pieces end there, or the eq. 41 envelope excludes
+        roots); 0 when the loop's phase condition has no solution at all.
     linear_stable : bool or None
         Whether the linear loop without encoder and Coulomb friction (always the
         exact ZOH loop with the same delay, :func:`dfa.linear.linear_stable`) is
@@ -358,6 +362,7 @@ class LimitCycleResult:
     status: str = "ok"
     status_code: "SearchStatus | None" = None
     linear_stable: bool | None = None
+    search_bound: float | None = None
 
     @property
     def stable_cycles(self) -> tuple:
@@ -382,6 +387,7 @@ class LimitCycleResult:
             "status_code": None if self.status_code is None else self.status_code.value,
             "linear_stable": self.linear_stable,
             "linear_model": "zoh",
+            "search_bound": self.search_bound,
         }
 
 
@@ -494,22 +500,23 @@ INTERVAL_BUDGET = 20_000
 def _m_samples(lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | None, omega_of) -> tuple[np.ndarray, tuple | None]:
     """Sample amplitudes on [lo, hi] ∩ (0, max_amp], stopping by the envelope rule.
 
-    Returns (samples, reach): ``reach`` is None when every root of the piece lies
+    Returns (samples, reach, bound): ``reach`` is None when every root of the piece lies
     among the samples' brackets (the piece ends, or the envelope bound
     |D − 1| <= 0.38⌊M⌋^{-3/2} proves there is no root beyond the last sample), else
-    (amplitude searched up to, "max_amplitude" or "budget").
+    (amplitude searched up to, "max_amplitude" or "budget"); ``bound`` is the amplitude
+    (ticks) beyond which the piece has no root when ``reach`` is None.
     """
     pts = []
     if lo < 1.0 and hi > _M_FLOOR:
         pts.append(np.geomspace(max(lo, _M_FLOOR), min(1.0, hi), 400))
-    reach = None
+    reach, bound = None, min(hi, 1.0)
     if hi > 1.0:
         n0 = max(1, int(math.floor(lo)))
         n_end = int(math.ceil(min(hi, max_amp)))
         if lp.df != "exact":
             # the paper's approximations have no integer structure: a geometric grid suffices
             pts.append(np.geomspace(max(lo, 1.0), min(hi, max_amp), 4000))
-            return np.unique(np.concatenate(pts)), (None if hi <= max_amp else (max_amp, "max_amplitude"))
+            return np.unique(np.concatenate(pts)), (None if hi <= max_amp else (max_amp, "max_amplitude")), min(hi, max_amp)
         near = np.arange(n0, min(n_end, 32) + 1)
         if w_inf is not None:  # −U at the piece's far end: M = ∞, where β_eq = β (at ω = 0 the loop inverse is 0)
             u_far = 0.0 if w_inf == 0.0 else -float(np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order)))
@@ -525,10 +532,11 @@ def _m_samples(lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | N
         grid = np.concatenate([(near[:, None] + (t_near * t_near)[None, :]).ravel(),
                                (far[:, None] + (t_far * t_far)[None, :]).ravel()])
         top = min(hi, max_amp, float(n_stop) + 1.0)
+        bound = top
         pts.append(grid[(grid >= lo) & (grid <= top)])
     if not pts:
-        return np.array([]), reach
-    return np.unique(np.concatenate(pts)), reach
+        return np.array([]), reach, bound
+    return np.unique(np.concatenate(pts)), reach, bound
 
 
 def _far_intervals(lp: _Loop, n_from: int, n_end: int, u_far: float, omega_of, lo: float, hi: float):
@@ -649,10 +657,10 @@ def _refine(lp: _Loop, omega_of: _PieceOmega, a: float, b: float) -> float | Non
     return optimize.brentq(g, a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps)
 
 
-def _solve_sigma_zero(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], float | None, int]:
+def _solve_sigma_zero(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], tuple | None, int, float]:
     """σ = 0: the loop does not depend on M; its phase crossings are the roots of Im(1/L) with Re(1/L) < 0."""
     cycles: list[LimitCycle] = []
-    reach, failures = None, 0
+    reach, failures, bound = None, 0, 0.0
     w = _W_GRID
     c = lp.inv(1.0, w)
     idx = np.where((np.sign(c.imag[:-1]) != np.sign(c.imag[1:])) & (c.real[:-1] < 0) & (c.real[1:] < 0))[0]
@@ -668,13 +676,16 @@ def _solve_sigma_zero(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], floa
             if not comp:
                 r = (mm, "budget" if mm < max_amp else "max_amplitude")
                 reach = r if reach is None else min(reach, r)
+            else:
+                bound = max(bound, min(mm, envelope_bound(g)), 2.0 / (math.pi * g))
         elif lp.df == "small":
             roots = np.array([2.0 / (math.pi * g)])
+            bound = max(bound, float(roots[0]))
         else:
             roots = np.array([])
         # exact D inversion at an exact phase crossing: nothing to polish
         cycles += _cycles_at_crossing(lp, np.asarray(roots, dtype=float), w0)
-    return cycles, reach, failures
+    return cycles, reach, failures, bound
 
 
 def _df_roots(g: float, max_amp: float) -> tuple[np.ndarray, bool, int]:
@@ -684,12 +695,13 @@ def _df_roots(g: float, max_amp: float) -> tuple[np.ndarray, bool, int]:
     return _df_inverse_counted(g, max_amp)
 
 
-def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], float | None, int]:
-    """All roots up to ``max_amp``: (cycles, reach, failures); reach is None when the search is complete."""
+def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], tuple | None, int, float]:
+    """All roots up to ``max_amp``: (cycles, reach, failures, bound); reach is None when the search is complete,
+    and then no root exists beyond ``bound`` (ticks)."""
     if lp.params.sigma == 0.0:
         return _solve_sigma_zero(lp, max_amp)
     cycles: list[LimitCycle] = []
-    reach, failures = None, 0
+    reach, failures, bound = None, 0, 0.0
     for ws, ms in _pieces(lp):
         finite = np.isfinite(ms)
         if finite.sum() < 1:
@@ -699,7 +711,8 @@ def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], float | None, i
         w_inf = float(ws[~finite][0]) if (~finite).any() else None
         omega_of = _PieceOmega(lp, ws, ms)
         try:
-            samples, r = _m_samples(lo, hi, max_amp, lp, w_inf, omega_of)
+            samples, r, b = _m_samples(lo, hi, max_amp, lp, w_inf, omega_of)
+            bound = max(bound, b)
             if r is not None:
                 reach = r if reach is None else min(reach, r)
             if samples.size < 2:
@@ -709,7 +722,7 @@ def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], float | None, i
             found, fails = [], 1
         cycles += found
         failures += fails
-    return cycles, reach, failures
+    return cycles, reach, failures, bound
 
 
 def _piece_roots(lp: _Loop, omega_of: _PieceOmega, samples: np.ndarray) -> tuple[list[LimitCycle], int]:
@@ -776,9 +789,9 @@ def limit_cycles(params: Params, *, model: str = "half-delay", delay: int = 0, p
     df = check_choice("describing", describing, _DF_CHOICES)
     lp = _Loop(p, m, d, n, df)
     try:
-        cycles, reach, failures = _solve(lp, amax)
+        cycles, reach, failures, bound = _solve(lp, amax)
     except (ValueError, RuntimeError, FloatingPointError, ZeroDivisionError, OverflowError):  # pragma: no cover - last resort
-        cycles, reach, failures = [], None, 1
+        cycles, reach, failures, bound = [], None, 1, math.nan
     cycles = sorted(cycles, key=lambda c: c.amplitude)
     # de-duplicate roots found from two neighbouring brackets
     uniq: list[LimitCycle] = []
@@ -801,7 +814,7 @@ def limit_cycles(params: Params, *, model: str = "half-delay", delay: int = 0, p
         code, status = SearchStatus.COMPLETE, "ok"
     searched = reach[0] if reach is not None else amax
     return LimitCycleResult(p, m, d, n, df, searched, tuple(uniq), code is SearchStatus.COMPLETE, status, code,
-                            _linear_stable(p.mu, p.beta, d))
+                            _linear_stable(p.mu, p.beta, d), bound if code is SearchStatus.COMPLETE else None)
 
 
 def _linear_stable(mu: float, beta: float, delay: int) -> bool:

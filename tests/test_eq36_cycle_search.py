@@ -128,7 +128,8 @@ def test_linear_loop_unstable_without_friction_is_said_and_true(capsys):
     assert d["cycles"] == [] and d["linear_stable"] is False and d["linear_model"] == "zoh"
     assert dfa.simulate(5.0, 0.0, 0.0, 1.0, 20000, record=False).outcome == "unstable"
     assert main(["limit-cycles", "--mu", "5", "--beta", "0.8", "--sigma", "1"]) == 0
-    assert "no limit cycle predicted (search complete)" in capsys.readouterr().out
+    bound = limit_cycles(dfa.Params(5.0, 0.8, 1.0)).search_bound
+    assert f"no limit cycle predicted (search complete: eq. 36 has no root beyond M = {bound:.4g} ticks)" in capsys.readouterr().out
 
 
 # ------------------------------------------------------------- 3. growth band, not a false threshold
@@ -326,3 +327,12 @@ def test_example_cluster_threshold_quick_writes_its_note(tmp_path):
     assert proc.returncode == 0, proc.stderr
     text = (tmp_path / "cluster_threshold.md").read_text()
     assert "first diverging" in text and "Long runs" in text
+
+
+@pytest.mark.parametrize("p", [dfa.Params(5.0, 0.1, 0.3), dfa.Params(5.0, 0.4, 0.0), dfa.Params(2.0, 0.4, 0.1)])
+def test_search_bound_no_root_beyond_it(p):
+    """A complete search states where roots end: a search to 4× that bound finds no further cycle."""
+    res = limit_cycles(p)
+    assert res.complete and res.search_bound >= max(c.amplitude for c in res.cycles)
+    far = limit_cycles(p, max_amplitude=4 * res.search_bound + 100)
+    assert [c.amplitude for c in far.cycles if c.amplitude > res.search_bound] == []
