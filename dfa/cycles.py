@@ -23,11 +23,25 @@ has at each integer) and on (0, 1) geometrically, sign changes are bracketed
 and refined with :func:`scipy.optimize.brentq` (ω(M) by a nested scalar Brent
 solve of V = 0 inside the piece's bracket), and each root is polished
 with a 2-D Newton step on (U, V). Amplitudes below 1e-9 ticks are not searched
-(as M → 0, F ≈ (2 − 4σ)/(πM) keeps one sign). The march over n stops where the envelope
+(as M → 0, F ≈ (2 − 4σ)/(πM) keeps one sign). The scan and the refinement
+evaluate ω(M) by one rule (a bracket without a sign change of V gives its end
+with the smaller |V| in both), so a bracket the scan found is a bracket for
+Brent's method too; any bracket that still fails is counted, never raised.
+
+How far the search goes
+-----------------------
+Beyond n = 32 the march over integer intervals n stops where the envelope
 |D(M) − 1| <= 0.38⌊M⌋^{-3/2} (see :mod:`dfa.describing`) can no longer meet
-−U, or at ``max_amplitude`` (then ``complete`` is False). With σ = 0 the
-phase condition gives isolated frequencies and D(M) = −U is inverted exactly
-(compiled, :mod:`dfa._dfcore`).
+−U (−U at n and at the piece's far end on one side of 1, both farther than the
+envelope), and intervals whose ends are both more than twice the envelope from
+1 on one side are skipped. That stop is the amplitude beyond which no root can
+exist for these (μ, β, σ, model, d) (``LimitCycleResult.search_bound``); by
+default the search follows it up to ``AUTO_MAX_AMPLITUDE`` ticks, keeping at
+most ``INTERVAL_BUDGET`` intervals per piece. A caller's ``max_amplitude``, the
+budget or a numerical failure ends the search with ``complete=False`` and a
+:class:`SearchStatus`; nothing is then claimed beyond the range searched. With
+σ = 0 the phase condition gives isolated frequencies and D(M) = −U is inverted
+exactly (compiled, :mod:`dfa._dfcore`).
 
 Stability (Loeb criterion): a cycle is stable when
 ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M > 0, the sign that makes an amplitude increase
@@ -55,7 +69,7 @@ import numpy as np
 from scipy import optimize
 
 from . import _dfcore
-from .describing import DF_ENVELOPE, quantizer_df_inverse
+from .describing import DF_ENVELOPE
 from .device import Device, Params
 from .errors import check_choice, check_mu, check_positive, check_type
 from .loop import _check_model, _check_params, _zoh_coefficients

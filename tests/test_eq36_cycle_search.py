@@ -336,3 +336,18 @@ def test_search_bound_no_root_beyond_it(p):
     assert res.complete and res.search_bound >= max(c.amplitude for c in res.cycles)
     far = limit_cycles(p, max_amplitude=4 * res.search_bound + 100)
     assert [c.amplitude for c in far.cycles if c.amplitude > res.search_bound] == []
+
+
+def test_size_budget_ends_incomplete_not_open_ended(monkeypatch, capsys):
+    """With a tiny interval budget the 10 nm Delta search (cycle at ~1.9e5 ticks) ends BUDGET, and nothing claims absence."""
+    import dfa.cycles as cyc
+
+    monkeypatch.setattr(cyc, "INTERVAL_BUDGET", 5)
+    _dev, p = _delta_10nm()
+    res = limit_cycles(p)
+    assert res.status_code is SearchStatus.BUDGET and not res.complete and res.search_bound is None
+    assert not res.cycles and "budget" in res.status and res.max_amplitude < 2e5
+    assert main(["limit-cycles", "--device", "delta", "--resolution", "1e-8"]) == 0
+    out = capsys.readouterr().out
+    assert f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: " in out
+    assert "no limit cycle predicted" not in out
