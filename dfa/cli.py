@@ -417,27 +417,58 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     res = g.result
     if args.json:
         d = res.as_dict()
-        d["growth_threshold"] = {"amplitude": g.amplitude, "frequency": g.frequency, "xi_dot": g.xi_dot,
-                                 "position": g.position, "velocity": g.velocity}
+        d["growth_threshold"] = g.as_dict()
         _emit(d)
         return 0
     print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}; model {res.model}"
           + (f", delay {res.delay}" if res.delay else ""))
+    for line in _cycle_lines(g, inp.device):
+        print(line)
+    return 0
+
+
+def _cycle_lines(g, device) -> list[str]:
+    """Text of `dfa limit-cycles`: the table, the search's completeness, the linear loop and the growth band."""
+    res = g.result
+    lines = []
+    lin = "the linear loop without encoder and Coulomb friction (exact ZOH model" + (f", delay {res.delay}" if res.delay else "") + ")"
+    why = res.status.removeprefix("incomplete: ")
     if not res.cycles:
-        print("no limit cycle predicted" + ("" if res.complete else f" up to {res.max_amplitude:g} ticks"))
+        if not res.complete:
+            lines.append(f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})")
+        elif res.linear_stable is False:
+            lines.append(f"no limit cycle predicted, but {lin} is unstable: amplitudes grow without bound")
+        elif res.search_bound:
+            lines.append(f"no limit cycle predicted (search complete: eq. 36 has no root beyond M = {res.search_bound:.4g} ticks)")
+        else:
+            lines.append("no limit cycle predicted (search complete: the loop never meets the phase condition of eq. 36)")
     else:
         rows = [[f"{c.amplitude:.6g}", f"{c.frequency:.6g}", f"{c.period:.4g}", "stable" if c.stable else "unstable",
                  c.family + (" (period < 8 samples)" if c.few_samples else "")] for c in res.cycles]
-        print(_table(rows, ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"]))
+        lines.append(_table(rows, ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"]))
+        if not res.complete:
+            lines.append(f"search incomplete beyond M = {res.max_amplitude:g} ticks ({why}): more cycles may exist")
     if g.amplitude is not None:
-        line = f"growth threshold: oscillations above M_u = {g.amplitude:.4g} ticks grow (speed ≈ M_u·ω = {g.xi_dot:.4g} ticks/sample"
-        if g.velocity is not None and inp.device is not None:
-            u = inp.device.units
-            line += f" = {g.velocity:.4g} {u['velocity']}; M_u = {g.position:.4g} {u['position']}"
-        print(line + ")")
-    if not res.complete:
-        print(res.status)
-    return 0
+        u = device.units if device is not None else None
+
+        def speed(xd, vel, pos, m):
+            txt = f"M·ω = {xd:.4g} ticks/sample"
+            if u is not None and vel is not None:
+                txt += f" = {vel:.4g} {u['velocity']}; M = {pos:.4g} {u['position']}"
+            return txt
+
+        if g.is_band:
+            lines.append(f"growth band: {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
+                         f"(speeds {speed(g.xi_dot, g.velocity, g.position, g.amplitude)} to {speed(g.xi_dot_high, g.velocity_high, g.position_high, g.amplitude_high)})")
+        else:
+            lines.append(f"growth threshold: M_u = {g.amplitude:.4g} ticks ({speed(g.xi_dot, g.velocity, g.position, g.amplitude)})")
+        lines.append(g.meaning())
+    elif res.cycles and res.linear_stable is False:
+        lines.append(f"no unstable cycle predicted{'' if res.complete else ' in the range searched'}, but {lin} is unstable: "
+                     "large oscillations are predicted to grow without bound")
+    if res.model != "zoh" and (res.linear_stable is False or g.amplitude is not None):
+        lines.append(f"(the linear verdict uses the exact ZOH loop; the limit cycles, the {res.model} model)")
+    return lines
 
 
 def _cmd_contours(args: argparse.Namespace) -> int:
@@ -587,7 +618,8 @@ def _build_parser() -> argparse.ArgumentParser:
     _add_device_args(p, dimensionless=True, speed=False)
     p.add_argument("--model", choices=["half-delay", "zoh", "pade"], default="half-delay", help="hold model (default half-delay; zoh is exact)")
     p.add_argument("--delay", type=_integer("--delay"), default=0, metavar="D", help="computational delay in samples")
-    p.add_argument("--max-amplitude", type=_number("--max-amplitude", "ticks"), default=1e4, metavar="M", help="largest amplitude searched (ticks)")
+    p.add_argument("--max-amplitude", type=_number("--max-amplitude", "ticks"), default=None, metavar="M",
+                   help="largest amplitude searched (ticks); default: up to where the envelope of eq. 41 excludes roots")
     p.set_defaults(func=_cmd_limit_cycles)
 
     p = sub.add_parser("contours", help="amplitude/frequency maps of both cycle families (paper Fig. 7)")

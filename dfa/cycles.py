@@ -23,11 +23,25 @@ has at each integer) and on (0, 1) geometrically, sign changes are bracketed
 and refined with :func:`scipy.optimize.brentq` (ω(M) by a nested scalar Brent
 solve of V = 0 inside the piece's bracket), and each root is polished
 with a 2-D Newton step on (U, V). Amplitudes below 1e-9 ticks are not searched
-(as M → 0, F ≈ (2 − 4σ)/(πM) keeps one sign). The march over n stops where the envelope
+(as M → 0, F ≈ (2 − 4σ)/(πM) keeps one sign). The scan and the refinement
+evaluate ω(M) by one rule (a bracket without a sign change of V gives its end
+with the smaller |V| in both), so a bracket the scan found is a bracket for
+Brent's method too; any bracket that still fails is counted, never raised.
+
+How far the search goes
+-----------------------
+Beyond n = 32 the march over integer intervals n stops where the envelope
 |D(M) − 1| <= 0.38⌊M⌋^{-3/2} (see :mod:`dfa.describing`) can no longer meet
-−U, or at ``max_amplitude`` (then ``complete`` is False). With σ = 0 the
-phase condition gives isolated frequencies and D(M) = −U is inverted exactly
-(compiled, :mod:`dfa._dfcore`).
+−U (−U at n and at the piece's far end on one side of 1, both farther than the
+envelope), and intervals whose ends are both more than twice the envelope from
+1 on one side are skipped. That stop is the amplitude beyond which no root can
+exist for these (μ, β, σ, model, d) (``LimitCycleResult.search_bound``); by
+default the search follows it up to ``AUTO_MAX_AMPLITUDE`` ticks, keeping at
+most ``INTERVAL_BUDGET`` intervals per piece. A caller's ``max_amplitude``, the
+budget or a numerical failure ends the search with ``complete=False`` and a
+:class:`SearchStatus`; nothing is then claimed beyond the range searched. With
+σ = 0 the phase condition gives isolated frequencies and D(M) = −U is inverted
+exactly (compiled, :mod:`dfa._dfcore`).
 
 Stability (Loeb criterion): a cycle is stable when
 ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M > 0, the sign that makes an amplitude increase
@@ -45,7 +59,9 @@ Examples
 from __future__ import annotations
 
 import cmath
+import enum
 import math
+import warnings
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -53,7 +69,7 @@ import numpy as np
 from scipy import optimize
 
 from . import _dfcore
-from .describing import DF_ENVELOPE, quantizer_df_inverse
+from .describing import DF_ENVELOPE
 from .device import Device, Params
 from .errors import check_choice, check_mu, check_positive, check_type
 from .loop import _check_model, _check_params, _zoh_coefficients
@@ -67,6 +83,11 @@ __all__ = [
     "large_cycle_frequency",
     "GrowthThreshold",
     "growth_threshold",
+    "SearchStatus",
+    "LimitCycleSearchWarning",
+    "envelope_bound",
+    "AUTO_MAX_AMPLITUDE",
+    "INTERVAL_BUDGET",
 ]
 
 _DF_CHOICES = ("exact", "small", "unity")
@@ -240,8 +261,16 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray) -> np.ndarray:
 
 
 def _omega_for_m(lp: _Loop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np.ndarray:
-    """Solve V(M, ω) = 0 for ω in the brackets [wa, wb] (vectorised bisection)."""
+    """Solve V(M, ω) = 0 for ω in the brackets [wa, wb] (vectorised bisection).
+
+    Where V does not change sign over a bracket (a root at an end, to rounding), the end with the
+    smaller |V| is returned: the same rule as :meth:`_PieceOmega.scalar`, so that the scan and the
+    refinement of a root evaluate F(M) = D(M) + U(M, ω(M)) as one function.
+    """
     va = lp.inv(m, wa).imag
+    vb = lp.inv(m, wb).imag
+    end = np.where(np.abs(va) <= np.abs(vb), wa, wb)
+    no_change = (va == 0.0) | (vb == 0.0) | ((va < 0) == (vb < 0))
     lo, hi = wa.copy(), wb.copy()
     for _ in range(64):
         mid = 0.5 * (lo + hi)
@@ -250,7 +279,7 @@ def _omega_for_m(lp: _Loop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np
         lo = np.where(same, mid, lo)
         va = np.where(same, vm, va)
         hi = np.where(same, hi, mid)
-    return 0.5 * (lo + hi)
+    return np.where(no_change, end, 0.5 * (lo + hi))
 
 
 # ------------------------------------------------------------------ results
@@ -314,12 +343,26 @@ class LimitCycleResult:
     describing : str
         ``"exact"`` (eq. 41), or the paper's approximations ``"small"`` (2/(πM)) and ``"unity"`` (1).
     max_amplitude : float
-        Largest amplitude searched (ticks).
+        Largest amplitude searched (ticks). When ``complete``, no root of eq. 36
+        lies beyond the last one found (pieces of the phase curve ended, or the
+        envelope bound of eq. 41 closed them); when not, the search stopped here.
     cycles : tuple of LimitCycle
         Sorted by amplitude.
     complete : bool
-        False when cycles may exist beyond ``max_amplitude``.
+        True only when the search provably found every root (status ``COMPLETE``).
     status : str
+        One-line message: ``"ok"`` or ``"incomplete: …"`` (why).
+    status_code : SearchStatus
+        How the search ended.
+    search_bound : float or None
+        When complete: the amplitude (ticks) beyond which no root of eq. 36 exists
+        (the phase curve's pieces end there, or the eq. 41 envelope excludes
+        roots); 0 when the loop's phase condition has no solution at all.
+    linear_stable : bool or None
+        Whether the linear loop without encoder and Coulomb friction (always the
+        exact ZOH loop with the same delay, :func:`dfa.linear.linear_stable`) is
+        asymptotically stable; when it is not, amplitudes beyond the largest
+        unstable cycle are predicted to grow without bound.
     """
 
     params: Params
@@ -331,6 +374,9 @@ class LimitCycleResult:
     cycles: tuple = field(default_factory=tuple)
     complete: bool = True
     status: str = "ok"
+    status_code: "SearchStatus | None" = None
+    linear_stable: bool | None = None
+    search_bound: float | None = None
 
     @property
     def stable_cycles(self) -> tuple:
@@ -352,6 +398,10 @@ class LimitCycleResult:
             "complete": self.complete,
             "max_amplitude": self.max_amplitude,
             "status": self.status,
+            "status_code": None if self.status_code is None else self.status_code.value,
+            "linear_stable": self.linear_stable,
+            "linear_model": "zoh",
+            "search_bound": self.search_bound,
         }
 
 
@@ -457,46 +507,108 @@ def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
     return out
 
 
-def _m_samples(lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | None, omega_of) -> tuple[np.ndarray, bool]:
-    """Sample amplitudes on [lo, hi] ∩ (0, max_amp], stopping by the envelope rule; returns (samples, complete)."""
+#: Most far intervals [n, n + 1] (n > 32) sampled point by point per piece; beyond, the search ends incomplete.
+INTERVAL_BUDGET = 20_000
+
+
+def _m_samples(lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | None, omega_of) -> tuple[np.ndarray, tuple | None]:
+    """Sample amplitudes on [lo, hi] ∩ (0, max_amp], stopping by the envelope rule.
+
+    Returns (samples, reach, bound): ``reach`` is None when every root of the piece lies
+    among the samples' brackets (the piece ends, or the envelope bound
+    |D − 1| <= 0.38⌊M⌋^{-3/2} proves there is no root beyond the last sample), else
+    (amplitude searched up to, "max_amplitude" or "budget"); ``bound`` is the amplitude
+    (ticks) beyond which the piece has no root when ``reach`` is None.
+    """
     pts = []
     if lo < 1.0 and hi > _M_FLOOR:
         pts.append(np.geomspace(max(lo, _M_FLOOR), min(1.0, hi), 400))
-    complete = True
+    reach, bound = None, min(hi, 1.0)
     if hi > 1.0:
         n0 = max(1, int(math.floor(lo)))
         n_end = int(math.ceil(min(hi, max_amp)))
-        n_stop = n_end
-        if lp.df == "exact" and w_inf is not None:
-            # −U at M = ∞, where β_eq = β (at ω = 0 the loop inverse is 0)
-            u_inf = 0.0 if w_inf == 0.0 else -float(np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order)))
-            # first n >= 2 beyond which the envelope |D − 1| <= 0.38 n^{-3/2} cannot meet −U (checked in doubling blocks)
-            start, size = max(2, n0), 16
-            while start < n_end:
-                ns = np.arange(start, min(n_end, start + size), dtype=float)
-                u_n = -np.real(lp.inv(ns, omega_of(ns)))
-                env = DF_ENVELOPE * ns**-1.5
-                ok = np.isfinite(u_n) & ((u_n - 1.0) * (u_inf - 1.0) > 0) & (np.minimum(abs(u_n - 1.0), abs(u_inf - 1.0)) > env)
-                if ok.any():
-                    n_stop = int(ns[np.argmax(ok)])
-                    break
-                start, size = start + size, size * 2
-            complete = n_stop < n_end or hi <= max_amp
-        elif lp.df != "exact":
+        if lp.df != "exact":
             # the paper's approximations have no integer structure: a geometric grid suffices
             pts.append(np.geomspace(max(lo, 1.0), min(hi, max_amp), 4000))
-            return np.unique(np.concatenate(pts)), hi <= max_amp
-        else:
-            complete = hi <= max_amp
+            return np.unique(np.concatenate(pts)), (None if hi <= max_amp else (max_amp, "max_amplitude")), min(hi, max_amp)
+        near = np.arange(n0, min(n_end, 32) + 1)
+        if w_inf is not None:  # −U at the piece's far end: M = ∞, where β_eq = β (at ω = 0 the loop inverse is 0)
+            u_far = 0.0 if w_inf == 0.0 else -float(np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order)))
+        else:  # a finite far end (hi, its ω)
+            u_far = -float(np.real(lp.inv(float(hi), float(omega_of(np.array([hi]))[0]))))
+        far, n_stop, budget_hit = _far_intervals(lp, max(n0, 33), n_end, u_far, omega_of, lo, hi)
+        if budget_hit:
+            reach = (float(n_stop), "budget")
+        elif n_stop >= n_end and hi > max_amp:
+            reach = (max_amp, "max_amplitude")
         # n + t² resolves the √ at each integer; far out D's excursions are tiny and self-similar: fewer points
-        n_all = np.arange(n0, max(n0 + 1, n_stop + 1))
         t_near, t_far = np.linspace(0.0, 1.0, 25), np.linspace(0.0, 1.0, 9)
-        grid = np.concatenate([(n_all[n_all <= 32][:, None] + (t_near * t_near)[None, :]).ravel(),
-                               (n_all[n_all > 32][:, None] + (t_far * t_far)[None, :]).ravel()])
-        pts.append(grid[(grid >= lo) & (grid <= min(hi, max_amp))])
+        grid = np.concatenate([(near[:, None] + (t_near * t_near)[None, :]).ravel(),
+                               (far[:, None] + (t_far * t_far)[None, :]).ravel()])
+        top = min(hi, max_amp, float(n_stop) + 1.0)
+        bound = top
+        pts.append(grid[(grid >= lo) & (grid <= top)])
     if not pts:
-        return np.array([]), complete
-    return np.unique(np.concatenate(pts)), complete
+        return np.array([]), reach, bound
+    return np.unique(np.concatenate(pts)), reach, bound
+
+
+def _far_intervals(lp: _Loop, n_from: int, n_end: int, u_far: float, omega_of, lo: float, hi: float):
+    """Far intervals [n, n + 1] (n >= n_from > 32) that can hold a root, up to the envelope stop.
+
+    −U = −Re(1/L) along the piece decides both, under the premise that far out −U moves
+    monotonically in M along a monotone piece, towards ``u_far`` (its value at the piece's far end;
+    at M = ∞, where β_eq = β):
+    (1) the stop: the first block start n where −U(n) and u_far lie on one side of 1, both farther
+        from 1 than the envelope 0.38 n^{-3/2}: no root exists beyond (eq. 41 envelope);
+    (2) which intervals to sample: a block [n_a, n_b] whose two ends have −U on one side of 1, farther
+        than twice the envelope at n_a, holds no root; other blocks are split into unit intervals.
+    Blocks are n/128 ticks long, so a search to 10⁶ ticks costs ~10⁴ evaluations of ω(M) plus the kept
+    intervals. Returns (kept n, n_stop, budget_hit); at most INTERVAL_BUDGET intervals are kept.
+    """
+    if n_from > n_end:
+        return np.array([], dtype=np.int64), n_end, False
+    kept: list[np.ndarray] = []
+    count, start = 0, n_from
+    while start <= n_end:
+        step = max(1, start // 128)
+        edges = np.unique(np.minimum(start + step * np.arange(0, 257), n_end + 1)).astype(float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = -np.real(lp.inv(np.clip(edges, lo, hi), omega_of(np.clip(edges, lo, hi)))) - 1.0
+        ns = edges[:-1]
+        env = DF_ENVELOPE * ns**-1.5
+        a, b = u[:-1], u[1:]
+        meets = ~(np.isfinite(a) & np.isfinite(b) & (a * b > 0) & (np.minimum(np.abs(a), np.abs(b)) > 2.0 * env))
+        stop = np.isfinite(a) & (a * (u_far - 1.0) > 0) & (np.minimum(np.abs(a), abs(u_far - 1.0)) > env)
+        last = int(np.argmax(stop)) if stop.any() else ns.size
+        for i in np.flatnonzero(meets[:last]):
+            k = np.arange(int(edges[i]), int(edges[i + 1]))
+            if count + k.size > INTERVAL_BUDGET:
+                k = k[: INTERVAL_BUDGET - count]
+                kept.append(k)
+                return np.concatenate(kept).astype(np.int64), int(k[-1]) if k.size else int(edges[i]), True
+            kept.append(k)
+            count += k.size
+        if last < ns.size:
+            return _cat(kept), int(ns[last]), False
+        start = int(edges[-1])
+        if start > n_end:
+            break
+    return _cat(kept), n_end, False
+
+
+def _cat(parts: list) -> np.ndarray:
+    return np.concatenate(parts).astype(np.int64) if parts else np.array([], dtype=np.int64)
+
+
+def envelope_bound(u: float) -> float:
+    """Amplitude (ticks) beyond which D(M) = u has no root: ⌊M⌋ > (0.38/|u − 1|)^{2/3} (eq. 41 envelope).
+
+    Infinite for u = 1 (D → 1 as M → ∞: roots at every amplitude).
+    """
+    if u == 1.0:
+        return math.inf
+    return math.floor((DF_ENVELOPE / abs(u - 1.0)) ** (2.0 / 3.0)) + 1.0
 
 
 class _PieceOmega:
@@ -515,7 +627,7 @@ class _PieceOmega:
         return _omega_for_m(self.lp, m, wa, wb)
 
     def scalar(self, m: float) -> float:
-        """The same for one amplitude, by Brent's method on the scalar loop inverse."""
+        """The same for one amplitude, by Brent's method on the scalar loop inverse (same end rule as the vector path)."""
         wa, wb = (float(x) for x in self._brackets(m))
         lp = self.lp
 
@@ -528,30 +640,82 @@ class _PieceOmega:
         return optimize.brentq(v, wa, wb, xtol=1e-300, rtol=4 * np.finfo(float).eps)
 
 
-def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], bool]:
-    p = lp.params
+class SearchStatus(enum.Enum):
+    """How a limit-cycle search ended (:attr:`LimitCycleResult.status_code`)."""
+
+    #: every root of eq. 36 was found: the pieces ended or the envelope bound closed them
+    COMPLETE = "complete"
+    #: roots may exist beyond the caller's ``max_amplitude``
+    MAX_AMPLITUDE = "max_amplitude"
+    #: the envelope bound lies beyond the size budget of the automatic search range
+    BUDGET = "budget"
+    #: a root finder failed (no sign change where the scan saw one, or no convergence)
+    NUMERICAL = "numerical"
+
+
+class LimitCycleSearchWarning(RuntimeWarning):
+    """A limit-cycle search ended incomplete because of a numerical failure."""
+
+
+def _refine(lp: _Loop, omega_of: _PieceOmega, a: float, b: float) -> float | None:
+    """Root of F(M) = D(M) + U(M, ω(M)) on [a, b] with the scalar ω(M); None when the ends do not bracket."""
+
+    def g(mm):
+        return lp.char(mm, omega_of.scalar(mm)).real
+
+    ga, gb = g(a), g(b)
+    if ga == 0.0 or gb == 0.0:
+        return a if ga == 0.0 else b
+    if (ga < 0) == (gb < 0) or not (math.isfinite(ga) and math.isfinite(gb)):
+        return None
+    return optimize.brentq(g, a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+
+
+def _solve_sigma_zero(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], tuple | None, int, float]:
+    """σ = 0: the loop does not depend on M; its phase crossings are the roots of Im(1/L) with Re(1/L) < 0."""
     cycles: list[LimitCycle] = []
-    complete = True
-    if p.sigma == 0.0:
-        # σ = 0: the loop does not depend on M; its phase crossings are the roots of Im(1/L) with Re(1/L) < 0
-        w = _W_GRID
-        c = lp.inv(1.0, w)
-        idx = np.where((np.sign(c.imag[:-1]) != np.sign(c.imag[1:])) & (c.real[:-1] < 0) & (c.real[1:] < 0))[0]
-        for i in idx:
-            w0 = optimize.brentq(lambda x: float(np.imag(lp.inv(1.0, x))), w[i], w[i + 1], xtol=1e-15)
-            g = -float(np.real(lp.inv(1.0, w0)))
-            if g <= 0:
-                continue
-            if lp.df == "exact":
-                roots, comp = quantizer_df_inverse(g, max_amplitude=max_amp)
-                complete &= comp
-            elif lp.df == "small":
-                roots = np.array([2.0 / (math.pi * g)])
+    reach, failures, bound = None, 0, 0.0
+    w = _W_GRID
+    c = lp.inv(1.0, w)
+    idx = np.where((np.sign(c.imag[:-1]) != np.sign(c.imag[1:])) & (c.real[:-1] < 0) & (c.real[1:] < 0))[0]
+    for i in idx:
+        w0 = optimize.brentq(lambda x: float(np.imag(lp.inv(1.0, x))), w[i], w[i + 1], xtol=1e-15)
+        g = -float(np.real(lp.inv(1.0, w0)))
+        if g <= 0:
+            continue
+        if lp.df == "exact":
+            mm = min(max_amp, float(INTERVAL_BUDGET))  # the same size budget as the σ > 0 scan
+            roots, comp, fails = _df_roots(g, mm)
+            failures += fails
+            if not comp:
+                r = (mm, "budget" if mm < max_amp else "max_amplitude")
+                reach = r if reach is None else min(reach, r)
             else:
-                roots = np.array([]) if g != 1.0 else np.array([])
-            # exact D inversion at an exact phase crossing: nothing to polish
-            cycles += _cycles_at_crossing(lp, np.asarray(roots, dtype=float), w0)
-        return cycles, complete
+                bound = max(bound, min(mm, envelope_bound(g)), 2.0 / (math.pi * g))
+        elif lp.df == "small":
+            roots = np.array([2.0 / (math.pi * g)])
+            bound = max(bound, float(roots[0]))
+        else:
+            roots = np.array([])
+        # exact D inversion at an exact phase crossing: nothing to polish
+        cycles += _cycles_at_crossing(lp, np.asarray(roots, dtype=float), w0)
+    return cycles, reach, failures, bound
+
+
+def _df_roots(g: float, max_amp: float) -> tuple[np.ndarray, bool, int]:
+    """quantizer_df_inverse with its failure count (compiled Brent non-convergence)."""
+    from .describing import _df_inverse_counted
+
+    return _df_inverse_counted(g, max_amp)
+
+
+def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], tuple | None, int, float]:
+    """All roots up to ``max_amp``: (cycles, reach, failures, bound); reach is None when the search is complete,
+    and then no root exists beyond ``bound`` (ticks)."""
+    if lp.params.sigma == 0.0:
+        return _solve_sigma_zero(lp, max_amp)
+    cycles: list[LimitCycle] = []
+    reach, failures, bound = None, 0, 0.0
     for ws, ms in _pieces(lp):
         finite = np.isfinite(ms)
         if finite.sum() < 1:
@@ -559,32 +723,50 @@ def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], bool]:
         lo = float(np.min(ms[finite]))
         hi = float(np.max(ms))
         w_inf = float(ws[~finite][0]) if (~finite).any() else None
-
         omega_of = _PieceOmega(lp, ws, ms)
-        samples, comp = _m_samples(lo, hi, max_amp, lp, w_inf, omega_of)
-        complete &= comp
-        if samples.size < 2:
-            continue
-        wsamp = omega_of(samples)
-        dvals = lp.d(samples)
-        f = np.real(lp.inv(samples, wsamp)) + dvals
-        # F is a difference of two terms of size ~D: a sign change with both ends at rounding level is noise
-        noise = 64 * np.finfo(float).eps * (np.abs(dvals) + np.abs(np.real(lp.inv(samples, wsamp))))
-        real = (np.abs(f[:-1]) > noise[:-1]) | (np.abs(f[1:]) > noise[1:])
-        sc = np.where(np.isfinite(f[:-1]) & np.isfinite(f[1:]) & (np.sign(f[:-1]) != np.sign(f[1:])) & real)[0]
-        for i in sc:
-            def g(mm, omega_of=omega_of):
-                return lp.char(mm, omega_of.scalar(mm)).real
+        try:
+            samples, r, b = _m_samples(lo, hi, max_amp, lp, w_inf, omega_of)
+            bound = max(bound, b)
+            if r is not None:
+                reach = r if reach is None else min(reach, r)
+            if samples.size < 2:
+                continue
+            found, fails = _piece_roots(lp, omega_of, samples)
+        except (ValueError, RuntimeError, FloatingPointError, ZeroDivisionError, OverflowError):
+            found, fails = [], 1
+        cycles += found
+        failures += fails
+    return cycles, reach, failures, bound
 
-            m0 = optimize.brentq(g, samples[i], samples[i + 1], xtol=1e-300, rtol=4 * np.finfo(float).eps)
-            if m0 <= _M_FLOOR * (1 + 1e-6):
-                continue  # on the search floor: the degenerate σ = ½ end of the small family (M → 0, ω → π)
-            cycles.append(_make_cycle(lp, m0, omega_of.scalar(m0)))
-    return cycles, complete
+
+def _piece_roots(lp: _Loop, omega_of: _PieceOmega, samples: np.ndarray) -> tuple[list[LimitCycle], int]:
+    """Scan F on the samples, bracket its sign changes and refine each (see the module docstring)."""
+    wsamp = omega_of(samples)
+    dvals = lp.d(samples)
+    u = np.real(lp.inv(samples, wsamp))
+    f = u + dvals
+    # F is a difference of two terms of size ~D: a sign change with both ends at rounding level is noise
+    noise = 64 * np.finfo(float).eps * (np.abs(dvals) + np.abs(u))
+    real = (np.abs(f[:-1]) > noise[:-1]) | (np.abs(f[1:]) > noise[1:])
+    sc = np.where(np.isfinite(f[:-1]) & np.isfinite(f[1:]) & (np.sign(f[:-1]) != np.sign(f[1:])) & real)[0]
+    out, failures = [], 0
+    for i in sc:
+        m0 = _refine(lp, omega_of, float(samples[i]), float(samples[i + 1]))
+        if m0 is None:
+            failures += 1
+            continue
+        if m0 <= _M_FLOOR * (1 + 1e-6):
+            continue  # on the search floor: the degenerate σ = ½ end of the small family (M → 0, ω → π)
+        out.append(_make_cycle(lp, m0, omega_of.scalar(m0)))
+    return out, failures
+
+
+#: Size budget of the automatic search range (ticks): the envelope bound is followed up to here.
+AUTO_MAX_AMPLITUDE = 1.0e6
 
 
 def limit_cycles(params: Params, *, model: str = "half-delay", delay: int = 0, pade_order: int = 4,
-                 max_amplitude: float = 1.0e4, describing: str = "exact") -> LimitCycleResult:
+                 max_amplitude: float | None = None, describing: str = "exact") -> LimitCycleResult:
     """Every limit cycle (M, ω) of the harmonic balance 1 + D(M)L(jω; M) = 0 (eq. 36).
 
     Parameters
@@ -597,8 +779,12 @@ def limit_cycles(params: Params, *, model: str = "half-delay", delay: int = 0, p
         Computational delay in samples.
     pade_order : int
         Order of the Padé approximation for ``model="pade"``.
-    max_amplitude : float
-        Largest amplitude searched, in ticks (default 1e4).
+    max_amplitude : float, optional
+        Largest amplitude searched, in ticks. Default (None): up to the
+        amplitude beyond which the envelope |D − 1| <= 0.38⌊M⌋^{-3/2} of
+        eq. 41 proves that no root exists, for these (μ, β, σ, model, d), within
+        a budget of ``AUTO_MAX_AMPLITUDE`` ticks (beyond it the result is
+        incomplete, status ``BUDGET``).
     describing : {"exact", "small", "unity"}
         ``"exact"`` uses eq. 41; ``"small"`` and ``"unity"`` replace D by the
         paper's approximations 2/(πM) and 1 (to reproduce eq. 42-45).
@@ -606,22 +792,50 @@ def limit_cycles(params: Params, *, model: str = "half-delay", delay: int = 0, p
     Returns
     -------
     LimitCycleResult
-        Cycles sorted by amplitude; an empty tuple when there is none.
+        Cycles sorted by amplitude; an empty tuple when there is none. A
+        numerical failure never raises: it gives ``complete=False``, status
+        ``NUMERICAL`` and a :class:`LimitCycleSearchWarning`.
     """
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
-    amax = check_positive("max_amplitude", max_amplitude, "give the largest amplitude to search, in ticks")
+    auto = max_amplitude is None
+    amax = AUTO_MAX_AMPLITUDE if auto else check_positive("max_amplitude", max_amplitude, "give the largest amplitude to search, in ticks")
     df = check_choice("describing", describing, _DF_CHOICES)
     lp = _Loop(p, m, d, n, df)
-    cycles, complete = _solve(lp, amax)
+    try:
+        cycles, reach, failures, bound = _solve(lp, amax)
+    except (ValueError, RuntimeError, FloatingPointError, ZeroDivisionError, OverflowError):  # pragma: no cover - last resort
+        cycles, reach, failures, bound = [], None, 1, math.nan
     cycles = sorted(cycles, key=lambda c: c.amplitude)
     # de-duplicate roots found from two neighbouring brackets
     uniq: list[LimitCycle] = []
     for c in cycles:
         if not uniq or abs(c.amplitude - uniq[-1].amplitude) > 1e-9 * c.amplitude or abs(c.frequency - uniq[-1].frequency) > 1e-9:
             uniq.append(c)
-    status = "ok" if complete else f"incomplete: cycles may exist beyond max_amplitude = {amax:g} ticks"
-    return LimitCycleResult(p, m, d, n, df, amax, tuple(uniq), complete, status)
+    if failures:
+        code = SearchStatus.NUMERICAL
+        status = (f"incomplete: {failures} root bracket(s) could not be refined (numerical failure); "
+                  "cycles may be missing" + (f", and beyond {reach[0]:g} ticks" if reach is not None else ""))
+        warnings.warn(f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}): {status}",
+                      LimitCycleSearchWarning, stacklevel=2)
+    elif reach is not None:
+        budget = reach[1] == "budget" or (auto and reach[0] >= amax)
+        code = SearchStatus.BUDGET if budget else SearchStatus.MAX_AMPLITUDE
+        why = (f"searched up to the size budget ({reach[0]:g} ticks) short of the envelope bound" if budget
+               else f"cycles may exist beyond max_amplitude = {amax:g} ticks")
+        status = f"incomplete: {why}"
+    else:
+        code, status = SearchStatus.COMPLETE, "ok"
+    searched = reach[0] if reach is not None else amax
+    return LimitCycleResult(p, m, d, n, df, searched, tuple(uniq), code is SearchStatus.COMPLETE, status, code,
+                            _linear_stable(p.mu, p.beta, d), bound if code is SearchStatus.COMPLETE else None)
+
+
+def _linear_stable(mu: float, beta: float, delay: int) -> bool:
+    """The linear loop without encoder and Coulomb friction (exact ZOH, d delays) is asymptotically stable."""
+    from .linear import linear_stable
+
+    return bool(linear_stable(mu, beta, delay))
 
 
 # --------------------------------------------------------------- closed forms
@@ -674,22 +888,34 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
 # --------------------------------------------------------- design threshold
 @dataclass(frozen=True)
 class GrowthThreshold:
-    """The describing function's growth threshold: the smallest unstable cycle.
+    """The describing function's growth band: from the smallest to the largest unstable cycle.
+
+    Where the large family is a single unstable cycle the band is one amplitude
+    M_u and the first-harmonic analysis predicts growth above it. Where it is a
+    cluster of alternating stable and unstable cycles (β near the linear bound,
+    D(M) oscillating about 1, eq. 41) there is no single threshold: below the
+    band every predicted cycle is stable, inside it growth depends on the initial
+    condition, above the largest unstable cycle growth is predicted (unless a
+    larger stable cycle catches it). All of this is a first-harmonic
+    approximation (eq. 36), not a proof.
 
     Attributes
     ----------
-    amplitude : float or None
-        M_u in ticks: oscillations larger than this are predicted to grow.
-    frequency : float or None
-        Its ω (rad per sample).
-    xi_dot : float or None
-        Matching speed amplitude M_u·ω (ticks per sample), to compare with the
-        criterion's critical speed (eq. 12).
-    position, velocity : float or None
-        The same in physical units (m or rad, m/s or rad/s) when a device was given.
+    amplitude, frequency, xi_dot : float or None
+        Smallest unstable cycle: M_u (ticks), ω (rad per sample) and the speed
+        amplitude M_u·ω (ticks per sample), to compare with eq. 12.
     result : LimitCycleResult
         The full solution it came from.
+    position, velocity : float or None
+        M_u and M_u·ω in physical units (m or rad, m/s or rad/s) when a device was given.
     status : str
+    amplitude_high, frequency_high, xi_dot_high, position_high, velocity_high : float or None
+        The same for the largest unstable cycle (the top of the band).
+    unstable_count : int
+        Number of unstable cycles in the band.
+    grows_above : bool or None
+        True when no stable cycle lies above the largest unstable one, so that
+        the first-harmonic analysis predicts growth above the band.
     """
 
     amplitude: float | None
@@ -699,16 +925,62 @@ class GrowthThreshold:
     position: float | None = None
     velocity: float | None = None
     status: str = "ok"
+    amplitude_high: float | None = None
+    frequency_high: float | None = None
+    xi_dot_high: float | None = None
+    position_high: float | None = None
+    velocity_high: float | None = None
+    unstable_count: int = 0
+    grows_above: bool | None = None
+
+    @property
+    def is_band(self) -> bool:
+        """True for a cluster: more than one unstable cycle."""
+        return self.unstable_count > 1
+
+    def meaning(self) -> str:
+        """What the band means, in words that claim no more than the describing function shows."""
+        res = self.result
+        if self.amplitude is None:
+            return self.status
+        lo, hi = self.amplitude, self.amplitude_high
+        tail = ""
+        if not res.complete:
+            tail = f" The search was incomplete ({res.status}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
+        if self.grows_above:
+            above = (f"above {hi:.4g} ticks the first-harmonic analysis predicts growth"
+                     + (" without bound (the linear loop, exact ZOH model, is unstable)" if res.linear_stable is False else ""))
+        else:
+            nxt = next(c for c in res.cycles if c.amplitude > hi and c.stable)
+            above = f"above {hi:.4g} ticks it predicts settling on the stable cycle at M = {nxt.amplitude:.4g} ticks"
+        if not self.is_band:
+            return f"Describing function (first-harmonic approximation): below M_u = {lo:.4g} ticks no growth is predicted; {above}.{tail}"
+        return (f"Describing function (first-harmonic approximation): {self.unstable_count} unstable cycles alternate with stable ones "
+                f"between {lo:.4g} and {hi:.4g} ticks. Below the band every predicted cycle is stable (no growth predicted); "
+                f"inside it, whether an oscillation grows depends on its initial condition; {above}.{tail}")
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record (``dfa limit-cycles --json``, key ``growth_threshold``)."""
+        return {
+            "amplitude": self.amplitude, "frequency": self.frequency, "xi_dot": self.xi_dot,
+            "position": self.position, "velocity": self.velocity,
+            "band": {"low": {"amplitude": self.amplitude, "frequency": self.frequency, "xi_dot": self.xi_dot,
+                             "position": self.position, "velocity": self.velocity},
+                     "high": {"amplitude": self.amplitude_high, "frequency": self.frequency_high, "xi_dot": self.xi_dot_high,
+                              "position": self.position_high, "velocity": self.velocity_high}},
+            "unstable_count": self.unstable_count, "grows_above": self.grows_above, "complete": self.result.complete,
+            "linear_stable": self.result.linear_stable, "linear_model": "zoh", "status": self.status, "meaning": self.meaning(),
+        }
 
 
 def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> GrowthThreshold:
-    """Smallest unstable limit cycle M_u and its impact speed ≈ M_u·ω (beyond the paper).
+    """Growth band of the describing function: smallest and largest unstable cycles (beyond the paper).
 
     Parameters
     ----------
     params : Params
     device : Device, optional
-        To express M_u and M_u·ω in physical units.
+        To express the amplitudes and speeds in physical units.
     **kwargs
         Passed to :func:`limit_cycles` (model, delay, …).
     """
@@ -717,11 +989,20 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
     res = limit_cycles(params, **kwargs)
     unstable = res.unstable_cycles
     if not unstable:
-        return GrowthThreshold(None, None, None, res, status="no unstable cycle predicted")
-    c = unstable[0]
-    xd = c.amplitude * c.frequency
-    pos = vel = None
-    if device is not None:
-        pos = c.amplitude * device.resolution
-        vel = device.velocity(xd)
-    return GrowthThreshold(c.amplitude, c.frequency, xd, res, pos, vel)
+        if res.linear_stable is False:
+            status = "no unstable cycle predicted, but the linear loop (exact ZOH model) is unstable: amplitudes grow without bound"
+        else:
+            status = "no unstable cycle predicted" + ("" if res.complete else f" up to M = {res.max_amplitude:g} ticks (search {res.status})")
+        return GrowthThreshold(None, None, None, res, status=status, grows_above=None if res.linear_stable is not False else True)
+    lo, hi = unstable[0], unstable[-1]
+
+    def phys(c):
+        if device is None:
+            return None, None
+        return c.amplitude * device.resolution, device.velocity(c.amplitude * c.frequency)
+
+    plo, vlo = phys(lo)
+    phi, vhi = phys(hi)
+    grows = not any(c.stable and c.amplitude > hi.amplitude for c in res.cycles)
+    return GrowthThreshold(lo.amplitude, lo.frequency, lo.amplitude * lo.frequency, res, plo, vlo, "ok",
+                           hi.amplitude, hi.frequency, hi.amplitude * hi.frequency, phi, vhi, len(unstable), grows)

@@ -14,6 +14,10 @@ numeric functions with :func:`sympy.lambdify` once (cached):
   D equals 2/(πM) for M ≤ 1, is continuous, peaks at D ≈ 1.1206 near
   M ≈ 1.242 and tends to 1, oscillating: 1 − D(n) ≈ 0.3743 n^{-3/2} at the
   integers (local minima) and D − 1 ≈ 0.168 n^{-3/2} at the maxima near n + 0.30.
+  From M = 1000 ticks (``dfa._dfcore.ASYMPTOTIC_FROM``) on, D and D' are evaluated
+  by a generalised Euler–Maclaurin expansion in the Hurwitz zeta function
+  (see :mod:`dfa._dfcore`): O(1) work instead of ⌊M⌋ terms, exact to rounding,
+  and valid up to the largest float (the level count would overflow int64).
 * **Coulomb friction** σ·sgn(ξ') driven by the velocity ξ' = Mω cos ωτ of
   ξ = M sin ωτ: the relay's fundamental is (4σ/π) cos ωτ, i.e. a describing
   function 4σ/(πA) of the velocity amplitude A = Mω, or an equivalent viscous
@@ -208,8 +212,12 @@ def quantizer_df(amplitude):
     """
     m = _amplitudes(amplitude)
     level, _dlevel = _level_functions()
+    big = m >= _dfcore.ASYMPTOTIC_FROM
+    ms = np.where(big, 1.0, m)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # M² underflows for M < 1e-154: D = inf
-        out = 0.5 * level(0.0, m) + _level_sum(m, level)
+        out = 0.5 * level(0.0, ms) + _level_sum(ms, level)
+    if np.any(big):  # the ⌊M⌋-term sum is slow and overflows int64 far out: the asymptotic expansion (_dfcore)
+        out = np.where(big, _dfcore.df_array(np.where(big, m, 1e3).ravel()).reshape(m.shape), out)
     return float(out) if out.ndim == 0 else out
 
 
@@ -221,10 +229,13 @@ def quantizer_df_derivative(amplitude):
     """
     m = _amplitudes(amplitude)
     _level, dlevel = _level_functions()
+    big = m >= _dfcore.ASYMPTOTIC_FROM
     at_int = np.floor(m) == m
-    mm = np.where(at_int, m * (1 - 1e-15), m)  # left derivative at integers
+    mm = np.where(big, 0.5, np.where(at_int, m * (1 - 1e-15), m))  # left derivative at integers
     with np.errstate(invalid="ignore", divide="ignore"):
         out = 0.5 * dlevel(0.0, mm) + _level_sum(mm, dlevel)
+    if np.any(big):
+        out = np.where(big, _dfcore.df_array(np.where(big, m, 1e3).ravel(), True).reshape(m.shape), out)
     return float(out) if out.ndim == 0 else out
 
 
@@ -240,7 +251,10 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
     D is 2/(πM) on (0, 1] and unimodal on each [n, n + 1] (minimum at the
     integers, maximum near n + 0.30), so each interval holds at most two roots,
     found by bracketing. Beyond ⌊M⌋ = (DF_ENVELOPE/|gain − 1|)^{2/3} no root
-    exists; the search stops there or at ``max_amplitude``.
+    exists; the search stops there, at ``max_amplitude`` or after
+    ``INVERSE_MAX_INTERVALS`` intervals (then ``complete`` is False). A compiled
+    Brent solve that does not converge gives ``complete=False`` and a
+    RuntimeWarning, never a bracket end posing as a root.
 
     Parameters
     ----------
@@ -254,8 +268,9 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
     roots : numpy.ndarray
         The amplitudes, increasing.
     complete : bool
-        False when roots may exist beyond ``max_amplitude`` (only when ``gain``
-        is within DF_ENVELOPE·max_amplitude^{-3/2} of 1).
+        False when roots may exist beyond ``max_amplitude`` or the interval
+        budget (only when ``gain`` is within DF_ENVELOPE·max_amplitude^{-3/2} of 1),
+        or when an interval could not be solved.
 
     Examples
     --------
@@ -265,18 +280,35 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
     """
     g = check_positive("gain", gain, "D(M) is positive for every amplitude")
     mmax = check_positive("max_amplitude", max_amplitude)
+    out, complete, failures = _df_inverse_counted(g, mmax)
+    if failures:
+        import warnings
+
+        warnings.warn(f"quantizer_df_inverse({g!r}): {failures} interval(s) could not be solved; roots may be missing",
+                      RuntimeWarning, stacklevel=2)
+    return out, bool(complete and not failures)
+
+
+#: Most intervals [n, n + 1] the inverse scans (its result is incomplete beyond).
+INVERSE_MAX_INTERVALS = 2_000_000
+
+
+def _df_inverse_counted(g: float, mmax: float) -> tuple[np.ndarray, bool, int]:
+    """(roots, complete, failures) of D(M) = g up to ``mmax`` (validated inputs)."""
     roots = [2 / (math.pi * g)] if g >= 2 / math.pi and 2 / (math.pi * g) <= mmax else []
-    if g != 1.0:
-        n_last = int(math.floor((DF_ENVELOPE / abs(g - 1.0)) ** (2.0 / 3.0))) + 1
+    n_last = int(min(float(INVERSE_MAX_INTERVALS) + 1, math.floor((DF_ENVELOPE / abs(g - 1.0)) ** (2.0 / 3.0)) + 1)) if g != 1.0 else None
+    if n_last is None or n_last > INVERSE_MAX_INTERVALS:
+        n_last = int(min(mmax, INVERSE_MAX_INTERVALS)) + 1
+        complete = False
     else:
-        n_last = int(mmax) + 1
-    complete = n_last <= mmax
+        complete = n_last <= mmax
     n_stop = int(min(n_last, math.floor(mmax)))
     # compiled scan of the intervals [n, n + 1]: peak and both branches by Brent's method in t, M = n + t²
-    out = np.concatenate([roots, _dfcore.df_inverse(g, n_stop, mmax, DF_ENVELOPE)])
+    found, failures = _dfcore.df_inverse(g, n_stop, mmax, DF_ENVELOPE)
+    out = np.concatenate([roots, found])
     if out.size > 1:  # a root at a shared bracket end can be found twice; keep the values as found
         out = out[np.concatenate([[True], np.diff(out) > 1e-12 * out[1:]])]
-    return out, bool(complete)
+    return out, bool(complete), int(failures)
 
 
 def quantizer_df_peak() -> tuple[float, float]:

@@ -184,7 +184,7 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
     crit = device_criterion(dev, k, v)
     lim = stiffness_limits(dev, v, k)
     steps.update()
-    thr = {m: growth_threshold(p, dev, model=m, max_amplitude=5000.0) for m in ("half-delay", "zoh")}
+    thr = {m: growth_threshold(p, dev, model=m) for m in ("half-delay", "zoh")}  # search range follows the problem
     steps.update()
     # how far to trust: the true critical speed of this device by simulation
     ref = crit.critical_xi_dot if crit.critical_xi_dot else max(1.0, crit.xi_dot)
@@ -292,17 +292,18 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
                          f"{1 / (c.period * dev.period):.4g} Hz", "stable" if c.stable else "unstable", c.family + (" (period < 8 samples)" if c.few_samples else "")])
     if crow:
         d.table(["loop model", "M (ticks)", "amplitude", "ω (rad/sample)", "frequency", "stability", "family"], crow)
-    else:
-        d.p("No limit cycle is predicted.")
+    for line in _absence_lines(thr):
+        d.p(line)
     g = thr["zoh"]
     if g.amplitude is not None:
-        d.p(f"**Growth threshold** (exact ZOH loop): oscillations larger than M_u = {g.amplitude:.4g} ticks ({_fmt(g.position)} {u['position']}) "
-            f"are predicted to grow; the matching impact speed is M_u·ω = {g.xi_dot:.4g} ticks/sample = {_fmt(g.velocity)} {u['velocity']}.")
+        d.p(_growth_paragraph(g, u))
     d.fig(*figs[2])
     d.h(2, "How far to trust these predictions")
     rows = [["criterion (eq. 12), guaranteed", _fmt(crit.critical_xi_dot), f"{_fmt(crit.critical_velocity)} {u['velocity']}"],
-            ["describing function, half-delay", _fmt(thr["half-delay"].xi_dot), f"{_fmt(thr['half-delay'].velocity)} {u['velocity']}"],
-            ["describing function, exact ZOH", _fmt(thr["zoh"].xi_dot), f"{_fmt(thr['zoh'].velocity)} {u['velocity']}"],
+            *[[f"describing function, {m}" + (" (growth band)" if t.is_band else ""),
+               _fmt(t.xi_dot) + (f" to {_fmt(t.xi_dot_high)}" if t.is_band else ""),
+               f"{_fmt(t.velocity)}" + (f" to {_fmt(t.velocity_high)}" if t.is_band else "") + f" {u['velocity']}"]
+              for m, t in (("half-delay", thr["half-delay"]), ("exact ZOH", thr["zoh"]))],
             ["exact simulation (bisection on ξ'0, from ξ0 = 0)", _fmt(v_sim), f"{_fmt(dev.velocity(v_sim)) if v_sim else '–'} {u['velocity']}"]]
     d.table(["critical impact speed", "ticks/sample", "physical"], rows)
     msg = []
@@ -338,3 +339,34 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
                    critical_xi_dot=crit.critical_xi_dot, df_xi_dot=g.xi_dot, simulated_xi_dot=v_sim,
                    cycles=[c.amplitude for c in thr["half-delay"].result.cycles])
     return ReportResult(tuple(paths), tuple(f for f, _c in figs), numbers)
+
+
+def _absence_lines(thr: dict) -> list[str]:
+    """Sentences for loop models without cycles: never an absence the search did not prove."""
+    out = []
+    for m, g in thr.items():
+        res = g.result
+        if res.cycles:
+            if not res.complete:
+                out.append(f"{m} loop: search incomplete beyond M = {res.max_amplitude:g} ticks ({res.status.removeprefix('incomplete: ')}); "
+                           "more cycles may exist.")
+            continue
+        if not res.complete:
+            out.append(f"{m} loop: no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: "
+                       f"{res.status.removeprefix('incomplete: ')}).")
+        elif res.linear_stable is False:
+            out.append(f"{m} loop: no limit cycle predicted, but the linear loop without encoder and Coulomb friction (exact ZOH model) "
+                       "is unstable: amplitudes grow without bound.")
+        else:
+            out.append(f"{m} loop: no limit cycle is predicted (search complete).")
+    return out
+
+
+def _growth_paragraph(g, u: dict) -> str:
+    """The exact-ZOH growth threshold, or band for a cluster, with its meaning (physical units from ``u``)."""
+    if g.is_band:
+        return (f"**Growth band** (exact ZOH loop): {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
+                f"({_fmt(g.position)} to {_fmt(g.position_high)} {u['position']}); speeds M·ω = {g.xi_dot:.4g} to {g.xi_dot_high:.4g} ticks/sample "
+                f"= {_fmt(g.velocity)} to {_fmt(g.velocity_high)} {u['velocity']}. {g.meaning()}")
+    return (f"**Growth threshold** (exact ZOH loop): M_u = {g.amplitude:.4g} ticks ({_fmt(g.position)} {u['position']}); "
+            f"the matching impact speed is M_u·ω = {g.xi_dot:.4g} ticks/sample = {_fmt(g.velocity)} {u['velocity']}. {g.meaning()}")
