@@ -133,7 +133,7 @@ def _verdict_text(dev: Device, k: float, v: float, dl: int, crit, lim, v_sim) ->
             f"**{verdict}** (region {crit.region}: {crit.status}). ")
     if crit.critical_velocity:
         text += f"The criterion guarantees passivity up to {_fmt(crit.critical_velocity)} {u['velocity']}; "
-    text += f"at {v:g} {u['velocity']} with {ds} the largest passive stiffness is {lim.k_max:.5g} {u['stiffness']}. "
+    text += f"{'at' if crit.critical_velocity else 'At'} {v:g} {u['velocity']} with {ds} the largest passive stiffness is {lim.k_max:.5g} {u['stiffness']}. "
     if v_sim:
         text += f"The exact simulation first goes unstable at {_fmt(dev.velocity(v_sim))} {u['velocity']}."
     else:
