@@ -216,7 +216,8 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
 
     ax = plotting.regions_plot(crit, xi_dots=[x for x in (1.0, 5.0) if abs(x - crit.xi_dot) > 0.2], beta_max=max(1.0, 2 * p.beta),
                                sigma_max=max(2.0, 1.5 * p.sigma))
-    save(ax.figure, "regions", f"Operating point of the {dev.name} in the (β, σ) plane with its critical line at {v:g} {u['velocity']} (eq. 6, 10).")
+    save(ax.figure, "regions", f"Operating point of the {dev.name} in the (β, σ) plane with its critical line at {v:g} {u['velocity']}"
+         + (f", delay {dl} sample{'s' if dl != 1 else ''}" if dl else "") + " (eq. 6, 10).")
     ax = plotting.stiffness_plot(stiffness_response(dev, stiffness=k, delay=dl))
     save(ax.figure, "stiffness", "Largest passive stiffness against impact speed (eq. 11) and the published bounds.")
     res = thr["half-delay"].result

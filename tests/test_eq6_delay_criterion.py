@@ -313,3 +313,25 @@ def test_fig3_regions_plot_draws_the_result_critical_line_with_delay():
     x, y = lines["ξ'0 = 1"].get_data()
     np.testing.assert_allclose(y, CriticalLine(1.0, 0.5, 1).sigma(np.asarray(x)))
     plt.close(ax.figure)
+
+
+@pytest.mark.parametrize("d", [0, 1, 2])
+@pytest.mark.parametrize("beta_share", [0.0, 0.5, 1.0])
+def test_eq7_delay_without_quantization_energy_never_grows_on_the_line(d, beta_share):
+    # eq. 7 generalised: (β − ½ − d)V + σ >= 0; on the line, including σ = 0 at β = ½ + d
+    mu, xi_dot, xi0 = 20.0, 3.0, 1.5
+    beta = beta_share * (0.5 + d)
+    v = equivalent_speed(xi_dot, xi0, mu, quantized=False)
+    sigma = v * (0.5 + d - beta)
+    r = passivity_criterion(beta, sigma, xi_dot, quantized=False, delay=d, xi0=xi0, mu=mu)
+    if not r.passive:
+        sigma = float(np.nextafter(sigma, np.inf))
+        r = passivity_criterion(beta, sigma, xi_dot, quantized=False, delay=d, xi0=xi0, mu=mu)
+    assert r.passive
+    sim = simulate(mu, beta, sigma, xi_dot, 3000, xi0=xi0, delay=d, quantize=False)
+    s = storage(sim)
+    assert np.all(s <= s[0] * (1 + 1e-9))
+    # just below the line (β = 0, σ = 0) the same loop gains energy
+    if beta_share == 0.0:
+        s_bad = storage(simulate(mu, 0.0, 0.0, xi_dot, 3000, xi0=xi0, delay=d, quantize=False))
+        assert np.nanmax(s_bad) > s_bad[0] * 1.01  # NaN: diverged past the bound
