@@ -282,6 +282,8 @@ def _check_rows(r, quantized: bool, vu: str) -> list[list[str]]:
     crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
     if r.critical_velocity is not None:
         crit += f" ({r.critical_velocity:.4g} {vu})"
+    if r.critical_xi_dot is not None and r.xi0 != 0.0:
+        crit += ", a bound on the equivalent speed V, not on ξ'0"
     speed = f"{r.xi_dot:.4g} ticks/sample" + (f" ({r.velocity:.4g} {vu})" if r.velocity is not None else "")
     s0 = "½" if quantized else "0"
     rule = f"(β − ½ − d)V + (σ − {s0}) ≥ 0" + (" and σ ≥ ½" if quantized else "")

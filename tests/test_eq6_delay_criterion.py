@@ -238,6 +238,9 @@ def test_cli_check_json_delay_and_initial_position(capsys):
     r = json.loads(out)
     assert code == 0 and r["passive"] is False and r["xi0"] == 10.0 and r["delay"] == 0
     assert r["equivalent_speed"] == pytest.approx(math.sqrt(104.0))
+    code, out, _ = run(capsys, "check", "--mu", "1", "--beta", "0.3", "--sigma", "1", "--xi-dot", "2", "--xi0", "10")
+    assert row(out, "critical speed (eq. 12, d = 0)") == "2.5 ticks/sample, a bound on the equivalent speed V, not on ξ'0"
+    assert row(out, "equivalent speed V").startswith(f"{math.sqrt(104.0):.4g} ticks/sample")
     code, out, _ = run(capsys, "check", "--device", "delta", "--velocity", "0.1", "--position", "3e-4", "--delay", "1", "--json")
     r = json.loads(out)
     api = dfa.device_criterion(DEV, 14500.0, 0.1, delay=1, position=3e-4)
