@@ -94,6 +94,21 @@ def _add_device_args(p: argparse.ArgumentParser, dimensionless: bool, speed: boo
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout")
 
 
+def _delay(text: str) -> int:
+    try:
+        out = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number: --delay takes the computational delay in samples (integer >= 0)") from None
+    if out < 0:
+        raise argparse.ArgumentTypeError(f"{text!r} is invalid: --delay must be a whole number of samples >= 0")
+    return out
+
+
+def _add_delay_arg(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--delay", type=_delay, default=0, metavar="N",
+                   help="computational delay in samples (default 0): the force of sample h uses the reading of sample h − N")
+
+
 @dataclass(frozen=True)
 class _Inputs:
     params: Params | None  # full (μ, β, σ) when known
@@ -253,37 +268,65 @@ def _cmd_params(args: argparse.Namespace) -> int:
     return 0
 
 
+def _criterion_for_args(args: argparse.Namespace, inp: _Inputs, xd: float, v: float | None):
+    """The criterion for `dfa check`: device mode takes --position (m, rad), dimensionless mode --xi0 (ticks)."""
+    quantized = not args.no_quantization
+    if inp.device is not None:
+        if args.xi0 is not None:
+            raise UsageError("--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)")
+        return device_criterion(inp.device, inp.stiffness, inp.device.velocity(xd) if v is None else v,  # type: ignore[arg-type]
+                                quantized=quantized, delay=args.delay, position=args.position or 0.0)
+    if args.position is not None:
+        raise UsageError("--position needs a physical device: with --beta --sigma give the initial position as --xi0 (ticks)")
+    x0 = 0.0 if args.xi0 is None else args.xi0
+    if x0 != 0.0 and args.mu is None:
+        raise UsageError(f"--xi0 {x0:g} needs --mu: the spring energy enters the speed as 2H_c(ξ0)/μ; give --mu m/(K T²)")
+    return passivity_criterion(inp.beta, inp.sigma, xd, quantized=quantized, delay=args.delay, xi0=x0, mu=args.mu)
+
+
+def _check_rows(r, quantized: bool, vu: str) -> list[list[str]]:
+    """Rows of the `dfa check` table; every verdict says what is proven and what is not."""
+    d = r.delay
+    crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
+    if r.critical_velocity is not None:
+        crit += f" ({r.critical_velocity:.4g} {vu})"
+    if r.critical_xi_dot is not None and r.xi0 != 0.0:
+        crit += ", a bound on the equivalent speed V, not on ξ'0"
+    speed = f"{r.xi_dot:.4g} ticks/sample" + (f" ({r.velocity:.4g} {vu})" if r.velocity is not None else "")
+    s0 = "½" if quantized else "0"
+    rule = f"(β − ½ − d)V + (σ − {s0}) ≥ 0" + (" and σ ≥ ½" if quantized else "")
+    if r.passive:
+        upto = "at every speed" if r.region == "a" else f"for speeds up to V = {r.critical_xi_dot:.4g} ticks/sample"
+        verdict = f"yes: the energy cannot grow {upto} (proven)"
+    else:
+        verdict = "no: no passivity guarantee (not a proof of instability)"
+    rows = [["β, σ", f"{r.beta:.4g}, {r.sigma:.4g}"], ["speed |ξ'0|", speed]]
+    if r.xi0 != 0.0:
+        pos = f" ({r.position:.4g} {r.device.units['position']})" if r.device is not None else ""
+        rows.append(["initial position ξ0", f"{r.xi0:.4g} ticks{pos}"])
+    rows += [
+        ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
+        ["delay d", f"{d} sample{'s' if d != 1 else ''}"],
+        ["criterion", ("eq. 6 (with encoder)" if quantized else "eq. 7 (no quantization)") + f": {rule}"],
+        ["region", f"{r.region}: {r.status}"],
+        ["passive", verdict],
+        ["margin", f"{r.margin:.4g}"],
+        [f"critical speed (eq. 12, d = {d})", crit],
+    ]
+    return rows
+
+
 def _cmd_check(args: argparse.Namespace) -> int:
     inp = _resolve(args, dimensionless=True, need_mu=False)
     xd, v = _speed(args, inp)
     assert xd is not None
-    quantized = not args.no_quantization
-    if inp.device is not None and v is not None:
-        r = device_criterion(inp.device, inp.stiffness, v, quantized=quantized)  # type: ignore[arg-type]
-    else:
-        r = passivity_criterion(inp.beta, inp.sigma, xd, quantized=quantized)
+    r = _criterion_for_args(args, inp, xd, v)
     if args.json:
         _emit(r.as_dict())
         return 0
     vu = inp.device.units["velocity"] if inp.device else ""
-    crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
-    if r.critical_velocity is not None:
-        crit += f" ({r.critical_velocity:.4g} {vu})"
-    speed = f"{r.xi_dot:.4g} ticks/sample" + (f" ({r.velocity:.4g} {vu})" if r.velocity is not None else "")
     print(inp.label)
-    print(
-        _table(
-            [
-                ["β, σ", f"{r.beta:.4g}, {r.sigma:.4g}"],
-                ["speed |ξ'0|", speed],
-                ["criterion", "eq. 6 (with encoder)" if quantized else "eq. 7 (no quantization)"],
-                ["region", f"{r.region}: {r.status}"],
-                ["passive", "yes" if r.passive else "no"],
-                ["margin", f"{r.margin:.4g}"],
-                ["critical speed (eq. 12)", crit],
-            ]
-        )
-    )
+    print(_table(_check_rows(r, not args.no_quantization, vu)))
     return 0
 
 
@@ -294,22 +337,24 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
     xd, v = _speed(args, inp)
     assert v is not None
     k_given = args.stiffness  # only an explicit --stiffness is assessed
-    lim = stiffness_limits(dev, v, k_given)
+    lim = stiffness_limits(dev, v, k_given, delay=args.delay)
     if args.json:
         _emit(lim.as_dict())
         return 0
     ku, vu = dev.units["stiffness"], dev.units["velocity"]
+    d = lim.delay
+    cs = "2b/T" if d == 0 else "b/(T(½ + d))"
     rows = [
-        ["criterion K_max at this speed (eq. 11)", f"{lim.k_max:.5g} {ku}"],
+        [f"criterion K_max at this speed (eq. 11, d = {d})", f"{lim.k_max:.5g} {ku}"],
         ["static limit 2c/Δ (eq. 9)", f"{lim.k_static:.5g} {ku}"],
-        ["Colgate-Schenkel 2b/T (eq. 8)", f"{lim.k_colgate:.5g} {ku}"],
-        ["Abbott-Okamura min(2b/T, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {ku}"],
-        ["Gil et al. (linear, exact ZOH)", f"{lim.k_gil:.5g} {ku}"],
+        [f"Colgate-Schenkel {cs} (eq. 8)", f"{lim.k_colgate:.5g} {ku}"],
+        [f"Abbott-Okamura min({cs}, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {ku}"],
+        ["exact linear bound (all Jury conditions" + (f", delay {d})" if d else ")"), f"{lim.k_gil:.5g} {ku}"],
     ]
     if lim.stiffness is not None:
         rows.append([f"largest passive speed at K = {lim.stiffness:g}", lim.max_passive_velocity_text()])
-        rows.append(["verdict at this speed", lim.status])
-    print(f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample)")
+        rows.append(["verdict at this speed", lim.verdict_text()])
+    print(f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}")
     print(_table(rows))
     return 0
 
@@ -510,7 +555,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
     else:
         target = inp.device
     _check_out_dir(args.out, folder=True)
-    res = design_report(target, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=not args.quiet)
+    res = design_report(target, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=not args.quiet, delay=args.delay)
     for pth in res.paths:
         print(f"written {pth}")
     return 0
@@ -581,10 +626,14 @@ def _build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("check", help="passivity criterion and region at an impact speed (eq. 6-12)")
     _add_device_args(p, dimensionless=True, speed=True)
     p.add_argument("--no-quantization", action="store_true", help="use eq. 7 (Δ → 0) instead of eq. 6")
+    _add_delay_arg(p)
+    p.add_argument("--xi0", type=_number("--xi0", "ticks"), metavar="X", help="initial position ξ0 in ticks (dimensionless input; needs --mu)")
+    p.add_argument("--position", type=_number("--position", "m (rotary: rad)"), metavar="X", help="initial position in m (rotary: rad; device input)")
     p.set_defaults(func=_cmd_check)
 
     p = sub.add_parser("stiffness", help="stiffness limits for design at an impact speed (eq. 8, 9, 11)")
     _add_device_args(p, dimensionless=False, speed=True)
+    _add_delay_arg(p)
     p.set_defaults(func=_cmd_stiffness)
 
     p = sub.add_parser("simulate", help="exact simulation of the sampled, quantized, frictional loop (eq. 4-5)")
@@ -637,6 +686,7 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="reports", metavar="DIR", help="output folder (default reports)")
     p.add_argument("--format", choices=["html", "md", "both"], default="html", help="html (self-contained), md (with PNGs) or both")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
+    _add_delay_arg(p)
     p.set_defaults(func=_cmd_report)
 
     p = sub.add_parser("validate", help="validate the predictions against exact simulation; writes validation.md")

@@ -1,31 +1,69 @@
-"""Passivity criterion of Diolaiti et al. (ICRA 2005), eq. 6-12 and 35.
+"""Passivity criterion of Diolaiti et al. (ICRA 2005), eq. 6-12 and 35, with a computational delay and an initial position.
 
-Per sample, the hold and the quantizer generate at most ½(Δξ)² + ½|Δξ| of
-energy (eq. 24, 26) while viscous and Coulomb friction dissipate at least
-β(Δξ)² + σ|Δξ| (eq. 30, 32). The device is passive for speeds up to |ξ'0| when
-(eq. 6)::
+The theorem
+-----------
+Dimensionless loop (paper eq. 4-5) with a computational delay of d samples: the
+force held over sample h is φ = −q(ξ_{h−d}), q(s) = ⌊s⌋ + ½ (eq. 5), and before the
+first sample the controller's past readings equal ξ0. Let
 
-    (β − ½)|ξ'0| + (σ − ½) >= 0   and   σ >= ½.
+    S = ½μξ'² + ½ξ²
 
-Without quantization (Δ → 0) the criterion becomes (β − ½)|ξ'0| + σ >= 0 (eq. 7).
+(the paper's storage H_T of eq. 19 minus the bounded term ½(p − p²) ∈ [0, 1/8] of
+eq. 18) and Δ_h = ξ_{h+1} − ξ_h. Over sample h the force does work φΔ_h and ½ξ²
+changes by ξ_hΔ_h + ½Δ_h², so
 
-Regions of the (β, σ) plane (paper Fig. 3), for a given |ξ'0|
---------------------------------------------------------------
-=======  ===========================================  =========================
-region   condition (boundaries as assigned here)       behaviour
-=======  ===========================================  =========================
-``a``    β >= ½ and σ >= ½                             passive at every speed
-``b``    β >= ½ and σ <  ½                             stable sub-tick limit cycles
-``c``    β <  ½ and σ <  ½                             globally unstable
-``d``    β <  ½, σ >= ½ and margin < 0                 locally unstable (from this speed)
-``e``    β <  ½, σ >= ½ and margin >= 0                locally stable (passive up to this speed)
-=======  ===========================================  =========================
+    S_{h+1} − S_h = ½Δ_h² + (ξ_h − q(ξ_{h−d}))Δ_h − D_h,
+    D_h = β∫ξ'² + σ∫|ξ'| >= βΔ_h² + σ|Δ_h|          (Cauchy-Schwarz; eq. 30, 32)
+    ξ_h − q(ξ_{h−d}) = Σ_{j=1..d} Δ_{h−j} + (p_{h−d} − ½),   p = ξ − ⌊ξ⌋ (eq. 17), |p − ½| <= ½.
 
-with margin = (β − ½)|ξ'0| + (σ − ½). Boundary points are assigned by the
-non-strict inequalities of eq. 6: β = ½ belongs to a/b (the margin no longer
-depends on speed), σ = ½ to a/d/e, and margin = 0 to e. Hence
-``passive`` is exactly ``region in ("a", "e")``. Without quantization the
-σ-threshold ½ is replaced by 0, so regions b and c are empty.
+Summing over h = 0 … n−1 (Δ_k = 0 for k < 0) and bounding every cross product by
+|Δ_hΔ_{h−j}| <= ½(Δ_h² + Δ_{h−j}²) (each Δ_k² then carries a total weight <= d)::
+
+    S_n − S_0 <= Σ_h [ (½ + d − β)Δ_h² + (½ − σ)|Δ_h| ].
+
+The same holds at any instant inside a sample (partial displacement Δ' over a part
+of length ℓ <= 1, viscous ∫ξ'² >= Δ'²/ℓ >= Δ'²). Every bracket is <= 0 when
+|Δ| <= V, σ >= ½ and (β − ½ − d)V + (σ − ½) >= 0. As ½μξ'² <= S, a first-exit-time
+argument gives the criterion implemented here:
+
+    (β − ½ − d)V + (σ − ½) >= 0   and   σ >= ½,   V = sqrt(ξ'0² + ξ0²/μ)
+
+imply S(t) <= S(0) for all t: the energy never grows, |ξ'| <= V and
+|ξ| <= sqrt(2S(0)); the loop cannot diverge. At equality the partial sample keeps
+|Δ'| <= V, so the boundary is included. d = 0, ξ0 = 0 is the paper's eq. 6 / 35
+exactly. The quantization term (p − ½) is what needs σ >= ½; without quantization
+(Δ → 0) the criterion is (β − ½ − d)V + σ >= 0 (eq. 7 generalised). Its linear part
+β >= ½ + d is the journal extension (Diolaiti et al., IEEE T-RO 22(2), 2006).
+
+Energy-equivalent speed. This module uses V = sqrt(ξ'0² + 2H_c(ξ0)/μ) with the
+paper's pseudo-elastic energy H_c of eq. 18 (without quantization H_c = ½ξ²). As
+H_c(ξ0) >= ½ξ0², this V is never smaller than the one of the proof, and the left
+side of the criterion falls with V, so the verdict stays sound; it matches the
+paper's storage function H_T = ½μV². With ξ0 = 0, V = |ξ'0|. ξ0 ≠ 0 needs μ.
+
+What the verdicts mean (and do not mean)
+----------------------------------------
+``passive`` (regions a, e) is proven by the argument above. Regions b, c and d only
+mean that the criterion gives *no guarantee*: it is a sufficient condition, and
+failing it is no proof of instability (exact simulation decides that).
+
+=======  ==============================================  ==================================
+region   condition (boundaries as assigned here)          meaning
+=======  ==============================================  ==================================
+``a``    β >= ½ + d and σ >= ½                            passive at every speed (proven)
+``b``    β >= ½ + d and σ <  ½                            not passive at rest: cannot stop
+``c``    β <  ½ + d and σ <  ½                            no guarantee at any speed
+``d``    β <  ½ + d, σ >= ½ and margin < 0                no guarantee at this speed
+``e``    β <  ½ + d, σ >= ½ and margin >= 0               passive up to the critical speed (proven)
+=======  ==============================================  ==================================
+
+with margin = (β − ½ − d)V + (σ − ½). Boundary points follow the non-strict
+inequalities: β = ½ + d belongs to a/b (the margin no longer falls with speed),
+σ = ½ to a/d/e, margin = 0 to e. Hence ``passive`` is exactly ``region in ("a", "e")``.
+The critical speed (eq. 12 generalised) is V_c = (σ − ½)/(½ + d − β): passive for
+every V <= V_c. Without quantization the σ-threshold ½ is replaced by 0 and regions
+b and c are empty. In region b (σ < ½) the paper (d = 0) observes stable sub-tick
+limit cycles; that is an observation, not part of the guarantee.
 
 Examples
 --------
@@ -36,16 +74,28 @@ Examples
 3.072
 >>> passivity_criterion(beta=0.002, sigma=2.03, xi_dot=5.0).region
 'd'
+>>> passivity_criterion(beta=0.8, sigma=0.8, xi_dot=5.0, delay=1).passive   # 0.8 < ½ + 1
+False
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from .device import Device
-from .errors import check_beta, check_nonnegative, check_positive, check_real, check_sigma
+from .errors import (
+    DFAValueError,
+    check_beta,
+    check_int,
+    check_mu,
+    check_nonnegative,
+    check_positive,
+    check_real,
+    check_sigma,
+)
 
 __all__ = [
     "CriticalLine",
@@ -53,57 +103,116 @@ __all__ = [
     "passivity_criterion",
     "device_criterion",
     "classify_region",
+    "equivalent_speed",
     "REGION_DESCRIPTIONS",
 ]
 
-#: One-line meaning of each region of paper Fig. 3.
+#: One-line meaning of each region of paper Fig. 3 (text before the first colon: short label).
+#: Only a and e are guarantees; b, c, d say what is *not* guaranteed.
 REGION_DESCRIPTIONS = {
-    "a": "passive: stable at every speed",
-    "b": "stable limit cycles of less than one encoder tick",
-    "c": "globally unstable",
-    "d": "locally unstable: unstable from this speed",
-    "e": "locally stable: passive up to the critical speed",
+    "a": "passive at every speed: the energy cannot grow (proven; β >= ½ + d, σ >= ½)",
+    "b": "not passive at rest: σ < ½, the device cannot stop; sub-tick chatter expected (paper, d = 0)",
+    "c": "no passivity guarantee at any speed: σ < ½ and β < ½ + d (not a proof of instability)",
+    "d": "no passivity guarantee at this speed: above the critical speed (not a proof of instability)",
+    "e": "passive up to the critical speed: the energy cannot grow (proven)",
 }
 
 _REGION_CODES = np.array(["a", "b", "c", "d", "e"])
 
+_DELAY_FIX = "give the computational delay in whole samples (0: the force uses the current reading)"
+
+
+def _check_delay(delay) -> int:
+    return check_int("delay", delay, minimum=0, fix=_DELAY_FIX)
+
+
+def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *, quantized: bool = True) -> float:
+    """Energy-equivalent speed V = sqrt(ξ'0² + 2H_c(ξ0)/μ) in ticks per sample (eq. 18-19).
+
+    ½μV² is the paper's total stored energy H_T(ξ0, ξ'0) (eq. 19), with
+    H_c(ξ) = ½ξ² + ½(p − p²) (eq. 18; ½ξ² without quantization). V >= the
+    sqrt(ξ'0² + ξ0²/μ) of the proof in the module docstring, so using it is sound.
+
+    Parameters
+    ----------
+    xi_dot : float
+        Initial speed ξ'0 (ticks per sample); its sign is ignored.
+    xi0 : float, optional
+        Initial position ξ0 in ticks (default 0).
+    mu : float, optional
+        Dimensionless mass μ = m/(K T²); required when ``xi0`` is not 0.
+    quantized : bool, optional
+        Use H_c of eq. 18 (default) or ½ξ0² (no encoder).
+
+    Examples
+    --------
+    >>> equivalent_speed(2.0)
+    2.0
+    >>> equivalent_speed(0.0, xi0=1.0, mu=1.0)            # H_c(1) = ½
+    1.0
+    """
+    v = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
+    x = check_real("xi0", xi0, "give the initial position in encoder ticks")
+    if x == 0.0:
+        if mu is not None:
+            check_mu(mu)
+        return v
+    if mu is None:
+        raise DFAValueError(
+            f"mu = None is invalid with xi0 = {x!r}: it must be given (μ = m/(K T²) > 0) because the spring energy "
+            "H_c(ξ0) enters the speed only through 2H_c/μ; pass mu, or use device_criterion(..., position=...)"
+        )
+    m = check_mu(mu)
+    frac = x - math.floor(x)
+    hc = 0.5 * x * x + (0.5 * (frac - frac * frac) if quantized else 0.0)
+    return math.sqrt(v * v + 2.0 * hc / m)
+
 
 @dataclass(frozen=True)
 class CriticalLine:
-    """The critical line of eq. 10 in the (β, σ) plane for one speed |ξ'0|.
+    """The critical line of eq. 10 in the (β, σ) plane for one speed, with a delay of d samples.
 
-    σ = σ₀ + |ξ'0|(½ − β): a line through (½, σ₀) with slope −|ξ'0|, where
-    σ₀ = ½ with quantization and 0 without. Points on or above it satisfy the
-    first inequality of eq. 6.
+    σ = σ₀ + V(½ + d − β): a line through (½ + d, σ₀) with slope −V, where V is
+    the (energy-equivalent) speed and σ₀ = ½ with quantization, 0 without. Points
+    on or above it satisfy the first inequality of the criterion (eq. 6 for d = 0).
 
     Examples
     --------
     >>> line = CriticalLine(xi_dot=2.0)
     >>> line.slope, line.sigma(0.0)
     (-2.0, 1.5)
+    >>> CriticalLine(xi_dot=2.0, delay=1).sigma(0.0)          # through (1.5, 0.5)
+    3.5
     """
 
     xi_dot: float
     sigma0: float = 0.5
+    delay: int = 0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "xi_dot", abs(check_real("xi_dot", self.xi_dot)))
         object.__setattr__(self, "sigma0", check_nonnegative("sigma0", self.sigma0))
+        object.__setattr__(self, "delay", _check_delay(self.delay))
+
+    @property
+    def beta0(self) -> float:
+        """β where the line meets σ = σ₀: ½ + d (eq. 10; Diolaiti et al. 2006 for d > 0)."""
+        return 0.5 + self.delay
 
     @property
     def slope(self) -> float:
-        """dσ/dβ of the line, −|ξ'0|."""
+        """dσ/dβ of the line, −V."""
         return -self.xi_dot
 
     def sigma(self, beta: float | np.ndarray) -> float | np.ndarray:
         """σ on the line at ``beta`` (vectorised)."""
-        out = self.sigma0 + self.xi_dot * (0.5 - np.asarray(beta, dtype=float))
+        out = self.sigma0 + self.xi_dot * (self.beta0 - np.asarray(beta, dtype=float))
         return float(out) if out.ndim == 0 else out
 
 
 @dataclass(frozen=True)
 class CriterionResult:
-    """Outcome of the passivity criterion for one operating point and speed.
+    """Outcome of the passivity criterion for one operating point, speed, delay and initial position.
 
     Attributes
     ----------
@@ -116,19 +225,30 @@ class CriterionResult:
     region : str
         ``"a"`` … ``"e"`` as in the module docstring.
     passive : bool
-        Whether eq. 6 (or 7) holds; equals ``region in ("a", "e")``.
+        Whether the criterion holds (proven: the energy cannot grow); equals
+        ``region in ("a", "e")``.
     margin : float
-        (β − ½)|ξ'0| + (σ − σ₀), σ₀ = ½ (or 0 without quantization).
+        (β − ½ − d)V + (σ − σ₀), σ₀ = ½ (or 0 without quantization).
     critical_xi_dot : float or None
-        Eq. 12: the speed above which the criterion fails, (σ − σ₀)/(½ − β),
-        when β < ½ and σ >= σ₀; None when it does not exist (regions a, b, c).
+        Eq. 12 generalised: the largest energy-equivalent speed V for which
+        the criterion holds, (σ − σ₀)/(½ + d − β), when β < ½ + d and σ >= σ₀;
+        None when it does not exist (regions a, b, c). With ξ0 = 0 it is the
+        critical initial speed |ξ'0|.
     critical_line : CriticalLine
-        The line of eq. 10 for this speed.
+        The line of eq. 10 for this speed and delay.
+    equivalent_speed : float
+        V = sqrt(ξ'0² + 2H_c(ξ0)/μ) (ticks per sample); V = |ξ'0| when ξ0 = 0.
+    delay : int
+        Computational delay d in samples.
+    xi0 : float
+        Initial position ξ0 in ticks.
+    mu : float or None
+        Dimensionless mass (needed only when ξ0 ≠ 0).
     status : str
-        Plain-language meaning of the region.
-    device, stiffness, velocity, critical_velocity
+        Plain-language meaning of the region (:data:`REGION_DESCRIPTIONS`).
+    device, stiffness, velocity, critical_velocity, position
         Set by :func:`device_criterion`: the physical inputs and the critical
-        speed in m/s (rad/s); otherwise None.
+        (energy-equivalent) speed in m/s (rad/s); otherwise None.
     """
 
     beta: float
@@ -140,11 +260,16 @@ class CriterionResult:
     margin: float
     critical_xi_dot: float | None
     critical_line: CriticalLine
+    equivalent_speed: float
+    delay: int
+    xi0: float
+    mu: float | None
     status: str
     device: Device | None = None
     stiffness: float | None = None
     velocity: float | None = None
     critical_velocity: float | None = None
+    position: float | None = None
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready summary (the ``dfa check --json`` contract plus extras)."""
@@ -158,6 +283,10 @@ class CriterionResult:
             "xi_dot": self.xi_dot,
             "quantized": self.quantized,
             "status": self.status,
+            "delay": self.delay,
+            "xi0": self.xi0,
+            "mu": self.mu,
+            "equivalent_speed": self.equivalent_speed,
         }
         if self.device is not None:
             out.update(
@@ -165,12 +294,16 @@ class CriterionResult:
                 stiffness=self.stiffness,
                 velocity=self.velocity,
                 critical_velocity=self.critical_velocity,
+                position=self.position,
             )
         return out
 
 
-def classify_region(beta, sigma, xi_dot, quantized: bool = True) -> np.ndarray:
-    """Vectorised region a-e of eq. 6 over arrays of β, σ and |ξ'0| (broadcast).
+def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
+    """Vectorised region a-e of the criterion over arrays of β, σ, speed V and delay d (broadcast).
+
+    ``xi_dot`` is the (energy-equivalent) speed V; every argument, including
+    ``quantized`` and ``delay`` (whole samples >= 0), may be an array.
 
     Returns
     -------
@@ -181,13 +314,19 @@ def classify_region(beta, sigma, xi_dot, quantized: bool = True) -> np.ndarray:
     --------
     >>> classify_region([0.6, 0.6, 0.2, 0.2, 0.2], [0.6, 0.2, 0.2, 0.7, 2.0], 1.0).tolist()
     ['a', 'b', 'c', 'd', 'e']
+    >>> classify_region(0.6, 0.6, 1.0, delay=[0, 1]).tolist()          # β = 0.6 < ½ + 1
+    ['a', 'd']
     """
     b = np.asarray(beta, dtype=float)
     s = np.asarray(sigma, dtype=float)
     v = np.abs(np.asarray(xi_dot, dtype=float))
-    s0 = 0.5 if quantized else 0.0
-    margin = (b - 0.5) * v + (s - s0)
-    high_beta = b >= 0.5
+    d = np.asarray(delay)
+    if d.dtype == bool or not np.issubdtype(d.dtype, np.number) or np.any(d < 0) or np.any(d != np.floor(d)):
+        raise DFAValueError(f"delay = {delay!r} is invalid: it must be a whole number >= 0; {_DELAY_FIX}")
+    s0 = np.where(np.asarray(quantized, dtype=bool), 0.5, 0.0)
+    b0 = 0.5 + d.astype(float)
+    margin = (b - b0) * v + (s - s0)
+    high_beta = b >= b0
     high_sigma = s >= s0
     idx = np.where(
         high_beta,
@@ -197,8 +336,13 @@ def classify_region(beta, sigma, xi_dot, quantized: bool = True) -> np.ndarray:
     return _REGION_CODES[idx]
 
 
-def passivity_criterion(beta: float, sigma: float, xi_dot: float, *, quantized: bool = True) -> CriterionResult:
-    """Evaluate the passivity criterion (paper eq. 6, or eq. 7 without quantization).
+def passivity_criterion(beta: float, sigma: float, xi_dot: float, *, quantized: bool = True, delay: int = 0,
+                        xi0: float = 0.0, mu: float | None = None) -> CriterionResult:
+    """Evaluate the passivity criterion (eq. 6, or eq. 7 without quantization), with delay and initial position.
+
+    Passive when (β − ½ − d)V + (σ − σ₀) >= 0 and σ >= σ₀ (module docstring), with
+    V = sqrt(ξ'0² + 2H_c(ξ0)/μ) and σ₀ = ½ (0 without quantization). d = 0,
+    ξ0 = 0 is the paper's eq. 6 unchanged.
 
     Parameters
     ----------
@@ -211,6 +355,13 @@ def passivity_criterion(beta: float, sigma: float, xi_dot: float, *, quantized: 
         (e.g. the impact speed); its sign is ignored.
     quantized : bool, optional
         True (default) for eq. 6; False for the encoder-free eq. 7.
+    delay : int, optional
+        Computational delay d in whole samples (the force of sample h uses
+        the reading ξ(h − d)); default 0.
+    xi0 : float, optional
+        Initial position ξ0 in ticks (default 0); the past readings equal ξ0.
+    mu : float, optional
+        Dimensionless mass μ = m/(K T²); required when ``xi0`` is not 0.
 
     Returns
     -------
@@ -218,27 +369,37 @@ def passivity_criterion(beta: float, sigma: float, xi_dot: float, *, quantized: 
     """
     b = check_beta(beta)
     s = check_sigma(sigma)
-    v = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
+    d = _check_delay(delay)
+    xd = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
+    x0 = check_real("xi0", xi0, "give the initial position in encoder ticks")
+    m = None if mu is None else check_mu(mu)
+    v = equivalent_speed(xd, x0, m, quantized=quantized)
     s0 = 0.5 if quantized else 0.0
-    margin = (b - 0.5) * v + (s - s0)
-    region = str(classify_region(b, s, v, quantized))
-    critical = (s - s0) / (0.5 - b) if (b < 0.5 and s >= s0) else None
+    b0 = 0.5 + d
+    margin = (b - b0) * v + (s - s0)
+    region = str(classify_region(b, s, v, quantized, d))
+    critical = (s - s0) / (b0 - b) if (b < b0 and s >= s0) else None
     return CriterionResult(
         beta=b,
         sigma=s,
-        xi_dot=v,
+        xi_dot=xd,
         quantized=bool(quantized),
         region=region,
         passive=region in ("a", "e"),
         margin=margin,
         critical_xi_dot=critical,
-        critical_line=CriticalLine(v, s0),
+        critical_line=CriticalLine(v, s0, d),
+        equivalent_speed=v,
+        delay=d,
+        xi0=x0,
+        mu=m,
         status=REGION_DESCRIPTIONS[region],
     )
 
 
-def device_criterion(device: Device, stiffness: float, velocity: float, *, quantized: bool = True) -> CriterionResult:
-    """Passivity criterion for a physical device, stiffness and speed (paper eq. 11).
+def device_criterion(device: Device, stiffness: float, velocity: float, *, delay: int = 0, position: float = 0.0,
+                     quantized: bool = True) -> CriterionResult:
+    """Passivity criterion for a physical device, stiffness, speed, delay and initial position (paper eq. 11).
 
     Parameters
     ----------
@@ -248,6 +409,12 @@ def device_criterion(device: Device, stiffness: float, velocity: float, *, quant
         Virtual spring stiffness K in N/m (rotary: N·m/rad).
     velocity : float
         Largest speed of interest ẋ0 in m/s (rotary: rad/s); its sign is ignored.
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
+    position : float, optional
+        Initial position x0 in m (rotary: rad), default 0; ξ0 = x0/Δ.
+    quantized : bool, optional
+        True (default) for eq. 6; False for eq. 7.
 
     Examples
     --------
@@ -256,15 +423,19 @@ def device_criterion(device: Device, stiffness: float, velocity: float, *, quant
     >>> r = device_criterion(dev, 14500.0, 0.1)
     >>> r.region, round(r.critical_velocity, 4)
     ('e', 0.2765)
+    >>> device_criterion(dev, 14500.0, 0.1, delay=1).region
+    'd'
     """
     k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+    x0 = check_real("position", position, "give the initial position in m (rotary: rad)")
     p = device.params(k)
     xd = device.xi_dot(velocity)
-    r = passivity_criterion(p.beta, p.sigma, xd, quantized=quantized)
+    r = passivity_criterion(p.beta, p.sigma, xd, quantized=quantized, delay=delay, xi0=x0 / device.resolution, mu=p.mu)
     return replace(
         r,
         device=device,
         stiffness=k,
         velocity=abs(float(velocity)),
         critical_velocity=None if r.critical_xi_dot is None else device.velocity(r.critical_xi_dot),
+        position=x0,
     )

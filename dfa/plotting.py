@@ -29,7 +29,7 @@ import numpy as np
 from matplotlib.colors import ListedColormap
 from matplotlib.patches import Patch
 
-from .criterion import REGION_DESCRIPTIONS, CriterionResult, classify_region
+from .criterion import REGION_DESCRIPTIONS, CriterionResult, CriticalLine, classify_region
 
 __all__ = [
     "regions_plot",
@@ -69,40 +69,42 @@ def _axes(ax=None, figsize=(5.0, 4.0)):
 
 def regions_plot(result: CriterionResult, ax=None, *, xi_dots: Sequence[float] = (), beta_max: float = 1.0,
                  sigma_max: float = 2.0, legend: bool = True, legend_loc: str = "upper right"):
-    """The (β, σ) plane with regions a-e shaded for the result's speed (paper Fig. 3, eq. 10).
+    """The (β, σ) plane with regions a-e shaded for the result's speed and delay (paper Fig. 3, eq. 10).
 
     Parameters
     ----------
     result : CriterionResult
-        The operating point (β, σ) and speed |ξ'0|; the point is marked and
-        its critical line drawn dashed.
+        The operating point (β, σ), its (energy-equivalent) speed V and delay d;
+        the point is marked and its critical line (``result.critical_line``)
+        drawn dashed.
     ax : matplotlib Axes, optional
     xi_dots : sequence of float
-        Further speeds whose critical lines are drawn (dotted).
+        Further speeds whose critical lines (same delay) are drawn (dotted).
     """
     ax = _axes(ax)
-    bmax = max(beta_max, 1.2 * result.beta, 0.6)
+    line = result.critical_line
+    bmax = max(beta_max, 1.2 * result.beta, 0.6, 1.2 * line.beta0)
     smax = max(sigma_max, 1.2 * result.sigma, 0.6)
     b = np.linspace(0, bmax, 400)
     s = np.linspace(0, smax, 400)
-    reg = classify_region(b[None, :], s[:, None], result.xi_dot, result.quantized)
+    reg = classify_region(b[None, :], s[:, None], line.xi_dot, result.quantized, line.delay)
     codes = np.searchsorted(np.array(list("abcde")), reg)
     cmap = ListedColormap([REGION_COLORS[k] for k in "abcde"])
     ax.imshow(codes, origin="lower", extent=(0, bmax, 0, smax), aspect="auto", cmap=cmap, vmin=-0.5, vmax=4.5,
               interpolation="nearest")
-    s0 = result.critical_line.sigma0
-    ax.axvline(0.5, color="k", lw=0.8, ls="-.")
+    ax.axvline(line.beta0, color="k", lw=0.8, ls="-.")
     if result.quantized:
         ax.axhline(0.5, color="k", lw=0.8, ls="-.")
-    ax.plot(b, result.critical_line.sigma(b), "k--", lw=1.2, label=f"critical line, ξ'0 = {result.xi_dot:.3g}")
+    dl = f", delay {line.delay}" if line.delay else ""
+    ax.plot(b, line.sigma(b), "k--", lw=1.2, label=f"critical line, V = {line.xi_dot:.3g}{dl}")
     for v in xi_dots:
-        ax.plot(b, s0 + abs(v) * (0.5 - b), ":", color="0.3", lw=1.0, label=f"ξ'0 = {v:g}")
+        ax.plot(b, CriticalLine(v, line.sigma0, line.delay).sigma(b), ":", color="0.3", lw=1.0, label=f"ξ'0 = {v:g}")
     ax.plot([result.beta], [result.sigma], "o", color="#b2182b", ms=7, mec="k", label=f"operating point ({result.region})")
     ax.set_xlim(0, bmax)
     ax.set_ylim(0, smax)
     ax.set_xlabel(BETA_LABEL)
     ax.set_ylabel(SIGMA_LABEL)
-    ax.set_title("Regions of the (β, σ) plane (eq. 6, 10)")
+    ax.set_title("Regions of the (β, σ) plane (eq. 6, 10)" + (f", delay d = {line.delay}" if line.delay else ""))
     if legend:
         handles = [Patch(facecolor=REGION_COLORS[k], edgecolor="0.5", label=f"{k}: {REGION_DESCRIPTIONS[k].split(':')[0]}") for k in "abcde"]
         lines, labels = ax.get_legend_handles_labels()
@@ -116,8 +118,9 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
     As in the paper, white: came to rest; light: persisting oscillation, in
     two shades (lightest: chatter below one tick, darker: oscillating, one
     tick or more); dark: unstable; orange: undecided (the run was too short,
-    :mod:`dfa.simulation`). The critical line of each speed is dashed, the
-    region boundaries β = ½, σ = ½ dash-dot.
+    :mod:`dfa.simulation`). The critical line of each speed
+    (:class:`dfa.criterion.CriticalLine` with the map's delay d) is dashed, the
+    region boundaries β = ½ + d, σ = ½ dash-dot.
 
     Parameters
     ----------
@@ -144,9 +147,9 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
                   interpolation="nearest")
         v = smap.xi_dots[k]
         bb = np.linspace(b[0], b[-1], 200)
-        s0 = 0.5 if smap.quantize else 0.0
-        ax.plot(bb, s0 + v * (0.5 - bb), "--", color="#b2182b", lw=1.3)
-        ax.axvline(0.5, color="#2166ac", ls="-.", lw=1.0)
+        line = CriticalLine(v, 0.5 if smap.quantize else 0.0, smap.delay)
+        ax.plot(bb, line.sigma(bb), "--", color="#b2182b", lw=1.3)
+        ax.axvline(line.beta0, color="#2166ac", ls="-.", lw=1.0)
         if smap.quantize:
             ax.axhline(0.5, color="#2166ac", ls="-.", lw=1.0)
         ax.set_xlim(extent[0], extent[1])
@@ -155,11 +158,12 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
         ax.set_ylabel(SIGMA_LABEL)
         if titles:
             what = "preload equivalent to" if smap.preload else "initial speed"
-            ax.set_title(f"μ = {smap.mu:.4g}, {what} ξ'0 = {v:.3g} ticks/sample", fontsize=9)
+            ax.set_title(f"μ = {smap.mu:.4g}, {what} ξ'0 = {v:.3g} ticks/sample" + (f", delay {smap.delay}" if smap.delay else ""),
+                         fontsize=9)
     handles = [Patch(facecolor=OUTCOME_COLORS[k], edgecolor="0.5", label=_OUTCOME_LABELS[k])
                for k in ("rest", "chatter", "oscillating", "unstable", "undecided")]
     handles += [matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),
-               matplotlib.lines.Line2D([], [], color="#2166ac", ls="-.", label="β = ½, σ = ½")]
+                matplotlib.lines.Line2D([], [], color="#2166ac", ls="-.", label="β = ½ + d, σ = ½" if smap.delay else "β = ½, σ = ½")]
     axes[0].legend(handles=handles, fontsize=7, loc="upper right", framealpha=0.9)
     return axes
 
@@ -287,11 +291,13 @@ def stiffness_plot(curve, ax=None):
     """
     ax = _axes(ax, figsize=(6.0, 4.0))
     u = curve.device.units
-    ax.loglog(curve.velocity, curve.k_max, color="#2166ac", lw=2, label="criterion K_max (eq. 11)")
+    d = getattr(curve, "delay", 0)
+    cs = "2b/T" if d == 0 else f"b/(T(½ + {d}))"
+    ax.loglog(curve.velocity, curve.k_max, color="#2166ac", lw=2, label="criterion K_max (eq. 11)" + (f", delay {d}" if d else ""))
     ax.axhline(curve.k_static, color="#4d9221", ls="-.", lw=1, label="2c/Δ (eq. 9, at rest)")
-    ax.axhline(curve.k_colgate, color="#b2182b", ls="--", lw=1, label="Colgate-Schenkel 2b/T")
-    ax.axhline(curve.k_abbott_okamura, color="#762a83", ls=":", lw=1.5, label="Abbott-Okamura min(2b/T, 2c/Δ)")
-    ax.axhline(curve.k_gil, color="0.3", ls=(0, (5, 1, 1, 1)), lw=1, label="Gil et al. (linear, exact ZOH)")
+    ax.axhline(curve.k_colgate, color="#b2182b", ls="--", lw=1, label=f"Colgate-Schenkel {cs}")
+    ax.axhline(curve.k_abbott_okamura, color="#762a83", ls=":", lw=1.5, label=f"Abbott-Okamura min({cs}, 2c/Δ)")
+    ax.axhline(curve.k_gil, color="0.3", ls=(0, (5, 1, 1, 1)), lw=1, label="exact linear bound (no encoder, no friction" + (f", delay {d})" if d else ")"))
     if curve.stiffness is not None:
         ax.axhline(curve.stiffness, color="k", lw=1.2, label=f"chosen K = {curve.stiffness:.4g} {u['stiffness']}")
         if curve.max_passive_velocity is not None and np.isfinite(curve.max_passive_velocity):

@@ -21,7 +21,7 @@ import numpy as np
 from .catalogue import CatalogueEntry
 from .criterion import device_criterion
 from .device import Device
-from .errors import DFAValueError, check_choice, check_positive, check_real
+from .errors import DFAValueError, check_choice, check_int, check_positive, check_real
 from .cycles import growth_threshold
 from .loop import nyquist_locus_response
 from .maps import stability_map
@@ -138,10 +138,32 @@ def _outcome_sentence(r, dev: Device, k: float, v: float) -> str:
                    f"about {r.suggested_samples} samples would be needed to tell.")
 
 
+def _verdict_text(dev: Device, k: float, v: float, dl: int, crit, lim, v_sim) -> str:
+    """The report's verdict paragraph: what the criterion proves, and at which speed and delay."""
+    u = dev.units
+    ds = f"a computational delay of {dl} sample{'s' if dl != 1 else ''}"
+    if crit.passive:
+        verdict = "passive (proven: the energy cannot grow)"
+    elif lim.velocity_status == "none":
+        verdict = f"not passive even at rest (K > 2c/Δ = {lim.k_static:.5g} {u['stiffness']})"
+    else:
+        verdict = "not proven passive (the criterion gives no guarantee; that is not a proof of instability)"
+    text = (f"**Verdict.** With K = {k:g} {u['stiffness']}, an impact speed of {v:g} {u['velocity']} and {ds}, the {dev.name} is "
+            f"**{verdict}** (region {crit.region}: {crit.status}). ")
+    if crit.critical_velocity:
+        text += f"The criterion guarantees passivity up to {_fmt(crit.critical_velocity)} {u['velocity']}; "
+    text += f"{'at' if crit.critical_velocity else 'At'} {v:g} {u['velocity']} with {ds} the largest passive stiffness is {lim.k_max:.5g} {u['stiffness']}. "
+    if v_sim:
+        text += f"The exact simulation first goes unstable at {_fmt(dev.velocity(v_sim))} {u['velocity']}."
+    else:
+        text += "The exact simulation found no unstable impact speed up to 30 times the reference speed."
+    return text
+
+
 def design_report(device: Device | CatalogueEntry, stiffness: float | None = None, velocity: float | None = None, *,
                   out_dir: str | os.PathLike = "reports", fmt: str = "html", progress: bool = True, map_grid: int = 41,
-                  samples: int = 30_000) -> ReportResult:
-    """Write the design report of ``device`` at stiffness K and impact speed ẋ0.
+                  samples: int = 30_000, delay: int = 0) -> ReportResult:
+    """Write the design report of ``device`` at stiffness K, impact speed ẋ0 and computational delay d.
 
     Parameters
     ----------
@@ -158,6 +180,10 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
         Progress bars on the long parts.
     map_grid, samples : int
         Size of the simulated stability map around the operating point.
+    delay : int
+        Computational delay d in whole samples (default 0): used by the
+        criterion, the stiffness limits, the describing function and every
+        simulation of the report.
     """
     entry = device if isinstance(device, CatalogueEntry) else None
     dev = entry.device if entry is not None else device
@@ -169,6 +195,7 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
     k = check_positive("stiffness", k, "give the virtual wall stiffness K")
     v = abs(check_real("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1)))
     fmt = check_choice("fmt", fmt, ("html", "md", "both"))
+    dl = check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
     out = Path(out_dir)
     if not out.is_dir():
         raise DFAValueError(f"out_dir = {str(out)!r} is invalid: the folder does not exist; create it first")
@@ -181,14 +208,14 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
 
     steps = tqdm(total=7, desc=f"report {dev.name}", disable=not progress, leave=False)
     p = dev.params(k)
-    crit = device_criterion(dev, k, v)
-    lim = stiffness_limits(dev, v, k)
+    crit = device_criterion(dev, k, v, delay=dl)
+    lim = stiffness_limits(dev, v, k, delay=dl)
     steps.update()
-    thr = {m: growth_threshold(p, dev, model=m) for m in ("half-delay", "zoh")}  # search range follows the problem
+    thr = {m: growth_threshold(p, dev, model=m, delay=dl) for m in ("half-delay", "zoh")}  # search range follows the problem
     steps.update()
     # how far to trust: the true critical speed of this device by simulation
     ref = crit.critical_xi_dot if crit.critical_xi_dot else max(1.0, crit.xi_dot)
-    v_sim = _first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False)
+    v_sim = _first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, delay=dl)
     steps.update()
 
     import matplotlib
@@ -208,28 +235,29 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
 
     ax = plotting.regions_plot(crit, xi_dots=[x for x in (1.0, 5.0) if abs(x - crit.xi_dot) > 0.2], beta_max=max(1.0, 2 * p.beta),
                                sigma_max=max(2.0, 1.5 * p.sigma))
-    save(ax.figure, "regions", f"Operating point of the {dev.name} in the (β, σ) plane with its critical line at {v:g} {u['velocity']} (eq. 6, 10).")
-    ax = plotting.stiffness_plot(stiffness_response(dev, stiffness=k))
+    save(ax.figure, "regions", f"Operating point of the {dev.name} in the (β, σ) plane with its critical line at {v:g} {u['velocity']}"
+         + (f", delay {dl} sample{'s' if dl != 1 else ''}" if dl else "") + " (eq. 6, 10).")
+    ax = plotting.stiffness_plot(stiffness_response(dev, stiffness=k, delay=dl))
     save(ax.figure, "stiffness", "Largest passive stiffness against impact speed (eq. 11) and the published bounds.")
     res = thr["half-delay"].result
     amps = [c.amplitude for c in res.cycles[:3]] if p.sigma > 0 else None
     if p.sigma > 0 and not amps:
         amps = [1.0]
     m_top = max([50.0] + [2.0 * c.amplitude for c in res.cycles])  # the locus must reach every cycle drawn
-    ny = nyquist_locus_response(p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500))
+    ny = nyquist_locus_response(p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), delay=dl)
     ax = plotting.nyquist_plot(ny, cycles=res)
     save(ax.figure, "nyquist", "Nyquist plot of the linearised loop (half-sample delay) against −1/D(M), with the predicted limit cycles.")
     steps.update()
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
     fig, axs = plt.subplots(2, 1, figsize=(7, 5.4), constrained_layout=True)
-    sim_v = simulate(p.mu, p.beta, p.sigma, crit.xi_dot, n_traj)
+    sim_v = simulate(p.mu, p.beta, p.sigma, crit.xi_dot, n_traj, delay=dl)
     # outcomes from runs as long as the loop's time scales need (dfa.simulation.default_samples)
-    full_v = simulate(p.mu, p.beta, p.sigma, crit.xi_dot, record=False)
+    full_v = simulate(p.mu, p.beta, p.sigma, crit.xi_dot, delay=dl, record=False)
     plotting.trajectory_plot(sim_v, ax=axs[0], period=dev.period)
     axs[0].set_title(f"impact at {v:g} {u['velocity']} (ξ'0 = {crit.xi_dot:.3g}): {full_v.outcome}", fontsize=9)
     v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
-    sim_hi = simulate(p.mu, p.beta, p.sigma, v_show, n_traj)
-    full_hi = simulate(p.mu, p.beta, p.sigma, v_show, record=False)
+    sim_hi = simulate(p.mu, p.beta, p.sigma, v_show, n_traj, delay=dl)
+    full_hi = simulate(p.mu, p.beta, p.sigma, v_show, delay=dl, record=False)
     plotting.trajectory_plot(sim_hi, ax=axs[1], period=dev.period)
     axs[1].set_title(f"impact at {dev.velocity(v_show):.3g} {u['velocity']} (ξ'0 = {v_show:.3g}): {full_hi.outcome}", fontsize=9)
     save(fig, "trajectories", "Simulated displacement (exact sampled-data integration) at the design speed and just above the simulated critical speed; dashed: ±1 tick.")
@@ -237,7 +265,7 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
     bw = max(0.25, 2 * p.beta)
     sw = max(1.0, 2 * p.sigma)
     smap = stability_map(p.mu, [crit.xi_dot, 2 * crit.xi_dot] if crit.xi_dot > 0 else [1.0, 2.0],
-                         beta_range=(0.0, bw), sigma_range=(0.0, sw), grid=map_grid, samples=samples, progress=progress)
+                         beta_range=(0.0, bw), sigma_range=(0.0, sw), grid=map_grid, samples=samples, progress=progress, delay=dl)
     axs = plotting.stability_map_plot(smap)
     for a in axs:
         a.plot([p.beta], [p.sigma], "o", color="#f1a340", mec="k", ms=7)
@@ -246,14 +274,8 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
 
     # ------------------------------------------------------------ the document
     d = _Doc()
-    verdict = "passive" if crit.passive else "not passive"
     d.h(1, f"Design report: {dev.name}")
-    d.p(f"**Verdict.** With K = {k:g} {u['stiffness']} and an impact speed of {v:g} {u['velocity']} the {dev.name} is **{verdict}** "
-        f"(region {crit.region}: {crit.status}). "
-        + (f"The criterion guarantees passivity up to {_fmt(crit.critical_velocity)} {u['velocity']}; " if crit.critical_velocity else "")
-        + f"at this speed the largest passive stiffness is {lim.k_max:.5g} {u['stiffness']}. "
-        + (f"The exact simulation first goes unstable at {_fmt(dev.velocity(v_sim))} {u['velocity']}." if v_sim else
-           "The exact simulation found no unstable impact speed up to 30 times the reference speed."))
+    d.p(_verdict_text(dev, k, v, dl, crit, lim, v_sim))
     d.p("Method: N. Diolaiti, G. Niemeyer, F. Barbagli, J. K. Salisbury, *A Criterion for the Passivity of Haptic Devices*, ICRA 2005; "
         "equation numbers refer to that paper. Generated by `dfa report`.")
     d.h(2, "Device")
@@ -272,15 +294,17 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
     d.table(["quantity", "value"], [
         ["impact speed ẋ0", f"{v:g} {u['velocity']} = {crit.xi_dot:.4g} ticks/sample"],
         ["region (paper Fig. 3)", f"{crit.region}: {crit.status}"],
-        ["passive (eq. 6)", "yes" if crit.passive else "no"],
-        ["margin (β − ½)|ξ'0| + (σ − ½)", f"{crit.margin:.4g}"],
+        ["computational delay d", f"{dl} sample{'s' if dl != 1 else ''}"],
+        ["passive (eq. 6)", "yes (proven: the energy cannot grow)" if crit.passive else "no guarantee (not a proof of instability)"],
+        ["margin (β − ½ − d)|ξ'0| + (σ − ½)", f"{crit.margin:.4g}"],
         ["critical speed (eq. 12)", "none" if crit.critical_xi_dot is None else f"{crit.critical_xi_dot:.4g} ticks/sample = {_fmt(crit.critical_velocity)} {u['velocity']}"],
         ["K_max at this speed (eq. 11)", f"{lim.k_max:.5g} {u['stiffness']}"],
         ["2c/Δ (eq. 9, at rest)", f"{lim.k_static:.5g} {u['stiffness']}"],
         ["Colgate–Schenkel 2b/T (eq. 8)", f"{lim.k_colgate:.5g} {u['stiffness']}"],
         ["Abbott–Okamura min(2b/T, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {u['stiffness']}"],
-        ["Gil et al. (linear sampled spring)", f"{lim.k_gil:.5g} {u['stiffness']}"],
+        ["exact linear bound of the sampled spring (all Jury conditions; Gil et al. where binding)", f"{lim.k_gil:.5g} {u['stiffness']}"],
         [f"largest passive speed at K = {k:g}", lim.max_passive_velocity_text()],
+        ["verdict for this K at this speed", lim.verdict_text()],
     ])
     d.fig(*figs[0])
     d.fig(*figs[1])
@@ -335,7 +359,7 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
         pth.write_text(d.html(f"dfa design report: {dev.name}"), encoding="utf-8")
         paths.append(pth)
     steps.close()
-    numbers = dict(mu=p.mu, beta=p.beta, sigma=p.sigma, region=crit.region, passive=crit.passive, k_max=lim.k_max,
+    numbers = dict(mu=p.mu, beta=p.beta, sigma=p.sigma, region=crit.region, passive=crit.passive, k_max=lim.k_max, delay=dl,
                    critical_xi_dot=crit.critical_xi_dot, df_xi_dot=g.xi_dot, simulated_xi_dot=v_sim,
                    cycles=[c.amplitude for c in thr["half-delay"].result.cycles])
     return ReportResult(tuple(paths), tuple(f for f, _c in figs), numbers)

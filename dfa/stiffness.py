@@ -1,23 +1,29 @@
 """Stiffness limits for design (paper eq. 8, 9, 11 and the published bounds of spec section 8).
 
-Solving the physical criterion (eq. 11)::
+Solving the physical criterion (eq. 11, generalised to a computational delay of
+d samples as in :mod:`dfa.criterion`)::
 
-    (b − K T/2)|ẋ0| + (c − K Δ/2) >= 0   and   c >= K Δ/2
+    (b − K T(½ + d))|ẋ0| + (c − K Δ/2) >= 0   and   c >= K Δ/2
 
 for K gives the largest passive stiffness at impact speed ẋ0::
 
-    K_max(ẋ0) = min( 2c/Δ, 2(b|ẋ0| + c)/(T|ẋ0| + Δ) )
+    K_max(ẋ0, d) = min( 2c/Δ, (b|ẋ0| + c)/(T(½ + d)|ẋ0| + Δ/2) )
 
-which falls from 2c/Δ at rest (eq. 9) towards 2b/T at high speed (eq. 8)
-when b/T < c/Δ. Published bounds for comparison:
+which falls from 2c/Δ at rest (eq. 9) towards b/(T(½ + d)) at high speed (eq. 8;
+2b/T for d = 0) when b/(T(½ + d)) < 2c/Δ. Every limit here is a *passivity* limit:
+above it the criterion gives no guarantee, which is not a proof of instability.
+Published bounds for comparison:
 
-* Colgate & Schenkel (1997): K < 2b/T (no Coulomb friction, no encoder).
-* Abbott & Okamura (2005): K < min(2b/T, 2c/Δ), the ξ'0 → ∞ and ξ'0 → 0 ends of eq. 11.
-* Gil, Avello, Rubio & Flórez (2004): K_crit = (b/T) f(γ) with
+* Colgate & Schenkel (1997): K < 2b/T (no Coulomb friction, no encoder); with a
+  delay of d samples b/(T(½ + d)) (Diolaiti et al. 2006).
+* Abbott & Okamura (2005): K < min(2b/T, 2c/Δ), the ξ'0 → ∞ and ξ'0 → 0 ends of
+  eq. 11 (with a delay: min(b/(T(½ + d)), 2c/Δ)).
+* Gil, Avello, Rubio & Flórez (2004): for the linear sampled spring (no encoder,
+  no Coulomb friction), K_crit = (b/T) f(γ) with
   f(γ) = γ(1 − δ)/(1 − δ − γδ), γ = bT/m, δ = e^{−γ} — one Jury condition of
-  the linear sampled spring (no encoder, no Coulomb friction). :func:`k_gil`
-  is the exact linear bound, all Jury conditions and an optional delay
-  (:mod:`dfa.linear`); it equals Gil's form for γ < 3.72 without delay.
+  the linear sampled spring. :func:`k_gil` is the exact linear bound, all Jury
+  conditions and an optional delay (:mod:`dfa.linear`); it equals Gil's form for
+  γ < 3.72 without delay.
 
 Examples
 --------
@@ -39,7 +45,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .device import Device
-from .errors import DFAValueError, check_mu, check_positive, check_real, check_type
+from .errors import DFAValueError, check_int, check_mu, check_positive, check_real, check_type
 from .linear import critical_beta, critical_stiffness
 
 __all__ = [
@@ -47,6 +53,7 @@ __all__ = [
     "stiffness_limits",
     "k_max_criterion",
     "k_colgate",
+    "k_static",
     "k_abbott_okamura",
     "k_gil",
     "gil_factor",
@@ -61,10 +68,24 @@ def _check_device(device: object) -> Device:
     return check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
 
 
-def k_max_criterion(device: Device, velocity):
-    """Largest stiffness passing the criterion at impact speed ``velocity`` (eq. 11), N/m.
+def _check_delay(delay: object) -> int:
+    return check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
 
-    Vectorised over ``velocity`` (m/s or rad/s; sign ignored).
+
+def k_static(device: Device) -> float:
+    """Static limit 2c/Δ (paper eq. 9), N/m: above it the device is not passive even at rest.
+
+    The one place every stiffness result takes it from.
+    """
+    dev = _check_device(device)
+    return 2.0 * dev.coulomb / dev.resolution
+
+
+def k_max_criterion(device: Device, velocity, delay: int = 0):
+    """Largest stiffness passing the criterion at impact speed ``velocity`` and delay d (eq. 11 generalised), N/m.
+
+    K_max = min(2c/Δ, (b|ẋ0| + c)/(T(½ + d)|ẋ0| + Δ/2)). Vectorised over
+    ``velocity`` (m/s or rad/s; sign ignored); ``delay`` in whole samples.
 
     Examples
     --------
@@ -82,22 +103,28 @@ def k_max_criterion(device: Device, velocity):
         raise DFAValueError(
             f"velocity = {velocity!r} is invalid: it must be finite; give speeds in m/s (rotary: rad/s)"
         )
-    k_static = 2.0 * dev.coulomb / dev.resolution
-    k_dyn = 2.0 * (dev.damping * v + dev.coulomb) / (dev.period * v + dev.resolution)
-    out = np.minimum(k_static, k_dyn)
+    d = _check_delay(delay)
+    k_dyn = (dev.damping * v + dev.coulomb) / (dev.period * (0.5 + d) * v + 0.5 * dev.resolution)
+    out = np.minimum(k_static(dev), k_dyn)
     return float(out) if out.ndim == 0 else out
 
 
-def k_colgate(device: Device) -> float:
-    """Colgate-Schenkel bound 2b/T (paper eq. 8), N/m."""
+def k_colgate(device: Device, delay: int = 0) -> float:
+    """Colgate-Schenkel bound 2b/T (paper eq. 8), N/m; b/(T(½ + d)) with a delay of d samples."""
     dev = _check_device(device)
-    return 2.0 * dev.damping / dev.period
+    return dev.damping / (dev.period * (0.5 + _check_delay(delay)))
 
 
-def k_abbott_okamura(device: Device) -> float:
-    """Abbott-Okamura bound min(2b/T, 2c/Δ), N/m."""
+def k_abbott_okamura(device: Device, delay: int = 0) -> float:
+    """Abbott-Okamura bound min(2b/T, 2c/Δ), N/m; min(b/(T(½ + d)), 2c/Δ) with a delay of d samples."""
     dev = _check_device(device)
-    return min(2.0 * dev.damping / dev.period, 2.0 * dev.coulomb / dev.resolution)
+    return min(k_colgate(dev, delay), k_static(dev))
+
+
+def _bounds(dev: Device, delay: int) -> dict[str, float]:
+    """The speed-independent limits shared by :class:`StiffnessLimits` and :class:`StiffnessCurve`."""
+    return dict(k_static=k_static(dev), k_colgate=k_colgate(dev, delay), k_abbott_okamura=k_abbott_okamura(dev, delay),
+                k_gil=k_gil(dev, delay=delay))
 
 
 def gil_factor(gamma):
@@ -186,23 +213,24 @@ def gil_beta_critical(mu: float, *, delay: int = 0) -> float:
     return critical_beta(mu, delay)
 
 
-def max_passive_velocity(device: Device, stiffness: float) -> float | None:
-    """Largest impact speed for which stiffness K passes the criterion (eq. 11), m/s.
+def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> float | None:
+    """Largest impact speed for which stiffness K passes the criterion with delay d (eq. 11, 12), m/s.
 
     Returns
     -------
     float or None
-        ``math.inf`` when K <= 2b/T and K <= 2c/Δ (passive at every speed),
+        ``math.inf`` when K T(½ + d) <= b and K <= 2c/Δ (passive at every speed),
         None when K > 2c/Δ (not passive even at rest), otherwise
-        (c − KΔ/2)/(KT/2 − b).
+        (c − KΔ/2)/(KT(½ + d) − b).
     """
     dev = _check_device(device)
     k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+    d = _check_delay(delay)
     if dev.coulomb - k * dev.resolution / 2.0 < 0.0:
         return None
-    if k * dev.period / 2.0 <= dev.damping:
+    if k * dev.period * (0.5 + d) <= dev.damping:
         return math.inf
-    return (dev.coulomb - k * dev.resolution / 2.0) / (k * dev.period / 2.0 - dev.damping)
+    return (dev.coulomb - k * dev.resolution / 2.0) / (k * dev.period * (0.5 + d) - dev.damping)
 
 
 @dataclass(frozen=True)
@@ -217,15 +245,15 @@ class StiffnessLimits:
     xi_dot : float
         The same speed in encoder ticks per sample.
     k_max : float
-        Criterion limit (eq. 11) at this speed.
+        Criterion limit (eq. 11, with the delay) at this speed.
     k_static : float
         2c/Δ, the limit at rest (eq. 9).
     k_colgate : float
-        2b/T (eq. 8, Colgate & Schenkel 1997).
+        2b/T (eq. 8, Colgate & Schenkel 1997); b/(T(½ + d)) with a delay.
     k_abbott_okamura : float
-        min(2b/T, 2c/Δ) (Abbott & Okamura 2005).
+        min(2b/T, 2c/Δ) (Abbott & Okamura 2005); min(b/(T(½ + d)), 2c/Δ) with a delay.
     k_gil : float
-        Exact linear bound of the sampled spring, all Jury conditions (:func:`k_gil`).
+        Exact linear bound of the sampled spring with the same delay, all Jury conditions (:func:`k_gil`).
     stiffness : float or None
         The stiffness under study, if given.
     max_passive_velocity : float or None
@@ -235,6 +263,8 @@ class StiffnessLimits:
     status : str
         ``"ok"`` when ``stiffness`` passes at ``velocity`` (or none was given),
         otherwise ``"too stiff"``.
+    delay : int
+        Computational delay d in samples.
     """
 
     device: Device
@@ -249,12 +279,31 @@ class StiffnessLimits:
     max_passive_velocity: float | None = None
     velocity_status: str = "not requested"
     status: str = "ok"
+    delay: int = 0
 
     def max_passive_velocity_text(self) -> str:
         """The largest passive speed for ``stiffness`` in words, with units (for tables and reports)."""
         unit = self.device.units["velocity"]
-        return {"none": "none (K > 2c/Δ)", "all speeds": "every speed (K <= 2b/T)", "not requested": "–"}.get(
-            self.velocity_status, f"{self.max_passive_velocity:.4g} {unit}")
+        ku = self.device.units["stiffness"]
+        if self.velocity_status == "none":
+            return f"none: not passive even at rest (K > 2c/Δ = {self.k_static:.5g} {ku})"
+        if self.velocity_status == "all speeds":
+            return f"every speed (K <= {'2b/T' if self.delay == 0 else 'b/(T(½ + d))'} = {self.k_colgate:.5g} {ku})"
+        if self.velocity_status == "not requested" or self.max_passive_velocity is None:
+            return "–"
+        return f"{self.max_passive_velocity:.4g} {unit}"
+
+    def verdict_text(self) -> str:
+        """The verdict for ``stiffness`` at ``velocity`` in words (CLI and report)."""
+        if self.stiffness is None:
+            return "–"
+        ku = self.device.units["stiffness"]
+        if self.velocity_status == "none":
+            return f"too stiff: not passive even at rest (K > 2c/Δ = {self.k_static:.5g} {ku})"
+        if self.status == "ok":
+            return "ok: passive at this speed (proven)"
+        return (f"too stiff: no passivity guarantee at this speed (K > K_max = {self.k_max:.5g} {ku}); "
+                "not a proof of instability")
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (the ``dfa stiffness --json`` contract plus extras)."""
@@ -272,11 +321,12 @@ class StiffnessLimits:
             "xi_dot": self.xi_dot,
             "device": self.device.name,
             "status": self.status,
+            "delay": self.delay,
         }
 
 
-def stiffness_limits(device: Device, velocity: float, stiffness: float | None = None) -> StiffnessLimits:
-    """All stiffness limits of ``device`` at impact speed ``velocity``.
+def stiffness_limits(device: Device, velocity: float, stiffness: float | None = None, delay: int = 0) -> StiffnessLimits:
+    """All stiffness limits of ``device`` at impact speed ``velocity`` and delay d.
 
     Parameters
     ----------
@@ -285,37 +335,40 @@ def stiffness_limits(device: Device, velocity: float, stiffness: float | None = 
         Impact speed ẋ0 in m/s (rotary: rad/s); its sign is ignored.
     stiffness : float, optional
         A stiffness K to assess: its largest passive speed is reported.
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
     """
     dev = _check_device(device)
     v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
+    d = _check_delay(delay)
     mpv: float | None = None
     vstatus = "not requested"
     status = "ok"
     k = None
     if stiffness is not None:
         k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
-        mpv = max_passive_velocity(dev, k)
+        mpv = max_passive_velocity(dev, k, d)
         vstatus = "none" if mpv is None else ("all speeds" if math.isinf(mpv) else "bounded")
         status = "ok" if (mpv is not None and mpv >= v) else "too stiff"
     return StiffnessLimits(
         device=dev,
         velocity=v,
         xi_dot=dev.xi_dot(v),
-        k_max=float(k_max_criterion(dev, v)),
-        k_static=2.0 * dev.coulomb / dev.resolution,
-        k_colgate=k_colgate(dev),
-        k_abbott_okamura=k_abbott_okamura(dev),
-        k_gil=k_gil(dev),
+        k_max=float(k_max_criterion(dev, v, d)),
+        **_bounds(dev, d),
         stiffness=k,
         max_passive_velocity=mpv,
         velocity_status=vstatus,
         status=status,
+        delay=d,
     )
 
 
 @dataclass(frozen=True)
 class StiffnessCurve:
-    """K_max (eq. 11) over a range of impact speeds, with the speed-independent bounds (N/m).
+    """K_max (eq. 11, with the delay) over a range of impact speeds, with the speed-independent bounds (N/m).
+
+    The bounds come from the same function as :class:`StiffnessLimits` (``_bounds``).
 
     Attributes
     ----------
@@ -330,6 +383,8 @@ class StiffnessCurve:
     max_passive_velocity : float or None
         Its largest passive speed (inf: every speed; None: none).
     status : str
+    delay : int
+        Computational delay d in samples.
     """
 
     device: Device
@@ -342,10 +397,11 @@ class StiffnessCurve:
     stiffness: float | None = None
     max_passive_velocity: float | None = None
     status: str = "ok"
+    delay: int = 0
 
 
-def stiffness_response(device: Device, velocity=None, stiffness: float | None = None) -> StiffnessCurve:
-    """K_max against impact speed for a device (eq. 11), for :func:`dfa.plotting.stiffness_plot`.
+def stiffness_response(device: Device, velocity=None, stiffness: float | None = None, delay: int = 0) -> StiffnessCurve:
+    """K_max against impact speed for a device (eq. 11, with delay d), for :func:`dfa.plotting.stiffness_plot`.
 
     Parameters
     ----------
@@ -355,8 +411,11 @@ def stiffness_response(device: Device, velocity=None, stiffness: float | None = 
         each side of the speed Δ/T (one tick per sample).
     stiffness : float, optional
         A chosen stiffness to assess and mark.
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
     """
     dev = _check_device(device)
+    d = _check_delay(delay)
     if velocity is None:
         v0 = dev.resolution / dev.period
         velocity = np.geomspace(1e-3 * v0, 1e3 * v0, 200)
@@ -364,5 +423,6 @@ def stiffness_response(device: Device, velocity=None, stiffness: float | None = 
     if v.size == 0 or not np.all(np.isfinite(v)) or np.any(v <= 0):
         raise DFAValueError(f"velocity = {velocity!r} is invalid: it must hold finite speeds > 0 (m/s)")
     k = None if stiffness is None else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
-    return StiffnessCurve(dev, v, np.atleast_1d(k_max_criterion(dev, v)), 2 * dev.coulomb / dev.resolution, k_colgate(dev),
-                          k_abbott_okamura(dev), k_gil(dev), k, None if k is None else max_passive_velocity(dev, k))
+    mpv = None if k is None else max_passive_velocity(dev, k, d)
+    return StiffnessCurve(dev, v, np.atleast_1d(k_max_criterion(dev, v, d)), **_bounds(dev, d), stiffness=k,
+                          max_passive_velocity=mpv, delay=d)

@@ -91,14 +91,15 @@ def cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh")) ->
     return out
 
 
-def _first_unstable_speed(p: Params, v_lo: float, v_hi: float, samples: int, preload: bool, steps: int = 40) -> float | None:
+def _first_unstable_speed(p: Params, v_lo: float, v_hi: float, samples: int, preload: bool, steps: int = 40,
+                          delay: int = 0) -> float | None:
     """Smallest speed on a geometric scan that ends unstable, refined by bisection against the scan point below it."""
 
     def unstable(v: float) -> bool:
         if preload:
-            r = simulate(p.mu, p.beta, p.sigma, 0.0, samples, xi0=preload_position(p.mu, v), record=False)
+            r = simulate(p.mu, p.beta, p.sigma, 0.0, samples, xi0=preload_position(p.mu, v), delay=delay, record=False)
         else:
-            r = simulate(p.mu, p.beta, p.sigma, v, samples, record=False)
+            r = simulate(p.mu, p.beta, p.sigma, v, samples, delay=delay, record=False)
         return r.outcome == "unstable"
 
     speeds = np.geomspace(v_lo, v_hi, steps)

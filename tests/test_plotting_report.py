@@ -115,11 +115,37 @@ def test_report_numbers_equal_the_api(report_dir):
     lim = dfa.stiffness_limits(dev, 0.05, 80.0)
     crit = dfa.device_criterion(dev, 80.0, 0.05)
     assert f"| K_max at this speed (eq. 11) | {lim.k_max:.5g} N/m |" in md
-    assert f"| Gil et al. (linear sampled spring) | {lim.k_gil:.5g} N/m |" in md
+    assert f"| exact linear bound of the sampled spring (all Jury conditions; Gil et al. where binding) | {lim.k_gil:.5g} N/m |" in md
     assert f"{crit.critical_xi_dot:.4g} ticks/sample" in md
     assert f"region {crit.region}" in md
     g = dfa.cycles.growth_threshold(dev.params(80.0), dev, model="zoh", max_amplitude=5000.0)
     assert f"M_u = {g.amplitude:.4g} ticks" in md
+
+
+def test_report_verdict_says_what_is_proven_and_names_speed_and_delay(report_dir):
+    md = (report_dir / "design_report_impulse-engine.md").read_text()
+    dev = dfa.get_device("impulse").device
+    lim = dfa.stiffness_limits(dev, 0.05, 80.0)
+    assert "**passive (proven: the energy cannot grow)**" in md
+    assert f"at 0.05 m/s with a computational delay of 0 samples the largest passive stiffness is {lim.k_max:.5g} N/m" in md
+    assert "| computational delay d | 0 samples |" in md
+    assert "locally unstable" not in md and "globally unstable" not in md
+
+
+def test_report_verdict_for_a_stiffness_above_the_static_limit_and_with_delay():
+    from dfa.report import _verdict_text
+
+    dev = dfa.get_device("Delta").device
+    crit = dfa.device_criterion(dev, 60000.0, 0.1, delay=1)
+    lim = dfa.stiffness_limits(dev, 0.1, 60000.0, delay=1)
+    text = _verdict_text(dev, 60000.0, 0.1, 1, crit, lim, None)
+    assert f"**not passive even at rest (K > 2c/Δ = {2 * dev.coulomb / dev.resolution:.5g} N/m)**" in text
+    assert f"At 0.1 m/s with a computational delay of 1 sample the largest passive stiffness is {lim.k_max:.5g} N/m" in text
+    assert lim.max_passive_velocity_text().startswith("none: not passive even at rest")  # formatted None before the fix
+    crit = dfa.device_criterion(dev, 20000.0, 0.1, delay=1)
+    lim = dfa.stiffness_limits(dev, 0.1, 20000.0, delay=1)
+    text = _verdict_text(dev, 20000.0, 0.1, 1, crit, lim, None)
+    assert "**not proven passive (the criterion gives no guarantee; that is not a proof of instability)**" in text
 
 
 def test_report_html_is_self_contained(report_dir):
