@@ -315,7 +315,7 @@ _CLI = ["stiffness", "--mass", "0.01", "--damping", "5", "--period", "0.01", "--
 def test_gil_cli_row_prints_the_exact_linear_bound(capsys):
     assert main(_CLI) == 0
     out = capsys.readouterr().out
-    row = next(line for line in out.splitlines() if line.startswith("Gil et al."))
+    row = next(line for line in out.splitlines() if line.startswith("exact linear bound"))
     assert row.split()[-2:] == ["1651.9", "N/m"]
 
 
@@ -324,3 +324,15 @@ def test_gil_cli_json_k_gil(capsys):
     rec = json.loads(capsys.readouterr().out)
     assert rec["k_gil"] == pytest.approx(1652.0, rel=1e-3)
     assert rec["k_gil"] == critical_stiffness(**REPRO)
+
+
+def test_gil_cli_row_follows_the_delay(capsys):
+    """`dfa stiffness --delay 1` prints the exact linear bound of the delayed loop (smaller than without delay)."""
+    from dfa.linear import critical_stiffness
+
+    assert main(_CLI + ["--delay", "1"]) == 0
+    out = capsys.readouterr().out
+    row = next(line for line in out.splitlines() if line.startswith("exact linear bound"))
+    assert "delay 1" in row
+    assert float(row.split()[-2]) == pytest.approx(critical_stiffness(0.01, 5.0, 0.01, delay=1), rel=1e-4)
+    assert float(row.split()[-2]) < 1651.9
