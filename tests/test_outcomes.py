@@ -315,3 +315,15 @@ def test_fig4_plot_colours_and_legend_per_class():
     assert lum["unstable"] < 0.25                                 # dark
     und = colours["undecided"]
     assert np.ptp(und) > 0.3                                      # a colour, not a grey: visible against all others
+
+
+def test_cli_map_text_counts_every_class(capsys, tmp_path):
+    out_file = tmp_path / "m.npz"
+    argv = ["map", "--mu", "100", "--xi-dot", "1", "--beta-range", "0.6", "1", "--sigma-range", "0", "0.4", "--grid", "3",
+            "--samples", "20000", "--jobs", "1", "--out", str(out_file), "--quiet"]
+    assert main(argv) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[1].split() == ["ξ'0", "rest", "chatter", "oscillating", "unstable", "undecided"]
+    counts = load_map(out_file).counts()[0]
+    assert lines[3].split() == ["1", *(str(counts[k]) for k in ("rest", "chatter", "oscillating", "unstable", "undecided"))]
+    assert counts["rest"] == 0 and counts["chatter"] >= 6  # region b: never at rest
