@@ -296,6 +296,10 @@ def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize):
     * rest: the kernel reached the absorbing state (``rest >= 0``);
     * unstable: |ξ| exceeded the bound, or the envelope grows: P_7 exceeds
       ``growth`` times P_4 and 1 tick, and P_4 <= P_5 <= P_6 <= P_7;
+      without quantization (the linear loop, which has no tick scale) the
+      1-tick floor is dropped, and an envelope that shrinks the same way
+      (P_4 > ``growth`` P_7, P_4 >= P_5 >= P_6 >= P_7) is rest: it decays to
+      rest geometrically and never reaches it exactly;
     * undecided: the envelope has not settled: max − min of P_5, P_6, P_7
       exceeds ``settle`` times their max, or the tail holds less than one
       full cycle (fewer than two upward crossings of its centre);
@@ -322,12 +326,18 @@ def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize):
     count = stats[NSEG + 2]
     if count >= 2 and stats[NSEG + 4] > stats[NSEG + 3]:
         freq = 2.0 * math.pi * (count - 1) / (stats[NSEG + 4] - stats[NSEG + 3])
-    grow = stats[NSEG - 1] > growth * stats[NSEG // 2] and stats[NSEG - 1] > 1.0
+    # without quantization the loop is linear and has no tick scale: growth needs no 1-tick floor
+    grow = stats[NSEG - 1] > growth * stats[NSEG // 2] and (stats[NSEG - 1] > 1.0 or not quantize)
+    decay = not quantize and stats[NSEG - 1] * growth < stats[NSEG // 2]
     for i in range(NSEG - 4, NSEG - 1):
         if stats[i + 1] < stats[i]:
             grow = False
+        if stats[i + 1] > stats[i]:
+            decay = False
     if grow:
         return UNSTABLE, amp, freq, centre, fpp
+    if decay:  # linear loop: the envelope shrinks geometrically, i.e. it decays to rest
+        return REST, amp, freq, centre, fpp
     hi = max(stats[NSEG - 3], stats[NSEG - 2], stats[NSEG - 1])
     lo = min(stats[NSEG - 3], stats[NSEG - 2], stats[NSEG - 1])
     if hi - lo > settle * hi or not count >= 2:

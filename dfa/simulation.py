@@ -18,9 +18,14 @@ k-th eighth of the run (``SimulationResult.envelope``).
     force unchanged, the absorbing state that ends the run. Only this state
     is reported as rest. With the encoder (``quantize``) it needs σ >= ½,
     since |φ| = |⌊ξ⌋ + ½| >= ½ at every level: for σ < ½ a run never rests.
+    Without quantization (``quantize=False``, the linear loop, which decays
+    to rest but never reaches it exactly when σ = 0) rest also means an
+    envelope that shrinks as the unstable rule below grows:
+    P_4 > ``growth`` × P_7 and P_4 >= P_5 >= P_6 >= P_7.
 ``"unstable"``
     |ξ| exceeded ``bound`` ticks (default 10⁶), or the envelope grows:
-    P_7 > ``growth`` (default 1.25) × P_4, P_7 > 1 tick, and
+    P_7 > ``growth`` (default 1.25) × P_4, P_7 > 1 tick (no tick floor
+    without quantization: the linear loop has no scale), and
     P_4 <= P_5 <= P_6 <= P_7.
 ``"undecided"``
     the run was too short to tell: the envelope is still changing

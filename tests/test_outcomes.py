@@ -327,3 +327,19 @@ def test_cli_map_text_counts_every_class(capsys, tmp_path):
     counts = load_map(out_file).counts()[0]
     assert lines[3].split() == ["1", *(str(counts[k]) for k in ("rest", "chatter", "oscillating", "unstable", "undecided"))]
     assert counts["rest"] == 0 and counts["chatter"] >= 6  # region b: never at rest
+
+
+@pytest.mark.parametrize("delay", [0, 1, 2])
+def test_gil_linear_loop_outcome_flips_at_the_exact_linear_bound(delay):
+    """Without quantization the outcome is scale-free: from a tiny impact the linear loop is
+    'unstable' just above the exact linear bound (dfa.linear) and 'rest' (decaying) just below it."""
+    from dfa.device import Device
+    from dfa.linear import critical_stiffness
+
+    dev = Device(0.01, 5.0, 0.0, 1e-5, 0.01)  # bT/m = 5: the z = -1 condition binds at d = 0
+    k = critical_stiffness(dev.mass, dev.damping, dev.period, delay=delay)
+    out = {}
+    for f in (0.98, 1.02):
+        p = dev.params(k * f)
+        out[f] = simulate(p.mu, p.beta, 0.0, 1e-3, 4000, delay=delay, quantize=False, record=False).outcome
+    assert out == {0.98: "rest", 1.02: "unstable"}
