@@ -79,7 +79,7 @@ def main(out: str, quick: bool = False) -> str:
         f"![Fig. 5]({rel(f5['path'])})",
         "",
         "The paper's exact values are illegible; the chosen points are stated in `examples/fig5_trajectories.py`. Results: "
-        + "; ".join(f"{c['label']}: region {c['region']}, simulated {c['outcome']}" + (f" with a persistent cycle of {c['amplitude']:.2g} ticks" if c['amplitude'] and c['amplitude'] > 0 else " (comes to rest)") for c in cases5) + ".",
+        + "; ".join(f"{c['label']}: region {c['region']}, simulated {c['outcome']}" + (f" with a persistent cycle of {c['amplitude']:.2g} ticks" if c['amplitude'] and c['amplitude'] > 0 else (" (comes to rest)" if c['outcome'] == 'rest' else "")) for c in cases5) + ".",
         "As in the paper: the globally stable point comes to rest, the coarse-encoder point in region b keeps a small persistent",
         "oscillation within ±1 tick, and the locally stable point started with reduced energy (spring preload below the critical",
         "speed) comes to rest.",
@@ -109,7 +109,7 @@ def main(out: str, quick: bool = False) -> str:
         f"![Stiffness design]({rel(ds['path'])})",
         "",
         f"Design example: the Phantom (Δ = 29 µm) may render at most {ds['k_max']:.4g} N/m for 0.1 m/s impacts; with a 20 % margin,",
-        f"K = {ds['k']:.4g} N/m is in region {ds['region']}, passive up to {ds['critical_velocity']:.3g} m/s, and the simulated 0.1 m/s impact is {ds['outcome']}.",
+        f"K = {ds['k']:.4g} N/m is in region {ds['region']}, passive up to {ds['critical_velocity']:.3g} m/s, and the simulated 0.1 m/s impact {'comes to rest' if ds['outcome'] == 'rest' else 'ends in ' + ds['outcome']}.",
         "",
         "See `reports/validation/validation.md` for how the describing-function predictions and the criterion compare with the exact",
         "simulation over hundreds of operating points.",
