@@ -44,6 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
+from .criterion import device_criterion
 from .device import Device
 from .errors import DFAValueError, check_int, check_mu, check_positive, check_real, check_type
 from .linear import critical_beta, critical_stiffness
@@ -225,12 +226,14 @@ def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> fl
     """
     dev = _check_device(device)
     k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
-    d = _check_delay(delay)
-    if dev.coulomb - k * dev.resolution / 2.0 < 0.0:
+    # one implementation: the criterion's own critical speed (eq. 12), so that this speed and the
+    # verdict of device_criterion agree to rounding even where K T(½ + d) − b cancels
+    r = device_criterion(dev, k, 0.0, delay=_check_delay(delay))
+    if r.region in ("b", "c"):
         return None
-    if k * dev.period * (0.5 + d) <= dev.damping:
+    if r.region == "a":
         return math.inf
-    return (dev.coulomb - k * dev.resolution / 2.0) / (k * dev.period * (0.5 + d) - dev.damping)
+    return r.critical_velocity
 
 
 @dataclass(frozen=True)

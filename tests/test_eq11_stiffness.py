@@ -112,3 +112,18 @@ def test_gil_factor_series_matches_direct_formula_and_limit():
     assert gil_factor(0.0) == 2.0
     # continuity across the switch between series and closed form
     assert gil_factor(0.5 - 1e-12) == pytest.approx(gil_factor(0.5 + 1e-12), rel=1e-10)
+
+
+def test_eq11_max_passive_velocity_agrees_with_the_criterion_where_kt_minus_b_cancels():
+    """K = 60 N/m on the Delta is one rounding step above 2b/T: the largest passive speed must still be one
+    at which device_criterion says passive (it claimed 5.08e17 m/s where eq. 6 already failed at 3.97e17)."""
+    import dfa
+
+    dev = dfa.get_device("Delta").device
+    for k in (60.0, np.nextafter(60.0, 0.0), np.nextafter(60.0, 100.0), 2 * dev.damping / dev.period):
+        v = dfa.max_passive_velocity(dev, k)
+        if v is None or math.isinf(v):
+            assert dfa.device_criterion(dev, k, 1e30).passive == math.isinf(v or 0.0)
+            continue
+        assert dfa.device_criterion(dev, k, v * (1 - 1e-9)).passive
+        assert not dfa.device_criterion(dev, k, v * (1 + 1e-9)).passive
