@@ -151,6 +151,24 @@ def staged_folder(folder: str | os.PathLike) -> Iterator[Path]:
 
 
 # ------------------------------------------------------------ output-path rules
+def _check_path_text(flag: str, path: str) -> None:
+    """Refuse a path the operating system cannot take: NUL bytes, non-encodable text, too long a name."""
+    shown = repr(path[:60]) + ("…" if len(path) > 60 else "")
+    try:
+        os.fsencode(path)
+    except UnicodeError:
+        raise DFAValueError(f"{flag} {shown} is invalid: it cannot be encoded as a file name; use plain characters") from None
+    if "\0" in path:
+        raise DFAValueError(f"{flag} {shown} is invalid: it contains a NUL byte; give a plain path")
+    try:
+        name_max = os.pathconf(os.path.dirname(os.path.abspath(path)) or ".", "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):
+        name_max = 255
+    longest = max((len(os.fsencode(part)) for part in path.split(os.sep)), default=0)
+    if longest > name_max or len(os.fsencode(path)) > 4000:
+        raise DFAValueError(f"{flag} {shown} is invalid: a name in it is longer than {name_max} bytes; give a shorter path")
+
+
 def check_output_file(flag: str, path: str, suffix: str | None = None) -> str:
     """Refuse an output *file* path that cannot be written as given; return it.
 
@@ -161,6 +179,7 @@ def check_output_file(flag: str, path: str, suffix: str | None = None) -> str:
     """
     if not isinstance(path, str) or not path.strip():
         raise DFAValueError(f"{flag} {path!r} is invalid: it must name a file; give e.g. {flag} out{suffix or '.csv'}")
+    _check_path_text(flag, path)
     if path.endswith(("/", os.sep)) or os.path.isdir(path):
         raise DFAValueError(f"{flag} {path!r} is a folder: it must name a file; give e.g. {flag} {os.path.join(path, 'out' + (suffix or '.csv'))}")
     if os.path.exists(path) and not os.path.isfile(path):
@@ -183,6 +202,7 @@ def check_output_folder(flag: str, path: str, create: bool) -> str:
     """
     if not isinstance(path, str) or not path.strip():
         raise DFAValueError(f"{flag} {path!r} is invalid: it must name a folder; give e.g. {flag} reports")
+    _check_path_text(flag, path)
     if os.path.exists(path) and not os.path.isdir(path):
         raise DFAValueError(f"{flag} {path!r} is not a folder: it is an existing file; choose a folder")
     if not os.path.isdir(path):

@@ -380,7 +380,9 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 SIMULATE_NS_PER_SAMPLE = 100
 #: ``dfa simulate`` refuses runs estimated longer than this (seconds) unless --force: the compiled
 #: kernel cannot be interrupted before it returns.
-SIMULATE_TIME_LIMIT = 60.0
+SIMULATE_TIME_LIMIT = 30.0
+#: ``dfa map`` refuses maps estimated longer than this (hours, at the worst-case cost per sample) unless --force.
+MAP_TIME_LIMIT_HOURS = 24.0
 #: |ξ| (ticks) beyond which a run counts as unstable (the default ``bound`` of :func:`dfa.simulate`).
 SIMULATION_BOUND = 1.0e6
 
@@ -420,7 +422,15 @@ def _cmd_map(args: argparse.Namespace) -> int:
         raise UsageError(f"--xi-dot {negative[0]:g} is invalid: initial speeds must be >= 0 (the map is symmetric in the "
                          f"sign of ξ'0); give --xi-dot {abs(negative[0]):g}")
     check_jobs("--jobs", args.jobs)
+    _check_samples(args.samples, args.force)  # one run is uninterruptible: the same limit as `dfa simulate`
     if args.grid >= 2:
+        runs = args.grid**2 * len(args.xi_dot)
+        cores = (os.cpu_count() or 1) if args.jobs == -1 else args.jobs
+        hours = runs * args.samples * SIMULATE_NS_PER_SAMPLE * 1e-9 / 3600 / cores
+        if hours > MAP_TIME_LIMIT_HOURS and not args.force:
+            raise UsageError(f"--grid {args.grid} with --samples {args.samples} could take up to {hours:.3g} h on {cores} cores "
+                             f"(estimated {SIMULATE_NS_PER_SAMPLE} ns per sample; limit {MAP_TIME_LIMIT_HOURS:g} h): "
+                             "lower --grid or --samples, or add --force")
         check_memory("--grid", args.grid, map_memory_bytes(args.grid, len(args.xi_dot)), "lower --grid or give fewer --xi-dot speeds")
     m = stability_map(args.mu, args.xi_dot, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range),
                       grid=args.grid, samples=args.samples, delay=args.delay, preload=args.preload,
@@ -473,13 +483,12 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
 
 
 def _cmd_contours(args: argparse.Namespace) -> int:
-    from ._io import check_memory
-    from .contours import contour_maps, contour_memory_bytes
+    from .contours import check_contour_memory, contour_maps
 
     if args.out is not None:
         check_output_file("--out", args.out, ".npz")
     if args.grid >= 2 and args.max_amplitude >= 1.0:
-        check_memory("--grid", args.grid, contour_memory_bytes(args.grid, args.max_amplitude), "lower --grid or --max-amplitude")
+        check_contour_memory(args.grid, args.max_amplitude, ("--grid", "--max-amplitude"))
     c = contour_maps(args.mu, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range), grid=args.grid,
                      max_amplitude=args.max_amplitude)
     d = c.as_dict()
@@ -610,6 +619,7 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default all cores)")
     p.add_argument("--out", required=True, metavar="FILE.npz", help="where to write the map")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--force", action="store_true", help=f"run even when one run is estimated over {SIMULATE_TIME_LIMIT:g} s or the map over {MAP_TIME_LIMIT_HOURS:g} h")
     p.add_argument("--json", action="store_true", help="print counts per outcome per speed as JSON")
     p.set_defaults(func=_cmd_map)
 

@@ -186,6 +186,16 @@ def contour_memory_bytes(grid: int, max_amplitude: float) -> float:
     return float(grid) ** 2 * CONTOUR_BYTES_PER_POINT + float(grid) * n_m * CONTOUR_BYTES_PER_ROW_SAMPLE + 32.0 * n_m
 
 
+def check_contour_memory(grid: int, max_amplitude: float, names: tuple[str, str] = ("grid", "max_amplitude")) -> None:
+    """Refuse a map planned to need too much memory (see :func:`dfa._io.check_memory`), naming the input that drives it."""
+    need = contour_memory_bytes(grid, max_amplitude)
+    by_amplitude = float(grid) * CONTOUR_SAMPLES_PER_TICK * (float(max_amplitude) + 1.0) * CONTOUR_BYTES_PER_ROW_SAMPLE
+    if by_amplitude > float(grid) ** 2 * CONTOUR_BYTES_PER_POINT:
+        check_memory(names[1], f"{max_amplitude:g}", need, f"lower {names[1]} (the largest amplitude searched, ticks) or {names[0]}")
+    else:
+        check_memory(names[0], grid, need, f"lower {names[0]} (points per axis) or {names[1]}")
+
+
 def contour_maps(mu: float, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), grid: int = 200,
                  max_amplitude: float = 200.0) -> ContourMaps:
     """Amplitude and frequency maps of both cycle families over a (β, σ) grid (paper Fig. 7).
@@ -208,7 +218,7 @@ def contour_maps(mu: float, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), gr
     amax = check_positive("max_amplitude", max_amplitude)
     if amax < 1.0:
         raise DFAValueError(f"max_amplitude = {amax} is invalid: it must be >= 1 tick (the large family has M >= 1)")
-    check_memory("grid", g, contour_memory_bytes(g, amax), "lower grid (points per axis) or max_amplitude")
+    check_contour_memory(g, amax)
     beta = np.linspace(b0, b1, g)
     sigma = np.linspace(s0, s1, g)
     bb, ss = np.meshgrid(beta, sigma)

@@ -241,10 +241,13 @@ def dimensionless_params(device: Device, stiffness: float, names: dict[str, str]
     k = float(stiffness)
     vals = {"mass": device.mass, "damping": device.damping, "coulomb": device.coulomb,
             "resolution": device.resolution, "period": device.period, "stiffness": k}
+    def div(a: float, b: float) -> float:  # a denominator that underflows to 0 gives inf (or NaN for 0/0), not an exception
+        return a / b if b != 0.0 else (math.inf if a > 0.0 else math.nan)
+
     out = {
-        "mu": device.mass / (k * device.period**2),
-        "beta": device.damping / (k * device.period),
-        "sigma": device.coulomb / (k * device.resolution),
+        "mu": div(device.mass, k * (device.period * device.period)),  # p*p: inf, not OverflowError
+        "beta": div(device.damping, k * device.period),
+        "sigma": div(device.coulomb, k * device.resolution),
     }
     names = names or {}
     for key, what, inputs in _GROUPS:
@@ -252,7 +255,7 @@ def dimensionless_params(device: Device, stiffness: float, names: dict[str, str]
         if math.isfinite(value) and (value >= sys.float_info.min or (value == 0.0 and key != "mu")):
             continue
         given = ", ".join(f"{names.get(n, n)} = {vals[n]:g}" for n in inputs)
-        how = "overflows to inf" if not math.isfinite(value) else f"vanishes ({value:.3g}, below {sys.float_info.min:.3g})"
+        how = "overflows to inf" if math.isinf(value) else "is undefined (0/0)" if math.isnan(value) else f"vanishes ({value:.3g}, below {sys.float_info.min:.3g})"
         raise DFAValueError(
             f"{given} is invalid: {what} {how}; give ordinary physical values in SI units "
             f"({', '.join(device.units[n] for n in inputs)})"
