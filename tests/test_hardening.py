@@ -485,3 +485,20 @@ def test_eq11_max_passive_velocity_delta_k60_counterexample():
     dev = dfa.get_device("Delta").device
     v = dfa.max_passive_velocity(dev, 60.0)
     assert dfa.device_criterion(dev, 60.0, v * (1 - 1e-9)).passive
+
+
+def test_cli_map_huge_samples_refused(capsys, tmp_path):
+    # found by the fuzz test: `dfa map --samples 999999999999999999` ran for hours, uninterruptibly per point
+    err = refused(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "999999999999999999", "--jobs", "1",
+                  "--out", str(tmp_path / "m.npz"))
+    assert "--samples" in err and "--force" in err
+    err = refused(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "20000", "--jobs", "1", "--out", str(tmp_path / "m.npz"))
+    assert "--grid 20000" in err and " h " in err
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("argv", [["--period", "1e200"], ["--resolution", "1e-310", "--stiffness", "1e-20"]])
+def test_cli_table1_groups_without_float_exceptions(capsys, argv):
+    # found by the fuzz test: T² overflowed (OverflowError) and K·Δ underflowed to 0 (ZeroDivisionError)
+    err = refused(capsys, "params", *IMPULSE, *argv)
+    assert "is invalid" in err and argv[0] in err
