@@ -17,6 +17,10 @@ Examples
 ('e', True)
 """
 
+from ._io import ensure_numba_cache_dir as _ensure_numba_cache_dir
+
+_ensure_numba_cache_dir()  # before numba compiles anything: a read-only install still runs
+
 from .catalogue import DEFAULT_DEVICE, CatalogueEntry, Discrepancy, catalogue, get_device
 from .criterion import (
     REGION_DESCRIPTIONS,

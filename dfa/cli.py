@@ -17,14 +17,17 @@ import argparse
 import json
 import math
 import os
+import re
+import signal
 import sys
 from dataclasses import dataclass
 from typing import Callable, Sequence
 
 from .catalogue import DEFAULT_DEVICE, catalogue, get_device
 from .criterion import device_criterion, passivity_criterion
-from .device import Device, Params
-from .errors import DFAError, DFAValueError, check_beta, check_sigma
+from ._io import check_output_file, check_output_folder, written_paths
+from .device import Device, Params, dimensionless_params
+from .errors import DFAError, DFAValueError, check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
 from .stiffness import stiffness_limits
 
 __all__ = ["main"]
@@ -41,14 +44,25 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(f"{self.prog}: error: {message}")
 
 
+# Decimal ASCII only: no '1_000', no Arabic-Indic or full-width digits, no 'nan'/'inf' (float() takes them all).
+_DECIMAL = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_WHOLE = re.compile(r"[+-]?[0-9]+")
+
+
 def _number(flag: str, unit: str) -> Callable[[str], float]:
     def parse(text: str) -> float:
-        try:
-            return float(text)
-        except ValueError:
+        if not _DECIMAL.fullmatch(text):
+            what = "not a finite number" if text.strip().lower().lstrip("+-") in ("nan", "inf", "infinity") else "not a number"
             raise argparse.ArgumentTypeError(
-                f"{text!r} is not a number: {flag} takes a real number in {unit}"
-            ) from None
+                f"{text[:40]!r} is {what}: {flag} takes a finite decimal number in {unit}, written with ASCII digits "
+                "(e.g. 0.25, -3, 1e-3; no '_', no other scripts)"
+            )
+        value = float(text)
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{text[:40]!r} is too large: {flag} takes a number below 1.8e308 in {unit}")
+        if value == 0.0 and any(c in "123456789" for c in text.lower().split("e")[0]):
+            raise argparse.ArgumentTypeError(f"{text[:40]!r} is too small: it rounds to 0; {flag} takes a number above 1e-308 in {unit} (or 0)")
+        return value + 0.0  # -0 is zero
 
     parse.__name__ = flag
     return parse
@@ -56,10 +70,13 @@ def _number(flag: str, unit: str) -> Callable[[str], float]:
 
 def _integer(flag: str) -> Callable[[str], int]:
     def parse(text: str) -> int:
-        try:
-            return int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number: {flag} takes an integer") from None
+        if not _WHOLE.fullmatch(text):
+            raise argparse.ArgumentTypeError(
+                f"{text[:40]!r} is not a whole number: {flag} takes an integer written with ASCII digits (e.g. 2000; no '_', '.', 'e')"
+            )
+        if len(text.lstrip("+-").lstrip("0")) > 18:
+            raise argparse.ArgumentTypeError(f"{text[:40]!r} is too large: {flag} takes an integer below 10^18")
+        return int(text)
 
     parse.__name__ = flag
     return parse
@@ -136,9 +153,9 @@ def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = T
         missing = [_DIMLESS_FLAGS[k] for k in required if getattr(args, k) is None]
         if missing:
             raise UsageError(f"missing {', '.join(missing)}: dimensionless input needs {' '.join(_DIMLESS_FLAGS[k] for k in required)}")
-        b = check_beta(args.beta)
-        s = check_sigma(args.sigma)
-        p = Params(args.mu, b, s) if args.mu is not None else None
+        b = check_beta(args.beta, "--beta")
+        s = check_sigma(args.sigma, "--sigma")
+        p = Params(check_mu(args.mu, "--mu"), b, s) if args.mu is not None else None
         return _Inputs(p, b, s, None, None, "dimensionless input")
     values: dict[str, object] = {}
     stiffness = args.stiffness
@@ -151,7 +168,9 @@ def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = T
         if stiffness is None:
             stiffness = entry.stiffness
     for k in phys_given:
-        values[k] = getattr(args, k)
+        flag, unit = _PHYS_FLAGS[k]
+        check = check_positive if k in ("mass", "resolution", "period") else check_nonnegative
+        values[k] = check(flag, getattr(args, k), f"give {k} in {unit}")
     missing = [_PHYS_FLAGS[k][0] for k in _PHYS_FLAGS if values.get(k) is None]
     if missing:
         if args.device:
@@ -168,7 +187,11 @@ def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = T
     dev = Device(name=name, rotary=rotary, **values)  # type: ignore[arg-type]
     if stiffness is None:
         raise UsageError(f"missing --stiffness: no catalogue stiffness for {name!r}; give K in {dev.units['stiffness']}")
-    p = dev.params(stiffness)
+    k = check_positive("--stiffness", stiffness, f"give the virtual wall stiffness K in {dev.units['stiffness']}")
+    names = {key: _PHYS_FLAGS[key][0] for key in phys_given}
+    if args.stiffness is not None:
+        names["stiffness"] = "--stiffness"
+    p = dimensionless_params(dev, k, names)  # refuses μ, β, σ that overflow or vanish, naming these flags
     return _Inputs(p, p.beta, p.sigma, dev, float(stiffness), f"{name}, K = {stiffness:g} {dev.units['stiffness']}")
 
 
@@ -185,9 +208,7 @@ def _speed(args: argparse.Namespace, inputs: _Inputs, required: bool = True) -> 
         if inputs.device is None:
             raise UsageError("--velocity needs a physical device: with --mu/--beta/--sigma give --xi-dot instead")
         return inputs.device.xi_dot(v), v
-    from .errors import check_real
-
-    xd = check_real("xi_dot", xd, "give the speed in encoder ticks per sample")
+    xd = check_real("--xi-dot", xd, "give the speed in encoder ticks per sample")
     return xd, (inputs.device.velocity(xd) if inputs.device is not None else None)
 
 
@@ -369,10 +390,16 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     assert xd is not None
     if args.preload and args.xi0 is not None:
         raise UsageError("--preload and --xi0 cannot both be given: the preload sets ξ0 from the speed")
+    if args.trace is not None:
+        check_output_file("--trace", args.trace)
     if args.preload:
         x0, v0 = preload_position(p.mu, xd), 0.0
     else:
         x0, v0 = (0.0 if args.xi0 is None else args.xi0), xd
+    if not abs(x0) < SIMULATION_BOUND:
+        src = "--xi0" if args.xi0 is not None else "the --preload position of this speed"
+        raise UsageError(f"ξ0 = {x0:.4g} ticks from {src} is beyond the simulation bound of {SIMULATION_BOUND:g} ticks "
+                         "(the run would stop at once as unstable): give a smaller start")
     n = args.samples if args.samples is not None else default_samples(p.mu, p.beta, p.sigma, v0, x0, args.delay,
                                                                       not args.no_quantization)
     if args.trace is not None and 16 * (n + 1) > MAX_RECORD_BYTES:
@@ -380,6 +407,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             f"--trace with --samples {n} would need {16 * (n + 1) / 1024**3:.1f} GiB of trajectory "
             f"(limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB): drop --trace or lower --samples"
         )
+    if args.samples is not None:  # the automatic length is capped (dfa.simulation.default_samples)
+        _check_samples(args.samples, args.force)
     r = simulate(p.mu, p.beta, p.sigma, v0, args.samples, xi0=x0, delay=args.delay,
                  quantize=not args.no_quantization, record=args.trace is not None)
     if args.trace is not None:
@@ -420,11 +449,36 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Planned cost of one simulated sample in the worst case measured (an oscillating run, loaded machine).
+SIMULATE_NS_PER_SAMPLE = 100
+#: ``dfa simulate`` refuses runs estimated longer than this (seconds) unless --force: the compiled
+#: kernel cannot be interrupted before it returns.
+SIMULATE_TIME_LIMIT = 30.0
+#: ``dfa map`` refuses maps estimated longer than this (hours, at the worst-case cost per sample) unless --force.
+MAP_TIME_LIMIT_HOURS = 24.0
+#: |ξ| (ticks) beyond which a run counts as unstable (the default ``bound`` of :func:`dfa.simulate`).
+SIMULATION_BOUND = 1.0e6
+
+
+def _check_samples(samples: int, force: bool) -> None:
+    if samples < 1:
+        raise UsageError(f"--samples {samples} is invalid: simulate at least one sample")
+    seconds = samples * SIMULATE_NS_PER_SAMPLE * 1e-9
+    if seconds > SIMULATE_TIME_LIMIT and not force:
+        raise UsageError(
+            f"--samples {samples} could take up to {seconds:.3g} s (estimated {SIMULATE_NS_PER_SAMPLE} ns per sample; "
+            f"limit {SIMULATE_TIME_LIMIT:g} s, and the run cannot be interrupted before it ends): lower --samples "
+            f"(at most {int(SIMULATE_TIME_LIMIT / (SIMULATE_NS_PER_SAMPLE * 1e-9))}) or add --force"
+        )
+
+
 def _write_trace(path: str, r) -> None:
     import numpy as np
 
+    from ._io import atomic_open
+
     try:
-        with open(path, "w", encoding="utf-8") as fh:
+        with atomic_open(path, "w") as fh:
             fh.write("sample,xi,xi_dot\n")
             np.savetxt(fh, np.column_stack([np.arange(r.xi.size), r.xi, r.xi_dot]), delimiter=",", fmt=["%d", "%.17g", "%.17g"])
     except OSError as exc:
@@ -432,9 +486,25 @@ def _write_trace(path: str, r) -> None:
 
 
 def _cmd_map(args: argparse.Namespace) -> int:
-    from .maps import stability_map
+    from ._io import check_memory
+    from .maps import check_jobs, map_memory_bytes, stability_map
 
-    _check_out_dir(args.out)
+    check_output_file("--out", args.out, ".npz")
+    negative = [v for v in args.xi_dot if v < 0]
+    if negative:
+        raise UsageError(f"--xi-dot {negative[0]:g} is invalid: initial speeds must be >= 0 (the map is symmetric in the "
+                         f"sign of ξ'0); give --xi-dot {abs(negative[0]):g}")
+    check_jobs("--jobs", args.jobs)
+    _check_samples(args.samples, args.force)  # one run is uninterruptible: the same limit as `dfa simulate`
+    if args.grid >= 2:
+        runs = args.grid**2 * len(args.xi_dot)
+        cores = (os.cpu_count() or 1) if args.jobs == -1 else args.jobs
+        hours = runs * args.samples * SIMULATE_NS_PER_SAMPLE * 1e-9 / 3600 / cores
+        if hours > MAP_TIME_LIMIT_HOURS and not args.force:
+            raise UsageError(f"--grid {args.grid} with --samples {args.samples} could take up to {hours:.3g} h on {cores} cores "
+                             f"(estimated {SIMULATE_NS_PER_SAMPLE} ns per sample; limit {MAP_TIME_LIMIT_HOURS:g} h): "
+                             "lower --grid or --samples, or add --force")
+        check_memory("--grid", args.grid, map_memory_bytes(args.grid, len(args.xi_dot)), "lower --grid or give fewer --xi-dot speeds")
     m = stability_map(args.mu, args.xi_dot, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range),
                       grid=args.grid, samples=args.samples, delay=args.delay, preload=args.preload,
                       quantize=not args.no_quantization, n_jobs=args.jobs, progress=not args.quiet)
@@ -517,10 +587,12 @@ def _cycle_lines(g, device) -> list[str]:
 
 
 def _cmd_contours(args: argparse.Namespace) -> int:
-    from .contours import contour_maps
+    from .contours import check_contour_memory, contour_maps
 
     if args.out is not None:
-        _check_out_dir(args.out)
+        check_output_file("--out", args.out, ".npz")
+    if args.grid >= 2 and args.max_amplitude >= 1.0:
+        check_contour_memory(args.grid, args.max_amplitude, ("--grid", "--max-amplitude"))
     c = contour_maps(args.mu, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range), grid=args.grid,
                      max_amplitude=args.max_amplitude)
     d = c.as_dict()
@@ -554,17 +626,11 @@ def _cmd_report(args: argparse.Namespace) -> int:
         target = entry
     else:
         target = inp.device
-    _check_out_dir(args.out, folder=True)
+    check_output_folder("--out", args.out, create=False)
     res = design_report(target, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=not args.quiet, delay=args.delay)
     for pth in res.paths:
         print(f"written {pth}")
     return 0
-
-
-def _check_out_dir(path: str, folder: bool = False) -> None:
-    d = os.path.abspath(path) if folder else os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(d):
-        raise UsageError(f"--out {path!r} is invalid: folder {d!r} does not exist; create it first")
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
@@ -576,25 +642,25 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     from . import plotting
     from .validation import validate
 
-    if args.jobs == 0 or args.jobs < -1:
-        raise UsageError(f"--jobs {args.jobs} is invalid: it must be -1 (all cores) or a positive count")
+    from ._io import staged_folder
+    from .maps import check_jobs
+
+    check_jobs("--jobs", args.jobs)
     out = args.out
-    if not os.path.isdir(out):
-        _check_out_dir(out)  # the parent must exist; the folder itself is created
-        os.mkdir(out)
+    check_output_folder("--out", out, create=True)  # the parent must exist; the folder itself is created
     v = validate(quick=args.quick, n_jobs=args.jobs, progress=not args.quiet)
+    os.makedirs(out, exist_ok=True)
     figs = {}
-    for key, fn in (("cycles", plotting.cycle_error_plot), ("speeds", plotting.critical_speed_plot)):
-        ax = fn(v)
-        name = f"validation_{key}.png"
-        ax.figure.savefig(os.path.join(out, name), dpi=120)
-        plt.close(ax.figure)
-        figs[key] = name
-    with open(os.path.join(out, "validation.md"), "w", encoding="utf-8") as fh:
-        fh.write(v.to_markdown(figs))
     summary = v.summary()
-    with open(os.path.join(out, "validation.json"), "w", encoding="utf-8") as fh:
-        json.dump(summary, fh, indent=1, allow_nan=True)
+    with staged_folder(out) as stage:  # all four files appear together, or none (dfa._io)
+        for key, fn in (("cycles", plotting.cycle_error_plot), ("speeds", plotting.critical_speed_plot)):
+            ax = fn(v)
+            name = f"validation_{key}.png"
+            ax.figure.savefig(stage / name, dpi=120)
+            plt.close(ax.figure)
+            figs[key] = name
+        (stage / "validation.md").write_text(v.to_markdown(figs), encoding="utf-8")
+        (stage / "validation.json").write_text(json.dumps(summary, indent=1, allow_nan=True), encoding="utf-8")
     if args.json:
         _emit(json.loads(json.dumps(summary).replace("NaN", "null")))
         return 0
@@ -645,6 +711,8 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--preload", action="store_true", help="start at rest with the spring preloaded to the speed's kinetic energy (section 5)")
     p.add_argument("--no-quantization", action="store_true", help="linear spring φ = −ξ instead of the encoder staircase")
     p.add_argument("--trace", metavar="FILE.csv", help="write sample, xi, xi_dot to a CSV file")
+    p.add_argument("--force", action="store_true",
+                   help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s (uninterruptible)")
     p.set_defaults(func=_cmd_simulate)
 
     p = sub.add_parser("map", help="stability map over the (β, σ) plane by simulation (paper Fig. 4)")
@@ -660,6 +728,7 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default all cores)")
     p.add_argument("--out", required=True, metavar="FILE.npz", help="where to write the map")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--force", action="store_true", help=f"run even when one run is estimated over {SIMULATE_TIME_LIMIT:g} s or the map over {MAP_TIME_LIMIT_HOURS:g} h")
     p.add_argument("--json", action="store_true", help="print counts per outcome per speed as JSON")
     p.set_defaults(func=_cmd_map)
 
@@ -699,9 +768,57 @@ def _build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _Interrupted(KeyboardInterrupt):
+    """SIGINT or SIGTERM received: unwinds like Ctrl-C so that every ``finally`` cleans up."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+_SIGNALS = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM") if hasattr(signal, n))
+
+
+def _on_signal(signum: int, frame: object) -> None:
+    for sig in _SIGNALS:  # a second signal must not interrupt the clean-up of the first
+        signal.signal(sig, signal.SIG_IGN)
+    raise _Interrupted(signum)
+
+
+def _install_signal_handlers() -> dict:
+    """Route SIGINT and SIGTERM to :class:`_Interrupted` (main thread only); return the old handlers."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+    old = {}
+    for sig in _SIGNALS:
+        old[sig] = signal.getsignal(sig)
+        signal.signal(sig, _on_signal)
+    return old
+
+
+def _quiet_stdout() -> None:
+    """After a closed pipe: send what is left on stdout to /dev/null, so exiting does not raise again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, AttributeError, ValueError):  # not a real file (captured in tests)
+        pass
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the ``dfa`` command line; return the exit code (0 ok, 2 bad input)."""
+    """Run the ``dfa`` command line; return the exit code.
+
+    Exit codes: 0 ok; 2 bad input (one line on stderr, before any work is
+    done); 1 a file could not be written or memory ran out; 130 / 143
+    interrupted by SIGINT / SIGTERM (one line on stderr naming what was kept:
+    files are written atomically, so nothing is half-written); 141 stdout was
+    a closed pipe (``dfa devices | head -1``), ended quietly.
+    """
     parser = _build_parser()
+    before = len(written_paths())
+    old_handlers = _install_signal_handlers()
     try:
         args = parser.parse_args(list(sys.argv[1:] if argv is None else argv))
         return int(args.func(args) or 0)
@@ -713,6 +830,25 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     except SystemExit as exc:  # --help and --version
         return int(exc.code or 0)
+    except KeyboardInterrupt as exc:
+        signum = getattr(exc, "signum", int(signal.SIGINT))
+        kept = written_paths()[before:]
+        what = "nothing written" if not kept else "kept " + ", ".join(kept) + " (complete)"
+        print(f"dfa: interrupted ({signal.Signals(signum).name}); {what}", file=sys.stderr)
+        return 128 + int(signum)
+    except BrokenPipeError:
+        _quiet_stdout()
+        return 141
+    except MemoryError:
+        print("dfa: error: out of memory; lower --grid, --samples or the number of speeds", file=sys.stderr)
+        return 1
+    except OSError as err:
+        where = f"{err.filename!r}: " if err.filename else ""
+        print(f"dfa: error: {where}{err.strerror or err}; check the path, its permissions and free space", file=sys.stderr)
+        return 1
+    finally:
+        for sig, handler in old_handlers.items():
+            signal.signal(sig, handler if handler is not None else signal.SIG_DFL)
 
 
 if __name__ == "__main__":  # pragma: no cover

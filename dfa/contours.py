@@ -35,12 +35,13 @@ from pathlib import Path
 
 import numpy as np
 
+from ._io import atomic_open, check_memory
 from .describing import quantizer_df
 from .errors import DFAValueError, check_int, check_mu, check_positive
 from .cycles import large_cycle_frequency
 from .maps import _check_range
 
-__all__ = ["ContourMaps", "contour_maps", "load_contours"]
+__all__ = ["ContourMaps", "contour_maps", "load_contours", "contour_memory_bytes"]
 
 _ARRAYS = ("beta", "sigma", "small_amplitude", "small_frequency", "large_amplitude", "large_frequency",
            "large_amplitude_closed", "large_frequency_closed", "small_amplitude_closed")
@@ -85,8 +86,10 @@ class ContourMaps:
     def save(self, path: str | os.PathLike) -> Path:
         """Write all maps to a ``.npz`` file (see :func:`load_contours`)."""
         p = Path(path)
-        np.savez_compressed(p, mu=self.mu, max_amplitude=self.max_amplitude, **{k: getattr(self, k) for k in _ARRAYS})
-        return p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
+        p = p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
+        with atomic_open(p, "wb") as fh:  # never a half-written file (dfa._io)
+            np.savez_compressed(fh, mu=self.mu, max_amplitude=self.max_amplitude, **{k: getattr(self, k) for k in _ARRAYS})
+        return p
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready summary: grid and how many points carry each family."""
@@ -169,6 +172,30 @@ def _large_exact(mu: float, beta: np.ndarray, sigma: np.ndarray, amax: float) ->
     return large_m, large_w
 
 
+#: Planned peak memory per grid point (bytes): about 25 float arrays of the grid's shape.
+CONTOUR_BYTES_PER_POINT = 200
+#: ... per grid row and amplitude sample of the exact large family (five float arrays).
+CONTOUR_BYTES_PER_ROW_SAMPLE = 40
+#: Amplitude samples per tick of ``max_amplitude`` (17 per cell, see ``_large_exact``).
+CONTOUR_SAMPLES_PER_TICK = 17
+
+
+def contour_memory_bytes(grid: int, max_amplitude: float) -> float:
+    """Estimated peak memory of :func:`contour_maps` in bytes."""
+    n_m = CONTOUR_SAMPLES_PER_TICK * (float(max_amplitude) + 1.0)
+    return float(grid) ** 2 * CONTOUR_BYTES_PER_POINT + float(grid) * n_m * CONTOUR_BYTES_PER_ROW_SAMPLE + 32.0 * n_m
+
+
+def check_contour_memory(grid: int, max_amplitude: float, names: tuple[str, str] = ("grid", "max_amplitude")) -> None:
+    """Refuse a map planned to need too much memory (see :func:`dfa._io.check_memory`), naming the input that drives it."""
+    need = contour_memory_bytes(grid, max_amplitude)
+    by_amplitude = float(grid) * CONTOUR_SAMPLES_PER_TICK * (float(max_amplitude) + 1.0) * CONTOUR_BYTES_PER_ROW_SAMPLE
+    if by_amplitude > float(grid) ** 2 * CONTOUR_BYTES_PER_POINT:
+        check_memory(names[1], f"{max_amplitude:g}", need, f"lower {names[1]} (the largest amplitude searched, ticks) or {names[0]}")
+    else:
+        check_memory(names[0], grid, need, f"lower {names[0]} (points per axis) or {names[1]}")
+
+
 def contour_maps(mu: float, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), grid: int = 200,
                  max_amplitude: float = 200.0) -> ContourMaps:
     """Amplitude and frequency maps of both cycle families over a (β, σ) grid (paper Fig. 7).
@@ -191,6 +218,7 @@ def contour_maps(mu: float, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), gr
     amax = check_positive("max_amplitude", max_amplitude)
     if amax < 1.0:
         raise DFAValueError(f"max_amplitude = {amax} is invalid: it must be >= 1 tick (the large family has M >= 1)")
+    check_contour_memory(g, amax)
     beta = np.linspace(b0, b1, g)
     sigma = np.linspace(s0, s1, g)
     bb, ss = np.meshgrid(beta, sigma)

@@ -27,11 +27,13 @@ Examples
 
 from __future__ import annotations
 
+import math
+import sys
 from dataclasses import dataclass
 
 from .errors import DFAValueError, check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
 
-__all__ = ["Params", "Device"]
+__all__ = ["Params", "Device", "dimensionless_params"]
 
 
 @dataclass(frozen=True)
@@ -145,11 +147,7 @@ class Device:
             Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
         """
         k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
-        return Params(
-            mu=self.mass / (k * self.period**2),
-            beta=self.damping / (k * self.period),
-            sigma=self.coulomb / (k * self.resolution),
-        )
+        return dimensionless_params(self, k)
 
     def xi_dot(self, velocity: float) -> float:
         """Dimensionless speed ξ' = ẋ T/Δ (encoder ticks per sample) of a physical speed.
@@ -157,12 +155,20 @@ class Device:
         Independent of the stiffness K (spec section 2).
         """
         v = check_real("velocity", velocity, "give the speed in m/s (rotary: rad/s)")
-        return v * self.period / self.resolution
+        out = v * self.period / self.resolution
+        if not math.isfinite(out):
+            raise DFAValueError(f"velocity = {v!r} is too large: ξ' = ẋT/Δ overflows a float with period = {self.period!r}, "
+                                f"resolution = {self.resolution!r}; give the speed in m/s (rotary: rad/s)")
+        return out
 
     def velocity(self, xi_dot: float) -> float:
         """Physical speed ẋ = ξ' Δ/T (m/s or rad/s) of a dimensionless speed."""
         xd = check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample")
-        return xd * self.resolution / self.period
+        out = xd * self.resolution / self.period
+        if not math.isfinite(out):
+            raise DFAValueError(f"xi_dot = {xd!r} is too large: ẋ = ξ'Δ/T overflows a float with period = {self.period!r}, "
+                                f"resolution = {self.resolution!r}; give a smaller speed in ticks per sample")
+        return out
 
     def stiffness_for_mu(self, mu: float) -> float:
         """The stiffness K (N/m) at which μ = m/(K T²) takes the value ``mu``."""
@@ -206,3 +212,52 @@ class Device:
             "period": self.period,
         }
 
+
+
+_GROUPS = (
+    ("mu", "the dimensionless mass μ = m/(K T²)", ("mass", "stiffness", "period")),
+    ("beta", "the dimensionless damping β = b/(K T)", ("damping", "stiffness", "period")),
+    ("sigma", "the dimensionless friction σ = c/(K Δ)", ("coulomb", "stiffness", "resolution")),
+)
+
+
+def dimensionless_params(device: Device, stiffness: float, names: dict[str, str] | None = None) -> Params:
+    """(μ, β, σ) of ``device`` at stiffness K (paper Table 1), refusing groups a float cannot hold.
+
+    A group overflows (inf) or vanishes (zero or subnormal, below
+    ``sys.float_info.min`` ≈ 2.2e-308, where 1/μ overflows and the simulation
+    returns NaN) only for physically absurd inputs (for example a mass of
+    1e-320 kg); the error names the inputs that produce it.
+
+    Parameters
+    ----------
+    device : Device
+    stiffness : float
+        K in N/m (rotary: N·m/rad), already checked > 0.
+    names : dict, optional
+        How to call each physical input in the message (the command line
+        passes its flags, e.g. ``{"mass": "--mass"}``); default the parameter names.
+    """
+    k = float(stiffness)
+    vals = {"mass": device.mass, "damping": device.damping, "coulomb": device.coulomb,
+            "resolution": device.resolution, "period": device.period, "stiffness": k}
+    def div(a: float, b: float) -> float:  # a denominator that underflows to 0 gives inf (or NaN for 0/0), not an exception
+        return a / b if b != 0.0 else (math.inf if a > 0.0 else math.nan)
+
+    out = {
+        "mu": div(device.mass, k * (device.period * device.period)),  # p*p: inf, not OverflowError
+        "beta": div(device.damping, k * device.period),
+        "sigma": div(device.coulomb, k * device.resolution),
+    }
+    names = names or {}
+    for key, what, inputs in _GROUPS:
+        value = out[key]
+        if math.isfinite(value) and (value >= sys.float_info.min or (value == 0.0 and key != "mu")):
+            continue
+        given = ", ".join(f"{names.get(n, n)} = {vals[n]:g}" for n in inputs)
+        how = "overflows to inf" if math.isinf(value) else "is undefined (0/0)" if math.isnan(value) else f"vanishes ({value:.3g}, below {sys.float_info.min:.3g})"
+        raise DFAValueError(
+            f"{given} is invalid: {what} {how}; give ordinary physical values in SI units "
+            f"({', '.join(device.units[n] for n in inputs)})"
+        )
+    return Params(**out)

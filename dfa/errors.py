@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import sys
 from typing import Any
 
 import numpy as np
@@ -51,12 +52,43 @@ class DFATypeError(DFAError, TypeError):
     """A parameter has the wrong type (for example text where a number is needed)."""
 
 
+_MAX_SHOWN = 60  # characters of a value shown in a message
+
+
 def _fmt(value: Any) -> str:
-    if isinstance(value, float):
-        return repr(value)
-    if isinstance(value, str):
-        return repr(value)
-    return str(value)
+    """A short, safe text for ``value`` in an error message (huge values abbreviated)."""
+    try:
+        if isinstance(value, (bool, np.bool_)):
+            return str(bool(value))
+        if isinstance(value, numbers.Integral):
+            v = int(value)
+            if abs(v) >= 10**18:
+                return f"{'-' if v < 0 else ''}<integer of {int(abs(v).bit_length() * 0.30103) + 1} digits>"
+            return str(v)
+        if isinstance(value, np.ndarray):
+            return f"<array of shape {value.shape}>"
+        text = repr(value) if isinstance(value, (float, str, complex)) else str(value)
+    except Exception:  # a hostile __str__/__repr__ must not hide the real message
+        text = f"<{type(value).__name__} object>"
+    if len(text) > _MAX_SHOWN:
+        text = text[: _MAX_SHOWN - 15] + f"… ({len(text)} chars)"
+    return text
+
+
+#: Largest integer accepted by :func:`check_int` (the int64 range used by numpy and the compiled kernels).
+INT_MAX = 2**63 - 1
+
+
+def _as_scalar(value: Any) -> Any:
+    """A 0-d numpy array becomes its scalar; everything else is returned unchanged."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        return value[()]
+    return value
+
+
+def _type_error(name: str, value: Any, what: str, fix: str | None) -> DFATypeError:
+    kind = f"array of shape {value.shape}" if isinstance(value, np.ndarray) else f"type {type(value).__name__}"
+    return DFATypeError(f"{name} = {_fmt(value)} has {kind}: it must be {what}" + (f"; {fix}" if fix else ""))
 
 
 def _message(name: str, value: Any, rule: str, fix: str | None) -> str:
@@ -79,12 +111,13 @@ def check_real(name: str, value: Any, fix: str | None = None) -> float:
     fix : str, optional
         A hint appended to the message.
     """
+    value = _as_scalar(value)
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        raise DFATypeError(
-            f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a real number"
-            + (f"; {fix}" if fix else "")
-        )
-    out = float(value)
+        raise _type_error(name, value, "a real number", fix)
+    try:
+        out = float(value)
+    except (OverflowError, ValueError, TypeError):
+        raise DFAValueError(_message(name, value, "a finite number (this one overflows a float)", fix)) from None
     if not math.isfinite(out):
         raise DFAValueError(_message(name, out, "a finite number", fix))
     return out
@@ -108,31 +141,30 @@ def check_nonnegative(name: str, value: Any, fix: str | None = None) -> float:
 
 def check_int(name: str, value: Any, minimum: int | None = None, fix: str | None = None) -> int:
     """Return ``value`` as an int if it is integral (and >= ``minimum``)."""
+    value = _as_scalar(value)
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
         if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)):
-            fv = float(value)
-            if math.isfinite(fv) and fv == int(fv):
-                value = int(fv)
-            else:
+            try:
+                fv = float(value)
+            except (OverflowError, ValueError, TypeError):
+                fv = math.inf
+            if not (math.isfinite(fv) and fv == int(fv)):
                 raise DFAValueError(_message(name, value, "a whole number", fix))
+            value = int(fv)
         else:
-            raise DFATypeError(
-                f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a whole number"
-                + (f"; {fix}" if fix else "")
-            )
+            raise _type_error(name, value, "a whole number", fix)
     out = int(value)
     if minimum is not None and out < minimum:
         raise DFAValueError(_message(name, out, f"a whole number >= {minimum}", fix))
+    if abs(out) > INT_MAX:
+        raise DFAValueError(_message(name, out, f"a whole number of at most {INT_MAX} in size", fix))
     return out
 
 
 def check_choice(name: str, value: Any, choices: tuple[str, ...]) -> str:
     """Return ``value`` if it is one of ``choices`` (case-insensitive)."""
     if not isinstance(value, str):
-        raise DFATypeError(
-            f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be one of "
-            + ", ".join(choices)
-        )
+        raise _type_error(name, value, "one of " + ", ".join(choices), None)
     low = value.lower()
     for c in choices:
         if c.lower() == low:
@@ -143,14 +175,18 @@ def check_choice(name: str, value: Any, choices: tuple[str, ...]) -> str:
 def check_type(name: str, value: Any, cls: type, fix: str) -> Any:
     """Return ``value`` if it is an instance of ``cls``, else raise :class:`DFATypeError` with ``fix``."""
     if not isinstance(value, cls):
-        raise DFATypeError(f"{name} = {value!r} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}")
+        raise DFATypeError(f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}")
     return value
 
 
 # -------------------------------------------- the paper's dimensionless parameters (Table 1)
 def check_mu(value: Any, name: str = "mu") -> float:
-    """Dimensionless mass μ = m/(K T²) > 0, as a float."""
-    return check_positive(name, value, "μ = m/(K T²) must be positive")
+    """Dimensionless mass μ = m/(K T²) > 0, as a float (a normal float: 1/μ must not overflow)."""
+    out = check_positive(name, value, "μ = m/(K T²) must be positive")
+    if out < sys.float_info.min:
+        raise DFAValueError(_message(name, out, f"at least {sys.float_info.min:.3g} (1/μ overflows below)",
+                                     "μ = m/(K T²) must be a normal positive number"))
+    return out
 
 
 def check_beta(value: Any, name: str = "beta") -> float:

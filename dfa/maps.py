@@ -51,10 +51,37 @@ from pathlib import Path
 import numpy as np
 
 from . import _kernel
+from ._io import atomic_open, check_memory
 from .errors import DFAValueError, check_int, check_mu, check_nonnegative, check_positive, check_real
 from .simulation import OUTCOMES, _tail_length, preload_position
 
-__all__ = ["StabilityMap", "stability_map", "load_map"]
+__all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs"]
+
+#: Planned peak memory per grid point and initial speed (bytes): four float inputs, three
+#: float outputs in chunks and concatenated, the int8 outcome, with margin.
+MAP_BYTES_PER_RUN = 96
+#: ... and per grid point (the meshgrid axes).
+MAP_BYTES_PER_POINT = 16
+
+
+def map_memory_bytes(grid: int, n_speeds: int) -> int:
+    """Estimated peak memory of :func:`stability_map` in bytes (grid² points × speeds)."""
+    return int(grid) ** 2 * (MAP_BYTES_PER_POINT + MAP_BYTES_PER_RUN * int(n_speeds))
+
+
+def check_jobs(name: str, jobs: object) -> int:
+    """Validate a joblib job count: -1 (all cores) or 1 … os.cpu_count(); return it.
+
+    Nothing is silently clipped: more jobs than cores is refused (it only adds
+    processes and memory, and changes no result).
+    """
+    j = check_int(name, jobs)
+    cores = os.cpu_count() or 1
+    if j == 0 or j < -1:
+        raise DFAValueError(f"{name} = {j} is invalid: it must be -1 (all cores) or a positive count")
+    if j > cores:
+        raise DFAValueError(f"{name} = {j} is invalid: this machine has {cores} cores; give at most {cores} (or -1 for all)")
+    return j
 
 
 @dataclass(frozen=True)
@@ -114,14 +141,20 @@ class StabilityMap:
         }
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the map to a ``.npz`` file (see :func:`load_map`)."""
+        """Write the map to a ``.npz`` file (see :func:`load_map`), atomically.
+
+        ``.npz`` is appended when ``path`` has another suffix (numpy's rule);
+        the path written is returned.
+        """
         p = Path(path)
-        np.savez_compressed(
-            p, mu=self.mu, xi_dots=np.asarray(self.xi_dots, dtype=float), beta=self.beta, sigma=self.sigma,
-            outcome=self.outcome, outcome_names=np.array(OUTCOMES), amplitude=self.amplitude, frequency=self.frequency,
-            settings=np.array([self.samples, self.delay, int(self.quantize), int(self.preload)], dtype=np.int64),
-        )
-        return p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
+        p = p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
+        with atomic_open(p, "wb") as fh:  # never a half-written map (dfa._io)
+            np.savez_compressed(
+                fh, mu=self.mu, xi_dots=np.asarray(self.xi_dots, dtype=float), beta=self.beta, sigma=self.sigma,
+                outcome=self.outcome, outcome_names=np.array(OUTCOMES), amplitude=self.amplitude, frequency=self.frequency,
+                settings=np.array([self.samples, self.delay, int(self.quantize), int(self.preload)], dtype=np.int64),
+            )
+        return p
 
 
 def load_map(path: str | os.PathLike) -> StabilityMap:
@@ -208,15 +241,14 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
     g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
     n = check_int("samples", samples, minimum=1)
     d = check_int("delay", delay, minimum=0)
-    jobs = check_int("n_jobs", n_jobs)
-    if jobs == 0 or jobs < -1:
-        raise DFAValueError(f"n_jobs = {jobs} is invalid: it must be -1 (all cores) or a positive count")
+    jobs = check_jobs("n_jobs", n_jobs)
     bnd = check_positive("bound", bound)
     sa = check_nonnegative("stable_amplitude", stable_amplitude)
     gr = check_positive("growth", growth)
     if gr <= 1.0:
         raise DFAValueError(f"growth = {gr!r} is invalid: it must be > 1")
     st = check_nonnegative("settle", settle)
+    check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
 
     beta = np.linspace(b0, b1, g)
     sigma = np.linspace(s0, s1, g)
@@ -251,11 +283,15 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
         else:
             from joblib import Parallel, delayed
 
-            par = Parallel(n_jobs=jobs, return_as="generator")
+            # never more workers than chunks (same result, fewer processes)
+            par = Parallel(n_jobs=min(workers, len(chunks)), return_as="generator")
             gen = par(delayed(_run_chunk)(*args, pts_b[c], pts_s[c], x0[c], v0[c], *tail) for c in chunks)
-            for c, res in zip(chunks, gen):  # the generator yields in submission order
-                results.append(res)
-                bar.update(c.stop - c.start)
+            try:
+                for c, res in zip(chunks, gen):  # the generator yields in submission order
+                    results.append(res)
+                    bar.update(c.stop - c.start)
+            finally:
+                gen.close()  # on an interruption: cancel the pending chunks, stop the workers
     finally:
         bar.close()
     codes = np.concatenate([r[0] for r in results]).astype(np.int8)

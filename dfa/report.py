@@ -21,6 +21,7 @@ import numpy as np
 from .catalogue import CatalogueEntry
 from .criterion import device_criterion
 from .device import Device
+from ._io import staged_folder
 from .errors import DFAValueError, check_choice, check_int, check_positive, check_real
 from .cycles import growth_threshold
 from .loop import nyquist_locus_response
@@ -199,7 +200,15 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
     out = Path(out_dir)
     if not out.is_dir():
         raise DFAValueError(f"out_dir = {str(out)!r} is invalid: the folder does not exist; create it first")
-    figdir = out / "figures"
+    # write everything into a staging folder, then move the files in: never a mix of two reports (dfa._io)
+    with staged_folder(out) as stage:
+        res = _write_report(entry, dev, k, v, fmt, progress, map_grid, samples, out, stage)
+    final = lambda pth: out / Path(pth).relative_to(stage)  # noqa: E731
+    return ReportResult(tuple(final(x) for x in res.paths), tuple(final(x) for x in res.figures), res.numbers)
+
+
+def _write_report(entry, dev, k, v, fmt, progress, map_grid, samples, out: Path, stage: Path) -> ReportResult:
+    figdir = stage / "figures"
     figdir.mkdir(exist_ok=True)
     slug = _slug(dev.name)
     u = dev.units
@@ -351,11 +360,11 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
     steps.update()
     paths = []
     if fmt in ("md", "both"):
-        pth = out / f"design_report_{slug}.md"
-        pth.write_text(d.markdown(out), encoding="utf-8")
+        pth = stage / f"design_report_{slug}.md"
+        pth.write_text(d.markdown(stage), encoding="utf-8")
         paths.append(pth)
     if fmt in ("html", "both"):
-        pth = out / f"design_report_{slug}.html"
+        pth = stage / f"design_report_{slug}.html"
         pth.write_text(d.html(f"dfa design report: {dev.name}"), encoding="utf-8")
         paths.append(pth)
     steps.close()

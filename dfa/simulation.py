@@ -96,6 +96,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from fractions import Fraction
 
 import numpy as np
 
@@ -152,14 +153,16 @@ def preload_position(mu: float, xi_dot: float) -> float:
     0.25
     """
     m = check_mu(mu)
-    e = 0.5 * m * check_real("xi_dot", xi_dot) ** 2
-    k = math.floor(math.sqrt(2.0 * e))
-    # guard the cell index against rounding of the square root
-    while 0.5 * (k + 1) ** 2 <= e:
-        k += 1
-    while k > 0 and 0.5 * k * k > e:
-        k -= 1
-    return k + (e - 0.5 * k * k) / (k + 0.5)
+    v = check_real("xi_dot", xi_dot)
+    two_e = m * v * v  # 2E = μξ'0², exact to one rounding
+    if not math.isfinite(two_e):
+        raise DFAValueError(f"xi_dot = {v!r} is invalid with mu = {m!r}: the kinetic energy ½μξ'0² overflows a float; "
+                            "give a smaller speed")
+    # Closed form, no loop: with r = 2E exactly (a Fraction), the cell is k = isqrt(⌊r⌋), since
+    # k² <= ⌊r⌋ <= r < ⌊r⌋ + 1 <= (k + 1)²; then ξ0 = k + (r − k²)/(2k + 1) exactly, rounded once.
+    r = Fraction(two_e)
+    k = math.isqrt(math.floor(r))
+    return float(k + (r - k * k) / (2 * k + 1))
 
 
 def _decay_time(mu: float, beta: float, sigma: float, amp0: float, delay: int) -> float:

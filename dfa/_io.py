@@ -1,0 +1,311 @@
+"""Atomic file writes, output-path rules, resource limits and the numba cache folder.
+
+Every file :mod:`dfa` writes goes through :func:`atomic_write_bytes`,
+:func:`atomic_write_text` or :func:`atomic_open`: the data are written to a
+temporary name in the destination folder and moved into place with
+:func:`os.replace`, so a reader (or an interrupted run) sees either the old file
+or the complete new one, never a half-written file. On any exception,
+``KeyboardInterrupt`` included, the temporary file is removed.
+
+The paths written by this process are recorded (:func:`written_paths`) so that
+the command line can say what was kept when it is interrupted.
+
+Examples
+--------
+>>> import os, tempfile
+>>> d = tempfile.mkdtemp()
+>>> p = atomic_write_text(os.path.join(d, "a.txt"), "hello")
+>>> open(p).read(), sorted(os.listdir(d))
+('hello', ['a.txt'])
+>>> try:
+...     with atomic_open(os.path.join(d, "b.txt"), "w") as fh:
+...         _ = fh.write("half")
+...         raise RuntimeError("boom")
+... except RuntimeError:
+...     pass
+>>> sorted(os.listdir(d))          # no b.txt, no temporary file left
+['a.txt']
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+from typing import IO, Iterator
+
+from .errors import DFAValueError
+
+__all__ = [
+    "atomic_write_bytes",
+    "atomic_write_text",
+    "atomic_open",
+    "written_paths",
+    "staged_folder",
+    "check_output_file",
+    "check_output_folder",
+    "available_memory",
+    "check_memory",
+    "MEMORY_FRACTION",
+    "ensure_numba_cache_dir",
+]
+
+#: Paths written (moved into place) by this process, oldest first.
+_WRITTEN: list[str] = []
+
+#: Largest share of the available memory one computation may plan to use.
+MEMORY_FRACTION = 0.5
+
+#: Memory assumed available when the machine does not say (bytes).
+FALLBACK_MEMORY = 2 * 1024**3
+
+_TMP_PREFIX = ".dfa-tmp-"
+
+
+def written_paths() -> list[str]:
+    """Paths this process has written so far (a copy), oldest first."""
+    return list(_WRITTEN)
+
+
+@contextlib.contextmanager
+def atomic_open(path: str | os.PathLike, mode: str = "wb", encoding: str | None = None) -> Iterator[IO]:
+    """Context manager yielding a file object whose content replaces ``path`` atomically on success.
+
+    Parameters
+    ----------
+    path : path-like
+        Final destination. Its folder must exist.
+    mode : {"wb", "w"}
+        Binary or text.
+    encoding : str, optional
+        Text encoding (default UTF-8 in text mode).
+    """
+    if mode not in ("wb", "w"):
+        raise DFAValueError(f"mode = {mode!r} is invalid: it must be 'wb' or 'w'")
+    dest = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(dest))
+    fd, tmp = tempfile.mkstemp(prefix=_TMP_PREFIX, suffix=".part", dir=folder)
+    try:
+        kw = {} if mode == "wb" else {"encoding": encoding or "utf-8", "newline": ""}
+        with os.fdopen(fd, mode, **kw) as fh:
+            yield fh
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o666 & ~_umask())
+        os.replace(tmp, dest)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    _WRITTEN.append(dest)
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
+    """Write ``data`` to ``path`` atomically; return the path."""
+    with atomic_open(path, "wb") as fh:
+        fh.write(data)
+    return Path(path)
+
+
+def atomic_write_text(path: str | os.PathLike, text: str, encoding: str = "utf-8") -> Path:
+    """Write ``text`` to ``path`` atomically; return the path."""
+    return atomic_write_bytes(path, text.encode(encoding))
+
+
+@contextlib.contextmanager
+def staged_folder(folder: str | os.PathLike) -> Iterator[Path]:
+    """Context manager yielding an empty temporary folder inside ``folder``; its files replace those in ``folder``.
+
+    Write a set of files (a report and its figures) into the yielded folder,
+    keeping the layout they should have in ``folder``. On success every file
+    is moved into place with :func:`os.replace` (no copying, one rename per
+    file, after all the work is done); on any exception the temporary folder
+    is removed and ``folder`` is untouched, so it never holds a mix of an old
+    and a half-written new set. Files of ``folder`` not in the new set are
+    left alone.
+    """
+    dest = Path(folder)
+    stage = Path(tempfile.mkdtemp(prefix=_TMP_PREFIX, dir=os.fspath(dest)))
+    try:
+        yield stage
+        files = sorted(p for p in stage.rglob("*") if p.is_file())
+        # files deeper in the tree (figures) first: the documents that link them come last
+        files.sort(key=lambda p: -len(p.relative_to(stage).parts))
+        for f in files:
+            target = dest / f.relative_to(stage)
+            target.parent.mkdir(parents=True, exist_ok=True)
+            os.chmod(f, 0o666 & ~_umask())
+            os.replace(f, target)
+            _WRITTEN.append(os.fspath(target))
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+# ------------------------------------------------------------ output-path rules
+def _check_path_text(flag: str, path: str) -> None:
+    """Refuse a path the operating system cannot take: NUL bytes, non-encodable text, too long a name."""
+    shown = repr(path[:60]) + ("…" if len(path) > 60 else "")
+    try:
+        os.fsencode(path)
+    except UnicodeError:
+        raise DFAValueError(f"{flag} {shown} is invalid: it cannot be encoded as a file name; use plain characters") from None
+    if "\0" in path:
+        raise DFAValueError(f"{flag} {shown} is invalid: it contains a NUL byte; give a plain path")
+    try:
+        name_max = os.pathconf(os.path.dirname(os.path.abspath(path)) or ".", "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):
+        name_max = 255
+    longest = max((len(os.fsencode(part)) for part in path.split(os.sep)), default=0)
+    if longest > name_max or len(os.fsencode(path)) > 4000:
+        raise DFAValueError(f"{flag} {shown} is invalid: a name in it is longer than {name_max} bytes; give a shorter path")
+
+
+def check_output_file(flag: str, path: str, suffix: str | None = None) -> str:
+    """Refuse an output *file* path that cannot be written as given; return it.
+
+    Rule: a non-empty path that does not end in a path separator, is not an
+    existing folder or special file (``/dev/null``), whose folder exists, and
+    (when ``suffix`` is given) ends in ``suffix``: the file is written exactly
+    there, never at a derived name.
+    """
+    if not isinstance(path, str) or not path.strip():
+        raise DFAValueError(f"{flag} {path!r} is invalid: it must name a file; give e.g. {flag} out{suffix or '.csv'}")
+    _check_path_text(flag, path)
+    if path.endswith(("/", os.sep)) or os.path.isdir(path):
+        raise DFAValueError(f"{flag} {path!r} is a folder: it must name a file; give e.g. {flag} {os.path.join(path, 'out' + (suffix or '.csv'))}")
+    if os.path.exists(path) and not os.path.isfile(path):
+        raise DFAValueError(f"{flag} {path!r} is not a regular file: it cannot be replaced; choose a file path")
+    if suffix is not None and not path.endswith(suffix):
+        raise DFAValueError(f"{flag} {path!r} is invalid: the file name must end in {suffix}; give {flag} {path}{suffix}")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise DFAValueError(f"{flag} {path!r} is invalid: folder {folder!r} does not exist; create it first")
+    if not os.access(folder, os.W_OK):
+        raise DFAValueError(f"{flag} {path!r} is invalid: folder {folder!r} is not writable; choose another folder")
+    return path
+
+
+def check_output_folder(flag: str, path: str, create: bool) -> str:
+    """Refuse an output *folder* that cannot be used; return it.
+
+    Rule: a non-empty path that is an existing folder or (with ``create``) a
+    not-yet-existing folder whose parent exists; never an existing file.
+    """
+    if not isinstance(path, str) or not path.strip():
+        raise DFAValueError(f"{flag} {path!r} is invalid: it must name a folder; give e.g. {flag} reports")
+    _check_path_text(flag, path)
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise DFAValueError(f"{flag} {path!r} is not a folder: it is an existing file; choose a folder")
+    if not os.path.isdir(path):
+        parent = os.path.dirname(os.path.abspath(path))
+        if not create:
+            raise DFAValueError(f"{flag} {path!r} is invalid: folder {os.path.abspath(path)!r} does not exist; create it first")
+        if not os.path.isdir(parent):
+            raise DFAValueError(f"{flag} {path!r} is invalid: folder {parent!r} does not exist; create it first")
+        if not os.access(parent, os.W_OK):
+            raise DFAValueError(f"{flag} {path!r} is invalid: folder {parent!r} is not writable; choose another folder")
+    elif not os.access(path, os.W_OK):
+        raise DFAValueError(f"{flag} {path!r} is invalid: the folder is not writable; choose another folder")
+    return path
+
+
+# ------------------------------------------------------------ resource limits
+def available_memory() -> int:
+    """Memory available to a new computation in bytes.
+
+    ``MemAvailable`` of ``/proc/meminfo`` (Linux), else physical pages ×
+    page size from :func:`os.sysconf`, else :data:`FALLBACK_MEMORY`.
+    """
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return int(os.sysconf("SC_PHYS_PAGES")) * int(os.sysconf("SC_PAGE_SIZE"))
+    except (AttributeError, OSError, ValueError):
+        return FALLBACK_MEMORY
+
+
+def _gib(nbytes: float) -> str:
+    return f"{nbytes / 1024**3:.3g} GiB"
+
+
+def check_memory(name: str, value: object, nbytes: float, fix: str) -> None:
+    """Refuse a computation planned to need more than :data:`MEMORY_FRACTION` of the available memory.
+
+    Parameters
+    ----------
+    name : str
+        The parameter (or command-line flag) that sets the size.
+    value : object
+        Its value, for the message.
+    nbytes : float
+        Estimated peak memory in bytes.
+    fix : str
+        How to make it smaller.
+    """
+    avail = available_memory()
+    if nbytes > MEMORY_FRACTION * avail:
+        raise DFAValueError(
+            f"{name} = {value} is too large: it needs about {_gib(nbytes)} of memory, more than "
+            f"{MEMORY_FRACTION:.0%} of the {_gib(avail)} available; {fix}"
+        )
+
+
+# ------------------------------------------------------------ numba cache
+def _writable_dir(path: str) -> bool:
+    try:
+        os.makedirs(path, exist_ok=True)
+    except OSError:
+        return False
+    if not os.path.isdir(path) or not os.access(path, os.W_OK | os.X_OK):
+        return False
+    try:
+        fd, probe = tempfile.mkstemp(prefix=_TMP_PREFIX, dir=path)
+    except OSError:
+        return False
+    os.close(fd)
+    os.unlink(probe)
+    return True
+
+
+def ensure_numba_cache_dir() -> str | None:
+    """Point numba's on-disk cache at a writable folder before anything is compiled.
+
+    numba caches compiled functions next to the sources (``__pycache__``) or
+    in ``NUMBA_CACHE_DIR``; with a read-only package and no writable
+    ``NUMBA_CACHE_DIR`` it raises "cannot cache function … no locator
+    available". When ``NUMBA_CACHE_DIR`` is set but not writable, or unset and
+    the package folder is not writable, this sets it to
+    ``<tempdir>/dfa-numba-cache-<uid>``. Returns the folder chosen, or None
+    when nothing was changed.
+    """
+    current = os.environ.get("NUMBA_CACHE_DIR")
+    if current:
+        if _writable_dir(current):
+            return None
+    else:
+        pkg = os.path.dirname(os.path.abspath(__file__))
+        if _writable_dir(os.path.join(pkg, "__pycache__")):
+            return None
+    uid = os.getuid() if hasattr(os, "getuid") else "user"
+    fallback = os.path.join(tempfile.gettempdir(), f"dfa-numba-cache-{uid}")
+    if not _writable_dir(fallback):
+        fallback = tempfile.mkdtemp(prefix="dfa-numba-cache-")
+    os.environ["NUMBA_CACHE_DIR"] = fallback
+    cfg = sys.modules.get("numba.core.config")
+    if cfg is not None:  # numba was imported before dfa: update its parsed setting too
+        cfg.CACHE_DIR = fallback
+    return fallback

@@ -1,0 +1,504 @@
+"""Hardening (issue 17): no tracebacks, nothing half-written, clean interruption.
+
+Each example of the fuzzing report has its own regression test here; the
+random CLI fuzzing is in ``test_cli_fuzz.py``.
+"""
+
+import decimal
+import fractions
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+from hypothesis import example, given
+from hypothesis import strategies as st
+
+import dfa
+from dfa import _io
+from dfa.cli import main
+from dfa.errors import (
+    DFAError,
+    DFATypeError,
+    DFAValueError,
+    check_beta,
+    check_int,
+    check_mu,
+    check_nonnegative,
+    check_positive,
+    check_real,
+    check_sigma,
+)
+from dfa.simulation import preload_position, stored_energy
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DFA = [sys.executable, "-c", "import sys; from dfa.cli import main; sys.exit(main())"]
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def refused(capsys, *argv):
+    """Run, expect exit 2 and a one-line message; return it."""
+    code, out, err = run(capsys, *argv)
+    assert code == 2, (argv, out, err)
+    assert err.count("\n") == 1 and err.startswith("dfa"), err
+    assert "Traceback" not in err
+    return err
+
+
+DIMLESS = ["--mu", "1", "--beta", "0.1", "--sigma", "0.2"]
+IMPULSE = ["--device", "impulse"]
+
+
+# ------------------------------------------------------------------ 1. numbers parse as numbers
+@pytest.mark.parametrize("text", ["1_000", "١٢", "１２", "nan", "NaN", "inf", "-inf", "Infinity", "0x10", "1e", "", " ", "1,5", "²"])
+def test_cli_numbers_decimal_ascii_only(capsys, text):
+    err = refused(capsys, "params", f"--mu={text}", "--beta", "0", "--sigma", "0")
+    assert "--mu" in err and "ASCII digits" in err
+
+
+@pytest.mark.parametrize("text, word", [("1e400", "too large"), ("-1e400", "too large"), ("1e-400", "too small")])
+def test_cli_numbers_overflow_and_underflow_refused(capsys, text, word):
+    err = refused(capsys, "check", "--beta", "0.1", "--sigma", "0.1", f"--xi-dot={text}")
+    assert "--xi-dot" in err and word in err
+
+
+@pytest.mark.parametrize("text", ["1_000", "1e6", "2.0", "٣", "nan", "99999999999999999999999"])
+def test_cli_integers_decimal_ascii_only(capsys, text):
+    err = refused(capsys, "simulate", *DIMLESS, "--xi-dot", "1", "--samples", text)
+    assert "--samples" in err
+
+
+def test_cli_minus_zero_is_zero(capsys):
+    code, out, _ = run(capsys, "params", "--mu", "1", "--beta", "-0", "--sigma", "-0.0")
+    assert code == 0 and "-0" not in out
+    assert [line.split()[-1] for line in out.splitlines()[1:]] == ["1", "0", "0"]
+    code, out, _ = run(capsys, "params", "--mu", "1", "--beta", "-0", "--sigma", "-0", "--json")
+    assert json.loads(out) == {"mu": 1.0, "beta": 0.0, "sigma": 0.0} and "-0" not in out
+
+
+def test_cli_mass_1e308_names_the_flag_and_the_overflow(capsys):
+    # was: "mu = inf is invalid: ... μ = m/(K T²) must be positive"
+    err = refused(capsys, "params", *IMPULSE, "--mass", "1e308")
+    assert "--mass" in err and "overflows" in err and "mu = inf" not in err
+
+
+def test_cli_mass_1e_320_refused_not_nan(capsys):
+    # was: exit 0 printing "ξ = nan"
+    err = refused(capsys, "simulate", *IMPULSE, "--mass", "1e-320", "--velocity", "0.05", "--samples", "100")
+    assert "--mass" in err and "vanishes" in err
+
+
+def test_cli_physical_flag_errors_name_the_flag(capsys):
+    err = refused(capsys, "params", *IMPULSE, "--mass", "-1")
+    assert err.startswith("dfa: error: --mass")
+    err = refused(capsys, "params", *IMPULSE, "--stiffness", "1e-310")
+    assert "--stiffness = 1e-310" in err and "μ = m/(K T²) overflows" in err
+
+
+def test_cli_map_negative_xi_dot_refused_with_fix(capsys, tmp_path):
+    # was: map --xi-dot=-3 silently ran +3
+    out = tmp_path / "m.npz"
+    err = refused(capsys, "map", "--mu", "100", "--xi-dot=-3", "--grid", "2", "--samples", "10", "--jobs", "1", "--out", str(out))
+    assert "--xi-dot 3" in err and not out.exists()
+
+
+# ------------------------------------------------------------------ 2. validators
+CHECKS = [check_real, check_positive, check_nonnegative, check_int]
+HOSTILE = st.one_of(
+    st.text(max_size=5), st.none(), st.booleans(), st.complex_numbers(), st.integers(), st.floats(),
+    st.fractions(), st.decimals(allow_nan=True), st.just(10**400), st.just(-(10**400)), st.just(fractions.Fraction(10**400, 3)),
+    st.just(np.array([1.0, 2.0])), st.just(np.array([[1]])), st.just(np.float32(2.5)), st.just(np.int64(3)),
+    st.just(np.array(2.0)), st.just(np.bool_(True)), st.just(np.complex128(1j)), st.just(object()), st.just([1.0]),
+    st.just(np.float64("nan")), st.just(decimal.Decimal("1e999999")),
+)
+
+
+@given(HOSTILE)
+@example(10**400)
+@example("1.0")
+@example(np.array([1.0]))
+@example(None)
+def test_validators_raise_only_package_errors(value):
+    for check in CHECKS + [lambda n, v: check_mu(v, n), lambda n, v: check_beta(v, n), lambda n, v: check_sigma(v, n)]:
+        try:
+            out = check("x", value)
+        except DFAError as err:
+            msg = str(err)
+            assert msg.startswith("x = ") and len(msg) < 300, msg  # names the parameter, value abbreviated
+        else:
+            assert type(out) in (float, int)
+
+
+def test_validators_400_digit_integer(capsys):
+    with pytest.raises(DFAValueError, match=r"x = <integer of 40\d digits>.*finite number"):
+        check_real("x", 10**400)
+    with pytest.raises(DFAValueError, match="at most"):
+        check_int("n", 10**400)
+    with pytest.raises(DFAValueError, match="mass"):
+        dfa.Device(mass=10**400, damping=0, coulomb=0, resolution=1e-5, period=1e-3)
+
+
+@pytest.mark.parametrize("value, kind", [("1.0", DFATypeError), (1j, DFATypeError), (None, DFATypeError), (True, DFATypeError),
+                                         (np.array([1.0, 2.0]), DFATypeError), (float("nan"), DFAValueError)])
+def test_validators_types(value, kind):
+    with pytest.raises(kind, match="^x = "):
+        check_real("x", value)
+
+
+def test_validators_accept_numpy_scalars():
+    assert check_real("x", np.float32(2.5)) == 2.5 and type(check_real("x", np.float32(2.5))) is float
+    assert check_int("n", np.int64(3)) == 3 and type(check_int("n", np.int64(3))) is int
+    assert check_real("x", np.array(2.0)) == 2.0
+    assert check_int("n", np.uint8(7), minimum=1) == 7
+    p = dfa.Params(np.float32(5.0), np.float64(0.1), np.int32(0))
+    assert p.as_dict() == {"mu": 5.0, "beta": pytest.approx(0.1), "sigma": 0.0}
+
+
+def test_table1_device_groups_refused_when_they_vanish_or_overflow():
+    dev = dfa.Device(mass=1e-320, damping=0.02, coulomb=0.024, resolution=314e-6, period=2e-3)
+    with pytest.raises(DFAValueError, match="mass = .*vanishes"):
+        dev.params(80.0)
+    dev = dfa.Device(mass=0.032, damping=1e308, coulomb=0.024, resolution=314e-6, period=2e-3)
+    with pytest.raises(DFAValueError, match="damping = 1e\\+308.*β = b/\\(K T\\) overflows"):
+        dev.params(80.0)
+    # zero damping or friction stays allowed (β = 0, σ = 0 are valid)
+    assert dfa.Device(mass=0.032, damping=0.0, coulomb=0.0, resolution=314e-6, period=2e-3).params(80.0).beta == 0.0
+    with pytest.raises(DFAValueError, match="mu"):
+        check_mu(5e-324)
+
+
+def test_table1_speed_conversion_overflow_refused():
+    dev = dfa.Device(mass=0.032, damping=0.02, coulomb=0.024, resolution=1e-300, period=2e-3)
+    with pytest.raises(DFAValueError, match="velocity = .*overflows"):
+        dev.xi_dot(1e300)
+
+
+# ------------------------------------------------------------------ 3. atomic writes and output paths
+def test_io_atomic_write_keeps_old_file_on_failure(tmp_path):
+    p = tmp_path / "a.txt"
+    _io.atomic_write_text(p, "old")
+    with pytest.raises(RuntimeError):
+        with _io.atomic_open(p, "w") as fh:
+            fh.write("new, half")
+            raise RuntimeError("disk full")
+    assert p.read_text() == "old" and os.listdir(tmp_path) == ["a.txt"]
+    with pytest.raises(KeyboardInterrupt):
+        with _io.atomic_open(p, "wb") as fh:
+            fh.write(b"x")
+            raise KeyboardInterrupt
+    assert p.read_text() == "old" and os.listdir(tmp_path) == ["a.txt"]
+    _io.atomic_write_bytes(p, b"new")
+    assert p.read_bytes() == b"new" and str(p) in _io.written_paths()
+
+
+def test_io_staged_folder_all_or_nothing(tmp_path):
+    (tmp_path / "r.md").write_text("old")
+    with pytest.raises(RuntimeError):
+        with _io.staged_folder(tmp_path) as stage:
+            (stage / "figures").mkdir()
+            (stage / "figures" / "f.png").write_bytes(b"png")
+            raise RuntimeError
+    assert sorted(os.listdir(tmp_path)) == ["r.md"] and (tmp_path / "r.md").read_text() == "old"
+    with _io.staged_folder(tmp_path) as stage:
+        (stage / "figures").mkdir()
+        (stage / "figures" / "f.png").write_bytes(b"png")
+        (stage / "r.md").write_text("new")
+    assert sorted(os.listdir(tmp_path)) == ["figures", "r.md"] and (tmp_path / "r.md").read_text() == "new"
+
+
+def test_fig4_map_save_is_atomic(tmp_path, monkeypatch):
+    m = dfa.stability_map(100.0, [2.0], grid=2, samples=50, n_jobs=1, progress=False)
+    p = m.save(tmp_path / "m.npz")
+    before = p.read_bytes()
+
+    def boom(fh, **kw):
+        fh.write(b"PK half a zip")
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(np, "savez_compressed", boom)
+    with pytest.raises(OSError):
+        m.save(p)
+    assert p.read_bytes() == before and os.listdir(tmp_path) == ["m.npz"]
+    monkeypatch.undo()
+    assert m.save(tmp_path / "other") == tmp_path / "other.npz"  # API keeps numpy's suffix rule
+
+
+@pytest.mark.parametrize("cmd", ["map", "contours", "simulate"])
+def test_cli_output_file_rules(capsys, tmp_path, cmd):
+    (tmp_path / "d").mkdir()
+    base = {"map": ["map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "10", "--jobs", "1", "--quiet", "--out"],
+            "contours": ["contours", "--mu", "5", "--grid", "2", "--max-amplitude", "2", "--out"],
+            "simulate": ["simulate", *DIMLESS, "--xi-dot", "1", "--samples", "10", "--trace"]}[cmd]
+    flag = base[-1]
+    bad = [str(tmp_path / "d") + os.sep, str(tmp_path / "d"), os.devnull, "", str(tmp_path / "missing" / "x.npz")]
+    if cmd != "simulate":
+        bad.append(str(tmp_path / "x.txt"))  # maps are .npz files, written exactly where asked
+    for path in bad:
+        err = refused(capsys, *base, path)
+        assert flag in err
+    assert sorted(os.listdir(tmp_path)) == ["d"] and os.listdir(tmp_path / "d") == []
+    assert not os.path.exists(os.devnull + ".npz") and not os.path.exists("..npz")
+    good = tmp_path / ("ok.npz" if cmd != "simulate" else "ok.csv")
+    code, _, err = run(capsys, *base, str(good))
+    assert code == 0, err
+    assert sorted(os.listdir(tmp_path)) == ["d", good.name]
+
+
+def test_cli_output_folder_rules(capsys, tmp_path):
+    f = tmp_path / "file"
+    f.write_text("x")
+    assert "not a folder" in refused(capsys, "report", *IMPULSE, "--out", str(f))
+    assert "not a folder" in refused(capsys, "validate", "--quick", "--out", str(f))
+    assert "does not exist" in refused(capsys, "report", *IMPULSE, "--out", str(tmp_path / "new"))
+    assert "--out" in refused(capsys, "validate", "--quick", "--out", "")
+    assert sorted(os.listdir(tmp_path)) == ["file"]
+
+
+def test_report_interrupted_leaves_folder_untouched(tmp_path, monkeypatch):
+    import dfa.plotting
+    import dfa.report as report
+
+    (tmp_path / "keep.txt").write_text("mine")
+
+    def fail(*a, **k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(dfa.plotting, "nyquist_plot", fail)  # after two figures were drawn
+    monkeypatch.setattr(report, "_first_unstable_speed", lambda *a, **k: 3.0)
+    with pytest.raises(KeyboardInterrupt):
+        dfa.design_report(dfa.get_device("impulse"), velocity=0.05, out_dir=tmp_path, progress=False, samples=500)
+    assert sorted(os.listdir(tmp_path)) == ["keep.txt"]
+
+
+# ------------------------------------------------------------------ 4. --jobs
+def test_cli_jobs_above_cores_refused(capsys, tmp_path):
+    too_many = str((os.cpu_count() or 1) + 1)
+    err = refused(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "4", "--jobs", too_many, "--out", str(tmp_path / "m.npz"))
+    assert "--jobs" in err and "cores" in err
+    assert "--jobs" in refused(capsys, "validate", "--quick", "--jobs", too_many, "--out", str(tmp_path / "v"))
+    assert "--jobs" in refused(capsys, "map", "--mu", "100", "--xi-dot", "1", "--jobs", "0", "--out", str(tmp_path / "m.npz"))
+    assert os.listdir(tmp_path) == []
+    with pytest.raises(DFAValueError, match="cores"):
+        dfa.stability_map(100.0, [1.0], grid=2, samples=10, n_jobs=int(too_many), progress=False)
+
+
+# ------------------------------------------------------------------ 5. interruption and closed pipes
+import threading  # noqa: E402
+
+main_thread_only = pytest.mark.skipif(threading.current_thread() is not threading.main_thread(),
+                                      reason="signal handlers need the main thread")
+
+
+@main_thread_only
+@pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_cli_signal_during_map_nothing_written(capsys, tmp_path, monkeypatch, sig, code):
+    import dfa.maps as maps
+
+    def interrupted(*a, **k):
+        os.kill(os.getpid(), sig)
+        time.sleep(5)  # the handler raises before this ends
+        raise AssertionError("signal not delivered")
+
+    monkeypatch.setattr(maps, "_run_chunk", interrupted)
+    out = tmp_path / "m.npz"
+    rc, _, err = run(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "10", "--jobs", "1", "--quiet", "--out", str(out))
+    assert rc == code
+    assert err == f"dfa: interrupted ({signal.Signals(sig).name}); nothing written\n"
+    assert os.listdir(tmp_path) == []
+    assert signal.getsignal(signal.SIGTERM) is not dfa.cli._on_signal  # handlers restored
+
+
+@main_thread_only
+def test_cli_signal_while_writing_trace(capsys, tmp_path, monkeypatch):
+    def interrupted(*a, **k):
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(5)
+
+    monkeypatch.setattr(np, "savetxt", interrupted)
+    rc, _, err = run(capsys, "simulate", *DIMLESS, "--xi-dot", "1", "--samples", "50", "--trace", str(tmp_path / "t.csv"))
+    assert rc == 143 and err == "dfa: interrupted (SIGTERM); nothing written\n"
+    assert os.listdir(tmp_path) == []
+
+
+@main_thread_only
+def test_cli_signal_after_a_file_was_kept(capsys, tmp_path, monkeypatch):
+    import dfa.cli as cli
+
+    def interrupted(obj):
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(5)
+
+    monkeypatch.setattr(cli, "_emit", interrupted)
+    out = tmp_path / "m.npz"
+    rc, _, err = run(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "10", "--jobs", "1", "--quiet",
+                     "--json", "--out", str(out))
+    assert rc == 130 and err == f"dfa: interrupted (SIGINT); kept {out} (complete)\n"
+    assert dfa.load_map(out).outcome.shape == (1, 2, 2)
+
+
+def _children_gone(pgid: int, timeout: float = 10.0) -> bool:
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        try:
+            os.killpg(pgid, 0)
+        except ProcessLookupError:
+            return True
+        time.sleep(0.1)
+    return False
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="needs 2 cores")
+def test_cli_sigterm_stops_joblib_workers(tmp_path):
+    out = tmp_path / "m.npz"
+    env = dict(os.environ, PYTHONUNBUFFERED="1")
+    proc = subprocess.Popen(DFA + ["map", "--mu", "100", "--xi-dot", "1", "2", "--grid", "60", "--samples", "50000", "--jobs", "2",
+                                   "--out", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, start_new_session=True)
+    # wait for the progress bar: the workers are running
+    first = proc.stderr.read(1)
+    assert first, "no progress bar"
+    time.sleep(1.0)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    text = (first + err).decode()
+    assert proc.returncode == 143, text
+    assert text.replace("\r", "\n").strip().splitlines()[-1] == "dfa: interrupted (SIGTERM); nothing written"
+    assert "Traceback" not in text
+    assert os.listdir(tmp_path) == []
+    assert _children_gone(proc.pid), "joblib workers still running"
+
+
+def test_cli_closed_pipe_ends_quietly():
+    proc = subprocess.Popen(DFA + ["devices"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.close()  # like `dfa devices | head -0`: the reader is gone before dfa writes
+    err = proc.stderr.read()
+    proc.wait(timeout=60)
+    assert proc.returncode in (0, 141) and b"Traceback" not in err and b"BrokenPipe" not in err, err
+
+
+# ------------------------------------------------------------------ 6. resources
+@pytest.mark.parametrize("argv, word", [
+    (["map", "--mu", "100", "--xi-dot", "1", "--grid", "100000", "--out", "{tmp}/m.npz"], "--grid"),
+    (["contours", "--mu", "5", "--grid", "100000"], "--grid"),
+    (["contours", "--mu", "5", "--grid", "10", "--max-amplitude", "1e13"], "--max-amplitude"),
+    (["simulate", *DIMLESS, "--xi-dot", "1", "--samples", "10000000000"], "--force"),
+])
+def test_cli_resources_refused_up_front(capsys, tmp_path, argv, word):
+    err = refused(capsys, *[a.replace("{tmp}", str(tmp_path)) for a in argv])
+    assert word in err and ("memory" in err or "s (estimated" in err)
+    assert os.listdir(tmp_path) == []
+
+
+def test_memory_estimates_and_limit(monkeypatch):
+    from dfa.contours import contour_memory_bytes
+    from dfa.maps import map_memory_bytes
+
+    assert map_memory_bytes(100000, 1) > 1e12 and map_memory_bytes(10, 2) < 1e5
+    assert contour_memory_bytes(100000, 200) > 1e12
+    monkeypatch.setattr(_io, "available_memory", lambda: 1000)
+    with pytest.raises(DFAValueError, match=r"grid = 10 is too large.*50%"):
+        dfa.stability_map(100.0, [1.0], grid=10, samples=10, n_jobs=1, progress=False)
+    monkeypatch.undo()
+    assert _io.available_memory() > 0
+
+
+def test_cli_simulate_force_runs_beyond_the_estimate(capsys, monkeypatch):
+    import dfa.cli as cli
+
+    monkeypatch.setattr(cli, "SIMULATE_TIME_LIMIT", 1e-6)
+    assert "--force" in refused(capsys, "simulate", *DIMLESS, "--xi-dot", "1", "--samples", "100")
+    code, out, _ = run(capsys, "simulate", *DIMLESS, "--xi-dot", "1", "--samples", "100", "--force", "--json")
+    assert code == 0 and json.loads(out)["samples"] == 100
+
+
+# ------------------------------------------------------------------ 7. preload_position (section 5)
+def test_preload_position_huge_energy_returns(capsys):
+    # was: never returned (the cell search stepped by 1 below the float spacing)
+    x = preload_position(7e16, 7e16)
+    e = 0.5 * 7e16 * 7e16**2
+    assert stored_energy(x, 0.0, 1.0) == pytest.approx(e, rel=1e-15)
+    assert x == pytest.approx(math.sqrt(2 * e), rel=1e-15)
+    err = refused(capsys, "simulate", "--mu", "7e16", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "7e16", "--preload")
+    assert "--preload" in err and "bound" in err
+    with pytest.raises(DFAValueError, match="overflows"):
+        preload_position(1e300, 1e10)
+
+
+@given(st.floats(1e-6, 1e6), st.floats(-1e8, 1e8))
+@example(1.0, 1.0)
+@example(1e6, 1e8)
+@example(1e-6, 1e-200)
+@example(2.0, 1.0)  # E = 1 inside the cell [1, 2)
+def test_preload_position_closed_form_matches_stored_energy(mu, v):
+    x = preload_position(mu, v)
+    e = 0.5 * mu * v * v
+    assert x >= 0.0
+    assert stored_energy(x, 0.0, 1.0) == pytest.approx(e, rel=4e-16 * max(1.0, x), abs=1e-300)
+    k = math.floor(x)
+    assert 0.5 * k * k <= e * (1 + 1e-15)  # ξ0 lies in the cell that holds E (H_c(k) = k²/2)
+
+
+def test_preload_position_tiny_energies():
+    assert preload_position(1.0, 1e-170) == 0.0  # 2E underflows: the exact answer rounds to 0
+    assert preload_position(1.0, 1e-100) == 1e-200  # first cell: ξ0 = E/(1/2) = ξ'0²
+    assert preload_position(100.0, 0.05) == pytest.approx(0.25, rel=1e-15)
+
+
+# ------------------------------------------------------------------ 8. numba cache
+def test_numba_cache_dir_not_writable_falls_back(tmp_path):
+    blocker = tmp_path / "a-file"
+    blocker.write_text("x")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(blocker / "cache"))  # under a regular file: never writable, even for root
+    proc = subprocess.run(DFA + ["simulate", "--mu", "100", "--beta", "0.1", "--sigma", "0.3", "--xi-dot", "2", "--samples", "200", "--json"],
+                          capture_output=True, text=True, env=env, timeout=300, cwd=str(tmp_path))
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["samples"] == 200
+
+
+def test_numba_cache_dir_choice(tmp_path, monkeypatch):
+    import numba.core.config as cfg
+
+    monkeypatch.setattr(cfg, "CACHE_DIR", cfg.CACHE_DIR)  # restored after the test
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "ok"))
+    assert _io.ensure_numba_cache_dir() is None  # writable: left alone
+    (tmp_path / "f").write_text("x")
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "f" / "sub"))
+    chosen = _io.ensure_numba_cache_dir()
+    assert chosen is not None and os.environ["NUMBA_CACHE_DIR"] == chosen and os.access(chosen, os.W_OK)
+
+
+# ------------------------------------------------------------------ found while hardening (another branch fixes it)
+@pytest.mark.xfail(strict=True, reason="eq. 11 max_passive_velocity rounds near K = 2b/T (dfa/stiffness.py, stiffness branch)")
+def test_eq11_max_passive_velocity_delta_k60_counterexample():
+    # K = 60 N/m is just above 2b/T = 59.99999999999999 for the Delta: KT/2 − b rounds to 1.7e-18 and
+    # max_passive_velocity claims 5.08e17 m/s, but the criterion (eq. 6) is already violated at 3.97e17 m/s.
+    dev = dfa.get_device("Delta").device
+    v = dfa.max_passive_velocity(dev, 60.0)
+    assert dfa.device_criterion(dev, 60.0, v * (1 - 1e-9)).passive
+
+
+def test_cli_map_huge_samples_refused(capsys, tmp_path):
+    # found by the fuzz test: `dfa map --samples 999999999999999999` ran for hours, uninterruptibly per point
+    err = refused(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "999999999999999999", "--jobs", "1",
+                  "--out", str(tmp_path / "m.npz"))
+    assert "--samples" in err and "--force" in err
+    err = refused(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "20000", "--jobs", "1", "--out", str(tmp_path / "m.npz"))
+    assert "--grid 20000" in err and " h " in err
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("argv", [["--period", "1e200"], ["--resolution", "1e-310", "--stiffness", "1e-20"]])
+def test_cli_table1_groups_without_float_exceptions(capsys, argv):
+    # found by the fuzz test: T² overflowed (OverflowError) and K·Δ underflowed to 0 (ZeroDivisionError)
+    err = refused(capsys, "params", *IMPULSE, *argv)
+    assert "is invalid" in err and argv[0] in err
