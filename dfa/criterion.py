@@ -325,7 +325,8 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
         raise DFAValueError(f"delay = {delay!r} is invalid: it must be a whole number >= 0; {_DELAY_FIX}")
     s0 = np.where(np.asarray(quantized, dtype=bool), 0.5, 0.0)
     b0 = 0.5 + d.astype(float)
-    margin = (b - b0) * v + (s - s0)
+    with np.errstate(over="ignore"):  # an overflowing margin keeps its sign, which is all that is used
+        margin = (b - b0) * v + (s - s0)
     high_beta = b >= b0
     high_sigma = s >= s0
     idx = np.where(

@@ -202,12 +202,12 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
         raise DFAValueError(f"out_dir = {str(out)!r} is invalid: the folder does not exist; create it first")
     # write everything into a staging folder, then move the files in: never a mix of two reports (dfa._io)
     with staged_folder(out) as stage:
-        res = _write_report(entry, dev, k, v, fmt, progress, map_grid, samples, out, stage)
+        res = _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out, stage)
     final = lambda pth: out / Path(pth).relative_to(stage)  # noqa: E731
     return ReportResult(tuple(final(x) for x in res.paths), tuple(final(x) for x in res.figures), res.numbers)
 
 
-def _write_report(entry, dev, k, v, fmt, progress, map_grid, samples, out: Path, stage: Path) -> ReportResult:
+def _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out: Path, stage: Path) -> ReportResult:
     figdir = stage / "figures"
     figdir.mkdir(exist_ok=True)
     slug = _slug(dev.name)

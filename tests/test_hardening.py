@@ -478,10 +478,10 @@ def test_numba_cache_dir_choice(tmp_path, monkeypatch):
 
 
 # ------------------------------------------------------------------ found while hardening (another branch fixes it)
-@pytest.mark.xfail(strict=True, reason="eq. 11 max_passive_velocity rounds near K = 2b/T (dfa/stiffness.py, stiffness branch)")
 def test_eq11_max_passive_velocity_delta_k60_counterexample():
-    # K = 60 N/m is just above 2b/T = 59.99999999999999 for the Delta: KT/2 − b rounds to 1.7e-18 and
-    # max_passive_velocity claims 5.08e17 m/s, but the criterion (eq. 6) is already violated at 3.97e17 m/s.
+    # K = 60 N/m is just above 2b/T = 59.99999999999999 for the Delta: KT/2 − b rounded to 1.7e-18 and
+    # max_passive_velocity claimed 5.08e17 m/s where eq. 6 already failed at 3.97e17 m/s; it is now the
+    # criterion's own critical speed.
     dev = dfa.get_device("Delta").device
     v = dfa.max_passive_velocity(dev, 60.0)
     assert dfa.device_criterion(dev, 60.0, v * (1 - 1e-9)).passive
