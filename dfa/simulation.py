@@ -181,6 +181,14 @@ def _decay_time(mu: float, beta: float, sigma: float, amp0: float, delay: int) -
     return math.log((threshold - 1.0) / (threshold - amp0)) / -a
 
 
+def _check_run(mu, beta, sigma, xi_dot0, xi0, delay) -> tuple[float, float, float, float, float, int]:
+    """The validated inputs of one run (Table 1 groups, initial state, delay), shared by simulate and default_samples."""
+    return (check_mu(mu), check_beta(beta), check_sigma(sigma),
+            check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample"),
+            check_real("xi0", xi0, "give the initial position in ticks"),
+            check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples"))
+
+
 def default_samples(mu: float, beta: float, sigma: float, xi_dot0: float, xi0: float = 0.0, delay: int = 0,
                     quantize: bool = True, *, cap: bool = True) -> int:
     """Run length (samples) long enough for the outcome to show (module docstring, "Default run length").
@@ -199,12 +207,7 @@ def default_samples(mu: float, beta: float, sigma: float, xi_dot0: float, xi0: f
     >>> default_samples(156250.0, 0.125, 0.9554, 0.637)  # Impulse Engine at 50 kg, 0.1 m/s
     462407
     """
-    m = check_mu(mu)
-    b = check_beta(beta)
-    s = check_sigma(sigma)
-    v0 = check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample")
-    x0 = check_real("xi0", xi0, "give the initial position in ticks")
-    d = check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+    m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
     amp0 = math.sqrt(2.0 * float(stored_energy(x0, v0, m, bool(quantize))))
     td = _decay_time(m, b, s, amp0, d)
     top = MAX_DEFAULT_SAMPLES if cap else 10 * MAX_DEFAULT_SAMPLES
@@ -413,12 +416,7 @@ def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int 
     -------
     SimulationResult
     """
-    m = check_mu(mu)
-    b = check_beta(beta)
-    s = check_sigma(sigma)
-    v0 = check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample")
-    x0 = check_real("xi0", xi0, "give the initial position in ticks")
-    d = check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+    m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
     auto = samples is None
     if auto:
         n = default_samples(m, b, s, v0, x0, d, bool(quantize))
