@@ -87,9 +87,9 @@ import numpy as np
 
 from .device import Device
 from .errors import (
+    check_delay,
     DFAValueError,
     check_beta,
-    check_int,
     check_mu,
     check_nonnegative,
     check_positive,
@@ -123,7 +123,7 @@ _DELAY_FIX = "give the computational delay in whole samples (0: the force uses t
 
 
 def _check_delay(delay) -> int:
-    return check_int("delay", delay, minimum=0, fix=_DELAY_FIX)
+    return check_delay(delay)
 
 
 def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *, quantized: bool = True) -> float:

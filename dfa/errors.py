@@ -197,3 +197,24 @@ def check_beta(value: Any, name: str = "beta") -> float:
 def check_sigma(value: Any, name: str = "sigma") -> float:
     """Dimensionless Coulomb friction σ = c/(K Δ) >= 0, as a float."""
     return check_nonnegative(name, value, "σ = c/(K Δ) cannot be negative")
+
+
+#: Largest computational delay accepted, in samples (10 s at 1 kHz): the exact linear bound solves a
+#: polynomial of degree d + 2 and the simulator keeps d + 1 pending forces.
+MAX_DELAY = 10_000
+
+
+def check_delay(value: Any) -> int:
+    """Return the computational delay d (whole samples, 0 <= d <= :data:`MAX_DELAY`).
+
+    Examples
+    --------
+    >>> check_delay(2)
+    2
+    """
+    d = check_int("delay", value, minimum=0, fix="give the computational delay in whole samples (0: the force uses the current reading)")
+    if d > MAX_DELAY:
+        raise DFAValueError(f"delay = {d} is invalid: it must be at most {MAX_DELAY} samples; give the computational delay "
+                            "in samples of the servo period (e.g. 1 for one sample of computation)")
+    return d
+

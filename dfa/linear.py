@@ -72,7 +72,7 @@ import numpy as np
 from numpy.polynomial import chebyshev
 from scipy.optimize import brentq
 
-from .errors import DFAError, DFAValueError, check_beta, check_int, check_mu, check_nonnegative, check_positive
+from .errors import check_delay, DFAError, DFAValueError, check_beta, check_mu, check_nonnegative, check_positive
 
 __all__ = [
     "characteristic_polynomial",
@@ -137,7 +137,7 @@ def _c1_minus_c0(a: float) -> float:
 
 
 def _check_delay(delay) -> int:
-    return check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+    return check_delay(delay)
 
 
 # ----------------------------------------------------------------------------- polynomial and spectral radius

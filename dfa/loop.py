@@ -45,7 +45,7 @@ import numpy as np
 
 from .describing import coulomb_equivalent_damping, quantizer_df, quantizer_df_inverse
 from .device import Params
-from .errors import DFAValueError, check_choice, check_int, check_type
+from .errors import check_delay, DFAValueError, check_choice, check_int, check_type
 from .linear import _zoh_coefficients  # the ZOH pulse-transfer coefficients live with the exact linear analysis
 
 __all__ = [
@@ -70,7 +70,7 @@ def _check_params(params: object) -> Params:
 
 def _check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int]:
     m = check_choice("model", model, LOOP_MODELS)
-    d = check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+    d = check_delay(delay)
     n = check_int("pade_order", pade_order, minimum=1, fix="use an order of 1 or more (4 is usually enough)")
     return m, d, n
 

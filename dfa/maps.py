@@ -52,7 +52,7 @@ import numpy as np
 
 from . import _kernel
 from ._io import atomic_open, check_memory
-from .errors import DFAValueError, check_int, check_mu, check_nonnegative, check_positive, check_real
+from .errors import check_delay, DFAValueError, check_int, check_mu, check_nonnegative, check_positive, check_real
 from .simulation import OUTCOMES, _tail_length, preload_position
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs"]
@@ -240,7 +240,7 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
     s0, s1 = _check_range("sigma_range", sigma_range)
     g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
     n = check_int("samples", samples, minimum=1)
-    d = check_int("delay", delay, minimum=0)
+    d = check_delay(delay)
     jobs = check_jobs("n_jobs", n_jobs)
     bnd = check_positive("bound", bound)
     sa = check_nonnegative("stable_amplitude", stable_amplitude)

@@ -22,7 +22,7 @@ from .catalogue import CatalogueEntry
 from .criterion import device_criterion
 from .device import Device
 from ._io import staged_folder
-from .errors import DFAValueError, check_choice, check_int, check_positive, check_real
+from .errors import check_delay, DFAValueError, check_choice, check_positive, check_real
 from .cycles import growth_threshold
 from .loop import nyquist_locus_response
 from .maps import stability_map
@@ -196,7 +196,7 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
     k = check_positive("stiffness", k, "give the virtual wall stiffness K")
     v = abs(check_real("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1)))
     fmt = check_choice("fmt", fmt, ("html", "md", "both"))
-    dl = check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+    dl = check_delay(delay)
     out = Path(out_dir)
     if not out.is_dir():
         raise DFAValueError(f"out_dir = {str(out)!r} is invalid: the folder does not exist; create it first")

@@ -101,7 +101,7 @@ from fractions import Fraction
 import numpy as np
 
 from . import _kernel
-from .errors import DFAValueError, check_beta, check_int, check_mu, check_nonnegative, check_positive, check_real, check_sigma
+from .errors import check_delay, DFAValueError, check_beta, check_int, check_mu, check_nonnegative, check_positive, check_real, check_sigma
 
 __all__ = [
     "OUTCOMES",
@@ -186,7 +186,7 @@ def _check_run(mu, beta, sigma, xi_dot0, xi0, delay) -> tuple[float, float, floa
     return (check_mu(mu), check_beta(beta), check_sigma(sigma),
             check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample"),
             check_real("xi0", xi0, "give the initial position in ticks"),
-            check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples"))
+            check_delay(delay))
 
 
 def default_samples(mu: float, beta: float, sigma: float, xi_dot0: float, xi0: float = 0.0, delay: int = 0,

@@ -49,7 +49,7 @@ from numba import njit
 
 from . import _kernel
 from .criterion import passivity_criterion
-from .errors import DFAValueError, check_choice, check_int
+from .errors import check_delay, DFAValueError, check_choice, check_int
 
 __all__ = ["DelaySoundness", "sample_passive_points", "delay_soundness", "soundness_markdown", "main"]
 
@@ -95,7 +95,7 @@ def sample_passive_points(n: int, delay: int, *, criterion: str = "delay-aware",
         ``mu, beta, sigma, xi0, xi_dot, kind`` (kind: index into :data:`KINDS`).
     """
     n = check_int("n", n, minimum=1)
-    d = check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+    d = check_delay(delay)
     crit = check_choice("criterion", criterion, CRITERIA)
     rng = np.random.default_rng(seed)
     lo, hi = np.log10(mu_range[0]), np.log10(mu_range[1])

@@ -42,11 +42,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .criterion import device_criterion
 from .device import Device
-from .errors import DFAValueError, check_int, check_mu, check_positive, check_real, check_type
+from .errors import check_delay, DFAValueError, check_positive, check_real, check_type
 from .linear import critical_beta, critical_stiffness
 
 __all__ = [
@@ -70,7 +69,7 @@ def _check_device(device: object) -> Device:
 
 
 def _check_delay(delay: object) -> int:
-    return check_int("delay", delay, minimum=0, fix="give the computational delay in whole samples")
+    return check_delay(delay)
 
 
 def k_static(device: Device) -> float:

@@ -502,3 +502,14 @@ def test_cli_table1_groups_without_float_exceptions(capsys, argv):
     # found by the fuzz test: T² overflowed (OverflowError) and K·Δ underflowed to 0 (ZeroDivisionError)
     err = refused(capsys, "params", *IMPULSE, *argv)
     assert "is invalid" in err and argv[0] in err
+
+
+@pytest.mark.parametrize("cmd", [["stiffness", "--device", "phantom", "--xi-dot", "1"],
+                                 ["check", "--device", "phantom", "--xi-dot", "1"],
+                                 ["simulate", "--mu", "100", "--beta", "1", "--sigma", "1", "--xi-dot", "1"]])
+def test_cli_huge_delay_refused_with_the_limit(capsys, cmd):
+    # found by the fuzz test: --delay 999999999999999999 reached numpy's "array is too big" in dfa.linear
+    err = refused(capsys, *cmd, "--delay", "999999999999999999")
+    assert "delay" in err and str(dfa.errors.MAX_DELAY) in err
+    with pytest.raises(dfa.errors.DFAValueError, match="at most"):
+        dfa.linear.critical_stiffness(0.1, 1.0, 1e-3, delay=dfa.errors.MAX_DELAY + 1)
