@@ -288,17 +288,19 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
 
 
 @njit(cache=True)
-def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize):
+def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, mu):
     """Outcome code, amplitude, frequency, centre and force peak-to-peak of a run from its stats.
 
     In this order (``P_k``: peak |ξ| at the sample instants in the k-th eighth of the run):
 
     * rest: the kernel reached the absorbing state (``rest >= 0``);
     * unstable: |ξ| exceeded the bound, or the envelope grows: P_7 exceeds
-      ``growth`` times P_4 and 1 tick, and P_4 <= P_5 <= P_6 <= P_7;
+      ``growth`` times P_4 and 1 tick, and P_4 <= P_5 <= P_6 <= P_7, in a run
+      of at least 8 periods 2π√μ (shorter runs are never called unstable by
+      the envelope: they are undecided);
       without quantization (the linear loop, which has no tick scale) the
       1-tick floor is dropped, and an envelope that shrinks the same way
-      (P_4 > ``growth`` P_7, P_4 >= P_5 >= P_6 >= P_7) is rest: it decays to
+      (P_4 > ``growth`` P_7, or P_7 <= 1e-12 P_0, with P_4 >= P_5 >= P_6 >= P_7) is rest: it decays to
       rest geometrically and never reaches it exactly;
     * undecided: the envelope has not settled: max − min of P_5, P_6, P_7
       exceeds ``settle`` times their max, or the tail holds less than one
@@ -326,9 +328,13 @@ def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize):
     count = stats[NSEG + 2]
     if count >= 2 and stats[NSEG + 4] > stats[NSEG + 3]:
         freq = 2.0 * math.pi * (count - 1) / (stats[NSEG + 4] - stats[NSEG + 3])
-    # without quantization the loop is linear and has no tick scale: growth needs no 1-tick floor
-    grow = stats[NSEG - 1] > growth * stats[NSEG // 2] and (stats[NSEG - 1] > 1.0 or not quantize)
-    decay = not quantize and stats[NSEG - 1] * growth < stats[NSEG // 2]
+    # without quantization the loop is linear and has no tick scale: growth needs no 1-tick floor.
+    # The envelope rules need every eighth of the run to hold a full period 2π√μ of the spring:
+    # within the first quarter-period |ξ| rises from the impact whatever the loop does.
+    long_enough = n >= NSEG * 2.0 * math.pi * math.sqrt(mu)
+    grow = long_enough and stats[NSEG - 1] > growth * stats[NSEG // 2] and (stats[NSEG - 1] > 1.0 or not quantize)
+    decay = long_enough and not quantize and (stats[NSEG - 1] * growth < stats[NSEG // 2]
+                                              or stats[NSEG - 1] <= 1e-12 * stats[0])  # decayed to denormals
     for i in range(NSEG - 4, NSEG - 1):
         if stats[i + 1] < stats[i]:
             grow = False
@@ -357,7 +363,7 @@ def map_kernel(mu, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len,
     for i in range(betas.shape[0]):
         done, rest = simulate_kernel(mu, betas[i], sigmas[i], x0s[i], v0s[i], n, delay, quantize, bound,
                                      tail_len, empty, empty, empty2, stats)
-        c, a, f, _centre, _fpp = classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize)
+        c, a, f, _centre, _fpp = classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, mu)
         codes[i] = c
         amps[i] = a
         freqs[i] = f

@@ -21,12 +21,15 @@ k-th eighth of the run (``SimulationResult.envelope``).
     Without quantization (``quantize=False``, the linear loop, which decays
     to rest but never reaches it exactly when σ = 0) rest also means an
     envelope that shrinks as the unstable rule below grows:
-    P_4 > ``growth`` × P_7 and P_4 >= P_5 >= P_6 >= P_7.
+    P_4 > ``growth`` × P_7 (or a fall below 10⁻¹² of P_0, into the
+    denormal numbers) and P_4 >= P_5 >= P_6 >= P_7.
 ``"unstable"``
     |ξ| exceeded ``bound`` ticks (default 10⁶), or the envelope grows:
     P_7 > ``growth`` (default 1.25) × P_4, P_7 > 1 tick (no tick floor
     without quantization: the linear loop has no scale), and
-    P_4 <= P_5 <= P_6 <= P_7.
+    P_4 <= P_5 <= P_6 <= P_7, in a run of at least 8 periods 2π√μ of the
+    spring (in a shorter run |ξ| rises from the impact whatever the loop
+    does, so the envelope decides nothing: such a run is undecided).
 ``"undecided"``
     the run was too short to tell: the envelope is still changing
     (max − min of P_5, P_6, P_7 exceeds ``settle`` (default 10⁻³) times
@@ -443,7 +446,7 @@ def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int 
     stats = np.empty(_kernel.NSTATS)
     tail = _tail_length(n, m)
     done, rest = _kernel.simulate_kernel(m, b, s, x0, v0, n, d, bool(quantize), bnd, tail, rx, rv, re, stats)
-    code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, bool(quantize))
+    code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, bool(quantize), m)
     suggest = None
     if code == _kernel.UNDECIDED:
         suggest = max(4 * n, default_samples(m, b, s, v0, x0, d, bool(quantize), cap=False))

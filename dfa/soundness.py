@@ -153,7 +153,7 @@ def _batch(mus, betas, sigmas, x0s, v0s, ns, delay, ratio, codes, worst_sample):
         tail = min(8192, max(2, n // 4))
         done, rest = _kernel.simulate_kernel(mu, betas[i], sigmas[i], x0s[i], v0s[i], n, delay, True, 1.0e6, tail,
                                              rx[: n + 1], rv[: n + 1], empty2, stats)
-        c, _a, _f, _c, _fpp = _kernel.classify(n, done, rest, stats, 1.0, 1.25, 1.0e-3, True)
+        c, _a, _f, _c, _fpp = _kernel.classify(n, done, rest, stats, 1.0, 1.25, 1.0e-3, True, mu)
         codes[i] = c
         s0 = 0.5 * mu * v0s[i] * v0s[i] + 0.5 * x0s[i] * x0s[i]
         worst = -np.inf

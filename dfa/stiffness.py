@@ -105,7 +105,9 @@ def k_max_criterion(device: Device, velocity, delay: int = 0):
         )
     d = _check_delay(delay)
     k_dyn = (dev.damping * v + dev.coulomb) / (dev.period * (0.5 + d) * v + 0.5 * dev.resolution)
-    out = np.minimum(k_static(dev), k_dyn)
+    # rounded down by 1e-12 (relative) so that device_criterion accepts K_max itself: the two evaluate
+    # the same inequality in physical and dimensionless form, and margin = 0 must stay on the passive side
+    out = np.minimum(k_static(dev), k_dyn) * (1.0 - 1e-12)
     return float(out) if out.ndim == 0 else out
 
 

@@ -127,3 +127,19 @@ def test_eq11_max_passive_velocity_agrees_with_the_criterion_where_kt_minus_b_ca
             continue
         assert dfa.device_criterion(dev, k, v * (1 - 1e-9)).passive
         assert not dfa.device_criterion(dev, k, v * (1 + 1e-9)).passive
+
+
+def test_eq11_k_max_passes_its_own_criterion_with_delay():
+    """Red-team finding: K_max failed device_criterion at margin −1e-16 in a third of random cases."""
+    import dfa
+
+    rng = np.random.default_rng(3)
+    for name in ("Delta", "Impulse Engine", "Phantom 1.0", "Toolhandle"):
+        dev = dfa.get_device(name).device
+        for _ in range(150):
+            v = 10 ** rng.uniform(-3, 0.5)
+            d = int(rng.integers(0, 3))
+            k = dfa.k_max_criterion(dev, v, delay=d)
+            assert dfa.device_criterion(dev, k, v, delay=d).passive, (name, v, d)
+            assert dfa.stiffness_limits(dev, v, k, delay=d).status == "ok"
+            assert not dfa.device_criterion(dev, k * (1 + 1e-9), v, delay=d).passive or k == dfa.k_max_criterion(dev, 0.0)

@@ -167,7 +167,7 @@ def test_eq11_delay_kmax_closed_form_and_flip(d, velocity):
     b, c, dx, t = DEV.damping, DEV.coulomb, DEV.resolution, DEV.period
     closed = min(2 * c / dx, (b * velocity + c) / (t * (0.5 + d) * velocity + dx / 2))
     k = k_max_criterion(DEV, velocity, delay=d)
-    assert k == pytest.approx(closed, rel=1e-12)
+    assert k == pytest.approx(closed, rel=2e-12)  # K_max is rounded down by 1e-12 (k_max_criterion)
     assert dfa.device_criterion(DEV, k * (1 - 1e-9), velocity, delay=d).passive
     assert not dfa.device_criterion(DEV, k * (1 + 1e-9), velocity, delay=d).passive
 

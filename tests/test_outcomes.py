@@ -141,7 +141,7 @@ def _stats(peaks, tmin=-0.3, tmax=0.3, count=10, fmin=-1.0, fmax=0.0):
 
 
 def _name(stats, sa=1.0, growth=1.25, settle=1e-3, rest=-1):
-    return OUTCOMES[_kernel.classify(1000, 1000, rest, stats, sa, growth, settle, True)[0]]
+    return OUTCOMES[_kernel.classify(1000, 1000, rest, stats, sa, growth, settle, True, 1.0)[0]]
 
 
 def test_rule_defaults_are_the_documented_ones():
@@ -343,3 +343,22 @@ def test_gil_linear_loop_outcome_flips_at_the_exact_linear_bound(delay):
         p = dev.params(k * f)
         out[f] = simulate(p.mu, p.beta, 0.0, 1e-3, 4000, delay=delay, quantize=False, record=False).outcome
     assert out == {0.98: "rest", 1.02: "unstable"}
+
+
+@pytest.mark.parametrize("args", [(3e7, 0.5, 0.5, 0.002, 5000), (1e10, 0.8, 0.8, 0.5, 50_000), (1e6, 0.6, 0.6, 0.3, 3000)])
+def test_eq6_passive_short_runs_are_never_called_unstable(args):
+    """Red-team finding: a run shorter than a few periods 2π√μ was called 'unstable' by the envelope rule while
+    |ξ| was only rising from the impact; these points are proven passive (eq. 6), so the answer is 'undecided'."""
+    mu, beta, sigma, v, n = args
+    assert dfa.passivity_criterion(beta, sigma, v).passive
+    r = simulate(mu, beta, sigma, v, n, record=False)
+    assert r.outcome == "undecided" and r.suggested_samples > n
+
+
+def test_eq7_linear_loop_decayed_to_denormals_is_rest_not_chatter():
+    """Red-team finding: a stable linear loop that decayed into denormal numbers was called 'chatter'."""
+    from dfa.linear import linear_stable
+
+    assert linear_stable(1.0, 0.5)
+    r = simulate(1.0, 0.5, 0.0, 2.0, 200_000, quantize=False, record=False)
+    assert r.outcome == "rest"
