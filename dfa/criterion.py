@@ -104,6 +104,7 @@ __all__ = [
     "device_criterion",
     "classify_region",
     "equivalent_speed",
+    "spring_energy",
     "REGION_DESCRIPTIONS",
 ]
 
@@ -163,9 +164,22 @@ def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *
             "H_c(ξ0) enters the speed only through 2H_c/μ; pass mu, or use device_criterion(..., position=...)"
         )
     m = check_mu(mu)
-    frac = x - math.floor(x)
-    hc = 0.5 * x * x + (0.5 * (frac - frac * frac) if quantized else 0.0)
-    return math.sqrt(v * v + 2.0 * hc / m)
+    return math.sqrt(v * v + 2.0 * float(spring_energy(x, quantized)) / m)
+
+
+def spring_energy(xi, quantize: bool = True):
+    """Pseudo-elastic energy H_c(ξ) = ½ξ² + ½(p − p²), p = ξ − ⌊ξ⌋, of the quantized spring (eq. 18), vectorised.
+
+    The exact integral of the restoring staircase ⌊s⌋ + ½ from 0 to ξ; ½ξ² without quantization.
+
+    Examples
+    --------
+    >>> float(spring_energy(1.0)), float(spring_energy(0.5)), float(spring_energy(0.5, quantize=False))
+    (0.5, 0.25, 0.125)
+    """
+    x = np.asarray(xi, dtype=float)
+    p = x - np.floor(x)
+    return 0.5 * x * x + (0.5 * (p - p * p) if quantize else 0.0)
 
 
 @dataclass(frozen=True)

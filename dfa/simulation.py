@@ -104,6 +104,7 @@ from fractions import Fraction
 import numpy as np
 
 from . import _kernel
+from .criterion import spring_energy
 from .errors import check_delay, DFAValueError, check_beta, check_int, check_mu, check_nonnegative, check_positive, check_real, check_sigma
 
 __all__ = [
@@ -135,11 +136,8 @@ def stored_energy(xi, xi_dot, mu: float, quantize: bool = True):
     H_c(ξ) = ½ξ² + ½(p − p²), p = ξ − ⌊ξ⌋, is the exact integral of the
     restoring staircase ⌊s⌋ + ½; without quantization H_c = ½ξ².
     """
-    x = np.asarray(xi, dtype=float)
     v = np.asarray(xi_dot, dtype=float)
-    p = x - np.floor(x)
-    hc = 0.5 * x * x + (0.5 * (p - p * p) if quantize else 0.0)
-    return 0.5 * mu * v * v + hc
+    return 0.5 * mu * v * v + spring_energy(xi, quantize)
 
 
 def preload_position(mu: float, xi_dot: float) -> float:
