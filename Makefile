@@ -9,7 +9,7 @@ STAMP  := $(VENV)/.dfa-installed
 export NUMBA_CACHE_DIR := $(CURDIR)/.cache/numba
 export MPLBACKEND := Agg
 
-.PHONY: all venv report test explore bench readme clean
+.PHONY: all venv report test lint explore bench readme clean
 
 all: test
 
@@ -25,6 +25,13 @@ report: $(STAMP)
 
 test: $(STAMP)
 	HYPOTHESIS_PROFILE=ci $(BIN)/python -m pytest -q -n 2
+
+# Format, lint, layering (import contracts in pyproject.toml) and types.
+lint: $(STAMP)
+	$(BIN)/ruff format --check .
+	$(BIN)/ruff check .
+	$(BIN)/lint-imports
+	$(BIN)/mypy
 
 # Random hypothesis examples, many more of them: hunt for counterexamples on demand.
 explore: $(STAMP)

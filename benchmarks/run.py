@@ -49,8 +49,18 @@ def bench_simulator(quick: bool) -> list[dict]:
     t_ct = best_of(lambda: simulate_control(OSC["mu"], OSC["beta"], OSC["sigma"], 0.0, OSC["xi_dot0"], n_ct), 1) / n_ct
     return [
         dict(name="exact kernel (numba), no recording", per_sample_ns=t_fast * 1e9, ratio=1.0, goal="baseline"),
-        dict(name="scipy solve_ivp (DOP853, events)", per_sample_ns=t_ivp * 1e9, ratio=t_ivp / t_fast, goal=">= 1e4x slower than the kernel"),
-        dict(name="python-control input_output_response", per_sample_ns=t_ct * 1e9, ratio=t_ct / t_fast, goal=">= 1e3x slower than the kernel"),
+        dict(
+            name="scipy solve_ivp (DOP853, events)",
+            per_sample_ns=t_ivp * 1e9,
+            ratio=t_ivp / t_fast,
+            goal=">= 1e4x slower than the kernel",
+        ),
+        dict(
+            name="python-control input_output_response",
+            per_sample_ns=t_ct * 1e9,
+            ratio=t_ct / t_fast,
+            goal=">= 1e3x slower than the kernel",
+        ),
     ]
 
 
@@ -72,16 +82,16 @@ def bench_solver(quick: bool) -> list[dict]:
 
     import control
 
-    from dfa.describing import QuantizerNonlinearity, quantizer_df
     from dfa import cycles as _cycles
     from dfa.cycles import limit_cycles
+    from dfa.describing import QuantizerNonlinearity, quantizer_df
     from dfa.loop import loop_response, loop_system
 
     rows = []
     amps = np.linspace(0.05, 10.0, 400)
     for mu, beta in DF_CASES:
         p = dfa.Params(mu, beta, 0.0)
-        t_ours = best_of(lambda: limit_cycles(p, model="pade", pade_order=6), 5)
+        t_ours = best_of(lambda p=p: limit_cycles(p, model="pade", pade_order=6), 5)
 
         def cold(p=p):
             # the loop model's caches (Padé coefficients, phase on the scan grid) emptied before the solve
@@ -111,9 +121,22 @@ def bench_solver(quick: bool) -> list[dict]:
                 pc_resid.append(abs(1.0 + quantizer_df(a) * complex(loop_response(p, w, model="pade", pade_order=6))))
         found = len(used)
         in_range = sum(c.amplitude <= amps[-1] for c in ours)
-        rows.append(dict(mu=mu, beta=beta, t_ours=t_ours, t_cold=t_cold, t_pc=t_pc, n_ours=len(ours), n_pc=len(pc), found=found,
-                         in_range=in_range, pc_err=max(errs, default=0.0), pc_resid=max(pc_resid, default=0.0),
-                         our_resid=max((c.residual for c in ours), default=0.0)))
+        rows.append(
+            dict(
+                mu=mu,
+                beta=beta,
+                t_ours=t_ours,
+                t_cold=t_cold,
+                t_pc=t_pc,
+                n_ours=len(ours),
+                n_pc=len(pc),
+                found=found,
+                in_range=in_range,
+                pc_err=max(errs, default=0.0),
+                pc_resid=max(pc_resid, default=0.0),
+                our_resid=max((c.residual for c in ours), default=0.0),
+            )
+        )
     return rows
 
 
@@ -155,6 +178,7 @@ def bench_solver_friction(solver_rows: list[dict]) -> list[dict]:
         p = dfa.Params(mu, beta, sigma)
         row = dict(mu=mu, beta=beta, sigma=sigma, t_pc=pc.get((mu, beta), pc_median))
         for model in ("half-delay", "pade", "zoh"):
+
             def cold(p=p, model=model):
                 _cycles._zoh_phase_beta_grid.cache_clear()
                 _cycles._grid_lead.cache_clear()
@@ -162,13 +186,19 @@ def bench_solver_friction(solver_rows: list[dict]) -> list[dict]:
 
             row[f"n_{model}"] = len(cold().cycles)
             row[f"cold_{model}"] = best_of(cold, 3)
-            row[f"t_{model}"] = best_of(lambda: limit_cycles(p, model=model), 3)
+            row[f"t_{model}"] = best_of(lambda p=p, model=model: limit_cycles(p, model=model), 3)
         rows.append(row)
     return rows
 
 
-def render(sim: list[dict], fig4: dict, quick: bool, solver: list[dict] | None = None, friction: list[dict] | None = None,
-           contours: dict | None = None) -> str:
+def render(
+    sim: list[dict],
+    fig4: dict,
+    quick: bool,
+    solver: list[dict] | None = None,
+    friction: list[dict] | None = None,
+    contours: dict | None = None,
+) -> str:
     lines = [
         "# Benchmarks",
         "",
@@ -196,8 +226,10 @@ def render(sim: list[dict], fig4: dict, quick: bool, solver: list[dict] | None =
         "| ξ'0 | rest | chatter | oscillating | unstable | undecided |",
         "|---:|---:|---:|---:|---:|---:|",
     ]
-    for v, c in zip([1, 2, 5, 10], fig4["counts"]):
-        lines.append(f"| {v} | {c['rest']} | {c['chatter']} | {c['oscillating']} | {c['unstable']} | {c['undecided']} |")
+    for v, c in zip([1, 2, 5, 10], fig4["counts"], strict=False):
+        lines.append(
+            f"| {v} | {c['rest']} | {c['chatter']} | {c['oscillating']} | {c['unstable']} | {c['undecided']} |"
+        )
     if solver:
         lines += [
             "",
@@ -207,8 +239,8 @@ def render(sim: list[dict], fig4: dict, quick: bool, solver: list[dict] | None =
             "amplitude-independent linear block applies) and the same `QuantizerNonlinearity` object. python-control:",
             "`describing_function_response` with 400 amplitudes in [0.05, 10] ticks and its default frequency grid.",
             "",
-            "dfa searches every amplitude up to 10⁴ ticks. \"dfa\" is the best of 5 solves (a sweep at a fixed loop model);",
-            "\"cold\" is a solve right after the loop model's caches (Padé coefficients, phase on the scan grid) are emptied (best of 5).",
+            'dfa searches every amplitude up to 10⁴ ticks. "dfa" is the best of 5 solves (a sweep at a fixed loop model);',
+            '"cold" is a solve right after the loop model\'s caches (Padé coefficients, phase on the scan grid) are emptied (best of 5).',
             "",
             "Roots are matched one to one (nearest, within 1 % in amplitude); python-control's error is its worst relative",
             "amplitude error against ours, and residuals are |1 + D(M)L(jω)| at the reported roots.",
@@ -226,13 +258,19 @@ def render(sim: list[dict], fig4: dict, quick: bool, solver: list[dict] | None =
         missed = sum(r["in_range"] - r["found"] for r in solver)
         spurious = sum(r["n_pc"] - r["found"] for r in solver)
         beyond = sum(r["n_ours"] - r["in_range"] for r in solver)
-        lines += ["", f"Every root python-control finds is one of ours ({spurious} unmatched); within its amplitude range it misses "
-                  f"{missed} of ours, and {beyond} of ours lie beyond the range it was given (it has no way to know how far to search)."]
+        lines += [
+            "",
+            f"Every root python-control finds is one of ours ({spurious} unmatched); within its amplitude range it misses "
+            f"{missed} of ours, and {beyond} of ours lie beyond the range it was given (it has no way to know how far to search).",
+        ]
         ratios = [r["t_pc"] / r["t_ours"] for r in solver]
         cold = [r["t_pc"] / r["t_cold"] for r in solver]
         verdict = "met" if min(ratios) >= 1000 else "NOT met"
-        lines += ["", f"Speed-up {min(ratios):.0f}× to {max(ratios):.0f}× per solve ({min(cold):.0f}× to {max(cold):.0f}× cold); "
-                  f"goal 1000× per solve: **{verdict}**."]
+        lines += [
+            "",
+            f"Speed-up {min(ratios):.0f}× to {max(ratios):.0f}× per solve ({min(cold):.0f}× to {max(cold):.0f}× cold); "
+            f"goal 1000× per solve: **{verdict}**.",
+        ]
     if friction:
         lines += [
             "",

@@ -78,8 +78,24 @@ _LAZY = {
     "validate": "validation",
     "design_report": "report",
 }
-_SUBMODULES = {"describing", "loop", "criterion", "stiffness", "catalogue", "device", "errors", "cli", "cycles",
-               "simulation", "maps", "contours", "validation", "report", "plotting", "reference"}
+_SUBMODULES = {
+    "describing",
+    "loop",
+    "criterion",
+    "stiffness",
+    "catalogue",
+    "device",
+    "errors",
+    "cli",
+    "cycles",
+    "simulation",
+    "maps",
+    "contours",
+    "validation",
+    "report",
+    "plotting",
+    "reference",
+}
 
 
 def __getattr__(name: str):
@@ -96,6 +112,7 @@ def __getattr__(name: str):
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(__all__))
+
 
 __all__ = [
     "Device",

@@ -34,8 +34,9 @@ import os
 import shutil
 import sys
 import tempfile
+from collections.abc import Iterator
 from pathlib import Path
-from typing import IO, Iterator
+from typing import IO
 
 from .errors import DFAValueError
 
@@ -157,7 +158,9 @@ def _check_path_text(flag: str, path: str) -> None:
     try:
         os.fsencode(path)
     except UnicodeError:
-        raise DFAValueError(f"{flag} {shown} is invalid: it cannot be encoded as a file name; use plain characters") from None
+        raise DFAValueError(
+            f"{flag} {shown} is invalid: it cannot be encoded as a file name; use plain characters"
+        ) from None
     if "\0" in path:
         raise DFAValueError(f"{flag} {shown} is invalid: it contains a NUL byte; give a plain path")
     try:
@@ -166,7 +169,9 @@ def _check_path_text(flag: str, path: str) -> None:
         name_max = 255
     longest = max((len(os.fsencode(part)) for part in path.split(os.sep)), default=0)
     if longest > name_max or len(os.fsencode(path)) > 4000:
-        raise DFAValueError(f"{flag} {shown} is invalid: a name in it is longer than {name_max} bytes; give a shorter path")
+        raise DFAValueError(
+            f"{flag} {shown} is invalid: a name in it is longer than {name_max} bytes; give a shorter path"
+        )
 
 
 def check_output_file(flag: str, path: str, suffix: str | None = None) -> str:
@@ -181,11 +186,15 @@ def check_output_file(flag: str, path: str, suffix: str | None = None) -> str:
         raise DFAValueError(f"{flag} {path!r} is invalid: it must name a file; give e.g. {flag} out{suffix or '.csv'}")
     _check_path_text(flag, path)
     if path.endswith(("/", os.sep)) or os.path.isdir(path):
-        raise DFAValueError(f"{flag} {path!r} is a folder: it must name a file; give e.g. {flag} {os.path.join(path, 'out' + (suffix or '.csv'))}")
+        raise DFAValueError(
+            f"{flag} {path!r} is a folder: it must name a file; give e.g. {flag} {os.path.join(path, 'out' + (suffix or '.csv'))}"
+        )
     if os.path.exists(path) and not os.path.isfile(path):
         raise DFAValueError(f"{flag} {path!r} is not a regular file: it cannot be replaced; choose a file path")
     if suffix is not None and not path.endswith(suffix):
-        raise DFAValueError(f"{flag} {path!r} is invalid: the file name must end in {suffix}; give {flag} {path}{suffix}")
+        raise DFAValueError(
+            f"{flag} {path!r} is invalid: the file name must end in {suffix}; give {flag} {path}{suffix}"
+        )
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise DFAValueError(f"{flag} {path!r} is invalid: folder {folder!r} does not exist; create it first")
@@ -208,7 +217,9 @@ def check_output_folder(flag: str, path: str, create: bool) -> str:
     if not os.path.isdir(path):
         parent = os.path.dirname(os.path.abspath(path))
         if not create:
-            raise DFAValueError(f"{flag} {path!r} is invalid: folder {os.path.abspath(path)!r} does not exist; create it first")
+            raise DFAValueError(
+                f"{flag} {path!r} is invalid: folder {os.path.abspath(path)!r} does not exist; create it first"
+            )
         if not os.path.isdir(parent):
             raise DFAValueError(f"{flag} {path!r} is invalid: folder {parent!r} does not exist; create it first")
         if not os.access(parent, os.W_OK):

@@ -33,11 +33,11 @@ import numpy as np
 from numba import njit
 
 # outcome codes (also the codes of dfa.maps.StabilityMap.outcome and its .npz file)
-REST = 0         # came to rest: the absorbing state was reached
+REST = 0  # came to rest: the absorbing state was reached
 OSCILLATING = 1  # persistent, settled cycle of amplitude >= stable_amplitude (1 tick)
-UNSTABLE = 2     # |ξ| beyond the bound, or a growing envelope
-CHATTER = 3      # never rested; persistent, settled cycle below stable_amplitude
-UNDECIDED = 4    # the envelope is still changing at the end of the run: run longer
+UNSTABLE = 2  # |ξ| beyond the bound, or a growing envelope
+CHATTER = 3  # never rested; persistent, settled cycle below stable_amplitude
+UNDECIDED = 4  # the envelope is still changing at the end of the run: run longer
 
 NSEG = 8  # segments of the run used to judge a growing or changing envelope
 NSTATS = NSEG + 10  # length of the stats array of simulate_kernel
@@ -118,8 +118,7 @@ def _hc(x):
 
 
 @njit(cache=True)
-def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len,
-                    rec_x, rec_v, rec_e, stats):
+def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len, rec_x, rec_v, rec_e, stats):
     """Run ``n`` samples; return the number of samples done and the rest sample (−1: none).
 
     ``rec_x``/``rec_v`` (length n + 1) and ``rec_e`` (n × 4: generated,
@@ -333,8 +332,11 @@ def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, m
     # within the first quarter-period |ξ| rises from the impact whatever the loop does.
     long_enough = n >= NSEG * 2.0 * math.pi * math.sqrt(mu)
     grow = long_enough and stats[NSEG - 1] > growth * stats[NSEG // 2] and (stats[NSEG - 1] > 1.0 or not quantize)
-    decay = long_enough and not quantize and (stats[NSEG - 1] * growth < stats[NSEG // 2]
-                                              or stats[NSEG - 1] <= 1e-12 * stats[0])  # decayed to denormals
+    decay = (
+        long_enough
+        and not quantize
+        and (stats[NSEG - 1] * growth < stats[NSEG // 2] or stats[NSEG - 1] <= 1e-12 * stats[0])
+    )  # decayed to denormals
     for i in range(NSEG - 4, NSEG - 1):
         if stats[i + 1] < stats[i]:
             grow = False
@@ -354,15 +356,32 @@ def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, m
 
 
 @njit(cache=True)
-def map_kernel(mu, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stable_amplitude, growth,
-               settle, codes, amps, freqs):
+def map_kernel(
+    mu,
+    betas,
+    sigmas,
+    x0s,
+    v0s,
+    n,
+    delay,
+    quantize,
+    bound,
+    tail_len,
+    stable_amplitude,
+    growth,
+    settle,
+    codes,
+    amps,
+    freqs,
+):
     """Run one simulation per (β, σ, ξ0, ξ'0) point, recording nothing."""
     empty = np.empty(0)
     empty2 = np.empty((0, 4))
     stats = np.empty(NSTATS)
     for i in range(betas.shape[0]):
-        done, rest = simulate_kernel(mu, betas[i], sigmas[i], x0s[i], v0s[i], n, delay, quantize, bound,
-                                     tail_len, empty, empty, empty2, stats)
+        done, rest = simulate_kernel(
+            mu, betas[i], sigmas[i], x0s[i], v0s[i], n, delay, quantize, bound, tail_len, empty, empty, empty2, stats
+        )
         c, a, f, _centre, _fpp = classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, mu)
         codes[i] = c
         amps[i] = a

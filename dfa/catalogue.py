@@ -74,8 +74,7 @@ class Discrepancy:
 
     def __str__(self) -> str:
         return (
-            f"{self.parameter}: printed {self.printed}, recomputed {self.recomputed:.4g} "
-            f"({100 * self.relative:+.1f} %)"
+            f"{self.parameter}: printed {self.printed}, recomputed {self.recomputed:.4g} ({100 * self.relative:+.1f} %)"
         )
 
 
@@ -257,6 +256,4 @@ def get_device(name: str) -> CatalogueEntry:
     if close and close[0] not in names:  # matched on normalised keys
         close = [n for n in names if _key(n) in close]
     hint = f"did you mean {', '.join(repr(c) for c in close)}?" if close else "run `dfa devices` for the list"
-    raise DFAValueError(
-        f"device = {name!r} is invalid: it must be a catalogue device ({', '.join(names)}); {hint}"
-    )
+    raise DFAValueError(f"device = {name!r} is invalid: it must be a catalogue device ({', '.join(names)}); {hint}")

@@ -20,14 +20,23 @@ import os
 import re
 import signal
 import sys
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Callable, Sequence
 
+from ._io import check_output_file, check_output_folder, written_paths
 from .catalogue import DEFAULT_DEVICE, catalogue, get_device
 from .criterion import device_criterion, passivity_criterion
-from ._io import check_output_file, check_output_folder, written_paths
 from .device import Device, Params, dimensionless_params
-from .errors import DFAError, DFAValueError, check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
+from .errors import (
+    DFAError,
+    DFAValueError,
+    check_beta,
+    check_mu,
+    check_nonnegative,
+    check_positive,
+    check_real,
+    check_sigma,
+)
 from .stiffness import stiffness_limits
 
 __all__ = ["main"]
@@ -52,16 +61,24 @@ _WHOLE = re.compile(r"[+-]?[0-9]+")
 def _number(flag: str, unit: str) -> Callable[[str], float]:
     def parse(text: str) -> float:
         if not _DECIMAL.fullmatch(text):
-            what = "not a finite number" if text.strip().lower().lstrip("+-") in ("nan", "inf", "infinity") else "not a number"
+            what = (
+                "not a finite number"
+                if text.strip().lower().lstrip("+-") in ("nan", "inf", "infinity")
+                else "not a number"
+            )
             raise argparse.ArgumentTypeError(
                 f"{text[:40]!r} is {what}: {flag} takes a finite decimal number in {unit}, written with ASCII digits "
                 "(e.g. 0.25, -3, 1e-3; no '_', no other scripts)"
             )
         value = float(text)
         if not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"{text[:40]!r} is too large: {flag} takes a number below 1.8e308 in {unit}")
+            raise argparse.ArgumentTypeError(
+                f"{text[:40]!r} is too large: {flag} takes a number below 1.8e308 in {unit}"
+            )
         if value == 0.0 and any(c in "123456789" for c in text.lower().split("e")[0]):
-            raise argparse.ArgumentTypeError(f"{text[:40]!r} is too small: it rounds to 0; {flag} takes a number above 1e-308 in {unit} (or 0)")
+            raise argparse.ArgumentTypeError(
+                f"{text[:40]!r} is too small: it rounds to 0; {flag} takes a number above 1e-308 in {unit} (or 0)"
+            )
         return value + 0.0  # -0 is zero
 
     parse.__name__ = flag
@@ -96,8 +113,19 @@ def _add_device_args(p: argparse.ArgumentParser, dimensionless: bool, speed: boo
     g = p.add_argument_group("device (a catalogue name, or physical values in SI units)")
     g.add_argument("--device", metavar="NAME", help="catalogue device (case-insensitive prefix, e.g. 'phantom')")
     for key, (flag, unit) in _PHYS_FLAGS.items():
-        g.add_argument(flag, dest=key, type=_number(flag, unit), metavar="X", help=f"{key} in {unit}; overrides the catalogue value")
-    g.add_argument("--stiffness", type=_number("--stiffness", "N/m"), metavar="K", help="virtual wall stiffness K in N/m (rotary: N·m/rad); defaults to the catalogue K")
+        g.add_argument(
+            flag,
+            dest=key,
+            type=_number(flag, unit),
+            metavar="X",
+            help=f"{key} in {unit}; overrides the catalogue value",
+        )
+    g.add_argument(
+        "--stiffness",
+        type=_number("--stiffness", "N/m"),
+        metavar="K",
+        help="virtual wall stiffness K in N/m (rotary: N·m/rad); defaults to the catalogue K",
+    )
     g.add_argument("--rotary", action="store_true", help="physical values are rotary (rad, N·m, kg·m²)")
     if dimensionless:
         d = p.add_argument_group("dimensionless parameters (instead of a device)")
@@ -106,8 +134,19 @@ def _add_device_args(p: argparse.ArgumentParser, dimensionless: bool, speed: boo
         d.add_argument("--sigma", type=_number("--sigma", "dimensionless units"), help="σ = c/(K Δ)")
     if speed:
         s = p.add_argument_group("speed (one of)")
-        s.add_argument("--velocity", type=_number("--velocity", "m/s (rotary: rad/s)"), metavar="V", help="impact speed in m/s (rotary: rad/s)")
-        s.add_argument("--xi-dot", dest="xi_dot", type=_number("--xi-dot", "encoder ticks per sample"), metavar="V", help="impact speed ξ'0 in encoder ticks per sample")
+        s.add_argument(
+            "--velocity",
+            type=_number("--velocity", "m/s (rotary: rad/s)"),
+            metavar="V",
+            help="impact speed in m/s (rotary: rad/s)",
+        )
+        s.add_argument(
+            "--xi-dot",
+            dest="xi_dot",
+            type=_number("--xi-dot", "encoder ticks per sample"),
+            metavar="V",
+            help="impact speed ξ'0 in encoder ticks per sample",
+        )
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout")
 
 
@@ -115,15 +154,22 @@ def _delay(text: str) -> int:
     try:
         out = int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number: --delay takes the computational delay in samples (integer >= 0)") from None
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a whole number: --delay takes the computational delay in samples (integer >= 0)"
+        ) from None
     if out < 0:
         raise argparse.ArgumentTypeError(f"{text!r} is invalid: --delay must be a whole number of samples >= 0")
     return out
 
 
 def _add_delay_arg(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--delay", type=_delay, default=0, metavar="N",
-                   help="computational delay in samples (default 0): the force of sample h uses the reading of sample h − N")
+    p.add_argument(
+        "--delay",
+        type=_delay,
+        default=0,
+        metavar="N",
+        help="computational delay in samples (default 0): the force of sample h uses the reading of sample h − N",
+    )
 
 
 @dataclass(frozen=True)
@@ -152,7 +198,9 @@ def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = T
         required = ["beta", "sigma"] + (["mu"] if need_mu else [])
         missing = [_DIMLESS_FLAGS[k] for k in required if getattr(args, k) is None]
         if missing:
-            raise UsageError(f"missing {', '.join(missing)}: dimensionless input needs {' '.join(_DIMLESS_FLAGS[k] for k in required)}")
+            raise UsageError(
+                f"missing {', '.join(missing)}: dimensionless input needs {' '.join(_DIMLESS_FLAGS[k] for k in required)}"
+            )
         b = check_beta(args.beta, "--beta")
         s = check_sigma(args.sigma, "--sigma")
         p = Params(check_mu(args.mu, "--mu"), b, s) if args.mu is not None else None
@@ -174,19 +222,20 @@ def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = T
     missing = [_PHYS_FLAGS[k][0] for k in _PHYS_FLAGS if values.get(k) is None]
     if missing:
         if args.device:
-            raise UsageError(
-                f"device {name!r} is incomplete in the catalogue: give {' '.join(missing)} explicitly"
-            )
+            raise UsageError(f"device {name!r} is incomplete in the catalogue: give {' '.join(missing)} explicitly")
         if not phys_given:
             raise UsageError(
                 "no device given: use --device NAME (see `dfa devices`), or --mass --damping --coulomb "
-                "--resolution --period"
-                + (", or --mu --beta --sigma" if dimensionless else "")
+                "--resolution --period" + (", or --mu --beta --sigma" if dimensionless else "")
             )
-        raise UsageError(f"missing {' '.join(missing)}: a physical device needs all of --mass --damping --coulomb --resolution --period")
+        raise UsageError(
+            f"missing {' '.join(missing)}: a physical device needs all of --mass --damping --coulomb --resolution --period"
+        )
     dev = Device(name=name, rotary=rotary, **values)  # type: ignore[arg-type]
     if stiffness is None:
-        raise UsageError(f"missing --stiffness: no catalogue stiffness for {name!r}; give K in {dev.units['stiffness']}")
+        raise UsageError(
+            f"missing --stiffness: no catalogue stiffness for {name!r}; give K in {dev.units['stiffness']}"
+        )
     k = check_positive("--stiffness", stiffness, f"give the virtual wall stiffness K in {dev.units['stiffness']}")
     names = {key: _PHYS_FLAGS[key][0] for key in phys_given}
     if args.stiffness is not None:
@@ -219,7 +268,7 @@ def _emit(obj: object) -> None:
 def _table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:
     cells = [[str(c) for c in r] for r in ([header] if header else []) + list(rows)]
     widths = [max(len(r[i]) for r in cells) for i in range(len(cells[0]))]
-    lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in cells]
+    lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths, strict=False)).rstrip() for r in cells]
     if header:
         lines.insert(1, "  ".join("-" * w for w in widths))
     return "\n".join(lines)
@@ -240,6 +289,7 @@ _OUTCOME_TEXT = {
     "unstable": "diverged (past the bound, or a growing envelope)",
     "undecided": "the motion is still changing at the end of the run",
 }
+
 
 # ----------------------------------------------------------------- commands
 def _cmd_devices(args: argparse.Namespace) -> int:
@@ -274,7 +324,9 @@ def _cmd_devices(args: argparse.Namespace) -> int:
         )
     print(_table(body, header))
     print("\nSI units (linear: kg, N·s/m, N, m, s, N/m; rotary: kg·m², N·m·s/rad, N·m, rad, s, N·m/rad).")
-    print("μ, β, σ recomputed from the physical columns (paper Table 1); flags: printed value disagrees (> 5 % and beyond its last digit).")
+    print(
+        "μ, β, σ recomputed from the physical columns (paper Table 1); flags: printed value disagrees (> 5 % and beyond its last digit)."
+    )
     return 0
 
 
@@ -285,7 +337,15 @@ def _cmd_params(args: argparse.Namespace) -> int:
         _emit(inp.params.as_dict())
         return 0
     print(f"{inp.label}")
-    print(_table([["μ = m/(K T²)", f"{inp.params.mu:.6g}"], ["β = b/(K T)", f"{inp.params.beta:.6g}"], ["σ = c/(K Δ)", f"{inp.params.sigma:.6g}"]]))
+    print(
+        _table(
+            [
+                ["μ = m/(K T²)", f"{inp.params.mu:.6g}"],
+                ["β = b/(K T)", f"{inp.params.beta:.6g}"],
+                ["σ = c/(K Δ)", f"{inp.params.sigma:.6g}"],
+            ]
+        )
+    )
     return 0
 
 
@@ -294,14 +354,26 @@ def _criterion_for_args(args: argparse.Namespace, inp: _Inputs, xd: float, v: fl
     quantized = not args.no_quantization
     if inp.device is not None:
         if args.xi0 is not None:
-            raise UsageError("--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)")
-        return device_criterion(inp.device, inp.stiffness, inp.device.velocity(xd) if v is None else v,  # type: ignore[arg-type]
-                                quantized=quantized, delay=args.delay, position=args.position or 0.0)
+            raise UsageError(
+                "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
+            )
+        return device_criterion(
+            inp.device,
+            inp.stiffness,
+            inp.device.velocity(xd) if v is None else v,  # type: ignore[arg-type]
+            quantized=quantized,
+            delay=args.delay,
+            position=args.position or 0.0,
+        )
     if args.position is not None:
-        raise UsageError("--position needs a physical device: with --beta --sigma give the initial position as --xi0 (ticks)")
+        raise UsageError(
+            "--position needs a physical device: with --beta --sigma give the initial position as --xi0 (ticks)"
+        )
     x0 = 0.0 if args.xi0 is None else args.xi0
     if x0 != 0.0 and args.mu is None:
-        raise UsageError(f"--xi0 {x0:g} needs --mu: the spring energy enters the speed as 2H_c(ξ0)/μ; give --mu m/(K T²)")
+        raise UsageError(
+            f"--xi0 {x0:g} needs --mu: the spring energy enters the speed as 2H_c(ξ0)/μ; give --mu m/(K T²)"
+        )
     return passivity_criterion(inp.beta, inp.sigma, xd, quantized=quantized, delay=args.delay, xi0=x0, mu=args.mu)
 
 
@@ -375,7 +447,9 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
     if lim.stiffness is not None:
         rows.append([f"largest passive speed at K = {lim.stiffness:g}", lim.max_passive_velocity_text()])
         rows.append(["verdict at this speed", lim.verdict_text()])
-    print(f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}")
+    print(
+        f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
+    )
     print(_table(rows))
     return 0
 
@@ -398,10 +472,15 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         x0, v0 = (0.0 if args.xi0 is None else args.xi0), xd
     if not abs(x0) < SIMULATION_BOUND:
         src = "--xi0" if args.xi0 is not None else "the --preload position of this speed"
-        raise UsageError(f"ξ0 = {x0:.4g} ticks from {src} is beyond the simulation bound of {SIMULATION_BOUND:g} ticks "
-                         "(the run would stop at once as unstable): give a smaller start")
-    n = args.samples if args.samples is not None else default_samples(p.mu, p.beta, p.sigma, v0, x0, args.delay,
-                                                                      not args.no_quantization)
+        raise UsageError(
+            f"ξ0 = {x0:.4g} ticks from {src} is beyond the simulation bound of {SIMULATION_BOUND:g} ticks "
+            "(the run would stop at once as unstable): give a smaller start"
+        )
+    n = (
+        args.samples
+        if args.samples is not None
+        else default_samples(p.mu, p.beta, p.sigma, v0, x0, args.delay, not args.no_quantization)
+    )
     if args.trace is not None and 16 * (n + 1) > MAX_RECORD_BYTES:
         raise UsageError(
             f"--trace with --samples {n} would need {16 * (n + 1) / 1024**3:.1f} GiB of trajectory "
@@ -409,8 +488,17 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         )
     if args.samples is not None:  # the automatic length is capped (dfa.simulation.default_samples)
         _check_samples(args.samples, args.force)
-    r = simulate(p.mu, p.beta, p.sigma, v0, args.samples, xi0=x0, delay=args.delay,
-                 quantize=not args.no_quantization, record=args.trace is not None)
+    r = simulate(
+        p.mu,
+        p.beta,
+        p.sigma,
+        v0,
+        args.samples,
+        xi0=x0,
+        delay=args.delay,
+        quantize=not args.no_quantization,
+        record=args.trace is not None,
+    )
     if args.trace is not None:
         _write_trace(args.trace, r)
     phys = r.physical(inp.device, inp.stiffness) if inp.device is not None and inp.stiffness is not None else None
@@ -425,9 +513,16 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if phys is not None and phys["frequency_hz"] is not None:
         freq += f", {phys['frequency_hz']:.4g} Hz"
     rows = [
-        ["initial state", f"ξ0 = {x0:.5g} ticks, ξ'0 = {v0:.5g} ticks/sample" + (" (spring preload)" if args.preload else "")],
-        ["samples", f"{r.samples_run} of {r.samples} integrated" + (" (length from the loop's time scales)" if r.samples_auto else "")
-         + (f", delay {r.delay}" if r.delay else "")],
+        [
+            "initial state",
+            f"ξ0 = {x0:.5g} ticks, ξ'0 = {v0:.5g} ticks/sample" + (" (spring preload)" if args.preload else ""),
+        ],
+        [
+            "samples",
+            f"{r.samples_run} of {r.samples} integrated"
+            + (" (length from the loop's time scales)" if r.samples_auto else "")
+            + (f", delay {r.delay}" if r.delay else ""),
+        ],
         ["outcome", f"{r.outcome}: {_OUTCOME_TEXT[r.outcome]}"],
     ]
     if r.suggested_samples is not None:
@@ -480,7 +575,9 @@ def _write_trace(path: str, r) -> None:
     try:
         with atomic_open(path, "w") as fh:
             fh.write("sample,xi,xi_dot\n")
-            np.savetxt(fh, np.column_stack([np.arange(r.xi.size), r.xi, r.xi_dot]), delimiter=",", fmt=["%d", "%.17g", "%.17g"])
+            np.savetxt(
+                fh, np.column_stack([np.arange(r.xi.size), r.xi, r.xi_dot]), delimiter=",", fmt=["%d", "%.17g", "%.17g"]
+            )
     except OSError as exc:
         raise UsageError(f"--trace {path!r} cannot be written: {exc.strerror}; choose a writable file") from None
 
@@ -492,8 +589,10 @@ def _cmd_map(args: argparse.Namespace) -> int:
     check_output_file("--out", args.out, ".npz")
     negative = [v for v in args.xi_dot if v < 0]
     if negative:
-        raise UsageError(f"--xi-dot {negative[0]:g} is invalid: initial speeds must be >= 0 (the map is symmetric in the "
-                         f"sign of ξ'0); give --xi-dot {abs(negative[0]):g}")
+        raise UsageError(
+            f"--xi-dot {negative[0]:g} is invalid: initial speeds must be >= 0 (the map is symmetric in the "
+            f"sign of ξ'0); give --xi-dot {abs(negative[0]):g}"
+        )
     check_jobs("--jobs", args.jobs)
     _check_samples(args.samples, args.force)  # one run is uninterruptible: the same limit as `dfa simulate`
     if args.grid >= 2:
@@ -501,23 +600,46 @@ def _cmd_map(args: argparse.Namespace) -> int:
         cores = (os.cpu_count() or 1) if args.jobs == -1 else args.jobs
         hours = runs * args.samples * SIMULATE_NS_PER_SAMPLE * 1e-9 / 3600 / cores
         if hours > MAP_TIME_LIMIT_HOURS and not args.force:
-            raise UsageError(f"--grid {args.grid} with --samples {args.samples} could take up to {hours:.3g} h on {cores} cores "
-                             f"(estimated {SIMULATE_NS_PER_SAMPLE} ns per sample; limit {MAP_TIME_LIMIT_HOURS:g} h): "
-                             "lower --grid or --samples, or add --force")
-        check_memory("--grid", args.grid, map_memory_bytes(args.grid, len(args.xi_dot)), "lower --grid or give fewer --xi-dot speeds")
-    m = stability_map(args.mu, args.xi_dot, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range),
-                      grid=args.grid, samples=args.samples, delay=args.delay, preload=args.preload,
-                      quantize=not args.no_quantization, n_jobs=args.jobs, progress=not args.quiet)
+            raise UsageError(
+                f"--grid {args.grid} with --samples {args.samples} could take up to {hours:.3g} h on {cores} cores "
+                f"(estimated {SIMULATE_NS_PER_SAMPLE} ns per sample; limit {MAP_TIME_LIMIT_HOURS:g} h): "
+                "lower --grid or --samples, or add --force"
+            )
+        check_memory(
+            "--grid",
+            args.grid,
+            map_memory_bytes(args.grid, len(args.xi_dot)),
+            "lower --grid or give fewer --xi-dot speeds",
+        )
+    m = stability_map(
+        args.mu,
+        args.xi_dot,
+        beta_range=tuple(args.beta_range),
+        sigma_range=tuple(args.sigma_range),
+        grid=args.grid,
+        samples=args.samples,
+        delay=args.delay,
+        preload=args.preload,
+        quantize=not args.no_quantization,
+        n_jobs=args.jobs,
+        progress=not args.quiet,
+    )
     path = m.save(args.out)
     if args.json:
         d = m.as_dict()
         d["out"] = str(path)
         _emit(d)
         return 0
-    print(f"stability map μ = {m.mu:g}, β in [{m.beta[0]:g}, {m.beta[-1]:g}], σ in [{m.sigma[0]:g}, {m.sigma[-1]:g}], "
-          f"{m.beta.size}×{m.sigma.size} points, {m.samples} samples" + (", spring preload" if m.preload else ""))
+    print(
+        f"stability map μ = {m.mu:g}, β in [{m.beta[0]:g}, {m.beta[-1]:g}], σ in [{m.sigma[0]:g}, {m.sigma[-1]:g}], "
+        f"{m.beta.size}×{m.sigma.size} points, {m.samples} samples" + (", spring preload" if m.preload else "")
+    )
     names = ("rest", "chatter", "oscillating", "unstable", "undecided")
-    print(_table([[f"{v:g}", *(c[k] for k in names)] for v, c in zip(m.xi_dots, m.counts())], ["ξ'0", *names]))
+    print(
+        _table(
+            [[f"{v:g}", *(c[k] for k in names)] for v, c in zip(m.xi_dots, m.counts(), strict=False)], ["ξ'0", *names]
+        )
+    )
     print(f"written to {path}")
     return 0
 
@@ -535,8 +657,10 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
         d["growth_threshold"] = g.as_dict()
         _emit(d)
         return 0
-    print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}; model {res.model}"
-          + (f", delay {res.delay}" if res.delay else ""))
+    print(
+        f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}; model {res.model}"
+        + (f", delay {res.delay}" if res.delay else "")
+    )
     for line in _cycle_lines(g, inp.device):
         print(line)
     return 0
@@ -546,7 +670,11 @@ def _cycle_lines(g, device) -> list[str]:
     """Text of `dfa limit-cycles`: the table, the search's completeness, the linear loop and the growth band."""
     res = g.result
     lines = []
-    lin = "the linear loop without encoder and Coulomb friction (exact ZOH model" + (f", delay {res.delay}" if res.delay else "") + ")"
+    lin = (
+        "the linear loop without encoder and Coulomb friction (exact ZOH model"
+        + (f", delay {res.delay}" if res.delay else "")
+        + ")"
+    )
     why = res.status.removeprefix("incomplete: ")
     if not res.cycles:
         if not res.complete:
@@ -554,12 +682,24 @@ def _cycle_lines(g, device) -> list[str]:
         elif res.linear_stable is False:
             lines.append(f"no limit cycle predicted, but {lin} is unstable: amplitudes grow without bound")
         elif res.search_bound:
-            lines.append(f"no limit cycle predicted (search complete: eq. 36 has no root beyond M = {res.search_bound:.4g} ticks)")
+            lines.append(
+                f"no limit cycle predicted (search complete: eq. 36 has no root beyond M = {res.search_bound:.4g} ticks)"
+            )
         else:
-            lines.append("no limit cycle predicted (search complete: the loop never meets the phase condition of eq. 36)")
+            lines.append(
+                "no limit cycle predicted (search complete: the loop never meets the phase condition of eq. 36)"
+            )
     else:
-        rows = [[f"{c.amplitude:.6g}", f"{c.frequency:.6g}", f"{c.period:.4g}", "stable" if c.stable else "unstable",
-                 c.family + (" (period < 8 samples)" if c.few_samples else "")] for c in res.cycles]
+        rows = [
+            [
+                f"{c.amplitude:.6g}",
+                f"{c.frequency:.6g}",
+                f"{c.period:.4g}",
+                "stable" if c.stable else "unstable",
+                c.family + (" (period < 8 samples)" if c.few_samples else ""),
+            ]
+            for c in res.cycles
+        ]
         lines.append(_table(rows, ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"]))
         if not res.complete:
             lines.append(f"search incomplete beyond M = {res.max_amplitude:g} ticks ({why}): more cycles may exist")
@@ -573,14 +713,20 @@ def _cycle_lines(g, device) -> list[str]:
             return txt
 
         if g.is_band:
-            lines.append(f"growth band: {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
-                         f"(speeds {speed(g.xi_dot, g.velocity, g.position, g.amplitude)} to {speed(g.xi_dot_high, g.velocity_high, g.position_high, g.amplitude_high)})")
+            lines.append(
+                f"growth band: {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
+                f"(speeds {speed(g.xi_dot, g.velocity, g.position, g.amplitude)} to {speed(g.xi_dot_high, g.velocity_high, g.position_high, g.amplitude_high)})"
+            )
         else:
-            lines.append(f"growth threshold: M_u = {g.amplitude:.4g} ticks ({speed(g.xi_dot, g.velocity, g.position, g.amplitude)})")
+            lines.append(
+                f"growth threshold: M_u = {g.amplitude:.4g} ticks ({speed(g.xi_dot, g.velocity, g.position, g.amplitude)})"
+            )
         lines.append(g.meaning())
     elif res.cycles and res.linear_stable is False:
-        lines.append(f"no unstable cycle predicted{'' if res.complete else ' in the range searched'}, but {lin} is unstable: "
-                     "large oscillations are predicted to grow without bound")
+        lines.append(
+            f"no unstable cycle predicted{'' if res.complete else ' in the range searched'}, but {lin} is unstable: "
+            "large oscillations are predicted to grow without bound"
+        )
     if res.model != "zoh" and (res.linear_stable is False or g.amplitude is not None):
         lines.append(f"(the linear verdict uses the exact ZOH loop; the limit cycles, the {res.model} model)")
     return lines
@@ -593,17 +739,32 @@ def _cmd_contours(args: argparse.Namespace) -> int:
         check_output_file("--out", args.out, ".npz")
     if args.grid >= 2 and args.max_amplitude >= 1.0:
         check_contour_memory(args.grid, args.max_amplitude, ("--grid", "--max-amplitude"))
-    c = contour_maps(args.mu, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range), grid=args.grid,
-                     max_amplitude=args.max_amplitude)
+    c = contour_maps(
+        args.mu,
+        beta_range=tuple(args.beta_range),
+        sigma_range=tuple(args.sigma_range),
+        grid=args.grid,
+        max_amplitude=args.max_amplitude,
+    )
     d = c.as_dict()
     if args.out is not None:
         d["out"] = str(c.save(args.out))
     if args.json:
         _emit(d)
         return 0
-    print(f"contour maps μ = {c.mu:g}, β in [{c.beta[0]:g}, {c.beta[-1]:g}], σ in [{c.sigma[0]:g}, {c.sigma[-1]:g}], {c.beta.size}×{c.sigma.size}")
-    print(_table([["small stable (M < 1, eq. 42-43)", d["small_points"]], ["large unstable, exact D (eq. 41)", d["large_points"]],
-                  ["large unstable, closed form (eq. 44-45)", d["large_closed_points"]]], ["family", "grid points"]))
+    print(
+        f"contour maps μ = {c.mu:g}, β in [{c.beta[0]:g}, {c.beta[-1]:g}], σ in [{c.sigma[0]:g}, {c.sigma[-1]:g}], {c.beta.size}×{c.sigma.size}"
+    )
+    print(
+        _table(
+            [
+                ["small stable (M < 1, eq. 42-43)", d["small_points"]],
+                ["large unstable, exact D (eq. 41)", d["large_points"]],
+                ["large unstable, closed form (eq. 44-45)", d["large_closed_points"]],
+            ],
+            ["family", "grid points"],
+        )
+    )
     if args.out is not None:
         print(f"written to {d['out']}")
     return 0
@@ -627,7 +788,9 @@ def _cmd_report(args: argparse.Namespace) -> int:
     else:
         target = inp.device
     check_output_folder("--out", args.out, create=False)
-    res = design_report(target, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=not args.quiet, delay=args.delay)
+    res = design_report(
+        target, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=not args.quiet, delay=args.delay
+    )
     for pth in res.paths:
         print(f"written {pth}")
     return 0
@@ -640,10 +803,9 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     import matplotlib.pyplot as plt
 
     from . import plotting
-    from .validation import validate
-
     from ._io import staged_folder
     from .maps import check_jobs
+    from .validation import validate
 
     check_jobs("--jobs", args.jobs)
     out = args.out
@@ -665,10 +827,19 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         _emit(json.loads(json.dumps(summary).replace("NaN", "null")))
         return 0
     print(f"validation written to {os.path.join(out, 'validation.md')}")
-    print(_table([["soundness violations", summary["soundness_violations"]],
-                  ["criterion rejects (share of points that come to rest)", f"{100 * summary['conservatism']:.1f} %"],
-                  ["DF growth threshold vs simulated speed, median error", f"{100 * summary['speed_df_median_error']:.2g} %"],
-                  ["criterion speed ≤ simulated in every case", "yes" if summary["speeds_ordered"] else "no"]]))
+    print(
+        _table(
+            [
+                ["soundness violations", summary["soundness_violations"]],
+                ["criterion rejects (share of points that come to rest)", f"{100 * summary['conservatism']:.1f} %"],
+                [
+                    "DF growth threshold vs simulated speed, median error",
+                    f"{100 * summary['speed_df_median_error']:.2g} %",
+                ],
+                ["criterion speed ≤ simulated in every case", "yes" if summary["speeds_ordered"] else "no"],
+            ]
+        )
+    )
     return 0
 
 
@@ -693,8 +864,18 @@ def _build_parser() -> argparse.ArgumentParser:
     _add_device_args(p, dimensionless=True, speed=True)
     p.add_argument("--no-quantization", action="store_true", help="use eq. 7 (Δ → 0) instead of eq. 6")
     _add_delay_arg(p)
-    p.add_argument("--xi0", type=_number("--xi0", "ticks"), metavar="X", help="initial position ξ0 in ticks (dimensionless input; needs --mu)")
-    p.add_argument("--position", type=_number("--position", "m (rotary: rad)"), metavar="X", help="initial position in m (rotary: rad; device input)")
+    p.add_argument(
+        "--xi0",
+        type=_number("--xi0", "ticks"),
+        metavar="X",
+        help="initial position ξ0 in ticks (dimensionless input; needs --mu)",
+    )
+    p.add_argument(
+        "--position",
+        type=_number("--position", "m (rotary: rad)"),
+        metavar="X",
+        help="initial position in m (rotary: rad; device input)",
+    )
     p.set_defaults(func=_cmd_check)
 
     p = sub.add_parser("stiffness", help="stiffness limits for design at an impact speed (eq. 8, 9, 11)")
@@ -705,45 +886,111 @@ def _build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("simulate", help="exact simulation of the sampled, quantized, frictional loop (eq. 4-5)")
     _add_device_args(p, dimensionless=True, speed=True)
     p.add_argument("--xi0", type=_number("--xi0", "ticks"), metavar="X", help="initial position in ticks (default 0)")
-    p.add_argument("--samples", type=_integer("--samples"), default=None, metavar="N",
-                   help="samples to simulate (default: from the loop's time scales, 50000 to 10^7)")
-    p.add_argument("--delay", type=_integer("--delay"), default=0, metavar="D", help="computational delay in samples (default 0)")
-    p.add_argument("--preload", action="store_true", help="start at rest with the spring preloaded to the speed's kinetic energy (section 5)")
-    p.add_argument("--no-quantization", action="store_true", help="linear spring φ = −ξ instead of the encoder staircase")
+    p.add_argument(
+        "--samples",
+        type=_integer("--samples"),
+        default=None,
+        metavar="N",
+        help="samples to simulate (default: from the loop's time scales, 50000 to 10^7)",
+    )
+    p.add_argument(
+        "--delay", type=_integer("--delay"), default=0, metavar="D", help="computational delay in samples (default 0)"
+    )
+    p.add_argument(
+        "--preload",
+        action="store_true",
+        help="start at rest with the spring preloaded to the speed's kinetic energy (section 5)",
+    )
+    p.add_argument(
+        "--no-quantization", action="store_true", help="linear spring φ = −ξ instead of the encoder staircase"
+    )
     p.add_argument("--trace", metavar="FILE.csv", help="write sample, xi, xi_dot to a CSV file")
-    p.add_argument("--force", action="store_true",
-                   help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s (uninterruptible)")
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s (uninterruptible)",
+    )
     p.set_defaults(func=_cmd_simulate)
 
     p = sub.add_parser("map", help="stability map over the (β, σ) plane by simulation (paper Fig. 4)")
     p.add_argument("--mu", type=_number("--mu", "dimensionless units"), required=True, help="μ = m/(K T²)")
-    p.add_argument("--xi-dot", dest="xi_dot", type=_number("--xi-dot", "ticks per sample"), nargs="+", required=True, metavar="V", help="initial speeds ξ'0 (ticks per sample)")
-    p.add_argument("--beta-range", type=_number("--beta-range", "dimensionless units"), nargs=2, default=[0.0, 1.0], metavar=("A", "B"))
-    p.add_argument("--sigma-range", type=_number("--sigma-range", "dimensionless units"), nargs=2, default=[0.0, 2.0], metavar=("A", "B"))
+    p.add_argument(
+        "--xi-dot",
+        dest="xi_dot",
+        type=_number("--xi-dot", "ticks per sample"),
+        nargs="+",
+        required=True,
+        metavar="V",
+        help="initial speeds ξ'0 (ticks per sample)",
+    )
+    p.add_argument(
+        "--beta-range",
+        type=_number("--beta-range", "dimensionless units"),
+        nargs=2,
+        default=[0.0, 1.0],
+        metavar=("A", "B"),
+    )
+    p.add_argument(
+        "--sigma-range",
+        type=_number("--sigma-range", "dimensionless units"),
+        nargs=2,
+        default=[0.0, 2.0],
+        metavar=("A", "B"),
+    )
     p.add_argument("--grid", type=_integer("--grid"), default=100, metavar="N", help="points per axis (default 100)")
-    p.add_argument("--samples", type=_integer("--samples"), default=50_000, metavar="N", help="samples per run (default 50000)")
+    p.add_argument(
+        "--samples", type=_integer("--samples"), default=50_000, metavar="N", help="samples per run (default 50000)"
+    )
     p.add_argument("--delay", type=_integer("--delay"), default=0, metavar="D")
     p.add_argument("--preload", action="store_true", help="spring preload instead of an initial speed")
     p.add_argument("--no-quantization", action="store_true")
     p.add_argument("--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default all cores)")
     p.add_argument("--out", required=True, metavar="FILE.npz", help="where to write the map")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.add_argument("--force", action="store_true", help=f"run even when one run is estimated over {SIMULATE_TIME_LIMIT:g} s or the map over {MAP_TIME_LIMIT_HOURS:g} h")
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help=f"run even when one run is estimated over {SIMULATE_TIME_LIMIT:g} s or the map over {MAP_TIME_LIMIT_HOURS:g} h",
+    )
     p.add_argument("--json", action="store_true", help="print counts per outcome per speed as JSON")
     p.set_defaults(func=_cmd_map)
 
-    p = sub.add_parser("limit-cycles", help="limit cycles by harmonic balance with the exact describing function (eq. 36-45)")
+    p = sub.add_parser(
+        "limit-cycles", help="limit cycles by harmonic balance with the exact describing function (eq. 36-45)"
+    )
     _add_device_args(p, dimensionless=True, speed=False)
-    p.add_argument("--model", choices=["half-delay", "zoh", "pade"], default="half-delay", help="hold model (default half-delay; zoh is exact)")
+    p.add_argument(
+        "--model",
+        choices=["half-delay", "zoh", "pade"],
+        default="half-delay",
+        help="hold model (default half-delay; zoh is exact)",
+    )
     p.add_argument("--delay", type=_integer("--delay"), default=0, metavar="D", help="computational delay in samples")
-    p.add_argument("--max-amplitude", type=_number("--max-amplitude", "ticks"), default=None, metavar="M",
-                   help="largest amplitude searched (ticks); default: up to where the envelope of eq. 41 excludes roots")
+    p.add_argument(
+        "--max-amplitude",
+        type=_number("--max-amplitude", "ticks"),
+        default=None,
+        metavar="M",
+        help="largest amplitude searched (ticks); default: up to where the envelope of eq. 41 excludes roots",
+    )
     p.set_defaults(func=_cmd_limit_cycles)
 
     p = sub.add_parser("contours", help="amplitude/frequency maps of both cycle families (paper Fig. 7)")
     p.add_argument("--mu", type=_number("--mu", "dimensionless units"), required=True, help="μ = m/(K T²)")
-    p.add_argument("--beta-range", type=_number("--beta-range", "dimensionless units"), nargs=2, default=[0.0, 1.0], metavar=("A", "B"))
-    p.add_argument("--sigma-range", type=_number("--sigma-range", "dimensionless units"), nargs=2, default=[0.0, 2.0], metavar=("A", "B"))
+    p.add_argument(
+        "--beta-range",
+        type=_number("--beta-range", "dimensionless units"),
+        nargs=2,
+        default=[0.0, 1.0],
+        metavar=("A", "B"),
+    )
+    p.add_argument(
+        "--sigma-range",
+        type=_number("--sigma-range", "dimensionless units"),
+        nargs=2,
+        default=[0.0, 2.0],
+        metavar=("A", "B"),
+    )
     p.add_argument("--grid", type=_integer("--grid"), default=200, metavar="N", help="points per axis (default 200)")
     p.add_argument("--max-amplitude", type=_number("--max-amplitude", "ticks"), default=200.0, metavar="M")
     p.add_argument("--out", metavar="FILE.npz", help="write the maps")
@@ -753,7 +1000,9 @@ def _build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("report", help="design report of a device: verdict, limits, cycles, figures (HTML or Markdown)")
     _add_device_args(p, dimensionless=False, speed=True)
     p.add_argument("--out", default="reports", metavar="DIR", help="output folder (default reports)")
-    p.add_argument("--format", choices=["html", "md", "both"], default="html", help="html (self-contained), md (with PNGs) or both")
+    p.add_argument(
+        "--format", choices=["html", "md", "both"], default="html", help="html (self-contained), md (with PNGs) or both"
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     _add_delay_arg(p)
     p.set_defaults(func=_cmd_report)
@@ -761,7 +1010,9 @@ def _build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("validate", help="validate the predictions against exact simulation; writes validation.md")
     p.add_argument("--quick", action="store_true", help="a reduced set (under a minute)")
     p.add_argument("--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default all cores)")
-    p.add_argument("--out", default="reports/validation", metavar="DIR", help="output folder (default reports/validation)")
+    p.add_argument(
+        "--out", default="reports/validation", metavar="DIR", help="output folder (default reports/validation)"
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.set_defaults(func=_cmd_validate)
@@ -844,7 +1095,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     except OSError as err:
         where = f"{err.filename!r}: " if err.filename else ""
-        print(f"dfa: error: {where}{err.strerror or err}; check the path, its permissions and free space", file=sys.stderr)
+        print(
+            f"dfa: error: {where}{err.strerror or err}; check the path, its permissions and free space", file=sys.stderr
+        )
         return 1
     finally:
         for sig, handler in old_handlers.items():

@@ -36,15 +36,24 @@ from pathlib import Path
 import numpy as np
 
 from ._io import atomic_open, check_memory
+from .cycles import large_cycle_frequency
 from .describing import quantizer_df
 from .errors import DFAValueError, check_int, check_mu, check_positive
-from .cycles import large_cycle_frequency
 from .maps import _check_range
 
 __all__ = ["ContourMaps", "contour_maps", "load_contours", "contour_memory_bytes"]
 
-_ARRAYS = ("beta", "sigma", "small_amplitude", "small_frequency", "large_amplitude", "large_frequency",
-           "large_amplitude_closed", "large_frequency_closed", "small_amplitude_closed")
+_ARRAYS = (
+    "beta",
+    "sigma",
+    "small_amplitude",
+    "small_frequency",
+    "large_amplitude",
+    "large_frequency",
+    "large_amplitude_closed",
+    "large_frequency_closed",
+    "small_amplitude_closed",
+)
 
 
 @dataclass(frozen=True)
@@ -88,7 +97,9 @@ class ContourMaps:
         p = Path(path)
         p = p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
         with atomic_open(p, "wb") as fh:  # never a half-written file (dfa._io)
-            np.savez_compressed(fh, mu=self.mu, max_amplitude=self.max_amplitude, **{k: getattr(self, k) for k in _ARRAYS})
+            np.savez_compressed(
+                fh, mu=self.mu, max_amplitude=self.max_amplitude, **{k: getattr(self, k) for k in _ARRAYS}
+            )
         return p
 
     def as_dict(self) -> dict[str, object]:
@@ -191,13 +202,19 @@ def check_contour_memory(grid: int, max_amplitude: float, names: tuple[str, str]
     need = contour_memory_bytes(grid, max_amplitude)
     by_amplitude = float(grid) * CONTOUR_SAMPLES_PER_TICK * (float(max_amplitude) + 1.0) * CONTOUR_BYTES_PER_ROW_SAMPLE
     if by_amplitude > float(grid) ** 2 * CONTOUR_BYTES_PER_POINT:
-        check_memory(names[1], f"{max_amplitude:g}", need, f"lower {names[1]} (the largest amplitude searched, ticks) or {names[0]}")
+        check_memory(
+            names[1],
+            f"{max_amplitude:g}",
+            need,
+            f"lower {names[1]} (the largest amplitude searched, ticks) or {names[0]}",
+        )
     else:
         check_memory(names[0], grid, need, f"lower {names[0]} (points per axis) or {names[1]}")
 
 
-def contour_maps(mu: float, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), grid: int = 200,
-                 max_amplitude: float = 200.0) -> ContourMaps:
+def contour_maps(
+    mu: float, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), grid: int = 200, max_amplitude: float = 200.0
+) -> ContourMaps:
     """Amplitude and frequency maps of both cycle families over a (β, σ) grid (paper Fig. 7).
 
     Parameters

@@ -87,9 +87,9 @@ import numpy as np
 
 from .device import Device
 from .errors import (
-    check_delay,
     DFAValueError,
     check_beta,
+    check_delay,
     check_mu,
     check_nonnegative,
     check_positive,
@@ -351,8 +351,16 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
     return _REGION_CODES[idx]
 
 
-def passivity_criterion(beta: float, sigma: float, xi_dot: float, *, quantized: bool = True, delay: int = 0,
-                        xi0: float = 0.0, mu: float | None = None) -> CriterionResult:
+def passivity_criterion(
+    beta: float,
+    sigma: float,
+    xi_dot: float,
+    *,
+    quantized: bool = True,
+    delay: int = 0,
+    xi0: float = 0.0,
+    mu: float | None = None,
+) -> CriterionResult:
     """Evaluate the passivity criterion (eq. 6, or eq. 7 without quantization), with delay and initial position.
 
     Passive when (β − ½ − d)V + (σ − σ₀) >= 0 and σ >= σ₀ (module docstring), with
@@ -412,8 +420,9 @@ def passivity_criterion(beta: float, sigma: float, xi_dot: float, *, quantized: 
     )
 
 
-def device_criterion(device: Device, stiffness: float, velocity: float, *, delay: int = 0, position: float = 0.0,
-                     quantized: bool = True) -> CriterionResult:
+def device_criterion(
+    device: Device, stiffness: float, velocity: float, *, delay: int = 0, position: float = 0.0, quantized: bool = True
+) -> CriterionResult:
     """Passivity criterion for a physical device, stiffness, speed, delay and initial position (paper eq. 11).
 
     Parameters

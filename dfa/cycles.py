@@ -247,8 +247,13 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray) -> np.ndarray:
         out = np.full(w.size, np.nan)
         for i in np.flatnonzero(has):
             wi = float(w[i])
-            out[i] = optimize.brentq(lambda b: _inv_loop(mu, b, wi, "zoh", d, 0).imag, float(lo[i]), float(hi[i]),
-                                     xtol=1e-300, rtol=4 * np.finfo(float).eps)
+            out[i] = optimize.brentq(
+                lambda b, wi=wi: _inv_loop(mu, b, wi, "zoh", d, 0).imag,
+                float(lo[i]),
+                float(hi[i]),
+                xtol=1e-300,
+                rtol=4 * np.finfo(float).eps,
+            )
         return out
     for _ in range(60):
         mid = 0.5 * (lo + hi)
@@ -374,7 +379,7 @@ class LimitCycleResult:
     cycles: tuple = field(default_factory=tuple)
     complete: bool = True
     status: str = "ok"
-    status_code: "SearchStatus | None" = None
+    status_code: SearchStatus | None = None
     linear_stable: bool | None = None
     search_bound: float | None = None
 
@@ -424,7 +429,13 @@ def _polish(lp: _Loop, m: float, w: float) -> tuple[float, float]:
     try:
         sol = optimize.root(f, [m, w], method="hybr", options={"xtol": 1e-15})
         mm, ww = float(sol.x[0]), float(sol.x[1])
-        if sol.success and abs(mm - m) <= 1e-6 * max(1.0, m) and abs(ww - w) <= 1e-6 * w and mm > 0 and 0 < ww < math.pi:
+        if (
+            sol.success
+            and abs(mm - m) <= 1e-6 * max(1.0, m)
+            and abs(ww - w) <= 1e-6 * w
+            and mm > 0
+            and 0 < ww < math.pi
+        ):
             if abs(lp.char(mm, ww)) <= abs(lp.char(m, w)):
                 return mm, ww
     except (ValueError, FloatingPointError):  # pragma: no cover
@@ -440,8 +451,15 @@ def _make_cycle(lp: _Loop, m: float, w: float, polish: bool = True) -> LimitCycl
 
 
 def _cycle(m: float, w: float, loeb: float, residual: float) -> LimitCycle:
-    return LimitCycle(amplitude=float(m), frequency=float(w), stable=bool(loeb > 0), family="small" if m < 1.0 else "large",
-                      loeb=float(loeb), residual=float(residual), few_samples=bool(2 * math.pi / w < 8.0))
+    return LimitCycle(
+        amplitude=float(m),
+        frequency=float(w),
+        stable=bool(loeb > 0),
+        family="small" if m < 1.0 else "large",
+        loeb=float(loeb),
+        residual=float(residual),
+        few_samples=bool(2 * math.pi / w < 8.0),
+    )
 
 
 def _cycles_at_crossing(lp: _Loop, roots: np.ndarray, w: float) -> list[LimitCycle]:
@@ -456,7 +474,7 @@ def _cycles_at_crossing(lp: _Loop, roots: np.ndarray, w: float) -> list[LimitCyc
     cw = complex((lp.inv(1.0, w + hw) - lp.inv(1.0, w - hw)) / (2 * hw))
     loeb = np.asarray(lp.dprime(roots), dtype=float) * cw.imag
     resid = np.abs(1.0 + np.asarray(lp.d(roots), dtype=float) / inv)
-    return [_cycle(m, w, lo, r) for m, lo, r in zip(roots.tolist(), loeb.tolist(), resid.tolist())]
+    return [_cycle(m, w, lo, r) for m, lo, r in zip(roots.tolist(), loeb.tolist(), resid.tolist(), strict=False)]
 
 
 def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -482,7 +500,7 @@ def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
         ends = []
         for k_in, k_out in ((i, i - 1), (j, j + 1)):
             if 0 <= k_out < n and np.isfinite(excess[k_out]) and excess[k_out] <= 0:
-                f = lambda x: float(_phase_beta(lp, np.array([x]))[0] - beta)  # noqa: E731
+                f = lambda x: float(_phase_beta(lp, np.array([x]))[0] - beta)
                 try:
                     ends.append((k_in, optimize.brentq(f, min(w[k_in], w[k_out]), max(w[k_in], w[k_out]), xtol=1e-15)))
                 except ValueError:
@@ -511,7 +529,9 @@ def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
 INTERVAL_BUDGET = 20_000
 
 
-def _m_samples(lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | None, omega_of) -> tuple[np.ndarray, tuple | None]:
+def _m_samples(
+    lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | None, omega_of
+) -> tuple[np.ndarray, tuple | None]:
     """Sample amplitudes on [lo, hi] ∩ (0, max_amp], stopping by the envelope rule.
 
     Returns (samples, reach, bound): ``reach`` is None when every root of the piece lies
@@ -530,10 +550,18 @@ def _m_samples(lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | N
         if lp.df != "exact":
             # the paper's approximations have no integer structure: a geometric grid suffices
             pts.append(np.geomspace(max(lo, 1.0), min(hi, max_amp), 4000))
-            return np.unique(np.concatenate(pts)), (None if hi <= max_amp else (max_amp, "max_amplitude")), min(hi, max_amp)
+            return (
+                np.unique(np.concatenate(pts)),
+                (None if hi <= max_amp else (max_amp, "max_amplitude")),
+                min(hi, max_amp),
+            )
         near = np.arange(n0, min(n_end, 32) + 1)
         if w_inf is not None:  # −U at the piece's far end: M = ∞, where β_eq = β (at ω = 0 the loop inverse is 0)
-            u_far = 0.0 if w_inf == 0.0 else -float(np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order)))
+            u_far = (
+                0.0
+                if w_inf == 0.0
+                else -float(np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order)))
+            )
         else:  # a finite far end (hi, its ω)
             u_far = -float(np.real(lp.inv(float(hi), float(omega_of(np.array([hi]))[0]))))
         far, n_stop, budget_hit = _far_intervals(lp, max(n0, 33), n_end, u_far, omega_of, lo, hi)
@@ -543,8 +571,9 @@ def _m_samples(lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | N
             reach = (max_amp, "max_amplitude")
         # n + t² resolves the √ at each integer; far out D's excursions are tiny and self-similar: fewer points
         t_near, t_far = np.linspace(0.0, 1.0, 25), np.linspace(0.0, 1.0, 9)
-        grid = np.concatenate([(near[:, None] + (t_near * t_near)[None, :]).ravel(),
-                               (far[:, None] + (t_far * t_far)[None, :]).ravel()])
+        grid = np.concatenate(
+            [(near[:, None] + (t_near * t_near)[None, :]).ravel(), (far[:, None] + (t_far * t_far)[None, :]).ravel()]
+        )
         top = min(hi, max_amp, float(n_stop) + 1.0)
         bound = top
         pts.append(grid[(grid >= lo) & (grid <= top)])
@@ -765,8 +794,15 @@ def _piece_roots(lp: _Loop, omega_of: _PieceOmega, samples: np.ndarray) -> tuple
 AUTO_MAX_AMPLITUDE = 1.0e6
 
 
-def limit_cycles(params: Params, *, model: str = "half-delay", delay: int = 0, pade_order: int = 4,
-                 max_amplitude: float | None = None, describing: str = "exact") -> LimitCycleResult:
+def limit_cycles(
+    params: Params,
+    *,
+    model: str = "half-delay",
+    delay: int = 0,
+    pade_order: int = 4,
+    max_amplitude: float | None = None,
+    describing: str = "exact",
+) -> LimitCycleResult:
     """Every limit cycle (M, ω) of the harmonic balance 1 + D(M)L(jω; M) = 0 (eq. 36).
 
     Parameters
@@ -799,36 +835,70 @@ def limit_cycles(params: Params, *, model: str = "half-delay", delay: int = 0, p
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
     auto = max_amplitude is None
-    amax = AUTO_MAX_AMPLITUDE if auto else check_positive("max_amplitude", max_amplitude, "give the largest amplitude to search, in ticks")
+    amax = (
+        AUTO_MAX_AMPLITUDE
+        if auto
+        else check_positive("max_amplitude", max_amplitude, "give the largest amplitude to search, in ticks")
+    )
     df = check_choice("describing", describing, _DF_CHOICES)
     lp = _Loop(p, m, d, n, df)
     try:
         cycles, reach, failures, bound = _solve(lp, amax)
-    except (ValueError, RuntimeError, FloatingPointError, ZeroDivisionError, OverflowError):  # pragma: no cover - last resort
+    except (
+        ValueError,
+        RuntimeError,
+        FloatingPointError,
+        ZeroDivisionError,
+        OverflowError,
+    ):  # pragma: no cover - last resort
         cycles, reach, failures, bound = [], None, 1, math.nan
     cycles = sorted(cycles, key=lambda c: c.amplitude)
     # de-duplicate roots found from two neighbouring brackets
     uniq: list[LimitCycle] = []
     for c in cycles:
-        if not uniq or abs(c.amplitude - uniq[-1].amplitude) > 1e-9 * c.amplitude or abs(c.frequency - uniq[-1].frequency) > 1e-9:
+        if (
+            not uniq
+            or abs(c.amplitude - uniq[-1].amplitude) > 1e-9 * c.amplitude
+            or abs(c.frequency - uniq[-1].frequency) > 1e-9
+        ):
             uniq.append(c)
     if failures:
         code = SearchStatus.NUMERICAL
-        status = (f"incomplete: {failures} root bracket(s) could not be refined (numerical failure); "
-                  "cycles may be missing" + (f", and beyond {reach[0]:g} ticks" if reach is not None else ""))
-        warnings.warn(f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}): {status}",
-                      LimitCycleSearchWarning, stacklevel=2)
+        status = (
+            f"incomplete: {failures} root bracket(s) could not be refined (numerical failure); "
+            "cycles may be missing" + (f", and beyond {reach[0]:g} ticks" if reach is not None else "")
+        )
+        warnings.warn(
+            f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}): {status}",
+            LimitCycleSearchWarning,
+            stacklevel=2,
+        )
     elif reach is not None:
         budget = reach[1] == "budget" or (auto and reach[0] >= amax)
         code = SearchStatus.BUDGET if budget else SearchStatus.MAX_AMPLITUDE
-        why = (f"searched up to the size budget ({reach[0]:g} ticks) short of the envelope bound" if budget
-               else f"cycles may exist beyond max_amplitude = {amax:g} ticks")
+        why = (
+            f"searched up to the size budget ({reach[0]:g} ticks) short of the envelope bound"
+            if budget
+            else f"cycles may exist beyond max_amplitude = {amax:g} ticks"
+        )
         status = f"incomplete: {why}"
     else:
         code, status = SearchStatus.COMPLETE, "ok"
     searched = reach[0] if reach is not None else amax
-    return LimitCycleResult(p, m, d, n, df, searched, tuple(uniq), code is SearchStatus.COMPLETE, status, code,
-                            _linear_stable(p.mu, p.beta, d), bound if code is SearchStatus.COMPLETE else None)
+    return LimitCycleResult(
+        p,
+        m,
+        d,
+        n,
+        df,
+        searched,
+        tuple(uniq),
+        code is SearchStatus.COMPLETE,
+        status,
+        code,
+        _linear_stable(p.mu, p.beta, d),
+        bound if code is SearchStatus.COMPLETE else None,
+    )
 
 
 def _linear_stable(mu: float, beta: float, delay: int) -> bool:
@@ -848,7 +918,9 @@ def large_cycle_frequency(mu: float) -> float:
     (0.44175, 0.099938)
     """
     m = check_mu(mu)
-    return float(optimize.brentq(lambda w: m * w * w - math.cos(w / 2), 0.0, math.pi, xtol=1e-16, rtol=4 * np.finfo(float).eps))
+    return float(
+        optimize.brentq(lambda w: m * w * w - math.cos(w / 2), 0.0, math.pi, xtol=1e-16, rtol=4 * np.finfo(float).eps)
+    )
 
 
 def large_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float, float] | None:
@@ -873,7 +945,7 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
     p = Params(mu, beta, sigma)
     if p.sigma >= 0.5:
         return None
-    f = lambda w: 0.5 * math.sin(w / 2) - p.beta * math.cos(w / 2) / (2 * p.mu * w) - p.sigma  # noqa: E731
+    f = lambda w: 0.5 * math.sin(w / 2) - p.beta * math.cos(w / 2) / (2 * p.mu * w) - p.sigma
     hi = math.pi
     lo = 1e-300 if p.beta > 0 else 0.0
     if p.beta == 0.0:
@@ -948,28 +1020,51 @@ class GrowthThreshold:
         if not res.complete:
             tail = f" The search was incomplete ({res.status}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
         if self.grows_above:
-            above = (f"above {hi:.4g} ticks the first-harmonic analysis predicts growth"
-                     + (" without bound (the linear loop, exact ZOH model, is unstable)" if res.linear_stable is False else ""))
+            above = f"above {hi:.4g} ticks the first-harmonic analysis predicts growth" + (
+                " without bound (the linear loop, exact ZOH model, is unstable)" if res.linear_stable is False else ""
+            )
         else:
             nxt = next(c for c in res.cycles if c.amplitude > hi and c.stable)
             above = f"above {hi:.4g} ticks it predicts settling on the stable cycle at M = {nxt.amplitude:.4g} ticks"
         if not self.is_band:
             return f"Describing function (first-harmonic approximation): below M_u = {lo:.4g} ticks no growth is predicted; {above}.{tail}"
-        return (f"Describing function (first-harmonic approximation): {self.unstable_count} unstable cycles alternate with stable ones "
-                f"between {lo:.4g} and {hi:.4g} ticks. Below the band every predicted cycle is stable (no growth predicted); "
-                f"inside it, whether an oscillation grows depends on its initial condition; {above}.{tail}")
+        return (
+            f"Describing function (first-harmonic approximation): {self.unstable_count} unstable cycles alternate with stable ones "
+            f"between {lo:.4g} and {hi:.4g} ticks. Below the band every predicted cycle is stable (no growth predicted); "
+            f"inside it, whether an oscillation grows depends on its initial condition; {above}.{tail}"
+        )
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (``dfa limit-cycles --json``, key ``growth_threshold``)."""
         return {
-            "amplitude": self.amplitude, "frequency": self.frequency, "xi_dot": self.xi_dot,
-            "position": self.position, "velocity": self.velocity,
-            "band": {"low": {"amplitude": self.amplitude, "frequency": self.frequency, "xi_dot": self.xi_dot,
-                             "position": self.position, "velocity": self.velocity},
-                     "high": {"amplitude": self.amplitude_high, "frequency": self.frequency_high, "xi_dot": self.xi_dot_high,
-                              "position": self.position_high, "velocity": self.velocity_high}},
-            "unstable_count": self.unstable_count, "grows_above": self.grows_above, "complete": self.result.complete,
-            "linear_stable": self.result.linear_stable, "linear_model": "zoh", "status": self.status, "meaning": self.meaning(),
+            "amplitude": self.amplitude,
+            "frequency": self.frequency,
+            "xi_dot": self.xi_dot,
+            "position": self.position,
+            "velocity": self.velocity,
+            "band": {
+                "low": {
+                    "amplitude": self.amplitude,
+                    "frequency": self.frequency,
+                    "xi_dot": self.xi_dot,
+                    "position": self.position,
+                    "velocity": self.velocity,
+                },
+                "high": {
+                    "amplitude": self.amplitude_high,
+                    "frequency": self.frequency_high,
+                    "xi_dot": self.xi_dot_high,
+                    "position": self.position_high,
+                    "velocity": self.velocity_high,
+                },
+            },
+            "unstable_count": self.unstable_count,
+            "grows_above": self.grows_above,
+            "complete": self.result.complete,
+            "linear_stable": self.result.linear_stable,
+            "linear_model": "zoh",
+            "status": self.status,
+            "meaning": self.meaning(),
         }
 
 
@@ -992,8 +1087,12 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
         if res.linear_stable is False:
             status = "no unstable cycle predicted, but the linear loop (exact ZOH model) is unstable: amplitudes grow without bound"
         else:
-            status = "no unstable cycle predicted" + ("" if res.complete else f" up to M = {res.max_amplitude:g} ticks (search {res.status})")
-        return GrowthThreshold(None, None, None, res, status=status, grows_above=None if res.linear_stable is not False else True)
+            status = "no unstable cycle predicted" + (
+                "" if res.complete else f" up to M = {res.max_amplitude:g} ticks (search {res.status})"
+            )
+        return GrowthThreshold(
+            None, None, None, res, status=status, grows_above=None if res.linear_stable is not False else True
+        )
     lo, hi = unstable[0], unstable[-1]
 
     def phys(c):
@@ -1004,5 +1103,19 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
     plo, vlo = phys(lo)
     phi, vhi = phys(hi)
     grows = not any(c.stable and c.amplitude > hi.amplitude for c in res.cycles)
-    return GrowthThreshold(lo.amplitude, lo.frequency, lo.amplitude * lo.frequency, res, plo, vlo, "ok",
-                           hi.amplitude, hi.frequency, hi.amplitude * hi.frequency, phi, vhi, len(unstable), grows)
+    return GrowthThreshold(
+        lo.amplitude,
+        lo.frequency,
+        lo.amplitude * lo.frequency,
+        res,
+        plo,
+        vlo,
+        "ok",
+        hi.amplitude,
+        hi.frequency,
+        hi.amplitude * hi.frequency,
+        phi,
+        vhi,
+        len(unstable),
+        grows,
+    )

@@ -46,8 +46,8 @@ Examples
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from functools import lru_cache
-from typing import Callable, Sequence
 
 import control
 import numpy as np
@@ -90,8 +90,12 @@ def _level_derivation():
     M, k, th = sp.symbols("M k theta", positive=True)
     t0 = sp.asin(k / M)  # where M sin θ crosses the level k (0 <= k <= M)
     # one period: +1 on (t0, π − t0), −1 on (π + t0, 2π − t0), 0 elsewhere
-    b1 = (sp.integrate(sp.sin(th), (th, t0, sp.pi - t0)) - sp.integrate(sp.sin(th), (th, sp.pi + t0, 2 * sp.pi - t0))) / sp.pi
-    a1 = (sp.integrate(sp.cos(th), (th, t0, sp.pi - t0)) - sp.integrate(sp.cos(th), (th, sp.pi + t0, 2 * sp.pi - t0))) / sp.pi
+    b1 = (
+        sp.integrate(sp.sin(th), (th, t0, sp.pi - t0)) - sp.integrate(sp.sin(th), (th, sp.pi + t0, 2 * sp.pi - t0))
+    ) / sp.pi
+    a1 = (
+        sp.integrate(sp.cos(th), (th, t0, sp.pi - t0)) - sp.integrate(sp.cos(th), (th, sp.pi + t0, 2 * sp.pi - t0))
+    ) / sp.pi
     if sp.simplify(a1) != 0:  # pragma: no cover - a derivation error, not a user error
         raise RuntimeError(f"quantizer level describing function is not real: a1 = {a1}")
     level = sp.simplify(b1 / M)  # = 4 sqrt(1 - k²/M²)/(π M)
@@ -133,8 +137,14 @@ def _coulomb_derivation():
 
     A, sig, th = sp.symbols("A sigma theta", positive=True)
     # relay σ·sgn(A cos θ): +σ on (−π/2, π/2), −σ on (π/2, 3π/2); fundamental along cos θ
-    a1 = (sp.integrate(sig * sp.cos(th), (th, -sp.pi / 2, sp.pi / 2)) - sp.integrate(sig * sp.cos(th), (th, sp.pi / 2, 3 * sp.pi / 2))) / sp.pi
-    b1 = (sp.integrate(sig * sp.sin(th), (th, -sp.pi / 2, sp.pi / 2)) - sp.integrate(sig * sp.sin(th), (th, sp.pi / 2, 3 * sp.pi / 2))) / sp.pi
+    a1 = (
+        sp.integrate(sig * sp.cos(th), (th, -sp.pi / 2, sp.pi / 2))
+        - sp.integrate(sig * sp.cos(th), (th, sp.pi / 2, 3 * sp.pi / 2))
+    ) / sp.pi
+    b1 = (
+        sp.integrate(sig * sp.sin(th), (th, -sp.pi / 2, sp.pi / 2))
+        - sp.integrate(sig * sp.sin(th), (th, sp.pi / 2, 3 * sp.pi / 2))
+    ) / sp.pi
     if sp.simplify(b1) != 0:  # pragma: no cover
         raise RuntimeError("Coulomb describing function is not in phase with the velocity")
     return A, sig, sp.simplify(a1 / A)
@@ -284,8 +294,11 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
     if failures:
         import warnings
 
-        warnings.warn(f"quantizer_df_inverse({g!r}): {failures} interval(s) could not be solved; roots may be missing",
-                      RuntimeWarning, stacklevel=2)
+        warnings.warn(
+            f"quantizer_df_inverse({g!r}): {failures} interval(s) could not be solved; roots may be missing",
+            RuntimeWarning,
+            stacklevel=2,
+        )
     return out, bool(complete and not failures)
 
 
@@ -296,7 +309,11 @@ INVERSE_MAX_INTERVALS = 2_000_000
 def _df_inverse_counted(g: float, mmax: float) -> tuple[np.ndarray, bool, int]:
     """(roots, complete, failures) of D(M) = g up to ``mmax`` (validated inputs)."""
     roots = [2 / (math.pi * g)] if g >= 2 / math.pi and 2 / (math.pi * g) <= mmax else []
-    n_last = int(min(float(INVERSE_MAX_INTERVALS) + 1, math.floor((DF_ENVELOPE / abs(g - 1.0)) ** (2.0 / 3.0)) + 1)) if g != 1.0 else None
+    n_last = (
+        int(min(float(INVERSE_MAX_INTERVALS) + 1, math.floor((DF_ENVELOPE / abs(g - 1.0)) ** (2.0 / 3.0)) + 1))
+        if g != 1.0
+        else None
+    )
     if n_last is None or n_last > INVERSE_MAX_INTERVALS:
         n_last = int(min(mmax, INVERSE_MAX_INTERVALS)) + 1
         complete = False
@@ -387,10 +404,12 @@ def numeric_df(f: Callable[[np.ndarray], np.ndarray], amplitude, jumps: Sequence
         pts = sorted({math.asin(j / mv) for j in jumps if 0 < j < mv})
         edges = [0.0, *pts, math.pi / 2]
         total = 0.0
-        for a, b in zip(edges[:-1], edges[1:]):
+        for a, b in zip(edges[:-1], edges[1:], strict=False):
             if b > a:
                 # evaluate strictly inside each piece so a jump at an edge is not sampled
-                val, _err = integrate.quad(lambda t: float(f(mv * math.sin(t))) * math.sin(t), a, b, epsabs=tol, epsrel=tol, limit=200)
+                val, _err = integrate.quad(
+                    lambda t, mv=mv: float(f(mv * math.sin(t))) * math.sin(t), a, b, epsabs=tol, epsrel=tol, limit=200
+                )
                 total += val
         out[idx] = 4.0 / math.pi * total / mv
     return float(out) if out.ndim == 0 else out

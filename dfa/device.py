@@ -119,17 +119,25 @@ class Device:
     rotary: bool = False
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "mass", check_positive("mass", self.mass, "give the moving mass in kg (rotary: kg·m²)"))
         object.__setattr__(
-            self, "damping", check_nonnegative("damping", self.damping, "give the viscous friction b in N·s/m (0 for none)")
+            self, "mass", check_positive("mass", self.mass, "give the moving mass in kg (rotary: kg·m²)")
+        )
+        object.__setattr__(
+            self,
+            "damping",
+            check_nonnegative("damping", self.damping, "give the viscous friction b in N·s/m (0 for none)"),
         )
         object.__setattr__(
             self, "coulomb", check_nonnegative("coulomb", self.coulomb, "give the Coulomb friction c in N (0 for none)")
         )
         object.__setattr__(
-            self, "resolution", check_positive("resolution", self.resolution, "give the encoder resolution Δ in m (rotary: rad)")
+            self,
+            "resolution",
+            check_positive("resolution", self.resolution, "give the encoder resolution Δ in m (rotary: rad)"),
         )
-        object.__setattr__(self, "period", check_positive("period", self.period, "give the sample period T in s (1 kHz: 0.001)"))
+        object.__setattr__(
+            self, "period", check_positive("period", self.period, "give the sample period T in s (1 kHz: 0.001)")
+        )
 
     # ------------------------------------------------------------------ units
     @property
@@ -157,8 +165,10 @@ class Device:
         v = check_real("velocity", velocity, "give the speed in m/s (rotary: rad/s)")
         out = v * self.period / self.resolution
         if not math.isfinite(out):
-            raise DFAValueError(f"velocity = {v!r} is too large: ξ' = ẋT/Δ overflows a float with period = {self.period!r}, "
-                                f"resolution = {self.resolution!r}; give the speed in m/s (rotary: rad/s)")
+            raise DFAValueError(
+                f"velocity = {v!r} is too large: ξ' = ẋT/Δ overflows a float with period = {self.period!r}, "
+                f"resolution = {self.resolution!r}; give the speed in m/s (rotary: rad/s)"
+            )
         return out
 
     def velocity(self, xi_dot: float) -> float:
@@ -166,8 +176,10 @@ class Device:
         xd = check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample")
         out = xd * self.resolution / self.period
         if not math.isfinite(out):
-            raise DFAValueError(f"xi_dot = {xd!r} is too large: ẋ = ξ'Δ/T overflows a float with period = {self.period!r}, "
-                                f"resolution = {self.resolution!r}; give a smaller speed in ticks per sample")
+            raise DFAValueError(
+                f"xi_dot = {xd!r} is too large: ẋ = ξ'Δ/T overflows a float with period = {self.period!r}, "
+                f"resolution = {self.resolution!r}; give a smaller speed in ticks per sample"
+            )
         return out
 
     def stiffness_for_mu(self, mu: float) -> float:
@@ -213,7 +225,6 @@ class Device:
         }
 
 
-
 _GROUPS = (
     ("mu", "the dimensionless mass μ = m/(K T²)", ("mass", "stiffness", "period")),
     ("beta", "the dimensionless damping β = b/(K T)", ("damping", "stiffness", "period")),
@@ -239,9 +250,18 @@ def dimensionless_params(device: Device, stiffness: float, names: dict[str, str]
         passes its flags, e.g. ``{"mass": "--mass"}``); default the parameter names.
     """
     k = float(stiffness)
-    vals = {"mass": device.mass, "damping": device.damping, "coulomb": device.coulomb,
-            "resolution": device.resolution, "period": device.period, "stiffness": k}
-    def div(a: float, b: float) -> float:  # a denominator that underflows to 0 gives inf (or NaN for 0/0), not an exception
+    vals = {
+        "mass": device.mass,
+        "damping": device.damping,
+        "coulomb": device.coulomb,
+        "resolution": device.resolution,
+        "period": device.period,
+        "stiffness": k,
+    }
+
+    def div(
+        a: float, b: float
+    ) -> float:  # a denominator that underflows to 0 gives inf (or NaN for 0/0), not an exception
         return a / b if b != 0.0 else (math.inf if a > 0.0 else math.nan)
 
     out = {
@@ -255,7 +275,13 @@ def dimensionless_params(device: Device, stiffness: float, names: dict[str, str]
         if math.isfinite(value) and (value >= sys.float_info.min or (value == 0.0 and key != "mu")):
             continue
         given = ", ".join(f"{names.get(n, n)} = {vals[n]:g}" for n in inputs)
-        how = "overflows to inf" if math.isinf(value) else "is undefined (0/0)" if math.isnan(value) else f"vanishes ({value:.3g}, below {sys.float_info.min:.3g})"
+        how = (
+            "overflows to inf"
+            if math.isinf(value)
+            else "is undefined (0/0)"
+            if math.isnan(value)
+            else f"vanishes ({value:.3g}, below {sys.float_info.min:.3g})"
+        )
         raise DFAValueError(
             f"{given} is invalid: {what} {how}; give ordinary physical values in SI units "
             f"({', '.join(device.units[n] for n in inputs)})"

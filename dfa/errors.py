@@ -175,7 +175,9 @@ def check_choice(name: str, value: Any, choices: tuple[str, ...]) -> str:
 def check_type(name: str, value: Any, cls: type, fix: str) -> Any:
     """Return ``value`` if it is an instance of ``cls``, else raise :class:`DFATypeError` with ``fix``."""
     if not isinstance(value, cls):
-        raise DFATypeError(f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}")
+        raise DFATypeError(
+            f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}"
+        )
     return value
 
 
@@ -184,8 +186,14 @@ def check_mu(value: Any, name: str = "mu") -> float:
     """Dimensionless mass μ = m/(K T²) > 0, as a float (a normal float: 1/μ must not overflow)."""
     out = check_positive(name, value, "μ = m/(K T²) must be positive")
     if out < sys.float_info.min:
-        raise DFAValueError(_message(name, out, f"at least {sys.float_info.min:.3g} (1/μ overflows below)",
-                                     "μ = m/(K T²) must be a normal positive number"))
+        raise DFAValueError(
+            _message(
+                name,
+                out,
+                f"at least {sys.float_info.min:.3g} (1/μ overflows below)",
+                "μ = m/(K T²) must be a normal positive number",
+            )
+        )
     return out
 
 
@@ -212,9 +220,15 @@ def check_delay(value: Any) -> int:
     >>> check_delay(2)
     2
     """
-    d = check_int("delay", value, minimum=0, fix="give the computational delay in whole samples (0: the force uses the current reading)")
+    d = check_int(
+        "delay",
+        value,
+        minimum=0,
+        fix="give the computational delay in whole samples (0: the force uses the current reading)",
+    )
     if d > MAX_DELAY:
-        raise DFAValueError(f"delay = {d} is invalid: it must be at most {MAX_DELAY} samples; give the computational delay "
-                            "in samples of the servo period (e.g. 1 for one sample of computation)")
+        raise DFAValueError(
+            f"delay = {d} is invalid: it must be at most {MAX_DELAY} samples; give the computational delay "
+            "in samples of the servo period (e.g. 1 for one sample of computation)"
+        )
     return d
-

@@ -72,7 +72,7 @@ import numpy as np
 from numpy.polynomial import chebyshev
 from scipy.optimize import brentq
 
-from .errors import check_delay, DFAError, DFAValueError, check_beta, check_mu, check_nonnegative, check_positive
+from .errors import DFAError, DFAValueError, check_beta, check_delay, check_mu, check_nonnegative, check_positive
 
 __all__ = [
     "characteristic_polynomial",
@@ -107,7 +107,7 @@ def _zoh_coefficients(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         if a >= 0.5:
             return (a - 1.0 + p) / (a * a), (1.0 - p - a * p) / (a * a), p
         c1 = c0 = 0.0
-        for k1, k0 in zip(_C1_TUPLE, _C0_TUPLE):  # Horner in x = −a
+        for k1, k0 in zip(_C1_TUPLE, _C0_TUPLE, strict=False):  # Horner in x = −a
             c1 = c1 * -a + k1
             c0 = c0 * -a + k0
         return c1, c0, p
@@ -253,7 +253,11 @@ def _crossings(a: float, d: int) -> list[float]:
     out = [2.0 * (1.0 + p) / dc] if d % 2 == 0 else []  # z = −1
 
     def re_w(t: float) -> float:
-        return e1 * math.cos((d + 0.5) * t) + e0 * math.cos((d - 0.5) * t) - 2.0 * c0 * math.sin(t) * math.sin((d + 0.5) * t)
+        return (
+            e1 * math.cos((d + 0.5) * t)
+            + e0 * math.cos((d - 0.5) * t)
+            - 2.0 * c0 * math.sin(t) * math.sin((d + 0.5) * t)
+        )
 
     def im_w(t: float) -> float:
         return e1 * math.sin((d + 0.5) * t) + c0 * math.sin((d + 1.5) * t) - p * c1 * math.sin((d - 0.5) * t)
@@ -404,5 +408,7 @@ def critical_beta(mu: float, delay: int = 0) -> float:
     beta = m * a
     step = _verify_step(a)
     if not (_rho(a * (1.0 + step), target, d) < 1.0 < _rho(a * (1.0 - step), target, d)):
-        raise DFAError(f"critical_beta(mu={m!r}, delay={d}) = {beta!r} failed its spectral-radius check: please report this as a bug")
+        raise DFAError(
+            f"critical_beta(mu={m!r}, delay={d}) = {beta!r} failed its spectral-radius check: please report this as a bug"
+        )
     return float(beta)

@@ -45,7 +45,7 @@ import numpy as np
 
 from .describing import coulomb_equivalent_damping, quantizer_df, quantizer_df_inverse
 from .device import Params
-from .errors import check_delay, DFAValueError, check_choice, check_int, check_type
+from .errors import DFAValueError, check_choice, check_delay, check_int, check_type
 from .linear import _zoh_coefficients  # the ZOH pulse-transfer coefficients live with the exact linear analysis
 
 __all__ = [
@@ -90,7 +90,9 @@ def equivalent_damping(params: Params, amplitude=None, omega=None):
     """
     p = _check_params(params)
     if p.sigma == 0.0:
-        shape = np.broadcast_shapes(np.shape(amplitude) if amplitude is not None else (), np.shape(omega) if omega is not None else ())
+        shape = np.broadcast_shapes(
+            np.shape(amplitude) if amplitude is not None else (), np.shape(omega) if omega is not None else ()
+        )
         return np.full(shape, p.beta) if shape else p.beta
     if amplitude is None or omega is None:
         raise DFAValueError(
@@ -122,7 +124,9 @@ def hold_delay_tf(delay: int = 0, pade_order: int = 4) -> control.TransferFuncti
     return control.tf(num, den)
 
 
-def device_zoh_tf(params: Params, amplitude: float | None = None, omega: float | None = None) -> control.TransferFunction:
+def device_zoh_tf(
+    params: Params, amplitude: float | None = None, omega: float | None = None
+) -> control.TransferFunction:
     """Exact ZOH discretisation (T = 1) of the device: ``control.c2d(device_tf(...), 1, 'zoh')``."""
     return control.c2d(device_tf(params, amplitude, omega), 1.0, method="zoh")
 
@@ -146,7 +150,9 @@ def zoh_pulse_response(mu, beta_eq, omega):
     return (c1 * z + c0) / (mu * (z - 1.0) * (z - p))
 
 
-def loop_response(params: Params, omega, amplitude=None, *, model: str = "half-delay", delay: int = 0, pade_order: int = 4):
+def loop_response(
+    params: Params, omega, amplitude=None, *, model: str = "half-delay", delay: int = 0, pade_order: int = 4
+):
     """Frequency response L(jω; M) of the linear part of the loop (eq. 36).
 
     Parameters
@@ -172,7 +178,11 @@ def loop_response(params: Params, omega, amplitude=None, *, model: str = "half-d
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
     w = _omega(omega)
-    beq = equivalent_damping(p, amplitude, w) if p.sigma > 0 else np.full(np.broadcast_shapes(w.shape, np.shape(amplitude) if amplitude is not None else ()), p.beta)
+    beq = (
+        equivalent_damping(p, amplitude, w)
+        if p.sigma > 0
+        else np.full(np.broadcast_shapes(w.shape, np.shape(amplitude) if amplitude is not None else ()), p.beta)
+    )
     w = np.broadcast_to(w, np.shape(beq))
     if m == "zoh":
         out = zoh_pulse_response(p.mu, beq, w) * np.exp(-1j * w * d)
@@ -188,8 +198,16 @@ def loop_response(params: Params, omega, amplitude=None, *, model: str = "half-d
     return complex(out) if out.ndim == 0 else out
 
 
-def loop_system(params: Params, amplitude: float | None = None, omega: float | None = None, *,
-                model: str = "pade", delay: int = 0, pade_order: int = 4, omega_grid=None):
+def loop_system(
+    params: Params,
+    amplitude: float | None = None,
+    omega: float | None = None,
+    *,
+    model: str = "pade",
+    delay: int = 0,
+    pade_order: int = 4,
+    omega_grid=None,
+):
     """The linear part as a python-control system, for python-control's own tools.
 
     ``"pade"`` gives a continuous TransferFunction, ``"zoh"`` a discrete one
@@ -267,8 +285,16 @@ def _phase_crossings(omega: np.ndarray, curve: np.ndarray) -> list[tuple[float, 
     return out
 
 
-def nyquist_locus_response(params: Params, amplitudes=None, omega=None, *, model: str = "half-delay",
-                           delay: int = 0, pade_order: int = 4, locus_amplitude=None) -> NyquistLocusResponse:
+def nyquist_locus_response(
+    params: Params,
+    amplitudes=None,
+    omega=None,
+    *,
+    model: str = "half-delay",
+    delay: int = 0,
+    pade_order: int = 4,
+    locus_amplitude=None,
+) -> NyquistLocusResponse:
     """Nyquist data of the loop L(jω; M) and the critical locus −1/D(M) (paper Fig. 6).
 
     Parameters

@@ -52,7 +52,7 @@ import numpy as np
 
 from . import _kernel
 from ._io import atomic_open, check_memory
-from .errors import check_delay, DFAValueError, check_int, check_mu, check_nonnegative, check_positive, check_real
+from .errors import DFAValueError, check_delay, check_int, check_mu, check_nonnegative, check_positive, check_real
 from .simulation import OUTCOMES, _tail_length, preload_position
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs"]
@@ -80,7 +80,9 @@ def check_jobs(name: str, jobs: object) -> int:
     if j == 0 or j < -1:
         raise DFAValueError(f"{name} = {j} is invalid: it must be -1 (all cores) or a positive count")
     if j > cores:
-        raise DFAValueError(f"{name} = {j} is invalid: this machine has {cores} cores; give at most {cores} (or -1 for all)")
+        raise DFAValueError(
+            f"{name} = {j} is invalid: this machine has {cores} cores; give at most {cores} (or -1 for all)"
+        )
     return j
 
 
@@ -137,7 +139,7 @@ class StabilityMap:
             "delay": self.delay,
             "quantize": self.quantize,
             "preload": self.preload,
-            "counts": [dict(xi_dot=v, **c) for v, c in zip(self.xi_dots, self.counts())],
+            "counts": [dict(xi_dot=v, **c) for v, c in zip(self.xi_dots, self.counts(), strict=False)],
         }
 
     def save(self, path: str | os.PathLike) -> Path:
@@ -150,8 +152,15 @@ class StabilityMap:
         p = p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
         with atomic_open(p, "wb") as fh:  # never a half-written map (dfa._io)
             np.savez_compressed(
-                fh, mu=self.mu, xi_dots=np.asarray(self.xi_dots, dtype=float), beta=self.beta, sigma=self.sigma,
-                outcome=self.outcome, outcome_names=np.array(OUTCOMES), amplitude=self.amplitude, frequency=self.frequency,
+                fh,
+                mu=self.mu,
+                xi_dots=np.asarray(self.xi_dots, dtype=float),
+                beta=self.beta,
+                sigma=self.sigma,
+                outcome=self.outcome,
+                outcome_names=np.array(OUTCOMES),
+                amplitude=self.amplitude,
+                frequency=self.frequency,
                 settings=np.array([self.samples, self.delay, int(self.quantize), int(self.preload)], dtype=np.int64),
             )
         return p
@@ -169,12 +178,22 @@ def load_map(path: str | os.PathLike) -> StabilityMap:
         names = [str(v) for v in z["outcome_names"]]
         unknown = sorted(set(names) - set(OUTCOMES))
         if unknown:
-            raise DFAValueError(f"map file {str(path)!r} is invalid: unknown outcome names {unknown}; expected {list(OUTCOMES)}")
+            raise DFAValueError(
+                f"map file {str(path)!r} is invalid: unknown outcome names {unknown}; expected {list(OUTCOMES)}"
+            )
         lut = np.array([OUTCOMES.index(v) for v in names], dtype=np.int8)
         return StabilityMap(
-            mu=float(z["mu"]), xi_dots=tuple(float(v) for v in z["xi_dots"]), beta=z["beta"], sigma=z["sigma"],
-            outcome=lut[z["outcome"]], amplitude=z["amplitude"], frequency=z["frequency"], samples=samples,
-            delay=delay, quantize=bool(quantize), preload=bool(preload),
+            mu=float(z["mu"]),
+            xi_dots=tuple(float(v) for v in z["xi_dots"]),
+            beta=z["beta"],
+            sigma=z["sigma"],
+            outcome=lut[z["outcome"]],
+            amplitude=z["amplitude"],
+            frequency=z["frequency"],
+            samples=samples,
+            delay=delay,
+            quantize=bool(quantize),
+            preload=bool(preload),
         )
 
 
@@ -183,8 +202,24 @@ def _run_chunk(mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, sta
     codes = np.empty(n, dtype=np.int64)
     amps = np.empty(n)
     freqs = np.empty(n)
-    _kernel.map_kernel(mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, _tail_length(samples, mu),
-                       stable_amplitude, growth, settle, codes, amps, freqs)
+    _kernel.map_kernel(
+        mu,
+        betas,
+        sigmas,
+        x0s,
+        v0s,
+        samples,
+        delay,
+        quantize,
+        bound,
+        _tail_length(samples, mu),
+        stable_amplitude,
+        growth,
+        settle,
+        codes,
+        amps,
+        freqs,
+    )
     return codes, amps, freqs
 
 
@@ -200,10 +235,24 @@ def _check_range(name: str, rng) -> tuple[float, float]:
     return lo, hi
 
 
-def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), grid: int = 100,
-                  samples: int = 50_000, delay: int = 0, quantize: bool = True, preload: bool = False,
-                  n_jobs: int = -1, progress: bool = True, bound: float = 1.0e6, stable_amplitude: float = 1.0,
-                  growth: float = 1.25, settle: float = 1.0e-3) -> StabilityMap:
+def stability_map(
+    mu: float,
+    xi_dots,
+    *,
+    beta_range=(0.0, 1.0),
+    sigma_range=(0.0, 2.0),
+    grid: int = 100,
+    samples: int = 50_000,
+    delay: int = 0,
+    quantize: bool = True,
+    preload: bool = False,
+    n_jobs: int = -1,
+    progress: bool = True,
+    bound: float = 1.0e6,
+    stable_amplitude: float = 1.0,
+    growth: float = 1.25,
+    settle: float = 1.0e-3,
+) -> StabilityMap:
     """Simulate every point of a (β, σ) grid for each initial speed (paper Fig. 4).
 
     Parameters
@@ -233,7 +282,10 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
     StabilityMap
     """
     m = check_mu(mu)
-    speeds = tuple(abs(check_real("xi_dot", v, "give initial speeds in ticks per sample")) for v in np.atleast_1d(np.asarray(xi_dots, dtype=object)))
+    speeds = tuple(
+        abs(check_real("xi_dot", v, "give initial speeds in ticks per sample"))
+        for v in np.atleast_1d(np.asarray(xi_dots, dtype=object))
+    )
     if not speeds:
         raise DFAValueError("xi_dots = [] is invalid: it must hold at least one initial speed")
     b0, b1 = _check_range("beta_range", beta_range)
@@ -269,7 +321,9 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
     args = (m,)
     tail = (n, d, bool(quantize), bnd, sa, gr, st)
     # compile (or load from the on-disk cache) once here, before the workers start
-    _run_chunk(m, pts_b[:1].copy(), pts_s[:1].copy(), x0[:1].copy(), v0[:1].copy(), 1, d, bool(quantize), bnd, sa, gr, st)
+    _run_chunk(
+        m, pts_b[:1].copy(), pts_s[:1].copy(), x0[:1].copy(), v0[:1].copy(), 1, d, bool(quantize), bnd, sa, gr, st
+    )
 
     from tqdm.auto import tqdm
 
@@ -287,7 +341,7 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
             par = Parallel(n_jobs=min(workers, len(chunks)), return_as="generator")
             gen = par(delayed(_run_chunk)(*args, pts_b[c], pts_s[c], x0[c], v0[c], *tail) for c in chunks)
             try:
-                for c, res in zip(chunks, gen):  # the generator yields in submission order
+                for c, res in zip(chunks, gen, strict=False):  # the generator yields in submission order
                     results.append(res)
                     bar.update(c.stop - c.start)
             finally:
@@ -299,6 +353,15 @@ def stability_map(mu: float, xi_dots, *, beta_range=(0.0, 1.0), sigma_range=(0.0
     freqs = np.concatenate([r[2] for r in results])
     shape = (len(speeds), g, g)
     return StabilityMap(
-        mu=m, xi_dots=speeds, beta=beta, sigma=sigma, outcome=codes.reshape(shape), amplitude=amps.reshape(shape),
-        frequency=freqs.reshape(shape), samples=n, delay=d, quantize=bool(quantize), preload=bool(preload),
+        mu=m,
+        xi_dots=speeds,
+        beta=beta,
+        sigma=sigma,
+        outcome=codes.reshape(shape),
+        amplitude=amps.reshape(shape),
+        frequency=freqs.reshape(shape),
+        samples=n,
+        delay=d,
+        quantize=bool(quantize),
+        preload=bool(preload),
     )

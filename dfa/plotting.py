@@ -20,7 +20,7 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from collections.abc import Sequence
 
 import matplotlib
 import matplotlib.lines
@@ -48,11 +48,20 @@ BETA_LABEL = "β = b/(K T) (–)"
 SIGMA_LABEL = "σ = c/(K Δ) (–)"
 REGION_COLORS = {"a": "#d9f0d3", "b": "#c6dbef", "c": "#f4a582", "d": "#fddbc7", "e": "#fff7bc"}
 #: Colour of each simulated outcome (paper Fig. 4: white stable, light persisting oscillation, dark unstable).
-OUTCOME_COLORS = {"rest": "#ffffff", "chatter": "#e0e0e0", "oscillating": "#a3a3a3", "unstable": "#252525",
-                  "undecided": "#e08214"}
-_OUTCOME_LABELS = {"rest": "rest (came to rest)", "chatter": "chatter (persisting, < 1 tick)",
-                   "oscillating": "oscillating (persisting, >= 1 tick)", "unstable": "unstable (diverged)",
-                   "undecided": "undecided (run too short)"}
+OUTCOME_COLORS = {
+    "rest": "#ffffff",
+    "chatter": "#e0e0e0",
+    "oscillating": "#a3a3a3",
+    "unstable": "#252525",
+    "undecided": "#e08214",
+}
+_OUTCOME_LABELS = {
+    "rest": "rest (came to rest)",
+    "chatter": "chatter (persisting, < 1 tick)",
+    "oscillating": "oscillating (persisting, >= 1 tick)",
+    "unstable": "unstable (diverged)",
+    "undecided": "undecided (run too short)",
+}
 
 
 def _outcome_cmap() -> ListedColormap:
@@ -67,8 +76,16 @@ def _axes(ax=None, figsize=(5.0, 4.0)):
     return ax
 
 
-def regions_plot(result: CriterionResult, ax=None, *, xi_dots: Sequence[float] = (), beta_max: float = 1.0,
-                 sigma_max: float = 2.0, legend: bool = True, legend_loc: str = "upper right"):
+def regions_plot(
+    result: CriterionResult,
+    ax=None,
+    *,
+    xi_dots: Sequence[float] = (),
+    beta_max: float = 1.0,
+    sigma_max: float = 2.0,
+    legend: bool = True,
+    legend_loc: str = "upper right",
+):
     """The (β, σ) plane with regions a-e shaded for the result's speed and delay (paper Fig. 3, eq. 10).
 
     Parameters
@@ -90,8 +107,16 @@ def regions_plot(result: CriterionResult, ax=None, *, xi_dots: Sequence[float] =
     reg = classify_region(b[None, :], s[:, None], line.xi_dot, result.quantized, line.delay)
     codes = np.searchsorted(np.array(list("abcde")), reg)
     cmap = ListedColormap([REGION_COLORS[k] for k in "abcde"])
-    ax.imshow(codes, origin="lower", extent=(0, bmax, 0, smax), aspect="auto", cmap=cmap, vmin=-0.5, vmax=4.5,
-              interpolation="nearest")
+    ax.imshow(
+        codes,
+        origin="lower",
+        extent=(0, bmax, 0, smax),
+        aspect="auto",
+        cmap=cmap,
+        vmin=-0.5,
+        vmax=4.5,
+        interpolation="nearest",
+    )
     ax.axvline(line.beta0, color="k", lw=0.8, ls="-.")
     if result.quantized:
         ax.axhline(0.5, color="k", lw=0.8, ls="-.")
@@ -99,14 +124,19 @@ def regions_plot(result: CriterionResult, ax=None, *, xi_dots: Sequence[float] =
     ax.plot(b, line.sigma(b), "k--", lw=1.2, label=f"critical line, V = {line.xi_dot:.3g}{dl}")
     for v in xi_dots:
         ax.plot(b, CriticalLine(v, line.sigma0, line.delay).sigma(b), ":", color="0.3", lw=1.0, label=f"ξ'0 = {v:g}")
-    ax.plot([result.beta], [result.sigma], "o", color="#b2182b", ms=7, mec="k", label=f"operating point ({result.region})")
+    ax.plot(
+        [result.beta], [result.sigma], "o", color="#b2182b", ms=7, mec="k", label=f"operating point ({result.region})"
+    )
     ax.set_xlim(0, bmax)
     ax.set_ylim(0, smax)
     ax.set_xlabel(BETA_LABEL)
     ax.set_ylabel(SIGMA_LABEL)
     ax.set_title("Regions of the (β, σ) plane (eq. 6, 10)" + (f", delay d = {line.delay}" if line.delay else ""))
     if legend:
-        handles = [Patch(facecolor=REGION_COLORS[k], edgecolor="0.5", label=f"{k}: {REGION_DESCRIPTIONS[k].split(':')[0]}") for k in "abcde"]
+        handles = [
+            Patch(facecolor=REGION_COLORS[k], edgecolor="0.5", label=f"{k}: {REGION_DESCRIPTIONS[k].split(':')[0]}")
+            for k in "abcde"
+        ]
         lines, labels = ax.get_legend_handles_labels()
         ax.legend(handles=handles + lines, fontsize=7, loc=legend_loc, framealpha=0.9)
     return ax
@@ -143,8 +173,16 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
     extent = (b[0] - db, b[-1] + db, s[0] - ds, s[-1] + ds)
     cmap = _outcome_cmap()
     for k, ax in enumerate(axes):
-        ax.imshow(smap.outcome[k], origin="lower", extent=extent, aspect="auto", cmap=cmap, vmin=-0.5, vmax=cmap.N - 0.5,
-                  interpolation="nearest")
+        ax.imshow(
+            smap.outcome[k],
+            origin="lower",
+            extent=extent,
+            aspect="auto",
+            cmap=cmap,
+            vmin=-0.5,
+            vmax=cmap.N - 0.5,
+            interpolation="nearest",
+        )
         v = smap.xi_dots[k]
         bb = np.linspace(b[0], b[-1], 200)
         line = CriticalLine(v, 0.5 if smap.quantize else 0.0, smap.delay)
@@ -158,12 +196,21 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
         ax.set_ylabel(SIGMA_LABEL)
         if titles:
             what = "preload equivalent to" if smap.preload else "initial speed"
-            ax.set_title(f"μ = {smap.mu:.4g}, {what} ξ'0 = {v:.3g} ticks/sample" + (f", delay {smap.delay}" if smap.delay else ""),
-                         fontsize=9)
-    handles = [Patch(facecolor=OUTCOME_COLORS[k], edgecolor="0.5", label=_OUTCOME_LABELS[k])
-               for k in ("rest", "chatter", "oscillating", "unstable", "undecided")]
-    handles += [matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),
-                matplotlib.lines.Line2D([], [], color="#2166ac", ls="-.", label="β = ½ + d, σ = ½" if smap.delay else "β = ½, σ = ½")]
+            ax.set_title(
+                f"μ = {smap.mu:.4g}, {what} ξ'0 = {v:.3g} ticks/sample"
+                + (f", delay {smap.delay}" if smap.delay else ""),
+                fontsize=9,
+            )
+    handles = [
+        Patch(facecolor=OUTCOME_COLORS[k], edgecolor="0.5", label=_OUTCOME_LABELS[k])
+        for k in ("rest", "chatter", "oscillating", "unstable", "undecided")
+    ]
+    handles += [
+        matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),
+        matplotlib.lines.Line2D(
+            [], [], color="#2166ac", ls="-.", label="β = ½ + d, σ = ½" if smap.delay else "β = ½, σ = ½"
+        ),
+    ]
     axes[0].legend(handles=handles, fontsize=7, loc="upper right", framealpha=0.9)
     return axes
 
@@ -233,8 +280,15 @@ def contour_plot(maps, axes=None):
         ax.plot([], [], "w--", label="eq. 45 (D = 1), same levels")
         ax.legend(fontsize=7, loc="upper right", facecolor="0.5", labelcolor="w")
     if np.isfinite(maps.large_frequency).any():
-        ax.text(0.52, 0.80, f"exact: ω from {np.nanmin(maps.large_frequency):.4f}\nto {np.nanmax(maps.large_frequency):.4f} rad/sample\n"
-                f"eq. 44: ω = {np.nanmax(maps.large_frequency_closed):.5f}", transform=ax.transAxes, fontsize=7, color="k")
+        ax.text(
+            0.52,
+            0.80,
+            f"exact: ω from {np.nanmin(maps.large_frequency):.4f}\nto {np.nanmax(maps.large_frequency):.4f} rad/sample\n"
+            f"eq. 44: ω = {np.nanmax(maps.large_frequency_closed):.5f}",
+            transform=ax.transAxes,
+            fontsize=7,
+            color="k",
+        )
     ax.set_title(f"μ = {maps.mu:g}: large unstable cycles (exact D, eq. 41)", fontsize=9)
     for ax in axes:
         ax.axvline(0.5, color="k", ls="-.", lw=0.8)
@@ -256,15 +310,24 @@ def nyquist_plot(nyq, ax=None, *, cycles=None):
         Cycles to mark (stable: filled circle, unstable: open circle).
     """
     ax = _axes(ax, figsize=(5.5, 4.5))
-    for amp, curve in zip(nyq.amplitudes, nyq.curves):
+    for amp, curve in zip(nyq.amplitudes, nyq.curves, strict=False):
         lab = "L(jω)" if np.isnan(amp) else f"L(jω; M = {amp:.3g})"
         ax.plot(curve.real, curve.imag, lw=1.1, label=lab)
-    ax.plot(nyq.locus.real, np.zeros_like(nyq.locus.real), color="#b2182b", lw=3, alpha=0.6, label="−1/D(M), M in [%.2g, %.2g]" % (nyq.locus_amplitude[0], nyq.locus_amplitude[-1]))
+    ax.plot(
+        nyq.locus.real,
+        np.zeros_like(nyq.locus.real),
+        color="#b2182b",
+        lw=3,
+        alpha=0.6,
+        label=f"−1/D(M), M in [{nyq.locus_amplitude[0]:.2g}, {nyq.locus_amplitude[-1]:.2g}]",
+    )
     if cycles is not None:
         from .loop import loop_response
 
         for c in cycles.cycles:
-            pt = loop_response(nyq.params, c.frequency, c.amplitude, model=nyq.model, delay=nyq.delay, pade_order=nyq.pade_order)
+            pt = loop_response(
+                nyq.params, c.frequency, c.amplitude, model=nyq.model, delay=nyq.delay, pade_order=nyq.pade_order
+            )
             ax.plot([pt.real], [pt.imag], "o", mfc="k" if c.stable else "w", mec="k", ms=6)
         ax.plot([], [], "o", mfc="k", mec="k", label="stable cycle")
         ax.plot([], [], "o", mfc="w", mec="k", label="unstable cycle")
@@ -276,7 +339,10 @@ def nyquist_plot(nyq, ax=None, *, cycles=None):
     ax.axvline(0, color="0.6", lw=0.5)
     ax.set_xlabel("Re L (force ticks per position tick)")
     ax.set_ylabel("Im L (force ticks per position tick)")
-    ax.set_title(f"Nyquist: {nyq.model} model, μ = {nyq.params.mu:.4g}, β = {nyq.params.beta:.3g}, σ = {nyq.params.sigma:.3g}", fontsize=9)
+    ax.set_title(
+        f"Nyquist: {nyq.model} model, μ = {nyq.params.mu:.4g}, β = {nyq.params.beta:.3g}, σ = {nyq.params.sigma:.3g}",
+        fontsize=9,
+    )
     ax.legend(fontsize=7, loc="lower left")
     return ax
 
@@ -293,11 +359,23 @@ def stiffness_plot(curve, ax=None):
     u = curve.device.units
     d = getattr(curve, "delay", 0)
     cs = "2b/T" if d == 0 else f"b/(T(½ + {d}))"
-    ax.loglog(curve.velocity, curve.k_max, color="#2166ac", lw=2, label="criterion K_max (eq. 11)" + (f", delay {d}" if d else ""))
+    ax.loglog(
+        curve.velocity,
+        curve.k_max,
+        color="#2166ac",
+        lw=2,
+        label="criterion K_max (eq. 11)" + (f", delay {d}" if d else ""),
+    )
     ax.axhline(curve.k_static, color="#4d9221", ls="-.", lw=1, label="2c/Δ (eq. 9, at rest)")
     ax.axhline(curve.k_colgate, color="#b2182b", ls="--", lw=1, label=f"Colgate-Schenkel {cs}")
     ax.axhline(curve.k_abbott_okamura, color="#762a83", ls=":", lw=1.5, label=f"Abbott-Okamura min({cs}, 2c/Δ)")
-    ax.axhline(curve.k_gil, color="0.3", ls=(0, (5, 1, 1, 1)), lw=1, label="exact linear bound (no encoder, no friction" + (f", delay {d})" if d else ")"))
+    ax.axhline(
+        curve.k_gil,
+        color="0.3",
+        ls=(0, (5, 1, 1, 1)),
+        lw=1,
+        label="exact linear bound (no encoder, no friction" + (f", delay {d})" if d else ")"),
+    )
     if curve.stiffness is not None:
         ax.axhline(curve.stiffness, color="k", lw=1.2, label=f"chosen K = {curve.stiffness:.4g} {u['stiffness']}")
         if curve.max_passive_velocity is not None and np.isfinite(curve.max_passive_velocity):
@@ -324,10 +402,22 @@ def cycle_error_plot(validation, ax=None):
         recs = [r for r in validation.cycles if r["model"] == model and r["stable"] and r.get("confirmed")]
         if recs:
             per = [r["period"] for r in recs]
-            ax.plot(per, [max(floor, 100 * abs(r["frequency_error"])) for r in recs], marker, mfc="none", alpha=0.8,
-                    label=f"{model}: frequency")
-            ax.plot(per, [max(floor, 100 * abs(r["amplitude_error"])) for r in recs], marker, ms=3, alpha=0.6,
-                    label=f"{model}: amplitude")
+            ax.plot(
+                per,
+                [max(floor, 100 * abs(r["frequency_error"])) for r in recs],
+                marker,
+                mfc="none",
+                alpha=0.8,
+                label=f"{model}: frequency",
+            )
+            ax.plot(
+                per,
+                [max(floor, 100 * abs(r["amplitude_error"])) for r in recs],
+                marker,
+                ms=3,
+                alpha=0.6,
+                label=f"{model}: amplitude",
+            )
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.xaxis.set_major_locator(FixedLocator([2, 4, 8, 16, 32, 64]))
@@ -349,8 +439,12 @@ def critical_speed_plot(validation, ax=None):
     rows = validation.speeds
     x = np.arange(len(rows))
     w = 0.2
-    series = [("criterion", "criterion (eq. 12)", "#b2182b"), ("df_zoh", "DF growth threshold (exact ZOH)", "#2166ac"),
-              ("simulated", "simulated", "0.2"), ("simulated_preload", "simulated, preload", "0.6")]
+    series = [
+        ("criterion", "criterion (eq. 12)", "#b2182b"),
+        ("df_zoh", "DF growth threshold (exact ZOH)", "#2166ac"),
+        ("simulated", "simulated", "0.2"),
+        ("simulated_preload", "simulated, preload", "0.6"),
+    ]
     for i, (key, label, color) in enumerate(series):
         vals = [r[key] if r[key] is not None else np.nan for r in rows]
         ax.bar(x + (i - 1.5) * w, vals, w, label=label, color=color)

@@ -48,7 +48,7 @@ def simulate_ivp(mu, beta, sigma, xi0, xi_dot0, samples, *, quantize=True, delay
             else:
                 s = math.copysign(1.0, v)
 
-            def rhs(_t, y, s=s):
+            def rhs(_t, y, s=s, phi=phi):
                 return [y[1], (phi - beta * y[1] - sigma * s) / mu]
 
             def stop(_t, y, s=s):

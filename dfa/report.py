@@ -18,12 +18,12 @@ from pathlib import Path
 
 import numpy as np
 
+from ._io import staged_folder
 from .catalogue import CatalogueEntry
 from .criterion import device_criterion
-from .device import Device
-from ._io import staged_folder
-from .errors import check_delay, DFAValueError, check_choice, check_positive, check_real
 from .cycles import growth_threshold
+from .device import Device
+from .errors import DFAValueError, check_choice, check_delay, check_positive, check_real
 from .loop import nyquist_locus_response
 from .maps import stability_map
 from .simulation import simulate
@@ -81,6 +81,7 @@ class _Doc:
             elif b[0] == "p":
                 out.append(b[1])
             elif b[0] == "table":
+
                 def cell(x: str) -> str:
                     return x.replace("|", "\\|")  # a literal | would end the cell
 
@@ -109,15 +110,21 @@ class _Doc:
                 body.append(f"<table><thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>")
             else:
                 data = base64.b64encode(Path(b[1]).read_bytes()).decode("ascii")
-                body.append(f'<figure><img alt="{html.escape(b[2])}" src="data:image/png;base64,{data}"/>'
-                            f"<figcaption>{html.escape(b[2])}</figcaption></figure>")
-        css = ("body{font-family:-apple-system,Segoe UI,Helvetica,Arial,sans-serif;max-width:980px;margin:2em auto;padding:0 1em;"
-               "color:#222;line-height:1.45}table{border-collapse:collapse;margin:0.8em 0;font-size:0.92em}"
-               "th,td{border:1px solid #ccc;padding:0.3em 0.6em;text-align:left}th{background:#f3f3f3}"
-               "figure{margin:1.2em 0}img{max-width:100%}figcaption{font-size:0.88em;color:#555}"
-               "h1{border-bottom:2px solid #2166ac}code{background:#f3f3f3;padding:0 0.2em}")
-        return (f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{html.escape(title)}</title>"
-                f"<style>{css}</style></head><body>{''.join(body)}</body></html>\n")
+                body.append(
+                    f'<figure><img alt="{html.escape(b[2])}" src="data:image/png;base64,{data}"/>'
+                    f"<figcaption>{html.escape(b[2])}</figcaption></figure>"
+                )
+        css = (
+            "body{font-family:-apple-system,Segoe UI,Helvetica,Arial,sans-serif;max-width:980px;margin:2em auto;padding:0 1em;"
+            "color:#222;line-height:1.45}table{border-collapse:collapse;margin:0.8em 0;font-size:0.92em}"
+            "th,td{border:1px solid #ccc;padding:0.3em 0.6em;text-align:left}th{background:#f3f3f3}"
+            "figure{margin:1.2em 0}img{max-width:100%}figcaption{font-size:0.88em;color:#555}"
+            "h1{border-bottom:2px solid #2166ac}code{background:#f3f3f3;padding:0 0.2em}"
+        )
+        return (
+            f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
+            f"<style>{css}</style></head><body>{''.join(body)}</body></html>\n"
+        )
 
 
 def _outcome_sentence(r, dev: Device, k: float, v: float) -> str:
@@ -129,14 +136,24 @@ def _outcome_sentence(r, dev: Device, k: float, v: float) -> str:
     if r.outcome == "unstable":
         return head + "the motion diverges (unstable)."
     ph = r.physical(dev, k)
-    step = (f"the force toggles over {r.force_peak_to_peak:.3g} KΔ peak-to-peak ({_fmt(ph['force_peak_to_peak_si'])} {ph['force_unit']})"
-            + (f" at {ph['frequency_hz']:.4g} Hz" if ph["frequency_hz"] else ""))
+    step = (
+        f"the force toggles over {r.force_peak_to_peak:.3g} KΔ peak-to-peak ({_fmt(ph['force_peak_to_peak_si'])} {ph['force_unit']})"
+        + (f" at {ph['frequency_hz']:.4g} Hz" if ph["frequency_hz"] else "")
+    )
     if r.outcome == "chatter":
-        return head + f"chatter: the device never comes to rest; {step} with a motion of {r.amplitude:.2g} ticks, a buzz the user feels."
+        return (
+            head
+            + f"chatter: the device never comes to rest; {step} with a motion of {r.amplitude:.2g} ticks, a buzz the user feels."
+        )
     if r.outcome == "oscillating":
-        return head + f"a persistent oscillation of {r.amplitude:.3g} ticks ({_fmt(ph['amplitude_si'])} {u['position']}); {step}."
-    return head + (f"undecided: the motion is still changing at the end of the run (last {r.amplitude:.3g} ticks); "
-                   f"about {r.suggested_samples} samples would be needed to tell.")
+        return (
+            head
+            + f"a persistent oscillation of {r.amplitude:.3g} ticks ({_fmt(ph['amplitude_si'])} {u['position']}); {step}."
+        )
+    return head + (
+        f"undecided: the motion is still changing at the end of the run (last {r.amplitude:.3g} ticks); "
+        f"about {r.suggested_samples} samples would be needed to tell."
+    )
 
 
 def _verdict_text(dev: Device, k: float, v: float, dl: int, crit, lim, v_sim) -> str:
@@ -149,23 +166,36 @@ def _verdict_text(dev: Device, k: float, v: float, dl: int, crit, lim, v_sim) ->
         verdict = f"not passive even at rest (K > 2c/Δ = {lim.k_static:.5g} {u['stiffness']})"
     else:
         verdict = "not proven passive (the criterion gives no guarantee; that is not a proof of instability)"
-    text = (f"**Verdict.** With K = {k:g} {u['stiffness']}, an impact speed of {v:g} {u['velocity']} and {ds}, the {dev.name} is "
-            f"**{verdict}** (region {crit.region}: {crit.status}). ")
+    text = (
+        f"**Verdict.** With K = {k:g} {u['stiffness']}, an impact speed of {v:g} {u['velocity']} and {ds}, the {dev.name} is "
+        f"**{verdict}** (region {crit.region}: {crit.status}). "
+    )
     if crit.critical_velocity:
         text += f"The criterion guarantees passivity up to {_fmt(crit.critical_velocity)} {u['velocity']}; "
     text += f"{'at' if crit.critical_velocity else 'At'} {v:g} {u['velocity']} with {ds} the largest passive stiffness is {lim.k_max:.5g} {u['stiffness']}. "
     if v_sim:
-        text += (f"In exact simulation an impact at {_fmt(dev.velocity(v_sim))} {u['velocity']} diverges: the lowest unstable "
-                 "speed of a 40-point scan, refined by bisection; stability need not be monotone in speed, so "
-                 "slower impacts between scan points may diverge too.")
+        text += (
+            f"In exact simulation an impact at {_fmt(dev.velocity(v_sim))} {u['velocity']} diverges: the lowest unstable "
+            "speed of a 40-point scan, refined by bisection; stability need not be monotone in speed, so "
+            "slower impacts between scan points may diverge too."
+        )
     else:
         text += "No impact speed of a 40-point scan up to 30 times the reference speed diverged in exact simulation."
     return text
 
 
-def design_report(device: Device | CatalogueEntry, stiffness: float | None = None, velocity: float | None = None, *,
-                  out_dir: str | os.PathLike = "reports", fmt: str = "html", progress: bool = True, map_grid: int = 41,
-                  samples: int = 30_000, delay: int = 0) -> ReportResult:
+def design_report(
+    device: Device | CatalogueEntry,
+    stiffness: float | None = None,
+    velocity: float | None = None,
+    *,
+    out_dir: str | os.PathLike = "reports",
+    fmt: str = "html",
+    progress: bool = True,
+    map_grid: int = 41,
+    samples: int = 30_000,
+    delay: int = 0,
+) -> ReportResult:
     """Write the design report of ``device`` at stiffness K, impact speed ẋ0 and computational delay d.
 
     Parameters
@@ -194,7 +224,9 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
         raise DFAValueError(f"device = {device!r} is invalid: it must be a dfa.Device or a catalogue entry")
     k = stiffness if stiffness is not None else (entry.stiffness if entry is not None else None)
     if k is None:
-        raise DFAValueError(f"stiffness = None is invalid for {dev.name!r}: the catalogue gives no K; pass the stiffness in {dev.units['stiffness']}")
+        raise DFAValueError(
+            f"stiffness = None is invalid for {dev.name!r}: the catalogue gives no K; pass the stiffness in {dev.units['stiffness']}"
+        )
     k = check_positive("stiffness", k, "give the virtual wall stiffness K")
     v = abs(check_real("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1)))
     fmt = check_choice("fmt", fmt, ("html", "md", "both"))
@@ -205,7 +237,7 @@ def design_report(device: Device | CatalogueEntry, stiffness: float | None = Non
     # write everything into a staging folder, then move the files in: never a mix of two reports (dfa._io)
     with staged_folder(out) as stage:
         res = _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out, stage)
-    final = lambda pth: out / Path(pth).relative_to(stage)  # noqa: E731
+    final = lambda pth: out / Path(pth).relative_to(stage)
     return ReportResult(tuple(final(x) for x in res.paths), tuple(final(x) for x in res.figures), res.numbers)
 
 
@@ -222,7 +254,9 @@ def _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out: P
     crit = device_criterion(dev, k, v, delay=dl)
     lim = stiffness_limits(dev, v, k, delay=dl)
     steps.update()
-    thr = {m: growth_threshold(p, dev, model=m, delay=dl) for m in ("half-delay", "zoh")}  # search range follows the problem
+    thr = {
+        m: growth_threshold(p, dev, model=m, delay=dl) for m in ("half-delay", "zoh")
+    }  # search range follows the problem
     steps.update()
     # how far to trust: the true critical speed of this device by simulation
     ref = crit.critical_xi_dot if crit.critical_xi_dot else max(1.0, crit.xi_dot)
@@ -244,10 +278,19 @@ def _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out: P
         plt.close(fig)
         figs.append((path, caption))
 
-    ax = plotting.regions_plot(crit, xi_dots=[x for x in (1.0, 5.0) if abs(x - crit.xi_dot) > 0.2], beta_max=max(1.0, 2 * p.beta),
-                               sigma_max=max(2.0, 1.5 * p.sigma))
-    save(ax.figure, "regions", f"Operating point of the {dev.name} in the (β, σ) plane with its critical line at {v:g} {u['velocity']}"
-         + (f", delay {dl} sample{'s' if dl != 1 else ''}" if dl else "") + " (eq. 6, 10).")
+    ax = plotting.regions_plot(
+        crit,
+        xi_dots=[x for x in (1.0, 5.0) if abs(x - crit.xi_dot) > 0.2],
+        beta_max=max(1.0, 2 * p.beta),
+        sigma_max=max(2.0, 1.5 * p.sigma),
+    )
+    save(
+        ax.figure,
+        "regions",
+        f"Operating point of the {dev.name} in the (β, σ) plane with its critical line at {v:g} {u['velocity']}"
+        + (f", delay {dl} sample{'s' if dl != 1 else ''}" if dl else "")
+        + " (eq. 6, 10).",
+    )
     ax = plotting.stiffness_plot(stiffness_response(dev, stiffness=k, delay=dl))
     save(ax.figure, "stiffness", "Largest passive stiffness against impact speed (eq. 11) and the published bounds.")
     res = thr["half-delay"].result
@@ -257,7 +300,11 @@ def _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out: P
     m_top = max([50.0] + [2.0 * c.amplitude for c in res.cycles])  # the locus must reach every cycle drawn
     ny = nyquist_locus_response(p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), delay=dl)
     ax = plotting.nyquist_plot(ny, cycles=res)
-    save(ax.figure, "nyquist", "Nyquist plot of the linearised loop (half-sample delay) against −1/D(M), with the predicted limit cycles.")
+    save(
+        ax.figure,
+        "nyquist",
+        "Nyquist plot of the linearised loop (half-sample delay) against −1/D(M), with the predicted limit cycles.",
+    )
     steps.update()
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
     fig, axs = plt.subplots(2, 1, figsize=(7, 5.4), constrained_layout=True)
@@ -270,61 +317,120 @@ def _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out: P
     sim_hi = simulate(p.mu, p.beta, p.sigma, v_show, n_traj, delay=dl)
     full_hi = simulate(p.mu, p.beta, p.sigma, v_show, delay=dl, record=False)
     plotting.trajectory_plot(sim_hi, ax=axs[1], period=dev.period)
-    axs[1].set_title(f"impact at {dev.velocity(v_show):.3g} {u['velocity']} (ξ'0 = {v_show:.3g}): {full_hi.outcome}", fontsize=9)
-    save(fig, "trajectories", "Simulated displacement (exact sampled-data integration) at the design speed and just above the simulated critical speed; dashed: ±1 tick.")
+    axs[1].set_title(
+        f"impact at {dev.velocity(v_show):.3g} {u['velocity']} (ξ'0 = {v_show:.3g}): {full_hi.outcome}", fontsize=9
+    )
+    save(
+        fig,
+        "trajectories",
+        "Simulated displacement (exact sampled-data integration) at the design speed and just above the simulated critical speed; dashed: ±1 tick.",
+    )
     steps.update()
     bw = max(0.25, 2 * p.beta)
     sw = max(1.0, 2 * p.sigma)
-    smap = stability_map(p.mu, [crit.xi_dot, 2 * crit.xi_dot] if crit.xi_dot > 0 else [1.0, 2.0],
-                         beta_range=(0.0, bw), sigma_range=(0.0, sw), grid=map_grid, samples=samples, progress=progress, delay=dl)
+    smap = stability_map(
+        p.mu,
+        [crit.xi_dot, 2 * crit.xi_dot] if crit.xi_dot > 0 else [1.0, 2.0],
+        beta_range=(0.0, bw),
+        sigma_range=(0.0, sw),
+        grid=map_grid,
+        samples=samples,
+        progress=progress,
+        delay=dl,
+    )
     axs = plotting.stability_map_plot(smap)
     for a in axs:
         a.plot([p.beta], [p.sigma], "o", color="#f1a340", mec="k", ms=7)
-    save(axs[0].figure, "map", f"Simulated stability around the operating point (orange) at the design speed and twice it; μ = {p.mu:.4g}.")
+    save(
+        axs[0].figure,
+        "map",
+        f"Simulated stability around the operating point (orange) at the design speed and twice it; μ = {p.mu:.4g}.",
+    )
     steps.update()
 
     # ------------------------------------------------------------ the document
     d = _Doc()
     d.h(1, f"Design report: {dev.name}")
     d.p(_verdict_text(dev, k, v, dl, crit, lim, v_sim))
-    d.p("Method: N. Diolaiti, G. Niemeyer, F. Barbagli, J. K. Salisbury, *A Criterion for the Passivity of Haptic Devices*, ICRA 2005; "
-        "equation numbers refer to that paper. Generated by `dfa report`.")
+    d.p(
+        "Method: N. Diolaiti, G. Niemeyer, F. Barbagli, J. K. Salisbury, *A Criterion for the Passivity of Haptic Devices*, ICRA 2005; "
+        "equation numbers refer to that paper. Generated by `dfa report`."
+    )
     d.h(2, "Device")
-    rows = [["mass m", f"{dev.mass:g} {u['mass']}"], ["viscous damping b", f"{dev.damping:g} {u['damping']}"],
-            ["Coulomb friction c", f"{dev.coulomb:g} {u['force']}"], ["encoder resolution Δ", f"{dev.resolution:.4g} {u['resolution']}"],
-            ["sample period T", f"{dev.period:.4g} s ({1 / dev.period:.4g} Hz)"], ["stiffness K", f"{k:g} {u['stiffness']}"],
-            ["μ = m/(K T²)", f"{p.mu:.5g}"], ["β = b/(K T)", f"{p.beta:.5g}"], ["σ = c/(K Δ)", f"{p.sigma:.5g}"]]
+    rows = [
+        ["mass m", f"{dev.mass:g} {u['mass']}"],
+        ["viscous damping b", f"{dev.damping:g} {u['damping']}"],
+        ["Coulomb friction c", f"{dev.coulomb:g} {u['force']}"],
+        ["encoder resolution Δ", f"{dev.resolution:.4g} {u['resolution']}"],
+        ["sample period T", f"{dev.period:.4g} s ({1 / dev.period:.4g} Hz)"],
+        ["stiffness K", f"{k:g} {u['stiffness']}"],
+        ["μ = m/(K T²)", f"{p.mu:.5g}"],
+        ["β = b/(K T)", f"{p.beta:.5g}"],
+        ["σ = c/(K Δ)", f"{p.sigma:.5g}"],
+    ]
     d.table(["quantity", "value"], rows)
     if entry is not None:
         pr = entry.printed_params
         if pr:
-            d.p("Paper Table 2 prints " + ", ".join(f"{k_} = {entry.printed[i][1]}" for i, k_ in enumerate(("μ", "β", "σ")) if i < len(entry.printed))
-                + ("; disagreements with the recomputed values: " + "; ".join(str(x) for x in entry.discrepancies) if entry.discrepancies else "; the recomputed values agree.")
-                + (f" Note: {entry.notes}" if entry.notes else ""))
+            d.p(
+                "Paper Table 2 prints "
+                + ", ".join(
+                    f"{k_} = {entry.printed[i][1]}" for i, k_ in enumerate(("μ", "β", "σ")) if i < len(entry.printed)
+                )
+                + (
+                    "; disagreements with the recomputed values: " + "; ".join(str(x) for x in entry.discrepancies)
+                    if entry.discrepancies
+                    else "; the recomputed values agree."
+                )
+                + (f" Note: {entry.notes}" if entry.notes else "")
+            )
     d.h(2, "Passivity and stiffness limits")
-    d.table(["quantity", "value"], [
-        ["impact speed ẋ0", f"{v:g} {u['velocity']} = {crit.xi_dot:.4g} ticks/sample"],
-        ["region (paper Fig. 3)", f"{crit.region}: {crit.status}"],
-        ["computational delay d", f"{dl} sample{'s' if dl != 1 else ''}"],
-        ["passive (eq. 6)", "yes (proven: the energy cannot grow)" if crit.passive else "no guarantee (not a proof of instability)"],
-        ["margin (β − ½ − d)|ξ'0| + (σ − ½)", f"{crit.margin:.4g}"],
-        ["critical speed (eq. 12)", "none" if crit.critical_xi_dot is None else f"{crit.critical_xi_dot:.4g} ticks/sample = {_fmt(crit.critical_velocity)} {u['velocity']}"],
-        ["K_max at this speed (eq. 11)", f"{lim.k_max:.5g} {u['stiffness']}"],
-        ["2c/Δ (eq. 9, at rest)", f"{lim.k_static:.5g} {u['stiffness']}"],
-        ["Colgate–Schenkel 2b/T (eq. 8)", f"{lim.k_colgate:.5g} {u['stiffness']}"],
-        ["Abbott–Okamura min(2b/T, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {u['stiffness']}"],
-        ["exact linear bound of the sampled spring (all Jury conditions; Gil et al. where binding)", f"{lim.k_gil:.5g} {u['stiffness']}"],
-        [f"largest passive speed at K = {k:g}", lim.max_passive_velocity_text()],
-        ["verdict for this K at this speed", lim.verdict_text()],
-    ])
+    d.table(
+        ["quantity", "value"],
+        [
+            ["impact speed ẋ0", f"{v:g} {u['velocity']} = {crit.xi_dot:.4g} ticks/sample"],
+            ["region (paper Fig. 3)", f"{crit.region}: {crit.status}"],
+            ["computational delay d", f"{dl} sample{'s' if dl != 1 else ''}"],
+            [
+                "passive (eq. 6)",
+                "yes (proven: the energy cannot grow)" if crit.passive else "no guarantee (not a proof of instability)",
+            ],
+            ["margin (β − ½ − d)|ξ'0| + (σ − ½)", f"{crit.margin:.4g}"],
+            [
+                "critical speed (eq. 12)",
+                "none"
+                if crit.critical_xi_dot is None
+                else f"{crit.critical_xi_dot:.4g} ticks/sample = {_fmt(crit.critical_velocity)} {u['velocity']}",
+            ],
+            ["K_max at this speed (eq. 11)", f"{lim.k_max:.5g} {u['stiffness']}"],
+            ["2c/Δ (eq. 9, at rest)", f"{lim.k_static:.5g} {u['stiffness']}"],
+            ["Colgate–Schenkel 2b/T (eq. 8)", f"{lim.k_colgate:.5g} {u['stiffness']}"],
+            ["Abbott–Okamura min(2b/T, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {u['stiffness']}"],
+            [
+                "exact linear bound of the sampled spring (all Jury conditions; Gil et al. where binding)",
+                f"{lim.k_gil:.5g} {u['stiffness']}",
+            ],
+            [f"largest passive speed at K = {k:g}", lim.max_passive_velocity_text()],
+            ["verdict for this K at this speed", lim.verdict_text()],
+        ],
+    )
     d.fig(*figs[0])
     d.fig(*figs[1])
     d.h(2, "Predicted limit cycles (describing function, eq. 36–41)")
     crow = []
     for m, g in thr.items():
         for c in g.result.cycles:
-            crow.append([m, f"{c.amplitude:.5g}", f"{c.amplitude * dev.resolution:.3g} {u['position']}", f"{c.frequency:.4g}",
-                         f"{1 / (c.period * dev.period):.4g} Hz", "stable" if c.stable else "unstable", c.family + (" (period < 8 samples)" if c.few_samples else "")])
+            crow.append(
+                [
+                    m,
+                    f"{c.amplitude:.5g}",
+                    f"{c.amplitude * dev.resolution:.3g} {u['position']}",
+                    f"{c.frequency:.4g}",
+                    f"{1 / (c.period * dev.period):.4g} Hz",
+                    "stable" if c.stable else "unstable",
+                    c.family + (" (period < 8 samples)" if c.few_samples else ""),
+                ]
+            )
     if crow:
         d.table(["loop model", "M (ticks)", "amplitude", "ω (rad/sample)", "frequency", "stability", "family"], crow)
     for line in _absence_lines(thr):
@@ -334,28 +440,46 @@ def _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out: P
         d.p(_growth_paragraph(g, u))
     d.fig(*figs[2])
     d.h(2, "How far to trust these predictions")
-    rows = [["criterion (eq. 12), guaranteed", _fmt(crit.critical_xi_dot), f"{_fmt(crit.critical_velocity)} {u['velocity']}"],
-            *[[f"describing function, {m}" + (" (growth band)" if t.is_band else ""),
-               _fmt(t.xi_dot) + (f" to {_fmt(t.xi_dot_high)}" if t.is_band else ""),
-               f"{_fmt(t.velocity)}" + (f" to {_fmt(t.velocity_high)}" if t.is_band else "") + f" {u['velocity']}"]
-              for m, t in (("half-delay", thr["half-delay"]), ("exact ZOH", thr["zoh"]))],
-            ["exact simulation (bisection on ξ'0, from ξ0 = 0)", _fmt(v_sim), f"{_fmt(dev.velocity(v_sim)) if v_sim else '–'} {u['velocity']}"]]
+    rows = [
+        [
+            "criterion (eq. 12), guaranteed",
+            _fmt(crit.critical_xi_dot),
+            f"{_fmt(crit.critical_velocity)} {u['velocity']}",
+        ],
+        *[
+            [
+                f"describing function, {m}" + (" (growth band)" if t.is_band else ""),
+                _fmt(t.xi_dot) + (f" to {_fmt(t.xi_dot_high)}" if t.is_band else ""),
+                f"{_fmt(t.velocity)}" + (f" to {_fmt(t.velocity_high)}" if t.is_band else "") + f" {u['velocity']}",
+            ]
+            for m, t in (("half-delay", thr["half-delay"]), ("exact ZOH", thr["zoh"]))
+        ],
+        [
+            "exact simulation (bisection on ξ'0, from ξ0 = 0)",
+            _fmt(v_sim),
+            f"{_fmt(dev.velocity(v_sim)) if v_sim else '–'} {u['velocity']}",
+        ],
+    ]
     d.table(["critical impact speed", "ticks/sample", "physical"], rows)
     msg = []
     if v_sim and crit.critical_xi_dot:
         msg.append(f"The criterion is conservative by a factor {v_sim / crit.critical_xi_dot:.3g} for this device")
     if v_sim and g.xi_dot:
-        msg.append(f"the describing function's threshold is within {100 * abs(g.xi_dot / v_sim - 1):.2g} % of the simulated one")
+        msg.append(
+            f"the describing function's threshold is within {100 * abs(g.xi_dot / v_sim - 1):.2g} % of the simulated one"
+        )
     if msg:
         d.p("; ".join(msg) + ".")
     vjson = out / "validation" / "validation.json"
     if vjson.is_file():
         s = json.loads(vjson.read_text())
-        d.p(f"Across the validation set (`reports/validation/validation.md`): {s['soundness_violations']} of {s['soundness_passive']} points the "
+        d.p(
+            f"Across the validation set (`reports/validation/validation.md`): {s['soundness_violations']} of {s['soundness_passive']} points the "
             f"criterion calls passive went unstable in simulation; the criterion rejects {100 * s['conservatism']:.0f} % of the points that "
             f"came to rest; the describing function's growth threshold is within a median {100 * s['speed_df_median_error']:.2g} % "
             f"of the simulated critical speed; stable cycles with periods under 8 samples are poorly predicted (median frequency error "
-            f"{100 * s['short_period_frequency_error']:.2g} %).")
+            f"{100 * s['short_period_frequency_error']:.2g} %)."
+        )
     d.p(_outcome_sentence(full_v, dev, k, v))
     d.fig(*figs[3])
     d.fig(*figs[4])
@@ -370,9 +494,19 @@ def _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out: P
         pth.write_text(d.html(f"dfa design report: {dev.name}"), encoding="utf-8")
         paths.append(pth)
     steps.close()
-    numbers = dict(mu=p.mu, beta=p.beta, sigma=p.sigma, region=crit.region, passive=crit.passive, k_max=lim.k_max, delay=dl,
-                   critical_xi_dot=crit.critical_xi_dot, df_xi_dot=g.xi_dot, simulated_xi_dot=v_sim,
-                   cycles=[c.amplitude for c in thr["half-delay"].result.cycles])
+    numbers = dict(
+        mu=p.mu,
+        beta=p.beta,
+        sigma=p.sigma,
+        region=crit.region,
+        passive=crit.passive,
+        k_max=lim.k_max,
+        delay=dl,
+        critical_xi_dot=crit.critical_xi_dot,
+        df_xi_dot=g.xi_dot,
+        simulated_xi_dot=v_sim,
+        cycles=[c.amplitude for c in thr["half-delay"].result.cycles],
+    )
     return ReportResult(tuple(paths), tuple(f for f, _c in figs), numbers)
 
 
@@ -383,15 +517,21 @@ def _absence_lines(thr: dict) -> list[str]:
         res = g.result
         if res.cycles:
             if not res.complete:
-                out.append(f"{m} loop: search incomplete beyond M = {res.max_amplitude:g} ticks ({res.status.removeprefix('incomplete: ')}); "
-                           "more cycles may exist.")
+                out.append(
+                    f"{m} loop: search incomplete beyond M = {res.max_amplitude:g} ticks ({res.status.removeprefix('incomplete: ')}); "
+                    "more cycles may exist."
+                )
             continue
         if not res.complete:
-            out.append(f"{m} loop: no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: "
-                       f"{res.status.removeprefix('incomplete: ')}).")
+            out.append(
+                f"{m} loop: no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: "
+                f"{res.status.removeprefix('incomplete: ')})."
+            )
         elif res.linear_stable is False:
-            out.append(f"{m} loop: no limit cycle predicted, but the linear loop without encoder and Coulomb friction (exact ZOH model) "
-                       "is unstable: amplitudes grow without bound.")
+            out.append(
+                f"{m} loop: no limit cycle predicted, but the linear loop without encoder and Coulomb friction (exact ZOH model) "
+                "is unstable: amplitudes grow without bound."
+            )
         else:
             out.append(f"{m} loop: no limit cycle is predicted (search complete).")
     return out
@@ -400,8 +540,12 @@ def _absence_lines(thr: dict) -> list[str]:
 def _growth_paragraph(g, u: dict) -> str:
     """The exact-ZOH growth threshold, or band for a cluster, with its meaning (physical units from ``u``)."""
     if g.is_band:
-        return (f"**Growth band** (exact ZOH loop): {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
-                f"({_fmt(g.position)} to {_fmt(g.position_high)} {u['position']}); speeds M·ω = {g.xi_dot:.4g} to {g.xi_dot_high:.4g} ticks/sample "
-                f"= {_fmt(g.velocity)} to {_fmt(g.velocity_high)} {u['velocity']}. {g.meaning()}")
-    return (f"**Growth threshold** (exact ZOH loop): M_u = {g.amplitude:.4g} ticks ({_fmt(g.position)} {u['position']}); "
-            f"the matching impact speed is M_u·ω = {g.xi_dot:.4g} ticks/sample = {_fmt(g.velocity)} {u['velocity']}. {g.meaning()}")
+        return (
+            f"**Growth band** (exact ZOH loop): {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
+            f"({_fmt(g.position)} to {_fmt(g.position_high)} {u['position']}); speeds M·ω = {g.xi_dot:.4g} to {g.xi_dot_high:.4g} ticks/sample "
+            f"= {_fmt(g.velocity)} to {_fmt(g.velocity_high)} {u['velocity']}. {g.meaning()}"
+        )
+    return (
+        f"**Growth threshold** (exact ZOH loop): M_u = {g.amplitude:.4g} ticks ({_fmt(g.position)} {u['position']}); "
+        f"the matching impact speed is M_u·ω = {g.xi_dot:.4g} ticks/sample = {_fmt(g.velocity)} {u['velocity']}. {g.meaning()}"
+    )

@@ -105,7 +105,17 @@ import numpy as np
 
 from . import _kernel
 from .criterion import spring_energy
-from .errors import check_delay, DFAValueError, check_beta, check_int, check_mu, check_nonnegative, check_positive, check_real, check_sigma
+from .errors import (
+    DFAValueError,
+    check_beta,
+    check_delay,
+    check_int,
+    check_mu,
+    check_nonnegative,
+    check_positive,
+    check_real,
+    check_sigma,
+)
 
 __all__ = [
     "OUTCOMES",
@@ -157,8 +167,10 @@ def preload_position(mu: float, xi_dot: float) -> float:
     v = check_real("xi_dot", xi_dot)
     two_e = m * v * v  # 2E = μξ'0², exact to one rounding
     if not math.isfinite(two_e):
-        raise DFAValueError(f"xi_dot = {v!r} is invalid with mu = {m!r}: the kinetic energy ½μξ'0² overflows a float; "
-                            "give a smaller speed")
+        raise DFAValueError(
+            f"xi_dot = {v!r} is invalid with mu = {m!r}: the kinetic energy ½μξ'0² overflows a float; "
+            "give a smaller speed"
+        )
     # Closed form, no loop: with r = 2E exactly (a Fraction), the cell is k = isqrt(⌊r⌋), since
     # k² <= ⌊r⌋ <= r < ⌊r⌋ + 1 <= (k + 1)²; then ξ0 = k + (r − k²)/(2k + 1) exactly, rounded once.
     r = Fraction(two_e)
@@ -184,14 +196,27 @@ def _decay_time(mu: float, beta: float, sigma: float, amp0: float, delay: int) -
 
 def _check_run(mu, beta, sigma, xi_dot0, xi0, delay) -> tuple[float, float, float, float, float, int]:
     """The validated inputs of one run (Table 1 groups, initial state, delay), shared by simulate and default_samples."""
-    return (check_mu(mu), check_beta(beta), check_sigma(sigma),
-            check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample"),
-            check_real("xi0", xi0, "give the initial position in ticks"),
-            check_delay(delay))
+    return (
+        check_mu(mu),
+        check_beta(beta),
+        check_sigma(sigma),
+        check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample"),
+        check_real("xi0", xi0, "give the initial position in ticks"),
+        check_delay(delay),
+    )
 
 
-def default_samples(mu: float, beta: float, sigma: float, xi_dot0: float, xi0: float = 0.0, delay: int = 0,
-                    quantize: bool = True, *, cap: bool = True) -> int:
+def default_samples(
+    mu: float,
+    beta: float,
+    sigma: float,
+    xi_dot0: float,
+    xi0: float = 0.0,
+    delay: int = 0,
+    quantize: bool = True,
+    *,
+    cap: bool = True,
+) -> int:
     """Run length (samples) long enough for the outcome to show (module docstring, "Default run length").
 
     2 t_d + 40 periods 2π√μ, where t_d is the time the averaged amplitude
@@ -378,9 +403,23 @@ def _tail_length(samples: int, mu: float) -> int:
     return int(min(samples, min(cap, max(2, samples // 4))))
 
 
-def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int | None = None, xi0: float = 0.0,
-             delay: int = 0, quantize: bool = True, *, record: bool = True, energy: bool = False, bound: float = 1.0e6,
-             stable_amplitude: float = 1.0, growth: float = 1.25, settle: float = 1.0e-3) -> SimulationResult:
+def simulate(
+    mu: float,
+    beta: float,
+    sigma: float,
+    xi_dot0: float,
+    samples: int | None = None,
+    xi0: float = 0.0,
+    delay: int = 0,
+    quantize: bool = True,
+    *,
+    record: bool = True,
+    energy: bool = False,
+    bound: float = 1.0e6,
+    stable_amplitude: float = 1.0,
+    growth: float = 1.25,
+    settle: float = 1.0e-3,
+) -> SimulationResult:
     """Simulate the sampled haptic loop exactly (paper eq. 4-5) from (ξ0, ξ'0).
 
     Parameters
@@ -451,13 +490,35 @@ def simulate(mu: float, beta: float, sigma: float, xi_dot0: float, samples: int 
     fx, fv = float(stats[_kernel.NSEG + 6]), float(stats[_kernel.NSEG + 7])
     en = None
     if energy:
-        en = EnergyRecord(re[:, 0].copy(), re[:, 1].copy(), re[:, 2].copy(), re[:, 3].copy(),
-                          float(stored_energy(x0, v0, m, bool(quantize))))
+        en = EnergyRecord(
+            re[:, 0].copy(),
+            re[:, 1].copy(),
+            re[:, 2].copy(),
+            re[:, 3].copy(),
+            float(stored_energy(x0, v0, m, bool(quantize))),
+        )
     return SimulationResult(
-        mu=m, beta=b, sigma=s, xi0=x0, xi_dot0=v0, samples=n, delay=d, quantize=bool(quantize),
-        outcome=OUTCOMES[code], amplitude=float(amp), frequency=None if not np.isfinite(freq) else float(freq),
-        centre=float(centre), rest_sample=None if rest < 0 else int(rest), samples_run=int(done),
-        final_xi=fx, final_xi_dot=fv, force_peak_to_peak=float(fpp),
-        envelope=tuple(float(v) for v in stats[:_kernel.NSEG]), suggested_samples=suggest, samples_auto=auto, xi=rx if record else None, xi_dot=rv if record else None, energy=en,
+        mu=m,
+        beta=b,
+        sigma=s,
+        xi0=x0,
+        xi_dot0=v0,
+        samples=n,
+        delay=d,
+        quantize=bool(quantize),
+        outcome=OUTCOMES[code],
+        amplitude=float(amp),
+        frequency=None if not np.isfinite(freq) else float(freq),
+        centre=float(centre),
+        rest_sample=None if rest < 0 else int(rest),
+        samples_run=int(done),
+        final_xi=fx,
+        final_xi_dot=fv,
+        force_peak_to_peak=float(fpp),
+        envelope=tuple(float(v) for v in stats[: _kernel.NSEG]),
+        suggested_samples=suggest,
+        samples_auto=auto,
+        xi=rx if record else None,
+        xi_dot=rv if record else None,
+        energy=en,
     )
-

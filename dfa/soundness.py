@@ -49,7 +49,7 @@ from numba import njit
 
 from . import _kernel
 from .criterion import passivity_criterion
-from .errors import check_delay, DFAValueError, check_choice, check_int
+from .errors import DFAValueError, check_choice, check_delay, check_int
 
 __all__ = ["DelaySoundness", "sample_passive_points", "delay_soundness", "soundness_markdown", "main"]
 
@@ -71,9 +71,16 @@ def _passive(criterion: str, beta: float, sigma: float, xi_dot: float, xi0: floa
     return passivity_criterion(beta, sigma, xi_dot).passive  # eq. 6 unchanged: d and ξ0 ignored
 
 
-def sample_passive_points(n: int, delay: int, *, criterion: str = "delay-aware", seed: int = 0,
-                          mu_range: tuple[float, float] = (0.1, 1.0e4), xi_dot_max: float = 10.0,
-                          xi0_max: float = 10.0) -> dict[str, np.ndarray]:
+def sample_passive_points(
+    n: int,
+    delay: int,
+    *,
+    criterion: str = "delay-aware",
+    seed: int = 0,
+    mu_range: tuple[float, float] = (0.1, 1.0e4),
+    xi_dot_max: float = 10.0,
+    xi0_max: float = 10.0,
+) -> dict[str, np.ndarray]:
     """Random points that ``criterion`` calls passive, half on its boundaries (module docstring).
 
     Parameters
@@ -108,8 +115,9 @@ def sample_passive_points(n: int, delay: int, *, criterion: str = "delay-aware",
     d_crit = d if crit == "delay-aware" else 0
     b0 = 0.5 + d_crit
     for i in range(n):
-        v = passivity_criterion(0.0, 0.0, xd[i], delay=d_crit, xi0=x0[i] if crit == "delay-aware" else 0.0,
-                                mu=mu[i]).equivalent_speed
+        v = passivity_criterion(
+            0.0, 0.0, xd[i], delay=d_crit, xi0=x0[i] if crit == "delay-aware" else 0.0, mu=mu[i]
+        ).equivalent_speed
         k = kind[i]
         if k == 0:  # interior: rejection sampling of the criterion's own passive set in a box (formula-free)
             top = 0.5 + v * b0 + 1.0
@@ -151,8 +159,22 @@ def _batch(mus, betas, sigmas, x0s, v0s, ns, delay, ratio, codes, worst_sample):
         n = ns[i]
         mu = mus[i]
         tail = min(8192, max(2, n // 4))
-        done, rest = _kernel.simulate_kernel(mu, betas[i], sigmas[i], x0s[i], v0s[i], n, delay, True, 1.0e6, tail,
-                                             rx[: n + 1], rv[: n + 1], empty2, stats)
+        done, rest = _kernel.simulate_kernel(
+            mu,
+            betas[i],
+            sigmas[i],
+            x0s[i],
+            v0s[i],
+            n,
+            delay,
+            True,
+            1.0e6,
+            tail,
+            rx[: n + 1],
+            rv[: n + 1],
+            empty2,
+            stats,
+        )
         c, _a, _f, _c, _fpp = _kernel.classify(n, done, rest, stats, 1.0, 1.25, 1.0e-3, True, mu)
         codes[i] = c
         s0 = 0.5 * mu * v0s[i] * v0s[i] + 0.5 * x0s[i] * x0s[i]
@@ -217,7 +239,9 @@ class DelaySoundness:
         return out
 
 
-def delay_soundness(points: int, delay: int, *, criterion: str = "delay-aware", seed: int = 0, **ranges) -> DelaySoundness:
+def delay_soundness(
+    points: int, delay: int, *, criterion: str = "delay-aware", seed: int = 0, **ranges
+) -> DelaySoundness:
     """Sample ``points`` passive points of ``criterion`` for delay d, simulate each and count violations.
 
     Parameters
@@ -242,10 +266,18 @@ def delay_soundness(points: int, delay: int, *, criterion: str = "delay-aware", 
     worst = {k: float(pts[k][w]) for k in ("mu", "beta", "sigma", "xi0", "xi_dot")}
     worst.update(sample=int(at[w]), kind=KINDS[int(pts["kind"][w])])
     return DelaySoundness(
-        delay=int(delay), criterion=criterion, points=int(points),
+        delay=int(delay),
+        criterion=criterion,
+        points=int(points),
         by_kind={k: int(np.sum(pts["kind"] == i)) for i, k in enumerate(KINDS)},
-        energy_grew=int(grew.sum()), diverged=int(div.sum()), violations=int((grew | div).sum()),
-        worst_growth=float(ratio[w]), worst_point=worst, samples_min=int(ns.min()), samples_max=int(ns.max()), seed=seed,
+        energy_grew=int(grew.sum()),
+        diverged=int(div.sum()),
+        violations=int((grew | div).sum()),
+        worst_growth=float(ratio[w]),
+        worst_point=worst,
+        samples_min=int(ns.min()),
+        samples_max=int(ns.max()),
+        seed=seed,
     )
 
 
@@ -267,8 +299,10 @@ def soundness_markdown(results: list[DelaySoundness]) -> str:
     for r in results:
         k = r.by_kind
         wg = "∞" if not math.isfinite(r.worst_growth) else f"{r.worst_growth:.3g}"
-        lines.append(f"| {r.criterion} | {r.delay} | {r.points} | {k['line']} / {k['sigma-edge']} / {k['beta-edge']} | "
-                     f"{r.energy_grew} | {r.diverged} | {r.violations} | {wg} |")
+        lines.append(
+            f"| {r.criterion} | {r.delay} | {r.points} | {k['line']} / {k['sigma-edge']} / {k['beta-edge']} | "
+            f"{r.energy_grew} | {r.diverged} | {r.violations} | {wg} |"
+        )
     lines += [
         "",
         "*delay-aware*: the criterion of `dfa.criterion` ((β − ½ − d)V + (σ − ½) ≥ 0, σ ≥ ½, V² = ξ'0² + 2H_c(ξ0)/μ).",
@@ -284,7 +318,9 @@ def main(argv: list[str] | None = None) -> int:
     """``python -m dfa.soundness``: run the check and write the Markdown and JSON summaries."""
     ap = argparse.ArgumentParser(prog="python -m dfa.soundness", description=__doc__.split("\n")[0])
     ap.add_argument("--points", type=int, default=100_000, help="points per delay and criterion (default 100000)")
-    ap.add_argument("--old-points", type=int, default=None, help="points for the d-ignoring criterion (default: --points)")
+    ap.add_argument(
+        "--old-points", type=int, default=None, help="points for the d-ignoring criterion (default: --points)"
+    )
     ap.add_argument("--delays", type=int, nargs="+", default=[0, 1, 2, 3])
     ap.add_argument("--seed", type=int, default=12)
     ap.add_argument("--out", default="reports/validation", help="folder for delay_soundness.md/.json")

@@ -45,7 +45,7 @@ import numpy as np
 
 from .criterion import device_criterion
 from .device import Device
-from .errors import check_delay, DFAValueError, check_positive, check_real, check_type
+from .errors import DFAValueError, check_delay, check_positive, check_real, check_type
 from .linear import critical_beta, critical_stiffness
 
 __all__ = [
@@ -125,8 +125,12 @@ def k_abbott_okamura(device: Device, delay: int = 0) -> float:
 
 def _bounds(dev: Device, delay: int) -> dict[str, float]:
     """The speed-independent limits shared by :class:`StiffnessLimits` and :class:`StiffnessCurve`."""
-    return dict(k_static=k_static(dev), k_colgate=k_colgate(dev, delay), k_abbott_okamura=k_abbott_okamura(dev, delay),
-                k_gil=k_gil(dev, delay=delay))
+    return dict(
+        k_static=k_static(dev),
+        k_colgate=k_colgate(dev, delay),
+        k_abbott_okamura=k_abbott_okamura(dev, delay),
+        k_gil=k_gil(dev, delay=delay),
+    )
 
 
 def gil_factor(gamma):
@@ -306,8 +310,10 @@ class StiffnessLimits:
             return f"too stiff: not passive even at rest (K > 2c/Δ = {self.k_static:.5g} {ku})"
         if self.status == "ok":
             return "ok: passive at this speed (proven)"
-        return (f"too stiff: no passivity guarantee at this speed (K > K_max = {self.k_max:.5g} {ku}); "
-                "not a proof of instability")
+        return (
+            f"too stiff: no passivity guarantee at this speed (K > K_max = {self.k_max:.5g} {ku}); "
+            "not a proof of instability"
+        )
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (the ``dfa stiffness --json`` contract plus extras)."""
@@ -329,7 +335,9 @@ class StiffnessLimits:
         }
 
 
-def stiffness_limits(device: Device, velocity: float, stiffness: float | None = None, delay: int = 0) -> StiffnessLimits:
+def stiffness_limits(
+    device: Device, velocity: float, stiffness: float | None = None, delay: int = 0
+) -> StiffnessLimits:
     """All stiffness limits of ``device`` at impact speed ``velocity`` and delay d.
 
     Parameters
@@ -426,7 +434,18 @@ def stiffness_response(device: Device, velocity=None, stiffness: float | None = 
     v = np.abs(np.asarray(velocity, dtype=float))
     if v.size == 0 or not np.all(np.isfinite(v)) or np.any(v <= 0):
         raise DFAValueError(f"velocity = {velocity!r} is invalid: it must hold finite speeds > 0 (m/s)")
-    k = None if stiffness is None else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+    k = (
+        None
+        if stiffness is None
+        else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+    )
     mpv = None if k is None else max_passive_velocity(dev, k, d)
-    return StiffnessCurve(dev, v, np.atleast_1d(k_max_criterion(dev, v, d)), **_bounds(dev, d), stiffness=k,
-                          max_passive_velocity=mpv, delay=d)
+    return StiffnessCurve(
+        dev,
+        v,
+        np.atleast_1d(k_max_criterion(dev, v, d)),
+        **_bounds(dev, d),
+        stiffness=k,
+        max_passive_velocity=mpv,
+        delay=d,
+    )

@@ -41,13 +41,22 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .criterion import classify_region, passivity_criterion
-from .device import Params
 from .cycles import growth_threshold, large_cycle_closed_form, limit_cycles
+from .device import Params
 from .maps import stability_map
 from .simulation import OUTCOMES, preload_position, simulate
 
-__all__ = ["ValidationResult", "validate", "cycle_checks", "critical_speeds", "soundness", "cluster_threshold",
-           "cluster_note", "CLUSTER_POINTS", "PERIOD_BINS"]
+__all__ = [
+    "ValidationResult",
+    "validate",
+    "cycle_checks",
+    "critical_speeds",
+    "soundness",
+    "cluster_threshold",
+    "cluster_note",
+    "CLUSTER_POINTS",
+    "PERIOD_BINS",
+]
 
 #: Period bins (samples) used to judge the describing function's range of validity.
 PERIOD_BINS = (2.0, 4.0, 8.0, 16.0, 32.0, math.inf)
@@ -68,16 +77,32 @@ def cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh")) ->
         for model in models:
             res = limit_cycles(p, model=model, max_amplitude=2000.0)
             for c in res.cycles:
-                rec = dict(mu=p.mu, beta=p.beta, sigma=p.sigma, region=region, model=model, amplitude=c.amplitude,
-                           frequency=c.frequency, period=c.period, stable=c.stable, family=c.family)
+                rec = dict(
+                    mu=p.mu,
+                    beta=p.beta,
+                    sigma=p.sigma,
+                    region=region,
+                    model=model,
+                    amplitude=c.amplitude,
+                    frequency=c.frequency,
+                    period=c.period,
+                    stable=c.stable,
+                    family=c.family,
+                )
                 v = c.amplitude * c.frequency
                 if c.stable:
                     r = simulate(p.mu, p.beta, p.sigma, v, samples, record=False)
                     persists = r.outcome in ("chatter", "oscillating") and r.frequency is not None
-                    rec.update(confirmed=persists, sim_amplitude=r.amplitude if persists else float("nan"),
-                               sim_frequency=r.frequency if persists else float("nan"), sim_outcome=r.outcome)
+                    rec.update(
+                        confirmed=persists,
+                        sim_amplitude=r.amplitude if persists else float("nan"),
+                        sim_frequency=r.frequency if persists else float("nan"),
+                        sim_outcome=r.outcome,
+                    )
                     if persists:
-                        rec.update(amplitude_error=r.amplitude / c.amplitude - 1, frequency_error=r.frequency / c.frequency - 1)
+                        rec.update(
+                            amplitude_error=r.amplitude / c.amplitude - 1, frequency_error=r.frequency / c.frequency - 1
+                        )
                 else:
                     lo = simulate(p.mu, p.beta, p.sigma, 0.75 * v, samples, record=False)
                     hi = simulate(p.mu, p.beta, p.sigma, 1.25 * v, samples, record=False)
@@ -85,14 +110,20 @@ def cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh")) ->
                     # (unstable, or caught by a larger stable cycle of the same cluster)
                     decays = lo.outcome != "unstable" and lo.amplitude < c.amplitude
                     grows = hi.outcome == "unstable" or hi.amplitude > c.amplitude
-                    rec.update(confirmed=decays and grows, below=lo.outcome, above=hi.outcome,
-                               below_amplitude=lo.amplitude, above_amplitude=hi.amplitude)
+                    rec.update(
+                        confirmed=decays and grows,
+                        below=lo.outcome,
+                        above=hi.outcome,
+                        below_amplitude=lo.amplitude,
+                        above_amplitude=hi.amplitude,
+                    )
                 out.append(rec)
     return out
 
 
-def _first_unstable_speed(p: Params, v_lo: float, v_hi: float, samples: int, preload: bool, steps: int = 40,
-                          delay: int = 0) -> float | None:
+def _first_unstable_speed(
+    p: Params, v_lo: float, v_hi: float, samples: int, preload: bool, steps: int = 40, delay: int = 0
+) -> float | None:
     """Smallest speed on a geometric scan that ends unstable, refined by bisection against the scan point below it."""
 
     def unstable(v: float) -> bool:
@@ -132,15 +163,28 @@ def critical_speeds(points, samples: int = 20_000) -> list[dict]:
         ref = crit if crit and crit > 0 else 1.0
         v_sim = _first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False)
         v_pre = _first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=True)
-        rows.append(dict(name=name, mu=p.mu, beta=p.beta, sigma=p.sigma, criterion=crit, df_half_delay=thr["half-delay"],
-                         df_zoh=thr["zoh"], simulated=v_sim, simulated_preload=v_pre))
+        rows.append(
+            dict(
+                name=name,
+                mu=p.mu,
+                beta=p.beta,
+                sigma=p.sigma,
+                criterion=crit,
+                df_half_delay=thr["half-delay"],
+                df_zoh=thr["zoh"],
+                simulated=v_sim,
+                simulated_preload=v_pre,
+            )
+        )
     return rows
 
 
 #: Item 5: the cluster of issue 12 (μ = 5, β = 0.48, σ = 0.0201) and the Fig. 7 grid point (β = 98/199,
 #: σ = 4/199) where the exact smallest unstable cycle lies furthest (14.6×) below eq. 45.
-CLUSTER_POINTS = (("cluster, β below the ZOH linear bound", Params(5.0, 0.48, 0.0201)),
-                  ("Fig. 7 grid, worst eq. 45 ratio", Params(5.0, 98 / 199, 4 / 199)))
+CLUSTER_POINTS = (
+    ("cluster, β below the ZOH linear bound", Params(5.0, 0.48, 0.0201)),
+    ("Fig. 7 grid, worst eq. 45 ratio", Params(5.0, 98 / 199, 4 / 199)),
+)
 
 
 def cluster_threshold(name: str, p: Params, speeds, samples: int) -> dict:
@@ -153,13 +197,24 @@ def cluster_threshold(name: str, p: Params, speeds, samples: int) -> dict:
     from .linear import linear_stable
 
     speeds = np.asarray(speeds, dtype=float)
-    div = np.array([simulate(p.mu, p.beta, p.sigma, float(v), samples, record=False).outcome == "unstable" for v in speeds])
+    div = np.array(
+        [simulate(p.mu, p.beta, p.sigma, float(v), samples, record=False).outcome == "unstable" for v in speeds]
+    )
     first = float(speeds[div][0]) if div.any() else None
     last = float(speeds[~div][-1]) if (~div).any() else None
-    rec = dict(name=name, mu=p.mu, beta=p.beta, sigma=p.sigma, samples=samples, scan=[float(speeds[0]), float(speeds[-1]), int(speeds.size)],
-               diverging=int(div.sum()), first_diverging=first, last_non_diverging=last,
-               interleaved=int(((~div) & (speeds > first)).sum()) if first is not None else 0,
-               linear_stable_zoh=bool(linear_stable(p.mu, p.beta)))
+    rec = dict(
+        name=name,
+        mu=p.mu,
+        beta=p.beta,
+        sigma=p.sigma,
+        samples=samples,
+        scan=[float(speeds[0]), float(speeds[-1]), int(speeds.size)],
+        diverging=int(div.sum()),
+        first_diverging=first,
+        last_non_diverging=last,
+        interleaved=int(((~div) & (speeds > first)).sum()) if first is not None else 0,
+        linear_stable_zoh=bool(linear_stable(p.mu, p.beta)),
+    )
     for model in ("half-delay", "zoh"):
         g = growth_threshold(p, model=model)
         rec[f"band_{model}"] = [g.xi_dot, g.xi_dot_high]
@@ -174,38 +229,59 @@ def cluster_threshold(name: str, p: Params, speeds, samples: int) -> dict:
 
 def cluster_note(records: list) -> str:
     """Markdown of item 5 (also written alone as ``cluster_threshold.md``); every number from ``records``."""
-    L = ["## 5. Clusters of cycles: growth band against the simulated threshold", "",
-         "ξ'0 scanned from ξ0 = 0 in simulation (exact integrator); speeds in ticks per sample. The describing function's band runs from",
-         "the smallest to the largest unstable cycle (speed M·ω); eq. 45 is the paper's closed form with D = 1.", "",
-         "| point | μ | β | σ | ZOH linear loop | band, half-delay | band, exact ZOH | eq. 45 M·ω | first diverging | last non-diverging | non-diverging above the first diverging |",
-         "|---|---:|---:|---:|---|---|---|---:|---:|---:|---:|"]
+    L = [
+        "## 5. Clusters of cycles: growth band against the simulated threshold",
+        "",
+        "ξ'0 scanned from ξ0 = 0 in simulation (exact integrator); speeds in ticks per sample. The describing function's band runs from",
+        "the smallest to the largest unstable cycle (speed M·ω); eq. 45 is the paper's closed form with D = 1.",
+        "",
+        "| point | μ | β | σ | ZOH linear loop | band, half-delay | band, exact ZOH | eq. 45 M·ω | first diverging | last non-diverging | non-diverging above the first diverging |",
+        "|---|---:|---:|---:|---|---|---|---:|---:|---:|---:|",
+    ]
     for r in records:
-        def band(m):
+
+        def band(m, r=r):
             lo, hi = r[f"band_{m}"]
             return "–" if lo is None else f"{lo:.3g} to {hi:.3g} ({r[f'unstable_{m}']} unstable)"
-        L.append(f"| {r['name']} | {r['mu']:g} | {r['beta']:.4g} | {r['sigma']:.4g} | {'stable' if r['linear_stable_zoh'] else 'unstable'} | "
-                 f"{band('half-delay')} | {band('zoh')} | {_f(r['eq45_xi_dot'])} | {_f(r['first_diverging'])} | {_f(r['last_non_diverging'])} | "
-                 f"{r['interleaved']} |")
-    L += ["", f"Scan: {records[0]['scan'][2]} speeds from {records[0]['scan'][0]:g} to {records[0]['scan'][1]:g}, {records[0]['samples']} samples each."
-          if records else "", ""]
+
+        L.append(
+            f"| {r['name']} | {r['mu']:g} | {r['beta']:.4g} | {r['sigma']:.4g} | {'stable' if r['linear_stable_zoh'] else 'unstable'} | "
+            f"{band('half-delay')} | {band('zoh')} | {_f(r['eq45_xi_dot'])} | {_f(r['first_diverging'])} | {_f(r['last_non_diverging'])} | "
+            f"{r['interleaved']} |"
+        )
+    L += [
+        "",
+        f"Scan: {records[0]['scan'][2]} speeds from {records[0]['scan'][0]:g} to {records[0]['scan'][1]:g}, {records[0]['samples']} samples each."
+        if records
+        else "",
+        "",
+    ]
     for r in records:
         if r["first_diverging"] is None:
-            L.append(f"- {r['name']}: no scanned start diverged. The exact ZOH linear loop is "
-                     f"{'stable' if r['linear_stable_zoh'] else 'unstable'} here; the exact-ZOH describing function has "
-                     f"{r['unstable_zoh']} unstable cycle(s)" + ("" if r["grows_above_zoh"] else " with a stable cycle above the largest")
-                     + ". The half-delay threshold (and eq. 45) do not describe a disturbance the loop fails to tolerate at this point.")
+            L.append(
+                f"- {r['name']}: no scanned start diverged. The exact ZOH linear loop is "
+                f"{'stable' if r['linear_stable_zoh'] else 'unstable'} here; the exact-ZOH describing function has "
+                f"{r['unstable_zoh']} unstable cycle(s)"
+                + ("" if r["grows_above_zoh"] else " with a stable cycle above the largest")
+                + ". The half-delay threshold (and eq. 45) do not describe a disturbance the loop fails to tolerate at this point."
+            )
         else:
             lo, hi = r["band_zoh"]
             first, last = r["first_diverging"], r["last_non_diverging"]
             where = "below" if lo is None or first < lo else ("inside" if first <= hi else "above")
-            L.append(f"- {r['name']}: divergence starts at ξ'0 = {first:.3g}, {where} the exact-ZOH band"
-                     + ("" if lo is None else f" ({lo:.3g} to {hi:.3g})")
-                     + f"; {r['interleaved']} non-diverging speeds are interleaved above it, the last at {_f(last)}"
-                     + (f", {last / hi:.2g}× the band's top: starts above the band did not all diverge within {r['samples']} samples, "
-                        "so the first-harmonic prediction of growth above the band is a rough guide, not a bound"
-                        if (lo is not None and last is not None and last > hi) else "")
-                     + ". The smallest unstable cycle is not a threshold"
-                     + (": no start below the band diverged." if where != "below" else "."))
+            L.append(
+                f"- {r['name']}: divergence starts at ξ'0 = {first:.3g}, {where} the exact-ZOH band"
+                + ("" if lo is None else f" ({lo:.3g} to {hi:.3g})")
+                + f"; {r['interleaved']} non-diverging speeds are interleaved above it, the last at {_f(last)}"
+                + (
+                    f", {last / hi:.2g}× the band's top: starts above the band did not all diverge within {r['samples']} samples, "
+                    "so the first-harmonic prediction of growth above the band is a rough guide, not a bound"
+                    if (lo is not None and last is not None and last > hi)
+                    else ""
+                )
+                + ". The smallest unstable cycle is not a threshold"
+                + (": no start below the band diverged." if where != "below" else ".")
+            )
     return "\n".join(L) + "\n"
 
 
@@ -230,14 +306,30 @@ class Soundness:
         return self.rejected_rest / self.rest if self.rest else float("nan")
 
 
-def soundness(mus, xi_dots, grid: int, samples: int, n_jobs: int = -1, progress: bool = True,
-              beta_range=(0.0, 1.0), sigma_range=(0.0, 2.5)) -> Soundness:
+def soundness(
+    mus,
+    xi_dots,
+    grid: int,
+    samples: int,
+    n_jobs: int = -1,
+    progress: bool = True,
+    beta_range=(0.0, 1.0),
+    sigma_range=(0.0, 2.5),
+) -> Soundness:
     """Compare the criterion with simulated outcomes on (β, σ, ξ'0) grids for each μ (item 3)."""
     total = passive_n = not_unst = rej_nu = rest = rej_rest = undecided = 0
     violations = []
     for mu in mus:
-        m = stability_map(mu, list(xi_dots), grid=grid, samples=samples, n_jobs=n_jobs, progress=progress,
-                          beta_range=beta_range, sigma_range=sigma_range)
+        m = stability_map(
+            mu,
+            list(xi_dots),
+            grid=grid,
+            samples=samples,
+            n_jobs=n_jobs,
+            progress=progress,
+            beta_range=beta_range,
+            sigma_range=sigma_range,
+        )
         for k, v in enumerate(m.xi_dots):
             reg = classify_region(m.beta[None, :], m.sigma[:, None], v)
             passive = (reg == "a") | (reg == "e")
@@ -245,7 +337,7 @@ def soundness(mus, xi_dots, grid: int, samples: int, n_jobs: int = -1, progress:
             total += out.size
             passive_n += int(passive.sum())
             bad = passive & (out == OUTCOMES.index("unstable"))
-            for i, j in zip(*np.nonzero(bad)):
+            for i, j in zip(*np.nonzero(bad), strict=False):
                 violations.append(dict(mu=mu, beta=float(m.beta[j]), sigma=float(m.sigma[i]), xi_dot=v))
             nu = out != OUTCOMES.index("unstable")
             not_unst += int(nu.sum())
@@ -255,7 +347,9 @@ def soundness(mus, xi_dots, grid: int, samples: int, n_jobs: int = -1, progress:
             rest += int(st.sum())
             rej_rest += int((st & ~passive).sum())
             undecided += int((out == OUTCOMES.index("undecided")).sum())
-    return Soundness(tuple(mus), tuple(xi_dots), total, passive_n, violations, not_unst, rej_nu, rest, rej_rest, undecided)
+    return Soundness(
+        tuple(mus), tuple(xi_dots), total, passive_n, violations, not_unst, rej_nu, rest, rej_rest, undecided
+    )
 
 
 def _stats(values) -> dict:
@@ -283,28 +377,52 @@ class ValidationResult:
         out = []
         for model in ("half-delay", "zoh"):
             for fam in ("small", "large"):
-                recs = [r for r in self.cycles if r["model"] == model and r["family"] == fam and r["stable"] and r.get("confirmed")]
+                recs = [
+                    r
+                    for r in self.cycles
+                    if r["model"] == model and r["family"] == fam and r["stable"] and r.get("confirmed")
+                ]
                 tried = [r for r in self.cycles if r["model"] == model and r["family"] == fam and r["stable"]]
-                out.append(dict(model=model, family=fam, predicted=len(tried), persisted=len(recs),
-                                amplitude=_stats(r["amplitude_error"] for r in recs),
-                                frequency=_stats(r["frequency_error"] for r in recs)))
+                out.append(
+                    dict(
+                        model=model,
+                        family=fam,
+                        predicted=len(tried),
+                        persisted=len(recs),
+                        amplitude=_stats(r["amplitude_error"] for r in recs),
+                        frequency=_stats(r["frequency_error"] for r in recs),
+                    )
+                )
         return out
 
     def loeb_summary(self) -> dict:
         """How often the stability assigned by the Loeb criterion was confirmed by simulation."""
         st = [r for r in self.cycles if r["stable"]]
         un = [r for r in self.cycles if not r["stable"]]
-        return dict(stable=len(st), stable_confirmed=sum(bool(r["confirmed"]) for r in st),
-                    unstable=len(un), unstable_confirmed=sum(bool(r["confirmed"]) for r in un))
+        return dict(
+            stable=len(st),
+            stable_confirmed=sum(bool(r["confirmed"]) for r in st),
+            unstable=len(un),
+            unstable_confirmed=sum(bool(r["confirmed"]) for r in un),
+        )
 
     def period_summary(self, model: str = "zoh") -> list[dict]:
         """Frequency and amplitude error of confirmed stable cycles per period bin (item 4)."""
         out = []
         lo = 0.0
         for hi in PERIOD_BINS:
-            recs = [r for r in self.cycles if r["model"] == model and r["stable"] and r.get("confirmed") and lo <= r["period"] < hi]
-            out.append(dict(period=(lo, hi), amplitude=_stats(r["amplitude_error"] for r in recs),
-                            frequency=_stats(r["frequency_error"] for r in recs)))
+            recs = [
+                r
+                for r in self.cycles
+                if r["model"] == model and r["stable"] and r.get("confirmed") and lo <= r["period"] < hi
+            ]
+            out.append(
+                dict(
+                    period=(lo, hi),
+                    amplitude=_stats(r["amplitude_error"] for r in recs),
+                    frequency=_stats(r["frequency_error"] for r in recs),
+                )
+            )
             lo = hi
         return out
 
@@ -314,17 +432,25 @@ class ValidationResult:
 
     def speeds_ordered(self) -> list[bool]:
         """For each critical-speed case: criterion <= simulated (the criterion is conservative)."""
-        return [r["simulated"] is None or (r["criterion"] is not None and r["criterion"] <= r["simulated"] * (1 + 1e-9))
-                for r in self.speeds]
+        return [
+            r["simulated"] is None or (r["criterion"] is not None and r["criterion"] <= r["simulated"] * (1 + 1e-9))
+            for r in self.speeds
+        ]
 
     def summary(self) -> dict:
         """Key numbers (JSON-ready), used by the design report and the tests."""
         sp = [abs(r["df_zoh"] / r["simulated"] - 1) for r in self.speeds if r["df_zoh"] and r["simulated"]]
         cons = [r["simulated"] / r["criterion"] for r in self.speeds if r["simulated"] and r["criterion"]]
-        short = [abs(r["frequency_error"]) for r in self.cycles
-                 if r["model"] == "zoh" and r["stable"] and r.get("confirmed") and r["period"] < 8]
-        longp = [abs(r["frequency_error"]) for r in self.cycles
-                 if r["model"] == "zoh" and r["stable"] and r.get("confirmed") and r["period"] >= 8]
+        short = [
+            abs(r["frequency_error"])
+            for r in self.cycles
+            if r["model"] == "zoh" and r["stable"] and r.get("confirmed") and r["period"] < 8
+        ]
+        longp = [
+            abs(r["frequency_error"])
+            for r in self.cycles
+            if r["model"] == "zoh" and r["stable"] and r.get("confirmed") and r["period"] >= 8
+        ]
         return {
             "quick": self.quick,
             "soundness_violations": self.soundness_violations,
@@ -363,8 +489,10 @@ class ValidationResult:
         ]
         for s in self.cycle_summary():
             a, fr = s["amplitude"], s["frequency"]
-            L.append(f"| {s['model']} | {s['family']} | {s['predicted']} | {s['persisted']} | {_pct(a['median'])} | {_pct(a['worst'])} | "
-                     f"{_pct(fr['median'])} | {_pct(fr['worst'])} |")
+            L.append(
+                f"| {s['model']} | {s['family']} | {s['predicted']} | {s['persisted']} | {_pct(a['median'])} | {_pct(a['worst'])} | "
+                f"{_pct(fr['median'])} | {_pct(fr['worst'])} |"
+            )
         lb = self.loeb_summary()
         L += [
             "",
@@ -374,46 +502,78 @@ class ValidationResult:
         ]
         if "cycles" in f:
             L += ["", f"![cycle errors]({f['cycles']})"]
-        L += ["", "## 2. Critical impact speed, three ways (ticks per sample)", "",
-              "| case | μ | β | σ | criterion (eq. 12) | DF half-delay M_u·ω | DF exact ZOH M_u·ω | simulated | simulated, preload | simulated / criterion | DF ZOH / simulated |",
-              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+        L += [
+            "",
+            "## 2. Critical impact speed, three ways (ticks per sample)",
+            "",
+            "| case | μ | β | σ | criterion (eq. 12) | DF half-delay M_u·ω | DF exact ZOH M_u·ω | simulated | simulated, preload | simulated / criterion | DF ZOH / simulated |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        ]
         for r in self.speeds:
             ratio1 = r["simulated"] / r["criterion"] if (r["simulated"] and r["criterion"]) else None
             ratio2 = r["df_zoh"] / r["simulated"] if (r["simulated"] and r["df_zoh"]) else None
-            L.append(f"| {r['name']} | {r['mu']:.4g} | {r['beta']:.3g} | {r['sigma']:.3g} | {_f(r['criterion'])} | {_f(r['df_half_delay'])} | "
-                     f"{_f(r['df_zoh'])} | {_f(r['simulated'])} | {_f(r['simulated_preload'])} | {_f(ratio1)} | {_f(ratio2)} |")
+            L.append(
+                f"| {r['name']} | {r['mu']:.4g} | {r['beta']:.3g} | {r['sigma']:.3g} | {_f(r['criterion'])} | {_f(r['df_half_delay'])} | "
+                f"{_f(r['df_zoh'])} | {_f(r['simulated'])} | {_f(r['simulated_preload'])} | {_f(ratio1)} | {_f(ratio2)} |"
+            )
         ordered = self.speeds_ordered()
-        L += ["", f"The criterion's speed is at or below the simulated threshold in {sum(ordered)} of {len(ordered)} cases"
-              + ("." if all(ordered) else "; the others are counterexamples and are listed above.")]
+        L += [
+            "",
+            f"The criterion's speed is at or below the simulated threshold in {sum(ordered)} of {len(ordered)} cases"
+            + ("." if all(ordered) else "; the others are counterexamples and are listed above."),
+        ]
         if "speeds" in f:
             L += ["", f"![critical speeds]({f['speeds']})"]
         s = self.soundness
-        L += ["", "## 3. Criterion soundness and conservatism", "",
-              f"Grid: μ ∈ {list(s.mus)}, ξ'0 ∈ {list(s.xi_dots)}, (β, σ) ∈ [0, 1] × [0, 2.5]: {s.points} simulations.", "",
-              "| measure | value |", "|---|---:|",
-              f"| points the criterion calls passive | {s.passive} |",
-              f"| …of which simulated unstable (soundness violations) | **{len(s.violations)}** |",
-              f"| simulated not unstable | {s.not_unstable} |",
-              f"| …of which the criterion rejects | {s.rejected_not_unstable} |",
-              f"| simulated rest (came to rest) | {s.rest} |",
-              f"| …of which the criterion rejects (conservatism) | {s.rejected_rest} ({_pct(s.conservatism)}) |",
-              f"| simulated undecided (run too short to tell) | {s.undecided} |"]
+        L += [
+            "",
+            "## 3. Criterion soundness and conservatism",
+            "",
+            f"Grid: μ ∈ {list(s.mus)}, ξ'0 ∈ {list(s.xi_dots)}, (β, σ) ∈ [0, 1] × [0, 2.5]: {s.points} simulations.",
+            "",
+            "| measure | value |",
+            "|---|---:|",
+            f"| points the criterion calls passive | {s.passive} |",
+            f"| …of which simulated unstable (soundness violations) | **{len(s.violations)}** |",
+            f"| simulated not unstable | {s.not_unstable} |",
+            f"| …of which the criterion rejects | {s.rejected_not_unstable} |",
+            f"| simulated rest (came to rest) | {s.rest} |",
+            f"| …of which the criterion rejects (conservatism) | {s.rejected_rest} ({_pct(s.conservatism)}) |",
+            f"| simulated undecided (run too short to tell) | {s.undecided} |",
+        ]
         if s.violations:
-            L += ["", "Counterexamples (criterion passive, simulation unstable):", "", "| μ | β | σ | ξ'0 |", "|---:|---:|---:|---:|"]
+            L += [
+                "",
+                "Counterexamples (criterion passive, simulation unstable):",
+                "",
+                "| μ | β | σ | ξ'0 |",
+                "|---:|---:|---:|---:|",
+            ]
             L += [f"| {v['mu']:g} | {v['beta']:.4g} | {v['sigma']:.4g} | {v['xi_dot']:g} |" for v in s.violations[:50]]
-        L += ["", "## 4. Where the describing function breaks down", "",
-              "Errors of confirmed stable cycles (exact-ZOH model) by period in samples:", "",
-              "| period (samples) | cycles | frequency error median | worst | amplitude error median | worst |", "|---|---:|---:|---:|---:|---:|"]
+        L += [
+            "",
+            "## 4. Where the describing function breaks down",
+            "",
+            "Errors of confirmed stable cycles (exact-ZOH model) by period in samples:",
+            "",
+            "| period (samples) | cycles | frequency error median | worst | amplitude error median | worst |",
+            "|---|---:|---:|---:|---:|---:|",
+        ]
         for b in self.period_summary("zoh"):
             lo, hi = b["period"]
-            L.append(f"| [{lo:g}, {hi:g}) | {b['frequency']['n']} | {_pct(b['frequency']['median'])} | {_pct(b['frequency']['worst'])} | "
-                     f"{_pct(b['amplitude']['median'])} | {_pct(b['amplitude']['worst'])} |")
+            L.append(
+                f"| [{lo:g}, {hi:g}) | {b['frequency']['n']} | {_pct(b['frequency']['median'])} | {_pct(b['frequency']['worst'])} | "
+                f"{_pct(b['amplitude']['median'])} | {_pct(b['amplitude']['worst'])} |"
+            )
         sm = self.summary()
-        L += ["", f"Median frequency error: {_pct(sm['short_period_frequency_error'])} for periods under 8 samples, "
-              f"{_pct(sm['long_period_frequency_error'])} for longer ones. Most stable cycles the describing function predicts are",
-              "sub-tick chattering sampled a few times per period; for these the first harmonic is a rough guide to the frequency and a",
-              "poor one to the amplitude. The solver flags cycles with a period under 8 samples (`few_samples`). The growth",
-              "threshold (section 2), which is what a designer needs, is predicted far better than the stable cycles themselves."]
+        L += [
+            "",
+            f"Median frequency error: {_pct(sm['short_period_frequency_error'])} for periods under 8 samples, "
+            f"{_pct(sm['long_period_frequency_error'])} for longer ones. Most stable cycles the describing function predicts are",
+            "sub-tick chattering sampled a few times per period; for these the first harmonic is a rough guide to the frequency and a",
+            "poor one to the amplitude. The solver flags cycles with a period under 8 samples (`few_samples`). The growth",
+            "threshold (section 2), which is what a designer needs, is predicted far better than the stable cycles themselves.",
+        ]
         if "periods" in f:
             L += ["", f"![errors by period]({f['periods']})"]
         if self.clusters:
@@ -437,7 +597,11 @@ def _speed_cases(quick: bool) -> list[tuple[str, Params]]:
     for n in names:
         e = get_device(n)
         cases.append((n, e.params))
-    extra = [(5.0, 0.1, 0.9), (20.0, 0.2, 1.2)] if quick else [(2.0, 0.1, 0.7), (5.0, 0.1, 0.9), (20.0, 0.2, 1.2), (100.0, 0.05, 1.5), (200.0, 0.3, 2.0)]
+    extra = (
+        [(5.0, 0.1, 0.9), (20.0, 0.2, 1.2)]
+        if quick
+        else [(2.0, 0.1, 0.7), (5.0, 0.1, 0.9), (20.0, 0.2, 1.2), (100.0, 0.05, 1.5), (200.0, 0.3, 2.0)]
+    )
     cases += [(f"μ={m:g}, β={b:g}, σ={s:g}", Params(m, b, s)) for m, b, s in extra]
     return cases
 
@@ -450,8 +614,14 @@ def validate(quick: bool = False, n_jobs: int = -1, progress: bool = True) -> Va
     if quick:
         snd = soundness((5.0, 100.0), (1.0, 5.0), grid=16, samples=10_000, n_jobs=n_jobs, progress=progress)
     else:
-        snd = soundness((1.0, 5.0, 20.0, 100.0, 200.0), (0.5, 1.0, 2.0, 5.0, 10.0, 20.0), grid=41, samples=30_000,
-                        n_jobs=n_jobs, progress=progress)
+        snd = soundness(
+            (1.0, 5.0, 20.0, 100.0, 200.0),
+            (0.5, 1.0, 2.0, 5.0, 10.0, 20.0),
+            grid=41,
+            samples=30_000,
+            n_jobs=n_jobs,
+            progress=progress,
+        )
     scan = np.arange(0.1, 12.01, 0.2) if quick else np.arange(0.05, 30.001, 0.05)
     clusters = [cluster_threshold(name, p, scan, 10_000 if quick else 40_000) for name, p in CLUSTER_POINTS]
     return ValidationResult(quick, cycles, speeds, snd, samples, clusters=clusters)

@@ -10,10 +10,10 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import dfa  # noqa: E402
-from dfa.plotting import stiffness_plot  # noqa: E402
-from dfa.simulation import simulate  # noqa: E402
-from dfa.stiffness import stiffness_response  # noqa: E402
+import dfa
+from dfa.plotting import stiffness_plot
+from dfa.simulation import simulate
+from dfa.stiffness import stiffness_response
 
 
 def main(out: str, quick: bool = False) -> dict:
@@ -28,9 +28,18 @@ def main(out: str, quick: bool = False) -> dict:
     ax = stiffness_plot(stiffness_response(dev, stiffness=k))
     path = os.path.join(out, "design_stiffness.png")
     ax.figure.savefig(path, dpi=130)
-    print(f"K_max({v} m/s) = {lim.k_max:.4g} N/m; chosen K = {k:.4g} N/m: region {check.region}, passive up to "
-          f"{check.critical_velocity:.3g} m/s; simulated impact at {v} m/s: {sim.outcome}")
-    return dict(path=path, k_max=lim.k_max, k=k, region=check.region, critical_velocity=check.critical_velocity, outcome=sim.outcome)
+    print(
+        f"K_max({v} m/s) = {lim.k_max:.4g} N/m; chosen K = {k:.4g} N/m: region {check.region}, passive up to "
+        f"{check.critical_velocity:.3g} m/s; simulated impact at {v} m/s: {sim.outcome}"
+    )
+    return dict(
+        path=path,
+        k_max=lim.k_max,
+        k=k,
+        region=check.region,
+        critical_velocity=check.critical_velocity,
+        outcome=sim.outcome,
+    )
 
 
 if __name__ == "__main__":

@@ -9,8 +9,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import dfa  # noqa: E402
-from dfa.plotting import regions_plot  # noqa: E402
+import dfa
+from dfa.plotting import regions_plot
 
 
 def main(out: str, quick: bool = False) -> dict:
@@ -18,7 +18,9 @@ def main(out: str, quick: bool = False) -> dict:
     ax = regions_plot(r, xi_dots=[0.5, 1.0, 5.0])
     path = os.path.join(out, "fig3_regions.png")
     ax.figure.savefig(path, dpi=130)
-    print(f"operating point β = 0.25, σ = 1.2 at ξ'0 = 2: region {r.region}, critical speed {r.critical_xi_dot:.3g}; wrote {path}")
+    print(
+        f"operating point β = 0.25, σ = 1.2 at ξ'0 = 2: region {r.region}, critical speed {r.critical_xi_dot:.3g}; wrote {path}"
+    )
     return dict(path=path, region=r.region, critical=r.critical_xi_dot)
 
 

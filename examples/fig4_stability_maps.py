@@ -14,12 +14,12 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import numpy as np  # noqa: E402
+import numpy as np
 
-import dfa  # noqa: E402
-from dfa.maps import stability_map  # noqa: E402
-from dfa.plotting import stability_map_plot  # noqa: E402
-from dfa.simulation import OUTCOMES  # noqa: E402
+import dfa
+from dfa.maps import stability_map
+from dfa.plotting import stability_map_plot
+from dfa.simulation import OUTCOMES
 
 SPEEDS = (1.0, 2.0, 5.0, 10.0)
 
@@ -43,7 +43,9 @@ def main(out: str, quick: bool = False) -> dict:
         rest += int(at_rest.sum())
         rejected += int(np.sum(at_rest & ~passive))
     print(f"wrote {path}; counts {m.counts()}; criterion-passive points found unstable: {viol}")
-    return dict(path=path, counts=m.counts(), violations=viol, conservatism=rejected / max(1, rest), grid=grid, samples=samples)
+    return dict(
+        path=path, counts=m.counts(), violations=viol, conservatism=rejected / max(1, rest), grid=grid, samples=samples
+    )
 
 
 if __name__ == "__main__":

@@ -15,20 +15,38 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
 
-import dfa  # noqa: E402
-from dfa.plotting import regions_plot, trajectory_plot  # noqa: E402
-from dfa.simulation import preload_position, simulate  # noqa: E402
+import dfa
+from dfa.plotting import regions_plot, trajectory_plot
+from dfa.simulation import preload_position, simulate
 
 
 def cases():
     re35 = dfa.get_device("RE35").device
     fine = re35.resolution
     return [
-        ("globally stable (a)", dfa.Device(re35.mass, re35.damping, re35.coulomb, 0.02 / (0.1 * 1.5), re35.period, "RE35 coarse", True), 0.1, 5.0, False),
-        ("limit cycle, coarse encoder (b)", dfa.Device(re35.mass, re35.damping, re35.coulomb, 0.02 / (0.1 * 0.3), re35.period, "RE35 coarse", True), 0.1, 1.0, False),
-        ("locally stable, reduced energy (e)", dfa.Device(re35.mass, re35.damping, re35.coulomb, 8 * fine, re35.period, "RE35 ×8", True), 1.0, 4.0, True),
+        (
+            "globally stable (a)",
+            dfa.Device(re35.mass, re35.damping, re35.coulomb, 0.02 / (0.1 * 1.5), re35.period, "RE35 coarse", True),
+            0.1,
+            5.0,
+            False,
+        ),
+        (
+            "limit cycle, coarse encoder (b)",
+            dfa.Device(re35.mass, re35.damping, re35.coulomb, 0.02 / (0.1 * 0.3), re35.period, "RE35 coarse", True),
+            0.1,
+            1.0,
+            False,
+        ),
+        (
+            "locally stable, reduced energy (e)",
+            dfa.Device(re35.mass, re35.damping, re35.coulomb, 8 * fine, re35.period, "RE35 ×8", True),
+            1.0,
+            4.0,
+            True,
+        ),
     ]
 
 
@@ -39,7 +57,14 @@ def main(out: str, quick: bool = False) -> dict:
     for row, (label, dev, k, xd, preload) in enumerate(cases()):
         p = dev.params(k)
         crit = dfa.passivity_criterion(p.beta, p.sigma, xd)
-        regions_plot(crit, ax=axs[row, 0], beta_max=max(1.0, 1.2 * p.beta), sigma_max=min(max(2.0, 1.2 * p.sigma), 10.0), legend=row == 0, legend_loc="lower right")
+        regions_plot(
+            crit,
+            ax=axs[row, 0],
+            beta_max=max(1.0, 1.2 * p.beta),
+            sigma_max=min(max(2.0, 1.2 * p.sigma), 10.0),
+            legend=row == 0,
+            legend_loc="lower right",
+        )
         axs[row, 0].set_title(f"{label}: β = {p.beta:.3g}, σ = {p.sigma:.3g}, μ = {p.mu:.3g}", fontsize=8)
         if preload:
             r = simulate(p.mu, p.beta, p.sigma, 0.0, n, xi0=preload_position(p.mu, xd))
@@ -47,7 +72,9 @@ def main(out: str, quick: bool = False) -> dict:
             r = simulate(p.mu, p.beta, p.sigma, xd, n)
         trajectory_plot(r, ax=axs[row, 1], period=dev.period)
         start = f"preload ≡ {xd:g} ticks/sample" if preload else f"ξ'0 = {xd:g} ticks/sample"
-        axs[row, 1].set_title(f"{label}, K = {k:g} N·m/rad, {start}: {r.outcome}, amplitude {r.amplitude:.2g} ticks", fontsize=8)
+        axs[row, 1].set_title(
+            f"{label}, K = {k:g} N·m/rad, {start}: {r.outcome}, amplitude {r.amplitude:.2g} ticks", fontsize=8
+        )
         if r.rest_sample is None and 0 < r.amplitude < 0.5:  # a persistent sub-tick cycle: zoom on the tail
             ins = axs[row, 1].inset_axes([0.55, 0.45, 0.42, 0.45])
             tail = slice(n - 60, n + 1)
@@ -56,8 +83,19 @@ def main(out: str, quick: bool = False) -> dict:
             ins.set_xlabel("time (samples)", fontsize=6)
             ins.set_ylabel("ξ (ticks)", fontsize=6)
             ins.tick_params(labelsize=6)
-        results.append(dict(label=label, region=crit.region, passive=crit.passive, outcome=r.outcome, amplitude=r.amplitude,
-                            frequency=r.frequency, beta=p.beta, sigma=p.sigma, mu=p.mu))
+        results.append(
+            dict(
+                label=label,
+                region=crit.region,
+                passive=crit.passive,
+                outcome=r.outcome,
+                amplitude=r.amplitude,
+                frequency=r.frequency,
+                beta=p.beta,
+                sigma=p.sigma,
+                mu=p.mu,
+            )
+        )
     path = os.path.join(out, "fig5_trajectories.png")
     fig.savefig(path, dpi=120)
     for r in results:

@@ -10,10 +10,10 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import numpy as np  # noqa: E402
+import numpy as np
 
-from dfa.contours import contour_maps  # noqa: E402
-from dfa.plotting import contour_plot  # noqa: E402
+from dfa.contours import contour_maps
+from dfa.plotting import contour_plot
 
 
 def main(out: str, quick: bool = False) -> dict:
@@ -23,13 +23,24 @@ def main(out: str, quick: bool = False) -> dict:
     axes[0].figure.savefig(path, dpi=130)
     both = np.isfinite(c.large_amplitude) & np.isfinite(c.large_amplitude_closed)
     rel = np.abs(c.large_amplitude[both] / c.large_amplitude_closed[both] - 1)
-    res = dict(path=path, omega_closed=float(np.nanmax(c.large_frequency_closed)),
-               omega_exact=(float(np.nanmin(c.large_frequency)), float(np.nanmax(c.large_frequency))),
-               large_rel_median=float(np.median(rel)), large_rel_max=float(np.max(rel)),
-               large_rel_median_big=float(np.median(rel[c.large_amplitude_closed[both] > 10])) if np.any(c.large_amplitude_closed[both] > 10) else float("nan"),
-               far_count=int(np.sum(rel > 0.2)),
-               far_exact_range=(float(np.min(c.large_amplitude[both][rel > 0.2])), float(np.max(c.large_amplitude[both][rel > 0.2]))) if np.any(rel > 0.2) else (float("nan"), float("nan")),
-               small_max_sigma=float(np.max(np.meshgrid(c.beta, c.sigma)[1][np.isfinite(c.small_amplitude)])))
+    res = dict(
+        path=path,
+        omega_closed=float(np.nanmax(c.large_frequency_closed)),
+        omega_exact=(float(np.nanmin(c.large_frequency)), float(np.nanmax(c.large_frequency))),
+        large_rel_median=float(np.median(rel)),
+        large_rel_max=float(np.max(rel)),
+        large_rel_median_big=float(np.median(rel[c.large_amplitude_closed[both] > 10]))
+        if np.any(c.large_amplitude_closed[both] > 10)
+        else float("nan"),
+        far_count=int(np.sum(rel > 0.2)),
+        far_exact_range=(
+            float(np.min(c.large_amplitude[both][rel > 0.2])),
+            float(np.max(c.large_amplitude[both][rel > 0.2])),
+        )
+        if np.any(rel > 0.2)
+        else (float("nan"), float("nan")),
+        small_max_sigma=float(np.max(np.meshgrid(c.beta, c.sigma)[1][np.isfinite(c.small_amplitude)])),
+    )
     print(res)
     return res
 

@@ -9,10 +9,10 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import dfa  # noqa: E402
-from dfa.cycles import limit_cycles  # noqa: E402
-from dfa.loop import nyquist_locus_response  # noqa: E402
-from dfa.plotting import nyquist_plot  # noqa: E402
+import dfa
+from dfa.cycles import limit_cycles
+from dfa.loop import nyquist_locus_response
+from dfa.plotting import nyquist_plot
 
 
 def main(out: str, quick: bool = False) -> dict:

@@ -83,8 +83,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{path}: {'updated' if new != old else 'unchanged'}")
         return 0
     if new != old:
-        sys.stdout.writelines(difflib.unified_diff(old.splitlines(True), new.splitlines(True), "README (committed)",
-                                                   "README (code now)"))
+        sys.stdout.writelines(
+            difflib.unified_diff(old.splitlines(True), new.splitlines(True), "README (committed)", "README (code now)")
+        )
         return 1
     print(f"{path}: every console example matches the code")
     return 0

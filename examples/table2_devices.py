@@ -13,11 +13,20 @@ def main(out: str, quick: bool = False) -> dict:
     for e in dfa.catalogue():
         p = e.params
         pr = dict(e.printed)
-        rows.append(dict(name=e.name, mu=p.mu if p else None, beta=p.beta if p else None, sigma=p.sigma if p else None,
-                         printed=pr, discrepancies=[str(d) for d in e.discrepancies], incomplete=e.incomplete))
+        rows.append(
+            dict(
+                name=e.name,
+                mu=p.mu if p else None,
+                beta=p.beta if p else None,
+                sigma=p.sigma if p else None,
+                printed=pr,
+                discrepancies=[str(d) for d in e.discrepancies],
+                incomplete=e.incomplete,
+            )
+        )
     lines = ["| device | μ | β | σ | printed μ, β, σ | disagreement |", "|---|---:|---:|---:|---|---|"]
     for r in rows:
-        f = (lambda x, d=4: "–" if x is None else f"{x:.{d}g}")
+        f = lambda x, d=4: "–" if x is None else f"{x:.{d}g}"
         printed = ", ".join(r["printed"].get(k, "–") for k in ("mu", "beta", "sigma")) if r["printed"] else "–"
         note = "; ".join(r["discrepancies"]) or ("incomplete row" if r["incomplete"] else "none")
         lines.append(f"| {r['name']} | {f(r['mu'], 5)} | {f(r['beta'], 3)} | {f(r['sigma'], 4)} | {printed} | {note} |")

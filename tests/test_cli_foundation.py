@@ -30,7 +30,19 @@ def test_cli_devices_json_lists_catalogue_with_recomputed_and_printed(capsys):
     assert [d["parameter"] for d in by["Toolhandle"]["discrepancies"]] == ["mu"]
     assert by["Omega"]["mu"] is None and by["Omega"]["incomplete"]
     for r in rows:
-        for key in ("name", "mass", "damping", "coulomb", "resolution", "period", "mu", "beta", "sigma", "printed", "discrepancies"):
+        for key in (
+            "name",
+            "mass",
+            "damping",
+            "coulomb",
+            "resolution",
+            "period",
+            "mu",
+            "beta",
+            "sigma",
+            "printed",
+            "discrepancies",
+        ):
             assert key in r
 
 
@@ -42,8 +54,22 @@ def test_cli_devices_table(capsys):
 def test_cli_params_from_device_physical_and_dimensionless(capsys):
     p = run_json(capsys, "params", "--device", "impulse")
     assert p == pytest.approx({"mu": 100.0, "beta": 0.125, "sigma": 0.024 / (80 * 314e-6)})
-    q = run_json(capsys, "params", "--mass", "0.032", "--damping", "0.02", "--coulomb", "0.024",
-                 "--resolution", "314e-6", "--period", "2e-3", "--stiffness", "80")
+    q = run_json(
+        capsys,
+        "params",
+        "--mass",
+        "0.032",
+        "--damping",
+        "0.02",
+        "--coulomb",
+        "0.024",
+        "--resolution",
+        "314e-6",
+        "--period",
+        "2e-3",
+        "--stiffness",
+        "80",
+    )
     assert q == pytest.approx(p)
     r = run_json(capsys, "params", "--mu", "5", "--beta", "0.1", "--sigma", "0.7")
     assert r == {"mu": 5.0, "beta": 0.1, "sigma": 0.7}
@@ -56,7 +82,12 @@ def test_cli_check_json_contract(capsys):
     r = run_json(capsys, "check", "--device", "delta", "--velocity", "0.1")
     assert set(r) >= {"region", "passive", "margin", "critical_xi_dot"}
     api = dfa.device_criterion(dfa.get_device("Delta").device, 14500.0, 0.1)
-    assert (r["region"], r["passive"], r["margin"], r["critical_xi_dot"]) == (api.region, api.passive, api.margin, api.critical_xi_dot)
+    assert (r["region"], r["passive"], r["margin"], r["critical_xi_dot"]) == (
+        api.region,
+        api.passive,
+        api.margin,
+        api.critical_xi_dot,
+    )
     c = run_json(capsys, "check", "--beta", "0.2", "--sigma", "0.3", "--xi-dot", "1")
     assert c["region"] == "c" and c["critical_xi_dot"] is None and c["passive"] is False
     n = run_json(capsys, "check", "--beta", "0.2", "--sigma", "0.3", "--xi-dot", "1", "--no-quantization")
@@ -92,9 +123,60 @@ def test_cli_stiffness_table(capsys):
     [
         (["check", "--device", "fantom", "--xi-dot", "1"], "did you mean 'Phantom 1.0'"),
         (["params", "--mass", "abc"], "--mass"),
-        (["params", "--mass", "-1", "--damping", "0.1", "--coulomb", "0.1", "--resolution", "1e-5", "--period", "1e-3", "--stiffness", "10"], "mass = -1.0"),
-        (["params", "--mass", "nan", "--damping", "0.1", "--coulomb", "0.1", "--resolution", "1e-5", "--period", "1e-3", "--stiffness", "10"], "finite"),
-        (["params", "--mass", "1", "--damping", "0.1", "--coulomb", "0.1", "--resolution", "1e-5", "--period", "inf", "--stiffness", "10"], "period"),
+        (
+            [
+                "params",
+                "--mass",
+                "-1",
+                "--damping",
+                "0.1",
+                "--coulomb",
+                "0.1",
+                "--resolution",
+                "1e-5",
+                "--period",
+                "1e-3",
+                "--stiffness",
+                "10",
+            ],
+            "mass = -1.0",
+        ),
+        (
+            [
+                "params",
+                "--mass",
+                "nan",
+                "--damping",
+                "0.1",
+                "--coulomb",
+                "0.1",
+                "--resolution",
+                "1e-5",
+                "--period",
+                "1e-3",
+                "--stiffness",
+                "10",
+            ],
+            "finite",
+        ),
+        (
+            [
+                "params",
+                "--mass",
+                "1",
+                "--damping",
+                "0.1",
+                "--coulomb",
+                "0.1",
+                "--resolution",
+                "1e-5",
+                "--period",
+                "inf",
+                "--stiffness",
+                "10",
+            ],
+            "period",
+        ),
         (["params", "--mass", "1", "--damping", "0.1"], "missing --coulomb --resolution --period"),
         (["params", "--mu", "1", "--beta", "0.1", "--sigma", "1", "--device", "delta"], "cannot be combined"),
         (["params", "--mu", "1", "--beta", "0.1"], "missing --sigma"),
@@ -123,5 +205,7 @@ def test_cli_bad_input_is_one_line_on_stderr_with_exit_2(capsys, argv, needle):
 
 
 def test_cli_console_script_exit_code_and_no_traceback():
-    proc = subprocess.run([sys.executable, "-m", "dfa.cli", "check", "--device", "nope", "--xi-dot", "1"], capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "dfa.cli", "check", "--device", "nope", "--xi-dot", "1"], capture_output=True, text=True
+    )
     assert proc.returncode == 2 and "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1

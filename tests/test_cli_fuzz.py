@@ -19,9 +19,51 @@ from dfa.cli import main
 SEED = 17
 N_INVOCATIONS = 2200
 
-GARBAGE = ["", " ", "nan", "-nan", "inf", "-inf", "Infinity", "1_000", "١٢", "１２", "0x10", "1e", "e5", "1e400", "-1e400", "1e-400",
-           "--", "-", "--json", "1,5", "1.2.3", "²", "½", "abc", "99999999999999999999999999", "-0", "+0", "0", "-1", "1e-320",
-           "1e308", "-1e308", "4.9e-324", "\x00", "1\x00", " 1", "1 ", "+", ".", "e", "٣.٥", "\u0661", "1\n2"]
+GARBAGE = [
+    "",
+    " ",
+    "nan",
+    "-nan",
+    "inf",
+    "-inf",
+    "Infinity",
+    "1_000",
+    "١٢",
+    "１２",
+    "0x10",
+    "1e",
+    "e5",
+    "1e400",
+    "-1e400",
+    "1e-400",
+    "--",
+    "-",
+    "--json",
+    "1,5",
+    "1.2.3",
+    "²",
+    "½",
+    "abc",
+    "99999999999999999999999999",
+    "-0",
+    "+0",
+    "0",
+    "-1",
+    "1e-320",
+    "1e308",
+    "-1e308",
+    "4.9e-324",
+    "\x00",
+    "1\x00",
+    " 1",
+    "1 ",
+    "+",
+    ".",
+    "e",
+    "٣.٥",
+    "\u0661",
+    "1\n2",
+]
 DEVICE_NAMES = ["impulse", "phantom", "delta", "Omega", "re35", "nosuch", "", "PHANTOM", "p"]
 
 
@@ -46,11 +88,26 @@ def _int(rng, hi=200):
 def _path(rng, tmp, suffix):
     if rng.random() < 0.6:
         return str(tmp / f"out{rng.randint(0, 3)}{suffix}")
-    return rng.choice([
-        str(tmp / f"out{suffix}"), str(tmp / "sub") + os.sep, str(tmp / "sub"), os.devnull, "", str(tmp / "missing" / f"x{suffix}"),
-        str(tmp / "afile.txt"), str(tmp / ("n" * 300 + suffix)), str(tmp / f"a\x00b{suffix}"), str(tmp / "afile.txt" / f"x{suffix}"),
-        str(tmp / f"plain"), str(tmp / f"sp ace{suffix}"), str(tmp / f"ünï{suffix}"), ".", "..", "/",
-    ])
+    return rng.choice(
+        [
+            str(tmp / f"out{suffix}"),
+            str(tmp / "sub") + os.sep,
+            str(tmp / "sub"),
+            os.devnull,
+            "",
+            str(tmp / "missing" / f"x{suffix}"),
+            str(tmp / "afile.txt"),
+            str(tmp / ("n" * 300 + suffix)),
+            str(tmp / f"a\x00b{suffix}"),
+            str(tmp / "afile.txt" / f"x{suffix}"),
+            str(tmp / "plain"),
+            str(tmp / f"sp ace{suffix}"),
+            str(tmp / f"ünï{suffix}"),
+            ".",
+            "..",
+            "/",
+        ]
+    )
 
 
 def _device_args(rng, dimensionless, speed, stiffness=True):
@@ -59,8 +116,13 @@ def _device_args(rng, dimensionless, speed, stiffness=True):
     if mode < 0.35:
         args += ["--device", rng.choice(DEVICE_NAMES[:4] * 3 + DEVICE_NAMES)]
     elif mode < 0.6:
-        for flag, (lo, hi) in {"--mass": (-3, 0), "--damping": (-4, -1), "--coulomb": (-3, 0), "--resolution": (-6, -3),
-                               "--period": (-4, -2)}.items():
+        for flag, (lo, hi) in {
+            "--mass": (-3, 0),
+            "--damping": (-4, -1),
+            "--coulomb": (-3, 0),
+            "--resolution": (-6, -3),
+            "--period": (-4, -2),
+        }.items():
             if rng.random() < 0.95:
                 args += [flag, _real(rng, lo, hi)]
     elif dimensionless:
@@ -83,8 +145,21 @@ def _device_args(rng, dimensionless, speed, stiffness=True):
 
 
 def _invocation(rng, tmp):
-    cmd = rng.choice(["devices", "params", "check", "stiffness", "simulate", "map", "limit-cycles", "contours", "report", "validate",
-                      "nosuch"])
+    cmd = rng.choice(
+        [
+            "devices",
+            "params",
+            "check",
+            "stiffness",
+            "simulate",
+            "map",
+            "limit-cycles",
+            "contours",
+            "report",
+            "validate",
+            "nosuch",
+        ]
+    )
     if cmd == "devices":
         return [cmd] + (["--json"] if rng.random() < 0.5 else []) + (["--bogus"] if rng.random() < 0.1 else [])
     if cmd == "params":
@@ -115,12 +190,24 @@ def _invocation(rng, tmp):
             argv += ["--preload"]
         return argv
     if cmd == "limit-cycles":
-        argv = [cmd] + _device_args(rng, True, False) + ["--max-amplitude", rng.choice(["5", "20", "5", "20", "0.5", "-1", "nan", "x"])]
+        argv = (
+            [cmd]
+            + _device_args(rng, True, False)
+            + ["--max-amplitude", rng.choice(["5", "20", "5", "20", "0.5", "-1", "nan", "x"])]
+        )
         if rng.random() < 0.3:
             argv += ["--model", rng.choice(["zoh", "pade", "half-delay", "bogus"])]
         return argv
     if cmd == "contours":
-        argv = [cmd, "--mu", _real(rng, 0, 1), "--grid", _int(rng, 3), "--max-amplitude", rng.choice(["2", "3", "2", "3", "0.5", "1e13", "x"])]
+        argv = [
+            cmd,
+            "--mu",
+            _real(rng, 0, 1),
+            "--grid",
+            _int(rng, 3),
+            "--max-amplitude",
+            rng.choice(["2", "3", "2", "3", "0.5", "1e13", "x"]),
+        ]
         if rng.random() < 0.4:
             argv += ["--out", _path(rng, tmp, ".npz")]
         if rng.random() < 0.3:
@@ -128,12 +215,23 @@ def _invocation(rng, tmp):
         return argv + (["--json"] if rng.random() < 0.5 else [])
     if cmd == "report":
         # always one input refused before the (seconds-long) report is written
-        bad = rng.choice([["--out", rng.choice(["", os.devnull, str(tmp / "afile.txt"), str(tmp / "missing")])],
-                          ["--velocity", rng.choice(GARBAGE[:12])], ["--format", "pdf"], ["--device", "nosuch"], ["--mass", "-1"]])
+        bad = rng.choice(
+            [
+                ["--out", rng.choice(["", os.devnull, str(tmp / "afile.txt"), str(tmp / "missing")])],
+                ["--velocity", rng.choice(GARBAGE[:12])],
+                ["--format", "pdf"],
+                ["--device", "nosuch"],
+                ["--mass", "-1"],
+            ]
+        )
         return [cmd, "--quiet"] + _device_args(rng, False, rng.random() < 0.5)[:4] + bad
     if cmd == "validate":
-        bad = rng.choice([["--out", rng.choice(["", os.devnull, str(tmp / "afile.txt"), str(tmp / "missing" / "v")])],
-                          ["--jobs", rng.choice(["0", "-3", "100000", "x", "1.5"])]])
+        bad = rng.choice(
+            [
+                ["--out", rng.choice(["", os.devnull, str(tmp / "afile.txt"), str(tmp / "missing" / "v")])],
+                ["--jobs", rng.choice(["0", "-3", "100000", "x", "1.5"])],
+            ]
+        )
         return [cmd, "--quick", "--quiet"] + bad
     return [cmd, "--json"]
 
@@ -147,7 +245,7 @@ def test_cli_fuzz(tmp_path, capsys):
         argv = _invocation(rng, tmp_path)
         try:
             code = main(argv)
-        except BaseException as exc:  # noqa: BLE001 - nothing may escape main
+        except BaseException as exc:
             pytest.fail(f"invocation {i}: dfa {argv!r} raised {type(exc).__name__}: {exc}")
         out, err = capsys.readouterr()
         assert code in (0, 2), f"invocation {i}: dfa {argv!r} exited {code}: {err}"

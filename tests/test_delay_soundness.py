@@ -34,7 +34,9 @@ def test_sampler_points_are_passive_and_on_the_boundaries():
     pts = sample_passive_points(200, 2, seed=3)
     b0 = 2.5
     for i in range(200):
-        r = dfa.passivity_criterion(pts["beta"][i], pts["sigma"][i], pts["xi_dot"][i], delay=2, xi0=pts["xi0"][i], mu=pts["mu"][i])
+        r = dfa.passivity_criterion(
+            pts["beta"][i], pts["sigma"][i], pts["xi_dot"][i], delay=2, xi0=pts["xi0"][i], mu=pts["mu"][i]
+        )
         assert r.passive
         kind = soundness.KINDS[pts["kind"][i]]
         if kind == "line":

@@ -57,7 +57,9 @@ def test_max_passive_velocity_inverts_kmax(k):
 def test_abbott_okamura_is_the_two_ends_of_eq11_and_colgate_is_eq8():
     dev = dfa.get_device("Impulse Engine").device
     assert dfa.k_colgate(dev) == pytest.approx(2 * 0.02 / 2e-3)
-    assert dfa.k_abbott_okamura(dev) == pytest.approx(min(k_max_criterion(dev, 0.0), k_max_criterion(dev, 1e9)), rel=1e-6)
+    assert dfa.k_abbott_okamura(dev) == pytest.approx(
+        min(k_max_criterion(dev, 0.0), k_max_criterion(dev, 1e9)), rel=1e-6
+    )
 
 
 def test_stiffness_limits_result_and_verdict():
@@ -142,4 +144,6 @@ def test_eq11_k_max_passes_its_own_criterion_with_delay():
             k = dfa.k_max_criterion(dev, v, delay=d)
             assert dfa.device_criterion(dev, k, v, delay=d).passive, (name, v, d)
             assert dfa.stiffness_limits(dev, v, k, delay=d).status == "ok"
-            assert not dfa.device_criterion(dev, k * (1 + 1e-9), v, delay=d).passive or k == dfa.k_max_criterion(dev, 0.0)
+            assert not dfa.device_criterion(dev, k * (1 + 1e-9), v, delay=d).passive or k == dfa.k_max_criterion(
+                dev, 0.0
+            )

@@ -31,8 +31,14 @@ def residual(p, m, w, model="half-delay", delay=0):
 
 # ------------------------------------------------------------- 1. σ = ½ (K = 2c/Δ, eq. 9)
 @settings(max_examples=40)
-@given(st.sampled_from([0.5, 5.0, 100.0]), st.sampled_from([0.0, 0.05, 0.3]), st.floats(1e-12, 1e-6), st.sampled_from([-1.0, 1.0]),
-       st.sampled_from(["half-delay", "pade", "zoh"]), st.integers(0, 2))
+@given(
+    st.sampled_from([0.5, 5.0, 100.0]),
+    st.sampled_from([0.0, 0.05, 0.3]),
+    st.floats(1e-12, 1e-6),
+    st.sampled_from([-1.0, 1.0]),
+    st.sampled_from(["half-delay", "pade", "zoh"]),
+    st.integers(0, 2),
+)
 @example(5.0, 0.05, 0.0, 1.0, "pade", 0)  # the reported crash: σ = ½ exactly
 @example(5.0, 0.05, 1e-9, -1.0, "half-delay", 1)
 @example(5.0, 0.05, 1e-12, 1.0, "pade", 2)
@@ -76,7 +82,9 @@ def test_numerical_failure_gives_incomplete_status_and_warning(monkeypatch):
 def _delta_10nm():
     entry = dfa.get_device("Delta")
     d = entry.device
-    dev = dfa.Device(mass=d.mass, damping=d.damping, coulomb=d.coulomb, resolution=1e-8, period=d.period, name="Delta 10 nm")
+    dev = dfa.Device(
+        mass=d.mass, damping=d.damping, coulomb=d.coulomb, resolution=1e-8, period=d.period, name="Delta 10 nm"
+    )
     return dev, dev.params(entry.stiffness)
 
 
@@ -88,7 +96,9 @@ def test_eq45_ten_nanometre_encoder_cycle_found_by_default_search():
     # eq. 44-45 (D ≈ 1 far out): M = (4σ/π)/(sin(ω/2) − βω)
     w = large_cycle_frequency(p.mu)
     m45 = 4 * p.sigma / (math.pi * (math.sin(w / 2) - p.beta * w))
-    assert c.amplitude > 1e5 and c.amplitude == pytest.approx(m45, rel=1e-3) and c.frequency == pytest.approx(w, rel=1e-3)
+    assert (
+        c.amplitude > 1e5 and c.amplitude == pytest.approx(m45, rel=1e-3) and c.frequency == pytest.approx(w, rel=1e-3)
+    )
     assert c.residual <= 1e-10
     # the old default range (1e4 ticks) cannot claim absence
     capped = limit_cycles(p, max_amplitude=1e4)
@@ -105,7 +115,9 @@ def test_cli_and_report_never_state_absence_for_an_incomplete_search(capsys):
     _dev, p = _delta_10nm()
     thr = {m: growth_threshold(p, model=m, max_amplitude=1e4) for m in ("half-delay", "zoh")}
     lines = _absence_lines(thr)
-    assert len(lines) == 2 and all("search incomplete" in s and "no limit cycle is predicted" not in s.lower() for s in lines)
+    assert len(lines) == 2 and all(
+        "search incomplete" in s and "no limit cycle is predicted" not in s.lower() for s in lines
+    )
 
 
 def test_envelope_bound_default_range_is_complete_against_a_brute_force_range():
@@ -129,7 +141,10 @@ def test_linear_loop_unstable_without_friction_is_said_and_true(capsys):
     assert dfa.simulate(5.0, 0.0, 0.0, 1.0, 20000, record=False).outcome == "unstable"
     assert main(["limit-cycles", "--mu", "5", "--beta", "0.8", "--sigma", "1"]) == 0
     bound = limit_cycles(dfa.Params(5.0, 0.8, 1.0)).search_bound
-    assert f"no limit cycle predicted (search complete: eq. 36 has no root beyond M = {bound:.4g} ticks)" in capsys.readouterr().out
+    assert (
+        f"no limit cycle predicted (search complete: eq. 36 has no root beyond M = {bound:.4g} ticks)"
+        in capsys.readouterr().out
+    )
 
 
 # ------------------------------------------------------------- 3. growth band, not a false threshold
@@ -239,7 +254,9 @@ def test_eq41_asymptotic_switch_is_continuous_with_the_exact_sum():
     a = _dfcore.ASYMPTOTIC_FROM
     for m in (a - 1e-9, a - 0.5, a - 0.9):
         exact = float(_mp_df(m))
-        assert abs(_dfcore._asym_value(m, m % 1.0) + 1.0 - exact) <= 2e-16  # the expansion already holds below the switch
+        assert (
+            abs(_dfcore._asym_value(m, m % 1.0) + 1.0 - exact) <= 2e-16
+        )  # the expansion already holds below the switch
     below, above = a * (1 - 1e-15), a  # exact 1000-term sum just below the switch, expansion at it
     assert abs(_dfcore.df_value(below) - float(_mp_df(below))) <= 4e-15  # the sum's own rounding
     assert abs(_dfcore.df_value(above) - float(_mp_df(above))) <= 2e-16
@@ -255,11 +272,18 @@ def test_eq41_huge_amplitudes():
     assert quantizer_df(1e19) == 1.0
     d = quantizer_df(np.array([1e9, 1e9 + 0.25]))
     mpmath.mp.dps = 40
-    z = lambda th: float(mpmath.zeta(-0.5, th))  # noqa: E731  leading term of the expansion
-    for m, val in zip((1e9, 1e9 + 0.25), d):
+    z = lambda th: float(mpmath.zeta(-0.5, th))
+    for m, val in zip((1e9, 1e9 + 0.25), d, strict=False):
         lead = 1 + 4 * math.sqrt(2) / math.pi * z(m % 1.0) * m**-1.5
         assert val == pytest.approx(lead, abs=1e-16)
-    assert quantizer_df_derivative(1e9 + 0.25) == pytest.approx(float(mpmath.diff(lambda x: 4 * mpmath.sqrt(2) / mpmath.pi * mpmath.zeta(-0.5, x - int(1e9)) * x**-1.5, 1e9 + 0.25)), rel=1e-6)
+    assert quantizer_df_derivative(1e9 + 0.25) == pytest.approx(
+        float(
+            mpmath.diff(
+                lambda x: 4 * mpmath.sqrt(2) / mpmath.pi * mpmath.zeta(-0.5, x - int(1e9)) * x**-1.5, 1e9 + 0.25
+            )
+        ),
+        rel=1e-6,
+    )
 
 
 def test_eq41_envelope_constant_from_the_expansion():
@@ -278,7 +302,7 @@ def test_validation_cluster_threshold_record_matches_independent_runs():
     rec = cluster_threshold(name, p, speeds, 40_000)
     div = [dfa.simulate(p.mu, p.beta, p.sigma, v, 40_000, record=False).outcome == "unstable" for v in speeds]
     assert rec["first_diverging"] == speeds[div.index(True)] == 2.3  # the issue's ξ'0 ≈ 2.3
-    assert rec["last_non_diverging"] == max(v for v, d in zip(speeds, div) if not d)
+    assert rec["last_non_diverging"] == max(v for v, d in zip(speeds, div, strict=False) if not d)
     assert rec["diverging"] == sum(div) and rec["linear_stable_zoh"] is False
     g = growth_threshold(p, model="zoh")
     assert rec["band_zoh"] == [g.xi_dot, g.xi_dot_high] and rec["unstable_zoh"] == g.unstable_count
@@ -322,8 +346,12 @@ def test_example_cluster_threshold_quick_writes_its_note(tmp_path):
     import sys
 
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    proc = subprocess.run([sys.executable, os.path.join(root, "examples", "cluster_threshold.py"), "--quick", "--out", str(tmp_path)],
-                          capture_output=True, text=True, timeout=300)
+    proc = subprocess.run(
+        [sys.executable, os.path.join(root, "examples", "cluster_threshold.py"), "--quick", "--out", str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert proc.returncode == 0, proc.stderr
     text = (tmp_path / "cluster_threshold.md").read_text()
     assert "first diverging" in text and "Long runs" in text

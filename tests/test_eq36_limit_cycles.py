@@ -11,7 +11,6 @@ from hypothesis import strategies as st
 from scipy.optimize import fsolve
 
 import dfa
-from dfa.describing import QuantizerNonlinearity, quantizer_df
 from dfa.cycles import (
     growth_threshold,
     large_cycle_closed_form,
@@ -19,6 +18,7 @@ from dfa.cycles import (
     limit_cycles,
     small_cycle_closed_form,
 )
+from dfa.describing import QuantizerNonlinearity, quantizer_df
 from dfa.loop import loop_response, loop_system
 
 params_st = st.builds(dfa.Params, st.floats(0.5, 200.0), st.floats(0.0, 0.6), st.floats(0.0, 2.5))
@@ -39,11 +39,14 @@ def test_eq36_every_root_has_residual_below_1e10(p, model, delay):
 
 
 @pytest.mark.parametrize("model", ["half-delay", "zoh", "pade"])
-@pytest.mark.parametrize("p", [dfa.Params(5, 0.1, 0.3), dfa.Params(2, 0.4, 0.1), dfa.Params(155.17, 0.00207, 2.03), dfa.Params(5, 0.4, 0.0)])
+@pytest.mark.parametrize(
+    "p", [dfa.Params(5, 0.1, 0.3), dfa.Params(2, 0.4, 0.1), dfa.Params(155.17, 0.00207, 2.03), dfa.Params(5, 0.4, 0.0)]
+)
 def test_eq36_roots_agree_with_independent_2d_newton(p, model):
     res = limit_cycles(p, model=model)
     assert res.cycles
     for c in res.cycles:
+
         def f(x):
             z = 1 + quantizer_df(x[0]) * loop_response(p, x[1], x[0], model=model)
             return [z.real, z.imag]
@@ -79,7 +82,9 @@ def test_eq43_solver_with_small_df_reproduces_closed_form(mu, beta, sigma):
     assert cf is not None
     match = [c for c in res.cycles if abs(c.frequency - cf[1]) < 1e-6 * cf[1]]
     assert len(match) == 1
-    assert match[0].amplitude == pytest.approx(cf[0], rel=1e-12) and match[0].frequency == pytest.approx(cf[1], rel=1e-12)
+    assert match[0].amplitude == pytest.approx(cf[0], rel=1e-12) and match[0].frequency == pytest.approx(
+        cf[1], rel=1e-12
+    )
     assert match[0].stable  # eq. 42-43 cycles are stable
     # eq. 42: (2/(πM)) cos(ω/2) = μω²
     m, w = cf
@@ -98,7 +103,7 @@ def test_eq36_small_cycles_stable_large_threshold_unstable_and_alternating(p):
         assert not large[0].stable  # the smallest large cycle is the growth threshold
     # along the single branch of the d = 0 half-delay model, stability alternates with amplitude
     flags = [c.stable for c in res.cycles]
-    assert all(a != b for a, b in zip(flags, flags[1:]))
+    assert all(a != b for a, b in zip(flags, flags[1:], strict=False))
 
 
 def test_eq36_exact_df_adds_cycles_the_approximations_miss():
@@ -134,10 +139,12 @@ def test_python_control_describing_function_response_agrees_with_solver():
     H = loop_system(p, model="pade", pade_order=6)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        resp = control.describing_function_response(H, QuantizerNonlinearity(), np.linspace(0.3, 3, 400), omega=np.geomspace(1e-2, np.pi, 3000))
+        resp = control.describing_function_response(
+            H, QuantizerNonlinearity(), np.linspace(0.3, 3, 400), omega=np.geomspace(1e-2, np.pi, 3000)
+        )
     ours = limit_cycles(p, model="pade", pade_order=6).cycles
     assert len(resp.intersections) == len(ours)
-    for (a, w), c in zip(sorted(resp.intersections), ours):
+    for (a, w), c in zip(sorted(resp.intersections), ours, strict=False):
         assert a == pytest.approx(c.amplitude, rel=1e-4) and w == pytest.approx(c.frequency, rel=1e-4)
 
 
@@ -153,7 +160,7 @@ def test_python_control_finds_no_root_we_miss_with_its_default_grid(mu, beta):
     ours = [c for c in limit_cycles(p, model="pade", pade_order=6).cycles if c.amplitude <= amps[-1]]
     pc = sorted(resp.intersections)
     assert len(pc) == len(ours) >= 14
-    for (a, w), c in zip(pc, ours):  # sorted one-to-one; python-control's roots are grid-limited (~1e-3)
+    for (a, w), c in zip(pc, ours, strict=False):  # sorted one-to-one; python-control's roots are grid-limited (~1e-3)
         assert a == pytest.approx(c.amplitude, rel=1e-2) and w == pytest.approx(c.frequency, rel=1e-3)
         assert c.residual <= 1e-13 < residual(p, a, w, model="pade", pade_order=6)
 
@@ -173,7 +180,12 @@ def test_growth_threshold_physical_units():
 
 @pytest.mark.parametrize(
     "kwargs, needle",
-    [(dict(model="exact"), "model"), (dict(delay=-1), "delay"), (dict(max_amplitude=0), "max_amplitude"), (dict(describing="approx"), "describing")],
+    [
+        (dict(model="exact"), "model"),
+        (dict(delay=-1), "delay"),
+        (dict(max_amplitude=0), "max_amplitude"),
+        (dict(describing="approx"), "describing"),
+    ],
 )
 def test_limit_cycles_bad_input(kwargs, needle):
     with pytest.raises(dfa.DFAValueError, match=needle):
@@ -184,8 +196,13 @@ def test_limit_cycles_bad_input(kwargs, needle):
 
 # ------------------------------------------- the solver's fast loop inverse (dfa.cycles)
 @settings(max_examples=60)
-@given(st.floats(0.2, 300.0), st.floats(0.0, 3.0), st.floats(1e-3, 3.1), st.sampled_from(["half-delay", "pade", "zoh"]),
-       st.integers(0, 2))
+@given(
+    st.floats(0.2, 300.0),
+    st.floats(0.0, 3.0),
+    st.floats(1e-3, 3.1),
+    st.sampled_from(["half-delay", "pade", "zoh"]),
+    st.integers(0, 2),
+)
 def test_eq36_solver_loop_inverse_scalar_and_vector_paths_equal_loop_response(mu, beq, w, model, delay):
     """The solver's 1/L (plain-complex scalar path, numpy path, Padé as an all-pass phase lead) is loop_response's."""
     from dfa.cycles import _inv_loop
@@ -210,5 +227,10 @@ def test_eq36_phase_curve_beta_star_puts_the_loop_on_the_negative_real_axis(mode
         bs = _phase_beta(lp, w)
         ok = np.isfinite(bs)
         assert ok.sum() > 100 if w is _W_GRID else ok.sum() > 3
-        inv = np.array([1.0 / complex(loop_response(dfa.Params(mu, b, 0.0), x, model=model, delay=delay)) for x, b in zip(w[ok], bs[ok])])
+        inv = np.array(
+            [
+                1.0 / complex(loop_response(dfa.Params(mu, b, 0.0), x, model=model, delay=delay))
+                for x, b in zip(w[ok], bs[ok], strict=False)
+            ]
+        )
         assert np.all(np.abs(inv.imag) <= 1e-9 * np.abs(inv)) and np.all(inv.real < 0)

@@ -75,7 +75,7 @@ def test_half_delay_linear_boundary_is_close_to_gil_for_large_mu():
     from scipy.optimize import brentq
 
     for mu, tol in [(100.0, 1e-3), (5.0, 2e-2)]:
-        w = brentq(lambda x: mu * x * x - math.cos(x / 2), 1e-6, math.pi)
+        w = brentq(lambda x, mu=mu: mu * x * x - math.cos(x / 2), 1e-6, math.pi)
         assert mu * w * math.tan(w / 2) == pytest.approx(dfa.gil_beta_critical(mu), abs=tol)
 
 

@@ -151,10 +151,12 @@ def test_python_control_response_tools_accept_our_nonlinearity():
     H = dfa.loop.loop_system(p, model="pade", pade_order=6)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        resp = control.describing_function_response(H, QuantizerNonlinearity(), np.linspace(0.3, 3, 200), omega=np.geomspace(1e-2, np.pi, 2000))
+        resp = control.describing_function_response(
+            H, QuantizerNonlinearity(), np.linspace(0.3, 3, 200), omega=np.geomspace(1e-2, np.pi, 2000)
+        )
     ours = dfa.loop.nyquist_locus_response(p).crossings
     assert len(resp.intersections) == len(ours) == 2
-    for (a, w), (m, w2, _pt) in zip(sorted(resp.intersections), ours):
+    for (a, w), (m, w2, _pt) in zip(sorted(resp.intersections), ours, strict=False):
         assert a == pytest.approx(m, rel=1e-4) and w == pytest.approx(w2, rel=1e-4)
     import matplotlib
 
@@ -199,7 +201,9 @@ def test_eq41_compiled_interval_peak_matches_scipy_and_zero_slope(n):
     from dfa import _dfcore
 
     mp, dp = _dfcore.interval_peak(n)
-    ref = optimize.minimize_scalar(lambda x: -quantizer_df(x), bounds=(n, n + 1.0), method="bounded", options={"xatol": 1e-10})
+    ref = optimize.minimize_scalar(
+        lambda x: -quantizer_df(x), bounds=(n, n + 1.0), method="bounded", options={"xatol": 1e-10}
+    )
     assert dp == pytest.approx(-ref.fun, rel=1e-14)
     assert abs(mp - ref.x) < 1e-5  # D is flat at its peak: the location is known to ~√eps
     assert abs(quantizer_df_derivative(mp)) < 1e-6 * abs(quantizer_df_derivative(n + 0.9))
@@ -217,9 +221,11 @@ def test_eq41_compiled_inverse_agrees_with_scipy_brentq_on_every_bracket(g):
     for r in big:
         n = math.floor(r)
         # bracket the root by the interval's monotone branch, from the independent scipy peak
-        peak = optimize.minimize_scalar(lambda x: -quantizer_df(x), bounds=(n, n + 1.0), method="bounded", options={"xatol": 1e-12}).x
+        peak = optimize.minimize_scalar(
+            lambda x: -quantizer_df(x), bounds=(n, n + 1.0), method="bounded", options={"xatol": 1e-12}
+        ).x
         lo, hi = (n, peak) if r < peak else (peak, n + 1.0)
-        f = lambda x: quantizer_df(x) - g  # noqa: E731
+        f = lambda x: quantizer_df(x) - g
         if f(lo) * f(hi) > 0:  # root within the peak's flat top: both agree to the peak's precision
             assert abs(r - peak) < 1e-5
             continue

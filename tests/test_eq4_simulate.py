@@ -61,7 +61,9 @@ def test_eq4_python_control_io_simulation_agrees():
     assert np.max(np.abs(xc - r.xi)) <= 1e-9
 
 
-@pytest.mark.parametrize("mu, beta, delay", [(5.0, 0.6, 0), (1.0, 0.55, 0), (50.0, 1.2, 1), (3.0, 2.0, 3), (5.0, 0.0, 0)])
+@pytest.mark.parametrize(
+    "mu, beta, delay", [(5.0, 0.6, 0), (1.0, 0.55, 0), (50.0, 1.2, 1), (3.0, 2.0, 3), (5.0, 0.0, 0)]
+)
 def test_linear_variant_matches_exact_zoh_recursion_from_c2d(mu, beta, delay):
     n = 10_000 if beta > 0 else 2_000
     r = simulate(mu, beta, 0.0, 1.0, n, xi0=0.5, delay=delay, quantize=False, bound=1e300)
@@ -86,7 +88,12 @@ def test_gil_bound_flips_growth_of_the_linear_loop(mu):
 
 def _energy_cases():
     return st.tuples(
-        st.floats(0.2, 200.0), st.floats(0.0, 1.0), st.floats(0.0, 1.5), st.floats(-3, 3), st.floats(-4, 4), st.booleans()
+        st.floats(0.2, 200.0),
+        st.floats(0.0, 1.0),
+        st.floats(0.0, 1.5),
+        st.floats(-3, 3),
+        st.floats(-4, 4),
+        st.booleans(),
     )
 
 
@@ -100,7 +107,9 @@ def test_eq20_energy_identity_holds_every_sample(case):
     scale = max(1.0, float(np.max(np.abs(e.stored[:n]))) if n else 1.0, e.initial_stored)
     assert np.all(np.abs(res) <= 1e-9 * scale)
     # the stored energy agrees with the trajectory
-    np.testing.assert_allclose(e.stored[:n], stored_energy(r.xi[1 : n + 1], r.xi_dot[1 : n + 1], mu, quantize), rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(
+        e.stored[:n], stored_energy(r.xi[1 : n + 1], r.xi_dot[1 : n + 1], mu, quantize), rtol=1e-12, atol=1e-12
+    )
     assert np.all(e.dissipated_viscous[:n] >= 0) and np.all(e.dissipated_coulomb[:n] >= 0)
 
 

@@ -98,7 +98,9 @@ def test_eq7_without_quantization_and_eq8_colgate():
     r = passivity_criterion(0.1, 0.2, 0.0, quantized=False)
     assert r.passive and r.critical_xi_dot == pytest.approx(0.2 / 0.4)
     # no quantization: regions b and c are empty
-    assert set(classify_region(np.linspace(0, 1, 21)[:, None], np.linspace(0, 1, 21), 2.0, quantized=False).ravel()) <= {"a", "d", "e"}
+    assert set(
+        classify_region(np.linspace(0, 1, 21)[:, None], np.linspace(0, 1, 21), 2.0, quantized=False).ravel()
+    ) <= {"a", "d", "e"}
 
 
 @given(beta_s, sigma_s, speed_s)

@@ -122,15 +122,24 @@ def test_fig3_region_words_do_not_overclaim():
         text = dfa.REGION_DESCRIPTIONS[k]
         assert "unstable" not in text and "passive:" not in text
     for k in "cd":
-        assert "no passivity guarantee" in dfa.REGION_DESCRIPTIONS[k] and "not a proof of instability" in dfa.REGION_DESCRIPTIONS[k]
+        assert (
+            "no passivity guarantee" in dfa.REGION_DESCRIPTIONS[k]
+            and "not a proof of instability" in dfa.REGION_DESCRIPTIONS[k]
+        )
     assert "not passive at rest" in dfa.REGION_DESCRIPTIONS["b"]
     for k in "ae":
         assert "proven" in dfa.REGION_DESCRIPTIONS[k] and "energy cannot grow" in dfa.REGION_DESCRIPTIONS[k]
 
 
 # ------------------------------------------------------------------ soundness: the theorem's strong claim by simulation
-@given(st.floats(0.1, 1000.0), st.floats(0.0, 4.0), st.floats(0.0, 1.0), st.floats(-8.0, 8.0), st.floats(-6.0, 6.0),
-       st.integers(0, 3))
+@given(
+    st.floats(0.1, 1000.0),
+    st.floats(0.0, 4.0),
+    st.floats(0.0, 1.0),
+    st.floats(-8.0, 8.0),
+    st.floats(-6.0, 6.0),
+    st.integers(0, 3),
+)
 @example(mu=100.0, beta=0.8, lift=0.0, xi_dot=5.0, xi0=0.0, d=1)  # the reproducer's speed, now on the d = 1 line
 @example(mu=1.0, beta=0.3, lift=0.0, xi_dot=2.0, xi0=6.0, d=0)  # the ξ0 reproducer's kind, on the line
 @example(mu=50.0, beta=0.0, lift=0.0, xi_dot=3.0, xi0=0.0, d=2)  # β = 0
@@ -192,7 +201,11 @@ def test_eq8_colgate_with_delay_and_one_source_for_the_static_limit():
         lim = dfa.stiffness_limits(DEV, 0.1, 14500.0, delay=d)
         curve = stiffness_response(DEV, stiffness=14500.0, delay=d)
         assert curve.k_static == pytest.approx(static, rel=1e-12) == lim.k_static == k_static(DEV)
-        assert (curve.k_colgate, curve.k_abbott_okamura, curve.k_gil) == (lim.k_colgate, lim.k_abbott_okamura, lim.k_gil)
+        assert (curve.k_colgate, curve.k_abbott_okamura, curve.k_gil) == (
+            lim.k_colgate,
+            lim.k_abbott_okamura,
+            lim.k_gil,
+        )
         assert curve.k_abbott_okamura == pytest.approx(min(static, DEV.damping / (DEV.period * (0.5 + d))))
         assert k_max_criterion(DEV, 1e-12, delay=d) == pytest.approx(curve.k_static)
         np.testing.assert_allclose(curve.k_max, k_max_criterion(DEV, curve.velocity, delay=d))
@@ -209,42 +222,63 @@ def run(capsys, *argv):
 def row(out, label):
     lines = [ln for ln in out.splitlines() if ln.startswith(label)]
     assert len(lines) == 1, (label, out)
-    return lines[0][len(label):].strip()
+    return lines[0][len(label) :].strip()
 
 
 def test_cli_check_text_zero_delay(capsys):
     code, out, _ = run(capsys, "check", "--device", "delta", "--velocity", "0.1")
     assert code == 0
     r = dfa.device_criterion(DEV, 14500.0, 0.1)
-    assert row(out, "passive") == f"yes: the energy cannot grow for speeds up to V = {r.critical_xi_dot:.4g} ticks/sample (proven)"
+    assert (
+        row(out, "passive")
+        == f"yes: the energy cannot grow for speeds up to V = {r.critical_xi_dot:.4g} ticks/sample (proven)"
+    )
     assert row(out, "region").startswith("e: passive up to the critical speed")
-    assert row(out, "critical speed (eq. 12, d = 0)") == f"{r.critical_xi_dot:.4g} ticks/sample ({r.critical_velocity:.4g} m/s)"
+    assert (
+        row(out, "critical speed (eq. 12, d = 0)")
+        == f"{r.critical_xi_dot:.4g} ticks/sample ({r.critical_velocity:.4g} m/s)"
+    )
     assert row(out, "delay d") == "0 samples"
 
 
 def test_cli_check_text_with_delay(capsys):
-    code, out, _ = run(capsys, "check", "--mu", "100", "--beta", "0.8", "--sigma", "0.8", "--xi-dot", "5", "--delay", "1")
+    code, out, _ = run(
+        capsys, "check", "--mu", "100", "--beta", "0.8", "--sigma", "0.8", "--xi-dot", "5", "--delay", "1"
+    )
     assert code == 0
     assert row(out, "passive") == "no: no passivity guarantee (not a proof of instability)"
     assert row(out, "region").startswith("d: no passivity guarantee at this speed")
     assert row(out, "critical speed (eq. 12, d = 1)") == f"{0.3 / 0.7:.4g} ticks/sample"
     assert row(out, "margin") == f"{-3.2:.4g}"
     code, out, _ = run(capsys, "check", "--beta", "2.6", "--sigma", "0.6", "--xi-dot", "5", "--delay", "2")
-    assert row(out, "passive") == "yes: the energy cannot grow at every speed (proven)" and row(out, "region").startswith("a:")
+    assert row(out, "passive") == "yes: the energy cannot grow at every speed (proven)" and row(
+        out, "region"
+    ).startswith("a:")
 
 
 def test_cli_check_json_delay_and_initial_position(capsys):
-    code, out, _ = run(capsys, "check", "--mu", "1", "--beta", "0.3", "--sigma", "1", "--xi-dot", "2", "--xi0", "10", "--json")
+    code, out, _ = run(
+        capsys, "check", "--mu", "1", "--beta", "0.3", "--sigma", "1", "--xi-dot", "2", "--xi0", "10", "--json"
+    )
     r = json.loads(out)
     assert code == 0 and r["passive"] is False and r["xi0"] == 10.0 and r["delay"] == 0
     assert r["equivalent_speed"] == pytest.approx(math.sqrt(104.0))
     code, out, _ = run(capsys, "check", "--mu", "1", "--beta", "0.3", "--sigma", "1", "--xi-dot", "2", "--xi0", "10")
-    assert row(out, "critical speed (eq. 12, d = 0)") == "2.5 ticks/sample, a bound on the equivalent speed V, not on ξ'0"
+    assert (
+        row(out, "critical speed (eq. 12, d = 0)") == "2.5 ticks/sample, a bound on the equivalent speed V, not on ξ'0"
+    )
     assert row(out, "equivalent speed V").startswith(f"{math.sqrt(104.0):.4g} ticks/sample")
-    code, out, _ = run(capsys, "check", "--device", "delta", "--velocity", "0.1", "--position", "3e-4", "--delay", "1", "--json")
+    code, out, _ = run(
+        capsys, "check", "--device", "delta", "--velocity", "0.1", "--position", "3e-4", "--delay", "1", "--json"
+    )
     r = json.loads(out)
     api = dfa.device_criterion(DEV, 14500.0, 0.1, delay=1, position=3e-4)
-    assert (r["region"], r["margin"], r["equivalent_speed"], r["delay"]) == (api.region, api.margin, api.equivalent_speed, 1)
+    assert (r["region"], r["margin"], r["equivalent_speed"], r["delay"]) == (
+        api.region,
+        api.margin,
+        api.equivalent_speed,
+        1,
+    )
     assert r["xi0"] == pytest.approx(10.0) and r["position"] == 3e-4
 
 
@@ -252,9 +286,15 @@ def test_cli_check_json_delay_and_initial_position(capsys):
     "argv, needle",
     [
         (["check", "--beta", "0.3", "--sigma", "1", "--xi-dot", "2", "--xi0", "1"], "--xi0 1 needs --mu"),
-        (["check", "--beta", "0.3", "--sigma", "1", "--xi-dot", "2", "--position", "1e-3"], "--position needs a physical device"),
+        (
+            ["check", "--beta", "0.3", "--sigma", "1", "--xi-dot", "2", "--position", "1e-3"],
+            "--position needs a physical device",
+        ),
         (["check", "--device", "delta", "--xi-dot", "2", "--xi0", "1"], "--xi0 is for dimensionless input"),
-        (["check", "--beta", "0.3", "--sigma", "1", "--xi-dot", "2", "--delay", "-1"], "--delay must be a whole number"),
+        (
+            ["check", "--beta", "0.3", "--sigma", "1", "--xi-dot", "2", "--delay", "-1"],
+            "--delay must be a whole number",
+        ),
         (["stiffness", "--device", "delta", "--velocity", "0.1", "--delay", "1.5"], "--delay takes"),
     ],
 )
@@ -271,17 +311,23 @@ def test_cli_stiffness_above_static_limit_is_answered_not_crashed(capsys):
     assert row(out, "largest passive speed at K = 60000").startswith("none: not passive even at rest")
     code, out, _ = run(capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "60000", "--json")
     r = json.loads(out)
-    assert r["max_passive_velocity_status"] == "none" and r["status"] == "too stiff" and r["max_passive_velocity"] is None
+    assert (
+        r["max_passive_velocity_status"] == "none" and r["status"] == "too stiff" and r["max_passive_velocity"] is None
+    )
 
 
 def test_cli_stiffness_with_delay(capsys):
-    code, out, _ = run(capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "20000", "--delay", "1")
+    code, out, _ = run(
+        capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "20000", "--delay", "1"
+    )
     assert code == 0
     k = k_max_criterion(DEV, 0.1, delay=1)
     assert row(out, "criterion K_max at this speed (eq. 11, d = 1)") == f"{k:.5g} N/m"
     assert row(out, "Colgate-Schenkel b/(T(½ + d)) (eq. 8)") == f"{DEV.damping / (DEV.period * 1.5):.5g} N/m"
     assert row(out, "verdict at this speed").startswith("too stiff: no passivity guarantee at this speed")
-    code, out, _ = run(capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "20000", "--delay", "1", "--json")
+    code, out, _ = run(
+        capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "20000", "--delay", "1", "--json"
+    )
     r = json.loads(out)
     assert r["delay"] == 1 and r["k_max"] == pytest.approx(k)
 

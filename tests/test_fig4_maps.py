@@ -60,8 +60,14 @@ def test_fig4_preload_starts_at_rest_with_the_same_energy():
 
 @pytest.mark.parametrize(
     "kwargs, needle",
-    [(dict(grid=1), "grid"), (dict(beta_range=(1.0, 0.5)), "beta_range"), (dict(xi_dots=[]), "xi_dots"),
-     (dict(n_jobs=0), "n_jobs"), (dict(mu=-1.0), "mu"), (dict(sigma_range=(0.0,)), "sigma_range")],
+    [
+        (dict(grid=1), "grid"),
+        (dict(beta_range=(1.0, 0.5)), "beta_range"),
+        (dict(xi_dots=[]), "xi_dots"),
+        (dict(n_jobs=0), "n_jobs"),
+        (dict(mu=-1.0), "mu"),
+        (dict(sigma_range=(0.0,)), "sigma_range"),
+    ],
 )
 def test_map_bad_input(kwargs, needle):
     args = dict(mu=100.0, xi_dots=[1.0], grid=3, samples=10, progress=False)
@@ -82,7 +88,24 @@ def test_cli_simulate_json_contract(capsys):
 
 def test_cli_simulate_device_preload_and_trace(capsys, tmp_path):
     trace = tmp_path / "t.csv"
-    assert main(["simulate", "--device", "impulse", "--velocity", "0.05", "--preload", "--samples", "500", "--trace", str(trace), "--json"]) == 0
+    assert (
+        main(
+            [
+                "simulate",
+                "--device",
+                "impulse",
+                "--velocity",
+                "0.05",
+                "--preload",
+                "--samples",
+                "500",
+                "--trace",
+                str(trace),
+                "--json",
+            ]
+        )
+        == 0
+    )
     out = json.loads(capsys.readouterr().out)
     rows = list(csv.reader(trace.open()))
     assert rows[0] == ["sample", "xi", "xi_dot"] and len(rows) == 502
@@ -94,7 +117,26 @@ def test_cli_simulate_device_preload_and_trace(capsys, tmp_path):
 
 def test_cli_map_json_counts(capsys, tmp_path):
     out_file = tmp_path / "m.npz"
-    code = main(["map", "--mu", "100", "--xi-dot", "1", "5", "--grid", "6", "--samples", "3000", "--jobs", "1", "--out", str(out_file), "--json", "--quiet"])
+    code = main(
+        [
+            "map",
+            "--mu",
+            "100",
+            "--xi-dot",
+            "1",
+            "5",
+            "--grid",
+            "6",
+            "--samples",
+            "3000",
+            "--jobs",
+            "1",
+            "--out",
+            str(out_file),
+            "--json",
+            "--quiet",
+        ]
+    )
     assert code == 0
     d = json.loads(capsys.readouterr().out)
     assert [c["xi_dot"] for c in d["counts"]] == [1.0, 5.0]
@@ -107,9 +149,32 @@ def test_cli_map_json_counts(capsys, tmp_path):
     [
         (["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--samples", "0"], "samples"),
         (["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--delay", "-2"], "delay"),
-        (["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--samples", "many"], "--samples"),
-        (["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--xi0", "1", "--preload"], "--preload"),
-        (["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--samples", "2000000000", "--trace", "t.csv"], "drop --trace"),
+        (
+            ["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--samples", "many"],
+            "--samples",
+        ),
+        (
+            ["simulate", "--mu", "1", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "1", "--xi0", "1", "--preload"],
+            "--preload",
+        ),
+        (
+            [
+                "simulate",
+                "--mu",
+                "1",
+                "--beta",
+                "0.1",
+                "--sigma",
+                "0.1",
+                "--xi-dot",
+                "1",
+                "--samples",
+                "2000000000",
+                "--trace",
+                "t.csv",
+            ],
+            "drop --trace",
+        ),
         (["map", "--mu", "100", "--xi-dot", "1", "--grid", "1", "--out", "x.npz"], "grid"),
         (["map", "--mu", "100", "--xi-dot", "1", "--out", "/nonexistent-dir/x.npz"], "does not exist"),
         (["map", "--mu", "100", "--xi-dot", "1"], "--out"),

@@ -57,7 +57,11 @@ def test_fig7_families_need_sigma_below_half_and_beta_below_half(maps):
     assert np.all(ss[np.isfinite(maps.small_amplitude)] < 0.5)  # small cycles need σ < ½
     assert np.all(bb[np.isfinite(maps.large_amplitude_closed)] < 0.5)  # large cycles need β < ½ (μ = 5: β < sin(ω/2)/ω)
     # the exact large family follows the closed form closely where both exist (D ≈ 1 for M >> 1)
-    both = np.isfinite(maps.large_amplitude) & np.isfinite(maps.large_amplitude_closed) & (maps.large_amplitude_closed > 10)
+    both = (
+        np.isfinite(maps.large_amplitude)
+        & np.isfinite(maps.large_amplitude_closed)
+        & (maps.large_amplitude_closed > 10)
+    )
     rel = np.abs(maps.large_amplitude[both] / maps.large_amplitude_closed[both] - 1)
     assert both.sum() > 10 and np.median(rel) < 0.05
 

@@ -126,7 +126,7 @@ _A_GRID = sorted(set(np.geomspace(1e-4, 50.0, 24).tolist() + [A_STAR - 1e-3, A_S
 @pytest.mark.parametrize("d", [0, 1, 2, 3])
 def test_critical_stiffness_is_where_the_expm_loop_crosses_the_unit_circle(d):
     k = critical_stiffness(1.0, np.array(_A_GRID), 1.0, delay=d)  # m = T = 1, b = a: K = κ
-    for a, kc in zip(_A_GRID, k):
+    for a, kc in zip(_A_GRID, k, strict=False):
         assert _ss_rho_physical(kc * (1 - 1e-6), a, d) < 1.0 < _ss_rho_physical(kc * (1 + 1e-6), a, d), (a, d)
 
 
@@ -179,7 +179,8 @@ def test_gil_closed_form_is_the_bound_where_it_binds():
     k = critical_stiffness(1.0, a, 1.0)
     np.testing.assert_allclose(k, a * gil_factor(a), rtol=1e-9)  # (b/T) f(bT/m) with m = T = 1
     assert dfa.k_gil(dfa.Device(mass=0.01, damping=5.0, coulomb=0.0, resolution=1e-5, period=2e-3)) == pytest.approx(
-        5.0 / 2e-3 * gil_factor(1.0), rel=1e-9)
+        5.0 / 2e-3 * gil_factor(1.0), rel=1e-9
+    )
 
 
 def test_z_minus_one_condition_is_the_bound_beyond_a_star():
@@ -188,7 +189,7 @@ def test_z_minus_one_condition_is_the_bound_beyond_a_star():
     np.testing.assert_allclose(k, [_z_minus_one_form(x) for x in a], rtol=1e-9)
     assert np.all(k < a * gil_factor(a))
     # in (μ, β): β_crit = ½ − tanh(a/2)/a
-    for x, kc in zip(a, k):
+    for x, kc in zip(a, k, strict=False):
         assert x / kc == pytest.approx(0.5 - math.tanh(x / 2) / x, rel=1e-9)  # β = b/(KT) = a/κ
 
 
@@ -257,7 +258,9 @@ def test_characteristic_polynomial_is_continuous_at_small_beta():
     c_small = characteristic_polynomial(3.0, 3.0 * 1e-12)
     np.testing.assert_allclose(c_small, characteristic_polynomial(3.0, 0.0), rtol=1e-11)
     # across the series/closed-form switch at a = ½
-    np.testing.assert_allclose(characteristic_polynomial(1.0, 0.5 - 1e-12), characteristic_polynomial(1.0, 0.5 + 1e-12), rtol=1e-10)
+    np.testing.assert_allclose(
+        characteristic_polynomial(1.0, 0.5 - 1e-12), characteristic_polynomial(1.0, 0.5 + 1e-12), rtol=1e-10
+    )
 
 
 def test_vectorised_calls_equal_scalar_calls():
@@ -308,8 +311,23 @@ def test_type_errors_are_dfa_type_errors():
 
 
 # ---------------------------------------------------------------- what users read
-_CLI = ["stiffness", "--mass", "0.01", "--damping", "5", "--period", "0.01", "--coulomb", "0.1",
-        "--resolution", "1e-5", "--velocity", "0.1", "--stiffness", "1000"]
+_CLI = [
+    "stiffness",
+    "--mass",
+    "0.01",
+    "--damping",
+    "5",
+    "--period",
+    "0.01",
+    "--coulomb",
+    "0.1",
+    "--resolution",
+    "1e-5",
+    "--velocity",
+    "0.1",
+    "--stiffness",
+    "1000",
+]
 
 
 def test_gil_cli_row_prints_the_exact_linear_bound(capsys):

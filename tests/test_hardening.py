@@ -60,7 +60,9 @@ IMPULSE = ["--device", "impulse"]
 
 
 # ------------------------------------------------------------------ 1. numbers parse as numbers
-@pytest.mark.parametrize("text", ["1_000", "١٢", "１２", "nan", "NaN", "inf", "-inf", "Infinity", "0x10", "1e", "", " ", "1,5", "²"])
+@pytest.mark.parametrize(
+    "text", ["1_000", "١٢", "１２", "nan", "NaN", "inf", "-inf", "Infinity", "0x10", "1e", "", " ", "1,5", "²"]
+)
 def test_cli_numbers_decimal_ascii_only(capsys, text):
     err = refused(capsys, "params", f"--mu={text}", "--beta", "0", "--sigma", "0")
     assert "--mu" in err and "ASCII digits" in err
@@ -108,18 +110,37 @@ def test_cli_physical_flag_errors_name_the_flag(capsys):
 def test_cli_map_negative_xi_dot_refused_with_fix(capsys, tmp_path):
     # was: map --xi-dot=-3 silently ran +3
     out = tmp_path / "m.npz"
-    err = refused(capsys, "map", "--mu", "100", "--xi-dot=-3", "--grid", "2", "--samples", "10", "--jobs", "1", "--out", str(out))
+    err = refused(
+        capsys, "map", "--mu", "100", "--xi-dot=-3", "--grid", "2", "--samples", "10", "--jobs", "1", "--out", str(out)
+    )
     assert "--xi-dot 3" in err and not out.exists()
 
 
 # ------------------------------------------------------------------ 2. validators
 CHECKS = [check_real, check_positive, check_nonnegative, check_int]
 HOSTILE = st.one_of(
-    st.text(max_size=5), st.none(), st.booleans(), st.complex_numbers(), st.integers(), st.floats(),
-    st.fractions(), st.decimals(allow_nan=True), st.just(10**400), st.just(-(10**400)), st.just(fractions.Fraction(10**400, 3)),
-    st.just(np.array([1.0, 2.0])), st.just(np.array([[1]])), st.just(np.float32(2.5)), st.just(np.int64(3)),
-    st.just(np.array(2.0)), st.just(np.bool_(True)), st.just(np.complex128(1j)), st.just(object()), st.just([1.0]),
-    st.just(np.float64("nan")), st.just(decimal.Decimal("1e999999")),
+    st.text(max_size=5),
+    st.none(),
+    st.booleans(),
+    st.complex_numbers(),
+    st.integers(),
+    st.floats(),
+    st.fractions(),
+    st.decimals(allow_nan=True),
+    st.just(10**400),
+    st.just(-(10**400)),
+    st.just(fractions.Fraction(10**400, 3)),
+    st.just(np.array([1.0, 2.0])),
+    st.just(np.array([[1]])),
+    st.just(np.float32(2.5)),
+    st.just(np.int64(3)),
+    st.just(np.array(2.0)),
+    st.just(np.bool_(True)),
+    st.just(np.complex128(1j)),
+    st.just(object()),
+    st.just([1.0]),
+    st.just(np.float64("nan")),
+    st.just(decimal.Decimal("1e999999")),
 )
 
 
@@ -148,8 +169,17 @@ def test_validators_400_digit_integer(capsys):
         dfa.Device(mass=10**400, damping=0, coulomb=0, resolution=1e-5, period=1e-3)
 
 
-@pytest.mark.parametrize("value, kind", [("1.0", DFATypeError), (1j, DFATypeError), (None, DFATypeError), (True, DFATypeError),
-                                         (np.array([1.0, 2.0]), DFATypeError), (float("nan"), DFAValueError)])
+@pytest.mark.parametrize(
+    "value, kind",
+    [
+        ("1.0", DFATypeError),
+        (1j, DFATypeError),
+        (None, DFATypeError),
+        (True, DFATypeError),
+        (np.array([1.0, 2.0]), DFATypeError),
+        (float("nan"), DFAValueError),
+    ],
+)
 def test_validators_types(value, kind):
     with pytest.raises(kind, match="^x = "):
         check_real("x", value)
@@ -236,9 +266,25 @@ def test_fig4_map_save_is_atomic(tmp_path, monkeypatch):
 @pytest.mark.parametrize("cmd", ["map", "contours", "simulate"])
 def test_cli_output_file_rules(capsys, tmp_path, cmd):
     (tmp_path / "d").mkdir()
-    base = {"map": ["map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "10", "--jobs", "1", "--quiet", "--out"],
-            "contours": ["contours", "--mu", "5", "--grid", "2", "--max-amplitude", "2", "--out"],
-            "simulate": ["simulate", *DIMLESS, "--xi-dot", "1", "--samples", "10", "--trace"]}[cmd]
+    base = {
+        "map": [
+            "map",
+            "--mu",
+            "100",
+            "--xi-dot",
+            "1",
+            "--grid",
+            "2",
+            "--samples",
+            "10",
+            "--jobs",
+            "1",
+            "--quiet",
+            "--out",
+        ],
+        "contours": ["contours", "--mu", "5", "--grid", "2", "--max-amplitude", "2", "--out"],
+        "simulate": ["simulate", *DIMLESS, "--xi-dot", "1", "--samples", "10", "--trace"],
+    }[cmd]
     flag = base[-1]
     bad = [str(tmp_path / "d") + os.sep, str(tmp_path / "d"), os.devnull, "", str(tmp_path / "missing" / "x.npz")]
     if cmd != "simulate":
@@ -283,10 +329,25 @@ def test_report_interrupted_leaves_folder_untouched(tmp_path, monkeypatch):
 # ------------------------------------------------------------------ 4. --jobs
 def test_cli_jobs_above_cores_refused(capsys, tmp_path):
     too_many = str((os.cpu_count() or 1) + 1)
-    err = refused(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "4", "--jobs", too_many, "--out", str(tmp_path / "m.npz"))
+    err = refused(
+        capsys,
+        "map",
+        "--mu",
+        "100",
+        "--xi-dot",
+        "1",
+        "--grid",
+        "4",
+        "--jobs",
+        too_many,
+        "--out",
+        str(tmp_path / "m.npz"),
+    )
     assert "--jobs" in err and "cores" in err
     assert "--jobs" in refused(capsys, "validate", "--quick", "--jobs", too_many, "--out", str(tmp_path / "v"))
-    assert "--jobs" in refused(capsys, "map", "--mu", "100", "--xi-dot", "1", "--jobs", "0", "--out", str(tmp_path / "m.npz"))
+    assert "--jobs" in refused(
+        capsys, "map", "--mu", "100", "--xi-dot", "1", "--jobs", "0", "--out", str(tmp_path / "m.npz")
+    )
     assert os.listdir(tmp_path) == []
     with pytest.raises(DFAValueError, match="cores"):
         dfa.stability_map(100.0, [1.0], grid=2, samples=10, n_jobs=int(too_many), progress=False)
@@ -295,8 +356,9 @@ def test_cli_jobs_above_cores_refused(capsys, tmp_path):
 # ------------------------------------------------------------------ 5. interruption and closed pipes
 import threading  # noqa: E402
 
-main_thread_only = pytest.mark.skipif(threading.current_thread() is not threading.main_thread(),
-                                      reason="signal handlers need the main thread")
+main_thread_only = pytest.mark.skipif(
+    threading.current_thread() is not threading.main_thread(), reason="signal handlers need the main thread"
+)
 
 
 @main_thread_only
@@ -311,7 +373,23 @@ def test_cli_signal_during_map_nothing_written(capsys, tmp_path, monkeypatch, si
 
     monkeypatch.setattr(maps, "_run_chunk", interrupted)
     out = tmp_path / "m.npz"
-    rc, _, err = run(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "10", "--jobs", "1", "--quiet", "--out", str(out))
+    rc, _, err = run(
+        capsys,
+        "map",
+        "--mu",
+        "100",
+        "--xi-dot",
+        "1",
+        "--grid",
+        "2",
+        "--samples",
+        "10",
+        "--jobs",
+        "1",
+        "--quiet",
+        "--out",
+        str(out),
+    )
     assert rc == code
     assert err == f"dfa: interrupted ({signal.Signals(sig).name}); nothing written\n"
     assert os.listdir(tmp_path) == []
@@ -325,7 +403,9 @@ def test_cli_signal_while_writing_trace(capsys, tmp_path, monkeypatch):
         time.sleep(5)
 
     monkeypatch.setattr(np, "savetxt", interrupted)
-    rc, _, err = run(capsys, "simulate", *DIMLESS, "--xi-dot", "1", "--samples", "50", "--trace", str(tmp_path / "t.csv"))
+    rc, _, err = run(
+        capsys, "simulate", *DIMLESS, "--xi-dot", "1", "--samples", "50", "--trace", str(tmp_path / "t.csv")
+    )
     assert rc == 143 and err == "dfa: interrupted (SIGTERM); nothing written\n"
     assert os.listdir(tmp_path) == []
 
@@ -340,8 +420,24 @@ def test_cli_signal_after_a_file_was_kept(capsys, tmp_path, monkeypatch):
 
     monkeypatch.setattr(cli, "_emit", interrupted)
     out = tmp_path / "m.npz"
-    rc, _, err = run(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "10", "--jobs", "1", "--quiet",
-                     "--json", "--out", str(out))
+    rc, _, err = run(
+        capsys,
+        "map",
+        "--mu",
+        "100",
+        "--xi-dot",
+        "1",
+        "--grid",
+        "2",
+        "--samples",
+        "10",
+        "--jobs",
+        "1",
+        "--quiet",
+        "--json",
+        "--out",
+        str(out),
+    )
     assert rc == 130 and err == f"dfa: interrupted (SIGINT); kept {out} (complete)\n"
     assert dfa.load_map(out).outcome.shape == (1, 2, 2)
 
@@ -362,8 +458,29 @@ def _children_gone(pgid: int, timeout: float = 10.0) -> bool:
 def test_cli_sigterm_stops_joblib_workers(tmp_path):
     out = tmp_path / "m.npz"
     env = dict(os.environ, PYTHONUNBUFFERED="1")
-    proc = subprocess.Popen(DFA + ["map", "--mu", "100", "--xi-dot", "1", "2", "--grid", "60", "--samples", "50000", "--jobs", "2",
-                                   "--out", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, start_new_session=True)
+    proc = subprocess.Popen(
+        DFA
+        + [
+            "map",
+            "--mu",
+            "100",
+            "--xi-dot",
+            "1",
+            "2",
+            "--grid",
+            "60",
+            "--samples",
+            "50000",
+            "--jobs",
+            "2",
+            "--out",
+            str(out),
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env=env,
+        start_new_session=True,
+    )
     # wait for the progress bar: the workers are running
     first = proc.stderr.read(1)
     assert first, "no progress bar"
@@ -387,12 +504,15 @@ def test_cli_closed_pipe_ends_quietly():
 
 
 # ------------------------------------------------------------------ 6. resources
-@pytest.mark.parametrize("argv, word", [
-    (["map", "--mu", "100", "--xi-dot", "1", "--grid", "100000", "--out", "{tmp}/m.npz"], "--grid"),
-    (["contours", "--mu", "5", "--grid", "100000"], "--grid"),
-    (["contours", "--mu", "5", "--grid", "10", "--max-amplitude", "1e13"], "--max-amplitude"),
-    (["simulate", *DIMLESS, "--xi-dot", "1", "--samples", "10000000000"], "--force"),
-])
+@pytest.mark.parametrize(
+    "argv, word",
+    [
+        (["map", "--mu", "100", "--xi-dot", "1", "--grid", "100000", "--out", "{tmp}/m.npz"], "--grid"),
+        (["contours", "--mu", "5", "--grid", "100000"], "--grid"),
+        (["contours", "--mu", "5", "--grid", "10", "--max-amplitude", "1e13"], "--max-amplitude"),
+        (["simulate", *DIMLESS, "--xi-dot", "1", "--samples", "10000000000"], "--force"),
+    ],
+)
 def test_cli_resources_refused_up_front(capsys, tmp_path, argv, word):
     err = refused(capsys, *[a.replace("{tmp}", str(tmp_path)) for a in argv])
     assert word in err and ("memory" in err or "s (estimated" in err)
@@ -428,7 +548,9 @@ def test_preload_position_huge_energy_returns(capsys):
     e = 0.5 * 7e16 * 7e16**2
     assert stored_energy(x, 0.0, 1.0) == pytest.approx(e, rel=1e-15)
     assert x == pytest.approx(math.sqrt(2 * e), rel=1e-15)
-    err = refused(capsys, "simulate", "--mu", "7e16", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "7e16", "--preload")
+    err = refused(
+        capsys, "simulate", "--mu", "7e16", "--beta", "0.1", "--sigma", "0.1", "--xi-dot", "7e16", "--preload"
+    )
     assert "--preload" in err and "bound" in err
     with pytest.raises(DFAValueError, match="overflows"):
         preload_position(1e300, 1e10)
@@ -458,9 +580,18 @@ def test_preload_position_tiny_energies():
 def test_numba_cache_dir_not_writable_falls_back(tmp_path):
     blocker = tmp_path / "a-file"
     blocker.write_text("x")
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(blocker / "cache"))  # under a regular file: never writable, even for root
-    proc = subprocess.run(DFA + ["simulate", "--mu", "100", "--beta", "0.1", "--sigma", "0.3", "--xi-dot", "2", "--samples", "200", "--json"],
-                          capture_output=True, text=True, env=env, timeout=300, cwd=str(tmp_path))
+    env = dict(
+        os.environ, NUMBA_CACHE_DIR=str(blocker / "cache")
+    )  # under a regular file: never writable, even for root
+    proc = subprocess.run(
+        DFA
+        + ["simulate", "--mu", "100", "--beta", "0.1", "--sigma", "0.3", "--xi-dot", "2", "--samples", "200", "--json"],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+        cwd=str(tmp_path),
+    )
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)["samples"] == 200
 
@@ -489,10 +620,37 @@ def test_eq11_max_passive_velocity_delta_k60_counterexample():
 
 def test_cli_map_huge_samples_refused(capsys, tmp_path):
     # found by the fuzz test: `dfa map --samples 999999999999999999` ran for hours, uninterruptibly per point
-    err = refused(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "999999999999999999", "--jobs", "1",
-                  "--out", str(tmp_path / "m.npz"))
+    err = refused(
+        capsys,
+        "map",
+        "--mu",
+        "100",
+        "--xi-dot",
+        "1",
+        "--grid",
+        "2",
+        "--samples",
+        "999999999999999999",
+        "--jobs",
+        "1",
+        "--out",
+        str(tmp_path / "m.npz"),
+    )
     assert "--samples" in err and "--force" in err
-    err = refused(capsys, "map", "--mu", "100", "--xi-dot", "1", "--grid", "20000", "--jobs", "1", "--out", str(tmp_path / "m.npz"))
+    err = refused(
+        capsys,
+        "map",
+        "--mu",
+        "100",
+        "--xi-dot",
+        "1",
+        "--grid",
+        "20000",
+        "--jobs",
+        "1",
+        "--out",
+        str(tmp_path / "m.npz"),
+    )
     assert "--grid 20000" in err and " h " in err
     assert os.listdir(tmp_path) == []
 
@@ -504,9 +662,14 @@ def test_cli_table1_groups_without_float_exceptions(capsys, argv):
     assert "is invalid" in err and argv[0] in err
 
 
-@pytest.mark.parametrize("cmd", [["stiffness", "--device", "phantom", "--xi-dot", "1"],
-                                 ["check", "--device", "phantom", "--xi-dot", "1"],
-                                 ["simulate", "--mu", "100", "--beta", "1", "--sigma", "1", "--xi-dot", "1"]])
+@pytest.mark.parametrize(
+    "cmd",
+    [
+        ["stiffness", "--device", "phantom", "--xi-dot", "1"],
+        ["check", "--device", "phantom", "--xi-dot", "1"],
+        ["simulate", "--mu", "100", "--beta", "1", "--sigma", "1", "--xi-dot", "1"],
+    ],
+)
 def test_cli_huge_delay_refused_with_the_limit(capsys, cmd):
     # found by the fuzz test: --delay 999999999999999999 reached numpy's "array is too big" in dfa.linear
     err = refused(capsys, *cmd, "--delay", "999999999999999999")

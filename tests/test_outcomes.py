@@ -22,6 +22,7 @@ BELOW_HALF = math.nextafter(0.5, 0.0)
 
 # ---------------------------------------------------------------- chatter and rest
 
+
 def test_fig4_region_c_reproducer_chatters_and_never_rests():
     """μ = 100, β = σ = 0.3, ξ'0 = 1: `dfa check` says globally unstable (region c); the run never rests."""
     r = simulate(100.0, 0.3, 0.3, 1.0)
@@ -32,10 +33,10 @@ def test_fig4_region_c_reproducer_chatters_and_never_rests():
 
 @settings(max_examples=60, deadline=None)
 @given(st.floats(0.5, 500.0), st.floats(0.0, 1.5), st.floats(0.0, BELOW_HALF), st.floats(-6.0, 6.0))
-@example(100.0, 0.3, 0.0, 1.0)        # σ = 0
-@example(100.0, 0.0, 0.3, 1.0)        # β = 0
+@example(100.0, 0.3, 0.0, 1.0)  # σ = 0
+@example(100.0, 0.0, 0.3, 1.0)  # β = 0
 @example(100.0, 0.8, BELOW_HALF, 1.0)  # σ just below ½
-@example(5.0, 0.8, BELOW_HALF, 0.0)    # starts at rest on ξ = 0, but |φ| = ½ > σ pushes it off
+@example(5.0, 0.8, BELOW_HALF, 0.0)  # starts at rest on ξ = 0, but |φ| = ½ > σ pushes it off
 def test_sigma_below_half_never_rests(mu, beta, sigma, v0):
     """With the encoder |φ| = |⌊ξ⌋ + ½| >= ½ > σ at every level (eq. 5): the device can never stick."""
     r = simulate(mu, beta, sigma, v0, 4000, record=False)
@@ -46,9 +47,9 @@ def test_sigma_below_half_never_rests(mu, beta, sigma, v0):
 @settings(max_examples=60, deadline=None)
 @given(st.floats(0.5, 300.0), st.floats(0.0, 1.5), st.floats(0.0, 2.5), st.floats(-4.0, 4.0), st.integers(0, 2))
 @example(100.0, 0.3, 1.5, 2.0, 0)
-@example(5.0, 0.2, 0.5, 0.0, 0)   # σ = ½ exactly at ξ = 0: |φ| = σ sticks at once
+@example(5.0, 0.2, 0.5, 0.0, 0)  # σ = ½ exactly at ξ = 0: |φ| = σ sticks at once
 def test_rest_only_at_the_absorbing_state(mu, beta, sigma, v0, delay):
-    """"rest" iff the kernel found the absorbing state: ξ' = 0, |φ| <= σ, every pending force equal."""
+    """ "rest" iff the kernel found the absorbing state: ξ' = 0, |φ| <= σ, every pending force equal."""
     r = simulate(mu, beta, sigma, v0, 4000, delay=delay)
     assert (r.outcome == "rest") == (r.rest_sample is not None)
     if r.outcome == "rest":
@@ -69,8 +70,16 @@ def test_fig4_region_b_is_light_not_white():
     """Paper Fig. 4 paints region b (β > ½, σ < ½) light: persisting oscillation, never rest.
 
     At σ = 0 a few points keep a settled cycle of 1.3-4.4 ticks (the exact D exceeds 1 near M ≈ 1.24, eq. 41)."""
-    m = stability_map(100.0, [1.0, 5.0], beta_range=(0.55, 1.0), sigma_range=(0.0, 0.45), grid=5, samples=50_000,
-                      n_jobs=1, progress=False)
+    m = stability_map(
+        100.0,
+        [1.0, 5.0],
+        beta_range=(0.55, 1.0),
+        sigma_range=(0.0, 0.45),
+        grid=5,
+        samples=50_000,
+        n_jobs=1,
+        progress=False,
+    )
     names = [OUTCOMES[c] for c in m.outcome.ravel()]
     assert set(names) == {"chatter", "oscillating"}
     assert names.count("chatter") >= 40
@@ -79,7 +88,9 @@ def test_fig4_region_b_is_light_not_white():
 
 # ---------------------------------------------------------------- run length and undecided
 
-IMPULSE_50KG = dict(mu=156250.0, beta=0.125, sigma=0.024 / (80.0 * 314e-6))  # Impulse Engine, m overridden to 50 kg, K = 80 N/m
+IMPULSE_50KG = dict(
+    mu=156250.0, beta=0.125, sigma=0.024 / (80.0 * 314e-6)
+)  # Impulse Engine, m overridden to 50 kg, K = 80 N/m
 
 
 def _impulse_50kg():
@@ -106,7 +117,10 @@ def test_cli_table2_impulse_engine_at_50kg_rests(capsys):
     assert main(["simulate", "--device", "impulse", "--mass", "50", "--velocity", "0.1"]) == 0
     out = capsys.readouterr().out
     assert "rest: came to rest" in out and "181900" in out and "oscillating" not in out
-    assert main(["simulate", "--device", "impulse", "--mass", "50", "--velocity", "0.1", "--samples", "50000", "--json"]) == 0
+    assert (
+        main(["simulate", "--device", "impulse", "--mass", "50", "--velocity", "0.1", "--samples", "50000", "--json"])
+        == 0
+    )
     d = json.loads(capsys.readouterr().out)
     assert d["outcome"] == "undecided" and d["suggested_samples"] >= 181_900 and d["samples_auto"] is False
 
@@ -131,6 +145,7 @@ def test_default_samples_closed_form():
 
 # ---------------------------------------------------------------- thresholds, either side
 
+
 def _stats(peaks, tmin=-0.3, tmax=0.3, count=10, fmin=-1.0, fmax=0.0):
     s = np.zeros(_kernel.NSTATS)
     s[: _kernel.NSEG] = peaks
@@ -147,7 +162,12 @@ def _name(stats, sa=1.0, growth=1.25, settle=1e-3, rest=-1):
 def test_rule_defaults_are_the_documented_ones():
     for fn in (simulate, stability_map):
         ps = inspect.signature(fn).parameters
-        assert (ps["stable_amplitude"].default, ps["growth"].default, ps["settle"].default, ps["bound"].default) == (1.0, 1.25, 1e-3, 1e6)
+        assert (ps["stable_amplitude"].default, ps["growth"].default, ps["settle"].default, ps["bound"].default) == (
+            1.0,
+            1.25,
+            1e-3,
+            1e6,
+        )
     assert OUTCOMES == ("rest", "oscillating", "unstable", "chatter", "undecided")
     assert (_kernel.REST, _kernel.OSCILLATING, _kernel.UNSTABLE, _kernel.CHATTER, _kernel.UNDECIDED) == (0, 1, 2, 3, 4)
 
@@ -181,8 +201,12 @@ def test_stable_amplitude_threshold_either_side():
     r = simulate(2.0, 0.4, 0.1, 2.0, 20000, record=False)
     assert r.outcome == "oscillating"
     assert simulate(2.0, 0.4, 0.1, 2.0, 20000, record=False, stable_amplitude=r.amplitude).outcome == "oscillating"
-    assert simulate(2.0, 0.4, 0.1, 2.0, 20000, record=False,
-                    stable_amplitude=math.nextafter(r.amplitude, math.inf)).outcome == "chatter"
+    assert (
+        simulate(
+            2.0, 0.4, 0.1, 2.0, 20000, record=False, stable_amplitude=math.nextafter(r.amplitude, math.inf)
+        ).outcome
+        == "chatter"
+    )
 
 
 def test_settle_threshold_either_side():
@@ -200,6 +224,7 @@ def test_undecided_suggests_a_longer_run():
 
 # ---------------------------------------------------------------- force step
 
+
 @settings(max_examples=40, deadline=None)
 @given(st.floats(1.0, 200.0), st.floats(0.0, 1.2), st.floats(0.0, 0.6), st.floats(0.1, 3.0), st.booleans())
 @example(100.0, 0.3, 0.3, 1.0, True)
@@ -209,7 +234,7 @@ def test_force_step_is_the_range_of_levels_read_in_the_tail(mu, beta, sigma, v0,
     r = simulate(mu, beta, sigma, v0, n, quantize=quantize)
     if r.outcome in ("rest", "unstable"):
         return
-    tail = r.xi[n + 1 - _tail_length(n, mu):]
+    tail = r.xi[n + 1 - _tail_length(n, mu) :]
     levels = np.floor(tail) if quantize else tail
     assert r.force_peak_to_peak == levels.max() - levels.min()
 
@@ -253,13 +278,15 @@ def test_report_sentence_names_the_buzz_in_newtons_and_hertz():
 
 # ---------------------------------------------------------------- maps: codes and figure
 
+
 def _all_classes_map():
     beta = np.linspace(0.0, 1.0, 10)
     sigma = np.linspace(0.0, 2.0, 10)
     out = np.tile((np.arange(10) // 2).astype(np.int8), (10, 1))[None]  # column bands 0..4
     nan = np.full(out.shape, np.nan)
-    return StabilityMap(mu=100.0, xi_dots=(0.0,), beta=beta, sigma=sigma, outcome=out, amplitude=nan, frequency=nan,
-                        samples=1000)
+    return StabilityMap(
+        mu=100.0, xi_dots=(0.0,), beta=beta, sigma=sigma, outcome=out, amplitude=nan, frequency=nan, samples=1000
+    )
 
 
 def test_fig4_map_codes_round_trip_with_their_names(tmp_path):
@@ -300,8 +327,11 @@ def test_fig4_plot_colours_and_legend_per_class():
     from matplotlib.patches import Patch
 
     legend = ax.get_legend()
-    leg = {t.get_text().split(" ")[0]: to_rgb(h.get_facecolor())
-           for t, h in zip(legend.get_texts(), legend.legend_handles) if isinstance(h, Patch)}
+    leg = {
+        t.get_text().split(" ")[0]: to_rgb(h.get_facecolor())
+        for t, h in zip(legend.get_texts(), legend.legend_handles, strict=False)
+        if isinstance(h, Patch)
+    }
     assert set(OUTCOMES) <= set(leg)
     colours = {}
     for code, name in enumerate(OUTCOMES):
@@ -310,22 +340,45 @@ def test_fig4_plot_colours_and_legend_per_class():
         assert px == pytest.approx(np.array(leg[name]), abs=2 / 255), name
         colours[name] = px
     lum = {k: float(np.mean(v)) for k, v in colours.items()}
-    assert lum["rest"] == pytest.approx(1.0)                      # white
-    assert 0.5 < lum["oscillating"] < lum["chatter"] < 1.0        # two light shades, chatter the lighter
-    assert lum["unstable"] < 0.25                                 # dark
+    assert lum["rest"] == pytest.approx(1.0)  # white
+    assert 0.5 < lum["oscillating"] < lum["chatter"] < 1.0  # two light shades, chatter the lighter
+    assert lum["unstable"] < 0.25  # dark
     und = colours["undecided"]
-    assert np.ptp(und) > 0.3                                      # a colour, not a grey: visible against all others
+    assert np.ptp(und) > 0.3  # a colour, not a grey: visible against all others
 
 
 def test_cli_map_text_counts_every_class(capsys, tmp_path):
     out_file = tmp_path / "m.npz"
-    argv = ["map", "--mu", "100", "--xi-dot", "1", "--beta-range", "0.6", "1", "--sigma-range", "0", "0.4", "--grid", "3",
-            "--samples", "20000", "--jobs", "1", "--out", str(out_file), "--quiet"]
+    argv = [
+        "map",
+        "--mu",
+        "100",
+        "--xi-dot",
+        "1",
+        "--beta-range",
+        "0.6",
+        "1",
+        "--sigma-range",
+        "0",
+        "0.4",
+        "--grid",
+        "3",
+        "--samples",
+        "20000",
+        "--jobs",
+        "1",
+        "--out",
+        str(out_file),
+        "--quiet",
+    ]
     assert main(argv) == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[1].split() == ["ξ'0", "rest", "chatter", "oscillating", "unstable", "undecided"]
     counts = load_map(out_file).counts()[0]
-    assert lines[3].split() == ["1", *(str(counts[k]) for k in ("rest", "chatter", "oscillating", "unstable", "undecided"))]
+    assert lines[3].split() == [
+        "1",
+        *(str(counts[k]) for k in ("rest", "chatter", "oscillating", "unstable", "undecided")),
+    ]
     assert counts["rest"] == 0 and counts["chatter"] >= 6  # region b: never at rest
 
 
@@ -345,7 +398,9 @@ def test_gil_linear_loop_outcome_flips_at_the_exact_linear_bound(delay):
     assert out == {0.98: "rest", 1.02: "unstable"}
 
 
-@pytest.mark.parametrize("args", [(3e7, 0.5, 0.5, 0.002, 5000), (1e10, 0.8, 0.8, 0.5, 50_000), (1e6, 0.6, 0.6, 0.3, 3000)])
+@pytest.mark.parametrize(
+    "args", [(3e7, 0.5, 0.5, 0.002, 5000), (1e10, 0.8, 0.8, 0.5, 50_000), (1e6, 0.6, 0.6, 0.3, 3000)]
+)
 def test_eq6_passive_short_runs_are_never_called_unstable(args):
     """Red-team finding: a run shorter than a few periods 2π√μ was called 'unstable' by the envelope rule while
     |ξ| was only rising from the impact; these points are proven passive (eq. 6), so the answer is 'undecided'."""

@@ -28,8 +28,8 @@ def test_catalogue_is_package_data():
 
 def test_top_level_functions_survive_submodule_imports():
     # a submodule named like a function would rebind dfa.<name> to the module on import
-    import dfa.cycles  # noqa: F401
-    import dfa.simulation  # noqa: F401
+    import dfa.cycles
+    import dfa.simulation
 
     assert dfa.simulate.__name__ == "simulate" and callable(dfa.simulate)
     assert dfa.limit_cycles.__name__ == "limit_cycles" and callable(dfa.limit_cycles)

@@ -9,21 +9,23 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import matplotlib.pyplot as plt  # noqa: E402
-import pytest  # noqa: E402
+import matplotlib.pyplot as plt
+import pytest
 
-import dfa  # noqa: E402
-from dfa import plotting  # noqa: E402
-from dfa.cli import main  # noqa: E402
-from dfa.contours import contour_maps  # noqa: E402
-from dfa.cycles import limit_cycles  # noqa: E402
-from dfa.loop import nyquist_locus_response  # noqa: E402
-from dfa.maps import stability_map  # noqa: E402
-from dfa.simulation import simulate  # noqa: E402
-from dfa.stiffness import stiffness_response  # noqa: E402
+import dfa
+from dfa import plotting
+from dfa.cli import main
+from dfa.contours import contour_maps
+from dfa.cycles import limit_cycles
+from dfa.loop import nyquist_locus_response
+from dfa.maps import stability_map
+from dfa.simulation import simulate
+from dfa.stiffness import stiffness_response
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-UNIT = re.compile(r"\((–|encoder ticks|ticks|samples|s|m/s|N/m|rad/s|N·m/rad|force ticks per position tick|%|ticks per sample)\)")
+UNIT = re.compile(
+    r"\((–|encoder ticks|ticks|samples|s|m/s|N/m|rad/s|N·m/rad|force ticks per position tick|%|ticks per sample)\)"
+)
 
 
 def rendered(fig, tmp_path, name):
@@ -94,14 +96,23 @@ def test_stiffness_response_bad_input():
 @pytest.fixture(scope="module")
 def report_dir(tmp_path_factory):
     out = tmp_path_factory.mktemp("report")
-    assert main(["report", "--device", "impulse", "--velocity", "0.05", "--out", str(out), "--format", "both", "--quiet"]) == 0
+    assert (
+        main(["report", "--device", "impulse", "--velocity", "0.05", "--out", str(out), "--format", "both", "--quiet"])
+        == 0
+    )
     return out
 
 
 def test_report_has_every_section_and_figure(report_dir):
     md = (report_dir / "design_report_impulse-engine.md").read_text()
-    for section in ("# Design report: Impulse Engine", "## Device", "## Passivity and stiffness limits",
-                    "## Predicted limit cycles", "## How far to trust these predictions", "**Verdict.**"):
+    for section in (
+        "# Design report: Impulse Engine",
+        "## Device",
+        "## Passivity and stiffness limits",
+        "## Predicted limit cycles",
+        "## How far to trust these predictions",
+        "**Verdict.**",
+    ):
         assert section in md
     figs = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", md)
     assert len(figs) == 5
@@ -115,7 +126,10 @@ def test_report_numbers_equal_the_api(report_dir):
     lim = dfa.stiffness_limits(dev, 0.05, 80.0)
     crit = dfa.device_criterion(dev, 80.0, 0.05)
     assert f"| K_max at this speed (eq. 11) | {lim.k_max:.5g} N/m |" in md
-    assert f"| exact linear bound of the sampled spring (all Jury conditions; Gil et al. where binding) | {lim.k_gil:.5g} N/m |" in md
+    assert (
+        f"| exact linear bound of the sampled spring (all Jury conditions; Gil et al. where binding) | {lim.k_gil:.5g} N/m |"
+        in md
+    )
     assert f"{crit.critical_xi_dot:.4g} ticks/sample" in md
     assert f"region {crit.region}" in md
     g = dfa.cycles.growth_threshold(dev.params(80.0), dev, model="zoh", max_amplitude=5000.0)
@@ -127,7 +141,10 @@ def test_report_verdict_says_what_is_proven_and_names_speed_and_delay(report_dir
     dev = dfa.get_device("impulse").device
     lim = dfa.stiffness_limits(dev, 0.05, 80.0)
     assert "**passive (proven: the energy cannot grow)**" in md
-    assert f"at 0.05 m/s with a computational delay of 0 samples the largest passive stiffness is {lim.k_max:.5g} N/m" in md
+    assert (
+        f"at 0.05 m/s with a computational delay of 0 samples the largest passive stiffness is {lim.k_max:.5g} N/m"
+        in md
+    )
     assert "| computational delay d | 0 samples |" in md
     assert "locally unstable" not in md and "globally unstable" not in md
 
@@ -140,7 +157,10 @@ def test_report_verdict_for_a_stiffness_above_the_static_limit_and_with_delay():
     lim = dfa.stiffness_limits(dev, 0.1, 60000.0, delay=1)
     text = _verdict_text(dev, 60000.0, 0.1, 1, crit, lim, None)
     assert f"**not passive even at rest (K > 2c/Δ = {2 * dev.coulomb / dev.resolution:.5g} N/m)**" in text
-    assert f"At 0.1 m/s with a computational delay of 1 sample the largest passive stiffness is {lim.k_max:.5g} N/m" in text
+    assert (
+        f"At 0.1 m/s with a computational delay of 1 sample the largest passive stiffness is {lim.k_max:.5g} N/m"
+        in text
+    )
     assert lim.max_passive_velocity_text().startswith("none: not passive even at rest")  # formatted None before the fix
     crit = dfa.device_criterion(dev, 20000.0, 0.1, delay=1)
     lim = dfa.stiffness_limits(dev, 0.1, 20000.0, delay=1)
@@ -162,14 +182,27 @@ def test_report_bad_input(capsys, tmp_path):
     assert "does not exist" in capsys.readouterr().err
 
 
-EXAMPLES = ["table2_devices", "fig3_regions", "fig4_stability_maps", "fig5_trajectories", "fig7_contours", "nyquist", "design_stiffness"]
+EXAMPLES = [
+    "table2_devices",
+    "fig3_regions",
+    "fig4_stability_maps",
+    "fig5_trajectories",
+    "fig7_contours",
+    "nyquist",
+    "design_stiffness",
+]
 
 
 @pytest.mark.parametrize("name", EXAMPLES)
 def test_example_script_runs_and_writes_its_output(name, tmp_path):
     env = dict(os.environ, MPLBACKEND="Agg")
-    proc = subprocess.run([sys.executable, os.path.join(ROOT, "examples", f"{name}.py"), "--out", str(tmp_path), "--quick"],
-                          capture_output=True, text=True, env=env, timeout=300)
+    proc = subprocess.run(
+        [sys.executable, os.path.join(ROOT, "examples", f"{name}.py"), "--out", str(tmp_path), "--quick"],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+    )
     assert proc.returncode == 0, proc.stderr
     produced = list(tmp_path.iterdir())
     assert produced and all(p.stat().st_size > 0 for p in produced)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 README = (ROOT / "README.md").read_text(encoding="utf-8")
-TRUST = README[README.index("## How far to trust it"):README.index("## Speed")]
+TRUST = README[README.index("## How far to trust it") : README.index("## Speed")]
 VALIDATION = json.loads((ROOT / "reports/validation/validation.json").read_text(encoding="utf-8"))
 SUMMARY = VALIDATION.get("summary", VALIDATION)
 DELAY = json.loads((ROOT / "reports/validation/delay_soundness.json").read_text(encoding="utf-8"))
@@ -49,7 +49,10 @@ def test_eq6_grid_soundness_and_conservatism_in_readme_match_the_committed_run()
 
 def test_describing_function_numbers_in_readme_match_the_committed_run():
     flat = _flat(TRUST)
-    assert f"within {100 * SUMMARY['speed_df_median_error']:.2f} % (median) and {100 * SUMMARY['speed_df_worst_error']:.0f} % (worst)" in flat
+    assert (
+        f"within {100 * SUMMARY['speed_df_median_error']:.2f} % (median) and {100 * SUMMARY['speed_df_worst_error']:.0f} % (worst)"
+        in flat
+    )
     assert f"median {100 * SUMMARY['short_period_frequency_error']:.0f} %" in flat
     assert f"{100 * SUMMARY['long_period_frequency_error']:.0f} % above" in flat
     loeb = SUMMARY["loeb"]

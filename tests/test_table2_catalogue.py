@@ -79,7 +79,7 @@ def test_table2_incomplete_rows_are_kept_not_invented():
     human = rows["Human operator"]
     assert human.incomplete and human.coulomb is None and human.mass == 0.150
     with pytest.raises(dfa.DFAValueError, match="incomplete"):
-        omega.device
+        _ = omega.device
 
 
 def test_table2_re35_is_rotary_with_8192_counts():
@@ -89,7 +89,10 @@ def test_table2_re35_is_rotary_with_8192_counts():
     assert e.device.units["stiffness"] == "N·m/rad"
 
 
-@pytest.mark.parametrize("query, expected", [("phantom", "Phantom 1.0"), ("DELTA", "Delta"), ("impulse-engine", "Impulse Engine"), ("tool", "Toolhandle")])
+@pytest.mark.parametrize(
+    "query, expected",
+    [("phantom", "Phantom 1.0"), ("DELTA", "Delta"), ("impulse-engine", "Impulse Engine"), ("tool", "Toolhandle")],
+)
 def test_catalogue_lookup_is_case_insensitive_with_prefixes(query, expected):
     assert get_device(query).name == expected
 
@@ -103,6 +106,18 @@ def test_catalogue_unknown_name_suggests_closest():
 
 def test_catalogue_json_record_shape():
     rec = get_device("Toolhandle").as_dict()
-    for key in ("name", "mass", "damping", "coulomb", "resolution", "period", "mu", "beta", "sigma", "printed", "discrepancies"):
+    for key in (
+        "name",
+        "mass",
+        "damping",
+        "coulomb",
+        "resolution",
+        "period",
+        "mu",
+        "beta",
+        "sigma",
+        "printed",
+        "discrepancies",
+    ):
         assert key in rec
     assert rec["discrepancies"][0]["parameter"] == "mu"

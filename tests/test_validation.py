@@ -24,9 +24,16 @@ def quick(tmp_path_factory):
 def test_validation_writes_report_and_figures(quick):
     out, _s = quick
     md = (out / "validation.md").read_text()
-    for section in ("## 1. Limit cycles", "## 2. Critical impact speed", "## 3. Criterion soundness", "## 4. Where the describing function breaks down"):
+    for section in (
+        "## 1. Limit cycles",
+        "## 2. Critical impact speed",
+        "## 3. Criterion soundness",
+        "## 4. Where the describing function breaks down",
+    ):
         assert section in md
-    assert (out / "validation_cycles.png").stat().st_size > 2000 and (out / "validation_speeds.png").stat().st_size > 2000
+    assert (out / "validation_cycles.png").stat().st_size > 2000 and (
+        out / "validation_speeds.png"
+    ).stat().st_size > 2000
 
 
 def test_eq6_criterion_is_sound_on_the_quick_grid(quick):
