@@ -9,7 +9,7 @@ STAMP  := $(VENV)/.dfa-installed
 export NUMBA_CACHE_DIR := $(CURDIR)/.cache/numba
 export MPLBACKEND := Agg
 
-.PHONY: all venv report test lint explore bench readme clean
+.PHONY: all venv report test lint docs explore bench readme clean
 
 all: test
 
@@ -41,8 +41,13 @@ explore: $(STAMP)
 readme: $(STAMP)
 	$(BIN)/python examples/readme_console.py --write
 
+# API reference, paper reproduction, validation and benchmarks as a site in docs/_build/html.
+docs: $(STAMP)
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[docs]'
+	$(BIN)/python -m sphinx -b html -q docs docs/_build/html
+
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py --out reports/benchmarks.md
 
 clean:
-	rm -rf $(VENV) .cache build *.egg-info
+	rm -rf $(VENV) .cache build *.egg-info docs/_build docs/generated docs/api.md

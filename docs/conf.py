@@ -1,0 +1,58 @@
+"""Sphinx configuration of the dfa documentation (``make docs`` builds it into docs/_build/html)."""
+
+from __future__ import annotations
+
+import importlib.metadata
+import os
+import sys
+
+sys.path.insert(0, os.path.abspath(".."))
+
+project = "dfa"
+author = "dfa developers"
+copyright = "2026, dfa developers"
+try:
+    release = importlib.metadata.version("dfa-haptics")
+except importlib.metadata.PackageNotFoundError:  # the distribution is still named "dfa" in an old install
+    release = importlib.metadata.version("dfa")
+version = release
+
+extensions = [
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.mathjax",
+    "sphinx.ext.viewcode",
+    "numpydoc",
+    "myst_parser",
+]
+autosummary_generate = True
+autodoc_typehints = "none"  # numpydoc's Parameters sections carry the types and units
+numpydoc_show_class_members = False
+numpydoc_class_members_toctree = False
+myst_enable_extensions = ["dollarmath", "colon_fence"]
+myst_heading_anchors = 3
+source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
+exclude_patterns = ["_build"]
+suppress_warnings = ["myst.header", "myst.xref_missing"]
+html_theme = "pydata_sphinx_theme"
+html_title = f"dfa {release}"
+
+
+def _write_api_page() -> None:
+    """Write api.md from ``dfa.__all__`` so the reference never lists a stale name."""
+    import dfa
+
+    names = "\n".join(f"   {n}" for n in sorted(dfa.__all__))
+    text = (
+        "# API reference\n\nEverything listed here is in `dfa.__all__`; the rest of the package is internal.\n\n"
+        "```{eval-rst}\n.. currentmodule:: dfa\n\n.. autosummary::\n   :toctree: generated\n   :nosignatures:\n\n"
+        f"{names}\n```\n"
+    )
+    path = os.path.join(os.path.dirname(__file__), "api.md")
+    old = open(path, encoding="utf-8").read() if os.path.exists(path) else None
+    if old != text:
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+
+
+_write_api_page()
