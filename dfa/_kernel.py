@@ -32,6 +32,9 @@ import math
 import numpy as np
 from numba import njit
 
+from ._exprel import chi, phi1, phi2, psi
+from .criterion import spring_energy_core
+
 # outcome codes (also the codes of dfa.maps.StabilityMap.outcome and its .npz file)
 REST = 0  # came to rest: the absorbing state was reached
 OSCILLATING = 1  # persistent, settled cycle of amplitude >= stable_amplitude (1 tick)
@@ -43,81 +46,255 @@ NSEG = 8  # segments of the run used to judge a growing or changing envelope
 NSTATS = NSEG + 10  # length of the stats array of simulate_kernel
 
 
-@njit(cache=True, inline="always")
-def _phi1(u):
-    if u < 0.5:
-        s = 0.0
-        term = 1.0  # (-u)^n/(n+1)!
-        for n in range(22):
-            s += term
-            term *= -u / (n + 2)
-        return s
-    return -math.expm1(-u) / u
+_spring = njit(cache=True, inline="always")(spring_energy_core)  # H_c (eq. 18): criterion's one formula
+
+
+# ----------------------------------------------------------------------------- the steps of one sample
 
 
 @njit(cache=True, inline="always")
-def _phi2(u):
-    if u < 0.5:
-        s = 0.0
-        term = 0.5  # (-u)^n/(n+2)!
-        for n in range(22):
-            s += term
-            term *= -u / (n + 3)
-        return s
-    return (math.expm1(-u) + u) / (u * u)
+def force(x, quantize):
+    """Force read from position ``x``: −⌊ξ⌋ − ½ with the encoder, −ξ without (units of KΔ)."""
+    return -(math.floor(x) + 0.5) if quantize else -x
 
 
 @njit(cache=True, inline="always")
-def _psi(u):
-    if u < 0.5:
-        s = 0.0
-        fact = 2.0  # n!
-        upow = 1.0  # u^(n-2)
-        sign = 1.0
-        for n in range(2, 26):
-            if n > 2:
-                fact *= n
-                upow *= u
-                sign = -sign
-            s += sign * (2.0 ** (n - 1) - 1.0) * upow / fact
-        return s
-    return (-math.expm1(-u) + 0.5 * math.expm1(-2.0 * u)) / (u * u)
+def delayed_force(fnew, hist, pos, delay):
+    """Push this sample's reading into the ring ``hist`` (length d + 1); return (φ, new pos).
+
+    ``hist[pos]`` holds the oldest reading; φ is the reading of d samples ago.
+    """
+    if delay == 0:
+        return fnew, pos
+    hist[pos] = fnew
+    pos += 1
+    if pos == delay + 1:
+        pos = 0
+    return hist[pos], pos
 
 
 @njit(cache=True, inline="always")
-def _chi(u):
-    if u < 0.5:
-        s = 0.0
-        fact = 6.0
-        upow = 1.0
-        sign = 1.0
-        for n in range(3, 27):
-            if n > 3:
-                fact *= n
-                upow *= u
-                sign = -sign
-            s += sign * (2.0 ** (n - 1) - 2.0) * upow / fact
-        return s
-    return (u + 2.0 * math.expm1(-u) - 0.5 * math.expm1(-2.0 * u)) / (u * u * u)
+def at_rest(v, phi, sigma, hist, delay):
+    """The absorbing state: stuck (ξ' = 0, |φ| <= σ) and every pending force equal to φ."""
+    if v != 0.0 or not abs(phi) <= sigma:
+        return False
+    for i in range(delay):  # delay + 1 readings; with d = 0 the only one is φ
+        if hist[i] != phi or hist[i + 1] != phi:
+            return False
+    return True
 
 
 @njit(cache=True, inline="always")
-def _viscous(v, a, beta, mu, t):
-    """β ∫₀ᵗ ξ'² dt for one phase."""
+def step(x, v, phi, mu, beta, sigma, rate, e1, p1, p2):
+    """Exact motion over one sample under the constant force φ (stick-slip included).
+
+    ``rate`` = β/μ, ``e1`` = e^{−rate}, ``p1`` = φ₁(rate), ``p2`` = φ₂(rate).
+    Returns (ξ, ξ' at the end; ξ_r, the position where ξ' reached 0 (the end
+    position when it did not); t*, that time (1: no stop, 0: stuck all along);
+    a, the first phase's acceleration; a₂, t_r, the restart phase's
+    acceleration and duration (0, 0: no restart); stopped).
+    """
+    if v == 0.0 and abs(phi) <= sigma:
+        return x, v, x, 0.0, 0.0, 0.0, 0.0, False  # stuck for the whole sample (ξ' = ±0 kept)
+    s = 1.0 if (v > 0.0 or (v == 0.0 and phi > 0.0)) else -1.0
+    a = (phi - sigma * s) / mu
+    x1 = x + v * p1 + a * p2
+    v1 = v * e1 + a * p1
+    if v1 * s > 0.0 or v == 0.0 or a == 0.0:  # a = 0: ξ' decays without crossing (may underflow to 0)
+        return x1, v1, x1, 1.0, a, 0.0, 0.0, False
+    # velocity reaches zero at t* within this sample
+    # t* = (μ/β) log1p(x) = (−ξ'/a) log1p(x)/x, x = −ξ'β/(aμ) > 0 (t* = −ξ'/a at β = 0)
+    xq = -v * beta / (a * mu)
+    tstar = (-v / a) * (math.log1p(xq) / xq if xq > 0.0 else 1.0)
+    if tstar > 1.0:
+        tstar = 1.0  # rounding guard: v1 * s <= 0 means t* <= 1
+    u = rate * tstar
+    xr = x + v * tstar * phi1(u) + a * tstar * tstar * phi2(u)
+    tr = 1.0 - tstar
+    if abs(phi) > sigma and tr > 0.0:  # restarts in direction sgn φ; cannot stop again within the sample
+        s2 = 1.0 if phi > 0.0 else -1.0
+        a2 = (phi - sigma * s2) / mu
+        u2 = rate * tr
+        return xr + a2 * tr * tr * phi2(u2), a2 * tr * phi1(u2), xr, tstar, a, a2, tr, True
+    return xr, 0.0, xr, tstar, a, 0.0, 0.0, True
+
+
+@njit(cache=True, inline="always")
+def viscous(v, a, beta, mu, t):
+    """β ∫₀ᵗ ξ'² dt for one phase starting at speed v with acceleration a."""
     if beta == 0.0:
         return 0.0
     u = beta * t / mu
-    return beta * (v * v * t * _phi1(2.0 * u) + 2.0 * v * a * t * t * _psi(u) + a * a * t * t * t * _chi(u))
+    return beta * (v * v * t * phi1(2.0 * u) + 2.0 * v * a * t * t * psi(u) + a * a * t * t * t * chi(u))
 
 
 @njit(cache=True, inline="always")
-def _hc(x):
-    """Pseudo-elastic energy of the quantized spring, H_c = ½ξ² + ½(p − p²) (eq. 18)."""
-    p = x - math.floor(x)
-    return 0.5 * x * x + 0.5 * (p - p * p)
+def energy_terms(xs, vs, x, v, phi, xr, tstar, a, a2, tr, mu, beta, sigma, quantize):
+    """(generated, viscous, Coulomb, stored) of one sample from (ξs, ξ's) to (ξ, ξ') (eq. 18-23)."""
+    dvisc = viscous(vs, a, beta, mu, tstar) if tstar > 0.0 else 0.0
+    dcoul = sigma * abs(xr - xs) if tstar > 0.0 else 0.0
+    if tr > 0.0:
+        dvisc += viscous(0.0, a2, beta, mu, tr)
+        dcoul += sigma * abs(x - xr)
+    dx = x - xs
+    # generated = ∫(φ + q(ξ))ξ' dτ = φΔξ + ΔH_c   (eq. 20-23)
+    gen = phi * dx + (_spring(x, True) - _spring(xs, True)) if quantize else phi * dx + 0.5 * (x * x - xs * xs)
+    return gen, dvisc, dcoul, 0.5 * mu * v * v + _spring(x, quantize)
 
 
-@njit(cache=True)
+# ----------------------------------------------------------------------------- a run, in ranges of samples
+
+# state array of a run: ξ, ξ', ring position, tail min, tail max
+SX, SV, SPOS, STMIN, STMAX = 0, 1, 2, 3, 4
+NSTATE = 5
+
+
+@njit(cache=True, nogil=True)
+def start(x0, v0, delay, quantize, state, hist, stats):
+    """Initial state of a run: (ξ0, ξ'0), past readings equal to ξ0's, stats cleared."""
+    f0 = force(x0, quantize)
+    for i in range(delay + 1):
+        hist[i] = f0
+    for i in range(stats.shape[0]):
+        stats[i] = 0.0
+    state[SX] = x0
+    state[SV] = v0
+    state[SPOS] = 0.0
+    state[STMIN] = np.inf
+    state[STMAX] = -np.inf
+
+
+@njit(cache=True, nogil=True)
+def advance(
+    state, hist, h0, h1, mu, beta, sigma, delay, quantize, bound, tail_start, tail, record, energy, rec_x, rec_v, rec_e
+):
+    """Run samples h0 … h1 − 1 from ``state``; return (end, why, peak).
+
+    why = 0: ran through (end = h1); 1: at rest at sample ``end`` (not
+    integrated); 2: |ξ| passed ``bound`` (or NaN) in sample end − 1. ``peak``
+    is the largest |ξ| at the sample instants h0 + 1 … end. Samples at or
+    after ``tail_start`` also update the tail (``tail``, min and max with the
+    turning points). With ``record``, ξ and ξ' after sample h go to
+    ``rec_x[h + 1]``/``rec_v[h + 1]``; with ``energy``, its energy terms to
+    ``rec_e[h]`` (generated, viscous, Coulomb, stored).
+    """
+    rate = beta / mu
+    e1 = math.exp(-rate)
+    p1 = phi1(rate)
+    p2 = phi2(rate)
+    x = state[SX]
+    v = state[SV]
+    pos = int(state[SPOS])
+    tmin = state[STMIN]
+    tmax = state[STMAX]
+    peak = 0.0
+    end = h1
+    why = 0
+    for h in range(h0, h1):
+        phi, pos = delayed_force(force(x, quantize), hist, pos, delay)
+        if v == 0.0 and at_rest(v, phi, sigma, hist, delay):
+            end = h
+            why = 1
+            break
+        xs = x
+        vs = v
+        x, v, xr, tstar, a, a2, tr, stopped = step(x, v, phi, mu, beta, sigma, rate, e1, p1, p2)
+        if record:
+            rec_x[h + 1] = x
+            rec_v[h + 1] = v
+        if energy:
+            g, dv, dc, st = energy_terms(xs, vs, x, v, phi, xr, tstar, a, a2, tr, mu, beta, sigma, quantize)
+            rec_e[h, 0] = g
+            rec_e[h, 1] = dv
+            rec_e[h, 2] = dc
+            rec_e[h, 3] = st
+        ax = abs(x)
+        if ax > peak:
+            peak = ax
+        if h >= tail_start:
+            tail[h - tail_start] = x
+            if stopped:  # the turning point inside the sample
+                if xr < tmin:
+                    tmin = xr
+                if xr > tmax:
+                    tmax = xr
+            if x < tmin:
+                tmin = x
+            if x > tmax:
+                tmax = x
+        if not ax <= bound:  # also catches NaN
+            end = h + 1
+            why = 2
+            break
+    state[SX] = x
+    state[SV] = v
+    state[SPOS] = pos
+    state[STMIN] = tmin
+    state[STMAX] = tmax
+    return end, why, peak
+
+
+@njit(cache=True, inline="always")
+def segment_bounds(k, n):
+    """First and one-past-last sample of the k-th of NSEG segments of a run of n samples."""
+    return (k * n + NSEG - 1) // NSEG, ((k + 1) * n + NSEG - 1) // NSEG
+
+
+@njit(cache=True, inline="always")
+def tail_stats(tail, tail_len, tmin, tmax, stats):
+    """Crossings of the tail's centre level (interpolated), its extremes and instant extremes into ``stats``."""
+    centre = 0.5 * (tmin + tmax)
+    count = 0
+    first = 0.0
+    last = 0.0
+    smin = tail[0]
+    smax = tail[0]
+    for i in range(1, tail_len):
+        if tail[i] < smin:
+            smin = tail[i]
+        if tail[i] > smax:
+            smax = tail[i]
+        y0 = tail[i - 1] - centre
+        y1 = tail[i] - centre
+        if y0 < 0.0 and y1 >= 0.0:
+            t = (i - 1) + y0 / (y0 - y1)
+            if count == 0:
+                first = t
+            last = t
+            count += 1
+    stats[NSEG] = tmin
+    stats[NSEG + 1] = tmax
+    stats[NSEG + 2] = count
+    stats[NSEG + 3] = first
+    stats[NSEG + 4] = last
+    stats[NSEG + 8] = smin
+    stats[NSEG + 9] = smax
+
+
+@njit(cache=True, nogil=True)
+def finish(state, n, done, rest, tail, tail_len, mu, quantize, stats, record, energy, rec_x, rec_v, rec_e):
+    """Tail statistics, final state, and the records past an early stop (rest state, or NaN)."""
+    x = state[SX]
+    v = state[SV]
+    if done == n and rest < 0 and tail_len > 1:
+        tail_stats(tail, tail_len, state[STMIN], state[STMAX], stats)
+    stats[NSEG + 6] = x
+    stats[NSEG + 7] = v
+    if record and done < n:
+        for i in range(done + 1, n + 1):
+            rec_x[i] = x if rest >= 0 else np.nan
+            rec_v[i] = v if rest >= 0 else np.nan
+    if energy and done < n:
+        stored = (0.5 * mu * v * v + _spring(x, quantize)) if rest >= 0 else np.nan
+        fill = 0.0 if rest >= 0 else np.nan
+        for i in range(done, n):
+            rec_e[i, 0] = fill
+            rec_e[i, 1] = fill
+            rec_e[i, 2] = fill
+            rec_e[i, 3] = stored
+
+
+@njit(cache=True, nogil=True)
 def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len, rec_x, rec_v, rec_e, stats):
     """Run ``n`` samples; return the number of samples done and the rest sample (−1: none).
 
@@ -129,164 +306,62 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
     centre-crossing count, first and last crossing time, a flag for
     exceeding ``bound``, the final ξ and ξ', and the tail's min and max of ξ
     at the sample instants (the readings that set the force).
+
+    The run is :func:`start`, :func:`advance` over each segment (split where
+    the tail starts), :func:`finish`: callers may run any ranges of samples.
     """
     record = rec_x.shape[0] == n + 1
     energy = rec_e.shape[0] == n
-    rate = beta / mu
-    e1 = math.exp(-rate)
-    p1 = _phi1(rate)
-    p2 = _phi2(rate)
-    hist = np.empty(delay + 1)  # forces read at the last delay + 1 samples
-    f0 = -(math.floor(x0) + 0.5) if quantize else -x0
-    for i in range(delay + 1):
-        hist[i] = f0
-    for i in range(NSTATS):
-        stats[i] = 0.0
-    tail_start = n - tail_len
+    state = np.empty(NSTATE)
+    hist = np.empty(delay + 1)
     tail = np.empty(max(tail_len, 1))
-    tmin = np.inf
-    tmax = -np.inf
-    x = x0
-    v = v0
+    start(x0, v0, delay, quantize, state, hist, stats)
     if record:
-        rec_x[0] = x
-        rec_v[0] = v
-    rest = -1
+        rec_x[0] = x0
+        rec_v[0] = v0
+    tail_start = n - tail_len
     done = n
-    for h in range(n):
-        # force of this sample: the reading d samples ago
-        fnew = -(math.floor(x) + 0.5) if quantize else -x
-        for i in range(delay):
-            hist[i] = hist[i + 1]
-        hist[delay] = fnew
-        phi = hist[0]
-        # absorbing rest: stuck, and every pending force equals this one
-        if v == 0.0 and abs(phi) <= sigma:
-            same = True
-            for i in range(delay + 1):
-                if hist[i] != phi:
-                    same = False
-            if same:
-                rest = h
-                done = h
-                break
-        xs = x
-        dvisc = 0.0
-        dcoul = 0.0
-        if v == 0.0 and abs(phi) <= sigma:
-            pass  # stuck for the whole sample
-        else:
-            s = 1.0 if (v > 0.0 or (v == 0.0 and phi > 0.0)) else -1.0
-            a = (phi - sigma * s) / mu
-            x1 = x + v * p1 + a * p2
-            v1 = v * e1 + a * p1
-            if v1 * s > 0.0 or v == 0.0 or a == 0.0:  # a = 0: ξ' decays without crossing (may underflow to 0)
-                if energy:
-                    dvisc = _viscous(v, a, beta, mu, 1.0)
-                    dcoul = sigma * abs(x1 - x)
-                x = x1
-                v = v1
-            else:
-                # velocity reaches zero at t* within this sample
-                # t* = (μ/β) log1p(x) = (−ξ'/a) log1p(x)/x, x = −ξ'β/(aμ) > 0 (t* = −ξ'/a at β = 0)
-                xq = -v * beta / (a * mu)
-                tstar = (-v / a) * (math.log1p(xq) / xq if xq > 0.0 else 1.0)
-                if tstar > 1.0:
-                    tstar = 1.0  # rounding guard: v1 * s <= 0 means t* <= 1
-                u = rate * tstar
-                xr = x + v * tstar * _phi1(u) + a * tstar * tstar * _phi2(u)
-                if energy:
-                    dvisc = _viscous(v, a, beta, mu, tstar)
-                    dcoul = sigma * abs(xr - x)
-                if h >= tail_start:
-                    if xr < tmin:
-                        tmin = xr
-                    if xr > tmax:
-                        tmax = xr
-                x = xr
-                v = 0.0
-                tr = 1.0 - tstar
-                if abs(phi) > sigma and tr > 0.0:
-                    s2 = 1.0 if phi > 0.0 else -1.0
-                    a2 = (phi - sigma * s2) / mu
-                    u2 = rate * tr
-                    x2 = x + a2 * tr * tr * _phi2(u2)
-                    v = a2 * tr * _phi1(u2)
-                    if energy:
-                        dvisc += _viscous(0.0, a2, beta, mu, tr)
-                        dcoul += sigma * abs(x2 - x)
-                    x = x2
-        if record:
-            rec_x[h + 1] = x
-            rec_v[h + 1] = v
-        if energy:
-            dx = x - xs
-            # generated = ∫(φ + q(ξ))ξ' dτ = φΔξ + ΔH_c   (eq. 20-23)
-            gen = phi * dx + (_hc(x) - _hc(xs)) if quantize else phi * dx + 0.5 * (x * x - xs * xs)
-            rec_e[h, 0] = gen
-            rec_e[h, 1] = dvisc
-            rec_e[h, 2] = dcoul
-            rec_e[h, 3] = 0.5 * mu * v * v + (_hc(x) if quantize else 0.5 * x * x)
-        ax = abs(x)
-        seg = (h * NSEG) // n
-        if ax > stats[seg]:
-            stats[seg] = ax
-        if h >= tail_start:
-            tail[h - tail_start] = x
-            if x < tmin:
-                tmin = x
-            if x > tmax:
-                tmax = x
-        if not ax <= bound:  # also catches NaN
-            stats[NSEG + 5] = 1.0
-            done = h + 1
+    rest = -1
+    for k in range(NSEG):
+        lo, hi = segment_bounds(k, n)
+        cut = min(max(lo, tail_start), hi)
+        why = 0
+        for a, b in ((lo, cut), (cut, hi)):
+            if b > a:
+                end, why, peak = advance(
+                    state,
+                    hist,
+                    a,
+                    b,
+                    mu,
+                    beta,
+                    sigma,
+                    delay,
+                    quantize,
+                    bound,
+                    tail_start,
+                    tail,
+                    record,
+                    energy,
+                    rec_x,
+                    rec_v,
+                    rec_e,
+                )
+                if peak > stats[k]:
+                    stats[k] = peak
+                if why != 0:
+                    done = end
+                    rest = end if why == 1 else -1
+                    if why == 2:
+                        stats[NSEG + 5] = 1.0
+                    break
+        if why != 0:
             break
-    # tail measurement: crossings of the centre level, interpolated
-    if done == n and rest < 0 and tail_len > 1:
-        centre = 0.5 * (tmin + tmax)
-        count = 0
-        first = 0.0
-        last = 0.0
-        smin = tail[0]
-        smax = tail[0]
-        for i in range(1, tail_len):
-            if tail[i] < smin:
-                smin = tail[i]
-            if tail[i] > smax:
-                smax = tail[i]
-            y0 = tail[i - 1] - centre
-            y1 = tail[i] - centre
-            if y0 < 0.0 and y1 >= 0.0:
-                t = (i - 1) + y0 / (y0 - y1)
-                if count == 0:
-                    first = t
-                last = t
-                count += 1
-        stats[NSEG] = tmin
-        stats[NSEG + 1] = tmax
-        stats[NSEG + 2] = count
-        stats[NSEG + 3] = first
-        stats[NSEG + 4] = last
-        stats[NSEG + 8] = smin
-        stats[NSEG + 9] = smax
-    stats[NSEG + 6] = x
-    stats[NSEG + 7] = v
-    if record and done < n:
-        for i in range(done + 1, n + 1):
-            rec_x[i] = x if rest >= 0 else np.nan
-            rec_v[i] = v if rest >= 0 else np.nan
-    if energy and done < n:
-        stored = (0.5 * mu * v * v + (_hc(x) if quantize else 0.5 * x * x)) if rest >= 0 else np.nan
-        fill = 0.0 if rest >= 0 else np.nan
-        for i in range(done, n):
-            rec_e[i, 0] = fill
-            rec_e[i, 1] = fill
-            rec_e[i, 2] = fill
-            rec_e[i, 3] = stored
+    finish(state, n, done, rest, tail, tail_len, mu, quantize, stats, record, energy, rec_x, rec_v, rec_e)
     return done, rest
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, mu):
     """Outcome code, amplitude, frequency, centre and force peak-to-peak of a run from its stats.
 
@@ -355,7 +430,7 @@ def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, m
     return OSCILLATING, amp, freq, centre, fpp
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def map_kernel(
     mu,
     betas,

@@ -177,9 +177,18 @@ def spring_energy(xi, quantize: bool = True):
     >>> float(spring_energy(1.0)), float(spring_energy(0.5)), float(spring_energy(0.5, quantize=False))
     (0.5, 0.25, 0.125)
     """
-    x = np.asarray(xi, dtype=float)
-    p = x - np.floor(x)
-    return 0.5 * x * x + (0.5 * (p - p * p) if quantize else 0.0)
+    return spring_energy_core(np.asarray(xi, dtype=float), bool(quantize))
+
+
+def spring_energy_core(x, quantize: bool):
+    """H_c(ξ) for a float or a float array: the one formula, also compiled into the simulator (:mod:`dfa._kernel`).
+
+    No validation; ``numba.njit`` compiles it unchanged for floats.
+    """
+    if quantize:
+        p = x - np.floor(x)
+        return 0.5 * x * x + 0.5 * (p - p * p)
+    return 0.5 * x * x
 
 
 @dataclass(frozen=True)
