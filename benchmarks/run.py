@@ -18,10 +18,12 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "tests"))  # the slow reference integrators live with the tests
+
+from reference import simulate_control, simulate_ivp  # noqa: E402
 
 import dfa  # noqa: E402
 from dfa.maps import stability_map  # noqa: E402
-from dfa.reference import simulate_control, simulate_ivp  # noqa: E402
 from dfa.simulation import simulate  # noqa: E402
 
 # a persistent oscillation: no early exit, every sample is integrated

@@ -94,7 +94,6 @@ _SUBMODULES = {
     "validation",
     "report",
     "plotting",
-    "reference",
 }
 
 

@@ -9,9 +9,10 @@ need, without cancellation at small u::
     ψ(u)  = ((1 − e^{−u}) − ½(1 − e^{−2u}))/u²  = Σ (−1)ⁿ (2ⁿ⁻¹ − 1) uⁿ⁻²/n!,  n >= 2
     χ(u)  = (u − 2(1 − e^{−u}) + ½(1 − e^{−2u}))/u³ = Σ (−1)ⁿ⁺¹ (2ⁿ⁻¹ − 2) uⁿ⁻³/n!,  n >= 3
 
-(φ₁(0) = 1, φ₂(0) = ½, ψ(0) = ½, χ(0) = ⅓). Each is its series (24 terms,
-summed in increasing order) for |u| < ½ and its closed form through
-``expm1`` otherwise: a few ulp everywhere (``tests/test_exprel.py`` checks
+(φ₁(0) = 1, φ₂(0) = ½, ψ(0) = ½, χ(0) = ⅓). Each is its series (22 to 24
+terms, summed by increasing power) for |u| < ½ and its closed form through
+``expm1`` otherwise (divided in steps beyond u = 10¹⁰⁰,
+where u² or u³ would overflow): a few ulp everywhere (``tests/test_exprel.py`` checks
 them against 50-digit mpmath). φ₁ and φ₂ take any real u (negative u appears
 in Gil's factor, :func:`dfa.stiffness.gil_factor`); ψ and χ are used for
 u >= 0 only (their closed forms overflow for u < −354).
@@ -62,6 +63,8 @@ def phi2(u: float) -> float:
             s += term
             term *= -u / (n + 3)
         return s
+    if u > 1e100:  # u² would overflow
+        return (math.expm1(-u) + u) / u / u
     return (math.expm1(-u) + u) / (u * u)
 
 
@@ -80,6 +83,8 @@ def psi(u: float) -> float:
                 sign = -sign
             s += sign * (2.0 ** (n - 1) - 1.0) * upow / fact
         return s
+    if u > 1e100:
+        return (-math.expm1(-u) + 0.5 * math.expm1(-2.0 * u)) / u / u
     return (-math.expm1(-u) + 0.5 * math.expm1(-2.0 * u)) / (u * u)
 
 
@@ -98,6 +103,8 @@ def chi(u: float) -> float:
                 sign = -sign
             s += sign * (2.0 ** (n - 1) - 2.0) * upow / fact
         return s
+    if u > 1e100:
+        return (u + 2.0 * math.expm1(-u) - 0.5 * math.expm1(-2.0 * u)) / u / u / u
     return (u + 2.0 * math.expm1(-u) - 0.5 * math.expm1(-2.0 * u)) / (u * u * u)
 
 

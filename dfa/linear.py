@@ -82,10 +82,6 @@ __all__ = [
     "critical_stiffness",
 ]
 
-# Taylor coefficients of c₁ = Σ (−a)^{n−2}/n! and c₀ = Σ (n − 1)(−a)^{n−2}/n!, n >= 2 (16 terms: < 1e-20 at a = ½)
-_C1_SERIES = np.array([1.0 / math.factorial(n) for n in range(17, 1, -1)])
-_C0_SERIES = np.array([(n - 1.0) / math.factorial(n) for n in range(17, 1, -1)])
-_C1_TUPLE, _C0_TUPLE = tuple(_C1_SERIES.tolist()), tuple(_C0_SERIES.tolist())
 # c₁ − c₀ = Σ (2 − n)(−a)^{n−2}/n! (= a/6 − a²/12 + …), exact coefficients
 _DC_TUPLE = tuple(((2.0 - n) / math.factorial(n)) for n in range(17, 1, -1))
 
@@ -101,27 +97,22 @@ def _verify_step(a: float) -> float:
 
 
 def _zoh_coefficients(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(c₁, c₀, p) of the ZOH pulse transfer function, without cancellation for small a (plain floats for a float)."""
+    """(c₁, c₀, p) of the ZOH pulse transfer function, without cancellation for small a (plain floats for a float).
+
+    c₁ = φ₂(a) and, below a = ½, c₀ = φ₁(a) − φ₂(a) (:mod:`dfa._exprel`); c₀ = (1 − p − a p)/a² above.
+    """
+    from ._exprel import phi1, phi1_array, phi2, phi2_array  # compiled; loaded on first use
+
     if isinstance(a, float):
         p = math.exp(-a)
-        if a >= 0.5:
-            return (a - 1.0 + p) / (a * a), (1.0 - p - a * p) / (a * a), p
-        c1 = c0 = 0.0
-        for k1, k0 in zip(_C1_TUPLE, _C0_TUPLE, strict=False):  # Horner in x = −a
-            c1 = c1 * -a + k1
-            c0 = c0 * -a + k0
-        return c1, c0, p
+        c1 = phi2(a)
+        return c1, (phi1(a) - c1 if a < 0.5 else (1.0 - p - a * p) / (a * a)), p
     a = np.asarray(a, dtype=float)
     p = np.exp(-a)
-    small = a < 0.5
-    al = np.where(small, 1.0, a)
-    pl = np.where(small, 1.0, p)
-    c1 = (al - 1.0 + pl) / al**2
-    c0 = (1.0 - pl - al * pl) / al**2
-    if np.any(small):
-        x = -np.where(small, a, 0.0)
-        c1 = np.where(small, np.polyval(_C1_SERIES, x), c1)
-        c0 = np.where(small, np.polyval(_C0_SERIES, x), c0)
+    c1 = phi2_array(a)
+    al = np.where(a < 0.5, 1.0, a)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        c0 = np.where(a < 0.5, phi1_array(a) - c1, (1.0 - p - al * p) / (al * al))
     return c1, c0, p
 
 

@@ -140,7 +140,7 @@ def gil_factor(gamma):
     unit circle at z = e^{±jθ}, no delay): (b/T) f(bT/m) is the stability bound
     for bT/m < 3.7208; beyond it a root leaves through z = −1 first and the
     bound is smaller (:func:`k_gil`, :mod:`dfa.linear`). Computed without
-    cancellation for small γ (series of the denominator); f(0) = 2, so
+    cancellation for small γ (f = φ₁(−γ)/φ₂(−γ), :mod:`dfa._exprel`); f(0) = 2, so
     (b/T) f(γ) → 2b/T as b T/m → 0.
 
     Examples
@@ -151,21 +151,13 @@ def gil_factor(gamma):
     g = np.asarray(gamma, dtype=float)
     if np.any(g < 0) or not np.all(np.isfinite(g)):
         raise DFAValueError(f"gamma = {gamma!r} is invalid: it must be finite and >= 0 (γ = bT/m)")
+    from ._exprel import phi1_array, phi2_array  # compiled; loaded on first use
+
     small = g < 0.5
-    gs = np.where(small, g, 0.0)
-    # 1 - (1+γ)e^{-γ} = Σ_{n>=2} (-1)^n (n-1) γ^n / n!  and  1 - e^{-γ} = Σ_{n>=1} (-1)^{n+1} γ^n / n!
-    num_s = np.zeros_like(gs)
-    den_s = np.zeros_like(gs)
-    term = np.ones_like(gs)  # γ^n / n!
-    for n in range(1, 30):
-        term = term * gs / n
-        sign = -1.0 if n % 2 == 0 else 1.0
-        num_s += sign * term  # (1 - e^{-γ}) / 1
-        if n >= 2:
-            den_s += -sign * (n - 1) * term
+    gs = -np.where(small, g, 0.0)
+    # f = φ₁(−γ)/φ₂(−γ): γ(1 − e^{−γ}) = γ² e^{−γ} φ₁(−γ) and 1 − (1 + γ)e^{−γ} = γ² e^{−γ} φ₂(−γ) (dfa._exprel)
+    f_small = phi1_array(gs) / phi2_array(gs)
     with np.errstate(divide="ignore", invalid="ignore"):
-        # small: f = γ (1-δ) / g  with both series divided by γ² to keep precision
-        f_small = np.where(gs > 0, gs * num_s / np.where(den_s > 0, den_s, 1.0), 2.0)
         gl = np.where(small, 1.0, g)
         one_minus_delta = -np.expm1(-gl)
         f_large = gl * one_minus_delta / (one_minus_delta - gl * np.exp(-gl))

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from reference import linear_zoh_recursion, simulate_control, simulate_ivp
 
 import dfa
-from dfa.reference import linear_zoh_recursion, simulate_control, simulate_ivp
 from dfa.simulation import preload_position, simulate, stored_energy
 
 CASES = [  # (μ, β, σ, ξ0, ξ'0): stick-slip, β = 0, σ = 0, offsets

@@ -1,7 +1,7 @@
-"""Slow, independent reference integrators of the same sampled loop.
+"""Slow, independent reference integrators of the same sampled loop (test and benchmark code, not shipped).
 
 They exist to check :func:`dfa.simulate` and to measure its speed against
-(:mod:`benchmarks`); do not use them for design work.
+(``benchmarks/run.py``); ``import reference`` with ``tests/`` on the path.
 
 * :func:`simulate_ivp` integrates μξ'' + βξ' + σ sgn ξ' = φ numerically with
   :func:`scipy.integrate.solve_ivp` (DOP853), sample by sample, with an event
@@ -19,6 +19,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
+from dfa._exprel import phi1, phi2  # the one φ₁/φ₂ (called as plain Python functions here)
 
 __all__ = ["simulate_ivp", "step_python", "simulate_control", "linear_zoh_recursion"]
 
@@ -70,12 +72,6 @@ def simulate_ivp(mu, beta, sigma, xi0, xi_dot0, samples, *, quantize=True, delay
 
 def step_python(x, v, phi, mu, beta, sigma):
     """The exact per-sample map in plain Python (same closed form as the compiled kernel)."""
-
-    def phi1(u):
-        return 1.0 - u / 2 + u * u / 6 if u < 1e-6 else -math.expm1(-u) / u
-
-    def phi2(u):
-        return 0.5 - u / 6 + u * u / 24 if u < 1e-4 else (math.expm1(-u) + u) / (u * u)
 
     rate = beta / mu
     if v == 0.0 and abs(phi) <= sigma:
