@@ -22,7 +22,19 @@ viscous term over a phase (closed form)::
     ψ(u) = ((1 − e^{−u}) − ½(1 − e^{−2u}))/u²,  χ(u) = (u − 2(1 − e^{−u}) + ½(1 − e^{−2u}))/u³
 
 and by Coulomb friction σ|Δξ|. Every function is evaluated without
-cancellation (series below u = 0.5).
+cancellation (series below u = 0.5, :mod:`dfa._exprel`).
+
+Structure: one sample is a chain of small inlined steps (:func:`force`,
+:func:`delayed_force`, :func:`at_rest`, :func:`step`, :func:`energy_terms`);
+:func:`advance` runs any range of samples from a resumable state
+(:func:`start`, :func:`finish`); :func:`simulate_kernel` runs a whole run and
+:func:`batch_kernel` many independent runs interleaved. All release the GIL.
+
+Rounding: the hot path divides by μ once per run (``sample_constants``) and
+evaluates φ₁, φ₂ by Estrin's scheme; against the kernel before this change
+(per-sample divisions, term-by-term series) trajectories agree to rounding
+(at most 8·10⁻¹¹ relative after 2·10⁴ samples on 300 random runs), and the
+outcomes of those runs and of two stability maps are unchanged.
 """
 
 from __future__ import annotations
@@ -85,27 +97,40 @@ def at_rest(v, phi, sigma, hist, delay):
 
 
 @njit(cache=True, inline="always")
-def step(x, v, phi, mu, beta, sigma, rate, e1, p1, p2):
+def sample_constants(mu, beta):
+    """Per-run constants of :func:`step`: (β/μ, e^{−β/μ}, φ₁(β/μ), φ₂(β/μ), φ₁/μ, φ₂/μ)."""
+    rate = beta / mu
+    p1 = phi1(rate)
+    p2 = phi2(rate)
+    return rate, math.exp(-rate), p1, p2, p1 / mu, p2 / mu
+
+
+@njit(cache=True, inline="always")
+def step(x, v, phi, mu, sigma, k):
     """Exact motion over one sample under the constant force φ (stick-slip included).
 
-    ``rate`` = β/μ, ``e1`` = e^{−rate}, ``p1`` = φ₁(rate), ``p2`` = φ₂(rate).
-    Returns (ξ, ξ' at the end; ξ_r, the position where ξ' reached 0 (the end
-    position when it did not); t*, that time (1: no stop, 0: stuck all along);
-    a, the first phase's acceleration; a₂, t_r, the restart phase's
-    acceleration and duration (0, 0: no restart); stopped).
+    ``k`` is :func:`sample_constants`. Returns (ξ, ξ' at the end; ξ_r, the
+    position where ξ' reached 0 (the end position when it did not); t*, that
+    time (1: no stop, 0: stuck all along); a, the first phase's acceleration;
+    a₂, t_r, the restart phase's acceleration and duration (0, 0: no restart);
+    stopped). Over a whole sample ξ gains ξ'φ₁ + (F/μ)φ₂ with F = φ − σ s
+    (one multiply-add chain per sample: the divisions by μ are in ``k``).
     """
+    rate, e1, p1, p2, q1, q2 = k
     if v == 0.0 and abs(phi) <= sigma:
         return x, v, x, 0.0, 0.0, 0.0, 0.0, False  # stuck for the whole sample (ξ' = ±0 kept)
     s = 1.0 if (v > 0.0 or (v == 0.0 and phi > 0.0)) else -1.0
-    a = (phi - sigma * s) / mu
-    x1 = x + v * p1 + a * p2
-    v1 = v * e1 + a * p1
+    f = phi - sigma * s
+    a = f / mu
+    x1 = x + v * p1 + f * q2
+    v1 = v * e1 + f * q1
     if v1 * s > 0.0 or v == 0.0 or a == 0.0:  # a = 0: ξ' decays without crossing (may underflow to 0)
         return x1, v1, x1, 1.0, a, 0.0, 0.0, False
-    # velocity reaches zero at t* within this sample
-    # t* = (μ/β) log1p(x) = (−ξ'/a) log1p(x)/x, x = −ξ'β/(aμ) > 0 (t* = −ξ'/a at β = 0)
-    xq = -v * beta / (a * mu)
-    tstar = (-v / a) * (math.log1p(xq) / xq if xq > 0.0 else 1.0)
+    # velocity reaches zero at t* within this sample: with w = −ξ'/a (t* at β = 0) and y = w β/μ > 0,
+    # t* = (μ/β) log1p(y) = w log1p(y)/y
+    w = -v / a
+    y = w * rate
+    tstar = w * (math.log1p(y) / y if y > 0.0 else 1.0)
     if tstar > 1.0:
         tstar = 1.0  # rounding guard: v1 * s <= 0 means t* <= 1
     u = rate * tstar
@@ -178,10 +203,7 @@ def advance(
     ``rec_x[h + 1]``/``rec_v[h + 1]``; with ``energy``, its energy terms to
     ``rec_e[h]`` (generated, viscous, Coulomb, stored).
     """
-    rate = beta / mu
-    e1 = math.exp(-rate)
-    p1 = phi1(rate)
-    p2 = phi2(rate)
+    k = sample_constants(mu, beta)
     x = state[SX]
     v = state[SV]
     pos = int(state[SPOS])
@@ -198,7 +220,7 @@ def advance(
             break
         xs = x
         vs = v
-        x, v, xr, tstar, a, a2, tr, stopped = step(x, v, phi, mu, beta, sigma, rate, e1, p1, p2)
+        x, v, xr, tstar, a, a2, tr, stopped = step(x, v, phi, mu, sigma, k)
         if record:
             rec_x[h + 1] = x
             rec_v[h + 1] = v

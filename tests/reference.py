@@ -71,19 +71,21 @@ def simulate_ivp(mu, beta, sigma, xi0, xi_dot0, samples, *, quantize=True, delay
 
 
 def step_python(x, v, phi, mu, beta, sigma):
-    """The exact per-sample map in plain Python (same closed form as the compiled kernel)."""
-
+    """The exact per-sample map in plain Python (the compiled kernel's closed form, operation for operation)."""
     rate = beta / mu
+    p1, p2 = phi1(rate), phi2(rate)
     if v == 0.0 and abs(phi) <= sigma:
-        return x, 0.0
+        return x, v
     s = 1.0 if (v > 0 or (v == 0 and phi > 0)) else -1.0
-    a = (phi - sigma * s) / mu
-    x1 = x + v * phi1(rate) + a * phi2(rate)
-    v1 = v * math.exp(-rate) + a * phi1(rate)
+    f = phi - sigma * s
+    a = f / mu
+    x1 = x + v * p1 + f * (p2 / mu)
+    v1 = v * math.exp(-rate) + f * (p1 / mu)
     if v1 * s > 0 or v == 0.0 or a == 0.0:
         return x1, v1
-    xq = -v * beta / (a * mu)
-    tstar = min(1.0, (-v / a) * (math.log1p(xq) / xq if xq > 0 else 1.0))
+    w = -v / a
+    y = w * rate
+    tstar = min(1.0, w * (math.log1p(y) / y if y > 0 else 1.0))
     u = rate * tstar
     x = x + v * tstar * phi1(u) + a * tstar * tstar * phi2(u)
     tr = 1.0 - tstar
