@@ -167,6 +167,21 @@ def energy_terms(xs, vs, x, v, phi, xr, tstar, a, a2, tr, mu, beta, sigma, quant
     return gen, dvisc, dcoul, 0.5 * mu * v * v + _spring(x, quantize)
 
 
+@njit(cache=True, inline="always")
+def tail_extremes(x, xr, stopped, tmin, tmax):
+    """Tail min and max updated with the sample's end position and, if ξ' reached 0 inside it, the turning point."""
+    if stopped:
+        if xr < tmin:
+            tmin = xr
+        if xr > tmax:
+            tmax = xr
+    if x < tmin:
+        tmin = x
+    if x > tmax:
+        tmax = x
+    return tmin, tmax
+
+
 # ----------------------------------------------------------------------------- a run, in ranges of samples
 
 # state array of a run: ξ, ξ', ring position, tail min, tail max
@@ -235,15 +250,7 @@ def advance(
             peak = ax
         if h >= tail_start:
             tail[h - tail_start] = x
-            if stopped:  # the turning point inside the sample
-                if xr < tmin:
-                    tmin = xr
-                if xr > tmax:
-                    tmax = xr
-            if x < tmin:
-                tmin = x
-            if x > tmax:
-                tmax = x
+            tmin, tmax = tail_extremes(x, xr, stopped, tmin, tmax)
         if not ax <= bound:  # also catches NaN
             end = h + 1
             why = 2
@@ -453,33 +460,107 @@ def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, m
 
 
 @njit(cache=True, nogil=True)
-def map_kernel(
-    mu,
-    betas,
-    sigmas,
-    x0s,
-    v0s,
-    n,
-    delay,
-    quantize,
-    bound,
-    tail_len,
-    stable_amplitude,
-    growth,
-    settle,
-    codes,
-    amps,
-    freqs,
-):
-    """Run one simulation per (β, σ, ξ0, ξ'0) point, recording nothing."""
+def batch_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
+    """Run independent runs of ``n`` samples together, interleaved sample by sample; nothing recorded.
+
+    Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``); ``stats[i]``
+    (NSTATS), ``done[i]`` and ``rest[i]`` receive what :func:`simulate_kernel`
+    returns for it alone, bit for bit: each run goes through the same inlined
+    steps with its own constants. Runs that come to rest or pass the bound
+    drop out; the others keep several independent dependency chains in
+    flight.
+    """
+    m = mus.shape[0]
+    hist = np.empty((m, delay + 1))
+    tail = np.empty((m, max(tail_len, 1)))
+    state = np.empty((m, NSTATE))
+    kc = np.empty((m, 6))
+    xa = np.empty(m)
+    va = np.empty(m)
+    posa = np.zeros(m, dtype=np.int64)
+    tmina = np.full(m, np.inf)
+    tmaxa = np.full(m, -np.inf)
+    for i in range(m):
+        start(x0s[i], v0s[i], delay, quantize, state[i], hist[i], stats[i])
+        kc[i, 0], kc[i, 1], kc[i, 2], kc[i, 3], kc[i, 4], kc[i, 5] = sample_constants(mus[i], betas[i])
+        xa[i] = x0s[i]
+        va[i] = v0s[i]
+        done[i] = n
+        rest[i] = -1
+    active = np.arange(m)
+    nact = m
+    tail_start = n - tail_len
+    for seg in range(NSEG):
+        lo, hi = segment_bounds(seg, n)
+        for h in range(lo, hi):
+            j = 0
+            for idx in range(nact):
+                i = active[idx]
+                x = xa[i]
+                v = va[i]
+                sigma = sigmas[i]
+                row = hist[i]
+                phi, pos = delayed_force(force(x, quantize), row, posa[i], delay)
+                posa[i] = pos
+                if v == 0.0 and at_rest(v, phi, sigma, row, delay):
+                    done[i] = h
+                    rest[i] = h
+                    continue  # drops out
+                k = (kc[i, 0], kc[i, 1], kc[i, 2], kc[i, 3], kc[i, 4], kc[i, 5])
+                x, v, xr, _t, _a, _a2, _tr, stopped = step(x, v, phi, mus[i], sigma, k)
+                xa[i] = x
+                va[i] = v
+                ax = abs(x)
+                if ax > stats[i, seg]:
+                    stats[i, seg] = ax
+                if h >= tail_start:
+                    tail[i, h - tail_start] = x
+                    tmina[i], tmaxa[i] = tail_extremes(x, xr, stopped, tmina[i], tmaxa[i])
+                if not ax <= bound:  # also catches NaN
+                    done[i] = h + 1
+                    stats[i, NSEG + 5] = 1.0
+                    continue  # drops out
+                active[j] = i
+                j += 1
+            nact = j
+            if nact == 0:
+                break
+        if nact == 0:
+            break
     empty = np.empty(0)
     empty2 = np.empty((0, 4))
-    stats = np.empty(NSTATS)
-    for i in range(betas.shape[0]):
-        done, rest = simulate_kernel(
-            mu, betas[i], sigmas[i], x0s[i], v0s[i], n, delay, quantize, bound, tail_len, empty, empty, empty2, stats
+    for i in range(m):
+        state[i, SX] = xa[i]
+        state[i, SV] = va[i]
+        state[i, STMIN] = tmina[i]
+        state[i, STMAX] = tmaxa[i]
+        finish(
+            state[i],
+            n,
+            done[i],
+            rest[i],
+            tail[i],
+            tail_len,
+            mus[i],
+            quantize,
+            stats[i],
+            False,
+            False,
+            empty,
+            empty,
+            empty2,
         )
-        c, a, f, _centre, _fpp = classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, mu)
+
+
+@njit(cache=True, nogil=True)
+def classify_batch(
+    mus, n, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
+):
+    """:func:`classify` for every run of a batch (outputs written in place)."""
+    for i in range(mus.shape[0]):
+        c, a, f, ce, fp = classify(n, done[i], rest[i], stats[i], stable_amplitude, growth, settle, quantize, mus[i])
         codes[i] = c
         amps[i] = a
         freqs[i] = f
+        centres[i] = ce
+        fpps[i] = fp

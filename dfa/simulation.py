@@ -126,6 +126,8 @@ __all__ = [
     "stored_energy",
     "MAX_RECORD_BYTES",
     "default_samples",
+    "SimulationBatch",
+    "simulate_batch",
 ]
 
 #: Outcome names indexed by the kernel's codes (the codes of ``StabilityMap.outcome``):
@@ -462,41 +464,25 @@ def simulate(
         n = default_samples(m, b, s, v0, x0, d, bool(quantize))
     else:
         n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
-    bnd = check_positive("bound", bound)
+    bnd, sa, gr, st = check_rules(bound, stable_amplitude, growth, settle)
     if not bnd > abs(x0):
         raise DFAValueError(f"bound = {bnd!r} is invalid: it must exceed |xi0| = {abs(x0)!r}; raise the bound")
-    sa = check_nonnegative("stable_amplitude", stable_amplitude)
-    gr = check_positive("growth", growth)
-    if gr <= 1.0:
-        raise DFAValueError(f"growth = {gr!r} is invalid: it must be > 1 (a ratio of envelope peaks)")
-    st = check_nonnegative("settle", settle)
-    nbytes = (16 * (n + 1) if record else 0) + (32 * n if energy else 0)
-    if nbytes > MAX_RECORD_BYTES:
-        raise DFAValueError(
-            f"samples = {n} is invalid with record={record}, energy={energy}: the trajectory would need "
-            f"{nbytes / 1024**3:.1f} GiB (limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB); pass record=False "
-            "(and energy=False) to get the outcome without storing the trajectory"
-        )
+    _check_record_size(n, record, energy)
     rx = np.empty(n + 1) if record else np.empty(0)
     rv = np.empty(n + 1) if record else np.empty(0)
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
     stats = np.empty(_kernel.NSTATS)
-    tail = _tail_length(n, m)
-    done, rest = _kernel.simulate_kernel(m, b, s, x0, v0, n, d, bool(quantize), bnd, tail, rx, rv, re, stats)
+    done, rest = _kernel.simulate_kernel(
+        m, b, s, x0, v0, n, d, bool(quantize), bnd, _tail_length(n, m), rx, rv, re, stats
+    )
     code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, bool(quantize), m)
     suggest = None
     if code == _kernel.UNDECIDED:
         suggest = max(4 * n, default_samples(m, b, s, v0, x0, d, bool(quantize), cap=False))
-    fx, fv = float(stats[_kernel.NSEG + 6]), float(stats[_kernel.NSEG + 7])
     en = None
     if energy:
-        en = EnergyRecord(
-            re[:, 0].copy(),
-            re[:, 1].copy(),
-            re[:, 2].copy(),
-            re[:, 3].copy(),
-            float(stored_energy(x0, v0, m, bool(quantize))),
-        )
+        h0 = float(stored_energy(x0, v0, m, bool(quantize)))
+        en = EnergyRecord(re[:, 0].copy(), re[:, 1].copy(), re[:, 2].copy(), re[:, 3].copy(), h0)
     return SimulationResult(
         mu=m,
         beta=b,
@@ -512,8 +498,8 @@ def simulate(
         centre=float(centre),
         rest_sample=None if rest < 0 else int(rest),
         samples_run=int(done),
-        final_xi=fx,
-        final_xi_dot=fv,
+        final_xi=float(stats[_kernel.NSEG + 6]),
+        final_xi_dot=float(stats[_kernel.NSEG + 7]),
         force_peak_to_peak=float(fpp),
         envelope=tuple(float(v) for v in stats[: _kernel.NSEG]),
         suggested_samples=suggest,
@@ -522,3 +508,224 @@ def simulate(
         xi_dot=rv if record else None,
         energy=en,
     )
+
+
+def check_rules(bound, stable_amplitude, growth, settle) -> tuple[float, float, float, float]:
+    """Validated outcome rules (bound > 0, stable_amplitude >= 0, growth > 1, settle >= 0) of a simulation or map."""
+    bnd = check_positive("bound", bound)
+    sa = check_nonnegative("stable_amplitude", stable_amplitude)
+    gr = check_positive("growth", growth)
+    if gr <= 1.0:
+        raise DFAValueError(f"growth = {gr!r} is invalid: it must be > 1 (a ratio of envelope peaks)")
+    return bnd, sa, gr, check_nonnegative("settle", settle)
+
+
+def _check_record_size(n: int, record: bool, energy: bool) -> None:
+    nbytes = (16 * (n + 1) if record else 0) + (32 * n if energy else 0)
+    if nbytes > MAX_RECORD_BYTES:
+        raise DFAValueError(
+            f"samples = {n} is invalid with record={record}, energy={energy}: the trajectory would need "
+            f"{nbytes / 1024**3:.1f} GiB (limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB); pass record=False "
+            "(and energy=False) to get the outcome without storing the trajectory"
+        )
+
+
+#: Runs advanced together by one call of the batched kernel (a map chunk is split into such batches).
+BATCH_LANES = 16
+
+
+@dataclass(frozen=True)
+class SimulationBatch:
+    """Outcomes of many independent runs (:func:`simulate_batch`), one entry per run.
+
+    Attributes
+    ----------
+    mu, beta, sigma, xi0, xi_dot0 : numpy.ndarray
+        The inputs of each run (dimensionless; ticks, ticks per sample).
+    samples, delay, quantize
+        Settings shared by every run.
+    outcome : numpy.ndarray of int8
+        Codes into :data:`OUTCOMES` (0 rest, 1 oscillating, 2 unstable, 3 chatter, 4 undecided).
+    amplitude, frequency, centre, force_peak_to_peak : numpy.ndarray
+        As in :class:`SimulationResult` (ticks, rad per sample, ticks, KΔ); NaN frequency when not measured.
+    rest_sample : numpy.ndarray of int64
+        First sample at rest, −1 when the run never rested.
+    samples_run : numpy.ndarray of int64
+        Samples integrated.
+    final_xi, final_xi_dot : numpy.ndarray
+        State at the end of each run.
+    envelope : numpy.ndarray, shape (runs, 8)
+        Peak |ξ| of each eighth of each run.
+    status : str
+        ``"ok"``.
+    """
+
+    mu: np.ndarray = field(repr=False)
+    beta: np.ndarray = field(repr=False)
+    sigma: np.ndarray = field(repr=False)
+    xi0: np.ndarray = field(repr=False)
+    xi_dot0: np.ndarray = field(repr=False)
+    samples: int
+    delay: int
+    quantize: bool
+    outcome: np.ndarray = field(repr=False)
+    amplitude: np.ndarray = field(repr=False)
+    frequency: np.ndarray = field(repr=False)
+    centre: np.ndarray = field(repr=False)
+    force_peak_to_peak: np.ndarray = field(repr=False)
+    rest_sample: np.ndarray = field(repr=False)
+    samples_run: np.ndarray = field(repr=False)
+    final_xi: np.ndarray = field(repr=False)
+    final_xi_dot: np.ndarray = field(repr=False)
+    envelope: np.ndarray = field(repr=False)
+    status: str = "ok"
+
+    def __post_init__(self) -> None:
+        for f in self.__dataclass_fields__:
+            v = getattr(self, f)
+            if isinstance(v, np.ndarray):
+                v.flags.writeable = False
+
+    def __len__(self) -> int:
+        return int(self.outcome.shape[0])
+
+    def outcomes(self) -> list[str]:
+        """Outcome names of the runs, in order."""
+        return [OUTCOMES[c] for c in self.outcome]
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready lists (non-finite numbers as None)."""
+
+        def lst(a):
+            return [None if isinstance(x, float) and not math.isfinite(x) else x for x in a.tolist()]
+
+        out: dict[str, object] = {"samples": self.samples, "delay": self.delay, "quantize": self.quantize}
+        for name in ("mu", "beta", "sigma", "xi0", "xi_dot0", "amplitude", "frequency", "centre"):
+            out[name] = lst(getattr(self, name))
+        out["force_peak_to_peak"] = lst(self.force_peak_to_peak)
+        out["outcome"] = self.outcomes()
+        out["rest_sample"] = [None if r < 0 else r for r in self.rest_sample.tolist()]
+        out["samples_run"] = self.samples_run.tolist()
+        out["final_xi"], out["final_xi_dot"] = lst(self.final_xi), lst(self.final_xi_dot)
+        out["envelope"] = [lst(row) for row in self.envelope]
+        out["status"] = self.status
+        return out
+
+
+def _check_points(mu, beta, sigma, xi_dot0, xi0) -> tuple[np.ndarray, ...]:
+    """Broadcast the per-run inputs to 1-D float arrays, each element checked as :func:`simulate` checks it."""
+    try:
+        arrs = np.broadcast_arrays(
+            *(np.atleast_1d(np.asarray(a, dtype=float)) for a in (mu, beta, sigma, xi_dot0, xi0))
+        )
+    except (TypeError, ValueError) as exc:
+        raise DFAValueError(
+            f"mu, beta, sigma, xi_dot0, xi0 are invalid: they must be numbers or arrays that broadcast together ({exc})"
+        ) from None
+    out = tuple(np.ascontiguousarray(a.ravel()) for a in arrs)
+    m, b, s, v, x = out
+    bad = ~(np.isfinite(m) & (m > 0) & np.isfinite(b) & (b >= 0) & np.isfinite(s) & (s >= 0))
+    bad |= ~(np.isfinite(v) & np.isfinite(x))
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        _check_run(m[i], b[i], s[i], v[i], x[i], 0)  # raises the message simulate would give for this run
+        raise DFAValueError(f"run {i} is invalid: mu = {m[i]!r}, beta = {b[i]!r}, sigma = {s[i]!r} must be finite")
+    return out
+
+
+def simulate_batch(
+    mu,
+    beta,
+    sigma,
+    xi_dot0,
+    samples: int,
+    xi0=0.0,
+    delay: int = 0,
+    quantize: bool = True,
+    *,
+    bound: float = 1.0e6,
+    stable_amplitude: float = 1.0,
+    growth: float = 1.25,
+    settle: float = 1.0e-3,
+) -> SimulationBatch:
+    """Simulate many independent runs together (batched kernel); each equals :func:`simulate` of that run alone.
+
+    Parameters
+    ----------
+    mu, beta, sigma, xi_dot0, xi0 : float or array_like
+        Per-run inputs (as in :func:`simulate`), broadcast together to a 1-D list of runs.
+    samples : int
+        Samples of every run (>= 1); give the same run length you would give :func:`simulate`.
+    delay, quantize, bound, stable_amplitude, growth, settle
+        Shared by every run, as in :func:`simulate`.
+
+    Returns
+    -------
+    SimulationBatch
+        Outcome and measurements of run i at index i; run i is bit for bit
+        ``simulate(mu[i], …, samples, record=False)``.
+
+    Examples
+    --------
+    >>> b = simulate_batch(100.0, [0.3, 0.0], [1.5, 0.2], 2.0, samples=20000)
+    >>> b.outcomes()
+    ['rest', 'unstable']
+    """
+    m, b, s, v0, x0 = _check_points(mu, beta, sigma, xi_dot0, xi0)
+    n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
+    d = check_delay(delay)
+    rules = check_rules(bound, stable_amplitude, growth, settle)
+    if not np.all(rules[0] > np.abs(x0)):
+        raise DFAValueError(f"bound = {rules[0]!r} is invalid: it must exceed every |xi0| ({np.abs(x0).max()!r})")
+    res = run_points(m, b, s, x0, v0, n, d, bool(quantize), *rules)
+    codes, amps, freqs, centres, fpps, done, rest, stats = res
+    return SimulationBatch(
+        mu=m,
+        beta=b,
+        sigma=s,
+        xi0=x0,
+        xi_dot0=v0,
+        samples=n,
+        delay=d,
+        quantize=bool(quantize),
+        outcome=codes.astype(np.int8),
+        amplitude=amps,
+        frequency=freqs,
+        centre=centres,
+        force_peak_to_peak=fpps,
+        rest_sample=rest,
+        samples_run=done,
+        final_xi=stats[:, _kernel.NSEG + 6].copy(),
+        final_xi_dot=stats[:, _kernel.NSEG + 7].copy(),
+        envelope=stats[:, : _kernel.NSEG].copy(),
+    )
+
+
+def run_points(mu, beta, sigma, x0, v0, n, delay, quantize, bound, stable_amplitude, growth, settle, lanes=BATCH_LANES):
+    """Validated float arrays in, kernel outputs out: (codes, amps, freqs, centres, fpps, done, rest, stats).
+
+    The runs go through :func:`dfa._kernel.batch_kernel` ``lanes`` at a time
+    (no GIL held: callers may run several calls on threads). The run length
+    is the same for all, so the tail length follows each run's μ as in
+    :func:`simulate` (grouped by equal tail length).
+    """
+    k = mu.shape[0]
+    codes = np.empty(k, dtype=np.int64)
+    amps, freqs, centres, fpps = np.empty(k), np.empty(k), np.empty(k), np.empty(k)
+    done = np.empty(k, dtype=np.int64)
+    rest = np.empty(k, dtype=np.int64)
+    stats = np.empty((k, _kernel.NSTATS))
+    tails = np.array([_tail_length(n, float(m)) for m in mu], dtype=np.int64)
+    for t in np.unique(tails):
+        idx = np.flatnonzero(tails == t)
+        for lo in range(0, idx.size, lanes):
+            j = idx[lo : lo + lanes]
+            st = np.empty((j.size, _kernel.NSTATS))
+            dn = np.empty(j.size, dtype=np.int64)
+            rs = np.empty(j.size, dtype=np.int64)
+            _kernel.batch_kernel(mu[j], beta[j], sigma[j], x0[j], v0[j], n, delay, quantize, bound, int(t), st, dn, rs)
+            stats[j], done[j], rest[j] = st, dn, rs
+    _kernel.classify_batch(
+        mu, n, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
+    )
+    return codes, amps, freqs, centres, fpps, done, rest, stats
