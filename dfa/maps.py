@@ -1,20 +1,24 @@
 """Stability maps over the (β, σ) plane (paper Fig. 4).
 
 Every grid point is an independent exact simulation (:func:`dfa.simulate`
-without recording), so maps run in parallel with joblib in chunks of points
-and the result does not depend on the number of jobs. A tqdm progress bar
-reports the chunks as they finish.
+without recording), run in chunks of points through the batched kernel
+(:func:`dfa.simulation.run_points`); the result does not depend on the number
+of jobs nor on the backend. A tqdm progress bar reports the chunks as they
+finish.
 
-Running on a dask cluster
--------------------------
-joblib's dask backend sends the same chunks to a cluster (``pip install
+Backends
+--------
+``"threads"`` (default): the compiled kernel releases the GIL, so chunks run
+on a thread pool in this process (no worker start-up, no re-import).
+``"processes"``: joblib's process pool (loky). ``"joblib"``: whatever
+``joblib.parallel_config`` selects, e.g. a dask cluster (``pip install
 'dfa[dask]'``)::
 
     from dask.distributed import Client
     import joblib
     client = Client("tcp://scheduler:8786")
     with joblib.parallel_config(backend="dask"):
-        m = stability_map(100.0, [1, 2, 5, 10], grid=400)
+        m = stability_map(100.0, [1, 2, 5, 10], grid=400, backend="joblib")
 
 Examples
 --------
@@ -50,12 +54,14 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _kernel
 from ._io import atomic_open, check_memory
-from .errors import DFAValueError, check_delay, check_int, check_mu, check_nonnegative, check_positive, check_real
-from .simulation import OUTCOMES, _tail_length, preload_position
+from .errors import DFAValueError, check_choice, check_delay, check_int, check_mu, check_nonnegative, check_real
+from .simulation import OUTCOMES, check_rules, preload_position, run_points
 
-__all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs"]
+__all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
+
+#: Execution backends of :func:`stability_map` (module docstring).
+MAP_BACKENDS = ("threads", "processes", "joblib")
 
 #: Planned peak memory per grid point and initial speed (bytes): four float inputs, three
 #: float outputs in chunks and concatenated, the int8 outcome, with margin.
@@ -198,29 +204,46 @@ def load_map(path: str | os.PathLike) -> StabilityMap:
 
 
 def _run_chunk(mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth, settle):
-    n = betas.size
-    codes = np.empty(n, dtype=np.int64)
-    amps = np.empty(n)
-    freqs = np.empty(n)
-    _kernel.map_kernel(
-        mu,
-        betas,
-        sigmas,
-        x0s,
-        v0s,
-        samples,
-        delay,
-        quantize,
-        bound,
-        _tail_length(samples, mu),
-        stable_amplitude,
-        growth,
-        settle,
-        codes,
-        amps,
-        freqs,
-    )
-    return codes, amps, freqs
+    """Codes, amplitudes and frequencies of one chunk of points (the batched kernel; releases the GIL)."""
+    mus = np.full(betas.size, mu)
+    res = run_points(mus, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth, settle)
+    return res[0], res[1], res[2]
+
+
+def _map_chunks(tasks: list[tuple], sizes: list[int], workers: int, backend: str, bar) -> list:
+    """``_run_chunk(*task)`` for every task, in order, on ``workers`` (1: this thread), updating the progress bar."""
+    results = []
+    if workers == 1:
+        for task, size in zip(tasks, sizes, strict=True):
+            results.append(_run_chunk(*task))
+            bar.update(size)
+        return results
+    if backend == "threads":
+        from concurrent.futures import ThreadPoolExecutor
+
+        with ThreadPoolExecutor(max_workers=min(workers, len(tasks))) as pool:
+            futures = [pool.submit(_run_chunk, *task) for task in tasks]
+            try:
+                for size, fut in zip(sizes, futures, strict=True):
+                    results.append(fut.result())
+                    bar.update(size)
+            finally:
+                for fut in futures:  # on an interruption: drop the chunks not started
+                    fut.cancel()
+        return results
+    from joblib import Parallel, delayed
+
+    kw = {"backend": "loky"} if backend == "processes" else {}
+    # never more workers than chunks (same result, fewer processes)
+    par = Parallel(n_jobs=min(workers, len(tasks)), return_as="generator", **kw)
+    gen = par(delayed(_run_chunk)(*task) for task in tasks)
+    try:
+        for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
+            results.append(res)
+            bar.update(size)
+    finally:
+        gen.close()  # on an interruption: cancel the pending chunks, stop the workers
+    return results
 
 
 def _check_range(name: str, rng) -> tuple[float, float]:
@@ -247,6 +270,7 @@ def stability_map(
     quantize: bool = True,
     preload: bool = False,
     n_jobs: int = -1,
+    backend: str = "threads",
     progress: bool = True,
     bound: float = 1.0e6,
     stable_amplitude: float = 1.0,
@@ -270,8 +294,11 @@ def stability_map(
         Samples per run (paper: 5·10⁴, 50 s at 1 kHz). Fixed for the whole
         grid; points that need longer are ``"undecided"``.
     n_jobs : int
-        joblib workers (-1: all cores; 1: in this process). The result does
-        not depend on it.
+        Workers (-1: all cores; 1: in this thread). The result does not depend on it.
+    backend : {"threads", "processes", "joblib"}
+        Where the workers run (module docstring): threads of this process
+        (default), joblib's process pool, or joblib's configured backend
+        (dask). The result does not depend on it.
     progress : bool
         Show a tqdm progress bar.
     bound, stable_amplitude, growth, settle
@@ -294,12 +321,8 @@ def stability_map(
     n = check_int("samples", samples, minimum=1)
     d = check_delay(delay)
     jobs = check_jobs("n_jobs", n_jobs)
-    bnd = check_positive("bound", bound)
-    sa = check_nonnegative("stable_amplitude", stable_amplitude)
-    gr = check_positive("growth", growth)
-    if gr <= 1.0:
-        raise DFAValueError(f"growth = {gr!r} is invalid: it must be > 1")
-    st = check_nonnegative("settle", settle)
+    how = check_choice("backend", backend, MAP_BACKENDS)
+    rules = check_rules(bound, stable_amplitude, growth, settle)
     check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
 
     beta = np.linspace(b0, b1, g)
@@ -313,55 +336,38 @@ def stability_map(
     else:
         x0 = np.zeros(pts_b.size)
         v0 = np.repeat(np.asarray(speeds, dtype=float), bb.size)
-    total = pts_b.size
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
-    nchunks = max(1, min(total, workers * 16)) if workers > 1 else max(1, min(total, 64))
-    bounds = np.linspace(0, total, nchunks + 1).astype(int)
-    chunks = [slice(bounds[i], bounds[i + 1]) for i in range(nchunks) if bounds[i + 1] > bounds[i]]
-    args = (m,)
-    tail = (n, d, bool(quantize), bnd, sa, gr, st)
-    # compile (or load from the on-disk cache) once here, before the workers start
-    _run_chunk(
-        m, pts_b[:1].copy(), pts_s[:1].copy(), x0[:1].copy(), v0[:1].copy(), 1, d, bool(quantize), bnd, sa, gr, st
-    )
+    chunks = _chunks(pts_b.size, workers)
+    tail = (n, d, bool(quantize), *rules)
+    tasks = [(m, pts_b[c], pts_s[c], x0[c], v0[c], *tail) for c in chunks]
+    _run_chunk(m, pts_b[:1], pts_s[:1], x0[:1], v0[:1], 1, *tail[1:])  # compile or load the kernel once, first
 
     from tqdm.auto import tqdm
 
-    bar = tqdm(total=total, unit="run", desc=f"stability map μ={m:g}", disable=not progress, leave=False)
-    results = []
+    bar = tqdm(total=pts_b.size, unit="run", desc=f"stability map μ={m:g}", disable=not progress, leave=False)
     try:
-        if workers == 1:
-            for c in chunks:
-                results.append(_run_chunk(*args, pts_b[c], pts_s[c], x0[c], v0[c], *tail))
-                bar.update(c.stop - c.start)
-        else:
-            from joblib import Parallel, delayed
-
-            # never more workers than chunks (same result, fewer processes)
-            par = Parallel(n_jobs=min(workers, len(chunks)), return_as="generator")
-            gen = par(delayed(_run_chunk)(*args, pts_b[c], pts_s[c], x0[c], v0[c], *tail) for c in chunks)
-            try:
-                for c, res in zip(chunks, gen, strict=False):  # the generator yields in submission order
-                    results.append(res)
-                    bar.update(c.stop - c.start)
-            finally:
-                gen.close()  # on an interruption: cancel the pending chunks, stop the workers
+        results = _map_chunks(tasks, [c.stop - c.start for c in chunks], workers, how, bar)
     finally:
         bar.close()
-    codes = np.concatenate([r[0] for r in results]).astype(np.int8)
-    amps = np.concatenate([r[1] for r in results])
-    freqs = np.concatenate([r[2] for r in results])
     shape = (len(speeds), g, g)
+    codes, amps, freqs = (np.concatenate([r[k] for r in results]).reshape(shape) for k in range(3))
     return StabilityMap(
         mu=m,
         xi_dots=speeds,
         beta=beta,
         sigma=sigma,
-        outcome=codes.reshape(shape),
-        amplitude=amps.reshape(shape),
-        frequency=freqs.reshape(shape),
+        outcome=codes.astype(np.int8),
+        amplitude=amps,
+        frequency=freqs,
         samples=n,
         delay=d,
         quantize=bool(quantize),
         preload=bool(preload),
     )
+
+
+def _chunks(total: int, workers: int) -> list[slice]:
+    """Contiguous chunks of the points: 16 per worker (progress and load balance), 64 in one thread."""
+    nchunks = max(1, min(total, workers * 16)) if workers > 1 else max(1, min(total, 64))
+    bounds = np.linspace(0, total, nchunks + 1).astype(int)
+    return [slice(bounds[i], bounds[i + 1]) for i in range(nchunks) if bounds[i + 1] > bounds[i]]
