@@ -488,38 +488,73 @@ def batch_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_l
         done[i] = n
         rest[i] = -1
     active = np.arange(m)
+    slow = np.empty(m, dtype=np.int64)  # runs that need the full step this sample (stuck, or ξ' reaches 0)
+    phis = np.empty(m)
+    xra = np.empty(m)  # turning point inside the sample (valid where stopped)
+    stp = np.zeros(m, dtype=np.bool_)
+    out = np.zeros(m, dtype=np.bool_)
     nact = m
     tail_start = n - tail_len
     for seg in range(NSEG):
         lo, hi = segment_bounds(seg, n)
         for h in range(lo, hi):
-            j = 0
+            # phase 1, no data-dependent branch: a whole sample without a stop (step's fast path), for every run
+            ns = 0
             for idx in range(nact):
                 i = active[idx]
                 x = xa[i]
                 v = va[i]
-                sigma = sigmas[i]
-                row = hist[i]
-                phi, pos = delayed_force(force(x, quantize), row, posa[i], delay)
+                phi, pos = delayed_force(force(x, quantize), hist[i], posa[i], delay)
                 posa[i] = pos
-                if v == 0.0 and at_rest(v, phi, sigma, row, delay):
+                phis[i] = phi
+                sigma = sigmas[i]
+                s = 1.0 if (v > 0.0) | ((v == 0.0) & (phi > 0.0)) else -1.0  # bitwise: no branches
+                f = phi - sigma * s
+                x1 = x + v * kc[i, 2] + f * kc[i, 5]
+                v1 = v * kc[i, 1] + f * kc[i, 4]
+                a = f / mus[i]
+                cross = not (v1 * s > 0.0)  # step's test, negated as written there (NaN included)
+                hard = ((v == 0.0) & (abs(phi) <= sigma)) | (cross & (v != 0.0) & (a != 0.0))
+                xa[i] = x if hard else x1
+                va[i] = v if hard else v1
+                stp[i] = False
+                slow[ns] = i
+                ns += hard
+            # phase 2: the rest check and the full step (stop inside the sample) for the few that need it
+            for idx in range(ns):
+                i = slow[idx]
+                x = xa[i]
+                v = va[i]
+                phi = phis[i]
+                if at_rest(v, phi, sigmas[i], hist[i], delay):
                     done[i] = h
                     rest[i] = h
-                    continue  # drops out
+                    out[i] = True
+                    continue
                 k = (kc[i, 0], kc[i, 1], kc[i, 2], kc[i, 3], kc[i, 4], kc[i, 5])
-                x, v, xr, _t, _a, _a2, _tr, stopped = step(x, v, phi, mus[i], sigma, k)
+                x, v, xr, _t, _a, _a2, _tr, stopped = step(x, v, phi, mus[i], sigmas[i], k)
                 xa[i] = x
                 va[i] = v
+                xra[i] = xr
+                stp[i] = stopped
+            # phase 3: envelope, tail, bound; runs at rest or past the bound drop out
+            j = 0
+            for idx in range(nact):
+                i = active[idx]
+                if out[i]:
+                    continue
+                x = xa[i]
                 ax = abs(x)
                 if ax > stats[i, seg]:
                     stats[i, seg] = ax
                 if h >= tail_start:
                     tail[i, h - tail_start] = x
-                    tmina[i], tmaxa[i] = tail_extremes(x, xr, stopped, tmina[i], tmaxa[i])
+                    tmina[i], tmaxa[i] = tail_extremes(x, xra[i], stp[i], tmina[i], tmaxa[i])
                 if not ax <= bound:  # also catches NaN
                     done[i] = h + 1
                     stats[i, NSEG + 5] = 1.0
-                    continue  # drops out
+                    out[i] = True
+                    continue
                 active[j] = i
                 j += 1
             nact = j
@@ -564,3 +599,27 @@ def classify_batch(
         freqs[i] = f
         centres[i] = ce
         fpps[i] = fp
+
+
+@njit(cache=True, nogil=True)
+def serial_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
+    """:func:`batch_kernel`'s contract, one run after the other through :func:`simulate_kernel`."""
+    empty = np.empty(0)
+    empty2 = np.empty((0, 4))
+    for i in range(mus.shape[0]):
+        done[i], rest[i] = simulate_kernel(
+            mus[i],
+            betas[i],
+            sigmas[i],
+            x0s[i],
+            v0s[i],
+            n,
+            delay,
+            quantize,
+            bound,
+            tail_len,
+            empty,
+            empty,
+            empty2,
+            stats[i],
+        )
