@@ -8,23 +8,27 @@ best-of-N on this machine; only the ratios are meaningful across machines.
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import platform
 import sys
 import time
 from datetime import datetime, timezone
 
+import numba
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "tests"))  # the slow reference integrators live with the tests
 
+from plain_kernel import plain_kernel  # noqa: E402
 from reference import simulate_control, simulate_ivp  # noqa: E402
 
 import dfa  # noqa: E402
+from dfa import _kernel  # noqa: E402
 from dfa.maps import stability_map  # noqa: E402
-from dfa.simulation import simulate  # noqa: E402
+from dfa.simulation import run_points, simulate  # noqa: E402
 
 # a persistent oscillation: no early exit, every sample is integrated
 OSC = dict(mu=2.0, beta=0.4, sigma=0.1, xi_dot0=2.0)
@@ -64,6 +68,95 @@ def bench_simulator(quick: bool) -> list[dict]:
             goal=">= 1e3x slower than the kernel",
         ),
     ]
+
+
+@numba.njit(cache=True)
+def _chain_floor(x, v, n, p1, e1, q1, q2):  # pragma: no cover - compiled
+    """The per-sample dependency chain alone: read ⌊ξ⌋, force, exact update; no stick-slip, no bookkeeping."""
+    for _ in range(n):
+        f = -(math.floor(x) + 0.5)
+        x, v = x + v * p1 + f * q2, v * e1 + f * q1
+    return x + v
+
+
+def _kernel_before():
+    """The simulator kernel before the inlined-steps refactor (git commit afb84de), or None without git."""
+    import importlib.util
+    import subprocess
+    import tempfile
+
+    try:
+        src = subprocess.run(
+            ["git", "-C", HERE, "show", "afb84de:dfa/_kernel.py"], capture_output=True, text=True, check=True
+        ).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    path = os.path.join(tempfile.mkdtemp(), "kernel_before.py")
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write(src)
+    spec = importlib.util.spec_from_file_location("kernel_before", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def bench_kernel(quick: bool) -> dict:
+    """ns per sample: dfa's kernel vs the kernel before the refactor, the plain kernel, the chain floor; batched."""
+    n = 1_000_000 if quick else 4_000_000
+    mu, beta, sigma, v0 = OSC["mu"], OSC["beta"], OSC["sigma"], OSC["xi_dot0"]
+    e, e2 = np.empty(0), np.empty((0, 4))
+    old = _kernel_before()
+
+    def ours(mod=_kernel):
+        mod.simulate_kernel(mu, beta, sigma, 0.0, v0, n, 0, True, 1e6, 8192, e, e, e2, np.empty(mod.NSTATS))
+
+    k = _kernel.sample_constants(mu, beta)
+    fns = {
+        "dfa kernel": ours,
+        "plain kernel": lambda: plain_kernel(mu, beta, sigma, 0.0, v0, n, 0, True, 1e6),
+        "chain floor": lambda: _chain_floor(0.0, v0, n, k[2], k[1], k[4], k[5]),
+    }
+    if old is not None:
+        fns["dfa kernel before refactor"] = lambda: ours(old)
+    for f in fns.values():  # compile / load the caches
+        f()
+    best = {name: np.inf for name in fns}
+    for _ in range(3 if quick else 7):  # interleaved, so that load changes hit every method alike
+        for name, f in fns.items():
+            best[name] = min(best[name], best_of(f, 1))
+    out = {name: 1e9 * t / n for name, t in best.items()}
+    # batched: 64 runs of the same oscillation at slightly different speeds, point-samples per second
+    runs, nb = 64, n // 16
+    pts = [np.full(runs, mu), np.full(runs, beta), np.full(runs, sigma), np.zeros(runs), np.linspace(1.5, 2.5, runs)]
+    for lanes in (1, 4, 16):
+        run = lambda lanes=lanes: run_points(*pts, nb, 0, True, 1e6, 1.0, 1.25, 1e-3, lanes=lanes)
+        run()
+        out[f"batched, {lanes} lanes"] = 1e9 * min(best_of(run, 1) for _ in range(3)) / (runs * nb)
+    return out
+
+
+def bench_map_speed(quick: bool) -> dict:
+    """`dfa map` at 4 × 40 × 40 points: threads and processes against a single-core loop of simulate()."""
+    speeds, g, n = [1.0, 2.0, 5.0, 10.0], (20 if quick else 40), 50_000
+    stability_map(100.0, speeds, grid=2, samples=10, n_jobs=1, progress=False)
+    bb, ss = np.meshgrid(np.linspace(0.0, 1.0, g), np.linspace(0.0, 2.0, g))
+
+    def loop():
+        for v in speeds:
+            for b, s in zip(bb.ravel(), ss.ravel(), strict=True):
+                simulate(100.0, float(b), float(s), v, n, record=False)
+
+    runs = {
+        "single-core loop of simulate()": loop,
+        "stability_map, 1 job": lambda: stability_map(100.0, speeds, grid=g, samples=n, n_jobs=1, progress=False),
+        "stability_map, 2 jobs, threads": lambda: stability_map(
+            100.0, speeds, grid=g, samples=n, n_jobs=2, progress=False
+        ),
+        "stability_map, 2 jobs, processes": lambda: stability_map(
+            100.0, speeds, grid=g, samples=n, n_jobs=2, progress=False, backend="processes"
+        ),
+    }
+    return dict(grid=g, seconds={name: best_of(f, 1) for name, f in runs.items()})
 
 
 def bench_fig4(quick: bool) -> dict:
@@ -193,6 +286,38 @@ def bench_solver_friction(solver_rows: list[dict]) -> list[dict]:
     return rows
 
 
+def render_kernel(kern: dict, mapspeed: dict) -> list[str]:
+    plain, ours = kern["plain kernel"], kern["dfa kernel"]
+    lines = [
+        "",
+        "## Simulator kernel (issue 16): time per sample, measured side by side in one run",
+        "",
+        "Same oscillation as above, no recording. The plain kernel (`benchmarks/plain_kernel.py`) is the",
+        "straightforward exact kernel of the same model; the chain floor is the read → force → update dependency",
+        "chain alone (no stick-slip), the physical limit of one trajectory on this machine. Goal: dfa ≤ 0.5 × plain.",
+        "",
+        "| method | ns per sample (point-sample when batched) | × plain kernel |",
+        "|---|---:|---:|",
+    ]
+    for name, t in kern.items():
+        lines.append(f"| {name} | {t:.3g} | {t / plain:.2f} |")
+    verdict = "met" if ours <= 0.5 * plain else "NOT met"
+    lines += ["", f"dfa kernel / plain kernel = {ours / plain:.2f} (goal ≤ 0.5: **{verdict}**)."]
+    sec = mapspeed["seconds"]
+    loop = sec["single-core loop of simulate()"]
+    g = mapspeed["grid"]
+    lines += [
+        "",
+        f"## `dfa map` speed: 4 × {g} × {g} points, μ = 100, 5·10⁴ samples (issue 14: 2 jobs ≤ 0.5 × single-core loop)",
+        "",
+        "| run | seconds | × single-core loop |",
+        "|---|---:|---:|",
+    ]
+    for name, t in sec.items():
+        lines.append(f"| {name} | {t:.2f} | {t / loop:.2f} |")
+    return lines
+
+
 def render(
     sim: list[dict],
     fig4: dict,
@@ -200,6 +325,8 @@ def render(
     solver: list[dict] | None = None,
     friction: list[dict] | None = None,
     contours: dict | None = None,
+    kernel: dict | None = None,
+    mapspeed: dict | None = None,
 ) -> str:
     lines = [
         "# Benchmarks",
@@ -217,6 +344,8 @@ def render(
     ]
     for row in sim:
         lines.append(f"| {row['name']} | {row['per_sample_ns']:.4g} | {row['ratio']:.3g} | {row['goal']} |")
+    if kernel and mapspeed:
+        lines += render_kernel(kernel, mapspeed)
     g = fig4["grid"]
     lines += [
         "",
@@ -308,13 +437,19 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--out", default=os.path.join(HERE, "..", "reports", "benchmarks.md"))
     ap.add_argument("--quick", action="store_true", help="smaller sizes (for a smoke test)")
+    ap.add_argument("--only-kernel", action="store_true", help="only the kernel and map-speed sections, printed")
     args = ap.parse_args()
+    if args.only_kernel:
+        print("\n".join(render_kernel(bench_kernel(args.quick), bench_map_speed(args.quick))))
+        return 0
     sim = bench_simulator(args.quick)
+    kernel = bench_kernel(args.quick)
+    mapspeed = bench_map_speed(args.quick)
     fig4 = bench_fig4(args.quick)
     solver = bench_solver(args.quick)
     friction = bench_solver_friction(solver)
     contours = bench_contours(args.quick)
-    text = render(sim, fig4, args.quick, solver, friction, contours)
+    text = render(sim, fig4, args.quick, solver, friction, contours, kernel, mapspeed)
     with open(args.out, "w", encoding="utf-8") as fh:
         fh.write(text)
     print(text)
