@@ -67,6 +67,7 @@ Examples
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numpy.polynomial import chebyshev
@@ -96,7 +97,7 @@ def _verify_step(a: float) -> float:
     return min(1e-2, max(1e-6, 1e-11 / a))
 
 
-def _zoh_coefficients(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _zoh_coefficients(a) -> tuple[Any, Any, Any]:
     """(c₁, c₀, p) of the ZOH pulse transfer function, without cancellation for small a (plain floats for a float).
 
     c₁ = φ₂(a) and, below a = ½, c₀ = φ₁(a) − φ₂(a) (:mod:`dfa._exprel`); c₀ = (1 − p − a p)/a² above.
@@ -104,9 +105,9 @@ def _zoh_coefficients(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     from ._exprel import phi1, phi1_array, phi2, phi2_array  # compiled; loaded on first use
 
     if isinstance(a, float):
-        p = math.exp(-a)
-        c1 = phi2(a)
-        return c1, (phi1(a) - c1 if a < 0.5 else (1.0 - p - a * p) / (a * a)), p
+        pf = math.exp(-a)
+        c1f = phi2(a)
+        return c1f, (phi1(a) - c1f if a < 0.5 else (1.0 - pf - a * pf) / (a * a)), pf
     a = np.asarray(a, dtype=float)
     p = np.exp(-a)
     c1 = phi2_array(a)
