@@ -459,116 +459,125 @@ def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, m
     return OSCILLATING, amp, freq, centre, fpp
 
 
+@njit(cache=True, inline="always")
+def _batch_fast(active, nact, xa, va, posa, phis, stp, slow, hist, kc, mus, sigmas, delay, quantize):
+    """Phase 1 of a batch sample, no data-dependent branch: step's fast path (a whole sample without a stop).
+
+    Runs that are stuck or whose ξ' reaches 0 keep their state and go to ``slow``; returns their count.
+    """
+    ns = 0
+    for idx in range(nact):
+        i = active[idx]
+        x = xa[i]
+        v = va[i]
+        phi, pos = delayed_force(force(x, quantize), hist[i], posa[i], delay)
+        posa[i] = pos
+        phis[i] = phi
+        sigma = sigmas[i]
+        s = 1.0 if (v > 0.0) | ((v == 0.0) & (phi > 0.0)) else -1.0  # bitwise: no branches
+        f = phi - sigma * s
+        x1 = x + v * kc[i, 2] + f * kc[i, 5]
+        v1 = v * kc[i, 1] + f * kc[i, 4]
+        a = f / mus[i]
+        cross = not (v1 * s > 0.0)  # step's test, negated as written there (NaN included)
+        hard = ((v == 0.0) & (abs(phi) <= sigma)) | (cross & (v != 0.0) & (a != 0.0))
+        xa[i] = x if hard else x1
+        va[i] = v if hard else v1
+        stp[i] = False
+        slow[ns] = i
+        ns += hard
+    return ns
+
+
+@njit(cache=True, inline="always")
+def _batch_slow(slow, ns, h, xa, va, phis, xra, stp, out, hist, kc, mus, sigmas, delay, done, rest):
+    """Phase 2: the rest check and the full :func:`step` for the runs phase 1 left out."""
+    for idx in range(ns):
+        i = slow[idx]
+        phi = phis[i]
+        if at_rest(va[i], phi, sigmas[i], hist[i], delay):
+            done[i] = h
+            rest[i] = h
+            out[i] = True
+            continue
+        k = (kc[i, 0], kc[i, 1], kc[i, 2], kc[i, 3], kc[i, 4], kc[i, 5])
+        x, v, xr, _t, _a, _a2, _tr, stopped = step(xa[i], va[i], phi, mus[i], sigmas[i], k)
+        xa[i] = x
+        va[i] = v
+        xra[i] = xr
+        stp[i] = stopped
+
+
+@njit(cache=True, inline="always")
+def _batch_book(active, nact, h, seg, tail_start, bound, xa, xra, stp, out, stats, tail, tmina, tmaxa, done):
+    """Phase 3: envelope, tail and bound of every run; runs at rest or past the bound drop out. Returns the count left."""
+    j = 0
+    for idx in range(nact):
+        i = active[idx]
+        if out[i]:
+            continue
+        x = xa[i]
+        ax = abs(x)
+        if ax > stats[i, seg]:
+            stats[i, seg] = ax
+        if h >= tail_start:
+            tail[i, h - tail_start] = x
+            tmina[i], tmaxa[i] = tail_extremes(x, xra[i], stp[i], tmina[i], tmaxa[i])
+        if not ax <= bound:  # also catches NaN
+            done[i] = h + 1
+            stats[i, NSEG + 5] = 1.0
+            out[i] = True
+            continue
+        active[j] = i
+        j += 1
+    return j
+
+
 @njit(cache=True, nogil=True)
 def batch_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
     """Run independent runs of ``n`` samples together, interleaved sample by sample; nothing recorded.
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``); ``stats[i]``
     (NSTATS), ``done[i]`` and ``rest[i]`` receive what :func:`simulate_kernel`
-    returns for it alone, bit for bit: each run goes through the same inlined
-    steps with its own constants. Runs that come to rest or pass the bound
-    drop out; the others keep several independent dependency chains in
-    flight.
+    returns for it alone, bit for bit: each run goes through the same steps
+    with its own constants. Each sample runs three phases over the runs
+    (:func:`_batch_fast`, :func:`_batch_slow`, :func:`_batch_book`), so that
+    the common case has no data-dependent branch and the runs' dependency
+    chains overlap. Runs that come to rest or pass the bound drop out.
     """
     m = mus.shape[0]
     hist = np.empty((m, delay + 1))
     tail = np.empty((m, max(tail_len, 1)))
     state = np.empty((m, NSTATE))
     kc = np.empty((m, 6))
-    xa = np.empty(m)
-    va = np.empty(m)
-    posa = np.zeros(m, dtype=np.int64)
-    tmina = np.full(m, np.inf)
-    tmaxa = np.full(m, -np.inf)
     for i in range(m):
         start(x0s[i], v0s[i], delay, quantize, state[i], hist[i], stats[i])
         kc[i, 0], kc[i, 1], kc[i, 2], kc[i, 3], kc[i, 4], kc[i, 5] = sample_constants(mus[i], betas[i])
-        xa[i] = x0s[i]
-        va[i] = v0s[i]
         done[i] = n
         rest[i] = -1
-    active = np.arange(m)
-    slow = np.empty(m, dtype=np.int64)  # runs that need the full step this sample (stuck, or ξ' reaches 0)
-    phis = np.empty(m)
-    xra = np.empty(m)  # turning point inside the sample (valid where stopped)
-    stp = np.zeros(m, dtype=np.bool_)
-    out = np.zeros(m, dtype=np.bool_)
+    xa, va = x0s.copy(), v0s.copy()
+    posa = np.zeros(m, dtype=np.int64)
+    tmina, tmaxa = np.full(m, np.inf), np.full(m, -np.inf)
+    active, slow = np.arange(m), np.empty(m, dtype=np.int64)
+    phis, xra = np.empty(m), np.empty(m)  # force of the sample; turning point inside it (where stopped)
+    stp, out = np.zeros(m, dtype=np.bool_), np.zeros(m, dtype=np.bool_)
     nact = m
     tail_start = n - tail_len
     for seg in range(NSEG):
         lo, hi = segment_bounds(seg, n)
         for h in range(lo, hi):
-            # phase 1, no data-dependent branch: a whole sample without a stop (step's fast path), for every run
-            ns = 0
-            for idx in range(nact):
-                i = active[idx]
-                x = xa[i]
-                v = va[i]
-                phi, pos = delayed_force(force(x, quantize), hist[i], posa[i], delay)
-                posa[i] = pos
-                phis[i] = phi
-                sigma = sigmas[i]
-                s = 1.0 if (v > 0.0) | ((v == 0.0) & (phi > 0.0)) else -1.0  # bitwise: no branches
-                f = phi - sigma * s
-                x1 = x + v * kc[i, 2] + f * kc[i, 5]
-                v1 = v * kc[i, 1] + f * kc[i, 4]
-                a = f / mus[i]
-                cross = not (v1 * s > 0.0)  # step's test, negated as written there (NaN included)
-                hard = ((v == 0.0) & (abs(phi) <= sigma)) | (cross & (v != 0.0) & (a != 0.0))
-                xa[i] = x if hard else x1
-                va[i] = v if hard else v1
-                stp[i] = False
-                slow[ns] = i
-                ns += hard
-            # phase 2: the rest check and the full step (stop inside the sample) for the few that need it
-            for idx in range(ns):
-                i = slow[idx]
-                x = xa[i]
-                v = va[i]
-                phi = phis[i]
-                if at_rest(v, phi, sigmas[i], hist[i], delay):
-                    done[i] = h
-                    rest[i] = h
-                    out[i] = True
-                    continue
-                k = (kc[i, 0], kc[i, 1], kc[i, 2], kc[i, 3], kc[i, 4], kc[i, 5])
-                x, v, xr, _t, _a, _a2, _tr, stopped = step(x, v, phi, mus[i], sigmas[i], k)
-                xa[i] = x
-                va[i] = v
-                xra[i] = xr
-                stp[i] = stopped
-            # phase 3: envelope, tail, bound; runs at rest or past the bound drop out
-            j = 0
-            for idx in range(nact):
-                i = active[idx]
-                if out[i]:
-                    continue
-                x = xa[i]
-                ax = abs(x)
-                if ax > stats[i, seg]:
-                    stats[i, seg] = ax
-                if h >= tail_start:
-                    tail[i, h - tail_start] = x
-                    tmina[i], tmaxa[i] = tail_extremes(x, xra[i], stp[i], tmina[i], tmaxa[i])
-                if not ax <= bound:  # also catches NaN
-                    done[i] = h + 1
-                    stats[i, NSEG + 5] = 1.0
-                    out[i] = True
-                    continue
-                active[j] = i
-                j += 1
-            nact = j
+            ns = _batch_fast(active, nact, xa, va, posa, phis, stp, slow, hist, kc, mus, sigmas, delay, quantize)
+            _batch_slow(slow, ns, h, xa, va, phis, xra, stp, out, hist, kc, mus, sigmas, delay, done, rest)
+            nact = _batch_book(
+                active, nact, h, seg, tail_start, bound, xa, xra, stp, out, stats, tail, tmina, tmaxa, done
+            )
             if nact == 0:
                 break
         if nact == 0:
             break
-    empty = np.empty(0)
-    empty2 = np.empty((0, 4))
+    empty, empty2 = np.empty(0), np.empty((0, 4))
     for i in range(m):
-        state[i, SX] = xa[i]
-        state[i, SV] = va[i]
-        state[i, STMIN] = tmina[i]
-        state[i, STMAX] = tmaxa[i]
+        state[i, SX], state[i, SV], state[i, STMIN], state[i, STMAX] = xa[i], va[i], tmina[i], tmaxa[i]
         finish(
             state[i],
             n,

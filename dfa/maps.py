@@ -309,12 +309,7 @@ def stability_map(
     StabilityMap
     """
     m = check_mu(mu)
-    speeds = tuple(
-        abs(check_real("xi_dot", v, "give initial speeds in ticks per sample"))
-        for v in np.atleast_1d(np.asarray(xi_dots, dtype=object))
-    )
-    if not speeds:
-        raise DFAValueError("xi_dots = [] is invalid: it must hold at least one initial speed")
+    speeds = _check_speeds(xi_dots)
     b0, b1 = _check_range("beta_range", beta_range)
     s0, s1 = _check_range("sigma_range", sigma_range)
     g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
@@ -324,18 +319,8 @@ def stability_map(
     how = check_choice("backend", backend, MAP_BACKENDS)
     rules = check_rules(bound, stable_amplitude, growth, settle)
     check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
-
-    beta = np.linspace(b0, b1, g)
-    sigma = np.linspace(s0, s1, g)
-    bb, ss = np.meshgrid(beta, sigma)  # (σ, β) layout: rows σ, columns β
-    pts_b = np.tile(bb.ravel(), len(speeds))
-    pts_s = np.tile(ss.ravel(), len(speeds))
-    if preload:
-        x0 = np.repeat([preload_position(m, v) for v in speeds], bb.size)
-        v0 = np.zeros_like(x0)
-    else:
-        x0 = np.zeros(pts_b.size)
-        v0 = np.repeat(np.asarray(speeds, dtype=float), bb.size)
+    beta, sigma = np.linspace(b0, b1, g), np.linspace(s0, s1, g)
+    pts_b, pts_s, x0, v0 = _points(m, beta, sigma, speeds, bool(preload))
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
     chunks = _chunks(pts_b.size, workers)
     tail = (n, d, bool(quantize), *rules)
@@ -349,21 +334,30 @@ def stability_map(
         results = _map_chunks(tasks, [c.stop - c.start for c in chunks], workers, how, bar)
     finally:
         bar.close()
-    shape = (len(speeds), g, g)
-    codes, amps, freqs = (np.concatenate([r[k] for r in results]).reshape(shape) for k in range(3))
-    return StabilityMap(
-        mu=m,
-        xi_dots=speeds,
-        beta=beta,
-        sigma=sigma,
-        outcome=codes.astype(np.int8),
-        amplitude=amps,
-        frequency=freqs,
-        samples=n,
-        delay=d,
-        quantize=bool(quantize),
-        preload=bool(preload),
+    codes, amps, freqs = (np.concatenate([r[k] for r in results]).reshape(len(speeds), g, g) for k in range(3))
+    out = (codes.astype(np.int8), amps, freqs, n, d, bool(quantize), bool(preload))
+    return StabilityMap(m, speeds, beta, sigma, *out)
+
+
+def _check_speeds(xi_dots) -> tuple[float, ...]:
+    speeds = tuple(
+        abs(check_real("xi_dot", v, "give initial speeds in ticks per sample"))
+        for v in np.atleast_1d(np.asarray(xi_dots, dtype=object))
     )
+    if not speeds:
+        raise DFAValueError("xi_dots = [] is invalid: it must hold at least one initial speed")
+    return speeds
+
+
+def _points(mu: float, beta, sigma, speeds, preload: bool) -> tuple[np.ndarray, ...]:
+    """β, σ, ξ0, ξ'0 of every run: grid rows σ, columns β, one grid per speed (or per preload)."""
+    bb, ss = np.meshgrid(beta, sigma)
+    pts_b = np.tile(bb.ravel(), len(speeds))
+    pts_s = np.tile(ss.ravel(), len(speeds))
+    if preload:
+        x0 = np.repeat([preload_position(mu, v) for v in speeds], bb.size)
+        return pts_b, pts_s, x0, np.zeros_like(x0)
+    return pts_b, pts_s, np.zeros(pts_b.size), np.repeat(np.asarray(speeds, dtype=float), bb.size)
 
 
 def _chunks(total: int, workers: int) -> list[slice]:

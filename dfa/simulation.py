@@ -459,11 +459,10 @@ def simulate(
     SimulationResult
     """
     m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
+    q = bool(quantize)
     auto = samples is None
-    if auto:
-        n = default_samples(m, b, s, v0, x0, d, bool(quantize))
-    else:
-        n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
+    fix = "simulate at least one sample"
+    n = default_samples(m, b, s, v0, x0, d, q) if auto else check_int("samples", samples, minimum=1, fix=fix)
     bnd, sa, gr, st = check_rules(bound, stable_amplitude, growth, settle)
     if not bnd > abs(x0):
         raise DFAValueError(f"bound = {bnd!r} is invalid: it must exceed |xi0| = {abs(x0)!r}; raise the bound")
@@ -472,41 +471,32 @@ def simulate(
     rv = np.empty(n + 1) if record else np.empty(0)
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
     stats = np.empty(_kernel.NSTATS)
-    done, rest = _kernel.simulate_kernel(
-        m, b, s, x0, v0, n, d, bool(quantize), bnd, _tail_length(n, m), rx, rv, re, stats
-    )
-    code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, bool(quantize), m)
-    suggest = None
-    if code == _kernel.UNDECIDED:
-        suggest = max(4 * n, default_samples(m, b, s, v0, x0, d, bool(quantize), cap=False))
+    done, rest = _kernel.simulate_kernel(m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
+    code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
+    suggest = max(4 * n, default_samples(m, b, s, v0, x0, d, q, cap=False)) if code == _kernel.UNDECIDED else None
     en = None
     if energy:
-        h0 = float(stored_energy(x0, v0, m, bool(quantize)))
+        h0 = float(stored_energy(x0, v0, m, q))
         en = EnergyRecord(re[:, 0].copy(), re[:, 1].copy(), re[:, 2].copy(), re[:, 3].copy(), h0)
-    return SimulationResult(
-        mu=m,
-        beta=b,
-        sigma=s,
-        xi0=x0,
-        xi_dot0=v0,
-        samples=n,
-        delay=d,
-        quantize=bool(quantize),
-        outcome=OUTCOMES[code],
-        amplitude=float(amp),
-        frequency=None if not np.isfinite(freq) else float(freq),
-        centre=float(centre),
-        rest_sample=None if rest < 0 else int(rest),
-        samples_run=int(done),
-        final_xi=float(stats[_kernel.NSEG + 6]),
-        final_xi_dot=float(stats[_kernel.NSEG + 7]),
-        force_peak_to_peak=float(fpp),
-        envelope=tuple(float(v) for v in stats[: _kernel.NSEG]),
-        suggested_samples=suggest,
-        samples_auto=auto,
-        xi=rx if record else None,
-        xi_dot=rv if record else None,
-        energy=en,
+    fields = (m, b, s, x0, v0, n, d, q, *_measured(code, amp, freq, centre, fpp, done, rest, stats), suggest, auto)
+    return SimulationResult(*fields, xi=rx if record else None, xi_dot=rv if record else None, energy=en)
+
+
+def _measured(
+    code, amp, freq, centre, fpp, done, rest, stats
+) -> tuple[str, float, float | None, float, int | None, int, float, float, float, tuple]:
+    """Outcome … envelope fields of a :class:`SimulationResult` (in field order) from the kernel's outputs."""
+    return (
+        OUTCOMES[code],
+        float(amp),
+        None if not np.isfinite(freq) else float(freq),
+        float(centre),
+        None if rest < 0 else int(rest),
+        int(done),
+        float(stats[_kernel.NSEG + 6]),
+        float(stats[_kernel.NSEG + 7]),
+        float(fpp),
+        tuple(float(v) for v in stats[: _kernel.NSEG]),
     )
 
 
