@@ -51,6 +51,7 @@ __all__ = [
     "validate",
     "cycle_checks",
     "critical_speeds",
+    "first_unstable_speed",
     "soundness",
     "cluster_threshold",
     "cluster_note",
@@ -121,10 +122,16 @@ def cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh")) ->
     return out
 
 
-def _first_unstable_speed(
+def first_unstable_speed(
     p: Params, v_lo: float, v_hi: float, samples: int, preload: bool, steps: int = 40, delay: int = 0
 ) -> float | None:
-    """Smallest speed on a geometric scan that ends unstable, refined by bisection against the scan point below it."""
+    """Smallest impact speed ξ'0 (ticks/sample) whose exact simulation diverges, or None.
+
+    A geometric scan of ``steps`` speeds from ``v_lo`` to ``v_hi`` (ticks/sample); the first unstable one is
+    refined by 12 bisection steps against the scan point below it. Runs start at ξ0 = 0 with speed ξ'0, or at
+    rest with the spring preloaded to the same energy (``preload``); ``samples`` per run, delay ``delay``
+    samples. Stability need not be monotone in speed: slower speeds between scan points may diverge too.
+    """
 
     def unstable(v: float) -> bool:
         if preload:
@@ -161,8 +168,8 @@ def critical_speeds(points, samples: int = 20_000) -> list[dict]:
             un = limit_cycles(p, model=model, max_amplitude=5000.0).unstable_cycles
             thr[model] = un[0].amplitude * un[0].frequency if un else None
         ref = crit if crit and crit > 0 else 1.0
-        v_sim = _first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False)
-        v_pre = _first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=True)
+        v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False)
+        v_pre = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=True)
         rows.append(
             dict(
                 name=name,
