@@ -7,10 +7,12 @@ Pure string functions: no numerics, no I/O.
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Sequence
+from typing import Any
 
-__all__ = ["markdown_table", "number", "percent", "text_table"]
+__all__ = ["json_dumps", "markdown_table", "number", "percent", "text_table"]
 
 
 def number(x: float | int | None, digits: int = 4, *, none: str = "–", inf: str = "∞") -> str:
@@ -108,3 +110,24 @@ def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = 
     if header:
         lines.insert(1, "  ".join("-" * w for w in widths))
     return "\n".join(lines)
+
+
+def json_dumps(obj: object, **kwargs: Any) -> str:
+    """JSON text with NaN and ±inf written as null (valid JSON), tuples as lists, non-ASCII kept.
+
+    Examples
+    --------
+    >>> json_dumps({"k": float("nan"), "v": (1.5, float("inf")), "u": "N·m"})
+    '{"k": null, "v": [1.5, null], "u": "N·m"}'
+    """
+
+    def clean(x: object) -> object:
+        if isinstance(x, float) and not math.isfinite(x):
+            return None
+        if isinstance(x, dict):
+            return {str(k): clean(v) for k, v in x.items()}
+        if isinstance(x, (list, tuple)):
+            return [clean(v) for v in x]
+        return x
+
+    return json.dumps(clean(obj), allow_nan=False, ensure_ascii=False, **kwargs)

@@ -10,7 +10,6 @@ inputs and numbers stated, used to refuse overwriting the report of another devi
 from __future__ import annotations
 
 import json
-import math
 import os
 import re
 from dataclasses import dataclass, field
@@ -22,6 +21,7 @@ from .catalogue import CatalogueEntry
 from .design import DesignAnalysis, design_analysis, resolve_design_inputs
 from .device import Device
 from .errors import DFAValueError, check_choice
+from .formatting import json_dumps
 
 __all__ = ["ReportResult", "design_report", "report_slug", "write_design_report"]
 
@@ -87,21 +87,6 @@ def _numbers(a: DesignAnalysis) -> dict[str, Any]:
         simulated_xi_dot=a.simulated_xi_dot,
         cycles=[c.amplitude for c in a.threshold("half-delay").result.cycles],
     )
-
-
-def json_dumps(obj: object, **kwargs: Any) -> str:
-    """JSON text with NaN and ±inf written as null (valid JSON), tuples as lists."""
-
-    def clean(x: object) -> object:
-        if isinstance(x, float) and not math.isfinite(x):
-            return None
-        if isinstance(x, dict):
-            return {str(k): clean(v) for k, v in x.items()}
-        if isinstance(x, (list, tuple)):
-            return [clean(v) for v in x]
-        return x
-
-    return json.dumps(clean(obj), allow_nan=False, ensure_ascii=False, **kwargs)
 
 
 def _identity(device: Device, stiffness: float, velocity: float, delay: int) -> dict[str, Any]:
