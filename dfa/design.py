@@ -215,6 +215,7 @@ def design_analysis(
     map_grid: int = 41,
     samples: int = 30_000,
     validation: dict[str, Any] | None = None,
+    n_jobs: int = -1,
     progress: bool = False,
 ) -> DesignAnalysis:
     """Compute every number of the design report of ``device`` at stiffness K, impact speed ẋ0 and delay d.
@@ -235,6 +236,8 @@ def design_analysis(
     validation : dict, optional
         Summary of a validation run (``dfa.validate(...).summary()``) for the report's "how far to trust"
         paragraph; no file is ever read.
+    n_jobs : int
+        Parallel jobs of the stability map (default -1: all cores; see :func:`dfa.stability_map`).
     progress : bool
         Progress bar over the parts (default False).
 
@@ -255,7 +258,7 @@ def design_analysis(
     Examples
     --------
     >>> import dfa
-    >>> a = design_analysis(dfa.get_device("impulse"), velocity=0.05, map_grid=3, samples=2000)
+    >>> a = design_analysis(dfa.get_device("impulse"), velocity=0.05, map_grid=3, samples=2000, n_jobs=1)
     >>> a.criterion.passive, round(a.limits.k_max, 1), a.outcome.outcome
     (True, 124.4, 'rest')
     """
@@ -286,6 +289,7 @@ def design_analysis(
         samples=samples,
         progress=progress,
         delay=dl,
+        n_jobs=n_jobs,
     )
     steps.update()
     steps.close()
