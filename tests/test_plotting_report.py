@@ -222,15 +222,3 @@ def test_examples_cover_every_paper_figure_and_table():
     have = set(os.listdir(os.path.join(ROOT, "examples")))
     for name in EXAMPLES:
         assert f"{name}.py" in have
-
-
-def test_plotting_is_the_only_module_importing_matplotlib():
-    pkg = os.path.join(ROOT, "dfa")
-    for fn in os.listdir(pkg):
-        if fn.endswith(".py") and fn not in ("plotting.py", "report.py", "cli.py"):
-            src = open(os.path.join(pkg, fn), encoding="utf-8").read()
-            assert "import matplotlib" not in src, fn
-    # report and cli import matplotlib only inside the functions that draw
-    for fn in ("report.py", "cli.py"):
-        top = open(os.path.join(pkg, fn), encoding="utf-8").read().split("\ndef ")[0]
-        assert "matplotlib" not in top, fn
