@@ -357,7 +357,7 @@ def resolve_device(
     (0.003142, 'testbed, K = 0.5 N·m/rad')
     """
     from .device import dimensionless_params
-    from .errors import check_nonnegative, check_positive
+    from .errors import check_positive
 
     fl = {k: k for k in (*_PHYSICAL, "stiffness", "counts", "name")} | (flags or {})
     given = {k: v for k, v in (overrides or {}).items() if v is not None}
@@ -373,9 +373,7 @@ def resolve_device(
                 f"{fl['counts']} and {fl['resolution']} cannot both be given: the counts set the resolution"
             )
         given["resolution"] = _counts_resolution(counts, rotary, fl["counts"])
-    for k, v in given.items():
-        check = check_positive if k in ("mass", "resolution", "period") else check_nonnegative
-        values[k] = check(fl[k], v, f"give {k} in {_UNITS[k]}")
+    values |= _checked(given, fl)
     missing = [fl[k] for k in _PHYSICAL if values.get(k) is None]
     if missing:
         _refuse_missing(entry, given, missing, fl)
@@ -387,6 +385,17 @@ def resolve_device(
         dimensionless_params(dev, k, names)  # refuses μ, β, σ that overflow or vanish, naming these inputs
     same = entry is not None and not given and (label is None or label == entry.name)
     return ResolvedDevice(dev, None if k is None else float(k), entry if same else None)
+
+
+def _checked(given: dict[str, float], fl: dict[str, str]) -> dict[str, float | None]:
+    """Physical values checked: mass, resolution and period > 0; damping and Coulomb friction >= 0."""
+    from .errors import check_nonnegative, check_positive
+
+    out: dict[str, float | None] = {}
+    for k, v in given.items():
+        check = check_positive if k in ("mass", "resolution", "period") else check_nonnegative
+        out[k] = check(fl[k], v, f"give {k} in {_UNITS[k]}")
+    return out
 
 
 _UNITS = {

@@ -374,6 +374,7 @@ def _criterion_for_args(args: argparse.Namespace, inp: _Inputs, xd: float, v: fl
     """The criterion for `dfa check`: device mode takes --position (m, rad), dimensionless mode --xi0 (ticks)."""
     quantized = not args.no_quantization
     if inp.device is not None:
+        assert inp.stiffness is not None  # a device always comes with its K (_resolve)
         if args.xi0 is not None:
             raise UsageError(
                 "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
@@ -381,7 +382,7 @@ def _criterion_for_args(args: argparse.Namespace, inp: _Inputs, xd: float, v: fl
         return device_criterion(
             inp.device,
             inp.stiffness,
-            inp.device.velocity(xd) if v is None else v,  # type: ignore[arg-type]
+            inp.device.velocity(xd) if v is None else v,
             quantized=quantized,
             delay=args.delay,
             position=args.position or 0.0,

@@ -248,8 +248,7 @@ def design_analysis(
     Raises
     ------
     DFAValueError, DFATypeError
-        A device that is not a Device or catalogue entry, no stiffness, a non-finite speed, a bad delay or a
-        validation summary without its keys.
+        Not a Device or catalogue entry, no stiffness, a non-finite speed, a bad delay, a bad validation summary.
 
     See Also
     --------
@@ -280,35 +279,29 @@ def design_analysis(
     sims = _simulations(p, crit.xi_dot, ref, v_sim, samples, dl)
     ny = _nyquist(p, thr[0][1], dl)
     steps.update()
-    smap = stability_map(
+    smap = _map_around(p, crit.xi_dot, dl, map_grid, samples, n_jobs, progress)
+    steps.update()
+    steps.close()
+    parts: dict[str, Any] = dict(
+        stiffness_curve=curve, nyquist=ny, stability_map=smap, catalogue=_catalogue_notes(entry)
+    )
+    return DesignAnalysis(dev, k, v, dl, p, crit, lim, thr, v_sim, validation=checked, **parts, **sims)
+
+
+def _map_around(
+    p: Params, xi_dot: float, dl: int, grid: int, samples: int, n_jobs: int, progress: bool
+) -> StabilityMap:
+    """Simulated outcomes on (β, σ) around the operating point, at the design speed and twice it."""
+    return stability_map(
         p.mu,
-        [crit.xi_dot, 2 * crit.xi_dot] if crit.xi_dot > 0 else [1.0, 2.0],
+        [xi_dot, 2 * xi_dot] if xi_dot > 0 else [1.0, 2.0],
         beta_range=(0.0, max(0.25, 2 * p.beta)),
         sigma_range=(0.0, max(1.0, 2 * p.sigma)),
-        grid=map_grid,
+        grid=grid,
         samples=samples,
         progress=progress,
         delay=dl,
         n_jobs=n_jobs,
-    )
-    steps.update()
-    steps.close()
-    return DesignAnalysis(
-        dev,
-        k,
-        v,
-        dl,
-        p,
-        crit,
-        lim,
-        thr,
-        v_sim,
-        stiffness_curve=curve,
-        nyquist=ny,
-        stability_map=smap,
-        catalogue=_catalogue_notes(entry),
-        validation=checked,
-        **sims,
     )
 
 

@@ -66,10 +66,11 @@ def outcome_text(a: DesignAnalysis) -> str:
     r, dev, u = a.outcome, a.device, a.device.units
     head = f"**Simulated impact at {a.velocity:g} {u['velocity']}** ({r.samples_run} of {r.samples} samples): "
     if r.outcome == "rest":
-        return head + f"the device comes to rest at sample {r.rest_sample} ({number(r.rest_sample * dev.period)} s)."
+        rest = r.rest_sample if r.rest_sample is not None else r.samples_run  # a run at rest has its rest sample
+        return head + f"the device comes to rest at sample {rest} ({number(rest * dev.period)} s)."
     if r.outcome == "unstable":
         return head + "the motion diverges (unstable)."
-    ph = r.physical(dev, a.stiffness)
+    ph: dict[str, Any] = r.physical(dev, a.stiffness)
     step = (
         f"the force toggles over {r.force_peak_to_peak:.3g} KΔ peak-to-peak ({number(ph['force_peak_to_peak_si'])} "
         f"{ph['force_unit']})" + (f" at {ph['frequency_hz']:.4g} Hz" if ph["frequency_hz"] else "")
