@@ -259,7 +259,7 @@ def design_analysis(
     >>> import dfa
     >>> a = design_analysis(dfa.get_device("impulse"), velocity=0.05, map_grid=3, samples=2000, n_jobs=1)
     >>> a.criterion.passive, round(a.limits.k_max, 1), a.outcome.outcome
-    (True, 124.4, 'rest')
+    (True, 120.8, 'rest')
     """
     from tqdm.auto import tqdm
 

@@ -305,7 +305,7 @@ def test_cli_output_folder_rules(capsys, tmp_path):
     f.write_text("x")
     assert "not a folder" in refused(capsys, "report", *IMPULSE, "--out", str(f))
     assert "not a folder" in refused(capsys, "validate", "--quick", "--out", str(f))
-    assert "does not exist" in refused(capsys, "report", *IMPULSE, "--out", str(tmp_path / "new"))
+    assert "does not exist" in refused(capsys, "report", *IMPULSE, "--out", str(tmp_path / "no" / "new"))
     assert "--out" in refused(capsys, "validate", "--quick", "--out", "")
     assert sorted(os.listdir(tmp_path)) == ["file"]
 

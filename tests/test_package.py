@@ -24,6 +24,7 @@ def test_catalogue_is_package_data():
 
     assert resources.files("dfa").joinpath("data/devices.toml").is_file()
     assert resources.files("dfa").joinpath("py.typed").is_file()
+    assert resources.files("dfa.render").joinpath("templates/design_report.md.j2").is_file()
 
 
 def test_top_level_functions_survive_submodule_imports():
