@@ -318,7 +318,7 @@ def _cmd_devices(args: argparse.Namespace) -> int:
     if args.json:
         _emit([r.as_dict() for r in rows])
         return 0
-    header = ["device", "m", "b", "c", "Δ", "T", "K", "μ", "β", "σ", "printed μ, β, σ", "flags"]
+    header = ["device", "m or J", "b", "c", "Δ", "T", "K", "μ", "β", "σ", "printed μ, β, σ", "flags"]
     body = []
     for r in rows:
         p = r.params
@@ -344,7 +344,9 @@ def _cmd_devices(args: argparse.Namespace) -> int:
             ]
         )
     print(_table(body, header))
-    print("\nSI units (linear: kg, N·s/m, N, m, s, N/m; rotary: kg·m², N·m·s/rad, N·m, rad, s, N·m/rad).")
+    print(
+        "\nSI units (linear: mass m in kg, N·s/m, N, m, s, N/m; rotary: inertia J in kg·m², N·m·s/rad, N·m, rad, s, N·m/rad)."
+    )
     print(
         "μ, β, σ recomputed from the physical columns (paper Table 1); flags: printed value disagrees (> 5 % and beyond its last digit)."
     )
@@ -604,7 +606,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
 
 def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     from .cycles import growth_threshold
-    from .render.text import limit_cycle_lines
+    from .render.text import limit_cycle_lines, limit_cycles_dict
 
     inp = _resolve(args, dimensionless=True)
     p = inp.params
@@ -612,8 +614,7 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     g = growth_threshold(p, inp.device, model=args.model, delay=args.delay, max_amplitude=args.max_amplitude)
     res = g.result
     if args.json:
-        d = res.as_dict()
-        d["growth_threshold"] = g.as_dict()
+        d = limit_cycles_dict(g)
         _emit(d)
         return 0
     print(

@@ -6,7 +6,7 @@ from typing import Any
 
 from ..formatting import number, text_table
 
-__all__ = ["OUTCOME_TEXT", "check_rows", "limit_cycle_lines", "simulation_rows"]
+__all__ = ["OUTCOME_TEXT", "check_rows", "limit_cycle_lines", "limit_cycles_dict", "simulation_rows"]
 
 #: One phrase per simulated outcome class (:mod:`dfa.simulation`).
 OUTCOME_TEXT = {
@@ -156,3 +156,10 @@ def limit_cycle_lines(g: Any, device: Any) -> list[str]:
     if res.model != "zoh" and (res.linear_stable is False or g.amplitude is not None):
         lines.append(f"(the linear verdict uses the exact ZOH loop; the limit cycles, the {res.model} model)")
     return lines
+
+
+def limit_cycles_dict(g: Any) -> dict[str, object]:
+    """JSON of `dfa limit-cycles`: the cycle search (:meth:`LimitCycleResult.as_dict`) and its growth threshold."""
+    d = g.result.as_dict()
+    d["growth_threshold"] = g.as_dict()
+    return d
