@@ -334,7 +334,7 @@ def resolve_device(
     label : str, optional
         Device name used in outputs and report file names (default the catalogue name, or ``"custom device"``).
     flags : dict, optional
-        How to call each input in messages (the command line passes ``{"mass": "--mass", ...}``).
+        Names of the inputs in messages (the command line passes ``{"mass": "--mass", ...}``).
 
     Returns
     -------
@@ -343,8 +343,7 @@ def resolve_device(
     Raises
     ------
     DFAValueError, DFATypeError
-        An unknown name, a missing, negative or zero value, ``counts`` with ``resolution``, or (μ, β, σ) that a
-        float cannot hold; each message names the input and the fix.
+        Unknown name, missing or out-of-range value, ``counts`` with ``resolution``, (μ, β, σ) a float cannot hold.
 
     Examples
     --------
@@ -352,7 +351,7 @@ def resolve_device(
     >>> r.device.coulomb, r.stiffness, r.entry is None
     (0.05, 1015.0, True)
     >>> r = resolve_device(overrides=dict(mass=6.3e-6, damping=9e-5, coulomb=0.02, period=1e-3), counts=2000,
-    ...                    rotary=True, stiffness=0.5, label="testbed")
+    ...                    rotary=True, stiffness=0.5, label="testbed")  # a rotary encoder of 2000 counts
     >>> round(r.device.resolution, 6), r.label
     (0.003142, 'testbed, K = 0.5 N·m/rad')
     """

@@ -83,6 +83,8 @@ class DesignAnalysis:
         The paper's printed (μ, β, σ), the disagreements and the notes of a catalogue device.
     validation : dict or None
         Summary of a validation run (:meth:`dfa.validation.Validation.summary`) passed in; never read from a file.
+    samples, map_grid : int
+        Samples per run of the speed scan and the map, and the map's points per axis (inputs of the analysis).
     status : str
         ``"ok"``.
     """
@@ -106,6 +108,8 @@ class DesignAnalysis:
     stability_map: StabilityMap = field(repr=False)
     catalogue: dict[str, Any] | None = None
     validation: dict[str, Any] | None = None
+    samples: int = 30_000
+    map_grid: int = 41
     status: str = "ok"
 
     def __post_init__(self) -> None:
@@ -147,6 +151,8 @@ class DesignAnalysis:
             "stability_map": self.stability_map.as_dict(),
             "catalogue": self.catalogue,
             "validation": self.validation,
+            "samples": self.samples,
+            "map_grid": self.map_grid,
             "status": self.status,
         }
 
@@ -231,8 +237,7 @@ def design_analysis(
     delay : int
         Computational delay d in whole samples (default 0), used by every part of the analysis.
     map_grid, samples : int
-        Points per axis and samples per run of the stability map around the operating point (default 41, 30000);
-        ``samples`` also bounds the simulated critical-speed scan.
+        Points per axis of the stability map (default 41); samples per run of it and of the speed scan (30000).
     validation : dict, optional
         Summary of a validation run (``dfa.validate(...).summary()``) for the report's "how far to trust"
         paragraph; no file is ever read.
@@ -265,7 +270,7 @@ def design_analysis(
 
     entry, dev, k, v, dl = resolve_design_inputs(device, stiffness, velocity, delay)
     checked = _check_validation(validation)
-    steps = tqdm(total=5, desc=f"analysis {dev.name}", disable=not progress, leave=False)
+    steps = tqdm(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False)
     p = dev.params(k)
     crit = device_criterion(dev, k, v, delay=dl)
     lim = stiffness_limits(dev, v, k, delay=dl)
@@ -280,12 +285,12 @@ def design_analysis(
     ny = _nyquist(p, thr[0][1], dl)
     steps.update()
     smap = _map_around(p, crit.xi_dot, dl, map_grid, samples, n_jobs, progress)
-    steps.update()
     steps.close()
-    parts: dict[str, Any] = dict(
-        stiffness_curve=curve, nyquist=ny, stability_map=smap, catalogue=_catalogue_notes(entry)
+    figs: dict[str, Any] = dict(stiffness_curve=curve, nyquist=ny, stability_map=smap)
+    inputs: dict[str, Any] = dict(
+        catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )
-    return DesignAnalysis(dev, k, v, dl, p, crit, lim, thr, v_sim, validation=checked, **parts, **sims)
+    return DesignAnalysis(dev, k, v, dl, p, crit, lim, thr, v_sim, **figs, **inputs, **sims)
 
 
 def _map_around(
