@@ -115,6 +115,10 @@ class DesignAnalysis:
     def __post_init__(self) -> None:
         if not isinstance(self.device, Device):
             raise DFATypeError(f"device = {self.device!r} is invalid: it must be a dfa.Device")
+        check_positive("stiffness", self.stiffness, "give the virtual wall stiffness K")
+        if not check_real("velocity", self.velocity, "give the impact speed") >= 0.0:
+            raise DFAValueError(f"velocity = {self.velocity!r} is invalid: the analysis holds |ẋ0| >= 0")
+        check_delay(self.delay)
         if tuple(m for m, _ in self.thresholds) != MODELS:
             raise DFAValueError(
                 f"thresholds are for {[m for m, _ in self.thresholds]}: they must be for {list(MODELS)}"

@@ -75,6 +75,12 @@ def test_design_analysis_validates_on_construction(impulse):
         replace(impulse, thresholds=impulse.thresholds[:1])
     with pytest.raises(DFAValueError, match="status"):
         replace(impulse, status="maybe")
+    with pytest.raises(DFAValueError, match="stiffness"):
+        replace(impulse, stiffness=-1.0)
+    with pytest.raises(DFAValueError, match="velocity"):
+        replace(impulse, velocity=-0.1)
+    with pytest.raises((DFAValueError, dfa.DFATypeError), match="delay"):
+        replace(impulse, delay=-1)
 
 
 def test_design_analysis_bad_input_names_the_parameter():
