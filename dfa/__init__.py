@@ -21,7 +21,15 @@ from ._io import ensure_numba_cache_dir as _ensure_numba_cache_dir
 
 _ensure_numba_cache_dir()  # before numba compiles anything: a read-only install still runs
 
-from .catalogue import DEFAULT_DEVICE, CatalogueEntry, Discrepancy, catalogue, get_device
+from .catalogue import (
+    DEFAULT_DEVICE,
+    CatalogueEntry,
+    Discrepancy,
+    ResolvedDevice,
+    catalogue,
+    get_device,
+    resolve_device,
+)
 from .criterion import (
     REGION_DESCRIPTIONS,
     CriterionResult,
@@ -77,6 +85,8 @@ _LAZY = {
     "contour_maps": "contours",
     "validate": "validation",
     "design_report": "report",
+    "DesignAnalysis": "design",
+    "design_analysis": "design",
 }
 _SUBMODULES = {
     "describing",
@@ -93,6 +103,9 @@ _SUBMODULES = {
     "contours",
     "validation",
     "report",
+    "design",
+    "render",
+    "formatting",
     "plotting",
 }
 
@@ -120,6 +133,8 @@ __all__ = [
     "Discrepancy",
     "catalogue",
     "get_device",
+    "resolve_device",
+    "ResolvedDevice",
     "DEFAULT_DEVICE",
     "CriterionResult",
     "CriticalLine",

@@ -40,7 +40,15 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - exercised on Python 3.10 only
     import tomli as tomllib
 
-__all__ = ["Discrepancy", "CatalogueEntry", "catalogue", "get_device", "DEFAULT_DEVICE"]
+__all__ = [
+    "Discrepancy",
+    "CatalogueEntry",
+    "ResolvedDevice",
+    "catalogue",
+    "get_device",
+    "resolve_device",
+    "DEFAULT_DEVICE",
+]
 
 #: Name of the catalogue device used by ``make report`` and the CLI examples.
 DEFAULT_DEVICE = "Delta"
@@ -257,3 +265,153 @@ def get_device(name: str) -> CatalogueEntry:
         close = [n for n in names if _key(n) in close]
     hint = f"did you mean {', '.join(repr(c) for c in close)}?" if close else "run `dfa devices` for the list"
     raise DFAValueError(f"device = {name!r} is invalid: it must be a catalogue device ({', '.join(names)}); {hint}")
+
+
+@dataclass(frozen=True)
+class ResolvedDevice:
+    """A device resolved from a catalogue name and/or physical values (:func:`resolve_device`).
+
+    Attributes
+    ----------
+    device : Device
+        The device with every override applied.
+    stiffness : float or None
+        K in N/m (rotary N·m/rad): the one given, else the catalogue K, else None.
+    entry : CatalogueEntry or None
+        The catalogue row when the device is that row unchanged (no physical override, no new name),
+        so that reports can quote the paper's printed values; None otherwise.
+    """
+
+    device: Device
+    stiffness: float | None
+    entry: CatalogueEntry | None = None
+
+    @property
+    def label(self) -> str:
+        """``"<name>, K = <K> <unit>"`` (or just the name without a stiffness)."""
+        if self.stiffness is None:
+            return self.device.name
+        return f"{self.device.name}, K = {self.stiffness:g} {self.device.units['stiffness']}"
+
+
+def _counts_resolution(counts: int, rotary: bool, flag: str) -> float:
+    """Encoder resolution Δ from counts per revolution (rotary, Δ = 2π/N rad) or per metre (Δ = 1/N m)."""
+    if isinstance(counts, bool) or not isinstance(counts, int):
+        raise DFATypeError(f"{flag} = {counts!r} is invalid: it must be a whole number of encoder counts")
+    if counts < 1:
+        raise DFAValueError(
+            f"{flag} {counts} is invalid: give the encoder counts per {'revolution' if rotary else 'metre'} (at least 1)"
+        )
+    return 2.0 * math.pi / counts if rotary else 1.0 / counts
+
+
+def resolve_device(
+    name: str | None = None,
+    *,
+    overrides: dict[str, float | None] | None = None,
+    counts: int | None = None,
+    rotary: bool = False,
+    stiffness: float | None = None,
+    label: str | None = None,
+    flags: dict[str, str] | None = None,
+) -> ResolvedDevice:
+    """A device from a catalogue name, physical values, or a catalogue device with some values replaced.
+
+    Parameters
+    ----------
+    name : str, optional
+        Catalogue device (:func:`get_device` matching); None for a custom device.
+    overrides : dict, optional
+        Physical values replacing the catalogue's (or all five for a custom device): ``mass`` in kg (rotary:
+        inertia in kg·m²), ``damping`` in N·s/m (N·m·s/rad), ``coulomb`` in N (N·m), ``resolution`` in m (rad),
+        ``period`` in s. None values are ignored.
+    counts : int, optional
+        Encoder counts per revolution (``rotary``) or per metre, instead of ``resolution``: Δ = 2π/N rad or 1/N m.
+    rotary : bool
+        Rotary units (rad, N·m, kg·m²); a rotary catalogue device stays rotary.
+    stiffness : float, optional
+        K in N/m (rotary N·m/rad); default the catalogue K (None for a custom device).
+    label : str, optional
+        Device name used in outputs and report file names (default the catalogue name, or ``"custom device"``).
+    flags : dict, optional
+        Names of the inputs in messages (the command line passes ``{"mass": "--mass", ...}``).
+
+    Returns
+    -------
+    ResolvedDevice
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        Unknown name, missing or out-of-range value, ``counts`` with ``resolution``, (μ, β, σ) a float cannot hold.
+
+    Examples
+    --------
+    >>> r = resolve_device("phantom", overrides={"coulomb": 0.05})
+    >>> r.device.coulomb, r.stiffness, r.entry is None
+    (0.05, 1015.0, True)
+    >>> r = resolve_device(overrides=dict(mass=6.3e-6, damping=9e-5, coulomb=0.02, period=1e-3), counts=2000,
+    ...                    rotary=True, stiffness=0.5, label="testbed")  # a rotary encoder of 2000 counts
+    >>> round(r.device.resolution, 6), r.label
+    (0.003142, 'testbed, K = 0.5 N·m/rad')
+    """
+    from .device import dimensionless_params
+    from .errors import check_positive
+
+    fl = {k: k for k in (*_PHYSICAL, "stiffness", "counts", "name")} | (flags or {})
+    given = {k: v for k, v in (overrides or {}).items() if v is not None}
+    unknown = sorted(set(given) - set(_PHYSICAL))
+    if unknown:
+        raise DFAValueError(f"overrides has {unknown}: physical values are {', '.join(_PHYSICAL)}")
+    entry = get_device(name) if name else None
+    values: dict[str, float | None] = {k: getattr(entry, k) for k in _PHYSICAL} if entry else {}
+    rotary = bool(rotary or (entry is not None and entry.rotary))
+    if counts is not None:
+        if "resolution" in given:
+            raise DFAValueError(
+                f"{fl['counts']} and {fl['resolution']} cannot both be given: the counts set the resolution"
+            )
+        given["resolution"] = _counts_resolution(counts, rotary, fl["counts"])
+    values |= _checked(given, fl)
+    missing = [fl[k] for k in _PHYSICAL if values.get(k) is None]
+    if missing:
+        _refuse_missing(entry, given, missing, fl)
+    dev = Device(name=label or (entry.name if entry else "custom device"), rotary=rotary, **values)  # type: ignore[arg-type]
+    k = stiffness if stiffness is not None else (entry.stiffness if entry else None)
+    if k is not None:
+        k = check_positive(fl["stiffness"], k, f"give the virtual wall stiffness K in {dev.units['stiffness']}")
+        names = {key: fl[key] for key in given} | ({"stiffness": fl["stiffness"]} if stiffness is not None else {})
+        dimensionless_params(dev, k, names)  # refuses μ, β, σ that overflow or vanish, naming these inputs
+    same = entry is not None and not given and (label is None or label == entry.name)
+    return ResolvedDevice(dev, None if k is None else float(k), entry if same else None)
+
+
+def _checked(given: dict[str, float], fl: dict[str, str]) -> dict[str, float | None]:
+    """Physical values checked: mass, resolution and period > 0; damping and Coulomb friction >= 0."""
+    from .errors import check_nonnegative, check_positive
+
+    out: dict[str, float | None] = {}
+    for k, v in given.items():
+        check = check_positive if k in ("mass", "resolution", "period") else check_nonnegative
+        out[k] = check(fl[k], v, f"give {k} in {_UNITS[k]}")
+    return out
+
+
+_UNITS = {
+    "mass": "kg (rotary: inertia in kg·m²)",
+    "damping": "N·s/m (rotary: N·m·s/rad)",
+    "coulomb": "N (rotary: N·m)",
+    "resolution": "m (rotary: rad)",
+    "period": "s",
+}
+
+
+def _refuse_missing(entry: CatalogueEntry | None, given: dict, missing: list[str], fl: dict[str, str]) -> None:
+    if entry is not None:
+        raise DFAValueError(
+            f"device {entry.name!r} is incomplete in the catalogue: give {' '.join(missing)} explicitly"
+        )
+    every = " ".join(fl[k] for k in _PHYSICAL)
+    if not given:
+        raise DFAValueError(f"no device given: give a catalogue name (see `dfa devices`), or {every}")
+    raise DFAValueError(f"missing {' '.join(missing)}: a physical device needs all of {every}")

@@ -22,9 +22,10 @@ import signal
 import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from ._io import check_output_file, check_output_folder, written_paths
-from .catalogue import DEFAULT_DEVICE, catalogue, get_device
+from .catalogue import DEFAULT_DEVICE, CatalogueEntry, catalogue, resolve_device
 from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params, dimensionless_params
 from .errors import (
@@ -32,11 +33,10 @@ from .errors import (
     DFAValueError,
     check_beta,
     check_mu,
-    check_nonnegative,
-    check_positive,
     check_real,
     check_sigma,
 )
+from .formatting import number, text_table
 from .stiffness import stiffness_limits
 
 __all__ = ["main"]
@@ -100,54 +100,106 @@ def _integer(flag: str) -> Callable[[str], int]:
 
 
 _PHYS_FLAGS = {
-    "mass": ("--mass", "kg (rotary: kg·m²)"),
+    "mass": ("--mass", "kg (rotary: inertia in kg·m²)"),
     "damping": ("--damping", "N·s/m (rotary: N·m·s/rad)"),
     "coulomb": ("--coulomb", "N (rotary: N·m)"),
     "resolution": ("--resolution", "m (rotary: rad)"),
     "period": ("--period", "s"),
 }
+_PHYS_WHAT = {
+    "mass": "moving mass m",
+    "damping": "viscous friction b",
+    "coulomb": "Coulomb friction c",
+    "resolution": "encoder resolution Δ",
+    "period": "sample period T",
+}
 _DIMLESS_FLAGS = {"mu": "--mu", "beta": "--beta", "sigma": "--sigma"}
+_FLAG_NAMES = {k: f for k, (f, _u) in _PHYS_FLAGS.items()} | {
+    "stiffness": "--stiffness",
+    "counts": "--counts",
+    "name": "--name",
+}
 
 
-def _add_device_args(p: argparse.ArgumentParser, dimensionless: bool, speed: bool) -> None:
+def _name(text: str) -> str:
+    if not text.strip() or any(not c.isprintable() for c in text) or len(text) > 100:
+        raise argparse.ArgumentTypeError(
+            f"{text[:40]!r} is invalid: --name takes a printable device name of 1 to 100 characters (e.g. 'my pen')"
+        )
+    return text.strip()
+
+
+def _add_device_args(
+    p: argparse.ArgumentParser,
+    dimensionless: bool,
+    speed: bool,
+    json_help: str = "print one JSON object on stdout (default: a text table)",
+) -> None:
     g = p.add_argument_group("device (a catalogue name, or physical values in SI units)")
-    g.add_argument("--device", metavar="NAME", help="catalogue device (case-insensitive prefix, e.g. 'phantom')")
+    g.add_argument(
+        "--device",
+        metavar="NAME",
+        help="catalogue device, case-insensitive prefix (e.g. 'phantom'; list: `dfa devices`); default: none",
+    )
     for key, (flag, unit) in _PHYS_FLAGS.items():
         g.add_argument(
             flag,
             dest=key,
             type=_number(flag, unit),
             metavar="X",
-            help=f"{key} in {unit}; overrides the catalogue value",
+            help=f"{_PHYS_WHAT[key]} in {unit}; default: the catalogue value",
         )
+    g.add_argument(
+        "--counts",
+        type=_integer("--counts"),
+        metavar="N",
+        help="encoder counts per metre (with --rotary: per revolution) instead of --resolution: Δ = 1/N m "
+        "(2π/N rad); default: none",
+    )
+    g.add_argument(
+        "--name",
+        type=_name,
+        metavar="TEXT",
+        help="device name in outputs and report file names; default: the catalogue name, else 'custom device'",
+    )
     g.add_argument(
         "--stiffness",
         type=_number("--stiffness", "N/m"),
         metavar="K",
-        help="virtual wall stiffness K in N/m (rotary: N·m/rad); defaults to the catalogue K",
+        help="virtual wall stiffness K in N/m (rotary: N·m/rad); default: the catalogue K",
     )
-    g.add_argument("--rotary", action="store_true", help="physical values are rotary (rad, N·m, kg·m²)")
+    g.add_argument(
+        "--rotary",
+        action="store_true",
+        help="physical values are rotary (rad, N·m, inertia in kg·m²); default: linear (m, N, kg)",
+    )
     if dimensionless:
         d = p.add_argument_group("dimensionless parameters (instead of a device)")
-        d.add_argument("--mu", type=_number("--mu", "dimensionless units"), help="μ = m/(K T²)")
-        d.add_argument("--beta", type=_number("--beta", "dimensionless units"), help="β = b/(K T)")
-        d.add_argument("--sigma", type=_number("--sigma", "dimensionless units"), help="σ = c/(K Δ)")
+        d.add_argument(
+            "--mu", type=_number("--mu", "dimensionless units"), help="μ = m/(K T²), dimensionless; default: none"
+        )
+        d.add_argument(
+            "--beta", type=_number("--beta", "dimensionless units"), help="β = b/(K T), dimensionless; default: none"
+        )
+        d.add_argument(
+            "--sigma", type=_number("--sigma", "dimensionless units"), help="σ = c/(K Δ), dimensionless; default: none"
+        )
     if speed:
         s = p.add_argument_group("speed (one of)")
         s.add_argument(
             "--velocity",
             type=_number("--velocity", "m/s (rotary: rad/s)"),
             metavar="V",
-            help="impact speed in m/s (rotary: rad/s)",
+            help="impact speed in m/s (rotary: rad/s); default: none",
         )
         s.add_argument(
             "--xi-dot",
             dest="xi_dot",
             type=_number("--xi-dot", "encoder ticks per sample"),
             metavar="V",
-            help="impact speed ξ'0 in encoder ticks per sample",
+            help="impact speed ξ'0 in encoder ticks per sample; default: none",
         )
-    p.add_argument("--json", action="store_true", help="print one JSON object on stdout")
+    p.add_argument("--json", action="store_true", help=json_help)
 
 
 def _delay(text: str) -> int:
@@ -162,13 +214,13 @@ def _delay(text: str) -> int:
     return out
 
 
-def _add_delay_arg(p: argparse.ArgumentParser) -> None:
+def _add_delay_arg(p: argparse.ArgumentParser, parse: Callable[[str], int] = _delay) -> None:
     p.add_argument(
         "--delay",
-        type=_delay,
+        type=parse,
         default=0,
         metavar="N",
-        help="computational delay in samples (default 0): the force of sample h uses the reading of sample h − N",
+        help="computational delay in samples (default: 0): the force of sample h uses the reading of sample h − N",
     )
 
 
@@ -180,6 +232,7 @@ class _Inputs:
     device: Device | None
     stiffness: float | None
     label: str
+    entry: CatalogueEntry | None = None  # the catalogue row, when the device is that row unchanged
 
 
 def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = True) -> _Inputs:
@@ -188,6 +241,7 @@ def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = T
     dim_given = [k for k in _DIMLESS_FLAGS if getattr(args, k, None) is not None] if dimensionless else []
     if dim_given:
         others = (["--device"] if args.device else []) + [_PHYS_FLAGS[k][0] for k in phys_given]
+        others += [f"--{k}" for k in ("counts", "name") if getattr(args, k, None) is not None]
         others += ["--stiffness"] if args.stiffness is not None else []
         others += ["--velocity"] if getattr(args, "velocity", None) is not None else []
         if others:
@@ -205,43 +259,28 @@ def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = T
         s = check_sigma(args.sigma, "--sigma")
         p = Params(check_mu(args.mu, "--mu"), b, s) if args.mu is not None else None
         return _Inputs(p, b, s, None, None, "dimensionless input")
-    values: dict[str, object] = {}
-    stiffness = args.stiffness
-    name = "custom device"
-    rotary = bool(getattr(args, "rotary", False))
-    if args.device:
-        entry = get_device(args.device)
-        values = {k: getattr(entry, k) for k in _PHYS_FLAGS}
-        name, rotary = entry.name, entry.rotary or rotary
-        if stiffness is None:
-            stiffness = entry.stiffness
-    for k in phys_given:
-        flag, unit = _PHYS_FLAGS[k]
-        check = check_positive if k in ("mass", "resolution", "period") else check_nonnegative
-        values[k] = check(flag, getattr(args, k), f"give {k} in {unit}")
-    missing = [_PHYS_FLAGS[k][0] for k in _PHYS_FLAGS if values.get(k) is None]
-    if missing:
-        if args.device:
-            raise UsageError(f"device {name!r} is incomplete in the catalogue: give {' '.join(missing)} explicitly")
-        if not phys_given:
-            raise UsageError(
-                "no device given: use --device NAME (see `dfa devices`), or --mass --damping --coulomb "
-                "--resolution --period" + (", or --mu --beta --sigma" if dimensionless else "")
-            )
+    custom = phys_given + [k for k in ("counts", "name") if getattr(args, k, None) is not None]
+    if not args.device and not custom:
         raise UsageError(
-            f"missing {' '.join(missing)}: a physical device needs all of --mass --damping --coulomb --resolution --period"
+            "no device given: use --device NAME (see `dfa devices`), or --mass --damping --coulomb "
+            "--resolution --period" + (", or --mu --beta --sigma" if dimensionless else "")
         )
-    dev = Device(name=name, rotary=rotary, **values)  # type: ignore[arg-type]
-    if stiffness is None:
+    r = resolve_device(
+        args.device,
+        overrides={k: getattr(args, k, None) for k in _PHYS_FLAGS},
+        counts=getattr(args, "counts", None),
+        rotary=bool(getattr(args, "rotary", False)),
+        stiffness=args.stiffness,
+        label=getattr(args, "name", None),
+        flags=_FLAG_NAMES,
+    )
+    dev = r.device
+    if r.stiffness is None:
         raise UsageError(
-            f"missing --stiffness: no catalogue stiffness for {name!r}; give K in {dev.units['stiffness']}"
+            f"missing --stiffness: no catalogue stiffness for {dev.name!r}; give K in {dev.units['stiffness']}"
         )
-    k = check_positive("--stiffness", stiffness, f"give the virtual wall stiffness K in {dev.units['stiffness']}")
-    names = {key: _PHYS_FLAGS[key][0] for key in phys_given}
-    if args.stiffness is not None:
-        names["stiffness"] = "--stiffness"
-    p = dimensionless_params(dev, k, names)  # refuses μ, β, σ that overflow or vanish, naming these flags
-    return _Inputs(p, p.beta, p.sigma, dev, float(stiffness), f"{name}, K = {stiffness:g} {dev.units['stiffness']}")
+    p = dimensionless_params(dev, r.stiffness)  # resolve_device has refused groups that overflow or vanish
+    return _Inputs(p, p.beta, p.sigma, dev, r.stiffness, r.label, r.entry)
 
 
 def _speed(args: argparse.Namespace, inputs: _Inputs, required: bool = True) -> tuple[float | None, float | None]:
@@ -266,29 +305,11 @@ def _emit(obj: object) -> None:
 
 
 def _table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:
-    cells = [[str(c) for c in r] for r in ([header] if header else []) + list(rows)]
-    widths = [max(len(r[i]) for r in cells) for i in range(len(cells[0]))]
-    lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths, strict=False)).rstrip() for r in cells]
-    if header:
-        lines.insert(1, "  ".join("-" * w for w in widths))
-    return "\n".join(lines)
+    return text_table(rows, header)
 
 
 def _g(x: float | None, digits: int = 4) -> str:
-    if x is None:
-        return "-"
-    if isinstance(x, float) and math.isinf(x):
-        return "inf"
-    return f"{x:.{digits}g}"
-
-
-_OUTCOME_TEXT = {
-    "rest": "came to rest",
-    "chatter": "never comes to rest; the force keeps toggling below one tick of motion (a buzz)",
-    "oscillating": "persistent oscillation of one tick or more",
-    "unstable": "diverged (past the bound, or a growing envelope)",
-    "undecided": "the motion is still changing at the end of the run",
-}
+    return number(x, digits, none="-", inf="inf")
 
 
 # ----------------------------------------------------------------- commands
@@ -297,7 +318,7 @@ def _cmd_devices(args: argparse.Namespace) -> int:
     if args.json:
         _emit([r.as_dict() for r in rows])
         return 0
-    header = ["device", "m", "b", "c", "Δ", "T", "K", "μ", "β", "σ", "printed μ, β, σ", "flags"]
+    header = ["device", "m or J", "b", "c", "Δ", "T", "K", "μ", "β", "σ", "printed μ, β, σ", "flags"]
     body = []
     for r in rows:
         p = r.params
@@ -323,7 +344,9 @@ def _cmd_devices(args: argparse.Namespace) -> int:
             ]
         )
     print(_table(body, header))
-    print("\nSI units (linear: kg, N·s/m, N, m, s, N/m; rotary: kg·m², N·m·s/rad, N·m, rad, s, N·m/rad).")
+    print(
+        "\nSI units (linear: mass m in kg, N·s/m, N, m, s, N/m; rotary: inertia J in kg·m², N·m·s/rad, N·m, rad, s, N·m/rad)."
+    )
     print(
         "μ, β, σ recomputed from the physical columns (paper Table 1); flags: printed value disagrees (> 5 % and beyond its last digit)."
     )
@@ -353,6 +376,7 @@ def _criterion_for_args(args: argparse.Namespace, inp: _Inputs, xd: float, v: fl
     """The criterion for `dfa check`: device mode takes --position (m, rad), dimensionless mode --xi0 (ticks)."""
     quantized = not args.no_quantization
     if inp.device is not None:
+        assert inp.stiffness is not None  # a device always comes with its K (_resolve)
         if args.xi0 is not None:
             raise UsageError(
                 "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
@@ -360,7 +384,7 @@ def _criterion_for_args(args: argparse.Namespace, inp: _Inputs, xd: float, v: fl
         return device_criterion(
             inp.device,
             inp.stiffness,
-            inp.device.velocity(xd) if v is None else v,  # type: ignore[arg-type]
+            inp.device.velocity(xd) if v is None else v,
             quantized=quantized,
             delay=args.delay,
             position=args.position or 0.0,
@@ -377,39 +401,9 @@ def _criterion_for_args(args: argparse.Namespace, inp: _Inputs, xd: float, v: fl
     return passivity_criterion(inp.beta, inp.sigma, xd, quantized=quantized, delay=args.delay, xi0=x0, mu=args.mu)
 
 
-def _check_rows(r, quantized: bool, vu: str) -> list[list[str]]:
-    """Rows of the `dfa check` table; every verdict says what is proven and what is not."""
-    d = r.delay
-    crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
-    if r.critical_velocity is not None:
-        crit += f" ({r.critical_velocity:.4g} {vu})"
-    if r.critical_xi_dot is not None and r.xi0 != 0.0:
-        crit += ", a bound on the equivalent speed V, not on ξ'0"
-    speed = f"{r.xi_dot:.4g} ticks/sample" + (f" ({r.velocity:.4g} {vu})" if r.velocity is not None else "")
-    s0 = "½" if quantized else "0"
-    rule = f"(β − ½ − d)V + (σ − {s0}) ≥ 0" + (" and σ ≥ ½" if quantized else "")
-    if r.passive:
-        upto = "at every speed" if r.region == "a" else f"for speeds up to V = {r.critical_xi_dot:.4g} ticks/sample"
-        verdict = f"yes: the energy cannot grow {upto} (proven)"
-    else:
-        verdict = "no: no passivity guarantee (not a proof of instability)"
-    rows = [["β, σ", f"{r.beta:.4g}, {r.sigma:.4g}"], ["speed |ξ'0|", speed]]
-    if r.xi0 != 0.0:
-        pos = f" ({r.position:.4g} {r.device.units['position']})" if r.device is not None else ""
-        rows.append(["initial position ξ0", f"{r.xi0:.4g} ticks{pos}"])
-    rows += [
-        ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
-        ["delay d", f"{d} sample{'s' if d != 1 else ''}"],
-        ["criterion", ("eq. 6 (with encoder)" if quantized else "eq. 7 (no quantization)") + f": {rule}"],
-        ["region", f"{r.region}: {r.status}"],
-        ["passive", verdict],
-        ["margin", f"{r.margin:.4g}"],
-        [f"critical speed (eq. 12, d = {d})", crit],
-    ]
-    return rows
-
-
 def _cmd_check(args: argparse.Namespace) -> int:
+    from .render.text import check_rows
+
     inp = _resolve(args, dimensionless=True, need_mu=False)
     xd, v = _speed(args, inp)
     assert xd is not None
@@ -419,7 +413,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
         return 0
     vu = inp.device.units["velocity"] if inp.device else ""
     print(inp.label)
-    print(_table(_check_rows(r, not args.no_quantization, vu)))
+    print(_table(check_rows(r, not args.no_quantization, vu)))
     return 0
 
 
@@ -455,6 +449,7 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
+    from .render.text import simulation_rows
     from .simulation import MAX_RECORD_BYTES, default_samples, preload_position, simulate
 
     inp = _resolve(args, dimensionless=True)
@@ -509,36 +504,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         _emit(d)
         return 0
     print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
-    freq = "-" if r.frequency is None else f"{r.frequency:.4g} rad/sample (period {r.period:.4g} samples)"
-    if phys is not None and phys["frequency_hz"] is not None:
-        freq += f", {phys['frequency_hz']:.4g} Hz"
-    rows = [
-        [
-            "initial state",
-            f"ξ0 = {x0:.5g} ticks, ξ'0 = {v0:.5g} ticks/sample" + (" (spring preload)" if args.preload else ""),
-        ],
-        [
-            "samples",
-            f"{r.samples_run} of {r.samples} integrated"
-            + (" (length from the loop's time scales)" if r.samples_auto else "")
-            + (f", delay {r.delay}" if r.delay else ""),
-        ],
-        ["outcome", f"{r.outcome}: {_OUTCOME_TEXT[r.outcome]}"],
-    ]
-    if r.suggested_samples is not None:
-        rows.append(["to decide", f"run longer: --samples {r.suggested_samples}"])
-    rows += [
-        ["rest at sample", "-" if r.rest_sample is None else str(r.rest_sample)],
-        ["amplitude", f"{_g(r.amplitude)} ticks"],
-        ["frequency", freq],
-    ]
-    if r.outcome in ("chatter", "oscillating", "undecided"):
-        force = f"{_g(r.force_peak_to_peak)} KΔ" + ("" if r.quantize else " (linear spring)")
-        if phys is not None and phys["force_peak_to_peak_si"] is not None:
-            force += f" = {phys['force_peak_to_peak_si']:.4g} {phys['force_unit']}"
-        rows.append(["force peak-to-peak", force + " (tail)"])
-    rows.append(["final state", f"ξ = {_g(r.final_xi)}, ξ' = {_g(r.final_xi_dot)}"])
-    print(_table(rows))
+    print(_table(simulation_rows(r, x0, v0, args.preload, phys)))
     if args.trace is not None:
         print(f"trace written to {args.trace}")
     return 0
@@ -568,16 +534,10 @@ def _check_samples(samples: int, force: bool) -> None:
 
 
 def _write_trace(path: str, r) -> None:
-    import numpy as np
-
-    from ._io import atomic_open
+    from .render.files import write_trace_csv
 
     try:
-        with atomic_open(path, "w") as fh:
-            fh.write("sample,xi,xi_dot\n")
-            np.savetxt(
-                fh, np.column_stack([np.arange(r.xi.size), r.xi, r.xi_dot]), delimiter=",", fmt=["%d", "%.17g", "%.17g"]
-            )
+        write_trace_csv(r, path)
     except OSError as exc:
         raise UsageError(f"--trace {path!r} cannot be written: {exc.strerror}; choose a writable file") from None
 
@@ -646,6 +606,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
 
 def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     from .cycles import growth_threshold
+    from .render.text import limit_cycle_lines, limit_cycles_dict
 
     inp = _resolve(args, dimensionless=True)
     p = inp.params
@@ -653,83 +614,16 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     g = growth_threshold(p, inp.device, model=args.model, delay=args.delay, max_amplitude=args.max_amplitude)
     res = g.result
     if args.json:
-        d = res.as_dict()
-        d["growth_threshold"] = g.as_dict()
+        d = limit_cycles_dict(g)
         _emit(d)
         return 0
     print(
         f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}; model {res.model}"
         + (f", delay {res.delay}" if res.delay else "")
     )
-    for line in _cycle_lines(g, inp.device):
+    for line in limit_cycle_lines(g, inp.device):
         print(line)
     return 0
-
-
-def _cycle_lines(g, device) -> list[str]:
-    """Text of `dfa limit-cycles`: the table, the search's completeness, the linear loop and the growth band."""
-    res = g.result
-    lines = []
-    lin = (
-        "the linear loop without encoder and Coulomb friction (exact ZOH model"
-        + (f", delay {res.delay}" if res.delay else "")
-        + ")"
-    )
-    why = res.status.removeprefix("incomplete: ")
-    if not res.cycles:
-        if not res.complete:
-            lines.append(f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})")
-        elif res.linear_stable is False:
-            lines.append(f"no limit cycle predicted, but {lin} is unstable: amplitudes grow without bound")
-        elif res.search_bound:
-            lines.append(
-                f"no limit cycle predicted (search complete: eq. 36 has no root beyond M = {res.search_bound:.4g} ticks)"
-            )
-        else:
-            lines.append(
-                "no limit cycle predicted (search complete: the loop never meets the phase condition of eq. 36)"
-            )
-    else:
-        rows = [
-            [
-                f"{c.amplitude:.6g}",
-                f"{c.frequency:.6g}",
-                f"{c.period:.4g}",
-                "stable" if c.stable else "unstable",
-                c.family + (" (period < 8 samples)" if c.few_samples else ""),
-            ]
-            for c in res.cycles
-        ]
-        lines.append(_table(rows, ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"]))
-        if not res.complete:
-            lines.append(f"search incomplete beyond M = {res.max_amplitude:g} ticks ({why}): more cycles may exist")
-    if g.amplitude is not None:
-        u = device.units if device is not None else None
-
-        def speed(xd, vel, pos, m):
-            txt = f"M·ω = {xd:.4g} ticks/sample"
-            if u is not None and vel is not None:
-                txt += f" = {vel:.4g} {u['velocity']}; M = {pos:.4g} {u['position']}"
-            return txt
-
-        if g.is_band:
-            lines.append(
-                f"growth band: {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
-                f"(speeds {speed(g.xi_dot, g.velocity, g.position, g.amplitude)} to {speed(g.xi_dot_high, g.velocity_high, g.position_high, g.amplitude_high)})"
-            )
-        else:
-            lines.append(
-                f"growth threshold: M_u = {g.amplitude:.4g} ticks ({speed(g.xi_dot, g.velocity, g.position, g.amplitude)})"
-            )
-        lines.append(g.meaning())
-    elif res.cycles and res.linear_stable is False:
-        lines.append(
-            f"no unstable cycle predicted{'' if res.complete else ' in the range searched'}, but {lin} is unstable: "
-            "large oscillations are predicted to grow without bound"
-        )
-    if res.model != "zoh" and (res.linear_stable is False or g.amplitude is not None):
-        lines.append(f"(the linear verdict uses the exact ZOH loop; the limit cycles, the {res.model} model)")
-    return lines
 
 
 def _cmd_contours(args: argparse.Namespace) -> int:
@@ -770,61 +664,68 @@ def _cmd_contours(args: argparse.Namespace) -> int:
     return 0
 
 
+def _read_validation(path: str) -> dict:
+    """A validation summary the user names (``dfa validate`` writes it as validation.json)."""
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = json.load(fh)
+    except (OSError, ValueError) as exc:
+        why = exc.strerror if isinstance(exc, OSError) else "not JSON"
+        raise UsageError(
+            f"--validation {path!r} cannot be read ({why}): give the validation.json that `dfa validate --out DIR` wrote"
+        ) from None
+    if not isinstance(data, dict) or "soundness_violations" not in data:
+        raise UsageError(
+            f"--validation {path!r} is not a validation summary: give the validation.json that `dfa validate` wrote"
+        )
+    return data
+
+
 def _cmd_report(args: argparse.Namespace) -> int:
+    from .formatting import json_dumps
     from .report import design_report
 
-    if args.device is None and not any(getattr(args, k, None) is not None for k in _PHYS_FLAGS):
+    if args.device is None and not any(getattr(args, k, None) is not None for k in (*_PHYS_FLAGS, "counts")):
         args.device = DEFAULT_DEVICE
+    check_output_folder("--out", args.out, create=True)  # the parent must exist; the folder is created
     inp = _resolve(args, dimensionless=False)
     assert inp.device is not None
-    entry = get_device(args.device) if args.device else None
-    v = args.velocity
-    if args.xi_dot is not None:
-        if v is not None:
-            raise UsageError("--velocity and --xi-dot cannot both be given: choose one speed")
-        v = inp.device.velocity(args.xi_dot)
-    if entry is not None and not any(getattr(args, k, None) is not None for k in _PHYS_FLAGS):
-        target = entry
-    else:
-        target = inp.device
-    check_output_folder("--out", args.out, create=False)
+    _xd, v = _speed(args, inp, required=False)
+    summary = _read_validation(args.validation) if args.validation is not None else None
+    os.makedirs(args.out, exist_ok=True)
     res = design_report(
-        target, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=not args.quiet, delay=args.delay
+        inp.entry or inp.device,
+        inp.stiffness,
+        v,
+        out_dir=args.out,
+        fmt=args.format,
+        progress=not args.quiet,
+        delay=args.delay,
+        validation=summary,
+        force=args.force,
     )
+    if args.json:
+        print(json_dumps(res.as_dict()))
+        return 0
     for pth in res.paths:
         print(f"written {pth}")
     return 0
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    from . import plotting
-    from ._io import staged_folder
     from .maps import check_jobs
+    from .render.files import write_validation
     from .validation import validate
 
     check_jobs("--jobs", args.jobs)
     out = args.out
     check_output_folder("--out", out, create=True)  # the parent must exist; the folder itself is created
     v = validate(quick=args.quick, n_jobs=args.jobs, progress=not args.quiet)
-    os.makedirs(out, exist_ok=True)
-    figs = {}
-    summary = v.summary()
-    with staged_folder(out) as stage:  # all four files appear together, or none (dfa._io)
-        for key, fn in (("cycles", plotting.cycle_error_plot), ("speeds", plotting.critical_speed_plot)):
-            ax = fn(v)
-            name = f"validation_{key}.png"
-            ax.figure.savefig(stage / name, dpi=120)
-            plt.close(ax.figure)
-            figs[key] = name
-        (stage / "validation.md").write_text(v.to_markdown(figs), encoding="utf-8")
-        (stage / "validation.json").write_text(json.dumps(summary, indent=1, allow_nan=True), encoding="utf-8")
+    summary = write_validation(v, out)  # all four files appear together, or none (dfa._io)
     if args.json:
-        _emit(json.loads(json.dumps(summary).replace("NaN", "null")))
+        from .formatting import json_dumps
+
+        print(json_dumps(summary))
         return 0
     print(f"validation written to {os.path.join(out, 'validation.md')}")
     print(
@@ -843,49 +744,73 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
-        prog="dfa",
-        description="Passivity, limit cycles and stiffness limits of sampled, quantized haptic devices "
-        "(Diolaiti, Niemeyer, Barbagli & Salisbury, ICRA 2005).",
+def _range_arg(p: argparse.ArgumentParser, flag: str, default: list[float], what: str) -> None:
+    p.add_argument(
+        flag,
+        type=_number(flag, "dimensionless units"),
+        nargs=2,
+        default=default,
+        metavar=("A", "B"),
+        help=f"{what} range, dimensionless (default: {default[0]:g} {default[1]:g})",
     )
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    sub.required = True
 
-    p = sub.add_parser("devices", help="list the device catalogue (paper Table 2)")
-    p.add_argument("--json", action="store_true", help="print one JSON list on stdout")
-    p.set_defaults(func=_cmd_devices)
 
-    p = sub.add_parser("params", help="dimensionless (μ, β, σ) of a device and stiffness (paper Table 1)")
+def _sub(sub: Any, name: str, help: str, example: str, func: Callable[[argparse.Namespace], int]) -> Any:
+    """A subcommand with a one-line description and an example in its --help."""
+    p = sub.add_parser(
+        name,
+        help=help,
+        description=help[0].upper() + help[1:] + ".",
+        epilog=f"example:\n  {example}",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.set_defaults(func=func)
+    return p
+
+
+def _add_devices(sub: Any) -> None:
+    p = _sub(sub, "devices", "list the device catalogue (paper Table 2)", "dfa devices --json", _cmd_devices)
+    p.add_argument("--json", action="store_true", help="print one JSON list on stdout (default: a text table)")
+
+
+def _add_params(sub: Any) -> None:
+    help = "dimensionless (μ, β, σ) of a device and stiffness (paper Table 1)"
+    p = _sub(sub, "params", help, "dfa params --device impulse", _cmd_params)
     _add_device_args(p, dimensionless=True, speed=False)
-    p.set_defaults(func=_cmd_params)
 
-    p = sub.add_parser("check", help="passivity criterion and region at an impact speed (eq. 6-12)")
+
+def _add_check(sub: Any) -> None:
+    help = "passivity criterion and region at an impact speed (eq. 6-12)"
+    p = _sub(sub, "check", help, "dfa check --device delta --velocity 0.1", _cmd_check)
     _add_device_args(p, dimensionless=True, speed=True)
-    p.add_argument("--no-quantization", action="store_true", help="use eq. 7 (Δ → 0) instead of eq. 6")
+    p.add_argument("--no-quantization", action="store_true", help="use eq. 7 (Δ → 0) instead of eq. 6 (default: eq. 6)")
     _add_delay_arg(p)
     p.add_argument(
         "--xi0",
         type=_number("--xi0", "ticks"),
         metavar="X",
-        help="initial position ξ0 in ticks (dimensionless input; needs --mu)",
+        help="initial position ξ0 in ticks (dimensionless input; needs --mu); default: 0",
     )
     p.add_argument(
         "--position",
         type=_number("--position", "m (rotary: rad)"),
         metavar="X",
-        help="initial position in m (rotary: rad; device input)",
+        help="initial position in m (rotary: rad; device input); default: 0",
     )
-    p.set_defaults(func=_cmd_check)
 
-    p = sub.add_parser("stiffness", help="stiffness limits for design at an impact speed (eq. 8, 9, 11)")
+
+def _add_stiffness(sub: Any) -> None:
+    help = "stiffness limits for design at an impact speed (eq. 8, 9, 11)"
+    p = _sub(sub, "stiffness", help, "dfa stiffness --device impulse --velocity 0.05 --stiffness 80", _cmd_stiffness)
     _add_device_args(p, dimensionless=False, speed=True)
     _add_delay_arg(p)
-    p.set_defaults(func=_cmd_stiffness)
 
-    p = sub.add_parser("simulate", help="exact simulation of the sampled, quantized, frictional loop (eq. 4-5)")
+
+def _add_simulate(sub: Any) -> None:
+    help = "exact simulation of the sampled, quantized, frictional loop (eq. 4-5)"
+    p = _sub(sub, "simulate", help, "dfa simulate --device delta --velocity 0.5", _cmd_simulate)
     _add_device_args(p, dimensionless=True, speed=True)
-    p.add_argument("--xi0", type=_number("--xi0", "ticks"), metavar="X", help="initial position in ticks (default 0)")
+    p.add_argument("--xi0", type=_number("--xi0", "ticks"), metavar="X", help="initial position in ticks (default: 0)")
     p.add_argument(
         "--samples",
         type=_integer("--samples"),
@@ -893,27 +818,34 @@ def _build_parser() -> argparse.ArgumentParser:
         metavar="N",
         help="samples to simulate (default: from the loop's time scales, 50000 to 10^7)",
     )
-    p.add_argument(
-        "--delay", type=_integer("--delay"), default=0, metavar="D", help="computational delay in samples (default 0)"
-    )
+    _add_delay_arg(p, _integer("--delay"))
     p.add_argument(
         "--preload",
         action="store_true",
-        help="start at rest with the spring preloaded to the speed's kinetic energy (section 5)",
+        help="start at rest with the spring preloaded to the speed's kinetic energy (section 5; default: off)",
     )
     p.add_argument(
-        "--no-quantization", action="store_true", help="linear spring φ = −ξ instead of the encoder staircase"
+        "--no-quantization",
+        action="store_true",
+        help="linear spring φ = −ξ instead of the encoder staircase (default: with the encoder)",
     )
-    p.add_argument("--trace", metavar="FILE.csv", help="write sample, xi, xi_dot to a CSV file")
+    p.add_argument("--trace", metavar="FILE.csv", help="write sample, xi, xi_dot (ticks) to a CSV file (default: none)")
     p.add_argument(
         "--force",
         action="store_true",
-        help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s (uninterruptible)",
+        help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s (uninterruptible; default: refuse)",
     )
-    p.set_defaults(func=_cmd_simulate)
 
-    p = sub.add_parser("map", help="stability map over the (β, σ) plane by simulation (paper Fig. 4)")
-    p.add_argument("--mu", type=_number("--mu", "dimensionless units"), required=True, help="μ = m/(K T²)")
+
+def _add_map(sub: Any) -> None:
+    help = "stability map over the (β, σ) plane by simulation (paper Fig. 4)"
+    p = _sub(sub, "map", help, "dfa map --mu 100 --xi-dot 1 5 --grid 50 --out fig4.npz", _cmd_map)
+    p.add_argument(
+        "--mu",
+        type=_number("--mu", "dimensionless units"),
+        required=True,
+        help="μ = m/(K T²), dimensionless (required)",
+    )
     p.add_argument(
         "--xi-dot",
         dest="xi_dot",
@@ -921,101 +853,158 @@ def _build_parser() -> argparse.ArgumentParser:
         nargs="+",
         required=True,
         metavar="V",
-        help="initial speeds ξ'0 (ticks per sample)",
+        help="initial speeds ξ'0 in ticks per sample (required)",
+    )
+    _range_arg(p, "--beta-range", [0.0, 1.0], "β")
+    _range_arg(p, "--sigma-range", [0.0, 2.0], "σ")
+    p.add_argument("--grid", type=_integer("--grid"), default=100, metavar="N", help="points per axis (default: 100)")
+    p.add_argument(
+        "--samples", type=_integer("--samples"), default=50_000, metavar="N", help="samples per run (default: 50000)"
+    )
+    _add_delay_arg(p, _integer("--delay"))
+    p.add_argument("--preload", action="store_true", help="spring preload instead of an initial speed (default: off)")
+    p.add_argument(
+        "--no-quantization", action="store_true", help="linear spring, no encoder (default: with the encoder)"
     )
     p.add_argument(
-        "--beta-range",
-        type=_number("--beta-range", "dimensionless units"),
-        nargs=2,
-        default=[0.0, 1.0],
-        metavar=("A", "B"),
+        "--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default: -1, all cores)"
     )
-    p.add_argument(
-        "--sigma-range",
-        type=_number("--sigma-range", "dimensionless units"),
-        nargs=2,
-        default=[0.0, 2.0],
-        metavar=("A", "B"),
-    )
-    p.add_argument("--grid", type=_integer("--grid"), default=100, metavar="N", help="points per axis (default 100)")
-    p.add_argument(
-        "--samples", type=_integer("--samples"), default=50_000, metavar="N", help="samples per run (default 50000)"
-    )
-    p.add_argument("--delay", type=_integer("--delay"), default=0, metavar="D")
-    p.add_argument("--preload", action="store_true", help="spring preload instead of an initial speed")
-    p.add_argument("--no-quantization", action="store_true")
-    p.add_argument("--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default all cores)")
-    p.add_argument("--out", required=True, metavar="FILE.npz", help="where to write the map")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--out", required=True, metavar="FILE.npz", help="where to write the map (required)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar (default: a bar on stderr)")
     p.add_argument(
         "--force",
         action="store_true",
-        help=f"run even when one run is estimated over {SIMULATE_TIME_LIMIT:g} s or the map over {MAP_TIME_LIMIT_HOURS:g} h",
+        help=f"run even when one run is estimated over {SIMULATE_TIME_LIMIT:g} s or the map over {MAP_TIME_LIMIT_HOURS:g} h (default: refuse)",
     )
-    p.add_argument("--json", action="store_true", help="print counts per outcome per speed as JSON")
-    p.set_defaults(func=_cmd_map)
+    p.add_argument("--json", action="store_true", help="print counts per outcome per speed as JSON (default: text)")
 
-    p = sub.add_parser(
-        "limit-cycles", help="limit cycles by harmonic balance with the exact describing function (eq. 36-45)"
-    )
+
+def _add_limit_cycles(sub: Any) -> None:
+    help = "limit cycles by harmonic balance with the exact describing function (eq. 36-45)"
+    p = _sub(sub, "limit-cycles", help, "dfa limit-cycles --device delta --model zoh", _cmd_limit_cycles)
     _add_device_args(p, dimensionless=True, speed=False)
     p.add_argument(
         "--model",
         choices=["half-delay", "zoh", "pade"],
         default="half-delay",
-        help="hold model (default half-delay; zoh is exact)",
+        help="hold model (default: half-delay; zoh is exact)",
     )
-    p.add_argument("--delay", type=_integer("--delay"), default=0, metavar="D", help="computational delay in samples")
+    _add_delay_arg(p, _integer("--delay"))
     p.add_argument(
         "--max-amplitude",
         type=_number("--max-amplitude", "ticks"),
         default=None,
         metavar="M",
-        help="largest amplitude searched (ticks); default: up to where the envelope of eq. 41 excludes roots",
+        help="largest amplitude searched in ticks (default: up to where the envelope of eq. 41 excludes roots)",
     )
-    p.set_defaults(func=_cmd_limit_cycles)
 
-    p = sub.add_parser("contours", help="amplitude/frequency maps of both cycle families (paper Fig. 7)")
-    p.add_argument("--mu", type=_number("--mu", "dimensionless units"), required=True, help="μ = m/(K T²)")
-    p.add_argument(
-        "--beta-range",
-        type=_number("--beta-range", "dimensionless units"),
-        nargs=2,
-        default=[0.0, 1.0],
-        metavar=("A", "B"),
-    )
-    p.add_argument(
-        "--sigma-range",
-        type=_number("--sigma-range", "dimensionless units"),
-        nargs=2,
-        default=[0.0, 2.0],
-        metavar=("A", "B"),
-    )
-    p.add_argument("--grid", type=_integer("--grid"), default=200, metavar="N", help="points per axis (default 200)")
-    p.add_argument("--max-amplitude", type=_number("--max-amplitude", "ticks"), default=200.0, metavar="M")
-    p.add_argument("--out", metavar="FILE.npz", help="write the maps")
-    p.add_argument("--json", action="store_true")
-    p.set_defaults(func=_cmd_contours)
 
-    p = sub.add_parser("report", help="design report of a device: verdict, limits, cycles, figures (HTML or Markdown)")
-    _add_device_args(p, dimensionless=False, speed=True)
-    p.add_argument("--out", default="reports", metavar="DIR", help="output folder (default reports)")
+def _add_contours(sub: Any) -> None:
+    help = "amplitude/frequency maps of both cycle families (paper Fig. 7)"
+    p = _sub(sub, "contours", help, "dfa contours --mu 100 --grid 200 --out fig7.npz", _cmd_contours)
     p.add_argument(
-        "--format", choices=["html", "md", "both"], default="html", help="html (self-contained), md (with PNGs) or both"
+        "--mu",
+        type=_number("--mu", "dimensionless units"),
+        required=True,
+        help="μ = m/(K T²), dimensionless (required)",
     )
-    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    _range_arg(p, "--beta-range", [0.0, 1.0], "β")
+    _range_arg(p, "--sigma-range", [0.0, 2.0], "σ")
+    p.add_argument("--grid", type=_integer("--grid"), default=200, metavar="N", help="points per axis (default: 200)")
+    p.add_argument(
+        "--max-amplitude",
+        type=_number("--max-amplitude", "ticks"),
+        default=200.0,
+        metavar="M",
+        help="largest amplitude in ticks (default: 200)",
+    )
+    p.add_argument("--out", metavar="FILE.npz", help="write the maps (default: not written)")
+    p.add_argument("--json", action="store_true", help="print one JSON object on stdout (default: text)")
+
+
+def _add_report(sub: Any) -> None:
+    help = "design report of a device: verdict, limits, cycles, figures (HTML or Markdown)"
+    p = _sub(sub, "report", help, "dfa report --device phantom --velocity 0.1 --out reports --format both", _cmd_report)
+    _add_device_args(
+        p,
+        False,
+        True,
+        "print the paths written and the numbers stated as one JSON object (default: one line per file)",
+    )
+    p.add_argument(
+        "--out", default="reports", metavar="DIR", help="output folder, created if missing (default: reports)"
+    )
+    p.add_argument(
+        "--format",
+        choices=["html", "md", "both"],
+        default="html",
+        help="html (self-contained), md (with PNGs in DIR/figures) or both (default: html)",
+    )
+    p.add_argument(
+        "--validation",
+        metavar="FILE.json",
+        help="validation summary for the 'how far to trust' paragraph, as written by `dfa validate` (default: none)",
+    )
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help="replace a report of the same name made for another device, stiffness, speed or delay (default: refuse)",
+    )
+    p.add_argument("--quiet", action="store_true", help="no progress bars (default: bars on stderr)")
     _add_delay_arg(p)
-    p.set_defaults(func=_cmd_report)
 
-    p = sub.add_parser("validate", help="validate the predictions against exact simulation; writes validation.md")
-    p.add_argument("--quick", action="store_true", help="a reduced set (under a minute)")
-    p.add_argument("--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default all cores)")
+
+def _add_validate(sub: Any) -> None:
+    help = "validate the predictions against exact simulation; writes validation.md"
+    p = _sub(sub, "validate", help, "dfa validate --quick --out reports/validation", _cmd_validate)
+    p.add_argument("--quick", action="store_true", help="a reduced set, under a minute (default: the full set)")
     p.add_argument(
-        "--out", default="reports/validation", metavar="DIR", help="output folder (default reports/validation)"
+        "--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default: -1, all cores)"
     )
-    p.add_argument("--quiet", action="store_true", help="no progress bars")
-    p.add_argument("--json", action="store_true", help="print the summary as JSON")
-    p.set_defaults(func=_cmd_validate)
+    p.add_argument(
+        "--out", default="reports/validation", metavar="DIR", help="output folder (default: reports/validation)"
+    )
+    p.add_argument("--quiet", action="store_true", help="no progress bars (default: bars on stderr)")
+    p.add_argument("--json", action="store_true", help="print the summary as JSON (default: text)")
+
+
+class _Version(argparse.Action):
+    """``--version``: the installed distribution's version (importlib.metadata), looked up only when asked."""
+
+    def __init__(self, option_strings: Sequence[str], dest: str = argparse.SUPPRESS, **kwargs: Any) -> None:
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS, **kwargs)
+
+    def __call__(self, parser: argparse.ArgumentParser, *args: Any, **kwargs: Any) -> None:
+        print(f"dfa {package_version()}")
+        parser.exit(0)
+
+
+def package_version() -> str:
+    """Version of the installed distribution that provides ``dfa`` (``importlib.metadata``)."""
+    from importlib import metadata
+
+    for dist in metadata.packages_distributions().get("dfa", []) or ["dfa"]:
+        try:
+            return metadata.version(dist)
+        except metadata.PackageNotFoundError:
+            continue
+    from . import __version__
+
+    return __version__
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="dfa",
+        description="Passivity, limit cycles and stiffness limits of sampled, quantized haptic devices "
+        "(Diolaiti, Niemeyer, Barbagli & Salisbury, ICRA 2005).",
+        epilog="`dfa COMMAND --help` describes each command. Without a command, dfa prints this help and exits with 2.",
+    )
+    parser.add_argument("--version", action=_Version, help="print the installed version and exit")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for add in (_add_devices, _add_params, _add_check, _add_stiffness, _add_simulate, _add_map, _add_limit_cycles,
+                _add_contours, _add_report, _add_validate):  # fmt: skip
+        add(sub)
     return parser
 
 
@@ -1062,7 +1051,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the ``dfa`` command line; return the exit code.
 
     Exit codes: 0 ok; 2 bad input (one line on stderr, before any work is
-    done); 1 a file could not be written or memory ran out; 130 / 143
+    done), or no command at all (bare ``dfa`` prints the help on stdout); 1 a file could not be written or memory ran out; 130 / 143
     interrupted by SIGINT / SIGTERM (one line on stderr naming what was kept:
     files are written atomically, so nothing is half-written); 141 stdout was
     a closed pipe (``dfa devices | head -1``), ended quietly.
@@ -1071,7 +1060,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     before = len(written_paths())
     old_handlers = _install_signal_handlers()
     try:
-        args = parser.parse_args(list(sys.argv[1:] if argv is None else argv))
+        argv = list(sys.argv[1:] if argv is None else argv)
+        if not argv:  # bare `dfa`: the help, and exit code 2 (no command ran)
+            parser.print_help()
+            return 2
+        args = parser.parse_args(argv)
+        if getattr(args, "func", None) is None:
+            raise UsageError("dfa: error: give a COMMAND (see `dfa --help`)")
         return int(args.func(args) or 0)
     except DFAError as err:
         msg = str(err)

@@ -50,6 +50,7 @@ from numba import njit
 from . import _kernel
 from .criterion import passivity_criterion
 from .errors import DFAValueError, check_choice, check_delay, check_int
+from .formatting import markdown_table
 
 __all__ = ["DelaySoundness", "sample_passive_points", "delay_soundness", "soundness_markdown", "main"]
 
@@ -293,16 +294,15 @@ def soundness_markdown(results: list[DelaySoundness]) -> str:
         "points and |ξ0| ≤ 10 ticks for the rest; max(2000, 20·2π√μ) samples per run. A violation is a run whose",
         "storage S = ½μξ'² + ½ξ² exceeds S(0)(1 + 1e-9) at some sample, or that diverges.",
         "",
-        "| criterion | d | points | on line / σ-edge / β-edge | energy grew | diverged | violations | worst max S/S(0) − 1 |",
-        "|---|---|---|---|---|---|---|---|",
     ]
-    for r in results:
-        k = r.by_kind
-        wg = "∞" if not math.isfinite(r.worst_growth) else f"{r.worst_growth:.3g}"
-        lines.append(
-            f"| {r.criterion} | {r.delay} | {r.points} | {k['line']} / {k['sigma-edge']} / {k['beta-edge']} | "
-            f"{r.energy_grew} | {r.diverged} | {r.violations} | {wg} |"
-        )
+    head = ["criterion", "d", "points", "on line / σ-edge / β-edge", "energy grew", "diverged", "violations",
+            "worst max S/S(0) − 1"]  # fmt: skip
+    rows = [
+        [r.criterion, r.delay, r.points, f"{r.by_kind['line']} / {r.by_kind['sigma-edge']} / {r.by_kind['beta-edge']}",
+         r.energy_grew, r.diverged, r.violations, f"{r.worst_growth:.3g}" if math.isfinite(r.worst_growth) else "∞"]
+        for r in results
+    ]  # fmt: skip
+    lines.append(markdown_table(head, rows))
     lines += [
         "",
         "*delay-aware*: the criterion of `dfa.criterion` ((β − ½ − d)V + (σ − ½) ≥ 0, σ ≥ ½, V² = ξ'0² + 2H_c(ξ0)/μ).",

@@ -6,6 +6,7 @@ Run: python examples/table2_devices.py [--out DIR]
 import os
 
 import dfa
+from dfa.formatting import markdown_table, number
 
 
 def main(out: str, quick: bool = False) -> dict:
@@ -24,13 +25,13 @@ def main(out: str, quick: bool = False) -> dict:
                 incomplete=e.incomplete,
             )
         )
-    lines = ["| device | μ | β | σ | printed μ, β, σ | disagreement |", "|---|---:|---:|---:|---|---|"]
+    body = []
     for r in rows:
-        f = lambda x, d=4: "–" if x is None else f"{x:.{d}g}"
         printed = ", ".join(r["printed"].get(k, "–") for k in ("mu", "beta", "sigma")) if r["printed"] else "–"
         note = "; ".join(r["discrepancies"]) or ("incomplete row" if r["incomplete"] else "none")
-        lines.append(f"| {r['name']} | {f(r['mu'], 5)} | {f(r['beta'], 3)} | {f(r['sigma'], 4)} | {printed} | {note} |")
-    table = "\n".join(lines)
+        body.append([r["name"], number(r["mu"], 5), number(r["beta"], 3), number(r["sigma"]), printed, note])
+    head = ["device", "μ", "β", "σ", "printed μ, β, σ", "disagreement"]
+    table = markdown_table(head, body, align="lrrrll")
     with open(os.path.join(out, "table2_devices.md"), "w", encoding="utf-8") as fh:
         fh.write(table + "\n")
     print(table)

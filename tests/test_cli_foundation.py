@@ -191,7 +191,6 @@ def test_cli_stiffness_table(capsys):
         (["stiffness", "--device", "delta", "--velocity", "nan"], "velocity"),
         (["stiffness", "--device", "delta", "--velocity", "1", "--stiffness", "0"], "stiffness = 0.0"),
         (["frobnicate"], "invalid choice"),
-        ([], "required"),
     ],
 )
 def test_cli_bad_input_is_one_line_on_stderr_with_exit_2(capsys, argv, needle):

@@ -217,7 +217,8 @@ def _invocation(rng, tmp):
         # always one input refused before the (seconds-long) report is written
         bad = rng.choice(
             [
-                ["--out", rng.choice(["", os.devnull, str(tmp / "afile.txt"), str(tmp / "missing")])],
+                # report --out creates the folder, so only a missing parent is refused
+                ["--out", rng.choice(["", os.devnull, str(tmp / "afile.txt"), str(tmp / "missing" / "r")])],
                 ["--velocity", rng.choice(GARBAGE[:12])],
                 ["--format", "pdf"],
                 ["--device", "nosuch"],

@@ -110,11 +110,13 @@ def test_cli_and_report_never_state_absence_for_an_incomplete_search(capsys):
     out = capsys.readouterr().out
     assert "no limit cycle found up to M = 10000 ticks (search incomplete" in out
     assert "no limit cycle predicted" not in out
-    from dfa.report import _absence_lines
+    from types import SimpleNamespace
+
+    from dfa.render.document import absence_lines
 
     _dev, p = _delta_10nm()
-    thr = {m: growth_threshold(p, model=m, max_amplitude=1e4) for m in ("half-delay", "zoh")}
-    lines = _absence_lines(thr)
+    thr = tuple((m, growth_threshold(p, model=m, max_amplitude=1e4)) for m in ("half-delay", "zoh"))
+    lines = absence_lines(SimpleNamespace(thresholds=thr))  # the report's sentences read only these
     assert len(lines) == 2 and all(
         "search incomplete" in s and "no limit cycle is predicted" not in s.lower() for s in lines
     )
@@ -328,11 +330,13 @@ def test_validation_eq45_worst_point_above_the_zoh_linear_bound_does_not_diverge
 
 
 def test_report_growth_paragraph_prints_the_band_of_the_api():
-    from dfa.report import _growth_paragraph
+    from types import SimpleNamespace
+
+    from dfa.render.document import growth_text
 
     dev = dfa.get_device("Delta").device
     g = growth_threshold(CLUSTER, dev, model="zoh")
-    text = _growth_paragraph(g, dev.units)
+    text = growth_text(SimpleNamespace(threshold=lambda model: g, device=dev))
     assert text.startswith("**Growth band**") and f"{g.unstable_count} unstable cycles" in text
     for x in (g.amplitude, g.amplitude_high, g.xi_dot, g.xi_dot_high):
         assert f"{x:.4g}" in text

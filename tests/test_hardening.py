@@ -305,24 +305,27 @@ def test_cli_output_folder_rules(capsys, tmp_path):
     f.write_text("x")
     assert "not a folder" in refused(capsys, "report", *IMPULSE, "--out", str(f))
     assert "not a folder" in refused(capsys, "validate", "--quick", "--out", str(f))
-    assert "does not exist" in refused(capsys, "report", *IMPULSE, "--out", str(tmp_path / "new"))
+    assert "does not exist" in refused(capsys, "report", *IMPULSE, "--out", str(tmp_path / "no" / "new"))
     assert "--out" in refused(capsys, "validate", "--quick", "--out", "")
     assert sorted(os.listdir(tmp_path)) == ["file"]
 
 
 def test_report_interrupted_leaves_folder_untouched(tmp_path, monkeypatch):
-    import dfa.plotting
-    import dfa.report as report
+    import dfa.design
+    import dfa.render.document
 
     (tmp_path / "keep.txt").write_text("mine")
 
     def fail(*a, **k):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(dfa.plotting, "nyquist_plot", fail)  # after two figures were drawn
-    monkeypatch.setattr(report, "_first_unstable_speed", lambda *a, **k: 3.0)
+    # after the PNGs and the Markdown were written into the staging folder
+    monkeypatch.setattr(dfa.render.document, "design_html", fail)
+    monkeypatch.setattr(dfa.design, "first_unstable_speed", lambda *a, **k: 3.0)
     with pytest.raises(KeyboardInterrupt):
-        dfa.design_report(dfa.get_device("impulse"), velocity=0.05, out_dir=tmp_path, progress=False, samples=500)
+        dfa.design_report(
+            dfa.get_device("impulse"), velocity=0.05, out_dir=tmp_path, fmt="both", progress=False, samples=500
+        )
     assert sorted(os.listdir(tmp_path)) == ["keep.txt"]
 
 

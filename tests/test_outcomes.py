@@ -265,12 +265,14 @@ def test_rotary_device_force_step_in_newton_metres():
 
 
 def test_report_sentence_names_the_buzz_in_newtons_and_hertz():
-    from dfa.report import _outcome_sentence
+    from types import SimpleNamespace
+
+    from dfa.render.document import outcome_text
 
     dev = dfa.get_device("impulse").device
     p = dev.params(255.0)
     r = simulate(p.mu, p.beta, p.sigma, dev.xi_dot(0.02), record=False)
-    text = _outcome_sentence(r, dev, 255.0, 0.02)
+    text = outcome_text(SimpleNamespace(outcome=r, device=dev, stiffness=255.0, velocity=0.02))
     hz = r.frequency / (2 * math.pi * dev.period)
     assert "chatter" in text and "never comes to rest" in text
     assert f"{255.0 * 314e-6:.4g} N" in text and f"{hz:.4g} Hz" in text

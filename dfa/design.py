@@ -1,0 +1,324 @@
+"""The design analysis of one device: every number the design report states, computed once, rendered elsewhere.
+
+:func:`design_analysis` runs the criterion (eq. 6-12), the stiffness limits (eq. 8, 9, 11 and the exact linear
+bound), the limit cycles and growth thresholds of the describing function (eq. 36-45, half-delay and exact ZOH),
+the simulated critical impact speed, the simulated outcomes and trajectories, the stability map around the
+operating point and the Nyquist locus, and returns a frozen :class:`DesignAnalysis`. Rendering
+(:mod:`dfa.render`, :func:`dfa.report.design_report`) only reads it. Nothing here reads or writes files.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .catalogue import CatalogueEntry
+from .criterion import CriterionResult, device_criterion
+from .cycles import GrowthThreshold, growth_threshold
+from .device import Device, Params
+from .errors import DFATypeError, DFAValueError, check_delay, check_positive, check_real
+from .loop import NyquistLocusResponse, nyquist_locus_response
+from .maps import StabilityMap, stability_map
+from .simulation import SimulationResult, simulate
+from .stiffness import StiffnessCurve, StiffnessLimits, stiffness_limits, stiffness_response
+from .validation import first_unstable_speed
+
+__all__ = ["DesignAnalysis", "design_analysis"]
+
+#: Loop models of the describing-function analysis, in the order the report lists them.
+MODELS = ("half-delay", "zoh")
+
+_VALIDATION_KEYS = (
+    "soundness_violations",
+    "soundness_passive",
+    "conservatism",
+    "speed_df_median_error",
+    "short_period_frequency_error",
+)
+
+
+@dataclass(frozen=True)
+class DesignAnalysis:
+    """Everything the design report of one device states, at stiffness K, impact speed ẋ0 and delay d.
+
+    Attributes
+    ----------
+    device : Device
+        The device (physical units: SI, rotary in rad, N·m, kg·m²).
+    stiffness : float
+        Virtual wall stiffness K in N/m (rotary N·m/rad).
+    velocity : float
+        Impact speed ẋ0 in m/s (rotary rad/s), ≥ 0.
+    delay : int
+        Computational delay d in samples.
+    params : Params
+        (μ, β, σ) of the device at K (paper Table 1).
+    criterion : CriterionResult
+        The passivity criterion at ẋ0 (eq. 6, 10, 12).
+    limits : StiffnessLimits
+        Stiffness limits at ẋ0 (eq. 8, 9, 11, exact linear bound).
+    thresholds : tuple of (str, GrowthThreshold)
+        Limit cycles and growth threshold per loop model (``half-delay``, ``zoh``; eq. 36-45).
+    simulated_xi_dot : float or None
+        Lowest impact speed ξ'0 (ticks/sample) that diverged in exact simulation (40-point scan, bisection);
+        None when no scanned speed diverged.
+    outcome : SimulationResult
+        Exact simulation at the design speed, as long as the loop's time scales need.
+    high_xi_dot : float
+        Speed (ticks/sample) of the second simulated impact: just above ``simulated_xi_dot``, or twice the reference.
+    outcome_high : SimulationResult
+        Exact simulation at ``high_xi_dot``.
+    trajectory, trajectory_high : SimulationResult
+        Recorded runs (figure windows) at the two speeds.
+    stiffness_curve : StiffnessCurve
+        Largest passive stiffness against speed (figure).
+    nyquist : NyquistLocusResponse
+        Linearised loop and −1/D(M) (figure).
+    stability_map : StabilityMap
+        Simulated outcomes around the operating point at the design speed and twice it.
+    catalogue : dict or None
+        The paper's printed (μ, β, σ), the disagreements and the notes of a catalogue device.
+    validation : dict or None
+        Summary of a validation run (:meth:`dfa.validation.Validation.summary`) passed in; never read from a file.
+    samples, map_grid : int
+        Samples per run of the speed scan and the map, and the map's points per axis (inputs of the analysis).
+    status : str
+        ``"ok"``.
+    """
+
+    device: Device
+    stiffness: float
+    velocity: float
+    delay: int
+    params: Params
+    criterion: CriterionResult
+    limits: StiffnessLimits
+    thresholds: tuple[tuple[str, GrowthThreshold], ...]
+    simulated_xi_dot: float | None
+    outcome: SimulationResult
+    high_xi_dot: float
+    outcome_high: SimulationResult
+    trajectory: SimulationResult = field(repr=False)
+    trajectory_high: SimulationResult = field(repr=False)
+    stiffness_curve: StiffnessCurve = field(repr=False)
+    nyquist: NyquistLocusResponse = field(repr=False)
+    stability_map: StabilityMap = field(repr=False)
+    catalogue: dict[str, Any] | None = None
+    validation: dict[str, Any] | None = None
+    samples: int = 30_000
+    map_grid: int = 41
+    status: str = "ok"
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.device, Device):
+            raise DFATypeError(f"device = {self.device!r} is invalid: it must be a dfa.Device")
+        check_positive("stiffness", self.stiffness, "give the virtual wall stiffness K")
+        if not check_real("velocity", self.velocity, "give the impact speed") >= 0.0:
+            raise DFAValueError(f"velocity = {self.velocity!r} is invalid: the analysis holds |ẋ0| >= 0")
+        check_delay(self.delay)
+        if tuple(m for m, _ in self.thresholds) != MODELS:
+            raise DFAValueError(
+                f"thresholds are for {[m for m, _ in self.thresholds]}: they must be for {list(MODELS)}"
+            )
+        if self.status != "ok":
+            raise DFAValueError(f"status = {self.status!r} is invalid: a design analysis is 'ok'")
+
+    def threshold(self, model: str) -> GrowthThreshold:
+        """The growth threshold of loop model ``model`` (``"half-delay"`` or ``"zoh"``)."""
+        return dict(self.thresholds)[model]
+
+    @property
+    def simulated_velocity(self) -> float | None:
+        """``simulated_xi_dot`` in m/s (rotary rad/s), or None."""
+        return None if self.simulated_xi_dot is None else self.device.velocity(self.simulated_xi_dot)
+
+    def as_dict(self) -> dict[str, object]:
+        """The numbers the report states, JSON-able (SI units; speeds also in ticks/sample)."""
+        return {
+            "device": self.device.as_dict(),
+            "stiffness": self.stiffness,
+            "velocity": self.velocity,
+            "delay": self.delay,
+            "params": self.params.as_dict(),
+            "criterion": self.criterion.as_dict(),
+            "limits": self.limits.as_dict(),
+            "growth_thresholds": {m: g.as_dict() for m, g in self.thresholds},
+            "cycles": {m: g.result.as_dict() for m, g in self.thresholds},
+            "simulated_xi_dot": self.simulated_xi_dot,
+            "simulated_velocity": self.simulated_velocity,
+            "outcome": self.outcome.as_dict(),
+            "high_xi_dot": self.high_xi_dot,
+            "outcome_high": self.outcome_high.as_dict(),
+            "stability_map": self.stability_map.as_dict(),
+            "catalogue": self.catalogue,
+            "validation": self.validation,
+            "samples": self.samples,
+            "map_grid": self.map_grid,
+            "status": self.status,
+        }
+
+
+def _catalogue_notes(entry: CatalogueEntry | None) -> dict[str, Any] | None:
+    if entry is None or not entry.printed_params:
+        return None
+    return {
+        "printed": [[sym, entry.printed[i][1]] for i, sym in enumerate(("μ", "β", "σ")) if i < len(entry.printed)],
+        "discrepancies": [str(x) for x in entry.discrepancies],
+        "notes": entry.notes or "",
+    }
+
+
+def _check_validation(summary: dict[str, Any] | None) -> dict[str, Any] | None:
+    if summary is None:
+        return None
+    if not isinstance(summary, dict):
+        raise DFATypeError(f"validation = {summary!r:.60} is invalid: pass the dict of Validation.summary() or None")
+    missing = [k for k in _VALIDATION_KEYS if k not in summary]
+    if missing:
+        raise DFAValueError(
+            f"validation lacks {', '.join(missing)}: pass the dict of dfa.validate(...).summary() (or None)"
+        )
+    return dict(summary)
+
+
+def resolve_design_inputs(
+    device, stiffness, velocity, delay
+) -> tuple[CatalogueEntry | None, Device, float, float, int]:
+    """(catalogue entry or None, device, K, |ẋ0|, d) of a design analysis, checked; the defaults filled in."""
+    entry = device if isinstance(device, CatalogueEntry) else None
+    dev = entry.device if entry is not None else device
+    if not isinstance(dev, Device):
+        raise DFAValueError(f"device = {device!r} is invalid: it must be a dfa.Device or a catalogue entry")
+    k = stiffness if stiffness is not None else (entry.stiffness if entry is not None else None)
+    if k is None:
+        raise DFAValueError(
+            f"stiffness = None is invalid for {dev.name!r}: the catalogue gives no K; pass the stiffness in {dev.units['stiffness']}"
+        )
+    k = check_positive("stiffness", k, "give the virtual wall stiffness K")
+    v = abs(check_real("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1)))
+    return entry, dev, k, v, check_delay(delay)
+
+
+def _simulations(p: Params, xi_dot: float, ref: float, v_sim: float | None, samples: int, dl: int) -> dict[str, Any]:
+    """Recorded runs for the figure and full-length runs for the outcomes, at the design speed and above."""
+    n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
+    v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
+    run = lambda v, n, rec: simulate(p.mu, p.beta, p.sigma, v, n, delay=dl, record=rec)
+    return dict(
+        trajectory=run(xi_dot, n_traj, True),
+        outcome=run(xi_dot, None, False),  # length from the loop's time scales (dfa.simulation.default_samples)
+        high_xi_dot=v_show,
+        trajectory_high=run(v_show, n_traj, True),
+        outcome_high=run(v_show, None, False),
+    )
+
+
+def design_analysis(
+    device: Device | CatalogueEntry,
+    stiffness: float | None = None,
+    velocity: float | None = None,
+    *,
+    delay: int = 0,
+    map_grid: int = 41,
+    samples: int = 30_000,
+    validation: dict[str, Any] | None = None,
+    n_jobs: int = -1,
+    progress: bool = False,
+) -> DesignAnalysis:
+    """Compute every number of the design report of ``device`` at stiffness K, impact speed ẋ0 and delay d.
+
+    Parameters
+    ----------
+    device : Device or CatalogueEntry
+        A catalogue entry adds the paper's printed values and notes.
+    stiffness : float, optional
+        K in N/m (rotary N·m/rad); default the catalogue K.
+    velocity : float, optional
+        Impact speed in m/s (rotary rad/s); default 0.1 m/s (1 rad/s rotary). Its sign is dropped.
+    delay : int
+        Computational delay d in whole samples (default 0), used by every part of the analysis.
+    map_grid, samples : int
+        Points per axis of the stability map (default 41); samples per run of it and of the speed scan (30000).
+    validation : dict, optional
+        Summary of a validation run (``dfa.validate(...).summary()``) for the report's "how far to trust"
+        paragraph; no file is ever read.
+    n_jobs : int
+        Parallel jobs of the stability map (default -1: all cores; see :func:`dfa.stability_map`).
+    progress : bool
+        Progress bar over the parts (default False).
+
+    Returns
+    -------
+    DesignAnalysis
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        Not a Device or catalogue entry, no stiffness, a non-finite speed, a bad delay, a bad validation summary.
+
+    See Also
+    --------
+    dfa.report.design_report : this analysis rendered as Markdown and/or HTML.
+
+    Examples
+    --------
+    >>> import dfa
+    >>> a = design_analysis(dfa.get_device("impulse"), velocity=0.05, map_grid=3, samples=2000, n_jobs=1)
+    >>> a.criterion.passive, round(a.limits.k_max, 1), a.outcome.outcome
+    (True, 120.8, 'rest')
+    """
+    from tqdm.auto import tqdm
+
+    entry, dev, k, v, dl = resolve_design_inputs(device, stiffness, velocity, delay)
+    checked = _check_validation(validation)
+    steps = tqdm(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False)
+    p = dev.params(k)
+    crit = device_criterion(dev, k, v, delay=dl)
+    lim = stiffness_limits(dev, v, k, delay=dl)
+    curve = stiffness_response(dev, stiffness=k, delay=dl)
+    steps.update()
+    thr = tuple((m, growth_threshold(p, dev, model=m, delay=dl)) for m in MODELS)  # search range follows the problem
+    steps.update()
+    ref = crit.critical_xi_dot if crit.critical_xi_dot else max(1.0, crit.xi_dot)
+    v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, delay=dl)
+    steps.update()
+    sims = _simulations(p, crit.xi_dot, ref, v_sim, samples, dl)
+    ny = _nyquist(p, thr[0][1], dl)
+    steps.update()
+    smap = _map_around(p, crit.xi_dot, dl, map_grid, samples, n_jobs, progress)
+    steps.close()
+    figs: dict[str, Any] = dict(stiffness_curve=curve, nyquist=ny, stability_map=smap)
+    inputs: dict[str, Any] = dict(
+        catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
+    )
+    return DesignAnalysis(dev, k, v, dl, p, crit, lim, thr, v_sim, **figs, **inputs, **sims)
+
+
+def _map_around(
+    p: Params, xi_dot: float, dl: int, grid: int, samples: int, n_jobs: int, progress: bool
+) -> StabilityMap:
+    """Simulated outcomes on (β, σ) around the operating point, at the design speed and twice it."""
+    return stability_map(
+        p.mu,
+        [xi_dot, 2 * xi_dot] if xi_dot > 0 else [1.0, 2.0],
+        beta_range=(0.0, max(0.25, 2 * p.beta)),
+        sigma_range=(0.0, max(1.0, 2 * p.sigma)),
+        grid=grid,
+        samples=samples,
+        progress=progress,
+        delay=dl,
+        n_jobs=n_jobs,
+    )
+
+
+def _nyquist(p: Params, half_delay: GrowthThreshold, dl: int) -> NyquistLocusResponse:
+    """The Nyquist view: the locus reaches every cycle drawn (the first three of the half-delay model)."""
+    res = half_delay.result
+    amps = [c.amplitude for c in res.cycles[:3]] if p.sigma > 0 else None
+    if p.sigma > 0 and not amps:
+        amps = [1.0]
+    m_top = max([50.0] + [2.0 * c.amplitude for c in res.cycles])
+    return nyquist_locus_response(p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), delay=dl)

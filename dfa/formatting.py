@@ -1,0 +1,133 @@
+"""Number formatting and tables for everything ``dfa`` prints or writes (one implementation each).
+
+:func:`number` formats a value for people (significant digits, a mark for "none" and for infinity);
+:func:`text_table` aligns columns for the terminal; :func:`markdown_table` writes a Markdown (GFM) table.
+Pure string functions: no numerics, no I/O.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Sequence
+from typing import Any
+
+__all__ = ["json_dumps", "markdown_table", "number", "percent", "text_table"]
+
+
+def number(x: float | int | None, digits: int = 4, *, none: str = "–", inf: str = "∞") -> str:
+    """``x`` with ``digits`` significant digits (``%g``); ``none`` for None and ``inf`` for ±infinity.
+
+    Parameters
+    ----------
+    x : float, int or None
+        The value (any unit: the caller writes the unit).
+    digits : int
+        Significant digits (default 4).
+    none, inf : str
+        Text for a missing value and for infinity (the terminal uses "-" and "inf", documents "–" and "∞").
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> number(641.1312, 5), number(None), number(float("inf")), number(None, none="-")
+    ('641.13', '–', '∞', '-')
+    >>> number(-float("inf"), inf="inf")
+    '-inf'
+    """
+    if x is None:
+        return none
+    if isinstance(x, float) and math.isinf(x):
+        return ("-" if x < 0 else "") + inf
+    return f"{x:.{digits}g}"
+
+
+def percent(x: float | None, digits: int = 2, *, none: str = "–") -> str:
+    """A fraction as a percentage with ``digits`` significant digits (``0.0123`` → ``'1.2 %'``).
+
+    Examples
+    --------
+    >>> percent(0.006552), percent(None), percent(float("nan"))
+    ('0.66 %', '–', '–')
+    """
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return none
+    return f"{100 * x:.{digits}g} %"
+
+
+def _cell(x: object) -> str:
+    return str(x).replace("|", "\\|")  # a literal | would end the cell
+
+
+def markdown_table(header: Sequence[object], rows: Sequence[Sequence[object]], align: str | None = None) -> str:
+    """A Markdown (GFM) table; ``|`` inside cells is escaped.
+
+    Parameters
+    ----------
+    header : sequence
+        Column titles.
+    rows : sequence of sequences
+        Cells (converted with ``str``), as many per row as there are titles.
+    align : str, optional
+        One letter per column, ``l`` (left, the default) or ``r`` (right).
+
+    Returns
+    -------
+    str
+        The table, one line per row, no trailing newline.
+
+    Examples
+    --------
+    >>> print(markdown_table(["a", "b"], [[1, "x|y"]], align="lr"))
+    | a | b |
+    |---|---:|
+    | 1 | x\\|y |
+    """
+    rule = {"l": "---", "r": "---:"}
+    spec = align or "l" * len(header)
+    lines = ["| " + " | ".join(_cell(h) for h in header) + " |", "|" + "|".join(rule[a] for a in spec) + "|"]
+    lines += ["| " + " | ".join(_cell(c) for c in r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:
+    """Columns aligned with two spaces for the terminal; a dashed rule under the header.
+
+    Examples
+    --------
+    >>> print(text_table([["β", 0.5], ["σ", 12]], ["name", "value"]))
+    name  value
+    ----  -----
+    β     0.5
+    σ     12
+    """
+    cells = [[str(c) for c in r] for r in ([header] if header else []) + list(rows)]
+    widths = [max(len(r[i]) for r in cells) for i in range(len(cells[0]))]
+    lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths, strict=False)).rstrip() for r in cells]
+    if header:
+        lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+def json_dumps(obj: object, **kwargs: Any) -> str:
+    """JSON text with NaN and ±inf written as null (valid JSON), tuples as lists, non-ASCII kept.
+
+    Examples
+    --------
+    >>> json_dumps({"k": float("nan"), "v": (1.5, float("inf")), "u": "N·m"})
+    '{"k": null, "v": [1.5, null], "u": "N·m"}'
+    """
+
+    def clean(x: object) -> object:
+        if isinstance(x, float) and not math.isfinite(x):
+            return None
+        if isinstance(x, dict):
+            return {str(k): clean(v) for k, v in x.items()}
+        if isinstance(x, (list, tuple)):
+            return [clean(v) for v in x]
+        return x
+
+    return json.dumps(clean(obj), allow_nan=False, ensure_ascii=False, **kwargs)

@@ -1,0 +1,348 @@
+"""The design report as Markdown (Jinja2 template) and as self-contained HTML (markdown-it-py).
+
+Everything here reads a :class:`~dfa.design.DesignAnalysis`; nothing computes a number the analysis does not
+hold, and nothing writes files (:func:`dfa.report.design_report` does, atomically).
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+from collections.abc import Callable, Mapping
+from functools import lru_cache
+from typing import Any
+
+from ..design import DesignAnalysis
+from ..formatting import markdown_table, number, percent
+
+__all__ = ["design_html", "design_markdown", "markdown_to_html"]
+
+_CSS = (
+    "body{font-family:-apple-system,Segoe UI,Helvetica,Arial,sans-serif;max-width:980px;margin:2em auto;padding:0 1em;"
+    "color:#222;line-height:1.45}table{border-collapse:collapse;margin:0.8em 0;font-size:0.92em}"
+    "th,td{border:1px solid #ccc;padding:0.3em 0.6em;text-align:left}th{background:#f3f3f3}"
+    "img{max-width:100%}h1{border-bottom:2px solid #2166ac}code{background:#f3f3f3;padding:0 0.2em}"
+)
+
+
+def _samples(n: int) -> str:
+    return f"{n} sample{'s' if n != 1 else ''}"
+
+
+def verdict_text(a: DesignAnalysis) -> str:
+    """The verdict paragraph: what the criterion proves, at which speed and delay, and what simulation found."""
+    dev, crit, lim, k, v = a.device, a.criterion, a.limits, a.stiffness, a.velocity
+    u = dev.units
+    ds = f"a computational delay of {_samples(a.delay)}"
+    if crit.passive:
+        verdict = "passive (proven: the energy cannot grow)"
+    elif lim.velocity_status == "none":
+        verdict = f"not passive even at rest (K > 2c/Δ = {lim.k_static:.5g} {u['stiffness']})"
+    else:
+        verdict = "not proven passive (the criterion gives no guarantee; that is not a proof of instability)"
+    text = (
+        f"**Verdict.** With K = {k:g} {u['stiffness']}, an impact speed of {v:g} {u['velocity']} and {ds}, the {dev.name} is "
+        f"**{verdict}** (region {crit.region}: {crit.status}). "
+    )
+    if crit.critical_velocity:
+        text += f"The criterion guarantees passivity up to {number(crit.critical_velocity)} {u['velocity']}; "
+    text += (
+        f"{'at' if crit.critical_velocity else 'At'} {v:g} {u['velocity']} with {ds} the largest passive stiffness "
+        f"is {lim.k_max:.5g} {u['stiffness']}. "
+    )
+    if a.simulated_xi_dot:
+        text += (
+            f"In exact simulation an impact at {number(a.simulated_velocity)} {u['velocity']} diverges: the lowest "
+            "unstable speed of a 40-point scan, refined by bisection; stability need not be monotone in speed, so "
+            "slower impacts between scan points may diverge too."
+        )
+    else:
+        text += "No impact speed of a 40-point scan up to 30 times the reference speed diverged in exact simulation."
+    return text
+
+
+def outcome_text(a: DesignAnalysis) -> str:
+    """The simulated outcome at the design speed in words, with force step and frequency in physical units."""
+    r, dev, u = a.outcome, a.device, a.device.units
+    head = f"**Simulated impact at {a.velocity:g} {u['velocity']}** ({r.samples_run} of {r.samples} samples): "
+    if r.outcome == "rest":
+        rest = r.rest_sample if r.rest_sample is not None else r.samples_run  # a run at rest has its rest sample
+        return head + f"the device comes to rest at sample {rest} ({number(rest * dev.period)} s)."
+    if r.outcome == "unstable":
+        return head + "the motion diverges (unstable)."
+    ph: dict[str, Any] = r.physical(dev, a.stiffness)
+    step = (
+        f"the force toggles over {r.force_peak_to_peak:.3g} KΔ peak-to-peak ({number(ph['force_peak_to_peak_si'])} "
+        f"{ph['force_unit']})" + (f" at {ph['frequency_hz']:.4g} Hz" if ph["frequency_hz"] else "")
+    )
+    if r.outcome == "chatter":
+        return head + (
+            f"chatter: the device never comes to rest; {step} with a motion of {r.amplitude:.2g} ticks, "
+            "a buzz the user feels."
+        )
+    if r.outcome == "oscillating":
+        return head + (
+            f"a persistent oscillation of {r.amplitude:.3g} ticks ({number(ph['amplitude_si'])} {u['position']}); {step}."
+        )
+    return head + (
+        f"undecided: the motion is still changing at the end of the run (last {r.amplitude:.3g} ticks); "
+        f"about {r.suggested_samples} samples would be needed to tell."
+    )
+
+
+def device_rows(a: DesignAnalysis) -> list[list[str]]:
+    """Rows of the device table; a rotary device's first row is its inertia (kg·m²), not a mass."""
+    dev, p, u = a.device, a.params, a.device.units
+    return [
+        ["inertia J" if dev.rotary else "mass m", f"{dev.mass:g} {u['mass']}"],
+        ["viscous damping b", f"{dev.damping:g} {u['damping']}"],
+        ["Coulomb friction c", f"{dev.coulomb:g} {u['force']}"],
+        ["encoder resolution Δ", f"{dev.resolution:.4g} {u['resolution']}"],
+        ["sample period T", f"{dev.period:.4g} s ({1 / dev.period:.4g} Hz)"],
+        ["stiffness K", f"{a.stiffness:g} {u['stiffness']}"],
+        ["μ = m/(K T²)", f"{p.mu:.5g}"],
+        ["β = b/(K T)", f"{p.beta:.5g}"],
+        ["σ = c/(K Δ)", f"{p.sigma:.5g}"],
+    ]
+
+
+def catalogue_text(a: DesignAnalysis) -> str:
+    """The paper's printed values of a catalogue device and their disagreements ('' for other devices)."""
+    c = a.catalogue
+    if not c:
+        return ""
+    dis = c["discrepancies"]
+    return (
+        "Paper Table 2 prints "
+        + ", ".join(f"{sym} = {val}" for sym, val in c["printed"])
+        + ("; disagreements with the recomputed values: " + "; ".join(dis) if dis else "; the recomputed values agree.")
+        + (f" Note: {c['notes']}" if c["notes"] else "")
+    )
+
+
+def limits_rows(a: DesignAnalysis) -> list[list[str]]:
+    """Rows of the passivity and stiffness-limits table."""
+    crit, lim, u = a.criterion, a.limits, a.device.units
+    crit_speed = (
+        "none"
+        if crit.critical_xi_dot is None
+        else f"{crit.critical_xi_dot:.4g} ticks/sample = {number(crit.critical_velocity)} {u['velocity']}"
+    )
+    return [
+        ["impact speed ẋ0", f"{a.velocity:g} {u['velocity']} = {crit.xi_dot:.4g} ticks/sample"],
+        ["region (paper Fig. 3)", f"{crit.region}: {crit.status}"],
+        ["computational delay d", _samples(a.delay)],
+        [
+            "passive (eq. 6)",
+            "yes (proven: the energy cannot grow)" if crit.passive else "no guarantee (not a proof of instability)",
+        ],
+        ["margin (β − ½ − d)|ξ'0| + (σ − ½)", f"{crit.margin:.4g}"],
+        ["critical speed (eq. 12)", crit_speed],
+        ["K_max at this speed (eq. 11)", f"{lim.k_max:.5g} {u['stiffness']}"],
+        ["2c/Δ (eq. 9, at rest)", f"{lim.k_static:.5g} {u['stiffness']}"],
+        ["Colgate–Schenkel 2b/T (eq. 8)", f"{lim.k_colgate:.5g} {u['stiffness']}"],
+        ["Abbott–Okamura min(2b/T, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {u['stiffness']}"],
+        [
+            "exact linear bound of the sampled spring (all Jury conditions; Gil et al. where binding)",
+            f"{lim.k_gil:.5g} {u['stiffness']}",
+        ],
+        [f"largest passive speed at K = {a.stiffness:g}", lim.max_passive_velocity_text()],
+        ["verdict for this K at this speed", lim.verdict_text()],
+    ]
+
+
+def cycle_rows(a: DesignAnalysis) -> list[list[str]]:
+    """One row per predicted limit cycle of each loop model, in ticks and in physical units."""
+    dev, u = a.device, a.device.units
+    return [
+        [
+            m,
+            f"{c.amplitude:.5g}",
+            f"{c.amplitude * dev.resolution:.3g} {u['position']}",
+            f"{c.frequency:.4g}",
+            f"{1 / (c.period * dev.period):.4g} Hz",
+            "stable" if c.stable else "unstable",
+            c.family + (" (period < 8 samples)" if c.few_samples else ""),
+        ]
+        for m, g in a.thresholds
+        for c in g.result.cycles
+    ]
+
+
+def absence_lines(a: DesignAnalysis) -> list[str]:
+    """Sentences for loop models without cycles: never an absence the search did not prove."""
+    out = []
+    for m, g in a.thresholds:
+        res = g.result
+        why = res.status.removeprefix("incomplete: ")
+        if res.cycles:
+            if not res.complete:
+                out.append(
+                    f"{m} loop: search incomplete beyond M = {res.max_amplitude:g} ticks ({why}); more cycles may exist."
+                )
+            continue
+        if not res.complete:
+            out.append(
+                f"{m} loop: no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})."
+            )
+        elif res.linear_stable is False:
+            out.append(
+                f"{m} loop: no limit cycle predicted, but the linear loop without encoder and Coulomb friction (exact ZOH model) "
+                "is unstable: amplitudes grow without bound."
+            )
+        else:
+            out.append(f"{m} loop: no limit cycle is predicted (search complete).")
+    return out
+
+
+def growth_text(a: DesignAnalysis) -> str:
+    """The exact-ZOH growth threshold, or band for a cluster, with its meaning ('' when there is none)."""
+    g, u = a.threshold("zoh"), a.device.units
+    if g.amplitude is None:
+        return ""
+    if g.is_band:
+        return (
+            f"**Growth band** (exact ZOH loop): {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
+            f"({number(g.position)} to {number(g.position_high)} {u['position']}); speeds M·ω = {g.xi_dot:.4g} to {g.xi_dot_high:.4g} ticks/sample "
+            f"= {number(g.velocity)} to {number(g.velocity_high)} {u['velocity']}. {g.meaning()}"
+        )
+    return (
+        f"**Growth threshold** (exact ZOH loop): M_u = {g.amplitude:.4g} ticks ({number(g.position)} {u['position']}); "
+        f"the matching impact speed is M_u·ω = {g.xi_dot:.4g} ticks/sample = {number(g.velocity)} {u['velocity']}. {g.meaning()}"
+    )
+
+
+def trust_rows(a: DesignAnalysis) -> list[list[str]]:
+    """Critical impact speed four ways: criterion, describing function (two loop models), exact simulation."""
+    crit, u, v_sim = a.criterion, a.device.units, a.simulated_xi_dot
+    rows = [
+        [
+            "criterion (eq. 12), guaranteed",
+            number(crit.critical_xi_dot),
+            f"{number(crit.critical_velocity)} {u['velocity']}",
+        ]
+    ]
+    for m, t in (("half-delay", a.threshold("half-delay")), ("exact ZOH", a.threshold("zoh"))):
+        band = t.is_band
+        rows.append(
+            [
+                f"describing function, {m}" + (" (growth band)" if band else ""),
+                number(t.xi_dot) + (f" to {number(t.xi_dot_high)}" if band else ""),
+                number(t.velocity) + (f" to {number(t.velocity_high)}" if band else "") + f" {u['velocity']}",
+            ]
+        )
+    sim = f"{number(a.simulated_velocity) if v_sim else '–'} {u['velocity']}"
+    rows.append(["exact simulation (bisection on ξ'0, from ξ0 = 0)", number(v_sim), sim])
+    return rows
+
+
+def trust_text(a: DesignAnalysis) -> str:
+    """How conservative the criterion is and how close the describing function comes, for this device."""
+    v_sim, crit, g = a.simulated_xi_dot, a.criterion, a.threshold("zoh")
+    msg = []
+    if v_sim and crit.critical_xi_dot:
+        msg.append(f"The criterion is conservative by a factor {v_sim / crit.critical_xi_dot:.3g} for this device")
+    if v_sim and g.xi_dot:
+        msg.append(
+            f"the describing function's threshold is within {100 * abs(g.xi_dot / v_sim - 1):.2g} % of the simulated one"
+        )
+    return "; ".join(msg) + "." if msg else ""
+
+
+def validation_text(a: DesignAnalysis) -> str:
+    """The validation paragraph, from the summary passed to the analysis ('' without one)."""
+    s = a.validation
+    if not s:
+        return ""
+    return (
+        f"Across the validation set (`dfa validate`): {s['soundness_violations']} of {s['soundness_passive']} points the "
+        f"criterion calls passive went unstable in simulation; the criterion rejects {100 * s['conservatism']:.0f} % of the points that "
+        f"came to rest; the describing function's growth threshold is within a median {percent(s['speed_df_median_error'])} "
+        f"of the simulated critical speed; stable cycles with periods under 8 samples are poorly predicted (median frequency error "
+        f"{percent(s['short_period_frequency_error'])})."
+    )
+
+
+def _figure_markdown(captions: Mapping[str, str], src: Callable[[str], str]) -> Callable[[str], str]:
+    def figure(name: str) -> str:
+        return f"![{captions[name]}]({src(name)})\n\n*{captions[name]}*"
+
+    return figure
+
+
+@lru_cache(maxsize=1)
+def _template() -> Any:
+    import jinja2
+
+    env = jinja2.Environment(
+        loader=jinja2.PackageLoader("dfa.render", "templates"),
+        autoescape=False,  # Markdown, not HTML: markdown-it escapes when it renders HTML
+        trim_blocks=True,
+        lstrip_blocks=True,
+        keep_trailing_newline=True,
+        undefined=jinja2.StrictUndefined,
+    )
+    return env.get_template("design_report.md.j2")
+
+
+def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callable[[str], str]) -> str:
+    """The report as Markdown; ``src(name)`` gives each figure's link (a relative path or a data URI).
+
+    Parameters
+    ----------
+    a : DesignAnalysis
+        The analysis (only read).
+    captions : mapping
+        Figure name → caption (:func:`dfa.render.figures.design_figures`).
+    src : callable
+        Figure name → image address.
+
+    Returns
+    -------
+    str
+    """
+    cycles = cycle_rows(a)
+    return _template().render(
+        a=a,
+        verdict=verdict_text(a),
+        device_table=markdown_table(["quantity", "value"], device_rows(a)),
+        catalogue_text=catalogue_text(a),
+        limits_table=markdown_table(["quantity", "value"], limits_rows(a)),
+        cycle_table=markdown_table(
+            ["loop model", "M (ticks)", "amplitude", "ω (rad/sample)", "frequency", "stability", "family"], cycles
+        )
+        if cycles
+        else "",
+        absence=absence_lines(a),
+        growth=growth_text(a),
+        trust_table=markdown_table(["critical impact speed", "ticks/sample", "physical"], trust_rows(a)),
+        trust_text=trust_text(a),
+        validation_text=validation_text(a),
+        outcome=outcome_text(a),
+        figure=_figure_markdown(captions, src),
+    )
+
+
+def markdown_to_html(markdown: str, title: str) -> str:
+    """A complete HTML page from Markdown (CommonMark + tables, raw HTML escaped), with the report's style.
+
+    Examples
+    --------
+    >>> page = markdown_to_html("2 * c / Δ and b * T, **bold *nested***", "t")
+    >>> "<p>2 * c / Δ and b * T, <strong>bold <em>nested</em></strong></p>" in page
+    True
+    """
+    from markdown_it import MarkdownIt
+
+    body = MarkdownIt("commonmark", {"html": False}).enable("table").render(markdown)
+    return (
+        f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
+        f"<style>{_CSS}</style></head><body>{body}</body></html>\n"
+    )
+
+
+def design_html(a: DesignAnalysis, figures: Mapping[str, tuple[str, bytes]]) -> str:
+    """The report as one self-contained HTML page: figures (name → (caption, PNG bytes)) embedded as base64."""
+    captions = {n: c for n, (c, _png) in figures.items()}
+    data = lambda n: "data:image/png;base64," + base64.b64encode(figures[n][1]).decode("ascii")
+    return markdown_to_html(design_markdown(a, captions, data), f"dfa design report: {a.device.name}")

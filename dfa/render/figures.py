@@ -1,0 +1,127 @@
+"""Figures of the design report, drawn from a :class:`~dfa.design.DesignAnalysis` only (PNG bytes in memory)."""
+
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass
+from typing import Any
+
+from ..design import DesignAnalysis
+
+__all__ = ["ReportFigure", "design_figures"]
+
+
+@dataclass(frozen=True)
+class ReportFigure:
+    """One figure of the report: a short name (file ``{slug}_{name}.png``), its caption and the PNG bytes."""
+
+    name: str
+    caption: str
+    png: bytes = b""
+
+
+def _png(fig: Any) -> bytes:
+    import matplotlib.pyplot as plt
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=120)
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def _delay_text(dl: int) -> str:
+    return f", delay {dl} sample{'s' if dl != 1 else ''}" if dl else ""
+
+
+def _regions(a: DesignAnalysis) -> ReportFigure:
+    from .. import plotting
+
+    crit, p, u = a.criterion, a.params, a.device.units
+    ax = plotting.regions_plot(
+        crit,
+        xi_dots=[x for x in (1.0, 5.0) if abs(x - crit.xi_dot) > 0.2],
+        beta_max=max(1.0, 2 * p.beta),
+        sigma_max=max(2.0, 1.5 * p.sigma),
+    )
+    caption = (
+        f"Operating point of the {a.device.name} in the (β, σ) plane with its critical line at {a.velocity:g} "
+        f"{u['velocity']}{_delay_text(a.delay)} (eq. 6, 10)."
+    )
+    return ReportFigure("regions", caption, _png(ax.figure))
+
+
+def _stiffness(a: DesignAnalysis) -> ReportFigure:
+    from .. import plotting
+
+    ax = plotting.stiffness_plot(a.stiffness_curve)
+    caption = "Largest passive stiffness against impact speed (eq. 11) and the published bounds."
+    return ReportFigure("stiffness", caption, _png(ax.figure))
+
+
+def _nyquist(a: DesignAnalysis) -> ReportFigure:
+    from .. import plotting
+
+    ax = plotting.nyquist_plot(a.nyquist, cycles=a.threshold("half-delay").result)
+    caption = (
+        "Nyquist plot of the linearised loop (half-sample delay) against −1/D(M), with the predicted limit cycles."
+    )
+    return ReportFigure("nyquist", caption, _png(ax.figure))
+
+
+def _trajectories(a: DesignAnalysis) -> ReportFigure:
+    import matplotlib.pyplot as plt
+
+    from .. import plotting
+
+    u, dev = a.device.units, a.device
+    fig, axs = plt.subplots(2, 1, figsize=(7, 5.4), constrained_layout=True)
+    plotting.trajectory_plot(a.trajectory, ax=axs[0], period=dev.period)
+    axs[0].set_title(
+        f"impact at {a.velocity:g} {u['velocity']} (ξ'0 = {a.criterion.xi_dot:.3g}): {a.outcome.outcome}", fontsize=9
+    )
+    plotting.trajectory_plot(a.trajectory_high, ax=axs[1], period=dev.period)
+    axs[1].set_title(
+        f"impact at {dev.velocity(a.high_xi_dot):.3g} {u['velocity']} (ξ'0 = {a.high_xi_dot:.3g}): "
+        f"{a.outcome_high.outcome}",
+        fontsize=9,
+    )
+    caption = (
+        "Simulated displacement (exact sampled-data integration) at the design speed and just above the simulated "
+        "critical speed; dashed: ±1 tick."
+    )
+    return ReportFigure("trajectories", caption, _png(fig))
+
+
+def _map(a: DesignAnalysis) -> ReportFigure:
+    from .. import plotting
+
+    axs = plotting.stability_map_plot(a.stability_map)
+    for ax in axs:
+        ax.plot([a.params.beta], [a.params.sigma], "o", color="#f1a340", mec="k", ms=7)
+    caption = (
+        "Simulated stability around the operating point (orange) at the design speed and twice it; "
+        f"μ = {a.params.mu:.4g}."
+    )
+    return ReportFigure("map", caption, _png(axs[0].figure))
+
+
+#: The report's figures in the order they appear.
+FIGURES = (_regions, _stiffness, _nyquist, _trajectories, _map)
+
+
+def design_figures(analysis: DesignAnalysis) -> tuple[ReportFigure, ...]:
+    """The five figures of the design report (regions, stiffness, Nyquist, trajectories, map) as PNG bytes.
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        From :func:`dfa.design.design_analysis`; only read.
+
+    Returns
+    -------
+    tuple of ReportFigure
+    """
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    return tuple(draw(analysis) for draw in FIGURES)

@@ -1,0 +1,165 @@
+"""Terminal text of the ``dfa`` commands, from analysis results only (tables via :func:`dfa.formatting.text_table`)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..formatting import number, text_table
+
+__all__ = ["OUTCOME_TEXT", "check_rows", "limit_cycle_lines", "limit_cycles_dict", "simulation_rows"]
+
+#: One phrase per simulated outcome class (:mod:`dfa.simulation`).
+OUTCOME_TEXT = {
+    "rest": "came to rest",
+    "chatter": "never comes to rest; the force keeps toggling below one tick of motion (a buzz)",
+    "oscillating": "persistent oscillation of one tick or more",
+    "unstable": "diverged (past the bound, or a growing envelope)",
+    "undecided": "the motion is still changing at the end of the run",
+}
+
+
+def _g(x: float | None, digits: int = 4) -> str:
+    return number(x, digits, none="-", inf="inf")
+
+
+def check_rows(r: Any, quantized: bool, vu: str) -> list[list[str]]:
+    """Rows of the `dfa check` table; every verdict says what is proven and what is not."""
+    d = r.delay
+    crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
+    if r.critical_velocity is not None:
+        crit += f" ({r.critical_velocity:.4g} {vu})"
+    if r.critical_xi_dot is not None and r.xi0 != 0.0:
+        crit += ", a bound on the equivalent speed V, not on ξ'0"
+    speed = f"{r.xi_dot:.4g} ticks/sample" + (f" ({r.velocity:.4g} {vu})" if r.velocity is not None else "")
+    s0 = "½" if quantized else "0"
+    rule = f"(β − ½ − d)V + (σ − {s0}) ≥ 0" + (" and σ ≥ ½" if quantized else "")
+    if r.passive:
+        upto = "at every speed" if r.region == "a" else f"for speeds up to V = {r.critical_xi_dot:.4g} ticks/sample"
+        verdict = f"yes: the energy cannot grow {upto} (proven)"
+    else:
+        verdict = "no: no passivity guarantee (not a proof of instability)"
+    rows = [["β, σ", f"{r.beta:.4g}, {r.sigma:.4g}"], ["speed |ξ'0|", speed]]
+    if r.xi0 != 0.0:
+        pos = f" ({r.position:.4g} {r.device.units['position']})" if r.device is not None else ""
+        rows.append(["initial position ξ0", f"{r.xi0:.4g} ticks{pos}"])
+    rows += [
+        ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
+        ["delay d", f"{d} sample{'s' if d != 1 else ''}"],
+        ["criterion", ("eq. 6 (with encoder)" if quantized else "eq. 7 (no quantization)") + f": {rule}"],
+        ["region", f"{r.region}: {r.status}"],
+        ["passive", verdict],
+        ["margin", f"{r.margin:.4g}"],
+        [f"critical speed (eq. 12, d = {d})", crit],
+    ]
+    return rows
+
+
+def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | None) -> list[list[str]]:
+    """Rows of the `dfa simulate` table (ticks and samples; Hz and N when a device is known)."""
+    freq = "-" if r.frequency is None else f"{r.frequency:.4g} rad/sample (period {r.period:.4g} samples)"
+    if phys is not None and phys["frequency_hz"] is not None:
+        freq += f", {phys['frequency_hz']:.4g} Hz"
+    rows = [
+        [
+            "initial state",
+            f"ξ0 = {x0:.5g} ticks, ξ'0 = {v0:.5g} ticks/sample" + (" (spring preload)" if preload else ""),
+        ],
+        [
+            "samples",
+            f"{r.samples_run} of {r.samples} integrated"
+            + (" (length from the loop's time scales)" if r.samples_auto else "")
+            + (f", delay {r.delay}" if r.delay else ""),
+        ],
+        ["outcome", f"{r.outcome}: {OUTCOME_TEXT[r.outcome]}"],
+    ]
+    if r.suggested_samples is not None:
+        rows.append(["to decide", f"run longer: --samples {r.suggested_samples}"])
+    rows += [
+        ["rest at sample", "-" if r.rest_sample is None else str(r.rest_sample)],
+        ["amplitude", f"{_g(r.amplitude)} ticks"],
+        ["frequency", freq],
+    ]
+    if r.outcome in ("chatter", "oscillating", "undecided"):
+        force = f"{_g(r.force_peak_to_peak)} KΔ" + ("" if r.quantize else " (linear spring)")
+        if phys is not None and phys["force_peak_to_peak_si"] is not None:
+            force += f" = {phys['force_peak_to_peak_si']:.4g} {phys['force_unit']}"
+        rows.append(["force peak-to-peak", force + " (tail)"])
+    rows.append(["final state", f"ξ = {_g(r.final_xi)}, ξ' = {_g(r.final_xi_dot)}"])
+    return rows
+
+
+def _no_cycle_line(res: Any, lin: str) -> str:
+    why = res.status.removeprefix("incomplete: ")
+    if not res.complete:
+        return f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})"
+    if res.linear_stable is False:
+        return f"no limit cycle predicted, but {lin} is unstable: amplitudes grow without bound"
+    if res.search_bound:
+        return f"no limit cycle predicted (search complete: eq. 36 has no root beyond M = {res.search_bound:.4g} ticks)"
+    return "no limit cycle predicted (search complete: the loop never meets the phase condition of eq. 36)"
+
+
+def _cycle_table(res: Any) -> str:
+    rows = [
+        [
+            f"{c.amplitude:.6g}",
+            f"{c.frequency:.6g}",
+            f"{c.period:.4g}",
+            "stable" if c.stable else "unstable",
+            c.family + (" (period < 8 samples)" if c.few_samples else ""),
+        ]
+        for c in res.cycles
+    ]
+    return text_table(rows, ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"])
+
+
+def _growth_line(g: Any, device: Any) -> str:
+    u = device.units if device is not None else None
+
+    def speed(xd: float, vel: float | None, pos: float | None) -> str:
+        txt = f"M·ω = {xd:.4g} ticks/sample"
+        if u is not None and vel is not None:
+            txt += f" = {vel:.4g} {u['velocity']}; M = {pos:.4g} {u['position']}"
+        return txt
+
+    if g.is_band:
+        return (
+            f"growth band: {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
+            f"(speeds {speed(g.xi_dot, g.velocity, g.position)} to {speed(g.xi_dot_high, g.velocity_high, g.position_high)})"
+        )
+    return f"growth threshold: M_u = {g.amplitude:.4g} ticks ({speed(g.xi_dot, g.velocity, g.position)})"
+
+
+def limit_cycle_lines(g: Any, device: Any) -> list[str]:
+    """Text of `dfa limit-cycles`: the table, the search's completeness, the linear loop and the growth band."""
+    res = g.result
+    lin = (
+        "the linear loop without encoder and Coulomb friction (exact ZOH model"
+        + (f", delay {res.delay}" if res.delay else "")
+        + ")"
+    )
+    lines = []
+    if not res.cycles:
+        lines.append(_no_cycle_line(res, lin))
+    else:
+        lines.append(_cycle_table(res))
+        if not res.complete:
+            why = res.status.removeprefix("incomplete: ")
+            lines.append(f"search incomplete beyond M = {res.max_amplitude:g} ticks ({why}): more cycles may exist")
+    if g.amplitude is not None:
+        lines += [_growth_line(g, device), g.meaning()]
+    elif res.cycles and res.linear_stable is False:
+        lines.append(
+            f"no unstable cycle predicted{'' if res.complete else ' in the range searched'}, but {lin} is unstable: "
+            "large oscillations are predicted to grow without bound"
+        )
+    if res.model != "zoh" and (res.linear_stable is False or g.amplitude is not None):
+        lines.append(f"(the linear verdict uses the exact ZOH loop; the limit cycles, the {res.model} model)")
+    return lines
+
+
+def limit_cycles_dict(g: Any) -> dict[str, object]:
+    """JSON of `dfa limit-cycles`: the cycle search (:meth:`LimitCycleResult.as_dict`) and its growth threshold."""
+    d = g.result.as_dict()
+    d["growth_threshold"] = g.as_dict()
+    return d
