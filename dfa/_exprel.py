@@ -22,6 +22,13 @@ inlines them, and Python calls them like plain functions on floats. The
 ``*_array`` wrappers evaluate the same compiled scalar code elementwise on
 arrays of any shape.
 
+Developers: numba's on-disk cache of :mod:`dfa._kernel` is keyed on that
+file alone and does not notice edits here (or to
+:func:`dfa.criterion.spring_energy_core`, also compiled into the kernel):
+after such an edit clear the cache (``rm -rf .cache/numba``), or the kernel
+keeps the old code. ``tests/test_kernel_steps.py`` compares the compiled
+steps with the Python reference step, which calls these functions afresh.
+
 Examples
 --------
 >>> phi1(0.0), phi2(0.0), psi(0.0), round(chi(0.0), 15)

@@ -1,7 +1,7 @@
 """Stability maps over the (β, σ) plane (paper Fig. 4).
 
 Every grid point is an independent exact simulation (:func:`dfa.simulate`
-without recording), run in chunks of points through the batched kernel
+without recording), run in chunks of points, each chunk one compiled call
 (:func:`dfa.simulation.run_points`); the result does not depend on the number
 of jobs nor on the backend. A tqdm progress bar reports the chunks as they
 finish.
@@ -204,7 +204,7 @@ def load_map(path: str | os.PathLike) -> StabilityMap:
 
 
 def _run_chunk(mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth, settle):
-    """Codes, amplitudes and frequencies of one chunk of points (the batched kernel; releases the GIL)."""
+    """Codes, amplitudes and frequencies of one chunk of points (one compiled call; releases the GIL)."""
     mus = np.full(betas.size, mu)
     res = run_points(mus, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth, settle)
     return res[0], res[1], res[2]

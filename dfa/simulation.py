@@ -520,13 +520,6 @@ def _check_record_size(n: int, record: bool, energy: bool) -> None:
         )
 
 
-#: Runs advanced together by the batched kernel (:func:`dfa._kernel.batch_kernel`) in :func:`run_points`;
-#: 1 runs them one after the other (:func:`dfa._kernel.serial_kernel`). Same results bit for bit either way;
-#: 1 is the default because the interleaved kernel measured 10-20 % slower per point-sample on the 2-core
-#: development machine (``make bench`` reports both).
-BATCH_LANES = 1
-
-
 @dataclass(frozen=True)
 class SimulationBatch:
     """Outcomes of many independent runs (:func:`simulate_batch`), one entry per run.
@@ -640,9 +633,8 @@ def simulate_batch(
     stable_amplitude: float = 1.0,
     growth: float = 1.25,
     settle: float = 1.0e-3,
-    lanes: int | None = None,
 ) -> SimulationBatch:
-    """Simulate many independent runs together (batched kernel); each equals :func:`simulate` of that run alone.
+    """Simulate many independent runs in one compiled call; each equals :func:`simulate` of that run alone.
 
     Parameters
     ----------
@@ -652,9 +644,6 @@ def simulate_batch(
         Samples of every run (>= 1); give the same run length you would give :func:`simulate`.
     delay, quantize, bound, stable_amplitude, growth, settle
         Shared by every run, as in :func:`simulate`.
-    lanes : int, optional
-        Runs interleaved by the batched kernel (1: one after the other;
-        default :data:`BATCH_LANES`). Changes the speed only, never a result.
 
     Returns
     -------
@@ -674,8 +663,7 @@ def simulate_batch(
     rules = check_rules(bound, stable_amplitude, growth, settle)
     if not np.all(rules[0] > np.abs(x0)):
         raise DFAValueError(f"bound = {rules[0]!r} is invalid: it must exceed every |xi0| ({np.abs(x0).max()!r})")
-    ln = None if lanes is None else check_int("lanes", lanes, minimum=1, fix="give 1 or more runs per batch")
-    res = run_points(m, b, s, x0, v0, n, d, bool(quantize), *rules, lanes=ln)
+    res = run_points(m, b, s, x0, v0, n, d, bool(quantize), *rules)
     codes, amps, freqs, centres, fpps, done, rest, stats = res
     return SimulationBatch(
         mu=m,
@@ -699,17 +687,14 @@ def simulate_batch(
     )
 
 
-def run_points(mu, beta, sigma, x0, v0, n, delay, quantize, bound, stable_amplitude, growth, settle, lanes=None):
+def run_points(mu, beta, sigma, x0, v0, n, delay, quantize, bound, stable_amplitude, growth, settle):
     """Validated float arrays in, kernel outputs out: (codes, amps, freqs, centres, fpps, done, rest, stats).
 
-    The runs go through :func:`dfa._kernel.batch_kernel` ``lanes`` at a time
-    (``lanes`` = 1: :func:`dfa._kernel.serial_kernel`; default
-    :data:`BATCH_LANES`); no GIL is held, so callers may run several calls on
-    threads. The run length is the same for all; the tail length follows
-    each run's μ as in :func:`simulate` (runs grouped by equal tail length).
+    One call of :func:`dfa._kernel.serial_kernel` per group of runs with the
+    same tail length (which follows each run's μ as in :func:`simulate`); no
+    GIL is held, so callers may run several calls on threads.
     """
     k = mu.shape[0]
-    lanes = lanes or BATCH_LANES
     codes = np.empty(k, dtype=np.int64)
     amps, freqs, centres, fpps = np.empty(k), np.empty(k), np.empty(k), np.empty(k)
     done = np.empty(k, dtype=np.int64)
@@ -717,16 +702,12 @@ def run_points(mu, beta, sigma, x0, v0, n, delay, quantize, bound, stable_amplit
     stats = np.empty((k, _kernel.NSTATS))
     tails = np.array([_tail_length(n, float(m)) for m in mu], dtype=np.int64)
     for t in np.unique(tails):
-        idx = np.flatnonzero(tails == t)
-        step = lanes if lanes > 1 else idx.size
-        for lo in range(0, idx.size, step):
-            j = idx[lo : lo + step]
-            st = np.empty((j.size, _kernel.NSTATS))
-            dn = np.empty(j.size, dtype=np.int64)
-            rs = np.empty(j.size, dtype=np.int64)
-            kern = _kernel.batch_kernel if lanes > 1 else _kernel.serial_kernel
-            kern(mu[j], beta[j], sigma[j], x0[j], v0[j], n, delay, quantize, bound, int(t), st, dn, rs)
-            stats[j], done[j], rest[j] = st, dn, rs
+        j = np.flatnonzero(tails == t)
+        st = np.empty((j.size, _kernel.NSTATS))
+        dn = np.empty(j.size, dtype=np.int64)
+        rs = np.empty(j.size, dtype=np.int64)
+        _kernel.serial_kernel(mu[j], beta[j], sigma[j], x0[j], v0[j], n, delay, quantize, bound, int(t), st, dn, rs)
+        stats[j], done[j], rest[j] = st, dn, rs
     _kernel.classify_batch(
         mu, n, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
     )

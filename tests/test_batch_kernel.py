@@ -1,7 +1,6 @@
 """Batched runs (issue 16) equal single runs of the exact simulator (paper eq. 4-5), bit for bit.
 
-The grids mix rest, chatter, oscillation, divergence, delay, β = 0 and σ = 0; ``lanes`` only
-changes how many runs the kernel interleaves.
+The grids mix rest, chatter, oscillation, divergence, delay, β = 0 and σ = 0.
 """
 
 import sys
@@ -43,10 +42,9 @@ def _same(r, b, i) -> bool:
 
 
 @pytest.mark.parametrize("delay, quantize", [(0, True), (0, False), (2, True)])
-@pytest.mark.parametrize("lanes", [1, 3, 16])
-def test_eq4_batched_runs_equal_single_runs(delay, quantize, lanes):
+def test_eq4_batched_runs_equal_single_runs(delay, quantize):
     mu, beta, sigma, v0, x0 = _grid(7 + delay, 60)
-    b = simulate_batch(mu, beta, sigma, v0, 4000, x0, delay, quantize, bound=1e4, lanes=lanes)
+    b = simulate_batch(mu, beta, sigma, v0, 4000, x0, delay, quantize, bound=1e4)
     for i in range(len(b)):
         r = simulate(mu[i], beta[i], sigma[i], v0[i], 4000, x0[i], delay, quantize, record=False, bound=1e4)
         assert _same(r, b, i), i
@@ -58,10 +56,9 @@ def test_eq4_batch_covers_every_outcome_class():
     """A hand-picked batch with one run per class (rest, oscillating, unstable, chatter, undecided)."""
     cases = [(100.0, 0.3, 1.5, 2.0), (2.0, 0.4, 0.1, 2.0), (100.0, 0.0, 0.2, 2.0), (100.0, 0.3, 0.3, 1.0)]
     mu, beta, sigma, v0 = (np.array(c) for c in zip(*cases, strict=True))
-    for lanes in (1, 4):
-        b = simulate_batch(mu, beta, sigma, v0, 20000, lanes=lanes)
-        for i in range(len(b)):
-            assert _same(simulate(mu[i], beta[i], sigma[i], v0[i], 20000, record=False), b, i)
+    b = simulate_batch(mu, beta, sigma, v0, 20000)
+    for i in range(len(b)):
+        assert _same(simulate(mu[i], beta[i], sigma[i], v0[i], 20000, record=False), b, i)
     assert b.outcomes() == ["rest", "oscillating", "unstable", "chatter"]
     short = simulate_batch(156250.0, 0.125, 0.9554, 0.637, 50_000)
     assert short.outcomes() == ["undecided"]
@@ -78,8 +75,8 @@ def test_eq4_batch_rejects_bad_runs_naming_them():
         simulate_batch(1.0, 0.1, 0.1, [1.0, np.nan], 100)
     with pytest.raises(DFAValueError, match="broadcast"):
         simulate_batch([1.0, 2.0], [0.1, 0.2, 0.3], 0.1, 1.0, 100)
-    with pytest.raises(DFAValueError, match="lanes"):
-        simulate_batch(1.0, 0.1, 0.1, 1.0, 100, lanes=0)
+    with pytest.raises(DFAValueError, match="bound"):
+        simulate_batch(1.0, 0.1, 0.1, 1.0, 100, xi0=[0.0, 5.0], bound=2.0)
 
 
 def test_fig4_map_same_for_threads_and_processes():
