@@ -370,7 +370,7 @@ def test_size_budget_ends_incomplete_not_open_ended(monkeypatch, capsys):
     """With a tiny interval budget the 10 nm Delta search (cycle at ~1.9e5 ticks) ends BUDGET, and nothing claims absence."""
     import dfa.cycles as cyc
 
-    monkeypatch.setattr(cyc, "INTERVAL_BUDGET", 5)
+    monkeypatch.setattr(cyc.search, "INTERVAL_BUDGET", 5)
     _dev, p = _delta_10nm()
     res = limit_cycles(p)
     assert res.status_code is SearchStatus.BUDGET and not res.complete and res.search_bound is None
