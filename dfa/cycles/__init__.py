@@ -68,7 +68,16 @@ from __future__ import annotations
 
 # private names re-exported for the tests and benchmarks that reach into the solver
 from .characteristic import _W_GRID, _grid_lead, _inv_loop, _Loop, _pade  # noqa: F401
-from .closed_forms import large_cycle_closed_form, large_cycle_frequency, small_cycle_closed_form
+from .closed_forms import (
+    ClosedFormCycles,
+    ClosedFormStatus,
+    large_cycle_closed_form,
+    large_cycle_closed_forms,
+    large_cycle_frequencies,
+    large_cycle_frequency,
+    small_cycle_closed_form,
+    small_cycle_closed_forms,
+)
 from .growth import GrowthThreshold, growth_threshold
 from .phase import _phase_beta, _PieceOmega, _zoh_phase_beta_grid  # noqa: F401
 from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchStatus
@@ -83,6 +92,11 @@ __all__ = [
     "small_cycle_closed_form",
     "large_cycle_closed_form",
     "large_cycle_frequency",
+    "small_cycle_closed_forms",
+    "large_cycle_closed_forms",
+    "large_cycle_frequencies",
+    "ClosedFormCycles",
+    "ClosedFormStatus",
     "GrowthThreshold",
     "growth_threshold",
     "SearchStatus",
