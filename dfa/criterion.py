@@ -127,6 +127,16 @@ def _check_delay(delay) -> int:
     return check_delay(delay)
 
 
+def _anchor(quantized, delay):
+    """(σ₀, β₀) of the critical line: σ₀ = ½ with quantization (0 without), β₀ = ½ + d (broadcast)."""
+    return np.where(np.asarray(quantized, dtype=bool), 0.5, 0.0), 0.5 + np.asarray(delay, dtype=float)
+
+
+def _margin(beta, sigma, speed, sigma0, beta0):
+    """(β − β₀)V + (σ − σ₀): the left side of eq. 6 (eq. 10's line is margin = 0). The one evaluation every verdict uses."""
+    return (beta - beta0) * speed + (sigma - sigma0)
+
+
 def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *, quantized: bool = True) -> float:
     """Energy-equivalent speed V = sqrt(ξ'0² + 2H_c(ξ0)/μ) in ticks per sample (eq. 18-19).
 
@@ -211,7 +221,18 @@ class CriticalLine:
     @property
     def beta0(self) -> float:
         """β where the line meets σ = σ₀: ½ + d (eq. 10; Diolaiti et al. 2006 for d > 0)."""
-        return 0.5 + self.delay
+        return float(_anchor(True, self.delay)[1])
+
+    @classmethod
+    def of(cls, xi_dot: float, *, quantized: bool = True, delay: int = 0) -> CriticalLine:
+        """The line of the criterion with (eq. 6) or without (eq. 7) quantization: σ₀ = ½ or 0.
+
+        Examples
+        --------
+        >>> CriticalLine.of(2.0, quantized=False).sigma0
+        0.0
+        """
+        return cls(xi_dot, float(_anchor(quantized, 0)[0]), delay)
 
     @property
     def slope(self) -> float:
@@ -219,8 +240,21 @@ class CriticalLine:
         return -self.xi_dot
 
     def sigma(self, beta: float | np.ndarray) -> float | np.ndarray:
-        """σ on the line at ``beta`` (vectorised)."""
+        """σ on the line at ``beta`` (vectorised): σ₀ + V(β₀ − β), where :meth:`margin` is 0."""
         out = self.sigma0 + self.xi_dot * (self.beta0 - np.asarray(beta, dtype=float))
+        return float(out) if out.ndim == 0 else out
+
+    def margin(self, beta, sigma) -> float | np.ndarray:
+        """(β − β₀)V + (σ − σ₀) at (β, σ) (vectorised): >= 0 on or above the line (eq. 6, 10).
+
+        Examples
+        --------
+        >>> CriticalLine(xi_dot=2.0).margin(0.0, 1.5)
+        0.0
+        """
+        out = np.asarray(
+            _margin(np.asarray(beta, dtype=float), np.asarray(sigma, dtype=float), self.xi_dot, self.sigma0, self.beta0)
+        )
         return float(out) if out.ndim == 0 else out
 
 
@@ -337,10 +371,9 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
     d = np.asarray(delay)
     if d.dtype == bool or not np.issubdtype(d.dtype, np.number) or np.any(d < 0) or np.any(d != np.floor(d)):
         raise DFAValueError(f"delay = {delay!r} is invalid: it must be a whole number >= 0; {_DELAY_FIX}")
-    s0 = np.where(np.asarray(quantized, dtype=bool), 0.5, 0.0)
-    b0 = 0.5 + d.astype(float)
+    s0, b0 = _anchor(quantized, d)
     with np.errstate(over="ignore"):  # an overflowing margin keeps its sign, which is all that is used
-        margin = (b - b0) * v + (s - s0)
+        margin = _margin(b, s, v, s0, b0)
     high_beta = b >= b0
     high_sigma = s >= s0
     idx = np.where(
@@ -397,9 +430,9 @@ def passivity_criterion(
     x0 = check_real("xi0", xi0, "give the initial position in encoder ticks")
     m = None if mu is None else check_mu(mu)
     v = equivalent_speed(xd, x0, m, quantized=quantized)
-    s0 = 0.5 if quantized else 0.0
-    b0 = 0.5 + d
-    margin = (b - b0) * v + (s - s0)
+    line = CriticalLine.of(v, quantized=quantized, delay=d)
+    s0, b0 = line.sigma0, line.beta0
+    margin = float(_margin(b, s, v, s0, b0))
     region = str(classify_region(b, s, v, quantized, d))
     critical = (s - s0) / (b0 - b) if (b < b0 and s >= s0) else None
     return CriterionResult(
@@ -411,7 +444,7 @@ def passivity_criterion(
         passive=region in ("a", "e"),
         margin=margin,
         critical_xi_dot=critical,
-        critical_line=CriticalLine(v, s0, d),
+        critical_line=line,
         equivalent_speed=v,
         delay=d,
         xi0=x0,

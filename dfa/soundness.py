@@ -48,7 +48,7 @@ import numpy as np
 from numba import njit
 
 from . import _kernel
-from .criterion import passivity_criterion
+from .criterion import CriticalLine, passivity_criterion
 from .errors import DFAValueError, check_choice, check_delay, check_int
 
 __all__ = ["DelaySoundness", "sample_passive_points", "delay_soundness", "soundness_markdown", "main"]
@@ -119,8 +119,9 @@ def sample_passive_points(
             0.0, 0.0, xd[i], delay=d_crit, xi0=x0[i] if crit == "delay-aware" else 0.0, mu=mu[i]
         ).equivalent_speed
         k = kind[i]
+        line = CriticalLine(v, 0.5, d_crit)
         if k == 0:  # interior: rejection sampling of the criterion's own passive set in a box (formula-free)
-            top = 0.5 + v * b0 + 1.0
+            top = float(line.sigma(0.0)) + 1.0
             for _ in range(10_000):
                 b = rng.uniform(0.0, b0 + 1.0)
                 s = rng.uniform(0.0, top)
@@ -128,7 +129,7 @@ def sample_passive_points(
                     break
         elif k == 1:  # exactly on the critical line
             b = rng.uniform(0.0, b0)
-            s = 0.5 + v * (b0 - b)
+            s = float(line.sigma(b))
         elif k == 2:  # σ = ½ edge, β >= ½ + d (corner included)
             b = b0 + (0.0 if rng.random() < 0.2 else rng.uniform(0.0, 1.0))
             s = 0.5
