@@ -124,7 +124,7 @@ def k_abbott_okamura(device: Device, delay: int = 0) -> float:
 
 
 def _bounds(dev: Device, delay: int) -> dict[str, float]:
-    """The speed-independent limits shared by :class:`StiffnessLimits` and :class:`StiffnessCurve`."""
+    """The speed-independent limits of :class:`StiffnessLimits` (which :class:`StiffnessCurve` reads)."""
     return dict(
         k_static=k_static(dev),
         k_colgate=k_colgate(dev, delay),
@@ -380,7 +380,9 @@ def stiffness_limits(
 class StiffnessCurve:
     """K_max (eq. 11, with the delay) over a range of impact speeds, with the speed-independent bounds (N/m).
 
-    The bounds come from the same function as :class:`StiffnessLimits` (``_bounds``).
+    The bounds and the chosen stiffness's largest passive speed are not recomputed:
+    they are read from :attr:`limits`, the :class:`StiffnessLimits` of the same
+    device, stiffness and delay.
 
     Attributes
     ----------
@@ -389,27 +391,53 @@ class StiffnessCurve:
         Impact speeds (m/s or rad/s).
     k_max : numpy.ndarray
         Criterion limit at each speed.
-    k_static, k_colgate, k_abbott_okamura, k_gil : float
-    stiffness : float or None
-        A chosen stiffness to mark.
-    max_passive_velocity : float or None
-        Its largest passive speed (inf: every speed; None: none).
+    limits : StiffnessLimits
+        The limits at the first speed: source of ``k_static``, ``k_colgate``,
+        ``k_abbott_okamura``, ``k_gil``, ``stiffness``, ``max_passive_velocity``
+        and ``delay`` (read-only properties here).
     status : str
-    delay : int
-        Computational delay d in samples.
     """
 
     device: Device
     velocity: np.ndarray
     k_max: np.ndarray
-    k_static: float
-    k_colgate: float
-    k_abbott_okamura: float
-    k_gil: float
-    stiffness: float | None = None
-    max_passive_velocity: float | None = None
+    limits: StiffnessLimits
     status: str = "ok"
-    delay: int = 0
+
+    @property
+    def k_static(self) -> float:
+        """2c/Δ (eq. 9), N/m."""
+        return self.limits.k_static
+
+    @property
+    def k_colgate(self) -> float:
+        """2b/T (eq. 8); b/(T(½ + d)) with a delay, N/m."""
+        return self.limits.k_colgate
+
+    @property
+    def k_abbott_okamura(self) -> float:
+        """min(2b/T, 2c/Δ) (with the delay), N/m."""
+        return self.limits.k_abbott_okamura
+
+    @property
+    def k_gil(self) -> float:
+        """Exact linear bound of the sampled spring (:func:`k_gil`), N/m."""
+        return self.limits.k_gil
+
+    @property
+    def stiffness(self) -> float | None:
+        """The chosen stiffness to mark, N/m (None: none)."""
+        return self.limits.stiffness
+
+    @property
+    def max_passive_velocity(self) -> float | None:
+        """Its largest passive speed (inf: every speed; None: none), m/s."""
+        return self.limits.max_passive_velocity
+
+    @property
+    def delay(self) -> int:
+        """Computational delay d in samples."""
+        return self.limits.delay
 
 
 def stiffness_response(device: Device, velocity=None, stiffness: float | None = None, delay: int = 0) -> StiffnessCurve:
@@ -439,13 +467,5 @@ def stiffness_response(device: Device, velocity=None, stiffness: float | None = 
         if stiffness is None
         else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     )
-    mpv = None if k is None else max_passive_velocity(dev, k, d)
-    return StiffnessCurve(
-        dev,
-        v,
-        np.atleast_1d(k_max_criterion(dev, v, d)),
-        **_bounds(dev, d),
-        stiffness=k,
-        max_passive_velocity=mpv,
-        delay=d,
-    )
+    limits = stiffness_limits(dev, float(v[0]), k, d)
+    return StiffnessCurve(dev, v, np.atleast_1d(k_max_criterion(dev, v, d)), limits)
