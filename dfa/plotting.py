@@ -26,6 +26,7 @@ import matplotlib
 import matplotlib.lines
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.artist import Artist
 from matplotlib.colors import ListedColormap
 from matplotlib.patches import Patch
 
@@ -201,7 +202,7 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
                 + (f", delay {smap.delay}" if smap.delay else ""),
                 fontsize=9,
             )
-    handles = [
+    handles: list[Artist] = [
         Patch(facecolor=OUTCOME_COLORS[k], edgecolor="0.5", label=_OUTCOME_LABELS[k])
         for k in ("rest", "chatter", "oscillating", "unstable", "undecided")
     ]

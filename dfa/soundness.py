@@ -264,7 +264,7 @@ def delay_soundness(
     grew = ratio > TOLERANCE
     div = codes == _kernel.UNSTABLE
     w = int(np.argmax(ratio))
-    worst = {k: float(pts[k][w]) for k in ("mu", "beta", "sigma", "xi0", "xi_dot")}
+    worst: dict[str, object] = {k: float(pts[k][w]) for k in ("mu", "beta", "sigma", "xi0", "xi_dot")}
     worst.update(sample=int(at[w]), kind=KINDS[int(pts["kind"][w])])
     return DelaySoundness(
         delay=int(delay),
