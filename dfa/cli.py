@@ -25,18 +25,10 @@ from dataclasses import dataclass
 
 from ._io import check_output_file, check_output_folder, written_paths
 from .catalogue import DEFAULT_DEVICE, catalogue, get_device
+from .checks import check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
 from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params, dimensionless_params
-from .errors import (
-    DFAError,
-    DFAValueError,
-    check_beta,
-    check_mu,
-    check_nonnegative,
-    check_positive,
-    check_real,
-    check_sigma,
-)
+from .errors import DFAError, DFAValueError
 from .stiffness import stiffness_limits
 
 __all__ = ["main"]
@@ -584,7 +576,8 @@ def _write_trace(path: str, r) -> None:
 
 def _cmd_map(args: argparse.Namespace) -> int:
     from ._io import check_memory
-    from .maps import check_jobs, map_memory_bytes, stability_map
+    from .checks import check_jobs
+    from .maps import map_memory_bytes, stability_map
 
     check_output_file("--out", args.out, ".npz")
     negative = [v for v in args.xi_dot if v < 0]
@@ -804,7 +797,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 
     from . import plotting
     from ._io import staged_folder
-    from .maps import check_jobs
+    from .checks import check_jobs
     from .validation import validate
 
     check_jobs("--jobs", args.jobs)

@@ -36,9 +36,10 @@ from pathlib import Path
 import numpy as np
 
 from ._io import atomic_open, check_memory
+from .checks import check_int, check_mu, check_positive
 from .cycles import ClosedFormStatus, large_cycle_closed_forms, small_cycle_closed_forms
 from .describing import quantizer_df
-from .errors import DFAValueError, check_int, check_mu, check_positive
+from .errors import DFAValueError
 from .maps import _check_range
 
 __all__ = ["ContourMaps", "contour_maps", "load_contours", "contour_memory_bytes"]

@@ -85,9 +85,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .device import Device
-from .errors import (
-    DFAValueError,
+from .checks import (
+    DELAY_FIX,
     check_beta,
     check_delay,
     check_mu,
@@ -96,6 +95,8 @@ from .errors import (
     check_real,
     check_sigma,
 )
+from .device import Device
+from .errors import DFAValueError
 
 __all__ = [
     "CriticalLine",
@@ -119,12 +120,6 @@ REGION_DESCRIPTIONS = {
 }
 
 _REGION_CODES = np.array(["a", "b", "c", "d", "e"])
-
-_DELAY_FIX = "give the computational delay in whole samples (0: the force uses the current reading)"
-
-
-def _check_delay(delay) -> int:
-    return check_delay(delay)
 
 
 def _anchor(quantized, delay):
@@ -216,7 +211,7 @@ class CriticalLine:
     def __post_init__(self) -> None:
         object.__setattr__(self, "xi_dot", abs(check_real("xi_dot", self.xi_dot)))
         object.__setattr__(self, "sigma0", check_nonnegative("sigma0", self.sigma0))
-        object.__setattr__(self, "delay", _check_delay(self.delay))
+        object.__setattr__(self, "delay", check_delay(self.delay))
 
     @property
     def beta0(self) -> float:
@@ -370,7 +365,7 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
     v = np.abs(np.asarray(xi_dot, dtype=float))
     d = np.asarray(delay)
     if d.dtype == bool or not np.issubdtype(d.dtype, np.number) or np.any(d < 0) or np.any(d != np.floor(d)):
-        raise DFAValueError(f"delay = {delay!r} is invalid: it must be a whole number >= 0; {_DELAY_FIX}")
+        raise DFAValueError(f"delay = {delay!r} is invalid: it must be a whole number >= 0; {DELAY_FIX}")
     s0, b0 = _anchor(quantized, d)
     with np.errstate(over="ignore"):  # an overflowing margin keeps its sign, which is all that is used
         margin = _margin(b, s, v, s0, b0)
@@ -425,7 +420,7 @@ def passivity_criterion(
     """
     b = check_beta(beta)
     s = check_sigma(sigma)
-    d = _check_delay(delay)
+    d = check_delay(delay)
     xd = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
     x0 = check_real("xi0", xi0, "give the initial position in encoder ticks")
     m = None if mu is None else check_mu(mu)

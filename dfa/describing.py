@@ -54,7 +54,8 @@ import numpy as np
 from scipy import integrate
 
 from . import _dfcore
-from .errors import DFAValueError, check_positive, check_sigma
+from .checks import check_positive, check_sigma
+from .errors import DFAValueError
 
 __all__ = [
     "quantizer_df",

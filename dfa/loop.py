@@ -43,9 +43,10 @@ from dataclasses import dataclass, field
 import control
 import numpy as np
 
+from .checks import check_choice, check_delay, check_int, check_type
 from .describing import coulomb_equivalent_damping, quantizer_df
 from .device import Params
-from .errors import DFAValueError, check_choice, check_delay, check_int, check_type
+from .errors import DFAValueError
 from .linear import _zoh_coefficients  # the ZOH pulse-transfer coefficients live with the exact linear analysis
 
 __all__ = [

@@ -52,7 +52,17 @@ import numpy as np
 
 from . import _kernel
 from ._io import atomic_open, check_memory
-from .errors import DFAValueError, check_delay, check_int, check_mu, check_nonnegative, check_positive, check_real
+from .checks import (
+    check_bound,
+    check_delay,
+    check_growth,
+    check_int,
+    check_jobs,
+    check_mu,
+    check_nonnegative,
+    check_real,
+)
+from .errors import DFAValueError
 from .simulation import OUTCOMES, _tail_length, preload_position
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs"]
@@ -67,23 +77,6 @@ MAP_BYTES_PER_POINT = 16
 def map_memory_bytes(grid: int, n_speeds: int) -> int:
     """Estimated peak memory of :func:`stability_map` in bytes (grid² points × speeds)."""
     return int(grid) ** 2 * (MAP_BYTES_PER_POINT + MAP_BYTES_PER_RUN * int(n_speeds))
-
-
-def check_jobs(name: str, jobs: object) -> int:
-    """Validate a joblib job count: -1 (all cores) or 1 … os.cpu_count(); return it.
-
-    Nothing is silently clipped: more jobs than cores is refused (it only adds
-    processes and memory, and changes no result).
-    """
-    j = check_int(name, jobs)
-    cores = os.cpu_count() or 1
-    if j == 0 or j < -1:
-        raise DFAValueError(f"{name} = {j} is invalid: it must be -1 (all cores) or a positive count")
-    if j > cores:
-        raise DFAValueError(
-            f"{name} = {j} is invalid: this machine has {cores} cores; give at most {cores} (or -1 for all)"
-        )
-    return j
 
 
 @dataclass(frozen=True)
@@ -294,11 +287,9 @@ def stability_map(
     n = check_int("samples", samples, minimum=1)
     d = check_delay(delay)
     jobs = check_jobs("n_jobs", n_jobs)
-    bnd = check_positive("bound", bound)
+    bnd = check_bound(bound)
     sa = check_nonnegative("stable_amplitude", stable_amplitude)
-    gr = check_positive("growth", growth)
-    if gr <= 1.0:
-        raise DFAValueError(f"growth = {gr!r} is invalid: it must be > 1")
+    gr = check_growth(growth)
     st = check_nonnegative("settle", settle)
     check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
 
@@ -310,6 +301,7 @@ def stability_map(
     if preload:
         x0 = np.repeat([preload_position(m, v) for v in speeds], bb.size)
         v0 = np.zeros_like(x0)
+        check_bound(bnd, float(np.max(np.abs(x0))))  # the rule simulate() applies: the bound lies beyond ξ0
     else:
         x0 = np.zeros(pts_b.size)
         v0 = np.repeat(np.asarray(speeds, dtype=float), bb.size)

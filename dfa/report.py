@@ -20,10 +20,11 @@ import numpy as np
 
 from ._io import staged_folder
 from .catalogue import CatalogueEntry
+from .checks import check_choice, check_delay, check_positive, check_real
 from .criterion import device_criterion
 from .cycles import growth_threshold
 from .device import Device
-from .errors import DFAValueError, check_choice, check_delay, check_positive, check_real
+from .errors import DFAValueError
 from .loop import nyquist_locus_response
 from .maps import stability_map
 from .simulation import simulate

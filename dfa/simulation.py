@@ -104,11 +104,11 @@ from fractions import Fraction
 import numpy as np
 
 from . import _kernel
-from .criterion import spring_energy
-from .errors import (
-    DFAValueError,
+from .checks import (
     check_beta,
+    check_bound,
     check_delay,
+    check_growth,
     check_int,
     check_mu,
     check_nonnegative,
@@ -116,6 +116,8 @@ from .errors import (
     check_real,
     check_sigma,
 )
+from .criterion import spring_energy
+from .errors import DFAValueError
 
 __all__ = [
     "OUTCOMES",
@@ -462,13 +464,9 @@ def simulate(
         n = default_samples(m, b, s, v0, x0, d, bool(quantize))
     else:
         n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
-    bnd = check_positive("bound", bound)
-    if not bnd > abs(x0):
-        raise DFAValueError(f"bound = {bnd!r} is invalid: it must exceed |xi0| = {abs(x0)!r}; raise the bound")
+    bnd = check_bound(bound, x0)
     sa = check_nonnegative("stable_amplitude", stable_amplitude)
-    gr = check_positive("growth", growth)
-    if gr <= 1.0:
-        raise DFAValueError(f"growth = {gr!r} is invalid: it must be > 1 (a ratio of envelope peaks)")
+    gr = check_growth(growth)
     st = check_nonnegative("settle", settle)
     nbytes = (16 * (n + 1) if record else 0) + (32 * n if energy else 0)
     if nbytes > MAX_RECORD_BYTES:

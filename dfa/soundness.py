@@ -48,8 +48,9 @@ import numpy as np
 from numba import njit
 
 from . import _kernel
+from .checks import check_choice, check_delay, check_int
 from .criterion import CriticalLine, passivity_criterion
-from .errors import DFAValueError, check_choice, check_delay, check_int
+from .errors import DFAValueError
 
 __all__ = ["DelaySoundness", "sample_passive_points", "delay_soundness", "soundness_markdown", "main"]
 

@@ -43,9 +43,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .checks import check_delay, check_positive, check_real, check_type
 from .criterion import device_criterion
 from .device import Device
-from .errors import DFAValueError, check_delay, check_positive, check_real, check_type
+from .errors import DFAValueError
 from .linear import critical_beta, critical_stiffness
 
 __all__ = [
@@ -66,10 +67,6 @@ __all__ = [
 
 def _check_device(device: object) -> Device:
     return check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-
-
-def _check_delay(delay: object) -> int:
-    return check_delay(delay)
 
 
 def k_static(device: Device) -> float:
@@ -103,7 +100,7 @@ def k_max_criterion(device: Device, velocity, delay: int = 0):
         raise DFAValueError(
             f"velocity = {velocity!r} is invalid: it must be finite; give speeds in m/s (rotary: rad/s)"
         )
-    d = _check_delay(delay)
+    d = check_delay(delay)
     k_dyn = (dev.damping * v + dev.coulomb) / (dev.period * (0.5 + d) * v + 0.5 * dev.resolution)
     # rounded down by 1e-12 (relative) so that device_criterion accepts K_max itself: the two evaluate
     # the same inequality in physical and dimensionless form, and margin = 0 must stay on the passive side
@@ -114,7 +111,7 @@ def k_max_criterion(device: Device, velocity, delay: int = 0):
 def k_colgate(device: Device, delay: int = 0) -> float:
     """Colgate-Schenkel bound 2b/T (paper eq. 8), N/m; b/(T(½ + d)) with a delay of d samples."""
     dev = _check_device(device)
-    return dev.damping / (dev.period * (0.5 + _check_delay(delay)))
+    return dev.damping / (dev.period * (0.5 + check_delay(delay)))
 
 
 def k_abbott_okamura(device: Device, delay: int = 0) -> float:
@@ -233,7 +230,7 @@ def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> fl
     k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     # one implementation: the criterion's own critical speed (eq. 12), so that this speed and the
     # verdict of device_criterion agree to rounding even where K T(½ + d) − b cancels
-    r = device_criterion(dev, k, 0.0, delay=_check_delay(delay))
+    r = device_criterion(dev, k, 0.0, delay=check_delay(delay))
     if r.region in ("b", "c"):
         return None
     if r.region == "a":
@@ -352,7 +349,7 @@ def stiffness_limits(
     """
     dev = _check_device(device)
     v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
-    d = _check_delay(delay)
+    d = check_delay(delay)
     mpv: float | None = None
     vstatus = "not requested"
     status = "ok"
@@ -455,7 +452,7 @@ def stiffness_response(device: Device, velocity=None, stiffness: float | None = 
         Computational delay d in whole samples (default 0).
     """
     dev = _check_device(device)
-    d = _check_delay(delay)
+    d = check_delay(delay)
     if velocity is None:
         v0 = dev.resolution / dev.period
         velocity = np.geomspace(1e-3 * v0, 1e3 * v0, 200)

@@ -33,13 +33,14 @@ from __future__ import annotations
 
 import enum
 import math
+import sys
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize.elementwise import find_root
 
+from ..checks import check_beta, check_mu, check_sigma
 from ..device import Params
-from ..errors import DFAValueError, check_mu
 
 __all__ = [
     "ClosedFormStatus",
@@ -110,16 +111,16 @@ class ClosedFormCycles:
 
 
 def _grid(mu, beta, sigma) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Broadcast float arrays of μ > 0, β >= 0, σ >= 0 (finite), or raise naming the first bad value."""
+    """Broadcast float arrays of μ > 0, β >= 0, σ >= 0; a bad element raises the scalar rule's own message."""
     out = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (mu, beta, sigma)))
-    for name, a, rule, ok in (
-        ("mu", out[0], "a finite number > 0 (μ = m/(K T²))", lambda v: v > 0),
-        ("beta", out[1], "a finite number >= 0 (β = b/(K T))", lambda v: v >= 0),
-        ("sigma", out[2], "a finite number >= 0 (σ = c/(K Δ))", lambda v: v >= 0),
+    for a, lowest, check in (
+        (out[0], sys.float_info.min, check_mu),
+        (out[1], 0.0, check_beta),
+        (out[2], 0.0, check_sigma),
     ):
-        bad = ~(np.isfinite(a) & ok(a))
+        bad = ~(np.isfinite(a) & (a >= lowest))
         if bad.any():
-            raise DFAValueError(f"{name} = {a[bad].ravel()[0]!r} is invalid: it must be {rule}")
+            check(a[bad].ravel()[0])  # raises DFAValueError: one message per rule (dfa.checks)
     return out[0].copy(), out[1].copy(), out[2].copy()
 
 

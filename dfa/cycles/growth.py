@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..checks import check_type
 from ..device import Device, Params
-from ..errors import check_type
 from .results import LimitCycleResult
 from .solve import limit_cycles
 

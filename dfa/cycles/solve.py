@@ -8,8 +8,8 @@ import warnings
 import numpy as np
 from scipy import optimize
 
+from ..checks import check_choice, check_positive
 from ..device import Params
-from ..errors import check_choice, check_positive
 from ..loop import _check_model, _check_params
 from . import search
 from .characteristic import _DF_CHOICES, _M_FLOOR, _W_GRID, _Loop
@@ -17,6 +17,9 @@ from .phase import _PieceOmega, _pieces
 from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchStatus
 from .search import _m_samples, envelope_bound
 from .stability import _cycles_at_crossing, _make_cycle
+
+#: What a failing root finder raises; counted as a numerical failure of the search, never raised.
+_NUMERICAL_ERRORS = (ValueError, RuntimeError, FloatingPointError, ZeroDivisionError, OverflowError)
 
 
 def _refine(lp: _Loop, omega_of: _PieceOmega, a: float, b: float) -> float | None:
@@ -94,7 +97,7 @@ def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], tuple | None, i
             if samples.size < 2:
                 continue
             found, fails = _piece_roots(lp, omega_of, samples)
-        except (ValueError, RuntimeError, FloatingPointError, ZeroDivisionError, OverflowError):
+        except _NUMERICAL_ERRORS:
             found, fails = [], 1
         cycles += found
         failures += fails
@@ -177,46 +180,15 @@ def limit_cycles(
     lp = _Loop(p, m, d, n, df)
     try:
         cycles, reach, failures, bound = _solve(lp, amax)
-    except (
-        ValueError,
-        RuntimeError,
-        FloatingPointError,
-        ZeroDivisionError,
-        OverflowError,
-    ):  # pragma: no cover - last resort
+    except _NUMERICAL_ERRORS:  # pragma: no cover - last resort
         cycles, reach, failures, bound = [], None, 1, math.nan
-    cycles = sorted(cycles, key=lambda c: c.amplitude)
-    # de-duplicate roots found from two neighbouring brackets
-    uniq: list[LimitCycle] = []
-    for c in cycles:
-        if (
-            not uniq
-            or abs(c.amplitude - uniq[-1].amplitude) > 1e-9 * c.amplitude
-            or abs(c.frequency - uniq[-1].frequency) > 1e-9
-        ):
-            uniq.append(c)
-    if failures:
-        code = SearchStatus.NUMERICAL
-        status = (
-            f"incomplete: {failures} root bracket(s) could not be refined (numerical failure); "
-            "cycles may be missing" + (f", and beyond {reach[0]:g} ticks" if reach is not None else "")
-        )
+    code, status = _search_status(failures, reach, auto, amax)
+    if code is SearchStatus.NUMERICAL:
         warnings.warn(
             f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}): {status}",
             LimitCycleSearchWarning,
             stacklevel=2,
         )
-    elif reach is not None:
-        budget = reach[1] == "budget" or (auto and reach[0] >= amax)
-        code = SearchStatus.BUDGET if budget else SearchStatus.MAX_AMPLITUDE
-        why = (
-            f"searched up to the size budget ({reach[0]:g} ticks) short of the envelope bound"
-            if budget
-            else f"cycles may exist beyond max_amplitude = {amax:g} ticks"
-        )
-        status = f"incomplete: {why}"
-    else:
-        code, status = SearchStatus.COMPLETE, "ok"
     searched = reach[0] if reach is not None else amax
     return LimitCycleResult(
         p,
@@ -225,13 +197,45 @@ def limit_cycles(
         n,
         df,
         searched,
-        tuple(uniq),
+        _unique(cycles),
         code is SearchStatus.COMPLETE,
         status,
         code,
         _linear_stable(p.mu, p.beta, d),
         bound if code is SearchStatus.COMPLETE else None,
     )
+
+
+def _unique(cycles: list[LimitCycle]) -> tuple[LimitCycle, ...]:
+    """Cycles sorted by amplitude, a root found from two neighbouring brackets kept once."""
+    uniq: list[LimitCycle] = []
+    for c in sorted(cycles, key=lambda c: c.amplitude):
+        if (
+            not uniq
+            or abs(c.amplitude - uniq[-1].amplitude) > 1e-9 * c.amplitude
+            or abs(c.frequency - uniq[-1].frequency) > 1e-9
+        ):
+            uniq.append(c)
+    return tuple(uniq)
+
+
+def _search_status(failures: int, reach: tuple[float, str] | None, auto: bool, amax: float) -> tuple[SearchStatus, str]:
+    """How the search ended, and the one-line status that says so."""
+    if failures:
+        status = (
+            f"incomplete: {failures} root bracket(s) could not be refined (numerical failure); "
+            "cycles may be missing" + (f", and beyond {reach[0]:g} ticks" if reach is not None else "")
+        )
+        return SearchStatus.NUMERICAL, status
+    if reach is None:
+        return SearchStatus.COMPLETE, "ok"
+    budget = reach[1] == "budget" or (auto and reach[0] >= amax)
+    why = (
+        f"searched up to the size budget ({reach[0]:g} ticks) short of the envelope bound"
+        if budget
+        else f"cycles may exist beyond max_amplitude = {amax:g} ticks"
+    )
+    return (SearchStatus.BUDGET if budget else SearchStatus.MAX_AMPLITUDE), f"incomplete: {why}"
 
 
 def _linear_stable(mu: float, beta: float, delay: int) -> bool:
