@@ -7,6 +7,7 @@ from functools import lru_cache
 
 import numpy as np
 from scipy import optimize
+from scipy.optimize.elementwise import find_root
 
 from .characteristic import _W_GRID, _inv_loop, _lead, _Loop
 
@@ -68,7 +69,7 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray) -> np.ndarray:
 
 
 def _omega_for_m(lp: _Loop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np.ndarray:
-    """Solve V(M, ω) = 0 for ω in the brackets [wa, wb] (vectorised bisection).
+    """Solve V(M, ω) = 0 for ω in the brackets [wa, wb] (scipy's elementwise find_root).
 
     Where V does not change sign over a bracket (a root at an end, to rounding), the end with the
     smaller |V| is returned: the same rule as :meth:`_PieceOmega.scalar`, so that the scan and the
@@ -78,15 +79,11 @@ def _omega_for_m(lp: _Loop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np
     vb = lp.inv(m, wb).imag
     end = np.where(np.abs(va) <= np.abs(vb), wa, wb)
     no_change = (va == 0.0) | (vb == 0.0) | ((va < 0) == (vb < 0))
-    lo, hi = wa.copy(), wb.copy()
-    for _ in range(64):
-        mid = 0.5 * (lo + hi)
-        vm = lp.inv(m, mid).imag
-        same = np.sign(vm) == np.sign(va)
-        lo = np.where(same, mid, lo)
-        va = np.where(same, vm, va)
-        hi = np.where(same, hi, mid)
-    return np.where(no_change, end, 0.5 * (lo + hi))
+    if no_change.all():
+        return end
+    res = find_root(lambda w, mm: lp.inv(mm, w).imag, (wa, wb), args=(m,))
+    # elementwise Chandrupatla: a failure (status != 0 where the ends bracket) gives NaN, never an end
+    return np.where(no_change, end, np.where(res.status == 0, res.x, np.nan))
 
 
 def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
