@@ -114,7 +114,8 @@ def _piece_roots(lp: _Loop, omega_of: _PieceOmega, samples: np.ndarray) -> tuple
     noise = 64 * np.finfo(float).eps * (np.abs(dvals) + np.abs(u))
     real = (np.abs(f[:-1]) > noise[:-1]) | (np.abs(f[1:]) > noise[1:])
     sc = np.where(np.isfinite(f[:-1]) & np.isfinite(f[1:]) & (np.sign(f[:-1]) != np.sign(f[1:])) & real)[0]
-    out, failures = [], 0
+    # ω(M) is NaN only where its root finder failed: a sample that cannot be scanned is a numerical failure
+    out, failures = [], int(np.count_nonzero(np.isnan(wsamp)))
     for i in sc:
         m0 = _refine(lp, omega_of, float(samples[i]), float(samples[i + 1]))
         if m0 is None:
