@@ -43,6 +43,7 @@ __all__ = [
     "check_jobs",
     "check_growth",
     "check_bound",
+    "check_positive_array",
     "INT_MAX",
     "MAX_DELAY",
     "DELAY_FIX",
@@ -281,3 +282,20 @@ def check_bound(value: Any, xi0: float = 0.0, name: str = "bound") -> float:
     if not out > abs(xi0):
         raise DFAValueError(_message(name, out, f"> |xi0| = {abs(xi0)!r} (the initial position)", "raise the bound"))
     return out
+
+
+def check_positive_array(name: str, value: Any, fix: str | None = None) -> np.ndarray:
+    """Return ``value`` as a float array whose elements are all finite and > 0 (the rule of :func:`check_positive`).
+
+    The message names the first offending element.
+
+    Examples
+    --------
+    >>> check_positive_array("omega", [0.1, 1.0]).tolist()
+    [0.1, 1.0]
+    """
+    a = np.asarray(value, dtype=float)
+    good = np.isfinite(a) & (a > 0)
+    if a.size and not np.all(good):
+        raise DFAValueError(_message(name, float(a[~good].ravel()[0]), "a finite number > 0", fix))
+    return a

@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 import control
 import numpy as np
 
-from .checks import check_choice, check_delay, check_int, check_type
+from .checks import check_choice, check_delay, check_int, check_positive_array, check_type
 from .describing import coulomb_equivalent_damping, quantizer_df
 from .device import Params
 from .errors import DFAValueError
@@ -77,11 +77,7 @@ def _check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int
 
 
 def _omega(omega, name: str = "omega") -> np.ndarray:
-    w = np.asarray(omega, dtype=float)
-    if w.size and (not np.all(np.isfinite(w)) or np.any(w <= 0)):
-        bad = w[~(np.isfinite(w) & (w > 0))].ravel()[0]
-        raise DFAValueError(f"{name} = {bad!r} is invalid: it must be a finite frequency > 0 in rad per sample")
-    return w
+    return check_positive_array(name, omega, "give frequencies in rad per sample")
 
 
 def equivalent_damping(params: Params, amplitude=None, omega=None):

@@ -68,3 +68,13 @@ def test_errors_module_holds_exception_types_only():
     assert set(dfa.errors.__all__) == {"DFAError", "DFAValueError", "DFATypeError"}
     assert dfa.errors.check_mu is checks.check_mu  # code written before the split still resolves
     assert all(inspect.getmodule(getattr(checks, n)) is checks for n in checks.__all__ if callable(getattr(checks, n)))
+
+
+def test_positive_array_rule_reads_the_same_for_amplitudes_and_frequencies():
+    from dfa.describing import coulomb_equivalent_damping, quantizer_df
+    from dfa.loop import loop_response
+
+    rule = "is invalid: it must be a finite number > 0; give "
+    assert _message(quantizer_df, [1.0, -1.0]).startswith("amplitude = -1.0 " + rule)
+    assert _message(coulomb_equivalent_damping, 0.5, 1.0, 0.0).startswith("omega = 0.0 " + rule)
+    assert _message(loop_response, dfa.Params(5.0, 0.1, 0.0), [0.1, float("nan")]).startswith("omega = nan " + rule)
