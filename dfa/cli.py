@@ -26,16 +26,10 @@ from typing import Any
 
 from ._io import check_output_file, check_output_folder, written_paths
 from .catalogue import DEFAULT_DEVICE, CatalogueEntry, catalogue, resolve_device
+from .checks import check_beta, check_mu, check_real, check_sigma
 from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params, dimensionless_params
-from .errors import (
-    DFAError,
-    DFAValueError,
-    check_beta,
-    check_mu,
-    check_real,
-    check_sigma,
-)
+from .errors import DFAError, DFAValueError
 from .formatting import number, text_table
 from .stiffness import stiffness_limits
 
@@ -544,7 +538,8 @@ def _write_trace(path: str, r) -> None:
 
 def _cmd_map(args: argparse.Namespace) -> int:
     from ._io import check_memory
-    from .maps import check_jobs, map_memory_bytes, stability_map
+    from .checks import check_jobs
+    from .maps import map_memory_bytes, stability_map
 
     check_output_file("--out", args.out, ".npz")
     negative = [v for v in args.xi_dot if v < 0]
@@ -713,7 +708,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
-    from .maps import check_jobs
+    from .checks import check_jobs
     from .render.files import write_validation
     from .validation import validate
 

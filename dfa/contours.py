@@ -36,9 +36,10 @@ from pathlib import Path
 import numpy as np
 
 from ._io import atomic_open, check_memory
-from .cycles import large_cycle_frequency
+from .checks import check_int, check_mu, check_positive
+from .cycles import ClosedFormStatus, large_cycle_closed_forms, small_cycle_closed_forms
 from .describing import quantizer_df
-from .errors import DFAValueError, check_int, check_mu, check_positive
+from .errors import DFAValueError
 from .maps import _check_range
 
 __all__ = ["ContourMaps", "contour_maps", "load_contours", "contour_memory_bytes"]
@@ -120,21 +121,6 @@ def load_contours(path: str | os.PathLike) -> ContourMaps:
     """Read maps written by :meth:`ContourMaps.save`."""
     with np.load(path) as z:
         return ContourMaps(mu=float(z["mu"]), max_amplitude=float(z["max_amplitude"]), **{k: z[k] for k in _ARRAYS})
-
-
-def _small_closed(mu: float, bb: np.ndarray, ss: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Eq. 43 solved for ω by vectorised bisection (its right side increases on (0, π)), then eq. 42 for M."""
-    lo = np.full(bb.shape, 1e-12)
-    hi = np.full(bb.shape, math.pi)
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        f = 0.5 * np.sin(mid / 2) - bb * np.cos(mid / 2) / (2 * mu * mid) - ss
-        lo = np.where(f < 0, mid, lo)
-        hi = np.where(f < 0, hi, mid)
-    w = 0.5 * (lo + hi)
-    m = 2 * np.cos(w / 2) / (math.pi * mu * w * w)
-    bad = ss >= 0.5
-    return np.where(bad, np.nan, m), np.where(bad, np.nan, w)
 
 
 def _large_exact(mu: float, beta: np.ndarray, sigma: np.ndarray, amax: float) -> tuple[np.ndarray, np.ndarray]:
@@ -239,15 +225,26 @@ def contour_maps(
     beta = np.linspace(b0, b1, g)
     sigma = np.linspace(s0, s1, g)
     bb, ss = np.meshgrid(beta, sigma)
-    # closed forms (paper eq. 42-45)
-    sm_cf, sw_cf = _small_closed(m, bb, ss)
-    wl = large_cycle_frequency(m)
-    den = math.sin(wl / 2) - bb * wl
-    with np.errstate(divide="ignore", invalid="ignore"):
-        lm_cf = np.where(den > 0, 4 * ss / (math.pi * den), np.nan)
-    lm_cf = np.where(lm_cf >= 1.0, lm_cf, np.nan)
-    lw_cf = np.where(np.isfinite(lm_cf), wl, np.nan)
+    # closed forms (paper eq. 42-45), one implementation (dfa.cycles.closed_forms)
+    small = small_cycle_closed_forms(m, bb, ss)
+    sm_cf, sw_cf = np.array(small.amplitude), np.array(small.frequency)
+    large = large_cycle_closed_forms(m, bb, ss)
+    lm_cf = np.where(large.amplitude >= 1.0, large.amplitude, np.nan)  # the large family has M >= 1
+    lw_cf = np.where(np.isfinite(lm_cf), large.frequency, np.nan)
     small_m = np.where(sm_cf < 1.0, sm_cf, np.nan)
     small_w = np.where(sm_cf < 1.0, sw_cf, np.nan)
     large_m, large_w = _large_exact(m, beta, sigma, amax)
-    return ContourMaps(m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax)
+    return ContourMaps(
+        m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax, _closed_form_status(small, large)
+    )
+
+
+def _closed_form_status(small, large) -> str:
+    """``"ok"``, or which grid points the closed forms flag (β = σ = 0, solver failures) and why."""
+    notes = []
+    for name, cf in (("eq. 42-43", small), ("eq. 44-45", large)):
+        for code in (ClosedFormStatus.DEGENERATE, ClosedFormStatus.NOT_SOLVED):
+            count = int(np.count_nonzero(cf.status == code))
+            if count:
+                notes.append(f"{name}: {count} point(s) NaN, {code.reason}")
+    return "ok" if not notes else "; ".join(notes)

@@ -85,9 +85,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .device import Device
-from .errors import (
-    DFAValueError,
+from .checks import (
+    DELAY_FIX,
     check_beta,
     check_delay,
     check_mu,
@@ -96,6 +95,8 @@ from .errors import (
     check_real,
     check_sigma,
 )
+from .device import Device
+from .errors import DFAValueError
 
 __all__ = [
     "CriticalLine",
@@ -120,11 +121,15 @@ REGION_DESCRIPTIONS = {
 
 _REGION_CODES = np.array(["a", "b", "c", "d", "e"])
 
-_DELAY_FIX = "give the computational delay in whole samples (0: the force uses the current reading)"
+
+def _anchor(quantized, delay):
+    """(σ₀, β₀) of the critical line: σ₀ = ½ with quantization (0 without), β₀ = ½ + d (broadcast)."""
+    return np.where(np.asarray(quantized, dtype=bool), 0.5, 0.0), 0.5 + np.asarray(delay, dtype=float)
 
 
-def _check_delay(delay) -> int:
-    return check_delay(delay)
+def _margin(beta, sigma, speed, sigma0, beta0):
+    """(β − β₀)V + (σ − σ₀): the left side of eq. 6 (eq. 10's line is margin = 0). The one evaluation every verdict uses."""
+    return (beta - beta0) * speed + (sigma - sigma0)
 
 
 def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *, quantized: bool = True) -> float:
@@ -215,12 +220,23 @@ class CriticalLine:
     def __post_init__(self) -> None:
         object.__setattr__(self, "xi_dot", abs(check_real("xi_dot", self.xi_dot)))
         object.__setattr__(self, "sigma0", check_nonnegative("sigma0", self.sigma0))
-        object.__setattr__(self, "delay", _check_delay(self.delay))
+        object.__setattr__(self, "delay", check_delay(self.delay))
 
     @property
     def beta0(self) -> float:
         """β where the line meets σ = σ₀: ½ + d (eq. 10; Diolaiti et al. 2006 for d > 0)."""
-        return 0.5 + self.delay
+        return float(_anchor(True, self.delay)[1])
+
+    @classmethod
+    def of(cls, xi_dot: float, *, quantized: bool = True, delay: int = 0) -> CriticalLine:
+        """The line of the criterion with (eq. 6) or without (eq. 7) quantization: σ₀ = ½ or 0.
+
+        Examples
+        --------
+        >>> CriticalLine.of(2.0, quantized=False).sigma0
+        0.0
+        """
+        return cls(xi_dot, float(_anchor(quantized, 0)[0]), delay)
 
     @property
     def slope(self) -> float:
@@ -228,8 +244,21 @@ class CriticalLine:
         return -self.xi_dot
 
     def sigma(self, beta: float | np.ndarray) -> float | np.ndarray:
-        """σ on the line at ``beta`` (vectorised)."""
+        """σ on the line at ``beta`` (vectorised): σ₀ + V(β₀ − β), where :meth:`margin` is 0."""
         out = self.sigma0 + self.xi_dot * (self.beta0 - np.asarray(beta, dtype=float))
+        return float(out) if out.ndim == 0 else out
+
+    def margin(self, beta, sigma) -> float | np.ndarray:
+        """(β − β₀)V + (σ − σ₀) at (β, σ) (vectorised): >= 0 on or above the line (eq. 6, 10).
+
+        Examples
+        --------
+        >>> CriticalLine(xi_dot=2.0).margin(0.0, 1.5)
+        0.0
+        """
+        out = np.asarray(
+            _margin(np.asarray(beta, dtype=float), np.asarray(sigma, dtype=float), self.xi_dot, self.sigma0, self.beta0)
+        )
         return float(out) if out.ndim == 0 else out
 
 
@@ -345,11 +374,10 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
     v = np.abs(np.asarray(xi_dot, dtype=float))
     d = np.asarray(delay)
     if d.dtype == bool or not np.issubdtype(d.dtype, np.number) or np.any(d < 0) or np.any(d != np.floor(d)):
-        raise DFAValueError(f"delay = {delay!r} is invalid: it must be a whole number >= 0; {_DELAY_FIX}")
-    s0 = np.where(np.asarray(quantized, dtype=bool), 0.5, 0.0)
-    b0 = 0.5 + d.astype(float)
+        raise DFAValueError(f"delay = {delay!r} is invalid: it must be a whole number >= 0; {DELAY_FIX}")
+    s0, b0 = _anchor(quantized, d)
     with np.errstate(over="ignore"):  # an overflowing margin keeps its sign, which is all that is used
-        margin = (b - b0) * v + (s - s0)
+        margin = _margin(b, s, v, s0, b0)
     high_beta = b >= b0
     high_sigma = s >= s0
     idx = np.where(
@@ -401,14 +429,14 @@ def passivity_criterion(
     """
     b = check_beta(beta)
     s = check_sigma(sigma)
-    d = _check_delay(delay)
+    d = check_delay(delay)
     xd = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
     x0 = check_real("xi0", xi0, "give the initial position in encoder ticks")
     m = None if mu is None else check_mu(mu)
     v = equivalent_speed(xd, x0, m, quantized=quantized)
-    s0 = 0.5 if quantized else 0.0
-    b0 = 0.5 + d
-    margin = (b - b0) * v + (s - s0)
+    line = CriticalLine.of(v, quantized=quantized, delay=d)
+    s0, b0 = line.sigma0, line.beta0
+    margin = float(_margin(b, s, v, s0, b0))
     region = str(classify_region(b, s, v, quantized, d))
     critical = (s - s0) / (b0 - b) if (b < b0 and s >= s0) else None
     return CriterionResult(
@@ -420,7 +448,7 @@ def passivity_criterion(
         passive=region in ("a", "e"),
         margin=margin,
         critical_xi_dot=critical,
-        critical_line=CriticalLine(v, s0, d),
+        critical_line=line,
         equivalent_speed=v,
         delay=d,
         xi0=x0,

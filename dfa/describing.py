@@ -54,7 +54,7 @@ import numpy as np
 from scipy import integrate
 
 from . import _dfcore
-from .errors import DFAValueError, check_positive, check_sigma
+from .checks import check_positive, check_positive_array, check_sigma
 
 __all__ = [
     "quantizer_df",
@@ -171,13 +171,12 @@ def _coulomb_function() -> Callable:
 
 # ------------------------------------------------------------------ numerics
 def _amplitudes(amplitude, name: str = "amplitude") -> np.ndarray:
-    m = np.asarray(amplitude, dtype=float)
-    if m.size and (not np.all(np.isfinite(m)) or np.any(m <= 0)):
-        bad = m[~(np.isfinite(m) & (m > 0))].ravel()[0]
-        raise DFAValueError(
-            f"{name} = {bad!r} is invalid: it must be a finite number > 0 (the sinusoid's amplitude in encoder ticks)"
-        )
-    return m
+    fix = (
+        "give the sinusoid's amplitude in encoder ticks"
+        if name == "amplitude"
+        else "give the frequency in rad per sample"
+    )
+    return check_positive_array(name, amplitude, fix)
 
 
 def _level_sum(m: np.ndarray, fn: Callable, budget: int = 4_000_000) -> np.ndarray:

@@ -31,7 +31,8 @@ import math
 import sys
 from dataclasses import dataclass
 
-from .errors import DFAValueError, check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
+from .checks import check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
+from .errors import DFAValueError
 
 __all__ = ["Params", "Device", "dimensionless_params"]
 

@@ -1,43 +1,19 @@
-"""Error types and input validation shared by the whole package.
+"""Exception types of the whole package (input checks: :mod:`dfa.checks`).
 
 Every message names the parameter, the offending value, the rule it breaks and
 how to fix it, so that the command-line tool can print it as a single line.
 
 Examples
 --------
->>> from dfa.errors import check_positive, DFAValueError
->>> check_positive("mass", 0.25)
-0.25
->>> try:
-...     check_positive("mass", -1.0, fix="give the moving mass in kg")
-... except DFAValueError as err:
-...     print(err)
-mass = -1.0 is invalid: it must be a finite number > 0; give the moving mass in kg
+>>> issubclass(DFAValueError, ValueError) and issubclass(DFATypeError, TypeError)
+True
 """
 
 from __future__ import annotations
 
-import math
-import numbers
-import sys
 from typing import Any
 
-import numpy as np
-
-__all__ = [
-    "DFAError",
-    "DFAValueError",
-    "DFATypeError",
-    "check_real",
-    "check_positive",
-    "check_nonnegative",
-    "check_int",
-    "check_choice",
-    "check_type",
-    "check_mu",
-    "check_beta",
-    "check_sigma",
-]
+__all__ = ["DFAError", "DFAValueError", "DFATypeError"]
 
 
 class DFAError(Exception):
@@ -52,183 +28,10 @@ class DFATypeError(DFAError, TypeError):
     """A parameter has the wrong type (for example text where a number is needed)."""
 
 
-_MAX_SHOWN = 60  # characters of a value shown in a message
+def __getattr__(name: str) -> Any:
+    """Compatibility: the input checks moved to :mod:`dfa.checks`; ``dfa.errors.check_*`` still resolves there."""
+    if name.startswith("check_") or name in ("INT_MAX", "MAX_DELAY"):
+        from . import checks
 
-
-def _fmt(value: Any) -> str:
-    """A short, safe text for ``value`` in an error message (huge values abbreviated)."""
-    try:
-        if isinstance(value, (bool, np.bool_)):
-            return str(bool(value))
-        if isinstance(value, numbers.Integral):
-            v = int(value)
-            if abs(v) >= 10**18:
-                return f"{'-' if v < 0 else ''}<integer of {int(abs(v).bit_length() * 0.30103) + 1} digits>"
-            return str(v)
-        if isinstance(value, np.ndarray):
-            return f"<array of shape {value.shape}>"
-        text = repr(value) if isinstance(value, (float, str, complex)) else str(value)
-    except Exception:  # a hostile __str__/__repr__ must not hide the real message
-        text = f"<{type(value).__name__} object>"
-    if len(text) > _MAX_SHOWN:
-        text = text[: _MAX_SHOWN - 15] + f"… ({len(text)} chars)"
-    return text
-
-
-#: Largest integer accepted by :func:`check_int` (the int64 range used by numpy and the compiled kernels).
-INT_MAX = 2**63 - 1
-
-
-def _as_scalar(value: Any) -> Any:
-    """A 0-d numpy array becomes its scalar; everything else is returned unchanged."""
-    if isinstance(value, np.ndarray) and value.ndim == 0:
-        return value[()]
-    return value
-
-
-def _type_error(name: str, value: Any, what: str, fix: str | None) -> DFATypeError:
-    kind = f"array of shape {value.shape}" if isinstance(value, np.ndarray) else f"type {type(value).__name__}"
-    return DFATypeError(f"{name} = {_fmt(value)} has {kind}: it must be {what}" + (f"; {fix}" if fix else ""))
-
-
-def _message(name: str, value: Any, rule: str, fix: str | None) -> str:
-    msg = f"{name} = {_fmt(value)} is invalid: it must be {rule}"
-    if fix:
-        msg += f"; {fix}"
-    return msg
-
-
-def check_real(name: str, value: Any, fix: str | None = None) -> float:
-    """Return ``value`` as a finite Python float, or raise.
-
-    Parameters
-    ----------
-    name : str
-        Parameter name used in the message.
-    value : object
-        The value to check. Booleans and text are rejected with
-        :class:`DFATypeError`; NaN and infinities with :class:`DFAValueError`.
-    fix : str, optional
-        A hint appended to the message.
-    """
-    value = _as_scalar(value)
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        raise _type_error(name, value, "a real number", fix)
-    try:
-        out = float(value)
-    except (OverflowError, ValueError, TypeError):
-        raise DFAValueError(_message(name, value, "a finite number (this one overflows a float)", fix)) from None
-    if not math.isfinite(out):
-        raise DFAValueError(_message(name, out, "a finite number", fix))
-    return out
-
-
-def check_positive(name: str, value: Any, fix: str | None = None) -> float:
-    """Return ``value`` as a float if it is finite and strictly positive."""
-    out = check_real(name, value, fix)
-    if not out > 0.0:
-        raise DFAValueError(_message(name, out, "a finite number > 0", fix))
-    return out
-
-
-def check_nonnegative(name: str, value: Any, fix: str | None = None) -> float:
-    """Return ``value`` as a float if it is finite and >= 0."""
-    out = check_real(name, value, fix)
-    if out < 0.0:
-        raise DFAValueError(_message(name, out, "a finite number >= 0", fix))
-    return out
-
-
-def check_int(name: str, value: Any, minimum: int | None = None, fix: str | None = None) -> int:
-    """Return ``value`` as an int if it is integral (and >= ``minimum``)."""
-    value = _as_scalar(value)
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
-        if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)):
-            try:
-                fv = float(value)
-            except (OverflowError, ValueError, TypeError):
-                fv = math.inf
-            if not (math.isfinite(fv) and fv == int(fv)):
-                raise DFAValueError(_message(name, value, "a whole number", fix))
-            value = int(fv)
-        else:
-            raise _type_error(name, value, "a whole number", fix)
-    out = int(value)
-    if minimum is not None and out < minimum:
-        raise DFAValueError(_message(name, out, f"a whole number >= {minimum}", fix))
-    if abs(out) > INT_MAX:
-        raise DFAValueError(_message(name, out, f"a whole number of at most {INT_MAX} in size", fix))
-    return out
-
-
-def check_choice(name: str, value: Any, choices: tuple[str, ...]) -> str:
-    """Return ``value`` if it is one of ``choices`` (case-insensitive)."""
-    if not isinstance(value, str):
-        raise _type_error(name, value, "one of " + ", ".join(choices), None)
-    low = value.lower()
-    for c in choices:
-        if c.lower() == low:
-            return c
-    raise DFAValueError(_message(name, value, "one of " + ", ".join(repr(c) for c in choices), None))
-
-
-def check_type(name: str, value: Any, cls: type, fix: str) -> Any:
-    """Return ``value`` if it is an instance of ``cls``, else raise :class:`DFATypeError` with ``fix``."""
-    if not isinstance(value, cls):
-        raise DFATypeError(
-            f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}"
-        )
-    return value
-
-
-# -------------------------------------------- the paper's dimensionless parameters (Table 1)
-def check_mu(value: Any, name: str = "mu") -> float:
-    """Dimensionless mass μ = m/(K T²) > 0, as a float (a normal float: 1/μ must not overflow)."""
-    out = check_positive(name, value, "μ = m/(K T²) must be positive")
-    if out < sys.float_info.min:
-        raise DFAValueError(
-            _message(
-                name,
-                out,
-                f"at least {sys.float_info.min:.3g} (1/μ overflows below)",
-                "μ = m/(K T²) must be a normal positive number",
-            )
-        )
-    return out
-
-
-def check_beta(value: Any, name: str = "beta") -> float:
-    """Dimensionless viscous damping β = b/(K T) >= 0, as a float."""
-    return check_nonnegative(name, value, "β = b/(K T) cannot be negative")
-
-
-def check_sigma(value: Any, name: str = "sigma") -> float:
-    """Dimensionless Coulomb friction σ = c/(K Δ) >= 0, as a float."""
-    return check_nonnegative(name, value, "σ = c/(K Δ) cannot be negative")
-
-
-#: Largest computational delay accepted, in samples (10 s at 1 kHz): the exact linear bound solves a
-#: polynomial of degree d + 2 and the simulator keeps d + 1 pending forces.
-MAX_DELAY = 10_000
-
-
-def check_delay(value: Any) -> int:
-    """Return the computational delay d (whole samples, 0 <= d <= :data:`MAX_DELAY`).
-
-    Examples
-    --------
-    >>> check_delay(2)
-    2
-    """
-    d = check_int(
-        "delay",
-        value,
-        minimum=0,
-        fix="give the computational delay in whole samples (0: the force uses the current reading)",
-    )
-    if d > MAX_DELAY:
-        raise DFAValueError(
-            f"delay = {d} is invalid: it must be at most {MAX_DELAY} samples; give the computational delay "
-            "in samples of the servo period (e.g. 1 for one sample of computation)"
-        )
-    return d
+        return getattr(checks, name)
+    raise AttributeError(f"module 'dfa.errors' has no attribute {name!r}")

@@ -73,7 +73,8 @@ import numpy as np
 from numpy.polynomial import chebyshev
 from scipy.optimize import brentq
 
-from .errors import DFAError, DFAValueError, check_beta, check_delay, check_mu, check_nonnegative, check_positive
+from .checks import check_beta, check_delay, check_mu, check_nonnegative, check_positive
+from .errors import DFAError, DFAValueError
 
 __all__ = [
     "characteristic_polynomial",
@@ -128,10 +129,6 @@ def _c1_minus_c0(a: float) -> float:
     return s
 
 
-def _check_delay(delay) -> int:
-    return check_delay(delay)
-
-
 # ----------------------------------------------------------------------------- polynomial and spectral radius
 def characteristic_polynomial(mu: float, beta: float, delay: int = 0) -> np.ndarray:
     """Closed-loop characteristic polynomial χ(z) = μ z^d (z − 1)(z − p) + c₁ z + c₀ of the sampled spring.
@@ -158,7 +155,7 @@ def characteristic_polynomial(mu: float, beta: float, delay: int = 0) -> np.ndar
     >>> characteristic_polynomial(1.0, 0.0, delay=1).tolist()   # z(z − 1)² + ½z + ½
     [1.0, -2.0, 1.5, 0.5]
     """
-    m, b, d = check_mu(mu), check_beta(beta), _check_delay(delay)
+    m, b, d = check_mu(mu), check_beta(beta), check_delay(delay)
     c1, c0, p = _zoh_coefficients(b / m)
     coef = np.zeros(d + 3)
     coef[:3] = m, -m * (1.0 + p), m * p
@@ -217,7 +214,7 @@ def spectral_radius(mu, beta, delay: int = 0):
     """
     m = _as_array("mu", mu, lambda n, v: check_mu(v, n))
     b = _as_array("beta", beta, lambda n, v: check_beta(v, n))
-    d = _check_delay(delay)
+    d = check_delay(delay)
     out = _rho(b / m, 1.0 / m, d)
     return float(out) if out.ndim == 0 else out
 
@@ -348,7 +345,7 @@ def critical_stiffness(mass, damping, period, delay: int = 0):
     m = _as_array("mass", mass, lambda n, v: check_positive(n, v, "give the moving mass in kg (rotary: kg·m²)"))
     b = _as_array("damping", damping, lambda n, v: check_nonnegative(n, v, "give the viscous friction in N·s/m"))
     t = _as_array("period", period, lambda n, v: check_positive(n, v, "give the sampling period in s"))
-    d = _check_delay(delay)
+    d = check_delay(delay)
     m, b, t = np.broadcast_arrays(m, b, t)
     a = b * t / m
     if not np.all(np.isfinite(a)):
@@ -385,7 +382,7 @@ def critical_beta(mu: float, delay: int = 0) -> float:
     >>> round(critical_beta(1.0), 4), round(critical_beta(1.0, delay=1), 4)
     (0.4617, 1.2127)
     """
-    m, d = check_mu(mu), _check_delay(delay)
+    m, d = check_mu(mu), check_delay(delay)
     target = 1.0 / m
 
     def f(a: float) -> float:

@@ -43,9 +43,10 @@ from dataclasses import dataclass, field
 import control
 import numpy as np
 
-from .describing import coulomb_equivalent_damping, quantizer_df, quantizer_df_inverse
+from .checks import check_choice, check_delay, check_int, check_positive_array, check_type
+from .describing import coulomb_equivalent_damping, quantizer_df
 from .device import Params
-from .errors import DFAValueError, check_choice, check_delay, check_int, check_type
+from .errors import DFAValueError
 from .linear import _zoh_coefficients  # the ZOH pulse-transfer coefficients live with the exact linear analysis
 
 __all__ = [
@@ -76,11 +77,7 @@ def _check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int
 
 
 def _omega(omega, name: str = "omega") -> np.ndarray:
-    w = np.asarray(omega, dtype=float)
-    if w.size and (not np.all(np.isfinite(w)) or np.any(w <= 0)):
-        bad = w[~(np.isfinite(w) & (w > 0))].ravel()[0]
-        raise DFAValueError(f"{name} = {bad!r} is invalid: it must be a finite frequency > 0 in rad per sample")
-    return w
+    return check_positive_array(name, omega, "give frequencies in rad per sample")
 
 
 def equivalent_damping(params: Params, amplitude=None, omega=None):
@@ -252,8 +249,10 @@ class NyquistLocusResponse:
         −1/D(M) (on the negative real axis, since D is real).
     crossings : tuple of (M, ω, point)
         Harmonic-balance solutions where a curve meets the locus at its own
-        amplitude. Computed here for σ = 0 (every curve is the same); for σ > 0
-        use the limit-cycle solver.
+        amplitude: for σ = 0 (every curve is the same) the roots of the
+        limit-cycle solver (:func:`dfa.cycles.limit_cycles`, residual <= 1e-10)
+        with ω in the plotted range and M up to the locus's largest amplitude,
+        the point being −1/D(M); for σ > 0 use the solver directly.
     status : str
         ``"ok"``, or a note on what was not computed.
     """
@@ -271,18 +270,23 @@ class NyquistLocusResponse:
     status: str
 
 
-def _phase_crossings(omega: np.ndarray, curve: np.ndarray) -> list[tuple[float, float]]:
-    """(ω, Re L) where the curve crosses the negative real axis (linear interpolation on the grid)."""
-    im = curve.imag
-    out = []
-    idx = np.where(np.sign(im[:-1]) * np.sign(im[1:]) < 0)[0]
-    for i in idx:
-        t = im[i] / (im[i] - im[i + 1])
-        w = omega[i] + t * (omega[i + 1] - omega[i])
-        re = curve.real[i] + t * (curve.real[i + 1] - curve.real[i])
-        if re < 0:
-            out.append((float(w), float(re)))
-    return out
+def _solver_crossings(
+    p: Params, model: str, delay: int, pade_order: int, omega: np.ndarray, max_amplitude: float
+) -> tuple[list[tuple[float, float, complex]], str]:
+    """σ = 0: the harmonic-balance roots of the limit-cycle solver (one implementation, residual <= 1e-10).
+
+    Returns ((M, ω, −1/D(M)) for every root with ω in the plotted range and M <= ``max_amplitude``, status).
+    """
+    from .cycles import SearchStatus, limit_cycles  # imported here: dfa.cycles builds on this module
+
+    res = limit_cycles(p, model=model, delay=delay, pade_order=pade_order, max_amplitude=max_amplitude)
+    lo, hi = float(np.min(omega)), float(np.max(omega))
+    out = [
+        (c.amplitude, c.frequency, complex(-1.0 / quantizer_df(c.amplitude), 0.0))
+        for c in res.cycles
+        if lo <= c.frequency <= hi
+    ]
+    return out, ("ok" if res.complete or res.status_code is SearchStatus.MAX_AMPLITUDE else res.status)
 
 
 def nyquist_locus_response(
@@ -325,10 +329,7 @@ def nyquist_locus_response(
     if p.sigma == 0.0:
         amps = np.array([np.nan])
         curves = np.atleast_2d(loop_response(p, w, model=m, delay=d, pade_order=n))
-        for wc, re in _phase_crossings(w, curves[0]):
-            roots, _complete = quantizer_df_inverse(-1.0 / re, max_amplitude=float(la.max()))
-            crossings += [(float(r), wc, complex(re, 0.0)) for r in roots]
-        status = "ok"
+        crossings, status = _solver_crossings(p, m, d, n, w, float(la.max()))
     else:
         if amplitudes is None:
             raise DFAValueError(

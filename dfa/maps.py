@@ -55,7 +55,17 @@ from pathlib import Path
 import numpy as np
 
 from ._io import atomic_open, check_memory
-from .errors import DFAValueError, check_choice, check_delay, check_int, check_mu, check_nonnegative, check_real
+from .checks import (
+    check_bound,
+    check_choice,
+    check_delay,
+    check_int,
+    check_jobs,
+    check_mu,
+    check_nonnegative,
+    check_real,
+)
+from .errors import DFAValueError
 from .simulation import OUTCOMES, check_rules, preload_position, run_points
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
@@ -73,23 +83,6 @@ MAP_BYTES_PER_POINT = 16
 def map_memory_bytes(grid: int, n_speeds: int) -> int:
     """Estimated peak memory of :func:`stability_map` in bytes (grid² points × speeds)."""
     return int(grid) ** 2 * (MAP_BYTES_PER_POINT + MAP_BYTES_PER_RUN * int(n_speeds))
-
-
-def check_jobs(name: str, jobs: object) -> int:
-    """Validate a joblib job count: -1 (all cores) or 1 … os.cpu_count(); return it.
-
-    Nothing is silently clipped: more jobs than cores is refused (it only adds
-    processes and memory, and changes no result).
-    """
-    j = check_int(name, jobs)
-    cores = os.cpu_count() or 1
-    if j == 0 or j < -1:
-        raise DFAValueError(f"{name} = {j} is invalid: it must be -1 (all cores) or a positive count")
-    if j > cores:
-        raise DFAValueError(
-            f"{name} = {j} is invalid: this machine has {cores} cores; give at most {cores} (or -1 for all)"
-        )
-    return j
 
 
 @dataclass(frozen=True)
@@ -321,6 +314,8 @@ def stability_map(
     check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
     beta, sigma = np.linspace(b0, b1, g), np.linspace(s0, s1, g)
     pts_b, pts_s, x0, v0 = _points(m, beta, sigma, speeds, bool(preload))
+    if preload:
+        check_bound(rules[0], float(np.max(np.abs(x0))))  # the rule simulate() applies: the bound lies beyond ξ0
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
     chunks = _chunks(pts_b.size, workers)
     tail = (n, d, bool(quantize), *rules)

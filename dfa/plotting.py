@@ -26,6 +26,7 @@ import matplotlib
 import matplotlib.lines
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.artist import Artist
 from matplotlib.colors import ListedColormap
 from matplotlib.patches import Patch
 
@@ -119,7 +120,7 @@ def regions_plot(
     )
     ax.axvline(line.beta0, color="k", lw=0.8, ls="-.")
     if result.quantized:
-        ax.axhline(0.5, color="k", lw=0.8, ls="-.")
+        ax.axhline(line.sigma0, color="k", lw=0.8, ls="-.")
     dl = f", delay {line.delay}" if line.delay else ""
     ax.plot(b, line.sigma(b), "k--", lw=1.2, label=f"critical line, V = {line.xi_dot:.3g}{dl}")
     for v in xi_dots:
@@ -185,11 +186,11 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
         )
         v = smap.xi_dots[k]
         bb = np.linspace(b[0], b[-1], 200)
-        line = CriticalLine(v, 0.5 if smap.quantize else 0.0, smap.delay)
+        line = CriticalLine.of(v, quantized=smap.quantize, delay=smap.delay)
         ax.plot(bb, line.sigma(bb), "--", color="#b2182b", lw=1.3)
         ax.axvline(line.beta0, color="#2166ac", ls="-.", lw=1.0)
         if smap.quantize:
-            ax.axhline(0.5, color="#2166ac", ls="-.", lw=1.0)
+            ax.axhline(line.sigma0, color="#2166ac", ls="-.", lw=1.0)
         ax.set_xlim(extent[0], extent[1])
         ax.set_ylim(extent[2], extent[3])
         ax.set_xlabel(BETA_LABEL)
@@ -201,7 +202,7 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
                 + (f", delay {smap.delay}" if smap.delay else ""),
                 fontsize=9,
             )
-    handles = [
+    handles: list[Artist] = [
         Patch(facecolor=OUTCOME_COLORS[k], edgecolor="0.5", label=_OUTCOME_LABELS[k])
         for k in ("rest", "chatter", "oscillating", "unstable", "undecided")
     ]
@@ -290,9 +291,10 @@ def contour_plot(maps, axes=None):
             color="k",
         )
     ax.set_title(f"μ = {maps.mu:g}: large unstable cycles (exact D, eq. 41)", fontsize=9)
+    line = CriticalLine(0.0)  # the maps' loop has no delay: region boundaries β = ½, σ = ½ (eq. 10)
     for ax in axes:
-        ax.axvline(0.5, color="k", ls="-.", lw=0.8)
-        ax.axhline(0.5, color="k", ls="-.", lw=0.8)
+        ax.axvline(line.beta0, color="k", ls="-.", lw=0.8)
+        ax.axhline(line.sigma0, color="k", ls="-.", lw=0.8)
         ax.set_xlabel(BETA_LABEL)
         ax.set_ylabel(SIGMA_LABEL)
         ax.set_xlim(maps.beta[0], maps.beta[-1])

@@ -18,9 +18,10 @@ from typing import Any
 
 from ._io import staged_folder
 from .catalogue import CatalogueEntry
+from .checks import check_choice
 from .design import DesignAnalysis, design_analysis, resolve_design_inputs
 from .device import Device
-from .errors import DFAValueError, check_choice
+from .errors import DFAValueError
 from .formatting import json_dumps
 
 __all__ = ["ReportResult", "design_report", "report_slug", "write_design_report"]

@@ -104,11 +104,11 @@ from fractions import Fraction
 import numpy as np
 
 from . import _kernel
-from .criterion import spring_energy
-from .errors import (
-    DFAValueError,
+from .checks import (
     check_beta,
+    check_bound,
     check_delay,
+    check_growth,
     check_int,
     check_mu,
     check_nonnegative,
@@ -116,6 +116,8 @@ from .errors import (
     check_real,
     check_sigma,
 )
+from .criterion import spring_energy
+from .errors import DFAValueError
 
 __all__ = [
     "OUTCOMES",
@@ -464,8 +466,7 @@ def simulate(
     fix = "simulate at least one sample"
     n = default_samples(m, b, s, v0, x0, d, q) if auto else check_int("samples", samples, minimum=1, fix=fix)
     bnd, sa, gr, st = check_rules(bound, stable_amplitude, growth, settle)
-    if not bnd > abs(x0):
-        raise DFAValueError(f"bound = {bnd!r} is invalid: it must exceed |xi0| = {abs(x0)!r}; raise the bound")
+    check_bound(bnd, x0)
     _check_record_size(n, record, energy)
     rx = np.empty(n + 1) if record else np.empty(0)
     rv = np.empty(n + 1) if record else np.empty(0)
@@ -502,12 +503,9 @@ def _measured(
 
 def check_rules(bound, stable_amplitude, growth, settle) -> tuple[float, float, float, float]:
     """Validated outcome rules (bound > 0, stable_amplitude >= 0, growth > 1, settle >= 0) of a simulation or map."""
-    bnd = check_positive("bound", bound)
+    bnd = check_bound(bound)
     sa = check_nonnegative("stable_amplitude", stable_amplitude)
-    gr = check_positive("growth", growth)
-    if gr <= 1.0:
-        raise DFAValueError(f"growth = {gr!r} is invalid: it must be > 1 (a ratio of envelope peaks)")
-    return bnd, sa, gr, check_nonnegative("settle", settle)
+    return bnd, sa, check_growth(growth), check_nonnegative("settle", settle)
 
 
 def _check_record_size(n: int, record: bool, energy: bool) -> None:

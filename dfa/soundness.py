@@ -48,8 +48,9 @@ import numpy as np
 from numba import njit
 
 from . import _kernel
-from .criterion import passivity_criterion
-from .errors import DFAValueError, check_choice, check_delay, check_int
+from .checks import check_choice, check_delay, check_int
+from .criterion import CriticalLine, passivity_criterion
+from .errors import DFAValueError
 from .formatting import markdown_table
 
 __all__ = ["DelaySoundness", "sample_passive_points", "delay_soundness", "soundness_markdown", "main"]
@@ -120,8 +121,9 @@ def sample_passive_points(
             0.0, 0.0, xd[i], delay=d_crit, xi0=x0[i] if crit == "delay-aware" else 0.0, mu=mu[i]
         ).equivalent_speed
         k = kind[i]
+        line = CriticalLine(v, 0.5, d_crit)
         if k == 0:  # interior: rejection sampling of the criterion's own passive set in a box (formula-free)
-            top = 0.5 + v * b0 + 1.0
+            top = float(line.sigma(0.0)) + 1.0
             for _ in range(10_000):
                 b = rng.uniform(0.0, b0 + 1.0)
                 s = rng.uniform(0.0, top)
@@ -129,7 +131,7 @@ def sample_passive_points(
                     break
         elif k == 1:  # exactly on the critical line
             b = rng.uniform(0.0, b0)
-            s = 0.5 + v * (b0 - b)
+            s = float(line.sigma(b))
         elif k == 2:  # σ = ½ edge, β >= ½ + d (corner included)
             b = b0 + (0.0 if rng.random() < 0.2 else rng.uniform(0.0, 1.0))
             s = 0.5
@@ -264,7 +266,7 @@ def delay_soundness(
     grew = ratio > TOLERANCE
     div = codes == _kernel.UNSTABLE
     w = int(np.argmax(ratio))
-    worst = {k: float(pts[k][w]) for k in ("mu", "beta", "sigma", "xi0", "xi_dot")}
+    worst: dict[str, object] = {k: float(pts[k][w]) for k in ("mu", "beta", "sigma", "xi0", "xi_dot")}
     worst.update(sample=int(at[w]), kind=KINDS[int(pts["kind"][w])])
     return DelaySoundness(
         delay=int(delay),

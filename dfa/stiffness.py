@@ -43,9 +43,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .checks import check_delay, check_positive, check_real, check_type
 from .criterion import device_criterion
 from .device import Device
-from .errors import DFAValueError, check_delay, check_positive, check_real, check_type
+from .errors import DFAValueError
 from .linear import critical_beta, critical_stiffness
 
 __all__ = [
@@ -66,10 +67,6 @@ __all__ = [
 
 def _check_device(device: object) -> Device:
     return check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-
-
-def _check_delay(delay: object) -> int:
-    return check_delay(delay)
 
 
 def k_static(device: Device) -> float:
@@ -103,7 +100,7 @@ def k_max_criterion(device: Device, velocity, delay: int = 0):
         raise DFAValueError(
             f"velocity = {velocity!r} is invalid: it must be finite; give speeds in m/s (rotary: rad/s)"
         )
-    d = _check_delay(delay)
+    d = check_delay(delay)
     k_dyn = (dev.damping * v + dev.coulomb) / (dev.period * (0.5 + d) * v + 0.5 * dev.resolution)
     # rounded down by 1e-12 (relative) so that device_criterion accepts K_max itself: the two evaluate
     # the same inequality in physical and dimensionless form, and margin = 0 must stay on the passive side
@@ -114,7 +111,7 @@ def k_max_criterion(device: Device, velocity, delay: int = 0):
 def k_colgate(device: Device, delay: int = 0) -> float:
     """Colgate-Schenkel bound 2b/T (paper eq. 8), N/m; b/(T(½ + d)) with a delay of d samples."""
     dev = _check_device(device)
-    return dev.damping / (dev.period * (0.5 + _check_delay(delay)))
+    return dev.damping / (dev.period * (0.5 + check_delay(delay)))
 
 
 def k_abbott_okamura(device: Device, delay: int = 0) -> float:
@@ -124,7 +121,7 @@ def k_abbott_okamura(device: Device, delay: int = 0) -> float:
 
 
 def _bounds(dev: Device, delay: int) -> dict[str, float]:
-    """The speed-independent limits shared by :class:`StiffnessLimits` and :class:`StiffnessCurve`."""
+    """The speed-independent limits of :class:`StiffnessLimits` (which :class:`StiffnessCurve` reads)."""
     return dict(
         k_static=k_static(dev),
         k_colgate=k_colgate(dev, delay),
@@ -225,7 +222,7 @@ def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> fl
     k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     # one implementation: the criterion's own critical speed (eq. 12), so that this speed and the
     # verdict of device_criterion agree to rounding even where K T(½ + d) − b cancels
-    r = device_criterion(dev, k, 0.0, delay=_check_delay(delay))
+    r = device_criterion(dev, k, 0.0, delay=check_delay(delay))
     if r.region in ("b", "c"):
         return None
     if r.region == "a":
@@ -344,7 +341,7 @@ def stiffness_limits(
     """
     dev = _check_device(device)
     v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
-    d = _check_delay(delay)
+    d = check_delay(delay)
     mpv: float | None = None
     vstatus = "not requested"
     status = "ok"
@@ -372,7 +369,9 @@ def stiffness_limits(
 class StiffnessCurve:
     """K_max (eq. 11, with the delay) over a range of impact speeds, with the speed-independent bounds (N/m).
 
-    The bounds come from the same function as :class:`StiffnessLimits` (``_bounds``).
+    The bounds and the chosen stiffness's largest passive speed are not recomputed:
+    they are read from :attr:`limits`, the :class:`StiffnessLimits` of the same
+    device, stiffness and delay.
 
     Attributes
     ----------
@@ -381,27 +380,53 @@ class StiffnessCurve:
         Impact speeds (m/s or rad/s).
     k_max : numpy.ndarray
         Criterion limit at each speed.
-    k_static, k_colgate, k_abbott_okamura, k_gil : float
-    stiffness : float or None
-        A chosen stiffness to mark.
-    max_passive_velocity : float or None
-        Its largest passive speed (inf: every speed; None: none).
+    limits : StiffnessLimits
+        The limits at the first speed: source of ``k_static``, ``k_colgate``,
+        ``k_abbott_okamura``, ``k_gil``, ``stiffness``, ``max_passive_velocity``
+        and ``delay`` (read-only properties here).
     status : str
-    delay : int
-        Computational delay d in samples.
     """
 
     device: Device
     velocity: np.ndarray
     k_max: np.ndarray
-    k_static: float
-    k_colgate: float
-    k_abbott_okamura: float
-    k_gil: float
-    stiffness: float | None = None
-    max_passive_velocity: float | None = None
+    limits: StiffnessLimits
     status: str = "ok"
-    delay: int = 0
+
+    @property
+    def k_static(self) -> float:
+        """2c/Δ (eq. 9), N/m."""
+        return self.limits.k_static
+
+    @property
+    def k_colgate(self) -> float:
+        """2b/T (eq. 8); b/(T(½ + d)) with a delay, N/m."""
+        return self.limits.k_colgate
+
+    @property
+    def k_abbott_okamura(self) -> float:
+        """min(2b/T, 2c/Δ) (with the delay), N/m."""
+        return self.limits.k_abbott_okamura
+
+    @property
+    def k_gil(self) -> float:
+        """Exact linear bound of the sampled spring (:func:`k_gil`), N/m."""
+        return self.limits.k_gil
+
+    @property
+    def stiffness(self) -> float | None:
+        """The chosen stiffness to mark, N/m (None: none)."""
+        return self.limits.stiffness
+
+    @property
+    def max_passive_velocity(self) -> float | None:
+        """Its largest passive speed (inf: every speed; None: none), m/s."""
+        return self.limits.max_passive_velocity
+
+    @property
+    def delay(self) -> int:
+        """Computational delay d in samples."""
+        return self.limits.delay
 
 
 def stiffness_response(device: Device, velocity=None, stiffness: float | None = None, delay: int = 0) -> StiffnessCurve:
@@ -419,7 +444,7 @@ def stiffness_response(device: Device, velocity=None, stiffness: float | None = 
         Computational delay d in whole samples (default 0).
     """
     dev = _check_device(device)
-    d = _check_delay(delay)
+    d = check_delay(delay)
     if velocity is None:
         v0 = dev.resolution / dev.period
         velocity = np.geomspace(1e-3 * v0, 1e3 * v0, 200)
@@ -431,13 +456,5 @@ def stiffness_response(device: Device, velocity=None, stiffness: float | None = 
         if stiffness is None
         else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     )
-    mpv = None if k is None else max_passive_velocity(dev, k, d)
-    return StiffnessCurve(
-        dev,
-        v,
-        np.atleast_1d(k_max_criterion(dev, v, d)),
-        **_bounds(dev, d),
-        stiffness=k,
-        max_passive_velocity=mpv,
-        delay=d,
-    )
+    limits = stiffness_limits(dev, float(v[0]), k, d)
+    return StiffnessCurve(dev, v, np.atleast_1d(k_max_criterion(dev, v, d)), limits)

@@ -374,7 +374,7 @@ def test_size_budget_ends_incomplete_not_open_ended(monkeypatch, capsys):
     """With a tiny interval budget the 10 nm Delta search (cycle at ~1.9e5 ticks) ends BUDGET, and nothing claims absence."""
     import dfa.cycles as cyc
 
-    monkeypatch.setattr(cyc, "INTERVAL_BUDGET", 5)
+    monkeypatch.setattr(cyc.search, "INTERVAL_BUDGET", 5)
     _dev, p = _delta_10nm()
     res = limit_cycles(p)
     assert res.status_code is SearchStatus.BUDGET and not res.complete and res.search_bound is None
@@ -383,3 +383,20 @@ def test_size_budget_ends_incomplete_not_open_ended(monkeypatch, capsys):
     out = capsys.readouterr().out
     assert f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: " in out
     assert "no limit cycle predicted" not in out
+
+
+def test_eq36_failed_omega_solve_in_the_scan_is_counted_not_skipped(monkeypatch):
+    """A NaN ω(M) from the elementwise root finder makes the search incomplete (NUMERICAL), never silently shorter."""
+    import dfa.cycles as cyc
+
+    real = cyc.phase._omega_for_m
+
+    def some_fail(lp, m, wa, wb):
+        w = real(lp, m, wa, wb)
+        w[::7] = np.nan
+        return w
+
+    monkeypatch.setattr(cyc.phase, "_omega_for_m", some_fail)
+    with pytest.warns(LimitCycleSearchWarning, match="numerical failure"):
+        res = limit_cycles(dfa.Params(5.0, 0.1, 0.3))
+    assert res.status_code is SearchStatus.NUMERICAL and not res.complete

@@ -111,7 +111,7 @@ def test_fig6_nyquist_crossings_satisfy_harmonic_balance():
     r = nyquist_locus_response(p)
     assert len(r.crossings) == 2 and r.status == "ok"
     for m, w, _pt in r.crossings:
-        assert abs(1 + dfa.describing.quantizer_df(m) * loop_response(p, w)) < 1e-5
+        assert abs(1 + dfa.describing.quantizer_df(m) * loop_response(p, w)) < 1e-10
     assert np.all(r.locus.imag == 0) and np.all(r.locus.real < 0)
     s = nyquist_locus_response(dfa.Params(5.0, 0.4, 0.3), amplitudes=[0.5, 2.0])
     assert s.curves.shape == (2, s.omega.size) and s.crossings == ()
@@ -142,3 +142,25 @@ def test_loop_rejects_bad_frequency_and_params_type():
         loop_response((1.0, 0.1, 0.0), 0.5)
     with pytest.raises(dfa.DFAValueError, match="pade_order"):
         hold_delay_tf(0, 0)
+
+
+@pytest.mark.parametrize(
+    "params, kwargs",
+    [
+        (dfa.Params(5.0, 0.4, 0.0), {}),
+        (dfa.Params(5.0, 0.4, 0.0), dict(model="zoh")),
+        (dfa.Params(20.0, 0.49, 0.0), {}),
+        (dfa.Params(5.0, 0.4, 0.0), dict(model="pade", pade_order=6)),
+    ],
+)
+def test_fig6_nyquist_markers_are_the_solvers_roots(params, kwargs):
+    """σ = 0: one harmonic balance; the Nyquist crossings are limit_cycles' roots (residual <= 1e-10), not a grid interpolation."""
+    r = nyquist_locus_response(params, **kwargs)
+    cyc = dfa.limit_cycles(params, max_amplitude=float(r.locus_amplitude.max()), **kwargs).cycles
+    assert r.status == "ok" and len(r.crossings) == len(cyc) > 0
+    for (m, w, pt), c in zip(r.crossings, cyc, strict=True):
+        assert abs(m - c.amplitude) <= 1e-10 * c.amplitude and abs(w - c.frequency) <= 1e-10 * c.frequency
+        assert c.residual <= 1e-10
+        assert abs(pt + 1.0 / dfa.describing.quantizer_df(m)) <= 1e-12  # the marker sits on the locus −1/D(M)
+        # and on the curve: L(jω) at the root is the same point to 1e-10
+        assert abs(loop_response(params, w, **kwargs) - pt) <= 1e-10 * abs(pt)

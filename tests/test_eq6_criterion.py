@@ -4,11 +4,11 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dfa
-from dfa import classify_region, passivity_criterion
+from dfa import CriticalLine, classify_region, passivity_criterion
 
 beta_s = st.floats(0.0, 2.0)
 sigma_s = st.floats(0.0, 3.0)
@@ -133,3 +133,23 @@ def test_criterion_bad_input():
         passivity_criterion(0.1, 1.0, math.nan)
     with pytest.raises(dfa.DFATypeError, match="sigma"):
         passivity_criterion(0.1, "1.0", 1.0)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.floats(0.0, 3.0),
+    st.floats(0.0, 4.0),
+    st.floats(0.0, 20.0),
+    st.integers(0, 3),
+    st.booleans(),
+)
+def test_eq10_critical_line_is_the_one_margin_of_every_verdict(beta, sigma, v, d, quantized):
+    """Eq. 6/10: the result's margin, its CriticalLine and classify_region are one formula (β − ½ − d)V + (σ − σ₀)."""
+    r = passivity_criterion(beta, sigma, v, quantized=quantized, delay=d)
+    line = r.critical_line
+    s0 = 0.5 if quantized else 0.0
+    assert line == CriticalLine.of(v, quantized=quantized, delay=d) and line.sigma0 == s0 and line.beta0 == 0.5 + d
+    assert r.margin == line.margin(beta, sigma) == (beta - (0.5 + d)) * v + (sigma - s0)  # independent spelling
+    # the line is where the margin vanishes, through (½ + d, σ₀) with slope −V
+    assert line.sigma(0.5 + d) == s0 and line.margin(beta, line.sigma(beta)) == pytest.approx(0.0, abs=1e-12 * (1 + v))
+    assert (str(classify_region(beta, sigma, v, quantized, d)) in "ae") == r.passive

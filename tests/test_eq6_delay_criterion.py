@@ -212,6 +212,19 @@ def test_eq8_colgate_with_delay_and_one_source_for_the_static_limit():
         assert curve.max_passive_velocity == lim.max_passive_velocity and curve.delay == d
 
 
+def test_eq11_stiffness_curve_reads_its_bounds_from_stiffness_limits(monkeypatch):
+    """StiffnessCurve holds a StiffnessLimits and recomputes none of its bounds (one evaluation of each)."""
+    import dfa.stiffness as stf
+
+    calls = []
+    real = stf.k_gil
+    monkeypatch.setattr(stf, "k_gil", lambda *a, **k: calls.append(1) or real(*a, **k))
+    curve = stiffness_response(DEV, stiffness=14500.0, delay=1)
+    assert len(calls) == 1 and isinstance(curve.limits, stf.StiffnessLimits)
+    assert curve.limits == stf.stiffness_limits(DEV, float(curve.velocity[0]), 14500.0, delay=1)
+    assert curve.k_max[0] == curve.limits.k_max
+
+
 # ------------------------------------------------------------------ command line
 def run(capsys, *argv):
     code = main(list(argv))

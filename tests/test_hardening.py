@@ -21,19 +21,9 @@ from hypothesis import strategies as st
 
 import dfa
 from dfa import _io
+from dfa.checks import check_beta, check_int, check_mu, check_nonnegative, check_positive, check_real, check_sigma
 from dfa.cli import main
-from dfa.errors import (
-    DFAError,
-    DFATypeError,
-    DFAValueError,
-    check_beta,
-    check_int,
-    check_mu,
-    check_nonnegative,
-    check_positive,
-    check_real,
-    check_sigma,
-)
+from dfa.errors import DFAError, DFATypeError, DFAValueError
 from dfa.simulation import preload_position, stored_energy
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -676,6 +666,6 @@ def test_cli_table1_groups_without_float_exceptions(capsys, argv):
 def test_cli_huge_delay_refused_with_the_limit(capsys, cmd):
     # found by the fuzz test: --delay 999999999999999999 reached numpy's "array is too big" in dfa.linear
     err = refused(capsys, *cmd, "--delay", "999999999999999999")
-    assert "delay" in err and str(dfa.errors.MAX_DELAY) in err
+    assert "delay" in err and str(dfa.checks.MAX_DELAY) in err
     with pytest.raises(dfa.errors.DFAValueError, match="at most"):
-        dfa.linear.critical_stiffness(0.1, 1.0, 1e-3, delay=dfa.errors.MAX_DELAY + 1)
+        dfa.linear.critical_stiffness(0.1, 1.0, 1e-3, delay=dfa.checks.MAX_DELAY + 1)

@@ -94,7 +94,7 @@ def test_stiffness_for_beta_needs_damping():
 )
 def test_table1_dimensionless_parameter_rules_read_the_same_everywhere(name, bad, call):
     """Table 1's μ > 0, β >= 0, σ >= 0: one message (name, value, rule, definition) from every entry point."""
-    from dfa.errors import check_beta, check_mu, check_sigma
+    from dfa.checks import check_beta, check_mu, check_sigma
 
     checker = {"mu": check_mu, "beta": check_beta, "sigma": check_sigma}[name]
     with pytest.raises(dfa.DFAValueError) as expected:

@@ -1,0 +1,301 @@
+"""Input checks shared by the whole package: one function per rule, one message per rule.
+
+Every message names the parameter, the offending value, the rule it breaks and
+how to fix it, so that the command-line tool can print it as a single line. The
+exception types live in :mod:`dfa.errors`.
+
+Examples
+--------
+>>> from dfa.checks import check_positive
+>>> from dfa.errors import DFAValueError
+>>> check_positive("mass", 0.25)
+0.25
+>>> try:
+...     check_positive("mass", -1.0, fix="give the moving mass in kg")
+... except DFAValueError as err:
+...     print(err)
+mass = -1.0 is invalid: it must be a finite number > 0; give the moving mass in kg
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import os
+import sys
+from typing import Any
+
+import numpy as np
+
+from .errors import DFATypeError, DFAValueError
+
+__all__ = [
+    "check_real",
+    "check_positive",
+    "check_nonnegative",
+    "check_int",
+    "check_choice",
+    "check_type",
+    "check_mu",
+    "check_beta",
+    "check_sigma",
+    "check_delay",
+    "check_jobs",
+    "check_growth",
+    "check_bound",
+    "check_positive_array",
+    "INT_MAX",
+    "MAX_DELAY",
+    "DELAY_FIX",
+]
+
+
+_MAX_SHOWN = 60  # characters of a value shown in a message
+
+
+def _fmt(value: Any) -> str:
+    """A short, safe text for ``value`` in an error message (huge values abbreviated)."""
+    try:
+        if isinstance(value, (bool, np.bool_)):
+            return str(bool(value))
+        if isinstance(value, numbers.Integral):
+            v = int(value)
+            if abs(v) >= 10**18:
+                return f"{'-' if v < 0 else ''}<integer of {int(abs(v).bit_length() * 0.30103) + 1} digits>"
+            return str(v)
+        if isinstance(value, np.ndarray):
+            return f"<array of shape {value.shape}>"
+        text = repr(value) if isinstance(value, (float, str, complex)) else str(value)
+    except Exception:  # a hostile __str__/__repr__ must not hide the real message
+        text = f"<{type(value).__name__} object>"
+    if len(text) > _MAX_SHOWN:
+        text = text[: _MAX_SHOWN - 15] + f"… ({len(text)} chars)"
+    return text
+
+
+#: Largest integer accepted by :func:`check_int` (the int64 range used by numpy and the compiled kernels).
+INT_MAX = 2**63 - 1
+
+
+def _as_scalar(value: Any) -> Any:
+    """A 0-d numpy array becomes its scalar; everything else is returned unchanged."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        return value[()]
+    return value
+
+
+def _type_error(name: str, value: Any, what: str, fix: str | None) -> DFATypeError:
+    kind = f"array of shape {value.shape}" if isinstance(value, np.ndarray) else f"type {type(value).__name__}"
+    return DFATypeError(f"{name} = {_fmt(value)} has {kind}: it must be {what}" + (f"; {fix}" if fix else ""))
+
+
+def _message(name: str, value: Any, rule: str, fix: str | None) -> str:
+    msg = f"{name} = {_fmt(value)} is invalid: it must be {rule}"
+    if fix:
+        msg += f"; {fix}"
+    return msg
+
+
+def check_real(name: str, value: Any, fix: str | None = None) -> float:
+    """Return ``value`` as a finite Python float, or raise.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the message.
+    value : object
+        The value to check. Booleans and text are rejected with
+        :class:`DFATypeError`; NaN and infinities with :class:`DFAValueError`.
+    fix : str, optional
+        A hint appended to the message.
+    """
+    value = _as_scalar(value)
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise _type_error(name, value, "a real number", fix)
+    try:
+        out = float(value)
+    except (OverflowError, ValueError, TypeError):
+        raise DFAValueError(_message(name, value, "a finite number (this one overflows a float)", fix)) from None
+    if not math.isfinite(out):
+        raise DFAValueError(_message(name, out, "a finite number", fix))
+    return out
+
+
+def check_positive(name: str, value: Any, fix: str | None = None) -> float:
+    """Return ``value`` as a float if it is finite and strictly positive."""
+    out = check_real(name, value, fix)
+    if not out > 0.0:
+        raise DFAValueError(_message(name, out, "a finite number > 0", fix))
+    return out
+
+
+def check_nonnegative(name: str, value: Any, fix: str | None = None) -> float:
+    """Return ``value`` as a float if it is finite and >= 0."""
+    out = check_real(name, value, fix)
+    if out < 0.0:
+        raise DFAValueError(_message(name, out, "a finite number >= 0", fix))
+    return out
+
+
+def check_int(name: str, value: Any, minimum: int | None = None, fix: str | None = None) -> int:
+    """Return ``value`` as an int if it is integral (and >= ``minimum``)."""
+    value = _as_scalar(value)
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)):
+            try:
+                fv = float(value)
+            except (OverflowError, ValueError, TypeError):
+                fv = math.inf
+            if not (math.isfinite(fv) and fv == int(fv)):
+                raise DFAValueError(_message(name, value, "a whole number", fix))
+            value = int(fv)
+        else:
+            raise _type_error(name, value, "a whole number", fix)
+    out = int(value)
+    if minimum is not None and out < minimum:
+        raise DFAValueError(_message(name, out, f"a whole number >= {minimum}", fix))
+    if abs(out) > INT_MAX:
+        raise DFAValueError(_message(name, out, f"a whole number of at most {INT_MAX} in size", fix))
+    return out
+
+
+def check_choice(name: str, value: Any, choices: tuple[str, ...]) -> str:
+    """Return ``value`` if it is one of ``choices`` (case-insensitive)."""
+    if not isinstance(value, str):
+        raise _type_error(name, value, "one of " + ", ".join(choices), None)
+    low = value.lower()
+    for c in choices:
+        if c.lower() == low:
+            return c
+    raise DFAValueError(_message(name, value, "one of " + ", ".join(repr(c) for c in choices), None))
+
+
+def check_type(name: str, value: Any, cls: type, fix: str) -> Any:
+    """Return ``value`` if it is an instance of ``cls``, else raise :class:`DFATypeError` with ``fix``."""
+    if not isinstance(value, cls):
+        raise DFATypeError(
+            f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}"
+        )
+    return value
+
+
+# -------------------------------------------- the paper's dimensionless parameters (Table 1)
+def check_mu(value: Any, name: str = "mu") -> float:
+    """Dimensionless mass μ = m/(K T²) > 0, as a float (a normal float: 1/μ must not overflow)."""
+    out = check_positive(name, value, "μ = m/(K T²) must be positive")
+    if out < sys.float_info.min:
+        raise DFAValueError(
+            _message(
+                name,
+                out,
+                f"at least {sys.float_info.min:.3g} (1/μ overflows below)",
+                "μ = m/(K T²) must be a normal positive number",
+            )
+        )
+    return out
+
+
+def check_beta(value: Any, name: str = "beta") -> float:
+    """Dimensionless viscous damping β = b/(K T) >= 0, as a float."""
+    return check_nonnegative(name, value, "β = b/(K T) cannot be negative")
+
+
+def check_sigma(value: Any, name: str = "sigma") -> float:
+    """Dimensionless Coulomb friction σ = c/(K Δ) >= 0, as a float."""
+    return check_nonnegative(name, value, "σ = c/(K Δ) cannot be negative")
+
+
+#: Largest computational delay accepted, in samples (10 s at 1 kHz): the exact linear bound solves a
+#: polynomial of degree d + 2 and the simulator keeps d + 1 pending forces.
+MAX_DELAY = 10_000
+
+#: How to fix a bad delay (the one hint of every delay message).
+DELAY_FIX = "give the computational delay in whole samples (0: the force uses the current reading)"
+
+
+def check_delay(value: Any) -> int:
+    """Return the computational delay d (whole samples, 0 <= d <= :data:`MAX_DELAY`).
+
+    Examples
+    --------
+    >>> check_delay(2)
+    2
+    """
+    d = check_int("delay", value, minimum=0, fix=DELAY_FIX)
+    if d > MAX_DELAY:
+        raise DFAValueError(
+            f"delay = {d} is invalid: it must be at most {MAX_DELAY} samples; give the computational delay "
+            "in samples of the servo period (e.g. 1 for one sample of computation)"
+        )
+    return d
+
+
+def check_jobs(name: str, jobs: object) -> int:
+    """Validate a joblib job count: -1 (all cores) or 1 … os.cpu_count(); return it.
+
+    Nothing is silently clipped: more jobs than cores is refused (it only adds
+    processes and memory, and changes no result).
+
+    Examples
+    --------
+    >>> check_jobs("n_jobs", -1)
+    -1
+    """
+    j = check_int(name, jobs)
+    cores = os.cpu_count() or 1
+    if j == 0 or j < -1:
+        raise DFAValueError(f"{name} = {j} is invalid: it must be -1 (all cores) or a positive count")
+    if j > cores:
+        raise DFAValueError(
+            f"{name} = {j} is invalid: this machine has {cores} cores; give at most {cores} (or -1 for all)"
+        )
+    return j
+
+
+def check_growth(value: Any, name: str = "growth") -> float:
+    """Envelope growth ratio > 1 that calls a run unstable (a ratio of successive envelope peaks), as a float.
+
+    Examples
+    --------
+    >>> check_growth(1.5)
+    1.5
+    """
+    out = check_positive(name, value, "give the ratio of envelope peaks that calls a run unstable, e.g. 1.5")
+    if out <= 1.0:
+        raise DFAValueError(
+            _message(
+                name, out, "> 1 (a ratio of envelope peaks)", "give e.g. 1.5 (1 would call a steady cycle unstable)"
+            )
+        )
+    return out
+
+
+def check_bound(value: Any, xi0: float = 0.0, name: str = "bound") -> float:
+    """Position bound (ticks) beyond which a run counts as unstable: > 0 and > |ξ0|, as a float.
+
+    Examples
+    --------
+    >>> check_bound(1e6, xi0=3.0)
+    1000000.0
+    """
+    out = check_positive(name, value, "give the position bound in encoder ticks")
+    if not out > abs(xi0):
+        raise DFAValueError(_message(name, out, f"> |xi0| = {abs(xi0)!r} (the initial position)", "raise the bound"))
+    return out
+
+
+def check_positive_array(name: str, value: Any, fix: str | None = None) -> np.ndarray:
+    """Return ``value`` as a float array whose elements are all finite and > 0 (the rule of :func:`check_positive`).
+
+    The message names the first offending element.
+
+    Examples
+    --------
+    >>> check_positive_array("omega", [0.1, 1.0]).tolist()
+    [0.1, 1.0]
+    """
+    a = np.asarray(value, dtype=float)
+    good = np.isfinite(a) & (a > 0)
+    if a.size and not np.all(good):
+        raise DFAValueError(_message(name, float(a[~good].ravel()[0]), "a finite number > 0", fix))
+    return a

@@ -1,0 +1,149 @@
+"""Result types of the limit-cycle search: one cycle, all cycles of an operating point, how the search ended."""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass, field
+
+from ..device import Params
+
+
+# ------------------------------------------------------------------ results
+@dataclass(frozen=True)
+class LimitCycle:
+    """One harmonic-balance solution ξ = M sin ωτ.
+
+    Attributes
+    ----------
+    amplitude : float
+        M in encoder ticks.
+    frequency : float
+        ω in rad per sample.
+    stable : bool
+        Loeb criterion (module docstring).
+    family : str
+        ``"small"`` (M < 1) or ``"large"`` (M >= 1).
+    loeb : float
+        ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M at the root.
+    residual : float
+        |1 + D(M)·L(jω; M)| at the reported root.
+    few_samples : bool
+        True when the period is under 8 samples: first-harmonic analysis is
+        least trustworthy there (validation issue).
+    """
+
+    amplitude: float
+    frequency: float
+    stable: bool
+    family: str
+    loeb: float
+    residual: float
+    few_samples: bool = False
+
+    @property
+    def period(self) -> float:
+        """Period in samples, 2π/ω."""
+        return 2.0 * math.pi / self.frequency
+
+    def as_dict(self) -> dict[str, object]:
+        return {
+            "amplitude": self.amplitude,
+            "frequency": self.frequency,
+            "period": self.period,
+            "stable": self.stable,
+            "family": self.family,
+            "loeb": self.loeb,
+            "residual": self.residual,
+            "few_samples": self.few_samples,
+        }
+
+
+@dataclass(frozen=True)
+class LimitCycleResult:
+    """All limit cycles of one operating point (an empty tuple is a valid answer).
+
+    Attributes
+    ----------
+    params : Params
+    model, delay, pade_order : loop model (see :func:`dfa.loop.loop_response`)
+    describing : str
+        ``"exact"`` (eq. 41), or the paper's approximations ``"small"`` (2/(πM)) and ``"unity"`` (1).
+    max_amplitude : float
+        Largest amplitude searched (ticks). When ``complete``, no root of eq. 36
+        lies beyond the last one found (pieces of the phase curve ended, or the
+        envelope bound of eq. 41 closed them); when not, the search stopped here.
+    cycles : tuple of LimitCycle
+        Sorted by amplitude.
+    complete : bool
+        True only when the search provably found every root (status ``COMPLETE``).
+    status : str
+        One-line message: ``"ok"`` or ``"incomplete: …"`` (why).
+    status_code : SearchStatus
+        How the search ended.
+    search_bound : float or None
+        When complete: the amplitude (ticks) beyond which no root of eq. 36 exists
+        (the phase curve's pieces end there, or the eq. 41 envelope excludes
+        roots); 0 when the loop's phase condition has no solution at all.
+    linear_stable : bool or None
+        Whether the linear loop without encoder and Coulomb friction (always the
+        exact ZOH loop with the same delay, :func:`dfa.linear.linear_stable`) is
+        asymptotically stable; when it is not, amplitudes beyond the largest
+        unstable cycle are predicted to grow without bound.
+    """
+
+    params: Params
+    model: str
+    delay: int
+    pade_order: int
+    describing: str
+    max_amplitude: float
+    cycles: tuple = field(default_factory=tuple)
+    complete: bool = True
+    status: str = "ok"
+    status_code: SearchStatus | None = None
+    linear_stable: bool | None = None
+    search_bound: float | None = None
+
+    @property
+    def stable_cycles(self) -> tuple:
+        return tuple(c for c in self.cycles if c.stable)
+
+    @property
+    def unstable_cycles(self) -> tuple:
+        return tuple(c for c in self.cycles if not c.stable)
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record (the ``dfa limit-cycles --json`` contract plus extras)."""
+        return {
+            "cycles": [c.as_dict() for c in self.cycles],
+            "mu": self.params.mu,
+            "beta": self.params.beta,
+            "sigma": self.params.sigma,
+            "model": self.model,
+            "delay": self.delay,
+            "complete": self.complete,
+            "max_amplitude": self.max_amplitude,
+            "status": self.status,
+            "status_code": None if self.status_code is None else self.status_code.value,
+            "linear_stable": self.linear_stable,
+            "linear_model": "zoh",
+            "search_bound": self.search_bound,
+        }
+
+
+class SearchStatus(enum.Enum):
+    """How a limit-cycle search ended (:attr:`LimitCycleResult.status_code`)."""
+
+    #: every root of eq. 36 was found: the pieces ended or the envelope bound closed them
+    COMPLETE = "complete"
+    #: roots may exist beyond the caller's ``max_amplitude``
+    MAX_AMPLITUDE = "max_amplitude"
+    #: the envelope bound lies beyond the size budget of the automatic search range
+    BUDGET = "budget"
+    #: a root finder failed (no sign change where the scan saw one, or no convergence)
+    NUMERICAL = "numerical"
+
+
+class LimitCycleSearchWarning(RuntimeWarning):
+    """A limit-cycle search ended incomplete because of a numerical failure."""
