@@ -211,6 +211,12 @@ def compare_text(golden: str, new: str, where: str = "") -> list[str]:
     return problems
 
 
+#: Residuals of the harmonic-balance solver (|1 + D·L|) below this are equally converged.
+RESIDUAL_NOISE = 1e-12
+#: Loeb's stability coefficient (dfa.cycles.stability._loeb) is a central difference: compare to this.
+LOEB_REL = 1e-7
+
+
 def compare_json(golden: object, new: object, where: str = "$", rel: float = 1e-9) -> list[str]:
     """Problems: every key of ``golden`` must be in ``new`` with the same value (floats to ``rel``)."""
     if isinstance(golden, dict):
@@ -232,7 +238,11 @@ def compare_json(golden: object, new: object, where: str = "$", rel: float = 1e-
             for p in compare_json(a, b, f"{where}[{i}]", rel)
         ]
     if isinstance(golden, float) and not isinstance(new, bool) and isinstance(new, (int, float)):
-        if math.isclose(golden, new, rel_tol=rel, abs_tol=0.0) or golden == new:
+        # a solver residual is rounding noise: it must stay at rounding level, not keep its digits
+        noise = RESIDUAL_NOISE if where.endswith(".residual") else 0.0
+        # Loeb's coefficient is a central difference (step 1e-7 relative): its roundoff is ~1e-9 relative
+        tol = max(rel, LOEB_REL) if where.endswith(".loeb") else rel
+        if math.isclose(golden, new, rel_tol=tol, abs_tol=noise) or golden == new:
             return []
         return [f"{where}: was {golden!r}, now {new!r}"]
     if type(golden) is not type(new) or golden != new:
