@@ -59,7 +59,7 @@ import numpy as np
 
 from .device import Device
 from .errors import DFAValueError, check_choice, check_delay, check_int, check_positive, check_real, check_type
-from .simulation import OUTCOMES, default_samples, preload_position, simulate
+from .simulation import default_samples, preload_position, simulate
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
 __all__ = ["KSearch", "KMaxAssessment", "KMaxResult", "design_answer", "simulate_points"]
