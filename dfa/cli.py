@@ -182,8 +182,14 @@ class _Inputs:
     label: str
 
 
-def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = True) -> _Inputs:
-    """Turn device/physical/dimensionless flags into parameters, rejecting contradictions."""
+def _resolve(
+    args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = True, need_stiffness: bool = True
+) -> _Inputs:
+    """Turn device/physical/dimensionless flags into parameters, rejecting contradictions.
+
+    With ``need_stiffness=False`` a device without any stiffness (no --stiffness, no catalogue K) gives
+    ``params=None`` and ``stiffness=None``.
+    """
     phys_given = [k for k in _PHYS_FLAGS if getattr(args, k, None) is not None]
     dim_given = [k for k in _DIMLESS_FLAGS if getattr(args, k, None) is not None] if dimensionless else []
     if dim_given:
@@ -232,6 +238,8 @@ def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = T
             f"missing {' '.join(missing)}: a physical device needs all of --mass --damping --coulomb --resolution --period"
         )
     dev = Device(name=name, rotary=rotary, **values)  # type: ignore[arg-type]
+    if stiffness is None and not need_stiffness:
+        return _Inputs(None, math.nan, math.nan, dev, None, name)
     if stiffness is None:
         raise UsageError(
             f"missing --stiffness: no catalogue stiffness for {name!r}; give K in {dev.units['stiffness']}"
@@ -423,16 +431,104 @@ def _cmd_check(args: argparse.Namespace) -> int:
     return 0
 
 
+def _save_png(flag: str, path: str, ax) -> str:
+    """Write the figure of ``ax`` to ``path`` as PNG, atomically; close it."""
+    import matplotlib.pyplot as plt
+
+    from ._io import atomic_open
+
+    with atomic_open(path, "wb") as fh:
+        ax.figure.savefig(fh, format="png", dpi=120, bbox_inches="tight")
+    plt.close(ax.figure)
+    return path
+
+
+def _stiffness_source(args: argparse.Namespace, inp: _Inputs) -> str | None:
+    """Where the assessed K came from: --stiffness, the catalogue, or nowhere (None)."""
+    if args.stiffness is not None:
+        return "--stiffness"
+    return "catalogue" if inp.stiffness is not None else None
+
+
+def _limit_text(s, ku: str) -> str:
+    """One searched limit (dfa.kmax.KSearch) in words."""
+    if s.value is None:
+        return f"none: {s.reason}"
+    txt = f"{s.value:.5g} {ku}"
+    if s.reason:
+        txt += f" ({s.reason})"
+    if s.non_monotone:
+        txt += f"; NOT monotone: safe again at {', '.join(f'{k:.4g}' for k in s.safe_above)} {ku}"
+    return txt
+
+
+def _design_rows(ans, vu: str) -> list[list[str]]:
+    """Rows of `dfa stiffness` for the describing-function and simulated limits and a chosen K."""
+    ku = ans.device.units["stiffness"]
+    rows = [
+        ["describing function: largest K with growth speed >= V", _limit_text(ans.k_df, ku)],
+        ["simulation: largest K, no impact up to V diverges", _limit_text(ans.k_sim, ku)],
+        ["simulation: largest K, every impact up to V comes to rest", _limit_text(ans.k_sim_rest, ku)],
+    ]
+    for c in ans.counterexamples:
+        rows.append(
+            [
+                "COUNTEREXAMPLE to the criterion",
+                f"K = {c['stiffness']:.5g} {ku}, {c['velocity']:.4g} {vu}, {c['start']}: diverged",
+            ]
+        )
+    a = ans.assessment
+    if a is not None:
+        src = " (catalogue K)" if a.source == "catalogue" else ""
+        if a.growth_speed is None:
+            grow = "unknown (search incomplete)"
+        elif math.isinf(a.growth_speed):
+            grow = "no growth predicted"
+        else:
+            grow = f"growth predicted from {a.growth_speed:.4g} {vu} ({a.unstable_cycles} unstable cycle(s))"
+        rows += [
+            [f"predicted cycles at K = {a.stiffness:g}{src}", grow],
+            [
+                f"simulated at K = {a.stiffness:g}, impact at V",
+                f"{a.outcomes['impact']} (from ξ0 = 0), {a.outcomes['preload']} (preload)",
+            ],
+        ]
+    return rows
+
+
+def _design_answer(args: argparse.Namespace, inp: _Inputs, v: float, k: float | None, src: str | None):
+    from .kmax import design_answer
+
+    assert inp.device is not None
+    if v == 0:
+        return None
+    return design_answer(inp.device, v, args.delay, stiffness=k, stiffness_source=src or "given")
+
+
 def _cmd_stiffness(args: argparse.Namespace) -> int:
-    inp = _resolve(args, dimensionless=False)
+    inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
     xd, v = _speed(args, inp)
     assert v is not None
-    k_given = args.stiffness  # only an explicit --stiffness is assessed
-    lim = stiffness_limits(dev, v, k_given, delay=args.delay)
+    if args.plot is not None:
+        check_output_file("--plot", args.plot, ".png")
+    src = _stiffness_source(args, inp)
+    lim = stiffness_limits(dev, v, args.stiffness, delay=args.delay)  # existing keys: only --stiffness is assessed
+    ans = _design_answer(args, inp, abs(v), inp.stiffness, src)
+    if args.plot is not None:
+        from .speed_chart import stiffness_speed_chart
+
+        chart = stiffness_speed_chart(dev, args.delay, stiffness=inp.stiffness, velocity=abs(v))
+        _save_png("--plot", args.plot, chart.plot())
     if args.json:
-        _emit(lim.as_dict())
+        d = lim.as_dict()
+        extra = _design_json(ans, lim.k_max, lim.k_gil)
+        d.update({key: val for key, val in extra.items() if key not in d})
+        d["stiffness_source"] = src
+        if args.plot is not None:
+            d["plot"] = args.plot
+        _emit(d)
         return 0
     ku, vu = dev.units["stiffness"], dev.units["velocity"]
     d = lim.delay
@@ -444,14 +540,39 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
         [f"Abbott-Okamura min({cs}, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {ku}"],
         ["exact linear bound (all Jury conditions" + (f", delay {d})" if d else ")"), f"{lim.k_gil:.5g} {ku}"],
     ]
-    if lim.stiffness is not None:
-        rows.append([f"largest passive speed at K = {lim.stiffness:g}", lim.max_passive_velocity_text()])
-        rows.append(["verdict at this speed", lim.verdict_text()])
+    if ans is not None:
+        rows += _design_rows(ans, vu)
+    k_show = inp.stiffness
+    if k_show is not None:
+        lim_k = lim if lim.stiffness is not None else stiffness_limits(dev, v, k_show, delay=args.delay)
+        src_txt = " (catalogue K)" if src == "catalogue" else ""
+        rows.append([f"largest passive speed at K = {k_show:g}{src_txt}", lim_k.max_passive_velocity_text()])
+        rows.append(["verdict at this speed", lim_k.verdict_text()])
     print(
         f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
     )
     print(_table(rows))
+    if ans is not None:
+        print(f"evidence: {ans.evidence_text()}.")
+        print(
+            "only the criterion is a proof; the others hold for the simulated speeds and starts (or the first harmonic)."
+        )
+    else:
+        print("impact speed 0: the describing-function and simulated limits need a speed > 0.")
+    if args.plot is not None:
+        print(f"stiffness-speed chart written to {args.plot}")
     return 0
+
+
+def _design_json(ans, k_max: float, k_gil: float) -> dict[str, object]:
+    """The design answer's JSON keys (null with a reason when there is no impact speed)."""
+    if ans is not None:
+        return ans.as_dict()
+    why = "impact speed 0: the describing-function and simulated limits need a speed > 0"
+    out: dict[str, object] = {"k_criterion": k_max, "k_linear": k_gil}
+    for key in ("k_df", "k_sim", "k_sim_rest"):
+        out[key], out[f"{key}_reason"] = None, why
+    return out
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -881,6 +1002,11 @@ def _build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("stiffness", help="stiffness limits for design at an impact speed (eq. 8, 9, 11)")
     _add_device_args(p, dimensionless=False, speed=True)
     _add_delay_arg(p)
+    p.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        help="write the stiffness-speed chart (largest safe impact speed against K, four ways) to a PNG file",
+    )
     p.set_defaults(func=_cmd_stiffness)
 
     p = sub.add_parser("simulate", help="exact simulation of the sampled, quantized, frictional loop (eq. 4-5)")
