@@ -522,13 +522,13 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
         chart = stiffness_speed_chart(dev, args.delay, stiffness=inp.stiffness, velocity=abs(v))
         _save_png("--plot", args.plot, chart.plot())
     if args.json:
-        d = lim.as_dict()
+        rec = lim.as_dict()
         extra = _design_json(ans, lim.k_max, lim.k_gil)
-        d.update({key: val for key, val in extra.items() if key not in d})
-        d["stiffness_source"] = src
+        rec.update({key: val for key, val in extra.items() if key not in rec})
+        rec["stiffness_source"] = src
         if args.plot is not None:
-            d["plot"] = args.plot
-        _emit(d)
+            rec["plot"] = args.plot
+        _emit(rec)
         return 0
     ku, vu = dev.units["stiffness"], dev.units["velocity"]
     d = lim.delay
