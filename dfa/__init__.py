@@ -77,6 +77,10 @@ _LAZY = {
     "contour_maps": "contours",
     "validate": "validation",
     "design_report": "report",
+    "design_answer": "kmax",
+    "KMaxResult": "kmax",
+    "stiffness_speed_chart": "speed_chart",
+    "StiffnessSpeedChart": "speed_chart",
 }
 _SUBMODULES = {
     "describing",
@@ -95,6 +99,8 @@ _SUBMODULES = {
     "report",
     "plotting",
     "reference",
+    "kmax",
+    "speed_chart",
 }
 
 
