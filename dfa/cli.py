@@ -626,13 +626,15 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.json:
         d = r.as_dict()
         if phys is not None:
-            d.update(device=inp.device.name, stiffness=inp.stiffness, **phys)  # type: ignore[union-attr]
+            d.update(phys)
+            d["velocity"] = _v
         _emit(d)
         return 0
     print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
     freq = "-" if r.frequency is None else f"{r.frequency:.4g} rad/sample (period {r.period:.4g} samples)"
     if phys is not None and phys["frequency_hz"] is not None:
-        freq += f", {phys['frequency_hz']:.4g} Hz"
+        freq += f", {phys['frequency_hz']:.4g} Hz (period {phys['period_s']:.4g} s)"
+    amp_si = None if phys is None else phys.get("amplitude_si")
     rows = [
         [
             "initial state",
@@ -650,7 +652,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         rows.append(["to decide", f"run longer: --samples {r.suggested_samples}"])
     rows += [
         ["rest at sample", "-" if r.rest_sample is None else str(r.rest_sample)],
-        ["amplitude", f"{_g(r.amplitude)} ticks"],
+        [
+            "amplitude",
+            f"{_g(r.amplitude)} ticks" + ("" if amp_si is None else f" = {amp_si:.4g} {phys['position_unit']}"),
+        ],  # type: ignore[index]
         ["frequency", freq],
     ]
     if r.outcome in ("chatter", "oscillating", "undecided"):
@@ -773,21 +778,50 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     assert p is not None
     g = growth_threshold(p, inp.device, model=args.model, delay=args.delay, max_amplitude=args.max_amplitude)
     res = g.result
+    phys = None if inp.device is None or inp.stiffness is None else res.physical(inp.device, inp.stiffness)
     if args.json:
         d = res.as_dict()
         d["growth_threshold"] = g.as_dict()
+        if phys is not None:  # each cycle carries both: ticks, rad/sample and m (rad), Hz, s, N (N·m)
+            for cyc, extra in zip(d["cycles"], phys.pop("cycles"), strict=True):  # type: ignore[call-overload]
+                cyc.update(extra)
+            d.update(phys)
         _emit(d)
         return 0
     print(
         f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}; model {res.model}"
         + (f", delay {res.delay}" if res.delay else "")
     )
-    for line in _cycle_lines(g, inp.device):
+    for line in _cycle_lines(g, inp.device, phys):
         print(line)
     return 0
 
 
-def _cycle_lines(g, device) -> list[str]:
+def _cycle_rows(res, phys) -> tuple[list[list[str]], list[str]]:
+    """Table of the cycles: ticks and rad/sample, and with a device (``phys``) m (rad), Hz, s and N (N·m)."""
+    header = ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"]
+    rows = [
+        [
+            f"{c.amplitude:.6g}",
+            f"{c.frequency:.6g}",
+            f"{c.period:.4g}",
+            "stable" if c.stable else "unstable",
+            c.family + (" (period < 8 samples)" if c.few_samples else ""),
+        ]
+        for c in res.cycles
+    ]
+    if phys is None:
+        return rows, header
+    pos, force = phys["position_unit"], phys["force_unit"]
+    pk = "amplitude_rad" if phys["rotary"] else "amplitude_m"
+    fk = "force_amplitude_nm" if phys["rotary"] else "force_amplitude_n"
+    for row, q in zip(rows, phys["cycles"], strict=True):
+        row[3:3] = [f"{q[pk]:.4g}", f"{q['frequency_hz']:.4g}", f"{q['period_s']:.4g}", f"{q[fk]:.4g}"]
+    header[3:3] = [f"M ({pos})", "f (Hz)", "period (s)", f"force amplitude ({force})"]
+    return rows, header
+
+
+def _cycle_lines(g, device, phys=None) -> list[str]:
     """Text of `dfa limit-cycles`: the table, the search's completeness, the linear loop and the growth band."""
     res = g.result
     lines = []
@@ -811,17 +845,13 @@ def _cycle_lines(g, device) -> list[str]:
                 "no limit cycle predicted (search complete: the loop never meets the phase condition of eq. 36)"
             )
     else:
-        rows = [
-            [
-                f"{c.amplitude:.6g}",
-                f"{c.frequency:.6g}",
-                f"{c.period:.4g}",
-                "stable" if c.stable else "unstable",
-                c.family + (" (period < 8 samples)" if c.few_samples else ""),
-            ]
-            for c in res.cycles
-        ]
-        lines.append(_table(rows, ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"]))
+        rows, header = _cycle_rows(res, phys)
+        lines.append(_table(rows, header))
+        if phys is not None:
+            fs = phys["force_step_nm" if phys["rotary"] else "force_step_n"]
+            lines.append(
+                f"one tick = {device.resolution:.4g} {phys['position_unit']} = one force step KΔ = {fs:.4g} {phys['force_unit']}"
+            )
         if not res.complete:
             lines.append(f"search incomplete beyond M = {res.max_amplitude:g} ticks ({why}): more cycles may exist")
     if g.amplitude is not None:
