@@ -635,6 +635,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if phys is not None and phys["frequency_hz"] is not None:
         freq += f", {phys['frequency_hz']:.4g} Hz (period {phys['period_s']:.4g} s)"
     amp_si = None if phys is None else phys.get("amplitude_si")
+    amp_unit = "" if phys is None else phys["position_unit"]
     rows = [
         [
             "initial state",
@@ -654,8 +655,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         ["rest at sample", "-" if r.rest_sample is None else str(r.rest_sample)],
         [
             "amplitude",
-            f"{_g(r.amplitude)} ticks" + ("" if amp_si is None else f" = {amp_si:.4g} {phys['position_unit']}"),
-        ],  # type: ignore[index]
+            f"{_g(r.amplitude)} ticks" + ("" if amp_si is None else f" = {amp_si:.4g} {amp_unit}"),
+        ],
         ["frequency", freq],
     ]
     if r.outcome in ("chatter", "oscillating", "undecided"):
@@ -708,11 +709,109 @@ def _write_trace(path: str, r) -> None:
         raise UsageError(f"--trace {path!r} cannot be written: {exc.strerror}; choose a writable file") from None
 
 
+def _add_map_device_args(p: argparse.ArgumentParser, speeds: bool) -> None:
+    """A device instead of --mu for `map` and `contours` (μ from the device at K; its (β, σ) is marked), and --plot."""
+    g = p.add_argument_group("device (instead of --mu: a catalogue name, or physical values in SI units)")
+    g.add_argument("--device", metavar="NAME", help="catalogue device (case-insensitive prefix, e.g. 'phantom')")
+    for key, (flag, unit) in _PHYS_FLAGS.items():
+        g.add_argument(flag, dest=key, type=_number(flag, unit), metavar="X", help=f"{key} in {unit}")
+    g.add_argument(
+        "--stiffness",
+        type=_number("--stiffness", "N/m"),
+        metavar="K",
+        help="virtual wall stiffness K in N/m (rotary: N·m/rad); defaults to the catalogue K",
+    )
+    g.add_argument("--rotary", action="store_true", help="physical values are rotary (rad, N·m, kg·m²)")
+    if speeds:
+        g.add_argument(
+            "--velocity",
+            type=_number("--velocity", "m/s (rotary: rad/s)"),
+            nargs="+",
+            metavar="V",
+            help="initial speeds in m/s (rotary: rad/s; needs a device), instead of --xi-dot",
+        )
+    p.add_argument("--plot", metavar="FILE.png", help="write the figure to a PNG file")
+
+
+def _map_device(args: argparse.Namespace) -> tuple[float, _Inputs | None]:
+    """μ of `map`/`contours`: --mu, or a device at its stiffness (never both)."""
+    given = bool(args.device) or any(getattr(args, k, None) is not None for k in _PHYS_FLAGS)
+    given = given or args.stiffness is not None
+    if args.mu is not None and given:
+        raise UsageError("--mu cannot be combined with a device: give --mu, or --device/physical values (μ follows)")
+    if args.mu is None and not given:
+        raise UsageError(
+            "missing --mu: give --mu, or a device (--device NAME, or --mass --damping --coulomb --resolution --period)"
+        )
+    if args.mu is not None:
+        return args.mu, None
+    inp = _resolve(args, dimensionless=False)
+    assert inp.params is not None
+    return inp.params.mu, inp
+
+
+def _map_speeds(args: argparse.Namespace, inp: _Inputs | None) -> list[float]:
+    """ξ'0 values of `map` from --xi-dot or --velocity (m/s, with a device)."""
+    if args.xi_dot is not None and args.velocity is not None:
+        raise UsageError("--xi-dot and --velocity cannot both be given: choose one unit for the speeds")
+    if args.velocity is not None:
+        if inp is None or inp.device is None:
+            raise UsageError("--velocity needs a device: with --mu give --xi-dot (ticks per sample)")
+        return [inp.device.xi_dot(v) for v in args.velocity]
+    if args.xi_dot is None:
+        raise UsageError("missing speeds: give --xi-dot V [V ...] (ticks per sample) or, with a device, --velocity")
+    return list(args.xi_dot)
+
+
+def _device_json(inp: _Inputs | None, xi_dots: Sequence[float] = ()) -> dict[str, object]:
+    """Device, K, force step, operating point and physical speeds for the JSON of `map`/`contours`."""
+    if inp is None or inp.device is None or inp.stiffness is None or inp.params is None:
+        return {}
+    from .units import unit_context
+
+    d = unit_context(inp.device, inp.stiffness)
+    d.pop("velocity")
+    d["operating_point"] = {"mu": inp.params.mu, "beta": inp.params.beta, "sigma": inp.params.sigma}
+    d["tick_" + ("rad" if inp.device.rotary else "m")] = inp.device.resolution
+    if xi_dots:
+        d["velocities"] = [inp.device.velocity(x) for x in xi_dots]
+    return d
+
+
+def _outside_note(args: argparse.Namespace, inp: _Inputs) -> str:
+    """A warning when the device's (β, σ) lies outside the plotted ranges (empty otherwise)."""
+    assert inp.params is not None
+    b0, b1 = sorted(args.beta_range)
+    s0, s1 = sorted(args.sigma_range)
+    if b0 <= inp.params.beta <= b1 and s0 <= inp.params.sigma <= s1:
+        return ""
+    return " (outside the (β, σ) range of the map: widen --beta-range/--sigma-range to see it)"
+
+
+def _mark_operating_point(axes, inp: _Inputs | None) -> None:
+    if inp is None or inp.params is None:
+        return
+    for ax in axes:
+        ax.plot([inp.params.beta], [inp.params.sigma], marker="*", color="#1b7837", ms=12, mec="k", ls="none")
+        ax.annotate(
+            f"{inp.device.name if inp.device else ''}, K = {inp.stiffness:g}",
+            (inp.params.beta, inp.params.sigma),
+            textcoords="offset points",
+            xytext=(6, 6),
+            fontsize=7,
+            clip_on=True,
+        )
+
+
 def _cmd_map(args: argparse.Namespace) -> int:
     from ._io import check_memory
     from .maps import check_jobs, map_memory_bytes, stability_map
 
     check_output_file("--out", args.out, ".npz")
+    if args.plot is not None:
+        check_output_file("--plot", args.plot, ".png")
+    mu, inp = _map_device(args)
+    args.xi_dot = _map_speeds(args, inp)
     negative = [v for v in args.xi_dot if v < 0]
     if negative:
         raise UsageError(
@@ -738,7 +837,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
             "lower --grid or give fewer --xi-dot speeds",
         )
     m = stability_map(
-        args.mu,
+        mu,
         args.xi_dot,
         beta_range=tuple(args.beta_range),
         sigma_range=tuple(args.sigma_range),
@@ -751,11 +850,26 @@ def _cmd_map(args: argparse.Namespace) -> int:
         progress=not args.quiet,
     )
     path = m.save(args.out)
+    if args.plot is not None:
+        from .plotting import stability_map_plot
+
+        axes = stability_map_plot(m)
+        _mark_operating_point(axes, inp)
+        _save_png("--plot", args.plot, axes[0])
     if args.json:
         d = m.as_dict()
         d["out"] = str(path)
+        d.update(_device_json(inp, m.xi_dots))
+        if args.plot is not None:
+            d["plot"] = args.plot
         _emit(d)
         return 0
+    if inp is not None and inp.params is not None and inp.device is not None:
+        vu = inp.device.units["velocity"]
+        print(
+            f"{inp.label}: operating point β = {inp.params.beta:.5g}, σ = {inp.params.sigma:.5g}{_outside_note(args, inp)}; speeds "
+            + ", ".join(f"{x:g} ticks/sample = {inp.device.velocity(x):.4g} {vu}" for x in m.xi_dots)
+        )
     print(
         f"stability map μ = {m.mu:g}, β in [{m.beta[0]:g}, {m.beta[-1]:g}], σ in [{m.sigma[0]:g}, {m.sigma[-1]:g}], "
         f"{m.beta.size}×{m.sigma.size} points, {m.samples} samples" + (", spring preload" if m.preload else "")
@@ -767,6 +881,8 @@ def _cmd_map(args: argparse.Namespace) -> int:
         )
     )
     print(f"written to {path}")
+    if args.plot is not None:
+        print(f"figure written to {args.plot}")
     return 0
 
 
@@ -888,10 +1004,13 @@ def _cmd_contours(args: argparse.Namespace) -> int:
 
     if args.out is not None:
         check_output_file("--out", args.out, ".npz")
+    if args.plot is not None:
+        check_output_file("--plot", args.plot, ".png")
+    mu, inp = _map_device(args)
     if args.grid >= 2 and args.max_amplitude >= 1.0:
         check_contour_memory(args.grid, args.max_amplitude, ("--grid", "--max-amplitude"))
     c = contour_maps(
-        args.mu,
+        mu,
         beta_range=tuple(args.beta_range),
         sigma_range=tuple(args.sigma_range),
         grid=args.grid,
@@ -900,6 +1019,15 @@ def _cmd_contours(args: argparse.Namespace) -> int:
     d = c.as_dict()
     if args.out is not None:
         d["out"] = str(c.save(args.out))
+    if args.plot is not None:
+        from .plotting import contour_plot
+
+        axes = contour_plot(c)
+        _mark_operating_point(axes, inp)
+        d["plot"] = _save_png("--plot", args.plot, axes[0])
+    d.update(_device_json(inp))
+    if inp is not None and inp.device is not None and inp.stiffness is not None:
+        d["frequency_hz_per_rad_per_sample"] = 1.0 / (2.0 * math.pi * inp.device.period)
     if args.json:
         _emit(d)
         return 0
@@ -916,8 +1044,17 @@ def _cmd_contours(args: argparse.Namespace) -> int:
             ["family", "grid points"],
         )
     )
+    if inp is not None and inp.params is not None and inp.device is not None:
+        u = inp.device.units
+        print(
+            f"{inp.label}: operating point β = {inp.params.beta:.5g}, σ = {inp.params.sigma:.5g}{_outside_note(args, inp)}; "
+            f"1 tick = {inp.device.resolution:.4g} {u['position']}, ω = 1 rad/sample = {d['frequency_hz_per_rad_per_sample']:.4g} Hz, "
+            f"force step KΔ = {inp.stiffness * inp.device.resolution:.4g} {u['force']}"  # type: ignore[operator]
+        )
     if args.out is not None:
         print(f"written to {d['out']}")
+    if args.plot is not None:
+        print(f"figure written to {args.plot}")
     return 0
 
 
@@ -1069,16 +1206,16 @@ def _build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_simulate)
 
     p = sub.add_parser("map", help="stability map over the (β, σ) plane by simulation (paper Fig. 4)")
-    p.add_argument("--mu", type=_number("--mu", "dimensionless units"), required=True, help="μ = m/(K T²)")
+    p.add_argument("--mu", type=_number("--mu", "dimensionless units"), help="μ = m/(K T²) (or give a device)")
     p.add_argument(
         "--xi-dot",
         dest="xi_dot",
         type=_number("--xi-dot", "ticks per sample"),
         nargs="+",
-        required=True,
         metavar="V",
         help="initial speeds ξ'0 (ticks per sample)",
     )
+    _add_map_device_args(p, speeds=True)
     p.add_argument(
         "--beta-range",
         type=_number("--beta-range", "dimensionless units"),
@@ -1132,7 +1269,8 @@ def _build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_limit_cycles)
 
     p = sub.add_parser("contours", help="amplitude/frequency maps of both cycle families (paper Fig. 7)")
-    p.add_argument("--mu", type=_number("--mu", "dimensionless units"), required=True, help="μ = m/(K T²)")
+    p.add_argument("--mu", type=_number("--mu", "dimensionless units"), help="μ = m/(K T²) (or give a device)")
+    _add_map_device_args(p, speeds=False)
     p.add_argument(
         "--beta-range",
         type=_number("--beta-range", "dimensionless units"),
