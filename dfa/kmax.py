@@ -177,7 +177,7 @@ def _search(judge: Callable[[float], str], grid: np.ndarray, what: str, unit: st
             hi, hi_verdict = mid, v
     reason = None
     if hi_verdict == UNDECIDED:
-        reason = f"limited by undecided runs at {hi:.5g} {unit} (too short to tell; counted as not safe)"
+        reason = f"limited by undecided runs at {hi:.5g} {unit}: too short to tell, counted as not safe"
     return KSearch(lo, reason, bool(safe_above), safe_above, tuple(sorted(undecided)), hi, n)
 
 
