@@ -442,6 +442,9 @@ def stiffness_speed_plot(chart, ax=None):
     for k, style, label in lines:
         if k > 0:
             ax.axvline(k, label=f"{label}: {k:.4g}", **style)
+    if chart.design_velocity is not None and chart.design_velocity > 0:
+        ax.axhline(chart.design_velocity, color="0.4", lw=0.8, ls="--",
+                   label=f"design speed V = {chart.design_velocity:.3g} {u['velocity']}")  # fmt: skip
     if chart.design_stiffness is not None and chart.design_velocity is not None:
         ax.plot(
             [chart.design_stiffness],
