@@ -735,6 +735,8 @@ def _add_map_device_args(p: argparse.ArgumentParser, speeds: bool) -> None:
 
 def _map_device(args: argparse.Namespace) -> tuple[float, _Inputs | None]:
     """μ of `map`/`contours`: --mu, or a device at its stiffness (never both)."""
+    if args.plot is not None and args.grid < 2:
+        raise UsageError(f"--plot needs --grid 2 or more (got --grid {args.grid}): a figure needs a grid")
     given = bool(args.device) or any(getattr(args, k, None) is not None for k in _PHYS_FLAGS)
     given = given or args.stiffness is not None
     if args.mu is not None and given:

@@ -59,7 +59,7 @@ import numpy as np
 
 from .device import Device
 from .errors import DFAValueError, check_choice, check_delay, check_int, check_positive, check_real, check_type
-from .simulation import default_samples, preload_position, simulate
+from .simulation import default_samples, preload_position, simulate, stored_energy
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
 __all__ = ["KSearch", "KMaxAssessment", "KMaxResult", "design_answer", "simulate_points"]
@@ -69,13 +69,17 @@ K_RTOL = 2e-3
 #: Longest run (samples) of one design simulation; longer automatic lengths are cut and may be undecided.
 DESIGN_MAX_SAMPLES = 1_000_000
 
+#: |ξ| (ticks) past which a design run counts as diverged: at least this, and 100 × the energy amplitude.
+DIVERGENCE_BOUND = 1.0e6
+
 SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
 
 
 def simulate_points(points: Sequence[tuple[float, float, float, float, float]], delay: int, max_samples: int):
     """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), and the samples of each run.
 
-    The run length of each point is :func:`dfa.simulation.default_samples`, at most ``max_samples``.
+    The run length of each point is :func:`dfa.simulation.default_samples`, at most ``max_samples``; a run
+    diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of its start.
     One place for the many simulations of the design answer (a batched kernel can replace the loop).
 
     Returns
@@ -86,7 +90,10 @@ def simulate_points(points: Sequence[tuple[float, float, float, float, float]], 
     outcomes, lengths = [], []
     for mu, beta, sigma, xi0, xi_dot0 in points:
         n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay), max_samples)
-        r = simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False)
+        # divergence bound: far beyond the energy amplitude √(2 H_T(0)) (eq. 18-19), which a passive run never leaves
+        amp0 = math.sqrt(2.0 * float(stored_energy(xi0, xi_dot0, mu)))
+        bound = max(DIVERGENCE_BOUND, 100.0 * (amp0 + 1.0))
+        r = simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound)
         outcomes.append(r.outcome)
         lengths.append(n)
     return outcomes, lengths
@@ -156,7 +163,7 @@ def _search(judge: Callable[[float], str], grid: np.ndarray, what: str, unit: st
     if i == 0:
         return KSearch(
             None,
-            f"not {what} even at the smallest stiffness searched, {grid[0]:.5g} {unit} ({verdicts[0]})",
+            f"{what} fails already at the smallest stiffness searched, {grid[0]:.5g} {unit} ({verdicts[0]})",
             bool(safe_above),
             safe_above,
             tuple(sorted(undecided)),
@@ -255,7 +262,11 @@ class _Evidence:
     def outcomes(self, k: float) -> list[tuple[float, str, str]]:
         """(ξ'0, start, outcome) of every impact simulated at stiffness ``k``."""
         if k not in self.sims:
-            p = self.dev.params(k)
+            try:
+                p = self.dev.params(k)
+            except DFAValueError:  # μ, β or σ not representable at this K: nothing can be decided there
+                self.sims[k] = [(xd, start, "undecided") for xd in self.xi_dots for start in ("impact", "preload")]
+                return self.sims[k]
             pts, tags = [], []
             for xd in self.xi_dots:
                 pts.append((p.mu, p.beta, p.sigma, 0.0, xd))
@@ -279,7 +290,11 @@ class _Evidence:
 
     def growth_xi_dot(self, k: float) -> tuple[float | None, int]:
         if k not in self.growth:
-            p = self.dev.params(k)
+            try:
+                p = self.dev.params(k)
+            except DFAValueError:  # not representable at this K
+                self.growth[k] = (None, 0)
+                return self.growth[k]
             self.growth[k] = _growth_xi_dot(p.mu, p.beta, p.sigma, self.delay, self.model)
         return self.growth[k]
 
@@ -490,9 +505,9 @@ def design_answer(
     if top > 0:
         pts = _search_grid(kc, top, n_grid)
         xd = dev.xi_dot(v)
-        k_df = _search(lambda k: ev.predicted(k, xd), pts, "growth speed at least V", unit)
-        k_sim = _search(ev.no_divergence, pts, "free of divergence", unit)
-        k_rest = _search(ev.rest, pts, "at rest after every impact", unit)
+        k_df = _search(lambda k: ev.predicted(k, xd), pts, "predicted growth speed >= V", unit)
+        k_sim = _search(ev.no_divergence, pts, "no divergence", unit)
+        k_rest = _search(ev.rest, pts, "rest after every impact", unit)
         k_range = (float(pts[0]), float(pts[-1]))
     else:
         why = "no search range: the device has neither viscous nor Coulomb friction (b = c = 0)"
