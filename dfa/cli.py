@@ -1168,7 +1168,11 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     p.set_defaults(func=_cmd_check)
 
-    p = sub.add_parser("stiffness", help="stiffness limits for design at an impact speed (eq. 8, 9, 11)")
+    p = sub.add_parser(
+        "stiffness",
+        help="largest stiffness for an impact speed, four ways: criterion (eq. 11), exact linear bound, "
+        "describing function, simulation; bounds of eq. 8, 9",
+    )
     _add_device_args(p, dimensionless=False, speed=True)
     _add_delay_arg(p)
     p.add_argument(
