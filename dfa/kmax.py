@@ -401,9 +401,16 @@ class KMaxResult:
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record: the four limits (null with a reason), the bounds, the evidence."""
         out: dict[str, object] = {
+            "device": self.device.name,
+            "velocity": self.velocity,
+            "xi_dot": self.xi_dot,
+            "delay": self.delay,
             "k_criterion": self.k_criterion,
             "k_linear": self.k_linear,
             "k_gil": self.k_linear,
+            "k_static": self.k_static,
+            "k_colgate": self.k_colgate,
+            "k_abbott_okamura": self.k_abbott_okamura,
         }
         for name, s in self.searches.items():
             out[name] = s.value
