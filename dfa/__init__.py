@@ -87,6 +87,10 @@ _LAZY = {
     "design_report": "report",
     "DesignAnalysis": "design",
     "design_analysis": "design",
+    "design_answer": "kmax",
+    "KMaxResult": "kmax",
+    "stiffness_speed_chart": "speed_chart",
+    "StiffnessSpeedChart": "speed_chart",
 }
 _SUBMODULES = {
     "describing",
@@ -107,6 +111,8 @@ _SUBMODULES = {
     "render",
     "formatting",
     "plotting",
+    "kmax",
+    "speed_chart",
 }
 
 

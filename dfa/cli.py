@@ -229,8 +229,14 @@ class _Inputs:
     entry: CatalogueEntry | None = None  # the catalogue row, when the device is that row unchanged
 
 
-def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = True) -> _Inputs:
-    """Turn device/physical/dimensionless flags into parameters, rejecting contradictions."""
+def _resolve(
+    args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = True, need_stiffness: bool = True
+) -> _Inputs:
+    """Turn device/physical/dimensionless flags into parameters, rejecting contradictions.
+
+    With ``need_stiffness=False`` a device without any stiffness (no --stiffness, no catalogue K) gives
+    ``params=None`` and ``stiffness=None``.
+    """
     phys_given = [k for k in _PHYS_FLAGS if getattr(args, k, None) is not None]
     dim_given = [k for k in _DIMLESS_FLAGS if getattr(args, k, None) is not None] if dimensionless else []
     if dim_given:
@@ -269,6 +275,8 @@ def _resolve(args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = T
         flags=_FLAG_NAMES,
     )
     dev = r.device
+    if r.stiffness is None and not need_stiffness:
+        return _Inputs(None, math.nan, math.nan, dev, None, r.label, r.entry)
     if r.stiffness is None:
         raise UsageError(
             f"missing --stiffness: no catalogue stiffness for {dev.name!r}; give K in {dev.units['stiffness']}"
@@ -411,16 +419,104 @@ def _cmd_check(args: argparse.Namespace) -> int:
     return 0
 
 
+def _save_png(flag: str, path: str, ax) -> str:
+    """Write the figure of ``ax`` to ``path`` as PNG, atomically; close it."""
+    import matplotlib.pyplot as plt
+
+    from ._io import atomic_open
+
+    with atomic_open(path, "wb") as fh:
+        ax.figure.savefig(fh, format="png", dpi=120, bbox_inches="tight")
+    plt.close(ax.figure)
+    return path
+
+
+def _stiffness_source(args: argparse.Namespace, inp: _Inputs) -> str | None:
+    """Where the assessed K came from: --stiffness, the catalogue, or nowhere (None)."""
+    if args.stiffness is not None:
+        return "--stiffness"
+    return "catalogue" if inp.stiffness is not None else None
+
+
+def _limit_text(s, ku: str) -> str:
+    """One searched limit (dfa.kmax.KSearch) in words."""
+    if s.value is None:
+        return f"none: {s.reason}"
+    txt = f"{s.value:.5g} {ku}"
+    if s.reason:
+        txt += f" ({s.reason})"
+    if s.non_monotone:
+        txt += f"; NOT monotone: safe again at {', '.join(f'{k:.4g}' for k in s.safe_above)} {ku}"
+    return txt
+
+
+def _design_rows(ans, vu: str) -> list[list[str]]:
+    """Rows of `dfa stiffness` for the describing-function and simulated limits and a chosen K."""
+    ku = ans.device.units["stiffness"]
+    rows = [
+        ["describing function: largest K with growth speed >= V", _limit_text(ans.k_df, ku)],
+        ["simulation: largest K, no impact up to V diverges", _limit_text(ans.k_sim, ku)],
+        ["simulation: largest K, every impact up to V comes to rest", _limit_text(ans.k_sim_rest, ku)],
+    ]
+    for c in ans.counterexamples:
+        rows.append(
+            [
+                "COUNTEREXAMPLE to the criterion",
+                f"K = {c['stiffness']:.5g} {ku}, {c['velocity']:.4g} {vu}, {c['start']}: diverged",
+            ]
+        )
+    a = ans.assessment
+    if a is not None:
+        src = " (catalogue K)" if a.source == "catalogue" else ""
+        if a.growth_speed is None:
+            grow = "unknown (search incomplete)"
+        elif math.isinf(a.growth_speed):
+            grow = "no growth predicted"
+        else:
+            grow = f"growth predicted from {a.growth_speed:.4g} {vu} ({a.unstable_cycles} unstable cycle(s))"
+        rows += [
+            [f"predicted cycles at K = {a.stiffness:g}{src}", grow],
+            [
+                f"simulated at K = {a.stiffness:g}, impact at V",
+                f"{a.outcomes['impact']} (from ξ0 = 0), {a.outcomes['preload']} (preload)",
+            ],
+        ]
+    return rows
+
+
+def _design_answer(args: argparse.Namespace, inp: _Inputs, v: float, k: float | None, src: str | None):
+    from .kmax import design_answer
+
+    assert inp.device is not None
+    if v == 0:
+        return None
+    return design_answer(inp.device, v, args.delay, stiffness=k, stiffness_source=src or "given")
+
+
 def _cmd_stiffness(args: argparse.Namespace) -> int:
-    inp = _resolve(args, dimensionless=False)
+    inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
     xd, v = _speed(args, inp)
     assert v is not None
-    k_given = args.stiffness  # only an explicit --stiffness is assessed
-    lim = stiffness_limits(dev, v, k_given, delay=args.delay)
+    if args.plot is not None:
+        check_output_file("--plot", args.plot, ".png")
+    src = _stiffness_source(args, inp)
+    lim = stiffness_limits(dev, v, args.stiffness, delay=args.delay)  # existing keys: only --stiffness is assessed
+    ans = _design_answer(args, inp, abs(v), inp.stiffness, src)
+    if args.plot is not None:
+        from .speed_chart import stiffness_speed_chart
+
+        chart = stiffness_speed_chart(dev, args.delay, stiffness=inp.stiffness, velocity=abs(v))
+        _save_png("--plot", args.plot, chart.plot())
     if args.json:
-        _emit(lim.as_dict())
+        rec = lim.as_dict()
+        extra = _design_json(ans, lim.k_max, lim.k_gil)
+        rec.update({key: val for key, val in extra.items() if key not in rec})
+        rec["stiffness_source"] = src
+        if args.plot is not None:
+            rec["plot"] = args.plot
+        _emit(rec)
         return 0
     ku, vu = dev.units["stiffness"], dev.units["velocity"]
     d = lim.delay
@@ -432,14 +528,39 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
         [f"Abbott-Okamura min({cs}, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {ku}"],
         ["exact linear bound (all Jury conditions" + (f", delay {d})" if d else ")"), f"{lim.k_gil:.5g} {ku}"],
     ]
-    if lim.stiffness is not None:
-        rows.append([f"largest passive speed at K = {lim.stiffness:g}", lim.max_passive_velocity_text()])
-        rows.append(["verdict at this speed", lim.verdict_text()])
+    if ans is not None:
+        rows += _design_rows(ans, vu)
+    k_show = inp.stiffness
+    if k_show is not None:
+        lim_k = lim if lim.stiffness is not None else stiffness_limits(dev, v, k_show, delay=args.delay)
+        src_txt = " (catalogue K)" if src == "catalogue" else ""
+        rows.append([f"largest passive speed at K = {k_show:g}{src_txt}", lim_k.max_passive_velocity_text()])
+        rows.append(["verdict at this speed", lim_k.verdict_text()])
     print(
         f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
     )
     print(_table(rows))
+    if ans is not None:
+        print(f"evidence: {ans.evidence_text()}.")
+        print(
+            "only the criterion is a proof; the others hold for the simulated speeds and starts (or the first harmonic)."
+        )
+    else:
+        print("impact speed 0: the describing-function and simulated limits need a speed > 0.")
+    if args.plot is not None:
+        print(f"stiffness-speed chart written to {args.plot}")
     return 0
+
+
+def _design_json(ans, k_max: float, k_gil: float) -> dict[str, object]:
+    """The design answer's JSON keys (null with a reason when there is no impact speed)."""
+    if ans is not None:
+        return ans.as_dict()
+    why = "impact speed 0: the describing-function and simulated limits need a speed > 0"
+    out: dict[str, object] = {"k_criterion": k_max, "k_linear": k_gil}
+    for key in ("k_df", "k_sim", "k_sim_rest"):
+        out[key], out[f"{key}_reason"] = None, why
+    return out
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -494,7 +615,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.json:
         d = r.as_dict()
         if phys is not None:
-            d.update(device=inp.device.name, stiffness=inp.stiffness, **phys)  # type: ignore[union-attr]
+            d.update(phys)
+            d["velocity"] = _v
         _emit(d)
         return 0
     print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
@@ -536,12 +658,112 @@ def _write_trace(path: str, r) -> None:
         raise UsageError(f"--trace {path!r} cannot be written: {exc.strerror}; choose a writable file") from None
 
 
+def _add_map_device_args(p: argparse.ArgumentParser, speeds: bool) -> None:
+    """A device instead of --mu for `map` and `contours` (μ from the device at K; its (β, σ) is marked), and --plot."""
+    g = p.add_argument_group("device (instead of --mu: a catalogue name, or physical values in SI units)")
+    g.add_argument("--device", metavar="NAME", help="catalogue device (case-insensitive prefix, e.g. 'phantom')")
+    for key, (flag, unit) in _PHYS_FLAGS.items():
+        g.add_argument(flag, dest=key, type=_number(flag, unit), metavar="X", help=f"{key} in {unit}")
+    g.add_argument(
+        "--stiffness",
+        type=_number("--stiffness", "N/m"),
+        metavar="K",
+        help="virtual wall stiffness K in N/m (rotary: N·m/rad); defaults to the catalogue K",
+    )
+    g.add_argument("--rotary", action="store_true", help="physical values are rotary (rad, N·m, kg·m²)")
+    if speeds:
+        g.add_argument(
+            "--velocity",
+            type=_number("--velocity", "m/s (rotary: rad/s)"),
+            nargs="+",
+            metavar="V",
+            help="initial speeds in m/s (rotary: rad/s; needs a device), instead of --xi-dot",
+        )
+    p.add_argument("--plot", metavar="FILE.png", help="write the figure to a PNG file")
+
+
+def _map_device(args: argparse.Namespace) -> tuple[float, _Inputs | None]:
+    """μ of `map`/`contours`: --mu, or a device at its stiffness (never both)."""
+    if args.plot is not None and args.grid < 2:
+        raise UsageError(f"--plot needs --grid 2 or more (got --grid {args.grid}): a figure needs a grid")
+    given = bool(args.device) or any(getattr(args, k, None) is not None for k in _PHYS_FLAGS)
+    given = given or args.stiffness is not None
+    if args.mu is not None and given:
+        raise UsageError("--mu cannot be combined with a device: give --mu, or --device/physical values (μ follows)")
+    if args.mu is None and not given:
+        raise UsageError(
+            "missing --mu: give --mu, or a device (--device NAME, or --mass --damping --coulomb --resolution --period)"
+        )
+    if args.mu is not None:
+        return args.mu, None
+    inp = _resolve(args, dimensionless=False)
+    assert inp.params is not None
+    return inp.params.mu, inp
+
+
+def _map_speeds(args: argparse.Namespace, inp: _Inputs | None) -> list[float]:
+    """ξ'0 values of `map` from --xi-dot or --velocity (m/s, with a device)."""
+    if args.xi_dot is not None and args.velocity is not None:
+        raise UsageError("--xi-dot and --velocity cannot both be given: choose one unit for the speeds")
+    if args.velocity is not None:
+        if inp is None or inp.device is None:
+            raise UsageError("--velocity needs a device: with --mu give --xi-dot (ticks per sample)")
+        return [inp.device.xi_dot(v) for v in args.velocity]
+    if args.xi_dot is None:
+        raise UsageError("missing speeds: give --xi-dot V [V ...] (ticks per sample) or, with a device, --velocity")
+    return list(args.xi_dot)
+
+
+def _device_json(inp: _Inputs | None, xi_dots: Sequence[float] = ()) -> dict[str, object]:
+    """Device, K, force step, operating point and physical speeds for the JSON of `map`/`contours`."""
+    if inp is None or inp.device is None or inp.stiffness is None or inp.params is None:
+        return {}
+    from .units import unit_context
+
+    d = unit_context(inp.device, inp.stiffness)
+    d.pop("velocity")
+    d["operating_point"] = {"mu": inp.params.mu, "beta": inp.params.beta, "sigma": inp.params.sigma}
+    d["tick_" + ("rad" if inp.device.rotary else "m")] = inp.device.resolution
+    if xi_dots:
+        d["velocities"] = [inp.device.velocity(x) for x in xi_dots]
+    return d
+
+
+def _outside_note(args: argparse.Namespace, inp: _Inputs) -> str:
+    """A warning when the device's (β, σ) lies outside the plotted ranges (empty otherwise)."""
+    assert inp.params is not None
+    b0, b1 = sorted(args.beta_range)
+    s0, s1 = sorted(args.sigma_range)
+    if b0 <= inp.params.beta <= b1 and s0 <= inp.params.sigma <= s1:
+        return ""
+    return " (outside the (β, σ) range of the map: widen --beta-range/--sigma-range to see it)"
+
+
+def _mark_operating_point(axes, inp: _Inputs | None) -> None:
+    if inp is None or inp.params is None:
+        return
+    for ax in axes:
+        ax.plot([inp.params.beta], [inp.params.sigma], marker="*", color="#1b7837", ms=12, mec="k", ls="none")
+        ax.annotate(
+            f"{inp.device.name if inp.device else ''}, K = {inp.stiffness:g}",
+            (inp.params.beta, inp.params.sigma),
+            textcoords="offset points",
+            xytext=(6, 6),
+            fontsize=7,
+            clip_on=True,
+        )
+
+
 def _cmd_map(args: argparse.Namespace) -> int:
     from ._io import check_memory
     from .checks import check_jobs
     from .maps import map_memory_bytes, stability_map
 
     check_output_file("--out", args.out, ".npz")
+    if args.plot is not None:
+        check_output_file("--plot", args.plot, ".png")
+    mu, inp = _map_device(args)
+    args.xi_dot = _map_speeds(args, inp)
     negative = [v for v in args.xi_dot if v < 0]
     if negative:
         raise UsageError(
@@ -567,7 +789,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
             "lower --grid or give fewer --xi-dot speeds",
         )
     m = stability_map(
-        args.mu,
+        mu,
         args.xi_dot,
         beta_range=tuple(args.beta_range),
         sigma_range=tuple(args.sigma_range),
@@ -580,11 +802,26 @@ def _cmd_map(args: argparse.Namespace) -> int:
         progress=not args.quiet,
     )
     path = m.save(args.out)
+    if args.plot is not None:
+        from .plotting import stability_map_plot
+
+        axes = stability_map_plot(m)
+        _mark_operating_point(axes, inp)
+        _save_png("--plot", args.plot, axes[0])
     if args.json:
         d = m.as_dict()
         d["out"] = str(path)
+        d.update(_device_json(inp, m.xi_dots))
+        if args.plot is not None:
+            d["plot"] = args.plot
         _emit(d)
         return 0
+    if inp is not None and inp.params is not None and inp.device is not None:
+        vu = inp.device.units["velocity"]
+        print(
+            f"{inp.label}: operating point β = {inp.params.beta:.5g}, σ = {inp.params.sigma:.5g}{_outside_note(args, inp)}; speeds "
+            + ", ".join(f"{x:g} ticks/sample = {inp.device.velocity(x):.4g} {vu}" for x in m.xi_dots)
+        )
     print(
         f"stability map μ = {m.mu:g}, β in [{m.beta[0]:g}, {m.beta[-1]:g}], σ in [{m.sigma[0]:g}, {m.sigma[-1]:g}], "
         f"{m.beta.size}×{m.sigma.size} points, {m.samples} samples" + (", spring preload" if m.preload else "")
@@ -596,6 +833,8 @@ def _cmd_map(args: argparse.Namespace) -> int:
         )
     )
     print(f"written to {path}")
+    if args.plot is not None:
+        print(f"figure written to {args.plot}")
     return 0
 
 
@@ -608,15 +847,16 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     assert p is not None
     g = growth_threshold(p, inp.device, model=args.model, delay=args.delay, max_amplitude=args.max_amplitude)
     res = g.result
+    phys = None if inp.device is None or inp.stiffness is None else res.physical(inp.device, inp.stiffness)
     if args.json:
-        d = limit_cycles_dict(g)
+        d = limit_cycles_dict(g, phys)
         _emit(d)
         return 0
     print(
         f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}; model {res.model}"
         + (f", delay {res.delay}" if res.delay else "")
     )
-    for line in limit_cycle_lines(g, inp.device):
+    for line in limit_cycle_lines(g, inp.device, phys):
         print(line)
     return 0
 
@@ -626,10 +866,13 @@ def _cmd_contours(args: argparse.Namespace) -> int:
 
     if args.out is not None:
         check_output_file("--out", args.out, ".npz")
+    if args.plot is not None:
+        check_output_file("--plot", args.plot, ".png")
+    mu, inp = _map_device(args)
     if args.grid >= 2 and args.max_amplitude >= 1.0:
         check_contour_memory(args.grid, args.max_amplitude, ("--grid", "--max-amplitude"))
     c = contour_maps(
-        args.mu,
+        mu,
         beta_range=tuple(args.beta_range),
         sigma_range=tuple(args.sigma_range),
         grid=args.grid,
@@ -638,6 +881,15 @@ def _cmd_contours(args: argparse.Namespace) -> int:
     d = c.as_dict()
     if args.out is not None:
         d["out"] = str(c.save(args.out))
+    if args.plot is not None:
+        from .plotting import contour_plot
+
+        axes = contour_plot(c)
+        _mark_operating_point(axes, inp)
+        d["plot"] = _save_png("--plot", args.plot, axes[0])
+    d.update(_device_json(inp))
+    if inp is not None and inp.device is not None and inp.stiffness is not None:
+        d["frequency_hz_per_rad_per_sample"] = 1.0 / (2.0 * math.pi * inp.device.period)
     if args.json:
         _emit(d)
         return 0
@@ -654,8 +906,17 @@ def _cmd_contours(args: argparse.Namespace) -> int:
             ["family", "grid points"],
         )
     )
+    if inp is not None and inp.params is not None and inp.device is not None:
+        u = inp.device.units
+        print(
+            f"{inp.label}: operating point β = {inp.params.beta:.5g}, σ = {inp.params.sigma:.5g}{_outside_note(args, inp)}; "
+            f"1 tick = {inp.device.resolution:.4g} {u['position']}, ω = 1 rad/sample = {d['frequency_hz_per_rad_per_sample']:.4g} Hz, "
+            f"force step KΔ = {inp.stiffness * inp.device.resolution:.4g} {u['force']}"  # type: ignore[operator]
+        )
     if args.out is not None:
         print(f"written to {d['out']}")
+    if args.plot is not None:
+        print(f"figure written to {args.plot}")
     return 0
 
 
@@ -795,10 +1056,18 @@ def _add_check(sub: Any) -> None:
 
 
 def _add_stiffness(sub: Any) -> None:
-    help = "stiffness limits for design at an impact speed (eq. 8, 9, 11)"
+    help = (
+        "largest stiffness for an impact speed, four ways: criterion (eq. 11), exact linear bound, "
+        "describing function, simulation; bounds of eq. 8, 9"
+    )
     p = _sub(sub, "stiffness", help, "dfa stiffness --device impulse --velocity 0.05 --stiffness 80", _cmd_stiffness)
     _add_device_args(p, dimensionless=False, speed=True)
     _add_delay_arg(p)
+    p.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        help="write the stiffness-speed chart (largest safe impact speed against K, four ways) to a PNG file",
+    )
 
 
 def _add_simulate(sub: Any) -> None:
@@ -838,17 +1107,15 @@ def _add_map(sub: Any) -> None:
     p.add_argument(
         "--mu",
         type=_number("--mu", "dimensionless units"),
-        required=True,
-        help="μ = m/(K T²), dimensionless (required)",
+        help="μ = m/(K T²), dimensionless (or give a device)",
     )
     p.add_argument(
         "--xi-dot",
         dest="xi_dot",
         type=_number("--xi-dot", "ticks per sample"),
         nargs="+",
-        required=True,
         metavar="V",
-        help="initial speeds ξ'0 in ticks per sample (required)",
+        help="initial speeds ξ'0 in ticks per sample (or --velocity with a device)",
     )
     _range_arg(p, "--beta-range", [0.0, 1.0], "β")
     _range_arg(p, "--sigma-range", [0.0, 2.0], "σ")
@@ -861,6 +1128,7 @@ def _add_map(sub: Any) -> None:
     p.add_argument(
         "--no-quantization", action="store_true", help="linear spring, no encoder (default: with the encoder)"
     )
+    _add_map_device_args(p, speeds=True)
     p.add_argument(
         "--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default: -1, all cores)"
     )
@@ -900,9 +1168,9 @@ def _add_contours(sub: Any) -> None:
     p.add_argument(
         "--mu",
         type=_number("--mu", "dimensionless units"),
-        required=True,
-        help="μ = m/(K T²), dimensionless (required)",
+        help="μ = m/(K T²), dimensionless (or give a device)",
     )
+    _add_map_device_args(p, speeds=False)
     _range_arg(p, "--beta-range", [0.0, 1.0], "β")
     _range_arg(p, "--sigma-range", [0.0, 2.0], "σ")
     p.add_argument("--grid", type=_integer("--grid"), default=200, metavar="N", help="points per axis (default: 200)")

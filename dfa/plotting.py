@@ -39,6 +39,7 @@ __all__ = [
     "contour_plot",
     "nyquist_plot",
     "stiffness_plot",
+    "stiffness_speed_plot",
     "cycle_error_plot",
     "critical_speed_plot",
     "BETA_LABEL",
@@ -388,6 +389,88 @@ def stiffness_plot(curve, ax=None):
     ax.set_title(f"{curve.device.name}: largest passive stiffness", fontsize=9)
     ax.legend(fontsize=7, loc="lower left")
     ax.grid(True, which="both", alpha=0.3)
+    return ax
+
+
+def stiffness_speed_plot(chart, ax=None):
+    """Largest safe impact speed against stiffness K, four ways, with the closed-form bounds (issue 14 §2).
+
+    Parameters
+    ----------
+    chart : StiffnessSpeedChart
+        From :func:`dfa.speed_chart.stiffness_speed_chart`.
+    """
+    ax = _axes(ax, figsize=(7.0, 4.6))
+    u = chart.device.units
+    floor = float(chart.speeds[0]) / 2.0  # "not even the slowest simulated speed" is drawn here
+
+    def show(v):
+        return np.where(np.asarray(v) < floor, floor, v)
+
+    ax.plot(
+        chart.criterion_stiffness, show(chart.v_criterion), color="#2166ac", lw=2.2, label="criterion (eq. 11, proof)"
+    )
+    ax.plot(
+        chart.stiffness,
+        show(chart.v_df),
+        color="#e08214",
+        lw=1.5,
+        ls="--",
+        marker="^",
+        ms=4,
+        label="describing function (growth speed)",
+    )
+    ax.plot(
+        chart.stiffness, show(chart.v_sim), color="#b2182b", lw=1.5, marker="o", ms=4, label="simulation: no divergence"
+    )
+    ax.plot(
+        chart.stiffness,
+        show(chart.v_rest),
+        color="#1b7837",
+        lw=1.2,
+        ls=":",
+        marker="s",
+        ms=3.5,
+        label="simulation: comes to rest",
+    )
+    d = chart.delay
+    cs = "2b/T" if d == 0 else f"b/(T(½ + {d}))"
+    lines = [
+        (chart.k_abbott_okamura, dict(color="#c2a5cf", lw=5, alpha=0.7), f"Abbott–Okamura min({cs}, 2c/Δ)"),
+        (chart.k_colgate, dict(color="#762a83", lw=1.4, ls="--"), f"Colgate–Schenkel {cs}"),
+        (chart.k_linear, dict(color="k", lw=1.0, ls=(0, (1, 1.5))), "exact linear bound (no encoder, no friction)"),
+        (chart.k_static, dict(color="#4d9221", lw=1.2, ls="-."), "static limit 2c/Δ (eq. 9)"),
+    ]
+    for k, style, label in lines:
+        if k > 0:
+            ax.axvline(k, label=f"{label}: {k:.4g}", **style)
+    if chart.design_velocity is not None and chart.design_velocity > 0:
+        ax.axhline(chart.design_velocity, color="0.4", lw=0.8, ls="--",
+                   label=f"design speed V = {chart.design_velocity:.3g} {u['velocity']}")  # fmt: skip
+    if chart.design_stiffness is not None and chart.design_velocity is not None:
+        ax.plot(
+            [chart.design_stiffness],
+            [max(chart.design_velocity, floor)],
+            marker="*",
+            color="k",
+            ms=13,
+            ls="none",
+            label=f"design point K = {chart.design_stiffness:.4g}, V = {chart.design_velocity:.3g}",
+        )
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_ylim(floor / 1.3, chart.v_top * 1.3)
+    ax.set_xlim(chart.stiffness[0], chart.stiffness[-1])
+    ax.set_xlabel(f"stiffness K ({u['stiffness']})")
+    ax.set_ylabel(f"largest safe impact speed ({u['velocity']})")
+    title = f"{chart.device.name}: how stiff for which impact speed" + (f" (delay {d})" if d else "")
+    ax.set_title(
+        title + f"\nspeeds up to {chart.v_top:g} {u['velocity']}; bottom edge: not even "
+        f"{chart.speeds[0]:.3g} {u['velocity']}",
+        fontsize=9,
+    )
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     return ax
 
 

@@ -355,14 +355,28 @@ class SimulationResult:
 
         Returns ``force_peak_to_peak_si`` (``force_peak_to_peak`` × KΔ, in N;
         N·m for a rotary device), ``force_unit``, ``frequency_hz`` (ω/(2πT),
-        None when not measured) and ``amplitude_si`` (amplitude × Δ, m or rad).
+        None when not measured) and ``amplitude_si`` (amplitude × Δ, m or rad),
+        and the unit-named keys of :mod:`dfa.units` (``amplitude_m``, ``period_s``,
+        ``force_peak_to_peak_n``, ``force_step_n``, …; rad and N·m for a rotary
+        device) with the device and K.
         """
         k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
         u = device.units
         hz = None if not self.frequency else self.frequency / (2.0 * math.pi * device.period)
         fpp = self.force_peak_to_peak * k * device.resolution
         amp = self.amplitude * device.resolution
+        from .units import physical_quantities, unit_context
+
         return {
+            **unit_context(device, k),
+            **physical_quantities(
+                device,
+                k,
+                amplitude=self.amplitude,
+                frequency=math.nan if self.frequency is None else self.frequency,
+                period=math.nan if self.period is None else self.period,
+                force_steps=self.force_peak_to_peak,
+            ),
             "force_peak_to_peak_si": fpp if math.isfinite(fpp) else None,
             "force_unit": u["force"],
             "frequency_hz": hz,

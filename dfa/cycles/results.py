@@ -46,6 +46,20 @@ class LimitCycle:
         """Period in samples, 2π/ω."""
         return 2.0 * math.pi / self.frequency
 
+    def physical(self, device: Device, stiffness: float) -> dict[str, float | None]:
+        """This cycle in physical units for a device at stiffness K (:mod:`dfa.units`): amplitude_m (rad),
+        force_amplitude_n (N·m), frequency_hz, period_s, velocity_m_s (rad/s, the speed amplitude M·ω)."""
+        from ..units import physical_quantities
+
+        return physical_quantities(
+            device,
+            stiffness,
+            amplitude=self.amplitude,
+            frequency=self.frequency,
+            period=self.period,
+            xi_dot=self.amplitude * self.frequency,
+        )
+
     def as_dict(self) -> dict[str, object]:
         return {
             "amplitude": self.amplitude,
@@ -112,6 +126,12 @@ class LimitCycleResult:
     @property
     def unstable_cycles(self) -> tuple:
         return tuple(c for c in self.cycles if not c.stable)
+
+    def physical(self, device: Device, stiffness: float) -> dict[str, object]:
+        """Every cycle in physical units (:meth:`LimitCycle.physical`), with the device, K and force step KΔ."""
+        from ..units import unit_context
+
+        return {**unit_context(device, stiffness), "cycles": [c.physical(device, stiffness) for c in self.cycles]}
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (the ``dfa limit-cycles --json`` contract plus extras)."""

@@ -58,7 +58,9 @@ def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | No
     """Rows of the `dfa simulate` table (ticks and samples; Hz and N when a device is known)."""
     freq = "-" if r.frequency is None else f"{r.frequency:.4g} rad/sample (period {r.period:.4g} samples)"
     if phys is not None and phys["frequency_hz"] is not None:
-        freq += f", {phys['frequency_hz']:.4g} Hz"
+        freq += f", {phys['frequency_hz']:.4g} Hz (period {phys['period_s']:.4g} s)"
+    amp_si = None if phys is None else phys.get("amplitude_si")
+    amp_unit = "" if phys is None else phys["position_unit"]
     rows = [
         [
             "initial state",
@@ -76,7 +78,7 @@ def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | No
         rows.append(["to decide", f"run longer: --samples {r.suggested_samples}"])
     rows += [
         ["rest at sample", "-" if r.rest_sample is None else str(r.rest_sample)],
-        ["amplitude", f"{_g(r.amplitude)} ticks"],
+        ["amplitude", f"{_g(r.amplitude)} ticks" + ("" if amp_si is None else f" = {amp_si:.4g} {amp_unit}")],
         ["frequency", freq],
     ]
     if r.outcome in ("chatter", "oscillating", "undecided"):
@@ -99,7 +101,9 @@ def _no_cycle_line(res: Any, lin: str) -> str:
     return "no limit cycle predicted (search complete: the loop never meets the phase condition of eq. 36)"
 
 
-def _cycle_table(res: Any) -> str:
+def _cycle_table(res: Any, phys: dict | None = None) -> str:
+    """Table of the cycles: ticks and rad/sample, and with a device (``phys``) m (rad), Hz, s and N (N·m)."""
+    header = ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"]
     rows = [
         [
             f"{c.amplitude:.6g}",
@@ -110,7 +114,14 @@ def _cycle_table(res: Any) -> str:
         ]
         for c in res.cycles
     ]
-    return text_table(rows, ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"])
+    if phys is not None:
+        pos, force = phys["position_unit"], phys["force_unit"]
+        pk = "amplitude_rad" if phys["rotary"] else "amplitude_m"
+        fk = "force_amplitude_nm" if phys["rotary"] else "force_amplitude_n"
+        for row, q in zip(rows, phys["cycles"], strict=True):
+            row[3:3] = [f"{q[pk]:.4g}", f"{q['frequency_hz']:.4g}", f"{q['period_s']:.4g}", f"{q[fk]:.4g}"]
+        header[3:3] = [f"M ({pos})", "f (Hz)", "period (s)", f"force amplitude ({force})"]
+    return text_table(rows, header)
 
 
 def _growth_line(g: Any, device: Any) -> str:
@@ -130,7 +141,7 @@ def _growth_line(g: Any, device: Any) -> str:
     return f"growth threshold: M_u = {g.amplitude:.4g} ticks ({speed(g.xi_dot, g.velocity, g.position)})"
 
 
-def limit_cycle_lines(g: Any, device: Any) -> list[str]:
+def limit_cycle_lines(g: Any, device: Any, phys: dict | None = None) -> list[str]:
     """Text of `dfa limit-cycles`: the table, the search's completeness, the linear loop and the growth band."""
     res = g.result
     lin = (
@@ -142,7 +153,12 @@ def limit_cycle_lines(g: Any, device: Any) -> list[str]:
     if not res.cycles:
         lines.append(_no_cycle_line(res, lin))
     else:
-        lines.append(_cycle_table(res))
+        lines.append(_cycle_table(res, phys))
+        if phys is not None:
+            fs = phys["force_step_nm" if phys["rotary"] else "force_step_n"]
+            lines.append(
+                f"one tick = {device.resolution:.4g} {phys['position_unit']} = one force step KΔ = {fs:.4g} {phys['force_unit']}"
+            )
         if not res.complete:
             why = res.status.removeprefix("incomplete: ")
             lines.append(f"search incomplete beyond M = {res.max_amplitude:g} ticks ({why}): more cycles may exist")
@@ -158,8 +174,17 @@ def limit_cycle_lines(g: Any, device: Any) -> list[str]:
     return lines
 
 
-def limit_cycles_dict(g: Any) -> dict[str, object]:
-    """JSON of `dfa limit-cycles`: the cycle search (:meth:`LimitCycleResult.as_dict`) and its growth threshold."""
+def limit_cycles_dict(g: Any, phys: dict | None = None) -> dict[str, object]:
+    """JSON of `dfa limit-cycles`: the cycle search (:meth:`LimitCycleResult.as_dict`) and its growth threshold.
+
+    With ``phys`` (:meth:`LimitCycleResult.physical`) each cycle carries both: ticks, rad/sample and m (rad), Hz,
+    s, N (N·m), and the record gains the device, K and force step.
+    """
     d = g.result.as_dict()
     d["growth_threshold"] = g.as_dict()
+    if phys is not None:
+        phys = dict(phys)
+        for cyc, extra in zip(d["cycles"], phys.pop("cycles"), strict=True):  # type: ignore[call-overload]
+            cyc.update(extra)
+        d.update(phys)
     return d

@@ -1,0 +1,546 @@
+"""The design answer: the largest stiffness K for an impact speed V, four ways (issue 14 §1).
+
+For a device, an impact speed V (m/s; rotary rad/s) and a computational delay
+of d samples:
+
+``k_criterion``
+    guaranteed by the passivity criterion (eq. 11 generalised to the delay,
+    :func:`dfa.stiffness.k_max_criterion`): a proof, for impacts up to V.
+``k_linear``
+    the exact linear bound of the sampled spring without encoder and Coulomb
+    friction (all Jury conditions, :func:`dfa.stiffness.k_gil`; JSON also
+    keeps the name ``k_gil``).
+``k_df``
+    predicted by the describing function: the largest K (first crossing of
+    an ascending scan, then bisection) whose predicted growth speed is at
+    least V. The growth speed is the smallest speed amplitude M·ω (ticks per
+    sample, eq. 36) over *every* unstable cycle; none with a stable linear
+    loop and a complete search means no growth (infinite speed), none with an
+    unstable linear loop means growth from any size (zero).
+``k_sim``
+    found by exact simulation: the largest K at which no impact at any
+    simulated speed up to V, started from ξ0 = 0 and, separately, from rest
+    with the spring preloaded to the same energy (section 5,
+    :func:`dfa.simulation.preload_position`), diverges.
+``k_sim_rest``
+    the largest K at which all those impacts come to rest (no chatter, no
+    oscillation).
+
+The simulated and predicted limits are searched over K: an ascending
+geometric grid first, every point evaluated, then bisection between the last
+safe and the first failing grid point. Safety need not be monotone in K; a
+grid point found safe again above the first failure is reported
+(``non_monotone``, ``safe_above``), not hidden. ``undecided`` runs (too short
+to tell, :func:`dfa.simulation.simulate`) never count as safe: where one
+limits the answer the result says so. All four are limits for impacts *up to
+V* on the simulated speeds; only ``k_criterion`` is a proof.
+
+Theory requires k_criterion <= k_sim (the criterion is sound, issue 12) and
+k_sim_rest <= k_sim; every grid point at or below k_criterion is simulated,
+and any divergence there is reported in ``counterexamples`` (a criterion bug).
+
+Examples
+--------
+>>> from dfa.catalogue import get_device
+>>> r = design_answer(get_device("Impulse Engine").device, 0.2, grid=12, speeds=3)
+>>> r.k_criterion < r.k_sim.value, r.k_sim_rest.value <= r.k_sim.value
+(True, True)
+>>> r.counterexamples
+()
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .device import Device
+from .errors import DFAValueError, check_choice, check_delay, check_int, check_positive, check_real, check_type
+from .simulation import default_samples, preload_position, simulate, stored_energy
+from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
+
+__all__ = ["KSearch", "KMaxAssessment", "KMaxResult", "design_answer", "simulate_points"]
+
+#: Relative width at which the bisection of a searched limit stops.
+K_RTOL = 2e-3
+#: Longest run (samples) of one design simulation; longer automatic lengths are cut and may be undecided.
+DESIGN_MAX_SAMPLES = 1_000_000
+
+#: |ξ| (ticks) past which a design run counts as diverged: at least this, and 100 × the energy amplitude.
+DIVERGENCE_BOUND = 1.0e6
+
+SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
+
+
+def simulate_points(points: Sequence[tuple[float, float, float, float, float]], delay: int, max_samples: int):
+    """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), and the samples of each run.
+
+    The run length of each point is :func:`dfa.simulation.default_samples`, at most ``max_samples``; a run
+    diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of its start.
+    One place for the many simulations of the design answer (a batched kernel can replace the loop).
+
+    Returns
+    -------
+    (list of str, list of int)
+        Outcome names (:data:`dfa.simulation.OUTCOMES`) and run lengths.
+    """
+    outcomes, lengths = [], []
+    for mu, beta, sigma, xi0, xi_dot0 in points:
+        n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay), max_samples)
+        # divergence bound: far beyond the energy amplitude √(2 H_T(0)) (eq. 18-19), which a passive run never leaves
+        amp0 = math.sqrt(2.0 * float(stored_energy(xi0, xi_dot0, mu)))
+        bound = max(DIVERGENCE_BOUND, 100.0 * (amp0 + 1.0))
+        r = simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound)
+        outcomes.append(r.outcome)
+        lengths.append(n)
+    return outcomes, lengths
+
+
+@dataclass(frozen=True)
+class KSearch:
+    """One searched stiffness limit (N/m; rotary N·m/rad) and the evidence behind it.
+
+    Attributes
+    ----------
+    value : float or None
+        The limit; None when undefined (``reason`` says why).
+    reason : str or None
+        Why ``value`` is None, or a caveat about it (undecided runs); None when plain.
+    non_monotone : bool
+        True when grid stiffnesses above ``value`` were found safe again.
+    safe_above : tuple of float
+        Those stiffnesses.
+    undecided : tuple of float
+        Stiffnesses at which some run was undecided (counted as not safe).
+    first_failure : float or None
+        The smallest stiffness found not safe.
+    evaluations : int
+        Stiffnesses evaluated.
+    """
+
+    value: float | None
+    reason: str | None = None
+    non_monotone: bool = False
+    safe_above: tuple[float, ...] = ()
+    undecided: tuple[float, ...] = ()
+    first_failure: float | None = None
+    evaluations: int = 0
+
+    def __post_init__(self) -> None:
+        if self.value is None and not self.reason:
+            raise DFAValueError("KSearch(value=None) needs a reason: say why the limit is undefined")
+        if self.value is not None and not (math.isfinite(self.value) and self.value > 0):
+            raise DFAValueError(f"value = {self.value!r} is invalid: a stiffness limit must be finite and > 0")
+
+    def as_dict(self) -> dict[str, object]:
+        return {
+            "value": self.value,
+            "reason": self.reason,
+            "non_monotone": self.non_monotone,
+            "safe_above": list(self.safe_above),
+            "undecided": list(self.undecided),
+            "first_failure": self.first_failure,
+            "evaluations": self.evaluations,
+        }
+
+
+def _search(judge: Callable[[float], str], grid: np.ndarray, what: str, unit: str) -> KSearch:
+    """Largest K before the first non-safe judgement on an ascending ``grid``, refined by bisection."""
+    verdicts = [judge(float(k)) for k in grid]
+    undecided = {float(k) for k, v in zip(grid, verdicts, strict=True) if v == UNDECIDED}
+    bad = [i for i, v in enumerate(verdicts) if v != SAFE]
+    if not bad:
+        return KSearch(
+            None,
+            f"{what} at every stiffness searched, up to {grid[-1]:.5g} {unit}: the limit is above that",
+            evaluations=len(grid),
+        )
+    i = bad[0]
+    safe_above = tuple(float(k) for k, v in zip(grid[i + 1 :], verdicts[i + 1 :], strict=True) if v == SAFE)
+    if i == 0:
+        return KSearch(
+            None,
+            f"{what} fails already at the smallest stiffness searched, {grid[0]:.5g} {unit} ({verdicts[0]})",
+            bool(safe_above),
+            safe_above,
+            tuple(sorted(undecided)),
+            float(grid[0]),
+            len(grid),
+        )
+    lo, hi, n = float(grid[i - 1]), float(grid[i]), len(grid)
+    hi_verdict = verdicts[i]
+    while hi - lo > K_RTOL * hi:
+        mid = math.sqrt(lo * hi)
+        v = judge(mid)
+        n += 1
+        if v == UNDECIDED:
+            undecided.add(mid)
+        if v == SAFE:
+            lo = mid
+        else:
+            hi, hi_verdict = mid, v
+    reason = None
+    if hi_verdict == UNDECIDED:
+        reason = f"limited by undecided runs at {hi:.5g} {unit}: too short to tell, counted as not safe"
+    return KSearch(lo, reason, bool(safe_above), safe_above, tuple(sorted(undecided)), hi, n)
+
+
+@dataclass(frozen=True)
+class KMaxAssessment:
+    """A chosen stiffness K assessed at the impact speed (physical units).
+
+    Attributes
+    ----------
+    stiffness : float
+    source : str
+        ``"--stiffness"``/``"given"`` or ``"catalogue"``: where K came from.
+    max_passive_velocity : float or None
+        Largest speed the criterion proves passive (inf: every speed; None: none).
+    growth_speed : float or None
+        Smallest predicted growth speed over every unstable cycle (m/s; inf: none; None: unknown).
+    unstable_cycles : int
+        Unstable cycles predicted (describing function).
+    outcomes : dict
+        Simulated outcome of an impact at V from ξ0 = 0 (``"impact"``) and from the preload (``"preload"``).
+    """
+
+    stiffness: float
+    source: str
+    max_passive_velocity: float | None
+    growth_speed: float | None
+    unstable_cycles: int
+    outcomes: dict[str, str] = field(default_factory=dict)
+
+    def as_dict(self) -> dict[str, object]:
+        def fin(x):
+            return None if x is None or math.isinf(x) else x
+
+        return {
+            "stiffness": self.stiffness,
+            "source": self.source,
+            "max_passive_velocity": fin(self.max_passive_velocity),
+            "passive_at_every_speed": self.max_passive_velocity is not None and math.isinf(self.max_passive_velocity),
+            "growth_speed": fin(self.growth_speed),
+            "growth_predicted": self.growth_speed is not None and not math.isinf(self.growth_speed),
+            "unstable_cycles": self.unstable_cycles,
+            "outcomes": dict(self.outcomes),
+        }
+
+
+def _growth_xi_dot(mu: float, beta: float, sigma: float, delay: int, model: str) -> tuple[float | None, int]:
+    """Smallest speed amplitude M·ω (ticks/sample) over every unstable cycle, and their count.
+
+    inf: no growth predicted (no unstable cycle, stable linear loop, complete search); 0: growth from any
+    size (no unstable cycle, unstable linear loop); None: unknown (incomplete search, none found).
+    """
+    from .cycles import limit_cycles
+    from .device import Params
+
+    res = limit_cycles(Params(mu, beta, sigma), model=model, delay=delay)
+    unstable = res.unstable_cycles
+    if unstable:
+        return min(c.amplitude * c.frequency for c in unstable), len(unstable)
+    if res.linear_stable is False:
+        return 0.0, 0
+    return (math.inf, 0) if res.complete else (None, 0)
+
+
+class _Evidence:
+    """Simulations and predictions of one design search, cached per stiffness (dimensionless inside)."""
+
+    def __init__(self, dev: Device, speeds: np.ndarray, delay: int, max_samples: int, model: str):
+        self.dev, self.delay, self.max_samples, self.model = dev, delay, max_samples, model
+        self.xi_dots = [dev.xi_dot(float(v)) for v in speeds]
+        self.sims: dict[float, list[tuple[float, str, str]]] = {}
+        self.growth: dict[float, tuple[float | None, int]] = {}
+        self.runs = 0
+        self.longest = 0
+
+    def outcomes(self, k: float) -> list[tuple[float, str, str]]:
+        """(ξ'0, start, outcome) of every impact simulated at stiffness ``k``."""
+        if k not in self.sims:
+            try:
+                p = self.dev.params(k)
+            except DFAValueError:  # μ, β or σ not representable at this K: nothing can be decided there
+                self.sims[k] = [(xd, start, "undecided") for xd in self.xi_dots for start in ("impact", "preload")]
+                return self.sims[k]
+            pts, tags = [], []
+            for xd in self.xi_dots:
+                pts.append((p.mu, p.beta, p.sigma, 0.0, xd))
+                pts.append((p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0))
+                tags += [(xd, "impact"), (xd, "preload")]
+            outs, lengths = simulate_points(pts, self.delay, self.max_samples)
+            self.runs += len(pts)
+            self.longest = max(self.longest, *lengths)
+            self.sims[k] = [(xd, start, o) for (xd, start), o in zip(tags, outs, strict=True)]
+        return self.sims[k]
+
+    def no_divergence(self, k: float) -> str:
+        outs = {o for _, _, o in self.outcomes(k)}
+        return UNSAFE if "unstable" in outs else (UNDECIDED if "undecided" in outs else SAFE)
+
+    def rest(self, k: float) -> str:
+        outs = {o for _, _, o in self.outcomes(k)}
+        if outs <= {"rest"}:
+            return SAFE
+        return UNDECIDED if outs <= {"rest", "undecided"} else UNSAFE
+
+    def growth_xi_dot(self, k: float) -> tuple[float | None, int]:
+        if k not in self.growth:
+            try:
+                p = self.dev.params(k)
+            except DFAValueError:  # not representable at this K
+                self.growth[k] = (None, 0)
+                return self.growth[k]
+            self.growth[k] = _growth_xi_dot(p.mu, p.beta, p.sigma, self.delay, self.model)
+        return self.growth[k]
+
+    def predicted(self, k: float, xi_dot: float) -> str:
+        g, _ = self.growth_xi_dot(k)
+        return UNDECIDED if g is None else (SAFE if g >= xi_dot else UNSAFE)
+
+    def counterexamples(self, k_criterion: float) -> tuple[dict[str, object], ...]:
+        """Divergent impacts at stiffnesses the criterion proves passive (there must be none)."""
+        out = []
+        for k, rows in sorted(self.sims.items()):
+            for xd, start, o in rows:
+                if k <= k_criterion and o == "unstable":
+                    out.append({"stiffness": k, "velocity": self.dev.velocity(xd), "start": start, "outcome": o})
+        return tuple(out)
+
+
+def _search_grid(k_criterion: float, top: float, grid: int) -> np.ndarray:
+    """Ascending stiffness grid from k_criterion/2 to ``top``, holding k_criterion itself."""
+    lo = 0.5 * k_criterion if k_criterion > 0 else top * 1e-4
+    pts = np.geomspace(lo, top, grid)
+    if k_criterion > 0:
+        pts = np.unique(np.append(pts, k_criterion))
+    return pts
+
+
+@dataclass(frozen=True)
+class KMaxResult:
+    """K_max four ways for a device at an impact speed (module docstring); stiffnesses in N/m (N·m/rad).
+
+    Attributes
+    ----------
+    device : Device
+    velocity : float
+        Impact speed V (m/s; rotary rad/s).
+    xi_dot : float
+        V in encoder ticks per sample.
+    delay : int
+        Computational delay d in samples.
+    k_criterion, k_linear, k_static, k_colgate, k_abbott_okamura : float
+        Closed-form limits (eq. 8, 9, 11 and the exact linear bound).
+    k_df, k_sim, k_sim_rest : KSearch
+        Searched limits with their evidence.
+    speeds : tuple of float
+        Impact speeds simulated (m/s; rad/s), each from ξ0 = 0 and from the preload.
+    simulations : int
+        Exact simulations run.
+    longest_run : int
+        Longest run in samples (each run: :func:`dfa.simulation.default_samples`, at most ``max_samples``).
+    max_samples : int
+    df_model : str
+        Hold model of the describing-function search (:func:`dfa.cycles.limit_cycles`).
+    k_range : tuple of float
+        Smallest and largest stiffness of the search grid.
+    counterexamples : tuple of dict
+        Divergent impacts at or below ``k_criterion`` (empty unless the criterion is wrong).
+    assessment : KMaxAssessment or None
+        The chosen stiffness, if one was given.
+    status : str
+        ``"ok"``; ``"caveats"`` (non-monotone or undecided-limited searches); ``"counterexample"``.
+    """
+
+    device: Device
+    velocity: float
+    xi_dot: float
+    delay: int
+    k_criterion: float
+    k_linear: float
+    k_static: float
+    k_colgate: float
+    k_abbott_okamura: float
+    k_df: KSearch
+    k_sim: KSearch
+    k_sim_rest: KSearch
+    speeds: tuple[float, ...]
+    simulations: int
+    longest_run: int
+    max_samples: int
+    df_model: str
+    k_range: tuple[float, float]
+    counterexamples: tuple[dict[str, object], ...] = ()
+    assessment: KMaxAssessment | None = None
+    status: str = "ok"
+
+    def __post_init__(self) -> None:
+        if self.status not in ("ok", "caveats", "counterexample"):
+            raise DFAValueError(f"status = {self.status!r} is invalid: it must be ok, caveats or counterexample")
+
+    @property
+    def searches(self) -> dict[str, KSearch]:
+        return {"k_df": self.k_df, "k_sim": self.k_sim, "k_sim_rest": self.k_sim_rest}
+
+    def evidence_text(self) -> str:
+        """How the simulated limits were found, in one sentence."""
+        u = self.device.units["velocity"]
+        sp = ", ".join(f"{v:.3g}" for v in self.speeds)
+        return (
+            f"{self.simulations} exact simulations: impacts at {sp} {u}, each from ξ0 = 0 and from the "
+            f"energy preload, over stiffnesses {self.k_range[0]:.4g} to {self.k_range[1]:.4g} "
+            f"{self.device.units['stiffness']}; runs from the loop's time scales, longest {self.longest_run} samples "
+            f"(cap {self.max_samples}); describing function: {self.df_model} hold model, every unstable cycle"
+        )
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record: the four limits (null with a reason), the bounds, the evidence."""
+        out: dict[str, object] = {
+            "device": self.device.name,
+            "velocity": self.velocity,
+            "xi_dot": self.xi_dot,
+            "delay": self.delay,
+            "k_criterion": self.k_criterion,
+            "k_linear": self.k_linear,
+            "k_gil": self.k_linear,
+            "k_static": self.k_static,
+            "k_colgate": self.k_colgate,
+            "k_abbott_okamura": self.k_abbott_okamura,
+        }
+        for name, s in self.searches.items():
+            out[name] = s.value
+            out[f"{name}_reason"] = s.reason
+        out.update(
+            stiffness_unit=self.device.units["stiffness"],
+            velocity_unit=self.device.units["velocity"],
+            design_status=self.status,
+            evidence={
+                "speeds": list(self.speeds),
+                "starts": ["impact from ξ0 = 0", "spring preload of equal energy"],
+                "simulations": self.simulations,
+                "longest_run_samples": self.longest_run,
+                "max_samples": self.max_samples,
+                "df_model": self.df_model,
+                "k_range": list(self.k_range),
+                "text": self.evidence_text(),
+            },
+            searches={k: s.as_dict() for k, s in self.searches.items()},
+            counterexamples=[dict(c) for c in self.counterexamples],
+            assessment=None if self.assessment is None else self.assessment.as_dict(),
+        )
+        return out
+
+
+def _assess(ev: _Evidence, k: float, source: str, velocity: float, delay: int) -> KMaxAssessment:
+    """The chosen stiffness at the impact speed: criterion, predicted cycles, simulated outcomes."""
+    dev = ev.dev
+    g, count = ev.growth_xi_dot(k)
+    p = dev.params(k)
+    xd = dev.xi_dot(velocity)
+    outs, _ = simulate_points(
+        [(p.mu, p.beta, p.sigma, 0.0, xd), (p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0)],
+        delay,
+        ev.max_samples,
+    )
+    ev.runs += 2
+    gs = None if g is None else (math.inf if math.isinf(g) else dev.velocity(g))
+    return KMaxAssessment(
+        k, source, max_passive_velocity(dev, k, delay), gs, count, {"impact": outs[0], "preload": outs[1]}
+    )
+
+
+def _none(reason: str) -> KSearch:
+    return KSearch(None, reason)
+
+
+def design_answer(
+    device: Device,
+    velocity: float,
+    delay: int = 0,
+    *,
+    stiffness: float | None = None,
+    stiffness_source: str = "given",
+    speeds: int = 6,
+    grid: int = 16,
+    max_samples: int = DESIGN_MAX_SAMPLES,
+    df_model: str = "half-delay",
+) -> KMaxResult:
+    """The largest stiffness for impacts up to ``velocity``, four ways (module docstring).
+
+    Parameters
+    ----------
+    device : Device
+    velocity : float
+        Impact speed V in m/s (rotary: rad/s), > 0 (sign ignored).
+    delay : int, optional
+        Computational delay d in samples.
+    stiffness : float, optional
+        A stiffness K (N/m; N·m/rad) to assess as well; ``stiffness_source`` says where it came from.
+    speeds : int, optional
+        Number of impact speeds simulated: V/speeds, 2V/speeds, …, V (default 6), each with two starts.
+    grid : int, optional
+        Points of the geometric stiffness grid (default 16), from K_criterion/2 to 8 × the largest
+        closed-form bound; bisection refines each limit to a relative 2·10⁻³.
+    max_samples : int, optional
+        Longest run, in samples (default 10⁶); longer automatic lengths are cut and may be undecided.
+    df_model : {"half-delay", "zoh", "pade"}, optional
+        Hold model of the describing function (default ``"half-delay"``; ``"zoh"`` is exact but ~10× slower).
+
+    Returns
+    -------
+    KMaxResult
+    """
+    dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
+    v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
+    check_positive("velocity", v, "give an impact speed > 0 in m/s (rotary: rad/s)")
+    d = check_delay(delay)
+    n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
+    n_grid = check_int("grid", grid, minimum=2, fix="give at least 2 stiffness grid points")
+    cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")
+    model = check_choice("df_model", df_model, ("half-delay", "zoh", "pade"))
+    k_given = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
+    vs = v * np.arange(1, n_speeds + 1) / n_speeds
+    ev = _Evidence(dev, vs, d, cap, model)
+    kc, kl = float(k_max_criterion(dev, v, d)), k_gil(dev, delay=d)
+    top = 8.0 * max(k_static(dev), k_colgate(dev, d), kl, kc)
+    unit = dev.units["stiffness"]
+    if top > 0:
+        pts = _search_grid(kc, top, n_grid)
+        xd = dev.xi_dot(v)
+        k_df = _search(lambda k: ev.predicted(k, xd), pts, "predicted growth speed >= V", unit)
+        k_sim = _search(ev.no_divergence, pts, "no divergence", unit)
+        k_rest = _search(ev.rest, pts, "rest after every impact", unit)
+        k_range = (float(pts[0]), float(pts[-1]))
+    else:
+        why = "no search range: the device has neither viscous nor Coulomb friction (b = c = 0)"
+        k_df, k_sim, k_rest, k_range = _none(why), _none(why), _none(why), (0.0, 0.0)
+    ce = ev.counterexamples(kc)
+    caveat = any(s.non_monotone or s.undecided for s in (k_df, k_sim, k_rest))
+    return KMaxResult(
+        dev,
+        v,
+        dev.xi_dot(v),
+        d,
+        kc,
+        kl,
+        k_static(dev),
+        k_colgate(dev, d),
+        k_abbott_okamura(dev, d),
+        k_df,
+        k_sim,
+        k_rest,
+        tuple(float(s) for s in vs),
+        ev.runs,
+        ev.longest,
+        cap,
+        model,
+        k_range,
+        ce,
+        None if k_given is None else _assess(ev, k_given, stiffness_source, v, d),
+        "counterexample" if ce else ("caveats" if caveat else "ok"),
+    )
