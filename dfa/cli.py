@@ -661,25 +661,35 @@ def _write_trace(path: str, r) -> None:
 def _add_map_device_args(p: argparse.ArgumentParser, speeds: bool) -> None:
     """A device instead of --mu for `map` and `contours` (μ from the device at K; its (β, σ) is marked), and --plot."""
     g = p.add_argument_group("device (instead of --mu: a catalogue name, or physical values in SI units)")
-    g.add_argument("--device", metavar="NAME", help="catalogue device (case-insensitive prefix, e.g. 'phantom')")
+    g.add_argument(
+        "--device", metavar="NAME", help="catalogue device (case-insensitive prefix, e.g. 'phantom'); default: none"
+    )
     for key, (flag, unit) in _PHYS_FLAGS.items():
-        g.add_argument(flag, dest=key, type=_number(flag, unit), metavar="X", help=f"{key} in {unit}")
+        g.add_argument(
+            flag,
+            dest=key,
+            type=_number(flag, unit),
+            metavar="X",
+            help=f"{_PHYS_WHAT[key]} in {unit}; default: the catalogue value",
+        )
     g.add_argument(
         "--stiffness",
         type=_number("--stiffness", "N/m"),
         metavar="K",
-        help="virtual wall stiffness K in N/m (rotary: N·m/rad); defaults to the catalogue K",
+        help="virtual wall stiffness K in N/m (rotary: N·m/rad); default: the catalogue K",
     )
-    g.add_argument("--rotary", action="store_true", help="physical values are rotary (rad, N·m, kg·m²)")
+    g.add_argument(
+        "--rotary", action="store_true", help="physical values are rotary (rad, N·m, kg·m²); default: linear"
+    )
     if speeds:
         g.add_argument(
             "--velocity",
             type=_number("--velocity", "m/s (rotary: rad/s)"),
             nargs="+",
             metavar="V",
-            help="initial speeds in m/s (rotary: rad/s; needs a device), instead of --xi-dot",
+            help="initial speeds in m/s (rotary: rad/s; needs a device), instead of --xi-dot; default: none",
         )
-    p.add_argument("--plot", metavar="FILE.png", help="write the figure to a PNG file")
+    p.add_argument("--plot", metavar="FILE.png", help="write the figure to a PNG file (default: none)")
 
 
 def _map_device(args: argparse.Namespace) -> tuple[float, _Inputs | None]:
@@ -1066,7 +1076,8 @@ def _add_stiffness(sub: Any) -> None:
     p.add_argument(
         "--plot",
         metavar="FILE.png",
-        help="write the stiffness-speed chart (largest safe impact speed against K, four ways) to a PNG file",
+        help="write the stiffness-speed chart (largest safe impact speed against K, four ways) to a PNG file "
+        "(default: none)",
     )
 
 
@@ -1107,7 +1118,7 @@ def _add_map(sub: Any) -> None:
     p.add_argument(
         "--mu",
         type=_number("--mu", "dimensionless units"),
-        help="μ = m/(K T²), dimensionless (or give a device)",
+        help="μ = m/(K T²), dimensionless (required unless a device is given)",
     )
     p.add_argument(
         "--xi-dot",
@@ -1115,7 +1126,7 @@ def _add_map(sub: Any) -> None:
         type=_number("--xi-dot", "ticks per sample"),
         nargs="+",
         metavar="V",
-        help="initial speeds ξ'0 in ticks per sample (or --velocity with a device)",
+        help="initial speeds ξ'0 in ticks per sample (required unless --velocity is given with a device)",
     )
     _range_arg(p, "--beta-range", [0.0, 1.0], "β")
     _range_arg(p, "--sigma-range", [0.0, 2.0], "σ")
@@ -1168,7 +1179,7 @@ def _add_contours(sub: Any) -> None:
     p.add_argument(
         "--mu",
         type=_number("--mu", "dimensionless units"),
-        help="μ = m/(K T²), dimensionless (or give a device)",
+        help="μ = m/(K T²), dimensionless (required unless a device is given)",
     )
     _add_map_device_args(p, speeds=False)
     _range_arg(p, "--beta-range", [0.0, 1.0], "β")

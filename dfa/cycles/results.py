@@ -6,7 +6,7 @@ import enum
 import math
 from dataclasses import dataclass, field
 
-from ..device import Params
+from ..device import Device, Params
 
 
 # ------------------------------------------------------------------ results
