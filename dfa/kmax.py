@@ -507,18 +507,7 @@ def design_answer(
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
     ev = _Evidence(dev, vs, d, cap, model)
     kc, kl = float(k_max_criterion(dev, v, d)), k_gil(dev, delay=d)
-    top = 8.0 * max(k_static(dev), k_colgate(dev, d), kl, kc)
-    unit = dev.units["stiffness"]
-    if top > 0:
-        pts = _search_grid(kc, top, n_grid)
-        xd = dev.xi_dot(v)
-        k_df = _search(lambda k: ev.predicted(k, xd), pts, "predicted growth speed >= V", unit)
-        k_sim = _search(ev.no_divergence, pts, "no divergence", unit)
-        k_rest = _search(ev.rest, pts, "rest after every impact", unit)
-        k_range = (float(pts[0]), float(pts[-1]))
-    else:
-        why = "no search range: the device has neither viscous nor Coulomb friction (b = c = 0)"
-        k_df, k_sim, k_rest, k_range = _none(why), _none(why), _none(why), (0.0, 0.0)
+    k_df, k_sim, k_rest, k_range = _three_searches(ev, dev, v, d, kc, kl, n_grid)
     ce = ev.counterexamples(kc)
     caveat = any(s.non_monotone or s.undecided for s in (k_df, k_sim, k_rest))
     return KMaxResult(
@@ -544,3 +533,18 @@ def design_answer(
         None if k_given is None else _assess(ev, k_given, stiffness_source, v, d),
         "counterexample" if ce else ("caveats" if caveat else "ok"),
     )
+
+
+def _three_searches(ev, dev: Device, v: float, d: int, kc: float, kl: float, n_grid: int):
+    """K_df, K_sim, K_sim_rest over one geometric grid from K_criterion/2 to 8 × the largest closed-form bound."""
+    top = 8.0 * max(k_static(dev), k_colgate(dev, d), kl, kc)
+    if not top > 0:
+        why = "no search range: the device has neither viscous nor Coulomb friction (b = c = 0)"
+        return _none(why), _none(why), _none(why), (0.0, 0.0)
+    unit = dev.units["stiffness"]
+    pts = _search_grid(kc, top, n_grid)
+    xd = dev.xi_dot(v)
+    k_df = _search(lambda k: ev.predicted(k, xd), pts, "predicted growth speed >= V", unit)
+    k_sim = _search(ev.no_divergence, pts, "no divergence", unit)
+    k_rest = _search(ev.rest, pts, "rest after every impact", unit)
+    return k_df, k_sim, k_rest, (float(pts[0]), float(pts[-1]))

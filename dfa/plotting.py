@@ -433,6 +433,28 @@ def stiffness_speed_plot(chart, ax=None):
         ms=3.5,
         label="simulation: comes to rest",
     )
+    _bound_lines(ax, chart)
+    _design_marks(ax, chart, floor)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_ylim(floor / 1.3, chart.v_top * 1.3)
+    ax.set_xlim(chart.stiffness[0], chart.stiffness[-1])
+    ax.set_xlabel(f"stiffness K ({u['stiffness']})")
+    ax.set_ylabel(f"largest safe impact speed ({u['velocity']})")
+    d = chart.delay
+    title = f"{chart.device.name}: how stiff for which impact speed" + (f" (delay {d})" if d else "")
+    ax.set_title(
+        title + f"\nspeeds up to {chart.v_top:g} {u['velocity']}; bottom edge: not even "
+        f"{chart.speeds[0]:.3g} {u['velocity']}",
+        fontsize=9,
+    )
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    return ax
+
+
+def _bound_lines(ax, chart) -> None:
+    """The closed-form stiffness bounds of the stiffness-speed chart as labelled vertical lines."""
     d = chart.delay
     cs = "2b/T" if d == 0 else f"b/(T(½ + {d}))"
     lines = [
@@ -444,6 +466,11 @@ def stiffness_speed_plot(chart, ax=None):
     for k, style, label in lines:
         if k > 0:
             ax.axvline(k, label=f"{label}: {k:.4g}", **style)
+
+
+def _design_marks(ax, chart, floor: float) -> None:
+    """The design speed (horizontal line) and the design point (star) of the stiffness-speed chart."""
+    u = chart.device.units
     if chart.design_velocity is not None and chart.design_velocity > 0:
         ax.axhline(chart.design_velocity, color="0.4", lw=0.8, ls="--",
                    label=f"design speed V = {chart.design_velocity:.3g} {u['velocity']}")  # fmt: skip
@@ -457,21 +484,6 @@ def stiffness_speed_plot(chart, ax=None):
             ls="none",
             label=f"design point K = {chart.design_stiffness:.4g}, V = {chart.design_velocity:.3g}",
         )
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_ylim(floor / 1.3, chart.v_top * 1.3)
-    ax.set_xlim(chart.stiffness[0], chart.stiffness[-1])
-    ax.set_xlabel(f"stiffness K ({u['stiffness']})")
-    ax.set_ylabel(f"largest safe impact speed ({u['velocity']})")
-    title = f"{chart.device.name}: how stiff for which impact speed" + (f" (delay {d})" if d else "")
-    ax.set_title(
-        title + f"\nspeeds up to {chart.v_top:g} {u['velocity']}; bottom edge: not even "
-        f"{chart.speeds[0]:.3g} {u['velocity']}",
-        fontsize=9,
-    )
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-    return ax
 
 
 def cycle_error_plot(validation, ax=None):
