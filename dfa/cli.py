@@ -401,7 +401,7 @@ def _check_rows(r, quantized: bool, vu: str) -> list[list[str]]:
         ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
         ["delay d", f"{d} sample{'s' if d != 1 else ''}"],
         ["criterion", ("eq. 6 (with encoder)" if quantized else "eq. 7 (no quantization)") + f": {rule}"],
-        ["region", f"{r.region}: {r.status}"],
+        ["region", f"{r.region}: {r.status.message}"],
         ["passive", verdict],
         ["margin", f"{r.margin:.4g}"],
         [f"critical speed (eq. 12, d = {d})", crit],

@@ -168,7 +168,7 @@ def _verdict_text(dev: Device, k: float, v: float, dl: int, crit, lim, v_sim) ->
         verdict = "not proven passive (the criterion gives no guarantee; that is not a proof of instability)"
     text = (
         f"**Verdict.** With K = {k:g} {u['stiffness']}, an impact speed of {v:g} {u['velocity']} and {ds}, the {dev.name} is "
-        f"**{verdict}** (region {crit.region}: {crit.status}). "
+        f"**{verdict}** (region {crit.region}: {crit.status.message}). "
     )
     if crit.critical_velocity:
         text += f"The criterion guarantees passivity up to {_fmt(crit.critical_velocity)} {u['velocity']}; "
@@ -389,7 +389,7 @@ def _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out: P
         ["quantity", "value"],
         [
             ["impact speed ẋ0", f"{v:g} {u['velocity']} = {crit.xi_dot:.4g} ticks/sample"],
-            ["region (paper Fig. 3)", f"{crit.region}: {crit.status}"],
+            ["region (paper Fig. 3)", f"{crit.region}: {crit.status.message}"],
             ["computational delay d", f"{dl} sample{'s' if dl != 1 else ''}"],
             [
                 "passive (eq. 6)",

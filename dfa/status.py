@@ -18,6 +18,9 @@ Examples
 from __future__ import annotations
 
 import enum
+from typing import Any
+
+from .errors import DFAValueError
 
 __all__ = [
     "StatusEnum",
@@ -52,6 +55,23 @@ class StatusEnum(str, enum.Enum):
 
     def __format__(self, spec: str) -> str:
         return format(str(self.value), spec)
+
+    @classmethod
+    def coerce(cls, value: Any, name: str = "status") -> Any:
+        """The member of this enum that ``value`` (a member or its code) names.
+
+        Raises
+        ------
+        DFAValueError
+            When ``value`` names no member.
+        """
+        try:
+            return cls(value)
+        except ValueError:
+            codes = ", ".join(repr(m.value) for m in cls)
+            raise DFAValueError(
+                f"{name} = {value!r} is invalid: it must be a {cls.__name__} ({codes}); use the enum member"
+            ) from None
 
 
 class CriterionStatus(StatusEnum):
