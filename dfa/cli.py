@@ -675,7 +675,7 @@ def _cycle_lines(g, device) -> list[str]:
         + (f", delay {res.delay}" if res.delay else "")
         + ")"
     )
-    why = res.status.removeprefix("incomplete: ")
+    why = res.detail.removeprefix("incomplete: ")
     if not res.cycles:
         if not res.complete:
             lines.append(f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})")

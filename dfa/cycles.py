@@ -59,7 +59,6 @@ Examples
 from __future__ import annotations
 
 import cmath
-import enum
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -71,8 +70,10 @@ from scipy import optimize
 from . import _dfcore
 from .describing import DF_ENVELOPE
 from .device import Device, Params
-from .errors import check_choice, check_mu, check_positive, check_type
+from .errors import DFATypeError, DFAValueError, check_choice, check_mu, check_positive, check_type
+from .jsonable import to_jsonable
 from .loop import _check_model, _check_params, _zoh_coefficients
+from .status import GrowthStatus, SearchStatus
 
 __all__ = [
     "LimitCycle",
@@ -324,17 +325,28 @@ class LimitCycle:
         """Period in samples, 2π/ω."""
         return 2.0 * math.pi / self.frequency
 
+    def __post_init__(self) -> None:
+        if self.family not in ("small", "large"):
+            raise DFAValueError(
+                f"family = {self.family!r} is invalid: it must be 'small' or 'large'; build cycles with limit_cycles"
+            )
+        for name in ("amplitude", "frequency"):
+            check_positive(name, getattr(self, name), "build cycles with limit_cycles")
+
     def as_dict(self) -> dict[str, object]:
-        return {
-            "amplitude": self.amplitude,
-            "frequency": self.frequency,
-            "period": self.period,
-            "stable": self.stable,
-            "family": self.family,
-            "loeb": self.loeb,
-            "residual": self.residual,
-            "few_samples": self.few_samples,
-        }
+        """JSON-ready record of the cycle."""
+        return to_jsonable(
+            {
+                "amplitude": self.amplitude,
+                "frequency": self.frequency,
+                "period": self.period,
+                "stable": self.stable,
+                "family": self.family,
+                "loeb": self.loeb,
+                "residual": self.residual,
+                "few_samples": self.few_samples,
+            }
+        )
 
 
 @dataclass(frozen=True)
@@ -355,10 +367,11 @@ class LimitCycleResult:
         Sorted by amplitude.
     complete : bool
         True only when the search provably found every root (status ``COMPLETE``).
-    status : str
-        One-line message: ``"ok"`` or ``"incomplete: …"`` (why).
-    status_code : SearchStatus
-        How the search ended.
+    detail : str
+        One-line message with the numbers of this search: ``"ok"`` or ``"incomplete: …"`` (why).
+    status : SearchStatus
+        How the search ended (``COMPLETE``, ``MAX_AMPLITUDE``, ``BUDGET``, ``NUMERICAL``);
+        ``status_code`` is a deprecated alias.
     search_bound : float or None
         When complete: the amplitude (ticks) beyond which no root of eq. 36 exists
         (the phase curve's pieces end there, or the eq. 41 envelope excludes
@@ -378,10 +391,27 @@ class LimitCycleResult:
     max_amplitude: float
     cycles: tuple = field(default_factory=tuple)
     complete: bool = True
-    status: str = "ok"
-    status_code: SearchStatus | None = None
+    detail: str = "ok"
+    status: SearchStatus = SearchStatus.COMPLETE
     linear_stable: bool | None = None
     search_bound: float | None = None
+
+    def __post_init__(self) -> None:
+        st = SearchStatus.coerce(self.status)
+        object.__setattr__(self, "status", st)
+        object.__setattr__(self, "cycles", tuple(self.cycles))
+        if self.complete != (st is SearchStatus.COMPLETE):
+            raise DFAValueError(
+                f"complete = {self.complete!r} is invalid with status = {st.value!r}: a search is complete exactly "
+                "when its status is COMPLETE; build results with limit_cycles"
+            )
+        if not all(isinstance(c, LimitCycle) for c in self.cycles):
+            raise DFATypeError("cycles must hold LimitCycle objects; build results with limit_cycles")
+
+    @property
+    def status_code(self) -> SearchStatus:
+        """Deprecated alias of :attr:`status`."""
+        return self.status
 
     @property
     def stable_cycles(self) -> tuple:
@@ -393,21 +423,23 @@ class LimitCycleResult:
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (the ``dfa limit-cycles --json`` contract plus extras)."""
-        return {
-            "cycles": [c.as_dict() for c in self.cycles],
-            "mu": self.params.mu,
-            "beta": self.params.beta,
-            "sigma": self.params.sigma,
-            "model": self.model,
-            "delay": self.delay,
-            "complete": self.complete,
-            "max_amplitude": self.max_amplitude,
-            "status": self.status,
-            "status_code": None if self.status_code is None else self.status_code.value,
-            "linear_stable": self.linear_stable,
-            "linear_model": "zoh",
-            "search_bound": self.search_bound,
-        }
+        return to_jsonable(
+            {
+                "cycles": [c.as_dict() for c in self.cycles],
+                "mu": self.params.mu,
+                "beta": self.params.beta,
+                "sigma": self.params.sigma,
+                "model": self.model,
+                "delay": self.delay,
+                "complete": self.complete,
+                "max_amplitude": self.max_amplitude,
+                "status": self.status,
+                "status_message": self.detail,
+                "linear_stable": self.linear_stable,
+                "linear_model": "zoh",
+                "search_bound": self.search_bound,
+            }
+        )
 
 
 # ------------------------------------------------------------------- solver
@@ -667,19 +699,6 @@ class _PieceOmega:
         if va == 0.0 or vb == 0.0 or (va < 0) == (vb < 0):  # a root on a bracket end (rounding): take the smaller |V|
             return wa if abs(va) <= abs(vb) else wb
         return optimize.brentq(v, wa, wb, xtol=1e-300, rtol=4 * np.finfo(float).eps)
-
-
-class SearchStatus(enum.Enum):
-    """How a limit-cycle search ended (:attr:`LimitCycleResult.status_code`)."""
-
-    #: every root of eq. 36 was found: the pieces ended or the envelope bound closed them
-    COMPLETE = "complete"
-    #: roots may exist beyond the caller's ``max_amplitude``
-    MAX_AMPLITUDE = "max_amplitude"
-    #: the envelope bound lies beyond the size budget of the automatic search range
-    BUDGET = "budget"
-    #: a root finder failed (no sign change where the scan saw one, or no convergence)
-    NUMERICAL = "numerical"
 
 
 class LimitCycleSearchWarning(RuntimeWarning):
@@ -980,7 +999,9 @@ class GrowthThreshold:
         The full solution it came from.
     position, velocity : float or None
         M_u and M_u·ω in physical units (m or rad, m/s or rad/s) when a device was given.
-    status : str
+    status : GrowthStatus
+        ``OK`` (unstable cycles found), ``NO_UNSTABLE_CYCLE``, ``NO_UNSTABLE_CYCLE_SEARCHED``
+        (none up to an incomplete search's limit) or ``LINEAR_UNSTABLE``.
     amplitude_high, frequency_high, xi_dot_high, position_high, velocity_high : float or None
         The same for the largest unstable cycle (the top of the band).
     unstable_count : int
@@ -996,7 +1017,7 @@ class GrowthThreshold:
     result: LimitCycleResult
     position: float | None = None
     velocity: float | None = None
-    status: str = "ok"
+    status: GrowthStatus = GrowthStatus.OK
     amplitude_high: float | None = None
     frequency_high: float | None = None
     xi_dot_high: float | None = None
@@ -1004,6 +1025,17 @@ class GrowthThreshold:
     velocity_high: float | None = None
     unstable_count: int = 0
     grows_above: bool | None = None
+
+    def __post_init__(self) -> None:
+        st = GrowthStatus.coerce(self.status)
+        object.__setattr__(self, "status", st)
+        if (st is GrowthStatus.OK) != (self.amplitude is not None) or (self.amplitude is None) != (
+            self.unstable_count == 0
+        ):
+            raise DFAValueError(
+                f"status = {st.value!r} is invalid with amplitude = {self.amplitude!r} and unstable_count = "
+                f"{self.unstable_count!r}: status OK exactly when an unstable cycle was found; build it with growth_threshold"
+            )
 
     @property
     def is_band(self) -> bool:
@@ -1013,12 +1045,14 @@ class GrowthThreshold:
     def meaning(self) -> str:
         """What the band means, in words that claim no more than the describing function shows."""
         res = self.result
+        if self.status is GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED:
+            return f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail})"
         if self.amplitude is None:
-            return self.status
+            return self.status.message
         lo, hi = self.amplitude, self.amplitude_high
         tail = ""
         if not res.complete:
-            tail = f" The search was incomplete ({res.status}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
+            tail = f" The search was incomplete ({res.detail}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
         if self.grows_above:
             above = f"above {hi:.4g} ticks the first-harmonic analysis predicts growth" + (
                 " without bound (the linear loop, exact ZOH model, is unstable)" if res.linear_stable is False else ""
@@ -1036,36 +1070,39 @@ class GrowthThreshold:
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (``dfa limit-cycles --json``, key ``growth_threshold``)."""
-        return {
-            "amplitude": self.amplitude,
-            "frequency": self.frequency,
-            "xi_dot": self.xi_dot,
-            "position": self.position,
-            "velocity": self.velocity,
-            "band": {
-                "low": {
-                    "amplitude": self.amplitude,
-                    "frequency": self.frequency,
-                    "xi_dot": self.xi_dot,
-                    "position": self.position,
-                    "velocity": self.velocity,
+        return to_jsonable(
+            {
+                "amplitude": self.amplitude,
+                "frequency": self.frequency,
+                "xi_dot": self.xi_dot,
+                "position": self.position,
+                "velocity": self.velocity,
+                "band": {
+                    "low": {
+                        "amplitude": self.amplitude,
+                        "frequency": self.frequency,
+                        "xi_dot": self.xi_dot,
+                        "position": self.position,
+                        "velocity": self.velocity,
+                    },
+                    "high": {
+                        "amplitude": self.amplitude_high,
+                        "frequency": self.frequency_high,
+                        "xi_dot": self.xi_dot_high,
+                        "position": self.position_high,
+                        "velocity": self.velocity_high,
+                    },
                 },
-                "high": {
-                    "amplitude": self.amplitude_high,
-                    "frequency": self.frequency_high,
-                    "xi_dot": self.xi_dot_high,
-                    "position": self.position_high,
-                    "velocity": self.velocity_high,
-                },
-            },
-            "unstable_count": self.unstable_count,
-            "grows_above": self.grows_above,
-            "complete": self.result.complete,
-            "linear_stable": self.result.linear_stable,
-            "linear_model": "zoh",
-            "status": self.status,
-            "meaning": self.meaning(),
-        }
+                "unstable_count": self.unstable_count,
+                "grows_above": self.grows_above,
+                "complete": self.result.complete,
+                "linear_stable": self.result.linear_stable,
+                "linear_model": "zoh",
+                "status": self.status,
+                "status_message": self.status.message,
+                "meaning": self.meaning(),
+            }
+        )
 
 
 def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> GrowthThreshold:
@@ -1085,11 +1122,9 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
     unstable = res.unstable_cycles
     if not unstable:
         if res.linear_stable is False:
-            status = "no unstable cycle predicted, but the linear loop (exact ZOH model) is unstable: amplitudes grow without bound"
+            status = GrowthStatus.LINEAR_UNSTABLE
         else:
-            status = "no unstable cycle predicted" + (
-                "" if res.complete else f" up to M = {res.max_amplitude:g} ticks (search {res.status})"
-            )
+            status = GrowthStatus.NO_UNSTABLE_CYCLE if res.complete else GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED
         return GrowthThreshold(
             None, None, None, res, status=status, grows_above=None if res.linear_stable is not False else True
         )
@@ -1110,7 +1145,7 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
         res,
         plo,
         vlo,
-        "ok",
+        GrowthStatus.OK,
         hi.amplitude,
         hi.frequency,
         hi.amplitude * hi.frequency,

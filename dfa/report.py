@@ -518,14 +518,14 @@ def _absence_lines(thr: dict) -> list[str]:
         if res.cycles:
             if not res.complete:
                 out.append(
-                    f"{m} loop: search incomplete beyond M = {res.max_amplitude:g} ticks ({res.status.removeprefix('incomplete: ')}); "
+                    f"{m} loop: search incomplete beyond M = {res.max_amplitude:g} ticks ({res.detail.removeprefix('incomplete: ')}); "
                     "more cycles may exist."
                 )
             continue
         if not res.complete:
             out.append(
                 f"{m} loop: no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: "
-                f"{res.status.removeprefix('incomplete: ')})."
+                f"{res.detail.removeprefix('incomplete: ')})."
             )
         elif res.linear_stable is False:
             out.append(
