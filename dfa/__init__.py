@@ -43,7 +43,18 @@ from .stiffness import (
     stiffness_limits,
 )
 
-__version__ = "0.1.0"
+
+def _version() -> str:
+    """The installed distribution's version (pyproject.toml is the only place that states it)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("dfa")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree that was never installed
+        return "0+unknown"
+
+
+__version__ = _version()
 
 # Modules that need python-control are imported on first use: python-control
 # itself imports matplotlib, and `import dfa` must stay free of it.

@@ -14,7 +14,6 @@ Examples
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import os
 import re
@@ -37,6 +36,7 @@ from .errors import (
     check_real,
     check_sigma,
 )
+from .jsonable import dumps
 from .stiffness import stiffness_limits
 
 __all__ = ["main"]
@@ -262,7 +262,7 @@ def _speed(args: argparse.Namespace, inputs: _Inputs, required: bool = True) -> 
 
 
 def _emit(obj: object) -> None:
-    print(json.dumps(obj, allow_nan=False))
+    print(dumps(obj))  # strict JSON: NaN/inf become null with the reason (dfa.jsonable)
 
 
 def _table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:
@@ -822,9 +822,9 @@ def _cmd_validate(args: argparse.Namespace) -> int:
             plt.close(ax.figure)
             figs[key] = name
         (stage / "validation.md").write_text(v.to_markdown(figs), encoding="utf-8")
-        (stage / "validation.json").write_text(json.dumps(summary, indent=1, allow_nan=True), encoding="utf-8")
+        (stage / "validation.json").write_text(dumps(v.as_dict(), indent=1), encoding="utf-8")
     if args.json:
-        _emit(json.loads(json.dumps(summary).replace("NaN", "null")))
+        _emit(v.as_dict())
         return 0
     print(f"validation written to {os.path.join(out, 'validation.md')}")
     print(

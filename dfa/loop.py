@@ -43,10 +43,13 @@ from dataclasses import dataclass, field
 import control
 import numpy as np
 
+from ._frozen import check_shape, freeze_fields
 from .describing import coulomb_equivalent_damping, quantizer_df, quantizer_df_inverse
 from .device import Params
 from .errors import DFAValueError, check_choice, check_delay, check_int, check_type
+from .jsonable import to_jsonable
 from .linear import _zoh_coefficients  # the ZOH pulse-transfer coefficients live with the exact linear analysis
+from .status import NyquistStatus
 
 __all__ = [
     "LOOP_MODELS",
@@ -254,8 +257,10 @@ class NyquistLocusResponse:
         Harmonic-balance solutions where a curve meets the locus at its own
         amplitude. Computed here for σ = 0 (every curve is the same); for σ > 0
         use the limit-cycle solver.
-    status : str
-        ``"ok"``, or a note on what was not computed.
+    status : NyquistStatus
+        ``OK``, or ``CROSSINGS_NOT_COMPUTED`` (σ > 0).
+
+    Arrays are read-only copies.
     """
 
     params: Params
@@ -268,7 +273,50 @@ class NyquistLocusResponse:
     locus_amplitude: np.ndarray = field(repr=False)
     locus: np.ndarray = field(repr=False)
     crossings: tuple
-    status: str
+    status: NyquistStatus
+
+    def __post_init__(self) -> None:
+        freeze_fields(
+            self,
+            {
+                "omega": {"ndim": 1},
+                "amplitudes": {"ndim": 1, "finite": False},
+                "curves": {"dtype": complex, "ndim": 2, "finite": False},
+                "locus_amplitude": {"ndim": 1},
+                "locus": {"dtype": complex, "ndim": 1, "finite": False},
+            },
+        )
+        check_shape("curves", self.curves, (self.amplitudes.size, self.omega.size))
+        check_shape("locus", self.locus, self.locus_amplitude.shape)
+        object.__setattr__(self, "status", NyquistStatus.coerce(self.status))
+        object.__setattr__(self, "crossings", tuple(self.crossings))
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record: inputs, crossings (M, ω, point) and the curves (complex as ``{"re", "im"}``)."""
+        return to_jsonable(
+            {
+                "mu": self.params.mu,
+                "beta": self.params.beta,
+                "sigma": self.params.sigma,
+                "model": self.model,
+                "delay": self.delay,
+                "pade_order": self.pade_order,
+                "crossings": [{"amplitude": m, "frequency": w, "point": pt} for m, w, pt in self.crossings],
+                "omega": self.omega,
+                "amplitudes": self.amplitudes,
+                "curves": self.curves,
+                "locus_amplitude": self.locus_amplitude,
+                "locus": self.locus,
+                "status": self.status,
+                "status_message": self.status.message,
+            }
+        )
+
+    def plot(self, ax=None, **kwargs):
+        """Nyquist plot against the critical locus (:func:`dfa.plotting.nyquist_plot`, paper Fig. 6); returns the Axes."""
+        from .plotting import nyquist_plot
+
+        return nyquist_plot(self, ax, **kwargs)
 
 
 def _phase_crossings(omega: np.ndarray, curve: np.ndarray) -> list[tuple[float, float]]:
@@ -328,7 +376,7 @@ def nyquist_locus_response(
         for wc, re in _phase_crossings(w, curves[0]):
             roots, _complete = quantizer_df_inverse(-1.0 / re, max_amplitude=float(la.max()))
             crossings += [(float(r), wc, complex(re, 0.0)) for r in roots]
-        status = "ok"
+        status = NyquistStatus.OK
     else:
         if amplitudes is None:
             raise DFAValueError(
@@ -337,5 +385,5 @@ def nyquist_locus_response(
             )
         amps = np.atleast_1d(np.asarray(amplitudes, dtype=float))
         curves = np.vstack([loop_response(p, w, np.full_like(w, a), model=m, delay=d, pade_order=n) for a in amps])
-        status = "crossings not computed for sigma > 0: use the limit-cycle solver"
+        status = NyquistStatus.CROSSINGS_NOT_COMPUTED
     return NyquistLocusResponse(p, m, d, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status)

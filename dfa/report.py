@@ -472,7 +472,8 @@ def _write_report(entry, dev, k, v, dl, fmt, progress, map_grid, samples, out: P
         d.p("; ".join(msg) + ".")
     vjson = out / "validation" / "validation.json"
     if vjson.is_file():
-        s = json.loads(vjson.read_text())
+        # strict JSON stores NaN as null (dfa.jsonable): read it back as NaN
+        s = {k: math.nan if v is None else v for k, v in json.loads(vjson.read_text()).items()}
         d.p(
             f"Across the validation set (`reports/validation/validation.md`): {s['soundness_violations']} of {s['soundness_passive']} points the "
             f"criterion calls passive went unstable in simulation; the criterion rejects {100 * s['conservatism']:.0f} % of the points that "
