@@ -86,8 +86,6 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .device import Device
-from .jsonable import to_jsonable
-from .status import CriterionStatus
 from .errors import (
     DFAValueError,
     check_beta,
@@ -98,6 +96,8 @@ from .errors import (
     check_real,
     check_sigma,
 )
+from .jsonable import to_jsonable
+from .status import CriterionStatus
 
 __all__ = [
     "CriticalLine",

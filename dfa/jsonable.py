@@ -67,7 +67,9 @@ def _array(a: np.ndarray) -> Any:
     if a.dtype.kind == "c":
         return [_walk(complex(z), "", {}) for z in a.ravel()] if a.ndim <= 1 else [_array(r) for r in a]
     if a.dtype.kind == "f":
-        return np.where(np.isfinite(a), a, None).tolist() if a.size else a.tolist()
+        out = a.astype(object)
+        out[~np.isfinite(a)] = None
+        return out.tolist()
     if a.dtype.kind in "biu":
         return a.tolist()
     return [_walk(v, "", {}) for v in a.tolist()]

@@ -106,8 +106,6 @@ import numpy as np
 from . import _kernel
 from ._frozen import check_shape, freeze_fields
 from .criterion import spring_energy
-from .jsonable import to_jsonable
-from .status import SimulationOutcome
 from .errors import (
     DFAValueError,
     check_beta,
@@ -119,6 +117,8 @@ from .errors import (
     check_real,
     check_sigma,
 )
+from .jsonable import to_jsonable
+from .status import SimulationOutcome
 
 __all__ = [
     "OUTCOMES",

@@ -65,13 +65,13 @@ class StatusEnum(str, enum.Enum):
         DFAValueError
             When ``value`` names no member.
         """
-        try:
-            return cls(value)
-        except ValueError:
-            codes = ", ".join(repr(m.value) for m in cls)
-            raise DFAValueError(
-                f"{name} = {value!r} is invalid: it must be a {cls.__name__} ({codes}); use the enum member"
-            ) from None
+        for member in cls:
+            if value is member or (isinstance(value, str) and value == member.value):
+                return member
+        codes = ", ".join(repr(m.value) for m in cls)
+        raise DFAValueError(
+            f"{name} = {value!r} is invalid: it must be a {cls.__name__} ({codes}); use the enum member"
+        )
 
 
 class CriterionStatus(StatusEnum):

@@ -43,13 +43,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._frozen import check_shape, freeze_fields
 from .criterion import device_criterion
 from .device import Device
-from ._frozen import check_shape, freeze_fields
-from .jsonable import to_jsonable
-from .status import CurveStatus, StiffnessStatus, VelocityStatus
 from .errors import DFAValueError, check_delay, check_positive, check_real, check_type
+from .jsonable import to_jsonable
 from .linear import critical_beta, critical_stiffness
+from .status import CurveStatus, StiffnessStatus, VelocityStatus
 
 __all__ = [
     "StiffnessLimits",

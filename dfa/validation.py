@@ -360,7 +360,7 @@ def soundness(
             rej_rest += int((st & ~passive).sum())
             undecided += int((out == OUTCOMES.index("undecided")).sum())
     return Soundness(
-        tuple(mus), tuple(xi_dots), total, passive_n, violations, not_unst, rej_nu, rest, rej_rest, undecided
+        tuple(mus), tuple(xi_dots), total, passive_n, tuple(violations), not_unst, rej_nu, rest, rej_rest, undecided
     )
 
 
