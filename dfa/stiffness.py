@@ -62,6 +62,7 @@ __all__ = [
     "gil_factor",
     "gil_beta_critical",
     "max_passive_velocity",
+    "StiffnessResponse",
     "StiffnessCurve",
     "stiffness_response",
 ]
@@ -127,7 +128,7 @@ def k_abbott_okamura(device: Device, delay: int = 0) -> float:
 
 
 def _bounds(dev: Device, delay: int) -> dict[str, float]:
-    """The speed-independent limits shared by :class:`StiffnessLimits` and :class:`StiffnessCurve`."""
+    """The speed-independent limits shared by :class:`StiffnessLimits` and :class:`StiffnessResponse`."""
     return dict(
         k_static=k_static(dev),
         k_colgate=k_colgate(dev, delay),
@@ -409,7 +410,7 @@ def stiffness_limits(
 
 
 @dataclass(frozen=True)
-class StiffnessCurve:
+class StiffnessResponse:
     """K_max (eq. 11, with the delay) over a range of impact speeds, with the speed-independent bounds (N/m).
 
     The bounds come from the same function as :class:`StiffnessLimits` (``_bounds``).
@@ -476,7 +477,13 @@ class StiffnessCurve:
         return stiffness_plot(self, ax)
 
 
-def stiffness_response(device: Device, velocity=None, stiffness: float | None = None, delay: int = 0) -> StiffnessCurve:
+#: Deprecated alias of :class:`StiffnessResponse` (the name before the ``*_response`` → ``*Response`` scheme).
+StiffnessCurve = StiffnessResponse
+
+
+def stiffness_response(
+    device: Device, velocity=None, stiffness: float | None = None, delay: int = 0
+) -> StiffnessResponse:
     """K_max against impact speed for a device (eq. 11, with delay d), for :func:`dfa.plotting.stiffness_plot`.
 
     Parameters
@@ -504,7 +511,7 @@ def stiffness_response(device: Device, velocity=None, stiffness: float | None = 
         else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     )
     mpv = None if k is None else max_passive_velocity(dev, k, d)
-    return StiffnessCurve(
+    return StiffnessResponse(
         dev,
         v,
         np.atleast_1d(k_max_criterion(dev, v, d)),

@@ -428,3 +428,14 @@ def test_enum_members_serialise_by_value_everywhere():
         A = 3
 
     assert to_jsonable({"a": Plain.A, "b": status_mod.MapStatus.OK}) == {"a": 3, "b": "ok"}
+
+
+def test_import_dfa_and_result_helpers_load_no_matplotlib_nor_xarray():
+    import subprocess
+
+    code = (
+        "import sys, dfa, dfa.status, dfa.jsonable, dfa.stiffness; "
+        "print(sorted(m for m in ('matplotlib', 'xarray', 'control') if m in sys.modules))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
+    assert out == "[]"
