@@ -310,6 +310,11 @@ class CriterionResult:
         return to_jsonable(out)
 
     def __post_init__(self) -> None:
+        for name in ("beta", "sigma", "xi_dot", "margin", "equivalent_speed"):
+            if math.isnan(getattr(self, name)):
+                raise DFAValueError(
+                    f"{name} = nan is invalid: results hold numbers; build results with passivity_criterion"
+                )
         status = CriterionStatus.coerce(self.status)
         object.__setattr__(self, "status", status)
         if self.region not in REGION_DESCRIPTIONS or status.region != self.region:

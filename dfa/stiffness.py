@@ -295,6 +295,9 @@ class StiffnessLimits:
     delay: int = 0
 
     def __post_init__(self) -> None:
+        for name in ("velocity", "xi_dot", "k_max", "k_static", "k_colgate", "k_abbott_okamura", "k_gil"):
+            if math.isnan(getattr(self, name)):
+                raise DFAValueError(f"{name} = nan is invalid: limits are numbers; build results with stiffness_limits")
         vs = VelocityStatus.coerce(self.velocity_status, "velocity_status")
         st = StiffnessStatus.coerce(self.status)
         object.__setattr__(self, "velocity_status", vs)

@@ -179,6 +179,34 @@ def test_fig6_nyquist_as_dict_is_strict_json(nyquist):
     assert "/locus" in d[NULL_REASONS_KEY] or np.all(np.isfinite(nyquist.locus))  # -1/D(M) is -inf where D = 0
 
 
+@settings(max_examples=10)
+@given(
+    mu=st.floats(1.0, 100.0),
+    beta=st.floats(0.0, 1.0),
+    sigma=st.floats(0.01, 1.0),
+    amplitudes=st.lists(st.floats(0.05, 50.0), min_size=1, max_size=3),
+)
+def test_eq40_nyquist_with_friction_as_dict_is_strict_json(mu, beta, sigma, amplitudes):
+    r = nyquist_locus_response(Params(mu, beta, sigma), amplitudes, omega=np.geomspace(1e-3, np.pi, 50))
+    d = strict_roundtrip(r.as_dict())
+    assert d["status"] == "crossings not computed" and d["crossings"] == [] and len(d["curves"]) == len(amplitudes)
+    assert r.status.message.startswith("crossings not computed for sigma > 0")
+
+
+@settings(max_examples=6)
+@given(mu=st.floats(1.0, 200.0), grid=st.integers(2, 5))
+def test_fig7_contours_as_dict_is_strict_json(mu, grid):
+    c = contour_maps(mu, grid=grid)
+    d = strict_roundtrip(c.as_dict())
+    assert d["grid"] == [grid, grid] and d["large_points"] == int(np.isfinite(c.large_amplitude).sum())
+
+
+def test_eq6_criterion_refuses_nan_fields():
+    r = dfa.passivity_criterion(0.2, 0.7, 2.0)
+    with pytest.raises(DFAValueError, match="margin = nan"):
+        type(r)(**{**vars(r), "margin": math.nan})
+
+
 def test_fig4_map_and_fig7_contours_as_dict_are_strict_json(small_map, contours):
     m = strict_roundtrip(small_map.as_dict())
     assert sum(m["counts"][0][k] for k in dfa.simulation.OUTCOMES) == 16 and m["status"] == "ok"
