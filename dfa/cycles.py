@@ -368,7 +368,8 @@ class LimitCycleResult:
     complete : bool
         True only when the search provably found every root (status ``COMPLETE``).
     detail : str
-        One-line message with the numbers of this search: ``"ok"`` or ``"incomplete: …"`` (why).
+        One-line message with the numbers of this search: ``"incomplete: …"`` (why), or the
+        status message when complete (the default).
     status : SearchStatus
         How the search ended (``COMPLETE``, ``MAX_AMPLITUDE``, ``BUDGET``, ``NUMERICAL``);
         ``status_code`` is a deprecated alias.
@@ -391,7 +392,7 @@ class LimitCycleResult:
     max_amplitude: float
     cycles: tuple = field(default_factory=tuple)
     complete: bool = True
-    detail: str = "ok"
+    detail: str = ""
     status: SearchStatus = SearchStatus.COMPLETE
     linear_stable: bool | None = None
     search_bound: float | None = None
@@ -399,6 +400,7 @@ class LimitCycleResult:
     def __post_init__(self) -> None:
         st = SearchStatus.coerce(self.status)
         object.__setattr__(self, "status", st)
+        object.__setattr__(self, "detail", self.detail or st.message)
         object.__setattr__(self, "cycles", tuple(self.cycles))
         if self.complete != (st is SearchStatus.COMPLETE):
             raise DFAValueError(
@@ -902,7 +904,7 @@ def limit_cycles(
         )
         status = f"incomplete: {why}"
     else:
-        code, status = SearchStatus.COMPLETE, "ok"
+        code, status = SearchStatus.COMPLETE, ""  # detail: the status message
     searched = reach[0] if reach is not None else amax
     return LimitCycleResult(
         p,
