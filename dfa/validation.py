@@ -551,24 +551,24 @@ class ValidationResult:
         ]
         if "speeds" in f:
             L += ["", f"![critical speeds]({f['speeds']})"]
-        s = self.soundness
+        snd = self.soundness
         L += [
             "",
             "## 3. Criterion soundness and conservatism",
             "",
-            f"Grid: μ ∈ {list(s.mus)}, ξ'0 ∈ {list(s.xi_dots)}, (β, σ) ∈ [0, 1] × [0, 2.5]: {s.points} simulations.",
+            f"Grid: μ ∈ {list(snd.mus)}, ξ'0 ∈ {list(snd.xi_dots)}, (β, σ) ∈ [0, 1] × [0, 2.5]: {snd.points} simulations.",
             "",
             "| measure | value |",
             "|---|---:|",
-            f"| points the criterion calls passive | {s.passive} |",
-            f"| …of which simulated unstable (soundness violations) | **{len(s.violations)}** |",
-            f"| simulated not unstable | {s.not_unstable} |",
-            f"| …of which the criterion rejects | {s.rejected_not_unstable} |",
-            f"| simulated rest (came to rest) | {s.rest} |",
-            f"| …of which the criterion rejects (conservatism) | {s.rejected_rest} ({_pct(s.conservatism)}) |",
-            f"| simulated undecided (run too short to tell) | {s.undecided} |",
+            f"| points the criterion calls passive | {snd.passive} |",
+            f"| …of which simulated unstable (soundness violations) | **{len(snd.violations)}** |",
+            f"| simulated not unstable | {snd.not_unstable} |",
+            f"| …of which the criterion rejects | {snd.rejected_not_unstable} |",
+            f"| simulated rest (came to rest) | {snd.rest} |",
+            f"| …of which the criterion rejects (conservatism) | {snd.rejected_rest} ({_pct(snd.conservatism)}) |",
+            f"| simulated undecided (run too short to tell) | {snd.undecided} |",
         ]
-        if s.violations:
+        if snd.violations:
             L += [
                 "",
                 "Counterexamples (criterion passive, simulation unstable):",
@@ -576,7 +576,7 @@ class ValidationResult:
                 "| μ | β | σ | ξ'0 |",
                 "|---:|---:|---:|---:|",
             ]
-            L += [f"| {v['mu']:g} | {v['beta']:.4g} | {v['sigma']:.4g} | {v['xi_dot']:g} |" for v in s.violations[:50]]
+            L += [f"| {v['mu']:g} | {v['beta']:.4g} | {v['sigma']:.4g} | {v['xi_dot']:g} |" for v in snd.violations[:50]]
         L += [
             "",
             "## 4. Where the describing function breaks down",
