@@ -380,7 +380,17 @@ class SimulationResult:
         return self.outcome
 
     def plot(self, ax=None, **kwargs):
-        """Displacement against time (:func:`dfa.plotting.trajectory_plot`, paper Fig. 5); returns the Axes."""
+        """Displacement against time (:func:`dfa.plotting.trajectory_plot`, paper Fig. 5); returns the Axes.
+
+        Raises
+        ------
+        DFAValueError
+            When the run was not recorded (``record=False``).
+        """
+        if self.xi is None:
+            raise DFAValueError(
+                "xi = None is invalid for plot(): the trajectory was not recorded; run simulate(..., record=True)"
+            )
         from .plotting import trajectory_plot
 
         return trajectory_plot(self, ax, **kwargs)

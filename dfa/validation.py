@@ -576,7 +576,9 @@ class ValidationResult:
                 "| μ | β | σ | ξ'0 |",
                 "|---:|---:|---:|---:|",
             ]
-            L += [f"| {v['mu']:g} | {v['beta']:.4g} | {v['sigma']:.4g} | {v['xi_dot']:g} |" for v in snd.violations[:50]]
+            L += [
+                f"| {v['mu']:g} | {v['beta']:.4g} | {v['sigma']:.4g} | {v['xi_dot']:g} |" for v in snd.violations[:50]
+            ]
         L += [
             "",
             "## 4. Where the describing function breaks down",

@@ -403,6 +403,8 @@ def test_plot_methods_return_labelled_axes(small_map, contours, nyquist, empty_v
         assert isinstance(ax, Axes) and _labelled(ax)
     for axes in (small_map.plot(), contours.plot()):
         assert len(axes) >= 2 and all(isinstance(a, Axes) and _labelled(a) for a in axes)
+    with pytest.raises(DFAValueError, match="record=True"):
+        simulate(5.0, 0.3, 0.6, 2.0, samples=20, record=False).plot()
     _fig, given_ax = plt.subplots()
     assert sim.plot(ax=given_ax) is given_ax
     with pytest.raises(DFAValueError, match="which"):
