@@ -564,7 +564,7 @@ class ValidationResult:
 
     def _md_soundness(self) -> list[str]:
         s = self.soundness
-        rows = [
+        rows: list[list[object]] = [
             ["points the criterion calls passive", s.passive],
             ["…of which simulated unstable (soundness violations)", f"**{len(s.violations)}**"],
             ["simulated not unstable", s.not_unstable],
