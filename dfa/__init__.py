@@ -7,14 +7,41 @@ The numerical core works in the paper's dimensionless parameters (Table 1)
 μ = m/(K T²), β = b/(K T), σ = c/(K Δ); physical units appear only in
 :class:`Device`, the catalogue, the command line and report labels.
 
+Naming scheme of analyses and results
+-------------------------------------
+An analysis is a function named for what it computes; it returns a frozen
+result named for the same thing:
+
+- noun → the noun in CamelCase: ``stiffness_limits`` → :class:`StiffnessLimits`,
+  ``stability_map`` → ``StabilityMap``, ``contour_maps`` → ``ContourMaps``,
+  ``growth_threshold`` → ``GrowthThreshold``, ``delay_soundness`` → ``DelaySoundness``;
+- verb or criterion → the noun + ``Result``: ``simulate`` → ``SimulationResult``,
+  ``passivity_criterion`` / ``device_criterion`` → :class:`CriterionResult`,
+  ``limit_cycles`` → ``LimitCycleResult``, ``validate`` → ``ValidationResult``;
+- a response over frequency or speed, as in python-control: ``*_response`` →
+  ``*Response``: ``nyquist_locus_response`` → ``NyquistLocusResponse``,
+  ``stiffness_response`` → :class:`StiffnessResponse`.
+
+Every result carries its inputs and a ``status``, a member of an enum of
+:mod:`dfa.status` whose ``message`` says what it means; numpy arrays in results
+are read-only copies; ``as_dict()`` returns strict-JSON data (NaN and infinities
+become null, with the reason under ``null_reasons``; :mod:`dfa.jsonable`);
+results with a figure have ``.plot(ax=None)`` returning the matplotlib Axes
+(matplotlib loads then, never on ``import dfa``); maps and contours have
+``to_xarray()`` (optional extra ``pip install 'dfa[xarray]'``).
+
 Examples
 --------
 >>> import dfa
 >>> dev = dfa.get_device("Delta").device
 >>> p = dev.params(stiffness=14500.0)
 >>> r = dfa.passivity_criterion(p.beta, p.sigma, xi_dot=dev.xi_dot(0.1))
->>> r.region, r.passive
-('e', True)
+>>> r.region, r.passive, r.status.value
+('e', True, 'passive_below_critical_speed')
+>>> r.status.message
+'passive up to the critical speed: the energy cannot grow (proven)'
+>>> r.as_dict()["status"]
+'passive_below_critical_speed'
 """
 
 from ._io import ensure_numba_cache_dir as _ensure_numba_cache_dir
@@ -42,6 +69,7 @@ from .device import Device, Params
 from .errors import DFAError, DFATypeError, DFAValueError
 from .stiffness import (
     StiffnessLimits,
+    StiffnessResponse,
     gil_beta_critical,
     k_abbott_okamura,
     k_colgate,
@@ -49,9 +77,21 @@ from .stiffness import (
     k_max_criterion,
     max_passive_velocity,
     stiffness_limits,
+    stiffness_response,
 )
 
-__version__ = "0.1.0"
+
+def _version() -> str:
+    """The installed distribution's version (pyproject.toml is the only place that states it)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("dfa")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree that was never installed
+        return "0+unknown"
+
+
+__version__ = _version()
 
 # Modules that need python-control are imported on first use: python-control
 # itself imports matplotlib, and `import dfa` must stay free of it.
@@ -113,6 +153,8 @@ _SUBMODULES = {
     "plotting",
     "kmax",
     "speed_chart",
+    "status",
+    "jsonable",
 }
 
 
@@ -150,6 +192,8 @@ __all__ = [
     "REGION_DESCRIPTIONS",
     "StiffnessLimits",
     "stiffness_limits",
+    "StiffnessResponse",
+    "stiffness_response",
     "k_max_criterion",
     "k_colgate",
     "k_abbott_okamura",

@@ -31,6 +31,7 @@ from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params, dimensionless_params
 from .errors import DFAError, DFAValueError
 from .formatting import number, text_table
+from .jsonable import dumps
 from .stiffness import stiffness_limits
 
 __all__ = ["main"]
@@ -303,7 +304,7 @@ def _speed(args: argparse.Namespace, inputs: _Inputs, required: bool = True) -> 
 
 
 def _emit(obj: object) -> None:
-    print(json.dumps(obj, allow_nan=False))
+    print(dumps(obj))  # strict JSON: NaN/inf become null with the reason (dfa.jsonable)
 
 
 def _table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:

@@ -35,12 +35,15 @@ from pathlib import Path
 
 import numpy as np
 
+from ._frozen import check_shape, freeze_fields
 from ._io import atomic_open, check_memory
 from .checks import check_int, check_mu, check_positive
 from .cycles import ClosedFormStatus, large_cycle_closed_forms, small_cycle_closed_forms
 from .describing import quantizer_df
 from .errors import DFAValueError
+from .jsonable import to_jsonable
 from .maps import _check_range
+from .status import ContourStatus
 
 __all__ = ["ContourMaps", "contour_maps", "load_contours", "contour_memory_bytes"]
 
@@ -77,7 +80,13 @@ class ContourMaps:
     small_amplitude_closed : numpy.ndarray
         Eq. 42-43 without the M < 1 restriction (the paper's approximation).
     max_amplitude : float
-    status : str
+    status : ContourStatus
+        ``OK``: every point solved (NaN where a family does not exist or lies beyond ``max_amplitude``);
+        ``FLAGGED``: the closed forms flagged grid points (NaN), counted in ``detail``.
+    detail : str
+        Which grid points the closed forms flag (β = σ = 0, solver failures) and why; empty when ``OK``.
+
+    Arrays are read-only copies; shapes are checked on construction.
     """
 
     mu: float
@@ -91,7 +100,63 @@ class ContourMaps:
     large_frequency_closed: np.ndarray = field(repr=False)
     small_amplitude_closed: np.ndarray = field(repr=False)
     max_amplitude: float = 200.0
-    status: str = "ok"
+    status: ContourStatus = ContourStatus.OK
+    detail: str = ""
+
+    def __post_init__(self) -> None:
+        freeze_fields(self, {"beta": {"ndim": 1}, "sigma": {"ndim": 1}})
+        freeze_fields(self, {k: {"ndim": 2, "finite": False} for k in _ARRAYS if k not in ("beta", "sigma")})
+        for k in _ARRAYS:
+            if k not in ("beta", "sigma"):
+                check_shape(k, getattr(self, k), (self.sigma.size, self.beta.size))
+        object.__setattr__(self, "status", ContourStatus.coerce(self.status))
+
+    def plot(self, ax=None):
+        """Amplitude and frequency of both families (:func:`dfa.plotting.contour_plot`, paper Fig. 7).
+
+        ``ax``: a pair of Axes (default: new figure). Returns the pair.
+        """
+        from .plotting import contour_plot
+
+        return contour_plot(self, ax)
+
+    def to_xarray(self):
+        """The maps as an :class:`xarray.Dataset` with labelled dims ``sigma``, ``beta``.
+
+        One variable per array (amplitudes in ticks, frequencies in rad/sample; NaN where a
+        family does not exist); attributes hold μ, ``max_amplitude`` and the status.
+
+        Raises
+        ------
+        DFAError
+            When the optional package xarray is not installed (``pip install 'dfa[xarray]'``).
+        """
+        from ._xarray import BETA_ATTRS, SIGMA_ATTRS, import_xarray
+
+        xr = import_xarray()
+        names = [k for k in _ARRAYS if k not in ("beta", "sigma")]
+        unit = {"amplitude": "ticks", "frequency": "rad/sample"}
+        data = {
+            k: (
+                ("sigma", "beta"),
+                np.array(getattr(self, k)),
+                {"units": unit[k.split("_")[1]], "long_name": k.replace("_", " ")},
+            )
+            for k in names
+        }
+        return xr.Dataset(
+            data,
+            coords={
+                "sigma": ("sigma", np.array(self.sigma), SIGMA_ATTRS),
+                "beta": ("beta", np.array(self.beta), BETA_ATTRS),
+            },
+            attrs={
+                "mu": self.mu,
+                "max_amplitude": self.max_amplitude,
+                "status": self.status.value,
+                "status_message": self.detail or self.status.message,
+            },
+        )
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write all maps to a ``.npz`` file (see :func:`load_contours`)."""
@@ -105,16 +170,20 @@ class ContourMaps:
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready summary: grid and how many points carry each family."""
-        return {
-            "mu": self.mu,
-            "beta_range": [float(self.beta[0]), float(self.beta[-1])],
-            "sigma_range": [float(self.sigma[0]), float(self.sigma[-1])],
-            "grid": [int(self.beta.size), int(self.sigma.size)],
-            "small_points": int(np.isfinite(self.small_amplitude).sum()),
-            "large_points": int(np.isfinite(self.large_amplitude).sum()),
-            "large_closed_points": int(np.isfinite(self.large_amplitude_closed).sum()),
-            "max_amplitude": self.max_amplitude,
-        }
+        return to_jsonable(
+            {
+                "mu": self.mu,
+                "beta_range": [float(self.beta[0]), float(self.beta[-1])],
+                "sigma_range": [float(self.sigma[0]), float(self.sigma[-1])],
+                "grid": [int(self.beta.size), int(self.sigma.size)],
+                "small_points": int(np.isfinite(self.small_amplitude).sum()),
+                "large_points": int(np.isfinite(self.large_amplitude).sum()),
+                "large_closed_points": int(np.isfinite(self.large_amplitude_closed).sum()),
+                "max_amplitude": self.max_amplitude,
+                "status": self.status,
+                "status_message": self.detail or self.status.message,
+            }
+        )
 
 
 def load_contours(path: str | os.PathLike) -> ContourMaps:
@@ -234,17 +303,17 @@ def contour_maps(
     small_m = np.where(sm_cf < 1.0, sm_cf, np.nan)
     small_w = np.where(sm_cf < 1.0, sw_cf, np.nan)
     large_m, large_w = _large_exact(m, beta, sigma, amax)
-    return ContourMaps(
-        m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax, _closed_form_status(small, large)
-    )
+    detail = _closed_form_detail(small, large)
+    status = ContourStatus.FLAGGED if detail else ContourStatus.OK
+    return ContourMaps(m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax, status, detail)
 
 
-def _closed_form_status(small, large) -> str:
-    """``"ok"``, or which grid points the closed forms flag (β = σ = 0, solver failures) and why."""
+def _closed_form_detail(small, large) -> str:
+    """Which grid points the closed forms flag (β = σ = 0, solver failures) and why; ``""`` when none."""
     notes = []
     for name, cf in (("eq. 42-43", small), ("eq. 44-45", large)):
         for code in (ClosedFormStatus.DEGENERATE, ClosedFormStatus.NOT_SOLVED):
             count = int(np.count_nonzero(cf.status == code))
             if count:
                 notes.append(f"{name}: {count} point(s) NaN, {code.reason}")
-    return "ok" if not notes else "; ".join(notes)
+    return "; ".join(notes)

@@ -97,6 +97,8 @@ from .checks import (
 )
 from .device import Device
 from .errors import DFAValueError
+from .jsonable import to_jsonable
+from .status import CriterionStatus
 
 __all__ = [
     "CriticalLine",
@@ -111,13 +113,7 @@ __all__ = [
 
 #: One-line meaning of each region of paper Fig. 3 (text before the first colon: short label).
 #: Only a and e are guarantees; b, c, d say what is *not* guaranteed.
-REGION_DESCRIPTIONS = {
-    "a": "passive at every speed: the energy cannot grow (proven; β >= ½ + d, σ >= ½)",
-    "b": "not passive at rest: σ < ½, the device cannot stop; sub-tick chatter expected (paper, d = 0)",
-    "c": "no passivity guarantee at any speed: σ < ½ and β < ½ + d (not a proof of instability)",
-    "d": "no passivity guarantee at this speed: above the critical speed (not a proof of instability)",
-    "e": "passive up to the critical speed: the energy cannot grow (proven)",
-}
+REGION_DESCRIPTIONS = {s.region: s.message for s in CriterionStatus}
 
 _REGION_CODES = np.array(["a", "b", "c", "d", "e"])
 
@@ -296,8 +292,8 @@ class CriterionResult:
         Initial position ξ0 in ticks.
     mu : float or None
         Dimensionless mass (needed only when ξ0 ≠ 0).
-    status : str
-        Plain-language meaning of the region (:data:`REGION_DESCRIPTIONS`).
+    status : CriterionStatus
+        The region's meaning: its ``message`` is :data:`REGION_DESCRIPTIONS` of the region.
     device, stiffness, velocity, critical_velocity, position
         Set by :func:`device_criterion`: the physical inputs and the critical
         (energy-equivalent) speed in m/s (rad/s); otherwise None.
@@ -316,7 +312,7 @@ class CriterionResult:
     delay: int
     xi0: float
     mu: float | None
-    status: str
+    status: CriterionStatus
     device: Device | None = None
     stiffness: float | None = None
     velocity: float | None = None
@@ -335,6 +331,7 @@ class CriterionResult:
             "xi_dot": self.xi_dot,
             "quantized": self.quantized,
             "status": self.status,
+            "status_message": self.status.message,
             "delay": self.delay,
             "xi0": self.xi0,
             "mu": self.mu,
@@ -348,7 +345,32 @@ class CriterionResult:
                 critical_velocity=self.critical_velocity,
                 position=self.position,
             )
-        return out
+        return to_jsonable(out)
+
+    def __post_init__(self) -> None:
+        for name in ("beta", "sigma", "xi_dot", "margin", "equivalent_speed"):
+            if math.isnan(getattr(self, name)):
+                raise DFAValueError(
+                    f"{name} = nan is invalid: results hold numbers; build results with passivity_criterion"
+                )
+        status = CriterionStatus.coerce(self.status)
+        object.__setattr__(self, "status", status)
+        if self.region not in REGION_DESCRIPTIONS or status.region != self.region:
+            raise DFAValueError(
+                f"status = {status.value!r} is invalid for region = {self.region!r}: they must agree "
+                "(CriterionStatus.of_region); build results with passivity_criterion"
+            )
+        if self.passive != (self.region in ("a", "e")):
+            raise DFAValueError(
+                f"passive = {self.passive!r} is invalid for region {self.region!r}: only regions a and e are passive; "
+                "build results with passivity_criterion"
+            )
+
+    def plot(self, ax=None, **kwargs):
+        """The (β, σ) plane with regions a-e and this point (:func:`dfa.plotting.regions_plot`); returns the Axes."""
+        from .plotting import regions_plot
+
+        return regions_plot(self, ax, **kwargs)
 
 
 def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
@@ -453,7 +475,7 @@ def passivity_criterion(
         delay=d,
         xi0=x0,
         mu=m,
-        status=REGION_DESCRIPTIONS[region],
+        status=CriterionStatus.of_region(region),
     )
 
 

@@ -16,14 +16,17 @@ from typing import Any
 import numpy as np
 
 from .catalogue import CatalogueEntry
+from .checks import check_delay, check_positive, check_real
 from .criterion import CriterionResult, device_criterion
 from .cycles import GrowthThreshold, growth_threshold
 from .device import Device, Params
-from .errors import DFATypeError, DFAValueError, check_delay, check_positive, check_real
+from .errors import DFATypeError, DFAValueError
+from .jsonable import to_jsonable
 from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, stability_map
 from .simulation import SimulationResult, simulate
-from .stiffness import StiffnessCurve, StiffnessLimits, stiffness_limits, stiffness_response
+from .status import DesignStatus
+from .stiffness import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
 from .validation import first_unstable_speed
 
 __all__ = ["DesignAnalysis", "design_analysis"]
@@ -73,7 +76,7 @@ class DesignAnalysis:
         Exact simulation at ``high_xi_dot``.
     trajectory, trajectory_high : SimulationResult
         Recorded runs (figure windows) at the two speeds.
-    stiffness_curve : StiffnessCurve
+    stiffness_curve : StiffnessResponse
         Largest passive stiffness against speed (figure).
     nyquist : NyquistLocusResponse
         Linearised loop and −1/D(M) (figure).
@@ -85,8 +88,8 @@ class DesignAnalysis:
         Summary of a validation run (:meth:`dfa.validation.Validation.summary`) passed in; never read from a file.
     samples, map_grid : int
         Samples per run of the speed scan and the map, and the map's points per axis (inputs of the analysis).
-    status : str
-        ``"ok"``.
+    status : DesignStatus
+        ``OK``.
     """
 
     device: Device
@@ -103,14 +106,14 @@ class DesignAnalysis:
     outcome_high: SimulationResult
     trajectory: SimulationResult = field(repr=False)
     trajectory_high: SimulationResult = field(repr=False)
-    stiffness_curve: StiffnessCurve = field(repr=False)
+    stiffness_curve: StiffnessResponse = field(repr=False)
     nyquist: NyquistLocusResponse = field(repr=False)
     stability_map: StabilityMap = field(repr=False)
     catalogue: dict[str, Any] | None = None
     validation: dict[str, Any] | None = None
     samples: int = 30_000
     map_grid: int = 41
-    status: str = "ok"
+    status: DesignStatus = DesignStatus.OK
 
     def __post_init__(self) -> None:
         if not isinstance(self.device, Device):
@@ -123,8 +126,7 @@ class DesignAnalysis:
             raise DFAValueError(
                 f"thresholds are for {[m for m, _ in self.thresholds]}: they must be for {list(MODELS)}"
             )
-        if self.status != "ok":
-            raise DFAValueError(f"status = {self.status!r} is invalid: a design analysis is 'ok'")
+        object.__setattr__(self, "status", DesignStatus.coerce(self.status))
 
     def threshold(self, model: str) -> GrowthThreshold:
         """The growth threshold of loop model ``model`` (``"half-delay"`` or ``"zoh"``)."""
@@ -136,29 +138,32 @@ class DesignAnalysis:
         return None if self.simulated_xi_dot is None else self.device.velocity(self.simulated_xi_dot)
 
     def as_dict(self) -> dict[str, object]:
-        """The numbers the report states, JSON-able (SI units; speeds also in ticks/sample)."""
-        return {
-            "device": self.device.as_dict(),
-            "stiffness": self.stiffness,
-            "velocity": self.velocity,
-            "delay": self.delay,
-            "params": self.params.as_dict(),
-            "criterion": self.criterion.as_dict(),
-            "limits": self.limits.as_dict(),
-            "growth_thresholds": {m: g.as_dict() for m, g in self.thresholds},
-            "cycles": {m: g.result.as_dict() for m, g in self.thresholds},
-            "simulated_xi_dot": self.simulated_xi_dot,
-            "simulated_velocity": self.simulated_velocity,
-            "outcome": self.outcome.as_dict(),
-            "high_xi_dot": self.high_xi_dot,
-            "outcome_high": self.outcome_high.as_dict(),
-            "stability_map": self.stability_map.as_dict(),
-            "catalogue": self.catalogue,
-            "validation": self.validation,
-            "samples": self.samples,
-            "map_grid": self.map_grid,
-            "status": self.status,
-        }
+        """The numbers the report states, strict JSON data (SI units; speeds also in ticks/sample)."""
+        return to_jsonable(
+            {
+                "device": self.device.as_dict(),
+                "stiffness": self.stiffness,
+                "velocity": self.velocity,
+                "delay": self.delay,
+                "params": self.params.as_dict(),
+                "criterion": self.criterion.as_dict(),
+                "limits": self.limits.as_dict(),
+                "growth_thresholds": {m: g.as_dict() for m, g in self.thresholds},
+                "cycles": {m: g.result.as_dict() for m, g in self.thresholds},
+                "simulated_xi_dot": self.simulated_xi_dot,
+                "simulated_velocity": self.simulated_velocity,
+                "outcome": self.outcome.as_dict(),
+                "high_xi_dot": self.high_xi_dot,
+                "outcome_high": self.outcome_high.as_dict(),
+                "stability_map": self.stability_map.as_dict(),
+                "catalogue": self.catalogue,
+                "validation": self.validation,
+                "samples": self.samples,
+                "map_grid": self.map_grid,
+                "status": self.status,
+                "status_message": self.status.message,
+            }
+        )
 
 
 def _catalogue_notes(entry: CatalogueEntry | None) -> dict[str, Any] | None:
@@ -181,7 +186,8 @@ def _check_validation(summary: dict[str, Any] | None) -> dict[str, Any] | None:
         raise DFAValueError(
             f"validation lacks {', '.join(missing)}: pass the dict of dfa.validate(...).summary() (or None)"
         )
-    return dict(summary)
+    # validation.json is strict JSON (dfa.jsonable): a NaN summary number was stored as null; read it back as NaN
+    return {k: math.nan if k in _VALIDATION_KEYS and v is None else v for k, v in summary.items()}
 
 
 def resolve_design_inputs(
@@ -267,7 +273,7 @@ def design_analysis(
     --------
     >>> import dfa
     >>> a = design_analysis(dfa.get_device("impulse"), velocity=0.05, map_grid=3, samples=2000, n_jobs=1)
-    >>> a.criterion.passive, round(a.limits.k_max, 1), a.outcome.outcome
+    >>> a.criterion.passive, round(a.limits.k_max, 1), a.outcome.outcome.value
     (True, 120.8, 'rest')
     """
     from tqdm.auto import tqdm

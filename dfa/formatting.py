@@ -7,10 +7,11 @@ Pure string functions: no numerics, no I/O.
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Sequence
 from typing import Any
+
+from .jsonable import dumps
 
 __all__ = ["json_dumps", "markdown_table", "number", "percent", "text_table"]
 
@@ -113,21 +114,15 @@ def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = 
 
 
 def json_dumps(obj: object, **kwargs: Any) -> str:
-    """JSON text with NaN and ±inf written as null (valid JSON), tuples as lists, non-ASCII kept.
+    """Strict JSON text through the package's one sanitiser (:func:`dfa.jsonable.dumps`), non-ASCII kept.
+
+    NaN and ±inf become null and the dict that held them gains ``null_reasons``; enums
+    become their code, tuples and arrays lists.
 
     Examples
     --------
     >>> json_dumps({"k": float("nan"), "v": (1.5, float("inf")), "u": "N·m"})
-    '{"k": null, "v": [1.5, null], "u": "N·m"}'
+    '{"k": null, "v": [1.5, null], "u": "N·m", "null_reasons": {"/k": "NaN", "/v/1": "+inf"}}'
     """
-
-    def clean(x: object) -> object:
-        if isinstance(x, float) and not math.isfinite(x):
-            return None
-        if isinstance(x, dict):
-            return {str(k): clean(v) for k, v in x.items()}
-        if isinstance(x, (list, tuple)):
-            return [clean(v) for v in x]
-        return x
-
-    return json.dumps(clean(obj), allow_nan=False, ensure_ascii=False, **kwargs)
+    kwargs.setdefault("ensure_ascii", False)
+    return dumps(obj, **kwargs)

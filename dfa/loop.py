@@ -43,11 +43,14 @@ from dataclasses import dataclass, field
 import control
 import numpy as np
 
+from ._frozen import check_shape, freeze_fields
 from .checks import check_choice, check_delay, check_int, check_positive_array, check_type
 from .describing import coulomb_equivalent_damping, quantizer_df
 from .device import Params
 from .errors import DFAValueError
+from .jsonable import to_jsonable
 from .linear import _zoh_coefficients  # the ZOH pulse-transfer coefficients live with the exact linear analysis
+from .status import NyquistStatus
 
 __all__ = [
     "LOOP_MODELS",
@@ -253,8 +256,13 @@ class NyquistLocusResponse:
         limit-cycle solver (:func:`dfa.cycles.limit_cycles`, residual <= 1e-10)
         with ω in the plotted range and M up to the locus's largest amplitude,
         the point being −1/D(M); for σ > 0 use the solver directly.
-    status : str
-        ``"ok"``, or a note on what was not computed.
+    status : NyquistStatus
+        ``OK``, ``CROSSINGS_NOT_COMPUTED`` (σ > 0) or ``SEARCH_INCOMPLETE`` (the solver's
+        search ended incomplete; crossings may be missing, why in ``detail``).
+    detail : str
+        The solver's one-line reason when ``SEARCH_INCOMPLETE``; empty otherwise.
+
+    Arrays are read-only copies.
     """
 
     params: Params
@@ -267,15 +275,60 @@ class NyquistLocusResponse:
     locus_amplitude: np.ndarray = field(repr=False)
     locus: np.ndarray = field(repr=False)
     crossings: tuple
-    status: str
+    status: NyquistStatus
+    detail: str = ""
+
+    def __post_init__(self) -> None:
+        freeze_fields(
+            self,
+            {
+                "omega": {"ndim": 1},
+                "amplitudes": {"ndim": 1, "finite": False},
+                "curves": {"dtype": complex, "ndim": 2, "finite": False},
+                "locus_amplitude": {"ndim": 1},
+                "locus": {"dtype": complex, "ndim": 1, "finite": False},
+            },
+        )
+        check_shape("curves", self.curves, (self.amplitudes.size, self.omega.size))
+        check_shape("locus", self.locus, self.locus_amplitude.shape)
+        object.__setattr__(self, "status", NyquistStatus.coerce(self.status))
+        object.__setattr__(self, "crossings", tuple(self.crossings))
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record: inputs, crossings (M, ω, point) and the curves (complex as ``{"re", "im"}``)."""
+        return to_jsonable(
+            {
+                "mu": self.params.mu,
+                "beta": self.params.beta,
+                "sigma": self.params.sigma,
+                "model": self.model,
+                "delay": self.delay,
+                "pade_order": self.pade_order,
+                "crossings": [{"amplitude": m, "frequency": w, "point": pt} for m, w, pt in self.crossings],
+                "omega": self.omega,
+                "amplitudes": self.amplitudes,
+                "curves": self.curves,
+                "locus_amplitude": self.locus_amplitude,
+                "locus": self.locus,
+                "status": self.status,
+                "status_message": self.detail or self.status.message,
+            }
+        )
+
+    def plot(self, ax=None, **kwargs):
+        """Nyquist plot against the critical locus (:func:`dfa.plotting.nyquist_plot`, paper Fig. 6); returns the Axes."""
+        from .plotting import nyquist_plot
+
+        return nyquist_plot(self, ax, **kwargs)
 
 
 def _solver_crossings(
     p: Params, model: str, delay: int, pade_order: int, omega: np.ndarray, max_amplitude: float
-) -> tuple[list[tuple[float, float, complex]], str]:
+) -> tuple[list[tuple[float, float, complex]], NyquistStatus, str]:
     """σ = 0: the harmonic-balance roots of the limit-cycle solver (one implementation, residual <= 1e-10).
 
-    Returns ((M, ω, −1/D(M)) for every root with ω in the plotted range and M <= ``max_amplitude``, status).
+    Returns ((M, ω, −1/D(M)) for every root with ω in the plotted range and M <= ``max_amplitude``, status,
+    detail): ``OK`` when the search is complete up to ``max_amplitude``, else ``SEARCH_INCOMPLETE`` and why.
     """
     from .cycles import SearchStatus, limit_cycles  # imported here: dfa.cycles builds on this module
 
@@ -286,7 +339,9 @@ def _solver_crossings(
         for c in res.cycles
         if lo <= c.frequency <= hi
     ]
-    return out, ("ok" if res.complete or res.status_code is SearchStatus.MAX_AMPLITUDE else res.status)
+    if res.complete or res.status is SearchStatus.MAX_AMPLITUDE:
+        return out, NyquistStatus.OK, ""
+    return out, NyquistStatus.SEARCH_INCOMPLETE, res.detail
 
 
 def nyquist_locus_response(
@@ -329,7 +384,7 @@ def nyquist_locus_response(
     if p.sigma == 0.0:
         amps = np.array([np.nan])
         curves = np.atleast_2d(loop_response(p, w, model=m, delay=d, pade_order=n))
-        crossings, status = _solver_crossings(p, m, d, n, w, float(la.max()))
+        crossings, status, detail = _solver_crossings(p, m, d, n, w, float(la.max()))
     else:
         if amplitudes is None:
             raise DFAValueError(
@@ -338,5 +393,5 @@ def nyquist_locus_response(
             )
         amps = np.atleast_1d(np.asarray(amplitudes, dtype=float))
         curves = np.vstack([loop_response(p, w, np.full_like(w, a), model=m, delay=d, pade_order=n) for a in amps])
-        status = "crossings not computed for sigma > 0: use the limit-cycle solver"
-    return NyquistLocusResponse(p, m, d, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status)
+        status, detail = NyquistStatus.CROSSINGS_NOT_COMPUTED, ""
+    return NyquistLocusResponse(p, m, d, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, detail)

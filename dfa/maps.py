@@ -54,6 +54,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ._frozen import check_shape, freeze_fields
 from ._io import atomic_open, check_memory
 from .checks import (
     check_bound,
@@ -66,7 +67,9 @@ from .checks import (
     check_real,
 )
 from .errors import DFAValueError
+from .jsonable import to_jsonable
 from .simulation import OUTCOMES, check_rules, preload_position, run_points
+from .status import MapStatus
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
 
@@ -105,8 +108,10 @@ class StabilityMap:
         Measured cycle amplitude (ticks) and frequency (rad per sample); NaN where not measured.
     samples, delay, quantize, preload
         Simulation settings.
-    status : str
-        ``"ok"``.
+    status : MapStatus
+        ``OK``: every point simulated (amplitude and frequency NaN where not measured).
+
+    Arrays are read-only copies; shapes are checked on construction.
     """
 
     mu: float
@@ -120,7 +125,76 @@ class StabilityMap:
     delay: int = 0
     quantize: bool = True
     preload: bool = False
-    status: str = "ok"
+    status: MapStatus = MapStatus.OK
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "xi_dots", tuple(float(v) for v in self.xi_dots))
+        freeze_fields(
+            self,
+            {
+                "beta": {"ndim": 1},
+                "sigma": {"ndim": 1},
+                "outcome": {"dtype": np.int8, "ndim": 3},
+                "amplitude": {"ndim": 3, "finite": False},
+                "frequency": {"ndim": 3, "finite": False},
+            },
+        )
+        shape = (len(self.xi_dots), self.sigma.size, self.beta.size)
+        for name in ("outcome", "amplitude", "frequency"):
+            check_shape(name, getattr(self, name), shape)
+        if self.outcome.size and not (0 <= self.outcome.min() and self.outcome.max() < len(OUTCOMES)):
+            raise DFAValueError(
+                f"outcome holds codes outside 0 … {len(OUTCOMES) - 1}: they index dfa.simulation.OUTCOMES; "
+                "pass the codes the simulation returned"
+            )
+        object.__setattr__(self, "status", MapStatus.coerce(self.status))
+
+    def plot(self, ax=None, **kwargs):
+        """Outcome per (β, σ), one panel per speed (:func:`dfa.plotting.stability_map_plot`, paper Fig. 4).
+
+        ``ax``: a sequence of Axes, one per speed (default: new figure). Returns the list of Axes.
+        """
+        from .plotting import stability_map_plot
+
+        return stability_map_plot(self, ax, **kwargs)
+
+    def to_xarray(self):
+        """The map as an :class:`xarray.Dataset` with labelled dims ``xi_dot``, ``sigma``, ``beta``.
+
+        Variables ``outcome`` (codes, ``flag_meanings`` names them), ``amplitude`` (ticks) and
+        ``frequency`` (rad/sample); attributes hold μ, the settings and the status.
+
+        Raises
+        ------
+        DFAError
+            When the optional package xarray is not installed (``pip install 'dfa[xarray]'``).
+        """
+        from ._xarray import BETA_ATTRS, SIGMA_ATTRS, XI_DOT_ATTRS, import_xarray
+
+        xr = import_xarray()
+        dims = ("xi_dot", "sigma", "beta")
+        codes = {"flag_values": list(range(len(OUTCOMES))), "flag_meanings": " ".join(OUTCOMES)}
+        return xr.Dataset(
+            {
+                "outcome": (dims, np.array(self.outcome), {"long_name": "simulated outcome", **codes}),
+                "amplitude": (dims, np.array(self.amplitude), {"long_name": "cycle amplitude", "units": "ticks"}),
+                "frequency": (dims, np.array(self.frequency), {"long_name": "cycle frequency", "units": "rad/sample"}),
+            },
+            coords={
+                "xi_dot": ("xi_dot", np.array(self.xi_dots), XI_DOT_ATTRS),
+                "sigma": ("sigma", np.array(self.sigma), SIGMA_ATTRS),
+                "beta": ("beta", np.array(self.beta), BETA_ATTRS),
+            },
+            attrs={
+                "mu": self.mu,
+                "samples": self.samples,
+                "delay": self.delay,
+                "quantize": int(self.quantize),
+                "preload": int(self.preload),
+                "status": self.status.value,
+                "status_message": self.status.message,
+            },
+        )
 
     def counts(self) -> list[dict[str, int]]:
         """Number of grid points per outcome, one dict per initial speed."""
@@ -128,18 +202,22 @@ class StabilityMap:
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready summary (grid, settings and counts per speed)."""
-        return {
-            "mu": self.mu,
-            "xi_dots": list(self.xi_dots),
-            "beta_range": [float(self.beta[0]), float(self.beta[-1])],
-            "sigma_range": [float(self.sigma[0]), float(self.sigma[-1])],
-            "grid": [int(self.beta.size), int(self.sigma.size)],
-            "samples": self.samples,
-            "delay": self.delay,
-            "quantize": self.quantize,
-            "preload": self.preload,
-            "counts": [dict(xi_dot=v, **c) for v, c in zip(self.xi_dots, self.counts(), strict=False)],
-        }
+        return to_jsonable(
+            {
+                "mu": self.mu,
+                "xi_dots": list(self.xi_dots),
+                "beta_range": [float(self.beta[0]), float(self.beta[-1])],
+                "sigma_range": [float(self.sigma[0]), float(self.sigma[-1])],
+                "grid": [int(self.beta.size), int(self.sigma.size)],
+                "samples": self.samples,
+                "delay": self.delay,
+                "quantize": self.quantize,
+                "preload": self.preload,
+                "counts": [dict(xi_dot=v, **c) for v, c in zip(self.xi_dots, self.counts(), strict=False)],
+                "status": self.status,
+                "status_message": self.status.message,
+            }
+        )
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write the map to a ``.npz`` file (see :func:`load_map`), atomically.

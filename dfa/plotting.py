@@ -355,7 +355,7 @@ def stiffness_plot(curve, ax=None):
 
     Parameters
     ----------
-    curve : StiffnessCurve
+    curve : StiffnessResponse
         From :func:`dfa.stiffness.stiffness_response`.
     """
     ax = _axes(ax, figsize=(6.0, 4.0))

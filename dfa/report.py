@@ -23,6 +23,8 @@ from .design import DesignAnalysis, design_analysis, resolve_design_inputs
 from .device import Device
 from .errors import DFAValueError
 from .formatting import json_dumps
+from .jsonable import to_jsonable
+from .status import ReportStatus
 
 __all__ = ["ReportResult", "design_report", "report_slug", "write_design_report"]
 
@@ -39,8 +41,8 @@ class ReportResult:
         PNG files written (only with Markdown; HTML embeds its figures).
     numbers : dict
         Headline numbers (μ, β, σ, region, passive, K_max, speeds in ticks/sample, cycle amplitudes).
-    status : str
-        ``"ok"``.
+    status : ReportStatus
+        ``OK``.
     analysis : DesignAnalysis or None
         Every number of the report.
     """
@@ -48,18 +50,24 @@ class ReportResult:
     paths: tuple
     figures: tuple
     numbers: dict = field(default_factory=dict)
-    status: str = "ok"
+    status: ReportStatus = ReportStatus.OK
     analysis: DesignAnalysis | None = field(default=None, repr=False, compare=False)
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "status", ReportStatus.coerce(self.status))
+
     def as_dict(self) -> dict[str, object]:
-        """Paths (as text), headline numbers and the full analysis, JSON-able."""
-        return {
-            "paths": [str(p) for p in self.paths],
-            "figures": [str(p) for p in self.figures],
-            "numbers": self.numbers,
-            "status": self.status,
-            "analysis": self.analysis.as_dict() if self.analysis is not None else None,
-        }
+        """Paths (as text), headline numbers and the full analysis, strict JSON data."""
+        return to_jsonable(
+            {
+                "paths": [str(p) for p in self.paths],
+                "figures": [str(p) for p in self.figures],
+                "numbers": self.numbers,
+                "status": self.status,
+                "status_message": self.status.message,
+                "analysis": self.analysis.as_dict() if self.analysis is not None else None,
+            }
+        )
 
 
 def report_slug(name: str) -> str:

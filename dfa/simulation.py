@@ -85,13 +85,13 @@ Before the first sample the controller's past readings are taken equal to ξ0
 Examples
 --------
 >>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000)
->>> r.outcome, r.rest_sample is not None
+>>> r.outcome.value, r.rest_sample is not None
 ('rest', True)
 >>> r = simulate(mu=100.0, beta=0.3, sigma=0.3, xi_dot0=1.0)   # σ < ½: can never rest
->>> r.outcome, r.force_peak_to_peak
+>>> r.outcome.value, r.force_peak_to_peak
 ('chatter', 1.0)
 >>> r = simulate(mu=100.0, beta=0.0, sigma=0.2, xi_dot0=2.0, samples=20000)
->>> r.outcome
+>>> r.outcome.value
 'unstable'
 """
 
@@ -104,6 +104,7 @@ from fractions import Fraction
 import numpy as np
 
 from . import _kernel
+from ._frozen import check_shape, freeze_fields
 from .checks import (
     check_beta,
     check_bound,
@@ -118,6 +119,8 @@ from .checks import (
 )
 from .criterion import spring_energy
 from .errors import DFAValueError
+from .jsonable import to_jsonable
+from .status import SimulationOutcome
 
 __all__ = [
     "OUTCOMES",
@@ -134,7 +137,7 @@ __all__ = [
 
 #: Outcome names indexed by the kernel's codes (the codes of ``StabilityMap.outcome``):
 #: 0 rest, 1 oscillating, 2 unstable, 3 chatter, 4 undecided.
-OUTCOMES = ("rest", "oscillating", "unstable", "chatter", "undecided")
+OUTCOMES = tuple(o.value for o in SimulationOutcome)  # ("rest", "oscillating", "unstable", "chatter", "undecided")
 
 #: Bounds of the automatic run length (:func:`default_samples`).
 MIN_DEFAULT_SAMPLES = 50_000
@@ -265,6 +268,8 @@ class EnergyRecord:
         H_T at the end of each sample.
     initial_stored : float
         H_T at τ = 0.
+
+    The arrays are read-only copies (NaN after an unstable early stop).
     """
 
     generated: np.ndarray = field(repr=False)
@@ -272,6 +277,24 @@ class EnergyRecord:
     dissipated_coulomb: np.ndarray = field(repr=False)
     stored: np.ndarray = field(repr=False)
     initial_stored: float
+
+    def __post_init__(self) -> None:
+        names = ("generated", "dissipated_viscous", "dissipated_coulomb", "stored")
+        freeze_fields(self, {k: {"ndim": 1, "finite": False} for k in names})
+        for k in names[1:]:
+            check_shape(k, getattr(self, k), self.generated.shape)
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record of the per-sample energies (NaN entries become null, with the reason)."""
+        return to_jsonable(
+            {
+                "generated": self.generated,
+                "dissipated_viscous": self.dissipated_viscous,
+                "dissipated_coulomb": self.dissipated_coulomb,
+                "stored": self.stored,
+                "initial_stored": self.initial_stored,
+            }
+        )
 
     def balance_residual(self) -> np.ndarray:
         """ΔH_T − (generated − dissipated) per sample; zero to rounding."""
@@ -291,9 +314,9 @@ class SimulationResult:
         Position (ticks) and velocity (ticks per sample) at the samples
         0 … samples (length samples + 1); after an early rest they hold the
         rest state, after an unstable early stop NaN. None if not recorded.
-    outcome : str
-        ``"rest"``, ``"chatter"``, ``"oscillating"``, ``"unstable"`` or
-        ``"undecided"`` (module docstring).
+    outcome : SimulationOutcome
+        ``REST``, ``CHATTER``, ``OSCILLATING``, ``UNSTABLE`` or ``UNDECIDED``
+        (module docstring); equal to its code ``"rest"``, … (also :attr:`status`).
     amplitude : float
         Measured amplitude of the steady cycle in ticks (0 at rest, inf when the bound was exceeded).
     frequency : float or None
@@ -319,6 +342,8 @@ class SimulationResult:
         True when ``samples`` was chosen by :func:`default_samples`.
     energy : EnergyRecord or None
         Per-sample energy bookkeeping when requested.
+
+    ``xi`` and ``xi_dot`` are read-only copies.
     """
 
     mu: float
@@ -329,7 +354,7 @@ class SimulationResult:
     samples: int
     delay: int
     quantize: bool
-    outcome: str
+    outcome: SimulationOutcome
     amplitude: float
     frequency: float | None
     centre: float
@@ -344,6 +369,35 @@ class SimulationResult:
     xi: np.ndarray | None = field(default=None, repr=False)
     xi_dot: np.ndarray | None = field(default=None, repr=False)
     energy: EnergyRecord | None = field(default=None, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "outcome", SimulationOutcome.coerce(self.outcome, "outcome"))
+        freeze_fields(self, {"xi": {"ndim": 1, "finite": False}, "xi_dot": {"ndim": 1, "finite": False}})
+        if self.xi is not None:
+            check_shape("xi", self.xi, (self.samples + 1,))
+        if self.xi_dot is not None:
+            check_shape("xi_dot", self.xi_dot, (self.samples + 1,))
+
+    @property
+    def status(self) -> SimulationOutcome:
+        """How the run ended: the :attr:`outcome` (each member has a ``message``)."""
+        return self.outcome
+
+    def plot(self, ax=None, **kwargs):
+        """Displacement against time (:func:`dfa.plotting.trajectory_plot`, paper Fig. 5); returns the Axes.
+
+        Raises
+        ------
+        DFAValueError
+            When the run was not recorded (``record=False``).
+        """
+        if self.xi is None:
+            raise DFAValueError(
+                "xi = None is invalid for plot(): the trajectory was not recorded; run simulate(..., record=True)"
+            )
+        from .plotting import trajectory_plot
+
+        return trajectory_plot(self, ax, **kwargs)
 
     @property
     def period(self) -> float | None:
@@ -386,33 +440,32 @@ class SimulationResult:
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready summary (the ``dfa simulate --json`` contract plus extras)."""
-
-        def fin(x):
-            return None if x is None or not math.isfinite(x) else x
-
-        return {
-            "outcome": self.outcome,
-            "amplitude": fin(self.amplitude),
-            "frequency": fin(self.frequency),
-            "final_xi": fin(self.final_xi),
-            "final_xi_dot": fin(self.final_xi_dot),
-            "rest_sample": self.rest_sample,
-            "samples_run": self.samples_run,
-            "centre": fin(self.centre),
-            "period": fin(self.period),
-            "force_peak_to_peak": fin(self.force_peak_to_peak),
-            "envelope": [fin(v) for v in self.envelope],
-            "suggested_samples": self.suggested_samples,
-            "samples_auto": self.samples_auto,
-            "mu": self.mu,
-            "beta": self.beta,
-            "sigma": self.sigma,
-            "xi0": self.xi0,
-            "xi_dot0": self.xi_dot0,
-            "samples": self.samples,
-            "delay": self.delay,
-            "quantize": self.quantize,
-        }
+        return to_jsonable(  # non-finite values become null, with the reason (dfa.jsonable)
+            {
+                "outcome": self.outcome,
+                "status_message": self.outcome.message,
+                "amplitude": self.amplitude,
+                "frequency": self.frequency,
+                "final_xi": self.final_xi,
+                "final_xi_dot": self.final_xi_dot,
+                "rest_sample": self.rest_sample,
+                "samples_run": self.samples_run,
+                "centre": self.centre,
+                "period": self.period,
+                "force_peak_to_peak": self.force_peak_to_peak,
+                "envelope": self.envelope,
+                "suggested_samples": self.suggested_samples,
+                "samples_auto": self.samples_auto,
+                "mu": self.mu,
+                "beta": self.beta,
+                "sigma": self.sigma,
+                "xi0": self.xi0,
+                "xi_dot0": self.xi_dot0,
+                "samples": self.samples,
+                "delay": self.delay,
+                "quantize": self.quantize,
+            }
+        )
 
 
 def _tail_length(samples: int, mu: float) -> int:
@@ -499,10 +552,10 @@ def simulate(
 
 def _measured(
     code, amp, freq, centre, fpp, done, rest, stats
-) -> tuple[str, float, float | None, float, int | None, int, float, float, float, tuple]:
+) -> tuple[SimulationOutcome, float, float | None, float, int | None, int, float, float, float, tuple]:
     """Outcome … envelope fields of a :class:`SimulationResult` (in field order) from the kernel's outputs."""
     return (
-        OUTCOMES[code],
+        list(SimulationOutcome)[code],  # OUTCOMES is in the enum's order
         float(amp),
         None if not np.isfinite(freq) else float(freq),
         float(centre),

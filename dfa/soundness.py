@@ -38,7 +38,6 @@ write ``delay_soundness.md`` and ``delay_soundness.json``.
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import os
 import sys
@@ -48,10 +47,13 @@ import numpy as np
 from numba import njit
 
 from . import _kernel
+from ._io import atomic_write_text
 from .checks import check_choice, check_delay, check_int
 from .criterion import CriticalLine, passivity_criterion
 from .errors import DFAValueError
 from .formatting import markdown_table
+from .jsonable import dumps, to_jsonable
+from .status import SoundnessStatus
 
 __all__ = ["DelaySoundness", "sample_passive_points", "delay_soundness", "soundness_markdown", "main"]
 
@@ -220,6 +222,8 @@ class DelaySoundness:
     samples_min, samples_max : int
         Samples per run (module docstring).
     seed : int
+    status : SoundnessStatus
+        ``SOUND`` when ``violations`` is 0, else ``VIOLATED`` (derived).
     """
 
     delay: int
@@ -235,11 +239,23 @@ class DelaySoundness:
     samples_max: int = 0
     seed: int = 0
 
+    def __post_init__(self) -> None:
+        for name in ("points", "energy_grew", "diverged", "violations"):
+            check_int(name, getattr(self, name), 0, "pass the counts delay_soundness returned")
+        if self.violations > self.points:
+            raise DFAValueError(
+                f"violations = {self.violations} is invalid: it cannot exceed points = {self.points}; "
+                "pass the counts delay_soundness returned"
+            )
+
+    @property
+    def status(self) -> SoundnessStatus:
+        """``SOUND`` when no simulated point violated the criterion, else ``VIOLATED``."""
+        return SoundnessStatus.SOUND if self.violations == 0 else SoundnessStatus.VIOLATED
+
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record (infinite growth as the string "inf")."""
-        out = dict(self.__dict__)
-        out["worst_growth"] = self.worst_growth if math.isfinite(self.worst_growth) else "inf"
-        return out
+        """JSON-ready record (an infinite growth becomes null, with the reason under ``null_reasons``)."""
+        return to_jsonable({**self.__dict__, "status": self.status, "status_message": self.status.message})
 
 
 def delay_soundness(
@@ -334,10 +350,8 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{crit} d = {d}: {r.violations} violations of {r.points}", file=sys.stderr)
             results.append(r)
     os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "delay_soundness.md"), "w", encoding="utf-8") as fh:
-        fh.write(soundness_markdown(results))
-    with open(os.path.join(args.out, "delay_soundness.json"), "w", encoding="utf-8") as fh:
-        json.dump([r.as_dict() for r in results], fh, indent=1)
+    atomic_write_text(os.path.join(args.out, "delay_soundness.md"), soundness_markdown(results))
+    atomic_write_text(os.path.join(args.out, "delay_soundness.json"), dumps(results, indent=1))
     return 0
 
 

@@ -43,11 +43,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._frozen import check_shape, freeze_fields
 from .checks import check_delay, check_positive, check_real, check_type
 from .criterion import device_criterion
 from .device import Device
 from .errors import DFAValueError
+from .jsonable import to_jsonable
 from .linear import critical_beta, critical_stiffness
+from .status import CurveStatus, StiffnessStatus, VelocityStatus
 
 __all__ = [
     "StiffnessLimits",
@@ -60,6 +63,7 @@ __all__ = [
     "gil_factor",
     "gil_beta_critical",
     "max_passive_velocity",
+    "StiffnessResponse",
     "StiffnessCurve",
     "stiffness_response",
 ]
@@ -121,7 +125,7 @@ def k_abbott_okamura(device: Device, delay: int = 0) -> float:
 
 
 def _bounds(dev: Device, delay: int) -> dict[str, float]:
-    """The speed-independent limits of :class:`StiffnessLimits` (which :class:`StiffnessCurve` reads)."""
+    """The speed-independent limits of :class:`StiffnessLimits` (which :class:`StiffnessResponse` reads)."""
     return dict(
         k_static=k_static(dev),
         k_colgate=k_colgate(dev, delay),
@@ -255,11 +259,12 @@ class StiffnessLimits:
         The stiffness under study, if given.
     max_passive_velocity : float or None
         For ``stiffness``: largest passive speed (inf: every speed; None: none).
-    velocity_status : str
-        ``"not requested"``, ``"all speeds"``, ``"bounded"`` or ``"none"``.
-    status : str
-        ``"ok"`` when ``stiffness`` passes at ``velocity`` (or none was given),
-        otherwise ``"too stiff"``.
+    velocity_status : VelocityStatus
+        ``NOT_REQUESTED``, ``ALL_SPEEDS``, ``BOUNDED`` or ``NONE`` (codes ``"not requested"``,
+        ``"all speeds"``, ``"bounded"``, ``"none"``).
+    status : StiffnessStatus
+        ``OK`` (code ``"ok"``) when ``stiffness`` passes at ``velocity`` (or none was given),
+        otherwise ``TOO_STIFF`` (``"too stiff"``).
     delay : int
         Computational delay d in samples.
     """
@@ -274,9 +279,33 @@ class StiffnessLimits:
     k_gil: float
     stiffness: float | None = None
     max_passive_velocity: float | None = None
-    velocity_status: str = "not requested"
-    status: str = "ok"
+    velocity_status: VelocityStatus = VelocityStatus.NOT_REQUESTED
+    status: StiffnessStatus = StiffnessStatus.OK
     delay: int = 0
+
+    def __post_init__(self) -> None:
+        for name in ("velocity", "xi_dot", "k_max", "k_static", "k_colgate", "k_abbott_okamura", "k_gil"):
+            if math.isnan(getattr(self, name)):
+                raise DFAValueError(f"{name} = nan is invalid: limits are numbers; build results with stiffness_limits")
+        vs = VelocityStatus.coerce(self.velocity_status, "velocity_status")
+        st = StiffnessStatus.coerce(self.status)
+        object.__setattr__(self, "velocity_status", vs)
+        object.__setattr__(self, "status", st)
+        mpv = self.max_passive_velocity
+        expected = (
+            VelocityStatus.NOT_REQUESTED
+            if self.stiffness is None
+            else (
+                VelocityStatus.NONE
+                if mpv is None
+                else (VelocityStatus.ALL_SPEEDS if math.isinf(mpv) else VelocityStatus.BOUNDED)
+            )
+        )
+        if vs is not expected or (self.stiffness is None and st is not StiffnessStatus.OK):
+            raise DFAValueError(
+                f"velocity_status = {vs.value!r}, status = {st.value!r} are invalid for stiffness = {self.stiffness!r}, "
+                f"max_passive_velocity = {mpv!r}: they must agree; build results with stiffness_limits"
+            )
 
     def max_passive_velocity_text(self) -> str:
         """The largest passive speed for ``stiffness`` in words, with units (for tables and reports)."""
@@ -307,21 +336,24 @@ class StiffnessLimits:
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (the ``dfa stiffness --json`` contract plus extras)."""
         mpv = self.max_passive_velocity
-        return {
-            "k_max": self.k_max,
-            "k_colgate": self.k_colgate,
-            "k_abbott_okamura": self.k_abbott_okamura,
-            "k_gil": self.k_gil,
-            "k_static": self.k_static,
-            "max_passive_velocity": None if (mpv is None or math.isinf(mpv)) else mpv,
-            "max_passive_velocity_status": self.velocity_status,
-            "stiffness": self.stiffness,
-            "velocity": self.velocity,
-            "xi_dot": self.xi_dot,
-            "device": self.device.name,
-            "status": self.status,
-            "delay": self.delay,
-        }
+        return to_jsonable(
+            {
+                "k_max": self.k_max,
+                "k_colgate": self.k_colgate,
+                "k_abbott_okamura": self.k_abbott_okamura,
+                "k_gil": self.k_gil,
+                "k_static": self.k_static,
+                "max_passive_velocity": None if (mpv is None or math.isinf(mpv)) else mpv,
+                "max_passive_velocity_status": self.velocity_status,
+                "stiffness": self.stiffness,
+                "velocity": self.velocity,
+                "xi_dot": self.xi_dot,
+                "device": self.device.name,
+                "status": self.status,
+                "status_message": self.status.message,
+                "delay": self.delay,
+            }
+        )
 
 
 def stiffness_limits(
@@ -343,14 +375,18 @@ def stiffness_limits(
     v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
     d = check_delay(delay)
     mpv: float | None = None
-    vstatus = "not requested"
-    status = "ok"
+    vstatus = VelocityStatus.NOT_REQUESTED
+    status = StiffnessStatus.OK
     k = None
     if stiffness is not None:
         k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
         mpv = max_passive_velocity(dev, k, d)
-        vstatus = "none" if mpv is None else ("all speeds" if math.isinf(mpv) else "bounded")
-        status = "ok" if (mpv is not None and mpv >= v) else "too stiff"
+        vstatus = (
+            VelocityStatus.NONE
+            if mpv is None
+            else (VelocityStatus.ALL_SPEEDS if math.isinf(mpv) else VelocityStatus.BOUNDED)
+        )
+        status = StiffnessStatus.OK if (mpv is not None and mpv >= v) else StiffnessStatus.TOO_STIFF
     return StiffnessLimits(
         device=dev,
         velocity=v,
@@ -366,7 +402,7 @@ def stiffness_limits(
 
 
 @dataclass(frozen=True)
-class StiffnessCurve:
+class StiffnessResponse:
     """K_max (eq. 11, with the delay) over a range of impact speeds, with the speed-independent bounds (N/m).
 
     The bounds and the chosen stiffness's largest passive speed are not recomputed:
@@ -384,14 +420,16 @@ class StiffnessCurve:
         The limits at the first speed: source of ``k_static``, ``k_colgate``,
         ``k_abbott_okamura``, ``k_gil``, ``stiffness``, ``max_passive_velocity``
         and ``delay`` (read-only properties here).
-    status : str
+    status : CurveStatus
+
+    Arrays are read-only copies of the inputs.
     """
 
     device: Device
     velocity: np.ndarray
     k_max: np.ndarray
     limits: StiffnessLimits
-    status: str = "ok"
+    status: CurveStatus = CurveStatus.OK
 
     @property
     def k_static(self) -> float:
@@ -428,8 +466,44 @@ class StiffnessCurve:
         """Computational delay d in samples."""
         return self.limits.delay
 
+    def __post_init__(self) -> None:
+        freeze_fields(self, {"velocity": {"ndim": 1}, "k_max": {"ndim": 1}})
+        check_shape("k_max", self.k_max, self.velocity.shape)
+        object.__setattr__(self, "status", CurveStatus.coerce(self.status))
 
-def stiffness_response(device: Device, velocity=None, stiffness: float | None = None, delay: int = 0) -> StiffnessCurve:
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record: speeds, K_max and the bounds (device units, see ``device.units``)."""
+        return to_jsonable(
+            {
+                "device": self.device.name,
+                "velocity": self.velocity,
+                "k_max": self.k_max,
+                "k_static": self.k_static,
+                "k_colgate": self.k_colgate,
+                "k_abbott_okamura": self.k_abbott_okamura,
+                "k_gil": self.k_gil,
+                "stiffness": self.stiffness,
+                "max_passive_velocity": self.max_passive_velocity,
+                "status": self.status,
+                "status_message": self.status.message,
+                "delay": self.delay,
+            }
+        )
+
+    def plot(self, ax=None):
+        """K_max against impact speed with the published bounds (:func:`dfa.plotting.stiffness_plot`); returns the Axes."""
+        from .plotting import stiffness_plot
+
+        return stiffness_plot(self, ax)
+
+
+#: Deprecated alias of :class:`StiffnessResponse` (the name before the ``*_response`` → ``*Response`` scheme).
+StiffnessCurve = StiffnessResponse
+
+
+def stiffness_response(
+    device: Device, velocity=None, stiffness: float | None = None, delay: int = 0
+) -> StiffnessResponse:
     """K_max against impact speed for a device (eq. 11, with delay d), for :func:`dfa.plotting.stiffness_plot`.
 
     Parameters
@@ -457,4 +531,4 @@ def stiffness_response(device: Device, velocity=None, stiffness: float | None = 
         else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     )
     limits = stiffness_limits(dev, float(v[0]), k, d)
-    return StiffnessCurve(dev, v, np.atleast_1d(k_max_criterion(dev, v, d)), limits)
+    return StiffnessResponse(dev, v, np.atleast_1d(k_max_criterion(dev, v, d)), limits)

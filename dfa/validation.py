@@ -30,7 +30,7 @@ Examples
 --------
 >>> s = soundness((5.0,), (1.0,), grid=4, samples=2000, n_jobs=1, progress=False)
 >>> s.points, s.violations
-(16, [])
+(16, ())
 """
 
 from __future__ import annotations
@@ -40,12 +40,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .checks import check_choice
 from .criterion import classify_region, passivity_criterion
 from .cycles import growth_threshold, large_cycle_closed_form, limit_cycles
 from .device import Params
 from .formatting import markdown_table, number, percent
+from .jsonable import to_jsonable
 from .maps import stability_map
 from .simulation import OUTCOMES, preload_position, simulate
+from .status import ValidationStatus
 
 __all__ = [
     "ValidationResult",
@@ -301,17 +304,26 @@ class Soundness:
     xi_dots: tuple
     points: int
     passive: int
-    violations: list = field(default_factory=list)
+    violations: tuple = field(default_factory=tuple)
     not_unstable: int = 0
     rejected_not_unstable: int = 0
     rest: int = 0
     rejected_rest: int = 0
     undecided: int = 0
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mus", tuple(self.mus))
+        object.__setattr__(self, "xi_dots", tuple(self.xi_dots))
+        object.__setattr__(self, "violations", tuple(self.violations))
+
     @property
     def conservatism(self) -> float:
         """Share of the simulated points that come to rest (outcome ``"rest"``) the criterion rejects."""
         return self.rejected_rest / self.rest if self.rest else float("nan")
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record of the counts (conservatism null, with the reason, when no point came to rest)."""
+        return to_jsonable({**self.__dict__, "conservatism": self.conservatism})
 
 
 def soundness(
@@ -356,7 +368,7 @@ def soundness(
             rej_rest += int((st & ~passive).sum())
             undecided += int((out == OUTCOMES.index("undecided")).sum())
     return Soundness(
-        tuple(mus), tuple(xi_dots), total, passive_n, violations, not_unst, rej_nu, rest, rej_rest, undecided
+        tuple(mus), tuple(xi_dots), total, passive_n, tuple(violations), not_unst, rej_nu, rest, rej_rest, undecided
     )
 
 
@@ -376,8 +388,23 @@ class ValidationResult:
     speeds: list
     soundness: Soundness
     samples: int
-    status: str = "ok"
+    status: ValidationStatus = ValidationStatus.OK
     clusters: list = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "status", ValidationStatus.coerce(self.status))
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready key numbers (:meth:`summary`) and the status; NaN becomes null with its reason."""
+        return to_jsonable({**self.summary(), "status": self.status, "status_message": self.status.message})
+
+    def plot(self, ax=None, which: str = "cycles"):
+        """A validation figure: ``which="cycles"`` (:func:`dfa.plotting.cycle_error_plot`) or ``"speeds"``
+        (:func:`dfa.plotting.critical_speed_plot`); returns the Axes."""
+        from . import plotting
+
+        fn = {"cycles": plotting.cycle_error_plot, "speeds": plotting.critical_speed_plot}
+        return fn[check_choice("which", which, tuple(fn))](self, ax)
 
     # ----- summaries
     def cycle_summary(self) -> list[dict]:
@@ -537,7 +564,7 @@ class ValidationResult:
 
     def _md_soundness(self) -> list[str]:
         s = self.soundness
-        rows = [
+        rows: list[list[object]] = [
             ["points the criterion calls passive", s.passive],
             ["…of which simulated unstable (soundness violations)", f"**{len(s.violations)}**"],
             ["simulated not unstable", s.not_unstable],

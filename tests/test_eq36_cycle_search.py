@@ -46,8 +46,8 @@ def residual(p, m, w, model="half-delay", delay=0):
 def test_eq9_sigma_half_no_exception_and_small_residuals(mu, beta, offset, sign, model, delay):
     p = dfa.Params(mu, beta, 0.5 + sign * offset)
     res = limit_cycles(p, model=model, delay=delay)
-    assert isinstance(res.status_code, SearchStatus)
-    assert res.complete == (res.status_code is SearchStatus.COMPLETE)
+    assert isinstance(res.status, SearchStatus)
+    assert res.complete == (res.status is SearchStatus.COMPLETE)
     for c in res.cycles:
         assert residual(p, c.amplitude, c.frequency, model, delay) <= 1e-10
 
@@ -74,8 +74,8 @@ def test_numerical_failure_gives_incomplete_status_and_warning(monkeypatch):
     monkeypatch.setattr(cyc._PieceOmega, "scalar", broken)
     with pytest.warns(LimitCycleSearchWarning, match="numerical failure"):
         res = limit_cycles(dfa.Params(5.0, 0.1, 0.3))
-    assert not res.complete and res.status_code is SearchStatus.NUMERICAL and "incomplete" in res.status
-    assert res.as_dict()["status_code"] == "numerical"
+    assert not res.complete and res.status is SearchStatus.NUMERICAL and "incomplete" in res.detail
+    assert res.as_dict()["status"] == "numerical"
 
 
 # ------------------------------------------------------------- 2. no silent absence
@@ -91,7 +91,7 @@ def _delta_10nm():
 def test_eq45_ten_nanometre_encoder_cycle_found_by_default_search():
     dev, p = _delta_10nm()
     res = limit_cycles(p)
-    assert res.complete and res.status_code is SearchStatus.COMPLETE
+    assert res.complete and res.status is SearchStatus.COMPLETE
     (c,) = res.unstable_cycles
     # eq. 44-45 (D ≈ 1 far out): M = (4σ/π)/(sin(ω/2) − βω)
     w = large_cycle_frequency(p.mu)
@@ -102,7 +102,7 @@ def test_eq45_ten_nanometre_encoder_cycle_found_by_default_search():
     assert c.residual <= 1e-10
     # the old default range (1e4 ticks) cannot claim absence
     capped = limit_cycles(p, max_amplitude=1e4)
-    assert not capped.cycles and not capped.complete and capped.status_code is SearchStatus.MAX_AMPLITUDE
+    assert not capped.cycles and not capped.complete and capped.status is SearchStatus.MAX_AMPLITUDE
 
 
 def test_cli_and_report_never_state_absence_for_an_incomplete_search(capsys):
@@ -377,8 +377,8 @@ def test_size_budget_ends_incomplete_not_open_ended(monkeypatch, capsys):
     monkeypatch.setattr(cyc.search, "INTERVAL_BUDGET", 5)
     _dev, p = _delta_10nm()
     res = limit_cycles(p)
-    assert res.status_code is SearchStatus.BUDGET and not res.complete and res.search_bound is None
-    assert not res.cycles and "budget" in res.status and res.max_amplitude < 2e5
+    assert res.status is SearchStatus.BUDGET and not res.complete and res.search_bound is None
+    assert not res.cycles and "budget" in res.detail and res.max_amplitude < 2e5
     assert main(["limit-cycles", "--device", "delta", "--resolution", "1e-8"]) == 0
     out = capsys.readouterr().out
     assert f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: " in out

@@ -175,7 +175,7 @@ def test_growth_threshold_physical_units():
     assert g.position == pytest.approx(g.amplitude * dev.resolution)
     assert g.velocity == pytest.approx(dev.velocity(g.xi_dot))
     none = growth_threshold(dfa.Params(5.0, 0.8, 1.0))
-    assert none.amplitude is None and "no unstable" in none.status
+    assert none.amplitude is None and "no unstable" in none.status.message
 
 
 @pytest.mark.parametrize(

@@ -33,7 +33,7 @@ def test_fig3_one_case_per_region(beta, sigma, v, region, passive):
     r = passivity_criterion(beta, sigma, v)
     assert (r.region, r.passive) == (region, passive)
     assert r.passive == eq6_by_hand(beta, sigma, v)
-    assert r.status == dfa.REGION_DESCRIPTIONS[region]
+    assert r.status.message == dfa.REGION_DESCRIPTIONS[region] and r.status.region == region
 
 
 @pytest.mark.parametrize(

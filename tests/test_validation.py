@@ -36,6 +36,16 @@ def test_validation_writes_report_and_figures(quick):
     ).stat().st_size > 2000
 
 
+def test_validation_json_is_strict_json(quick):
+    out, s = quick
+
+    def refuse(token):
+        raise AssertionError(f"non-strict JSON token {token}")
+
+    assert json.loads((out / "validation.json").read_text(), parse_constant=refuse) == s
+    assert s["status"] == "ok" and s["soundness_points"] > 0
+
+
 def test_eq6_criterion_is_sound_on_the_quick_grid(quick):
     _out, s = quick
     assert s["soundness_passive"] > 100

@@ -6,6 +6,9 @@ from dataclasses import dataclass
 
 from ..checks import check_type
 from ..device import Device, Params
+from ..errors import DFAValueError
+from ..jsonable import to_jsonable
+from ..status import GrowthStatus
 from .results import LimitCycleResult
 from .solve import limit_cycles
 
@@ -33,7 +36,9 @@ class GrowthThreshold:
         The full solution it came from.
     position, velocity : float or None
         M_u and M_u·ω in physical units (m or rad, m/s or rad/s) when a device was given.
-    status : str
+    status : GrowthStatus
+        ``OK`` (unstable cycles found), ``NO_UNSTABLE_CYCLE``, ``NO_UNSTABLE_CYCLE_SEARCHED``
+        (none up to an incomplete search's limit) or ``LINEAR_UNSTABLE``.
     amplitude_high, frequency_high, xi_dot_high, position_high, velocity_high : float or None
         The same for the largest unstable cycle (the top of the band).
     unstable_count : int
@@ -49,7 +54,7 @@ class GrowthThreshold:
     result: LimitCycleResult
     position: float | None = None
     velocity: float | None = None
-    status: str = "ok"
+    status: GrowthStatus = GrowthStatus.OK
     amplitude_high: float | None = None
     frequency_high: float | None = None
     xi_dot_high: float | None = None
@@ -57,6 +62,17 @@ class GrowthThreshold:
     velocity_high: float | None = None
     unstable_count: int = 0
     grows_above: bool | None = None
+
+    def __post_init__(self) -> None:
+        st = GrowthStatus.coerce(self.status)
+        object.__setattr__(self, "status", st)
+        if (st is GrowthStatus.OK) != (self.amplitude is not None) or (self.amplitude is None) != (
+            self.unstable_count == 0
+        ):
+            raise DFAValueError(
+                f"status = {st.value!r} is invalid with amplitude = {self.amplitude!r} and unstable_count = "
+                f"{self.unstable_count!r}: status OK exactly when an unstable cycle was found; build it with growth_threshold"
+            )
 
     @property
     def is_band(self) -> bool:
@@ -66,12 +82,14 @@ class GrowthThreshold:
     def meaning(self) -> str:
         """What the band means, in words that claim no more than the describing function shows."""
         res = self.result
+        if self.status is GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED:
+            return f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail})"
         if self.amplitude is None:
-            return self.status
+            return self.status.message
         lo, hi = self.amplitude, self.amplitude_high
         tail = ""
         if not res.complete:
-            tail = f" The search was incomplete ({res.status}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
+            tail = f" The search was incomplete ({res.detail}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
         if self.grows_above:
             above = f"above {hi:.4g} ticks the first-harmonic analysis predicts growth" + (
                 " without bound (the linear loop, exact ZOH model, is unstable)" if res.linear_stable is False else ""
@@ -89,36 +107,39 @@ class GrowthThreshold:
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (``dfa limit-cycles --json``, key ``growth_threshold``)."""
-        return {
-            "amplitude": self.amplitude,
-            "frequency": self.frequency,
-            "xi_dot": self.xi_dot,
-            "position": self.position,
-            "velocity": self.velocity,
-            "band": {
-                "low": {
-                    "amplitude": self.amplitude,
-                    "frequency": self.frequency,
-                    "xi_dot": self.xi_dot,
-                    "position": self.position,
-                    "velocity": self.velocity,
+        return to_jsonable(
+            {
+                "amplitude": self.amplitude,
+                "frequency": self.frequency,
+                "xi_dot": self.xi_dot,
+                "position": self.position,
+                "velocity": self.velocity,
+                "band": {
+                    "low": {
+                        "amplitude": self.amplitude,
+                        "frequency": self.frequency,
+                        "xi_dot": self.xi_dot,
+                        "position": self.position,
+                        "velocity": self.velocity,
+                    },
+                    "high": {
+                        "amplitude": self.amplitude_high,
+                        "frequency": self.frequency_high,
+                        "xi_dot": self.xi_dot_high,
+                        "position": self.position_high,
+                        "velocity": self.velocity_high,
+                    },
                 },
-                "high": {
-                    "amplitude": self.amplitude_high,
-                    "frequency": self.frequency_high,
-                    "xi_dot": self.xi_dot_high,
-                    "position": self.position_high,
-                    "velocity": self.velocity_high,
-                },
-            },
-            "unstable_count": self.unstable_count,
-            "grows_above": self.grows_above,
-            "complete": self.result.complete,
-            "linear_stable": self.result.linear_stable,
-            "linear_model": "zoh",
-            "status": self.status,
-            "meaning": self.meaning(),
-        }
+                "unstable_count": self.unstable_count,
+                "grows_above": self.grows_above,
+                "complete": self.result.complete,
+                "linear_stable": self.result.linear_stable,
+                "linear_model": "zoh",
+                "status": self.status,
+                "status_message": self.status.message,
+                "meaning": self.meaning(),
+            }
+        )
 
 
 def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> GrowthThreshold:
@@ -138,11 +159,9 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
     unstable = res.unstable_cycles
     if not unstable:
         if res.linear_stable is False:
-            status = "no unstable cycle predicted, but the linear loop (exact ZOH model) is unstable: amplitudes grow without bound"
+            status = GrowthStatus.LINEAR_UNSTABLE
         else:
-            status = "no unstable cycle predicted" + (
-                "" if res.complete else f" up to M = {res.max_amplitude:g} ticks (search {res.status})"
-            )
+            status = GrowthStatus.NO_UNSTABLE_CYCLE if res.complete else GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED
         return GrowthThreshold(
             None, None, None, res, status=status, grows_above=None if res.linear_stable is not False else True
         )
@@ -163,7 +182,7 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
         res,
         plo,
         vlo,
-        "ok",
+        GrowthStatus.OK,
         hi.amplitude,
         hi.frequency,
         hi.amplitude * hi.frequency,

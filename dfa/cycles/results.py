@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
-import enum
 import math
 from dataclasses import dataclass, field
 
+from ..checks import check_positive
 from ..device import Device, Params
+from ..errors import DFATypeError, DFAValueError
+from ..jsonable import to_jsonable
+from ..status import SearchStatus
 
 
 # ------------------------------------------------------------------ results
@@ -46,6 +49,14 @@ class LimitCycle:
         """Period in samples, 2π/ω."""
         return 2.0 * math.pi / self.frequency
 
+    def __post_init__(self) -> None:
+        if self.family not in ("small", "large"):
+            raise DFAValueError(
+                f"family = {self.family!r} is invalid: it must be 'small' or 'large'; build cycles with limit_cycles"
+            )
+        for name in ("amplitude", "frequency"):
+            check_positive(name, getattr(self, name), "build cycles with limit_cycles")
+
     def physical(self, device: Device, stiffness: float) -> dict[str, float | None]:
         """This cycle in physical units for a device at stiffness K (:mod:`dfa.units`): amplitude_m (rad),
         force_amplitude_n (N·m), frequency_hz, period_s, velocity_m_s (rad/s, the speed amplitude M·ω)."""
@@ -61,16 +72,19 @@ class LimitCycle:
         )
 
     def as_dict(self) -> dict[str, object]:
-        return {
-            "amplitude": self.amplitude,
-            "frequency": self.frequency,
-            "period": self.period,
-            "stable": self.stable,
-            "family": self.family,
-            "loeb": self.loeb,
-            "residual": self.residual,
-            "few_samples": self.few_samples,
-        }
+        """JSON-ready record of the cycle."""
+        return to_jsonable(
+            {
+                "amplitude": self.amplitude,
+                "frequency": self.frequency,
+                "period": self.period,
+                "stable": self.stable,
+                "family": self.family,
+                "loeb": self.loeb,
+                "residual": self.residual,
+                "few_samples": self.few_samples,
+            }
+        )
 
 
 @dataclass(frozen=True)
@@ -91,10 +105,12 @@ class LimitCycleResult:
         Sorted by amplitude.
     complete : bool
         True only when the search provably found every root (status ``COMPLETE``).
-    status : str
-        One-line message: ``"ok"`` or ``"incomplete: …"`` (why).
-    status_code : SearchStatus
-        How the search ended.
+    detail : str
+        One-line message with the numbers of this search: ``"incomplete: …"`` (why), or the
+        status message when complete (the default).
+    status : SearchStatus
+        How the search ended (``COMPLETE``, ``MAX_AMPLITUDE``, ``BUDGET``, ``NUMERICAL``);
+        ``status_code`` is a deprecated alias.
     search_bound : float or None
         When complete: the amplitude (ticks) beyond which no root of eq. 36 exists
         (the phase curve's pieces end there, or the eq. 41 envelope excludes
@@ -114,10 +130,28 @@ class LimitCycleResult:
     max_amplitude: float
     cycles: tuple = field(default_factory=tuple)
     complete: bool = True
-    status: str = "ok"
-    status_code: SearchStatus | None = None
+    detail: str = ""
+    status: SearchStatus = SearchStatus.COMPLETE
     linear_stable: bool | None = None
     search_bound: float | None = None
+
+    def __post_init__(self) -> None:
+        st = SearchStatus.coerce(self.status)
+        object.__setattr__(self, "status", st)
+        object.__setattr__(self, "detail", self.detail or st.message)
+        object.__setattr__(self, "cycles", tuple(self.cycles))
+        if self.complete != (st is SearchStatus.COMPLETE):
+            raise DFAValueError(
+                f"complete = {self.complete!r} is invalid with status = {st.value!r}: a search is complete exactly "
+                "when its status is COMPLETE; build results with limit_cycles"
+            )
+        if not all(isinstance(c, LimitCycle) for c in self.cycles):
+            raise DFATypeError("cycles must hold LimitCycle objects; build results with limit_cycles")
+
+    @property
+    def status_code(self) -> SearchStatus:
+        """Deprecated alias of :attr:`status`."""
+        return self.status
 
     @property
     def stable_cycles(self) -> tuple:
@@ -135,34 +169,23 @@ class LimitCycleResult:
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (the ``dfa limit-cycles --json`` contract plus extras)."""
-        return {
-            "cycles": [c.as_dict() for c in self.cycles],
-            "mu": self.params.mu,
-            "beta": self.params.beta,
-            "sigma": self.params.sigma,
-            "model": self.model,
-            "delay": self.delay,
-            "complete": self.complete,
-            "max_amplitude": self.max_amplitude,
-            "status": self.status,
-            "status_code": None if self.status_code is None else self.status_code.value,
-            "linear_stable": self.linear_stable,
-            "linear_model": "zoh",
-            "search_bound": self.search_bound,
-        }
-
-
-class SearchStatus(enum.Enum):
-    """How a limit-cycle search ended (:attr:`LimitCycleResult.status_code`)."""
-
-    #: every root of eq. 36 was found: the pieces ended or the envelope bound closed them
-    COMPLETE = "complete"
-    #: roots may exist beyond the caller's ``max_amplitude``
-    MAX_AMPLITUDE = "max_amplitude"
-    #: the envelope bound lies beyond the size budget of the automatic search range
-    BUDGET = "budget"
-    #: a root finder failed (no sign change where the scan saw one, or no convergence)
-    NUMERICAL = "numerical"
+        return to_jsonable(
+            {
+                "cycles": [c.as_dict() for c in self.cycles],
+                "mu": self.params.mu,
+                "beta": self.params.beta,
+                "sigma": self.params.sigma,
+                "model": self.model,
+                "delay": self.delay,
+                "complete": self.complete,
+                "max_amplitude": self.max_amplitude,
+                "status": self.status,
+                "status_message": self.detail,
+                "linear_stable": self.linear_stable,
+                "linear_model": "zoh",
+                "search_bound": self.search_bound,
+            }
+        )
 
 
 class LimitCycleSearchWarning(RuntimeWarning):

@@ -221,7 +221,7 @@ def _unique(cycles: list[LimitCycle]) -> tuple[LimitCycle, ...]:
 
 
 def _search_status(failures: int, reach: tuple[float, str] | None, auto: bool, amax: float) -> tuple[SearchStatus, str]:
-    """How the search ended, and the one-line status that says so."""
+    """How the search ended, and the one-line detail that says so (``""`` when complete: the status message)."""
     if failures:
         status = (
             f"incomplete: {failures} root bracket(s) could not be refined (numerical failure); "
@@ -229,7 +229,7 @@ def _search_status(failures: int, reach: tuple[float, str] | None, auto: bool, a
         )
         return SearchStatus.NUMERICAL, status
     if reach is None:
-        return SearchStatus.COMPLETE, "ok"
+        return SearchStatus.COMPLETE, ""  # detail: the status message
     budget = reach[1] == "budget" or (auto and reach[0] >= amax)
     why = (
         f"searched up to the size budget ({reach[0]:g} ticks) short of the envelope bound"

@@ -42,7 +42,7 @@ def verdict_text(a: DesignAnalysis) -> str:
         verdict = "not proven passive (the criterion gives no guarantee; that is not a proof of instability)"
     text = (
         f"**Verdict.** With K = {k:g} {u['stiffness']}, an impact speed of {v:g} {u['velocity']} and {ds}, the {dev.name} is "
-        f"**{verdict}** (region {crit.region}: {crit.status}). "
+        f"**{verdict}** (region {crit.region}: {crit.status.message}). "
     )
     if crit.critical_velocity:
         text += f"The criterion guarantees passivity up to {number(crit.critical_velocity)} {u['velocity']}; "
@@ -130,7 +130,7 @@ def limits_rows(a: DesignAnalysis) -> list[list[str]]:
     )
     return [
         ["impact speed ẋ0", f"{a.velocity:g} {u['velocity']} = {crit.xi_dot:.4g} ticks/sample"],
-        ["region (paper Fig. 3)", f"{crit.region}: {crit.status}"],
+        ["region (paper Fig. 3)", f"{crit.region}: {crit.status.message}"],
         ["computational delay d", _samples(a.delay)],
         [
             "passive (eq. 6)",
@@ -174,7 +174,7 @@ def absence_lines(a: DesignAnalysis) -> list[str]:
     out = []
     for m, g in a.thresholds:
         res = g.result
-        why = res.status.removeprefix("incomplete: ")
+        why = res.detail.removeprefix("incomplete: ")
         if res.cycles:
             if not res.complete:
                 out.append(

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import json
 import os
 from pathlib import Path
 from typing import Any
 
 from .._io import atomic_open, staged_folder
+from ..jsonable import dumps
 
 __all__ = ["write_trace_csv", "write_validation"]
 
@@ -48,7 +48,8 @@ def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
     Returns
     -------
     dict
-        The summary written to ``validation.json`` (:meth:`ValidationResult.summary`).
+        The strict-JSON summary written to ``validation.json`` (:meth:`ValidationResult.as_dict`: the
+        summary, NaN as null with ``null_reasons``, and the status).
     """
     import matplotlib
 
@@ -58,7 +59,7 @@ def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
     from .. import plotting
 
     os.makedirs(out, exist_ok=True)
-    summary = result.summary()
+    summary = result.as_dict()
     figs = {}
     with staged_folder(out) as stage:
         for key, fn in (("cycles", plotting.cycle_error_plot), ("speeds", plotting.critical_speed_plot)):
@@ -67,5 +68,5 @@ def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
             ax.figure.savefig(stage / figs[key], dpi=120)
             plt.close(ax.figure)
         (stage / "validation.md").write_text(result.to_markdown(figs), encoding="utf-8")
-        (stage / "validation.json").write_text(json.dumps(summary, indent=1, allow_nan=True), encoding="utf-8")
+        (stage / "validation.json").write_text(dumps(summary, indent=1), encoding="utf-8")
     return summary

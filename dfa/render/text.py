@@ -46,7 +46,7 @@ def check_rows(r: Any, quantized: bool, vu: str) -> list[list[str]]:
         ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
         ["delay d", f"{d} sample{'s' if d != 1 else ''}"],
         ["criterion", ("eq. 6 (with encoder)" if quantized else "eq. 7 (no quantization)") + f": {rule}"],
-        ["region", f"{r.region}: {r.status}"],
+        ["region", f"{r.region}: {r.status.message}"],
         ["passive", verdict],
         ["margin", f"{r.margin:.4g}"],
         [f"critical speed (eq. 12, d = {d})", crit],
@@ -91,7 +91,7 @@ def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | No
 
 
 def _no_cycle_line(res: Any, lin: str) -> str:
-    why = res.status.removeprefix("incomplete: ")
+    why = res.detail.removeprefix("incomplete: ")
     if not res.complete:
         return f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})"
     if res.linear_stable is False:
@@ -160,7 +160,7 @@ def limit_cycle_lines(g: Any, device: Any, phys: dict | None = None) -> list[str
                 f"one tick = {device.resolution:.4g} {phys['position_unit']} = one force step KΔ = {fs:.4g} {phys['force_unit']}"
             )
         if not res.complete:
-            why = res.status.removeprefix("incomplete: ")
+            why = res.detail.removeprefix("incomplete: ")
             lines.append(f"search incomplete beyond M = {res.max_amplitude:g} ticks ({why}): more cycles may exist")
     if g.amplitude is not None:
         lines += [_growth_line(g, device), g.meaning()]

@@ -1,0 +1,228 @@
+"""Status enums of the analysis results: one enum per meaning, every member with a message.
+
+Each result class carries a ``status`` member of one of these enums (like
+diffrax's ``RESULTS``). A member compares equal to its value, a short code
+(``status == "ok"``), so JSON holds the code and :attr:`StatusEnum.message` says
+in words what it means. Where a status needs numbers of the case at hand (how far
+a search reached), the result carries them in a separate field (``detail``).
+
+Examples
+--------
+>>> from dfa.status import StiffnessStatus
+>>> StiffnessStatus.TOO_STIFF == "too stiff", StiffnessStatus("ok") is StiffnessStatus.OK
+(True, True)
+>>> StiffnessStatus.OK.message
+'passive at this speed (proven), or no stiffness to assess'
+"""
+
+from __future__ import annotations
+
+import enum
+from typing import Any
+
+from .errors import DFAValueError
+
+__all__ = [
+    "StatusEnum",
+    "CriterionStatus",
+    "StiffnessStatus",
+    "VelocityStatus",
+    "CurveStatus",
+    "SimulationOutcome",
+    "SearchStatus",
+    "GrowthStatus",
+    "NyquistStatus",
+    "MapStatus",
+    "ContourStatus",
+    "SoundnessStatus",
+    "ValidationStatus",
+    "DesignStatus",
+    "ReportStatus",
+]
+
+
+class StatusEnum(str, enum.Enum):
+    """Base of the status enums: value a short code (a ``str``), ``message`` its meaning in words."""
+
+    message: str
+
+    def __new__(cls, value: str, message: str) -> StatusEnum:
+        obj = str.__new__(cls, value)
+        obj._value_ = value
+        obj.message = message
+        return obj
+
+    def __str__(self) -> str:
+        return str(self.value)
+
+    def __format__(self, spec: str) -> str:
+        return format(str(self.value), spec)
+
+    @classmethod
+    def coerce(cls, value: Any, name: str = "status") -> Any:
+        """The member of this enum that ``value`` (a member or its code) names.
+
+        Raises
+        ------
+        DFAValueError
+            When ``value`` names no member.
+        """
+        for member in cls:
+            if value is member or (isinstance(value, str) and value == member.value):
+                return member
+        codes = ", ".join(repr(m.value) for m in cls)
+        raise DFAValueError(
+            f"{name} = {value!r} is invalid: it must be a {cls.__name__} ({codes}); use the enum member"
+        )
+
+
+class CriterionStatus(StatusEnum):
+    """Meaning of the region of paper Fig. 3 (eq. 6, 10) in which an operating point lies."""
+
+    PASSIVE_ALL_SPEEDS = (
+        "passive_all_speeds",
+        "passive at every speed: the energy cannot grow (proven; β >= ½ + d, σ >= ½)",
+    )
+    NOT_PASSIVE_AT_REST = (
+        "not_passive_at_rest",
+        "not passive at rest: σ < ½, the device cannot stop; sub-tick chatter expected (paper, d = 0)",
+    )
+    NO_GUARANTEE = (
+        "no_guarantee",
+        "no passivity guarantee at any speed: σ < ½ and β < ½ + d (not a proof of instability)",
+    )
+    ABOVE_CRITICAL_SPEED = (
+        "above_critical_speed",
+        "no passivity guarantee at this speed: above the critical speed (not a proof of instability)",
+    )
+    PASSIVE_BELOW_CRITICAL_SPEED = (
+        "passive_below_critical_speed",
+        "passive up to the critical speed: the energy cannot grow (proven)",
+    )
+
+    @property
+    def region(self) -> str:
+        """The region letter ``"a"`` … ``"e"`` of paper Fig. 3."""
+        return "abcde"[list(CriterionStatus).index(self)]
+
+    @classmethod
+    def of_region(cls, region: str) -> CriterionStatus:
+        """The status of region ``"a"`` … ``"e"``."""
+        return list(cls)["abcde".index(region)]
+
+
+class StiffnessStatus(StatusEnum):
+    """Verdict on a chosen stiffness at the impact speed (eq. 11)."""
+
+    OK = ("ok", "passive at this speed (proven), or no stiffness to assess")
+    TOO_STIFF = ("too stiff", "no passivity guarantee at this speed (K > K_max); not a proof of instability")
+
+
+class VelocityStatus(StatusEnum):
+    """What the largest passive speed of a chosen stiffness is (eq. 12)."""
+
+    NOT_REQUESTED = ("not requested", "no stiffness given")
+    ALL_SPEEDS = ("all speeds", "passive at every speed (K <= 2b/T, or b/(T(½ + d)) with a delay)")
+    BOUNDED = ("bounded", "passive up to a finite speed")
+    NONE = ("none", "not passive even at rest (K > 2c/Δ)")
+
+
+class CurveStatus(StatusEnum):
+    """Status of a stiffness limit curve over impact speeds."""
+
+    OK = ("ok", "K_max computed at every speed")
+
+
+class SimulationOutcome(StatusEnum):
+    """How an exact simulation ended (:mod:`dfa.simulation`); the order is the outcome code of the maps."""
+
+    REST = ("rest", "came to rest")
+    OSCILLATING = ("oscillating", "persistent oscillation of one tick or more")
+    UNSTABLE = ("unstable", "diverged (past the bound, or a growing envelope)")
+    CHATTER = ("chatter", "never comes to rest; the force keeps toggling below one tick of motion (a buzz)")
+    UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
+
+
+class SearchStatus(StatusEnum):
+    """How a limit-cycle search ended (:attr:`dfa.cycles.LimitCycleResult.status`)."""
+
+    COMPLETE = ("complete", "every root of eq. 36 was found: the pieces ended or the envelope bound closed them")
+    MAX_AMPLITUDE = ("max_amplitude", "incomplete: roots may exist beyond the caller's max_amplitude")
+    BUDGET = (
+        "budget",
+        "incomplete: the envelope bound lies beyond the size budget of the automatic search range",
+    )
+    NUMERICAL = (
+        "numerical",
+        "incomplete: a root finder failed (no sign change where the scan saw one, or no convergence)",
+    )
+
+
+class GrowthStatus(StatusEnum):
+    """What the describing function predicts about growth (:class:`dfa.cycles.GrowthThreshold`)."""
+
+    OK = ("ok", "unstable cycles found: growth is predicted above the band (first-harmonic approximation)")
+    NO_UNSTABLE_CYCLE = ("no unstable cycle", "no unstable cycle predicted")
+    NO_UNSTABLE_CYCLE_SEARCHED = (
+        "no unstable cycle up to the search limit",
+        "no unstable cycle predicted up to the amplitude searched (the search was incomplete)",
+    )
+    LINEAR_UNSTABLE = (
+        "linear unstable",
+        "no unstable cycle predicted, but the linear loop (exact ZOH model) is unstable: amplitudes grow without bound",
+    )
+
+
+class NyquistStatus(StatusEnum):
+    """What a Nyquist locus response holds (:class:`dfa.loop.NyquistLocusResponse`)."""
+
+    OK = ("ok", "curves, locus and crossings computed")
+    CROSSINGS_NOT_COMPUTED = (
+        "crossings not computed",
+        "crossings not computed for sigma > 0: use the limit-cycle solver",
+    )
+    SEARCH_INCOMPLETE = (
+        "search incomplete",
+        "crossings may be missing: the limit-cycle solver's search ended incomplete (see detail)",
+    )
+
+
+class MapStatus(StatusEnum):
+    """Status of a simulated stability map (:class:`dfa.maps.StabilityMap`)."""
+
+    OK = ("ok", "every grid point simulated; amplitude and frequency NaN where not measured")
+
+
+class ContourStatus(StatusEnum):
+    """Status of the cycle contour maps (:class:`dfa.contours.ContourMaps`)."""
+
+    OK = ("ok", "every grid point solved; NaN where a family does not exist or lies beyond max_amplitude")
+    FLAGGED = (
+        "flagged",
+        "the closed forms flagged grid points (NaN): β = σ = 0 is degenerate, or a root finder failed",
+    )
+
+
+class SoundnessStatus(StatusEnum):
+    """Whether simulation contradicted a passivity verdict (:class:`dfa.soundness.DelaySoundness`)."""
+
+    SOUND = ("sound", "no simulated point called passive gained energy or diverged")
+    VIOLATED = ("violated", "some points called passive gained energy or diverged: the criterion is not sound here")
+
+
+class ValidationStatus(StatusEnum):
+    """Status of a validation run (:class:`dfa.validation.ValidationResult`)."""
+
+    OK = ("ok", "every validation item ran")
+
+
+class DesignStatus(StatusEnum):
+    """Status of a design analysis (:class:`dfa.design.DesignAnalysis`)."""
+
+    OK = ("ok", "every number of the design report computed")
+
+
+class ReportStatus(StatusEnum):
+    """Status of a written design report (:class:`dfa.report.ReportResult`)."""
+
+    OK = ("ok", "every file of the report written")

@@ -1,0 +1,105 @@
+"""Result conventions of h-results on the integrated code (design analysis, report, contours, Nyquist, JSON path)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import dfa
+from dfa.contours import contour_maps
+from dfa.design import _check_validation, design_analysis
+from dfa.device import Params
+from dfa.errors import DFAValueError
+from dfa.formatting import json_dumps
+from dfa.jsonable import NULL_REASONS_KEY, dumps
+from dfa.loop import nyquist_locus_response
+from dfa.report import ReportResult
+from dfa.status import ContourStatus, DesignStatus, NyquistStatus, ReportStatus
+
+
+def _strict(d):
+    return json.loads(json.dumps(d, allow_nan=False))
+
+
+def test_one_json_path_formatting_delegates_to_the_sanitiser():
+    obj = {"k": float("nan"), "v": (1.5, float("-inf")), "u": "N·m", "s": ContourStatus.OK, "a": np.arange(2.0)}
+    assert json.loads(json_dumps(obj)) == json.loads(dumps(obj))
+    assert json.loads(json_dumps(obj))[NULL_REASONS_KEY] == {"/k": "NaN", "/v/1": "-inf"}
+    assert "N·m" in json_dumps(obj)  # non-ASCII kept in files people read
+
+
+def test_design_analysis_status_enum_and_strict_json():
+    a = design_analysis(dfa.get_device("impulse"), velocity=0.05, map_grid=3, samples=2000, n_jobs=1)
+    assert a.status is DesignStatus.OK and a.status == "ok"
+    d = _strict(a.as_dict())
+    assert d["status"] == "ok" and d["status_message"] == DesignStatus.OK.message
+    assert d["outcome"]["outcome"] == a.outcome.outcome.value
+    r = ReportResult((), (), {}, analysis=a)
+    rd = _strict(r.as_dict())
+    assert rd["status"] == "ok" and rd["status_message"] == ReportStatus.OK.message
+    assert rd["analysis"]["criterion"]["status"] == a.criterion.status.value
+    with pytest.raises(DFAValueError, match="ReportStatus"):
+        ReportResult((), (), status="done")
+
+
+def test_design_reads_a_null_validation_number_back_as_nan():
+    summary = {
+        "soundness_violations": 0,
+        "soundness_passive": 10,
+        "conservatism": None,  # strict validation.json: NaN stored as null
+        "speed_df_median_error": 0.1,
+        "short_period_frequency_error": 0.2,
+        NULL_REASONS_KEY: {"/conservatism": "NaN"},
+    }
+    got = _check_validation(summary)
+    assert got is not None and math.isnan(got["conservatism"]) and got["soundness_passive"] == 10
+
+
+def test_fig7_contours_ok_without_the_degenerate_corner_flagged_with_it():
+    ok = contour_maps(5.0, beta_range=(0.1, 1.0), grid=4, max_amplitude=10.0)
+    assert ok.status is ContourStatus.OK and ok.detail == ""
+    assert ok.as_dict()["status_message"] == ContourStatus.OK.message
+    flagged = contour_maps(5.0, grid=4, max_amplitude=10.0)
+    d = _strict(flagged.as_dict())
+    assert d["status"] == "flagged" and "β = σ = 0" in d["status_message"]
+    ds = flagged.to_xarray() if _has_xarray() else None
+    if ds is not None:
+        assert ds.attrs["status"] == "flagged" and ds.attrs["status_message"] == flagged.detail
+
+
+def _has_xarray() -> bool:
+    try:
+        import xarray  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def test_fig6_nyquist_sigma_zero_crossings_from_the_solver_status_ok():
+    r = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.0))
+    assert r.status is NyquistStatus.OK and r.detail == ""
+    d = _strict(r.as_dict())
+    assert d["status"] == "ok" and len(d["crossings"]) == 2
+    s = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.3), amplitudes=[1.0, 2.0])
+    assert s.status is NyquistStatus.CROSSINGS_NOT_COMPUTED and s.as_dict()["status_message"] == s.status.message
+
+
+def test_fig6_nyquist_reports_an_incomplete_solver_search(monkeypatch):
+    import dfa.cycles as cyc
+
+    real = cyc.limit_cycles
+
+    def incomplete(p, **kw):
+        res = real(p, **kw)
+        return cyc.LimitCycleResult(
+            res.params, res.model, res.delay, res.pade_order, res.describing, res.max_amplitude, res.cycles,
+            False, "incomplete: 1 root bracket(s) could not be refined", cyc.SearchStatus.NUMERICAL,
+        )  # fmt: skip
+
+    monkeypatch.setattr(cyc, "limit_cycles", incomplete)
+    r = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.0))
+    assert r.status is NyquistStatus.SEARCH_INCOMPLETE and "could not be refined" in r.detail
+    assert _strict(r.as_dict())["status_message"] == r.detail
