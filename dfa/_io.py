@@ -36,7 +36,7 @@ import sys
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
-from typing import IO
+from typing import IO, Any
 
 from .errors import DFAValueError
 
@@ -90,8 +90,10 @@ def atomic_open(path: str | os.PathLike, mode: str = "wb", encoding: str | None 
     folder = os.path.dirname(os.path.abspath(dest))
     fd, tmp = tempfile.mkstemp(prefix=_TMP_PREFIX, suffix=".part", dir=folder)
     try:
-        kw = {} if mode == "wb" else {"encoding": encoding or "utf-8", "newline": ""}
-        with os.fdopen(fd, mode, **kw) as fh:
+        fh_cm: IO[Any] = (
+            os.fdopen(fd, "wb") if mode == "wb" else os.fdopen(fd, "w", encoding=encoding or "utf-8", newline="")
+        )
+        with fh_cm as fh:
             yield fh
             fh.flush()
             os.fsync(fh.fileno())
@@ -318,5 +320,5 @@ def ensure_numba_cache_dir() -> str | None:
     os.environ["NUMBA_CACHE_DIR"] = fallback
     cfg = sys.modules.get("numba.core.config")
     if cfg is not None:  # numba was imported before dfa: update its parsed setting too
-        cfg.CACHE_DIR = fallback
+        cfg.CACHE_DIR = fallback  # type: ignore[attr-defined]
     return fallback

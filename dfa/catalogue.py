@@ -355,8 +355,8 @@ def resolve_device(
     >>> round(r.device.resolution, 6), r.label
     (0.003142, 'testbed, K = 0.5 N·m/rad')
     """
+    from .checks import check_positive
     from .device import dimensionless_params
-    from .errors import check_positive
 
     fl = {k: k for k in (*_PHYSICAL, "stiffness", "counts", "name")} | (flags or {})
     given = {k: v for k, v in (overrides or {}).items() if v is not None}
@@ -388,7 +388,7 @@ def resolve_device(
 
 def _checked(given: dict[str, float], fl: dict[str, str]) -> dict[str, float | None]:
     """Physical values checked: mass, resolution and period > 0; damping and Coulomb friction >= 0."""
-    from .errors import check_nonnegative, check_positive
+    from .checks import check_nonnegative, check_positive
 
     out: dict[str, float | None] = {}
     for k, v in given.items():

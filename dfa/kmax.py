@@ -57,8 +57,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .checks import check_choice, check_delay, check_int, check_positive, check_real, check_type
 from .device import Device
-from .errors import DFAValueError, check_choice, check_delay, check_int, check_positive, check_real, check_type
+from .errors import DFAValueError
 from .simulation import default_samples, preload_position, simulate, stored_energy
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 

@@ -33,8 +33,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .checks import check_delay, check_int, check_positive, check_real, check_type
 from .device import Device
-from .errors import check_delay, check_int, check_positive, check_real, check_type
 from .kmax import DESIGN_MAX_SAMPLES, _Evidence
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 

@@ -24,8 +24,8 @@ from __future__ import annotations
 
 import math
 
+from .checks import check_positive, check_type
 from .device import Device
-from .errors import check_positive, check_type
 
 __all__ = ["physical_quantities", "unit_context", "suffixes"]
 

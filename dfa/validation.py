@@ -632,8 +632,9 @@ def _speed_cases(quick: bool) -> list[tuple[str, Params]]:
     cases = []
     names = ("Delta", "Impulse Engine") if quick else ("Delta", "Impulse Engine", "Phantom 1.0", "Toolhandle")
     for n in names:
-        e = get_device(n)
-        cases.append((n, e.params))
+        p = get_device(n).params
+        assert p is not None  # these catalogue rows are complete
+        cases.append((n, p))
     extra = (
         [(5.0, 0.1, 0.9), (20.0, 0.2, 1.2)]
         if quick

@@ -184,7 +184,7 @@ def limit_cycles_dict(g: Any, phys: dict | None = None) -> dict[str, object]:
     d["growth_threshold"] = g.as_dict()
     if phys is not None:
         phys = dict(phys)
-        for cyc, extra in zip(d["cycles"], phys.pop("cycles"), strict=True):  # type: ignore[call-overload]
+        for cyc, extra in zip(d["cycles"], phys.pop("cycles"), strict=True):
             cyc.update(extra)
         d.update(phys)
     return d
