@@ -26,8 +26,10 @@ VALIDATION_SUMMARY := $(wildcard reports/validation/validation.json)
 report: $(STAMP)
 	$(BIN)/dfa report --out reports --format both $(if $(VALIDATION_SUMMARY),--validation $(VALIDATION_SUMMARY))
 
+# The whole suite (doctests included), then format, lint, layering and types.
 test: $(STAMP)
 	HYPOTHESIS_PROFILE=ci $(BIN)/python -m pytest -q -n 2
+	$(MAKE) --no-print-directory lint
 
 # Format, lint, layering (import contracts in pyproject.toml) and types.
 lint: $(STAMP)
