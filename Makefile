@@ -15,6 +15,8 @@ all: test
 
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	@# the distribution was renamed dfa -> dfa-haptics: drop an old editable install of this checkout
+	@$(BIN)/python -m pip uninstall --quiet --yes dfa >/dev/null 2>&1 || true
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[dev]'
 	@touch $(STAMP)
 

@@ -28,7 +28,7 @@ are read-only copies; ``as_dict()`` returns strict-JSON data (NaN and infinities
 become null, with the reason under ``null_reasons``; :mod:`dfa.jsonable`);
 results with a figure have ``.plot(ax=None)`` returning the matplotlib Axes
 (matplotlib loads then, never on ``import dfa``); maps and contours have
-``to_xarray()`` (optional extra ``pip install 'dfa[xarray]'``).
+``to_xarray()`` (optional extra ``pip install 'dfa-haptics[xarray]'``).
 
 Examples
 --------
@@ -80,13 +80,17 @@ from .stiffness import (
     stiffness_response,
 )
 
+#: The distribution's name on the package index ("dfa" there is an unrelated project); ``import dfa`` and
+#: the ``dfa`` command keep their names.
+DISTRIBUTION = "dfa-haptics"
+
 
 def _version() -> str:
     """The installed distribution's version (pyproject.toml is the only place that states it)."""
     from importlib.metadata import PackageNotFoundError, version
 
     try:
-        return version("dfa")
+        return version(DISTRIBUTION)
     except PackageNotFoundError:  # pragma: no cover - running from a source tree that was never installed
         return "0+unknown"
 

@@ -1,6 +1,6 @@
 """Optional xarray support: the import with a clear error, and the labelled grid axes (β, σ, ξ'0).
 
-xarray is an optional extra (``pip install 'dfa[xarray]'``); ``import dfa`` never loads it.
+xarray is an optional extra (``pip install 'dfa-haptics[xarray]'``); ``import dfa`` never loads it.
 """
 
 from __future__ import annotations
@@ -30,6 +30,6 @@ def import_xarray() -> Any:
     except ImportError:
         raise DFAError(
             "to_xarray() needs the optional package xarray, which is not installed: "
-            "pip install 'dfa[xarray]' (or pip install xarray)"
+            "pip install 'dfa-haptics[xarray]' (or pip install xarray)"
         ) from None
     return xarray

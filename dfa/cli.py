@@ -1255,14 +1255,7 @@ class _Version(argparse.Action):
 
 
 def package_version() -> str:
-    """Version of the installed distribution that provides ``dfa`` (``importlib.metadata``)."""
-    from importlib import metadata
-
-    for dist in metadata.packages_distributions().get("dfa", []) or ["dfa"]:
-        try:
-            return metadata.version(dist)
-        except metadata.PackageNotFoundError:
-            continue
+    """Version of the installed distribution (``dfa.__version__``, from ``importlib.metadata``)."""
     from . import __version__
 
     return __version__

@@ -129,7 +129,7 @@ class ContourMaps:
         Raises
         ------
         DFAError
-            When the optional package xarray is not installed (``pip install 'dfa[xarray]'``).
+            When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
         """
         from ._xarray import BETA_ATTRS, SIGMA_ATTRS, import_xarray
 

@@ -12,7 +12,7 @@ Backends
 on a thread pool in this process (no worker start-up, no re-import).
 ``"processes"``: joblib's process pool (loky). ``"joblib"``: whatever
 ``joblib.parallel_config`` selects, e.g. a dask cluster (``pip install
-'dfa[dask]'``)::
+'dfa-haptics[dask]'``)::
 
     from dask.distributed import Client
     import joblib
@@ -167,7 +167,7 @@ class StabilityMap:
         Raises
         ------
         DFAError
-            When the optional package xarray is not installed (``pip install 'dfa[xarray]'``).
+            When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
         """
         from ._xarray import BETA_ATTRS, SIGMA_ATTRS, XI_DOT_ATTRS, import_xarray
 

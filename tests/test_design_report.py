@@ -278,7 +278,7 @@ def test_cli_version_from_the_installed_metadata(capsys):
     from importlib import metadata
 
     code, out, err = run(capsys, "--version")
-    assert code == 0 and out == f"dfa {metadata.version('dfa')}\n"
+    assert code == 0 and out == f"dfa {metadata.version('dfa-haptics')}\n"
 
 
 def test_cli_bare_dfa_prints_the_help_and_exits_2(capsys):

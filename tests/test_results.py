@@ -438,7 +438,7 @@ def test_fig7_contours_to_xarray_has_labelled_dims(contours):
 def test_to_xarray_without_xarray_names_the_fix(small_map, contours, monkeypatch):
     monkeypatch.setitem(sys.modules, "xarray", None)  # import xarray now raises ImportError
     for res in (small_map, contours):
-        with pytest.raises(DFAError, match=r"pip install 'dfa\[xarray\]'"):
+        with pytest.raises(DFAError, match=r"pip install 'dfa-haptics\[xarray\]'"):
             res.to_xarray()
 
 
@@ -449,7 +449,7 @@ def test_version_is_single_sourced_from_pyproject():
     except ImportError:  # pragma: no cover - Python 3.10
         import tomli as tomllib
     declared = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["version"]
-    assert dfa.__version__ == importlib.metadata.version("dfa") == declared
+    assert dfa.__version__ == importlib.metadata.version("dfa-haptics") == declared
     assert '__version__ = "' not in (ROOT / "dfa" / "__init__.py").read_text(encoding="utf-8")
 
 
