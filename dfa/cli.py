@@ -647,10 +647,20 @@ def _cmd_map(args: argparse.Namespace) -> int:
 def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     from .cycles import growth_threshold
 
+    for flag, value in (("--max-amplitude", args.max_amplitude), ("--time-budget", args.time_budget)):
+        if value is not None and not value > 0:
+            raise UsageError(f"{flag} {value:g} is invalid: it must be > 0; give e.g. {flag} 10")
     inp = _resolve(args, dimensionless=True)
     p = inp.params
     assert p is not None
-    g = growth_threshold(p, inp.device, model=args.model, delay=args.delay, max_amplitude=args.max_amplitude)
+    g = growth_threshold(
+        p,
+        inp.device,
+        model=args.model,
+        delay=args.delay,
+        max_amplitude=args.max_amplitude,
+        **({} if args.time_budget is None else {"time_budget": args.time_budget}),
+    )
     res = g.result
     if args.json:
         d = res.as_dict()
@@ -972,6 +982,14 @@ def _build_parser() -> argparse.ArgumentParser:
         default=None,
         metavar="M",
         help="largest amplitude searched (ticks); default: up to where the envelope of eq. 41 excludes roots",
+    )
+    p.add_argument(
+        "--time-budget",
+        type=_number("--time-budget", "seconds"),
+        default=None,
+        metavar="S",
+        help="longest search time in seconds (default 10, dfa.cycles.DEFAULT_TIME_BUDGET); "
+        "when it is hit the search is reported incomplete",
     )
     p.set_defaults(func=_cmd_limit_cycles)
 

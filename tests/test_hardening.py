@@ -676,3 +676,58 @@ def test_cli_huge_delay_refused_with_the_limit(capsys, cmd):
     assert "delay" in err and str(dfa.errors.MAX_DELAY) in err
     with pytest.raises(dfa.errors.DFAValueError, match="at most"):
         dfa.linear.critical_stiffness(0.1, 1.0, 1e-3, delay=dfa.errors.MAX_DELAY + 1)
+
+
+# ------------------------------------------------------------------ 9. limit-cycle time budget (eq. 36 search)
+def _no_cycle_missed_below(part, full):
+    """Every cycle of the full search below the partial result's max_amplitude is in the partial result."""
+    got = {(round(c.amplitude, 9), round(c.frequency, 9)) for c in part.cycles}
+    below = [c for c in full.cycles if c.amplitude < part.max_amplitude]
+    return all((round(c.amplitude, 9), round(c.frequency, 9)) in got for c in below)
+
+
+def test_eq36_time_budget_hit_is_incomplete_and_says_so():
+    from dfa.cycles import DEFAULT_TIME_BUDGET, SearchStatus
+
+    p = dfa.Params(5.0, 0.1, 0.3)
+    full = dfa.limit_cycles(p)
+    assert full.complete and DEFAULT_TIME_BUDGET == 10.0 and len(full.cycles) == 2
+    part = dfa.limit_cycles(p, time_budget=1e-9)
+    assert not part.complete and part.status_code is SearchStatus.TIME_BUDGET
+    assert part.status.startswith("incomplete: time budget of 1e-09 s hit after searching 0 of 1 pieces")
+    assert part.search_bound is None and part.cycles == ()
+    assert 0.0 < part.max_amplitude < full.cycles[0].amplitude and _no_cycle_missed_below(part, full)
+    assert part.as_dict()["status_code"] == "time_budget" and part.as_dict()["complete"] is False
+    g = dfa.growth_threshold(p, time_budget=1e-9)
+    assert g.amplitude is None and "search incomplete: time budget" in g.status
+    for bad in (0, -1.0, math.nan, math.inf, "10", None):
+        with pytest.raises(DFAError, match="time_budget"):
+            dfa.limit_cycles(p, time_budget=bad)
+
+
+def test_eq36_time_budget_stops_between_pieces(monkeypatch):
+    # two pieces of the phase curve (delay 2): a clock that passes the deadline after the first piece
+    import dfa.cycles as cycles
+
+    p = dfa.Params(100.0, 0.2, 0.3)
+    full = dfa.limit_cycles(p, delay=2)
+    ticks = iter(range(10**6))
+    monkeypatch.setattr(cycles.time, "monotonic", lambda: float(next(ticks)))
+    part = dfa.limit_cycles(p, delay=2, time_budget=1.5)  # deadline 1.5: the check at 1 passes, at 2 stops
+    assert not part.complete and "after searching 1 of 2 pieces" in part.status
+    assert 0 < len(part.cycles) < len(full.cycles) and _no_cycle_missed_below(part, full)
+    assert all(c in full.cycles for c in part.cycles)
+
+
+def test_cli_limit_cycles_time_budget(capsys):
+    code, out, _ = run(capsys, "limit-cycles", *DIMLESS, "--time-budget", "1e-9")
+    assert code == 0 and "search incomplete: time budget of 1e-09 s hit" in out
+    assert "no limit cycle predicted" not in out
+    code, out, _ = run(capsys, "limit-cycles", *DIMLESS, "--time-budget", "1e-9", "--json")
+    d = json.loads(out)
+    assert code == 0 and d["complete"] is False and d["status_code"] == "time_budget"
+    for v in ("0", "-1"):
+        assert "--time-budget" in refused(capsys, "limit-cycles", *DIMLESS, f"--time-budget={v}")
+    assert "--max-amplitude" in refused(capsys, "limit-cycles", *DIMLESS, "--max-amplitude=0")
+    code, out, _ = run(capsys, "limit-cycles", *DIMLESS, "--time-budget", "30")
+    assert code == 0 and "incomplete" not in out
