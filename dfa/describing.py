@@ -54,7 +54,7 @@ import numpy as np
 from scipy import integrate
 
 from . import _dfcore
-from .errors import DFAValueError, check_positive, check_sigma
+from .errors import DFAValueError, _fmt, check_positive, check_real_array, check_sigma
 
 __all__ = [
     "quantizer_df",
@@ -171,9 +171,9 @@ def _coulomb_function() -> Callable:
 
 # ------------------------------------------------------------------ numerics
 def _amplitudes(amplitude, name: str = "amplitude") -> np.ndarray:
-    m = np.asarray(amplitude, dtype=float)
+    m = check_real_array(name, amplitude, "give the sinusoid's amplitude as a number > 0")
     if m.size and (not np.all(np.isfinite(m)) or np.any(m <= 0)):
-        bad = m[~(np.isfinite(m) & (m > 0))].ravel()[0]
+        bad = float(m[~(np.isfinite(m) & (m > 0))].ravel()[0])
         raise DFAValueError(
             f"{name} = {bad!r} is invalid: it must be a finite number > 0 (the sinusoid's amplitude in encoder ticks)"
         )
@@ -228,7 +228,23 @@ def quantizer_df(amplitude):
         out = 0.5 * level(0.0, ms) + _level_sum(ms, level)
     if np.any(big):  # the ⌊M⌋-term sum is slow and overflows int64 far out: the asymptotic expansion (_dfcore)
         out = np.where(big, _dfcore.df_array(np.where(big, m, 1e3).ravel()).reshape(m.shape), out)
+    tiny = m < 1e-150
+    if np.any(tiny):  # M² underflows: below one tick only the k = 0 term is left, homogeneous of degree −1 in M
+        with np.errstate(over="ignore"):
+            out = np.where(tiny, 0.5 * level(0.0, 1.0) / np.where(tiny, m, 1.0), out)
+    _check_finite_df("amplitude", m, out)
     return float(out) if out.ndim == 0 else out
+
+
+def _check_finite_df(name: str, m: np.ndarray, out) -> None:
+    """Refuse amplitudes so small that the describing function (∝ 1/M) overflows a float."""
+    bad = ~np.isfinite(np.asarray(out))
+    if np.any(bad):
+        v = float(np.broadcast_to(m, np.shape(bad))[bad].ravel()[0])
+        raise DFAValueError(
+            f"{name} = {v!r} is invalid: the describing function (∝ 1/{name}) overflows a float; "
+            "give an amplitude above 1e-307"
+        )
 
 
 def quantizer_df_derivative(amplitude):
@@ -352,7 +368,9 @@ def coulomb_df(amplitude, sigma: float):
     """
     a = _amplitudes(amplitude, "amplitude")
     s = check_sigma(sigma)
-    out = np.asarray(_coulomb_function()(a, s), dtype=float) * np.ones_like(a)
+    with np.errstate(over="ignore"):
+        out = np.asarray(_coulomb_function()(a, s), dtype=float) * np.ones_like(a)
+    _check_finite_df("amplitude", a, out)
     return float(out) if out.ndim == 0 else out
 
 
@@ -370,7 +388,13 @@ def coulomb_equivalent_damping(sigma: float, amplitude, omega):
     """
     m = _amplitudes(amplitude)
     w = _amplitudes(omega, "omega")
-    return coulomb_df(m * w, sigma)
+    speed = m * w
+    if np.any(speed == 0.0):
+        raise DFAValueError(
+            f"amplitude = {_fmt(amplitude)} with omega = {_fmt(omega)} is invalid: the velocity amplitude M·ω "
+            "underflows to 0 (below 1e-308); give a larger amplitude or frequency"
+        )
+    return coulomb_df(speed, sigma)
 
 
 def numeric_df(f: Callable[[np.ndarray], np.ndarray], amplitude, jumps: Sequence[float] = (), tol: float = 1e-13):

@@ -29,6 +29,7 @@ __all__ = [
     "DFAValueError",
     "DFATypeError",
     "check_real",
+    "check_real_array",
     "check_positive",
     "check_nonnegative",
     "check_int",
@@ -232,3 +233,41 @@ def check_delay(value: Any) -> int:
             "in samples of the servo period (e.g. 1 for one sample of computation)"
         )
     return d
+
+
+def check_real_array(name: str, value: Any, fix: str | None = None) -> np.ndarray:
+    """Return ``value`` (a real number or an array-like of them) as a float array of finite values, or raise.
+
+    Text, booleans, complex numbers and objects are rejected with
+    :class:`DFATypeError`; NaN, infinities and integers too large for a float
+    with :class:`DFAValueError`.
+
+    Examples
+    --------
+    >>> check_real_array("beta", [0.5, 1])
+    array([0.5, 1. ])
+    >>> try:
+    ...     check_real_array("beta", [0.5, float("nan")])
+    ... except DFAValueError as err:
+    ...     print(err)
+    beta = [0.5, nan] is invalid: it must be finite numbers (element 1 is nan)
+    """
+    if isinstance(value, (str, bytes)):
+        raise _type_error(name, value, "a real number or an array of them", fix)
+    try:
+        arr = np.asarray(value)
+    except (ValueError, TypeError, OverflowError):  # ragged nesting and the like
+        raise _type_error(name, value, "a real number or an array of them", fix) from None
+    if arr.dtype.kind == "O":
+        flat = [check_real(f"{name}[{i}]" if arr.ndim else name, v, fix) for i, v in enumerate(arr.ravel())]
+        return np.array(flat, dtype=float).reshape(arr.shape)
+    if arr.dtype.kind not in "iuf":
+        raise _type_error(name, value, "a real number or an array of them", fix)
+    with np.errstate(over="ignore"):
+        out = arr.astype(float)
+    bad = ~np.isfinite(out)
+    if bad.any():
+        i = int(np.flatnonzero(bad.ravel())[0])
+        where = f" (element {i} is {float(out.ravel()[i])!r})" if out.ndim else ""
+        raise DFAValueError(_message(name, value, "finite numbers" + where, fix))
+    return out

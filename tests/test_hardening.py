@@ -731,3 +731,74 @@ def test_cli_limit_cycles_time_budget(capsys):
     assert "--max-amplitude" in refused(capsys, "limit-cycles", *DIMLESS, "--max-amplitude=0")
     code, out, _ = run(capsys, "limit-cycles", *DIMLESS, "--time-budget", "30")
     assert code == 0 and "incomplete" not in out
+
+
+# ------------------------------------------------------------------ 10. found by the API fuzz (tests/test_api_fuzz.py)
+@pytest.mark.parametrize("device", ["delta", 0.0, None, dfa.get_device("delta")])
+def test_eq11_device_criterion_needs_a_device(device):
+    # issue 17: "'str' object has no attribute 'params'" (AttributeError) from device_criterion
+    with pytest.raises(DFATypeError, match="^device = .*dfa.Device"):
+        dfa.device_criterion(device, 1000.0, 0.1)
+
+
+@pytest.mark.parametrize(
+    "kw, kind",
+    [
+        ({"sigma": ""}, DFATypeError),
+        ({"sigma": {}}, DFATypeError),
+        ({"xi_dot": 10**400}, DFAValueError),
+        ({"xi_dot": [1.0, 10**400]}, DFAValueError),
+        ({"beta": [0.1, math.nan]}, DFAValueError),
+        ({"beta": 1j}, DFATypeError),
+        ({"quantized": "yes"}, DFATypeError),
+        ({"delay": math.inf}, DFAValueError),
+        ({"delay": 10**400}, DFAValueError),
+    ],
+)
+def test_eq6_classify_region_refuses_non_numbers(kw, kind):
+    # issue 17: "could not convert string to float", OverflowError and ambiguous truth values from classify_region
+    args = {"beta": [0.1, 0.6], "sigma": [0.7, 0.7], "xi_dot": 1.0, **kw}
+    with pytest.raises(kind, match=f"^{next(iter(kw))}"):
+        dfa.classify_region(**args)
+    assert dfa.classify_region(**{"beta": [0.1, 0.6], "sigma": [0.7, 0.7], "xi_dot": 1.0}).tolist() == ["d", "a"]
+
+
+@pytest.mark.parametrize("velocity", ["", 10**400, [0.1, math.inf], None, "0.1"])
+def test_eq11_k_max_criterion_refuses_non_numbers(velocity):
+    with pytest.raises(DFAError, match="^velocity"):
+        dfa.k_max_criterion(dfa.get_device("delta").device, velocity)
+
+
+@pytest.mark.parametrize("m", [1e-173, 1e-151, 1e-300])
+def test_eq41_quantizer_df_tiny_amplitude_is_2_over_pi_m(m):
+    # found by the API fuzz: M² underflowed and D(1e-173) returned inf (it is 2/(πM) = 6.4e172)
+    assert dfa.quantizer_df(m) == pytest.approx(2.0 / (math.pi * m), rel=1e-15)
+    assert dfa.quantizer_df(np.array([m, 0.5]))[0] == pytest.approx(2.0 / (math.pi * m), rel=1e-15)
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: dfa.quantizer_df(5e-324),
+        lambda: dfa.quantizer_df(["a"]),
+        lambda: dfa.quantizer_df(np.array(["a"])),
+        lambda: dfa.quantizer_df(10**400),
+        lambda: dfa.coulomb_df(1e-320, 1.0),
+        lambda: dfa.coulomb_df("x", 1.0),
+        lambda: dfa.coulomb_df(10**400, 0.0),
+        lambda: dfa.coulomb_equivalent_damping(1.0, 1e-200, 1e-200),
+    ],
+)
+def test_eq41_describing_functions_refuse_what_they_cannot_compute(call):
+    # issue 17: "could not convert string to float" and OverflowError from the describing functions
+    with pytest.raises(DFAError, match="^(amplitude|omega)"):
+        call()
+
+
+@pytest.mark.parametrize("mu", [1e12, 1e14, 1e16, 1e-200, 1e-20])
+def test_gil_beta_critical_outside_its_reliable_range_refused(mu):
+    # found by the API fuzz: μ = 1e12 gave 0.4991 (the true value is 0.5 − 4e-14), μ >= 1e14 raised
+    # "please report this as a bug", μ = 1e-200 a ZeroDivisionError
+    with pytest.raises(DFAValueError, match="^mu = .*exact linear bound"):
+        dfa.gil_beta_critical(mu)
+    assert 0.5 - dfa.gil_beta_critical(1e10) == pytest.approx(1 / 24 / 1e10, rel=1e-3)  # the asymptote ½ − 1/(24μ)
