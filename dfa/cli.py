@@ -261,6 +261,29 @@ def _speed(args: argparse.Namespace, inputs: _Inputs, required: bool = True) -> 
     return xd, (inputs.device.velocity(xd) if inputs.device is not None else None)
 
 
+def _add_progress_args(p: argparse.ArgumentParser, quiet: bool = True) -> None:
+    """--progress (and --quiet): the progress bar policy of :func:`_progress`."""
+    p.add_argument(
+        "--progress", action="store_true", help="progress bar with an estimate on stderr even when it is not a terminal"
+    )
+    if quiet:
+        p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def _progress(args: argparse.Namespace) -> bool:
+    """Show progress bars: never with --quiet; always with --progress; else only on a terminal and without --json."""
+    if getattr(args, "quiet", False):
+        return False
+    if getattr(args, "progress", False):
+        return True
+    if getattr(args, "json", False):
+        return False
+    try:
+        return sys.stderr.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
 def _emit(obj: object) -> None:
     print(json.dumps(obj, allow_nan=False))
 
@@ -498,6 +521,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         delay=args.delay,
         quantize=not args.no_quantization,
         record=args.trace is not None,
+        progress=_progress(args),
     )
     if args.trace is not None:
         _write_trace(args.trace, r)
@@ -622,7 +646,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
         preload=args.preload,
         quantize=not args.no_quantization,
         n_jobs=args.jobs,
-        progress=not args.quiet,
+        progress=_progress(args),
     )
     path = m.save(args.out)
     if args.json:
@@ -755,6 +779,7 @@ def _cmd_contours(args: argparse.Namespace) -> int:
         sigma_range=tuple(args.sigma_range),
         grid=args.grid,
         max_amplitude=args.max_amplitude,
+        progress=_progress(args),
     )
     d = c.as_dict()
     if args.out is not None:
@@ -799,7 +824,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
         target = inp.device
     check_output_folder("--out", args.out, create=False)
     res = design_report(
-        target, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=not args.quiet, delay=args.delay
+        target, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=_progress(args), delay=args.delay
     )
     for pth in res.paths:
         print(f"written {pth}")
@@ -820,7 +845,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     check_jobs("--jobs", args.jobs)
     out = args.out
     check_output_folder("--out", out, create=True)  # the parent must exist; the folder itself is created
-    v = validate(quick=args.quick, n_jobs=args.jobs, progress=not args.quiet)
+    v = validate(quick=args.quick, n_jobs=args.jobs, progress=_progress(args))
     os.makedirs(out, exist_ok=True)
     figs = {}
     summary = v.summary()
@@ -915,6 +940,7 @@ def _build_parser() -> argparse.ArgumentParser:
         "--no-quantization", action="store_true", help="linear spring φ = −ξ instead of the encoder staircase"
     )
     p.add_argument("--trace", metavar="FILE.csv", help="write sample, xi, xi_dot to a CSV file")
+    _add_progress_args(p)
     p.add_argument(
         "--force",
         action="store_true",
@@ -956,7 +982,7 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--no-quantization", action="store_true")
     p.add_argument("--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default all cores)")
     p.add_argument("--out", required=True, metavar="FILE.npz", help="where to write the map")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    _add_progress_args(p)
     p.add_argument(
         "--force",
         action="store_true",
@@ -1013,6 +1039,7 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--max-amplitude", type=_number("--max-amplitude", "ticks"), default=200.0, metavar="M")
     p.add_argument("--out", metavar="FILE.npz", help="write the maps")
     p.add_argument("--json", action="store_true")
+    _add_progress_args(p)
     p.set_defaults(func=_cmd_contours)
 
     p = sub.add_parser("report", help="design report of a device: verdict, limits, cycles, figures (HTML or Markdown)")
@@ -1021,7 +1048,7 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--format", choices=["html", "md", "both"], default="html", help="html (self-contained), md (with PNGs) or both"
     )
-    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    _add_progress_args(p)
     _add_delay_arg(p)
     p.set_defaults(func=_cmd_report)
 
@@ -1031,7 +1058,7 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--out", default="reports/validation", metavar="DIR", help="output folder (default reports/validation)"
     )
-    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    _add_progress_args(p)
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.set_defaults(func=_cmd_validate)
     return parser

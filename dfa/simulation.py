@@ -126,6 +126,7 @@ __all__ = [
     "stored_energy",
     "MAX_RECORD_BYTES",
     "default_samples",
+    "CHUNK",
 ]
 
 #: Outcome names indexed by the kernel's codes (the codes of ``StabilityMap.outcome``):
@@ -403,6 +404,71 @@ def _tail_length(samples: int, mu: float) -> int:
     return int(min(samples, min(cap, max(2, samples // 4))))
 
 
+#: Samples per kernel call of a long run (:func:`_run_chunked`): about 0.05 s each.
+CHUNK = 1 << 22
+#: Longest tail run in chunks: the tail is one call, recorded (16 bytes a sample, 64 MiB at most).
+_TAIL_CALL_MAX = 1 << 22
+
+
+def _run_chunked(m, b, s, x0, v0, n, d, quantize, bnd, tail, rx, rv, re, stats, *, progress=False):
+    """The kernel run of :func:`simulate` in chunks, bit for bit the single call's result (delay 0 only).
+
+    The state between samples is (ξ, ξ') alone when d = 0. Chunks never straddle one of the eight
+    envelope segments ⌈kn/8⌉ or the tail; the tail is one call (its crossing measurements need it
+    whole), whose segment peaks are read from its recorded trajectory. Returns (done, rest).
+    """
+    from tqdm.auto import tqdm
+
+    start = n - tail
+    segs = {-(-k * n // _kernel.NSEG) for k in range(1, _kernel.NSEG)}  # ⌈kn/8⌉: first sample of segment k
+    cuts = sorted({0, start} | {c for c in segs if c < start} | set(range(0, start, CHUNK)))
+    spans = [*zip(cuts[:-1], cuts[1:], strict=True), (start, n)]
+    stats[:] = 0.0
+    cs = np.empty(_kernel.NSTATS)
+    x, v, done, rest = x0, v0, n, -1
+    bar = tqdm(total=n, unit="sample", unit_scale=True, desc="simulate", disable=not progress, leave=False)
+    try:
+        for a, z in spans:
+            k, is_tail = z - a, a == start
+            sx = rx[a : z + 1] if rx.size else (np.empty(k + 1) if is_tail else rx)
+            sv = rv[a : z + 1] if rv.size else (np.empty(k + 1) if is_tail else rv)
+            c_done, c_rest = _kernel.simulate_kernel(
+                m, b, s, x, v, k, d, quantize, bnd, k if is_tail else 0, sx, sv, re[a:z] if re.size else re, cs
+            )
+            if is_tail:  # segment peaks of the tail from its trajectory (the kernel's running max ignores NaN)
+                h = np.arange(a, a + c_done)
+                peaks = np.abs(sx[1 : c_done + 1])
+                for seg in np.unique((h * _kernel.NSEG) // n):
+                    sel = peaks[(h * _kernel.NSEG) // n == seg]
+                    stats[seg] = max(stats[seg], float(np.fmax.reduce(sel, initial=0.0)))
+                stats[_kernel.NSEG : _kernel.NSEG + 5] = cs[_kernel.NSEG : _kernel.NSEG + 5]
+                stats[_kernel.NSEG + 8 :] = cs[_kernel.NSEG + 8 :]
+            else:
+                seg = (a * _kernel.NSEG) // n
+                stats[seg] = max(stats[seg], float(cs[: _kernel.NSEG].max()))
+            x, v = float(cs[_kernel.NSEG + 6]), float(cs[_kernel.NSEG + 7])
+            stopped = c_rest >= 0 or cs[_kernel.NSEG + 5] == 1.0
+            bar.update(c_done)
+            if stopped:
+                done, rest = a + c_done, (a + c_rest if c_rest >= 0 else -1)
+                stats[_kernel.NSEG + 5] = cs[_kernel.NSEG + 5]
+                _fill_after_stop(rx, rv, re, z, rest >= 0)
+                break
+    finally:
+        bar.close()
+    stats[_kernel.NSEG + 6], stats[_kernel.NSEG + 7] = x, v
+    return done, rest
+
+
+def _fill_after_stop(rx, rv, re, z, at_rest):
+    """After a stop inside the chunk ending at sample z: the rest state (or NaN) for the samples beyond it."""
+    if rx.size:
+        rx[z + 1 :] = rx[z] if at_rest else np.nan
+        rv[z + 1 :] = rv[z] if at_rest else np.nan
+    if re.size:
+        re[z:] = re[z - 1] if at_rest else np.nan
+
+
 def simulate(
     mu: float,
     beta: float,
@@ -419,6 +485,7 @@ def simulate(
     stable_amplitude: float = 1.0,
     growth: float = 1.25,
     settle: float = 1.0e-3,
+    progress: bool = False,
 ) -> SimulationResult:
     """Simulate the sampled haptic loop exactly (paper eq. 4-5) from (ξ0, ξ'0).
 
@@ -451,6 +518,11 @@ def simulate(
     settle : float, optional
         Largest relative spread of the last three envelope peaks of a
         settled run (>= 0); a larger spread is ``"undecided"``.
+    progress : bool, optional
+        Show a tqdm progress bar with an estimate of the time left on stderr
+        (runs of more than ``CHUNK`` samples without delay; they are
+        integrated in chunks of ``CHUNK`` samples, so Ctrl-C is honoured
+        between chunks, with results identical to a single pass).
 
     Returns
     -------
@@ -482,7 +554,11 @@ def simulate(
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
     stats = np.empty(_kernel.NSTATS)
     tail = _tail_length(n, m)
-    done, rest = _kernel.simulate_kernel(m, b, s, x0, v0, n, d, bool(quantize), bnd, tail, rx, rv, re, stats)
+    run = (m, b, s, x0, v0, n, d, bool(quantize), bnd, tail, rx, rv, re, stats)
+    if d == 0 and n > CHUNK and tail <= _TAIL_CALL_MAX:
+        done, rest = _run_chunked(*run, progress=progress)
+    else:
+        done, rest = _kernel.simulate_kernel(*run)
     code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, bool(quantize), m)
     suggest = None
     if code == _kernel.UNDECIDED:

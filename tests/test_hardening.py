@@ -473,6 +473,7 @@ def test_cli_sigterm_stops_joblib_workers(tmp_path):
             "50000",
             "--jobs",
             "2",
+            "--progress",
             "--out",
             str(out),
         ],
@@ -802,3 +803,42 @@ def test_gil_beta_critical_outside_its_reliable_range_refused(mu):
     with pytest.raises(DFAValueError, match="^mu = .*exact linear bound"):
         dfa.gil_beta_critical(mu)
     assert 0.5 - dfa.gil_beta_critical(1e10) == pytest.approx(1 / 24 / 1e10, rel=1e-3)  # the asymptote ½ − 1/(24μ)
+
+
+# ------------------------------------------------------------------ 11. progress bars: stderr, a terminal or --progress
+MAP_SMALL = ["map", "--mu", "100", "--xi-dot", "1", "--grid", "3", "--samples", "200", "--jobs", "1", "--out"]
+
+
+@pytest.mark.parametrize(
+    "extra, shown",
+    [([], False), (["--progress"], True), (["--progress", "--quiet"], False), (["--json"], False)],
+)
+def test_cli_progress_bar_policy(capsys, tmp_path, extra, shown):
+    code, out, err = run(capsys, *MAP_SMALL, str(tmp_path / "m.npz"), *extra)
+    assert code == 0 and ("stability map" in err) == shown, err
+    assert "%|" not in out and "run/s" not in out
+    if "--json" in extra:
+        json.loads(out)
+
+
+def test_cli_progress_bar_on_a_terminal(capsys, tmp_path, monkeypatch):
+    import dfa.cli as cli
+
+    monkeypatch.setattr(cli.sys.stderr, "isatty", lambda: True, raising=False)
+    code, _, err = run(capsys, *MAP_SMALL, str(tmp_path / "m.npz"))
+    assert code == 0 and "stability map" in err
+    code, out, err = run(capsys, *MAP_SMALL, str(tmp_path / "m.npz"), "--json")
+    assert code == 0 and "stability map" not in err and json.loads(out)
+
+
+def test_cli_contours_and_simulate_progress(capsys, monkeypatch):
+    import dfa.simulation as simulation
+
+    code, out, err = run(capsys, "contours", "--mu", "5", "--grid", "4", "--max-amplitude", "5", "--progress", "--json")
+    assert code == 0 and "contours" in err and json.loads(out)["grid"] == [4, 4]
+    monkeypatch.setattr(simulation, "CHUNK", 1000)
+    argv = ["simulate", *DIMLESS, "--xi-dot", "1", "--samples", "20000", "--json"]
+    code, out, err = run(capsys, *argv, "--progress")
+    assert code == 0 and "simulate" in err
+    code, out2, err = run(capsys, *argv)
+    assert code == 0 and err == "" and out2 == out  # the same numbers with and without the bar
