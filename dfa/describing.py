@@ -54,7 +54,7 @@ import numpy as np
 from scipy import integrate
 
 from . import _dfcore
-from .errors import DFAValueError, _fmt, check_positive, check_real_array, check_sigma
+from .errors import DFATypeError, DFAValueError, _fmt, check_positive, check_real_array, check_sigma
 
 __all__ = [
     "quantizer_df",
@@ -422,17 +422,33 @@ def numeric_df(f: Callable[[np.ndarray], np.ndarray], amplitude, jumps: Sequence
     >>> round(numeric_df(lambda x: np.floor(x) + 0.5, 2.5, jumps=[1, 2]), 10) == round(quantizer_df(2.5), 10)
     True
     """
+    if not callable(f):
+        raise DFATypeError(f"f = {_fmt(f)} is invalid: it must be a function of the input (an odd static nonlinearity)")
     m = _amplitudes(amplitude)
+    js = check_real_array("jumps", jumps, "give the inputs at which f jumps, e.g. [1, 2]").ravel()
+    tol = check_positive("tol", tol, "give the quadrature tolerance, e.g. 1e-13")
+    if tol < 1e-13:
+        raise DFAValueError(f"tol = {tol!r} is invalid: it must be at least 1e-13 (the quadrature's finest); use 1e-13")
+
+    def fval(x: float) -> float:
+        try:
+            y = float(f(x))
+        except (TypeError, ValueError, OverflowError):
+            raise DFATypeError(f"f({x!r}) is not a real number: f must return one real number per input") from None
+        if not math.isfinite(y):
+            raise DFAValueError(f"f({x!r}) = {y!r} is invalid: f must return finite numbers")
+        return y
+
     out = np.empty(m.shape)
     for idx, mv in np.ndenumerate(m):
-        pts = sorted({math.asin(j / mv) for j in jumps if 0 < j < mv})
+        pts = sorted({math.asin(j / mv) for j in js if 0 < j < mv})
         edges = [0.0, *pts, math.pi / 2]
         total = 0.0
         for a, b in zip(edges[:-1], edges[1:], strict=False):
             if b > a:
                 # evaluate strictly inside each piece so a jump at an edge is not sampled
                 val, _err = integrate.quad(
-                    lambda t, mv=mv: float(f(mv * math.sin(t))) * math.sin(t), a, b, epsabs=tol, epsrel=tol, limit=200
+                    lambda t, mv=mv: fval(mv * math.sin(t)) * math.sin(t), a, b, epsabs=tol, epsrel=tol, limit=200
                 )
                 total += val
         out[idx] = 4.0 / math.pi * total / mv

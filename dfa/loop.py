@@ -45,7 +45,7 @@ import numpy as np
 
 from .describing import coulomb_equivalent_damping, quantizer_df, quantizer_df_inverse
 from .device import Params
-from .errors import DFAValueError, check_choice, check_delay, check_int, check_type
+from .errors import DFAValueError, check_choice, check_delay, check_int, check_positive, check_real_array, check_type
 from .linear import _zoh_coefficients  # the ZOH pulse-transfer coefficients live with the exact linear analysis
 
 __all__ = [
@@ -76,7 +76,7 @@ def _check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int
 
 
 def _omega(omega, name: str = "omega") -> np.ndarray:
-    w = np.asarray(omega, dtype=float)
+    w = check_real_array(name, omega, "give frequencies in rad per sample")
     if w.size and (not np.all(np.isfinite(w)) or np.any(w <= 0)):
         bad = w[~(np.isfinite(w) & (w > 0))].ravel()[0]
         raise DFAValueError(f"{name} = {bad!r} is invalid: it must be a finite frequency > 0 in rad per sample")
@@ -178,6 +178,15 @@ def loop_response(
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
     w = _omega(omega)
+    if amplitude is not None:
+        amplitude = check_real_array("amplitude", amplitude, "give the cycle amplitude M in ticks")
+        try:
+            np.broadcast_shapes(w.shape, amplitude.shape)
+        except ValueError:
+            raise DFAValueError(
+                f"amplitude of shape {amplitude.shape} is invalid with omega of shape {w.shape}: they must broadcast "
+                "together; give one amplitude per frequency or a single amplitude"
+            ) from None
     beq = (
         equivalent_damping(p, amplitude, w)
         if p.sigma > 0
@@ -195,6 +204,12 @@ def loop_response(
             num, den = control.pade(d + 0.5, n)
             out = g * np.polyval(num, s) / np.polyval(den, s)
     out = np.asarray(out, dtype=complex)
+    if not np.all(np.isfinite(out)):
+        bad = float(np.broadcast_to(w, out.shape)[~np.isfinite(out)].ravel()[0])
+        raise DFAValueError(
+            f"omega = {bad!r} is invalid here: L(jω) over- or underflows a float at this frequency; "
+            "give frequencies in rad per sample (a sampled cycle has ω < π)"
+        )
     return complex(out) if out.ndim == 0 else out
 
 
@@ -219,6 +234,10 @@ def loop_system(
     """
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
+    if amplitude is not None:
+        amplitude = check_positive("amplitude", amplitude, "give one cycle amplitude M in ticks")
+    if omega is not None:
+        omega = check_positive("omega", omega, "give one frequency in rad per sample")
     if m == "pade":
         return device_tf(p, amplitude, omega) * hold_delay_tf(d, n)
     if m == "zoh":
@@ -319,7 +338,9 @@ def nyquist_locus_response(
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
     w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega)
-    la = np.asarray(np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude, dtype=float)
+    la = check_real_array(
+        "locus_amplitude", np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude
+    )
     locus = -1.0 / quantizer_df(la)
     crossings: list[tuple[float, float, complex]] = []
     if p.sigma == 0.0:
@@ -335,7 +356,7 @@ def nyquist_locus_response(
                 f"amplitudes = None is invalid here: with sigma = {p.sigma} > 0 the loop depends on M (eq. 40); "
                 "give the amplitudes (ticks) at which to draw it"
             )
-        amps = np.atleast_1d(np.asarray(amplitudes, dtype=float))
+        amps = np.atleast_1d(check_real_array("amplitudes", amplitudes, "give the amplitudes M in ticks"))
         curves = np.vstack([loop_response(p, w, np.full_like(w, a), model=m, delay=d, pade_order=n) for a in amps])
         status = "crossings not computed for sigma > 0: use the limit-cycle solver"
     return NyquistLocusResponse(p, m, d, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status)

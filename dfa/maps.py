@@ -45,6 +45,7 @@ classes existed (their ``stable`` mixed rest with chatter).
 from __future__ import annotations
 
 import os
+import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -52,7 +53,17 @@ import numpy as np
 
 from . import _kernel
 from ._io import atomic_open, check_memory
-from .errors import DFAValueError, check_delay, check_int, check_mu, check_nonnegative, check_positive, check_real
+from .errors import (
+    DFATypeError,
+    DFAValueError,
+    _fmt,
+    check_delay,
+    check_int,
+    check_mu,
+    check_nonnegative,
+    check_positive,
+    check_real,
+)
 from .simulation import OUTCOMES, _tail_length, preload_position
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs"]
@@ -168,7 +179,27 @@ class StabilityMap:
 
 def load_map(path: str | os.PathLike) -> StabilityMap:
     """Read a map written by :meth:`StabilityMap.save` (codes mapped through the file's ``outcome_names``)."""
-    with np.load(path) as z:
+    if not isinstance(path, (str, os.PathLike)):
+        raise DFATypeError(
+            f"path = {_fmt(path)} has type {type(path).__name__}: it must be the path of a .npz map file"
+        )
+    try:
+        return _load_map(path)
+    except (FileNotFoundError, IsADirectoryError, NotADirectoryError):
+        raise DFAValueError(
+            f"path = {os.fspath(path)!r} is invalid: no such file; give the .npz file written by `dfa map`"
+        ) from None
+    except (ValueError, KeyError, EOFError, zipfile.BadZipFile, TypeError) as exc:
+        if isinstance(exc, DFAValueError):
+            raise
+        raise DFAValueError(
+            f"path = {os.fspath(path)!r} is invalid: it is not a complete dfa map file ({type(exc).__name__}); "
+            "recompute it with `dfa map`"
+        ) from None
+
+
+def _load_map(path: str | os.PathLike) -> StabilityMap:
+    with np.load(path, allow_pickle=False) as z:
         samples, delay, quantize, preload = (int(v) for v in z["settings"])
         if "outcome_names" not in z.files:
             raise DFAValueError(

@@ -23,7 +23,8 @@ from .catalogue import CatalogueEntry
 from .criterion import device_criterion
 from .cycles import growth_threshold
 from .device import Device
-from .errors import DFAValueError, check_choice, check_delay, check_positive, check_real
+from .errors import DFATypeError, DFAValueError, check_choice, check_delay, check_int, check_positive, check_real
+from .errors import _fmt as _fmt_value
 from .loop import nyquist_locus_response
 from .maps import stability_map
 from .simulation import simulate
@@ -231,6 +232,16 @@ def design_report(
     v = abs(check_real("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1)))
     fmt = check_choice("fmt", fmt, ("html", "md", "both"))
     dl = check_delay(delay)
+    check_int("map_grid", map_grid, minimum=2, fix="use at least 2 points per axis")
+    check_int("samples", samples, minimum=1, fix="simulate at least one sample")
+    if not isinstance(progress, (bool, np.bool_)):
+        raise DFATypeError(
+            f"progress = {_fmt_value(progress)} has type {type(progress).__name__}: it must be True or False"
+        )
+    if not isinstance(out_dir, (str, os.PathLike)):
+        raise DFATypeError(
+            f"out_dir = {_fmt_value(out_dir)} has type {type(out_dir).__name__}: it must be a folder path"
+        )
     out = Path(out_dir)
     if not out.is_dir():
         raise DFAValueError(f"out_dir = {str(out)!r} is invalid: the folder does not exist; create it first")

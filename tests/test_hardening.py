@@ -842,3 +842,41 @@ def test_cli_contours_and_simulate_progress(capsys, monkeypatch):
     assert code == 0 and "simulate" in err
     code, out2, err = run(capsys, *argv)
     assert code == 0 and err == "" and out2 == out  # the same numbers with and without the bar
+
+
+def test_fig4_load_map_refuses_missing_and_broken_files(tmp_path):
+    # issue 17: a half-written 127-byte .npz did not load (numpy's own errors); now the package's, with the fix
+    with pytest.raises(DFAValueError, match="no such file"):
+        dfa.load_map(tmp_path / "missing.npz")
+    bad = tmp_path / "half.npz"
+    bad.write_bytes(b"PK\x03\x04" + b"\0" * 123)
+    with pytest.raises(DFAValueError, match="not a complete dfa map file"):
+        dfa.load_map(bad)
+    with pytest.raises(DFATypeError, match="^path"):
+        dfa.load_map(None)
+    m = dfa.stability_map(100.0, [2.0], grid=2, samples=50, n_jobs=1, progress=False)
+    assert dfa.load_map(m.save(tmp_path / "ok.npz")).as_dict() == m.as_dict()
+
+
+@pytest.mark.parametrize(
+    "kw, word",
+    [({"quick": ""}, "quick"), ({"quick": 1}, "quick"), ({"n_jobs": 0}, "n_jobs"), ({"progress": None}, "progress")],
+)
+def test_validate_refuses_bad_arguments_before_any_work(kw, word, monkeypatch):
+    # found by the API fuzz: quick="" ran the full validation (minutes); n_jobs was checked after minutes of work
+    import dfa.validation as validation
+
+    monkeypatch.setattr(validation, "cycle_checks", lambda *a, **k: pytest.fail("work started"))
+    with pytest.raises(DFAError, match=f"^{word}"):
+        dfa.validate(**{"quick": True, **kw})
+
+
+@pytest.mark.parametrize(
+    "kw, word", [({"map_grid": 1}, "map_grid"), ({"samples": "1"}, "samples"), ({"out_dir": 3}, "out_dir")]
+)
+def test_design_report_refuses_bad_arguments_before_any_work(kw, word, tmp_path, monkeypatch):
+    import dfa.report as report
+
+    monkeypatch.setattr(report, "_write_report", lambda *a, **k: pytest.fail("work started"))
+    with pytest.raises(DFAError, match=f"^{word}"):
+        dfa.design_report(dfa.get_device("delta"), **{"out_dir": tmp_path, "progress": False, **kw})
