@@ -570,8 +570,9 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 #: Planned cost of one simulated sample in the worst case measured (an oscillating run, loaded machine).
 SIMULATE_NS_PER_SAMPLE = 100
-#: ``dfa simulate`` refuses runs estimated longer than this (seconds) unless --force: the compiled
-#: kernel cannot be interrupted before it returns.
+#: ``dfa simulate`` refuses runs estimated longer than this (seconds) unless --force (work is refused up
+#: front; a run without delay is integrated in chunks and stops at Ctrl-C, one with a delay or one run of a
+#: map cannot be interrupted before the compiled kernel returns).
 SIMULATE_TIME_LIMIT = 30.0
 #: ``dfa map`` refuses maps estimated longer than this (hours, at the worst-case cost per sample) unless --force.
 MAP_TIME_LIMIT_HOURS = 24.0
@@ -586,7 +587,7 @@ def _check_samples(samples: int, force: bool) -> None:
     if seconds > SIMULATE_TIME_LIMIT and not force:
         raise UsageError(
             f"--samples {samples} could take up to {seconds:.3g} s (estimated {SIMULATE_NS_PER_SAMPLE} ns per sample; "
-            f"limit {SIMULATE_TIME_LIMIT:g} s, and the run cannot be interrupted before it ends): lower --samples "
+            f"limit {SIMULATE_TIME_LIMIT:g} s): lower --samples "
             f"(at most {int(SIMULATE_TIME_LIMIT / (SIMULATE_NS_PER_SAMPLE * 1e-9))}) or add --force"
         )
 
@@ -944,7 +945,7 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--force",
         action="store_true",
-        help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s (uninterruptible)",
+        help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s",
     )
     p.set_defaults(func=_cmd_simulate)
 

@@ -430,7 +430,7 @@ def numeric_df(f: Callable[[np.ndarray], np.ndarray], amplitude, jumps: Sequence
     if tol < 1e-13:
         raise DFAValueError(f"tol = {tol!r} is invalid: it must be at least 1e-13 (the quadrature's finest); use 1e-13")
 
-    def fval(x: float) -> float:
+    def fval(x) -> float:  # x: the input, a numpy float as before
         try:
             y = float(f(x))
         except (TypeError, ValueError, OverflowError):
