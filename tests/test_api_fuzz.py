@@ -8,7 +8,8 @@ raise the package's own error (:class:`dfa.DFAError`); a returned result must
 not hold NaN or infinity unless its status or outcome says why.
 
 Derandomised under the ``ci`` profile (``make test``); ``make explore``
-(``HYPOTHESIS_PROFILE=explore``) draws many more random examples.
+(``HYPOTHESIS_PROFILE=explore``) draws many more random examples (set
+``DFA_API_FUZZ_EXAMPLES`` to fix the number of examples per name).
 """
 
 from __future__ import annotations
@@ -278,6 +279,8 @@ def test_api_fuzz_every_public_name(name):
     assert callable(obj)
     n = EXAMPLES.get(name)
     cfg = {} if n is None or EXPLORE else {"max_examples": n}
+    if os.environ.get("DFA_API_FUZZ_EXAMPLES"):  # e.g. a time-boxed explore run: examples per name
+        cfg = {"max_examples": int(os.environ["DFA_API_FUZZ_EXAMPLES"])}
 
     @settings(suppress_health_check=list(HealthCheck), **cfg)
     @given(_strategy_for(name, obj))
