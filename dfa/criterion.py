@@ -414,6 +414,10 @@ def passivity_criterion(
     xd = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
     x0 = check_real("xi0", xi0, "give the initial position in encoder ticks")
     m = None if mu is None else check_mu(mu)
+    if not isinstance(quantized, (bool, np.bool_)):
+        raise DFATypeError(
+            f"quantized = {_fmt(quantized)} has type {type(quantized).__name__}: it must be True (eq. 6) or False (eq. 7)"
+        )
     v = equivalent_speed(xd, x0, m, quantized=quantized)
     s0 = 0.5 if quantized else 0.0
     b0 = 0.5 + d

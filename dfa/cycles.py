@@ -72,7 +72,7 @@ from scipy import optimize
 from . import _dfcore
 from .describing import DF_ENVELOPE
 from .device import Device, Params
-from .errors import check_choice, check_mu, check_positive, check_type
+from .errors import DFAValueError, check_choice, check_mu, check_positive, check_type
 from .loop import _check_model, _check_params, _zoh_coefficients
 
 __all__ = [
@@ -943,9 +943,10 @@ def large_cycle_frequency(mu: float) -> float:
     (0.44175, 0.099938)
     """
     m = check_mu(mu)
-    return float(
-        optimize.brentq(lambda w: m * w * w - math.cos(w / 2), 0.0, math.pi, xtol=1e-16, rtol=4 * np.finfo(float).eps)
-    )
+    f = lambda w: m * w * w - math.cos(w / 2)
+    if f(math.pi) <= 0.0:  # μπ² below cos(π/2) rounded (6e-17): the root π − 2π²μ + … is π to rounding
+        return math.pi
+    return float(optimize.brentq(f, 0.0, math.pi, xtol=1e-16, rtol=4 * np.finfo(float).eps))
 
 
 def large_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float, float] | None:
@@ -978,6 +979,12 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
         if w is None:
             return None
     else:
+        if not f(hi) > 0.0:  # cos(π/2) rounds to 6e-17, not 0: with β/μ above ~1e16 f(π) loses its sign
+            raise DFAValueError(
+                f"beta = {p.beta!r} with mu = {p.mu!r} is invalid here: β/μ = {p.beta / p.mu:.3g} puts the small "
+                "cycle's frequency within rounding of π (eq. 42-43 cannot be solved in floating point); "
+                "use a smaller β/μ"
+            )
         w = optimize.brentq(f, lo, hi, xtol=1e-16, rtol=4 * np.finfo(float).eps)
     return 2 * math.cos(w / 2) / (math.pi * p.mu * w * w), w
 

@@ -388,7 +388,12 @@ def coulomb_equivalent_damping(sigma: float, amplitude, omega):
     """
     m = _amplitudes(amplitude)
     w = _amplitudes(omega, "omega")
-    speed = m * w
+    try:
+        speed = m * w
+    except ValueError:
+        raise DFAValueError(
+            f"amplitude of shape {m.shape} is invalid with omega of shape {w.shape}: they must broadcast together"
+        ) from None
     if np.any(speed == 0.0):
         raise DFAValueError(
             f"amplitude = {_fmt(amplitude)} with omega = {_fmt(omega)} is invalid: the velocity amplitude M·ω "

@@ -905,3 +905,19 @@ def test_report_too_stiff_writes_the_report(tmp_path):
     )
     md = [p for p in res.paths if str(p).endswith(".md")]
     assert len(md) == 1 and "not passive even at rest" in md[0].read_text(encoding="utf-8")
+
+
+def test_found_by_explore_fuzz():
+    # HYPOTHESIS_PROFILE=explore run of tests/test_api_fuzz.py: scipy's "f(a) and f(b) must have different signs",
+    # numpy broadcast errors and an ambiguous truth value, each now the package's error or the right answer
+    assert dfa.large_cycle_closed_form(2.654260412659872e-53, 0.0, 0.0) == (0.0, math.pi)  # ω = π − 2π²μ: π
+    assert dfa.cycles.large_cycle_frequency(1e-18) == math.pi
+    with pytest.raises(DFAValueError, match="^beta = .*rounding of π"):
+        dfa.small_cycle_closed_form(0.01, 513061015760152.0, 0.0)
+    with pytest.raises(DFAValueError, match="broadcast"):
+        dfa.coulomb_equivalent_damping(0.0, np.array([0.5, 1.5, 20.0]), np.array([1.0, 2.0]))
+    dev = dfa.get_device("delta").device
+    with pytest.raises(DFATypeError, match="^quantized"):
+        dfa.device_criterion(dev, 10.0, 1.0, quantized=np.array([1.0, 2.0]))
+    with pytest.raises(DFATypeError, match="^quantized"):
+        dfa.passivity_criterion(0.6, 0.6, 1.0, quantized="no")
