@@ -31,6 +31,7 @@ from .errors import DFATypeError, DFAValueError
 
 __all__ = [
     "check_real",
+    "check_real_array",
     "check_positive",
     "check_nonnegative",
     "check_int",
@@ -294,8 +295,52 @@ def check_positive_array(name: str, value: Any, fix: str | None = None) -> np.nd
     >>> check_positive_array("omega", [0.1, 1.0]).tolist()
     [0.1, 1.0]
     """
-    a = np.asarray(value, dtype=float)
+    try:
+        a = check_real_array(name, value, fix)  # types: text, complex, objects are refused there
+    except DFAValueError:  # non-finite elements: reported below with this rule's message
+        try:
+            a = np.asarray(value, dtype=float)
+        except OverflowError:
+            raise DFAValueError(_message(name, value, "finite numbers > 0 (one overflows a float)", fix)) from None
     good = np.isfinite(a) & (a > 0)
     if a.size and not np.all(good):
         raise DFAValueError(_message(name, float(a[~good].ravel()[0]), "a finite number > 0", fix))
     return a
+
+
+def check_real_array(name: str, value: Any, fix: str | None = None) -> np.ndarray:
+    """Return ``value`` (a real number or an array-like of them) as a float array of finite values, or raise.
+
+    Text, booleans, complex numbers and objects are rejected with
+    :class:`DFATypeError`; NaN, infinities and integers too large for a float
+    with :class:`DFAValueError`.
+
+    Examples
+    --------
+    >>> check_real_array("beta", [0.5, 1])
+    array([0.5, 1. ])
+    >>> try:
+    ...     check_real_array("beta", [0.5, float("nan")])
+    ... except DFAValueError as err:
+    ...     print(err)
+    beta = [0.5, nan] is invalid: it must be finite numbers (element 1 is nan)
+    """
+    if isinstance(value, (str, bytes)):
+        raise _type_error(name, value, "a real number or an array of them", fix)
+    try:
+        arr = np.asarray(value)
+    except (ValueError, TypeError, OverflowError):  # ragged nesting and the like
+        raise _type_error(name, value, "a real number or an array of them", fix) from None
+    if arr.dtype.kind == "O":
+        flat = [check_real(f"{name}[{i}]" if arr.ndim else name, v, fix) for i, v in enumerate(arr.ravel())]
+        return np.array(flat, dtype=float).reshape(arr.shape)
+    if arr.dtype.kind not in "iuf":
+        raise _type_error(name, value, "a real number or an array of them", fix)
+    with np.errstate(over="ignore"):
+        out = arr.astype(float)
+    bad = ~np.isfinite(out)
+    if bad.any():
+        i = int(np.flatnonzero(bad.ravel())[0])
+        where = f" (element {i} is {float(out.ravel()[i])!r})" if out.ndim else ""
+        raise DFAValueError(_message(name, value, "finite numbers" + where, fix))
+    return out

@@ -303,6 +303,31 @@ def _speed(args: argparse.Namespace, inputs: _Inputs, required: bool = True) -> 
     return xd, (inputs.device.velocity(xd) if inputs.device is not None else None)
 
 
+def _add_progress_args(p: argparse.ArgumentParser, quiet: bool = True) -> None:
+    """--progress (and --quiet): the progress bar policy of :func:`_progress`."""
+    p.add_argument(
+        "--progress",
+        action="store_true",
+        help="progress bar with an estimate on stderr even when it is not a terminal (default: only on a terminal)",
+    )
+    if quiet:
+        p.add_argument("--quiet", action="store_true", help="no progress bar (default: a bar on a terminal)")
+
+
+def _progress(args: argparse.Namespace) -> bool:
+    """Show progress bars: never with --quiet; always with --progress; else only on a terminal and without --json."""
+    if getattr(args, "quiet", False):
+        return False
+    if getattr(args, "progress", False):
+        return True
+    if getattr(args, "json", False):
+        return False
+    try:
+        return sys.stderr.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
 def _emit(obj: object) -> None:
     print(dumps(obj))  # strict JSON: NaN/inf become null with the reason (dfa.jsonable)
 
@@ -609,6 +634,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         delay=args.delay,
         quantize=not args.no_quantization,
         record=args.trace is not None,
+        progress=_progress(args),
     )
     if args.trace is not None:
         _write_trace(args.trace, r)
@@ -629,8 +655,9 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 #: Planned cost of one simulated sample in the worst case measured (an oscillating run, loaded machine).
 SIMULATE_NS_PER_SAMPLE = 100
-#: ``dfa simulate`` refuses runs estimated longer than this (seconds) unless --force: the compiled
-#: kernel cannot be interrupted before it returns.
+#: ``dfa simulate`` refuses runs estimated longer than this (seconds) unless --force (work is refused up
+#: front; a run without delay is integrated in chunks and stops at Ctrl-C, one with a delay or one run of a
+#: map cannot be interrupted before the compiled kernel returns).
 SIMULATE_TIME_LIMIT = 30.0
 #: ``dfa map`` refuses maps estimated longer than this (hours, at the worst-case cost per sample) unless --force.
 MAP_TIME_LIMIT_HOURS = 24.0
@@ -645,7 +672,7 @@ def _check_samples(samples: int, force: bool) -> None:
     if seconds > SIMULATE_TIME_LIMIT and not force:
         raise UsageError(
             f"--samples {samples} could take up to {seconds:.3g} s (estimated {SIMULATE_NS_PER_SAMPLE} ns per sample; "
-            f"limit {SIMULATE_TIME_LIMIT:g} s, and the run cannot be interrupted before it ends): lower --samples "
+            f"limit {SIMULATE_TIME_LIMIT:g} s): lower --samples "
             f"(at most {int(SIMULATE_TIME_LIMIT / (SIMULATE_NS_PER_SAMPLE * 1e-9))}) or add --force"
         )
 
@@ -810,7 +837,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
         preload=args.preload,
         quantize=not args.no_quantization,
         n_jobs=args.jobs,
-        progress=not args.quiet,
+        progress=_progress(args),
     )
     path = m.save(args.out)
     if args.plot is not None:
@@ -853,10 +880,20 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     from .cycles import growth_threshold
     from .render.text import limit_cycle_lines, limit_cycles_dict
 
+    for flag, value in (("--max-amplitude", args.max_amplitude), ("--time-budget", args.time_budget)):
+        if value is not None and not value > 0:
+            raise UsageError(f"{flag} {value:g} is invalid: it must be > 0; give e.g. {flag} 10")
     inp = _resolve(args, dimensionless=True)
     p = inp.params
     assert p is not None
-    g = growth_threshold(p, inp.device, model=args.model, delay=args.delay, max_amplitude=args.max_amplitude)
+    g = growth_threshold(
+        p,
+        inp.device,
+        model=args.model,
+        delay=args.delay,
+        max_amplitude=args.max_amplitude,
+        **({} if args.time_budget is None else {"time_budget": args.time_budget}),
+    )
     res = g.result
     phys = None if inp.device is None or inp.stiffness is None else res.physical(inp.device, inp.stiffness)
     if args.json:
@@ -888,6 +925,7 @@ def _cmd_contours(args: argparse.Namespace) -> int:
         sigma_range=tuple(args.sigma_range),
         grid=args.grid,
         max_amplitude=args.max_amplitude,
+        progress=_progress(args),
     )
     d = c.as_dict()
     if args.out is not None:
@@ -966,7 +1004,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
         v,
         out_dir=args.out,
         fmt=args.format,
-        progress=not args.quiet,
+        progress=_progress(args),
         delay=args.delay,
         validation=summary,
         force=args.force,
@@ -987,7 +1025,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     check_jobs("--jobs", args.jobs)
     out = args.out
     check_output_folder("--out", out, create=True)  # the parent must exist; the folder itself is created
-    v = validate(quick=args.quick, n_jobs=args.jobs, progress=not args.quiet)
+    v = validate(quick=args.quick, n_jobs=args.jobs, progress=_progress(args))
     summary = write_validation(v, out)  # all four files appear together, or none (dfa._io)
     if args.json:
         from .formatting import json_dumps
@@ -1106,10 +1144,11 @@ def _add_simulate(sub: Any) -> None:
         help="linear spring φ = −ξ instead of the encoder staircase (default: with the encoder)",
     )
     p.add_argument("--trace", metavar="FILE.csv", help="write sample, xi, xi_dot (ticks) to a CSV file (default: none)")
+    _add_progress_args(p)
     p.add_argument(
         "--force",
         action="store_true",
-        help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s (uninterruptible; default: refuse)",
+        help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s (default: refuse)",
     )
 
 
@@ -1145,7 +1184,7 @@ def _add_map(sub: Any) -> None:
         "--jobs", type=_integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default: -1, all cores)"
     )
     p.add_argument("--out", required=True, metavar="FILE.npz", help="where to write the map (required)")
-    p.add_argument("--quiet", action="store_true", help="no progress bar (default: a bar on stderr)")
+    _add_progress_args(p)
     p.add_argument(
         "--force",
         action="store_true",
@@ -1172,6 +1211,14 @@ def _add_limit_cycles(sub: Any) -> None:
         metavar="M",
         help="largest amplitude searched in ticks (default: up to where the envelope of eq. 41 excludes roots)",
     )
+    p.add_argument(
+        "--time-budget",
+        type=_number("--time-budget", "seconds"),
+        default=None,
+        metavar="S",
+        help="longest search time in seconds (default: 10, dfa.cycles.DEFAULT_TIME_BUDGET); "
+        "when it is hit the search is reported incomplete",
+    )
 
 
 def _add_contours(sub: Any) -> None:
@@ -1195,6 +1242,7 @@ def _add_contours(sub: Any) -> None:
     )
     p.add_argument("--out", metavar="FILE.npz", help="write the maps (default: not written)")
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout (default: text)")
+    _add_progress_args(p)
 
 
 def _add_report(sub: Any) -> None:
@@ -1225,7 +1273,7 @@ def _add_report(sub: Any) -> None:
         action="store_true",
         help="replace a report of the same name made for another device, stiffness, speed or delay (default: refuse)",
     )
-    p.add_argument("--quiet", action="store_true", help="no progress bars (default: bars on stderr)")
+    _add_progress_args(p)
     _add_delay_arg(p)
 
 
@@ -1239,7 +1287,7 @@ def _add_validate(sub: Any) -> None:
     p.add_argument(
         "--out", default="reports/validation", metavar="DIR", help="output folder (default: reports/validation)"
     )
-    p.add_argument("--quiet", action="store_true", help="no progress bars (default: bars on stderr)")
+    _add_progress_args(p)
     p.add_argument("--json", action="store_true", help="print the summary as JSON (default: text)")
 
 

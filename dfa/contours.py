@@ -192,8 +192,12 @@ def load_contours(path: str | os.PathLike) -> ContourMaps:
         return ContourMaps(mu=float(z["mu"]), max_amplitude=float(z["max_amplitude"]), **{k: z[k] for k in _ARRAYS})
 
 
-def _large_exact(mu: float, beta: np.ndarray, sigma: np.ndarray, amax: float) -> tuple[np.ndarray, np.ndarray]:
+def _large_exact(
+    mu: float, beta: np.ndarray, sigma: np.ndarray, amax: float, progress: bool = False
+) -> tuple[np.ndarray, np.ndarray]:
     """Smallest unstable cycle with M >= 1 for every (σ, β), exact D (see module docstring)."""
+    from tqdm.auto import tqdm
+
     n_all = np.arange(1, int(math.ceil(amax)) + 1)
     t = np.linspace(0.0, 1.0, 17)
     msamp = np.unique((n_all[:, None] + (t * t)[None, :]).ravel())
@@ -205,7 +209,7 @@ def _large_exact(mu: float, beta: np.ndarray, sigma: np.ndarray, amax: float) ->
     rows_all = np.nonzero(sigma > 0)[0]
     if rows_all.size == 0:
         return large_m, large_w
-    for j, b in enumerate(beta):
+    for j, b in enumerate(tqdm(beta, unit="β column", desc=f"contours μ={mu:g}", disable=not progress, leave=False)):
         c = mu * wgrid**2 * np.tan(wgrid / 2) - b * wgrid  # = 4σ/(πM) on the phase curve, increasing where > 0
         ok = c > 0
         if not ok.any():
@@ -268,7 +272,13 @@ def check_contour_memory(grid: int, max_amplitude: float, names: tuple[str, str]
 
 
 def contour_maps(
-    mu: float, *, beta_range=(0.0, 1.0), sigma_range=(0.0, 2.0), grid: int = 200, max_amplitude: float = 200.0
+    mu: float,
+    *,
+    beta_range=(0.0, 1.0),
+    sigma_range=(0.0, 2.0),
+    grid: int = 200,
+    max_amplitude: float = 200.0,
+    progress: bool = False,
 ) -> ContourMaps:
     """Amplitude and frequency maps of both cycle families over a (β, σ) grid (paper Fig. 7).
 
@@ -282,6 +292,8 @@ def contour_maps(
         Points per axis (>= 2).
     max_amplitude : float
         Largest amplitude (ticks) searched for the exact large family (>= 1).
+    progress : bool
+        Show a tqdm progress bar (one step per β column) with an estimate of the time left, on stderr.
     """
     m = check_mu(mu)
     b0, b1 = _check_range("beta_range", beta_range)
@@ -302,7 +314,7 @@ def contour_maps(
     lw_cf = np.where(np.isfinite(lm_cf), large.frequency, np.nan)
     small_m = np.where(sm_cf < 1.0, sm_cf, np.nan)
     small_w = np.where(sm_cf < 1.0, sw_cf, np.nan)
-    large_m, large_w = _large_exact(m, beta, sigma, amax)
+    large_m, large_w = _large_exact(m, beta, sigma, amax, bool(progress))
     detail = _closed_form_detail(small, large)
     status = ContourStatus.FLAGGED if detail else ContourStatus.OK
     return ContourMaps(m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax, status, detail)

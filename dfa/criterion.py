@@ -87,16 +87,20 @@ import numpy as np
 
 from .checks import (
     DELAY_FIX,
+    MAX_DELAY,
+    _fmt,
     check_beta,
     check_delay,
     check_mu,
     check_nonnegative,
     check_positive,
     check_real,
+    check_real_array,
     check_sigma,
+    check_type,
 )
 from .device import Device
-from .errors import DFAValueError
+from .errors import DFATypeError, DFAValueError
 from .jsonable import to_jsonable
 from .status import CriterionStatus
 
@@ -391,13 +395,26 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
     >>> classify_region(0.6, 0.6, 1.0, delay=[0, 1]).tolist()          # β = 0.6 < ½ + 1
     ['a', 'd']
     """
-    b = np.asarray(beta, dtype=float)
-    s = np.asarray(sigma, dtype=float)
-    v = np.abs(np.asarray(xi_dot, dtype=float))
+    b = check_real_array("beta", beta, "β = b/(K T) is a real number or an array of them")
+    s = check_real_array("sigma", sigma, "σ = c/(K Δ) is a real number or an array of them")
+    v = np.abs(check_real_array("xi_dot", xi_dot, "give speeds in ticks per sample"))
     d = np.asarray(delay)
-    if d.dtype == bool or not np.issubdtype(d.dtype, np.number) or np.any(d < 0) or np.any(d != np.floor(d)):
-        raise DFAValueError(f"delay = {delay!r} is invalid: it must be a whole number >= 0; {DELAY_FIX}")
-    s0, b0 = _anchor(quantized, d)
+    if (
+        d.dtype == bool
+        or not np.issubdtype(d.dtype, np.number)
+        or np.iscomplexobj(d)
+        or not np.all(np.isfinite(d))
+        or np.any(d < 0)
+        or np.any(d > MAX_DELAY)
+        or np.any(d != np.floor(d))
+    ):
+        raise DFAValueError(
+            f"delay = {_fmt(delay)} is invalid: it must be a whole number from 0 to {MAX_DELAY}; {DELAY_FIX}"
+        )
+    q = np.asarray(quantized)
+    if q.dtype != bool:
+        raise DFATypeError(f"quantized = {_fmt(quantized)} is invalid: it must be True or False (or an array of them)")
+    s0, b0 = _anchor(q, d)
     with np.errstate(over="ignore"):  # an overflowing margin keeps its sign, which is all that is used
         margin = _margin(b, s, v, s0, b0)
     high_beta = b >= b0
@@ -455,6 +472,10 @@ def passivity_criterion(
     xd = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
     x0 = check_real("xi0", xi0, "give the initial position in encoder ticks")
     m = None if mu is None else check_mu(mu)
+    if not isinstance(quantized, (bool, np.bool_)):
+        raise DFATypeError(
+            f"quantized = {_fmt(quantized)} has type {type(quantized).__name__}: it must be True (eq. 6) or False (eq. 7)"
+        )
     v = equivalent_speed(xd, x0, m, quantized=quantized)
     line = CriticalLine.of(v, quantized=quantized, delay=d)
     s0, b0 = line.sigma0, line.beta0
@@ -509,6 +530,7 @@ def device_criterion(
     >>> device_criterion(dev, 14500.0, 0.1, delay=1).region
     'd'
     """
+    check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     x0 = check_real("position", position, "give the initial position in m (rotary: rad)")
     p = device.params(k)

@@ -54,7 +54,8 @@ import numpy as np
 from scipy import integrate
 
 from . import _dfcore
-from .checks import check_positive, check_positive_array, check_sigma
+from .checks import _fmt, check_positive, check_positive_array, check_real_array, check_sigma
+from .errors import DFATypeError, DFAValueError
 
 __all__ = [
     "quantizer_df",
@@ -227,7 +228,23 @@ def quantizer_df(amplitude):
         out = 0.5 * level(0.0, ms) + _level_sum(ms, level)
     if np.any(big):  # the ⌊M⌋-term sum is slow and overflows int64 far out: the asymptotic expansion (_dfcore)
         out = np.where(big, _dfcore.df_array(np.where(big, m, 1e3).ravel()).reshape(m.shape), out)
+    tiny = m < 1e-150
+    if np.any(tiny):  # M² underflows: below one tick only the k = 0 term is left, homogeneous of degree −1 in M
+        with np.errstate(over="ignore"):
+            out = np.where(tiny, 0.5 * level(0.0, 1.0) / np.where(tiny, m, 1.0), out)
+    _check_finite_df("amplitude", m, out)
     return float(out) if out.ndim == 0 else out
+
+
+def _check_finite_df(name: str, m: np.ndarray, out) -> None:
+    """Refuse amplitudes so small that the describing function (∝ 1/M) overflows a float."""
+    bad = ~np.isfinite(np.asarray(out))
+    if np.any(bad):
+        v = float(np.broadcast_to(m, np.shape(bad))[bad].ravel()[0])
+        raise DFAValueError(
+            f"{name} = {v!r} is invalid: the describing function (∝ 1/{name}) overflows a float; "
+            "give an amplitude above 1e-307"
+        )
 
 
 def quantizer_df_derivative(amplitude):
@@ -351,7 +368,9 @@ def coulomb_df(amplitude, sigma: float):
     """
     a = _amplitudes(amplitude, "amplitude")
     s = check_sigma(sigma)
-    out = np.asarray(_coulomb_function()(a, s), dtype=float) * np.ones_like(a)
+    with np.errstate(over="ignore"):
+        out = np.asarray(_coulomb_function()(a, s), dtype=float) * np.ones_like(a)
+    _check_finite_df("amplitude", a, out)
     return float(out) if out.ndim == 0 else out
 
 
@@ -369,7 +388,18 @@ def coulomb_equivalent_damping(sigma: float, amplitude, omega):
     """
     m = _amplitudes(amplitude)
     w = _amplitudes(omega, "omega")
-    return coulomb_df(m * w, sigma)
+    try:
+        speed = m * w
+    except ValueError:
+        raise DFAValueError(
+            f"amplitude of shape {m.shape} is invalid with omega of shape {w.shape}: they must broadcast together"
+        ) from None
+    if np.any(speed == 0.0):
+        raise DFAValueError(
+            f"amplitude = {_fmt(amplitude)} with omega = {_fmt(omega)} is invalid: the velocity amplitude M·ω "
+            "underflows to 0 (below 1e-308); give a larger amplitude or frequency"
+        )
+    return coulomb_df(speed, sigma)
 
 
 def numeric_df(f: Callable[[np.ndarray], np.ndarray], amplitude, jumps: Sequence[float] = (), tol: float = 1e-13):
@@ -397,17 +427,33 @@ def numeric_df(f: Callable[[np.ndarray], np.ndarray], amplitude, jumps: Sequence
     >>> round(numeric_df(lambda x: np.floor(x) + 0.5, 2.5, jumps=[1, 2]), 10) == round(quantizer_df(2.5), 10)
     True
     """
+    if not callable(f):
+        raise DFATypeError(f"f = {_fmt(f)} is invalid: it must be a function of the input (an odd static nonlinearity)")
     m = _amplitudes(amplitude)
+    js = check_real_array("jumps", jumps, "give the inputs at which f jumps, e.g. [1, 2]").ravel()
+    tol = check_positive("tol", tol, "give the quadrature tolerance, e.g. 1e-13")
+    if tol < 1e-13:
+        raise DFAValueError(f"tol = {tol!r} is invalid: it must be at least 1e-13 (the quadrature's finest); use 1e-13")
+
+    def fval(x) -> float:  # x: the input, a numpy float as before
+        try:
+            y = float(f(x))
+        except (TypeError, ValueError, OverflowError):
+            raise DFATypeError(f"f({x!r}) is not a real number: f must return one real number per input") from None
+        if not math.isfinite(y):
+            raise DFAValueError(f"f({x!r}) = {y!r} is invalid: f must return finite numbers")
+        return y
+
     out = np.empty(m.shape)
     for idx, mv in np.ndenumerate(m):
-        pts = sorted({math.asin(j / mv) for j in jumps if 0 < j < mv})
+        pts = sorted({math.asin(j / mv) for j in js if 0 < j < mv})
         edges = [0.0, *pts, math.pi / 2]
         total = 0.0
         for a, b in zip(edges[:-1], edges[1:], strict=False):
             if b > a:
                 # evaluate strictly inside each piece so a jump at an edge is not sampled
                 val, _err = integrate.quad(
-                    lambda t, mv=mv: float(f(mv * math.sin(t))) * math.sin(t), a, b, epsabs=tol, epsrel=tol, limit=200
+                    lambda t, mv=mv: fval(mv * math.sin(t)) * math.sin(t), a, b, epsabs=tol, epsrel=tol, limit=200
                 )
                 total += val
         out[idx] = 4.0 / math.pi * total / mv

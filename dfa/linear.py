@@ -355,6 +355,11 @@ def critical_stiffness(mass, damping, period, delay: int = 0):
     return float(out) if out.ndim == 0 else out
 
 
+#: μ range in which :func:`critical_beta` is computed reliably (checked against its asymptote ½ + d − c_d/μ,
+#: c_0 = 1/24, and its spectral-radius test); outside, the root search loses the boundary in rounding.
+CRITICAL_BETA_MU_RANGE = (1e-16, 1e10)
+
+
 def critical_beta(mu: float, delay: int = 0) -> float:
     """The β below which the linear sampled spring is unstable at this μ, all Jury conditions (spec section 8).
 
@@ -383,6 +388,13 @@ def critical_beta(mu: float, delay: int = 0) -> float:
     (0.4617, 1.2127)
     """
     m, d = check_mu(mu), check_delay(delay)
+    lo_mu, hi_mu = CRITICAL_BETA_MU_RANGE
+    if not lo_mu <= m <= hi_mu:
+        raise DFAValueError(
+            f"mu = {m!r} is invalid for the exact linear bound: it must be from {lo_mu:g} to {hi_mu:g}, where "
+            "β_crit is computed reliably (beyond, the Jury boundary is lost in rounding); as μ grows β_crit "
+            f"tends to ½ + d = {0.5 + d:g} from below"
+        )
     target = 1.0 / m
 
     def f(a: float) -> float:

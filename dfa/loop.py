@@ -44,7 +44,15 @@ import control
 import numpy as np
 
 from ._frozen import check_shape, freeze_fields
-from .checks import check_choice, check_delay, check_int, check_positive_array, check_type
+from .checks import (
+    check_choice,
+    check_delay,
+    check_int,
+    check_positive,
+    check_positive_array,
+    check_real_array,
+    check_type,
+)
 from .describing import coulomb_equivalent_damping, quantizer_df
 from .device import Params
 from .errors import DFAValueError
@@ -178,6 +186,15 @@ def loop_response(
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
     w = _omega(omega)
+    if amplitude is not None:
+        amplitude = check_real_array("amplitude", amplitude, "give the cycle amplitude M in ticks")
+        try:
+            np.broadcast_shapes(w.shape, amplitude.shape)
+        except ValueError:
+            raise DFAValueError(
+                f"amplitude of shape {amplitude.shape} is invalid with omega of shape {w.shape}: they must broadcast "
+                "together; give one amplitude per frequency or a single amplitude"
+            ) from None
     beq = (
         equivalent_damping(p, amplitude, w)
         if p.sigma > 0
@@ -195,6 +212,12 @@ def loop_response(
             num, den = control.pade(d + 0.5, n)
             out = g * np.polyval(num, s) / np.polyval(den, s)
     out = np.asarray(out, dtype=complex)
+    if not np.all(np.isfinite(out)):
+        bad = float(np.broadcast_to(w, out.shape)[~np.isfinite(out)].ravel()[0])
+        raise DFAValueError(
+            f"omega = {bad!r} is invalid here: L(jω) over- or underflows a float at this frequency; "
+            "give frequencies in rad per sample (a sampled cycle has ω < π)"
+        )
     return complex(out) if out.ndim == 0 else out
 
 
@@ -219,6 +242,10 @@ def loop_system(
     """
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
+    if amplitude is not None:
+        amplitude = check_positive("amplitude", amplitude, "give one cycle amplitude M in ticks")
+    if omega is not None:
+        omega = check_positive("omega", omega, "give one frequency in rad per sample")
     if m == "pade":
         return device_tf(p, amplitude, omega) * hold_delay_tf(d, n)
     if m == "zoh":
@@ -378,7 +405,9 @@ def nyquist_locus_response(
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
     w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega)
-    la = np.asarray(np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude, dtype=float)
+    la = check_real_array(
+        "locus_amplitude", np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude
+    )
     locus = -1.0 / quantizer_df(la)
     crossings: list[tuple[float, float, complex]] = []
     if p.sigma == 0.0:
@@ -391,7 +420,7 @@ def nyquist_locus_response(
                 f"amplitudes = None is invalid here: with sigma = {p.sigma} > 0 the loop depends on M (eq. 40); "
                 "give the amplitudes (ticks) at which to draw it"
             )
-        amps = np.atleast_1d(np.asarray(amplitudes, dtype=float))
+        amps = np.atleast_1d(check_real_array("amplitudes", amplitudes, "give the amplitudes M in ticks"))
         curves = np.vstack([loop_response(p, w, np.full_like(w, a), model=m, delay=d, pade_order=n) for a in amps])
         status, detail = NyquistStatus.CROSSINGS_NOT_COMPUTED, ""
     return NyquistLocusResponse(p, m, d, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, detail)

@@ -49,6 +49,7 @@ classes existed (their ``stable`` mixed rest with chatter).
 from __future__ import annotations
 
 import os
+import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -57,6 +58,7 @@ import numpy as np
 from ._frozen import check_shape, freeze_fields
 from ._io import atomic_open, check_memory
 from .checks import (
+    _fmt,
     check_bound,
     check_choice,
     check_delay,
@@ -66,7 +68,7 @@ from .checks import (
     check_nonnegative,
     check_real,
 )
-from .errors import DFAValueError
+from .errors import DFATypeError, DFAValueError
 from .jsonable import to_jsonable
 from .simulation import OUTCOMES, check_rules, preload_position, run_points
 from .status import MapStatus
@@ -245,7 +247,27 @@ class StabilityMap:
 
 def load_map(path: str | os.PathLike) -> StabilityMap:
     """Read a map written by :meth:`StabilityMap.save` (codes mapped through the file's ``outcome_names``)."""
-    with np.load(path) as z:
+    if not isinstance(path, (str, os.PathLike)):
+        raise DFATypeError(
+            f"path = {_fmt(path)} has type {type(path).__name__}: it must be the path of a .npz map file"
+        )
+    try:
+        return _load_map(path)
+    except (FileNotFoundError, IsADirectoryError, NotADirectoryError):
+        raise DFAValueError(
+            f"path = {os.fspath(path)!r} is invalid: no such file; give the .npz file written by `dfa map`"
+        ) from None
+    except (ValueError, KeyError, EOFError, zipfile.BadZipFile, TypeError) as exc:
+        if isinstance(exc, DFAValueError):
+            raise
+        raise DFAValueError(
+            f"path = {os.fspath(path)!r} is invalid: it is not a complete dfa map file ({type(exc).__name__}); "
+            "recompute it with `dfa map`"
+        ) from None
+
+
+def _load_map(path: str | os.PathLike) -> StabilityMap:
+    with np.load(path, allow_pickle=False) as z:
         samples, delay, quantize, preload = (int(v) for v in z["settings"])
         if "outcome_names" not in z.files:
             raise DFAValueError(

@@ -16,12 +16,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from ._io import staged_folder
 from .catalogue import CatalogueEntry
-from .checks import check_choice
+from .checks import _fmt, check_choice, check_int
 from .design import DesignAnalysis, design_analysis, resolve_design_inputs
 from .device import Device
-from .errors import DFAValueError
+from .errors import DFATypeError, DFAValueError
 from .formatting import json_dumps
 from .jsonable import to_jsonable
 from .status import ReportStatus
@@ -254,6 +256,12 @@ def design_report(
         Bad inputs (see :func:`dfa.design.design_analysis`), a missing folder, or a report of other inputs in the way.
     """
     fmt = check_choice("fmt", fmt, ("html", "md", "both"))
+    check_int("map_grid", map_grid, minimum=2, fix="use at least 2 points per axis")
+    check_int("samples", samples, minimum=1, fix="simulate at least one sample")
+    if not isinstance(progress, (bool, np.bool_)):
+        raise DFATypeError(f"progress = {_fmt(progress)} has type {type(progress).__name__}: it must be True or False")
+    if not isinstance(out_dir, (str, os.PathLike)):
+        raise DFATypeError(f"out_dir = {_fmt(out_dir)} has type {type(out_dir).__name__}: it must be a folder path")
     if not Path(out_dir).is_dir():
         raise DFAValueError(f"out_dir = {str(out_dir)!r} is invalid: the folder does not exist; create it first")
     _entry, dev, k, v, dl = resolve_design_inputs(device, stiffness, velocity, delay)

@@ -133,6 +133,7 @@ __all__ = [
     "default_samples",
     "SimulationBatch",
     "simulate_batch",
+    "CHUNK",
 ]
 
 #: Outcome names indexed by the kernel's codes (the codes of ``StabilityMap.outcome``):
@@ -474,6 +475,57 @@ def _tail_length(samples: int, mu: float) -> int:
     return int(min(samples, min(cap, max(2, samples // 4))))
 
 
+#: Samples per kernel call of a long run (:func:`_run_chunked`): about 0.05 s each.
+CHUNK = 1 << 22
+
+
+def _run_chunked(m, b, s, x0, v0, n, d, quantize, bnd, tail_len, rx, rv, re, stats, *, progress=False):
+    """The kernel run of :func:`simulate` in pieces of at most ``CHUNK`` samples, bit for bit the single call.
+
+    The same :func:`dfa._kernel.start` / :func:`~dfa._kernel.advance` / :func:`~dfa._kernel.finish` steps as
+    :func:`dfa._kernel.simulate_kernel`, with the sample ranges cut into chunks: the run's state (ξ, ξ', the
+    delay ring, the tail extremes) lives in arrays between calls, so Ctrl-C is honoured between chunks and a
+    progress bar can follow the run. Any delay. Returns (done, rest).
+    """
+    from tqdm.auto import tqdm
+
+    record, energy = rx.shape[0] == n + 1, re.shape[0] == n
+    state, hist, tail = np.empty(_kernel.NSTATE), np.empty(d + 1), np.empty(max(tail_len, 1))
+    _kernel.start(x0, v0, d, quantize, state, hist, stats)
+    if record:
+        rx[0], rv[0] = x0, v0
+    tail_start, done, rest = n - tail_len, n, -1
+    bar = tqdm(total=n, unit="sample", unit_scale=True, desc="simulate", disable=not progress, leave=False)
+    try:
+        for lo, hi, k in _chunk_spans(n, tail_start):
+            end, why, peak = _kernel.advance(
+                state, hist, lo, hi, m, b, s, d, quantize, bnd, tail_start, tail, record, energy, rx, rv, re
+            )
+            if peak > stats[k]:
+                stats[k] = peak
+            bar.update(end - lo)
+            if why != 0:
+                done, rest = end, (end if why == 1 else -1)
+                if why == 2:
+                    stats[_kernel.NSEG + 5] = 1.0
+                break
+    finally:
+        bar.close()
+    _kernel.finish(state, n, done, rest, tail, tail_len, m, quantize, stats, record, energy, rx, rv, re)
+    return done, rest
+
+
+def _chunk_spans(n: int, tail_start: int):
+    """(first, end, segment) of each kernel call: the eight envelope segments, cut where the tail starts and
+    every ``CHUNK`` samples (the cuts :func:`dfa._kernel.simulate_kernel` makes, and more)."""
+    for k in range(_kernel.NSEG):
+        lo, hi = _kernel.segment_bounds(k, n)
+        cut = min(max(lo, tail_start), hi)
+        for a, z in ((lo, cut), (cut, hi)):
+            for c in range(a, z, CHUNK):
+                yield c, min(c + CHUNK, z), k
+
+
 def simulate(
     mu: float,
     beta: float,
@@ -490,6 +542,7 @@ def simulate(
     stable_amplitude: float = 1.0,
     growth: float = 1.25,
     settle: float = 1.0e-3,
+    progress: bool = False,
 ) -> SimulationResult:
     """Simulate the sampled haptic loop exactly (paper eq. 4-5) from (ξ0, ξ'0).
 
@@ -522,6 +575,11 @@ def simulate(
     settle : float, optional
         Largest relative spread of the last three envelope peaks of a
         settled run (>= 0); a larger spread is ``"undecided"``.
+    progress : bool, optional
+        Show a tqdm progress bar with an estimate of the time left on stderr
+        (runs of more than ``CHUNK`` samples; they are integrated in chunks
+        of ``CHUNK`` samples, so Ctrl-C is honoured between chunks, with
+        results identical to a single pass).
 
     Returns
     -------
@@ -539,7 +597,8 @@ def simulate(
     rv = np.empty(n + 1) if record else np.empty(0)
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
     stats = np.empty(_kernel.NSTATS)
-    done, rest = _kernel.simulate_kernel(m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
+    run = (m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
+    done, rest = _run_chunked(*run, progress=bool(progress)) if n > CHUNK else _kernel.simulate_kernel(*run)
     code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
     suggest = max(4 * n, default_samples(m, b, s, v0, x0, d, q, cap=False)) if code == _kernel.UNDECIDED else None
     en = None

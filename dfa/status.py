@@ -156,6 +156,10 @@ class SearchStatus(StatusEnum):
         "numerical",
         "incomplete: a root finder failed (no sign change where the scan saw one, or no convergence)",
     )
+    TIME_BUDGET = (
+        "time_budget",
+        "incomplete: the time budget ran out before every piece of the phase curve was searched",
+    )
 
 
 class GrowthStatus(StatusEnum):

@@ -44,7 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._frozen import check_shape, freeze_fields
-from .checks import check_delay, check_positive, check_real, check_type
+from .checks import check_delay, check_positive, check_real, check_real_array, check_type
 from .criterion import device_criterion
 from .device import Device
 from .errors import DFAValueError
@@ -99,11 +99,7 @@ def k_max_criterion(device: Device, velocity, delay: int = 0):
     True
     """
     dev = _check_device(device)
-    v = np.abs(np.asarray(velocity, dtype=float))
-    if not np.all(np.isfinite(v)):
-        raise DFAValueError(
-            f"velocity = {velocity!r} is invalid: it must be finite; give speeds in m/s (rotary: rad/s)"
-        )
+    v = np.abs(check_real_array("velocity", velocity, "give speeds in m/s (rotary: rad/s)"))
     d = check_delay(delay)
     k_dyn = (dev.damping * v + dev.coulomb) / (dev.period * (0.5 + d) * v + 0.5 * dev.resolution)
     # rounded down by 1e-12 (relative) so that device_criterion accepts K_max itself: the two evaluate

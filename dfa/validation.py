@@ -40,10 +40,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .checks import check_choice
+from .checks import _fmt, check_choice, check_jobs
 from .criterion import classify_region, passivity_criterion
 from .cycles import growth_threshold, large_cycle_closed_form, limit_cycles
 from .device import Params
+from .errors import DFATypeError
 from .formatting import markdown_table, number, percent
 from .jsonable import to_jsonable
 from .maps import stability_map
@@ -646,6 +647,10 @@ def _speed_cases(quick: bool) -> list[tuple[str, Params]]:
 
 def validate(quick: bool = False, n_jobs: int = -1, progress: bool = True) -> ValidationResult:
     """Run the whole validation (``quick``: a reduced set that runs in well under a minute)."""
+    for name, flag in (("quick", quick), ("progress", progress)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise DFATypeError(f"{name} = {_fmt(flag)} has type {type(flag).__name__}: it must be True or False")
+    check_jobs("n_jobs", n_jobs)
     samples = 20_000 if quick else 40_000
     cycles = cycle_checks(_grid(quick), samples=samples)
     speeds = critical_speeds(_speed_cases(quick), samples=10_000 if quick else 30_000)

@@ -13,6 +13,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -466,6 +467,7 @@ def test_cli_sigterm_stops_joblib_workers(tmp_path):
             "50000",
             "--jobs",
             "2",
+            "--progress",
             "--out",
             str(out),
         ],
@@ -669,3 +671,246 @@ def test_cli_huge_delay_refused_with_the_limit(capsys, cmd):
     assert "delay" in err and str(dfa.checks.MAX_DELAY) in err
     with pytest.raises(dfa.errors.DFAValueError, match="at most"):
         dfa.linear.critical_stiffness(0.1, 1.0, 1e-3, delay=dfa.checks.MAX_DELAY + 1)
+
+
+# ------------------------------------------------------------------ 9. limit-cycle time budget (eq. 36 search)
+def _no_cycle_missed_below(part, full):
+    """Every cycle of the full search below the partial result's max_amplitude is in the partial result."""
+    got = {(round(c.amplitude, 9), round(c.frequency, 9)) for c in part.cycles}
+    below = [c for c in full.cycles if c.amplitude < part.max_amplitude]
+    return all((round(c.amplitude, 9), round(c.frequency, 9)) in got for c in below)
+
+
+def test_eq36_time_budget_hit_is_incomplete_and_says_so():
+    from dfa.cycles import DEFAULT_TIME_BUDGET, SearchStatus
+
+    p = dfa.Params(5.0, 0.1, 0.3)
+    full = dfa.limit_cycles(p)
+    assert full.complete and DEFAULT_TIME_BUDGET == 10.0 and len(full.cycles) == 2
+    part = dfa.limit_cycles(p, time_budget=1e-9)
+    assert not part.complete and part.status_code is SearchStatus.TIME_BUDGET
+    assert part.status.startswith("incomplete: time budget of 1e-09 s hit after searching 0 of 1 pieces")
+    assert part.search_bound is None and part.cycles == ()
+    assert 0.0 < part.max_amplitude < full.cycles[0].amplitude and _no_cycle_missed_below(part, full)
+    assert part.as_dict()["status_code"] == "time_budget" and part.as_dict()["complete"] is False
+    g = dfa.growth_threshold(p, time_budget=1e-9)
+    assert g.amplitude is None and "search incomplete: time budget" in g.status
+    for bad in (0, -1.0, math.nan, math.inf, "10", None):
+        with pytest.raises(DFAError, match="time_budget"):
+            dfa.limit_cycles(p, time_budget=bad)
+
+
+def test_eq36_time_budget_stops_between_pieces(monkeypatch):
+    # two pieces of the phase curve (delay 2): a clock that passes the deadline after the first piece
+    import dfa.cycles as cycles
+
+    p = dfa.Params(100.0, 0.2, 0.3)
+    full = dfa.limit_cycles(p, delay=2)
+    ticks = iter(range(10**6))
+    monkeypatch.setattr(cycles.time, "monotonic", lambda: float(next(ticks)))
+    part = dfa.limit_cycles(p, delay=2, time_budget=1.5)  # deadline 1.5: the check at 1 passes, at 2 stops
+    assert not part.complete and "after searching 1 of 2 pieces" in part.status
+    assert 0 < len(part.cycles) < len(full.cycles) and _no_cycle_missed_below(part, full)
+    assert all(c in full.cycles for c in part.cycles)
+
+
+def test_cli_limit_cycles_time_budget(capsys):
+    code, out, _ = run(capsys, "limit-cycles", *DIMLESS, "--time-budget", "1e-9")
+    assert code == 0 and "search incomplete: time budget of 1e-09 s hit" in out
+    assert "no limit cycle predicted" not in out
+    code, out, _ = run(capsys, "limit-cycles", *DIMLESS, "--time-budget", "1e-9", "--json")
+    d = json.loads(out)
+    assert code == 0 and d["complete"] is False and d["status_code"] == "time_budget"
+    for v in ("0", "-1"):
+        assert "--time-budget" in refused(capsys, "limit-cycles", *DIMLESS, f"--time-budget={v}")
+    assert "--max-amplitude" in refused(capsys, "limit-cycles", *DIMLESS, "--max-amplitude=0")
+    code, out, _ = run(capsys, "limit-cycles", *DIMLESS, "--time-budget", "30")
+    assert code == 0 and "incomplete" not in out
+
+
+# ------------------------------------------------------------------ 10. found by the API fuzz (tests/test_api_fuzz.py)
+@pytest.mark.parametrize("device", ["delta", 0.0, None, dfa.get_device("delta")])
+def test_eq11_device_criterion_needs_a_device(device):
+    # issue 17: "'str' object has no attribute 'params'" (AttributeError) from device_criterion
+    with pytest.raises(DFATypeError, match="^device = .*dfa.Device"):
+        dfa.device_criterion(device, 1000.0, 0.1)
+
+
+@pytest.mark.parametrize(
+    "kw, kind",
+    [
+        ({"sigma": ""}, DFATypeError),
+        ({"sigma": {}}, DFATypeError),
+        ({"xi_dot": 10**400}, DFAValueError),
+        ({"xi_dot": [1.0, 10**400]}, DFAValueError),
+        ({"beta": [0.1, math.nan]}, DFAValueError),
+        ({"beta": 1j}, DFATypeError),
+        ({"quantized": "yes"}, DFATypeError),
+        ({"delay": math.inf}, DFAValueError),
+        ({"delay": 10**400}, DFAValueError),
+    ],
+)
+def test_eq6_classify_region_refuses_non_numbers(kw, kind):
+    # issue 17: "could not convert string to float", OverflowError and ambiguous truth values from classify_region
+    args = {"beta": [0.1, 0.6], "sigma": [0.7, 0.7], "xi_dot": 1.0, **kw}
+    with pytest.raises(kind, match=f"^{next(iter(kw))}"):
+        dfa.classify_region(**args)
+    assert dfa.classify_region(**{"beta": [0.1, 0.6], "sigma": [0.7, 0.7], "xi_dot": 1.0}).tolist() == ["d", "a"]
+
+
+@pytest.mark.parametrize("velocity", ["", 10**400, [0.1, math.inf], None, "0.1"])
+def test_eq11_k_max_criterion_refuses_non_numbers(velocity):
+    with pytest.raises(DFAError, match="^velocity"):
+        dfa.k_max_criterion(dfa.get_device("delta").device, velocity)
+
+
+@pytest.mark.parametrize("m", [1e-173, 1e-151, 1e-300])
+def test_eq41_quantizer_df_tiny_amplitude_is_2_over_pi_m(m):
+    # found by the API fuzz: M² underflowed and D(1e-173) returned inf (it is 2/(πM) = 6.4e172)
+    assert dfa.quantizer_df(m) == pytest.approx(2.0 / (math.pi * m), rel=1e-15)
+    assert dfa.quantizer_df(np.array([m, 0.5]))[0] == pytest.approx(2.0 / (math.pi * m), rel=1e-15)
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: dfa.quantizer_df(5e-324),
+        lambda: dfa.quantizer_df(["a"]),
+        lambda: dfa.quantizer_df(np.array(["a"])),
+        lambda: dfa.quantizer_df(10**400),
+        lambda: dfa.coulomb_df(1e-320, 1.0),
+        lambda: dfa.coulomb_df("x", 1.0),
+        lambda: dfa.coulomb_df(10**400, 0.0),
+        lambda: dfa.coulomb_equivalent_damping(1.0, 1e-200, 1e-200),
+    ],
+)
+def test_eq41_describing_functions_refuse_what_they_cannot_compute(call):
+    # issue 17: "could not convert string to float" and OverflowError from the describing functions
+    with pytest.raises(DFAError, match="^(amplitude|omega)"):
+        call()
+
+
+@pytest.mark.parametrize("mu", [1e12, 1e14, 1e16, 1e-200, 1e-20])
+def test_gil_beta_critical_outside_its_reliable_range_refused(mu):
+    # found by the API fuzz: μ = 1e12 gave 0.4991 (the true value is 0.5 − 4e-14), μ >= 1e14 raised
+    # "please report this as a bug", μ = 1e-200 a ZeroDivisionError
+    with pytest.raises(DFAValueError, match="^mu = .*exact linear bound"):
+        dfa.gil_beta_critical(mu)
+    assert 0.5 - dfa.gil_beta_critical(1e10) == pytest.approx(1 / 24 / 1e10, rel=1e-3)  # the asymptote ½ − 1/(24μ)
+
+
+# ------------------------------------------------------------------ 11. progress bars: stderr, a terminal or --progress
+MAP_SMALL = ["map", "--mu", "100", "--xi-dot", "1", "--grid", "3", "--samples", "200", "--jobs", "1", "--out"]
+
+
+@pytest.mark.parametrize(
+    "extra, shown",
+    [([], False), (["--progress"], True), (["--progress", "--quiet"], False), (["--json"], False)],
+)
+def test_cli_progress_bar_policy(capsys, tmp_path, extra, shown):
+    code, out, err = run(capsys, *MAP_SMALL, str(tmp_path / "m.npz"), *extra)
+    assert code == 0 and ("stability map" in err) == shown, err
+    assert "%|" not in out and "run/s" not in out
+    if "--json" in extra:
+        json.loads(out)
+
+
+def test_cli_progress_bar_on_a_terminal(capsys, tmp_path, monkeypatch):
+    import dfa.cli as cli
+
+    monkeypatch.setattr(cli.sys.stderr, "isatty", lambda: True, raising=False)
+    code, _, err = run(capsys, *MAP_SMALL, str(tmp_path / "m.npz"))
+    assert code == 0 and "stability map" in err
+    code, out, err = run(capsys, *MAP_SMALL, str(tmp_path / "m.npz"), "--json")
+    assert code == 0 and "stability map" not in err and json.loads(out)
+
+
+def test_cli_contours_and_simulate_progress(capsys, monkeypatch):
+    import dfa.simulation as simulation
+
+    code, out, err = run(capsys, "contours", "--mu", "5", "--grid", "4", "--max-amplitude", "5", "--progress", "--json")
+    assert code == 0 and "contours" in err and json.loads(out)["grid"] == [4, 4]
+    monkeypatch.setattr(simulation, "CHUNK", 1000)
+    argv = ["simulate", *DIMLESS, "--xi-dot", "1", "--samples", "20000", "--json"]
+    code, out, err = run(capsys, *argv, "--progress")
+    assert code == 0 and "simulate" in err
+    code, out2, err = run(capsys, *argv)
+    assert code == 0 and err == "" and out2 == out  # the same numbers with and without the bar
+
+
+def test_fig4_load_map_refuses_missing_and_broken_files(tmp_path):
+    # issue 17: a half-written 127-byte .npz did not load (numpy's own errors); now the package's, with the fix
+    with pytest.raises(DFAValueError, match="no such file"):
+        dfa.load_map(tmp_path / "missing.npz")
+    bad = tmp_path / "half.npz"
+    bad.write_bytes(b"PK\x03\x04" + b"\0" * 123)
+    with pytest.raises(DFAValueError, match="not a complete dfa map file"):
+        dfa.load_map(bad)
+    with pytest.raises(DFATypeError, match="^path"):
+        dfa.load_map(None)
+    m = dfa.stability_map(100.0, [2.0], grid=2, samples=50, n_jobs=1, progress=False)
+    assert dfa.load_map(m.save(tmp_path / "ok.npz")).as_dict() == m.as_dict()
+
+
+@pytest.mark.parametrize(
+    "kw, word",
+    [({"quick": ""}, "quick"), ({"quick": 1}, "quick"), ({"n_jobs": 0}, "n_jobs"), ({"progress": None}, "progress")],
+)
+def test_validate_refuses_bad_arguments_before_any_work(kw, word, monkeypatch):
+    # found by the API fuzz: quick="" ran the full validation (minutes); n_jobs was checked after minutes of work
+    import dfa.validation as validation
+
+    monkeypatch.setattr(validation, "cycle_checks", lambda *a, **k: pytest.fail("work started"))
+    with pytest.raises(DFAError, match=f"^{word}"):
+        dfa.validate(**{"quick": True, **kw})
+
+
+@pytest.mark.parametrize(
+    "kw, word", [({"map_grid": 1}, "map_grid"), ({"samples": "1"}, "samples"), ({"out_dir": 3}, "out_dir")]
+)
+def test_design_report_refuses_bad_arguments_before_any_work(kw, word, tmp_path, monkeypatch):
+    import dfa.report as report
+
+    monkeypatch.setattr(report, "_write_report", lambda *a, **k: pytest.fail("work started"))
+    with pytest.raises(DFAError, match=f"^{word}"):
+        dfa.design_report(dfa.get_device("delta"), **{"out_dir": tmp_path, "progress": False, **kw})
+
+
+@pytest.mark.parametrize("amax", ["1e5", "1e308"])
+def test_cli_eq36_zoh_at_the_linear_bound_huge_max_amplitude_ends(capsys, amax):
+    # issue 17: `limit-cycles --model zoh` at the linear bound ran over 5 minutes with --max-amplitude 1e5 and
+    # ended in a traceback with 1e308; now it ends (time budget, 10 s at most per search) with exit 0
+    beta = repr(dfa.gil_beta_critical(5.0))
+    argv = ["limit-cycles", "--mu", "5", "--beta", beta, "--sigma", "0.3", "--model", "zoh", "--max-amplitude", amax]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", dfa.cycles.LimitCycleSearchWarning)  # a numerical failure is reported in out
+        code, out, err = run(capsys, *argv)
+    assert code == 0 and "Traceback" not in err
+    assert "incomplete" in out and "no limit cycle predicted" not in out  # never a claim the search cannot back
+
+
+@pytest.mark.slow
+def test_report_too_stiff_writes_the_report(tmp_path):
+    # issue 17: any K above the static limit 2c/Δ crashed `dfa report` (TypeError) after writing its figures
+    # (the CLI only parses and calls this; a small map keeps the test short)
+    res = dfa.design_report(
+        dfa.get_device("delta"), 60000.0, 0.1, out_dir=tmp_path, fmt="md", progress=False, map_grid=3, samples=500
+    )
+    md = [p for p in res.paths if str(p).endswith(".md")]
+    assert len(md) == 1 and "not passive even at rest" in md[0].read_text(encoding="utf-8")
+
+
+def test_found_by_explore_fuzz():
+    # HYPOTHESIS_PROFILE=explore run of tests/test_api_fuzz.py: scipy's "f(a) and f(b) must have different signs",
+    # numpy broadcast errors and an ambiguous truth value, each now the package's error or the right answer
+    assert dfa.large_cycle_closed_form(2.654260412659872e-53, 0.0, 0.0) == (0.0, math.pi)  # ω = π − 2π²μ: π
+    assert dfa.cycles.large_cycle_frequency(1e-18) == math.pi
+    with pytest.raises(DFAValueError, match="^beta = .*rounding of π"):
+        dfa.small_cycle_closed_form(0.01, 513061015760152.0, 0.0)
+    with pytest.raises(DFAValueError, match="broadcast"):
+        dfa.coulomb_equivalent_damping(0.0, np.array([0.5, 1.5, 20.0]), np.array([1.0, 2.0]))
+    dev = dfa.get_device("delta").device
+    with pytest.raises(DFATypeError, match="^quantized"):
+        dfa.device_criterion(dev, 10.0, 1.0, quantized=np.array([1.0, 2.0]))
+    with pytest.raises(DFATypeError, match="^quantized"):
+        dfa.passivity_criterion(0.6, 0.6, 1.0, quantized="no")

@@ -82,7 +82,7 @@ from .growth import GrowthThreshold, growth_threshold
 from .phase import _phase_beta, _PieceOmega, _zoh_phase_beta_grid  # noqa: F401
 from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchStatus
 from .search import INTERVAL_BUDGET, envelope_bound
-from .solve import AUTO_MAX_AMPLITUDE, limit_cycles
+from .solve import AUTO_MAX_AMPLITUDE, DEFAULT_TIME_BUDGET, limit_cycles
 from .stability import _cycle  # noqa: F401
 
 __all__ = [
@@ -103,5 +103,6 @@ __all__ = [
     "LimitCycleSearchWarning",
     "envelope_bound",
     "AUTO_MAX_AMPLITUDE",
+    "DEFAULT_TIME_BUDGET",
     "INTERVAL_BUDGET",
 ]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import time
 import warnings
 
 import numpy as np
@@ -74,18 +75,22 @@ def _df_roots(g: float, max_amp: float) -> tuple[np.ndarray, bool, int]:
     return _df_inverse_counted(g, max_amp)
 
 
-def _solve(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], tuple | None, int, float]:
+def _solve(lp: _Loop, max_amp: float, deadline: float = math.inf) -> tuple[list[LimitCycle], tuple | None, int, float]:
     """All roots up to ``max_amp``: (cycles, reach, failures, bound); reach is None when the search is complete,
-    and then no root exists beyond ``bound`` (ticks)."""
+    and then no root exists beyond ``bound`` (ticks). Past ``deadline`` (time.monotonic) the pieces not yet
+    searched are skipped: reach is then (smallest amplitude of a skipped piece, "time_budget", pieces done, pieces)."""
     if lp.params.sigma == 0.0:
         return _solve_sigma_zero(lp, max_amp)
     cycles: list[LimitCycle] = []
     reach, failures, bound = None, 0, 0.0
-    for ws, ms in _pieces(lp):
+    pieces = [(ws, ms) for ws, ms in _pieces(lp) if np.isfinite(ms).any()]
+    for k, (ws, ms) in enumerate(pieces):
         finite = np.isfinite(ms)
-        if finite.sum() < 1:
-            continue
         lo = float(np.min(ms[finite]))
+        if time.monotonic() > deadline:  # the time budget: no root below the skipped pieces' lowest amplitude is lost
+            skipped = min(float(np.min(m[np.isfinite(m)])) for _, m in pieces[k:])
+            below = min(skipped, reach[0]) if reach is not None else skipped
+            return cycles, (min(below, max_amp), "time_budget", k, len(pieces)), failures, bound
         hi = float(np.max(ms))
         w_inf = float(ws[~finite][0]) if (~finite).any() else None
         omega_of = _PieceOmega(lp, ws, ms)
@@ -130,6 +135,9 @@ def _piece_roots(lp: _Loop, omega_of: _PieceOmega, samples: np.ndarray) -> tuple
 #: Size budget of the automatic search range (ticks): the envelope bound is followed up to here.
 AUTO_MAX_AMPLITUDE = 1.0e6
 
+#: Default wall-clock budget of one limit-cycle search (seconds).
+DEFAULT_TIME_BUDGET = 10.0
+
 
 def limit_cycles(
     params: Params,
@@ -139,6 +147,7 @@ def limit_cycles(
     pade_order: int = 4,
     max_amplitude: float | None = None,
     describing: str = "exact",
+    time_budget: float = DEFAULT_TIME_BUDGET,
 ) -> LimitCycleResult:
     """Every limit cycle (M, ω) of the harmonic balance 1 + D(M)L(jω; M) = 0 (eq. 36).
 
@@ -161,6 +170,12 @@ def limit_cycles(
     describing : {"exact", "small", "unity"}
         ``"exact"`` uses eq. 41; ``"small"`` and ``"unity"`` replace D by the
         paper's approximations 2/(πM) and 1 (to reproduce eq. 42-45).
+    time_budget : float
+        Seconds of wall-clock time the search may take (default
+        ``DEFAULT_TIME_BUDGET``, 10 s; typical searches take milliseconds).
+        When it runs out the pieces of the phase curve not yet searched are
+        skipped and the result is incomplete (status ``TIME_BUDGET``), with
+        ``max_amplitude`` the amplitude below which no cycle was missed.
 
     Returns
     -------
@@ -178,12 +193,13 @@ def limit_cycles(
         else check_positive("max_amplitude", max_amplitude, "give the largest amplitude to search, in ticks")
     )
     df = check_choice("describing", describing, _DF_CHOICES)
+    seconds = check_positive("time_budget", time_budget, "give the longest search time in seconds, e.g. 10")
     lp = _Loop(p, m, d, n, df)
     try:
-        cycles, reach, failures, bound = _solve(lp, amax)
+        cycles, reach, failures, bound = _solve(lp, amax, time.monotonic() + seconds)
     except _NUMERICAL_ERRORS:  # pragma: no cover - last resort
         cycles, reach, failures, bound = [], None, 1, math.nan
-    code, status = _search_status(failures, reach, auto, amax)
+    code, status = _search_status(failures, reach, auto, amax, seconds)
     if code is SearchStatus.NUMERICAL:
         warnings.warn(
             f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}): {status}",
@@ -220,7 +236,9 @@ def _unique(cycles: list[LimitCycle]) -> tuple[LimitCycle, ...]:
     return tuple(uniq)
 
 
-def _search_status(failures: int, reach: tuple[float, str] | None, auto: bool, amax: float) -> tuple[SearchStatus, str]:
+def _search_status(
+    failures: int, reach: tuple | None, auto: bool, amax: float, seconds: float = math.inf
+) -> tuple[SearchStatus, str]:
     """How the search ended, and the one-line detail that says so (``""`` when complete: the status message)."""
     if failures:
         status = (
@@ -230,6 +248,11 @@ def _search_status(failures: int, reach: tuple[float, str] | None, auto: bool, a
         return SearchStatus.NUMERICAL, status
     if reach is None:
         return SearchStatus.COMPLETE, ""  # detail: the status message
+    if reach[1] == "time_budget":
+        return SearchStatus.TIME_BUDGET, (
+            f"incomplete: time budget of {seconds:g} s hit after searching {reach[2]} of {reach[3]} pieces of the "
+            f"phase curve; no cycle missed below M = {reach[0]:.4g} ticks (raise time_budget)"
+        )
     budget = reach[1] == "budget" or (auto and reach[0] >= amax)
     why = (
         f"searched up to the size budget ({reach[0]:g} ticks) short of the envelope bound"
