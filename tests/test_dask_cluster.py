@@ -46,7 +46,7 @@ def test_fig4_map_on_dask_cluster_equals_one_job(client):
     kw = dict(grid=5, samples=4000, beta_range=(0.0, 1.0), sigma_range=(0.0, 1.5), progress=False)
     ref = dfa.stability_map(100.0, [1.0, 3.0], n_jobs=1, **kw)
     with distributed.get_task_stream(client=client) as stream, joblib.parallel_config(backend="dask"):
-        got = dfa.stability_map(100.0, [1.0, 3.0], n_jobs=2, **kw)
+        got = dfa.stability_map(100.0, [1.0, 3.0], n_jobs=2, backend="joblib", **kw)
     assert len(stream.data) > 0  # the chunks ran as tasks on the cluster
     _same(ref, got)
     # the grid is not degenerate: more than one outcome occurs, so the comparison can fail

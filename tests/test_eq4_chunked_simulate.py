@@ -1,7 +1,7 @@
 """Long simulations run in chunks (issue 17 §2, §4): identical results, progress, Ctrl-C between chunks.
 
 :func:`dfa.simulate` integrates runs longer than ``dfa.simulation.CHUNK``
-samples (without delay) in several kernel calls; the result must be bit for
+samples in several kernel calls (any delay: the delay ring is part of the state); the result must be bit for
 bit the single call's (paper eq. 4-5 integrated exactly either way). The tests
 lower ``CHUNK`` so that short runs take the chunked path.
 """
@@ -70,10 +70,14 @@ def test_eq4_chunked_run_equals_single_call(mu, beta, sigma, v, n, chunk, record
     _same(ref, got)
 
 
-def test_eq4_delay_runs_in_one_call(monkeypatch):
-    # with a delay the pending forces are state the kernel cannot take back in: no chunking
-    got, used = _chunked(monkeypatch, 10, 100.0, 0.3, 0.3, 1.0, 2000, delay=1)
-    assert not used and got.delay == 1
+@pytest.mark.parametrize("delay", [1, 2, 5])
+@pytest.mark.parametrize("v", [1.0, 2.0, 8.0])
+def test_eq4_delay_runs_in_chunks_equal_single_call(monkeypatch, delay, v):
+    # the pending forces of a delay live in the kernel's ring buffer between chunks: chunked = one call
+    ref = dfa.simulate(100.0, 0.3, 0.3, v, 2000, delay=delay, energy=True)
+    got, used = _chunked(monkeypatch, 10, 100.0, 0.3, 0.3, v, 2000, delay=delay, energy=True)
+    assert used and got.delay == delay
+    _same(ref, got)
 
 
 def test_eq4_progress_bar_on_stderr(capsys, monkeypatch):
@@ -90,7 +94,7 @@ def test_eq4_progress_bar_on_stderr(capsys, monkeypatch):
 def test_cli_simulate_sigint_between_chunks(capsys, monkeypatch, tmp_path):
     # issue 17: "simulate --samples 1e10 ignores SIGINT"; now the signal ends the run after the current chunk
     calls = []
-    real = simulation._kernel.simulate_kernel
+    real = simulation._kernel.advance
 
     def kernel(*a):
         calls.append(1)
@@ -99,7 +103,7 @@ def test_cli_simulate_sigint_between_chunks(capsys, monkeypatch, tmp_path):
         return real(*a)
 
     monkeypatch.setattr(simulation, "CHUNK", 1000)
-    monkeypatch.setattr(simulation._kernel, "simulate_kernel", kernel)
+    monkeypatch.setattr(simulation._kernel, "advance", kernel)
     trace = tmp_path / "t.csv"
     argv = ["simulate", "--mu", "100", "--beta", "0.3", "--sigma", "0.3", "--xi-dot", "1", "--samples", "50000"]
     code = main([*argv, "--trace", str(trace)])

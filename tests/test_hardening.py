@@ -688,13 +688,13 @@ def test_eq36_time_budget_hit_is_incomplete_and_says_so():
     full = dfa.limit_cycles(p)
     assert full.complete and DEFAULT_TIME_BUDGET == 10.0 and len(full.cycles) == 2
     part = dfa.limit_cycles(p, time_budget=1e-9)
-    assert not part.complete and part.status_code is SearchStatus.TIME_BUDGET
-    assert part.status.startswith("incomplete: time budget of 1e-09 s hit after searching 0 of 1 pieces")
+    assert not part.complete and part.status is SearchStatus.TIME_BUDGET
+    assert part.detail.startswith("incomplete: time budget of 1e-09 s hit after searching 0 of 1 pieces")
     assert part.search_bound is None and part.cycles == ()
     assert 0.0 < part.max_amplitude < full.cycles[0].amplitude and _no_cycle_missed_below(part, full)
-    assert part.as_dict()["status_code"] == "time_budget" and part.as_dict()["complete"] is False
+    assert part.as_dict()["status"] == "time_budget" and part.as_dict()["complete"] is False
     g = dfa.growth_threshold(p, time_budget=1e-9)
-    assert g.amplitude is None and "search incomplete: time budget" in g.status
+    assert g.amplitude is None and "time budget of 1e-09 s" in g.meaning()
     for bad in (0, -1.0, math.nan, math.inf, "10", None):
         with pytest.raises(DFAError, match="time_budget"):
             dfa.limit_cycles(p, time_budget=bad)
@@ -702,14 +702,14 @@ def test_eq36_time_budget_hit_is_incomplete_and_says_so():
 
 def test_eq36_time_budget_stops_between_pieces(monkeypatch):
     # two pieces of the phase curve (delay 2): a clock that passes the deadline after the first piece
-    import dfa.cycles as cycles
+    import dfa.cycles.solve as cycles
 
     p = dfa.Params(100.0, 0.2, 0.3)
     full = dfa.limit_cycles(p, delay=2)
     ticks = iter(range(10**6))
     monkeypatch.setattr(cycles.time, "monotonic", lambda: float(next(ticks)))
     part = dfa.limit_cycles(p, delay=2, time_budget=1.5)  # deadline 1.5: the check at 1 passes, at 2 stops
-    assert not part.complete and "after searching 1 of 2 pieces" in part.status
+    assert not part.complete and "after searching 1 of 2 pieces" in part.detail
     assert 0 < len(part.cycles) < len(full.cycles) and _no_cycle_missed_below(part, full)
     assert all(c in full.cycles for c in part.cycles)
 
@@ -720,7 +720,7 @@ def test_cli_limit_cycles_time_budget(capsys):
     assert "no limit cycle predicted" not in out
     code, out, _ = run(capsys, "limit-cycles", *DIMLESS, "--time-budget", "1e-9", "--json")
     d = json.loads(out)
-    assert code == 0 and d["complete"] is False and d["status_code"] == "time_budget"
+    assert code == 0 and d["complete"] is False and d["status"] == "time_budget"
     for v in ("0", "-1"):
         assert "--time-budget" in refused(capsys, "limit-cycles", *DIMLESS, f"--time-budget={v}")
     assert "--max-amplitude" in refused(capsys, "limit-cycles", *DIMLESS, "--max-amplitude=0")
@@ -871,7 +871,7 @@ def test_validate_refuses_bad_arguments_before_any_work(kw, word, monkeypatch):
 def test_design_report_refuses_bad_arguments_before_any_work(kw, word, tmp_path, monkeypatch):
     import dfa.report as report
 
-    monkeypatch.setattr(report, "_write_report", lambda *a, **k: pytest.fail("work started"))
+    monkeypatch.setattr(report, "design_analysis", lambda *a, **k: pytest.fail("work started"))
     with pytest.raises(DFAError, match=f"^{word}"):
         dfa.design_report(dfa.get_device("delta"), **{"out_dir": tmp_path, "progress": False, **kw})
 

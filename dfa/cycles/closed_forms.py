@@ -41,6 +41,7 @@ from scipy.optimize.elementwise import find_root
 
 from ..checks import check_beta, check_mu, check_sigma
 from ..device import Params
+from ..errors import DFAValueError
 
 __all__ = [
     "ClosedFormStatus",
@@ -63,7 +64,8 @@ class ClosedFormStatus(enum.IntEnum):
     NO_CYCLE = 1
     #: β = σ = 0 for the small family: eq. 43's root is ω = 0 with M = ∞, no cycle
     DEGENERATE = 2
-    #: the root finder reported a failure (non-finite value, no convergence)
+    #: the root finder reported a failure (non-finite value, no convergence), or (small family) ω lies
+    #: within rounding of π, where eq. 42's M ∝ cos(ω/2) cannot be computed in floating point
     NOT_SOLVED = 3
 
     @property
@@ -76,7 +78,10 @@ _REASONS = {
     ClosedFormStatus.OK: "ok",
     ClosedFormStatus.NO_CYCLE: "no cycle of this family at this point",
     ClosedFormStatus.DEGENERATE: "degenerate: with β = σ = 0 eq. 43 gives ω → 0 and M → ∞ (no cycle)",
-    ClosedFormStatus.NOT_SOLVED: "the root finder failed here (non-finite value or no convergence)",
+    ClosedFormStatus.NOT_SOLVED: (
+        "not solved here: the root finder failed (non-finite value or no convergence), or ω is within rounding "
+        "of π (β/μ too large for eq. 42-43 in floating point)"
+    ),
 }
 
 
@@ -170,6 +175,7 @@ def small_cycle_closed_forms(mu, beta, sigma) -> ClosedFormCycles:
     # f(lo) < 0: f ≈ lo/4 − β/(2μ lo) − σ and lo <= ½√(β/μ) (the right side of eq. 43 → −∞ as ω → 0)
     lo = np.minimum(1e-12, 0.5 * np.sqrt(bb / mb))
     root, ok = _solve(_f43, lo, np.full(lo.shape, math.pi), (mb, bb, sb))
+    ok &= root < math.pi  # ω = π to rounding: M = 2cos(ω/2)/(πμω²) would be rounding noise, not a cycle
     w[damped] = np.where(ok, root, np.nan)
     status[damped] = np.where(ok, int(ClosedFormStatus.OK), int(ClosedFormStatus.NOT_SOLVED))
     amp = 2 * np.cos(w / 2) / (math.pi * m * w * w)
@@ -248,4 +254,11 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
     :func:`small_cycle_closed_forms`).
     """
     p = Params(mu, beta, sigma)
-    return _scalar(small_cycle_closed_forms(p.mu, p.beta, p.sigma))
+    cf = small_cycle_closed_forms(p.mu, p.beta, p.sigma)
+    if int(cf.status) == ClosedFormStatus.NOT_SOLVED:
+        raise DFAValueError(
+            f"beta = {p.beta!r} with mu = {p.mu!r} is invalid here: β/μ = {p.beta / p.mu:.3g} puts the small "
+            "cycle's frequency within rounding of π (eq. 42-43 cannot be solved in floating point); "
+            "use a smaller β/μ"
+        )
+    return _scalar(cf)

@@ -84,6 +84,11 @@ class GrowthThreshold:
         res = self.result
         if self.status is GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED:
             return f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail})"
+        if self.status is GrowthStatus.LINEAR_UNSTABLE and not res.complete:
+            return (
+                f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail}), but the "
+                "linear loop (exact ZOH model) is unstable: amplitudes grow without bound"
+            )
         if self.amplitude is None:
             return self.status.message
         lo, hi = self.amplitude, self.amplitude_high
