@@ -565,7 +565,7 @@ def _design_json(ans, k_max: float, k_gil: float) -> dict[str, object]:
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
     from .render.text import simulation_rows
-    from .simulation import MAX_RECORD_BYTES, default_samples, preload_position, simulate
+    from .simulation import MAX_RECORD_BYTES, default_samples, divergence_bound, preload_position, simulate
 
     inp = _resolve(args, dimensionless=True)
     p = inp.params
@@ -608,6 +608,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         delay=args.delay,
         quantize=not args.no_quantization,
         record=args.trace is not None,
+        bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND),
     )
     if args.trace is not None:
         _write_trace(args.trace, r)
