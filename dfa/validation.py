@@ -45,7 +45,7 @@ from .cycles import growth_threshold, large_cycle_closed_form, limit_cycles
 from .device import Params
 from .formatting import markdown_table, number, percent
 from .maps import stability_map
-from .simulation import OUTCOMES, preload_position, simulate
+from .simulation import OUTCOMES, divergence_bound, preload_position, simulate
 
 __all__ = [
     "ValidationResult",
@@ -135,10 +135,9 @@ def first_unstable_speed(
     """
 
     def unstable(v: float) -> bool:
-        if preload:
-            r = simulate(p.mu, p.beta, p.sigma, 0.0, samples, xi0=preload_position(p.mu, v), delay=delay, record=False)
-        else:
-            r = simulate(p.mu, p.beta, p.sigma, v, samples, delay=delay, record=False)
+        x0, v0 = (preload_position(p.mu, v), 0.0) if preload else (0.0, v)
+        bound = divergence_bound(x0, v0, p.mu)  # beyond the impact's own travel (eq. 18-19)
+        r = simulate(p.mu, p.beta, p.sigma, v0, samples, xi0=x0, delay=delay, record=False, bound=bound)
         return r.outcome == "unstable"
 
     speeds = np.geomspace(v_lo, v_hi, steps)

@@ -25,3 +25,17 @@ def test_eq19_divergence_bound_is_beyond_the_energy_amplitude():
     for xi0, xd, mu in [(0.0, 1e5, 800.0), (3.5, 0.0, 1.0), (0.0, 0.2, 100.0)]:
         amp0 = math.sqrt(2 * float(stored_energy(xi0, xd, mu)))
         assert divergence_bound(xi0, xd, mu) >= max(1e6, 100 * amp0)
+
+
+def test_eq19_design_analysis_finds_no_divergence_where_eq6_proves_passivity():
+    """Region a (β >= ½, σ >= ½): no simulated unstable speed, and the impacts rest (the report's numbers)."""
+    import dataclasses
+
+    from dfa.catalogue import get_device
+    from dfa.design import design_analysis
+
+    dev = dataclasses.replace(get_device("impulse").device, resolution=1e-8)
+    a = design_analysis(dev, stiffness=10, velocity=0.5, map_grid=3, samples=30_000, n_jobs=1)
+    assert a.criterion.region == "a" and a.criterion.passive
+    assert a.simulated_xi_dot is None
+    assert a.outcome.outcome == "rest" and a.outcome_high.outcome == "rest"
