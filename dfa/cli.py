@@ -769,6 +769,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
     from ._io import check_memory
     from .checks import check_jobs
     from .maps import map_memory_bytes, stability_map
+    from .simulation import divergence_bound
 
     check_output_file("--out", args.out, ".npz")
     if args.plot is not None:
@@ -811,6 +812,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
         quantize=not args.no_quantization,
         n_jobs=args.jobs,
         progress=not args.quiet,
+        bound=divergence_bound(0.0, max(args.xi_dot), mu, SIMULATION_BOUND),  # beyond every start's travel
     )
     path = m.save(args.out)
     if args.plot is not None:

@@ -313,6 +313,7 @@ def _map_around(
         progress=progress,
         delay=dl,
         n_jobs=n_jobs,
+        bound=divergence_bound(0.0, 2 * xi_dot if xi_dot > 0 else 2.0, p.mu),  # beyond every start's travel
     )
 
 

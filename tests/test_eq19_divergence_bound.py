@@ -39,3 +39,11 @@ def test_eq19_design_analysis_finds_no_divergence_where_eq6_proves_passivity():
     assert a.criterion.region == "a" and a.criterion.passive
     assert a.simulated_xi_dot is None
     assert a.outcome.outcome == "rest" and a.outcome_high.outcome == "rest"
+
+
+def test_eq19_map_cli_calls_no_region_a_point_unstable(capsys, tmp_path):
+    """`dfa map` at ξ'0 = 10⁵ ticks/sample, μ = 800 (A₀ ≈ 2.8·10⁶): β, σ >= ½ is passive (eq. 6), never unstable."""
+    argv = ["map", "--mu", "800", "--xi-dot", "1e5", "--beta-range", "0.6", "1", "--sigma-range", "0.6", "2"]
+    argv += ["--grid", "3", "--samples", "2000", "--out", str(tmp_path / "m.npz"), "--quiet", "--json", "--jobs", "1"]
+    assert main(argv) == 0
+    assert json.loads(capsys.readouterr().out)["counts"][0]["unstable"] == 0
