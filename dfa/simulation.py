@@ -195,7 +195,13 @@ def divergence_bound(xi0: float, xi_dot0: float, mu: float, floor: float = 1.0e6
     >>> divergence_bound(0.0, 1.0e5, 800.0) > 2.8e8
     True
     """
-    amp0 = math.sqrt(2.0 * float(stored_energy(xi0, xi_dot0, mu)))
+    with np.errstate(over="ignore"):
+        amp0 = math.sqrt(2.0 * float(stored_energy(xi0, xi_dot0, check_mu(mu))))
+    if not math.isfinite(100.0 * (amp0 + 1.0)):
+        raise DFAValueError(
+            f"xi_dot = {xi_dot0!r} is invalid with xi0 = {xi0!r}, mu = {mu!r}: the start's energy ½μξ'0² + H_c(ξ0) "
+            "overflows a float; give a smaller speed or start"
+        )
     return max(floor, 100.0 * (amp0 + 1.0))
 
 
