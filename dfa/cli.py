@@ -591,7 +591,7 @@ def _design_json(ans, k_max: float, k_gil: float) -> dict[str, object]:
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
     from .render.text import simulation_rows
-    from .simulation import MAX_RECORD_BYTES, default_samples, preload_position, simulate
+    from .simulation import MAX_RECORD_BYTES, default_samples, divergence_bound, preload_position, simulate
 
     inp = _resolve(args, dimensionless=True)
     p = inp.params
@@ -635,6 +635,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         quantize=not args.no_quantization,
         record=args.trace is not None,
         progress=_progress(args),
+        bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND),
     )
     if args.trace is not None:
         _write_trace(args.trace, r)
@@ -796,6 +797,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
     from ._io import check_memory
     from .checks import check_jobs
     from .maps import map_memory_bytes, stability_map
+    from .simulation import divergence_bound
 
     check_output_file("--out", args.out, ".npz")
     if args.plot is not None:
@@ -838,6 +840,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
         quantize=not args.no_quantization,
         n_jobs=args.jobs,
         progress=_progress(args),
+        bound=divergence_bound(0.0, max(args.xi_dot), mu, SIMULATION_BOUND),  # beyond every start's travel
     )
     path = m.save(args.out)
     if args.plot is not None:

@@ -24,7 +24,7 @@ from .errors import DFATypeError, DFAValueError
 from .jsonable import to_jsonable
 from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, stability_map
-from .simulation import SimulationResult, simulate
+from .simulation import SimulationResult, divergence_bound, simulate
 from .status import DesignStatus
 from .stiffness import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
 from .validation import first_unstable_speed
@@ -212,7 +212,9 @@ def _simulations(p: Params, xi_dot: float, ref: float, v_sim: float | None, samp
     """Recorded runs for the figure and full-length runs for the outcomes, at the design speed and above."""
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
     v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
-    run = lambda v, n, rec: simulate(p.mu, p.beta, p.sigma, v, n, delay=dl, record=rec)
+    run = lambda v, n, rec: simulate(  # diverged only far beyond the impact's own travel (eq. 18-19)
+        p.mu, p.beta, p.sigma, v, n, delay=dl, record=rec, bound=divergence_bound(0.0, v, p.mu)
+    )
     return dict(
         trajectory=run(xi_dot, n_traj, True),
         outcome=run(xi_dot, None, False),  # length from the loop's time scales (dfa.simulation.default_samples)
@@ -317,6 +319,7 @@ def _map_around(
         progress=progress,
         delay=dl,
         n_jobs=n_jobs,
+        bound=divergence_bound(0.0, 2 * xi_dot if xi_dot > 0 else 2.0, p.mu),  # beyond every start's travel
     )
 
 

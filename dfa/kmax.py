@@ -60,7 +60,7 @@ import numpy as np
 from .checks import check_choice, check_delay, check_int, check_positive, check_real, check_type
 from .device import Device
 from .errors import DFAValueError
-from .simulation import default_samples, preload_position, simulate, stored_energy
+from .simulation import default_samples, divergence_bound, preload_position, simulate
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
 __all__ = ["KSearch", "KMaxAssessment", "KMaxResult", "design_answer", "simulate_points"]
@@ -91,9 +91,7 @@ def simulate_points(points: Sequence[tuple[float, float, float, float, float]], 
     outcomes, lengths = [], []
     for mu, beta, sigma, xi0, xi_dot0 in points:
         n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay), max_samples)
-        # divergence bound: far beyond the energy amplitude √(2 H_T(0)) (eq. 18-19), which a passive run never leaves
-        amp0 = math.sqrt(2.0 * float(stored_energy(xi0, xi_dot0, mu)))
-        bound = max(DIVERGENCE_BOUND, 100.0 * (amp0 + 1.0))
+        bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
         r = simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound)
         outcomes.append(r.outcome)
         lengths.append(n)

@@ -186,6 +186,29 @@ def preload_position(mu: float, xi_dot: float) -> float:
     return float(k + (r - k * k) / (2 * k + 1))
 
 
+def divergence_bound(xi0: float, xi_dot0: float, mu: float, floor: float = 1.0e6) -> float:
+    """|ξ| (ticks) past which a run from (ξ0, ξ'0) counts as diverged: max(floor, 100 (A₀ + 1)).
+
+    A₀ = √(2 H_T(0)) is the energy amplitude of the start (eq. 18-19), which a passive run never
+    leaves; a fixed bound below it would call the impact's own travel a divergence.
+
+    Examples
+    --------
+    >>> divergence_bound(0.0, 1.0, 100.0)
+    1000000.0
+    >>> divergence_bound(0.0, 1.0e5, 800.0) > 2.8e8
+    True
+    """
+    with np.errstate(over="ignore"):
+        amp0 = math.sqrt(2.0 * float(stored_energy(xi0, xi_dot0, check_mu(mu))))
+    if not math.isfinite(100.0 * (amp0 + 1.0)):
+        raise DFAValueError(
+            f"xi_dot = {xi_dot0!r} is invalid with xi0 = {xi0!r}, mu = {mu!r}: the start's energy ½μξ'0² + H_c(ξ0) "
+            "overflows a float; give a smaller speed or start"
+        )
+    return max(floor, 100.0 * (amp0 + 1.0))
+
+
 def _decay_time(mu: float, beta: float, sigma: float, amp0: float, delay: int) -> float:
     """Samples for the averaged amplitude dA/dτ = −aA − c to fall from ``amp0`` to 1 tick (inf: never)."""
     if amp0 <= 1.0:

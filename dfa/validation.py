@@ -48,7 +48,7 @@ from .errors import DFATypeError
 from .formatting import markdown_table, number, percent
 from .jsonable import to_jsonable
 from .maps import stability_map
-from .simulation import OUTCOMES, preload_position, simulate
+from .simulation import OUTCOMES, divergence_bound, preload_position, simulate
 from .status import ValidationStatus
 
 __all__ = [
@@ -139,10 +139,9 @@ def first_unstable_speed(
     """
 
     def unstable(v: float) -> bool:
-        if preload:
-            r = simulate(p.mu, p.beta, p.sigma, 0.0, samples, xi0=preload_position(p.mu, v), delay=delay, record=False)
-        else:
-            r = simulate(p.mu, p.beta, p.sigma, v, samples, delay=delay, record=False)
+        x0, v0 = (preload_position(p.mu, v), 0.0) if preload else (0.0, v)
+        bound = divergence_bound(x0, v0, p.mu)  # beyond the impact's own travel (eq. 18-19)
+        r = simulate(p.mu, p.beta, p.sigma, v0, samples, xi0=x0, delay=delay, record=False, bound=bound)
         return r.outcome == "unstable"
 
     speeds = np.geomspace(v_lo, v_hi, steps)
