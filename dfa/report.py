@@ -247,11 +247,16 @@ def design_report(
     Returns
     -------
     ReportResult
+        Paths of the files and figures written, the numbers stated, the analysis and a status.
 
     Raises
     ------
     DFAValueError
         Bad inputs (see :func:`dfa.design.design_analysis`), a missing folder, or a report of other inputs in the way.
+
+    See Also
+    --------
+    design_analysis : The numbers of the report, without rendering or files.
     """
     fmt = check_choice("fmt", fmt, ("html", "md", "both"))
     if not Path(out_dir).is_dir():
