@@ -644,7 +644,33 @@ def _speed_cases(quick: bool) -> list[tuple[str, Params]]:
 
 
 def validate(quick: bool = False, n_jobs: int = -1, progress: bool = True) -> ValidationResult:
-    """Run the whole validation (``quick``: a reduced set that runs in well under a minute)."""
+    """Run the whole validation (``quick``: a reduced set that runs in well under a minute).
+
+    Parameters
+    ----------
+    quick : bool, optional
+        Run the reduced set (default False: the full set, several minutes).
+    n_jobs : int, optional
+        Workers of the soundness maps (-1, default: all cores; 1: in this thread).
+    progress : bool, optional
+        Show tqdm progress bars (default True).
+
+    Returns
+    -------
+    ValidationResult
+        The limit-cycle checks, critical speeds, criterion soundness and cluster thresholds, with
+        their summaries.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``n_jobs`` is not -1 or a whole number >= 1.
+
+    See Also
+    --------
+    limit_cycles : The predictions checked against simulation.
+    simulate : The exact simulation used as the reference.
+    """
     samples = 20_000 if quick else 40_000
     cycles = cycle_checks(_grid(quick), samples=samples)
     speeds = critical_speeds(_speed_cases(quick), samples=10_000 if quick else 30_000)
