@@ -316,7 +316,7 @@ class CriterionResult:
     beta, sigma : float
         Dimensionless damping and Coulomb friction (inputs).
     xi_dot : float
-        Speed |ξ'0| in encoder ticks per sample (input, made non-negative).
+        Speed abs(ξ'0) in encoder ticks per sample (input, made non-negative).
     quantized : bool
         True for eq. 6 (with the encoder), False for eq. 7 (Δ → 0).
     region : str
@@ -330,11 +330,11 @@ class CriterionResult:
         Eq. 12 generalised: the largest energy-equivalent speed V for which
         the criterion holds, (σ − σ₀)/(½ + d − β), when β < ½ + d and σ >= σ₀;
         None when it does not exist (regions a, b, c). With ξ0 = 0 it is the
-        critical initial speed |ξ'0|.
+        critical initial speed abs(ξ'0).
     critical_line : CriticalLine
         The line of eq. 10 for this speed and delay.
     equivalent_speed : float
-        V = sqrt(ξ'0² + 2H_c(ξ0)/μ) (ticks per sample); V = |ξ'0| when ξ0 = 0.
+        V = sqrt(ξ'0² + 2H_c(ξ0)/μ) (ticks per sample); V = abs(ξ'0) when ξ0 = 0.
     delay : int
         Computational delay d in samples.
     xi0 : float

@@ -85,7 +85,7 @@ def k_static(device: Device) -> float:
 def k_max_criterion(device: Device, velocity, delay: int = 0):
     """Largest stiffness passing the criterion at impact speed ``velocity`` and delay d (eq. 11 generalised), N/m.
 
-    K_max = min(2c/Δ, (b|ẋ0| + c)/(T(½ + d)|ẋ0| + Δ/2)). Vectorised over
+    K_max = min(2c/Δ, (b·abs(ẋ0) + c)/(T(½ + d)·abs(ẋ0) + Δ/2)). Vectorised over
     ``velocity`` (m/s or rad/s; sign ignored); ``delay`` in whole samples.
 
     Parameters
@@ -362,7 +362,7 @@ class StiffnessLimits:
     ----------
     device : Device
     velocity : float
-        Impact speed |ẋ0| in m/s (rad/s).
+        Impact speed abs(ẋ0) in m/s (rad/s).
     xi_dot : float
         The same speed in encoder ticks per sample.
     k_max : float
