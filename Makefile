@@ -51,7 +51,7 @@ readme: $(STAMP)
 # API reference, paper reproduction, validation and benchmarks as a site in docs/_build/html.
 docs: $(STAMP)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[docs]'
-	$(BIN)/python -m sphinx -b html -q docs docs/_build/html
+	$(BIN)/python -m sphinx -b html -q -W --keep-going docs docs/_build/html
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py --out reports/benchmarks.md

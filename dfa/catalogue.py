@@ -99,6 +99,35 @@ class CatalogueEntry:
 
     Missing physical values are ``None``; such rows have ``incomplete=True`` and
     :attr:`device` raises an error naming what is missing.
+
+    Attributes
+    ----------
+    name : str
+        Device name as in paper Table 2.
+    kind : str
+        ``"haptic device"``, ``"experimental testbed"`` or ``"human"``.
+    source : str
+        Where the values come from.
+    notes : str
+        Remarks on the row (assumptions, corrections).
+    mass : float or None
+        Moving mass m in kg (rotary: kg·m²).
+    damping : float or None
+        Viscous friction b in N·s/m (rotary: N·m·s/rad).
+    coulomb : float or None
+        Coulomb friction c in N (rotary: N·m).
+    resolution : float or None
+        Encoder resolution Δ in m (rotary: rad).
+    period : float or None
+        Sample period T in s.
+    stiffness : float or None
+        Virtual spring stiffness K of the row in N/m (rotary: N·m/rad).
+    rotary : bool
+        True when positions are angles and forces torques.
+    incomplete : bool
+        True when some physical value is unknown.
+    printed : tuple of (str, str)
+        The (μ, β, σ) printed in the paper, as ``(name, decimal string)`` pairs.
     """
 
     name: str
@@ -167,7 +196,14 @@ class CatalogueEntry:
         return tuple(out)
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record: physical values, recomputed and printed (μ, β, σ), discrepancies."""
+        """JSON-ready record: physical values, recomputed and printed (μ, β, σ), discrepancies.
+
+        Returns
+        -------
+        dict
+            The fields in SI units, ``mu``/``beta``/``sigma`` (None for an incomplete row),
+            ``printed`` and ``discrepancies``.
+        """
         p = self.params
         return {
             "name": self.name,
@@ -236,10 +272,27 @@ def get_device(name: str) -> CatalogueEntry:
     Matching is case-insensitive and ignores spaces and punctuation other than
     dots; an unambiguous prefix (``"phantom"``, ``"impulse"``) is enough.
 
+    Parameters
+    ----------
+    name : str
+        Device name or unambiguous prefix (``dfa devices`` lists them).
+
+    Returns
+    -------
+    CatalogueEntry
+        The matching row; ``.device`` is its :class:`Device`.
+
     Raises
     ------
     DFAValueError
         For an unknown or ambiguous name, listing the closest names.
+    DFATypeError
+        If ``name`` is not a string.
+
+    See Also
+    --------
+    catalogue : All rows.
+    resolve_device : A catalogue device with values replaced, or a custom device.
     """
     if not isinstance(name, str):
         raise DFATypeError(f"device = {name!r} has type {type(name).__name__}: it must be a device name (str)")
@@ -339,11 +392,17 @@ def resolve_device(
     Returns
     -------
     ResolvedDevice
+        The device, its stiffness and (when unchanged) the catalogue row.
 
     Raises
     ------
     DFAValueError, DFATypeError
         Unknown name, missing or out-of-range value, ``counts`` with ``resolution``, (μ, β, σ) a float cannot hold.
+
+    See Also
+    --------
+    get_device : A catalogue row by name.
+    Device : A physical device from its five values.
 
     Examples
     --------

@@ -114,7 +114,15 @@ class ContourMaps:
     def plot(self, ax=None):
         """Amplitude and frequency of both families (:func:`dfa.plotting.contour_plot`, paper Fig. 7).
 
-        ``ax``: a pair of Axes (default: new figure). Returns the pair.
+        Parameters
+        ----------
+        ax : pair of matplotlib.axes.Axes, optional
+            Axes for the amplitude and the frequency panels; a new figure when None.
+
+        Returns
+        -------
+        pair of matplotlib.axes.Axes
+            The axes drawn on.
         """
         from .plotting import contour_plot
 
@@ -125,6 +133,11 @@ class ContourMaps:
 
         One variable per array (amplitudes in ticks, frequencies in rad/sample; NaN where a
         family does not exist); attributes hold μ, ``max_amplitude`` and the status.
+
+        Returns
+        -------
+        xarray.Dataset
+            The maps with coordinates ``sigma`` and ``beta``.
 
         Raises
         ------
@@ -159,7 +172,18 @@ class ContourMaps:
         )
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write all maps to a ``.npz`` file (see :func:`load_contours`)."""
+        """Write all maps to a ``.npz`` file (see :func:`load_contours`), atomically.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            File to write; ``.npz`` is appended when it has another suffix.
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
+        """
         p = Path(path)
         p = p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
         with atomic_open(p, "wb") as fh:  # never a half-written file (dfa._io)
@@ -169,7 +193,13 @@ class ContourMaps:
         return p
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready summary: grid and how many points carry each family."""
+        """JSON-ready summary: grid and how many points carry each family.
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: μ, grid, counts per family, status and detail.
+        """
         return to_jsonable(
             {
                 "mu": self.mu,
@@ -294,6 +324,23 @@ def contour_maps(
         Largest amplitude (ticks) searched for the exact large family (>= 1).
     progress : bool
         Show a tqdm progress bar (one step per β column) with an estimate of the time left, on stderr.
+
+    Returns
+    -------
+    ContourMaps
+        Amplitude (ticks) and frequency (rad per sample) of the small and large families, exact and
+        closed-form, NaN where a family does not exist; ``.plot()`` draws them.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an input is out of range or not a number, or the maps would not fit in memory.
+
+    See Also
+    --------
+    limit_cycles : The cycles at one point.
+    small_cycle_closed_form, large_cycle_closed_form : The closed forms at one point.
+    stability_map : The simulated outcome over the same plane.
     """
     m = check_mu(mu)
     b0, b1 = _check_range("beta_range", beta_range)

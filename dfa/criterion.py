@@ -204,6 +204,15 @@ class CriticalLine:
     the (energy-equivalent) speed and σ₀ = ½ with quantization, 0 without. Points
     on or above it satisfy the first inequality of the criterion (eq. 6 for d = 0).
 
+    Attributes
+    ----------
+    xi_dot : float
+        The (energy-equivalent) speed V in ticks per sample, made non-negative; the slope is −V.
+    sigma0 : float
+        σ₀: ½ with quantization (eq. 6), 0 without (eq. 7).
+    delay : int
+        Computational delay d in samples; the line meets σ = σ₀ at β = ½ + d.
+
     Examples
     --------
     >>> line = CriticalLine(xi_dot=2.0)
@@ -224,12 +233,31 @@ class CriticalLine:
 
     @property
     def beta0(self) -> float:
-        """β where the line meets σ = σ₀: ½ + d (eq. 10; Diolaiti et al. 2006 for d > 0)."""
+        """The β where the line meets σ = σ₀: ½ + d (eq. 10; Diolaiti et al. 2006 for d > 0)."""
         return float(_anchor(True, self.delay)[1])
 
     @classmethod
     def of(cls, xi_dot: float, *, quantized: bool = True, delay: int = 0) -> CriticalLine:
         """The line of the criterion with (eq. 6) or without (eq. 7) quantization: σ₀ = ½ or 0.
+
+        Parameters
+        ----------
+        xi_dot : float
+            The (energy-equivalent) speed V in ticks per sample; its sign is ignored.
+        quantized : bool, optional
+            True (default) for σ₀ = ½ (eq. 6); False for σ₀ = 0 (eq. 7).
+        delay : int, optional
+            Computational delay d in samples (default 0).
+
+        Returns
+        -------
+        CriticalLine
+            The line through (½ + d, σ₀) with slope −V.
+
+        Raises
+        ------
+        DFAValueError, DFATypeError
+            If the speed is not a finite number or the delay not a whole number >= 0.
 
         Examples
         --------
@@ -240,16 +268,37 @@ class CriticalLine:
 
     @property
     def slope(self) -> float:
-        """dσ/dβ of the line, −V."""
+        """The slope dσ/dβ of the line, −V."""
         return -self.xi_dot
 
     def sigma(self, beta: float | np.ndarray) -> float | np.ndarray:
-        """σ on the line at ``beta`` (vectorised): σ₀ + V(β₀ − β), where :meth:`margin` is 0."""
+        """The σ on the line at ``beta`` (vectorised): σ₀ + V(β₀ − β), where :meth:`margin` is 0.
+
+        Parameters
+        ----------
+        beta : float or numpy.ndarray
+            Dimensionless damping β.
+
+        Returns
+        -------
+        float or numpy.ndarray
+            The σ of the line, a float for a scalar ``beta``.
+        """
         out = self.sigma0 + self.xi_dot * (self.beta0 - np.asarray(beta, dtype=float))
         return float(out) if out.ndim == 0 else out
 
     def margin(self, beta, sigma) -> float | np.ndarray:
         """(β − β₀)V + (σ − σ₀) at (β, σ) (vectorised): >= 0 on or above the line (eq. 6, 10).
+
+        Parameters
+        ----------
+        beta, sigma : float or array_like
+            Dimensionless damping β and Coulomb friction σ (broadcast together).
+
+        Returns
+        -------
+        float or numpy.ndarray
+            The margin, a float for scalar inputs.
 
         Examples
         --------
@@ -271,7 +320,7 @@ class CriterionResult:
     beta, sigma : float
         Dimensionless damping and Coulomb friction (inputs).
     xi_dot : float
-        Speed |ξ'0| in encoder ticks per sample (input, made non-negative).
+        Speed abs(ξ'0) in encoder ticks per sample (input, made non-negative).
     quantized : bool
         True for eq. 6 (with the encoder), False for eq. 7 (Δ → 0).
     region : str
@@ -285,11 +334,11 @@ class CriterionResult:
         Eq. 12 generalised: the largest energy-equivalent speed V for which
         the criterion holds, (σ − σ₀)/(½ + d − β), when β < ½ + d and σ >= σ₀;
         None when it does not exist (regions a, b, c). With ξ0 = 0 it is the
-        critical initial speed |ξ'0|.
+        critical initial speed abs(ξ'0).
     critical_line : CriticalLine
         The line of eq. 10 for this speed and delay.
     equivalent_speed : float
-        V = sqrt(ξ'0² + 2H_c(ξ0)/μ) (ticks per sample); V = |ξ'0| when ξ0 = 0.
+        V = sqrt(ξ'0² + 2H_c(ξ0)/μ) (ticks per sample); V = abs(ξ'0) when ξ0 = 0.
     delay : int
         Computational delay d in samples.
     xi0 : float
@@ -324,7 +373,14 @@ class CriterionResult:
     position: float | None = None
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready summary (the ``dfa check --json`` contract plus extras)."""
+        """JSON-ready summary (the ``dfa check --json`` contract plus extras).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: region, verdict, margin, inputs, status and its message, and the
+            physical values when set by :func:`device_criterion`.
+        """
         out: dict[str, object] = {
             "region": self.region,
             "passive": self.passive,
@@ -371,7 +427,20 @@ class CriterionResult:
             )
 
     def plot(self, ax=None, **kwargs):
-        """The (β, σ) plane with regions a-e and this point (:func:`dfa.plotting.regions_plot`); returns the Axes."""
+        """The (β, σ) plane with regions a-e and this point (:func:`dfa.plotting.regions_plot`); returns the Axes.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+        **kwargs
+            Passed on to :func:`dfa.plotting.regions_plot`.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
         from .plotting import regions_plot
 
         return regions_plot(self, ax, **kwargs)
@@ -383,10 +452,33 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
     ``xi_dot`` is the (energy-equivalent) speed V; every argument, including
     ``quantized`` and ``delay`` (whole samples >= 0), may be an array.
 
+    Parameters
+    ----------
+    beta : array_like
+        Dimensionless viscous damping β.
+    sigma : array_like
+        Dimensionless Coulomb friction σ.
+    xi_dot : array_like
+        The (energy-equivalent) speed V in ticks per sample; its sign is ignored.
+    quantized : bool or array_like of bool, optional
+        True (default) for eq. 6 (σ₀ = ½); False for eq. 7 (σ₀ = 0).
+    delay : int or array_like of int, optional
+        Computational delay d in samples (default 0).
+
     Returns
     -------
     numpy.ndarray of str
         Region letters with the broadcast shape of the inputs.
+
+    Raises
+    ------
+    DFAValueError
+        If a delay is not a whole number >= 0.
+
+    See Also
+    --------
+    passivity_criterion : The verdict, margin and critical speed for one point.
+    REGION_DESCRIPTIONS : What each region letter means.
 
     Examples
     --------
@@ -465,6 +557,19 @@ def passivity_criterion(
     Returns
     -------
     CriterionResult
+        Region, verdict, margin, critical speed and line, with the inputs and a ``status``.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If β, σ or μ is out of range or not a number, the speed or position is not a finite number,
+        the delay is not a whole number >= 0, or ``xi0`` is not 0 without ``mu``.
+
+    See Also
+    --------
+    device_criterion : The same criterion from physical values.
+    classify_region : The region letter over arrays of (β, σ, V, d).
+    CriticalLine : The line of eq. 10.
     """
     b = check_beta(beta)
     s = check_sigma(sigma)
@@ -519,6 +624,23 @@ def device_criterion(
         Initial position x0 in m (rotary: rad), default 0; ξ0 = x0/Δ.
     quantized : bool, optional
         True (default) for eq. 6; False for eq. 7.
+
+    Returns
+    -------
+    CriterionResult
+        As :func:`passivity_criterion`, with ``device``, ``stiffness``, ``velocity``,
+        ``critical_velocity`` (m/s, rotary rad/s) and ``position`` set.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If the stiffness is not > 0, the speed or position is not a finite number, the delay is
+        not a whole number >= 0, or (μ, β, σ) cannot be held in a float.
+
+    See Also
+    --------
+    passivity_criterion : The criterion in dimensionless parameters.
+    stiffness_limits : The largest passive stiffness and the classic bounds.
 
     Examples
     --------

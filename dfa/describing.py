@@ -219,6 +219,17 @@ def quantizer_df(amplitude):
     float or numpy.ndarray
         D(M), dimensionless (force ticks per position tick); real because the
         quantizer is odd and static.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an amplitude is not a finite number > 0.
+
+    See Also
+    --------
+    quantizer_df_inverse : The amplitudes at which D takes a given value.
+    quantizer_df_peak : The maximum of D over M >= 1.
+    QuantizerNonlinearity : The quantizer for python-control.
     """
     m = _amplitudes(amplitude)
     level, _dlevel = _level_functions()
@@ -276,7 +287,7 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
 
     D is 2/(πM) on (0, 1] and unimodal on each [n, n + 1] (minimum at the
     integers, maximum near n + 0.30), so each interval holds at most two roots,
-    found by bracketing. Beyond ⌊M⌋ = (DF_ENVELOPE/|gain − 1|)^{2/3} no root
+    found by bracketing. Beyond ⌊M⌋ = (DF_ENVELOPE/abs(gain − 1))^{2/3} no root
     exists; the search stops there, at ``max_amplitude`` or after
     ``INVERSE_MAX_INTERVALS`` intervals (then ``complete`` is False). A compiled
     Brent solve that does not converge gives ``complete=False`` and a
@@ -297,6 +308,20 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
         False when roots may exist beyond ``max_amplitude`` or the interval
         budget (only when ``gain`` is within DF_ENVELOPE·max_amplitude^{-3/2} of 1),
         or when an interval could not be solved.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``gain`` or ``max_amplitude`` is not a finite number > 0.
+
+    Warns
+    -----
+    RuntimeWarning
+        When an interval could not be solved (``complete`` is then False).
+
+    See Also
+    --------
+    quantizer_df : D(M) itself.
 
     Examples
     --------
@@ -347,6 +372,17 @@ def _df_inverse_counted(g: float, mmax: float) -> tuple[np.ndarray, bool, int]:
 def quantizer_df_peak() -> tuple[float, float]:
     """(M, D) of the maximum of eq. 41 over M >= 1: D ≈ 1.1206 at M ≈ 1.242.
 
+    Returns
+    -------
+    amplitude : float
+        The amplitude M of the peak, in ticks.
+    value : float
+        D at that amplitude (dimensionless).
+
+    See Also
+    --------
+    quantizer_df : D(M) itself.
+
     Examples
     --------
     >>> m, d = quantizer_df_peak()
@@ -365,6 +401,21 @@ def coulomb_df(amplitude, sigma: float):
         Velocity amplitude A > 0 (ticks per sample).
     sigma : float
         Dimensionless Coulomb friction σ >= 0.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The describing function (dimensionless), a float for a scalar amplitude.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an amplitude is not a finite number > 0 or σ is out of range.
+
+    See Also
+    --------
+    coulomb_equivalent_damping : The same friction as a viscous damping.
+    CoulombNonlinearity : The friction for python-control.
     """
     a = _amplitudes(amplitude, "amplitude")
     s = check_sigma(sigma)
@@ -385,6 +436,20 @@ def coulomb_equivalent_damping(sigma: float, amplitude, omega):
         Position amplitude M > 0 in ticks.
     omega : float or array_like
         Frequency ω > 0 in rad per sample.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The equivalent dimensionless damping, broadcast over ``amplitude`` and ``omega``.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an amplitude or frequency is not a finite number > 0 or σ is out of range.
+
+    See Also
+    --------
+    coulomb_df : The describing function at velocity amplitude Mω.
     """
     m = _amplitudes(amplitude)
     w = _amplitudes(omega, "omega")
@@ -421,6 +486,21 @@ def numeric_df(f: Callable[[np.ndarray], np.ndarray], amplitude, jumps: Sequence
         Positive inputs where ``f`` is discontinuous.
     tol : float, optional
         Absolute and relative tolerance of the quadrature.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The ratio b1/M at each amplitude, a float for a scalar amplitude.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an amplitude is not a finite number > 0.
+
+    See Also
+    --------
+    quantizer_df : The closed form for the encoder quantizer.
+    coulomb_df : The closed form for Coulomb friction.
 
     Examples
     --------
@@ -486,7 +566,18 @@ class QuantizerNonlinearity(control.DescribingFunctionNonlinearity):
         return True
 
     def describing_function(self, A):
-        """Exact D(A) of eq. 41 (real), vectorised over the amplitude A > 0 in ticks."""
+        """Exact D(A) of eq. 41 (real), vectorised over the amplitude A > 0 in ticks.
+
+        Parameters
+        ----------
+        A : float or array_like
+            Amplitude of the position sinusoid in ticks, > 0.
+
+        Returns
+        -------
+        float or numpy.ndarray
+            D(A), as :func:`quantizer_df`.
+        """
         return quantizer_df(A)
 
 
@@ -519,5 +610,16 @@ class CoulombNonlinearity(control.DescribingFunctionNonlinearity):
         return True
 
     def describing_function(self, A):
-        """4σ/(πA), vectorised over the velocity amplitude A > 0."""
+        """Return 4σ/(πA), vectorised over the velocity amplitude A > 0.
+
+        Parameters
+        ----------
+        A : float or array_like
+            Amplitude of the velocity sinusoid in ticks per sample, > 0.
+
+        Returns
+        -------
+        float or numpy.ndarray
+            The describing function, as :func:`coulomb_df`.
+        """
         return coulomb_df(A, self.sigma)

@@ -129,7 +129,18 @@ class DesignAnalysis:
         object.__setattr__(self, "status", DesignStatus.coerce(self.status))
 
     def threshold(self, model: str) -> GrowthThreshold:
-        """The growth threshold of loop model ``model`` (``"half-delay"`` or ``"zoh"``)."""
+        """The growth threshold of loop model ``model`` (``"half-delay"`` or ``"zoh"``).
+
+        Parameters
+        ----------
+        model : {"half-delay", "zoh"}
+            Loop model of the describing-function analysis.
+
+        Returns
+        -------
+        GrowthThreshold
+            The growth band of that model.
+        """
         return dict(self.thresholds)[model]
 
     @property
@@ -138,7 +149,13 @@ class DesignAnalysis:
         return None if self.simulated_xi_dot is None else self.device.velocity(self.simulated_xi_dot)
 
     def as_dict(self) -> dict[str, object]:
-        """The numbers the report states, strict JSON data (SI units; speeds also in ticks/sample)."""
+        """The numbers the report states, strict JSON data (SI units; speeds also in ticks/sample).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: device, inputs and every analysis of the report, with the status.
+        """
         return to_jsonable(
             {
                 "device": self.device.as_dict(),
@@ -261,6 +278,7 @@ def design_analysis(
     Returns
     -------
     DesignAnalysis
+        Every number the design report states (frozen, JSON-able with ``as_dict()``).
 
     Raises
     ------
@@ -269,7 +287,8 @@ def design_analysis(
 
     See Also
     --------
-    dfa.report.design_report : this analysis rendered as Markdown and/or HTML.
+    dfa.report.design_report : This analysis rendered as Markdown and/or HTML.
+    design_answer : The largest stiffness four ways, for the design question alone.
 
     Examples
     --------

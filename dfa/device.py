@@ -61,7 +61,13 @@ class Params:
         object.__setattr__(self, "sigma", check_sigma(self.sigma))
 
     def as_dict(self) -> dict[str, float]:
-        """Return ``{"mu": μ, "beta": β, "sigma": σ}``."""
+        """Return the three groups as a dictionary.
+
+        Returns
+        -------
+        dict
+            ``{"mu": μ, "beta": β, "sigma": σ}`` (plain floats, JSON-able).
+        """
         return {"mu": self.mu, "beta": self.beta, "sigma": self.sigma}
 
 
@@ -154,6 +160,16 @@ class Device:
         ----------
         stiffness : float
             Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+
+        Returns
+        -------
+        Params
+            The groups μ = m/(K T²), β = b/(K T), σ = c/(K Δ).
+
+        Raises
+        ------
+        DFAValueError
+            If ``stiffness`` is not a finite number > 0, or a group overflows or vanishes in a float.
         """
         k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
         return dimensionless_params(self, k)
@@ -162,6 +178,21 @@ class Device:
         """Dimensionless speed ξ' = ẋ T/Δ (encoder ticks per sample) of a physical speed.
 
         Independent of the stiffness K (spec section 2).
+
+        Parameters
+        ----------
+        velocity : float
+            Physical speed ẋ in m/s (rotary: rad/s); its sign is kept.
+
+        Returns
+        -------
+        float
+            The speed ξ' in encoder ticks per sample.
+
+        Raises
+        ------
+        DFAValueError
+            If ``velocity`` is not a finite number or ξ' overflows a float.
         """
         v = check_real("velocity", velocity, "give the speed in m/s (rotary: rad/s)")
         out = v * self.period / self.resolution
@@ -173,7 +204,23 @@ class Device:
         return out
 
     def velocity(self, xi_dot: float) -> float:
-        """Physical speed ẋ = ξ' Δ/T (m/s or rad/s) of a dimensionless speed."""
+        """Physical speed ẋ = ξ' Δ/T (m/s or rad/s) of a dimensionless speed.
+
+        Parameters
+        ----------
+        xi_dot : float
+            Dimensionless speed ξ' in encoder ticks per sample; its sign is kept.
+
+        Returns
+        -------
+        float
+            The speed ẋ in m/s (rotary: rad/s).
+
+        Raises
+        ------
+        DFAValueError
+            If ``xi_dot`` is not a finite number or ẋ overflows a float.
+        """
         xd = check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample")
         out = xd * self.resolution / self.period
         if not math.isfinite(out):
@@ -184,13 +231,39 @@ class Device:
         return out
 
     def stiffness_for_mu(self, mu: float) -> float:
-        """The stiffness K (N/m) at which μ = m/(K T²) takes the value ``mu``."""
+        """The stiffness K (N/m) at which μ = m/(K T²) takes the value ``mu``.
+
+        Parameters
+        ----------
+        mu : float
+            Dimensionless mass μ, > 0.
+
+        Returns
+        -------
+        float
+            K = m/(μ T²) in N/m (rotary: N·m/rad).
+        """
         return self.mass / (check_mu(mu) * self.period**2)
 
     def stiffness_for_beta(self, beta: float) -> float:
         """The stiffness K (N/m) at which β = b/(K T) takes the value ``beta``.
 
         For β = ½ this is the Colgate-Schenkel bound 2b/T (paper eq. 8).
+
+        Parameters
+        ----------
+        beta : float
+            Dimensionless damping β, > 0.
+
+        Returns
+        -------
+        float
+            K = b/(β T) in N/m (rotary: N·m/rad).
+
+        Raises
+        ------
+        DFAValueError
+            If ``beta`` is not > 0 or the device has no damping (b = 0).
         """
         b = check_positive("beta", beta, "β must be > 0 to solve for K")
         if self.damping == 0.0:
@@ -204,6 +277,21 @@ class Device:
         """The stiffness K (N/m) at which σ = c/(K Δ) takes the value ``sigma``.
 
         For σ = ½ this is the static bound 2c/Δ (paper eq. 9).
+
+        Parameters
+        ----------
+        sigma : float
+            Dimensionless Coulomb friction σ, > 0.
+
+        Returns
+        -------
+        float
+            K = c/(σ Δ) in N/m (rotary: N·m/rad).
+
+        Raises
+        ------
+        DFAValueError
+            If ``sigma`` is not > 0 or the device has no Coulomb friction (c = 0).
         """
         s = check_positive("sigma", sigma, "σ must be > 0 to solve for K")
         if self.coulomb == 0.0:
@@ -214,7 +302,13 @@ class Device:
         return self.coulomb / (s * self.resolution)
 
     def as_dict(self) -> dict[str, object]:
-        """Physical values in SI units, with name and kind."""
+        """Physical values in SI units, with name and kind.
+
+        Returns
+        -------
+        dict
+            ``name``, ``rotary``, ``mass``, ``damping``, ``coulomb``, ``resolution``, ``period``.
+        """
         return {
             "name": self.name,
             "rotary": self.rotary,

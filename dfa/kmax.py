@@ -384,10 +384,17 @@ class KMaxResult:
 
     @property
     def searches(self) -> dict[str, KSearch]:
+        """The three searched limits by name: ``k_df``, ``k_sim`` and ``k_sim_rest``."""
         return {"k_df": self.k_df, "k_sim": self.k_sim, "k_sim_rest": self.k_sim_rest}
 
     def evidence_text(self) -> str:
-        """How the simulated limits were found, in one sentence."""
+        """How the simulated limits were found, in one sentence.
+
+        Returns
+        -------
+        str
+            The number of runs, the impact speeds and stiffness range (device units), run lengths and hold model.
+        """
         u = self.device.units["velocity"]
         sp = ", ".join(f"{v:.3g}" for v in self.speeds)
         return (
@@ -398,7 +405,13 @@ class KMaxResult:
         )
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record: the four limits (null with a reason), the bounds, the evidence."""
+        """JSON-ready record: the four limits (null with a reason), the bounds, the evidence.
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: the limits, bounds, evidence, assessment, status and its message.
+        """
         out: dict[str, object] = {
             "device": self.device.name,
             "velocity": self.velocity,
@@ -474,12 +487,16 @@ def design_answer(
     Parameters
     ----------
     device : Device
+        The physical device.
     velocity : float
         Impact speed V in m/s (rotary: rad/s), > 0 (sign ignored).
     delay : int, optional
         Computational delay d in samples.
     stiffness : float, optional
         A stiffness K (N/m; N·m/rad) to assess as well; ``stiffness_source`` says where it came from.
+    stiffness_source : str, optional
+        Where ``stiffness`` came from, for the assessment's wording: ``"given"`` (default) or
+        ``"catalogue"``.
     speeds : int, optional
         Number of impact speeds simulated: V/speeds, 2V/speeds, …, V (default 6), each with two starts.
     grid : int, optional
@@ -493,6 +510,20 @@ def design_answer(
     Returns
     -------
     KMaxResult
+        K_max by the criterion, the describing function and simulation (to rest and without
+        instability), the classic bounds, the evidence and, with ``stiffness``, its assessment.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, the speed is not a finite number > 0, or another
+        input is out of range.
+
+    See Also
+    --------
+    stiffness_limits : The closed-form limits alone (fast).
+    stiffness_speed_chart : The same limits over a range of speeds.
+    design_analysis : Everything the design report states.
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))

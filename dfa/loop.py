@@ -182,6 +182,17 @@ def loop_response(
     -------
     complex or numpy.ndarray of complex
         L with the broadcast shape of ``omega`` and ``amplitude``.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``params`` is not :class:`Params`, a frequency or amplitude is not a finite number > 0, the
+        model is unknown, or the delay or Padé order is not a valid whole number.
+
+    See Also
+    --------
+    loop_system : The same loop as a python-control system.
+    nyquist_locus_response : The loop against the critical locus −1/D(M).
     """
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
@@ -239,6 +250,38 @@ def loop_system(
     linearised at the given ``amplitude`` and ``omega`` (eq. 40); the FRD only
     needs the amplitude, because the Coulomb term adds j·4σ/(πM) to 1/G at
     every frequency.
+
+    Parameters
+    ----------
+    params : Params
+        Dimensionless device (μ, β, σ).
+    amplitude : float, optional
+        Cycle amplitude M in ticks at which the Coulomb friction is linearised (needed when σ > 0).
+    omega : float, optional
+        Frequency ω in rad per sample at which the rational models linearise the friction (σ > 0).
+    model : {"pade", "zoh", "half-delay"}
+        Model of the zero-order hold (module docstring); default ``"pade"``.
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
+    pade_order : int, optional
+        Order of the Padé approximation for ``model="pade"`` (default 4).
+    omega_grid : array_like, optional
+        Frequencies in rad per sample of the ``"half-delay"`` FRD; default 2000 points from 1e-3 to π.
+
+    Returns
+    -------
+    control.TransferFunction or control.FrequencyResponseData
+        Continuous (``"pade"``) or discrete with dt = 1 (``"zoh"``) transfer function, or the FRD.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``params`` is not :class:`Params`, a frequency or amplitude is invalid, the model is
+        unknown, or the delay or Padé order is not a valid whole number.
+
+    See Also
+    --------
+    loop_response : The frequency response itself, vectorised.
     """
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
@@ -322,7 +365,13 @@ class NyquistLocusResponse:
         object.__setattr__(self, "crossings", tuple(self.crossings))
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record: inputs, crossings (M, ω, point) and the curves (complex as ``{"re", "im"}``)."""
+        """JSON-ready record: inputs, crossings (M, ω, point) and the curves (complex as ``{"re", "im"}``).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: inputs, crossings, curves, locus, status and detail.
+        """
         return to_jsonable(
             {
                 "mu": self.params.mu,
@@ -343,7 +392,20 @@ class NyquistLocusResponse:
         )
 
     def plot(self, ax=None, **kwargs):
-        """Nyquist plot against the critical locus (:func:`dfa.plotting.nyquist_plot`, paper Fig. 6); returns the Axes."""
+        """Nyquist plot against the critical locus (:func:`dfa.plotting.nyquist_plot`, paper Fig. 6); returns the Axes.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+        **kwargs
+            Passed on to :func:`dfa.plotting.nyquist_plot`.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
         from .plotting import nyquist_plot
 
         return nyquist_plot(self, ax, **kwargs)
@@ -392,8 +454,29 @@ def nyquist_locus_response(
         when σ > 0 (one curve per amplitude), ignored when σ = 0.
     omega : array_like, optional
         Frequencies (rad per sample); default 2000 points from 1e-3 to π.
+    model : {"half-delay", "pade", "zoh"}
+        Model of the zero-order hold (see :func:`loop_response`).
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
+    pade_order : int, optional
+        Order of the Padé approximation for ``model="pade"`` (default 4).
     locus_amplitude : array_like, optional
         Amplitudes of the critical locus; default 0.05 to 50 ticks.
+
+    Returns
+    -------
+    NyquistLocusResponse
+        The curves, the locus and (σ = 0) the crossings from the limit-cycle solver; ``.plot()`` draws them.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an input is invalid, or σ > 0 and no ``amplitudes`` are given.
+
+    See Also
+    --------
+    loop_response : The loop's frequency response.
+    limit_cycles : The harmonic-balance solutions the crossings come from.
 
     Examples
     --------

@@ -154,7 +154,17 @@ class StabilityMap:
     def plot(self, ax=None, **kwargs):
         """Outcome per (β, σ), one panel per speed (:func:`dfa.plotting.stability_map_plot`, paper Fig. 4).
 
-        ``ax``: a sequence of Axes, one per speed (default: new figure). Returns the list of Axes.
+        Parameters
+        ----------
+        ax : sequence of matplotlib.axes.Axes, optional
+            One Axes per speed; a new figure when None.
+        **kwargs
+            Passed on to :func:`dfa.plotting.stability_map_plot`.
+
+        Returns
+        -------
+        list of matplotlib.axes.Axes
+            The axes drawn on, one per speed.
         """
         from .plotting import stability_map_plot
 
@@ -165,6 +175,11 @@ class StabilityMap:
 
         Variables ``outcome`` (codes, ``flag_meanings`` names them), ``amplitude`` (ticks) and
         ``frequency`` (rad/sample); attributes hold μ, the settings and the status.
+
+        Returns
+        -------
+        xarray.Dataset
+            The map with coordinates ``xi_dot`` (ticks per sample), ``sigma`` and ``beta``.
 
         Raises
         ------
@@ -199,11 +214,23 @@ class StabilityMap:
         )
 
     def counts(self) -> list[dict[str, int]]:
-        """Number of grid points per outcome, one dict per initial speed."""
+        """Number of grid points per outcome, one dict per initial speed.
+
+        Returns
+        -------
+        list of dict
+            ``{outcome name: count}`` for each initial speed, in the order of ``xi_dots``.
+        """
         return [{name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES)} for o in self.outcome]
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready summary (grid, settings and counts per speed)."""
+        """JSON-ready summary (grid, settings and counts per speed).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: μ, speeds, grid, settings, counts per speed, status and its message.
+        """
         return to_jsonable(
             {
                 "mu": self.mu,
@@ -226,6 +253,16 @@ class StabilityMap:
 
         ``.npz`` is appended when ``path`` has another suffix (numpy's rule);
         the path written is returned.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            File to write.
+
+        Returns
+        -------
+        pathlib.Path
+            The path written (with the ``.npz`` suffix).
         """
         p = Path(path)
         p = p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
@@ -246,7 +283,29 @@ class StabilityMap:
 
 
 def load_map(path: str | os.PathLike) -> StabilityMap:
-    """Read a map written by :meth:`StabilityMap.save` (codes mapped through the file's ``outcome_names``)."""
+    """Read a map written by :meth:`StabilityMap.save` (codes mapped through the file's ``outcome_names``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by :meth:`StabilityMap.save`.
+
+    Returns
+    -------
+    StabilityMap
+        The map as it was saved.
+
+    Raises
+    ------
+    DFAValueError
+        If the file is missing, incomplete, written by an older dfa or names unknown outcomes.
+    DFATypeError
+        If ``path`` is not a path.
+
+    See Also
+    --------
+    stability_map : Compute a map.
+    """
     if not isinstance(path, (str, os.PathLike)):
         raise DFATypeError(
             f"path = {_fmt(path)} has type {type(path).__name__}: it must be the path of a .npz map file"
@@ -386,6 +445,13 @@ def stability_map(
     samples : int
         Samples per run (paper: 5·10⁴, 50 s at 1 kHz). Fixed for the whole
         grid; points that need longer are ``"undecided"``.
+    delay : int, optional
+        Computational delay d in samples (default 0).
+    quantize : bool, optional
+        True (default): the encoder quantizes the position; False: the linear spring.
+    preload : bool, optional
+        Start from the spring preload of each speed (:func:`preload_position`) at rest, instead of
+        from ξ0 = 0 with speed ξ'0 (default False).
     n_jobs : int
         Workers (-1: all cores; 1: in this thread). The result does not depend on it.
     backend : {"threads", "processes", "joblib"}
@@ -394,12 +460,24 @@ def stability_map(
         (dask). The result does not depend on it.
     progress : bool
         Show a tqdm progress bar.
-    bound, stable_amplitude, growth, settle
+    bound, stable_amplitude, growth, settle : float, optional
         Outcome rules, as in :func:`dfa.simulate`.
 
     Returns
     -------
     StabilityMap
+        Outcome, amplitude and frequency of every point for each speed; ``.plot()`` draws it.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an input is out of range or not a number, or the map would not fit in memory.
+
+    See Also
+    --------
+    simulate : One point of the map.
+    contour_maps : The describing-function cycles over the same plane.
+    load_map : Read a saved map.
     """
     m = check_mu(mu)
     speeds = _check_speeds(xi_dots)

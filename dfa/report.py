@@ -249,11 +249,16 @@ def design_report(
     Returns
     -------
     ReportResult
+        Paths of the files and figures written, the numbers stated, the analysis and a status.
 
     Raises
     ------
     DFAValueError
         Bad inputs (see :func:`dfa.design.design_analysis`), a missing folder, or a report of other inputs in the way.
+
+    See Also
+    --------
+    design_analysis : The numbers of the report, without rendering or files.
     """
     fmt = check_choice("fmt", fmt, ("html", "md", "both"))
     check_int("map_grid", map_grid, minimum=2, fix="use at least 2 points per axis")

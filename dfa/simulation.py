@@ -164,6 +164,29 @@ def preload_position(mu: float, xi_dot: float) -> float:
     H_c is linear on each cell [k, k + 1) with slope k + ½ and H_c(k) = k²/2,
     so ξ0 = k + (E − k²/2)/(k + ½) with E = ½μξ'0² and k the cell holding E.
 
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(K T²), > 0.
+    xi_dot : float
+        Speed ξ'0 in ticks per sample; its sign is ignored.
+
+    Returns
+    -------
+    float
+        The preload ξ0 in ticks, >= 0.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If μ is not a finite number > 0, the speed is not a finite number, or the kinetic energy
+        overflows a float.
+
+    See Also
+    --------
+    simulate : Start a run from this position (``xi0``).
+    passivity_criterion : The criterion with an initial position.
+
     Examples
     --------
     >>> preload_position(1.0, 1.0)          # E = ½ = H_c(1)
@@ -358,7 +381,7 @@ class SimulationResult:
         of the levels ⌊ξ⌋ read at the tail's sample instants (of ξ without
         quantization); 0 at rest, inf past the bound.
     envelope : tuple of float
-        Peak |ξ| (ticks, at the sample instants) of each eighth of the run;
+        Peak abs(ξ) (ticks, at the sample instants) of each eighth of the run;
         the growth and settling rules read it.
     suggested_samples : int or None
         For ``"undecided"``: a run length to try (at least 4 × samples).
@@ -410,6 +433,18 @@ class SimulationResult:
     def plot(self, ax=None, **kwargs):
         """Displacement against time (:func:`dfa.plotting.trajectory_plot`, paper Fig. 5); returns the Axes.
 
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+        **kwargs
+            Passed on to :func:`dfa.plotting.trajectory_plot`.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+
         Raises
         ------
         DFAValueError
@@ -431,12 +466,27 @@ class SimulationResult:
     def physical(self, device, stiffness: float) -> dict[str, object]:
         """Force step and frequency in physical units for a :class:`~dfa.device.Device` at stiffness K.
 
-        Returns ``force_peak_to_peak_si`` (``force_peak_to_peak`` × KΔ, in N;
-        N·m for a rotary device), ``force_unit``, ``frequency_hz`` (ω/(2πT),
-        None when not measured) and ``amplitude_si`` (amplitude × Δ, m or rad),
-        and the unit-named keys of :mod:`dfa.units` (``amplitude_m``, ``period_s``,
-        ``force_peak_to_peak_n``, ``force_step_n``, …; rad and N·m for a rotary
-        device) with the device and K.
+        Parameters
+        ----------
+        device : Device
+            The physical device.
+        stiffness : float
+            Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+
+        Returns
+        -------
+        dict
+            ``force_peak_to_peak_si`` (``force_peak_to_peak`` × KΔ, in N;
+            N·m for a rotary device), ``force_unit``, ``frequency_hz`` (ω/(2πT),
+            None when not measured) and ``amplitude_si`` (amplitude × Δ, m or rad),
+            and the unit-named keys of :mod:`dfa.units` (``amplitude_m``, ``period_s``,
+            ``force_peak_to_peak_n``, ``force_step_n``, …; rad and N·m for a rotary
+            device) with the device and K.
+
+        Raises
+        ------
+        DFAValueError, DFATypeError
+            If the stiffness is not a finite number > 0.
         """
         k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
         u = device.units
@@ -463,7 +513,14 @@ class SimulationResult:
         }
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready summary (the ``dfa simulate --json`` contract plus extras)."""
+        """JSON-ready summary (the ``dfa simulate --json`` contract plus extras).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: outcome and its message, the measurements and inputs, and the
+            trajectory when recorded (non-finite values become null, with the reason).
+        """
         return to_jsonable(  # non-finite values become null, with the reason (dfa.jsonable)
             {
                 "outcome": self.outcome,
@@ -589,7 +646,7 @@ def simulate(
     energy : bool, optional
         Keep the per-sample energy bookkeeping (off the fast path).
     bound : float, optional
-        |ξ| (ticks) beyond which the run is declared unstable and stopped.
+        Position abs(ξ) (ticks) beyond which the run is declared unstable and stopped.
     stable_amplitude : float, optional
         Tail amplitude (ticks) below which a settled cycle is ``"chatter"``
         rather than ``"oscillating"``.
@@ -607,6 +664,20 @@ def simulate(
     Returns
     -------
     SimulationResult
+        The outcome (rest, chatter, oscillating, unstable, undecided), the measured cycle and,
+        with ``record``, the trajectory; ``.plot()`` draws it.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an input is out of range or not a number, ``bound`` does not exceed abs(ξ0), or the
+        record would not fit in memory.
+
+    See Also
+    --------
+    preload_position : A start position with the spring energy of a speed.
+    stability_map : The outcome over a (β, σ) grid.
+    passivity_criterion : The proven verdict the simulation is compared with.
     """
     m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
     q = bool(quantize)
@@ -688,7 +759,7 @@ class SimulationBatch:
     final_xi, final_xi_dot : numpy.ndarray
         State at the end of each run.
     envelope : numpy.ndarray, shape (runs, 8)
-        Peak |ξ| of each eighth of each run.
+        Peak abs(ξ) of each eighth of each run.
     status : str
         ``"ok"``.
     """

@@ -95,13 +95,30 @@ class StiffnessSpeedChart:
     simulations: int = 0
 
     def plot(self, ax=None):
-        """Draw the chart (:func:`dfa.plotting.stiffness_speed_plot`); returns the axes."""
+        """Draw the chart (:func:`dfa.plotting.stiffness_speed_plot`); returns the axes.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
         from .plotting import stiffness_speed_plot
 
         return stiffness_speed_plot(self, ax)
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record (NaN as null)."""
+        """JSON-ready record (NaN as null).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: the speeds per stiffness, the bounds, the design point and the units.
+        """
 
         def lst(a):
             return [None if not math.isfinite(x) else float(x) for x in a]
@@ -164,6 +181,7 @@ def stiffness_speed_chart(
     Parameters
     ----------
     device : Device
+        The physical device.
     delay : int, optional
         Computational delay d in samples.
     stiffness, velocity : float, optional
@@ -176,6 +194,23 @@ def stiffness_speed_chart(
         Impact speeds simulated per stiffness (default 14, geometric from v_top/200), two starts each.
     max_samples : int, optional
         Longest run in samples.
+
+    Returns
+    -------
+    StiffnessSpeedChart
+        For each stiffness, the largest speed that passes the criterion, the simulation and the
+        describing function, with the classic bounds; ``.plot()`` draws it.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, a speed or stiffness is not a finite number > 0, or
+        another input is out of range.
+
+    See Also
+    --------
+    design_answer : The largest stiffness at one speed, four ways.
+    stiffness_response : The criterion's K_max over speeds (no simulation).
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     d = check_delay(delay)

@@ -85,8 +85,32 @@ def k_static(device: Device) -> float:
 def k_max_criterion(device: Device, velocity, delay: int = 0):
     """Largest stiffness passing the criterion at impact speed ``velocity`` and delay d (eq. 11 generalised), N/m.
 
-    K_max = min(2c/Δ, (b|ẋ0| + c)/(T(½ + d)|ẋ0| + Δ/2)). Vectorised over
+    K_max = min(2c/Δ, (b·abs(ẋ0) + c)/(T(½ + d)·abs(ẋ0) + Δ/2)). Vectorised over
     ``velocity`` (m/s or rad/s; sign ignored); ``delay`` in whole samples.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    velocity : float or array_like
+        Impact speed ẋ0 in m/s (rotary: rad/s); its sign is ignored.
+    delay : int, optional
+        Computational delay d in samples (default 0).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        K_max in N/m (rotary: N·m/rad), a float for a scalar ``velocity``.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, a speed is not finite or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    max_passive_velocity : The inverse: the largest passive speed of a stiffness.
+    stiffness_limits : K_max with the published bounds.
 
     Examples
     --------
@@ -109,13 +133,59 @@ def k_max_criterion(device: Device, velocity, delay: int = 0):
 
 
 def k_colgate(device: Device, delay: int = 0) -> float:
-    """Colgate-Schenkel bound 2b/T (paper eq. 8), N/m; b/(T(½ + d)) with a delay of d samples."""
+    """Colgate-Schenkel bound 2b/T (paper eq. 8), N/m; b/(T(½ + d)) with a delay of d samples.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    delay : int, optional
+        Computational delay d in samples (default 0).
+
+    Returns
+    -------
+    float
+        The bound in N/m (rotary: N·m/rad).
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device` or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    k_abbott_okamura : This bound capped by the static limit 2c/Δ.
+    k_gil : The exact bound of the linear sampled spring.
+    """
     dev = _check_device(device)
     return dev.damping / (dev.period * (0.5 + check_delay(delay)))
 
 
 def k_abbott_okamura(device: Device, delay: int = 0) -> float:
-    """Abbott-Okamura bound min(2b/T, 2c/Δ), N/m; min(b/(T(½ + d)), 2c/Δ) with a delay of d samples."""
+    """Abbott-Okamura bound min(2b/T, 2c/Δ), N/m; min(b/(T(½ + d)), 2c/Δ) with a delay of d samples.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    delay : int, optional
+        Computational delay d in samples (default 0).
+
+    Returns
+    -------
+    float
+        The bound in N/m (rotary: N·m/rad).
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device` or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    k_colgate : The damping bound 2b/T alone.
+    k_max_criterion : The speed-dependent bound of the criterion.
+    """
     dev = _check_device(device)
     return min(k_colgate(dev, delay), k_static(dev))
 
@@ -175,8 +245,24 @@ def k_gil(device: Device, *, delay: int = 0) -> float:
     Parameters
     ----------
     device : Device
+        The physical device (its Coulomb friction and encoder are ignored).
     delay : int, optional
         Computational delay d in samples (the force of sample h uses x(h − d)).
+
+    Returns
+    -------
+    float
+        The bound in N/m (rotary: N·m/rad).
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device` or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    gil_beta_critical : The same bound in dimensionless form.
+    k_colgate : The bound 2b/T it tends to for a large mass.
 
     Examples
     --------
@@ -204,6 +290,20 @@ def gil_beta_critical(mu: float, *, delay: int = 0) -> float:
         Dimensionless mass μ = m/(K T²) > 0.
     delay : int, optional
         Computational delay d in samples.
+
+    Returns
+    -------
+    float
+        The critical dimensionless damping β_crit.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If μ is not a finite number > 0 or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    k_gil : The same bound as a stiffness.
     """
     return critical_beta(mu, delay)
 
@@ -211,12 +311,32 @@ def gil_beta_critical(mu: float, *, delay: int = 0) -> float:
 def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> float | None:
     """Largest impact speed for which stiffness K passes the criterion with delay d (eq. 11, 12), m/s.
 
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    stiffness : float
+        Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+    delay : int, optional
+        Computational delay d in samples (default 0).
+
     Returns
     -------
     float or None
         ``math.inf`` when K T(½ + d) <= b and K <= 2c/Δ (passive at every speed),
         None when K > 2c/Δ (not passive even at rest), otherwise
-        (c − KΔ/2)/(KT(½ + d) − b).
+        (c − KΔ/2)/(KT(½ + d) − b) in m/s (rotary: rad/s).
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, the stiffness is not > 0 or the delay is not a whole
+        number >= 0.
+
+    See Also
+    --------
+    k_max_criterion : The inverse: the largest passive stiffness at a speed.
+    device_criterion : The full verdict at one speed.
     """
     dev = _check_device(device)
     k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
@@ -238,7 +358,7 @@ class StiffnessLimits:
     ----------
     device : Device
     velocity : float
-        Impact speed |ẋ0| in m/s (rad/s).
+        Impact speed abs(ẋ0) in m/s (rad/s).
     xi_dot : float
         The same speed in encoder ticks per sample.
     k_max : float
@@ -304,7 +424,13 @@ class StiffnessLimits:
             )
 
     def max_passive_velocity_text(self) -> str:
-        """The largest passive speed for ``stiffness`` in words, with units (for tables and reports)."""
+        """The largest passive speed for ``stiffness`` in words, with units (for tables and reports).
+
+        Returns
+        -------
+        str
+            For example ``"0.2765 m/s"``, ``"every speed (...)"`` or ``"none: ..."``; ``"–"`` without a stiffness.
+        """
         unit = self.device.units["velocity"]
         ku = self.device.units["stiffness"]
         if self.velocity_status == "none":
@@ -316,7 +442,13 @@ class StiffnessLimits:
         return f"{self.max_passive_velocity:.4g} {unit}"
 
     def verdict_text(self) -> str:
-        """The verdict for ``stiffness`` at ``velocity`` in words (CLI and report)."""
+        """The verdict for ``stiffness`` at ``velocity`` in words (CLI and report).
+
+        Returns
+        -------
+        str
+            ``"ok: ..."`` or ``"too stiff: ..."``; ``"–"`` without a stiffness.
+        """
         if self.stiffness is None:
             return "–"
         ku = self.device.units["stiffness"]
@@ -330,7 +462,13 @@ class StiffnessLimits:
         )
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record (the ``dfa stiffness --json`` contract plus extras)."""
+        """JSON-ready record (the ``dfa stiffness --json`` contract plus extras).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: the limits in device units, the speeds, status and its message.
+        """
         mpv = self.max_passive_velocity
         return to_jsonable(
             {
@@ -360,12 +498,29 @@ def stiffness_limits(
     Parameters
     ----------
     device : Device
+        The physical device.
     velocity : float
         Impact speed ẋ0 in m/s (rotary: rad/s); its sign is ignored.
     stiffness : float, optional
-        A stiffness K to assess: its largest passive speed is reported.
+        A stiffness K in N/m (rotary: N·m/rad) to assess: its largest passive speed is reported.
     delay : int, optional
         Computational delay d in whole samples (default 0).
+
+    Returns
+    -------
+    StiffnessLimits
+        K_max, the published bounds and, with ``stiffness``, its verdict and largest passive speed.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, the speed is not finite, the stiffness is not > 0 or
+        the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    stiffness_response : K_max over a range of speeds.
+    k_max_criterion : K_max alone, vectorised over speeds.
     """
     dev = _check_device(device)
     v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
@@ -439,7 +594,7 @@ class StiffnessResponse:
 
     @property
     def k_abbott_okamura(self) -> float:
-        """min(2b/T, 2c/Δ) (with the delay), N/m."""
+        """The Abbott-Okamura bound min(2b/T, 2c/Δ) (with the delay), N/m."""
         return self.limits.k_abbott_okamura
 
     @property
@@ -468,7 +623,13 @@ class StiffnessResponse:
         object.__setattr__(self, "status", CurveStatus.coerce(self.status))
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record: speeds, K_max and the bounds (device units, see ``device.units``)."""
+        """JSON-ready record: speeds, K_max and the bounds (device units, see ``device.units``).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: speeds, K_max, the bounds, status and its message.
+        """
         return to_jsonable(
             {
                 "device": self.device.name,
@@ -487,7 +648,18 @@ class StiffnessResponse:
         )
 
     def plot(self, ax=None):
-        """K_max against impact speed with the published bounds (:func:`dfa.plotting.stiffness_plot`); returns the Axes."""
+        """K_max against impact speed with the published bounds (:func:`dfa.plotting.stiffness_plot`); returns the Axes.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
         from .plotting import stiffness_plot
 
         return stiffness_plot(self, ax)
@@ -505,13 +677,30 @@ def stiffness_response(
     Parameters
     ----------
     device : Device
+        The physical device.
     velocity : array_like, optional
         Speeds in m/s (rad/s); default: 200 points spanning three decades on
         each side of the speed Δ/T (one tick per sample).
     stiffness : float, optional
-        A chosen stiffness to assess and mark.
+        A chosen stiffness in N/m (rotary: N·m/rad) to assess and mark.
     delay : int, optional
         Computational delay d in whole samples (default 0).
+
+    Returns
+    -------
+    StiffnessResponse
+        K_max at each speed with the speed-independent bounds; ``.plot()`` draws it.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, a speed is not finite and > 0, the stiffness is not
+        > 0 or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    stiffness_limits : The limits at one speed.
+    stiffness_speed_chart : K_max with the simulated and describing-function speeds.
     """
     dev = _check_device(device)
     d = check_delay(delay)

@@ -645,7 +645,33 @@ def _speed_cases(quick: bool) -> list[tuple[str, Params]]:
 
 
 def validate(quick: bool = False, n_jobs: int = -1, progress: bool = True) -> ValidationResult:
-    """Run the whole validation (``quick``: a reduced set that runs in well under a minute)."""
+    """Run the whole validation (``quick``: a reduced set that runs in well under a minute).
+
+    Parameters
+    ----------
+    quick : bool, optional
+        Run the reduced set (default False: the full set, several minutes).
+    n_jobs : int, optional
+        Workers of the soundness maps (-1, default: all cores; 1: in this thread).
+    progress : bool, optional
+        Show tqdm progress bars (default True).
+
+    Returns
+    -------
+    ValidationResult
+        The limit-cycle checks, critical speeds, criterion soundness and cluster thresholds, with
+        their summaries.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``n_jobs`` is not -1 or a whole number >= 1, or ``quick``/``progress`` are not booleans.
+
+    See Also
+    --------
+    limit_cycles : The predictions checked against simulation.
+    simulate : The exact simulation used as the reference.
+    """
     for name, flag in (("quick", quick), ("progress", progress)):
         if not isinstance(flag, (bool, np.bool_)):
             raise DFATypeError(f"{name} = {_fmt(flag)} has type {type(flag).__name__}: it must be True or False")

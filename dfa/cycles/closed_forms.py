@@ -241,6 +241,30 @@ def large_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
 
     M = (4σ/π)/(sin(ω/2) − βω) with ω from :func:`large_cycle_frequency`
     (scalar form of :func:`large_cycle_closed_forms`).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(K T²), > 0.
+    beta : float
+        Dimensionless viscous damping β = b/(K T), >= 0.
+    sigma : float
+        Dimensionless Coulomb friction σ = c/(K Δ), >= 0.
+
+    Returns
+    -------
+    tuple of float or None
+        The amplitude M in ticks and frequency ω in rad per sample, or None when the family has no cycle.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If μ, β or σ is out of range or not a number.
+
+    See Also
+    --------
+    small_cycle_closed_form : The small stable family (eq. 42-43).
+    limit_cycles : Every cycle with the exact describing function.
     """
     p = Params(mu, beta, sigma)
     return _scalar(large_cycle_closed_forms(p.mu, p.beta, p.sigma))
@@ -252,6 +276,30 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
     ω solves σ = ½ sin(ω/2) − β cos(ω/2)/(2μω) on (0, π) (the right side
     increases from −∞ to ½), then M = 2 cos(ω/2)/(π μ ω²) (scalar form of
     :func:`small_cycle_closed_forms`).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(K T²), > 0.
+    beta : float
+        Dimensionless viscous damping β = b/(K T), >= 0.
+    sigma : float
+        Dimensionless Coulomb friction σ = c/(K Δ), >= 0.
+
+    Returns
+    -------
+    tuple of float or None
+        The amplitude M in ticks and frequency ω in rad per sample, or None when the family has no cycle.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If μ, β or σ is out of range or not a number.
+
+    See Also
+    --------
+    large_cycle_closed_form : The large unstable family (eq. 44-45).
+    limit_cycles : Every cycle with the exact describing function.
     """
     p = Params(mu, beta, sigma)
     cf = small_cycle_closed_forms(p.mu, p.beta, p.sigma)

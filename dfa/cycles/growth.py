@@ -153,10 +153,26 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
     Parameters
     ----------
     params : Params
+        Dimensionless device (μ > 0, β >= 0, σ >= 0).
     device : Device, optional
         To express the amplitudes and speeds in physical units.
     **kwargs
         Passed to :func:`limit_cycles` (model, delay, …).
+
+    Returns
+    -------
+    GrowthThreshold
+        The band's smallest and largest unstable cycles, what it means and the underlying search.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device` or :func:`limit_cycles` refuses its inputs.
+
+    See Also
+    --------
+    limit_cycles : Every cycle, stable and unstable.
+    simulate : What the exact loop does from a given speed.
     """
     if device is not None:
         check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")

@@ -30,7 +30,7 @@ class LimitCycle:
     loeb : float
         ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M at the root.
     residual : float
-        |1 + D(M)·L(jω; M)| at the reported root.
+        abs(1 + D(M)·L(jω; M)) at the reported root.
     few_samples : bool
         True when the period is under 8 samples: first-harmonic analysis is
         least trustworthy there (validation issue).
@@ -58,8 +58,21 @@ class LimitCycle:
             check_positive(name, getattr(self, name), "build cycles with limit_cycles")
 
     def physical(self, device: Device, stiffness: float) -> dict[str, float | None]:
-        """This cycle in physical units for a device at stiffness K (:mod:`dfa.units`): amplitude_m (rad),
-        force_amplitude_n (N·m), frequency_hz, period_s, velocity_m_s (rad/s, the speed amplitude M·ω)."""
+        """Express this cycle in physical units for a device at stiffness K (:mod:`dfa.units`).
+
+        Parameters
+        ----------
+        device : Device
+            The physical device.
+        stiffness : float
+            Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+
+        Returns
+        -------
+        dict
+            ``amplitude_m`` (rotary: rad), ``force_amplitude_n`` (N·m), ``frequency_hz``, ``period_s``
+            and ``velocity_m_s`` (rad/s, the speed amplitude M·ω).
+        """
         from ..units import physical_quantities
 
         return physical_quantities(
@@ -72,7 +85,13 @@ class LimitCycle:
         )
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record of the cycle."""
+        """JSON-ready record of the cycle.
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: amplitude, frequency, period, stability, family and the checks.
+        """
         return to_jsonable(
             {
                 "amplitude": self.amplitude,
@@ -155,20 +174,41 @@ class LimitCycleResult:
 
     @property
     def stable_cycles(self) -> tuple:
+        """The stable cycles (Loeb's criterion), by increasing amplitude."""
         return tuple(c for c in self.cycles if c.stable)
 
     @property
     def unstable_cycles(self) -> tuple:
+        """The unstable cycles (Loeb's criterion), by increasing amplitude."""
         return tuple(c for c in self.cycles if not c.stable)
 
     def physical(self, device: Device, stiffness: float) -> dict[str, object]:
-        """Every cycle in physical units (:meth:`LimitCycle.physical`), with the device, K and force step KΔ."""
+        """Every cycle in physical units (:meth:`LimitCycle.physical`), with the device, K and force step KΔ.
+
+        Parameters
+        ----------
+        device : Device
+            The physical device.
+        stiffness : float
+            Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+
+        Returns
+        -------
+        dict
+            The device, K, force step KΔ and units, and ``cycles``: one dict per cycle.
+        """
         from ..units import unit_context
 
         return {**unit_context(device, stiffness), "cycles": [c.physical(device, stiffness) for c in self.cycles]}
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record (the ``dfa limit-cycles --json`` contract plus extras)."""
+        """JSON-ready record (the ``dfa limit-cycles --json`` contract plus extras).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: the cycles, inputs, completeness, status and detail.
+        """
         return to_jsonable(
             {
                 "cycles": [c.as_dict() for c in self.cycles],

@@ -163,7 +163,7 @@ def limit_cycles(
         Order of the Padé approximation for ``model="pade"``.
     max_amplitude : float, optional
         Largest amplitude searched, in ticks. Default (None): up to the
-        amplitude beyond which the envelope |D − 1| <= 0.38⌊M⌋^{-3/2} of
+        amplitude beyond which the envelope abs(D − 1) <= 0.38⌊M⌋^{-3/2} of
         eq. 41 proves that no root exists, for these (μ, β, σ, model, d), within
         a budget of ``AUTO_MAX_AMPLITUDE`` ticks (beyond it the result is
         incomplete, status ``BUDGET``).
@@ -183,6 +183,18 @@ def limit_cycles(
         Cycles sorted by amplitude; an empty tuple when there is none. A
         numerical failure never raises: it gives ``complete=False``, status
         ``NUMERICAL`` and a :class:`LimitCycleSearchWarning`.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``params`` is not :class:`Params`, the model or ``describing`` is unknown, the delay or
+        Padé order is not a valid whole number, or ``max_amplitude`` is not a finite number > 0.
+
+    See Also
+    --------
+    growth_threshold : The smallest and largest unstable cycles, in words.
+    small_cycle_closed_form, large_cycle_closed_form : The paper's closed forms (eq. 42-45).
+    nyquist_locus_response : The same balance drawn as a Nyquist plot.
     """
     p = _check_params(params)
     m, d, n = _check_model(model, delay, pade_order)
