@@ -481,8 +481,8 @@ def _design_rows(ans, vu: str) -> list[list[str]]:
     ku = ans.device.units["stiffness"]
     rows = [
         ["describing function: largest K with growth speed >= V", _limit_text(ans.k_df, ku)],
-        ["simulation: largest K, no impact up to V diverges", _limit_text(ans.k_sim, ku)],
-        ["simulation: largest K, every impact up to V comes to rest", _limit_text(ans.k_sim_rest, ku)],
+        ["simulation: largest K, no simulated impact up to V diverges", _limit_text(ans.k_sim, ku)],
+        ["simulation: largest K, every simulated impact up to V rests", _limit_text(ans.k_sim_rest, ku)],
     ]
     for c in ans.counterexamples:
         rows.append(

@@ -18,10 +18,14 @@ of d samples:
     loop and a complete search means no growth (infinite speed), none with an
     unstable linear loop means growth from any size (zero).
 ``k_sim``
-    found by exact simulation: the largest K at which no impact at any
-    simulated speed up to V, started from ξ0 = 0 and, separately, from rest
-    with the spring preloaded to the same energy (section 5,
-    :func:`dfa.simulation.preload_position`), diverges.
+    found by exact simulation: the largest K at which no impact at the
+    simulated speeds V/n, 2V/n, …, V, started from ξ0 = 0 and, separately,
+    from rest with the spring preloaded to the same energy (section 5,
+    :func:`dfa.simulation.preload_position`), diverges. The limit is then
+    checked at ``DENSE_FACTOR`` times as many speeds, at itself and at
+    stiffnesses down to 3 % below it; a failure there is reported
+    (``dense_failures``, status ``"caveats"``), because safety need not be
+    monotone in K or in the speed.
 ``k_sim_rest``
     the largest K at which all those impacts come to rest (no chatter, no
     oscillation).
@@ -51,6 +55,7 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -118,6 +123,10 @@ class KSearch:
         The smallest stiffness found not safe.
     evaluations : int
         Stiffnesses evaluated.
+    dense_failures : tuple of dict
+        Failures a denser check found at or just below ``value`` (``stiffness``, ``velocity``, ``start``,
+        ``outcome``; :data:`DENSE_FACTOR` times the speeds, stiffnesses down to 3 % below): the limit then holds
+        only at the searched speeds, and the result's status says so.
     """
 
     value: float | None
@@ -127,6 +136,7 @@ class KSearch:
     undecided: tuple[float, ...] = ()
     first_failure: float | None = None
     evaluations: int = 0
+    dense_failures: tuple[dict, ...] = ()
 
     def __post_init__(self) -> None:
         if self.value is None and not self.reason:
@@ -143,6 +153,7 @@ class KSearch:
             "undecided": list(self.undecided),
             "first_failure": self.first_failure,
             "evaluations": self.evaluations,
+            "dense_failures": [dict(f) for f in self.dense_failures],
         }
 
 
@@ -309,6 +320,37 @@ class _Evidence:
                 if k <= k_criterion and o == "unstable":
                     out.append({"stiffness": k, "velocity": self.dev.velocity(xd), "start": start, "outcome": o})
         return tuple(out)
+
+
+#: The denser check of a simulated limit uses this many times the searched speeds.
+DENSE_FACTOR = 4
+#: ... at the limit and at these fractions below it.
+DENSE_BELOW = (0.0, 0.001, 0.003, 0.01, 0.03)
+
+
+def _confirm(found: KSearch, dense: _Evidence, bad: str) -> KSearch:
+    """Check a simulated limit at denser speeds, at and just below it: the search itself only saw its own speeds
+    and assumed safety monotone in K between grid points. ``bad``: "unstable" (no-divergence limit) or "rest"
+    (every outcome other than rest fails). A failure turns into a caveat in the result, never a silent pass."""
+    if found.value is None:
+        return found
+    fails = []
+    for f in DENSE_BELOW:
+        k = found.value * (1.0 - f)
+        for xd, start, o in dense.outcomes(k):
+            if (o == "unstable") if bad == "unstable" else (o not in ("rest", "undecided")):
+                fails.append({"stiffness": k, "velocity": dense.dev.velocity(xd), "start": start, "outcome": o})
+    if not fails:
+        return found
+    w = min(fails, key=lambda r: r["stiffness"])
+    u = dense.dev.units
+    note = (
+        f"NOT confirmed: a denser check ({len(dense.xi_dots)} speeds) found {w['outcome']} at K = "
+        f"{w['stiffness']:.5g} {u['stiffness']} ({w['velocity']:.3g} {u['velocity']}, {w['start']} start), at or "
+        "below this value: it holds only at the searched speeds"
+    )
+    reason = note if not found.reason else f"{found.reason}; {note}"
+    return dataclasses.replace(found, reason=reason, dense_failures=tuple(fails))
 
 
 def _search_grid(k_criterion: float, top: float, grid: int) -> np.ndarray:
@@ -538,8 +580,12 @@ def design_answer(
     ev = _Evidence(dev, vs, d, cap, model)
     kc, kl = float(k_max_criterion(dev, v, d)), k_gil(dev, delay=d)
     k_df, k_sim, k_rest, k_range = _three_searches(ev, dev, v, d, kc, kl, n_grid)
-    ce = ev.counterexamples(kc)
-    caveat = any(s.non_monotone or s.undecided for s in (k_df, k_sim, k_rest))
+    dense = _Evidence(dev, v * np.arange(1, DENSE_FACTOR * n_speeds + 1) / (DENSE_FACTOR * n_speeds), d, cap, model)
+    k_sim = _confirm(k_sim, dense, "unstable")
+    k_rest = _confirm(k_rest, dense, "rest")
+    ev.runs += dense.runs
+    ce = ev.counterexamples(kc) + dense.counterexamples(kc)
+    caveat = any(s.non_monotone or s.undecided or s.dense_failures for s in (k_df, k_sim, k_rest))
     return KMaxResult(
         dev,
         v,

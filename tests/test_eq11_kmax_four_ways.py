@@ -240,3 +240,23 @@ def test_eq11_kmax_heavy_device_impacts_beyond_a_million_ticks():
 def test_eq11_kmax_ordering_property(mass, damping, coulomb, ticks_per_mm, rate_hz, velocity, delay):
     dev = dfa.Device(mass=mass, damping=damping, coulomb=coulomb, resolution=1e-3 / ticks_per_mm, period=1 / rate_hz)
     _check_theory(design_answer(dev, velocity, delay, grid=6, speeds=2))
+
+
+@pytest.mark.parametrize("name, v, d", [("re35", 2.0, 0), ("impulse", 0.2, 1)])
+def test_eq11_k_sim_dense_check_reports_failures_below_the_limit(name, v, d):
+    # red-team finding: the search simulated 6 speeds and bisected as if safety were monotone in K, and called
+    # K = 33.686 N·m/rad (RE35, 2 rad/s) safe while preload impacts at 1.8-1.97 rad/s diverge at K = 33.35.
+    # The denser check must find such failures, report them, and each must be a real divergence of dfa.simulate.
+    dev = dfa.get_device(name).device
+    r = design_answer(dev, v, d)
+    s = r.k_sim
+    assert s.dense_failures and r.status == "caveats" and "NOT confirmed" in s.reason
+    for f in s.dense_failures:
+        assert f["stiffness"] <= s.value and f["outcome"] == "unstable"
+        p = dev.params(f["stiffness"])
+        xd = dev.xi_dot(f["velocity"])
+        x0, v0 = (dfa.preload_position(p.mu, xd), 0.0) if f["start"] == "preload" else (0.0, xd)
+        bound = dfa.simulation.divergence_bound(x0, v0, p.mu, 1e6)
+        sim = dfa.simulate(p.mu, p.beta, p.sigma, v0, None, xi0=x0, delay=d, record=False, bound=bound)
+        assert sim.outcome == "unstable"
+    assert json.loads(json.dumps(r.as_dict()))["k_sim_reason"].startswith(s.reason[:20])
