@@ -793,23 +793,12 @@ def _mark_operating_point(axes, inp: _Inputs | None) -> None:
         )
 
 
-def _cmd_map(args: argparse.Namespace) -> int:
+def _check_map_work(args: argparse.Namespace) -> None:
+    """Refuse a map that would run too long or not fit in memory, before any work (fix: smaller grid, --force)."""
     from ._io import check_memory
     from .checks import check_jobs
-    from .maps import map_memory_bytes, stability_map
-    from .simulation import divergence_bound
+    from .maps import map_memory_bytes
 
-    check_output_file("--out", args.out, ".npz")
-    if args.plot is not None:
-        check_output_file("--plot", args.plot, ".png")
-    mu, inp = _map_device(args)
-    args.xi_dot = _map_speeds(args, inp)
-    negative = [v for v in args.xi_dot if v < 0]
-    if negative:
-        raise UsageError(
-            f"--xi-dot {negative[0]:g} is invalid: initial speeds must be >= 0 (the map is symmetric in the "
-            f"sign of ξ'0); give --xi-dot {abs(negative[0]):g}"
-        )
     check_jobs("--jobs", args.jobs)
     _check_samples(args.samples, args.force)  # one run is uninterruptible: the same limit as `dfa simulate`
     if args.grid >= 2:
@@ -828,6 +817,24 @@ def _cmd_map(args: argparse.Namespace) -> int:
             map_memory_bytes(args.grid, len(args.xi_dot)),
             "lower --grid or give fewer --xi-dot speeds",
         )
+
+
+def _cmd_map(args: argparse.Namespace) -> int:
+    from .maps import stability_map
+    from .simulation import divergence_bound
+
+    check_output_file("--out", args.out, ".npz")
+    if args.plot is not None:
+        check_output_file("--plot", args.plot, ".png")
+    mu, inp = _map_device(args)
+    args.xi_dot = _map_speeds(args, inp)
+    negative = [v for v in args.xi_dot if v < 0]
+    if negative:
+        raise UsageError(
+            f"--xi-dot {negative[0]:g} is invalid: initial speeds must be >= 0 (the map is symmetric in the "
+            f"sign of ξ'0); give --xi-dot {abs(negative[0]):g}"
+        )
+    _check_map_work(args)
     m = stability_map(
         mu,
         args.xi_dot,

@@ -69,3 +69,24 @@ def test_import_contracts_kept():
     proc = subprocess.run([str(exe)], cwd=root, capture_output=True, text=True, env=dict(os.environ))
     assert proc.returncode == 0, proc.stdout[-3000:]
     assert "broken" in proc.stdout and " 0 broken" in proc.stdout
+
+
+def test_every_function_in_dfa_is_under_80_lines_of_code():
+    # issue 13: small functions. Counted without the docstring (numpydoc sections are documentation, not logic).
+    import ast
+
+    long = []
+    for path in sorted((Path(dfa.__file__).parent).rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                lines = node.end_lineno - node.lineno + 1
+                first = node.body[0]
+                if (
+                    isinstance(first, ast.Expr)
+                    and isinstance(first.value, ast.Constant)
+                    and isinstance(first.value.value, str)
+                ):
+                    lines -= first.end_lineno - first.lineno + 1
+                if lines >= 80:
+                    long.append(f"{path.name}:{node.lineno} {node.name} ({lines} lines)")
+    assert not long, "functions of 80 lines or more: " + ", ".join(long)
