@@ -818,6 +818,14 @@ def test_resolve_device_refuses_hostile_arguments(kw, kind, name):
     assert dfa.resolve_device("delta", counts=40_000).device.resolution == pytest.approx(2.5e-5)
 
 
+@pytest.mark.parametrize("kw", [{"rotary": np.float64("nan")}, {"rotary": "yes"}, {"name": 3}, {"name": None}])
+def test_device_refuses_a_name_or_rotary_flag_of_the_wrong_type(kw):
+    # found by the API fuzz: Device(..., rotary=nan) was built (a NaN in a record with no status)
+    with pytest.raises(DFATypeError, match=f"^{next(iter(kw))} = "):
+        dfa.Device(1.0, 0.0, 0.0, 1e-5, 1e-3, **kw)
+    assert dfa.Device(1.0, 0.0, 0.0, 1e-5, 1e-3, rotary=np.bool_(True)).rotary is True
+
+
 def test_stiffness_response_takes_a_scalar_speed_and_refuses_text():
     # found by the API fuzz: velocity=1.0 raised IndexError (a 0-d array indexed), "x" a bare ValueError
     dev = dfa.get_device("delta").device
