@@ -362,16 +362,16 @@ def resolve_device(
     from .checks import _fmt, check_positive
     from .device import dimensionless_params
 
-    for arg, value, what in (("overrides", overrides, "dict"), ("flags", flags, "dict")):
-        if value is not None and not isinstance(value, dict):
+    for arg, mapping in (("overrides", overrides), ("flags", flags)):
+        if mapping is not None and not isinstance(mapping, dict):
             raise DFATypeError(
-                f"{arg} = {_fmt(value)} has type {type(value).__name__}: it must be a {what} or None; "
+                f"{arg} = {_fmt(mapping)} has type {type(mapping).__name__}: it must be a dict or None; "
                 f"give a dict such as {{'mass': 0.1}}"
             )
-    for arg, value in (("name", name), ("label", label)):
-        if value is not None and not isinstance(value, str):
+    for arg, text in (("name", name), ("label", label)):
+        if text is not None and not isinstance(text, str):
             raise DFATypeError(
-                f"{arg} = {_fmt(value)} has type {type(value).__name__}: it must be text or None; give a device name"
+                f"{arg} = {_fmt(text)} has type {type(text).__name__}: it must be text or None; give a device name"
             )
     if not isinstance(rotary, bool):
         raise DFATypeError(f"rotary = {_fmt(rotary)} has type {type(rotary).__name__}: it must be True or False")
