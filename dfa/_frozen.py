@@ -50,7 +50,7 @@ def frozen_array(
     """
     try:
         a = np.array(value, dtype=dtype, copy=True)
-    except (TypeError, ValueError) as err:
+    except (TypeError, ValueError, OverflowError) as err:
         raise DFAValueError(
             f"{name} = {_fmt(value)} is invalid: it must be an array of {np.dtype(dtype)} ({err}); {_FIX}"
         ) from None

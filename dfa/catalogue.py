@@ -349,8 +349,12 @@ class ResolvedDevice:
 
 def _counts_resolution(counts: int, rotary: bool, flag: str) -> float:
     """Encoder resolution Δ from counts per revolution (rotary, Δ = 2π/N rad) or per metre (Δ = 1/N m)."""
+    from .checks import check_int
+
     if isinstance(counts, bool) or not isinstance(counts, int):
         raise DFATypeError(f"{flag} = {counts!r} is invalid: it must be a whole number of encoder counts")
+    if counts >= 1:
+        counts = check_int(flag, counts, 1, f"give the encoder counts per {'revolution' if rotary else 'metre'}")
     if counts < 1:
         raise DFAValueError(
             f"{flag} {counts} is invalid: give the encoder counts per {'revolution' if rotary else 'metre'} (at least 1)"
@@ -414,9 +418,22 @@ def resolve_device(
     >>> round(r.device.resolution, 6), r.label
     (0.003142, 'testbed, K = 0.5 N·m/rad')
     """
-    from .checks import check_positive
+    from .checks import _fmt, check_positive
     from .device import dimensionless_params
 
+    for arg, mapping in (("overrides", overrides), ("flags", flags)):
+        if mapping is not None and not isinstance(mapping, dict):
+            raise DFATypeError(
+                f"{arg} = {_fmt(mapping)} has type {type(mapping).__name__}: it must be a dict or None; "
+                f"give a dict such as {{'mass': 0.1}}"
+            )
+    for arg, text in (("name", name), ("label", label)):
+        if text is not None and not isinstance(text, str):
+            raise DFATypeError(
+                f"{arg} = {_fmt(text)} has type {type(text).__name__}: it must be text or None; give a device name"
+            )
+    if not isinstance(rotary, bool):
+        raise DFATypeError(f"rotary = {_fmt(rotary)} has type {type(rotary).__name__}: it must be True or False")
     fl = {k: k for k in (*_PHYSICAL, "stiffness", "counts", "name")} | (flags or {})
     given = {k: v for k, v in (overrides or {}).items() if v is not None}
     unknown = sorted(set(given) - set(_PHYSICAL))

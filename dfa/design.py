@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .catalogue import CatalogueEntry
-from .checks import check_delay, check_positive, check_real
+from .checks import _fmt, check_delay, check_int, check_positive, check_real, check_type
 from .criterion import CriterionResult, device_criterion
 from .cycles import GrowthThreshold, growth_threshold
 from .device import Device, Params
@@ -122,6 +122,32 @@ class DesignAnalysis:
         if not check_real("velocity", self.velocity, "give the impact speed") >= 0.0:
             raise DFAValueError(f"velocity = {self.velocity!r} is invalid: the analysis holds |ẋ0| >= 0")
         check_delay(self.delay)
+        fix = "DesignAnalysis is built by dfa.design_analysis; call that instead"
+        for name, cls in (
+            ("params", Params), ("criterion", CriterionResult), ("limits", StiffnessLimits),
+            ("outcome", SimulationResult), ("outcome_high", SimulationResult), ("trajectory", SimulationResult),
+            ("trajectory_high", SimulationResult), ("stiffness_curve", StiffnessResponse),
+            ("nyquist", NyquistLocusResponse), ("stability_map", StabilityMap),
+        ):  # fmt: skip
+            check_type(name, getattr(self, name), cls, fix)
+        if self.simulated_xi_dot is not None:
+            check_real("simulated_xi_dot", self.simulated_xi_dot, fix)
+        check_real("high_xi_dot", self.high_xi_dot, fix)
+        for name in ("catalogue", "validation"):
+            value = getattr(self, name)
+            if value is not None and not isinstance(value, dict):
+                raise DFATypeError(
+                    f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a dict or None; {fix}"
+                )
+        check_int("samples", self.samples, 1, fix)
+        check_int("map_grid", self.map_grid, 2, fix)
+        if not isinstance(self.thresholds, tuple) or not all(
+            isinstance(t, tuple) and len(t) == 2 and isinstance(t[1], GrowthThreshold) for t in self.thresholds
+        ):
+            raise DFATypeError(
+                f"thresholds = {_fmt(self.thresholds)} is invalid: it must be a tuple of (model, GrowthThreshold) "
+                f"pairs; {fix}"
+            )
         if tuple(m for m, _ in self.thresholds) != MODELS:
             raise DFAValueError(
                 f"thresholds are for {[m for m, _ in self.thresholds]}: they must be for {list(MODELS)}"

@@ -31,8 +31,10 @@ import math
 import sys
 from dataclasses import dataclass
 
-from .checks import check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
-from .errors import DFAValueError
+import numpy as np
+
+from .checks import _fmt, check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
+from .errors import DFATypeError, DFAValueError
 
 __all__ = ["Params", "Device", "dimensionless_params"]
 
@@ -145,6 +147,15 @@ class Device:
         object.__setattr__(
             self, "period", check_positive("period", self.period, "give the sample period T in s (1 kHz: 0.001)")
         )
+        if not isinstance(self.name, str):
+            raise DFATypeError(
+                f"name = {_fmt(self.name)} has type {type(self.name).__name__}: it must be text; give the device name"
+            )
+        if not isinstance(self.rotary, (bool, np.bool_)):
+            raise DFATypeError(
+                f"rotary = {_fmt(self.rotary)} has type {type(self.rotary).__name__}: it must be True or False; pass rotary=True for a rotary joint"
+            )
+        object.__setattr__(self, "rotary", bool(self.rotary))
 
     # ------------------------------------------------------------------ units
     @property

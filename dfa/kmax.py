@@ -62,9 +62,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .checks import check_choice, check_delay, check_int, check_positive, check_real, check_type
+from .checks import _fmt, check_choice, check_delay, check_int, check_positive, check_real, check_type
 from .device import Device
-from .errors import DFAValueError
+from .errors import DFATypeError, DFAValueError
 from .simulation import default_samples, divergence_bound, preload_position, simulate
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
@@ -103,6 +103,13 @@ def simulate_points(points: Sequence[tuple[float, float, float, float, float]], 
     return outcomes, lengths
 
 
+def _check_bound(name: str, value: object, fix: str) -> float:
+    """A real number that is not NaN (a stiffness bound may be +inf: no finite limit)."""
+    if isinstance(value, float) and value == math.inf:
+        return value
+    return check_real(name, value, fix)
+
+
 @dataclass(frozen=True)
 class KSearch:
     """One searched stiffness limit (N/m; rotary N·m/rad) and the evidence behind it.
@@ -139,6 +146,12 @@ class KSearch:
     dense_failures: tuple[dict, ...] = ()
 
     def __post_init__(self) -> None:
+        if self.value is not None:
+            check_positive("value", self.value, "a stiffness limit is a finite K > 0, or None with a reason")
+        if self.reason is not None and not isinstance(self.reason, str):
+            raise DFATypeError(
+                f"reason = {_fmt(self.reason)} has type {type(self.reason).__name__}: it must be text or None"
+            )
         if self.value is None and not self.reason:
             raise DFAValueError("KSearch(value=None) needs a reason: say why the limit is undefined")
         if self.value is not None and not (math.isfinite(self.value) and self.value > 0):
@@ -421,6 +434,31 @@ class KMaxResult:
     status: str = "ok"
 
     def __post_init__(self) -> None:
+        fix = "KMaxResult is built by dfa.design_answer; call that instead"
+        check_type("device", self.device, Device, fix)
+        for name in ("velocity", "xi_dot", "k_criterion", "k_linear", "k_static", "k_colgate", "k_abbott_okamura"):
+            _check_bound(name, getattr(self, name), fix)
+        check_delay(self.delay)
+        for name in ("k_df", "k_sim", "k_sim_rest"):
+            check_type(name, getattr(self, name), KSearch, fix)
+        for name in ("simulations", "longest_run", "max_samples"):
+            check_int(name, getattr(self, name), 0, fix)
+        for name, n in (("speeds", None), ("k_range", 2)):
+            value = getattr(self, name)
+            if not isinstance(value, tuple) or (n is not None and len(value) != n):
+                raise DFATypeError(
+                    f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a tuple of "
+                    f"{n or 'any number of'} speeds or stiffnesses; {fix}"
+                )
+            for i, v in enumerate(value):
+                check_real(f"{name}[{i}]", v, fix)
+        check_choice("df_model", self.df_model, ("half-delay", "zoh", "pade"))
+        if not isinstance(self.counterexamples, tuple):
+            raise DFATypeError(f"counterexamples = {_fmt(self.counterexamples)} must be a tuple of dicts; {fix}")
+        if self.assessment is not None:
+            check_type("assessment", self.assessment, KMaxAssessment, fix)
+        if not isinstance(self.status, str):
+            raise DFATypeError(f"status = {_fmt(self.status)} must be ok, caveats or counterexample; {fix}")
         if self.status not in ("ok", "caveats", "counterexample"):
             raise DFAValueError(f"status = {self.status!r} is invalid: it must be ok, caveats or counterexample")
 

@@ -29,12 +29,15 @@ Examples
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._frozen import frozen_array
 from .checks import check_delay, check_int, check_positive, check_real, check_type
 from .device import Device
+from .errors import DFAValueError
 from .kmax import DESIGN_MAX_SAMPLES, _Evidence
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
@@ -93,6 +96,30 @@ class StiffnessSpeedChart:
     design_stiffness: float | None = None
     design_velocity: float | None = None
     simulations: int = 0
+
+    def __post_init__(self) -> None:
+        fix = "StiffnessSpeedChart is built by dfa.stiffness_speed_chart; call that instead"
+        check_type("device", self.device, Device, fix)
+        check_delay(self.delay)
+        check_positive("v_top", self.v_top, fix)
+        arrays = ("stiffness", "v_df", "v_sim", "v_rest", "criterion_stiffness", "v_criterion", "speeds")
+        for name in arrays:  # v_df holds NaN where the describing function cannot tell (documented)
+            object.__setattr__(self, name, frozen_array(name, getattr(self, name), ndim=1, finite=name != "v_df"))
+        for a, b in (("stiffness", "v_df"), ("stiffness", "v_sim"), ("stiffness", "v_rest"),
+                     ("criterion_stiffness", "v_criterion")):  # fmt: skip
+            if getattr(self, a).shape != getattr(self, b).shape:
+                raise DFAValueError(
+                    f"{b} has {getattr(self, b).size} values for {getattr(self, a).size} in {a}: "
+                    f"it must have one per stiffness; {fix}"
+                )
+        for name in ("k_linear", "k_colgate", "k_abbott_okamura", "k_static"):
+            value = getattr(self, name)
+            if not (isinstance(value, float) and value == math.inf):  # inf: no finite bound
+                check_real(name, value, fix)
+        for name in ("design_stiffness", "design_velocity"):
+            if getattr(self, name) is not None:
+                check_real(name, getattr(self, name), fix)
+        check_int("simulations", self.simulations, 0, fix)
 
     def plot(self, ax=None):
         """Draw the chart (:func:`dfa.plotting.stiffness_speed_plot`); returns the axes.
@@ -165,6 +192,12 @@ def _k_range(dev: Device, delay: int, v_top: float, design: float | None) -> tup
     return lo, max(8.0 * max(highs), 16.0 * lo)
 
 
+#: Most stiffnesses (``grid``) or speeds (``speeds``) one chart simulates.
+_MAX_COUNT = 1000
+#: Slowest impact speed simulated (``v_top``/200): the smallest normal float.
+_SMALLEST_SPEED = sys.float_info.min
+
+
 def stiffness_speed_chart(
     device: Device,
     delay: int = 0,
@@ -189,9 +222,9 @@ def stiffness_speed_chart(
     v_top : float, optional
         Top of the speed range (default :data:`HAND_SPEED`, or ``velocity`` when larger).
     grid : int, optional
-        Stiffnesses simulated (default 24, geometric).
+        Stiffnesses simulated (default 24, geometric; at most 1000).
     speeds : int, optional
-        Impact speeds simulated per stiffness (default 14, geometric from v_top/200), two starts each.
+        Impact speeds simulated per stiffness (default 14, geometric from v_top/200; at most 1000), two starts each.
     max_samples : int, optional
         Longest run in samples.
 
@@ -216,14 +249,25 @@ def stiffness_speed_chart(
     d = check_delay(delay)
     k_design = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
     v_design = None if velocity is None else abs(check_real("velocity", velocity, "give the speed in m/s"))
+    fix_top = "give the top of the speed range in m/s (rad/s rotary), e.g. 0.5"
     top = HAND_SPEED["rotary" if dev.rotary else "linear"] if v_top is None else v_top
-    top = check_positive("v_top", max(top, v_design or 0.0), "give the top of the speed range in m/s")
+    top = max(check_positive("v_top", top, fix_top), v_design or 0.0)
+    if not top / 200.0 >= _SMALLEST_SPEED:  # the slowest speed simulated is v_top/200: a normal float
+        raise DFAValueError(
+            f"v_top = {top!r} is invalid: it must be a finite number >= {200 * _SMALLEST_SPEED!r}; {fix_top}"
+        )
     n_k = check_int("grid", grid, minimum=2, fix="give at least 2 stiffnesses")
     n_v = check_int("speeds", speeds, minimum=1, fix="simulate at least one speed")
+    if n_k > _MAX_COUNT or n_v > _MAX_COUNT:
+        arg, n = ("grid", n_k) if n_k > _MAX_COUNT else ("speeds", n_v)
+        raise DFAValueError(
+            f"{arg} = {n} is invalid: it must be a whole number <= {_MAX_COUNT}; each one is a set of simulations"
+        )
+    n_max = check_int("max_samples", max_samples, minimum=1000, fix="give the longest run in samples")
     vs = np.geomspace(top / 200.0, top, n_v) if n_v > 1 else np.array([top])
     lo, hi = _k_range(dev, d, top, k_design)
     ks = np.geomspace(lo, hi, n_k)
-    ev = _Evidence(dev, vs, d, check_int("max_samples", max_samples, minimum=1000), "half-delay")
+    ev = _Evidence(dev, vs, d, n_max, "half-delay")
     v_sim, v_rest, v_df = [], [], []
     for k in ks:
         rows = ev.outcomes(float(k))

@@ -707,9 +707,11 @@ def stiffness_response(
     if velocity is None:
         v0 = dev.resolution / dev.period
         velocity = np.geomspace(1e-3 * v0, 1e3 * v0, 200)
-    v = np.abs(np.asarray(velocity, dtype=float))
-    if v.size == 0 or not np.all(np.isfinite(v)) or np.any(v <= 0):
-        raise DFAValueError(f"velocity = {velocity!r} is invalid: it must hold finite speeds > 0 (m/s)")
+    fix = f"give impact speeds in {dev.units['velocity']}"
+    v = np.atleast_1d(np.abs(check_real_array("velocity", velocity, fix))).ravel()
+    if v.size == 0 or np.any(v <= 0):
+        shown = "an empty array" if v.size == 0 else f"{float(v[v <= 0][0])!r}"
+        raise DFAValueError(f"velocity = {shown} is invalid: it must hold finite speeds > 0; {fix}")
     k = (
         None
         if stiffness is None

@@ -142,7 +142,7 @@ RESULTS = {
 
 #: Calls that take seconds when every argument is valid: only their refusals are fuzzed
 #: (a valid draw is replaced by a call with one argument known to be refused).
-EXPENSIVE = {"validate", "design_report"}
+EXPENSIVE = {"validate", "design_report", "stiffness_speed_chart"}
 
 #: Examples per name under ``ci`` (the profile's default for the rest); costly names get fewer.
 EXAMPLES = {
@@ -270,7 +270,11 @@ class _WouldRun(Exception):
 
 
 #: The first piece of work of each expensive call, after its validation (replaced by _WouldRun in the fuzz).
-_WORK = {"validate": ("dfa.validation", "cycle_checks"), "design_report": ("dfa.report", "_write_report")}
+_WORK = {
+    "validate": ("dfa.validation", "cycle_checks"),
+    "design_report": ("dfa.report", "design_analysis"),
+    "stiffness_speed_chart": ("dfa.speed_chart", "_Evidence"),
+}
 
 
 @pytest.mark.parametrize("name", NAMES)

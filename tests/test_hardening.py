@@ -799,6 +799,106 @@ def test_gil_beta_critical_outside_its_reliable_range_refused(mu):
     assert 0.5 - dfa.gil_beta_critical(1e10) == pytest.approx(1 / 24 / 1e10, rel=1e-3)  # the asymptote ½ − 1/(24μ)
 
 
+@pytest.mark.parametrize(
+    "kw, kind, name",
+    [
+        ({"overrides": np.array([1.0, 2.0])}, DFATypeError, "overrides"),  # was: ambiguous truth value
+        ({"overrides": 5e-324}, DFATypeError, "overrides"),  # was: AttributeError 'items'
+        ({"flags": 1.0}, DFATypeError, "flags"),  # was: TypeError dict | float
+        ({"name": 1.0}, DFATypeError, "name"),
+        ({"name": "delta", "label": 1.0}, DFATypeError, "label"),
+        ({"name": "delta", "rotary": "yes"}, DFATypeError, "rotary"),
+        ({"name": "delta", "counts": 10**400}, DFAValueError, "counts"),  # was: OverflowError in 1/counts
+    ],
+)
+def test_resolve_device_refuses_hostile_arguments(kw, kind, name):
+    # found by the API fuzz: resolve_device raised ValueError, AttributeError, TypeError and OverflowError
+    with pytest.raises(kind, match=f"^{name}"):
+        dfa.resolve_device(**kw)
+    assert dfa.resolve_device("delta", counts=40_000).device.resolution == pytest.approx(2.5e-5)
+
+
+@pytest.mark.parametrize("kw", [{"rotary": np.float64("nan")}, {"rotary": "yes"}, {"name": 3}, {"name": None}])
+def test_device_refuses_a_name_or_rotary_flag_of_the_wrong_type(kw):
+    # found by the API fuzz: Device(..., rotary=nan) was built (a NaN in a record with no status)
+    with pytest.raises(DFATypeError, match=f"^{next(iter(kw))} = "):
+        dfa.Device(1.0, 0.0, 0.0, 1e-5, 1e-3, **kw)
+    assert dfa.Device(1.0, 0.0, 0.0, 1e-5, 1e-3, rotary=np.bool_(True)).rotary is True
+
+
+def test_stiffness_response_takes_a_scalar_speed_and_refuses_text():
+    # found by the API fuzz: velocity=1.0 raised IndexError (a 0-d array indexed), "x" a bare ValueError
+    dev = dfa.get_device("delta").device
+    r = dfa.stiffness_response(dev, velocity=1.0)
+    assert r.velocity.tolist() == [1.0] and r.k_max.shape == (1,)
+    for bad, kind in (("x", DFATypeError), (10**400, DFAValueError), ([0.1, 0.0], DFAValueError), ([], DFAValueError)):
+        with pytest.raises(kind, match="^velocity"):
+            dfa.stiffness_response(dev, velocity=bad)
+
+
+@pytest.mark.parametrize(
+    "kw, kind, name",
+    [
+        ({"v_top": ""}, DFATypeError, "v_top"),  # was: TypeError float > str
+        ({"v_top": np.array([1.0, 2.0])}, DFATypeError, "v_top"),  # was: ambiguous truth value
+        ({"v_top": 5e-324}, DFAValueError, "v_top"),  # was: "Geometric sequence cannot include zero"
+        ({"speeds": 7632098863}, DFAValueError, "speeds"),  # was: numpy MemoryError (57 GiB)
+        ({"grid": 10**6}, DFAValueError, "grid"),
+        ({"max_samples": "i?"}, DFATypeError, "max_samples"),
+    ],
+)
+def test_stiffness_speed_chart_refuses_hostile_arguments(kw, kind, name):
+    # found by the API fuzz: stiffness_speed_chart raised TypeError, ValueError and MemoryError
+    with pytest.raises(kind, match=f"^{name}"):
+        dfa.stiffness_speed_chart(dfa.get_device("delta").device, **kw)
+
+
+def _record_kwargs(cls):
+    import dataclasses
+
+    return {
+        f.name: 0.0
+        for f in dataclasses.fields(cls)
+        if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+    }
+
+
+@pytest.mark.parametrize("cls", [dfa.KMaxResult, dfa.DesignAnalysis, dfa.StiffnessSpeedChart])
+def test_result_records_refuse_fields_of_the_wrong_kind(cls):
+    # found by the API fuzz: KMaxResult(device=0.0, ...) and StiffnessSpeedChart(device=[1.0], ...) were built
+    # and failed later in as_dict (AttributeError); DesignAnalysis(params=0.0, ...) raised "'float' is not iterable"
+    dev = dfa.get_device("delta").device
+    kw = _record_kwargs(cls)
+    with pytest.raises(DFATypeError, match="^device"):
+        cls(**kw)
+    kw.update({"device": dev, "delay": 0} | ({"stiffness": 10.0} if "stiffness" in kw else {}))
+    with pytest.raises(DFAError, match=r"^\w+ = "):
+        cls(**kw)
+
+
+def test_ksearch_refuses_a_limit_that_is_not_a_number():
+    # found by the API fuzz (KMaxResult fields): KSearch("x") raised TypeError from math.isfinite
+    from dfa.kmax import KSearch
+
+    with pytest.raises(DFATypeError, match="^value"):
+        KSearch("x")
+    with pytest.raises(DFAValueError, match="^value"):
+        KSearch(math.inf)
+    assert KSearch(None, reason="the loop is unstable").value is None
+
+
+def test_stiffness_speed_chart_record_validates_its_arrays():
+    # found by the API fuzz: StiffnessSpeedChart(speeds=0.0, ...) was built and as_dict raised "'float' is not iterable"
+    dev = dfa.get_device("delta").device
+    ok = dict(device=dev, delay=0, v_top=0.5, stiffness=[1.0, 2.0], v_df=[0.1, math.nan], v_sim=[0.1, 0.2],
+              v_rest=[0.1, 0.2], criterion_stiffness=[1.0], v_criterion=[0.3], speeds=[0.1],
+              k_linear=1.0, k_colgate=math.inf, k_abbott_okamura=1.0, k_static=2.0)  # fmt: skip
+    assert dfa.StiffnessSpeedChart(**ok).as_dict()["v_df"] == [0.1, None]
+    for bad in ({"speeds": 0.0}, {"v_sim": [0.1]}, {"v_rest": [0.1, math.nan]}, {"k_static": "x"}):
+        with pytest.raises(DFAError, match=f"^({next(iter(bad))}|v_sim|v_rest|k_static)"):
+            dfa.StiffnessSpeedChart(**(ok | bad))
+
+
 # ------------------------------------------------------------------ 11. progress bars: stderr, a terminal or --progress
 MAP_SMALL = ["map", "--mu", "100", "--xi-dot", "1", "--grid", "3", "--samples", "200", "--jobs", "1", "--out"]
 
