@@ -59,6 +59,7 @@ import dataclasses
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -347,7 +348,7 @@ def _confirm(found: KSearch, dense: _Evidence, bad: str) -> KSearch:
     (every outcome other than rest fails). A failure turns into a caveat in the result, never a silent pass."""
     if found.value is None:
         return found
-    fails = []
+    fails: list[dict[str, Any]] = []
     for f in DENSE_BELOW:
         k = found.value * (1.0 - f)
         for xd, start, o in dense.outcomes(k):
@@ -355,7 +356,7 @@ def _confirm(found: KSearch, dense: _Evidence, bad: str) -> KSearch:
                 fails.append({"stiffness": k, "velocity": dense.dev.velocity(xd), "start": start, "outcome": o})
     if not fails:
         return found
-    w = min(fails, key=lambda r: r["stiffness"])
+    w = min(fails, key=lambda r: float(r["stiffness"]))
     u = dense.dev.units
     note = (
         f"NOT confirmed: a denser check ({len(dense.xi_dots)} speeds) found {w['outcome']} at K = "
