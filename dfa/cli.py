@@ -124,13 +124,9 @@ def _name(text: str) -> str:
     return text.strip()
 
 
-def _add_device_args(
-    p: argparse.ArgumentParser,
-    dimensionless: bool,
-    speed: bool,
-    json_help: str = "print one JSON object on stdout (default: a text table)",
-) -> None:
-    g = p.add_argument_group("device (a catalogue name, or physical values in SI units)")
+def _add_device_group(p: argparse.ArgumentParser, title: str) -> argparse._ArgumentGroup:
+    """--device, the physical flags, --counts, --name, --stiffness and --rotary (:func:`dfa.catalogue.resolve_device`)."""
+    g = p.add_argument_group(title)
     g.add_argument(
         "--device",
         metavar="NAME",
@@ -168,6 +164,16 @@ def _add_device_args(
         action="store_true",
         help="physical values are rotary (rad, N·m, inertia in kg·m²); default: linear (m, N, kg)",
     )
+    return g
+
+
+def _add_device_args(
+    p: argparse.ArgumentParser,
+    dimensionless: bool,
+    speed: bool,
+    json_help: str = "print one JSON object on stdout (default: a text table)",
+) -> None:
+    _add_device_group(p, "device (a catalogue name, or physical values in SI units)")
     if dimensionless:
         d = p.add_argument_group("dimensionless parameters (instead of a device)")
         d.add_argument(
@@ -689,27 +695,7 @@ def _write_trace(path: str, r) -> None:
 
 def _add_map_device_args(p: argparse.ArgumentParser, speeds: bool) -> None:
     """A device instead of --mu for `map` and `contours` (μ from the device at K; its (β, σ) is marked), and --plot."""
-    g = p.add_argument_group("device (instead of --mu: a catalogue name, or physical values in SI units)")
-    g.add_argument(
-        "--device", metavar="NAME", help="catalogue device (case-insensitive prefix, e.g. 'phantom'); default: none"
-    )
-    for key, (flag, unit) in _PHYS_FLAGS.items():
-        g.add_argument(
-            flag,
-            dest=key,
-            type=_number(flag, unit),
-            metavar="X",
-            help=f"{_PHYS_WHAT[key]} in {unit}; default: the catalogue value",
-        )
-    g.add_argument(
-        "--stiffness",
-        type=_number("--stiffness", "N/m"),
-        metavar="K",
-        help="virtual wall stiffness K in N/m (rotary: N·m/rad); default: the catalogue K",
-    )
-    g.add_argument(
-        "--rotary", action="store_true", help="physical values are rotary (rad, N·m, kg·m²); default: linear"
-    )
+    g = _add_device_group(p, "device (instead of --mu: a catalogue name, or physical values in SI units)")
     if speeds:
         g.add_argument(
             "--velocity",
@@ -726,7 +712,7 @@ def _map_device(args: argparse.Namespace) -> tuple[float, _Inputs | None]:
     if args.plot is not None and args.grid < 2:
         raise UsageError(f"--plot needs --grid 2 or more (got --grid {args.grid}): a figure needs a grid")
     given = bool(args.device) or any(getattr(args, k, None) is not None for k in _PHYS_FLAGS)
-    given = given or args.stiffness is not None
+    given = given or any(getattr(args, k, None) is not None for k in ("stiffness", "counts", "name"))
     if args.mu is not None and given:
         raise UsageError("--mu cannot be combined with a device: give --mu, or --device/physical values (μ follows)")
     if args.mu is None and not given:
