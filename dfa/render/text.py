@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from ..formatting import number, text_table
@@ -20,6 +21,13 @@ OUTCOME_TEXT = {
 
 def _g(x: float | None, digits: int = 4) -> str:
     return number(x, digits, none="-", inf="inf")
+
+
+def _amplitude_text(r: Any, amp_si: float | None, unit: str) -> str:
+    """The simulated amplitude; a diverged run has none ("unbounded"), not "inf ticks"."""
+    if r.amplitude is not None and math.isinf(r.amplitude):
+        return "unbounded (the run diverged: no amplitude to measure)"
+    return f"{_g(r.amplitude)} ticks" + ("" if amp_si is None else f" = {amp_si:.4g} {unit}")
 
 
 def check_rows(r: Any, quantized: bool, vu: str) -> list[list[str]]:
@@ -78,7 +86,7 @@ def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | No
         rows.append(["to decide", f"run longer: --samples {r.suggested_samples}"])
     rows += [
         ["rest at sample", "-" if r.rest_sample is None else str(r.rest_sample)],
-        ["amplitude", f"{_g(r.amplitude)} ticks" + ("" if amp_si is None else f" = {amp_si:.4g} {amp_unit}")],
+        ["amplitude", _amplitude_text(r, amp_si, amp_unit)],
         ["frequency", freq],
     ]
     if r.outcome in ("chatter", "oscillating", "undecided"):
