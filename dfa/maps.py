@@ -70,7 +70,7 @@ from .checks import (
 )
 from .errors import DFATypeError, DFAValueError
 from .jsonable import to_jsonable
-from .simulation import OUTCOMES, check_rules, preload_position, run_points
+from .simulation import OUTCOMES, check_rules, divergence_bound, preload_position, run_points
 from .status import MapStatus
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
@@ -424,7 +424,7 @@ def stability_map(
     n_jobs: int = -1,
     backend: str = "threads",
     progress: bool = True,
-    bound: float = 1.0e6,
+    bound: float | None = None,
     stable_amplitude: float = 1.0,
     growth: float = 1.25,
     settle: float = 1.0e-3,
@@ -461,7 +461,8 @@ def stability_map(
     progress : bool
         Show a tqdm progress bar.
     bound, stable_amplitude, growth, settle : float, optional
-        Outcome rules, as in :func:`dfa.simulate`.
+        Outcome rules, as in :func:`dfa.simulate` (default bound: beyond the fastest start's own travel,
+        :func:`dfa.simulation.divergence_bound`).
 
     Returns
     -------
@@ -488,6 +489,8 @@ def stability_map(
     d = check_delay(delay)
     jobs = check_jobs("n_jobs", n_jobs)
     how = check_choice("backend", backend, MAP_BACKENDS)
+    if bound is None:  # beyond the fastest start's own travel (dfa.simulation.divergence_bound)
+        bound = divergence_bound(0.0, float(np.max(np.abs(speeds))), m)
     rules = check_rules(bound, stable_amplitude, growth, settle)
     check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
     beta, sigma = np.linspace(b0, b1, g), np.linspace(s0, s1, g)

@@ -618,7 +618,7 @@ def simulate(
     *,
     record: bool = True,
     energy: bool = False,
-    bound: float = 1.0e6,
+    bound: float | None = None,
     stable_amplitude: float = 1.0,
     growth: float = 1.25,
     settle: float = 1.0e-3,
@@ -646,7 +646,9 @@ def simulate(
     energy : bool, optional
         Keep the per-sample energy bookkeeping (off the fast path).
     bound : float, optional
-        Position abs(ξ) (ticks) beyond which the run is declared unstable and stopped.
+        Position abs(ξ) (ticks) beyond which the run is declared unstable and stopped. Default:
+        :func:`divergence_bound`, max(10⁶, 100(A₀ + 1)) with A₀ the start's energy amplitude
+        (eq. 18-19), so that an impact's own travel is never called a divergence.
     stable_amplitude : float, optional
         Tail amplitude (ticks) below which a settled cycle is ``"chatter"``
         rather than ``"oscillating"``.
@@ -684,6 +686,8 @@ def simulate(
     auto = samples is None
     fix = "simulate at least one sample"
     n = default_samples(m, b, s, v0, x0, d, q) if auto else check_int("samples", samples, minimum=1, fix=fix)
+    if bound is None:  # beyond the start's own travel: a passive run never counts as diverged
+        bound = divergence_bound(x0, v0, m)
     bnd, sa, gr, st = check_rules(bound, stable_amplitude, growth, settle)
     check_bound(bnd, x0)
     _check_record_size(n, record, energy)
@@ -847,7 +851,7 @@ def simulate_batch(
     delay: int = 0,
     quantize: bool = True,
     *,
-    bound: float = 1.0e6,
+    bound: float | None = None,
     stable_amplitude: float = 1.0,
     growth: float = 1.25,
     settle: float = 1.0e-3,
@@ -878,6 +882,8 @@ def simulate_batch(
     m, b, s, v0, x0 = _check_points(mu, beta, sigma, xi_dot0, xi0)
     n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
     d = check_delay(delay)
+    if bound is None:  # one bound for the batch: beyond the largest start's travel (divergence_bound)
+        bound = max(divergence_bound(float(a), float(c), float(mm)) for a, c, mm in zip(x0, v0, m, strict=True))
     rules = check_rules(bound, stable_amplitude, growth, settle)
     if not np.all(rules[0] > np.abs(x0)):
         raise DFAValueError(f"bound = {rules[0]!r} is invalid: it must exceed every |xi0| ({np.abs(x0).max()!r})")

@@ -47,3 +47,20 @@ def test_eq19_map_cli_calls_no_region_a_point_unstable(capsys, tmp_path):
     argv += ["--grid", "3", "--samples", "2000", "--out", str(tmp_path / "m.npz"), "--quiet", "--json", "--jobs", "1"]
     assert main(argv) == 0
     assert json.loads(capsys.readouterr().out)["counts"][0]["unstable"] == 0
+
+
+def test_eq19_api_defaults_never_call_a_proven_passive_impact_unstable():
+    # red-team finding left open: dfa.simulate(800, 1, 2.4e5, 1e5) said "unstable" with the fixed default
+    # bound of 1e6 ticks while the criterion proves the point passive (region a) and the impact's own travel
+    # is ~2.8e6 ticks. The library defaults now use divergence_bound as the CLI does.
+    import dfa
+
+    crit = dfa.passivity_criterion(1.0, 2.4e5, 1e5)
+    assert crit.passive
+    assert dfa.simulate(800.0, 1.0, 2.4e5, 1e5, record=False).outcome != "unstable"
+    b = dfa.simulation.simulate_batch(800.0, [1.0, 1.0], [2.4e5, 2.4e5], [1e5, 1.0], samples=20000)
+    assert "unstable" not in b.outcomes()
+    m = dfa.stability_map(800.0, [1e5], beta_range=(0.5, 1.0), sigma_range=(0.5, 2.0), grid=3, samples=20000, n_jobs=1)
+    assert m.counts()[0]["unstable"] == 0
+    # and a run that does diverge still does under the default
+    assert dfa.simulate(100.0, 0.0, 0.2, 5.0, 20000, record=False).outcome == "unstable"

@@ -166,7 +166,7 @@ def test_rule_defaults_are_the_documented_ones():
             1.0,
             1.25,
             1e-3,
-            1e6,
+            None,  # None: dfa.simulation.divergence_bound, max(1e6, 100(A0 + 1)) (eq. 18-19)
         )
     assert OUTCOMES == ("rest", "oscillating", "unstable", "chatter", "undecided")
     assert (_kernel.REST, _kernel.OSCILLATING, _kernel.UNSTABLE, _kernel.CHATTER, _kernel.UNDECIDED) == (0, 1, 2, 3, 4)
