@@ -470,25 +470,15 @@ def _stiffness_source(args: argparse.Namespace, inp: _Inputs) -> str | None:
     return "catalogue" if inp.stiffness is not None else None
 
 
-def _limit_text(s, ku: str) -> str:
-    """One searched limit (dfa.kmax.KSearch) in words."""
-    if s.value is None:
-        return f"none: {s.reason}"
-    txt = f"{s.value:.5g} {ku}"
-    if s.reason:
-        txt += f" ({s.reason})"
-    if s.non_monotone:
-        txt += f"; NOT monotone: safe again at {', '.join(f'{k:.4g}' for k in s.safe_above)} {ku}"
-    return txt
-
-
 def _design_rows(ans, vu: str) -> list[list[str]]:
+    from .render.text import limit_text
+
     """Rows of `dfa stiffness` for the describing-function and simulated limits and a chosen K."""
     ku = ans.device.units["stiffness"]
     rows = [
-        ["describing function: largest K with growth speed >= V", _limit_text(ans.k_df, ku)],
-        ["simulation: largest K, no simulated impact up to V diverges", _limit_text(ans.k_sim, ku)],
-        ["simulation: largest K, every simulated impact up to V rests", _limit_text(ans.k_sim_rest, ku)],
+        ["describing function: largest K with growth speed >= V", limit_text(ans.k_df, ku)],
+        ["simulation: largest K, no simulated impact up to V diverges", limit_text(ans.k_sim, ku)],
+        ["simulation: largest K, every simulated impact up to V rests", limit_text(ans.k_sim_rest, ku)],
     ]
     for c in ans.counterexamples:
         rows.append(

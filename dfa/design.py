@@ -22,9 +22,11 @@ from .cycles import GrowthThreshold, growth_threshold
 from .device import Device, Params
 from .errors import DFATypeError, DFAValueError
 from .jsonable import to_jsonable
+from .kmax import KMaxResult, design_answer
 from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, stability_map
 from .simulation import SimulationResult, divergence_bound, simulate
+from .speed_chart import StiffnessSpeedChart, stiffness_speed_chart
 from .status import DesignStatus
 from .stiffness import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
 from .validation import first_unstable_speed
@@ -82,6 +84,10 @@ class DesignAnalysis:
         Linearised loop and −1/D(M) (figure).
     stability_map : StabilityMap
         Simulated outcomes around the operating point at the design speed and twice it.
+    design_answer : KMaxResult or None
+        K_max four ways at the design speed (:func:`dfa.kmax.design_answer`); None at speed 0.
+    speed_chart : StiffnessSpeedChart or None
+        Largest safe impact speed against K (:func:`dfa.speed_chart.stiffness_speed_chart`); None at speed 0.
     catalogue : dict or None
         The paper's printed (μ, β, σ), the disagreements and the notes of a catalogue device.
     validation : dict or None
@@ -109,6 +115,8 @@ class DesignAnalysis:
     stiffness_curve: StiffnessResponse = field(repr=False)
     nyquist: NyquistLocusResponse = field(repr=False)
     stability_map: StabilityMap = field(repr=False)
+    design_answer: KMaxResult | None = field(default=None, repr=False)
+    speed_chart: StiffnessSpeedChart | None = field(default=None, repr=False)
     catalogue: dict[str, Any] | None = None
     validation: dict[str, Any] | None = None
     samples: int = 30_000
@@ -130,6 +138,9 @@ class DesignAnalysis:
             ("nyquist", NyquistLocusResponse), ("stability_map", StabilityMap),
         ):  # fmt: skip
             check_type(name, getattr(self, name), cls, fix)
+        for name, opt in (("design_answer", KMaxResult), ("speed_chart", StiffnessSpeedChart)):
+            if getattr(self, name) is not None:
+                check_type(name, getattr(self, name), opt, fix)
         if self.simulated_xi_dot is not None:
             check_real("simulated_xi_dot", self.simulated_xi_dot, fix)
         check_real("high_xi_dot", self.high_xi_dot, fix)
@@ -199,6 +210,8 @@ class DesignAnalysis:
                 "high_xi_dot": self.high_xi_dot,
                 "outcome_high": self.outcome_high.as_dict(),
                 "stability_map": self.stability_map.as_dict(),
+                "design_answer": None if self.design_answer is None else self.design_answer.as_dict(),
+                "speed_chart": None if self.speed_chart is None else self.speed_chart.as_dict(),
                 "catalogue": self.catalogue,
                 "validation": self.validation,
                 "samples": self.samples,
@@ -344,6 +357,9 @@ def design_analysis(
     smap = _map_around(p, crit.xi_dot, dl, map_grid, samples, n_jobs, progress)
     steps.close()
     figs: dict[str, Any] = dict(stiffness_curve=curve, nyquist=ny, stability_map=smap)
+    if v > 0:  # the design answer, first in the report: K_max four ways and the stiffness-speed chart
+        figs["design_answer"] = design_answer(dev, v, dl, stiffness=k)
+        figs["speed_chart"] = stiffness_speed_chart(dev, dl, stiffness=k, velocity=v)
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )

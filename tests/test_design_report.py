@@ -37,7 +37,7 @@ def no_figures(monkeypatch, small_reports):
 
     stub = lambda name: lambda a: figures.ReportFigure(name, f"caption of {name}", b"\x89PNG stub")
     monkeypatch.setattr(
-        figures, "FIGURES", tuple(stub(n) for n in ("regions", "stiffness", "nyquist", "trajectories", "map"))
+        figures, "FIGURES", tuple(stub(n) for n in ("speed_chart", "regions", "stiffness", "nyquist", "trajectories", "map"))
     )
 
 
@@ -111,7 +111,7 @@ def test_markdown_of_a_device_named_like_markup_stays_text(impulse):
 
     dev = replace(impulse.device, name="pen <b>*2*</b> | x")
     md = design_markdown(
-        replace(impulse, device=dev), {n: n for n in ("regions", "stiffness", "nyquist", "trajectories", "map")}, str
+        replace(impulse, device=dev), {n: n for n in ("speed_chart", "regions", "stiffness", "nyquist", "trajectories", "map")}, str
     )
     html = markdown_to_html(md, "t")
     assert "<b>" not in html and "&lt;b&gt;" in html
@@ -136,7 +136,7 @@ def test_report_html_only_writes_no_png_and_embeds_every_figure(tmp_path, capsys
         "design_report_impulse-engine.json",
     ]
     html = (tmp_path / "design_report_impulse-engine.html").read_text()
-    assert html.count('src="data:image/png;base64,') == 5 and not re.search(r'src="(?!data:)', html)
+    assert html.count('src="data:image/png;base64,') == 6 and not re.search(r'src="(?!data:)', html)
 
 
 def test_report_never_reads_a_stray_validation_json(tmp_path, capsys, no_figures):
@@ -179,7 +179,7 @@ def test_report_json_prints_one_object_with_paths_and_numbers(tmp_path, capsys, 
     assert [p.rsplit("/", 1)[-1] for p in d["paths"]] == [
         "design_report_impulse-engine.md", "design_report_impulse-engine.html", "design_report_impulse-engine.json"
     ]  # fmt: skip
-    assert len(d["figures"]) == 5 and all(
+    assert len(d["figures"]) == 6 and all(
         (out_dir / "figures").joinpath(p.rsplit("/", 1)[-1]).is_file() for p in d["figures"]
     )
     lim = dfa.stiffness_limits(dfa.get_device("impulse").device, 0.05, 80.0)

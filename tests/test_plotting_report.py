@@ -107,6 +107,7 @@ def test_report_has_every_section_and_figure(report_dir):
     md = (report_dir / "design_report_impulse-engine.md").read_text()
     for section in (
         "# Design report: Impulse Engine",
+        "## How stiff may the wall be? (four ways",
         "## Device",
         "## Passivity and stiffness limits",
         "## Predicted limit cycles",
@@ -115,7 +116,8 @@ def test_report_has_every_section_and_figure(report_dir):
     ):
         assert section in md
     figs = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", md)
-    assert len(figs) == 5
+    assert len(figs) == 6  # the stiffness-speed chart first (issue 14 §2), then the five of the analysis
+    assert figs[0].endswith("_speed_chart.png")
     for f in figs:
         assert (report_dir / f).is_file()
 
@@ -178,7 +180,7 @@ def test_report_verdict_for_a_stiffness_above_the_static_limit_and_with_delay():
 
 def test_report_html_is_self_contained(report_dir):
     html = (report_dir / "design_report_impulse-engine.html").read_text()
-    assert html.count("data:image/png;base64,") == 5
+    assert html.count("data:image/png;base64,") == 6
     assert not re.search(r'src="(?!data:)', html)
     assert "<table>" in html and "Impulse Engine" in html
 

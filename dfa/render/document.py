@@ -285,6 +285,23 @@ def _template() -> Any:
     return env.get_template("design_report.md.j2")
 
 
+def answer_rows(a: DesignAnalysis) -> list[list[str]]:
+    """Rows of the report's design answer: K_max four ways at the design speed, each with what it rests on."""
+    from .text import limit_text
+
+    ans = a.design_answer
+    assert ans is not None
+    ku = a.device.units["stiffness"]
+    return [
+        ["criterion (eq. 11; a proof)", f"{ans.k_criterion:.5g} {ku}"],
+        ["exact linear bound (no encoder, no friction)", f"{ans.k_linear:.5g} {ku}"],
+        ["describing function (growth speed >= V; first harmonic)", limit_text(ans.k_df, ku)],
+        ["simulation: no simulated impact up to V diverges", limit_text(ans.k_sim, ku)],
+        ["simulation: every simulated impact up to V rests", limit_text(ans.k_sim_rest, ku)],
+        ["evidence", ans.evidence_text()],
+    ]
+
+
 def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callable[[str], str]) -> str:
     """The report as Markdown; ``src(name)`` gives each figure's link (a relative path or a data URI).
 
@@ -308,6 +325,9 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
         device_table=markdown_table(["quantity", "value"], device_rows(a)),
         catalogue_text=catalogue_text(a),
         limits_table=markdown_table(["quantity", "value"], limits_rows(a)),
+        answer_table=markdown_table(["largest stiffness K at this speed", "value"], answer_rows(a))
+        if a.design_answer is not None
+        else "",
         cycle_table=markdown_table(
             ["loop model", "M (ticks)", "amplitude", "ω (rad/sample)", "frequency", "stability", "family"], cycles
         )

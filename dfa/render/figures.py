@@ -105,8 +105,19 @@ def _map(a: DesignAnalysis) -> ReportFigure:
     return ReportFigure("map", caption, _png(axs[0].figure))
 
 
+def _speed_chart(a: DesignAnalysis) -> ReportFigure | None:
+    if a.speed_chart is None:
+        return None
+    ax = a.speed_chart.plot()
+    caption = (
+        f"Largest safe impact speed against stiffness K for the {a.device.name}{_delay_text(a.delay)}: criterion "
+        "(proof), describing function and simulation, with the closed-form bounds; the star is the design point."
+    )
+    return ReportFigure("speed_chart", caption, _png(ax.figure))
+
+
 #: The report's figures in the order they appear.
-FIGURES = (_regions, _stiffness, _nyquist, _trajectories, _map)
+FIGURES = (_speed_chart, _regions, _stiffness, _nyquist, _trajectories, _map)
 
 
 def design_figures(analysis: DesignAnalysis) -> tuple[ReportFigure, ...]:
@@ -124,4 +135,4 @@ def design_figures(analysis: DesignAnalysis) -> tuple[ReportFigure, ...]:
     import matplotlib
 
     matplotlib.use("Agg", force=False)
-    return tuple(draw(analysis) for draw in FIGURES)
+    return tuple(f for f in (draw(analysis) for draw in FIGURES) if f is not None)

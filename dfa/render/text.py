@@ -196,3 +196,15 @@ def limit_cycles_dict(g: Any, phys: dict | None = None) -> dict[str, object]:
             cyc.update(extra)
         d.update(phys)
     return d
+
+
+def limit_text(s: Any, ku: str) -> str:
+    """One searched limit (:class:`dfa.kmax.KSearch`) in words, with its caveats (reason, non-monotone)."""
+    if s.value is None:
+        return f"none: {s.reason}"
+    txt = f"{s.value:.5g} {ku}"
+    if s.reason:
+        txt += f" ({s.reason})"
+    if s.non_monotone:
+        txt += f"; NOT monotone: safe again at {', '.join(f'{k:.4g}' for k in s.safe_above)} {ku}"
+    return txt
