@@ -37,7 +37,9 @@ def no_figures(monkeypatch, small_reports):
 
     stub = lambda name: lambda a: figures.ReportFigure(name, f"caption of {name}", b"\x89PNG stub")
     monkeypatch.setattr(
-        figures, "FIGURES", tuple(stub(n) for n in ("speed_chart", "regions", "stiffness", "nyquist", "trajectories", "map"))
+        figures,
+        "FIGURES",
+        tuple(stub(n) for n in ("speed_chart", "regions", "stiffness", "nyquist", "trajectories", "map")),
     )
 
 
@@ -111,7 +113,9 @@ def test_markdown_of_a_device_named_like_markup_stays_text(impulse):
 
     dev = replace(impulse.device, name="pen <b>*2*</b> | x")
     md = design_markdown(
-        replace(impulse, device=dev), {n: n for n in ("speed_chart", "regions", "stiffness", "nyquist", "trajectories", "map")}, str
+        replace(impulse, device=dev),
+        {n: n for n in ("speed_chart", "regions", "stiffness", "nyquist", "trajectories", "map")},
+        str,
     )
     html = markdown_to_html(md, "t")
     assert "<b>" not in html and "&lt;b&gt;" in html
