@@ -124,6 +124,23 @@ def _name(text: str) -> str:
     return text.strip()
 
 
+def _add_counts_name_args(g: Any) -> None:
+    """--counts and --name, for every command that takes a device."""
+    g.add_argument(
+        "--counts",
+        type=_integer("--counts"),
+        metavar="N",
+        help="encoder counts per metre (with --rotary: per revolution) instead of --resolution: Δ = 1/N m "
+        "(2π/N rad); default: none",
+    )
+    g.add_argument(
+        "--name",
+        type=_name,
+        metavar="TEXT",
+        help="device name in outputs and report file names; default: the catalogue name, else 'custom device'",
+    )
+
+
 def _add_device_args(
     p: argparse.ArgumentParser,
     dimensionless: bool,
@@ -144,19 +161,7 @@ def _add_device_args(
             metavar="X",
             help=f"{_PHYS_WHAT[key]} in {unit}; default: the catalogue value",
         )
-    g.add_argument(
-        "--counts",
-        type=_integer("--counts"),
-        metavar="N",
-        help="encoder counts per metre (with --rotary: per revolution) instead of --resolution: Δ = 1/N m "
-        "(2π/N rad); default: none",
-    )
-    g.add_argument(
-        "--name",
-        type=_name,
-        metavar="TEXT",
-        help="device name in outputs and report file names; default: the catalogue name, else 'custom device'",
-    )
+    _add_counts_name_args(g)
     g.add_argument(
         "--stiffness",
         type=_number("--stiffness", "N/m"),
@@ -701,6 +706,7 @@ def _add_map_device_args(p: argparse.ArgumentParser, speeds: bool) -> None:
             metavar="X",
             help=f"{_PHYS_WHAT[key]} in {unit}; default: the catalogue value",
         )
+    _add_counts_name_args(g)
     g.add_argument(
         "--stiffness",
         type=_number("--stiffness", "N/m"),
@@ -725,7 +731,7 @@ def _map_device(args: argparse.Namespace) -> tuple[float, _Inputs | None]:
     """μ of `map`/`contours`: --mu, or a device at its stiffness (never both)."""
     if args.plot is not None and args.grid < 2:
         raise UsageError(f"--plot needs --grid 2 or more (got --grid {args.grid}): a figure needs a grid")
-    given = bool(args.device) or any(getattr(args, k, None) is not None for k in _PHYS_FLAGS)
+    given = bool(args.device) or any(getattr(args, k, None) is not None for k in (*_PHYS_FLAGS, "counts", "name"))
     given = given or args.stiffness is not None
     if args.mu is not None and given:
         raise UsageError("--mu cannot be combined with a device: give --mu, or --device/physical values (μ follows)")
