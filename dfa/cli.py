@@ -124,6 +124,23 @@ def _name(text: str) -> str:
     return text.strip()
 
 
+def _add_counts_name_args(g: Any) -> None:
+    """--counts and --name, for every command that takes a device."""
+    g.add_argument(
+        "--counts",
+        type=_integer("--counts"),
+        metavar="N",
+        help="encoder counts per metre (with --rotary: per revolution) instead of --resolution: Δ = 1/N m "
+        "(2π/N rad); default: none",
+    )
+    g.add_argument(
+        "--name",
+        type=_name,
+        metavar="TEXT",
+        help="device name in outputs and report file names; default: the catalogue name, else 'custom device'",
+    )
+
+
 def _add_device_group(p: argparse.ArgumentParser, title: str) -> argparse._ArgumentGroup:
     """--device, the physical flags, --counts, --name, --stiffness and --rotary (:func:`dfa.catalogue.resolve_device`)."""
     g = p.add_argument_group(title)
@@ -140,19 +157,7 @@ def _add_device_group(p: argparse.ArgumentParser, title: str) -> argparse._Argum
             metavar="X",
             help=f"{_PHYS_WHAT[key]} in {unit}; default: the catalogue value",
         )
-    g.add_argument(
-        "--counts",
-        type=_integer("--counts"),
-        metavar="N",
-        help="encoder counts per metre (with --rotary: per revolution) instead of --resolution: Δ = 1/N m "
-        "(2π/N rad); default: none",
-    )
-    g.add_argument(
-        "--name",
-        type=_name,
-        metavar="TEXT",
-        help="device name in outputs and report file names; default: the catalogue name, else 'custom device'",
-    )
+    _add_counts_name_args(g)
     g.add_argument(
         "--stiffness",
         type=_number("--stiffness", "N/m"),

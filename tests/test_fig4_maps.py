@@ -2,6 +2,7 @@
 
 import csv
 import json
+import math
 
 import numpy as np
 import pytest
@@ -185,3 +186,32 @@ def test_cli_simulate_and_map_bad_input(capsys, argv, needle):
     assert main(argv) == 2
     out, err = capsys.readouterr()
     assert out == "" and len(err.strip().splitlines()) == 1 and needle in err and "Traceback" not in err
+
+
+def test_eq4_trace_csv_stops_at_the_last_integrated_sample(capsys, tmp_path):
+    # redteam2: a diverged run of 10^6 samples wrote 10^6 rows, all "nan,nan" after the divergence
+    trace = tmp_path / "t.csv"
+    argv = ["simulate", "--mu", "500", "--beta", "0.02", "--sigma", "0.4", "--xi-dot", "2"]
+    assert main([*argv, "--samples", "1000000", "--trace", str(trace), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["outcome"] == "unstable" and out["samples_run"] < 100_000
+    rows = list(csv.reader(trace.open()))
+    assert len(rows) == out["samples_run"] + 2  # header, samples 0 .. samples_run
+    assert all(math.isfinite(float(v)) for row in rows[1:] for v in row)
+    assert float(rows[-1][1]) == out["final_xi"]
+
+
+@pytest.mark.parametrize("command", ["map", "contours"])
+def test_table1_map_and_contours_take_counts_and_name(capsys, tmp_path, command):
+    # redteam2: `map`/`contours` refused --counts and --name ("unrecognized arguments"), which the README
+    # gives for every device; Δ = 1/2000 m must give the same μ and σ as --resolution 0.0005
+    dev = ["--mass", "0.05", "--damping", "0.002", "--coulomb", "0.02", "--period", "0.001", "--stiffness", "100"]
+    extra = ["--velocity", "0.1", "--out", str(tmp_path / "m.npz")] if command == "map" else []
+    outs = []
+    for enc in (["--counts", "2000", "--name", "pen"], ["--resolution", "0.0005"]):
+        assert main([command, *dev, *enc, *extra, "--grid", "4", "--quiet", "--json"]) == 0
+        outs.append(json.loads(capsys.readouterr().out))
+    assert outs[0]["device"] == "pen" and outs[1]["device"] == "custom device"
+    assert outs[0]["mu"] == pytest.approx(outs[1]["mu"]) == pytest.approx(500.0)
+    assert outs[0]["tick_m"] == pytest.approx(outs[1]["tick_m"]) == pytest.approx(0.0005)
+    assert outs[0]["operating_point"] == pytest.approx(outs[1]["operating_point"])

@@ -15,6 +15,9 @@ __all__ = ["write_trace_csv", "write_validation"]
 def write_trace_csv(result: Any, path: str | os.PathLike) -> Path:
     """Write a recorded simulation (``record=True``) as CSV: ``sample,xi,xi_dot`` (ticks, ticks/sample).
 
+    A run that stopped early (``unstable``) is written up to its last integrated sample
+    (``samples_run``), without the NaN rows after it.
+
     Parameters
     ----------
     result : SimulationResult
@@ -28,9 +31,14 @@ def write_trace_csv(result: Any, path: str | os.PathLike) -> Path:
     """
     import numpy as np
 
+    xi, xi_dot = result.xi, result.xi_dot
+    # A run stopped early (diverged) holds NaN after its last sample: those rows are not data, leave them out.
+    last = int(result.samples_run) + 1
+    if last < xi.size and not (np.isfinite(xi[last:]).any() or np.isfinite(xi_dot[last:]).any()):
+        xi, xi_dot = xi[:last], xi_dot[:last]
     with atomic_open(path, "w") as fh:
         fh.write("sample,xi,xi_dot\n")
-        table = np.column_stack([np.arange(result.xi.size), result.xi, result.xi_dot])
+        table = np.column_stack([np.arange(xi.size), xi, xi_dot])
         np.savetxt(fh, table, delimiter=",", fmt=["%d", "%.17g", "%.17g"])
     return Path(path)
 
