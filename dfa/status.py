@@ -124,7 +124,7 @@ class VelocityStatus(StatusEnum):
     NOT_REQUESTED = ("not requested", "no stiffness given")
     ALL_SPEEDS = ("all speeds", "passive at every speed (K <= 2b/T, or b/(T(½ + d)) with a delay)")
     BOUNDED = ("bounded", "passive up to a finite speed")
-    NONE = ("none", "not passive even at rest (K > 2c/Δ)")
+    NONE = ("none", "no passivity guarantee even at rest (K > 2c/Δ)")
 
 
 class CurveStatus(StatusEnum):

@@ -74,7 +74,7 @@ def _check_device(device: object) -> Device:
 
 
 def k_static(device: Device) -> float:
-    """Static limit 2c/Δ (paper eq. 9), N/m: above it the device is not passive even at rest.
+    """Static limit 2c/Δ (paper eq. 9), N/m: above it the criterion gives no passivity guarantee even at rest.
 
     The one place every stiffness result takes it from.
     """
@@ -324,7 +324,7 @@ def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> fl
     -------
     float or None
         ``math.inf`` when K T(½ + d) <= b and K <= 2c/Δ (passive at every speed),
-        None when K > 2c/Δ (not passive even at rest), otherwise
+        None when K > 2c/Δ (no passivity guarantee even at rest), otherwise
         (c − KΔ/2)/(KT(½ + d) − b) in m/s (rotary: rad/s).
 
     Raises
@@ -434,7 +434,7 @@ class StiffnessLimits:
         unit = self.device.units["velocity"]
         ku = self.device.units["stiffness"]
         if self.velocity_status == "none":
-            return f"none: not passive even at rest (K > 2c/Δ = {self.k_static:.5g} {ku})"
+            return f"none: no passivity guarantee even at rest (K > 2c/Δ = {self.k_static:.5g} {ku})"
         if self.velocity_status == "all speeds":
             return f"every speed (K <= {'2b/T' if self.delay == 0 else 'b/(T(½ + d))'} = {self.k_colgate:.5g} {ku})"
         if self.velocity_status == "not requested" or self.max_passive_velocity is None:
@@ -453,7 +453,10 @@ class StiffnessLimits:
             return "–"
         ku = self.device.units["stiffness"]
         if self.velocity_status == "none":
-            return f"too stiff: not passive even at rest (K > 2c/Δ = {self.k_static:.5g} {ku})"
+            return (
+                f"too stiff: no passivity guarantee even at rest (K > 2c/Δ = {self.k_static:.5g} {ku}); "
+                "not a proof of instability"
+            )
         if self.status == "ok":
             return "ok: passive at this speed (proven)"
         return (

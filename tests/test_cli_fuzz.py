@@ -167,7 +167,7 @@ def _invocation(rng, tmp):
     if cmd == "check":
         return [cmd] + _device_args(rng, True, True) + (["--no-quantization"] if rng.random() < 0.3 else [])
     if cmd == "stiffness":
-        # explicit --stiffness included: K > 2c/Δ used to crash (issue 17), now "not passive even at rest"
+        # explicit --stiffness included: K > 2c/Δ used to crash (issue 17), now "no passivity guarantee even at rest"
         return [cmd] + _device_args(rng, False, True) + (["--delay", _int(rng, 3)] if rng.random() < 0.3 else [])
     if cmd == "simulate":
         argv = [cmd] + _device_args(rng, True, True) + ["--samples", _int(rng, 300)]

@@ -997,7 +997,7 @@ def test_report_too_stiff_writes_the_report(tmp_path):
         dfa.get_device("delta"), 60000.0, 0.1, out_dir=tmp_path, fmt="md", progress=False, map_grid=3, samples=500
     )
     md = [p for p in res.paths if str(p).endswith(".md")]
-    assert len(md) == 1 and "not passive even at rest" in md[0].read_text(encoding="utf-8")
+    assert len(md) == 1 and "no passivity guarantee even at rest" in md[0].read_text(encoding="utf-8")
 
 
 def test_found_by_explore_fuzz():

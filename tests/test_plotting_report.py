@@ -166,12 +166,14 @@ def test_report_verdict_for_a_stiffness_above_the_static_limit_and_with_delay():
     crit = dfa.device_criterion(dev, 60000.0, 0.1, delay=1)
     lim = dfa.stiffness_limits(dev, 0.1, 60000.0, delay=1)
     text = _verdict_text(dev, 60000.0, 0.1, 1, crit, lim, None)
-    assert f"**not passive even at rest (K > 2c/Δ = {2 * dev.coulomb / dev.resolution:.5g} N/m)**" in text
+    assert f"**no passivity guarantee even at rest (K > 2c/Δ = {2 * dev.coulomb / dev.resolution:.5g} N/m)**" in text
     assert (
         f"At 0.1 m/s with a computational delay of 1 sample the largest passive stiffness is {lim.k_max:.5g} N/m"
         in text
     )
-    assert lim.max_passive_velocity_text().startswith("none: not passive even at rest")  # formatted None before the fix
+    assert lim.max_passive_velocity_text().startswith(
+        "none: no passivity guarantee even at rest"
+    )  # formatted None before the fix
     crit = dfa.device_criterion(dev, 20000.0, 0.1, delay=1)
     lim = dfa.stiffness_limits(dev, 0.1, 20000.0, delay=1)
     text = _verdict_text(dev, 20000.0, 0.1, 1, crit, lim, None)

@@ -37,7 +37,7 @@ def verdict_text(a: DesignAnalysis) -> str:
     if crit.passive:
         verdict = "passive (proven: the energy cannot grow)"
     elif lim.velocity_status == "none":
-        verdict = f"not passive even at rest (K > 2c/Δ = {lim.k_static:.5g} {u['stiffness']})"
+        verdict = f"no passivity guarantee even at rest (K > 2c/Δ = {lim.k_static:.5g} {u['stiffness']})"
     else:
         verdict = "not proven passive (the criterion gives no guarantee; that is not a proof of instability)"
     text = (
