@@ -232,7 +232,13 @@ def large_cycle_frequency(mu: float) -> float:
     return float(large_cycle_frequencies(check_mu(mu)))
 
 
-def _scalar(cf: ClosedFormCycles) -> tuple[float, float] | None:
+def _scalar(cf: ClosedFormCycles, p: Params) -> tuple[float, float] | None:
+    """(M, ω) of one point, None where the family has no cycle; a point not solved is refused, never None."""
+    if int(cf.status) == ClosedFormStatus.NOT_SOLVED:
+        raise DFAValueError(
+            f"beta = {p.beta!r} with mu = {p.mu!r}, sigma = {p.sigma!r} is invalid here (β/μ = {p.beta / p.mu:.3g}): "
+            f"{ClosedFormStatus.NOT_SOLVED.reason}; use a smaller β/μ or dfa.limit_cycles"
+        )
     return (float(cf.amplitude), float(cf.frequency)) if int(cf.status) == ClosedFormStatus.OK else None
 
 
@@ -267,7 +273,7 @@ def large_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
     limit_cycles : Every cycle with the exact describing function.
     """
     p = Params(mu, beta, sigma)
-    return _scalar(large_cycle_closed_forms(p.mu, p.beta, p.sigma))
+    return _scalar(large_cycle_closed_forms(p.mu, p.beta, p.sigma), p)
 
 
 def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float, float] | None:
@@ -302,11 +308,4 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
     limit_cycles : Every cycle with the exact describing function.
     """
     p = Params(mu, beta, sigma)
-    cf = small_cycle_closed_forms(p.mu, p.beta, p.sigma)
-    if int(cf.status) == ClosedFormStatus.NOT_SOLVED:
-        raise DFAValueError(
-            f"beta = {p.beta!r} with mu = {p.mu!r} is invalid here: β/μ = {p.beta / p.mu:.3g} puts the small "
-            "cycle's frequency within rounding of π (eq. 42-43 cannot be solved in floating point); "
-            "use a smaller β/μ"
-        )
-    return _scalar(cf)
+    return _scalar(small_cycle_closed_forms(p.mu, p.beta, p.sigma), p)
