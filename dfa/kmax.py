@@ -272,6 +272,10 @@ def _growth_xi_dot(mu: float, beta: float, sigma: float, delay: int, model: str)
     return (math.inf, 0) if res.complete else (None, 0)
 
 
+#: Outcomes that fail each simulated limit; "undecided" neither passes nor fails (it is counted as not safe).
+FAILING = {"unstable": frozenset({"unstable"}), "rest": frozenset({"oscillating", "unstable", "chatter"})}
+
+
 class _Evidence:
     """Simulations and predictions of one design search, cached per stiffness (dimensionless inside)."""
 
@@ -302,15 +306,18 @@ class _Evidence:
             self.sims[k] = [(xd, start, o) for (xd, start), o in zip(tags, outs, strict=True)]
         return self.sims[k]
 
-    def no_divergence(self, k: float) -> str:
+    def judge(self, k: float, limit: str) -> str:
+        """SAFE, UNSAFE (an outcome in ``FAILING[limit]``) or UNDECIDED for every impact at stiffness ``k``."""
         outs = {o for _, _, o in self.outcomes(k)}
-        return UNSAFE if "unstable" in outs else (UNDECIDED if "undecided" in outs else SAFE)
+        if outs & FAILING[limit]:
+            return UNSAFE
+        return UNDECIDED if "undecided" in outs else SAFE
+
+    def no_divergence(self, k: float) -> str:
+        return self.judge(k, "unstable")
 
     def rest(self, k: float) -> str:
-        outs = {o for _, _, o in self.outcomes(k)}
-        if outs <= {"rest"}:
-            return SAFE
-        return UNDECIDED if outs <= {"rest", "undecided"} else UNSAFE
+        return self.judge(k, "rest")
 
     def growth_xi_dot(self, k: float) -> tuple[float | None, int]:
         if k not in self.growth:
@@ -352,7 +359,7 @@ def _confirm(found: KSearch, dense: _Evidence, bad: str) -> KSearch:
     for f in DENSE_BELOW:
         k = found.value * (1.0 - f)
         for xd, start, o in dense.outcomes(k):
-            if (o == "unstable") if bad == "unstable" else (o not in ("rest", "undecided")):
+            if o in FAILING[bad]:
                 fails.append({"stiffness": k, "velocity": dense.dev.velocity(xd), "start": start, "outcome": o})
     if not fails:
         return found
