@@ -57,6 +57,7 @@ from .catalogue import (
     get_device,
     resolve_device,
 )
+from .controller import Controller, ControllerParams
 from .criterion import (
     REGION_DESCRIPTIONS,
     CriterionResult,
@@ -143,6 +144,7 @@ _SUBMODULES = {
     "stiffness",
     "catalogue",
     "device",
+    "controller",
     "errors",
     "cli",
     "cycles",
@@ -181,6 +183,8 @@ def __dir__() -> list[str]:
 __all__ = [
     "Device",
     "Params",
+    "Controller",
+    "ControllerParams",
     "CatalogueEntry",
     "Discrepancy",
     "catalogue",
