@@ -157,7 +157,7 @@ def regions_plot(
     dl = f", d = {line.delay}" if line.delay else ""
     ax.plot(b, line.sigma(b), "k--", lw=1.4, label=f"critical line, ξ'0 = {line.xi_dot:.3g}{dl} (point)")
     for v, style in zip(xi_dots, _EXTRA_LINES * (1 + len(xi_dots) // len(_EXTRA_LINES)), strict=False):
-        ax.plot(b, CriticalLine(v, line.sigma0, line.delay).sigma(b), label=f"critical line, ξ'0 = {v:g}", **style)
+        ax.plot(b, CriticalLine(v, line.sigma0, line.delay).sigma(b), label=f"ξ'0 = {v:g}", **style)
     ax.plot([result.beta], [result.sigma], label=f"operating point (region {result.region})", **POINT_STYLE)
     ax.set_xlim(-_margin(bmax), bmax)
     ax.set_ylim(-_margin(smax), smax)
@@ -299,9 +299,9 @@ def _scaled_unit(base: str, largest: float) -> tuple[float, str]:
 
 
 def _shown_samples(sim, n: int) -> int:
-    """Samples worth showing: a run that came to rest up to about four times its settling time (>= 100 samples)."""
+    """Samples worth showing: a run that came to rest up to about four times its settling time (>= 20 samples)."""
     if getattr(sim, "rest_sample", None) is not None:
-        return min(n, max(100, 4 * int(sim.rest_sample)))
+        return min(n, max(20, 4 * int(sim.rest_sample)) + 1)
     return n
 
 
