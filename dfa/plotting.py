@@ -4,7 +4,10 @@ Every function takes a result object and an optional ``ax`` (or ``axes``)
 and returns the axes it drew on, in the style of python-control's ``*_plot``
 functions. Axis labels carry units: dimensionless quantities are marked (–),
 positions are in encoder ticks, time in samples (or seconds when a sample
-period is given).
+period is given). Given a device (``device=``), trajectories get a second axis
+in m (rotary rad) and map panels axes of damping b and Coulomb friction c at K.
+Legends sit beside the axes, never over the data; the operating point has one
+style (``POINT_STYLE``) and each outcome class one colour in every figure.
 
 Examples
 --------
@@ -459,8 +462,9 @@ def _nyquist_limits(nyq, pts, room: bool = False) -> tuple[tuple[float, float], 
     x0, x1 = xs.min() - pad, xs.max() + pad
     c = np.asarray(nyq.curves).ravel()
     inside = c[np.isfinite(c) & (c.real >= x0) & (c.real <= x1)]
-    reach = x1 - x0  # the curves' far branches (high frequency) are cut at one x range from the real axis
-    ys = np.concatenate([np.clip(inside.imag, -reach, reach), [p.imag for p, _s, _m in pts], [0.0]])
+    reach = x1 - x0  # the curves' far branches (resonance, high frequency): not beyond one x range of the real axis
+    near = inside.imag[np.abs(inside.imag) <= reach]
+    ys = np.concatenate([near, [p.imag for p, _s, _m in pts], [0.0]])
     span = max(ys.max() - ys.min(), 0.1 * (x1 - x0))
     y0, y1 = ys.min() - 0.1 * span, ys.max() + 0.1 * span
     if room:
