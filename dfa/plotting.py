@@ -302,10 +302,12 @@ def _scaled_unit(base: str, largest: float) -> tuple[float, str]:
 
 
 def _shown_samples(sim, n: int) -> int:
-    """Samples worth showing: a run that came to rest up to about four times its settling time (>= 20 samples)."""
+    """Samples worth showing: a run that came to rest up to about four times its settling time (>= 20 samples),
+    a run stopped early (diverged) up to its last integrated sample."""
     if getattr(sim, "rest_sample", None) is not None:
         return min(n, max(20, 4 * int(sim.rest_sample)) + 1)
-    return n
+    run = getattr(sim, "samples_run", None)
+    return min(n, int(run) + 1) if run is not None and run > 0 else n
 
 
 def trajectory_plot(
@@ -325,7 +327,7 @@ def trajectory_plot(
         Time in s (its period) and a secondary axis with the displacement in m (rotary rad), scaled to mm/µm.
     window : bool
         Default True: a run that came to rest is shown up to about four times its settling time, so that its
-        motion fills the axis; False: the whole run.
+        motion fills the axis, a diverged run up to where it stopped; False: the whole run.
     """
     ax = _axes(ax, figsize=(6.0, 3.2))
     if sim.xi is None:

@@ -239,3 +239,10 @@ def test_fig7_small_family_panel_shows_its_band_and_no_contour_label_is_clipped(
                 x, y = t.get_position()
                 assert x0 < x < x1 and y0 < y < y1, t.get_text()
     assert any(t.get_transform() is axes[0].transData for t in axes[0].texts)  # frequency labels remain
+
+
+def test_fig5_a_diverged_run_is_shown_up_to_where_it_stopped():
+    r = simulate(20.0, 0.05, 0.6, 30.0, 20_000, record=True, bound=1e4)  # stops early: beyond the bound
+    assert r.outcome == "unstable" and r.samples_run < 20_000
+    ax = plotting.trajectory_plot(r, period=1e-3)
+    assert ax.get_xlim()[1] == pytest.approx(r.samples_run * 1e-3)
