@@ -763,7 +763,9 @@ def _mark_operating_point(axes, inp: _Inputs | None) -> None:
     if inp is None or inp.params is None:
         return
     for ax in axes:
-        ax.plot([inp.params.beta], [inp.params.sigma], marker="*", color="#1b7837", ms=12, mec="k", ls="none")
+        from .plotting import POINT_STYLE
+
+        ax.plot([inp.params.beta], [inp.params.sigma], **POINT_STYLE)
         ax.annotate(
             f"{inp.device.name if inp.device else ''}, K = {inp.stiffness:g}",
             (inp.params.beta, inp.params.sigma),
@@ -834,7 +836,8 @@ def _cmd_map(args: argparse.Namespace) -> int:
     if args.plot is not None:
         from .plotting import stability_map_plot
 
-        axes = stability_map_plot(m)
+        dev, k = (inp.device, inp.stiffness) if inp is not None else (None, None)
+        axes = stability_map_plot(m, device=dev, stiffness=k)
         _mark_operating_point(axes, inp)
         _save_png("--plot", args.plot, axes[0])
     if args.json:

@@ -120,7 +120,7 @@ class DesignAnalysis:
     catalogue: dict[str, Any] | None = None
     validation: dict[str, Any] | None = None
     samples: int = 30_000
-    map_grid: int = 41
+    map_grid: int = 81
     status: DesignStatus = DesignStatus.OK
 
     def __post_init__(self) -> None:
@@ -286,7 +286,7 @@ def design_analysis(
     velocity: float | None = None,
     *,
     delay: int = 0,
-    map_grid: int = 41,
+    map_grid: int = 81,
     samples: int = 30_000,
     validation: dict[str, Any] | None = None,
     n_jobs: int = -1,
@@ -305,7 +305,7 @@ def design_analysis(
     delay : int
         Computational delay d in whole samples (default 0), used by every part of the analysis.
     map_grid, samples : int
-        Points per axis of the stability map (default 41); samples per run of it and of the speed scan (30000).
+        Points per axis of the stability map (default 81); samples per run of it and of the speed scan (30000).
     validation : dict, optional
         Summary of a validation run (``dfa.validate(...).summary()``) for the report's "how far to trust"
         paragraph; no file is ever read.
@@ -352,7 +352,7 @@ def design_analysis(
     v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, delay=dl)
     steps.update()
     sims = _simulations(p, crit.xi_dot, ref, v_sim, samples, dl)
-    ny = _nyquist(p, thr[0][1], dl)
+    ny = _nyquist(p, thr[1][1], dl)
     steps.update()
     smap = _map_around(p, crit.xi_dot, dl, map_grid, samples, n_jobs, progress)
     steps.close()
@@ -384,11 +384,13 @@ def _map_around(
     )
 
 
-def _nyquist(p: Params, half_delay: GrowthThreshold, dl: int) -> NyquistLocusResponse:
-    """The Nyquist view: the locus reaches every cycle drawn (the first three of the half-delay model)."""
-    res = half_delay.result
+def _nyquist(p: Params, zoh: GrowthThreshold, dl: int) -> NyquistLocusResponse:
+    """The Nyquist view of the exact ZOH loop (the model of the growth threshold): the locus reaches every cycle drawn."""
+    res = zoh.result
     amps = [c.amplitude for c in res.cycles[:3]] if p.sigma > 0 else None
     if p.sigma > 0 and not amps:
         amps = [1.0]
     m_top = max([50.0] + [2.0 * c.amplitude for c in res.cycles])
-    return nyquist_locus_response(p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), delay=dl)
+    return nyquist_locus_response(
+        p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), model="zoh", delay=dl
+    )

@@ -4,7 +4,10 @@ Every function takes a result object and an optional ``ax`` (or ``axes``)
 and returns the axes it drew on, in the style of python-control's ``*_plot``
 functions. Axis labels carry units: dimensionless quantities are marked (–),
 positions are in encoder ticks, time in samples (or seconds when a sample
-period is given).
+period is given). Given a device (``device=``), trajectories get a second axis
+in m (rotary rad) and map panels axes of damping b and Coulomb friction c at K.
+Legends sit beside the axes, never over the data; the operating point has one
+style (``POINT_STYLE``) and each outcome class one colour in every figure.
 
 Examples
 --------
@@ -21,6 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Any
 
 import matplotlib
 import matplotlib.lines
@@ -31,6 +35,7 @@ from matplotlib.colors import ListedColormap
 from matplotlib.patches import Patch
 
 from .criterion import REGION_DESCRIPTIONS, CriterionResult, CriticalLine, classify_region
+from .formatting import number
 
 __all__ = [
     "regions_plot",
@@ -42,6 +47,7 @@ __all__ = [
     "stiffness_speed_plot",
     "cycle_error_plot",
     "critical_speed_plot",
+    "nyquist_needs_zoom",
     "BETA_LABEL",
     "SIGMA_LABEL",
 ]
@@ -52,8 +58,8 @@ REGION_COLORS = {"a": "#d9f0d3", "b": "#c6dbef", "c": "#f4a582", "d": "#fddbc7",
 #: Colour of each simulated outcome (paper Fig. 4: white stable, light persisting oscillation, dark unstable).
 OUTCOME_COLORS = {
     "rest": "#ffffff",
-    "chatter": "#e0e0e0",
-    "oscillating": "#a3a3a3",
+    "chatter": "#d4d4d4",
+    "oscillating": "#969696",
     "unstable": "#252525",
     "undecided": "#e08214",
 }
@@ -78,6 +84,31 @@ def _axes(ax=None, figsize=(5.0, 4.0)):
     return ax
 
 
+#: One style for the operating point (design point) in every (β, σ) figure.
+POINT_STYLE: dict[str, Any] = dict(marker="o", color="#b2182b", ms=8, mec="k", mew=1.0, ls="none", zorder=5)
+#: Styles of further critical lines (regions plot), distinct from the dashed line of the operating point.
+_EXTRA_LINES = (
+    dict(color="#4d4d4d", ls=":", lw=1.4),
+    dict(color="#2166ac", ls=(0, (6, 2)), lw=1.1),
+    dict(color="#762a83", ls=(0, (4, 1.5, 1, 1.5)), lw=1.1),
+    dict(color="#8c510a", ls=(0, (1, 3)), lw=1.6),
+)
+
+
+def _legend_outside(ax, handles=None, fontsize: float = 7) -> None:
+    """The legend to the right of the axes, never over the data."""
+    kw = dict(fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, framealpha=0.9)
+    if handles is None:
+        ax.legend(**kw)
+    else:
+        ax.legend(handles=handles, **kw)
+
+
+def _margin(hi: float) -> float:
+    """A margin left of / below 0 so that a point at β ≈ 0 or σ ≈ 0 is drawn whole (grey: outside the plane)."""
+    return 0.03 * hi
+
+
 def regions_plot(
     result: CriterionResult,
     ax=None,
@@ -86,7 +117,6 @@ def regions_plot(
     beta_max: float = 1.0,
     sigma_max: float = 2.0,
     legend: bool = True,
-    legend_loc: str = "upper right",
 ):
     """The (β, σ) plane with regions a-e shaded for the result's speed and delay (paper Fig. 3, eq. 10).
 
@@ -98,9 +128,13 @@ def regions_plot(
         drawn dashed.
     ax : matplotlib Axes, optional
     xi_dots : sequence of float
-        Further speeds whose critical lines (same delay) are drawn (dotted).
+        Further speeds (ticks/sample) whose critical lines (same delay) are drawn, each in its own style.
+    beta_max, sigma_max : float
+        Smallest upper limits of the axes (–); the point and β = ½ + d are always inside.
+    legend : bool
+        Legend to the right of the axes (default True).
     """
-    ax = _axes(ax)
+    ax = _axes(ax, figsize=(7.4, 4.2))
     line = result.critical_line
     bmax = max(beta_max, 1.2 * result.beta, 0.6, 1.2 * line.beta0)
     smax = max(sigma_max, 1.2 * result.sigma, 0.6)
@@ -109,6 +143,7 @@ def regions_plot(
     reg = classify_region(b[None, :], s[:, None], line.xi_dot, result.quantized, line.delay)
     codes = np.searchsorted(np.array(list("abcde")), reg)
     cmap = ListedColormap([REGION_COLORS[k] for k in "abcde"])
+    ax.set_facecolor("0.85")  # β < 0 or σ < 0: outside the plane, only there to show a point at the edge whole
     ax.imshow(
         codes,
         origin="lower",
@@ -122,29 +157,53 @@ def regions_plot(
     ax.axvline(line.beta0, color="k", lw=0.8, ls="-.")
     if result.quantized:
         ax.axhline(line.sigma0, color="k", lw=0.8, ls="-.")
-    dl = f", delay {line.delay}" if line.delay else ""
-    ax.plot(b, line.sigma(b), "k--", lw=1.2, label=f"critical line, V = {line.xi_dot:.3g}{dl}")
-    for v in xi_dots:
-        ax.plot(b, CriticalLine(v, line.sigma0, line.delay).sigma(b), ":", color="0.3", lw=1.0, label=f"ξ'0 = {v:g}")
-    ax.plot(
-        [result.beta], [result.sigma], "o", color="#b2182b", ms=7, mec="k", label=f"operating point ({result.region})"
-    )
-    ax.set_xlim(0, bmax)
-    ax.set_ylim(0, smax)
+    dl = f", d = {line.delay}" if line.delay else ""
+    ax.plot(b, line.sigma(b), "k--", lw=1.4, label=f"critical line, ξ'0 = {line.xi_dot:.3g}{dl} (point)")
+    for v, style in zip(xi_dots, _EXTRA_LINES * (1 + len(xi_dots) // len(_EXTRA_LINES)), strict=False):
+        ax.plot(b, CriticalLine(v, line.sigma0, line.delay).sigma(b), label=f"ξ'0 = {v:g}", **style)
+    ax.plot([result.beta], [result.sigma], label=f"operating point (region {result.region})", **POINT_STYLE)
+    ax.set_xlim(-_margin(bmax), bmax)
+    ax.set_ylim(-_margin(smax), smax)
     ax.set_xlabel(BETA_LABEL)
     ax.set_ylabel(SIGMA_LABEL)
-    ax.set_title("Regions of the (β, σ) plane (eq. 6, 10)" + (f", delay d = {line.delay}" if line.delay else ""))
+    ax.set_title("Regions (eq. 6, 10)" + (f", delay d = {line.delay}" if line.delay else ""), fontsize=9)
     if legend:
-        handles = [
+        handles: list[Artist] = [
             Patch(facecolor=REGION_COLORS[k], edgecolor="0.5", label=f"{k}: {REGION_DESCRIPTIONS[k].split(':')[0]}")
             for k in "abcde"
         ]
-        lines, labels = ax.get_legend_handles_labels()
-        ax.legend(handles=handles + lines, fontsize=7, loc=legend_loc, framealpha=0.9)
+        lines, _labels = ax.get_legend_handles_labels()
+        _legend_outside(ax, handles + lines)
     return ax
 
 
-def stability_map_plot(smap, axes=None, *, titles: bool = True):
+def _outcome_handles() -> list[Artist]:
+    """One colour patch per outcome class, every class (also those absent from the figure)."""
+    return [
+        Patch(facecolor=OUTCOME_COLORS[k], edgecolor="0.4", label=_OUTCOME_LABELS[k])
+        for k in ("rest", "chatter", "oscillating", "unstable", "undecided")
+    ]
+
+
+def _physical_map_axes(ax, device, stiffness: float) -> None:
+    """Secondary axes of a (β, σ) panel at the device's K: damping b = βKT and Coulomb friction c = σKΔ (Table 1)."""
+    u = device.units
+    kt, kd = stiffness * device.period, stiffness * device.resolution
+    top = ax.secondary_xaxis("top", functions=(lambda x: x * kt, lambda x: x / kt))
+    top.set_xlabel(f"damping b at K = {stiffness:.4g} {u['stiffness']} ({u['damping']})", fontsize=7)
+    top.tick_params(labelsize=7)
+    right = ax.secondary_yaxis("right", functions=(lambda y: y * kd, lambda y: y / kd))
+    right.set_ylabel(f"Coulomb c ({u['coulomb']})", fontsize=7)
+    right.tick_params(labelsize=7)
+
+
+def _speed_text(xi_dot: float, device) -> str:
+    if device is None:
+        return f"ξ'0 = {xi_dot:.3g} ticks/sample"
+    return f"{device.velocity(xi_dot):.3g} {device.units['velocity']} (ξ'0 = {xi_dot:.3g})"
+
+
+def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, stiffness=None, point=None):
     """Simulated outcome per (β, σ) for each initial speed (paper Fig. 4).
 
     As in the paper, white: came to rest; light: persisting oscillation, in
@@ -152,19 +211,31 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
     tick or more); dark: unstable; orange: undecided (the run was too short,
     :mod:`dfa.simulation`). The critical line of each speed
     (:class:`dfa.criterion.CriticalLine` with the map's delay d) is dashed, the
-    region boundaries β = ½ + d, σ = ½ dash-dot.
+    region boundaries β = ½ + d, σ = ½ dash-dot. The legend (right of the
+    panels) lists every outcome class, present or not.
 
     Parameters
     ----------
     smap : StabilityMap
     axes : sequence of Axes, optional
         One per speed.
+    titles : bool
+        A title per panel with μ and the speed (default True).
+    device : Device, optional
+        With ``stiffness``: speeds in physical units in the titles and secondary axes
+        b = βKT (N·s/m; rotary N·m·s/rad) and c = σKΔ (N; N·m).
+    stiffness : float, optional
+        K in N/m (rotary N·m/rad) for the secondary axes.
+    point : (float, float), optional
+        The operating point (β, σ), marked in every panel.
     """
     n = len(smap.xi_dots)
     if axes is None:
         cols = min(n, 2)
         rows = int(math.ceil(n / cols))
-        fig, axs = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.6 * rows), constrained_layout=True, squeeze=False)
+        fig, axs = plt.subplots(
+            rows, cols, figsize=(4.0 * cols + 2.3, 3.7 * rows), constrained_layout=True, squeeze=False
+        )
         axes = list(axs.ravel())
         for extra in axes[n:]:
             extra.remove()
@@ -174,6 +245,7 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
     ds = (s[1] - s[0]) / 2
     extent = (b[0] - db, b[-1] + db, s[0] - ds, s[-1] + ds)
     cmap = _outcome_cmap()
+    physical = device is not None and stiffness is not None
     for k, ax in enumerate(axes):
         ax.imshow(
             smap.outcome[k],
@@ -192,32 +264,55 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True):
         ax.axvline(line.beta0, color="#2166ac", ls="-.", lw=1.0)
         if smap.quantize:
             ax.axhline(line.sigma0, color="#2166ac", ls="-.", lw=1.0)
+        if point is not None:
+            ax.plot([point[0]], [point[1]], clip_on=False, **POINT_STYLE)
         ax.set_xlim(extent[0], extent[1])
         ax.set_ylim(extent[2], extent[3])
         ax.set_xlabel(BETA_LABEL)
         ax.set_ylabel(SIGMA_LABEL)
+        if physical:
+            _physical_map_axes(ax, device, float(stiffness))
         if titles:
-            what = "preload equivalent to" if smap.preload else "initial speed"
+            what = "preload ≡" if smap.preload else "impact"
             ax.set_title(
-                f"μ = {smap.mu:.4g}, {what} ξ'0 = {v:.3g} ticks/sample"
-                + (f", delay {smap.delay}" if smap.delay else ""),
-                fontsize=9,
+                f"μ = {smap.mu:.4g}, {what} {_speed_text(v, device)}" + (f", delay {smap.delay}" if smap.delay else ""),
+                fontsize=8,
             )
-    handles: list[Artist] = [
-        Patch(facecolor=OUTCOME_COLORS[k], edgecolor="0.5", label=_OUTCOME_LABELS[k])
-        for k in ("rest", "chatter", "oscillating", "unstable", "undecided")
-    ]
+    handles = _outcome_handles()
     handles += [
         matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),
         matplotlib.lines.Line2D(
             [], [], color="#2166ac", ls="-.", label="β = ½ + d, σ = ½" if smap.delay else "β = ½, σ = ½"
         ),
     ]
-    axes[0].legend(handles=handles, fontsize=7, loc="upper right", framealpha=0.9)
+    if point is not None:
+        handles.append(matplotlib.lines.Line2D([], [], label="operating point", **POINT_STYLE))
+    _legend_outside(axes[-1] if len(axes) <= 2 else axes[min(1, len(axes) - 1)], handles)
+    if physical:  # the right-hand secondary axis labels sit where the legend would go
+        axes[-1].get_legend().set_bbox_to_anchor((1.22, 1.0))
     return axes
 
 
-def trajectory_plot(sim, ax=None, *, period: float | None = None, max_samples: int | None = None):
+def _scaled_unit(base: str, largest: float) -> tuple[float, str]:
+    """(factor, unit) so that ``value × factor`` of a quantity in ``base`` (m or rad) reads in m/mm/µm (rad/mrad/µrad)."""
+    for factor, prefix in ((1.0, ""), (1e3, "m"), (1e6, "µ")):
+        if largest * factor >= 1.0:
+            return factor, prefix + base
+    return 1e9, "n" + base
+
+
+def _shown_samples(sim, n: int) -> int:
+    """Samples worth showing: a run that came to rest up to about four times its settling time (>= 20 samples),
+    a run stopped early (diverged) up to its last integrated sample."""
+    if getattr(sim, "rest_sample", None) is not None:
+        return min(n, max(20, 4 * int(sim.rest_sample)) + 1)
+    run = getattr(sim, "samples_run", None)
+    return min(n, int(run) + 1) if run is not None and run > 0 else n
+
+
+def trajectory_plot(
+    sim, ax=None, *, period: float | None = None, max_samples: int | None = None, device=None, window: bool = True
+):
     """Displacement in ticks against time with ±1 tick marked (paper Fig. 5, right).
 
     Parameters
@@ -228,17 +323,32 @@ def trajectory_plot(sim, ax=None, *, period: float | None = None, max_samples: i
         Sample period T in s: the time axis is then in seconds.
     max_samples : int, optional
         Draw only the first samples.
+    device : Device, optional
+        Time in s (its period) and a secondary axis with the displacement in m (rotary rad), scaled to mm/µm.
+    window : bool
+        Default True: a run that came to rest is shown up to about four times its settling time, so that its
+        motion fills the axis, a diverged run up to where it stopped; False: the whole run.
     """
     ax = _axes(ax, figsize=(6.0, 3.2))
     if sim.xi is None:
         raise ValueError("sim has no trajectory: run dfa.simulate(..., record=True)")
+    if device is not None:
+        period = device.period
     n = sim.xi.size if max_samples is None else min(sim.xi.size, max_samples + 1)
+    if window:
+        n = _shown_samples(sim, n)
     t = np.arange(n) * (period if period else 1.0)
     ax.plot(t, sim.xi[:n], lw=0.9, color="#2166ac")
     for y in (-1.0, 1.0):
         ax.axhline(y, color="0.4", ls="--", lw=0.8)
     ax.set_xlabel("time (s)" if period else "time (samples)")
     ax.set_ylabel("displacement ξ (encoder ticks)")
+    if device is not None:
+        res = device.resolution
+        finite = np.abs(sim.xi[:n][np.isfinite(sim.xi[:n])])
+        factor, unit = _scaled_unit(device.units["position"], res * max(1.0, float(finite.max()) if finite.size else 1))
+        sec = ax.secondary_yaxis("right", functions=(lambda y: y * res * factor, lambda x: x / (res * factor)))
+        sec.set_ylabel(f"displacement ({unit})")
     ax.set_title(f"μ = {sim.mu:.4g}, β = {sim.beta:.3g}, σ = {sim.sigma:.3g}: {sim.outcome}", fontsize=9)
     ax.set_xlim(t[0], t[-1] if n > 1 else 1)
     return ax
@@ -263,12 +373,13 @@ def contour_plot(maps, axes=None):
         _fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.2), constrained_layout=True)
     bb, ss = np.meshgrid(maps.beta, maps.sigma)
     ax = axes[0]
-    if np.isfinite(maps.small_amplitude).any():
+    small = np.isfinite(maps.small_amplitude)
+    if small.any():
         cf = ax.contourf(bb, ss, maps.small_amplitude, levels=np.linspace(0, 1, 11), cmap="viridis")
         plt.colorbar(cf, ax=ax).set_label("amplitude M (encoder ticks)")
         cs = ax.contour(bb, ss, maps.small_frequency, levels=6, colors="w", linewidths=0.7)
-        ax.clabel(cs, fontsize=6, fmt="ω=%.2f")
-    ax.set_title(f"μ = {maps.mu:g}: small stable cycles (M < 1, eq. 42-43)", fontsize=9)
+        ax.clabel(cs, fontsize=6, fmt="%.2f")
+    ax.set_title(f"μ = {maps.mu:g}: small stable cycles (M < 1, eq. 42-43)\nwhite: ω (rad/sample)", fontsize=9)
     ax = axes[1]
     nice = np.array([1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100, 150, 200, 300, 500, 1000])
     finite = maps.large_amplitude[np.isfinite(maps.large_amplitude)]
@@ -300,54 +411,174 @@ def contour_plot(maps, axes=None):
         ax.set_ylabel(SIGMA_LABEL)
         ax.set_xlim(maps.beta[0], maps.beta[-1])
         ax.set_ylim(maps.sigma[0], maps.sigma[-1])
+    if small.any():  # the small family needs σ < ½: show the band where it exists, not an empty panel
+        top = float(ss[small].max())
+        axes[0].set_ylim(maps.sigma[0], min(maps.sigma[-1], max(1.15 * top, 0.55)))
+    for ax in axes:
+        _drop_edge_labels(ax)
     return axes
+
+
+def _drop_edge_labels(ax, margin: float = 0.05) -> None:
+    """Remove contour labels centred within ``margin`` (axes fraction) of an edge: they would be clipped."""
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    labels = [t for c in ax.collections for t in getattr(c, "labelTexts", [])]
+    for t in labels:
+        x, y = t.get_position()
+        fx, fy = (x - x0) / (x1 - x0), (y - y0) / (y1 - y0)
+        if not (margin < fx < 1 - margin and margin < fy < 1 - margin):
+            t.remove()
+
+
+#: Names of the loop models in titles and captions (:func:`dfa.loop.loop_response`).
+MODEL_NAMES = {"half-delay": "half-sample delay", "zoh": "exact ZOH", "pade": "Padé ZOH"}
+
+
+def _cycle_points(nyq, cycles) -> list[tuple[complex, bool, float]]:
+    """(point L(jω; M) of the cycle, stable, M) for each cycle, with the Nyquist data's loop model."""
+    from .loop import loop_response
+
+    if cycles is None:
+        return []
+    return [
+        (
+            complex(
+                loop_response(
+                    nyq.params, c.frequency, c.amplitude, model=nyq.model, delay=nyq.delay, pade_order=nyq.pade_order
+                )
+            ),
+            bool(c.stable),
+            float(c.amplitude),
+        )
+        for c in cycles.cycles
+    ]
+
+
+def _nyquist_limits(nyq, pts, room: bool = False) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Limits around the data that matter: the critical locus, every cycle, the origin (x, 15 % margin) and the
+    curves within that x range (y, at most one x range from the real axis, at least a tenth of it); ``room``:
+    the data in the lower half only."""
+    loc = nyq.locus[np.isfinite(nyq.locus)]
+    xs = np.concatenate([loc.real, [p.real for p, _s, _m in pts], [0.0]])
+    pad = 0.15 * max(xs.max() - xs.min(), 1e-9)
+    x0, x1 = xs.min() - pad, xs.max() + pad
+    c = np.asarray(nyq.curves).ravel()
+    inside = c[np.isfinite(c) & (c.real >= x0) & (c.real <= x1)]
+    reach = x1 - x0  # the curves' far branches (resonance, high frequency): not beyond one x range of the real axis
+    near = inside.imag[np.abs(inside.imag) <= reach]
+    ys = np.concatenate([near, [p.imag for p, _s, _m in pts], [0.0]])
+    span = max(ys.max() - ys.min(), 0.1 * (x1 - x0))
+    y0, y1 = ys.min() - 0.1 * span, ys.max() + 0.1 * span
+    if room:
+        y1 = y0 + 2.0 * (y1 - y0)
+    return (x0, x1), (y0, y1)
+
+
+def _nyquist_draw(ax, nyq, pts, *, labels: bool) -> None:
+    for amp, curve in zip(nyq.amplitudes, nyq.curves, strict=False):
+        lab = "L(jω)" if np.isnan(amp) else f"L(jω; M = {amp:.3g} ticks)"
+        ax.plot(curve.real, curve.imag, lw=1.1, label=lab if labels else None)
+    rng = f"M in [{nyq.locus_amplitude[0]:.2g}, {nyq.locus_amplitude[-1]:.2g}] ticks"
+    ax.plot(nyq.locus.real, np.zeros_like(nyq.locus.real), color="#b2182b", lw=3, alpha=0.6,
+            label=f"−1/D(M), {rng}" if labels else None)  # fmt: skip
+    for pt, stable, _m in pts:
+        ax.plot([pt.real], [pt.imag], "o", mfc="k" if stable else "w", mec="k", ms=6, zorder=5)
+    ax.axhline(0, color="0.6", lw=0.5)
+    ax.axvline(0, color="0.6", lw=0.5)
+
+
+def nyquist_needs_zoom(nyq, cycles) -> bool:
+    """True when the cycles need an inset: a cycle below one tick, or several crossings within 10 % of the axis."""
+    pts = _cycle_points(nyq, cycles)
+    if not pts:
+        return False
+    if min(m for _p, _s, m in pts) < 1.0:
+        return True
+    (x0, x1), _y = _nyquist_limits(nyq, pts)
+    xs = [p.real for p, _s, _m in pts]
+    return len(xs) > 1 and (max(xs) - min(xs)) < 0.1 * (x1 - x0)
 
 
 def nyquist_plot(nyq, ax=None, *, cycles=None):
     """Nyquist plot of the loop L(jω; M) against the critical locus −1/D(M), cycles marked (paper Fig. 6).
 
+    The axes are scaled to the locus, the cycles and the origin; when a cycle is below one tick or several
+    crossings crowd within 10 % of the axis, an inset (upper half, above the data) zooms on them. The title names the loop model.
+
     Parameters
     ----------
     nyq : NyquistLocusResponse
     cycles : LimitCycleResult, optional
-        Cycles to mark (stable: filled circle, unstable: open circle).
+        Cycles to mark (stable: filled circle, unstable: open circle), computed with the same loop model.
     """
-    ax = _axes(ax, figsize=(5.5, 4.5))
-    for amp, curve in zip(nyq.amplitudes, nyq.curves, strict=False):
-        lab = "L(jω)" if np.isnan(amp) else f"L(jω; M = {amp:.3g})"
-        ax.plot(curve.real, curve.imag, lw=1.1, label=lab)
-    ax.plot(
-        nyq.locus.real,
-        np.zeros_like(nyq.locus.real),
-        color="#b2182b",
-        lw=3,
-        alpha=0.6,
-        label=f"−1/D(M), M in [{nyq.locus_amplitude[0]:.2g}, {nyq.locus_amplitude[-1]:.2g}]",
-    )
+    ax = _axes(ax, figsize=(7.6, 4.6))
+    pts = _cycle_points(nyq, cycles)
+    _nyquist_draw(ax, nyq, pts, labels=True)
     if cycles is not None:
-        from .loop import loop_response
-
-        for c in cycles.cycles:
-            pt = loop_response(
-                nyq.params, c.frequency, c.amplitude, model=nyq.model, delay=nyq.delay, pade_order=nyq.pade_order
-            )
-            ax.plot([pt.real], [pt.imag], "o", mfc="k" if c.stable else "w", mec="k", ms=6)
-        ax.plot([], [], "o", mfc="k", mec="k", label="stable cycle")
-        ax.plot([], [], "o", mfc="w", mec="k", label="unstable cycle")
-    lim = 1.6 * float(np.max(np.abs(nyq.locus)))  # the locus ends near −1/0.637: zoom on it
-    ax.set_xlim(-lim, 0.4 * lim)
-    ax.set_ylim(-lim, 0.4 * lim)
-    ax.set_aspect("equal")
-    ax.axhline(0, color="0.6", lw=0.5)
-    ax.axvline(0, color="0.6", lw=0.5)
+        for stable, name in ((True, "stable cycle"), (False, "unstable cycle")):
+            if any(s == stable for _p, s, _m in pts):
+                ax.plot([], [], "o", mfc="k" if stable else "w", mec="k", label=name)
+        if not pts:
+            ax.plot([], [], " ", label="no limit cycle predicted")
+    zoom = nyquist_needs_zoom(nyq, cycles)
+    xlim, ylim = _nyquist_limits(nyq, pts, room=zoom)  # with a zoom, the data in the lower half, the inset above
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
     ax.set_xlabel("Re L (force ticks per position tick)")
     ax.set_ylabel("Im L (force ticks per position tick)")
-    ax.set_title(
-        f"Nyquist: {nyq.model} model, μ = {nyq.params.mu:.4g}, β = {nyq.params.beta:.3g}, σ = {nyq.params.sigma:.3g}",
-        fontsize=9,
-    )
-    ax.legend(fontsize=7, loc="lower left")
+    dl = f", delay {nyq.delay}" if nyq.delay else ""
+    ax.set_title(f"Nyquist, {MODEL_NAMES.get(nyq.model, nyq.model)} loop{dl}", fontsize=9)
+    if zoom:
+        _nyquist_inset(ax, nyq, pts, xlim)
+    _legend_outside(ax)
     return ax
+
+
+def _nyquist_inset(ax, nyq, pts, xlim) -> None:
+    """Zoom on the crossings (upper left of the axes), linked to the region it shows."""
+    xs = np.array([p.real for p, _s, _m in pts])
+    ys = np.array([p.imag for p, _s, _m in pts])
+    half = max(0.65 * (xs.max() - xs.min()), 0.65 * (ys.max() - ys.min()), 0.02 * (xlim[1] - xlim[0]))
+    cx, cy = (xs.min() + xs.max()) / 2, (ys.min() + ys.max()) / 2
+    ins = ax.inset_axes([0.12, 0.56, 0.4, 0.36])
+    _nyquist_draw(ins, nyq, pts, labels=False)
+    ins.set_xlim(cx - half, cx + half)
+    ins.set_ylim(cy - half, cy + half)
+    ins.tick_params(labelsize=6)
+    ins.set_title("zoom on the cycles", fontsize=7)
+    ax.indicate_inset_zoom(ins, edgecolor="0.3")
+
+
+#: One style per closed-form stiffness bound (stiffness plot, stiffness-speed chart): coinciding lines stay
+#: visible because they differ in width, dash and colour (the wide pale line under the thin ones).
+_BOUND_STYLES = {
+    "abbott_okamura": dict(color="#c2a5cf", lw=6.0, alpha=0.8, ls="-"),
+    "colgate": dict(color="#762a83", lw=1.6, ls="--"),
+    "linear": dict(color="k", lw=1.1, ls=(0, (1, 1.5))),
+    "static": dict(color="#4d9221", lw=1.3, ls="-."),
+}
+
+
+def _bounds(k_static: float, k_colgate: float, k_ao: float, k_linear: float, delay: int):
+    """(key, value, name) of the closed-form bounds (eq. 8, 9 and the exact linear bound), widest line first."""
+    cs = "2b/T" if delay == 0 else f"b/(T(½ + {delay}))"
+    return [
+        ("abbott_okamura", k_ao, f"Abbott–Okamura min({cs}, 2c/Δ)"),
+        ("colgate", k_colgate, f"Colgate–Schenkel {cs}"),
+        ("linear", k_linear, "exact linear bound (no encoder, no friction)"),
+        ("static", k_static, "static limit 2c/Δ (eq. 9)"),
+    ]
+
+
+def _bound_lines(ax, bounds, unit: str, *, vertical: bool) -> None:
+    """Draw each bound as a labelled line; a label names the bounds it coincides with (equal to 0.1 %)."""
+    short = {"abbott_okamura": "A–O", "colgate": "C–S", "linear": "linear", "static": "2c/Δ"}
+    for key, k, name in bounds:
+        if not (k > 0 and np.isfinite(k)):
+            continue
+        same = [short[o] for o, ko, _n in bounds if o != key and ko > 0 and abs(ko - k) <= 1e-3 * k]
+        label = f"{name}: {number(k)} {unit}" + (f" (= {', '.join(same)})" if same else "")
+        (ax.axvline if vertical else ax.axhline)(k, label=label, **_BOUND_STYLES[key])
 
 
 def stiffness_plot(curve, ax=None):
@@ -358,10 +589,9 @@ def stiffness_plot(curve, ax=None):
     curve : StiffnessResponse
         From :func:`dfa.stiffness.stiffness_response`.
     """
-    ax = _axes(ax, figsize=(6.0, 4.0))
+    ax = _axes(ax, figsize=(8.6, 4.0))
     u = curve.device.units
     d = getattr(curve, "delay", 0)
-    cs = "2b/T" if d == 0 else f"b/(T(½ + {d}))"
     ax.loglog(
         curve.velocity,
         curve.k_max,
@@ -369,25 +599,24 @@ def stiffness_plot(curve, ax=None):
         lw=2,
         label="criterion K_max (eq. 11)" + (f", delay {d}" if d else ""),
     )
-    ax.axhline(curve.k_static, color="#4d9221", ls="-.", lw=1, label="2c/Δ (eq. 9, at rest)")
-    ax.axhline(curve.k_colgate, color="#b2182b", ls="--", lw=1, label=f"Colgate-Schenkel {cs}")
-    ax.axhline(curve.k_abbott_okamura, color="#762a83", ls=":", lw=1.5, label=f"Abbott-Okamura min({cs}, 2c/Δ)")
-    ax.axhline(
-        curve.k_gil,
-        color="0.3",
-        ls=(0, (5, 1, 1, 1)),
-        lw=1,
-        label="exact linear bound (no encoder, no friction" + (f", delay {d})" if d else ")"),
-    )
+    bounds = _bounds(curve.k_static, curve.k_colgate, curve.k_abbott_okamura, curve.k_gil, d)
+    _bound_lines(ax, bounds, u["stiffness"], vertical=False)
     if curve.stiffness is not None:
-        ax.axhline(curve.stiffness, color="k", lw=1.2, label=f"chosen K = {curve.stiffness:.4g} {u['stiffness']}")
+        ax.axhline(
+            curve.stiffness, color="#b2182b", lw=1.0, label=f"chosen K = {number(curve.stiffness)} {u['stiffness']}"
+        )
         if curve.max_passive_velocity is not None and np.isfinite(curve.max_passive_velocity):
-            ax.axvline(curve.max_passive_velocity, color="k", lw=0.8, ls=":")
-            ax.plot([curve.max_passive_velocity], [curve.stiffness], "o", color="k", ms=5)
+            ax.axvline(curve.max_passive_velocity, color="#b2182b", lw=0.8, ls=":")
+            ax.plot(
+                [curve.max_passive_velocity],
+                [curve.stiffness],
+                label=f"passive up to {number(curve.max_passive_velocity)} {u['velocity']}",
+                **POINT_STYLE,
+            )
     ax.set_xlabel(f"impact speed |ẋ0| ({u['velocity']})")
     ax.set_ylabel(f"stiffness K ({u['stiffness']})")
     ax.set_title(f"{curve.device.name}: largest passive stiffness", fontsize=9)
-    ax.legend(fontsize=7, loc="lower left")
+    _legend_outside(ax)
     ax.grid(True, which="both", alpha=0.3)
     return ax
 
@@ -400,7 +629,7 @@ def stiffness_speed_plot(chart, ax=None):
     chart : StiffnessSpeedChart
         From :func:`dfa.speed_chart.stiffness_speed_chart`.
     """
-    ax = _axes(ax, figsize=(7.0, 4.6))
+    ax = _axes(ax, figsize=(9.6, 4.6))
     u = chart.device.units
     floor = float(chart.speeds[0]) / 2.0  # "not even the slowest simulated speed" is drawn here
 
@@ -433,7 +662,8 @@ def stiffness_speed_plot(chart, ax=None):
         ms=3.5,
         label="simulation: comes to rest",
     )
-    _bound_lines(ax, chart)
+    bounds = _bounds(chart.k_static, chart.k_colgate, chart.k_abbott_okamura, chart.k_linear, chart.delay)
+    _bound_lines(ax, bounds, u["stiffness"], vertical=True)
     _design_marks(ax, chart, floor)
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -453,21 +683,6 @@ def stiffness_speed_plot(chart, ax=None):
     return ax
 
 
-def _bound_lines(ax, chart) -> None:
-    """The closed-form stiffness bounds of the stiffness-speed chart as labelled vertical lines."""
-    d = chart.delay
-    cs = "2b/T" if d == 0 else f"b/(T(½ + {d}))"
-    lines = [
-        (chart.k_abbott_okamura, dict(color="#c2a5cf", lw=5, alpha=0.7), f"Abbott–Okamura min({cs}, 2c/Δ)"),
-        (chart.k_colgate, dict(color="#762a83", lw=1.4, ls="--"), f"Colgate–Schenkel {cs}"),
-        (chart.k_linear, dict(color="k", lw=1.0, ls=(0, (1, 1.5))), "exact linear bound (no encoder, no friction)"),
-        (chart.k_static, dict(color="#4d9221", lw=1.2, ls="-."), "static limit 2c/Δ (eq. 9)"),
-    ]
-    for k, style, label in lines:
-        if k > 0:
-            ax.axvline(k, label=f"{label}: {k:.4g}", **style)
-
-
 def _design_marks(ax, chart, floor: float) -> None:
     """The design speed (horizontal line) and the design point (star) of the stiffness-speed chart."""
     u = chart.device.units
@@ -482,7 +697,8 @@ def _design_marks(ax, chart, floor: float) -> None:
             color="k",
             ms=13,
             ls="none",
-            label=f"design point K = {chart.design_stiffness:.4g}, V = {chart.design_velocity:.3g}",
+            label=f"design point K = {number(chart.design_stiffness)} {u['stiffness']}, "
+            f"V = {chart.design_velocity:.3g} {u['velocity']}",
         )
 
 

@@ -212,7 +212,7 @@ def design_report(
     out_dir: str | os.PathLike = "reports",
     fmt: str = "html",
     progress: bool = True,
-    map_grid: int = 41,
+    map_grid: int = 81,
     samples: int = 30_000,
     delay: int = 0,
     validation: dict[str, Any] | None = None,

@@ -16,9 +16,12 @@ import matplotlib
 matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
 
 import dfa
-from dfa.plotting import regions_plot, trajectory_plot
+from dfa.criterion import REGION_DESCRIPTIONS
+from dfa.plotting import POINT_STYLE, REGION_COLORS, regions_plot, trajectory_plot
 from dfa.simulation import preload_position, simulate
 
 
@@ -52,7 +55,7 @@ def cases():
 
 def main(out: str, quick: bool = False) -> dict:
     n = 2000 if quick else 6000
-    fig, axs = plt.subplots(3, 2, figsize=(11, 9.5), constrained_layout=True, gridspec_kw={"width_ratios": [1, 1.6]})
+    fig, axs = plt.subplots(3, 2, figsize=(11, 10), constrained_layout=True, gridspec_kw={"width_ratios": [1, 1.6]})
     results = []
     for row, (label, dev, k, xd, preload) in enumerate(cases()):
         p = dev.params(k)
@@ -62,24 +65,25 @@ def main(out: str, quick: bool = False) -> dict:
             ax=axs[row, 0],
             beta_max=max(1.0, 1.2 * p.beta),
             sigma_max=min(max(2.0, 1.2 * p.sigma), 10.0),
-            legend=row == 0,
-            legend_loc="lower right",
+            legend=False,
         )
         axs[row, 0].set_title(f"{label}: β = {p.beta:.3g}, σ = {p.sigma:.3g}, μ = {p.mu:.3g}", fontsize=8)
         if preload:
             r = simulate(p.mu, p.beta, p.sigma, 0.0, n, xi0=preload_position(p.mu, xd))
         else:
             r = simulate(p.mu, p.beta, p.sigma, xd, n)
-        trajectory_plot(r, ax=axs[row, 1], period=dev.period)
+        persistent = r.rest_sample is None and 0 < r.amplitude < 0.5  # a sub-tick cycle: its start, and an inset
+        # a run that comes to rest is shown up to about four times its settling time, so that its motion fills the axis
+        trajectory_plot(r, ax=axs[row, 1], device=dev, max_samples=n // 6 if persistent else None)
         start = f"preload ≡ {xd:g} ticks/sample" if preload else f"ξ'0 = {xd:g} ticks/sample"
         axs[row, 1].set_title(
             f"{label}, K = {k:g} N·m/rad, {start}: {r.outcome}, amplitude {r.amplitude:.2g} ticks", fontsize=8
         )
-        if r.rest_sample is None and 0 < r.amplitude < 0.5:  # a persistent sub-tick cycle: zoom on the tail
-            ins = axs[row, 1].inset_axes([0.55, 0.45, 0.42, 0.45])
+        if persistent:  # zoom on the tail of the whole run
+            ins = axs[row, 1].inset_axes([0.55, 0.56, 0.42, 0.36])
             tail = slice(n - 60, n + 1)
             ins.plot(range(n - 60, n + 1), r.xi[tail], ".-", lw=0.8, ms=3, color="#2166ac")
-            ins.set_title("last 60 samples", fontsize=7)
+            ins.set_title(f"last 60 samples of the {n * dev.period:g} s run", fontsize=7)
             ins.set_xlabel("time (samples)", fontsize=6)
             ins.set_ylabel("ξ (ticks)", fontsize=6)
             ins.tick_params(labelsize=6)
@@ -96,6 +100,16 @@ def main(out: str, quick: bool = False) -> dict:
                 mu=p.mu,
             )
         )
+    handles = [
+        Patch(facecolor=REGION_COLORS[k], edgecolor="0.5", label=f"{k}: {REGION_DESCRIPTIONS[k].split(':')[0]}")
+        for k in "abcde"
+    ]
+    handles += [
+        Line2D([], [], color="k", ls="--", label="critical line at the impact speed"),
+        Line2D([], [], label="operating point", **POINT_STYLE),
+        Line2D([], [], color="0.4", ls="--", lw=0.8, label="±1 tick"),
+    ]
+    fig.legend(handles=handles, loc="outside lower center", ncol=4, fontsize=8)
     path = os.path.join(out, "fig5_trajectories.png")
     fig.savefig(path, dpi=120)
     for r in results:

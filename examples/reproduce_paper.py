@@ -117,7 +117,8 @@ def main(out: str, quick: bool = False) -> str:
         "",
         f"![Nyquist]({rel(ny['path'])})",
         "",
-        "Nyquist view of the harmonic balance for μ = 2, β = 0.4, σ = 0.1: with the exact D the loop meets the critical locus several",
+        "Nyquist view of the harmonic balance (half-sample delay loop, as in the paper) for μ = 2, β = 0.4, σ = 0.1: with the exact D",
+        "the loop meets the critical locus several",
         "times, giving alternating stable and unstable cycles ("
         + ", ".join(f"M = {m:.3g} {'stable' if s else 'unstable'}" for m, _w, s in ny["cycles"])
         + ").",

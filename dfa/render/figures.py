@@ -54,16 +54,23 @@ def _stiffness(a: DesignAnalysis) -> ReportFigure:
     from .. import plotting
 
     ax = plotting.stiffness_plot(a.stiffness_curve)
-    caption = "Largest passive stiffness against impact speed (eq. 11) and the published bounds."
+    caption = (
+        "Largest passive stiffness against impact speed (eq. 11) and the published bounds (values in the legend; "
+        "bounds that coincide are drawn on top of each other and say so)."
+    )
     return ReportFigure("stiffness", caption, _png(ax.figure))
 
 
 def _nyquist(a: DesignAnalysis) -> ReportFigure:
     from .. import plotting
 
-    ax = plotting.nyquist_plot(a.nyquist, cycles=a.threshold("half-delay").result)
+    model = a.nyquist.model
+    ax = plotting.nyquist_plot(a.nyquist, cycles=a.threshold(model).result)
+    name = plotting.MODEL_NAMES.get(model, model)
     caption = (
-        "Nyquist plot of the linearised loop (half-sample delay) against −1/D(M), with the predicted limit cycles."
+        f"Nyquist plot of the linearised loop ({name} model, as the growth threshold above) against −1/D(M), "
+        "with its predicted limit cycles (filled: stable, open: unstable); the inset zooms on the cycles when "
+        "they crowd or lie below one tick."
     )
     return ReportFigure("nyquist", caption, _png(ax.figure))
 
@@ -74,12 +81,12 @@ def _trajectories(a: DesignAnalysis) -> ReportFigure:
     from .. import plotting
 
     u, dev = a.device.units, a.device
-    fig, axs = plt.subplots(2, 1, figsize=(7, 5.4), constrained_layout=True)
-    plotting.trajectory_plot(a.trajectory, ax=axs[0], period=dev.period)
+    fig, axs = plt.subplots(2, 1, figsize=(7, 5.6), constrained_layout=True)
+    plotting.trajectory_plot(a.trajectory, ax=axs[0], device=dev)
     axs[0].set_title(
         f"impact at {a.velocity:g} {u['velocity']} (ξ'0 = {a.criterion.xi_dot:.3g}): {a.outcome.outcome}", fontsize=9
     )
-    plotting.trajectory_plot(a.trajectory_high, ax=axs[1], period=dev.period)
+    plotting.trajectory_plot(a.trajectory_high, ax=axs[1], device=dev)
     axs[1].set_title(
         f"impact at {dev.velocity(a.high_xi_dot):.3g} {u['velocity']} (ξ'0 = {a.high_xi_dot:.3g}): "
         f"{a.outcome_high.outcome}",
@@ -87,7 +94,9 @@ def _trajectories(a: DesignAnalysis) -> ReportFigure:
     )
     caption = (
         "Simulated displacement (exact sampled-data integration) at the design speed and just above the simulated "
-        "critical speed; dashed: ±1 tick."
+        "critical speed, each with its own time window and scale (a run that came to rest is shown up to about "
+        "four times its settling time); left axis in encoder ticks, right axis in "
+        f"{u['position']}; dashed: ±1 tick."
     )
     return ReportFigure("trajectories", caption, _png(fig))
 
@@ -95,12 +104,13 @@ def _trajectories(a: DesignAnalysis) -> ReportFigure:
 def _map(a: DesignAnalysis) -> ReportFigure:
     from .. import plotting
 
-    axs = plotting.stability_map_plot(a.stability_map)
-    for ax in axs:
-        ax.plot([a.params.beta], [a.params.sigma], "o", color="#f1a340", mec="k", ms=7)
+    axs = plotting.stability_map_plot(
+        a.stability_map, device=a.device, stiffness=a.stiffness, point=(a.params.beta, a.params.sigma)
+    )
     caption = (
-        "Simulated stability around the operating point (orange) at the design speed and twice it; "
-        f"μ = {a.params.mu:.4g}."
+        "Simulated stability around the operating point (red circle) at the design speed and twice it; "
+        f"μ = {a.params.mu:.4g}. Top and right axes: the damping b and Coulomb friction c that give β and σ at "
+        f"K = {a.stiffness:.4g} {a.device.units['stiffness']}. The legend lists every outcome class, present or not."
     )
     return ReportFigure("map", caption, _png(axs[0].figure))
 

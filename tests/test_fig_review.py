@@ -1,0 +1,248 @@
+"""Figures a design review accepts (issue 14 §5) and physical units on figures (§3), checked on the drawn artists.
+
+Each test reproduces one finding of the visual review: the operating point of Fig. 3 at β ≈ 0, legends over the
+data (Figs. 3, 5, stiffness plot), the ξ'0 reference lines of Fig. 3, coinciding closed-form bounds (eq. 8, 9),
+the Nyquist view of Fig. 6 (limits, zoom, loop model), trajectory windows (Fig. 5), the Fig. 4 map panels and
+Fig. 7's contour labels.
+"""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+from matplotlib.transforms import Bbox
+
+import dfa
+from dfa import plotting
+from dfa.contours import contour_maps
+from dfa.cycles import limit_cycles
+from dfa.loop import loop_response, nyquist_locus_response
+from dfa.maps import stability_map
+from dfa.simulation import simulate
+from dfa.speed_chart import stiffness_speed_chart
+from dfa.stiffness import stiffness_response
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    yield
+    plt.close("all")
+
+
+def _boxes(fig):
+    fig.canvas.draw()
+    return fig.canvas.get_renderer()
+
+
+def _legend_clear_of_axes(ax, legend=None) -> bool:
+    """The legend's box does not overlap the axes' plotting area (window extents, pixels)."""
+    r = _boxes(ax.figure)
+    leg = (legend or ax.get_legend()).get_window_extent(r)
+    return not Bbox.intersection(leg, ax.get_window_extent(r))
+
+
+def test_fig3_operating_point_at_beta_zero_lies_inside_the_axes_and_the_legend_beside_them():
+    r = dfa.passivity_criterion(0.00207, 2.03, 2.22)  # the Delta at 0.2 m/s: β ≈ 0
+    ax = plotting.regions_plot(r, xi_dots=[1.0, 5.0])
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    point = next(ln for ln in ax.get_lines() if ln.get_label().startswith("operating point"))
+    rend = _boxes(ax.figure)
+    px, py = ax.transData.transform((r.beta, r.sigma))
+    box = ax.get_window_extent(rend)
+    radius = point.get_markersize() / 72 * ax.figure.dpi / 2
+    assert box.x0 + radius <= px <= box.x1 - radius and box.y0 + radius <= py <= box.y1 - radius
+    assert x0 < 0 < r.beta < x1 and y0 < r.sigma < y1
+    assert _legend_clear_of_axes(ax)
+
+
+def test_fig3_reference_speed_lines_have_distinct_styles_and_legend_entries():
+    r = dfa.passivity_criterion(0.25, 1.2, 2.0)
+    ax = plotting.regions_plot(r, xi_dots=[0.5, 1.0, 5.0])
+    lines = [ln for ln in ax.get_lines() if ln.get_label().startswith("ξ'0 = ")]
+    assert [ln.get_label() for ln in lines] == ["ξ'0 = 0.5", "ξ'0 = 1", "ξ'0 = 5"]
+    styles = {(str(ln.get_linestyle()), ln.get_color(), ln.get_linewidth()) for ln in lines}
+    assert len(styles) == 3
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert all(ln.get_label() in legend for ln in lines)
+
+
+def _bound_lines(ax):
+    names = ("Abbott–Okamura", "Colgate–Schenkel", "exact linear bound", "static limit")
+    return {n: ln for ln in ax.get_lines() for n in names if ln.get_label().startswith(n)}
+
+
+def test_eq8_eq9_coinciding_bounds_drawn_distinctly_and_labelled_with_values_and_units():
+    dev = dfa.get_device(
+        "Delta"
+    ).device  # 2b/T = 60 N/m: Colgate–Schenkel, Abbott–Okamura and the linear bound coincide
+    ax = plotting.stiffness_plot(stiffness_response(dev, stiffness=14500.0))
+    lines = _bound_lines(ax)
+    assert len(lines) == 4
+    coinciding = [lines[n] for n in ("Abbott–Okamura", "Colgate–Schenkel", "exact linear bound")]
+    assert len({(str(ln.get_linestyle()), ln.get_color(), ln.get_linewidth()) for ln in coinciding}) == 3
+    cs = lines["Colgate–Schenkel"].get_label()
+    assert "60 N/m" in cs and "(= A–O, linear)" in cs
+    assert "5.887e+04 N/m" in lines["static limit"].get_label() and "(=" not in lines["static limit"].get_label()
+    assert _legend_clear_of_axes(ax)
+
+
+def test_fig_chart_bounds_legend_gives_values_with_rotary_units():
+    chart = stiffness_speed_chart(dfa.get_device("re35").device, stiffness=0.1, velocity=2.0, grid=4, speeds=3)
+    ax = chart.plot()
+    for name, ln in _bound_lines(ax).items():
+        assert "N·m/rad" in ln.get_label(), name
+    assert any("design point K = 0.1 N·m/rad" in t.get_text() for t in ax.get_legend().get_texts())
+    assert _legend_clear_of_axes(ax)
+
+
+def _cycle_points(nyq, cycles):
+    return [
+        complex(loop_response(nyq.params, c.frequency, c.amplitude, model=nyq.model, delay=nyq.delay))
+        for c in cycles.cycles
+    ]
+
+
+@pytest.mark.parametrize("model", ["half-delay", "zoh"])
+def test_fig6_nyquist_limits_contain_every_crossing_and_sub_tick_cycles_get_a_zoom(model):
+    p = dfa.Params(mu=2.0, beta=0.4, sigma=0.1)  # a stable cycle below one tick among larger ones
+    res = limit_cycles(p, model=model)
+    assert min(c.amplitude for c in res.cycles) < 1.0
+    nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model=model)
+    ax = plotting.nyquist_plot(nyq, cycles=res)
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    for pt in _cycle_points(nyq, res):
+        assert x0 < pt.real < x1 and y0 < pt.imag < y1
+    assert x0 < nyq.locus.real.min() and nyq.locus.real.max() < x1
+    assert len(ax.child_axes) == 1  # the zoom inset
+    (i0, i1), (j0, j1) = ax.child_axes[0].get_xlim(), ax.child_axes[0].get_ylim()
+    for pt in _cycle_points(nyq, res):
+        assert i0 < pt.real < i1 and j0 < pt.imag < j1
+    assert ("exact ZOH" if model == "zoh" else "half-sample delay") in ax.get_title()
+    assert _legend_clear_of_axes(ax)
+
+
+def test_fig6_nyquist_scales_to_each_device_and_skips_the_zoom_for_one_large_cycle():
+    limits = []
+    for p in (dfa.Params(155.2, 0.00207, 2.03), dfa.Params(2.0, 0.4, 0.1)):
+        res = limit_cycles(p, model="zoh")
+        nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh")
+        ax = plotting.nyquist_plot(nyq, cycles=res)
+        limits.append(ax.get_ylim())
+        if len(res.cycles) == 1 and res.cycles[0].amplitude >= 1.0:
+            assert not ax.child_axes and not plotting.nyquist_needs_zoom(nyq, res)
+    assert limits[0] != limits[1]  # no fixed [−2.5, 1]² window
+
+
+def test_report_nyquist_uses_the_exact_zoh_loop_of_its_growth_threshold():
+    from dfa.design import design_analysis
+    from dfa.render.figures import design_figures
+
+    # at rest (speed 0) the analysis skips the costly stiffness-speed chart; the Nyquist view is the same
+    a = design_analysis(dfa.get_device("impulse"), velocity=0.0, map_grid=3, samples=2000, n_jobs=1)
+    assert a.nyquist.model == "zoh"
+    nyq = {f.name: f for f in design_figures(a)}["nyquist"]
+    assert "exact ZOH" in nyq.caption and "half" not in nyq.caption
+
+
+def test_fig5_a_run_that_comes_to_rest_fills_its_time_axis():
+    dev = dfa.get_device("Delta").device
+    p = dev.params(14500.0)
+    r = simulate(p.mu, p.beta, p.sigma, dev.xi_dot(0.2), 4000)  # the Delta's report: at rest after ~330 samples
+    assert r.rest_sample is not None and 5 <= r.rest_sample < 1000
+    ax = plotting.trajectory_plot(r, device=dev)
+    t1 = ax.get_xlim()[1]
+    assert r.rest_sample * dev.period <= t1 <= 4 * r.rest_sample * dev.period + 1e-12
+    assert r.rest_sample * dev.period / t1 >= 0.2  # the motion is at least a fifth of the axis, not 2-5 %
+    whole = plotting.trajectory_plot(r, device=dev, window=False)
+    assert whole.get_xlim()[1] == pytest.approx((r.xi.size - 1) * dev.period)
+
+
+@pytest.mark.parametrize(("name", "unit"), [("re35", "rad"), ("Delta", "m")])
+def test_fig5_trajectory_axes_in_seconds_and_metres_or_radians_for_a_device(name, unit):
+    dev = dfa.get_device(name).device
+    p = dev.params(1.0 if dev.rotary else 14500.0)
+    r = simulate(p.mu, p.beta, p.sigma, 2.0, 1500)
+    ax = plotting.trajectory_plot(r, device=dev)
+    assert ax.get_xlabel() == "time (s)"
+    (sec,) = ax.child_axes
+    _boxes(ax.figure)  # a secondary axis takes its limits when drawn
+    label = sec.get_ylabel()
+    assert label.endswith(f"{unit})") and label.split("(")[-1][:-1] in {unit, "m" + unit, "µ" + unit, "n" + unit}
+    scale = {"": 1.0, "m": 1e3, "µ": 1e6, "n": 1e9}[label.split("(")[-1][: -1 - len(unit)]]
+    assert np.allclose(sec.get_ylim(), np.array(ax.get_ylim()) * dev.resolution * scale)  # ξ·Δ
+
+
+def test_fig5_figure_legend_and_preload_panel(tmp_path):
+    import importlib.util
+    import pathlib
+
+    path = pathlib.Path(__file__).parents[1] / "examples" / "fig5_trajectories.py"
+    spec = importlib.util.spec_from_file_location("fig5_trajectories", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    res = mod.main(str(tmp_path), quick=True)
+    fig = plt.gcf()
+    r = _boxes(fig)
+    (legend,) = fig.legends
+    leg = legend.get_window_extent(r)
+    assert all(not Bbox.intersection(leg, ax.get_window_extent(r)) for ax in fig.axes)
+    preload = fig.axes[5]  # third row, trajectory: the preloaded start is shown, not a flat line
+    ymin, ymax = preload.get_ylim()
+    data = preload.get_lines()[0].get_ydata()
+    assert (data.max() - data.min()) / (ymax - ymin) > 0.5
+    assert res["cases"][2]["outcome"] == "rest"
+
+
+def test_fig4_map_panels_physical_axes_every_outcome_in_the_legend_and_the_point():
+    dev = dfa.get_device("phantom").device
+    k = 1015.0
+    p = dev.params(k)
+    m = stability_map(p.mu, [dev.xi_dot(0.05)], grid=6, samples=2000, n_jobs=1, progress=False)
+    (ax,) = plotting.stability_map_plot(m, device=dev, stiffness=k, point=(p.beta, p.sigma))
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    for outcome in ("rest", "chatter", "oscillating", "unstable", "undecided"):
+        assert any(s.startswith(outcome) for s in labels), outcome
+    assert "m/s" in ax.get_title()
+    top, right = ax.child_axes
+    _boxes(ax.figure)  # a secondary axis takes its limits when drawn
+    assert "(N·s/m)" in top.get_xlabel() and "(N)" in right.get_ylabel()
+    assert top.get_xlim()[1] == pytest.approx(ax.get_xlim()[1] * k * dev.period)  # b = βKT (Table 1)
+    assert right.get_ylim()[1] == pytest.approx(ax.get_ylim()[1] * k * dev.resolution)  # c = σKΔ
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    assert x0 < p.beta < x1 and y0 < p.sigma < y1
+    assert _legend_clear_of_axes(ax)
+
+
+def test_fig4_outcome_colours_are_the_same_in_every_figure():
+    from dfa.simulation import OUTCOMES
+
+    cmap = plotting._outcome_cmap()
+    assert [matplotlib.colors.to_hex(cmap(i)) for i in range(len(OUTCOMES))] == [
+        plotting.OUTCOME_COLORS[o] for o in OUTCOMES
+    ]
+    assert len(set(plotting.OUTCOME_COLORS.values())) == len(OUTCOMES)
+
+
+def test_fig7_small_family_panel_shows_its_band_and_no_contour_label_is_clipped():
+    c = contour_maps(5.0, grid=30)
+    axes = plotting.contour_plot(c)
+    bb, ss = np.meshgrid(c.beta, c.sigma)
+    top = ss[np.isfinite(c.small_amplitude)].max()
+    assert top < 0.5 and axes[0].get_ylim()[1] <= max(1.15 * top, 0.55) + 1e-12
+    for ax in axes:
+        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+        for t in ax.texts:
+            if t.get_transform() is ax.transData:
+                x, y = t.get_position()
+                assert x0 < x < x1 and y0 < y < y1, t.get_text()
+    assert any(t.get_transform() is axes[0].transData for t in axes[0].texts)  # frequency labels remain
+
+
+def test_fig5_a_diverged_run_is_shown_up_to_where_it_stopped():
+    r = simulate(20.0, 0.05, 0.6, 30.0, 20_000, record=True, bound=1e4)  # stops early: beyond the bound
+    assert r.outcome == "unstable" and r.samples_run < 20_000
+    ax = plotting.trajectory_plot(r, period=1e-3)
+    assert ax.get_xlim()[1] == pytest.approx(r.samples_run * 1e-3)
