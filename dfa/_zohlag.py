@@ -108,6 +108,16 @@ def _coefficients(a, lam, inv_mu):
     return out
 
 
+@njit(cache=True, error_model="numpy")
+def _response_scalar(mu, beq, w, lag):
+    """P_d(e^{jω}) for one (β_eq, ω): the scalar path of the root finders (same arithmetic as the array path)."""
+    e = _expm_chain(1.0 / lag, 1.0 / mu, beq / mu)
+    z = complex(math.cos(w), math.sin(w))
+    yf = e[1, 0] / (z - e[1, 1])
+    yv = (e[2, 0] + e[2, 1] * yf) / (z - e[2, 2])
+    return (e[3, 0] + e[3, 1] * yf + e[3, 2] * yv) / (z - 1.0)
+
+
 def zoh_lag_coefficients(a, mu: float, lag: float) -> np.ndarray:
     """Entries (Γ_f, Γ_v, Γ_ξ, Φ_vf, Φ_ξf, Φ_ξv, q, p) of the one-sample transition, per a = β_eq/μ.
 
@@ -149,6 +159,8 @@ def zoh_lag_response(mu: float, beta_eq, omega, lag: float):
     complex or numpy.ndarray of complex
         The pulse response, shape of ``beta_eq`` and ``omega`` broadcast.
     """
+    if np.ndim(beta_eq) == 0 and np.ndim(omega) == 0:
+        return complex(_response_scalar(float(mu), float(beta_eq), float(omega), float(lag)))
     c = zoh_lag_coefficients(np.asarray(beta_eq, dtype=float) / mu, mu, lag)
     gf, gv, gx, fvf, fxf, fxv, q, p = np.moveaxis(c, -1, 0)
     z = np.exp(1j * np.asarray(omega, dtype=float))

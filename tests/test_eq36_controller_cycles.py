@@ -9,6 +9,7 @@ independently (control.c2d and numpy roots), the two loop models at low frequenc
 
 from __future__ import annotations
 
+import functools
 import inspect
 import math
 
@@ -106,15 +107,21 @@ def test_zoh_lag_response_tends_to_the_spring_plant_as_the_lag_vanishes():
 M_KG, B_NSM, T_S = 0.5, 2.0, 1e-3
 
 
-def _physical_closed_loop_radius(k, damping, delay, cutoff, bandwidth):
-    """Spectral radius of the sampled loop with the controller, built independently in physical units:
-    control.c2d(amplifier + plant, T, 'zoh') and H(z) = z^{−d}(K + B(1 − z^{−1})F(z)/T), numpy roots."""
+@functools.lru_cache(maxsize=8)
+def _sampled_plant(bandwidth):
+    """control.c2d(amplifier + plant, T, 'zoh') in physical units: (numerator, denominator) in z."""
     tau = 0.0 if bandwidth is None else 1.0 / (2 * math.pi * bandwidth)
     plant = control.tf([1.0], [M_KG, B_NSM, 0.0])
     if tau:
         plant = control.tf([1.0], [tau, 1.0]) * plant
     pd = control.c2d(plant, T_S, method="zoh")
-    npl, dpl = np.ravel(pd.num[0][0]), np.ravel(pd.den[0][0])
+    return np.ravel(pd.num[0][0]), np.ravel(pd.den[0][0])
+
+
+def _physical_closed_loop_radius(k, damping, delay, cutoff, bandwidth):
+    """Spectral radius of the sampled loop with the controller, built independently in physical units:
+    control.c2d(amplifier + plant, T, 'zoh') and H(z) = z^{−d}(K + B(1 − z^{−1})F(z)/T), numpy roots."""
+    npl, dpl = _sampled_plant(bandwidth)
     # velocity path (1 − z^{−1})/T · F(z): F = (1 − a)/(z − a) or 1
     if cutoff is None:
         nv, dv = np.array([1.0, -1.0]) / T_S, np.array([1.0, 0.0])
@@ -150,7 +157,7 @@ def _neutral_k_from_loop(damping, delay, cutoff, bandwidth, bracket):
     [(0.0, 0, None, None), (0.5, 0, None, None), (0.5, 1, 100.0, None), (0.2, 1, None, 500.0), (1.0, 2, 50.0, 300.0)],
 )
 def test_eq36_neutral_cycle_at_infinite_amplitude_is_the_exact_linear_critical_k(damping, delay, cutoff, bandwidth):
-    ks = np.geomspace(10.0, 1e6, 400)
+    ks = np.geomspace(10.0, 1e6, 200)
     rho = np.array([_physical_closed_loop_radius(k, damping, delay, cutoff, bandwidth) for k in ks])
     i = int(np.argmax(rho >= 1.0))
     assert i > 0
@@ -163,7 +170,7 @@ def test_eq36_neutral_cycle_at_infinite_amplitude_is_the_exact_linear_critical_k
     for k, stable in ((0.98 * k_lin, True), (1.02 * k_lin, False)):
         ctl = Controller(k, damping, delay, cutoff, bandwidth).params(T_S)
         p = dfa.Params(M_KG / (k * T_S**2), B_NSM / (k * T_S), 0.1)
-        assert limit_cycles(p, model="zoh", controller=ctl, max_amplitude=50.0).linear_stable is stable
+        assert limit_cycles(p, controller=ctl, max_amplitude=50.0).linear_stable is stable
 
 
 @pytest.mark.parametrize("ctl", CONTROLLERS)
@@ -216,3 +223,27 @@ def test_eq36_controller_growth_threshold_brackets_the_simulated_critical_speed(
     lo = simulate(p.mu, p.beta, p.sigma, 0.5 * g.xi_dot, 20_000, record=False, controller=ctl)
     hi = simulate(p.mu, p.beta, p.sigma, 3.0 * g.xi_dot_high, 20_000, record=False, controller=ctl)
     assert lo.outcome != "unstable" and hi.outcome == "unstable"
+
+
+def test_eq42_45_closed_forms_refuse_a_controller_they_do_not_hold_for():
+    from dfa.cycles import large_cycle_closed_form, small_cycle_closed_form, small_cycle_closed_forms
+
+    assert small_cycle_closed_form(5.0, 0.1, 0.3, controller=ControllerParams()) == small_cycle_closed_form(
+        5.0, 0.1, 0.3
+    )
+    for ctl in [*CONTROLLERS, ControllerParams(delay=1)]:
+        with pytest.raises(DFAValueError, match="closed forms .eq. 42-45. hold for the pure spring"):
+            large_cycle_closed_form(5.0, 0.1, 0.3, controller=ctl)
+        with pytest.raises(DFAValueError, match="limit_cycles"):
+            small_cycle_closed_forms([5.0], [0.1], [0.3], controller=ctl)
+    with pytest.raises(DFATypeError, match="controller"):
+        small_cycle_closed_form(5.0, 0.1, 0.3, controller="spring")
+
+
+@pytest.mark.parametrize("ctl", CONTROLLERS)
+def test_eq36_controller_describing_small_reproduces_the_exact_small_cycle(ctl):
+    """describing='small' (D = 2/(πM), exact for M < 1) gives the same small cycles as the exact D."""
+    p = dfa.Params(5.0, 0.1, 0.3)
+    exact = [c for c in limit_cycles(p, controller=ctl).cycles if c.amplitude < 1.0]
+    small = [c for c in limit_cycles(p, controller=ctl, describing="small").cycles if c.amplitude < 1.0]
+    assert [c.amplitude for c in small] == pytest.approx([c.amplitude for c in exact], rel=1e-9)
