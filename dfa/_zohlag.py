@@ -82,8 +82,15 @@ def _expm_chain(lam, inv_mu, a):
     tmp = np.empty((4, 4))
     for k in range(1, _TAYLOR_TERMS):
         _lower_matmul(term, nmat, tmp)
-        term[:, :] = tmp / k
-        out += term
+        done = True
+        for i in range(4):
+            for j in range(i + 1):
+                term[i, j] = tmp[i, j] / k
+                out[i, j] += term[i, j]
+                if term[i, j] > 1e-17 * out[i, j]:  # non-negative terms: stop when none moves its entry
+                    done = False
+        if done:
+            break
     out *= math.exp(-c * scale)
     for _ in range(s):
         _lower_matmul(out, out, tmp)

@@ -145,7 +145,9 @@ def _neutral_k_from_loop(damping, delay, cutoff, bandwidth, bracket):
         idx = np.flatnonzero((np.sign(inv.imag[:-1]) != np.sign(inv.imag[1:])) & (inv.real[:-1] < 0))
         vals = []
         for i in idx:
-            w0 = optimize.brentq(lambda x: (1.0 / loop_response(p, x, model="zoh", controller=ctl)).imag, w[i], w[i + 1])
+            w0 = optimize.brentq(
+                lambda x: (1.0 / loop_response(p, x, model="zoh", controller=ctl)).imag, w[i], w[i + 1]
+            )
             vals.append(-(1.0 / loop_response(p, w0, model="zoh", controller=ctl)).real - 1.0)
         return min(vals, key=abs)
 
@@ -247,3 +249,19 @@ def test_eq36_controller_describing_small_reproduces_the_exact_small_cycle(ctl):
     exact = [c for c in limit_cycles(p, controller=ctl).cycles if c.amplitude < 1.0]
     small = [c for c in limit_cycles(p, controller=ctl, describing="small").cycles if c.amplitude < 1.0]
     assert [c.amplitude for c in small] == pytest.approx([c.amplitude for c in exact], rel=1e-9)
+
+
+@pytest.mark.parametrize("mu", [0.5, 5.0, 100.0])
+def test_eq36_zoh_phase_condition_has_at_most_one_crossing_per_frequency_with_a_controller(mu):
+    """The solver's premise for the exact ZOH model (one β* per ω with U < 0), checked on its own β grid."""
+    from dfa.cycles.characteristic import _W_GRID, _inv_loop
+
+    bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
+    for ctl in [
+        *CONTROLLERS,
+        ControllerParams(damping=2.0, cutoff=0.05),
+        ControllerParams(damping=1.0, lag=1.0, delay=2),
+    ]:
+        c = _inv_loop(mu, bgrid[None, :], _W_GRID[:, None], "zoh", ctl.delay, 0, ctl)
+        sc = (np.sign(c.imag[:, :-1]) != np.sign(c.imag[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)
+        assert sc.sum(axis=1).max() <= 1

@@ -101,11 +101,8 @@ def _inv_loop_scalar(mu: float, b: float, w: float, model: str, delay: int, pade
 def _controller_factor(ctl: ControllerParams, omega):
     """C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}), F the ZOH-exact velocity filter (1 without filter)."""
     zi = np.exp(-1j * np.asarray(omega, dtype=float))
-    if ctl.cutoff is None:
-        f = 1.0
-    else:
-        a = ctl.filter_pole
-        f = (1.0 - a) * zi / (1.0 - a * zi)
+    a = ctl.filter_pole
+    f = 1.0 if ctl.cutoff is None else (1.0 - a) * zi / (1.0 - a * zi)
     return 1.0 + ctl.damping * (1.0 - zi) * f
 
 
