@@ -265,3 +265,48 @@ def test_eq36_zoh_phase_condition_has_at_most_one_crossing_per_frequency_with_a_
         c = _inv_loop(mu, bgrid[None, :], _W_GRID[:, None], "zoh", ctl.delay, 0, ctl)
         sc = (np.sign(c.imag[:, :-1]) != np.sign(c.imag[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)
         assert sc.sum(axis=1).max() <= 1
+
+
+@pytest.mark.parametrize("ctl", CONTROLLERS)
+@pytest.mark.parametrize("sigma, amp", [(0.0, None), (0.3, 0.7), (0.3, 4.0)])
+def test_eq36_zoh_loop_equals_python_control_c2d_with_the_controller(ctl, sigma, amp):
+    """L = z^{−d}C(z)·c2d(1/(αs + 1)·1/(μs² + β_eq s)) evaluated independently (β_eq of eq. 40)."""
+    p = dfa.Params(3.0, 0.2, sigma)
+    w = np.array([0.02, 0.3, 1.0, 2.5])
+    beq = p.beta + (0.0 if amp is None else 4 * sigma / (math.pi * amp * w))
+    ref = []
+    for wi, bi in zip(w, np.broadcast_to(beq, w.shape), strict=True):
+        plant = control.tf([1.0], [p.mu, bi, 0.0])
+        if ctl.lag:
+            plant = control.tf([1.0], [ctl.lag, 1.0]) * plant
+        z = np.exp(1j * wi)
+        f = 1.0 if ctl.cutoff is None else (1 - ctl.filter_pole) / (z - ctl.filter_pole)
+        h = z ** (-ctl.delay) * (1.0 + ctl.damping * (1.0 - 1.0 / z) * f)
+        ref.append(h * control.c2d(plant, 1.0, method="zoh")(z))
+    amps = None if amp is None else np.full_like(w, amp)
+    np.testing.assert_allclose(loop_response(p, w, amps, model="zoh", controller=ctl), ref, rtol=1e-9)
+
+
+@pytest.mark.parametrize("ctl", CONTROLLERS)
+def test_eq36_half_delay_loop_is_the_stated_product(ctl):
+    """L = e^{−jω(d + ½)}·C(e^{jω})/(jωα + 1)/(μ(jω)² + jωβ_eq), written out."""
+    p = dfa.Params(3.0, 0.2, 0.3)
+    w = np.array([0.02, 0.3, 1.0, 2.5])
+    s, z = 1j * w, np.exp(1j * w)
+    f = 1.0 if ctl.cutoff is None else (1 - ctl.filter_pole) / (z - ctl.filter_pole)
+    c = 1.0 + ctl.damping * (1.0 - 1.0 / z) * f
+    beq = p.beta + 4 * p.sigma / (math.pi * 1.5 * w)
+    ref = np.exp(-s * (ctl.delay + 0.5)) * c / (ctl.lag * s + 1.0) / (p.mu * s * s + beq * s)
+    np.testing.assert_allclose(loop_response(p, w, 1.5, controller=ctl), ref, rtol=1e-12)
+
+
+def test_eq36_controller_stable_cycle_frequency_matches_simulated_chatter():
+    """Damper + filter + delay + lag (a cycle of ~16 samples): the predicted stable cycle's frequency is the
+    simulated chatter's within 2 % (the simulated frequency is 2π/period, a whole number of samples)."""
+    simulate = _simulate_with_controller()
+    p, ctl = dfa.Params(5.0, 0.1, 0.3), CONTROLLERS[2]
+    (cyc,) = [c for c in limit_cycles(p, model="zoh", controller=ctl).cycles if c.stable]
+    r = simulate(p.mu, p.beta, p.sigma, 0.2, 20_000, record=False, controller=ctl)
+    assert r.outcome == "chatter"
+    assert r.frequency == pytest.approx(cyc.frequency, rel=0.02)
+    assert r.amplitude == pytest.approx(cyc.amplitude, rel=0.3)
