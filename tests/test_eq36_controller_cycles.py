@@ -300,13 +300,15 @@ def test_eq36_half_delay_loop_is_the_stated_product(ctl):
     np.testing.assert_allclose(loop_response(p, w, 1.5, controller=ctl), ref, rtol=1e-12)
 
 
-def test_eq36_controller_stable_cycle_frequency_matches_simulated_chatter():
-    """Damper + filter + delay + lag (a cycle of ~16 samples): the predicted stable cycle's frequency is the
-    simulated chatter's within 2 % (the simulated frequency is 2π/period, a whole number of samples)."""
+def test_eq36_controller_stable_cycle_matches_simulated_chatter():
+    """Damper + filter + delay + lag: the predicted stable cycle (M = 0.642, period 16.1 samples) against the
+    simulated chatter, which locks onto whole-sample periods (16 or 18 samples by initial speed, amplitudes
+    0.51 or 0.64 ticks when measured with h-csim's simulator): frequency within 12 %, amplitude within 25 %."""
     simulate = _simulate_with_controller()
     p, ctl = dfa.Params(5.0, 0.1, 0.3), CONTROLLERS[2]
     (cyc,) = [c for c in limit_cycles(p, model="zoh", controller=ctl).cycles if c.stable]
-    r = simulate(p.mu, p.beta, p.sigma, 0.2, 20_000, record=False, controller=ctl)
-    assert r.outcome == "chatter"
-    assert r.frequency == pytest.approx(cyc.frequency, rel=0.02)
-    assert r.amplitude == pytest.approx(cyc.amplitude, rel=0.3)
+    for v in (0.1, 0.2, 0.3):
+        r = simulate(p.mu, p.beta, p.sigma, v, 20_000, record=False, controller=ctl)
+        assert r.outcome == "chatter"
+        assert r.frequency == pytest.approx(cyc.frequency, rel=0.12)
+        assert r.amplitude == pytest.approx(cyc.amplitude, rel=0.25)
