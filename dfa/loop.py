@@ -53,6 +53,7 @@ from .checks import (
     check_real_array,
     check_type,
 )
+from .controller import ControllerParams
 from .describing import coulomb_equivalent_damping, quantizer_df
 from .device import Params
 from .errors import DFAValueError
@@ -159,7 +160,14 @@ def zoh_pulse_response(mu, beta_eq, omega):
 
 
 def loop_response(
-    params: Params, omega, amplitude=None, *, model: str = "half-delay", delay: int = 0, pade_order: int = 4
+    params: Params,
+    omega,
+    amplitude=None,
+    *,
+    model: str = "half-delay",
+    delay: int = 0,
+    pade_order: int = 4,
+    controller: ControllerParams | None = None,
 ):
     """Frequency response L(jω; M) of the linear part of the loop (eq. 36).
 
@@ -177,6 +185,13 @@ def loop_response(
         Computational delay d in whole samples (default 0).
     pade_order : int, optional
         Order of the Padé approximation for ``model="pade"`` (default 4).
+    controller : ControllerParams, optional
+        The virtual wall (issue 15). L is then multiplied by the controller
+        C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the ZOH-exact velocity filter
+        (1 − a)e^{−jω}/(1 − a e^{−jω}), a = e^{−2πν_c}; 1 without filter), its delay
+        e^{−jωd} replaces ``delay`` (which must be 0 or equal), and the amplifier lag
+        enters as 1/(jωα + 1) (half-delay, Padé) or exactly inside the ZOH-sampled
+        amplifier + device (``"zoh"``, :mod:`dfa._zohlag`). Default None: the spring.
 
     Returns
     -------
@@ -194,8 +209,12 @@ def loop_response(
     loop_system : The same loop as a python-control system.
     nyquist_locus_response : The loop against the critical locus −1/D(M).
     """
+    from .cycles.characteristic import _inv_loop  # imported here: dfa.cycles builds on this module
+    from .cycles.controlled import resolve_controller
+
     p = _check_params(params)
-    m, d, n = _check_model(model, delay, pade_order)
+    ctl, d = resolve_controller(controller, delay)
+    m, d, n = _check_model(model, d, pade_order)
     w = _omega(omega)
     if amplitude is not None:
         amplitude = check_real_array("amplitude", amplitude, "give the cycle amplitude M in ticks")
@@ -212,7 +231,9 @@ def loop_response(
         else np.full(np.broadcast_shapes(w.shape, np.shape(amplitude) if amplitude is not None else ()), p.beta)
     )
     w = np.broadcast_to(w, np.shape(beq))
-    if m == "zoh":
+    if ctl is not None:
+        out = 1.0 / _inv_loop(p.mu, beq, w, m, d, n, ctl)
+    elif m == "zoh":
         out = zoh_pulse_response(p.mu, beq, w) * np.exp(-1j * w * d)
     else:
         s = 1j * w
@@ -331,6 +352,8 @@ class NyquistLocusResponse:
         search ended incomplete; crossings may be missing, why in ``detail``).
     detail : str
         The solver's one-line reason when ``SEARCH_INCOMPLETE``; empty otherwise.
+    controller : ControllerParams or None
+        The controller of the loop (None: the paper's spring).
 
     Arrays are read-only copies.
     """
@@ -347,8 +370,11 @@ class NyquistLocusResponse:
     crossings: tuple
     status: NyquistStatus
     detail: str = ""
+    controller: ControllerParams | None = None
 
     def __post_init__(self) -> None:
+        if self.controller is not None:
+            check_type("controller", self.controller, ControllerParams, "build it with nyquist_locus_response")
         freeze_fields(
             self,
             {
@@ -372,8 +398,10 @@ class NyquistLocusResponse:
         dict
             Strict-JSON data: inputs, crossings, curves, locus, status and detail.
         """
+        extra = {} if self.controller is None else {"controller": self.controller.as_dict()}
         return to_jsonable(
             {
+                **extra,
                 "mu": self.params.mu,
                 "beta": self.params.beta,
                 "sigma": self.params.sigma,
@@ -412,7 +440,13 @@ class NyquistLocusResponse:
 
 
 def _solver_crossings(
-    p: Params, model: str, delay: int, pade_order: int, omega: np.ndarray, max_amplitude: float
+    p: Params,
+    model: str,
+    delay: int,
+    pade_order: int,
+    omega: np.ndarray,
+    max_amplitude: float,
+    controller: ControllerParams | None = None,
 ) -> tuple[list[tuple[float, float, complex]], NyquistStatus, str]:
     """σ = 0: the harmonic-balance roots of the limit-cycle solver (one implementation, residual <= 1e-10).
 
@@ -421,7 +455,9 @@ def _solver_crossings(
     """
     from .cycles import SearchStatus, limit_cycles  # imported here: dfa.cycles builds on this module
 
-    res = limit_cycles(p, model=model, delay=delay, pade_order=pade_order, max_amplitude=max_amplitude)
+    res = limit_cycles(
+        p, model=model, delay=delay, pade_order=pade_order, max_amplitude=max_amplitude, controller=controller
+    )
     lo, hi = float(np.min(omega)), float(np.max(omega))
     out = [
         (c.amplitude, c.frequency, complex(-1.0 / quantizer_df(c.amplitude), 0.0))
@@ -442,6 +478,7 @@ def nyquist_locus_response(
     delay: int = 0,
     pade_order: int = 4,
     locus_amplitude=None,
+    controller: ControllerParams | None = None,
 ) -> NyquistLocusResponse:
     """Nyquist data of the loop L(jω; M) and the critical locus −1/D(M) (paper Fig. 6).
 
@@ -462,6 +499,9 @@ def nyquist_locus_response(
         Order of the Padé approximation for ``model="pade"`` (default 4).
     locus_amplitude : array_like, optional
         Amplitudes of the critical locus; default 0.05 to 50 ticks.
+    controller : ControllerParams, optional
+        The virtual wall (see :func:`loop_response`); its delay replaces ``delay``
+        (0 or equal). Default None: the paper's spring.
 
     Returns
     -------
@@ -485,8 +525,11 @@ def nyquist_locus_response(
     >>> [(round(m, 4), round(w, 4)) for m, w, pt in r.crossings]
     [(0.7905, 0.3974), (1.0098, 0.3974)]
     """
+    from .cycles.controlled import resolve_controller  # imported here: dfa.cycles builds on this module
+
     p = _check_params(params)
-    m, d, n = _check_model(model, delay, pade_order)
+    _ctl, d = resolve_controller(controller, delay)
+    m, d, n = _check_model(model, d, pade_order)
     w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega)
     la = check_real_array(
         "locus_amplitude", np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude
@@ -495,8 +538,8 @@ def nyquist_locus_response(
     crossings: list[tuple[float, float, complex]] = []
     if p.sigma == 0.0:
         amps = np.array([np.nan])
-        curves = np.atleast_2d(loop_response(p, w, model=m, delay=d, pade_order=n))
-        crossings, status, detail = _solver_crossings(p, m, d, n, w, float(la.max()))
+        curves = np.atleast_2d(loop_response(p, w, model=m, delay=d, pade_order=n, controller=controller))
+        crossings, status, detail = _solver_crossings(p, m, d, n, w, float(la.max()), controller)
     else:
         if amplitudes is None:
             raise DFAValueError(
@@ -504,6 +547,13 @@ def nyquist_locus_response(
                 "give the amplitudes (ticks) at which to draw it"
             )
         amps = np.atleast_1d(check_real_array("amplitudes", amplitudes, "give the amplitudes M in ticks"))
-        curves = np.vstack([loop_response(p, w, np.full_like(w, a), model=m, delay=d, pade_order=n) for a in amps])
+        curves = np.vstack(
+            [
+                loop_response(p, w, np.full_like(w, a), model=m, delay=d, pade_order=n, controller=controller)
+                for a in amps
+            ]
+        )
         status, detail = NyquistStatus.CROSSINGS_NOT_COMPUTED, ""
-    return NyquistLocusResponse(p, m, d, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, detail)
+    return NyquistLocusResponse(
+        p, m, d, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, detail, controller
+    )

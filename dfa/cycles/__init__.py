@@ -28,6 +28,18 @@ evaluate ω(M) by one rule (a bracket without a sign change of V gives its end
 with the smaller |V| in both), so a bracket the scan found is a bracket for
 Brent's method too; any bracket that still fails is counted, never raised.
 
+With a controller (issue 15)
+----------------------------
+``limit_cycles(..., controller=ControllerParams(...))`` puts the virtual wall in the loop: D(M)
+multiplies the controller C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the ZOH-exact velocity filter)
+and its delay e^{−jωd}; the amplifier lag is 1/(jωα + 1) in the half-delay and Padé models and is
+inside the exact ZOH model (the ZOH-sampled amplifier + device, :mod:`dfa._zohlag`). For the half-delay
+and Padé models the factor R(ω) = (1 + jωα)/C(e^{jω}) does not depend on β_eq, so the phase condition
+keeps its closed form with the lead φ + arg R(ω); the ZOH model bisects as before (its premise of one
+crossing per ω is checked in the tests). A pure spring runs the spring-only code, bit for bit; the
+closed forms (eq. 42-45) refuse any other controller; ``linear_stable`` is the exact linear loop with
+the controller (:mod:`dfa.cycles.controlled`).
+
 How far the search goes
 -----------------------
 Beyond n = 32 the march over integer intervals n stops where the envelope
@@ -49,7 +61,8 @@ Modules
 condition and ω(M);  :mod:`~dfa.cycles.search` the amplitudes sampled and the envelope stop;
 :mod:`~dfa.cycles.solve` bracketing and refinement (:func:`limit_cycles`);
 :mod:`~dfa.cycles.stability` the Loeb criterion;  :mod:`~dfa.cycles.results` the result types;
-:mod:`~dfa.cycles.closed_forms` eq. 42-45;  :mod:`~dfa.cycles.growth` the growth band.
+:mod:`~dfa.cycles.closed_forms` eq. 42-45;  :mod:`~dfa.cycles.growth` the growth band;
+:mod:`~dfa.cycles.controlled` the controller's inputs and the linear loop with it.
 
 Stability (Loeb criterion): a cycle is stable when
 ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M > 0, the sign that makes an amplitude increase

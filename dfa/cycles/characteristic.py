@@ -15,6 +15,7 @@ from functools import lru_cache
 import numpy as np
 
 from .. import _dfcore
+from ..controller import ControllerParams
 from ..device import Params
 from ..linear import _zoh_coefficients
 
@@ -69,8 +70,14 @@ def _lead_eval(w, model: str, delay: int, pade_order: int):
     return 2.0 * np.angle(np.polyval(den, 1j * np.asarray(w, dtype=float)))
 
 
-def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int):
-    """1/L(jω) for an equivalent damping β_eq (broadcast), time in samples; plain complex for scalars."""
+def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int, ctl: ControllerParams | None = None):
+    """1/L(jω) for an equivalent damping β_eq (broadcast), time in samples; plain complex for scalars.
+
+    ``ctl`` (a controller that is not a pure spring; None for the paper's spring) divides by the
+    controller factor C(e^{jω}) and the amplifier lag (:func:`_controller_ratio`, :func:`dfa.loop.loop_response`).
+    """
+    if ctl is not None:
+        return _inv_loop_ctl(mu, beq, omega, model, delay, pade_order, ctl)
     if (isinstance(omega, float) or np.ndim(omega) == 0) and (isinstance(beq, float) or np.ndim(beq) == 0):
         return _inv_loop_scalar(mu, float(beq), float(omega), model, delay, pade_order)
     w = omega if omega is _W_GRID else np.asarray(omega, dtype=float)
@@ -89,6 +96,36 @@ def _inv_loop_scalar(mu: float, b: float, w: float, model: str, delay: int, pade
     c1, c0, p = (float(x) for x in _zoh_coefficients(b / mu))
     z = cmath.exp(1j * w)
     return complex(z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0))
+
+
+def _controller_factor(ctl: ControllerParams, omega):
+    """C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}), F the ZOH-exact velocity filter (1 without filter)."""
+    zi = np.exp(-1j * np.asarray(omega, dtype=float))
+    a = ctl.filter_pole
+    f = 1.0 if ctl.cutoff is None else (1.0 - a) * zi / (1.0 - a * zi)
+    return 1.0 + ctl.damping * (1.0 - zi) * f
+
+
+def _controller_ratio(ctl: ControllerParams, omega):
+    """R(ω) = (1 + jωα)/C(e^{jω}): what the controller and amplifier lag multiply 1/L by in the
+    half-delay and Padé models (the delay d stays in the hold's phase lead)."""
+    w = np.asarray(omega, dtype=float)
+    return (1.0 + 1j * w * ctl.lag) / _controller_factor(ctl, w)
+
+
+def _inv_loop_ctl(mu: float, beq, omega, model: str, delay: int, pade_order: int, ctl: ControllerParams):
+    """1/L(jω) with a controller (see :func:`_inv_loop`); plain complex for scalars."""
+    scalar = np.ndim(omega) == 0 and np.ndim(beq) == 0
+    w = omega if omega is _W_GRID else np.asarray(omega, dtype=float)
+    if model != "zoh" or ctl.lag == 0.0:
+        out = _inv_loop(mu, beq, omega, model, delay, pade_order)
+        out = out * (_controller_ratio(ctl, w) if model != "zoh" else 1.0 / _controller_factor(ctl, w))
+    else:
+        from .._zohlag import zoh_lag_response
+
+        z = np.exp(1j * w)
+        out = z**delay / (zoh_lag_response(mu, beq, w, ctl.lag) * _controller_factor(ctl, w))
+    return complex(out) if scalar else out
 
 
 @lru_cache(maxsize=64)
@@ -110,6 +147,7 @@ class _Loop:
     delay: int
     pade_order: int
     df: str = "exact"
+    ctl: ControllerParams | None = None
 
     def beq(self, m, w):
         if isinstance(m, float) and isinstance(w, float):
@@ -117,7 +155,7 @@ class _Loop:
         return self.params.beta + 4.0 * self.params.sigma / (math.pi * np.asarray(m) * np.asarray(w))
 
     def inv(self, m, w):
-        return _inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order)
+        return _inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order, self.ctl)
 
     def d(self, m):
         """D(M) (compiled eq. 41 for the exact describing function; M > 0 is the solver's own)."""

@@ -115,6 +115,22 @@ class ClosedFormCycles:
         return [ClosedFormStatus(int(s)) for s in self.status.ravel()]
 
 
+def _check_spring(controller: object) -> None:
+    """Refuse a controller the closed forms do not hold for: they assume the spring and the half-sample hold."""
+    if controller is None:
+        return
+    from ..checks import check_type
+    from ..controller import ControllerParams
+
+    ctl = check_type("controller", controller, ControllerParams, "give dfa.ControllerParams(...) or None")
+    if not (ctl.is_spring and ctl.delay == 0):
+        raise DFAValueError(
+            f"controller = {ctl.as_dict()} is invalid here: the paper's closed forms (eq. 42-45) hold for the "
+            "pure spring without computational delay only; use dfa.limit_cycles(params, controller=...) "
+            "(the numeric harmonic-balance solver) instead"
+        )
+
+
 def _grid(mu, beta, sigma) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Broadcast float arrays of μ > 0, β >= 0, σ >= 0; a bad element raises the scalar rule's own message."""
     out = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (mu, beta, sigma)))
@@ -148,13 +164,16 @@ def _f44(w, mu):
     return mu * w * w - np.cos(w / 2)
 
 
-def small_cycle_closed_forms(mu, beta, sigma) -> ClosedFormCycles:
+def small_cycle_closed_forms(mu, beta, sigma, *, controller=None) -> ClosedFormCycles:
     """Small stable cycles of eq. 42-43 (D = 2/(πM)) over broadcast (μ, β, σ).
 
     Parameters
     ----------
     mu, beta, sigma : float or array_like
         Dimensionless mass μ > 0, damping β >= 0 and Coulomb friction σ >= 0 (Table 1).
+    controller : ControllerParams, optional
+        Accepted only as the pure spring without delay (the closed forms' assumption); any other
+        controller is refused (DFAValueError): use :func:`dfa.limit_cycles` with it.
 
     Returns
     -------
@@ -162,6 +181,7 @@ def small_cycle_closed_forms(mu, beta, sigma) -> ClosedFormCycles:
         M (ticks) and ω (rad per sample); NaN with ``NO_CYCLE`` where σ >= ½ and
         ``DEGENERATE`` at β = σ = 0.
     """
+    _check_spring(controller)
     m, b, s = _grid(mu, beta, sigma)
     w = np.full(m.shape, np.nan)
     status = np.full(m.shape, int(ClosedFormStatus.NO_CYCLE), dtype=np.int8)
@@ -197,8 +217,16 @@ def large_cycle_frequencies(mu) -> np.ndarray:
     return np.where(ok, root, np.nan).reshape(m.shape)
 
 
-def large_cycle_closed_forms(mu, beta, sigma) -> ClosedFormCycles:
+def large_cycle_closed_forms(mu, beta, sigma, *, controller=None) -> ClosedFormCycles:
     """Large unstable cycles of eq. 44-45 (D ≈ 1) over broadcast (μ, β, σ).
+
+    Parameters
+    ----------
+    mu, beta, sigma : float or array_like
+        Dimensionless mass μ > 0, damping β >= 0 and Coulomb friction σ >= 0 (Table 1).
+    controller : ControllerParams, optional
+        Accepted only as the pure spring without delay; any other controller is refused
+        (DFAValueError): use :func:`dfa.limit_cycles` with it.
 
     Returns
     -------
@@ -206,6 +234,7 @@ def large_cycle_closed_forms(mu, beta, sigma) -> ClosedFormCycles:
         M = (4σ/π)/(sin(ω/2) − βω) (ticks) and ω of eq. 44; NaN with
         ``NO_CYCLE`` where sin(ω/2) <= βω.
     """
+    _check_spring(controller)
     m, b, s = _grid(mu, beta, sigma)
     w = large_cycle_frequencies(m)
     den = np.sin(w / 2) - b * w
@@ -242,7 +271,7 @@ def _scalar(cf: ClosedFormCycles, p: Params) -> tuple[float, float] | None:
     return (float(cf.amplitude), float(cf.frequency)) if int(cf.status) == ClosedFormStatus.OK else None
 
 
-def large_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float, float] | None:
+def large_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=None) -> tuple[float, float] | None:
     """(M, ω) of the paper's large unstable cycle (eq. 44-45, D ≈ 1), or None when sin(ω/2) <= βω.
 
     M = (4σ/π)/(sin(ω/2) − βω) with ω from :func:`large_cycle_frequency`
@@ -256,6 +285,9 @@ def large_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
         Dimensionless viscous damping β = b/(K T), >= 0.
     sigma : float
         Dimensionless Coulomb friction σ = c/(K Δ), >= 0.
+    controller : ControllerParams, optional
+        Only the pure spring without delay (None, the default, or ``ControllerParams()``); any
+        other controller is refused: the closed forms assume the paper's loop.
 
     Returns
     -------
@@ -265,7 +297,7 @@ def large_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
     Raises
     ------
     DFAValueError, DFATypeError
-        If μ, β or σ is out of range or not a number.
+        If μ, β or σ is out of range or not a number, or a controller other than the spring is given.
 
     See Also
     --------
@@ -273,10 +305,10 @@ def large_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
     limit_cycles : Every cycle with the exact describing function.
     """
     p = Params(mu, beta, sigma)
-    return _scalar(large_cycle_closed_forms(p.mu, p.beta, p.sigma), p)
+    return _scalar(large_cycle_closed_forms(p.mu, p.beta, p.sigma, controller=controller), p)
 
 
-def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float, float] | None:
+def small_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=None) -> tuple[float, float] | None:
     """(M, ω) of the paper's small stable cycle (eq. 42-43, D = 2/(πM)), or None when σ >= ½ or β = σ = 0.
 
     ω solves σ = ½ sin(ω/2) − β cos(ω/2)/(2μω) on (0, π) (the right side
@@ -291,6 +323,9 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
         Dimensionless viscous damping β = b/(K T), >= 0.
     sigma : float
         Dimensionless Coulomb friction σ = c/(K Δ), >= 0.
+    controller : ControllerParams, optional
+        Only the pure spring without delay (None, the default, or ``ControllerParams()``); any
+        other controller is refused: the closed forms assume the paper's loop.
 
     Returns
     -------
@@ -300,7 +335,7 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
     Raises
     ------
     DFAValueError, DFATypeError
-        If μ, β or σ is out of range or not a number.
+        If μ, β or σ is out of range or not a number, or a controller other than the spring is given.
 
     See Also
     --------
@@ -308,4 +343,4 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float) -> tuple[float
     limit_cycles : Every cycle with the exact describing function.
     """
     p = Params(mu, beta, sigma)
-    return _scalar(small_cycle_closed_forms(p.mu, p.beta, p.sigma), p)
+    return _scalar(small_cycle_closed_forms(p.mu, p.beta, p.sigma, controller=controller), p)

@@ -9,7 +9,8 @@ import numpy as np
 from scipy import optimize
 from scipy.optimize.elementwise import find_root
 
-from .characteristic import _W_GRID, _inv_loop, _lead, _Loop
+from ..controller import ControllerParams
+from .characteristic import _W_GRID, _controller_ratio, _inv_loop, _lead, _Loop
 
 # --------------------------------------------------------------- phase curve
 
@@ -20,25 +21,27 @@ def _phase_beta(lp: _Loop, w: np.ndarray) -> np.ndarray:
     if lp.model != "zoh":
         # V = 0 ⇔ β_eq = μω tan φ, and then U = −μω²/cos φ < 0 ⇔ cos φ > 0; β_eq >= 0 ⇒ φ mod 2π ∈ [0, π/2)
         th = _lead(w, lp.model, d, lp.pade_order)
+        if lp.ctl is not None:  # 1/L = e^{jθ}·R(ω)·(−μω² + jωβ_eq): R adds its phase to the lead, |R| > 0
+            th = th + np.angle(_controller_ratio(lp.ctl, w))
         ok = np.mod(th, 2 * math.pi) < math.pi / 2
         with np.errstate(invalid="ignore"):
             return np.where(ok, mu * w * np.tan(th), np.nan)
     if w is _W_GRID:  # β* does not depend on β or σ: a sweep at fixed μ scans the grid once
-        return _zoh_phase_beta_grid(mu, d)
-    return _zoh_phase_beta(mu, d, w)
+        return _zoh_phase_beta_grid(mu, d, lp.ctl)
+    return _zoh_phase_beta(mu, d, w, lp.ctl)
 
 
 @lru_cache(maxsize=16)
-def _zoh_phase_beta_grid(mu: float, d: int) -> np.ndarray:
-    out = _zoh_phase_beta(mu, d, _W_GRID)
+def _zoh_phase_beta_grid(mu: float, d: int, ctl: ControllerParams | None = None) -> np.ndarray:
+    out = _zoh_phase_beta(mu, d, _W_GRID, ctl)
     out.flags.writeable = False
     return out
 
 
-def _zoh_phase_beta(mu: float, d: int, w: np.ndarray) -> np.ndarray:
+def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, ctl: ControllerParams | None = None) -> np.ndarray:
     """β*(ω) of the exact ZOH loop: scan β on a log grid, bracket V's crossing with U < 0, bisect (vectorised)."""
     bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
-    c = _inv_loop(mu, bgrid[None, :], w[:, None], "zoh", d, 0)
+    c = _inv_loop(mu, bgrid[None, :], w[:, None], "zoh", d, 0, ctl)
     v = c.imag
     sc = (np.sign(v[:, :-1]) != np.sign(v[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)
     has = sc.any(axis=1)
@@ -51,7 +54,7 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray) -> np.ndarray:
         for i in np.flatnonzero(has):
             wi = float(w[i])
             out[i] = optimize.brentq(
-                lambda b, wi=wi: _inv_loop(mu, b, wi, "zoh", d, 0).imag,
+                lambda b, wi=wi: _inv_loop(mu, b, wi, "zoh", d, 0, ctl).imag,
                 float(lo[i]),
                 float(hi[i]),
                 xtol=1e-300,
@@ -60,7 +63,7 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray) -> np.ndarray:
         return out
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        vm = _inv_loop(mu, mid, w, "zoh", d, 0).imag
+        vm = _inv_loop(mu, mid, w, "zoh", d, 0, ctl).imag
         left = np.sign(vm) == np.sign(vlo)
         lo = np.where(left, mid, lo)
         vlo = np.where(left, vm, vlo)

@@ -6,6 +6,7 @@ import math
 from dataclasses import dataclass, field
 
 from ..checks import check_positive
+from ..controller import ControllerParams
 from ..device import Device, Params
 from ..errors import DFATypeError, DFAValueError
 from ..jsonable import to_jsonable
@@ -138,7 +139,10 @@ class LimitCycleResult:
         Whether the linear loop without encoder and Coulomb friction (always the
         exact ZOH loop with the same delay, :func:`dfa.linear.linear_stable`) is
         asymptotically stable; when it is not, amplitudes beyond the largest
-        unstable cycle are predicted to grow without bound.
+        unstable cycle are predicted to grow without bound. With a controller: the
+        exact linear loop with that controller (and amplifier lag).
+    controller : ControllerParams or None
+        The controller given to :func:`limit_cycles` (None: the paper's spring).
     """
 
     params: Params
@@ -153,8 +157,11 @@ class LimitCycleResult:
     status: SearchStatus = SearchStatus.COMPLETE
     linear_stable: bool | None = None
     search_bound: float | None = None
+    controller: ControllerParams | None = None
 
     def __post_init__(self) -> None:
+        if self.controller is not None and not isinstance(self.controller, ControllerParams):
+            raise DFATypeError("controller must be a ControllerParams or None; build results with limit_cycles")
         st = SearchStatus.coerce(self.status)
         object.__setattr__(self, "status", st)
         object.__setattr__(self, "detail", self.detail or st.message)
@@ -209,8 +216,10 @@ class LimitCycleResult:
         dict
             Strict-JSON data: the cycles, inputs, completeness, status and detail.
         """
+        extra = {} if self.controller is None else {"controller": self.controller.as_dict()}
         return to_jsonable(
             {
+                **extra,
                 "cycles": [c.as_dict() for c in self.cycles],
                 "mu": self.params.mu,
                 "beta": self.params.beta,

@@ -44,7 +44,9 @@ def _m_samples(
             u_far = (
                 0.0
                 if w_inf == 0.0
-                else -float(np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order)))
+                else -float(
+                    np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order, lp.ctl))
+                )
             )
         else:  # a finite far end (hi, its ω)
             u_far = -float(np.real(lp.inv(float(hi), float(omega_of(np.array([hi]))[0]))))

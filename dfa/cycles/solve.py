@@ -10,10 +10,12 @@ import numpy as np
 from scipy import optimize
 
 from ..checks import check_choice, check_positive
+from ..controller import ControllerParams
 from ..device import Params
 from ..loop import _check_model, _check_params
 from . import search
 from .characteristic import _DF_CHOICES, _M_FLOOR, _W_GRID, _Loop
+from .controlled import linear_stable_with_controller, resolve_controller
 from .phase import _PieceOmega, _pieces
 from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchStatus
 from .search import _m_samples, envelope_bound
@@ -148,6 +150,7 @@ def limit_cycles(
     max_amplitude: float | None = None,
     describing: str = "exact",
     time_budget: float = DEFAULT_TIME_BUDGET,
+    controller: ControllerParams | None = None,
 ) -> LimitCycleResult:
     """Every limit cycle (M, ω) of the harmonic balance 1 + D(M)L(jω; M) = 0 (eq. 36).
 
@@ -176,6 +179,13 @@ def limit_cycles(
         When it runs out the pieces of the phase curve not yet searched are
         skipped and the result is incomplete (status ``TIME_BUDGET``), with
         ``max_amplitude`` the amplitude below which no cycle was missed.
+    controller : ControllerParams, optional
+        The virtual wall (:class:`dfa.ControllerParams`: damper β_B, velocity filter ν_c, delay d,
+        amplifier lag α); D(M) then multiplies the controller C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω})
+        and the amplifier lag 1/(jωα + 1) sits between hold and device (:func:`dfa.loop.loop_response`).
+        Default None: the paper's spring. A pure spring (``is_spring``) gives the spring-only result
+        with the controller's delay; ``delay`` must then be 0 or the same. ``linear_stable`` is the
+        exact linear loop with the controller.
 
     Returns
     -------
@@ -197,7 +207,8 @@ def limit_cycles(
     nyquist_locus_response : The same balance drawn as a Nyquist plot.
     """
     p = _check_params(params)
-    m, d, n = _check_model(model, delay, pade_order)
+    ctl, d = resolve_controller(controller, delay)
+    m, d, n = _check_model(model, d, pade_order)
     auto = max_amplitude is None
     amax = (
         AUTO_MAX_AMPLITUDE
@@ -206,7 +217,7 @@ def limit_cycles(
     )
     df = check_choice("describing", describing, _DF_CHOICES)
     seconds = check_positive("time_budget", time_budget, "give the longest search time in seconds, e.g. 10")
-    lp = _Loop(p, m, d, n, df)
+    lp = _Loop(p, m, d, n, df, ctl)
     try:
         cycles, reach, failures, bound = _solve(lp, amax, time.monotonic() + seconds)
     except _NUMERICAL_ERRORS:  # pragma: no cover - last resort
@@ -214,7 +225,9 @@ def limit_cycles(
     code, status = _search_status(failures, reach, auto, amax, seconds)
     if code is SearchStatus.NUMERICAL:
         warnings.warn(
-            f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}): {status}",
+            f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}"
+            + (f", controller {ctl.as_dict()}" if ctl is not None else "")
+            + f"): {status}",
             LimitCycleSearchWarning,
             stacklevel=2,
         )
@@ -230,8 +243,9 @@ def limit_cycles(
         code is SearchStatus.COMPLETE,
         status,
         code,
-        _linear_stable(p.mu, p.beta, d),
+        _linear_stable(p.mu, p.beta, d) if ctl is None else linear_stable_with_controller(p.mu, p.beta, ctl),
         bound if code is SearchStatus.COMPLETE else None,
+        None if controller is None else controller,
     )
 
 
