@@ -18,17 +18,22 @@ of d samples:
     loop and a complete search means no growth (infinite speed), none with an
     unstable linear loop means growth from any size (zero).
 ``k_sim``
-    found by exact simulation: the largest K at which no impact at the
-    simulated speeds V/n, 2V/n, …, V, started from ξ0 = 0 and, separately,
-    from rest with the spring preloaded to the same energy (section 5,
-    :func:`dfa.simulation.preload_position`), diverges. The limit is then
-    checked at ``DENSE_FACTOR`` times as many speeds, at itself and at
-    stiffnesses down to 3 % below it; a failure there is reported
-    (``dense_failures``, status ``"caveats"``), because safety need not be
-    monotone in K or in the speed.
+    found by exact simulation: the largest *confirmed* K. A search first
+    finds the largest K at which no impact at the simulated speeds V/n,
+    2V/n, …, V, started from ξ0 = 0 and, separately, from rest with the
+    spring preloaded to the same energy (section 5,
+    :func:`dfa.simulation.preload_position`), diverges. That K is then
+    confirmed at ``DENSE_FACTOR`` times as many speeds and 7 stiffnesses
+    in [0.97K, K]; where a run there diverges (or is undecided)
+    the limit walks down a geometric ladder until a whole band passes, and
+    the failures met on the way are reported (``dense_failures``, status
+    ``"caveats"``), because safety need not be monotone in K or in the
+    speed. "Confirmed" names exactly what was simulated (``confirmed``):
+    no divergence at those speeds, starts and stiffnesses; it cannot prove
+    every speed.
 ``k_sim_rest``
-    the largest K at which all those impacts come to rest (no chatter, no
-    oscillation).
+    the largest confirmed K at which all those impacts come to rest (no
+    chatter, no oscillation), at most ``k_sim``.
 
 The simulated and predicted limits are searched over K: an ascending
 geometric grid first, every point evaluated, then bisection between the last
@@ -57,7 +62,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -87,21 +94,31 @@ def simulate_points(points: Sequence[tuple[float, float, float, float, float]], 
 
     The run length of each point is :func:`dfa.simulation.default_samples`, at most ``max_samples``; a run
     diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of its start.
-    One place for the many simulations of the design answer (a batched kernel can replace the loop).
+    One place for the many simulations of the design answer, run on threads (one per core): the compiled
+    kernel releases the GIL, and each outcome depends on its own point only.
 
     Returns
     -------
     (list of str, list of int)
         Outcome names (:data:`dfa.simulation.OUTCOMES`) and run lengths.
     """
-    outcomes, lengths = [], []
+    jobs = []
     for mu, beta, sigma, xi0, xi_dot0 in points:
         n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay), max_samples)
         bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
-        r = simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound)
-        outcomes.append(r.outcome)
-        lengths.append(n)
-    return outcomes, lengths
+        jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound))
+
+    def one(job: tuple) -> str:
+        mu, beta, sigma, xi_dot0, n, xi0, bound = job
+        return str(simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound).outcome)
+
+    workers = min(len(jobs), os.cpu_count() or 1)
+    if workers > 1:  # the compiled kernel releases the GIL: threads overlap the runs, results are per point
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            outcomes = list(pool.map(one, jobs))
+    else:
+        outcomes = [one(j) for j in jobs]
+    return outcomes, [j[4] for j in jobs]
 
 
 def _check_bound(name: str, value: object, fix: str) -> float:
@@ -132,9 +149,14 @@ class KSearch:
     evaluations : int
         Stiffnesses evaluated.
     dense_failures : tuple of dict
-        Failures a denser check found at or just below ``value`` (``stiffness``, ``velocity``, ``start``,
-        ``outcome``; :data:`DENSE_FACTOR` times the speeds, stiffnesses down to 3 % below): the limit then holds
-        only at the searched speeds, and the result's status says so.
+        Failing or undecided runs the confirmation met while walking down from ``searched_value`` to ``value``
+        (``stiffness``, ``velocity``, ``start``, ``outcome``): all above ``value``, evidence that safety is not
+        monotone in K; the result's status says so.
+    searched_value : float or None
+        The limit the search found before the confirmation (None: not confirmed, e.g. ``k_df``).
+    confirmed : str or None
+        What ``value`` claims when confirmed by simulation, in words: the dense speed grid, the starts and the
+        stiffness band simulated (:func:`confirmation_text`); None when not confirmed.
     """
 
     value: float | None
@@ -145,14 +167,18 @@ class KSearch:
     first_failure: float | None = None
     evaluations: int = 0
     dense_failures: tuple[dict, ...] = ()
+    searched_value: float | None = None
+    confirmed: str | None = None
 
     def __post_init__(self) -> None:
         if self.value is not None:
             check_positive("value", self.value, "a stiffness limit is a finite K > 0, or None with a reason")
-        if self.reason is not None and not isinstance(self.reason, str):
-            raise DFATypeError(
-                f"reason = {_fmt(self.reason)} has type {type(self.reason).__name__}: it must be text or None"
-            )
+        for name in ("reason", "confirmed"):
+            text = getattr(self, name)
+            if text is not None and not isinstance(text, str):
+                raise DFATypeError(f"{name} = {_fmt(text)} has type {type(text).__name__}: it must be text or None")
+        if self.searched_value is not None:
+            check_positive("searched_value", self.searched_value, "the searched limit is a finite K > 0, or None")
         if self.value is None and not self.reason:
             raise DFAValueError("KSearch(value=None) needs a reason: say why the limit is undefined")
         if self.value is not None and not (math.isfinite(self.value) and self.value > 0):
@@ -168,6 +194,8 @@ class KSearch:
             "first_failure": self.first_failure,
             "evaluations": self.evaluations,
             "dense_failures": [dict(f) for f in self.dense_failures],
+            "searched_value": self.searched_value,
+            "confirmed": self.confirmed,
         }
 
 
@@ -343,35 +371,100 @@ class _Evidence:
         return tuple(out)
 
 
-#: The denser check of a simulated limit uses this many times the searched speeds.
+#: The confirmation of a simulated limit uses this many times the searched speeds ...
 DENSE_FACTOR = 4
-#: ... at the limit and at these fractions below it.
-DENSE_BELOW = (0.0, 0.001, 0.003, 0.01, 0.03)
+#: ... at the rungs of a geometric ladder, DENSE_RUNGS per band of relative width DENSE_BAND below a rung ...
+DENSE_RUNGS = 5
+DENSE_BAND = 0.03
+#: ... and, just below the candidate, at these fractions below it (where a search's bisection ended) ...
+DENSE_FINE = (0.001, 0.003)
+#: ... walking down at most this many rungs (to about 0.5 × the searched limit).
+DENSE_MAX_STEPS = 90
 
 
-def _confirm(found: KSearch, dense: _Evidence, bad: str) -> KSearch:
-    """Check a simulated limit at denser speeds, at and just below it: the search itself only saw its own speeds
-    and assumed safety monotone in K between grid points. ``bad``: "unstable" (no-divergence limit) or "rest"
-    (every outcome other than rest fails). A failure turns into a caveat in the result, never a silent pass."""
+def _ladder(k0: float, j: int) -> float:
+    """Rung j of the confirmation ladder below ``k0``: k0 (1 - DENSE_BAND)^(j / (DENSE_RUNGS - 1))."""
+    return k0 * (1.0 - DENSE_BAND) ** (j / (DENSE_RUNGS - 1))
+
+
+def _band(k0: float, c: int) -> list[float]:
+    """The stiffnesses that confirm rung c, descending: the rung, the fine points just below, the next rungs."""
+    k = _ladder(k0, c)
+    return [k] + [k * (1.0 - f) for f in DENSE_FINE] + [_ladder(k0, c + i) for i in range(1, DENSE_RUNGS)]
+
+
+def _failures(dense: _Evidence, k: float, bad: str) -> list[dict[str, Any]]:
+    """Dense runs at ``k`` that fail limit ``bad`` or are undecided (neither counts as confirmed)."""
+    return [
+        {"stiffness": k, "velocity": dense.dev.velocity(xd), "start": start, "outcome": str(o)}
+        for xd, start, o in dense.outcomes(k)
+        if o in FAILING[bad] or o == "undecided"
+    ]
+
+
+def confirmation_text(dense: _Evidence, bad: str) -> str:
+    """What a confirmed limit K claims, in words (device units): the dense speed grid and stiffness band."""
+    u = dense.dev.units
+    vs = [dense.dev.velocity(x) for x in dense.xi_dots]
+    what = "no divergence" if bad == "unstable" else "every run at rest"
+    return (
+        f"{what}, none undecided, at {len(vs)} speeds in [{min(vs):.4g}, {max(vs):.4g}] {u['velocity']} "
+        f"(from ξ0 = 0 and from the preload) and {DENSE_RUNGS + len(DENSE_FINE)} stiffnesses in [{1 - DENSE_BAND:g}K, K]"
+    )
+
+
+def _confirm(found: KSearch, dense: _Evidence, bad: str, top: float | None = None) -> KSearch:
+    """The largest *confirmed* K at or below a searched limit (and at or below ``top``).
+
+    The search saw only its own speeds and assumed safety monotone in K between its points. Confirmed at K
+    means: at :data:`DENSE_FACTOR` times as many speeds (V/n … V), from both starts, at the
+    stiffnesses of :func:`_band` spanning [(1 - DENSE_BAND) K, K], no run fails
+    ``bad`` ("unstable": diverges; "rest": does not come to rest) and none is undecided. A finite set of
+    speeds and stiffnesses is simulated: this is evidence at those points, not a proof for all speeds.
+    The candidate walks down the ladder from the searched limit, to the rung below each failing stiffness,
+    until a whole band passes; every failure met on the way (all above the confirmed K) is kept in
+    ``dense_failures`` and said in ``reason``.
+    """
     if found.value is None:
         return found
+    k0 = found.value if top is None else min(found.value, top)
     fails: list[dict[str, Any]] = []
-    for f in DENSE_BELOW:
-        k = found.value * (1.0 - f)
-        for xd, start, o in dense.outcomes(k):
-            if o in FAILING[bad]:
-                fails.append({"stiffness": k, "velocity": dense.dev.velocity(xd), "start": start, "outcome": o})
-    if not fails:
-        return found
-    w = min(fails, key=lambda r: float(r["stiffness"]))
-    u = dense.dev.units
-    note = (
-        f"NOT confirmed: a denser check ({len(dense.xi_dots)} speeds) found {w['outcome']} at K = "
-        f"{w['stiffness']:.5g} {u['stiffness']} ({w['velocity']:.3g} {u['velocity']}, {w['start']} start), at or "
-        "below this value: it holds only at the searched speeds"
+    c, confirmed = 0, False
+    while not confirmed and c <= DENSE_MAX_STEPS:
+        for k in _band(k0, c):  # descending: stop at the first failing stiffness, go to the rung below it
+            f = _failures(dense, k, bad)
+            if f:
+                fails += f
+                while _ladder(k0, c) >= k:
+                    c += 1
+                break
+        else:
+            confirmed = True
+    claim = confirmation_text(dense, bad)
+    u = dense.dev.units["stiffness"]
+    if not confirmed:
+        why = f"no stiffness in [{_ladder(k0, DENSE_MAX_STEPS):.5g}, {k0:.5g}] {u} confirmed ({claim})"
+        return dataclasses.replace(
+            found, value=None, reason=why, searched_value=found.value, dense_failures=tuple(fails)
+        )
+    value = _ladder(k0, c)
+    reason = found.reason
+    if fails:
+        w = max(fails, key=lambda r: float(r["stiffness"]))
+        lo = min(fails, key=lambda r: float(r["stiffness"]))
+        note = (
+            f"lowered from the searched {found.value:.5g} {u}: the confirmation found {lo['outcome']} at K = "
+            f"{lo['stiffness']:.5g} {u} ({lo['velocity']:.3g} {dense.dev.units['velocity']}, {lo['start']} start)"
+            + ("" if w["stiffness"] == lo["stiffness"] else f" and up to K = {w['stiffness']:.5g} {u}")
+            + ", at speeds or stiffnesses the search did not simulate"
+        )
+        reason = note if not reason else f"{reason}; {note}"
+    if k0 < found.value:
+        note = f"capped at K_sim = {k0:.5g} {u}: coming to rest implies no divergence"
+        reason = note if not reason else f"{reason}; {note}"
+    return dataclasses.replace(
+        found, value=value, reason=reason, searched_value=found.value, confirmed=claim, dense_failures=tuple(fails)
     )
-    reason = note if not found.reason else f"{found.reason}; {note}"
-    return dataclasses.replace(found, reason=reason, dense_failures=tuple(fails))
 
 
 def _search_grid(k_criterion: float, top: float, grid: int) -> np.ndarray:
@@ -628,7 +721,7 @@ def design_answer(
     k_df, k_sim, k_rest, k_range = _three_searches(ev, dev, v, d, kc, kl, n_grid)
     dense = _Evidence(dev, v * np.arange(1, DENSE_FACTOR * n_speeds + 1) / (DENSE_FACTOR * n_speeds), d, cap, model)
     k_sim = _confirm(k_sim, dense, "unstable")
-    k_rest = _confirm(k_rest, dense, "rest")
+    k_rest = _confirm(k_rest, dense, "rest", k_sim.value)
     ev.runs += dense.runs
     ce = ev.counterexamples(kc) + dense.counterexamples(kc)
     caveat = any(s.non_monotone or s.undecided or s.dense_failures for s in (k_df, k_sim, k_rest))

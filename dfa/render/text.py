@@ -207,4 +207,6 @@ def limit_text(s: Any, ku: str) -> str:
         txt += f" ({s.reason})"
     if s.non_monotone:
         txt += f"; NOT monotone: safe again at {', '.join(f'{k:.4g}' for k in s.safe_above)} {ku}"
+    if getattr(s, "confirmed", None):
+        txt += f"; confirmed: {s.confirmed}"
     return txt
