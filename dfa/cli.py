@@ -563,6 +563,8 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
         src_txt = " (catalogue K)" if src == "catalogue" else ""
         rows.append([f"largest passive speed at K = {k_show:g}{src_txt}", lim_k.max_passive_velocity_text()])
         rows.append(["verdict at this speed", lim_k.verdict_text()])
+    else:  # the JSON says "status": "not requested"
+        rows.append(["verdict at this speed", f"{lim.status}: no --stiffness given and no catalogue K"])
     print(
         f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
     )

@@ -379,8 +379,8 @@ class StiffnessLimits:
         ``NOT_REQUESTED``, ``ALL_SPEEDS``, ``BOUNDED`` or ``NONE`` (codes ``"not requested"``,
         ``"all speeds"``, ``"bounded"``, ``"none"``).
     status : StiffnessStatus
-        ``OK`` (code ``"ok"``) when ``stiffness`` passes at ``velocity`` (or none was given),
-        otherwise ``TOO_STIFF`` (``"too stiff"``).
+        ``OK`` (code ``"ok"``) when ``stiffness`` passes at ``velocity``, ``TOO_STIFF`` (``"too stiff"``)
+        when it does not, ``NOT_REQUESTED`` (``"not requested"``) when no stiffness was given.
     delay : int
         Computational delay d in samples.
     """
@@ -396,7 +396,7 @@ class StiffnessLimits:
     stiffness: float | None = None
     max_passive_velocity: float | None = None
     velocity_status: VelocityStatus = VelocityStatus.NOT_REQUESTED
-    status: StiffnessStatus = StiffnessStatus.OK
+    status: StiffnessStatus = StiffnessStatus.NOT_REQUESTED
     delay: int = 0
 
     def __post_init__(self) -> None:
@@ -417,7 +417,7 @@ class StiffnessLimits:
                 else (VelocityStatus.ALL_SPEEDS if math.isinf(mpv) else VelocityStatus.BOUNDED)
             )
         )
-        if vs is not expected or (self.stiffness is None and st is not StiffnessStatus.OK):
+        if vs is not expected or ((self.stiffness is None) != (st is StiffnessStatus.NOT_REQUESTED)):
             raise DFAValueError(
                 f"velocity_status = {vs.value!r}, status = {st.value!r} are invalid for stiffness = {self.stiffness!r}, "
                 f"max_passive_velocity = {mpv!r}: they must agree; build results with stiffness_limits"
@@ -530,7 +530,7 @@ def stiffness_limits(
     d = check_delay(delay)
     mpv: float | None = None
     vstatus = VelocityStatus.NOT_REQUESTED
-    status = StiffnessStatus.OK
+    status = StiffnessStatus.NOT_REQUESTED
     k = None
     if stiffness is not None:
         k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")

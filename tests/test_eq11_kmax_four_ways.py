@@ -1,8 +1,10 @@
 """K_max four ways (issue 14 §1): criterion (eq. 11) <= simulated no-divergence, rest <= no-divergence,
 the simulated limit against an independent bisection written here, the search's honesty, and `dfa stiffness`."""
 
+import dataclasses
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -183,6 +185,23 @@ def test_cli_stiffness_custom_device_without_stiffness_prints_four(capsys):
     assert f"{r.k_sim_rest.value:.5g} N/m" in out
     assert f"{r.simulations} exact simulations" in out and "only the criterion is a proof" in out
     assert "largest passive speed" not in out  # no K to assess
+    assert re.search(r"verdict at this speed +not requested: no --stiffness given and no catalogue K", out)
+
+
+def test_cli_stiffness_json_without_stiffness_says_not_requested(capsys):
+    # red-team finding: without --stiffness the JSON said "status": "ok" for an assessment nobody asked for
+    argv = ["stiffness", "--mass", "0.05", "--damping", "0.5", "--coulomb", "0.05", "--resolution", "1e-5"]
+    code, out, err = run(capsys, *argv, "--period", "1e-3", "--velocity", "0.1", "--json")
+    assert code == 0, err
+    d = json.loads(out)
+    assert d["status"] == "not requested" and d["max_passive_velocity_status"] == "not requested"
+    assert d["status_message"] == dfa.status.StiffnessStatus.NOT_REQUESTED.message and d["stiffness"] is None
+    code, out, _ = run(capsys, *argv, "--period", "1e-3", "--velocity", "0.1", "--stiffness", "20", "--json")
+    assert json.loads(out)["status"] in ("ok", "too stiff")
+    lim = dfa.stiffness_limits(dfa.get_device("impulse").device, 0.1)
+    assert lim.status == "not requested" and lim.verdict_text() == "–"
+    with pytest.raises(dfa.DFAValueError, match="must agree"):
+        dataclasses.replace(lim, status="ok")
 
 
 def test_cli_stiffness_catalogue_k_is_assessed_and_said(capsys):
