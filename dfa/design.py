@@ -22,7 +22,7 @@ from .cycles import GrowthThreshold, growth_threshold
 from .device import Device, Params
 from .errors import DFATypeError, DFAValueError
 from .jsonable import to_jsonable
-from .kmax import KMaxResult, design_answer
+from .kmax import KMaxResult, RunCache, design_answer
 from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, stability_map
 from .simulation import SimulationResult, divergence_bound, simulate
@@ -358,8 +358,9 @@ def design_analysis(
     steps.close()
     figs: dict[str, Any] = dict(stiffness_curve=curve, nyquist=ny, stability_map=smap)
     if v > 0:  # the design answer, first in the report: K_max four ways and the stiffness-speed chart
-        figs["design_answer"] = design_answer(dev, v, dl, stiffness=k)
-        figs["speed_chart"] = stiffness_speed_chart(dev, dl, stiffness=k, velocity=v)
+        cache = RunCache()  # one set of runs for both: no (K, speed, start) simulated twice
+        figs["design_answer"] = design_answer(dev, v, dl, stiffness=k, cache=cache)
+        figs["speed_chart"] = stiffness_speed_chart(dev, dl, stiffness=k, velocity=v, cache=cache)
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )

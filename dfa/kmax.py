@@ -76,7 +76,7 @@ from .errors import DFATypeError, DFAValueError
 from .simulation import default_samples, divergence_bound, preload_position, simulate
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
-__all__ = ["KSearch", "KMaxAssessment", "KMaxResult", "design_answer", "simulate_points"]
+__all__ = ["KSearch", "KMaxAssessment", "KMaxResult", "RunCache", "design_answer", "simulate_points"]
 
 #: Relative width at which the bisection of a searched limit stops.
 K_RTOL = 2e-3
@@ -89,7 +89,7 @@ DIVERGENCE_BOUND = 1.0e6
 SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
 
 
-def simulate_points(points: Sequence[tuple[float, float, float, float, float]], delay: int, max_samples: int):
+def simulate_points(points: Sequence[tuple[float, ...]], delay: int, max_samples: int):
     """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), and the samples of each run.
 
     The run length of each point is :func:`dfa.simulation.default_samples`, at most ``max_samples``; a run
@@ -304,11 +304,59 @@ def _growth_xi_dot(mu: float, beta: float, sigma: float, delay: int, model: str)
 FAILING = {"unstable": frozenset({"unstable"}), "rest": frozenset({"oscillating", "unstable", "chatter"})}
 
 
-class _Evidence:
-    """Simulations and predictions of one design search, cached per stiffness (dimensionless inside)."""
+class RunCache:
+    """Outcomes of design runs by their inputs, and growth predictions by (μ, β, σ, d, model).
 
-    def __init__(self, dev: Device, speeds: np.ndarray, delay: int, max_samples: int, model: str):
+    One cache shared by the searches of a design analysis (:func:`design_answer`, the confirmation and
+    :func:`dfa.speed_chart.stiffness_speed_chart`) simulates each run (μ, β, σ, ξ0, ξ'0, d, run cap) at most
+    once. Results do not depend on it: each search still counts every run it rests on.
+
+    Examples
+    --------
+    >>> c = RunCache()
+    >>> c.simulate([(100.0, 0.3, 1.5, 0.0, 2.0)] * 2, 0, 10**6)[0], c.simulated
+    (['rest', 'rest'], 1)
+    """
+
+    def __init__(self) -> None:
+        self.runs: dict[tuple, tuple[str, int]] = {}
+        self.growth: dict[tuple, tuple[float | None, int]] = {}
+        self.simulated = 0
+
+    def simulate(self, points: Sequence[tuple[float, float, float, float, float]], delay: int, max_samples: int):
+        """Outcomes and run lengths of ``points`` (as :func:`simulate_points`), simulating only the new ones.
+
+        Parameters
+        ----------
+        points : sequence of (μ, β, σ, ξ0, ξ'0)
+            Dimensionless runs (ξ0 in ticks, ξ'0 in ticks per sample).
+        delay : int
+            Computational delay d in samples.
+        max_samples : int
+            Longest run in samples.
+
+        Returns
+        -------
+        (list of str, list of int)
+            Outcome names and run lengths, one per point.
+        """
+        keys = [(tuple(float(x) for x in pt), delay, max_samples) for pt in points]
+        todo = list(dict.fromkeys(k for k in keys if k not in self.runs))
+        if todo:
+            outs, lengths = simulate_points([k[0] for k in todo], delay, max_samples)
+            self.simulated += len(todo)
+            self.runs.update({k: (o, n) for k, o, n in zip(todo, outs, lengths, strict=True)})
+        return [self.runs[k][0] for k in keys], [self.runs[k][1] for k in keys]
+
+
+class _Evidence:
+    """Simulations and predictions of one design search, per stiffness (dimensionless inside), through a cache."""
+
+    def __init__(
+        self, dev: Device, speeds: np.ndarray, delay: int, max_samples: int, model: str, cache: RunCache | None = None
+    ):
         self.dev, self.delay, self.max_samples, self.model = dev, delay, max_samples, model
+        self.cache = RunCache() if cache is None else cache
         self.xi_dots = [dev.xi_dot(float(v)) for v in speeds]
         self.sims: dict[float, list[tuple[float, str, str]]] = {}
         self.growth: dict[float, tuple[float | None, int]] = {}
@@ -328,8 +376,8 @@ class _Evidence:
                 pts.append((p.mu, p.beta, p.sigma, 0.0, xd))
                 pts.append((p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0))
                 tags += [(xd, "impact"), (xd, "preload")]
-            outs, lengths = simulate_points(pts, self.delay, self.max_samples)
-            self.runs += len(pts)
+            outs, lengths = self.cache.simulate(pts, self.delay, self.max_samples)
+            self.runs += len(pts)  # every run this evidence rests on, simulated here or earlier
             self.longest = max(self.longest, *lengths)
             self.sims[k] = [(xd, start, o) for (xd, start), o in zip(tags, outs, strict=True)]
         return self.sims[k]
@@ -354,7 +402,10 @@ class _Evidence:
             except DFAValueError:  # not representable at this K
                 self.growth[k] = (None, 0)
                 return self.growth[k]
-            self.growth[k] = _growth_xi_dot(p.mu, p.beta, p.sigma, self.delay, self.model)
+            key = (p.mu, p.beta, p.sigma, self.delay, self.model)
+            if key not in self.cache.growth:
+                self.cache.growth[key] = _growth_xi_dot(p.mu, p.beta, p.sigma, self.delay, self.model)
+            self.growth[k] = self.cache.growth[key]
         return self.growth[k]
 
     def predicted(self, k: float, xi_dot: float) -> str:
@@ -635,7 +686,7 @@ def _assess(ev: _Evidence, k: float, source: str, velocity: float, delay: int) -
     g, count = ev.growth_xi_dot(k)
     p = dev.params(k)
     xd = dev.xi_dot(velocity)
-    outs, _ = simulate_points(
+    outs, _ = ev.cache.simulate(
         [(p.mu, p.beta, p.sigma, 0.0, xd), (p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0)],
         delay,
         ev.max_samples,
@@ -662,6 +713,7 @@ def design_answer(
     grid: int = 16,
     max_samples: int = DESIGN_MAX_SAMPLES,
     df_model: str = "half-delay",
+    cache: RunCache | None = None,
 ) -> KMaxResult:
     """The largest stiffness for impacts up to ``velocity``, four ways (module docstring).
 
@@ -687,6 +739,9 @@ def design_answer(
         Longest run, in samples (default 10⁶); longer automatic lengths are cut and may be undecided.
     df_model : {"half-delay", "zoh", "pade"}, optional
         Hold model of the describing function (default ``"half-delay"``; ``"zoh"`` is exact but ~10× slower).
+    cache : RunCache, optional
+        Runs and predictions already computed (shared with :func:`dfa.speed_chart.stiffness_speed_chart` by
+        :func:`dfa.design.design_analysis`); a fresh one when None. The result does not depend on it.
 
     Returns
     -------
@@ -716,10 +771,14 @@ def design_answer(
     model = check_choice("df_model", df_model, ("half-delay", "zoh", "pade"))
     k_given = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
-    ev = _Evidence(dev, vs, d, cap, model)
+    if cache is not None:
+        check_type("cache", cache, RunCache, "pass a dfa.kmax.RunCache, or None")
+    cache = RunCache() if cache is None else cache
+    ev = _Evidence(dev, vs, d, cap, model, cache)
     kc, kl = float(k_max_criterion(dev, v, d)), k_gil(dev, delay=d)
     k_df, k_sim, k_rest, k_range = _three_searches(ev, dev, v, d, kc, kl, n_grid)
-    dense = _Evidence(dev, v * np.arange(1, DENSE_FACTOR * n_speeds + 1) / (DENSE_FACTOR * n_speeds), d, cap, model)
+    dense_vs = v * np.arange(1, DENSE_FACTOR * n_speeds + 1) / (DENSE_FACTOR * n_speeds)
+    dense = _Evidence(dev, dense_vs, d, cap, model, cache)
     k_sim = _confirm(k_sim, dense, "unstable")
     k_rest = _confirm(k_rest, dense, "rest", k_sim.value)
     ev.runs += dense.runs

@@ -339,3 +339,25 @@ def test_eq11_k_sim_confirmation_walk_matches_a_scan_written_here():
             break
         j += 1
     assert r.k_sim.value == pytest.approx(k, rel=1e-12) and j > 0
+
+
+def test_eq11_kmax_shared_run_cache_gives_identical_results_and_simulates_once():
+    # issue 14 leftover: the design analysis shares one RunCache between design_answer and the chart
+    from dfa.kmax import RunCache
+    from dfa.speed_chart import stiffness_speed_chart
+
+    dev = dfa.get_device("impulse").device
+    fresh_a = design_answer(dev, 0.2, grid=8, speeds=3, stiffness=80.0)
+    fresh_c = stiffness_speed_chart(dev, stiffness=80.0, velocity=0.2, grid=6, speeds=4)
+    cache = RunCache()
+    a = design_answer(dev, 0.2, grid=8, speeds=3, stiffness=80.0, cache=cache)
+    n = cache.simulated
+    assert 0 < n <= a.simulations  # runs the search and its confirmation share are simulated once
+    c = stiffness_speed_chart(dev, stiffness=80.0, velocity=0.2, grid=6, speeds=4, cache=cache)
+    assert a.as_dict() == fresh_a.as_dict()
+    assert json.dumps(c.as_dict()) == json.dumps(fresh_c.as_dict())
+    before = cache.simulated
+    again = design_answer(dev, 0.2, grid=8, speeds=3, stiffness=80.0, cache=cache)
+    assert cache.simulated == before and again.as_dict() == a.as_dict()  # nothing simulated twice
+    with pytest.raises(dfa.DFATypeError, match="cache"):
+        design_answer(dev, 0.2, cache={})
