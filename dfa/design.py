@@ -21,7 +21,7 @@ from .criterion import CriterionResult, device_criterion
 from .cycles import GrowthThreshold, growth_threshold
 from .device import Device, Params
 from .errors import DFATypeError, DFAValueError
-from .jsonable import to_jsonable
+from .jsonable import explain_nulls, to_jsonable
 from .kmax import KMaxResult, RunCache, design_answer
 from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, stability_map
@@ -193,6 +193,17 @@ class DesignAnalysis:
         dict
             Strict-JSON data: device, inputs and every analysis of the report, with the status.
         """
+        why = {
+            "validation": "no validation summary passed in (dfa report --validation FILE)",
+            "catalogue": "not a catalogue device with printed (μ, β, σ)",
+            "simulated_xi_dot": "no scanned impact speed diverged",
+            "simulated_velocity": "no scanned impact speed diverged",
+            "design_answer": "impact speed 0: the design answer needs a speed > 0",
+            "speed_chart": "impact speed 0: the chart needs a speed > 0",
+        }
+        return explain_nulls(self._record(), why)
+
+    def _record(self) -> dict[str, Any]:
         return to_jsonable(
             {
                 "device": self.device.as_dict(),

@@ -73,6 +73,7 @@ import numpy as np
 from .checks import _fmt, check_choice, check_delay, check_int, check_positive, check_real, check_type
 from .device import Device
 from .errors import DFATypeError, DFAValueError
+from .jsonable import explain_nulls
 from .simulation import default_samples, divergence_bound, preload_position, simulate
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
@@ -185,7 +186,14 @@ class KSearch:
             raise DFAValueError(f"value = {self.value!r} is invalid: a stiffness limit must be finite and > 0")
 
     def as_dict(self) -> dict[str, object]:
-        return {
+        """JSON-ready record of the search and its evidence (nulls with their reason).
+
+        Returns
+        -------
+        dict
+            The limit, its caveats, the non-monotone evidence and the confirmation.
+        """
+        out: dict[str, object] = {
             "value": self.value,
             "reason": self.reason,
             "non_monotone": self.non_monotone,
@@ -196,6 +204,27 @@ class KSearch:
             "dense_failures": [dict(f) for f in self.dense_failures],
             "searched_value": self.searched_value,
             "confirmed": self.confirmed,
+        }
+        return explain_nulls(out, self.null_reasons())
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why each field of :meth:`as_dict` may be null, by key.
+
+        Returns
+        -------
+        dict of str to str
+            Reasons for ``value``, ``reason``, ``first_failure``, ``searched_value`` and ``confirmed``.
+        """
+        return {
+            "value": self.reason or "undefined",
+            "reason": "no caveat: the limit stands as stated",
+            "first_failure": "no stiffness searched failed",
+            "searched_value": "not a simulated search: a prediction, with nothing to confirm",
+            "confirmed": (
+                "no limit to confirm"
+                if self.value is None
+                else "not confirmed by simulation: a first-harmonic prediction"
+            ),
         }
 
 
@@ -270,16 +299,28 @@ class KMaxAssessment:
         def fin(x):
             return None if x is None or math.isinf(x) else x
 
-        return {
+        mpv, g = self.max_passive_velocity, self.growth_speed
+        out: dict[str, object] = {
             "stiffness": self.stiffness,
             "source": self.source,
-            "max_passive_velocity": fin(self.max_passive_velocity),
-            "passive_at_every_speed": self.max_passive_velocity is not None and math.isinf(self.max_passive_velocity),
-            "growth_speed": fin(self.growth_speed),
-            "growth_predicted": self.growth_speed is not None and not math.isinf(self.growth_speed),
+            "max_passive_velocity": fin(mpv),
+            "passive_at_every_speed": mpv is not None and math.isinf(mpv),
+            "growth_speed": fin(g),
+            "growth_predicted": g is not None and not math.isinf(g),
             "unstable_cycles": self.unstable_cycles,
             "outcomes": dict(self.outcomes),
         }
+        why = {
+            "max_passive_velocity": (
+                "no passivity guarantee even at rest (K > 2c/Δ)" if mpv is None else "passive at every speed"
+            ),
+            "growth_speed": (
+                "unknown: the cycle search was incomplete and found no unstable cycle"
+                if g is None
+                else "no growth predicted (no unstable cycle, stable linear loop)"
+            ),
+        }
+        return explain_nulls(out, why)
 
 
 def _growth_xi_dot(mu: float, beta: float, sigma: float, delay: int, model: str) -> tuple[float | None, int]:
@@ -656,9 +697,13 @@ class KMaxResult:
             "k_colgate": self.k_colgate,
             "k_abbott_okamura": self.k_abbott_okamura,
         }
+        why: dict[str, str] = {}
         for name, s in self.searches.items():
             out[name] = s.value
             out[f"{name}_reason"] = s.reason
+            why[name] = s.reason or "undefined"
+            why[f"{name}_reason"] = "no caveat: the limit stands as stated"
+        why["assessment"] = "no stiffness given to assess (and no catalogue K)"
         out.update(
             stiffness_unit=self.device.units["stiffness"],
             velocity_unit=self.device.units["velocity"],
@@ -677,7 +722,7 @@ class KMaxResult:
             counterexamples=[dict(c) for c in self.counterexamples],
             assessment=None if self.assessment is None else self.assessment.as_dict(),
         )
-        return out
+        return explain_nulls(out, why)
 
 
 def _assess(ev: _Evidence, k: float, source: str, velocity: float, delay: int) -> KMaxAssessment:

@@ -48,7 +48,7 @@ from .checks import check_delay, check_positive, check_real, check_real_array, c
 from .criterion import device_criterion
 from .device import Device
 from .errors import DFAValueError
-from .jsonable import to_jsonable
+from .jsonable import explain_nulls, to_jsonable
 from .linear import critical_beta, critical_stiffness
 from .status import CurveStatus, StiffnessStatus, VelocityStatus
 
@@ -473,7 +473,15 @@ class StiffnessLimits:
             Strict-JSON data: the limits in device units, the speeds, status and its message.
         """
         mpv = self.max_passive_velocity
-        return to_jsonable(
+        why = {
+            "max_passive_velocity": {
+                "not requested": "no stiffness given",
+                "all speeds": "passive at every speed (no finite limit)",
+                "none": "no passivity guarantee even at rest (K > 2c/Δ)",
+            }.get(self.velocity_status.value, "undefined"),
+            "stiffness": "no stiffness given to assess",
+        }
+        record = to_jsonable(
             {
                 "k_max": self.k_max,
                 "k_colgate": self.k_colgate,
@@ -491,6 +499,7 @@ class StiffnessLimits:
                 "delay": self.delay,
             }
         )
+        return explain_nulls(record, why)
 
 
 def stiffness_limits(
