@@ -34,6 +34,7 @@ from importlib import resources
 
 from .device import Device, Params
 from .errors import DFATypeError, DFAValueError
+from .jsonable import explain_nulls
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -205,7 +206,7 @@ class CatalogueEntry:
             ``printed`` and ``discrepancies``.
         """
         p = self.params
-        return {
+        out: dict[str, object] = {
             "name": self.name,
             "kind": self.kind,
             "rotary": self.rotary,
@@ -232,6 +233,12 @@ class CatalogueEntry:
             "source": self.source,
             "notes": self.notes,
         }
+        missing = "not given by the source: the catalogue row is incomplete"
+        why = dict.fromkeys(("mass", "damping", "coulomb", "resolution", "period"), missing)
+        why["stiffness"] = "the source gives no stiffness K for this device"
+        why.update(dict.fromkeys(("mu", "beta", "sigma"), "not computable: the physical row is incomplete"))
+        why["printed"] = "the paper prints no (μ, β, σ) for this device"
+        return explain_nulls(out, why)
 
 
 def _entry(raw: dict) -> CatalogueEntry:

@@ -31,7 +31,7 @@ from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params, dimensionless_params
 from .errors import DFAError, DFAValueError
 from .formatting import number, text_table
-from .jsonable import dumps
+from .jsonable import dumps, explain_nulls
 from .stiffness import stiffness_limits
 
 __all__ = ["main"]
@@ -539,8 +539,15 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
     if args.json:
         rec = lim.as_dict()
         extra = _design_json(ans, lim.k_max, lim.k_gil)
+        reasons: dict[str, str] = {}
+        for part in (extra, rec):
+            reasons.update(part.pop("null_reasons", None) or {})  # type: ignore[call-overload]
         rec.update({key: val for key, val in extra.items() if key not in rec})
         rec["stiffness_source"] = src
+        kept = {k: v for k, v in reasons.items() if k.lstrip("/") in rec}
+        if kept:
+            rec["null_reasons"] = kept
+        explain_nulls(rec, {"stiffness_source": "no --stiffness given and no catalogue K"})
         if args.plot is not None:
             rec["plot"] = args.plot
         _emit(rec)
@@ -563,6 +570,8 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
         src_txt = " (catalogue K)" if src == "catalogue" else ""
         rows.append([f"largest passive speed at K = {k_show:g}{src_txt}", lim_k.max_passive_velocity_text()])
         rows.append(["verdict at this speed", lim_k.verdict_text()])
+    else:  # the JSON says "status": "not requested"
+        rows.append(["verdict at this speed", f"{lim.status}: no --stiffness given and no catalogue K"])
     print(
         f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
     )
@@ -587,7 +596,7 @@ def _design_json(ans, k_max: float, k_gil: float) -> dict[str, object]:
     out: dict[str, object] = {"k_criterion": k_max, "k_linear": k_gil}
     for key in ("k_df", "k_sim", "k_sim_rest"):
         out[key], out[f"{key}_reason"] = None, why
-    return out
+    return explain_nulls(out, {"k_df": why, "k_sim": why, "k_sim_rest": why})
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -646,6 +655,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         if phys is not None:
             d.update(phys)
             d["velocity"] = _v
+            explain_nulls(d, r.null_reasons())
         _emit(d)
         return 0
     print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")

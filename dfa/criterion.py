@@ -101,7 +101,7 @@ from .checks import (
 )
 from .device import Device
 from .errors import DFATypeError, DFAValueError
-from .jsonable import to_jsonable
+from .jsonable import explain_nulls, to_jsonable
 from .status import CriterionStatus
 
 __all__ = [
@@ -405,7 +405,10 @@ class CriterionResult:
                 critical_velocity=self.critical_velocity,
                 position=self.position,
             )
-        return to_jsonable(out)
+        none = f"no critical speed: {self.status.message}"
+        why = {"critical_xi_dot": none, "critical_velocity": none, "stiffness": "dimensionless input: no stiffness"}
+        why.update(velocity="no speed in physical units given", position="no position in physical units given")
+        return explain_nulls(to_jsonable(out), why)
 
     def __post_init__(self) -> None:
         for name in ("beta", "sigma", "xi_dot", "margin", "equivalent_speed"):

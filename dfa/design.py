@@ -21,8 +21,8 @@ from .criterion import CriterionResult, device_criterion
 from .cycles import GrowthThreshold, growth_threshold
 from .device import Device, Params
 from .errors import DFATypeError, DFAValueError
-from .jsonable import to_jsonable
-from .kmax import KMaxResult, design_answer
+from .jsonable import explain_nulls, to_jsonable
+from .kmax import KMaxResult, RunCache, design_answer
 from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, stability_map
 from .simulation import SimulationResult, divergence_bound, simulate
@@ -193,6 +193,17 @@ class DesignAnalysis:
         dict
             Strict-JSON data: device, inputs and every analysis of the report, with the status.
         """
+        why = {
+            "validation": "no validation summary passed in (dfa report --validation FILE)",
+            "catalogue": "not a catalogue device with printed (μ, β, σ)",
+            "simulated_xi_dot": "no scanned impact speed diverged",
+            "simulated_velocity": "no scanned impact speed diverged",
+            "design_answer": "impact speed 0: the design answer needs a speed > 0",
+            "speed_chart": "impact speed 0: the chart needs a speed > 0",
+        }
+        return explain_nulls(self._record(), why)
+
+    def _record(self) -> dict[str, Any]:
         return to_jsonable(
             {
                 "device": self.device.as_dict(),
@@ -358,8 +369,9 @@ def design_analysis(
     steps.close()
     figs: dict[str, Any] = dict(stiffness_curve=curve, nyquist=ny, stability_map=smap)
     if v > 0:  # the design answer, first in the report: K_max four ways and the stiffness-speed chart
-        figs["design_answer"] = design_answer(dev, v, dl, stiffness=k)
-        figs["speed_chart"] = stiffness_speed_chart(dev, dl, stiffness=k, velocity=v)
+        cache = RunCache()  # one set of runs for both: no (K, speed, start) simulated twice
+        figs["design_answer"] = design_answer(dev, v, dl, stiffness=k, cache=cache)
+        figs["speed_chart"] = stiffness_speed_chart(dev, dl, stiffness=k, velocity=v, cache=cache)
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )

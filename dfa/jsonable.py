@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["to_jsonable", "dumps", "NULL_REASONS_KEY"]
+__all__ = ["to_jsonable", "dumps", "explain_nulls", "NULL_REASONS_KEY"]
 
 #: Key added to a dict in which values were nulled (pointer → reason).
 NULL_REASONS_KEY = "null_reasons"
@@ -158,3 +158,37 @@ def dumps(obj: Any, **kwargs: Any) -> str:
     """
     kwargs["allow_nan"] = False
     return json.dumps(to_jsonable(obj), **kwargs)
+
+
+def explain_nulls(record: dict[str, Any], reasons: dict[str, str]) -> dict[str, Any]:
+    """``record`` with a ``null_reasons`` entry for each key that is None (or a list holding None) with a reason.
+
+    For values that are None by meaning (not measured, not requested, undefined) rather than non-finite;
+    a reason already recorded is kept. The record is changed in place and returned.
+
+    Parameters
+    ----------
+    record : dict
+        A JSON-ready dict (e.g. from :func:`to_jsonable`).
+    reasons : dict of str to str
+        Why each key may be null, by key name.
+
+    Returns
+    -------
+    dict
+        ``record``, its ``null_reasons`` completed.
+
+    Examples
+    --------
+    >>> explain_nulls({"rest_sample": None, "amplitude": 0.0}, {"rest_sample": "the run did not come to rest"})
+    {'rest_sample': None, 'amplitude': 0.0, 'null_reasons': {'/rest_sample': 'the run did not come to rest'}}
+    """
+    have = dict(record.get(NULL_REASONS_KEY) or {})
+    for key, why in reasons.items():
+        ptr = "/" + _escape(key)
+        value = record.get(key, 0)
+        if (value is None or isinstance(value, list) and None in value) and ptr not in have:
+            have[ptr] = why
+    if have:
+        record[NULL_REASONS_KEY] = dict(sorted(have.items()))
+    return record

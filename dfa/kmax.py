@@ -18,17 +18,22 @@ of d samples:
     loop and a complete search means no growth (infinite speed), none with an
     unstable linear loop means growth from any size (zero).
 ``k_sim``
-    found by exact simulation: the largest K at which no impact at the
-    simulated speeds V/n, 2V/n, …, V, started from ξ0 = 0 and, separately,
-    from rest with the spring preloaded to the same energy (section 5,
-    :func:`dfa.simulation.preload_position`), diverges. The limit is then
-    checked at ``DENSE_FACTOR`` times as many speeds, at itself and at
-    stiffnesses down to 3 % below it; a failure there is reported
-    (``dense_failures``, status ``"caveats"``), because safety need not be
-    monotone in K or in the speed.
+    found by exact simulation: the largest *confirmed* K. A search first
+    finds the largest K at which no impact at the simulated speeds V/n,
+    2V/n, …, V, started from ξ0 = 0 and, separately, from rest with the
+    spring preloaded to the same energy (section 5,
+    :func:`dfa.simulation.preload_position`), diverges. That K is then
+    confirmed at ``DENSE_FACTOR`` times as many speeds and 7 stiffnesses
+    in [0.97K, K]; where a run there diverges (or is undecided)
+    the limit walks down a geometric ladder until a whole band passes, and
+    the failures met on the way are reported (``dense_failures``, status
+    ``"caveats"``), because safety need not be monotone in K or in the
+    speed. "Confirmed" names exactly what was simulated (``confirmed``):
+    no divergence at those speeds, starts and stiffnesses; it cannot prove
+    every speed.
 ``k_sim_rest``
-    the largest K at which all those impacts come to rest (no chatter, no
-    oscillation).
+    the largest confirmed K at which all those impacts come to rest (no
+    chatter, no oscillation), at most ``k_sim``.
 
 The simulated and predicted limits are searched over K: an ascending
 geometric grid first, every point evaluated, then bisection between the last
@@ -57,7 +62,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -66,10 +73,11 @@ import numpy as np
 from .checks import _fmt, check_choice, check_delay, check_int, check_positive, check_real, check_type
 from .device import Device
 from .errors import DFATypeError, DFAValueError
+from .jsonable import explain_nulls
 from .simulation import default_samples, divergence_bound, preload_position, simulate
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
-__all__ = ["KSearch", "KMaxAssessment", "KMaxResult", "design_answer", "simulate_points"]
+__all__ = ["KSearch", "KMaxAssessment", "KMaxResult", "RunCache", "design_answer", "simulate_points"]
 
 #: Relative width at which the bisection of a searched limit stops.
 K_RTOL = 2e-3
@@ -82,26 +90,36 @@ DIVERGENCE_BOUND = 1.0e6
 SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
 
 
-def simulate_points(points: Sequence[tuple[float, float, float, float, float]], delay: int, max_samples: int):
+def simulate_points(points: Sequence[tuple[float, ...]], delay: int, max_samples: int):
     """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), and the samples of each run.
 
     The run length of each point is :func:`dfa.simulation.default_samples`, at most ``max_samples``; a run
     diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of its start.
-    One place for the many simulations of the design answer (a batched kernel can replace the loop).
+    One place for the many simulations of the design answer, run on threads (one per core): the compiled
+    kernel releases the GIL, and each outcome depends on its own point only.
 
     Returns
     -------
     (list of str, list of int)
         Outcome names (:data:`dfa.simulation.OUTCOMES`) and run lengths.
     """
-    outcomes, lengths = [], []
+    jobs = []
     for mu, beta, sigma, xi0, xi_dot0 in points:
         n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay), max_samples)
         bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
-        r = simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound)
-        outcomes.append(r.outcome)
-        lengths.append(n)
-    return outcomes, lengths
+        jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound))
+
+    def one(job: tuple) -> str:
+        mu, beta, sigma, xi_dot0, n, xi0, bound = job
+        return str(simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound).outcome)
+
+    workers = min(len(jobs), os.cpu_count() or 1)
+    if workers > 1:  # the compiled kernel releases the GIL: threads overlap the runs, results are per point
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            outcomes = list(pool.map(one, jobs))
+    else:
+        outcomes = [one(j) for j in jobs]
+    return outcomes, [j[4] for j in jobs]
 
 
 def _check_bound(name: str, value: object, fix: str) -> float:
@@ -132,9 +150,14 @@ class KSearch:
     evaluations : int
         Stiffnesses evaluated.
     dense_failures : tuple of dict
-        Failures a denser check found at or just below ``value`` (``stiffness``, ``velocity``, ``start``,
-        ``outcome``; :data:`DENSE_FACTOR` times the speeds, stiffnesses down to 3 % below): the limit then holds
-        only at the searched speeds, and the result's status says so.
+        Failing or undecided runs the confirmation met while walking down from ``searched_value`` to ``value``
+        (``stiffness``, ``velocity``, ``start``, ``outcome``): all above ``value``, evidence that safety is not
+        monotone in K; the result's status says so.
+    searched_value : float or None
+        The limit the search found before the confirmation (None: not confirmed, e.g. ``k_df``).
+    confirmed : str or None
+        What ``value`` claims when confirmed by simulation, in words: the dense speed grid, the starts and the
+        stiffness band simulated (:func:`confirmation_text`); None when not confirmed.
     """
 
     value: float | None
@@ -145,21 +168,32 @@ class KSearch:
     first_failure: float | None = None
     evaluations: int = 0
     dense_failures: tuple[dict, ...] = ()
+    searched_value: float | None = None
+    confirmed: str | None = None
 
     def __post_init__(self) -> None:
         if self.value is not None:
             check_positive("value", self.value, "a stiffness limit is a finite K > 0, or None with a reason")
-        if self.reason is not None and not isinstance(self.reason, str):
-            raise DFATypeError(
-                f"reason = {_fmt(self.reason)} has type {type(self.reason).__name__}: it must be text or None"
-            )
+        for name in ("reason", "confirmed"):
+            text = getattr(self, name)
+            if text is not None and not isinstance(text, str):
+                raise DFATypeError(f"{name} = {_fmt(text)} has type {type(text).__name__}: it must be text or None")
+        if self.searched_value is not None:
+            check_positive("searched_value", self.searched_value, "the searched limit is a finite K > 0, or None")
         if self.value is None and not self.reason:
             raise DFAValueError("KSearch(value=None) needs a reason: say why the limit is undefined")
         if self.value is not None and not (math.isfinite(self.value) and self.value > 0):
             raise DFAValueError(f"value = {self.value!r} is invalid: a stiffness limit must be finite and > 0")
 
     def as_dict(self) -> dict[str, object]:
-        return {
+        """JSON-ready record of the search and its evidence (nulls with their reason).
+
+        Returns
+        -------
+        dict
+            The limit, its caveats, the non-monotone evidence and the confirmation.
+        """
+        out: dict[str, object] = {
             "value": self.value,
             "reason": self.reason,
             "non_monotone": self.non_monotone,
@@ -168,6 +202,29 @@ class KSearch:
             "first_failure": self.first_failure,
             "evaluations": self.evaluations,
             "dense_failures": [dict(f) for f in self.dense_failures],
+            "searched_value": self.searched_value,
+            "confirmed": self.confirmed,
+        }
+        return explain_nulls(out, self.null_reasons())
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why each field of :meth:`as_dict` may be null, by key.
+
+        Returns
+        -------
+        dict of str to str
+            Reasons for ``value``, ``reason``, ``first_failure``, ``searched_value`` and ``confirmed``.
+        """
+        return {
+            "value": self.reason or "undefined",
+            "reason": "no caveat: the limit stands as stated",
+            "first_failure": "no stiffness searched failed",
+            "searched_value": "not a simulated search: a prediction, with nothing to confirm",
+            "confirmed": (
+                "no limit to confirm"
+                if self.value is None
+                else "not confirmed by simulation: a first-harmonic prediction"
+            ),
         }
 
 
@@ -242,16 +299,28 @@ class KMaxAssessment:
         def fin(x):
             return None if x is None or math.isinf(x) else x
 
-        return {
+        mpv, g = self.max_passive_velocity, self.growth_speed
+        out: dict[str, object] = {
             "stiffness": self.stiffness,
             "source": self.source,
-            "max_passive_velocity": fin(self.max_passive_velocity),
-            "passive_at_every_speed": self.max_passive_velocity is not None and math.isinf(self.max_passive_velocity),
-            "growth_speed": fin(self.growth_speed),
-            "growth_predicted": self.growth_speed is not None and not math.isinf(self.growth_speed),
+            "max_passive_velocity": fin(mpv),
+            "passive_at_every_speed": mpv is not None and math.isinf(mpv),
+            "growth_speed": fin(g),
+            "growth_predicted": g is not None and not math.isinf(g),
             "unstable_cycles": self.unstable_cycles,
             "outcomes": dict(self.outcomes),
         }
+        why = {
+            "max_passive_velocity": (
+                "no passivity guarantee even at rest (K > 2c/Δ)" if mpv is None else "passive at every speed"
+            ),
+            "growth_speed": (
+                "unknown: the cycle search was incomplete and found no unstable cycle"
+                if g is None
+                else "no growth predicted (no unstable cycle, stable linear loop)"
+            ),
+        }
+        return explain_nulls(out, why)
 
 
 def _growth_xi_dot(mu: float, beta: float, sigma: float, delay: int, model: str) -> tuple[float | None, int]:
@@ -276,11 +345,59 @@ def _growth_xi_dot(mu: float, beta: float, sigma: float, delay: int, model: str)
 FAILING = {"unstable": frozenset({"unstable"}), "rest": frozenset({"oscillating", "unstable", "chatter"})}
 
 
-class _Evidence:
-    """Simulations and predictions of one design search, cached per stiffness (dimensionless inside)."""
+class RunCache:
+    """Outcomes of design runs by their inputs, and growth predictions by (μ, β, σ, d, model).
 
-    def __init__(self, dev: Device, speeds: np.ndarray, delay: int, max_samples: int, model: str):
+    One cache shared by the searches of a design analysis (:func:`design_answer`, the confirmation and
+    :func:`dfa.speed_chart.stiffness_speed_chart`) simulates each run (μ, β, σ, ξ0, ξ'0, d, run cap) at most
+    once. Results do not depend on it: each search still counts every run it rests on.
+
+    Examples
+    --------
+    >>> c = RunCache()
+    >>> c.simulate([(100.0, 0.3, 1.5, 0.0, 2.0)] * 2, 0, 10**6)[0], c.simulated
+    (['rest', 'rest'], 1)
+    """
+
+    def __init__(self) -> None:
+        self.runs: dict[tuple, tuple[str, int]] = {}
+        self.growth: dict[tuple, tuple[float | None, int]] = {}
+        self.simulated = 0
+
+    def simulate(self, points: Sequence[tuple[float, float, float, float, float]], delay: int, max_samples: int):
+        """Outcomes and run lengths of ``points`` (as :func:`simulate_points`), simulating only the new ones.
+
+        Parameters
+        ----------
+        points : sequence of (μ, β, σ, ξ0, ξ'0)
+            Dimensionless runs (ξ0 in ticks, ξ'0 in ticks per sample).
+        delay : int
+            Computational delay d in samples.
+        max_samples : int
+            Longest run in samples.
+
+        Returns
+        -------
+        (list of str, list of int)
+            Outcome names and run lengths, one per point.
+        """
+        keys = [(tuple(float(x) for x in pt), delay, max_samples) for pt in points]
+        todo = list(dict.fromkeys(k for k in keys if k not in self.runs))
+        if todo:
+            outs, lengths = simulate_points([k[0] for k in todo], delay, max_samples)
+            self.simulated += len(todo)
+            self.runs.update({k: (o, n) for k, o, n in zip(todo, outs, lengths, strict=True)})
+        return [self.runs[k][0] for k in keys], [self.runs[k][1] for k in keys]
+
+
+class _Evidence:
+    """Simulations and predictions of one design search, per stiffness (dimensionless inside), through a cache."""
+
+    def __init__(
+        self, dev: Device, speeds: np.ndarray, delay: int, max_samples: int, model: str, cache: RunCache | None = None
+    ):
         self.dev, self.delay, self.max_samples, self.model = dev, delay, max_samples, model
+        self.cache = RunCache() if cache is None else cache
         self.xi_dots = [dev.xi_dot(float(v)) for v in speeds]
         self.sims: dict[float, list[tuple[float, str, str]]] = {}
         self.growth: dict[float, tuple[float | None, int]] = {}
@@ -300,8 +417,8 @@ class _Evidence:
                 pts.append((p.mu, p.beta, p.sigma, 0.0, xd))
                 pts.append((p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0))
                 tags += [(xd, "impact"), (xd, "preload")]
-            outs, lengths = simulate_points(pts, self.delay, self.max_samples)
-            self.runs += len(pts)
+            outs, lengths = self.cache.simulate(pts, self.delay, self.max_samples)
+            self.runs += len(pts)  # every run this evidence rests on, simulated here or earlier
             self.longest = max(self.longest, *lengths)
             self.sims[k] = [(xd, start, o) for (xd, start), o in zip(tags, outs, strict=True)]
         return self.sims[k]
@@ -326,7 +443,10 @@ class _Evidence:
             except DFAValueError:  # not representable at this K
                 self.growth[k] = (None, 0)
                 return self.growth[k]
-            self.growth[k] = _growth_xi_dot(p.mu, p.beta, p.sigma, self.delay, self.model)
+            key = (p.mu, p.beta, p.sigma, self.delay, self.model)
+            if key not in self.cache.growth:
+                self.cache.growth[key] = _growth_xi_dot(p.mu, p.beta, p.sigma, self.delay, self.model)
+            self.growth[k] = self.cache.growth[key]
         return self.growth[k]
 
     def predicted(self, k: float, xi_dot: float) -> str:
@@ -343,35 +463,100 @@ class _Evidence:
         return tuple(out)
 
 
-#: The denser check of a simulated limit uses this many times the searched speeds.
+#: The confirmation of a simulated limit uses this many times the searched speeds ...
 DENSE_FACTOR = 4
-#: ... at the limit and at these fractions below it.
-DENSE_BELOW = (0.0, 0.001, 0.003, 0.01, 0.03)
+#: ... at the rungs of a geometric ladder, DENSE_RUNGS per band of relative width DENSE_BAND below a rung ...
+DENSE_RUNGS = 5
+DENSE_BAND = 0.03
+#: ... and, just below the candidate, at these fractions below it (where a search's bisection ended) ...
+DENSE_FINE = (0.001, 0.003)
+#: ... walking down at most this many rungs (to about 0.5 × the searched limit).
+DENSE_MAX_STEPS = 90
 
 
-def _confirm(found: KSearch, dense: _Evidence, bad: str) -> KSearch:
-    """Check a simulated limit at denser speeds, at and just below it: the search itself only saw its own speeds
-    and assumed safety monotone in K between grid points. ``bad``: "unstable" (no-divergence limit) or "rest"
-    (every outcome other than rest fails). A failure turns into a caveat in the result, never a silent pass."""
+def _ladder(k0: float, j: int) -> float:
+    """Rung j of the confirmation ladder below ``k0``: k0 (1 - DENSE_BAND)^(j / (DENSE_RUNGS - 1))."""
+    return k0 * (1.0 - DENSE_BAND) ** (j / (DENSE_RUNGS - 1))
+
+
+def _band(k0: float, c: int) -> list[float]:
+    """The stiffnesses that confirm rung c, descending: the rung, the fine points just below, the next rungs."""
+    k = _ladder(k0, c)
+    return [k] + [k * (1.0 - f) for f in DENSE_FINE] + [_ladder(k0, c + i) for i in range(1, DENSE_RUNGS)]
+
+
+def _failures(dense: _Evidence, k: float, bad: str) -> list[dict[str, Any]]:
+    """Dense runs at ``k`` that fail limit ``bad`` or are undecided (neither counts as confirmed)."""
+    return [
+        {"stiffness": k, "velocity": dense.dev.velocity(xd), "start": start, "outcome": str(o)}
+        for xd, start, o in dense.outcomes(k)
+        if o in FAILING[bad] or o == "undecided"
+    ]
+
+
+def confirmation_text(dense: _Evidence, bad: str) -> str:
+    """What a confirmed limit K claims, in words (device units): the dense speed grid and stiffness band."""
+    u = dense.dev.units
+    vs = [dense.dev.velocity(x) for x in dense.xi_dots]
+    what = "no divergence" if bad == "unstable" else "every run at rest"
+    return (
+        f"{what}, none undecided, at {len(vs)} speeds in [{min(vs):.4g}, {max(vs):.4g}] {u['velocity']} "
+        f"(from ξ0 = 0 and from the preload) and {DENSE_RUNGS + len(DENSE_FINE)} stiffnesses in [{1 - DENSE_BAND:g}K, K]"
+    )
+
+
+def _confirm(found: KSearch, dense: _Evidence, bad: str, top: float | None = None) -> KSearch:
+    """The largest *confirmed* K at or below a searched limit (and at or below ``top``).
+
+    The search saw only its own speeds and assumed safety monotone in K between its points. Confirmed at K
+    means: at :data:`DENSE_FACTOR` times as many speeds (V/n … V), from both starts, at the
+    stiffnesses of :func:`_band` spanning [(1 - DENSE_BAND) K, K], no run fails
+    ``bad`` ("unstable": diverges; "rest": does not come to rest) and none is undecided. A finite set of
+    speeds and stiffnesses is simulated: this is evidence at those points, not a proof for all speeds.
+    The candidate walks down the ladder from the searched limit, to the rung below each failing stiffness,
+    until a whole band passes; every failure met on the way (all above the confirmed K) is kept in
+    ``dense_failures`` and said in ``reason``.
+    """
     if found.value is None:
         return found
+    k0 = found.value if top is None else min(found.value, top)
     fails: list[dict[str, Any]] = []
-    for f in DENSE_BELOW:
-        k = found.value * (1.0 - f)
-        for xd, start, o in dense.outcomes(k):
-            if o in FAILING[bad]:
-                fails.append({"stiffness": k, "velocity": dense.dev.velocity(xd), "start": start, "outcome": o})
-    if not fails:
-        return found
-    w = min(fails, key=lambda r: float(r["stiffness"]))
-    u = dense.dev.units
-    note = (
-        f"NOT confirmed: a denser check ({len(dense.xi_dots)} speeds) found {w['outcome']} at K = "
-        f"{w['stiffness']:.5g} {u['stiffness']} ({w['velocity']:.3g} {u['velocity']}, {w['start']} start), at or "
-        "below this value: it holds only at the searched speeds"
+    c, confirmed = 0, False
+    while not confirmed and c <= DENSE_MAX_STEPS:
+        for k in _band(k0, c):  # descending: stop at the first failing stiffness, go to the rung below it
+            f = _failures(dense, k, bad)
+            if f:
+                fails += f
+                while _ladder(k0, c) >= k:
+                    c += 1
+                break
+        else:
+            confirmed = True
+    claim = confirmation_text(dense, bad)
+    u = dense.dev.units["stiffness"]
+    if not confirmed:
+        why = f"no stiffness in [{_ladder(k0, DENSE_MAX_STEPS):.5g}, {k0:.5g}] {u} confirmed ({claim})"
+        return dataclasses.replace(
+            found, value=None, reason=why, searched_value=found.value, dense_failures=tuple(fails)
+        )
+    value = _ladder(k0, c)
+    reason = found.reason
+    if fails:
+        w = max(fails, key=lambda r: float(r["stiffness"]))
+        lo = min(fails, key=lambda r: float(r["stiffness"]))
+        note = (
+            f"lowered from the searched {found.value:.5g} {u}: the confirmation found {lo['outcome']} at K = "
+            f"{lo['stiffness']:.5g} {u} ({lo['velocity']:.3g} {dense.dev.units['velocity']}, {lo['start']} start)"
+            + ("" if w["stiffness"] == lo["stiffness"] else f" and up to K = {w['stiffness']:.5g} {u}")
+            + ", at speeds or stiffnesses the search did not simulate"
+        )
+        reason = note if not reason else f"{reason}; {note}"
+    if k0 < found.value:
+        note = f"capped at K_sim = {k0:.5g} {u}: coming to rest implies no divergence"
+        reason = note if not reason else f"{reason}; {note}"
+    return dataclasses.replace(
+        found, value=value, reason=reason, searched_value=found.value, confirmed=claim, dense_failures=tuple(fails)
     )
-    reason = note if not found.reason else f"{found.reason}; {note}"
-    return dataclasses.replace(found, reason=reason, dense_failures=tuple(fails))
 
 
 def _search_grid(k_criterion: float, top: float, grid: int) -> np.ndarray:
@@ -512,9 +697,13 @@ class KMaxResult:
             "k_colgate": self.k_colgate,
             "k_abbott_okamura": self.k_abbott_okamura,
         }
+        why: dict[str, str] = {}
         for name, s in self.searches.items():
             out[name] = s.value
             out[f"{name}_reason"] = s.reason
+            why[name] = s.reason or "undefined"
+            why[f"{name}_reason"] = "no caveat: the limit stands as stated"
+        why["assessment"] = "no stiffness given to assess (and no catalogue K)"
         out.update(
             stiffness_unit=self.device.units["stiffness"],
             velocity_unit=self.device.units["velocity"],
@@ -533,7 +722,7 @@ class KMaxResult:
             counterexamples=[dict(c) for c in self.counterexamples],
             assessment=None if self.assessment is None else self.assessment.as_dict(),
         )
-        return out
+        return explain_nulls(out, why)
 
 
 def _assess(ev: _Evidence, k: float, source: str, velocity: float, delay: int) -> KMaxAssessment:
@@ -542,7 +731,7 @@ def _assess(ev: _Evidence, k: float, source: str, velocity: float, delay: int) -
     g, count = ev.growth_xi_dot(k)
     p = dev.params(k)
     xd = dev.xi_dot(velocity)
-    outs, _ = simulate_points(
+    outs, _ = ev.cache.simulate(
         [(p.mu, p.beta, p.sigma, 0.0, xd), (p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0)],
         delay,
         ev.max_samples,
@@ -569,6 +758,7 @@ def design_answer(
     grid: int = 16,
     max_samples: int = DESIGN_MAX_SAMPLES,
     df_model: str = "half-delay",
+    cache: RunCache | None = None,
 ) -> KMaxResult:
     """The largest stiffness for impacts up to ``velocity``, four ways (module docstring).
 
@@ -594,6 +784,9 @@ def design_answer(
         Longest run, in samples (default 10⁶); longer automatic lengths are cut and may be undecided.
     df_model : {"half-delay", "zoh", "pade"}, optional
         Hold model of the describing function (default ``"half-delay"``; ``"zoh"`` is exact but ~10× slower).
+    cache : RunCache, optional
+        Runs and predictions already computed (shared with :func:`dfa.speed_chart.stiffness_speed_chart` by
+        :func:`dfa.design.design_analysis`); a fresh one when None. The result does not depend on it.
 
     Returns
     -------
@@ -623,12 +816,16 @@ def design_answer(
     model = check_choice("df_model", df_model, ("half-delay", "zoh", "pade"))
     k_given = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
-    ev = _Evidence(dev, vs, d, cap, model)
+    if cache is not None:
+        check_type("cache", cache, RunCache, "pass a dfa.kmax.RunCache, or None")
+    cache = RunCache() if cache is None else cache
+    ev = _Evidence(dev, vs, d, cap, model, cache)
     kc, kl = float(k_max_criterion(dev, v, d)), k_gil(dev, delay=d)
     k_df, k_sim, k_rest, k_range = _three_searches(ev, dev, v, d, kc, kl, n_grid)
-    dense = _Evidence(dev, v * np.arange(1, DENSE_FACTOR * n_speeds + 1) / (DENSE_FACTOR * n_speeds), d, cap, model)
+    dense_vs = v * np.arange(1, DENSE_FACTOR * n_speeds + 1) / (DENSE_FACTOR * n_speeds)
+    dense = _Evidence(dev, dense_vs, d, cap, model, cache)
     k_sim = _confirm(k_sim, dense, "unstable")
-    k_rest = _confirm(k_rest, dense, "rest")
+    k_rest = _confirm(k_rest, dense, "rest", k_sim.value)
     ev.runs += dense.runs
     ce = ev.counterexamples(kc) + dense.counterexamples(kc)
     caveat = any(s.non_monotone or s.undecided or s.dense_failures for s in (k_df, k_sim, k_rest))

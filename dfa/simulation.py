@@ -119,7 +119,7 @@ from .checks import (
 )
 from .criterion import spring_energy
 from .errors import DFAValueError
-from .jsonable import to_jsonable
+from .jsonable import explain_nulls, to_jsonable
 from .status import SimulationOutcome
 
 __all__ = [
@@ -512,6 +512,41 @@ class SimulationResult:
             "position_unit": u["position"],
         }
 
+    def null_reasons(self) -> dict[str, str]:
+        """Why each measurement of this run may be null in JSON, by key (also the physical keys of :meth:`physical`).
+
+        Returns
+        -------
+        dict of str to str
+            Reasons for ``amplitude``, ``frequency``, ``period``, ``rest_sample``, ``suggested_samples``, … and
+            their physical counterparts (``amplitude_m``, ``frequency_hz``, ``period_s``, …).
+        """
+        o = self.outcome
+        diverged = "the run diverged: no amplitude to measure (unbounded)"
+        unmeasured = f"not measured: the run's outcome is {o.value} ({o.message})"
+        by_source = {
+            "amplitude": diverged if o == "unstable" else unmeasured,
+            "frequency": unmeasured,
+            "period": unmeasured,
+            "force_peak_to_peak": diverged if o == "unstable" else unmeasured,
+        }
+        physical = {
+            "amplitude": ("amplitude_m", "amplitude_rad", "amplitude_si", "force_amplitude_n", "force_amplitude_nm"),
+            "frequency": ("frequency_hz",),
+            "period": ("period_s",),
+            "force_peak_to_peak": ("force_peak_to_peak_n", "force_peak_to_peak_nm", "force_peak_to_peak_si"),
+        }
+        out = dict(by_source)
+        for src, keys in physical.items():
+            out.update(dict.fromkeys(keys, by_source[src]))
+        out["rest_sample"] = f"the run did not come to rest ({o.value})"
+        out["suggested_samples"] = (
+            "no longer run suggested"
+            if o == "undecided"
+            else f"the outcome ({o.value}) is decided: no longer run needed"
+        )
+        return out
+
     def as_dict(self) -> dict[str, object]:
         """JSON-ready summary (the ``dfa simulate --json`` contract plus extras).
 
@@ -521,7 +556,7 @@ class SimulationResult:
             Strict-JSON data: outcome and its message, the measurements and inputs, and the
             trajectory when recorded (non-finite values become null, with the reason).
         """
-        return to_jsonable(  # non-finite values become null, with the reason (dfa.jsonable)
+        record = to_jsonable(  # non-finite values become null, with the reason (dfa.jsonable)
             {
                 "outcome": self.outcome,
                 "status_message": self.outcome.message,
@@ -547,6 +582,7 @@ class SimulationResult:
                 "quantize": self.quantize,
             }
         )
+        return explain_nulls(record, self.null_reasons())
 
 
 def _tail_length(samples: int, mu: float) -> int:

@@ -38,7 +38,7 @@ from ._frozen import frozen_array
 from .checks import check_delay, check_int, check_positive, check_real, check_type
 from .device import Device
 from .errors import DFAValueError
-from .kmax import DESIGN_MAX_SAMPLES, _Evidence
+from .kmax import DESIGN_MAX_SAMPLES, RunCache, _Evidence
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
 __all__ = ["StiffnessSpeedChart", "stiffness_speed_chart", "HAND_SPEED"]
@@ -208,6 +208,7 @@ def stiffness_speed_chart(
     grid: int = 24,
     speeds: int = 14,
     max_samples: int = DESIGN_MAX_SAMPLES,
+    cache: RunCache | None = None,
 ) -> StiffnessSpeedChart:
     """Compute the stiffness–speed chart of a device (module docstring).
 
@@ -227,6 +228,9 @@ def stiffness_speed_chart(
         Impact speeds simulated per stiffness (default 14, geometric from v_top/200; at most 1000), two starts each.
     max_samples : int, optional
         Longest run in samples.
+    cache : RunCache, optional
+        Runs and predictions already computed (:class:`dfa.kmax.RunCache`, shared with
+        :func:`dfa.kmax.design_answer` by the design analysis); a fresh one when None. The chart does not depend on it.
 
     Returns
     -------
@@ -267,7 +271,9 @@ def stiffness_speed_chart(
     vs = np.geomspace(top / 200.0, top, n_v) if n_v > 1 else np.array([top])
     lo, hi = _k_range(dev, d, top, k_design)
     ks = np.geomspace(lo, hi, n_k)
-    ev = _Evidence(dev, vs, d, n_max, "half-delay")
+    if cache is not None:
+        check_type("cache", cache, RunCache, "pass a dfa.kmax.RunCache, or None")
+    ev = _Evidence(dev, vs, d, n_max, "half-delay", cache)
     v_sim, v_rest, v_df = [], [], []
     for k in ks:
         rows = ev.outcomes(float(k))

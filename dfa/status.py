@@ -12,7 +12,7 @@ Examples
 >>> StiffnessStatus.TOO_STIFF == "too stiff", StiffnessStatus("ok") is StiffnessStatus.OK
 (True, True)
 >>> StiffnessStatus.OK.message
-'passive at this speed (proven), or no stiffness to assess'
+'passive at this speed (proven)'
 """
 
 from __future__ import annotations
@@ -114,7 +114,8 @@ class CriterionStatus(StatusEnum):
 class StiffnessStatus(StatusEnum):
     """Verdict on a chosen stiffness at the impact speed (eq. 11)."""
 
-    OK = ("ok", "passive at this speed (proven), or no stiffness to assess")
+    OK = ("ok", "passive at this speed (proven)")
+    NOT_REQUESTED = ("not requested", "no stiffness given to assess: the limits alone")
     TOO_STIFF = ("too stiff", "no passivity guarantee at this speed (K > K_max); not a proof of instability")
 
 

@@ -48,7 +48,7 @@ from .checks import check_delay, check_positive, check_real, check_real_array, c
 from .criterion import device_criterion
 from .device import Device
 from .errors import DFAValueError
-from .jsonable import to_jsonable
+from .jsonable import explain_nulls, to_jsonable
 from .linear import critical_beta, critical_stiffness
 from .status import CurveStatus, StiffnessStatus, VelocityStatus
 
@@ -379,8 +379,8 @@ class StiffnessLimits:
         ``NOT_REQUESTED``, ``ALL_SPEEDS``, ``BOUNDED`` or ``NONE`` (codes ``"not requested"``,
         ``"all speeds"``, ``"bounded"``, ``"none"``).
     status : StiffnessStatus
-        ``OK`` (code ``"ok"``) when ``stiffness`` passes at ``velocity`` (or none was given),
-        otherwise ``TOO_STIFF`` (``"too stiff"``).
+        ``OK`` (code ``"ok"``) when ``stiffness`` passes at ``velocity``, ``TOO_STIFF`` (``"too stiff"``)
+        when it does not, ``NOT_REQUESTED`` (``"not requested"``) when no stiffness was given.
     delay : int
         Computational delay d in samples.
     """
@@ -396,7 +396,7 @@ class StiffnessLimits:
     stiffness: float | None = None
     max_passive_velocity: float | None = None
     velocity_status: VelocityStatus = VelocityStatus.NOT_REQUESTED
-    status: StiffnessStatus = StiffnessStatus.OK
+    status: StiffnessStatus = StiffnessStatus.NOT_REQUESTED
     delay: int = 0
 
     def __post_init__(self) -> None:
@@ -417,7 +417,7 @@ class StiffnessLimits:
                 else (VelocityStatus.ALL_SPEEDS if math.isinf(mpv) else VelocityStatus.BOUNDED)
             )
         )
-        if vs is not expected or (self.stiffness is None and st is not StiffnessStatus.OK):
+        if vs is not expected or ((self.stiffness is None) != (st is StiffnessStatus.NOT_REQUESTED)):
             raise DFAValueError(
                 f"velocity_status = {vs.value!r}, status = {st.value!r} are invalid for stiffness = {self.stiffness!r}, "
                 f"max_passive_velocity = {mpv!r}: they must agree; build results with stiffness_limits"
@@ -473,7 +473,15 @@ class StiffnessLimits:
             Strict-JSON data: the limits in device units, the speeds, status and its message.
         """
         mpv = self.max_passive_velocity
-        return to_jsonable(
+        why = {
+            "max_passive_velocity": {
+                "not requested": "no stiffness given",
+                "all speeds": "passive at every speed (no finite limit)",
+                "none": "no passivity guarantee even at rest (K > 2c/Δ)",
+            }.get(self.velocity_status.value, "undefined"),
+            "stiffness": "no stiffness given to assess",
+        }
+        record = to_jsonable(
             {
                 "k_max": self.k_max,
                 "k_colgate": self.k_colgate,
@@ -491,6 +499,7 @@ class StiffnessLimits:
                 "delay": self.delay,
             }
         )
+        return explain_nulls(record, why)
 
 
 def stiffness_limits(
@@ -530,7 +539,7 @@ def stiffness_limits(
     d = check_delay(delay)
     mpv: float | None = None
     vstatus = VelocityStatus.NOT_REQUESTED
-    status = StiffnessStatus.OK
+    status = StiffnessStatus.NOT_REQUESTED
     k = None
     if stiffness is not None:
         k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")

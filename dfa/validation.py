@@ -46,7 +46,7 @@ from .cycles import growth_threshold, large_cycle_closed_form, limit_cycles
 from .device import Params
 from .errors import DFATypeError
 from .formatting import markdown_table, number, percent
-from .jsonable import to_jsonable
+from .jsonable import explain_nulls, to_jsonable
 from .maps import stability_map
 from .simulation import OUTCOMES, divergence_bound, preload_position, simulate
 from .status import ValidationStatus
@@ -235,7 +235,12 @@ def cluster_threshold(name: str, p: Params, speeds, samples: int) -> dict:
     cf = large_cycle_closed_form(p.mu, p.beta, p.sigma)
     rec["eq45_amplitude"] = cf[0] if cf else None
     rec["eq45_xi_dot"] = cf[0] * cf[1] if cf else None
-    return rec
+    why = {"first_diverging": "no scanned speed diverged", "last_non_diverging": "every scanned speed diverged"}
+    why.update(dict.fromkeys(("eq45_amplitude", "eq45_xi_dot"), "eq. 45 has no large-cycle solution here"))
+    for model in ("half-delay", "zoh"):
+        for key in (f"band_{model}", f"band_amplitude_{model}", f"grows_above_{model}"):
+            why[key] = "no growth band: no unstable cycle predicted by this model"
+    return explain_nulls(rec, why)
 
 
 def cluster_note(records: list) -> str:

@@ -1,8 +1,10 @@
 """K_max four ways (issue 14 §1): criterion (eq. 11) <= simulated no-divergence, rest <= no-divergence,
 the simulated limit against an independent bisection written here, the search's honesty, and `dfa stiffness`."""
 
+import dataclasses
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -105,8 +107,10 @@ def test_eq11_k_sim_matches_independent_bisection(name, v):
         mid = math.sqrt(lo * hi)
         lo, hi = (lo, mid) if _diverges(dev, mid, speeds) else (mid, hi)
     assert not r.k_sim.non_monotone
-    assert r.k_sim.value == pytest.approx(lo, rel=5e-3)
+    assert r.k_sim.searched_value == pytest.approx(lo, rel=5e-3)  # the search, before its confirmation
     assert r.k_sim.first_failure == pytest.approx(hi, rel=5e-3)
+    assert r.k_sim.value <= r.k_sim.searched_value  # the confirmation only lowers it, and says why
+    assert (r.k_sim.value < r.k_sim.searched_value) == bool(r.k_sim.dense_failures)
 
 
 # ---------------------------------------------------------------- the search itself
@@ -159,8 +163,11 @@ def test_cli_stiffness_four_ways_json_keeps_existing_keys(capsys):
     d = json.loads(out)
     dev = dfa.get_device("impulse").device
     old = dfa.stiffness_limits(dev, 0.2).as_dict()
-    for key, val in old.items():  # existing keys and numbers unchanged
-        assert d[key] == val, key
+    for key, val in old.items():  # existing keys and numbers unchanged (their null reasons kept, more added)
+        if key == "null_reasons":
+            assert val.items() <= d[key].items()
+        else:
+            assert d[key] == val, key
     r = design_answer(dev, 0.2, stiffness=80.0, stiffness_source="catalogue")
     for key in ("k_linear", "k_df", "k_sim", "k_sim_rest", "k_criterion"):
         want = getattr(r, key) if key in ("k_linear", "k_criterion") else r.searches[key].value
@@ -181,6 +188,23 @@ def test_cli_stiffness_custom_device_without_stiffness_prints_four(capsys):
     assert f"{r.k_sim_rest.value:.5g} N/m" in out
     assert f"{r.simulations} exact simulations" in out and "only the criterion is a proof" in out
     assert "largest passive speed" not in out  # no K to assess
+    assert re.search(r"verdict at this speed +not requested: no --stiffness given and no catalogue K", out)
+
+
+def test_cli_stiffness_json_without_stiffness_says_not_requested(capsys):
+    # red-team finding: without --stiffness the JSON said "status": "ok" for an assessment nobody asked for
+    argv = ["stiffness", "--mass", "0.05", "--damping", "0.5", "--coulomb", "0.05", "--resolution", "1e-5"]
+    code, out, err = run(capsys, *argv, "--period", "1e-3", "--velocity", "0.1", "--json")
+    assert code == 0, err
+    d = json.loads(out)
+    assert d["status"] == "not requested" and d["max_passive_velocity_status"] == "not requested"
+    assert d["status_message"] == dfa.status.StiffnessStatus.NOT_REQUESTED.message and d["stiffness"] is None
+    code, out, _ = run(capsys, *argv, "--period", "1e-3", "--velocity", "0.1", "--stiffness", "20", "--json")
+    assert json.loads(out)["status"] in ("ok", "too stiff")
+    lim = dfa.stiffness_limits(dfa.get_device("impulse").device, 0.1)
+    assert lim.status == "not requested" and lim.verdict_text() == "–"
+    with pytest.raises(dfa.DFAValueError, match="must agree"):
+        dataclasses.replace(lim, status="ok")
 
 
 def test_cli_stiffness_catalogue_k_is_assessed_and_said(capsys):
@@ -242,21 +266,101 @@ def test_eq11_kmax_ordering_property(mass, damping, coulomb, ticks_per_mm, rate_
     _check_theory(design_answer(dev, velocity, delay, grid=6, speeds=2))
 
 
-@pytest.mark.parametrize("name, v, d", [("re35", 2.0, 0), ("impulse", 0.2, 1)])
-def test_eq11_k_sim_dense_check_reports_failures_below_the_limit(name, v, d):
+def _dense_runs(dev, k, v, d, n=24):
+    """Outcomes at stiffness k of impacts at v/n ... v from ξ0 = 0 and from the preload (the design runs' lengths)."""
+    p = dev.params(k)
+    out = []
+    for i in range(1, n + 1):
+        xd = dev.xi_dot(v * i / n)
+        for x0, v0, start in ((0.0, xd, "impact"), (dfa.preload_position(p.mu, xd), 0.0, "preload")):
+            samples = min(dfa.simulation.default_samples(p.mu, p.beta, p.sigma, v0, x0, d), 10**6)
+            bound = dfa.simulation.divergence_bound(x0, v0, p.mu, 1e6)
+            o = dfa.simulate(p.mu, p.beta, p.sigma, v0, samples, xi0=x0, delay=d, record=False, bound=bound).outcome
+            out.append((v * i / n, start, str(o)))
+    return out
+
+
+def _band(k):
+    """The 7 stiffnesses in [0.97K, K] the confirmation claims, written here: K, K(1 - 0.001), K(1 - 0.003) and
+    the rungs K 0.97^(i/4), i = 1..4."""
+    return [k, k * 0.999, k * 0.997] + [k * 0.97 ** (i / 4) for i in range(1, 5)]
+
+
+@pytest.mark.parametrize("entry", _catalogue_devices(), ids=lambda e: e.name)
+def test_eq11_k_sim_confirmed_on_catalogue_band_rechecked_here(entry):
+    # issue 14: the dense check used to flag "NOT confirmed" on every catalogue device; the reported limits are now
+    # the largest confirmed ones, and the claim (24 speeds, both starts, 7 stiffnesses in [0.97K, K]) is re-run here
+    dev = entry.device
+    v = SPEED["rotary" if dev.rotary else "linear"]
+    r = design_answer(dev, v)
+    _check_theory(r)
+    for name, ok in (("k_sim", {"rest", "oscillating", "chatter"}), ("k_sim_rest", {"rest"})):
+        s = r.searches[name]
+        assert s.value is not None and "NOT confirmed" not in (s.reason or "")
+        assert s.confirmed and "24 speeds" in s.confirmed and "7 stiffnesses in [0.97K, K]" in s.confirmed
+        for k in _band(s.value):
+            bad = [o for o in _dense_runs(dev, k, v, 0) if o[2] not in ok]
+            assert not bad, (name, k, bad[:3])
+        for f in s.dense_failures:  # every failure the walk reports lies above the confirmed limit
+            assert s.value < f["stiffness"] <= s.searched_value
+    assert (r.status == "caveats") == any(
+        s.dense_failures or s.non_monotone or s.undecided for s in r.searches.values()
+    )
+
+
+def test_eq11_k_sim_re35_counterexample_lies_above_the_confirmed_limit():
     # red-team finding: the search simulated 6 speeds and bisected as if safety were monotone in K, and called
     # K = 33.686 N·m/rad (RE35, 2 rad/s) safe while preload impacts at 1.8-1.97 rad/s diverge at K = 33.35.
-    # The denser check must find such failures, report them, and each must be a real divergence of dfa.simulate.
-    dev = dfa.get_device(name).device
-    r = design_answer(dev, v, d)
+    dev = dfa.get_device("re35").device
+    r = design_answer(dev, 2.0)
     s = r.k_sim
-    assert s.dense_failures and r.status == "caveats" and "NOT confirmed" in s.reason
-    for f in s.dense_failures:
-        assert f["stiffness"] <= s.value and f["outcome"] == "unstable"
+    assert s.value < 33.35 < s.searched_value and r.status == "caveats" and "lowered from the searched" in s.reason
+    p = dev.params(33.35)  # the counterexample itself diverges (so the old limit was wrong)
+    assert any(o == ("unstable") for _, _, o in _dense_runs(dev, 33.35, 2.0, 0))
+    assert s.dense_failures
+    for f in s.dense_failures:  # each reported failure is a real divergence of dfa.simulate
         p = dev.params(f["stiffness"])
         xd = dev.xi_dot(f["velocity"])
         x0, v0 = (dfa.preload_position(p.mu, xd), 0.0) if f["start"] == "preload" else (0.0, xd)
         bound = dfa.simulation.divergence_bound(x0, v0, p.mu, 1e6)
-        sim = dfa.simulate(p.mu, p.beta, p.sigma, v0, None, xi0=x0, delay=d, record=False, bound=bound)
-        assert sim.outcome == "unstable"
-    assert json.loads(json.dumps(r.as_dict()))["k_sim_reason"].startswith(s.reason[:20])
+        sim = dfa.simulate(p.mu, p.beta, p.sigma, v0, None, xi0=x0, record=False, bound=bound)
+        assert sim.outcome == f["outcome"] == "unstable"
+    d = json.loads(json.dumps(r.as_dict()))
+    assert d["k_sim"] == s.value and d["searches"]["k_sim"]["searched_value"] == s.searched_value
+    assert d["k_sim_reason"] == s.reason and d["searches"]["k_sim"]["confirmed"] == s.confirmed
+
+
+def test_eq11_k_sim_confirmation_walk_matches_a_scan_written_here():
+    # an independent scan down the stiffnesses from the searched limit: the first K whose whole band of 7 has no
+    # divergence at the 24 dense speeds (and none undecided) is the reported limit
+    dev = dfa.get_device("re35").device
+    r = design_answer(dev, 2.0)
+    k0, j = r.k_sim.searched_value, 0
+    while True:
+        k = k0 * 0.97 ** (j / 4)
+        if all(o not in ("unstable", "undecided") for kk in _band(k) for _, _, o in _dense_runs(dev, kk, 2.0, 0)):
+            break
+        j += 1
+    assert r.k_sim.value == pytest.approx(k, rel=1e-12) and j > 0
+
+
+def test_eq11_kmax_shared_run_cache_gives_identical_results_and_simulates_once():
+    # issue 14 leftover: the design analysis shares one RunCache between design_answer and the chart
+    from dfa.kmax import RunCache
+    from dfa.speed_chart import stiffness_speed_chart
+
+    dev = dfa.get_device("impulse").device
+    fresh_a = design_answer(dev, 0.2, grid=8, speeds=3, stiffness=80.0)
+    fresh_c = stiffness_speed_chart(dev, stiffness=80.0, velocity=0.2, grid=6, speeds=4)
+    cache = RunCache()
+    a = design_answer(dev, 0.2, grid=8, speeds=3, stiffness=80.0, cache=cache)
+    n = cache.simulated
+    assert 0 < n <= a.simulations  # runs the search and its confirmation share are simulated once
+    c = stiffness_speed_chart(dev, stiffness=80.0, velocity=0.2, grid=6, speeds=4, cache=cache)
+    assert a.as_dict() == fresh_a.as_dict()
+    assert json.dumps(c.as_dict()) == json.dumps(fresh_c.as_dict())
+    before = cache.simulated
+    again = design_answer(dev, 0.2, grid=8, speeds=3, stiffness=80.0, cache=cache)
+    assert cache.simulated == before and again.as_dict() == a.as_dict()  # nothing simulated twice
+    with pytest.raises(dfa.DFATypeError, match="cache"):
+        design_answer(dev, 0.2, cache={})

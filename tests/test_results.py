@@ -134,7 +134,11 @@ def test_eq6_criterion_as_dict_is_strict_json(beta, sigma, xi_dot, delay):
 def test_eq11_stiffness_as_dict_is_strict_json(velocity, stiffness, delay):
     lim = stiffness_limits(DEV, velocity, stiffness, delay)
     d = strict_roundtrip(lim.as_dict())
-    assert d["status"] in ("ok", "too stiff") and d["max_passive_velocity_status"] == lim.velocity_status.value
+    assert (
+        d["status"] in ("ok", "too stiff", "not requested")
+        and d["max_passive_velocity_status"] == lim.velocity_status.value
+    )
+    assert (d["status"] == "not requested") == (stiffness is None)  # no "ok" for a verdict nobody asked for
     curve = stiffness_response(DEV, [velocity + 1e-3, velocity + 1.0], stiffness, delay)
     c = strict_roundtrip(curve.as_dict())
     assert c["k_max"] == pytest.approx(list(curve.k_max), rel=0, abs=0)
@@ -154,8 +158,10 @@ def test_eq4_simulation_as_dict_is_strict_json(mu, beta, sigma, xi_dot0, quantiz
     r = simulate(mu, beta, sigma, xi_dot0, samples=400, quantize=quantize, energy=True, bound=50.0)
     d = strict_roundtrip(r.as_dict())
     assert d["outcome"] == r.outcome.value and d["status_message"] == r.status.message
-    for key, reason in d.get(NULL_REASONS_KEY, {}).items():  # every null says why
-        assert _resolve(d, key) is None and reason in ("NaN", "+inf", "-inf")
+    reasons = d.get(NULL_REASONS_KEY, {})
+    for key, reason in reasons.items():  # every reason names a null ...
+        assert _resolve(d, key) is None and reason
+    assert all(f"/{k}" in reasons for k, v in d.items() if v is None)  # ... and every null has one
     strict_roundtrip(r.energy.as_dict())
 
 

@@ -6,6 +6,7 @@ import math
 from typing import Any
 
 from ..formatting import number, text_table
+from ..jsonable import explain_nulls
 
 __all__ = ["OUTCOME_TEXT", "check_rows", "limit_cycle_lines", "limit_cycles_dict", "simulation_rows"]
 
@@ -189,13 +190,26 @@ def limit_cycles_dict(g: Any, phys: dict | None = None) -> dict[str, object]:
     s, N (N·m), and the record gains the device, K and force step.
     """
     d = g.result.as_dict()
-    d["growth_threshold"] = g.as_dict()
+    d["growth_threshold"] = _growth_dict(g)
     if phys is not None:
         phys = dict(phys)
         for cyc, extra in zip(d["cycles"], phys.pop("cycles"), strict=True):
             cyc.update(extra)
         d.update(phys)
+        explain_nulls(d, {"velocity": "no impact speed given: the cycles do not depend on it"})
     return d
+
+
+def _growth_dict(g: Any) -> dict[str, Any]:
+    """The growth threshold's JSON, every null with its reason (no band predicted, or no device for units)."""
+    out = g.as_dict()
+    none = f"no growth band: {g.status.message}"
+    nodev = none if g.amplitude is None else "no device given: physical values need one"
+    why = dict.fromkeys(("amplitude", "frequency", "xi_dot", "grows_above"), none)
+    why.update(dict.fromkeys(("position", "velocity"), nodev))
+    for part in (out, out["band"]["low"], out["band"]["high"]):
+        explain_nulls(part, why)
+    return out
 
 
 def limit_text(s: Any, ku: str) -> str:
@@ -207,4 +221,6 @@ def limit_text(s: Any, ku: str) -> str:
         txt += f" ({s.reason})"
     if s.non_monotone:
         txt += f"; NOT monotone: safe again at {', '.join(f'{k:.4g}' for k in s.safe_above)} {ku}"
+    if getattr(s, "confirmed", None):
+        txt += f"; confirmed: {s.confirmed}"
     return txt
