@@ -1,6 +1,6 @@
 """Soundness of the controller's passivity criterion by exact simulation (issue 15 item 2).
 
-:func:`dfa.controller_criterion.controller_criterion` claims that, when it calls a
+:func:`dfa.controller_passivity.controller_criterion` claims that, when it calls a
 point passive, the storage S = ½μξ'² + ½ξ² never exceeds its initial value. This
 module samples random points that a criterion calls passive, simulates each
 exactly with the controller (virtual damper on the backward-difference velocity
@@ -45,7 +45,7 @@ from numba import njit
 from . import _kernel
 from .checks import check_choice, check_int
 from .controller import ControllerParams
-from .controller_criterion import controller_anchor, controller_criterion
+from .controller_passivity import controller_anchor, controller_criterion
 from .criterion import passivity_criterion
 from .errors import DFAValueError
 from .formatting import markdown_table
@@ -352,7 +352,7 @@ def controller_soundness_markdown(results: list[ControllerSoundness]) -> str:
     lines.append(markdown_table(head, rows))
     lines += [
         "",
-        "*controller-aware*: `dfa.controller_criterion` ((β − β₀)V + (σ − σ₀) ≥ 0 and σ ≥ σ₀, β₀ = ½ + d + β_B,",
+        "*controller-aware*: `dfa.controller_passivity` ((β − β₀)V + (σ − σ₀) ≥ 0 and σ ≥ σ₀, β₀ = ½ + d + β_B,",
         "σ₀ = ½ + (1 − a)β_B with the encoder, 0 without; V² = ξ'0² + 2H_c(ξ0)/μ).",
         "*damper-ignoring*: the spring's criterion with the delay (β₀ = ½ + d, σ₀ = ½): its violations show that the",
         "check can fail and that the damper must be paid for. A negative worst growth means the energy fell everywhere.",

@@ -514,7 +514,7 @@ def region_of(b, s, v, s0, b0) -> np.ndarray:
     """Region letters a-e of (β, σ) at speed V for the critical line through (β₀, σ₀) (no validation, broadcast).
 
     The one rule behind :func:`classify_region` and the controller's criterion
-    (:mod:`dfa.controller_criterion`): a (β >= β₀, σ >= σ₀), b (β >= β₀, σ < σ₀),
+    (:mod:`dfa.controller_passivity`): a (β >= β₀, σ >= σ₀), b (β >= β₀, σ < σ₀),
     c (β < β₀, σ < σ₀), d/e (β < β₀, σ >= σ₀, margin < 0 / >= 0).
     """
     with np.errstate(over="ignore"):  # an overflowing margin keeps its sign, which is all that is used

@@ -1,6 +1,6 @@
-"""Eq. 6 extended to a virtual damper, velocity filter and delay (dfa.controller_criterion; issue 15 item 2).
+"""Eq. 6 extended to a virtual damper, velocity filter and delay (dfa.controller_passivity; issue 15 item 2).
 
-Theorem (module docstring of dfa.controller_criterion): with β₀ = ½ + d + β_B and
+Theorem (module docstring of dfa.controller_passivity): with β₀ = ½ + d + β_B and
 σ₀ = ½ + (1 − a)β_B (0 without the encoder), (β − β₀)V + (σ − σ₀) >= 0 and σ >= σ₀
 imply S = ½μξ'² + ½ξ² never exceeds S(0). Tested here: each step of the derivation
 (sympy identities, the exact decomposition and the summed inequality on simulated
@@ -21,7 +21,7 @@ import dfa
 from dfa import _kernel
 from dfa.catalogue import get_device
 from dfa.controller import Controller, ControllerParams
-from dfa.controller_criterion import (
+from dfa.controller_passivity import (
     ControllerCriterionResult,
     controller_anchor,
     controller_criterion,
@@ -311,3 +311,24 @@ def test_eq6_controller_sampler_points_are_passive_and_on_the_boundaries():
             assert pts["sigma"][i] == r.sigma0
         elif pts["kind"][i] == 3:
             assert pts["beta"][i] == r.beta0
+
+
+def test_eq6_controller_sigma0_needs_the_damper_term():
+    """σ >= ½ is not enough with a quantized damper: found by probing below σ₀ = ½ + β_B (d = 0, no filter).
+
+    Starting at the tick boundary ξ0 = 0 moving down, the first reading change gives v = −1 and the
+    damper's kick β_B pushes the device on; the storage grows although β is far above β₀.
+    """
+    mu, beta, sigma, damping, v0 = (
+        0.12826279395871265,
+        5.365932651609205,
+        1.818211901320726,
+        2.2556065841556014,
+        -0.4135842201830031,
+    )
+    ctl = ControllerParams(damping=damping)
+    assert dfa.passivity_criterion(beta, sigma, v0).passive  # the spring's criterion, damper ignored
+    r = controller_criterion(beta, sigma, v0, ctl)
+    assert not r.passive and r.region == "b" and sigma < r.sigma0
+    worst, _at, div = controller_run(mu, beta, sigma, 0.0, v0, 200, damping, 0, 0.0, False, True, 1e6, np.empty(1))
+    assert worst > 0.4 and not div  # S grew by more than 40 %

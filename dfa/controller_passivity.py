@@ -302,7 +302,7 @@ def controller_criterion(
     --------
     >>> r = controller_criterion(0.4, 1.0, 1.0, ControllerParams(damping=0.2, cutoff=0.1))
     >>> round(r.sigma0, 4), round(r.critical_xi_dot, 4)   # σ₀ = ½ + (1 − e^{−0.2π})·0.2
-    (0.5934, 1.3557)
+    (0.5933, 1.3557)
     """
     c = ControllerParams() if controller is None else _check_controller(controller)
     b, s = check_beta(beta), check_sigma(sigma)
