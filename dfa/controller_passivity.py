@@ -98,7 +98,6 @@ Examples
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -229,12 +228,20 @@ class ControllerCriterionResult:
     position: float | None = None
 
     def __post_init__(self) -> None:
-        for name in ("beta", "sigma", "xi_dot", "margin", "equivalent_speed", "beta0", "sigma0"):
-            if math.isnan(getattr(self, name)):
-                raise DFAValueError(f"{name} = nan is invalid: results hold numbers; use controller_criterion")
+        fix = "results hold the numbers controller_criterion computed; use controller_criterion"
+        for name in ("beta", "sigma", "xi_dot", "margin", "equivalent_speed", "beta0", "sigma0", "xi0"):
+            object.__setattr__(self, name, check_real(name, getattr(self, name), fix))
+        check_type("controller", self.controller, ControllerParams, fix)
+        for name in ("quantized", "passive"):
+            if not isinstance(getattr(self, name), (bool, np.bool_)):
+                raise DFATypeError(f"{name} = {_fmt(getattr(self, name))} is invalid: it must be True or False; {fix}")
         status = CriterionStatus.coerce(self.status)
         object.__setattr__(self, "status", status)
-        if status.region != self.region or self.passive != (self.region in ("a", "e")):
+        if (
+            not isinstance(self.region, str)
+            or status.region != self.region
+            or self.passive != (self.region in ("a", "e"))
+        ):
             raise DFAValueError(
                 f"region = {self.region!r}, passive = {self.passive!r}, status = {status.value!r} are invalid: "
                 "they must agree (only a and e are passive); use controller_criterion"
