@@ -286,8 +286,8 @@ def controller_criterion(
     xi_dot : float
         Largest speed of interest ξ'0 in ticks per sample (sign ignored).
     controller : ControllerParams, optional
-        β_B = B/(KT), delay d, cutoff ν_c; the amplifier lag must be 0.
-        Default: the paper's spring.
+        The dimensionless controller: damping β_B = B/(KT), delay d (samples),
+        cutoff ν_c (cycles per sample); the amplifier lag must be 0. Default: the paper's spring.
     quantized : bool, optional
         With the encoder (default) or without (the linear loop).
     xi0 : float, optional
@@ -298,12 +298,18 @@ def controller_criterion(
     Returns
     -------
     ControllerCriterionResult
+        Region, verdict, margin, thresholds (β₀, σ₀), critical speed, with the inputs and a ``status``.
 
     Raises
     ------
     DFAValueError, DFATypeError
         Bad β, σ, μ, speed or position; a controller with amplifier lag (no sound
         closed form: use :func:`dfa.stability_map`); ``xi0`` without ``mu``.
+
+    See Also
+    --------
+    passivity_criterion : The spring's criterion (β_B = 0), which this reduces to.
+    device_controller_criterion : The same criterion from physical values.
 
     Examples
     --------
@@ -367,6 +373,11 @@ def device_controller_criterion(
     ------
     DFAValueError, DFATypeError
         Bad inputs, a cutoff above Nyquist, or an amplifier bandwidth (refused: use dfa.stability_map).
+
+    See Also
+    --------
+    controller_criterion : The criterion in dimensionless parameters.
+    device_criterion : The spring's criterion from physical values.
 
     Examples
     --------
