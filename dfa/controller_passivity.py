@@ -80,11 +80,20 @@ What is not proven (and refused)
       work φΔ no longer holds, and no sound closed form is derived here;
       :func:`controller_criterion` refuses α > 0 and points to the simulated
       map (:func:`dfa.stability_map`).
+      A possible route, not carried out: write the lagged force as the
+      exponentially weighted average Σ_j ω_j(τ)·φ_{h−j} of the held commands
+      (Σω_j = 1), keep the exact ½Δ² of the current sample, bound the cross
+      terms ∫ω_jξ'·Δ_{h−i} by Cauchy-Schwarz with ∫ξ'² (dissipated as β∫ξ'²)
+      and the quantization terms by ½∫|ξ'| (dissipated as σ∫|ξ'|): this gives
+      a β₀(α) > ½ + d + β_B that would need its own proof and simulator check.
     * Tightness: the criterion is sufficient only. β >= ½ + β_B is necessary
       for passivity of the linear loop at d = 0 (Colgate-Schenkel), but the
       σ-threshold ½ + (1 − a)β_B and the weights d, β_B with a delay or a
       filter are bounds, not known to be sharp. Failing the criterion is no
-      proof of instability.
+      proof of instability. Probing below the thresholds by simulation finds
+      storage growth for σ between ½ and σ₀ (about 1 point in 10³, e.g. the test
+      ``test_eq6_controller_sigma0_needs_the_damper_term``): σ >= ½ alone is not
+      enough with a quantized damper.
 
 Examples
 --------

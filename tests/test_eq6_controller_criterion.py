@@ -332,3 +332,14 @@ def test_eq6_controller_sigma0_needs_the_damper_term():
     assert not r.passive and r.region == "b" and sigma < r.sigma0
     worst, _at, div = controller_run(mu, beta, sigma, 0.0, v0, 200, damping, 0, 0.0, False, True, 1e6, np.empty(1))
     assert worst > 0.4 and not div  # S grew by more than 40 %
+
+
+def test_eq6_controller_soundness_command_writes_markdown_and_json(tmp_path, capsys):
+    from dfa.soundness import main
+
+    assert main(["--controller", "--points", "40", "--out", str(tmp_path)]) == 0
+    md = (tmp_path / "controller_soundness.md").read_text()
+    data = json.loads((tmp_path / "controller_soundness.json").read_text())
+    assert "| controller-aware | 40 |" in md and "| damper-ignoring | 40 |" in md
+    assert data[0]["criterion"] == "controller-aware" and data[0]["violations"] == 0 and data[0]["status"] == "sound"
+    assert "controller-aware: 0 violations of 40" in capsys.readouterr().err
