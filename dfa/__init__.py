@@ -58,6 +58,7 @@ from .catalogue import (
     resolve_device,
 )
 from .controller import Controller, ControllerParams
+from .controller_passivity import ControllerCriterionResult, controller_criterion, device_controller_criterion
 from .criterion import (
     REGION_DESCRIPTIONS,
     CriterionResult,
@@ -145,6 +146,7 @@ _SUBMODULES = {
     "catalogue",
     "device",
     "controller",
+    "controller_passivity",
     "errors",
     "cli",
     "cycles",
@@ -198,6 +200,9 @@ __all__ = [
     "device_criterion",
     "classify_region",
     "REGION_DESCRIPTIONS",
+    "ControllerCriterionResult",
+    "controller_criterion",
+    "device_controller_criterion",
     "StiffnessLimits",
     "stiffness_limits",
     "StiffnessResponse",

@@ -510,6 +510,16 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
     if q.dtype != bool:
         raise DFATypeError(f"quantized = {_fmt(quantized)} is invalid: it must be True or False (or an array of them)")
     s0, b0 = _anchor(q, d)
+    return region_of(b, s, v, s0, b0)
+
+
+def region_of(b, s, v, s0, b0) -> np.ndarray:
+    """Region letters a-e of (β, σ) at speed V for the critical line through (β₀, σ₀) (no validation, broadcast).
+
+    The one rule behind :func:`classify_region` and the controller's criterion
+    (:mod:`dfa.controller_passivity`): a (β >= β₀, σ >= σ₀), b (β >= β₀, σ < σ₀),
+    c (β < β₀, σ < σ₀), d/e (β < β₀, σ >= σ₀, margin < 0 / >= 0).
+    """
     with np.errstate(over="ignore"):  # an overflowing margin keeps its sign, which is all that is used
         margin = _margin(b, s, v, s0, b0)
     high_beta = b >= b0

@@ -32,7 +32,9 @@ V = |ξ'0|) finds the bug this module documents: many of its "passive" points
 gain energy or diverge once d >= 1 (or ξ0 ≠ 0).
 
 Run ``python -m dfa.soundness --points 100000 --out reports/validation`` to
-write ``delay_soundness.md`` and ``delay_soundness.json``.
+write ``delay_soundness.md`` and ``delay_soundness.json``; with ``--controller``,
+the controller's criterion (:mod:`dfa.controller_soundness`) is checked instead
+and ``controller_soundness.md``/``.json`` are written.
 """
 
 from __future__ import annotations
@@ -342,7 +344,15 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--delays", type=int, nargs="+", default=[0, 1, 2, 3])
     ap.add_argument("--seed", type=int, default=12)
     ap.add_argument("--out", default="reports/validation", help="folder for delay_soundness.md/.json")
+    ap.add_argument(
+        "--controller",
+        action="store_true",
+        help="check the controller's criterion (damper, filter, delay; dfa.controller_soundness) instead and write "
+        "controller_soundness.md/.json",
+    )
     args = ap.parse_args(argv)
+    if args.controller:
+        return _controller_main(args)
     results = []
     for crit, n in (("delay-aware", args.points), ("d-ignoring", args.old_points or args.points)):
         for d in args.delays:
@@ -352,6 +362,21 @@ def main(argv: list[str] | None = None) -> int:
     os.makedirs(args.out, exist_ok=True)
     atomic_write_text(os.path.join(args.out, "delay_soundness.md"), soundness_markdown(results))
     atomic_write_text(os.path.join(args.out, "delay_soundness.json"), dumps(results, indent=1))
+    return 0
+
+
+def _controller_main(args: argparse.Namespace) -> int:
+    """``--controller``: both criteria of :mod:`dfa.controller_soundness`, written beside the delay check."""
+    from .controller_soundness import controller_soundness, controller_soundness_markdown
+
+    results = []
+    for crit, n in (("controller-aware", args.points), ("damper-ignoring", args.old_points or args.points)):
+        r = controller_soundness(n, criterion=crit, seed=args.seed)
+        print(f"{crit}: {r.violations} violations of {r.points}", file=sys.stderr)
+        results.append(r)
+    os.makedirs(args.out, exist_ok=True)
+    atomic_write_text(os.path.join(args.out, "controller_soundness.md"), controller_soundness_markdown(results))
+    atomic_write_text(os.path.join(args.out, "controller_soundness.json"), dumps(results, indent=1))
     return 0
 
 
