@@ -160,7 +160,9 @@ def controlled_characteristic_polynomial(mu: float, beta: float, params: Control
     Examples
     --------
     >>> controlled_characteristic_polynomial(1.0, 0.0, ControllerParams(damping=0.5)).tolist()
-    [1.0, -2.0, 1.75, 0.0, -0.25]
+    [1.0, -1.25, 1.5, -0.25]
+
+    (z(z − 1)² + (½z + ½)(1.5z − 0.5) at μ = 1, β = 0, β_B = ½.)
     """
     m, b = check_mu(mu), check_beta(beta)
     params = check_type("params", params, ControllerParams, "give a dfa.ControllerParams")
