@@ -201,11 +201,13 @@ def _im_part(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
 
 
 def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
-    """Angles θ in (0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle, grid sign changes, and π."""
+    """Angles θ in [0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle, grid sign changes, 0 and π."""
     n = len(p0) - 1
     qp = np.concatenate([np.zeros(n + 1 - len(q)), q])
     r: np.ndarray = np.polysub(np.polymul(p0, qp[::-1]), np.polymul(qp, p0[::-1]))
     out = [math.pi]
+    if abs(np.polyval(p0, 1.0)) > 1e-9 * np.abs(p0).sum():
+        out.append(0.0)  # z = 1 is a root of P₀ for the device (κ = 0); a crossing only for other pairs
     nz = np.nonzero(np.abs(r) > 0.0)[0]
     if nz.size:
         for z in np.roots(r[nz[0] :]):
@@ -220,8 +222,8 @@ def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
 
 def _polish(p0: np.ndarray, q: np.ndarray, t: float) -> float:
     """Refine a root θ of Im(P₀ Q̄) by bracketing nearby (kept as is at a tangency or at π)."""
-    if t >= math.pi:
-        return math.pi
+    if t >= math.pi or t <= 0.0:
+        return min(max(t, 0.0), math.pi)
     f0 = float(_im_part(p0, q, t))
     for rel in (1e-12, 1e-9, 1e-6, 1e-4):
         lo, hi = t * (1.0 - rel), min(t * (1.0 + rel), math.pi)
@@ -235,7 +237,7 @@ def _crossings(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Every κ > 0 at which a root of P₀ + κQ lies on the unit circle, ascending, without repeats."""
     ks = []
     for t in _candidate_angles(p0, q):
-        z = complex(math.cos(t), math.sin(t)) if t < math.pi else -1.0 + 0.0j
+        z = complex(math.cos(t), math.sin(t)) if 0.0 < t < math.pi else complex(math.cos(t), 0.0)
         pq = np.polyval(p0, z) * np.conj(np.polyval(q, z))
         qq = abs(np.polyval(q, z)) ** 2
         if qq > 0.0:
@@ -253,6 +255,11 @@ def _crossings(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
 def _stable_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> list[tuple[float, float]]:
     """The stable set in κ = KT²/m as a list of open intervals (lo, hi), lo = 0 for the one from κ = 0+."""
     p0, q = _ray(a, a_b, cutoff, lag, delay)
+    return _ray_intervals(p0, q, (a, a_b, cutoff, lag, delay))
+
+
+def _ray_intervals(p0: np.ndarray, q: np.ndarray, args: tuple) -> list[tuple[float, float]]:
+    """Stable set in κ of P₀ + κQ (deg Q < deg P₀) as open intervals; ``args`` names the case in errors."""
     ks = _crossings(p0, q)
     if ks.size == 0:
         ks = np.array([1.0])  # no crossing: stability is the same for every κ (then unstable, deg Q < deg P₀)
@@ -267,7 +274,7 @@ def _stable_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay:
             out[-1] = (out[-1][0], float(edges[i + 1]))  # a candidate that is not a boundary
         else:
             out.append((float(edges[i]), float(edges[i + 1])))
-    _check_against_grid(p0, q, ks, out, (a, a_b, cutoff, lag, delay))
+    _check_against_grid(p0, q, ks, out, args)
     return out
 
 
