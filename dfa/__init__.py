@@ -57,6 +57,7 @@ from .catalogue import (
     get_device,
     resolve_device,
 )
+from .controlled_linear import StableRegion, StiffnessIntervals, stable_region, stable_stiffness
 from .controller import Controller, ControllerParams
 from .criterion import (
     REGION_DESCRIPTIONS,
@@ -68,6 +69,7 @@ from .criterion import (
 )
 from .device import Device, Params
 from .errors import DFAError, DFATypeError, DFAValueError
+from .passivity import ColgateSchenkel, ColgateSchenkelDamping, colgate_schenkel_beta, colgate_schenkel_damping
 from .stiffness import (
     StiffnessLimits,
     StiffnessResponse,
@@ -145,6 +147,8 @@ _SUBMODULES = {
     "catalogue",
     "device",
     "controller",
+    "controlled_linear",
+    "passivity",
     "errors",
     "cli",
     "cycles",
@@ -185,6 +189,14 @@ __all__ = [
     "Params",
     "Controller",
     "ControllerParams",
+    "stable_stiffness",
+    "stable_region",
+    "StiffnessIntervals",
+    "StableRegion",
+    "colgate_schenkel_beta",
+    "colgate_schenkel_damping",
+    "ColgateSchenkel",
+    "ColgateSchenkelDamping",
     "CatalogueEntry",
     "Discrepancy",
     "catalogue",

@@ -28,6 +28,8 @@ small that 1/α overflows (α < 1e-308) the lag is dropped: its effect is below 
 Loop. With N_H = N₁ + β_B N₂ over D_H (no filter: N₁ = z, N₂ = z − 1,
 D_H = z^{d+1}; filter: N₁ = z(z − a_f), N₂ = (1 − a_f)(z − 1), D_H = z^{d+1}(z − a_f))
 the closed-loop characteristic polynomial is χ(z) = μ D_G D_H + N_G (N₁ + β_B N₂).
+A filter without a damper (β_B = 0) filters nothing and is left out: its own decaying
+mode a_f is not a pole of the loop, and the spring's polynomial is unchanged.
 
 The stiffness ray at fixed physical damper. With the device, period, B, f_c and
 τ_a fixed, K enters only through κ = KT²/m = 1/μ, because β_B κ = BT/m =: a_B
@@ -167,7 +169,7 @@ def controlled_characteristic_polynomial(mu: float, beta: float, params: Control
     m, b = check_mu(mu), check_beta(beta)
     params = check_type("params", params, ControllerParams, "give a dfa.ControllerParams")
     ng, dg = _plant(b / m, params.lag)
-    n1, n2, dh = _controller(params.cutoff, params.delay)
+    n1, n2, dh = _controller(params.cutoff if params.damping > 0.0 else None, params.delay)
     return np.polyadd(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2)))
 
 
@@ -191,7 +193,7 @@ def controlled_spectral_radius(mu: float, beta: float, params: ControllerParams)
 def _ray(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[np.ndarray, np.ndarray]:
     """(P₀, Q) of κχ = P₀ + κQ at fixed a = bT/m and a_B = BT/m (module docstring)."""
     ng, dg = _plant(a, lag)
-    n1, n2, dh = _controller(cutoff, delay)
+    n1, n2, dh = _controller(cutoff if a_b > 0.0 else None, delay)
     return np.polyadd(np.polymul(dg, dh), a_b * np.polymul(ng, n2)), np.polymul(ng, n1)
 
 

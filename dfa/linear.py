@@ -150,7 +150,7 @@ def characteristic_polynomial(
     controller : ControllerParams, optional
         With a damper, filter or amplifier lag: the polynomial of
         :func:`dfa.controlled_linear.controlled_characteristic_polynomial`; None or a
-        spring (any delay): the spring's polynomial unchanged.
+        spring (any delay; a velocity filter without a damper filters nothing): the spring's polynomial unchanged.
 
     Returns
     -------
@@ -164,7 +164,7 @@ def characteristic_polynomial(
     """
     m, b = check_mu(mu), check_beta(beta)
     d, c = _controller_delay(delay, controller, ControllerParams)
-    if c is not None and not c.is_spring:
+    if c is not None and (c.damping > 0.0 or c.lag > 0.0):
         from .controlled_linear import controlled_characteristic_polynomial
 
         return controlled_characteristic_polynomial(m, b, c)
@@ -229,7 +229,7 @@ def spectral_radius(mu, beta, delay: int = 0, *, controller: ControllerParams | 
         Computational delay d in samples.
     controller : ControllerParams, optional
         Virtual damper β_B, filter ν_c, delay d and amplifier lag α (:mod:`dfa.controlled_linear`);
-        None or a spring (any delay) gives the spring's result unchanged.
+        None or a spring (any delay; a filter without a damper filters nothing) gives the spring's result unchanged.
 
     Returns
     -------
@@ -244,7 +244,7 @@ def spectral_radius(mu, beta, delay: int = 0, *, controller: ControllerParams | 
     m = _as_array("mu", mu, lambda n, v: check_mu(v, n))
     b = _as_array("beta", beta, lambda n, v: check_beta(v, n))
     d, c = _controller_delay(delay, controller, ControllerParams)
-    if c is not None and not c.is_spring:
+    if c is not None and (c.damping > 0.0 or c.lag > 0.0):
         from .controlled_linear import controlled_spectral_radius
 
         m, b = np.broadcast_arrays(m, b)
@@ -373,7 +373,8 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Con
         :attr:`dfa.controlled_linear.StiffnessIntervals.k_crit` of
         :func:`dfa.controlled_linear.stable_stiffness` (B, f_c, τ_a, d held fixed while K varies;
         the controller's own stiffness is not used; the stable set may have further intervals
-        above K_crit, which that function lists). None or a spring: the spring's result unchanged.
+        above K_crit, which that function lists). None or a spring (a filter without a damper filters
+        nothing): the spring's result unchanged.
 
     Returns
     -------
@@ -392,7 +393,7 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Con
     t = _as_array("period", period, lambda n, v: check_positive(n, v, "give the sampling period in s"))
     d, c = _controller_delay(delay, controller, Controller)
     m, b, t = np.broadcast_arrays(m, b, t)
-    if c is not None and (c.damping > 0.0 or c.filter_cutoff is not None or c.amplifier_bandwidth is not None):
+    if c is not None and (c.damping > 0.0 or c.amplifier_bandwidth is not None):
         from .controlled_linear import stable_stiffness
 
         rows = zip(m.ravel(), b.ravel(), t.ravel(), strict=True)

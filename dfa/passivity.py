@@ -84,8 +84,9 @@ class PassivityStatus(StatusEnum):
 
 def _f(theta: np.ndarray, damping: float, delay: int, pole: float | None) -> np.ndarray:
     """f(θ) = D_d(θ) − 2β_B Re{e^{−j(d+1)θ} F(e^{jθ})} (module docstring), vectorised."""
-    k = np.arange(1, delay + 1)
-    dirichlet = 1.0 + 2.0 * np.cos(np.multiply.outer(theta, k)).sum(axis=-1)
+    half = np.sin(0.5 * theta)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        dirichlet = np.where(half == 0.0, 2.0 * delay + 1.0, np.sin((delay + 0.5) * theta) / half)
     z = np.exp(1j * theta)
     filt = 1.0 if pole is None else (1.0 - pole) / (z - pole)
     return dirichlet - 2.0 * damping * np.real(z ** (-(delay + 1)) * filt)
