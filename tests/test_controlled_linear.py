@@ -203,12 +203,14 @@ def test_amplifier_lag_acts_as_extra_delay(b, tau_over_t, d):
     Why 0.5 %: 1/(τ_a s + 1) = e^{−τ_a s}(1 + O((ωτ_a)²)) at the crossing frequency ω ≈ √(K/m)
     (ωτ_a <= 0.03 here, so below 0.1 %), plus the linear rule's own O(bT/m) error (at most
     0.22 % for bT/m <= 0.005, d <= 2, measured in the test above). Measured: at most 0.25 %.
+    The ratio K_crit(τ_a)/K_crit(0) cancels the rule's own error: it equals
+    T(d + ½)/(T(d + ½) + τ_a) to 0.1 % (measured 0.042 %).
     """
     tau = tau_over_t * T
     k = critical_stiffness(M, b, T, controller=Controller(1.0, 0.0, d, amplifier_bandwidth=1.0 / (2 * math.pi * tau)))
     assert k == pytest.approx(b / (T * (d + 0.5) + tau), rel=0.005)
     k0 = critical_stiffness(M, b, T, controller=Controller(1.0, 0.0, d))
-    assert k / k0 == pytest.approx(T * (d + 0.5) / (T * (d + 0.5) + tau), rel=0.005)  # the lag's own effect
+    assert k / k0 == pytest.approx(T * (d + 0.5) / (T * (d + 0.5) + tau), rel=1e-3)  # the lag's own effect
 
 
 @pytest.mark.parametrize("b", [0.5, 2.0, 5.0])
