@@ -64,7 +64,7 @@ from scipy.optimize import brentq
 
 from ._divdiff import exp_divided_difference as _f
 from ._frozen import freeze_fields
-from .checks import check_beta, check_mu, check_nonnegative, check_positive, check_type
+from .checks import check_beta, check_mu, check_nonnegative, check_positive, check_real_array, check_type
 from .controller import Controller, ControllerParams
 from .errors import DFAError, DFAValueError
 from .status import StatusEnum
@@ -78,6 +78,10 @@ __all__ = [
     "stable_stiffness",
     "stable_region",
 ]
+
+
+#: Largest bT/m and BT/m accepted by :func:`stable_stiffness` (the polynomials' coefficients grow with them).
+_MAX_RATE = 1e8
 
 
 class LinearStatus(StatusEnum):
@@ -347,7 +351,13 @@ class StiffnessIntervals:
         object.__setattr__(self, "status", LinearStatus.coerce(self.status))
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record (SI units): intervals, k_crit, status, the device and the controller."""
+        """Return a JSON-ready record (SI units).
+
+        Returns
+        -------
+        dict
+            Intervals, k_crit, status, mass, damping, period and the controller held fixed.
+        """
         return {
             "intervals": self.intervals.tolist(),
             "k_crit": self.k_crit,
@@ -381,6 +391,20 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
     Returns
     -------
     StiffnessIntervals
+        Every stable interval of K (N/m), K_crit (top of the one from K = 0) and the status.
+
+    Raises
+    ------
+    DFAValueError
+        A mass, damping or period out of range, or a filter cutoff above the Nyquist frequency 1/(2T).
+    DFATypeError
+        ``controller`` is not a :class:`dfa.Controller`.
+
+    See Also
+    --------
+    stable_region : The same at each B of a grid (the stable K–B region).
+    dfa.linear.critical_stiffness : K_crit alone, vectorised; the spring's closed-form path.
+    colgate_schenkel_damping : The (stricter) passivity condition.
 
     Examples
     --------
@@ -391,6 +415,12 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
     m, b, t = _device(mass, damping, period)
     c = check_type("controller", controller, Controller, "give a dfa.Controller")
     p = c.params(t)
+    for name, value in (("damping", b), ("controller.damping", c.damping)):
+        if value * t / m > _MAX_RATE:
+            raise DFAValueError(
+                f"{name} = {value:g} is invalid with mass = {m:g} and period = {t:g}: {name}·period/mass must be at "
+                f"most {_MAX_RATE:g} (beyond, the loop's polynomials overflow); check the units"
+            )
     kap = _stable_kappa(b * t / m, c.damping * t / m, p.cutoff, p.lag, p.delay)
     scale = m / (t * t)
     iv = np.array([[lo * scale, hi * scale] for lo, hi in kap]).reshape(-1, 2)
@@ -428,7 +458,13 @@ class StableRegion:
         object.__setattr__(self, "status", LinearStatus.coerce(self.status))
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record (SI units): the B grid, K_max(B), intervals and status per B."""
+        """Return a JSON-ready record (SI units).
+
+        Returns
+        -------
+        dict
+            The B grid, K_max(B), the intervals and status per B, the overall status and the device.
+        """
         return {
             "virtual_damping": self.virtual_damping.tolist(),
             "k_crit": self.k_crit.tolist(),
@@ -467,6 +503,17 @@ def stable_region(
     Returns
     -------
     StableRegion
+        K_max(B) at each B, every stable interval and the status per B.
+
+    Raises
+    ------
+    DFAValueError
+        An empty grid, a negative B, or device or controller values out of range.
+
+    See Also
+    --------
+    stable_stiffness : One B.
+    colgate_schenkel_damping : The passivity condition at a given K and B.
 
     Examples
     --------
@@ -474,7 +521,7 @@ def stable_region(
     >>> [round(k) for k in r.k_crit], r.status.value      # B = 0: the spring's bound
     ([4001, 5996], 'interval')
     """
-    grid = np.atleast_1d(np.asarray(virtual_damping, dtype=float))
+    grid = np.atleast_1d(check_real_array("virtual_damping", virtual_damping, "give the dampings B in N·s/m"))
     if grid.ndim != 1 or grid.size == 0:
         raise DFAValueError(f"virtual_damping = {virtual_damping!r} is invalid: give one or more dampings B in N·s/m")
     rows = tuple(

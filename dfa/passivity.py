@@ -162,7 +162,13 @@ class ColgateSchenkel:
             )
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record: beta_min, beta_bound, theta (rad/sample), status and the controller groups."""
+        """Return a JSON-ready record.
+
+        Returns
+        -------
+        dict
+            The keys beta_min, beta_bound, theta (rad/sample), status and params (the controller groups).
+        """
         return {
             "beta_min": self.beta_min,
             "beta_bound": self.beta_bound,
@@ -181,29 +187,37 @@ def _refuse_lag(lag: float) -> None:
         )
 
 
-def colgate_schenkel_beta(params: ControllerParams) -> ColgateSchenkel:
+def colgate_schenkel_beta(controller: ControllerParams) -> ColgateSchenkel:
     """Minimum dimensionless damping β = b/(KT) for passivity (Colgate & Schenkel 1997) with a controller.
 
     Parameters
     ----------
-    params : ControllerParams
+    controller : ControllerParams
         Virtual damping β_B, delay d, filter cutoff ν_c; the amplifier lag must be 0.
 
     Returns
     -------
     ColgateSchenkel
+        The attained β_min, its certified upper bound β_bound, the θ of the maximum and the status.
 
     Raises
     ------
     DFAValueError
         With an amplifier lag (the condition does not cover it).
+    DFATypeError
+        ``controller`` is not a :class:`dfa.ControllerParams`.
+
+    See Also
+    --------
+    colgate_schenkel_damping : The same in physical units.
+    dfa.controlled_linear.stable_stiffness : Exact linear stability (also with an amplifier lag).
 
     Examples
     --------
     >>> round(colgate_schenkel_beta(ControllerParams(delay=2)).beta_min, 12)     # d + ½
     2.5
     """
-    p = check_type("params", params, ControllerParams, "give a dfa.ControllerParams")
+    p = check_type("controller", controller, ControllerParams, "give a dfa.ControllerParams")
     _refuse_lag(p.lag)
     pole = None if p.cutoff is None else p.filter_pole
     best, arg, ub, _ = _maximise(p.damping, p.delay, pole)
@@ -250,11 +264,29 @@ class ColgateSchenkelDamping:
         return self.dimensionless.status
 
     def passive(self, damping: float) -> bool:
-        """True if b = ``damping`` (N·s/m) is above the certified bound, i.e. meets the condition for sure."""
+        """Tell whether a device damping meets the condition for sure (above the certified bound).
+
+        Parameters
+        ----------
+        damping : float
+            The device's viscous friction b, N·s/m (rotary: N·m·s/rad), > 0.
+
+        Returns
+        -------
+        bool
+            True if b > ``damping_bound``.
+        """
         return check_positive("damping", damping, "give the device's viscous friction b in N·s/m") > self.damping_bound
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record (SI units)."""
+        """Return a JSON-ready record (SI units).
+
+        Returns
+        -------
+        dict
+            The keys damping_min, damping_bound (N·s/m), omega (rad/s), frequency (Hz), status, period (s),
+            the controller and the dimensionless record.
+        """
         return {
             "damping_min": self.damping_min,
             "damping_bound": self.damping_bound,
@@ -280,6 +312,20 @@ def colgate_schenkel_damping(controller: Controller, period: float) -> ColgateSc
     Returns
     -------
     ColgateSchenkelDamping
+        The minimum b = K T β_min (N·s/m), its certified bound, the ω of the maximum (rad/s) and the status.
+
+    Raises
+    ------
+    DFAValueError
+        With an amplifier bandwidth (the condition does not cover the lag), a bad period, or a filter
+        cutoff above the Nyquist frequency.
+    DFATypeError
+        ``controller`` is not a :class:`dfa.Controller`.
+
+    See Also
+    --------
+    colgate_schenkel_beta : The dimensionless condition.
+    dfa.controlled_linear.stable_stiffness : Exact linear stability, which the condition is stricter than.
 
     Examples
     --------

@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 import sympy as sp
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dfa import Controller, ControllerParams, Device, k_colgate
@@ -59,13 +59,14 @@ def test_colgate_schenkel_spring_with_delay_sympy(d):
 
 def _brute(p: ControllerParams) -> float:
     """½ max of Re{(1 − e^{−jθ}) H̃(e^{jθ})}/(1 − cos θ) as written (H̃ from the controller's definition), dense grid."""
-    th = np.linspace(0.02, math.pi, 400001)  # from 0.02: 1 − cos θ without cancellation (rel. error < 1e-12)
+    th = np.linspace(0.02, math.pi, 100001)  # from 0.02: 1 − cos θ without cancellation (rel. error < 1e-12)
     z = np.exp(1j * th)
     filt = 1.0 if p.cutoff is None else (1.0 - p.filter_pole) / (z - p.filter_pole)
     h = z ** (-p.delay) * (1.0 + p.damping * (1.0 - 1.0 / z) * filt)
     return 0.5 * float(np.max(np.real((1.0 - 1.0 / z) * h) / (1.0 - np.cos(th))))
 
 
+@settings(max_examples=30)
 @given(
     p=st.builds(
         ControllerParams,
