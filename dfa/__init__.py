@@ -57,6 +57,7 @@ from .catalogue import (
     get_device,
     resolve_device,
 )
+from .controlled_linear import StableRegion, StiffnessIntervals, stable_region, stable_stiffness
 from .controller import Controller, ControllerParams
 from .controller_passivity import ControllerCriterionResult, controller_criterion, device_controller_criterion
 from .criterion import (
@@ -69,6 +70,7 @@ from .criterion import (
 )
 from .device import Device, Params
 from .errors import DFAError, DFATypeError, DFAValueError
+from .passivity import ColgateSchenkel, ColgateSchenkelDamping, colgate_schenkel_beta, colgate_schenkel_damping
 from .stiffness import (
     StiffnessLimits,
     StiffnessResponse,
@@ -147,6 +149,8 @@ _SUBMODULES = {
     "device",
     "controller",
     "controller_passivity",
+    "controlled_linear",
+    "passivity",
     "errors",
     "cli",
     "cycles",
@@ -187,6 +191,14 @@ __all__ = [
     "Params",
     "Controller",
     "ControllerParams",
+    "stable_stiffness",
+    "stable_region",
+    "StiffnessIntervals",
+    "StableRegion",
+    "colgate_schenkel_beta",
+    "colgate_schenkel_damping",
+    "ColgateSchenkel",
+    "ColgateSchenkelDamping",
     "CatalogueEntry",
     "Discrepancy",
     "catalogue",

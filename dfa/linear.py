@@ -73,7 +73,8 @@ import numpy as np
 from numpy.polynomial import chebyshev
 from scipy.optimize import brentq
 
-from .checks import check_beta, check_delay, check_mu, check_nonnegative, check_positive
+from .checks import check_beta, check_delay, check_mu, check_nonnegative, check_positive, check_type
+from .controller import Controller, ControllerParams
 from .errors import DFAError, DFAValueError
 
 __all__ = [
@@ -130,7 +131,9 @@ def _c1_minus_c0(a: float) -> float:
 
 
 # ----------------------------------------------------------------------------- polynomial and spectral radius
-def characteristic_polynomial(mu: float, beta: float, delay: int = 0) -> np.ndarray:
+def characteristic_polynomial(
+    mu: float, beta: float, delay: int = 0, *, controller: ControllerParams | None = None
+) -> np.ndarray:
     """Closed-loop characteristic polynomial χ(z) = μ z^d (z − 1)(z − p) + c₁ z + c₀ of the sampled spring.
 
     The exact ZOH loop of μξ'' + βξ' = −ξ(h − d) (module docstring; spec
@@ -144,18 +147,27 @@ def characteristic_polynomial(mu: float, beta: float, delay: int = 0) -> np.ndar
         Dimensionless damping β = b/(KT) >= 0 (β = 0: the limit c₁ = c₀ = ½, p = 1).
     delay : int, optional
         Computational delay d in samples (the force of sample h uses ξ(h − d)).
+    controller : ControllerParams, optional
+        With a damper, filter or amplifier lag: the polynomial of
+        :func:`dfa.controlled_linear.controlled_characteristic_polynomial`; None or a
+        spring (any delay; a velocity filter without a damper filters nothing): the spring's polynomial unchanged.
 
     Returns
     -------
     numpy.ndarray
-        The d + 3 coefficients, highest power first.
+        The coefficients, highest power first (d + 3 for the spring).
 
     Examples
     --------
     >>> characteristic_polynomial(1.0, 0.0, delay=1).tolist()   # z(z − 1)² + ½z + ½
     [1.0, -2.0, 1.5, 0.5]
     """
-    m, b, d = check_mu(mu), check_beta(beta), check_delay(delay)
+    m, b = check_mu(mu), check_beta(beta)
+    d, c = _controller_delay(delay, controller, ControllerParams)
+    if c is not None and (c.damping > 0.0 or c.lag > 0.0):
+        from .controlled_linear import controlled_characteristic_polynomial
+
+        return controlled_characteristic_polynomial(m, b, c)
     c1, c0, p = _zoh_coefficients(b / m)
     coef = np.zeros(d + 3)
     coef[:3] = m, -m * (1.0 + p), m * p
@@ -192,7 +204,21 @@ def _as_array(name: str, value, check) -> np.ndarray:
     return arr
 
 
-def spectral_radius(mu, beta, delay: int = 0):
+def _controller_delay(delay: Any, controller: Any, cls: type) -> tuple[int, Any]:
+    """(d, controller): the delay given once, either as ``delay`` or in the controller (checked)."""
+    d = check_delay(delay)
+    if controller is None:
+        return d, None
+    c = check_type("controller", controller, cls, f"give a dfa.{cls.__name__} or None")
+    if d not in (0, c.delay):
+        raise DFAValueError(
+            f"delay = {d} is invalid with controller.delay = {c.delay}: they must agree; give the delay in the "
+            "controller only"
+        )
+    return c.delay, c
+
+
+def spectral_radius(mu, beta, delay: int = 0, *, controller: ControllerParams | None = None):
     """Largest root modulus of :func:`characteristic_polynomial` (vectorised over μ and β).
 
     Parameters
@@ -201,11 +227,14 @@ def spectral_radius(mu, beta, delay: int = 0):
         Dimensionless mass (> 0) and damping (>= 0), broadcast together.
     delay : int, optional
         Computational delay d in samples.
+    controller : ControllerParams, optional
+        Virtual damper β_B, filter ν_c, delay d and amplifier lag α (:mod:`dfa.controlled_linear`);
+        None or a spring (any delay; a filter without a damper filters nothing) gives the spring's result unchanged.
 
     Returns
     -------
     float or numpy.ndarray
-        max |z| over the d + 2 closed-loop poles; < 1 means asymptotically stable.
+        max |z| over the closed-loop poles; < 1 means asymptotically stable.
 
     Examples
     --------
@@ -214,20 +243,30 @@ def spectral_radius(mu, beta, delay: int = 0):
     """
     m = _as_array("mu", mu, lambda n, v: check_mu(v, n))
     b = _as_array("beta", beta, lambda n, v: check_beta(v, n))
-    d = check_delay(delay)
-    out = _rho(b / m, 1.0 / m, d)
+    d, c = _controller_delay(delay, controller, ControllerParams)
+    if c is not None and (c.damping > 0.0 or c.lag > 0.0):
+        from .controlled_linear import controlled_spectral_radius
+
+        m, b = np.broadcast_arrays(m, b)
+        out = np.array(
+            [controlled_spectral_radius(x, y, c) for x, y in zip(m.ravel(), b.ravel(), strict=True)]
+        ).reshape(m.shape)
+    else:
+        out = _rho(b / m, 1.0 / m, d)
     return float(out) if out.ndim == 0 else out
 
 
-def linear_stable(mu, beta, delay: int = 0):
-    """True where the linear sampled spring is asymptotically stable (spectral radius < 1), vectorised.
+def linear_stable(mu, beta, delay: int = 0, *, controller: ControllerParams | None = None):
+    """True where the linear sampled loop is asymptotically stable (spectral radius < 1), vectorised.
+
+    Parameters as :func:`spectral_radius` (``controller``: a :class:`ControllerParams`, or None for the spring).
 
     Examples
     --------
     >>> linear_stable(100.0, 0.5), linear_stable(100.0, 0.49)
     (True, False)
     """
-    r = spectral_radius(mu, beta, delay)
+    r = spectral_radius(mu, beta, delay, controller=controller)
     return bool(r < 1.0) if isinstance(r, float) else r < 1.0
 
 
@@ -307,7 +346,7 @@ def _critical_kappa_scan(a: float, d: int) -> float:
     return float(brentq(lambda k: float(_rho(a, k, d)) - 1.0, ks[i - 1], ks[i], xtol=1e-300, rtol=1e-14))
 
 
-def critical_stiffness(mass, damping, period, delay: int = 0):
+def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Controller | None = None):
     """Exact stability limit K_crit of the linear sampled spring, all Jury conditions, with delay (spec section 8).
 
     The smallest K > 0 at which a closed-loop root of :func:`characteristic_polynomial`
@@ -329,11 +368,18 @@ def critical_stiffness(mass, damping, period, delay: int = 0):
         Sampling period T > 0, s.
     delay : int, optional
         Computational delay d in samples: F_h = −K x(h − d).
+    controller : Controller, optional
+        A wall with virtual damper B, velocity filter, delay and amplifier lag: K_crit is then
+        :attr:`dfa.controlled_linear.StiffnessIntervals.k_crit` of
+        :func:`dfa.controlled_linear.stable_stiffness` (B, f_c, τ_a, d held fixed while K varies;
+        the controller's own stiffness is not used; the stable set may have further intervals
+        above K_crit, which that function lists). None or a spring (a filter without a damper filters
+        nothing): the spring's result unchanged.
 
     Returns
     -------
     float or numpy.ndarray
-        K_crit in N/m (rotary: N·m/rad); 0 when b = 0 (unstable for every K > 0).
+        K_crit in N/m (rotary: N·m/rad); 0 when the loop is unstable at small K (b = 0 for the spring).
 
     Examples
     --------
@@ -345,8 +391,15 @@ def critical_stiffness(mass, damping, period, delay: int = 0):
     m = _as_array("mass", mass, lambda n, v: check_positive(n, v, "give the moving mass in kg (rotary: kg·m²)"))
     b = _as_array("damping", damping, lambda n, v: check_nonnegative(n, v, "give the viscous friction in N·s/m"))
     t = _as_array("period", period, lambda n, v: check_positive(n, v, "give the sampling period in s"))
-    d = check_delay(delay)
+    d, c = _controller_delay(delay, controller, Controller)
     m, b, t = np.broadcast_arrays(m, b, t)
+    if c is not None and (c.damping > 0.0 or c.amplifier_bandwidth is not None):
+        from .controlled_linear import stable_stiffness
+
+        rows = zip(m.ravel(), b.ravel(), t.ravel(), strict=True)
+        flat = [stable_stiffness(float(x), float(y), float(z), c).k_crit for x, y, z in rows]
+        out = np.array(flat).reshape(m.shape)
+        return float(out) if out.ndim == 0 else out
     a = b * t / m
     if not np.all(np.isfinite(a)):
         raise DFAValueError(f"damping·period/mass = {a!r} is invalid: it must be finite; check the units")

@@ -138,6 +138,10 @@ RESULTS = {
     "SimulationResult",
     "StabilityMap",
     "ContourMaps",
+    "StiffnessIntervals",
+    "StableRegion",
+    "ColgateSchenkel",
+    "ColgateSchenkelDamping",
 }
 
 #: Calls that take seconds when every argument is valid: only their refusals are fuzzed

@@ -1,0 +1,293 @@
+"""Exact linear stability of the sampled wall with a controller (issue 15 item 1): dfa.controlled_linear, dfa.linear.
+
+Checked against: 50-digit mpmath (divided differences of e^{−u}); ``control.c2d`` (the ZOH
+pulse transfer with amplifier lag) and ``control.c2d`` + ``control.feedback`` (the closed
+loop, built independently here from the controller's sample-level definition); the
+spring-only functions of dfa.linear (same numbers, bit for bit, for a spring controller;
+the same K_crit to 1e-9 by the general ray algorithm); the linear rule
+K < (b + B)/(T(d + ½)) as bT/m → 0 (issue 15: within 1 % for bT/m <= 0.005 at m = 1 kg,
+T = 1 ms; Diolaiti et al. 2006 for B = 0); the amplifier lag acting as an extra delay,
+K ≈ b/(T(d + ½) + τ_a); the Colgate–Schenkel line b = KT/2 + |B| (Colgate & Schenkel 1997)
+lying inside the linear bound; a dense spectral-radius scan where the stable set has
+several intervals.
+"""
+
+import json
+import math
+
+import control
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import dfa
+from dfa import Controller, ControllerParams
+from dfa._divdiff import exp_divided_difference
+from dfa.controlled_linear import (
+    LinearStatus,
+    _ray_intervals,
+    amplifier_zoh_coefficients,
+    stable_region,
+    stable_stiffness,
+)
+from dfa.errors import DFATypeError, DFAValueError
+from dfa.jsonable import dumps
+from dfa.linear import characteristic_polynomial, critical_stiffness, linear_stable, spectral_radius
+from dfa.passivity import colgate_schenkel_damping
+
+M, T = 1.0, 1e-3  # the issue's anchor device: m = 1 kg, T = 1 ms
+
+
+# ---------------------------------------------------------------- independent loop: python-control
+def _control_loop(mu: float, beta: float, p: ControllerParams):
+    """Closed loop of μξ'' + βξ' = φ_A, α φ_A' = φ_cmd − φ_A, φ_cmd = −H ξ, from control.c2d and control.feedback."""
+    den = np.polymul([p.lag, 1.0], [mu, beta, 0.0]) if p.lag > 0.0 else np.array([mu, beta, 0.0])
+    gd = control.c2d(control.tf([1.0], den), 1.0, method="zoh")
+    zinv = control.tf([1.0], [1.0, 0.0], 1.0)
+    filt = control.tf([1.0], [1.0], 1.0)
+    if p.cutoff is not None:
+        a = p.filter_pole
+        filt = control.tf([1.0 - a], [1.0, -a], 1.0)  # (1 − a) z^{−1}/(1 − a z^{−1})
+    h = 1 + p.damping * (1 - zinv) * filt
+    for _ in range(p.delay):
+        h = h * zinv
+    return control.feedback(gd, h)
+
+
+def _control_rho(mu: float, beta: float, p: ControllerParams) -> float:
+    return float(np.max(np.abs(control.poles(_control_loop(mu, beta, p)))))
+
+
+controllers = st.builds(
+    ControllerParams,
+    damping=st.one_of(st.just(0.0), st.floats(0.0, 5.0)),
+    delay=st.integers(0, 3),
+    cutoff=st.one_of(st.none(), st.floats(0.005, 0.45)),
+    lag=st.one_of(st.just(0.0), st.floats(1e-3, 10.0)),
+)
+
+
+# ---------------------------------------------------------------- divided differences and the plant
+@pytest.mark.parametrize(
+    "nodes",
+    [
+        (0.0, 0.0, 0.0, 0.0),
+        (0.0, 1e-7, 2e-7, 0.3),
+        (0.0, 0.0, 2.0, 2.0000001),
+        (0.4, 0.9, 1.3, 1.3),
+        (3.0, 50.0, 53.0, 53.0),
+    ],
+)
+def test_exp_divided_difference_mpmath(nodes):
+    """f[x₀..x_n] of e^{−u} to 1e-14 relative of its value, against the mean of f^{(n)}/n! over the simplex (mpmath)."""
+    n = len(nodes) - 1
+
+    def dd(v):
+        return mpmath.e ** (-v[0]) if len(v) == 1 else (dd(v[1:]) - dd(v[:-1])) / (v[-1] - v[0])
+
+    with mpmath.workdps(250):  # the recursion on nodes made distinct by 1e-50: error ~1e-50, cancellation < 200 digits
+        ref = dd([mpmath.mpf(v) + mpmath.mpf(10) ** -50 * (i + 1) for i, v in enumerate(nodes)])
+    got = exp_divided_difference(*nodes)
+    assert got == pytest.approx(float(ref), rel=1e-14, abs=0.0)
+    assert (-1) ** n * got > 0.0
+
+
+@pytest.mark.parametrize(
+    ("a", "lag"),
+    [(0.0, 1.0), (1e-3, 0.3), (2.0, 0.5), (2.0, 0.5000001), (1e-6, 1e3), (0.7, 1.0 / 0.7), (10.0, 0.05)],
+)
+def test_zoh_with_amplifier_lag_vs_control_c2d(a, lag):
+    """n₂, n₁, n₀, p, q equal control.c2d of 1/((αs + 1)(s² + as)) (μ = 1) to 1e-9 (coincident poles included)."""
+    den = np.polymul([lag, 1.0], [1.0, a, 0.0])
+    d = control.c2d(control.tf([1.0], den), 1.0, method="zoh")
+    num, dd_ = np.asarray(d.num[0][0], dtype=float), np.asarray(d.den[0][0], dtype=float)
+    n2, n1, n0, p, q = amplifier_zoh_coefficients(a, lag)
+    np.testing.assert_allclose([n2, n1, n0], num / dd_[0], rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(np.poly([1.0, p, q]), dd_ / dd_[0], rtol=1e-12, atol=1e-15)
+
+
+def test_zoh_with_amplifier_lag_limits():
+    """α → 0: the device alone (c₁, c₀, n₀ ≈ pα²); α → ∞ at a = 0: (1, 4, 1)/(6α), the ZOH of 1/(α s³).
+
+    No cancellation at either end: n₀ ≈ pα² = 1.35e-25 is resolved to 1e-6 next to c₁ ≈ 0.28.
+    """
+    c1 = (math.expm1(-2.0) + 2.0) / 4.0
+    c0 = (1.0 - math.exp(-2.0) - 2.0 * math.exp(-2.0)) / 4.0
+    n2, n1, n0, _, q = amplifier_zoh_coefficients(2.0, 1e-12)
+    assert (n2, n1, q) == pytest.approx((c1, c0, 0.0), rel=1e-10, abs=1e-300)
+    assert n0 == pytest.approx(math.exp(-2.0) * 1e-24, rel=1e-6)
+    n2, n1, n0, p, q = amplifier_zoh_coefficients(0.0, 1e12)
+    np.testing.assert_allclose(np.array([n2, n1, n0]) * 6e12, [1.0, 4.0, 1.0], rtol=1e-10)
+    assert p == 1.0 and q == math.exp(-1e-12)
+
+
+# ---------------------------------------------------------------- the closed loop vs python-control
+@settings(max_examples=40)
+@given(mu=st.floats(0.01, 1e4), beta=st.floats(0.0, 10.0), p=controllers)
+def test_closed_loop_roots_vs_control_feedback(mu, beta, p):
+    """Spectral radius of the closed loop equals that of control.c2d + control.feedback (built here) to 1e-6."""
+    ours = spectral_radius(mu, beta, controller=p)
+    theirs = _control_rho(mu, beta, p)
+    assert ours == pytest.approx(theirs, abs=1e-6)
+    if abs(theirs - 1.0) > 1e-6:
+        assert linear_stable(mu, beta, controller=p) == (theirs < 1.0)
+
+
+@settings(max_examples=30)
+@given(
+    b=st.floats(0.05, 50.0),
+    big_b=st.floats(0.0, 20.0),
+    d=st.integers(0, 3),
+    fc=st.one_of(st.none(), st.floats(5.0, 450.0)),
+    fbw=st.one_of(st.none(), st.floats(50.0, 5000.0)),
+)
+def test_critical_stiffness_boundary_vs_control_feedback(b, big_b, d, fc, fbw):
+    """At K_crit(1 ∓ 1e-5) the independent python-control loop is stable / unstable (B, f_c, τ_a fixed as K varies)."""
+    c = Controller(1.0, big_b, d, fc, fbw)
+    r = stable_stiffness(M, b, T, c)
+    assert r.status in (LinearStatus.INTERVAL, LinearStatus.NEVER)  # what this family shows (no gaps seen)
+    if r.status is LinearStatus.NEVER:
+        k = 1.0 / T  # unstable at small and large K: spot checks
+        for kk in (1e-3 * k, k, 1e3 * k):
+            assert _control_rho(M / (kk * T * T), b / (kk * T), Controller(kk, big_b, d, fc, fbw).params(T)) >= 1.0
+        return
+    assert r.k_crit == pytest.approx(critical_stiffness(M, b, T, controller=c), rel=1e-9)
+    for f, stable in ((1.0 - 1e-5, True), (1.0 + 1e-5, False)):
+        k = r.k_crit * f
+        rho = _control_rho(M / (k * T * T), b / (k * T), Controller(k, big_b, d, fc, fbw).params(T))
+        assert (rho < 1.0) == stable, (k, rho)
+
+
+# ---------------------------------------------------------------- the spring: unchanged
+@pytest.mark.parametrize("d", [0, 1, 3])
+def test_spring_controller_gives_spring_results_bit_identical(d):
+    """Controller(K, delay=d) / ControllerParams(delay=d): the same numbers as the spring-only functions, bit for bit."""
+    p = ControllerParams(delay=d)
+    mus, betas = np.array([0.5, 3.0, 200.0]), np.array([0.1, 0.6, 2.0])
+    assert np.array_equal(spectral_radius(mus, betas, d), spectral_radius(mus, betas, controller=p))
+    assert np.array_equal(characteristic_polynomial(2.0, 0.3, d), characteristic_polynomial(2.0, 0.3, controller=p))
+    for m, b, t in ((1.0, 2.0, 1e-3), (0.01, 5.0, 0.01), (0.1, 1e-4, 1e-3)):
+        assert critical_stiffness(m, b, t, d) == critical_stiffness(m, b, t, controller=Controller(123.0, delay=d))
+
+
+@pytest.mark.parametrize("d", [0, 1, 2, 4])
+@pytest.mark.parametrize("a", [1e-4, 0.01, 1.0, 3.0, 5.0, 100.0])
+def test_ray_algorithm_reproduces_spring_bound(a, d):
+    """The general ray algorithm (stable_stiffness) finds the spring's K_crit of dfa.linear to 1e-9: one interval."""
+    r = stable_stiffness(1.0, a, 1.0, Controller(1.0, delay=d))
+    assert r.status is LinearStatus.INTERVAL
+    assert r.k_crit == pytest.approx(critical_stiffness(1.0, a, 1.0, delay=d), rel=1e-9)
+
+
+# ---------------------------------------------------------------- anchors of issue 15
+@pytest.mark.parametrize("d", [0, 1, 2, 3])
+@pytest.mark.parametrize("b", [0.1, 1.0, 5.0])
+@pytest.mark.parametrize("big_b", [0.0, 0.5, 2.0, 5.0])
+def test_eq8_linear_rule_with_virtual_damper(b, big_b, d):
+    """K_crit → (b + B)/(T(d + ½)) as bT/m → 0: within 1 % for bT/m <= 0.005 (and BT/m <= 0.005), m = 1 kg, T = 1 ms."""
+    k = critical_stiffness(M, b, T, controller=Controller(1.0, big_b, d))
+    assert k == pytest.approx((b + big_b) / (T * (d + 0.5)), rel=0.01)
+
+
+@pytest.mark.parametrize("d", [0, 1, 2])
+@pytest.mark.parametrize("b", [1.0, 5.0])
+@pytest.mark.parametrize("tau_over_t", [0.01, 0.03, 0.1, 0.3])
+def test_amplifier_lag_acts_as_extra_delay(b, tau_over_t, d):
+    """K_crit ≈ b/(T(d + ½) + τ_a) for τ_a <= 0.3 T: within 0.5 %, while ignoring the lag errs by up to 37 %.
+
+    Why 0.5 %: 1/(τ_a s + 1) = e^{−τ_a s}(1 + O((ωτ_a)²)) at the crossing frequency ω ≈ √(K/m)
+    (ωτ_a <= 0.03 here, so below 0.1 %), plus the linear rule's own O(bT/m) error (at most
+    0.22 % for bT/m <= 0.005, d <= 2, measured in the test above). Measured: at most 0.25 %.
+    The ratio K_crit(τ_a)/K_crit(0) cancels the rule's own error: it equals
+    T(d + ½)/(T(d + ½) + τ_a) to 0.1 % (measured 0.042 %).
+    """
+    tau = tau_over_t * T
+    k = critical_stiffness(M, b, T, controller=Controller(1.0, 0.0, d, amplifier_bandwidth=1.0 / (2 * math.pi * tau)))
+    assert k == pytest.approx(b / (T * (d + 0.5) + tau), rel=0.005)
+    k0 = critical_stiffness(M, b, T, controller=Controller(1.0, 0.0, d))
+    assert k / k0 == pytest.approx(T * (d + 0.5) / (T * (d + 0.5) + tau), rel=1e-3)  # the lag's own effect
+
+
+@pytest.mark.parametrize("b", [0.5, 2.0, 5.0])
+@pytest.mark.parametrize("frac", [0.0, 0.3, 0.8])
+def test_colgate_schenkel_line_inside_linear_bound(b, frac):
+    """Passivity (b > KT/2 + B, Colgate & Schenkel 1997, d = 0, no filter) is stricter than stability: they differ.
+
+    The passivity line K_CS = 2(b − B)/T lies below the exact linear bound, which grows with B
+    (≈ 2(b + B)/T as bT/m → 0) where the passivity line falls.
+    """
+    big_b = frac * b
+    k_cs = 2.0 * (b - big_b) / T
+    assert colgate_schenkel_damping(Controller(k_cs, big_b), T).damping_min == pytest.approx(b, rel=1e-12)
+    k_lin = critical_stiffness(M, b, T, controller=Controller(1.0, big_b))
+    assert k_lin > k_cs
+    if big_b > 0.0:
+        assert k_lin == pytest.approx(2.0 * (b + big_b) / T, rel=0.01)  # not 2(b − B)/T
+
+
+def test_amplifier_lag_lowers_the_bound():
+    """A slower amplifier never raises K_crit (the lag adds phase lag), for b = 2, B = 0.5, d = 1."""
+    ks = [
+        critical_stiffness(M, 2.0, T, controller=Controller(1.0, 0.5, 1, amplifier_bandwidth=f))
+        for f in (1e5, 1e4, 1e3, 1e2)
+    ]
+    assert ks == sorted(ks, reverse=True)
+
+
+# ---------------------------------------------------------------- several intervals, none, the K–B region
+def test_ray_with_several_intervals_vs_dense_scan():
+    """A pair (P₀, Q) whose stable set has two intervals: its edges agree with a dense np.roots scan."""
+    p0 = np.array([1.0, 1.069237163630643, -0.6243535942878822, -0.9539866170654505, 0.01508063820712044,
+                   0.3891335795425942, 0.1831520815358585, 0.02654394356156959])  # fmt: skip
+    q = np.array([2.2110571623347774, 0.011622013918882693, -0.7581270719825384, -1.0256240581930005,
+                  -0.2011986994848956, -0.629343213365391])  # fmt: skip
+    iv = _ray_intervals(p0, q, ())
+    assert len(iv) == 2 and iv[0][0] == 0.0
+    ks = np.linspace(1e-4, 0.7, 7001)
+    rho = np.array([max(abs(np.roots(np.polyadd(p0, k * q)))) for k in ks])
+    inside = np.array([any(lo < k < hi for lo, hi in iv) for k in ks])
+    edge = np.min(np.abs(ks[:, None] - np.array(iv).ravel()[None, :]), axis=1) < 2e-4
+    assert np.array_equal((rho < 1.0)[~edge], inside[~edge])
+
+
+def test_no_friction_no_damper_never_stable_but_virtual_damper_stabilises():
+    """b = B = 0: unstable for every K (status 'never', K_crit 0); B > 0 alone gives a stable interval."""
+    r = stable_stiffness(M, 0.0, T, Controller(1.0))
+    assert r.status is LinearStatus.NEVER and r.k_crit == 0.0 and r.intervals.shape == (0, 2)
+    r = stable_stiffness(M, 0.0, T, Controller(1.0, damping=2.0))
+    assert r.status is LinearStatus.INTERVAL and r.k_crit == pytest.approx(2.0 / (T / 2), rel=0.01)
+
+
+def test_stable_region_matches_stable_stiffness_and_is_json():
+    """K_max(B) of stable_region is stable_stiffness's k_crit at each B; JSON strict (no NaN), statuses per B."""
+    grid = [0.0, 0.5, 2.0, 10.0]
+    reg = stable_region(M, 1.0, T, grid, delay=1, filter_cutoff=100.0, amplifier_bandwidth=2000.0)
+    for bb, k in zip(grid, reg.k_crit, strict=True):
+        c = Controller(1.0, bb, 1, filter_cutoff=100.0, amplifier_bandwidth=2000.0)
+        assert k == stable_stiffness(M, 1.0, T, c).k_crit
+    data = json.loads(dumps(reg.as_dict()))
+    assert data["k_crit"] == reg.k_crit.tolist() and len(data["intervals"]) == 4 and data["status"] == reg.status.value
+    assert data["device"] == {"mass": M, "damping": 1.0, "period": T}
+    one = json.loads(dumps(reg.rows[1].as_dict()))
+    assert one["controller"]["filter_cutoff"] == 100.0 and "stiffness" not in one["controller"]
+
+
+# ---------------------------------------------------------------- bad input
+def test_bad_input_names_the_parameter():
+    with pytest.raises(DFAValueError, match="delay = 2 is invalid with controller.delay = 1"):
+        critical_stiffness(M, 1.0, T, 2, controller=Controller(1.0, delay=1))
+    with pytest.raises(DFATypeError, match="controller"):
+        critical_stiffness(M, 1.0, T, controller=ControllerParams())
+    with pytest.raises(DFAValueError, match="filter_cutoff"):
+        stable_stiffness(M, 1.0, T, Controller(1.0, filter_cutoff=600.0))  # above Nyquist 500 Hz
+    with pytest.raises(DFAValueError, match="virtual_damping"):
+        stable_region(M, 1.0, T, [])
+    with pytest.raises(DFAValueError, match="damping"):
+        stable_region(M, 1.0, T, [-1.0])
+
+
+def test_public_names():
+    for name in ("stable_stiffness", "stable_region", "StiffnessIntervals", "StableRegion", "colgate_schenkel_damping"):
+        assert name in dfa.__all__ and getattr(dfa, name) is not None
