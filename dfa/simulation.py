@@ -82,6 +82,16 @@ about 200 ticks (undecided).
 Before the first sample the controller's past readings are taken equal to ξ0
 (matters only with a computational delay).
 
+With a controller (``controller=ControllerParams(...)``: virtual damper,
+velocity filter, delay, amplifier lag; :mod:`dfa.controller`) the run goes
+through :mod:`dfa._ckernel`, exact to rounding at the sample instants as well
+(closed-form motion under the amplifier's exponential force, stops by a
+bracketed root of the closed form, breakaway in closed form), with the same
+outcome rules; "rest" then needs the proof that every future command and
+amplifier force stays within ±σ while the device is stuck. A pure spring
+controller runs the spring kernel unchanged. The default run length does not
+yet account for the damper, filter or lag (it uses the controller's delay).
+
 Examples
 --------
 >>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000)
@@ -93,6 +103,11 @@ Examples
 >>> r = simulate(mu=100.0, beta=0.0, sigma=0.2, xi_dot0=2.0, samples=20000)
 >>> r.outcome.value
 'unstable'
+>>> from dfa.controller import ControllerParams
+>>> c = ControllerParams(damping=0.5, lag=0.3)   # virtual damper β_B, amplifier lag α (samples)
+>>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000, controller=c)
+>>> r.outcome.value, r.rest_sample
+('rest', 203)
 """
 
 from __future__ import annotations
