@@ -36,8 +36,8 @@ form). Hence |ξ'| can reach zero at most once per phase, only where g
 opposes the motion (s g < 0): before t_c if g opposes first, after t_c if
 it assists first. That interval brackets the root when s ξ' <= 0 at its end;
 the root is found by Newton's method on the closed form safeguarded by
-bisection (the bracket shrinks every step; it stops when a step changes t by
-less than 4 ulp), so no step size and no tolerance beyond rounding.
+bisection (the bracket shrinks every step; it stops when the Newton step is
+below 4 ulp of t, or the bracket is that narrow), so no step size and no tolerance beyond rounding.
 
 Stick-slip with a time-varying force. At ξ' = 0 the device restarts in the
 direction sgn φ_A when |φ_A| > σ; otherwise it sticks while |φ_A(t)| <= σ.
@@ -77,6 +77,7 @@ __all__ = ["rho", "lag_motion", "lag_sample", "simulate_ckernel", "serial_ckerne
 # Taylor coefficients of ρ in x = −P: (n + 1)/(n + 2)!, n = 0 … 17 (first omitted term < 10⁻¹⁸ at |P| < ½)
 _CR = tuple((n + 1) / math.factorial(n + 2) for n in range(18))
 
+_ULP4 = 4.0 * 2.220446049250313e-16  # four units in the last place, relative
 MAX_PHASES = 16  # per sample; the derivation allows at most 5 (stuck, breakaway, stop, restart, stop)
 
 
@@ -123,12 +124,16 @@ def _root(x0, v0, f, d, mu, lam, kap, s, lo, hi):
             if sv == 0.0:
                 return t
         acc = s * (f + d * math.exp(-kap * t) - lam * mu * v) / mu  # d(sξ')/dt, < 0 inside the bracket
-        tn = t - sv / acc if acc < 0.0 else 0.5 * (lo + hi)
-        if not (lo < tn < hi):
+        if acc < 0.0:
+            step = sv / acc
+            if abs(step) <= _ULP4 * t:
+                return t  # the Newton step is below rounding: t is the root to rounding
+            tn = t - step
+        else:
             tn = 0.5 * (lo + hi)
-        if abs(tn - t) <= 4.0 * 2.220446049250313e-16 * t:
-            return tn  # converged: within a few ulp of the root
-        if hi - lo <= 4.0 * 2.220446049250313e-16 * hi:
+        if not (lo < tn < hi):
+            tn = 0.5 * (lo + hi)  # the safeguard: bisect when Newton leaves the bracket
+        if hi - lo <= _ULP4 * hi:
             return hi  # the bracket has collapsed
         t = tn
     return hi
