@@ -191,6 +191,17 @@ def test_linear_controller_against_c2d_recursion(ctl, mu, beta):
     assert np.all(np.abs(r.xi_dot - lv) <= 1e-10 * np.maximum(1.0, np.abs(lv)))
 
 
+@settings(max_examples=25, derandomize=True, deadline=None)
+@given(CONTROLLERS, st.floats(0.5, 50.0, **finite), st.floats(0.0, 1.0, **finite))
+def test_linear_random_controllers_against_c2d_recursion(ctl, mu, beta):
+    n = 150
+    r = simulate(mu, beta, 0.0, 1.5, samples=n, xi0=0.3, quantize=False, controller=ctl, bound=1e300)
+    lx, lv = linear_ctl_recursion(mu, beta, 0.3, 1.5, n, ctl)
+    scale = np.maximum.accumulate(np.maximum(1.0, np.abs(lx)))  # relative to the largest |ξ| so far
+    assert np.all(np.abs(r.xi - lx) <= 1e-10 * scale)
+    assert np.all(np.abs(r.xi_dot - lv) <= 1e-10 * np.maximum.accumulate(np.maximum(1.0, np.abs(lv))))
+
+
 @pytest.mark.parametrize("delay", [0, 1, 3])
 @pytest.mark.parametrize("mu, beta, sigma, v0", [(100.0, 0.3, 1.5, 2.0), (100.0, 0.0, 0.2, 2.0), (2.0, 0.4, 0.1, 2.0)])
 def test_eq4_spring_controller_is_bit_identical(delay, mu, beta, sigma, v0):
