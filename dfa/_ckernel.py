@@ -83,7 +83,13 @@ MAX_PHASES = 16  # per sample; the derivation allows at most 5 (stuck, breakaway
 
 @njit(cache=True, inline="always")
 def rho(u: float) -> float:
-    """ρ(u) = (1 − e^{−u}(1 + u))/u² (ρ(0) = ½), dimensionless, for u >= 0."""
+    """ρ(u) = (1 − e^{−u}(1 + u))/u² (ρ(0) = ½), dimensionless, for u >= 0.
+
+    Examples
+    --------
+    >>> rho(0.0), round(rho(1.0), 12)   # ½ and 1 − 2/e
+    (0.5, 0.264241117657)
+    """
     if u < 0.5:
         s = 0.0
         for n in range(17, -1, -1):
@@ -97,7 +103,18 @@ def rho(u: float) -> float:
 
 @njit(cache=True, inline="always")
 def lag_motion(x0, v0, f, d, mu, lam, kap, t):
-    """(ξ, ξ') after time ``t`` of μξ'' + βξ' = f + d e^{−κt} from (ξ₀, ξ'₀) (module docstring); λ = β/μ."""
+    """(ξ, ξ') after time ``t`` of μξ'' + βξ' = f + d e^{−κt} from (ξ₀, ξ'₀) (module docstring); λ = β/μ.
+
+    Units: ticks, ticks per sample, samples; f, d in KΔ.
+
+    Examples
+    --------
+    >>> lag_motion(0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0)   # unit force, no damping: (t²/2, t)
+    (0.5, 1.0)
+    >>> x, v = lag_motion(0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0)   # force e^{−t}: ξ' = 1 − e^{−1}
+    >>> round(v, 12), round(x, 12)   # ξ = t − (1 − e^{−t}) = e^{−1}
+    (0.632120558829, 0.367879441171)
+    """
     u = lam * t
     p = lam if lam <= kap else kap
     q = kap if lam <= kap else lam
