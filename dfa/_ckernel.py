@@ -60,6 +60,12 @@ proof is not rest.
 
 Energy bookkeeping is not implemented for the controller path
 (:func:`dfa.simulate` refuses ``energy=True`` with a controller).
+
+Developers: this module compiles in :func:`dfa._kernel.step`,
+:func:`~dfa._kernel.sample_constants`, :func:`~dfa._kernel.tail_stats`,
+:func:`~dfa._kernel.tail_extremes` and :mod:`dfa._exprel`; numba's on-disk
+cache of this module does not notice edits there: clear it
+(``rm -rf .cache/numba``) after such an edit.
 """
 
 from __future__ import annotations
