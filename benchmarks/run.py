@@ -516,6 +516,62 @@ def bench_design_answer(quick: bool) -> str:
     )
 
 
+# the controller path (issue 15 item 4): a loop that chatters for ever (σ < ½ never rests), every sample integrated
+CTL_RUN = dict(mu=2.0, beta=2.0, sigma=0.1, xi_dot0=2.0)
+
+
+def bench_controller_kernel(quick: bool) -> str:
+    """ns per sample of dfa._ckernel (damper, filter, delay, amplifier lag) beside the spring kernel, same loop."""
+    from dfa import _ckernel
+    from dfa.controller import ControllerParams as CP
+
+    n = 200_000 if quick else 2_000_000
+    mu, beta, sigma, v0 = (CTL_RUN[k] for k in ("mu", "beta", "sigma", "xi_dot0"))
+    e, e2 = np.empty(0), np.empty((0, 4))
+
+    def spring():
+        st = np.empty(_kernel.NSTATS)
+        return _kernel.simulate_kernel(mu, beta, sigma, 0.0, v0, n, 0, True, 1e6, 8192, e, e, e2, st)[0]
+
+    def ctl(c):
+        st = np.empty(_kernel.NSTATS)
+        args = (c.damping, c.filter_pole, c.cutoff is not None, c.lag)
+        return _ckernel.simulate_ckernel(mu, beta, sigma, 0.0, v0, n, c.delay, True, 1e6, 8192, *args, e, e, st)[0]
+
+    cases = {"spring kernel (dfa._kernel)": spring}
+    for name, c in [
+        ("controller kernel, pure spring", CP()),
+        ("damper β_B = 0.5", CP(damping=0.5)),
+        ("damper + filter ν_c = 0.1 + delay 1", CP(damping=0.5, cutoff=0.1, delay=1)),
+        ("amplifier lag α = 0.2", CP(lag=0.2)),
+        ("damper + filter + delay 1 + lag α = 0.2", CP(damping=0.5, cutoff=0.1, delay=1, lag=0.2)),
+    ]:
+        cases[name] = lambda c=c: ctl(c)
+    rows = []
+    base = None
+    for name, f in cases.items():
+        done = f()  # compile / load the cache
+        t = min(best_of(f, 1) for _ in range(3)) / done
+        base = t if base is None else base
+        rows.append(f"| {name} | {done} | {1e9 * t:.3g} | {t / base:.2f} |")
+    return (
+        "\n".join(
+            [
+                "",
+                "## Simulator with a controller (issue 15 item 4): time per sample integrated",
+                "",
+                f"μ = {mu}, β = {beta}, σ = {sigma} (chatters for ever), ξ'0 = {v0}, no recording. With the amplifier lag",
+                "the force varies within each sample: every stop is a bracketed root of the closed form.",
+                "",
+                "| kernel / controller | samples integrated | ns per sample | × spring kernel |",
+                "|---|---:|---:|---:|",
+                *rows,
+            ]
+        )
+        + "\n"
+    )
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--out", default=os.path.join(HERE, "..", "reports", "benchmarks.md"))
@@ -535,6 +591,7 @@ def main() -> int:
     text = render(sim, fig4, args.quick, solver, friction, contours, kernel, mapspeed)
     text += bench_find_root(args.quick)
     text += bench_design_answer(args.quick)
+    text += bench_controller_kernel(args.quick)
     with open(args.out, "w", encoding="utf-8") as fh:
         fh.write(text)
     print(text)

@@ -82,6 +82,16 @@ about 200 ticks (undecided).
 Before the first sample the controller's past readings are taken equal to ξ0
 (matters only with a computational delay).
 
+With a controller (``controller=ControllerParams(...)``: virtual damper,
+velocity filter, delay, amplifier lag; :mod:`dfa.controller`) the run goes
+through :mod:`dfa._ckernel`, exact to rounding at the sample instants as well
+(closed-form motion under the amplifier's exponential force, stops by a
+bracketed root of the closed form, breakaway in closed form), with the same
+outcome rules; "rest" then needs the proof that every future command and
+amplifier force stays within ±σ while the device is stuck. A pure spring
+controller runs the spring kernel unchanged. The default run length does not
+yet account for the damper, filter or lag (it uses the controller's delay).
+
 Examples
 --------
 >>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000)
@@ -93,6 +103,11 @@ Examples
 >>> r = simulate(mu=100.0, beta=0.0, sigma=0.2, xi_dot0=2.0, samples=20000)
 >>> r.outcome.value
 'unstable'
+>>> from dfa.controller import ControllerParams
+>>> c = ControllerParams(damping=0.5, lag=0.3)   # virtual damper β_B, amplifier lag α (samples)
+>>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000, controller=c)
+>>> r.outcome.value, r.rest_sample
+('rest', 203)
 """
 
 from __future__ import annotations
@@ -103,7 +118,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from . import _kernel
+from . import _ckernel, _kernel
 from ._frozen import check_shape, freeze_fields
 from .checks import (
     check_beta,
@@ -117,8 +132,9 @@ from .checks import (
     check_real,
     check_sigma,
 )
+from .controller import ControllerParams
 from .criterion import spring_energy
-from .errors import DFAValueError
+from .errors import DFATypeError, DFAValueError
 from .jsonable import explain_nulls, to_jsonable
 from .status import SimulationOutcome
 
@@ -389,6 +405,8 @@ class SimulationResult:
         True when ``samples`` was chosen by :func:`default_samples`.
     energy : EnergyRecord or None
         Per-sample energy bookkeeping when requested.
+    controller : ControllerParams or None
+        The controller of a run with a damper, filter or amplifier lag (None: the spring).
 
     ``xi`` and ``xi_dot`` are read-only copies.
     """
@@ -416,6 +434,7 @@ class SimulationResult:
     xi: np.ndarray | None = field(default=None, repr=False)
     xi_dot: np.ndarray | None = field(default=None, repr=False)
     energy: EnergyRecord | None = field(default=None, repr=False)
+    controller: ControllerParams | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "outcome", SimulationOutcome.coerce(self.outcome, "outcome"))
@@ -580,6 +599,7 @@ class SimulationResult:
                 "samples": self.samples,
                 "delay": self.delay,
                 "quantize": self.quantize,
+                **({} if self.controller is None else {"controller": self.controller.as_dict()}),
             }
         )
         return explain_nulls(record, self.null_reasons())
@@ -659,6 +679,7 @@ def simulate(
     growth: float = 1.25,
     settle: float = 1.0e-3,
     progress: bool = False,
+    controller: ControllerParams | None = None,
 ) -> SimulationResult:
     """Simulate the sampled haptic loop exactly (paper eq. 4-5) from (ξ0, ξ'0).
 
@@ -698,6 +719,12 @@ def simulate(
         (runs of more than ``CHUNK`` samples; they are integrated in chunks
         of ``CHUNK`` samples, so Ctrl-C is honoured between chunks, with
         results identical to a single pass).
+    controller : ControllerParams, optional
+        The wall controller in dimensionless form (``Controller(...).params(T)``): virtual damper,
+        velocity filter, delay, amplifier lag (:mod:`dfa.controller`). Its delay replaces
+        ``delay``. None, or a pure spring (``ControllerParams(delay=d)``), runs the spring kernel
+        unchanged; otherwise :mod:`dfa._ckernel` runs the loop with the controller, exact to
+        rounding at the sample instants (one compiled call: no progress bar, no energy record).
 
     Returns
     -------
@@ -717,6 +744,7 @@ def simulate(
     stability_map : The outcome over a (β, σ) grid.
     passivity_criterion : The proven verdict the simulation is compared with.
     """
+    ctl, delay = check_controller(controller, delay, energy)
     m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
     q = bool(quantize)
     auto = samples is None
@@ -732,7 +760,12 @@ def simulate(
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
     stats = np.empty(_kernel.NSTATS)
     run = (m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
-    done, rest = _run_chunked(*run, progress=bool(progress)) if n > CHUNK else _kernel.simulate_kernel(*run)
+    if ctl is not None:
+        done, rest = _ckernel.simulate_ckernel(*run[:10], *_controller_args(ctl), rx, rv, stats)
+    elif n > CHUNK:
+        done, rest = _run_chunked(*run, progress=bool(progress))
+    else:
+        done, rest = _kernel.simulate_kernel(*run)
     code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
     suggest = max(4 * n, default_samples(m, b, s, v0, x0, d, q, cap=False)) if code == _kernel.UNDECIDED else None
     en = None
@@ -740,7 +773,47 @@ def simulate(
         h0 = float(stored_energy(x0, v0, m, q))
         en = EnergyRecord(re[:, 0].copy(), re[:, 1].copy(), re[:, 2].copy(), re[:, 3].copy(), h0)
     fields = (m, b, s, x0, v0, n, d, q, *_measured(code, amp, freq, centre, fpp, done, rest, stats), suggest, auto)
-    return SimulationResult(*fields, xi=rx if record else None, xi_dot=rv if record else None, energy=en)
+    return SimulationResult(
+        *fields, xi=rx if record else None, xi_dot=rv if record else None, energy=en, controller=ctl
+    )
+
+
+def check_controller(controller, delay, energy: bool = False) -> tuple[ControllerParams | None, int]:
+    """(controller or None for the pure spring, delay) of a run: the controller's delay replaces ``delay``.
+
+    Raises
+    ------
+    DFATypeError
+        If ``controller`` is not a :class:`~dfa.controller.ControllerParams` (or None).
+    DFAValueError
+        If ``delay`` is given and differs from the controller's, or ``energy`` is asked with a
+        damper, filter or amplifier lag (the energy bookkeeping covers the spring only).
+    """
+    if controller is None:
+        return None, delay
+    if not isinstance(controller, ControllerParams):
+        raise DFATypeError(
+            f"controller = {controller!r} is invalid: it must be a ControllerParams or None; "
+            "pass Controller(...).params(period) or ControllerParams(...)"
+        )
+    if delay not in (0, controller.delay):
+        raise DFAValueError(
+            f"delay = {delay!r} is invalid with controller.delay = {controller.delay}: the controller carries "
+            "the delay; give it there (or pass the same value)"
+        )
+    if controller.is_spring:
+        return None, controller.delay
+    if energy:
+        raise DFAValueError(
+            "energy = True is invalid with a controller (damper, filter or amplifier lag): the energy "
+            "bookkeeping covers the spring only; pass energy=False"
+        )
+    return controller, controller.delay
+
+
+def _controller_args(ctl: ControllerParams) -> tuple[float, float, bool, float]:
+    """(β_B, a, filtered, α): the controller arguments of :mod:`dfa._ckernel`."""
+    return ctl.damping, ctl.filter_pole, ctl.cutoff is not None, ctl.lag
 
 
 def _measured(
@@ -802,6 +875,8 @@ class SimulationBatch:
         Peak abs(ξ) of each eighth of each run.
     status : str
         ``"ok"``.
+    controller : ControllerParams or None
+        The controller shared by every run (None: the spring).
     """
 
     mu: np.ndarray = field(repr=False)
@@ -823,6 +898,7 @@ class SimulationBatch:
     final_xi_dot: np.ndarray = field(repr=False)
     envelope: np.ndarray = field(repr=False)
     status: str = "ok"
+    controller: ControllerParams | None = None
 
     def __post_init__(self) -> None:
         for f in self.__dataclass_fields__:
@@ -853,6 +929,8 @@ class SimulationBatch:
         out["final_xi"], out["final_xi_dot"] = lst(self.final_xi), lst(self.final_xi_dot)
         out["envelope"] = [lst(row) for row in self.envelope]
         out["status"] = self.status
+        if self.controller is not None:
+            out["controller"] = self.controller.as_dict()
         return out
 
 
@@ -891,6 +969,7 @@ def simulate_batch(
     stable_amplitude: float = 1.0,
     growth: float = 1.25,
     settle: float = 1.0e-3,
+    controller: ControllerParams | None = None,
 ) -> SimulationBatch:
     """Simulate many independent runs in one compiled call; each equals :func:`simulate` of that run alone.
 
@@ -900,7 +979,7 @@ def simulate_batch(
         Per-run inputs (as in :func:`simulate`), broadcast together to a 1-D list of runs.
     samples : int
         Samples of every run (>= 1); give the same run length you would give :func:`simulate`.
-    delay, quantize, bound, stable_amplitude, growth, settle
+    delay, quantize, bound, stable_amplitude, growth, settle, controller
         Shared by every run, as in :func:`simulate`.
 
     Returns
@@ -915,6 +994,7 @@ def simulate_batch(
     >>> b.outcomes()
     ['rest', 'unstable']
     """
+    ctl, delay = check_controller(controller, delay)
     m, b, s, v0, x0 = _check_points(mu, beta, sigma, xi_dot0, xi0)
     n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
     d = check_delay(delay)
@@ -923,7 +1003,7 @@ def simulate_batch(
     rules = check_rules(bound, stable_amplitude, growth, settle)
     if not np.all(rules[0] > np.abs(x0)):
         raise DFAValueError(f"bound = {rules[0]!r} is invalid: it must exceed every |xi0| ({np.abs(x0).max()!r})")
-    res = run_points(m, b, s, x0, v0, n, d, bool(quantize), *rules)
+    res = run_points(m, b, s, x0, v0, n, d, bool(quantize), *rules, controller=ctl)
     codes, amps, freqs, centres, fpps, done, rest, stats = res
     return SimulationBatch(
         mu=m,
@@ -944,16 +1024,26 @@ def simulate_batch(
         final_xi=stats[:, _kernel.NSEG + 6].copy(),
         final_xi_dot=stats[:, _kernel.NSEG + 7].copy(),
         envelope=stats[:, : _kernel.NSEG].copy(),
+        controller=ctl,
     )
 
 
-def run_points(mu, beta, sigma, x0, v0, n, delay, quantize, bound, stable_amplitude, growth, settle):
+def run_points(
+    mu, beta, sigma, x0, v0, n, delay, quantize, bound, stable_amplitude, growth, settle, *, controller=None
+):
     """Validated float arrays in, kernel outputs out: (codes, amps, freqs, centres, fpps, done, rest, stats).
 
     One call of :func:`dfa._kernel.serial_kernel` per group of runs with the
     same tail length (which follows each run's μ as in :func:`simulate`); no
-    GIL is held, so callers may run several calls on threads.
+    GIL is held, so callers may run several calls on threads. ``controller``
+    (a ControllerParams that is not a pure spring, whose delay is ``delay``;
+    see :func:`check_controller`) runs :func:`dfa._ckernel.serial_ckernel` instead.
     """
+    if controller is not None and controller.delay != delay:
+        raise DFAValueError(
+            f"delay = {delay!r} is invalid with controller.delay = {controller.delay}: run_points needs the "
+            "controller's own delay; pass delay=controller.delay"
+        )
     k = mu.shape[0]
     codes = np.empty(k, dtype=np.int64)
     amps, freqs, centres, fpps = np.empty(k), np.empty(k), np.empty(k), np.empty(k)
@@ -966,7 +1056,11 @@ def run_points(mu, beta, sigma, x0, v0, n, delay, quantize, bound, stable_amplit
         st = np.empty((j.size, _kernel.NSTATS))
         dn = np.empty(j.size, dtype=np.int64)
         rs = np.empty(j.size, dtype=np.int64)
-        _kernel.serial_kernel(mu[j], beta[j], sigma[j], x0[j], v0[j], n, delay, quantize, bound, int(t), st, dn, rs)
+        pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], n, delay, quantize, bound, int(t))
+        if controller is None or controller.is_spring:
+            _kernel.serial_kernel(*pts, st, dn, rs)
+        else:
+            _ckernel.serial_ckernel(*pts, *_controller_args(controller), st, dn, rs)
         stats[j], done[j], rest[j] = st, dn, rs
     _kernel.classify_batch(
         mu, n, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps

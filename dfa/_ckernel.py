@@ -1,0 +1,363 @@
+"""Compiled kernel of the exact simulator with a controller (damper, filter, delay, amplifier lag).
+
+Dimensionless loop (:mod:`dfa.controller`; time in samples, ξ = x/Δ,
+φ = F/(KΔ)). At sample h the controller reads r_h = ⌊ξ(h)⌋ (ξ(h) itself
+without quantization), forms v_h = r_h − r_{h−1} (r_{−1} = r_0), filters it,
+y_h = a y_{h−1} + (1 − a) v_{h−1} (y_0 = 0; y_h = v_h without filter), and
+commands c_h = −(r_h + ½) − β_B y_h (−r_h − β_B y_h without quantization),
+applied d samples later (c_{h} = c_0 for h < 0). The amplifier output obeys
+α φ_A' = c_{h−d} − φ_A on [h, h + 1), φ_A(0) = c_0, and the device
+μ ξ'' + β ξ' + σ sgn ξ' = φ_A.
+
+No lag (α = 0): φ_A = c_{h−d} is constant over the sample and the sample is
+the spring kernel's exact step (:func:`dfa._kernel.step`) with that force.
+
+With a lag (α > 0) the force within a sample is φ_A(t) = c + D e^{−κt}
+(κ = 1/α, c the applied command, D = φ_A(0) − c). While the device moves in
+direction s the motion from (ξ₀, ξ'₀) after a time t is, with λ = β/μ,
+F = c − σ s, p = min(λ, κ), q = max(λ, κ), P = p t, Q' = (q − p) t::
+
+    ξ'(t) = ξ'₀ e^{−λt} + (F/μ) t φ₁(λt) + (D/μ) t e^{−P} φ₁(Q')
+    ξ(t)  = ξ₀ + ξ'₀ t φ₁(λt) + (F/μ) t² φ₂(λt) + (D/μ) t² [p ρ(P) + e^{−P}(q − p) φ₂(Q')]/q
+    ρ(P)  = (1 − e^{−P}(1 + P))/P² = Σ (−P)ⁿ (n + 1)/(n + 2)!          (ρ(0) = ½)
+
+Derivation: the response of ξ' to e^{−κt} is ∫₀ᵗ e^{−λ(t−τ)} e^{−κτ} dτ =
+(e^{−pt} − e^{−qt})/(q − p) = t e^{−P} φ₁(Q') (symmetric in λ, κ); its
+integral G(t) = t (φ₁(P) − φ₁(Q))/(q − p) with Q = q t. Writing
+φ₁(P) − φ₁(Q) = [Q' − Q e^{−P} + P e^{−Q}]/(PQ) and Q e^{−P} − P e^{−Q} =
+e^{−P} Q'(1 + P φ₁(Q')), then 1 − φ₁ = u φ₂, gives the sum of two
+non-negative terms above: no cancellation for β/μ ≈ 1/α (Q' → 0), β = 0
+(p = 0) or tiny α (q = κ huge, e^{−P}, φ₂ ≪ 1); only q > 0 is divided by.
+
+Zero crossings of the velocity. With w(t) = e^{λt} ξ'(t) (same sign as ξ'),
+μ w'(t) = e^{λt} (φ_A(t) − σ s): the net force g(t) = F + D e^{−κt} is
+monotone in t, so it changes sign at most once, at t_c = α log(−D/F) (closed
+form). Hence |ξ'| can reach zero at most once per phase, only where g
+opposes the motion (s g < 0): before t_c if g opposes first, after t_c if
+it assists first. That interval brackets the root when s ξ' <= 0 at its end;
+the root is found by Newton's method on the closed form safeguarded by
+bisection (the bracket shrinks every step; it stops when the Newton step is
+below 4 ulp of t, or the bracket is that narrow), so no step size and no tolerance beyond rounding.
+
+Stick-slip with a time-varying force. At ξ' = 0 the device restarts in the
+direction sgn φ_A when |φ_A| > σ; otherwise it sticks while |φ_A(t)| <= σ.
+φ_A moves monotonically toward c, so a stuck device breaks away iff |c| > σ,
+at the time φ_A(t) = σ sgn c, t_b = α log(D/(σ sgn c − c)) (closed form);
+it stays stuck to the end of the sample otherwise. A sample is a chain of
+such phases (at most a few: each restart needs φ_A to cross a level ±σ,
+which a monotone φ_A does at most twice).
+
+Rest (absorbing state). At the start of sample h: ξ' = 0 and, if the device
+stayed stuck, the reading would stay r = r_h, so v_k = 0 for k > h, the
+filtered y decays geometrically from y_{h+1} = a y_h + (1 − a) v_h to 0
+without changing sign (y = 0 from h + 1 on without filter), and every future
+command lies in the hull of c_h, c(y_{h+1}) and c(0) = −(r + ½); the pending
+commands c_{h−d} … c_{h−1} are in the delay ring; and φ_A stays in the hull
+of its present value and the commands it follows. If all these lie in
+[−σ, σ] the device provably never moves again (by induction: stuck ⇒ same
+reading ⇒ same bounds): that is "rest". A run that ends stuck without this
+proof is not rest.
+
+Energy bookkeeping is not implemented for the controller path
+(:func:`dfa.simulate` refuses ``energy=True`` with a controller).
+
+Developers: this module compiles in :func:`dfa._kernel.step`,
+:func:`~dfa._kernel.sample_constants`, :func:`~dfa._kernel.tail_stats`,
+:func:`~dfa._kernel.tail_extremes` and :mod:`dfa._exprel`; numba's on-disk
+cache of this module does not notice edits there: clear it
+(``rm -rf .cache/numba``) after such an edit.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ._exprel import phi1, phi2
+from ._kernel import NSEG, sample_constants, segment_bounds, step, tail_extremes, tail_stats
+
+__all__ = ["rho", "lag_motion", "lag_sample", "simulate_ckernel", "serial_ckernel"]
+
+# Taylor coefficients of ρ in x = −P: (n + 1)/(n + 2)!, n = 0 … 17 (first omitted term < 10⁻¹⁸ at |P| < ½)
+_CR = tuple((n + 1) / math.factorial(n + 2) for n in range(18))
+
+_ULP4 = 4.0 * 2.220446049250313e-16  # four units in the last place, relative
+MAX_PHASES = 16  # per sample; the derivation allows at most 5 (stuck, breakaway, stop, restart, stop)
+
+
+@njit(cache=True, inline="always")
+def rho(u: float) -> float:
+    """ρ(u) = (1 − e^{−u}(1 + u))/u² (ρ(0) = ½), dimensionless, for u >= 0.
+
+    Examples
+    --------
+    >>> rho(0.0), round(rho(1.0), 12)   # ½ and 1 − 2/e
+    (0.5, 0.264241117657)
+    """
+    if u < 0.5:
+        s = 0.0
+        for n in range(17, -1, -1):
+            s = s * (-u) + _CR[n]
+        return s
+    num = -math.expm1(-u) - u * math.exp(-u)
+    if u > 1e100:
+        return num / u / u
+    return num / (u * u)
+
+
+@njit(cache=True, inline="always")
+def lag_motion(x0, v0, f, d, mu, lam, kap, t):
+    """(ξ, ξ') after time ``t`` of μξ'' + βξ' = f + d e^{−κt} from (ξ₀, ξ'₀) (module docstring); λ = β/μ.
+
+    Units: ticks, ticks per sample, samples; f, d in KΔ.
+
+    Examples
+    --------
+    >>> lag_motion(0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0)   # unit force, no damping: (t²/2, t)
+    (0.5, 1.0)
+    >>> x, v = lag_motion(0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0)   # force e^{−t}: ξ' = 1 − e^{−1}
+    >>> round(v, 12), round(x, 12)   # ξ = t − (1 − e^{−t}) = e^{−1}
+    (0.632120558829, 0.367879441171)
+    """
+    u = lam * t
+    p = lam if lam <= kap else kap
+    q = kap if lam <= kap else lam
+    pp = p * t
+    dq = (q - p) * t
+    e = math.exp(-pp)
+    p1 = phi1(u)
+    x = x0 + v0 * t * p1 + (f / mu) * t * t * phi2(u) + (d / mu) * t * t * (p * rho(pp) + e * (q - p) * phi2(dq)) / q
+    v = v0 * math.exp(-u) + (f / mu) * t * p1 + (d / mu) * t * e * phi1(dq)
+    return x, v
+
+
+@njit(cache=True, inline="always")
+def _root(x0, v0, f, d, mu, lam, kap, s, lo, hi):
+    """Time in [lo, hi] where s ξ' falls to 0 (s ξ'(lo) > 0 >= s ξ'(hi)): Newton safeguarded by bisection."""
+    t = hi
+    for _ in range(200):
+        _, v = lag_motion(x0, v0, f, d, mu, lam, kap, t)
+        sv = s * v
+        if sv > 0.0:
+            lo = t
+        else:
+            hi = t
+            if sv == 0.0:
+                return t
+        acc = s * (f + d * math.exp(-kap * t) - lam * mu * v) / mu  # d(sξ')/dt, < 0 inside the bracket
+        if acc < 0.0:
+            step = sv / acc
+            if abs(step) <= _ULP4 * t:
+                return t  # the Newton step is below rounding: t is the root to rounding
+            tn = t - step
+        else:
+            tn = 0.5 * (lo + hi)
+        if not (lo < tn < hi):
+            tn = 0.5 * (lo + hi)  # the safeguard: bisect when Newton leaves the bracket
+        if hi - lo <= _ULP4 * hi:
+            return hi  # the bracket has collapsed
+        t = tn
+    return hi
+
+
+@njit(cache=True, inline="always")
+def _stop_time(x0, v0, f, d, mu, lam, kap, s, tmax):
+    """First time in (0, tmax] at which ξ' reaches 0 in a phase of direction s, or −1 if it does not."""
+    g0 = s * (f + d)
+    g1 = s * (f + d * math.exp(-kap * tmax))
+    if g0 >= 0.0 and g1 >= 0.0:
+        return -1.0  # the net force never opposes the motion
+    if g0 < 0.0 and g1 < 0.0:
+        lo, hi = 0.0, tmax
+    else:
+        tc = math.log(-d / f) / kap  # g changes sign once, at t_c: e^{−κ t_c} = −F/D
+        tc = min(max(tc, 0.0), tmax)
+        lo, hi = (0.0, tc) if g0 < 0.0 else (tc, tmax)
+    _, vh = lag_motion(x0, v0, f, d, mu, lam, kap, hi)
+    if s * vh > 0.0:
+        return -1.0
+    if lo > 0.0:
+        _, vl = lag_motion(x0, v0, f, d, mu, lam, kap, lo)
+        if s * vl <= 0.0:
+            return lo
+    elif v0 == 0.0:
+        return -1.0  # starts at rest with the force turning against it: cannot happen (see lag_sample)
+    return _root(x0, v0, f, d, mu, lam, kap, s, lo, hi)
+
+
+@njit(cache=True, inline="always")
+def lag_sample(x, v, c, fa, mu, beta, sigma, lag):
+    """One sample with the amplifier lag: (ξ, ξ', lowest and highest turning point; ±inf when none).
+
+    ``c`` is the applied command, ``fa`` = φ_A at the start of the sample.
+    """
+    lam = beta / mu
+    kap = 1.0 / lag
+    t = 0.0
+    lo_turn = np.inf
+    hi_turn = -np.inf
+    for phase in range(MAX_PHASES + 1):
+        rem = 1.0 - t
+        if rem <= 0.0:
+            break
+        if phase == MAX_PHASES:
+            raise RuntimeError("dfa._ckernel.lag_sample: more phases in one sample than the derivation allows")
+        d = (fa - c) * math.exp(-kap * t)
+        if v == 0.0:
+            if abs(c + d) <= sigma:  # stuck: breaks away when φ_A reaches σ sgn c (only if |c| > σ)
+                if abs(c) <= sigma:
+                    break
+                target = sigma if c > 0.0 else -sigma
+                tb = lag * math.log(d / (target - c))
+                if not tb < rem:
+                    break
+                t += tb
+                rem = 1.0 - t
+                d = target - c
+                s = 1.0 if c > 0.0 else -1.0
+            else:
+                s = 1.0 if c + d > 0.0 else -1.0
+        else:
+            s = 1.0 if v > 0.0 else -1.0
+        f = c - sigma * s
+        ts = _stop_time(x, v, f, d, mu, lam, kap, s, rem)
+        if ts < 0.0:
+            x, v = lag_motion(x, v, f, d, mu, lam, kap, rem)
+            break
+        x, _ = lag_motion(x, v, f, d, mu, lam, kap, ts)
+        v = 0.0
+        t += ts
+        lo_turn = min(lo_turn, x)
+        hi_turn = max(hi_turn, x)
+    return x, v, lo_turn, hi_turn
+
+
+@njit(cache=True, inline="always")
+def _inside(c, sigma):
+    return abs(c) <= sigma
+
+
+@njit(cache=True, inline="always")
+def _absorbing(v, fa, sigma, ring, base, damping, ynext):
+    """The proven rest state (module docstring): stuck, and every future command and φ_A within [−σ, σ]."""
+    if v != 0.0 or not _inside(fa, sigma) or not _inside(base, sigma):
+        return False
+    if not _inside(base - damping * ynext, sigma):
+        return False
+    for i in range(ring.shape[0]):
+        if not _inside(ring[i], sigma):
+            return False
+    return True
+
+
+@njit(cache=True, nogil=True)
+def simulate_ckernel(
+    mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len, damping, pole, filtered, lag, rec_x, rec_v, stats
+):
+    """Run ``n`` samples with the controller; return (samples done, rest sample or −1).
+
+    ``damping`` β_B, ``pole`` a (used when ``filtered``), ``lag`` α. ``rec_x``/``rec_v``
+    (length n + 1) are written when they have that length. ``stats`` as in
+    :func:`dfa._kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
+    """
+    record = rec_x.shape[0] == n + 1
+    k = sample_constants(mu, beta)
+    e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
+    for i in range(stats.shape[0]):
+        stats[i] = 0.0
+    tail = np.empty(max(tail_len, 1))
+    tail_start = n - tail_len
+    ring = np.empty(delay + 1)  # ring[pos] is the applied command c_{h−d} once c_h is written
+    x, v = x0, v0
+    if record:
+        rec_x[0], rec_v[0] = x0, v0
+    r_prev = math.floor(x0) if quantize else x0
+    v_prev = 0.0
+    y = 0.0
+    base0 = -(r_prev + 0.5) if quantize else -r_prev
+    for i in range(delay + 1):
+        ring[i] = base0
+    fa = base0
+    pos = 0
+    tmin, tmax = np.inf, -np.inf
+    seg, seg_end = 0, segment_bounds(0, n)[1]
+    done, rest = n, -1
+    for h in range(n):
+        r = math.floor(x) if quantize else x
+        vh = r - r_prev
+        if filtered:
+            y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
+        else:
+            y = vh
+        base = -(r + 0.5) if quantize else -r
+        ring[pos] = base - damping * y
+        pos = pos + 1 if pos < delay else 0
+        c = ring[pos]
+        if lag == 0.0:
+            fa = c
+        if v == 0.0:
+            ynext = pole * y + (1.0 - pole) * vh if filtered else 0.0
+            if _absorbing(v, fa, sigma, ring, base, damping, ynext):
+                done, rest = h, h
+                break
+        r_prev, v_prev = r, vh
+        if lag == 0.0:
+            x, v, xr, _, _, _, _, stopped = step(x, v, c, mu, sigma, k)
+            lo_t, hi_t = (xr, xr) if stopped else (np.inf, -np.inf)
+        else:
+            x, v, lo_t, hi_t = lag_sample(x, v, c, fa, mu, beta, sigma, lag)
+            fa = c + (fa - c) * e_lag
+        if record:
+            rec_x[h + 1], rec_v[h + 1] = x, v
+        while h >= seg_end:
+            seg += 1
+            seg_end = segment_bounds(seg, n)[1]
+        ax = abs(x)
+        if ax > stats[seg]:
+            stats[seg] = ax
+        if h >= tail_start:
+            tail[h - tail_start] = x
+            tmin, tmax = tail_extremes(x, lo_t, lo_t < np.inf, tmin, tmax)
+            tmin, tmax = tail_extremes(x, hi_t, hi_t > -np.inf, tmin, tmax)
+        if not ax <= bound:  # also catches NaN
+            done = h + 1
+            stats[NSEG + 5] = 1.0
+            break
+    if done == n and rest < 0 and tail_len > 1:
+        tail_stats(tail, tail_len, tmin, tmax, stats)
+    stats[NSEG + 6], stats[NSEG + 7] = x, v
+    if record:
+        for i in range(done + 1, n + 1):
+            rec_x[i] = x if rest >= 0 else np.nan
+            rec_v[i] = v if rest >= 0 else np.nan
+    return done, rest
+
+
+@njit(cache=True, nogil=True)
+def serial_ckernel(
+    mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, damping, pole, filtered, lag, stats, done, rest
+):
+    """:func:`simulate_ckernel` for independent runs, one after the other; nothing recorded."""
+    empty = np.empty(0)
+    for i in range(mus.shape[0]):
+        done[i], rest[i] = simulate_ckernel(
+            mus[i],
+            betas[i],
+            sigmas[i],
+            x0s[i],
+            v0s[i],
+            n,
+            delay,
+            quantize,
+            bound,
+            tail_len,
+            damping,
+            pole,
+            filtered,
+            lag,
+            empty,
+            empty,
+            stats[i],
+        )

@@ -1,0 +1,135 @@
+"""Slow, independent references of the loop with a controller (test code, not shipped).
+
+* :func:`simulate_ivp_ctl` integrates μξ'' + βξ' + σ sgn ξ' = φ_A and the amplifier
+  α φ_A' = c − φ_A numerically (scipy ``solve_ivp``, DOP853), sample by sample,
+  with events at ξ' = 0 (stop) and at |φ_A| = σ (breakaway of a stuck device).
+* :func:`linear_ctl_recursion` is the linear loop (no quantizer, σ = 0) from the
+  exact ZOH discretisation (``control.c2d``) of the plant with the amplifier,
+  x_{h+1} = A_d x_h + B_d c_{h−d}.
+
+Both share :class:`Commands`, the controller's sample-level recursion written
+plainly (reading, difference, filter, command, delay) from the semantics in
+:mod:`dfa.controller`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["Commands", "simulate_ivp_ctl", "linear_ctl_recursion"]
+
+
+class Commands:
+    """The controller at the sample instants: ``applied(ξ_h)`` returns c_{h−d}."""
+
+    def __init__(self, ctl, quantize: bool):
+        self.ctl, self.q = ctl, quantize
+        self.prev_r = None
+        self.prev_v = 0.0
+        self.y = 0.0
+        self.hist: list[float] = []
+
+    def applied(self, x: float) -> float:
+        r = math.floor(x) if self.q else x
+        first = self.prev_r is None
+        v = 0.0 if first else r - self.prev_r
+        if self.ctl.cutoff is None:
+            y = v
+        else:
+            a = self.ctl.filter_pole
+            y = 0.0 if first else a * self.y + (1.0 - a) * self.prev_v
+        self.prev_r, self.prev_v, self.y = r, v, y
+        c = (-(r + 0.5) if self.q else -r) - self.ctl.damping * y
+        if first:
+            self.hist = [c] * (self.ctl.delay + 1)
+        self.hist = self.hist[1:] + [c]
+        return self.hist[0]
+
+
+def _ivp(rhs, t0, y0, event):
+    from scipy.integrate import solve_ivp
+
+    return solve_ivp(rhs, (t0, 1.0), y0, method="DOP853", rtol=1e-12, atol=1e-13, events=event)
+
+
+def _stuck(t, fa, c, lag, sigma):
+    """Integrate φ_A alone while stuck; return (t, φ_A, broke_away)."""
+    if lag == 0.0 or abs(c) <= sigma:
+        return 1.0, (fa if lag == 0.0 else c + (fa - c) * math.exp(-(1.0 - t) / lag)), False
+
+    def ev(_t, y):
+        return abs(y[0]) - sigma
+
+    ev.terminal, ev.direction = True, 1
+    sol = _ivp(lambda _t, y: [(c - y[0]) / lag], t, [fa], ev)
+    if sol.status == 1 and sol.t_events[0].size:
+        return float(sol.t_events[0][0]), math.copysign(sigma, c), True
+    return 1.0, float(sol.y[0, -1]), False
+
+
+def simulate_ivp_ctl(mu, beta, sigma, xi0, xi_dot0, samples, ctl, *, quantize=True):
+    """Reference trajectory (ξ, ξ') at the samples 0 … samples with controller ``ctl`` (ControllerParams)."""
+    lag = ctl.lag
+    xs, vs = np.empty(samples + 1), np.empty(samples + 1)
+    x, v = float(xi0), float(xi_dot0)
+    xs[0], vs[0] = x, v
+    cmd = Commands(ctl, quantize)
+    fa = None
+    for h in range(samples):
+        c = cmd.applied(x)
+        fa = c if (fa is None or lag == 0.0) else fa
+        t = 0.0
+        while t < 1.0:
+            if v == 0.0:
+                if abs(fa) <= sigma:
+                    t, fa, broke = _stuck(t, fa, c, lag, sigma)
+                    if not broke:
+                        break
+                s = math.copysign(1.0, fa)
+            else:
+                s = math.copysign(1.0, v)
+
+            def rhs(_t, y, s=s, c=c):
+                dfa = 0.0 if lag == 0.0 else (c - y[2]) / lag
+                return [y[1], (y[2] - beta * y[1] - sigma * s) / mu, dfa]
+
+            def stop(_t, y):
+                return y[1]
+
+            stop.terminal, stop.direction = True, -s
+            sol = _ivp(rhs, t, [x, v, fa], stop)
+            if sol.status == 1 and sol.t_events[0].size:
+                t = float(sol.t_events[0][0])
+                x, v, fa = float(sol.y_events[0][0][0]), 0.0, float(sol.y_events[0][0][2])
+            else:
+                x, v, fa = (float(z) for z in sol.y[:, -1])
+                t = 1.0
+        xs[h + 1], vs[h + 1] = x, v
+    return xs, vs
+
+
+def linear_ctl_recursion(mu, beta, xi0, xi_dot0, samples, ctl):
+    """Linear loop (no quantizer, no friction) with controller ``ctl`` from control.c2d of plant + amplifier."""
+    import control
+
+    if ctl.lag == 0.0:
+        plant = control.ss([[0.0, 1.0], [0.0, -beta / mu]], [[0.0], [1.0 / mu]], np.eye(2), np.zeros((2, 1)))
+    else:
+        k = 1.0 / ctl.lag
+        a = [[0.0, 1.0, 0.0], [0.0, -beta / mu, 1.0 / mu], [0.0, 0.0, -k]]
+        plant = control.ss(a, [[0.0], [0.0], [k]], np.eye(3), np.zeros((3, 1)))
+    dsys = control.c2d(plant, 1.0, method="zoh")
+    ad, bd = np.asarray(dsys.A), np.asarray(dsys.B)[:, 0]
+    cmd = Commands(ctl, False)
+    xs, vs = np.empty(samples + 1), np.empty(samples + 1)
+    state = np.array([xi0, xi_dot0] + ([] if ctl.lag == 0.0 else [np.nan]), dtype=float)
+    xs[0], vs[0] = xi0, xi_dot0
+    for h in range(samples):
+        c = cmd.applied(state[0])
+        if h == 0 and ctl.lag > 0.0:
+            state[2] = c
+        state = ad @ state + bd * c
+        xs[h + 1], vs[h + 1] = state[0], state[1]
+    return xs, vs
