@@ -30,6 +30,14 @@ Structure: one sample is a chain of small inlined steps (:func:`force`,
 (:func:`start`, :func:`finish`); :func:`simulate_kernel` runs a whole run and
 :func:`serial_kernel` a list of independent runs. All release the GIL.
 
+Hot path (issue 16): without delay, records or energy, the samples before
+the tail run in :func:`advance_free`, whose loop carries (ξ, ξ') and the
+peak only. There the state is (ξ, ξ') alone, so a run whose state repeats
+bit for bit after P samples repeats them for ever: whole periods are
+skipped (Brent's cycle detection; results bit for bit those of integrating
+every sample, ``tests/test_eq4_period_skip.py``). Most chatter runs of a
+stability map settle on such a cycle within a few thousand samples.
+
 Rounding: the hot path divides by μ once per run (``sample_constants``) and
 evaluates φ₁, φ₂ by Estrin's scheme; against the kernel before this change
 (per-sample divisions, term-by-term series) trajectories agree to rounding
@@ -182,6 +190,80 @@ def tail_extremes(x, xr, stopped, tmin, tmax):
     return tmin, tmax
 
 
+@njit(cache=True, inline="always")
+def free_sample(x, v, peak, mu, sigma, quantize, bound, k):
+    """One unrecorded sample without delay: the body of :func:`advance_free`.
+
+    Returns (ξ, ξ', peak |ξ|, why, ξ_r, stopped) (ξ_r, stopped: :func:`step`'s):
+    why = 0 integrated, 1 at rest (not integrated: with d = 0 the absorbing
+    state is ξ' = 0, |φ| <= σ), 2 past ``bound`` (or NaN). The same operations
+    as :func:`advance`'s loop with d = 0.
+    """
+    phi = force(x, quantize)
+    if v == 0.0 and abs(phi) <= sigma:
+        return x, v, peak, 1, x, False
+    x, v, xr, tstar, a, a2, tr, stopped = step(x, v, phi, mu, sigma, k)
+    ax = abs(x)
+    if ax > peak:
+        peak = ax
+    if not ax <= bound:  # also catches NaN
+        return x, v, peak, 2, xr, stopped
+    return x, v, peak, 0, xr, stopped
+
+
+@njit(cache=True, inline="always")
+def same_state(x, v, rx, rv):
+    """(ξ, ξ') equals (rx, rv) bit for bit (so ±0 differ; NaN never equals)."""
+    return (
+        x == rx
+        and v == rv
+        and math.copysign(1.0, x) == math.copysign(1.0, rx)
+        and math.copysign(1.0, v) == math.copysign(1.0, rv)
+    )
+
+
+@njit(cache=True, nogil=True)
+def advance_free(state, h0, h1, mu, sigma, quantize, bound, k, tail, tail_start):
+    """:func:`advance` over samples h0 … h1 − 1 without delay, unrecorded (the hot path).
+
+    The range lies before the tail (h1 <= ``tail_start``) or in it (h0 >= ``tail_start``).
+    With d = 0 the state of the loop is (ξ, ξ') alone, so once it repeats bit
+    for bit after P samples the run repeats those P samples for ever (no exit
+    among them, or it would have stopped): whole periods up to h1 are skipped,
+    found by Brent's cycle detection (a reference state renewed at doubling
+    intervals). The reference lies in this range, so a skipped period's peak
+    and tail extremes are already counted; its tail readings are copied. Same
+    results bit for bit as integrating every sample.
+    """
+    x, v, tmin, tmax = state[SX], state[SV], state[STMIN], state[STMAX]
+    peak = 0.0
+    in_tail = h0 >= tail_start
+    rx, rv, rh, span = x, v, h0, 1  # reference state, its sample, renewal interval
+    h = h0
+    why = 0
+    while h < h1:
+        x, v, peak, why, xr, stopped = free_sample(x, v, peak, mu, sigma, quantize, bound, k)
+        if why == 1:
+            break
+        if in_tail:
+            tail[h - tail_start] = x
+            tmin, tmax = tail_extremes(x, xr, stopped, tmin, tmax)
+        h += 1
+        if why == 2:
+            break
+        if same_state(x, v, rx, rv):  # period h − rh: skip the whole periods left in this range
+            skip = (h1 - h) // (h - rh) * (h - rh)
+            if in_tail:
+                for i in range(h, h + skip):
+                    tail[i - tail_start] = tail[i - (h - rh) - tail_start]
+            h += skip
+            span = h1  # no more renewals: fewer than one period is left
+        elif h - rh == span:
+            rx, rv, rh, span = x, v, h, 2 * span
+    state[SX], state[SV], state[STMIN], state[STMAX] = x, v, tmin, tmax
+    return h, why, peak
+
+
 # ----------------------------------------------------------------------------- a run, in ranges of samples
 
 # state array of a run: ξ, ξ', ring position, tail min, tail max
@@ -219,6 +301,8 @@ def advance(
     ``rec_e[h]`` (generated, viscous, Coulomb, stored).
     """
     k = sample_constants(mu, beta)
+    if delay == 0 and not record and not energy and (h1 <= tail_start or h0 >= tail_start):
+        return advance_free(state, h0, h1, mu, sigma, quantize, bound, k, tail, tail_start)
     x = state[SX]
     v = state[SV]
     pos = int(state[SPOS])
@@ -481,9 +565,9 @@ def serial_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_
     (NSTATS), ``done[i]`` and ``rest[i]`` receive what :func:`simulate_kernel`
     returns for it. (Kernels that interleave the runs sample by sample were
     measured 1.6-3× slower per point-sample on the 2-core development machine
-    than this loop, whose single trajectory already runs near the latency of
-    its read → force → update chain; they are in the git history of this
-    module.)
+    than this loop (git history of this module); one with 4 runs in
+    registers, ``benchmarks/lanes_kernel.py``, is no faster on a map, whose
+    chatter runs are bound by branch mispredictions at their frequent stops.)
     """
     empty = np.empty(0)
     empty2 = np.empty((0, 4))
