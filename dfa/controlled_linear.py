@@ -311,6 +311,10 @@ def _device(mass: Any, damping: Any, period: Any) -> tuple[float, float, float]:
     m = check_positive("mass", mass, "give the moving mass in kg (rotary: kg·m²)")
     b = check_nonnegative("damping", damping, "give the viscous friction b in N·s/m")
     t = check_positive("period", period, "give the sampling period T in s (1 kHz: 0.001)")
+    if not (t * t > 0.0 and math.isfinite(m / (t * t))):  # K = κ m/T²: a subnormal T would divide by zero
+        raise DFAValueError(
+            f"period = {t!r} is invalid with mass = {m!r}: mass/period² must be finite; give T in s (1 kHz: 0.001)"
+        )
     if not math.isfinite(b * t / m):
         raise DFAValueError(f"damping·period/mass = {b * t / m!r} is invalid: it must be finite; check the units")
     return m, b, t

@@ -63,6 +63,11 @@ def _check_cutoff(name: str, value: object, nyquist: float, unit: str) -> float 
     if value is None:
         return None
     out = check_positive(name, value, f"give the velocity-filter cutoff in {unit}, or None for no filter")
+    if nyquist == 0.5 and math.exp(-2.0 * math.pi * out) == 1.0:  # the pole a = e^{−2πν_c} rounds to 1
+        raise DFAValueError(
+            f"{name} = {_fmt(out)} is invalid: it must be at least 2e-17 cycles per sample (below, the filter pole "
+            f"e^(-2π·{name}) rounds to 1 and the damper is cut off entirely); give a larger cutoff, or no damper"
+        )
     if not out < nyquist:
         raise DFAValueError(
             f"{name} = {_fmt(out)} is invalid: it must be below the Nyquist frequency "

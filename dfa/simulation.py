@@ -746,7 +746,7 @@ def simulate(
     """
     ctl, delay = check_controller(controller, delay, energy)
     m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
-    q = bool(quantize)
+    q = check_quantize(quantize)
     auto = samples is None
     fix = "simulate at least one sample"
     n = default_samples(m, b, s, v0, x0, d, q) if auto else check_int("samples", samples, minimum=1, fix=fix)
@@ -796,6 +796,7 @@ def check_controller(controller, delay, energy: bool = False) -> tuple[Controlle
             f"controller = {controller!r} is invalid: it must be a ControllerParams or None; "
             "pass Controller(...).params(period) or ControllerParams(...)"
         )
+    delay = check_delay(delay)  # before comparing: True == 1 and 1.0 == 1 must not pass as a delay
     if delay not in (0, controller.delay):
         raise DFAValueError(
             f"delay = {delay!r} is invalid with controller.delay = {controller.delay}: the controller carries "
@@ -809,6 +810,22 @@ def check_controller(controller, delay, energy: bool = False) -> tuple[Controlle
             "bookkeeping covers the spring only; pass energy=False"
         )
     return controller, controller.delay
+
+
+def check_quantize(quantize: object) -> bool:
+    """``quantize`` if it is True or False (numpy bools too); otherwise the package's error (never ``bool(x)``).
+
+    Raises
+    ------
+    DFATypeError
+        If ``quantize`` is not a bool: a string such as ``"False"`` would otherwise run with the encoder.
+    """
+    if not isinstance(quantize, (bool, np.bool_)):
+        raise DFATypeError(
+            f"quantize = {quantize!r} has type {type(quantize).__name__}: it must be True (with the encoder) or "
+            "False (the linear spring); pass a bool"
+        )
+    return bool(quantize)
 
 
 def _controller_args(ctl: ControllerParams) -> tuple[float, float, bool, float]:
@@ -1003,7 +1020,7 @@ def simulate_batch(
     rules = check_rules(bound, stable_amplitude, growth, settle)
     if not np.all(rules[0] > np.abs(x0)):
         raise DFAValueError(f"bound = {rules[0]!r} is invalid: it must exceed every |xi0| ({np.abs(x0).max()!r})")
-    res = run_points(m, b, s, x0, v0, n, d, bool(quantize), *rules, controller=ctl)
+    res = run_points(m, b, s, x0, v0, n, d, check_quantize(quantize), *rules, controller=ctl)
     codes, amps, freqs, centres, fpps, done, rest, stats = res
     return SimulationBatch(
         mu=m,

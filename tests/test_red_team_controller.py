@@ -1,0 +1,101 @@
+"""Red-team findings on the controller analyses (issue 15): regressions and one open counterexample.
+
+Each test reproduces one finding of the red team at commit 47174bf: bad input that was
+silently accepted or crashed with a Python error, and (xfail, strict) a wrong
+"never stable" verdict of the exact linear bound with a very slow velocity filter.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+from dfa.controlled_linear import controlled_characteristic_polynomial, controlled_spectral_radius, stable_stiffness
+from dfa.controller import Controller, ControllerParams
+from dfa.errors import DFATypeError, DFAValueError
+from dfa.passivity import colgate_schenkel_beta
+from dfa.simulation import simulate, simulate_batch
+
+CTL = ControllerParams(damping=0.2, delay=1, cutoff=0.1)
+
+
+@pytest.mark.parametrize("delay", [True, 1 + 0j, "1"])
+def test_simulate_controller_delay_is_checked_before_the_comparison(delay):
+    # was accepted: True == 1 and (1 + 0j) == 1 equal the controller's delay, so no check ran
+    with pytest.raises(DFATypeError, match=r"^delay = .* whole number"):
+        simulate(20.0, 0.3, 0.7, 1.0, samples=10, delay=delay, controller=CTL)
+    with pytest.raises(DFATypeError, match=r"^delay = .* whole number"):
+        simulate_batch([20.0], [0.3], [0.7], [1.0], 10, delay=delay, controller=CTL)
+
+
+def test_simulate_controller_delay_conflict_still_named():
+    with pytest.raises(DFAValueError, match=r"delay = 2 is invalid with controller.delay = 1"):
+        simulate(20.0, 0.3, 0.7, 1.0, samples=10, delay=2, controller=CTL)
+
+
+@pytest.mark.parametrize("quantize", ["False", None, 0, 1.0, [True]])
+def test_simulate_quantize_must_be_a_bool(quantize):
+    # was bool(quantize): quantize="False" ran the loop with the encoder
+    with pytest.raises(DFATypeError, match=r"^quantize = .* must be True .* or False"):
+        simulate(20.0, 0.3, 0.7, 1.0, samples=10, quantize=quantize)
+    with pytest.raises(DFATypeError, match=r"^quantize = "):
+        simulate(20.0, 0.3, 0.7, 1.0, samples=10, quantize=quantize, controller=CTL)
+    with pytest.raises(DFATypeError, match=r"^quantize = "):
+        simulate_batch([20.0], [0.3], [0.7], [1.0], 10, quantize=quantize)
+
+
+def test_simulate_quantize_numpy_bool_equals_python_bool():
+    a = simulate(20.0, 0.3, 0.7, 1.0, samples=200, quantize=np.bool_(False), controller=CTL)
+    b = simulate(20.0, 0.3, 0.7, 1.0, samples=200, quantize=False, controller=CTL)
+    assert a.quantize is False and np.array_equal(a.xi, b.xi)
+
+
+@pytest.mark.parametrize("period", [5e-324, 1e-160])
+def test_stable_stiffness_subnormal_period_is_the_package_error(period):
+    # was ZeroDivisionError in K = κ m/T² (T² underflows to 0)
+    with pytest.raises(DFAValueError, match=r"^period = .* mass/period² must be finite"):
+        stable_stiffness(1.0, 1.0, period, Controller(1.0))
+
+
+@pytest.mark.parametrize("cutoff", [1e-300, 1e-18])
+def test_filter_cutoff_whose_pole_rounds_to_one_is_refused(cutoff):
+    # was ZeroDivisionError in colgate_schenkel_beta (curvature bound divides by 1 − a = 0)
+    assert math.exp(-2.0 * math.pi * cutoff) == 1.0
+    with pytest.raises(DFAValueError, match=r"^cutoff = .* at least 2e-17 cycles per sample"):
+        colgate_schenkel_beta(ControllerParams(damping=1.0, cutoff=cutoff))
+    with pytest.raises(DFAValueError, match=r"at least 2e-17 cycles per sample"):
+        Controller(1.0, damping=1.0, filter_cutoff=cutoff).params(1.0)
+    assert ControllerParams(damping=1.0, cutoff=1e-16).filter_pole < 1.0  # the smallest accepted still filters
+
+
+# A counterexample found by the red team and not fixed: b ≈ 0, a large damper behind a
+# very slow filter (ν_c = 1e-6 cycles per sample), delay 3 and an amplifier lag.
+SLOW = dict(mass=1.3209770941153516, damping=0.0002846187896837431, period=0.0005603865033489327)
+SLOW_CTL = dict(damping=9.183334519574379, delay=3, filter_cutoff=1e-6 / 0.0005603865033489327)
+SLOW_CTL["amplifier_bandwidth"] = 588.1529142369977
+
+
+def _radius_mp(mu: float, beta: float, params: ControllerParams) -> float:
+    """Spectral radius of the loop's own characteristic polynomial, roots in 60 digits."""
+    mpmath.mp.dps = 60
+    c = controlled_characteristic_polynomial(mu, beta, params)
+    roots = mpmath.polyroots([mpmath.mpf(float(x)) for x in c], maxsteps=400, extraprec=400)
+    return float(max(abs(r) for r in roots))
+
+
+def test_slow_filter_loop_is_stable_at_small_k_by_two_root_finders():
+    m, b, t = SLOW["mass"], SLOW["damping"], SLOW["period"]
+    for k in (0.01, 0.05, 0.1):
+        p = Controller(k, **SLOW_CTL).params(t)
+        mu, beta = m / (k * t * t), b / (k * t)
+        assert controlled_spectral_radius(mu, beta, p) < 1.0 - 1e-7
+        assert _radius_mp(mu, beta, p) < 1.0 - 1e-7
+
+
+@pytest.mark.xfail(strict=True, reason="open: stable_stiffness says 'never' for a loop stable at K = 0.01-0.1 N/m")
+def test_stable_stiffness_slow_filter_is_not_never():
+    r = stable_stiffness(SLOW["mass"], SLOW["damping"], SLOW["period"], Controller(1.0, **SLOW_CTL))
+    assert r.status.value != "never" and r.k_crit > 0.1
