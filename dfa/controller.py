@@ -58,15 +58,25 @@ __all__ = ["Controller", "ControllerParams"]
 _NYQUIST_FIX = "give a cutoff below the Nyquist frequency 1/(2T), or no filter (None)"
 
 
+#: Smallest velocity-filter cutoff accepted, in cycles per sample (1 Hz at 1 kHz). Below it the filter pole
+#: e^{−2πν_c} and the free mass's pole at z = 1 are too close to separate in double precision: a red-team check
+#: found the exact linear bound calling a stable loop "never stable" at ν_c = 1e-6 (verified stable with 60-digit
+#: roots); from 1e-3 to the Nyquist limit no such case was found.
+MIN_CUTOFF = 1.0e-3
+
+
 def _check_cutoff(name: str, value: object, nyquist: float, unit: str) -> float | None:
-    """A filter cutoff: None (no filter) or 0 < value < nyquist."""
+    """A filter cutoff: None (no filter) or MIN_CUTOFF·(2·nyquist) <= value < nyquist."""
     if value is None:
         return None
     out = check_positive(name, value, f"give the velocity-filter cutoff in {unit}, or None for no filter")
-    if nyquist == 0.5 and math.exp(-2.0 * math.pi * out) == 1.0:  # the pole a = e^{−2πν_c} rounds to 1
+    floor = MIN_CUTOFF * 2.0 * nyquist  # 2·nyquist = samples per unit of the cutoff (1 or 1/T)
+    per_sample = "" if unit == "cycles per sample" else f"{MIN_CUTOFF:g} cycles per sample; "
+    if out < floor:
         raise DFAValueError(
-            f"{name} = {_fmt(out)} is invalid: it must be at least 2e-17 cycles per sample (below, the filter pole "
-            f"e^(-2π·{name}) rounds to 1 and the damper is cut off entirely); give a larger cutoff, or no damper"
+            f"{name} = {_fmt(out)} is invalid: it must be at least {_fmt(floor)} {unit} ({per_sample}below, the filter pole and the free mass's pole at z = 1 cannot be told apart in double "
+            f"precision and the linear analysis is unreliable); give a cutoff of at least {_fmt(floor)} {unit}, "
+            "or no filter"
         )
     if not out < nyquist:
         raise DFAValueError(
