@@ -655,7 +655,18 @@ def _design_answer(args: argparse.Namespace, inp: _Inputs, v: float, k: float | 
     return design_answer(inp.device, v, args.delay, stiffness=k, stiffness_source=src or "given")
 
 
+def _refuse_controller(args: argparse.Namespace, command: str) -> None:
+    """Refuse the controller flags where the analysis does not yet take a controller (never ignore them)."""
+    given = [f for k, f in _CTL_FLAGS.items() if getattr(args, k, None) is not None]
+    if given:
+        raise UsageError(
+            f"{', '.join(given)} is not yet supported by `dfa {command}` (its K_max searches take the spring only); "
+            "use `dfa check`, `dfa simulate`, `dfa limit-cycles` or `dfa map` with the controller, or drop the flag"
+        )
+
+
 def _cmd_stiffness(args: argparse.Namespace) -> int:
+    _refuse_controller(args, "stiffness")
     inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
@@ -1138,6 +1149,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
     from .formatting import json_dumps
     from .report import design_report
 
+    _refuse_controller(args, "report")
     if args.device is None and not any(getattr(args, k, None) is not None for k in (*_PHYS_FLAGS, "counts")):
         args.device = DEFAULT_DEVICE
     check_output_folder("--out", args.out, create=True)  # the parent must exist; the folder is created
