@@ -570,6 +570,7 @@ def _check_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, x
         )
         if args.json:
             rec = {"passive": None, "status": "not_covered", "status_message": f"{NOT_COVERED}: {reason}"}
+            explain_nulls(rec, {"passive": NOT_COVERED})
             _emit(_ctl_json({**rec, "velocity": abs(vel), "device": dev.name}, ctl, inp))
             return 0
         print(inp.label)
@@ -580,9 +581,11 @@ def _check_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, x
     cs = colgate_schenkel_damping(ctl, dev.period)
     if args.json:
         d = r.as_dict()
-        d["colgate_schenkel"] = cs.as_dict()
-        d["colgate_schenkel"]["device_damping"] = dev.damping
-        d["colgate_schenkel"]["met"] = bool(dev.damping > cs.damping_bound)
+        csd = cs.as_dict()
+        csd.update(device_damping=dev.damping, met=bool(dev.damping > cs.damping_bound))
+        csd.pop("controller")  # the "controller" object below states it once
+        explain_nulls(csd["dimensionless"]["params"], {"cutoff": "no velocity filter"})  # type: ignore[index]
+        d["colgate_schenkel"] = csd
         _emit(_ctl_json(d, ctl, inp))
         return 0
     print(inp.label)
@@ -665,13 +668,43 @@ def _refuse_controller(args: argparse.Namespace, command: str) -> None:
         )
 
 
+def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, v: float) -> int:
+    """`dfa stiffness` with a controller: K_max by the extended criterion and the exact linear bound."""
+    from .controller_kmax import controller_stiffness_limits
+
+    if args.plot is not None:
+        _refuse_controller(args, "stiffness --plot")
+    dev = inp.device
+    assert dev is not None
+    r = controller_stiffness_limits(dev, ctl, v)
+    if args.json:
+        rec = r.as_dict()
+        explain_nulls(rec, rec.pop("null_reasons"))  # type: ignore[arg-type]
+        _emit(_ctl_json(rec, ctl, inp))
+        return 0
+    ku, vu = dev.units["stiffness"], dev.units["velocity"]
+    kc = r.reasons.get("k_criterion") if r.k_criterion is None else f"{r.k_criterion:.5g} {ku}"
+    rows = [
+        ["criterion K_max at this speed (eq. 6/11 extended to the damper, filter, delay)", kc],
+        ["exact linear bound (the controlled loop, all conditions)", f"{r.k_linear:.5g} {ku}"],
+        ["describing-function K_max", r.reasons["k_df"]],
+        ["simulated K_max", r.reasons["k_sim"]],
+    ]
+    print(f"{dev.name}, impact speed {r.velocity:.4g} {vu}; B, f_c, f_bw and the delay held fixed while K varies")
+    _print_ctl(ctl, inp)
+    print(_table(rows))
+    return 0
+
+
 def _cmd_stiffness(args: argparse.Namespace) -> int:
-    _refuse_controller(args, "stiffness")
     inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
     xd, v = _speed(args, inp)
     assert v is not None
+    ctl = _controller(args, dev, inp.stiffness)
+    if ctl is not None:
+        return _stiffness_controller(args, inp, ctl, abs(v))
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
     src = _stiffness_source(args, inp)

@@ -187,7 +187,11 @@ ERRORS = [
         ["map", "--mu", "100", "--xi-dot", "1", "--virtual-damping", "1", "--out", "/tmp/x.npz"],
         "needs a physical device",
     ),
-    (["stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1"], "not yet supported by `dfa stiffness`"),
+    (
+        ["stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--plot", "/tmp/ccli-x.png"],
+        "not yet supported by `dfa stiffness --plot`",
+    ),
+    (["stiffness", *BASE, "--velocity", "0.1", "--velocity-filter", "1600"], "Nyquist frequency 1500 Hz"),
     (
         ["report", *BASE, "--velocity", "0.1", "--amplifier-bandwidth", "100", "--out", "/tmp/ccli-r"],
         "not yet supported by `dfa report`",
@@ -201,3 +205,33 @@ def test_controller_bad_input_is_one_line_exit_2(capsys, argv, text):
     code, out, err = run(capsys, *argv)
     assert code == 2 and out == ""
     assert text in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+NULL_CASES = [
+    ["check", *BASE, "--velocity", "0.1", "--virtual-damping", "5", "--json"],
+    ["check", *BASE, "--velocity", "0.1", "--amplifier-bandwidth", "300", "--json"],
+    ["simulate", *BASE, "--velocity", "0.1", "--virtual-damping", "2", "--json"],
+    ["limit-cycles", *BASE, "--velocity-filter", "100", "--virtual-damping", "2", "--json"],
+    ["stiffness", *BASE, "--velocity", "0.1", "--amplifier-bandwidth", "300", "--json"],
+]
+
+
+@pytest.mark.parametrize("argv", NULL_CASES)
+def test_controller_json_nulls_have_reasons(capsys, argv):
+    from test_cli_json_null_reasons import unexplained_nulls
+
+    code, out, err = run(capsys, *argv)
+    assert code == 0, err
+    assert unexplained_nulls(json.loads(out)) == []
+
+
+def test_eq11_controller_stiffness_json_equals_api(capsys):
+    from dfa.controller_kmax import controller_stiffness_limits
+
+    d = run_json(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
+    r = controller_stiffness_limits(DEV, Controller(K, damping=1.0, delay=1), 0.1)
+    assert d["k_criterion"] == r.k_criterion and d["k_linear"] == r.k_linear
+    assert d["k_df"] is None and d["k_sim"] is None and d["controller"]["delay"] == 1
+    code, out, _ = run(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
+    assert code == 0 and f"{r.k_criterion:.5g} N/m" in out and f"{r.k_linear:.5g} N/m" in out
+    assert "controller: K = 14500 N/m, B = 1 N·s/m, delay 1 sample" in out

@@ -16,7 +16,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..formatting import number
-from ..jsonable import to_jsonable
+from ..jsonable import explain_nulls, to_jsonable
 
 __all__ = ["NOT_COVERED", "controller_check_rows", "controller_dict", "controller_line"]
 
@@ -58,8 +58,11 @@ def controller_dict(controller: Any, period: float, units: dict[str, str]) -> di
         "amplifier_bandwidth": "Hz",
         "amplifier_time_constant": "s",
     }
-    out["dimensionless"] = {"beta_B": p.damping, "nu_c": p.cutoff, "alpha": p.lag, "delay": p.delay}
-    return to_jsonable(out)
+    no_filter = "no velocity filter"
+    dim = {"beta_B": p.damping, "nu_c": p.cutoff, "alpha": p.lag, "delay": p.delay}
+    out["dimensionless"] = explain_nulls(to_jsonable(dim), {"nu_c": no_filter})
+    why = {"filter_cutoff": no_filter, "amplifier_bandwidth": "ideal amplifier (no lag)"}
+    return explain_nulls(to_jsonable(out), why)
 
 
 def controller_line(controller: Any, period: float, units: dict[str, str]) -> str:
