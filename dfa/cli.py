@@ -683,8 +683,8 @@ def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controlle
         _emit(_ctl_json(rec, ctl, inp))
         return 0
     ku, vu = dev.units["stiffness"], dev.units["velocity"]
-    kc = r.reasons.get("k_criterion") if r.k_criterion is None else f"{r.k_criterion:.5g} {ku}"
-    rows = [
+    kc = str(r.reasons["k_criterion"]) if r.k_criterion is None else f"{r.k_criterion:.5g} {ku}"
+    rows: list[list[str]] = [
         ["criterion K_max at this speed (eq. 6/11 extended to the damper, filter, delay)", kc],
         ["exact linear bound (the controlled loop, all conditions)", f"{r.k_linear:.5g} {ku}"],
         ["describing-function K_max", r.reasons["k_df"]],
@@ -826,7 +826,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         record=args.trace is not None,
         progress=_progress(args),
         bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND),
-        **({} if ctl is None else {"controller": _ctl_params(ctl, inp)}),
+        controller=_ctl_params(ctl, inp),
     )
     if args.trace is not None:
         _write_trace(args.trace, r)
@@ -1024,7 +1024,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
         n_jobs=args.jobs,
         progress=_progress(args),
         bound=divergence_bound(0.0, max(args.xi_dot), mu, SIMULATION_BOUND),  # beyond every start's travel
-        **({} if ctl is None or inp is None else {"controller": _ctl_params(ctl, inp)}),
+        controller=None if inp is None else _ctl_params(ctl, inp),
     )
     path = m.save(args.out)
     if args.plot is not None:

@@ -53,6 +53,7 @@ import os
 import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -369,7 +370,7 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
         )
 
 
-def _controller_arrays(ctl: ControllerParams | None) -> dict[str, np.ndarray]:
+def _controller_arrays(ctl: ControllerParams | None) -> dict[str, Any]:
     """The ``controller`` entry of a map file: [β_B, ν_c (NaN: no filter), α]; none for the spring."""
     if ctl is None:
         return {}
