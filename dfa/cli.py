@@ -27,6 +27,7 @@ from typing import Any
 from ._io import check_output_file, check_output_folder, written_paths
 from .catalogue import DEFAULT_DEVICE, CatalogueEntry, catalogue, resolve_device
 from .checks import check_beta, check_mu, check_real, check_sigma
+from .controller import Controller, ControllerParams
 from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params, dimensionless_params
 from .errors import DFAError, DFAValueError
@@ -228,6 +229,96 @@ def _add_delay_arg(p: argparse.ArgumentParser, parse: Callable[[str], int] = _de
         metavar="N",
         help="computational delay in samples (default: 0): the force of sample h uses the reading of sample h − N",
     )
+
+
+#: The controller flags beside --delay (dest: flag); physical units, converted at the edge (dfa.controller).
+_CTL_FLAGS = {
+    "virtual_damping": "--virtual-damping",
+    "velocity_filter": "--velocity-filter",
+    "amplifier_bandwidth": "--amplifier-bandwidth",
+}
+
+
+def _add_controller_args(p: argparse.ArgumentParser, parse: Callable[[str], int] = _delay) -> None:
+    """--delay and the wall controller's flags (issue 15): virtual damper, velocity filter, amplifier bandwidth."""
+    _add_delay_arg(p, parse)
+    g = p.add_argument_group("wall controller (default: the paper's spring; needs a physical device and K)")
+    g.add_argument(
+        "--virtual-damping",
+        dest="virtual_damping",
+        type=_number("--virtual-damping", "N·s/m (rotary: N·m·s/rad)"),
+        metavar="B",
+        help="virtual damper B >= 0 in N·s/m (rotary: N·m·s/rad) on the backward-difference velocity (default: none)",
+    )
+    g.add_argument(
+        "--velocity-filter",
+        dest="velocity_filter",
+        type=_number("--velocity-filter", "Hz"),
+        metavar="HZ",
+        help="cutoff in Hz of a first-order low-pass on the velocity, below the Nyquist frequency 1/(2T) "
+        "(default: no filter)",
+    )
+    g.add_argument(
+        "--amplifier-bandwidth",
+        dest="amplifier_bandwidth",
+        type=_number("--amplifier-bandwidth", "Hz"),
+        metavar="HZ",
+        help="bandwidth in Hz of the current amplifier, a first-order lag τ_a = 1/(2π f_bw) (default: ideal)",
+    )
+
+
+def _controller(args: argparse.Namespace, device: Device | None, stiffness: float | None) -> Controller | None:
+    """The wall controller of the flags; None for the paper's spring (no flag, or B = 0 without filter and lag).
+
+    Refuses (UsageError, exit 2) a negative B, a cutoff <= 0 or not below the Nyquist frequency, a
+    bandwidth <= 0, and controller flags without a physical device and stiffness.
+    """
+    given = [f for k, f in _CTL_FLAGS.items() if getattr(args, k, None) is not None]
+    if not given:
+        return None
+    if device is None or stiffness is None:
+        raise UsageError(
+            f"{', '.join(given)} needs a physical device and stiffness (K and T turn B, f_c, f_bw into β_B, ν_c, α): "
+            "give --device NAME (or --mass --damping --coulomb --resolution --period) and --stiffness K"
+        )
+    b, fc, bw = args.virtual_damping, args.velocity_filter, args.amplifier_bandwidth
+    bu = device.units["damping"]
+    if b is not None and b < 0:
+        raise UsageError(f"--virtual-damping {b:g} is invalid: B must be >= 0; give the damper in {bu} (0 for none)")
+    nyquist = 0.5 / device.period
+    if fc is not None and not 0 < fc < nyquist:
+        raise UsageError(
+            f"--velocity-filter {fc:g} is invalid: the cutoff must be > 0 and below the Nyquist frequency "
+            f"{nyquist:g} Hz (1/(2T), T = {device.period:g} s); give a cutoff in Hz below {nyquist:g}, or drop the flag"
+        )
+    if bw is not None and not bw > 0:
+        raise UsageError(
+            f"--amplifier-bandwidth {bw:g} is invalid: it must be > 0 Hz; give f_bw in Hz, or drop the flag"
+        )
+    ctl = Controller(stiffness, b or 0.0, args.delay, fc, bw)
+    return None if ctl.params(device.period).is_spring else ctl
+
+
+def _ctl_params(ctl: Controller | None, inp: _Inputs) -> ControllerParams | None:
+    """The dimensionless controller of a run (None: the spring)."""
+    return None if ctl is None or inp.device is None else ctl.params(inp.device.period)
+
+
+def _ctl_json(d: dict[str, Any], ctl: Controller | None, inp: _Inputs) -> dict[str, Any]:
+    """Add the "controller" object (physical values and dimensionless groups) to a JSON record."""
+    if ctl is not None and inp.device is not None:
+        from .render.controller import controller_dict
+
+        d["controller"] = controller_dict(ctl, inp.device.period, inp.device.units)
+    return d
+
+
+def _print_ctl(ctl: Controller | None, inp: _Inputs) -> None:
+    """State the controller on its own line (nothing for the spring: its output is unchanged)."""
+    if ctl is not None and inp.device is not None:
+        from .render.controller import controller_line
+
+        print(controller_line(ctl, inp.device.period, inp.device.units))
 
 
 @dataclass(frozen=True)
@@ -446,6 +537,9 @@ def _cmd_check(args: argparse.Namespace) -> int:
     inp = _resolve(args, dimensionless=True, need_mu=False)
     xd, v = _speed(args, inp)
     assert xd is not None
+    ctl = _controller(args, inp.device, inp.stiffness)
+    if ctl is not None:
+        return _check_controller(args, inp, ctl, xd, v)
     r = _criterion_for_args(args, inp, xd, v)
     if args.json:
         _emit(r.as_dict())
@@ -453,6 +547,50 @@ def _cmd_check(args: argparse.Namespace) -> int:
     vu = inp.device.units["velocity"] if inp.device else ""
     print(inp.label)
     print(_table(check_rows(r, not args.no_quantization, vu)))
+    return 0
+
+
+def _check_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, xd: float, v: float | None) -> int:
+    """`dfa check` with a controller: the extended criterion and Colgate–Schenkel; with a lag, not covered."""
+    from .controller_passivity import device_controller_criterion
+    from .passivity import colgate_schenkel_damping
+    from .render.controller import NOT_COVERED, controller_check_rows
+
+    dev = inp.device
+    assert dev is not None  # _controller refuses a controller without a device
+    if args.xi0 is not None:
+        raise UsageError(
+            "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
+        )
+    vel = dev.velocity(xd) if v is None else v
+    if ctl.amplifier_bandwidth is not None:
+        reason = (
+            "no sound passivity criterion is proven with an amplifier lag (the force varies within a sample), "
+            "and the Colgate–Schenkel condition assumes the hold drives the device directly"
+        )
+        if args.json:
+            rec = {"passive": None, "status": "not_covered", "status_message": f"{NOT_COVERED}: {reason}"}
+            explain_nulls(rec, {"passive": NOT_COVERED})
+            _emit(_ctl_json({**rec, "velocity": abs(vel), "device": dev.name}, ctl, inp))
+            return 0
+        print(inp.label)
+        _print_ctl(ctl, inp)
+        print(_table([["speed", f"{abs(vel):.4g} {dev.units['velocity']}"], ["passive", NOT_COVERED], ["why", reason]]))
+        return 0
+    r = device_controller_criterion(dev, ctl, vel, position=args.position or 0.0, quantized=not args.no_quantization)
+    cs = colgate_schenkel_damping(ctl, dev.period)
+    if args.json:
+        d = r.as_dict()
+        csd = cs.as_dict()
+        csd.update(device_damping=dev.damping, met=bool(dev.damping > cs.damping_bound))
+        csd.pop("controller")  # the "controller" object below states it once
+        explain_nulls(csd["dimensionless"]["params"], {"cutoff": "no velocity filter"})  # type: ignore[index]
+        d["colgate_schenkel"] = csd
+        _emit(_ctl_json(d, ctl, inp))
+        return 0
+    print(inp.label)
+    _print_ctl(ctl, inp)
+    print(_table(controller_check_rows(r, cs, dev.units["velocity"])))
     return 0
 
 
@@ -520,12 +658,53 @@ def _design_answer(args: argparse.Namespace, inp: _Inputs, v: float, k: float | 
     return design_answer(inp.device, v, args.delay, stiffness=k, stiffness_source=src or "given")
 
 
+def _refuse_controller(args: argparse.Namespace, command: str) -> None:
+    """Refuse the controller flags where the analysis does not yet take a controller (never ignore them)."""
+    given = [f for k, f in _CTL_FLAGS.items() if getattr(args, k, None) is not None]
+    if given:
+        raise UsageError(
+            f"{', '.join(given)} is not yet supported by `dfa {command}` (its K_max searches take the spring only); "
+            "use `dfa check`, `dfa simulate`, `dfa limit-cycles` or `dfa map` with the controller, or drop the flag"
+        )
+
+
+def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, v: float) -> int:
+    """`dfa stiffness` with a controller: K_max by the extended criterion and the exact linear bound."""
+    from .controller_kmax import controller_stiffness_limits
+
+    if args.plot is not None:
+        _refuse_controller(args, "stiffness --plot")
+    dev = inp.device
+    assert dev is not None
+    r = controller_stiffness_limits(dev, ctl, v)
+    if args.json:
+        rec = r.as_dict()
+        explain_nulls(rec, rec.pop("null_reasons"))  # type: ignore[arg-type]
+        _emit(_ctl_json(rec, ctl, inp))
+        return 0
+    ku, vu = dev.units["stiffness"], dev.units["velocity"]
+    kc = str(r.reasons["k_criterion"]) if r.k_criterion is None else f"{r.k_criterion:.5g} {ku}"
+    rows: list[list[str]] = [
+        ["criterion K_max at this speed (eq. 6/11 extended to the damper, filter, delay)", kc],
+        ["exact linear bound (the controlled loop, all conditions)", f"{r.k_linear:.5g} {ku}"],
+        ["describing-function K_max", r.reasons["k_df"]],
+        ["simulated K_max", r.reasons["k_sim"]],
+    ]
+    print(f"{dev.name}, impact speed {r.velocity:.4g} {vu}; B, f_c, f_bw and the delay held fixed while K varies")
+    _print_ctl(ctl, inp)
+    print(_table(rows))
+    return 0
+
+
 def _cmd_stiffness(args: argparse.Namespace) -> int:
     inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
     xd, v = _speed(args, inp)
     assert v is not None
+    ctl = _controller(args, dev, inp.stiffness)
+    if ctl is not None:
+        return _stiffness_controller(args, inp, ctl, abs(v))
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
     src = _stiffness_source(args, inp)
@@ -608,6 +787,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     assert p is not None
     xd, _v = _speed(args, inp)
     assert xd is not None
+    ctl = _controller(args, inp.device, inp.stiffness)
     if args.preload and args.xi0 is not None:
         raise UsageError("--preload and --xi0 cannot both be given: the preload sets ξ0 from the speed")
     if args.trace is not None:
@@ -646,6 +826,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         record=args.trace is not None,
         progress=_progress(args),
         bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND),
+        controller=_ctl_params(ctl, inp),
     )
     if args.trace is not None:
         _write_trace(args.trace, r)
@@ -656,9 +837,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             d.update(phys)
             d["velocity"] = _v
             explain_nulls(d, r.null_reasons())
-        _emit(d)
+        _emit(_ctl_json(d, ctl, inp))
         return 0
     print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
+    _print_ctl(ctl, inp)
     print(_table(simulation_rows(r, x0, v0, args.preload, phys)))
     if args.trace is not None:
         print(f"trace written to {args.trace}")
@@ -828,6 +1010,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
             f"sign of ξ'0); give --xi-dot {abs(negative[0]):g}"
         )
     _check_map_work(args)
+    ctl = _controller(args, *((inp.device, inp.stiffness) if inp is not None else (None, None)))
     m = stability_map(
         mu,
         args.xi_dot,
@@ -841,6 +1024,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
         n_jobs=args.jobs,
         progress=_progress(args),
         bound=divergence_bound(0.0, max(args.xi_dot), mu, SIMULATION_BOUND),  # beyond every start's travel
+        controller=None if inp is None else _ctl_params(ctl, inp),
     )
     path = m.save(args.out)
     if args.plot is not None:
@@ -856,7 +1040,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
         d.update(_device_json(inp, m.xi_dots))
         if args.plot is not None:
             d["plot"] = args.plot
-        _emit(d)
+        _emit(d if ctl is None or inp is None else _ctl_json(d, ctl, inp))
         return 0
     if inp is not None and inp.params is not None and inp.device is not None:
         vu = inp.device.units["velocity"]
@@ -864,6 +1048,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
             f"{inp.label}: operating point β = {inp.params.beta:.5g}, σ = {inp.params.sigma:.5g}{_outside_note(args, inp)}; speeds "
             + ", ".join(f"{x:g} ticks/sample = {inp.device.velocity(x):.4g} {vu}" for x in m.xi_dots)
         )
+        _print_ctl(ctl, inp)
     print(
         f"stability map μ = {m.mu:g}, β in [{m.beta[0]:g}, {m.beta[-1]:g}], σ in [{m.sigma[0]:g}, {m.sigma[-1]:g}], "
         f"{m.beta.size}×{m.sigma.size} points, {m.samples} samples" + (", spring preload" if m.preload else "")
@@ -890,11 +1075,13 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     inp = _resolve(args, dimensionless=True)
     p = inp.params
     assert p is not None
+    ctl = _controller(args, inp.device, inp.stiffness)
     g = growth_threshold(
         p,
         inp.device,
         model=args.model,
-        delay=args.delay,
+        delay=args.delay if ctl is None else 0,
+        **({} if ctl is None else {"controller": _ctl_params(ctl, inp)}),
         max_amplitude=args.max_amplitude,
         **({} if args.time_budget is None else {"time_budget": args.time_budget}),
     )
@@ -902,12 +1089,13 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
     phys = None if inp.device is None or inp.stiffness is None else res.physical(inp.device, inp.stiffness)
     if args.json:
         d = limit_cycles_dict(g, phys)
-        _emit(d)
+        _emit(_ctl_json(d, ctl, inp))
         return 0
     print(
         f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}; model {res.model}"
         + (f", delay {res.delay}" if res.delay else "")
     )
+    _print_ctl(ctl, inp)
     for line in limit_cycle_lines(g, inp.device, phys):
         print(line)
     return 0
@@ -994,6 +1182,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
     from .formatting import json_dumps
     from .report import design_report
 
+    _refuse_controller(args, "report")
     if args.device is None and not any(getattr(args, k, None) is not None for k in (*_PHYS_FLAGS, "counts")):
         args.device = DEFAULT_DEVICE
     check_output_folder("--out", args.out, create=True)  # the parent must exist; the folder is created
@@ -1093,7 +1282,7 @@ def _add_check(sub: Any) -> None:
     p = _sub(sub, "check", help, "dfa check --device delta --velocity 0.1", _cmd_check)
     _add_device_args(p, dimensionless=True, speed=True)
     p.add_argument("--no-quantization", action="store_true", help="use eq. 7 (Δ → 0) instead of eq. 6 (default: eq. 6)")
-    _add_delay_arg(p)
+    _add_controller_args(p)
     p.add_argument(
         "--xi0",
         type=_number("--xi0", "ticks"),
@@ -1115,7 +1304,7 @@ def _add_stiffness(sub: Any) -> None:
     )
     p = _sub(sub, "stiffness", help, "dfa stiffness --device impulse --velocity 0.05 --stiffness 80", _cmd_stiffness)
     _add_device_args(p, dimensionless=False, speed=True)
-    _add_delay_arg(p)
+    _add_controller_args(p)
     p.add_argument(
         "--plot",
         metavar="FILE.png",
@@ -1136,7 +1325,7 @@ def _add_simulate(sub: Any) -> None:
         metavar="N",
         help="samples to simulate (default: from the loop's time scales, 50000 to 10^7)",
     )
-    _add_delay_arg(p, _integer("--delay"))
+    _add_controller_args(p, _integer("--delay"))
     p.add_argument(
         "--preload",
         action="store_true",
@@ -1178,7 +1367,7 @@ def _add_map(sub: Any) -> None:
     p.add_argument(
         "--samples", type=_integer("--samples"), default=50_000, metavar="N", help="samples per run (default: 50000)"
     )
-    _add_delay_arg(p, _integer("--delay"))
+    _add_controller_args(p, _integer("--delay"))
     p.add_argument("--preload", action="store_true", help="spring preload instead of an initial speed (default: off)")
     p.add_argument(
         "--no-quantization", action="store_true", help="linear spring, no encoder (default: with the encoder)"
@@ -1207,7 +1396,7 @@ def _add_limit_cycles(sub: Any) -> None:
         default="half-delay",
         help="hold model (default: half-delay; zoh is exact)",
     )
-    _add_delay_arg(p, _integer("--delay"))
+    _add_controller_args(p, _integer("--delay"))
     p.add_argument(
         "--max-amplitude",
         type=_number("--max-amplitude", "ticks"),
@@ -1278,7 +1467,7 @@ def _add_report(sub: Any) -> None:
         help="replace a report of the same name made for another device, stiffness, speed or delay (default: refuse)",
     )
     _add_progress_args(p)
-    _add_delay_arg(p)
+    _add_controller_args(p)
 
 
 def _add_validate(sub: Any) -> None:

@@ -48,10 +48,12 @@ classes existed (their ``stable`` mixed rest with chatter).
 
 from __future__ import annotations
 
+import math
 import os
 import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -68,9 +70,10 @@ from .checks import (
     check_nonnegative,
     check_real,
 )
+from .controller import ControllerParams
 from .errors import DFATypeError, DFAValueError
 from .jsonable import to_jsonable
-from .simulation import OUTCOMES, check_rules, divergence_bound, preload_position, run_points
+from .simulation import OUTCOMES, check_controller, check_rules, divergence_bound, preload_position, run_points
 from .status import MapStatus
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
@@ -112,6 +115,9 @@ class StabilityMap:
         Simulation settings.
     status : MapStatus
         ``OK``: every point simulated (amplitude and frequency NaN where not measured).
+    controller : ControllerParams or None
+        The wall controller of every run (virtual damper β_B, filter ν_c, amplifier lag α; its delay is
+        ``delay``); None for the paper's spring.
 
     Arrays are read-only copies; shapes are checked on construction.
     """
@@ -128,9 +134,13 @@ class StabilityMap:
     quantize: bool = True
     preload: bool = False
     status: MapStatus = MapStatus.OK
+    controller: ControllerParams | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "xi_dots", tuple(float(v) for v in self.xi_dots))
+        if self.controller is not None:
+            ctl, _ = check_controller(self.controller, self.delay)  # a spring's ControllerParams is stored as None
+            object.__setattr__(self, "controller", ctl)
         freeze_fields(
             self,
             {
@@ -231,8 +241,10 @@ class StabilityMap:
         dict
             Strict-JSON data: μ, speeds, grid, settings, counts per speed, status and its message.
         """
+        ctl = {} if self.controller is None else {"controller": self.controller.as_dict()}
         return to_jsonable(
             {
+                **ctl,
                 "mu": self.mu,
                 "xi_dots": list(self.xi_dots),
                 "beta_range": [float(self.beta[0]), float(self.beta[-1])],
@@ -278,6 +290,7 @@ class StabilityMap:
                 amplitude=self.amplitude,
                 frequency=self.frequency,
                 settings=np.array([self.samples, self.delay, int(self.quantize), int(self.preload)], dtype=np.int64),
+                **_controller_arrays(self.controller),
             )
         return p
 
@@ -340,6 +353,7 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
                 f"map file {str(path)!r} is invalid: unknown outcome names {unknown}; expected {list(OUTCOMES)}"
             )
         lut = np.array([OUTCOMES.index(v) for v in names], dtype=np.int8)
+        ctl = _controller_from(z, delay)
         return StabilityMap(
             mu=float(z["mu"]),
             xi_dots=tuple(float(v) for v in z["xi_dots"]),
@@ -352,13 +366,46 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
             delay=delay,
             quantize=bool(quantize),
             preload=bool(preload),
+            controller=ctl,
         )
 
 
-def _run_chunk(mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth, settle):
+def _controller_arrays(ctl: ControllerParams | None) -> dict[str, Any]:
+    """The ``controller`` entry of a map file: [β_B, ν_c (NaN: no filter), α]; none for the spring."""
+    if ctl is None:
+        return {}
+    cutoff = math.nan if ctl.cutoff is None else ctl.cutoff
+    return {"controller": np.array([ctl.damping, cutoff, ctl.lag], dtype=float)}
+
+
+def _controller_from(z, delay: int) -> ControllerParams | None:
+    """The controller of a map file (None: the spring, or a file written before controllers existed)."""
+    if "controller" not in z.files:
+        return None
+    damping, cutoff, lag = (float(v) for v in z["controller"])
+    return ControllerParams(damping=damping, delay=delay, cutoff=None if math.isnan(cutoff) else cutoff, lag=lag)
+
+
+def _run_chunk(
+    mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth, settle, controller=None
+):
     """Codes, amplitudes and frequencies of one chunk of points (one compiled call; releases the GIL)."""
     mus = np.full(betas.size, mu)
-    res = run_points(mus, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth, settle)
+    res = run_points(
+        mus,
+        betas,
+        sigmas,
+        x0s,
+        v0s,
+        samples,
+        delay,
+        quantize,
+        bound,
+        stable_amplitude,
+        growth,
+        settle,
+        controller=controller,
+    )
     return res[0], res[1], res[2]
 
 
@@ -428,6 +475,7 @@ def stability_map(
     stable_amplitude: float = 1.0,
     growth: float = 1.25,
     settle: float = 1.0e-3,
+    controller: ControllerParams | None = None,
 ) -> StabilityMap:
     """Simulate every point of a (β, σ) grid for each initial speed (paper Fig. 4).
 
@@ -463,6 +511,10 @@ def stability_map(
     bound, stable_amplitude, growth, settle : float, optional
         Outcome rules, as in :func:`dfa.simulate` (default bound: beyond the fastest start's own travel,
         :func:`dfa.simulation.divergence_bound`).
+    controller : ControllerParams, optional
+        The wall controller of every run (:mod:`dfa.controller`; ``Controller(...).params(T)``): virtual
+        damper, velocity filter, amplifier lag, and its delay, which replaces ``delay`` (give one or
+        the same value). Each point is then :func:`dfa.simulate` with ``controller=``. Default: the spring.
 
     Returns
     -------
@@ -486,7 +538,7 @@ def stability_map(
     s0, s1 = _check_range("sigma_range", sigma_range)
     g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
     n = check_int("samples", samples, minimum=1)
-    d = check_delay(delay)
+    ctl, d = check_controller(controller, check_delay(delay))
     jobs = check_jobs("n_jobs", n_jobs)
     how = check_choice("backend", backend, MAP_BACKENDS)
     if bound is None:  # beyond the fastest start's own travel (dfa.simulation.divergence_bound)
@@ -500,8 +552,8 @@ def stability_map(
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
     chunks = _chunks(pts_b.size, workers)
     tail = (n, d, bool(quantize), *rules)
-    tasks = [(m, pts_b[c], pts_s[c], x0[c], v0[c], *tail) for c in chunks]
-    _run_chunk(m, pts_b[:1], pts_s[:1], x0[:1], v0[:1], 1, *tail[1:])  # compile or load the kernel once, first
+    tasks = [(m, pts_b[c], pts_s[c], x0[c], v0[c], *tail, ctl) for c in chunks]
+    _run_chunk(m, pts_b[:1], pts_s[:1], x0[:1], v0[:1], 1, *tail[1:], ctl)  # compile or load the kernel once, first
 
     from tqdm.auto import tqdm
 
@@ -512,7 +564,7 @@ def stability_map(
         bar.close()
     codes, amps, freqs = (np.concatenate([r[k] for r in results]).reshape(len(speeds), g, g) for k in range(3))
     out = (codes.astype(np.int8), amps, freqs, n, d, bool(quantize), bool(preload))
-    return StabilityMap(m, speeds, beta, sigma, *out)
+    return StabilityMap(m, speeds, beta, sigma, *out, controller=ctl)
 
 
 def _check_speeds(xi_dots) -> tuple[float, ...]:

@@ -1,0 +1,171 @@
+"""The wall controller in the ``dfa`` commands' text and JSON (issue 15), from results only.
+
+A controller is stated with its physical values (K, B, d, f_c, f_bw in the device's units) and its
+dimensionless groups beside paper Table 1 (β_B = B/(KT), ν_c = f_c T, α = τ_a/T; :mod:`dfa.controller`).
+
+Examples
+--------
+>>> from dfa.controller import Controller
+>>> controller_line(Controller(1000.0, damping=0.5, filter_cutoff=100.0), 1e-3, {"stiffness": "N/m",
+...     "damping": "N·s/m"})
+'controller: K = 1000 N/m, B = 0.5 N·s/m, delay 0 samples, velocity filter 100 Hz, ideal amplifier; β_B = B/(KT) = 0.5, ν_c = f_c·T = 0.1, α = τ_a/T = 0'
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..formatting import number
+from ..jsonable import explain_nulls, to_jsonable
+
+__all__ = ["NOT_COVERED", "controller_check_rows", "controller_dict", "controller_line"]
+
+#: What `dfa check` says where no passivity criterion covers the controller (amplifier lag).
+NOT_COVERED = "not covered by the criterion; see `dfa map`/`dfa zwidth`"
+
+
+def _g(x: float | None, digits: int = 4) -> str:
+    return number(x, digits, none="-", inf="inf")
+
+
+def controller_dict(controller: Any, period: float, units: dict[str, str]) -> dict[str, object]:
+    """The ``"controller"`` object of the JSON output: physical values, units and dimensionless groups.
+
+    Parameters
+    ----------
+    controller : dfa.controller.Controller
+        The wall controller (physical units).
+    period : float
+        Sample period T in s.
+    units : dict
+        The device's unit strings (:attr:`dfa.Device.units`).
+
+    Returns
+    -------
+    dict
+        Strict-JSON data: stiffness K, damping B, delay d (samples), filter_cutoff f_c (Hz or null),
+        amplifier_bandwidth f_bw (Hz or null), amplifier_time_constant τ_a (s), ``units``, and
+        ``dimensionless`` {beta_B, nu_c, alpha, delay}.
+    """
+    p = controller.params(period)
+    out = dict(controller.as_dict())
+    out["amplifier_time_constant"] = controller.amplifier_time_constant
+    out["units"] = {
+        "stiffness": units["stiffness"],
+        "damping": units["damping"],
+        "delay": "samples",
+        "filter_cutoff": "Hz",
+        "amplifier_bandwidth": "Hz",
+        "amplifier_time_constant": "s",
+    }
+    no_filter = "no velocity filter"
+    dim = {"beta_B": p.damping, "nu_c": p.cutoff, "alpha": p.lag, "delay": p.delay}
+    out["dimensionless"] = explain_nulls(to_jsonable(dim), {"nu_c": no_filter})
+    why = {"filter_cutoff": no_filter, "amplifier_bandwidth": "ideal amplifier (no lag)"}
+    return explain_nulls(to_jsonable(out), why)
+
+
+def controller_line(controller: Any, period: float, units: dict[str, str]) -> str:
+    """One text line stating the controller, physical values then the dimensionless groups.
+
+    Parameters
+    ----------
+    controller : dfa.controller.Controller
+        The wall controller.
+    period : float
+        Sample period T in s.
+    units : dict
+        The device's unit strings.
+
+    Returns
+    -------
+    str
+        ``controller: K = …, B = …, delay …, velocity filter …, amplifier …; β_B = …, ν_c = …, α = …``.
+    """
+    p = controller.params(period)
+    d = controller.delay
+    filt = (
+        "no velocity filter"
+        if controller.filter_cutoff is None
+        else f"velocity filter {_g(controller.filter_cutoff)} Hz"
+    )
+    amp = (
+        "ideal amplifier"
+        if controller.amplifier_bandwidth is None
+        else f"amplifier bandwidth {_g(controller.amplifier_bandwidth)} Hz (τ_a = {_g(controller.amplifier_time_constant)} s)"
+    )
+    nu = "none" if p.cutoff is None else _g(p.cutoff)
+    groups = f"β_B = B/(KT) = {_g(p.damping)}, ν_c = f_c·T = {nu}, α = τ_a/T = {_g(p.lag)}"
+    return (
+        f"controller: K = {_g(controller.stiffness, 5)} {units['stiffness']}, B = {_g(controller.damping)} "
+        f"{units['damping']}, delay {d} sample{'s' if d != 1 else ''}, {filt}, {amp}; {groups}"
+    )
+
+
+def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
+    """The extended criterion's rows (:func:`dfa.controller_passivity.controller_criterion`)."""
+    crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
+    if r.critical_velocity is not None:
+        crit += f" ({r.critical_velocity:.4g} {vu})"
+    s0 = "σ₀" if r.quantized else "0"
+    rule = f"(β − β₀)V + (σ − {s0}) ≥ 0" + (" and σ ≥ σ₀" if r.quantized else "")
+    if r.passive:
+        upto = "at every speed" if r.region == "a" else f"for speeds up to V = {r.critical_xi_dot:.4g} ticks/sample"
+        verdict = f"yes: the energy cannot grow {upto} (proven)"
+    else:
+        verdict = "no: no passivity guarantee (not a proof of instability)"
+    corner = f"β₀ = ½ + d + β_B = {r.beta0:.4g}, σ₀ = " + (
+        f"½ + (1 − a)β_B = {r.sigma0:.4g}" if r.quantized else "0 (no encoder)"
+    )
+    return [
+        ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
+        ["criterion", f"eq. 6 extended to the damper, filter and delay (dfa.controller_passivity): {rule}"],
+        ["corner", corner],
+        ["region", f"{r.region}: {r.status.message}"],
+        ["passive", verdict],
+        ["margin", f"{r.margin:.4g}"],
+        ["critical speed (eq. 12 extended)", crit],
+    ]
+
+
+def _colgate_rows(cs: Any, b: float, bu: str) -> list[list[str]]:
+    """The general Colgate–Schenkel condition (:func:`dfa.passivity.colgate_schenkel_damping`)."""
+    if b > cs.damping_bound:
+        verdict = "met: the linear sampled loop (no encoder, no Coulomb friction) is passive"
+    elif b <= cs.damping_min:
+        verdict = "not met: the linear sampled loop is not passive (necessary and sufficient for it)"
+    else:
+        verdict = "undecided: b lies within the rounding of the bound"
+    return [
+        [
+            "Colgate–Schenkel",
+            f"b ≥ (T/2)·max_ω Re{{(1 − e^(−jωT))H(e^(jωT))}}/(1 − cos ωT) = {cs.damping_min:.4g} {bu} "
+            f"(at {cs.frequency:.4g} Hz); device b = {b:.4g} {bu}",
+        ],
+        ["linear passivity", verdict],
+    ]
+
+
+def controller_check_rows(r: Any, cs: Any, vu: str) -> list[list[str]]:
+    """Rows of `dfa check` with a controller: the extended criterion (eq. 6) and Colgate–Schenkel.
+
+    Parameters
+    ----------
+    r : dfa.controller_passivity.ControllerCriterionResult
+        The extended criterion at the device's operating point (device set).
+    cs : dfa.passivity.ColgateSchenkelDamping
+        The general Colgate–Schenkel condition for the same controller.
+    vu : str
+        Velocity unit.
+
+    Returns
+    -------
+    list of list of str
+        Table rows; every verdict says what is proven and by which condition.
+    """
+    speed = f"{r.xi_dot:.4g} ticks/sample" + (f" ({r.velocity:.4g} {vu})" if r.velocity is not None else "")
+    rows = [["β, σ", f"{r.beta:.4g}, {r.sigma:.4g}"], ["speed |ξ'0|", speed]]
+    if r.xi0 != 0.0:
+        rows.append(["initial position ξ0", f"{r.xi0:.4g} ticks ({r.position:.4g} {r.device.units['position']})"])
+    rows += _criterion_rows(r, vu)
+    return rows + _colgate_rows(cs, r.device.damping, r.device.units["damping"])

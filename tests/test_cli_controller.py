@@ -1,0 +1,237 @@
+"""The wall controller on the command line (issue 15 "Command line"): every path through main(argv).
+
+The numbers users read (CLI JSON) equal the API's: the extended criterion of eq. 6
+(:func:`dfa.controller_passivity.device_controller_criterion`), the general Colgate–Schenkel condition
+(:func:`dfa.passivity.colgate_schenkel_damping`), :func:`dfa.simulate`, :func:`dfa.limit_cycles` and
+:func:`dfa.stability_map` with ``controller=``. B = 0 without filter or lag is the spring, byte for byte.
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from dfa.catalogue import get_device
+from dfa.cli import main
+from dfa.controller import Controller, ControllerParams
+from dfa.controller_passivity import device_controller_criterion
+from dfa.cycles import limit_cycles
+from dfa.maps import load_map, stability_map
+from dfa.passivity import colgate_schenkel_damping
+from dfa.render.controller import NOT_COVERED
+from dfa.simulation import OUTCOMES, divergence_bound, simulate
+
+DEV = get_device("Delta").device
+K = 14500.0  # the catalogue stiffness of Delta
+BASE = ["--device", "delta"]
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def run_json(capsys, *argv):
+    code, out, err = run(capsys, *argv, "--json")
+    assert code == 0, err
+    return json.loads(out)
+
+
+def test_eq6_controller_check_json_equals_api(capsys):
+    d = run_json(
+        capsys,
+        "check",
+        *BASE,
+        "--velocity",
+        "0.1",
+        "--virtual-damping",
+        "5",
+        "--velocity-filter",
+        "100",
+        "--delay",
+        "1",
+    )
+    ctl = Controller(K, damping=5.0, delay=1, filter_cutoff=100.0)
+    r = device_controller_criterion(DEV, ctl, 0.1)
+    for key in ("beta0", "sigma0", "margin", "region", "passive", "critical_velocity", "critical_xi_dot"):
+        assert d[key] == getattr(r, key)
+    cs = colgate_schenkel_damping(ctl, DEV.period)
+    assert d["colgate_schenkel"]["damping_min"] == cs.damping_min
+    assert d["colgate_schenkel"]["met"] is (DEV.damping > cs.damping_bound)
+    dim = d["controller"]["dimensionless"]
+    assert dim["beta_B"] == pytest.approx(5.0 / (K * DEV.period), rel=1e-15)
+    assert dim["nu_c"] == pytest.approx(100.0 * DEV.period, rel=1e-15)
+    assert dim["alpha"] == 0.0 and dim["delay"] == 1
+    assert d["controller"]["damping"] == 5.0 and d["controller"]["units"]["damping"] == "N·s/m"
+
+
+def test_eq6_controller_check_text_names_both_conditions(capsys):
+    code, out, _ = run(capsys, "check", *BASE, "--velocity", "0.1", "--virtual-damping", "5")
+    assert code == 0
+    assert "controller: K = 14500 N/m, B = 5 N·s/m" in out and "β_B = B/(KT) = 1.034" in out
+    assert "eq. 6 extended to the damper" in out and "Colgate–Schenkel" in out
+    r = device_controller_criterion(DEV, Controller(K, damping=5.0), 0.1)
+    assert not r.passive and "no: no passivity guarantee (not a proof of instability)" in out
+
+
+@pytest.mark.parametrize(
+    "extra", [[], ["--virtual-damping", "3"], ["--velocity-filter", "200", "--virtual-damping", "1"]]
+)
+def test_check_amplifier_lag_is_not_covered_never_passive(capsys, extra):
+    code, out, _ = run(capsys, "check", *BASE, "--velocity", "0.01", "--amplifier-bandwidth", "300", *extra)
+    assert code == 0 and f"passive  {NOT_COVERED}" in out and "yes:" not in out and "(proven)" not in out
+    d = run_json(capsys, "check", *BASE, "--velocity", "0.01", "--amplifier-bandwidth", "300", *extra)
+    assert d["passive"] is None and d["status"] == "not_covered"
+    assert d["controller"]["amplifier_bandwidth"] == 300.0
+    assert d["controller"]["dimensionless"]["alpha"] == pytest.approx(1.0 / (2 * np.pi * 300.0 * DEV.period))
+
+
+def test_eq4_controller_simulate_json_equals_api(capsys):
+    argv = ["simulate", *BASE, "--velocity", "0.1", "--virtual-damping", "2", "--amplifier-bandwidth", "500"]
+    d = run_json(capsys, *argv)
+    ctl = Controller(K, damping=2.0, amplifier_bandwidth=500.0).params(DEV.period)
+    p = DEV.params(K)
+    xd = DEV.xi_dot(0.1)
+    r = simulate(p.mu, p.beta, p.sigma, xd, None, controller=ctl, bound=divergence_bound(0.0, xd, p.mu, 1e6))
+    assert d["outcome"] == r.outcome and d["final_xi"] == r.final_xi and d["rest_sample"] == r.rest_sample
+    assert d["controller"]["dimensionless"]["beta_B"] == ctl.damping
+    code, out, _ = run(capsys, *argv)
+    assert code == 0 and "controller: K = 14500 N/m, B = 2 N·s/m" in out and "amplifier bandwidth 500 Hz" in out
+
+
+def test_eq36_controller_limit_cycles_json_equals_api(capsys):
+    d = run_json(capsys, "limit-cycles", *BASE, "--virtual-damping", "2", "--delay", "1")
+    ctl = Controller(K, damping=2.0, delay=1).params(DEV.period)
+    res = limit_cycles(DEV.params(K), controller=ctl)
+    assert [c["amplitude"] for c in d["cycles"]] == [c.amplitude for c in res.cycles]
+    assert d["controller"]["delay"] == 1 and d["controller"]["dimensionless"]["beta_B"] == ctl.damping
+    code, out, _ = run(capsys, "limit-cycles", *BASE, "--virtual-damping", "2", "--delay", "1")
+    assert code == 0 and "controller: K = 14500 N/m, B = 2 N·s/m, delay 1 sample" in out
+
+
+def test_fig4_controller_map_json_equals_api(capsys, tmp_path):
+    out = tmp_path / "m.npz"
+    argv = ["map", *BASE, "--velocity", "0.1", "--virtual-damping", "2", "--velocity-filter", "200"]
+    argv += ["--grid", "3", "--samples", "2000", "--jobs", "1", "--out", str(out)]
+    d = run_json(capsys, *argv)
+    ctl = Controller(K, damping=2.0, filter_cutoff=200.0).params(DEV.period)
+    p = DEV.params(K)
+    m = stability_map(p.mu, [DEV.xi_dot(0.1)], grid=3, samples=2000, n_jobs=1, progress=False, controller=ctl)
+    assert d["counts"] == m.as_dict()["counts"]
+    assert load_map(out).controller == ctl
+    assert d["controller"]["filter_cutoff"] == 200.0
+
+
+def test_fig4_controller_map_outcomes_equal_simulate_per_point():
+    """stability_map(controller=) is simulate(controller=) at every point (damper, filter, delay, lag)."""
+    ctl = ControllerParams(damping=0.3, delay=1, cutoff=0.1, lag=0.5)
+    m = stability_map(100.0, [2.0], grid=3, samples=3000, n_jobs=2, progress=False, controller=ctl)
+    assert m.controller == ctl and m.delay == 1
+    for i, s in enumerate(m.sigma):
+        for j, b in enumerate(m.beta):
+            r = simulate(100.0, b, s, 2.0, 3000, controller=ctl)
+            assert r.outcome == OUTCOMES[m.outcome[0, i, j]]
+            assert np.array_equal(r.amplitude, m.amplitude[0, i, j], equal_nan=True)
+
+
+def test_fig4_spring_controller_map_is_the_spring_map():
+    """A ControllerParams without damper, filter or lag gives the spring's map (stored without a controller)."""
+    a = stability_map(100.0, [2.0], grid=3, samples=2000, delay=1, n_jobs=1, progress=False)
+    b = stability_map(
+        100.0, [2.0], grid=3, samples=2000, n_jobs=1, progress=False, controller=ControllerParams(delay=1)
+    )
+    assert b.controller is None and np.array_equal(a.outcome, b.outcome) and a.as_dict() == b.as_dict()
+
+
+SPRING_CASES = [
+    ["check", *BASE, "--velocity", "0.1"],
+    ["check", *BASE, "--velocity", "0.1", "--delay", "1", "--json"],
+    ["simulate", *BASE, "--velocity", "0.1"],
+    ["simulate", *BASE, "--velocity", "0.1", "--json"],
+    ["limit-cycles", *BASE, "--json"],
+]
+
+
+@pytest.mark.parametrize("argv", SPRING_CASES)
+def test_zero_virtual_damping_is_the_spring_byte_for_byte(capsys, argv):
+    assert run(capsys, *argv) == run(capsys, *argv, "--virtual-damping", "0")
+
+
+def test_zero_virtual_damping_map_is_the_spring(capsys, tmp_path):
+    argv = ["map", *BASE, "--velocity", "0.1", "--grid", "3", "--samples", "1000", "--jobs", "1", "--json"]
+    a = json.loads(run(capsys, *argv, "--out", str(tmp_path / "a.npz"))[1])
+    b = json.loads(run(capsys, *argv, "--out", str(tmp_path / "b.npz"), "--virtual-damping", "0")[1])
+    a.pop("out"), b.pop("out")
+    assert a == b and "controller" not in b
+
+
+ERRORS = [
+    (["check", *BASE, "--velocity", "0.1", "--virtual-damping", "-1"], "--virtual-damping -1 is invalid"),
+    (["check", *BASE, "--velocity", "0.1", "--velocity-filter", "0"], "--velocity-filter 0 is invalid"),
+    (["simulate", *BASE, "--velocity", "0.1", "--velocity-filter", "2000"], "Nyquist frequency 1500 Hz"),
+    (
+        ["map", *BASE, "--velocity", "0.1", "--velocity-filter", "1500", "--out", "/tmp/x.npz"],
+        "Nyquist frequency 1500 Hz",
+    ),
+    (["limit-cycles", *BASE, "--amplifier-bandwidth", "0"], "--amplifier-bandwidth 0 is invalid"),
+    (["check", *BASE, "--velocity", "0.1", "--amplifier-bandwidth", "-5"], "--amplifier-bandwidth -5 is invalid"),
+    (["check", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1.5"], "'1.5' is not a whole number"),
+    (["simulate", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "-1"], "delay"),
+    (
+        ["simulate", "--mu", "100", "--beta", "0.2", "--sigma", "1", "--xi-dot", "1", "--virtual-damping", "1"],
+        "needs a physical device",
+    ),
+    (["check", "--beta", "0.2", "--sigma", "1", "--xi-dot", "1", "--velocity-filter", "10"], "needs a physical device"),
+    (
+        ["map", "--mu", "100", "--xi-dot", "1", "--virtual-damping", "1", "--out", "/tmp/x.npz"],
+        "needs a physical device",
+    ),
+    (
+        ["stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--plot", "/tmp/ccli-x.png"],
+        "not yet supported by `dfa stiffness --plot`",
+    ),
+    (["stiffness", *BASE, "--velocity", "0.1", "--velocity-filter", "1600"], "Nyquist frequency 1500 Hz"),
+    (
+        ["report", *BASE, "--velocity", "0.1", "--amplifier-bandwidth", "100", "--out", "/tmp/ccli-r"],
+        "not yet supported by `dfa report`",
+    ),
+    (["check", *BASE, "--velocity", "0.1", "--virtual-damping", "nan"], "not a finite number"),
+]
+
+
+@pytest.mark.parametrize("argv, text", ERRORS)
+def test_controller_bad_input_is_one_line_exit_2(capsys, argv, text):
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == ""
+    assert text in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+NULL_CASES = [
+    ["check", *BASE, "--velocity", "0.1", "--virtual-damping", "5", "--json"],
+    ["check", *BASE, "--velocity", "0.1", "--amplifier-bandwidth", "300", "--json"],
+    ["simulate", *BASE, "--velocity", "0.1", "--virtual-damping", "2", "--json"],
+    ["limit-cycles", *BASE, "--velocity-filter", "100", "--virtual-damping", "2", "--json"],
+    ["stiffness", *BASE, "--velocity", "0.1", "--amplifier-bandwidth", "300", "--json"],
+]
+
+
+@pytest.mark.parametrize("argv", NULL_CASES)
+def test_controller_json_nulls_have_reasons(capsys, argv):
+    from test_cli_json_null_reasons import unexplained_nulls
+
+    code, out, err = run(capsys, *argv)
+    assert code == 0, err
+    assert unexplained_nulls(json.loads(out)) == []
+
+
+def test_eq11_controller_stiffness_json_equals_api(capsys):
+    from dfa.controller_kmax import controller_stiffness_limits
+
+    d = run_json(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
+    r = controller_stiffness_limits(DEV, Controller(K, damping=1.0, delay=1), 0.1)
+    assert d["k_criterion"] == r.k_criterion and d["k_linear"] == r.k_linear
+    assert d["k_df"] is None and d["k_sim"] is None and d["controller"]["delay"] == 1
+    code, out, _ = run(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
+    assert code == 0 and f"{r.k_criterion:.5g} N/m" in out and f"{r.k_linear:.5g} N/m" in out
+    assert "controller: K = 14500 N/m, B = 1 N·s/m, delay 1 sample" in out

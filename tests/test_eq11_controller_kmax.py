@@ -1,0 +1,92 @@
+"""K_max with a wall controller (issue 15 item 5): the extended criterion (eq. 6/11) and the exact linear bound.
+
+Independent checks: the physical closed form of the extended criterion (dfa.controller_passivity docstring,
+(b − B − KT(½ + d))|v| + (c − KΔ/2 − (1 − a)BΔ/T) >= 0 and c >= KΔ/2 + (1 − a)BΔ/T) against the bisection,
+the spring's eq. 11 K_max, a scan over exact simulations with the controller (no divergence at or below
+K_criterion), and a scan over linear simulations across the exact linear bound.
+"""
+
+import math
+
+import pytest
+
+from dfa.catalogue import get_device
+from dfa.controlled_linear import stable_stiffness
+from dfa.controller import Controller
+from dfa.controller_kmax import LAG_REASON, controller_stiffness_limits
+from dfa.device import Device
+from dfa.simulation import simulate
+from dfa.stiffness import stiffness_limits
+
+DELTA = get_device("Delta").device
+
+
+def _closed_form(dev, ctl, v):
+    b, c, dx, t = dev.damping, dev.coulomb, dev.resolution, dev.period
+    a = 0.0 if ctl.filter_cutoff is None else math.exp(-2 * math.pi * ctl.filter_cutoff * t)
+    q = c - (1 - a) * ctl.damping * dx / t
+    return max(0.0, min(q / (dx / 2), ((b - ctl.damping) * v + q) / (t * (0.5 + ctl.delay) * v + dx / 2)))
+
+
+@pytest.mark.parametrize(
+    "ctl",
+    [
+        Controller(1.0, damping=1.0),
+        Controller(1.0, damping=1.0, delay=1, filter_cutoff=100.0),
+        Controller(1.0, damping=3.0, delay=2, filter_cutoff=20.0),
+        Controller(1.0, damping=40.0),  # more damper than the friction can pay for: no K at all
+    ],
+)
+@pytest.mark.parametrize("v", [0.01, 0.1, 1.0])
+def test_eq11_controller_k_criterion_equals_closed_form(ctl, v):
+    r = controller_stiffness_limits(DELTA, ctl, v)
+    assert r.k_criterion == pytest.approx(_closed_form(DELTA, ctl, v), rel=1e-9, abs=1e-9)
+
+
+@pytest.mark.parametrize("v", [0.01, 0.1, 1.0])
+def test_eq11_spring_controller_is_the_spring_k_max(v):
+    r = controller_stiffness_limits(DELTA, Controller(1.0), v)
+    s = stiffness_limits(DELTA, v)
+    assert r.k_criterion == pytest.approx(s.k_max, rel=1e-9)
+    assert r.k_linear == pytest.approx(s.k_gil, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    "ctl", [Controller(1.0, damping=1.0), Controller(1.0, damping=1.0, delay=1, filter_cutoff=100.0)]
+)
+def test_eq6_controller_k_criterion_sound_by_simulation(ctl):
+    """No impact up to the speed diverges at any K the extended criterion proves passive (exact simulation)."""
+    v = 0.1
+    r = controller_stiffness_limits(DELTA, ctl, v)
+    assert r.k_criterion is not None and r.k_criterion > 0
+    for k in (r.k_criterion, 0.5 * r.k_criterion, 0.1 * r.k_criterion):
+        c = Controller(k, ctl.damping, ctl.delay, ctl.filter_cutoff).params(DELTA.period)
+        p = DELTA.params(k)
+        for i in (1, 2, 3, 4):
+            run = simulate(p.mu, p.beta, p.sigma, DELTA.xi_dot(v * i / 4), 20_000, controller=c)
+            assert run.outcome != "unstable", (k, i, run.outcome)
+
+
+@pytest.mark.parametrize(
+    "ctl",
+    [Controller(1.0, damping=0.5), Controller(1.0, damping=0.5, delay=1), Controller(1.0, amplifier_bandwidth=300.0)],
+)
+def test_controller_k_linear_matches_a_linear_simulation_scan(ctl):
+    """Without encoder and Coulomb friction the loop is linear: it decays below K_linear and diverges above."""
+    dev = Device(mass=0.1, damping=1.0, coulomb=0.0, resolution=1e-5, period=1e-3)
+    kl = controller_stiffness_limits(dev, ctl, 0.1).k_linear
+    assert kl > 0
+    for k, diverges in ((0.9 * kl, False), (1.1 * kl, True)):
+        c = Controller(k, ctl.damping, ctl.delay, ctl.filter_cutoff, ctl.amplifier_bandwidth).params(dev.period)
+        p = dev.params(k)
+        run = simulate(p.mu, p.beta, 0.0, 1.0, 200_000, quantize=False, controller=c, bound=1e8)
+        assert (run.outcome == "unstable") is diverges, (k, run.outcome)
+
+
+def test_controller_lag_criterion_not_covered():
+    ctl = Controller(1.0, damping=1.0, amplifier_bandwidth=300.0)
+    r = controller_stiffness_limits(DELTA, ctl, 0.1)
+    assert r.k_criterion is None and r.reasons["k_criterion"] == LAG_REASON
+    assert r.k_linear == stable_stiffness(DELTA.mass, DELTA.damping, DELTA.period, ctl).k_crit
+    assert r.k_df is None and r.k_sim is None and r.status == "partial"
+    assert r.as_dict()["null_reasons"]["k_criterion"] == LAG_REASON
