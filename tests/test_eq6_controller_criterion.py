@@ -204,7 +204,25 @@ def test_eq6_controller_without_damper_equals_passivity_criterion(beta, sigma, x
         old.margin,
         old.critical_xi_dot,
     )
-    assert new.equivalent_speed == old.equivalent_speed and new.status is old.status
+    assert new.equivalent_speed == old.equivalent_speed and new.status.region == old.status.region
+
+
+@pytest.mark.parametrize(
+    ("beta", "sigma", "xi_dot", "region"),
+    [(2.0, 2.0, 1.0, "a"), (2.0, 0.1, 1.0, "b"), (0.1, 0.1, 1.0, "c"), (0.2, 2.03, 9.0, "d"), (0.2, 2.03, 0.5, "e")],
+)
+def test_eq6_controller_status_states_the_controller_thresholds(beta, sigma, xi_dot, region):
+    """The messages name β₀, σ₀ (not the spring's ½ + d, ½) and the result fills in their values."""
+    ctl = ControllerParams(damping=0.3, delay=1, cutoff=0.1)
+    r = controller_criterion(beta, sigma, xi_dot, ctl)
+    b0, s0 = 1.5 + 0.3, 0.5 + (1.0 - np.exp(-0.2 * np.pi)) * 0.3
+    assert r.region == region and r.status.region == region
+    assert "½ + d" not in r.status.message and "σ < ½" not in r.status.message
+    assert "not passive at rest" not in r.status.message  # σ < σ₀ is only the lack of a guarantee here
+    assert f"β₀ = {b0:.6g}, σ₀ = {s0:.6g}" in r.status_message
+    assert r.as_dict()["status_message"] == r.status_message
+    if region in ("b", "c", "d"):
+        assert "not a proof of instability" in r.status_message
 
 
 def test_eq6_controller_default_is_the_paper_spring():
