@@ -134,8 +134,7 @@ class ControllerCriterionStatus(StatusEnum):
     )
     ABOVE_CRITICAL_SPEED = (
         "above_critical_speed",
-        "no passivity guarantee at this speed: above the critical speed (σ − σ₀)/(β₀ − β) "
-        "(not a proof of instability)",
+        "no passivity guarantee at this speed: above the critical speed (σ − σ₀)/(β₀ − β) (not a proof of instability)",
     )
     PASSIVE_BELOW_CRITICAL_SPEED = (
         "passive_below_critical_speed",
