@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -160,7 +161,7 @@ def _params(damping: float, delay: int, cutoff: float) -> ControllerParams:
     return ControllerParams(damping=float(damping), delay=int(delay), cutoff=None if math.isnan(cutoff) else cutoff)
 
 
-def _storage_run(pt: dict[str, object], n: int) -> tuple[float, int, bool]:
+def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:
     """(largest S/S(0) − 1 at the sample instants, the sample where it occurred, diverged) of one point."""
     c = _params(pt["damping"], pt["delay"], pt["cutoff"])
     mu, x0, v0 = float(pt["mu"]), float(pt["xi0"]), float(pt["xi_dot"])
