@@ -62,8 +62,8 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
-from ._divdiff import exp_divided_difference as _f
 from ._frozen import freeze_fields
+from ._zohlag import amplifier_zoh
 from .checks import check_beta, check_mu, check_nonnegative, check_positive, check_real_array, check_type
 from .controller import Controller, ControllerParams
 from .errors import DFAError, DFAValueError
@@ -120,11 +120,8 @@ def amplifier_zoh_coefficients(a: float, lag: float) -> tuple[float, float, floa
     >>> [round(c * 6e9, 6) for c in amplifier_zoh_coefficients(0.0, 1e9)[:3]]   # ZOH of 1/(α s³)
     [1.0, 4.0, 1.0]
     """
-    b = 1.0 / lag
-    n2 = -b * _f(0.0, 0.0, a, b)
-    n1 = -b * (_f(0.0, a, a, b) + _f(a, a, b, a + b) + _f(0.0, a, b, b) + _f(a, b, b, a + b))
-    n0 = -b * _f(a, b, a + b, a + b)
-    return n2, n1, n0, math.exp(-a), math.exp(-b)
+    n2, n1, n0, p, q = amplifier_zoh(float(a), 1.0 / lag)  # the one implementation (dfa._zohlag)
+    return float(n2), float(n1), float(n0), float(p), float(q)
 
 
 def _plant(a: float, lag: float) -> tuple[np.ndarray, np.ndarray]:

@@ -117,7 +117,7 @@ from .criterion import _margin, equivalent_speed, region_of
 from .device import Device
 from .errors import DFATypeError, DFAValueError
 from .jsonable import to_jsonable
-from .status import CriterionStatus
+from .status import ControllerCriterionStatus
 
 __all__ = ["ControllerCriterionResult", "controller_criterion", "device_controller_criterion", "controller_anchor"]
 
@@ -209,8 +209,8 @@ class ControllerCriterionResult:
         Initial position (ticks); the past readings equal it.
     mu : float or None
         Dimensionless mass (needed only when ξ0 ≠ 0).
-    status : CriterionStatus
-        The region's meaning (its thresholds read β₀, σ₀ here).
+    status : ControllerCriterionStatus
+        The region's meaning in terms of β₀, σ₀ (:attr:`status_message` gives their values).
     device, stiffness, velocity, critical_velocity, position
         Set by :func:`device_controller_criterion` (SI units); otherwise None.
     """
@@ -229,7 +229,7 @@ class ControllerCriterionResult:
     equivalent_speed: float
     xi0: float
     mu: float | None
-    status: CriterionStatus
+    status: ControllerCriterionStatus
     device: Device | None = None
     stiffness: float | None = None
     velocity: float | None = None
@@ -244,7 +244,7 @@ class ControllerCriterionResult:
         for name in ("quantized", "passive"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise DFATypeError(f"{name} = {_fmt(getattr(self, name))} is invalid: it must be True or False; {fix}")
-        status = CriterionStatus.coerce(self.status)
+        status = ControllerCriterionStatus.coerce(self.status)
         object.__setattr__(self, "status", status)
         if (
             not isinstance(self.region, str)
@@ -256,6 +256,20 @@ class ControllerCriterionResult:
                 "they must agree (only a and e are passive); use controller_criterion"
             )
 
+    @property
+    def status_message(self) -> str:
+        """The status message with this case's thresholds β₀, σ₀ (and critical speed) filled in.
+
+        Examples
+        --------
+        >>> controller_criterion(0.2, 2.03, 5.0, ControllerParams(damping=0.1)).status_message.split("; ")[-1]
+        'here β₀ = 0.6, σ₀ = 0.6, critical speed 3.575 ticks/sample'
+        """
+        extra = f"here β₀ = {self.beta0:.6g}, σ₀ = {self.sigma0:.6g}"
+        if self.critical_xi_dot is not None:
+            extra += f", critical speed {self.critical_xi_dot:.6g} ticks/sample"
+        return f"{self.status.message}; {extra}"
+
     def as_dict(self) -> dict[str, object]:
         """JSON-ready summary: verdict, margin, thresholds, inputs, controller, status and its message.
 
@@ -265,7 +279,7 @@ class ControllerCriterionResult:
             Strict-JSON data (physical values too when set by :func:`device_controller_criterion`).
         """
         out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in ("device", "controller")}
-        out.update(controller=self.controller.as_dict(), status_message=self.status.message)
+        out.update(controller=self.controller.as_dict(), status_message=self.status_message)
         out["device"] = None if self.device is None else self.device.name
         return to_jsonable(out)
 
@@ -351,7 +365,7 @@ def controller_criterion(
         equivalent_speed=v,
         xi0=x0,
         mu=m,
-        status=CriterionStatus.of_region(region),
+        status=ControllerCriterionStatus.of_region(region),
     )
 
 

@@ -3,13 +3,17 @@
 :func:`dfa.controller_passivity.controller_criterion` claims that, when it calls a
 point passive, the storage S = ½μξ'² + ½ξ² never exceeds its initial value. This
 module samples random points that a criterion calls passive, simulates each
-exactly with the controller (virtual damper on the backward-difference velocity
-of the quantized position, optional ZOH-exact low-pass, delay d; no amplifier
-lag, so the force is constant over each sample and the per-sample step
-:func:`dfa._kernel.step` of :func:`dfa.simulate` is exact) and checks at every
-sample and at every turning point inside a sample
+exactly with the package's simulator, :func:`dfa.simulate` with the controller
+(virtual damper on the backward-difference velocity of the quantized position,
+optional ZOH-exact low-pass, delay d; no amplifier lag; :mod:`dfa._ckernel`, or
+the spring kernel when β_B = 0) and checks at every sample instant
 
     S <= S(0)(1 + 1e-9)      and      |ξ| stays below 10⁶ ticks (no divergence).
+
+Turning points inside a sample (ξ' = 0 between two instants) are not checked
+here: the simulator records the sample instants only. The reference loop
+``tests/reference_ctl.controller_run`` (bit-identical trajectories, tested) also
+checks them, and ``test_eq6_controller_criterion`` runs it on sampled points.
 
 Sampling (per point): μ log-uniform in [0.1, 10⁴]; d uniform in {0, …, 3};
 β_B = 0 for a tenth of the points, else log-uniform in [10⁻³, 3]; no filter for
@@ -27,8 +31,7 @@ few ulps of σ. Samples per run: max(2000, 20·2π√μ) (:func:`dfa.soundness.r
 
 The same sampler applied to the damper-ignoring criterion (:func:`dfa.passivity_criterion`
 with the delay, β_B and the filter ignored) finds violations: evidence that the
-check can fail. The simulation has one call site, :func:`simulate_points`,
-to be switched to the controller simulator of :mod:`dfa.simulation` once it exists.
+check can fail. The simulation has one call site, :func:`simulate_points`.
 
 Run ``python -m dfa.soundness --controller --points 100000 --out reports/validation``
 to write ``controller_soundness.md`` and ``controller_soundness.json``.
@@ -38,11 +41,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
-from numba import njit
 
-from . import _kernel
 from .checks import check_choice, check_int
 from .controller import ControllerParams
 from .controller_passivity import controller_anchor, controller_criterion
@@ -50,6 +52,7 @@ from .criterion import passivity_criterion
 from .errors import DFAValueError
 from .formatting import markdown_table
 from .jsonable import to_jsonable
+from .simulation import simulate
 from .status import SoundnessStatus
 
 __all__ = [
@@ -158,58 +161,31 @@ def _params(damping: float, delay: int, cutoff: float) -> ControllerParams:
     return ControllerParams(damping=float(damping), delay=int(delay), cutoff=None if math.isnan(cutoff) else cutoff)
 
 
-@njit(cache=True)
-def controller_run(mu, beta, sigma, x0, v0, n, damping, delay, pole, filtered, quantize, bound, hist):
-    """Exact run of the loop with damper, filter and delay (no amplifier lag); returns (max S/S(0) − 1, at, diverged).
-
-    The command of sample h is −(n_h + ½) − β_B y_h (−ξ_h − β_B y_h without the
-    encoder) with n_h = ⌊ξ_h⌋, v_h = n_h − n_{h−1} (v_0 = 0) and y_h = v_h, or
-    y_h = a y_{h−1} + (1 − a) v_{h−1} (y_0 = 0) with the filter; the force of
-    sample h is the command of sample h − d (the first command before that).
-    ``hist`` is scratch of length >= d + 1. S is checked at every sample and
-    at every turning point (where ξ' = 0 inside a sample).
-    """
-    k = _kernel.sample_constants(mu, beta)
-    x, v = x0, v0
-    s0 = 0.5 * mu * v0 * v0 + 0.5 * x0 * x0
-    worst, at = -np.inf, 0
-    nprev = math.floor(x0) if quantize else x0
-    y, vprev = 0.0, 0.0
-    for h in range(n):
-        rd = math.floor(x) if quantize else x
-        vel = rd - nprev
-        nprev = rd
-        if filtered:
-            y = pole * y + (1.0 - pole) * vprev if h > 0 else 0.0
-            vprev = vel
-        else:
-            y = vel
-        hist[h % (delay + 1)] = -(rd + 0.5 if quantize else rd) - damping * y
-        phi = hist[(h - delay) % (delay + 1)] if h >= delay else hist[0]
-        x, v, xr, _t, _a, _a2, _tr, stopped = _kernel.step(x, v, phi, mu, sigma, k)
-        s = 0.5 * mu * v * v + 0.5 * x * x
-        if stopped:
-            s = max(s, 0.5 * xr * xr)
-        r = (s - s0) / s0 if s0 > 0.0 else (np.inf if s > 0.0 else 0.0)
-        if not r <= worst:  # NaN counts as growth
-            worst, at = (r if r == r else np.inf), h + 1
-        if not abs(x) <= bound:
-            return np.inf, h + 1, True
-    return worst, at, False
-
-
-@njit(cache=True)
-def _batch(mus, betas, sigmas, x0s, v0s, ns, damping, delay, pole, filtered, quantized, bound, ratio, at, div):
-    hist = np.empty(int(delay.max()) + 1)
-    for i in range(mus.shape[0]):
-        ratio[i], at[i], div[i] = controller_run(
-            mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], damping[i], delay[i], pole[i], filtered[i],
-            quantized[i], bound, hist,
+def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:
+    """(largest S/S(0) − 1 at the sample instants, the sample where it occurred, diverged) of one point."""
+    c = _params(pt["damping"], pt["delay"], pt["cutoff"])
+    mu, x0, v0 = float(pt["mu"]), float(pt["xi0"]), float(pt["xi_dot"])
+    with np.errstate(all="ignore"):
+        r = simulate(
+            mu, float(pt["beta"]), float(pt["sigma"]), v0, n, x0, quantize=bool(pt["quantized"]), controller=c,
+            bound=BOUND,
         )  # fmt: skip
+        xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
+        past = np.flatnonzero(~(np.abs(xs) <= BOUND))  # beyond the bound or NaN (after a bound exit)
+        if past.size:
+            return math.inf, int(past[0]) + 1, True
+        s0 = 0.5 * mu * v0 * v0 + 0.5 * x0 * x0
+        s = 0.5 * mu * vs * vs + 0.5 * xs * xs
+        ratio = (s - s0) / s0 if s0 > 0.0 else np.where(s > 0.0, np.inf, 0.0)
+    h = int(np.argmax(ratio))
+    return float(ratio[h]), h + 1, False
 
 
 def simulate_points(pts: dict[str, np.ndarray], ns: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Simulate every point of :func:`sample_controller_points` for ``ns[i]`` samples (the one call site).
+    """Simulate every point of :func:`sample_controller_points` for ``ns[i]`` samples with :func:`dfa.simulate`.
+
+    The package's own simulator with the controller (:mod:`dfa._ckernel`; the spring kernel when
+    β_B = 0) runs each point; the storage is checked at every sample instant (module docstring).
 
     Returns
     -------
@@ -217,12 +193,9 @@ def simulate_points(pts: dict[str, np.ndarray], ns: np.ndarray) -> tuple[np.ndar
         (largest S/S(0) − 1, the sample where it occurred, diverged) per point.
     """
     m = pts["mu"].shape[0]
-    filtered = ~np.isnan(pts["cutoff"])
-    pole = np.where(filtered, np.exp(-2.0 * math.pi * np.nan_to_num(pts["cutoff"])), 0.0)
     ratio, at, div = np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.bool_)
-    f = {k: np.ascontiguousarray(pts[k], dtype=float) for k in ("mu", "beta", "sigma", "xi0", "xi_dot", "damping")}
-    _batch(f["mu"], f["beta"], f["sigma"], f["xi0"], f["xi_dot"], ns.astype(np.int64), f["damping"],
-           pts["delay"].astype(np.int64), pole, filtered, pts["quantized"].astype(np.bool_), BOUND, ratio, at, div)  # fmt: skip
+    for i in range(m):
+        ratio[i], at[i], div[i] = _storage_run({key: val[i] for key, val in pts.items()}, int(ns[i]))
     return ratio, at, div
 
 
@@ -338,7 +311,7 @@ def controller_soundness_markdown(results: list[ControllerSoundness]) -> str:
         "from a box and kept when the criterion accepts them), each with a random controller (β_B, d <= 3, optional",
         "velocity filter, encoder on or off) and initial state (ξ0 = 0 for 3/4 of the points), are simulated exactly;",
         "μ log-uniform in [0.1, 10⁴], |ξ'0| <= 10 ticks/sample, max(2000, 20·2π√μ) samples per run. A violation is a",
-        "run whose storage S = ½μξ'² + ½ξ² exceeds S(0)(1 + 1e-9) at a sample or turning point, or that diverges.",
+        "run whose storage S = ½μξ'² + ½ξ² exceeds S(0)(1 + 1e-9) at a sample instant, or that diverges.",
         "",
     ]
     head = ["criterion", "points", "line / σ-edge / β-edge", "filter / no encoder / ξ0 = 0 / β_B = 0",

@@ -25,6 +25,7 @@ from .errors import DFAValueError
 __all__ = [
     "StatusEnum",
     "CriterionStatus",
+    "ControllerCriterionStatus",
     "StiffnessStatus",
     "VelocityStatus",
     "CurveStatus",
@@ -107,6 +108,46 @@ class CriterionStatus(StatusEnum):
 
     @classmethod
     def of_region(cls, region: str) -> CriterionStatus:
+        """The status of region ``"a"`` … ``"e"``."""
+        return list(cls)["abcde".index(region)]
+
+
+class ControllerCriterionStatus(StatusEnum):
+    """Meaning of the region of an operating point for the controller's criterion (:mod:`dfa.controller_passivity`).
+
+    The regions of paper Fig. 3 with the corner moved to (β₀, σ₀): β₀ = ½ + d + β_B and
+    σ₀ = ½ + (1 − a)β_B with the encoder (0 without), a = e^{−2πν_c} (0 without filter).
+    The result's ``status_message`` gives the numbers of the case at hand.
+    """
+
+    PASSIVE_ALL_SPEEDS = (
+        "passive_all_speeds",
+        "passive at every speed: the energy cannot grow (proven; β >= β₀ and σ >= σ₀)",
+    )
+    NO_GUARANTEE_AT_REST = (
+        "no_guarantee_at_rest",
+        "no passivity guarantee even at rest: σ < σ₀ (not a proof of instability; sub-tick chatter possible)",
+    )
+    NO_GUARANTEE = (
+        "no_guarantee",
+        "no passivity guarantee at any speed: σ < σ₀ and β < β₀ (not a proof of instability)",
+    )
+    ABOVE_CRITICAL_SPEED = (
+        "above_critical_speed",
+        "no passivity guarantee at this speed: above the critical speed (σ − σ₀)/(β₀ − β) (not a proof of instability)",
+    )
+    PASSIVE_BELOW_CRITICAL_SPEED = (
+        "passive_below_critical_speed",
+        "passive up to the critical speed (σ − σ₀)/(β₀ − β): the energy cannot grow (proven)",
+    )
+
+    @property
+    def region(self) -> str:
+        """The region letter ``"a"`` … ``"e"`` (paper Fig. 3 with the corner at (β₀, σ₀))."""
+        return "abcde"[list(ControllerCriterionStatus).index(self)]
+
+    @classmethod
+    def of_region(cls, region: str) -> ControllerCriterionStatus:
         """The status of region ``"a"`` … ``"e"``."""
         return list(cls)["abcde".index(region)]
 

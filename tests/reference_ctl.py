@@ -3,6 +3,11 @@
 * :func:`simulate_ivp_ctl` integrates μξ'' + βξ' + σ sgn ξ' = φ_A and the amplifier
   α φ_A' = c − φ_A numerically (scipy ``solve_ivp``, DOP853), sample by sample,
   with events at ξ' = 0 (stop) and at |φ_A| = σ (breakaway of a stuck device).
+* :func:`controller_run` is the loop with damper, filter and delay (no amplifier lag)
+  written as one plain compiled loop around the exact per-sample step of
+  :func:`dfa._kernel.step`, with the storage S = ½μξ'² + ½ξ² checked at every sample
+  and turning point (formerly in ``dfa.controller_soundness``; the package now uses
+  its simulator, :mod:`dfa._ckernel`, which ``test_eq6_controller_criterion`` compares with this).
 * :func:`linear_ctl_recursion` is the linear loop (no quantizer, σ = 0) from the
   exact ZOH discretisation (``control.c2d``) of the plant with the amplifier,
   x_{h+1} = A_d x_h + B_d c_{h−d}.
@@ -17,8 +22,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
-__all__ = ["Commands", "simulate_ivp_ctl", "linear_ctl_recursion"]
+from dfa import _kernel
+
+__all__ = ["Commands", "controller_run", "simulate_ivp_ctl", "linear_ctl_recursion"]
 
 
 class Commands:
@@ -133,3 +141,59 @@ def linear_ctl_recursion(mu, beta, xi0, xi_dot0, samples, ctl):
         state = ad @ state + bd * c
         xs[h + 1], vs[h + 1] = state[0], state[1]
     return xs, vs
+
+
+@njit(cache=True)
+def controller_run(mu, beta, sigma, x0, v0, n, damping, delay, pole, filtered, quantize, bound, hist, rec=None):
+    """Exact run of the loop with damper, filter and delay (no amplifier lag); returns (max S/S(0) − 1, at, diverged).
+
+    The command of sample h is −(n_h + ½) − β_B y_h (−ξ_h − β_B y_h without the
+    encoder) with n_h = ⌊ξ_h⌋, v_h = n_h − n_{h−1} (v_0 = 0) and y_h = v_h, or
+    y_h = a y_{h−1} + (1 − a) v_{h−1} (y_0 = 0) with the filter; the force of
+    sample h is the command of sample h − d (the first command before that).
+    ``hist`` is scratch of length >= d + 1. S is checked at every sample and
+    at every turning point (where ξ' = 0 inside a sample). ``rec`` (shape (n + 1, 2), optional)
+    receives (ξ, ξ') at every sample instant.
+    """
+    k = _kernel.sample_constants(mu, beta)
+    x, v = x0, v0
+    s0 = 0.5 * mu * v0 * v0 + 0.5 * x0 * x0
+    worst, at = -np.inf, 0
+    nprev = math.floor(x0) if quantize else x0
+    y, vprev = 0.0, 0.0
+    record = rec is not None
+    if record:
+        rec[0, 0], rec[0, 1] = x0, v0
+    for h in range(n):
+        rd = math.floor(x) if quantize else x
+        vel = rd - nprev
+        nprev = rd
+        if filtered:
+            y = pole * y + (1.0 - pole) * vprev if h > 0 else 0.0
+            vprev = vel
+        else:
+            y = vel
+        hist[h % (delay + 1)] = -(rd + 0.5 if quantize else rd) - damping * y
+        phi = hist[(h - delay) % (delay + 1)] if h >= delay else hist[0]
+        x, v, xr, _t, _a, _a2, _tr, stopped = _kernel.step(x, v, phi, mu, sigma, k)
+        if record:
+            rec[h + 1, 0], rec[h + 1, 1] = x, v
+        s = 0.5 * mu * v * v + 0.5 * x * x
+        if stopped:
+            s = max(s, 0.5 * xr * xr)
+        r = (s - s0) / s0 if s0 > 0.0 else (np.inf if s > 0.0 else 0.0)
+        if not r <= worst:  # NaN counts as growth
+            worst, at = (r if r == r else np.inf), h + 1
+        if not abs(x) <= bound:
+            return np.inf, h + 1, True
+    return worst, at, False
+
+
+@njit(cache=True)
+def _batch(mus, betas, sigmas, x0s, v0s, ns, damping, delay, pole, filtered, quantized, bound, ratio, at, div):
+    hist = np.empty(int(delay.max()) + 1)
+    for i in range(mus.shape[0]):
+        ratio[i], at[i], div[i] = controller_run(
+            mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], damping[i], delay[i], pole[i], filtered[i],
+            quantized[i], bound, hist,
+        )  # fmt: skip

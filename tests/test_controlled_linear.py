@@ -291,3 +291,40 @@ def test_bad_input_names_the_parameter():
 def test_public_names():
     for name in ("stable_stiffness", "stable_region", "StiffnessIntervals", "StableRegion", "colgate_schenkel_damping"):
         assert name in dfa.__all__ and getattr(dfa, name) is not None
+
+
+def _zoh_numerator_mpmath(a, lag):
+    """(n₂, n₁, n₀) of the ZOH of 1/((αs + 1)s(s + a)) from its step response by residues, 60 digits (a > 0, a ≠ 1/α)."""
+    with mpmath.workdps(60):
+        a, b = mpmath.mpf(a), 1 / mpmath.mpf(lag)
+
+        def y(t):  # step response of b/(s(s + a)(s + b)): residues at 0 (double), −a, −b
+            return (
+                b * t / (a * b)
+                - b * (a + b) / (a * b) ** 2
+                + b * mpmath.e ** (-a * t) / (a**2 * (b - a))
+                + (b * mpmath.e ** (-b * t) / (b**2 * (a - b)))
+            )
+
+        g = [y(k) - y(k - 1) if k else y(0) for k in range(4)]
+        p, q = mpmath.e ** (-a), mpmath.e ** (-b)
+        d1, d2 = -(1 + p + q), p + q + p * q
+        return [float(x) for x in (g[1], g[2] + d1 * g[1], g[3] + d1 * g[2] + d2 * g[1])]
+
+
+@pytest.mark.parametrize(
+    ("a", "lag"),
+    [
+        (1e-3, 0.3),
+        (2.0, 0.5000001),
+        (0.7, 1.0 / 0.7 * (1 + 1e-9)),
+        (10.0, 0.05),
+        (1e-6, 1e3),
+        (30.0, 1e-3),
+        (0.05, 40.0),
+    ],
+)
+def test_zoh_with_amplifier_lag_vs_mpmath(a, lag):
+    """The one implementation (dfa._zohlag.amplifier_zoh, used by the DF and the linear bound) to 1e-13 relative."""
+    got = amplifier_zoh_coefficients(a, lag)[:3]
+    np.testing.assert_allclose(got, _zoh_numerator_mpmath(a, lag), rtol=1e-13, atol=0.0)

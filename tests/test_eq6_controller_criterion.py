@@ -14,8 +14,9 @@ import math
 import numpy as np
 import pytest
 import sympy as sp
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
+from reference_ctl import controller_run
 
 import dfa
 from dfa import _kernel
@@ -27,8 +28,9 @@ from dfa.controller_passivity import (
     controller_criterion,
     device_controller_criterion,
 )
-from dfa.controller_soundness import controller_run, controller_soundness, sample_controller_points
+from dfa.controller_soundness import controller_soundness, sample_controller_points
 from dfa.errors import DFATypeError, DFAValueError
+from dfa.simulation import simulate
 
 
 # ------------------------------------------------------------------ an independent reference loop (pure Python)
@@ -204,7 +206,25 @@ def test_eq6_controller_without_damper_equals_passivity_criterion(beta, sigma, x
         old.margin,
         old.critical_xi_dot,
     )
-    assert new.equivalent_speed == old.equivalent_speed and new.status is old.status
+    assert new.equivalent_speed == old.equivalent_speed and new.status.region == old.status.region
+
+
+@pytest.mark.parametrize(
+    ("beta", "sigma", "xi_dot", "region"),
+    [(2.0, 2.0, 1.0, "a"), (2.0, 0.1, 1.0, "b"), (0.1, 0.1, 1.0, "c"), (0.2, 2.03, 9.0, "d"), (0.2, 2.03, 0.5, "e")],
+)
+def test_eq6_controller_status_states_the_controller_thresholds(beta, sigma, xi_dot, region):
+    """The messages name β₀, σ₀ (not the spring's ½ + d, ½) and the result fills in their values."""
+    ctl = ControllerParams(damping=0.3, delay=1, cutoff=0.1)
+    r = controller_criterion(beta, sigma, xi_dot, ctl)
+    b0, s0 = 1.5 + 0.3, 0.5 + (1.0 - np.exp(-0.2 * np.pi)) * 0.3
+    assert r.region == region and r.status.region == region
+    assert "½ + d" not in r.status.message and "σ < ½" not in r.status.message
+    assert "not passive at rest" not in r.status.message  # σ < σ₀ is only the lack of a guarantee here
+    assert f"β₀ = {b0:.6g}, σ₀ = {s0:.6g}" in r.status_message
+    assert r.as_dict()["status_message"] == r.status_message
+    if region in ("b", "c", "d"):
+        assert "not a proof of instability" in r.status_message
 
 
 def test_eq6_controller_default_is_the_paper_spring():
@@ -279,6 +299,39 @@ def test_eq6_controller_refuses_amplifier_lag_and_offers_the_simulated_map():
     with pytest.raises(DFAValueError, match="they must agree"):
         r = controller_criterion(1.0, 1.0, 1.0)
         ControllerCriterionResult(**{**r.__dict__, "passive": False})
+
+
+@settings(max_examples=40, deadline=None, derandomize=True)
+@given(
+    mu=st.floats(0.1, 1e4),
+    beta=st.floats(0.0, 3.0),
+    sigma=st.floats(0.0, 3.0),
+    x0=st.floats(-10.0, 10.0),
+    v0=st.floats(-10.0, 10.0),
+    damping=st.floats(1e-3, 3.0),
+    delay=st.integers(0, 3),
+    cutoff=st.none() | st.floats(0.01, 0.49),
+    quantize=st.booleans(),
+)
+def test_eq4_controller_simulator_is_bit_identical_to_the_reference_loop(
+    mu, beta, sigma, x0, v0, damping, delay, cutoff, quantize
+):
+    """dfa.simulate(controller=...) (the compiled _ckernel, no lag) against tests/reference_ctl.controller_run.
+
+    The same arithmetic in the same order: the trajectories agree bit for bit at every sample up to the
+    simulator's own stop (rest detected or the bound passed); after a detected rest the reference stays put.
+    """
+    ctl = ControllerParams(damping=damping, delay=delay, cutoff=cutoff)
+    n = 600
+    rec = np.empty((n + 1, 2))
+    with np.errstate(all="ignore"):
+        controller_run(mu, beta, sigma, x0, v0, n, damping, delay, ctl.filter_pole, cutoff is not None, quantize,
+                       1e6, np.empty(delay + 1), rec)  # fmt: skip
+        r = simulate(mu, beta, sigma, v0, n, x0, quantize=quantize, controller=ctl, bound=1e6)
+    xs, vs = np.asarray(r.xi), np.asarray(r.xi_dot)
+    ok = np.isfinite(xs) & (np.abs(rec[:, 0]) <= 1e6)  # the simulator's record is NaN after a bound exit
+    assert ok[: n // 2].all() or r.outcome == "unstable"
+    assert np.array_equal(xs[ok], rec[ok, 0]) and np.array_equal(vs[ok], rec[ok, 1])
 
 
 # ------------------------------------------------------------------ soundness by simulation (fast version)

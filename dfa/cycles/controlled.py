@@ -9,9 +9,8 @@ with its delay: the solver then runs the spring-only code, bit for bit.
 
 from __future__ import annotations
 
-import numpy as np
-
 from ..checks import check_delay, check_type
+from ..controlled_linear import controlled_spectral_radius
 from ..controller import ControllerParams
 from ..errors import DFAValueError
 
@@ -38,42 +37,10 @@ def resolve_controller(controller: object, delay: int) -> tuple[ControllerParams
     return (None if ctl.is_spring else ctl), ctl.delay
 
 
-def controller_polynomials(ctl: ControllerParams) -> tuple[np.ndarray, np.ndarray]:
-    """(numerator, denominator) of C(z) in powers of z, highest first (no delay)."""
-    b = ctl.damping
-    if ctl.cutoff is None:  # 1 + β_B(1 − z^{−1}) = ((1 + β_B)z − β_B)/z
-        return np.array([1.0 + b, -b]), np.array([1.0, 0.0])
-    a = ctl.filter_pole  # 1 + β_B (z − 1)(1 − a)/(z(z − a))
-    num = np.polyadd(np.array([1.0, -a, 0.0]), b * (1.0 - a) * np.array([1.0, -1.0]))
-    return num, np.array([1.0, -a, 0.0])
-
-
-def plant_polynomials(mu: float, beta: float, lag: float) -> tuple[np.ndarray, np.ndarray]:
-    """(numerator, denominator) of the ZOH-sampled (amplifier lag +) device in powers of z, highest first."""
-    if lag == 0.0:
-        from ..linear import _zoh_coefficients
-
-        c1, c0, p = (float(x) for x in _zoh_coefficients(beta / mu))
-        return np.array([c1, c0]), mu * np.polymul([1.0, -1.0], [1.0, -p])
-    from .._zohlag import zoh_lag_coefficients
-
-    gf, gv, gx, fvf, fxf, fxv, q, p = zoh_lag_coefficients(np.array([beta / mu]), mu, lag)[0]
-    zq, zp = np.array([1.0, -q]), np.array([1.0, -p])
-    num = gx * np.polymul(zq, zp)
-    num = np.polyadd(num, fxf * gf * zp)
-    num = np.polyadd(num, fxv * np.polyadd(gv * zq, [fvf * gf]))
-    return num, np.polymul(np.polymul([1.0, -1.0], zp), zq)
-
-
-def closed_loop_polynomial(mu: float, beta: float, ctl: ControllerParams) -> np.ndarray:
-    """Characteristic polynomial z^d·D_C·D_P + N_C·N_P of the linear loop (no encoder, no Coulomb friction)."""
-    nc, dc = controller_polynomials(ctl)
-    npl, dp = plant_polynomials(mu, beta, ctl.lag)
-    lhs = np.polymul(np.polymul(dc, dp), np.concatenate([[1.0], np.zeros(ctl.delay)]))
-    return np.polyadd(lhs, np.polymul(nc, npl))
-
-
 def linear_stable_with_controller(mu: float, beta: float, ctl: ControllerParams) -> bool:
-    """Whether the linear loop with the controller is asymptotically stable (every root inside |z| = 1)."""
-    roots = np.roots(closed_loop_polynomial(mu, beta, ctl))
-    return bool(np.max(np.abs(roots)) < 1.0)
+    """Whether the linear loop with the controller is asymptotically stable (every root inside abs(z) = 1).
+
+    The closed-loop characteristic polynomial is :func:`dfa.controlled_linear.controlled_characteristic_polynomial`
+    (one implementation; no encoder, no Coulomb friction).
+    """
+    return controlled_spectral_radius(mu, beta, ctl) < 1.0
