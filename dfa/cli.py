@@ -1289,6 +1289,17 @@ def _cmd_zwidth(args: argparse.Namespace) -> int:
     inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
+    for flag, value in (
+        ("--velocity-filter", args.velocity_filter),
+        ("--amplifier-bandwidth", args.amplifier_bandwidth),
+    ):
+        if value is not None and not value > 0:
+            raise UsageError(f"{flag} = {value:g} is invalid: it must be a frequency > 0 in Hz; omit {flag} for none")
+    if args.velocity_filter is not None and not args.velocity_filter < 0.5 / dev.period:
+        raise UsageError(
+            f"--velocity-filter = {args.velocity_filter:g} is invalid: it must be below the Nyquist frequency "
+            f"{0.5 / dev.period:g} Hz of the device's period; give a lower cutoff or no filter"
+        )
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
     zw = z_width(
