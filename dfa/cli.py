@@ -1012,6 +1012,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
         delay=args.delay,
         validation=summary,
         force=args.force,
+        zwidth_grid=args.zwidth,
     )
     if args.json:
         print(json_dumps(res.as_dict()))
@@ -1276,6 +1277,12 @@ def _add_report(sub: Any) -> None:
         "--force",
         action="store_true",
         help="replace a report of the same name made for another device, stiffness, speed or delay (default: refuse)",
+    )
+    p.add_argument(
+        "--zwidth",
+        type=_integer("--zwidth"),
+        metavar="N",
+        help="add a Z-width section on an N x N grid (K against virtual damping B; default: none)",
     )
     _add_progress_args(p)
     _add_delay_arg(p)

@@ -171,3 +171,18 @@ def test_cli_zwidth_errors_one_line_exit_2(argv, needle, capsys):
     assert main(["zwidth", *argv]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and needle in err
+
+
+def test_report_zwidth_section_states_the_api_numbers(tmp_path, capsys):
+    """`dfa report --zwidth N` adds the Z-width table and figure; the JSON record holds the analysis' boundaries."""
+    argv = ["report", "--device", "impulse", "--velocity", "0.1", "--zwidth", "3", "--format", "md",
+            "--out", str(tmp_path), "--quiet"]  # fmt: skip
+    assert main(argv) == 0
+    md = next(tmp_path.glob("*.md")).read_text(encoding="utf-8")
+    assert "## Z-width" in md and "_zwidth.png" in md
+    z = z_width(get_device(DEV).device, V, grid=3, speeds=1, n_jobs=1)
+    assert f"{z.boundary('linear')[1]:.4g}" in md
+    from dfa.design import design_analysis
+
+    a = design_analysis(get_device(DEV), velocity=V, map_grid=3, samples=2000, n_jobs=1, zwidth_grid=3)
+    assert a.as_dict()["zwidth"]["boundaries"]["linear"]["k_max"] == z.as_dict()["boundaries"]["linear"]["k_max"]
