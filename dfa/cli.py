@@ -1201,6 +1201,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
         delay=args.delay,
         validation=summary,
         force=args.force,
+        zwidth_grid=args.zwidth,
     )
     if args.json:
         print(json_dumps(res.as_dict()))
@@ -1466,8 +1467,119 @@ def _add_report(sub: Any) -> None:
         action="store_true",
         help="replace a report of the same name made for another device, stiffness, speed or delay (default: refuse)",
     )
+    p.add_argument(
+        "--zwidth",
+        type=_integer("--zwidth"),
+        metavar="N",
+        help="add a Z-width section on an N x N grid (K against virtual damping B; default: none)",
+    )
     _add_progress_args(p)
     _add_controller_args(p)
+
+
+def _cmd_zwidth(args: argparse.Namespace) -> int:
+    from .zwidth import ZWIDTH_METHODS, z_width
+
+    if args.stiffness is not None:
+        raise UsageError("--stiffness cannot be given to zwidth: the Z-width spans a grid of K (see --grid)")
+    inp = _resolve(args, dimensionless=False, need_stiffness=False)
+    dev = inp.device
+    assert dev is not None
+    for flag, value in (
+        ("--velocity-filter", args.velocity_filter),
+        ("--amplifier-bandwidth", args.amplifier_bandwidth),
+    ):
+        if value is not None and not value > 0:
+            raise UsageError(f"{flag} = {value:g} is invalid: it must be a frequency > 0 in Hz; omit {flag} for none")
+    if args.velocity_filter is not None and not args.velocity_filter < 0.5 / dev.period:
+        raise UsageError(
+            f"--velocity-filter = {args.velocity_filter:g} is invalid: it must be below the Nyquist frequency "
+            f"{0.5 / dev.period:g} Hz of the device's period; give a lower cutoff or no filter"
+        )
+    if args.plot is not None:
+        check_output_file("--plot", args.plot, ".png")
+    zw = z_width(
+        dev,
+        args.velocity,
+        delay=args.delay,
+        filter_cutoff=args.velocity_filter,
+        amplifier_bandwidth=args.amplifier_bandwidth,
+        grid=args.grid,
+        speeds=args.speeds,
+        n_jobs=args.jobs,
+        progress=_progress(args),
+    )
+    if args.plot is not None:
+        _save_png("--plot", args.plot, zw.plot())
+    if args.json:
+        rec = zw.as_dict()
+        if args.plot is not None:
+            rec["plot"] = args.plot
+        _emit(rec)
+        return 0
+    u = dev.units
+    names = {"linear": "linear", "passivity": "C-S passivity", "criterion": "criterion", "df": "describing fn",
+             "sim": "sim (no div.)", "rest": "sim (rest)"}  # fmt: skip
+    rows = [[_g(float(b))] + [_g(None if not math.isfinite(x) else float(x)) for x in col]
+            for b, col in zip(zw.damping, zip(*(zw.boundary(m) for m in ZWIDTH_METHODS), strict=True), strict=True)]  # fmt: skip
+    ctl = f"delay {zw.delay}"
+    ctl += f", velocity filter {_g(zw.filter_cutoff)} Hz" if zw.filter_cutoff is not None else ""
+    ctl += f", amplifier {_g(zw.amplifier_bandwidth)} Hz" if zw.amplifier_bandwidth is not None else ""
+    print(f"Z-width of {dev.name}: impacts up to {zw.velocity:.4g} {u['velocity']}, {ctl}; status {zw.status}")
+    print(f"K_max(B) in {u['stiffness']} ('-': undefined, see --json for the reason)")
+    print(_table(rows, [f"B ({u['damping']})"] + [names[m] for m in ZWIDTH_METHODS]))
+    print(
+        f"{zw.simulations} exact simulations on a {zw.stiffness.size} x {zw.damping.size} grid "
+        f"(K {zw.stiffness[0]:.4g} to {zw.stiffness[-1]:.4g} {u['stiffness']}); simulated limits are grid values"
+    )
+    if zw.counterexamples:
+        print(f"COUNTEREXAMPLES to the extended criterion: {len(zw.counterexamples)} (see --json)")
+    if args.plot is not None:
+        print(f"Z-width figure written to {args.plot}")
+    return 0
+
+
+def _add_zwidth(sub: Any) -> None:
+    help = (
+        "Z-width: the renderable region of the (K, B) plane by the exact linear bound, passivity, "
+        "the describing function and exact simulation"
+    )
+    p = _sub(sub, "zwidth", help, "dfa zwidth --device impulse --velocity 0.1 --grid 20", _cmd_zwidth)
+    _add_device_group(p, "device (a catalogue name, or physical values in SI units)")
+    p.add_argument(
+        "--velocity",
+        required=True,
+        type=_number("--velocity", "m/s (rotary: rad/s)"),
+        metavar="V",
+        help="impact speed in m/s (rotary: rad/s); required",
+    )
+    _add_delay_arg(p)
+    p.add_argument(
+        "--velocity-filter",
+        dest="velocity_filter",
+        type=_number("--velocity-filter", "Hz"),
+        metavar="HZ",
+        help="cutoff of the first-order low-pass on the velocity estimate, Hz (default: no filter)",
+    )
+    p.add_argument(
+        "--amplifier-bandwidth",
+        dest="amplifier_bandwidth",
+        type=_number("--amplifier-bandwidth", "Hz"),
+        metavar="HZ",
+        help="current-amplifier bandwidth, Hz (default: an ideal amplifier)",
+    )
+    p.add_argument("--grid", type=_integer("--grid"), default=40, metavar="N", help="points per axis (default: 40)")
+    p.add_argument(
+        "--speeds",
+        type=_integer("--speeds"),
+        default=2,
+        metavar="N",
+        help="impact speeds simulated, V/N ... V (default: 2)",
+    )
+    p.add_argument("--jobs", type=_integer("--jobs"), default=-1, metavar="N", help="threads (default: -1, all cores)")
+    p.add_argument("--plot", metavar="FILE.png", help="write the Z-width figure to a PNG file (default: none)")
+    p.add_argument("--json", action="store_true", help="print one JSON object on stdout (default: a text table)")
+    _add_progress_args(p)
 
 
 def _add_validate(sub: Any) -> None:
@@ -1512,7 +1624,7 @@ def _build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action=_Version, help="print the installed version and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for add in (_add_devices, _add_params, _add_check, _add_stiffness, _add_simulate, _add_map, _add_limit_cycles,
-                _add_contours, _add_report, _add_validate):  # fmt: skip
+                _add_contours, _add_report, _add_validate, _add_zwidth):  # fmt: skip
         add(sub)
     return parser
 

@@ -30,6 +30,7 @@ from .speed_chart import StiffnessSpeedChart, stiffness_speed_chart
 from .status import DesignStatus
 from .stiffness import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
 from .validation import first_unstable_speed
+from .zwidth import ZWidth, z_width
 
 __all__ = ["DesignAnalysis", "design_analysis"]
 
@@ -88,6 +89,9 @@ class DesignAnalysis:
         K_max four ways at the design speed (:func:`dfa.kmax.design_answer`); None at speed 0.
     speed_chart : StiffnessSpeedChart or None
         Largest safe impact speed against K (:func:`dfa.speed_chart.stiffness_speed_chart`); None at speed 0.
+    zwidth : ZWidth or None
+        The Z-width at the design speed and delay (:func:`dfa.zwidth.z_width`, a ``zwidth_grid`` grid); None at
+        speed 0 or when not asked.
     catalogue : dict or None
         The paper's printed (μ, β, σ), the disagreements and the notes of a catalogue device.
     validation : dict or None
@@ -117,6 +121,7 @@ class DesignAnalysis:
     stability_map: StabilityMap = field(repr=False)
     design_answer: KMaxResult | None = field(default=None, repr=False)
     speed_chart: StiffnessSpeedChart | None = field(default=None, repr=False)
+    zwidth: ZWidth | None = field(default=None, repr=False)
     catalogue: dict[str, Any] | None = None
     validation: dict[str, Any] | None = None
     samples: int = 30_000
@@ -138,7 +143,7 @@ class DesignAnalysis:
             ("nyquist", NyquistLocusResponse), ("stability_map", StabilityMap),
         ):  # fmt: skip
             check_type(name, getattr(self, name), cls, fix)
-        for name, opt in (("design_answer", KMaxResult), ("speed_chart", StiffnessSpeedChart)):
+        for name, opt in (("design_answer", KMaxResult), ("speed_chart", StiffnessSpeedChart), ("zwidth", ZWidth)):
             if getattr(self, name) is not None:
                 check_type(name, getattr(self, name), opt, fix)
         if self.simulated_xi_dot is not None:
@@ -200,6 +205,7 @@ class DesignAnalysis:
             "simulated_velocity": "no scanned impact speed diverged",
             "design_answer": "impact speed 0: the design answer needs a speed > 0",
             "speed_chart": "impact speed 0: the chart needs a speed > 0",
+            "zwidth": "impact speed 0 or zwidth_grid=None: no Z-width computed",
         }
         return explain_nulls(self._record(), why)
 
@@ -223,6 +229,7 @@ class DesignAnalysis:
                 "stability_map": self.stability_map.as_dict(),
                 "design_answer": None if self.design_answer is None else self.design_answer.as_dict(),
                 "speed_chart": None if self.speed_chart is None else self.speed_chart.as_dict(),
+                "zwidth": None if self.zwidth is None else self.zwidth.as_dict(),
                 "catalogue": self.catalogue,
                 "validation": self.validation,
                 "samples": self.samples,
@@ -302,6 +309,7 @@ def design_analysis(
     validation: dict[str, Any] | None = None,
     n_jobs: int = -1,
     progress: bool = False,
+    zwidth_grid: int | None = None,
 ) -> DesignAnalysis:
     """Compute every number of the design report of ``device`` at stiffness K, impact speed ẋ0 and delay d.
 
@@ -324,6 +332,9 @@ def design_analysis(
         Parallel jobs of the stability map (default -1: all cores; see :func:`dfa.stability_map`).
     progress : bool
         Progress bar over the parts (default False).
+    zwidth_grid : int or None
+        Points per axis of the report's Z-width (one impact speed, :func:`dfa.zwidth.z_width`); default None:
+        no Z-width.
 
     Returns
     -------
@@ -372,6 +383,8 @@ def design_analysis(
         cache = RunCache()  # one set of runs for both: no (K, speed, start) simulated twice
         figs["design_answer"] = design_answer(dev, v, dl, stiffness=k, cache=cache)
         figs["speed_chart"] = stiffness_speed_chart(dev, dl, stiffness=k, velocity=v, cache=cache)
+        if zwidth_grid is not None:
+            figs["zwidth"] = z_width(dev, v, delay=dl, grid=zwidth_grid, speeds=1, n_jobs=n_jobs, progress=progress)
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )

@@ -323,16 +323,23 @@ class KMaxAssessment:
         return explain_nulls(out, why)
 
 
-def _growth_xi_dot(mu: float, beta: float, sigma: float, delay: int, model: str) -> tuple[float | None, int]:
+def _growth_xi_dot(
+    mu: float, beta: float, sigma: float, delay: int, model: str, controller: Any = None
+) -> tuple[float | None, int]:
     """Smallest speed amplitude M·ω (ticks/sample) over every unstable cycle, and their count.
 
     inf: no growth predicted (no unstable cycle, stable linear loop, complete search); 0: growth from any
     size (no unstable cycle, unstable linear loop); None: unknown (incomplete search, none found).
+    ``controller`` (a ControllerParams whose delay is ``delay``, or None for the spring) is passed to
+    :func:`dfa.cycles.limit_cycles`.
     """
     from .cycles import limit_cycles
     from .device import Params
 
-    res = limit_cycles(Params(mu, beta, sigma), model=model, delay=delay)
+    if controller is None:
+        res = limit_cycles(Params(mu, beta, sigma), model=model, delay=delay)
+    else:
+        res = limit_cycles(Params(mu, beta, sigma), model=model, controller=controller)
     unstable = res.unstable_cycles
     if unstable:
         return min(c.amplitude * c.frequency for c in unstable), len(unstable)

@@ -47,6 +47,7 @@ __all__ = [
     "stiffness_speed_plot",
     "cycle_error_plot",
     "critical_speed_plot",
+    "plot_zwidth",
     "nyquist_needs_zoom",
     "BETA_LABEL",
     "SIGMA_LABEL",
@@ -766,4 +767,66 @@ def critical_speed_plot(validation, ax=None):
     ax.set_ylabel("critical speed ξ'0 (ticks per sample)")
     ax.set_title("Critical impact speed, three ways", fontsize=9)
     ax.legend(fontsize=7)
+    return ax
+
+
+#: Line styles of the Z-width boundaries, by method (:data:`dfa.zwidth.ZWIDTH_METHODS`).
+_ZWIDTH_STYLES: dict[str, tuple[str, dict[str, Any]]] = {
+    "linear": ("exact linear bound", dict(color="#2166ac", ls="-", lw=1.6)),
+    "passivity": ("Colgate–Schenkel passivity (linear model)", dict(color="#762a83", ls="--", lw=1.4)),
+    "criterion": ("extended criterion (proof, eq. 6)", dict(color="#1b7837", ls="-", lw=2.0)),
+    "df": ("describing function", dict(color="#8c510a", ls=(0, (4, 1.5, 1, 1.5)), lw=1.4)),
+    "sim": ("simulation: no divergence", dict(color="#b2182b", ls="-", lw=1.4, marker=".", ms=3)),
+    "rest": ("simulation: comes to rest", dict(color="#f4a582", ls=":", lw=1.4)),
+}
+
+
+def plot_zwidth(zw, ax=None):
+    """The Z-width of a device: B across, K up (log), one line per method, the simulated region shaded.
+
+    Parameters
+    ----------
+    zw : dfa.zwidth.ZWidth
+        The result of :func:`dfa.zwidth.z_width`.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    from .zwidth import BOUNDED, DIVERGES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
+
+    ax = _axes(ax, figsize=(6.4, 4.4))
+    u = zw.device.units
+    ks, bs = np.asarray(zw.stiffness), np.asarray(zw.damping)
+    shade = np.full(zw.outcome.shape, np.nan)
+    colours = {REST: "#d1e5f0", BOUNDED: "#fddbc7", DIVERGES: "#ffffff", UNDECIDED_POINT: "#e0e0e0"}
+    cmap = ListedColormap([colours[c] for c in (REST, BOUNDED, DIVERGES, UNDECIDED_POINT)])
+    shade[:] = zw.outcome
+    kedges = np.sqrt(ks[1:] * ks[:-1])
+    kedges = np.concatenate([[ks[0] ** 2 / kedges[0]], kedges, [ks[-1] ** 2 / kedges[-1]]])
+    bstep = bs[1] - bs[0] if bs.size > 1 else 1.0
+    bedges = np.concatenate([bs - bstep / 2, [bs[-1] + bstep / 2]])
+    ax.pcolormesh(bedges, kedges, shade.T, cmap=cmap, vmin=-0.5, vmax=3.5, shading="flat")
+    for m in ZWIDTH_METHODS:
+        label, style = _ZWIDTH_STYLES[m]
+        y = np.asarray(zw.boundary(m), dtype=float)
+        if np.isfinite(y).any():
+            lone = {"marker": "o", "ms": 5} if np.isfinite(y).sum() < 2 else {}  # a single B: a marker, not a line
+            ax.plot(bs, y, label=label, **{**style, **lone})
+    ax.set_yscale("log")
+    ax.set_ylim(kedges[0], kedges[-1])
+    ax.set_xlim(bedges[0], bedges[-1])
+    ax.set_xlabel(f"virtual damping B ({u['damping']})")
+    ax.set_ylabel(f"virtual stiffness K ({u['stiffness']})")
+    ax.set_title(f"Z-width of {zw.device.name}, impacts up to {zw.velocity:.3g} {u['velocity']}", fontsize=9)
+    handles, _ = ax.get_legend_handles_labels()
+    handles += [
+        Patch(facecolor=colours[REST], edgecolor="0.5", label="simulated: rest"),
+        Patch(facecolor=colours[BOUNDED], edgecolor="0.5", label="simulated: bounded (chatter or cycle)"),
+        Patch(facecolor=colours[UNDECIDED_POINT], edgecolor="0.5", label="simulated: undecided"),
+        Patch(facecolor=colours[DIVERGES], edgecolor="0.5", label="simulated: diverges"),
+    ]
+    _legend_outside(ax, handles)
     return ax

@@ -217,6 +217,7 @@ def design_report(
     delay: int = 0,
     validation: dict[str, Any] | None = None,
     force: bool = False,
+    zwidth_grid: int | None = None,
 ) -> ReportResult:
     """Write the design report of ``device`` at stiffness K, impact speed ẋ0 and computational delay d.
 
@@ -245,6 +246,8 @@ def design_report(
         Summary of a validation run (``dfa.validate(...).summary()``) for the "how far to trust" paragraph.
     force : bool
         Replace a report of the same name made for other inputs.
+    zwidth_grid : int or None
+        Points per axis of a Z-width section (:func:`dfa.zwidth.z_width`); None (default): no section.
 
     Returns
     -------
@@ -274,6 +277,6 @@ def design_report(
         _check_overwrite(Path(out_dir), fmt, _identity(dev, k, v, dl))
     a = design_analysis(
         device, stiffness, velocity, delay=delay, map_grid=map_grid, samples=samples, validation=validation,
-        progress=progress,
+        progress=progress, zwidth_grid=zwidth_grid,
     )  # fmt: skip
     return write_design_report(a, out_dir, fmt, force=force)

@@ -302,6 +302,24 @@ def answer_rows(a: DesignAnalysis) -> list[list[str]]:
     ]
 
 
+def zwidth_rows(a: DesignAnalysis) -> list[list[str]]:
+    """Rows of the report's Z-width: K_max(B) per method at each B of the grid ("-": undefined, see the JSON)."""
+    import math
+
+    from ..zwidth import ZWIDTH_METHODS
+
+    z = a.zwidth
+    assert z is not None
+    cols = [z.boundary(m) for m in ZWIDTH_METHODS]
+    return [
+        [number(float(b), 4)] + [number(None if not math.isfinite(c[i]) else float(c[i]), 4, none="-") for c in cols]
+        for i, b in enumerate(z.damping)
+    ]
+
+
+ZWIDTH_HEADER = ("linear", "Colgate–Schenkel", "criterion (proof)", "describing fn", "sim: no divergence", "sim: rest")
+
+
 def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callable[[str], str]) -> str:
     """The report as Markdown; ``src(name)`` gives each figure's link (a relative path or a data URI).
 
@@ -332,6 +350,9 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
             ["loop model", "M (ticks)", "amplitude", "ω (rad/sample)", "frequency", "stability", "family"], cycles
         )
         if cycles
+        else "",
+        zwidth_table=markdown_table([f"B ({a.device.units['damping']})", *ZWIDTH_HEADER], zwidth_rows(a))
+        if a.zwidth is not None
         else "",
         absence=absence_lines(a),
         growth=growth_text(a),

@@ -126,8 +126,21 @@ def _speed_chart(a: DesignAnalysis) -> ReportFigure | None:
     return ReportFigure("speed_chart", caption, _png(ax.figure))
 
 
+def _zwidth(a: DesignAnalysis) -> ReportFigure | None:
+    if a.zwidth is None:
+        return None
+    z = a.zwidth
+    ax = z.plot()
+    caption = (
+        f"Z-width of the {a.device.name}{_delay_text(a.delay)} for impacts up to {z.velocity:.3g} "
+        f"{a.device.units['velocity']}: largest K at each virtual damping B by the exact linear bound, passivity, "
+        f"the describing function and exact simulation on a {z.stiffness.size} × {z.damping.size} grid (shaded)."
+    )
+    return ReportFigure("zwidth", caption, _png(ax.figure))
+
+
 #: The report's figures in the order they appear.
-FIGURES = (_speed_chart, _regions, _stiffness, _nyquist, _trajectories, _map)
+FIGURES = (_speed_chart, _regions, _stiffness, _nyquist, _trajectories, _map, _zwidth)
 
 
 def design_figures(analysis: DesignAnalysis) -> tuple[ReportFigure, ...]:

@@ -1,0 +1,561 @@
+"""The Z-width of a device: the renderable region of the (K, B) plane, four ways (issue 15, "Z-width").
+
+For a device, an impact speed V, a computational delay d and optionally a
+velocity-filter cutoff f_c and an amplifier bandwidth f_bw, the wall
+F = −K q_{h−d} − B v_{h−d} (:mod:`dfa.controller`) is judged on a grid of
+virtual stiffness K (N/m, geometric) × virtual damping B (N·s/m, linear), and
+at each B the largest K is found four ways:
+
+``linear``
+    the exact linear bound: top of the stable K interval starting at K = 0 of
+    the sampled loop without encoder and Coulomb friction
+    (:func:`dfa.controlled_linear.stable_stiffness`, every stable interval
+    kept; not limited by the grid).
+``passivity``
+    Colgate–Schenkel for the general H(z) (:func:`dfa.passivity.colgate_schenkel_damping`):
+    the largest K with b above the certified ``damping_bound`` (the linear
+    model's passivity, no encoder); and ``criterion``: the passivity criterion
+    of eq. 6 extended to the damper, filter and delay
+    (:func:`dfa.controller_passivity.device_controller_criterion`), a proof for
+    the quantized device with Coulomb friction for impacts up to V. Both
+    refuse an amplifier lag: then they are "not covered" (null with that
+    reason), never guessed.
+``df``
+    the describing function, by the rule of :mod:`dfa.kmax` (``k_df``): the
+    first crossing of an ascending scan of the K grid, then bisection, of the
+    predicted growth speed (smallest M·ω over every unstable cycle,
+    :func:`dfa.cycles.limit_cycles` with the controller) against V.
+``sim``
+    exact simulation at every grid point: impacts at the speeds V/n, 2V/n, …,
+    V from ξ0 = 0 and, separately, from rest with the spring preloaded to the
+    same energy (as ``k_sim`` of :mod:`dfa.kmax`). A point *diverges* when any
+    run diverges, is *undecided* when none diverges and some run is too
+    short to tell, comes *to rest* when every run rests, else is *bounded*
+    (chatter or a sustained cycle). ``k_sim`` is the largest grid K below the
+    first point (ascending in K) that diverges or is undecided; ``k_rest`` the
+    largest below the first point that does not come to rest. These are grid
+    values (resolution: one grid step in K), not bisected; points found safe
+    again above the first failure are counted in ``non_monotone``.
+
+Any simulated divergence at a K the extended criterion proves passive is a
+``counterexample`` (status ``"counterexample"``: a criterion bug). The
+Colgate–Schenkel condition concerns the linear model; divergences below its
+boundary are listed separately (``linear_passivity_violations``), not as
+counterexamples.
+
+Examples
+--------
+>>> from dfa.catalogue import get_device
+>>> z = z_width(get_device("Impulse Engine").device, 0.1, grid=4, speeds=1, n_jobs=1)
+>>> z.status in ("ok", "caveats"), z.counterexamples, z.stiffness.shape
+(True, (), (4,))
+>>> bool(z.boundary("linear")[0] > 0)      # the exact linear bound at B = 0: the spring's k_gil
+True
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .checks import _fmt, check_delay, check_int, check_jobs, check_nonnegative, check_positive, check_real, check_type
+from .controlled_linear import LinearStatus, stable_stiffness
+from .controller import Controller, ControllerParams
+from .controller_passivity import device_controller_criterion
+from .device import Device
+from .errors import DFAValueError
+from .jsonable import explain_nulls
+from .kmax import DIVERGENCE_BOUND, K_RTOL, SAFE, UNDECIDED, UNSAFE, _growth_xi_dot
+from .passivity import colgate_schenkel_damping
+from .simulation import default_samples, divergence_bound, preload_position, simulate
+
+__all__ = ["ZWidth", "z_width", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
+
+#: The per-method boundaries K_max(B), in the order of the table and the plot.
+ZWIDTH_METHODS = ("linear", "passivity", "criterion", "df", "sim", "rest")
+#: Outcome codes of a grid point (index = code).
+POINT_OUTCOMES = ("rest", "bounded", "diverges", "undecided")
+REST, BOUNDED, DIVERGES, UNDECIDED_POINT = range(4)
+#: Longest run of one Z-width simulation (samples); longer automatic lengths are cut (and may be undecided).
+ZWIDTH_MAX_SAMPLES = 200_000
+#: Largest planned work in simulated samples; more is refused up front.
+MAX_WORK_SAMPLES = 2.0e10
+#: Largest grid (points per axis).
+MAX_GRID = 200
+
+_NOT_COVERED = (
+    "not covered: the condition assumes the zero-order hold drives the device directly; with an amplifier lag no "
+    "sound passivity condition is available here (see the linear bound and the simulation)"
+)
+
+
+@dataclass(frozen=True)
+class ZWidth:
+    """The Z-width of a device (module docstring): K_max(B) per method and the simulated grid, physical units.
+
+    Attributes
+    ----------
+    device : Device
+    velocity : float
+        Impact speed V, m/s (rotary: rad/s).
+    delay : int
+        Computational delay d, samples.
+    filter_cutoff, amplifier_bandwidth : float or None
+        Velocity-filter cutoff and amplifier bandwidth, Hz (None: none).
+    speeds : tuple of float
+        Impact speeds simulated (m/s), each from ξ0 = 0 and from the preload.
+    stiffness : numpy.ndarray
+        K grid, N/m (rotary: N·m/rad), ascending geometric.
+    damping : numpy.ndarray
+        B grid, N·s/m (rotary: N·m·s/rad), ascending.
+    boundaries : dict of str to numpy.ndarray
+        K_max(B) per method (:data:`ZWIDTH_METHODS`), N/m; NaN where undefined (``reasons`` says why).
+    reasons : dict of str to tuple
+        Per method, per B: why the value is NaN, or a caveat; None when plain.
+    outcome : numpy.ndarray of int8, shape (len(damping), len(stiffness))
+        Code of each simulated grid point (:data:`POINT_OUTCOMES`).
+    max_samples : int
+        Longest run, samples.
+    simulations : int
+        Exact simulations run.
+    df_model : str
+        Hold model of the describing function.
+    counterexamples : tuple of dict
+        Divergent grid points at a K the extended criterion proves passive (must be empty).
+    linear_passivity_violations : tuple of dict
+        Divergent grid points below the Colgate–Schenkel boundary (linear model; not a proof for the device).
+    status : str
+        ``"ok"``, ``"caveats"`` (undecided points or non-monotone columns) or ``"counterexample"``.
+    """
+
+    device: Device
+    velocity: float
+    delay: int
+    filter_cutoff: float | None
+    amplifier_bandwidth: float | None
+    speeds: tuple[float, ...]
+    stiffness: np.ndarray
+    damping: np.ndarray
+    boundaries: dict[str, np.ndarray]
+    reasons: dict[str, tuple[str | None, ...]]
+    outcome: np.ndarray
+    max_samples: int
+    simulations: int
+    df_model: str
+    counterexamples: tuple[dict[str, object], ...] = ()
+    linear_passivity_violations: tuple[dict[str, object], ...] = ()
+    status: str = "ok"
+
+    def __post_init__(self) -> None:
+        fix = "ZWidth is built by dfa.zwidth.z_width; call that instead"
+        check_type("device", self.device, Device, fix)
+        check_positive("velocity", self.velocity, fix)
+        check_delay(self.delay)
+        nk, nb = self.stiffness.size, self.damping.size
+        if self.outcome.shape != (nb, nk):
+            raise DFAValueError(f"outcome has shape {self.outcome.shape} but must be ({nb}, {nk}); {fix}")
+        if set(self.boundaries) != set(ZWIDTH_METHODS) or set(self.reasons) != set(ZWIDTH_METHODS):
+            raise DFAValueError(f"boundaries and reasons must have the keys {ZWIDTH_METHODS}; {fix}")
+        for name in ZWIDTH_METHODS:
+            if self.boundaries[name].shape != (nb,) or len(self.reasons[name]) != nb:
+                raise DFAValueError(f"boundary {name!r} must have one value per B ({nb}); {fix}")
+        if self.status not in ("ok", "caveats", "counterexample"):
+            raise DFAValueError(f"status = {self.status!r} is invalid: it must be ok, caveats or counterexample")
+        for arr in (self.stiffness, self.damping, self.outcome, *self.boundaries.values()):
+            arr.flags.writeable = False
+
+    def boundary(self, method: str) -> np.ndarray:
+        """K_max(B) of one method (:data:`ZWIDTH_METHODS`), N/m; NaN where undefined.
+
+        Parameters
+        ----------
+        method : str
+            One of :data:`ZWIDTH_METHODS`.
+
+        Returns
+        -------
+        numpy.ndarray
+            One value per B of the grid.
+        """
+        if method not in ZWIDTH_METHODS:
+            raise DFAValueError(f"method = {method!r} is invalid: it must be one of {', '.join(ZWIDTH_METHODS)}")
+        return self.boundaries[method]
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record: inputs, grids, K_max(B) per method (null with a reason), outcomes, status.
+
+        Returns
+        -------
+        dict
+            Strict-JSON data in the device's units (``units``).
+        """
+        methods = {}
+        for name in ZWIDTH_METHODS:
+            vals = [None if not math.isfinite(x) else float(x) for x in self.boundaries[name]]
+            rec = {"k_max": vals, "reason": list(self.reasons[name])}
+            methods[name] = explain_nulls(rec, {"k_max": "undefined at some B: see reason"})
+        u = self.device.units
+        out: dict[str, object] = {
+            "device": self.device.name,
+            "velocity": self.velocity,
+            "delay": self.delay,
+            "filter_cutoff": self.filter_cutoff,
+            "amplifier_bandwidth": self.amplifier_bandwidth,
+            "speeds": list(self.speeds),
+            "stiffness": self.stiffness.tolist(),
+            "damping": self.damping.tolist(),
+            "boundaries": methods,
+            "outcome": [[POINT_OUTCOMES[c] for c in row] for row in self.outcome.tolist()],
+            "outcome_layout": "outcome[i][j]: damping[i], stiffness[j]",
+            "max_samples": self.max_samples,
+            "simulations": self.simulations,
+            "df_model": self.df_model,
+            "counterexamples": [dict(c) for c in self.counterexamples],
+            "linear_passivity_violations": [dict(c) for c in self.linear_passivity_violations],
+            "status": self.status,
+            "units": {"stiffness": u["stiffness"], "damping": u["damping"], "velocity": u["velocity"]},
+        }
+        return explain_nulls(
+            out,
+            {
+                "filter_cutoff": "no velocity filter",
+                "amplifier_bandwidth": "ideal amplifier (no lag)",
+            },
+        )
+
+    def plot(self, ax: Any = None) -> Any:
+        """Draw the Z-width (B across, K up on a log axis, one line per method, simulated region shaded).
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on (default: a new figure).
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+        """
+        from .plotting import plot_zwidth
+
+        return plot_zwidth(self, ax=ax)
+
+
+# ----------------------------------------------------------------------------- boundaries per B
+def _ctl(k: float, b: float, d: int, fc: float | None, fbw: float | None) -> Controller:
+    return Controller(k, b, d, filter_cutoff=fc, amplifier_bandwidth=fbw)
+
+
+def _linear(dev: Device, b: float, d: int, fc, fbw) -> tuple[float, str | None]:
+    """Top of the stable K interval from K = 0 of the linear loop (exact), with a caveat for other shapes."""
+    r = stable_stiffness(dev.mass, dev.damping, dev.period, _ctl(1.0, b, d, fc, fbw))
+    if r.status in (LinearStatus.NEVER, LinearStatus.NOT_AT_LOW_K):
+        iv = ", ".join(f"({lo:.4g}, {hi:.4g})" for lo, hi in r.intervals)
+        return math.nan, f"linear loop {r.status.value} stable" + (f"; stable K intervals: {iv}" if iv else "")
+    if r.status is LinearStatus.SEVERAL:
+        more = ", ".join(f"({lo:.4g}, {hi:.4g})" for lo, hi in r.intervals[1:])
+        return r.k_crit, f"further stable intervals above K_crit: {more}"
+    return r.k_crit, None
+
+
+def _crossing(judge, ks: np.ndarray, what: str, unit: str, bisect: bool) -> tuple[float, str | None, int]:
+    """Largest K before the first non-safe judgement of an ascending scan of ``ks`` (then bisection).
+
+    Returns (value or NaN, reason or None, index of the first non-safe grid point or len(ks)).
+    """
+    verdicts = []
+    for k in ks:
+        verdicts.append(judge(float(k)))
+        if verdicts[-1] != SAFE:
+            break
+    i = len(verdicts) - 1
+    if verdicts[-1] == SAFE:
+        return math.nan, f"{what} at every K of the grid, up to {ks[-1]:.5g} {unit}: the limit is above it", len(ks)
+    if i == 0:
+        return math.nan, f"{what} fails already at the smallest K of the grid, {ks[0]:.5g} {unit}", 0
+    lo, hi, last = float(ks[i - 1]), float(ks[i]), verdicts[-1]
+    while bisect and hi - lo > K_RTOL * hi:
+        mid = math.sqrt(lo * hi)
+        v = judge(mid)
+        lo, hi = (mid, hi) if v == SAFE else (lo, mid)
+        last = last if v == SAFE else v
+    reason = f"limited by an undecided verdict at {hi:.5g} {unit}" if last == UNDECIDED else None
+    return lo, reason, i
+
+
+def _passivity_judges(dev: Device, b: float, v: float, d: int, fc, fbw):
+    """Judges SAFE/UNSAFE of Colgate–Schenkel (certified bound) and of the extended criterion at damper B."""
+
+    def cs(k: float) -> str:
+        r = colgate_schenkel_damping(_ctl(k, b, d, fc, fbw), dev.period)
+        return SAFE if dev.damping > r.damping_bound else UNSAFE
+
+    def crit(k: float) -> str:
+        try:
+            r = device_controller_criterion(dev, _ctl(k, b, d, fc, fbw), v)
+        except DFAValueError:  # a group not representable at this K: no proof there
+            return UNSAFE
+        return SAFE if r.passive else UNSAFE
+
+    return cs, crit
+
+
+def _df_judge(dev: Device, b: float, xi_dot: float, d: int, fc, fbw, model: str):
+    def judge(k: float) -> str:
+        try:
+            p, ctl = dev.params(k), _ctl(k, b, d, fc, fbw).params(dev.period)
+        except DFAValueError:
+            return UNDECIDED
+        g, _ = _growth_xi_dot(p.mu, p.beta, p.sigma, d, model, None if ctl.is_spring else ctl)
+        return UNDECIDED if g is None else (SAFE if g >= xi_dot else UNSAFE)
+
+    return judge
+
+
+# ----------------------------------------------------------------------------- simulation of the grid
+def _runs(dev: Device, k: float, b: float, ctl: ControllerParams, xi_dots, cap: int) -> list[tuple]:
+    """The runs (μ, β, σ, ξ0, ξ'0, samples, bound) of one grid point: each speed from ξ0 = 0 and from the preload."""
+    p = dev.params(k)
+    out = []
+    for xd in xi_dots:
+        for x0, v0 in ((0.0, xd), (preload_position(p.mu, xd), 0.0)):
+            # run length from the loop's time scales, counting the damper as damping at low frequency (an
+            # estimate: a run too short to tell is "undecided", never a verdict)
+            n = min(default_samples(p.mu, p.beta + ctl.damping, p.sigma, v0, x0, ctl.delay), cap)
+            out.append((p.mu, p.beta, p.sigma, x0, v0, n, divergence_bound(x0, v0, p.mu, DIVERGENCE_BOUND)))
+    return out
+
+
+def _point(runs: list[tuple], ctl: ControllerParams) -> int:
+    """Outcome code of one grid point from its runs (module docstring)."""
+    c = None if ctl.is_spring else ctl
+    outs = set()
+    for mu, beta, sigma, x0, v0, n, bound in runs:
+        r = simulate(mu, beta, sigma, v0, n, xi0=x0, delay=ctl.delay, record=False, bound=bound, controller=c)
+        outs.add(str(r.outcome))
+        if "unstable" in outs:
+            return DIVERGES
+    if "undecided" in outs:
+        return UNDECIDED_POINT
+    return REST if outs == {"rest"} else BOUNDED
+
+
+def _simulate_grid(tasks: list[tuple], jobs: int, progress: bool, label: str) -> np.ndarray:
+    """Outcome code of every task (runs, controller), in order, on ``jobs`` threads (the kernels release the GIL)."""
+    from tqdm.auto import tqdm
+
+    codes = np.empty(len(tasks), dtype=np.int8)
+    bar = tqdm(total=len(tasks), unit="point", desc=label, disable=not progress, leave=False)
+    try:
+        if jobs == 1:
+            for i, t in enumerate(tasks):
+                codes[i] = _point(*t)
+                bar.update(1)
+        else:
+            with ThreadPoolExecutor(max_workers=jobs) as pool:
+                futures = [pool.submit(_point, *t) for t in tasks]
+                try:
+                    for i, fut in enumerate(futures):  # in submission order: the result does not depend on jobs
+                        codes[i] = fut.result()
+                        bar.update(1)
+                finally:
+                    for fut in futures:
+                        fut.cancel()
+    finally:
+        bar.close()
+    return codes
+
+
+def _grid_boundary(row: np.ndarray, ks: np.ndarray, bad: set[int], what: str, unit: str) -> tuple[float, str | None]:
+    """Largest grid K below the first point of ``row`` whose code is in ``bad`` (NaN with a reason if none)."""
+    hit = [j for j, c in enumerate(row) if c in bad]
+    if not hit:
+        return math.nan, f"{what} at every K of the grid, up to {ks[-1]:.5g} {unit}: the limit is above it"
+    j = hit[0]
+    if j == 0:
+        return math.nan, f"{what} fails already at the smallest K of the grid, {ks[0]:.5g} {unit}"
+    notes = []
+    if row[j] == UNDECIDED_POINT:
+        notes.append(f"limited by undecided runs at {ks[j]:.5g} {unit} (too short to tell, counted as not safe)")
+    above = sum(1 for c in row[j + 1 :] if c not in bad)
+    if above:
+        notes.append(f"non-monotone: {above} grid K above the first failure found safe again")
+    notes.append(f"grid value: the limit lies in [{ks[j - 1]:.5g}, {ks[j]:.5g}) {unit}")
+    return float(ks[j - 1]), "; ".join(notes)
+
+
+# ----------------------------------------------------------------------------- the analysis
+def _grids(dev: Device, v: float, d: int, fc, fbw, grid: int, k_range, b_range) -> tuple[np.ndarray, np.ndarray]:
+    """Default grids: B from 0 to m/T; K geometric up to 8 × the largest linear bound or static limit 2c/Δ."""
+    if b_range is None:
+        b_range = (0.0, dev.mass / dev.period)
+    b0 = check_nonnegative("b_range[0]", b_range[0], "give the smallest virtual damping B >= 0")
+    b1 = check_positive("b_range[1]", b_range[1], "give the largest virtual damping B > 0")
+    if not b1 > b0:
+        raise DFAValueError(f"b_range = ({_fmt(b0)}, {_fmt(b1)}) is invalid: it must satisfy low < high")
+    bs = np.linspace(b0, b1, grid)
+    if k_range is None:
+        lin = [_linear(dev, float(b), d, fc, fbw)[0] for b in (b0, b1)]
+        top = 8.0 * max([2.0 * dev.coulomb / dev.resolution] + [k for k in lin if math.isfinite(k)])
+        low = 0.5 * lin[0] if math.isfinite(lin[0]) and lin[0] > 0 else top * 1e-4
+        k_range = (min(low, top * 1e-2), top)
+    k0 = check_positive("k_range[0]", k_range[0], "give the smallest stiffness K > 0")
+    k1 = check_positive("k_range[1]", k_range[1], "give the largest stiffness K")
+    if not k1 > k0:
+        raise DFAValueError(f"k_range = ({_fmt(k0)}, {_fmt(k1)}) is invalid: it must satisfy low < high")
+    return np.geomspace(k0, k1, grid), bs
+
+
+def _plan(dev: Device, ks, bs, d, fc, fbw, xi_dots, cap: int) -> tuple[list[tuple], float]:
+    """The simulation tasks of the grid (B-major) and their planned samples."""
+    tasks, work = [], 0.0
+    for b in bs:
+        for k in ks:
+            ctl = _ctl(float(k), float(b), d, fc, fbw).params(dev.period)
+            runs = _runs(dev, float(k), float(b), ctl, xi_dots, cap)
+            work += sum(r[5] for r in runs)
+            tasks.append((runs, ctl))
+    return tasks, work
+
+
+def z_width(
+    device: Device,
+    velocity: float,
+    *,
+    delay: int = 0,
+    filter_cutoff: float | None = None,
+    amplifier_bandwidth: float | None = None,
+    grid: int = 40,
+    k_range: tuple[float, float] | None = None,
+    b_range: tuple[float, float] | None = None,
+    speeds: int = 2,
+    max_samples: int = ZWIDTH_MAX_SAMPLES,
+    df_model: str = "half-delay",
+    n_jobs: int = -1,
+    progress: bool = False,
+) -> ZWidth:
+    """The Z-width of ``device`` at impact speed ``velocity``: K_max(B) four ways and the simulated grid.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    velocity : float
+        Impact speed V, m/s (rotary: rad/s), > 0 (sign ignored).
+    delay : int, optional
+        Computational delay d, samples (default 0).
+    filter_cutoff : float or None, optional
+        Velocity-filter cutoff f_c, Hz, below the Nyquist frequency (default None: no filter).
+    amplifier_bandwidth : float or None, optional
+        Amplifier bandwidth f_bw, Hz (default None: ideal amplifier).
+    grid : int, optional
+        Points per axis (default 40, at most 200).
+    k_range : (float, float), optional
+        Smallest and largest K of the geometric grid, N/m (default: from half the linear bound at the
+        smallest B to 8 × the largest of the linear bound and 2c/Δ).
+    b_range : (float, float), optional
+        Smallest and largest B of the linear grid, N·s/m (default: 0 to m/T).
+    speeds : int, optional
+        Impact speeds simulated: V/speeds, …, V (default 2), each from ξ0 = 0 and from the preload.
+    max_samples : int, optional
+        Longest run, samples (default 2·10⁵); longer automatic lengths are cut and may be undecided.
+    df_model : {"half-delay", "zoh", "pade"}, optional
+        Hold model of the describing function.
+    n_jobs : int, optional
+        Threads for the simulations (-1: all cores). The result does not depend on it.
+    progress : bool, optional
+        Show a progress bar on stderr.
+
+    Returns
+    -------
+    ZWidth
+        K_max(B) per method with reasons, the grid outcomes and the status.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        Bad inputs (negative B, cutoff above Nyquist, bad delay, ...), or planned work above
+        :data:`MAX_WORK_SAMPLES` simulated samples (the message says how to lower it).
+    """
+    dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
+    v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
+    check_positive("velocity", v, "give an impact speed > 0 in m/s (rotary: rad/s)")
+    d = check_delay(delay)
+    g = check_int("grid", grid, minimum=2, fix="give at least 2 points per axis")
+    if g > MAX_GRID:
+        raise DFAValueError(f"grid = {g} is invalid: it must be at most {MAX_GRID} points per axis; lower --grid")
+    n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
+    cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")
+    if df_model not in ("half-delay", "zoh", "pade"):
+        raise DFAValueError(f"df_model = {df_model!r} is invalid: it must be half-delay, zoh or pade")
+    jobs = check_jobs("n_jobs", n_jobs)
+    workers = (os.cpu_count() or 1) if jobs == -1 else jobs
+    _ctl(1.0, 0.0, d, filter_cutoff, amplifier_bandwidth).params(dev.period)  # bad controller values: refuse first
+    ks, bs = _grids(dev, v, d, filter_cutoff, amplifier_bandwidth, g, k_range, b_range)
+    vs = v * np.arange(1, n_speeds + 1) / n_speeds
+    xi_dots = [dev.xi_dot(float(s)) for s in vs]
+    tasks, work = _plan(dev, ks, bs, d, filter_cutoff, amplifier_bandwidth, xi_dots, cap)
+    if work > MAX_WORK_SAMPLES:
+        raise DFAValueError(
+            f"grid = {g} is invalid with speeds = {n_speeds} and max_samples = {cap}: the Z-width would simulate "
+            f"{work:.3g} samples (limit {MAX_WORK_SAMPLES:.3g}); lower the grid, the speeds or max_samples"
+        )
+    codes = _simulate_grid(tasks, workers, progress, f"Z-width {dev.name}").reshape(g, g)
+    return _assemble(
+        dev, v, d, filter_cutoff, amplifier_bandwidth, vs, ks, bs, codes, cap, len(tasks), df_model, workers
+    )
+
+
+def _column(dev, v, d, fc, fbw, ks, b: float, row: np.ndarray, model: str) -> list[tuple[float, str | None]]:
+    """(K_max, reason) of every method (:data:`ZWIDTH_METHODS` order) at one B."""
+    unit = dev.units["stiffness"]
+    out = [_linear(dev, b, d, fc, fbw)]
+    if fbw is not None:
+        out += [(math.nan, _NOT_COVERED), (math.nan, _NOT_COVERED)]
+    else:
+        cs, crit = _passivity_judges(dev, b, v, d, fc, fbw)
+        out.append(_crossing(cs, ks, "b above the Colgate–Schenkel bound", unit, True)[:2])
+        out.append(_crossing(crit, ks, "the extended criterion proves passivity", unit, True)[:2])
+    df = _df_judge(dev, b, dev.xi_dot(v), d, fc, fbw, model)
+    out.append(_crossing(df, ks, "predicted growth speed >= V", unit, True)[:2])
+    out.append(_grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}, "no divergence", unit))
+    out.append(_grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}, "rest after every impact", unit))
+    return out
+
+
+def _assemble(dev, v, d, fc, fbw, vs, ks, bs, codes, cap, n_points, model, workers: int) -> ZWidth:
+    """Boundaries per method from the grid and the closed forms (columns on ``workers`` threads); status."""
+    args = [(dev, v, d, fc, fbw, ks, float(b), codes[i], model) for i, b in enumerate(bs)]
+    if workers == 1:
+        cols = [_column(*a) for a in args]
+    else:
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            cols = list(pool.map(lambda a: _column(*a), args))  # in order: the result does not depend on jobs
+    arrays = {m: np.array([c[n][0] for c in cols], dtype=float) for n, m in enumerate(ZWIDTH_METHODS)}
+    reasons = {m: tuple(c[n][1] for c in cols) for n, m in enumerate(ZWIDTH_METHODS)}
+    unit = dev.units["stiffness"]
+    ce, lpv = _violations(codes, ks, bs, arrays, unit)
+    caveat = bool((codes == UNDECIDED_POINT).any()) or any(
+        r is not None and "non-monotone" in r for m in ("sim", "rest") for r in reasons[m]
+    )
+    status = "counterexample" if ce else ("caveats" if caveat else "ok")
+    return ZWidth(
+        dev, v, d, fc, fbw, tuple(float(s) for s in vs), ks, bs, arrays, reasons, codes, cap,
+        n_points * 2 * len(vs), model, ce, lpv, status,
+    )  # fmt: skip
+
+
+def _violations(codes, ks, bs, arrays, unit) -> tuple[tuple[dict, ...], tuple[dict, ...]]:
+    """Divergent grid points at or below the criterion's and Colgate–Schenkel's boundaries."""
+    out: dict[str, list[dict]] = {"criterion": [], "passivity": []}
+    for name, rows in out.items():
+        for i, b in enumerate(bs):
+            top = arrays[name][i]
+            for j, k in enumerate(ks):
+                if math.isfinite(top) and k <= top and codes[i, j] == DIVERGES:
+                    rows.append({"stiffness": float(k), "damping": float(b), "outcome": "diverges", "unit": unit})
+    return tuple(out["criterion"]), tuple(out["passivity"])

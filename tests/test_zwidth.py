@@ -1,0 +1,188 @@
+"""Z-width (issue 15): the linear boundary is the exact bound at each B, simulation never diverges below the
+extended criterion (eq. 6 redone), the B = 0 column is the spring-only K_max of dfa.kmax, jobs do not change
+the result, and `dfa zwidth` prints the API's numbers and refuses bad input with exit 2."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import dfa
+import dfa.zwidth as zmod
+from dfa.catalogue import get_device
+from dfa.cli import main
+from dfa.controlled_linear import stable_stiffness
+from dfa.controller import Controller
+from dfa.kmax import K_RTOL, SAFE, _Evidence
+from dfa.stiffness import k_gil, k_max_criterion
+from dfa.zwidth import DIVERGES, POINT_OUTCOMES, ZWIDTH_METHODS, z_width
+
+DEV = "Impulse Engine"
+V = 0.1
+
+
+@pytest.fixture(scope="module")
+def zw():
+    return z_width(get_device(DEV).device, V, grid=6, speeds=2, n_jobs=1)
+
+
+@pytest.fixture(scope="module")
+def zw_delay():
+    return z_width(get_device(DEV).device, V, delay=1, filter_cutoff=100.0, grid=4, speeds=1, n_jobs=1)
+
+
+def _exact(dev, b, d=0, fc=None, fbw=None):
+    r = stable_stiffness(dev.mass, dev.damping, dev.period, Controller(1.0, b, d, fc, fbw))
+    return r.k_crit if r.k_crit > 0 else math.nan
+
+
+def test_zwidth_linear_boundary_equals_exact_bound_at_each_B(zw, zw_delay):
+    for z in (zw, zw_delay):
+        want = [_exact(z.device, float(b), z.delay, z.filter_cutoff) for b in z.damping]
+        np.testing.assert_array_equal(z.boundary("linear"), np.array(want))
+
+
+def test_zwidth_linear_boundary_with_amplifier_lag_and_passivity_not_covered():
+    dev = get_device(DEV).device
+    z = z_width(dev, V, amplifier_bandwidth=200.0, grid=3, speeds=1, n_jobs=1)
+    want = [_exact(dev, float(b), 0, None, 200.0) for b in z.damping]
+    np.testing.assert_array_equal(z.boundary("linear"), np.array(want))
+    for m in ("passivity", "criterion"):
+        assert np.isnan(z.boundary(m)).all()
+        assert all(r.startswith("not covered") for r in z.reasons[m])
+    rec = json.loads(json.dumps(z.as_dict()))
+    assert rec["boundaries"]["criterion"]["k_max"] == [None] * 3
+
+
+@pytest.mark.parametrize("name", ["zw", "zw_delay"])
+def test_eq6_zwidth_simulation_never_diverges_below_the_criterion(name, request):
+    """Soundness: every simulated point at or below the extended criterion's K_max(B) stays bounded."""
+    z = request.getfixturevalue(name)
+    assert z.counterexamples == ()
+    assert z.status in ("ok", "caveats")
+    crit, sim = z.boundary("criterion"), z.boundary("sim")
+    for i in range(z.damping.size):
+        below = z.stiffness <= crit[i] if math.isfinite(crit[i]) else np.zeros(z.stiffness.size, bool)
+        assert not (z.outcome[i][below] == DIVERGES).any()
+        if below.any() and math.isfinite(sim[i]):
+            assert sim[i] >= z.stiffness[below].max()
+
+
+def test_eq11_zwidth_B0_column_is_the_spring_kmax(zw):
+    dev = zw.device
+    assert zw.boundary("linear")[0] == pytest.approx(k_gil(dev, delay=0), rel=1e-9)
+    assert zw.boundary("criterion")[0] == pytest.approx(k_max_criterion(dev, V, 0), rel=2 * K_RTOL)
+    # the simulated column against dfa.kmax's own runs (simulate_points) at every grid K
+    ev = _Evidence(dev, np.array(zw.speeds), 0, zw.max_samples, "half-delay")
+    kmax_safe = [ev.no_divergence(float(k)) == SAFE for k in zw.stiffness]
+    zw_safe = [POINT_OUTCOMES[c] in ("rest", "bounded") for c in zw.outcome[0]]
+    assert kmax_safe == zw_safe
+    first = kmax_safe.index(False) if False in kmax_safe else None
+    if first is not None and first > 0:
+        assert zw.boundary("sim")[0] == zw.stiffness[first - 1]
+
+
+def test_zwidth_deterministic_for_any_number_of_jobs():
+    dev = get_device(DEV).device
+    a = z_width(dev, V, grid=4, speeds=1, n_jobs=1).as_dict()
+    b = z_width(dev, V, grid=4, speeds=1, n_jobs=2).as_dict()
+    assert json.dumps(a, sort_keys=True) == json.dumps(b, sort_keys=True)
+
+
+def test_zwidth_as_dict_is_strict_json_with_reasons(zw):
+    rec = zw.as_dict()
+    text = json.dumps(rec, allow_nan=False)
+    back = json.loads(text)
+    assert set(back["boundaries"]) == set(ZWIDTH_METHODS)
+    for m in ZWIDTH_METHODS:
+        vals, why = back["boundaries"][m]["k_max"], back["boundaries"][m]["reason"]
+        assert len(vals) == len(why) == 6
+        assert all(w for v, w in zip(vals, why, strict=True) if v is None)  # every null has its reason
+    assert back["units"]["damping"] == "N·s/m"
+
+
+def test_zwidth_plot_has_labelled_log_axes(zw):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    ax = zw.plot()
+    assert ax.get_yscale() == "log"
+    assert "N·s/m" in ax.get_xlabel() and "N/m" in ax.get_ylabel()
+
+
+def test_zwidth_bad_input_is_refused():
+    dev = get_device(DEV).device
+    with pytest.raises(dfa.DFAValueError, match="grid"):
+        z_width(dev, V, grid=1)
+    with pytest.raises(dfa.DFAValueError, match="grid"):
+        z_width(dev, V, grid=201)
+    with pytest.raises(dfa.DFAValueError, match="Nyquist"):
+        z_width(dev, V, filter_cutoff=1e4, grid=2)
+    with pytest.raises(dfa.DFAValueError, match="velocity"):
+        z_width(dev, 0.0, grid=2)
+    with pytest.raises(dfa.DFAValueError, match="b_range"):
+        z_width(dev, V, grid=2, b_range=(2.0, 1.0))
+    with pytest.raises(dfa.DFATypeError):
+        z_width("impulse", V, grid=2)
+
+
+def test_zwidth_refuses_too_much_work_up_front(monkeypatch):
+    monkeypatch.setattr(zmod, "MAX_WORK_SAMPLES", 1e5)
+    with pytest.raises(dfa.DFAValueError, match="lower the grid"):
+        z_width(get_device(DEV).device, V, grid=3)
+
+
+def test_cli_zwidth_json_numbers_equal_the_api(capsys):
+    assert main(["zwidth", "--device", "impulse", "--velocity", "0.1", "--grid", "3", "--speeds", "1", "--jobs", "1",
+                 "--json"]) == 0  # fmt: skip
+    rec = json.loads(capsys.readouterr().out)
+    api = z_width(get_device(DEV).device, V, grid=3, speeds=1, n_jobs=1)
+    for m in ZWIDTH_METHODS:
+        want = [None if not math.isfinite(x) else x for x in api.boundary(m).tolist()]
+        assert rec["boundaries"][m]["k_max"] == want
+    assert rec["stiffness"] == api.stiffness.tolist()
+
+
+def test_cli_zwidth_text_table_prints_the_boundaries(capsys, tmp_path):
+    png = tmp_path / "z.png"
+    assert main(["zwidth", "--device", "impulse", "--velocity", "0.1", "--grid", "3", "--speeds", "1", "--jobs", "1",
+                 "--plot", str(png)]) == 0  # fmt: skip
+    out = capsys.readouterr().out
+    api = z_width(get_device(DEV).device, V, grid=3, speeds=1, n_jobs=1)
+    assert f"{api.boundary('linear')[1]:.4g}" in out
+    assert png.stat().st_size > 0
+
+
+@pytest.mark.parametrize(
+    "argv, needle",
+    [
+        (["--device", "impulse", "--velocity", "0.1", "--velocity-filter", "600"], "Nyquist"),
+        (["--device", "impulse", "--velocity", "0.1", "--velocity-filter", "-5"], "velocity-filter"),
+        (["--device", "impulse", "--velocity", "0.1", "--amplifier-bandwidth", "0"], "amplifier"),
+        (["--device", "impulse", "--velocity", "0.1", "--delay", "1.5"], "delay"),
+        (["--device", "impulse", "--velocity", "0.1", "--stiffness", "80"], "--stiffness"),
+        (["--device", "impulse", "--velocity", "0.1", "--grid", "500"], "grid"),
+        (["--velocity", "0.1"], "device"),
+        (["--device", "impulse"], "velocity"),
+    ],
+)
+def test_cli_zwidth_errors_one_line_exit_2(argv, needle, capsys):
+    assert main(["zwidth", *argv]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and needle in err
+
+
+def test_report_zwidth_section_states_the_api_numbers(tmp_path, capsys):
+    """`dfa report --zwidth N` adds the Z-width table and figure; the JSON record holds the analysis' boundaries."""
+    argv = ["report", "--device", "impulse", "--velocity", "0.1", "--zwidth", "3", "--format", "md",
+            "--out", str(tmp_path), "--quiet"]  # fmt: skip
+    assert main(argv) == 0
+    md = next(tmp_path.glob("*.md")).read_text(encoding="utf-8")
+    assert "## Z-width" in md and "_zwidth.png" in md
+    z = z_width(get_device(DEV).device, V, grid=3, speeds=1, n_jobs=1)
+    assert f"{z.boundary('linear')[1]:.4g}" in md
+    from dfa.design import design_analysis
+
+    a = design_analysis(get_device(DEV), velocity=V, map_grid=3, samples=2000, n_jobs=1, zwidth_grid=3)
+    assert a.as_dict()["zwidth"]["boundaries"]["linear"]["k_max"] == z.as_dict()["boundaries"]["linear"]["k_max"]
