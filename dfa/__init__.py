@@ -139,6 +139,8 @@ _LAZY = {
     "KMaxResult": "kmax",
     "stiffness_speed_chart": "speed_chart",
     "StiffnessSpeedChart": "speed_chart",
+    "z_width": "zwidth",
+    "ZWidth": "zwidth",
 }
 _SUBMODULES = {
     "describing",
@@ -167,6 +169,7 @@ _SUBMODULES = {
     "speed_chart",
     "status",
     "jsonable",
+    "zwidth",
 }
 
 

@@ -250,6 +250,11 @@ def _add_controller_args(p: argparse.ArgumentParser, parse: Callable[[str], int]
         metavar="B",
         help="virtual damper B >= 0 in N·s/m (rotary: N·m·s/rad) on the backward-difference velocity (default: none)",
     )
+    _add_filter_amplifier_args(g)
+
+
+def _add_filter_amplifier_args(g: Any) -> None:
+    """--velocity-filter and --amplifier-bandwidth (shared by the controller flags and ``zwidth``)."""
     g.add_argument(
         "--velocity-filter",
         dest="velocity_filter",
@@ -285,6 +290,14 @@ def _controller(args: argparse.Namespace, device: Device | None, stiffness: floa
     bu = device.units["damping"]
     if b is not None and b < 0:
         raise UsageError(f"--virtual-damping {b:g} is invalid: B must be >= 0; give the damper in {bu} (0 for none)")
+    _check_filter_amplifier(args, device)
+    ctl = Controller(stiffness, b or 0.0, args.delay, fc, bw)
+    return None if ctl.params(device.period).is_spring else ctl
+
+
+def _check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
+    """Refuse (UsageError, exit 2) a filter cutoff <= 0 or not below the Nyquist frequency, a bandwidth <= 0."""
+    fc, bw = args.velocity_filter, args.amplifier_bandwidth
     nyquist = 0.5 / device.period
     if fc is not None and not 0 < fc < nyquist:
         raise UsageError(
@@ -295,8 +308,6 @@ def _controller(args: argparse.Namespace, device: Device | None, stiffness: floa
         raise UsageError(
             f"--amplifier-bandwidth {bw:g} is invalid: it must be > 0 Hz; give f_bw in Hz, or drop the flag"
         )
-    ctl = Controller(stiffness, b or 0.0, args.delay, fc, bw)
-    return None if ctl.params(device.period).is_spring else ctl
 
 
 def _ctl_params(ctl: Controller | None, inp: _Inputs) -> ControllerParams | None:
@@ -1485,17 +1496,7 @@ def _cmd_zwidth(args: argparse.Namespace) -> int:
     inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
-    for flag, value in (
-        ("--velocity-filter", args.velocity_filter),
-        ("--amplifier-bandwidth", args.amplifier_bandwidth),
-    ):
-        if value is not None and not value > 0:
-            raise UsageError(f"{flag} = {value:g} is invalid: it must be a frequency > 0 in Hz; omit {flag} for none")
-    if args.velocity_filter is not None and not args.velocity_filter < 0.5 / dev.period:
-        raise UsageError(
-            f"--velocity-filter = {args.velocity_filter:g} is invalid: it must be below the Nyquist frequency "
-            f"{0.5 / dev.period:g} Hz of the device's period; give a lower cutoff or no filter"
-        )
+    _check_filter_amplifier(args, dev)
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
     zw = z_width(
@@ -1554,20 +1555,7 @@ def _add_zwidth(sub: Any) -> None:
         help="impact speed in m/s (rotary: rad/s); required",
     )
     _add_delay_arg(p)
-    p.add_argument(
-        "--velocity-filter",
-        dest="velocity_filter",
-        type=_number("--velocity-filter", "Hz"),
-        metavar="HZ",
-        help="cutoff of the first-order low-pass on the velocity estimate, Hz (default: no filter)",
-    )
-    p.add_argument(
-        "--amplifier-bandwidth",
-        dest="amplifier_bandwidth",
-        type=_number("--amplifier-bandwidth", "Hz"),
-        metavar="HZ",
-        help="current-amplifier bandwidth, Hz (default: an ideal amplifier)",
-    )
+    _add_filter_amplifier_args(p.add_argument_group("wall controller (B is the Z-width's axis)"))
     p.add_argument("--grid", type=_integer("--grid"), default=40, metavar="N", help="points per axis (default: 40)")
     p.add_argument(
         "--speeds",

@@ -239,6 +239,7 @@ class ZWidth:
         Returns
         -------
         matplotlib.axes.Axes
+            The axes drawn on: B across, K (log) up, one line per method.
         """
         from .plotting import plot_zwidth
 
@@ -480,6 +481,12 @@ def z_width(
     DFAValueError, DFATypeError
         Bad inputs (negative B, cutoff above Nyquist, bad delay, ...), or planned work above
         :data:`MAX_WORK_SAMPLES` simulated samples (the message says how to lower it).
+
+    See Also
+    --------
+    dfa.controlled_linear.stable_stiffness : The exact linear bound at one B.
+    dfa.controller_passivity.device_controller_criterion : The extended eq. 6 criterion.
+    dfa.kmax.design_answer : The four K_max of the spring (B = 0).
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))

@@ -142,11 +142,12 @@ RESULTS = {
     "StableRegion",
     "ColgateSchenkel",
     "ColgateSchenkelDamping",
+    "ZWidth",
 }
 
 #: Calls that take seconds when every argument is valid: only their refusals are fuzzed
 #: (a valid draw is replaced by a call with one argument known to be refused).
-EXPENSIVE = {"validate", "design_report", "stiffness_speed_chart"}
+EXPENSIVE = {"validate", "design_report", "stiffness_speed_chart", "z_width"}
 
 #: Examples per name under ``ci`` (the profile's default for the rest); costly names get fewer.
 EXAMPLES = {
@@ -278,6 +279,7 @@ _WORK = {
     "validate": ("dfa.validation", "cycle_checks"),
     "design_report": ("dfa.report", "design_analysis"),
     "stiffness_speed_chart": ("dfa.speed_chart", "_Evidence"),
+    "z_width": ("dfa.zwidth", "_plan"),
 }
 
 
