@@ -464,7 +464,10 @@ def test_cli_sigterm_stops_joblib_workers(tmp_path):
             "--grid",
             "60",
             "--samples",
-            "50000",
+            "5000000",
+            "--delay",
+            "1",  # d > 0: no exact period skipping, so the map lasts well past the signal
+            "--force",
             "--jobs",
             "2",
             "--progress",
