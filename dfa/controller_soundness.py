@@ -45,15 +45,14 @@ from typing import Any
 
 import numpy as np
 
+from ._soundness_counts import SoundnessCounts
 from .checks import check_choice, check_int
 from .controller import ControllerParams
 from .controller_passivity import controller_anchor, controller_criterion
 from .criterion import passivity_criterion
 from .errors import DFAValueError
 from .formatting import markdown_table
-from .jsonable import to_jsonable
 from .simulation import simulate
-from .status import SoundnessStatus
 
 __all__ = [
     "ControllerSoundness",
@@ -200,7 +199,7 @@ def simulate_points(pts: dict[str, np.ndarray], ns: np.ndarray) -> tuple[np.ndar
 
 
 @dataclass(frozen=True)
-class ControllerSoundness:
+class ControllerSoundness(SoundnessCounts):
     """Outcome of :func:`controller_soundness` for one criterion.
 
     Attributes
@@ -235,23 +234,7 @@ class ControllerSoundness:
     samples_max: int = 0
     seed: int = 0
 
-    def __post_init__(self) -> None:
-        for name in ("points", "energy_grew", "diverged", "violations"):
-            check_int(name, getattr(self, name), 0, "pass the counts controller_soundness returned")
-        if self.violations > self.points:
-            raise DFAValueError(
-                f"violations = {self.violations} is invalid: it cannot exceed points = {self.points}; "
-                "pass the counts controller_soundness returned"
-            )
-
-    @property
-    def status(self) -> SoundnessStatus:
-        """``SOUND`` when no simulated point violated the criterion, else ``VIOLATED``."""
-        return SoundnessStatus.SOUND if self.violations == 0 else SoundnessStatus.VIOLATED
-
-    def as_dict(self) -> dict[str, object]:
-        """JSON-ready record (an infinite growth becomes null, with the reason under ``null_reasons``)."""
-        return to_jsonable({**self.__dict__, "status": self.status, "status_message": self.status.message})
+    _SOURCE = "controller_soundness"
 
 
 def controller_soundness(

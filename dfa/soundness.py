@@ -50,12 +50,12 @@ from numba import njit
 
 from . import _kernel
 from ._io import atomic_write_text
+from ._soundness_counts import SoundnessCounts
 from .checks import check_choice, check_delay, check_int
 from .criterion import CriticalLine, passivity_criterion
 from .errors import DFAValueError
 from .formatting import markdown_table
-from .jsonable import dumps, to_jsonable
-from .status import SoundnessStatus
+from .jsonable import dumps
 
 __all__ = ["DelaySoundness", "sample_passive_points", "delay_soundness", "soundness_markdown", "main"]
 
@@ -198,7 +198,7 @@ def _batch(mus, betas, sigmas, x0s, v0s, ns, delay, ratio, codes, worst_sample):
 
 
 @dataclass(frozen=True)
-class DelaySoundness:
+class DelaySoundness(SoundnessCounts):
     """Outcome of :func:`delay_soundness` for one delay and one criterion.
 
     Attributes
@@ -241,23 +241,7 @@ class DelaySoundness:
     samples_max: int = 0
     seed: int = 0
 
-    def __post_init__(self) -> None:
-        for name in ("points", "energy_grew", "diverged", "violations"):
-            check_int(name, getattr(self, name), 0, "pass the counts delay_soundness returned")
-        if self.violations > self.points:
-            raise DFAValueError(
-                f"violations = {self.violations} is invalid: it cannot exceed points = {self.points}; "
-                "pass the counts delay_soundness returned"
-            )
-
-    @property
-    def status(self) -> SoundnessStatus:
-        """``SOUND`` when no simulated point violated the criterion, else ``VIOLATED``."""
-        return SoundnessStatus.SOUND if self.violations == 0 else SoundnessStatus.VIOLATED
-
-    def as_dict(self) -> dict[str, object]:
-        """JSON-ready record (an infinite growth becomes null, with the reason under ``null_reasons``)."""
-        return to_jsonable({**self.__dict__, "status": self.status, "status_message": self.status.message})
+    _SOURCE = "delay_soundness"
 
 
 def delay_soundness(
