@@ -62,7 +62,7 @@ class ControllerStiffnessLimits:
         Largest K (N/m) the extended criterion proves passive at ``velocity`` (0 if none); None with a lag.
     k_linear : float
         Top of the stable interval from K = 0 of the exact linear loop, N/m (0 if never stable).
-    k_df, k_sim : None
+    k_df, k_sim, k_sim_rest : None
         Not computed with a controller (``reasons``).
     reasons : dict
         Why each None is None.
@@ -77,6 +77,7 @@ class ControllerStiffnessLimits:
     k_linear: float
     k_df: float | None
     k_sim: float | None
+    k_sim_rest: float | None
     reasons: dict
     status: str
 
@@ -92,7 +93,7 @@ class ControllerStiffnessLimits:
         Returns
         -------
         dict
-            velocity, k_criterion, k_linear, k_df, k_sim, null_reasons, status.
+            velocity, k_criterion, k_linear, k_df, k_sim, k_sim_rest, null_reasons, status.
         """
         return to_jsonable(
             {
@@ -101,6 +102,7 @@ class ControllerStiffnessLimits:
                 "k_linear": self.k_linear,
                 "k_df": self.k_df,
                 "k_sim": self.k_sim,
+                "k_sim_rest": self.k_sim_rest,
                 "null_reasons": dict(self.reasons),
                 "status": self.status,
             }
@@ -163,10 +165,10 @@ def controller_stiffness_limits(device: Device, controller: Controller, velocity
     v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
     check_positive("velocity", v, "give an impact speed > 0 in m/s (rotary: rad/s)")
     ctl.params(dev.period)  # refuses a filter cutoff above the Nyquist frequency
-    reasons = {"k_df": NOT_COMPUTED, "k_sim": NOT_COMPUTED}
+    reasons = {"k_df": NOT_COMPUTED, "k_sim": NOT_COMPUTED, "k_sim_rest": NOT_COMPUTED}
     if ctl.amplifier_bandwidth is None:
         kc: float | None = _k_criterion(dev, ctl, v)
     else:
         kc, reasons["k_criterion"] = None, LAG_REASON
     kl = stable_stiffness(dev.mass, dev.damping, dev.period, ctl).k_crit
-    return ControllerStiffnessLimits(dev, ctl, v, kc, kl, None, None, reasons, "partial")
+    return ControllerStiffnessLimits(dev, ctl, v, kc, kl, None, None, None, reasons, "partial")
