@@ -4,7 +4,9 @@ Every grid point is an independent exact simulation (:func:`dfa.simulate`
 without recording), run in chunks of points, each chunk one compiled call
 (:func:`dfa.simulation.run_points`); the result does not depend on the number
 of jobs nor on the backend. A tqdm progress bar reports the chunks as they
-finish.
+finish. With a wall controller (``controller=``) the chunks are the same and run
+the same way (:func:`dfa._parallel.run_in_order`): only the compiled kernel differs.
+An interruption (Ctrl-C) cancels the chunks not started and returns nothing.
 
 Backends
 --------
@@ -59,6 +61,7 @@ import numpy as np
 
 from ._frozen import check_shape, freeze_fields
 from ._io import atomic_open, check_memory
+from ._parallel import PARALLEL_BACKENDS, run_in_order
 from .checks import (
     _fmt,
     check_bound,
@@ -78,8 +81,8 @@ from .status import MapStatus
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
 
-#: Execution backends of :func:`stability_map` (module docstring).
-MAP_BACKENDS = ("threads", "processes", "joblib")
+#: Execution backends of :func:`stability_map` (module docstring; :mod:`dfa._parallel`).
+MAP_BACKENDS = PARALLEL_BACKENDS
 
 #: Planned peak memory per grid point and initial speed (bytes): four float inputs, three
 #: float outputs in chunks and concatenated, the int8 outcome, with margin.
@@ -409,42 +412,6 @@ def _run_chunk(
     return res[0], res[1], res[2]
 
 
-def _map_chunks(tasks: list[tuple], sizes: list[int], workers: int, backend: str, bar) -> list:
-    """``_run_chunk(*task)`` for every task, in order, on ``workers`` (1: this thread), updating the progress bar."""
-    results = []
-    if workers == 1:
-        for task, size in zip(tasks, sizes, strict=True):
-            results.append(_run_chunk(*task))
-            bar.update(size)
-        return results
-    if backend == "threads":
-        from concurrent.futures import ThreadPoolExecutor
-
-        with ThreadPoolExecutor(max_workers=min(workers, len(tasks))) as pool:
-            futures = [pool.submit(_run_chunk, *task) for task in tasks]
-            try:
-                for size, fut in zip(sizes, futures, strict=True):
-                    results.append(fut.result())
-                    bar.update(size)
-            finally:
-                for fut in futures:  # on an interruption: drop the chunks not started
-                    fut.cancel()
-        return results
-    from joblib import Parallel, delayed
-
-    kw = {"backend": "loky"} if backend == "processes" else {}
-    # never more workers than chunks (same result, fewer processes)
-    par = Parallel(n_jobs=min(workers, len(tasks)), return_as="generator", **kw)
-    gen = par(delayed(_run_chunk)(*task) for task in tasks)
-    try:
-        for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
-            results.append(res)
-            bar.update(size)
-    finally:
-        gen.close()  # on an interruption: cancel the pending chunks, stop the workers
-    return results
-
-
 def _check_range(name: str, rng) -> tuple[float, float]:
     try:
         a, b = rng
@@ -559,7 +526,8 @@ def stability_map(
 
     bar = tqdm(total=pts_b.size, unit="run", desc=f"stability map μ={m:g}", disable=not progress, leave=False)
     try:
-        results = _map_chunks(tasks, [c.stop - c.start for c in chunks], workers, how, bar)
+        # spring or controller: the same chunks, in order (dfa._parallel), Ctrl-C cancels the pending ones
+        results = run_in_order(_run_chunk, tasks, [c.stop - c.start for c in chunks], workers, how, bar)
     finally:
         bar.close()
     codes, amps, freqs = (np.concatenate([r[k] for r in results]).reshape(len(speeds), g, g) for k in range(3))
