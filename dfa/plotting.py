@@ -191,7 +191,7 @@ def _physical_map_axes(ax, device, stiffness: float) -> None:
     u = device.units
     kt, kd = stiffness * device.period, stiffness * device.resolution
     top = ax.secondary_xaxis("top", functions=(lambda x: x * kt, lambda x: x / kt))
-    top.set_xlabel(f"damping b at K = {stiffness:.4g} {u['stiffness']} ({u['damping']})", fontsize=7)
+    top.set_xlabel(f"damping b at K = {stiffness:.5g} {u['stiffness']} ({u['damping']})", fontsize=7)
     top.tick_params(labelsize=7)
     right = ax.secondary_yaxis("right", functions=(lambda y: y * kd, lambda y: y / kd))
     right.set_ylabel(f"Coulomb c ({u['coulomb']})", fontsize=7)
@@ -355,7 +355,7 @@ def trajectory_plot(
     return ax
 
 
-def contour_plot(maps, axes=None):
+def contour_plot(maps, axes=None, *, device=None, stiffness=None):
     """Amplitude and frequency of the small stable and large unstable families (paper Fig. 7).
 
     Left: small stable cycles, amplitude filled, frequency as labelled white
@@ -367,6 +367,11 @@ def contour_plot(maps, axes=None):
     ----------
     maps : ContourMaps
     axes : pair of Axes, optional
+    device : Device, optional
+        With ``stiffness``: secondary axes b = βKT (N·s/m; rotary N·m·s/rad) and c = σKΔ (N; N·m),
+        as on :func:`stability_map_plot`.
+    stiffness : float, optional
+        K in N/m (rotary N·m/rad) for the secondary axes.
     """
     from matplotlib.colors import BoundaryNorm
 
@@ -417,6 +422,8 @@ def contour_plot(maps, axes=None):
         axes[0].set_ylim(maps.sigma[0], min(maps.sigma[-1], max(1.15 * top, 0.55)))
     for ax in axes:
         _drop_edge_labels(ax)
+        if device is not None and stiffness is not None:
+            _physical_map_axes(ax, device, float(stiffness))
     return axes
 
 
