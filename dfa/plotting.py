@@ -680,11 +680,19 @@ def stiffness_speed_plot(chart, ax=None):
     ax.set_xlabel(f"stiffness K ({u['stiffness']})")
     ax.set_ylabel(f"largest safe impact speed ({u['velocity']})")
     d = chart.delay
-    title = f"{chart.device.name}: how stiff for which impact speed" + (f" (delay {d})" if d else "")
-    ax.set_title(
-        title + f"\nspeeds up to {chart.v_top:g} {u['velocity']}; bottom edge: not even "
-        f"{chart.speeds[0]:.3g} {u['velocity']}",
-        fontsize=9,
+    ax.set_title(f"{chart.device.name}: how stiff for which impact speed" + (f", delay {d}" if d else ""), fontsize=9)
+    # the details go in a note under the axes (a two-line title crowded the top of the figure)
+    ax.annotate(
+        f"Impact speeds simulated from {chart.speeds[0]:.3g} to {chart.v_top:g} {u['velocity']}; "
+        f"a curve on the bottom edge is not safe even at {chart.speeds[0]:.3g} {u['velocity']}.",
+        xy=(0.0, 0.0),
+        xycoords="axes fraction",
+        xytext=(0.0, -34.0),
+        textcoords="offset points",
+        va="top",
+        ha="left",
+        fontsize=7.5,
+        color="0.25",
     )
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
