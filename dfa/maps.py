@@ -89,6 +89,12 @@ MAP_BACKENDS = PARALLEL_BACKENDS
 MAP_BYTES_PER_RUN = 96
 #: ... and per grid point (the meshgrid axes).
 MAP_BYTES_PER_POINT = 16
+#: Most planned samples (spring-kernel equivalent) in one chunk: about half a second of the spring kernel without
+#: period skipping, so that Ctrl-C waits about that long for the running chunks and the progress bar keeps moving.
+CHUNK_SAMPLES = 2.0e7
+#: Cost per sample of the controller kernel relative to the spring's (measured on sub-tick chatter, which runs
+#: to the end: spring with d = 1 26 ns, damper/filter 36-170 ns, amplifier lag ~1 µs per sample).
+CONTROLLER_COST = {"controller": 4.0, "lag": 40.0}
 
 
 def map_memory_bytes(grid: int, n_speeds: int) -> int:
@@ -517,7 +523,7 @@ def stability_map(
     if preload:
         check_bound(rules[0], float(np.max(np.abs(x0))))  # the rule simulate() applies: the bound lies beyond ξ0
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
-    chunks = _chunks(pts_b.size, workers)
+    chunks = _chunks(pts_b.size, workers, _chunk_cost(n, ctl))
     tail = (n, d, bool(quantize), *rules)
     tasks = [(m, pts_b[c], pts_s[c], x0[c], v0[c], *tail, ctl) for c in chunks]
     _run_chunk(m, pts_b[:1], pts_s[:1], x0[:1], v0[:1], 1, *tail[1:], ctl)  # compile or load the kernel once, first
@@ -556,8 +562,17 @@ def _points(mu: float, beta, sigma, speeds, preload: bool) -> tuple[np.ndarray, 
     return pts_b, pts_s, np.zeros(pts_b.size), np.repeat(np.asarray(speeds, dtype=float), bb.size)
 
 
-def _chunks(total: int, workers: int) -> list[slice]:
-    """Contiguous chunks of the points: 16 per worker (progress and load balance), 64 in one thread."""
-    nchunks = max(1, min(total, workers * 16)) if workers > 1 else max(1, min(total, 64))
+def _chunk_cost(samples: int, controller: ControllerParams | None) -> float:
+    """Planned cost of one point in spring-kernel samples (:data:`CHUNK_SAMPLES`, :data:`CONTROLLER_COST`)."""
+    if controller is None:
+        return float(samples)
+    return samples * CONTROLLER_COST["lag" if controller.lag > 0 else "controller"]
+
+
+def _chunks(total: int, workers: int, cost: float = 0.0) -> list[slice]:
+    """Contiguous chunks of the points: 16 per worker (progress and load balance), 64 in one thread, and more
+    when a chunk would plan over :data:`CHUNK_SAMPLES` (``cost``: per point, from :func:`_chunk_cost`)."""
+    nchunks = workers * 16 if workers > 1 else 64
+    nchunks = max(1, min(total, max(nchunks, math.ceil(total * cost / CHUNK_SAMPLES))))
     bounds = np.linspace(0, total, nchunks + 1).astype(int)
     return [slice(bounds[i], bounds[i + 1]) for i in range(nchunks) if bounds[i + 1] > bounds[i]]

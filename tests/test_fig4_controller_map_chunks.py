@@ -99,6 +99,19 @@ def test_fig4_controller_map_same_for_any_jobs_and_backend_and_equal_to_simulate
                 assert np.array_equal(freq, one.frequency[n, i, j], equal_nan=True)
 
 
+def test_fig4_map_chunks_sized_by_planned_work_same_result(monkeypatch):
+    """Chunks hold at most CHUNK_SAMPLES planned samples (a lag costs more): more chunks, the same numbers."""
+    chunks = maps._chunks(10, 2, maps._chunk_cost(100, CTL) * 1e6)
+    assert [c.stop - c.start for c in chunks] == [1] * 10  # contiguous, every point once
+    assert maps._chunk_cost(100, CTL) == 100 * maps.CONTROLLER_COST["lag"] and maps._chunk_cost(100, None) == 100
+    assert len(maps._chunks(10_000, 2)) == 32 and len(maps._chunks(10_000, 2, 1.0e5)) == 50  # 10^9 samples / 2e7
+    kw = dict(grid=3, samples=2000, n_jobs=2, progress=False, controller=CTL)
+    one = stability_map(100.0, [1.0, 2.0], **kw)
+    monkeypatch.setattr(maps, "CHUNK_SAMPLES", 1.0)  # one point per chunk
+    for a, b in zip(_arrays(one), _arrays(stability_map(100.0, [1.0, 2.0], **kw)), strict=True):
+        assert np.array_equal(a, b, equal_nan=True)
+
+
 def test_parallel_run_in_order_any_workers_and_interruption():
     tasks = [(i,) for i in range(20)]
     want = [i * i for i in range(20)]
