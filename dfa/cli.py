@@ -1136,7 +1136,8 @@ def _cmd_contours(args: argparse.Namespace) -> int:
     if args.plot is not None:
         from .plotting import contour_plot
 
-        axes = contour_plot(c)
+        dev, k = (inp.device, inp.stiffness) if inp is not None else (None, None)
+        axes = contour_plot(c, device=dev, stiffness=k)  # physical axes b, c like `dfa map --plot`
         _mark_operating_point(axes, inp)
         d["plot"] = _save_png("--plot", args.plot, axes[0])
     d.update(_device_json(inp))

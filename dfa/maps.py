@@ -4,7 +4,9 @@ Every grid point is an independent exact simulation (:func:`dfa.simulate`
 without recording), run in chunks of points, each chunk one compiled call
 (:func:`dfa.simulation.run_points`); the result does not depend on the number
 of jobs nor on the backend. A tqdm progress bar reports the chunks as they
-finish.
+finish. With a wall controller (``controller=``) the chunks are the same and run
+the same way (:func:`dfa._parallel.run_in_order`): only the compiled kernel differs.
+An interruption (Ctrl-C) cancels the chunks not started and returns nothing.
 
 Backends
 --------
@@ -59,6 +61,7 @@ import numpy as np
 
 from ._frozen import check_shape, freeze_fields
 from ._io import atomic_open, check_memory
+from ._parallel import PARALLEL_BACKENDS, run_in_order
 from .checks import (
     _fmt,
     check_bound,
@@ -78,14 +81,20 @@ from .status import MapStatus
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
 
-#: Execution backends of :func:`stability_map` (module docstring).
-MAP_BACKENDS = ("threads", "processes", "joblib")
+#: Execution backends of :func:`stability_map` (module docstring; :mod:`dfa._parallel`).
+MAP_BACKENDS = PARALLEL_BACKENDS
 
 #: Planned peak memory per grid point and initial speed (bytes): four float inputs, three
 #: float outputs in chunks and concatenated, the int8 outcome, with margin.
 MAP_BYTES_PER_RUN = 96
 #: ... and per grid point (the meshgrid axes).
 MAP_BYTES_PER_POINT = 16
+#: Most planned samples (spring-kernel equivalent) in one chunk: about half a second of the spring kernel without
+#: period skipping, so that Ctrl-C waits about that long for the running chunks and the progress bar keeps moving.
+CHUNK_SAMPLES = 2.0e7
+#: Cost per sample of the controller kernel relative to the spring's (measured on sub-tick chatter, which runs
+#: to the end: spring with d = 1 26 ns, damper/filter 36-170 ns, amplifier lag ~1 µs per sample).
+CONTROLLER_COST = {"controller": 4.0, "lag": 40.0}
 
 
 def map_memory_bytes(grid: int, n_speeds: int) -> int:
@@ -409,42 +418,6 @@ def _run_chunk(
     return res[0], res[1], res[2]
 
 
-def _map_chunks(tasks: list[tuple], sizes: list[int], workers: int, backend: str, bar) -> list:
-    """``_run_chunk(*task)`` for every task, in order, on ``workers`` (1: this thread), updating the progress bar."""
-    results = []
-    if workers == 1:
-        for task, size in zip(tasks, sizes, strict=True):
-            results.append(_run_chunk(*task))
-            bar.update(size)
-        return results
-    if backend == "threads":
-        from concurrent.futures import ThreadPoolExecutor
-
-        with ThreadPoolExecutor(max_workers=min(workers, len(tasks))) as pool:
-            futures = [pool.submit(_run_chunk, *task) for task in tasks]
-            try:
-                for size, fut in zip(sizes, futures, strict=True):
-                    results.append(fut.result())
-                    bar.update(size)
-            finally:
-                for fut in futures:  # on an interruption: drop the chunks not started
-                    fut.cancel()
-        return results
-    from joblib import Parallel, delayed
-
-    kw = {"backend": "loky"} if backend == "processes" else {}
-    # never more workers than chunks (same result, fewer processes)
-    par = Parallel(n_jobs=min(workers, len(tasks)), return_as="generator", **kw)
-    gen = par(delayed(_run_chunk)(*task) for task in tasks)
-    try:
-        for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
-            results.append(res)
-            bar.update(size)
-    finally:
-        gen.close()  # on an interruption: cancel the pending chunks, stop the workers
-    return results
-
-
 def _check_range(name: str, rng) -> tuple[float, float]:
     try:
         a, b = rng
@@ -550,7 +523,7 @@ def stability_map(
     if preload:
         check_bound(rules[0], float(np.max(np.abs(x0))))  # the rule simulate() applies: the bound lies beyond ξ0
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
-    chunks = _chunks(pts_b.size, workers)
+    chunks = _chunks(pts_b.size, workers, _chunk_cost(n, ctl))
     tail = (n, d, bool(quantize), *rules)
     tasks = [(m, pts_b[c], pts_s[c], x0[c], v0[c], *tail, ctl) for c in chunks]
     _run_chunk(m, pts_b[:1], pts_s[:1], x0[:1], v0[:1], 1, *tail[1:], ctl)  # compile or load the kernel once, first
@@ -559,7 +532,8 @@ def stability_map(
 
     bar = tqdm(total=pts_b.size, unit="run", desc=f"stability map μ={m:g}", disable=not progress, leave=False)
     try:
-        results = _map_chunks(tasks, [c.stop - c.start for c in chunks], workers, how, bar)
+        # spring or controller: the same chunks, in order (dfa._parallel), Ctrl-C cancels the pending ones
+        results = run_in_order(_run_chunk, tasks, [c.stop - c.start for c in chunks], workers, how, bar)
     finally:
         bar.close()
     codes, amps, freqs = (np.concatenate([r[k] for r in results]).reshape(len(speeds), g, g) for k in range(3))
@@ -588,8 +562,17 @@ def _points(mu: float, beta, sigma, speeds, preload: bool) -> tuple[np.ndarray, 
     return pts_b, pts_s, np.zeros(pts_b.size), np.repeat(np.asarray(speeds, dtype=float), bb.size)
 
 
-def _chunks(total: int, workers: int) -> list[slice]:
-    """Contiguous chunks of the points: 16 per worker (progress and load balance), 64 in one thread."""
-    nchunks = max(1, min(total, workers * 16)) if workers > 1 else max(1, min(total, 64))
+def _chunk_cost(samples: int, controller: ControllerParams | None) -> float:
+    """Planned cost of one point in spring-kernel samples (:data:`CHUNK_SAMPLES`, :data:`CONTROLLER_COST`)."""
+    if controller is None:
+        return float(samples)
+    return samples * CONTROLLER_COST["lag" if controller.lag > 0 else "controller"]
+
+
+def _chunks(total: int, workers: int, cost: float = 0.0) -> list[slice]:
+    """Contiguous chunks of the points: 16 per worker (progress and load balance), 64 in one thread, and more
+    when a chunk would plan over :data:`CHUNK_SAMPLES` (``cost``: per point, from :func:`_chunk_cost`)."""
+    nchunks = workers * 16 if workers > 1 else 64
+    nchunks = max(1, min(total, max(nchunks, math.ceil(total * cost / CHUNK_SAMPLES))))
     bounds = np.linspace(0, total, nchunks + 1).astype(int)
     return [slice(bounds[i], bounds[i + 1]) for i in range(nchunks) if bounds[i + 1] > bounds[i]]

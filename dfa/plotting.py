@@ -191,7 +191,7 @@ def _physical_map_axes(ax, device, stiffness: float) -> None:
     u = device.units
     kt, kd = stiffness * device.period, stiffness * device.resolution
     top = ax.secondary_xaxis("top", functions=(lambda x: x * kt, lambda x: x / kt))
-    top.set_xlabel(f"damping b at K = {stiffness:.4g} {u['stiffness']} ({u['damping']})", fontsize=7)
+    top.set_xlabel(f"damping b at K = {stiffness:.5g} {u['stiffness']} ({u['damping']})", fontsize=7)
     top.tick_params(labelsize=7)
     right = ax.secondary_yaxis("right", functions=(lambda y: y * kd, lambda y: y / kd))
     right.set_ylabel(f"Coulomb c ({u['coulomb']})", fontsize=7)
@@ -355,7 +355,7 @@ def trajectory_plot(
     return ax
 
 
-def contour_plot(maps, axes=None):
+def contour_plot(maps, axes=None, *, device=None, stiffness=None):
     """Amplitude and frequency of the small stable and large unstable families (paper Fig. 7).
 
     Left: small stable cycles, amplitude filled, frequency as labelled white
@@ -367,6 +367,11 @@ def contour_plot(maps, axes=None):
     ----------
     maps : ContourMaps
     axes : pair of Axes, optional
+    device : Device, optional
+        With ``stiffness``: secondary axes b = βKT (N·s/m; rotary N·m·s/rad) and c = σKΔ (N; N·m),
+        as on :func:`stability_map_plot`.
+    stiffness : float, optional
+        K in N/m (rotary N·m/rad) for the secondary axes.
     """
     from matplotlib.colors import BoundaryNorm
 
@@ -417,6 +422,8 @@ def contour_plot(maps, axes=None):
         axes[0].set_ylim(maps.sigma[0], min(maps.sigma[-1], max(1.15 * top, 0.55)))
     for ax in axes:
         _drop_edge_labels(ax)
+        if device is not None and stiffness is not None:
+            _physical_map_axes(ax, device, float(stiffness))
     return axes
 
 
@@ -673,11 +680,19 @@ def stiffness_speed_plot(chart, ax=None):
     ax.set_xlabel(f"stiffness K ({u['stiffness']})")
     ax.set_ylabel(f"largest safe impact speed ({u['velocity']})")
     d = chart.delay
-    title = f"{chart.device.name}: how stiff for which impact speed" + (f" (delay {d})" if d else "")
-    ax.set_title(
-        title + f"\nspeeds up to {chart.v_top:g} {u['velocity']}; bottom edge: not even "
-        f"{chart.speeds[0]:.3g} {u['velocity']}",
-        fontsize=9,
+    ax.set_title(f"{chart.device.name}: how stiff for which impact speed" + (f", delay {d}" if d else ""), fontsize=9)
+    # the details go in a note under the axes (a two-line title crowded the top of the figure)
+    ax.annotate(
+        f"Impact speeds simulated from {chart.speeds[0]:.3g} to {chart.v_top:g} {u['velocity']}; "
+        f"a curve on the bottom edge is not safe even at {chart.speeds[0]:.3g} {u['velocity']}.",
+        xy=(0.0, 0.0),
+        xycoords="axes fraction",
+        xytext=(0.0, -34.0),
+        textcoords="offset points",
+        va="top",
+        ha="left",
+        fontsize=7.5,
+        color="0.25",
     )
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)

@@ -57,12 +57,12 @@ from __future__ import annotations
 
 import math
 import os
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from ._parallel import run_in_order
 from .checks import _fmt, check_delay, check_int, check_jobs, check_nonnegative, check_positive, check_real, check_type
 from .controlled_linear import LinearStatus, stable_stiffness
 from .controller import Controller, ControllerParams
@@ -346,29 +346,19 @@ def _point(runs: list[tuple], ctl: ControllerParams) -> int:
 
 
 def _simulate_grid(tasks: list[tuple], jobs: int, progress: bool, label: str) -> np.ndarray:
-    """Outcome code of every task (runs, controller), in order, on ``jobs`` threads (the kernels release the GIL)."""
+    """Outcome code of every task (runs, controller), in order, on ``jobs`` threads (the kernels release the GIL).
+
+    Run like the chunks of a stability map (:func:`dfa._parallel.run_in_order`): the result does not depend
+    on ``jobs``; a progress bar counts the points; an interruption cancels the points not started.
+    """
     from tqdm.auto import tqdm
 
-    codes = np.empty(len(tasks), dtype=np.int8)
     bar = tqdm(total=len(tasks), unit="point", desc=label, disable=not progress, leave=False)
     try:
-        if jobs == 1:
-            for i, t in enumerate(tasks):
-                codes[i] = _point(*t)
-                bar.update(1)
-        else:
-            with ThreadPoolExecutor(max_workers=jobs) as pool:
-                futures = [pool.submit(_point, *t) for t in tasks]
-                try:
-                    for i, fut in enumerate(futures):  # in submission order: the result does not depend on jobs
-                        codes[i] = fut.result()
-                        bar.update(1)
-                finally:
-                    for fut in futures:
-                        fut.cancel()
+        codes = run_in_order(_point, tasks, [1] * len(tasks), jobs, "threads", bar)
     finally:
         bar.close()
-    return codes
+    return np.array(codes, dtype=np.int8)
 
 
 def _grid_boundary(row: np.ndarray, ks: np.ndarray, bad: set[int], what: str, unit: str) -> tuple[float, str | None]:
@@ -513,7 +503,7 @@ def z_width(
         )
     codes = _simulate_grid(tasks, workers, progress, f"Z-width {dev.name}").reshape(g, g)
     return _assemble(
-        dev, v, d, filter_cutoff, amplifier_bandwidth, vs, ks, bs, codes, cap, len(tasks), df_model, workers
+        dev, v, d, filter_cutoff, amplifier_bandwidth, vs, ks, bs, codes, cap, len(tasks), df_model, workers, progress
     )
 
 
@@ -534,14 +524,16 @@ def _column(dev, v, d, fc, fbw, ks, b: float, row: np.ndarray, model: str) -> li
     return out
 
 
-def _assemble(dev, v, d, fc, fbw, vs, ks, bs, codes, cap, n_points, model, workers: int) -> ZWidth:
+def _assemble(dev, v, d, fc, fbw, vs, ks, bs, codes, cap, n_points, model, workers: int, progress=False) -> ZWidth:
     """Boundaries per method from the grid and the closed forms (columns on ``workers`` threads); status."""
+    from tqdm.auto import tqdm
+
     args = [(dev, v, d, fc, fbw, ks, float(b), codes[i], model) for i, b in enumerate(bs)]
-    if workers == 1:
-        cols = [_column(*a) for a in args]
-    else:
-        with ThreadPoolExecutor(max_workers=workers) as pool:
-            cols = list(pool.map(lambda a: _column(*a), args))  # in order: the result does not depend on jobs
+    bar = tqdm(total=len(args), unit="B", desc=f"Z-width {dev.name} boundaries", disable=not progress, leave=False)
+    try:  # in order (dfa._parallel): the result does not depend on workers; Ctrl-C cancels the columns not started
+        cols = run_in_order(_column, args, [1] * len(args), workers, "threads", bar)
+    finally:
+        bar.close()
     arrays = {m: np.array([c[n][0] for c in cols], dtype=float) for n, m in enumerate(ZWIDTH_METHODS)}
     reasons = {m: tuple(c[n][1] for c in cols) for n, m in enumerate(ZWIDTH_METHODS)}
     unit = dev.units["stiffness"]

@@ -114,3 +114,45 @@ def test_cli_limit_cycles_and_contours_bad_input(capsys, argv, needle):
     assert main(argv) == 2
     out, err = capsys.readouterr()
     assert out == "" and len(err.strip().splitlines()) == 1 and needle in err
+
+
+@pytest.mark.parametrize(
+    "argv, k, period, resolution, units",
+    [
+        (["--device", "delta"], 14500.0, 1 / 3000, 3e-05, ("N/m", "N·s/m", "N")),
+        (["--device", "re35", "--stiffness", "0.5"], 0.5, 1e-3, 0.000767, ("N·m/rad", "N·m·s/rad", "N·m")),
+    ],
+)
+def test_fig7_cli_contours_plot_physical_axes_with_device(
+    capsys, tmp_path, monkeypatch, argv, k, period, resolution, units
+):
+    """`dfa contours --plot` with a device: b = βKT and c = σKΔ on secondary axes, as `dfa map --plot` (issue 14 §3)."""
+    import dfa.cli as cli
+
+    shown = []
+    real = cli._save_png
+    monkeypatch.setattr(cli, "_save_png", lambda flag, path, ax: shown.append(ax) or real(flag, path, ax))
+    png = tmp_path / "c.png"
+    assert main(["contours", *argv, "--grid", "6", "--max-amplitude", "20", "--plot", str(png)]) == 0
+    assert png.stat().st_size > 0 and f"figure written to {png}" in capsys.readouterr().out
+    axes = shown[0].figure.axes
+    panels = [ax for ax in axes if ax.get_xlabel().startswith("β")]
+    assert len(panels) == 2
+    for ax in panels:
+        top, right = ax.child_axes
+        assert top.get_xlabel() == f"damping b at K = {k:.5g} {units[0]} ({units[1]})"
+        assert right.get_ylabel() == f"Coulomb c ({units[2]})"
+        assert np.allclose(top.get_xlim(), np.array(ax.get_xlim()) * k * period)  # b = β K T (Table 1)
+        assert np.allclose(right.get_ylim(), np.array(ax.get_ylim()) * k * resolution)  # c = σ K Δ
+
+
+def test_fig7_cli_contours_plot_dimensionless_has_no_physical_axes(tmp_path, monkeypatch):
+    import dfa.cli as cli
+
+    shown = []
+    real = cli._save_png
+    monkeypatch.setattr(cli, "_save_png", lambda flag, path, ax: shown.append(ax) or real(flag, path, ax))
+    assert (
+        main(["contours", "--mu", "5", "--grid", "6", "--max-amplitude", "20", "--plot", str(tmp_path / "c.png")]) == 0
+    )
+    assert all(not ax.child_axes for ax in shown[0].figure.axes)

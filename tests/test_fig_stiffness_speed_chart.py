@@ -63,3 +63,32 @@ def test_fig_chart_plot_axes_lines_and_design_point(chart):
         assert any(needle in s for s in labels), needle
     top = ax.get_ylim()[1]
     assert top == pytest.approx(2.0 * 1.3) and math.isfinite(top)
+
+
+def _inside(inner, outer) -> bool:
+    return inner.x0 >= outer.x0 and inner.x1 <= outer.x1 and inner.y0 >= outer.y0 and inner.y1 <= outer.y1
+
+
+def test_fig_chart_title_one_short_line_and_details_in_a_note_inside_the_figure(chart):
+    """Issue 14 §5: the two-line title crowded the figure; now one short line, the details in a note below."""
+    ax = chart.plot()
+    fig = ax.figure
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    title = ax.title.get_text()
+    assert "\n" not in title and len(title) <= 70 and title.startswith("Phantom 1.0:")
+    (note,) = [t for t in ax.texts if "bottom edge" in t.get_text()]
+    assert f"from {chart.speeds[0]:.3g} to {chart.v_top:g} m/s" in note.get_text()
+    boxes = {
+        "title": ax.title.get_window_extent(r),
+        "note": note.get_window_extent(r),
+        "xlabel": ax.xaxis.label.get_window_extent(r),
+        "axes": ax.get_window_extent(r),
+    }
+    for name in ("title", "note"):
+        assert _inside(boxes[name], fig.bbox), name  # drawn whole, even without bbox_inches="tight"
+    assert not boxes["title"].overlaps(boxes["axes"]) and boxes["title"].y0 >= boxes["axes"].y1
+    assert boxes["note"].y1 <= boxes["xlabel"].y0  # below the axis label, not over it
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)

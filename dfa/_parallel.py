@@ -1,0 +1,110 @@
+"""Run independent tasks in parallel, results in submission order, with progress and a clean interruption.
+
+One implementation for every grid of simulations (:func:`dfa.stability_map`, spring or controller, and
+:func:`dfa.zwidth.z_width`): ``fn(*task)`` for every task, the results in the order of the tasks whatever
+the number of workers or the backend (so a result never depends on them), a progress bar advanced by each
+task's size as its result arrives, and on an interruption (Ctrl-C, or SIGTERM routed to KeyboardInterrupt
+by the CLI) the tasks not yet started are cancelled and the exception propagates: nothing is returned,
+so nothing half-computed can be written.
+
+Backends
+--------
+``"threads"``: a thread pool in this process (the compiled kernels release the GIL); running tasks finish
+before the interruption propagates (a thread cannot be killed), pending ones never start.
+``"processes"``: joblib's process pool (loky); ``"joblib"``: whatever ``joblib.parallel_config`` selects
+(e.g. dask). On an interruption the generator is closed, which cancels the pending tasks and stops the
+workers.
+
+Examples
+--------
+>>> class Bar:
+...     n = 0
+...     def update(self, k):
+...         self.n += k
+>>> bar = Bar()
+>>> run_in_order(pow, [(2, 3), (3, 2)], [1, 1], 2, "threads", bar), bar.n
+([8, 9], 2)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any, Protocol
+
+__all__ = ["run_in_order", "PARALLEL_BACKENDS"]
+
+#: Backends of :func:`run_in_order` (module docstring).
+PARALLEL_BACKENDS = ("threads", "processes", "joblib")
+
+
+class _Progress(Protocol):
+    def update(self, n: int) -> Any: ...
+
+
+def run_in_order(
+    fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, backend: str, bar: _Progress
+) -> list:
+    """``[fn(*task) for task in tasks]`` on ``workers`` (1: this thread), advancing ``bar`` by each task's size.
+
+    Parameters
+    ----------
+    fn : callable
+        The work of one task; with ``"processes"`` or ``"joblib"`` it must be picklable (a module-level function).
+    tasks : sequence of tuple
+        Positional arguments of each call.
+    sizes : sequence of int
+        Progress units of each task (e.g. simulated points), same length as ``tasks``.
+    workers : int
+        Parallel workers (>= 1; never more are started than there are tasks).
+    backend : {"threads", "processes", "joblib"}
+        Where the workers run (module docstring); ignored with one worker.
+    bar : object with ``update(n)``
+        Progress bar (tqdm).
+
+    Returns
+    -------
+    list
+        The results, in the order of ``tasks`` (independent of ``workers`` and ``backend``).
+    """
+    if len(sizes) != len(tasks):
+        raise ValueError(f"sizes has {len(sizes)} entries for {len(tasks)} tasks: give one size per task")
+    if workers == 1 or len(tasks) <= 1:
+        results = []
+        for task, size in zip(tasks, sizes, strict=True):
+            results.append(fn(*task))
+            bar.update(size)
+        return results
+    if backend == "threads":
+        return _threads(fn, tasks, sizes, min(workers, len(tasks)), bar)
+    return _joblib(fn, tasks, sizes, min(workers, len(tasks)), backend, bar)
+
+
+def _threads(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, bar) -> list:
+    from concurrent.futures import ThreadPoolExecutor
+
+    results = []
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        futures = [pool.submit(fn, *task) for task in tasks]
+        try:
+            for size, fut in zip(sizes, futures, strict=True):  # in submission order
+                results.append(fut.result())
+                bar.update(size)
+        finally:
+            for fut in futures:  # on an interruption: drop the tasks not started
+                fut.cancel()
+    return results
+
+
+def _joblib(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, backend, bar) -> list:
+    from joblib import Parallel, delayed
+
+    kw = {"backend": "loky"} if backend == "processes" else {}
+    gen = Parallel(n_jobs=workers, return_as="generator", **kw)(delayed(fn)(*task) for task in tasks)
+    results = []
+    try:
+        for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
+            results.append(res)
+            bar.update(size)
+    finally:
+        gen.close()  # on an interruption: cancel the pending tasks, stop the workers
+    return results
