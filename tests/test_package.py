@@ -91,3 +91,21 @@ def test_every_function_in_dfa_is_under_80_lines_of_code():
                 if lines >= 80:
                     long.append(f"{path.name}:{node.lineno} {node.name} ({lines} lines)")
     assert not long, "functions of 80 lines or more: " + ", ".join(long)
+
+
+def test_every_subpackage_is_in_the_distribution():
+    """A non-editable install ships every package under dfa/ (dfa.cycles was once missing from a fixed list)."""
+    from fnmatch import fnmatch
+
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib  # type: ignore[no-redef]
+
+    root = Path(__file__).resolve().parents[1]
+    cfg = tomllib.loads((root / "pyproject.toml").read_text())["tool"]["setuptools"]
+    patterns = cfg["packages"]["find"]["include"]
+    subpackages = [".".join(p.parent.relative_to(root).parts) for p in (root / "dfa").rglob("__init__.py")]
+    assert "dfa.cycles" in subpackages and "dfa.render" in subpackages
+    missing = [name for name in subpackages if not any(fnmatch(name, pat) for pat in patterns)]
+    assert missing == [], f"packages left out of the distribution: {missing}"
