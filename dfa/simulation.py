@@ -825,12 +825,7 @@ def check_quantize(quantize: object) -> bool:
     DFATypeError
         If ``quantize`` is not a bool: a string such as ``"False"`` would otherwise run with the encoder.
     """
-    if not isinstance(quantize, (bool, np.bool_)):
-        raise DFATypeError(
-            f"quantize = {quantize!r} has type {type(quantize).__name__}: it must be True (with the encoder) or "
-            "False (the linear spring); pass a bool"
-        )
-    return bool(quantize)
+    return check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
 
 
 def _controller_args(ctl: ControllerParams) -> tuple[float, float, bool, float]:
