@@ -797,8 +797,8 @@ def validate(quick: bool = False, n_jobs: int = -1, progress: bool = True) -> Va
     Returns
     -------
     ValidationResult
-        The limit-cycle checks, critical speeds, criterion soundness and cluster thresholds, with
-        their summaries.
+        The limit-cycle checks, critical speeds, criterion soundness, cluster thresholds and the
+        limit-cycle checks with each wall controller (item 6), with their summaries.
 
     Raises
     ------

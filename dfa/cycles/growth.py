@@ -82,8 +82,11 @@ class GrowthThreshold:
 
     @property
     def caveat(self) -> str | None:
-        """The sub-tick caveat of the search (:attr:`LimitCycleResult.caveat`): the band's bottom lies just above the
-        first quantization level, where "no growth below it" is not borne out by simulation; None otherwise."""
+        """The sub-tick caveat of the search (:attr:`LimitCycleResult.caveat`), or None.
+
+        Set when the band's bottom lies just above the first quantization level, where "no growth below it"
+        is not borne out by simulation.
+        """
         return self.result.caveat
 
     def meaning(self) -> str:

@@ -182,8 +182,11 @@ class LimitCycleResult:
 
     @property
     def caveat(self) -> str | None:
-        """The sub-tick caveat (:func:`dfa.cycles.subtick_caveat`): a sentence when the smallest unstable cycle lies
-        just above the first quantization level and the growth verdict resting on it is unreliable; else None."""
+        """The sub-tick caveat (:func:`dfa.cycles.subtick_caveat`), or None.
+
+        A sentence when the smallest unstable cycle lies just above the first quantization level, where the
+        growth verdict resting on it is contradicted by simulation; None otherwise.
+        """
         return subtick_caveat(self)
 
     @property
