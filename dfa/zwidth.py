@@ -323,13 +323,18 @@ def _passivity_judges(dev: Device, b: float, v: float, d: int, fc, fbw):
     return cs, crit
 
 
-def _df_judge(dev: Device, b: float, xi_dot: float, d: int, fc, fbw, model: str):
+def _df_judge(dev: Device, b: float, xi_dot: float, d: int, fc, fbw, model: str, subtick: list | None = None):
+    """Judge of the describing function at damper B; the K it calls undecided under the sub-tick caveat of
+    :mod:`dfa.cycles.caveats` (growth speed unknown with a controller) are appended to ``subtick``."""
+
     def judge(k: float) -> str:
         try:
             p, ctl = dev.params(k), _ctl(k, b, d, fc, fbw).params(dev.period)
         except DFAValueError:
             return UNDECIDED
-        g, _ = _growth_xi_dot(p.mu, p.beta, p.sigma, d, model, None if ctl.is_spring else ctl)
+        g, n = _growth_xi_dot(p.mu, p.beta, p.sigma, d, model, None if ctl.is_spring else ctl)
+        if g is None and n > 0 and subtick is not None:
+            subtick.append(k)
         return UNDECIDED if g is None else (SAFE if g >= xi_dot else UNSAFE)
 
     return judge
@@ -546,8 +551,18 @@ def _column(dev, v, d, fc, fbw, ks, b: float, row: np.ndarray, model: str) -> li
         cs, crit = _passivity_judges(dev, b, v, d, fc, fbw)
         out.append(_crossing(cs, ks, "b above the Colgate–Schenkel bound", unit, True)[:2])
         out.append(_crossing(crit, ks, "the extended criterion proves passivity", unit, True)[:2])
-    df = _df_judge(dev, b, dev.xi_dot(v), d, fc, fbw, model)
-    out.append(_crossing(df, ks, "predicted growth speed >= V", unit, True)[:2])
+    subtick: list[float] = []
+    df = _df_judge(dev, b, dev.xi_dot(v), d, fc, fbw, model, subtick)
+    k_df, why = _crossing(df, ks, "predicted growth speed >= V", unit, True)[:2]
+    if why is not None and subtick:  # say when an unknown verdict came from the sub-tick caveat
+        from .cycles import SUBTICK_LIMIT
+
+        why += (
+            f"; growth speed unknown from K = {min(subtick):.5g} {unit} (the describing function's sub-tick caveat: "
+            f"smallest unstable cycle below {SUBTICK_LIMIT:g} ticks, where simulation diverges from starts it says "
+            "settle; see dfa.cycles.caveats)"
+        )
+    out.append((k_df, why))
     out.append(_grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}, "no divergence", unit))
     out.append(_grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}, "rest after every impact", unit))
     return out

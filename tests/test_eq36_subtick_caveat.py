@@ -88,3 +88,17 @@ def test_eq36_subtick_caveat_spring_text_only():
     assert res.unstable_cycles[0].amplitude < 1.01 and res.caveat is not None
     g, _ = _growth_xi_dot(p.mu, p.beta, p.sigma, 1, "zoh", None)
     assert g == pytest.approx(min(c.amplitude * c.frequency for c in res.unstable_cycles))
+
+
+def test_eq36_subtick_caveat_named_in_the_zwidth_df_reason():
+    """A device whose controlled loop at K = 1000 N/m is the point above (μ = 3.749, β = 0, σ = 0.155,
+    β_B = B/(KT) = 0.2838, ν_c = f_c·T = 0.0042): the Z-width's describing-function column says why it stops."""
+    from dfa.device import Device
+    from dfa.zwidth import _column, _df_judge
+
+    dev = Device(mass=3.749e-3, damping=0.0, coulomb=1.55e-3, resolution=1e-5, period=1e-3)
+    seen: list = []
+    assert _df_judge(dev, 0.2838, 0.01, 0, 4.2, None, "zoh", seen)(1000.0) == "undecided" and seen == [1000.0]
+    ks = np.array([900.0, 1000.0])
+    k_df, why = _column(dev, dev.velocity(0.01), 0, 4.2, None, ks, 0.2838, np.zeros(2, dtype=np.int8), "zoh")[3]
+    assert np.isnan(k_df) and "sub-tick caveat" in why and f"below {SUBTICK_LIMIT:g} ticks" in why
