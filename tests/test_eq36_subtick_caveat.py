@@ -102,3 +102,21 @@ def test_eq36_subtick_caveat_named_in_the_zwidth_df_reason():
     ks = np.array([900.0, 1000.0])
     k_df, why = _column(dev, dev.velocity(0.01), 0, 4.2, None, ks, 0.2838, np.zeros(2, dtype=np.int8), "zoh")[3]
     assert np.isnan(k_df) and "sub-tick caveat" in why and f"below {SUBTICK_LIMIT:g} ticks" in why
+
+
+_CLI = ["limit-cycles", "--mass", "3.749e-3", "--damping", "0", "--coulomb", "1.55e-3", "--resolution", "1e-5",
+        "--period", "1e-3", "--stiffness", "1000", "--virtual-damping", "0.2838", "--velocity-filter", "4.2",
+        "--model", "zoh"]  # fmt: skip
+
+
+def test_eq36_subtick_caveat_printed_by_dfa_limit_cycles(capsys):
+    from dfa.cli import main
+
+    assert main(_CLI) == 0
+    text = capsys.readouterr().out
+    assert "μ = 3.749, β = 0, σ = 0.155" in text
+    assert "Caveat: the smallest unstable cycle (M = 1.014 ticks) lies below 1.25 ticks" in text
+    assert main([*_CLI, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["caveat"].startswith("sub-tick caveat: the smallest unstable cycle (M = 1.014 ticks)")
+    assert d["growth_threshold"]["caveat"] == d["caveat"] and "Caveat:" in d["growth_threshold"]["meaning"]
