@@ -1,6 +1,6 @@
 """Validation of every analytic prediction against the exact simulator.
 
-Four measurements, published whatever they show:
+Six measurements, published whatever they show:
 
 1. **Limit cycles, predicted vs simulated.** For operating points covering
    regions b, c, d and e and μ from 1 to 200, every cycle predicted by the
@@ -158,7 +158,7 @@ CONTROLLERS = (
 
 
 def _controller_grid(quick: bool) -> list[Params]:
-    if quick:  # one point where every controller has a stable and an unstable cycle (the lag's ZOH search takes ~7 s)
+    if quick:  # one point where every controller has a stable and an unstable cycle (the lag's ZOH search is slowest)
         return [Params(20.0, 0.05, 0.3)]
     return [Params(m, b, s) for m in (2.0, 5.0, 20.0, 100.0) for b in (0.05, 0.3) for s in (0.1, 0.3)]
 
