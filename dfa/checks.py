@@ -37,6 +37,7 @@ __all__ = [
     "check_int",
     "check_choice",
     "check_type",
+    "check_bool",
     "check_mu",
     "check_beta",
     "check_sigma",
@@ -83,6 +84,10 @@ def _as_scalar(value: Any) -> Any:
     if isinstance(value, np.ndarray) and value.ndim == 0:
         return value[()]
     return value
+
+
+def _is_bool(value: Any) -> bool:
+    return isinstance(value, (bool, np.bool_))
 
 
 def _type_error(name: str, value: Any, what: str, fix: str | None) -> DFATypeError:
@@ -178,6 +183,27 @@ def check_type(name: str, value: Any, cls: type, fix: str) -> Any:
             f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}"
         )
     return value
+
+
+def check_bool(name: str, value: Any, fix: str | None = None) -> bool:
+    """Return ``value`` as a Python bool if it is True or False (numpy bools too), else raise.
+
+    Never ``bool(value)``: the text ``"False"``, a number or a list would otherwise count as a flag.
+
+    Examples
+    --------
+    >>> check_bool("preload", False)
+    False
+    >>> try:
+    ...     check_bool("preload", "no", "pass True or False")
+    ... except DFATypeError as err:
+    ...     print(err)
+    preload = 'no' has type str: it must be True or False; pass True or False
+    """
+    value = _as_scalar(value)
+    if not isinstance(value, (bool, np.bool_)):
+        raise _type_error(name, value, "True or False", fix)
+    return bool(value)
 
 
 # -------------------------------------------- the paper's dimensionless parameters (Table 1)
@@ -336,6 +362,12 @@ def check_real_array(name: str, value: Any, fix: str | None = None) -> np.ndarra
         return np.array(flat, dtype=float).reshape(arr.shape)
     if arr.dtype.kind not in "iuf":
         raise _type_error(name, value, "a real number or an array of them", fix)
+    if (
+        not isinstance(value, np.ndarray)
+        and arr.size
+        and any(_is_bool(v) for v in np.asarray(value, dtype=object).ravel())
+    ):
+        raise _type_error(name, value, "a real number or an array of them (True/False are not numbers here)", fix)
     with np.errstate(over="ignore"):
         out = arr.astype(float)
     bad = ~np.isfinite(out)

@@ -37,7 +37,7 @@ import numpy as np
 
 from ._frozen import check_shape, freeze_fields
 from ._io import atomic_open, check_memory
-from .checks import check_int, check_mu, check_positive
+from .checks import check_bool, check_int, check_mu, check_positive
 from .cycles import ClosedFormStatus, large_cycle_closed_forms, small_cycle_closed_forms
 from .describing import quantizer_df
 from .errors import DFAValueError
@@ -361,7 +361,7 @@ def contour_maps(
     lw_cf = np.where(np.isfinite(lm_cf), large.frequency, np.nan)
     small_m = np.where(sm_cf < 1.0, sm_cf, np.nan)
     small_w = np.where(sm_cf < 1.0, sw_cf, np.nan)
-    large_m, large_w = _large_exact(m, beta, sigma, amax, bool(progress))
+    large_m, large_w = _large_exact(m, beta, sigma, amax, check_bool("progress", progress, "pass True or False"))
     detail = _closed_form_detail(small, large)
     status = ContourStatus.FLAGGED if detail else ContourStatus.OK
     return ContourMaps(m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax, status, detail)

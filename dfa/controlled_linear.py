@@ -510,6 +510,8 @@ def stable_region(
     ------
     DFAValueError
         An empty grid, a negative B, or device or controller values out of range.
+    DFATypeError
+        A B that is not a real number (text, True/False).
 
     See Also
     --------
@@ -525,6 +527,12 @@ def stable_region(
     grid = np.atleast_1d(check_real_array("virtual_damping", virtual_damping, "give the dampings B in N·s/m"))
     if grid.ndim != 1 or grid.size == 0:
         raise DFAValueError(f"virtual_damping = {virtual_damping!r} is invalid: give one or more dampings B in N·s/m")
+    if (grid < 0).any():  # the message names what the caller typed, not Controller's field `damping`
+        bad = float(grid[grid < 0][0])
+        raise DFAValueError(
+            f"virtual_damping = {bad!r} is invalid: it must be a finite number >= 0; give the virtual damping B in "
+            "N·s/m (0 for none)"
+        )
     rows = tuple(
         stable_stiffness(
             mass,

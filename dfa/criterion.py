@@ -90,6 +90,7 @@ from .checks import (
     MAX_DELAY,
     _fmt,
     check_beta,
+    check_bool,
     check_delay,
     check_mu,
     check_nonnegative,
@@ -159,6 +160,7 @@ def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *
     """
     v = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
     x = check_real("xi0", xi0, "give the initial position in encoder ticks")
+    quantized = check_bool("quantized", quantized, "pass True (eq. 18's H_c) or False (½ξ0², no encoder)")
     if x == 0.0:
         if mu is not None:
             check_mu(mu)
@@ -182,7 +184,8 @@ def spring_energy(xi, quantize: bool = True):
     >>> float(spring_energy(1.0)), float(spring_energy(0.5)), float(spring_energy(0.5, quantize=False))
     (0.5, 0.25, 0.125)
     """
-    return spring_energy_core(np.asarray(xi, dtype=float), bool(quantize))
+    q = check_bool("quantize", quantize, "pass True (the quantized spring) or False (½ξ²)")
+    return spring_energy_core(np.asarray(xi, dtype=float), q)
 
 
 def spring_energy_core(x, quantize: bool):
@@ -264,7 +267,8 @@ class CriticalLine:
         >>> CriticalLine.of(2.0, quantized=False).sigma0
         0.0
         """
-        return cls(xi_dot, float(_anchor(quantized, 0)[0]), delay)
+        q = check_bool("quantized", quantized, "pass True (eq. 6, σ₀ = ½) or False (eq. 7, σ₀ = 0)")
+        return cls(xi_dot, float(_anchor(q, 0)[0]), delay)
 
     @property
     def slope(self) -> float:

@@ -329,7 +329,9 @@ def _growth_xi_dot(
     """Smallest speed amplitude M·ω (ticks/sample) over every unstable cycle, and their count.
 
     inf: no growth predicted (no unstable cycle, stable linear loop, complete search); 0: growth from any
-    size (no unstable cycle, unstable linear loop); None: unknown (incomplete search, none found).
+    size (no unstable cycle, unstable linear loop); None: unknown (incomplete search, none found; or, with a
+    controller, the smallest unstable cycle below :data:`dfa.cycles.SUBTICK_LIMIT` ticks: the sub-tick caveat,
+    where simulation diverges from starts the describing function says settle).
     ``controller`` (a ControllerParams whose delay is ``delay``, or None for the spring) is passed to
     :func:`dfa.cycles.limit_cycles`.
     """
@@ -341,6 +343,8 @@ def _growth_xi_dot(
     else:
         res = limit_cycles(Params(mu, beta, sigma), model=model, controller=controller)
     unstable = res.unstable_cycles
+    if unstable and controller is not None and res.caveat is not None:
+        return None, len(unstable)
     if unstable:
         return min(c.amplitude * c.frequency for c in unstable), len(unstable)
     if res.linear_stable is False:

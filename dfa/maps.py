@@ -64,6 +64,7 @@ from ._io import atomic_open, check_memory
 from ._parallel import PARALLEL_BACKENDS, run_in_order
 from .checks import (
     _fmt,
+    check_bool,
     check_bound,
     check_choice,
     check_delay,
@@ -497,7 +498,8 @@ def stability_map(
     Raises
     ------
     DFAValueError, DFATypeError
-        If an input is out of range or not a number, or the map would not fit in memory.
+        If an input is out of range or not a number, a flag (``quantize``, ``preload``, ``progress``) is not
+        True or False, or the map would not fit in memory.
 
     See Also
     --------
@@ -514,17 +516,20 @@ def stability_map(
     ctl, d = check_controller(controller, check_delay(delay))
     jobs = check_jobs("n_jobs", n_jobs)
     how = check_choice("backend", backend, MAP_BACKENDS)
+    quantize = check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
+    preload = check_bool("preload", preload, "pass True (start from the spring preload) or False (from ξ0 = 0)")
+    progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
     if bound is None:  # beyond the fastest start's own travel (dfa.simulation.divergence_bound)
         bound = divergence_bound(0.0, float(np.max(np.abs(speeds))), m)
     rules = check_rules(bound, stable_amplitude, growth, settle)
     check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
     beta, sigma = np.linspace(b0, b1, g), np.linspace(s0, s1, g)
-    pts_b, pts_s, x0, v0 = _points(m, beta, sigma, speeds, bool(preload))
+    pts_b, pts_s, x0, v0 = _points(m, beta, sigma, speeds, preload)
     if preload:
         check_bound(rules[0], float(np.max(np.abs(x0))))  # the rule simulate() applies: the bound lies beyond ξ0
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
     chunks = _chunks(pts_b.size, workers, _chunk_cost(n, ctl))
-    tail = (n, d, bool(quantize), *rules)
+    tail = (n, d, quantize, *rules)
     tasks = [(m, pts_b[c], pts_s[c], x0[c], v0[c], *tail, ctl) for c in chunks]
     _run_chunk(m, pts_b[:1], pts_s[:1], x0[:1], v0[:1], 1, *tail[1:], ctl)  # compile or load the kernel once, first
 
@@ -537,7 +542,7 @@ def stability_map(
     finally:
         bar.close()
     codes, amps, freqs = (np.concatenate([r[k] for r in results]).reshape(len(speeds), g, g) for k in range(3))
-    out = (codes.astype(np.int8), amps, freqs, n, d, bool(quantize), bool(preload))
+    out = (codes.astype(np.int8), amps, freqs, n, d, quantize, preload)
     return StabilityMap(m, speeds, beta, sigma, *out, controller=ctl)
 
 

@@ -122,6 +122,7 @@ from . import _ckernel, _kernel
 from ._frozen import check_shape, freeze_fields
 from .checks import (
     check_beta,
+    check_bool,
     check_bound,
     check_delay,
     check_growth,
@@ -304,7 +305,8 @@ def default_samples(
     462407
     """
     m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
-    amp0 = math.sqrt(2.0 * float(stored_energy(x0, v0, m, bool(quantize))))
+    cap = check_bool("cap", cap, "pass True to cap the length at MAX_DEFAULT_SAMPLES, False for no cap")
+    amp0 = math.sqrt(2.0 * float(stored_energy(x0, v0, m, check_quantize(quantize))))
     td = _decay_time(m, b, s, amp0, d)
     top = MAX_DEFAULT_SAMPLES if cap else 10 * MAX_DEFAULT_SAMPLES
     n = 2.0 * td + 40.0 * 2.0 * math.pi * math.sqrt(m)
@@ -744,6 +746,9 @@ def simulate(
     stability_map : The outcome over a (β, σ) grid.
     passivity_criterion : The proven verdict the simulation is compared with.
     """
+    record = check_bool("record", record, "pass True to keep the trajectory, False for the outcome only")
+    energy = check_bool("energy", energy, "pass True to keep the energy bookkeeping, False for none")
+    progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
     ctl, delay = check_controller(controller, delay, energy)
     m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
     q = check_quantize(quantize)
@@ -763,7 +768,7 @@ def simulate(
     if ctl is not None:
         done, rest = _ckernel.simulate_ckernel(*run[:10], *_controller_args(ctl), rx, rv, stats)
     elif n > CHUNK:
-        done, rest = _run_chunked(*run, progress=bool(progress))
+        done, rest = _run_chunked(*run, progress=progress)
     else:
         done, rest = _kernel.simulate_kernel(*run)
     code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
@@ -820,12 +825,7 @@ def check_quantize(quantize: object) -> bool:
     DFATypeError
         If ``quantize`` is not a bool: a string such as ``"False"`` would otherwise run with the encoder.
     """
-    if not isinstance(quantize, (bool, np.bool_)):
-        raise DFATypeError(
-            f"quantize = {quantize!r} has type {type(quantize).__name__}: it must be True (with the encoder) or "
-            "False (the linear spring); pass a bool"
-        )
-    return bool(quantize)
+    return check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
 
 
 def _controller_args(ctl: ControllerParams) -> tuple[float, float, bool, float]:

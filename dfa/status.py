@@ -39,6 +39,7 @@ __all__ = [
     "ValidationStatus",
     "DesignStatus",
     "ReportStatus",
+    "ZWidthStatus",
 ]
 
 
@@ -272,3 +273,19 @@ class ReportStatus(StatusEnum):
     """Status of a written design report (:class:`dfa.report.ReportResult`)."""
 
     OK = ("ok", "every file of the report written")
+
+
+class ZWidthStatus(StatusEnum):
+    """What a Z-width rests on (:class:`dfa.zwidth.ZWidth`)."""
+
+    OK = ("ok", "every grid point decided, every simulated column monotone in K, no counterexample")
+    CAVEATS = (
+        "caveats",
+        "some grid points are undecided (runs too short to tell) or a simulated column is non-monotone in K "
+        "(see the reasons)",
+    )
+    COUNTEREXAMPLE = (
+        "counterexample",
+        "a grid point diverged at a stiffness the extended criterion proves passive: a criterion bug "
+        "(see counterexamples)",
+    )

@@ -1,6 +1,6 @@
 """Validation of every analytic prediction against the exact simulator.
 
-Four measurements, published whatever they show:
+Six measurements, published whatever they show:
 
 1. **Limit cycles, predicted vs simulated.** For operating points covering
    regions b, c, d and e and μ from 1 to 200, every cycle predicted by the
@@ -25,6 +25,15 @@ Four measurements, published whatever they show:
    :class:`dfa.cycles.GrowthThreshold`) against a fine scan of ξ'0 from ξ0 = 0
    in simulation: the first diverging and the last non-diverging speed, and
    the paper's eq. 45 speed M·ω at the same point.
+6. **Limit cycles with a wall controller** (issue 15): item 1 repeated with the
+   describing function of the controlled loop (D(M) multiplying
+   1 + β_B(1 − e^{−jω})F, delay and amplifier lag) on a small fixed grid of
+   (μ, β, σ) × controllers (:data:`CONTROLLERS`: virtual damper, damper and
+   velocity filter, amplifier lag, one sample of delay), both hold models,
+   against the exact simulator with the same controller; errors published per
+   controller and model, and the unstable cycles within
+   :data:`dfa.cycles.SUBTICK_LIMIT` of the first level counted apart (the
+   sub-tick caveat of :func:`dfa.cycles.subtick_caveat`).
 
 Examples
 --------
@@ -41,8 +50,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .checks import _fmt, check_choice, check_jobs
+from .controller import ControllerParams
 from .criterion import classify_region, passivity_criterion
-from .cycles import growth_threshold, large_cycle_closed_form, limit_cycles
+from .cycles import SUBTICK_LIMIT, growth_threshold, large_cycle_closed_form, limit_cycles
 from .device import Params
 from .errors import DFATypeError
 from .formatting import markdown_table, number, percent
@@ -55,6 +65,8 @@ __all__ = [
     "ValidationResult",
     "validate",
     "cycle_checks",
+    "controller_cycle_checks",
+    "CONTROLLERS",
     "critical_speeds",
     "first_unstable_speed",
     "soundness",
@@ -75,13 +87,23 @@ def _grid(quick: bool) -> list[Params]:
     return [Params(m, b, s) for m in mus for b in betas for s in sigmas]
 
 
-def cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh")) -> list[dict]:
-    """Simulate every predicted cycle of every point (item 1); one record per (point, model, cycle)."""
+def cycle_checks(
+    points, samples: int = 40_000, models=("half-delay", "zoh"), controller: ControllerParams | None = None
+) -> list[dict]:
+    """Simulate every predicted cycle of every point (items 1 and 6); one record per (point, model, cycle).
+
+    With ``controller`` the cycles are those of the controlled loop and the simulations use the same
+    controller (:func:`simulate` with ``controller=``).
+    """
     out = []
     for p in points:
         region = str(classify_region(p.beta, p.sigma, 0.0))
+
+        def run(v: float, p=p):
+            return simulate(p.mu, p.beta, p.sigma, v, samples, record=False, controller=controller)
+
         for model in models:
-            res = limit_cycles(p, model=model, max_amplitude=2000.0)
+            res = limit_cycles(p, model=model, max_amplitude=2000.0, controller=controller)
             for c in res.cycles:
                 rec = dict(
                     mu=p.mu,
@@ -97,7 +119,7 @@ def cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh")) ->
                 )
                 v = c.amplitude * c.frequency
                 if c.stable:
-                    r = simulate(p.mu, p.beta, p.sigma, v, samples, record=False)
+                    r = run(v)
                     persists = r.outcome in ("chatter", "oscillating") and r.frequency is not None
                     rec.update(
                         confirmed=persists,
@@ -110,8 +132,7 @@ def cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh")) ->
                             amplitude_error=r.amplitude / c.amplitude - 1, frequency_error=r.frequency / c.frequency - 1
                         )
                 else:
-                    lo = simulate(p.mu, p.beta, p.sigma, 0.75 * v, samples, record=False)
-                    hi = simulate(p.mu, p.beta, p.sigma, 1.25 * v, samples, record=False)
+                    lo, hi = run(0.75 * v), run(1.25 * v)
                     # separates decay from growth: from below the motion ends smaller than M, from above larger
                     # (unstable, or caught by a larger stable cycle of the same cluster)
                     decays = lo.outcome != "unstable" and lo.amplitude < c.amplitude
@@ -124,6 +145,39 @@ def cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh")) ->
                         above_amplitude=hi.amplitude,
                     )
                 out.append(rec)
+    return out
+
+
+#: Item 6: the wall controllers validated (name, dimensionless groups): β_B = 0.2, ν_c = 0.05, α = 0.5, d = 1.
+CONTROLLERS = (
+    ("damper", ControllerParams(damping=0.2)),
+    ("damper + filter", ControllerParams(damping=0.2, cutoff=0.05)),
+    ("amplifier lag", ControllerParams(lag=0.5)),
+    ("delay 1", ControllerParams(delay=1)),
+)
+
+
+def _controller_grid(quick: bool) -> list[Params]:
+    if quick:  # one point where every controller has a stable and an unstable cycle (the lag's ZOH search is slowest)
+        return [Params(20.0, 0.05, 0.3)]
+    return [Params(m, b, s) for m in (2.0, 5.0, 20.0, 100.0) for b in (0.05, 0.3) for s in (0.1, 0.3)]
+
+
+def controller_cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh"), controllers=CONTROLLERS):
+    """Item 6: :func:`cycle_checks` with each controller of ``controllers`` ((name, ControllerParams) pairs).
+
+    Each record also holds ``controller`` (the name), ``controller_params`` (the groups) and ``subtick``: an
+    unstable cycle below :data:`dfa.cycles.SUBTICK_LIMIT` ticks (its separation is the sub-tick caveat's case).
+    """
+    out = []
+    for name, ctl in controllers:
+        for rec in cycle_checks(points, samples, models, controller=ctl):
+            rec.update(
+                controller=name,
+                controller_params=ctl.as_dict(),
+                subtick=(not rec["stable"]) and rec["amplitude"] < SUBTICK_LIMIT,
+            )
+            out.append(rec)
     return out
 
 
@@ -395,6 +449,7 @@ class ValidationResult:
     samples: int
     status: ValidationStatus = ValidationStatus.OK
     clusters: list = field(default_factory=list)
+    controller_cycles: list = field(default_factory=list)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "status", ValidationStatus.coerce(self.status))
@@ -434,6 +489,47 @@ class ValidationResult:
                     )
                 )
         return out
+
+    def controller_cycle_summary(self) -> list[dict]:
+        """Item 6, per controller and model: stable cycles predicted and persisted, their amplitude and frequency
+        errors (median and worst of abs(simulated/predicted − 1)), unstable cycles predicted and separated (Loeb),
+        and those below :data:`dfa.cycles.SUBTICK_LIMIT` ticks (``subtick``) with how many separated."""
+        out = []
+        names = list(dict.fromkeys(r["controller"] for r in self.controller_cycles))
+        for name in names:
+            for model in ("half-delay", "zoh"):
+                recs = [r for r in self.controller_cycles if r["controller"] == name and r["model"] == model]
+                st = [r for r in recs if r["stable"]]
+                ok = [r for r in st if r.get("confirmed")]
+                un = [r for r in recs if not r["stable"]]
+                sub = [r for r in un if r["subtick"]]
+                out.append(
+                    dict(
+                        controller=name,
+                        model=model,
+                        predicted=len(st),
+                        persisted=len(ok),
+                        amplitude=_stats(r["amplitude_error"] for r in ok),
+                        frequency=_stats(r["frequency_error"] for r in ok),
+                        unstable=len(un),
+                        unstable_confirmed=sum(bool(r["confirmed"]) for r in un),
+                        subtick_unstable=len(sub),
+                        subtick_confirmed=sum(bool(r["confirmed"]) for r in sub),
+                    )
+                )
+        return out
+
+    def controller_errors(self) -> dict:
+        """Item 6 pooled over every controller and model: median and worst amplitude and frequency error of the
+        stable cycles that persisted, and the share of predicted stable cycles that persisted."""
+        st = [r for r in self.controller_cycles if r["stable"]]
+        ok = [r for r in st if r.get("confirmed")]
+        return dict(
+            predicted=len(st),
+            persisted=len(ok),
+            amplitude=_stats(r["amplitude_error"] for r in ok),
+            frequency=_stats(r["frequency_error"] for r in ok),
+        )
 
     def loeb_summary(self) -> dict:
         """How often the stability assigned by the Loeb criterion was confirmed by simulation."""
@@ -507,6 +603,11 @@ class ValidationResult:
             "loeb": self.loeb_summary(),
             "cycles": self.cycle_summary(),
             "clusters": self.clusters,
+            "controller_cycles": self.controller_cycle_summary(),
+            "controller_errors": self.controller_errors(),
+            "controllers": {
+                name: explain_nulls(ctl.as_dict(), {"cutoff": "no velocity filter"}) for name, ctl in CONTROLLERS
+            },
         }
 
     # ----- output
@@ -524,7 +625,39 @@ class ValidationResult:
         ]
         if self.clusters:
             parts.append(cluster_note(self.clusters).rstrip("\n"))
+        if self.controller_cycles:
+            parts += self._md_controller()
         return "\n\n".join(parts) + "\n"
+
+    def _md_controller(self) -> list[str]:
+        rows = [
+            [s["controller"], s["model"], s["predicted"], s["persisted"], _pct(s["amplitude"]["median"]),
+             _pct(s["amplitude"]["worst"]), _pct(s["frequency"]["median"]), _pct(s["frequency"]["worst"]),
+             f"{s['unstable_confirmed']} of {s['unstable']}", f"{s['subtick_confirmed']} of {s['subtick_unstable']}"]
+            for s in self.controller_cycle_summary()
+        ]  # fmt: skip
+        head = ["controller", "model", "stable predicted", "persisted", "amplitude error median", "worst",
+                "frequency error median", "worst", "unstable separated", f"of which M < {SUBTICK_LIMIT:g}"]  # fmt: skip
+        groups = "; ".join(
+            f"{n}: β_B = {c.damping:g}"
+            + (f", ν_c = {c.cutoff:g}" if c.cutoff else "")
+            + f", α = {c.lag:g}, d = {c.delay}"
+            for n, c in CONTROLLERS
+        )
+        pts = sorted({(r["mu"], r["beta"], r["sigma"]) for r in self.controller_cycles})
+        e = self.controller_errors()
+        return [
+            "## 6. Limit cycles with a wall controller",
+            f"The describing function of the controlled loop against the exact simulator with the same controller ({groups}),\n"
+            f"at (μ, β, σ) ∈ {[tuple(float(f'{x:g}') for x in p) for p in pts]}; stable cycles started on the cycle, "
+            "unstable ones 25 % below and above (as in section 1).",
+            markdown_table(head, rows, "llrrrrrrrr"),
+            f"Pooled: {e['persisted']} of {e['predicted']} predicted stable cycles persisted; amplitude error median "
+            f"{_pct(e['amplitude']['median'])}, worst {_pct(e['amplitude']['worst'])}; frequency error median "
+            f"{_pct(e['frequency']['median'])}, worst {_pct(e['frequency']['worst'])}. Unstable cycles below "
+            f"{SUBTICK_LIMIT:g} ticks sit on the steep flank of D(M) just above the first quantization level; the "
+            "limit-cycle and growth verdicts resting on them carry the sub-tick caveat (`dfa.cycles.subtick_caveat`).",
+        ]
 
     def _md_cycles(self, f: dict) -> list[str]:
         rows = [
@@ -664,8 +797,8 @@ def validate(quick: bool = False, n_jobs: int = -1, progress: bool = True) -> Va
     Returns
     -------
     ValidationResult
-        The limit-cycle checks, critical speeds, criterion soundness and cluster thresholds, with
-        their summaries.
+        The limit-cycle checks, critical speeds, criterion soundness, cluster thresholds and the
+        limit-cycle checks with each wall controller (item 6), with their summaries.
 
     Raises
     ------
@@ -697,4 +830,5 @@ def validate(quick: bool = False, n_jobs: int = -1, progress: bool = True) -> Va
         )
     scan = np.arange(0.1, 12.01, 0.2) if quick else np.arange(0.05, 30.001, 0.05)
     clusters = [cluster_threshold(name, p, scan, 10_000 if quick else 40_000) for name, p in CLUSTER_POINTS]
-    return ValidationResult(quick, cycles, speeds, snd, samples, clusters=clusters)
+    ctl_cycles = controller_cycle_checks(_controller_grid(quick), samples=samples)
+    return ValidationResult(quick, cycles, speeds, snd, samples, clusters=clusters, controller_cycles=ctl_cycles)

@@ -63,7 +63,17 @@ from typing import Any
 import numpy as np
 
 from ._parallel import run_in_order
-from .checks import _fmt, check_delay, check_int, check_jobs, check_nonnegative, check_positive, check_real, check_type
+from .checks import (
+    _fmt,
+    check_bool,
+    check_delay,
+    check_int,
+    check_jobs,
+    check_nonnegative,
+    check_positive,
+    check_real,
+    check_type,
+)
 from .controlled_linear import LinearStatus, stable_stiffness
 from .controller import Controller, ControllerParams
 from .controller_passivity import device_controller_criterion
@@ -73,6 +83,7 @@ from .jsonable import explain_nulls
 from .kmax import DIVERGENCE_BOUND, K_RTOL, SAFE, UNDECIDED, UNSAFE, _growth_xi_dot
 from .passivity import colgate_schenkel_damping
 from .simulation import default_samples, divergence_bound, preload_position, simulate
+from .status import ZWidthStatus
 
 __all__ = ["ZWidth", "z_width", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
 
@@ -129,8 +140,9 @@ class ZWidth:
         Divergent grid points at a K the extended criterion proves passive (must be empty).
     linear_passivity_violations : tuple of dict
         Divergent grid points below the Colgate–Schenkel boundary (linear model; not a proof for the device).
-    status : str
-        ``"ok"``, ``"caveats"`` (undecided points or non-monotone columns) or ``"counterexample"``.
+    status : ZWidthStatus
+        ``OK``, ``CAVEATS`` (undecided points or non-monotone columns) or ``COUNTEREXAMPLE``; its value (the JSON
+        ``status``) is ``"ok"``, ``"caveats"`` or ``"counterexample"`` and ``status.message`` says what it means.
     """
 
     device: Device
@@ -149,7 +161,7 @@ class ZWidth:
     df_model: str
     counterexamples: tuple[dict[str, object], ...] = ()
     linear_passivity_violations: tuple[dict[str, object], ...] = ()
-    status: str = "ok"
+    status: ZWidthStatus = ZWidthStatus.OK
 
     def __post_init__(self) -> None:
         fix = "ZWidth is built by dfa.zwidth.z_width; call that instead"
@@ -164,8 +176,13 @@ class ZWidth:
         for name in ZWIDTH_METHODS:
             if self.boundaries[name].shape != (nb,) or len(self.reasons[name]) != nb:
                 raise DFAValueError(f"boundary {name!r} must have one value per B ({nb}); {fix}")
-        if self.status not in ("ok", "caveats", "counterexample"):
-            raise DFAValueError(f"status = {self.status!r} is invalid: it must be ok, caveats or counterexample")
+        st = ZWidthStatus.coerce(self.status)
+        object.__setattr__(self, "status", st)
+        if (st is ZWidthStatus.COUNTEREXAMPLE) != bool(self.counterexamples):
+            raise DFAValueError(
+                f"status = {st.value!r} is invalid with {len(self.counterexamples)} counterexample(s): the status is "
+                f"'counterexample' exactly when there is one; {fix}"
+            )
         for arr in (self.stiffness, self.damping, self.outcome, *self.boundaries.values()):
             arr.flags.writeable = False
 
@@ -217,7 +234,8 @@ class ZWidth:
             "df_model": self.df_model,
             "counterexamples": [dict(c) for c in self.counterexamples],
             "linear_passivity_violations": [dict(c) for c in self.linear_passivity_violations],
-            "status": self.status,
+            "status": self.status.value,
+            "status_message": self.status.message,
             "units": {"stiffness": u["stiffness"], "damping": u["damping"], "velocity": u["velocity"]},
         }
         return explain_nulls(
@@ -305,13 +323,18 @@ def _passivity_judges(dev: Device, b: float, v: float, d: int, fc, fbw):
     return cs, crit
 
 
-def _df_judge(dev: Device, b: float, xi_dot: float, d: int, fc, fbw, model: str):
+def _df_judge(dev: Device, b: float, xi_dot: float, d: int, fc, fbw, model: str, subtick: list | None = None):
+    """Judge of the describing function at damper B; the K it calls undecided under the sub-tick caveat of
+    :mod:`dfa.cycles.caveats` (growth speed unknown with a controller) are appended to ``subtick``."""
+
     def judge(k: float) -> str:
         try:
             p, ctl = dev.params(k), _ctl(k, b, d, fc, fbw).params(dev.period)
         except DFAValueError:
             return UNDECIDED
-        g, _ = _growth_xi_dot(p.mu, p.beta, p.sigma, d, model, None if ctl.is_spring else ctl)
+        g, n = _growth_xi_dot(p.mu, p.beta, p.sigma, d, model, None if ctl.is_spring else ctl)
+        if g is None and n > 0 and subtick is not None:
+            subtick.append(k)
         return UNDECIDED if g is None else (SAFE if g >= xi_dot else UNSAFE)
 
     return judge
@@ -490,6 +513,7 @@ def z_width(
     if df_model not in ("half-delay", "zoh", "pade"):
         raise DFAValueError(f"df_model = {df_model!r} is invalid: it must be half-delay, zoh or pade")
     jobs = check_jobs("n_jobs", n_jobs)
+    progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
     _ctl(1.0, 0.0, d, filter_cutoff, amplifier_bandwidth).params(dev.period)  # bad controller values: refuse first
     ks, bs = _grids(dev, v, d, filter_cutoff, amplifier_bandwidth, g, k_range, b_range)
@@ -517,8 +541,18 @@ def _column(dev, v, d, fc, fbw, ks, b: float, row: np.ndarray, model: str) -> li
         cs, crit = _passivity_judges(dev, b, v, d, fc, fbw)
         out.append(_crossing(cs, ks, "b above the Colgate–Schenkel bound", unit, True)[:2])
         out.append(_crossing(crit, ks, "the extended criterion proves passivity", unit, True)[:2])
-    df = _df_judge(dev, b, dev.xi_dot(v), d, fc, fbw, model)
-    out.append(_crossing(df, ks, "predicted growth speed >= V", unit, True)[:2])
+    subtick: list[float] = []
+    df = _df_judge(dev, b, dev.xi_dot(v), d, fc, fbw, model, subtick)
+    k_df, why = _crossing(df, ks, "predicted growth speed >= V", unit, True)[:2]
+    if why is not None and subtick:  # say when an unknown verdict came from the sub-tick caveat
+        from .cycles import SUBTICK_LIMIT
+
+        why += (
+            f"; growth speed unknown from K = {min(subtick):.5g} {unit} (the describing function's sub-tick caveat: "
+            f"smallest unstable cycle below {SUBTICK_LIMIT:g} ticks, where simulation diverges from starts it says "
+            "settle; see dfa.cycles.caveats)"
+        )
+    out.append((k_df, why))
     out.append(_grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}, "no divergence", unit))
     out.append(_grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}, "rest after every impact", unit))
     return out
@@ -541,7 +575,7 @@ def _assemble(dev, v, d, fc, fbw, vs, ks, bs, codes, cap, n_points, model, worke
     caveat = bool((codes == UNDECIDED_POINT).any()) or any(
         r is not None and "non-monotone" in r for m in ("sim", "rest") for r in reasons[m]
     )
-    status = "counterexample" if ce else ("caveats" if caveat else "ok")
+    status = ZWidthStatus.COUNTEREXAMPLE if ce else (ZWidthStatus.CAVEATS if caveat else ZWidthStatus.OK)
     return ZWidth(
         dev, v, d, fc, fbw, tuple(float(s) for s in vs), ks, bs, arrays, reasons, codes, cap,
         n_points * 2 * len(vs), model, ce, lpv, status,

@@ -62,7 +62,8 @@ condition and ω(M);  :mod:`~dfa.cycles.search` the amplitudes sampled and the e
 :mod:`~dfa.cycles.solve` bracketing and refinement (:func:`limit_cycles`);
 :mod:`~dfa.cycles.stability` the Loeb criterion;  :mod:`~dfa.cycles.results` the result types;
 :mod:`~dfa.cycles.closed_forms` eq. 42-45;  :mod:`~dfa.cycles.growth` the growth band;
-:mod:`~dfa.cycles.controlled` the controller's inputs and the linear loop with it.
+:mod:`~dfa.cycles.controlled` the controller's inputs and the linear loop with it;
+:mod:`~dfa.cycles.caveats` the sub-tick caveat (where "no growth below the smallest unstable cycle" fails).
 
 Stability (Loeb criterion): a cycle is stable when
 ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M > 0, the sign that makes an amplitude increase
@@ -80,6 +81,7 @@ Examples
 from __future__ import annotations
 
 # private names re-exported for the tests and benchmarks that reach into the solver
+from .caveats import SUBTICK_LIMIT, subtick_caveat
 from .characteristic import _W_GRID, _grid_lead, _inv_loop, _Loop, _pade  # noqa: F401
 from .closed_forms import (
     ClosedFormCycles,
@@ -118,4 +120,6 @@ __all__ = [
     "AUTO_MAX_AMPLITUDE",
     "DEFAULT_TIME_BUDGET",
     "INTERVAL_BUDGET",
+    "SUBTICK_LIMIT",
+    "subtick_caveat",
 ]

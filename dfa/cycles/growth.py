@@ -7,8 +7,9 @@ from dataclasses import dataclass
 from ..checks import check_type
 from ..device import Device, Params
 from ..errors import DFAValueError
-from ..jsonable import to_jsonable
+from ..jsonable import explain_nulls, to_jsonable
 from ..status import GrowthStatus
+from .caveats import _NO_CAVEAT
 from .results import LimitCycleResult
 from .solve import limit_cycles
 
@@ -79,8 +80,21 @@ class GrowthThreshold:
         """True for a cluster: more than one unstable cycle."""
         return self.unstable_count > 1
 
+    @property
+    def caveat(self) -> str | None:
+        """The sub-tick caveat of the search (:attr:`LimitCycleResult.caveat`), or None.
+
+        Set when the band's bottom lies just above the first quantization level, where "no growth below it"
+        is not borne out by simulation.
+        """
+        return self.result.caveat
+
     def meaning(self) -> str:
         """What the band means, in words that claim no more than the describing function shows."""
+        text = self._meaning()
+        return text if self.caveat is None else f"{text} Caveat: {self.caveat.removeprefix('sub-tick caveat: ')}."
+
+    def _meaning(self) -> str:
         res = self.result
         if self.status is GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED:
             return f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail})"
@@ -112,7 +126,7 @@ class GrowthThreshold:
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (``dfa limit-cycles --json``, key ``growth_threshold``)."""
-        return to_jsonable(
+        out = to_jsonable(
             {
                 "amplitude": self.amplitude,
                 "frequency": self.frequency,
@@ -143,8 +157,10 @@ class GrowthThreshold:
                 "status": self.status,
                 "status_message": self.status.message,
                 "meaning": self.meaning(),
+                "caveat": self.caveat,
             }
         )
+        return explain_nulls(out, {"caveat": _NO_CAVEAT})
 
 
 def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> GrowthThreshold:

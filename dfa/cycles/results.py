@@ -9,8 +9,9 @@ from ..checks import check_positive
 from ..controller import ControllerParams
 from ..device import Device, Params
 from ..errors import DFATypeError, DFAValueError
-from ..jsonable import to_jsonable
+from ..jsonable import explain_nulls, to_jsonable
 from ..status import SearchStatus
+from .caveats import _NO_CAVEAT, subtick_caveat
 
 
 # ------------------------------------------------------------------ results
@@ -180,6 +181,15 @@ class LimitCycleResult:
         return self.status
 
     @property
+    def caveat(self) -> str | None:
+        """The sub-tick caveat (:func:`dfa.cycles.subtick_caveat`), or None.
+
+        A sentence when the smallest unstable cycle lies just above the first quantization level, where the
+        growth verdict resting on it is contradicted by simulation; None otherwise.
+        """
+        return subtick_caveat(self)
+
+    @property
     def stable_cycles(self) -> tuple:
         """The stable cycles (Loeb's criterion), by increasing amplitude."""
         return tuple(c for c in self.cycles if c.stable)
@@ -217,7 +227,7 @@ class LimitCycleResult:
             Strict-JSON data: the cycles, inputs, completeness, status and detail.
         """
         extra = {} if self.controller is None else {"controller": self.controller.as_dict()}
-        return to_jsonable(
+        out = to_jsonable(
             {
                 **extra,
                 "cycles": [c.as_dict() for c in self.cycles],
@@ -233,8 +243,10 @@ class LimitCycleResult:
                 "linear_stable": self.linear_stable,
                 "linear_model": "zoh",
                 "search_bound": self.search_bound,
+                "caveat": self.caveat,
             }
         )
+        return explain_nulls(out, {"caveat": _NO_CAVEAT})
 
 
 class LimitCycleSearchWarning(RuntimeWarning):

@@ -1,0 +1,122 @@
+"""The describing function's sub-tick caveat (issue 15): where eq. 36's smallest unstable cycle lies just above the
+first quantization level, "no growth below it" is contradicted by exact simulation, so every growth verdict resting
+on it carries a caveat (limit_cycles, growth_threshold, `dfa limit-cycles` text and JSON) or becomes unknown (the
+describing-function K_max with a controller, dfa.kmax._growth_xi_dot, used by the Z-width)."""
+
+import json
+
+import numpy as np
+import pytest
+
+from dfa.controller import ControllerParams
+from dfa.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, subtick_caveat
+from dfa.device import Params
+from dfa.kmax import _growth_xi_dot
+from dfa.render.text import limit_cycle_lines, limit_cycles_dict
+from dfa.simulation import OUTCOMES, simulate_batch
+
+# found by a random search (dfa.cycles.caveats): damper on a slowly filtered velocity (filter pole a = 0.974), d = 0
+P = Params(3.749, 0.0, 0.155)
+CTL = ControllerParams(damping=0.2838, cutoff=0.0042)
+
+
+@pytest.fixture(scope="module")
+def res():
+    return limit_cycles(P, model="zoh", controller=CTL)
+
+
+def test_eq36_subtick_point_df_predicts_settling_below_one_tick(res):
+    st, un = res.stable_cycles, res.unstable_cycles
+    assert len(st) == 1 and st[0].amplitude == pytest.approx(0.4019, abs=1e-3)
+    assert un[0].amplitude == pytest.approx(1.0141, abs=1e-3) and un[0].amplitude < SUBTICK_LIMIT
+
+
+def test_eq36_subtick_point_simulation_diverges_from_sub_tick_starts(res):
+    """What the first harmonic misses: starts of energy amplitude 0.25 and 0.5 tick (below the stable cycle's
+    basin edge M_u = 1.01 by a factor 2 to 4) diverge in exact simulation (15 of 32 at the time of writing)."""
+    w = res.unstable_cycles[0].frequency
+    ang = np.linspace(0.0, 2.0 * np.pi, 16, endpoint=False)
+    x0 = np.concatenate([r * np.cos(ang) for r in (0.25, 0.5)])
+    v0 = np.concatenate([r * np.sin(ang) * w for r in (0.25, 0.5)])
+    b = simulate_batch(P.mu, P.beta, P.sigma, v0, 20_000, xi0=x0, controller=CTL)
+    diverged = int(np.count_nonzero(np.asarray(b.outcome) == OUTCOMES.index("unstable")))
+    assert diverged >= 10
+
+
+def test_eq36_subtick_caveat_on_the_result_and_growth_threshold(res):
+    assert res.caveat is not None and res.caveat == subtick_caveat(res)
+    assert "1.014" in res.caveat and "not excluded" in res.caveat
+    g = growth_threshold(P, model="zoh", controller=CTL)
+    assert g.caveat == res.caveat and "Caveat:" in g.meaning()
+    d = json.loads(json.dumps(g.as_dict()))
+    assert d["caveat"] == res.caveat and "Caveat:" in d["meaning"]
+    assert json.loads(json.dumps(res.as_dict()))["caveat"] == res.caveat
+
+
+def test_eq36_subtick_caveat_in_limit_cycles_text_and_json(res):
+    """The numbers users read: `dfa limit-cycles` prints its lines with limit_cycle_lines and its JSON with
+    limit_cycles_dict."""
+    g = growth_threshold(P, model="zoh", controller=CTL)
+    text = "\n".join(limit_cycle_lines(g, None))
+    assert "Caveat: the smallest unstable cycle (M = 1.014 ticks)" in text
+    d = limit_cycles_dict(g)
+    assert d["caveat"] == d["growth_threshold"]["caveat"] == res.caveat
+
+
+def test_eq36_subtick_growth_speed_with_a_controller_is_unknown():
+    """Before the caveat, the describing-function K_max and the Z-width used M_u·ω = 0.47 ticks/sample here as the
+    speed below which no impact grows; simulation contradicts it, so it is now unknown (None: undecided)."""
+    g, n = _growth_xi_dot(P.mu, P.beta, P.sigma, 0, "zoh", CTL)
+    assert g is None and n == 1
+
+
+def test_eq36_no_caveat_well_above_the_first_level():
+    res = limit_cycles(Params(5.0, 0.1, 0.3), model="zoh")
+    assert res.unstable_cycles[0].amplitude > 2.0
+    assert res.caveat is None and subtick_caveat(res) is None
+    d = res.as_dict()
+    assert d["caveat"] is None and "/caveat" in d["null_reasons"]
+    g = growth_threshold(Params(5.0, 0.1, 0.3), model="zoh")
+    assert "Caveat" not in g.meaning() and g.as_dict()["caveat"] is None
+
+
+def test_eq36_subtick_caveat_spring_text_only():
+    """The paper's spring shows the same failure (random search, dfa.cycles.caveats): its result carries the caveat
+    too, while its describing-function speed is left unchanged (spring-only numbers are kept, issue 15)."""
+    p = Params(1.2433, 0.41264, 0.21593)
+    res = limit_cycles(p, model="zoh", delay=1)
+    assert res.unstable_cycles[0].amplitude < 1.01 and res.caveat is not None
+    g, _ = _growth_xi_dot(p.mu, p.beta, p.sigma, 1, "zoh", None)
+    assert g == pytest.approx(min(c.amplitude * c.frequency for c in res.unstable_cycles))
+
+
+def test_eq36_subtick_caveat_named_in_the_zwidth_df_reason():
+    """A device whose controlled loop at K = 1000 N/m is the point above (μ = 3.749, β = 0, σ = 0.155,
+    β_B = B/(KT) = 0.2838, ν_c = f_c·T = 0.0042): the Z-width's describing-function column says why it stops."""
+    from dfa.device import Device
+    from dfa.zwidth import _column, _df_judge
+
+    dev = Device(mass=3.749e-3, damping=0.0, coulomb=1.55e-3, resolution=1e-5, period=1e-3)
+    seen: list = []
+    assert _df_judge(dev, 0.2838, 0.01, 0, 4.2, None, "zoh", seen)(1000.0) == "undecided" and seen == [1000.0]
+    ks = np.array([900.0, 1000.0])
+    k_df, why = _column(dev, dev.velocity(0.01), 0, 4.2, None, ks, 0.2838, np.zeros(2, dtype=np.int8), "zoh")[3]
+    assert np.isnan(k_df) and "sub-tick caveat" in why and f"below {SUBTICK_LIMIT:g} ticks" in why
+
+
+_CLI = ["limit-cycles", "--mass", "3.749e-3", "--damping", "0", "--coulomb", "1.55e-3", "--resolution", "1e-5",
+        "--period", "1e-3", "--stiffness", "1000", "--virtual-damping", "0.2838", "--velocity-filter", "4.2",
+        "--model", "zoh"]  # fmt: skip
+
+
+def test_eq36_subtick_caveat_printed_by_dfa_limit_cycles(capsys):
+    from dfa.cli import main
+
+    assert main(_CLI) == 0
+    text = capsys.readouterr().out
+    assert "μ = 3.749, β = 0, σ = 0.155" in text
+    assert "Caveat: the smallest unstable cycle (M = 1.014 ticks) lies below 1.25 ticks" in text
+    assert main([*_CLI, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["caveat"].startswith("sub-tick caveat: the smallest unstable cycle (M = 1.014 ticks)")
+    assert d["growth_threshold"]["caveat"] == d["caveat"] and "Caveat:" in d["growth_threshold"]["meaning"]
