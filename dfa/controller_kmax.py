@@ -179,8 +179,8 @@ class ControllerStiffnessLimits:
         Returns
         -------
         dict
-            velocity, k_criterion, k_linear, k_df, k_sim, k_sim_rest (with ``*_reason``), null_reasons,
-            status, evidence, searches, counterexamples, assessment.
+            velocity, k_criterion, k_linear, k_df, k_sim, k_sim_rest (with ``*_reason``), status, evidence,
+            counterexample_check, searches, counterexamples, assessment, and ``null_reasons`` (JSON pointers).
         """
         out: dict[str, object] = {
             "velocity": self.velocity,
@@ -195,7 +195,6 @@ class ControllerStiffnessLimits:
             why[f"{name}_reason"] = "no caveat: the limit stands as stated"
         why["assessment"] = "no stiffness to assess asked"
         out.update(
-            null_reasons=dict(why),
             status=self.status,
             evidence={
                 "speeds": list(self.speeds),

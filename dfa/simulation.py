@@ -810,7 +810,11 @@ def simulate(
     q = check_quantize(quantize)
     auto = samples is None
     fix = "simulate at least one sample"
-    n = default_samples(m, b, s, v0, x0, d, q, controller=ctl) if auto else check_int("samples", samples, minimum=1, fix=fix)
+    n = (
+        default_samples(m, b, s, v0, x0, d, q, controller=ctl)
+        if auto
+        else check_int("samples", samples, minimum=1, fix=fix)
+    )
     if bound is None:  # beyond the start's own travel: a passive run never counts as diverged
         bound = divergence_bound(x0, v0, m)
     bnd, sa, gr, st = check_rules(bound, stable_amplitude, growth, settle)
@@ -828,7 +832,11 @@ def simulate(
     else:
         done, rest = _kernel.simulate_kernel(*run)
     code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
-    suggest = max(4 * n, default_samples(m, b, s, v0, x0, d, q, cap=False, controller=ctl)) if code == _kernel.UNDECIDED else None
+    suggest = (
+        max(4 * n, default_samples(m, b, s, v0, x0, d, q, cap=False, controller=ctl))
+        if code == _kernel.UNDECIDED
+        else None
+    )
     en = None
     if energy:
         h0 = float(stored_energy(x0, v0, m, q))
