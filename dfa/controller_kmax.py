@@ -19,6 +19,8 @@ With the controller's physical B, f_c, τ_a and d held fixed (so β_B = B/(KT) f
   check (``counterexample_check`` says so). The preload start (at rest, spring energy equal to the
   impact's kinetic energy) is kept: the damper's velocity history, the filter and the amplifier start at
   0, the state of a device held still, a legitimate start of the controlled loop.
+* The pure spring controller (B = 0, no filter, no lag) takes the spring's closed forms (eq. 11, the exact
+  linear bound k_gil) and grid: its four limits are :func:`dfa.kmax.design_answer`'s, bit for bit.
 
 Examples
 --------
@@ -55,7 +57,7 @@ from .kmax import (
     evidence_text,
     searched_limits,
 )
-from .stiffness import k_static
+from .stiffness import k_colgate, k_gil, k_max_criterion, k_static
 
 __all__ = ["ControllerStiffnessLimits", "controller_stiffness_limits"]
 
@@ -243,6 +245,25 @@ def _k_criterion(dev: Device, ctl: Controller, v: float) -> float:
     return lo
 
 
+def _bounds(dev: Device, ctl: Controller, v: float) -> tuple[float | None, float, float, float, dict[str, str]]:
+    """K_criterion (None with a lag), K_linear, the grid's reference K and top, and the reasons for None.
+
+    The pure spring (B = 0, no filter, no lag; any delay) uses the spring's closed forms and grid
+    (eq. 11, the exact linear bound, 8 × the largest closed-form bound), so that its limits are
+    :func:`dfa.kmax.design_answer`'s bit for bit.
+    """
+    reasons: dict[str, str] = {}
+    if ctl.damping == 0.0 and ctl.filter_cutoff is None and ctl.amplifier_bandwidth is None:
+        kc0, kl0 = float(k_max_criterion(dev, v, ctl.delay)), k_gil(dev, delay=ctl.delay)
+        return kc0, kl0, kc0, 8.0 * max(k_static(dev), k_colgate(dev, ctl.delay), kl0, kc0), reasons
+    if ctl.amplifier_bandwidth is None:
+        kc: float | None = _k_criterion(dev, ctl, v)
+    else:
+        kc, reasons["k_criterion"], reasons["counterexamples"] = None, LAG_REASON, NO_CHECK_REASON
+    kl = stable_stiffness(dev.mass, dev.damping, dev.period, ctl).k_crit
+    return kc, kl, (kl if kc is None else kc), 8.0 * max(k_static(dev), kl, kc or 0.0), reasons
+
+
 def controller_stiffness_limits(
     device: Device,
     controller: Controller,
@@ -308,14 +329,7 @@ def controller_stiffness_limits(
     if cache is not None:
         check_type("cache", cache, RunCache, "pass a dfa.kmax.RunCache, or None")
     ctl.params(dev.period)  # refuses a filter cutoff above the Nyquist frequency
-    reasons: dict[str, str] = {}
-    if ctl.amplifier_bandwidth is None:
-        kc: float | None = _k_criterion(dev, ctl, v)
-    else:
-        kc, reasons["k_criterion"], reasons["counterexamples"] = None, LAG_REASON, NO_CHECK_REASON
-    kl = stable_stiffness(dev.mass, dev.damping, dev.period, ctl).k_crit
-    k_ref = kl if kc is None else kc
-    top = 8.0 * max(k_static(dev), kl, kc or 0.0)
+    kc, kl, k_ref, top, reasons = _bounds(dev, ctl, v)
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
     ev = _Evidence(dev, vs, ctl.delay, cap, model, RunCache() if cache is None else cache, ctl)
     k_df, k_sim, k_rest, k_range, ce, status = searched_limits(ev, v, n_speeds, kc, k_ref, top, n_grid)
