@@ -122,7 +122,12 @@ def test_eq11_controller_b0_is_the_spring_design_answer():
         assert r.k_criterion == s.k_criterion and r.k_linear == s.k_linear
         for key in ("k_df", "k_sim", "k_sim_rest"):
             assert r.searches[key] == s.searches[key], key
-        assert (r.simulations, r.longest_run, r.k_range, r.status) == (s.simulations, s.longest_run, s.k_range, s.status)
+        assert (r.simulations, r.longest_run, r.k_range, r.status) == (
+            s.simulations,
+            s.longest_run,
+            s.k_range,
+            s.status,
+        )
 
 
 # ---------------------------------------------------------------- describing function
@@ -190,7 +195,11 @@ def test_cli_stiffness_controller_lag_json_nulls_explained(capsys, small_search)
 
 # ---------------------------------------------------------------- default run length
 def test_default_samples_controller_spring_unchanged_and_lag_longer():
-    for mu, beta, sigma, xd, d in ((100.0, 0.3, 1.5, 2.0, 0), (156250.0, 0.125, 0.9554, 0.637, 0), (800.0, 2.0, 0.6, 3.0, 1)):
+    for mu, beta, sigma, xd, d in (
+        (100.0, 0.3, 1.5, 2.0, 0),
+        (156250.0, 0.125, 0.9554, 0.637, 0),
+        (800.0, 2.0, 0.6, 3.0, 1),
+    ):
         n = default_samples(mu, beta, sigma, xd, delay=d)
         assert default_samples(mu, beta, sigma, xd, delay=d, controller=None) == n
         assert default_samples(mu, beta, sigma, xd, controller=ControllerParams(delay=d)) == n
