@@ -684,7 +684,11 @@ def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controlle
     from .controller_kmax import controller_stiffness_limits
 
     if args.plot is not None:
-        _refuse_controller(args, "stiffness --plot")
+        given = ", ".join(f for k, f in _CTL_FLAGS.items() if getattr(args, k, None) is not None)
+        raise UsageError(
+            f"--plot is not yet supported with {given}: the stiffness-speed chart draws the spring only; "
+            "drop --plot for the four K_max with the controller, or drop the controller flags for the chart"
+        )
     dev = inp.device
     assert dev is not None
     src = _stiffness_source(args, inp)

@@ -189,7 +189,7 @@ ERRORS = [
     ),
     (
         ["stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--plot", "/tmp/ccli-x.png"],
-        "not yet supported by `dfa stiffness --plot`",
+        "--plot is not yet supported with --virtual-damping: the stiffness-speed chart draws the spring only",
     ),
     (["stiffness", *BASE, "--velocity", "0.1", "--velocity-filter", "1600"], "Nyquist frequency 1500 Hz"),
     (
