@@ -17,8 +17,9 @@ With the controller's physical B, f_c, τ_a and d held fixed (so β_B = B/(KT) f
   static limit 2c/Δ. Every impact simulated at or below K_criterion that diverges is a counterexample
   to the extended criterion (status ``"counterexample"``); with a lag there is no criterion and no such
   check (``counterexample_check`` says so). The preload start (at rest, spring energy equal to the
-  impact's kinetic energy) is kept: the damper's velocity history, the filter and the amplifier start at
-  0, the state of a device held still, a legitimate start of the controlled loop.
+  impact's kinetic energy) is kept: the damper's velocity estimate and the filter start at 0, the delayed
+  commands and the amplifier's force at the spring's force at ξ0, the steady state of a device held still
+  there, a legitimate start of the controlled loop.
 * The pure spring controller (B = 0, no filter, no lag) takes the spring's closed forms (eq. 11, the exact
   linear bound k_gil) and grid: its four limits are :func:`dfa.kmax.design_answer`'s, bit for bit.
 
@@ -200,7 +201,7 @@ class ControllerStiffnessLimits:
             status=self.status,
             evidence={
                 "speeds": list(self.speeds),
-                "starts": ["impact from ξ0 = 0", "spring preload of equal energy (controller states at 0)"],
+                "starts": ["impact from ξ0 = 0", "spring preload of equal energy (damper velocity and filter at 0)"],
                 "simulations": self.simulations,
                 "simulated_runs": self.simulations,
                 "longest_run_samples": self.longest_run,

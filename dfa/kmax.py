@@ -424,9 +424,10 @@ class _Evidence:
     stiffness K runs with its own groups ``replace(controller, stiffness=K).params(T)`` (β_B = B/(KT) falls
     as K grows), in the simulations and in the growth prediction; a controller whose groups are the pure
     spring's (B = 0, no filter, no lag) is the spring, bit for bit. The preload start (spring energy equal
-    to the impact's kinetic energy, at rest) is kept with a controller: the damper's velocity history
-    (and the filter and amplifier states) start at 0, the state of a device held still at ξ0, a
-    legitimate start of the controlled loop.
+    to the impact's kinetic energy, at rest) is kept with a controller: the damper's velocity estimate
+    and the filter start at 0, the delayed commands and the amplifier's force at the spring's force at ξ0
+    (:mod:`dfa._ckernel`), the steady state of a device held still at ξ0, a legitimate start of the
+    controlled loop.
     """
 
     def __init__(
