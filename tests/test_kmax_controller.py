@@ -245,3 +245,18 @@ def test_default_samples_controller_used_by_simulate_and_search():
     outs, lengths = dfa.kmax.simulate_points([(1e4, 0.1, 0.6, 0.0, 3.0)], 0, 10**6, c)
     assert lengths == [min(run.samples, 10**6)] and outs == [str(run.outcome)]
     assert np.isfinite(dfa.simulation.net_damping(1e4, 0.1, 0, c))
+
+
+def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search):
+    argv = ["stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "30000", "--virtual-damping", "1"]
+    assert main([*argv, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    r = controller_stiffness_limits(DELTA, Controller(30000.0, damping=1.0), 0.1, assess="--stiffness", **SMALL)
+    a = r.assessment.as_dict()
+    assert d["assessment"] == a and d["stiffness_source"] == "--stiffness"
+    assert a["stiffness"] == 30000.0 and a["outcomes"]["impact"] in dfa.simulation.OUTCOMES
+    # the same K's limits: the answer does not depend on the K being assessed (B, f_c, f_bw, d held fixed)
+    assert d["k_sim"] == r.k_sim.value and d["k_criterion"] == r.k_criterion
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "simulated at K = 30000, impact at V" in out and "predicted cycles at K = 30000" in out
