@@ -664,6 +664,51 @@ def bench_controller_kernel(quick: bool) -> str:
     )
 
 
+def bench_controller_design_answer(quick: bool) -> str:
+    """`dfa stiffness --device X --velocity V --virtual-damping B --json` (K_max four ways with a controller).
+
+    Wall time in a fresh process and in-process, as a ratio to one exact controller simulation of 5·10⁴
+    samples (CTL_RUN with a damper β_B = 0.5); goal: under 30 s on 2 cores.
+    """
+    import contextlib
+    import io
+    import subprocess
+
+    from dfa.cli import main as cli_main
+    from dfa.controller import ControllerParams as CP
+
+    one = best_of(lambda: simulate(**CTL_RUN, samples=50_000, record=False, controller=CP(damping=0.5)), 3)
+    cases = [("Delta", "0.1", ["--virtual-damping", "1"]), ("Delta", "0.1", ["--virtual-damping", "1", "--delay", "1"])]
+    if not quick:
+        cases += [("Impulse Engine", "0.1", ["--virtual-damping", "0.05", "--amplifier-bandwidth", "200"])]
+    rows = []
+    for name, v, flags in cases:
+        argv = ["stiffness", "--device", name, "--velocity", v, *flags, "--json"]
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "dfa.cli", *argv], check=True, capture_output=True)
+        fresh = time.perf_counter() - t0
+        with contextlib.redirect_stdout(io.StringIO()):
+            warm = best_of(lambda argv=argv: cli_main(argv), 1)
+        goal = "met" if fresh < 30 else "NOT met"
+        rows.append(f"| {name} | {v} | {' '.join(flags)} | {fresh:.2f} | {warm:.2f} | {warm / one:.0f} | {goal} |")
+    return (
+        "\n".join(
+            [
+                "",
+                "## Design answer with a controller: `dfa stiffness ... --virtual-damping B --json`",
+                "",
+                f"One exact controller simulation (5·10⁴ samples, damper β_B = 0.5): {1e3 * one:.2f} ms; × is the",
+                "in-process time over that one simulation.",
+                "",
+                "| device | V (m/s) | controller flags | fresh process (s) | in process (s) | × one simulation | goal < 30 s |",
+                "|---|---:|---|---:|---:|---:|---|",
+                *rows,
+            ]
+        )
+        + "\n"
+    )
+
+
 def bench_zwidth(quick: bool) -> str:
     """`z_width` of a catalogue device on a 40 × 40 grid (issue 15): wall time on all cores and on one; goal < 60 s."""
     from dfa.zwidth import z_width
@@ -719,6 +764,7 @@ def main() -> int:
     text += bench_find_root(args.quick)
     text += bench_design_answer(args.quick)
     text += bench_controller_kernel(args.quick)
+    text += bench_controller_design_answer(args.quick)
     text += bench_zwidth(args.quick)
     with open(args.out, "w", encoding="utf-8") as fh:
         fh.write(text)

@@ -1,4 +1,4 @@
-"""Largest stiffness with a wall controller: the extended criterion and the exact linear bound (issue 15 item 5).
+"""Largest stiffness with a wall controller, four ways (issue 15 item 5; issue 14 §1 with a controller).
 
 With the controller's physical B, f_c, τ_a and d held fixed (so β_B = B/(KT) falls as K grows):
 
@@ -9,30 +9,56 @@ With the controller's physical B, f_c, τ_a and d held fixed (so β_B = B/(KT) f
   second copy of the formula). Not covered with an amplifier lag (no sound criterion): None and why.
 * ``k_linear``: the top of the stable interval from K = 0 of the exact linear sampled loop
   (:func:`dfa.controlled_linear.stable_stiffness`, all conditions, also with the lag).
-
-The describing-function and simulated K_max with a controller (``design_answer(controller=)``) are not
-computed here: ``k_df`` and ``k_sim`` are None with the reason; use ``dfa map`` with the controller.
+* ``k_df``, ``k_sim``, ``k_sim_rest``: the describing-function and simulated limits, searched and
+  confirmed exactly as for the spring (:func:`dfa.kmax.design_answer`, the same implementation,
+  :func:`dfa.kmax.searched_limits`) with each K's own controller groups in the simulations and in the
+  cycle search (:func:`dfa.cycles.limit_cycles` with ``controller=``). The geometric grid runs from
+  half of K_criterion (with a lag: half of K_linear) to 8 × the largest of K_criterion, K_linear and the
+  static limit 2c/Δ. Every impact simulated at or below K_criterion that diverges is a counterexample
+  to the extended criterion (status ``"counterexample"``); with a lag there is no criterion and no such
+  check (``counterexample_check`` says so). The preload start (at rest, spring energy equal to the
+  impact's kinetic energy) is kept: the damper's velocity estimate and the filter start at 0, the delayed
+  commands and the amplifier's force at the spring's force at ξ0, the steady state of a device held still
+  there, a legitimate start of the controlled loop.
+* The pure spring controller (B = 0, no filter, no lag) takes the spring's closed forms (eq. 11, the exact
+  linear bound k_gil) and grid: its four limits are :func:`dfa.kmax.design_answer`'s, bit for bit.
 
 Examples
 --------
 >>> from dfa.catalogue import get_device
 >>> from dfa.controller import Controller
->>> r = controller_stiffness_limits(get_device("Delta").device, Controller(14500.0, damping=1.0), 0.1)
->>> round(r.k_criterion), r.k_sim is None
-(21916, True)
+>>> r = controller_stiffness_limits(get_device("Delta").device, Controller(14500.0, damping=1.0), 0.1,
+...                                 speeds=2, grid=6)
+>>> round(r.k_criterion), r.k_criterion <= r.k_sim.value, r.k_sim_rest.value <= r.k_sim.value
+(21916, True, True)
+>>> r.status in ("ok", "caveats"), r.counterexamples
+(True, ())
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from .checks import check_positive, check_real, check_type
+import numpy as np
+
+from .checks import _fmt, check_choice, check_int, check_positive, check_real, check_type
 from .controlled_linear import stable_stiffness
 from .controller import Controller
 from .controller_passivity import device_controller_criterion
 from .device import Device
-from .errors import DFAValueError
-from .jsonable import to_jsonable
+from .errors import DFATypeError, DFAValueError
+from .jsonable import explain_nulls
+from .kmax import (
+    DESIGN_MAX_SAMPLES,
+    KMaxAssessment,
+    KSearch,
+    RunCache,
+    _assess,
+    _Evidence,
+    evidence_text,
+    searched_limits,
+)
+from .stiffness import k_colgate, k_gil, k_max_criterion, k_static
 
 __all__ = ["ControllerStiffnessLimits", "controller_stiffness_limits"]
 
@@ -41,15 +67,17 @@ LAG_REASON = (
     "not covered by the criterion: no sound passivity criterion is proven with an amplifier lag; "
     "see `dfa map`/`dfa zwidth`"
 )
-#: Why the describing-function and simulated K_max are absent with a controller.
-NOT_COMPUTED = "not computed with a controller yet; simulate the controller with `dfa map`/`dfa simulate`"
+#: Why no counterexample check is made with an amplifier lag.
+NO_CHECK_REASON = "no counterexample check: with an amplifier lag there is no sound criterion to contradict"
 #: Relative width at which the bisection of K_criterion stops.
 RTOL = 1e-12
+#: Statuses of a result: as :class:`dfa.kmax.KMaxResult`.
+STATUSES = ("ok", "caveats", "counterexample")
 
 
 @dataclass(frozen=True)
 class ControllerStiffnessLimits:
-    """K_max with a controller by the extended criterion and the exact linear bound (module docstring).
+    """K_max with a controller four ways (module docstring); stiffnesses in N/m (rotary N·m/rad).
 
     Attributes
     ----------
@@ -59,15 +87,31 @@ class ControllerStiffnessLimits:
     velocity : float
         Impact speed, m/s (rotary: rad/s), > 0.
     k_criterion : float or None
-        Largest K (N/m) the extended criterion proves passive at ``velocity`` (0 if none); None with a lag.
+        Largest K the extended criterion proves passive at ``velocity`` (0 if none); None with a lag.
     k_linear : float
-        Top of the stable interval from K = 0 of the exact linear loop, N/m (0 if never stable).
-    k_df, k_sim, k_sim_rest : None
-        Not computed with a controller (``reasons``).
+        Top of the stable interval from K = 0 of the exact linear loop (0 if never stable).
+    k_df, k_sim, k_sim_rest : KSearch
+        Searched limits with their evidence (:class:`dfa.kmax.KSearch`; value None with a reason).
     reasons : dict
-        Why each None is None.
+        Why ``k_criterion`` is None (key ``"k_criterion"``), and why there is no counterexample check
+        (``"counterexamples"``), where so.
+    speeds : tuple of float
+        Impact speeds simulated in the search, each from ξ0 = 0 and from the preload.
+    simulations : int
+        Exact simulations the searches and confirmations rest on.
+    longest_run, max_samples : int
+        Longest run of the search (samples) and the cap of every run.
+    df_model : str
+        Hold model of the describing function.
+    k_range : tuple of float
+        Smallest and largest stiffness of the search grid.
+    counterexamples : tuple of dict
+        Divergent impacts at or below ``k_criterion`` (empty unless the extended criterion is wrong).
+    assessment : KMaxAssessment or None
+        The controller's own stiffness assessed, when asked.
     status : str
-        ``"ok"`` or ``"partial"`` (some K_max not computed).
+        ``"ok"``, ``"caveats"`` (non-monotone, undecided-limited or lowered by the confirmation) or
+        ``"counterexample"``.
     """
 
     device: Device
@@ -75,38 +119,103 @@ class ControllerStiffnessLimits:
     velocity: float
     k_criterion: float | None
     k_linear: float
-    k_df: float | None
-    k_sim: float | None
-    k_sim_rest: float | None
+    k_df: KSearch
+    k_sim: KSearch
+    k_sim_rest: KSearch
     reasons: dict
-    status: str
+    speeds: tuple[float, ...]
+    simulations: int
+    longest_run: int
+    max_samples: int
+    df_model: str
+    k_range: tuple[float, float]
+    counterexamples: tuple[dict[str, object], ...] = ()
+    assessment: KMaxAssessment | None = None
+    status: str = "ok"
 
     def __post_init__(self) -> None:
-        check_type("device", self.device, Device, "use controller_stiffness_limits")
-        check_type("controller", self.controller, Controller, "use controller_stiffness_limits")
-        if self.status not in ("ok", "partial"):
-            raise DFAValueError(f"status = {self.status!r} is invalid: it must be 'ok' or 'partial'")
+        fix = "use controller_stiffness_limits"
+        check_type("device", self.device, Device, fix)
+        check_type("controller", self.controller, Controller, fix)
+        check_positive("velocity", self.velocity, fix)
+        if self.k_criterion is not None:
+            check_real("k_criterion", self.k_criterion, fix)
+        check_real("k_linear", self.k_linear, fix)
+        for name in ("k_df", "k_sim", "k_sim_rest"):
+            check_type(name, getattr(self, name), KSearch, fix)
+        for name in ("simulations", "longest_run", "max_samples"):
+            check_int(name, getattr(self, name), 0, fix)
+        check_choice("df_model", self.df_model, ("half-delay", "zoh", "pade"))
+        for name in ("speeds", "k_range", "counterexamples"):
+            if not isinstance(getattr(self, name), tuple):
+                raise DFATypeError(f"{name} = {_fmt(getattr(self, name))} must be a tuple; {fix}")
+        if not isinstance(self.reasons, dict):
+            raise DFATypeError(f"reasons = {_fmt(self.reasons)} must be a dict of str; {fix}")
+        if self.k_criterion is None and not self.reasons.get("k_criterion"):
+            raise DFAValueError("k_criterion = None needs a reason in reasons['k_criterion']; " + fix)
+        if self.assessment is not None:
+            check_type("assessment", self.assessment, KMaxAssessment, fix)
+        if self.status not in STATUSES:
+            raise DFAValueError(f"status = {self.status!r} is invalid: it must be one of {', '.join(STATUSES)}")
+
+    @property
+    def searches(self) -> dict[str, KSearch]:
+        """The three searched limits by name: ``k_df``, ``k_sim`` and ``k_sim_rest``."""
+        return {"k_df": self.k_df, "k_sim": self.k_sim, "k_sim_rest": self.k_sim_rest}
+
+    def evidence_text(self) -> str:
+        """How the simulated limits were found, in one sentence (with the controller held fixed).
+
+        Returns
+        -------
+        str
+            Runs, speeds, stiffness range (device units), run lengths, hold model.
+        """
+        ev = evidence_text(
+            self.device, self.speeds, self.k_range, self.simulations, self.longest_run, self.max_samples, self.df_model
+        )
+        return ev + "; each K with its own β_B = B/(KT), filter, lag and delay held fixed"
 
     def as_dict(self) -> dict[str, object]:
-        """JSON-ready record (SI units); null values explained in ``null_reasons``.
+        """JSON-ready record (SI units): the limits (null with a reason), the evidence, status.
 
         Returns
         -------
         dict
-            velocity, k_criterion, k_linear, k_df, k_sim, k_sim_rest, null_reasons, status.
+            velocity, k_criterion, k_linear, k_df, k_sim, k_sim_rest (with ``*_reason``), status, evidence,
+            counterexample_check, searches, counterexamples, assessment, and ``null_reasons`` (JSON pointers).
         """
-        return to_jsonable(
-            {
-                "velocity": self.velocity,
-                "k_criterion": self.k_criterion,
-                "k_linear": self.k_linear,
-                "k_df": self.k_df,
-                "k_sim": self.k_sim,
-                "k_sim_rest": self.k_sim_rest,
-                "null_reasons": dict(self.reasons),
-                "status": self.status,
-            }
+        out: dict[str, object] = {
+            "velocity": self.velocity,
+            "k_criterion": self.k_criterion,
+            "k_linear": self.k_linear,
+        }
+        why = {k: str(v) for k, v in self.reasons.items()}
+        for name, s in self.searches.items():
+            out[name] = s.value
+            out[f"{name}_reason"] = s.reason
+            why[name] = s.reason or "undefined"
+            why[f"{name}_reason"] = "no caveat: the limit stands as stated"
+        why["assessment"] = "no stiffness to assess asked"
+        out.update(
+            status=self.status,
+            evidence={
+                "speeds": list(self.speeds),
+                "starts": ["impact from ξ0 = 0", "spring preload of equal energy (damper velocity and filter at 0)"],
+                "simulations": self.simulations,
+                "simulated_runs": self.simulations,
+                "longest_run_samples": self.longest_run,
+                "max_samples": self.max_samples,
+                "df_model": self.df_model,
+                "k_range": list(self.k_range),
+                "text": self.evidence_text(),
+            },
+            counterexample_check=self.reasons.get("counterexamples", "every run at or below k_criterion"),
+            searches={k: s.as_dict() for k, s in self.searches.items()},
+            counterexamples=[dict(c) for c in self.counterexamples],
+            assessment=None if self.assessment is None else self.assessment.as_dict(),
         )
+        return explain_nulls(out, {k: v for k, v in why.items() if k != "counterexamples"})
 
 
 def _passive(dev: Device, ctl: Controller, k: float, v: float) -> bool:
@@ -137,8 +246,38 @@ def _k_criterion(dev: Device, ctl: Controller, v: float) -> float:
     return lo
 
 
-def controller_stiffness_limits(device: Device, controller: Controller, velocity: float) -> ControllerStiffnessLimits:
-    """K_max with ``controller`` (B, f_c, f_bw, d fixed) at an impact speed: extended criterion and linear bound.
+def _bounds(dev: Device, ctl: Controller, v: float) -> tuple[float | None, float, float, float, dict[str, str]]:
+    """K_criterion (None with a lag), K_linear, the grid's reference K and top, and the reasons for None.
+
+    The pure spring (B = 0, no filter, no lag; any delay) uses the spring's closed forms and grid
+    (eq. 11, the exact linear bound, 8 × the largest closed-form bound), so that its limits are
+    :func:`dfa.kmax.design_answer`'s bit for bit.
+    """
+    reasons: dict[str, str] = {}
+    if ctl.damping == 0.0 and ctl.filter_cutoff is None and ctl.amplifier_bandwidth is None:
+        kc0, kl0 = float(k_max_criterion(dev, v, ctl.delay)), k_gil(dev, delay=ctl.delay)
+        return kc0, kl0, kc0, 8.0 * max(k_static(dev), k_colgate(dev, ctl.delay), kl0, kc0), reasons
+    if ctl.amplifier_bandwidth is None:
+        kc: float | None = _k_criterion(dev, ctl, v)
+    else:
+        kc, reasons["k_criterion"], reasons["counterexamples"] = None, LAG_REASON, NO_CHECK_REASON
+    kl = stable_stiffness(dev.mass, dev.damping, dev.period, ctl).k_crit
+    return kc, kl, (kl if kc is None else kc), 8.0 * max(k_static(dev), kl, kc or 0.0), reasons
+
+
+def controller_stiffness_limits(
+    device: Device,
+    controller: Controller,
+    velocity: float,
+    *,
+    speeds: int = 6,
+    grid: int = 16,
+    max_samples: int = DESIGN_MAX_SAMPLES,
+    df_model: str = "half-delay",
+    assess: str | None = None,
+    cache: RunCache | None = None,
+) -> ControllerStiffnessLimits:
+    """K_max with ``controller`` (B, f_c, f_bw, d fixed) at an impact speed, four ways (module docstring).
 
     Parameters
     ----------
@@ -149,26 +288,70 @@ def controller_stiffness_limits(device: Device, controller: Controller, velocity
         are held fixed while K varies.
     velocity : float
         Impact speed in m/s (rotary: rad/s), > 0 (sign ignored).
+    speeds : int, optional
+        Impact speeds simulated: V/speeds, 2V/speeds, …, V (default 6), each from two starts.
+    grid : int, optional
+        Points of the geometric stiffness grid (default 16); bisection refines each limit.
+    max_samples : int, optional
+        Longest run in samples (default 10⁶); each run's length is
+        :func:`dfa.simulation.default_samples` with the controller.
+    df_model : {"half-delay", "zoh", "pade"}, optional
+        Hold model of the describing function (default ``"half-delay"``).
+    assess : str, optional
+        Also assess the controller's own stiffness; the text says where it came from (``"given"``,
+        ``"catalogue"``). None (default): no assessment.
+    cache : RunCache, optional
+        Runs and predictions already computed; the result does not depend on it.
 
     Returns
     -------
     ControllerStiffnessLimits
-        ``k_criterion`` (None with an amplifier lag), ``k_linear``; ``k_df``/``k_sim`` None with reasons.
+        ``k_criterion`` (None with an amplifier lag), ``k_linear``, ``k_df``, ``k_sim``, ``k_sim_rest``.
 
     Raises
     ------
     DFAValueError, DFATypeError
-        Bad device, controller or speed.
+        Bad device, controller, speed or search setting.
+
+    See Also
+    --------
+    design_answer : The same four ways for the spring.
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     ctl = check_type("controller", controller, Controller, "build one with dfa.controller.Controller(K, ...)")
     v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
     check_positive("velocity", v, "give an impact speed > 0 in m/s (rotary: rad/s)")
+    n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
+    n_grid = check_int("grid", grid, minimum=2, fix="give at least 2 stiffness grid points")
+    cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")
+    model = check_choice("df_model", df_model, ("half-delay", "zoh", "pade"))
+    if assess is not None:
+        check_choice("assess", assess, ("given", "--stiffness", "catalogue"))
+    if cache is not None:
+        check_type("cache", cache, RunCache, "pass a dfa.kmax.RunCache, or None")
     ctl.params(dev.period)  # refuses a filter cutoff above the Nyquist frequency
-    reasons = {"k_df": NOT_COMPUTED, "k_sim": NOT_COMPUTED, "k_sim_rest": NOT_COMPUTED}
-    if ctl.amplifier_bandwidth is None:
-        kc: float | None = _k_criterion(dev, ctl, v)
-    else:
-        kc, reasons["k_criterion"] = None, LAG_REASON
-    kl = stable_stiffness(dev.mass, dev.damping, dev.period, ctl).k_crit
-    return ControllerStiffnessLimits(dev, ctl, v, kc, kl, None, None, None, reasons, "partial")
+    kc, kl, k_ref, top, reasons = _bounds(dev, ctl, v)
+    vs = v * np.arange(1, n_speeds + 1) / n_speeds
+    ev = _Evidence(dev, vs, ctl.delay, cap, model, RunCache() if cache is None else cache, ctl)
+    k_df, k_sim, k_rest, k_range, ce, status = searched_limits(ev, v, n_speeds, kc, k_ref, top, n_grid)
+    a = None if assess is None else _assess(ev, ctl.stiffness, assess, v, ctl.delay)
+    return ControllerStiffnessLimits(
+        dev,
+        ctl,
+        v,
+        kc,
+        kl,
+        k_df,
+        k_sim,
+        k_rest,
+        reasons,
+        tuple(float(x) for x in vs),
+        ev.runs,
+        ev.longest,
+        cap,
+        model,
+        k_range,
+        ce,
+        a,
+        status,
+    )

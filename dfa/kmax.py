@@ -71,6 +71,7 @@ from typing import Any
 import numpy as np
 
 from .checks import _fmt, check_choice, check_delay, check_int, check_positive, check_real, check_type
+from .controller import Controller, ControllerParams
 from .device import Device
 from .errors import DFATypeError, DFAValueError
 from .jsonable import explain_nulls
@@ -90,13 +91,16 @@ DIVERGENCE_BOUND = 1.0e6
 SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
 
 
-def simulate_points(points: Sequence[tuple[float, ...]], delay: int, max_samples: int):
+def simulate_points(
+    points: Sequence[tuple[float, ...]], delay: int, max_samples: int, controller: ControllerParams | None = None
+):
     """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), and the samples of each run.
 
-    The run length of each point is :func:`dfa.simulation.default_samples`, at most ``max_samples``; a run
-    diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of its start.
-    One place for the many simulations of the design answer, run on threads (one per core): the compiled
-    kernel releases the GIL, and each outcome depends on its own point only.
+    The run length of each point is :func:`dfa.simulation.default_samples` (with ``controller``), at most
+    ``max_samples``; a run diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude
+    of its start. One place for the many simulations of the design answer, run on threads (one per core):
+    the compiled kernel releases the GIL, and each outcome depends on its own point only. ``controller``
+    (dimensionless, its delay equal to ``delay``; None: the spring) runs every point with that controller.
 
     Returns
     -------
@@ -105,13 +109,16 @@ def simulate_points(points: Sequence[tuple[float, ...]], delay: int, max_samples
     """
     jobs = []
     for mu, beta, sigma, xi0, xi_dot0 in points:
-        n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay), max_samples)
+        n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay, controller=controller), max_samples)
         bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
         jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound))
 
     def one(job: tuple) -> str:
         mu, beta, sigma, xi_dot0, n, xi0, bound = job
-        return str(simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound).outcome)
+        run = simulate(
+            mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound, controller=controller
+        )
+        return str(run.outcome)
 
     workers = min(len(jobs), os.cpu_count() or 1)
     if workers > 1:  # the compiled kernel releases the GIL: threads overlap the runs, results are per point
@@ -286,6 +293,8 @@ class KMaxAssessment:
         Unstable cycles predicted (describing function).
     outcomes : dict
         Simulated outcome of an impact at V from ξ0 = 0 (``"impact"``) and from the preload (``"preload"``).
+    passive_reason : str or None
+        Why ``max_passive_velocity`` is None, when not the spring's K > 2c/Δ (a controller's criterion).
     """
 
     stiffness: float
@@ -294,6 +303,7 @@ class KMaxAssessment:
     growth_speed: float | None
     unstable_cycles: int
     outcomes: dict[str, str] = field(default_factory=dict)
+    passive_reason: str | None = None
 
     def as_dict(self) -> dict[str, object]:
         def fin(x):
@@ -312,7 +322,9 @@ class KMaxAssessment:
         }
         why = {
             "max_passive_velocity": (
-                "no passivity guarantee even at rest (K > 2c/Δ)" if mpv is None else "passive at every speed"
+                (self.passive_reason or "no passivity guarantee even at rest (K > 2c/Δ)")
+                if mpv is None
+                else "passive at every speed"
             ),
             "growth_speed": (
                 "unknown: the cycle search was incomplete and found no unstable cycle"
@@ -357,11 +369,11 @@ FAILING = {"unstable": frozenset({"unstable"}), "rest": frozenset({"oscillating"
 
 
 class RunCache:
-    """Outcomes of design runs by their inputs, and growth predictions by (μ, β, σ, d, model).
+    """Outcomes of design runs by their inputs, and growth predictions by (μ, β, σ, d, model, controller).
 
     One cache shared by the searches of a design analysis (:func:`design_answer`, the confirmation and
-    :func:`dfa.speed_chart.stiffness_speed_chart`) simulates each run (μ, β, σ, ξ0, ξ'0, d, run cap) at most
-    once. Results do not depend on it: each search still counts every run it rests on.
+    :func:`dfa.speed_chart.stiffness_speed_chart`) simulates each run (μ, β, σ, ξ0, ξ'0, d, run cap,
+    dimensionless controller) at most once. Results do not depend on it: each search still counts every run it rests on.
 
     Examples
     --------
@@ -375,7 +387,13 @@ class RunCache:
         self.growth: dict[tuple, tuple[float | None, int]] = {}
         self.simulated = 0
 
-    def simulate(self, points: Sequence[tuple[float, float, float, float, float]], delay: int, max_samples: int):
+    def simulate(
+        self,
+        points: Sequence[tuple[float, float, float, float, float]],
+        delay: int,
+        max_samples: int,
+        controller: ControllerParams | None = None,
+    ):
         """Outcomes and run lengths of ``points`` (as :func:`simulate_points`), simulating only the new ones.
 
         Parameters
@@ -386,28 +404,48 @@ class RunCache:
             Computational delay d in samples.
         max_samples : int
             Longest run in samples.
+        controller : ControllerParams, optional
+            The dimensionless controller of every point (part of each run's key); None: the spring.
 
         Returns
         -------
         (list of str, list of int)
             Outcome names and run lengths, one per point.
         """
-        keys = [(tuple(float(x) for x in pt), delay, max_samples) for pt in points]
+        keys = [(tuple(float(x) for x in pt), delay, max_samples, controller) for pt in points]
         todo = list(dict.fromkeys(k for k in keys if k not in self.runs))
         if todo:
-            outs, lengths = simulate_points([k[0] for k in todo], delay, max_samples)
+            outs, lengths = simulate_points([k[0] for k in todo], delay, max_samples, controller)
             self.simulated += len(todo)
             self.runs.update({k: (o, n) for k, o, n in zip(todo, outs, lengths, strict=True)})
         return [self.runs[k][0] for k in keys], [self.runs[k][1] for k in keys]
 
 
 class _Evidence:
-    """Simulations and predictions of one design search, per stiffness (dimensionless inside), through a cache."""
+    """Simulations and predictions of one design search, per stiffness (dimensionless inside), through a cache.
+
+    With a physical ``controller`` (B, f_c, f_bw and its delay, which must be ``delay``, held fixed) each
+    stiffness K runs with its own groups ``replace(controller, stiffness=K).params(T)`` (β_B = B/(KT) falls
+    as K grows), in the simulations and in the growth prediction; a controller whose groups are the pure
+    spring's (B = 0, no filter, no lag) is the spring, bit for bit. The preload start (spring energy equal
+    to the impact's kinetic energy, at rest) is kept with a controller: the damper's velocity estimate
+    and the filter start at 0, the delayed commands and the amplifier's force at the spring's force at ξ0
+    (:mod:`dfa._ckernel`), the steady state of a device held still at ξ0, a legitimate start of the
+    controlled loop.
+    """
 
     def __init__(
-        self, dev: Device, speeds: np.ndarray, delay: int, max_samples: int, model: str, cache: RunCache | None = None
+        self,
+        dev: Device,
+        speeds: np.ndarray,
+        delay: int,
+        max_samples: int,
+        model: str,
+        cache: RunCache | None = None,
+        controller: Controller | None = None,
     ):
         self.dev, self.delay, self.max_samples, self.model = dev, delay, max_samples, model
+        self.controller = controller
         self.cache = RunCache() if cache is None else cache
         self.xi_dots = [dev.xi_dot(float(v)) for v in speeds]
         self.sims: dict[float, list[tuple[float, str, str]]] = {}
@@ -415,11 +453,22 @@ class _Evidence:
         self.runs = 0
         self.longest = 0
 
+    def params(self, k: float) -> tuple[Any, ControllerParams | None]:
+        """The device's groups (μ, β, σ) and the controller's (None: the spring) at stiffness ``k``.
+
+        Raises DFAValueError when a group is not representable at ``k``.
+        """
+        p = self.dev.params(k)
+        if self.controller is None:
+            return p, None
+        c = dataclasses.replace(self.controller, stiffness=k).params(self.dev.period)
+        return p, (None if c.is_spring else c)
+
     def outcomes(self, k: float) -> list[tuple[float, str, str]]:
         """(ξ'0, start, outcome) of every impact simulated at stiffness ``k``."""
         if k not in self.sims:
             try:
-                p = self.dev.params(k)
+                p, c = self.params(k)
             except DFAValueError:  # μ, β or σ not representable at this K: nothing can be decided there
                 self.sims[k] = [(xd, start, "undecided") for xd in self.xi_dots for start in ("impact", "preload")]
                 return self.sims[k]
@@ -428,7 +477,7 @@ class _Evidence:
                 pts.append((p.mu, p.beta, p.sigma, 0.0, xd))
                 pts.append((p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0))
                 tags += [(xd, "impact"), (xd, "preload")]
-            outs, lengths = self.cache.simulate(pts, self.delay, self.max_samples)
+            outs, lengths = self.cache.simulate(pts, self.delay, self.max_samples, c)
             self.runs += len(pts)  # every run this evidence rests on, simulated here or earlier
             self.longest = max(self.longest, *lengths)
             self.sims[k] = [(xd, start, o) for (xd, start), o in zip(tags, outs, strict=True)]
@@ -450,13 +499,13 @@ class _Evidence:
     def growth_xi_dot(self, k: float) -> tuple[float | None, int]:
         if k not in self.growth:
             try:
-                p = self.dev.params(k)
+                p, c = self.params(k)
             except DFAValueError:  # not representable at this K
                 self.growth[k] = (None, 0)
                 return self.growth[k]
-            key = (p.mu, p.beta, p.sigma, self.delay, self.model)
+            key = (p.mu, p.beta, p.sigma, self.delay, self.model) + (() if c is None else (c,))
             if key not in self.cache.growth:
-                self.cache.growth[key] = _growth_xi_dot(p.mu, p.beta, p.sigma, self.delay, self.model)
+                self.cache.growth[key] = _growth_xi_dot(p.mu, p.beta, p.sigma, self.delay, self.model, c)
             self.growth[k] = self.cache.growth[key]
         return self.growth[k]
 
@@ -464,9 +513,11 @@ class _Evidence:
         g, _ = self.growth_xi_dot(k)
         return UNDECIDED if g is None else (SAFE if g >= xi_dot else UNSAFE)
 
-    def counterexamples(self, k_criterion: float) -> tuple[dict[str, object], ...]:
-        """Divergent impacts at stiffnesses the criterion proves passive (there must be none)."""
-        out = []
+    def counterexamples(self, k_criterion: float | None) -> tuple[dict[str, object], ...]:
+        """Divergent impacts at stiffnesses the criterion proves passive (there must be none; None: no criterion)."""
+        out: list[dict[str, object]] = []
+        if k_criterion is None:  # no sound criterion (amplifier lag): nothing to contradict
+            return ()
         for k, rows in sorted(self.sims.items()):
             for xd, start, o in rows:
                 if k <= k_criterion and o == "unstable":
@@ -679,13 +730,8 @@ class KMaxResult:
         str
             The number of runs, the impact speeds and stiffness range (device units), run lengths and hold model.
         """
-        u = self.device.units["velocity"]
-        sp = ", ".join(f"{v:.3g}" for v in self.speeds)
-        return (
-            f"{self.simulations} exact simulations: impacts at {sp} {u}, each from ξ0 = 0 and from the "
-            f"energy preload, over stiffnesses {self.k_range[0]:.4g} to {self.k_range[1]:.4g} "
-            f"{self.device.units['stiffness']}; runs from the loop's time scales, longest {self.longest_run} samples "
-            f"(cap {self.max_samples}); describing function: {self.df_model} hold model, every unstable cycle"
+        return evidence_text(
+            self.device, self.speeds, self.k_range, self.simulations, self.longest_run, self.max_samples, self.df_model
         )
 
     def as_dict(self) -> dict[str, object]:
@@ -736,22 +782,67 @@ class KMaxResult:
         return explain_nulls(out, why)
 
 
+def _passive_speed(dev: Device, k: float, delay: int, controller: Controller | None) -> tuple[float | None, str | None]:
+    """Largest speed the criterion proves passive at K (inf: every speed; None: none), and why None.
+
+    The spring: eq. 11-12 (:func:`dfa.stiffness.max_passive_velocity`). A controller without amplifier
+    lag: the extended criterion (:mod:`dfa.controller_passivity`), passive up to (σ − σ₀)/(β₀ − β) ticks per
+    sample when σ >= σ₀. With a lag there is no sound criterion (None and the reason).
+    """
+    if controller is None:
+        return max_passive_velocity(dev, k, delay), None
+    if controller.amplifier_bandwidth is not None:
+        return None, "no sound passivity criterion with an amplifier lag"
+    from .controller_passivity import device_controller_criterion
+
+    r = device_controller_criterion(dev, dataclasses.replace(controller, stiffness=k), 0.0)
+    if r.sigma < r.sigma0:
+        return None, f"no passivity guarantee even at rest (σ = {r.sigma:.4g} < σ₀ = {r.sigma0:.4g})"
+    return (math.inf if r.critical_velocity is None else r.critical_velocity), None
+
+
+def evidence_text(
+    device: Device,
+    speeds: Sequence[float],
+    k_range: tuple[float, float],
+    simulations: int,
+    longest: int,
+    max_samples: int,
+    df_model: str,
+) -> str:
+    """How searched limits were found, in one sentence (device units): runs, speeds, stiffnesses, run lengths.
+
+    Returns
+    -------
+    str
+        The sentence :meth:`KMaxResult.evidence_text` prints.
+    """
+    u = device.units["velocity"]
+    sp = ", ".join(f"{v:.3g}" for v in speeds)
+    return (
+        f"{simulations} exact simulations: impacts at {sp} {u}, each from ξ0 = 0 and from the "
+        f"energy preload, over stiffnesses {k_range[0]:.4g} to {k_range[1]:.4g} "
+        f"{device.units['stiffness']}; runs from the loop's time scales, longest {longest} samples "
+        f"(cap {max_samples}); describing function: {df_model} hold model, every unstable cycle"
+    )
+
+
 def _assess(ev: _Evidence, k: float, source: str, velocity: float, delay: int) -> KMaxAssessment:
-    """The chosen stiffness at the impact speed: criterion, predicted cycles, simulated outcomes."""
+    """The chosen stiffness at the impact speed: criterion, predicted cycles, simulated outcomes (``ev``'s controller)."""
     dev = ev.dev
     g, count = ev.growth_xi_dot(k)
-    p = dev.params(k)
+    p, c = ev.params(k)
     xd = dev.xi_dot(velocity)
     outs, _ = ev.cache.simulate(
         [(p.mu, p.beta, p.sigma, 0.0, xd), (p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0)],
         delay,
         ev.max_samples,
+        c,
     )
     ev.runs += 2
     gs = None if g is None else (math.inf if math.isinf(g) else dev.velocity(g))
-    return KMaxAssessment(
-        k, source, max_passive_velocity(dev, k, delay), gs, count, {"impact": outs[0], "preload": outs[1]}
-    )
+    mpv, why = _passive_speed(dev, k, delay, ev.controller)
+    return KMaxAssessment(k, source, mpv, gs, count, {"impact": outs[0], "preload": outs[1]}, why)
 
 
 def _none(reason: str) -> KSearch:
@@ -832,14 +923,8 @@ def design_answer(
     cache = RunCache() if cache is None else cache
     ev = _Evidence(dev, vs, d, cap, model, cache)
     kc, kl = float(k_max_criterion(dev, v, d)), k_gil(dev, delay=d)
-    k_df, k_sim, k_rest, k_range = _three_searches(ev, dev, v, d, kc, kl, n_grid)
-    dense_vs = v * np.arange(1, DENSE_FACTOR * n_speeds + 1) / (DENSE_FACTOR * n_speeds)
-    dense = _Evidence(dev, dense_vs, d, cap, model, cache)
-    k_sim = _confirm(k_sim, dense, "unstable")
-    k_rest = _confirm(k_rest, dense, "rest", k_sim.value)
-    ev.runs += dense.runs
-    ce = ev.counterexamples(kc) + dense.counterexamples(kc)
-    caveat = any(s.non_monotone or s.undecided or s.dense_failures for s in (k_df, k_sim, k_rest))
+    top = 8.0 * max(k_static(dev), k_colgate(dev, d), kl, kc)
+    k_df, k_sim, k_rest, k_range, ce, status = searched_limits(ev, v, n_speeds, kc, kc, top, n_grid)
     return KMaxResult(
         dev,
         v,
@@ -861,18 +946,44 @@ def design_answer(
         k_range,
         ce,
         None if k_given is None else _assess(ev, k_given, stiffness_source, v, d),
-        "counterexample" if ce else ("caveats" if caveat else "ok"),
+        status,
     )
 
 
-def _three_searches(ev, dev: Device, v: float, d: int, kc: float, kl: float, n_grid: int):
-    """K_df, K_sim, K_sim_rest over one geometric grid from K_criterion/2 to 8 × the largest closed-form bound."""
-    top = 8.0 * max(k_static(dev), k_colgate(dev, d), kl, kc)
-    if not top > 0:
+def searched_limits(ev: _Evidence, v: float, n_speeds: int, kc: float | None, k_ref: float, top: float, n_grid: int):
+    """K_df, K_sim, K_sim_rest searched and confirmed with ``ev`` (the one implementation, spring or controller).
+
+    The grid runs from ``k_ref``/2 (``k_ref`` itself included) to ``top``; the simulated limits are confirmed at
+    :data:`DENSE_FACTOR` × ``n_speeds`` speeds with ``ev``'s controller; divergent runs at or below ``kc`` are
+    counterexamples (``kc`` None: no criterion, no check). ``ev.runs`` counts every run, confirmation included.
+
+    Returns
+    -------
+    (KSearch, KSearch, KSearch, (float, float), tuple of dict, str)
+        k_df, k_sim, k_sim_rest, the grid's range, the counterexamples and the status
+        (``"ok"``, ``"caveats"`` or ``"counterexample"``).
+    """
+    k_df, k_sim, k_rest, k_range = _three_searches(ev, v, k_ref, top, n_grid)
+    dense_vs = v * np.arange(1, DENSE_FACTOR * n_speeds + 1) / (DENSE_FACTOR * n_speeds)
+    dense = _Evidence(ev.dev, dense_vs, ev.delay, ev.max_samples, ev.model, ev.cache, ev.controller)
+    k_sim = _confirm(k_sim, dense, "unstable")
+    k_rest = _confirm(k_rest, dense, "rest", k_sim.value)
+    ev.runs += dense.runs
+    ce = ev.counterexamples(kc) + dense.counterexamples(kc)
+    caveat = any(s.non_monotone or s.undecided or s.dense_failures for s in (k_df, k_sim, k_rest))
+    return k_df, k_sim, k_rest, k_range, ce, "counterexample" if ce else ("caveats" if caveat else "ok")
+
+
+def _three_searches(ev: _Evidence, v: float, k_ref: float, top: float, n_grid: int):
+    """K_df, K_sim, K_sim_rest over one geometric grid from k_ref/2 (K_criterion/2 for the spring) to ``top``."""
+    dev = ev.dev
+    if not (top > 0 and math.isfinite(top)):
         why = "no search range: the device has neither viscous nor Coulomb friction (b = c = 0)"
+        if top > 0:
+            why = "no search range: no finite closed-form bound to search up to"
         return _none(why), _none(why), _none(why), (0.0, 0.0)
     unit = dev.units["stiffness"]
-    pts = _search_grid(kc, top, n_grid)
+    pts = _search_grid(k_ref, top, n_grid)
     xd = dev.xi_dot(v)
     k_df = _search(lambda k: ev.predicted(k, xd), pts, "predicted growth speed >= V", unit)
     k_sim = _search(ev.no_divergence, pts, "no divergence", unit)

@@ -89,8 +89,9 @@ through :mod:`dfa._ckernel`, exact to rounding at the sample instants as well
 bracketed root of the closed form, breakaway in closed form), with the same
 outcome rules; "rest" then needs the proof that every future command and
 amplifier force stays within ±σ while the device is stuck. A pure spring
-controller runs the spring kernel unchanged. The default run length does not
-yet account for the damper, filter or lag (it uses the controller's delay).
+controller runs the spring kernel unchanged. The default run length then uses
+the controller's net damping β + β_B·G − ½ − d − α in ``a``
+(:func:`default_samples`, :func:`net_damping`).
 
 Examples
 --------
@@ -249,11 +250,11 @@ def divergence_bound(xi0: float, xi_dot0: float, mu: float, floor: float = 1.0e6
     return max(floor, 100.0 * (amp0 + 1.0))
 
 
-def _decay_time(mu: float, beta: float, sigma: float, amp0: float, delay: int) -> float:
-    """Samples for the averaged amplitude dA/dτ = −aA − c to fall from ``amp0`` to 1 tick (inf: never)."""
+def _decay_time(mu: float, net: float, sigma: float, amp0: float) -> float:
+    """Samples for the averaged amplitude dA/dτ = −aA − c, a = net/(2μ), to fall from ``amp0`` to 1 tick (inf: never)."""
     if amp0 <= 1.0:
         return 0.0
-    a = (beta - 0.5 - delay) / (2.0 * mu)
+    a = net / (2.0 * mu)
     c = 2.0 * sigma / (math.pi * math.sqrt(mu))
     if a > 0.0:
         return math.log((amp0 + c / a) / (1.0 + c / a)) / a
@@ -263,6 +264,55 @@ def _decay_time(mu: float, beta: float, sigma: float, amp0: float, delay: int) -
     if threshold <= amp0 or threshold <= 1.0:
         return math.inf
     return math.log((threshold - 1.0) / (threshold - amp0)) / -a
+
+
+def damper_gain(mu: float, controller: ControllerParams) -> float:
+    """In-phase gain G of the controller's damper at the spring's frequency ω₀ = 1/√μ (rad/sample).
+
+    The damper's force on the plant, per unit of the velocity jωξ, at ω = ω₀ (first harmonic, exact
+    zero-order hold, no quantization): backward difference, filter F, delay d, hold and amplifier lag::
+
+        G = Re{ (1 − e^{−jω})² F(e^{jω}) e^{−jωd} / ((jω)² (1 + jωα)) },
+        F(z) = (1 − a) z⁻¹/(1 − a z⁻¹)   (F = 1 without filter)
+
+    so that the damper adds β_B·G to the physical damping β: G → 1 as ω → 0 (a plain damper), less
+    with a filter whose cutoff is near or below ω₀ or a delay that turns the damper's force out of
+    phase with the velocity (G < 0: the damper then pumps energy in).
+
+    Examples
+    --------
+    >>> round(damper_gain(1.0e6, ControllerParams(damping=1.0)), 4)      # slow oscillation: a plain damper
+    1.0
+    >>> damper_gain(100.0, ControllerParams(damping=1.0, cutoff=0.001)) < 0.2   # filtered well below ω₀
+    True
+    """
+    w = 1.0 / math.sqrt(mu)
+    z1 = complex(math.cos(w), -math.sin(w))  # e^{−jω}
+    a = controller.filter_pole
+    f = 1.0 if controller.cutoff is None else (1.0 - a) * z1 / (1.0 - a * z1)
+    g = (1.0 - z1) ** 2 * f * z1**controller.delay / ((1j * w) ** 2 * (1.0 + 1j * w * controller.lag))
+    return g.real
+
+
+def net_damping(mu: float, beta: float, delay: int, controller: ControllerParams | None = None) -> float:
+    """Net averaged damping of the loop, β − ½ − d for the spring; with a controller − α + β_B·G.
+
+    The hold's half sample, the computational delay d and the amplifier lag α (the low-frequency
+    delay of 1/(1 + jωα)) each turn the spring's force into a negative damping of their length (the
+    linear rule K < b/(T(d + ½) + τ_a) of issue 15); the damper adds β_B·G
+    (:func:`damper_gain`). Without a controller (or with the pure spring) exactly β − ½ − d.
+
+    Examples
+    --------
+    >>> net_damping(100.0, 0.3, 1)
+    -1.2
+    >>> round(net_damping(1.0e6, 0.3, 0, ControllerParams(damping=1.0, lag=0.5)), 4)   # 0.3 − ½ − 0.5 + 1
+    0.3
+    """
+    net = beta - 0.5 - delay
+    if controller is None or controller.is_spring:
+        return net
+    return net - controller.lag + controller.damping * damper_gain(mu, controller)
 
 
 def _check_run(mu, beta, sigma, xi_dot0, xi0, delay) -> tuple[float, float, float, float, float, int]:
@@ -287,15 +337,23 @@ def default_samples(
     quantize: bool = True,
     *,
     cap: bool = True,
+    controller: ControllerParams | None = None,
 ) -> int:
     """Run length (samples) long enough for the outcome to show (module docstring, "Default run length").
 
     2 t_d + 40 periods 2π√μ, where t_d is the time the averaged amplitude
-    equation dA/dτ = −(β − ½ − d)/(2μ)·A − 2σ/(π√μ) takes from the energy
-    amplitude A₀ = √(2 H_T(0)) (eq. 18-19) to one tick; at least
+    equation dA/dτ = −a·A − 2σ/(π√μ), a = (β − ½ − d)/(2μ), takes from the
+    energy amplitude A₀ = √(2 H_T(0)) (eq. 18-19) to one tick; at least
     ``MIN_DEFAULT_SAMPLES`` (the paper's 5·10⁴) and, with ``cap``, at most
     ``MAX_DEFAULT_SAMPLES`` (10⁷). Without ``cap`` an infinite t_d gives
     ``MAX_DEFAULT_SAMPLES`` times 10.
+
+    With a ``controller`` (its delay replaces ``delay``) the damping in ``a`` is the controller's
+    low-frequency net damping β + β_B·G − ½ − d − α (:func:`net_damping`): the damper counts with its
+    in-phase gain G at the spring's frequency (filter, delay and lag included, :func:`damper_gain`),
+    the amplifier lag α as a further delay. When that net damping is <= 0, t_d is infinite unless
+    Coulomb friction stops the amplitude first (as for the spring). The pure spring controller gives
+    the spring's length exactly.
 
     Examples
     --------
@@ -303,11 +361,14 @@ def default_samples(
     50000
     >>> default_samples(156250.0, 0.125, 0.9554, 0.637)  # Impulse Engine at 50 kg, 0.1 m/s
     462407
+    >>> default_samples(156250.0, 0.125, 0.9554, 0.637, controller=ControllerParams(damping=0.5))  # damper helps
+    415065
     """
+    ctl, delay = check_controller(controller, delay)
     m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
     cap = check_bool("cap", cap, "pass True to cap the length at MAX_DEFAULT_SAMPLES, False for no cap")
     amp0 = math.sqrt(2.0 * float(stored_energy(x0, v0, m, check_quantize(quantize))))
-    td = _decay_time(m, b, s, amp0, d)
+    td = _decay_time(m, net_damping(m, b, d, ctl), s, amp0)
     top = MAX_DEFAULT_SAMPLES if cap else 10 * MAX_DEFAULT_SAMPLES
     n = 2.0 * td + 40.0 * 2.0 * math.pi * math.sqrt(m)
     if not n < top:
@@ -754,7 +815,11 @@ def simulate(
     q = check_quantize(quantize)
     auto = samples is None
     fix = "simulate at least one sample"
-    n = default_samples(m, b, s, v0, x0, d, q) if auto else check_int("samples", samples, minimum=1, fix=fix)
+    n = (
+        default_samples(m, b, s, v0, x0, d, q, controller=ctl)
+        if auto
+        else check_int("samples", samples, minimum=1, fix=fix)
+    )
     if bound is None:  # beyond the start's own travel: a passive run never counts as diverged
         bound = divergence_bound(x0, v0, m)
     bnd, sa, gr, st = check_rules(bound, stable_amplitude, growth, settle)
@@ -772,7 +837,11 @@ def simulate(
     else:
         done, rest = _kernel.simulate_kernel(*run)
     code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
-    suggest = max(4 * n, default_samples(m, b, s, v0, x0, d, q, cap=False)) if code == _kernel.UNDECIDED else None
+    suggest = (
+        max(4 * n, default_samples(m, b, s, v0, x0, d, q, cap=False, controller=ctl))
+        if code == _kernel.UNDECIDED
+        else None
+    )
     en = None
     if energy:
         h0 = float(stored_energy(x0, v0, m, q))

@@ -347,9 +347,9 @@ def _runs(dev: Device, k: float, b: float, ctl: ControllerParams, xi_dots, cap: 
     out = []
     for xd in xi_dots:
         for x0, v0 in ((0.0, xd), (preload_position(p.mu, xd), 0.0)):
-            # run length from the loop's time scales, counting the damper as damping at low frequency (an
-            # estimate: a run too short to tell is "undecided", never a verdict)
-            n = min(default_samples(p.mu, p.beta + ctl.damping, p.sigma, v0, x0, ctl.delay), cap)
+            # run length from the loop's time scales with the controller's net damping (an estimate: a run
+            # too short to tell is "undecided", never a verdict)
+            n = min(default_samples(p.mu, p.beta, p.sigma, v0, x0, ctl.delay, controller=ctl), cap)
             out.append((p.mu, p.beta, p.sigma, x0, v0, n, divergence_bound(x0, v0, p.mu, DIVERGENCE_BOUND)))
     return out
 

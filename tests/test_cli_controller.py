@@ -189,7 +189,7 @@ ERRORS = [
     ),
     (
         ["stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--plot", "/tmp/ccli-x.png"],
-        "not yet supported by `dfa stiffness --plot`",
+        "--plot is not yet supported with --virtual-damping: the stiffness-speed chart draws the spring only",
     ),
     (["stiffness", *BASE, "--velocity", "0.1", "--velocity-filter", "1600"], "Nyquist frequency 1500 Hz"),
     (
@@ -231,7 +231,9 @@ def test_eq11_controller_stiffness_json_equals_api(capsys):
     d = run_json(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
     r = controller_stiffness_limits(DEV, Controller(K, damping=1.0, delay=1), 0.1)
     assert d["k_criterion"] == r.k_criterion and d["k_linear"] == r.k_linear
-    assert d["k_df"] is None and d["k_sim"] is None and d["controller"]["delay"] == 1
+    assert d["controller"]["delay"] == 1
+    for key in ("k_df", "k_sim", "k_sim_rest"):  # searched with the controller (tests/test_kmax_controller.py)
+        assert d[key] == d["searches"][key]["value"] and (d[key] is not None or d["null_reasons"][f"/{key}"])
     code, out, _ = run(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
     assert code == 0 and f"{r.k_criterion:.5g} N/m" in out and f"{r.k_linear:.5g} N/m" in out
     assert "controller: K = 14500 N/m, B = 1 N·s/m, delay 1 sample" in out

@@ -1,0 +1,262 @@
+"""K_max four ways with a wall controller (issue 15 item 5, issue 14 §1): the simulated limit against an
+independent bisection over controller simulations written here, the orderings theory requires (criterion <=
+simulated no-divergence, rest <= no-divergence, or the counterexample reported), the B = 0 controller equal to the
+spring's design answer, the describing-function limit against limit_cycles(controller=), `dfa stiffness` with the
+controller flags, and default_samples(controller=)."""
+
+import functools
+import json
+import math
+
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+import dfa
+import dfa.controller_kmax as ck
+from dfa.cli import main
+from dfa.controlled_linear import controlled_spectral_radius
+from dfa.controller import Controller, ControllerParams
+from dfa.controller_kmax import controller_stiffness_limits
+from dfa.cycles import limit_cycles
+from dfa.device import Params
+from dfa.kmax import design_answer
+from dfa.simulation import default_samples, divergence_bound, preload_position, simulate
+
+DELTA = dfa.get_device("Delta").device
+SMALL = {"speeds": 2, "grid": 6}
+
+
+def _groups(dev, k, b, d=0, fc=None, fbw=None):
+    """(μ, β, σ) and the controller's groups at K, written here: β_B = B/(KT), ν_c = f_c T, α = 1/(2π f_bw T)."""
+    t = dev.period
+    p = Params(dev.mass / (k * t * t), dev.damping / (k * t), dev.coulomb / (k * dev.resolution))
+    lag = 0.0 if fbw is None else 1.0 / (2 * math.pi * fbw * t)
+    return p, ControllerParams(damping=b / (k * t), delay=d, cutoff=None if fc is None else fc * t, lag=lag)
+
+
+def _check_theory(r):
+    """The orderings theory requires, or the counterexample the result reports."""
+    assert r.counterexamples == (), f"counterexample to the extended criterion: {r.counterexamples}"
+    assert r.status in ("ok", "caveats")
+    if r.k_sim.value is not None:
+        if r.k_criterion is not None:
+            assert r.k_criterion <= r.k_sim.value * (1 + 1e-9)
+    else:
+        assert "above" in r.k_sim.reason
+    if r.k_sim_rest.value is not None and r.k_sim.value is not None:
+        assert r.k_sim_rest.value <= r.k_sim.value * (1 + 1e-9)
+    d = json.loads(json.dumps(r.as_dict(), allow_nan=False))
+    for key in ("k_df", "k_sim", "k_sim_rest"):
+        assert d[key] == r.searches[key].value
+        if d[key] is None:
+            assert d["null_reasons"][f"/{key}"] == r.searches[key].reason
+
+
+# ---------------------------------------------------------------- independent bisection
+def _diverges(dev, k, speeds, b, d=0):
+    """True if an impact at one of ``speeds`` (from ξ0 = 0 or the preload) diverges at K with damper B."""
+    p, c = _groups(dev, k, b, d)
+    for v in speeds:
+        xd = v * dev.period / dev.resolution
+        for x0, v0 in ((0.0, xd), (preload_position(p.mu, xd), 0.0)):
+            n = min(default_samples(p.mu, p.beta, p.sigma, v0, x0, controller=c), 10**6)
+            bound = divergence_bound(x0, v0, p.mu, 1e6)
+            run = simulate(p.mu, p.beta, p.sigma, v0, n, xi0=x0, record=False, bound=bound, controller=c)
+            if run.outcome == "unstable":
+                return True
+    return False
+
+
+def test_eq11_controller_k_sim_matches_independent_bisection():
+    v, b = 0.1, 1.0
+    r = controller_stiffness_limits(DELTA, Controller(14500.0, damping=b), v, speeds=3, grid=8)
+    speeds = [v * i / 3 for i in (1, 2, 3)]
+    # the grid written here: 8 geometric points from K_criterion/2 to 8 × the largest bound, and K_criterion;
+    # safety is not monotone in K near this limit, so the bisection starts from the same bracket as the search
+    top = 8 * max(r.k_criterion, r.k_linear, 2 * DELTA.coulomb / DELTA.resolution)
+    assert r.k_range == (r.k_criterion / 2, pytest.approx(top, rel=1e-12))
+    grid = sorted({*np.geomspace(r.k_criterion / 2, top, 8), r.k_criterion})
+    first = next(i for i, k in enumerate(grid) if _diverges(DELTA, k, speeds, b))
+    assert grid[first - 1] >= r.k_criterion
+    lo, hi = grid[first - 1], grid[first]
+    while hi - lo > 1e-3 * hi:
+        mid = math.sqrt(lo * hi)
+        lo, hi = (lo, mid) if _diverges(DELTA, mid, speeds, b) else (mid, hi)
+    assert not r.k_sim.non_monotone
+    assert r.k_sim.searched_value == pytest.approx(lo, rel=5e-3)
+    assert r.k_sim.first_failure == pytest.approx(hi, rel=5e-3)
+    assert r.k_sim.value <= r.k_sim.searched_value
+    assert (r.k_sim.value < r.k_sim.searched_value) == bool(r.k_sim.dense_failures)
+    assert r.k_criterion < r.k_sim.value  # the extended criterion holds, with margin
+
+
+# ---------------------------------------------------------------- orderings on the catalogue
+def _controllers(dev, k):
+    """A damper (β_B = 0.2 at K), the damper behind a filter at 0.05 cycles/sample with a delay, an amplifier lag."""
+    t = dev.period
+    b = 0.2 * k * t
+    return {
+        "damper": Controller(k, damping=b),
+        "filter": Controller(k, damping=b, delay=1, filter_cutoff=0.05 / t),
+        "lag": Controller(k, damping=b, amplifier_bandwidth=1.0 / (2 * math.pi * 0.3 * t)),
+    }
+
+
+@pytest.mark.parametrize("kind", ["damper", "filter", "lag"])
+@pytest.mark.parametrize("name", ["Delta", "Impulse Engine"])
+def test_eq11_controller_kmax_orderings_catalogue(name, kind):
+    e = dfa.get_device(name)
+    ctl = _controllers(e.device, e.stiffness)[kind]
+    r = controller_stiffness_limits(e.device, ctl, 0.1, **SMALL)
+    _check_theory(r)
+    assert (r.k_criterion is None) == (kind == "lag")
+    assert r.simulations > 0 and len(r.speeds) == 2 and r.k_range[0] < r.k_range[1]
+
+
+def test_eq11_controller_b0_is_the_spring_design_answer():
+    for dev, v, d in ((DELTA, 0.1, 0), (dfa.get_device("Impulse Engine").device, 0.2, 1)):
+        r = controller_stiffness_limits(dev, Controller(100.0, delay=d), v, **SMALL)
+        s = design_answer(dev, v, d, **SMALL)
+        assert r.k_criterion == s.k_criterion and r.k_linear == s.k_linear
+        for key in ("k_df", "k_sim", "k_sim_rest"):
+            assert r.searches[key] == s.searches[key], key
+        assert (r.simulations, r.longest_run, r.k_range, r.status) == (
+            s.simulations,
+            s.longest_run,
+            s.k_range,
+            s.status,
+        )
+
+
+# ---------------------------------------------------------------- describing function
+def _growth(dev, k, b, d=0):
+    """Smallest M·ω over the unstable cycles (inf: none and a stable linear loop; 0: an unstable linear loop)."""
+    p, c = _groups(dev, k, b, d)
+    res = limit_cycles(p, model="half-delay", controller=c)
+    if res.unstable_cycles:
+        return min(cy.amplitude * cy.frequency for cy in res.unstable_cycles)
+    return 0.0 if res.linear_stable is False else math.inf
+
+
+@pytest.mark.parametrize("b, d", [(1.0, 0), (0.5, 1)])
+def test_eq36_controller_k_df_against_limit_cycles(b, d):
+    v = 0.1
+    r = controller_stiffness_limits(DELTA, Controller(14500.0, damping=b, delay=d), v, **SMALL)
+    s = r.k_df
+    assert s.value is not None and s.first_failure is not None
+    xd = DELTA.xi_dot(v)
+    if not s.non_monotone:
+        assert _growth(DELTA, s.value, b, d) >= xd
+        assert _growth(DELTA, s.first_failure, b, d) < xd
+        assert s.first_failure <= s.value * (1 + 3e-3)
+
+
+# ---------------------------------------------------------------- dfa stiffness
+@pytest.fixture
+def small_search(monkeypatch):
+    monkeypatch.setattr(ck, "controller_stiffness_limits", functools.partial(controller_stiffness_limits, **SMALL))
+
+
+def test_cli_stiffness_controller_text_and_json(capsys, small_search):
+    argv = ["stiffness", "--device", "delta", "--velocity", "0.1", "--virtual-damping", "1"]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    r = controller_stiffness_limits(DELTA, Controller(14500.0, damping=1.0), 0.1, assess="catalogue", **SMALL)
+    for s in (r.k_df, r.k_sim, r.k_sim_rest):
+        assert f"{s.value:.5g} N/m" in out
+    assert f"{r.simulations} exact simulations" in out and "only the criterion is a proof" in out
+    assert "largest passive speed at K = 14500 (extended criterion)" in out
+    a = r.assessment
+    assert f"{a.max_passive_velocity:.4g} m/s" in out
+    assert f"{a.outcomes['impact']} (from ξ0 = 0), {a.outcomes['preload']} (preload)" in out
+    assert main([*argv, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert (d["k_df"], d["k_sim"], d["k_sim_rest"]) == (r.k_df.value, r.k_sim.value, r.k_sim_rest.value)
+    assert d["k_criterion"] == r.k_criterion and d["k_linear"] == r.k_linear
+    assert d["evidence"]["simulations"] == d["evidence"]["simulated_runs"] == r.simulations
+    assert d["assessment"]["source"] == "catalogue" and d["stiffness_source"] == "catalogue"
+    assert d["controller"]["damping"] == 1.0 and d["status"] == r.status
+
+
+def test_cli_stiffness_controller_lag_json_nulls_explained(capsys, small_search):
+    from test_cli_json_null_reasons import unexplained_nulls
+
+    argv = ["stiffness", "--device", "delta", "--velocity", "0.1", "--amplifier-bandwidth", "500", "--json"]
+    assert main(argv) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["k_criterion"] is None and d["null_reasons"]["/k_criterion"] == ck.LAG_REASON
+    assert d["counterexample_check"] == ck.NO_CHECK_REASON
+    assert d["assessment"]["max_passive_velocity"] is None
+    assert "amplifier lag" in d["assessment"]["null_reasons"]["/max_passive_velocity"]
+    assert unexplained_nulls(d) == []
+
+
+# ---------------------------------------------------------------- default run length
+def test_default_samples_controller_spring_unchanged_and_lag_longer():
+    for mu, beta, sigma, xd, d in (
+        (100.0, 0.3, 1.5, 2.0, 0),
+        (156250.0, 0.125, 0.9554, 0.637, 0),
+        (800.0, 2.0, 0.6, 3.0, 1),
+    ):
+        n = default_samples(mu, beta, sigma, xd, delay=d)
+        assert default_samples(mu, beta, sigma, xd, delay=d, controller=None) == n
+        assert default_samples(mu, beta, sigma, xd, controller=ControllerParams(delay=d)) == n
+    # Impulse Engine at 50 kg: the lag's extra delay α = 0.2 makes the net damping more negative: longer
+    n = default_samples(156250.0, 0.125, 0.9554, 0.637)
+    assert default_samples(156250.0, 0.125, 0.9554, 0.637, controller=ControllerParams(lag=0.2)) > n
+    # a damper that pays for the hold: shorter (net damping β + β_B G − ½ > 0)
+    assert default_samples(156250.0, 0.125, 0.9554, 0.637, controller=ControllerParams(damping=2.0)) < n
+    # a damper whose lag eats all of it: no decay at all, Coulomb alone: as for the spring with σ small
+    no_decay = default_samples(1e4, 0.0, 0.0, 5.0, controller=ControllerParams(damping=0.4, lag=0.5))
+    assert no_decay == dfa.simulation.MAX_DEFAULT_SAMPLES
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    log_mu=st.floats(2.0, 5.0),
+    beta=st.floats(0.0, 1.0),
+    beta_b=st.floats(0.0, 2.0),
+    cutoff=st.one_of(st.none(), st.floats(0.02, 0.45)),
+    lag=st.floats(0.0, 1.5),
+    delay=st.integers(0, 2),
+)
+def test_default_samples_controller_decaying_linear_run_rests(log_mu, beta, beta_b, cutoff, lag, delay):
+    """A run of default length of a loop the exact linear analysis calls decaying ends at rest (no encoder, no
+    Coulomb: the linear loop), not undecided: the length covers the decay."""
+    mu = 10**log_mu
+    c = ControllerParams(damping=beta_b, delay=delay, cutoff=cutoff, lag=lag)
+    rho = controlled_spectral_radius(mu, beta, c)
+    assume(rho < 1.0 - 1e-7)  # decays (a margin above rounding), slowly or fast
+    xd = 10.0
+    n = default_samples(mu, beta, 0.0, xd, quantize=False, controller=c)
+    if n >= dfa.simulation.MAX_DEFAULT_SAMPLES:  # no decay predicted: the cap; keep the test's time modest
+        assume(-math.log(rho) * n * 3 / 8 > 1.0)
+    run = simulate(mu, beta, 0.0, xd, None, quantize=False, record=False, controller=c, bound=1e12)
+    assert run.samples == n
+    assert run.outcome == "rest", (n, rho, run.outcome)
+
+
+def test_default_samples_controller_used_by_simulate_and_search():
+    c = ControllerParams(damping=0.5, lag=0.3)
+    run = simulate(1e4, 0.1, 0.6, 3.0, None, controller=c, record=False)
+    assert run.samples == default_samples(1e4, 0.1, 0.6, 3.0, controller=c)
+    outs, lengths = dfa.kmax.simulate_points([(1e4, 0.1, 0.6, 0.0, 3.0)], 0, 10**6, c)
+    assert lengths == [min(run.samples, 10**6)] and outs == [str(run.outcome)]
+    assert np.isfinite(dfa.simulation.net_damping(1e4, 0.1, 0, c))
+
+
+def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search):
+    argv = ["stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "30000", "--virtual-damping", "1"]
+    assert main([*argv, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    r = controller_stiffness_limits(DELTA, Controller(30000.0, damping=1.0), 0.1, assess="--stiffness", **SMALL)
+    a = r.assessment.as_dict()
+    assert d["assessment"] == a and d["stiffness_source"] == "--stiffness"
+    assert a["stiffness"] == 30000.0 and a["outcomes"]["impact"] in dfa.simulation.OUTCOMES
+    # the same K's limits: the answer does not depend on the K being assessed (B, f_c, f_bw, d held fixed)
+    assert d["k_sim"] == r.k_sim.value and d["k_criterion"] == r.k_criterion
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "simulated at K = 30000, impact at V" in out and "predicted cycles at K = 30000" in out
