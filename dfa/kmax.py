@@ -66,7 +66,7 @@ import os
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -335,15 +335,24 @@ class KMaxAssessment:
         return explain_nulls(out, why)
 
 
-def _growth_xi_dot(
-    mu: float, beta: float, sigma: float, delay: int, model: str, controller: Any = None
-) -> tuple[float | None, int]:
-    """Smallest speed amplitude M·ω (ticks/sample) over every unstable cycle, and their count.
+class Growth(NamedTuple):
+    """The describing function's growth prediction at one operating point (:func:`_growth_xi_dot`).
 
-    inf: no growth predicted (no unstable cycle, stable linear loop, complete search); 0: growth from any
-    size (no unstable cycle, unstable linear loop); None: unknown (incomplete search, none found; or, with a
-    controller, the smallest unstable cycle below :data:`dfa.cycles.SUBTICK_LIMIT` ticks: the sub-tick caveat,
-    where simulation diverges from starts the describing function says settle).
+    ``xi_dot``: smallest speed amplitude M·ω (ticks/sample) over every unstable cycle; inf: no growth predicted
+    (no unstable cycle, stable linear loop, complete search); 0: growth from any size (no unstable cycle, unstable
+    linear loop); None: unknown (incomplete search, none found). ``unstable``: number of unstable cycles. ``subtick``: the
+    smallest unstable cycle lies below :data:`dfa.cycles.SUBTICK_LIMIT` ticks (the sub-tick caveat of
+    :mod:`dfa.cycles.caveats`), so that "no growth below ``xi_dot``" is not a prediction to rely on.
+    """
+
+    xi_dot: float | None
+    unstable: int
+    subtick: bool
+
+
+def _growth_xi_dot(mu: float, beta: float, sigma: float, delay: int, model: str, controller: Any = None) -> Growth:
+    """The describing function's growth prediction (:class:`Growth`) at (μ, β, σ), delay and hold model.
+
     ``controller`` (a ControllerParams whose delay is ``delay``, or None for the spring) is passed to
     :func:`dfa.cycles.limit_cycles`.
     """
@@ -355,13 +364,30 @@ def _growth_xi_dot(
     else:
         res = limit_cycles(Params(mu, beta, sigma), model=model, controller=controller)
     unstable = res.unstable_cycles
-    if unstable and controller is not None and res.caveat is not None:
-        return None, len(unstable)
     if unstable:
-        return min(c.amplitude * c.frequency for c in unstable), len(unstable)
+        return Growth(min(c.amplitude * c.frequency for c in unstable), len(unstable), res.caveat is not None)
     if res.linear_stable is False:
-        return 0.0, 0
-    return (math.inf, 0) if res.complete else (None, 0)
+        return Growth(0.0, 0, False)
+    return Growth(math.inf if res.complete else None, 0, False)
+
+
+def df_verdict(growth: Growth, xi_dot: float) -> str:
+    """The describing function's verdict on impacts up to ``xi_dot`` (ticks/sample): SAFE, UNSAFE or UNDECIDED.
+
+    UNSAFE when growth is predicted from below ``xi_dot``; SAFE when it is predicted only from above, unless the
+    sub-tick caveat holds (then UNDECIDED: simulation has diverged from starts the first harmonic says settle,
+    spring and controller alike, :mod:`dfa.cycles.caveats`); UNDECIDED when the prediction is unknown.
+
+    Examples
+    --------
+    >>> df_verdict(Growth(0.5, 1, False), 0.4), df_verdict(Growth(0.5, 1, True), 0.4), df_verdict(Growth(0.5, 1, True), 0.6)
+    ('safe', 'undecided', 'unsafe')
+    """
+    if growth.xi_dot is None:
+        return UNDECIDED
+    if growth.xi_dot < xi_dot:
+        return UNSAFE
+    return UNDECIDED if growth.subtick else SAFE
 
 
 #: Outcomes that fail each simulated limit; "undecided" neither passes nor fails (it is counted as not safe).
@@ -384,7 +410,7 @@ class RunCache:
 
     def __init__(self) -> None:
         self.runs: dict[tuple, tuple[str, int]] = {}
-        self.growth: dict[tuple, tuple[float | None, int]] = {}
+        self.growth: dict[tuple, Growth] = {}
         self.simulated = 0
 
     def simulate(
@@ -449,7 +475,7 @@ class _Evidence:
         self.cache = RunCache() if cache is None else cache
         self.xi_dots = [dev.xi_dot(float(v)) for v in speeds]
         self.sims: dict[float, list[tuple[float, str, str]]] = {}
-        self.growth: dict[float, tuple[float | None, int]] = {}
+        self.growth: dict[float, Growth] = {}
         self.runs = 0
         self.longest = 0
 
@@ -496,12 +522,12 @@ class _Evidence:
     def rest(self, k: float) -> str:
         return self.judge(k, "rest")
 
-    def growth_xi_dot(self, k: float) -> tuple[float | None, int]:
+    def growth_xi_dot(self, k: float) -> Growth:
         if k not in self.growth:
             try:
                 p, c = self.params(k)
             except DFAValueError:  # not representable at this K
-                self.growth[k] = (None, 0)
+                self.growth[k] = Growth(None, 0, False)
                 return self.growth[k]
             key = (p.mu, p.beta, p.sigma, self.delay, self.model) + (() if c is None else (c,))
             if key not in self.cache.growth:
@@ -510,8 +536,7 @@ class _Evidence:
         return self.growth[k]
 
     def predicted(self, k: float, xi_dot: float) -> str:
-        g, _ = self.growth_xi_dot(k)
-        return UNDECIDED if g is None else (SAFE if g >= xi_dot else UNSAFE)
+        return df_verdict(self.growth_xi_dot(k), xi_dot)
 
     def counterexamples(self, k_criterion: float | None) -> tuple[dict[str, object], ...]:
         """Divergent impacts at stiffnesses the criterion proves passive (there must be none; None: no criterion)."""
@@ -830,7 +855,8 @@ def evidence_text(
 def _assess(ev: _Evidence, k: float, source: str, velocity: float, delay: int) -> KMaxAssessment:
     """The chosen stiffness at the impact speed: criterion, predicted cycles, simulated outcomes (``ev``'s controller)."""
     dev = ev.dev
-    g, count = ev.growth_xi_dot(k)
+    g, count, subtick = ev.growth_xi_dot(k)
+    g = None if subtick else g  # the sub-tick caveat: the growth speed is not a threshold to rely on
     p, c = ev.params(k)
     xd = dev.xi_dot(velocity)
     outs, _ = ev.cache.simulate(

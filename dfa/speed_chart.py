@@ -280,8 +280,8 @@ def stiffness_speed_chart(
         pairs = [rows[2 * i][2:] + rows[2 * i + 1][2:] for i in range(len(vs))]
         v_sim.append(_largest_safe(["unstable" not in p and "undecided" not in p for p in pairs], vs))
         v_rest.append(_largest_safe([p == ("rest", "rest") for p in pairs], vs))
-        g, _ = ev.growth_xi_dot(float(k))
-        v_df.append(math.nan if g is None else min(top, dev.velocity(g) if math.isfinite(g) else math.inf))
+        g, _, subtick = ev.growth_xi_dot(float(k))
+        v_df.append(math.nan if g is None or subtick else min(top, dev.velocity(g) if math.isfinite(g) else math.inf))
     kc = np.geomspace(lo, hi, 200)
     vc = []
     for k in kc:

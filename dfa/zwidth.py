@@ -80,7 +80,7 @@ from .controller_passivity import device_controller_criterion
 from .device import Device
 from .errors import DFAValueError
 from .jsonable import explain_nulls
-from .kmax import DIVERGENCE_BOUND, K_RTOL, SAFE, UNDECIDED, UNSAFE, _growth_xi_dot
+from .kmax import DIVERGENCE_BOUND, K_RTOL, SAFE, UNDECIDED, UNSAFE, _growth_xi_dot, df_verdict
 from .passivity import colgate_schenkel_damping
 from .simulation import default_samples, divergence_bound, preload_position, simulate
 from .status import ZWidthStatus
@@ -325,17 +325,18 @@ def _passivity_judges(dev: Device, b: float, v: float, d: int, fc, fbw):
 
 def _df_judge(dev: Device, b: float, xi_dot: float, d: int, fc, fbw, model: str, subtick: list | None = None):
     """Judge of the describing function at damper B; the K it calls undecided under the sub-tick caveat of
-    :mod:`dfa.cycles.caveats` (growth speed unknown with a controller) are appended to ``subtick``."""
+    :mod:`dfa.cycles.caveats` (growth speed not relied on, spring and controller alike) are appended to ``subtick``."""
 
     def judge(k: float) -> str:
         try:
             p, ctl = dev.params(k), _ctl(k, b, d, fc, fbw).params(dev.period)
         except DFAValueError:
             return UNDECIDED
-        g, n = _growth_xi_dot(p.mu, p.beta, p.sigma, d, model, None if ctl.is_spring else ctl)
-        if g is None and n > 0 and subtick is not None:
+        growth = _growth_xi_dot(p.mu, p.beta, p.sigma, d, model, None if ctl.is_spring else ctl)
+        verdict = df_verdict(growth, xi_dot)
+        if verdict == UNDECIDED and growth.subtick and subtick is not None:
             subtick.append(k)
-        return UNDECIDED if g is None else (SAFE if g >= xi_dot else UNSAFE)
+        return verdict
 
     return judge
 

@@ -11,7 +11,7 @@ import pytest
 from dfa.controller import ControllerParams
 from dfa.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, subtick_caveat
 from dfa.device import Params
-from dfa.kmax import _growth_xi_dot
+from dfa.kmax import SAFE, UNDECIDED, UNSAFE, _growth_xi_dot, df_verdict
 from dfa.render.text import limit_cycle_lines, limit_cycles_dict
 from dfa.simulation import OUTCOMES, simulate_batch
 
@@ -63,11 +63,14 @@ def test_eq36_subtick_caveat_in_limit_cycles_text_and_json(res):
     assert d["caveat"] == d["growth_threshold"]["caveat"] == res.caveat
 
 
-def test_eq36_subtick_growth_speed_with_a_controller_is_unknown():
+def test_eq36_subtick_growth_speed_with_a_controller_is_not_relied_on():
     """Before the caveat, the describing-function K_max and the Z-width used M_u·ω = 0.47 ticks/sample here as the
-    speed below which no impact grows; simulation contradicts it, so it is now unknown (None: undecided)."""
-    g, n = _growth_xi_dot(P.mu, P.beta, P.sigma, 0, "zoh", CTL)
-    assert g is None and n == 1
+    speed below which no impact grows; simulation contradicts it, so impacts below it are now undecided (growth
+    predicted from above it stays unsafe)."""
+    growth = _growth_xi_dot(P.mu, P.beta, P.sigma, 0, "zoh", CTL)
+    assert growth.subtick and growth.unstable == 1 and growth.xi_dot is not None
+    assert df_verdict(growth, 0.5 * growth.xi_dot) == UNDECIDED
+    assert df_verdict(growth, 1.5 * growth.xi_dot) == UNSAFE
 
 
 def test_eq36_no_caveat_well_above_the_first_level():
@@ -80,14 +83,18 @@ def test_eq36_no_caveat_well_above_the_first_level():
     assert "Caveat" not in g.meaning() and g.as_dict()["caveat"] is None
 
 
-def test_eq36_subtick_caveat_spring_text_only():
+def test_eq36_subtick_caveat_spring_alike():
     """The paper's spring shows the same failure (random search, dfa.cycles.caveats): its result carries the caveat
-    too, while its describing-function speed is left unchanged (spring-only numbers are kept, issue 15)."""
+    and, as with a controller, its describing function no longer calls impacts below M_u·ω safe (one rule)."""
     p = Params(1.2433, 0.41264, 0.21593)
     res = limit_cycles(p, model="zoh", delay=1)
     assert res.unstable_cycles[0].amplitude < 1.01 and res.caveat is not None
-    g, _ = _growth_xi_dot(p.mu, p.beta, p.sigma, 1, "zoh", None)
-    assert g == pytest.approx(min(c.amplitude * c.frequency for c in res.unstable_cycles))
+    growth = _growth_xi_dot(p.mu, p.beta, p.sigma, 1, "zoh", None)
+    assert growth.subtick and growth.xi_dot == pytest.approx(
+        min(c.amplitude * c.frequency for c in res.unstable_cycles)
+    )
+    assert df_verdict(growth, 0.5 * growth.xi_dot) == UNDECIDED
+    assert df_verdict(growth._replace(subtick=False), 0.5 * growth.xi_dot) == SAFE
 
 
 def test_eq36_subtick_caveat_named_in_the_zwidth_df_reason():
