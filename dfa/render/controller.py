@@ -15,13 +15,11 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..controller_check import LAG_WHY, NOT_COVERED, ControllerCheck
 from ..formatting import number
 from ..jsonable import explain_nulls, to_jsonable
 
-__all__ = ["NOT_COVERED", "controller_check_rows", "controller_dict", "controller_line"]
-
-#: What `dfa check` says where no passivity criterion covers the controller (amplifier lag).
-NOT_COVERED = "not covered by the criterion; see `dfa map`/`dfa zwidth`"
+__all__ = ["NOT_COVERED", "check_table_rows", "controller_check_rows", "controller_dict", "controller_line"]
 
 
 def _g(x: float | None, digits: int = 4) -> str:
@@ -169,3 +167,24 @@ def controller_check_rows(r: Any, cs: Any, vu: str) -> list[list[str]]:
         rows.append(["initial position ξ0", f"{r.xi0:.4g} ticks ({r.position:.4g} {r.device.units['position']})"])
     rows += _criterion_rows(r, vu)
     return rows + _colgate_rows(cs, r.device.damping, r.device.units["damping"])
+
+
+def check_table_rows(chk: ControllerCheck) -> list[list[str]]:
+    """The table of `dfa check` (and of the design report) for a :class:`~dfa.controller_check.ControllerCheck`.
+
+    Parameters
+    ----------
+    chk : ControllerCheck
+        The passivity check with the controller.
+
+    Returns
+    -------
+    list of list of str
+        :func:`controller_check_rows` where the check is covered; with an amplifier lag the speed,
+        "not covered" and why.
+    """
+    dev = chk.device
+    if chk.criterion is None or chk.colgate_schenkel is None:
+        speed = f"{chk.velocity:.4g} {dev.units['velocity']}"
+        return [["speed", speed], ["passive", NOT_COVERED], ["why", LAG_WHY]]
+    return controller_check_rows(chk.criterion, chk.colgate_schenkel, dev.units["velocity"])
