@@ -1171,12 +1171,14 @@ def _cmd_report(args: argparse.Namespace) -> int:
     from .formatting import json_dumps
     from .report import design_report
 
-    _refuse_controller(args, "report")
     if args.device is None and not any(getattr(args, k, None) is not None for k in (*_PHYS_FLAGS, "counts")):
         args.device = DEFAULT_DEVICE
     check_output_folder("--out", args.out, create=True)  # the parent must exist; the folder is created
     inp = _resolve(args, dimensionless=False)
     assert inp.device is not None
+    ctl = _controller(args, inp.device, inp.stiffness)  # None: the spring (no flag, or B = 0 without filter/lag)
+    if args.zwidth is not None and args.zwidth < 0:
+        raise UsageError(f"--zwidth {args.zwidth} is invalid: give the points per axis (0: no Z-width section)")
     _xd, v = _speed(args, inp, required=False)
     summary = _read_validation(args.validation) if args.validation is not None else None
     os.makedirs(args.out, exist_ok=True)
@@ -1191,6 +1193,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
         validation=summary,
         force=args.force,
         zwidth_grid=args.zwidth,
+        controller=ctl,
     )
     if args.json:
         print(json_dumps(res.as_dict()))
@@ -1460,7 +1463,8 @@ def _add_report(sub: Any) -> None:
         "--zwidth",
         type=_integer("--zwidth"),
         metavar="N",
-        help="add a Z-width section on an N x N grid (K against virtual damping B; default: none)",
+        help="Z-width section on an N x N grid (K against virtual damping B; default: none for the spring, "
+        "16 with a controller flag; 0: none)",
     )
     _add_progress_args(p)
     _add_controller_args(p)
