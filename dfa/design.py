@@ -272,6 +272,7 @@ class DesignAnalysis:
             why.update(zwidth="impact speed 0 or zwidth_grid=0: no Z-width computed")
             why.update(controller_limits="impact speed 0: K_max with the controller needs a speed > 0")
             rec.update(self._controller_record())
+            _explain_filter_nulls(rec)
         return explain_nulls(rec, why)
 
     def _controller_record(self) -> dict[str, Any]:
@@ -307,7 +308,7 @@ class DesignAnalysis:
                 "stability_map": self.stability_map.as_dict(),
                 "design_answer": None if self.design_answer is None else self.design_answer.as_dict(),
                 "speed_chart": None if self.speed_chart is None else self.speed_chart.as_dict(),
-                "zwidth": None if self.zwidth is None else self.zwidth.as_dict(),
+                "zwidth": None if self.zwidth is None else _zwidth_record(self.zwidth),
                 "catalogue": self.catalogue,
                 "validation": self.validation,
                 "samples": self.samples,
@@ -316,6 +317,26 @@ class DesignAnalysis:
                 "status_message": self.status.message,
             }
         )
+
+
+def _zwidth_record(z: ZWidth) -> dict[str, Any]:
+    """The Z-width's JSON with the meaning of a null in its per-B ``reason`` lists (no caveat at that B)."""
+    rec: dict[str, Any] = z.as_dict()
+    for method in rec["boundaries"].values():
+        explain_nulls(method, {"reason": "null: no caveat at that B (the value is plain)"})
+    return rec
+
+
+def _explain_filter_nulls(obj: Any) -> None:
+    """Explain the null ``cutoff`` of every nested ``controller`` record (its dimensionless groups): no filter."""
+    if isinstance(obj, list):
+        for x in obj:
+            _explain_filter_nulls(x)
+    elif isinstance(obj, dict):
+        for key, value in obj.items():
+            if key == "controller" and isinstance(value, dict) and "cutoff" in value:
+                explain_nulls(value, {"cutoff": "no velocity filter"})
+            _explain_filter_nulls(value)
 
 
 def _catalogue_notes(entry: CatalogueEntry | None) -> dict[str, Any] | None:
