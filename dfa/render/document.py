@@ -31,7 +31,7 @@ def _samples(n: int) -> str:
 
 def verdict_text(a: DesignAnalysis) -> str:
     """The verdict paragraph: what the criterion proves, at which speed and delay, and what simulation found."""
-    if a.controller is not None:
+    if getattr(a, "controller", None) is not None:  # read as an attribute: a namespace of the fields also renders
         return controller_verdict_text(a)
     dev, crit, lim, k, v = a.device, a.criterion, a.limits, a.stiffness, a.velocity
     assert crit is not None and lim is not None
@@ -59,7 +59,7 @@ def verdict_text(a: DesignAnalysis) -> str:
 def _simulated_text(a: DesignAnalysis) -> str:
     """What the speed scan of exact simulations found (with the controller, if any)."""
     u = a.device.units
-    with_ctl = " with the controller" if a.controller is not None else ""
+    with_ctl = " with the controller" if getattr(a, "controller", None) is not None else ""
     if a.simulated_xi_dot:
         return (
             f"In exact simulation{with_ctl} an impact at {number(a.simulated_velocity)} {u['velocity']} diverges: the "
