@@ -480,7 +480,13 @@ def _cycle_points(nyq, cycles) -> list[tuple[complex, bool, float]]:
         (
             complex(
                 loop_response(
-                    nyq.params, c.frequency, c.amplitude, model=nyq.model, delay=nyq.delay, pade_order=nyq.pade_order
+                    nyq.params,
+                    c.frequency,
+                    c.amplitude,
+                    model=nyq.model,
+                    delay=nyq.delay,
+                    pade_order=nyq.pade_order,
+                    controller=getattr(nyq, "controller", None),  # the loop drawn: with its controller
                 )
             ),
             bool(c.stable),

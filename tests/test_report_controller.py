@@ -309,3 +309,21 @@ def test_spring_report_unchanged_golden_from_before_the_controller():
         assert set(new) == set(old) and golden.compare_json(old, new) == []
         md = design_markdown(a, {n: f"caption of {n}" for n in NAMES}, lambda n: f"figures/{n}.png")
         assert md == old_md
+
+
+def test_fig6_nyquist_cycle_marks_lie_on_the_locus_with_a_controller():
+    """The report's Nyquist figure marks each cycle at L(jω; M) of the loop drawn, with its controller: on −1/D(M).
+
+    (Before, the mark was the spring's L, off the controller's curve.)
+    """
+    from dfa.loop import nyquist_locus_response, quantizer_df
+    from dfa.plotting import _cycle_points
+
+    dev = dfa.get_device("impulse").device
+    cp = Controller(80.0, 0.05, 1, 100.0, 200.0).params(dev.period)
+    p = dev.params(80.0)
+    res = dfa.limit_cycles(p, model="zoh", controller=cp)
+    assert res.cycles
+    ny = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles], model="zoh", controller=cp)
+    for pt, _stable, m in _cycle_points(ny, res):
+        assert abs(pt - (-1.0 / quantizer_df(m))) <= 1e-8
