@@ -46,7 +46,9 @@ class ReportResult:
     figures : tuple of Path
         PNG files written (only with Markdown; HTML embeds its figures).
     numbers : dict
-        Headline numbers (μ, β, σ, region, passive, K_max, speeds in ticks/sample, cycle amplitudes).
+        Headline numbers (μ, β, σ, region, passive, K_max, speeds in ticks/sample, cycle amplitudes); with a
+        controller those of the extended criterion and of K_max with it, ``k_linear`` and the ``controller``
+        object of `dfa check --json` (nulls explained in ``null_reasons``).
     status : ReportStatus
         ``OK``.
     analysis : DesignAnalysis or None
