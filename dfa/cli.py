@@ -563,9 +563,8 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
 def _check_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, xd: float, v: float | None) -> int:
     """`dfa check` with a controller: the extended criterion and Colgate–Schenkel; with a lag, not covered."""
-    from .controller_passivity import device_controller_criterion
-    from .passivity import colgate_schenkel_damping
-    from .render.controller import NOT_COVERED, controller_check_rows
+    from .controller_check import controller_check
+    from .render.controller import check_table_rows
 
     dev = inp.device
     assert dev is not None  # _controller refuses a controller without a device
@@ -574,34 +573,13 @@ def _check_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, x
             "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
         )
     vel = dev.velocity(xd) if v is None else v
-    if ctl.amplifier_bandwidth is not None:
-        reason = (
-            "no sound passivity criterion is proven with an amplifier lag (the force varies within a sample), "
-            "and the Colgate–Schenkel condition assumes the hold drives the device directly"
-        )
-        if args.json:
-            rec = {"passive": None, "status": "not_covered", "status_message": f"{NOT_COVERED}: {reason}"}
-            explain_nulls(rec, {"passive": NOT_COVERED})
-            _emit(_ctl_json({**rec, "velocity": abs(vel), "device": dev.name}, ctl, inp))
-            return 0
-        print(inp.label)
-        _print_ctl(ctl, inp)
-        print(_table([["speed", f"{abs(vel):.4g} {dev.units['velocity']}"], ["passive", NOT_COVERED], ["why", reason]]))
-        return 0
-    r = device_controller_criterion(dev, ctl, vel, position=args.position or 0.0, quantized=not args.no_quantization)
-    cs = colgate_schenkel_damping(ctl, dev.period)
+    chk = controller_check(dev, ctl, vel, position=args.position or 0.0, quantized=not args.no_quantization)
     if args.json:
-        d = r.as_dict()
-        csd = cs.as_dict()
-        csd.update(device_damping=dev.damping, met=bool(dev.damping > cs.damping_bound))
-        csd.pop("controller")  # the "controller" object below states it once
-        explain_nulls(csd["dimensionless"]["params"], {"cutoff": "no velocity filter"})  # type: ignore[index]
-        d["colgate_schenkel"] = csd
-        _emit(_ctl_json(d, ctl, inp))
+        _emit(_ctl_json(chk.as_dict(), ctl, inp))
         return 0
     print(inp.label)
     _print_ctl(ctl, inp)
-    print(_table(controller_check_rows(r, cs, dev.units["velocity"])))
+    print(_table(check_table_rows(chk)))
     return 0
 
 
@@ -1216,12 +1194,14 @@ def _cmd_report(args: argparse.Namespace) -> int:
     from .formatting import json_dumps
     from .report import design_report
 
-    _refuse_controller(args, "report")
     if args.device is None and not any(getattr(args, k, None) is not None for k in (*_PHYS_FLAGS, "counts")):
         args.device = DEFAULT_DEVICE
     check_output_folder("--out", args.out, create=True)  # the parent must exist; the folder is created
     inp = _resolve(args, dimensionless=False)
     assert inp.device is not None
+    ctl = _controller(args, inp.device, inp.stiffness)  # None: the spring (no flag, or B = 0 without filter/lag)
+    if args.zwidth is not None and args.zwidth < 0:
+        raise UsageError(f"--zwidth {args.zwidth} is invalid: give the points per axis (0: no Z-width section)")
     _xd, v = _speed(args, inp, required=False)
     summary = _read_validation(args.validation) if args.validation is not None else None
     os.makedirs(args.out, exist_ok=True)
@@ -1236,6 +1216,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
         validation=summary,
         force=args.force,
         zwidth_grid=args.zwidth,
+        controller=ctl,
     )
     if args.json:
         print(json_dumps(res.as_dict()))
@@ -1505,7 +1486,8 @@ def _add_report(sub: Any) -> None:
         "--zwidth",
         type=_integer("--zwidth"),
         metavar="N",
-        help="add a Z-width section on an N x N grid (K against virtual damping B; default: none)",
+        help="Z-width section on an N x N grid (K against virtual damping B; default: none for the spring, "
+        "16 with a controller flag; 0: none)",
     )
     _add_progress_args(p)
     _add_controller_args(p)

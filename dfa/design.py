@@ -3,7 +3,14 @@
 :func:`design_analysis` runs the criterion (eq. 6-12), the stiffness limits (eq. 8, 9, 11 and the exact linear
 bound), the limit cycles and growth thresholds of the describing function (eq. 36-45, half-delay and exact ZOH),
 the simulated critical impact speed, the simulated outcomes and trajectories, the stability map around the
-operating point and the Nyquist locus, and returns a frozen :class:`DesignAnalysis`. Rendering
+operating point and the Nyquist locus, and returns a frozen :class:`DesignAnalysis`.
+
+With a wall controller (``controller=``, issue 15) every part that accepts one is computed with it: the passivity
+check (extended criterion and Colgate–Schenkel, :func:`dfa.controller_check.controller_check`), K_max with the
+controller (:func:`dfa.controller_kmax.controller_stiffness_limits`), the limit cycles, the simulations, the
+stability map, the Nyquist locus and the Z-width (on by default). The spring-only parts (the criterion of eq. 6
+and its stiffness limits and curve, the four-way design answer and the stiffness–speed chart) are not computed:
+they would state the bare spring's numbers, not the controller's. Rendering
 (:mod:`dfa.render`, :func:`dfa.report.design_report`) only reads it. Nothing here reads or writes files.
 """
 
@@ -17,6 +24,9 @@ import numpy as np
 
 from .catalogue import CatalogueEntry
 from .checks import _fmt, check_delay, check_int, check_positive, check_real, check_type
+from .controller import Controller, ControllerParams
+from .controller_check import ControllerCheck, controller_check
+from .controller_kmax import ControllerStiffnessLimits, controller_stiffness_limits
 from .criterion import CriterionResult, device_criterion
 from .cycles import GrowthThreshold, growth_threshold
 from .device import Device, Params
@@ -36,6 +46,13 @@ __all__ = ["DesignAnalysis", "design_analysis"]
 
 #: Loop models of the describing-function analysis, in the order the report lists them.
 MODELS = ("half-delay", "zoh")
+#: Points per axis of the Z-width of a report with a controller when none is asked for (about 10 s on 2 cores).
+CONTROLLER_ZWIDTH_GRID = 16
+#: Why the spring-only parts are absent from an analysis with a controller.
+SPRING_ONLY = (
+    "the spring's (B = 0, no filter, ideal amplifier) result, not this controller's: not computed with a controller; "
+    "see controller_check and controller_limits"
+)
 
 _VALIDATION_KEYS = (
     "soundness_violations",
@@ -62,10 +79,10 @@ class DesignAnalysis:
         Computational delay d in samples.
     params : Params
         (μ, β, σ) of the device at K (paper Table 1).
-    criterion : CriterionResult
-        The passivity criterion at ẋ0 (eq. 6, 10, 12).
-    limits : StiffnessLimits
-        Stiffness limits at ẋ0 (eq. 8, 9, 11, exact linear bound).
+    criterion : CriterionResult or None
+        The passivity criterion at ẋ0 (eq. 6, 10, 12); None with a controller (``controller_check``).
+    limits : StiffnessLimits or None
+        Stiffness limits at ẋ0 (eq. 8, 9, 11, exact linear bound); None with a controller (``controller_limits``).
     thresholds : tuple of (str, GrowthThreshold)
         Limit cycles and growth threshold per loop model (``half-delay``, ``zoh``; eq. 36-45).
     simulated_xi_dot : float or None
@@ -79,16 +96,17 @@ class DesignAnalysis:
         Exact simulation at ``high_xi_dot``.
     trajectory, trajectory_high : SimulationResult
         Recorded runs (figure windows) at the two speeds.
-    stiffness_curve : StiffnessResponse
-        Largest passive stiffness against speed (figure).
+    stiffness_curve : StiffnessResponse or None
+        Largest passive stiffness against speed (figure); None with a controller.
     nyquist : NyquistLocusResponse
         Linearised loop and −1/D(M) (figure).
     stability_map : StabilityMap
         Simulated outcomes around the operating point at the design speed and twice it.
     design_answer : KMaxResult or None
-        K_max four ways at the design speed (:func:`dfa.kmax.design_answer`); None at speed 0.
+        K_max four ways at the design speed (:func:`dfa.kmax.design_answer`); None at speed 0 or with a controller.
     speed_chart : StiffnessSpeedChart or None
-        Largest safe impact speed against K (:func:`dfa.speed_chart.stiffness_speed_chart`); None at speed 0.
+        Largest safe impact speed against K (:func:`dfa.speed_chart.stiffness_speed_chart`); None at speed 0 or
+        with a controller.
     zwidth : ZWidth or None
         The Z-width at the design speed and delay (:func:`dfa.zwidth.z_width`, a ``zwidth_grid`` grid); None at
         speed 0 or when not asked.
@@ -98,6 +116,13 @@ class DesignAnalysis:
         Summary of a validation run (:meth:`dfa.validation.Validation.summary`) passed in; never read from a file.
     samples, map_grid : int
         Samples per run of the speed scan and the map, and the map's points per axis (inputs of the analysis).
+    controller : Controller or None
+        The wall controller of every simulation, limit cycle, map and the Z-width (its stiffness is K, its delay
+        d); None: the paper's spring.
+    controller_check : ControllerCheck or None
+        With a controller: the extended criterion and Colgate–Schenkel at ẋ0 (not covered with an amplifier lag).
+    controller_limits : ControllerStiffnessLimits or None
+        With a controller and ẋ0 > 0: K_max with the controller (B, f_c, f_bw, d fixed).
     status : DesignStatus
         ``OK``.
     """
@@ -107,8 +132,8 @@ class DesignAnalysis:
     velocity: float
     delay: int
     params: Params
-    criterion: CriterionResult
-    limits: StiffnessLimits
+    criterion: CriterionResult | None
+    limits: StiffnessLimits | None
     thresholds: tuple[tuple[str, GrowthThreshold], ...]
     simulated_xi_dot: float | None
     outcome: SimulationResult
@@ -116,7 +141,7 @@ class DesignAnalysis:
     outcome_high: SimulationResult
     trajectory: SimulationResult = field(repr=False)
     trajectory_high: SimulationResult = field(repr=False)
-    stiffness_curve: StiffnessResponse = field(repr=False)
+    stiffness_curve: StiffnessResponse | None = field(repr=False)
     nyquist: NyquistLocusResponse = field(repr=False)
     stability_map: StabilityMap = field(repr=False)
     design_answer: KMaxResult | None = field(default=None, repr=False)
@@ -126,6 +151,9 @@ class DesignAnalysis:
     validation: dict[str, Any] | None = None
     samples: int = 30_000
     map_grid: int = 81
+    controller: Controller | None = None
+    controller_check: ControllerCheck | None = None
+    controller_limits: ControllerStiffnessLimits | None = field(default=None, repr=False)
     status: DesignStatus = DesignStatus.OK
 
     def __post_init__(self) -> None:
@@ -137,12 +165,12 @@ class DesignAnalysis:
         check_delay(self.delay)
         fix = "DesignAnalysis is built by dfa.design_analysis; call that instead"
         for name, cls in (
-            ("params", Params), ("criterion", CriterionResult), ("limits", StiffnessLimits),
-            ("outcome", SimulationResult), ("outcome_high", SimulationResult), ("trajectory", SimulationResult),
-            ("trajectory_high", SimulationResult), ("stiffness_curve", StiffnessResponse),
+            ("params", Params), ("outcome", SimulationResult), ("outcome_high", SimulationResult),
+            ("trajectory", SimulationResult), ("trajectory_high", SimulationResult),
             ("nyquist", NyquistLocusResponse), ("stability_map", StabilityMap),
         ):  # fmt: skip
             check_type(name, getattr(self, name), cls, fix)
+        self._check_parts(fix)
         for name, opt in (("design_answer", KMaxResult), ("speed_chart", StiffnessSpeedChart), ("zwidth", ZWidth)):
             if getattr(self, name) is not None:
                 check_type(name, getattr(self, name), opt, fix)
@@ -169,6 +197,37 @@ class DesignAnalysis:
                 f"thresholds are for {[m for m, _ in self.thresholds]}: they must be for {list(MODELS)}"
             )
         object.__setattr__(self, "status", DesignStatus.coerce(self.status))
+
+    def _check_parts(self, fix: str) -> None:
+        """The spring's parts without a controller; the controller's (and none of the spring's) with one."""
+        spring = (("criterion", CriterionResult), ("limits", StiffnessLimits), ("stiffness_curve", StiffnessResponse))
+        if self.controller is None:
+            for name, cls in spring:
+                check_type(name, getattr(self, name), cls, fix)
+            if self.controller_check is not None or self.controller_limits is not None:
+                raise DFAValueError(f"controller_check and controller_limits need a controller; {fix}")
+            return
+        check_type("controller", self.controller, Controller, fix)
+        check_type("controller_check", self.controller_check, ControllerCheck, fix)
+        if self.controller_limits is not None:
+            check_type("controller_limits", self.controller_limits, ControllerStiffnessLimits, fix)
+        present = [n for n, _ in spring if getattr(self, n) is not None]
+        present += [n for n in ("design_answer", "speed_chart") if getattr(self, n) is not None]
+        if present or self.controller.stiffness != self.stiffness or self.controller.delay != self.delay:
+            raise DFAValueError(
+                f"with a controller the spring-only parts must be None (given: {', '.join(present) or 'none'}) and "
+                f"the controller's K and delay must be the analysis's; {fix}"
+            )
+
+    @property
+    def xi_dot(self) -> float:
+        """The design speed in ticks/sample (the criterion's, or converted by the device with a controller)."""
+        return self.criterion.xi_dot if self.criterion is not None else self.device.xi_dot(self.velocity)
+
+    @property
+    def controller_params(self) -> ControllerParams | None:
+        """The controller's dimensionless groups (β_B, ν_c, α, d) at the device's period; None for the spring."""
+        return None if self.controller is None else self.controller.params(self.device.period)
 
     def threshold(self, model: str) -> GrowthThreshold:
         """The growth threshold of loop model ``model`` (``"half-delay"`` or ``"zoh"``).
@@ -207,7 +266,27 @@ class DesignAnalysis:
             "speed_chart": "impact speed 0: the chart needs a speed > 0",
             "zwidth": "impact speed 0 or zwidth_grid=None: no Z-width computed",
         }
-        return explain_nulls(self._record(), why)
+        rec = self._record()
+        if self.controller is not None:  # the spring's record is unchanged; a controller adds its parts
+            why.update(criterion=SPRING_ONLY, limits=SPRING_ONLY, design_answer=SPRING_ONLY, speed_chart=SPRING_ONLY)
+            why.update(zwidth="impact speed 0 or zwidth_grid=0: no Z-width computed")
+            why.update(controller_limits="impact speed 0: K_max with the controller needs a speed > 0")
+            rec.update(self._controller_record())
+            _explain_filter_nulls(rec)
+        return explain_nulls(rec, why)
+
+    def _controller_record(self) -> dict[str, Any]:
+        assert self.controller is not None and self.controller_check is not None
+        cp = self.controller.params(self.device.period)
+        ctl = to_jsonable({**self.controller.as_dict(), "dimensionless": cp.as_dict()})
+        explain_nulls(ctl, {"filter_cutoff": "no velocity filter", "amplifier_bandwidth": "ideal amplifier (no lag)"})
+        explain_nulls(ctl["dimensionless"], {"cutoff": "no velocity filter"})
+        lim = None
+        if self.controller_limits is not None:
+            lim = to_jsonable(self.controller_limits.as_dict())
+            explain_nulls(lim, lim.pop("null_reasons"))
+        return {"controller": ctl, "controller_check": to_jsonable(self.controller_check.as_dict()),
+                "controller_limits": lim}  # fmt: skip
 
     def _record(self) -> dict[str, Any]:
         return to_jsonable(
@@ -217,8 +296,8 @@ class DesignAnalysis:
                 "velocity": self.velocity,
                 "delay": self.delay,
                 "params": self.params.as_dict(),
-                "criterion": self.criterion.as_dict(),
-                "limits": self.limits.as_dict(),
+                "criterion": None if self.criterion is None else self.criterion.as_dict(),
+                "limits": None if self.limits is None else self.limits.as_dict(),
                 "growth_thresholds": {m: g.as_dict() for m, g in self.thresholds},
                 "cycles": {m: g.result.as_dict() for m, g in self.thresholds},
                 "simulated_xi_dot": self.simulated_xi_dot,
@@ -229,7 +308,7 @@ class DesignAnalysis:
                 "stability_map": self.stability_map.as_dict(),
                 "design_answer": None if self.design_answer is None else self.design_answer.as_dict(),
                 "speed_chart": None if self.speed_chart is None else self.speed_chart.as_dict(),
-                "zwidth": None if self.zwidth is None else self.zwidth.as_dict(),
+                "zwidth": None if self.zwidth is None else _zwidth_record(self.zwidth),
                 "catalogue": self.catalogue,
                 "validation": self.validation,
                 "samples": self.samples,
@@ -238,6 +317,26 @@ class DesignAnalysis:
                 "status_message": self.status.message,
             }
         )
+
+
+def _zwidth_record(z: ZWidth) -> dict[str, Any]:
+    """The Z-width's JSON with the meaning of a null in its per-B ``reason`` lists (no caveat at that B)."""
+    rec: dict[str, Any] = z.as_dict()
+    for method in rec["boundaries"].values():
+        explain_nulls(method, {"reason": "null: no caveat at that B (the value is plain)"})
+    return rec
+
+
+def _explain_filter_nulls(obj: Any) -> None:
+    """Explain the null ``cutoff`` of every nested ``controller`` record (its dimensionless groups): no filter."""
+    if isinstance(obj, list):
+        for x in obj:
+            _explain_filter_nulls(x)
+    elif isinstance(obj, dict):
+        for key, value in obj.items():
+            if key == "controller" and isinstance(value, dict) and "cutoff" in value:
+                explain_nulls(value, {"cutoff": "no velocity filter"})
+            _explain_filter_nulls(value)
 
 
 def _catalogue_notes(entry: CatalogueEntry | None) -> dict[str, Any] | None:
@@ -282,12 +381,14 @@ def resolve_design_inputs(
     return entry, dev, k, v, check_delay(delay)
 
 
-def _simulations(p: Params, xi_dot: float, ref: float, v_sim: float | None, samples: int, dl: int) -> dict[str, Any]:
+def _simulations(
+    p: Params, xi_dot: float, ref: float, v_sim: float | None, samples: int, dl: int, cp: ControllerParams | None
+) -> dict[str, Any]:
     """Recorded runs for the figure and full-length runs for the outcomes, at the design speed and above."""
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
     v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
     run = lambda v, n, rec: simulate(  # diverged only far beyond the impact's own travel (eq. 18-19)
-        p.mu, p.beta, p.sigma, v, n, delay=dl, record=rec, bound=divergence_bound(0.0, v, p.mu)
+        p.mu, p.beta, p.sigma, v, n, delay=dl, record=rec, bound=divergence_bound(0.0, v, p.mu), controller=cp
     )
     return dict(
         trajectory=run(xi_dot, n_traj, True),
@@ -310,6 +411,7 @@ def design_analysis(
     n_jobs: int = -1,
     progress: bool = False,
     zwidth_grid: int | None = None,
+    controller: Controller | None = None,
 ) -> DesignAnalysis:
     """Compute every number of the design report of ``device`` at stiffness K, impact speed ẋ0 and delay d.
 
@@ -318,11 +420,12 @@ def design_analysis(
     device : Device or CatalogueEntry
         A catalogue entry adds the paper's printed values and notes.
     stiffness : float, optional
-        K in N/m (rotary N·m/rad); default the catalogue K.
+        K in N/m (rotary N·m/rad); default the controller's K, else the catalogue K.
     velocity : float, optional
         Impact speed in m/s (rotary rad/s); default 0.1 m/s (1 rad/s rotary). Its sign is dropped.
     delay : int
-        Computational delay d in whole samples (default 0), used by every part of the analysis.
+        Computational delay d in whole samples (default 0), used by every part of the analysis; with a
+        controller it is the controller's (give 0 or the same value).
     map_grid, samples : int
         Points per axis of the stability map (default 81); samples per run of it and of the speed scan (30000).
     validation : dict, optional
@@ -334,7 +437,11 @@ def design_analysis(
         Progress bar over the parts (default False).
     zwidth_grid : int or None
         Points per axis of the report's Z-width (one impact speed, :func:`dfa.zwidth.z_width`); default None:
-        no Z-width.
+        no Z-width for the spring, ``CONTROLLER_ZWIDTH_GRID`` (16) with a controller; 0: none.
+    controller : Controller, optional
+        The wall controller (physical K, B, d, f_c, f_bw; :class:`dfa.Controller`): every part that accepts
+        one is computed with it, the spring-only parts are left out (module docstring). Default None, or a
+        controller that is a pure spring: the paper's spring, unchanged.
 
     Returns
     -------
@@ -344,7 +451,8 @@ def design_analysis(
     Raises
     ------
     DFAValueError, DFATypeError
-        Not a Device or catalogue entry, no stiffness, a non-finite speed, a bad delay, a bad validation summary.
+        Not a Device or catalogue entry, no stiffness, a non-finite speed, a bad delay, a bad validation summary,
+        a controller whose K or delay differs from ``stiffness`` or ``delay``, or a filter cutoff above Nyquist.
 
     See Also
     --------
@@ -360,39 +468,100 @@ def design_analysis(
     """
     from tqdm.auto import tqdm
 
+    ctl, stiffness, delay = resolve_controller(device, controller, stiffness, delay)
     entry, dev, k, v, dl = resolve_design_inputs(device, stiffness, velocity, delay)
     checked = _check_validation(validation)
+    zg = check_int("zwidth_grid", zwidth_grid, 0, "give the Z-width's points per axis, or 0 for none") if (
+        zwidth_grid is not None) else (CONTROLLER_ZWIDTH_GRID if ctl is not None else 0)  # fmt: skip
     steps = tqdm(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False)
     p = dev.params(k)
-    crit = device_criterion(dev, k, v, delay=dl)
-    lim = stiffness_limits(dev, v, k, delay=dl)
-    curve = stiffness_response(dev, stiffness=k, delay=dl)
+    cp = None if ctl is None else ctl.params(dev.period)
+    head = _spring_parts(dev, k, v, dl) if ctl is None else _controller_parts(dev, ctl, v)
     steps.update()
-    thr = tuple((m, growth_threshold(p, dev, model=m, delay=dl)) for m in MODELS)  # search range follows the problem
+    thr = tuple(
+        (m, growth_threshold(p, dev, model=m, delay=dl, controller=cp)) for m in MODELS
+    )  # search range follows the problem
     steps.update()
-    ref = crit.critical_xi_dot if crit.critical_xi_dot else max(1.0, crit.xi_dot)
-    v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, delay=dl)
+    xi, crit_xi = head.pop("xi_dot"), head.pop("critical_xi_dot")
+    ref = crit_xi if crit_xi else max(1.0, xi)
+    v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, delay=dl, controller=cp)
     steps.update()
-    sims = _simulations(p, crit.xi_dot, ref, v_sim, samples, dl)
-    ny = _nyquist(p, thr[1][1], dl)
+    sims = _simulations(p, xi, ref, v_sim, samples, dl, cp)
+    ny = _nyquist(p, thr[1][1], dl, cp)
     steps.update()
-    smap = _map_around(p, crit.xi_dot, dl, map_grid, samples, n_jobs, progress)
+    smap = _map_around(p, xi, dl, map_grid, samples, n_jobs, progress, cp)
     steps.close()
-    figs: dict[str, Any] = dict(stiffness_curve=curve, nyquist=ny, stability_map=smap)
-    if v > 0:  # the design answer, first in the report: K_max four ways and the stiffness-speed chart
+    figs: dict[str, Any] = dict(nyquist=ny, stability_map=smap)
+    if v > 0 and ctl is None:  # the design answer, first in the report: K_max four ways and the stiffness-speed chart
         cache = RunCache()  # one set of runs for both: no (K, speed, start) simulated twice
         figs["design_answer"] = design_answer(dev, v, dl, stiffness=k, cache=cache)
         figs["speed_chart"] = stiffness_speed_chart(dev, dl, stiffness=k, velocity=v, cache=cache)
-        if zwidth_grid is not None:
-            figs["zwidth"] = z_width(dev, v, delay=dl, grid=zwidth_grid, speeds=1, n_jobs=n_jobs, progress=progress)
+    if v > 0 and zg:
+        figs["zwidth"] = _zwidth(dev, v, dl, ctl, zg, n_jobs, progress)
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )
-    return DesignAnalysis(dev, k, v, dl, p, crit, lim, thr, v_sim, **figs, **inputs, **sims)
+    return DesignAnalysis(dev, k, v, dl, p, thresholds=thr, simulated_xi_dot=v_sim, **head, **figs, **inputs, **sims)
+
+
+def resolve_controller(
+    device: Any, controller: Controller | None, stiffness: float | None, delay: int
+) -> tuple[Controller | None, float | None, int]:
+    """(controller or None for the spring, K, d) of a design analysis: the controller carries K and d."""
+    if controller is None:
+        return None, stiffness, delay
+    ctl = check_type("controller", controller, Controller, "build one with dfa.Controller(K, B, ...), or None")
+    if stiffness is not None and stiffness != ctl.stiffness:
+        raise DFAValueError(
+            f"stiffness = {_fmt(stiffness)} differs from controller.stiffness = {_fmt(ctl.stiffness)}: the controller "
+            "carries K; give stiffness=None or the same value"
+        )
+    if check_delay(delay) not in (0, ctl.delay):
+        raise DFAValueError(
+            f"delay = {delay} is invalid with controller.delay = {ctl.delay}: the controller carries the delay; "
+            "leave delay at 0 or give the same value"
+        )
+    dev = device.device if isinstance(device, CatalogueEntry) else device
+    if isinstance(dev, Device) and ctl.params(dev.period).is_spring:  # B = 0, no filter, no lag: the spring
+        return None, ctl.stiffness, ctl.delay
+    return ctl, ctl.stiffness, ctl.delay
+
+
+def _spring_parts(dev: Device, k: float, v: float, dl: int) -> dict[str, Any]:
+    """The spring's criterion (eq. 6), stiffness limits and curve, with the design and critical speeds."""
+    crit = device_criterion(dev, k, v, delay=dl)
+    lim = stiffness_limits(dev, v, k, delay=dl)
+    curve = stiffness_response(dev, stiffness=k, delay=dl)
+    return dict(
+        criterion=crit, limits=lim, stiffness_curve=curve, xi_dot=crit.xi_dot, critical_xi_dot=crit.critical_xi_dot
+    )
+
+
+def _controller_parts(dev: Device, ctl: Controller, v: float) -> dict[str, Any]:
+    """The passivity check and K_max with the controller (no spring-only part), with the design and critical speeds."""
+    chk = controller_check(dev, ctl, v)
+    lim = controller_stiffness_limits(dev, ctl, v) if v > 0 else None
+    crit_xi = None if chk.criterion is None else chk.criterion.critical_xi_dot
+    return dict(
+        criterion=None, limits=None, stiffness_curve=None, controller=ctl, controller_check=chk,
+        controller_limits=lim, xi_dot=dev.xi_dot(v), critical_xi_dot=crit_xi,
+    )  # fmt: skip
+
+
+def _zwidth(dev: Device, v: float, dl: int, ctl: Controller | None, grid: int, n_jobs: int, progress: bool) -> ZWidth:
+    """The Z-width at the design speed, with the controller's delay, filter and lag; B's axis holds the design B."""
+    fc = None if ctl is None else ctl.filter_cutoff
+    fbw = None if ctl is None else ctl.amplifier_bandwidth
+    b_top = dev.mass / dev.period  # z_width's default range, widened to show the controller's B
+    b_range = None if ctl is None or ctl.damping <= b_top else (0.0, 1.25 * ctl.damping)
+    return z_width(
+        dev, v, delay=dl, filter_cutoff=fc, amplifier_bandwidth=fbw, grid=grid, b_range=b_range, speeds=1,
+        n_jobs=n_jobs, progress=progress,
+    )  # fmt: skip
 
 
 def _map_around(
-    p: Params, xi_dot: float, dl: int, grid: int, samples: int, n_jobs: int, progress: bool
+    p: Params, xi_dot: float, dl: int, grid: int, samples: int, n_jobs: int, progress: bool, cp: ControllerParams | None
 ) -> StabilityMap:
     """Simulated outcomes on (β, σ) around the operating point, at the design speed and twice it."""
     return stability_map(
@@ -406,10 +575,11 @@ def _map_around(
         delay=dl,
         n_jobs=n_jobs,
         bound=divergence_bound(0.0, 2 * xi_dot if xi_dot > 0 else 2.0, p.mu),  # beyond every start's travel
+        controller=cp,
     )
 
 
-def _nyquist(p: Params, zoh: GrowthThreshold, dl: int) -> NyquistLocusResponse:
+def _nyquist(p: Params, zoh: GrowthThreshold, dl: int, cp: ControllerParams | None) -> NyquistLocusResponse:
     """The Nyquist view of the exact ZOH loop (the model of the growth threshold): the locus reaches every cycle drawn."""
     res = zoh.result
     amps = [c.amplitude for c in res.cycles[:3]] if p.sigma > 0 else None
@@ -417,5 +587,5 @@ def _nyquist(p: Params, zoh: GrowthThreshold, dl: int) -> NyquistLocusResponse:
         amps = [1.0]
     m_top = max([50.0] + [2.0 * c.amplitude for c in res.cycles])
     return nyquist_locus_response(
-        p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), model="zoh", delay=dl
+        p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), model="zoh", delay=dl, controller=cp
     )

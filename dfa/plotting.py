@@ -204,6 +204,32 @@ def _speed_text(xi_dot: float, device) -> str:
     return f"{device.velocity(xi_dot):.3g} {device.units['velocity']} (ξ'0 = {xi_dot:.3g})"
 
 
+def _map_critical_line(ax, smap, v: float, bb: np.ndarray) -> tuple[float, float] | None:
+    """Draw the critical line of one map panel: eq. 10, or eq. 10 extended to the map's controller.
+
+    With a controller the corner is (β₀, σ₀) of :func:`dfa.controller_passivity.controller_anchor`; with an
+    amplifier lag no criterion covers the loop and nothing is drawn (None). Returns the corner drawn.
+    """
+    ctl = getattr(smap, "controller", None)
+    if ctl is None:
+        line = CriticalLine.of(v, quantized=smap.quantize, delay=smap.delay)
+        ax.plot(bb, line.sigma(bb), "--", color="#b2182b", lw=1.3)
+        ax.axvline(line.beta0, color="#2166ac", ls="-.", lw=1.0)
+        if smap.quantize:
+            ax.axhline(line.sigma0, color="#2166ac", ls="-.", lw=1.0)
+        return line.beta0, line.sigma0
+    if ctl.lag > 0:
+        return None
+    from .controller_passivity import controller_anchor
+
+    b0, s0 = controller_anchor(ctl, smap.quantize)
+    ax.plot(bb, s0 + abs(v) * (b0 - bb), "--", color="#b2182b", lw=1.3)
+    ax.axvline(b0, color="#2166ac", ls="-.", lw=1.0)
+    if smap.quantize:
+        ax.axhline(s0, color="#2166ac", ls="-.", lw=1.0)
+    return b0, s0
+
+
 def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, stiffness=None, point=None):
     """Simulated outcome per (β, σ) for each initial speed (paper Fig. 4).
 
@@ -212,8 +238,9 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
     tick or more); dark: unstable; orange: undecided (the run was too short,
     :mod:`dfa.simulation`). The critical line of each speed
     (:class:`dfa.criterion.CriticalLine` with the map's delay d) is dashed, the
-    region boundaries β = ½ + d, σ = ½ dash-dot. The legend (right of the
-    panels) lists every outcome class, present or not.
+    region boundaries β = ½ + d, σ = ½ dash-dot; with a controller, the line of the
+    criterion extended to it (corner β₀, σ₀), or none with an amplifier lag. The legend
+    (right of the panels) lists every outcome class, present or not.
 
     Parameters
     ----------
@@ -260,11 +287,7 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
         )
         v = smap.xi_dots[k]
         bb = np.linspace(b[0], b[-1], 200)
-        line = CriticalLine.of(v, quantized=smap.quantize, delay=smap.delay)
-        ax.plot(bb, line.sigma(bb), "--", color="#b2182b", lw=1.3)
-        ax.axvline(line.beta0, color="#2166ac", ls="-.", lw=1.0)
-        if smap.quantize:
-            ax.axhline(line.sigma0, color="#2166ac", ls="-.", lw=1.0)
+        corner = _map_critical_line(ax, smap, v, bb)
         if point is not None:
             ax.plot([point[0]], [point[1]], clip_on=False, **POINT_STYLE)
         ax.set_xlim(extent[0], extent[1])
@@ -280,12 +303,24 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
                 fontsize=8,
             )
     handles = _outcome_handles()
-    handles += [
-        matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),
-        matplotlib.lines.Line2D(
-            [], [], color="#2166ac", ls="-.", label="β = ½ + d, σ = ½" if smap.delay else "β = ½, σ = ½"
-        ),
-    ]
+    if getattr(smap, "controller", None) is None:
+        handles += [
+            matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),
+            matplotlib.lines.Line2D(
+                [], [], color="#2166ac", ls="-.", label="β = ½ + d, σ = ½" if smap.delay else "β = ½, σ = ½"
+            ),
+        ]
+    elif corner is not None:
+        handles += [
+            matplotlib.lines.Line2D(
+                [], [], color="#b2182b", ls="--", label="critical line, eq. 10 with the controller"
+            ),
+            matplotlib.lines.Line2D(
+                [], [], color="#2166ac", ls="-.", label=f"β = β₀ = {corner[0]:.3g}, σ = σ₀ = {corner[1]:.3g}"
+            ),
+        ]
+    else:
+        handles.append(matplotlib.lines.Line2D([], [], ls="none", label="no criterion line: amplifier lag"))
     if point is not None:
         handles.append(matplotlib.lines.Line2D([], [], label="operating point", **POINT_STYLE))
     _legend_outside(axes[-1] if len(axes) <= 2 else axes[min(1, len(axes) - 1)], handles)
@@ -452,7 +487,13 @@ def _cycle_points(nyq, cycles) -> list[tuple[complex, bool, float]]:
         (
             complex(
                 loop_response(
-                    nyq.params, c.frequency, c.amplitude, model=nyq.model, delay=nyq.delay, pade_order=nyq.pade_order
+                    nyq.params,
+                    c.frequency,
+                    c.amplitude,
+                    model=nyq.model,
+                    delay=nyq.delay,
+                    pade_order=nyq.pade_order,
+                    controller=getattr(nyq, "controller", None),  # the loop drawn: with its controller
                 )
             ),
             bool(c.stable),

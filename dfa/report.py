@@ -5,6 +5,9 @@
 and/or one self-contained HTML file (figures embedded, no PNG written). The files of one report appear
 together or not at all (:func:`dfa._io.staged_folder`), with ``design_report_{name}.json`` beside them: the
 inputs and numbers stated, used to refuse overwriting the report of another device, stiffness, speed or delay.
+A report with a wall controller is named ``design_report_{name}_controller.*`` (figures
+``{name}_controller_*.png``): it never replaces the spring report of the same device, and a report of another
+controller in the way is refused like any report of other inputs.
 """
 
 from __future__ import annotations
@@ -21,14 +24,15 @@ import numpy as np
 from ._io import staged_folder
 from .catalogue import CatalogueEntry
 from .checks import _fmt, check_choice, check_int
-from .design import DesignAnalysis, design_analysis, resolve_design_inputs
+from .controller import Controller
+from .design import DesignAnalysis, design_analysis, resolve_controller, resolve_design_inputs
 from .device import Device
 from .errors import DFATypeError, DFAValueError
 from .formatting import json_dumps
-from .jsonable import to_jsonable
+from .jsonable import explain_nulls, to_jsonable
 from .status import ReportStatus
 
-__all__ = ["ReportResult", "design_report", "report_slug", "write_design_report"]
+__all__ = ["ReportResult", "design_report", "report_name", "report_slug", "write_design_report"]
 
 
 @dataclass(frozen=True)
@@ -42,7 +46,9 @@ class ReportResult:
     figures : tuple of Path
         PNG files written (only with Markdown; HTML embeds its figures).
     numbers : dict
-        Headline numbers (μ, β, σ, region, passive, K_max, speeds in ticks/sample, cycle amplitudes).
+        Headline numbers (μ, β, σ, region, passive, K_max, speeds in ticks/sample, cycle amplitudes); with a
+        controller those of the extended criterion and of K_max with it, ``k_linear`` and the ``controller``
+        object of `dfa check --json` (nulls explained in ``null_reasons``).
     status : ReportStatus
         ``OK``.
     analysis : DesignAnalysis or None
@@ -85,6 +91,8 @@ def report_slug(name: str) -> str:
 
 def _numbers(a: DesignAnalysis) -> dict[str, Any]:
     p, crit = a.params, a.criterion
+    if crit is None or a.limits is None:
+        return _controller_numbers(a)
     return dict(
         mu=p.mu,
         beta=p.beta,
@@ -100,10 +108,60 @@ def _numbers(a: DesignAnalysis) -> dict[str, Any]:
     )
 
 
-def _identity(device: Device, stiffness: float, velocity: float, delay: int) -> dict[str, Any]:
-    """What makes two reports the same report: device, stiffness, speed and delay."""
-    ident = {"device": device.as_dict(), "stiffness": stiffness, "velocity": velocity, "delay": delay}
+def _controller_numbers(a: DesignAnalysis) -> dict[str, Any]:
+    """The headline numbers with a controller: the extended criterion's, K_max with the controller, its groups."""
+    from .render.controller import controller_dict
+
+    p, chk, lim = a.params, a.controller_check, a.controller_limits
+    assert a.controller is not None and chk is not None
+    r = chk.criterion
+    out = dict(
+        mu=p.mu,
+        beta=p.beta,
+        sigma=p.sigma,
+        region=None if r is None else r.region,
+        passive=chk.passive,
+        k_max=None if lim is None else lim.k_criterion,
+        k_linear=None if lim is None else lim.k_linear,
+        delay=a.delay,
+        critical_xi_dot=None if r is None else r.critical_xi_dot,
+        df_xi_dot=a.threshold("zoh").xi_dot,
+        simulated_xi_dot=a.simulated_xi_dot,
+        cycles=[c.amplitude for c in a.threshold("half-delay").result.cycles],
+        controller=controller_dict(a.controller, a.device.period, a.device.units),
+    )
+    lag = "not covered: no passivity criterion is proven with an amplifier lag"
+    why = {
+        "region": lag,
+        "passive": lag,
+        "critical_xi_dot": lag if r is None else "no critical speed: passive at every speed (region a) or at none",
+    }
+    why["k_max"] = why["k_linear"] = "impact speed 0: no K_max" if lim is None else str(lim.reasons.get("k_criterion"))
+    why["simulated_xi_dot"] = "no scanned impact speed diverged"
+    why["df_xi_dot"] = "no unstable cycle predicted"
+    return explain_nulls(to_jsonable(out), why)
+
+
+def _identity(
+    device: Device, stiffness: float, velocity: float, delay: int, controller: Controller | None = None
+) -> dict[str, Any]:
+    """What makes two reports the same report: device, stiffness, speed, delay (and the controller, if any)."""
+    ident: dict[str, Any] = {"device": device.as_dict(), "stiffness": stiffness, "velocity": velocity, "delay": delay}
+    if controller is not None:
+        ident["controller"] = controller.as_dict()
     return json.loads(json_dumps(ident))
+
+
+def report_name(name: str, controller: Controller | None = None) -> str:
+    """File-name part of a report: the device's slug, with ``_controller`` for a report with a wall controller.
+
+    Examples
+    --------
+    >>> from dfa.controller import Controller
+    >>> report_name("Delta"), report_name("Delta", Controller(14500.0, damping=1.0))
+    ('delta', 'delta_controller')
+    """
+    return report_slug(name) + ("_controller" if controller is not None else "")
 
 
 def _doc_names(slug: str, fmt: str) -> tuple[list[str], str]:
@@ -115,7 +173,8 @@ def _doc_names(slug: str, fmt: str) -> tuple[list[str], str]:
 def _check_overwrite(out: Path, fmt: str, ident: dict[str, Any]) -> None:
     """Refuse to replace a report of another device, stiffness, speed or delay (the fix: --name, --out, --force)."""
     name = ident["device"]["name"]
-    docs, meta = _doc_names(report_slug(name), fmt)
+    ctl = ident.get("controller")
+    docs, meta = _doc_names(report_slug(name) + ("_controller" if ctl is not None else ""), fmt)
     existing = [n for n in docs + [meta] if (out / n).exists()]
     if not existing:
         return
@@ -140,9 +199,16 @@ def _check_overwrite(out: Path, fmt: str, ident: dict[str, Any]) -> None:
 
 def _describe(identity: dict[str, Any]) -> str:
     dev = identity.get("device") or {}
+    ctl = identity.get("controller")
+    with_ctl = (
+        ""
+        if not isinstance(ctl, dict)
+        else f", controller B = {ctl.get('damping')}, "
+        + (f"filter {ctl.get('filter_cutoff')} Hz, amplifier {ctl.get('amplifier_bandwidth')} Hz")
+    )
     return (
         f"the report of {dev.get('name', '?')!r} at K = {identity.get('stiffness')}, speed {identity.get('velocity')}, "
-        f"delay {identity.get('delay')}"
+        f"delay {identity.get('delay')}{with_ctl}"
     )
 
 
@@ -179,9 +245,9 @@ def write_design_report(
     if not out.is_dir():
         raise DFAValueError(f"out_dir = {str(out)!r} is invalid: the folder does not exist; create it first")
     a = analysis
-    slug = report_slug(a.device.name)
+    slug = report_name(a.device.name, a.controller)
     docs, meta = _doc_names(slug, fmt)
-    ident = _identity(a.device, a.stiffness, a.velocity, a.delay)
+    ident = _identity(a.device, a.stiffness, a.velocity, a.delay, a.controller)
     if not force:
         _check_overwrite(out, fmt, ident)
     figs = design_figures(analysis)
@@ -218,6 +284,7 @@ def design_report(
     validation: dict[str, Any] | None = None,
     force: bool = False,
     zwidth_grid: int | None = None,
+    controller: Controller | None = None,
 ) -> ReportResult:
     """Write the design report of ``device`` at stiffness K, impact speed ẋ0 and computational delay d.
 
@@ -247,7 +314,12 @@ def design_report(
     force : bool
         Replace a report of the same name made for other inputs.
     zwidth_grid : int or None
-        Points per axis of a Z-width section (:func:`dfa.zwidth.z_width`); None (default): no section.
+        Points per axis of a Z-width section (:func:`dfa.zwidth.z_width`); None (default): no section for the
+        spring, a 16 × 16 one with a controller; 0: none.
+    controller : Controller, optional
+        A wall controller (:class:`dfa.Controller`; its K and delay are the report's): the report states it,
+        its passivity check and K_max, computes every section that accepts it with it and leaves out the
+        spring-only ones (:func:`dfa.design.design_analysis`). Files ``design_report_{name}_controller.*``.
 
     Returns
     -------
@@ -272,11 +344,12 @@ def design_report(
         raise DFATypeError(f"out_dir = {_fmt(out_dir)} has type {type(out_dir).__name__}: it must be a folder path")
     if not Path(out_dir).is_dir():
         raise DFAValueError(f"out_dir = {str(out_dir)!r} is invalid: the folder does not exist; create it first")
-    _entry, dev, k, v, dl = resolve_design_inputs(device, stiffness, velocity, delay)
+    ctl, k_in, d_in = resolve_controller(device, controller, stiffness, delay)
+    _entry, dev, k, v, dl = resolve_design_inputs(device, k_in, velocity, d_in)
     if not force:  # before the analysis: refuse in a second, not after a minute of simulation
-        _check_overwrite(Path(out_dir), fmt, _identity(dev, k, v, dl))
+        _check_overwrite(Path(out_dir), fmt, _identity(dev, k, v, dl, ctl))
     a = design_analysis(
         device, stiffness, velocity, delay=delay, map_grid=map_grid, samples=samples, validation=validation,
-        progress=progress, zwidth_grid=zwidth_grid,
+        progress=progress, zwidth_grid=zwidth_grid, controller=controller,
     )  # fmt: skip
     return write_design_report(a, out_dir, fmt, force=force)

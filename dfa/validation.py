@@ -182,20 +182,30 @@ def controller_cycle_checks(points, samples: int = 40_000, models=("half-delay",
 
 
 def first_unstable_speed(
-    p: Params, v_lo: float, v_hi: float, samples: int, preload: bool, steps: int = 40, delay: int = 0
+    p: Params,
+    v_lo: float,
+    v_hi: float,
+    samples: int,
+    preload: bool,
+    steps: int = 40,
+    delay: int = 0,
+    controller: ControllerParams | None = None,
 ) -> float | None:
     """Smallest impact speed ξ'0 (ticks/sample) whose exact simulation diverges, or None.
 
     A geometric scan of ``steps`` speeds from ``v_lo`` to ``v_hi`` (ticks/sample); the first unstable one is
     refined by 12 bisection steps against the scan point below it. Runs start at ξ0 = 0 with speed ξ'0, or at
     rest with the spring preloaded to the same energy (``preload``); ``samples`` per run, delay ``delay``
-    samples. Stability need not be monotone in speed: slower speeds between scan points may diverge too.
+    samples (with ``controller``, its wall; :func:`dfa.simulate`). Stability need not be monotone in speed:
+    slower speeds between scan points may diverge too.
     """
 
     def unstable(v: float) -> bool:
         x0, v0 = (preload_position(p.mu, v), 0.0) if preload else (0.0, v)
         bound = divergence_bound(x0, v0, p.mu)  # beyond the impact's own travel (eq. 18-19)
-        r = simulate(p.mu, p.beta, p.sigma, v0, samples, xi0=x0, delay=delay, record=False, bound=bound)
+        r = simulate(
+            p.mu, p.beta, p.sigma, v0, samples, xi0=x0, delay=delay, record=False, bound=bound, controller=controller
+        )
         return r.outcome == "unstable"
 
     speeds = np.geomspace(v_lo, v_hi, steps)

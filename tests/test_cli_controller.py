@@ -193,8 +193,8 @@ ERRORS = [
     ),
     (["stiffness", *BASE, "--velocity", "0.1", "--velocity-filter", "1600"], "Nyquist frequency 1500 Hz"),
     (
-        ["report", *BASE, "--velocity", "0.1", "--amplifier-bandwidth", "100", "--out", "/tmp/ccli-r"],
-        "not yet supported by `dfa report`",
+        ["report", *BASE, "--velocity", "0.1", "--amplifier-bandwidth", "-100", "--out", "/tmp/ccli-r"],
+        "--amplifier-bandwidth -100 is invalid",
     ),
     (["check", *BASE, "--velocity", "0.1", "--virtual-damping", "nan"], "not a finite number"),
 ]

@@ -15,13 +15,11 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..controller_check import LAG_WHY, NOT_COVERED, ControllerCheck
 from ..formatting import number
 from ..jsonable import explain_nulls, to_jsonable
 
-__all__ = ["NOT_COVERED", "controller_check_rows", "controller_dict", "controller_line"]
-
-#: What `dfa check` says where no passivity criterion covers the controller (amplifier lag).
-NOT_COVERED = "not covered by the criterion; see `dfa map`/`dfa zwidth`"
+__all__ = ["NOT_COVERED", "check_table_rows", "controller_check_rows", "controller_dict", "controller_line"]
 
 
 def _g(x: float | None, digits: int = 4) -> str:
@@ -169,3 +167,121 @@ def controller_check_rows(r: Any, cs: Any, vu: str) -> list[list[str]]:
         rows.append(["initial position ξ0", f"{r.xi0:.4g} ticks ({r.position:.4g} {r.device.units['position']})"])
     rows += _criterion_rows(r, vu)
     return rows + _colgate_rows(cs, r.device.damping, r.device.units["damping"])
+
+
+def check_table_rows(chk: ControllerCheck) -> list[list[str]]:
+    """The table of `dfa check` (and of the design report) for a :class:`~dfa.controller_check.ControllerCheck`.
+
+    Parameters
+    ----------
+    chk : ControllerCheck
+        The passivity check with the controller.
+
+    Returns
+    -------
+    list of list of str
+        :func:`controller_check_rows` where the check is covered; with an amplifier lag the speed,
+        "not covered" and why.
+    """
+    dev = chk.device
+    if chk.criterion is None or chk.colgate_schenkel is None:
+        speed = f"{chk.velocity:.4g} {dev.units['velocity']}"
+        return [["speed", speed], ["passive", NOT_COVERED], ["why", LAG_WHY]]
+    return controller_check_rows(chk.criterion, chk.colgate_schenkel, dev.units["velocity"])
+
+
+def controller_rows(controller: Any, period: float, units: dict[str, str]) -> list[list[str]]:
+    """Table rows of the controller: physical values, then the dimensionless groups beside paper Table 1.
+
+    Parameters
+    ----------
+    controller : dfa.controller.Controller
+        The wall controller.
+    period : float
+        Sample period T in s.
+    units : dict
+        The device's unit strings.
+
+    Returns
+    -------
+    list of list of str
+        (quantity, value) rows, read from :func:`controller_dict`.
+    """
+    c: dict[str, Any] = controller_dict(controller, period, units)
+    dim: Any = c["dimensionless"]
+    fc, bw = c["filter_cutoff"], c["amplifier_bandwidth"]
+    amp = "ideal (no lag)" if bw is None else f"{_g(bw)} Hz (τ_a = 1/(2π f_bw) = {_g(c['amplifier_time_constant'])} s)"
+    d = controller.delay
+    return [
+        ["stiffness K", f"{_g(controller.stiffness, 5)} {units['stiffness']}"],
+        ["virtual damping B (backward-difference velocity)", f"{_g(controller.damping)} {units['damping']}"],
+        ["computational delay d", f"{d} sample{'s' if d != 1 else ''}"],
+        ["velocity filter cutoff f_c", "none" if fc is None else f"{_g(fc)} Hz (first-order low-pass)"],
+        ["amplifier bandwidth f_bw", amp],
+        ["β_B = B/(KT)", _g(dim["beta_B"])],
+        ["ν_c = f_c·T", "none" if dim["nu_c"] is None else _g(dim["nu_c"])],
+        ["α = τ_a/T", _g(dim["alpha"])],
+    ]
+
+
+#: Labels of the K_max fields of :class:`dfa.controller_kmax.ControllerStiffnessLimits` (others: their key).
+LIMIT_LABELS = {
+    "velocity": "impact speed V",
+    "k_criterion": "extended criterion (eq. 11 extended to the damper, filter and delay; a proof)",
+    "k_linear": "exact linear bound of the controlled loop (no encoder, no friction; all conditions)",
+    "k_df": "describing function with the controller (growth speed >= V; first harmonic)",
+    "k_sim": "simulation: no simulated impact up to V diverges",
+    "k_sim_rest": "simulation: every simulated impact up to V rests",
+    "status": "status",
+}
+
+
+def _limit_value(key: str, value: Any, units: dict[str, str], why: str | None) -> str:
+    """One field of the K_max record: a number with its unit, a nested record, or the null's reason."""
+    unit = units["velocity"] if key == "velocity" else units["stiffness"] if key.startswith("k_") else ""
+    if value is None:
+        return f"not available: {why}" if why else "not available"
+    if isinstance(value, bool) or not isinstance(value, (int, float, dict)):
+        return str(value)
+    if isinstance(value, dict):  # a searched limit: its value, then its other non-null entries
+        rest = "; ".join(
+            f"{k}: {v}" for k, v in value.items() if k not in ("value", "null_reasons") and v not in (None, [], {})
+        )
+        head = _limit_value(key, value.get("value"), units, why or _reason(value, "value"))
+        return head + (f" ({rest})" if rest else "")
+    return f"{number(float(value), 5)} {unit}".rstrip()
+
+
+def _reason(rec: dict[str, Any], key: str) -> str | None:
+    reasons = rec.get("null_reasons") or {}
+    return reasons.get(key) or reasons.get("/" + key)
+
+
+def controller_limit_rows(record: dict[str, Any], units: dict[str, str]) -> list[list[str]]:
+    """Rows of K_max with a controller from its ``as_dict()``, every field, generically.
+
+    Each field is stated with its unit, or, where null, with the reason its record gives; fields added
+    later (a describing-function or simulated K_max) appear as soon as they are computed.
+
+    Parameters
+    ----------
+    record : dict
+        :meth:`dfa.controller_kmax.ControllerStiffnessLimits.as_dict` (``null_reasons`` by key or JSON pointer).
+    units : dict
+        The device's unit strings.
+
+    Returns
+    -------
+    list of list of str
+
+    Examples
+    --------
+    >>> u = {"stiffness": "N/m", "velocity": "m/s"}
+    >>> controller_limit_rows({"k_linear": 6051.9, "k_sim": None, "null_reasons": {"k_sim": "not computed"}}, u)[1]
+    ['simulation: no simulated impact up to V diverges', 'not available: not computed']
+    """
+    return [
+        [LIMIT_LABELS.get(k, k), _limit_value(k, v, units, _reason(record, k))]
+        for k, v in record.items()
+        if k != "null_reasons"
+    ]

@@ -31,7 +31,10 @@ def _samples(n: int) -> str:
 
 def verdict_text(a: DesignAnalysis) -> str:
     """The verdict paragraph: what the criterion proves, at which speed and delay, and what simulation found."""
+    if getattr(a, "controller", None) is not None:  # read as an attribute: a namespace of the fields also renders
+        return controller_verdict_text(a)
     dev, crit, lim, k, v = a.device, a.criterion, a.limits, a.stiffness, a.velocity
+    assert crit is not None and lim is not None
     u = dev.units
     ds = f"a computational delay of {_samples(a.delay)}"
     if crit.passive:
@@ -50,15 +53,71 @@ def verdict_text(a: DesignAnalysis) -> str:
         f"{'at' if crit.critical_velocity else 'At'} {v:g} {u['velocity']} with {ds} the largest passive stiffness "
         f"is {lim.k_max:.5g} {u['stiffness']}. "
     )
+    return text + _simulated_text(a)
+
+
+def _simulated_text(a: DesignAnalysis) -> str:
+    """What the speed scan of exact simulations found (with the controller, if any)."""
+    u = a.device.units
+    with_ctl = " with the controller" if getattr(a, "controller", None) is not None else ""
     if a.simulated_xi_dot:
-        text += (
-            f"In exact simulation an impact at {number(a.simulated_velocity)} {u['velocity']} diverges: the lowest "
-            "unstable speed of a 40-point scan, refined by bisection; stability need not be monotone in speed, so "
-            "slower impacts between scan points may diverge too."
+        return (
+            f"In exact simulation{with_ctl} an impact at {number(a.simulated_velocity)} {u['velocity']} diverges: the "
+            "lowest unstable speed of a 40-point scan, refined by bisection; stability need not be monotone in speed, "
+            "so slower impacts between scan points may diverge too."
         )
+    return (
+        f"No impact speed of a 40-point scan up to 30 times the reference speed diverged in exact simulation{with_ctl}."
+    )
+
+
+def controller_verdict_text(a: DesignAnalysis) -> str:
+    """The verdict with a wall controller: the extended criterion (or "not covered"), its K_max, simulation."""
+    from .controller import LAG_WHY, NOT_COVERED
+
+    dev, u, ctl, chk = a.device, a.device.units, a.controller, a.controller_check
+    assert ctl is not None and chk is not None
+    text = (
+        f"**Verdict.** With the wall controller below (K = {a.stiffness:g} {u['stiffness']}, virtual damping "
+        f"B = {ctl.damping:g} {u['damping']}), an impact speed of {a.velocity:g} {u['velocity']} and a computational "
+        f"delay of {_samples(a.delay)}, the {dev.name} is "
+    )
+    r = chk.criterion
+    if r is None:
+        text += f"**{NOT_COVERED}**: {LAG_WHY}. "
     else:
-        text += "No impact speed of a 40-point scan up to 30 times the reference speed diverged in exact simulation."
-    return text
+        verdict = (
+            "passive (proven: the energy cannot grow)"
+            if r.passive
+            else "not proven passive (the extended criterion gives no guarantee; that is not a proof of instability)"
+        )
+        text += (
+            f"**{verdict}** by the criterion of eq. 6 extended to the damper, filter and delay (region {r.region}: "
+            f"{r.status_message}). "
+        )
+        if r.critical_velocity:
+            text += f"It guarantees passivity up to {number(r.critical_velocity)} {u['velocity']}. "
+    lim = a.controller_limits
+    if lim is not None and lim.k_criterion is not None:
+        text += (
+            f"With this B, filter and delay the largest stiffness it proves passive at {a.velocity:g} {u['velocity']} "
+            f"is {lim.k_criterion:.5g} {u['stiffness']}. "
+        )
+    return text + _simulated_text(a)
+
+
+def spring_only_text(a: DesignAnalysis) -> str:
+    """Which sections a report with a controller leaves out, and why ('' for the spring)."""
+    if a.controller is None:
+        return ""
+    return (
+        "Not in this report: the criterion of eq. 6 for the bare spring with its stiffness limits (eq. 8–11), the "
+        "four-way K_max and the stiffness–speed chart, and the regions and stiffness figures. They hold for the "
+        "paper's spring (B = 0, no velocity filter, ideal amplifier), not for this controller, and the package "
+        "does not compute them with one; `dfa report` without the controller flags writes them (a separate file). "
+        "Everything below is computed with the controller; the device table's μ, β, σ are the device's groups at K "
+        "(paper Table 1)."
+    )
 
 
 def outcome_text(a: DesignAnalysis) -> str:
@@ -123,6 +182,7 @@ def catalogue_text(a: DesignAnalysis) -> str:
 def limits_rows(a: DesignAnalysis) -> list[list[str]]:
     """Rows of the passivity and stiffness-limits table."""
     crit, lim, u = a.criterion, a.limits, a.device.units
+    assert crit is not None and lim is not None
     crit_speed = (
         "none"
         if crit.critical_xi_dot is None
@@ -214,14 +274,8 @@ def growth_text(a: DesignAnalysis) -> str:
 
 def trust_rows(a: DesignAnalysis) -> list[list[str]]:
     """Critical impact speed four ways: criterion, describing function (two loop models), exact simulation."""
-    crit, u, v_sim = a.criterion, a.device.units, a.simulated_xi_dot
-    rows = [
-        [
-            "criterion (eq. 12), guaranteed",
-            number(crit.critical_xi_dot),
-            f"{number(crit.critical_velocity)} {u['velocity']}",
-        ]
-    ]
+    u, v_sim = a.device.units, a.simulated_xi_dot
+    rows = [_criterion_speed_row(a)]
     for m, t in (("half-delay", a.threshold("half-delay")), ("exact ZOH", a.threshold("zoh"))):
         band = t.is_band
         rows.append(
@@ -236,12 +290,43 @@ def trust_rows(a: DesignAnalysis) -> list[list[str]]:
     return rows
 
 
+def _criterion_speed_row(a: DesignAnalysis) -> list[str]:
+    """The criterion's critical speed (the extended criterion's with a controller; "not covered" with a lag)."""
+    u = a.device.units
+    if a.criterion is not None:
+        crit = a.criterion
+        return [
+            "criterion (eq. 12), guaranteed",
+            number(crit.critical_xi_dot),
+            f"{number(crit.critical_velocity)} {u['velocity']}",
+        ]
+    from .controller import NOT_COVERED
+
+    assert a.controller_check is not None
+    r = a.controller_check.criterion
+    if r is None:
+        return ["extended criterion, guaranteed", "–", NOT_COVERED]
+    return [
+        "extended criterion (eq. 12 with the damper, filter and delay), guaranteed",
+        number(r.critical_xi_dot),
+        f"{number(r.critical_velocity)} {u['velocity']}",
+    ]
+
+
+def _critical_xi_dot(a: DesignAnalysis) -> float | None:
+    if a.criterion is not None:
+        return a.criterion.critical_xi_dot
+    chk = a.controller_check
+    return None if chk is None or chk.criterion is None else chk.criterion.critical_xi_dot
+
+
 def trust_text(a: DesignAnalysis) -> str:
     """How conservative the criterion is and how close the describing function comes, for this device."""
-    v_sim, crit, g = a.simulated_xi_dot, a.criterion, a.threshold("zoh")
+    v_sim, crit_xi, g = a.simulated_xi_dot, _critical_xi_dot(a), a.threshold("zoh")
     msg = []
-    if v_sim and crit.critical_xi_dot:
-        msg.append(f"The criterion is conservative by a factor {v_sim / crit.critical_xi_dot:.3g} for this device")
+    if v_sim and crit_xi:
+        name = "The extended criterion" if a.controller is not None else "The criterion"
+        msg.append(f"{name} is conservative by a factor {v_sim / crit_xi:.3g} for this device")
     if v_sim and g.xi_dot:
         msg.append(
             f"the describing function's threshold is within {100 * abs(g.xi_dot / v_sim - 1):.2g} % of the simulated one"
@@ -320,6 +405,27 @@ def zwidth_rows(a: DesignAnalysis) -> list[list[str]]:
 ZWIDTH_HEADER = ("linear", "Colgate–Schenkel", "criterion (proof)", "describing fn", "sim: no divergence", "sim: rest")
 
 
+def _controller_parts(a: DesignAnalysis) -> dict[str, str]:
+    """The template's controller sections (empty strings for the spring: its report is unchanged)."""
+    from .controller import check_table_rows, controller_limit_rows, controller_line, controller_rows
+
+    keys = ("controller_line", "controller_table", "check_table", "climits_table", "spring_only", "with_ctl")
+    if a.controller is None or a.controller_check is None:
+        return dict.fromkeys(keys, "")
+    dev, u = a.device, a.device.units
+    lim = a.controller_limits
+    return dict(
+        controller_line=controller_line(a.controller, dev.period, u),
+        controller_table=markdown_table(["quantity", "value"], controller_rows(a.controller, dev.period, u)),
+        check_table=markdown_table(["quantity", "value"], check_table_rows(a.controller_check)),
+        climits_table="" if lim is None else markdown_table(
+            ["largest stiffness K with this controller", "value"], controller_limit_rows(lim.as_dict(), u)
+        ),
+        spring_only=spring_only_text(a),
+        with_ctl=" with the controller",
+    )  # fmt: skip
+
+
 def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callable[[str], str]) -> str:
     """The report as Markdown; ``src(name)`` gives each figure's link (a relative path or a data URI).
 
@@ -340,9 +446,10 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
     return _template().render(
         a=a,
         verdict=verdict_text(a),
+        **_controller_parts(a),
         device_table=markdown_table(["quantity", "value"], device_rows(a)),
         catalogue_text=catalogue_text(a),
-        limits_table=markdown_table(["quantity", "value"], limits_rows(a)),
+        limits_table=markdown_table(["quantity", "value"], limits_rows(a)) if a.criterion is not None else "",
         answer_table=markdown_table(["largest stiffness K at this speed", "value"], answer_rows(a))
         if a.design_answer is not None
         else "",

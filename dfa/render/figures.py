@@ -33,10 +33,21 @@ def _delay_text(dl: int) -> str:
     return f", delay {dl} sample{'s' if dl != 1 else ''}" if dl else ""
 
 
-def _regions(a: DesignAnalysis) -> ReportFigure:
+def _with_ctl(a: DesignAnalysis) -> str:
+    """' with the wall controller (β_B = …, ν_c = …, α = …)' for a report with a controller, '' for the spring."""
+    cp = a.controller_params
+    if cp is None:
+        return ""
+    nu = "none" if cp.cutoff is None else f"{cp.cutoff:.3g}"
+    return f" with the wall controller (β_B = {cp.damping:.3g}, ν_c = {nu}, α = {cp.lag:.3g}, d = {cp.delay})"
+
+
+def _regions(a: DesignAnalysis) -> ReportFigure | None:
     from .. import plotting
 
     crit, p, u = a.criterion, a.params, a.device.units
+    if crit is None:  # a controller: the regions of eq. 6 are the spring's (the report says so)
+        return None
     ax = plotting.regions_plot(
         crit,
         xi_dots=[x for x in (1.0, 5.0) if abs(x - crit.xi_dot) > 0.2],
@@ -50,9 +61,11 @@ def _regions(a: DesignAnalysis) -> ReportFigure:
     return ReportFigure("regions", caption, _png(ax.figure))
 
 
-def _stiffness(a: DesignAnalysis) -> ReportFigure:
+def _stiffness(a: DesignAnalysis) -> ReportFigure | None:
     from .. import plotting
 
+    if a.stiffness_curve is None:  # a controller: eq. 11 is the spring's (the report says so)
+        return None
     ax = plotting.stiffness_plot(a.stiffness_curve)
     caption = (
         "Largest passive stiffness against impact speed (eq. 11) and the published bounds (values in the legend; "
@@ -68,7 +81,7 @@ def _nyquist(a: DesignAnalysis) -> ReportFigure:
     ax = plotting.nyquist_plot(a.nyquist, cycles=a.threshold(model).result)
     name = plotting.MODEL_NAMES.get(model, model)
     caption = (
-        f"Nyquist plot of the linearised loop ({name} model, as the growth threshold above) against −1/D(M), "
+        f"Nyquist plot of the linearised loop{_with_ctl(a)} ({name} model, as the growth threshold above) against −1/D(M), "
         "with its predicted limit cycles (filled: stable, open: unstable); the inset zooms on the cycles when "
         "they crowd or lie below one tick."
     )
@@ -84,7 +97,7 @@ def _trajectories(a: DesignAnalysis) -> ReportFigure:
     fig, axs = plt.subplots(2, 1, figsize=(7, 5.6), constrained_layout=True)
     plotting.trajectory_plot(a.trajectory, ax=axs[0], device=dev)
     axs[0].set_title(
-        f"impact at {a.velocity:g} {u['velocity']} (ξ'0 = {a.criterion.xi_dot:.3g}): {a.outcome.outcome}", fontsize=9
+        f"impact at {a.velocity:g} {u['velocity']} (ξ'0 = {a.xi_dot:.3g}): {a.outcome.outcome}", fontsize=9
     )
     plotting.trajectory_plot(a.trajectory_high, ax=axs[1], device=dev)
     axs[1].set_title(
@@ -93,7 +106,7 @@ def _trajectories(a: DesignAnalysis) -> ReportFigure:
         fontsize=9,
     )
     caption = (
-        "Simulated displacement (exact sampled-data integration) at the design speed and just above the simulated "
+        f"Simulated displacement (exact sampled-data integration){_with_ctl(a)} at the design speed and just above the simulated "
         "critical speed, each with its own time window and scale (a run that came to rest is shown up to about "
         "four times its settling time); left axis in encoder ticks, right axis in "
         f"{u['position']}; dashed: ±1 tick."
@@ -108,7 +121,9 @@ def _map(a: DesignAnalysis) -> ReportFigure:
         a.stability_map, device=a.device, stiffness=a.stiffness, point=(a.params.beta, a.params.sigma)
     )
     caption = (
-        "Simulated stability around the operating point (red circle) at the design speed and twice it; "
+        f"Simulated stability{_with_ctl(a)} around the operating point (red circle) at the design speed and twice it"
+        + ("; the controller's groups are held fixed over the map" if a.controller is not None else "")
+        + "; "
         f"μ = {a.params.mu:.4g}. Top and right axes: the damping b and Coulomb friction c that give β and σ at "
         f"K = {a.stiffness:.4g} {a.device.units['stiffness']}. The legend lists every outcome class, present or not."
     )
@@ -136,7 +151,28 @@ def _zwidth(a: DesignAnalysis) -> ReportFigure | None:
         f"{a.device.units['velocity']}: largest K at each virtual damping B by the exact linear bound, passivity, "
         f"the describing function and exact simulation on a {z.stiffness.size} × {z.damping.size} grid (shaded)."
     )
+    if a.controller is not None:
+        caption += _mark_design_point(ax, a)
     return ReportFigure("zwidth", caption, _png(ax.figure))
+
+
+def _mark_design_point(ax: Any, a: DesignAnalysis) -> str:
+    """Star the controller's (B, K) on the Z-width; the caption's sentence about it."""
+    assert a.controller is not None
+    b, k = a.controller.damping, a.stiffness
+    u = a.device.units
+    lo, hi = ax.get_ylim()
+    where = "" if lo <= k <= hi else " (outside the K grid: drawn at its edge)"
+    ax.plot([b], [min(max(k, lo), hi)], marker="*", ms=16, color="k", mfc="gold", ls="none", zorder=6)
+    filt = []
+    if a.controller.filter_cutoff is not None:
+        filt.append(f"velocity filter {a.controller.filter_cutoff:.4g} Hz")
+    if a.controller.amplifier_bandwidth is not None:
+        filt.append(f"amplifier bandwidth {a.controller.amplifier_bandwidth:.4g} Hz")
+    return (
+        f" With the controller's {', '.join(filt) or 'delay'}; the star is the design point K = {k:.5g} "
+        f"{u['stiffness']}, B = {b:.4g} {u['damping']}{where}."
+    )
 
 
 #: The report's figures in the order they appear.
