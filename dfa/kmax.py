@@ -235,8 +235,22 @@ class KSearch:
         }
 
 
-def _search(judge: Callable[[float], str], grid: np.ndarray, what: str, unit: str) -> KSearch:
-    """Largest K before the first non-safe judgement on an ascending ``grid``, refined by bisection."""
+#: What an undecided simulated verdict means (the reason of a limit it stops).
+UNDECIDED_RUNS = "undecided runs: too short to tell"
+#: What an undecided describing-function verdict means (:func:`df_verdict`).
+UNDECIDED_DF = (
+    "undecided predictions: the sub-tick caveat (smallest unstable cycle below dfa.cycles.SUBTICK_LIMIT ticks, "
+    "where simulation diverges from starts the first harmonic says settle) or an incomplete cycle search"
+)
+
+
+def _search(
+    judge: Callable[[float], str], grid: np.ndarray, what: str, unit: str, undecided_why: str = UNDECIDED_RUNS
+) -> KSearch:
+    """Largest K before the first non-safe judgement on an ascending ``grid``, refined by bisection.
+
+    ``undecided_why`` says what an undecided judgement means, for the reason of a limit it stops.
+    """
     verdicts = [judge(float(k)) for k in grid]
     undecided = {float(k) for k, v in zip(grid, verdicts, strict=True) if v == UNDECIDED}
     bad = [i for i, v in enumerate(verdicts) if v != SAFE]
@@ -272,7 +286,8 @@ def _search(judge: Callable[[float], str], grid: np.ndarray, what: str, unit: st
             hi, hi_verdict = mid, v
     reason = None
     if hi_verdict == UNDECIDED:
-        reason = f"limited by undecided runs at {hi:.5g} {unit}: too short to tell, counted as not safe"
+        why, _, means = undecided_why.partition(": ")
+        reason = f"limited by {why} at {hi:.5g} {unit}: {means}, counted as not safe"
     return KSearch(lo, reason, bool(safe_above), safe_above, tuple(sorted(undecided)), hi, n)
 
 
@@ -1011,7 +1026,7 @@ def _three_searches(ev: _Evidence, v: float, k_ref: float, top: float, n_grid: i
     unit = dev.units["stiffness"]
     pts = _search_grid(k_ref, top, n_grid)
     xd = dev.xi_dot(v)
-    k_df = _search(lambda k: ev.predicted(k, xd), pts, "predicted growth speed >= V", unit)
+    k_df = _search(lambda k: ev.predicted(k, xd), pts, "predicted growth speed >= V", unit, UNDECIDED_DF)
     k_sim = _search(ev.no_divergence, pts, "no divergence", unit)
     k_rest = _search(ev.rest, pts, "rest after every impact", unit)
     return k_df, k_sim, k_rest, (float(pts[0]), float(pts[-1]))

@@ -36,12 +36,20 @@ import numpy as np
 
 from ._frozen import frozen_array
 from .checks import check_delay, check_int, check_positive, check_real, check_type
+from .cycles.caveats import SUBTICK_LIMIT
 from .device import Device
 from .errors import DFAValueError
+from .jsonable import explain_nulls
 from .kmax import DESIGN_MAX_SAMPLES, RunCache, _Evidence
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
 __all__ = ["StiffnessSpeedChart", "stiffness_speed_chart", "HAND_SPEED"]
+
+#: Why the describing function's largest safe speed is unknown (null) at a stiffness.
+UNKNOWN_DF = (
+    "unknown: the describing function cannot tell there (the sub-tick caveat of dfa.cycles.caveats: smallest "
+    f"unstable cycle below {SUBTICK_LIMIT:g} ticks; or an incomplete cycle search)"
+)
 
 #: Default top of the speed axis: hand speeds (m/s for a linear device, rad/s for a rotary one).
 HAND_SPEED = {"linear": 2.0, "rotary": 10.0}
@@ -67,7 +75,7 @@ class StiffnessSpeedChart:
         Stiffness grid of the simulated and predicted curves.
     v_df, v_sim, v_rest : numpy.ndarray
         Largest safe speed at each K by describing function, simulation (no divergence) and simulation
-        (rest); 0: not even the slowest simulated speed; NaN (``v_df``): unknown.
+        (rest); 0: not even the slowest simulated speed; NaN (``v_df``): unknown (:data:`UNKNOWN_DF`).
     criterion_stiffness, v_criterion : numpy.ndarray
         A finer grid and the criterion's largest passive speed on it (0 above 2c/Δ).
     speeds : numpy.ndarray
@@ -150,7 +158,7 @@ class StiffnessSpeedChart:
         def lst(a):
             return [None if not math.isfinite(x) else float(x) for x in a]
 
-        return {
+        out = {
             "device": self.device.name,
             "delay": self.delay,
             "v_top": self.v_top,
@@ -171,6 +179,7 @@ class StiffnessSpeedChart:
             "stiffness_unit": self.device.units["stiffness"],
             "velocity_unit": self.device.units["velocity"],
         }
+        return explain_nulls(out, {"v_df": UNKNOWN_DF})
 
 
 def _largest_safe(verdicts: list[bool], speeds: np.ndarray) -> float:
