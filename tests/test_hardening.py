@@ -462,7 +462,7 @@ def test_cli_sigterm_stops_joblib_workers(tmp_path):
             "1",
             "2",
             "--grid",
-            "60",
+            "200",  # about 10 s on 2 cores: long enough to still run at the signal
             "--samples",
             "5000000",
             "--delay",
