@@ -238,10 +238,7 @@ class KSearch:
 #: What an undecided simulated verdict means (the reason of a limit it stops).
 UNDECIDED_RUNS = "undecided runs: too short to tell"
 #: What an undecided describing-function verdict means (:func:`df_verdict`).
-UNDECIDED_DF = (
-    "undecided predictions: the sub-tick caveat (smallest unstable cycle below dfa.cycles.SUBTICK_LIMIT ticks, "
-    "where simulation diverges from starts the first harmonic says settle) or an incomplete cycle search"
-)
+UNDECIDED_DF = "undecided predictions: the sub-tick caveat or an incomplete cycle search (dfa.cycles.caveats)"
 
 
 def _search(
