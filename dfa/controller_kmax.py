@@ -55,7 +55,7 @@ from .kmax import (
     RunCache,
     _assess,
     _Evidence,
-    evidence_text,
+    _SearchedLimits,
     searched_limits,
 )
 from .stiffness import k_colgate, k_gil, k_max_criterion, k_static
@@ -76,7 +76,7 @@ STATUSES = ("ok", "caveats", "counterexample")
 
 
 @dataclass(frozen=True)
-class ControllerStiffnessLimits:
+class ControllerStiffnessLimits(_SearchedLimits):
     """K_max with a controller four ways (module docstring); stiffnesses in N/m (rotary N·m/rad).
 
     Attributes
@@ -158,11 +158,6 @@ class ControllerStiffnessLimits:
         if self.status not in STATUSES:
             raise DFAValueError(f"status = {self.status!r} is invalid: it must be one of {', '.join(STATUSES)}")
 
-    @property
-    def searches(self) -> dict[str, KSearch]:
-        """The three searched limits by name: ``k_df``, ``k_sim`` and ``k_sim_rest``."""
-        return {"k_df": self.k_df, "k_sim": self.k_sim, "k_sim_rest": self.k_sim_rest}
-
     def evidence_text(self) -> str:
         """How the simulated limits were found, in one sentence (with the controller held fixed).
 
@@ -171,10 +166,7 @@ class ControllerStiffnessLimits:
         str
             Runs, speeds, stiffness range (device units), run lengths, hold model.
         """
-        ev = evidence_text(
-            self.device, self.speeds, self.k_range, self.simulations, self.longest_run, self.max_samples, self.df_model
-        )
-        return ev + "; each K with its own β_B = B/(KT), filter, lag and delay held fixed"
+        return super().evidence_text() + "; each K with its own β_B = B/(KT), filter, lag and delay held fixed"
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (SI units): the limits (null with a reason), the evidence, status.
@@ -190,30 +182,15 @@ class ControllerStiffnessLimits:
             "k_criterion": self.k_criterion,
             "k_linear": self.k_linear,
         }
-        why = {k: str(v) for k, v in self.reasons.items()}
-        for name, s in self.searches.items():
-            out[name] = s.value
-            out[f"{name}_reason"] = s.reason
-            why[name] = s.reason or "undefined"
-            why[f"{name}_reason"] = "no caveat: the limit stands as stated"
+        fields, why = self._search_fields()
+        out.update(fields)
+        why.update({k: str(v) for k, v in self.reasons.items()})
         why["assessment"] = "no stiffness to assess asked"
+        starts = ["impact from ξ0 = 0", "spring preload of equal energy (damper velocity and filter at 0)"]
         out.update(
             status=self.status,
-            evidence={
-                "speeds": list(self.speeds),
-                "starts": ["impact from ξ0 = 0", "spring preload of equal energy (damper velocity and filter at 0)"],
-                "simulations": self.simulations,
-                "simulated_runs": self.simulations,
-                "longest_run_samples": self.longest_run,
-                "max_samples": self.max_samples,
-                "df_model": self.df_model,
-                "k_range": list(self.k_range),
-                "text": self.evidence_text(),
-            },
+            **self._evidence_fields(starts, simulated_runs=self.simulations),
             counterexample_check=self.reasons.get("counterexamples", "every run at or below k_criterion"),
-            searches={k: s.as_dict() for k, s in self.searches.items()},
-            counterexamples=[dict(c) for c in self.counterexamples],
-            assessment=None if self.assessment is None else self.assessment.as_dict(),
         )
         return explain_nulls(out, {k: v for k, v in why.items() if k != "counterexamples"})
 

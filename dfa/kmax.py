@@ -667,8 +667,72 @@ def _search_grid(k_criterion: float, top: float, grid: int) -> np.ndarray:
     return pts
 
 
+class _SearchedLimits:
+    """What :class:`KMaxResult` and :class:`dfa.controller_kmax.ControllerStiffnessLimits` share: the three
+    searched limits, the sentence on their evidence and their JSON fields (one implementation)."""
+
+    device: Device
+    k_df: KSearch
+    k_sim: KSearch
+    k_sim_rest: KSearch
+    speeds: tuple[float, ...]
+    simulations: int
+    longest_run: int
+    max_samples: int
+    df_model: str
+    k_range: tuple[float, float]
+    counterexamples: tuple[dict[str, object], ...]
+    assessment: KMaxAssessment | None
+
+    @property
+    def searches(self) -> dict[str, KSearch]:
+        """The three searched limits by name: ``k_df``, ``k_sim`` and ``k_sim_rest``."""
+        return {"k_df": self.k_df, "k_sim": self.k_sim, "k_sim_rest": self.k_sim_rest}
+
+    def evidence_text(self) -> str:
+        """How the simulated limits were found, in one sentence.
+
+        Returns
+        -------
+        str
+            The number of runs, the impact speeds and stiffness range (device units), run lengths and hold model.
+        """
+        return evidence_text(
+            self.device, self.speeds, self.k_range, self.simulations, self.longest_run, self.max_samples, self.df_model
+        )
+
+    def _search_fields(self) -> tuple[dict[str, object], dict[str, str]]:
+        """The limits with their ``*_reason`` and why each may be null."""
+        out: dict[str, object] = {}
+        why: dict[str, str] = {}
+        for name, s in self.searches.items():
+            out[name] = s.value
+            out[f"{name}_reason"] = s.reason
+            why[name] = s.reason or "undefined"
+            why[f"{name}_reason"] = "no caveat: the limit stands as stated"
+        return out, why
+
+    def _evidence_fields(self, starts: list[str], **extra: object) -> dict[str, object]:
+        """The evidence, searches, counterexamples and assessment of the JSON record."""
+        evidence: dict[str, object] = {"speeds": list(self.speeds), "starts": starts, "simulations": self.simulations}
+        evidence.update(extra)
+        evidence.update(
+            longest_run_samples=self.longest_run,
+            max_samples=self.max_samples,
+            df_model=self.df_model,
+            k_range=list(self.k_range),
+            text=self.evidence_text(),
+        )
+        return {
+            "evidence": evidence,
+            "searches": {k: s.as_dict() for k, s in self.searches.items()},
+            "counterexamples": [dict(c) for c in self.counterexamples],
+            "assessment": None if self.assessment is None else self.assessment.as_dict(),
+        }
+
+
 @dataclass(frozen=True)
-class KMaxResult:
+class KMaxResult(_SearchedLimits):
     """K_max four ways for a device at an impact speed (module docstring); stiffnesses in N/m (N·m/rad).
 
     Attributes
@@ -754,23 +818,6 @@ class KMaxResult:
         if self.status not in ("ok", "caveats", "counterexample"):
             raise DFAValueError(f"status = {self.status!r} is invalid: it must be ok, caveats or counterexample")
 
-    @property
-    def searches(self) -> dict[str, KSearch]:
-        """The three searched limits by name: ``k_df``, ``k_sim`` and ``k_sim_rest``."""
-        return {"k_df": self.k_df, "k_sim": self.k_sim, "k_sim_rest": self.k_sim_rest}
-
-    def evidence_text(self) -> str:
-        """How the simulated limits were found, in one sentence.
-
-        Returns
-        -------
-        str
-            The number of runs, the impact speeds and stiffness range (device units), run lengths and hold model.
-        """
-        return evidence_text(
-            self.device, self.speeds, self.k_range, self.simulations, self.longest_run, self.max_samples, self.df_model
-        )
-
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record: the four limits (null with a reason), the bounds, the evidence.
 
@@ -791,30 +838,14 @@ class KMaxResult:
             "k_colgate": self.k_colgate,
             "k_abbott_okamura": self.k_abbott_okamura,
         }
-        why: dict[str, str] = {}
-        for name, s in self.searches.items():
-            out[name] = s.value
-            out[f"{name}_reason"] = s.reason
-            why[name] = s.reason or "undefined"
-            why[f"{name}_reason"] = "no caveat: the limit stands as stated"
+        fields, why = self._search_fields()
+        out.update(fields)
         why["assessment"] = "no stiffness given to assess (and no catalogue K)"
         out.update(
             stiffness_unit=self.device.units["stiffness"],
             velocity_unit=self.device.units["velocity"],
             design_status=self.status,
-            evidence={
-                "speeds": list(self.speeds),
-                "starts": ["impact from ξ0 = 0", "spring preload of equal energy"],
-                "simulations": self.simulations,
-                "longest_run_samples": self.longest_run,
-                "max_samples": self.max_samples,
-                "df_model": self.df_model,
-                "k_range": list(self.k_range),
-                "text": self.evidence_text(),
-            },
-            searches={k: s.as_dict() for k, s in self.searches.items()},
-            counterexamples=[dict(c) for c in self.counterexamples],
-            assessment=None if self.assessment is None else self.assessment.as_dict(),
+            **self._evidence_fields(["impact from ξ0 = 0", "spring preload of equal energy"]),
         )
         return explain_nulls(out, why)
 
