@@ -152,6 +152,16 @@ def test_controller_report_kmax_equals_dfa_stiffness(ctl):
     label = "extended criterion (eq. 11 extended to the damper, filter and delay; a proof)"
     assert md_row(label, f"{stiff['k_criterion']:.5g} N/m") in md
     assert f"{stiff['k_linear']:.5g} N/m" in md
+    for key, label in (
+        ("k_df", "describing function with the controller (growth speed >= V; first harmonic)"),
+        ("k_sim", "simulation: no simulated impact up to V diverges"),
+        ("k_sim_rest", "simulation: every simulated impact up to V rests"),
+    ):  # the searched limits read as in `dfa stiffness`: the number with its unit, never a raw record
+        row = next(line for line in md.splitlines() if line.startswith(f"| {label} |"))
+        value = "none:" if stiff[key] is None else f"| {stiff[key]:.5g} N/m"
+        assert value in row and "{'" not in row, row
+    assert md_row("evidence", lim["evidence"]["text"]) in md  # `dfa stiffness` also assesses K: 2 runs more
+    assert "{'" not in md and "not available (" not in md
 
 
 def test_controller_report_with_lag_is_not_covered(lag):

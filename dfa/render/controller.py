@@ -224,64 +224,40 @@ def controller_rows(controller: Any, period: float, units: dict[str, str]) -> li
     ]
 
 
-#: Labels of the K_max fields of :class:`dfa.controller_kmax.ControllerStiffnessLimits` (others: their key).
-LIMIT_LABELS = {
-    "velocity": "impact speed V",
-    "k_criterion": "extended criterion (eq. 11 extended to the damper, filter and delay; a proof)",
-    "k_linear": "exact linear bound of the controlled loop (no encoder, no friction; all conditions)",
-    "k_df": "describing function with the controller (growth speed >= V; first harmonic)",
-    "k_sim": "simulation: no simulated impact up to V diverges",
-    "k_sim_rest": "simulation: every simulated impact up to V rests",
-    "status": "status",
-}
-
-
-def _limit_value(key: str, value: Any, units: dict[str, str], why: str | None) -> str:
-    """One field of the K_max record: a number with its unit, a nested record, or the null's reason."""
-    unit = units["velocity"] if key == "velocity" else units["stiffness"] if key.startswith("k_") else ""
-    if value is None:
-        return f"not available: {why}" if why else "not available"
-    if isinstance(value, bool) or not isinstance(value, (int, float, dict)):
-        return str(value)
-    if isinstance(value, dict):  # a searched limit: its value, then its other non-null entries
-        rest = "; ".join(
-            f"{k}: {v}" for k, v in value.items() if k not in ("value", "null_reasons") and v not in (None, [], {})
-        )
-        head = _limit_value(key, value.get("value"), units, why or _reason(value, "value"))
-        return head + (f" ({rest})" if rest else "")
-    return f"{number(float(value), 5)} {unit}".rstrip()
-
-
-def _reason(rec: dict[str, Any], key: str) -> str | None:
-    reasons = rec.get("null_reasons") or {}
-    return reasons.get(key) or reasons.get("/" + key)
-
-
-def controller_limit_rows(record: dict[str, Any], units: dict[str, str]) -> list[list[str]]:
-    """Rows of K_max with a controller from its ``as_dict()``, every field, generically.
-
-    Each field is stated with its unit, or, where null, with the reason its record gives; fields added
-    later (a describing-function or simulated K_max) appear as soon as they are computed.
+def controller_limit_rows(lim: Any, units: dict[str, str]) -> list[list[str]]:
+    """Rows of K_max with a controller, worded as the spring's design answer (the same :func:`limit_text`).
 
     Parameters
     ----------
-    record : dict
-        :meth:`dfa.controller_kmax.ControllerStiffnessLimits.as_dict` (``null_reasons`` by key or JSON pointer).
+    lim : dfa.controller_kmax.ControllerStiffnessLimits
+        The limits with the controller held fixed.
     units : dict
         The device's unit strings.
 
     Returns
     -------
     list of list of str
-
-    Examples
-    --------
-    >>> u = {"stiffness": "N/m", "velocity": "m/s"}
-    >>> controller_limit_rows({"k_linear": 6051.9, "k_sim": None, "null_reasons": {"k_sim": "not computed"}}, u)[1]
-    ['simulation: no simulated impact up to V diverges', 'not available: not computed']
+        (quantity, value) rows: speed, the four K_max (null with its reason, searched ones with their caveats
+        and confirmation), counterexamples, status and the evidence sentence.
     """
+    from .text import limit_text
+
+    ku = units["stiffness"]
+    kc = f"none: {lim.reasons['k_criterion']}" if lim.k_criterion is None else f"{number(lim.k_criterion, 5)} {ku}"
+    ce = lim.reasons.get("counterexamples") or (
+        "none: no divergent run at or below the criterion's K"
+        if not lim.counterexamples
+        else f"{len(lim.counterexamples)} divergent run(s) at or below the criterion's K (see the JSON)"
+    )
     return [
-        [LIMIT_LABELS.get(k, k), _limit_value(k, v, units, _reason(record, k))]
-        for k, v in record.items()
-        if k != "null_reasons"
-    ]
+        ["impact speed V", f"{number(lim.velocity, 4)} {units['velocity']}"],
+        ["extended criterion (eq. 11 extended to the damper, filter and delay; a proof)", kc],
+        ["exact linear bound of the controlled loop (no encoder, no friction; all conditions)",
+         f"{number(lim.k_linear, 5)} {ku}"],
+        ["describing function with the controller (growth speed >= V; first harmonic)", limit_text(lim.k_df, ku)],
+        ["simulation: no simulated impact up to V diverges", limit_text(lim.k_sim, ku)],
+        ["simulation: every simulated impact up to V rests", limit_text(lim.k_sim_rest, ku)],
+        ["counterexamples to the criterion", ce],
+        ["status", str(lim.status)],
+        ["evidence", lim.evidence_text()],
+    ]  # fmt: skip

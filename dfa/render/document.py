@@ -419,7 +419,7 @@ def _controller_parts(a: DesignAnalysis) -> dict[str, str]:
         controller_table=markdown_table(["quantity", "value"], controller_rows(a.controller, dev.period, u)),
         check_table=markdown_table(["quantity", "value"], check_table_rows(a.controller_check)),
         climits_table="" if lim is None else markdown_table(
-            ["largest stiffness K with this controller", "value"], controller_limit_rows(lim.as_dict(), u)
+            ["largest stiffness K with this controller", "value"], controller_limit_rows(lim, u)
         ),
         spring_only=spring_only_text(a),
         with_ctl=" with the controller",
