@@ -679,6 +679,11 @@ def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controlle
         return 0
     ku, vu = dev.units["stiffness"], dev.units["velocity"]
     kc = str(r.reasons["k_criterion"]) if r.k_criterion is None else f"{r.k_criterion:.5g} {ku}"
+    if r.k_criterion == 0.0:
+        kc += " (the extended criterion proves no K passive at this speed"
+        pole = ctl.params(dev.period).filter_pole  # σ >= σ₀ at some K needs c/Δ > (1 − a)B/T
+        never = dev.coulomb / dev.resolution <= (1 - pole) * ctl.damping / dev.period
+        kc += ": σ >= σ₀ needs c/Δ > (1 − a)B/T)" if never else ")"
     rows: list[list[str]] = [
         ["criterion K_max at this speed (eq. 6/11 extended to the damper, filter, delay)", kc],
         ["exact linear bound (the controlled loop, all conditions)", f"{r.k_linear:.5g} {ku}"],
@@ -701,7 +706,9 @@ def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controlle
     print(f"evidence: {r.evidence_text()}.")
     if "counterexamples" in r.reasons:
         print(f"{r.reasons['counterexamples']}.")
-    print("only the criterion is a proof; the others hold for the simulated speeds and starts (or the first harmonic).")
+    print(
+        "only the criterion is a proof; the others hold for the simulated speeds, starts and stiffnesses (or the first harmonic)."
+    )
     return 0
 
 
@@ -767,7 +774,7 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
     if ans is not None:
         print(f"evidence: {ans.evidence_text()}.")
         print(
-            "only the criterion is a proof; the others hold for the simulated speeds and starts (or the first harmonic)."
+            "only the criterion is a proof; the others hold for the simulated speeds, starts and stiffnesses (or the first harmonic)."
         )
     else:
         print("impact speed 0: the describing-function and simulated limits need a speed > 0.")

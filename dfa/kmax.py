@@ -593,6 +593,13 @@ def _failures(dense: _Evidence, k: float, bad: str) -> list[dict[str, Any]]:
     ]
 
 
+#: What a simulated limit does not claim: K below the confirmed band was simulated at the search grid only.
+BELOW_K = (
+    "below that band only the search grid's stiffnesses were simulated: stability need not be monotone in K, "
+    "and narrower unsafe bands below K are not excluded"
+)
+
+
 def confirmation_text(dense: _Evidence, bad: str) -> str:
     """What a confirmed limit K claims, in words (device units): the dense speed grid and stiffness band."""
     u = dense.dev.units
@@ -600,7 +607,8 @@ def confirmation_text(dense: _Evidence, bad: str) -> str:
     what = "no divergence" if bad == "unstable" else "every run at rest"
     return (
         f"{what}, none undecided, at {len(vs)} speeds in [{min(vs):.4g}, {max(vs):.4g}] {u['velocity']} "
-        f"(from ξ0 = 0 and from the preload) and {DENSE_RUNGS + len(DENSE_FINE)} stiffnesses in [{1 - DENSE_BAND:g}K, K]"
+        f"(from ξ0 = 0 and from the preload) and {DENSE_RUNGS + len(DENSE_FINE)} stiffnesses in [{1 - DENSE_BAND:g}K, K]; "
+        f"{BELOW_K}"
     )
 
 

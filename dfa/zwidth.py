@@ -540,8 +540,16 @@ def _column(dev, v, d, fc, fbw, ks, b: float, row: np.ndarray, model: str) -> li
         out += [(math.nan, _NOT_COVERED), (math.nan, _NOT_COVERED)]
     else:
         cs, crit = _passivity_judges(dev, b, v, d, fc, fbw)
-        out.append(_crossing(cs, ks, "b above the Colgate–Schenkel bound", unit, True)[:2])
-        out.append(_crossing(crit, ks, "the extended criterion proves passivity", unit, True)[:2])
+        out.append(_crossing(cs, ks, "b >= the Colgate–Schenkel bound", unit, True)[:2])
+        out.append(
+            _crossing(
+                crit,
+                ks,
+                "the extended criterion's passivity guarantee (its absence is no proof of instability)",
+                unit,
+                True,
+            )[:2]
+        )
     subtick: list[float] = []
     df = _df_judge(dev, b, dev.xi_dot(v), d, fc, fbw, model, subtick)
     k_df, why = _crossing(df, ks, "predicted growth speed >= V", unit, True)[:2]

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 
 import dfa
 import dfa.controller_kmax as ck
+import dfa.kmax as kmax
 from dfa.cli import main
 from dfa.controlled_linear import controlled_spectral_radius
 from dfa.controller import Controller, ControllerParams
@@ -167,6 +168,8 @@ def test_cli_stiffness_controller_text_and_json(capsys, small_search):
     for s in (r.k_df, r.k_sim, r.k_sim_rest):
         assert f"{s.value:.5g} N/m" in out
     assert f"{r.simulations} exact simulations" in out and "only the criterion is a proof" in out
+    # a simulated K_max claims its confirmed band, not every K below it (red team: divergent bands below K_sim)
+    assert "simulated speeds, starts and stiffnesses" in out and out.count(kmax.BELOW_K) == 2
     assert "largest passive speed at K = 14500 (extended criterion)" in out
     a = r.assessment
     assert f"{a.max_passive_velocity:.4g} m/s" in out
@@ -260,3 +263,13 @@ def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search)
     assert main(argv) == 0
     out = capsys.readouterr().out
     assert "simulated at K = 30000, impact at V" in out and "predicted cycles at K = 30000" in out
+
+
+def test_eq6_extended_cli_explains_a_zero_criterion_k(capsys, small_search):
+    """Impulse Engine with B = 0.5 N·s/m: c/Δ = 76 N/m < B/T = 500 N/m, so σ >= σ₀ = ½ + β_B fails at every K
+    (eq. 6 extended): the criterion's K_max is 0 and the text says why (red-team: a bare "0 N/m")."""
+    e = dfa.get_device("impulse").device
+    assert e.coulomb / e.resolution <= 0.5 / e.period
+    assert main(["stiffness", "--device", "impulse", "--velocity", "0.1", "--virtual-damping", "0.5"]) == 0
+    row = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("criterion K_max"))
+    assert "0 N/m (the extended criterion proves no K passive at this speed: σ >= σ₀ needs c/Δ > (1 − a)B/T)" in row

@@ -112,7 +112,7 @@ def spring_only_text(a: DesignAnalysis) -> str:
         return ""
     return (
         "Not in this report: the criterion of eq. 6 for the bare spring with its stiffness limits (eq. 8–11), the "
-        "four-way K_max and the stiffness–speed chart, and the regions and stiffness figures. They hold for the "
+        "stiffness–speed chart, and the regions and stiffness figures. They hold for the "
         "paper's spring (B = 0, no velocity filter, ideal amplifier), not for this controller, and the package "
         "does not compute them with one; `dfa report` without the controller flags writes them (a separate file). "
         "Everything below is computed with the controller; the device table's μ, β, σ are the device's groups at K "
