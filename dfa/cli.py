@@ -27,7 +27,7 @@ from typing import Any
 from ._io import check_output_file, check_output_folder, written_paths
 from .catalogue import DEFAULT_DEVICE, CatalogueEntry, catalogue, resolve_device
 from .checks import check_beta, check_mu, check_real, check_sigma
-from .controller import Controller, ControllerParams
+from .controller import MIN_CUTOFF, Controller, ControllerParams
 from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params, dimensionless_params
 from .errors import DFAError, DFAValueError
@@ -299,10 +299,13 @@ def _check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
     """Refuse (UsageError, exit 2) a filter cutoff <= 0 or not below the Nyquist frequency, a bandwidth <= 0."""
     fc, bw = args.velocity_filter, args.amplifier_bandwidth
     nyquist = 0.5 / device.period
-    if fc is not None and not 0 < fc < nyquist:
+    floor = MIN_CUTOFF * 2.0 * nyquist  # as Controller checks it, with the same rounding allowance
+    if fc is not None and not floor * (1 - 1e-12) <= fc < nyquist:
         raise UsageError(
-            f"--velocity-filter {fc:g} is invalid: the cutoff must be > 0 and below the Nyquist frequency "
-            f"{nyquist:g} Hz (1/(2T), T = {device.period:g} s); give a cutoff in Hz below {nyquist:g}, or drop the flag"
+            f"--velocity-filter {fc:g} is invalid: the cutoff must be at least {floor:.6g} Hz ({MIN_CUTOFF:g} cycles "
+            f"per sample: below, the filter pole cannot be told from the mass's pole in double precision) and below "
+            f"the Nyquist frequency {nyquist:.6g} Hz (1/(2T), T = {device.period:g} s); give a cutoff in Hz in "
+            f"[{floor:.6g}, {nyquist:.6g}), or drop the flag"
         )
     if bw is not None and not bw > 0:
         raise UsageError(
@@ -1505,6 +1508,11 @@ def _cmd_zwidth(args: argparse.Namespace) -> int:
 
     if args.stiffness is not None:
         raise UsageError("--stiffness cannot be given to zwidth: the Z-width spans a grid of K (see --grid)")
+    if args.virtual_damping is not None:
+        raise UsageError(
+            "--virtual-damping cannot be given to zwidth: the Z-width spans a grid of B from 0 (see --grid); "
+            "drop the flag, or use `dfa stiffness`/`dfa report` with it for one damper"
+        )
     inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
@@ -1567,7 +1575,9 @@ def _add_zwidth(sub: Any) -> None:
         help="impact speed in m/s (rotary: rad/s); required",
     )
     _add_delay_arg(p)
-    _add_filter_amplifier_args(p.add_argument_group("wall controller (B is the Z-width's axis)"))
+    g = p.add_argument_group("wall controller (B is the Z-width's axis)")
+    _add_filter_amplifier_args(g)
+    g.add_argument("--virtual-damping", type=float, default=None, help=argparse.SUPPRESS)  # refused with why
     p.add_argument("--grid", type=_integer("--grid"), default=40, metavar="N", help="points per axis (default: 40)")
     p.add_argument(
         "--speeds",

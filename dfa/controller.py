@@ -72,10 +72,11 @@ def _check_cutoff(name: str, value: object, nyquist: float, unit: str) -> float 
     out = check_positive(name, value, f"give the velocity-filter cutoff in {unit}, or None for no filter")
     floor = MIN_CUTOFF * 2.0 * nyquist  # 2·nyquist = samples per unit of the cutoff (1 or 1/T)
     per_sample = "" if unit == "cycles per sample" else f"{MIN_CUTOFF:g} cycles per sample; "
-    if out < floor:
+    if out < floor * (1 - 1e-12):  # the floor as printed (6 digits) is accepted despite rounding
         raise DFAValueError(
-            f"{name} = {_fmt(out)} is invalid: it must be at least {_fmt(floor)} {unit} ({per_sample}below, the filter pole and the free mass's pole at z = 1 cannot be told apart in double "
-            f"precision and the linear analysis is unreliable); give a cutoff of at least {_fmt(floor)} {unit}, "
+            f"{name} = {_fmt(out)} is invalid: it must be at least {floor:.6g} {unit} ({per_sample}below, the filter "
+            "pole and the free mass's pole at z = 1 cannot be told apart in double precision and the linear analysis "
+            f"is unreliable); give a cutoff of at least {floor:.6g} {unit}, "
             "or no filter"
         )
     if not out < nyquist:

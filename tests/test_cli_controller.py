@@ -237,3 +237,14 @@ def test_eq11_controller_stiffness_json_equals_api(capsys):
     code, out, _ = run(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
     assert code == 0 and f"{r.k_criterion:.5g} N/m" in out and f"{r.k_linear:.5g} N/m" in out
     assert "controller: K = 14500 N/m, B = 1 N·s/m, delay 1 sample" in out
+
+
+@pytest.mark.parametrize("cutoff", ["0.5", "2.9"])
+def test_cli_velocity_filter_below_the_floor_names_the_flag(capsys, cutoff):
+    """A cutoff below MIN_CUTOFF cycles per sample (3 Hz on the 3 kHz Delta) is refused naming the flag the user
+    typed and the allowed range in plain numbers; the floor as printed is accepted (red team)."""
+    assert main(["check", "--device", "delta", "--velocity", "0.1", "--velocity-filter", cutoff]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"dfa: error: --velocity-filter {cutoff} is invalid") and "\n" not in err
+    assert "at least 3 Hz" in err and "[3, 1500)" in err and "filter_cutoff" not in err
+    assert main(["check", "--device", "delta", "--velocity", "0.1", "--velocity-filter", "3"]) == 0

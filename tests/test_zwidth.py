@@ -162,6 +162,8 @@ def test_cli_zwidth_text_table_prints_the_boundaries(capsys, tmp_path):
         (["--device", "impulse", "--velocity", "0.1", "--amplifier-bandwidth", "0"], "amplifier"),
         (["--device", "impulse", "--velocity", "0.1", "--delay", "1.5"], "delay"),
         (["--device", "impulse", "--velocity", "0.1", "--stiffness", "80"], "--stiffness"),
+        (["--device", "impulse", "--velocity", "0.1", "--virtual-damping", "1"], "grid of B from 0"),
+        (["--device", "impulse", "--velocity", "0.1", "--velocity-filter", "0.4"], "at least 0.5 Hz"),
         (["--device", "impulse", "--velocity", "0.1", "--grid", "500"], "grid"),
         (["--velocity", "0.1"], "device"),
         (["--device", "impulse"], "velocity"),
