@@ -1577,7 +1577,13 @@ def _add_zwidth(sub: Any) -> None:
     _add_delay_arg(p)
     g = p.add_argument_group("wall controller (B is the Z-width's axis)")
     _add_filter_amplifier_args(g)
-    g.add_argument("--virtual-damping", type=float, default=None, help=argparse.SUPPRESS)  # refused with why
+    g.add_argument(
+        "--virtual-damping",
+        type=float,
+        default=None,
+        metavar="B",
+        help="not accepted here: B is the Z-width's axis, its grid spans B from 0 (default: the grid)",
+    )
     p.add_argument("--grid", type=_integer("--grid"), default=40, metavar="N", help="points per axis (default: 40)")
     p.add_argument(
         "--speeds",
