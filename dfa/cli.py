@@ -626,7 +626,7 @@ def _design_rows(ans, vu: str) -> list[list[str]]:
     if a is not None:
         src = " (catalogue K)" if a.source == "catalogue" else ""
         if a.growth_speed is None:
-            grow = "unknown (search incomplete)"
+            grow = a.growth_reason or "unknown (search incomplete)"
         elif math.isinf(a.growth_speed):
             grow = "no growth predicted"
         else:

@@ -237,6 +237,11 @@ class KSearch:
 
 #: What an undecided simulated verdict means (the reason of a limit it stops).
 UNDECIDED_RUNS = "undecided runs: too short to tell"
+#: Why an assessed K's predicted growth speed is unknown under the sub-tick caveat.
+SUBTICK_UNKNOWN = (
+    "unknown: the smallest unstable cycle lies below dfa.cycles.SUBTICK_LIMIT ticks (the sub-tick caveat), "
+    "where simulation has diverged from starts the first harmonic says settle"
+)
 #: What an undecided describing-function verdict means (:func:`df_verdict`).
 UNDECIDED_DF = "undecided predictions: the sub-tick caveat or an incomplete cycle search (dfa.cycles.caveats)"
 
@@ -307,6 +312,8 @@ class KMaxAssessment:
         Simulated outcome of an impact at V from ξ0 = 0 (``"impact"``) and from the preload (``"preload"``).
     passive_reason : str or None
         Why ``max_passive_velocity`` is None, when not the spring's K > 2c/Δ (a controller's criterion).
+    growth_reason : str or None
+        Why ``growth_speed`` is None when the cycle search was complete (the sub-tick caveat).
     """
 
     stiffness: float
@@ -316,6 +323,7 @@ class KMaxAssessment:
     unstable_cycles: int
     outcomes: dict[str, str] = field(default_factory=dict)
     passive_reason: str | None = None
+    growth_reason: str | None = None
 
     def as_dict(self) -> dict[str, object]:
         def fin(x):
@@ -339,7 +347,7 @@ class KMaxAssessment:
                 else "passive at every speed"
             ),
             "growth_speed": (
-                "unknown: the cycle search was incomplete and found no unstable cycle"
+                (self.growth_reason or "unknown: the cycle search was incomplete and found no unstable cycle")
                 if g is None
                 else "no growth predicted (no unstable cycle, stable linear loop)"
             ),
@@ -908,6 +916,7 @@ def _assess(ev: _Evidence, k: float, source: str, velocity: float, delay: int) -
     dev = ev.dev
     g, count, subtick = ev.growth_xi_dot(k)
     g = None if subtick else g  # the sub-tick caveat: the growth speed is not a threshold to rely on
+    g_why = SUBTICK_UNKNOWN if subtick else None
     p, c = ev.params(k)
     xd = dev.xi_dot(velocity)
     outs, _ = ev.cache.simulate(
@@ -919,7 +928,7 @@ def _assess(ev: _Evidence, k: float, source: str, velocity: float, delay: int) -
     ev.runs += 2
     gs = None if g is None else (math.inf if math.isinf(g) else dev.velocity(g))
     mpv, why = _passive_speed(dev, k, delay, ev.controller)
-    return KMaxAssessment(k, source, mpv, gs, count, {"impact": outs[0], "preload": outs[1]}, why)
+    return KMaxAssessment(k, source, mpv, gs, count, {"impact": outs[0], "preload": outs[1]}, why, g_why)
 
 
 def _none(reason: str) -> KSearch:

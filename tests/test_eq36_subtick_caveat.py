@@ -8,6 +8,7 @@ import json
 import numpy as np
 import pytest
 
+import dfa
 from dfa.controller import ControllerParams
 from dfa.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, subtick_caveat
 from dfa.device import Params
@@ -127,3 +128,21 @@ def test_eq36_subtick_caveat_printed_by_dfa_limit_cycles(capsys):
     d = json.loads(capsys.readouterr().out)
     assert d["caveat"].startswith("sub-tick caveat: the smallest unstable cycle (M = 1.014 ticks)")
     assert d["growth_threshold"]["caveat"] == d["caveat"] and "Caveat:" in d["growth_threshold"]["meaning"]
+
+
+def test_eq36_subtick_assessed_stiffness_says_why_its_growth_speed_is_unknown(capsys):
+    """Impulse Engine at K = 540 N/m: the smallest unstable cycle lies below SUBTICK_LIMIT (the caveat), so the
+    assessment of that K in `dfa stiffness` states the sub-tick reason, not "search incomplete" (text and JSON)."""
+    from dfa.cli import main
+    from dfa.kmax import SUBTICK_UNKNOWN
+
+    e = dfa.get_device("impulse").device
+    p = e.params(540.0)
+    assert _growth_xi_dot(p.mu, p.beta, p.sigma, 0, "half-delay").subtick
+    argv = ["stiffness", "--device", "impulse", "--velocity", "0.02", "--stiffness", "540"]
+    assert main(argv) == 0
+    row = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("predicted cycles at K = 540"))
+    assert SUBTICK_UNKNOWN in row and "search incomplete" not in row
+    assert main([*argv, "--json"]) == 0
+    a = json.loads(capsys.readouterr().out)["assessment"]
+    assert a["growth_speed"] is None and a["null_reasons"]["/growth_speed"] == SUBTICK_UNKNOWN
