@@ -45,7 +45,7 @@ from typing import Any
 
 import numpy as np
 
-from ._soundness_counts import SoundnessCounts
+from ._soundness_counts import SoundnessCounts, tally
 from .checks import check_choice, check_int
 from .controller import ControllerParams
 from .controller_passivity import controller_anchor, controller_criterion
@@ -62,12 +62,9 @@ __all__ = [
     "controller_soundness_markdown",
 ]
 
-#: Relative tolerance on S <= S(0): rounding of the exact integrator only.
-TOLERANCE = 1e-9
 #: |ξ| beyond this (ticks) counts as divergence.
 BOUND = 1.0e6
 CRITERIA = ("controller-aware", "damper-ignoring")
-KINDS = ("interior", "line", "sigma-edge", "beta-edge")
 
 
 def run_samples(mu: float) -> int:
@@ -257,11 +254,7 @@ def controller_soundness(
     pts = sample_controller_points(points, criterion=criterion, seed=seed, mu_range=mu_range)
     ns = np.array([run_samples(m) for m in pts["mu"]], dtype=np.int64)
     ratio, at, div = simulate_points(pts, ns)
-    grew = ratio > TOLERANCE
-    w = int(np.argmax(ratio))
     keys = ("mu", "beta", "sigma", "xi0", "xi_dot", "damping", "delay", "cutoff", "quantized")
-    worst: dict[str, object] = {k: pts[k][w].item() for k in keys}
-    worst.update(sample=int(at[w]), kind=KINDS[int(pts["kind"][w])])
     case = {
         "filter": int(np.sum(~np.isnan(pts["cutoff"]))),
         "no encoder": int(np.sum(~pts["quantized"])),
@@ -269,18 +262,7 @@ def controller_soundness(
         "no damper": int(np.sum(pts["damping"] == 0.0)),
     }
     return ControllerSoundness(
-        criterion=criterion,
-        points=int(points),
-        by_kind={k: int(np.sum(pts["kind"] == i)) for i, k in enumerate(KINDS)},
-        by_case=case,
-        energy_grew=int(grew.sum()),
-        diverged=int(div.sum()),
-        violations=int((grew | div).sum()),
-        worst_growth=float(ratio[w]),
-        worst_point=worst,
-        samples_min=int(ns.min()),
-        samples_max=int(ns.max()),
-        seed=seed,
+        criterion=criterion, points=int(points), by_case=case, seed=seed, **tally(pts, keys, ns, ratio, at, div)
     )
 
 

@@ -50,7 +50,9 @@ from numba import njit
 
 from . import _kernel
 from ._io import atomic_write_text
-from ._soundness_counts import SoundnessCounts
+from ._soundness_counts import KINDS as KINDS
+from ._soundness_counts import TOLERANCE as TOLERANCE
+from ._soundness_counts import SoundnessCounts, tally
 from .checks import check_choice, check_delay, check_int
 from .criterion import CriticalLine, passivity_criterion
 from .errors import DFAValueError
@@ -59,11 +61,7 @@ from .jsonable import dumps
 
 __all__ = ["DelaySoundness", "sample_passive_points", "delay_soundness", "soundness_markdown", "main"]
 
-#: Relative tolerance on S(h) <= S(0): rounding of the exact integrator only.
-TOLERANCE = 1e-9
-
 CRITERIA = ("delay-aware", "d-ignoring")
-KINDS = ("interior", "line", "sigma-edge", "beta-edge")
 
 
 def run_samples(mu: float) -> int:
@@ -265,25 +263,9 @@ def delay_soundness(
     codes = np.empty(points, dtype=np.int64)
     at = np.empty(points, dtype=np.int64)
     _batch(pts["mu"], pts["beta"], pts["sigma"], pts["xi0"], pts["xi_dot"], ns, int(delay), ratio, codes, at)
-    grew = ratio > TOLERANCE
     div = codes == _kernel.UNSTABLE
-    w = int(np.argmax(ratio))
-    worst: dict[str, object] = {k: float(pts[k][w]) for k in ("mu", "beta", "sigma", "xi0", "xi_dot")}
-    worst.update(sample=int(at[w]), kind=KINDS[int(pts["kind"][w])])
-    return DelaySoundness(
-        delay=int(delay),
-        criterion=criterion,
-        points=int(points),
-        by_kind={k: int(np.sum(pts["kind"] == i)) for i, k in enumerate(KINDS)},
-        energy_grew=int(grew.sum()),
-        diverged=int(div.sum()),
-        violations=int((grew | div).sum()),
-        worst_growth=float(ratio[w]),
-        worst_point=worst,
-        samples_min=int(ns.min()),
-        samples_max=int(ns.max()),
-        seed=seed,
-    )
+    counts = tally(pts, ("mu", "beta", "sigma", "xi0", "xi_dot"), ns, ratio, at, div)
+    return DelaySoundness(delay=int(delay), criterion=criterion, points=int(points), seed=seed, **counts)
 
 
 def soundness_markdown(results: list[DelaySoundness]) -> str:
