@@ -93,7 +93,7 @@ class ControllerStiffnessLimits(_SearchedLimits):
     k_df, k_sim, k_sim_rest : KSearch
         Searched limits with their evidence (:class:`dfa.kmax.KSearch`; value None with a reason).
     reasons : dict
-        Why ``k_criterion`` is None (key ``"k_criterion"``), and why there is no counterexample check
+        Why ``k_criterion`` is None or 0 (key ``"k_criterion"``), and why there is no counterexample check
         (``"counterexamples"``), where so.
     speeds : tuple of float
         Impact speeds simulated in the search, each from ξ0 = 0 and from the preload.
@@ -224,7 +224,7 @@ def _k_criterion(dev: Device, ctl: Controller, v: float) -> float:
 
 
 def _bounds(dev: Device, ctl: Controller, v: float) -> tuple[float | None, float, float, float, dict[str, str]]:
-    """K_criterion (None with a lag), K_linear, the grid's reference K and top, and the reasons for None.
+    """K_criterion (None with a lag), K_linear, the grid's reference K and top, and the reasons for None (or 0).
 
     The pure spring (B = 0, no filter, no lag; any delay) uses the spring's closed forms and grid
     (eq. 11, the exact linear bound, 8 × the largest closed-form bound), so that its limits are
@@ -236,6 +236,11 @@ def _bounds(dev: Device, ctl: Controller, v: float) -> tuple[float | None, float
         return kc0, kl0, kc0, 8.0 * max(k_static(dev), k_colgate(dev, ctl.delay), kl0, kc0), reasons
     if ctl.amplifier_bandwidth is None:
         kc: float | None = _k_criterion(dev, ctl, v)
+        if kc == 0.0:  # say why: σ >= σ₀ = ½ + (1 − a)β_B at some K needs c/Δ > (1 − a)B/T
+            never = dev.coulomb / dev.resolution <= (1 - ctl.params(dev.period).filter_pole) * ctl.damping / dev.period
+            reasons["k_criterion"] = "the extended criterion proves no K passive at this speed" + (
+                ": σ >= σ₀ needs c/Δ > (1 − a)B/T" if never else ""
+            )
     else:
         kc, reasons["k_criterion"], reasons["counterexamples"] = None, LAG_REASON, NO_CHECK_REASON
     kl = stable_stiffness(dev.mass, dev.damping, dev.period, ctl).k_crit

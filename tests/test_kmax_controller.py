@@ -273,3 +273,17 @@ def test_eq6_extended_cli_explains_a_zero_criterion_k(capsys, small_search):
     assert main(["stiffness", "--device", "impulse", "--velocity", "0.1", "--virtual-damping", "0.5"]) == 0
     row = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("criterion K_max"))
     assert "0 N/m (the extended criterion proves no K passive at this speed: σ >= σ₀ needs c/Δ > (1 − a)B/T)" in row
+
+
+def test_eq6_extended_zero_criterion_k_reason_in_the_api_and_report_rows():
+    """The reason for a zero criterion K is the analysis' (ControllerStiffnessLimits.reasons), read by the CLI and
+    the report's K_max rows alike."""
+    from dfa.render.controller import controller_limit_rows
+
+    e = dfa.get_device("impulse").device
+    r = controller_stiffness_limits(e, Controller(80.0, damping=0.5), 0.1, **SMALL)
+    assert r.k_criterion == 0.0 and "σ >= σ₀ needs c/Δ > (1 − a)B/T" in r.reasons["k_criterion"]
+    row = dict(controller_limit_rows(r, e.units))
+    assert row["extended criterion (eq. 11 extended to the damper, filter and delay; a proof)"] == (
+        f"0 N/m ({r.reasons['k_criterion']})"
+    )

@@ -244,6 +244,8 @@ def controller_limit_rows(lim: Any, units: dict[str, str]) -> list[list[str]]:
 
     ku = units["stiffness"]
     kc = f"none: {lim.reasons['k_criterion']}" if lim.k_criterion is None else f"{number(lim.k_criterion, 5)} {ku}"
+    if lim.k_criterion == 0.0 and "k_criterion" in lim.reasons:
+        kc += f" ({lim.reasons['k_criterion']})"
     ce = lim.reasons.get("counterexamples") or (
         "none: no divergent run at or below the criterion's K"
         if not lim.counterexamples
