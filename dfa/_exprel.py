@@ -9,9 +9,12 @@ need, without cancellation at small u::
     ψ(u)  = ((1 − e^{−u}) − ½(1 − e^{−2u}))/u²  = Σ (−1)ⁿ (2ⁿ⁻¹ − 1) uⁿ⁻²/n!,  n >= 2
     χ(u)  = (u − 2(1 − e^{−u}) + ½(1 − e^{−2u}))/u³ = Σ (−1)ⁿ⁺¹ (2ⁿ⁻¹ − 2) uⁿ⁻³/n!,  n >= 3
 
+and, for the time at which the device stops inside a sample, the inverse's
+relative form λ(y) = log(1 + y)/y = Σ (−y)ⁿ/(n + 1) (λ(0) = 1), y > −1.
+
 (φ₁(0) = 1, φ₂(0) = ½, ψ(0) = ½, χ(0) = ⅓). Each is its series for |u| < ½
 (φ₁, φ₂: 16 terms by Estrin's scheme, the simulator's hot path; ψ, χ: 24 terms) and its closed form through
-``expm1`` otherwise (divided in steps beyond u = 10¹⁰⁰,
+``expm1`` otherwise; λ is its series (16 terms, Estrin) for |y| < 1/16 and ``log1p(y)/y`` otherwise (divided in steps beyond u = 10¹⁰⁰,
 where u² or u³ would overflow): a few ulp everywhere (``tests/test_exprel.py`` checks
 them against 50-digit mpmath). φ₁ and φ₂ take any real u (negative u appears
 in Gil's factor, :func:`dfa.stiffness.gil_factor`); ψ and χ are used for
@@ -44,13 +47,15 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["phi1", "phi2", "psi", "chi", "phi1_array", "phi2_array"]
+__all__ = ["phi1", "phi2", "psi", "chi", "log1p_ratio", "phi1_array", "phi2_array"]
 
 
 # Taylor coefficients in x = −u: φ₁ = Σ xⁿ/(n + 1)!, φ₂ = Σ xⁿ/(n + 2)!, n = 0 … 15
 # (the first omitted term is below 2·10⁻¹⁸ of the value for |u| < ½)
 _C1 = tuple(1.0 / math.factorial(n + 1) for n in range(16))
 _C2 = tuple(1.0 / math.factorial(n + 2) for n in range(16))
+# λ(y) = Σ xⁿ/(n + 1) in x = −y, n = 0 … 15 (the first omitted term is below 2⁻⁶⁴/17 for |y| < 1/16)
+_CL = tuple(1.0 / (n + 1) for n in range(16))
 
 
 @njit(cache=True, inline="always")
@@ -82,6 +87,18 @@ def phi2(u: float) -> float:
     if u > 1e100:  # u² would overflow
         return (math.expm1(-u) + u) / u / u
     return (math.expm1(-u) + u) / (u * u)
+
+
+@njit(cache=True, inline="always")
+def log1p_ratio(y: float) -> float:
+    """λ(y) = log(1 + y)/y (λ(0) = 1), dimensionless, for y > −1.
+
+    The simulator's stop time t* = w λ(y) (:func:`dfa._kernel.step`): below |y| = 1/16 the series,
+    a short chain of multiply-adds instead of ``log1p`` and a division.
+    """
+    if abs(y) < 0.0625:
+        return _poly16(-y, _CL)
+    return math.log1p(y) / y
 
 
 @njit(cache=True, inline="always")

@@ -12,7 +12,7 @@ exact solution after a time t is, with u = β t/μ and a = F/μ::
     φ₁(u) = (1 − e^{−u})/u,   φ₂(u) = (u − 1 + e^{−u})/u²
 
 (φ₁ = 1, φ₂ = ½ at β = 0: the polynomial solution). The velocity reaches zero
-at t* = (μ/β) log1p(−ξ'₀β/F) = −(ξ'₀μ/F)·log1p(x)/x, x = −ξ'₀β/F
+at t* = (μ/β) log1p(−ξ'₀β/F) = −(ξ'₀μ/F)·λ(x), λ(x) = log1p(x)/x, x = −ξ'₀β/F
 (t* = −ξ'₀μ/F at β = 0); there the device sticks
 for the rest of the sample when |φ| <= σ, otherwise it restarts in direction
 sgn φ and cannot stop again within the sample. Energy dissipated by the
@@ -52,7 +52,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._exprel import chi, phi1, phi2, psi
+from ._exprel import chi, log1p_ratio, phi1, phi2, psi
 from .criterion import spring_energy_core
 
 # outcome codes (also the codes of dfa.maps.StabilityMap.outcome and its .npz file)
@@ -134,11 +134,11 @@ def step(x, v, phi, mu, sigma, k):
     v1 = v * e1 + f * q1
     if v1 * s > 0.0 or v == 0.0 or a == 0.0:  # a = 0: ξ' decays without crossing (may underflow to 0)
         return x1, v1, x1, 1.0, a, 0.0, 0.0, False
-    # velocity reaches zero at t* within this sample: with w = −ξ'/a (t* at β = 0) and y = w β/μ > 0,
-    # t* = (μ/β) log1p(y) = w log1p(y)/y
-    w = -v / a
+    # velocity reaches zero at t* within this sample: with w = −ξ'μ/F (t* at β = 0) and y = w β/μ >= 0,
+    # t* = (μ/β) log1p(y) = w λ(y) (λ: log1p_ratio; one division on the chain, series at small y)
+    w = -v / f * mu
     y = w * rate
-    tstar = w * (math.log1p(y) / y if y > 0.0 else 1.0)
+    tstar = w * log1p_ratio(y)
     if tstar > 1.0:
         tstar = 1.0  # rounding guard: v1 * s <= 0 means t* <= 1
     u = rate * tstar

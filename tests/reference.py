@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from dfa._exprel import phi1, phi2  # the one φ₁/φ₂ (called as plain Python functions here)
+from dfa._exprel import log1p_ratio, phi1, phi2  # the one φ₁/φ₂/λ (called as plain Python functions here)
 
 __all__ = ["simulate_ivp", "step_python", "simulate_control", "linear_zoh_recursion"]
 
@@ -83,9 +83,9 @@ def step_python(x, v, phi, mu, beta, sigma):
     v1 = v * math.exp(-rate) + f * (p1 / mu)
     if v1 * s > 0 or v == 0.0 or a == 0.0:
         return x1, v1
-    w = -v / a
+    w = -v / f * mu
     y = w * rate
-    tstar = min(1.0, w * (math.log1p(y) / y if y > 0 else 1.0))
+    tstar = min(1.0, w * log1p_ratio(y))
     u = rate * tstar
     x = x + v * tstar * phi1(u) + a * tstar * tstar * phi2(u)
     tr = 1.0 - tstar

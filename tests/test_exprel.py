@@ -73,3 +73,21 @@ def test_eq4_every_user_imports_the_one_exprel():
     assert "_exprel" in inspect.getsource(stiffness.gil_factor)
     c1, c0, p = linear._zoh_coefficients(0.3)
     assert (c1, c0) == pytest.approx((_ref("phi2", 0.3), _ref("phi1", 0.3) - _ref("phi2", 0.3)), rel=1e-15)
+
+
+def _ref_lambda(y: float) -> float:
+    if y == 0:
+        return 1.0
+    with mpmath.workdps(60):
+        return float(mpmath.log1p(mpmath.mpf(y)) / y)
+
+
+@pytest.mark.parametrize("y", [0.0, 1e-300, 1e-17, 1e-9, 1e-4, 0.03, 0.0624999, 0.0625, 0.07, 0.5, 3.0, 1e6, -0.03, -0.5])
+def test_eq4_stop_time_ratio_matches_mpmath(y):
+    """λ(y) = log1p(y)/y of the stop time t* = w λ(y) (dfa._kernel.step): series and closed form, a few ulp."""
+    assert _exprel.log1p_ratio(y) == pytest.approx(_ref_lambda(y), rel=4e-16, abs=0.0)
+
+
+@given(st.floats(min_value=-0.9, max_value=50.0))
+def test_eq4_stop_time_ratio_property_few_ulp(y):
+    assert _exprel.log1p_ratio(y) == pytest.approx(_ref_lambda(y), rel=4e-16, abs=0.0)
