@@ -119,7 +119,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from . import _ckernel, _kernel
+from . import _batch, _ckernel, _kernel
 from ._frozen import check_shape, freeze_fields
 from .checks import (
     check_beta,
@@ -1119,7 +1119,8 @@ def run_points(
 ):
     """Validated float arrays in, kernel outputs out: (codes, amps, freqs, centres, fpps, done, rest, stats).
 
-    One call of :func:`dfa._kernel.serial_kernel` per group of runs with the
+    One call of :func:`dfa._batch.batch_kernel` (two runs in flight; bit for bit
+    :func:`dfa._kernel.serial_kernel`) per group of runs with the
     same tail length (which follows each run's μ as in :func:`simulate`); no
     GIL is held, so callers may run several calls on threads. ``controller``
     (a ControllerParams that is not a pure spring, whose delay is ``delay``;
@@ -1144,7 +1145,7 @@ def run_points(
         rs = np.empty(j.size, dtype=np.int64)
         pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], n, delay, quantize, bound, int(t))
         if controller is None or controller.is_spring:
-            _kernel.serial_kernel(*pts, st, dn, rs)
+            _batch.batch_kernel(*pts, st, dn, rs)
         else:
             _ckernel.serial_ckernel(*pts, *_controller_args(controller), st, dn, rs)
         stats[j], done[j], rest[j] = st, dn, rs

@@ -9,6 +9,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from dfa import DFAValueError
 from dfa.maps import stability_map
@@ -105,3 +107,50 @@ def test_eq4_plain_benchmark_kernel_agrees_with_simulate():
         r = simulate(mu, beta, sigma, v0, 20000, delay=delay, record=False)
         done, x, v = plain_kernel(mu, beta, sigma, 0.0, v0, 20000, delay, True, 1e6)
         assert r.outcome == "unstable" and done == r.samples_run and x == pytest.approx(r.final_xi, rel=1e-12)
+
+
+def _kernels_agree(pts, n, delay, tail_len, bound=1e4):
+    """dfa._batch.batch_kernel (two runs in flight) against dfa._kernel.serial_kernel: every output, bit for bit."""
+    from dfa import _batch, _kernel
+
+    k = pts[0].size
+    ref = (np.zeros((k, _kernel.NSTATS)), np.zeros(k, np.int64), np.zeros(k, np.int64))
+    got = (np.full((k, _kernel.NSTATS), 7.0), np.full(k, 7, np.int64), np.full(k, 7, np.int64))
+    _kernel.serial_kernel(*pts, n, delay, True, bound, tail_len, *ref)
+    _batch.batch_kernel(*pts, n, delay, True, bound, tail_len, *got)
+    assert np.array_equal(ref[0].view(np.int64), got[0].view(np.int64))  # bits: ±0 and NaN payloads too
+    assert np.array_equal(ref[1], got[1]) and np.array_equal(ref[2], got[2])
+    return ref
+
+
+@pytest.mark.parametrize("size", [0, 1, 2, 3, 61])
+@pytest.mark.parametrize("seed", [1, 2])
+def test_eq4_two_runs_in_flight_equal_serial_kernel_bit_for_bit(size, seed):
+    """Lanes drop out and refill (odd sizes, a single run, none); every tail length from none to the whole run."""
+    mu, beta, sigma, v0, x0 = _grid(seed, size)
+    for n in (1, 7, 3000):
+        for tail_len in {0, 1, n // 3, n}:
+            ref = _kernels_agree((mu, beta, sigma, x0, v0), n, 0, tail_len)
+    if size > 20:  # the grid reaches rest, the bound and full-length runs
+        assert (ref[2] >= 0).any() and (ref[0][:, 8 + 5] > 0).any() and (ref[1] == 3000).any()
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(1, 9), st.integers(1, 6000), st.floats(0.0, 1.0))
+def test_eq4_two_runs_in_flight_property(seed, size, n, tail_frac):
+    """Random grids (rest, chatter, oscillation, divergence, β = 0, σ = 0): identical to one run at a time."""
+    mu, beta, sigma, v0, x0 = _grid(seed, size)
+    _kernels_agree((mu, beta, sigma, x0, v0), n, 0, int(tail_frac * n))
+
+
+def test_eq4_two_runs_in_flight_skip_repeated_periods_alike():
+    """A repeating chatter run (its periods skipped) beside a never-repeating one, both orders, both lengths."""
+    rep, steady = (100.0, 0.3, 0.3, 0.0, 1.0), (20.0, 0.47, 0.02, 0.0, 3.0)
+    for pair in ((rep, steady), (steady, rep), (rep, rep)):
+        pts = tuple(np.array(c) for c in zip(*pair, strict=True))
+        for n in (20_000, 50_001):
+            _kernels_agree(pts, n, 0, n // 4, bound=1e6)
+
+
+def test_eq4_two_runs_in_flight_hand_delay_to_serial_kernel():
+    mu, beta, sigma, v0, x0 = _grid(5, 9)
+    _kernels_agree((mu, beta, sigma, x0, v0), 2000, 2, 500)

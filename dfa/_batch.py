@@ -1,0 +1,255 @@
+"""Two runs of the exact simulator advanced together (issue 16 §2), results bit for bit those of one at a time.
+
+One run's sample is a chain read → force → update (:mod:`dfa._kernel`)
+whose latency, not its arithmetic, bounds a single trajectory. Two
+independent runs advanced in the same loop (:func:`advance_pair`, the loop
+of :func:`dfa._kernel.advance_free` written out for two runs, each in its own
+local scalars) let the processor overlap their chains: measured at about
+0.7 × the time of the two runs one after the other on chattering and
+oscillating runs (``make bench``, ``reports/benchmarks.md``). Four runs gain no
+more on the development machine (their branch mispredictions at the stops
+flush every run's work alike), so the batch is two.
+
+:func:`batch_kernel` is :func:`dfa._kernel.serial_kernel` (same arguments,
+same outputs bit for bit) for runs without delay: it keeps two runs in flight
+("lanes"), each walking the ranges of samples of
+:func:`dfa._kernel.simulate_kernel` (the envelope's eighths, split where the
+tail starts). :func:`advance_pair` runs both lanes until either's range ends
+(or its run comes to rest or passes the bound); that lane books its range's
+peak and takes its next range or, when its run is over, the next run. The
+other lane resumes where it stopped. Each lane runs exactly the operations of
+:func:`dfa._kernel.advance_free`, in the same order; only the exact skip of
+repeated periods restarts its cycle detection when a lane resumes, which
+changes when a period is skipped, never a result (``tests/test_batch_kernel.py``).
+Runs with a delay go to :func:`dfa._kernel.serial_kernel`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ._kernel import (
+    NSEG,
+    NSTATE,
+    STMAX,
+    STMIN,
+    SV,
+    SX,
+    advance_free,
+    finish,
+    free_sample,
+    same_state,
+    sample_constants,
+    segment_bounds,
+    serial_kernel,
+    start,
+    tail_extremes,
+)
+
+__all__ = ["advance_pair", "batch_kernel"]
+
+# integer state of a lane: run index (-1: none), segment, part (0: before the tail, 1: in it), next sample, range end
+PT, SEG, PART, H, END = 0, 1, 2, 3, 4
+
+
+@njit(cache=True, nogil=True)
+def advance_pair(sa, ha, h1a, mua, siga, ka, taila, sb, hb, h1b, mub, sigb, kb, tailb, quantize, bound, tail_start):
+    """:func:`dfa._kernel.advance_free` of two runs A and B at once, until either's range ends.
+
+    ``sa``/``sb`` are the runs' state arrays (ξ, ξ', tail min and max), ``ha … h1a`` and ``hb … h1b``
+    their ranges of samples (each wholly before the tail or in it), ``ka``/``kb`` their
+    :func:`dfa._kernel.sample_constants`. Returns (h, why, peak, ended) of A then of B: the next sample,
+    :func:`dfa._kernel.advance_free`'s ``why``, the peak |ξ| of the samples run here, and whether the range
+    ended (ran through, at rest, or past the bound); at least one of the two ended.
+    """
+    xa, va, tmina, tmaxa = sa[SX], sa[SV], sa[STMIN], sa[STMAX]
+    xb, vb, tminb, tmaxb = sb[SX], sb[SV], sb[STMIN], sb[STMAX]
+    pa = pb = 0.0
+    ina, inb = ha >= tail_start, hb >= tail_start
+    rxa, rva, rha, spana = xa, va, ha, 1  # Brent's reference state of each run (dfa._kernel.advance_free)
+    rxb, rvb, rhb, spanb = xb, vb, hb, 1
+    wa = wb = 0
+    fa = fb = False
+    while not (fa or fb):
+        xa, va, pa, wa, xra, sta = free_sample(xa, va, pa, mua, siga, quantize, bound, ka)
+        if wa == 1:
+            fa = True
+        else:
+            if ina:
+                taila[ha - tail_start] = xa
+                tmina, tmaxa = tail_extremes(xa, xra, sta, tmina, tmaxa)
+            ha += 1
+            if wa == 2:
+                fa = True
+            elif same_state(xa, va, rxa, rva):
+                skip = (h1a - ha) // (ha - rha) * (ha - rha)
+                if ina:
+                    for i in range(ha, ha + skip):
+                        taila[i - tail_start] = taila[i - (ha - rha) - tail_start]
+                ha += skip
+                spana = h1a
+            elif ha - rha == spana:
+                rxa, rva, rha, spana = xa, va, ha, 2 * spana
+            fa = fa or ha >= h1a
+        xb, vb, pb, wb, xrb, stb = free_sample(xb, vb, pb, mub, sigb, quantize, bound, kb)
+        if wb == 1:
+            fb = True
+        else:
+            if inb:
+                tailb[hb - tail_start] = xb
+                tminb, tmaxb = tail_extremes(xb, xrb, stb, tminb, tmaxb)
+            hb += 1
+            if wb == 2:
+                fb = True
+            elif same_state(xb, vb, rxb, rvb):
+                skip = (h1b - hb) // (hb - rhb) * (hb - rhb)
+                if inb:
+                    for i in range(hb, hb + skip):
+                        tailb[i - tail_start] = tailb[i - (hb - rhb) - tail_start]
+                hb += skip
+                spanb = h1b
+            elif hb - rhb == spanb:
+                rxb, rvb, rhb, spanb = xb, vb, hb, 2 * spanb
+            fb = fb or hb >= h1b
+    sa[SX], sa[SV], sa[STMIN], sa[STMAX] = xa, va, tmina, tmaxa
+    sb[SX], sb[SV], sb[STMIN], sb[STMAX] = xb, vb, tminb, tmaxb
+    return ha, wa, pa, fa, hb, wb, pb, fb
+
+
+@njit(cache=True, inline="always")
+def _next_range(lane, n, tail_start):
+    """Move ``lane`` (its row of integer state) to its run's next nonempty range; False when none is left.
+
+    The order of :func:`dfa._kernel.simulate_kernel`: segment k = 0 … NSEG − 1, each split where the tail starts.
+    """
+    while True:
+        lane[PART] += 1
+        if lane[PART] == 2:
+            lane[PART] = 0
+            lane[SEG] += 1
+        if lane[SEG] == NSEG:
+            return False
+        lo, hi = segment_bounds(lane[SEG], n)
+        cut = min(max(lo, tail_start), hi)
+        a, b = (lo, cut) if lane[PART] == 0 else (cut, hi)
+        if b > a:
+            lane[H], lane[END] = a, b
+            return True
+
+
+@njit(cache=True, nogil=True)
+def _load(lane, i, x0s, v0s, mus, betas, quantize, state, hist, stats, consts, n, tail_start):
+    """Start run ``i`` in ``lane`` (state, stats cleared, its sample constants, its first range)."""
+    start(x0s[i], v0s[i], 0, quantize, state, hist, stats[i])
+    rate, e1, p1, p2, q1, q2 = sample_constants(mus[i], betas[i])
+    consts[0], consts[1], consts[2], consts[3], consts[4], consts[5] = rate, e1, p1, p2, q1, q2
+    lane[PT], lane[SEG], lane[PART] = i, 0, -1
+    _next_range(lane, n, tail_start)
+
+
+@njit(cache=True, nogil=True)
+def _book(lane, h, why, peak, ended, state, tail, tail_len, mus, n, quantize, stats, done, rest, tail_start):
+    """Book a lane's advance: its range's peak; if the range ended, the next range or the run's end.
+
+    Returns True while the lane's run goes on, False when it is over (``done``, ``rest``, stats finished
+    exactly as :func:`dfa._kernel.simulate_kernel` does).
+    """
+    i = lane[PT]
+    lane[H] = h
+    if peak > stats[i, lane[SEG]]:
+        stats[i, lane[SEG]] = peak
+    if not ended or (why == 0 and _next_range(lane, n, tail_start)):
+        return True
+    done[i] = h if why != 0 else n
+    rest[i] = h if why == 1 else -1
+    if why == 2:
+        stats[i, NSEG + 5] = 1.0
+    empty = np.empty(0)
+    finish(
+        state,
+        n,
+        done[i],
+        rest[i],
+        tail,
+        tail_len,
+        mus[i],
+        quantize,
+        stats[i],
+        False,
+        False,
+        empty,
+        empty,
+        np.empty((0, 4)),
+    )
+    lane[PT] = -1
+    return False
+
+
+@njit(cache=True, nogil=True)
+def batch_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
+    """:func:`dfa._kernel.serial_kernel` with two runs in flight (same arguments, same outputs bit for bit).
+
+    Runs with ``delay`` > 0 are passed to :func:`dfa._kernel.serial_kernel`.
+    """
+    if delay != 0:
+        serial_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest)
+        return
+    tail_start = n - tail_len
+    lanes = np.full((2, 5), -1, dtype=np.int64)
+    states = np.empty((2, NSTATE))
+    hists = np.empty((2, 1))
+    tails = np.empty((2, max(tail_len, 1)))
+    consts = np.empty((2, 6))
+    nxt = 0
+    for w in range(2):
+        if nxt < mus.shape[0]:
+            _load(lanes[w], nxt, x0s, v0s, mus, betas, quantize, states[w], hists[w], stats, consts[w], n, tail_start)
+            nxt += 1
+    while lanes[0, PT] >= 0 or lanes[1, PT] >= 0:
+        res = _advance_lanes(lanes, states, tails, consts, mus, sigmas, quantize, bound, tail_start)
+        for w in range(2):
+            if lanes[w, PT] < 0:
+                continue
+            h, why, peak, ended = res[w]
+            args = (states[w], tails[w], tail_len, mus, n, quantize, stats, done, rest, tail_start)
+            if not _book(lanes[w], h, why, peak, ended, *args) and nxt < mus.shape[0]:
+                _load(
+                    lanes[w], nxt, x0s, v0s, mus, betas, quantize, states[w], hists[w], stats, consts[w], n, tail_start
+                )
+                nxt += 1
+
+
+@njit(cache=True, inline="always")
+def _kc(c):
+    return (c[0], c[1], c[2], c[3], c[4], c[5])
+
+
+@njit(cache=True, inline="always")
+def _advance_lanes(lanes, states, tails, consts, mus, sigmas, quantize, bound, tail_start):
+    """Advance the lanes in flight: both together (:func:`advance_pair`), or the only one alone."""
+    a, b = lanes[0], lanes[1]
+    if a[PT] >= 0 and b[PT] >= 0:
+        ha, wa, pa, fa, hb, wb, pb, fb = advance_pair(
+            states[0], a[H], a[END], mus[a[PT]], sigmas[a[PT]], _kc(consts[0]), tails[0],
+            states[1], b[H], b[END], mus[b[PT]], sigmas[b[PT]], _kc(consts[1]), tails[1],
+            quantize, bound, tail_start,
+        )  # fmt: skip
+        return (ha, wa, pa, fa), (hb, wb, pb, fb)
+    w = 0 if a[PT] >= 0 else 1
+    lane = lanes[w]
+    h, why, peak = advance_free(
+        states[w],
+        lane[H],
+        lane[END],
+        mus[lane[PT]],
+        sigmas[lane[PT]],
+        quantize,
+        bound,
+        _kc(consts[w]),
+        tails[w],
+        tail_start,
+    )
+    one = (h, why, peak, True)
+    other = (0, 0, 0.0, False)
+    return (one, other) if w == 0 else (other, one)
