@@ -22,6 +22,10 @@ other lane resumes where it stopped. Each lane runs exactly the operations of
 repeated periods restarts its cycle detection when a lane resumes, which
 changes when a period is skipped, never a result (``tests/test_batch_kernel.py``).
 Runs with a delay go to :func:`dfa._kernel.serial_kernel`.
+
+Developers: numba caches this module's compiled code keyed on this file
+alone; it inlines :mod:`dfa._kernel`'s steps, so after editing those clear
+the cache (``make`` names its cache directory after the kernels' sources).
 """
 
 from __future__ import annotations

@@ -121,17 +121,19 @@ def step(x, v, phi, mu, sigma, k):
     position where ξ' reached 0 (the end position when it did not); t*, that
     time (1: no stop, 0: stuck all along); a, the first phase's acceleration;
     a₂, t_r, the restart phase's acceleration and duration (0, 0: no restart);
-    stopped). Over a whole sample ξ gains ξ'φ₁ + (F/μ)φ₂ with F = φ − σ s
-    (one multiply-add chain per sample: the divisions by μ are in ``k``).
+    stopped). Over a whole sample ξ gains ξ'φ₁ + (F/μ)φ₂ with F = φ − σ s,
+    summed as (ξ + ξ'φ₁ − σ s φ₂/μ) + φ φ₂/μ so that the reading φ, the end of
+    the chain ⌊ξ⌋ → φ, meets one product and one sum (the divisions by μ are in ``k``).
     """
     rate, e1, p1, p2, q1, q2 = k
     if v == 0.0 and abs(phi) <= sigma:
         return x, v, x, 0.0, 0.0, 0.0, 0.0, False  # stuck for the whole sample (ξ' = ±0 kept)
     s = 1.0 if (v > 0.0 or (v == 0.0 and phi > 0.0)) else -1.0
-    f = phi - sigma * s
+    ss = sigma * s
+    f = phi - ss
     a = f / mu
-    x1 = x + v * p1 + f * q2
-    v1 = v * e1 + f * q1
+    x1 = (x + v * p1 - ss * q2) + phi * q2  # the reading φ enters last: the chain ⌊ξ⌋ → φ → ξ is one product, one sum
+    v1 = (v * e1 - ss * q1) + phi * q1
     if v1 * s > 0.0 or v == 0.0 or a == 0.0:  # a = 0: ξ' decays without crossing (may underflow to 0)
         return x1, v1, x1, 1.0, a, 0.0, 0.0, False
     # velocity reaches zero at t* within this sample: with w = −ξ'μ/F (t* at β = 0) and y = w β/μ >= 0,
@@ -563,11 +565,9 @@ def serial_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``); ``stats[i]``
     (NSTATS), ``done[i]`` and ``rest[i]`` receive what :func:`simulate_kernel`
-    returns for it. (Kernels that interleave the runs sample by sample were
-    measured 1.6-3× slower per point-sample on the 2-core development machine
-    than this loop (git history of this module); one with 4 runs in
-    registers, ``benchmarks/lanes_kernel.py``, is no faster on a map, whose
-    chatter runs are bound by branch mispredictions at their frequent stops.)
+    returns for it. :func:`dfa._batch.batch_kernel` gives the same outputs
+    with two runs in flight (faster without delay); this loop is its
+    reference and runs the runs with a delay.
     """
     empty = np.empty(0)
     empty2 = np.empty((0, 4))

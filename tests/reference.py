@@ -77,10 +77,11 @@ def step_python(x, v, phi, mu, beta, sigma):
     if v == 0.0 and abs(phi) <= sigma:
         return x, v
     s = 1.0 if (v > 0 or (v == 0 and phi > 0)) else -1.0
-    f = phi - sigma * s
+    ss = sigma * s
+    f = phi - ss
     a = f / mu
-    x1 = x + v * p1 + f * (p2 / mu)
-    v1 = v * math.exp(-rate) + f * (p1 / mu)
+    x1 = (x + v * p1 - ss * (p2 / mu)) + phi * (p2 / mu)
+    v1 = (v * math.exp(-rate) - ss * (p1 / mu)) + phi * (p1 / mu)
     if v1 * s > 0 or v == 0.0 or a == 0.0:
         return x1, v1
     w = -v / f * mu
