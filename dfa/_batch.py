@@ -10,8 +10,9 @@ oscillating runs (``make bench``, ``reports/benchmarks.md``). Four runs gain no
 more on the development machine (their branch mispredictions at the stops
 flush every run's work alike), so the batch is two.
 
-:func:`batch_kernel` is :func:`dfa._kernel.serial_kernel` (same arguments,
-same outputs bit for bit) for runs without delay: it keeps two runs in flight
+:func:`batch_kernel` runs a list of independent runs, each with its own
+length, bound and tail, with outputs bit for bit those of
+:func:`dfa._kernel.simulate_kernel` for each run alone: without delay it keeps two runs in flight
 ("lanes"), each walking the ranges of samples of
 :func:`dfa._kernel.simulate_kernel` (the envelope's eighths, split where the
 tail starts). :func:`advance_pair` runs both lanes until either's range ends
@@ -21,7 +22,7 @@ other lane resumes where it stopped. Each lane runs exactly the operations of
 :func:`dfa._kernel.advance_free`, in the same order; only the exact skip of
 repeated periods restarts its cycle detection when a lane resumes, which
 changes when a period is skipped, never a result (``tests/test_batch_kernel.py``).
-Runs with a delay go to :func:`dfa._kernel.serial_kernel`.
+Runs with a delay go one after the other through :func:`dfa._kernel.simulate_kernel`.
 
 Developers: numba caches this module's compiled code keyed on this file
 alone; it inlines :mod:`dfa._kernel`'s steps, so after editing those clear
@@ -46,42 +47,47 @@ from ._kernel import (
     same_state,
     sample_constants,
     segment_bounds,
-    serial_kernel,
+    simulate_kernel,
     start,
     tail_extremes,
 )
 
 __all__ = ["advance_pair", "batch_kernel"]
 
-# integer state of a lane: run index (-1: none), segment, part (0: before the tail, 1: in it), next sample, range end
-PT, SEG, PART, H, END = 0, 1, 2, 3, 4
+# integer state of a lane: run index (-1: none), segment, part (0: before the tail, 1: in it), next sample, range end,
+# the run's length and where its tail starts
+PT, SEG, PART, H, END, N, TAIL = 0, 1, 2, 3, 4, 5, 6
+NLANE = 7
 
 
 @njit(cache=True, nogil=True)
-def advance_pair(sa, ha, h1a, mua, siga, ka, taila, sb, hb, h1b, mub, sigb, kb, tailb, quantize, bound, tail_start):
+def advance_pair(
+    sa, ha, h1a, mua, siga, ka, taila, bounda, ta, sb, hb, h1b, mub, sigb, kb, tailb, boundb, tb, quantize
+):
     """:func:`dfa._kernel.advance_free` of two runs A and B at once, until either's range ends.
 
     ``sa``/``sb`` are the runs' state arrays (ξ, ξ', tail min and max), ``ha … h1a`` and ``hb … h1b``
     their ranges of samples (each wholly before the tail or in it), ``ka``/``kb`` their
-    :func:`dfa._kernel.sample_constants`. Returns (h, why, peak, ended) of A then of B: the next sample,
+    :func:`dfa._kernel.sample_constants`, ``bounda``/``boundb`` their bounds and ``ta``/``tb`` the samples
+    where their tails start. Returns (h, why, peak, ended) of A then of B: the next sample,
     :func:`dfa._kernel.advance_free`'s ``why``, the peak |ξ| of the samples run here, and whether the range
     ended (ran through, at rest, or past the bound); at least one of the two ended.
     """
     xa, va, tmina, tmaxa = sa[SX], sa[SV], sa[STMIN], sa[STMAX]
     xb, vb, tminb, tmaxb = sb[SX], sb[SV], sb[STMIN], sb[STMAX]
     pa = pb = 0.0
-    ina, inb = ha >= tail_start, hb >= tail_start
+    ina, inb = ha >= ta, hb >= tb
     rxa, rva, rha, spana = xa, va, ha, 1  # Brent's reference state of each run (dfa._kernel.advance_free)
     rxb, rvb, rhb, spanb = xb, vb, hb, 1
     wa = wb = 0
     fa = fb = False
     while not (fa or fb):
-        xa, va, pa, wa, xra, sta = free_sample(xa, va, pa, mua, siga, quantize, bound, ka)
+        xa, va, pa, wa, xra, sta = free_sample(xa, va, pa, mua, siga, quantize, bounda, ka)
         if wa == 1:
             fa = True
         else:
             if ina:
-                taila[ha - tail_start] = xa
+                taila[ha - ta] = xa
                 tmina, tmaxa = tail_extremes(xa, xra, sta, tmina, tmaxa)
             ha += 1
             if wa == 2:
@@ -90,18 +96,18 @@ def advance_pair(sa, ha, h1a, mua, siga, ka, taila, sb, hb, h1b, mub, sigb, kb, 
                 skip = (h1a - ha) // (ha - rha) * (ha - rha)
                 if ina:
                     for i in range(ha, ha + skip):
-                        taila[i - tail_start] = taila[i - (ha - rha) - tail_start]
+                        taila[i - ta] = taila[i - (ha - rha) - ta]
                 ha += skip
                 spana = h1a
             elif ha - rha == spana:
                 rxa, rva, rha, spana = xa, va, ha, 2 * spana
             fa = fa or ha >= h1a
-        xb, vb, pb, wb, xrb, stb = free_sample(xb, vb, pb, mub, sigb, quantize, bound, kb)
+        xb, vb, pb, wb, xrb, stb = free_sample(xb, vb, pb, mub, sigb, quantize, boundb, kb)
         if wb == 1:
             fb = True
         else:
             if inb:
-                tailb[hb - tail_start] = xb
+                tailb[hb - tb] = xb
                 tminb, tmaxb = tail_extremes(xb, xrb, stb, tminb, tmaxb)
             hb += 1
             if wb == 2:
@@ -110,7 +116,7 @@ def advance_pair(sa, ha, h1a, mua, siga, ka, taila, sb, hb, h1b, mub, sigb, kb, 
                 skip = (h1b - hb) // (hb - rhb) * (hb - rhb)
                 if inb:
                     for i in range(hb, hb + skip):
-                        tailb[i - tail_start] = tailb[i - (hb - rhb) - tail_start]
+                        tailb[i - tb] = tailb[i - (hb - rhb) - tb]
                 hb += skip
                 spanb = h1b
             elif hb - rhb == spanb:
@@ -122,11 +128,12 @@ def advance_pair(sa, ha, h1a, mua, siga, ka, taila, sb, hb, h1b, mub, sigb, kb, 
 
 
 @njit(cache=True, inline="always")
-def _next_range(lane, n, tail_start):
+def _next_range(lane):
     """Move ``lane`` (its row of integer state) to its run's next nonempty range; False when none is left.
 
     The order of :func:`dfa._kernel.simulate_kernel`: segment k = 0 … NSEG − 1, each split where the tail starts.
     """
+    n, tail_start = lane[N], lane[TAIL]
     while True:
         lane[PART] += 1
         if lane[PART] == 2:
@@ -143,85 +150,92 @@ def _next_range(lane, n, tail_start):
 
 
 @njit(cache=True, nogil=True)
-def _load(lane, i, x0s, v0s, mus, betas, quantize, state, hist, stats, consts, n, tail_start):
+def _load(lane, i, x0s, v0s, mus, betas, ns, tail_lens, quantize, state, hist, stats, consts):
     """Start run ``i`` in ``lane`` (state, stats cleared, its sample constants, its first range)."""
     start(x0s[i], v0s[i], 0, quantize, state, hist, stats[i])
     rate, e1, p1, p2, q1, q2 = sample_constants(mus[i], betas[i])
     consts[0], consts[1], consts[2], consts[3], consts[4], consts[5] = rate, e1, p1, p2, q1, q2
-    lane[PT], lane[SEG], lane[PART] = i, 0, -1
-    _next_range(lane, n, tail_start)
+    lane[PT], lane[SEG], lane[PART], lane[N], lane[TAIL] = i, 0, -1, ns[i], ns[i] - tail_lens[i]
+    _next_range(lane)
 
 
 @njit(cache=True, nogil=True)
-def _book(lane, h, why, peak, ended, state, tail, tail_len, mus, n, quantize, stats, done, rest, tail_start):
+def _book(lane, h, why, peak, ended, state, tail, tail_len, mu, quantize, stats, done, rest):
     """Book a lane's advance: its range's peak; if the range ended, the next range or the run's end.
 
     Returns True while the lane's run goes on, False when it is over (``done``, ``rest``, stats finished
     exactly as :func:`dfa._kernel.simulate_kernel` does).
     """
-    i = lane[PT]
+    i, n = lane[PT], lane[N]
     lane[H] = h
     if peak > stats[i, lane[SEG]]:
         stats[i, lane[SEG]] = peak
-    if not ended or (why == 0 and _next_range(lane, n, tail_start)):
+    if not ended or (why == 0 and _next_range(lane)):
         return True
     done[i] = h if why != 0 else n
     rest[i] = h if why == 1 else -1
     if why == 2:
         stats[i, NSEG + 5] = 1.0
-    empty = np.empty(0)
-    finish(
-        state,
-        n,
-        done[i],
-        rest[i],
-        tail,
-        tail_len,
-        mus[i],
-        quantize,
-        stats[i],
-        False,
-        False,
-        empty,
-        empty,
-        np.empty((0, 4)),
-    )
+    e = np.empty(0)
+    finish(state, n, done[i], rest[i], tail, tail_len, mu, quantize, stats[i], False, False, e, e, np.empty((0, 4)))
     lane[PT] = -1
     return False
 
 
 @njit(cache=True, nogil=True)
-def batch_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
-    """:func:`dfa._kernel.serial_kernel` with two runs in flight (same arguments, same outputs bit for bit).
+def batch_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest):
+    """Independent runs, two in flight: run i is :func:`dfa._kernel.simulate_kernel` of its own inputs.
 
-    Runs with ``delay`` > 0 are passed to :func:`dfa._kernel.serial_kernel`.
+    Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]``
+    and tail ``tail_lens[i]``; ``stats[i]`` (NSTATS), ``done[i]`` and ``rest[i]`` receive what
+    :func:`dfa._kernel.simulate_kernel` returns for it, bit for bit (nothing recorded). With ``delay`` > 0
+    the runs go one after the other through :func:`dfa._kernel.simulate_kernel`.
     """
+    e, e2 = np.empty(0), np.empty((0, 4))
     if delay != 0:
-        serial_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest)
+        for i in range(mus.shape[0]):
+            done[i], rest[i] = simulate_kernel(
+                mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], delay, quantize, bounds[i], tail_lens[i],
+                e, e, e2, stats[i],
+            )  # fmt: skip
         return
-    tail_start = n - tail_len
-    lanes = np.full((2, 5), -1, dtype=np.int64)
+    lanes = np.full((2, NLANE), -1, dtype=np.int64)
     states = np.empty((2, NSTATE))
     hists = np.empty((2, 1))
-    tails = np.empty((2, max(tail_len, 1)))
+    tails = np.empty((2, max(1, np.max(tail_lens)) if tail_lens.shape[0] else 1))
     consts = np.empty((2, 6))
     nxt = 0
     for w in range(2):
         if nxt < mus.shape[0]:
-            _load(lanes[w], nxt, x0s, v0s, mus, betas, quantize, states[w], hists[w], stats, consts[w], n, tail_start)
+            _load(lanes[w], nxt, x0s, v0s, mus, betas, ns, tail_lens, quantize, states[w], hists[w], stats, consts[w])
             nxt += 1
     while lanes[0, PT] >= 0 or lanes[1, PT] >= 0:
-        res = _advance_lanes(lanes, states, tails, consts, mus, sigmas, quantize, bound, tail_start)
+        res = _advance_lanes(lanes, states, tails, consts, mus, sigmas, quantize, bounds)
         for w in range(2):
-            if lanes[w, PT] < 0:
+            i = lanes[w, PT]
+            if i < 0:
                 continue
             h, why, peak, ended = res[w]
-            args = (states[w], tails[w], tail_len, mus, n, quantize, stats, done, rest, tail_start)
-            if not _book(lanes[w], h, why, peak, ended, *args) and nxt < mus.shape[0]:
-                _load(
-                    lanes[w], nxt, x0s, v0s, mus, betas, quantize, states[w], hists[w], stats, consts[w], n, tail_start
-                )
-                nxt += 1
+            if not _book(
+                lanes[w], h, why, peak, ended, states[w], tails[w], tail_lens[i], mus[i], quantize, stats, done, rest
+            ):
+                if nxt < mus.shape[0]:
+                    _load(
+                        lanes[w],
+                        nxt,
+                        x0s,
+                        v0s,
+                        mus,
+                        betas,
+                        ns,
+                        tail_lens,
+                        quantize,
+                        states[w],
+                        hists[w],
+                        stats,
+                        consts[w],
+                    )
+                    nxt += 1
 
 
 @njit(cache=True, inline="always")
@@ -230,29 +244,21 @@ def _kc(c):
 
 
 @njit(cache=True, inline="always")
-def _advance_lanes(lanes, states, tails, consts, mus, sigmas, quantize, bound, tail_start):
+def _advance_lanes(lanes, states, tails, consts, mus, sigmas, quantize, bounds):
     """Advance the lanes in flight: both together (:func:`advance_pair`), or the only one alone."""
     a, b = lanes[0], lanes[1]
     if a[PT] >= 0 and b[PT] >= 0:
         ha, wa, pa, fa, hb, wb, pb, fb = advance_pair(
-            states[0], a[H], a[END], mus[a[PT]], sigmas[a[PT]], _kc(consts[0]), tails[0],
-            states[1], b[H], b[END], mus[b[PT]], sigmas[b[PT]], _kc(consts[1]), tails[1],
-            quantize, bound, tail_start,
+            states[0], a[H], a[END], mus[a[PT]], sigmas[a[PT]], _kc(consts[0]), tails[0], bounds[a[PT]], a[TAIL],
+            states[1], b[H], b[END], mus[b[PT]], sigmas[b[PT]], _kc(consts[1]), tails[1], bounds[b[PT]], b[TAIL],
+            quantize,
         )  # fmt: skip
         return (ha, wa, pa, fa), (hb, wb, pb, fb)
     w = 0 if a[PT] >= 0 else 1
     lane = lanes[w]
+    i = lane[PT]
     h, why, peak = advance_free(
-        states[w],
-        lane[H],
-        lane[END],
-        mus[lane[PT]],
-        sigmas[lane[PT]],
-        quantize,
-        bound,
-        _kc(consts[w]),
-        tails[w],
-        tail_start,
+        states[w], lane[H], lane[END], mus[i], sigmas[i], quantize, bounds[i], _kc(consts[w]), tails[w], lane[TAIL]
     )
     one = (h, why, peak, True)
     other = (0, 0, 0.0, False)

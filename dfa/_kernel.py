@@ -547,11 +547,13 @@ def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, m
 
 @njit(cache=True, nogil=True)
 def classify_batch(
-    mus, n, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
+    mus, ns, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
 ):
-    """:func:`classify` for every run of a batch (outputs written in place)."""
+    """:func:`classify` for every run of a batch, run i of ``ns[i]`` samples (outputs written in place)."""
     for i in range(mus.shape[0]):
-        c, a, f, ce, fp = classify(n, done[i], rest[i], stats[i], stable_amplitude, growth, settle, quantize, mus[i])
+        c, a, f, ce, fp = classify(
+            ns[i], done[i], rest[i], stats[i], stable_amplitude, growth, settle, quantize, mus[i]
+        )
         codes[i] = c
         amps[i] = a
         freqs[i] = f

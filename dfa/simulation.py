@@ -668,10 +668,15 @@ class SimulationResult:
         return explain_nulls(record, self.null_reasons())
 
 
+def _tail_lengths(samples: np.ndarray, mu: np.ndarray) -> np.ndarray:
+    """Tail measured for amplitude and frequency: a quarter of the run, at most max(8192, 4 periods 2π√μ)."""
+    cap = np.maximum(8192, (4 * 2.0 * math.pi * np.sqrt(mu)).astype(np.int64))
+    return np.minimum(samples, np.minimum(cap, np.maximum(2, samples // 4))).astype(np.int64)
+
+
 def _tail_length(samples: int, mu: float) -> int:
-    """Tail measured for amplitude and frequency: a quarter of the run, at most max(8192, 4 periods)."""
-    cap = max(8192, int(4 * 2.0 * math.pi * math.sqrt(mu)))
-    return int(min(samples, min(cap, max(2, samples // 4))))
+    """:func:`_tail_lengths` of one run."""
+    return int(_tail_lengths(np.array([samples], dtype=np.int64), np.array([mu], dtype=float))[0])
 
 
 #: Samples per kernel call of a long run (:func:`_run_chunked`): about 0.05 s each.
@@ -1119,12 +1124,13 @@ def run_points(
 ):
     """Validated float arrays in, kernel outputs out: (codes, amps, freqs, centres, fpps, done, rest, stats).
 
-    One call of :func:`dfa._batch.batch_kernel` (two runs in flight; bit for bit
-    :func:`dfa._kernel.serial_kernel`) per group of runs with the
-    same tail length (which follows each run's μ as in :func:`simulate`); no
-    GIL is held, so callers may run several calls on threads. ``controller``
-    (a ControllerParams that is not a pure spring, whose delay is ``delay``;
-    see :func:`check_controller`) runs :func:`dfa._ckernel.serial_ckernel` instead.
+    ``n`` (samples) and ``bound`` are one value for every run or one per run. The spring runs in one call of
+    :func:`dfa._batch.batch_kernel` (two runs in flight without delay; each run bit for bit
+    :func:`dfa._kernel.simulate_kernel`, its tail length following its μ and length as in :func:`simulate`);
+    no GIL is held, so callers may run several calls on threads. ``controller`` (a ControllerParams that is not
+    a pure spring, whose delay is ``delay``; see :func:`check_controller`) runs
+    :func:`dfa._ckernel.serial_ckernel` instead, one call per group of runs with the same tail length (one
+    ``n`` and ``bound`` for all).
     """
     if controller is not None and controller.delay != delay:
         raise DFAValueError(
@@ -1137,19 +1143,21 @@ def run_points(
     done = np.empty(k, dtype=np.int64)
     rest = np.empty(k, dtype=np.int64)
     stats = np.empty((k, _kernel.NSTATS))
-    tails = np.array([_tail_length(n, float(m)) for m in mu], dtype=np.int64)
-    for t in np.unique(tails):
-        j = np.flatnonzero(tails == t)
-        st = np.empty((j.size, _kernel.NSTATS))
-        dn = np.empty(j.size, dtype=np.int64)
-        rs = np.empty(j.size, dtype=np.int64)
-        pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], n, delay, quantize, bound, int(t))
-        if controller is None or controller.is_spring:
-            _batch.batch_kernel(*pts, st, dn, rs)
-        else:
+    ns = np.ascontiguousarray(np.broadcast_to(np.asarray(n, dtype=np.int64), (k,)))
+    tails = _tail_lengths(ns, mu)
+    if controller is None or controller.is_spring:
+        bounds = np.ascontiguousarray(np.broadcast_to(np.asarray(bound, dtype=float), (k,)))
+        _batch.batch_kernel(mu, beta, sigma, x0, v0, ns, delay, quantize, bounds, tails, stats, done, rest)
+    else:
+        for t in np.unique(tails):
+            j = np.flatnonzero(tails == t)
+            st = np.empty((j.size, _kernel.NSTATS))
+            dn = np.empty(j.size, dtype=np.int64)
+            rs = np.empty(j.size, dtype=np.int64)
+            pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], int(n), delay, quantize, float(bound), int(t))
             _ckernel.serial_ckernel(*pts, *_controller_args(controller), st, dn, rs)
-        stats[j], done[j], rest[j] = st, dn, rs
+            stats[j], done[j], rest[j] = st, dn, rs
     _kernel.classify_batch(
-        mu, n, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
+        mu, ns, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
     )
     return codes, amps, freqs, centres, fpps, done, rest, stats

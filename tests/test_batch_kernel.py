@@ -117,10 +117,32 @@ def _kernels_agree(pts, n, delay, tail_len, bound=1e4):
     ref = (np.zeros((k, _kernel.NSTATS)), np.zeros(k, np.int64), np.zeros(k, np.int64))
     got = (np.full((k, _kernel.NSTATS), 7.0), np.full(k, 7, np.int64), np.full(k, 7, np.int64))
     _kernel.serial_kernel(*pts, n, delay, True, bound, tail_len, *ref)
-    _batch.batch_kernel(*pts, n, delay, True, bound, tail_len, *got)
+    per_run = (np.full(k, n, np.int64), delay, True, np.full(k, bound), np.full(k, tail_len, np.int64))
+    _batch.batch_kernel(*pts, *per_run, *got)
     assert np.array_equal(ref[0].view(np.int64), got[0].view(np.int64))  # bits: ±0 and NaN payloads too
     assert np.array_equal(ref[1], got[1]) and np.array_equal(ref[2], got[2])
     return ref
+
+
+def test_eq4_two_runs_in_flight_each_with_its_own_length_bound_and_tail():
+    """Runs of different lengths, bounds and tails in one batch: each equals simulate_kernel alone."""
+    from dfa import _batch, _kernel
+
+    mu, beta, sigma, v0, x0 = _grid(11, 40)
+    rng = np.random.default_rng(11)
+    ns = rng.integers(1, 8000, mu.size)
+    bounds = np.where(rng.random(mu.size) < 0.3, 50.0, 1e5)
+    tails = (rng.random(mu.size) * ns).astype(np.int64)
+    for delay in (0, 1):
+        st, dn, rs = np.zeros((mu.size, _kernel.NSTATS)), np.zeros(mu.size, np.int64), np.zeros(mu.size, np.int64)
+        _batch.batch_kernel(mu, beta, sigma, x0, v0, ns, delay, True, bounds, tails, st, dn, rs)
+        for i in range(mu.size):
+            one = np.empty(_kernel.NSTATS)
+            e = np.empty(0)
+            args = (mu[i], beta[i], sigma[i], x0[i], v0[i], ns[i], delay, True, bounds[i], tails[i])
+            d, r = _kernel.simulate_kernel(*args, e, e, np.empty((0, 4)), one)
+            assert (d, r) == (dn[i], rs[i]) and np.array_equal(one.view(np.int64), st[i].view(np.int64)), i
+        assert (st[:, 8 + 5] > 0).any() and (rs >= 0).any()  # some runs pass their bound, some rest
 
 
 @pytest.mark.parametrize("size", [0, 1, 2, 3, 61])
@@ -154,3 +176,21 @@ def test_eq4_two_runs_in_flight_skip_repeated_periods_alike():
 def test_eq4_two_runs_in_flight_hand_delay_to_serial_kernel():
     mu, beta, sigma, v0, x0 = _grid(5, 9)
     _kernels_agree((mu, beta, sigma, x0, v0), 2000, 2, 500)
+
+
+@pytest.mark.parametrize("delay", [0, 1])
+def test_eq4_design_searches_batch_equals_simulate_per_point(delay):
+    """dfa.kmax.simulate_points (the K_max searches) batches its spring runs: outcomes and lengths are simulate()'s."""
+    from dfa.kmax import DIVERGENCE_BOUND, simulate_points
+    from dfa.simulation import default_samples, divergence_bound, preload_position
+
+    mu, beta, sigma, v0, _ = _grid(21 + delay, 30)
+    v0 = np.abs(v0) + 0.1
+    pts = [(m, b, s, 0.0, v) for m, b, s, v in zip(mu, beta, sigma, v0, strict=True)]
+    pts += [(m, b, s, preload_position(m, v), 0.0) for m, b, s, v in zip(mu, beta, sigma, v0, strict=True)]
+    outs, lengths = simulate_points(pts, delay, 40_000)
+    for (m, b, s, x0, v), o, n in zip(pts, outs, lengths, strict=True):
+        assert n == min(default_samples(m, b, s, v, x0, delay), 40_000)
+        bound = divergence_bound(x0, v, m, DIVERGENCE_BOUND)
+        assert o == simulate(m, b, s, v, n, xi0=x0, delay=delay, record=False, bound=bound).outcome
+    assert {"rest", "unstable"} <= set(outs)  # not one trivial class
