@@ -22,7 +22,8 @@ other lane resumes where it stopped. Each lane runs exactly the operations of
 :func:`dfa._kernel.advance_free`, in the same order; only the exact skip of
 repeated periods restarts its cycle detection when a lane resumes, which
 changes when a period is skipped, never a result (``tests/test_batch_kernel.py``).
-Runs with a delay go one after the other through :func:`dfa._kernel.simulate_kernel`.
+Runs with a delay pair the same way (:func:`advance_pair_delayed`, the loop of
+:func:`dfa._kernel.advance`, each run with its ring of pending readings).
 
 Developers: numba caches this module's compiled code keyed on this file
 alone; it inlines :mod:`dfa._kernel`'s steps, so after editing those clear
@@ -37,22 +38,27 @@ from numba import njit
 from ._kernel import (
     NSEG,
     NSTATE,
+    SPOS,
     STMAX,
     STMIN,
     SV,
     SX,
+    advance,
     advance_free,
+    at_rest,
+    delayed_force,
     finish,
+    force,
     free_sample,
     same_state,
     sample_constants,
     segment_bounds,
-    simulate_kernel,
     start,
+    step,
     tail_extremes,
 )
 
-__all__ = ["advance_pair", "batch_kernel"]
+__all__ = ["advance_pair", "advance_pair_delayed", "batch_kernel"]
 
 # integer state of a lane: run index (-1: none), segment, part (0: before the tail, 1: in it), next sample, range end,
 # the run's length and where its tail starts
@@ -127,6 +133,58 @@ def advance_pair(
     return ha, wa, pa, fa, hb, wb, pb, fb
 
 
+@njit(cache=True, nogil=True)
+def advance_pair_delayed(
+    sa, ha, h1a, mua, siga, ka, taila, bounda, ta, hista,
+    sb, hb, h1b, mub, sigb, kb, tailb, boundb, tb, histb,
+    delay, quantize,
+):  # fmt: skip
+    """:func:`dfa._kernel.advance` (no records) of two runs with a delay of ``delay`` samples, until either's range ends.
+
+    As :func:`advance_pair`, with each run's ring of pending readings (``hista``, ``histb``; its position in the
+    state array); nothing is skipped. Returns (h, why, peak, ended) of A then of B.
+    """
+    xa, va, pa_, tmina, tmaxa = sa[SX], sa[SV], int(sa[SPOS]), sa[STMIN], sa[STMAX]
+    xb, vb, pb_, tminb, tmaxb = sb[SX], sb[SV], int(sb[SPOS]), sb[STMIN], sb[STMAX]
+    pka = pkb = 0.0
+    wa = wb = 0
+    fa = fb = False
+    while not (fa or fb):
+        phia, pa_ = delayed_force(force(xa, quantize), hista, pa_, delay)
+        if va == 0.0 and at_rest(va, phia, siga, hista, delay):
+            wa, fa = 1, True
+        else:
+            xa, va, xra, _t, _a, _a2, _tr, sta = step(xa, va, phia, mua, siga, ka)
+            axa = abs(xa)
+            if axa > pka:
+                pka = axa
+            if ha >= ta:
+                taila[ha - ta] = xa
+                tmina, tmaxa = tail_extremes(xa, xra, sta, tmina, tmaxa)
+            ha += 1
+            if not axa <= bounda:  # also catches NaN
+                wa, fa = 2, True
+            fa = fa or ha >= h1a
+        phib, pb_ = delayed_force(force(xb, quantize), histb, pb_, delay)
+        if vb == 0.0 and at_rest(vb, phib, sigb, histb, delay):
+            wb, fb = 1, True
+        else:
+            xb, vb, xrb, _t, _a, _a2, _tr, stb = step(xb, vb, phib, mub, sigb, kb)
+            axb = abs(xb)
+            if axb > pkb:
+                pkb = axb
+            if hb >= tb:
+                tailb[hb - tb] = xb
+                tminb, tmaxb = tail_extremes(xb, xrb, stb, tminb, tmaxb)
+            hb += 1
+            if not axb <= boundb:
+                wb, fb = 2, True
+            fb = fb or hb >= h1b
+    sa[SX], sa[SV], sa[SPOS], sa[STMIN], sa[STMAX] = xa, va, pa_, tmina, tmaxa
+    sb[SX], sb[SV], sb[SPOS], sb[STMIN], sb[STMAX] = xb, vb, pb_, tminb, tmaxb
+    return ha, wa, pka, fa, hb, wb, pkb, fb
+
+
 @njit(cache=True, inline="always")
 def _next_range(lane):
     """Move ``lane`` (its row of integer state) to its run's next nonempty range; False when none is left.
@@ -150,9 +208,9 @@ def _next_range(lane):
 
 
 @njit(cache=True, nogil=True)
-def _load(lane, i, x0s, v0s, mus, betas, ns, tail_lens, quantize, state, hist, stats, consts):
-    """Start run ``i`` in ``lane`` (state, stats cleared, its sample constants, its first range)."""
-    start(x0s[i], v0s[i], 0, quantize, state, hist, stats[i])
+def _load(lane, i, x0s, v0s, mus, betas, ns, tail_lens, delay, quantize, state, hist, stats, consts):
+    """Start run ``i`` in ``lane`` (state, delay ring, stats cleared, its sample constants, its first range)."""
+    start(x0s[i], v0s[i], delay, quantize, state, hist, stats[i])
     rate, e1, p1, p2, q1, q2 = sample_constants(mus[i], betas[i])
     consts[0], consts[1], consts[2], consts[3], consts[4], consts[5] = rate, e1, p1, p2, q1, q2
     lane[PT], lane[SEG], lane[PART], lane[N], lane[TAIL] = i, 0, -1, ns[i], ns[i] - tail_lens[i]
@@ -187,55 +245,57 @@ def batch_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail
     """Independent runs, two in flight: run i is :func:`dfa._kernel.simulate_kernel` of its own inputs.
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]``
-    and tail ``tail_lens[i]``; ``stats[i]`` (NSTATS), ``done[i]`` and ``rest[i]`` receive what
-    :func:`dfa._kernel.simulate_kernel` returns for it, bit for bit (nothing recorded). With ``delay`` > 0
-    the runs go one after the other through :func:`dfa._kernel.simulate_kernel`.
+    and tail ``tail_lens[i]``; every run has the delay ``delay``. ``stats[i]`` (NSTATS), ``done[i]`` and
+    ``rest[i]`` receive what :func:`dfa._kernel.simulate_kernel` returns for it, bit for bit (nothing recorded).
     """
-    e, e2 = np.empty(0), np.empty((0, 4))
-    if delay != 0:
-        for i in range(mus.shape[0]):
-            done[i], rest[i] = simulate_kernel(
-                mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], delay, quantize, bounds[i], tail_lens[i],
-                e, e, e2, stats[i],
-            )  # fmt: skip
-        return
     lanes = np.full((2, NLANE), -1, dtype=np.int64)
     states = np.empty((2, NSTATE))
-    hists = np.empty((2, 1))
+    hists = np.empty((2, delay + 1))
     tails = np.empty((2, max(1, np.max(tail_lens)) if tail_lens.shape[0] else 1))
     consts = np.empty((2, 6))
     nxt = 0
-    for w in range(2):
-        if nxt < mus.shape[0]:
-            _load(lanes[w], nxt, x0s, v0s, mus, betas, ns, tail_lens, quantize, states[w], hists[w], stats, consts[w])
-            nxt += 1
-    while lanes[0, PT] >= 0 or lanes[1, PT] >= 0:
-        res = _advance_lanes(lanes, states, tails, consts, mus, sigmas, quantize, bounds)
+    while True:
+        for w in range(2):  # an empty lane takes the next run
+            if lanes[w, PT] < 0 and nxt < mus.shape[0]:
+                _load(
+                    lanes[w],
+                    nxt,
+                    x0s,
+                    v0s,
+                    mus,
+                    betas,
+                    ns,
+                    tail_lens,
+                    delay,
+                    quantize,
+                    states[w],
+                    hists[w],
+                    stats,
+                    consts[w],
+                )
+                nxt += 1
+        if lanes[0, PT] < 0 and lanes[1, PT] < 0:
+            return
+        res = _advance_lanes(lanes, states, hists, tails, consts, mus, betas, sigmas, delay, quantize, bounds)
         for w in range(2):
             i = lanes[w, PT]
-            if i < 0:
-                continue
-            h, why, peak, ended = res[w]
-            if not _book(
-                lanes[w], h, why, peak, ended, states[w], tails[w], tail_lens[i], mus[i], quantize, stats, done, rest
-            ):
-                if nxt < mus.shape[0]:
-                    _load(
-                        lanes[w],
-                        nxt,
-                        x0s,
-                        v0s,
-                        mus,
-                        betas,
-                        ns,
-                        tail_lens,
-                        quantize,
-                        states[w],
-                        hists[w],
-                        stats,
-                        consts[w],
-                    )
-                    nxt += 1
+            if i >= 0:
+                h, why, peak, ended = res[w]
+                _book(
+                    lanes[w],
+                    h,
+                    why,
+                    peak,
+                    ended,
+                    states[w],
+                    tails[w],
+                    tail_lens[i],
+                    mus[i],
+                    quantize,
+                    stats,
+                    done,
+                    rest,
+                )
 
 
 @njit(cache=True, inline="always")
@@ -244,22 +304,32 @@ def _kc(c):
 
 
 @njit(cache=True, inline="always")
-def _advance_lanes(lanes, states, tails, consts, mus, sigmas, quantize, bounds):
-    """Advance the lanes in flight: both together (:func:`advance_pair`), or the only one alone."""
+def _advance_lanes(lanes, states, hists, tails, consts, mus, betas, sigmas, delay, quantize, bounds):
+    """Advance the lanes in flight: both together (:func:`advance_pair`, :func:`advance_pair_delayed`), or the
+    only one alone (:func:`dfa._kernel.advance_free`, :func:`dfa._kernel.advance`)."""
     a, b = lanes[0], lanes[1]
-    if a[PT] >= 0 and b[PT] >= 0:
-        ha, wa, pa, fa, hb, wb, pb, fb = advance_pair(
-            states[0], a[H], a[END], mus[a[PT]], sigmas[a[PT]], _kc(consts[0]), tails[0], bounds[a[PT]], a[TAIL],
-            states[1], b[H], b[END], mus[b[PT]], sigmas[b[PT]], _kc(consts[1]), tails[1], bounds[b[PT]], b[TAIL],
-            quantize,
-        )  # fmt: skip
+    ia, ib = a[PT], b[PT]
+    if ia >= 0 and ib >= 0:
+        run_a = (states[0], a[H], a[END], mus[ia], sigmas[ia], _kc(consts[0]), tails[0], bounds[ia], a[TAIL])
+        run_b = (states[1], b[H], b[END], mus[ib], sigmas[ib], _kc(consts[1]), tails[1], bounds[ib], b[TAIL])
+        if delay == 0:
+            ha, wa, pa, fa, hb, wb, pb, fb = advance_pair(*run_a, *run_b, quantize)
+        else:
+            ha, wa, pa, fa, hb, wb, pb, fb = advance_pair_delayed(*run_a, hists[0], *run_b, hists[1], delay, quantize)
         return (ha, wa, pa, fa), (hb, wb, pb, fb)
-    w = 0 if a[PT] >= 0 else 1
+    w = 0 if ia >= 0 else 1
     lane = lanes[w]
     i = lane[PT]
-    h, why, peak = advance_free(
-        states[w], lane[H], lane[END], mus[i], sigmas[i], quantize, bounds[i], _kc(consts[w]), tails[w], lane[TAIL]
-    )
+    if delay == 0:
+        h, why, peak = advance_free(
+            states[w], lane[H], lane[END], mus[i], sigmas[i], quantize, bounds[i], _kc(consts[w]), tails[w], lane[TAIL]
+        )
+    else:
+        e = np.empty(0)
+        h, why, peak = advance(
+            states[w], hists[w], lane[H], lane[END], mus[i], betas[i], sigmas[i], delay, quantize, bounds[i], lane[TAIL],
+            tails[w], False, False, e, e, np.empty((0, 4)),
+        )  # fmt: skip
     one = (h, why, peak, True)
     other = (0, 0, 0.0, False)
     return (one, other) if w == 0 else (other, one)

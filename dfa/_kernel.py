@@ -140,7 +140,7 @@ def step(x, v, phi, mu, sigma, k):
     # t* = (μ/β) log1p(y) = w λ(y) (λ: log1p_ratio; one division on the chain, series at small y)
     w = -v / f * mu
     y = w * rate
-    tstar = w * log1p_ratio(y)
+    tstar = w * (log1p_ratio(y) if y > 0.0 else 1.0)  # y <= 0: only when ξ' and F underflow (as before)
     if tstar > 1.0:
         tstar = 1.0  # rounding guard: v1 * s <= 0 means t* <= 1
     u = rate * tstar

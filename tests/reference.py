@@ -86,7 +86,7 @@ def step_python(x, v, phi, mu, beta, sigma):
         return x1, v1
     w = -v / f * mu
     y = w * rate
-    tstar = min(1.0, w * log1p_ratio(y))
+    tstar = min(1.0, w * (log1p_ratio(y) if y > 0 else 1.0))
     u = rate * tstar
     x = x + v * tstar * phi1(u) + a * tstar * tstar * phi2(u)
     tr = 1.0 - tstar

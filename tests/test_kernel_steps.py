@@ -139,3 +139,16 @@ def test_eq4_run_in_ranges_equals_one_call(case, delay):
     _kernel.finish(state, n, done2, rest2, tail, tail_len, mu, True, stats, False, False, e, e, e2)
     assert (done2, rest2) == (done, rest)
     np.testing.assert_array_equal(stats, whole)
+
+
+def test_eq4_step_stays_finite_when_speed_and_force_underflow():
+    """Denormal ξ' and φ of the same sign (a stop 'found' by underflow, w < 0): finite, as the kernel always was.
+
+    Found by dfa.controller_soundness (seed 2024): a linear run decaying through the denormals reached
+    ξ' = φ = −5e-324, where log1p(y)/y at y < −1 would have been NaN.
+    """
+    mu, beta = 1.010500446509884, 1.8047083379647524
+    for phi in (-5e-324, -1e-323, 5e-324):
+        got = _kernel.step(1e-323, -5e-324, phi, mu, 0.0, *_consts(mu, beta))
+        assert all(math.isfinite(g) for g in got[:5])
+        assert got[:2] == step_python(1e-323, -5e-324, phi, mu, beta, 0.0)
