@@ -42,7 +42,12 @@ Rounding: the hot path divides by μ once per run (``sample_constants``) and
 evaluates φ₁, φ₂ by Estrin's scheme; against the kernel before this change
 (per-sample divisions, term-by-term series) trajectories agree to rounding
 (at most 8·10⁻¹¹ relative after 2·10⁴ samples on 300 random runs), and the
-outcomes of those runs and of two stability maps are unchanged.
+outcomes of those runs and of two stability maps are unchanged. Later, the
+sample sums the reading last and the stop time uses one division and the
+series of λ(y) = log1p(y)/y (:func:`step`); against the kernel before that
+(commit 9829bef) 300 random runs of 2·10⁴ samples (d = 0 … 2) agree to
+4.4·10⁻¹⁰ of max(|ξ|, 1) and keep their outcomes, as do the points of three
+stability maps (μ = 100 at 4 × 40 × 40 and 2 × 30 × 30, μ = 30 with d = 1).
 """
 
 from __future__ import annotations

@@ -82,7 +82,9 @@ def _ref_lambda(y: float) -> float:
         return float(mpmath.log1p(mpmath.mpf(y)) / y)
 
 
-@pytest.mark.parametrize("y", [0.0, 1e-300, 1e-17, 1e-9, 1e-4, 0.03, 0.0624999, 0.0625, 0.07, 0.5, 3.0, 1e6, -0.03, -0.5])
+@pytest.mark.parametrize(
+    "y", [0.0, 1e-300, 1e-17, 1e-9, 1e-4, 0.03, 0.0624999, 0.0625, 0.07, 0.5, 3.0, 1e6, -0.03, -0.5]
+)
 def test_eq4_stop_time_ratio_matches_mpmath(y):
     """λ(y) = log1p(y)/y of the stop time t* = w λ(y) (dfa._kernel.step): series and closed form, a few ulp."""
     assert _exprel.log1p_ratio(y) == pytest.approx(_ref_lambda(y), rel=4e-16, abs=0.0)
