@@ -34,6 +34,7 @@ __all__ = [
     "check_real_array",
     "check_positive",
     "check_nonnegative",
+    "check_speed",
     "check_int",
     "check_choice",
     "check_type",
@@ -140,6 +141,43 @@ def check_nonnegative(name: str, value: Any, fix: str | None = None) -> float:
     out = check_real(name, value, fix)
     if out < 0.0:
         raise DFAValueError(_message(name, out, "a finite number >= 0", fix))
+    return out
+
+
+def check_speed(name: str, value: Any, unit: str = "m/s (rotary: rad/s)", *, zero: bool = True) -> float:
+    """Return an impact speed, the magnitude of ẋ0 (or ξ'0), as a float: finite and >= 0 (> 0 if not ``zero``).
+
+    A negative speed is refused, never replaced by its magnitude: the analyses use ``abs(ẋ0)``
+    (eq. 11), and a sign the caller meant is not silently dropped.
+
+    Parameters
+    ----------
+    name : str
+        Parameter (or command-line flag) named in the message.
+    value : object
+        The speed to check.
+    unit : str, optional
+        Its unit, shown in the fix (default ``"m/s (rotary: rad/s)"``).
+    zero : bool, optional
+        Whether 0 is a meaningful speed here (default True).
+
+    Examples
+    --------
+    >>> check_speed("velocity", 0.05)
+    0.05
+    >>> try:
+    ...     check_speed("velocity", -0.05)
+    ... except DFAValueError as err:
+    ...     print(err)
+    velocity = -0.05 is invalid: it must be a finite number >= 0, the impact speed's magnitude (its sign is not used); give the impact speed's magnitude, e.g. 0.05 m/s (rotary: rad/s)
+    """
+    out = check_real(name, value, f"give the impact speed's magnitude in {unit}")
+    if out < 0.0:
+        rule = f"a finite number {'>=' if zero else '>'} 0, the impact speed's magnitude (its sign is not used)"
+        raise DFAValueError(_message(name, out, rule, f"give the impact speed's magnitude, e.g. {-out:g} {unit}"))
+    if out == 0.0 and not zero:
+        rule = "a finite number > 0 (no impact to analyse at speed 0)"
+        raise DFAValueError(_message(name, out, rule, f"give an impact speed > 0 in {unit}, e.g. 0.05"))
     return out
 
 

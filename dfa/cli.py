@@ -26,7 +26,7 @@ from typing import Any
 
 from ._io import check_output_file, check_output_folder, written_paths
 from .catalogue import DEFAULT_DEVICE, CatalogueEntry, catalogue, resolve_device
-from .checks import check_beta, check_mu, check_real, check_sigma
+from .checks import check_beta, check_mu, check_real, check_sigma, check_speed
 from .controller import MIN_CUTOFF, Controller, ControllerParams
 from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params, dimensionless_params
@@ -402,9 +402,23 @@ def _resolve(
     return _Inputs(p, p.beta, p.sigma, dev, r.stiffness, r.label, r.entry)
 
 
-def _speed(args: argparse.Namespace, inputs: _Inputs, required: bool = True) -> tuple[float | None, float | None]:
-    """Return (xi_dot, velocity) from --xi-dot / --velocity."""
+def _impact_speed(flag: str, value: float, inputs: _Inputs | None, zero: bool = True) -> float:
+    """An impact speed from ``flag``: its magnitude, >= 0 (> 0 if not ``zero``); a negative is refused, not flipped."""
+    if flag == "--xi-dot":
+        unit = "ticks per sample"
+    else:
+        unit = inputs.device.units["velocity"] if inputs is not None and inputs.device is not None else "m/s (rad/s)"
+    return check_speed(flag, value, unit, zero=zero)
+
+
+def _speed(
+    args: argparse.Namespace, inputs: _Inputs, required: bool = True, signed: bool = False
+) -> tuple[float | None, float | None]:
+    """Return (xi_dot, velocity) from --xi-dot / --velocity; unless ``signed``, an impact speed (>= 0)."""
     v, xd = args.velocity, args.xi_dot
+    if not signed:
+        v = None if v is None else _impact_speed("--velocity", v, inputs)
+        xd = None if xd is None else _impact_speed("--xi-dot", xd, inputs)
     if v is not None and xd is not None:
         raise UsageError("--velocity and --xi-dot cannot both be given: choose one speed")
     if v is None and xd is None:
@@ -720,16 +734,16 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
     assert v is not None
     ctl = _controller(args, dev, inp.stiffness)
     if ctl is not None:
-        return _stiffness_controller(args, inp, ctl, abs(v))
+        return _stiffness_controller(args, inp, ctl, v)
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
     src = _stiffness_source(args, inp)
     lim = stiffness_limits(dev, v, args.stiffness, delay=args.delay)  # existing keys: only --stiffness is assessed
-    ans = _design_answer(args, inp, abs(v), inp.stiffness, src)
+    ans = _design_answer(args, inp, v, inp.stiffness, src)
     if args.plot is not None:
         from .speed_chart import stiffness_speed_chart
 
-        chart = stiffness_speed_chart(dev, args.delay, stiffness=inp.stiffness, velocity=abs(v))
+        chart = stiffness_speed_chart(dev, args.delay, stiffness=inp.stiffness, velocity=v)
         _save_png("--plot", args.plot, chart.plot())
     if args.json:
         rec = lim.as_dict()
@@ -801,7 +815,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     inp = _resolve(args, dimensionless=True)
     p = inp.params
     assert p is not None
-    xd, _v = _speed(args, inp)
+    xd, _v = _speed(args, inp, signed=True)  # an initial condition: the sign of ξ'0 is the direction of motion
     assert xd is not None
     ctl = _controller(args, inp.device, inp.stiffness)
     if args.preload and args.xi0 is not None:
@@ -1518,7 +1532,7 @@ def _cmd_zwidth(args: argparse.Namespace) -> int:
         check_output_file("--plot", args.plot, ".png")
     zw = z_width(
         dev,
-        args.velocity,
+        _impact_speed("--velocity", args.velocity, inp, zero=False),
         delay=args.delay,
         filter_cutoff=args.velocity_filter,
         amplifier_bandwidth=args.amplifier_bandwidth,

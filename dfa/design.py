@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from .catalogue import CatalogueEntry
-from .checks import _fmt, check_delay, check_int, check_positive, check_real, check_type
+from .checks import _fmt, check_delay, check_int, check_positive, check_real, check_speed, check_type
 from .controller import Controller, ControllerParams
 from .controller_check import ControllerCheck, controller_check
 from .controller_kmax import ControllerStiffnessLimits, controller_stiffness_limits
@@ -376,7 +376,7 @@ def resolve_design_inputs(
             f"stiffness = None is invalid for {dev.name!r}: the catalogue gives no K; pass the stiffness in {dev.units['stiffness']}"
         )
     k = check_positive("stiffness", k, "give the virtual wall stiffness K")
-    v = abs(check_real("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1)))
+    v = check_speed("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1))
     return entry, dev, k, v, check_delay(delay)
 
 
