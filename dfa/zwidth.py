@@ -246,13 +246,15 @@ class ZWidth:
             },
         )
 
-    def plot(self, ax: Any = None) -> Any:
+    def plot(self, ax: Any = None, design_point: tuple[float, float] | None = None) -> Any:
         """Draw the Z-width (B across, K up on a log axis, one line per method, simulated region shaded).
 
         Parameters
         ----------
         ax : matplotlib.axes.Axes, optional
             Axes to draw on (default: a new figure).
+        design_point : (float, float), optional
+            A design point (B, K) in the device's units to star (in the legend too).
 
         Returns
         -------
@@ -261,7 +263,7 @@ class ZWidth:
         """
         from .plotting import plot_zwidth
 
-        return plot_zwidth(self, ax=ax)
+        return plot_zwidth(self, ax=ax, design_point=design_point)
 
 
 # ----------------------------------------------------------------------------- boundaries per B
