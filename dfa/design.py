@@ -421,7 +421,7 @@ def design_analysis(
     stiffness : float, optional
         K in N/m (rotary N·m/rad); default the controller's K, else the catalogue K.
     velocity : float, optional
-        Impact speed in m/s (rotary rad/s); default 0.1 m/s (1 rad/s rotary). Its sign is dropped.
+        Impact speed in m/s (rotary rad/s); default 0.1 m/s (1 rad/s rotary); >= 0 (a negative is refused).
     delay : int
         Computational delay d in whole samples (default 0), used by every part of the analysis; with a
         controller it is the controller's (give 0 or the same value).

@@ -14,6 +14,7 @@ import dfa
 from dfa.checks import check_speed
 from dfa.cli import main
 from dfa.controller import Controller
+from dfa.controller_check import controller_check
 from dfa.controller_kmax import controller_stiffness_limits
 from dfa.design import design_analysis
 from dfa.errors import DFAValueError
@@ -93,8 +94,18 @@ def impulse():
         lambda dev: stiffness_limits(dev, -0.05),
         lambda dev: stiffness_response(dev, [0.1, -0.05]),
         lambda dev: design_analysis(dfa.get_device("impulse"), velocity=-0.05),
+        lambda dev: controller_check(dev, Controller(100.0, damping=1.0), -0.05),
     ],
-    ids=["design_answer", "z_width", "controller_stiffness_limits", "speed_chart", "limits", "response", "design"],
+    ids=[
+        "design_answer",
+        "z_width",
+        "controller_stiffness_limits",
+        "speed_chart",
+        "limits",
+        "response",
+        "design",
+        "controller_check",
+    ],
 )
 def test_eq11_api_refuses_a_negative_impact_speed_naming_the_parameter(impulse, call):
     with pytest.raises(DFAValueError) as err:
