@@ -548,7 +548,7 @@ def nyquist_needs_zoom(nyq, cycles) -> bool:
     return len(xs) > 1 and (max(xs) - min(xs)) < 0.1 * (x1 - x0)
 
 
-def nyquist_plot(nyq, ax=None, *, cycles=None):
+def nyquist_plot(nyq, ax=None, *, cycles=None, controller: str | None = None):
     """Nyquist plot of the loop L(jω; M) against the critical locus −1/D(M), cycles marked (paper Fig. 6).
 
     The axes are scaled to the locus, the cycles and the origin; when a cycle is below one tick or several
@@ -559,6 +559,9 @@ def nyquist_plot(nyq, ax=None, *, cycles=None):
     nyq : NyquistLocusResponse
     cycles : LimitCycleResult, optional
         Cycles to mark (stable: filled circle, unstable: open circle), computed with the same loop model.
+    controller : str, optional
+        The loop's wall controller in words (e.g. ``"B = 1 N·s/m, f_c = 200 Hz, d = 1"``), named in the
+        title as "… loop with {controller}" in place of the delay (default: the title names the delay only).
     """
     ax = _axes(ax, figsize=(7.6, 4.6))
     pts = _cycle_points(nyq, cycles)
@@ -575,7 +578,7 @@ def nyquist_plot(nyq, ax=None, *, cycles=None):
     ax.set_ylim(*ylim)
     ax.set_xlabel("Re L (force ticks per position tick)")
     ax.set_ylabel("Im L (force ticks per position tick)")
-    dl = f", delay {nyq.delay}" if nyq.delay else ""
+    dl = f" with {controller}" if controller else (f", delay {nyq.delay}" if nyq.delay else "")
     ax.set_title(f"Nyquist, {MODEL_NAMES.get(nyq.model, nyq.model)} loop{dl}", fontsize=9)
     if zoom:
         _nyquist_inset(ax, nyq, pts, xlim)

@@ -76,9 +76,11 @@ def _stiffness(a: DesignAnalysis) -> ReportFigure | None:
 
 def _nyquist(a: DesignAnalysis) -> ReportFigure:
     from .. import plotting
+    from .controller import controller_short
 
     model = a.nyquist.model
-    ax = plotting.nyquist_plot(a.nyquist, cycles=a.threshold(model).result)
+    ctl = None if a.controller is None else controller_short(a.controller, a.device.units)
+    ax = plotting.nyquist_plot(a.nyquist, cycles=a.threshold(model).result, controller=ctl)
     name = plotting.MODEL_NAMES.get(model, model)
     caption = (
         f"Nyquist plot of the linearised loop{_with_ctl(a)} ({name} model, as the growth threshold above) against −1/D(M), "
