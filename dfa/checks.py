@@ -47,7 +47,9 @@ __all__ = [
     "check_growth",
     "check_bound",
     "check_positive_array",
+    "check_rate",
     "INT_MAX",
+    "MAX_RATE",
     "MAX_DELAY",
     "DELAY_FIX",
 ]
@@ -268,6 +270,29 @@ def check_beta(value: Any, name: str = "beta") -> float:
 def check_sigma(value: Any, name: str = "sigma") -> float:
     """Dimensionless Coulomb friction σ = c/(K Δ) >= 0, as a float."""
     return check_nonnegative(name, value, "σ = c/(K Δ) cannot be negative")
+
+
+#: Largest bT/m (and BT/m) accepted by the exact linear bounds: beyond, the loop's polynomials overflow.
+MAX_RATE = 1e8
+
+
+def check_rate(name: str, value: float, mass: float, period: float) -> None:
+    """Refuse a damping ``value`` whose value·period/mass exceeds :data:`MAX_RATE` (the exact linear bounds).
+
+    Examples
+    --------
+    >>> check_rate("damping", 0.02, 0.032, 0.002)
+    >>> try:
+    ...     check_rate("damping", 0.02, 1e-300, 0.002)
+    ... except DFAValueError as err:
+    ...     print(err)
+    damping = 0.02 is invalid with mass = 1e-300 and period = 0.002: damping·period/mass must be at most 1e+08 (beyond, the loop's polynomials overflow); check the units
+    """
+    if not value * period / mass <= MAX_RATE:
+        raise DFAValueError(
+            f"{name} = {value:g} is invalid with mass = {mass:g} and period = {period:g}: {name}·period/mass must be "
+            f"at most {MAX_RATE:g} (beyond, the loop's polynomials overflow); check the units"
+        )
 
 
 #: Largest computational delay accepted, in samples (10 s at 1 kHz): the exact linear bound solves a

@@ -26,7 +26,7 @@ from typing import Any
 
 from ._io import check_output_file, check_output_folder, written_paths
 from .catalogue import DEFAULT_DEVICE, CatalogueEntry, catalogue, resolve_device
-from .checks import check_beta, check_mu, check_real, check_sigma, check_speed
+from .checks import MAX_DELAY, check_beta, check_mu, check_real, check_sigma, check_speed
 from .controller import MIN_CUTOFF, Controller, ControllerParams
 from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params, dimensionless_params
@@ -210,14 +210,21 @@ def _add_device_args(
 
 
 def _delay(text: str) -> int:
-    try:
-        out = int(text)
-    except ValueError:
+    """--delay: ASCII digits only (int() would take '1_0' or other scripts' digits), 0 to MAX_DELAY samples."""
+    if not _WHOLE.fullmatch(text):
         raise argparse.ArgumentTypeError(
-            f"{text!r} is not a whole number: --delay takes the computational delay in samples (integer >= 0)"
-        ) from None
+            f"{text[:40]!r} is not a whole number: --delay takes the computational delay in samples (integer >= 0, "
+            "ASCII digits, e.g. 1)"
+        )
+    digits = text.lstrip("+-").lstrip("0")
+    out = int(text) if len(digits) <= 18 else (-1 if text.startswith("-") else MAX_DELAY + 1)
     if out < 0:
         raise argparse.ArgumentTypeError(f"{text!r} is invalid: --delay must be a whole number of samples >= 0")
+    if out > MAX_DELAY:
+        raise argparse.ArgumentTypeError(
+            f"{text[:40]!r} is too large: --delay takes at most {MAX_DELAY} samples; give the computational delay "
+            "in samples of the servo period (e.g. 1)"
+        )
     return out
 
 
@@ -926,10 +933,23 @@ def _add_map_device_args(p: argparse.ArgumentParser, speeds: bool) -> None:
     p.add_argument("--plot", metavar="FILE.png", help="write the figure to a PNG file (default: none)")
 
 
+def _check_plane(args: argparse.Namespace) -> None:
+    """--grid, --beta-range and --sigma-range of `map` and `contours`, refused with the flag's name."""
+    if args.grid < 2:
+        raise UsageError(
+            f"--grid {args.grid} is invalid: it must be a whole number >= 2 (points per axis); give e.g. --grid 50"
+        )
+    for flag, (lo, hi), sym in (("--beta-range", args.beta_range, "β"), ("--sigma-range", args.sigma_range, "σ")):
+        if lo < 0.0 or not hi > lo:
+            raise UsageError(
+                f"{flag} {lo:g} {hi:g} is invalid: it must be LOW HIGH with 0 <= LOW < HIGH ({sym} >= 0); "
+                f"give e.g. {flag} 0 {max(lo, hi, 1.0):g}"
+            )
+
+
 def _map_device(args: argparse.Namespace) -> tuple[float, _Inputs | None]:
     """μ of `map`/`contours`: --mu, or a device at its stiffness (never both)."""
-    if args.plot is not None and args.grid < 2:
-        raise UsageError(f"--plot needs --grid 2 or more (got --grid {args.grid}): a figure needs a grid")
+    _check_plane(args)
     given = bool(args.device) or any(getattr(args, k, None) is not None for k in _PHYS_FLAGS)
     given = given or any(getattr(args, k, None) is not None for k in ("stiffness", "counts", "name"))
     if args.mu is not None and given:
@@ -939,7 +959,7 @@ def _map_device(args: argparse.Namespace) -> tuple[float, _Inputs | None]:
             "missing --mu: give --mu, or a device (--device NAME, or --mass --damping --coulomb --resolution --period)"
         )
     if args.mu is not None:
-        return args.mu, None
+        return check_mu(args.mu, "--mu"), None
     inp = _resolve(args, dimensionless=False)
     assert inp.params is not None
     return inp.params.mu, inp
@@ -949,12 +969,19 @@ def _map_speeds(args: argparse.Namespace, inp: _Inputs | None) -> list[float]:
     """ξ'0 values of `map` from --xi-dot or --velocity (m/s, with a device)."""
     if args.xi_dot is not None and args.velocity is not None:
         raise UsageError("--xi-dot and --velocity cannot both be given: choose one unit for the speeds")
+    if args.velocity is None and args.xi_dot is None:
+        raise UsageError("missing speeds: give --xi-dot V [V ...] (ticks per sample) or, with a device, --velocity")
+    flag, given = ("--velocity", args.velocity) if args.velocity is not None else ("--xi-dot", args.xi_dot)
+    negative = [v for v in given if v < 0]
+    if negative:  # the flag and the value as given (not a --velocity converted to ticks)
+        raise UsageError(
+            f"{flag} {negative[0]:g} is invalid: initial speeds must be >= 0 (the map is symmetric in the "
+            f"sign of ξ'0); give {flag} {abs(negative[0]):g}"
+        )
     if args.velocity is not None:
         if inp is None or inp.device is None:
             raise UsageError("--velocity needs a device: with --mu give --xi-dot (ticks per sample)")
         return [inp.device.xi_dot(v) for v in args.velocity]
-    if args.xi_dot is None:
-        raise UsageError("missing speeds: give --xi-dot V [V ...] (ticks per sample) or, with a device, --velocity")
     return list(args.xi_dot)
 
 
@@ -1035,12 +1062,6 @@ def _cmd_map(args: argparse.Namespace) -> int:
         check_output_file("--plot", args.plot, ".png")
     mu, inp = _map_device(args)
     args.xi_dot = _map_speeds(args, inp)
-    negative = [v for v in args.xi_dot if v < 0]
-    if negative:
-        raise UsageError(
-            f"--xi-dot {negative[0]:g} is invalid: initial speeds must be >= 0 (the map is symmetric in the "
-            f"sign of ξ'0); give --xi-dot {abs(negative[0]):g}"
-        )
     _check_map_work(args)
     ctl = _controller(args, *((inp.device, inp.stiffness) if inp is not None else (None, None)))
     m = stability_map(
@@ -1141,6 +1162,11 @@ def _cmd_contours(args: argparse.Namespace) -> int:
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
     mu, inp = _map_device(args)
+    if not args.max_amplitude >= 1.0:
+        raise UsageError(
+            f"--max-amplitude {args.max_amplitude:g} is invalid: it must be >= 1 tick (the large cycle family has "
+            "M >= 1); give e.g. --max-amplitude 10"
+        )
     if args.grid >= 2 and args.max_amplitude >= 1.0:
         check_contour_memory(args.grid, args.max_amplitude, ("--grid", "--max-amplitude"))
     c = contour_maps(
@@ -1362,7 +1388,7 @@ def _add_simulate(sub: Any) -> None:
         metavar="N",
         help="samples to simulate (default: from the loop's time scales, 50000 to 10^7)",
     )
-    _add_controller_args(p, _integer("--delay"))
+    _add_controller_args(p)
     p.add_argument(
         "--preload",
         action="store_true",
@@ -1404,7 +1430,7 @@ def _add_map(sub: Any) -> None:
     p.add_argument(
         "--samples", type=_integer("--samples"), default=50_000, metavar="N", help="samples per run (default: 50000)"
     )
-    _add_controller_args(p, _integer("--delay"))
+    _add_controller_args(p)
     p.add_argument("--preload", action="store_true", help="spring preload instead of an initial speed (default: off)")
     p.add_argument(
         "--no-quantization", action="store_true", help="linear spring, no encoder (default: with the encoder)"
@@ -1433,7 +1459,7 @@ def _add_limit_cycles(sub: Any) -> None:
         default="half-delay",
         help="hold model (default: half-delay; zoh is exact)",
     )
-    _add_controller_args(p, _integer("--delay"))
+    _add_controller_args(p)
     p.add_argument(
         "--max-amplitude",
         type=_number("--max-amplitude", "ticks"),
@@ -1515,6 +1541,7 @@ def _add_report(sub: Any) -> None:
 
 
 def _cmd_zwidth(args: argparse.Namespace) -> int:
+    from .checks import check_jobs
     from .zwidth import ZWIDTH_METHODS, z_width
 
     if args.stiffness is not None:
@@ -1524,6 +1551,10 @@ def _cmd_zwidth(args: argparse.Namespace) -> int:
             "--virtual-damping cannot be given to zwidth: the Z-width spans a grid of B from 0 (see --grid); "
             "drop the flag, or use `dfa stiffness`/`dfa report` with it for one damper"
         )
+    for flag, value, least in (("--grid", args.grid, 2), ("--speeds", args.speeds, 1)):
+        if value < least:
+            raise UsageError(f"{flag} {value} is invalid: it must be a whole number >= {least}; give e.g. {flag} 4")
+    check_jobs("--jobs", args.jobs)
     inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
@@ -1590,7 +1621,7 @@ def _add_zwidth(sub: Any) -> None:
     _add_filter_amplifier_args(g)
     g.add_argument(
         "--virtual-damping",
-        type=float,
+        type=_number("--virtual-damping", "N·s/m (rotary: N·m·s/rad)"),
         default=None,
         metavar="B",
         help="not accepted here: B is the Z-width's axis, its grid spans B from 0 (default: the grid)",
