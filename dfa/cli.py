@@ -20,6 +20,7 @@ import os
 import re
 import signal
 import sys
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -1717,6 +1718,12 @@ def _install_signal_handlers() -> dict:
     return old
 
 
+def _one_line_warning(message: Warning | str, category: type[Warning], *_args: object, **_kw: object) -> str:
+    """A warning on stderr as one line, like the errors (no source file or code line)."""
+    text = " ".join(str(message).split())
+    return f"dfa: warning: {text} ({category.__name__})\n"
+
+
 def _quiet_stdout() -> None:
     """After a closed pipe: send what is left on stdout to /dev/null, so exiting does not raise again."""
     try:
@@ -1738,6 +1745,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = _build_parser()
     before = len(written_paths())
     old_handlers = _install_signal_handlers()
+    old_format = warnings.formatwarning
+    warnings.formatwarning = _one_line_warning
     try:
         argv = list(sys.argv[1:] if argv is None else argv)
         if not argv:  # bare `dfa`: the help, and exit code 2 (no command ran)
@@ -1774,6 +1783,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         )
         return 1
     finally:
+        warnings.formatwarning = old_format
         for sig, handler in old_handlers.items():
             signal.signal(sig, handler if handler is not None else signal.SIG_DFL)
 

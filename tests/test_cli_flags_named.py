@@ -69,3 +69,23 @@ def test_gil_linear_bound_refuses_an_overflowing_rate_like_the_controller_path()
     with pytest.raises(DFAValueError, match=r"^damping = 0\.02 is invalid with mass = 1e-300 .*at most 1e\+08"):
         critical_stiffness(1e-300, 0.02, 0.002)
     assert critical_stiffness(0.032, 0.02, 0.002) > 0.0
+
+
+def test_cli_warnings_are_one_line_on_stderr(monkeypatch, capsys):
+    """A warning of an accepted input (e.g. ``limit-cycles --max-amplitude 1e30``: the search's own, or numpy's
+    overflow) is printed as one 'dfa: warning:' line while a command runs, never Python's file:line and code line."""
+    import warnings
+
+    from dfa import cli
+
+    seen = []
+
+    def command(args):
+        seen.append(warnings.formatwarning("bracket\n  not refined", UserWarning, "dfa/cycles/growth.py", 195))
+        return 0
+
+    monkeypatch.setattr(cli, "_cmd_devices", command)
+    before = warnings.formatwarning
+    assert main(["devices"]) == 0
+    assert seen == ["dfa: warning: bracket not refined (UserWarning)\n"]
+    assert warnings.formatwarning is before  # restored after the command
