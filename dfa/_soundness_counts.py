@@ -1,14 +1,14 @@
-"""What every soundness count shares: its checks, its status and its JSON (one implementation).
+"""What every soundness count shares: its fields, checks, status and JSON (one declaration, one implementation).
 
-Mixed into the frozen result records :class:`dfa.soundness.DelaySoundness` and
-:class:`dfa.controller_soundness.ControllerSoundness`, whose fields include ``points``,
-``energy_grew``, ``diverged`` and ``violations``.
+The frozen base of the result records :class:`dfa.soundness.DelaySoundness` (which adds ``delay``) and
+:class:`dfa.controller_soundness.ControllerSoundness` (which adds ``by_case``).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -64,24 +64,63 @@ def tally(
     )
 
 
+#: Key order of a soundness record's JSON: a record's own field (``delay``, ``by_case``) where it always stood.
+_JSON_ORDER = ("delay", "criterion", "points", "by_kind", "by_case", "energy_grew", "diverged", "violations",
+               "worst_growth", "worst_point", "samples_min", "samples_max", "seed")  # fmt: skip
+
+
+@dataclass(frozen=True, kw_only=True)
 class SoundnessCounts:
-    """Validation, ``status`` and ``as_dict`` of a count of simulated points called passive."""
+    """The count of simulated points a criterion called passive: fields, validation, ``status``, ``as_dict``.
+
+    Attributes
+    ----------
+    criterion : str
+        The criterion that called the points passive.
+    points : int
+        Points simulated.
+    by_kind : dict
+        Points per sampling kind (:data:`KINDS`).
+    energy_grew, diverged, violations : int
+        Points where the storage S exceeded S(0)(1 + :data:`TOLERANCE`) at some sample; that diverged; either.
+    worst_growth : float
+        Largest max S/S(0) − 1 over all points (inf: diverged).
+    worst_point : dict
+        The point with that growth.
+    samples_min, samples_max, seed : int
+        Shortest and longest run (samples) and the random seed.
+    status : SoundnessStatus
+        ``SOUND`` when ``violations`` is 0, else ``VIOLATED`` (derived).
+    """
+
+    criterion: str
+    points: int
+    by_kind: dict
+    energy_grew: int
+    diverged: int
+    violations: int
+    worst_growth: float
+    worst_point: dict = field(default_factory=dict)
+    samples_min: int = 0
+    samples_max: int = 0
+    seed: int = 0
 
     #: The function whose counts the record holds (named in the fix of a bad record).
-    _SOURCE = "the soundness function"
+    _SOURCE: ClassVar[str] = "the soundness function"
 
     def __post_init__(self) -> None:
         fix = f"pass the counts {self._SOURCE} returned"
         for name in ("points", "energy_grew", "diverged", "violations"):
             check_int(name, getattr(self, name), 0, fix)
-        points, violations = getattr(self, "points"), getattr(self, "violations")  # noqa: B009 - fields of the subclass
-        if violations > points:
-            raise DFAValueError(f"violations = {violations} is invalid: it cannot exceed points = {points}; {fix}")
+        if self.violations > self.points:
+            raise DFAValueError(
+                f"violations = {self.violations} is invalid: it cannot exceed points = {self.points}; {fix}"
+            )
 
     @property
     def status(self) -> SoundnessStatus:
         """``SOUND`` when no simulated point violated the criterion, else ``VIOLATED``."""
-        return SoundnessStatus.SOUND if getattr(self, "violations") == 0 else SoundnessStatus.VIOLATED  # noqa: B009
+        return SoundnessStatus.SOUND if self.violations == 0 else SoundnessStatus.VIOLATED
 
     def as_dict(self) -> dict[str, object]:
         """JSON-ready record (an infinite growth becomes null, with the reason under ``null_reasons``).
@@ -89,6 +128,8 @@ class SoundnessCounts:
         Returns
         -------
         dict
-            Every field, plus ``status`` and ``status_message``.
+            Every field (in the order of ``_JSON_ORDER``, then any other), plus ``status`` and ``status_message``.
         """
-        return to_jsonable({**self.__dict__, "status": self.status, "status_message": self.status.message})
+        rank = {k: i for i, k in enumerate(_JSON_ORDER)}
+        ordered = sorted(self.__dict__.items(), key=lambda kv: rank.get(kv[0], len(rank)))
+        return to_jsonable({**dict(ordered), "status": self.status, "status_message": self.status.message})

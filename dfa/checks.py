@@ -34,6 +34,7 @@ __all__ = [
     "check_real_array",
     "check_positive",
     "check_nonnegative",
+    "check_speed",
     "check_int",
     "check_choice",
     "check_type",
@@ -46,7 +47,9 @@ __all__ = [
     "check_growth",
     "check_bound",
     "check_positive_array",
+    "check_rate",
     "INT_MAX",
+    "MAX_RATE",
     "MAX_DELAY",
     "DELAY_FIX",
 ]
@@ -143,6 +146,43 @@ def check_nonnegative(name: str, value: Any, fix: str | None = None) -> float:
     return out
 
 
+def check_speed(name: str, value: Any, unit: str = "m/s (rotary: rad/s)", *, zero: bool = True) -> float:
+    """Return an impact speed, the magnitude of ẋ0 (or ξ'0), as a float: finite and >= 0 (> 0 if not ``zero``).
+
+    A negative speed is refused, never replaced by its magnitude: the analyses use ``abs(ẋ0)``
+    (eq. 11), and a sign the caller meant is not silently dropped.
+
+    Parameters
+    ----------
+    name : str
+        Parameter (or command-line flag) named in the message.
+    value : object
+        The speed to check.
+    unit : str, optional
+        Its unit, shown in the fix (default ``"m/s (rotary: rad/s)"``).
+    zero : bool, optional
+        Whether 0 is a meaningful speed here (default True).
+
+    Examples
+    --------
+    >>> check_speed("velocity", 0.05)
+    0.05
+    >>> try:
+    ...     check_speed("velocity", -0.05)
+    ... except DFAValueError as err:
+    ...     print(err)
+    velocity = -0.05 is invalid: it must be a finite number >= 0, the impact speed's magnitude (its sign is not used); give the impact speed's magnitude, e.g. 0.05 m/s (rotary: rad/s)
+    """
+    out = check_real(name, value, f"give the impact speed's magnitude in {unit}")
+    if out < 0.0:
+        rule = f"a finite number {'>=' if zero else '>'} 0, the impact speed's magnitude (its sign is not used)"
+        raise DFAValueError(_message(name, out, rule, f"give the impact speed's magnitude, e.g. {-out:g} {unit}"))
+    if out == 0.0 and not zero:
+        rule = "a finite number > 0 (no impact to analyse at speed 0)"
+        raise DFAValueError(_message(name, out, rule, f"give an impact speed > 0 in {unit}, e.g. 0.05"))
+    return out
+
+
 def check_int(name: str, value: Any, minimum: int | None = None, fix: str | None = None) -> int:
     """Return ``value`` as an int if it is integral (and >= ``minimum``)."""
     value = _as_scalar(value)
@@ -230,6 +270,29 @@ def check_beta(value: Any, name: str = "beta") -> float:
 def check_sigma(value: Any, name: str = "sigma") -> float:
     """Dimensionless Coulomb friction σ = c/(K Δ) >= 0, as a float."""
     return check_nonnegative(name, value, "σ = c/(K Δ) cannot be negative")
+
+
+#: Largest bT/m (and BT/m) accepted by the exact linear bounds: beyond, the loop's polynomials overflow.
+MAX_RATE = 1e8
+
+
+def check_rate(name: str, value: float, mass: float, period: float) -> None:
+    """Refuse a damping ``value`` whose value·period/mass exceeds :data:`MAX_RATE` (the exact linear bounds).
+
+    Examples
+    --------
+    >>> check_rate("damping", 0.02, 0.032, 0.002)
+    >>> try:
+    ...     check_rate("damping", 0.02, 1e-300, 0.002)
+    ... except DFAValueError as err:
+    ...     print(err)
+    damping = 0.02 is invalid with mass = 1e-300 and period = 0.002: damping·period/mass must be at most 1e+08 (beyond, the loop's polynomials overflow); check the units
+    """
+    if not value * period / mass <= MAX_RATE:
+        raise DFAValueError(
+            f"{name} = {value:g} is invalid with mass = {mass:g} and period = {period:g}: {name}·period/mass must be "
+            f"at most {MAX_RATE:g} (beyond, the loop's polynomials overflow); check the units"
+        )
 
 
 #: Largest computational delay accepted, in samples (10 s at 1 kHz): the exact linear bound solves a

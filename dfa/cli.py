@@ -20,13 +20,14 @@ import os
 import re
 import signal
 import sys
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from ._io import check_output_file, check_output_folder, written_paths
 from .catalogue import DEFAULT_DEVICE, CatalogueEntry, catalogue, resolve_device
-from .checks import check_beta, check_mu, check_real, check_sigma
+from .checks import MAX_DELAY, check_beta, check_mu, check_real, check_sigma, check_speed
 from .controller import MIN_CUTOFF, Controller, ControllerParams
 from .criterion import device_criterion, passivity_criterion
 from .device import Device, Params, dimensionless_params
@@ -210,14 +211,21 @@ def _add_device_args(
 
 
 def _delay(text: str) -> int:
-    try:
-        out = int(text)
-    except ValueError:
+    """--delay: ASCII digits only (int() would take '1_0' or other scripts' digits), 0 to MAX_DELAY samples."""
+    if not _WHOLE.fullmatch(text):
         raise argparse.ArgumentTypeError(
-            f"{text!r} is not a whole number: --delay takes the computational delay in samples (integer >= 0)"
-        ) from None
+            f"{text[:40]!r} is not a whole number: --delay takes the computational delay in samples (integer >= 0, "
+            "ASCII digits, e.g. 1)"
+        )
+    digits = text.lstrip("+-").lstrip("0")
+    out = int(text) if len(digits) <= 18 else (-1 if text.startswith("-") else MAX_DELAY + 1)
     if out < 0:
         raise argparse.ArgumentTypeError(f"{text!r} is invalid: --delay must be a whole number of samples >= 0")
+    if out > MAX_DELAY:
+        raise argparse.ArgumentTypeError(
+            f"{text[:40]!r} is too large: --delay takes at most {MAX_DELAY} samples; give the computational delay "
+            "in samples of the servo period (e.g. 1)"
+        )
     return out
 
 
@@ -402,9 +410,23 @@ def _resolve(
     return _Inputs(p, p.beta, p.sigma, dev, r.stiffness, r.label, r.entry)
 
 
-def _speed(args: argparse.Namespace, inputs: _Inputs, required: bool = True) -> tuple[float | None, float | None]:
-    """Return (xi_dot, velocity) from --xi-dot / --velocity."""
+def _impact_speed(flag: str, value: float, inputs: _Inputs | None, zero: bool = True) -> float:
+    """An impact speed from ``flag``: its magnitude, >= 0 (> 0 if not ``zero``); a negative is refused, not flipped."""
+    if flag == "--xi-dot":
+        unit = "ticks per sample"
+    else:
+        unit = inputs.device.units["velocity"] if inputs is not None and inputs.device is not None else "m/s (rad/s)"
+    return check_speed(flag, value, unit, zero=zero)
+
+
+def _speed(
+    args: argparse.Namespace, inputs: _Inputs, required: bool = True, signed: bool = False
+) -> tuple[float | None, float | None]:
+    """Return (xi_dot, velocity) from --xi-dot / --velocity; unless ``signed``, an impact speed (>= 0)."""
     v, xd = args.velocity, args.xi_dot
+    if not signed:
+        v = None if v is None else _impact_speed("--velocity", v, inputs)
+        xd = None if xd is None else _impact_speed("--xi-dot", xd, inputs)
     if v is not None and xd is not None:
         raise UsageError("--velocity and --xi-dot cannot both be given: choose one speed")
     if v is None and xd is None:
@@ -720,16 +742,16 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
     assert v is not None
     ctl = _controller(args, dev, inp.stiffness)
     if ctl is not None:
-        return _stiffness_controller(args, inp, ctl, abs(v))
+        return _stiffness_controller(args, inp, ctl, v)
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
     src = _stiffness_source(args, inp)
     lim = stiffness_limits(dev, v, args.stiffness, delay=args.delay)  # existing keys: only --stiffness is assessed
-    ans = _design_answer(args, inp, abs(v), inp.stiffness, src)
+    ans = _design_answer(args, inp, v, inp.stiffness, src)
     if args.plot is not None:
         from .speed_chart import stiffness_speed_chart
 
-        chart = stiffness_speed_chart(dev, args.delay, stiffness=inp.stiffness, velocity=abs(v))
+        chart = stiffness_speed_chart(dev, args.delay, stiffness=inp.stiffness, velocity=v)
         _save_png("--plot", args.plot, chart.plot())
     if args.json:
         rec = lim.as_dict()
@@ -801,7 +823,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     inp = _resolve(args, dimensionless=True)
     p = inp.params
     assert p is not None
-    xd, _v = _speed(args, inp)
+    xd, _v = _speed(args, inp, signed=True)  # an initial condition: the sign of ξ'0 is the direction of motion
     assert xd is not None
     ctl = _controller(args, inp.device, inp.stiffness)
     if args.preload and args.xi0 is not None:
@@ -912,10 +934,23 @@ def _add_map_device_args(p: argparse.ArgumentParser, speeds: bool) -> None:
     p.add_argument("--plot", metavar="FILE.png", help="write the figure to a PNG file (default: none)")
 
 
+def _check_plane(args: argparse.Namespace) -> None:
+    """--grid, --beta-range and --sigma-range of `map` and `contours`, refused with the flag's name."""
+    if args.grid < 2:
+        raise UsageError(
+            f"--grid {args.grid} is invalid: it must be a whole number >= 2 (points per axis); give e.g. --grid 50"
+        )
+    for flag, (lo, hi), sym in (("--beta-range", args.beta_range, "β"), ("--sigma-range", args.sigma_range, "σ")):
+        if lo < 0.0 or not hi > lo:
+            raise UsageError(
+                f"{flag} {lo:g} {hi:g} is invalid: it must be LOW HIGH with 0 <= LOW < HIGH ({sym} >= 0); "
+                f"give e.g. {flag} 0 {max(lo, hi, 1.0):g}"
+            )
+
+
 def _map_device(args: argparse.Namespace) -> tuple[float, _Inputs | None]:
     """μ of `map`/`contours`: --mu, or a device at its stiffness (never both)."""
-    if args.plot is not None and args.grid < 2:
-        raise UsageError(f"--plot needs --grid 2 or more (got --grid {args.grid}): a figure needs a grid")
+    _check_plane(args)
     given = bool(args.device) or any(getattr(args, k, None) is not None for k in _PHYS_FLAGS)
     given = given or any(getattr(args, k, None) is not None for k in ("stiffness", "counts", "name"))
     if args.mu is not None and given:
@@ -925,7 +960,7 @@ def _map_device(args: argparse.Namespace) -> tuple[float, _Inputs | None]:
             "missing --mu: give --mu, or a device (--device NAME, or --mass --damping --coulomb --resolution --period)"
         )
     if args.mu is not None:
-        return args.mu, None
+        return check_mu(args.mu, "--mu"), None
     inp = _resolve(args, dimensionless=False)
     assert inp.params is not None
     return inp.params.mu, inp
@@ -935,12 +970,19 @@ def _map_speeds(args: argparse.Namespace, inp: _Inputs | None) -> list[float]:
     """ξ'0 values of `map` from --xi-dot or --velocity (m/s, with a device)."""
     if args.xi_dot is not None and args.velocity is not None:
         raise UsageError("--xi-dot and --velocity cannot both be given: choose one unit for the speeds")
+    if args.velocity is None and args.xi_dot is None:
+        raise UsageError("missing speeds: give --xi-dot V [V ...] (ticks per sample) or, with a device, --velocity")
+    flag, given = ("--velocity", args.velocity) if args.velocity is not None else ("--xi-dot", args.xi_dot)
+    negative = [v for v in given if v < 0]
+    if negative:  # the flag and the value as given (not a --velocity converted to ticks)
+        raise UsageError(
+            f"{flag} {negative[0]:g} is invalid: initial speeds must be >= 0 (the map is symmetric in the "
+            f"sign of ξ'0); give {flag} {abs(negative[0]):g}"
+        )
     if args.velocity is not None:
         if inp is None or inp.device is None:
             raise UsageError("--velocity needs a device: with --mu give --xi-dot (ticks per sample)")
         return [inp.device.xi_dot(v) for v in args.velocity]
-    if args.xi_dot is None:
-        raise UsageError("missing speeds: give --xi-dot V [V ...] (ticks per sample) or, with a device, --velocity")
     return list(args.xi_dot)
 
 
@@ -1021,12 +1063,6 @@ def _cmd_map(args: argparse.Namespace) -> int:
         check_output_file("--plot", args.plot, ".png")
     mu, inp = _map_device(args)
     args.xi_dot = _map_speeds(args, inp)
-    negative = [v for v in args.xi_dot if v < 0]
-    if negative:
-        raise UsageError(
-            f"--xi-dot {negative[0]:g} is invalid: initial speeds must be >= 0 (the map is symmetric in the "
-            f"sign of ξ'0); give --xi-dot {abs(negative[0]):g}"
-        )
     _check_map_work(args)
     ctl = _controller(args, *((inp.device, inp.stiffness) if inp is not None else (None, None)))
     m = stability_map(
@@ -1127,6 +1163,11 @@ def _cmd_contours(args: argparse.Namespace) -> int:
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
     mu, inp = _map_device(args)
+    if not args.max_amplitude >= 1.0:
+        raise UsageError(
+            f"--max-amplitude {args.max_amplitude:g} is invalid: it must be >= 1 tick (the large cycle family has "
+            "M >= 1); give e.g. --max-amplitude 10"
+        )
     if args.grid >= 2 and args.max_amplitude >= 1.0:
         check_contour_memory(args.grid, args.max_amplitude, ("--grid", "--max-amplitude"))
     c = contour_maps(
@@ -1348,7 +1389,7 @@ def _add_simulate(sub: Any) -> None:
         metavar="N",
         help="samples to simulate (default: from the loop's time scales, 50000 to 10^7)",
     )
-    _add_controller_args(p, _integer("--delay"))
+    _add_controller_args(p)
     p.add_argument(
         "--preload",
         action="store_true",
@@ -1390,7 +1431,7 @@ def _add_map(sub: Any) -> None:
     p.add_argument(
         "--samples", type=_integer("--samples"), default=50_000, metavar="N", help="samples per run (default: 50000)"
     )
-    _add_controller_args(p, _integer("--delay"))
+    _add_controller_args(p)
     p.add_argument("--preload", action="store_true", help="spring preload instead of an initial speed (default: off)")
     p.add_argument(
         "--no-quantization", action="store_true", help="linear spring, no encoder (default: with the encoder)"
@@ -1419,7 +1460,7 @@ def _add_limit_cycles(sub: Any) -> None:
         default="half-delay",
         help="hold model (default: half-delay; zoh is exact)",
     )
-    _add_controller_args(p, _integer("--delay"))
+    _add_controller_args(p)
     p.add_argument(
         "--max-amplitude",
         type=_number("--max-amplitude", "ticks"),
@@ -1501,6 +1542,7 @@ def _add_report(sub: Any) -> None:
 
 
 def _cmd_zwidth(args: argparse.Namespace) -> int:
+    from .checks import check_jobs
     from .zwidth import ZWIDTH_METHODS, z_width
 
     if args.stiffness is not None:
@@ -1510,6 +1552,10 @@ def _cmd_zwidth(args: argparse.Namespace) -> int:
             "--virtual-damping cannot be given to zwidth: the Z-width spans a grid of B from 0 (see --grid); "
             "drop the flag, or use `dfa stiffness`/`dfa report` with it for one damper"
         )
+    for flag, value, least in (("--grid", args.grid, 2), ("--speeds", args.speeds, 1)):
+        if value < least:
+            raise UsageError(f"{flag} {value} is invalid: it must be a whole number >= {least}; give e.g. {flag} 4")
+    check_jobs("--jobs", args.jobs)
     inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
@@ -1518,7 +1564,7 @@ def _cmd_zwidth(args: argparse.Namespace) -> int:
         check_output_file("--plot", args.plot, ".png")
     zw = z_width(
         dev,
-        args.velocity,
+        _impact_speed("--velocity", args.velocity, inp, zero=False),
         delay=args.delay,
         filter_cutoff=args.velocity_filter,
         amplifier_bandwidth=args.amplifier_bandwidth,
@@ -1576,7 +1622,7 @@ def _add_zwidth(sub: Any) -> None:
     _add_filter_amplifier_args(g)
     g.add_argument(
         "--virtual-damping",
-        type=float,
+        type=_number("--virtual-damping", "N·s/m (rotary: N·m·s/rad)"),
         default=None,
         metavar="B",
         help="not accepted here: B is the Z-width's axis, its grid spans B from 0 (default: the grid)",
@@ -1672,6 +1718,12 @@ def _install_signal_handlers() -> dict:
     return old
 
 
+def _one_line_warning(message: Warning | str, category: type[Warning], *_args: object, **_kw: object) -> str:
+    """A warning on stderr as one line, like the errors (no source file or code line)."""
+    text = " ".join(str(message).split())
+    return f"dfa: warning: {text} ({category.__name__})\n"
+
+
 def _quiet_stdout() -> None:
     """After a closed pipe: send what is left on stdout to /dev/null, so exiting does not raise again."""
     try:
@@ -1693,6 +1745,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = _build_parser()
     before = len(written_paths())
     old_handlers = _install_signal_handlers()
+    old_format = warnings.formatwarning
+    warnings.formatwarning = _one_line_warning
     try:
         argv = list(sys.argv[1:] if argv is None else argv)
         if not argv:  # bare `dfa`: the help, and exit code 2 (no command ran)
@@ -1729,6 +1783,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         )
         return 1
     finally:
+        warnings.formatwarning = old_format
         for sig, handler in old_handlers.items():
             signal.signal(sig, handler if handler is not None else signal.SIG_DFL)
 

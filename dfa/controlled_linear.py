@@ -64,7 +64,15 @@ from scipy.optimize import brentq
 
 from ._frozen import freeze_fields
 from ._zohlag import amplifier_zoh
-from .checks import check_beta, check_mu, check_nonnegative, check_positive, check_real_array, check_type
+from .checks import (
+    check_beta,
+    check_mu,
+    check_nonnegative,
+    check_positive,
+    check_rate,
+    check_real_array,
+    check_type,
+)
 from .controller import Controller, ControllerParams
 from .errors import DFAError, DFAValueError
 from .status import StatusEnum
@@ -78,10 +86,6 @@ __all__ = [
     "stable_stiffness",
     "stable_region",
 ]
-
-
-#: Largest bT/m and BT/m accepted by :func:`stable_stiffness` (the polynomials' coefficients grow with them).
-_MAX_RATE = 1e8
 
 
 class LinearStatus(StatusEnum):
@@ -417,11 +421,7 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
     c = check_type("controller", controller, Controller, "give a dfa.Controller")
     p = c.params(t)
     for name, value in (("damping", b), ("controller.damping", c.damping)):
-        if value * t / m > _MAX_RATE:
-            raise DFAValueError(
-                f"{name} = {value:g} is invalid with mass = {m:g} and period = {t:g}: {name}·period/mass must be at "
-                f"most {_MAX_RATE:g} (beyond, the loop's polynomials overflow); check the units"
-            )
+        check_rate(name, value, m, t)
     kap = _stable_kappa(b * t / m, c.damping * t / m, p.cutoff, p.lag, p.delay)
     scale = m / (t * t)
     iv = np.array([[lo * scale, hi * scale] for lo, hi in kap]).reshape(-1, 2)

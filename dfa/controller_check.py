@@ -22,7 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from .checks import check_real, check_type
+from .checks import check_real, check_speed, check_type
 from .controller import Controller
 from .controller_passivity import ControllerCriterionResult, device_controller_criterion
 from .device import Device
@@ -50,7 +50,7 @@ class ControllerCheck:
     device : Device
     controller : Controller
     velocity : float
-        Impact speed, m/s (rotary: rad/s), >= 0 (sign dropped).
+        Impact speed, m/s (rotary: rad/s), >= 0.
     criterion : ControllerCriterionResult or None
         The extended criterion (eq. 6); None with an amplifier lag (not covered).
     colgate_schenkel : ColgateSchenkelDamping or None
@@ -124,7 +124,7 @@ def controller_check(
     controller : Controller
         The wall controller (K, B, d, f_c, f_bw in physical units).
     velocity : float
-        Impact speed in m/s (rotary: rad/s); sign dropped.
+        Impact speed in m/s (rotary: rad/s), >= 0 (a negative is refused, not flipped).
     position : float, optional
         Initial position in m (rotary: rad), default 0.
     quantized : bool, optional
@@ -142,7 +142,7 @@ def controller_check(
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     ctl = check_type("controller", controller, Controller, "build one with dfa.Controller(K, ...)")
-    v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
+    v = check_speed("velocity", velocity)
     if ctl.amplifier_bandwidth is not None:
         ctl.params(dev.period)  # refuses a filter cutoff above the Nyquist frequency
         return ControllerCheck(dev, ctl, v, None, None)

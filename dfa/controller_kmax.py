@@ -41,7 +41,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .checks import _fmt, check_choice, check_int, check_positive, check_real, check_type
+from .checks import _fmt, check_choice, check_int, check_positive, check_real, check_speed, check_type
 from .controlled_linear import stable_stiffness
 from .controller import Controller
 from .controller_passivity import device_controller_criterion
@@ -269,7 +269,7 @@ def controller_stiffness_limits(
         The wall controller; its damping B (N·s/m), delay, filter cutoff (Hz) and amplifier bandwidth (Hz)
         are held fixed while K varies.
     velocity : float
-        Impact speed in m/s (rotary: rad/s), > 0 (sign ignored).
+        Impact speed in m/s (rotary: rad/s), > 0 (a negative is refused, not flipped).
     speeds : int, optional
         Impact speeds simulated: V/speeds, 2V/speeds, …, V (default 6), each from two starts.
     grid : int, optional
@@ -301,8 +301,7 @@ def controller_stiffness_limits(
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     ctl = check_type("controller", controller, Controller, "build one with dfa.controller.Controller(K, ...)")
-    v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
-    check_positive("velocity", v, "give an impact speed > 0 in m/s (rotary: rad/s)")
+    v = check_speed("velocity", velocity, zero=False)
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     n_grid = check_int("grid", grid, minimum=2, fix="give at least 2 stiffness grid points")
     cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")

@@ -40,7 +40,7 @@ to write ``controller_soundness.md`` and ``controller_soundness.json``.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -195,7 +195,7 @@ def simulate_points(pts: dict[str, np.ndarray], ns: np.ndarray) -> tuple[np.ndar
     return ratio, at, div
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ControllerSoundness(SoundnessCounts):
     """Outcome of :func:`controller_soundness` for one criterion.
 
@@ -218,18 +218,7 @@ class ControllerSoundness(SoundnessCounts):
     samples_min, samples_max, seed : int
     """
 
-    criterion: str
-    points: int
-    by_kind: dict
-    by_case: dict
-    energy_grew: int
-    diverged: int
-    violations: int
-    worst_growth: float
-    worst_point: dict = field(default_factory=dict)
-    samples_min: int = 0
-    samples_max: int = 0
-    seed: int = 0
+    by_case: dict  # the count fields: SoundnessCounts (keyword-only)
 
     _SOURCE = "controller_soundness"
 

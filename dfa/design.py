@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from .catalogue import CatalogueEntry
-from .checks import _fmt, check_delay, check_int, check_positive, check_real, check_type
+from .checks import _fmt, check_delay, check_int, check_positive, check_real, check_speed, check_type
 from .controller import Controller, ControllerParams
 from .controller_check import ControllerCheck, controller_check
 from .controller_kmax import ControllerStiffnessLimits, controller_stiffness_limits
@@ -376,7 +376,7 @@ def resolve_design_inputs(
             f"stiffness = None is invalid for {dev.name!r}: the catalogue gives no K; pass the stiffness in {dev.units['stiffness']}"
         )
     k = check_positive("stiffness", k, "give the virtual wall stiffness K")
-    v = abs(check_real("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1)))
+    v = check_speed("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1))
     return entry, dev, k, v, check_delay(delay)
 
 
@@ -421,7 +421,7 @@ def design_analysis(
     stiffness : float, optional
         K in N/m (rotary N·m/rad); default the controller's K, else the catalogue K.
     velocity : float, optional
-        Impact speed in m/s (rotary rad/s); default 0.1 m/s (1 rad/s rotary). Its sign is dropped.
+        Impact speed in m/s (rotary rad/s); default 0.1 m/s (1 rad/s rotary); >= 0 (a negative is refused).
     delay : int
         Computational delay d in whole samples (default 0), used by every part of the analysis; with a
         controller it is the controller's (give 0 or the same value).

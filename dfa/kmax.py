@@ -70,7 +70,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .checks import _fmt, check_choice, check_delay, check_int, check_positive, check_real, check_type
+from .checks import _fmt, check_choice, check_delay, check_int, check_positive, check_real, check_speed, check_type
 from .controller import Controller, ControllerParams
 from .device import Device
 from .errors import DFATypeError, DFAValueError
@@ -984,7 +984,7 @@ def design_answer(
     device : Device
         The physical device.
     velocity : float
-        Impact speed V in m/s (rotary: rad/s), > 0 (sign ignored).
+        Impact speed V in m/s (rotary: rad/s), > 0 (a negative is refused, not flipped).
     delay : int, optional
         Computational delay d in samples.
     stiffness : float, optional
@@ -1024,8 +1024,7 @@ def design_answer(
     design_analysis : Everything the design report states.
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
-    check_positive("velocity", v, "give an impact speed > 0 in m/s (rotary: rad/s)")
+    v = check_speed("velocity", velocity, zero=False)
     d = check_delay(delay)
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     n_grid = check_int("grid", grid, minimum=2, fix="give at least 2 stiffness grid points")

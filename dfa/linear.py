@@ -73,7 +73,7 @@ import numpy as np
 from numpy.polynomial import chebyshev
 from scipy.optimize import brentq
 
-from .checks import check_beta, check_delay, check_mu, check_nonnegative, check_positive, check_type
+from .checks import check_beta, check_delay, check_mu, check_nonnegative, check_positive, check_rate, check_type
 from .controller import Controller, ControllerParams
 from .errors import DFAError, DFAValueError
 
@@ -403,6 +403,8 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Con
     a = b * t / m
     if not np.all(np.isfinite(a)):
         raise DFAValueError(f"damping·period/mass = {a!r} is invalid: it must be finite; check the units")
+    for x, y, z in zip(m.ravel(), b.ravel(), t.ravel(), strict=True):  # bT/m <= MAX_RATE, as stable_stiffness
+        check_rate("damping", float(y), float(x), float(z))
     kappa = np.array([_critical_kappa(float(x), d) for x in a.ravel()]).reshape(a.shape)
     out = kappa * m / (t * t)
     return float(out) if out.ndim == 0 else out

@@ -72,7 +72,7 @@ from .checks import (
     check_jobs,
     check_mu,
     check_nonnegative,
-    check_real,
+    check_speed,
 )
 from .controller import ControllerParams
 from .errors import DFATypeError, DFAValueError
@@ -548,8 +548,7 @@ def stability_map(
 
 def _check_speeds(xi_dots) -> tuple[float, ...]:
     speeds = tuple(
-        abs(check_real("xi_dot", v, "give initial speeds in ticks per sample"))
-        for v in np.atleast_1d(np.asarray(xi_dots, dtype=object))
+        check_speed("xi_dot", v, "ticks per sample") for v in np.atleast_1d(np.asarray(xi_dots, dtype=object))
     )
     if not speeds:
         raise DFAValueError("xi_dots = [] is invalid: it must hold at least one initial speed")

@@ -548,7 +548,7 @@ def nyquist_needs_zoom(nyq, cycles) -> bool:
     return len(xs) > 1 and (max(xs) - min(xs)) < 0.1 * (x1 - x0)
 
 
-def nyquist_plot(nyq, ax=None, *, cycles=None):
+def nyquist_plot(nyq, ax=None, *, cycles=None, controller: str | None = None):
     """Nyquist plot of the loop L(jω; M) against the critical locus −1/D(M), cycles marked (paper Fig. 6).
 
     The axes are scaled to the locus, the cycles and the origin; when a cycle is below one tick or several
@@ -559,6 +559,9 @@ def nyquist_plot(nyq, ax=None, *, cycles=None):
     nyq : NyquistLocusResponse
     cycles : LimitCycleResult, optional
         Cycles to mark (stable: filled circle, unstable: open circle), computed with the same loop model.
+    controller : str, optional
+        The loop's wall controller in words (e.g. ``"B = 1 N·s/m, f_c = 200 Hz, d = 1"``), named in the
+        title as "… loop with {controller}" in place of the delay (default: the title names the delay only).
     """
     ax = _axes(ax, figsize=(7.6, 4.6))
     pts = _cycle_points(nyq, cycles)
@@ -575,7 +578,7 @@ def nyquist_plot(nyq, ax=None, *, cycles=None):
     ax.set_ylim(*ylim)
     ax.set_xlabel("Re L (force ticks per position tick)")
     ax.set_ylabel("Im L (force ticks per position tick)")
-    dl = f", delay {nyq.delay}" if nyq.delay else ""
+    dl = f" with {controller}" if controller else (f", delay {nyq.delay}" if nyq.delay else "")
     ax.set_title(f"Nyquist, {MODEL_NAMES.get(nyq.model, nyq.model)} loop{dl}", fontsize=9)
     if zoom:
         _nyquist_inset(ax, nyq, pts, xlim)
@@ -837,8 +840,17 @@ _ZWIDTH_STYLES: dict[str, tuple[str, dict[str, Any]]] = {
 }
 
 
-def plot_zwidth(zw, ax=None):
+#: A Z-width method defined at a single B: a marker above the design point's star (zorder 6), never under it.
+_LONE: dict[str, Any] = {"marker": "o", "ms": 6, "mec": "white", "mew": 0.8, "zorder": 7}
+#: The design point on the Z-width.
+_STAR: dict[str, Any] = {"marker": "*", "ms": 16, "color": "k", "mfc": "gold", "ls": "none", "zorder": 6}
+
+
+def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
     """The Z-width of a device: B across, K up (log), one line per method, the simulated region shaded.
+
+    A method defined at a single B (often the criterion, at B = 0 only) is a marker drawn above
+    everything else, the design point's star included, so that neither hides the other.
 
     Parameters
     ----------
@@ -846,6 +858,9 @@ def plot_zwidth(zw, ax=None):
         The result of :func:`dfa.zwidth.z_width`.
     ax : matplotlib.axes.Axes, optional
         Axes to draw on (default: a new figure).
+    design_point : (float, float), optional
+        A design point (B, K) in the device's units (N·s/m, N/m; rotary N·m·s/rad, N·m/rad), starred
+        and in the legend; a K outside the grid is drawn at the grid's edge.
 
     Returns
     -------
@@ -869,14 +884,17 @@ def plot_zwidth(zw, ax=None):
         label, style = _ZWIDTH_STYLES[m]
         y = np.asarray(zw.boundary(m), dtype=float)
         if np.isfinite(y).any():
-            lone = {"marker": "o", "ms": 5} if np.isfinite(y).sum() < 2 else {}  # a single B: a marker, not a line
-            ax.plot(bs, y, label=label, **{**style, **lone})
+            ax.plot(bs, y, label=label, **{**style, **(_LONE if np.isfinite(y).sum() < 2 else {})})
     ax.set_yscale("log")
     ax.set_ylim(kedges[0], kedges[-1])
     ax.set_xlim(bedges[0], bedges[-1])
     ax.set_xlabel(f"virtual damping B ({u['damping']})")
     ax.set_ylabel(f"virtual stiffness K ({u['stiffness']})")
     ax.set_title(f"Z-width of {zw.device.name}, impacts up to {zw.velocity:.3g} {u['velocity']}", fontsize=9)
+    if design_point is not None:
+        b, k = design_point
+        lo, hi = kedges[0], kedges[-1]
+        ax.plot([b], [min(max(k, lo), hi)], label="design point (B, K)", **_STAR)
     handles, _ = ax.get_legend_handles_labels()
     handles += [
         Patch(facecolor=colours[REST], edgecolor="0.5", label="simulated: rest"),

@@ -43,7 +43,7 @@ import argparse
 import math
 import os
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
@@ -195,7 +195,7 @@ def _batch(mus, betas, sigmas, x0s, v0s, ns, delay, ratio, codes, worst_sample):
         worst_sample[i] = at
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class DelaySoundness(SoundnessCounts):
     """Outcome of :func:`delay_soundness` for one delay and one criterion.
 
@@ -226,18 +226,7 @@ class DelaySoundness(SoundnessCounts):
         ``SOUND`` when ``violations`` is 0, else ``VIOLATED`` (derived).
     """
 
-    delay: int
-    criterion: str
-    points: int
-    by_kind: dict
-    energy_grew: int
-    diverged: int
-    violations: int
-    worst_growth: float
-    worst_point: dict = field(default_factory=dict)
-    samples_min: int = 0
-    samples_max: int = 0
-    seed: int = 0
+    delay: int  # the count fields: SoundnessCounts (keyword-only)
 
     _SOURCE = "delay_soundness"
 

@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._frozen import frozen_array
-from .checks import check_delay, check_int, check_positive, check_real, check_type
+from .checks import check_delay, check_int, check_positive, check_real, check_speed, check_type
 from .cycles.caveats import SUBTICK_LIMIT
 from .device import Device
 from .errors import DFAValueError
@@ -261,7 +261,7 @@ def stiffness_speed_chart(
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     d = check_delay(delay)
     k_design = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
-    v_design = None if velocity is None else abs(check_real("velocity", velocity, "give the speed in m/s"))
+    v_design = None if velocity is None else check_speed("velocity", velocity)
     fix_top = "give the top of the speed range in m/s (rad/s rotary), e.g. 0.5"
     top = HAND_SPEED["rotary" if dev.rotary else "linear"] if v_top is None else v_top
     top = max(check_positive("v_top", top, fix_top), v_design or 0.0)

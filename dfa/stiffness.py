@@ -44,7 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._frozen import check_shape, freeze_fields
-from .checks import check_delay, check_positive, check_real, check_real_array, check_type
+from .checks import check_delay, check_positive, check_real_array, check_speed, check_type
 from .criterion import device_criterion
 from .device import Device
 from .errors import DFAValueError
@@ -512,7 +512,7 @@ def stiffness_limits(
     device : Device
         The physical device.
     velocity : float
-        Impact speed ẋ0 in m/s (rotary: rad/s); its sign is ignored.
+        Impact speed, the magnitude of ẋ0, in m/s (rotary: rad/s), >= 0 (a negative is refused).
     stiffness : float, optional
         A stiffness K in N/m (rotary: N·m/rad) to assess: its largest passive speed is reported.
     delay : int, optional
@@ -535,7 +535,7 @@ def stiffness_limits(
     k_max_criterion : K_max alone, vectorised over speeds.
     """
     dev = _check_device(device)
-    v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
+    v = check_speed("velocity", velocity)
     d = check_delay(delay)
     mpv: float | None = None
     vstatus = VelocityStatus.NOT_REQUESTED
@@ -720,7 +720,9 @@ def stiffness_response(
         v0 = dev.resolution / dev.period
         velocity = np.geomspace(1e-3 * v0, 1e3 * v0, 200)
     fix = f"give impact speeds in {dev.units['velocity']}"
-    v = np.atleast_1d(np.abs(check_real_array("velocity", velocity, fix))).ravel()
+    v = np.atleast_1d(check_real_array("velocity", velocity, fix)).ravel()
+    if np.any(v < 0):
+        check_speed("velocity", float(v[v < 0][0]), dev.units["velocity"])  # refused: a magnitude, never flipped
     if v.size == 0 or np.any(v <= 0):
         shown = "an empty array" if v.size == 0 else f"{float(v[v <= 0][0])!r}"
         raise DFAValueError(f"velocity = {shown} is invalid: it must hold finite speeds > 0; {fix}")

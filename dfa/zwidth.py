@@ -71,7 +71,7 @@ from .checks import (
     check_jobs,
     check_nonnegative,
     check_positive,
-    check_real,
+    check_speed,
     check_type,
 )
 from .controlled_linear import LinearStatus, stable_stiffness
@@ -246,13 +246,15 @@ class ZWidth:
             },
         )
 
-    def plot(self, ax: Any = None) -> Any:
+    def plot(self, ax: Any = None, design_point: tuple[float, float] | None = None) -> Any:
         """Draw the Z-width (B across, K up on a log axis, one line per method, simulated region shaded).
 
         Parameters
         ----------
         ax : matplotlib.axes.Axes, optional
             Axes to draw on (default: a new figure).
+        design_point : (float, float), optional
+            A design point (B, K) in the device's units to star (in the legend too).
 
         Returns
         -------
@@ -261,7 +263,7 @@ class ZWidth:
         """
         from .plotting import plot_zwidth
 
-        return plot_zwidth(self, ax=ax)
+        return plot_zwidth(self, ax=ax, design_point=design_point)
 
 
 # ----------------------------------------------------------------------------- boundaries per B
@@ -460,7 +462,7 @@ def z_width(
     device : Device
         The physical device.
     velocity : float
-        Impact speed V, m/s (rotary: rad/s), > 0 (sign ignored).
+        Impact speed V, m/s (rotary: rad/s), > 0 (a negative is refused, not flipped).
     delay : int, optional
         Computational delay d, samples (default 0).
     filter_cutoff : float or None, optional
@@ -503,8 +505,7 @@ def z_width(
     dfa.kmax.design_answer : The four K_max of the spring (B = 0).
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    v = abs(check_real("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)"))
-    check_positive("velocity", v, "give an impact speed > 0 in m/s (rotary: rad/s)")
+    v = check_speed("velocity", velocity, zero=False)
     d = check_delay(delay)
     g = check_int("grid", grid, minimum=2, fix="give at least 2 points per axis")
     if g > MAX_GRID:

@@ -337,3 +337,28 @@ def test_fig6_nyquist_cycle_marks_lie_on_the_locus_with_a_controller():
     ny = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles], model="zoh", controller=cp)
     for pt, _stable, m in _cycle_points(ny, res):
         assert abs(pt - (-1.0 / quantizer_df(m))) <= 1e-8
+
+
+def test_fig6_nyquist_title_names_the_controller(monkeypatch):
+    """The report's Nyquist figure names its controller in the title (as its caption does), the spring's does not."""
+    from dfa.plotting import MODEL_NAMES
+
+    titles: list[str] = []
+
+    def keep_title(fig):
+        titles.append(fig.axes[0].get_title())
+        return b""
+
+    monkeypatch.setattr(figures, "_png", keep_title)
+    entry = dfa.get_device("delta")
+    ctl = Controller(entry.stiffness, 1.0, 1, 200.0)
+    a = design_analysis(entry, velocity=0.05, controller=ctl, zwidth_grid=0, **SMALL)
+    fig = figures._nyquist(a)
+    loop = f"Nyquist, {MODEL_NAMES[a.nyquist.model]} loop"
+    assert titles[-1] == f"{loop} with B = 1 N·s/m, f_c = 200 Hz, d = 1"
+    assert "with the wall controller (β_B = " in fig.caption  # the caption names it too (dimensionless)
+    lag = Controller(entry.stiffness, 0.5, 0, None, 300.0)
+    figures._nyquist(design_analysis(entry, velocity=0.05, controller=lag, zwidth_grid=0, **SMALL))
+    assert titles[-1] == f"{loop} with B = 0.5 N·s/m, f_bw = 300 Hz, d = 0"
+    figures._nyquist(design_analysis(entry, velocity=0.05, delay=1, **SMALL))
+    assert titles[-1] == f"{loop}, delay 1"

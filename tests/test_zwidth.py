@@ -111,6 +111,28 @@ def test_zwidth_plot_has_labelled_log_axes(zw):
     assert "N·s/m" in ax.get_xlabel() and "N/m" in ax.get_ylabel()
 
 
+def test_zwidth_plot_design_star_does_not_hide_the_criterion_point_at_b0(zw):
+    """The criterion is defined at B = 0 only here: its marker lies above the design point's star, both in the legend."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    crit = zw.boundary("criterion")
+    assert np.isfinite(crit[0]) and np.isfinite(crit).sum() == 1  # the case of the fix: a single point at B = 0
+    ax = zw.plot(design_point=(0.0, float(crit[0])))  # the star exactly on the criterion's point
+    lines = {ln.get_label(): ln for ln in ax.get_lines()}
+    star, point = lines["design point (B, K)"], lines["extended criterion (proof, eq. 6)"]
+    assert star.get_marker() == "*" and point.get_marker() == "o"
+    assert list(star.get_xydata()[0]) == [0.0, pytest.approx(crit[0])]
+    assert point.get_xydata()[0] == pytest.approx(star.get_xydata()[0])  # same place ...
+    assert point.get_zorder() > star.get_zorder()  # ... the criterion's marker drawn on top
+    assert point.get_markersize() < star.get_markersize()  # and smaller: the star shows around it
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "design point (B, K)" in labels and "extended criterion (proof, eq. 6)" in labels
+    import matplotlib.pyplot as plt
+
+    plt.close(ax.figure)
+
+
 def test_zwidth_bad_input_is_refused():
     dev = get_device(DEV).device
     with pytest.raises(dfa.DFAValueError, match="grid"):

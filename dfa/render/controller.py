@@ -19,7 +19,14 @@ from ..controller_check import LAG_WHY, NOT_COVERED, ControllerCheck
 from ..formatting import number
 from ..jsonable import explain_nulls, to_jsonable
 
-__all__ = ["NOT_COVERED", "check_table_rows", "controller_check_rows", "controller_dict", "controller_line"]
+__all__ = [
+    "NOT_COVERED",
+    "check_table_rows",
+    "controller_check_rows",
+    "controller_dict",
+    "controller_line",
+    "controller_short",
+]
 
 
 def _g(x: float | None, digits: int = 4) -> str:
@@ -61,6 +68,36 @@ def controller_dict(controller: Any, period: float, units: dict[str, str]) -> di
     out["dimensionless"] = explain_nulls(to_jsonable(dim), {"nu_c": no_filter})
     why = {"filter_cutoff": no_filter, "amplifier_bandwidth": "ideal amplifier (no lag)"}
     return explain_nulls(to_jsonable(out), why)
+
+
+def controller_short(controller: Any, units: dict[str, str]) -> str:
+    """The controller in a few words for a figure's title: B, the filter and amplifier when present, d.
+
+    Parameters
+    ----------
+    controller : dfa.controller.Controller
+        The wall controller.
+    units : dict
+        The device's unit strings (:attr:`dfa.Device.units`).
+
+    Returns
+    -------
+    str
+        ``B = … {damping unit}[, f_c = … Hz][, f_bw = … Hz], d = …`` (f_c: velocity filter cutoff,
+        f_bw: amplifier bandwidth, d: delay in samples).
+
+    Examples
+    --------
+    >>> from dfa.controller import Controller
+    >>> controller_short(Controller(1000.0, 1.0, 1, 200.0), {"damping": "N·s/m"})
+    'B = 1 N·s/m, f_c = 200 Hz, d = 1'
+    """
+    parts = [f"B = {_g(controller.damping)} {units['damping']}"]
+    if controller.filter_cutoff is not None:
+        parts.append(f"f_c = {_g(controller.filter_cutoff)} Hz")
+    if controller.amplifier_bandwidth is not None:
+        parts.append(f"f_bw = {_g(controller.amplifier_bandwidth)} Hz")
+    return ", ".join([*parts, f"d = {controller.delay}"])
 
 
 def controller_line(controller: Any, period: float, units: dict[str, str]) -> str:

@@ -76,9 +76,11 @@ def _stiffness(a: DesignAnalysis) -> ReportFigure | None:
 
 def _nyquist(a: DesignAnalysis) -> ReportFigure:
     from .. import plotting
+    from .controller import controller_short
 
     model = a.nyquist.model
-    ax = plotting.nyquist_plot(a.nyquist, cycles=a.threshold(model).result)
+    ctl = None if a.controller is None else controller_short(a.controller, a.device.units)
+    ax = plotting.nyquist_plot(a.nyquist, cycles=a.threshold(model).result, controller=ctl)
     name = plotting.MODEL_NAMES.get(model, model)
     caption = (
         f"Nyquist plot of the linearised loop{_with_ctl(a)} ({name} model, as the growth threshold above) against −1/D(M), "
@@ -145,25 +147,24 @@ def _zwidth(a: DesignAnalysis) -> ReportFigure | None:
     if a.zwidth is None:
         return None
     z = a.zwidth
-    ax = z.plot()
+    ax = z.plot(design_point=None if a.controller is None else (a.controller.damping, a.stiffness))
     caption = (
         f"Z-width of the {a.device.name}{_delay_text(a.delay)} for impacts up to {z.velocity:.3g} "
         f"{a.device.units['velocity']}: largest K at each virtual damping B by the exact linear bound, passivity, "
         f"the describing function and exact simulation on a {z.stiffness.size} × {z.damping.size} grid (shaded)."
     )
     if a.controller is not None:
-        caption += _mark_design_point(ax, a)
+        caption += _design_point_text(ax, a)
     return ReportFigure("zwidth", caption, _png(ax.figure))
 
 
-def _mark_design_point(ax: Any, a: DesignAnalysis) -> str:
-    """Star the controller's (B, K) on the Z-width; the caption's sentence about it."""
+def _design_point_text(ax: Any, a: DesignAnalysis) -> str:
+    """The caption's sentence about the controller's (B, K), starred on the Z-width by its ``plot``."""
     assert a.controller is not None
     b, k = a.controller.damping, a.stiffness
     u = a.device.units
     lo, hi = ax.get_ylim()
     where = "" if lo <= k <= hi else " (outside the K grid: drawn at its edge)"
-    ax.plot([b], [min(max(k, lo), hi)], marker="*", ms=16, color="k", mfc="gold", ls="none", zorder=6)
     filt = []
     if a.controller.filter_cutoff is not None:
         filt.append(f"velocity filter {a.controller.filter_cutoff:.4g} Hz")

@@ -1,0 +1,91 @@
+"""Bad values of numeric flags found by running every subcommand with one bad value per flag (issue 17 style):
+each is refused with one line on stderr, exit 2, naming the flag the user typed, the value, the rule and a fix;
+none is silently transformed and none ends in a traceback."""
+
+from __future__ import annotations
+
+import pytest
+
+from dfa.cli import main
+from dfa.errors import DFAValueError
+from dfa.linear import critical_stiffness
+
+
+def _refused(capsys, *argv: str) -> str:
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    assert code == 2, (argv, out, err)
+    assert err.count("\n") == 1 and err.startswith("dfa") and "Traceback" not in err, err
+    return err
+
+
+DIMLESS = ["--mu", "5", "--beta", "0.1", "--sigma", "0.3"]
+MAP = ["map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "10", "--jobs", "1"]
+
+
+@pytest.mark.parametrize(
+    "argv, text",
+    [
+        # --delay: ASCII digits only (int() took '1_0' as 10), and the flag's name in every command
+        (["check", "--device", "impulse", "--velocity", "0.05", "--delay", "1_0"], "'1_0' is not a whole number"),
+        (["check", "--device", "impulse", "--velocity", "0.05", "--delay", "9" * 25], "--delay takes at most 10000"),
+        (["simulate", *DIMLESS, "--xi-dot", "1", "--delay=-1"], "--delay must be a whole number of samples >= 0"),
+        (["simulate", *DIMLESS, "--xi-dot", "1", "--delay", "20000"], "--delay takes at most 10000 samples"),
+        (["limit-cycles", *DIMLESS, "--delay=-1"], "--delay must be a whole number of samples >= 0"),
+        ([*MAP, "--delay=-2"], "--delay must be a whole number of samples >= 0"),
+        # map / contours: --mu, --grid, the ranges, --max-amplitude named as typed
+        ([*MAP[:1], "--mu=-1", *MAP[3:]], "--mu = -1.0 is invalid"),
+        (["contours", "--mu", "0", "--grid", "3"], "--mu = 0.0 is invalid"),
+        ([*MAP[:5], "--grid", "1"], "--grid 1 is invalid: it must be a whole number >= 2 (points per axis); give"),
+        ([*MAP, "--beta-range", "1", "1"], "--beta-range 1 1 is invalid: it must be LOW HIGH with 0 <= LOW < HIGH"),
+        (["contours", "--mu", "100", "--sigma-range", "-1", "1"], "--sigma-range -1 1 is invalid"),
+        (["contours", "--mu", "100", "--max-amplitude", "0.5"], "--max-amplitude 0.5 is invalid: it must be >= 1"),
+        # map with a device: the flag and value typed, not the speed converted to ticks
+        (["map", "--device", "impulse", "--velocity=-0.05", "--grid", "2", "--samples", "10"], "--velocity -0.05 is"),
+        # zwidth: its own flags, not the API's parameter names
+        (["zwidth", "--device", "impulse", "--velocity", "0.1", "--grid", "1"], "--grid 1 is invalid"),
+        (["zwidth", "--device", "impulse", "--velocity", "0.1", "--speeds", "0"], "--speeds 0 is invalid"),
+        (["zwidth", "--device", "impulse", "--velocity", "0.1", "--jobs", "0"], "--jobs = 0 is invalid"),
+        (["zwidth", "--device", "impulse", "--velocity", "0.1", "--virtual-damping", "x"], "--virtual-damping takes"),
+        # a ZeroDivisionError traceback before: bT/m = 4e295 in the exact linear bound
+        (["stiffness", "--device", "impulse", "--velocity", "0.05", "--mass", "1e-300"], "must be at most 1e+08"),
+    ],
+)
+def test_cli_bad_numeric_flag_is_one_line_naming_it(capsys, tmp_path, argv, text):
+    if argv[0] == "map":
+        argv = [*argv, "--out", str(tmp_path / "m.npz")]
+    err = _refused(capsys, *argv)
+    assert text in err, err
+    assert not (tmp_path / "m.npz").exists()
+
+
+def test_cli_map_negative_velocity_does_not_name_xi_dot(capsys, tmp_path):
+    err = _refused(capsys, "map", "--device", "impulse", "--velocity=-0.05", "--out", str(tmp_path / "m.npz"))
+    assert "--xi-dot" not in err and "give --velocity 0.05" in err
+
+
+def test_gil_linear_bound_refuses_an_overflowing_rate_like_the_controller_path():
+    # critical_stiffness and stable_stiffness apply one rule (dfa.checks.check_rate) to bT/m
+    with pytest.raises(DFAValueError, match=r"^damping = 0\.02 is invalid with mass = 1e-300 .*at most 1e\+08"):
+        critical_stiffness(1e-300, 0.02, 0.002)
+    assert critical_stiffness(0.032, 0.02, 0.002) > 0.0
+
+
+def test_cli_warnings_are_one_line_on_stderr(monkeypatch, capsys):
+    """A warning of an accepted input (e.g. ``limit-cycles --max-amplitude 1e30``: the search's own, or numpy's
+    overflow) is printed as one 'dfa: warning:' line while a command runs, never Python's file:line and code line."""
+    import warnings
+
+    from dfa import cli
+
+    seen = []
+
+    def command(args):
+        seen.append(warnings.formatwarning("bracket\n  not refined", UserWarning, "dfa/cycles/growth.py", 195))
+        return 0
+
+    monkeypatch.setattr(cli, "_cmd_devices", command)
+    before = warnings.formatwarning
+    assert main(["devices"]) == 0
+    assert seen == ["dfa: warning: bracket not refined (UserWarning)\n"]
+    assert warnings.formatwarning is before  # restored after the command
