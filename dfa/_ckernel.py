@@ -252,84 +252,6 @@ def _absorbing(v, fa, sigma, ring, base, damping, ynext):
     return True
 
 
-# float state of a controlled run between calls: ξ, ξ', r_{h−1}, v_{h−1}, y, φ_A, tail min, tail max
-CX, CV, CRP, CVP, CY, CFA, CTMIN, CTMAX = 0, 1, 2, 3, 4, 5, 6, 7
-NCSTATE = 8
-# integer state: next sample, ring position, segment, end of the segment
-CH, CPOS, CSEG, CSEGEND = 0, 1, 2, 3
-NCINT = 4
-
-
-@njit(cache=True, nogil=True)
-def cstart(x0, v0, n, quantize, fs, ints, ring, stats):
-    """Initial state of a controlled run from (ξ0, ξ'0): readings and commands those of ξ0, stats cleared."""
-    for i in range(stats.shape[0]):
-        stats[i] = 0.0
-    r0 = math.floor(x0) if quantize else x0
-    base0 = -(r0 + 0.5) if quantize else -r0
-    for i in range(ring.shape[0]):
-        ring[i] = base0
-    fs[CX], fs[CV], fs[CRP], fs[CVP], fs[CY], fs[CFA] = x0, v0, r0, 0.0, 0.0, base0
-    fs[CTMIN], fs[CTMAX] = np.inf, -np.inf
-    ints[CH], ints[CPOS], ints[CSEG], ints[CSEGEND] = 0, 0, 0, segment_bounds(0, n)[1]
-
-
-@njit(cache=True, inline="always")
-def controlled_lane(
-    x, v, h, r_prev, v_prev, y, fa, pos, tmin, tmax, seg, seg_end, ring, tail, stats, n, tail_start,
-    mu, beta, sigma, k, delay, quantize, bound, damping, pole, filtered, lag, e_lag,
-):  # fmt: skip
-    """Sample ``h`` of a run with the controller (module docstring), nothing recorded: the one loop body.
-
-    Returns the state after it and ``why``: 0 integrated, 1 at rest (the proven absorbing state; the
-    sample is not integrated and h is not advanced), 2 |ξ| past ``bound`` (or NaN). Updates the segment
-    peak ``stats[seg]`` and the tail.
-    """
-    r = math.floor(x) if quantize else x
-    vh = r - r_prev
-    if filtered:
-        y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
-    else:
-        y = vh
-    base = -(r + 0.5) if quantize else -r
-    ring[pos] = base - damping * y
-    pos = pos + 1 if pos < delay else 0
-    c = ring[pos]
-    if lag == 0.0:
-        fa = c
-    if v == 0.0:
-        ynext = pole * y + (1.0 - pole) * vh if filtered else 0.0
-        if _absorbing(v, fa, sigma, ring, base, damping, ynext):
-            return x, v, h, r_prev, v_prev, y, fa, pos, tmin, tmax, seg, seg_end, 1
-    r_prev, v_prev = r, vh
-    if lag == 0.0:
-        x, v, xr, _, _, _, _, stopped = step(x, v, c, mu, sigma, k)
-        lo_t, hi_t = (xr, xr) if stopped else (np.inf, -np.inf)
-    else:
-        x, v, lo_t, hi_t = lag_sample(x, v, c, fa, mu, beta, sigma, lag)
-        fa = c + (fa - c) * e_lag
-    while h >= seg_end:
-        seg += 1
-        seg_end = segment_bounds(seg, n)[1]
-    ax = abs(x)
-    if ax > stats[seg]:
-        stats[seg] = ax
-    if h >= tail_start:
-        tail[h - tail_start] = x
-        tmin, tmax = tail_extremes(x, lo_t, lo_t < np.inf, tmin, tmax)
-        tmin, tmax = tail_extremes(x, hi_t, hi_t > -np.inf, tmin, tmax)
-    why = 0 if ax <= bound else 2  # not <=: also NaN
-    return x, v, h + 1, r_prev, v_prev, y, fa, pos, tmin, tmax, seg, seg_end, why
-
-
-@njit(cache=True, nogil=True)
-def cfinish(fs, n, done, rest, tail, tail_len, stats):
-    """Tail statistics (a run that went to its end) and the final state into ``stats``."""
-    if done == n and rest < 0 and tail_len > 1:
-        tail_stats(tail, tail_len, fs[CTMIN], fs[CTMAX], stats)
-    stats[NSEG + 6], stats[NSEG + 7] = fs[CX], fs[CV]
-
-
 @njit(cache=True, nogil=True)
 def simulate_ckernel(
     mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len, damping, pole, filtered, lag, rec_x, rec_v, stats
@@ -339,37 +261,73 @@ def simulate_ckernel(
     ``damping`` β_B, ``pole`` a (used when ``filtered``), ``lag`` α. ``rec_x``/``rec_v``
     (length n + 1) are written when they have that length. ``stats`` as in
     :func:`dfa._kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
-    The samples are :func:`controlled_lane`, from :func:`cstart` to :func:`cfinish`.
     """
     record = rec_x.shape[0] == n + 1
     k = sample_constants(mu, beta)
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
-    fs, ints = np.empty(NCSTATE), np.empty(NCINT, dtype=np.int64)
+    for i in range(stats.shape[0]):
+        stats[i] = 0.0
     tail = np.empty(max(tail_len, 1))
+    tail_start = n - tail_len
     ring = np.empty(delay + 1)  # ring[pos] is the applied command c_{h−d} once c_h is written
-    cstart(x0, v0, n, quantize, fs, ints, ring, stats)
+    x, v = x0, v0
     if record:
         rec_x[0], rec_v[0] = x0, v0
-    x, v, r_prev, v_prev, y, fa, tmin, tmax = fs[CX], fs[CV], fs[CRP], fs[CVP], fs[CY], fs[CFA], fs[CTMIN], fs[CTMAX]
-    h, pos, seg, seg_end = ints[CH], ints[CPOS], ints[CSEG], ints[CSEGEND]
-    tail_start = n - tail_len
+    r_prev = math.floor(x0) if quantize else x0
+    v_prev = 0.0
+    y = 0.0
+    base0 = -(r_prev + 0.5) if quantize else -r_prev
+    for i in range(delay + 1):
+        ring[i] = base0
+    fa = base0
+    pos = 0
+    tmin, tmax = np.inf, -np.inf
+    seg, seg_end = 0, segment_bounds(0, n)[1]
     done, rest = n, -1
-    while h < n:
-        x, v, h, r_prev, v_prev, y, fa, pos, tmin, tmax, seg, seg_end, why = controlled_lane(
-            x, v, h, r_prev, v_prev, y, fa, pos, tmin, tmax, seg, seg_end, ring, tail, stats, n, tail_start,
-            mu, beta, sigma, k, delay, quantize, bound, damping, pole, filtered, lag, e_lag,
-        )  # fmt: skip
-        if why == 1:
-            done, rest = h, h
-            break
+    for h in range(n):
+        r = math.floor(x) if quantize else x
+        vh = r - r_prev
+        if filtered:
+            y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
+        else:
+            y = vh
+        base = -(r + 0.5) if quantize else -r
+        ring[pos] = base - damping * y
+        pos = pos + 1 if pos < delay else 0
+        c = ring[pos]
+        if lag == 0.0:
+            fa = c
+        if v == 0.0:
+            ynext = pole * y + (1.0 - pole) * vh if filtered else 0.0
+            if _absorbing(v, fa, sigma, ring, base, damping, ynext):
+                done, rest = h, h
+                break
+        r_prev, v_prev = r, vh
+        if lag == 0.0:
+            x, v, xr, _, _, _, _, stopped = step(x, v, c, mu, sigma, k)
+            lo_t, hi_t = (xr, xr) if stopped else (np.inf, -np.inf)
+        else:
+            x, v, lo_t, hi_t = lag_sample(x, v, c, fa, mu, beta, sigma, lag)
+            fa = c + (fa - c) * e_lag
         if record:
-            rec_x[h], rec_v[h] = x, v
-        if why == 2:
-            done = h
+            rec_x[h + 1], rec_v[h + 1] = x, v
+        while h >= seg_end:
+            seg += 1
+            seg_end = segment_bounds(seg, n)[1]
+        ax = abs(x)
+        if ax > stats[seg]:
+            stats[seg] = ax
+        if h >= tail_start:
+            tail[h - tail_start] = x
+            tmin, tmax = tail_extremes(x, lo_t, lo_t < np.inf, tmin, tmax)
+            tmin, tmax = tail_extremes(x, hi_t, hi_t > -np.inf, tmin, tmax)
+        if not ax <= bound:  # also catches NaN
+            done = h + 1
             stats[NSEG + 5] = 1.0
             break
-    fs[CX], fs[CV], fs[CTMIN], fs[CTMAX] = x, v, tmin, tmax
-    cfinish(fs, n, done, rest, tail, tail_len, stats)
+    if done == n and rest < 0 and tail_len > 1:
+        tail_stats(tail, tail_len, tmin, tmax, stats)
+    stats[NSEG + 6], stats[NSEG + 7] = x, v
     if record:
         for i in range(done + 1, n + 1):
             rec_x[i] = x if rest >= 0 else np.nan
