@@ -49,7 +49,8 @@ from ._kernel import (
     delayed_force,
     finish,
     force,
-    free_lane,
+    free_sample,
+    same_state,
     sample_constants,
     segment_bounds,
     start,
@@ -57,7 +58,7 @@ from ._kernel import (
     tail_extremes,
 )
 
-__all__ = ["advance_pair", "advance_pair_delayed", "batch_kernel", "delayed_lane"]
+__all__ = ["advance_pair", "advance_pair_delayed", "batch_kernel"]
 
 # integer state of a lane: run index (-1: none), segment, part (0: before the tail, 1: in it), next sample, range end,
 # the run's length and where its tail starts
@@ -87,38 +88,49 @@ def advance_pair(
     wa = wb = 0
     fa = fb = False
     while not (fa or fb):
-        xa, va, pa, ha, rxa, rva, rha, spana, tmina, tmaxa, wa, fa = free_lane(
-            xa, va, pa, ha, h1a, rxa, rva, rha, spana, tmina, tmaxa, ina, taila, ta, mua, siga, quantize, bounda, ka
-        )
-        xb, vb, pb, hb, rxb, rvb, rhb, spanb, tminb, tmaxb, wb, fb = free_lane(
-            xb, vb, pb, hb, h1b, rxb, rvb, rhb, spanb, tminb, tmaxb, inb, tailb, tb, mub, sigb, quantize, boundb, kb
-        )
+        xa, va, pa, wa, xra, sta = free_sample(xa, va, pa, mua, siga, quantize, bounda, ka)
+        if wa == 1:
+            fa = True
+        else:
+            if ina:
+                taila[ha - ta] = xa
+                tmina, tmaxa = tail_extremes(xa, xra, sta, tmina, tmaxa)
+            ha += 1
+            if wa == 2:
+                fa = True
+            elif same_state(xa, va, rxa, rva):
+                skip = (h1a - ha) // (ha - rha) * (ha - rha)
+                if ina:
+                    for i in range(ha, ha + skip):
+                        taila[i - ta] = taila[i - (ha - rha) - ta]
+                ha += skip
+                spana = h1a
+            elif ha - rha == spana:
+                rxa, rva, rha, spana = xa, va, ha, 2 * spana
+            fa = fa or ha >= h1a
+        xb, vb, pb, wb, xrb, stb = free_sample(xb, vb, pb, mub, sigb, quantize, boundb, kb)
+        if wb == 1:
+            fb = True
+        else:
+            if inb:
+                tailb[hb - tb] = xb
+                tminb, tmaxb = tail_extremes(xb, xrb, stb, tminb, tmaxb)
+            hb += 1
+            if wb == 2:
+                fb = True
+            elif same_state(xb, vb, rxb, rvb):
+                skip = (h1b - hb) // (hb - rhb) * (hb - rhb)
+                if inb:
+                    for i in range(hb, hb + skip):
+                        tailb[i - tb] = tailb[i - (hb - rhb) - tb]
+                hb += skip
+                spanb = h1b
+            elif hb - rhb == spanb:
+                rxb, rvb, rhb, spanb = xb, vb, hb, 2 * spanb
+            fb = fb or hb >= h1b
     sa[SX], sa[SV], sa[STMIN], sa[STMAX] = xa, va, tmina, tmaxa
     sb[SX], sb[SV], sb[STMIN], sb[STMAX] = xb, vb, tminb, tmaxb
     return ha, wa, pa, fa, hb, wb, pb, fb
-
-
-@njit(cache=True, inline="always")
-def delayed_lane(x, v, pos, peak, h, h1, tmin, tmax, hist, tail, tail_start, mu, sigma, delay, quantize, bound, k):
-    """Sample ``h`` of a run with delay: the body of :func:`dfa._kernel.advance`'s loop without records.
-
-    Returns (ξ, ξ', ring position, peak, next sample, tail min, tail max, why, ended): why = 1 at rest
-    (not integrated), 2 past ``bound``; ended when the range ``… h1`` is over.
-    """
-    phi, pos = delayed_force(force(x, quantize), hist, pos, delay)
-    if v == 0.0 and at_rest(v, phi, sigma, hist, delay):
-        return x, v, pos, peak, h, tmin, tmax, 1, True
-    x, v, xr, _t, _a, _a2, _tr, stopped = step(x, v, phi, mu, sigma, k)
-    ax = abs(x)
-    if ax > peak:
-        peak = ax
-    if h >= tail_start:
-        tail[h - tail_start] = x
-        tmin, tmax = tail_extremes(x, xr, stopped, tmin, tmax)
-    h += 1
-    if not ax <= bound:  # also catches NaN
-        return x, v, pos, peak, h, tmin, tmax, 2, True
-    return x, v, pos, peak, h, tmin, tmax, 0, h >= h1
 
 
 @njit(cache=True, nogil=True)
@@ -138,12 +150,36 @@ def advance_pair_delayed(
     wa = wb = 0
     fa = fb = False
     while not (fa or fb):
-        xa, va, pa_, pka, ha, tmina, tmaxa, wa, fa = delayed_lane(
-            xa, va, pa_, pka, ha, h1a, tmina, tmaxa, hista, taila, ta, mua, siga, delay, quantize, bounda, ka
-        )
-        xb, vb, pb_, pkb, hb, tminb, tmaxb, wb, fb = delayed_lane(
-            xb, vb, pb_, pkb, hb, h1b, tminb, tmaxb, histb, tailb, tb, mub, sigb, delay, quantize, boundb, kb
-        )
+        phia, pa_ = delayed_force(force(xa, quantize), hista, pa_, delay)
+        if va == 0.0 and at_rest(va, phia, siga, hista, delay):
+            wa, fa = 1, True
+        else:
+            xa, va, xra, _t, _a, _a2, _tr, sta = step(xa, va, phia, mua, siga, ka)
+            axa = abs(xa)
+            if axa > pka:
+                pka = axa
+            if ha >= ta:
+                taila[ha - ta] = xa
+                tmina, tmaxa = tail_extremes(xa, xra, sta, tmina, tmaxa)
+            ha += 1
+            if not axa <= bounda:  # also catches NaN
+                wa, fa = 2, True
+            fa = fa or ha >= h1a
+        phib, pb_ = delayed_force(force(xb, quantize), histb, pb_, delay)
+        if vb == 0.0 and at_rest(vb, phib, sigb, histb, delay):
+            wb, fb = 1, True
+        else:
+            xb, vb, xrb, _t, _a, _a2, _tr, stb = step(xb, vb, phib, mub, sigb, kb)
+            axb = abs(xb)
+            if axb > pkb:
+                pkb = axb
+            if hb >= tb:
+                tailb[hb - tb] = xb
+                tminb, tmaxb = tail_extremes(xb, xrb, stb, tminb, tmaxb)
+            hb += 1
+            if not axb <= boundb:
+                wb, fb = 2, True
+            fb = fb or hb >= h1b
     sa[SX], sa[SV], sa[SPOS], sa[STMIN], sa[STMAX] = xa, va, pa_, tmina, tmaxa
     sb[SX], sb[SV], sb[SPOS], sb[STMIN], sb[STMAX] = xb, vb, pb_, tminb, tmaxb
     return ha, wa, pka, fa, hb, wb, pkb, fb

@@ -229,38 +229,6 @@ def same_state(x, v, rx, rv):
     )
 
 
-@njit(cache=True, inline="always")
-def free_lane(
-    x, v, peak, h, h1, rx, rv, rh, span, tmin, tmax, in_tail, tail, tail_start, mu, sigma, quantize, bound, k
-):
-    """One pass of :func:`advance_free`'s loop: sample ``h``, then the skip of repeated periods.
-
-    Carries the run's loop state (ξ, ξ', peak, next sample h, Brent's reference (rx, rv, rh) and renewal
-    interval ``span``, tail min and max) and returns it updated, with ``why`` (:func:`free_sample`'s) and
-    whether the range ``… h1`` has ended (ran through, at rest, or past the bound). The one implementation
-    of that loop's body: :func:`advance_free` runs one run through it, :func:`dfa._batch.advance_pair` two.
-    """
-    x, v, peak, why, xr, stopped = free_sample(x, v, peak, mu, sigma, quantize, bound, k)
-    if why == 1:
-        return x, v, peak, h, rx, rv, rh, span, tmin, tmax, why, True
-    if in_tail:
-        tail[h - tail_start] = x
-        tmin, tmax = tail_extremes(x, xr, stopped, tmin, tmax)
-    h += 1
-    if why == 2:
-        return x, v, peak, h, rx, rv, rh, span, tmin, tmax, why, True
-    if same_state(x, v, rx, rv):  # period h − rh: skip the whole periods left in this range
-        skip = (h1 - h) // (h - rh) * (h - rh)
-        if in_tail:
-            for i in range(h, h + skip):
-                tail[i - tail_start] = tail[i - (h - rh) - tail_start]
-        h += skip
-        span = h1  # no more renewals: fewer than one period is left
-    elif h - rh == span:
-        rx, rv, rh, span = x, v, h, 2 * span
-    return x, v, peak, h, rx, rv, rh, span, tmin, tmax, why, h >= h1
-
-
 @njit(cache=True, nogil=True)
 def advance_free(state, h0, h1, mu, sigma, quantize, bound, k, tail, tail_start):
     """:func:`advance` over samples h0 … h1 − 1 without delay, unrecorded (the hot path).
@@ -272,7 +240,7 @@ def advance_free(state, h0, h1, mu, sigma, quantize, bound, k, tail, tail_start)
     found by Brent's cycle detection (a reference state renewed at doubling
     intervals). The reference lies in this range, so a skipped period's peak
     and tail extremes are already counted; its tail readings are copied. Same
-    results bit for bit as integrating every sample. The loop's body is :func:`free_lane`.
+    results bit for bit as integrating every sample.
     """
     x, v, tmin, tmax = state[SX], state[SV], state[STMIN], state[STMAX]
     peak = 0.0
@@ -280,11 +248,25 @@ def advance_free(state, h0, h1, mu, sigma, quantize, bound, k, tail, tail_start)
     rx, rv, rh, span = x, v, h0, 1  # reference state, its sample, renewal interval
     h = h0
     why = 0
-    ended = h >= h1
-    while not ended:
-        x, v, peak, h, rx, rv, rh, span, tmin, tmax, why, ended = free_lane(
-            x, v, peak, h, h1, rx, rv, rh, span, tmin, tmax, in_tail, tail, tail_start, mu, sigma, quantize, bound, k
-        )
+    while h < h1:
+        x, v, peak, why, xr, stopped = free_sample(x, v, peak, mu, sigma, quantize, bound, k)
+        if why == 1:
+            break
+        if in_tail:
+            tail[h - tail_start] = x
+            tmin, tmax = tail_extremes(x, xr, stopped, tmin, tmax)
+        h += 1
+        if why == 2:
+            break
+        if same_state(x, v, rx, rv):  # period h − rh: skip the whole periods left in this range
+            skip = (h1 - h) // (h - rh) * (h - rh)
+            if in_tail:
+                for i in range(h, h + skip):
+                    tail[i - tail_start] = tail[i - (h - rh) - tail_start]
+            h += skip
+            span = h1  # no more renewals: fewer than one period is left
+        elif h - rh == span:
+            rx, rv, rh, span = x, v, h, 2 * span
     state[SX], state[SV], state[STMIN], state[STMAX] = x, v, tmin, tmax
     return h, why, peak
 
