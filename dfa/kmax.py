@@ -92,7 +92,12 @@ SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
 
 
 def simulate_points(
-    points: Sequence[tuple[float, ...]], delay: int, max_samples: int, controller: ControllerParams | None = None
+    points: Sequence[tuple[float, ...]],
+    delay: int,
+    max_samples: int,
+    controller: ControllerParams | None = None,
+    *,
+    controllers: Sequence[ControllerParams | None] | None = None,
 ):
     """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), and the samples of each run.
 
@@ -100,24 +105,26 @@ def simulate_points(
     ``max_samples``; a run diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude
     of its start. One place for the many simulations of the design answer, run on threads (one per core):
     the compiled kernel releases the GIL, and each outcome depends on its own point only. ``controller``
-    (dimensionless, its delay equal to ``delay``; None: the spring) runs every point with that controller.
+    (dimensionless, its delay equal to ``delay``; None: the spring) runs every point with that controller;
+    ``controllers`` (one per point) instead gives each point its own (the points of a sweep in K).
 
     Returns
     -------
     (list of str, list of int)
         Outcome names (:data:`dfa.simulation.OUTCOMES`) and run lengths.
     """
+    ctls = [controller] * len(points) if controllers is None else list(controllers)
+    if len(ctls) != len(points):
+        raise DFAValueError(f"controllers has {len(ctls)} entries for {len(points)} points: give one per point")
     jobs = []
-    for mu, beta, sigma, xi0, xi_dot0 in points:
-        n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay, controller=controller), max_samples)
+    for (mu, beta, sigma, xi0, xi_dot0), c in zip(points, ctls, strict=True):
+        n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay, controller=c), max_samples)
         bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
-        jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound))
+        jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound, c))
 
     def one(job: tuple) -> str:
-        mu, beta, sigma, xi_dot0, n, xi0, bound = job
-        run = simulate(
-            mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound, controller=controller
-        )
+        mu, beta, sigma, xi_dot0, n, xi0, bound, c = job
+        run = simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound, controller=c)
         return str(run.outcome)
 
     workers = min(len(jobs), os.cpu_count() or 1)
@@ -157,14 +164,20 @@ class KSearch:
     evaluations : int
         Stiffnesses evaluated.
     dense_failures : tuple of dict
-        Failing or undecided runs the confirmation met while walking down from ``searched_value`` to ``value``
-        (``stiffness``, ``velocity``, ``start``, ``outcome``): all above ``value``, evidence that safety is not
-        monotone in K; the result's status says so.
+        Failing or undecided runs the sweep in K and the confirmation met between ``value`` and
+        ``searched_value`` (``stiffness``, ``velocity``, ``start``, ``outcome``, ``found_by``: ``"sweep"`` or
+        ``"confirmation"``): all above ``value``, evidence that safety is not monotone in K; the result's
+        status says so.
     searched_value : float or None
-        The limit the search found before the confirmation (None: not confirmed, e.g. ``k_df``).
+        The limit the search found before the sweep and the confirmation (None: not confirmed, e.g. ``k_df``).
     confirmed : str or None
-        What ``value`` claims when confirmed by simulation, in words: the dense speed grid, the starts and the
-        stiffness band simulated (:func:`confirmation_text`); None when not confirmed.
+        What ``value`` claims when confirmed by simulation, in words: the dense speed grid, the starts, the
+        stiffness band and the sweep below it (:func:`confirmation_text`); None when not confirmed.
+    sweep_value : float or None
+        The candidate after the sweep in K, where the confirmation's walk started (None: not swept, or the
+        sweep failed at its first stiffness).
+    sweep_start, sweep_step : float or None
+        The sweep's lowest stiffness and relative step (None: not swept).
     """
 
     value: float | None
@@ -177,6 +190,9 @@ class KSearch:
     dense_failures: tuple[dict, ...] = ()
     searched_value: float | None = None
     confirmed: str | None = None
+    sweep_value: float | None = None
+    sweep_start: float | None = None
+    sweep_step: float | None = None
 
     def __post_init__(self) -> None:
         if self.value is not None:
@@ -185,8 +201,9 @@ class KSearch:
             text = getattr(self, name)
             if text is not None and not isinstance(text, str):
                 raise DFATypeError(f"{name} = {_fmt(text)} has type {type(text).__name__}: it must be text or None")
-        if self.searched_value is not None:
-            check_positive("searched_value", self.searched_value, "the searched limit is a finite K > 0, or None")
+        for name in ("searched_value", "sweep_value", "sweep_start", "sweep_step"):
+            if getattr(self, name) is not None:
+                check_positive(name, getattr(self, name), "a stiffness (or a relative step) > 0, or None")
         if self.value is None and not self.reason:
             raise DFAValueError("KSearch(value=None) needs a reason: say why the limit is undefined")
         if self.value is not None and not (math.isfinite(self.value) and self.value > 0):
@@ -211,6 +228,9 @@ class KSearch:
             "dense_failures": [dict(f) for f in self.dense_failures],
             "searched_value": self.searched_value,
             "confirmed": self.confirmed,
+            "sweep_value": self.sweep_value,
+            "sweep_start": self.sweep_start,
+            "sweep_step": self.sweep_step,
         }
         return explain_nulls(out, self.null_reasons())
 
@@ -232,6 +252,13 @@ class KSearch:
                 if self.value is None
                 else "not confirmed by simulation: a first-harmonic prediction"
             ),
+            "sweep_value": (
+                "not swept: a prediction, or no limit"
+                if self.sweep_start is None
+                else "the sweep failed already at its first stiffness"
+            ),
+            "sweep_start": "not swept: a prediction, or no limit",
+            "sweep_step": "not swept: a prediction, or no limit",
         }
 
 
@@ -439,6 +466,8 @@ class RunCache:
         delay: int,
         max_samples: int,
         controller: ControllerParams | None = None,
+        *,
+        controllers: Sequence[ControllerParams | None] | None = None,
     ):
         """Outcomes and run lengths of ``points`` (as :func:`simulate_points`), simulating only the new ones.
 
@@ -452,16 +481,21 @@ class RunCache:
             Longest run in samples.
         controller : ControllerParams, optional
             The dimensionless controller of every point (part of each run's key); None: the spring.
+        controllers : sequence of ControllerParams or None, optional
+            One controller per point instead of ``controller`` (the points of a sweep in K).
 
         Returns
         -------
         (list of str, list of int)
             Outcome names and run lengths, one per point.
         """
-        keys = [(tuple(float(x) for x in pt), delay, max_samples, controller) for pt in points]
+        ctls = [controller] * len(points) if controllers is None else list(controllers)
+        keys = [(tuple(float(x) for x in pt), delay, max_samples, c) for pt, c in zip(points, ctls, strict=True)]
         todo = list(dict.fromkeys(k for k in keys if k not in self.runs))
         if todo:
-            outs, lengths = simulate_points([k[0] for k in todo], delay, max_samples, controller)
+            outs, lengths = simulate_points(
+                [k[0] for k in todo], delay, max_samples, controllers=[k[3] for k in todo]
+            )
             self.simulated += len(todo)
             self.runs.update({k: (o, n) for k, o, n in zip(todo, outs, lengths, strict=True)})
         return [self.runs[k][0] for k in keys], [self.runs[k][1] for k in keys]
@@ -512,22 +546,33 @@ class _Evidence:
 
     def outcomes(self, k: float) -> list[tuple[float, str, str]]:
         """(ξ'0, start, outcome) of every impact simulated at stiffness ``k``."""
-        if k not in self.sims:
+        self.prefetch([k])
+        return self.sims[k]
+
+    def prefetch(self, ks: Sequence[float]) -> None:
+        """Simulate the impacts of every stiffness of ``ks`` not yet seen, in one threaded batch (the cache's)."""
+        pts: list[tuple[float, float, float, float, float]] = []
+        ctls: list[ControllerParams | None] = []
+        tags: list[tuple[float, float, str]] = []
+        for k in dict.fromkeys(float(x) for x in ks):
+            if k in self.sims:
+                continue
             try:
                 p, c = self.params(k)
             except DFAValueError:  # μ, β or σ not representable at this K: nothing can be decided there
                 self.sims[k] = [(xd, start, "undecided") for xd in self.xi_dots for start in ("impact", "preload")]
-                return self.sims[k]
-            pts, tags = [], []
+                continue
             for xd in self.xi_dots:
-                pts.append((p.mu, p.beta, p.sigma, 0.0, xd))
-                pts.append((p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0))
-                tags += [(xd, "impact"), (xd, "preload")]
-            outs, lengths = self.cache.simulate(pts, self.delay, self.max_samples, c)
-            self.runs += len(pts)  # every run this evidence rests on, simulated here or earlier
-            self.longest = max(self.longest, *lengths)
-            self.sims[k] = [(xd, start, o) for (xd, start), o in zip(tags, outs, strict=True)]
-        return self.sims[k]
+                pts += [(p.mu, p.beta, p.sigma, 0.0, xd), (p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0)]
+                ctls += [c, c]
+                tags += [(k, xd, "impact"), (k, xd, "preload")]
+        if not pts:
+            return
+        outs, lengths = self.cache.simulate(pts, self.delay, self.max_samples, controllers=ctls)
+        self.runs += len(pts)  # every run this evidence rests on, simulated here or earlier
+        self.longest = max(self.longest, *lengths)
+        for (k, xd, start), o in zip(tags, outs, strict=True):
+            self.sims.setdefault(k, []).append((xd, start, o))
 
     def judge(self, k: float, limit: str) -> str:
         """SAFE, UNSAFE (an outcome in ``FAILING[limit]``) or UNDECIDED for every impact at stiffness ``k``."""
@@ -592,86 +637,168 @@ def _band(k0: float, c: int) -> list[float]:
     return [k] + [k * (1.0 - f) for f in DENSE_FINE] + [_ladder(k0, c + i) for i in range(1, DENSE_RUNGS)]
 
 
-def _failures(dense: _Evidence, k: float, bad: str) -> list[dict[str, Any]]:
-    """Dense runs at ``k`` that fail limit ``bad`` or are undecided (neither counts as confirmed)."""
+def _failures(ev: _Evidence, k: float, bad: str, found_by: str) -> list[dict[str, Any]]:
+    """Runs of ``ev`` at ``k`` that fail limit ``bad`` or are undecided (neither counts as safe)."""
     return [
-        {"stiffness": k, "velocity": dense.dev.velocity(xd), "start": start, "outcome": str(o)}
-        for xd, start, o in dense.outcomes(k)
+        {"stiffness": k, "velocity": ev.dev.velocity(xd), "start": start, "outcome": str(o), "found_by": found_by}
+        for xd, start, o in ev.outcomes(k)
         if o in FAILING[bad] or o == "undecided"
     ]
 
 
-#: What a simulated limit does not claim: K below the confirmed band was simulated at the search grid only.
+#: The sweep in K below a searched limit: relative step between its stiffnesses (target) ...
+SWEEP_STEP = 0.005
+#: ... and at most this many stiffnesses per sweep (a wider range takes a coarser step, and says so).
+SWEEP_MAX_POINTS = 600
+
+
+class Sweep(NamedTuple):
+    """A sweep in K: ascending stiffnesses ``start`` (1 + ``step``)^j, j = 0, 1, …, at the search speeds.
+
+    ``start`` is K_criterion (``from_criterion``) or, without a criterion K > 0, the search grid's lowest point.
+    """
+
+    start: float
+    step: float
+    from_criterion: bool
+
+    def points(self, top: float) -> list[float]:
+        """The sweep's stiffnesses up to ``top``, ascending (every limit swept from ``start`` shares them)."""
+        n = math.floor(math.log(top / self.start) / math.log1p(self.step) + 1e-9) if top >= self.start else -1
+        return [self.start * (1.0 + self.step) ** j for j in range(n + 1)]
+
+
+def _sweep_for(k_lo: float, from_criterion: bool, k_hi: float) -> Sweep:
+    """The sweep from ``k_lo`` up to ``k_hi``: :data:`SWEEP_STEP`, coarser when that takes over SWEEP_MAX_POINTS."""
+    need = math.log(max(k_hi, k_lo) / k_lo) / SWEEP_MAX_POINTS
+    return Sweep(k_lo, max(SWEEP_STEP, math.expm1(need)), from_criterion)
+
+
+#: What a simulated limit does not claim: unsafe stiffnesses between the sweep's points, or other speeds.
 BELOW_K = (
-    "below that band only the search grid's stiffnesses were simulated: stability need not be monotone in K, "
-    "and narrower unsafe bands below K are not excluded"
+    "narrower unsafe bands between the sweep's stiffnesses, and unsafe speeds between those simulated, are not "
+    "excluded: stability need not be monotone in K"
 )
 
 
-def confirmation_text(dense: _Evidence, bad: str) -> str:
-    """What a confirmed limit K claims, in words (device units): the dense speed grid and stiffness band."""
+def sweep_text(sweep: Sweep, ev: _Evidence, k: float) -> str:
+    """What the sweep below a limit K simulated, in words (device units): its range, step, speeds and starts."""
+    u = ev.dev.units
+    vs = [ev.dev.velocity(x) for x in ev.xi_dots]
+    pts = [p for p in sweep.points(k)]
+    where = "K_criterion" if sweep.from_criterion else "the search grid's lowest stiffness"
+    if not pts:
+        return f"no sweep below K: K lies below the sweep's start, {where} = {sweep.start:.5g} {u['stiffness']}"
+    coarse = "" if sweep.step <= SWEEP_STEP * (1 + 1e-9) else f", coarser than {100 * SWEEP_STEP:g} % to stay within "
+    coarse += f"{SWEEP_MAX_POINTS} stiffnesses" if coarse else ""
+    return (
+        f"below it, a sweep of {len(pts)} stiffnesses from {where} = {sweep.start:.5g} {u['stiffness']} up to K in "
+        f"relative steps of {100 * sweep.step:.3g} %{coarse}, each at the {len(vs)} search speeds in "
+        f"[{min(vs):.4g}, {max(vs):.4g}] {u['velocity']} (both starts)"
+    )
+
+
+def confirmation_text(dense: _Evidence, bad: str, swept: str = "") -> str:
+    """What a confirmed limit K claims, in words (device units): the dense band, the sweep below it (``swept``)."""
     u = dense.dev.units
     vs = [dense.dev.velocity(x) for x in dense.xi_dots]
     what = "no divergence" if bad == "unstable" else "every run at rest"
     return (
         f"{what}, none undecided, at {len(vs)} speeds in [{min(vs):.4g}, {max(vs):.4g}] {u['velocity']} "
-        f"(from ξ0 = 0 and from the preload) and {DENSE_RUNGS + len(DENSE_FINE)} stiffnesses in [{1 - DENSE_BAND:g}K, K]; "
-        f"{BELOW_K}"
+        f"(from ξ0 = 0 and from the preload) and {DENSE_RUNGS + len(DENSE_FINE)} stiffnesses in [{1 - DENSE_BAND:g}K, K]"
+        f"{'; ' + swept if swept else ''}; {BELOW_K}"
     )
 
 
-def _confirm(found: KSearch, dense: _Evidence, bad: str, top: float | None = None) -> KSearch:
-    """The largest *confirmed* K at or below a searched limit (and at or below ``top``).
+def _sweep_candidate(k0: float, ev: _Evidence, bad: str, sweep: Sweep) -> tuple[float | None, list[dict[str, Any]]]:
+    """Below the lowest failing stiffness of ``sweep`` up to ``k0`` (included): the sweep point under it, and the
+    failing runs of every failing sweep stiffness (None: the sweep's first point fails already)."""
+    pts = [k for k in sweep.points(k0) if k < k0 * (1 - 1e-12)] + [k0]
+    ev.prefetch(pts)  # one threaded batch (the cache's runs are free)
+    fails = [_failures(ev, k, bad, "sweep") for k in pts]
+    bad_at = [i for i, f in enumerate(fails) if f]
+    if not bad_at:
+        return k0, []
+    runs = [r for f in fails for r in f]
+    return (pts[bad_at[0] - 1] if bad_at[0] > 0 else None), runs
 
-    The search saw only its own speeds and assumed safety monotone in K between its points. Confirmed at K
-    means: at :data:`DENSE_FACTOR` times as many speeds (V/n … V), from both starts, at the
-    stiffnesses of :func:`_band` spanning [(1 - DENSE_BAND) K, K], no run fails
-    ``bad`` ("unstable": diverges; "rest": does not come to rest) and none is undecided. A finite set of
-    speeds and stiffnesses is simulated: this is evidence at those points, not a proof for all speeds.
-    The candidate walks down the ladder from the searched limit, to the rung below each failing stiffness,
-    until a whole band passes; every failure met on the way (all above the confirmed K) is kept in
-    ``dense_failures`` and said in ``reason``.
-    """
-    if found.value is None:
-        return found
-    k0 = found.value if top is None else min(found.value, top)
+
+def _walk(k0: float, dense: _Evidence, bad: str) -> tuple[float | None, list[dict[str, Any]]]:
+    """Down the ladder from ``k0`` until a whole band passes at the dense speeds (None: none within the walk)."""
     fails: list[dict[str, Any]] = []
-    c, confirmed = 0, False
-    while not confirmed and c <= DENSE_MAX_STEPS:
+    c = 0
+    while c <= DENSE_MAX_STEPS:
         for k in _band(k0, c):  # descending: stop at the first failing stiffness, go to the rung below it
-            f = _failures(dense, k, bad)
+            f = _failures(dense, k, bad, "confirmation")
             if f:
                 fails += f
                 while _ladder(k0, c) >= k:
                     c += 1
                 break
         else:
-            confirmed = True
-    claim = confirmation_text(dense, bad)
+            return _ladder(k0, c), fails
+    return None, fails
+
+
+def _lowered_note(fails: list[dict[str, Any]], searched: float, dev: Device) -> str:
+    """Why a limit was lowered from the searched one: the lowest failure found (and the highest), and by what."""
+    u, uv = dev.units["stiffness"], dev.units["velocity"]
+    w = max(fails, key=lambda r: float(r["stiffness"]))
+    lo = min(fails, key=lambda r: float(r["stiffness"]))
+    by = sorted({str(f["found_by"]) for f in fails}, reverse=True)
+    which = "" if len(by) == 1 else f", by the {lo['found_by']}"
+    return (
+        f"lowered from the searched {searched:.5g} {u}: the {' and the '.join(by)} found {lo['outcome']} at K = "
+        f"{lo['stiffness']:.5g} {u} ({lo['velocity']:.3g} {uv}, {lo['start']} start{which})"
+        + ("" if w["stiffness"] == lo["stiffness"] else f" and up to K = {w['stiffness']:.5g} {u}")
+        + ", at speeds or stiffnesses the search did not simulate"
+    )
+
+
+def _confirm(
+    found: KSearch, ev: _Evidence, dense: _Evidence, bad: str, sweep: Sweep, top: float | None = None
+) -> KSearch:
+    """The largest *swept and confirmed* K at or below a searched limit (and at or below ``top``).
+
+    The search saw only its own speeds and grid, and assumed safety monotone in K between its points. First a
+    sweep in K (:class:`Sweep`: relative steps of :data:`SWEEP_STEP`, coarser only past
+    :data:`SWEEP_MAX_POINTS` stiffnesses) from K_criterion (else the grid's lowest point) up to the candidate,
+    at the search speeds of ``ev`` from both starts: any stiffness where a run fails ``bad`` ("unstable":
+    diverges; "rest": does not come to rest) or is undecided lowers the candidate to the sweep point below the
+    lowest such stiffness. Then the confirmation: at :data:`DENSE_FACTOR` times as many speeds, at the
+    stiffnesses of :func:`_band` spanning [(1 - DENSE_BAND) K, K], no run fails ``bad`` and none is undecided;
+    the candidate walks down the ladder, to the rung below each failing stiffness, until a whole band passes.
+    Every failure met (all above the result) is kept in ``dense_failures`` (``found_by``: ``"sweep"`` or
+    ``"confirmation"``) and said in ``reason``. A finite set of speeds and stiffnesses is simulated: this is
+    evidence at those points (the claim says which), not a proof for all speeds or every K.
+    """
+    if found.value is None:
+        return found
+    k0 = found.value if top is None else min(found.value, top)
+    cand, fails = _sweep_candidate(k0, ev, bad, sweep)
+    value, walk_fails = (None, []) if cand is None else _walk(cand, dense, bad)
+    fails += walk_fails
     u = dense.dev.units["stiffness"]
-    if not confirmed:
-        why = f"no stiffness in [{_ladder(k0, DENSE_MAX_STEPS):.5g}, {k0:.5g}] {u} confirmed ({claim})"
-        return dataclasses.replace(
-            found, value=None, reason=why, searched_value=found.value, dense_failures=tuple(fails)
+    fields: dict[str, Any] = dict(searched_value=found.value, dense_failures=tuple(fails), sweep_value=cand)
+    fields.update(sweep_start=sweep.start, sweep_step=sweep.step)
+    if value is None:
+        claim = confirmation_text(dense, bad, sweep_text(sweep, ev, k0))
+        why = (
+            f"the sweep failed already at its first stiffness, {sweep.start:.5g} {u}; "
+            + _lowered_note(fails, found.value, dense.dev)
+            if cand is None
+            else f"no stiffness in [{_ladder(cand, DENSE_MAX_STEPS):.5g}, {cand:.5g}] {u} confirmed"
         )
-    value = _ladder(k0, c)
+        return dataclasses.replace(found, value=None, reason=f"{why} ({claim})", **fields)
     reason = found.reason
     if fails:
-        w = max(fails, key=lambda r: float(r["stiffness"]))
-        lo = min(fails, key=lambda r: float(r["stiffness"]))
-        note = (
-            f"lowered from the searched {found.value:.5g} {u}: the confirmation found {lo['outcome']} at K = "
-            f"{lo['stiffness']:.5g} {u} ({lo['velocity']:.3g} {dense.dev.units['velocity']}, {lo['start']} start)"
-            + ("" if w["stiffness"] == lo["stiffness"] else f" and up to K = {w['stiffness']:.5g} {u}")
-            + ", at speeds or stiffnesses the search did not simulate"
-        )
+        note = _lowered_note(fails, found.value, dense.dev)
         reason = note if not reason else f"{reason}; {note}"
     if k0 < found.value:
         note = f"capped at K_sim = {k0:.5g} {u}: coming to rest implies no divergence"
         reason = note if not reason else f"{reason}; {note}"
-    return dataclasses.replace(
-        found, value=value, reason=reason, searched_value=found.value, confirmed=claim, dense_failures=tuple(fails)
-    )
+    claim = confirmation_text(dense, bad, sweep_text(sweep, ev, value))
+    return dataclasses.replace(found, value=value, reason=reason, confirmed=claim, **fields)
 
 
 def _search_grid(k_criterion: float, top: float, grid: int) -> np.ndarray:
@@ -1052,8 +1179,15 @@ def searched_limits(ev: _Evidence, v: float, n_speeds: int, kc: float | None, k_
     k_df, k_sim, k_rest, k_range = _three_searches(ev, v, k_ref, top, n_grid)
     dense_vs = v * np.arange(1, DENSE_FACTOR * n_speeds + 1) / (DENSE_FACTOR * n_speeds)
     dense = _Evidence(ev.dev, dense_vs, ev.delay, ev.max_samples, ev.model, ev.cache, ev.controller)
-    k_sim = _confirm(k_sim, dense, "unstable")
-    k_rest = _confirm(k_rest, dense, "rest", k_sim.value)
+    found = [s.value for s in (k_sim, k_rest) if s.value is not None]
+    if found:  # one sweep from K_criterion (else the grid's lowest point): k_sim_rest's points are k_sim's
+        k_lo, by_criterion = (kc, True) if kc else (k_range[0], False)
+        sweep = _sweep_for(k_lo, by_criterion, max(found))
+        ev.prefetch(sweep.points(max(found)))  # one threaded batch for both limits
+        k_sim = _confirm(k_sim, ev, dense, "unstable", sweep)
+        if k_rest.value is not None and k_rest.value < k_lo:  # rest fails below K_criterion: sweep from the grid
+            sweep = _sweep_for(k_range[0], False, k_rest.value)
+        k_rest = _confirm(k_rest, ev, dense, "rest", sweep, k_sim.value)
     ev.runs += dense.runs
     ce = ev.counterexamples(kc) + dense.counterexamples(kc)
     caveat = any(s.non_monotone or s.undecided or s.dense_failures for s in (k_df, k_sim, k_rest))
