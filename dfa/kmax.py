@@ -23,14 +23,21 @@ of d samples:
     2V/n, …, V, started from ξ0 = 0 and, separately, from rest with the
     spring preloaded to the same energy (section 5,
     :func:`dfa.simulation.preload_position`), diverges. That K is then
-    confirmed at ``DENSE_FACTOR`` times as many speeds and 7 stiffnesses
-    in [0.97K, K]; where a run there diverges (or is undecided)
-    the limit walks down a geometric ladder until a whole band passes, and
-    the failures met on the way are reported (``dense_failures``, status
+    swept and confirmed (:func:`_confirm`): at the search speeds, a sweep in
+    K from K_criterion (without a criterion K > 0: the grid's lowest point)
+    up to K in relative steps of ``SWEEP_STEP`` = 0.5 % (coarser only where
+    that would take more than ``SWEEP_MAX_POINTS`` = 600 stiffnesses; the
+    claim gives the step) and a fine zone of 21 stiffnesses in [0.99K, K];
+    at ``DENSE_FACTOR`` times as many speeds, 7 stiffnesses in [0.97K, K].
+    Where a run diverges (or is undecided) the limit drops to just below
+    the lowest such stiffness and is checked again, until every check
+    passes; the failures met are reported (``dense_failures``, status
     ``"caveats"``), because safety need not be monotone in K or in the
-    speed. "Confirmed" names exactly what was simulated (``confirmed``):
-    no divergence at those speeds, starts and stiffnesses; it cannot prove
-    every speed.
+    speed (the red team of issue 14 found divergent bands at 0.55 K_sim and
+    divergence speckled within 0.4 % below it). "Confirmed" names exactly
+    what was simulated (``confirmed``): no divergence at those speeds,
+    starts and stiffnesses; narrower unsafe bands between the swept
+    stiffnesses and other speeds are not excluded (``BELOW_K``).
 ``k_sim_rest``
     the largest confirmed K at which all those impacts come to rest (no
     chatter, no oscillation), at most ``k_sim``.
@@ -165,17 +172,14 @@ class KSearch:
         Stiffnesses evaluated.
     dense_failures : tuple of dict
         Failing or undecided runs the sweep in K and the confirmation met between ``value`` and
-        ``searched_value`` (``stiffness``, ``velocity``, ``start``, ``outcome``, ``found_by``: ``"sweep"`` or
-        ``"confirmation"``): all above ``value``, evidence that safety is not monotone in K; the result's
+        ``searched_value`` (``stiffness``, ``velocity``, ``start``, ``outcome``, ``found_by``: ``"sweep"``,
+        ``"confirmation"`` or ``"earlier runs"``): all above ``value``, evidence that safety is not monotone in K; the result's
         status says so.
     searched_value : float or None
         The limit the search found before the sweep and the confirmation (None: not confirmed, e.g. ``k_df``).
     confirmed : str or None
         What ``value`` claims when confirmed by simulation, in words: the dense speed grid, the starts, the
         stiffness band and the sweep below it (:func:`confirmation_text`); None when not confirmed.
-    sweep_value : float or None
-        The candidate after the sweep in K, where the confirmation's walk started (None: not swept, or the
-        sweep failed at its first stiffness).
     sweep_start, sweep_step : float or None
         The sweep's lowest stiffness and relative step (None: not swept).
     """
@@ -190,7 +194,6 @@ class KSearch:
     dense_failures: tuple[dict, ...] = ()
     searched_value: float | None = None
     confirmed: str | None = None
-    sweep_value: float | None = None
     sweep_start: float | None = None
     sweep_step: float | None = None
 
@@ -201,7 +204,7 @@ class KSearch:
             text = getattr(self, name)
             if text is not None and not isinstance(text, str):
                 raise DFATypeError(f"{name} = {_fmt(text)} has type {type(text).__name__}: it must be text or None")
-        for name in ("searched_value", "sweep_value", "sweep_start", "sweep_step"):
+        for name in ("searched_value", "sweep_start", "sweep_step"):
             if getattr(self, name) is not None:
                 check_positive(name, getattr(self, name), "a stiffness (or a relative step) > 0, or None")
         if self.value is None and not self.reason:
@@ -228,7 +231,6 @@ class KSearch:
             "dense_failures": [dict(f) for f in self.dense_failures],
             "searched_value": self.searched_value,
             "confirmed": self.confirmed,
-            "sweep_value": self.sweep_value,
             "sweep_start": self.sweep_start,
             "sweep_step": self.sweep_step,
         }
@@ -251,11 +253,6 @@ class KSearch:
                 "no limit to confirm"
                 if self.value is None
                 else "not confirmed by simulation: a first-harmonic prediction"
-            ),
-            "sweep_value": (
-                "not swept: a prediction, or no limit"
-                if self.sweep_start is None
-                else "the sweep failed already at its first stiffness"
             ),
             "sweep_start": "not swept: a prediction, or no limit",
             "sweep_step": "not swept: a prediction, or no limit",
@@ -493,9 +490,7 @@ class RunCache:
         keys = [(tuple(float(x) for x in pt), delay, max_samples, c) for pt, c in zip(points, ctls, strict=True)]
         todo = list(dict.fromkeys(k for k in keys if k not in self.runs))
         if todo:
-            outs, lengths = simulate_points(
-                [k[0] for k in todo], delay, max_samples, controllers=[k[3] for k in todo]
-            )
+            outs, lengths = simulate_points([k[0] for k in todo], delay, max_samples, controllers=[k[3] for k in todo])
             self.simulated += len(todo)
             self.runs.update({k: (o, n) for k, o, n in zip(todo, outs, lengths, strict=True)})
         return [self.runs[k][0] for k in keys], [self.runs[k][1] for k in keys]
@@ -615,26 +610,20 @@ class _Evidence:
         return tuple(out)
 
 
-#: The confirmation of a simulated limit uses this many times the searched speeds ...
+#: The confirmation of a simulated limit K uses this many times the searched speeds ...
 DENSE_FACTOR = 4
-#: ... at the rungs of a geometric ladder, DENSE_RUNGS per band of relative width DENSE_BAND below a rung ...
+#: ... at the stiffnesses of a band below K: DENSE_RUNGS geometric rungs spanning a relative width DENSE_BAND ...
 DENSE_RUNGS = 5
 DENSE_BAND = 0.03
-#: ... and, just below the candidate, at these fractions below it (where a search's bisection ended) ...
+#: ... and at these fractions below K (where a search's bisection ended).
 DENSE_FINE = (0.001, 0.003)
-#: ... walking down at most this many rungs (to about 0.5 × the searched limit).
-DENSE_MAX_STEPS = 90
 
 
-def _ladder(k0: float, j: int) -> float:
-    """Rung j of the confirmation ladder below ``k0``: k0 (1 - DENSE_BAND)^(j / (DENSE_RUNGS - 1))."""
-    return k0 * (1.0 - DENSE_BAND) ** (j / (DENSE_RUNGS - 1))
-
-
-def _band(k0: float, c: int) -> list[float]:
-    """The stiffnesses that confirm rung c, descending: the rung, the fine points just below, the next rungs."""
-    k = _ladder(k0, c)
-    return [k] + [k * (1.0 - f) for f in DENSE_FINE] + [_ladder(k0, c + i) for i in range(1, DENSE_RUNGS)]
+def _band(k: float) -> list[float]:
+    """The confirmation band below K, descending: K, K (1 - f) for f in DENSE_FINE, then the rungs
+    K (1 - DENSE_BAND)^(i / (DENSE_RUNGS - 1)), i = 1 … DENSE_RUNGS - 1."""
+    rungs = [k * (1.0 - DENSE_BAND) ** (i / (DENSE_RUNGS - 1)) for i in range(1, DENSE_RUNGS)]
+    return [k] + [k * (1.0 - f) for f in DENSE_FINE] + rungs
 
 
 def _failures(ev: _Evidence, k: float, bad: str, found_by: str) -> list[dict[str, Any]]:
@@ -646,10 +635,16 @@ def _failures(ev: _Evidence, k: float, bad: str, found_by: str) -> list[dict[str
     ]
 
 
-#: The sweep in K below a searched limit: relative step between its stiffnesses (target) ...
+#: The sweep in K below a simulated limit: relative step between its stiffnesses (target) ...
 SWEEP_STEP = 0.005
-#: ... and at most this many stiffnesses per sweep (a wider range takes a coarser step, and says so).
+#: ... and at most this many stiffnesses per sweep (a wider range takes a coarser step, and says so) ...
 SWEEP_MAX_POINTS = 600
+#: ... and, just below K, a fine zone of FINE_POINTS stiffnesses K (1 - FINE_STEP)^j, j = 0 … FINE_POINTS - 1
+#: (unsafe K can lie speckled within a few tenths of a percent below a limit, red team of issue 14) ...
+FINE_STEP = 0.0005
+FINE_POINTS = 21
+#: ... lowering the candidate at most this many times (each time just below the lowest failure found).
+MAX_LOWERINGS = 200
 
 
 class Sweep(NamedTuple):
@@ -674,27 +669,36 @@ def _sweep_for(k_lo: float, from_criterion: bool, k_hi: float) -> Sweep:
     return Sweep(k_lo, max(SWEEP_STEP, math.expm1(need)), from_criterion)
 
 
-#: What a simulated limit does not claim: unsafe stiffnesses between the sweep's points, or other speeds.
+def _fine(k: float) -> list[float]:
+    """The fine zone just below K, descending: K (1 - FINE_STEP)^j, j = 0 … FINE_POINTS - 1."""
+    return [k * (1.0 - FINE_STEP) ** j for j in range(FINE_POINTS)]
+
+
+#: What a simulated limit does not claim: unsafe stiffnesses between the simulated ones, or other speeds.
 BELOW_K = (
-    "narrower unsafe bands between the sweep's stiffnesses, and unsafe speeds between those simulated, are not "
+    "narrower unsafe bands between the swept stiffnesses, and unsafe speeds between those simulated, are not "
     "excluded: stability need not be monotone in K"
 )
 
 
 def sweep_text(sweep: Sweep, ev: _Evidence, k: float) -> str:
-    """What the sweep below a limit K simulated, in words (device units): its range, step, speeds and starts."""
+    """What the sweep below a limit K simulated, in words (device units): fine zone, range, step, speeds."""
     u = ev.dev.units
     vs = [ev.dev.velocity(x) for x in ev.xi_dots]
-    pts = [p for p in sweep.points(k)]
+    n = len(sweep.points(k))
     where = "K_criterion" if sweep.from_criterion else "the search grid's lowest stiffness"
-    if not pts:
-        return f"no sweep below K: K lies below the sweep's start, {where} = {sweep.start:.5g} {u['stiffness']}"
-    coarse = "" if sweep.step <= SWEEP_STEP * (1 + 1e-9) else f", coarser than {100 * SWEEP_STEP:g} % to stay within "
-    coarse += f"{SWEEP_MAX_POINTS} stiffnesses" if coarse else ""
+    fine_lo = (1.0 - FINE_STEP) ** (FINE_POINTS - 1)
+    coarse = "" if sweep.step <= SWEEP_STEP * (1 + 1e-9) else f" (coarser than {100 * SWEEP_STEP:g} %: at most "
+    coarse += f"{SWEEP_MAX_POINTS} stiffnesses)" if coarse else ""
+    below = (
+        f"a sweep of {n} stiffnesses from {where} = {sweep.start:.5g} {u['stiffness']} up to K in relative steps "
+        f"of {100 * sweep.step:.3g} %{coarse}"
+        if n
+        else f"no sweep below, K lies below its start, {where} = {sweep.start:.5g} {u['stiffness']}"
+    )
     return (
-        f"below it, a sweep of {len(pts)} stiffnesses from {where} = {sweep.start:.5g} {u['stiffness']} up to K in "
-        f"relative steps of {100 * sweep.step:.3g} %{coarse}, each at the {len(vs)} search speeds in "
-        f"[{min(vs):.4g}, {max(vs):.4g}] {u['velocity']} (both starts)"
+        f"at the {len(vs)} search speeds in [{min(vs):.4g}, {max(vs):.4g}] {u['velocity']} (both starts), "
+        f"{FINE_POINTS} stiffnesses in [{fine_lo:.4g}K, K] (steps of {100 * FINE_STEP:g} %) and {below}"
     )
 
 
@@ -710,86 +714,90 @@ def confirmation_text(dense: _Evidence, bad: str, swept: str = "") -> str:
     )
 
 
-def _sweep_candidate(k0: float, ev: _Evidence, bad: str, sweep: Sweep) -> tuple[float | None, list[dict[str, Any]]]:
-    """Below the lowest failing stiffness of ``sweep`` up to ``k0`` (included): the sweep point under it, and the
-    failing runs of every failing sweep stiffness (None: the sweep's first point fails already)."""
-    pts = [k for k in sweep.points(k0) if k < k0 * (1 - 1e-12)] + [k0]
-    ev.prefetch(pts)  # one threaded batch (the cache's runs are free)
-    fails = [_failures(ev, k, bad, "sweep") for k in pts]
-    bad_at = [i for i, f in enumerate(fails) if f]
-    if not bad_at:
-        return k0, []
-    runs = [r for f in fails for r in f]
-    return (pts[bad_at[0] - 1] if bad_at[0] > 0 else None), runs
+def _lowest_failures(k: float, ev: _Evidence, dense: _Evidence, bad: str, sweep: Sweep) -> list[dict[str, Any]]:
+    """The failing runs of the first check at K that fails (empty: none fails): the sweep up to K and the fine zone
+    at the search speeds (``ev``), the confirmation band at the dense speeds, then every run already simulated at
+    or below K (``"earlier runs"``: the searches', another limit's checks); each new check is one threaded batch."""
+    checks = (
+        (ev, sweep.points(k), "sweep"),
+        (ev, _fine(k), "sweep"),
+        (dense, _band(k), "confirmation"),
+        (ev, [kk for kk in ev.sims if kk <= k], "earlier runs"),
+        (dense, [kk for kk in dense.sims if kk <= k], "earlier runs"),
+    )
+    for e, ks, by in checks:
+        e.prefetch(ks)  # the cache's runs are free
+        fails = [f for kk in ks for f in _failures(e, kk, bad, by)]
+        if fails:
+            return fails
+    return []
 
 
-def _walk(k0: float, dense: _Evidence, bad: str) -> tuple[float | None, list[dict[str, Any]]]:
-    """Down the ladder from ``k0`` until a whole band passes at the dense speeds (None: none within the walk)."""
+def _settle(
+    k0: float, ev: _Evidence, dense: _Evidence, bad: str, sweep: Sweep, floor: float
+) -> tuple[float | None, list[dict[str, Any]], str, Sweep]:
+    """The largest K at or below ``k0`` that every check of :func:`_lowest_failures` passes, lowering the candidate
+    to just below (1 - FINE_STEP) the lowest failure found each time; the failures met, why None, and the sweep
+    (restarted from ``floor``, the search grid's lowest point, when the candidate falls below its start)."""
+    k = k0
     fails: list[dict[str, Any]] = []
-    c = 0
-    while c <= DENSE_MAX_STEPS:
-        for k in _band(k0, c):  # descending: stop at the first failing stiffness, go to the rung below it
-            f = _failures(dense, k, bad, "confirmation")
-            if f:
-                fails += f
-                while _ladder(k0, c) >= k:
-                    c += 1
-                break
-        else:
-            return _ladder(k0, c), fails
-    return None, fails
+    for _ in range(MAX_LOWERINGS):
+        if k < sweep.start * (1.0 - 1e-12):
+            if sweep.start <= floor:
+                return None, fails, f"the failures reach the search grid's lowest stiffness, {floor:.5g}", sweep
+            sweep = _sweep_for(floor, False, k)
+        f = _lowest_failures(k, ev, dense, bad, sweep)
+        if not f:
+            return k, fails, "", sweep
+        fails += f
+        k = min(float(r["stiffness"]) for r in f) * (1.0 - FINE_STEP)
+    return None, fails, f"not settled after {MAX_LOWERINGS} lowerings, down to {k:.5g}", sweep
 
 
 def _lowered_note(fails: list[dict[str, Any]], searched: float, dev: Device) -> str:
-    """Why a limit was lowered from the searched one: the lowest failure found (and the highest), and by what."""
+    """Why a limit was lowered from the searched one: the lowest failure found, by what, and the highest."""
     u, uv = dev.units["stiffness"], dev.units["velocity"]
     w = max(fails, key=lambda r: float(r["stiffness"]))
     lo = min(fails, key=lambda r: float(r["stiffness"]))
-    by = sorted({str(f["found_by"]) for f in fails}, reverse=True)
-    which = "" if len(by) == 1 else f", by the {lo['found_by']}"
     return (
-        f"lowered from the searched {searched:.5g} {u}: the {' and the '.join(by)} found {lo['outcome']} at K = "
-        f"{lo['stiffness']:.5g} {u} ({lo['velocity']:.3g} {uv}, {lo['start']} start{which})"
-        + ("" if w["stiffness"] == lo["stiffness"] else f" and up to K = {w['stiffness']:.5g} {u}")
-        + ", at speeds or stiffnesses the search did not simulate"
+        f"lowered from the searched {searched:.5g} {u}: the {lo['found_by']} found {lo['outcome']} at K = "
+        f"{lo['stiffness']:.5g} {u} ({lo['velocity']:.3g} {uv}, {lo['start']} start)"
+        + ("" if w["stiffness"] == lo["stiffness"] else f", failures up to K = {w['stiffness']:.5g} {u}")
+        + f" ({len(fails)} failing or undecided runs in all, none at or below the limit)"
     )
 
 
 def _confirm(
-    found: KSearch, ev: _Evidence, dense: _Evidence, bad: str, sweep: Sweep, top: float | None = None
+    found: KSearch, ev: _Evidence, dense: _Evidence, bad: str, sweep: Sweep, floor: float, top: float | None = None
 ) -> KSearch:
     """The largest *swept and confirmed* K at or below a searched limit (and at or below ``top``).
 
-    The search saw only its own speeds and grid, and assumed safety monotone in K between its points. First a
-    sweep in K (:class:`Sweep`: relative steps of :data:`SWEEP_STEP`, coarser only past
-    :data:`SWEEP_MAX_POINTS` stiffnesses) from K_criterion (else the grid's lowest point) up to the candidate,
-    at the search speeds of ``ev`` from both starts: any stiffness where a run fails ``bad`` ("unstable":
-    diverges; "rest": does not come to rest) or is undecided lowers the candidate to the sweep point below the
-    lowest such stiffness. Then the confirmation: at :data:`DENSE_FACTOR` times as many speeds, at the
-    stiffnesses of :func:`_band` spanning [(1 - DENSE_BAND) K, K], no run fails ``bad`` and none is undecided;
-    the candidate walks down the ladder, to the rung below each failing stiffness, until a whole band passes.
-    Every failure met (all above the result) is kept in ``dense_failures`` (``found_by``: ``"sweep"`` or
-    ``"confirmation"``) and said in ``reason``. A finite set of speeds and stiffnesses is simulated: this is
+    The search saw only its own speeds and grid, and assumed safety monotone in K between its points. A
+    candidate K is kept when, from both starts, no run fails ``bad`` ("unstable": diverges; "rest": does not
+    come to rest) and none is undecided: at the search speeds of ``ev``, at every stiffness of a sweep in K
+    (:class:`Sweep`: relative steps of :data:`SWEEP_STEP`, coarser only past :data:`SWEEP_MAX_POINTS`
+    stiffnesses) from K_criterion (else the grid's lowest point) up to K, and at the fine zone just below K
+    (:func:`_fine`); and at :data:`DENSE_FACTOR` times as many speeds at the stiffnesses of :func:`_band`
+    spanning [(1 - DENSE_BAND) K, K]. Otherwise the candidate drops to just below the lowest failure found
+    (:func:`_settle`; below K_criterion the sweep restarts from ``floor``, the search grid's lowest point); a
+    run already simulated at or below K (the searches', another limit's) counts too. Every failure met (all
+    above the result) is kept in ``dense_failures`` (``found_by``: ``"sweep"``, ``"confirmation"`` or
+    ``"earlier runs"``) and said in ``reason``. A finite set of speeds and stiffnesses is simulated: this is
     evidence at those points (the claim says which), not a proof for all speeds or every K.
     """
     if found.value is None:
         return found
     k0 = found.value if top is None else min(found.value, top)
-    cand, fails = _sweep_candidate(k0, ev, bad, sweep)
-    value, walk_fails = (None, []) if cand is None else _walk(cand, dense, bad)
-    fails += walk_fails
+    value, fails, why, sweep = _settle(k0, ev, dense, bad, sweep, floor)
     u = dense.dev.units["stiffness"]
-    fields: dict[str, Any] = dict(searched_value=found.value, dense_failures=tuple(fails), sweep_value=cand)
+    fields: dict[str, Any] = dict(searched_value=found.value, dense_failures=tuple(fails))
     fields.update(sweep_start=sweep.start, sweep_step=sweep.step)
     if value is None:
         claim = confirmation_text(dense, bad, sweep_text(sweep, ev, k0))
-        why = (
-            f"the sweep failed already at its first stiffness, {sweep.start:.5g} {u}; "
-            + _lowered_note(fails, found.value, dense.dev)
-            if cand is None
-            else f"no stiffness in [{_ladder(cand, DENSE_MAX_STEPS):.5g}, {cand:.5g}] {u} confirmed"
+        note = f"; {_lowered_note(fails, found.value, dense.dev)}" if fails else ""
+        return dataclasses.replace(
+            found, value=None, reason=f"no stiffness confirmed: {why} {u}{note} ({claim})", **fields
         )
-        return dataclasses.replace(found, value=None, reason=f"{why} ({claim})", **fields)
     reason = found.reason
     if fails:
         note = _lowered_note(fails, found.value, dense.dev)
@@ -1166,9 +1174,11 @@ def design_answer(
 def searched_limits(ev: _Evidence, v: float, n_speeds: int, kc: float | None, k_ref: float, top: float, n_grid: int):
     """K_df, K_sim, K_sim_rest searched and confirmed with ``ev`` (the one implementation, spring or controller).
 
-    The grid runs from ``k_ref``/2 (``k_ref`` itself included) to ``top``; the simulated limits are confirmed at
-    :data:`DENSE_FACTOR` × ``n_speeds`` speeds with ``ev``'s controller; divergent runs at or below ``kc`` are
-    counterexamples (``kc`` None: no criterion, no check). ``ev.runs`` counts every run, confirmation included.
+    The grid runs from ``k_ref``/2 (``k_ref`` itself included) to ``top``; the simulated limits are swept in K
+    from ``kc`` (None or 0: from the grid's lowest point) at the search speeds and confirmed at
+    :data:`DENSE_FACTOR` × ``n_speeds`` speeds with ``ev``'s controller (:func:`_confirm`); divergent runs at or
+    below ``kc`` are counterexamples (``kc`` None: no criterion, no check). ``ev.runs`` counts every run, sweep
+    and confirmation included.
 
     Returns
     -------
@@ -1184,10 +1194,8 @@ def searched_limits(ev: _Evidence, v: float, n_speeds: int, kc: float | None, k_
         k_lo, by_criterion = (kc, True) if kc else (k_range[0], False)
         sweep = _sweep_for(k_lo, by_criterion, max(found))
         ev.prefetch(sweep.points(max(found)))  # one threaded batch for both limits
-        k_sim = _confirm(k_sim, ev, dense, "unstable", sweep)
-        if k_rest.value is not None and k_rest.value < k_lo:  # rest fails below K_criterion: sweep from the grid
-            sweep = _sweep_for(k_range[0], False, k_rest.value)
-        k_rest = _confirm(k_rest, ev, dense, "rest", sweep, k_sim.value)
+        k_sim = _confirm(k_sim, ev, dense, "unstable", sweep, k_range[0])
+        k_rest = _confirm(k_rest, ev, dense, "rest", sweep, k_range[0], k_sim.value)
     ev.runs += dense.runs
     ce = ev.counterexamples(kc) + dense.counterexamples(kc)
     caveat = any(s.non_monotone or s.undecided or s.dense_failures for s in (k_df, k_sim, k_rest))
