@@ -9,8 +9,9 @@ With the controller's physical B, f_c, τ_a and d held fixed (so β_B = B/(KT) f
   second copy of the formula). Not covered with an amplifier lag (no sound criterion): None and why.
 * ``k_linear``: the top of the stable interval from K = 0 of the exact linear sampled loop
   (:func:`dfa.controlled_linear.stable_stiffness`, all conditions, also with the lag).
-* ``k_df``, ``k_sim``, ``k_sim_rest``: the describing-function and simulated limits, searched and
-  confirmed exactly as for the spring (:func:`dfa.kmax.design_answer`, the same implementation,
+* ``k_df``, ``k_sim``, ``k_sim_rest``: the describing-function and simulated limits, searched, swept in K
+  (from K_criterion; with a lag or a zero K_criterion from the grid's lowest point) and confirmed exactly as
+  for the spring (:func:`dfa.kmax.design_answer`, the same implementation,
   :func:`dfa.kmax.searched_limits`) with each K's own controller groups in the simulations and in the
   cycle search (:func:`dfa.cycles.limit_cycles` with ``controller=``). The geometric grid runs from
   half of K_criterion (with a lag: half of K_linear) to 8 × the largest of K_criterion, K_linear and the

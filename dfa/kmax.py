@@ -23,14 +23,21 @@ of d samples:
     2V/n, …, V, started from ξ0 = 0 and, separately, from rest with the
     spring preloaded to the same energy (section 5,
     :func:`dfa.simulation.preload_position`), diverges. That K is then
-    confirmed at ``DENSE_FACTOR`` times as many speeds and 7 stiffnesses
-    in [0.97K, K]; where a run there diverges (or is undecided)
-    the limit walks down a geometric ladder until a whole band passes, and
-    the failures met on the way are reported (``dense_failures``, status
+    swept and confirmed (:func:`_confirm`): at the search speeds, a sweep in
+    K from K_criterion (without a criterion K > 0: the grid's lowest point)
+    up to K in relative steps of ``SWEEP_STEP`` = 0.5 % (coarser only where
+    that would take more than ``SWEEP_MAX_POINTS`` = 600 stiffnesses; the
+    claim gives the step) and a fine zone of 21 stiffnesses in [0.99K, K];
+    at ``DENSE_FACTOR`` times as many speeds, 7 stiffnesses in [0.97K, K].
+    Where a run diverges (or is undecided) the limit drops to just below
+    the lowest such stiffness and is checked again, until every check
+    passes; the failures met are reported (``dense_failures``, status
     ``"caveats"``), because safety need not be monotone in K or in the
-    speed. "Confirmed" names exactly what was simulated (``confirmed``):
-    no divergence at those speeds, starts and stiffnesses; it cannot prove
-    every speed.
+    speed (the red team of issue 14 found divergent bands at 0.55 K_sim and
+    divergence speckled within 0.4 % below it). "Confirmed" names exactly
+    what was simulated (``confirmed``): no divergence at those speeds,
+    starts and stiffnesses; narrower unsafe bands between the swept
+    stiffnesses and other speeds are not excluded (``BELOW_K``).
 ``k_sim_rest``
     the largest confirmed K at which all those impacts come to rest (no
     chatter, no oscillation), at most ``k_sim``.
@@ -92,7 +99,12 @@ SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
 
 
 def simulate_points(
-    points: Sequence[tuple[float, ...]], delay: int, max_samples: int, controller: ControllerParams | None = None
+    points: Sequence[tuple[float, ...]],
+    delay: int,
+    max_samples: int,
+    controller: ControllerParams | None = None,
+    *,
+    controllers: Sequence[ControllerParams | None] | None = None,
 ):
     """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), and the samples of each run.
 
@@ -100,23 +112,33 @@ def simulate_points(
     ``max_samples``; a run diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude
     of its start. One place for the many simulations of the design answer, run on threads (one per core):
     the compiled kernel releases the GIL, and each outcome depends on its own point only. ``controller``
-    (dimensionless, its delay equal to ``delay``; None: the spring) runs every point with that controller.
+    (dimensionless, its delay equal to ``delay``; None: the spring) runs every point with that controller;
+    ``controllers`` (one per point) instead gives each point its own (the points of a sweep in K).
 
     Returns
     -------
     (list of str, list of int)
         Outcome names (:data:`dfa.simulation.OUTCOMES`) and run lengths.
     """
+    ctls = [controller] * len(points) if controllers is None else list(controllers)
+    if len(ctls) != len(points):
+        raise DFAValueError(f"controllers has {len(ctls)} entries for {len(points)} points: give one per point")
     jobs = []
-    for mu, beta, sigma, xi0, xi_dot0 in points:
-        n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay, controller=controller), max_samples)
+    for (mu, beta, sigma, xi0, xi_dot0), c in zip(points, ctls, strict=True):
+        n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay, controller=c), max_samples)
         bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
-        jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound))
+        jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound, c))
     workers = min(len(jobs), os.cpu_count() or 1)
-    if controller is None or controller.is_spring:
-        outcomes = _batched_outcomes(jobs, delay, workers)
-    else:
-        outcomes = _one_by_one_outcomes(jobs, delay, controller, workers)
+    plain = [j[7] is None or (j[7].is_spring and j[7].delay == delay) for j in jobs]  # the spring: batched
+    spring = [i for i, p in enumerate(plain) if p]
+    other = [i for i, p in enumerate(plain) if not p]
+    outcomes = [""] * len(jobs)
+    for idx, outs in (
+        (spring, _batched_outcomes([jobs[i] for i in spring], delay, workers)),
+        (other, _one_by_one_outcomes([jobs[i] for i in other], delay, workers)),
+    ):
+        for i, o in zip(idx, outs, strict=True):
+            outcomes[i] = o
     return outcomes, [j[4] for j in jobs]
 
 
@@ -127,7 +149,7 @@ def _batched_outcomes(jobs: list[tuple], delay: int, workers: int) -> list[str]:
     """
     if not jobs:
         return []
-    mu, beta, sigma, v0, n, x0, bound = (np.array(c) for c in zip(*jobs, strict=True))
+    mu, beta, sigma, v0, n, x0, bound = (np.array(c) for c in list(zip(*jobs, strict=True))[:7])
     chunks = np.array_split(np.arange(len(jobs)), max(1, min(len(jobs), 4 * workers)))
 
     def chunk(j: np.ndarray) -> np.ndarray:
@@ -142,14 +164,12 @@ def _batched_outcomes(jobs: list[tuple], delay: int, workers: int) -> list[str]:
     return [OUTCOMES[c] for c in codes]
 
 
-def _one_by_one_outcomes(jobs: list[tuple], delay: int, controller: ControllerParams, workers: int) -> list[str]:
-    """Outcomes of controller runs, one :func:`dfa.simulate` each, on threads."""
+def _one_by_one_outcomes(jobs: list[tuple], delay: int, workers: int) -> list[str]:
+    """Outcomes of controller runs (each job's own controller), one :func:`dfa.simulate` each, on threads."""
 
     def one(job: tuple) -> str:
-        mu, beta, sigma, xi_dot0, n, xi0, bound = job
-        run = simulate(
-            mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound, controller=controller
-        )
+        mu, beta, sigma, xi_dot0, n, xi0, bound, c = job
+        run = simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound, controller=c)
         return str(run.outcome)
 
     if workers > 1:
@@ -186,14 +206,17 @@ class KSearch:
     evaluations : int
         Stiffnesses evaluated.
     dense_failures : tuple of dict
-        Failing or undecided runs the confirmation met while walking down from ``searched_value`` to ``value``
-        (``stiffness``, ``velocity``, ``start``, ``outcome``): all above ``value``, evidence that safety is not
-        monotone in K; the result's status says so.
+        Failing or undecided runs the sweep in K and the confirmation met between ``value`` and
+        ``searched_value`` (``stiffness``, ``velocity``, ``start``, ``outcome``, ``found_by``: ``"sweep"``,
+        ``"confirmation"`` or ``"earlier runs"``): all above ``value``, evidence that safety is not monotone in K; the result's
+        status says so.
     searched_value : float or None
-        The limit the search found before the confirmation (None: not confirmed, e.g. ``k_df``).
+        The limit the search found before the sweep and the confirmation (None: not confirmed, e.g. ``k_df``).
     confirmed : str or None
-        What ``value`` claims when confirmed by simulation, in words: the dense speed grid, the starts and the
-        stiffness band simulated (:func:`confirmation_text`); None when not confirmed.
+        What ``value`` claims when confirmed by simulation, in words: the dense speed grid, the starts, the
+        stiffness band and the sweep below it (:func:`confirmation_text`); None when not confirmed.
+    sweep_start, sweep_step : float or None
+        The sweep's lowest stiffness and relative step (None: not swept).
     """
 
     value: float | None
@@ -206,6 +229,8 @@ class KSearch:
     dense_failures: tuple[dict, ...] = ()
     searched_value: float | None = None
     confirmed: str | None = None
+    sweep_start: float | None = None
+    sweep_step: float | None = None
 
     def __post_init__(self) -> None:
         if self.value is not None:
@@ -214,8 +239,9 @@ class KSearch:
             text = getattr(self, name)
             if text is not None and not isinstance(text, str):
                 raise DFATypeError(f"{name} = {_fmt(text)} has type {type(text).__name__}: it must be text or None")
-        if self.searched_value is not None:
-            check_positive("searched_value", self.searched_value, "the searched limit is a finite K > 0, or None")
+        for name in ("searched_value", "sweep_start", "sweep_step"):
+            if getattr(self, name) is not None:
+                check_positive(name, getattr(self, name), "a stiffness (or a relative step) > 0, or None")
         if self.value is None and not self.reason:
             raise DFAValueError("KSearch(value=None) needs a reason: say why the limit is undefined")
         if self.value is not None and not (math.isfinite(self.value) and self.value > 0):
@@ -240,6 +266,8 @@ class KSearch:
             "dense_failures": [dict(f) for f in self.dense_failures],
             "searched_value": self.searched_value,
             "confirmed": self.confirmed,
+            "sweep_start": self.sweep_start,
+            "sweep_step": self.sweep_step,
         }
         return explain_nulls(out, self.null_reasons())
 
@@ -261,6 +289,8 @@ class KSearch:
                 if self.value is None
                 else "not confirmed by simulation: a first-harmonic prediction"
             ),
+            "sweep_start": "not swept: a prediction, or no limit",
+            "sweep_step": "not swept: a prediction, or no limit",
         }
 
 
@@ -468,6 +498,8 @@ class RunCache:
         delay: int,
         max_samples: int,
         controller: ControllerParams | None = None,
+        *,
+        controllers: Sequence[ControllerParams | None] | None = None,
     ):
         """Outcomes and run lengths of ``points`` (as :func:`simulate_points`), simulating only the new ones.
 
@@ -481,16 +513,19 @@ class RunCache:
             Longest run in samples.
         controller : ControllerParams, optional
             The dimensionless controller of every point (part of each run's key); None: the spring.
+        controllers : sequence of ControllerParams or None, optional
+            One controller per point instead of ``controller`` (the points of a sweep in K).
 
         Returns
         -------
         (list of str, list of int)
             Outcome names and run lengths, one per point.
         """
-        keys = [(tuple(float(x) for x in pt), delay, max_samples, controller) for pt in points]
+        ctls = [controller] * len(points) if controllers is None else list(controllers)
+        keys = [(tuple(float(x) for x in pt), delay, max_samples, c) for pt, c in zip(points, ctls, strict=True)]
         todo = list(dict.fromkeys(k for k in keys if k not in self.runs))
         if todo:
-            outs, lengths = simulate_points([k[0] for k in todo], delay, max_samples, controller)
+            outs, lengths = simulate_points([k[0] for k in todo], delay, max_samples, controllers=[k[3] for k in todo])
             self.simulated += len(todo)
             self.runs.update({k: (o, n) for k, o, n in zip(todo, outs, lengths, strict=True)})
         return [self.runs[k][0] for k in keys], [self.runs[k][1] for k in keys]
@@ -541,22 +576,33 @@ class _Evidence:
 
     def outcomes(self, k: float) -> list[tuple[float, str, str]]:
         """(ξ'0, start, outcome) of every impact simulated at stiffness ``k``."""
-        if k not in self.sims:
+        self.prefetch([k])
+        return self.sims[k]
+
+    def prefetch(self, ks: Sequence[float]) -> None:
+        """Simulate the impacts of every stiffness of ``ks`` not yet seen, in one threaded batch (the cache's)."""
+        pts: list[tuple[float, float, float, float, float]] = []
+        ctls: list[ControllerParams | None] = []
+        tags: list[tuple[float, float, str]] = []
+        for k in dict.fromkeys(float(x) for x in ks):
+            if k in self.sims:
+                continue
             try:
                 p, c = self.params(k)
             except DFAValueError:  # μ, β or σ not representable at this K: nothing can be decided there
                 self.sims[k] = [(xd, start, "undecided") for xd in self.xi_dots for start in ("impact", "preload")]
-                return self.sims[k]
-            pts, tags = [], []
+                continue
             for xd in self.xi_dots:
-                pts.append((p.mu, p.beta, p.sigma, 0.0, xd))
-                pts.append((p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0))
-                tags += [(xd, "impact"), (xd, "preload")]
-            outs, lengths = self.cache.simulate(pts, self.delay, self.max_samples, c)
-            self.runs += len(pts)  # every run this evidence rests on, simulated here or earlier
-            self.longest = max(self.longest, *lengths)
-            self.sims[k] = [(xd, start, o) for (xd, start), o in zip(tags, outs, strict=True)]
-        return self.sims[k]
+                pts += [(p.mu, p.beta, p.sigma, 0.0, xd), (p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0)]
+                ctls += [c, c]
+                tags += [(k, xd, "impact"), (k, xd, "preload")]
+        if not pts:
+            return
+        outs, lengths = self.cache.simulate(pts, self.delay, self.max_samples, controllers=ctls)
+        self.runs += len(pts)  # every run this evidence rests on, simulated here or earlier
+        self.longest = max(self.longest, *lengths)
+        for (k, xd, start), o in zip(tags, outs, strict=True):
+            self.sims.setdefault(k, []).append((xd, start, o))
 
     def judge(self, k: float, limit: str) -> str:
         """SAFE, UNSAFE (an outcome in ``FAILING[limit]``) or UNDECIDED for every impact at stiffness ``k``."""
@@ -599,108 +645,203 @@ class _Evidence:
         return tuple(out)
 
 
-#: The confirmation of a simulated limit uses this many times the searched speeds ...
+#: The confirmation of a simulated limit K uses this many times the searched speeds ...
 DENSE_FACTOR = 4
-#: ... at the rungs of a geometric ladder, DENSE_RUNGS per band of relative width DENSE_BAND below a rung ...
+#: ... at the stiffnesses of a band below K: DENSE_RUNGS geometric rungs spanning a relative width DENSE_BAND ...
 DENSE_RUNGS = 5
 DENSE_BAND = 0.03
-#: ... and, just below the candidate, at these fractions below it (where a search's bisection ended) ...
+#: ... and at these fractions below K (where a search's bisection ended).
 DENSE_FINE = (0.001, 0.003)
-#: ... walking down at most this many rungs (to about 0.5 × the searched limit).
-DENSE_MAX_STEPS = 90
 
 
-def _ladder(k0: float, j: int) -> float:
-    """Rung j of the confirmation ladder below ``k0``: k0 (1 - DENSE_BAND)^(j / (DENSE_RUNGS - 1))."""
-    return k0 * (1.0 - DENSE_BAND) ** (j / (DENSE_RUNGS - 1))
+def _band(k: float) -> list[float]:
+    """The confirmation band below K, descending: K, K (1 - f) for f in DENSE_FINE, then the rungs
+    K (1 - DENSE_BAND)^(i / (DENSE_RUNGS - 1)), i = 1 … DENSE_RUNGS - 1."""
+    rungs = [k * (1.0 - DENSE_BAND) ** (i / (DENSE_RUNGS - 1)) for i in range(1, DENSE_RUNGS)]
+    return [k] + [k * (1.0 - f) for f in DENSE_FINE] + rungs
 
 
-def _band(k0: float, c: int) -> list[float]:
-    """The stiffnesses that confirm rung c, descending: the rung, the fine points just below, the next rungs."""
-    k = _ladder(k0, c)
-    return [k] + [k * (1.0 - f) for f in DENSE_FINE] + [_ladder(k0, c + i) for i in range(1, DENSE_RUNGS)]
-
-
-def _failures(dense: _Evidence, k: float, bad: str) -> list[dict[str, Any]]:
-    """Dense runs at ``k`` that fail limit ``bad`` or are undecided (neither counts as confirmed)."""
+def _failures(ev: _Evidence, k: float, bad: str, found_by: str) -> list[dict[str, Any]]:
+    """Runs of ``ev`` at ``k`` that fail limit ``bad`` or are undecided (neither counts as safe)."""
     return [
-        {"stiffness": k, "velocity": dense.dev.velocity(xd), "start": start, "outcome": str(o)}
-        for xd, start, o in dense.outcomes(k)
+        {"stiffness": k, "velocity": ev.dev.velocity(xd), "start": start, "outcome": str(o), "found_by": found_by}
+        for xd, start, o in ev.outcomes(k)
         if o in FAILING[bad] or o == "undecided"
     ]
 
 
-#: What a simulated limit does not claim: K below the confirmed band was simulated at the search grid only.
+#: The sweep in K below a simulated limit: relative step between its stiffnesses (target) ...
+SWEEP_STEP = 0.005
+#: ... and at most this many stiffnesses per sweep (a wider range takes a coarser step, and says so) ...
+SWEEP_MAX_POINTS = 600
+#: ... and, just below K, a fine zone of FINE_POINTS stiffnesses K (1 - FINE_STEP)^j, j = 0 … FINE_POINTS - 1
+#: (unsafe K can lie speckled within a few tenths of a percent below a limit, red team of issue 14) ...
+FINE_STEP = 0.0005
+FINE_POINTS = 21
+#: ... lowering the candidate at most this many times (each time just below the lowest failure found).
+MAX_LOWERINGS = 200
+
+
+class Sweep(NamedTuple):
+    """A sweep in K: ascending stiffnesses ``start`` (1 + ``step``)^j, j = 0, 1, …, at the search speeds.
+
+    ``start`` is K_criterion (``from_criterion``) or, without a criterion K > 0, the search grid's lowest point.
+    """
+
+    start: float
+    step: float
+    from_criterion: bool
+
+    def points(self, top: float) -> list[float]:
+        """The sweep's stiffnesses up to ``top``, ascending (every limit swept from ``start`` shares them)."""
+        n = math.floor(math.log(top / self.start) / math.log1p(self.step) + 1e-9) if top >= self.start else -1
+        return [self.start * (1.0 + self.step) ** j for j in range(n + 1)]
+
+
+def _sweep_for(k_lo: float, from_criterion: bool, k_hi: float) -> Sweep:
+    """The sweep from ``k_lo`` up to ``k_hi``: :data:`SWEEP_STEP`, coarser when that takes over SWEEP_MAX_POINTS."""
+    need = math.log(max(k_hi, k_lo) / k_lo) / SWEEP_MAX_POINTS
+    return Sweep(k_lo, max(SWEEP_STEP, math.expm1(need)), from_criterion)
+
+
+def _fine(k: float) -> list[float]:
+    """The fine zone just below K, descending: K (1 - FINE_STEP)^j, j = 0 … FINE_POINTS - 1."""
+    return [k * (1.0 - FINE_STEP) ** j for j in range(FINE_POINTS)]
+
+
+#: What a simulated limit does not claim: unsafe stiffnesses between the simulated ones, or other speeds.
 BELOW_K = (
-    "below that band only the search grid's stiffnesses were simulated: stability need not be monotone in K, "
-    "and narrower unsafe bands below K are not excluded"
+    "narrower unsafe bands between the swept stiffnesses, and unsafe speeds between those simulated, are not "
+    "excluded: stability need not be monotone in K"
 )
 
 
-def confirmation_text(dense: _Evidence, bad: str) -> str:
-    """What a confirmed limit K claims, in words (device units): the dense speed grid and stiffness band."""
+def sweep_text(sweep: Sweep, ev: _Evidence, k: float) -> str:
+    """What the sweep below a limit K simulated, in words (device units): fine zone, range, step, speeds."""
+    u = ev.dev.units
+    vs = [ev.dev.velocity(x) for x in ev.xi_dots]
+    n = len(sweep.points(k))
+    where = "K_criterion" if sweep.from_criterion else "the search grid's lowest stiffness"
+    fine_lo = (1.0 - FINE_STEP) ** (FINE_POINTS - 1)
+    coarse = "" if sweep.step <= SWEEP_STEP * (1 + 1e-9) else f" (coarser than {100 * SWEEP_STEP:g} %: at most "
+    coarse += f"{SWEEP_MAX_POINTS} stiffnesses)" if coarse else ""
+    below = (
+        f"a sweep of {n} stiffnesses from {where} = {sweep.start:.5g} {u['stiffness']} up to K in relative steps "
+        f"of {100 * sweep.step:.3g} %{coarse}"
+        if n
+        else f"no sweep below, K lies below its start, {where} = {sweep.start:.5g} {u['stiffness']}"
+    )
+    return (
+        f"at the {len(vs)} search speeds in [{min(vs):.4g}, {max(vs):.4g}] {u['velocity']} (both starts), "
+        f"{FINE_POINTS} stiffnesses in [{fine_lo:.4g}K, K] (steps of {100 * FINE_STEP:g} %) and {below}"
+    )
+
+
+def confirmation_text(dense: _Evidence, bad: str, swept: str = "") -> str:
+    """What a confirmed limit K claims, in words (device units): the dense band, the sweep below it (``swept``)."""
     u = dense.dev.units
     vs = [dense.dev.velocity(x) for x in dense.xi_dots]
     what = "no divergence" if bad == "unstable" else "every run at rest"
     return (
         f"{what}, none undecided, at {len(vs)} speeds in [{min(vs):.4g}, {max(vs):.4g}] {u['velocity']} "
-        f"(from ξ0 = 0 and from the preload) and {DENSE_RUNGS + len(DENSE_FINE)} stiffnesses in [{1 - DENSE_BAND:g}K, K]; "
-        f"{BELOW_K}"
+        f"(from ξ0 = 0 and from the preload) and {DENSE_RUNGS + len(DENSE_FINE)} stiffnesses in [{1 - DENSE_BAND:g}K, K]"
+        f"{'; ' + swept if swept else ''}; {BELOW_K}"
     )
 
 
-def _confirm(found: KSearch, dense: _Evidence, bad: str, top: float | None = None) -> KSearch:
-    """The largest *confirmed* K at or below a searched limit (and at or below ``top``).
+def _lowest_failures(k: float, ev: _Evidence, dense: _Evidence, bad: str, sweep: Sweep) -> list[dict[str, Any]]:
+    """The failing runs of the first check at K that fails (empty: none fails): the sweep up to K and the fine zone
+    at the search speeds (``ev``), the confirmation band at the dense speeds, then every run already simulated at
+    or below K (``"earlier runs"``: the searches', another limit's checks); each new check is one threaded batch."""
+    checks = (
+        (ev, sweep.points(k), "sweep"),
+        (ev, _fine(k), "sweep"),
+        (dense, _band(k), "confirmation"),
+        (ev, [kk for kk in ev.sims if kk <= k], "earlier runs"),
+        (dense, [kk for kk in dense.sims if kk <= k], "earlier runs"),
+    )
+    for e, ks, by in checks:
+        e.prefetch(ks)  # the cache's runs are free
+        fails = [f for kk in ks for f in _failures(e, kk, bad, by)]
+        if fails:
+            return fails
+    return []
 
-    The search saw only its own speeds and assumed safety monotone in K between its points. Confirmed at K
-    means: at :data:`DENSE_FACTOR` times as many speeds (V/n … V), from both starts, at the
-    stiffnesses of :func:`_band` spanning [(1 - DENSE_BAND) K, K], no run fails
-    ``bad`` ("unstable": diverges; "rest": does not come to rest) and none is undecided. A finite set of
-    speeds and stiffnesses is simulated: this is evidence at those points, not a proof for all speeds.
-    The candidate walks down the ladder from the searched limit, to the rung below each failing stiffness,
-    until a whole band passes; every failure met on the way (all above the confirmed K) is kept in
-    ``dense_failures`` and said in ``reason``.
+
+def _settle(
+    k0: float, ev: _Evidence, dense: _Evidence, bad: str, sweep: Sweep, floor: float
+) -> tuple[float | None, list[dict[str, Any]], str, Sweep]:
+    """The largest K at or below ``k0`` that every check of :func:`_lowest_failures` passes, lowering the candidate
+    to just below (1 - FINE_STEP) the lowest failure found each time; the failures met, why None, and the sweep
+    (restarted from ``floor``, the search grid's lowest point, when the candidate falls below its start)."""
+    k = k0
+    fails: list[dict[str, Any]] = []
+    for _ in range(MAX_LOWERINGS):
+        if k < sweep.start * (1.0 - 1e-12):
+            if sweep.start <= floor:
+                return None, fails, f"the failures reach the search grid's lowest stiffness, {floor:.5g}", sweep
+            sweep = _sweep_for(floor, False, k)
+        f = _lowest_failures(k, ev, dense, bad, sweep)
+        if not f:
+            return k, fails, "", sweep
+        fails += f
+        k = min(float(r["stiffness"]) for r in f) * (1.0 - FINE_STEP)
+    return None, fails, f"not settled after {MAX_LOWERINGS} lowerings, down to {k:.5g}", sweep
+
+
+def _lowered_note(fails: list[dict[str, Any]], searched: float, dev: Device) -> str:
+    """Why a limit was lowered from the searched one: the lowest failure found, by what, and the highest."""
+    u, uv = dev.units["stiffness"], dev.units["velocity"]
+    w = max(fails, key=lambda r: float(r["stiffness"]))
+    lo = min(fails, key=lambda r: float(r["stiffness"]))
+    return (
+        f"lowered from the searched {searched:.5g} {u}: the {lo['found_by']} found {lo['outcome']} at K = "
+        f"{lo['stiffness']:.5g} {u} ({lo['velocity']:.3g} {uv}, {lo['start']} start)"
+        + ("" if w["stiffness"] == lo["stiffness"] else f", failures up to K = {w['stiffness']:.5g} {u}")
+        + f" ({len(fails)} failing or undecided runs in all, none at or below the limit)"
+    )
+
+
+def _confirm(
+    found: KSearch, ev: _Evidence, dense: _Evidence, bad: str, sweep: Sweep, floor: float, top: float | None = None
+) -> KSearch:
+    """The largest *swept and confirmed* K at or below a searched limit (and at or below ``top``).
+
+    The search saw only its own speeds and grid, and assumed safety monotone in K between its points. A
+    candidate K is kept when, from both starts, no run fails ``bad`` ("unstable": diverges; "rest": does not
+    come to rest) and none is undecided: at the search speeds of ``ev``, at every stiffness of a sweep in K
+    (:class:`Sweep`: relative steps of :data:`SWEEP_STEP`, coarser only past :data:`SWEEP_MAX_POINTS`
+    stiffnesses) from K_criterion (else the grid's lowest point) up to K, and at the fine zone just below K
+    (:func:`_fine`); and at :data:`DENSE_FACTOR` times as many speeds at the stiffnesses of :func:`_band`
+    spanning [(1 - DENSE_BAND) K, K]. Otherwise the candidate drops to just below the lowest failure found
+    (:func:`_settle`; below K_criterion the sweep restarts from ``floor``, the search grid's lowest point); a
+    run already simulated at or below K (the searches', another limit's) counts too. Every failure met (all
+    above the result) is kept in ``dense_failures`` (``found_by``: ``"sweep"``, ``"confirmation"`` or
+    ``"earlier runs"``) and said in ``reason``. A finite set of speeds and stiffnesses is simulated: this is
+    evidence at those points (the claim says which), not a proof for all speeds or every K.
     """
     if found.value is None:
         return found
     k0 = found.value if top is None else min(found.value, top)
-    fails: list[dict[str, Any]] = []
-    c, confirmed = 0, False
-    while not confirmed and c <= DENSE_MAX_STEPS:
-        for k in _band(k0, c):  # descending: stop at the first failing stiffness, go to the rung below it
-            f = _failures(dense, k, bad)
-            if f:
-                fails += f
-                while _ladder(k0, c) >= k:
-                    c += 1
-                break
-        else:
-            confirmed = True
-    claim = confirmation_text(dense, bad)
+    value, fails, why, sweep = _settle(k0, ev, dense, bad, sweep, floor)
     u = dense.dev.units["stiffness"]
-    if not confirmed:
-        why = f"no stiffness in [{_ladder(k0, DENSE_MAX_STEPS):.5g}, {k0:.5g}] {u} confirmed ({claim})"
+    fields: dict[str, Any] = dict(searched_value=found.value, dense_failures=tuple(fails))
+    fields.update(sweep_start=sweep.start, sweep_step=sweep.step)
+    if value is None:
+        claim = confirmation_text(dense, bad, sweep_text(sweep, ev, k0))
+        note = f"; {_lowered_note(fails, found.value, dense.dev)}" if fails else ""
         return dataclasses.replace(
-            found, value=None, reason=why, searched_value=found.value, dense_failures=tuple(fails)
+            found, value=None, reason=f"no stiffness confirmed: {why} {u}{note} ({claim})", **fields
         )
-    value = _ladder(k0, c)
     reason = found.reason
     if fails:
-        w = max(fails, key=lambda r: float(r["stiffness"]))
-        lo = min(fails, key=lambda r: float(r["stiffness"]))
-        note = (
-            f"lowered from the searched {found.value:.5g} {u}: the confirmation found {lo['outcome']} at K = "
-            f"{lo['stiffness']:.5g} {u} ({lo['velocity']:.3g} {dense.dev.units['velocity']}, {lo['start']} start)"
-            + ("" if w["stiffness"] == lo["stiffness"] else f" and up to K = {w['stiffness']:.5g} {u}")
-            + ", at speeds or stiffnesses the search did not simulate"
-        )
+        note = _lowered_note(fails, found.value, dense.dev)
         reason = note if not reason else f"{reason}; {note}"
     if k0 < found.value:
         note = f"capped at K_sim = {k0:.5g} {u}: coming to rest implies no divergence"
         reason = note if not reason else f"{reason}; {note}"
-    return dataclasses.replace(
-        found, value=value, reason=reason, searched_value=found.value, confirmed=claim, dense_failures=tuple(fails)
-    )
+    claim = confirmation_text(dense, bad, sweep_text(sweep, ev, value))
+    return dataclasses.replace(found, value=value, reason=reason, confirmed=claim, **fields)
 
 
 def _search_grid(k_criterion: float, top: float, grid: int) -> np.ndarray:
@@ -1067,9 +1208,11 @@ def design_answer(
 def searched_limits(ev: _Evidence, v: float, n_speeds: int, kc: float | None, k_ref: float, top: float, n_grid: int):
     """K_df, K_sim, K_sim_rest searched and confirmed with ``ev`` (the one implementation, spring or controller).
 
-    The grid runs from ``k_ref``/2 (``k_ref`` itself included) to ``top``; the simulated limits are confirmed at
-    :data:`DENSE_FACTOR` × ``n_speeds`` speeds with ``ev``'s controller; divergent runs at or below ``kc`` are
-    counterexamples (``kc`` None: no criterion, no check). ``ev.runs`` counts every run, confirmation included.
+    The grid runs from ``k_ref``/2 (``k_ref`` itself included) to ``top``; the simulated limits are swept in K
+    from ``kc`` (None or 0: from the grid's lowest point) at the search speeds and confirmed at
+    :data:`DENSE_FACTOR` × ``n_speeds`` speeds with ``ev``'s controller (:func:`_confirm`); divergent runs at or
+    below ``kc`` are counterexamples (``kc`` None: no criterion, no check). ``ev.runs`` counts every run, sweep
+    and confirmation included.
 
     Returns
     -------
@@ -1080,8 +1223,13 @@ def searched_limits(ev: _Evidence, v: float, n_speeds: int, kc: float | None, k_
     k_df, k_sim, k_rest, k_range = _three_searches(ev, v, k_ref, top, n_grid)
     dense_vs = v * np.arange(1, DENSE_FACTOR * n_speeds + 1) / (DENSE_FACTOR * n_speeds)
     dense = _Evidence(ev.dev, dense_vs, ev.delay, ev.max_samples, ev.model, ev.cache, ev.controller)
-    k_sim = _confirm(k_sim, dense, "unstable")
-    k_rest = _confirm(k_rest, dense, "rest", k_sim.value)
+    found = [s.value for s in (k_sim, k_rest) if s.value is not None]
+    if found:  # one sweep from K_criterion (else the grid's lowest point): k_sim_rest's points are k_sim's
+        k_lo, by_criterion = (kc, True) if kc else (k_range[0], False)
+        sweep = _sweep_for(k_lo, by_criterion, max(found))
+        ev.prefetch(sweep.points(max(found)))  # one threaded batch for both limits
+        k_sim = _confirm(k_sim, ev, dense, "unstable", sweep, k_range[0])
+        k_rest = _confirm(k_rest, ev, dense, "rest", sweep, k_range[0], k_sim.value)
     ev.runs += dense.runs
     ce = ev.counterexamples(kc) + dense.counterexamples(kc)
     caveat = any(s.non_monotone or s.undecided or s.dense_failures for s in (k_df, k_sim, k_rest))

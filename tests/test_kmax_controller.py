@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import dfa
@@ -216,7 +216,9 @@ def test_default_samples_controller_spring_unchanged_and_lag_longer():
     assert no_decay == dfa.simulation.MAX_DEFAULT_SAMPLES
 
 
-@settings(max_examples=25, deadline=None)
+# filter_too_much: the assume() on a decaying loop rejects most draws; in the full suite the health check has
+# failed this test intermittently at the base commit too (9 kept, 50 filtered), never the property itself
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
 @given(
     log_mu=st.floats(2.0, 5.0),
     beta=st.floats(0.0, 1.0),
