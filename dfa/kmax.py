@@ -26,8 +26,8 @@ of d samples:
     swept and confirmed (:func:`_confirm`): at the search speeds, a sweep in
     K from K_criterion (without a criterion K > 0: the grid's lowest point)
     up to K in relative steps of ``SWEEP_STEP`` = 0.5 % (coarser only where
-    that would take more than ``SWEEP_MAX_POINTS`` = 600 stiffnesses; the
-    claim gives the step) and a fine zone of 21 stiffnesses in [0.99K, K];
+    that would take more than ``SWEEP_MAX_POINTS`` = 600 stiffnesses, 150
+    with an amplifier lag; the claim gives the step) and a fine zone of 21 stiffnesses in [0.99K, K];
     at ``DENSE_FACTOR`` times as many speeds, 7 stiffnesses in [0.97K, K].
     Where a run diverges (or is undecided) the limit drops to just below
     the lowest such stiffness and is checked again, until every check
@@ -672,8 +672,11 @@ def _failures(ev: _Evidence, k: float, bad: str, found_by: str) -> list[dict[str
 
 #: The sweep in K below a simulated limit: relative step between its stiffnesses (target) ...
 SWEEP_STEP = 0.005
-#: ... and at most this many stiffnesses per sweep (a wider range takes a coarser step, and says so) ...
+#: ... and at most this many stiffnesses per sweep (a wider range takes a coarser step, and says so); with an
+#: amplifier lag, whose runs cost about 18 times the spring's per sample (reports/benchmarks.md), at most
+#: SWEEP_MAX_POINTS_LAG, so that a design answer stays within its 30 s goal ...
 SWEEP_MAX_POINTS = 600
+SWEEP_MAX_POINTS_LAG = 150
 #: ... and, just below K, a fine zone of FINE_POINTS stiffnesses K (1 - FINE_STEP)^j, j = 0 … FINE_POINTS - 1
 #: (unsafe K can lie speckled within a few tenths of a percent below a limit, red team of issue 14) ...
 FINE_STEP = 0.0005
@@ -691,6 +694,7 @@ class Sweep(NamedTuple):
     start: float
     step: float
     from_criterion: bool
+    max_points: int = SWEEP_MAX_POINTS
 
     def points(self, top: float) -> list[float]:
         """The sweep's stiffnesses up to ``top``, ascending (every limit swept from ``start`` shares them)."""
@@ -698,10 +702,16 @@ class Sweep(NamedTuple):
         return [self.start * (1.0 + self.step) ** j for j in range(n + 1)]
 
 
-def _sweep_for(k_lo: float, from_criterion: bool, k_hi: float) -> Sweep:
-    """The sweep from ``k_lo`` up to ``k_hi``: :data:`SWEEP_STEP`, coarser when that takes over SWEEP_MAX_POINTS."""
-    need = math.log(max(k_hi, k_lo) / k_lo) / SWEEP_MAX_POINTS
-    return Sweep(k_lo, max(SWEEP_STEP, math.expm1(need)), from_criterion)
+def _sweep_for(k_lo: float, from_criterion: bool, k_hi: float, max_points: int = SWEEP_MAX_POINTS) -> Sweep:
+    """The sweep from ``k_lo`` up to ``k_hi``: :data:`SWEEP_STEP`, coarser when that takes over ``max_points``."""
+    need = math.log(max(k_hi, k_lo) / k_lo) / max_points
+    return Sweep(k_lo, max(SWEEP_STEP, math.expm1(need)), from_criterion, max_points)
+
+
+def _max_points(ev: _Evidence) -> int:
+    """:data:`SWEEP_MAX_POINTS`, or :data:`SWEEP_MAX_POINTS_LAG` for a controller with an amplifier lag."""
+    lag = ev.controller is not None and ev.controller.amplifier_bandwidth is not None
+    return SWEEP_MAX_POINTS_LAG if lag else SWEEP_MAX_POINTS
 
 
 def _fine(k: float) -> list[float]:
@@ -724,7 +734,7 @@ def sweep_text(sweep: Sweep, ev: _Evidence, k: float) -> str:
     where = "K_criterion" if sweep.from_criterion else "the search grid's lowest stiffness"
     fine_lo = (1.0 - FINE_STEP) ** (FINE_POINTS - 1)
     coarse = "" if sweep.step <= SWEEP_STEP * (1 + 1e-9) else f" (coarser than {100 * SWEEP_STEP:g} %: at most "
-    coarse += f"{SWEEP_MAX_POINTS} stiffnesses)" if coarse else ""
+    coarse += f"{sweep.max_points} stiffnesses)" if coarse else ""
     below = (
         f"a sweep of {n} stiffnesses from {where} = {sweep.start:.5g} {u['stiffness']} up to K in relative steps "
         f"of {100 * sweep.step:.3g} %{coarse}"
@@ -780,7 +790,7 @@ def _settle(
         if k < sweep.start * (1.0 - 1e-12):
             if sweep.start <= floor:
                 return None, fails, f"the failures reach the search grid's lowest stiffness, {floor:.5g}", sweep
-            sweep = _sweep_for(floor, False, k)
+            sweep = _sweep_for(floor, False, k, sweep.max_points)
         f = _lowest_failures(k, ev, dense, bad, sweep)
         if not f:
             return k, fails, "", sweep
@@ -1226,7 +1236,7 @@ def searched_limits(ev: _Evidence, v: float, n_speeds: int, kc: float | None, k_
     found = [s.value for s in (k_sim, k_rest) if s.value is not None]
     if found:  # one sweep from K_criterion (else the grid's lowest point): k_sim_rest's points are k_sim's
         k_lo, by_criterion = (kc, True) if kc else (k_range[0], False)
-        sweep = _sweep_for(k_lo, by_criterion, max(found))
+        sweep = _sweep_for(k_lo, by_criterion, max(found), _max_points(ev))
         ev.prefetch(sweep.points(max(found)))  # one threaded batch for both limits
         k_sim = _confirm(k_sim, ev, dense, "unstable", sweep, k_range[0])
         k_rest = _confirm(k_rest, ev, dense, "rest", sweep, k_range[0], k_sim.value)

@@ -168,3 +168,10 @@ def test_cli_stiffness_says_what_the_sweep_simulated(capsys, small_design):
         assert s["sweep_step"] == 0.005 and s["sweep_start"] == d["k_criterion"]
         assert s["confirmed"] == r.searches[key].confirmed and d[key] == r.searches[key].value
         assert all(f["found_by"] in ("sweep", "confirmation", "earlier runs") for f in s["dense_failures"])
+
+
+def test_eq11_sweep_with_an_amplifier_lag_takes_at_most_its_budget_and_says_so():
+    """A lag's runs cost ~18× the spring's per sample: its sweep takes at most SWEEP_MAX_POINTS_LAG stiffnesses."""
+    wide = kmax._sweep_for(1.0, False, 1e4, kmax.SWEEP_MAX_POINTS_LAG)
+    assert len(wide.points(1e4)) == kmax.SWEEP_MAX_POINTS_LAG + 1 and wide.max_points == kmax.SWEEP_MAX_POINTS_LAG
+    assert kmax.SWEEP_MAX_POINTS_LAG < kmax.SWEEP_MAX_POINTS
