@@ -114,3 +114,26 @@ def test_gil_cli_stiffness_huge_mass_prints_a_finite_k_linear(capsys):
     rec = json.loads(capsys.readouterr().out)
     assert rec["k_linear"] == pytest.approx(1000.0 / 3.5, rel=1e-12)
     assert rec["k_gil"] == rec["k_linear"]
+
+
+def test_gil_controller_tiny_rate_is_refused_not_a_false_never():
+    """With a controller the ray analysis has no small-rate expansion: (b + B)T/m = 1e-11 (formerly a false 'never
+    stable', and 3732 N/m above the ~3000 N/m limit at d = 0) is refused with the package's error."""
+    from dfa.controlled_linear import MIN_RESOLVED_RATE, stable_stiffness
+    from dfa.controller import Controller
+    from dfa.errors import DFAValueError
+
+    with pytest.raises(DFAValueError, match="mass"):
+        stable_stiffness(1e8, 1.0, 1e-3, Controller(1000.0, 0.5, 1, 100.0))
+    with pytest.raises(DFAValueError, match="mass"):
+        critical_stiffness(1e8, 1.0, 1e-3, controller=Controller(1000.0, 0.0, 3, None, 1000.0))
+    m = 1.5e-3 / (2 * MIN_RESOLVED_RATE)  # (b + B)T/m = 2·MIN_RESOLVED_RATE: still computed, near (b + B)/(T/2)
+    assert stable_stiffness(m, 1.0, 1e-3, Controller(1000.0, 0.5)).k_crit == pytest.approx(3000.0, rel=1e-4)
+
+
+def test_gil_cli_controller_tiny_rate_one_line_exit_2(capsys):
+    argv = ["stiffness", "--mass", "1e8", "--damping", "1", "--coulomb", "0", "--resolution", "1e-6"]
+    argv += ["--period", "1e-3", "--velocity", "0.1", "--virtual-damping", "0.5"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "mass" in err[0]
