@@ -195,6 +195,12 @@ def controlled_spectral_radius(mu: float, beta: float, params: ControllerParams)
 
 
 # ----------------------------------------------------------------------------- the stiffness ray
+#: (b + B)T/m below which :func:`stable_stiffness` refuses: there the float spectral radius that decides each
+#: interval cannot resolve the roots clustered at z = 1 (m = 1e8 kg, b = 1 N·s/m, T = 1 ms gave a false 'never';
+#: the spring alone has a small-rate expansion, :mod:`dfa.linear`).
+MIN_RESOLVED_RATE = 1e-7
+
+
 def _ray(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[np.ndarray, np.ndarray]:
     """(P₀, Q) of κχ = P₀ + κQ at fixed a = bT/m and a_B = BT/m (module docstring)."""
     ng, dg = _plant(a, lag)
@@ -401,7 +407,8 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
     Raises
     ------
     DFAValueError
-        A mass, damping or period out of range, or a filter cutoff above the Nyquist frequency 1/(2T).
+        A mass, damping or period out of range, a filter cutoff above the Nyquist frequency 1/(2T), or
+        0 < (b + B)T/m < :data:`MIN_RESOLVED_RATE` (the boundary is not resolved in floating point there).
     DFATypeError
         ``controller`` is not a :class:`dfa.Controller`.
 
@@ -422,6 +429,14 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
     p = c.params(t)
     for name, value in (("damping", b), ("controller.damping", c.damping)):
         check_rate(name, value, m, t)
+    rate = (b + c.damping) * t / m
+    if 0.0 < rate < MIN_RESOLVED_RATE:
+        raise DFAValueError(
+            f"(damping + controller.damping)·period/mass = {rate:g} is invalid for the exact linear bound with a "
+            f"controller: it must be at least {MIN_RESOLVED_RATE:g} (below, the closed-loop roots cluster at z = 1 "
+            "and the float spectral radius cannot locate the stability boundary); check the mass and damping, or "
+            "use the spring without controller damping or amplifier lag (dfa.linear.critical_stiffness)"
+        )
     kap = _stable_kappa(b * t / m, c.damping * t / m, p.cutoff, p.lag, p.delay)
     scale = m / (t * t)
     iv = np.array([[lo * scale, hi * scale] for lo, hi in kap]).reshape(-1, 2)

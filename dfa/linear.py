@@ -43,7 +43,12 @@ the circle where κ = −D(z)/N(z) is real and positive on |z| = 1:
   roots in (0, 1) give every candidate θ at once; each is then polished on Re w.
 
 The critical κ is the smallest candidate at which the spectral radius of χ
-passes 1 (checked just below and above); K_crit = κ_crit m/T². At d = 0 the
+passes 1 (checked just below and above); K_crit = κ_crit m/T². For very small a
+(r_d·a <= 1e-6, r_d = (2d² + 2d + 1)/(6(2d + 1))) the roots cluster at z = 1 with
+|z| − 1 = O(a) and the float spectral radius cannot resolve the boundary; there
+κ_crit is the small-a expansion of the interior crossing, κ = a/(½ + d)·(1 + r_d a),
+whose neglected term is about 1.3 (r_d a)² <= 1.3e-12 (checked against 60-digit
+mpmath in ``tests/test_gil_linear_bound_small_rate.py``). At d = 0 the
 interior crossing is Gil et al.'s closed form κ = a f(a) (:func:`dfa.stiffness.gil_factor`),
 binding for a < a* ≈ 3.72; beyond it the z = −1 condition binds and the bound is
 smaller. As a → 0, κ_crit → a/(½ + d), i.e. K_crit → b/(T(½ + d)) and
@@ -321,10 +326,28 @@ def _polish(f, t: float) -> float:
     return t  # a tangency (double root): keep the candidate; the spectral-radius check decides
 
 
+#: r_d·a below which :func:`_critical_kappa` uses its small-a expansion (relative error ~(r_d a)², ~1e-12).
+_ASYMPTOTIC_LIMIT = 1e-6
+
+
+def _small_rate_kappa(a: float, d: int) -> float:
+    """κ_crit = a/(½ + d) · (1 + r_d a + O(a²)), r_d = (2d² + 2d + 1)/(6(2d + 1)), for small a = bT/m.
+
+    The interior crossing θ² = a/(½ + d)(1 − a/6 + O(a²)) of Re w(θ) = 0 (module docstring), expanded
+    in a (d = 0: r_0 = 1/6, β_crit = ½ − 1/(24μ)); checked against 60-digit mpmath in
+    ``tests/test_gil_linear_bound_small_rate.py``. There the float spectral radius cannot resolve the
+    boundary (the roots cluster at z = 1 with |z| − 1 = O(a)), so no crossing is verified with it.
+    """
+    r = (2.0 * d * d + 2.0 * d + 1.0) / (6.0 * (2.0 * d + 1.0))
+    return a / (0.5 + d) * (1.0 + r * a)
+
+
 def _critical_kappa(a: float, d: int) -> float:
     """Smallest κ = KT²/m > 0 at which the loop leaves stability, for a = bT/m >= 0, delay d."""
     if a == 0.0:
         return 0.0  # undamped: the double pole at z = 1 leaves the circle for every K > 0
+    if a * (2.0 * d * d + 2.0 * d + 1.0) / (6.0 * (2.0 * d + 1.0)) <= _ASYMPTOTIC_LIMIT:
+        return _small_rate_kappa(a, d)
     step = _verify_step(a)
     for k in _crossings(a, d):
         if _rho(a, k * (1.0 + step), d) > 1.0:
@@ -352,7 +375,9 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Con
     The smallest K > 0 at which a closed-loop root of :func:`characteristic_polynomial`
     reaches the unit circle: the least of the z = −1 crossing (even d) and the
     crossings at z = e^{jθ}, each κ = −D/N real and positive (module docstring),
-    verified by the spectral radius at K(1 ∓ ε), ε = 1e-6 (more below bT/m = 1e-5). The loop is stable for every
+    verified by the spectral radius at K(1 ∓ ε), ε = 1e-6 (more below bT/m = 1e-5); for tiny bT/m (below
+    1e-6·6(2d + 1)/(2d² + 2d + 1)) the small-a expansion K = b/(T(½ + d))·(1 + r_d bT/m) (module docstring,
+    relative error <= 1.3e-12). The loop is stable for every
     K in (0, K_crit). Gil et al. (2004)'s closed form (b/T) f(bT/m)
     (:func:`dfa.stiffness.gil_factor`) is the d = 0 interior crossing: it is the
     bound for bT/m < 3.72, beyond it the z = −1 condition β > ½ − tanh(a/2)/a binds.

@@ -1,24 +1,36 @@
-"""The exact linear bound K_crit (dfa.linear.critical_stiffness, spec section 8) at very small a = bT/m with a delay,
-checked against the spectral radius of the same characteristic polynomial in 60-digit arithmetic (mpmath).
+"""The exact linear bound K_crit (dfa.linear.critical_stiffness, spec section 8) at very small a = bT/m, with and
+without delay, checked against the spectral radius of the same characteristic polynomial in high-precision arithmetic
+(mpmath).
 
-KNOWN BUG, recorded for the lead (strict xfail: the test fails once fixed, so the marker is removed then): below
-about a = 1e-9 (d = 30) or 1e-10 (d = 3) the float spectral radius that verifies each crossing is not accurate
-enough, and K_crit comes out up to 4e-4 above the true limit: the loop is unstable at 0.9999·K_crit. At a = 1e-12,
-d = 3 it comes out 10⁶ times too small; at a = 1e-16 no boundary is found ("please report this as a bug"). Ordinary
-devices (a = 1e-6 to 1) are not affected: the passing cases below.
+Formerly a known bug: below about a = 1e-9 (d = 30) or 1e-10 (d = 3) the float spectral radius that verified each
+crossing could not resolve the boundary (the roots cluster at z = 1, |z| − 1 = O(a)), K_crit came out up to 4e-4 above
+the true limit, 10⁶ times too small at a = 1e-12, d = 3, and not at all at a <= 1e-16. Below r_d·a = 1e-6 the bound is
+now the small-a expansion κ = a/(½ + d)(1 + r_d a), r_d = (2d² + 2d + 1)/(6(2d + 1)) (``_small_rate_kappa``).
 """
 
 from __future__ import annotations
 
+import json
+import math
+
 import mpmath
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from dfa.linear import _critical_kappa
+from dfa import linear
+from dfa.cli import main
+from dfa.linear import _critical_kappa, _small_rate_kappa, critical_stiffness
 
 
 def _rho_mp(a: float, kappa: float, d: int) -> float:
-    """ρ − 1, ρ the largest root modulus of z^d (z − 1)(z − p) + κ(c₁z + c₀) (p = e^{−a}: ZOH of 1/(s(s + a))), 60 digits."""
-    with mpmath.workdps(60):
+    """ρ − 1, ρ the largest root modulus of z^d (z − 1)(z − p) + κ(c₁z + c₀) (p = e^{−a}: ZOH of 1/(s(s + a))).
+
+    60 significant digits after the cancellation in c₁ = (a − 1 + p)/a², c₀ = (1 − p − ap)/a² (which costs
+    2·log10(1/a) digits, so the working precision grows as a shrinks).
+    """
+    dps = 60 + max(0, int(-2 * math.log10(a)))
+    with mpmath.workdps(dps):
         a_, k = mpmath.mpf(a), mpmath.mpf(kappa)
         p = mpmath.e ** (-a_)
         c1, c0 = (a_ - 1 + p) / a_**2, (1 - p - a_ * p) / a_**2
@@ -26,13 +38,13 @@ def _rho_mp(a: float, kappa: float, d: int) -> float:
         coef[0], coef[1], coef[2] = mpmath.mpf(1), -(1 + p), p
         coef[d + 1] += k * c1
         coef[d + 2] += k * c0
-        return float(max(abs(r) for r in mpmath.polyroots(coef, maxsteps=400, extraprec=400)) - 1)
+        return float(max(abs(r) for r in mpmath.polyroots(coef, maxsteps=400, extraprec=2 * dps)) - 1)
 
 
-def _check(a: float, d: int) -> None:
+def _check(a: float, d: int, rel: float = 1e-4) -> None:
     k = _critical_kappa(a, d)
-    assert _rho_mp(a, k * (1 - 1e-4), d) < 0.0  # stable just below K_crit
-    assert _rho_mp(a, k * (1 + 1e-4), d) > 0.0  # unstable just above
+    assert _rho_mp(a, k * (1 - rel), d) < 0.0, (a, d, k)  # stable just below K_crit
+    assert _rho_mp(a, k * (1 + rel), d) > 0.0, (a, d, k)  # unstable just above
 
 
 @pytest.mark.parametrize("a, d", [(1e-6, 30), (1e-6, 3), (1e-4, 0), (1e-3, 1), (0.3, 2)])
@@ -40,7 +52,88 @@ def test_gil_linear_bound_is_the_stability_limit_mpmath(a, d):
     _check(a, d)
 
 
-@pytest.mark.xfail(strict=True, reason="known bug: float verification of K_crit fails at tiny bT/m (see module)")
-@pytest.mark.parametrize("a, d", [(1e-9, 30), (1e-10, 3)])
-def test_gil_linear_bound_small_rate_counterexample(a, d):
+@pytest.mark.parametrize("a, d", [(1e-9, 30), (1e-10, 3), (1e-12, 3), (1e-12, 0), (1e-16, 1), (1e-30, 0)])
+def test_gil_linear_bound_small_rate_former_counterexamples(a, d):
     _check(a, d)
+
+
+@pytest.mark.parametrize(
+    "a, d",
+    [
+        (1e-16, 0),
+        (1e-13, 2),
+        (1e-11, 30),
+        (1e-8, 7),
+        (3e-7, 30),
+        (5e-7, 1),
+        (1e-5, 4),
+        (0.01, 30),
+        (1.0, 3),
+        (10.0, 0),
+        (10.0, 5),
+    ],
+)
+def test_gil_linear_bound_grid_of_rates_and_delays_mpmath(a, d):
+    """A representative grid a = 1e-16 … 10, d = 0 … 30, both sides of the small-a switch (r_d·a = 1e-6)."""
+    _check(a, d)
+
+
+@pytest.mark.parametrize("d", [0, 1, 3, 30])
+def test_gil_small_rate_expansion_matches_the_verified_crossings_at_the_switch(d):
+    """Near the switch both methods are valid: the expansion agrees with the verified crossing to ~(r_d a)² <= 1e-11."""
+    r = (2 * d * d + 2 * d + 1) / (6 * (2 * d + 1))
+    for ra in (1.01e-6, 3e-6, 1e-5):
+        a = ra / r
+        assert ra > linear._ASYMPTOTIC_LIMIT  # the verified crossings, not the expansion
+        assert _small_rate_kappa(a, d) == pytest.approx(linear._critical_kappa(a, d), rel=3 * ra * ra)
+
+
+def test_gil_small_rate_expansion_d0_is_the_critical_beta_asymptote():
+    """d = 0: κ = 2a(1 + a/6) ⇔ β_crit = ½ − 1/(24μ) + O(μ⁻²) (module docstring of dfa.linear, c_0 = 1/24)."""
+    a = 1e-7
+    kappa = _small_rate_kappa(a, 0)
+    assert a / kappa == pytest.approx(0.5 - kappa / 24, rel=1e-13)
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.floats(-16.0, 1.0), st.integers(0, 12))
+def test_gil_linear_bound_property_stable_below_unstable_above_mpmath(log_a, d):
+    _check(10.0**log_a, d)
+
+
+def test_gil_critical_stiffness_huge_mass_is_b_over_t_half_plus_d():
+    """m = 1e30 kg: a = bT/m = 1e-33, K_crit = b/(T(½ + d)) to double precision (formerly: 'please report')."""
+    assert critical_stiffness(1e30, 1.0, 1e-3) == pytest.approx(2000.0, rel=1e-15)
+    assert critical_stiffness(1e30, 1.0, 1e-3, delay=3) == pytest.approx(1000.0 / 3.5, rel=1e-15)
+
+
+def test_gil_cli_stiffness_huge_mass_prints_a_finite_k_linear(capsys):
+    argv = ["stiffness", "--mass", "1e30", "--damping", "1", "--coulomb", "0", "--resolution", "1e-6"]
+    argv += ["--period", "1e-3", "--delay", "3", "--velocity", "0.1", "--json"]
+    assert main(argv) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert rec["k_linear"] == pytest.approx(1000.0 / 3.5, rel=1e-12)
+    assert rec["k_gil"] == rec["k_linear"]
+
+
+def test_gil_controller_tiny_rate_is_refused_not_a_false_never():
+    """With a controller the ray analysis has no small-rate expansion: (b + B)T/m = 1e-11 (formerly a false 'never
+    stable', and 3732 N/m above the ~3000 N/m limit at d = 0) is refused with the package's error."""
+    from dfa.controlled_linear import MIN_RESOLVED_RATE, stable_stiffness
+    from dfa.controller import Controller
+    from dfa.errors import DFAValueError
+
+    with pytest.raises(DFAValueError, match="mass"):
+        stable_stiffness(1e8, 1.0, 1e-3, Controller(1000.0, 0.5, 1, 100.0))
+    with pytest.raises(DFAValueError, match="mass"):
+        critical_stiffness(1e8, 1.0, 1e-3, controller=Controller(1000.0, 0.0, 3, None, 1000.0))
+    m = 1.5e-3 / (2 * MIN_RESOLVED_RATE)  # (b + B)T/m = 2·MIN_RESOLVED_RATE: still computed, near (b + B)/(T/2)
+    assert stable_stiffness(m, 1.0, 1e-3, Controller(1000.0, 0.5)).k_crit == pytest.approx(3000.0, rel=1e-4)
+
+
+def test_gil_cli_controller_tiny_rate_one_line_exit_2(capsys):
+    argv = ["stiffness", "--mass", "1e8", "--damping", "1", "--coulomb", "0", "--resolution", "1e-6"]
+    argv += ["--period", "1e-3", "--velocity", "0.1", "--virtual-damping", "0.5"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "mass" in err[0]
