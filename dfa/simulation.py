@@ -670,7 +670,8 @@ class SimulationResult:
 
 def _tail_lengths(samples: np.ndarray, mu: np.ndarray) -> np.ndarray:
     """Tail measured for amplitude and frequency: a quarter of the run, at most max(8192, 4 periods 2π√μ)."""
-    cap = np.maximum(8192, (4 * 2.0 * math.pi * np.sqrt(mu)).astype(np.int64))
+    periods = np.minimum(4 * 2.0 * math.pi * np.sqrt(mu), 2.0**62)  # above any run length: no int64 overflow
+    cap = np.maximum(8192, periods.astype(np.int64))
     return np.minimum(samples, np.minimum(cap, np.maximum(2, samples // 4))).astype(np.int64)
 
 

@@ -194,3 +194,16 @@ def test_eq4_design_searches_batch_equals_simulate_per_point(delay):
         bound = divergence_bound(x0, v, m, DIVERGENCE_BOUND)
         assert o == simulate(m, b, s, v, n, xi0=x0, delay=delay, record=False, bound=bound).outcome
     assert {"rest", "unstable"} <= set(outs)  # not one trivial class
+
+
+def test_eq4_tail_length_of_a_huge_mass_is_a_quarter_run_without_overflow():
+    """The tail cap 4·2π√μ passes int64 for μ beyond 10³⁷ (a 1e30 kg device): no cast warning, a quarter of the run."""
+    import warnings
+
+    from dfa.simulation import _tail_length, _tail_lengths
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert _tail_length(50_000, 1e40) == 12_500 and _tail_length(50_000, 100.0) == 8192
+        got = _tail_lengths(np.array([50_000, 7, 10**6]), np.array([1e300, 1.0, 1e12]))
+    assert got.tolist() == [12_500, 2, 10**6 // 4]
