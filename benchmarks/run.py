@@ -152,6 +152,22 @@ def _kernel_case(case: dict, n: int, repeat: int) -> dict:
     return {name: (min(t), max(t)) for name, t in times.items()}
 
 
+def _batch_runs(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
+    """dfa._batch.batch_kernel with serial_kernel's arguments (one length, bound and tail for every run)."""
+    k = mus.size
+    per_run = (np.full(k, n), delay, quantize, np.full(k, bound), np.full(k, tail_len))
+    _batch.batch_kernel(mus, betas, sigmas, x0s, v0s, *per_run, stats, done, rest)
+
+
+def _pair_runs(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
+    """benchmarks/pair_kernel.py with serial_kernel's arguments."""
+    from pair_kernel import pair_kernel
+
+    k = mus.size
+    per_run = (np.full(k, n), delay, quantize, np.full(k, bound), np.full(k, tail_len))
+    pair_kernel(mus, betas, sigmas, x0s, v0s, *per_run, stats, done, rest)
+
+
 def bench_kernel(quick: bool) -> dict:
     """ns per sample (best, worst of the repeats): dfa's kernel vs the kernels before, the plain kernel,
     the chain floor, on a never-repeating oscillation and on the paper's repeating one; batched runs."""
@@ -168,7 +184,8 @@ def bench_kernel(quick: bool) -> dict:
     batch = {}
     for name, fn in (
         ("one run at a time (dfa._kernel.serial_kernel)", _kernel.serial_kernel),
-        ("two runs in flight (dfa._batch.batch_kernel, used by maps and searches)", _batch.batch_kernel),
+        ("one at a time, each run's own length (dfa._batch.batch_kernel, used by maps and searches)", _batch_runs),
+        ("two runs in flight (benchmarks/pair_kernel.py, an experiment)", _pair_runs),
         ("4 lanes in registers, no period skip (benchmarks/lanes_kernel.py, an experiment)", lanes_kernel.lanes_kernel),
     ):
         st, dn, rs = np.empty((runs, _kernel.NSTATS)), np.empty(runs, np.int64), np.empty(runs, np.int64)
@@ -211,6 +228,7 @@ def bench_map_speed(quick: bool) -> dict:
     }
     tail = (n, 0, True, bound, _tail_length(n, 100.0))
     runs["map points, one run at a time (serial_kernel), 1 core"] = lambda: _kernel.serial_kernel(*pts, *tail, *outs)
+    runs["map points, two runs in flight (benchmarks/pair_kernel.py), 1 core"] = lambda: _pair_runs(*pts, *tail, *outs)
     runs["map points, plain kernel (benchmarks/plain_kernel.py), 1 core"] = lambda: [
         plain_kernel(100.0, b, s, 0.0, v, n, 0, True, bound) for b, s, v in zip(pb, ps, v0, strict=True)
     ]
@@ -411,9 +429,10 @@ def render_kernel(kern: dict, mapspeed: dict) -> list[str]:
         "",
         f"## `dfa map` speed: 4 × {g} × {g} points, μ = 100, 5·10⁴ samples (issue 16: 2 jobs ≤ 0.25 × single-core loop)",
         "",
-        "The single-core loop calls today's simulate() (one run at a time, which skips repeated periods too). The",
-        "map runs two runs in flight (dfa._batch.batch_kernel); the rows below it run the same points one at a time,",
-        "through the plain kernel (no tail statistics, no period skip) and through the kernel before issue 16.",
+        "The single-core loop calls today's simulate() (one run at a time, which skips repeated periods too); the",
+        "map runs its chunks through dfa._batch.batch_kernel (one compiled call per chunk). The rows below run the",
+        "same points in one call: one at a time, two in flight (an experiment), the plain kernel (no tail",
+        "statistics, no period skip), the kernel before issue 16.",
         "",
         "| run | seconds | × single-core loop |",
         "|---|---:|---:|",

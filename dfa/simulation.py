@@ -1126,8 +1126,8 @@ def run_points(
     """Validated float arrays in, kernel outputs out: (codes, amps, freqs, centres, fpps, done, rest, stats).
 
     ``n`` (samples) and ``bound`` are one value for every run or one per run. The spring runs in one call of
-    :func:`dfa._batch.batch_kernel` (two runs in flight without delay; each run bit for bit
-    :func:`dfa._kernel.simulate_kernel`, its tail length following its μ and length as in :func:`simulate`);
+    :func:`dfa._batch.batch_kernel` (each run bit for bit :func:`dfa._kernel.simulate_kernel`, its tail
+    length following its μ and length as in :func:`simulate`);
     no GIL is held, so callers may run several calls on threads. ``controller`` (a ControllerParams that is not
     a pure spring, whose delay is ``delay``; see :func:`check_controller`) runs
     :func:`dfa._ckernel.serial_ckernel` instead, one call per group of runs with the same tail length (one

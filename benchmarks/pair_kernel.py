@@ -1,0 +1,339 @@
+"""Experiment (issue 16, not used by dfa): two runs of the exact simulator advanced together, bit for bit one at a time.
+
+Measured against :func:`dfa._kernel.serial_kernel` in ``benchmarks/run.py`` (``reports/benchmarks.md``): a bare
+loop of two runs' samples (:func:`dfa._kernel.free_sample` alone) overlaps their chains and takes 0.73-0.81 of
+the two runs one after the other on chattering runs, but with each run's bookkeeping (tail, period skip,
+segments) the 4 × 40 × 40 map's points take 0.99 of the serial kernel's time (chatter that never repeats 0.95,
+runs that diverge 1.07, runs that rest 1.11, thread CPU on the 2-core development machine): a sample is then
+bound by the instructions it issues, not by its chain. dfa keeps the serial kernel; this module stays so that the
+measurement can be repeated. Its outputs equal the serial kernel's bit for bit (``tests/test_pair_kernel.py``).
+
+One run's sample is a chain read → force → update (:mod:`dfa._kernel`)
+whose latency, not its arithmetic, bounds a single trajectory. Two
+independent runs advanced in the same loop (:func:`advance_pair`, the loop
+of :func:`dfa._kernel.advance_free` written out for two runs, each in its own
+local scalars) let the processor overlap their chains: measured at about
+0.7 × the time of the two runs one after the other on chattering and
+oscillating runs (a bare loop; see above). Four runs gain no
+more on the development machine (their branch mispredictions at the stops
+flush every run's work alike), so the batch is two.
+
+:func:`pair_kernel` runs a list of independent runs, each with its own
+length, bound and tail, with outputs bit for bit those of
+:func:`dfa._kernel.simulate_kernel` for each run alone: without delay it keeps two runs in flight
+("lanes"), each walking the ranges of samples of
+:func:`dfa._kernel.simulate_kernel` (the envelope's eighths, split where the
+tail starts). :func:`advance_pair` runs both lanes until either's range ends
+(or its run comes to rest or passes the bound); that lane books its range's
+peak and takes its next range or, when its run is over, the next run. The
+other lane resumes where it stopped. Each lane runs exactly the operations of
+:func:`dfa._kernel.advance_free`, in the same order; only the exact skip of
+repeated periods restarts its cycle detection when a lane resumes, which
+changes when a period is skipped, never a result (``tests/test_pair_kernel.py``).
+Runs with a delay pair the same way (:func:`advance_pair_delayed`, the loop of
+:func:`dfa._kernel.advance`, each run with its ring of pending readings).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from dfa._kernel import (
+    NSEG,
+    NSTATE,
+    SPOS,
+    STMAX,
+    STMIN,
+    SV,
+    SX,
+    advance,
+    advance_free,
+    at_rest,
+    delayed_force,
+    finish,
+    force,
+    free_sample,
+    same_state,
+    sample_constants,
+    segment_bounds,
+    start,
+    step,
+    tail_extremes,
+)
+
+__all__ = ["advance_pair", "advance_pair_delayed", "pair_kernel"]
+
+# integer state of a lane: run index (-1: none), segment, part (0: before the tail, 1: in it), next sample, range end,
+# the run's length and where its tail starts
+PT, SEG, PART, H, END, N, TAIL = 0, 1, 2, 3, 4, 5, 6
+NLANE = 7
+
+
+@njit(cache=True, nogil=True)
+def advance_pair(
+    sa, ha, h1a, mua, siga, ka, taila, bounda, ta, sb, hb, h1b, mub, sigb, kb, tailb, boundb, tb, quantize
+):
+    """:func:`dfa._kernel.advance_free` of two runs A and B at once, until either's range ends.
+
+    ``sa``/``sb`` are the runs' state arrays (ξ, ξ', tail min and max), ``ha … h1a`` and ``hb … h1b``
+    their ranges of samples (each wholly before the tail or in it), ``ka``/``kb`` their
+    :func:`dfa._kernel.sample_constants`, ``bounda``/``boundb`` their bounds and ``ta``/``tb`` the samples
+    where their tails start. Returns (h, why, peak, ended) of A then of B: the next sample,
+    :func:`dfa._kernel.advance_free`'s ``why``, the peak |ξ| of the samples run here, and whether the range
+    ended (ran through, at rest, or past the bound); at least one of the two ended.
+    """
+    xa, va, tmina, tmaxa = sa[SX], sa[SV], sa[STMIN], sa[STMAX]
+    xb, vb, tminb, tmaxb = sb[SX], sb[SV], sb[STMIN], sb[STMAX]
+    pa = pb = 0.0
+    ina, inb = ha >= ta, hb >= tb
+    rxa, rva, rha, spana = xa, va, ha, 1  # Brent's reference state of each run (dfa._kernel.advance_free)
+    rxb, rvb, rhb, spanb = xb, vb, hb, 1
+    wa = wb = 0
+    fa = fb = False
+    while not (fa or fb):
+        xa, va, pa, wa, xra, sta = free_sample(xa, va, pa, mua, siga, quantize, bounda, ka)
+        if wa == 1:
+            fa = True
+        else:
+            if ina:
+                taila[ha - ta] = xa
+                tmina, tmaxa = tail_extremes(xa, xra, sta, tmina, tmaxa)
+            ha += 1
+            if wa == 2:
+                fa = True
+            elif same_state(xa, va, rxa, rva):
+                skip = (h1a - ha) // (ha - rha) * (ha - rha)
+                if ina:
+                    for i in range(ha, ha + skip):
+                        taila[i - ta] = taila[i - (ha - rha) - ta]
+                ha += skip
+                spana = h1a
+            elif ha - rha == spana:
+                rxa, rva, rha, spana = xa, va, ha, 2 * spana
+            fa = fa or ha >= h1a
+        xb, vb, pb, wb, xrb, stb = free_sample(xb, vb, pb, mub, sigb, quantize, boundb, kb)
+        if wb == 1:
+            fb = True
+        else:
+            if inb:
+                tailb[hb - tb] = xb
+                tminb, tmaxb = tail_extremes(xb, xrb, stb, tminb, tmaxb)
+            hb += 1
+            if wb == 2:
+                fb = True
+            elif same_state(xb, vb, rxb, rvb):
+                skip = (h1b - hb) // (hb - rhb) * (hb - rhb)
+                if inb:
+                    for i in range(hb, hb + skip):
+                        tailb[i - tb] = tailb[i - (hb - rhb) - tb]
+                hb += skip
+                spanb = h1b
+            elif hb - rhb == spanb:
+                rxb, rvb, rhb, spanb = xb, vb, hb, 2 * spanb
+            fb = fb or hb >= h1b
+    sa[SX], sa[SV], sa[STMIN], sa[STMAX] = xa, va, tmina, tmaxa
+    sb[SX], sb[SV], sb[STMIN], sb[STMAX] = xb, vb, tminb, tmaxb
+    return ha, wa, pa, fa, hb, wb, pb, fb
+
+
+@njit(cache=True, nogil=True)
+def advance_pair_delayed(
+    sa, ha, h1a, mua, siga, ka, taila, bounda, ta, hista,
+    sb, hb, h1b, mub, sigb, kb, tailb, boundb, tb, histb,
+    delay, quantize,
+):  # fmt: skip
+    """:func:`dfa._kernel.advance` (no records) of two runs with a delay of ``delay`` samples, until either's range ends.
+
+    As :func:`advance_pair`, with each run's ring of pending readings (``hista``, ``histb``; its position in the
+    state array); nothing is skipped. Returns (h, why, peak, ended) of A then of B.
+    """
+    xa, va, pa_, tmina, tmaxa = sa[SX], sa[SV], int(sa[SPOS]), sa[STMIN], sa[STMAX]
+    xb, vb, pb_, tminb, tmaxb = sb[SX], sb[SV], int(sb[SPOS]), sb[STMIN], sb[STMAX]
+    pka = pkb = 0.0
+    wa = wb = 0
+    fa = fb = False
+    while not (fa or fb):
+        phia, pa_ = delayed_force(force(xa, quantize), hista, pa_, delay)
+        if va == 0.0 and at_rest(va, phia, siga, hista, delay):
+            wa, fa = 1, True
+        else:
+            xa, va, xra, _t, _a, _a2, _tr, sta = step(xa, va, phia, mua, siga, ka)
+            axa = abs(xa)
+            if axa > pka:
+                pka = axa
+            if ha >= ta:
+                taila[ha - ta] = xa
+                tmina, tmaxa = tail_extremes(xa, xra, sta, tmina, tmaxa)
+            ha += 1
+            if not axa <= bounda:  # also catches NaN
+                wa, fa = 2, True
+            fa = fa or ha >= h1a
+        phib, pb_ = delayed_force(force(xb, quantize), histb, pb_, delay)
+        if vb == 0.0 and at_rest(vb, phib, sigb, histb, delay):
+            wb, fb = 1, True
+        else:
+            xb, vb, xrb, _t, _a, _a2, _tr, stb = step(xb, vb, phib, mub, sigb, kb)
+            axb = abs(xb)
+            if axb > pkb:
+                pkb = axb
+            if hb >= tb:
+                tailb[hb - tb] = xb
+                tminb, tmaxb = tail_extremes(xb, xrb, stb, tminb, tmaxb)
+            hb += 1
+            if not axb <= boundb:
+                wb, fb = 2, True
+            fb = fb or hb >= h1b
+    sa[SX], sa[SV], sa[SPOS], sa[STMIN], sa[STMAX] = xa, va, pa_, tmina, tmaxa
+    sb[SX], sb[SV], sb[SPOS], sb[STMIN], sb[STMAX] = xb, vb, pb_, tminb, tmaxb
+    return ha, wa, pka, fa, hb, wb, pkb, fb
+
+
+@njit(cache=True, inline="always")
+def _next_range(lane):
+    """Move ``lane`` (its row of integer state) to its run's next nonempty range; False when none is left.
+
+    The order of :func:`dfa._kernel.simulate_kernel`: segment k = 0 … NSEG − 1, each split where the tail starts.
+    """
+    n, tail_start = lane[N], lane[TAIL]
+    while True:
+        lane[PART] += 1
+        if lane[PART] == 2:
+            lane[PART] = 0
+            lane[SEG] += 1
+        if lane[SEG] == NSEG:
+            return False
+        lo, hi = segment_bounds(lane[SEG], n)
+        cut = min(max(lo, tail_start), hi)
+        a, b = (lo, cut) if lane[PART] == 0 else (cut, hi)
+        if b > a:
+            lane[H], lane[END] = a, b
+            return True
+
+
+@njit(cache=True, nogil=True)
+def _load(lane, i, x0s, v0s, mus, betas, ns, tail_lens, delay, quantize, state, hist, stats, consts):
+    """Start run ``i`` in ``lane`` (state, delay ring, stats cleared, its sample constants, its first range)."""
+    start(x0s[i], v0s[i], delay, quantize, state, hist, stats[i])
+    rate, e1, p1, p2, q1, q2 = sample_constants(mus[i], betas[i])
+    consts[0], consts[1], consts[2], consts[3], consts[4], consts[5] = rate, e1, p1, p2, q1, q2
+    lane[PT], lane[SEG], lane[PART], lane[N], lane[TAIL] = i, 0, -1, ns[i], ns[i] - tail_lens[i]
+    _next_range(lane)
+
+
+@njit(cache=True, nogil=True)
+def _book(lane, h, why, peak, ended, state, tail, tail_len, mu, quantize, stats, done, rest):
+    """Book a lane's advance: its range's peak; if the range ended, the next range or the run's end.
+
+    Returns True while the lane's run goes on, False when it is over (``done``, ``rest``, stats finished
+    exactly as :func:`dfa._kernel.simulate_kernel` does).
+    """
+    i, n = lane[PT], lane[N]
+    lane[H] = h
+    if peak > stats[i, lane[SEG]]:
+        stats[i, lane[SEG]] = peak
+    if not ended or (why == 0 and _next_range(lane)):
+        return True
+    done[i] = h if why != 0 else n
+    rest[i] = h if why == 1 else -1
+    if why == 2:
+        stats[i, NSEG + 5] = 1.0
+    e = np.empty(0)
+    finish(state, n, done[i], rest[i], tail, tail_len, mu, quantize, stats[i], False, False, e, e, np.empty((0, 4)))
+    lane[PT] = -1
+    return False
+
+
+@njit(cache=True, nogil=True)
+def pair_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest):
+    """Independent runs, two in flight: run i is :func:`dfa._kernel.simulate_kernel` of its own inputs.
+
+    Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]``
+    and tail ``tail_lens[i]``; every run has the delay ``delay``. ``stats[i]`` (NSTATS), ``done[i]`` and
+    ``rest[i]`` receive what :func:`dfa._kernel.simulate_kernel` returns for it, bit for bit (nothing recorded).
+    """
+    lanes = np.full((2, NLANE), -1, dtype=np.int64)
+    states = np.empty((2, NSTATE))
+    hists = np.empty((2, delay + 1))
+    tails = np.empty((2, max(1, np.max(tail_lens)) if tail_lens.shape[0] else 1))
+    consts = np.empty((2, 6))
+    nxt = 0
+    while True:
+        for w in range(2):  # an empty lane takes the next run
+            if lanes[w, PT] < 0 and nxt < mus.shape[0]:
+                _load(
+                    lanes[w],
+                    nxt,
+                    x0s,
+                    v0s,
+                    mus,
+                    betas,
+                    ns,
+                    tail_lens,
+                    delay,
+                    quantize,
+                    states[w],
+                    hists[w],
+                    stats,
+                    consts[w],
+                )
+                nxt += 1
+        if lanes[0, PT] < 0 and lanes[1, PT] < 0:
+            return
+        res = _advance_lanes(lanes, states, hists, tails, consts, mus, betas, sigmas, delay, quantize, bounds)
+        for w in range(2):
+            i = lanes[w, PT]
+            if i >= 0:
+                h, why, peak, ended = res[w]
+                _book(
+                    lanes[w],
+                    h,
+                    why,
+                    peak,
+                    ended,
+                    states[w],
+                    tails[w],
+                    tail_lens[i],
+                    mus[i],
+                    quantize,
+                    stats,
+                    done,
+                    rest,
+                )
+
+
+@njit(cache=True, inline="always")
+def _kc(c):
+    return (c[0], c[1], c[2], c[3], c[4], c[5])
+
+
+@njit(cache=True, inline="always")
+def _advance_lanes(lanes, states, hists, tails, consts, mus, betas, sigmas, delay, quantize, bounds):
+    """Advance the lanes in flight: both together (:func:`advance_pair`, :func:`advance_pair_delayed`), or the
+    only one alone (:func:`dfa._kernel.advance_free`, :func:`dfa._kernel.advance`)."""
+    a, b = lanes[0], lanes[1]
+    ia, ib = a[PT], b[PT]
+    if ia >= 0 and ib >= 0:
+        run_a = (states[0], a[H], a[END], mus[ia], sigmas[ia], _kc(consts[0]), tails[0], bounds[ia], a[TAIL])
+        run_b = (states[1], b[H], b[END], mus[ib], sigmas[ib], _kc(consts[1]), tails[1], bounds[ib], b[TAIL])
+        if delay == 0:
+            ha, wa, pa, fa, hb, wb, pb, fb = advance_pair(*run_a, *run_b, quantize)
+        else:
+            ha, wa, pa, fa, hb, wb, pb, fb = advance_pair_delayed(*run_a, hists[0], *run_b, hists[1], delay, quantize)
+        return (ha, wa, pa, fa), (hb, wb, pb, fb)
+    w = 0 if ia >= 0 else 1
+    lane = lanes[w]
+    i = lane[PT]
+    if delay == 0:
+        h, why, peak = advance_free(
+            states[w], lane[H], lane[END], mus[i], sigmas[i], quantize, bounds[i], _kc(consts[w]), tails[w], lane[TAIL]
+        )
+    else:
+        e = np.empty(0)
+        h, why, peak = advance(
+            states[w], hists[w], lane[H], lane[END], mus[i], betas[i], sigmas[i], delay, quantize, bounds[i], lane[TAIL],
+            tails[w], False, False, e, e, np.empty((0, 4)),
+        )  # fmt: skip
+    one = (h, why, peak, True)
+    other = (0, 0, 0.0, False)
+    return (one, other) if w == 0 else (other, one)
