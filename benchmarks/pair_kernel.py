@@ -3,10 +3,11 @@
 Measured against :func:`dfa._kernel.serial_kernel` in ``benchmarks/run.py`` (``reports/benchmarks.md``): a bare
 loop of two runs' samples (:func:`dfa._kernel.free_sample` alone) overlaps their chains and takes 0.73-0.81 of
 the two runs one after the other on chattering runs, but with each run's bookkeeping (tail, period skip,
-segments) the 4 × 40 × 40 map's points take 0.99 of the serial kernel's time (chatter that never repeats 0.95,
-runs that diverge 1.07, runs that rest 1.11, thread CPU on the 2-core development machine): a sample is then
+segments) map points take 0.93-0.99 of the serial kernel's time (``make bench``: 0.93-0.97; by class on the
+4 × 40 × 40 map: chatter that never repeats 0.95, runs that diverge 1.07, runs that rest 1.11; thread CPU on
+the 2-core development machine): a sample is then
 bound by the instructions it issues, not by its chain. dfa keeps the serial kernel; this module stays so that the
-measurement can be repeated. Its outputs equal the serial kernel's bit for bit (``tests/test_pair_kernel.py``).
+measurement can be repeated. Its outputs equal the serial kernel's bit for bit (``tests/test_batch_kernel.py``).
 
 One run's sample is a chain read → force → update (:mod:`dfa._kernel`)
 whose latency, not its arithmetic, bounds a single trajectory. Two
@@ -29,7 +30,7 @@ peak and takes its next range or, when its run is over, the next run. The
 other lane resumes where it stopped. Each lane runs exactly the operations of
 :func:`dfa._kernel.advance_free`, in the same order; only the exact skip of
 repeated periods restarts its cycle detection when a lane resumes, which
-changes when a period is skipped, never a result (``tests/test_pair_kernel.py``).
+changes when a period is skipped, never a result (``tests/test_batch_kernel.py``).
 Runs with a delay pair the same way (:func:`advance_pair_delayed`, the loop of
 :func:`dfa._kernel.advance`, each run with its ring of pending readings).
 """

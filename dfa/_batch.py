@@ -5,9 +5,11 @@ and the K_max searches (:func:`dfa.kmax.simulate_points`) run for the spring: ea
 :func:`dfa._kernel.simulate_kernel` alone, one after the other, the GIL released (callers run chunks on threads).
 
 Issue 16 asked for runs advanced together so that their dependency chains overlap. Two runs in flight,
-written out and bit for bit the same (``benchmarks/pair_kernel.py``), took 0.99 of this loop's time on the
-4 × 40 × 40 map's points on the development machine (a bare loop of two runs' samples gains 20-27 %, their
-bookkeeping takes it back): it is kept as a benchmark, not used here (``reports/benchmarks.md``).
+written out and bit for bit the same (``benchmarks/pair_kernel.py``), took 0.93-0.97 of this loop's time
+on Fig. 4 map points in ``make bench`` and 0.99 in a by-class measurement (0.95 on chatter that never
+repeats, 1.07 on diverging runs, 1.11 on resting ones); a bare loop of two runs' samples gains 20-27 %, their
+bookkeeping takes most of it back. Too little for a second copy of the loop: it is kept as a benchmark, not
+used here (``reports/benchmarks.md``).
 """
 
 from __future__ import annotations

@@ -574,7 +574,7 @@ def serial_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_
     (NSTATS), ``done[i]`` and ``rest[i]`` receive what :func:`simulate_kernel`
     returns for it. :func:`dfa._batch.batch_kernel` is the same loop for runs
     of different lengths, bounds and tails. (Two runs in flight, bit for bit
-    the same, took 0.99 of this loop's time on a map's points:
+    the same, took 0.93-0.99 of this loop's time on map points:
     ``benchmarks/pair_kernel.py``; four in registers, ``benchmarks/lanes_kernel.py``, more.)
     """
     empty = np.empty(0)
