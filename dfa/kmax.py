@@ -82,7 +82,17 @@ from .controller import Controller, ControllerParams
 from .device import Device
 from .errors import DFATypeError, DFAValueError
 from .jsonable import explain_nulls
-from .simulation import OUTCOMES, default_samples, divergence_bound, preload_position, run_points, simulate
+from .simulation import (
+    GROWTH,
+    OUTCOMES,
+    SETTLE,
+    STABLE_AMPLITUDE,
+    default_samples,
+    divergence_bound,
+    preload_position,
+    run_points,
+    simulate,
+)
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
 __all__ = ["KSearch", "KMaxAssessment", "KMaxResult", "RunCache", "design_answer", "simulate_points"]
@@ -153,7 +163,7 @@ def _batched_outcomes(jobs: list[tuple], delay: int, workers: int) -> list[str]:
     chunks = np.array_split(np.arange(len(jobs)), max(1, min(len(jobs), 4 * workers)))
 
     def chunk(j: np.ndarray) -> np.ndarray:
-        rules = (1.0, 1.25, 1.0e-3)  # simulate()'s defaults: stable_amplitude, growth, settle
+        rules = (STABLE_AMPLITUDE, GROWTH, SETTLE)  # simulate()'s defaults
         return run_points(mu[j], beta[j], sigma[j], x0[j], v0[j], n[j], delay, True, bound[j], *rules)[0]
 
     if workers > 1:  # the compiled kernel releases the GIL: threads overlap the chunks, results are per run

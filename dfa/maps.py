@@ -77,7 +77,17 @@ from .checks import (
 from .controller import ControllerParams
 from .errors import DFATypeError, DFAValueError
 from .jsonable import to_jsonable
-from .simulation import OUTCOMES, check_controller, check_rules, divergence_bound, preload_position, run_points
+from .simulation import (
+    GROWTH,
+    OUTCOMES,
+    SETTLE,
+    STABLE_AMPLITUDE,
+    check_controller,
+    check_rules,
+    divergence_bound,
+    preload_position,
+    run_points,
+)
 from .status import MapStatus
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
@@ -446,9 +456,9 @@ def stability_map(
     backend: str = "threads",
     progress: bool = True,
     bound: float | None = None,
-    stable_amplitude: float = 1.0,
-    growth: float = 1.25,
-    settle: float = 1.0e-3,
+    stable_amplitude: float = STABLE_AMPLITUDE,
+    growth: float = GROWTH,
+    settle: float = SETTLE,
     controller: ControllerParams | None = None,
 ) -> StabilityMap:
     """Simulate every point of a (β, σ) grid for each initial speed (paper Fig. 4).

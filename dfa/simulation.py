@@ -668,6 +668,12 @@ class SimulationResult:
         return explain_nulls(record, self.null_reasons())
 
 
+#: Default outcome rules of :func:`simulate`, :func:`simulate_batch` and :func:`dfa.maps.stability_map`: a
+#: settled cycle below STABLE_AMPLITUDE ticks is chatter; an envelope growing by GROWTH is unstable; one that
+#: changes by more than SETTLE (relative) is undecided.
+STABLE_AMPLITUDE, GROWTH, SETTLE = 1.0, 1.25, 1.0e-3
+
+
 def _tail_lengths(samples: np.ndarray, mu: np.ndarray) -> np.ndarray:
     """Tail measured for amplitude and frequency: a quarter of the run, at most max(8192, 4 periods 2π√μ)."""
     periods = np.minimum(4 * 2.0 * math.pi * np.sqrt(mu), 2.0**62)  # above any run length: no int64 overflow
@@ -744,9 +750,9 @@ def simulate(
     record: bool = True,
     energy: bool = False,
     bound: float | None = None,
-    stable_amplitude: float = 1.0,
-    growth: float = 1.25,
-    settle: float = 1.0e-3,
+    stable_amplitude: float = STABLE_AMPLITUDE,
+    growth: float = GROWTH,
+    settle: float = SETTLE,
     progress: bool = False,
     controller: ControllerParams | None = None,
 ) -> SimulationResult:
@@ -1058,9 +1064,9 @@ def simulate_batch(
     quantize: bool = True,
     *,
     bound: float | None = None,
-    stable_amplitude: float = 1.0,
-    growth: float = 1.25,
-    settle: float = 1.0e-3,
+    stable_amplitude: float = STABLE_AMPLITUDE,
+    growth: float = GROWTH,
+    settle: float = SETTLE,
     controller: ControllerParams | None = None,
 ) -> SimulationBatch:
     """Simulate many independent runs in one compiled call; each equals :func:`simulate` of that run alone.
