@@ -152,20 +152,22 @@ def _kernel_case(case: dict, n: int, repeat: int) -> dict:
     return {name: (min(t), max(t)) for name, t in times.items()}
 
 
-def _batch_runs(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
-    """dfa._batch.batch_kernel with serial_kernel's arguments (one length, bound and tail for every run)."""
-    k = mus.size
-    per_run = (np.full(k, n), delay, quantize, np.full(k, bound), np.full(k, tail_len))
-    _batch.batch_kernel(mus, betas, sigmas, x0s, v0s, *per_run, stats, done, rest)
+def _per_run(kernel):
+    """``kernel`` (per-run lengths, bounds and tails) called with serial_kernel's arguments (one of each for all)."""
+
+    def run(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
+        k = mus.size
+        per_run = (np.full(k, n), delay, quantize, np.full(k, bound), np.full(k, tail_len))
+        kernel(mus, betas, sigmas, x0s, v0s, *per_run, stats, done, rest)
+
+    return run
 
 
-def _pair_runs(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
-    """benchmarks/pair_kernel.py with serial_kernel's arguments."""
+def _pair_runs(*args):
+    """benchmarks/pair_kernel.py (the two-runs-in-flight experiment) with serial_kernel's arguments."""
     from pair_kernel import pair_kernel
 
-    k = mus.size
-    per_run = (np.full(k, n), delay, quantize, np.full(k, bound), np.full(k, tail_len))
-    pair_kernel(mus, betas, sigmas, x0s, v0s, *per_run, stats, done, rest)
+    _per_run(pair_kernel)(*args)
 
 
 def bench_kernel(quick: bool) -> dict:
@@ -184,7 +186,10 @@ def bench_kernel(quick: bool) -> dict:
     batch = {}
     for name, fn in (
         ("one run at a time (dfa._kernel.serial_kernel)", _kernel.serial_kernel),
-        ("one at a time, each run's own length (dfa._batch.batch_kernel, used by maps and searches)", _batch_runs),
+        (
+            "one at a time, each run's own length (dfa._batch.batch_kernel, used by maps and searches)",
+            _per_run(_batch.batch_kernel),
+        ),
         ("two runs in flight (benchmarks/pair_kernel.py, an experiment)", _pair_runs),
         ("4 lanes in registers, no period skip (benchmarks/lanes_kernel.py, an experiment)", lanes_kernel.lanes_kernel),
     ):
