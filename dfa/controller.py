@@ -87,6 +87,21 @@ def _check_cutoff(name: str, value: object, nyquist: float, unit: str) -> float 
     return out
 
 
+def _check_lag(lag: object) -> float:
+    """α = 0 or α >= :data:`MIN_LAG`: the kernel's rate κ = 1/α stays finite (at 5e-324 it was inf, and NaN)."""
+    a = check_nonnegative("lag", lag, "α = τ_a/T cannot be negative (0: none)")
+    if 0.0 < a < MIN_LAG:
+        raise DFAValueError(
+            f"lag = {_fmt(a)} is invalid: it must be 0 or at least {_fmt(MIN_LAG)} samples (the kernel's rate "
+            "1/α must stay finite); a lag this short is no lag: pass 0 (or no amplifier bandwidth)"
+        )
+    return a
+
+
+#: Shortest amplifier lag α (samples) other than 0 (:class:`ControllerParams`): 1/α is then a finite float.
+MIN_LAG = 1e-300
+
+
 @dataclass(frozen=True)
 class ControllerParams:
     """Dimensionless controller (the groups beside paper Table 1).
@@ -120,7 +135,7 @@ class ControllerParams:
         )
         object.__setattr__(self, "delay", check_delay(self.delay))
         object.__setattr__(self, "cutoff", _check_cutoff("cutoff", self.cutoff, 0.5, "cycles per sample"))
-        object.__setattr__(self, "lag", check_nonnegative("lag", self.lag, "α = τ_a/T cannot be negative (0: none)"))
+        object.__setattr__(self, "lag", _check_lag(self.lag))
 
     @property
     def filter_pole(self) -> float:

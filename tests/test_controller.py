@@ -63,3 +63,22 @@ def test_controller_cutoff_above_nyquist_is_refused_with_the_fix():
         c.params(1e-3)
     with pytest.raises(DFAValueError, match="cutoff"):
         ControllerParams(cutoff=0.5)
+
+
+def test_controller_subnormal_lag_refused_shortest_lag_runs(capsys):
+    """α = 5e-324 made the kernel's rate 1/α infinite (a ZeroDivisionError, or NaN: "unstable" for a decaying
+    loop, found by hypothesis); α below MIN_LAG is refused with the fix, α = MIN_LAG runs like no lag."""
+    from dfa import simulate
+    from dfa.cli import main
+    from dfa.controller import MIN_LAG
+
+    with pytest.raises(DFAValueError, match=r"lag = 5e-324 is invalid: it must be 0 or at least 1e-300.*pass 0"):
+        ControllerParams(damping=1.0, lag=5e-324)
+    runs = [
+        simulate(100.0, 0.0, 0.0, 10.0, None, quantize=False, record=False, bound=1e12, controller=c)
+        for c in (ControllerParams(damping=1.0, lag=MIN_LAG), ControllerParams(damping=1.0))
+    ]
+    assert [r.outcome for r in runs] == ["rest", "rest"]
+    assert main(["stiffness", "--device", "delta", "--velocity", "0.1", "--amplifier-bandwidth", "1e306"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "lag = " in err and "no amplifier bandwidth" in err

@@ -18,7 +18,7 @@ import dfa.controller_kmax as ck
 import dfa.kmax as kmax
 from dfa.cli import main
 from dfa.controlled_linear import controlled_spectral_radius
-from dfa.controller import Controller, ControllerParams
+from dfa.controller import MIN_LAG, Controller, ControllerParams
 from dfa.controller_kmax import controller_stiffness_limits
 from dfa.cycles import limit_cycles
 from dfa.device import Params
@@ -224,7 +224,7 @@ def test_default_samples_controller_spring_unchanged_and_lag_longer():
     beta=st.floats(0.0, 1.0),
     beta_b=st.floats(0.0, 2.0),
     cutoff=st.one_of(st.none(), st.floats(0.02, 0.45)),
-    lag=st.floats(0.0, 1.5),
+    lag=st.one_of(st.just(0.0), st.floats(MIN_LAG, 1.5)),  # shorter lags are refused (ControllerParams)
     delay=st.integers(0, 2),
 )
 def test_default_samples_controller_decaying_linear_run_rests(log_mu, beta, beta_b, cutoff, lag, delay):
