@@ -31,10 +31,37 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from typing import Any, Protocol
 
-__all__ = ["run_in_order", "PARALLEL_BACKENDS"]
+import numpy as np
+
+__all__ = ["run_in_order", "deal", "gather", "PARALLEL_BACKENDS"]
 
 #: Backends of :func:`run_in_order` (module docstring).
 PARALLEL_BACKENDS = ("threads", "processes", "joblib")
+
+
+def deal(total: int, parts: int) -> list[np.ndarray]:
+    """Indices 0 … total − 1 dealt out in turn to ``parts`` chunks (chunk i: i, i + parts, i + 2 parts, …).
+
+    Neighbouring points of a grid cost alike (a region that chatters for the whole run, one that comes to
+    rest at once), so dealt-out chunks carry like work and parallel workers finish together. Empty chunks
+    are left out (``parts`` > ``total``).
+
+    >>> [c.tolist() for c in deal(5, 2)]
+    [[0, 2, 4], [1, 3]]
+    """
+    return [np.arange(i, total, parts) for i in range(min(parts, total))]
+
+
+def gather(chunks: Sequence[np.ndarray], parts: Sequence[np.ndarray]) -> np.ndarray:
+    """The values of each chunk put back at their indices (the inverse of :func:`deal`).
+
+    >>> gather(deal(5, 2), [np.array([0, 20, 40]), np.array([10, 30])]).tolist()
+    [0, 10, 20, 30, 40]
+    """
+    out = np.empty(sum(c.size for c in chunks), dtype=np.result_type(*parts))
+    for c, part in zip(chunks, parts, strict=True):
+        out[c] = part
+    return out
 
 
 class _Progress(Protocol):

@@ -77,6 +77,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from ._parallel import deal, gather
 from .checks import _fmt, check_choice, check_delay, check_int, check_positive, check_real, check_speed, check_type
 from .controller import Controller, ControllerParams
 from .device import Device
@@ -160,7 +161,7 @@ def _batched_outcomes(jobs: list[tuple], delay: int, workers: int) -> list[str]:
     if not jobs:
         return []
     mu, beta, sigma, v0, n, x0, bound = (np.array(c) for c in list(zip(*jobs, strict=True))[:7])
-    chunks = np.array_split(np.arange(len(jobs)), max(1, min(len(jobs), 4 * workers)))
+    chunks = deal(len(jobs), 4 * workers)
 
     def chunk(j: np.ndarray) -> np.ndarray:
         rules = (STABLE_AMPLITUDE, GROWTH, SETTLE)  # simulate()'s defaults
@@ -168,9 +169,9 @@ def _batched_outcomes(jobs: list[tuple], delay: int, workers: int) -> list[str]:
 
     if workers > 1:  # the compiled kernel releases the GIL: threads overlap the chunks, results are per run
         with ThreadPoolExecutor(max_workers=workers) as pool:
-            codes = np.concatenate(list(pool.map(chunk, chunks)))
+            codes = gather(chunks, list(pool.map(chunk, chunks)))
     else:
-        codes = np.concatenate([chunk(j) for j in chunks])
+        codes = gather(chunks, [chunk(j) for j in chunks])
     return [OUTCOMES[c] for c in codes]
 
 

@@ -61,7 +61,7 @@ import numpy as np
 
 from ._frozen import check_shape, freeze_fields
 from ._io import atomic_open, check_memory
-from ._parallel import PARALLEL_BACKENDS, run_in_order
+from ._parallel import PARALLEL_BACKENDS, deal, gather, run_in_order
 from .checks import (
     _fmt,
     check_bool,
@@ -548,10 +548,10 @@ def stability_map(
     bar = tqdm(total=pts_b.size, unit="run", desc=f"stability map μ={m:g}", disable=not progress, leave=False)
     try:
         # spring or controller: the same chunks, in order (dfa._parallel), Ctrl-C cancels the pending ones
-        results = run_in_order(_run_chunk, tasks, [c.stop - c.start for c in chunks], workers, how, bar)
+        results = run_in_order(_run_chunk, tasks, [c.size for c in chunks], workers, how, bar)
     finally:
         bar.close()
-    codes, amps, freqs = (np.concatenate([r[k] for r in results]).reshape(len(speeds), g, g) for k in range(3))
+    codes, amps, freqs = (gather(chunks, [r[k] for r in results]).reshape(len(speeds), g, g) for k in range(3))
     out = (codes.astype(np.int8), amps, freqs, n, d, quantize, preload)
     return StabilityMap(m, speeds, beta, sigma, *out, controller=ctl)
 
@@ -583,10 +583,12 @@ def _chunk_cost(samples: int, controller: ControllerParams | None) -> float:
     return samples * CONTROLLER_COST["lag" if controller.lag > 0 else "controller"]
 
 
-def _chunks(total: int, workers: int, cost: float = 0.0) -> list[slice]:
-    """Contiguous chunks of the points: 16 per worker (progress and load balance), 64 in one thread, and more
-    when a chunk would plan over :data:`CHUNK_SAMPLES` (``cost``: per point, from :func:`_chunk_cost`)."""
+def _chunks(total: int, workers: int, cost: float = 0.0) -> list[np.ndarray]:
+    """Indices of the points in chunks: 16 per worker (progress and load balance), 64 in one thread, and more
+    when a chunk would plan over :data:`CHUNK_SAMPLES` (``cost``: per point, from :func:`_chunk_cost`).
+
+    The points are dealt out in turn (:func:`dfa._parallel.deal`: chunk i holds points i, i + N, … of N chunks),
+    so that the chunks carry like work and the workers finish together.
+    """
     nchunks = workers * 16 if workers > 1 else 64
-    nchunks = max(1, min(total, max(nchunks, math.ceil(total * cost / CHUNK_SAMPLES))))
-    bounds = np.linspace(0, total, nchunks + 1).astype(int)
-    return [slice(bounds[i], bounds[i + 1]) for i in range(nchunks) if bounds[i + 1] > bounds[i]]
+    return deal(total, max(1, nchunks, math.ceil(total * cost / CHUNK_SAMPLES)))

@@ -102,7 +102,10 @@ def test_fig4_controller_map_same_for_any_jobs_and_backend_and_equal_to_simulate
 def test_fig4_map_chunks_sized_by_planned_work_same_result(monkeypatch):
     """Chunks hold at most CHUNK_SAMPLES planned samples (a lag costs more): more chunks, the same numbers."""
     chunks = maps._chunks(10, 2, maps._chunk_cost(100, CTL) * 1e6)
-    assert [c.stop - c.start for c in chunks] == [1] * 10  # contiguous, every point once
+    assert [c.tolist() for c in chunks] == [[i] for i in range(10)]  # every point once
+    dealt = maps._chunks(10, 1)  # fewer points than 64 chunks: one each
+    assert sorted(np.concatenate(maps._chunks(1000, 2)).tolist()) == list(range(1000)) and len(dealt) == 10
+    assert maps._chunks(100, 2)[3].tolist() == [3, 35, 67, 99]  # dealt out in turn over 32 chunks
     assert maps._chunk_cost(100, CTL) == 100 * maps.CONTROLLER_COST["lag"] and maps._chunk_cost(100, None) == 100
     assert len(maps._chunks(10_000, 2)) == 32 and len(maps._chunks(10_000, 2, 1.0e5)) == 50  # 10^9 samples / 2e7
     kw = dict(grid=3, samples=2000, n_jobs=2, progress=False, controller=CTL)
