@@ -12,9 +12,11 @@ need, without cancellation at small u::
 and, for the time at which the device stops inside a sample, the inverse's
 relative form λ(y) = log(1 + y)/y = Σ (−y)ⁿ/(n + 1) (λ(0) = 1), y > −1.
 
-(φ₁(0) = 1, φ₂(0) = ½, ψ(0) = ½, χ(0) = ⅓). Each is its series for |u| < ½
-(φ₁, φ₂: 16 terms by Estrin's scheme, the simulator's hot path; ψ, χ: 24 terms) and its closed form through
-``expm1`` otherwise; λ is its series (16 terms, Estrin) for |y| < 1/16 and ``log1p(y)/y`` otherwise (divided in steps beyond u = 10¹⁰⁰,
+(φ₁(0) = 1, φ₂(0) = ½, ψ(0) = ½, χ(0) = ⅓). φ₁, φ₂ are their series for |u| < ½
+(by Estrin's scheme, the simulator's hot path, 8 terms below |u| = 1/32 and 16 above) and their closed forms
+through ``expm1`` otherwise; ψ = ½φ₁² exactly; χ is e^{−2u} times a series of positive terms below u = 5
+and its closed form above; λ is its series (Estrin, 8 terms below |y| = 1/128, 16 up
+to 1/16) and ``log1p(y)/y`` otherwise (divided in steps beyond u = 10¹⁰⁰,
 where u² or u³ would overflow): a few ulp everywhere (``tests/test_exprel.py`` checks
 them against 50-digit mpmath). φ₁ and φ₂ take any real u (negative u appears
 in Gil's factor, :func:`dfa.stiffness.gil_factor`); ψ and χ are used for
@@ -47,7 +49,7 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["phi1", "phi2", "psi", "chi", "log1p_ratio", "phi1_array", "phi2_array"]
+__all__ = ["phi1", "phi2", "phi12", "psi", "chi", "log1p_ratio", "phi1_array", "phi2_array"]
 
 
 # Taylor coefficients in x = −u: φ₁ = Σ xⁿ/(n + 1)!, φ₂ = Σ xⁿ/(n + 2)!, n = 0 … 15
@@ -56,6 +58,10 @@ _C1 = tuple(1.0 / math.factorial(n + 1) for n in range(16))
 _C2 = tuple(1.0 / math.factorial(n + 2) for n in range(16))
 # λ(y) = Σ xⁿ/(n + 1) in x = −y, n = 0 … 15 (the first omitted term is below 2⁻⁶⁴/17 for |y| < 1/16)
 _CL = tuple(1.0 / (n + 1) for n in range(16))
+# Near 0 (the stop inside a sample at small β/μ: its chain is a division and two of these) eight terms suffice:
+# the first omitted term is below 5·10⁻¹⁸ of the value for |u| < 1/32 (φ₁, φ₂) and 2·10⁻¹⁸ for |y| < 1/128 (λ)
+SHORT_U = 0.03125
+SHORT_Y = 0.0078125
 
 
 @njit(cache=True, inline="always")
@@ -72,8 +78,19 @@ def _poly16(x, c):
 
 
 @njit(cache=True, inline="always")
+def _poly8(x, c):
+    """Σ c[n] xⁿ, n = 0 … 7, by Estrin's scheme (depth 3), for arguments near 0."""
+    x2 = x * x
+    r0 = (c[0] + c[1] * x) + (c[2] + c[3] * x) * x2
+    r1 = (c[4] + c[5] * x) + (c[6] + c[7] * x) * x2
+    return r0 + r1 * (x2 * x2)
+
+
+@njit(cache=True, inline="always")
 def phi1(u: float) -> float:
     """φ₁(u) = (1 − e^{−u})/u (φ₁(0) = 1), dimensionless."""
+    if abs(u) < SHORT_U:
+        return _poly8(-u, _C1)
     if abs(u) < 0.5:
         return _poly16(-u, _C1)
     return -math.expm1(-u) / u
@@ -82,11 +99,22 @@ def phi1(u: float) -> float:
 @njit(cache=True, inline="always")
 def phi2(u: float) -> float:
     """φ₂(u) = (u − 1 + e^{−u})/u² (φ₂(0) = ½), dimensionless."""
+    if abs(u) < SHORT_U:
+        return _poly8(-u, _C2)
     if abs(u) < 0.5:
         return _poly16(-u, _C2)
     if u > 1e100:  # u² would overflow
         return (math.expm1(-u) + u) / u / u
     return (math.expm1(-u) + u) / (u * u)
+
+
+@njit(cache=True, inline="always")
+def phi12(u: float) -> tuple[float, float]:
+    """(φ₁(u), φ₂(u)) from one series near 0 (φ₁ = 1 − u φ₂, within an ulp there), else :func:`phi1`, :func:`phi2`."""
+    if abs(u) < SHORT_U:
+        p2 = _poly8(-u, _C2)
+        return 1.0 - u * p2, p2
+    return phi1(u), phi2(u)
 
 
 @njit(cache=True, inline="always")
@@ -96,6 +124,8 @@ def log1p_ratio(y: float) -> float:
     The simulator's stop time t* = w λ(y) (:func:`dfa._kernel.step`): below |y| = 1/16 the series,
     a short chain of multiply-adds instead of ``log1p`` and a division.
     """
+    if abs(y) < SHORT_Y:
+        return _poly8(-y, _CL)
     if abs(y) < 0.0625:
         return _poly16(-y, _CL)
     return math.log1p(y) / y
@@ -103,39 +133,28 @@ def log1p_ratio(y: float) -> float:
 
 @njit(cache=True, inline="always")
 def psi(u: float) -> float:
-    """ψ(u) = ((1 − e^{−u}) − ½(1 − e^{−2u}))/u² (ψ(0) = ½), for u >= 0."""
-    if abs(u) < 0.5:
-        s = 0.0
-        fact = 2.0  # n!
-        upow = 1.0  # u^(n-2)
-        sign = 1.0
-        for n in range(2, 26):
-            if n > 2:
-                fact *= n
-                upow *= u
-                sign = -sign
-            s += sign * (2.0 ** (n - 1) - 1.0) * upow / fact
-        return s
-    if u > 1e100:
-        return (-math.expm1(-u) + 0.5 * math.expm1(-2.0 * u)) / u / u
-    return (-math.expm1(-u) + 0.5 * math.expm1(-2.0 * u)) / (u * u)
+    """ψ(u) = ((1 − e^{−u}) − ½(1 − e^{−2u}))/u² = ½ φ₁(u)² (ψ(0) = ½), for u >= 0.
+
+    With E = 1 − e^{−u}, 1 − e^{−2u} = E(2 − E), so the numerator is ½E²: no cancellation anywhere.
+    """
+    p1 = phi1(u)
+    return 0.5 * p1 * p1
+
+
+# χ(u) e^{2u} = Σ c_k u^{k−3}, c_k = ((k − 3) 2^{k−1} + 2)/k! > 0, k = 3 … 62: positive terms, no cancellation,
+# below u = 5 (the first omitted term is below 10⁻¹⁹ of the sum there); the closed form above (it cancels by
+# less than a factor 1.6 there)
+_CHI = tuple(((k - 3) * 2.0 ** (k - 1) + 2.0) / math.factorial(k) for k in range(3, 63))
 
 
 @njit(cache=True, inline="always")
 def chi(u: float) -> float:
     """χ(u) = (u − 2(1 − e^{−u}) + ½(1 − e^{−2u}))/u³ (χ(0) = ⅓), for u >= 0."""
-    if abs(u) < 0.5:
+    if u < 5.0:
         s = 0.0
-        fact = 6.0
-        upow = 1.0
-        sign = 1.0
-        for n in range(3, 27):
-            if n > 3:
-                fact *= n
-                upow *= u
-                sign = -sign
-            s += sign * (2.0 ** (n - 1) - 2.0) * upow / fact
-        return s
+        for c in _CHI[::-1]:
+            s = s * u + c
+        return s * math.exp(-2.0 * u)
     if u > 1e100:
         return (u + 2.0 * math.expm1(-u) - 0.5 * math.expm1(-2.0 * u)) / u / u / u
     return (u + 2.0 * math.expm1(-u) - 0.5 * math.expm1(-2.0 * u)) / (u * u * u)

@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from dfa._exprel import log1p_ratio, phi1, phi2  # the one φ₁/φ₂/λ (called as plain Python functions here)
+from dfa._exprel import log1p_ratio, phi1, phi2, phi12  # the one φ₁/φ₂/λ (called as plain Python functions here)
 
 __all__ = ["simulate_ivp", "step_python", "simulate_control", "linear_zoh_recursion"]
 
@@ -87,15 +87,15 @@ def step_python(x, v, phi, mu, beta, sigma):
     w = -v / f * mu
     y = w * rate
     tstar = min(1.0, w * (log1p_ratio(y) if y > 0 else 1.0))
-    u = rate * tstar
-    x = x + v * tstar * phi1(u) + a * tstar * tstar * phi2(u)
+    f1, f2 = phi12(rate * tstar)
+    x = x + v * tstar * f1 + a * tstar * tstar * f2
     tr = 1.0 - tstar
     if abs(phi) <= sigma or tr <= 0.0:
         return x, 0.0
     s2 = math.copysign(1.0, phi)
     a2 = (phi - sigma * s2) / mu
-    u2 = rate * tr
-    return x + a2 * tr * tr * phi2(u2), a2 * tr * phi1(u2)
+    g1, g2 = phi12(rate * tr)
+    return x + a2 * tr * tr * g2, a2 * tr * g1
 
 
 def simulate_control(mu, beta, sigma, xi0, xi_dot0, samples, *, quantize=True):

@@ -30,18 +30,27 @@ def _closed(name: str, x) -> float:
     return float(val)
 
 
-ARGS = [0.0, 1e-300, 1e-17, 1e-9, 1e-4, 0.1, 0.3, 0.4999999, 0.5, 0.5000001, 0.7, 1.0, 3.0, 30.0, 700.0, 1e6, 1e300]
+SHORT_EDGE = [0.0312499, 0.03125, 0.0312501]  # the eight-term series' edge, |u| = 1/32
+ARGS = [0.0, 1e-300, 1e-17, 1e-9, 1e-4, *SHORT_EDGE, 0.1, 0.3, 0.4999999, 0.5, 0.5000001, 0.7, 1.0, 3.0, 30.0, 1e6]
+ARGS += [700.0, 1e300]
 
 
 @pytest.mark.parametrize("name", ["phi1", "phi2", "psi", "chi"])
 @pytest.mark.parametrize("u", ARGS)
 def test_eq4_exprel_matches_mpmath_tiny_to_huge(name, u):
-    got = getattr(_exprel, name)(u)
-    assert got == pytest.approx(_ref(name, u), rel=4e-16, abs=0.0)
+    _assert_few_ulp(name, getattr(_exprel, name)(u), _ref(name, u))
+
+
+def _assert_few_ulp(name: str, got: float, ref: float) -> None:
+    """φ₁, φ₂: within 4·10⁻¹⁶ relative (about 2 ulp); ψ = ½φ₁², χ (a product of e^{−2u} and a sum): 4 ulp."""
+    if name in ("psi", "chi"):
+        assert abs(got - ref) <= 4 * math.ulp(ref)
+    else:
+        assert got == pytest.approx(ref, rel=4e-16, abs=0.0)
 
 
 @pytest.mark.parametrize("name", ["phi1", "phi2"])
-@pytest.mark.parametrize("u", [-1e-12, -0.2, -0.4999999, -0.5, -1.0, -10.0, -300.0])
+@pytest.mark.parametrize("u", [-1e-12, -0.0312499, -0.03125, -0.2, -0.4999999, -0.5, -1.0, -10.0, -300.0])
 def test_eq4_exprel_negative_arguments_for_gil_factor(name, u):
     assert getattr(_exprel, name)(u) == pytest.approx(_ref(name, u), rel=4e-16, abs=0.0)
 
@@ -49,7 +58,15 @@ def test_eq4_exprel_negative_arguments_for_gil_factor(name, u):
 @given(st.floats(min_value=0.0, max_value=50.0))
 def test_eq4_exprel_property_few_ulp(u):
     for name in ("phi1", "phi2", "psi", "chi"):
-        assert getattr(_exprel, name)(u) == pytest.approx(_ref(name, u), rel=4e-16, abs=0.0)
+        _assert_few_ulp(name, getattr(_exprel, name)(u), _ref(name, u))
+
+
+@pytest.mark.parametrize("u", [0.5, 0.875, 1.0, 2.0, 4.99, 5.0, 7.0])
+def test_eq4_exprel_psi_chi_without_cancellation_where_the_closed_forms_cancel(u):
+    """0.875 was 25 ulp off when χ took its closed form above u = ½ (u − 2E + ½E(2 − E) cancels, E = 1 − e^{−u})."""
+    for name in ("psi", "chi"):
+        _assert_few_ulp(name, getattr(_exprel, name)(u), _ref(name, u))
+    assert _exprel.psi(u) == 0.5 * _exprel.phi1(u) ** 2
 
 
 def test_eq4_exprel_identities_and_arrays():
@@ -75,6 +92,9 @@ def test_eq4_every_user_imports_the_one_exprel():
     assert (c1, c0) == pytest.approx((_ref("phi2", 0.3), _ref("phi1", 0.3) - _ref("phi2", 0.3)), rel=1e-15)
 
 
+LAMBDA_EDGE = [0.0078124, 0.0078125, 0.0078126, -0.0078124]  # the eight-term series' edge, |y| = 1/128
+
+
 def _ref_lambda(y: float) -> float:
     if y == 0:
         return 1.0
@@ -83,7 +103,7 @@ def _ref_lambda(y: float) -> float:
 
 
 @pytest.mark.parametrize(
-    "y", [0.0, 1e-300, 1e-17, 1e-9, 1e-4, 0.03, 0.0624999, 0.0625, 0.07, 0.5, 3.0, 1e6, -0.03, -0.5]
+    "y", [0.0, 1e-300, 1e-17, 1e-9, 1e-4, *LAMBDA_EDGE, 0.03, 0.0624999, 0.0625, 0.07, 0.5, 3.0, 1e6, -0.03, -0.5]
 )
 def test_eq4_stop_time_ratio_matches_mpmath(y):
     """λ(y) = log1p(y)/y of the stop time t* = w λ(y) (dfa._kernel.step): series and closed form, a few ulp."""
@@ -93,3 +113,32 @@ def test_eq4_stop_time_ratio_matches_mpmath(y):
 @given(st.floats(min_value=-0.9, max_value=50.0))
 def test_eq4_stop_time_ratio_property_few_ulp(y):
     assert _exprel.log1p_ratio(y) == pytest.approx(_ref_lambda(y), rel=4e-16, abs=0.0)
+
+
+@given(st.floats(min_value=-_exprel.SHORT_U, max_value=_exprel.SHORT_U))
+def test_eq4_exprel_short_series_property_few_ulp(u):
+    """The eight-term series near 0 (the simulator's stop inside a sample): φ₁, φ₂ within a few ulp."""
+    for name in ("phi1", "phi2"):
+        assert getattr(_exprel, name)(u) == pytest.approx(_ref(name, u), rel=4e-16, abs=0.0)
+
+
+@given(st.floats(min_value=-_exprel.SHORT_Y, max_value=_exprel.SHORT_Y))
+def test_eq4_stop_time_ratio_short_series_property_few_ulp(y):
+    assert _exprel.log1p_ratio(y) == pytest.approx(_ref_lambda(y), rel=4e-16, abs=0.0)
+
+
+@pytest.mark.parametrize("u", [0.0, 1e-300, 1e-9, -0.01, 0.0312499, 0.03125, 0.2, 3.0])
+def test_eq4_exprel_pair_of_one_phase_matches_mpmath(u):
+    """(φ₁, φ₂) of a phase inside a sample (dfa._kernel.step): near 0, φ₁ = 1 − u φ₂ from one series."""
+    f1, f2 = _exprel.phi12(u)
+    assert f1 == pytest.approx(_ref("phi1", u), rel=4e-16, abs=0.0)
+    assert f2 == pytest.approx(_ref("phi2", u), rel=4e-16, abs=0.0)
+    if abs(u) >= _exprel.SHORT_U:
+        assert (f1, f2) == (_exprel.phi1(u), _exprel.phi2(u))
+
+
+@given(st.floats(min_value=-_exprel.SHORT_U, max_value=_exprel.SHORT_U))
+def test_eq4_exprel_pair_property_few_ulp(u):
+    f1, f2 = _exprel.phi12(u)
+    assert f1 == pytest.approx(_ref("phi1", u), rel=4e-16, abs=0.0)
+    assert f2 == _exprel.phi2(u)
