@@ -1,6 +1,8 @@
 """Independent runs of the exact simulator in one compiled call, each with its own length, bound and tail.
 
-:func:`batch_kernel` is what :func:`dfa.simulation.run_points` (stability maps, :func:`dfa.simulation.simulate_batch`)
+:func:`batch_ckernel` is the same for runs with a controller (each run its own damper, filter and lag;
+:func:`dfa._ckernel.simulate_ckernel` alone, bit for bit): what :func:`dfa.zwidth.z_width` runs, a chunk of
+grid points per call. :func:`batch_kernel` is what :func:`dfa.simulation.run_points` (stability maps, :func:`dfa.simulation.simulate_batch`)
 and the K_max searches (:func:`dfa.kmax.simulate_points`) run for the spring: each run bit for bit
 :func:`dfa._kernel.simulate_kernel` alone, one after the other, the GIL released (callers run chunks on threads).
 
@@ -17,9 +19,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ._ckernel import simulate_ckernel
 from ._kernel import simulate_kernel
 
-__all__ = ["batch_kernel"]
+__all__ = ["batch_kernel", "batch_ckernel"]
 
 
 @njit(cache=True, nogil=True)
@@ -35,4 +38,26 @@ def batch_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail
         done[i], rest[i] = simulate_kernel(
             mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], delay, quantize, bounds[i], tail_lens[i],
             e, e, e2, stats[i],
+        )  # fmt: skip
+
+
+@njit(cache=True, nogil=True)
+def batch_ckernel(
+    mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, dampings, poles, filtered, lags,
+    stats, done, rest,
+):  # fmt: skip
+    """Independent runs with a controller, one after the other: run i is
+    :func:`dfa._ckernel.simulate_ckernel` of its own inputs.
+
+    As :func:`batch_kernel` (run i: ``ns[i]`` samples, bound ``bounds[i]``, tail ``tail_lens[i]``; one
+    ``delay`` for all), and run i has the controller (β_B, a, filtered, α) = (``dampings[i]``, ``poles[i]``,
+    ``filtered[i]``, ``lags[i]``) (:func:`dfa.simulation._controller_args` of its ControllerParams).
+    ``stats[i]`` (NSTATS), ``done[i]`` and ``rest[i]`` receive what
+    :func:`dfa._ckernel.simulate_ckernel` returns for it (nothing recorded).
+    """
+    e = np.empty(0)
+    for i in range(mus.shape[0]):
+        done[i], rest[i] = simulate_ckernel(
+            mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], delay, quantize, bounds[i], tail_lens[i],
+            dampings[i], poles[i], filtered[i], lags[i], e, e, stats[i],
         )  # fmt: skip
