@@ -113,6 +113,11 @@ MAX_WORK_SAMPLES = 2.0e10
 MAX_GRID = 200
 #: Grid points per compiled call of the simulations (every run of each point; one chunk per thread task).
 POINTS_PER_CALL = 16
+#: Fewest values of B whose boundary columns run in worker processes when several workers are asked (fewer:
+#: threads). A column is mostly the describing-function scan, pure Python that holds the GIL (about 0.25 s of
+#: one core per column on the catalogue devices): on threads it runs on one core whatever the workers; a
+#: worker process starts in about 2 s of one core (imports), once per session (joblib reuses its workers).
+PROCESS_COLUMNS = 16
 
 _NOT_COVERED = (
     "not covered: the condition assumes the zero-order hold drives the device directly; with an amplifier lag no "
@@ -549,7 +554,9 @@ def z_width(
     df_model : {"half-delay", "zoh", "pade"}, optional
         Hold model of the describing function.
     n_jobs : int, optional
-        Threads for the simulations (-1: all cores). The result does not depend on it.
+        Workers (-1: all cores): threads for the simulations; for the per-B boundaries threads, or worker
+        processes from :data:`PROCESS_COLUMNS` values of B on (their describing-function scans hold the GIL).
+        The result does not depend on it.
     progress : bool, optional
         Show a progress bar on stderr.
 
@@ -635,13 +642,15 @@ def _column(dev, v, d, fc, fbw, ks, b: float, row: np.ndarray, model: str) -> li
 
 
 def _assemble(dev, v, d, fc, fbw, vs, ks, bs, codes, cap, n_points, model, workers: int, progress=False) -> ZWidth:
-    """Boundaries per method from the grid and the closed forms (columns on ``workers`` threads); status."""
+    """Boundaries per method from the grid and the closed forms (columns on ``workers`` threads, or processes
+    from :data:`PROCESS_COLUMNS` columns on); status."""
     from tqdm.auto import tqdm
 
     args = [(dev, v, d, fc, fbw, ks, float(b), codes[i], model) for i, b in enumerate(bs)]
     bar = tqdm(total=len(args), unit="B", desc=f"Z-width {dev.name} boundaries", disable=not progress, leave=False)
     try:  # in order (dfa._parallel): the result does not depend on workers; Ctrl-C cancels the columns not started
-        cols = run_in_order(_column, args, [1] * len(args), workers, "threads", bar)
+        how = "processes" if workers > 1 and len(args) >= PROCESS_COLUMNS else "threads"
+        cols = run_in_order(_column, args, [1] * len(args), workers, how, bar)
     finally:
         bar.close()
     arrays = {m: np.array([c[n][0] for c in cols], dtype=float) for n, m in enumerate(ZWIDTH_METHODS)}

@@ -3,6 +3,7 @@
 :func:`dfa._ckernel.simulate_ckernel` run by run, bit for bit."""
 
 import itertools
+import json
 
 import numpy as np
 import pytest
@@ -13,6 +14,7 @@ from dfa._ckernel import simulate_ckernel
 from dfa._kernel import NSEG, NSTATS, OSCILLATING, REST, UNDECIDED, UNSTABLE
 from dfa.catalogue import get_device
 from dfa.simulation import OUTCOMES, simulate
+from dfa.zwidth import z_width
 
 
 def _reference_point(runs, ctl) -> int:
@@ -125,3 +127,21 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
         np.testing.assert_array_equal(st, stats[i])
         seen.add("rest" if rs >= 0 else ("bound" if st[NSEG + 5] > 0 else "full"))
     assert seen == {"rest", "bound", "full"}
+
+
+def test_zwidth_boundary_columns_in_worker_processes_equal_one_thread(monkeypatch):
+    """From PROCESS_COLUMNS values of B the boundary columns run in worker processes: the same ZWidth as n_jobs=1."""
+    dev = get_device("Phantom 1.0").device
+    one = z_width(dev, 0.1, delay=1, filter_cutoff=100.0, grid=3, speeds=1, n_jobs=1).as_dict()
+    monkeypatch.setattr(zmod, "PROCESS_COLUMNS", 2)
+    calls = []
+    real = zmod.run_in_order
+
+    def spy(fn, tasks, sizes, workers, backend, bar):
+        calls.append((fn.__name__, backend))
+        return real(fn, tasks, sizes, workers, backend, bar)
+
+    monkeypatch.setattr(zmod, "run_in_order", spy)
+    two = z_width(dev, 0.1, delay=1, filter_cutoff=100.0, grid=3, speeds=1, n_jobs=2).as_dict()
+    assert calls == [("_run_chunk", "threads"), ("_column", "processes")]
+    assert json.dumps(one, sort_keys=True) == json.dumps(two, sort_keys=True)
