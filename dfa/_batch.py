@@ -1,8 +1,6 @@
 """Independent runs of the exact simulator in one compiled call, each with its own length, bound and tail.
 
-:func:`batch_ckernel` is the same for runs with a controller (each run its own damper, filter and lag;
-:func:`dfa._ckernel.simulate_ckernel` alone, bit for bit): what :func:`dfa.zwidth.z_width` runs, a chunk of
-grid points per call. :func:`batch_kernel` is what :func:`dfa.simulation.run_points` (stability maps, :func:`dfa.simulation.simulate_batch`)
+:func:`batch_kernel` is what :func:`dfa.simulation.run_points` (stability maps, :func:`dfa.simulation.simulate_batch`)
 and the K_max searches (:func:`dfa.kmax.simulate_points`) run for the spring: each run bit for bit
 :func:`dfa._kernel.simulate_kernel` alone, one after the other, the GIL released (callers run chunks on threads).
 
@@ -12,6 +10,13 @@ on Fig. 4 map points in ``make bench`` and 0.99 in a by-class measurement (0.95 
 repeats, 1.07 on diverging runs, 1.11 on resting ones); a bare loop of two runs' samples gains 20-27 %, their
 bookkeeping takes most of it back. Too little for a second copy of the loop: it is kept as a benchmark, not
 used here (``reports/benchmarks.md``).
+
+:func:`batch_ckernel` is the same loop for runs with a controller (each run its own damper, filter and lag;
+each :func:`dfa._ckernel.simulate_ckernel` alone, bit for bit): :func:`dfa.zwidth.z_width` runs a chunk of
+grid points per call.
+
+Developers: numba's on-disk cache of this module does not notice edits in :mod:`dfa._kernel` or
+:mod:`dfa._ckernel`, whose kernels it compiles in: clear it (``rm -rf .cache/numba``) after such an edit.
 """
 
 from __future__ import annotations

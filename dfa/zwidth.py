@@ -35,7 +35,10 @@ at each B the largest K is found four ways:
     first point (ascending in K) that diverges or is undecided; ``k_rest`` the
     largest below the first point that does not come to rest. These are grid
     values (resolution: one grid step in K), not bisected; points found safe
-    again above the first failure are counted in ``non_monotone``.
+    again above the first failure are counted in ``non_monotone``. The runs are those of
+    :func:`dfa.simulate` with the same inputs, outcomes included, run in chunks of
+    :data:`POINTS_PER_CALL` points, each chunk one compiled call (:func:`dfa._batch.batch_ckernel`; pure-spring
+    points through :func:`dfa.simulation.run_points`) on threads.
 
 Any simulated divergence at a K the extended criterion proves passive is a
 ``counterexample`` (status ``"counterexample"``: a criterion bug). The
