@@ -10,6 +10,13 @@ on Fig. 4 map points in ``make bench`` and 0.99 in a by-class measurement (0.95 
 repeats, 1.07 on diverging runs, 1.11 on resting ones); a bare loop of two runs' samples gains 20-27 %, their
 bookkeeping takes most of it back. Too little for a second copy of the loop: it is kept as a benchmark, not
 used here (``reports/benchmarks.md``).
+
+:func:`batch_ckernel` is the same loop for runs with a controller (each run its own damper, filter and lag;
+each :func:`dfa._ckernel.simulate_ckernel` alone, bit for bit): :func:`dfa.zwidth.z_width` runs a chunk of
+grid points per call.
+
+Developers: numba's on-disk cache of this module does not notice edits in :mod:`dfa._kernel` or
+:mod:`dfa._ckernel`, whose kernels it compiles in: clear it (``rm -rf .cache/numba``) after such an edit.
 """
 
 from __future__ import annotations
@@ -17,9 +24,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ._ckernel import simulate_ckernel
 from ._kernel import simulate_kernel
 
-__all__ = ["batch_kernel"]
+__all__ = ["batch_kernel", "batch_ckernel"]
 
 
 @njit(cache=True, nogil=True)
@@ -35,4 +43,26 @@ def batch_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail
         done[i], rest[i] = simulate_kernel(
             mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], delay, quantize, bounds[i], tail_lens[i],
             e, e, e2, stats[i],
+        )  # fmt: skip
+
+
+@njit(cache=True, nogil=True)
+def batch_ckernel(
+    mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, dampings, poles, filtered, lags,
+    stats, done, rest,
+):  # fmt: skip
+    """Independent runs with a controller, one after the other: run i is
+    :func:`dfa._ckernel.simulate_ckernel` of its own inputs.
+
+    As :func:`batch_kernel` (run i: ``ns[i]`` samples, bound ``bounds[i]``, tail ``tail_lens[i]``; one
+    ``delay`` for all), and run i has the controller (β_B, a, filtered, α) = (``dampings[i]``, ``poles[i]``,
+    ``filtered[i]``, ``lags[i]``) (:func:`dfa.simulation._controller_args` of its ControllerParams).
+    ``stats[i]`` (NSTATS), ``done[i]`` and ``rest[i]`` receive what
+    :func:`dfa._ckernel.simulate_ckernel` returns for it (nothing recorded).
+    """
+    e = np.empty(0)
+    for i in range(mus.shape[0]):
+        done[i], rest[i] = simulate_ckernel(
+            mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], delay, quantize, bounds[i], tail_lens[i],
+            dampings[i], poles[i], filtered[i], lags[i], e, e, stats[i],
         )  # fmt: skip

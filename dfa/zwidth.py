@@ -35,7 +35,10 @@ at each B the largest K is found four ways:
     first point (ascending in K) that diverges or is undecided; ``k_rest`` the
     largest below the first point that does not come to rest. These are grid
     values (resolution: one grid step in K), not bisected; points found safe
-    again above the first failure are counted in ``non_monotone``.
+    again above the first failure are counted in ``non_monotone``. The runs are those of
+    :func:`dfa.simulate` with the same inputs, outcomes included, run in chunks of
+    :data:`POINTS_PER_CALL` points, each chunk one compiled call (:func:`dfa._batch.batch_ckernel`; pure-spring
+    points through :func:`dfa.simulation.run_points`) on threads.
 
 Any simulated divergence at a K the extended criterion proves passive is a
 ``counterexample`` (status ``"counterexample"``: a criterion bug). The
@@ -62,6 +65,9 @@ from typing import Any
 
 import numpy as np
 
+from . import _kernel
+from ._batch import batch_ckernel
+from ._kernel import NSTATS, classify_batch
 from ._parallel import run_in_order
 from .checks import (
     _fmt,
@@ -82,7 +88,17 @@ from .errors import DFAValueError
 from .jsonable import explain_nulls
 from .kmax import DIVERGENCE_BOUND, K_RTOL, SAFE, UNDECIDED, UNSAFE, _growth_xi_dot, df_verdict
 from .passivity import colgate_schenkel_damping
-from .simulation import default_samples, divergence_bound, preload_position, simulate
+from .simulation import (
+    GROWTH,
+    SETTLE,
+    STABLE_AMPLITUDE,
+    _controller_args,
+    _tail_lengths,
+    default_samples,
+    divergence_bound,
+    preload_position,
+    run_points,
+)
 from .status import ZWidthStatus
 
 __all__ = ["ZWidth", "z_width", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
@@ -98,6 +114,13 @@ ZWIDTH_MAX_SAMPLES = 200_000
 MAX_WORK_SAMPLES = 2.0e10
 #: Largest grid (points per axis).
 MAX_GRID = 200
+#: Grid points per compiled call of the simulations (every run of each point; one chunk per thread task).
+POINTS_PER_CALL = 16
+#: Fewest values of B whose boundary columns run in worker processes when several workers are asked (fewer:
+#: threads). A column is mostly the describing-function scan, pure Python that holds the GIL (about 0.25 s of
+#: one core per column on the catalogue devices): on threads it runs on one core whatever the workers; a
+#: worker process starts in about 2 s of one core (imports), once per session (joblib reuses its workers).
+PROCESS_COLUMNS = 16
 
 _NOT_COVERED = (
     "not covered: the condition assumes the zero-order hold drives the device directly; with an amplifier lag no "
@@ -357,34 +380,85 @@ def _runs(dev: Device, k: float, b: float, ctl: ControllerParams, xi_dots, cap: 
     return out
 
 
-def _point(runs: list[tuple], ctl: ControllerParams) -> int:
-    """Outcome code of one grid point from its runs (module docstring)."""
-    c = None if ctl.is_spring else ctl
-    outs = set()
-    for mu, beta, sigma, x0, v0, n, bound in runs:
-        r = simulate(mu, beta, sigma, v0, n, xi0=x0, delay=ctl.delay, record=False, bound=bound, controller=c)
-        outs.add(str(r.outcome))
-        if "unstable" in outs:
-            return DIVERGES
-    if "undecided" in outs:
-        return UNDECIDED_POINT
-    return REST if outs == {"rest"} else BOUNDED
+def _chunks(tasks: list[tuple], size: int) -> list[list[int]]:
+    """Indices of the tasks in chunks of at most ``size`` consecutive points, spring and controller apart.
+
+    A pure-spring point (:attr:`~dfa.controller.ControllerParams.is_spring`: B = 0, no filter, no lag) runs
+    the spring kernel, as :func:`dfa.simulation.simulate` routes it; every other point the controller kernel.
+    """
+    out: list[list[int]] = []
+    for i, (_, ctl) in enumerate(tasks):
+        if not out or len(out[-1]) >= size or tasks[out[-1][0]][1].is_spring != ctl.is_spring:
+            out.append([])
+        out[-1].append(i)
+    return out
+
+
+def _run_chunk(tasks: list[tuple]) -> np.ndarray:
+    """Outcome code of every point of a chunk (runs, controller): every run of the chunk in one compiled call.
+
+    The runs are those :func:`dfa.simulation.simulate` would make with the same inputs (its tail length and
+    default outcome rules; the spring kernel for a pure spring, else :mod:`dfa._ckernel`), bit for bit, and are
+    classified by :func:`dfa._kernel.classify_batch` as :func:`~dfa.simulation.simulate` classifies one; the
+    point's code follows from its runs' outcomes (:func:`_point_codes`). No GIL is held in the compiled calls.
+    """
+    runs = [r for rs, _ in tasks for r in rs]
+    mu, beta, sigma, x0, v0, n, bound = (np.array(c) for c in zip(*runs, strict=True))
+    ns = n.astype(np.int64)
+    d, spring = tasks[0][1].delay, tasks[0][1].is_spring
+    if spring:
+        codes = run_points(mu, beta, sigma, x0, v0, ns, d, True, bound, STABLE_AMPLITUDE, GROWTH, SETTLE)[0]
+    else:
+        ctl = [_controller_args(c) for rs, c in tasks for _ in rs]
+        damping, pole, filtered, lag = (np.array(c) for c in zip(*ctl, strict=True))
+        k = mu.size
+        stats, done, rest = np.empty((k, NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
+        tails = _tail_lengths(ns, mu)
+        batch_ckernel(
+            mu, beta, sigma, x0, v0, ns, d, True, bound, tails, damping, pole, filtered, lag, stats, done, rest
+        )
+        codes = np.empty(k, dtype=np.int64)
+        amps, freqs, centres, fpps = np.empty(k), np.empty(k), np.empty(k), np.empty(k)
+        classify_batch(
+            mu, ns, done, rest, stats, STABLE_AMPLITUDE, GROWTH, SETTLE, True, codes, amps, freqs, centres, fpps
+        )
+    return _point_codes(codes.reshape(len(tasks), -1))
+
+
+def _point_codes(run_codes: np.ndarray) -> np.ndarray:
+    """Code of each point (row) from its runs' outcome codes (:mod:`dfa._kernel`; module docstring).
+
+    Diverges if any run is unstable, else undecided if any run is, else rest if every run rests, else bounded.
+    """
+    out = np.full(run_codes.shape[0], BOUNDED, dtype=np.int8)
+    out[(run_codes == _kernel.REST).all(axis=1)] = REST
+    out[(run_codes == _kernel.UNDECIDED).any(axis=1)] = UNDECIDED_POINT
+    out[(run_codes == _kernel.UNSTABLE).any(axis=1)] = DIVERGES
+    return out
 
 
 def _simulate_grid(tasks: list[tuple], jobs: int, progress: bool, label: str) -> np.ndarray:
-    """Outcome code of every task (runs, controller), in order, on ``jobs`` threads (the kernels release the GIL).
+    """Outcome code of every task (runs, controller), in order, chunks of points on ``jobs`` threads.
 
-    Run like the chunks of a stability map (:func:`dfa._parallel.run_in_order`): the result does not depend
-    on ``jobs``; a progress bar counts the points; an interruption cancels the points not started.
+    Each chunk (:data:`POINTS_PER_CALL` points, :func:`_chunks`) is one compiled call that releases the GIL
+    (:func:`_run_chunk`), run like the chunks of a stability map (:func:`dfa._parallel.run_in_order`): the
+    result does not depend on ``jobs``; a progress bar counts the points; an interruption cancels the
+    chunks not started.
     """
     from tqdm.auto import tqdm
 
+    chunks = _chunks(tasks, POINTS_PER_CALL)
     bar = tqdm(total=len(tasks), unit="point", desc=label, disable=not progress, leave=False)
     try:
-        codes = run_in_order(_point, tasks, [1] * len(tasks), jobs, "threads", bar)
+        parts = run_in_order(
+            _run_chunk, [([tasks[i] for i in c],) for c in chunks], [len(c) for c in chunks], jobs, "threads", bar
+        )
     finally:
         bar.close()
-    return np.array(codes, dtype=np.int8)
+    codes = np.empty(len(tasks), dtype=np.int8)
+    for c, part in zip(chunks, parts, strict=True):
+        codes[c] = part
+    return codes
 
 
 def _grid_boundary(row: np.ndarray, ks: np.ndarray, bad: set[int], what: str, unit: str) -> tuple[float, str | None]:
@@ -483,7 +557,9 @@ def z_width(
     df_model : {"half-delay", "zoh", "pade"}, optional
         Hold model of the describing function.
     n_jobs : int, optional
-        Threads for the simulations (-1: all cores). The result does not depend on it.
+        Workers (-1: all cores): threads for the simulations; for the per-B boundaries threads, or worker
+        processes from :data:`PROCESS_COLUMNS` values of B on (their describing-function scans hold the GIL).
+        The result does not depend on it.
     progress : bool, optional
         Show a progress bar on stderr.
 
@@ -569,13 +645,15 @@ def _column(dev, v, d, fc, fbw, ks, b: float, row: np.ndarray, model: str) -> li
 
 
 def _assemble(dev, v, d, fc, fbw, vs, ks, bs, codes, cap, n_points, model, workers: int, progress=False) -> ZWidth:
-    """Boundaries per method from the grid and the closed forms (columns on ``workers`` threads); status."""
+    """Boundaries per method from the grid and the closed forms (columns on ``workers`` threads, or processes
+    from :data:`PROCESS_COLUMNS` columns on); status."""
     from tqdm.auto import tqdm
 
     args = [(dev, v, d, fc, fbw, ks, float(b), codes[i], model) for i, b in enumerate(bs)]
     bar = tqdm(total=len(args), unit="B", desc=f"Z-width {dev.name} boundaries", disable=not progress, leave=False)
     try:  # in order (dfa._parallel): the result does not depend on workers; Ctrl-C cancels the columns not started
-        cols = run_in_order(_column, args, [1] * len(args), workers, "threads", bar)
+        how = "processes" if workers > 1 and len(args) >= PROCESS_COLUMNS else "threads"
+        cols = run_in_order(_column, args, [1] * len(args), workers, how, bar)
     finally:
         bar.close()
     arrays = {m: np.array([c[n][0] for c in cols], dtype=float) for n, m in enumerate(ZWIDTH_METHODS)}

@@ -184,10 +184,11 @@ main_thread_only = pytest.mark.skipif(
 
 
 @main_thread_only
-@pytest.mark.parametrize("where, total", [("_point", 16), ("_column", 4)])
+@pytest.mark.parametrize("where, total", [("_run_chunk", 16), ("_column", 4)])
 def test_zwidth_ctrl_c_cancels_what_has_not_started(monkeypatch, where, total):
     """Ctrl-C (SIGINT in the main thread) during the grid points or the boundary columns: the rest never starts."""
     real, calls = getattr(zmod, where), []
+    monkeypatch.setattr(zmod, "POINTS_PER_CALL", 1)  # one chunk per point: 16 tasks
 
     def ctrl_c_at_second(*args):
         calls.append(1)

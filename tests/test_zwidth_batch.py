@@ -1,0 +1,147 @@
+"""Z-width simulations batched (issue 16): every grid point's code equals the previous per-run path, one
+:func:`dfa.simulate` per run (paper eq. 4-5 with the controller), and :func:`dfa._batch.batch_ckernel` equals
+:func:`dfa._ckernel.simulate_ckernel` run by run, bit for bit."""
+
+import itertools
+import json
+
+import numpy as np
+import pytest
+
+import dfa.zwidth as zmod
+from dfa._batch import batch_ckernel
+from dfa._ckernel import simulate_ckernel
+from dfa._kernel import NSEG, NSTATS, OSCILLATING, REST, UNDECIDED, UNSTABLE
+from dfa.catalogue import get_device
+from dfa.simulation import OUTCOMES, simulate
+from dfa.zwidth import z_width
+
+
+def _reference_point(runs, ctl) -> int:
+    """The per-point code before batching (dfa.zwidth._point at 8313b4b): one simulate() per run, in order."""
+    c = None if ctl.is_spring else ctl
+    outs = set()
+    for mu, beta, sigma, x0, v0, n, bound in runs:
+        r = simulate(mu, beta, sigma, v0, n, xi0=x0, delay=ctl.delay, record=False, bound=bound, controller=c)
+        outs.add(str(r.outcome))
+        if "unstable" in outs:
+            return zmod.DIVERGES
+    if "undecided" in outs:
+        return zmod.UNDECIDED_POINT
+    return zmod.REST if outs == {"rest"} else zmod.BOUNDED
+
+
+def _tasks(name, v, d, fc, fbw, grid, speeds, cap=zmod.ZWIDTH_MAX_SAMPLES):
+    dev = get_device(name).device
+    ks, bs = zmod._grids(dev, v, d, fc, fbw, grid, None, None)
+    vs = v * np.arange(1, speeds + 1) / speeds
+    return zmod._plan(dev, ks, bs, d, fc, fbw, [dev.xi_dot(float(s)) for s in vs], cap)[0]
+
+
+CASES = {
+    "spring+damper": ("Impulse Engine", 0.1, 0, None, None, 6, 2),
+    "delay+filter": ("Phantom 1.0", 0.1, 1, 100.0, None, 5, 2),
+    "delay+lag": ("Impulse Engine", 0.1, 2, None, 300.0, 4, 1),
+}
+
+
+@pytest.fixture(scope="module", params=list(CASES))
+def case(request):
+    tasks = _tasks(*CASES[request.param])
+    ref = np.array([_reference_point(*t) for t in tasks], dtype=np.int8)
+    return request.param, tasks, ref
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+@pytest.mark.parametrize("per_call", [zmod.POINTS_PER_CALL, 5])
+def test_eq4_zwidth_grid_codes_equal_one_simulate_per_run(case, jobs, per_call, monkeypatch):
+    """Grid codes of the batched path equal the per-run simulate() path (spring row B = 0 included), any chunking."""
+    name, tasks, ref = case
+    monkeypatch.setattr(zmod, "POINTS_PER_CALL", per_call)
+    got = zmod._simulate_grid(tasks, jobs, False, name)
+    assert got.dtype == np.int8
+    np.testing.assert_array_equal(got, ref)
+    assert len(set(ref.tolist())) >= 2  # the grid mixes outcomes: the comparison can fail
+    if name == "spring+damper":
+        assert tasks[0][1].is_spring and not tasks[-1][1].is_spring
+        assert {zmod.DIVERGES, zmod.REST} <= set(ref.tolist())
+
+
+def test_eq4_zwidth_spring_points_run_the_spring_kernel_like_simulate():
+    """A pure-spring point (B = 0, no filter or lag) is a chunk of its own kind: the spring kernel, as simulate()."""
+    tasks = _tasks("Impulse Engine", 0.1, 1, None, None, 3, 1)
+    chunks = zmod._chunks(tasks, 100)
+    kinds = [{tasks[i][1].is_spring for i in c} for c in chunks]
+    assert kinds == [{True}, {False}] and len(chunks[0]) == 3
+
+
+def test_eq4_zwidth_point_code_from_run_codes_is_the_per_run_rule():
+    """Every combination of 3 run outcomes gives the code of the previous per-run rule (early exit included)."""
+    names = {REST: "rest", OSCILLATING: "oscillating", UNSTABLE: "unstable", 3: "chatter", UNDECIDED: "undecided"}
+    assert [names[i] for i in range(5)] == list(OUTCOMES)
+    combos = np.array(list(itertools.product(range(5), repeat=3)))
+    got = zmod._point_codes(combos)
+    for row, code in zip(combos, got, strict=True):
+        outs = set()
+        want = None
+        for c in row:
+            outs.add(names[int(c)])
+            if "unstable" in outs:
+                want = zmod.DIVERGES
+                break
+        if want is None:
+            want = zmod.UNDECIDED_POINT if "undecided" in outs else (zmod.REST if outs == {"rest"} else zmod.BOUNDED)
+        assert code == want, row
+
+
+@pytest.mark.parametrize("delay", [0, 2])
+def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
+    """Each run of batch_ckernel (its own length, bound, tail and controller) is simulate_ckernel alone, bit for bit."""
+    rng = np.random.default_rng(16 + delay)
+    k = 40
+    mu = 10 ** rng.uniform(0.3, 2.5, k)
+    beta = np.where(rng.random(k) < 0.3, 0.0, rng.uniform(0, 1, k))
+    sigma = np.where(rng.random(k) < 0.3, 0.0, rng.uniform(0, 2, k))
+    x0 = np.where(rng.random(k) < 0.5, 0.0, rng.uniform(-3, 3, k))
+    v0 = rng.uniform(-4, 4, k)
+    ns = rng.integers(200, 6000, k).astype(np.int64)
+    bounds = rng.uniform(50, 1e4, k) + np.abs(x0)
+    tails = np.maximum(2, ns // rng.integers(2, 8, k)).astype(np.int64)
+    damping = np.where(rng.random(k) < 0.2, 0.0, rng.uniform(0, 3, k))
+    filtered = rng.random(k) < 0.5
+    pole = np.where(filtered, rng.uniform(0.1, 0.9, k), 0.0)
+    lag = np.where(rng.random(k) < 0.4, rng.uniform(0.05, 2, k), 0.0)
+    stats, done, rest = np.empty((k, NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
+    batch_ckernel(
+        mu, beta, sigma, x0, v0, ns, delay, True, bounds, tails, damping, pole, filtered, lag, stats, done, rest
+    )
+    e = np.empty(0)
+    seen = set()
+    for i in range(k):
+        st = np.empty(NSTATS)
+        dn, rs = simulate_ckernel(
+            mu[i], beta[i], sigma[i], x0[i], v0[i], ns[i], delay, True, bounds[i], tails[i],
+            damping[i], pole[i], filtered[i], lag[i], e, e, st,
+        )  # fmt: skip
+        assert (dn, rs) == (done[i], rest[i])
+        np.testing.assert_array_equal(st, stats[i])
+        seen.add("rest" if rs >= 0 else ("bound" if st[NSEG + 5] > 0 else "full"))
+    assert seen == {"rest", "bound", "full"}
+
+
+def test_zwidth_boundary_columns_in_worker_processes_equal_one_thread(monkeypatch):
+    """From PROCESS_COLUMNS values of B the boundary columns run in worker processes: the same ZWidth as n_jobs=1."""
+    dev = get_device("Phantom 1.0").device
+    one = z_width(dev, 0.1, delay=1, filter_cutoff=100.0, grid=3, speeds=1, n_jobs=1).as_dict()
+    monkeypatch.setattr(zmod, "PROCESS_COLUMNS", 2)
+    calls = []
+    real = zmod.run_in_order
+
+    def spy(fn, tasks, sizes, workers, backend, bar):
+        calls.append((fn.__name__, backend))
+        return real(fn, tasks, sizes, workers, backend, bar)
+
+    monkeypatch.setattr(zmod, "run_in_order", spy)
+    two = z_width(dev, 0.1, delay=1, filter_cutoff=100.0, grid=3, speeds=1, n_jobs=2).as_dict()
+    assert calls == [("_run_chunk", "threads"), ("_column", "processes")]
+    assert json.dumps(one, sort_keys=True) == json.dumps(two, sort_keys=True)
