@@ -146,7 +146,7 @@ def _controller(cutoff: float | None, delay: int) -> tuple[np.ndarray, np.ndarra
     if cutoff is None:
         return np.array([1.0, 0.0]), np.array([1.0, -1.0]), shift
     af = math.exp(-2.0 * math.pi * cutoff)
-    return np.array([1.0, -af, 0.0]), np.array([1.0 - af, af - 1.0]), np.polymul(shift, [1.0, -af])
+    return np.array([1.0, -af, 0.0]), np.array([1.0 - af, af - 1.0]), np.poly_series_mul(shift, [1.0, -af])
 
 
 def controlled_characteristic_polynomial(mu: float, beta: float, params: ControllerParams) -> np.ndarray:
@@ -175,7 +175,7 @@ def controlled_characteristic_polynomial(mu: float, beta: float, params: Control
     params = check_type("params", params, ControllerParams, "give a dfa.ControllerParams")
     ng, dg = _plant(b / m, params.lag)
     n1, n2, dh = _controller(params.cutoff if params.damping > 0.0 else None, params.delay)
-    return np.polyadd(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2)))
+    return np.polyadd(m * np.poly_series_mul(dg, dh), np.poly_series_mul(ng, np.polyadd(n1, params.damping * n2)))
 
 
 def _rho_rows(rows: np.ndarray) -> np.ndarray:
@@ -195,17 +195,107 @@ def controlled_spectral_radius(mu: float, beta: float, params: ControllerParams)
 
 
 # ----------------------------------------------------------------------------- the stiffness ray
-#: (b + B)T/m below which :func:`stable_stiffness` refuses: there the float spectral radius that decides each
-#: interval cannot resolve the roots clustered at z = 1 (m = 1e8 kg, b = 1 N·s/m, T = 1 ms gave a false 'never';
-#: the spring alone has a small-rate expansion, :mod:`dfa.linear`).
+#: (b + B)T/m at or below which :func:`stable_stiffness` takes K_crit from the Taylor series of the ray at z = 1
+#: (:func:`_series_kappa`), where the float root finding loses digits (it agrees with the series to ~1e-11 at
+#: 1e-4 and ~1e-8 at 1e-7; the series' own truncation is checked below 1e-16).
+SERIES_RATE = 1e-4
+
+#: (b + B)T/m below which the float ray analysis is not used: if the series does not converge there either (a
+#: filter or amplifier pole within about √((b + B)T/m) of z = 1), :func:`stable_stiffness` refuses.
 MIN_RESOLVED_RATE = 1e-7
+
+_N_TERMS = 16  # Taylor terms of the ray at z = 1
+
+
+def _poly_series(*coef: float) -> np.ndarray:
+    out = np.zeros(_N_TERMS)
+    out[: len(coef)] = coef
+    return out
+
+
+def _series_mul(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Power series x·y, truncated to :data:`_N_TERMS` terms."""
+    return np.convolve(x, y)[:_N_TERMS]
+
+
+def _series_div(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Power series x/y (y[0] != 0), truncated to :data:`_N_TERMS` terms."""
+    out = np.zeros(_N_TERMS)
+    for k in range(_N_TERMS):
+        out[k] = (x[k] - np.dot(out[:k], y[k:0:-1])) / y[0]
+    return out
+
+
+def _taylor_at_one(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[np.ndarray, float]:
+    """Taylor coefficients φ_k in s of Φ = z^d D_G/N_G + a_B N₂/N₁ at z = e^s (κ = −Φ on the ray), and ρ_L.
+
+    Built in w = z − 1, where every factor has coefficients free of cancellation (1 − p = −expm1(−a),
+    N_G(1) = φ₁(a) or n₂ + n₁ + n₀, the filter's 1 − a_f = −expm1(−2πν_c)), then composed with
+    w = e^s − 1 and multiplied by e^{sd}. φ₀ = 0 and φ₁ = a ρ_L + a_B, ρ_L = 1 (no lag) or
+    φ₁(a)(1 − q)/(n₂ + n₁ + n₀) (→ 1 as a → 0): φ₁ is returned as computed, ρ_L for the caller's exact scaling.
+    """
+    from ._exprel import phi1, phi2
+
+    if lag == 0.0 or not math.isfinite(1.0 / lag):
+        dg, ng, rho_l = _poly_series(0.0, -math.expm1(-a), 1.0), _poly_series(phi1(a), phi2(a)), 1.0
+    else:
+        n2, n1, n0, _, _ = amplifier_zoh_coefficients(a, lag)
+        one_q = -math.expm1(-1.0 / lag)
+        dg = _series_mul(_poly_series(0.0, -math.expm1(-a), 1.0), _poly_series(one_q, 1.0))
+        ng = _poly_series(n2 + n1 + n0, 2.0 * n2 + n1, n2)
+        rho_l = phi1(a) * one_q / (n2 + n1 + n0)
+    if a_b > 0.0 and cutoff is not None:
+        g = -math.expm1(-2.0 * math.pi * cutoff)  # 1 − a_f
+        vw = _series_div(_poly_series(0.0, g), _series_mul(_poly_series(1.0, 1.0), _poly_series(g, 1.0)))
+    else:
+        vw = _series_div(_poly_series(0.0, 1.0), _poly_series(1.0, 1.0))
+    lw = _series_div(dg, ng)
+    ws = np.array([0.0] + [1.0 / math.factorial(k) for k in range(1, _N_TERMS)])  # w = e^s − 1
+    lo, vo, pw = np.zeros(_N_TERMS), np.zeros(_N_TERMS), _poly_series(1.0)
+    for k in range(_N_TERMS):
+        lo, vo, pw = lo + lw[k] * pw, vo + vw[k] * pw, _series_mul(pw, ws)
+    ed = np.array([float(delay) ** k / math.factorial(k) for k in range(_N_TERMS)])  # e^{sd}
+    return _series_mul(ed, lo) + a_b * vo, rho_l
+
+
+def _series_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[float, float] | None:
+    """(ρ_L, κ̃) with κ_crit = (a ρ_L + a_B) κ̃ from the Taylor series at z = 1, or None if it does not converge.
+
+    On z = e^{jθ} with u = θ² = φ₁v, Im Φ = 0 and κ = −Re Φ read (φ_k real, :func:`_taylor_at_one`)::
+
+        1 − φ₃v + φ₅φ₁v² − φ₇φ₁²v³ + … = 0,    κ/φ₁ = κ̃ = φ₂v − φ₄φ₁v² + φ₆φ₁²v³ − …
+
+    whose root near v = 1/φ₃ is found by Newton's method; φ₁ only scales the corrections, so an
+    underflowing (b + B)T/m costs no accuracy (the caller forms K from (bρ_L + B)/T · κ̃). As φ₁ → 0:
+    κ̃ → φ₂/φ₃ = 1/(d + ½ + α), i.e. K_crit → (b + B)/(T(½ + d + τ_a/T)). None when φ₃ <= 0 or the
+    last terms are not below 1e-17 of the first (a pole of the filter or lag too close to z = 1).
+    """
+    f, rho_l = _taylor_at_one(a, a_b, cutoff, lag, delay)
+    if not f[3] > 0.0:
+        return None
+    e = f[1]
+    j = np.arange(1, (_N_TERMS - 1) // 2 + 1)
+    im = np.concatenate([[1.0], (-1.0) ** j * f[2 * j + 1] * e ** (j - 1)])  # in powers of v
+    re = np.concatenate([[0.0], (-1.0) ** (j + 1) * f[2 * j] * e ** (j - 1)])
+    poly = np.polynomial.polynomial
+    v = 1.0 / f[3]
+    for _ in range(60):
+        step = poly.polyval(v, im) / poly.polyval(v, poly.polyder(im))
+        v -= step
+        if abs(step) <= 1e-16 * abs(v):
+            break
+    powers = v ** np.arange(im.size)
+    ti, tr = np.abs(im * powers), np.abs(re * powers)
+    if not (v > 0.0 and ti[-1] <= 1e-17 * ti[0] and tr[-1] <= 1e-17 * tr[1] and abs(step) <= 1e-14 * v):
+        return None
+    return rho_l, float(np.dot(re, powers))
 
 
 def _ray(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[np.ndarray, np.ndarray]:
     """(P₀, Q) of κχ = P₀ + κQ at fixed a = bT/m and a_B = BT/m (module docstring)."""
     ng, dg = _plant(a, lag)
     n1, n2, dh = _controller(cutoff if a_b > 0.0 else None, delay)
-    return np.polyadd(np.polymul(dg, dh), a_b * np.polymul(ng, n2)), np.polymul(ng, n1)
+    return np.polyadd(np.poly_series_mul(dg, dh), a_b * np.poly_series_mul(ng, n2)), np.poly_series_mul(ng, n1)
 
 
 def _im_part(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
@@ -217,7 +307,7 @@ def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
     """Angles θ in [0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle, grid sign changes, 0 and π."""
     n = len(p0) - 1
     qp = np.concatenate([np.zeros(n + 1 - len(q)), q])
-    r: np.ndarray = np.polysub(np.polymul(p0, qp[::-1]), np.polymul(qp, p0[::-1]))
+    r: np.ndarray = np.polysub(np.poly_series_mul(p0, qp[::-1]), np.poly_series_mul(qp, p0[::-1]))
     out = [math.pi]
     if abs(np.polyval(p0, 1.0)) > 1e-9 * np.abs(p0).sum():
         out.append(0.0)  # z = 1 is a root of P₀ for the device (κ = 0); a crossing only for other pairs
@@ -303,6 +393,52 @@ def _check_against_grid(p0, q, ks, intervals, args) -> None:
             f"the exact linear stability set for (bT/m, BT/m, ν_c, α, d) = {args!r} failed its spectral-radius "
             "check: please report this as a bug"
         )
+
+
+def _stable_set(
+    b: float, big_b: float, t: float, m: float, p: ControllerParams
+) -> tuple[list[tuple[float, float]], float | None]:
+    """Stable κ intervals and, when the Taylor series at z = 1 gives it, K_crit in N/m (else None).
+
+    (b + B)T/m > :data:`SERIES_RATE` or 0: the float ray analysis alone. From :data:`MIN_RESOLVED_RATE` to
+    :data:`SERIES_RATE`: the float ray analysis for the shape, its first top replaced by the series' (they agree
+    to 1e-6 or it is a bug). Below: the series gives (0, κ_crit); every larger κ is unstable, because the roots
+    at κ = O(b + B)T/m all lie in the closed unit disk away from z = 1 and the one crossing near z = 1 is the
+    series' (unique root of its leading balance), checked with the float spectral radius for κ >= 1e-3.
+    """
+    a, a_b = b * t / m, big_b * t / m
+    rate = (b + big_b) * t / m
+    series = None
+    if b + big_b > 0.0 and rate <= SERIES_RATE:
+        series = _series_kappa(a, a_b, p.cutoff, p.lag, p.delay)
+    if series is None:
+        if 0.0 < rate < MIN_RESOLVED_RATE or (rate == 0.0 and b + big_b > 0.0):
+            raise DFAValueError(
+                f"(damping + controller.damping)·period/mass = {rate:g} is invalid for the exact linear bound with "
+                f"this controller: below {MIN_RESOLVED_RATE:g} the bound comes from a series at z = 1, which does "
+                "not converge when the velocity filter's or the amplifier's pole lies as close to z = 1 as the "
+                "stability boundary; raise the filter cutoff or amplifier bandwidth, or check the mass and damping"
+            )
+        return _stable_kappa(a, a_b, p.cutoff, p.lag, p.delay), None
+    rho_l, k_tilde = series
+    kappa = (a * rho_l + a_b) * k_tilde
+    k_top = (b * rho_l + big_b) / t * k_tilde
+    if rate >= MIN_RESOLVED_RATE:
+        kap = _stable_kappa(a, a_b, p.cutoff, p.lag, p.delay)
+        if not (kap and kap[0][0] == 0.0 and abs(kap[0][1] / kappa - 1.0) <= 1e-6):
+            raise DFAError(
+                f"the exact linear stability set for (bT/m, BT/m, ν_c, α, d) = {(a, a_b, p.cutoff, p.lag, p.delay)!r}"
+                " disagrees with its Taylor series at z = 1: please report this as a bug"
+            )
+        return [(0.0, kappa), *kap[1:]], k_top
+    p0, q = _ray(a, a_b, p.cutoff, p.lag, p.delay)
+    grid = np.geomspace(max(1e-3, 4.0 * kappa), 1e4, 29)
+    if np.any(_rho_rows(np.array([np.polyadd(p0, k * q) for k in grid])) <= 1.0 + 1e-9):
+        raise DFAError(
+            f"the loop with (bT/m, BT/m, ν_c, α, d) = {(a, a_b, p.cutoff, p.lag, p.delay)!r} is stable somewhere at "
+            "large K although (b + B)T/m is tiny: please report this as a bug"
+        )
+    return [(0.0, kappa)], k_top
 
 
 def _status(intervals: list[tuple[float, float]]) -> LinearStatus:
@@ -429,18 +565,12 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
     p = c.params(t)
     for name, value in (("damping", b), ("controller.damping", c.damping)):
         check_rate(name, value, m, t)
-    rate = (b + c.damping) * t / m
-    if 0.0 < rate < MIN_RESOLVED_RATE:
-        raise DFAValueError(
-            f"(damping + controller.damping)·period/mass = {rate:g} is invalid for the exact linear bound with a "
-            f"controller: it must be at least {MIN_RESOLVED_RATE:g} (below, the closed-loop roots cluster at z = 1 "
-            "and the float spectral radius cannot locate the stability boundary); check the mass and damping, or "
-            "use the spring without controller damping or amplifier lag (dfa.linear.critical_stiffness)"
-        )
-    kap = _stable_kappa(b * t / m, c.damping * t / m, p.cutoff, p.lag, p.delay)
+    kap, k_top = _stable_set(b, c.damping, t, m, p)
     scale = m / (t * t)
     iv = np.array([[lo * scale, hi * scale] for lo, hi in kap]).reshape(-1, 2)
     status = _status(kap)
+    if k_top is not None:  # the series' K_crit, formed without the possibly underflowing (b + B)T/m
+        iv[0, 1] = k_top
     k_crit = float(iv[0, 1]) if status in (LinearStatus.INTERVAL, LinearStatus.SEVERAL) else 0.0
     ctrl = {k: v for k, v in c.as_dict().items() if k != "stiffness"}
     return StiffnessIntervals(iv, k_crit, status, m, b, t, ctrl)

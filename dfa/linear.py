@@ -430,9 +430,24 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Con
         raise DFAValueError(f"damping·period/mass = {a!r} is invalid: it must be finite; check the units")
     for x, y, z in zip(m.ravel(), b.ravel(), t.ravel(), strict=True):  # bT/m <= MAX_RATE, as stable_stiffness
         check_rate("damping", float(y), float(x), float(z))
-    kappa = np.array([_critical_kappa(float(x), d) for x in a.ravel()]).reshape(a.shape)
-    out = kappa * m / (t * t)
+    flat = [
+        _critical_k(float(x), float(y), float(z), d) for x, y, z in zip(m.ravel(), b.ravel(), t.ravel(), strict=True)
+    ]
+    out = np.array(flat).reshape(m.shape)
     return float(out) if out.ndim == 0 else out
+
+
+def _critical_k(m: float, b: float, t: float, d: int) -> float:
+    """K_crit = κ_crit m/T² in N/m; in the small-rate regime b/(T(½ + d))·(1 + r_d a), formed without a = bT/m.
+
+    A device whose bT/m underflows (m = 1e300 kg, or b = 1e-320 N·s/m) still has the positive limit
+    K → b/(T(½ + d)): it is not computed as κ m/T² from an underflowed κ (which gave 0 for b > 0).
+    """
+    a = b * t / m
+    r = (2.0 * d * d + 2.0 * d + 1.0) / (6.0 * (2.0 * d + 1.0))
+    if b > 0.0 and r * a <= _ASYMPTOTIC_LIMIT:
+        return b / t / (0.5 + d) * (1.0 + r * a)
+    return _critical_kappa(a, d) * m / (t * t)
 
 
 #: μ range in which :func:`critical_beta` is computed reliably (checked against its asymptote ½ + d − c_d/μ,
