@@ -146,7 +146,7 @@ def _controller(cutoff: float | None, delay: int) -> tuple[np.ndarray, np.ndarra
     if cutoff is None:
         return np.array([1.0, 0.0]), np.array([1.0, -1.0]), shift
     af = math.exp(-2.0 * math.pi * cutoff)
-    return np.array([1.0, -af, 0.0]), np.array([1.0 - af, af - 1.0]), np.poly_series_mul(shift, [1.0, -af])
+    return np.array([1.0, -af, 0.0]), np.array([1.0 - af, af - 1.0]), np.polymul(shift, [1.0, -af])
 
 
 def controlled_characteristic_polynomial(mu: float, beta: float, params: ControllerParams) -> np.ndarray:
@@ -175,7 +175,7 @@ def controlled_characteristic_polynomial(mu: float, beta: float, params: Control
     params = check_type("params", params, ControllerParams, "give a dfa.ControllerParams")
     ng, dg = _plant(b / m, params.lag)
     n1, n2, dh = _controller(params.cutoff if params.damping > 0.0 else None, params.delay)
-    return np.polyadd(m * np.poly_series_mul(dg, dh), np.poly_series_mul(ng, np.polyadd(n1, params.damping * n2)))
+    return np.polyadd(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2)))
 
 
 def _rho_rows(rows: np.ndarray) -> np.ndarray:
@@ -295,7 +295,7 @@ def _ray(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> 
     """(P₀, Q) of κχ = P₀ + κQ at fixed a = bT/m and a_B = BT/m (module docstring)."""
     ng, dg = _plant(a, lag)
     n1, n2, dh = _controller(cutoff if a_b > 0.0 else None, delay)
-    return np.polyadd(np.poly_series_mul(dg, dh), a_b * np.poly_series_mul(ng, n2)), np.poly_series_mul(ng, n1)
+    return np.polyadd(np.polymul(dg, dh), a_b * np.polymul(ng, n2)), np.polymul(ng, n1)
 
 
 def _im_part(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
@@ -307,7 +307,7 @@ def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
     """Angles θ in [0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle, grid sign changes, 0 and π."""
     n = len(p0) - 1
     qp = np.concatenate([np.zeros(n + 1 - len(q)), q])
-    r: np.ndarray = np.polysub(np.poly_series_mul(p0, qp[::-1]), np.poly_series_mul(qp, p0[::-1]))
+    r: np.ndarray = np.polysub(np.polymul(p0, qp[::-1]), np.polymul(qp, p0[::-1]))
     out = [math.pi]
     if abs(np.polyval(p0, 1.0)) > 1e-9 * np.abs(p0).sum():
         out.append(0.0)  # z = 1 is a root of P₀ for the device (κ = 0); a crossing only for other pairs
