@@ -46,6 +46,18 @@ or none) is checked against the spectral radius on an independent geometric grid
 of κ. z = 1 is a root of P₀ (the free mass): it moves inside for small κ when
 a + a_B > 0.
 
+Tiny rates. For (b + B)T/m <= :data:`SERIES_RATE` = 1e-4 the roots cluster at z = 1
+(|z| − 1 = O((b + B)T/m)) and the float crossings lose digits (1e-11 relative at
+1e-4, 1e-8 at 1e-7, nothing below). There κ_crit comes from the Taylor series of
+Φ(s) = P₀/Q at z = e^s (:func:`_series_kappa`; every factor expanded in w = z − 1
+without cancellation): Im Φ(jθ) = 0, κ = −Re Φ(jθ) is solved as a series in θ²,
+κ_crit = (a ρ_L + a_B) κ̃, κ̃ → 1/(½ + d + α) as the rate → 0, i.e.
+K_crit → (b + B)/(T(½ + d + τ_a/T)) (the filter drops out at leading order). K is
+formed from (bρ_L + B)/T, so a rate that underflows (m = 1e300 kg) still gives
+the positive limit. Checked against 60+ digit mpmath for rates 1e-16 … 1e-4 in
+``tests/test_controlled_linear_small_rate.py`` (the float path was off by up to
+3e-8 relative at the catalogue devices' rates, ~1e-5).
+
 Examples
 --------
 >>> r = stable_stiffness(1.0, 2.0, 1e-3, Controller(1.0, damping=1.0))
@@ -544,7 +556,8 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
     ------
     DFAValueError
         A mass, damping or period out of range, a filter cutoff above the Nyquist frequency 1/(2T), or
-        0 < (b + B)T/m < :data:`MIN_RESOLVED_RATE` (the boundary is not resolved in floating point there).
+        0 < (b + B)T/m < :data:`MIN_RESOLVED_RATE` with a filter or amplifier pole as close to z = 1 as the
+        boundary (f_c or f_bw below about √((b + B)T/m)/(2πT)), where neither method holds.
     DFATypeError
         ``controller`` is not a :class:`dfa.Controller`.
 

@@ -377,7 +377,8 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Con
     crossings at z = e^{jθ}, each κ = −D/N real and positive (module docstring),
     verified by the spectral radius at K(1 ∓ ε), ε = 1e-6 (more below bT/m = 1e-5); for tiny bT/m (below
     1e-6·6(2d + 1)/(2d² + 2d + 1)) the small-a expansion K = b/(T(½ + d))·(1 + r_d bT/m) (module docstring,
-    relative error <= 1.3e-12). The loop is stable for every
+    relative error <= 1.3e-12), formed from b/T so that an underflowing bT/m (m = 1e300 kg) still gives
+    the positive limit. The loop is stable for every
     K in (0, K_crit). Gil et al. (2004)'s closed form (b/T) f(bT/m)
     (:func:`dfa.stiffness.gil_factor`) is the d = 0 interior crossing: it is the
     bound for bT/m < 3.72, beyond it the z = −1 condition β > ½ − tanh(a/2)/a binds.

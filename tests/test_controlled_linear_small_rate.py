@@ -45,15 +45,15 @@ def _case(rate: float, name: str) -> tuple[float, float, Controller]:
     return (b + big_b) * T / rate, b, Controller(1000.0, big_b, d, fc, fa)
 
 
-def _check(m: float, b: float, c: Controller, rel: float = 1e-4) -> float:
+def _check(m: float, b: float, c: Controller, rel: float = 1e-4, period: float = T) -> float:
     """K_crit(1 − rel) stable and K_crit(1 + rel) unstable in 60+ digit arithmetic; returns K_crit."""
-    r = stable_stiffness(m, b, T, c)
+    r = stable_stiffness(m, b, period, c)
     assert r.status is LinearStatus.INTERVAL and np.isfinite(r.k_crit) and r.k_crit > 0.0
-    p = c.params(T)
-    ctl = {"a_b": c.damping * T / m, "cutoff": p.cutoff, "lag": p.lag}
-    kappa = r.k_crit * T * T / m
-    assert _rho_mp(b * T / m, kappa * (1 - rel), p.delay, **ctl) < 0.0, (m, b, c)
-    assert _rho_mp(b * T / m, kappa * (1 + rel), p.delay, **ctl) > 0.0, (m, b, c)
+    p = c.params(period)
+    ctl = {"a_b": c.damping * period / m, "cutoff": p.cutoff, "lag": p.lag}
+    kappa = r.k_crit * period * period / m
+    assert _rho_mp(b * period / m, kappa * (1 - rel), p.delay, **ctl) < 0.0, (m, b, c)
+    assert _rho_mp(b * period / m, kappa * (1 + rel), p.delay, **ctl) > 0.0, (m, b, c)
     return r.k_crit
 
 
@@ -149,3 +149,13 @@ def test_controlled_linear_small_rate_cli_prints_finite_numbers(capsys):
     assert main(argv) == 0
     rec = json.loads(capsys.readouterr().out)
     assert rec["k_linear"] == pytest.approx(2e-8 / (T * 3.5), rel=1e-9)  # (b + B)/(T(½ + d)), no NaN, not 0
+
+
+def test_controlled_linear_small_rate_catalogue_delta_filter_lag_mpmath():
+    """Delta (bT/m ≈ 1.3e-5) with B = 1e-6, 30 Hz filter, 200 Hz amplifier: K_crit to 1e-9 (60+ digits). The float
+    ray analysis gave 10.3915617704 N/m, 3e-8 above the boundary (unstable); the series gives 10.3915614443."""
+    from dfa.catalogue import get_device
+
+    dev = get_device("Delta").device
+    k = _check(dev.mass, dev.damping, Controller(1.0, 1e-6, 0, 30.0, 200.0), rel=1e-9, period=dev.period)
+    assert k == pytest.approx(10.391561444, rel=1e-10)
