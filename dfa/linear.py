@@ -265,6 +265,8 @@ def linear_stable(mu, beta, delay: int = 0, *, controller: ControllerParams | No
     """True where the linear sampled loop is asymptotically stable (spectral radius < 1), vectorised.
 
     Parameters as :func:`spectral_radius` (``controller``: a :class:`ControllerParams`, or None for the spring).
+    At tiny rates (spring: r_d β/μ <= 1e-6; controller: (β + β_B)/μ < 1e-7), where the float spectral radius is
+    decided by rounding, the verdict is 1/μ < κ_crit of the small-rate bound (:func:`critical_stiffness`).
 
     Examples
     --------
@@ -272,7 +274,35 @@ def linear_stable(mu, beta, delay: int = 0, *, controller: ControllerParams | No
     (True, False)
     """
     r = spectral_radius(mu, beta, delay, controller=controller)
-    return bool(r < 1.0) if isinstance(r, float) else r < 1.0
+    d, c = _controller_delay(delay, controller, ControllerParams)
+    m, b = np.broadcast_arrays(np.asarray(mu, dtype=float), np.asarray(beta, dtype=float))
+    out = np.atleast_1d(np.asarray(r) < 1.0).ravel()
+    for i, (x, y) in enumerate(zip(m.ravel(), b.ravel(), strict=True)):
+        v = _small_rate_verdict(float(x), float(y), d, c)
+        if v is not None:  # tiny rates: the float spectral radius is decided by rounding there
+            out[i] = v
+    return bool(out[0]) if isinstance(r, float) else out.reshape(np.shape(r))
+
+
+def _small_rate_verdict(mu: float, beta: float, d: int, c: ControllerParams | None) -> bool | None:
+    """Stability from the small-rate bound (1/μ < κ_crit, in β form: no underflow), or None outside that regime.
+
+    Spring: r_d β/μ <= 1e-6, stable iff β(1 + r_d β/μ) > ½ + d (:func:`_small_rate_kappa`). With a damper or
+    lag: (β + β_B)/μ < :data:`dfa.controlled_linear.MIN_RESOLVED_RATE`, stable iff (βρ_L + β_B) κ̃ > 1
+    (:func:`dfa.controlled_linear._series_kappa`).
+    """
+    a = beta / mu
+    if c is not None and (c.damping > 0.0 or c.lag > 0.0):
+        from .controlled_linear import MIN_RESOLVED_RATE, _series_kappa
+
+        if not (beta + c.damping > 0.0 and (beta + c.damping) / mu < MIN_RESOLVED_RATE):
+            return None
+        series = _series_kappa(a, c.damping / mu, c.cutoff, c.lag, d)
+        return None if series is None else bool((beta * series[0] + c.damping) * series[1] > 1.0)
+    r = (2.0 * d * d + 2.0 * d + 1.0) / (6.0 * (2.0 * d + 1.0))
+    if not (beta > 0.0 and r * a <= _ASYMPTOTIC_LIMIT):
+        return None
+    return bool(beta * (1.0 + r * a) > 0.5 + d)
 
 
 # ----------------------------------------------------------------------------- boundary crossings on the stiffness ray

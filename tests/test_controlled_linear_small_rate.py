@@ -159,3 +159,29 @@ def test_controlled_linear_small_rate_catalogue_delta_filter_lag_mpmath():
     dev = get_device("Delta").device
     k = _check(dev.mass, dev.damping, Controller(1.0, 1e-6, 0, 30.0, 200.0), rel=1e-9, period=dev.period)
     assert k == pytest.approx(10.391561444, rel=1e-10)
+
+
+@pytest.mark.parametrize(
+    "beta, d, ctl",
+    [
+        (0.45, 0, None),
+        (0.55, 0, None),
+        (2.4, 2, None),
+        (2.6, 2, None),
+        (1.5, 1, {"a_b": 0.2, "cutoff": 0.05, "lag": 0.3}),
+        (1.7, 1, {"a_b": 0.2, "cutoff": 0.05, "lag": 0.3}),
+    ],
+)
+def test_linear_stable_small_rate_verdict_mpmath(beta, d, ctl):
+    """linear_stable at μ = 1e14 (β/μ ~ 1e-14): formerly the float spectral radius (rounding decided it: at μ = 1e16,
+    β = 0.55 > β_crit ≈ ½ came out unstable); now the small-rate bound, against 60+ digit mpmath."""
+    from dfa.controller import ControllerParams
+    from dfa.linear import linear_stable
+
+    mu = 1e14
+    params = (
+        None if ctl is None else ControllerParams(damping=ctl["a_b"], delay=d, cutoff=ctl["cutoff"], lag=ctl["lag"])
+    )
+    extra = {} if ctl is None else {**ctl, "a_b": ctl["a_b"] / mu}
+    truth = _rho_mp(beta / mu, 1.0 / mu, d, **extra) < 0.0
+    assert bool(linear_stable(mu, beta, controller=params) if params else linear_stable(mu, beta, d)) is truth
