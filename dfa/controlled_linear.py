@@ -46,6 +46,18 @@ or none) is checked against the spectral radius on an independent geometric grid
 of κ. z = 1 is a root of P₀ (the free mass): it moves inside for small κ when
 a + a_B > 0.
 
+Tiny rates. For (b + B)T/m <= :data:`SERIES_RATE` = 1e-4 the roots cluster at z = 1
+(|z| − 1 = O((b + B)T/m)) and the float crossings lose digits (1e-11 relative at
+1e-4, 1e-8 at 1e-7, nothing below). There κ_crit comes from the Taylor series of
+Φ(s) = P₀/Q at z = e^s (:func:`_series_kappa`; every factor expanded in w = z − 1
+without cancellation): Im Φ(jθ) = 0, κ = −Re Φ(jθ) is solved as a series in θ²,
+κ_crit = (a ρ_L + a_B) κ̃, κ̃ → 1/(½ + d + α) as the rate → 0, i.e.
+K_crit → (b + B)/(T(½ + d + τ_a/T)) (the filter drops out at leading order). K is
+formed from (bρ_L + B)/T, so a rate that underflows (m = 1e300 kg) still gives
+the positive limit. Checked against 60+ digit mpmath for rates 1e-16 … 1e-4 in
+``tests/test_controlled_linear_small_rate.py`` (the float path was off by up to
+3e-8 relative at the catalogue devices' rates, ~1e-5).
+
 Examples
 --------
 >>> r = stable_stiffness(1.0, 2.0, 1e-3, Controller(1.0, damping=1.0))
@@ -195,10 +207,103 @@ def controlled_spectral_radius(mu: float, beta: float, params: ControllerParams)
 
 
 # ----------------------------------------------------------------------------- the stiffness ray
-#: (b + B)T/m below which :func:`stable_stiffness` refuses: there the float spectral radius that decides each
-#: interval cannot resolve the roots clustered at z = 1 (m = 1e8 kg, b = 1 N·s/m, T = 1 ms gave a false 'never';
-#: the spring alone has a small-rate expansion, :mod:`dfa.linear`).
+#: (b + B)T/m at or below which :func:`stable_stiffness` takes K_crit from the Taylor series of the ray at z = 1
+#: (:func:`_series_kappa`), where the float root finding loses digits (it agrees with the series to ~1e-11 at
+#: 1e-4 and ~1e-8 at 1e-7; the series' own truncation is checked below 1e-16).
+SERIES_RATE = 1e-4
+
+#: (b + B)T/m below which the float ray analysis is not used (its crossings near z = 1 are lost in rounding).
+#: Kept as a guard: if the series did not converge there, :func:`stable_stiffness` would refuse. Its radius is
+#: set by the poles of P₀/Q: the zeros of N_G (near z = −1 or beyond) and the filter pole a_f, >= 6e-3 from z = 1
+#: for any accepted cutoff (>= 1e-3 cycles per sample), while the crossing is at θ <= 4.5e-4 below this rate; the
+#: amplifier lag adds a zero, not a pole, so no accepted input has been found that reaches the refusal.
 MIN_RESOLVED_RATE = 1e-7
+
+_N_TERMS = 16  # Taylor terms of the ray at z = 1
+
+
+def _poly_series(*coef: float) -> np.ndarray:
+    out = np.zeros(_N_TERMS)
+    out[: len(coef)] = coef
+    return out
+
+
+def _series_mul(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Power series x·y, truncated to :data:`_N_TERMS` terms."""
+    return np.convolve(x, y)[:_N_TERMS]
+
+
+def _series_div(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Power series x/y (y[0] != 0), truncated to :data:`_N_TERMS` terms."""
+    out = np.zeros(_N_TERMS)
+    for k in range(_N_TERMS):
+        out[k] = (x[k] - np.dot(out[:k], y[k:0:-1])) / y[0]
+    return out
+
+
+def _taylor_at_one(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[np.ndarray, float]:
+    """Taylor coefficients φ_k in s of Φ = z^d D_G/N_G + a_B N₂/N₁ at z = e^s (κ = −Φ on the ray), and ρ_L.
+
+    Built in w = z − 1, where every factor has coefficients free of cancellation (1 − p = −expm1(−a),
+    N_G(1) = φ₁(a) or n₂ + n₁ + n₀, the filter's 1 − a_f = −expm1(−2πν_c)), then composed with
+    w = e^s − 1 and multiplied by e^{sd}. φ₀ = 0 and φ₁ = a ρ_L + a_B, ρ_L = 1 (no lag) or
+    φ₁(a)(1 − q)/(n₂ + n₁ + n₀) (→ 1 as a → 0): φ₁ is returned as computed, ρ_L for the caller's exact scaling.
+    """
+    from ._exprel import phi1, phi2
+
+    if lag == 0.0 or not math.isfinite(1.0 / lag):
+        dg, ng, rho_l = _poly_series(0.0, -math.expm1(-a), 1.0), _poly_series(phi1(a), phi2(a)), 1.0
+    else:
+        n2, n1, n0, _, _ = amplifier_zoh_coefficients(a, lag)
+        one_q = -math.expm1(-1.0 / lag)
+        dg = _series_mul(_poly_series(0.0, -math.expm1(-a), 1.0), _poly_series(one_q, 1.0))
+        ng = _poly_series(n2 + n1 + n0, 2.0 * n2 + n1, n2)
+        rho_l = phi1(a) * one_q / (n2 + n1 + n0)
+    if a_b > 0.0 and cutoff is not None:
+        g = -math.expm1(-2.0 * math.pi * cutoff)  # 1 − a_f
+        vw = _series_div(_poly_series(0.0, g), _series_mul(_poly_series(1.0, 1.0), _poly_series(g, 1.0)))
+    else:
+        vw = _series_div(_poly_series(0.0, 1.0), _poly_series(1.0, 1.0))
+    lw = _series_div(dg, ng)
+    ws = np.array([0.0] + [1.0 / math.factorial(k) for k in range(1, _N_TERMS)])  # w = e^s − 1
+    lo, vo, pw = np.zeros(_N_TERMS), np.zeros(_N_TERMS), _poly_series(1.0)
+    for k in range(_N_TERMS):
+        lo, vo, pw = lo + lw[k] * pw, vo + vw[k] * pw, _series_mul(pw, ws)
+    ed = np.array([float(delay) ** k / math.factorial(k) for k in range(_N_TERMS)])  # e^{sd}
+    return _series_mul(ed, lo) + a_b * vo, rho_l
+
+
+def _series_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[float, float] | None:
+    """(ρ_L, κ̃) with κ_crit = (a ρ_L + a_B) κ̃ from the Taylor series at z = 1, or None if it does not converge.
+
+    On z = e^{jθ} with u = θ² = φ₁v, Im Φ = 0 and κ = −Re Φ read (φ_k real, :func:`_taylor_at_one`)::
+
+        1 − φ₃v + φ₅φ₁v² − φ₇φ₁²v³ + … = 0,    κ/φ₁ = κ̃ = φ₂v − φ₄φ₁v² + φ₆φ₁²v³ − …
+
+    whose root near v = 1/φ₃ is found by Newton's method; φ₁ only scales the corrections, so an
+    underflowing (b + B)T/m costs no accuracy (the caller forms K from (bρ_L + B)/T · κ̃). As φ₁ → 0:
+    κ̃ → φ₂/φ₃ = 1/(d + ½ + α), i.e. K_crit → (b + B)/(T(½ + d + τ_a/T)). None when φ₃ <= 0 or the
+    last terms are not below 1e-17 of the first (a pole of the filter or lag too close to z = 1).
+    """
+    f, rho_l = _taylor_at_one(a, a_b, cutoff, lag, delay)
+    if not f[3] > 0.0:
+        return None
+    e = f[1]
+    j = np.arange(1, (_N_TERMS - 1) // 2 + 1)
+    im = np.concatenate([[1.0], (-1.0) ** j * f[2 * j + 1] * e ** (j - 1)])  # in powers of v
+    re = np.concatenate([[0.0], (-1.0) ** (j + 1) * f[2 * j] * e ** (j - 1)])
+    poly = np.polynomial.polynomial
+    v = 1.0 / f[3]
+    for _ in range(60):
+        step = poly.polyval(v, im) / poly.polyval(v, poly.polyder(im))
+        v -= step
+        if abs(step) <= 1e-16 * abs(v):
+            break
+    powers = v ** np.arange(im.size)
+    ti, tr = np.abs(im * powers), np.abs(re * powers)
+    if not (v > 0.0 and ti[-1] <= 1e-17 * ti[0] and tr[-1] <= 1e-17 * tr[1] and abs(step) <= 1e-14 * v):
+        return None
+    return rho_l, float(np.dot(re, powers))
 
 
 def _ray(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[np.ndarray, np.ndarray]:
@@ -305,6 +410,54 @@ def _check_against_grid(p0, q, ks, intervals, args) -> None:
         )
 
 
+def _stable_set(
+    b: float, big_b: float, t: float, m: float, p: ControllerParams
+) -> tuple[list[tuple[float, float]], float | None]:
+    """Stable κ intervals and, when the Taylor series at z = 1 gives it, K_crit in N/m (else None).
+
+    (b + B)T/m > :data:`SERIES_RATE` or 0: the float ray analysis alone. Below, where the series converges:
+    (0, κ_crit) from the series (the float crossings near z = 1 are off there: 3e-5 relative, or a false
+    'never', at (b + B)T/m = 1e-7 with an amplifier lag of 159 or 15915 samples), then any interval of the
+    float ray analysis (from :data:`MIN_RESOLVED_RATE` up) starting at κ >= max(1e-3, 4κ_crit), where the float
+    spectral radius resolves the roots near z = 1; every other κ of a grid up to 1e4 there must be unstable
+    (checked). Between κ_crit and that bound the ray stays unstable: the roots at κ = O((b + B)T/m) lie in the closed unit disk away from
+    z = 1, and the series' crossing is the unique root of its leading balance near z = 1.
+    """
+    a, a_b = b * t / m, big_b * t / m
+    rate = (b + big_b) * t / m
+    series = None
+    if b + big_b > 0.0 and rate <= SERIES_RATE:
+        series = _series_kappa(a, a_b, p.cutoff, p.lag, p.delay)
+    if series is None:
+        if 0.0 < rate < MIN_RESOLVED_RATE or (rate == 0.0 and b + big_b > 0.0):
+            raise DFAValueError(
+                f"(damping + controller.damping)·period/mass = {rate:g} is invalid for the exact linear bound with "
+                f"this controller: below {MIN_RESOLVED_RATE:g} the bound comes from a series at z = 1, which does "
+                "not converge here (the velocity filter's pole as close to z = 1 as the stability boundary); raise "
+                "the filter cutoff, or check the mass and damping"
+            )
+        return _stable_kappa(a, a_b, p.cutoff, p.lag, p.delay), None
+    rho_l, k_tilde = series
+    kappa = (a * rho_l + a_b) * k_tilde
+    k_top = (b * rho_l + big_b) / t * k_tilde
+    lo = max(1e-3, 4.0 * kappa)  # from here on the float spectral radius resolves the roots near z = 1
+    higher: list[tuple[float, float]] = []
+    if rate >= MIN_RESOLVED_RATE:  # below, none is looked for (costly at large d): one found by the grid is an error
+        try:
+            higher = [iv for iv in _stable_kappa(a, a_b, p.cutoff, p.lag, p.delay) if iv[0] >= lo]
+        except DFAError:  # its own check failed (the clustered roots near z = 1): no interval above is listed
+            pass
+    p0, q = _ray(a, a_b, p.cutoff, p.lag, p.delay)
+    grid = np.geomspace(lo, 1e4, 29)
+    grid = grid[[not any(x <= k <= y for x, y in higher) for k in grid]]
+    if grid.size and np.any(_rho_rows(np.array([np.polyadd(p0, k * q) for k in grid])) <= 1.0 + 1e-9):
+        raise DFAError(
+            f"the loop with (bT/m, BT/m, ν_c, α, d) = {(a, a_b, p.cutoff, p.lag, p.delay)!r} is stable at a large K "
+            "outside the listed intervals although (b + B)T/m is small: please report this as a bug"
+        )
+    return [(0.0, kappa), *higher], k_top
+
+
 def _status(intervals: list[tuple[float, float]]) -> LinearStatus:
     if not intervals:
         return LinearStatus.NEVER
@@ -408,7 +561,8 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
     ------
     DFAValueError
         A mass, damping or period out of range, a filter cutoff above the Nyquist frequency 1/(2T), or
-        0 < (b + B)T/m < :data:`MIN_RESOLVED_RATE` (the boundary is not resolved in floating point there).
+        0 < (b + B)T/m < :data:`MIN_RESOLVED_RATE` where the series at z = 1 does not converge (a guard: no
+        accepted input is known to reach it).
     DFATypeError
         ``controller`` is not a :class:`dfa.Controller`.
 
@@ -429,18 +583,12 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
     p = c.params(t)
     for name, value in (("damping", b), ("controller.damping", c.damping)):
         check_rate(name, value, m, t)
-    rate = (b + c.damping) * t / m
-    if 0.0 < rate < MIN_RESOLVED_RATE:
-        raise DFAValueError(
-            f"(damping + controller.damping)·period/mass = {rate:g} is invalid for the exact linear bound with a "
-            f"controller: it must be at least {MIN_RESOLVED_RATE:g} (below, the closed-loop roots cluster at z = 1 "
-            "and the float spectral radius cannot locate the stability boundary); check the mass and damping, or "
-            "use the spring without controller damping or amplifier lag (dfa.linear.critical_stiffness)"
-        )
-    kap = _stable_kappa(b * t / m, c.damping * t / m, p.cutoff, p.lag, p.delay)
+    kap, k_top = _stable_set(b, c.damping, t, m, p)
     scale = m / (t * t)
     iv = np.array([[lo * scale, hi * scale] for lo, hi in kap]).reshape(-1, 2)
     status = _status(kap)
+    if k_top is not None:  # the series' K_crit, formed without the possibly underflowing (b + B)T/m
+        iv[0, 1] = k_top
     k_crit = float(iv[0, 1]) if status in (LinearStatus.INTERVAL, LinearStatus.SEVERAL) else 0.0
     ctrl = {k: v for k, v in c.as_dict().items() if k != "stiffness"}
     return StiffnessIntervals(iv, k_crit, status, m, b, t, ctrl)

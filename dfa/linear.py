@@ -265,6 +265,8 @@ def linear_stable(mu, beta, delay: int = 0, *, controller: ControllerParams | No
     """True where the linear sampled loop is asymptotically stable (spectral radius < 1), vectorised.
 
     Parameters as :func:`spectral_radius` (``controller``: a :class:`ControllerParams`, or None for the spring).
+    At tiny rates (spring: r_d β/μ <= 1e-6; controller: (β + β_B)/μ < 1e-7), where the float spectral radius is
+    decided by rounding, the verdict is 1/μ < κ_crit of the small-rate bound (:func:`critical_stiffness`).
 
     Examples
     --------
@@ -272,7 +274,35 @@ def linear_stable(mu, beta, delay: int = 0, *, controller: ControllerParams | No
     (True, False)
     """
     r = spectral_radius(mu, beta, delay, controller=controller)
-    return bool(r < 1.0) if isinstance(r, float) else r < 1.0
+    d, c = _controller_delay(delay, controller, ControllerParams)
+    m, b = np.broadcast_arrays(np.asarray(mu, dtype=float), np.asarray(beta, dtype=float))
+    out = np.atleast_1d(np.asarray(r) < 1.0).ravel()
+    for i, (x, y) in enumerate(zip(m.ravel(), b.ravel(), strict=True)):
+        v = _small_rate_verdict(float(x), float(y), d, c)
+        if v is not None:  # tiny rates: the float spectral radius is decided by rounding there
+            out[i] = v
+    return bool(out[0]) if isinstance(r, float) else out.reshape(np.shape(r))
+
+
+def _small_rate_verdict(mu: float, beta: float, d: int, c: ControllerParams | None) -> bool | None:
+    """Stability from the small-rate bound (1/μ < κ_crit, in β form: no underflow), or None outside that regime.
+
+    Spring: r_d β/μ <= 1e-6, stable iff β(1 + r_d β/μ) > ½ + d (:func:`_small_rate_kappa`). With a damper or
+    lag: (β + β_B)/μ < :data:`dfa.controlled_linear.MIN_RESOLVED_RATE`, stable iff (βρ_L + β_B) κ̃ > 1
+    (:func:`dfa.controlled_linear._series_kappa`).
+    """
+    a = beta / mu
+    if c is not None and (c.damping > 0.0 or c.lag > 0.0):
+        from .controlled_linear import MIN_RESOLVED_RATE, _series_kappa
+
+        if not (beta + c.damping > 0.0 and (beta + c.damping) / mu < MIN_RESOLVED_RATE):
+            return None
+        series = _series_kappa(a, c.damping / mu, c.cutoff, c.lag, d)
+        return None if series is None else bool((beta * series[0] + c.damping) * series[1] > 1.0)
+    r = (2.0 * d * d + 2.0 * d + 1.0) / (6.0 * (2.0 * d + 1.0))
+    if not (beta > 0.0 and r * a <= _ASYMPTOTIC_LIMIT):
+        return None
+    return bool(beta * (1.0 + r * a) > 0.5 + d)
 
 
 # ----------------------------------------------------------------------------- boundary crossings on the stiffness ray
@@ -377,7 +407,8 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Con
     crossings at z = e^{jθ}, each κ = −D/N real and positive (module docstring),
     verified by the spectral radius at K(1 ∓ ε), ε = 1e-6 (more below bT/m = 1e-5); for tiny bT/m (below
     1e-6·6(2d + 1)/(2d² + 2d + 1)) the small-a expansion K = b/(T(½ + d))·(1 + r_d bT/m) (module docstring,
-    relative error <= 1.3e-12). The loop is stable for every
+    relative error <= 1.3e-12), formed from b/T so that an underflowing bT/m (m = 1e300 kg) still gives
+    the positive limit. The loop is stable for every
     K in (0, K_crit). Gil et al. (2004)'s closed form (b/T) f(bT/m)
     (:func:`dfa.stiffness.gil_factor`) is the d = 0 interior crossing: it is the
     bound for bT/m < 3.72, beyond it the z = −1 condition β > ½ − tanh(a/2)/a binds.
@@ -430,9 +461,24 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Con
         raise DFAValueError(f"damping·period/mass = {a!r} is invalid: it must be finite; check the units")
     for x, y, z in zip(m.ravel(), b.ravel(), t.ravel(), strict=True):  # bT/m <= MAX_RATE, as stable_stiffness
         check_rate("damping", float(y), float(x), float(z))
-    kappa = np.array([_critical_kappa(float(x), d) for x in a.ravel()]).reshape(a.shape)
-    out = kappa * m / (t * t)
+    flat = [
+        _critical_k(float(x), float(y), float(z), d) for x, y, z in zip(m.ravel(), b.ravel(), t.ravel(), strict=True)
+    ]
+    out = np.array(flat).reshape(m.shape)
     return float(out) if out.ndim == 0 else out
+
+
+def _critical_k(m: float, b: float, t: float, d: int) -> float:
+    """K_crit = κ_crit m/T² in N/m; in the small-rate regime b/(T(½ + d))·(1 + r_d a), formed without a = bT/m.
+
+    A device whose bT/m underflows (m = 1e300 kg, or b = 1e-320 N·s/m) still has the positive limit
+    K → b/(T(½ + d)): it is not computed as κ m/T² from an underflowed κ (which gave 0 for b > 0).
+    """
+    a = b * t / m
+    r = (2.0 * d * d + 2.0 * d + 1.0) / (6.0 * (2.0 * d + 1.0))
+    if b > 0.0 and r * a <= _ASYMPTOTIC_LIMIT:
+        return b / t / (0.5 + d) * (1.0 + r * a)
+    return _critical_kappa(a, d) * m / (t * t)
 
 
 #: μ range in which :func:`critical_beta` is computed reliably (checked against its asymptote ½ + d − c_d/μ,

@@ -293,9 +293,10 @@ def test_public_names():
         assert name in dfa.__all__ and getattr(dfa, name) is not None
 
 
-def _zoh_numerator_mpmath(a, lag):
-    """(n₂, n₁, n₀) of the ZOH of 1/((αs + 1)s(s + a)) from its step response by residues, 60 digits (a > 0, a ≠ 1/α)."""
-    with mpmath.workdps(60):
+def _zoh_numerator_mpmath(a, lag, dps=60, as_float=True):
+    """(n₂, n₁, n₀) of the ZOH of 1/((αs + 1)s(s + a)) from its step response by residues, ``dps`` digits (a > 0,
+    a ≠ 1/α; the residues cancel to ~2·log10(1/a) digits); mpmath numbers unless ``as_float``."""
+    with mpmath.workdps(dps):
         a, b = mpmath.mpf(a), 1 / mpmath.mpf(lag)
 
         def y(t):  # step response of b/(s(s + a)(s + b)): residues at 0 (double), −a, −b
@@ -309,7 +310,8 @@ def _zoh_numerator_mpmath(a, lag):
         g = [y(k) - y(k - 1) if k else y(0) for k in range(4)]
         p, q = mpmath.e ** (-a), mpmath.e ** (-b)
         d1, d2 = -(1 + p + q), p + q + p * q
-        return [float(x) for x in (g[1], g[2] + d1 * g[1], g[3] + d1 * g[2] + d2 * g[1])]
+        out = (g[1], g[2] + d1 * g[1], g[3] + d1 * g[2] + d2 * g[1])
+        return [float(x) for x in out] if as_float else list(out)
 
 
 @pytest.mark.parametrize(

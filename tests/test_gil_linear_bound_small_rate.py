@@ -23,21 +23,57 @@ from dfa.cli import main
 from dfa.linear import _critical_kappa, _small_rate_kappa, critical_stiffness
 
 
-def _rho_mp(a: float, kappa: float, d: int) -> float:
-    """ρ − 1, ρ the largest root modulus of z^d (z − 1)(z − p) + κ(c₁z + c₀) (p = e^{−a}: ZOH of 1/(s(s + a))).
+def _char_poly_mp(a, kappa, d, a_b=0.0, cutoff=None, lag=0.0):
+    """Coefficients (highest first, mpmath) of κχ = P₀ + κQ of the loop of dfa.controlled_linear (the spring:
+    a_b = 0, no lag): plant c₁ = (a − 1 + p)/a², c₀ = (1 − p − ap)/a² (a = 0: ½, ½), or with amplifier lag α the
+    residue numerator of ``test_controlled_linear._zoh_numerator_mpmath``; controller z^{−d}[1 + β_B(1 − z^{−1})F].
+    Call inside ``mpmath.workdps``."""
+    from test_controlled_linear import _zoh_numerator_mpmath
+
+    def pmul(x, y):
+        out = [mpmath.mpf(0)] * (len(x) + len(y) - 1)
+        for i, u in enumerate(x):
+            for j, v in enumerate(y):
+                out[i + j] += u * v
+        return out
+
+    def padd(x, y):
+        n = max(len(x), len(y))
+        x, y = [0] * (n - len(x)) + list(x), [0] * (n - len(y)) + list(y)
+        return [u + v for u, v in zip(x, y, strict=True)]
+
+    a_, k = mpmath.mpf(a), mpmath.mpf(kappa)
+    p = mpmath.e ** (-a_)
+    if lag:
+        ng = _zoh_numerator_mpmath(a, lag, dps=mpmath.mp.dps, as_float=False)
+        dg = pmul(pmul([1, -1], [1, -p]), [1, -(mpmath.e ** (-1 / mpmath.mpf(lag)))])
+    else:
+        ng = [(a_ - 1 + p) / a_**2, (1 - p - a_ * p) / a_**2] if a else [mpmath.mpf(0.5)] * 2
+        dg = pmul([1, -1], [1, -p])
+    shift = [mpmath.mpf(1)] + [mpmath.mpf(0)] * (d + 1)  # z^{d+1}
+    if a_b and cutoff is not None:
+        af = mpmath.e ** (-2 * mpmath.pi * mpmath.mpf(cutoff))
+        n1, n2, dh = [1, -af, 0], [1 - af, af - 1], pmul(shift, [1, -af])
+    else:
+        n1, n2, dh = [1, 0], [1, -1], shift
+    p0 = padd(pmul(dg, dh), [mpmath.mpf(a_b) * c for c in pmul(ng, n2)])
+    return padd(p0, [k * c for c in pmul(ng, n1)])
+
+
+def _rho_mp(a: float, kappa: float, d: int, **controller) -> float:
+    """ρ − 1, ρ the largest root modulus of z^d (z − 1)(z − p) + κ(c₁z + c₀) (p = e^{−a}: ZOH of 1/(s(s + a))), or
+    with ``controller`` (a_b, cutoff, lag) of the loop of dfa.controlled_linear (:func:`_char_poly_mp`).
 
     60 significant digits after the cancellation in c₁ = (a − 1 + p)/a², c₀ = (1 − p − ap)/a² (which costs
     2·log10(1/a) digits, so the working precision grows as a shrinks).
     """
-    dps = 60 + max(0, int(-2 * math.log10(a)))
+    dps = 60 + max(0, int(-2 * math.log10(a or controller.get("a_b") or 1.0)))
     with mpmath.workdps(dps):
-        a_, k = mpmath.mpf(a), mpmath.mpf(kappa)
-        p = mpmath.e ** (-a_)
-        c1, c0 = (a_ - 1 + p) / a_**2, (1 - p - a_ * p) / a_**2
-        coef = [mpmath.mpf(0)] * (d + 3)
-        coef[0], coef[1], coef[2] = mpmath.mpf(1), -(1 + p), p
-        coef[d + 1] += k * c1
-        coef[d + 2] += k * c0
+        coef = _char_poly_mp(a, kappa, d, **controller)
+        lead = coef[0]
+        coef = [c / lead for c in coef]
+        while coef[-1] == 0:  # roots at z = 0 (the controller's z^{d+1}): no bearing on ρ, slow for polyroots
+            coef.pop()
         return float(max(abs(r) for r in mpmath.polyroots(coef, maxsteps=400, extraprec=2 * dps)) - 1)
 
 
@@ -114,26 +150,3 @@ def test_gil_cli_stiffness_huge_mass_prints_a_finite_k_linear(capsys):
     rec = json.loads(capsys.readouterr().out)
     assert rec["k_linear"] == pytest.approx(1000.0 / 3.5, rel=1e-12)
     assert rec["k_gil"] == rec["k_linear"]
-
-
-def test_gil_controller_tiny_rate_is_refused_not_a_false_never():
-    """With a controller the ray analysis has no small-rate expansion: (b + B)T/m = 1e-11 (formerly a false 'never
-    stable', and 3732 N/m above the ~3000 N/m limit at d = 0) is refused with the package's error."""
-    from dfa.controlled_linear import MIN_RESOLVED_RATE, stable_stiffness
-    from dfa.controller import Controller
-    from dfa.errors import DFAValueError
-
-    with pytest.raises(DFAValueError, match="mass"):
-        stable_stiffness(1e8, 1.0, 1e-3, Controller(1000.0, 0.5, 1, 100.0))
-    with pytest.raises(DFAValueError, match="mass"):
-        critical_stiffness(1e8, 1.0, 1e-3, controller=Controller(1000.0, 0.0, 3, None, 1000.0))
-    m = 1.5e-3 / (2 * MIN_RESOLVED_RATE)  # (b + B)T/m = 2·MIN_RESOLVED_RATE: still computed, near (b + B)/(T/2)
-    assert stable_stiffness(m, 1.0, 1e-3, Controller(1000.0, 0.5)).k_crit == pytest.approx(3000.0, rel=1e-4)
-
-
-def test_gil_cli_controller_tiny_rate_one_line_exit_2(capsys):
-    argv = ["stiffness", "--mass", "1e8", "--damping", "1", "--coulomb", "0", "--resolution", "1e-6"]
-    argv += ["--period", "1e-3", "--velocity", "0.1", "--virtual-damping", "0.5"]
-    assert main(argv) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "mass" in err[0]
