@@ -185,3 +185,16 @@ def test_controlled_linear_small_rate_slow_amplifier_former_counterexample_mpmat
     """(b + B)T/m = 1e-7 (m = 1e4 kg, b = B = 0.5, T = 1 ms) with a slow amplifier (α = 159, 15915 samples): the float
     ray analysis gave K_crit 3e-5 above the boundary (1 Hz) and a false 'never stable' (0.01 Hz); α = 1.6e8 (1 μHz)."""
     _check(1e4, 0.5, Controller(1.0, 0.5, 0, None, bandwidth), rel=1e-6)
+
+
+def test_limit_cycles_linear_verdict_with_controller_uses_the_small_rate_bound():
+    """dfa.cycles' linear verdict with a controller is dfa.linear.linear_stable's (the float spectral radius
+    alone said unstable at μ = 1e16, β = 0.55 with a tiny damper, where the loop is stable)."""
+    from dfa.controller import ControllerParams
+    from dfa.cycles.controlled import linear_stable_with_controller
+    from dfa.linear import linear_stable
+
+    c = ControllerParams(damping=1e-3, delay=1)
+    for mu, beta in ((1e16, 0.55), (1e16, 0.1), (100.0, 0.5), (100.0, 0.1)):
+        assert linear_stable_with_controller(mu, beta, c) == bool(linear_stable(mu, beta, controller=c))
+    assert linear_stable_with_controller(1e16, 2.0, c) and not linear_stable_with_controller(1e16, 0.5, c)

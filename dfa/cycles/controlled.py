@@ -10,7 +10,6 @@ with its delay: the solver then runs the spring-only code, bit for bit.
 from __future__ import annotations
 
 from ..checks import check_delay, check_type
-from ..controlled_linear import controlled_spectral_radius
 from ..controller import ControllerParams
 from ..errors import DFAValueError
 
@@ -40,7 +39,10 @@ def resolve_controller(controller: object, delay: int) -> tuple[ControllerParams
 def linear_stable_with_controller(mu: float, beta: float, ctl: ControllerParams) -> bool:
     """Whether the linear loop with the controller is asymptotically stable (every root inside abs(z) = 1).
 
-    The closed-loop characteristic polynomial is :func:`dfa.controlled_linear.controlled_characteristic_polynomial`
-    (one implementation; no encoder, no Coulomb friction).
+    :func:`dfa.linear.linear_stable` with the controller (one implementation; no encoder, no Coulomb friction):
+    the closed-loop spectral radius, and at tiny rates the small-rate bound (the float radius is decided by
+    rounding there).
     """
-    return controlled_spectral_radius(mu, beta, ctl) < 1.0
+    from ..linear import linear_stable
+
+    return bool(linear_stable(mu, beta, controller=ctl))
