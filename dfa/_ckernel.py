@@ -58,6 +58,37 @@ of its present value and the commands it follows. If all these lie in
 reading ⇒ same bounds): that is "rest". A run that ends stuck without this
 proof is not rest.
 
+Period skipping (issue 16). Between samples h − 1 and h the loop is the
+state S_h that sample h reads (:func:`_sample`, line by line): ξ and ξ'
+(the step and the reading r_h); r_{h−1} (v_h = r_h − r_{h−1}); with the
+filter y_{h−1} and v_{h−1} (y_h = a y_{h−1} + (1 − a) v_{h−1}; without it
+y_h = v_h and v_{h−1} is never read); with the lag φ_A (its start value in
+the sample and its update; without it φ_A = c is set before any read); and
+the d pending commands c_{h−d} … c_{h−1} in logical order, oldest first
+(ring[pos + 1], …, ring[pos + d] mod d + 1; ring[pos] holds the applied
+c_{h−d−1}, overwritten by c_h before anything reads the ring, and the
+physical position only says where the next write goes). The only other
+input is h itself, through ``h > 0`` (y_0 = 0): no reference is taken at
+h = 0. Sample h is then a deterministic function of S_h alone, bit for bit
+(the same compiled operations on the same doubles), and so are its rest
+test (v, φ_A, the ring after the write, c(r_h), y_{h+1}), its exit test and
+its contributions to the statistics (ξ at the end, the turning points).
+So when S_h equals S_{h−P} bit for bit (±0 differ, NaN never equals:
+:func:`dfa._kernel.same_state`'s rule), samples h, h + 1, … repeat samples
+h − P, … for ever: none of them rests or leaves the bound, because those
+P samples did not (a repeating state never rests). :func:`_advance` finds
+P by Brent's method (a reference state renewed at doubling intervals,
+within the range it runs: one segment of the run on one side of the tail
+start) and jumps over the whole periods left in the range: their peaks,
+tail extremes and turning points are those of the P samples after the
+reference, already counted in the same segment (and the same tail), their
+tail readings are copied, and the state after the jump is S_h (the ring's
+contents in logical order; only its physical position differs). Every
+later range knows P and takes its reference at its start: one period
+integrated, then the jump. Same results bit for bit as integrating every
+sample (``run_ckernel(..., skip=False)``,
+``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
+
 Energy bookkeeping is not implemented for the controller path
 (:func:`dfa.simulate` refuses ``energy=True`` with a controller).
 
