@@ -456,6 +456,18 @@ def run_ckernel(
     The run is each of the NSEG segments (split where the tail starts) in
     :func:`_advance`. ``skip=False`` integrates every sample (the reference
     of ``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
+
+    Examples
+    --------
+    A chattering loop (μ = 2, β = 2, σ = 0.1, ξ'0 = 2; damper, filter ν_c = 0.1, delay 1, lag α = 0.2)
+    settles on a cycle of its whole state, bit for bit: of 50 001 samples, 231 are integrated.
+
+    >>> e, stats = np.empty(0), np.empty(NSEG + 10)
+    >>> ctl = (0.5, math.exp(-0.2 * math.pi), True, 0.2)
+    >>> run_ckernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, True)
+    (50001, -1, 231)
+    >>> run_ckernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, False)
+    (50001, -1, 50001)
     """
     record = rec_x.shape[0] == n + 1
     rx_, rv_ = (rec_x, rec_v) if record else (rec_x[:0], rec_v[:0])
