@@ -690,12 +690,15 @@ def bench_design_answer(quick: bool) -> str:
     )
 
 
-# the controller path (issue 15 item 4): a loop that chatters for ever (σ < ½ never rests), every sample integrated
+# the controller path (issue 15 item 4): a loop that chatters for ever (σ < ½ never rests)
 CTL_RUN = dict(mu=2.0, beta=2.0, sigma=0.1, xi_dot0=2.0)
 
 
 def bench_controller_kernel(quick: bool) -> str:
-    """ns per sample of dfa._ckernel (damper, filter, delay, amplifier lag) beside the spring kernel, same loop."""
+    """ns per sample of dfa._ckernel (damper, filter, delay, amplifier lag) beside the spring kernel, same loop.
+
+    Then the period skip (issue 16): ns per sample of the run with skipping, and the samples integrated.
+    """
     from dfa import _ckernel
     from dfa.controller import ControllerParams as CP
 
@@ -707,27 +710,34 @@ def bench_controller_kernel(quick: bool) -> str:
         st = np.empty(_kernel.NSTATS)
         return _kernel.simulate_kernel(mu, beta, sigma, 0.0, v0, n, 1, True, 1e6, 8192, e, e, e2, st)[0]
 
-    def ctl(c):
+    def ctl(c, skip=False):  # (samples run, samples integrated); skip=False integrates every sample
         st = np.empty(_kernel.NSTATS)
         args = (c.damping, c.filter_pole, c.cutoff is not None, c.lag)
-        return _ckernel.simulate_ckernel(mu, beta, sigma, 0.0, v0, n, c.delay, True, 1e6, 8192, *args, e, e, st)[0]
+        out = _ckernel.run_ckernel(mu, beta, sigma, 0.0, v0, n, c.delay, True, 1e6, 8192, *args, e, e, st, skip)
+        return out[0], out[2]
 
-    cases = {"spring kernel (dfa._kernel), delay 1": spring}
+    def per_sample(f):
+        f()  # compile / load the cache
+        return min(best_of(f, 1) for _ in range(3)) / f()[0]
+
+    full = CP(damping=0.5, cutoff=0.1, delay=1, lag=0.2)
+    rows = []
+    base = per_sample(lambda: (spring(), 0))
+    rows.append(f"| spring kernel (dfa._kernel), delay 1 | {n} | {1e9 * base:.3g} | 1.00 |")
     for name, c in [
         ("controller kernel, pure spring", CP()),
         ("damper β_B = 0.5", CP(damping=0.5)),
         ("damper + filter ν_c = 0.1 + delay 1", CP(damping=0.5, cutoff=0.1, delay=1)),
         ("amplifier lag α = 0.2", CP(lag=0.2)),
-        ("damper + filter + delay 1 + lag α = 0.2", CP(damping=0.5, cutoff=0.1, delay=1, lag=0.2)),
+        ("damper + filter + delay 1 + lag α = 0.2", full),
     ]:
-        cases[name] = lambda c=c: ctl(c)
-    rows = []
-    base = None
-    for name, f in cases.items():
-        done = f()  # compile / load the cache
-        t = min(best_of(f, 1) for _ in range(3)) / done
-        base = t if base is None else base
-        rows.append(f"| {name} | {done} | {1e9 * t:.3g} | {t / base:.2f} |")
+        t = per_sample(lambda c=c: ctl(c))
+        rows.append(f"| {name} | {n} | {1e9 * t:.3g} | {t / base:.2f} |")
+    skips = []
+    for name, c in [("damper + filter + delay 1 + lag α = 0.2", full), ("pure spring (never repeats here)", CP())]:
+        t_all = per_sample(lambda c=c: ctl(c))
+        t = per_sample(lambda c=c: ctl(c, True))
+        skips.append(f"| {name} | {n} | {ctl(c, True)[1]} | {1e9 * t:.3g} | {t / t_all:.3g} |")
     return (
         "\n".join(
             [
@@ -737,11 +747,19 @@ def bench_controller_kernel(quick: bool) -> str:
                 f"μ = {mu}, β = {beta}, σ = {sigma} (chatters for ever), ξ'0 = {v0}, no recording. With the amplifier lag",
                 "the force varies within each sample: every stop is a bracketed root of the closed form. The spring",
                 "kernel runs with delay 1 so that it integrates every sample (at d = 0 it skips exactly repeated",
-                "periods, which the controller kernel does not).",
+                "periods); the controller kernel runs with its period skip off (``run_ckernel(..., skip=False)``).",
                 "",
                 "| kernel / controller | samples integrated | ns per sample | × spring kernel |",
                 "|---|---:|---:|---:|",
                 *rows,
+                "",
+                "Period skip of the controller kernel (issue 16; what `simulate_ckernel` runs unrecorded): once the",
+                "loop's whole state repeats bit for bit, whole periods are skipped. ns per sample of the run; × is the",
+                "time over the same run integrating every sample (the cycle check's cost when nothing repeats).",
+                "",
+                "| controller (same run) | samples run | samples integrated | ns per sample of the run | × every sample |",
+                "|---|---:|---:|---:|---:|",
+                *skips,
             ]
         )
         + "\n"

@@ -58,6 +58,37 @@ of its present value and the commands it follows. If all these lie in
 reading ⇒ same bounds): that is "rest". A run that ends stuck without this
 proof is not rest.
 
+Period skipping (issue 16). Between samples h − 1 and h the loop is the
+state S_h that sample h reads (:func:`_sample`, line by line): ξ and ξ'
+(the step and the reading r_h); r_{h−1} (v_h = r_h − r_{h−1}); with the
+filter y_{h−1} and v_{h−1} (y_h = a y_{h−1} + (1 − a) v_{h−1}; without it
+y_h = v_h and v_{h−1} is never read); with the lag φ_A (its start value in
+the sample and its update; without it φ_A = c is set before any read); and
+the d pending commands c_{h−d} … c_{h−1} in logical order, oldest first
+(ring[pos + 1], …, ring[pos + d] mod d + 1; ring[pos] holds the applied
+c_{h−d−1}, overwritten by c_h before anything reads the ring, and the
+physical position only says where the next write goes). The only other
+input is h itself, through ``h > 0`` (y_0 = 0): no reference is taken at
+h = 0. Sample h is then a deterministic function of S_h alone, bit for bit
+(the same compiled operations on the same doubles), and so are its rest
+test (v, φ_A, the ring after the write, c(r_h), y_{h+1}), its exit test and
+its contributions to the statistics (ξ at the end, the turning points).
+So when S_h equals S_{h−P} bit for bit (±0 differ, NaN never equals:
+:func:`dfa._kernel.same_state`'s rule), samples h, h + 1, … repeat samples
+h − P, … for ever: none of them rests or leaves the bound, because those
+P samples did not (a repeating state never rests). :func:`_advance` finds
+P by Brent's method (a reference state renewed at doubling intervals,
+within the range it runs: one segment of the run on one side of the tail
+start) and jumps over the whole periods left in the range: their peaks,
+tail extremes and turning points are those of the P samples after the
+reference, already counted in the same segment (and the same tail), their
+tail readings are copied, and the state after the jump is S_h (the ring's
+contents in logical order; only its physical position differs). Every
+later range knows P and takes its reference at its start: one period
+integrated, then the jump. Same results bit for bit as integrating every
+sample (``run_ckernel(..., skip=False)``,
+``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
+
 Energy bookkeeping is not implemented for the controller path
 (:func:`dfa.simulate` refuses ``energy=True`` with a controller).
 
@@ -252,6 +283,233 @@ def _absorbing(v, fa, sigma, ring, base, damping, ynext):
     return True
 
 
+# state of a controller run between samples (module docstring, "Period skipping"): ξ, ξ', r_{h−1}, v_{h−1},
+# y_{h−1}, φ_A, ring position; then bookkeeping: tail min and max, the period found (0: none yet)
+CX, CV, CRP, CVP, CY, CFA, CPOS, CTMIN, CTMAX, CPER = range(10)
+NCSTATE = 10
+_REF = 6  # the reference state: ξ, ξ', r, v, y, φ_A at ref[0:6], then the d pending commands, oldest first
+
+
+@njit(cache=True, inline="always")
+def _same(a, b):
+    """``a`` equals ``b`` bit for bit (±0 differ; NaN never equals): :func:`dfa._kernel.same_state`'s rule."""
+    return a == b and math.copysign(1.0, a) == math.copysign(1.0, b)
+
+
+@njit(cache=True, inline="always")
+def _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa):
+    """Store the loop's state in ``ref``, the pending commands in logical order (oldest first)."""
+    ref[0], ref[1], ref[2], ref[3], ref[4], ref[5] = x, v, r_prev, v_prev, y, fa
+    i = pos
+    for j in range(delay):
+        i = i + 1 if i < delay else 0
+        ref[_REF + j] = ring[i]
+
+
+@njit(cache=True, inline="always")
+def _same_loop(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa, filtered, lag):
+    """The loop's state equals the one kept in ``ref`` bit for bit (what the next sample reads; docstring)."""
+    if not (_same(x, ref[0]) and _same(v, ref[1]) and _same(r_prev, ref[2])):
+        return False
+    if filtered and not (_same(v_prev, ref[3]) and _same(y, ref[4])):
+        return False
+    if lag != 0.0 and not _same(fa, ref[5]):
+        return False
+    i = pos
+    for j in range(delay):
+        i = i + 1 if i < delay else 0
+        if not _same(ring[i], ref[_REF + j]):
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def _sample(x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag):
+    """Sample h from the state between samples (module docstring); ``model`` = (μ, β, σ, d, quantize).
+
+    Returns the next state (ξ, ξ', r, v, y, φ_A, ring position), the sample's
+    lowest and highest turning point (±inf when none) and whether the loop
+    was in the absorbing state at the start of the sample (then not integrated).
+    """
+    mu, beta, sigma, delay, quantize = model
+    damping, pole, filtered, lag = ctl
+    r = math.floor(x) if quantize else x
+    vh = r - r_prev
+    if filtered:
+        y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
+    else:
+        y = vh
+    base = -(r + 0.5) if quantize else -r
+    ring[pos] = base - damping * y
+    pos = pos + 1 if pos < delay else 0
+    c = ring[pos]
+    if lag == 0.0:
+        fa = c
+    if v == 0.0:
+        ynext = pole * y + (1.0 - pole) * vh if filtered else 0.0
+        if _absorbing(v, fa, sigma, ring, base, damping, ynext):
+            return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, True
+    if lag == 0.0:
+        x, v, xr, _, _, _, _, stopped = step(x, v, c, mu, sigma, k)
+        lo_t, hi_t = (xr, xr) if stopped else (np.inf, -np.inf)
+    else:
+        x, v, lo_t, hi_t = lag_sample(x, v, c, fa, mu, beta, sigma, lag)
+        fa = c + (fa - c) * e_lag  # e_lag = e^{−1/α}
+    return x, v, r, vh, y, fa, pos, lo_t, hi_t, False
+
+
+@njit(cache=True, nogil=True)
+def _advance(st, ring, ref, h0, h1, mu, beta, sigma, delay, quantize, bound, ctl, tail, tail_start, rec_x, rec_v, skip):
+    """Samples h0 … h1 − 1 from the state ``st``; return (end, why, peak |ξ|, samples skipped).
+
+    ``ctl`` = (β_B, a, filtered, α); why as :func:`dfa._kernel.advance` (0 ran
+    through, 1 at rest at sample ``end``, 2 past ``bound`` in sample end − 1).
+    The range lies before the tail or in it. With ``skip`` (no records),
+    whole periods are skipped once the loop's state repeats bit for bit
+    (Brent's cycle detection, the reference within this range; module docstring).
+    """
+    damping, pole, filtered, lag = ctl
+    model = (mu, beta, sigma, delay, quantize)
+    k = sample_constants(mu, beta)
+    e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
+    x, v, r_prev, v_prev, y, fa = st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA]
+    pos, tmin, tmax, period = int(st[CPOS]), st[CTMIN], st[CTMAX], int(st[CPER])
+    record = rec_x.shape[0] > 0
+    skip = skip and not record
+    in_tail = h0 >= tail_start
+    peak, why, skipped, h = 0.0, 0, 0, h0
+    # reference: the state at sample rh (none at sample 0, where y_0 = 0 is forced), renewed after span samples
+    rx, rh, span = (x if h0 > 0 else np.nan), h0, (period if period > 0 else 1)
+    if skip:
+        _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
+    while h < h1:
+        x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, rested = _sample(
+            x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag
+        )
+        if rested:
+            why = 1
+            break
+        if record:
+            rec_x[h + 1], rec_v[h + 1] = x, v
+        ax = abs(x)
+        if ax > peak:
+            peak = ax
+        if in_tail:
+            tail[h - tail_start] = x
+            tmin, tmax = tail_extremes(x, lo_t, lo_t < np.inf, tmin, tmax)
+            tmin, tmax = tail_extremes(x, hi_t, hi_t > -np.inf, tmin, tmax)
+        h += 1
+        if not ax <= bound:  # also catches NaN
+            why = 2
+            break
+        if skip and x == rx and _same_loop(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa, filtered, lag):
+            period = h - rh  # the state of sample rh is back: skip the whole periods left in this range
+            jump = (h1 - h) // period * period
+            if in_tail:
+                for i in range(h, h + jump):
+                    tail[i - tail_start] = tail[i - period - tail_start]
+            h += jump
+            skipped += jump
+            span = h1  # no more renewals: fewer than one period is left
+        elif skip and h - rh == span:
+            rx, rh, span = x, h, 2 * span
+            _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
+    st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x, v, r_prev, v_prev, y, fa
+    st[CPOS], st[CTMIN], st[CTMAX], st[CPER] = pos, tmin, tmax, period
+    return h, why, peak, skipped
+
+
+@njit(cache=True, inline="always")
+def _start(st, ring, x0, v0, quantize):
+    """Initial state: r_{−1} = r_0, v_{−1} = y_{−1} = 0, every past command and φ_A equal to c_0."""
+    r0 = math.floor(x0) if quantize else x0
+    base0 = -(r0 + 0.5) if quantize else -r0
+    for i in range(ring.shape[0]):
+        ring[i] = base0
+    st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x0, v0, r0, 0.0, 0.0, base0
+    st[CPOS], st[CTMIN], st[CTMAX], st[CPER] = 0.0, np.inf, -np.inf, 0.0
+
+
+@njit(cache=True, nogil=True)
+def run_ckernel(
+    mu,
+    beta,
+    sigma,
+    x0,
+    v0,
+    n,
+    delay,
+    quantize,
+    bound,
+    tail_len,
+    damping,
+    pole,
+    filtered,
+    lag,
+    rec_x,
+    rec_v,
+    stats,
+    skip,
+):
+    """:func:`simulate_ckernel` with period skipping on or off; return (done, rest, samples integrated).
+
+    The run is each of the NSEG segments (split where the tail starts) in
+    :func:`_advance`. ``skip=False`` integrates every sample (the reference
+    of ``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
+
+    Examples
+    --------
+    A chattering loop (μ = 2, β = 2, σ = 0.1, ξ'0 = 2; damper, filter ν_c = 0.1, delay 1, lag α = 0.2)
+    settles on a cycle of its whole state, bit for bit: of 50 001 samples, 231 are integrated.
+
+    >>> e, stats = np.empty(0), np.empty(NSEG + 10)
+    >>> ctl = (0.5, math.exp(-0.2 * math.pi), True, 0.2)
+    >>> run_ckernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, True)
+    (50001, -1, 231)
+    >>> run_ckernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, False)
+    (50001, -1, 50001)
+    """
+    record = rec_x.shape[0] == n + 1
+    rx_, rv_ = (rec_x, rec_v) if record else (rec_x[:0], rec_v[:0])
+    for i in range(stats.shape[0]):
+        stats[i] = 0.0
+    st, ring, ref = np.empty(NCSTATE), np.empty(delay + 1), np.empty(_REF + delay)
+    tail = np.empty(max(tail_len, 1))
+    _start(st, ring, x0, v0, quantize)
+    if record:
+        rec_x[0], rec_v[0] = x0, v0
+    tail_start = n - tail_len
+    ctl = (damping, pole, filtered, lag)
+    done, rest, integrated = n, -1, 0
+    for seg in range(NSEG):
+        lo, hi = segment_bounds(seg, n)
+        cut = min(max(lo, tail_start), hi)
+        why = 0
+        for a, b in ((lo, cut), (cut, hi)):
+            if b > a:
+                end, why, peak, skipped = _advance(
+                    st, ring, ref, a, b, mu, beta, sigma, delay, quantize, bound, ctl, tail, tail_start, rx_, rv_, skip
+                )
+                integrated += end - a - skipped
+                if peak > stats[seg]:
+                    stats[seg] = peak
+                if why != 0:
+                    done, rest = end, (end if why == 1 else -1)
+                    stats[NSEG + 5] = 1.0 if why == 2 else 0.0
+                    break
+        if why != 0:
+            break
+    x, v = st[CX], st[CV]
+    if done == n and rest < 0 and tail_len > 1:
+        tail_stats(tail, tail_len, st[CTMIN], st[CTMAX], stats)
+    stats[NSEG + 6], stats[NSEG + 7] = x, v
+    if record:
+        for i in range(done + 1, n + 1):
+            rec_x[i] = x if rest >= 0 else np.nan
+            rec_v[i] = v if rest >= 0 else np.nan
+    return done, rest, integrated
+
+
 @njit(cache=True, nogil=True)
 def simulate_ckernel(
     mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len, damping, pole, filtered, lag, rec_x, rec_v, stats
@@ -261,77 +519,28 @@ def simulate_ckernel(
     ``damping`` β_B, ``pole`` a (used when ``filtered``), ``lag`` α. ``rec_x``/``rec_v``
     (length n + 1) are written when they have that length. ``stats`` as in
     :func:`dfa._kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
+    Unrecorded runs skip repeated periods (:func:`run_ckernel`; same results bit for bit).
     """
-    record = rec_x.shape[0] == n + 1
-    k = sample_constants(mu, beta)
-    e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
-    for i in range(stats.shape[0]):
-        stats[i] = 0.0
-    tail = np.empty(max(tail_len, 1))
-    tail_start = n - tail_len
-    ring = np.empty(delay + 1)  # ring[pos] is the applied command c_{h−d} once c_h is written
-    x, v = x0, v0
-    if record:
-        rec_x[0], rec_v[0] = x0, v0
-    r_prev = math.floor(x0) if quantize else x0
-    v_prev = 0.0
-    y = 0.0
-    base0 = -(r_prev + 0.5) if quantize else -r_prev
-    for i in range(delay + 1):
-        ring[i] = base0
-    fa = base0
-    pos = 0
-    tmin, tmax = np.inf, -np.inf
-    seg, seg_end = 0, segment_bounds(0, n)[1]
-    done, rest = n, -1
-    for h in range(n):
-        r = math.floor(x) if quantize else x
-        vh = r - r_prev
-        if filtered:
-            y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
-        else:
-            y = vh
-        base = -(r + 0.5) if quantize else -r
-        ring[pos] = base - damping * y
-        pos = pos + 1 if pos < delay else 0
-        c = ring[pos]
-        if lag == 0.0:
-            fa = c
-        if v == 0.0:
-            ynext = pole * y + (1.0 - pole) * vh if filtered else 0.0
-            if _absorbing(v, fa, sigma, ring, base, damping, ynext):
-                done, rest = h, h
-                break
-        r_prev, v_prev = r, vh
-        if lag == 0.0:
-            x, v, xr, _, _, _, _, stopped = step(x, v, c, mu, sigma, k)
-            lo_t, hi_t = (xr, xr) if stopped else (np.inf, -np.inf)
-        else:
-            x, v, lo_t, hi_t = lag_sample(x, v, c, fa, mu, beta, sigma, lag)
-            fa = c + (fa - c) * e_lag
-        if record:
-            rec_x[h + 1], rec_v[h + 1] = x, v
-        while h >= seg_end:
-            seg += 1
-            seg_end = segment_bounds(seg, n)[1]
-        ax = abs(x)
-        if ax > stats[seg]:
-            stats[seg] = ax
-        if h >= tail_start:
-            tail[h - tail_start] = x
-            tmin, tmax = tail_extremes(x, lo_t, lo_t < np.inf, tmin, tmax)
-            tmin, tmax = tail_extremes(x, hi_t, hi_t > -np.inf, tmin, tmax)
-        if not ax <= bound:  # also catches NaN
-            done = h + 1
-            stats[NSEG + 5] = 1.0
-            break
-    if done == n and rest < 0 and tail_len > 1:
-        tail_stats(tail, tail_len, tmin, tmax, stats)
-    stats[NSEG + 6], stats[NSEG + 7] = x, v
-    if record:
-        for i in range(done + 1, n + 1):
-            rec_x[i] = x if rest >= 0 else np.nan
-            rec_v[i] = v if rest >= 0 else np.nan
+    done, rest, _ = run_ckernel(
+        mu,
+        beta,
+        sigma,
+        x0,
+        v0,
+        n,
+        delay,
+        quantize,
+        bound,
+        tail_len,
+        damping,
+        pole,
+        filtered,
+        lag,
+        rec_x,
+        rec_v,
+        stats,
+        True,
+    )
     return done, rest
 
 
