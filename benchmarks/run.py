@@ -190,13 +190,6 @@ def _per_run(kernel):
     return run
 
 
-def _pair_runs(*args):
-    """benchmarks/pair_kernel.py (the two-runs-in-flight experiment) with serial_kernel's arguments."""
-    from pair_kernel import pair_kernel
-
-    _per_run(pair_kernel)(*args)
-
-
 def bench_kernel(quick: bool) -> dict:
     """ns per sample (best, worst of the repeats): dfa's kernel vs the kernels before, the plain kernel,
     the chain floor, on a never-repeating oscillation and on the paper's repeating one; batched runs."""
@@ -214,11 +207,7 @@ def bench_kernel(quick: bool) -> dict:
     batch = {}
     for name, fn in (
         ("one run at a time (dfa._kernel.serial_kernel)", _kernel.serial_kernel),
-        (
-            "one at a time, each run's own length (dfa._batch.batch_kernel, used by maps and searches)",
-            _per_run(_batch.batch_kernel),
-        ),
-        ("two runs in flight (benchmarks/pair_kernel.py, an experiment)", _pair_runs),
+        ("two runs in flight (dfa._batch.batch_kernel, used by maps and searches)", _per_run(_batch.batch_kernel)),
         ("4 lanes in registers, no period skip (benchmarks/lanes_kernel.py, an experiment)", lanes_kernel.lanes_kernel),
     ):
         st, dn, rs = np.empty((runs, _kernel.NSTATS)), np.empty(runs, np.int64), np.empty(runs, np.int64)
@@ -261,7 +250,9 @@ def bench_map_speed(quick: bool) -> dict:
     }
     tail = (n, 0, True, bound, _tail_length(n, 100.0))
     runs["map points, one run at a time (serial_kernel), 1 core"] = lambda: _kernel.serial_kernel(*pts, *tail, *outs)
-    runs["map points, two runs in flight (benchmarks/pair_kernel.py), 1 core"] = lambda: _pair_runs(*pts, *tail, *outs)
+    runs["map points, two runs in flight (dfa._batch.batch_kernel), 1 core"] = lambda: _per_run(_batch.batch_kernel)(
+        *pts, *tail, *outs
+    )
     runs["map points, plain kernel (benchmarks/plain_kernel.py), 1 core"] = lambda: [
         plain_kernel(100.0, b, s, 0.0, v, n, 0, True, bound) for b, s, v in zip(pb, ps, v0, strict=True)
     ]
@@ -470,8 +461,9 @@ def render_kernel(kern: dict, mapspeed: dict) -> list[str]:
         "",
         "The single-core loop calls today's simulate() (one run at a time, which skips repeated periods too); the",
         "map deals its points out to chunks in turn and runs each chunk through dfa._batch.batch_kernel (one",
-        "compiled call). The rows below run the same points in one call: one at a time, two in flight (an",
-        "experiment), the plain kernel (no tail statistics, no period skip), the kernel before issue 16.",
+        "compiled call, two runs in flight). The rows below run the same points in one call: one at a time, two",
+        "in flight (the map's kernel), the plain kernel (no tail statistics, no period skip), the kernel before",
+        "issue 16.",
         "",
         "| run | seconds | × single-core loop |",
         "|---|---:|---:|",

@@ -2,16 +2,11 @@
 
 :func:`batch_kernel` is what :func:`dfa.simulation.run_points` (stability maps, :func:`dfa.simulation.simulate_batch`)
 and the K_max searches (:func:`dfa.kmax.simulate_points`) run for the spring: each run bit for bit
-:func:`dfa._kernel.simulate_kernel` alone, one after the other, the GIL released (callers run chunks on threads).
+:func:`dfa._kernel.simulate_kernel` alone, the GIL released (callers run chunks on threads). It keeps two runs in
+flight (:func:`dfa._pair.pair_kernel`), so that their dependency chains overlap: about 0.8 of the time of one run
+after the other (:func:`dfa._kernel.serial_kernel`) on the points of a stability map (``reports/benchmarks.md``).
 
-Issue 16 asked for runs advanced together so that their dependency chains overlap. Two runs in flight,
-written out and bit for bit the same (``benchmarks/pair_kernel.py``), took 0.93-0.97 of this loop's time
-on Fig. 4 map points in ``make bench`` and 0.99 in a by-class measurement (0.95 on chatter that never
-repeats, 1.07 on diverging runs, 1.11 on resting ones); a bare loop of two runs' samples gains 20-27 %, their
-bookkeeping takes most of it back. Too little for a second copy of the loop: it is kept as a benchmark, not
-used here (``reports/benchmarks.md``).
-
-:func:`batch_ckernel` is the same loop for runs with a controller (each run its own damper, filter and lag;
+:func:`batch_ckernel` runs runs with a controller one after the other (each run its own damper, filter and lag;
 each :func:`dfa._ckernel.simulate_ckernel` alone, bit for bit): :func:`dfa.zwidth.z_width` runs a chunk of
 grid points per call.
 
@@ -25,25 +20,20 @@ import numpy as np
 from numba import njit
 
 from ._ckernel import simulate_ckernel
-from ._kernel import simulate_kernel
+from ._pair import pair_kernel
 
 __all__ = ["batch_kernel", "batch_ckernel"]
 
 
 @njit(cache=True, nogil=True)
 def batch_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest):
-    """Independent runs, one after the other: run i is :func:`dfa._kernel.simulate_kernel` of its own inputs.
+    """Independent runs, two in flight: run i is :func:`dfa._kernel.simulate_kernel` of its own inputs, bit for bit.
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]`` and
     tail ``tail_lens[i]``; every run has the delay ``delay``. ``stats[i]`` (NSTATS), ``done[i]`` and
     ``rest[i]`` receive what :func:`dfa._kernel.simulate_kernel` returns for it (nothing recorded).
     """
-    e, e2 = np.empty(0), np.empty((0, 4))
-    for i in range(mus.shape[0]):
-        done[i], rest[i] = simulate_kernel(
-            mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], delay, quantize, bounds[i], tail_lens[i],
-            e, e, e2, stats[i],
-        )  # fmt: skip
+    pair_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest)
 
 
 @njit(cache=True, nogil=True)

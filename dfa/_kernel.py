@@ -578,10 +578,10 @@ def serial_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``); ``stats[i]``
     (NSTATS), ``done[i]`` and ``rest[i]`` receive what :func:`simulate_kernel`
-    returns for it. :func:`dfa._batch.batch_kernel` is the same loop for runs
-    of different lengths, bounds and tails. (Two runs in flight, bit for bit
-    the same, took 0.93-0.99 of this loop's time on map points:
-    ``benchmarks/pair_kernel.py``; four in registers, ``benchmarks/lanes_kernel.py``, more.)
+    returns for it. :func:`dfa._batch.batch_kernel` runs runs of different
+    lengths, bounds and tails, two in flight and bit for bit the same (about
+    0.8 of this loop's time on map points; four in registers,
+    ``benchmarks/lanes_kernel.py``, took more).
     """
     empty = np.empty(0)
     empty2 = np.empty((0, 4))

@@ -110,34 +110,26 @@ def test_eq4_plain_benchmark_kernel_agrees_with_simulate():
 
 
 def _kernels_agree(pts, n, delay, tail_len, bound=1e4):
-    """dfa._batch.batch_kernel and the two-runs-in-flight experiment (benchmarks/pair_kernel.py, whose speed
-    make bench measures) against dfa._kernel.serial_kernel: every output, bit for bit."""
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-    from pair_kernel import pair_kernel
-
+    """dfa._batch.batch_kernel (two runs in flight, dfa._pair) against dfa._kernel.serial_kernel (one run after
+    the other): every output, bit for bit."""
     from dfa import _batch, _kernel
 
     k = pts[0].size
     ref = (np.zeros((k, _kernel.NSTATS)), np.zeros(k, np.int64), np.zeros(k, np.int64))
     _kernel.serial_kernel(*pts, n, delay, True, bound, tail_len, *ref)
     per_run = (np.full(k, n, np.int64), delay, True, np.full(k, bound), np.full(k, tail_len, np.int64))
-    for kernel in (_batch.batch_kernel, pair_kernel):
-        got = (np.full((k, _kernel.NSTATS), 7.0), np.full(k, 7, np.int64), np.full(k, 7, np.int64))
-        kernel(*pts, *per_run, *got)
-        assert np.array_equal(ref[0].view(np.int64), got[0].view(np.int64))  # bits: ±0 and NaN payloads too
-        assert np.array_equal(ref[1], got[1]) and np.array_equal(ref[2], got[2])
+    got = (np.full((k, _kernel.NSTATS), 7.0), np.full(k, 7, np.int64), np.full(k, 7, np.int64))
+    _batch.batch_kernel(*pts, *per_run, *got)
+    assert np.array_equal(ref[0].view(np.int64), got[0].view(np.int64))  # bits: ±0 and NaN payloads too
+    assert np.array_equal(ref[1], got[1]) and np.array_equal(ref[2], got[2])
     return ref
 
 
-@pytest.mark.parametrize("which", ["dfa", "pair experiment"])
-def test_eq4_batch_runs_each_with_its_own_length_bound_and_tail(which):
-    """Runs of different lengths, bounds and tails in one batch: each equals simulate_kernel alone."""
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-    from pair_kernel import pair_kernel
-
+def test_eq4_batch_runs_each_with_its_own_length_bound_and_tail():
+    """Runs of different lengths, bounds and tails in one batch (two in flight): each equals simulate_kernel alone."""
     from dfa import _batch, _kernel
 
-    kernel = _batch.batch_kernel if which == "dfa" else pair_kernel
+    kernel = _batch.batch_kernel
 
     mu, beta, sigma, v0, x0 = _grid(11, 40)
     rng = np.random.default_rng(11)

@@ -1,13 +1,11 @@
-"""Experiment (issue 16, not used by dfa): two runs of the exact simulator advanced together, bit for bit one at a time.
+"""Independent runs of the exact simulator, two in flight, bit for bit one at a time (issue 16).
 
-Measured against :func:`dfa._kernel.serial_kernel` in ``benchmarks/run.py`` (``reports/benchmarks.md``): a bare
-loop of two runs' samples (:func:`dfa._kernel.free_sample` alone) overlaps their chains and takes 0.73-0.81 of
-the two runs one after the other on chattering runs, but with each run's bookkeeping (tail, period skip,
-segments) map points take 0.93-0.99 of the serial kernel's time (``make bench``: 0.93-0.97; by class on the
-4 × 40 × 40 map: chatter that never repeats 0.95, runs that diverge 1.07, runs that rest 1.11; thread CPU on
-the 2-core development machine): a sample is then
-bound by the instructions it issues, not by its chain. dfa keeps the serial kernel; this module stays so that the
-measurement can be repeated. Its outputs equal the serial kernel's bit for bit (``tests/test_batch_kernel.py``).
+:func:`dfa._batch.batch_kernel` (stability maps, ``simulate_batch``, the K_max searches) is :func:`pair_kernel`.
+Measured against :func:`dfa._kernel.serial_kernel` (one run after the other) in ``benchmarks/run.py``
+(``reports/benchmarks.md``): once a stop inside a sample became a short chain of multiply-adds
+(:func:`dfa._exprel.phi12`), chattering runs, which stop in nearly every sample, are bound by their chain's
+latency, and two runs in flight take about 0.8 of the serial time on the points of a stability map (before
+that change, 0.93-0.99: a sample was then bound by the instructions it issues).
 
 One run's sample is a chain read → force → update (:mod:`dfa._kernel`)
 whose latency, not its arithmetic, bounds a single trajectory. Two
@@ -40,7 +38,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from dfa._kernel import (
+from ._kernel import (
     NSEG,
     NSTATE,
     SPOS,
