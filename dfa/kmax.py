@@ -88,11 +88,11 @@ from .simulation import (
     OUTCOMES,
     SETTLE,
     STABLE_AMPLITUDE,
+    controller_run_codes,
     default_samples,
     divergence_bound,
     preload_position,
     run_points,
-    simulate,
 )
 from .stiffness import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 
@@ -134,59 +134,56 @@ def simulate_points(
     ctls = [controller] * len(points) if controllers is None else list(controllers)
     if len(ctls) != len(points):
         raise DFAValueError(f"controllers has {len(ctls)} entries for {len(points)} points: give one per point")
+    for c in ctls:
+        if c is not None and c.delay != delay:
+            raise DFAValueError(
+                f"delay = {delay!r} is invalid with a controller of delay {c.delay}: the runs need the controller's "
+                "own delay; pass delay=controller.delay"
+            )
     jobs = []
     for (mu, beta, sigma, xi0, xi_dot0), c in zip(points, ctls, strict=True):
         n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, delay, controller=c), max_samples)
         bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
         jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound, c))
     workers = min(len(jobs), os.cpu_count() or 1)
-    plain = [j[7] is None or (j[7].is_spring and j[7].delay == delay) for j in jobs]  # the spring: batched
+    plain = [j[7] is None or j[7].is_spring for j in jobs]  # the spring kernel, as simulate() routes a pure spring
     spring = [i for i, p in enumerate(plain) if p]
     other = [i for i, p in enumerate(plain) if not p]
     outcomes = [""] * len(jobs)
     for idx, outs in (
         (spring, _batched_outcomes([jobs[i] for i in spring], delay, workers)),
-        (other, _one_by_one_outcomes([jobs[i] for i in other], delay, workers)),
+        (other, _batched_outcomes([jobs[i] for i in other], delay, workers, controllers=True)),
     ):
         for i, o in zip(idx, outs, strict=True):
             outcomes[i] = o
     return outcomes, [j[4] for j in jobs]
 
 
-def _batched_outcomes(jobs: list[tuple], delay: int, workers: int) -> list[str]:
-    """Outcomes of spring runs through the batch kernel (:func:`dfa.simulation.run_points`), chunks on threads.
+def _batched_outcomes(jobs: list[tuple], delay: int, workers: int, *, controllers: bool = False) -> list[str]:
+    """Outcomes of runs through the batch kernels, chunks on threads: the spring's
+    (:func:`dfa.simulation.run_points`), or with ``controllers`` each job's own controller
+    (:func:`dfa.simulation.controller_run_codes`).
 
     Each run is :func:`dfa.simulate`'s, bit for bit (its own length, bound and tail; the default outcome rules).
     """
     if not jobs:
         return []
     mu, beta, sigma, v0, n, x0, bound = (np.array(c) for c in list(zip(*jobs, strict=True))[:7])
+    ctls = [j[7] for j in jobs]
     chunks = deal(len(jobs), 4 * workers)
 
     def chunk(j: np.ndarray) -> np.ndarray:
-        rules = (STABLE_AMPLITUDE, GROWTH, SETTLE)  # simulate()'s defaults
-        return run_points(mu[j], beta[j], sigma[j], x0[j], v0[j], n[j], delay, True, bound[j], *rules)[0]
+        pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], n[j], delay)
+        if controllers:
+            return controller_run_codes(*pts, bound[j], [ctls[i] for i in j])
+        return run_points(*pts, True, bound[j], STABLE_AMPLITUDE, GROWTH, SETTLE)[0]  # simulate()'s rules
 
-    if workers > 1:  # the compiled kernel releases the GIL: threads overlap the chunks, results are per run
+    if workers > 1:  # the compiled kernels release the GIL: threads overlap the chunks, results are per run
         with ThreadPoolExecutor(max_workers=workers) as pool:
             codes = gather(chunks, list(pool.map(chunk, chunks)))
     else:
         codes = gather(chunks, [chunk(j) for j in chunks])
     return [OUTCOMES[c] for c in codes]
-
-
-def _one_by_one_outcomes(jobs: list[tuple], delay: int, workers: int) -> list[str]:
-    """Outcomes of controller runs (each job's own controller), one :func:`dfa.simulate` each, on threads."""
-
-    def one(job: tuple) -> str:
-        mu, beta, sigma, xi_dot0, n, xi0, bound, c = job
-        run = simulate(mu, beta, sigma, xi_dot0, n, xi0=xi0, delay=delay, record=False, bound=bound, controller=c)
-        return str(run.outcome)
-
-    if workers > 1:
-        with ThreadPoolExecutor(max_workers=workers) as pool:
-            return list(pool.map(one, jobs))
-    return [one(j) for j in jobs]
 
 
 def _check_bound(name: str, value: object, fix: str) -> float:

@@ -909,6 +909,25 @@ def check_quantize(quantize: object) -> bool:
     return check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
 
 
+def controller_run_codes(mu, beta, sigma, x0, v0, ns, delay, bound, controllers) -> np.ndarray:
+    """Outcome codes (:mod:`dfa._kernel`) of runs, each with its own controller, in one compiled call.
+
+    Run i is what :func:`simulate` makes of (``mu[i]``, …, ``v0[i]``), ``ns[i]`` samples, bound ``bound[i]`` and
+    ``controllers[i]`` (a ControllerParams that is not a pure spring, its delay ``delay``), bit for bit, with
+    simulate()'s tail length and default outcome rules (:func:`dfa._batch.batch_ckernel`, then
+    :func:`dfa._kernel.classify_batch`). No GIL is held: callers may run several calls on threads.
+    """
+    k = mu.size
+    damping, pole, filtered, lag = (np.array(c) for c in zip(*map(_controller_args, controllers), strict=True))
+    stats, done, rest = np.empty((k, _kernel.NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
+    run = (mu, beta, sigma, x0, v0, ns, delay, True, bound, _tail_lengths(ns, mu), damping, pole, filtered, lag)
+    _batch.batch_ckernel(*run, stats, done, rest)
+    codes = np.empty(k, dtype=np.int64)
+    out = (codes, np.empty(k), np.empty(k), np.empty(k), np.empty(k))
+    _kernel.classify_batch(mu, ns, done, rest, stats, STABLE_AMPLITUDE, GROWTH, SETTLE, True, *out)
+    return codes
+
+
 def _controller_args(ctl: ControllerParams) -> tuple[float, float, bool, float]:
     """(β_B, a, filtered, α): the controller arguments of :mod:`dfa._ckernel`."""
     return ctl.damping, ctl.filter_pole, ctl.cutoff is not None, ctl.lag

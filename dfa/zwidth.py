@@ -66,8 +66,6 @@ from typing import Any
 import numpy as np
 
 from . import _kernel
-from ._batch import batch_ckernel
-from ._kernel import NSTATS, classify_batch
 from ._parallel import run_in_order
 from .checks import (
     _fmt,
@@ -92,8 +90,7 @@ from .simulation import (
     GROWTH,
     SETTLE,
     STABLE_AMPLITUDE,
-    _controller_args,
-    _tail_lengths,
+    controller_run_codes,
     default_samples,
     divergence_bound,
     preload_position,
@@ -409,19 +406,7 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
     if spring:
         codes = run_points(mu, beta, sigma, x0, v0, ns, d, True, bound, STABLE_AMPLITUDE, GROWTH, SETTLE)[0]
     else:
-        ctl = [_controller_args(c) for rs, c in tasks for _ in rs]
-        damping, pole, filtered, lag = (np.array(c) for c in zip(*ctl, strict=True))
-        k = mu.size
-        stats, done, rest = np.empty((k, NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
-        tails = _tail_lengths(ns, mu)
-        batch_ckernel(
-            mu, beta, sigma, x0, v0, ns, d, True, bound, tails, damping, pole, filtered, lag, stats, done, rest
-        )
-        codes = np.empty(k, dtype=np.int64)
-        amps, freqs, centres, fpps = np.empty(k), np.empty(k), np.empty(k), np.empty(k)
-        classify_batch(
-            mu, ns, done, rest, stats, STABLE_AMPLITUDE, GROWTH, SETTLE, True, codes, amps, freqs, centres, fpps
-        )
+        codes = controller_run_codes(mu, beta, sigma, x0, v0, ns, d, bound, [c for rs, c in tasks for _ in rs])
     return _point_codes(codes.reshape(len(tasks), -1))
 
 

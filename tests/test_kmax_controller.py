@@ -22,6 +22,7 @@ from dfa.controller import MIN_LAG, Controller, ControllerParams
 from dfa.controller_kmax import controller_stiffness_limits
 from dfa.cycles import limit_cycles
 from dfa.device import Params
+from dfa.errors import DFAValueError
 from dfa.kmax import design_answer
 from dfa.simulation import default_samples, divergence_bound, preload_position, simulate
 
@@ -289,3 +290,29 @@ def test_eq6_extended_zero_criterion_k_reason_in_the_api_and_report_rows():
     assert row["extended criterion (eq. 11 extended to the damper, filter and delay; a proof)"] == (
         f"0 N/m ({r.reasons['k_criterion']})"
     )
+
+
+def test_simulate_points_controller_runs_batched_equal_simulate_one_by_one():
+    """The K_max search's controller runs go through the controller batch kernel (chunks on threads): each
+    outcome and length is one simulate() of its own point and controller (damper, filter, lag, a pure spring);
+    a controller whose delay differs from the search's is refused."""
+    rng = np.random.default_rng(16)
+    ctls = [
+        ControllerParams(damping=0.5, delay=1),
+        ControllerParams(damping=0.2, cutoff=0.1, delay=1),
+        ControllerParams(damping=0.1, lag=0.3, delay=1),
+        ControllerParams(delay=1),
+    ]
+    pts, cs = [], []
+    for i in range(24):
+        pts.append((10 ** rng.uniform(0.5, 2.5), rng.uniform(0, 1), rng.uniform(0, 1.5), 0.0, rng.uniform(0.3, 4)))
+        cs.append(ctls[i % 4])
+    outs, lengths = dfa.kmax.simulate_points(pts, 1, 20_000, controllers=cs)
+    want = []
+    for (mu, beta, sigma, x0, v0), c, n in zip(pts, cs, lengths, strict=True):
+        bound = divergence_bound(x0, v0, mu)
+        run = simulate(mu, beta, sigma, v0, n, xi0=x0, delay=1, record=False, bound=bound, controller=c)
+        want.append(str(run.outcome))
+    assert outs == want and len(set(outs)) >= 2
+    with pytest.raises(DFAValueError, match=r"delay = 0 is invalid with a controller of delay 1"):
+        dfa.kmax.simulate_points(pts[:1], 0, 1000, controllers=cs[:1])
