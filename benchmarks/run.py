@@ -23,7 +23,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "tests"))  # the slow reference integrators live with the tests
 
 from plain_kernel import plain_kernel  # noqa: E402
-from reference import simulate_control, simulate_ivp  # noqa: E402
+from reference import simulate_control, simulate_ivp, zwidth_point_one_by_one  # noqa: E402
 
 import dfa  # noqa: E402
 from dfa import _batch, _kernel  # noqa: E402
@@ -817,23 +817,14 @@ def _zwidth_previous_path():
     import dfa.zwidth as zmod
     from dfa._parallel import run_in_order
 
-    def point(runs, ctl):
-        c, outs = (None if ctl.is_spring else ctl), set()
-        for mu, beta, sigma, x0, v0, n, bound in runs:
-            r = simulate(mu, beta, sigma, v0, n, xi0=x0, delay=ctl.delay, record=False, bound=bound, controller=c)
-            outs.add(str(r.outcome))
-            if "unstable" in outs:
-                return zmod.DIVERGES
-        if "undecided" in outs:
-            return zmod.UNDECIDED_POINT
-        return zmod.REST if outs == {"rest"} else zmod.BOUNDED
-
     class _Bar:
         def update(self, n):
             pass
 
     def grid(tasks, jobs, progress, label):
-        return np.array(run_in_order(point, tasks, [1] * len(tasks), jobs, "threads", _Bar()), dtype=np.int8)
+        return np.array(
+            run_in_order(zwidth_point_one_by_one, tasks, [1] * len(tasks), jobs, "threads", _Bar()), dtype=np.int8
+        )
 
     @contextlib.contextmanager
     def patched():

@@ -22,7 +22,7 @@ import numpy as np
 
 from dfa._exprel import log1p_ratio, phi1, phi2, phi12  # the one φ₁/φ₂/λ (called as plain Python functions here)
 
-__all__ = ["simulate_ivp", "step_python", "simulate_control", "linear_zoh_recursion"]
+__all__ = ["simulate_ivp", "step_python", "simulate_control", "linear_zoh_recursion", "zwidth_point_one_by_one"]
 
 
 def _force(x: float, quantize: bool) -> float:
@@ -128,3 +128,21 @@ def linear_zoh_recursion(mu, beta, xi0, xi_dot0, samples, *, delay=0):
         state = ad @ state - bd * hist[0]
         xs[h + 1], vs[h + 1] = state
     return xs, vs
+
+
+def zwidth_point_one_by_one(runs, ctl) -> int:
+    """A Z-width grid point's code as before batching (dfa.zwidth._point at 8313b4b): one simulate() per run, in
+    order, stopping at the first unstable run (used by tests/test_zwidth_batch.py and make bench's comparison row)."""
+    import dfa.zwidth as zmod
+    from dfa.simulation import simulate
+
+    c = None if ctl.is_spring else ctl
+    outs = set()
+    for mu, beta, sigma, x0, v0, n, bound in runs:
+        r = simulate(mu, beta, sigma, v0, n, xi0=x0, delay=ctl.delay, record=False, bound=bound, controller=c)
+        outs.add(str(r.outcome))
+        if "unstable" in outs:
+            return zmod.DIVERGES
+    if "undecided" in outs:
+        return zmod.UNDECIDED_POINT
+    return zmod.REST if outs == {"rest"} else zmod.BOUNDED

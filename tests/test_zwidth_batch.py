@@ -7,28 +7,15 @@ import json
 
 import numpy as np
 import pytest
+from reference import zwidth_point_one_by_one
 
 import dfa.zwidth as zmod
 from dfa._batch import batch_ckernel
 from dfa._ckernel import simulate_ckernel
 from dfa._kernel import NSEG, NSTATS, OSCILLATING, REST, UNDECIDED, UNSTABLE
 from dfa.catalogue import get_device
-from dfa.simulation import OUTCOMES, simulate
+from dfa.simulation import OUTCOMES
 from dfa.zwidth import z_width
-
-
-def _reference_point(runs, ctl) -> int:
-    """The per-point code before batching (dfa.zwidth._point at 8313b4b): one simulate() per run, in order."""
-    c = None if ctl.is_spring else ctl
-    outs = set()
-    for mu, beta, sigma, x0, v0, n, bound in runs:
-        r = simulate(mu, beta, sigma, v0, n, xi0=x0, delay=ctl.delay, record=False, bound=bound, controller=c)
-        outs.add(str(r.outcome))
-        if "unstable" in outs:
-            return zmod.DIVERGES
-    if "undecided" in outs:
-        return zmod.UNDECIDED_POINT
-    return zmod.REST if outs == {"rest"} else zmod.BOUNDED
 
 
 def _tasks(name, v, d, fc, fbw, grid, speeds, cap=zmod.ZWIDTH_MAX_SAMPLES):
@@ -48,7 +35,7 @@ CASES = {
 @pytest.fixture(scope="module", params=list(CASES))
 def case(request):
     tasks = _tasks(*CASES[request.param])
-    ref = np.array([_reference_point(*t) for t in tasks], dtype=np.int8)
+    ref = np.array([zwidth_point_one_by_one(*t) for t in tasks], dtype=np.int8)
     return request.param, tasks, ref
 
 
