@@ -107,7 +107,7 @@ import numpy as np
 from numba import njit
 
 from ._exprel import phi1, phi2
-from ._kernel import NSEG, sample_constants, segment_bounds, step, tail_extremes, tail_stats
+from ._kernel import NSEG, sample_constants, segment_ranges, step, tail_extremes, tail_stats
 
 __all__ = ["rho", "lag_motion", "lag_sample", "simulate_ckernel", "serial_ckernel"]
 
@@ -482,8 +482,7 @@ def run_ckernel(
     ctl = (damping, pole, filtered, lag)
     done, rest, integrated = n, -1, 0
     for seg in range(NSEG):
-        lo, hi = segment_bounds(seg, n)
-        cut = min(max(lo, tail_start), hi)
+        lo, cut, hi = segment_ranges(seg, n, tail_start)
         why = 0
         for a, b in ((lo, cut), (cut, hi)):
             if b > a:

@@ -367,6 +367,14 @@ def segment_bounds(k, n):
 
 
 @njit(cache=True, inline="always")
+def segment_ranges(k, n, tail_start):
+    """(lo, cut, hi): the k-th segment [lo, hi) of a run cut where the tail starts, its two ranges [lo, cut) and
+    [cut, hi) (either may be empty): the ranges every kernel runs a run in (one implementation)."""
+    lo, hi = segment_bounds(k, n)
+    return lo, min(max(lo, tail_start), hi), hi
+
+
+@njit(cache=True, inline="always")
 def tail_stats(tail, tail_len, tmin, tmax, stats):
     """Crossings of the tail's centre level (interpolated), its extremes and instant extremes into ``stats``."""
     centre = 0.5 * (tmin + tmax)
@@ -449,8 +457,7 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
     done = n
     rest = -1
     for k in range(NSEG):
-        lo, hi = segment_bounds(k, n)
-        cut = min(max(lo, tail_start), hi)
+        lo, cut, hi = segment_ranges(k, n, tail_start)
         why = 0
         for a, b in ((lo, cut), (cut, hi)):
             if b > a:

@@ -55,7 +55,7 @@ from ._kernel import (
     free_sample,
     same_state,
     sample_constants,
-    segment_bounds,
+    segment_ranges,
     start,
     step,
     tail_extremes,
@@ -202,8 +202,7 @@ def _next_range(lane):
             lane[SEG] += 1
         if lane[SEG] == NSEG:
             return False
-        lo, hi = segment_bounds(lane[SEG], n)
-        cut = min(max(lo, tail_start), hi)
+        lo, cut, hi = segment_ranges(lane[SEG], n, tail_start)
         a, b = (lo, cut) if lane[PART] == 0 else (cut, hi)
         if b > a:
             lane[H], lane[END] = a, b

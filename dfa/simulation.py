@@ -730,8 +730,7 @@ def _chunk_spans(n: int, tail_start: int):
     """(first, end, segment) of each kernel call: the eight envelope segments, cut where the tail starts and
     every ``CHUNK`` samples (the cuts :func:`dfa._kernel.simulate_kernel` makes, and more)."""
     for k in range(_kernel.NSEG):
-        lo, hi = _kernel.segment_bounds(k, n)
-        cut = min(max(lo, tail_start), hi)
+        lo, cut, hi = _kernel.segment_ranges(k, n, tail_start)
         for a, z in ((lo, cut), (cut, hi)):
             for c in range(a, z, CHUNK):
                 yield c, min(c + CHUNK, z), k
