@@ -22,7 +22,14 @@ import numpy as np
 
 from dfa._exprel import log1p_ratio, phi1, phi2, phi12  # the one φ₁/φ₂/λ (called as plain Python functions here)
 
-__all__ = ["simulate_ivp", "step_python", "simulate_control", "linear_zoh_recursion", "zwidth_point_one_by_one"]
+__all__ = [
+    "simulate_ivp",
+    "step_python",
+    "simulate_control",
+    "linear_zoh_recursion",
+    "zwidth_point_one_by_one",
+    "recorded_period",
+]
 
 
 def _force(x: float, quantize: bool) -> float:
@@ -146,3 +153,14 @@ def zwidth_point_one_by_one(runs, ctl) -> int:
     if "undecided" in outs:
         return zmod.UNDECIDED_POINT
     return zmod.REST if outs == {"rest"} else zmod.BOUNDED
+
+
+def recorded_period(xs, vs):
+    """First (sample, period) at which a recorded state (ξ, ξ') repeats bit for bit, or None (the period-skip tests)."""
+    seen: dict[bytes, int] = {}
+    for h in range(len(xs)):
+        key = xs[h].tobytes() + vs[h].tobytes()
+        if key in seen:
+            return seen[key], h - seen[key]
+        seen[key] = h
+    return None

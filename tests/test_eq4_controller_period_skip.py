@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from reference import recorded_period
 
 from dfa import _ckernel, _kernel
 from dfa.controller import ControllerParams
@@ -56,17 +57,6 @@ def _boundaries(n, tail_len):
     return sorted({_kernel.segment_bounds(k, n)[0] for k in range(_kernel.NSEG)} | {n - tail_len})
 
 
-def _period(xs, vs):
-    """First (sample, period) at which the recorded (ξ, ξ') repeats bit for bit, or None."""
-    seen: dict[bytes, int] = {}
-    for h in range(len(xs)):
-        key = xs[h].tobytes() + vs[h].tobytes()
-        if key in seen:
-            return seen[key], h - seen[key]
-        seen[key] = h
-    return None
-
-
 CHATTER = [  # (μ, β, σ, ξ'0, controller): runs that settle on an exact cycle after a transient
     (100.0, 0.5, 0.3, 2.0, ControllerParams()),
     (100.0, 0.1, 0.1, 2.0, ControllerParams(damping=0.5)),
@@ -97,7 +87,7 @@ def test_eq4_controller_periods_cross_tail_start_and_segment_boundaries(mu, beta
     tail_len = n // 3 + 1
     _same_as_every_sample(mu, beta, sigma, 0.0, v0, n, ctl, tail_len=tail_len)
     _, _, _, xs, vs = _recorded(mu, beta, sigma, 0.0, v0, n, ctl, tail_len=tail_len)
-    start, period = _period(xs, vs)
+    start, period = recorded_period(xs, vs)
     assert period >= 2 and np.array_equal(xs[start + period :], xs[start:-period])  # ξ is periodic from start
     cut = [b for b in _boundaries(n, tail_len) if b > start and (b - start) % period]
     assert len(cut) >= 2  # boundaries (segments, tail start) fall inside periods of ξ, not between them

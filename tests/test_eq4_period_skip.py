@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from reference import recorded_period
 
 from dfa import simulate
 from dfa.maps import stability_map
@@ -26,17 +27,6 @@ def _outputs(r):
     ]
 
 
-def _period(xs, vs):
-    """First (sample, period) at which the recorded state (ξ, ξ') repeats bit for bit, or None."""
-    seen: dict[bytes, int] = {}
-    for h in range(len(xs)):
-        key = xs[h].tobytes() + vs[h].tobytes()
-        if key in seen:
-            return seen[key], h - seen[key]
-        seen[key] = h
-    return None
-
-
 def _same_as_recorded(mu, beta, sigma, v0, n, x0=0.0, quantize=True):
     fast = simulate(mu, beta, sigma, v0, n, x0, quantize=quantize, record=False)
     full = simulate(mu, beta, sigma, v0, n, x0, quantize=quantize, record=True)
@@ -51,7 +41,7 @@ def _same_as_recorded(mu, beta, sigma, v0, n, x0=0.0, quantize=True):
 def test_eq4_periodic_runs_skip_to_the_same_result(mu, beta, sigma, v0):
     """Cycles that repeat bit for bit (the skip is exercised) end exactly as when every sample is integrated."""
     full = _same_as_recorded(mu, beta, sigma, v0, 50_000)
-    found = _period(np.asarray(full.xi), np.asarray(full.xi_dot))
+    found = recorded_period(np.asarray(full.xi), np.asarray(full.xi_dot))
     assert found is not None and found[0] < 40_000  # periods skipped before the tail
 
 
