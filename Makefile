@@ -5,10 +5,11 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.dfa-installed
-# numba compiles the simulator kernels once and caches them here (cache=True), in a directory named after the
-# compiled sources: numba keys a cached kernel on its own file only and would keep a kernel that inlines an
-# edited function of another file (dfa/_exprel.py into dfa/_kernel.py, dfa/_kernel.py into dfa/_batch.py).
-KERNEL_SOURCES := $(wildcard dfa/_*.py) dfa/criterion.py dfa/soundness.py
+# numba compiles the kernels once and caches them here (cache=True), in a directory named after the compiled
+# sources: every numba kernel lives in dfa/core/ (nothing else compiles), and numba keys a cached kernel on its own
+# file only, so a kernel that inlines an edited function of another file (dfa/core/exprel.py into
+# dfa/core/kernel.py) would otherwise keep stale code.
+KERNEL_SOURCES := $(sort $(wildcard dfa/core/*.py))
 export NUMBA_CACHE_DIR := $(CURDIR)/.cache/numba/$(firstword $(shell cat $(KERNEL_SOURCES) | cksum))
 export MPLBACKEND := Agg
 

@@ -55,7 +55,7 @@ def burst_free(lanes: int) -> str:
         "@njit(cache=True, nogil=True)",
         f"def burst{lanes}_free(m, st, ks, mus, sigmas, peaks, quantize, bound, whys):",
         f'    """:func:`burst{lanes}` for slots before their tail, without delay: each sample is',
-        "    :func:`dfa._kernel.free_sample` (no ring, no tail).",
+        "    :func:`dfa.core.kernel.free_sample` (no ring, no tail).",
         '    """',
     ]
     for j in r:

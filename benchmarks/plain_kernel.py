@@ -1,6 +1,6 @@
 """A plain, independent exact kernel of the sampled loop: the baseline of issue 16's speed goal.
 
-Written the straightforward way, independently of :mod:`dfa._kernel`: per
+Written the straightforward way, independently of :mod:`dfa.core.kernel`: per
 sample, read the encoder, shift the delay history, and integrate
 μξ'' + βξ' + σ sgn ξ' = φ exactly over the sample (paper eq. 4-5) with the
 stick-slip logic, computing the exponential factors as it goes; stop at rest

@@ -26,12 +26,12 @@ from plain_kernel import plain_kernel  # noqa: E402
 from reference import simulate_control, simulate_ivp, zwidth_point_one_by_one  # noqa: E402
 
 import dfa  # noqa: E402
-from dfa import _batch, _kernel  # noqa: E402
+from dfa.core import batch, kernel  # noqa: E402
 from dfa.maps import stability_map  # noqa: E402
 from dfa.simulation import _tail_length, divergence_bound, simulate  # noqa: E402
 
 # a persistent oscillation, the earlier benchmarks' case; its state (ξ, ξ') repeats bit for bit after
-# 3032 samples, so the kernel skips its periods from there (dfa._kernel.advance_free)
+# 3032 samples, so the kernel skips its periods from there (dfa.core.kernel.advance_free)
 OSC = dict(mu=2.0, beta=0.4, sigma=0.1, xi_dot0=2.0)
 # an oscillation whose state (ξ, ξ') does not repeat bit for bit in 4·10⁶ samples: every sample is integrated
 STEADY = dict(mu=20.0, beta=0.47, sigma=0.02, xi_dot0=3.0)
@@ -96,7 +96,7 @@ def _chain_floor(x, v, n, p1, e1, q1, q2):  # pragma: no cover - compiled
 
 
 def _kernel_at(commit: str):
-    """dfa/_kernel.py as of a git commit, imported as a module, or None.
+    """dfa/_kernel.py (today dfa/core/kernel.py) as of a git commit, imported as a module, or None.
 
     Its relative imports are made absolute, except ``._exprel`` (φ₁, φ₂, λ: compiled into the kernel), which is
     that commit's own copy when it has one: the row then measures the kernel as it was, not with today's series.
@@ -108,6 +108,7 @@ def _kernel_at(commit: str):
     if exprel is not None:
         _import_source(f"exprel_{commit}", exprel.replace("from .", "from dfa."))
         src = src.replace("from ._exprel import", f"from exprel_{commit} import")
+    src = src.replace("from .criterion import spring_energy_core", "from dfa.core.energy import spring_energy_core")
     return _import_source(f"kernel_{commit}", src.replace("from .", "from dfa."))
 
 
@@ -157,10 +158,10 @@ def _kernel_case(case: dict, n: int, repeat: int) -> dict:
     mu, beta, sigma, v0 = case["mu"], case["beta"], case["sigma"], case["xi_dot0"]
     e, e2 = np.empty(0), np.empty((0, 4))
 
-    def ours(mod=_kernel):
+    def ours(mod=kernel):
         mod.simulate_kernel(mu, beta, sigma, 0.0, v0, n, 0, True, 1e6, 8192, e, e, e2, np.empty(mod.NSTATS))
 
-    k = _kernel.sample_constants(mu, beta)
+    k = kernel.sample_constants(mu, beta)
     fns = {
         "dfa kernel": ours,
         "plain kernel": lambda: plain_kernel(mu, beta, sigma, 0.0, v0, n, 0, True, 1e6),
@@ -206,11 +207,11 @@ def bench_kernel(quick: bool) -> dict:
     tail = (nb, 0, True, 1e6, 8192)
     batch = {}
     for name, fn in (
-        ("one run at a time (dfa._kernel.serial_kernel)", _kernel.serial_kernel),
-        ("two runs in flight (dfa._batch.batch_kernel, used by maps and searches)", _per_run(_batch.batch_kernel)),
+        ("one run at a time (dfa.core.kernel.serial_kernel)", kernel.serial_kernel),
+        ("two runs in flight (dfa.core.batch.batch_kernel, used by maps and searches)", _per_run(batch.batch_kernel)),
         ("4 lanes in registers, no period skip (benchmarks/lanes_kernel.py, an experiment)", lanes_kernel.lanes_kernel),
     ):
-        st, dn, rs = np.empty((runs, _kernel.NSTATS)), np.empty(runs, np.int64), np.empty(runs, np.int64)
+        st, dn, rs = np.empty((runs, kernel.NSTATS)), np.empty(runs, np.int64), np.empty(runs, np.int64)
         fn(*pts, *tail, st, dn, rs)
         batch[name] = (
             1e9
@@ -231,7 +232,7 @@ def bench_map_speed(quick: bool) -> dict:
     v0 = np.repeat(np.asarray(speeds), bb.size)
     pts = (np.full(pb.size, 100.0), pb, ps, np.zeros(pb.size), v0)
     bound = divergence_bound(0.0, max(speeds), 100.0)
-    outs = (np.empty((pb.size, _kernel.NSTATS)), np.empty(pb.size, np.int64), np.empty(pb.size, np.int64))
+    outs = (np.empty((pb.size, kernel.NSTATS)), np.empty(pb.size, np.int64), np.empty(pb.size, np.int64))
 
     def loop():
         for v in speeds:
@@ -249,8 +250,8 @@ def bench_map_speed(quick: bool) -> dict:
         ),
     }
     tail = (n, 0, True, bound, _tail_length(n, 100.0))
-    runs["map points, one run at a time (serial_kernel), 1 core"] = lambda: _kernel.serial_kernel(*pts, *tail, *outs)
-    runs["map points, two runs in flight (dfa._batch.batch_kernel), 1 core"] = lambda: _per_run(_batch.batch_kernel)(
+    runs["map points, one run at a time (serial_kernel), 1 core"] = lambda: kernel.serial_kernel(*pts, *tail, *outs)
+    runs["map points, two runs in flight (dfa.core.batch.batch_kernel), 1 core"] = lambda: _per_run(batch.batch_kernel)(
         *pts, *tail, *outs
     )
     runs["map points, plain kernel (benchmarks/plain_kernel.py), 1 core"] = lambda: [
@@ -268,8 +269,8 @@ def bench_map_speed(quick: bool) -> dict:
         runs["map points, kernel before issue 16 (41efa15), 1 core"] = before
     plain_kernel(100.0, 0.5, 0.5, 0.0, 1.0, 10, 0, True, bound)
     seconds = {name: best_of(f, 1) for name, f in runs.items()}
-    _kernel.serial_kernel(*pts, *tail, *outs)
-    k = _kernel.sample_constants(100.0, 0.5)
+    kernel.serial_kernel(*pts, *tail, *outs)
+    k = kernel.sample_constants(100.0, 0.5)
     floor_ns = 1e9 * cpu_best(lambda: _chain_floor(0.0, 2.0, 1_000_000, k[2], k[1], k[4], k[5]), 3) / 1e6
     return dict(grid=g, seconds=seconds, samples_run=int(outs[1].sum()), chain_floor_ns=floor_ns)
 
@@ -460,7 +461,7 @@ def render_kernel(kern: dict, mapspeed: dict) -> list[str]:
         f"## `dfa map` speed: 4 × {g} × {g} points, μ = 100, 5·10⁴ samples (issue 16: 2 jobs ≤ 0.25 × single-core loop)",
         "",
         "The single-core loop calls today's simulate() (one run at a time, which skips repeated periods too); the",
-        "map deals its points out to chunks in turn and runs each chunk through dfa._batch.batch_kernel (one",
+        "map deals its points out to chunks in turn and runs each chunk through dfa.core.batch.batch_kernel (one",
         "compiled call, two runs in flight). The rows below run the same points in one call: one at a time, two",
         "in flight (the map's kernel), the plain kernel (no tail statistics, no period skip), the kernel before",
         "issue 16.",
@@ -687,25 +688,25 @@ CTL_RUN = dict(mu=2.0, beta=2.0, sigma=0.1, xi_dot0=2.0)
 
 
 def bench_controller_kernel(quick: bool) -> str:
-    """ns per sample of dfa._ckernel (damper, filter, delay, amplifier lag) beside the spring kernel, same loop.
+    """ns per sample of dfa.core.wall_kernel (damper, filter, delay, amplifier lag) beside the spring kernel, same loop.
 
     Then the period skip (issue 16): ns per sample of the run with skipping, and the samples integrated.
     """
-    from dfa import _ckernel
     from dfa.controller import ControllerParams as CP
+    from dfa.core import wall_kernel
 
     n = 200_000 if quick else 2_000_000
     mu, beta, sigma, v0 = (CTL_RUN[k] for k in ("mu", "beta", "sigma", "xi_dot0"))
     e, e2 = np.empty(0), np.empty((0, 4))
 
     def spring():  # delay 1: the spring kernel skips exactly repeated periods only at d = 0
-        st = np.empty(_kernel.NSTATS)
-        return _kernel.simulate_kernel(mu, beta, sigma, 0.0, v0, n, 1, True, 1e6, 8192, e, e, e2, st)[0]
+        st = np.empty(kernel.NSTATS)
+        return kernel.simulate_kernel(mu, beta, sigma, 0.0, v0, n, 1, True, 1e6, 8192, e, e, e2, st)[0]
 
     def ctl(c, skip=False):  # (samples run, samples integrated); skip=False integrates every sample
-        st = np.empty(_kernel.NSTATS)
+        st = np.empty(kernel.NSTATS)
         args = (c.damping, c.filter_pole, c.cutoff is not None, c.lag)
-        out = _ckernel.run_ckernel(mu, beta, sigma, 0.0, v0, n, c.delay, True, 1e6, 8192, *args, e, e, st, skip)
+        out = wall_kernel.run_wall_kernel(mu, beta, sigma, 0.0, v0, n, c.delay, True, 1e6, 8192, *args, e, e, st, skip)
         return out[0], out[2]
 
     def per_sample(f):
@@ -715,7 +716,7 @@ def bench_controller_kernel(quick: bool) -> str:
     full = CP(damping=0.5, cutoff=0.1, delay=1, lag=0.2)
     rows = []
     base = per_sample(lambda: (spring(), 0))
-    rows.append(f"| spring kernel (dfa._kernel), delay 1 | {n} | {1e9 * base:.3g} | 1.00 |")
+    rows.append(f"| spring kernel (dfa.core.kernel), delay 1 | {n} | {1e9 * base:.3g} | 1.00 |")
     for name, c in [
         ("controller kernel, pure spring", CP()),
         ("damper β_B = 0.5", CP(damping=0.5)),
@@ -739,13 +740,13 @@ def bench_controller_kernel(quick: bool) -> str:
                 f"μ = {mu}, β = {beta}, σ = {sigma} (chatters for ever), ξ'0 = {v0}, no recording. With the amplifier lag",
                 "the force varies within each sample: every stop is a bracketed root of the closed form. The spring",
                 "kernel runs with delay 1 so that it integrates every sample (at d = 0 it skips exactly repeated",
-                "periods); the controller kernel runs with its period skip off (``run_ckernel(..., skip=False)``).",
+                "periods); the controller kernel runs with its period skip off (``run_wall_kernel(..., skip=False)``).",
                 "",
                 "| kernel / controller | samples integrated | ns per sample | × spring kernel |",
                 "|---|---:|---:|---:|",
                 *rows,
                 "",
-                "Period skip of the controller kernel (issue 16; what `simulate_ckernel` runs unrecorded): once the",
+                "Period skip of the controller kernel (issue 16; what `simulate_wall_kernel` runs unrecorded): once the",
                 "loop's whole state repeats bit for bit, whole periods are skipped. ns per sample of the run; × is the",
                 "time over the same run integrating every sample (the cycle check's cost when nothing repeats).",
                 "",
@@ -769,15 +770,15 @@ def bench_controller_design_answer(quick: bool) -> str:
     import io
     import subprocess
 
-    from dfa import _ckernel
     from dfa.cli import main as cli_main
     from dfa.controller import ControllerParams as CP
+    from dfa.core import wall_kernel
 
-    e, st, c = np.empty(0), np.empty(_kernel.NSTATS), CP(damping=0.5)
+    e, st, c = np.empty(0), np.empty(kernel.NSTATS), CP(damping=0.5)
     mu, beta, sigma, v0 = (CTL_RUN[k] for k in ("mu", "beta", "sigma", "xi_dot0"))
     run = (mu, beta, sigma, 0.0, v0, 50_000, 0, True, 1e6, 8192, c.damping, 0.0, False, 0.0, e, e, st, False)
-    _ckernel.run_ckernel(*run)
-    one = best_of(lambda: _ckernel.run_ckernel(*run), 3)
+    wall_kernel.run_wall_kernel(*run)
+    one = best_of(lambda: wall_kernel.run_wall_kernel(*run), 3)
     cases = [("Delta", "0.1", ["--virtual-damping", "1"]), ("Delta", "0.1", ["--virtual-damping", "1", "--delay", "1"])]
     if not quick:
         cases += [("Impulse Engine", "0.1", ["--virtual-damping", "0.05", "--amplifier-bandwidth", "200"])]

@@ -13,7 +13,7 @@ the exact ZOH pulse transfer of 1/((αs + 1)(μs² + βs)) is (derivation:
 1/(αs + 1) = 1 − αs/(αs + 1) splits the plant into the device alone, whose pulse
 transfer is (c₁z + c₀)/(μ(z − 1)(z − p)) of :mod:`dfa.linear`, minus
 1/(μ(s + a)(s + b_α)); collecting the residues, every coefficient is a
-divided difference of f(u) = e^{−u}, :mod:`dfa._divdiff`)::
+divided difference of f(u) = e^{−u}, :mod:`dfa.core.divdiff`)::
 
     G(z) = (n₂z² + n₁z + n₀)/(μ (z − 1)(z − p)(z − q)),
     n₂ = −b_α f[0, 0, a, b_α],       n₀ = −b_α f[a, b_α, a + b_α, a + b_α],
@@ -75,7 +75,6 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ._frozen import freeze_fields
-from ._zohlag import amplifier_zoh
 from .checks import (
     check_beta,
     check_mu,
@@ -86,6 +85,7 @@ from .checks import (
     check_type,
 )
 from .controller import Controller, ControllerParams
+from .core.zohlag import amplifier_zoh
 from .errors import DFAError, DFAValueError
 from .status import StatusEnum
 
@@ -136,7 +136,7 @@ def amplifier_zoh_coefficients(a: float, lag: float) -> tuple[float, float, floa
     >>> [round(c * 6e9, 6) for c in amplifier_zoh_coefficients(0.0, 1e9)[:3]]   # ZOH of 1/(α s³)
     [1.0, 4.0, 1.0]
     """
-    n2, n1, n0, p, q = amplifier_zoh(float(a), 1.0 / lag)  # the one implementation (dfa._zohlag)
+    n2, n1, n0, p, q = amplifier_zoh(float(a), 1.0 / lag)  # the one implementation (dfa.core.zohlag)
     return float(n2), float(n1), float(n0), float(p), float(q)
 
 
@@ -249,7 +249,7 @@ def _taylor_at_one(a: float, a_b: float, cutoff: float | None, lag: float, delay
     w = e^s − 1 and multiplied by e^{sd}. φ₀ = 0 and φ₁ = a ρ_L + a_B, ρ_L = 1 (no lag) or
     φ₁(a)(1 − q)/(n₂ + n₁ + n₀) (→ 1 as a → 0): φ₁ is returned as computed, ρ_L for the caller's exact scaling.
     """
-    from ._exprel import phi1, phi2
+    from .core.exprel import phi1, phi2
 
     if lag == 0.0 or not math.isfinite(1.0 / lag):
         dg, ng, rho_l = _poly_series(0.0, -math.expm1(-a), 1.0), _poly_series(phi1(a), phi2(a)), 1.0

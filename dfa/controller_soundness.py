@@ -5,7 +5,7 @@ point passive, the storage S = ½μξ'² + ½ξ² never exceeds its initial valu
 module samples random points that a criterion calls passive, simulates each
 exactly with the package's simulator, :func:`dfa.simulate` with the controller
 (virtual damper on the backward-difference velocity of the quantized position,
-optional ZOH-exact low-pass, delay d; no amplifier lag; :mod:`dfa._ckernel`, or
+optional ZOH-exact low-pass, delay d; no amplifier lag; :mod:`dfa.core.wall_kernel`, or
 the spring kernel when β_B = 0) and checks at every sample instant
 
     S <= S(0)(1 + 1e-9)      and      |ξ| stays below 10⁶ ticks (no divergence).
@@ -180,7 +180,7 @@ def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:
 def simulate_points(pts: dict[str, np.ndarray], ns: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Simulate every point of :func:`sample_controller_points` for ``ns[i]`` samples with :func:`dfa.simulate`.
 
-    The package's own simulator with the controller (:mod:`dfa._ckernel`; the spring kernel when
+    The package's own simulator with the controller (:mod:`dfa.core.wall_kernel`; the spring kernel when
     β_B = 0) runs each point; the storage is checked at every sample instant (module docstring).
 
     Returns

@@ -100,6 +100,7 @@ from .checks import (
     check_sigma,
     check_type,
 )
+from .core.energy import spring_energy_core
 from .device import Device
 from .errors import DFATypeError, DFAValueError
 from .jsonable import explain_nulls, to_jsonable
@@ -186,17 +187,6 @@ def spring_energy(xi, quantize: bool = True):
     """
     q = check_bool("quantize", quantize, "pass True (the quantized spring) or False (½ξ²)")
     return spring_energy_core(np.asarray(xi, dtype=float), q)
-
-
-def spring_energy_core(x, quantize: bool):
-    """H_c(ξ) for a float or a float array: the one formula, also compiled into the simulator (:mod:`dfa._kernel`).
-
-    No validation; ``numba.njit`` compiles it unchanged for floats.
-    """
-    if quantize:
-        p = x - np.floor(x)
-        return 0.5 * x * x + 0.5 * (p - p * p)
-    return 0.5 * x * x
 
 
 @dataclass(frozen=True)

@@ -14,9 +14,9 @@ numeric functions with :func:`sympy.lambdify` once (cached):
   D equals 2/(πM) for M ≤ 1, is continuous, peaks at D ≈ 1.1206 near
   M ≈ 1.242 and tends to 1, oscillating: 1 − D(n) ≈ 0.3743 n^{-3/2} at the
   integers (local minima) and D − 1 ≈ 0.168 n^{-3/2} at the maxima near n + 0.30.
-  From M = 1000 ticks (``dfa._dfcore.ASYMPTOTIC_FROM``) on, D and D' are evaluated
+  From M = 1000 ticks (``dfa.core.dfcore.ASYMPTOTIC_FROM``) on, D and D' are evaluated
   by a generalised Euler–Maclaurin expansion in the Hurwitz zeta function
-  (see :mod:`dfa._dfcore`): O(1) work instead of ⌊M⌋ terms, exact to rounding,
+  (see :mod:`dfa.core.dfcore`): O(1) work instead of ⌊M⌋ terms, exact to rounding,
   and valid up to the largest float (the level count would overflow int64).
 * **Coulomb friction** σ·sgn(ξ') driven by the velocity ξ' = Mω cos ωτ of
   ξ = M sin ωτ: the relay's fundamental is (4σ/π) cos ωτ, i.e. a describing
@@ -53,8 +53,8 @@ import control
 import numpy as np
 from scipy import integrate
 
-from . import _dfcore
 from .checks import _fmt, check_positive, check_positive_array, check_real_array, check_sigma
+from .core import dfcore
 from .errors import DFATypeError, DFAValueError
 
 __all__ = [
@@ -233,12 +233,12 @@ def quantizer_df(amplitude):
     """
     m = _amplitudes(amplitude)
     level, _dlevel = _level_functions()
-    big = m >= _dfcore.ASYMPTOTIC_FROM
+    big = m >= dfcore.ASYMPTOTIC_FROM
     ms = np.where(big, 1.0, m)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # M² underflows for M < 1e-154: D = inf
         out = 0.5 * level(0.0, ms) + _level_sum(ms, level)
     if np.any(big):  # the ⌊M⌋-term sum is slow and overflows int64 far out: the asymptotic expansion (_dfcore)
-        out = np.where(big, _dfcore.df_array(np.where(big, m, 1e3).ravel()).reshape(m.shape), out)
+        out = np.where(big, dfcore.df_array(np.where(big, m, 1e3).ravel()).reshape(m.shape), out)
     tiny = m < 1e-150
     if np.any(tiny):  # M² underflows: below one tick only the k = 0 term is left, homogeneous of degree −1 in M
         with np.errstate(over="ignore"):
@@ -266,19 +266,19 @@ def quantizer_df_derivative(amplitude):
     """
     m = _amplitudes(amplitude)
     _level, dlevel = _level_functions()
-    big = m >= _dfcore.ASYMPTOTIC_FROM
+    big = m >= dfcore.ASYMPTOTIC_FROM
     at_int = np.floor(m) == m
     mm = np.where(big, 0.5, np.where(at_int, m * (1 - 1e-15), m))  # left derivative at integers
     with np.errstate(invalid="ignore", divide="ignore"):
         out = 0.5 * dlevel(0.0, mm) + _level_sum(mm, dlevel)
     if np.any(big):
-        out = np.where(big, _dfcore.df_array(np.where(big, m, 1e3).ravel(), True).reshape(m.shape), out)
+        out = np.where(big, dfcore.df_array(np.where(big, m, 1e3).ravel(), True).reshape(m.shape), out)
     return float(out) if out.ndim == 0 else out
 
 
 def _interval_peak(n: int) -> tuple[float, float]:
-    """(M, D) of the local maximum of D on [n, n + 1] (D is unimodal there; compiled, see :mod:`dfa._dfcore`)."""
-    mp, dp = _dfcore.interval_peak(int(n))
+    """(M, D) of the local maximum of D on [n, n + 1] (D is unimodal there; compiled, see :mod:`dfa.core.dfcore`)."""
+    mp, dp = dfcore.interval_peak(int(n))
     return float(mp), float(dp)
 
 
@@ -362,7 +362,7 @@ def _df_inverse_counted(g: float, mmax: float) -> tuple[np.ndarray, bool, int]:
         complete = n_last <= mmax
     n_stop = int(min(n_last, math.floor(mmax)))
     # compiled scan of the intervals [n, n + 1]: peak and both branches by Brent's method in t, M = n + t²
-    found, failures = _dfcore.df_inverse(g, n_stop, mmax, DF_ENVELOPE)
+    found, failures = dfcore.df_inverse(g, n_stop, mmax, DF_ENVELOPE)
     out = np.concatenate([roots, found])
     if out.size > 1:  # a root at a shared bracket end can be found twice; keep the values as found
         out = out[np.concatenate([[True], np.diff(out) > 1e-12 * out[1:]])]

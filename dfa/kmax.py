@@ -548,7 +548,7 @@ class _Evidence:
     spring's (B = 0, no filter, no lag) is the spring, bit for bit. The preload start (spring energy equal
     to the impact's kinetic energy, at rest) is kept with a controller: the damper's velocity estimate
     and the filter start at 0, the delayed commands and the amplifier's force at the spring's force at ξ0
-    (:mod:`dfa._ckernel`), the steady state of a device held still at ξ0, a legitimate start of the
+    (:mod:`dfa.core.wall_kernel`), the steady state of a device held still at ξ0, a legitimate start of the
     controlled loop.
     """
 

@@ -107,9 +107,9 @@ def _verify_step(a: float) -> float:
 def _zoh_coefficients(a) -> tuple[Any, Any, Any]:
     """(c₁, c₀, p) of the ZOH pulse transfer function, without cancellation for small a (plain floats for a float).
 
-    c₁ = φ₂(a) and, below a = ½, c₀ = φ₁(a) − φ₂(a) (:mod:`dfa._exprel`); c₀ = (1 − p − a p)/a² above.
+    c₁ = φ₂(a) and, below a = ½, c₀ = φ₁(a) − φ₂(a) (:mod:`dfa.core.exprel`); c₀ = (1 − p − a p)/a² above.
     """
-    from ._exprel import phi1, phi1_array, phi2, phi2_array  # compiled; loaded on first use
+    from .core.exprel import phi1, phi1_array, phi2, phi2_array  # compiled; loaded on first use
 
     if isinstance(a, float):
         pf = math.exp(-a)

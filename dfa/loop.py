@@ -191,7 +191,7 @@ def loop_response(
         (1 − a)e^{−jω}/(1 − a e^{−jω}), a = e^{−2πν_c}; 1 without filter), its delay
         e^{−jωd} replaces ``delay`` (which must be 0 or equal), and the amplifier lag
         enters as 1/(jωα + 1) (half-delay, Padé) or exactly inside the ZOH-sampled
-        amplifier + device (``"zoh"``, :mod:`dfa._zohlag`). Default None: the spring.
+        amplifier + device (``"zoh"``, :mod:`dfa.core.zohlag`). Default None: the spring.
 
     Returns
     -------

@@ -4,7 +4,7 @@ The force is constant over each sample, so the dimensionless device
 μξ'' + βξ' + σ sgn ξ' = φ (paper eq. 4-5) is integrated in closed form: no ODE
 solver and no time step, exact to rounding at every sample instant, including
 stick-slip (the exact time at which the velocity reaches zero, stiction while
-|φ| <= σ, restart otherwise). See :mod:`dfa._kernel` for the formulas. The
+|φ| <= σ, restart otherwise). See :mod:`dfa.core.kernel` for the formulas. The
 compiled kernel (numba, cached on disk) allocates nothing per sample when no
 trajectory is recorded.
 
@@ -84,7 +84,7 @@ Before the first sample the controller's past readings are taken equal to ξ0
 
 With a controller (``controller=ControllerParams(...)``: virtual damper,
 velocity filter, delay, amplifier lag; :mod:`dfa.controller`) the run goes
-through :mod:`dfa._ckernel`, exact to rounding at the sample instants as well
+through :mod:`dfa.core.wall_kernel`, exact to rounding at the sample instants as well
 (closed-form motion under the amplifier's exponential force, stops by a
 bracketed root of the closed form, breakaway in closed form), with the same
 outcome rules; "rest" then needs the proof that every future command and
@@ -119,7 +119,6 @@ from fractions import Fraction
 
 import numpy as np
 
-from . import _batch, _ckernel, _kernel
 from ._frozen import check_shape, freeze_fields
 from .checks import (
     check_beta,
@@ -135,6 +134,7 @@ from .checks import (
     check_sigma,
 )
 from .controller import ControllerParams
+from .core import batch, kernel, wall_kernel
 from .criterion import spring_energy
 from .errors import DFATypeError, DFAValueError
 from .jsonable import explain_nulls, to_jsonable
@@ -693,23 +693,23 @@ CHUNK = 1 << 22
 def _run_chunked(m, b, s, x0, v0, n, d, quantize, bnd, tail_len, rx, rv, re, stats, *, progress=False):
     """The kernel run of :func:`simulate` in pieces of at most ``CHUNK`` samples, bit for bit the single call.
 
-    The same :func:`dfa._kernel.start` / :func:`~dfa._kernel.advance` / :func:`~dfa._kernel.finish` steps as
-    :func:`dfa._kernel.simulate_kernel`, with the sample ranges cut into chunks: the run's state (ξ, ξ', the
+    The same :func:`dfa.core.kernel.start` / :func:`~dfa.core.kernel.advance` / :func:`~dfa.core.kernel.finish` steps as
+    :func:`dfa.core.kernel.simulate_kernel`, with the sample ranges cut into chunks: the run's state (ξ, ξ', the
     delay ring, the tail extremes) lives in arrays between calls, so Ctrl-C is honoured between chunks and a
     progress bar can follow the run. Any delay. Returns (done, rest).
     """
     from tqdm.auto import tqdm
 
     record, energy = rx.shape[0] == n + 1, re.shape[0] == n
-    state, hist, tail = np.empty(_kernel.NSTATE), np.empty(d + 1), np.empty(max(tail_len, 1))
-    _kernel.start(x0, v0, d, quantize, state, hist, stats)
+    state, hist, tail = np.empty(kernel.NSTATE), np.empty(d + 1), np.empty(max(tail_len, 1))
+    kernel.start(x0, v0, d, quantize, state, hist, stats)
     if record:
         rx[0], rv[0] = x0, v0
     tail_start, done, rest = n - tail_len, n, -1
     bar = tqdm(total=n, unit="sample", unit_scale=True, desc="simulate", disable=not progress, leave=False)
     try:
         for lo, hi, k in _chunk_spans(n, tail_start):
-            end, why, peak = _kernel.advance(
+            end, why, peak = kernel.advance(
                 state, hist, lo, hi, m, b, s, d, quantize, bnd, tail_start, tail, record, energy, rx, rv, re
             )
             if peak > stats[k]:
@@ -718,19 +718,19 @@ def _run_chunked(m, b, s, x0, v0, n, d, quantize, bnd, tail_len, rx, rv, re, sta
             if why != 0:
                 done, rest = end, (end if why == 1 else -1)
                 if why == 2:
-                    stats[_kernel.NSEG + 5] = 1.0
+                    stats[kernel.NSEG + 5] = 1.0
                 break
     finally:
         bar.close()
-    _kernel.finish(state, n, done, rest, tail, tail_len, m, quantize, stats, record, energy, rx, rv, re)
+    kernel.finish(state, n, done, rest, tail, tail_len, m, quantize, stats, record, energy, rx, rv, re)
     return done, rest
 
 
 def _chunk_spans(n: int, tail_start: int):
     """(first, end, segment) of each kernel call: the eight envelope segments, cut where the tail starts and
-    every ``CHUNK`` samples (the cuts :func:`dfa._kernel.simulate_kernel` makes, and more)."""
-    for k in range(_kernel.NSEG):
-        lo, cut, hi = _kernel.segment_ranges(k, n, tail_start)
+    every ``CHUNK`` samples (the cuts :func:`dfa.core.kernel.simulate_kernel` makes, and more)."""
+    for k in range(kernel.NSEG):
+        lo, cut, hi = kernel.segment_ranges(k, n, tail_start)
         for a, z in ((lo, cut), (cut, hi)):
             for c in range(a, z, CHUNK):
                 yield c, min(c + CHUNK, z), k
@@ -797,7 +797,7 @@ def simulate(
         The wall controller in dimensionless form (``Controller(...).params(T)``): virtual damper,
         velocity filter, delay, amplifier lag (:mod:`dfa.controller`). Its delay replaces
         ``delay``. None, or a pure spring (``ControllerParams(delay=d)``), runs the spring kernel
-        unchanged; otherwise :mod:`dfa._ckernel` runs the loop with the controller, exact to
+        unchanged; otherwise :mod:`dfa.core.wall_kernel` runs the loop with the controller, exact to
         rounding at the sample instants (one compiled call: no progress bar, no energy record).
 
     Returns
@@ -839,18 +839,18 @@ def simulate(
     rx = np.empty(n + 1) if record else np.empty(0)
     rv = np.empty(n + 1) if record else np.empty(0)
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
-    stats = np.empty(_kernel.NSTATS)
+    stats = np.empty(kernel.NSTATS)
     run = (m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
     if ctl is not None:
-        done, rest = _ckernel.simulate_ckernel(*run[:10], *_controller_args(ctl), rx, rv, stats)
+        done, rest = wall_kernel.simulate_wall_kernel(*run[:10], *_controller_args(ctl), rx, rv, stats)
     elif n > CHUNK:
         done, rest = _run_chunked(*run, progress=progress)
     else:
-        done, rest = _kernel.simulate_kernel(*run)
-    code, amp, freq, centre, fpp = _kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
+        done, rest = kernel.simulate_kernel(*run)
+    code, amp, freq, centre, fpp = kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
     suggest = (
         max(4 * n, default_samples(m, b, s, v0, x0, d, q, cap=False, controller=ctl))
-        if code == _kernel.UNDECIDED
+        if code == kernel.UNDECIDED
         else None
     )
     en = None
@@ -909,26 +909,26 @@ def check_quantize(quantize: object) -> bool:
 
 
 def controller_run_codes(mu, beta, sigma, x0, v0, ns, delay, bound, controllers) -> np.ndarray:
-    """Outcome codes (:mod:`dfa._kernel`) of runs, each with its own controller, in one compiled call.
+    """Outcome codes (:mod:`dfa.core.kernel`) of runs, each with its own controller, in one compiled call.
 
     Run i is what :func:`simulate` makes of (``mu[i]``, …, ``v0[i]``), ``ns[i]`` samples, bound ``bound[i]`` and
     ``controllers[i]`` (a ControllerParams that is not a pure spring, its delay ``delay``), bit for bit, with
-    simulate()'s tail length and default outcome rules (:func:`dfa._batch.batch_ckernel`, then
-    :func:`dfa._kernel.classify_batch`). No GIL is held: callers may run several calls on threads.
+    simulate()'s tail length and default outcome rules (:func:`dfa.core.batch.batch_wall_kernel`, then
+    :func:`dfa.core.kernel.classify_batch`). No GIL is held: callers may run several calls on threads.
     """
     k = mu.size
     damping, pole, filtered, lag = (np.array(c) for c in zip(*map(_controller_args, controllers), strict=True))
-    stats, done, rest = np.empty((k, _kernel.NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
+    stats, done, rest = np.empty((k, kernel.NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
     run = (mu, beta, sigma, x0, v0, ns, delay, True, bound, _tail_lengths(ns, mu), damping, pole, filtered, lag)
-    _batch.batch_ckernel(*run, stats, done, rest)
+    batch.batch_wall_kernel(*run, stats, done, rest)
     codes = np.empty(k, dtype=np.int64)
     out = (codes, np.empty(k), np.empty(k), np.empty(k), np.empty(k))
-    _kernel.classify_batch(mu, ns, done, rest, stats, STABLE_AMPLITUDE, GROWTH, SETTLE, True, *out)
+    kernel.classify_batch(mu, ns, done, rest, stats, STABLE_AMPLITUDE, GROWTH, SETTLE, True, *out)
     return codes
 
 
 def _controller_args(ctl: ControllerParams) -> tuple[float, float, bool, float]:
-    """(β_B, a, filtered, α): the controller arguments of :mod:`dfa._ckernel`."""
+    """(β_B, a, filtered, α): the controller arguments of :mod:`dfa.core.wall_kernel`."""
     return ctl.damping, ctl.filter_pole, ctl.cutoff is not None, ctl.lag
 
 
@@ -943,10 +943,10 @@ def _measured(
         float(centre),
         None if rest < 0 else int(rest),
         int(done),
-        float(stats[_kernel.NSEG + 6]),
-        float(stats[_kernel.NSEG + 7]),
+        float(stats[kernel.NSEG + 6]),
+        float(stats[kernel.NSEG + 7]),
         float(fpp),
-        tuple(float(v) for v in stats[: _kernel.NSEG]),
+        tuple(float(v) for v in stats[: kernel.NSEG]),
     )
 
 
@@ -1137,9 +1137,9 @@ def simulate_batch(
         force_peak_to_peak=fpps,
         rest_sample=rest,
         samples_run=done,
-        final_xi=stats[:, _kernel.NSEG + 6].copy(),
-        final_xi_dot=stats[:, _kernel.NSEG + 7].copy(),
-        envelope=stats[:, : _kernel.NSEG].copy(),
+        final_xi=stats[:, kernel.NSEG + 6].copy(),
+        final_xi_dot=stats[:, kernel.NSEG + 7].copy(),
+        envelope=stats[:, : kernel.NSEG].copy(),
         controller=ctl,
     )
 
@@ -1150,11 +1150,11 @@ def run_points(
     """Validated float arrays in, kernel outputs out: (codes, amps, freqs, centres, fpps, done, rest, stats).
 
     ``n`` (samples) and ``bound`` are one value for every run or one per run. The spring runs in one call of
-    :func:`dfa._batch.batch_kernel` (each run bit for bit :func:`dfa._kernel.simulate_kernel`, its tail
+    :func:`dfa.core.batch.batch_kernel` (each run bit for bit :func:`dfa.core.kernel.simulate_kernel`, its tail
     length following its μ and length as in :func:`simulate`);
     no GIL is held, so callers may run several calls on threads. ``controller`` (a ControllerParams that is not
     a pure spring, whose delay is ``delay``; see :func:`check_controller`) runs
-    :func:`dfa._ckernel.serial_ckernel` instead, one call per group of runs with the same tail length (one
+    :func:`dfa.core.wall_kernel.serial_wall_kernel` instead, one call per group of runs with the same tail length (one
     ``n`` and ``bound`` for all).
     """
     if controller is not None and controller.delay != delay:
@@ -1167,22 +1167,22 @@ def run_points(
     amps, freqs, centres, fpps = np.empty(k), np.empty(k), np.empty(k), np.empty(k)
     done = np.empty(k, dtype=np.int64)
     rest = np.empty(k, dtype=np.int64)
-    stats = np.empty((k, _kernel.NSTATS))
+    stats = np.empty((k, kernel.NSTATS))
     ns = np.ascontiguousarray(np.broadcast_to(np.asarray(n, dtype=np.int64), (k,)))
     tails = _tail_lengths(ns, mu)
     if controller is None or controller.is_spring:
         bounds = np.ascontiguousarray(np.broadcast_to(np.asarray(bound, dtype=float), (k,)))
-        _batch.batch_kernel(mu, beta, sigma, x0, v0, ns, delay, quantize, bounds, tails, stats, done, rest)
+        batch.batch_kernel(mu, beta, sigma, x0, v0, ns, delay, quantize, bounds, tails, stats, done, rest)
     else:
         for t in np.unique(tails):
             j = np.flatnonzero(tails == t)
-            st = np.empty((j.size, _kernel.NSTATS))
+            st = np.empty((j.size, kernel.NSTATS))
             dn = np.empty(j.size, dtype=np.int64)
             rs = np.empty(j.size, dtype=np.int64)
             pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], int(n), delay, quantize, float(bound), int(t))
-            _ckernel.serial_ckernel(*pts, *_controller_args(controller), st, dn, rs)
+            wall_kernel.serial_wall_kernel(*pts, *_controller_args(controller), st, dn, rs)
             stats[j], done[j], rest[j] = st, dn, rs
-    _kernel.classify_batch(
+    kernel.classify_batch(
         mu, ns, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
     )
     return codes, amps, freqs, centres, fpps, done, rest, stats

@@ -4,7 +4,7 @@ The criterion of :mod:`dfa.criterion` claims more than "does not diverge": when
 it calls a point passive, the storage S = ½μξ'² + ½ξ² (eq. 18-19 without the
 bounded ½(p − p²) term) can never exceed its initial value. This module samples
 random points that a criterion calls passive, simulates each exactly
-(:func:`dfa._kernel.simulate_kernel`, the kernel of :func:`dfa.simulate`, with the
+(:func:`dfa.core.kernel.simulate_kernel`, the kernel of :func:`dfa.simulate`, with the
 same delay d and initial state) and checks at every sample
 
     S(h) <= S(0)(1 + 1e-9)      and      no divergence (outcome not "unstable").
@@ -46,14 +46,14 @@ import sys
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
-from . import _kernel
 from ._io import atomic_write_text
 from ._soundness_counts import KINDS as KINDS
 from ._soundness_counts import TOLERANCE as TOLERANCE
 from ._soundness_counts import SoundnessCounts, tally
 from .checks import check_choice, check_delay, check_int
+from .core import kernel
+from .core.storage import storage_runs
 from .criterion import CriticalLine, passivity_criterion
 from .errors import DFAValueError
 from .formatting import markdown_table
@@ -150,51 +150,6 @@ def sample_passive_points(
     return dict(mu=mu, beta=beta, sigma=sigma, xi0=x0, xi_dot=xd, kind=kind)
 
 
-@njit(cache=True)
-def _batch(mus, betas, sigmas, x0s, v0s, ns, delay, ratio, codes, worst_sample):
-    """Simulate every point (recording ξ, ξ') and the largest S(h)/S(0) − 1 over its samples."""
-    nmax = 0
-    for i in range(ns.shape[0]):
-        nmax = max(nmax, ns[i])
-    rx = np.empty(nmax + 1)
-    rv = np.empty(nmax + 1)
-    empty2 = np.empty((0, 4))
-    stats = np.empty(_kernel.NSTATS)
-    for i in range(ns.shape[0]):
-        n = ns[i]
-        mu = mus[i]
-        tail = min(8192, max(2, n // 4))
-        done, rest = _kernel.simulate_kernel(
-            mu,
-            betas[i],
-            sigmas[i],
-            x0s[i],
-            v0s[i],
-            n,
-            delay,
-            True,
-            1.0e6,
-            tail,
-            rx[: n + 1],
-            rv[: n + 1],
-            empty2,
-            stats,
-        )
-        c, _a, _f, _c, _fpp = _kernel.classify(n, done, rest, stats, 1.0, 1.25, 1.0e-3, True, mu)
-        codes[i] = c
-        s0 = 0.5 * mu * v0s[i] * v0s[i] + 0.5 * x0s[i] * x0s[i]
-        worst = -np.inf
-        at = 0
-        for h in range(1, done + 1):
-            s = 0.5 * mu * rv[h] * rv[h] + 0.5 * rx[h] * rx[h]
-            r = (s - s0) / s0 if s0 > 0.0 else (np.inf if s > 0.0 else 0.0)
-            if not r <= worst:  # NaN (past the bound) counts as growth
-                worst = r if r == r else np.inf
-                at = h
-        ratio[i] = worst if done >= 1 else 0.0
-        worst_sample[i] = at
-
-
 @dataclass(frozen=True, kw_only=True)
 class DelaySoundness(SoundnessCounts):
     """Outcome of :func:`delay_soundness` for one delay and one criterion.
@@ -251,8 +206,8 @@ def delay_soundness(
     ratio = np.empty(points)
     codes = np.empty(points, dtype=np.int64)
     at = np.empty(points, dtype=np.int64)
-    _batch(pts["mu"], pts["beta"], pts["sigma"], pts["xi0"], pts["xi_dot"], ns, int(delay), ratio, codes, at)
-    div = codes == _kernel.UNSTABLE
+    storage_runs(pts["mu"], pts["beta"], pts["sigma"], pts["xi0"], pts["xi_dot"], ns, int(delay), ratio, codes, at)
+    div = codes == kernel.UNSTABLE
     counts = tally(pts, ("mu", "beta", "sigma", "xi0", "xi_dot"), ns, ratio, at, div)
     return DelaySoundness(delay=int(delay), criterion=criterion, points=int(points), seed=seed, **counts)
 

@@ -207,7 +207,7 @@ def gil_factor(gamma):
     unit circle at z = e^{±jθ}, no delay): (b/T) f(bT/m) is the stability bound
     for bT/m < 3.7208; beyond it a root leaves through z = −1 first and the
     bound is smaller (:func:`k_gil`, :mod:`dfa.linear`). Computed without
-    cancellation for small γ (f = φ₁(−γ)/φ₂(−γ), :mod:`dfa._exprel`); f(0) = 2, so
+    cancellation for small γ (f = φ₁(−γ)/φ₂(−γ), :mod:`dfa.core.exprel`); f(0) = 2, so
     (b/T) f(γ) → 2b/T as b T/m → 0.
 
     Examples
@@ -218,11 +218,11 @@ def gil_factor(gamma):
     g = np.asarray(gamma, dtype=float)
     if np.any(g < 0) or not np.all(np.isfinite(g)):
         raise DFAValueError(f"gamma = {gamma!r} is invalid: it must be finite and >= 0 (γ = bT/m)")
-    from ._exprel import phi1_array, phi2_array  # compiled; loaded on first use
+    from .core.exprel import phi1_array, phi2_array  # compiled; loaded on first use
 
     small = g < 0.5
     gs = -np.where(small, g, 0.0)
-    # f = φ₁(−γ)/φ₂(−γ): γ(1 − e^{−γ}) = γ² e^{−γ} φ₁(−γ) and 1 − (1 + γ)e^{−γ} = γ² e^{−γ} φ₂(−γ) (dfa._exprel)
+    # f = φ₁(−γ)/φ₂(−γ): γ(1 − e^{−γ}) = γ² e^{−γ} φ₁(−γ) and 1 − (1 + γ)e^{−γ} = γ² e^{−γ} φ₂(−γ) (dfa.core.exprel)
     f_small = phi1_array(gs) / phi2_array(gs)
     with np.errstate(divide="ignore", invalid="ignore"):
         gl = np.where(small, 1.0, g)

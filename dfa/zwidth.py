@@ -37,7 +37,7 @@ at each B the largest K is found four ways:
     values (resolution: one grid step in K), not bisected; points found safe
     again above the first failure are counted in ``non_monotone``. The runs are those of
     :func:`dfa.simulate` with the same inputs, outcomes included, run in chunks of
-    :data:`POINTS_PER_CALL` points, each chunk one compiled call (:func:`dfa._batch.batch_ckernel`; pure-spring
+    :data:`POINTS_PER_CALL` points, each chunk one compiled call (:func:`dfa.core.batch.batch_wall_kernel`; pure-spring
     points through :func:`dfa.simulation.run_points`) on threads.
 
 Any simulated divergence at a K the extended criterion proves passive is a
@@ -65,7 +65,6 @@ from typing import Any
 
 import numpy as np
 
-from . import _kernel
 from ._parallel import run_in_order
 from .checks import (
     _fmt,
@@ -81,6 +80,7 @@ from .checks import (
 from .controlled_linear import LinearStatus, stable_stiffness
 from .controller import Controller, ControllerParams
 from .controller_passivity import device_controller_criterion
+from .core import kernel
 from .device import Device
 from .errors import DFAValueError
 from .jsonable import explain_nulls
@@ -395,8 +395,8 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
     """Outcome code of every point of a chunk (runs, controller): every run of the chunk in one compiled call.
 
     The runs are those :func:`dfa.simulation.simulate` would make with the same inputs (its tail length and
-    default outcome rules; the spring kernel for a pure spring, else :mod:`dfa._ckernel`), bit for bit, and are
-    classified by :func:`dfa._kernel.classify_batch` as :func:`~dfa.simulation.simulate` classifies one; the
+    default outcome rules; the spring kernel for a pure spring, else :mod:`dfa.core.wall_kernel`), bit for bit, and are
+    classified by :func:`dfa.core.kernel.classify_batch` as :func:`~dfa.simulation.simulate` classifies one; the
     point's code follows from its runs' outcomes (:func:`_point_codes`). No GIL is held in the compiled calls.
     """
     runs = [r for rs, _ in tasks for r in rs]
@@ -411,14 +411,14 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
 
 
 def _point_codes(run_codes: np.ndarray) -> np.ndarray:
-    """Code of each point (row) from its runs' outcome codes (:mod:`dfa._kernel`; module docstring).
+    """Code of each point (row) from its runs' outcome codes (:mod:`dfa.core.kernel`; module docstring).
 
     Diverges if any run is unstable, else undecided if any run is, else rest if every run rests, else bounded.
     """
     out = np.full(run_codes.shape[0], BOUNDED, dtype=np.int8)
-    out[(run_codes == _kernel.REST).all(axis=1)] = REST
-    out[(run_codes == _kernel.UNDECIDED).any(axis=1)] = UNDECIDED_POINT
-    out[(run_codes == _kernel.UNSTABLE).any(axis=1)] = DIVERGES
+    out[(run_codes == kernel.REST).all(axis=1)] = REST
+    out[(run_codes == kernel.UNDECIDED).any(axis=1)] = UNDECIDED_POINT
+    out[(run_codes == kernel.UNSTABLE).any(axis=1)] = DIVERGES
     return out
 
 

@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from dfa._exprel import log1p_ratio, phi1, phi2, phi12  # the one φ₁/φ₂/λ (called as plain Python functions here)
+from dfa.core.exprel import log1p_ratio, phi1, phi2, phi12  # the one φ₁/φ₂/λ (called as plain Python functions here)
 
 __all__ = [
     "simulate_ivp",

@@ -5,9 +5,9 @@
   with events at ξ' = 0 (stop) and at |φ_A| = σ (breakaway of a stuck device).
 * :func:`controller_run` is the loop with damper, filter and delay (no amplifier lag)
   written as one plain compiled loop around the exact per-sample step of
-  :func:`dfa._kernel.step`, with the storage S = ½μξ'² + ½ξ² checked at every sample
+  :func:`dfa.core.kernel.step`, with the storage S = ½μξ'² + ½ξ² checked at every sample
   and turning point (formerly in ``dfa.controller_soundness``; the package now uses
-  its simulator, :mod:`dfa._ckernel`, which ``test_eq6_controller_criterion`` compares with this).
+  its simulator, :mod:`dfa.core.wall_kernel`, which ``test_eq6_controller_criterion`` compares with this).
 * :func:`linear_ctl_recursion` is the linear loop (no quantizer, σ = 0) from the
   exact ZOH discretisation (``control.c2d``) of the plant with the amplifier,
   x_{h+1} = A_d x_h + B_d c_{h−d}.
@@ -24,7 +24,7 @@ import math
 import numpy as np
 from numba import njit
 
-from dfa import _kernel
+from dfa.core import kernel
 
 __all__ = ["Commands", "controller_run", "simulate_ivp_ctl", "linear_ctl_recursion"]
 
@@ -155,7 +155,7 @@ def controller_run(mu, beta, sigma, x0, v0, n, damping, delay, pole, filtered, q
     at every turning point (where ξ' = 0 inside a sample). ``rec`` (shape (n + 1, 2), optional)
     receives (ξ, ξ') at every sample instant.
     """
-    k = _kernel.sample_constants(mu, beta)
+    k = kernel.sample_constants(mu, beta)
     x, v = x0, v0
     s0 = 0.5 * mu * v0 * v0 + 0.5 * x0 * x0
     worst, at = -np.inf, 0
@@ -175,7 +175,7 @@ def controller_run(mu, beta, sigma, x0, v0, n, damping, delay, pole, filtered, q
             y = vel
         hist[h % (delay + 1)] = -(rd + 0.5 if quantize else rd) - damping * y
         phi = hist[(h - delay) % (delay + 1)] if h >= delay else hist[0]
-        x, v, xr, _t, _a, _a2, _tr, stopped = _kernel.step(x, v, phi, mu, sigma, k)
+        x, v, xr, _t, _a, _a2, _tr, stopped = kernel.step(x, v, phi, mu, sigma, k)
         if record:
             rec[h + 1, 0], rec[h + 1, 1] = x, v
         s = 0.5 * mu * v * v + 0.5 * x * x

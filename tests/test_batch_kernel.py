@@ -110,16 +110,16 @@ def test_eq4_plain_benchmark_kernel_agrees_with_simulate():
 
 
 def _kernels_agree(pts, n, delay, tail_len, bound=1e4):
-    """dfa._batch.batch_kernel (two runs in flight, dfa._pair) against dfa._kernel.serial_kernel (one run after
+    """dfa.core.batch.batch_kernel (two runs in flight, dfa.core.pair) against dfa.core.kernel.serial_kernel (one run after
     the other): every output, bit for bit."""
-    from dfa import _batch, _kernel
+    from dfa.core import batch, kernel
 
     k = pts[0].size
-    ref = (np.zeros((k, _kernel.NSTATS)), np.zeros(k, np.int64), np.zeros(k, np.int64))
-    _kernel.serial_kernel(*pts, n, delay, True, bound, tail_len, *ref)
+    ref = (np.zeros((k, kernel.NSTATS)), np.zeros(k, np.int64), np.zeros(k, np.int64))
+    kernel.serial_kernel(*pts, n, delay, True, bound, tail_len, *ref)
     per_run = (np.full(k, n, np.int64), delay, True, np.full(k, bound), np.full(k, tail_len, np.int64))
-    got = (np.full((k, _kernel.NSTATS), 7.0), np.full(k, 7, np.int64), np.full(k, 7, np.int64))
-    _batch.batch_kernel(*pts, *per_run, *got)
+    got = (np.full((k, kernel.NSTATS), 7.0), np.full(k, 7, np.int64), np.full(k, 7, np.int64))
+    batch.batch_kernel(*pts, *per_run, *got)
     assert np.array_equal(ref[0].view(np.int64), got[0].view(np.int64))  # bits: ±0 and NaN payloads too
     assert np.array_equal(ref[1], got[1]) and np.array_equal(ref[2], got[2])
     return ref
@@ -127,9 +127,9 @@ def _kernels_agree(pts, n, delay, tail_len, bound=1e4):
 
 def test_eq4_batch_runs_each_with_its_own_length_bound_and_tail():
     """Runs of different lengths, bounds and tails in one batch (two in flight): each equals simulate_kernel alone."""
-    from dfa import _batch, _kernel
+    from dfa.core import batch, kernel
 
-    kernel = _batch.batch_kernel
+    run_batch = batch.batch_kernel
 
     mu, beta, sigma, v0, x0 = _grid(11, 40)
     rng = np.random.default_rng(11)
@@ -137,13 +137,13 @@ def test_eq4_batch_runs_each_with_its_own_length_bound_and_tail():
     bounds = np.where(rng.random(mu.size) < 0.3, 50.0, 1e5)
     tails = (rng.random(mu.size) * ns).astype(np.int64)
     for delay in (0, 1):
-        st, dn, rs = np.zeros((mu.size, _kernel.NSTATS)), np.zeros(mu.size, np.int64), np.zeros(mu.size, np.int64)
-        kernel(mu, beta, sigma, x0, v0, ns, delay, True, bounds, tails, st, dn, rs)
+        st, dn, rs = np.zeros((mu.size, kernel.NSTATS)), np.zeros(mu.size, np.int64), np.zeros(mu.size, np.int64)
+        run_batch(mu, beta, sigma, x0, v0, ns, delay, True, bounds, tails, st, dn, rs)
         for i in range(mu.size):
-            one = np.empty(_kernel.NSTATS)
+            one = np.empty(kernel.NSTATS)
             e = np.empty(0)
             args = (mu[i], beta[i], sigma[i], x0[i], v0[i], ns[i], delay, True, bounds[i], tails[i])
-            d, r = _kernel.simulate_kernel(*args, e, e, np.empty((0, 4)), one)
+            d, r = kernel.simulate_kernel(*args, e, e, np.empty((0, 4)), one)
             assert (d, r) == (dn[i], rs[i]) and np.array_equal(one.view(np.int64), st[i].view(np.int64)), i
         assert (st[:, 8 + 5] > 0).any() and (rs >= 0).any()  # some runs pass their bound, some rest
 

@@ -24,7 +24,6 @@ from hypothesis import strategies as st
 
 import dfa
 from dfa import Controller, ControllerParams
-from dfa._divdiff import exp_divided_difference
 from dfa.controlled_linear import (
     LinearStatus,
     _ray_intervals,
@@ -32,6 +31,7 @@ from dfa.controlled_linear import (
     stable_region,
     stable_stiffness,
 )
+from dfa.core.divdiff import exp_divided_difference
 from dfa.errors import DFATypeError, DFAValueError
 from dfa.jsonable import dumps
 from dfa.linear import characteristic_polynomial, critical_stiffness, linear_stable, spectral_radius
@@ -327,6 +327,6 @@ def _zoh_numerator_mpmath(a, lag, dps=60, as_float=True):
     ],
 )
 def test_zoh_with_amplifier_lag_vs_mpmath(a, lag):
-    """The one implementation (dfa._zohlag.amplifier_zoh, used by the DF and the linear bound) to 1e-13 relative."""
+    """The one implementation (dfa.core.zohlag.amplifier_zoh, used by the DF and the linear bound) to 1e-13 relative."""
     got = amplifier_zoh_coefficients(a, lag)[:3]
     np.testing.assert_allclose(got, _zoh_numerator_mpmath(a, lag), rtol=1e-13, atol=0.0)

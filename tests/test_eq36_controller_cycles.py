@@ -19,8 +19,8 @@ import pytest
 from scipy import optimize
 
 import dfa
-from dfa._zohlag import zoh_lag_response
 from dfa.controller import Controller, ControllerParams
+from dfa.core.zohlag import zoh_lag_response
 from dfa.cycles import growth_threshold
 from dfa.cycles import limit_cycles as _limit_cycles
 from dfa.describing import quantizer_df

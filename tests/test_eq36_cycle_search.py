@@ -11,8 +11,8 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import dfa
-from dfa import _dfcore
 from dfa.cli import main
+from dfa.core import dfcore
 from dfa.cycles import (
     LimitCycleSearchWarning,
     SearchStatus,
@@ -60,9 +60,9 @@ def test_eq9_cli_sigma_half_pade_reported_case(capsys):
 
 def test_eq41_compiled_brent_reports_no_bracket_instead_of_an_end():
     # D on [3, 4] stays within 0.9..1.05: g = 2 has no root there; the old port returned a bracket end
-    assert math.isnan(_dfcore._brent(0, 3, 2.0, 0.0, 1.0, 1e-15, 4 * np.finfo(float).eps))
-    t = _dfcore._brent(0, 3, 1.0, 0.0, 0.5, 1e-15, 4 * np.finfo(float).eps)
-    assert abs(_dfcore._d_in_t(3, t) - 1.0) < 1e-14
+    assert math.isnan(dfcore._brent(0, 3, 2.0, 0.0, 1.0, 1e-15, 4 * np.finfo(float).eps))
+    t = dfcore._brent(0, 3, 1.0, 0.0, 0.5, 1e-15, 4 * np.finfo(float).eps)
+    assert abs(dfcore._d_in_t(3, t) - 1.0) < 1e-14
 
 
 def test_numerical_failure_gives_incomplete_status_and_warning(monkeypatch):
@@ -249,24 +249,24 @@ def _mp_df(m, dps=30):
 
 @pytest.mark.parametrize("m", [1000.0, 1000.3, 1234.567, 4096.999, 20000.25])
 def test_eq41_asymptotic_against_mpmath_sum(m):
-    assert abs(_dfcore.df_value(m) - float(_mp_df(m))) <= 2e-16
+    assert abs(dfcore.df_value(m) - float(_mp_df(m))) <= 2e-16
 
 
 def test_eq41_asymptotic_switch_is_continuous_with_the_exact_sum():
-    a = _dfcore.ASYMPTOTIC_FROM
+    a = dfcore.ASYMPTOTIC_FROM
     for m in (a - 1e-9, a - 0.5, a - 0.9):
         exact = float(_mp_df(m))
         assert (
-            abs(_dfcore._asym_value(m, m % 1.0) + 1.0 - exact) <= 2e-16
+            abs(dfcore._asym_value(m, m % 1.0) + 1.0 - exact) <= 2e-16
         )  # the expansion already holds below the switch
     below, above = a * (1 - 1e-15), a  # exact 1000-term sum just below the switch, expansion at it
-    assert abs(_dfcore.df_value(below) - float(_mp_df(below))) <= 4e-15  # the sum's own rounding
-    assert abs(_dfcore.df_value(above) - float(_mp_df(above))) <= 2e-16
-    assert abs(_dfcore.df_value(above) - _dfcore.df_value(below)) <= 5e-15
+    assert abs(dfcore.df_value(below) - float(_mp_df(below))) <= 4e-15  # the sum's own rounding
+    assert abs(dfcore.df_value(above) - float(_mp_df(above))) <= 2e-16
+    assert abs(dfcore.df_value(above) - dfcore.df_value(below)) <= 5e-15
     for m in (a - 0.3, a + 0.3):  # D' on both sides against a central difference of the exact value
         h = 1e-5
         fd = (float(_mp_df(m + h)) - float(_mp_df(m - h))) / (2 * h)
-        assert _dfcore.df_derivative(m) == pytest.approx(fd, rel=1e-5)
+        assert dfcore.df_derivative(m) == pytest.approx(fd, rel=1e-5)
 
 
 def test_eq41_huge_amplitudes():
@@ -292,7 +292,7 @@ def test_eq41_envelope_constant_from_the_expansion():
     """(4√2/π)|ζ(−½)| = 0.3743 is the integer excursion quoted in dfa.describing, below DF_ENVELOPE."""
     lead = 4 * math.sqrt(2) / math.pi * abs(float(mpmath.zeta(-0.5)))
     assert lead == pytest.approx(0.3743, abs=1e-4) and lead < DF_ENVELOPE
-    assert (1 - _dfcore.df_value(5000.0)) * 5000.0**1.5 == pytest.approx(lead, rel=1e-3)
+    assert (1 - dfcore.df_value(5000.0)) * 5000.0**1.5 == pytest.approx(lead, rel=1e-3)
 
 
 # ------------------------------------------------------------- validation item 5: clusters against simulation

@@ -177,7 +177,7 @@ def test_describing_functions_reject_bad_amplitude(bad):
         CoulombNonlinearity(-0.1)
 
 
-# ---------------------------------------------------- compiled core (dfa._dfcore)
+# ---------------------------------------------------- compiled core (dfa.core.dfcore)
 amplitudes_st = st.one_of(
     st.floats(1e-3, 400.0),
     st.builds(lambda n, e: n + e, st.integers(1, 300), st.floats(-1e-9, 1e-9)),  # next to an integer
@@ -187,20 +187,20 @@ amplitudes_st = st.one_of(
 @settings(max_examples=200)
 @given(amplitudes_st)
 def test_eq41_compiled_core_equals_sympy_lambdified(m):
-    from dfa import _dfcore
+    from dfa.core import dfcore
 
-    assert _dfcore.df_value(m) == pytest.approx(quantizer_df(m), rel=1e-14)
+    assert dfcore.df_value(m) == pytest.approx(quantizer_df(m), rel=1e-14)
     # D' cancels near an integer (the √ terms grow like 1/√(M − k)): compare with a tolerance that admits it
-    assert _dfcore.df_derivative(m) == pytest.approx(quantizer_df_derivative(m), rel=1e-9, abs=1e-12)
+    assert dfcore.df_derivative(m) == pytest.approx(quantizer_df_derivative(m), rel=1e-9, abs=1e-12)
 
 
 @pytest.mark.parametrize("n", [1, 2, 3, 7, 40, 400])
 def test_eq41_compiled_interval_peak_matches_scipy_and_zero_slope(n):
     from scipy import optimize
 
-    from dfa import _dfcore
+    from dfa.core import dfcore
 
-    mp, dp = _dfcore.interval_peak(n)
+    mp, dp = dfcore.interval_peak(n)
     ref = optimize.minimize_scalar(
         lambda x: -quantizer_df(x), bounds=(n, n + 1.0), method="bounded", options={"xatol": 1e-10}
     )

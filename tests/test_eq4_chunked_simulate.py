@@ -94,7 +94,7 @@ def test_eq4_progress_bar_on_stderr(capsys, monkeypatch):
 def test_cli_simulate_sigint_between_chunks(capsys, monkeypatch, tmp_path):
     # issue 17: "simulate --samples 1e10 ignores SIGINT"; now the signal ends the run after the current chunk
     calls = []
-    real = simulation._kernel.advance
+    real = simulation.kernel.advance
 
     def kernel(*a):
         calls.append(1)
@@ -103,7 +103,7 @@ def test_cli_simulate_sigint_between_chunks(capsys, monkeypatch, tmp_path):
         return real(*a)
 
     monkeypatch.setattr(simulation, "CHUNK", 1000)
-    monkeypatch.setattr(simulation._kernel, "advance", kernel)
+    monkeypatch.setattr(simulation.kernel, "advance", kernel)
     trace = tmp_path / "t.csv"
     argv = ["simulate", "--mu", "100", "--beta", "0.3", "--sigma", "0.3", "--xi-dot", "1", "--samples", "50000"]
     code = main([*argv, "--trace", str(trace)])

@@ -1,6 +1,6 @@
 """The controller kernel's skip of repeated periods (issue 16) changes no result, bit for bit (paper eq. 4-5).
 
-:func:`dfa._ckernel.run_ckernel` with ``skip=True`` (what :func:`~dfa._ckernel.simulate_ckernel` runs
+:func:`dfa.core.wall_kernel.run_wall_kernel` with ``skip=True`` (what :func:`~dfa.core.wall_kernel.simulate_wall_kernel` runs
 unrecorded) against the same kernel with ``skip=False``, which integrates every sample (one
 implementation of the sample; the switch only turns the cycle check off), and against recorded runs
 (records switch skipping off). Compared bit for bit: samples done, rest sample, every stats entry
@@ -16,8 +16,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 from reference import recorded_period
 
-from dfa import _ckernel, _kernel
 from dfa.controller import ControllerParams
+from dfa.core import kernel, wall_kernel
 from dfa.simulation import simulate, simulate_batch
 
 EMPTY = np.empty(0)
@@ -25,19 +25,21 @@ EMPTY = np.empty(0)
 
 def _run(mu, beta, sigma, x0, v0, n, ctl, *, quantize=True, bound=1e6, tail_len=None, skip=True):
     """(done, rest, samples integrated, stats) of one unrecorded run of the controller kernel."""
-    stats = np.empty(_kernel.NSTATS)
+    stats = np.empty(kernel.NSTATS)
     tail = n // 4 if tail_len is None else tail_len
     args = (mu, beta, sigma, x0, v0, n, ctl.delay, quantize, bound, tail, ctl.damping, ctl.filter_pole)
-    done, rest, integrated = _ckernel.run_ckernel(*args, ctl.cutoff is not None, ctl.lag, EMPTY, EMPTY, stats, skip)
+    done, rest, integrated = wall_kernel.run_wall_kernel(
+        *args, ctl.cutoff is not None, ctl.lag, EMPTY, EMPTY, stats, skip
+    )
     return done, rest, integrated, stats
 
 
 def _recorded(mu, beta, sigma, x0, v0, n, ctl, *, quantize=True, bound=1e6, tail_len=None):
-    """(done, rest, stats, ξ record, ξ' record) of :func:`dfa._ckernel.simulate_ckernel` with records."""
-    stats, rx, rv = np.empty(_kernel.NSTATS), np.empty(n + 1), np.empty(n + 1)
+    """(done, rest, stats, ξ record, ξ' record) of :func:`dfa.core.wall_kernel.simulate_wall_kernel` with records."""
+    stats, rx, rv = np.empty(kernel.NSTATS), np.empty(n + 1), np.empty(n + 1)
     tail = n // 4 if tail_len is None else tail_len
     args = (mu, beta, sigma, x0, v0, n, ctl.delay, quantize, bound, tail, ctl.damping, ctl.filter_pole)
-    done, rest = _ckernel.simulate_ckernel(*args, ctl.cutoff is not None, ctl.lag, rx, rv, stats)
+    done, rest = wall_kernel.simulate_wall_kernel(*args, ctl.cutoff is not None, ctl.lag, rx, rv, stats)
     return done, rest, stats, rx, rv
 
 
@@ -54,7 +56,7 @@ def _same_as_every_sample(*args, **kw):
 
 def _boundaries(n, tail_len):
     """Samples at which a range of the run starts: the segments' starts and the tail's."""
-    return sorted({_kernel.segment_bounds(k, n)[0] for k in range(_kernel.NSEG)} | {n - tail_len})
+    return sorted({kernel.segment_bounds(k, n)[0] for k in range(kernel.NSEG)} | {n - tail_len})
 
 
 CHATTER = [  # (μ, β, σ, ξ'0, controller): runs that settle on an exact cycle after a transient
@@ -120,7 +122,7 @@ def test_eq4_controller_rest_and_divergence_are_unchanged():
     rest = _same_as_every_sample(100.0, 0.3, 1.5, 0.0, 2.0, 20_000, ControllerParams(damping=0.5, lag=0.3))
     assert rest[1] >= 0 and rest[0] == rest[1]
     grow = _same_as_every_sample(100.0, 0.0, 0.0, 0.0, 2.0, 20_000, ControllerParams(delay=3), bound=50.0)
-    assert grow[1] == -1 and grow[0] < 20_000 and grow[3][_kernel.NSEG + 5] == 1.0
+    assert grow[1] == -1 and grow[0] < 20_000 and grow[3][kernel.NSEG + 5] == 1.0
 
 
 def test_eq4_controller_without_repetition_integrates_every_sample():
@@ -198,13 +200,13 @@ def test_eq4_controller_users_numbers_equal_recorded_runs():
 
 
 def test_eq4_serial_controller_kernel_equals_single_every_sample_runs():
-    """serial_ckernel (skipping, the batch entry point) against single runs that integrate every sample."""
+    """serial_wall_kernel (skipping, the batch entry point) against single runs that integrate every sample."""
     ctl = ControllerParams(damping=0.3, delay=2, lag=0.1)
     mus, betas, sigmas = np.full(4, 2.0), np.array([2.0, 0.5, 0.0, 1.0]), np.array([0.1, 0.3, 0.2, 0.6])
     x0s, v0s = np.zeros(4), np.array([2.0, 1.0, 3.0, 0.5])
-    stats, done, rest = np.empty((4, _kernel.NSTATS)), np.empty(4, np.int64), np.empty(4, np.int64)
+    stats, done, rest = np.empty((4, kernel.NSTATS)), np.empty(4, np.int64), np.empty(4, np.int64)
     args = (10_000, ctl.delay, True, 1e6, 2500, ctl.damping, ctl.filter_pole, False, ctl.lag)
-    _ckernel.serial_ckernel(mus, betas, sigmas, x0s, v0s, *args, stats, done, rest)
+    wall_kernel.serial_wall_kernel(mus, betas, sigmas, x0s, v0s, *args, stats, done, rest)
     for i in range(4):
         d, r, _, s = _run(mus[i], betas[i], sigmas[i], 0.0, v0s[i], 10_000, ctl, tail_len=2500, skip=False)
         assert (done[i], rest[i]) == (d, r) and stats[i].tobytes() == s.tobytes()

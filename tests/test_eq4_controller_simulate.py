@@ -14,8 +14,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from reference_ctl import linear_ctl_recursion, simulate_ivp_ctl
 
-from dfa import _ckernel, _kernel
 from dfa.controller import Controller, ControllerParams
+from dfa.core import kernel, wall_kernel
 from dfa.errors import DFATypeError, DFAValueError
 from dfa.simulation import simulate, simulate_batch
 
@@ -42,7 +42,7 @@ def test_rho_against_mpmath():
     for u in [0.0, 1e-9, 1e-3, 0.1, 0.4999, 0.5, 0.7, 3.0, 40.0, 1e4, 1e120]:
         m = mpmath.mpf(u)
         exact = mpmath.mpf(1) / 2 if u == 0 else (1 - mpmath.exp(-m) * (1 + m)) / m**2
-        assert _ckernel.rho(u) == pytest.approx(float(exact), rel=4e-16)
+        assert wall_kernel.rho(u) == pytest.approx(float(exact), rel=4e-16)
 
 
 @pytest.mark.parametrize(
@@ -60,7 +60,7 @@ def test_rho_against_mpmath():
 def test_lag_motion_closed_form_against_mpmath(lam, kap, t):
     mu = 7.0
     args = (0.4, -1.3, 0.9, -2.2, mu, lam, kap, t)
-    x, v = _ckernel.lag_motion(*args)
+    x, v = wall_kernel.lag_motion(*args)
     xr, vr = _mp_motion(*args)
     assert x == pytest.approx(xr, rel=1e-14, abs=1e-15)
     assert v == pytest.approx(vr, rel=1e-13, abs=1e-15)
@@ -112,7 +112,7 @@ def _one_sample_ivp(x, v, c, fa, mu, beta, sigma, lag):
 @pytest.mark.parametrize("beta", [0.0, 0.3])
 def test_eq4_lag_sample_stick_slip_against_solve_ivp(x, v, c, fa, sigma, lag, beta):
     mu = 1.5
-    got = _ckernel.lag_sample(x, v, c, fa, mu, beta, sigma, lag)
+    got = wall_kernel.lag_sample(x, v, c, fa, mu, beta, sigma, lag)
     ref = _one_sample_ivp(x, v, c, fa, mu, beta, sigma, lag)
     assert got[0] == pytest.approx(ref[0], abs=1e-10)
     assert got[1] == pytest.approx(ref[1], abs=1e-10)
@@ -215,8 +215,8 @@ def test_eq4_spring_controller_is_bit_identical(delay, mu, beta, sigma, v0):
     assert ba.as_dict() == bb.as_dict()
     # the controller kernel itself, given the pure spring, follows the spring kernel bit for bit
     n = 3000
-    rx, rv, st_ = np.empty(n + 1), np.empty(n + 1), np.empty(_kernel.NSTATS)
-    done, rest = _ckernel.simulate_ckernel(
+    rx, rv, st_ = np.empty(n + 1), np.empty(n + 1), np.empty(kernel.NSTATS)
+    done, rest = wall_kernel.simulate_wall_kernel(
         mu, beta, sigma, 0.0, v0, n, delay, True, 1e6, 750, 0.0, 0.0, False, 0.0, rx, rv, st_
     )
     ref = simulate(mu, beta, sigma, v0, samples=n, delay=delay)

@@ -1,6 +1,6 @@
 """The exact simulator's skip of repeated periods (issue 16) changes no result, bit for bit (paper eq. 4-5).
 
-Without delay the loop's state is (ξ, ξ') alone; :func:`dfa._kernel.advance_free` skips whole periods
+Without delay the loop's state is (ξ, ξ') alone; :func:`dfa.core.kernel.advance_free` skips whole periods
 once that state repeats bit for bit. The unskipped reference is the same kernel with records on
 (``record=True`` integrates every sample), and the batched runs of a stability map.
 """

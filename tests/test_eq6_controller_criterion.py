@@ -19,7 +19,6 @@ from hypothesis import strategies as st
 from reference_ctl import controller_run
 
 import dfa
-from dfa import _kernel
 from dfa.catalogue import get_device
 from dfa.controller import Controller, ControllerParams
 from dfa.controller_passivity import (
@@ -29,6 +28,7 @@ from dfa.controller_passivity import (
     device_controller_criterion,
 )
 from dfa.controller_soundness import controller_soundness, sample_controller_points
+from dfa.core import kernel
 from dfa.errors import DFATypeError, DFAValueError
 from dfa.simulation import simulate
 
@@ -40,7 +40,7 @@ def reference_run(mu, beta, sigma, x0, v0, n, ctl: ControllerParams, quantize=Tr
     The damper input is the explicit convolution y_m = Σ_k (1 − a)a^{k−1} v_{m−k} (filter) or v_m,
     not the recursion of dfa.controller_soundness; the step is the exact per-sample step of dfa.simulate.
     """
-    k = _kernel.sample_constants(mu, beta)
+    k = kernel.sample_constants(mu, beta)
     a, filtered = ctl.filter_pole, ctl.cutoff is not None
     xs, vs, reads, cmds, phis, turns = [x0], [v0], [], [], [], []
     for h in range(n):
@@ -51,7 +51,7 @@ def reference_run(mu, beta, sigma, x0, v0, n, ctl: ControllerParams, quantize=Tr
         cmds.append(-(reads[h] + (0.5 if quantize else 0.0)) - ctl.damping * y)
         phi = cmds[h - ctl.delay] if h >= ctl.delay else cmds[0]
         phis.append(phi)
-        x1, v1, xr, _t, _a, _a2, _tr, stopped = _kernel.step(x, vs[-1], phi, mu, sigma, k)
+        x1, v1, xr, _t, _a, _a2, _tr, stopped = kernel.step(x, vs[-1], phi, mu, sigma, k)
         xs.append(x1)
         vs.append(v1)
         turns.append(0.5 * xr * xr if stopped else -np.inf)

@@ -12,8 +12,8 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import dfa
-from dfa import _kernel
 from dfa.cli import main
+from dfa.core import kernel
 from dfa.maps import StabilityMap, load_map, stability_map
 from dfa.simulation import OUTCOMES, _tail_length, default_samples, simulate
 
@@ -147,16 +147,16 @@ def test_default_samples_closed_form():
 
 
 def _stats(peaks, tmin=-0.3, tmax=0.3, count=10, fmin=-1.0, fmax=0.0):
-    s = np.zeros(_kernel.NSTATS)
-    s[: _kernel.NSEG] = peaks
-    s[_kernel.NSEG], s[_kernel.NSEG + 1], s[_kernel.NSEG + 2] = tmin, tmax, count
-    s[_kernel.NSEG + 3], s[_kernel.NSEG + 4] = 1.0, 91.0
-    s[_kernel.NSEG + 8], s[_kernel.NSEG + 9] = fmin, fmax
+    s = np.zeros(kernel.NSTATS)
+    s[: kernel.NSEG] = peaks
+    s[kernel.NSEG], s[kernel.NSEG + 1], s[kernel.NSEG + 2] = tmin, tmax, count
+    s[kernel.NSEG + 3], s[kernel.NSEG + 4] = 1.0, 91.0
+    s[kernel.NSEG + 8], s[kernel.NSEG + 9] = fmin, fmax
     return s
 
 
 def _name(stats, sa=1.0, growth=1.25, settle=1e-3, rest=-1):
-    return OUTCOMES[_kernel.classify(1000, 1000, rest, stats, sa, growth, settle, True, 1.0)[0]]
+    return OUTCOMES[kernel.classify(1000, 1000, rest, stats, sa, growth, settle, True, 1.0)[0]]
 
 
 def test_rule_defaults_are_the_documented_ones():
@@ -169,7 +169,7 @@ def test_rule_defaults_are_the_documented_ones():
             None,  # None: dfa.simulation.divergence_bound, max(1e6, 100(A0 + 1)) (eq. 18-19)
         )
     assert OUTCOMES == ("rest", "oscillating", "unstable", "chatter", "undecided")
-    assert (_kernel.REST, _kernel.OSCILLATING, _kernel.UNSTABLE, _kernel.CHATTER, _kernel.UNDECIDED) == (0, 1, 2, 3, 4)
+    assert (kernel.REST, kernel.OSCILLATING, kernel.UNSTABLE, kernel.CHATTER, kernel.UNDECIDED) == (0, 1, 2, 3, 4)
 
 
 def test_growth_threshold_either_side():

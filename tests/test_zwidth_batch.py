@@ -1,6 +1,6 @@
 """Z-width simulations batched (issue 16): every grid point's code equals the previous per-run path, one
-:func:`dfa.simulate` per run (paper eq. 4-5 with the controller), and :func:`dfa._batch.batch_ckernel` equals
-:func:`dfa._ckernel.simulate_ckernel` run by run, bit for bit."""
+:func:`dfa.simulate` per run (paper eq. 4-5 with the controller), and :func:`dfa.core.batch.batch_wall_kernel` equals
+:func:`dfa.core.wall_kernel.simulate_wall_kernel` run by run, bit for bit."""
 
 import itertools
 import json
@@ -10,10 +10,10 @@ import pytest
 from reference import zwidth_point_one_by_one
 
 import dfa.zwidth as zmod
-from dfa._batch import batch_ckernel
-from dfa._ckernel import simulate_ckernel
-from dfa._kernel import NSEG, NSTATS, OSCILLATING, REST, UNDECIDED, UNSTABLE
 from dfa.catalogue import get_device
+from dfa.core.batch import batch_wall_kernel
+from dfa.core.kernel import NSEG, NSTATS, OSCILLATING, REST, UNDECIDED, UNSTABLE
+from dfa.core.wall_kernel import simulate_wall_kernel
 from dfa.simulation import OUTCOMES
 from dfa.zwidth import z_width
 
@@ -83,7 +83,7 @@ def test_eq4_zwidth_point_code_from_run_codes_is_the_per_run_rule():
 
 @pytest.mark.parametrize("delay", [0, 2])
 def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
-    """Each run of batch_ckernel (its own length, bound, tail and controller) is simulate_ckernel alone, bit for bit."""
+    """Each run of batch_wall_kernel (its own length, bound, tail and controller) is simulate_wall_kernel alone, bit for bit."""
     rng = np.random.default_rng(16 + delay)
     k = 40
     mu = 10 ** rng.uniform(0.3, 2.5, k)
@@ -99,14 +99,14 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
     pole = np.where(filtered, rng.uniform(0.1, 0.9, k), 0.0)
     lag = np.where(rng.random(k) < 0.4, rng.uniform(0.05, 2, k), 0.0)
     stats, done, rest = np.empty((k, NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
-    batch_ckernel(
+    batch_wall_kernel(
         mu, beta, sigma, x0, v0, ns, delay, True, bounds, tails, damping, pole, filtered, lag, stats, done, rest
     )
     e = np.empty(0)
     seen = set()
     for i in range(k):
         st = np.empty(NSTATS)
-        dn, rs = simulate_ckernel(
+        dn, rs = simulate_wall_kernel(
             mu[i], beta[i], sigma[i], x0[i], v0[i], ns[i], delay, True, bounds[i], tails[i],
             damping[i], pole[i], filtered[i], lag[i], e, e, st,
         )  # fmt: skip

@@ -33,7 +33,7 @@ With a controller (issue 15)
 ``limit_cycles(..., controller=ControllerParams(...))`` puts the virtual wall in the loop: D(M)
 multiplies the controller C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the ZOH-exact velocity filter)
 and its delay e^{−jωd}; the amplifier lag is 1/(jωα + 1) in the half-delay and Padé models and is
-inside the exact ZOH model (the ZOH-sampled amplifier + device, :mod:`dfa._zohlag`). For the half-delay
+inside the exact ZOH model (the ZOH-sampled amplifier + device, :mod:`dfa.core.zohlag`). For the half-delay
 and Padé models the factor R(ω) = (1 + jωα)/C(e^{jω}) does not depend on β_eq, so the phase condition
 keeps its closed form with the lead φ + arg R(ω); the ZOH model bisects as before (its premise of one
 crossing per ω is checked in the tests). A pure spring runs the spring-only code, bit for bit; the
@@ -53,7 +53,7 @@ most ``INTERVAL_BUDGET`` intervals per piece. A caller's ``max_amplitude``, the
 budget or a numerical failure ends the search with ``complete=False`` and a
 :class:`SearchStatus`; nothing is then claimed beyond the range searched. With
 σ = 0 the phase condition gives isolated frequencies and D(M) = −U is inverted
-exactly (compiled, :mod:`dfa._dfcore`).
+exactly (compiled, :mod:`dfa.core.dfcore`).
 
 Modules
 -------

@@ -14,8 +14,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from .. import _dfcore
 from ..controller import ControllerParams
+from ..core import dfcore
 from ..device import Params
 from ..linear import _zoh_coefficients
 
@@ -121,7 +121,7 @@ def _inv_loop_ctl(mu: float, beq, omega, model: str, delay: int, pade_order: int
         out = _inv_loop(mu, beq, omega, model, delay, pade_order)
         out = out * (_controller_ratio(ctl, w) if model != "zoh" else 1.0 / _controller_factor(ctl, w))
     else:
-        from .._zohlag import zoh_lag_response
+        from ..core.zohlag import zoh_lag_response
 
         z = np.exp(1j * w)
         out = z**delay / (zoh_lag_response(mu, beq, w, ctl.lag) * _controller_factor(ctl, w))
@@ -161,7 +161,7 @@ class _Loop:
         """D(M) (compiled eq. 41 for the exact describing function; M > 0 is the solver's own)."""
         m = np.asarray(m, dtype=float)
         if self.df == "exact":
-            return _dfcore.df_array(m.ravel()).reshape(m.shape) if m.ndim else _dfcore.df_value(float(m))
+            return dfcore.df_array(m.ravel()).reshape(m.shape) if m.ndim else dfcore.df_value(float(m))
         if self.df == "small":
             return 2.0 / (math.pi * m)
         return np.ones_like(m) if m.ndim else 1.0
@@ -169,7 +169,7 @@ class _Loop:
     def dprime(self, m):
         m = np.asarray(m, dtype=float)
         if self.df == "exact":
-            return _dfcore.df_array(m.ravel(), True).reshape(m.shape) if m.ndim else _dfcore.df_derivative(float(m))
+            return dfcore.df_array(m.ravel(), True).reshape(m.shape) if m.ndim else dfcore.df_derivative(float(m))
         if self.df == "small":
             return -2.0 / (math.pi * m * m)
         return np.zeros_like(m) if m.ndim else 0.0

@@ -10,7 +10,7 @@ applied d samples later (c_{h} = c_0 for h < 0). The amplifier output obeys
 μ ξ'' + β ξ' + σ sgn ξ' = φ_A.
 
 No lag (α = 0): φ_A = c_{h−d} is constant over the sample and the sample is
-the spring kernel's exact step (:func:`dfa._kernel.step`) with that force.
+the spring kernel's exact step (:func:`dfa.core.kernel.step`) with that force.
 
 With a lag (α > 0) the force within a sample is φ_A(t) = c + D e^{−κt}
 (κ = 1/α, c the applied command, D = φ_A(0) − c). While the device moves in
@@ -74,7 +74,7 @@ h = 0. Sample h is then a deterministic function of S_h alone, bit for bit
 test (v, φ_A, the ring after the write, c(r_h), y_{h+1}), its exit test and
 its contributions to the statistics (ξ at the end, the turning points).
 So when S_h equals S_{h−P} bit for bit (±0 differ, NaN never equals:
-:func:`dfa._kernel.same_state`'s rule), samples h, h + 1, … repeat samples
+:func:`dfa.core.kernel.same_state`'s rule), samples h, h + 1, … repeat samples
 h − P, … for ever: none of them rests or leaves the bound, because those
 P samples did not (a repeating state never rests). :func:`_advance` finds
 P by Brent's method (a reference state renewed at doubling intervals,
@@ -86,15 +86,15 @@ tail readings are copied, and the state after the jump is S_h (the ring's
 contents in logical order; only its physical position differs). Every
 later range knows P and takes its reference at its start: one period
 integrated, then the jump. Same results bit for bit as integrating every
-sample (``run_ckernel(..., skip=False)``,
+sample (``run_wall_kernel(..., skip=False)``,
 ``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
 
 Energy bookkeeping is not implemented for the controller path
 (:func:`dfa.simulate` refuses ``energy=True`` with a controller).
 
-Developers: this module compiles in :func:`dfa._kernel.step`,
-:func:`~dfa._kernel.sample_constants`, :func:`~dfa._kernel.tail_stats`,
-:func:`~dfa._kernel.tail_extremes` and :mod:`dfa._exprel`; numba's on-disk
+Developers: this module compiles in :func:`dfa.core.kernel.step`,
+:func:`~dfa.core.kernel.sample_constants`, :func:`~dfa.core.kernel.tail_stats`,
+:func:`~dfa.core.kernel.tail_extremes` and :mod:`dfa.core.exprel`; numba's on-disk
 cache of this module does not notice edits there: clear it
 (``rm -rf .cache/numba``) after such an edit.
 """
@@ -106,10 +106,10 @@ import math
 import numpy as np
 from numba import njit
 
-from ._exprel import phi1, phi2
-from ._kernel import NSEG, sample_constants, segment_ranges, step, tail_extremes, tail_stats
+from .exprel import phi1, phi2
+from .kernel import NSEG, sample_constants, segment_ranges, step, tail_extremes, tail_stats
 
-__all__ = ["rho", "lag_motion", "lag_sample", "simulate_ckernel", "serial_ckernel"]
+__all__ = ["rho", "lag_motion", "lag_sample", "simulate_wall_kernel", "serial_wall_kernel"]
 
 # Taylor coefficients of ρ in x = −P: (n + 1)/(n + 2)!, n = 0 … 17 (first omitted term < 10⁻¹⁸ at |P| < ½)
 _CR = tuple((n + 1) / math.factorial(n + 2) for n in range(18))
@@ -234,7 +234,7 @@ def lag_sample(x, v, c, fa, mu, beta, sigma, lag):
         if rem <= 0.0:
             break
         if phase == MAX_PHASES:
-            raise RuntimeError("dfa._ckernel.lag_sample: more phases in one sample than the derivation allows")
+            raise RuntimeError("dfa.core.wall_kernel.lag_sample: more phases in one sample than the derivation allows")
         d = (fa - c) * math.exp(-kap * t)
         if v == 0.0:
             if abs(c + d) <= sigma:  # stuck: breaks away when φ_A reaches σ sgn c (only if |c| > σ)
@@ -292,7 +292,7 @@ _REF = 6  # the reference state: ξ, ξ', r, v, y, φ_A at ref[0:6], then the d 
 
 @njit(cache=True, inline="always")
 def _same(a, b):
-    """``a`` equals ``b`` bit for bit (±0 differ; NaN never equals): :func:`dfa._kernel.same_state`'s rule."""
+    """``a`` equals ``b`` bit for bit (±0 differ; NaN never equals): :func:`dfa.core.kernel.same_state`'s rule."""
     return a == b and math.copysign(1.0, a) == math.copysign(1.0, b)
 
 
@@ -362,7 +362,7 @@ def _sample(x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag):
 def _advance(st, ring, ref, h0, h1, mu, beta, sigma, delay, quantize, bound, ctl, tail, tail_start, rec_x, rec_v, skip):
     """Samples h0 … h1 − 1 from the state ``st``; return (end, why, peak |ξ|, samples skipped).
 
-    ``ctl`` = (β_B, a, filtered, α); why as :func:`dfa._kernel.advance` (0 ran
+    ``ctl`` = (β_B, a, filtered, α); why as :func:`dfa.core.kernel.advance` (0 ran
     through, 1 at rest at sample ``end``, 2 past ``bound`` in sample end − 1).
     The range lies before the tail or in it. With ``skip`` (no records),
     whole periods are skipped once the loop's state repeats bit for bit
@@ -431,7 +431,7 @@ def _start(st, ring, x0, v0, quantize):
 
 
 @njit(cache=True, nogil=True)
-def run_ckernel(
+def run_wall_kernel(
     mu,
     beta,
     sigma,
@@ -451,7 +451,7 @@ def run_ckernel(
     stats,
     skip,
 ):
-    """:func:`simulate_ckernel` with period skipping on or off; return (done, rest, samples integrated).
+    """:func:`simulate_wall_kernel` with period skipping on or off; return (done, rest, samples integrated).
 
     The run is each of the NSEG segments (split where the tail starts) in
     :func:`_advance`. ``skip=False`` integrates every sample (the reference
@@ -464,9 +464,9 @@ def run_ckernel(
 
     >>> e, stats = np.empty(0), np.empty(NSEG + 10)
     >>> ctl = (0.5, math.exp(-0.2 * math.pi), True, 0.2)
-    >>> run_ckernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, True)
+    >>> run_wall_kernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, True)
     (50001, -1, 231)
-    >>> run_ckernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, False)
+    >>> run_wall_kernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, False)
     (50001, -1, 50001)
     """
     record = rec_x.shape[0] == n + 1
@@ -510,17 +510,17 @@ def run_ckernel(
 
 
 @njit(cache=True, nogil=True)
-def simulate_ckernel(
+def simulate_wall_kernel(
     mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len, damping, pole, filtered, lag, rec_x, rec_v, stats
 ):
     """Run ``n`` samples with the controller; return (samples done, rest sample or −1).
 
     ``damping`` β_B, ``pole`` a (used when ``filtered``), ``lag`` α. ``rec_x``/``rec_v``
     (length n + 1) are written when they have that length. ``stats`` as in
-    :func:`dfa._kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
-    Unrecorded runs skip repeated periods (:func:`run_ckernel`; same results bit for bit).
+    :func:`dfa.core.kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
+    Unrecorded runs skip repeated periods (:func:`run_wall_kernel`; same results bit for bit).
     """
-    done, rest, _ = run_ckernel(
+    done, rest, _ = run_wall_kernel(
         mu,
         beta,
         sigma,
@@ -544,13 +544,13 @@ def simulate_ckernel(
 
 
 @njit(cache=True, nogil=True)
-def serial_ckernel(
+def serial_wall_kernel(
     mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, damping, pole, filtered, lag, stats, done, rest
 ):
-    """:func:`simulate_ckernel` for independent runs, one after the other; nothing recorded."""
+    """:func:`simulate_wall_kernel` for independent runs, one after the other; nothing recorded."""
     empty = np.empty(0)
     for i in range(mus.shape[0]):
-        done[i], rest[i] = simulate_ckernel(
+        done[i], rest[i] = simulate_wall_kernel(
             mus[i],
             betas[i],
             sigmas[i],

@@ -1,16 +1,16 @@
 """Independent runs of the exact simulator, two in flight, bit for bit one at a time (issue 16).
 
-:func:`dfa._batch.batch_kernel` (stability maps, ``simulate_batch``, the K_max searches) is :func:`pair_kernel`.
-Measured against :func:`dfa._kernel.serial_kernel` (one run after the other) in ``benchmarks/run.py``
+:func:`dfa.core.batch.batch_kernel` (stability maps, ``simulate_batch``, the K_max searches) is :func:`pair_kernel`.
+Measured against :func:`dfa.core.kernel.serial_kernel` (one run after the other) in ``benchmarks/run.py``
 (``reports/benchmarks.md``): once a stop inside a sample became a short chain of multiply-adds
-(:func:`dfa._exprel.phi12`), chattering runs, which stop in nearly every sample, are bound by their chain's
+(:func:`dfa.core.exprel.phi12`), chattering runs, which stop in nearly every sample, are bound by their chain's
 latency, and two runs in flight take about 0.8 of the serial time on the points of a stability map (before
 that change, 0.93-0.99: a sample was then bound by the instructions it issues).
 
-One run's sample is a chain read → force → update (:mod:`dfa._kernel`)
+One run's sample is a chain read → force → update (:mod:`dfa.core.kernel`)
 whose latency, not its arithmetic, bounds a single trajectory. Two
 independent runs advanced in the same loop (:func:`advance_pair`, the loop
-of :func:`dfa._kernel.advance_free` written out for two runs, each in its own
+of :func:`dfa.core.kernel.advance_free` written out for two runs, each in its own
 local scalars) let the processor overlap their chains: measured at about
 0.7 × the time of the two runs one after the other on chattering and
 oscillating runs (a bare loop; see above). Four runs gain no
@@ -19,18 +19,18 @@ flush every run's work alike), so the batch is two.
 
 :func:`pair_kernel` runs a list of independent runs, each with its own
 length, bound and tail, with outputs bit for bit those of
-:func:`dfa._kernel.simulate_kernel` for each run alone: without delay it keeps two runs in flight
+:func:`dfa.core.kernel.simulate_kernel` for each run alone: without delay it keeps two runs in flight
 ("lanes"), each walking the ranges of samples of
-:func:`dfa._kernel.simulate_kernel` (the envelope's eighths, split where the
+:func:`dfa.core.kernel.simulate_kernel` (the envelope's eighths, split where the
 tail starts). :func:`advance_pair` runs both lanes until either's range ends
 (or its run comes to rest or passes the bound); that lane books its range's
 peak and takes its next range or, when its run is over, the next run. The
 other lane resumes where it stopped. Each lane runs exactly the operations of
-:func:`dfa._kernel.advance_free`, in the same order; only the exact skip of
+:func:`dfa.core.kernel.advance_free`, in the same order; only the exact skip of
 repeated periods restarts its cycle detection when a lane resumes, which
 changes when a period is skipped, never a result (``tests/test_batch_kernel.py``).
 Runs with a delay pair the same way (:func:`advance_pair_delayed`, the loop of
-:func:`dfa._kernel.advance`, each run with its ring of pending readings).
+:func:`dfa.core.kernel.advance`, each run with its ring of pending readings).
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._kernel import (
+from .kernel import (
     NSEG,
     NSTATE,
     SPOS,
@@ -73,20 +73,20 @@ NLANE = 7
 def advance_pair(
     sa, ha, h1a, mua, siga, ka, taila, bounda, ta, sb, hb, h1b, mub, sigb, kb, tailb, boundb, tb, quantize
 ):
-    """:func:`dfa._kernel.advance_free` of two runs A and B at once, until either's range ends.
+    """:func:`dfa.core.kernel.advance_free` of two runs A and B at once, until either's range ends.
 
     ``sa``/``sb`` are the runs' state arrays (ξ, ξ', tail min and max), ``ha … h1a`` and ``hb … h1b``
     their ranges of samples (each wholly before the tail or in it), ``ka``/``kb`` their
-    :func:`dfa._kernel.sample_constants`, ``bounda``/``boundb`` their bounds and ``ta``/``tb`` the samples
+    :func:`dfa.core.kernel.sample_constants`, ``bounda``/``boundb`` their bounds and ``ta``/``tb`` the samples
     where their tails start. Returns (h, why, peak, ended) of A then of B: the next sample,
-    :func:`dfa._kernel.advance_free`'s ``why``, the peak |ξ| of the samples run here, and whether the range
+    :func:`dfa.core.kernel.advance_free`'s ``why``, the peak |ξ| of the samples run here, and whether the range
     ended (ran through, at rest, or past the bound); at least one of the two ended.
     """
     xa, va, tmina, tmaxa = sa[SX], sa[SV], sa[STMIN], sa[STMAX]
     xb, vb, tminb, tmaxb = sb[SX], sb[SV], sb[STMIN], sb[STMAX]
     pa = pb = 0.0
     ina, inb = ha >= ta, hb >= tb
-    rxa, rva, rha, spana = xa, va, ha, 1  # Brent's reference state of each run (dfa._kernel.advance_free)
+    rxa, rva, rha, spana = xa, va, ha, 1  # Brent's reference state of each run (dfa.core.kernel.advance_free)
     rxb, rvb, rhb, spanb = xb, vb, hb, 1
     wa = wb = 0
     fa = fb = False
@@ -142,7 +142,7 @@ def advance_pair_delayed(
     sb, hb, h1b, mub, sigb, kb, tailb, boundb, tb, histb,
     delay, quantize,
 ):  # fmt: skip
-    """:func:`dfa._kernel.advance` (no records) of two runs with a delay of ``delay`` samples, until either's range ends.
+    """:func:`dfa.core.kernel.advance` (no records) of two runs with a delay of ``delay`` samples, until either's range ends.
 
     As :func:`advance_pair`, with each run's ring of pending readings (``hista``, ``histb``; its position in the
     state array); nothing is skipped. Returns (h, why, peak, ended) of A then of B.
@@ -192,7 +192,7 @@ def advance_pair_delayed(
 def _next_range(lane):
     """Move ``lane`` (its row of integer state) to its run's next nonempty range; False when none is left.
 
-    The order of :func:`dfa._kernel.simulate_kernel`: segment k = 0 … NSEG − 1, each split where the tail starts.
+    The order of :func:`dfa.core.kernel.simulate_kernel`: segment k = 0 … NSEG − 1, each split where the tail starts.
     """
     n, tail_start = lane[N], lane[TAIL]
     while True:
@@ -224,7 +224,7 @@ def _book(lane, h, why, peak, ended, state, tail, tail_len, mu, quantize, stats,
     """Book a lane's advance: its range's peak; if the range ended, the next range or the run's end.
 
     Returns True while the lane's run goes on, False when it is over (``done``, ``rest``, stats finished
-    exactly as :func:`dfa._kernel.simulate_kernel` does).
+    exactly as :func:`dfa.core.kernel.simulate_kernel` does).
     """
     i, n = lane[PT], lane[N]
     lane[H] = h
@@ -244,11 +244,11 @@ def _book(lane, h, why, peak, ended, state, tail, tail_len, mu, quantize, stats,
 
 @njit(cache=True, nogil=True)
 def pair_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest):
-    """Independent runs, two in flight: run i is :func:`dfa._kernel.simulate_kernel` of its own inputs.
+    """Independent runs, two in flight: run i is :func:`dfa.core.kernel.simulate_kernel` of its own inputs.
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]``
     and tail ``tail_lens[i]``; every run has the delay ``delay``. ``stats[i]`` (NSTATS), ``done[i]`` and
-    ``rest[i]`` receive what :func:`dfa._kernel.simulate_kernel` returns for it, bit for bit (nothing recorded).
+    ``rest[i]`` receive what :func:`dfa.core.kernel.simulate_kernel` returns for it, bit for bit (nothing recorded).
     """
     lanes = np.full((2, NLANE), -1, dtype=np.int64)
     states = np.empty((2, NSTATE))
@@ -308,7 +308,7 @@ def _kc(c):
 @njit(cache=True, inline="always")
 def _advance_lanes(lanes, states, hists, tails, consts, mus, betas, sigmas, delay, quantize, bounds):
     """Advance the lanes in flight: both together (:func:`advance_pair`, :func:`advance_pair_delayed`), or the
-    only one alone (:func:`dfa._kernel.advance_free`, :func:`dfa._kernel.advance`)."""
+    only one alone (:func:`dfa.core.kernel.advance_free`, :func:`dfa.core.kernel.advance`)."""
     a, b = lanes[0], lanes[1]
     ia, ib = a[PT], b[PT]
     if ia >= 0 and ib >= 0:

@@ -3,7 +3,7 @@
 The exact zero-order-hold pulse transfer of a plant with real poles 0, −a, −b
 (:mod:`dfa.controlled_linear`) has numerator coefficients that are divided
 differences of f(u) = e^{−u} at sums of the negated poles (as c₁ = f[0, 0, a] = φ₂(a)
-and c₀ = f[0, a, a] for the device alone, :mod:`dfa._exprel`). With repeated or
+and c₀ = f[0, a, a] for the device alone, :mod:`dfa.core.exprel`). With repeated or
 close nodes the textbook recursion cancels; here, with the nodes sorted
 x₀ <= … <= x_n:
 
@@ -33,7 +33,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .errors import DFAValueError
+from ..errors import DFAValueError
 
 __all__ = ["exp_divided_difference", "exp_dd"]
 

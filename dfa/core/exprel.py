@@ -1,7 +1,7 @@
 """The relative exponentials ("exprel") of the exact sampled-loop solution, one implementation.
 
 With u = β t/μ the motion under a constant force over a time t (paper eq. 4-5,
-:mod:`dfa._kernel`) and the ZOH pulse transfer function (:mod:`dfa.linear`)
+:mod:`dfa.core.kernel`) and the ZOH pulse transfer function (:mod:`dfa.linear`)
 need, without cancellation at small u::
 
     φ₁(u) = (1 − e^{−u})/u                      = Σ (−u)ⁿ/(n + 1)!
@@ -27,7 +27,7 @@ inlines them, and Python calls them like plain functions on floats. The
 ``*_array`` wrappers evaluate the same compiled scalar code elementwise on
 arrays of any shape.
 
-Developers: numba's on-disk cache of :mod:`dfa._kernel` is keyed on that
+Developers: numba's on-disk cache of :mod:`dfa.core.kernel` is keyed on that
 file alone and does not notice edits here (or to
 :func:`dfa.criterion.spring_energy_core`, also compiled into the kernel):
 after such an edit clear the cache (``rm -rf .cache/numba``), or the kernel
@@ -121,7 +121,7 @@ def phi12(u: float) -> tuple[float, float]:
 def log1p_ratio(y: float) -> float:
     """λ(y) = log(1 + y)/y (λ(0) = 1), dimensionless, for y > −1.
 
-    The simulator's stop time t* = w λ(y) (:func:`dfa._kernel.step`): below |y| = 1/16 the series,
+    The simulator's stop time t* = w λ(y) (:func:`dfa.core.kernel.step`): below |y| = 1/16 the series,
     a short chain of multiply-adds instead of ``log1p`` and a division.
     """
     if abs(y) < SHORT_Y:

@@ -22,7 +22,7 @@ viscous term over a phase (closed form)::
     ψ(u) = ((1 − e^{−u}) − ½(1 − e^{−2u}))/u²,  χ(u) = (u − 2(1 − e^{−u}) + ½(1 − e^{−2u}))/u³
 
 and by Coulomb friction σ|Δξ|. Every function is evaluated without
-cancellation (series below u = 0.5, :mod:`dfa._exprel`).
+cancellation (series below u = 0.5, :mod:`dfa.core.exprel`).
 
 Structure: one sample is a chain of small inlined steps (:func:`force`,
 :func:`delayed_force`, :func:`at_rest`, :func:`step`, :func:`energy_terms`);
@@ -49,7 +49,7 @@ series of λ(y) = log1p(y)/y (:func:`step`); against the kernel before that
 4.4·10⁻¹⁰ of max(|ξ|, 1) and keep their outcomes, as do the points of three
 stability maps (μ = 100 at 4 × 40 × 40 and 2 × 30 × 30, μ = 30 with d = 1).
 Then φ₁, φ₂ and λ took eight terms below |u| = 1/32 (|y| = 1/128) and a stop
-inside a sample one series for (φ₁, φ₂) of each phase (:func:`dfa._exprel.phi12`):
+inside a sample one series for (φ₁, φ₂) of each phase (:func:`dfa.core.exprel.phi12`):
 a sample with a stop is mostly multiply-adds of these series, and chatter
 stops in nearly every sample. Against the kernel before that (commit 8313b4b)
 the same 300 runs agree to 6.9·10⁻¹² of max(|ξ|, 1) and keep their outcomes,
@@ -63,8 +63,8 @@ import math
 import numpy as np
 from numba import njit
 
-from ._exprel import chi, log1p_ratio, phi1, phi2, phi12, psi
-from .criterion import spring_energy_core
+from .energy import spring_energy_core
+from .exprel import chi, log1p_ratio, phi1, phi2, phi12, psi
 
 # outcome codes (also the codes of dfa.maps.StabilityMap.outcome and its .npz file)
 REST = 0  # came to rest: the absorbing state was reached
@@ -585,7 +585,7 @@ def serial_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``); ``stats[i]``
     (NSTATS), ``done[i]`` and ``rest[i]`` receive what :func:`simulate_kernel`
-    returns for it. :func:`dfa._batch.batch_kernel` runs runs of different
+    returns for it. :func:`dfa.core.batch.batch_kernel` runs runs of different
     lengths, bounds and tails, two in flight and bit for bit the same (about
     0.8 of this loop's time on map points; four in registers,
     ``benchmarks/lanes_kernel.py``, took more).

@@ -10,7 +10,7 @@ q = e^{−b}, the pulse transfer from the held command to the position is
     n₁ = −b (f[0, a, a, b] + f[a, a, b, a + b] + f[0, a, b, b] + f[a, b, b, a + b]),
 
 every coefficient a sum of positive terms built from divided differences of
-f(u) = e^{−u} (:mod:`dfa._divdiff`, a few ulp): no cancellation for coincident or
+f(u) = e^{−u} (:mod:`dfa.core.divdiff`, a few ulp): no cancellation for coincident or
 close poles (a ≈ b), a = 0, very stiff a or extreme α. When 1/α overflows the lag
 is below rounding and G is the device alone, (c₁z + c₀)/(μ(z − 1)(z − p)),
 c₁ = f[0, 0, a], c₀ = f[0, a, a]. :func:`dfa.controlled_linear.amplifier_zoh_coefficients`
@@ -35,7 +35,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._divdiff import exp_dd
+from .divdiff import exp_dd
 
 __all__ = ["amplifier_zoh", "zoh_lag_response"]
 

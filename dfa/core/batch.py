@@ -2,16 +2,16 @@
 
 :func:`batch_kernel` is what :func:`dfa.simulation.run_points` (stability maps, :func:`dfa.simulation.simulate_batch`)
 and the K_max searches (:func:`dfa.kmax.simulate_points`) run for the spring: each run bit for bit
-:func:`dfa._kernel.simulate_kernel` alone, the GIL released (callers run chunks on threads). It keeps two runs in
-flight (:func:`dfa._pair.pair_kernel`), so that their dependency chains overlap: about 0.8 of the time of one run
-after the other (:func:`dfa._kernel.serial_kernel`) on the points of a stability map (``reports/benchmarks.md``).
+:func:`dfa.core.kernel.simulate_kernel` alone, the GIL released (callers run chunks on threads). It keeps two runs in
+flight (:func:`dfa.core.pair.pair_kernel`), so that their dependency chains overlap: about 0.8 of the time of one run
+after the other (:func:`dfa.core.kernel.serial_kernel`) on the points of a stability map (``reports/benchmarks.md``).
 
-:func:`batch_ckernel` runs runs with a controller one after the other (each run its own damper, filter and lag;
-each :func:`dfa._ckernel.simulate_ckernel` alone, bit for bit): :func:`dfa.zwidth.z_width` runs a chunk of
+:func:`batch_wall_kernel` runs runs with a controller one after the other (each run its own damper, filter and lag;
+each :func:`dfa.core.wall_kernel.simulate_wall_kernel` alone, bit for bit): :func:`dfa.zwidth.z_width` runs a chunk of
 grid points per call.
 
-Developers: numba's on-disk cache of this module does not notice edits in :mod:`dfa._kernel` or
-:mod:`dfa._ckernel`, whose kernels it compiles in: clear it (``rm -rf .cache/numba``) after such an edit.
+Developers: numba's on-disk cache of this module does not notice edits in :mod:`dfa.core.kernel` or
+:mod:`dfa.core.wall_kernel`, whose kernels it compiles in: clear it (``rm -rf .cache/numba``) after such an edit.
 """
 
 from __future__ import annotations
@@ -19,40 +19,40 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._ckernel import simulate_ckernel
-from ._pair import pair_kernel
+from .pair import pair_kernel
+from .wall_kernel import simulate_wall_kernel
 
-__all__ = ["batch_kernel", "batch_ckernel"]
+__all__ = ["batch_kernel", "batch_wall_kernel"]
 
 
 @njit(cache=True, nogil=True)
 def batch_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest):
-    """Independent runs, two in flight: run i is :func:`dfa._kernel.simulate_kernel` of its own inputs, bit for bit.
+    """Independent runs, two in flight: run i is :func:`dfa.core.kernel.simulate_kernel` of its own inputs, bit for bit.
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]`` and
     tail ``tail_lens[i]``; every run has the delay ``delay``. ``stats[i]`` (NSTATS), ``done[i]`` and
-    ``rest[i]`` receive what :func:`dfa._kernel.simulate_kernel` returns for it (nothing recorded).
+    ``rest[i]`` receive what :func:`dfa.core.kernel.simulate_kernel` returns for it (nothing recorded).
     """
     pair_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest)
 
 
 @njit(cache=True, nogil=True)
-def batch_ckernel(
+def batch_wall_kernel(
     mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, dampings, poles, filtered, lags,
     stats, done, rest,
 ):  # fmt: skip
     """Independent runs with a controller, one after the other: run i is
-    :func:`dfa._ckernel.simulate_ckernel` of its own inputs.
+    :func:`dfa.core.wall_kernel.simulate_wall_kernel` of its own inputs.
 
     As :func:`batch_kernel` (run i: ``ns[i]`` samples, bound ``bounds[i]``, tail ``tail_lens[i]``; one
     ``delay`` for all), and run i has the controller (β_B, a, filtered, α) = (``dampings[i]``, ``poles[i]``,
     ``filtered[i]``, ``lags[i]``) (:func:`dfa.simulation._controller_args` of its ControllerParams).
     ``stats[i]`` (NSTATS), ``done[i]`` and ``rest[i]`` receive what
-    :func:`dfa._ckernel.simulate_ckernel` returns for it (nothing recorded).
+    :func:`dfa.core.wall_kernel.simulate_wall_kernel` returns for it (nothing recorded).
     """
     e = np.empty(0)
     for i in range(mus.shape[0]):
-        done[i], rest[i] = simulate_ckernel(
+        done[i], rest[i] = simulate_wall_kernel(
             mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], delay, quantize, bounds[i], tail_lens[i],
             dampings[i], poles[i], filtered[i], lags[i], e, e, stats[i],
         )  # fmt: skip

@@ -1,0 +1,17 @@
+"""The compiled numerical core of dfa: dimensionless, no units, nothing of dfa above it.
+
+Every numba kernel of the package lives here, and only here (the numba cache is keyed on this
+folder alone, see the Makefile). The modules import numpy, numba and one another only:
+
+- :mod:`~dfa.core.exprel`: the relative exponentials φ₁, φ₂, ψ, χ and λ of the exact solution;
+- :mod:`~dfa.core.energy`: the pseudo-elastic energy H_c of the quantized spring (paper eq. 18);
+- :mod:`~dfa.core.kernel`: the exact simulator of the paper's loop, a spring wall (eq. 4-5);
+- :mod:`~dfa.core.wall_kernel`: the same with a damper, velocity filter, delay and amplifier lag;
+- :mod:`~dfa.core.pair` and :mod:`~dfa.core.batch`: many runs in one compiled call;
+- :mod:`~dfa.core.storage`: runs that record the storage function, for the soundness checks;
+- :mod:`~dfa.core.dfcore`: the quantizer's describing function (eq. 41) in compiled sums;
+- :mod:`~dfa.core.divdiff` and :mod:`~dfa.core.zohlag`: the ZOH pulse transfer with an amplifier lag.
+
+Analyses (:mod:`dfa.simulation`, :mod:`dfa.describing`, …) call these with validated dimensionless
+inputs; nothing here checks its arguments.
+"""
