@@ -26,9 +26,9 @@ from plain_kernel import plain_kernel  # noqa: E402
 from reference import simulate_control, simulate_ivp, zwidth_point_one_by_one  # noqa: E402
 
 import dfa  # noqa: E402
+from dfa.analysis.maps import stability_map  # noqa: E402
+from dfa.analysis.simulation import _tail_length, divergence_bound, simulate  # noqa: E402
 from dfa.core import batch, kernel  # noqa: E402
-from dfa.maps import stability_map  # noqa: E402
-from dfa.simulation import _tail_length, divergence_bound, simulate  # noqa: E402
 
 # a persistent oscillation, the earlier benchmarks' case; its state (ξ, ξ') repeats bit for bit after
 # 3032 samples, so the kernel skips its periods from there (dfa.core.kernel.advance_free)
@@ -293,10 +293,10 @@ def bench_solver(quick: bool) -> list[dict]:
 
     import control
 
-    from dfa import cycles as _cycles
-    from dfa.cycles import limit_cycles
-    from dfa.describing import QuantizerNonlinearity, quantizer_df
-    from dfa.loop import loop_response, loop_system
+    from dfa.analysis import cycles as _cycles
+    from dfa.analysis.cycles import limit_cycles
+    from dfa.analysis.describing import QuantizerNonlinearity, quantizer_df
+    from dfa.analysis.loop import loop_response, loop_system
 
     rows = []
     amps = np.linspace(0.05, 10.0, 400)
@@ -353,8 +353,8 @@ def bench_solver(quick: bool) -> list[dict]:
 
 def bench_contours(quick: bool) -> dict:
     """Fig. 7 maps (vectorised) against the point solver run on a random sample of the same grid points."""
-    from dfa.contours import contour_maps
-    from dfa.cycles import limit_cycles
+    from dfa.analysis.contours import contour_maps
+    from dfa.analysis.cycles import limit_cycles
 
     grid, mu = 200, 5.0
     contour_maps(mu, grid=5)
@@ -379,8 +379,8 @@ def bench_solver_friction(solver_rows: list[dict]) -> list[dict]:
 
     The ratio is against python-control's σ = 0 solve at the same (μ, β) measured above, only as a scale.
     """
-    from dfa import cycles as _cycles
-    from dfa.cycles import limit_cycles
+    from dfa.analysis import cycles as _cycles
+    from dfa.analysis.cycles import limit_cycles
 
     pc = {(r["mu"], r["beta"]): r["t_pc"] for r in solver_rows}
     pc_median = float(np.median([r["t_pc"] for r in solver_rows]))
@@ -491,7 +491,7 @@ def bench_find_root(quick: bool) -> str:
     """
     import math
 
-    from dfa.cycles import small_cycle_closed_forms
+    from dfa.analysis.cycles import small_cycle_closed_forms
 
     mu, grid = 5.0, 200
     bb, ss = np.meshgrid(np.linspace(0.0, 1.0, grid), np.linspace(0.0, 2.0, grid))
@@ -692,8 +692,8 @@ def bench_controller_kernel(quick: bool) -> str:
 
     Then the period skip (issue 16): ns per sample of the run with skipping, and the samples integrated.
     """
-    from dfa.controller import ControllerParams as CP
     from dfa.core import wall_kernel
+    from dfa.model.wall import ControllerParams as CP
 
     n = 200_000 if quick else 2_000_000
     mu, beta, sigma, v0 = (CTL_RUN[k] for k in ("mu", "beta", "sigma", "xi_dot0"))
@@ -771,8 +771,8 @@ def bench_controller_design_answer(quick: bool) -> str:
     import subprocess
 
     from dfa.cli import main as cli_main
-    from dfa.controller import ControllerParams as CP
     from dfa.core import wall_kernel
+    from dfa.model.wall import ControllerParams as CP
 
     e, st, c = np.empty(0), np.empty(kernel.NSTATS), CP(damping=0.5)
     mu, beta, sigma, v0 = (CTL_RUN[k] for k in ("mu", "beta", "sigma", "xi_dot0"))
@@ -811,11 +811,11 @@ def bench_controller_design_answer(quick: bool) -> str:
 
 
 def _zwidth_previous_path():
-    """Context: :func:`dfa.zwidth.z_width` as at 8313b4b, one ``simulate()`` per run and per-point thread tasks, the
+    """Context: :func:`dfa.analysis.limits.zwidth.z_width` as at 8313b4b, one ``simulate()`` per run and per-point thread tasks, the
     boundary columns on threads (for a comparison row)."""
     import contextlib
 
-    import dfa.zwidth as zmod
+    import dfa.analysis.limits.zwidth as zmod
     from dfa._parallel import run_in_order
 
     class _Bar:
@@ -842,7 +842,7 @@ def _zwidth_previous_path():
 def bench_zwidth(quick: bool) -> str:
     """`z_width` of a catalogue device on a 40 × 40 grid (issue 15): wall time on all cores and on one, and the
     previous path (per-run ``simulate()``, columns on threads) on all cores; goal < 60 s."""
-    from dfa.zwidth import z_width
+    from dfa.analysis.limits.zwidth import z_width
 
     g = 8 if quick else 40
     rows = []

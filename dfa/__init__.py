@@ -23,9 +23,9 @@ result named for the same thing:
   ``stiffness_response`` → :class:`StiffnessResponse`.
 
 Every result carries its inputs and a ``status``, a member of an enum of
-:mod:`dfa.status` whose ``message`` says what it means; numpy arrays in results
+:mod:`dfa.results.status` whose ``message`` says what it means; numpy arrays in results
 are read-only copies; ``as_dict()`` returns strict-JSON data (NaN and infinities
-become null, with the reason under ``null_reasons``; :mod:`dfa.jsonable`);
+become null, with the reason under ``null_reasons``; :mod:`dfa.results.jsonable`);
 results with a figure have ``.plot(ax=None)`` returning the matplotlib Axes
 (matplotlib loads then, never on ``import dfa``); maps and contours have
 ``to_xarray()`` (optional extra ``pip install 'dfa-haptics[xarray]'``).
@@ -48,19 +48,13 @@ from ._io import ensure_numba_cache_dir as _ensure_numba_cache_dir
 
 _ensure_numba_cache_dir()  # before numba compiles anything: a read-only install still runs
 
-from .catalogue import (
-    DEFAULT_DEVICE,
-    CatalogueEntry,
-    Discrepancy,
-    ResolvedDevice,
-    catalogue,
-    get_device,
-    resolve_device,
+from .analysis.colgate_schenkel import (
+    ColgateSchenkel,
+    ColgateSchenkelDamping,
+    colgate_schenkel_beta,
+    colgate_schenkel_damping,
 )
-from .controlled_linear import StableRegion, StiffnessIntervals, stable_region, stable_stiffness
-from .controller import Controller, ControllerParams
-from .controller_passivity import ControllerCriterionResult, controller_criterion, device_controller_criterion
-from .criterion import (
+from .analysis.criterion import (
     REGION_DESCRIPTIONS,
     CriterionResult,
     CriticalLine,
@@ -68,10 +62,7 @@ from .criterion import (
     device_criterion,
     passivity_criterion,
 )
-from .device import Device, Params
-from .errors import DFAError, DFATypeError, DFAValueError
-from .passivity import ColgateSchenkel, ColgateSchenkelDamping, colgate_schenkel_beta, colgate_schenkel_damping
-from .stiffness import (
+from .analysis.limits.closed_form import (
     StiffnessLimits,
     StiffnessResponse,
     gil_beta_critical,
@@ -83,6 +74,20 @@ from .stiffness import (
     stiffness_limits,
     stiffness_response,
 )
+from .analysis.linear_wall import StableRegion, StiffnessIntervals, stable_region, stable_stiffness
+from .analysis.wall_criterion import ControllerCriterionResult, controller_criterion, device_controller_criterion
+from .errors import DFAError, DFATypeError, DFAValueError
+from .model.catalogue import (
+    DEFAULT_DEVICE,
+    CatalogueEntry,
+    Discrepancy,
+    ResolvedDevice,
+    catalogue,
+    get_device,
+    resolve_device,
+)
+from .model.device import Device, Params
+from .model.wall import Controller, ControllerParams
 
 #: The distribution's name on the package index ("dfa" there is an unrelated project); ``import dfa`` and
 #: the ``dfa`` command keep their names.
@@ -104,72 +109,56 @@ __version__ = _version()
 # Modules that need python-control are imported on first use: python-control
 # itself imports matplotlib, and `import dfa` must stay free of it.
 _LAZY = {
-    "quantizer_df": "describing",
-    "quantizer_df_inverse": "describing",
-    "quantizer_df_peak": "describing",
-    "coulomb_df": "describing",
-    "coulomb_equivalent_damping": "describing",
-    "numeric_df": "describing",
-    "QuantizerNonlinearity": "describing",
-    "CoulombNonlinearity": "describing",
-    "LOOP_MODELS": "loop",
-    "loop_response": "loop",
-    "loop_system": "loop",
-    "NyquistLocusResponse": "loop",
-    "nyquist_locus_response": "loop",
-    "LimitCycle": "cycles",
-    "LimitCycleResult": "cycles",
-    "limit_cycles": "cycles",
-    "growth_threshold": "cycles",
-    "small_cycle_closed_form": "cycles",
-    "large_cycle_closed_form": "cycles",
-    "SimulationResult": "simulation",
-    "simulate": "simulation",
-    "preload_position": "simulation",
-    "StabilityMap": "maps",
-    "stability_map": "maps",
-    "load_map": "maps",
-    "ContourMaps": "contours",
-    "contour_maps": "contours",
-    "validate": "validation",
+    "quantizer_df": "analysis.describing",
+    "quantizer_df_inverse": "analysis.describing",
+    "quantizer_df_peak": "analysis.describing",
+    "coulomb_df": "analysis.describing",
+    "coulomb_equivalent_damping": "analysis.describing",
+    "numeric_df": "analysis.describing",
+    "QuantizerNonlinearity": "analysis.describing",
+    "CoulombNonlinearity": "analysis.describing",
+    "LOOP_MODELS": "analysis.loop",
+    "loop_response": "analysis.loop",
+    "loop_system": "analysis.loop",
+    "NyquistLocusResponse": "analysis.loop",
+    "nyquist_locus_response": "analysis.loop",
+    "LimitCycle": "analysis.cycles",
+    "LimitCycleResult": "analysis.cycles",
+    "limit_cycles": "analysis.cycles",
+    "growth_threshold": "analysis.cycles",
+    "small_cycle_closed_form": "analysis.cycles",
+    "large_cycle_closed_form": "analysis.cycles",
+    "SimulationResult": "analysis.simulation",
+    "simulate": "analysis.simulation",
+    "preload_position": "analysis.simulation",
+    "StabilityMap": "analysis.maps",
+    "stability_map": "analysis.maps",
+    "load_map": "analysis.maps",
+    "ContourMaps": "analysis.contours",
+    "contour_maps": "analysis.contours",
+    "validate": "analysis.validation",
     "design_report": "report",
-    "DesignAnalysis": "design",
-    "design_analysis": "design",
-    "design_answer": "kmax",
-    "KMaxResult": "kmax",
-    "stiffness_speed_chart": "speed_chart",
-    "StiffnessSpeedChart": "speed_chart",
-    "z_width": "zwidth",
-    "ZWidth": "zwidth",
+    "DesignAnalysis": "analysis.design",
+    "design_analysis": "analysis.design",
+    "design_answer": "analysis.limits.kmax",
+    "KMaxResult": "analysis.limits.kmax",
+    "stiffness_speed_chart": "analysis.limits.speed_chart",
+    "StiffnessSpeedChart": "analysis.limits.speed_chart",
+    "z_width": "analysis.limits.zwidth",
+    "ZWidth": "analysis.limits.zwidth",
 }
 _SUBMODULES = {
-    "describing",
-    "loop",
-    "criterion",
-    "stiffness",
-    "catalogue",
-    "device",
-    "controller",
-    "controller_passivity",
-    "controlled_linear",
-    "passivity",
-    "errors",
-    "cli",
-    "cycles",
-    "simulation",
-    "maps",
-    "contours",
-    "validation",
-    "report",
-    "design",
+    "core",
+    "model",
+    "results",
+    "analysis",
+    "figures",
     "render",
+    "report",
+    "cli",
+    "errors",
+    "checks",
     "formatting",
-    "plotting",
-    "kmax",
-    "speed_chart",
-    "status",
-    "jsonable",
-    "zwidth",
 }
 
 

@@ -1,7 +1,7 @@
 """Run independent tasks in parallel, results in submission order, with progress and a clean interruption.
 
 One implementation for every grid of simulations (:func:`dfa.stability_map`, spring or controller, and
-:func:`dfa.zwidth.z_width`): ``fn(*task)`` for every task, the results in the order of the tasks whatever
+:func:`dfa.analysis.limits.zwidth.z_width`): ``fn(*task)`` for every task, the results in the order of the tasks whatever
 the number of workers or the backend (so a result never depends on them), a progress bar advanced by each
 task's size as its result arrives, and on an interruption (Ctrl-C, or SIGTERM routed to KeyboardInterrupt
 by the CLI) the tasks not yet started are cancelled and the exception propagates: nothing is returned,

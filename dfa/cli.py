@@ -26,15 +26,15 @@ from dataclasses import dataclass
 from typing import Any
 
 from ._io import check_output_file, check_output_folder, written_paths
-from .catalogue import DEFAULT_DEVICE, CatalogueEntry, catalogue, resolve_device
+from .analysis.criterion import device_criterion, passivity_criterion
+from .analysis.limits.closed_form import stiffness_limits
 from .checks import MAX_DELAY, check_beta, check_mu, check_real, check_sigma, check_speed
-from .controller import MIN_CUTOFF, Controller, ControllerParams
-from .criterion import device_criterion, passivity_criterion
-from .device import Device, Params, dimensionless_params
 from .errors import DFAError, DFAValueError
 from .formatting import number, text_table
-from .jsonable import dumps, explain_nulls
-from .stiffness import stiffness_limits
+from .model.catalogue import DEFAULT_DEVICE, CatalogueEntry, catalogue, resolve_device
+from .model.device import Device, Params, dimensionless_params
+from .model.wall import MIN_CUTOFF, Controller, ControllerParams
+from .results.jsonable import dumps, explain_nulls
 
 __all__ = ["main"]
 
@@ -144,7 +144,7 @@ def _add_counts_name_args(g: Any) -> None:
 
 
 def _add_device_group(p: argparse.ArgumentParser, title: str) -> argparse._ArgumentGroup:
-    """--device, the physical flags, --counts, --name, --stiffness and --rotary (:func:`dfa.catalogue.resolve_device`)."""
+    """--device, the physical flags, --counts, --name, --stiffness and --rotary (:func:`dfa.model.catalogue.resolve_device`)."""
     g = p.add_argument_group(title)
     g.add_argument(
         "--device",
@@ -239,7 +239,7 @@ def _add_delay_arg(p: argparse.ArgumentParser, parse: Callable[[str], int] = _de
     )
 
 
-#: The controller flags beside --delay (dest: flag); physical units, converted at the edge (dfa.controller).
+#: The controller flags beside --delay (dest: flag); physical units, converted at the edge (dfa.model.wall).
 _CTL_FLAGS = {
     "virtual_damping": "--virtual-damping",
     "velocity_filter": "--velocity-filter",
@@ -467,7 +467,7 @@ def _progress(args: argparse.Namespace) -> bool:
 
 
 def _emit(obj: object) -> None:
-    print(dumps(obj))  # strict JSON: NaN/inf become null with the reason (dfa.jsonable)
+    print(dumps(obj))  # strict JSON: NaN/inf become null with the reason (dfa.results.jsonable)
 
 
 def _table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:
@@ -588,7 +588,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
 def _check_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, xd: float, v: float | None) -> int:
     """`dfa check` with a controller: the extended criterion and Colgate–Schenkel; with a lag, not covered."""
-    from .controller_check import controller_check
+    from .analysis.wall_check import controller_check
     from .render.controller import check_table_rows
 
     dev = inp.device
@@ -664,7 +664,7 @@ def _design_rows(ans, vu: str) -> list[list[str]]:
 
 
 def _design_answer(args: argparse.Namespace, inp: _Inputs, v: float, k: float | None, src: str | None):
-    from .kmax import design_answer
+    from .analysis.limits.kmax import design_answer
 
     assert inp.device is not None
     if v == 0:
@@ -684,7 +684,7 @@ def _refuse_controller(args: argparse.Namespace, command: str) -> None:
 
 def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, v: float) -> int:
     """`dfa stiffness` with a controller: K_max four ways (criterion, linear, describing function, simulation)."""
-    from .controller_kmax import controller_stiffness_limits
+    from .analysis.limits.wall_kmax import controller_stiffness_limits
 
     if args.plot is not None:
         given = ", ".join(f for k, f in _CTL_FLAGS.items() if getattr(args, k, None) is not None)
@@ -749,7 +749,7 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
     lim = stiffness_limits(dev, v, args.stiffness, delay=args.delay)  # existing keys: only --stiffness is assessed
     ans = _design_answer(args, inp, v, inp.stiffness, src)
     if args.plot is not None:
-        from .speed_chart import stiffness_speed_chart
+        from .analysis.limits.speed_chart import stiffness_speed_chart
 
         chart = stiffness_speed_chart(dev, args.delay, stiffness=inp.stiffness, velocity=v)
         _save_png("--plot", args.plot, chart.plot())
@@ -817,8 +817,8 @@ def _design_json(ans, k_max: float, k_gil: float) -> dict[str, object]:
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
+    from .analysis.simulation import MAX_RECORD_BYTES, default_samples, divergence_bound, preload_position, simulate
     from .render.text import simulation_rows
-    from .simulation import MAX_RECORD_BYTES, default_samples, divergence_bound, preload_position, simulate
 
     inp = _resolve(args, dimensionless=True)
     p = inp.params
@@ -852,7 +852,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             f"--trace with --samples {n} would need {16 * (n + 1) / 1024**3:.1f} GiB of trajectory "
             f"(limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB): drop --trace or lower --samples"
         )
-    if args.samples is not None:  # the automatic length is capped (dfa.simulation.default_samples)
+    if args.samples is not None:  # the automatic length is capped (dfa.analysis.simulation.default_samples)
         _check_samples(args.samples, args.force)
     r = simulate(
         p.mu,
@@ -990,7 +990,7 @@ def _device_json(inp: _Inputs | None, xi_dots: Sequence[float] = ()) -> dict[str
     """Device, K, force step, operating point and physical speeds for the JSON of `map`/`contours`."""
     if inp is None or inp.device is None or inp.stiffness is None or inp.params is None:
         return {}
-    from .units import unit_context
+    from .model.units import unit_context
 
     d = unit_context(inp.device, inp.stiffness)
     d.pop("velocity")
@@ -1015,7 +1015,7 @@ def _mark_operating_point(axes, inp: _Inputs | None) -> None:
     if inp is None or inp.params is None:
         return
     for ax in axes:
-        from .plotting import POINT_STYLE
+        from .figures import POINT_STYLE
 
         ax.plot([inp.params.beta], [inp.params.sigma], **POINT_STYLE)
         ax.annotate(
@@ -1031,8 +1031,8 @@ def _mark_operating_point(axes, inp: _Inputs | None) -> None:
 def _check_map_work(args: argparse.Namespace) -> None:
     """Refuse a map that would run too long or not fit in memory, before any work (fix: smaller grid, --force)."""
     from ._io import check_memory
+    from .analysis.maps import map_memory_bytes
     from .checks import check_jobs
-    from .maps import map_memory_bytes
 
     check_jobs("--jobs", args.jobs)
     _check_samples(args.samples, args.force)  # one run is uninterruptible: the same limit as `dfa simulate`
@@ -1055,8 +1055,8 @@ def _check_map_work(args: argparse.Namespace) -> None:
 
 
 def _cmd_map(args: argparse.Namespace) -> int:
-    from .maps import stability_map
-    from .simulation import divergence_bound
+    from .analysis.maps import stability_map
+    from .analysis.simulation import divergence_bound
 
     check_output_file("--out", args.out, ".npz")
     if args.plot is not None:
@@ -1082,7 +1082,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
     )
     path = m.save(args.out)
     if args.plot is not None:
-        from .plotting import stability_map_plot
+        from .figures import stability_map_plot
 
         dev, k = (inp.device, inp.stiffness) if inp is not None else (None, None)
         axes = stability_map_plot(m, device=dev, stiffness=k)
@@ -1120,7 +1120,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
 
 
 def _cmd_limit_cycles(args: argparse.Namespace) -> int:
-    from .cycles import growth_threshold
+    from .analysis.cycles import growth_threshold
     from .render.text import limit_cycle_lines, limit_cycles_dict
 
     for flag, value in (("--max-amplitude", args.max_amplitude), ("--time-budget", args.time_budget)):
@@ -1156,7 +1156,7 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
 
 
 def _cmd_contours(args: argparse.Namespace) -> int:
-    from .contours import check_contour_memory, contour_maps
+    from .analysis.contours import check_contour_memory, contour_maps
 
     if args.out is not None:
         check_output_file("--out", args.out, ".npz")
@@ -1182,7 +1182,7 @@ def _cmd_contours(args: argparse.Namespace) -> int:
     if args.out is not None:
         d["out"] = str(c.save(args.out))
     if args.plot is not None:
-        from .plotting import contour_plot
+        from .figures import contour_plot
 
         dev, k = (inp.device, inp.stiffness) if inp is not None else (None, None)
         axes = contour_plot(c, device=dev, stiffness=k)  # physical axes b, c like `dfa map --plot`
@@ -1239,8 +1239,8 @@ def _read_validation(path: str) -> dict:
 
 
 def _cmd_report(args: argparse.Namespace) -> int:
-    from .formatting import json_dumps
     from .report import design_report
+    from .results.jsonable import dumps
 
     if args.device is None and not any(getattr(args, k, None) is not None for k in (*_PHYS_FLAGS, "counts")):
         args.device = DEFAULT_DEVICE
@@ -1267,7 +1267,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
         controller=ctl,
     )
     if args.json:
-        print(json_dumps(res.as_dict()))
+        print(dumps(res.as_dict(), ensure_ascii=False))
         return 0
     for pth in res.paths:
         print(f"written {pth}")
@@ -1275,9 +1275,9 @@ def _cmd_report(args: argparse.Namespace) -> int:
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
+    from .analysis.validation import validate
     from .checks import check_jobs
     from .render.files import write_validation
-    from .validation import validate
 
     check_jobs("--jobs", args.jobs)
     out = args.out
@@ -1285,9 +1285,9 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     v = validate(quick=args.quick, n_jobs=args.jobs, progress=_progress(args))
     summary = write_validation(v, out)  # all four files appear together, or none (dfa._io)
     if args.json:
-        from .formatting import json_dumps
+        from .results.jsonable import dumps
 
-        print(json_dumps(summary))
+        print(dumps(summary, ensure_ascii=False))
         return 0
     print(f"validation written to {os.path.join(out, 'validation.md')}")
     print(
@@ -1473,7 +1473,7 @@ def _add_limit_cycles(sub: Any) -> None:
         type=_number("--time-budget", "seconds"),
         default=None,
         metavar="S",
-        help="longest search time in seconds (default: 10, dfa.cycles.DEFAULT_TIME_BUDGET); "
+        help="longest search time in seconds (default: 10, dfa.analysis.cycles.DEFAULT_TIME_BUDGET); "
         "when it is hit the search is reported incomplete",
     )
 
@@ -1542,8 +1542,8 @@ def _add_report(sub: Any) -> None:
 
 
 def _cmd_zwidth(args: argparse.Namespace) -> int:
+    from .analysis.limits.zwidth import ZWIDTH_METHODS, z_width
     from .checks import check_jobs
-    from .zwidth import ZWIDTH_METHODS, z_width
 
     if args.stiffness is not None:
         raise UsageError("--stiffness cannot be given to zwidth: the Z-width spans a grid of K (see --grid)")

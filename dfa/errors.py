@@ -11,8 +11,6 @@ True
 
 from __future__ import annotations
 
-from typing import Any
-
 __all__ = ["DFAError", "DFAValueError", "DFATypeError"]
 
 
@@ -26,12 +24,3 @@ class DFAValueError(DFAError, ValueError):
 
 class DFATypeError(DFAError, TypeError):
     """A parameter has the wrong type (for example text where a number is needed)."""
-
-
-def __getattr__(name: str) -> Any:
-    """Compatibility: the input checks moved to :mod:`dfa.checks`; ``dfa.errors.check_*`` still resolves there."""
-    if name.startswith("check_") or name in ("INT_MAX", "MAX_DELAY"):
-        from . import checks
-
-        return getattr(checks, name)
-    raise AttributeError(f"module 'dfa.errors' has no attribute {name!r}")

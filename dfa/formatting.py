@@ -9,11 +9,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
 
-from .jsonable import dumps
-
-__all__ = ["json_dumps", "markdown_table", "number", "percent", "text_table"]
+__all__ = ["markdown_table", "number", "percent", "text_table"]
 
 
 def number(x: float | int | None, digits: int = 4, *, none: str = "–", inf: str = "∞") -> str:
@@ -111,18 +108,3 @@ def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = 
     if header:
         lines.insert(1, "  ".join("-" * w for w in widths))
     return "\n".join(lines)
-
-
-def json_dumps(obj: object, **kwargs: Any) -> str:
-    """Strict JSON text through the package's one sanitiser (:func:`dfa.jsonable.dumps`), non-ASCII kept.
-
-    NaN and ±inf become null and the dict that held them gains ``null_reasons``; enums
-    become their code, tuples and arrays lists.
-
-    Examples
-    --------
-    >>> json_dumps({"k": float("nan"), "v": (1.5, float("inf")), "u": "N·m"})
-    '{"k": null, "v": [1.5, null], "u": "N·m", "null_reasons": {"/k": "NaN", "/v/1": "+inf"}}'
-    """
-    kwargs.setdefault("ensure_ascii", False)
-    return dumps(obj, **kwargs)

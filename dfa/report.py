@@ -1,6 +1,6 @@
 """Design report of one device: verdict, stiffness limits, limit cycles, figures, and how far to trust them.
 
-:func:`design_report` = :func:`dfa.design.design_analysis` (every number) + :func:`write_design_report`
+:func:`design_report` = :func:`dfa.analysis.design.design_analysis` (every number) + :func:`write_design_report`
 (figures and documents from that analysis only). Markdown (figures as PNG files in ``figures/`` beside it)
 and/or one self-contained HTML file (figures embedded, no PNG written). The files of one report appear
 together or not at all (:func:`dfa._io.staged_folder`), with ``design_report_{name}.json`` beside them: the
@@ -22,15 +22,14 @@ from typing import Any
 import numpy as np
 
 from ._io import staged_folder
-from .catalogue import CatalogueEntry
+from .analysis.design import DesignAnalysis, design_analysis, resolve_controller, resolve_design_inputs
 from .checks import _fmt, check_choice, check_int
-from .controller import Controller
-from .design import DesignAnalysis, design_analysis, resolve_controller, resolve_design_inputs
-from .device import Device
 from .errors import DFATypeError, DFAValueError
-from .formatting import json_dumps
-from .jsonable import explain_nulls, to_jsonable
-from .status import ReportStatus
+from .model.catalogue import CatalogueEntry
+from .model.device import Device
+from .model.wall import Controller
+from .results.jsonable import dumps, explain_nulls, to_jsonable
+from .results.status import ReportStatus
 
 __all__ = ["ReportResult", "design_report", "report_name", "report_slug", "write_design_report"]
 
@@ -149,7 +148,7 @@ def _identity(
     ident: dict[str, Any] = {"device": device.as_dict(), "stiffness": stiffness, "velocity": velocity, "delay": delay}
     if controller is not None:
         ident["controller"] = controller.as_dict()
-    return json.loads(json_dumps(ident))
+    return json.loads(dumps(ident, ensure_ascii=False))
 
 
 def report_name(name: str, controller: Controller | None = None) -> str:
@@ -157,7 +156,7 @@ def report_name(name: str, controller: Controller | None = None) -> str:
 
     Examples
     --------
-    >>> from dfa.controller import Controller
+    >>> from dfa.model.wall import Controller
     >>> report_name("Delta"), report_name("Delta", Controller(14500.0, damping=1.0))
     ('delta', 'delta_controller')
     """
@@ -220,7 +219,7 @@ def write_design_report(
     Parameters
     ----------
     analysis : DesignAnalysis
-        From :func:`dfa.design.design_analysis`; only read.
+        From :func:`dfa.analysis.design.design_analysis`; only read.
     out_dir : path
         Existing folder for ``design_report_{name}.md|html|json`` and, with Markdown, ``figures/``.
     fmt : {"html", "md", "both"}
@@ -238,7 +237,7 @@ def write_design_report(
         A missing folder, an unknown format, or a report of other inputs in the way (without ``force``).
     """
     from .render.document import design_html, design_markdown
-    from .render.figures import design_figures
+    from .render.report_figures import design_figures
 
     fmt = check_choice("fmt", fmt, ("html", "md", "both"))
     out = Path(out_dir)
@@ -266,7 +265,7 @@ def write_design_report(
             page = design_html(analysis, {f.name: (f.caption, f.png) for f in figs})
             (stage / docs[-1]).write_text(page, encoding="utf-8")
         body = {"identity": ident, **res.as_dict()}
-        (stage / meta).write_text(json_dumps(body, indent=1) + "\n", encoding="utf-8")
+        (stage / meta).write_text(dumps(body, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
     return res
 
 
@@ -288,7 +287,7 @@ def design_report(
 ) -> ReportResult:
     """Write the design report of ``device`` at stiffness K, impact speed ẋ0 and computational delay d.
 
-    :func:`dfa.design.design_analysis` followed by :func:`write_design_report`.
+    :func:`dfa.analysis.design.design_analysis` followed by :func:`write_design_report`.
 
     Parameters
     ----------
@@ -314,12 +313,12 @@ def design_report(
     force : bool
         Replace a report of the same name made for other inputs.
     zwidth_grid : int or None
-        Points per axis of a Z-width section (:func:`dfa.zwidth.z_width`); None (default): no section for the
+        Points per axis of a Z-width section (:func:`dfa.analysis.limits.zwidth.z_width`); None (default): no section for the
         spring, a 16 × 16 one with a controller; 0: none.
     controller : Controller, optional
         A wall controller (:class:`dfa.Controller`; its K and delay are the report's): the report states it,
         its passivity check and K_max, computes every section that accepts it with it and leaves out the
-        spring-only ones (:func:`dfa.design.design_analysis`). Files ``design_report_{name}_controller.*``.
+        spring-only ones (:func:`dfa.analysis.design.design_analysis`). Files ``design_report_{name}_controller.*``.
 
     Returns
     -------
@@ -329,7 +328,7 @@ def design_report(
     Raises
     ------
     DFAValueError
-        Bad inputs (see :func:`dfa.design.design_analysis`), a missing folder, or a report of other inputs in the way.
+        Bad inputs (see :func:`dfa.analysis.design.design_analysis`), a missing folder, or a report of other inputs in the way.
 
     See Also
     --------

@@ -11,7 +11,7 @@ import os
 import numpy as np
 
 import dfa
-from dfa.validation import CLUSTER_POINTS, cluster_note, cluster_threshold
+from dfa.analysis.validation import CLUSTER_POINTS, cluster_note, cluster_threshold
 
 
 def main() -> None:

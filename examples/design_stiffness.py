@@ -11,9 +11,9 @@ import matplotlib
 matplotlib.use("Agg")
 
 import dfa
-from dfa.plotting import stiffness_plot
-from dfa.simulation import simulate
-from dfa.stiffness import stiffness_response
+from dfa.analysis.limits.closed_form import stiffness_response
+from dfa.analysis.simulation import simulate
+from dfa.figures import stiffness_plot
 
 
 def main(out: str, quick: bool = False) -> dict:

@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 
 import dfa
-from dfa.plotting import regions_plot
+from dfa.figures import regions_plot
 
 
 def main(out: str, quick: bool = False) -> dict:

@@ -17,9 +17,9 @@ matplotlib.use("Agg")
 import numpy as np
 
 import dfa
-from dfa.maps import stability_map
-from dfa.plotting import stability_map_plot
-from dfa.simulation import OUTCOMES
+from dfa.analysis.maps import stability_map
+from dfa.analysis.simulation import OUTCOMES
+from dfa.figures import stability_map_plot
 
 SPEEDS = (1.0, 2.0, 5.0, 10.0)
 

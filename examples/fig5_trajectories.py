@@ -20,9 +20,9 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 import dfa
-from dfa.criterion import REGION_DESCRIPTIONS
-from dfa.plotting import POINT_STYLE, REGION_COLORS, regions_plot, trajectory_plot
-from dfa.simulation import preload_position, simulate
+from dfa.analysis.criterion import REGION_DESCRIPTIONS
+from dfa.analysis.simulation import preload_position, simulate
+from dfa.figures import POINT_STYLE, REGION_COLORS, regions_plot, trajectory_plot
 
 
 def cases():

@@ -12,8 +12,8 @@ matplotlib.use("Agg")
 
 import numpy as np
 
-from dfa.contours import contour_maps
-from dfa.plotting import contour_plot
+from dfa.analysis.contours import contour_maps
+from dfa.figures import contour_plot
 
 
 def main(out: str, quick: bool = False) -> dict:

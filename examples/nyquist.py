@@ -10,9 +10,9 @@ import matplotlib
 matplotlib.use("Agg")
 
 import dfa
-from dfa.cycles import limit_cycles
-from dfa.loop import nyquist_locus_response
-from dfa.plotting import nyquist_plot
+from dfa.analysis.cycles import limit_cycles
+from dfa.analysis.loop import nyquist_locus_response
+from dfa.figures import nyquist_plot
 
 
 def main(out: str, quick: bool = False) -> dict:

@@ -138,10 +138,10 @@ def linear_zoh_recursion(mu, beta, xi0, xi_dot0, samples, *, delay=0):
 
 
 def zwidth_point_one_by_one(runs, ctl) -> int:
-    """A Z-width grid point's code as before batching (dfa.zwidth._point at 8313b4b): one simulate() per run, in
+    """A Z-width grid point's code as before batching (dfa.analysis.limits.zwidth._point at 8313b4b): one simulate() per run, in
     order, stopping at the first unstable run (used by tests/test_zwidth_batch.py and make bench's comparison row)."""
-    import dfa.zwidth as zmod
-    from dfa.simulation import simulate
+    import dfa.analysis.limits.zwidth as zmod
+    from dfa.analysis.simulation import simulate
 
     c = None if ctl.is_spring else ctl
     outs = set()

@@ -276,10 +276,10 @@ class _WouldRun(Exception):
 
 #: The first piece of work of each expensive call, after its validation (replaced by _WouldRun in the fuzz).
 _WORK = {
-    "validate": ("dfa.validation", "cycle_checks"),
+    "validate": ("dfa.analysis.validation", "cycle_checks"),
     "design_report": ("dfa.report", "design_analysis"),
-    "stiffness_speed_chart": ("dfa.speed_chart", "_Evidence"),
-    "z_width": ("dfa.zwidth", "_plan"),
+    "stiffness_speed_chart": ("dfa.analysis.limits.speed_chart", "_Evidence"),
+    "z_width": ("dfa.analysis.limits.zwidth", "_plan"),
 }
 
 

@@ -13,8 +13,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from dfa import DFAValueError
-from dfa.maps import stability_map
-from dfa.simulation import OUTCOMES, simulate, simulate_batch
+from dfa.analysis.maps import stability_map
+from dfa.analysis.simulation import OUTCOMES, simulate, simulate_batch
 
 
 def _grid(seed: int, size: int):
@@ -183,9 +183,9 @@ def test_eq4_two_runs_in_flight_hand_delay_to_serial_kernel():
 
 @pytest.mark.parametrize("delay", [0, 1])
 def test_eq4_design_searches_batch_equals_simulate_per_point(delay):
-    """dfa.kmax.simulate_points (the K_max searches) batches its spring runs: outcomes and lengths are simulate()'s."""
-    from dfa.kmax import DIVERGENCE_BOUND, simulate_points
-    from dfa.simulation import default_samples, divergence_bound, preload_position
+    """dfa.analysis.limits.kmax.simulate_points (the K_max searches) batches its spring runs: outcomes and lengths are simulate()'s."""
+    from dfa.analysis.limits.kmax import DIVERGENCE_BOUND, simulate_points
+    from dfa.analysis.simulation import default_samples, divergence_bound, preload_position
 
     mu, beta, sigma, v0, _ = _grid(21 + delay, 30)
     v0 = np.abs(v0) + 0.1
@@ -203,7 +203,7 @@ def test_eq4_tail_length_of_a_huge_mass_is_a_quarter_run_without_overflow():
     """The tail cap 4·2π√μ passes int64 for μ beyond 10³⁷ (a 1e30 kg device): no cast warning, a quarter of the run."""
     import warnings
 
-    from dfa.simulation import _tail_length, _tail_lengths
+    from dfa.analysis.simulation import _tail_length, _tail_lengths
 
     with warnings.catch_warnings():
         warnings.simplefilter("error")

@@ -1,8 +1,8 @@
 """The wall controller on the command line (issue 15 "Command line"): every path through main(argv).
 
 The numbers users read (CLI JSON) equal the API's: the extended criterion of eq. 6
-(:func:`dfa.controller_passivity.device_controller_criterion`), the general Colgate–Schenkel condition
-(:func:`dfa.passivity.colgate_schenkel_damping`), :func:`dfa.simulate`, :func:`dfa.limit_cycles` and
+(:func:`dfa.analysis.wall_criterion.device_controller_criterion`), the general Colgate–Schenkel condition
+(:func:`dfa.analysis.colgate_schenkel.colgate_schenkel_damping`), :func:`dfa.simulate`, :func:`dfa.limit_cycles` and
 :func:`dfa.stability_map` with ``controller=``. B = 0 without filter or lag is the spring, byte for byte.
 """
 
@@ -11,15 +11,15 @@ import json
 import numpy as np
 import pytest
 
-from dfa.catalogue import get_device
+from dfa.analysis.colgate_schenkel import colgate_schenkel_damping
+from dfa.analysis.cycles import limit_cycles
+from dfa.analysis.maps import load_map, stability_map
+from dfa.analysis.simulation import OUTCOMES, divergence_bound, simulate
+from dfa.analysis.wall_criterion import device_controller_criterion
 from dfa.cli import main
-from dfa.controller import Controller, ControllerParams
-from dfa.controller_passivity import device_controller_criterion
-from dfa.cycles import limit_cycles
-from dfa.maps import load_map, stability_map
-from dfa.passivity import colgate_schenkel_damping
+from dfa.model.catalogue import get_device
+from dfa.model.wall import Controller, ControllerParams
 from dfa.render.controller import NOT_COVERED
-from dfa.simulation import OUTCOMES, divergence_bound, simulate
 
 DEV = get_device("Delta").device
 K = 14500.0  # the catalogue stiffness of Delta
@@ -226,7 +226,7 @@ def test_controller_json_nulls_have_reasons(capsys, argv):
 
 
 def test_eq11_controller_stiffness_json_equals_api(capsys):
-    from dfa.controller_kmax import controller_stiffness_limits
+    from dfa.analysis.limits.wall_kmax import controller_stiffness_limits
 
     d = run_json(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
     r = controller_stiffness_limits(DEV, Controller(K, damping=1.0, delay=1), 0.1)

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import pytest
 
+from dfa.analysis.linear import critical_stiffness
 from dfa.cli import main
 from dfa.errors import DFAValueError
-from dfa.linear import critical_stiffness
 
 
 def _refused(capsys, *argv: str) -> str:

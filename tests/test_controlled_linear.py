@@ -1,9 +1,9 @@
-"""Exact linear stability of the sampled wall with a controller (issue 15 item 1): dfa.controlled_linear, dfa.linear.
+"""Exact linear stability of the sampled wall with a controller (issue 15 item 1): dfa.analysis.linear_wall, dfa.analysis.linear.
 
 Checked against: 50-digit mpmath (divided differences of e^{−u}); ``control.c2d`` (the ZOH
 pulse transfer with amplifier lag) and ``control.c2d`` + ``control.feedback`` (the closed
 loop, built independently here from the controller's sample-level definition); the
-spring-only functions of dfa.linear (same numbers, bit for bit, for a spring controller;
+spring-only functions of dfa.analysis.linear (same numbers, bit for bit, for a spring controller;
 the same K_crit to 1e-9 by the general ray algorithm); the linear rule
 K < (b + B)/(T(d + ½)) as bT/m → 0 (issue 15: within 1 % for bT/m <= 0.005 at m = 1 kg,
 T = 1 ms; Diolaiti et al. 2006 for B = 0); the amplifier lag acting as an extra delay,
@@ -24,7 +24,9 @@ from hypothesis import strategies as st
 
 import dfa
 from dfa import Controller, ControllerParams
-from dfa.controlled_linear import (
+from dfa.analysis.colgate_schenkel import colgate_schenkel_damping
+from dfa.analysis.linear import characteristic_polynomial, critical_stiffness, linear_stable, spectral_radius
+from dfa.analysis.linear_wall import (
     LinearStatus,
     _ray_intervals,
     amplifier_zoh_coefficients,
@@ -33,9 +35,7 @@ from dfa.controlled_linear import (
 )
 from dfa.core.divdiff import exp_divided_difference
 from dfa.errors import DFATypeError, DFAValueError
-from dfa.jsonable import dumps
-from dfa.linear import characteristic_polynomial, critical_stiffness, linear_stable, spectral_radius
-from dfa.passivity import colgate_schenkel_damping
+from dfa.results.jsonable import dumps
 
 M, T = 1.0, 1e-3  # the issue's anchor device: m = 1 kg, T = 1 ms
 
@@ -175,7 +175,7 @@ def test_spring_controller_gives_spring_results_bit_identical(d):
 @pytest.mark.parametrize("d", [0, 1, 2, 4])
 @pytest.mark.parametrize("a", [1e-4, 0.01, 1.0, 3.0, 5.0, 100.0])
 def test_ray_algorithm_reproduces_spring_bound(a, d):
-    """The general ray algorithm (stable_stiffness) finds the spring's K_crit of dfa.linear to 1e-9: one interval."""
+    """The general ray algorithm (stable_stiffness) finds the spring's K_crit of dfa.analysis.linear to 1e-9: one interval."""
     r = stable_stiffness(1.0, a, 1.0, Controller(1.0, delay=d))
     assert r.status is LinearStatus.INTERVAL
     assert r.k_crit == pytest.approx(critical_stiffness(1.0, a, 1.0, delay=d), rel=1e-9)

@@ -1,4 +1,4 @@
-"""The exact linear bound with a controller (dfa.controlled_linear.stable_stiffness) at tiny (b + B)T/m, checked
+"""The exact linear bound with a controller (dfa.analysis.linear_wall.stable_stiffness) at tiny (b + B)T/m, checked
 against the spectral radius of the same characteristic polynomial in high-precision arithmetic (mpmath, the
 reference helpers of ``test_gil_linear_bound_small_rate``), and against the float ray analysis where both hold.
 
@@ -17,16 +17,16 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_gil_linear_bound_small_rate import _rho_mp
 
-from dfa.cli import main
-from dfa.controlled_linear import (
+from dfa.analysis.linear import critical_stiffness
+from dfa.analysis.linear_wall import (
     LinearStatus,
     _series_kappa,
     _stable_kappa,
     stable_region,
     stable_stiffness,
 )
-from dfa.controller import Controller
-from dfa.linear import critical_stiffness
+from dfa.cli import main
+from dfa.model.wall import Controller
 
 T = 1e-3
 #: (B, delay, filter cutoff Hz, amplifier bandwidth Hz) and the device's share of the rate
@@ -147,7 +147,7 @@ def test_controlled_linear_small_rate_cli_prints_finite_numbers(capsys):
 def test_controlled_linear_small_rate_catalogue_delta_filter_lag_mpmath():
     """Delta (bT/m ≈ 1.3e-5) with B = 1e-6, 30 Hz filter, 200 Hz amplifier: K_crit to 1e-9 (60+ digits). The float
     ray analysis gave 10.3915617704 N/m, 3e-8 above the boundary (unstable); the series gives 10.3915614443."""
-    from dfa.catalogue import get_device
+    from dfa.model.catalogue import get_device
 
     dev = get_device("Delta").device
     k = _check(dev.mass, dev.damping, Controller(1.0, 1e-6, 0, 30.0, 200.0), rel=1e-9, period=dev.period)
@@ -168,8 +168,8 @@ def test_controlled_linear_small_rate_catalogue_delta_filter_lag_mpmath():
 def test_linear_stable_small_rate_verdict_mpmath(beta, d, ctl):
     """linear_stable at μ = 1e14 (β/μ ~ 1e-14): formerly the float spectral radius (rounding decided it: at μ = 1e16,
     β = 0.55 > β_crit ≈ ½ came out unstable); now the small-rate bound, against 60+ digit mpmath."""
-    from dfa.controller import ControllerParams
-    from dfa.linear import linear_stable
+    from dfa.analysis.linear import linear_stable
+    from dfa.model.wall import ControllerParams
 
     mu = 1e14
     params = (
@@ -188,11 +188,11 @@ def test_controlled_linear_small_rate_slow_amplifier_former_counterexample_mpmat
 
 
 def test_limit_cycles_linear_verdict_with_controller_uses_the_small_rate_bound():
-    """dfa.cycles' linear verdict with a controller is dfa.linear.linear_stable's (the float spectral radius
+    """dfa.analysis.cycles' linear verdict with a controller is dfa.analysis.linear.linear_stable's (the float spectral radius
     alone said unstable at μ = 1e16, β = 0.55 with a tiny damper, where the loop is stable)."""
-    from dfa.controller import ControllerParams
-    from dfa.cycles.controlled import linear_stable_with_controller
-    from dfa.linear import linear_stable
+    from dfa.analysis.cycles.controlled import linear_stable_with_controller
+    from dfa.analysis.linear import linear_stable
+    from dfa.model.wall import ControllerParams
 
     c = ControllerParams(damping=1e-3, delay=1)
     for mu, beta in ((1e16, 0.55), (1e16, 0.1), (100.0, 0.5), (100.0, 0.1)):

@@ -70,7 +70,7 @@ def test_controller_subnormal_lag_refused_shortest_lag_runs(capsys):
     loop, found by hypothesis); α below MIN_LAG is refused with the fix, α = MIN_LAG runs like no lag."""
     from dfa import simulate
     from dfa.cli import main
-    from dfa.controller import MIN_LAG
+    from dfa.model.wall import MIN_LAG
 
     with pytest.raises(DFAValueError, match=r"lag = 5e-324 is invalid: it must be 0 or at least 1e-300.*pass 0"):
         ControllerParams(damping=1.0, lag=5e-324)

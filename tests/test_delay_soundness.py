@@ -1,4 +1,4 @@
-"""Soundness of the delay-aware criterion by exact simulation (dfa.soundness; issue 12 item 6), fast version.
+"""Soundness of the delay-aware criterion by exact simulation (dfa.analysis.soundness; issue 12 item 6), fast version.
 
 The full run (10⁵ points per d) is committed as reports/validation/delay_soundness.md.
 """
@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import dfa
-from dfa import soundness
-from dfa.soundness import delay_soundness, run_samples, sample_passive_points
+from dfa.analysis import soundness
+from dfa.analysis.soundness import delay_soundness, run_samples, sample_passive_points
 
 
 @pytest.mark.parametrize("d", [0, 1, 2, 3])

@@ -11,8 +11,8 @@ import pytest
 
 import dfa
 import dfa.report
+from dfa.analysis.design import design_analysis
 from dfa.cli import main
-from dfa.design import design_analysis
 from dfa.errors import DFAValueError
 from dfa.render.document import design_markdown, markdown_to_html
 
@@ -33,7 +33,7 @@ def small_reports(monkeypatch):
 @pytest.fixture
 def no_figures(monkeypatch, small_reports):
     """Placeholder figures (for tests of the text and the files only): drawing takes seconds."""
-    import dfa.render.figures as figures
+    import dfa.render.report_figures as figures
 
     stub = lambda name: lambda a: figures.ReportFigure(name, f"caption of {name}", b"\x89PNG stub")
     monkeypatch.setattr(
@@ -64,7 +64,7 @@ def test_design_analysis_numbers_equal_the_api(impulse):
 def test_design_analysis_is_frozen_and_json_able(impulse):
     with pytest.raises(AttributeError):
         impulse.stiffness = 1.0  # type: ignore[misc]
-    d = json.loads(dfa.formatting.json_dumps(impulse.as_dict()))
+    d = json.loads(dfa.results.jsonable.dumps(impulse.as_dict(), ensure_ascii=False))
     assert d["limits"]["k_max"] == pytest.approx(impulse.limits.k_max, rel=1e-15)
     assert d["criterion"]["passive"] is True and d["status"] == "ok"
     assert set(d["growth_thresholds"]) == {"half-delay", "zoh"}

@@ -1,6 +1,6 @@
 """K_max with a wall controller (issue 15 item 5): the extended criterion (eq. 6/11) and the exact linear bound.
 
-Independent checks: the physical closed form of the extended criterion (dfa.controller_passivity docstring,
+Independent checks: the physical closed form of the extended criterion (dfa.analysis.wall_criterion docstring,
 (b − B − KT(½ + d))|v| + (c − KΔ/2 − (1 − a)BΔ/T) >= 0 and c >= KΔ/2 + (1 − a)BΔ/T) against the bisection,
 the spring's eq. 11 K_max, a scan over exact simulations with the controller (no divergence at or below
 K_criterion), and a scan over linear simulations across the exact linear bound.
@@ -10,13 +10,13 @@ import math
 
 import pytest
 
-from dfa.catalogue import get_device
-from dfa.controlled_linear import stable_stiffness
-from dfa.controller import Controller
-from dfa.controller_kmax import LAG_REASON, NO_CHECK_REASON, controller_stiffness_limits
-from dfa.device import Device
-from dfa.simulation import simulate
-from dfa.stiffness import stiffness_limits
+from dfa.analysis.limits.closed_form import stiffness_limits
+from dfa.analysis.limits.wall_kmax import LAG_REASON, NO_CHECK_REASON, controller_stiffness_limits
+from dfa.analysis.linear_wall import stable_stiffness
+from dfa.analysis.simulation import simulate
+from dfa.model.catalogue import get_device
+from dfa.model.device import Device
+from dfa.model.wall import Controller
 
 DELTA = get_device("Delta").device
 

@@ -11,18 +11,18 @@ from __future__ import annotations
 import pytest
 
 import dfa
+from dfa.analysis.design import design_analysis
+from dfa.analysis.limits.closed_form import stiffness_limits, stiffness_response
+from dfa.analysis.limits.kmax import design_answer
+from dfa.analysis.limits.speed_chart import stiffness_speed_chart
+from dfa.analysis.limits.wall_kmax import controller_stiffness_limits
+from dfa.analysis.limits.zwidth import z_width
+from dfa.analysis.maps import stability_map
+from dfa.analysis.wall_check import controller_check
 from dfa.checks import check_speed
 from dfa.cli import main
-from dfa.controller import Controller
-from dfa.controller_check import controller_check
-from dfa.controller_kmax import controller_stiffness_limits
-from dfa.design import design_analysis
 from dfa.errors import DFAValueError
-from dfa.kmax import design_answer
-from dfa.maps import stability_map
-from dfa.speed_chart import stiffness_speed_chart
-from dfa.stiffness import stiffness_limits, stiffness_response
-from dfa.zwidth import z_width
+from dfa.model.wall import Controller
 
 IMPULSE = ["--device", "impulse"]
 

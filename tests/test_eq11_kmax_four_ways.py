@@ -13,9 +13,9 @@ from hypothesis import strategies as st
 from scipy import optimize
 
 import dfa
+from dfa.analysis.limits.closed_form import k_gil, k_max_criterion
+from dfa.analysis.limits.kmax import SAFE, UNDECIDED, UNSAFE, KSearch, _search, design_answer, simulate_points
 from dfa.cli import main
-from dfa.kmax import SAFE, UNDECIDED, UNSAFE, KSearch, _search, design_answer, simulate_points
-from dfa.stiffness import k_gil, k_max_criterion
 
 SPEED = {"linear": 0.2, "rotary": 2.0}
 
@@ -137,7 +137,7 @@ def test_kmax_simulate_points_matches_simulate():
     pts = [(100.0, 0.3, 1.5, 0.0, 2.0), (100.0, 0.0, 0.2, 0.0, 2.0), (100.0, 0.3, 0.3, 0.0, 1.0)]
     outs, n = simulate_points(pts, 0, 10**6)
     assert outs == ["rest", "unstable", "chatter"]
-    assert n[0] == dfa.simulation.default_samples(100.0, 0.3, 1.5, 2.0)
+    assert n[0] == dfa.analysis.simulation.default_samples(100.0, 0.3, 1.5, 2.0)
 
 
 def test_kmax_bad_input_named():
@@ -198,7 +198,7 @@ def test_cli_stiffness_json_without_stiffness_says_not_requested(capsys):
     assert code == 0, err
     d = json.loads(out)
     assert d["status"] == "not requested" and d["max_passive_velocity_status"] == "not requested"
-    assert d["status_message"] == dfa.status.StiffnessStatus.NOT_REQUESTED.message and d["stiffness"] is None
+    assert d["status_message"] == dfa.results.status.StiffnessStatus.NOT_REQUESTED.message and d["stiffness"] is None
     code, out, _ = run(capsys, *argv, "--period", "1e-3", "--velocity", "0.1", "--stiffness", "20", "--json")
     assert json.loads(out)["status"] in ("ok", "too stiff")
     lim = dfa.stiffness_limits(dfa.get_device("impulse").device, 0.1)
@@ -273,8 +273,8 @@ def _dense_runs(dev, k, v, d, n=24):
     for i in range(1, n + 1):
         xd = dev.xi_dot(v * i / n)
         for x0, v0, start in ((0.0, xd, "impact"), (dfa.preload_position(p.mu, xd), 0.0, "preload")):
-            samples = min(dfa.simulation.default_samples(p.mu, p.beta, p.sigma, v0, x0, d), 10**6)
-            bound = dfa.simulation.divergence_bound(x0, v0, p.mu, 1e6)
+            samples = min(dfa.analysis.simulation.default_samples(p.mu, p.beta, p.sigma, v0, x0, d), 10**6)
+            bound = dfa.analysis.simulation.divergence_bound(x0, v0, p.mu, 1e6)
             o = dfa.simulate(p.mu, p.beta, p.sigma, v0, samples, xi0=x0, delay=d, record=False, bound=bound).outcome
             out.append((v * i / n, start, str(o)))
     return out
@@ -322,7 +322,7 @@ def test_eq11_k_sim_re35_counterexample_lies_above_the_confirmed_limit():
         p = dev.params(f["stiffness"])
         xd = dev.xi_dot(f["velocity"])
         x0, v0 = (dfa.preload_position(p.mu, xd), 0.0) if f["start"] == "preload" else (0.0, xd)
-        bound = dfa.simulation.divergence_bound(x0, v0, p.mu, 1e6)
+        bound = dfa.analysis.simulation.divergence_bound(x0, v0, p.mu, 1e6)
         sim = dfa.simulate(p.mu, p.beta, p.sigma, v0, None, xi0=x0, record=False, bound=bound)
         assert sim.outcome == f["outcome"] == "unstable"
     d = json.loads(json.dumps(r.as_dict()))
@@ -348,8 +348,8 @@ def test_eq11_k_sim_confirmation_settles_just_below_the_lowest_failure_rechecked
 
 def test_eq11_kmax_shared_run_cache_gives_identical_results_and_simulates_once():
     # issue 14 leftover: the design analysis shares one RunCache between design_answer and the chart
-    from dfa.kmax import RunCache
-    from dfa.speed_chart import stiffness_speed_chart
+    from dfa.analysis.limits.kmax import RunCache
+    from dfa.analysis.limits.speed_chart import stiffness_speed_chart
 
     dev = dfa.get_device("impulse").device
     fresh_a = design_answer(dev, 0.2, grid=8, speeds=3, stiffness=80.0)

@@ -9,7 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import dfa
-from dfa.stiffness import gil_factor, k_max_criterion
+from dfa.analysis.limits.closed_form import gil_factor, k_max_criterion
 
 DEVICES = ["Delta", "Impulse Engine", "Phantom 1.0", "Toolhandle"]
 

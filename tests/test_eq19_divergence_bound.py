@@ -8,8 +8,8 @@ because the impact's own travel (A₀ ≈ 2.8·10⁶ ticks) passed the bound.
 import json
 import math
 
+from dfa.analysis.simulation import divergence_bound, stored_energy
 from dfa.cli import main
-from dfa.simulation import divergence_bound, stored_energy
 
 ARGV = ["simulate", "--device", "impulse", "--resolution", "1e-8", "--velocity", "0.5", "--stiffness", "10"]
 
@@ -31,8 +31,8 @@ def test_eq19_design_analysis_finds_no_divergence_where_eq6_proves_passivity():
     """Region a (β >= ½, σ >= ½): no simulated unstable speed, and the impacts rest (the report's numbers)."""
     import dataclasses
 
-    from dfa.catalogue import get_device
-    from dfa.design import design_analysis
+    from dfa.analysis.design import design_analysis
+    from dfa.model.catalogue import get_device
 
     dev = dataclasses.replace(get_device("impulse").device, resolution=1e-8)
     a = design_analysis(dev, stiffness=10, velocity=0.5, map_grid=3, samples=30_000, n_jobs=1)
@@ -58,7 +58,7 @@ def test_eq19_api_defaults_never_call_a_proven_passive_impact_unstable():
     crit = dfa.passivity_criterion(1.0, 2.4e5, 1e5)
     assert crit.passive
     assert dfa.simulate(800.0, 1.0, 2.4e5, 1e5, record=False).outcome != "unstable"
-    b = dfa.simulation.simulate_batch(800.0, [1.0, 1.0], [2.4e5, 2.4e5], [1e5, 1.0], samples=20000)
+    b = dfa.analysis.simulation.simulate_batch(800.0, [1.0, 1.0], [2.4e5, 2.4e5], [1e5, 1.0], samples=20000)
     assert "unstable" not in b.outcomes()
     m = dfa.stability_map(800.0, [1e5], beta_range=(0.5, 1.0), sigma_range=(0.5, 2.0), grid=3, samples=20000, n_jobs=1)
     assert m.counts()[0]["unstable"] == 0

@@ -19,13 +19,13 @@ import pytest
 from scipy import optimize
 
 import dfa
-from dfa.controller import Controller, ControllerParams
+from dfa.analysis.cycles import growth_threshold
+from dfa.analysis.cycles import limit_cycles as _limit_cycles
+from dfa.analysis.describing import quantizer_df
+from dfa.analysis.loop import loop_response, nyquist_locus_response
 from dfa.core.zohlag import zoh_lag_response
-from dfa.cycles import growth_threshold
-from dfa.cycles import limit_cycles as _limit_cycles
-from dfa.describing import quantizer_df
 from dfa.errors import DFATypeError, DFAValueError
-from dfa.loop import loop_response, nyquist_locus_response
+from dfa.model.wall import Controller, ControllerParams
 
 #: These tests check completeness and residuals, not the wall-clock budget: a loaded machine (or a cold numba cache
 #: compiling the amplifier's ZOH) must not turn a complete search into TIME_BUDGET.
@@ -100,7 +100,7 @@ def test_zoh_lag_response_matches_control_c2d(beq, lag):
 
 
 def test_zoh_lag_response_tends_to_the_spring_plant_as_the_lag_vanishes():
-    from dfa.loop import zoh_pulse_response
+    from dfa.analysis.loop import zoh_pulse_response
 
     w = np.array([0.01, 0.5, 2.0])
     for lag in (1e-3, 1e-5):
@@ -213,10 +213,10 @@ def test_controller_bad_input():
 
 # ---------------------------------------------------------------- against the exact simulator (h-csim)
 def _simulate_with_controller():
-    from dfa import simulation
+    from dfa.analysis import simulation
 
     if "controller" not in inspect.signature(simulation.simulate).parameters:
-        pytest.skip("dfa.simulation.simulate has no controller= keyword yet (issue 15 item 4, h-csim)")
+        pytest.skip("dfa.analysis.simulation.simulate has no controller= keyword yet (issue 15 item 4, h-csim)")
     return simulation.simulate
 
 
@@ -233,7 +233,7 @@ def test_eq36_controller_growth_threshold_brackets_the_simulated_critical_speed(
 
 
 def test_eq42_45_closed_forms_refuse_a_controller_they_do_not_hold_for():
-    from dfa.cycles import large_cycle_closed_form, small_cycle_closed_form, small_cycle_closed_forms
+    from dfa.analysis.cycles import large_cycle_closed_form, small_cycle_closed_form, small_cycle_closed_forms
 
     assert small_cycle_closed_form(5.0, 0.1, 0.3, controller=ControllerParams()) == small_cycle_closed_form(
         5.0, 0.1, 0.3
@@ -259,7 +259,7 @@ def test_eq36_controller_describing_small_reproduces_the_exact_small_cycle(ctl):
 @pytest.mark.parametrize("mu", [0.5, 5.0, 100.0])
 def test_eq36_zoh_phase_condition_has_at_most_one_crossing_per_frequency_with_a_controller(mu):
     """The solver's premise for the exact ZOH model (one β* per ω with U < 0), checked on its own β grid."""
-    from dfa.cycles.characteristic import _W_GRID, _inv_loop
+    from dfa.analysis.cycles.characteristic import _W_GRID, _inv_loop
 
     bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
     for ctl in [

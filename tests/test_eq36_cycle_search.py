@@ -11,9 +11,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import dfa
-from dfa.cli import main
-from dfa.core import dfcore
-from dfa.cycles import (
+from dfa.analysis.cycles import (
     LimitCycleSearchWarning,
     SearchStatus,
     envelope_bound,
@@ -21,8 +19,10 @@ from dfa.cycles import (
     large_cycle_frequency,
     limit_cycles,
 )
-from dfa.describing import DF_ENVELOPE, quantizer_df, quantizer_df_derivative
-from dfa.loop import loop_response
+from dfa.analysis.describing import DF_ENVELOPE, quantizer_df, quantizer_df_derivative
+from dfa.analysis.loop import loop_response
+from dfa.cli import main
+from dfa.core import dfcore
 
 
 def residual(p, m, w, model="half-delay", delay=0):
@@ -66,7 +66,7 @@ def test_eq41_compiled_brent_reports_no_bracket_instead_of_an_end():
 
 
 def test_numerical_failure_gives_incomplete_status_and_warning(monkeypatch):
-    import dfa.cycles as cyc
+    import dfa.analysis.cycles as cyc
 
     def broken(self, m):
         raise ValueError("f(a) and f(b) must have different signs")
@@ -226,7 +226,7 @@ def test_loeb_sign_matches_an_independent_evaluation(p, model):
 
 @pytest.mark.parametrize("period, flag", [(7.999, True), (8.001, False)])
 def test_few_samples_flag_at_eight_samples(period, flag):
-    from dfa.cycles import _cycle
+    from dfa.analysis.cycles import _cycle
 
     c = _cycle(0.5, 2 * math.pi / period, 1.0, 0.0)
     assert c.few_samples is flag and c.period == pytest.approx(period)
@@ -289,7 +289,7 @@ def test_eq41_huge_amplitudes():
 
 
 def test_eq41_envelope_constant_from_the_expansion():
-    """(4√2/π)|ζ(−½)| = 0.3743 is the integer excursion quoted in dfa.describing, below DF_ENVELOPE."""
+    """(4√2/π)|ζ(−½)| = 0.3743 is the integer excursion quoted in dfa.analysis.describing, below DF_ENVELOPE."""
     lead = 4 * math.sqrt(2) / math.pi * abs(float(mpmath.zeta(-0.5)))
     assert lead == pytest.approx(0.3743, abs=1e-4) and lead < DF_ENVELOPE
     assert (1 - dfcore.df_value(5000.0)) * 5000.0**1.5 == pytest.approx(lead, rel=1e-3)
@@ -297,7 +297,7 @@ def test_eq41_envelope_constant_from_the_expansion():
 
 # ------------------------------------------------------------- validation item 5: clusters against simulation
 def test_validation_cluster_threshold_record_matches_independent_runs():
-    from dfa.validation import CLUSTER_POINTS, cluster_note, cluster_threshold
+    from dfa.analysis.validation import CLUSTER_POINTS, cluster_note, cluster_threshold
 
     name, p = CLUSTER_POINTS[0]
     speeds = [0.3, 0.6, 1.0, 2.3, 2.5, 9.0]
@@ -309,7 +309,7 @@ def test_validation_cluster_threshold_record_matches_independent_runs():
     g = growth_threshold(p, model="zoh")
     assert rec["band_zoh"] == [g.xi_dot, g.xi_dot_high] and rec["unstable_zoh"] == g.unstable_count
     assert rec["band_zoh"][0] < rec["first_diverging"]  # no start below the band diverged
-    cf = dfa.cycles.large_cycle_closed_form(p.mu, p.beta, p.sigma)
+    cf = dfa.analysis.cycles.large_cycle_closed_form(p.mu, p.beta, p.sigma)
     assert rec["eq45_xi_dot"] == pytest.approx(cf[0] * cf[1], rel=1e-15)
     note = cluster_note([rec])
     assert f"{rec['first_diverging']:.3g}" in note and f"{g.xi_dot_high:.3g}" in note and "not a threshold" in note
@@ -317,11 +317,11 @@ def test_validation_cluster_threshold_record_matches_independent_runs():
 
 def test_validation_eq45_worst_point_above_the_zoh_linear_bound_does_not_diverge():
     """Fig. 7's worst eq. 45 ratio (exact M_u 14.6× below eq. 45): β is above the exact ZOH linear bound, and no start diverges."""
-    from dfa.linear import linear_stable
-    from dfa.validation import CLUSTER_POINTS
+    from dfa.analysis.linear import linear_stable
+    from dfa.analysis.validation import CLUSTER_POINTS
 
     _name, p = CLUSTER_POINTS[1]
-    m45 = dfa.cycles.large_cycle_closed_form(p.mu, p.beta, p.sigma)[0]
+    m45 = dfa.analysis.cycles.large_cycle_closed_form(p.mu, p.beta, p.sigma)[0]
     assert m45 / limit_cycles(p).unstable_cycles[0].amplitude == pytest.approx(14.64, abs=0.01)
     assert linear_stable(p.mu, p.beta)
     assert not growth_threshold(p, model="zoh").grows_above
@@ -372,7 +372,7 @@ def test_search_bound_no_root_beyond_it(p):
 
 def test_size_budget_ends_incomplete_not_open_ended(monkeypatch, capsys):
     """With a tiny interval budget the 10 nm Delta search (cycle at ~1.9e5 ticks) ends BUDGET, and nothing claims absence."""
-    import dfa.cycles as cyc
+    import dfa.analysis.cycles as cyc
 
     monkeypatch.setattr(cyc.search, "INTERVAL_BUDGET", 5)
     _dev, p = _delta_10nm()
@@ -387,7 +387,7 @@ def test_size_budget_ends_incomplete_not_open_ended(monkeypatch, capsys):
 
 def test_eq36_failed_omega_solve_in_the_scan_is_counted_not_skipped(monkeypatch):
     """A NaN ω(M) from the elementwise root finder makes the search incomplete (NUMERICAL), never silently shorter."""
-    import dfa.cycles as cyc
+    import dfa.analysis.cycles as cyc
 
     real = cyc.phase._omega_for_m
 

@@ -11,15 +11,15 @@ from hypothesis import strategies as st
 from scipy.optimize import fsolve
 
 import dfa
-from dfa.cycles import (
+from dfa.analysis.cycles import (
     growth_threshold,
     large_cycle_closed_form,
     large_cycle_frequency,
     limit_cycles,
     small_cycle_closed_form,
 )
-from dfa.describing import QuantizerNonlinearity, quantizer_df
-from dfa.loop import loop_response, loop_system
+from dfa.analysis.describing import QuantizerNonlinearity, quantizer_df
+from dfa.analysis.loop import loop_response, loop_system
 
 params_st = st.builds(dfa.Params, st.floats(0.5, 200.0), st.floats(0.0, 0.6), st.floats(0.0, 2.5))
 
@@ -194,7 +194,7 @@ def test_limit_cycles_bad_input(kwargs, needle):
         limit_cycles((5.0, 0.1, 0.3))
 
 
-# ------------------------------------------- the solver's fast loop inverse (dfa.cycles)
+# ------------------------------------------- the solver's fast loop inverse (dfa.analysis.cycles)
 @settings(max_examples=60)
 @given(
     st.floats(0.2, 300.0),
@@ -205,7 +205,7 @@ def test_limit_cycles_bad_input(kwargs, needle):
 )
 def test_eq36_solver_loop_inverse_scalar_and_vector_paths_equal_loop_response(mu, beq, w, model, delay):
     """The solver's 1/L (plain-complex scalar path, numpy path, Padé as an all-pass phase lead) is loop_response's."""
-    from dfa.cycles import _inv_loop
+    from dfa.analysis.cycles import _inv_loop
 
     p = dfa.Params(mu, beq, 0.0)
     ref = 1.0 / complex(loop_response(p, w, model=model, delay=delay, pade_order=6))
@@ -219,7 +219,7 @@ def test_eq36_solver_loop_inverse_scalar_and_vector_paths_equal_loop_response(mu
 @pytest.mark.parametrize("model, delay", [("half-delay", 0), ("pade", 0), ("pade", 1), ("zoh", 0), ("zoh", 1)])
 def test_eq36_phase_curve_beta_star_puts_the_loop_on_the_negative_real_axis(model, delay):
     """β*(ω) (closed form μω tan φ for half-delay and Padé, numeric for ZOH) gives V = 0 with U < 0 (eq. 36 phase condition)."""
-    from dfa.cycles import _W_GRID, _Loop, _phase_beta
+    from dfa.analysis.cycles import _W_GRID, _Loop, _phase_beta
 
     mu = 7.0
     lp = _Loop(dfa.Params(mu, 0.0, 0.0), model, delay, 4)

@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import dfa
-from dfa.loop import (
+from dfa.analysis.loop import (
     device_tf,
     device_zoh_tf,
     equivalent_damping,
@@ -111,7 +111,7 @@ def test_fig6_nyquist_crossings_satisfy_harmonic_balance():
     r = nyquist_locus_response(p)
     assert len(r.crossings) == 2 and r.status == "ok"
     for m, w, _pt in r.crossings:
-        assert abs(1 + dfa.describing.quantizer_df(m) * loop_response(p, w)) < 1e-10
+        assert abs(1 + dfa.analysis.describing.quantizer_df(m) * loop_response(p, w)) < 1e-10
     assert np.all(r.locus.imag == 0) and np.all(r.locus.real < 0)
     s = nyquist_locus_response(dfa.Params(5.0, 0.4, 0.3), amplitudes=[0.5, 2.0])
     assert s.curves.shape == (2, s.omega.size) and s.crossings == ()
@@ -161,6 +161,6 @@ def test_fig6_nyquist_markers_are_the_solvers_roots(params, kwargs):
     for (m, w, pt), c in zip(r.crossings, cyc, strict=True):
         assert abs(m - c.amplitude) <= 1e-10 * c.amplitude and abs(w - c.frequency) <= 1e-10 * c.frequency
         assert c.residual <= 1e-10
-        assert abs(pt + 1.0 / dfa.describing.quantizer_df(m)) <= 1e-12  # the marker sits on the locus −1/D(M)
+        assert abs(pt + 1.0 / dfa.analysis.describing.quantizer_df(m)) <= 1e-12  # the marker sits on the locus −1/D(M)
         # and on the curve: L(jω) at the root is the same point to 1e-10
         assert abs(loop_response(params, w, **kwargs) - pt) <= 1e-10 * abs(pt)

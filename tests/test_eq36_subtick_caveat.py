@@ -1,7 +1,7 @@
 """The describing function's sub-tick caveat (issue 15): where eq. 36's smallest unstable cycle lies just above the
 first quantization level, "no growth below it" is contradicted by exact simulation, so every growth verdict resting
 on it carries a caveat (limit_cycles, growth_threshold, `dfa limit-cycles` text and JSON) or becomes unknown (the
-describing-function K_max with a controller, dfa.kmax._growth_xi_dot, used by the Z-width)."""
+describing-function K_max with a controller, dfa.analysis.limits.kmax._growth_xi_dot, used by the Z-width)."""
 
 import json
 
@@ -9,14 +9,14 @@ import numpy as np
 import pytest
 
 import dfa
-from dfa.controller import ControllerParams
-from dfa.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, subtick_caveat
-from dfa.device import Params
-from dfa.kmax import SAFE, UNDECIDED, UNSAFE, _growth_xi_dot, df_verdict
+from dfa.analysis.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, subtick_caveat
+from dfa.analysis.limits.kmax import SAFE, UNDECIDED, UNSAFE, _growth_xi_dot, df_verdict
+from dfa.analysis.simulation import OUTCOMES, simulate_batch
+from dfa.model.device import Params
+from dfa.model.wall import ControllerParams
 from dfa.render.text import limit_cycle_lines, limit_cycles_dict
-from dfa.simulation import OUTCOMES, simulate_batch
 
-# found by a random search (dfa.cycles.caveats): damper on a slowly filtered velocity (filter pole a = 0.974), d = 0
+# found by a random search (dfa.analysis.cycles.caveats): damper on a slowly filtered velocity (filter pole a = 0.974), d = 0
 P = Params(3.749, 0.0, 0.155)
 CTL = ControllerParams(damping=0.2838, cutoff=0.0042)
 
@@ -85,7 +85,7 @@ def test_eq36_no_caveat_well_above_the_first_level():
 
 
 def test_eq36_subtick_caveat_spring_alike():
-    """The paper's spring shows the same failure (random search, dfa.cycles.caveats): its result carries the caveat
+    """The paper's spring shows the same failure (random search, dfa.analysis.cycles.caveats): its result carries the caveat
     and, as with a controller, its describing function no longer calls impacts below M_u·ω safe (one rule)."""
     p = Params(1.2433, 0.41264, 0.21593)
     res = limit_cycles(p, model="zoh", delay=1)
@@ -101,8 +101,8 @@ def test_eq36_subtick_caveat_spring_alike():
 def test_eq36_subtick_caveat_named_in_the_zwidth_df_reason():
     """A device whose controlled loop at K = 1000 N/m is the point above (μ = 3.749, β = 0, σ = 0.155,
     β_B = B/(KT) = 0.2838, ν_c = f_c·T = 0.0042): the Z-width's describing-function column says why it stops."""
-    from dfa.device import Device
-    from dfa.zwidth import _column, _df_judge
+    from dfa.analysis.limits.zwidth import _column, _df_judge
+    from dfa.model.device import Device
 
     dev = Device(mass=3.749e-3, damping=0.0, coulomb=1.55e-3, resolution=1e-5, period=1e-3)
     seen: list = []
@@ -133,8 +133,8 @@ def test_eq36_subtick_caveat_printed_by_dfa_limit_cycles(capsys):
 def test_eq36_subtick_assessed_stiffness_says_why_its_growth_speed_is_unknown(capsys):
     """Impulse Engine at K = 540 N/m: the smallest unstable cycle lies below SUBTICK_LIMIT (the caveat), so the
     assessment of that K in `dfa stiffness` states the sub-tick reason, not "search incomplete" (text and JSON)."""
+    from dfa.analysis.limits.kmax import SUBTICK_UNKNOWN
     from dfa.cli import main
-    from dfa.kmax import SUBTICK_UNKNOWN
 
     e = dfa.get_device("impulse").device
     p = e.params(540.0)

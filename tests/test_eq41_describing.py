@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dfa
-from dfa.describing import (
+from dfa.analysis.describing import (
     DF_ENVELOPE,
     CoulombNonlinearity,
     QuantizerNonlinearity,
@@ -148,13 +148,13 @@ def test_python_control_generic_numeric_df_error_is_documented():
 
 def test_python_control_response_tools_accept_our_nonlinearity():
     p = dfa.Params(5.0, 0.4, 0.0)
-    H = dfa.loop.loop_system(p, model="pade", pade_order=6)
+    H = dfa.analysis.loop.loop_system(p, model="pade", pade_order=6)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         resp = control.describing_function_response(
             H, QuantizerNonlinearity(), np.linspace(0.3, 3, 200), omega=np.geomspace(1e-2, np.pi, 2000)
         )
-    ours = dfa.loop.nyquist_locus_response(p).crossings
+    ours = dfa.analysis.loop.nyquist_locus_response(p).crossings
     assert len(resp.intersections) == len(ours) == 2
     for (a, w), (m, w2, _pt) in zip(sorted(resp.intersections), ours, strict=False):
         assert a == pytest.approx(m, rel=1e-4) and w == pytest.approx(w2, rel=1e-4)

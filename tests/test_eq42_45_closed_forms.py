@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dfa.contours import contour_maps
-from dfa.cycles import (
+from dfa.analysis.contours import contour_maps
+from dfa.analysis.cycles import (
     ClosedFormStatus,
     large_cycle_closed_form,
     large_cycle_closed_forms,

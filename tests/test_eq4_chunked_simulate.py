@@ -1,6 +1,6 @@
 """Long simulations run in chunks (issue 17 §2, §4): identical results, progress, Ctrl-C between chunks.
 
-:func:`dfa.simulate` integrates runs longer than ``dfa.simulation.CHUNK``
+:func:`dfa.simulate` integrates runs longer than ``dfa.analysis.simulation.CHUNK``
 samples in several kernel calls (any delay: the delay ring is part of the state); the result must be bit for
 bit the single call's (paper eq. 4-5 integrated exactly either way). The tests
 lower ``CHUNK`` so that short runs take the chunked path.
@@ -17,7 +17,7 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 
 import dfa
-import dfa.simulation as simulation
+import dfa.analysis.simulation as simulation
 from dfa.cli import main
 
 

@@ -16,9 +16,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 from reference import recorded_period
 
-from dfa.controller import ControllerParams
+from dfa.analysis.simulation import simulate, simulate_batch
 from dfa.core import kernel, wall_kernel
-from dfa.simulation import simulate, simulate_batch
+from dfa.model.wall import ControllerParams
 
 EMPTY = np.empty(0)
 

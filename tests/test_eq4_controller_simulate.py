@@ -14,10 +14,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from reference_ctl import linear_ctl_recursion, simulate_ivp_ctl
 
-from dfa.controller import Controller, ControllerParams
+from dfa.analysis.simulation import simulate, simulate_batch
 from dfa.core import kernel, wall_kernel
 from dfa.errors import DFATypeError, DFAValueError
-from dfa.simulation import simulate, simulate_batch
+from dfa.model.wall import Controller, ControllerParams
 
 
 def _mp_phi1(u):

@@ -12,8 +12,8 @@ from hypothesis import strategies as st
 from reference import recorded_period
 
 from dfa import simulate
-from dfa.maps import stability_map
-from dfa.simulation import OUTCOMES, divergence_bound, simulate_batch
+from dfa.analysis.maps import stability_map
+from dfa.analysis.simulation import OUTCOMES, divergence_bound, simulate_batch
 
 
 def _outputs(r):

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from reference import linear_zoh_recursion, simulate_control, simulate_ivp
 
 import dfa
-from dfa.simulation import preload_position, simulate, stored_energy
+from dfa.analysis.simulation import preload_position, simulate, stored_energy
 
 CASES = [  # (μ, β, σ, ξ0, ξ'0): stick-slip, β = 0, σ = 0, offsets
     (100.0, 0.1, 0.9, 0.0, 2.0),

@@ -1,6 +1,6 @@
-"""Eq. 6 extended to a virtual damper, velocity filter and delay (dfa.controller_passivity; issue 15 item 2).
+"""Eq. 6 extended to a virtual damper, velocity filter and delay (dfa.analysis.wall_criterion; issue 15 item 2).
 
-Theorem (module docstring of dfa.controller_passivity): with β₀ = ½ + d + β_B and
+Theorem (module docstring of dfa.analysis.wall_criterion): with β₀ = ½ + d + β_B and
 σ₀ = ½ + (1 − a)β_B (0 without the encoder), (β − β₀)V + (σ − σ₀) >= 0 and σ >= σ₀
 imply S = ½μξ'² + ½ξ² never exceeds S(0). Tested here: each step of the derivation
 (sympy identities, the exact decomposition and the summed inequality on simulated
@@ -19,18 +19,18 @@ from hypothesis import strategies as st
 from reference_ctl import controller_run
 
 import dfa
-from dfa.catalogue import get_device
-from dfa.controller import Controller, ControllerParams
-from dfa.controller_passivity import (
+from dfa.analysis.simulation import simulate
+from dfa.analysis.wall_criterion import (
     ControllerCriterionResult,
     controller_anchor,
     controller_criterion,
     device_controller_criterion,
 )
-from dfa.controller_soundness import controller_soundness, sample_controller_points
+from dfa.analysis.wall_soundness import controller_soundness, sample_controller_points
 from dfa.core import kernel
 from dfa.errors import DFATypeError, DFAValueError
-from dfa.simulation import simulate
+from dfa.model.catalogue import get_device
+from dfa.model.wall import Controller, ControllerParams
 
 
 # ------------------------------------------------------------------ an independent reference loop (pure Python)
@@ -38,7 +38,7 @@ def reference_run(mu, beta, sigma, x0, v0, n, ctl: ControllerParams, quantize=Tr
     """ξ_h, ξ'_h, forces φ_h and turning-point storages of the loop, written from the transfer-function form.
 
     The damper input is the explicit convolution y_m = Σ_k (1 − a)a^{k−1} v_{m−k} (filter) or v_m,
-    not the recursion of dfa.controller_soundness; the step is the exact per-sample step of dfa.simulate.
+    not the recursion of dfa.analysis.wall_soundness; the step is the exact per-sample step of dfa.simulate.
     """
     k = kernel.sample_constants(mu, beta)
     a, filtered = ctl.filter_pole, ctl.cutoff is not None
@@ -336,7 +336,7 @@ def test_eq4_controller_simulator_is_bit_identical_to_the_reference_loop(
 
 # ------------------------------------------------------------------ soundness by simulation (fast version)
 def test_eq6_controller_sampled_passive_points_never_gain_energy():
-    """Derandomised sample; the 10⁵-point run is python -m dfa.soundness --controller (reports/validation)."""
+    """Derandomised sample; the 10⁵-point run is python -m dfa.analysis.soundness --controller (reports/validation)."""
     r = controller_soundness(1500, seed=2024)
     assert r.points == 1500 and r.violations == 0 and r.energy_grew == 0 and r.diverged == 0
     assert r.by_kind["line"] > 300 and r.by_kind["sigma-edge"] > 120 and r.by_kind["beta-edge"] > 120
@@ -388,7 +388,7 @@ def test_eq6_controller_sigma0_needs_the_damper_term():
 
 
 def test_eq6_controller_soundness_command_writes_markdown_and_json(tmp_path, capsys):
-    from dfa.soundness import main
+    from dfa.analysis.soundness import main
 
     assert main(["--controller", "--points", "40", "--out", str(tmp_path)]) == 0
     md = (tmp_path / "controller_soundness.md").read_text()

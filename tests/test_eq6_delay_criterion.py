@@ -1,6 +1,6 @@
 """The passivity criterion with a computational delay d and an initial position ξ0 (eq. 6, 10, 12, 18-19 generalised).
 
-Theorem (module docstring of dfa.criterion): (β − ½ − d)V + (σ − ½) >= 0 and σ >= ½ with
+Theorem (module docstring of dfa.analysis.criterion): (β − ½ − d)V + (σ − ½) >= 0 and σ >= ½ with
 V² = ξ'0² + 2H_c(ξ0)/μ imply S = ½μξ'² + ½ξ² never exceeds S(0).
 """
 
@@ -14,10 +14,10 @@ from hypothesis import strategies as st
 
 import dfa
 from dfa import classify_region, passivity_criterion
+from dfa.analysis.criterion import CriticalLine, equivalent_speed
+from dfa.analysis.limits.closed_form import k_max_criterion, k_static, stiffness_response
+from dfa.analysis.simulation import simulate
 from dfa.cli import main
-from dfa.criterion import CriticalLine, equivalent_speed
-from dfa.simulation import simulate
-from dfa.stiffness import k_max_criterion, k_static, stiffness_response
 
 
 def storage(sim):
@@ -86,7 +86,7 @@ def test_eq12_delay_critical_speed_separates_passive_from_not(beta, sigma, d):
 def test_eq10_delayed_critical_line_through_half_plus_d_with_slope_minus_speed():
     r = passivity_criterion(0.1, 3.0, 2.0, delay=2)
     line = r.critical_line
-    assert (line.delay, line.beta0, line.slope) == (2, 2.5, -2.0)
+    assert (r.delay, line.beta0, line.slope) == (2, 2.5, -2.0)
     assert line.sigma(2.5) == pytest.approx(0.5)
     np.testing.assert_allclose(line.sigma(np.array([0.0, 1.0])), [0.5 + 2.0 * 2.5, 0.5 + 2.0 * 1.5])
     # without quantization the line goes through (½ + d, 0)
@@ -214,7 +214,7 @@ def test_eq8_colgate_with_delay_and_one_source_for_the_static_limit():
 
 def test_eq11_stiffness_curve_reads_its_bounds_from_stiffness_limits(monkeypatch):
     """StiffnessCurve holds a StiffnessLimits and recomputes none of its bounds (one evaluation of each)."""
-    import dfa.stiffness as stf
+    import dfa.analysis.limits.closed_form as stf
 
     calls = []
     real = stf.k_gil
@@ -351,11 +351,11 @@ def test_cli_stiffness_with_delay(capsys):
 def test_fig4_map_plot_draws_the_delayed_critical_line():
     import matplotlib.pyplot as plt
 
-    from dfa import plotting
-    from dfa.maps import stability_map
+    from dfa import figures
+    from dfa.analysis.maps import stability_map
 
     m = stability_map(100.0, [2.0], beta_range=(0.0, 2.0), grid=4, samples=300, delay=1, n_jobs=1, progress=False)
-    ax = plotting.stability_map_plot(m)[0]
+    ax = figures.stability_map_plot(m)[0]
     dashed = [ln for ln in ax.get_lines() if ln.get_linestyle() == "--"]
     assert len(dashed) == 1
     x, y = dashed[0].get_data()
@@ -367,15 +367,15 @@ def test_fig4_map_plot_draws_the_delayed_critical_line():
 def test_fig3_regions_plot_draws_the_result_critical_line_with_delay():
     import matplotlib.pyplot as plt
 
-    from dfa import plotting
+    from dfa import figures
 
     r = passivity_criterion(0.3, 3.0, 2.0, delay=1, xi0=1.0, mu=4.0)
-    ax = plotting.regions_plot(r, xi_dots=[1.0])
+    ax = figures.regions_plot(r, xi_dots=[1.0])
     lines = {ln.get_label(): ln for ln in ax.get_lines()}
     x, y = next(v for k, v in lines.items() if k.startswith("critical line")).get_data()
     np.testing.assert_allclose(y, 0.5 + r.equivalent_speed * (1.5 - np.asarray(x)))
     x, y = lines["ξ'0 = 1"].get_data()
-    np.testing.assert_allclose(y, CriticalLine(1.0, 0.5, 1).sigma(np.asarray(x)))
+    np.testing.assert_allclose(y, CriticalLine.of(1.0, delay=1).sigma(np.asarray(x)))
     plt.close(ax.figure)
 
 

@@ -83,13 +83,13 @@ def test_eq4_every_user_imports_the_one_exprel():
     """No second φ₁/φ₂: the kernel, the ZOH coefficients, Gil's factor and the test reference step share dfa.core.exprel."""
     import inspect
 
-    from dfa import linear, stiffness
-    from dfa.core import kernel
+    from dfa.analysis.limits import closed_form as stiffness
+    from dfa.core import kernel, zoh
 
     assert kernel.phi1 is exprel.phi1 and kernel.phi2 is exprel.phi2
-    assert "core.exprel" in inspect.getsource(linear._zoh_coefficients)
+    assert "from .exprel import" in inspect.getsource(zoh)
     assert "core.exprel" in inspect.getsource(stiffness.gil_factor)
-    c1, c0, p = linear._zoh_coefficients(0.3)
+    c1, c0, p = zoh.zoh_coefficients(0.3)
     assert (c1, c0) == pytest.approx((_ref("phi2", 0.3), _ref("phi1", 0.3) - _ref("phi2", 0.3)), rel=1e-15)
 
 

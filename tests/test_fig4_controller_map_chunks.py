@@ -18,14 +18,14 @@ import time
 import numpy as np
 import pytest
 
-import dfa.maps as maps
-import dfa.zwidth as zmod
+import dfa.analysis.limits.zwidth as zmod
+import dfa.analysis.maps as maps
 from dfa._parallel import run_in_order
-from dfa.catalogue import get_device
+from dfa.analysis.maps import stability_map
+from dfa.analysis.simulation import OUTCOMES, divergence_bound, simulate
 from dfa.cli import main
-from dfa.controller import ControllerParams
-from dfa.maps import stability_map
-from dfa.simulation import OUTCOMES, divergence_bound, simulate
+from dfa.model.catalogue import get_device
+from dfa.model.wall import ControllerParams
 
 CTL = ControllerParams(damping=0.3, delay=1, cutoff=0.1, lag=0.5)  # damper, filter, delay and amplifier lag
 DFA = [sys.executable, "-c", "import sys; from dfa.cli import main; sys.exit(main())"]

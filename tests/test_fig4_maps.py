@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 import dfa
+from dfa.analysis.maps import load_map, stability_map
+from dfa.analysis.simulation import OUTCOMES, preload_position, simulate
 from dfa.cli import main
-from dfa.maps import load_map, stability_map
-from dfa.simulation import OUTCOMES, preload_position, simulate
 
 
 @pytest.fixture(scope="module")

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 import dfa
+from dfa.analysis.contours import contour_maps, load_contours
+from dfa.analysis.cycles import large_cycle_closed_form, limit_cycles, small_cycle_closed_form
 from dfa.cli import main
-from dfa.contours import contour_maps, load_contours
-from dfa.cycles import large_cycle_closed_form, limit_cycles, small_cycle_closed_form
 
 
 @pytest.fixture(scope="module")

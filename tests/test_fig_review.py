@@ -16,14 +16,14 @@ import pytest
 from matplotlib.transforms import Bbox
 
 import dfa
-from dfa import plotting
-from dfa.contours import contour_maps
-from dfa.cycles import limit_cycles
-from dfa.loop import loop_response, nyquist_locus_response
-from dfa.maps import stability_map
-from dfa.simulation import simulate
-from dfa.speed_chart import stiffness_speed_chart
-from dfa.stiffness import stiffness_response
+from dfa import figures
+from dfa.analysis.contours import contour_maps
+from dfa.analysis.cycles import limit_cycles
+from dfa.analysis.limits.closed_form import stiffness_response
+from dfa.analysis.limits.speed_chart import stiffness_speed_chart
+from dfa.analysis.loop import loop_response, nyquist_locus_response
+from dfa.analysis.maps import stability_map
+from dfa.analysis.simulation import simulate
 
 
 @pytest.fixture(autouse=True)
@@ -46,7 +46,7 @@ def _legend_clear_of_axes(ax, legend=None) -> bool:
 
 def test_fig3_operating_point_at_beta_zero_lies_inside_the_axes_and_the_legend_beside_them():
     r = dfa.passivity_criterion(0.00207, 2.03, 2.22)  # the Delta at 0.2 m/s: β ≈ 0
-    ax = plotting.regions_plot(r, xi_dots=[1.0, 5.0])
+    ax = figures.regions_plot(r, xi_dots=[1.0, 5.0])
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     point = next(ln for ln in ax.get_lines() if ln.get_label().startswith("operating point"))
     rend = _boxes(ax.figure)
@@ -60,7 +60,7 @@ def test_fig3_operating_point_at_beta_zero_lies_inside_the_axes_and_the_legend_b
 
 def test_fig3_reference_speed_lines_have_distinct_styles_and_legend_entries():
     r = dfa.passivity_criterion(0.25, 1.2, 2.0)
-    ax = plotting.regions_plot(r, xi_dots=[0.5, 1.0, 5.0])
+    ax = figures.regions_plot(r, xi_dots=[0.5, 1.0, 5.0])
     lines = [ln for ln in ax.get_lines() if ln.get_label().startswith("ξ'0 = ")]
     assert [ln.get_label() for ln in lines] == ["ξ'0 = 0.5", "ξ'0 = 1", "ξ'0 = 5"]
     styles = {(str(ln.get_linestyle()), ln.get_color(), ln.get_linewidth()) for ln in lines}
@@ -78,7 +78,7 @@ def test_eq8_eq9_coinciding_bounds_drawn_distinctly_and_labelled_with_values_and
     dev = dfa.get_device(
         "Delta"
     ).device  # 2b/T = 60 N/m: Colgate–Schenkel, Abbott–Okamura and the linear bound coincide
-    ax = plotting.stiffness_plot(stiffness_response(dev, stiffness=14500.0))
+    ax = figures.stiffness_plot(stiffness_response(dev, stiffness=14500.0))
     lines = _bound_lines(ax)
     assert len(lines) == 4
     coinciding = [lines[n] for n in ("Abbott–Okamura", "Colgate–Schenkel", "exact linear bound")]
@@ -111,7 +111,7 @@ def test_fig6_nyquist_limits_contain_every_crossing_and_sub_tick_cycles_get_a_zo
     res = limit_cycles(p, model=model)
     assert min(c.amplitude for c in res.cycles) < 1.0
     nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model=model)
-    ax = plotting.nyquist_plot(nyq, cycles=res)
+    ax = figures.nyquist_plot(nyq, cycles=res)
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     for pt in _cycle_points(nyq, res):
         assert x0 < pt.real < x1 and y0 < pt.imag < y1
@@ -129,16 +129,16 @@ def test_fig6_nyquist_scales_to_each_device_and_skips_the_zoom_for_one_large_cyc
     for p in (dfa.Params(155.2, 0.00207, 2.03), dfa.Params(2.0, 0.4, 0.1)):
         res = limit_cycles(p, model="zoh")
         nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh")
-        ax = plotting.nyquist_plot(nyq, cycles=res)
+        ax = figures.nyquist_plot(nyq, cycles=res)
         limits.append(ax.get_ylim())
         if len(res.cycles) == 1 and res.cycles[0].amplitude >= 1.0:
-            assert not ax.child_axes and not plotting.nyquist_needs_zoom(nyq, res)
+            assert not ax.child_axes and not figures.nyquist_needs_zoom(nyq, res)
     assert limits[0] != limits[1]  # no fixed [−2.5, 1]² window
 
 
 def test_report_nyquist_uses_the_exact_zoh_loop_of_its_growth_threshold():
-    from dfa.design import design_analysis
-    from dfa.render.figures import design_figures
+    from dfa.analysis.design import design_analysis
+    from dfa.render.report_figures import design_figures
 
     # at rest (speed 0) the analysis skips the costly stiffness-speed chart; the Nyquist view is the same
     a = design_analysis(dfa.get_device("impulse"), velocity=0.0, map_grid=3, samples=2000, n_jobs=1)
@@ -152,11 +152,11 @@ def test_fig5_a_run_that_comes_to_rest_fills_its_time_axis():
     p = dev.params(14500.0)
     r = simulate(p.mu, p.beta, p.sigma, dev.xi_dot(0.2), 4000)  # the Delta's report: at rest after ~330 samples
     assert r.rest_sample is not None and 5 <= r.rest_sample < 1000
-    ax = plotting.trajectory_plot(r, device=dev)
+    ax = figures.trajectory_plot(r, device=dev)
     t1 = ax.get_xlim()[1]
     assert r.rest_sample * dev.period <= t1 <= 4 * r.rest_sample * dev.period + 1e-12
     assert r.rest_sample * dev.period / t1 >= 0.2  # the motion is at least a fifth of the axis, not 2-5 %
-    whole = plotting.trajectory_plot(r, device=dev, window=False)
+    whole = figures.trajectory_plot(r, device=dev, window=False)
     assert whole.get_xlim()[1] == pytest.approx((r.xi.size - 1) * dev.period)
 
 
@@ -165,7 +165,7 @@ def test_fig5_trajectory_axes_in_seconds_and_metres_or_radians_for_a_device(name
     dev = dfa.get_device(name).device
     p = dev.params(1.0 if dev.rotary else 14500.0)
     r = simulate(p.mu, p.beta, p.sigma, 2.0, 1500)
-    ax = plotting.trajectory_plot(r, device=dev)
+    ax = figures.trajectory_plot(r, device=dev)
     assert ax.get_xlabel() == "time (s)"
     (sec,) = ax.child_axes
     _boxes(ax.figure)  # a secondary axis takes its limits when drawn
@@ -201,7 +201,7 @@ def test_fig4_map_panels_physical_axes_every_outcome_in_the_legend_and_the_point
     k = 1015.0
     p = dev.params(k)
     m = stability_map(p.mu, [dev.xi_dot(0.05)], grid=6, samples=2000, n_jobs=1, progress=False)
-    (ax,) = plotting.stability_map_plot(m, device=dev, stiffness=k, point=(p.beta, p.sigma))
+    (ax,) = figures.stability_map_plot(m, device=dev, stiffness=k, point=(p.beta, p.sigma))
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     for outcome in ("rest", "chatter", "oscillating", "unstable", "undecided"):
         assert any(s.startswith(outcome) for s in labels), outcome
@@ -217,18 +217,18 @@ def test_fig4_map_panels_physical_axes_every_outcome_in_the_legend_and_the_point
 
 
 def test_fig4_outcome_colours_are_the_same_in_every_figure():
-    from dfa.simulation import OUTCOMES
+    from dfa.analysis.simulation import OUTCOMES
 
-    cmap = plotting._outcome_cmap()
+    cmap = figures._outcome_cmap()
     assert [matplotlib.colors.to_hex(cmap(i)) for i in range(len(OUTCOMES))] == [
-        plotting.OUTCOME_COLORS[o] for o in OUTCOMES
+        figures.OUTCOME_COLORS[o] for o in OUTCOMES
     ]
-    assert len(set(plotting.OUTCOME_COLORS.values())) == len(OUTCOMES)
+    assert len(set(figures.OUTCOME_COLORS.values())) == len(OUTCOMES)
 
 
 def test_fig7_small_family_panel_shows_its_band_and_no_contour_label_is_clipped():
     c = contour_maps(5.0, grid=30)
-    axes = plotting.contour_plot(c)
+    axes = figures.contour_plot(c)
     bb, ss = np.meshgrid(c.beta, c.sigma)
     top = ss[np.isfinite(c.small_amplitude)].max()
     assert top < 0.5 and axes[0].get_ylim()[1] <= max(1.15 * top, 0.55) + 1e-12
@@ -244,5 +244,5 @@ def test_fig7_small_family_panel_shows_its_band_and_no_contour_label_is_clipped(
 def test_fig5_a_diverged_run_is_shown_up_to_where_it_stopped():
     r = simulate(20.0, 0.05, 0.6, 30.0, 20_000, record=True, bound=1e4)  # stops early: beyond the bound
     assert r.outcome == "unstable" and r.samples_run < 20_000
-    ax = plotting.trajectory_plot(r, period=1e-3)
+    ax = figures.trajectory_plot(r, period=1e-3)
     assert ax.get_xlim()[1] == pytest.approx(r.samples_run * 1e-3)

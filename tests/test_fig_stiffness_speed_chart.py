@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import dfa
-from dfa.speed_chart import HAND_SPEED, stiffness_speed_chart
-from dfa.stiffness import max_passive_velocity
+from dfa.analysis.limits.closed_form import max_passive_velocity
+from dfa.analysis.limits.speed_chart import HAND_SPEED, stiffness_speed_chart
 
 
 @pytest.fixture(scope="module")

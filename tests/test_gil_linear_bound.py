@@ -1,4 +1,4 @@
-"""Exact linear bound of the sampled spring (spec section 8; issue 12 item 2): dfa.linear and k_gil.
+"""Exact linear bound of the sampled spring (spec section 8; issue 12 item 2): dfa.analysis.linear and k_gil.
 
 Checked against: the reproducer of the issue (m = 0.01 kg, b = 5 N·s/m, T = 10 ms:
 Gil et al.'s closed form 2587.8 N/m, true bound 1652 N/m) in the package's own
@@ -20,17 +20,17 @@ from hypothesis import strategies as st
 from scipy.optimize import brentq
 
 import dfa
-from dfa import linear
-from dfa.cli import main
-from dfa.linear import (
+from dfa.analysis import linear
+from dfa.analysis.limits.closed_form import gil_factor
+from dfa.analysis.linear import (
     characteristic_polynomial,
     critical_beta,
     critical_stiffness,
     linear_stable,
     spectral_radius,
 )
-from dfa.simulation import simulate
-from dfa.stiffness import gil_factor
+from dfa.analysis.simulation import simulate
+from dfa.cli import main
 
 A_STAR = 3.720753996  # Gil's condition and the z = −1 condition give the same K here (d = 0)
 REPRO = dict(mass=0.01, damping=5.0, period=0.01)  # bT/m = 5
@@ -346,7 +346,7 @@ def test_gil_cli_json_k_gil(capsys):
 
 def test_gil_cli_row_follows_the_delay(capsys):
     """`dfa stiffness --delay 1` prints the exact linear bound of the delayed loop (smaller than without delay)."""
-    from dfa.linear import critical_stiffness
+    from dfa.analysis.linear import critical_stiffness
 
     assert main(_CLI + ["--delay", "1"]) == 0
     out = capsys.readouterr().out

@@ -1,4 +1,4 @@
-"""The exact linear bound K_crit (dfa.linear.critical_stiffness, spec section 8) at very small a = bT/m, with and
+"""The exact linear bound K_crit (dfa.analysis.linear.critical_stiffness, spec section 8) at very small a = bT/m, with and
 without delay, checked against the spectral radius of the same characteristic polynomial in high-precision arithmetic
 (mpmath).
 
@@ -18,13 +18,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dfa import linear
+from dfa.analysis import linear
+from dfa.analysis.linear import _critical_kappa, _small_rate_kappa, critical_stiffness
 from dfa.cli import main
-from dfa.linear import _critical_kappa, _small_rate_kappa, critical_stiffness
 
 
 def _char_poly_mp(a, kappa, d, a_b=0.0, cutoff=None, lag=0.0):
-    """Coefficients (highest first, mpmath) of κχ = P₀ + κQ of the loop of dfa.controlled_linear (the spring:
+    """Coefficients (highest first, mpmath) of κχ = P₀ + κQ of the loop of dfa.analysis.linear_wall (the spring:
     a_b = 0, no lag): plant c₁ = (a − 1 + p)/a², c₀ = (1 − p − ap)/a² (a = 0: ½, ½), or with amplifier lag α the
     residue numerator of ``test_controlled_linear._zoh_numerator_mpmath``; controller z^{−d}[1 + β_B(1 − z^{−1})F].
     Call inside ``mpmath.workdps``."""
@@ -62,7 +62,7 @@ def _char_poly_mp(a, kappa, d, a_b=0.0, cutoff=None, lag=0.0):
 
 def _rho_mp(a: float, kappa: float, d: int, **controller) -> float:
     """ρ − 1, ρ the largest root modulus of z^d (z − 1)(z − p) + κ(c₁z + c₀) (p = e^{−a}: ZOH of 1/(s(s + a))), or
-    with ``controller`` (a_b, cutoff, lag) of the loop of dfa.controlled_linear (:func:`_char_poly_mp`).
+    with ``controller`` (a_b, cutoff, lag) of the loop of dfa.analysis.linear_wall (:func:`_char_poly_mp`).
 
     60 significant digits after the cancellation in c₁ = (a − 1 + p)/a², c₀ = (1 − p − ap)/a² (which costs
     2·log10(1/a) digits, so the working precision grows as a shrinks).
@@ -125,7 +125,7 @@ def test_gil_small_rate_expansion_matches_the_verified_crossings_at_the_switch(d
 
 
 def test_gil_small_rate_expansion_d0_is_the_critical_beta_asymptote():
-    """d = 0: κ = 2a(1 + a/6) ⇔ β_crit = ½ − 1/(24μ) + O(μ⁻²) (module docstring of dfa.linear, c_0 = 1/24)."""
+    """d = 0: κ = 2a(1 + a/6) ⇔ β_crit = ½ − 1/(24μ) + O(μ⁻²) (module docstring of dfa.analysis.linear, c_0 = 1/24)."""
     a = 1e-7
     kappa = _small_rate_kappa(a, 0)
     assert a / kappa == pytest.approx(0.5 - kappa / 24, rel=1e-13)

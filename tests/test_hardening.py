@@ -22,10 +22,10 @@ from hypothesis import strategies as st
 
 import dfa
 from dfa import _io
+from dfa.analysis.simulation import preload_position, stored_energy
 from dfa.checks import check_beta, check_int, check_mu, check_nonnegative, check_positive, check_real, check_sigma
 from dfa.cli import main
 from dfa.errors import DFAError, DFATypeError, DFAValueError
-from dfa.simulation import preload_position, stored_energy
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DFA = [sys.executable, "-c", "import sys; from dfa.cli import main; sys.exit(main())"]
@@ -302,7 +302,7 @@ def test_cli_output_folder_rules(capsys, tmp_path):
 
 
 def test_report_interrupted_leaves_folder_untouched(tmp_path, monkeypatch):
-    import dfa.design
+    import dfa.analysis.design
     import dfa.render.document
 
     (tmp_path / "keep.txt").write_text("mine")
@@ -312,7 +312,7 @@ def test_report_interrupted_leaves_folder_untouched(tmp_path, monkeypatch):
 
     # after the PNGs and the Markdown were written into the staging folder
     monkeypatch.setattr(dfa.render.document, "design_html", fail)
-    monkeypatch.setattr(dfa.design, "first_unstable_speed", lambda *a, **k: 3.0)
+    monkeypatch.setattr(dfa.analysis.design, "first_unstable_speed", lambda *a, **k: 3.0)
     with pytest.raises(KeyboardInterrupt):
         dfa.design_report(
             dfa.get_device("impulse"), velocity=0.05, out_dir=tmp_path, fmt="both", progress=False, samples=500
@@ -358,7 +358,7 @@ main_thread_only = pytest.mark.skipif(
 @main_thread_only
 @pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
 def test_cli_signal_during_map_nothing_written(capsys, tmp_path, monkeypatch, sig, code):
-    import dfa.maps as maps
+    import dfa.analysis.maps as maps
 
     def interrupted(*a, **k):
         os.kill(os.getpid(), sig)
@@ -518,8 +518,8 @@ def test_cli_resources_refused_up_front(capsys, tmp_path, argv, word):
 
 
 def test_memory_estimates_and_limit(monkeypatch):
-    from dfa.contours import contour_memory_bytes
-    from dfa.maps import map_memory_bytes
+    from dfa.analysis.contours import contour_memory_bytes
+    from dfa.analysis.maps import map_memory_bytes
 
     assert map_memory_bytes(100000, 1) > 1e12 and map_memory_bytes(10, 2) < 1e5
     assert contour_memory_bytes(100000, 200) > 1e12
@@ -669,11 +669,11 @@ def test_cli_table1_groups_without_float_exceptions(capsys, argv):
     ],
 )
 def test_cli_huge_delay_refused_with_the_limit(capsys, cmd):
-    # found by the fuzz test: --delay 999999999999999999 reached numpy's "array is too big" in dfa.linear
+    # found by the fuzz test: --delay 999999999999999999 reached numpy's "array is too big" in dfa.analysis.linear
     err = refused(capsys, *cmd, "--delay", "999999999999999999")
     assert "delay" in err and str(dfa.checks.MAX_DELAY) in err
     with pytest.raises(dfa.errors.DFAValueError, match="at most"):
-        dfa.linear.critical_stiffness(0.1, 1.0, 1e-3, delay=dfa.checks.MAX_DELAY + 1)
+        dfa.analysis.linear.critical_stiffness(0.1, 1.0, 1e-3, delay=dfa.checks.MAX_DELAY + 1)
 
 
 # ------------------------------------------------------------------ 9. limit-cycle time budget (eq. 36 search)
@@ -685,7 +685,7 @@ def _no_cycle_missed_below(part, full):
 
 
 def test_eq36_time_budget_hit_is_incomplete_and_says_so():
-    from dfa.cycles import DEFAULT_TIME_BUDGET, SearchStatus
+    from dfa.analysis.cycles import DEFAULT_TIME_BUDGET, SearchStatus
 
     p = dfa.Params(5.0, 0.1, 0.3)
     full = dfa.limit_cycles(p)
@@ -705,7 +705,7 @@ def test_eq36_time_budget_hit_is_incomplete_and_says_so():
 
 def test_eq36_time_budget_stops_between_pieces(monkeypatch):
     # two pieces of the phase curve (delay 2): a clock that passes the deadline after the first piece
-    import dfa.cycles.solve as cycles
+    import dfa.analysis.cycles.solve as cycles
 
     p = dfa.Params(100.0, 0.2, 0.3)
     full = dfa.limit_cycles(p, delay=2)
@@ -881,7 +881,7 @@ def test_result_records_refuse_fields_of_the_wrong_kind(cls):
 
 def test_ksearch_refuses_a_limit_that_is_not_a_number():
     # found by the API fuzz (KMaxResult fields): KSearch("x") raised TypeError from math.isfinite
-    from dfa.kmax import KSearch
+    from dfa.analysis.limits.kmax import KSearch
 
     with pytest.raises(DFATypeError, match="^value"):
         KSearch("x")
@@ -929,7 +929,7 @@ def test_cli_progress_bar_on_a_terminal(capsys, tmp_path, monkeypatch):
 
 
 def test_cli_contours_and_simulate_progress(capsys, monkeypatch):
-    import dfa.simulation as simulation
+    import dfa.analysis.simulation as simulation
 
     code, out, err = run(capsys, "contours", "--mu", "5", "--grid", "4", "--max-amplitude", "5", "--progress", "--json")
     assert code == 0 and "contours" in err and json.loads(out)["grid"] == [4, 4]
@@ -961,7 +961,7 @@ def test_fig4_load_map_refuses_missing_and_broken_files(tmp_path):
 )
 def test_validate_refuses_bad_arguments_before_any_work(kw, word, monkeypatch):
     # found by the API fuzz: quick="" ran the full validation (minutes); n_jobs was checked after minutes of work
-    import dfa.validation as validation
+    import dfa.analysis.validation as validation
 
     monkeypatch.setattr(validation, "cycle_checks", lambda *a, **k: pytest.fail("work started"))
     with pytest.raises(DFAError, match=f"^{word}"):
@@ -986,7 +986,9 @@ def test_cli_eq36_zoh_at_the_linear_bound_huge_max_amplitude_ends(capsys, amax):
     beta = repr(dfa.gil_beta_critical(5.0))
     argv = ["limit-cycles", "--mu", "5", "--beta", beta, "--sigma", "0.3", "--model", "zoh", "--max-amplitude", amax]
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", dfa.cycles.LimitCycleSearchWarning)  # a numerical failure is reported in out
+        warnings.simplefilter(
+            "ignore", dfa.analysis.cycles.LimitCycleSearchWarning
+        )  # a numerical failure is reported in out
         code, out, err = run(capsys, *argv)
     assert code == 0 and "Traceback" not in err
     assert "incomplete" in out and "no limit cycle predicted" not in out  # never a claim the search cannot back
@@ -1007,7 +1009,7 @@ def test_found_by_explore_fuzz():
     # HYPOTHESIS_PROFILE=explore run of tests/test_api_fuzz.py: scipy's "f(a) and f(b) must have different signs",
     # numpy broadcast errors and an ambiguous truth value, each now the package's error or the right answer
     assert dfa.large_cycle_closed_form(2.654260412659872e-53, 0.0, 0.0) == (0.0, math.pi)  # ω = π − 2π²μ: π
-    assert dfa.cycles.large_cycle_frequency(1e-18) == math.pi
+    assert dfa.analysis.cycles.large_cycle_frequency(1e-18) == math.pi
     with pytest.raises(DFAValueError, match="^beta = .*rounding of π"):
         dfa.small_cycle_closed_form(0.01, 513061015760152.0, 0.0)
     with pytest.raises(DFAValueError, match="broadcast"):

@@ -7,11 +7,13 @@ import json
 
 import pytest
 
-from dfa import checks, contours, criterion, maps, simulation, zwidth
-from dfa.catalogue import get_device
-from dfa.controlled_linear import stable_region
+from dfa import checks
+from dfa.analysis import contours, criterion, maps, simulation
+from dfa.analysis.limits import zwidth
+from dfa.analysis.linear_wall import stable_region
 from dfa.errors import DFATypeError, DFAValueError
-from dfa.status import ZWidthStatus
+from dfa.model.catalogue import get_device
+from dfa.results.status import ZWidthStatus
 
 DEV = get_device("Impulse Engine").device
 

@@ -14,8 +14,8 @@ from hypothesis import strategies as st
 from reference import step_python
 from scipy.integrate import quad
 
+from dfa.analysis.criterion import spring_energy
 from dfa.core import exprel, kernel
-from dfa.criterion import spring_energy
 
 finite = dict(allow_nan=False, allow_infinity=False)
 MU = st.floats(0.05, 1e4, **finite)
@@ -144,7 +144,7 @@ def test_eq4_run_in_ranges_equals_one_call(case, delay):
 def test_eq4_step_stays_finite_when_speed_and_force_underflow():
     """Denormal ξ' and φ of the same sign (a stop 'found' by underflow, w < 0): finite, as the kernel always was.
 
-    Found by dfa.controller_soundness (seed 2024): a linear run decaying through the denormals reached
+    Found by dfa.analysis.wall_soundness (seed 2024): a linear run decaying through the denormals reached
     ξ' = φ = −5e-324, where log1p(y)/y at y < −1 would have been NaN.
     """
     mu, beta = 1.010500446509884, 1.8047083379647524

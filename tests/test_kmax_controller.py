@@ -14,17 +14,17 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import dfa
-import dfa.controller_kmax as ck
-import dfa.kmax as kmax
+import dfa.analysis.limits.kmax as kmax
+import dfa.analysis.limits.wall_kmax as ck
+from dfa.analysis.cycles import limit_cycles
+from dfa.analysis.limits.kmax import design_answer
+from dfa.analysis.limits.wall_kmax import controller_stiffness_limits
+from dfa.analysis.linear_wall import controlled_spectral_radius
+from dfa.analysis.simulation import default_samples, divergence_bound, preload_position, simulate
 from dfa.cli import main
-from dfa.controlled_linear import controlled_spectral_radius
-from dfa.controller import MIN_LAG, Controller, ControllerParams
-from dfa.controller_kmax import controller_stiffness_limits
-from dfa.cycles import limit_cycles
-from dfa.device import Params
 from dfa.errors import DFAValueError
-from dfa.kmax import design_answer
-from dfa.simulation import default_samples, divergence_bound, preload_position, simulate
+from dfa.model.device import Params
+from dfa.model.wall import MIN_LAG, Controller, ControllerParams
 
 DELTA = dfa.get_device("Delta").device
 SMALL = {"speeds": 2, "grid": 6}
@@ -214,7 +214,7 @@ def test_default_samples_controller_spring_unchanged_and_lag_longer():
     assert default_samples(156250.0, 0.125, 0.9554, 0.637, controller=ControllerParams(damping=2.0)) < n
     # a damper whose lag eats all of it: no decay at all, Coulomb alone: as for the spring with σ small
     no_decay = default_samples(1e4, 0.0, 0.0, 5.0, controller=ControllerParams(damping=0.4, lag=0.5))
-    assert no_decay == dfa.simulation.MAX_DEFAULT_SAMPLES
+    assert no_decay == dfa.analysis.simulation.MAX_DEFAULT_SAMPLES
 
 
 # filter_too_much: the assume() on a decaying loop rejects most draws; in the full suite the health check has
@@ -237,7 +237,7 @@ def test_default_samples_controller_decaying_linear_run_rests(log_mu, beta, beta
     assume(rho < 1.0 - 1e-7)  # decays (a margin above rounding), slowly or fast
     xd = 10.0
     n = default_samples(mu, beta, 0.0, xd, quantize=False, controller=c)
-    if n >= dfa.simulation.MAX_DEFAULT_SAMPLES:  # no decay predicted: the cap; keep the test's time modest
+    if n >= dfa.analysis.simulation.MAX_DEFAULT_SAMPLES:  # no decay predicted: the cap; keep the test's time modest
         assume(-math.log(rho) * n * 3 / 8 > 1.0)
     run = simulate(mu, beta, 0.0, xd, None, quantize=False, record=False, controller=c, bound=1e12)
     assert run.samples == n
@@ -248,9 +248,9 @@ def test_default_samples_controller_used_by_simulate_and_search():
     c = ControllerParams(damping=0.5, lag=0.3)
     run = simulate(1e4, 0.1, 0.6, 3.0, None, controller=c, record=False)
     assert run.samples == default_samples(1e4, 0.1, 0.6, 3.0, controller=c)
-    outs, lengths = dfa.kmax.simulate_points([(1e4, 0.1, 0.6, 0.0, 3.0)], 0, 10**6, c)
+    outs, lengths = dfa.analysis.limits.kmax.simulate_points([(1e4, 0.1, 0.6, 0.0, 3.0)], 0, 10**6, c)
     assert lengths == [min(run.samples, 10**6)] and outs == [str(run.outcome)]
-    assert np.isfinite(dfa.simulation.net_damping(1e4, 0.1, 0, c))
+    assert np.isfinite(dfa.analysis.simulation.net_damping(1e4, 0.1, 0, c))
 
 
 def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search):
@@ -260,7 +260,7 @@ def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search)
     r = controller_stiffness_limits(DELTA, Controller(30000.0, damping=1.0), 0.1, assess="--stiffness", **SMALL)
     a = r.assessment.as_dict()
     assert d["assessment"] == a and d["stiffness_source"] == "--stiffness"
-    assert a["stiffness"] == 30000.0 and a["outcomes"]["impact"] in dfa.simulation.OUTCOMES
+    assert a["stiffness"] == 30000.0 and a["outcomes"]["impact"] in dfa.analysis.simulation.OUTCOMES
     # the same K's limits: the answer does not depend on the K being assessed (B, f_c, f_bw, d held fixed)
     assert d["k_sim"] == r.k_sim.value and d["k_criterion"] == r.k_criterion
     assert main(argv) == 0
@@ -307,7 +307,7 @@ def test_simulate_points_controller_runs_batched_equal_simulate_one_by_one():
     for i in range(24):
         pts.append((10 ** rng.uniform(0.5, 2.5), rng.uniform(0, 1), rng.uniform(0, 1.5), 0.0, rng.uniform(0.3, 4)))
         cs.append(ctls[i % 4])
-    outs, lengths = dfa.kmax.simulate_points(pts, 1, 20_000, controllers=cs)
+    outs, lengths = dfa.analysis.limits.kmax.simulate_points(pts, 1, 20_000, controllers=cs)
     want = []
     for (mu, beta, sigma, x0, v0), c, n in zip(pts, cs, lengths, strict=True):
         bound = divergence_bound(x0, v0, mu)
@@ -315,4 +315,4 @@ def test_simulate_points_controller_runs_batched_equal_simulate_one_by_one():
         want.append(str(run.outcome))
     assert outs == want and len(set(outs)) >= 2
     with pytest.raises(DFAValueError, match=r"delay = 0 is invalid with a controller of delay 1"):
-        dfa.kmax.simulate_points(pts[:1], 0, 1000, controllers=cs[:1])
+        dfa.analysis.limits.kmax.simulate_points(pts[:1], 0, 1000, controllers=cs[:1])

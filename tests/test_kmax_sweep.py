@@ -13,13 +13,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dfa
-import dfa.kmax as kmax
+import dfa.analysis.limits.kmax as kmax
+from dfa.analysis.limits.kmax import RunCache, design_answer
+from dfa.analysis.limits.wall_kmax import controller_stiffness_limits
+from dfa.analysis.simulation import default_samples, divergence_bound, preload_position, simulate
 from dfa.cli import main
-from dfa.controller import Controller, ControllerParams
-from dfa.controller_kmax import controller_stiffness_limits
-from dfa.device import Device, Params
-from dfa.kmax import RunCache, design_answer
-from dfa.simulation import default_samples, divergence_bound, preload_position, simulate
+from dfa.model.device import Device, Params
+from dfa.model.wall import Controller, ControllerParams
 
 RE35 = dfa.get_device("re35").device
 PHANTOM = dfa.get_device("phantom").device
@@ -113,7 +113,7 @@ def _k_of(dev, key):
 @settings(max_examples=15)
 @given(
     mass=st.floats(0.02, 0.3),
-    damping=st.one_of(st.just(0.0), st.floats(1e-4, 0.03)),  # a denormal b breaks dfa.linear.k_gil (reported)
+    damping=st.one_of(st.just(0.0), st.floats(1e-4, 0.03)),  # a denormal b breaks dfa.analysis.linear.k_gil (reported)
     coulomb=st.floats(0.005, 0.08),
     resolution=st.floats(1e-5, 4e-4),
     period=st.floats(3e-4, 2e-3),

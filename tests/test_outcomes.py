@@ -12,10 +12,10 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import dfa
+from dfa.analysis.maps import StabilityMap, load_map, stability_map
+from dfa.analysis.simulation import OUTCOMES, _tail_length, default_samples, simulate
 from dfa.cli import main
 from dfa.core import kernel
-from dfa.maps import StabilityMap, load_map, stability_map
-from dfa.simulation import OUTCOMES, _tail_length, default_samples, simulate
 
 BELOW_HALF = math.nextafter(0.5, 0.0)
 
@@ -166,7 +166,7 @@ def test_rule_defaults_are_the_documented_ones():
             1.0,
             1.25,
             1e-3,
-            None,  # None: dfa.simulation.divergence_bound, max(1e6, 100(A0 + 1)) (eq. 18-19)
+            None,  # None: dfa.analysis.simulation.divergence_bound, max(1e6, 100(A0 + 1)) (eq. 18-19)
         )
     assert OUTCOMES == ("rest", "oscillating", "unstable", "chatter", "undecided")
     assert (kernel.REST, kernel.OSCILLATING, kernel.UNSTABLE, kernel.CHATTER, kernel.UNDECIDED) == (0, 1, 2, 3, 4)
@@ -318,10 +318,10 @@ def test_fig4_plot_colours_and_legend_per_class():
     matplotlib.use("Agg")
     from matplotlib.colors import to_rgb
 
-    from dfa import plotting
+    from dfa import figures
 
     m = _all_classes_map()
-    axes = plotting.stability_map_plot(m)
+    axes = figures.stability_map_plot(m)
     ax = axes[0]
     fig = ax.figure
     fig.canvas.draw()
@@ -387,9 +387,9 @@ def test_cli_map_text_counts_every_class(capsys, tmp_path):
 @pytest.mark.parametrize("delay", [0, 1, 2])
 def test_gil_linear_loop_outcome_flips_at_the_exact_linear_bound(delay):
     """Without quantization the outcome is scale-free: from a tiny impact the linear loop is
-    'unstable' just above the exact linear bound (dfa.linear) and 'rest' (decaying) just below it."""
-    from dfa.device import Device
-    from dfa.linear import critical_stiffness
+    'unstable' just above the exact linear bound (dfa.analysis.linear) and 'rest' (decaying) just below it."""
+    from dfa.analysis.linear import critical_stiffness
+    from dfa.model.device import Device
 
     dev = Device(0.01, 5.0, 0.0, 1e-5, 0.01)  # bT/m = 5: the z = -1 condition binds at d = 0
     k = critical_stiffness(dev.mass, dev.damping, dev.period, delay=delay)
@@ -414,7 +414,7 @@ def test_eq6_passive_short_runs_are_never_called_unstable(args):
 
 def test_eq7_linear_loop_decayed_to_denormals_is_rest_not_chatter():
     """Red-team finding: a stable linear loop that decayed into denormal numbers was called 'chatter'."""
-    from dfa.linear import linear_stable
+    from dfa.analysis.linear import linear_stable
 
     assert linear_stable(1.0, 0.5)
     r = simulate(1.0, 0.5, 0.0, 2.0, 200_000, quantize=False, record=False)

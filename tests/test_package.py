@@ -23,15 +23,15 @@ def test_public_api_is_listed_and_importable():
 def test_catalogue_is_package_data():
     from importlib import resources
 
-    assert resources.files("dfa").joinpath("data/devices.toml").is_file()
+    assert resources.files("dfa.model").joinpath("data/devices.toml").is_file()
     assert resources.files("dfa").joinpath("py.typed").is_file()
     assert resources.files("dfa.render").joinpath("templates/design_report.md.j2").is_file()
 
 
 def test_top_level_functions_survive_submodule_imports():
     # a submodule named like a function would rebind dfa.<name> to the module on import
-    import dfa.cycles
-    import dfa.simulation
+    import dfa.analysis.cycles
+    import dfa.analysis.simulation
 
     assert dfa.simulate.__name__ == "simulate" and callable(dfa.simulate)
     assert dfa.limit_cycles.__name__ == "limit_cycles" and callable(dfa.limit_cycles)
@@ -94,7 +94,7 @@ def test_every_function_in_dfa_is_under_80_lines_of_code():
 
 
 def test_every_subpackage_is_in_the_distribution():
-    """A non-editable install ships every package under dfa/ (dfa.cycles was once missing from a fixed list)."""
+    """A non-editable install ships every package under dfa/ (dfa.analysis.cycles was once missing from a fixed list)."""
     from fnmatch import fnmatch
 
     try:
@@ -106,6 +106,6 @@ def test_every_subpackage_is_in_the_distribution():
     cfg = tomllib.loads((root / "pyproject.toml").read_text())["tool"]["setuptools"]
     patterns = cfg["packages"]["find"]["include"]
     subpackages = [".".join(p.parent.relative_to(root).parts) for p in (root / "dfa").rglob("__init__.py")]
-    assert "dfa.cycles" in subpackages and "dfa.render" in subpackages
+    assert "dfa.analysis.cycles" in subpackages and "dfa.render" in subpackages
     missing = [name for name in subpackages if not any(fnmatch(name, pat) for pat in patterns)]
     assert missing == [], f"packages left out of the distribution: {missing}"

@@ -1,9 +1,9 @@
-"""Colgate–Schenkel passivity with a general discrete controller (issue 15 item 2): dfa.passivity.
+"""Colgate–Schenkel passivity with a general discrete controller (issue 15 item 2): dfa.analysis.colgate_schenkel.
 
 Checked against: the closed forms of Colgate & Schenkel (1997) — pure spring d = 0:
 b > KT/2 (paper eq. 8); spring and damper d = 0: b > KT/2 + B; the spring with a delay
 of d samples: b > KT(d + ½), derived here with sympy (the limit θ → 0 of the condition's
-ratio, which is its maximum) and equal to the delay line β = ½ + d of eq. 6 in dfa.criterion
+ratio, which is its maximum) and equal to the delay line β = ½ + d of eq. 6 in dfa.analysis.criterion
 (dfa.k_colgate with a delay); a brute-force evaluation of the condition as written,
 Re{(1 − e^{−jθ}) H(e^{jθ})}/(1 − cos θ) on a dense grid, for random controllers; the
 refusal with an amplifier lag.
@@ -19,9 +19,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dfa import Controller, ControllerParams, Device, k_colgate
+from dfa.analysis.colgate_schenkel import PassivityStatus, colgate_schenkel_beta, colgate_schenkel_damping
 from dfa.errors import DFAValueError
-from dfa.jsonable import dumps
-from dfa.passivity import PassivityStatus, colgate_schenkel_beta, colgate_schenkel_damping
+from dfa.results.jsonable import dumps
 
 
 def test_colgate_schenkel_spring_d0_is_eq8():

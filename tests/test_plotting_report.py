@@ -13,14 +13,14 @@ import matplotlib.pyplot as plt
 import pytest
 
 import dfa
-from dfa import plotting
+from dfa import figures
+from dfa.analysis.contours import contour_maps
+from dfa.analysis.cycles import limit_cycles
+from dfa.analysis.limits.closed_form import stiffness_response
+from dfa.analysis.loop import nyquist_locus_response
+from dfa.analysis.maps import stability_map
+from dfa.analysis.simulation import simulate
 from dfa.cli import main
-from dfa.contours import contour_maps
-from dfa.cycles import limit_cycles
-from dfa.loop import nyquist_locus_response
-from dfa.maps import stability_map
-from dfa.simulation import simulate
-from dfa.stiffness import stiffness_response
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 UNIT = re.compile(
@@ -44,14 +44,14 @@ def assert_units(ax):
 
 
 def test_fig3_regions_plot(tmp_path):
-    ax = plotting.regions_plot(dfa.passivity_criterion(0.2, 1.0, 2.0), xi_dots=[1, 5])
+    ax = figures.regions_plot(dfa.passivity_criterion(0.2, 1.0, 2.0), xi_dots=[1, 5])
     assert_units(ax)
     rendered(ax.figure, tmp_path, "regions")
 
 
 def test_fig4_stability_map_plot(tmp_path):
     m = stability_map(100.0, [1.0, 5.0], grid=8, samples=2000, n_jobs=1, progress=False)
-    axes = plotting.stability_map_plot(m)
+    axes = figures.stability_map_plot(m)
     assert len(axes) == 2
     for ax in axes:
         assert_units(ax)
@@ -59,17 +59,17 @@ def test_fig4_stability_map_plot(tmp_path):
 
 
 def test_fig5_trajectory_plot(tmp_path):
-    ax = plotting.trajectory_plot(simulate(100.0, 0.1, 0.9, 2.0, 1500), period=1e-3)
+    ax = figures.trajectory_plot(simulate(100.0, 0.1, 0.9, 2.0, 1500), period=1e-3)
     assert_units(ax)
     ys = sorted(line.get_ydata()[0] for line in ax.get_lines()[1:])
     assert ys == [-1.0, 1.0]  # ±1 tick marked
     rendered(ax.figure, tmp_path, "traj")
     with pytest.raises(ValueError):
-        plotting.trajectory_plot(simulate(1.0, 0.1, 0.9, 2.0, 10, record=False))
+        figures.trajectory_plot(simulate(1.0, 0.1, 0.9, 2.0, 10, record=False))
 
 
 def test_fig7_contour_plot(tmp_path):
-    axes = plotting.contour_plot(contour_maps(5.0, grid=30))
+    axes = figures.contour_plot(contour_maps(5.0, grid=30))
     for ax in axes:
         assert_units(ax)
     rendered(axes[0].figure, tmp_path, "contours")
@@ -78,11 +78,11 @@ def test_fig7_contour_plot(tmp_path):
 def test_nyquist_and_stiffness_and_validation_plots(tmp_path):
     p = dfa.Params(2.0, 0.4, 0.1)
     res = limit_cycles(p)
-    ax = plotting.nyquist_plot(nyquist_locus_response(p, amplitudes=[1.0, 2.0]), cycles=res)
+    ax = figures.nyquist_plot(nyquist_locus_response(p, amplitudes=[1.0, 2.0]), cycles=res)
     assert_units(ax)
     rendered(ax.figure, tmp_path, "nyquist")
     dev = dfa.get_device("Delta").device
-    ax = plotting.stiffness_plot(stiffness_response(dev, stiffness=14500.0))
+    ax = figures.stiffness_plot(stiffness_response(dev, stiffness=14500.0))
     assert_units(ax)
     assert "N/m" in ax.get_ylabel() and "m/s" in ax.get_xlabel()
     rendered(ax.figure, tmp_path, "stiffness")
@@ -134,7 +134,7 @@ def test_report_numbers_equal_the_api(report_dir):
     )
     assert f"{crit.critical_xi_dot:.4g} ticks/sample" in md
     assert f"region {crit.region}" in md
-    g = dfa.cycles.growth_threshold(dev.params(80.0), dev, model="zoh", max_amplitude=5000.0)
+    g = dfa.analysis.cycles.growth_threshold(dev.params(80.0), dev, model="zoh", max_amplitude=5000.0)
     assert f"M_u = {g.amplitude:.4g} ticks" in md
 
 

@@ -13,11 +13,11 @@ import mpmath
 import numpy as np
 import pytest
 
-from dfa.controlled_linear import controlled_characteristic_polynomial, stable_stiffness
-from dfa.controller import Controller, ControllerParams
+from dfa.analysis.colgate_schenkel import colgate_schenkel_beta
+from dfa.analysis.linear_wall import controlled_characteristic_polynomial, stable_stiffness
+from dfa.analysis.simulation import simulate, simulate_batch
 from dfa.errors import DFATypeError, DFAValueError
-from dfa.passivity import colgate_schenkel_beta
-from dfa.simulation import simulate, simulate_batch
+from dfa.model.wall import Controller, ControllerParams
 
 CTL = ControllerParams(damping=0.2, delay=1, cutoff=0.1)
 

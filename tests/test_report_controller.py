@@ -3,7 +3,7 @@
 Through ``dfa.cli.main``: the controller, its groups and the extended criterion's verdict in the Markdown and the JSON
 are what `dfa check` with the same flags prints; with an amplifier lag the check is "not covered"; the Z-width
 section is computed with the controller and its linear boundary is the exact linear bound
-(:func:`dfa.controlled_linear.stable_stiffness`) at each B; bad controller input is one line and exit 2; every null
+(:func:`dfa.analysis.linear_wall.stable_stiffness`) at each B; bad controller input is one line and exit 2; every null
 of the JSON has a reason. The spring report is unchanged: its analysis equals, key by key and byte by byte in the
 Markdown, a golden recorded from the code before controllers reached the report (commit 4b5ad71).
 """
@@ -22,16 +22,16 @@ import pytest
 from test_cli_json_null_reasons import unexplained_nulls
 
 import dfa
-import dfa.design
-import dfa.render.figures as figures
+import dfa.analysis.design
+import dfa.render.report_figures as figures
 import dfa.report
+from dfa.analysis.design import design_analysis
+from dfa.analysis.linear_wall import stable_stiffness
 from dfa.cli import main
-from dfa.controlled_linear import stable_stiffness
-from dfa.controller import Controller
-from dfa.design import design_analysis
 from dfa.errors import DFAValueError
-from dfa.formatting import json_dumps
+from dfa.model.wall import Controller
 from dfa.render.document import design_markdown
+from dfa.results.jsonable import dumps
 
 SMALL = dict(map_grid=5, samples=3000, n_jobs=1)  # a small map: the numbers of the text do not depend on it
 GOLDEN = Path(__file__).resolve().parent / "golden"
@@ -83,9 +83,11 @@ def _case(tmp: Path, flags: list[str], extra: tuple[str, ...] = ()) -> dict:
     The Z-width's grid asked for is recorded (``grids``) and run at 4 points per axis.
     """
     grids: list[int] = []
-    real = dfa.design.z_width
+    real = dfa.analysis.design.z_width
     with small_reports() as mp:
-        mp.setattr(dfa.design, "z_width", lambda *a, **kw: grids.append(kw["grid"]) or real(*a, **{**kw, "grid": 4}))
+        mp.setattr(
+            dfa.analysis.design, "z_width", lambda *a, **kw: grids.append(kw["grid"]) or real(*a, **{**kw, "grid": 4})
+        )
         data, md = report(tmp, *flags, *extra)
     return dict(
         grids=grids,
@@ -196,7 +198,7 @@ def test_controller_report_leaves_out_the_spring_only_sections(ctl):
     g = dfa.growth_threshold(p, model="zoh", controller=cp)
     assert a["growth_thresholds"]["zoh"]["amplitude"] == g.amplitude
     xi = a["controller_check"]["xi_dot"]
-    bound = dfa.simulation.divergence_bound(0.0, xi, p.mu)
+    bound = dfa.analysis.simulation.divergence_bound(0.0, xi, p.mu)
     sim = dfa.simulate(p.mu, p.beta, p.sigma, xi, None, record=False, controller=cp, bound=bound)
     assert a["outcome"]["outcome"] == sim.outcome.value and a["outcome"]["samples_run"] == sim.samples_run
 
@@ -217,7 +219,7 @@ def test_controller_report_zwidth_linear_boundary_is_the_exact_bound(ctl):
 
 def test_controller_zwidth_on_by_default_and_can_be_turned_off(ctl, lag):
     """With a controller the report has a 16 x 16 Z-width unless asked otherwise (0: none)."""
-    assert ctl["grids"] == [dfa.design.CONTROLLER_ZWIDTH_GRID] == [16] and ctl["data"]["analysis"]["zwidth"]
+    assert ctl["grids"] == [dfa.analysis.design.CONTROLLER_ZWIDTH_GRID] == [16] and ctl["data"]["analysis"]["zwidth"]
     a = lag["data"]["analysis"]
     assert lag["grids"] == [] and a["zwidth"] is None and "## Z-width" not in lag["md"]
     assert "zwidth_grid=0" in a["null_reasons"]["/zwidth"]
@@ -315,7 +317,7 @@ def test_spring_report_unchanged_golden_from_before_the_controller():
     e = dfa.get_device("impulse")
     for ctl in (None, Controller(e.stiffness)):  # the pure spring as a Controller is the spring
         a = design_analysis(e, velocity=0.05, controller=ctl, **SMALL)
-        new = json.loads(json_dumps(a.as_dict()))
+        new = json.loads(dumps(a.as_dict(), ensure_ascii=False))
         assert set(new) == set(old) and golden.compare_json(old, new) == []
         md = design_markdown(a, {n: f"caption of {n}" for n in NAMES}, lambda n: f"figures/{n}.png")
         assert md == old_md
@@ -326,8 +328,8 @@ def test_fig6_nyquist_cycle_marks_lie_on_the_locus_with_a_controller():
 
     (Before, the mark was the spring's L, off the controller's curve.)
     """
-    from dfa.loop import nyquist_locus_response, quantizer_df
-    from dfa.plotting import _cycle_points
+    from dfa.analysis.loop import nyquist_locus_response, quantizer_df
+    from dfa.figures import _cycle_points
 
     dev = dfa.get_device("impulse").device
     cp = Controller(80.0, 0.05, 1, 100.0, 200.0).params(dev.period)
@@ -341,7 +343,7 @@ def test_fig6_nyquist_cycle_marks_lie_on_the_locus_with_a_controller():
 
 def test_fig6_nyquist_title_names_the_controller(monkeypatch):
     """The report's Nyquist figure names its controller in the title (as its caption does), the spring's does not."""
-    from dfa.plotting import MODEL_NAMES
+    from dfa.figures import MODEL_NAMES
 
     titles: list[str] = []
 

@@ -20,19 +20,19 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dfa
-from dfa import status as status_mod
+from dfa.analysis.contours import contour_maps
+from dfa.analysis.cycles import growth_threshold, limit_cycles
+from dfa.analysis.limits.closed_form import stiffness_limits, stiffness_response
+from dfa.analysis.loop import nyquist_locus_response
+from dfa.analysis.maps import StabilityMap, stability_map
+from dfa.analysis.simulation import simulate
+from dfa.analysis.soundness import delay_soundness
+from dfa.analysis.validation import Soundness, ValidationResult
 from dfa.cli import main
-from dfa.contours import contour_maps
-from dfa.cycles import growth_threshold, limit_cycles
-from dfa.device import Params
 from dfa.errors import DFAError, DFAValueError
-from dfa.jsonable import NULL_REASONS_KEY, dumps, to_jsonable
-from dfa.loop import nyquist_locus_response
-from dfa.maps import StabilityMap, stability_map
-from dfa.simulation import simulate
-from dfa.soundness import delay_soundness
-from dfa.stiffness import stiffness_limits, stiffness_response
-from dfa.validation import Soundness, ValidationResult
+from dfa.model.device import Params
+from dfa.results import status as status_mod
+from dfa.results.jsonable import NULL_REASONS_KEY, dumps, to_jsonable
 
 ROOT = Path(__file__).resolve().parents[1]
 DEV = dfa.get_device("Delta").device
@@ -107,7 +107,7 @@ def test_eq6_fig3_status_is_the_region_meaning():
 
 
 def test_search_status_is_the_cycle_module_enum():
-    from dfa.cycles import SearchStatus
+    from dfa.analysis.cycles import SearchStatus
 
     assert SearchStatus is status_mod.SearchStatus
     res = limit_cycles(Params(5.0, 0.1, 0.6))
@@ -215,7 +215,7 @@ def test_eq6_criterion_refuses_nan_fields():
 
 def test_fig4_map_and_fig7_contours_as_dict_are_strict_json(small_map, contours):
     m = strict_roundtrip(small_map.as_dict())
-    assert sum(m["counts"][0][k] for k in dfa.simulation.OUTCOMES) == 16 and m["status"] == "ok"
+    assert sum(m["counts"][0][k] for k in dfa.analysis.simulation.OUTCOMES) == 16 and m["status"] == "ok"
     c = strict_roundtrip(contours.as_dict())
     assert c["small_points"] == int(np.isfinite(contours.small_amplitude).sum())
 
@@ -430,7 +430,7 @@ def test_fig4_map_to_xarray_has_labelled_dims(small_map):
     sel = ds.sel(xi_dot=small_map.xi_dots[k], sigma=small_map.sigma[i], beta=small_map.beta[j])
     assert int(sel["outcome"]) == small_map.outcome[k, i, j]
     assert ds.attrs["mu"] == small_map.mu and ds.attrs["status"] == "ok"
-    assert ds["outcome"].attrs["flag_meanings"].split() == list(dfa.simulation.OUTCOMES)
+    assert ds["outcome"].attrs["flag_meanings"].split() == list(dfa.analysis.simulation.OUTCOMES)
 
 
 def test_fig7_contours_to_xarray_has_labelled_dims(contours):
@@ -470,7 +470,7 @@ def test_import_dfa_and_result_helpers_load_no_matplotlib_nor_xarray():
     import subprocess
 
     code = (
-        "import sys, dfa, dfa.status, dfa.jsonable, dfa.stiffness; "
+        "import sys, dfa, dfa.results.status, dfa.results.jsonable, dfa.analysis.limits.closed_form; "
         "print(sorted(m for m in ('matplotlib', 'xarray', 'control') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()

@@ -9,26 +9,25 @@ import numpy as np
 import pytest
 
 import dfa
-from dfa.contours import contour_maps
-from dfa.design import _check_validation, design_analysis
-from dfa.device import Params
+from dfa.analysis.contours import contour_maps
+from dfa.analysis.design import _check_validation, design_analysis
+from dfa.analysis.loop import nyquist_locus_response
 from dfa.errors import DFAValueError
-from dfa.formatting import json_dumps
-from dfa.jsonable import NULL_REASONS_KEY, dumps
-from dfa.loop import nyquist_locus_response
+from dfa.model.device import Params
 from dfa.report import ReportResult
-from dfa.status import ContourStatus, DesignStatus, NyquistStatus, ReportStatus
+from dfa.results.jsonable import NULL_REASONS_KEY, dumps
+from dfa.results.status import ContourStatus, DesignStatus, NyquistStatus, ReportStatus
 
 
 def _strict(d):
     return json.loads(json.dumps(d, allow_nan=False))
 
 
-def test_one_json_path_formatting_delegates_to_the_sanitiser():
+def test_one_json_path_the_files_json_is_the_sanitisers():
     obj = {"k": float("nan"), "v": (1.5, float("-inf")), "u": "N·m", "s": ContourStatus.OK, "a": np.arange(2.0)}
-    assert json.loads(json_dumps(obj)) == json.loads(dumps(obj))
-    assert json.loads(json_dumps(obj))[NULL_REASONS_KEY] == {"/k": "NaN", "/v/1": "-inf"}
-    assert "N·m" in json_dumps(obj)  # non-ASCII kept in files people read
+    assert json.loads(dumps(obj, ensure_ascii=False)) == json.loads(dumps(obj))
+    assert json.loads(dumps(obj, ensure_ascii=False))[NULL_REASONS_KEY] == {"/k": "NaN", "/v/1": "-inf"}
+    assert "N·m" in dumps(obj, ensure_ascii=False)  # non-ASCII kept in files people read
 
 
 def test_design_analysis_status_enum_and_strict_json():
@@ -88,7 +87,7 @@ def test_fig6_nyquist_sigma_zero_crossings_from_the_solver_status_ok():
 
 
 def test_fig6_nyquist_reports_an_incomplete_solver_search(monkeypatch):
-    import dfa.cycles as cyc
+    import dfa.analysis.cycles as cyc
 
     real = cyc.limit_cycles
 

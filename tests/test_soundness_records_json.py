@@ -1,4 +1,4 @@
-"""The two soundness records (dfa.soundness.DelaySoundness, dfa.controller_soundness.ControllerSoundness) share one
+"""The two soundness records (dfa.analysis.soundness.DelaySoundness, dfa.analysis.wall_soundness.ControllerSoundness) share one
 declaration of their count fields; their JSON is byte-identical to the records declared field by field before
 (the declarations of commit 9829bef, kept below as the reference and fed the same small runs)."""
 
@@ -9,11 +9,11 @@ from dataclasses import dataclass, field
 
 import pytest
 
-from dfa.controller_soundness import ControllerSoundness, controller_soundness
+from dfa.analysis.soundness import DelaySoundness, delay_soundness
+from dfa.analysis.wall_soundness import ControllerSoundness, controller_soundness
 from dfa.errors import DFAValueError
-from dfa.jsonable import dumps, to_jsonable
-from dfa.soundness import DelaySoundness, delay_soundness
-from dfa.status import SoundnessStatus
+from dfa.results.jsonable import dumps, to_jsonable
+from dfa.results.status import SoundnessStatus
 
 
 class _OldCounts:
@@ -79,13 +79,13 @@ def test_soundness_records_json_byte_identical_to_the_field_by_field_declaration
         assert list(new.as_dict()) == list(old.as_dict())  # same keys, same order
         assert dumps(new) == dumps(old) and dumps(new, indent=1) == dumps(old, indent=1)
         assert new.status == old.status
-    # the files `python -m dfa.soundness` writes: a list of records, indented
+    # the files `python -m dfa.analysis.soundness` writes: a list of records, indented
     assert dumps(runs[:2], indent=1) == dumps(olds[:2], indent=1)
     assert dumps(runs[2:], indent=1) == dumps(olds[2:], indent=1)
 
 
 def test_soundness_records_declare_the_counts_once():
-    from dfa._soundness_counts import SoundnessCounts
+    from dfa.analysis.soundness_counts import SoundnessCounts
 
     shared = {f.name for f in dataclasses.fields(SoundnessCounts)}
     assert {"points", "energy_grew", "diverged", "violations", "worst_growth", "seed"} <= shared

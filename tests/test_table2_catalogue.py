@@ -5,7 +5,7 @@ import math
 import pytest
 
 import dfa
-from dfa.catalogue import catalogue, get_device
+from dfa.model.catalogue import catalogue, get_device
 
 
 def _by_name():

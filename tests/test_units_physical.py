@@ -9,7 +9,7 @@ import pytest
 
 import dfa
 from dfa.cli import main
-from dfa.units import physical_quantities, unit_context
+from dfa.model.units import physical_quantities, unit_context
 
 IMPULSE = dfa.Device(mass=0.032, damping=0.02, coulomb=0.024, resolution=314e-6, period=2e-3, name="Impulse Engine")
 ROTARY = dfa.Device(mass=6.28e-6, damping=9e-5, coulomb=2e-2, resolution=2 * math.pi / 8192, period=1e-3, rotary=True)

@@ -1,5 +1,5 @@
 """Z-width (issue 15): the linear boundary is the exact bound at each B, simulation never diverges below the
-extended criterion (eq. 6 redone), the B = 0 column is the spring-only K_max of dfa.kmax, jobs do not change
+extended criterion (eq. 6 redone), the B = 0 column is the spring-only K_max of dfa.analysis.limits.kmax, jobs do not change
 the result, and `dfa zwidth` prints the API's numbers and refuses bad input with exit 2."""
 
 import json
@@ -9,14 +9,14 @@ import numpy as np
 import pytest
 
 import dfa
-import dfa.zwidth as zmod
-from dfa.catalogue import get_device
+import dfa.analysis.limits.zwidth as zmod
+from dfa.analysis.limits.closed_form import k_gil, k_max_criterion
+from dfa.analysis.limits.kmax import K_RTOL, SAFE, _Evidence
+from dfa.analysis.limits.zwidth import DIVERGES, POINT_OUTCOMES, ZWIDTH_METHODS, z_width
+from dfa.analysis.linear_wall import stable_stiffness
 from dfa.cli import main
-from dfa.controlled_linear import stable_stiffness
-from dfa.controller import Controller
-from dfa.kmax import K_RTOL, SAFE, _Evidence
-from dfa.stiffness import k_gil, k_max_criterion
-from dfa.zwidth import DIVERGES, POINT_OUTCOMES, ZWIDTH_METHODS, z_width
+from dfa.model.catalogue import get_device
+from dfa.model.wall import Controller
 
 DEV = "Impulse Engine"
 V = 0.1
@@ -73,7 +73,7 @@ def test_eq11_zwidth_B0_column_is_the_spring_kmax(zw):
     dev = zw.device
     assert zw.boundary("linear")[0] == pytest.approx(k_gil(dev, delay=0), rel=1e-9)
     assert zw.boundary("criterion")[0] == pytest.approx(k_max_criterion(dev, V, 0), rel=2 * K_RTOL)
-    # the simulated column against dfa.kmax's own runs (simulate_points) at every grid K
+    # the simulated column against dfa.analysis.limits.kmax's own runs (simulate_points) at every grid K
     ev = _Evidence(dev, np.array(zw.speeds), 0, zw.max_samples, "half-delay")
     kmax_safe = [ev.no_divergence(float(k)) == SAFE for k in zw.stiffness]
     zw_safe = [POINT_OUTCOMES[c] in ("rest", "bounded") for c in zw.outcome[0]]
@@ -206,7 +206,7 @@ def test_report_zwidth_section_states_the_api_numbers(tmp_path, capsys):
     assert "## Z-width" in md and "_zwidth.png" in md
     z = z_width(get_device(DEV).device, V, grid=3, speeds=1, n_jobs=1)
     assert f"{z.boundary('linear')[1]:.4g}" in md
-    from dfa.design import design_analysis
+    from dfa.analysis.design import design_analysis
 
     a = design_analysis(get_device(DEV), velocity=V, map_grid=3, samples=2000, n_jobs=1, zwidth_grid=3)
     assert a.as_dict()["zwidth"]["boundaries"]["linear"]["k_max"] == z.as_dict()["boundaries"]["linear"]["k_max"]

@@ -9,13 +9,13 @@ import numpy as np
 import pytest
 from reference import zwidth_point_one_by_one
 
-import dfa.zwidth as zmod
-from dfa.catalogue import get_device
+import dfa.analysis.limits.zwidth as zmod
+from dfa.analysis.limits.zwidth import z_width
+from dfa.analysis.simulation import OUTCOMES
 from dfa.core.batch import batch_wall_kernel
 from dfa.core.kernel import NSEG, NSTATS, OSCILLATING, REST, UNDECIDED, UNSTABLE
 from dfa.core.wall_kernel import simulate_wall_kernel
-from dfa.simulation import OUTCOMES
-from dfa.zwidth import z_width
+from dfa.model.catalogue import get_device
 
 
 def _tasks(name, v, d, fc, fbw, grid, speeds, cap=zmod.ZWIDTH_MAX_SAMPLES):

@@ -12,6 +12,6 @@ folder alone, see the Makefile). The modules import numpy, numba and one another
 - :mod:`~dfa.core.dfcore`: the quantizer's describing function (eq. 41) in compiled sums;
 - :mod:`~dfa.core.divdiff` and :mod:`~dfa.core.zohlag`: the ZOH pulse transfer with an amplifier lag.
 
-Analyses (:mod:`dfa.simulation`, :mod:`dfa.describing`, …) call these with validated dimensionless
+Analyses (:mod:`dfa.analysis.simulation`, :mod:`dfa.analysis.describing`, …) call these with validated dimensionless
 inputs; nothing here checks its arguments.
 """

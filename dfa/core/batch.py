@@ -1,13 +1,13 @@
 """Independent runs of the exact simulator in one compiled call, each with its own length, bound and tail.
 
-:func:`batch_kernel` is what :func:`dfa.simulation.run_points` (stability maps, :func:`dfa.simulation.simulate_batch`)
-and the K_max searches (:func:`dfa.kmax.simulate_points`) run for the spring: each run bit for bit
+:func:`batch_kernel` is what :func:`dfa.analysis.simulation.run_points` (stability maps, :func:`dfa.analysis.simulation.simulate_batch`)
+and the K_max searches (:func:`dfa.analysis.limits.kmax.simulate_points`) run for the spring: each run bit for bit
 :func:`dfa.core.kernel.simulate_kernel` alone, the GIL released (callers run chunks on threads). It keeps two runs in
 flight (:func:`dfa.core.pair.pair_kernel`), so that their dependency chains overlap: about 0.8 of the time of one run
 after the other (:func:`dfa.core.kernel.serial_kernel`) on the points of a stability map (``reports/benchmarks.md``).
 
 :func:`batch_wall_kernel` runs runs with a controller one after the other (each run its own damper, filter and lag;
-each :func:`dfa.core.wall_kernel.simulate_wall_kernel` alone, bit for bit): :func:`dfa.zwidth.z_width` runs a chunk of
+each :func:`dfa.core.wall_kernel.simulate_wall_kernel` alone, bit for bit): :func:`dfa.analysis.limits.zwidth.z_width` runs a chunk of
 grid points per call.
 
 Developers: numba's on-disk cache of this module does not notice edits in :mod:`dfa.core.kernel` or
@@ -46,7 +46,7 @@ def batch_wall_kernel(
 
     As :func:`batch_kernel` (run i: ``ns[i]`` samples, bound ``bounds[i]``, tail ``tail_lens[i]``; one
     ``delay`` for all), and run i has the controller (β_B, a, filtered, α) = (``dampings[i]``, ``poles[i]``,
-    ``filtered[i]``, ``lags[i]``) (:func:`dfa.simulation._controller_args` of its ControllerParams).
+    ``filtered[i]``, ``lags[i]``) (:func:`dfa.analysis.simulation._controller_args` of its ControllerParams).
     ``stats[i]`` (NSTATS), ``done[i]`` and ``rest[i]`` receive what
     :func:`dfa.core.wall_kernel.simulate_wall_kernel` returns for it (nothing recorded).
     """

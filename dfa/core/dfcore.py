@@ -1,6 +1,6 @@
 """Compiled core of the quantizer describing function (numba, cached): eq. 41, its derivative and inverse.
 
-The reference implementation is :func:`dfa.describing.quantizer_df`, lambdified
+The reference implementation is :func:`dfa.analysis.describing.quantizer_df`, lambdified
 from the sympy derivation; this module evaluates the same sum in compiled
 loops for the limit-cycle solver (``tests/test_eq41_describing.py`` checks the
 two against each other)::

@@ -1,7 +1,7 @@
 """Divided differences of e^{−u} at non-negative nodes, without cancellation (one implementation, compiled).
 
 The exact zero-order-hold pulse transfer of a plant with real poles 0, −a, −b
-(:mod:`dfa.controlled_linear`) has numerator coefficients that are divided
+(:mod:`dfa.analysis.linear_wall`) has numerator coefficients that are divided
 differences of f(u) = e^{−u} at sums of the negated poles (as c₁ = f[0, 0, a] = φ₂(a)
 and c₀ = f[0, a, a] for the device alone, :mod:`dfa.core.exprel`). With repeated or
 close nodes the textbook recursion cancels; here, with the nodes sorted

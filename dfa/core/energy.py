@@ -22,7 +22,7 @@ __all__ = ["spring_energy_core"]
 def spring_energy_core(x: Any, quantize: bool) -> Any:
     """H_c(ξ) for a float or a float array (eq. 18); ½ξ² without quantization.
 
-    No validation: :func:`dfa.criterion.spring_energy` checks its inputs; ``numba.njit`` compiles this
+    No validation: :func:`dfa.analysis.criterion.spring_energy` checks its inputs; ``numba.njit`` compiles this
     function unchanged for floats (:mod:`dfa.core.kernel`).
     """
     if quantize:

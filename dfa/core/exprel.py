@@ -1,7 +1,7 @@
 """The relative exponentials ("exprel") of the exact sampled-loop solution, one implementation.
 
 With u = β t/μ the motion under a constant force over a time t (paper eq. 4-5,
-:mod:`dfa.core.kernel`) and the ZOH pulse transfer function (:mod:`dfa.linear`)
+:mod:`dfa.core.kernel`) and the ZOH pulse transfer function (:mod:`dfa.analysis.linear`)
 need, without cancellation at small u::
 
     φ₁(u) = (1 − e^{−u})/u                      = Σ (−u)ⁿ/(n + 1)!
@@ -19,7 +19,7 @@ and its closed form above; λ is its series (Estrin, 8 terms below |y| = 1/128, 
 to 1/16) and ``log1p(y)/y`` otherwise (divided in steps beyond u = 10¹⁰⁰,
 where u² or u³ would overflow): a few ulp everywhere (``tests/test_exprel.py`` checks
 them against 50-digit mpmath). φ₁ and φ₂ take any real u (negative u appears
-in Gil's factor, :func:`dfa.stiffness.gil_factor`); ψ and χ are used for
+in Gil's factor, :func:`dfa.analysis.limits.closed_form.gil_factor`); ψ and χ are used for
 u >= 0 only (their closed forms overflow for u < −354).
 
 The scalar functions are numba ``njit`` functions: the compiled simulator
@@ -29,7 +29,7 @@ arrays of any shape.
 
 Developers: numba's on-disk cache of :mod:`dfa.core.kernel` is keyed on that
 file alone and does not notice edits here (or to
-:func:`dfa.criterion.spring_energy_core`, also compiled into the kernel):
+:func:`dfa.analysis.criterion.spring_energy_core`, also compiled into the kernel):
 after such an edit clear the cache (``rm -rf .cache/numba``), or the kernel
 keeps the old code. ``tests/test_kernel_steps.py`` compares the compiled
 steps with the Python reference step, which calls these functions afresh.

@@ -66,7 +66,7 @@ from numba import njit
 from .energy import spring_energy_core
 from .exprel import chi, log1p_ratio, phi1, phi2, phi12, psi
 
-# outcome codes (also the codes of dfa.maps.StabilityMap.outcome and its .npz file)
+# outcome codes (also the codes of dfa.analysis.maps.StabilityMap.outcome and its .npz file)
 REST = 0  # came to rest: the absorbing state was reached
 OSCILLATING = 1  # persistent, settled cycle of amplitude >= stable_amplitude (1 tick)
 UNSTABLE = 2  # |ξ| beyond the bound, or a growing envelope

@@ -1,7 +1,7 @@
 """Runs that record the storage function S = ½μξ'² + ½ξ² (paper eq. 18-19), for the soundness checks.
 
 :func:`storage_runs` simulates a list of points with the spring kernel and keeps, for each, the largest
-relative growth of S over its samples: what :mod:`dfa.soundness` checks a passivity verdict against.
+relative growth of S over its samples: what :mod:`dfa.analysis.soundness` checks a passivity verdict against.
 """
 
 from __future__ import annotations

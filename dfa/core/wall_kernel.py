@@ -1,6 +1,6 @@
 """Compiled kernel of the exact simulator with a controller (damper, filter, delay, amplifier lag).
 
-Dimensionless loop (:mod:`dfa.controller`; time in samples, ξ = x/Δ,
+Dimensionless loop (:mod:`dfa.model.wall`; time in samples, ξ = x/Δ,
 φ = F/(KΔ)). At sample h the controller reads r_h = ⌊ξ(h)⌋ (ξ(h) itself
 without quantization), forms v_h = r_h − r_{h−1} (r_{−1} = r_0), filters it,
 y_h = a y_{h−1} + (1 − a) v_{h−1} (y_0 = 0; y_h = v_h without filter), and

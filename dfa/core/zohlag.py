@@ -3,7 +3,7 @@
 With a first-order amplifier 1/(α s + 1) between the zero-order hold and the
 device 1/(μ s² + β s) (time in samples, T = 1), a = β/μ, b = 1/α, p = e^{−a},
 q = e^{−b}, the pulse transfer from the held command to the position is
-(derivation in :mod:`dfa.controlled_linear`)::
+(derivation in :mod:`dfa.analysis.linear_wall`)::
 
     G(z) = (n₂z² + n₁z + n₀)/(μ (z − 1)(z − p)(z − q)),
     n₂ = −b f[0, 0, a, b],   n₀ = −b f[a, b, a + b, a + b],
@@ -13,9 +13,9 @@ every coefficient a sum of positive terms built from divided differences of
 f(u) = e^{−u} (:mod:`dfa.core.divdiff`, a few ulp): no cancellation for coincident or
 close poles (a ≈ b), a = 0, very stiff a or extreme α. When 1/α overflows the lag
 is below rounding and G is the device alone, (c₁z + c₀)/(μ(z − 1)(z − p)),
-c₁ = f[0, 0, a], c₀ = f[0, a, a]. :func:`dfa.controlled_linear.amplifier_zoh_coefficients`
+c₁ = f[0, 0, a], c₀ = f[0, a, a]. :func:`dfa.analysis.linear_wall.amplifier_zoh_coefficients`
 (the exact linear bound) and the describing function with amplifier lag
-(:mod:`dfa.cycles.characteristic`, varying β_eq) both use :func:`amplifier_zoh`.
+(:mod:`dfa.analysis.cycles.characteristic`, varying β_eq) both use :func:`amplifier_zoh`.
 ``tests/test_controlled_linear.py`` and ``tests/test_eq36_controller_cycles.py`` check
 it against ``control.c2d(..., "zoh")`` and 50-digit mpmath.
 

@@ -1,8 +1,8 @@
 """Rendering: figures, documents, terminal text and files drawn from analysis results only (no numerics).
 
-- :mod:`dfa.render.figures`: the design report's figures (PNG bytes, nothing written);
+- :mod:`dfa.render.report_figures`: the design report's figures (PNG bytes, nothing written);
 - :mod:`dfa.render.document`: the Jinja2 template ``templates/design_report.md.j2`` filled from a
-  :class:`~dfa.design.DesignAnalysis`, and Markdown → self-contained HTML with markdown-it-py;
+  :class:`~dfa.analysis.design.DesignAnalysis`, and Markdown → self-contained HTML with markdown-it-py;
 - :mod:`dfa.render.text`: the tables and sentences the ``dfa`` commands print;
 - :mod:`dfa.render.files`: a trajectory as CSV and the validation report (written atomically).
 

@@ -1,11 +1,11 @@
 """The wall controller in the ``dfa`` commands' text and JSON (issue 15), from results only.
 
 A controller is stated with its physical values (K, B, d, f_c, f_bw in the device's units) and its
-dimensionless groups beside paper Table 1 (β_B = B/(KT), ν_c = f_c T, α = τ_a/T; :mod:`dfa.controller`).
+dimensionless groups beside paper Table 1 (β_B = B/(KT), ν_c = f_c T, α = τ_a/T; :mod:`dfa.model.wall`).
 
 Examples
 --------
->>> from dfa.controller import Controller
+>>> from dfa.model.wall import Controller
 >>> controller_line(Controller(1000.0, damping=0.5, filter_cutoff=100.0), 1e-3, {"stiffness": "N/m",
 ...     "damping": "N·s/m"})
 'controller: K = 1000 N/m, B = 0.5 N·s/m, delay 0 samples, velocity filter 100 Hz, ideal amplifier; β_B = B/(KT) = 0.5, ν_c = f_c·T = 0.1, α = τ_a/T = 0'
@@ -15,9 +15,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..controller_check import LAG_WHY, NOT_COVERED, ControllerCheck
+from ..analysis.wall_check import LAG_WHY, NOT_COVERED, ControllerCheck
 from ..formatting import number
-from ..jsonable import explain_nulls, to_jsonable
+from ..results.jsonable import explain_nulls, to_jsonable
 
 __all__ = [
     "NOT_COVERED",
@@ -38,7 +38,7 @@ def controller_dict(controller: Any, period: float, units: dict[str, str]) -> di
 
     Parameters
     ----------
-    controller : dfa.controller.Controller
+    controller : dfa.model.wall.Controller
         The wall controller (physical units).
     period : float
         Sample period T in s.
@@ -75,7 +75,7 @@ def controller_short(controller: Any, units: dict[str, str]) -> str:
 
     Parameters
     ----------
-    controller : dfa.controller.Controller
+    controller : dfa.model.wall.Controller
         The wall controller.
     units : dict
         The device's unit strings (:attr:`dfa.Device.units`).
@@ -88,7 +88,7 @@ def controller_short(controller: Any, units: dict[str, str]) -> str:
 
     Examples
     --------
-    >>> from dfa.controller import Controller
+    >>> from dfa.model.wall import Controller
     >>> controller_short(Controller(1000.0, 1.0, 1, 200.0), {"damping": "N·s/m"})
     'B = 1 N·s/m, f_c = 200 Hz, d = 1'
     """
@@ -105,7 +105,7 @@ def controller_line(controller: Any, period: float, units: dict[str, str]) -> st
 
     Parameters
     ----------
-    controller : dfa.controller.Controller
+    controller : dfa.model.wall.Controller
         The wall controller.
     period : float
         Sample period T in s.
@@ -138,7 +138,7 @@ def controller_line(controller: Any, period: float, units: dict[str, str]) -> st
 
 
 def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
-    """The extended criterion's rows (:func:`dfa.controller_passivity.controller_criterion`)."""
+    """The extended criterion's rows (:func:`dfa.analysis.wall_criterion.controller_criterion`)."""
     crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
     if r.critical_velocity is not None:
         crit += f" ({r.critical_velocity:.4g} {vu})"
@@ -154,7 +154,7 @@ def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
     )
     return [
         ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
-        ["criterion", f"eq. 6 extended to the damper, filter and delay (dfa.controller_passivity): {rule}"],
+        ["criterion", f"eq. 6 extended to the damper, filter and delay (dfa.analysis.wall_criterion): {rule}"],
         ["corner", corner],
         ["region", f"{r.region}: {r.status.message}"],
         ["passive", verdict],
@@ -164,7 +164,7 @@ def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
 
 
 def _colgate_rows(cs: Any, b: float, bu: str) -> list[list[str]]:
-    """The general Colgate–Schenkel condition (:func:`dfa.passivity.colgate_schenkel_damping`)."""
+    """The general Colgate–Schenkel condition (:func:`dfa.analysis.colgate_schenkel.colgate_schenkel_damping`)."""
     if b > cs.damping_bound:
         verdict = "met: the linear sampled loop (no encoder, no Coulomb friction) is passive"
     elif b <= cs.damping_min:
@@ -186,9 +186,9 @@ def controller_check_rows(r: Any, cs: Any, vu: str) -> list[list[str]]:
 
     Parameters
     ----------
-    r : dfa.controller_passivity.ControllerCriterionResult
+    r : dfa.analysis.wall_criterion.ControllerCriterionResult
         The extended criterion at the device's operating point (device set).
-    cs : dfa.passivity.ColgateSchenkelDamping
+    cs : dfa.analysis.colgate_schenkel.ColgateSchenkelDamping
         The general Colgate–Schenkel condition for the same controller.
     vu : str
         Velocity unit.
@@ -207,7 +207,7 @@ def controller_check_rows(r: Any, cs: Any, vu: str) -> list[list[str]]:
 
 
 def check_table_rows(chk: ControllerCheck) -> list[list[str]]:
-    """The table of `dfa check` (and of the design report) for a :class:`~dfa.controller_check.ControllerCheck`.
+    """The table of `dfa check` (and of the design report) for a :class:`~dfa.analysis.wall_check.ControllerCheck`.
 
     Parameters
     ----------
@@ -232,7 +232,7 @@ def controller_rows(controller: Any, period: float, units: dict[str, str]) -> li
 
     Parameters
     ----------
-    controller : dfa.controller.Controller
+    controller : dfa.model.wall.Controller
         The wall controller.
     period : float
         Sample period T in s.
@@ -266,7 +266,7 @@ def controller_limit_rows(lim: Any, units: dict[str, str]) -> list[list[str]]:
 
     Parameters
     ----------
-    lim : dfa.controller_kmax.ControllerStiffnessLimits
+    lim : dfa.analysis.limits.wall_kmax.ControllerStiffnessLimits
         The limits with the controller held fixed.
     units : dict
         The device's unit strings.

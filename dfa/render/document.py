@@ -1,6 +1,6 @@
 """The design report as Markdown (Jinja2 template) and as self-contained HTML (markdown-it-py).
 
-Everything here reads a :class:`~dfa.design.DesignAnalysis`; nothing computes a number the analysis does not
+Everything here reads a :class:`~dfa.analysis.design.DesignAnalysis`; nothing computes a number the analysis does not
 hold, and nothing writes files (:func:`dfa.report.design_report` does, atomically).
 """
 
@@ -12,7 +12,7 @@ from collections.abc import Callable, Mapping
 from functools import lru_cache
 from typing import Any
 
-from ..design import DesignAnalysis
+from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
 
 __all__ = ["design_html", "design_markdown", "markdown_to_html"]
@@ -391,7 +391,7 @@ def zwidth_rows(a: DesignAnalysis) -> list[list[str]]:
     """Rows of the report's Z-width: K_max(B) per method at each B of the grid ("-": undefined, see the JSON)."""
     import math
 
-    from ..zwidth import ZWIDTH_METHODS
+    from ..analysis.limits.zwidth import ZWIDTH_METHODS
 
     z = a.zwidth
     assert z is not None
@@ -434,7 +434,7 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
     a : DesignAnalysis
         The analysis (only read).
     captions : mapping
-        Figure name → caption (:func:`dfa.render.figures.design_figures`).
+        Figure name → caption (:func:`dfa.render.report_figures.design_figures`).
     src : callable
         Figure name → image address.
 

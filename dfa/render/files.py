@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from .._io import atomic_open, staged_folder
-from ..jsonable import dumps
+from ..results.jsonable import dumps
 
 __all__ = ["write_trace_csv", "write_validation"]
 
@@ -64,13 +64,13 @@ def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
-    from .. import plotting
+    from .. import figures
 
     os.makedirs(out, exist_ok=True)
     summary = result.as_dict()
     figs = {}
     with staged_folder(out) as stage:
-        for key, fn in (("cycles", plotting.cycle_error_plot), ("speeds", plotting.critical_speed_plot)):
+        for key, fn in (("cycles", figures.cycle_error_plot), ("speeds", figures.critical_speed_plot)):
             ax = fn(result)
             figs[key] = f"validation_{key}.png"
             ax.figure.savefig(stage / figs[key], dpi=120)

@@ -6,11 +6,11 @@ import math
 from typing import Any
 
 from ..formatting import number, text_table
-from ..jsonable import explain_nulls
+from ..results.jsonable import explain_nulls
 
 __all__ = ["OUTCOME_TEXT", "check_rows", "limit_cycle_lines", "limit_cycles_dict", "simulation_rows"]
 
-#: One phrase per simulated outcome class (:mod:`dfa.simulation`).
+#: One phrase per simulated outcome class (:mod:`dfa.analysis.simulation`).
 OUTCOME_TEXT = {
     "rest": "came to rest",
     "chatter": "never comes to rest; the force keeps toggling below one tick of motion (a buzz)",
@@ -213,7 +213,7 @@ def _growth_dict(g: Any) -> dict[str, Any]:
 
 
 def limit_text(s: Any, ku: str) -> str:
-    """One searched limit (:class:`dfa.kmax.KSearch`) in words, with its caveats (reason, non-monotone)."""
+    """One searched limit (:class:`dfa.analysis.limits.kmax.KSearch`) in words, with its caveats (reason, non-monotone)."""
     if s.value is None:
         return f"none: {s.reason}"
     txt = f"{s.value:.5g} {ku}"

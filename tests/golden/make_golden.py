@@ -213,7 +213,7 @@ def compare_text(golden: str, new: str, where: str = "") -> list[str]:
 
 #: Residuals of the harmonic-balance solver (|1 + D·L|) below this are equally converged.
 RESIDUAL_NOISE = 1e-12
-#: Loeb's stability coefficient (dfa.cycles.stability._loeb) is a central difference: compare to this.
+#: Loeb's stability coefficient (dfa.analysis.cycles.stability._loeb) is a central difference: compare to this.
 LOEB_REL = 1e-7
 
 

@@ -1,0 +1,342 @@
+"""Colgate–Schenkel passivity of a sampled wall with a general discrete controller H(z) (issue 15 item 2).
+
+Colgate & Schenkel (1997), "Passivity of a class of sampled-data systems:
+application to haptic interfaces", J. Robotic Systems 14(1): a mass m with
+viscous friction b, driven through a zero-order hold by a discrete controller
+H(z) (position to force) of period T, is passive if and only if (their
+necessary and sufficient condition, for that linear model: no quantizer, no
+Coulomb friction, the ZOH driving the device directly)::
+
+    b > (T/2) · max_{0 <= ω <= π/T} Re{(1 − e^{−jωT}) H(e^{jωT})}/(1 − cos ωT).
+
+For the controller of :mod:`dfa.model.wall`, H = K H̃, H̃(z) = z^{−d}[1 + β_B (1 − z^{−1}) F(z)]
+(β_B = B/(KT), F the exact ZOH low-pass (1 − a)z^{−1}/(1 − a z^{−1}), a = e^{−2πν_c},
+or 1 without filter). With θ = ωT, 1 − e^{−jθ} = 2j sin(θ/2) e^{−jθ/2} and
+1 − cos θ = 2 sin²(θ/2) cancel the removable singularity at θ = 0::
+
+    b_min = K T β_min,   β_min = ½ max_{0 <= θ <= π} f(θ),
+    f(θ) = D_d(θ) − 2β_B Re{e^{−j(d+1)θ} F(e^{jθ})},   D_d(θ) = sin((d + ½)θ)/sin(θ/2) = 1 + 2 Σ_{k=1}^{d} cos kθ
+
+(D_d(0) = 2d + 1). Closed forms (``tests/test_passivity.py``): the spring, d = 0:
+β_min = ½ (b > KT/2, eq. 8 of the paper); spring and damper, d = 0: f = 1 − 2β_B cos θ,
+β_min = ½ + β_B (b > KT/2 + B); the spring with delay d: the Dirichlet kernel
+peaks at θ = 0, β_min = d + ½ (b > KT(d + ½), the delay line of eq. 6 in :mod:`dfa.analysis.criterion`).
+
+The maximum is certified. e^{−j(d+1)θ}F = (1 − a) Σ_{n>=1} a^{n−1} e^{−j(n+d+1)θ}, so
+|f''| <= L₂ = d(d + 1)(2d + 1)/3 + 2β_B [(1 + a)/(1 − a)² + 2(d + 1)/(1 − a) + (d + 1)²]
+((d + 1)² in the bracket without filter). On a grid with spacing h, f is at
+most max(f_i, f_{i+1}) + L₂h²/8 between two nodes; intervals whose bound
+exceeds the best value found are bisected (branch and bound) until every
+bound is within 1e-12 (relative) of it, or a budget of evaluations is spent.
+The result gives the best value found (attained at ``theta``, a lower bound of
+the maximum) and the certified upper bound, rounding included; the condition
+is met for any b above ``damping_bound`` (physical) — ``status`` says whether the two
+agree to 1e-12.
+
+The condition does not cover an amplifier lag (the ZOH no longer drives the
+device directly): with α > 0 the functions refuse; the exact linear bound
+(:func:`dfa.analysis.linear_wall.stable_stiffness`) and the exact simulation do.
+
+Examples
+--------
+>>> round(colgate_schenkel_beta(ControllerParams(damping=0.3)).beta_min, 12)
+0.8
+>>> r = colgate_schenkel_damping(Controller(2000.0, damping=1.0), period=1e-3)
+>>> round(r.damping_min, 9), round(r.frequency, 3)       # KT/2 + B at the Nyquist frequency
+(2.0, 500.0)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..checks import check_positive, check_type
+from ..errors import DFAValueError
+from ..model.wall import Controller, ControllerParams
+from ..results.status import StatusEnum
+
+__all__ = [
+    "PassivityStatus",
+    "ColgateSchenkel",
+    "ColgateSchenkelDamping",
+    "colgate_schenkel_beta",
+    "colgate_schenkel_damping",
+]
+
+_REL_TOL = 1e-12
+_GRID = 4096
+_BUDGET = 2_000_000  # evaluations of f
+_EPS = np.finfo(float).eps
+
+
+class PassivityStatus(StatusEnum):
+    """How tightly the maximum of the Colgate–Schenkel condition is known."""
+
+    CERTIFIED = ("certified", "maximum found and certified to 1e-12 (relative)")
+    BOUNDED = (
+        "bounded",
+        "evaluation budget spent: the maximum lies between beta_min and beta_bound (use the bound to be safe)",
+    )
+
+
+def _f(theta: np.ndarray, damping: float, delay: int, pole: float | None) -> np.ndarray:
+    """f(θ) = D_d(θ) − 2β_B Re{e^{−j(d+1)θ} F(e^{jθ})} (module docstring), vectorised."""
+    half = np.sin(0.5 * theta)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        dirichlet = np.where(half == 0.0, 2.0 * delay + 1.0, np.sin((delay + 0.5) * theta) / half)
+    z = np.exp(1j * theta)
+    filt = 1.0 if pole is None else (1.0 - pole) / (z - pole)
+    return dirichlet - 2.0 * damping * np.real(z ** (-(delay + 1)) * filt)
+
+
+def _curvature(damping: float, delay: int, pole: float | None) -> float:
+    """L₂ >= |f''| on [0, π] (module docstring)."""
+    c = delay + 1.0
+    if pole is None:
+        g2 = c * c
+    else:
+        g2 = (1.0 + pole) / (1.0 - pole) ** 2 + 2.0 * c / (1.0 - pole) + c * c
+    return delay * (delay + 1.0) * (2.0 * delay + 1.0) / 3.0 + 2.0 * damping * g2
+
+
+def _maximise(damping: float, delay: int, pole: float | None) -> tuple[float, float, float, int]:
+    """(best f, θ of the best, certified upper bound of max f, evaluations): branch and bound on [0, π]."""
+    l2 = _curvature(damping, delay, pole)
+    slack = 64.0 * _EPS * (2.0 * delay + 1.0 + 2.0 * damping)  # rounding of one evaluation of f, generously
+    x = np.linspace(0.0, math.pi, _GRID + 1)
+    y = _f(x, damping, delay, pole)
+    i = int(np.argmax(y))
+    best, arg = float(y[i]), float(x[i])
+    lo, hi, ylo, yhi = x[:-1], x[1:], y[:-1], y[1:]
+    evals = x.size
+    while True:
+        bound = np.maximum(ylo, yhi) + l2 * (hi - lo) ** 2 / 8.0 + slack
+        tol = _REL_TOL * max(1.0, abs(best))
+        keep = bound > best + tol
+        if not np.any(keep) or evals >= _BUDGET:
+            ub = max(best, float(bound[keep].max())) if np.any(keep) else best + tol
+            return best, arg, max(ub, best + slack), evals
+        lo, hi, ylo, yhi = lo[keep], hi[keep], ylo[keep], yhi[keep]
+        mid = 0.5 * (lo + hi)
+        ym = _f(mid, damping, delay, pole)
+        evals += mid.size
+        j = int(np.argmax(ym))
+        if ym[j] > best:
+            best, arg = float(ym[j]), float(mid[j])
+        lo, hi = np.concatenate([lo, mid]), np.concatenate([mid, hi])
+        ylo, yhi = np.concatenate([ylo, ym]), np.concatenate([ym, yhi])
+
+
+@dataclass(frozen=True)
+class ColgateSchenkel:
+    """Dimensionless Colgate–Schenkel condition: passive iff β = b/(KT) > β_min (module docstring).
+
+    Attributes
+    ----------
+    beta_min : float
+        ½ max f found (attained at ``theta``): the condition needs β above it.
+    beta_bound : float
+        Certified upper bound of ½ max f (rounding included): β above it meets the condition.
+    theta : float
+        Where the maximum was found, rad/sample (ωT), in [0, π].
+    params : ControllerParams
+        The controller (β_B, d, ν_c; α = 0).
+    status : PassivityStatus
+    """
+
+    beta_min: float
+    beta_bound: float
+    theta: float
+    params: ControllerParams
+    status: PassivityStatus
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "status", PassivityStatus.coerce(self.status))
+        if not (math.isfinite(self.beta_min) and self.beta_min <= self.beta_bound and 0.0 <= self.theta <= math.pi):
+            raise DFAValueError(
+                f"beta_min = {self.beta_min!r}, beta_bound = {self.beta_bound!r}, theta = {self.theta!r} are "
+                "invalid: they must be finite, beta_min <= beta_bound, 0 <= theta <= π; pass the computed values"
+            )
+
+    def as_dict(self) -> dict[str, object]:
+        """Return a JSON-ready record.
+
+        Returns
+        -------
+        dict
+            The keys beta_min, beta_bound, theta (rad/sample), status and params (the controller groups).
+        """
+        return {
+            "beta_min": self.beta_min,
+            "beta_bound": self.beta_bound,
+            "theta": self.theta,
+            "status": self.status.value,
+            "params": self.params.as_dict(),
+        }
+
+
+def _refuse_lag(lag: float) -> None:
+    if lag > 0.0:
+        raise DFAValueError(
+            f"amplifier lag α = τ_a/T = {lag:g} is invalid for the Colgate–Schenkel condition: it must be 0, "
+            "because the condition assumes the zero-order hold drives the device directly; drop the amplifier "
+            "bandwidth, or use the exact linear bound (dfa.analysis.linear_wall.stable_stiffness) or the simulation"
+        )
+
+
+def colgate_schenkel_beta(controller: ControllerParams) -> ColgateSchenkel:
+    """Minimum dimensionless damping β = b/(KT) for passivity (Colgate & Schenkel 1997) with a controller.
+
+    Parameters
+    ----------
+    controller : ControllerParams
+        Virtual damping β_B, delay d, filter cutoff ν_c; the amplifier lag must be 0.
+
+    Returns
+    -------
+    ColgateSchenkel
+        The attained β_min, its certified upper bound β_bound, the θ of the maximum and the status.
+
+    Raises
+    ------
+    DFAValueError
+        With an amplifier lag (the condition does not cover it).
+    DFATypeError
+        ``controller`` is not a :class:`dfa.ControllerParams`.
+
+    See Also
+    --------
+    colgate_schenkel_damping : The same in physical units.
+    dfa.analysis.linear_wall.stable_stiffness : Exact linear stability (also with an amplifier lag).
+
+    Examples
+    --------
+    >>> round(colgate_schenkel_beta(ControllerParams(delay=2)).beta_min, 12)     # d + ½
+    2.5
+    """
+    p = check_type("controller", controller, ControllerParams, "give a dfa.ControllerParams")
+    _refuse_lag(p.lag)
+    pole = None if p.cutoff is None else p.filter_pole
+    best, arg, ub, _ = _maximise(p.damping, p.delay, pole)
+    tol = _REL_TOL * max(1.0, abs(best))
+    status = (
+        PassivityStatus.CERTIFIED if ub - best <= tol + 1e3 * _EPS * max(1.0, abs(best)) else PassivityStatus.BOUNDED
+    )
+    return ColgateSchenkel(0.5 * best, 0.5 * ub, arg, p, status)
+
+
+@dataclass(frozen=True)
+class ColgateSchenkelDamping:
+    """Minimum physical damping b for passivity of a device with ``controller`` at period T (Colgate–Schenkel).
+
+    Attributes
+    ----------
+    damping_min : float
+        K T β_min, N·s/m (rotary: N·m·s/rad): the condition needs b above it.
+    damping_bound : float
+        K T β_bound: any b above it meets the condition (certified), N·s/m.
+    omega : float
+        Angular frequency θ/T of the maximum, rad/s.
+    controller : Controller
+    period : float
+        Sampling period T, s.
+    dimensionless : ColgateSchenkel
+    """
+
+    damping_min: float
+    damping_bound: float
+    omega: float
+    controller: Controller
+    period: float
+    dimensionless: ColgateSchenkel
+
+    @property
+    def frequency(self) -> float:
+        """Frequency of the maximum, Hz."""
+        return self.omega / (2.0 * math.pi)
+
+    @property
+    def status(self) -> PassivityStatus:
+        """As :attr:`ColgateSchenkel.status`."""
+        return self.dimensionless.status
+
+    def passive(self, damping: float) -> bool:
+        """Tell whether a device damping meets the condition for sure (above the certified bound).
+
+        Parameters
+        ----------
+        damping : float
+            The device's viscous friction b, N·s/m (rotary: N·m·s/rad), > 0.
+
+        Returns
+        -------
+        bool
+            True if b > ``damping_bound``.
+        """
+        return check_positive("damping", damping, "give the device's viscous friction b in N·s/m") > self.damping_bound
+
+    def as_dict(self) -> dict[str, object]:
+        """Return a JSON-ready record (SI units).
+
+        Returns
+        -------
+        dict
+            The keys damping_min, damping_bound (N·s/m), omega (rad/s), frequency (Hz), status, period (s),
+            the controller and the dimensionless record.
+        """
+        return {
+            "damping_min": self.damping_min,
+            "damping_bound": self.damping_bound,
+            "omega": self.omega,
+            "frequency": self.frequency,
+            "status": self.status.value,
+            "period": self.period,
+            "controller": self.controller.as_dict(),
+            "dimensionless": self.dimensionless.as_dict(),
+        }
+
+
+def colgate_schenkel_damping(controller: Controller, period: float) -> ColgateSchenkelDamping:
+    """Minimum viscous friction b of the device for the wall ``controller`` to be passive (Colgate & Schenkel 1997).
+
+    Parameters
+    ----------
+    controller : Controller
+        Stiffness K, damping B, delay d, filter cutoff f_c; no amplifier bandwidth (the condition does not cover it).
+    period : float
+        Sampling period T > 0, s.
+
+    Returns
+    -------
+    ColgateSchenkelDamping
+        The minimum b = K T β_min (N·s/m), its certified bound, the ω of the maximum (rad/s) and the status.
+
+    Raises
+    ------
+    DFAValueError
+        With an amplifier bandwidth (the condition does not cover the lag), a bad period, or a filter
+        cutoff above the Nyquist frequency.
+    DFATypeError
+        ``controller`` is not a :class:`dfa.Controller`.
+
+    See Also
+    --------
+    colgate_schenkel_beta : The dimensionless condition.
+    dfa.analysis.linear_wall.stable_stiffness : Exact linear stability, which the condition is stricter than.
+
+    Examples
+    --------
+    >>> r = colgate_schenkel_damping(Controller(1000.0, delay=1), 1e-3)
+    >>> round(r.damping_min, 9), r.omega                 # K T (d + ½) at ω → 0
+    (1.5, 0.0)
+    """
+    c = check_type("controller", controller, Controller, "give a dfa.Controller")
+    t = check_positive("period", period, "give the sampling period T in s (1 kHz: 0.001)")
+    if c.amplifier_bandwidth is not None:
+        _refuse_lag(c.params(t).lag)
+    dim = colgate_schenkel_beta(c.params(t))
+    kt = c.stiffness * t
+    return ColgateSchenkelDamping(kt * dim.beta_min, kt * dim.beta_bound, dim.theta / t, c, t, dim)

@@ -1,0 +1,385 @@
+"""Contour maps of limit-cycle amplitude and frequency over the (β, σ) plane (paper Fig. 7).
+
+For one μ and the paper's half-sample-delay loop (d = 0), two families:
+
+* **small stable** cycles (M < 1). With D = 2/(πM), exact for M < 1, the
+  cycle is the closed form of eq. 42-43; the exact solver finds the same
+  (D has no approximation there).
+* **large unstable** cycles: the paper's closed form eq. 44-45 (D ≈ 1), and
+  the exact one: the smallest unstable cycle with M >= 1 under the exact D
+  (the growth threshold), which lies near the closed form but sees D's
+  oscillation around 1.
+
+The exact large family is vectorised. For each β the phase condition
+c(ω) = μω² tan(ω/2) − βω (= 4σ/(πM)) is tabulated once on a fine ω grid
+where it increases, so ω(M) for every σ follows by interpolation; the
+residual F(M) = D(M) − μω²/cos(ω/2) is scanned on a shared amplitude grid
+(n + t² on each integer interval) for its first rising zero crossing (F
+rising through zero marks an unstable cycle, see :mod:`dfa.analysis.cycles`),
+then refined by secant steps with the exact D. Amplitudes beyond
+``max_amplitude`` are reported as NaN (outside the map's range).
+
+Examples
+--------
+>>> maps = contour_maps(5.0, grid=5)
+>>> maps.large_amplitude.shape
+(5, 5)
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .._io import atomic_open, check_memory
+from ..checks import check_bool, check_int, check_mu, check_positive
+from ..errors import DFAValueError
+from ..results.frozen import check_shape, freeze_fields
+from ..results.jsonable import to_jsonable
+from ..results.status import ContourStatus
+from .criterion import CriticalLine
+from .cycles import ClosedFormStatus, large_cycle_closed_forms, small_cycle_closed_forms
+from .describing import quantizer_df
+from .maps import _check_range
+
+__all__ = ["ContourMaps", "contour_maps", "load_contours", "contour_memory_bytes"]
+
+_ARRAYS = (
+    "beta",
+    "sigma",
+    "small_amplitude",
+    "small_frequency",
+    "large_amplitude",
+    "large_frequency",
+    "large_amplitude_closed",
+    "large_frequency_closed",
+    "small_amplitude_closed",
+)
+
+
+@dataclass(frozen=True)
+class ContourMaps:
+    """Amplitude (ticks) and frequency (rad per sample) of both cycle families over a (β, σ) grid.
+
+    Arrays have shape (len(sigma), len(beta)); NaN where the family does not
+    exist (or, for the exact large family, lies beyond ``max_amplitude``).
+
+    Attributes
+    ----------
+    mu : float
+    beta, sigma : numpy.ndarray
+    small_amplitude, small_frequency : numpy.ndarray
+        Small stable family (eq. 42-43, exact for M < 1).
+    large_amplitude, large_frequency : numpy.ndarray
+        Smallest unstable cycle with the exact D (eq. 41).
+    large_amplitude_closed, large_frequency_closed : numpy.ndarray
+        The paper's closed form eq. 44-45 (D = 1).
+    small_amplitude_closed : numpy.ndarray
+        Eq. 42-43 without the M < 1 restriction (the paper's approximation).
+    max_amplitude : float
+    status : ContourStatus
+        ``OK``: every point solved (NaN where a family does not exist or lies beyond ``max_amplitude``);
+        ``FLAGGED``: the closed forms flagged grid points (NaN), counted in ``detail``.
+    detail : str
+        Which grid points the closed forms flag (β = σ = 0, solver failures) and why; empty when ``OK``.
+
+    Arrays are read-only copies; shapes are checked on construction.
+    """
+
+    mu: float
+    beta: np.ndarray = field(repr=False)
+    sigma: np.ndarray = field(repr=False)
+    small_amplitude: np.ndarray = field(repr=False)
+    small_frequency: np.ndarray = field(repr=False)
+    large_amplitude: np.ndarray = field(repr=False)
+    large_frequency: np.ndarray = field(repr=False)
+    large_amplitude_closed: np.ndarray = field(repr=False)
+    large_frequency_closed: np.ndarray = field(repr=False)
+    small_amplitude_closed: np.ndarray = field(repr=False)
+    max_amplitude: float = 200.0
+    status: ContourStatus = ContourStatus.OK
+    detail: str = ""
+
+    def __post_init__(self) -> None:
+        freeze_fields(self, {"beta": {"ndim": 1}, "sigma": {"ndim": 1}})
+        freeze_fields(self, {k: {"ndim": 2, "finite": False} for k in _ARRAYS if k not in ("beta", "sigma")})
+        for k in _ARRAYS:
+            if k not in ("beta", "sigma"):
+                check_shape(k, getattr(self, k), (self.sigma.size, self.beta.size))
+        object.__setattr__(self, "status", ContourStatus.coerce(self.status))
+
+    @property
+    def corner(self) -> tuple[float, float]:
+        """The corner (β, σ) = (½, ½) of the criterion's regions for the maps' loop (eq. 6, 10: no delay)."""
+        line = CriticalLine.of(0.0)
+        return line.beta0, line.sigma0
+
+    def plot(self, ax=None):
+        """Amplitude and frequency of both families (:func:`dfa.figures.contour_plot`, paper Fig. 7).
+
+        Parameters
+        ----------
+        ax : pair of matplotlib.axes.Axes, optional
+            Axes for the amplitude and the frequency panels; a new figure when None.
+
+        Returns
+        -------
+        pair of matplotlib.axes.Axes
+            The axes drawn on.
+        """
+        from ..figures import contour_plot
+
+        return contour_plot(self, ax)
+
+    def to_xarray(self):
+        """The maps as an :class:`xarray.Dataset` with labelled dims ``sigma``, ``beta``.
+
+        One variable per array (amplitudes in ticks, frequencies in rad/sample; NaN where a
+        family does not exist); attributes hold μ, ``max_amplitude`` and the status.
+
+        Returns
+        -------
+        xarray.Dataset
+            The maps with coordinates ``sigma`` and ``beta``.
+
+        Raises
+        ------
+        DFAError
+            When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
+        """
+        from ..results.xarray import BETA_ATTRS, SIGMA_ATTRS, import_xarray
+
+        xr = import_xarray()
+        names = [k for k in _ARRAYS if k not in ("beta", "sigma")]
+        unit = {"amplitude": "ticks", "frequency": "rad/sample"}
+        data = {
+            k: (
+                ("sigma", "beta"),
+                np.array(getattr(self, k)),
+                {"units": unit[k.split("_")[1]], "long_name": k.replace("_", " ")},
+            )
+            for k in names
+        }
+        return xr.Dataset(
+            data,
+            coords={
+                "sigma": ("sigma", np.array(self.sigma), SIGMA_ATTRS),
+                "beta": ("beta", np.array(self.beta), BETA_ATTRS),
+            },
+            attrs={
+                "mu": self.mu,
+                "max_amplitude": self.max_amplitude,
+                "status": self.status.value,
+                "status_message": self.detail or self.status.message,
+            },
+        )
+
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write all maps to a ``.npz`` file (see :func:`load_contours`), atomically.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            File to write; ``.npz`` is appended when it has another suffix.
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
+        """
+        p = Path(path)
+        p = p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
+        with atomic_open(p, "wb") as fh:  # never a half-written file (dfa._io)
+            np.savez_compressed(
+                fh, mu=self.mu, max_amplitude=self.max_amplitude, **{k: getattr(self, k) for k in _ARRAYS}
+            )
+        return p
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready summary: grid and how many points carry each family.
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: μ, grid, counts per family, status and detail.
+        """
+        return to_jsonable(
+            {
+                "mu": self.mu,
+                "beta_range": [float(self.beta[0]), float(self.beta[-1])],
+                "sigma_range": [float(self.sigma[0]), float(self.sigma[-1])],
+                "grid": [int(self.beta.size), int(self.sigma.size)],
+                "small_points": int(np.isfinite(self.small_amplitude).sum()),
+                "large_points": int(np.isfinite(self.large_amplitude).sum()),
+                "large_closed_points": int(np.isfinite(self.large_amplitude_closed).sum()),
+                "max_amplitude": self.max_amplitude,
+                "status": self.status,
+                "status_message": self.detail or self.status.message,
+            }
+        )
+
+
+def load_contours(path: str | os.PathLike) -> ContourMaps:
+    """Read maps written by :meth:`ContourMaps.save`."""
+    with np.load(path) as z:
+        return ContourMaps(mu=float(z["mu"]), max_amplitude=float(z["max_amplitude"]), **{k: z[k] for k in _ARRAYS})
+
+
+def _large_exact(
+    mu: float, beta: np.ndarray, sigma: np.ndarray, amax: float, progress: bool = False
+) -> tuple[np.ndarray, np.ndarray]:
+    """Smallest unstable cycle with M >= 1 for every (σ, β), exact D (see module docstring)."""
+    from tqdm.auto import tqdm
+
+    n_all = np.arange(1, int(math.ceil(amax)) + 1)
+    t = np.linspace(0.0, 1.0, 17)
+    msamp = np.unique((n_all[:, None] + (t * t)[None, :]).ravel())
+    msamp = msamp[msamp <= amax]
+    dsamp = quantizer_df(msamp)
+    wgrid = np.concatenate([np.geomspace(1e-7, 1e-2, 2000, endpoint=False), np.linspace(1e-2, math.pi - 1e-6, 20000)])
+    large_m = np.full((sigma.size, beta.size), np.nan)
+    large_w = np.full((sigma.size, beta.size), np.nan)
+    rows_all = np.nonzero(sigma > 0)[0]
+    if rows_all.size == 0:
+        return large_m, large_w
+    for j, b in enumerate(tqdm(beta, unit="β column", desc=f"contours μ={mu:g}", disable=not progress, leave=False)):
+        c = mu * wgrid**2 * np.tan(wgrid / 2) - b * wgrid  # = 4σ/(πM) on the phase curve, increasing where > 0
+        ok = c > 0
+        if not ok.any():
+            continue
+        cw, ww = np.maximum.accumulate(c[ok]), wgrid[ok]  # guard monotonicity against rounding
+        target = (4.0 * sigma[rows_all, None] / math.pi) / msamp[None, :]  # (σ, M)
+        wm = np.interp(target, cw, ww, left=np.nan, right=np.nan)
+        f = dsamp[None, :] - mu * wm**2 / np.cos(wm / 2)
+        rising = (f[:, :-1] < 0) & (f[:, 1:] >= 0)
+        has = rising.any(axis=1)
+        if not has.any():
+            continue
+        kk = np.argmax(rising, axis=1)[has]
+        rows = rows_all[has]
+        ma, mb = msamp[kk], msamp[kk + 1]
+        fa, fb = f[has, kk], f[has, kk + 1]
+        sg = sigma[rows]
+        mc = mb
+        for _ in range(4):  # secant steps with the exact D, kept inside the bracket
+            with np.errstate(invalid="ignore", divide="ignore"):
+                mc = np.where(fb != fa, mb - fb * (mb - ma) / (fb - fa), mb)
+            mc = np.clip(mc, ma, mb)
+            wc = np.interp(4 * sg / (math.pi * mc), cw, ww)
+            fc = quantizer_df(mc) - mu * wc * wc / np.cos(wc / 2)
+            neg = fc < 0
+            ma, fa = np.where(neg, mc, ma), np.where(neg, fc, fa)
+            mb, fb = np.where(neg, mb, mc), np.where(neg, fb, fc)
+        large_m[rows, j] = mc
+        large_w[rows, j] = np.interp(4 * sg / (math.pi * mc), cw, ww)
+    return large_m, large_w
+
+
+#: Planned peak memory per grid point (bytes): about 25 float arrays of the grid's shape.
+CONTOUR_BYTES_PER_POINT = 200
+#: ... per grid row and amplitude sample of the exact large family (five float arrays).
+CONTOUR_BYTES_PER_ROW_SAMPLE = 40
+#: Amplitude samples per tick of ``max_amplitude`` (17 per cell, see ``_large_exact``).
+CONTOUR_SAMPLES_PER_TICK = 17
+
+
+def contour_memory_bytes(grid: int, max_amplitude: float) -> float:
+    """Estimated peak memory of :func:`contour_maps` in bytes."""
+    n_m = CONTOUR_SAMPLES_PER_TICK * (float(max_amplitude) + 1.0)
+    return float(grid) ** 2 * CONTOUR_BYTES_PER_POINT + float(grid) * n_m * CONTOUR_BYTES_PER_ROW_SAMPLE + 32.0 * n_m
+
+
+def check_contour_memory(grid: int, max_amplitude: float, names: tuple[str, str] = ("grid", "max_amplitude")) -> None:
+    """Refuse a map planned to need too much memory (see :func:`dfa._io.check_memory`), naming the input that drives it."""
+    need = contour_memory_bytes(grid, max_amplitude)
+    by_amplitude = float(grid) * CONTOUR_SAMPLES_PER_TICK * (float(max_amplitude) + 1.0) * CONTOUR_BYTES_PER_ROW_SAMPLE
+    if by_amplitude > float(grid) ** 2 * CONTOUR_BYTES_PER_POINT:
+        check_memory(
+            names[1],
+            f"{max_amplitude:g}",
+            need,
+            f"lower {names[1]} (the largest amplitude searched, ticks) or {names[0]}",
+        )
+    else:
+        check_memory(names[0], grid, need, f"lower {names[0]} (points per axis) or {names[1]}")
+
+
+def contour_maps(
+    mu: float,
+    *,
+    beta_range=(0.0, 1.0),
+    sigma_range=(0.0, 2.0),
+    grid: int = 200,
+    max_amplitude: float = 200.0,
+    progress: bool = False,
+) -> ContourMaps:
+    """Amplitude and frequency maps of both cycle families over a (β, σ) grid (paper Fig. 7).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass (paper Fig. 7: μ = 5).
+    beta_range, sigma_range : (float, float)
+        Grid extents.
+    grid : int
+        Points per axis (>= 2).
+    max_amplitude : float
+        Largest amplitude (ticks) searched for the exact large family (>= 1).
+    progress : bool
+        Show a tqdm progress bar (one step per β column) with an estimate of the time left, on stderr.
+
+    Returns
+    -------
+    ContourMaps
+        Amplitude (ticks) and frequency (rad per sample) of the small and large families, exact and
+        closed-form, NaN where a family does not exist; ``.plot()`` draws them.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an input is out of range or not a number, or the maps would not fit in memory.
+
+    See Also
+    --------
+    limit_cycles : The cycles at one point.
+    small_cycle_closed_form, large_cycle_closed_form : The closed forms at one point.
+    stability_map : The simulated outcome over the same plane.
+    """
+    m = check_mu(mu)
+    b0, b1 = _check_range("beta_range", beta_range)
+    s0, s1 = _check_range("sigma_range", sigma_range)
+    g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
+    amax = check_positive("max_amplitude", max_amplitude)
+    if amax < 1.0:
+        raise DFAValueError(f"max_amplitude = {amax} is invalid: it must be >= 1 tick (the large family has M >= 1)")
+    check_contour_memory(g, amax)
+    beta = np.linspace(b0, b1, g)
+    sigma = np.linspace(s0, s1, g)
+    bb, ss = np.meshgrid(beta, sigma)
+    # closed forms (paper eq. 42-45), one implementation (dfa.analysis.cycles.closed_forms)
+    small = small_cycle_closed_forms(m, bb, ss)
+    sm_cf, sw_cf = np.array(small.amplitude), np.array(small.frequency)
+    large = large_cycle_closed_forms(m, bb, ss)
+    lm_cf = np.where(large.amplitude >= 1.0, large.amplitude, np.nan)  # the large family has M >= 1
+    lw_cf = np.where(np.isfinite(lm_cf), large.frequency, np.nan)
+    small_m = np.where(sm_cf < 1.0, sm_cf, np.nan)
+    small_w = np.where(sm_cf < 1.0, sw_cf, np.nan)
+    large_m, large_w = _large_exact(m, beta, sigma, amax, check_bool("progress", progress, "pass True or False"))
+    detail = _closed_form_detail(small, large)
+    status = ContourStatus.FLAGGED if detail else ContourStatus.OK
+    return ContourMaps(m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax, status, detail)
+
+
+def _closed_form_detail(small, large) -> str:
+    """Which grid points the closed forms flag (β = σ = 0, solver failures) and why; ``""`` when none."""
+    notes = []
+    for name, cf in (("eq. 42-43", small), ("eq. 44-45", large)):
+        for code in (ClosedFormStatus.DEGENERATE, ClosedFormStatus.NOT_SOLVED):
+            count = int(np.count_nonzero(cf.status == code))
+            if count:
+                notes.append(f"{name}: {count} point(s) NaN, {code.reason}")
+    return "; ".join(notes)

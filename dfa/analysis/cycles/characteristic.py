@@ -1,0 +1,178 @@
+"""The characteristic function C(M, ω) = 1/L(jω; M) + D(M) of the harmonic balance (eq. 36, 40, 41).
+
+For the half-delay and Padé models 1/L = e^{jφ(ω)}·(−μω² + jωβ_eq): the device times an all-pass phase
+lead φ (the inverse of the hold's delay); the exact ZOH model uses the closed-form pulse transfer function
+(:mod:`dfa.analysis.loop`). Scalars take a plain-complex path (the bracketing root finders call it thousands of times).
+"""
+
+from __future__ import annotations
+
+import cmath
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ...core import dfcore
+from ...core.zoh import zoh_coefficients
+from ...model.device import Params
+from ...model.wall import ControllerParams
+
+_DF_CHOICES = ("exact", "small", "unity")
+
+#: Amplitudes below this (ticks) are not searched: there F ≈ (2 − 4σ)/(πM) keeps its sign.
+_M_FLOOR = 1e-9
+
+
+#: Frequency grid (rad per sample) on which the phase curve is scanned before bracketing.
+_W_GRID = np.concatenate([np.geomspace(1e-5, 0.05, 600, endpoint=False), np.linspace(0.05, math.pi - 1e-9, 3000)])
+_W_GRID.flags.writeable = False
+
+
+# ------------------------------------------------------------ loop inverse
+# For the half-delay and Padé models 1/L = e^{jφ(ω)}·(−μω² + jωβ_eq): the device times an
+# all-pass phase lead φ (the inverse of the hold's delay). Half-delay: φ = ω(d + ½). Padé:
+# the diagonal approximant of e^{−sτ} has num(s) = den(−s), so den(jω)/num(jω) = e^{2j·arg den(jω)}.
+# Scalars take a plain-complex path (the bracketing root finders call it thousands of times).
+
+
+@lru_cache(maxsize=64)
+def _grid_lead(model: str, delay: int, pade_order: int) -> tuple[np.ndarray, np.ndarray]:
+    """(φ, e^{jφ}) on _W_GRID, cached: the grid is scanned once per solve."""
+    lead = _lead_eval(_W_GRID, model, delay, pade_order)
+    return lead, np.exp(1j * lead)
+
+
+def _lead(w, model: str, delay: int, pade_order: int):
+    """Phase lead φ(ω) of 1/L over the device's inverse (half-delay and Padé models), rad."""
+    if w is _W_GRID:
+        return _grid_lead(model, delay, pade_order)[0]
+    return _lead_eval(w, model, delay, pade_order)
+
+
+def _rotation(w, model: str, delay: int, pade_order: int):
+    """e^{jφ(ω)} (vectorised), cached on _W_GRID."""
+    if w is _W_GRID:
+        return _grid_lead(model, delay, pade_order)[1]
+    return np.exp(1j * _lead_eval(w, model, delay, pade_order))
+
+
+def _lead_eval(w, model: str, delay: int, pade_order: int):
+    if model == "half-delay":
+        return w * (delay + 0.5)
+    den = _pade(delay + 0.5, pade_order)
+    if np.ndim(w) == 0:
+        s, pd = 1j * float(w), 0j
+        for c in den:
+            pd = pd * s + c
+        return 2.0 * cmath.phase(pd)
+    return 2.0 * np.angle(np.polyval(den, 1j * np.asarray(w, dtype=float)))
+
+
+def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int, ctl: ControllerParams | None = None):
+    """1/L(jω) for an equivalent damping β_eq (broadcast), time in samples; plain complex for scalars.
+
+    ``ctl`` (a controller that is not a pure spring; None for the paper's spring) divides by the
+    controller factor C(e^{jω}) and the amplifier lag (:func:`_controller_ratio`, :func:`dfa.analysis.loop.loop_response`).
+    """
+    if ctl is not None:
+        return _inv_loop_ctl(mu, beq, omega, model, delay, pade_order, ctl)
+    if (isinstance(omega, float) or np.ndim(omega) == 0) and (isinstance(beq, float) or np.ndim(beq) == 0):
+        return _inv_loop_scalar(mu, float(beq), float(omega), model, delay, pade_order)
+    w = omega if omega is _W_GRID else np.asarray(omega, dtype=float)
+    b = np.asarray(beq, dtype=float)
+    if model != "zoh":
+        return _rotation(w, model, delay, pade_order) * (-mu * w * w + 1j * w * b)
+    z = np.exp(1j * w)
+    c1, c0, p = zoh_coefficients(b / mu)
+    return z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0)
+
+
+def _inv_loop_scalar(mu: float, b: float, w: float, model: str, delay: int, pade_order: int) -> complex:
+    """1/L(jω) for one (β_eq, ω), in plain complex arithmetic."""
+    if model != "zoh":
+        return cmath.exp(1j * _lead(w, model, delay, pade_order)) * complex(-mu * w * w, w * b)
+    c1, c0, p = (float(x) for x in zoh_coefficients(b / mu))
+    z = cmath.exp(1j * w)
+    return complex(z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0))
+
+
+def _controller_factor(ctl: ControllerParams, omega):
+    """C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}), F the ZOH-exact velocity filter (1 without filter)."""
+    zi = np.exp(-1j * np.asarray(omega, dtype=float))
+    a = ctl.filter_pole
+    f = 1.0 if ctl.cutoff is None else (1.0 - a) * zi / (1.0 - a * zi)
+    return 1.0 + ctl.damping * (1.0 - zi) * f
+
+
+def _controller_ratio(ctl: ControllerParams, omega):
+    """R(ω) = (1 + jωα)/C(e^{jω}): what the controller and amplifier lag multiply 1/L by in the
+    half-delay and Padé models (the delay d stays in the hold's phase lead)."""
+    w = np.asarray(omega, dtype=float)
+    return (1.0 + 1j * w * ctl.lag) / _controller_factor(ctl, w)
+
+
+def _inv_loop_ctl(mu: float, beq, omega, model: str, delay: int, pade_order: int, ctl: ControllerParams):
+    """1/L(jω) with a controller (see :func:`_inv_loop`); plain complex for scalars."""
+    scalar = np.ndim(omega) == 0 and np.ndim(beq) == 0
+    w = omega if omega is _W_GRID else np.asarray(omega, dtype=float)
+    if model != "zoh" or ctl.lag == 0.0:
+        out = _inv_loop(mu, beq, omega, model, delay, pade_order)
+        out = out * (_controller_ratio(ctl, w) if model != "zoh" else 1.0 / _controller_factor(ctl, w))
+    else:
+        from ...core.zohlag import zoh_lag_response
+
+        z = np.exp(1j * w)
+        out = z**delay / (zoh_lag_response(mu, beq, w, ctl.lag) * _controller_factor(ctl, w))
+    return complex(out) if scalar else out
+
+
+@lru_cache(maxsize=64)
+def _pade(t: float, order: int) -> tuple[float, ...]:
+    """Denominator of python-control's Padé approximant of e^{−st} (its numerator is den(−s))."""
+    import control
+
+    num, den = control.pade(t, order)
+    den = np.asarray(den, dtype=float)
+    if not np.allclose(np.asarray(num, dtype=float), den * (-1.0) ** np.arange(den.size)[::-1], rtol=1e-12, atol=0):
+        raise RuntimeError("control.pade returned a non-diagonal approximant")  # pragma: no cover
+    return tuple(float(c) for c in den / den[0])
+
+
+@dataclass(frozen=True)
+class _Loop:
+    params: Params
+    model: str
+    delay: int
+    pade_order: int
+    df: str = "exact"
+    ctl: ControllerParams | None = None
+
+    def beq(self, m, w):
+        if isinstance(m, float) and isinstance(w, float):
+            return self.params.beta + 4.0 * self.params.sigma / (math.pi * m * w)
+        return self.params.beta + 4.0 * self.params.sigma / (math.pi * np.asarray(m) * np.asarray(w))
+
+    def inv(self, m, w):
+        return _inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order, self.ctl)
+
+    def d(self, m):
+        """D(M) (compiled eq. 41 for the exact describing function; M > 0 is the solver's own)."""
+        m = np.asarray(m, dtype=float)
+        if self.df == "exact":
+            return dfcore.df_array(m.ravel()).reshape(m.shape) if m.ndim else dfcore.df_value(float(m))
+        if self.df == "small":
+            return 2.0 / (math.pi * m)
+        return np.ones_like(m) if m.ndim else 1.0
+
+    def dprime(self, m):
+        m = np.asarray(m, dtype=float)
+        if self.df == "exact":
+            return dfcore.df_array(m.ravel(), True).reshape(m.shape) if m.ndim else dfcore.df_derivative(float(m))
+        if self.df == "small":
+            return -2.0 / (math.pi * m * m)
+        return np.zeros_like(m) if m.ndim else 0.0
+
+    def char(self, m, w):
+        return self.inv(m, w) + self.d(m)

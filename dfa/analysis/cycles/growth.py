@@ -1,0 +1,230 @@
+"""The describing function's growth band: from the smallest to the largest unstable cycle (beyond the paper)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ...checks import check_type
+from ...errors import DFAValueError
+from ...model.device import Device, Params
+from ...results.jsonable import explain_nulls, to_jsonable
+from ...results.status import GrowthStatus
+from .caveats import _NO_CAVEAT
+from .results import LimitCycleResult
+from .solve import limit_cycles
+
+
+# --------------------------------------------------------- design threshold
+@dataclass(frozen=True)
+class GrowthThreshold:
+    """The describing function's growth band: from the smallest to the largest unstable cycle.
+
+    Where the large family is a single unstable cycle the band is one amplitude
+    M_u and the first-harmonic analysis predicts growth above it. Where it is a
+    cluster of alternating stable and unstable cycles (β near the linear bound,
+    D(M) oscillating about 1, eq. 41) there is no single threshold: below the
+    band every predicted cycle is stable, inside it growth depends on the initial
+    condition, above the largest unstable cycle growth is predicted (unless a
+    larger stable cycle catches it). All of this is a first-harmonic
+    approximation (eq. 36), not a proof.
+
+    Attributes
+    ----------
+    amplitude, frequency, xi_dot : float or None
+        Smallest unstable cycle: M_u (ticks), ω (rad per sample) and the speed
+        amplitude M_u·ω (ticks per sample), to compare with eq. 12.
+    result : LimitCycleResult
+        The full solution it came from.
+    position, velocity : float or None
+        M_u and M_u·ω in physical units (m or rad, m/s or rad/s) when a device was given.
+    status : GrowthStatus
+        ``OK`` (unstable cycles found), ``NO_UNSTABLE_CYCLE``, ``NO_UNSTABLE_CYCLE_SEARCHED``
+        (none up to an incomplete search's limit) or ``LINEAR_UNSTABLE``.
+    amplitude_high, frequency_high, xi_dot_high, position_high, velocity_high : float or None
+        The same for the largest unstable cycle (the top of the band).
+    unstable_count : int
+        Number of unstable cycles in the band.
+    grows_above : bool or None
+        True when no stable cycle lies above the largest unstable one, so that
+        the first-harmonic analysis predicts growth above the band.
+    """
+
+    amplitude: float | None
+    frequency: float | None
+    xi_dot: float | None
+    result: LimitCycleResult
+    position: float | None = None
+    velocity: float | None = None
+    status: GrowthStatus = GrowthStatus.OK
+    amplitude_high: float | None = None
+    frequency_high: float | None = None
+    xi_dot_high: float | None = None
+    position_high: float | None = None
+    velocity_high: float | None = None
+    unstable_count: int = 0
+    grows_above: bool | None = None
+
+    def __post_init__(self) -> None:
+        st = GrowthStatus.coerce(self.status)
+        object.__setattr__(self, "status", st)
+        if (st is GrowthStatus.OK) != (self.amplitude is not None) or (self.amplitude is None) != (
+            self.unstable_count == 0
+        ):
+            raise DFAValueError(
+                f"status = {st.value!r} is invalid with amplitude = {self.amplitude!r} and unstable_count = "
+                f"{self.unstable_count!r}: status OK exactly when an unstable cycle was found; build it with growth_threshold"
+            )
+
+    @property
+    def is_band(self) -> bool:
+        """True for a cluster: more than one unstable cycle."""
+        return self.unstable_count > 1
+
+    @property
+    def caveat(self) -> str | None:
+        """The sub-tick caveat of the search (:attr:`LimitCycleResult.caveat`), or None.
+
+        Set when the band's bottom lies just above the first quantization level, where "no growth below it"
+        is not borne out by simulation.
+        """
+        return self.result.caveat
+
+    def meaning(self) -> str:
+        """What the band means, in words that claim no more than the describing function shows."""
+        text = self._meaning()
+        return text if self.caveat is None else f"{text} Caveat: {self.caveat.removeprefix('sub-tick caveat: ')}."
+
+    def _meaning(self) -> str:
+        res = self.result
+        if self.status is GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED:
+            return f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail})"
+        if self.status is GrowthStatus.LINEAR_UNSTABLE and not res.complete:
+            return (
+                f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail}), but the "
+                "linear loop (exact ZOH model) is unstable: amplitudes grow without bound"
+            )
+        if self.amplitude is None:
+            return self.status.message
+        lo, hi = self.amplitude, self.amplitude_high
+        tail = ""
+        if not res.complete:
+            tail = f" The search was incomplete ({res.detail}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
+        if self.grows_above:
+            above = f"above {hi:.4g} ticks the first-harmonic analysis predicts growth" + (
+                " without bound (the linear loop, exact ZOH model, is unstable)" if res.linear_stable is False else ""
+            )
+        else:
+            nxt = next(c for c in res.cycles if c.amplitude > hi and c.stable)
+            above = f"above {hi:.4g} ticks it predicts settling on the stable cycle at M = {nxt.amplitude:.4g} ticks"
+        if not self.is_band:
+            return f"Describing function (first-harmonic approximation): below M_u = {lo:.4g} ticks no growth is predicted; {above}.{tail}"
+        return (
+            f"Describing function (first-harmonic approximation): {self.unstable_count} unstable cycles alternate with stable ones "
+            f"between {lo:.4g} and {hi:.4g} ticks. Below the band every predicted cycle is stable (no growth predicted); "
+            f"inside it, whether an oscillation grows depends on its initial condition; {above}.{tail}"
+        )
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record (``dfa limit-cycles --json``, key ``growth_threshold``)."""
+        out = to_jsonable(
+            {
+                "amplitude": self.amplitude,
+                "frequency": self.frequency,
+                "xi_dot": self.xi_dot,
+                "position": self.position,
+                "velocity": self.velocity,
+                "band": {
+                    "low": {
+                        "amplitude": self.amplitude,
+                        "frequency": self.frequency,
+                        "xi_dot": self.xi_dot,
+                        "position": self.position,
+                        "velocity": self.velocity,
+                    },
+                    "high": {
+                        "amplitude": self.amplitude_high,
+                        "frequency": self.frequency_high,
+                        "xi_dot": self.xi_dot_high,
+                        "position": self.position_high,
+                        "velocity": self.velocity_high,
+                    },
+                },
+                "unstable_count": self.unstable_count,
+                "grows_above": self.grows_above,
+                "complete": self.result.complete,
+                "linear_stable": self.result.linear_stable,
+                "linear_model": "zoh",
+                "status": self.status,
+                "status_message": self.status.message,
+                "meaning": self.meaning(),
+                "caveat": self.caveat,
+            }
+        )
+        return explain_nulls(out, {"caveat": _NO_CAVEAT})
+
+
+def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> GrowthThreshold:
+    """Growth band of the describing function: smallest and largest unstable cycles (beyond the paper).
+
+    Parameters
+    ----------
+    params : Params
+        Dimensionless device (μ > 0, β >= 0, σ >= 0).
+    device : Device, optional
+        To express the amplitudes and speeds in physical units.
+    **kwargs
+        Passed to :func:`limit_cycles` (model, delay, …).
+
+    Returns
+    -------
+    GrowthThreshold
+        The band's smallest and largest unstable cycles, what it means and the underlying search.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device` or :func:`limit_cycles` refuses its inputs.
+
+    See Also
+    --------
+    limit_cycles : Every cycle, stable and unstable.
+    simulate : What the exact loop does from a given speed.
+    """
+    if device is not None:
+        check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
+    res = limit_cycles(params, **kwargs)
+    unstable = res.unstable_cycles
+    if not unstable:
+        if res.linear_stable is False:
+            status = GrowthStatus.LINEAR_UNSTABLE
+        else:
+            status = GrowthStatus.NO_UNSTABLE_CYCLE if res.complete else GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED
+        return GrowthThreshold(
+            None, None, None, res, status=status, grows_above=None if res.linear_stable is not False else True
+        )
+    lo, hi = unstable[0], unstable[-1]
+
+    def phys(c):
+        if device is None:
+            return None, None
+        return c.amplitude * device.resolution, device.velocity(c.amplitude * c.frequency)
+
+    plo, vlo = phys(lo)
+    phi, vhi = phys(hi)
+    grows = not any(c.stable and c.amplitude > hi.amplitude for c in res.cycles)
+    return GrowthThreshold(
+        lo.amplitude,
+        lo.frequency,
+        lo.amplitude * lo.frequency,
+        res,
+        plo,
+        vlo,
+        GrowthStatus.OK,
+        hi.amplitude,
+        hi.frequency,
+        hi.amplitude * hi.frequency,
+        phi,
+        vhi,
+        len(unstable),
+        grows,
+    )

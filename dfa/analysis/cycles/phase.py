@@ -1,0 +1,166 @@
+"""The phase condition V = 0 of the harmonic balance: β*(ω), its monotone pieces M(ω) and ω(M) on a piece (eq. 36, 40)."""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+from scipy import optimize
+from scipy.optimize.elementwise import find_root
+
+from ...model.wall import ControllerParams
+from .characteristic import _W_GRID, _controller_ratio, _inv_loop, _lead, _Loop
+
+# --------------------------------------------------------------- phase curve
+
+
+def _phase_beta(lp: _Loop, w: np.ndarray) -> np.ndarray:
+    """β*(ω): the damping at which V = 0 with U < 0 (NaN where there is none)."""
+    mu, d = lp.params.mu, lp.delay
+    if lp.model != "zoh":
+        # V = 0 ⇔ β_eq = μω tan φ, and then U = −μω²/cos φ < 0 ⇔ cos φ > 0; β_eq >= 0 ⇒ φ mod 2π ∈ [0, π/2)
+        th = _lead(w, lp.model, d, lp.pade_order)
+        if lp.ctl is not None:  # 1/L = e^{jθ}·R(ω)·(−μω² + jωβ_eq): R adds its phase to the lead, |R| > 0
+            th = th + np.angle(_controller_ratio(lp.ctl, w))
+        ok = np.mod(th, 2 * math.pi) < math.pi / 2
+        with np.errstate(invalid="ignore"):
+            return np.where(ok, mu * w * np.tan(th), np.nan)
+    if w is _W_GRID:  # β* does not depend on β or σ: a sweep at fixed μ scans the grid once
+        return _zoh_phase_beta_grid(mu, d, lp.ctl)
+    return _zoh_phase_beta(mu, d, w, lp.ctl)
+
+
+@lru_cache(maxsize=16)
+def _zoh_phase_beta_grid(mu: float, d: int, ctl: ControllerParams | None = None) -> np.ndarray:
+    out = _zoh_phase_beta(mu, d, _W_GRID, ctl)
+    out.flags.writeable = False
+    return out
+
+
+def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, ctl: ControllerParams | None = None) -> np.ndarray:
+    """β*(ω) of the exact ZOH loop: scan β on a log grid, bracket V's crossing with U < 0, bisect (vectorised)."""
+    bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
+    c = _inv_loop(mu, bgrid[None, :], w[:, None], "zoh", d, 0, ctl)
+    v = c.imag
+    sc = (np.sign(v[:, :-1]) != np.sign(v[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)
+    has = sc.any(axis=1)
+    idx = np.argmax(sc, axis=1)
+    lo = bgrid[idx]
+    hi = bgrid[idx + 1]
+    vlo = v[np.arange(w.size), idx]
+    if w.size <= 4:  # a few frequencies (the ends of a phase-curve piece): Brent on the scalar loop inverse
+        out = np.full(w.size, np.nan)
+        for i in np.flatnonzero(has):
+            wi = float(w[i])
+            out[i] = optimize.brentq(
+                lambda b, wi=wi: _inv_loop(mu, b, wi, "zoh", d, 0, ctl).imag,
+                float(lo[i]),
+                float(hi[i]),
+                xtol=1e-300,
+                rtol=4 * np.finfo(float).eps,
+            )
+        return out
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        vm = _inv_loop(mu, mid, w, "zoh", d, 0, ctl).imag
+        left = np.sign(vm) == np.sign(vlo)
+        lo = np.where(left, mid, lo)
+        vlo = np.where(left, vm, vlo)
+        hi = np.where(left, hi, mid)
+    return np.where(has, 0.5 * (lo + hi), np.nan)
+
+
+def _omega_for_m(lp: _Loop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np.ndarray:
+    """Solve V(M, ω) = 0 for ω in the brackets [wa, wb] (scipy's elementwise find_root).
+
+    Where V does not change sign over a bracket (a root at an end, to rounding), the end with the
+    smaller |V| is returned: the same rule as :meth:`_PieceOmega.scalar`, so that the scan and the
+    refinement of a root evaluate F(M) = D(M) + U(M, ω(M)) as one function.
+    """
+    va = lp.inv(m, wa).imag
+    vb = lp.inv(m, wb).imag
+    end = np.where(np.abs(va) <= np.abs(vb), wa, wb)
+    no_change = (va == 0.0) | (vb == 0.0) | ((va < 0) == (vb < 0))
+    if no_change.all():
+        return end
+    res = find_root(lambda w, mm: lp.inv(mm, w).imag, (wa, wb), args=(m,))
+    # elementwise Chandrupatla: a failure (status != 0 where the ends bracket) gives NaN, never an end
+    return np.where(no_change, end, np.where(res.status == 0, res.x, np.nan))
+
+
+def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Monotone pieces (ω, M) of the phase curve, each with an exact M = ∞ end where it reaches β* = β."""
+    w = _W_GRID
+    bs = _phase_beta(lp, w)
+    beta, sigma = lp.params.beta, lp.params.sigma
+    excess = bs - beta
+    valid = np.isfinite(excess) & (excess > 0)
+    out = []
+    i = 0
+    n = w.size
+    while i < n:
+        if not valid[i]:
+            i += 1
+            continue
+        j = i
+        while j + 1 < n and valid[j + 1]:
+            j += 1
+        ws = w[i : j + 1]
+        ms = 4 * sigma / (math.pi * ws * excess[i : j + 1])
+        # add the exact point where β* = β (M = ∞) at either end, when the curve crosses there
+        ends = []
+        for k_in, k_out in ((i, i - 1), (j, j + 1)):
+            if 0 <= k_out < n and np.isfinite(excess[k_out]) and excess[k_out] <= 0:
+                f = lambda x: float(_phase_beta(lp, np.array([x]))[0] - beta)
+                try:
+                    ends.append((k_in, optimize.brentq(f, min(w[k_in], w[k_out]), max(w[k_in], w[k_out]), xtol=1e-15)))
+                except ValueError:
+                    pass
+        if i == 0 and beta == 0.0:
+            ends.append((i, 0.0))  # every model is a double integrator at low ω: β* → 0 as ω → 0
+        for k_in, w0 in ends:
+            if k_in == i:
+                ws = np.concatenate([[w0], ws])
+                ms = np.concatenate([[np.inf], ms])
+            else:
+                ws = np.concatenate([ws, [w0]])
+                ms = np.concatenate([ms, [np.inf]])
+        # split into monotone runs of M
+        dm = np.sign(np.diff(ms))  # ±inf differences at an M = ∞ end keep their sign
+        start = 0
+        for k in range(1, dm.size + 1):
+            if k == dm.size or dm[k] != dm[start]:
+                out.append((ws[start : k + 1], ms[start : k + 1]))
+                start = k
+        i = j + 1
+    return out
+
+
+class _PieceOmega:
+    """ω(M) on one monotone piece of the phase curve: V(M, ω) = 0 bracketed by the piece's grid."""
+
+    def __init__(self, lp: _Loop, ws: np.ndarray, ms: np.ndarray):
+        order = np.argsort(ms)
+        self.lp, self.ms, self.ws = lp, ms[order], ws[order]
+
+    def _brackets(self, m):
+        k = np.clip(np.searchsorted(self.ms, m), 1, self.ms.size - 1)
+        return self.ws[k - 1], self.ws[k]
+
+    def __call__(self, m: np.ndarray) -> np.ndarray:
+        wa, wb = self._brackets(m)
+        return _omega_for_m(self.lp, m, wa, wb)
+
+    def scalar(self, m: float) -> float:
+        """The same for one amplitude, by Brent's method on the scalar loop inverse (same end rule as the vector path)."""
+        wa, wb = (float(x) for x in self._brackets(m))
+        lp = self.lp
+
+        def v(w):
+            return lp.inv(m, w).imag
+
+        va, vb = v(wa), v(wb)
+        if va == 0.0 or vb == 0.0 or (va < 0) == (vb < 0):  # a root on a bracket end (rounding): take the smaller |V|
+            return wa if abs(va) <= abs(vb) else wb
+        return optimize.brentq(v, wa, wb, xtol=1e-300, rtol=4 * np.finfo(float).eps)

@@ -1,0 +1,253 @@
+"""Result types of the limit-cycle search: one cycle, all cycles of an operating point, how the search ended."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ...checks import check_positive
+from ...errors import DFATypeError, DFAValueError
+from ...model.device import Device, Params
+from ...model.wall import ControllerParams
+from ...results.jsonable import explain_nulls, to_jsonable
+from ...results.status import SearchStatus
+from .caveats import _NO_CAVEAT, subtick_caveat
+
+
+# ------------------------------------------------------------------ results
+@dataclass(frozen=True)
+class LimitCycle:
+    """One harmonic-balance solution ξ = M sin ωτ.
+
+    Attributes
+    ----------
+    amplitude : float
+        M in encoder ticks.
+    frequency : float
+        ω in rad per sample.
+    stable : bool
+        Loeb criterion (module docstring).
+    family : str
+        ``"small"`` (M < 1) or ``"large"`` (M >= 1).
+    loeb : float
+        ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M at the root.
+    residual : float
+        abs(1 + D(M)·L(jω; M)) at the reported root.
+    few_samples : bool
+        True when the period is under 8 samples: first-harmonic analysis is
+        least trustworthy there (validation issue).
+    """
+
+    amplitude: float
+    frequency: float
+    stable: bool
+    family: str
+    loeb: float
+    residual: float
+    few_samples: bool = False
+
+    @property
+    def period(self) -> float:
+        """Period in samples, 2π/ω."""
+        return 2.0 * math.pi / self.frequency
+
+    def __post_init__(self) -> None:
+        if self.family not in ("small", "large"):
+            raise DFAValueError(
+                f"family = {self.family!r} is invalid: it must be 'small' or 'large'; build cycles with limit_cycles"
+            )
+        for name in ("amplitude", "frequency"):
+            check_positive(name, getattr(self, name), "build cycles with limit_cycles")
+
+    def physical(self, device: Device, stiffness: float) -> dict[str, float | None]:
+        """Express this cycle in physical units for a device at stiffness K (:mod:`dfa.model.units`).
+
+        Parameters
+        ----------
+        device : Device
+            The physical device.
+        stiffness : float
+            Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+
+        Returns
+        -------
+        dict
+            ``amplitude_m`` (rotary: rad), ``force_amplitude_n`` (N·m), ``frequency_hz``, ``period_s``
+            and ``velocity_m_s`` (rad/s, the speed amplitude M·ω).
+        """
+        from ...model.units import physical_quantities
+
+        return physical_quantities(
+            device,
+            stiffness,
+            amplitude=self.amplitude,
+            frequency=self.frequency,
+            period=self.period,
+            xi_dot=self.amplitude * self.frequency,
+        )
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record of the cycle.
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: amplitude, frequency, period, stability, family and the checks.
+        """
+        return to_jsonable(
+            {
+                "amplitude": self.amplitude,
+                "frequency": self.frequency,
+                "period": self.period,
+                "stable": self.stable,
+                "family": self.family,
+                "loeb": self.loeb,
+                "residual": self.residual,
+                "few_samples": self.few_samples,
+            }
+        )
+
+
+@dataclass(frozen=True)
+class LimitCycleResult:
+    """All limit cycles of one operating point (an empty tuple is a valid answer).
+
+    Attributes
+    ----------
+    params : Params
+    model, delay, pade_order : loop model (see :func:`dfa.analysis.loop.loop_response`)
+    describing : str
+        ``"exact"`` (eq. 41), or the paper's approximations ``"small"`` (2/(πM)) and ``"unity"`` (1).
+    max_amplitude : float
+        Largest amplitude searched (ticks). When ``complete``, no root of eq. 36
+        lies beyond the last one found (pieces of the phase curve ended, or the
+        envelope bound of eq. 41 closed them); when not, the search stopped here.
+    cycles : tuple of LimitCycle
+        Sorted by amplitude.
+    complete : bool
+        True only when the search provably found every root (status ``COMPLETE``).
+    detail : str
+        One-line message with the numbers of this search: ``"incomplete: …"`` (why), or the
+        status message when complete (the default).
+    status : SearchStatus
+        How the search ended (``COMPLETE``, ``MAX_AMPLITUDE``, ``BUDGET``, ``NUMERICAL``);
+        ``status_code`` is a deprecated alias.
+    search_bound : float or None
+        When complete: the amplitude (ticks) beyond which no root of eq. 36 exists
+        (the phase curve's pieces end there, or the eq. 41 envelope excludes
+        roots); 0 when the loop's phase condition has no solution at all.
+    linear_stable : bool or None
+        Whether the linear loop without encoder and Coulomb friction (always the
+        exact ZOH loop with the same delay, :func:`dfa.analysis.linear.linear_stable`) is
+        asymptotically stable; when it is not, amplitudes beyond the largest
+        unstable cycle are predicted to grow without bound. With a controller: the
+        exact linear loop with that controller (and amplifier lag).
+    controller : ControllerParams or None
+        The controller given to :func:`limit_cycles` (None: the paper's spring).
+    """
+
+    params: Params
+    model: str
+    delay: int
+    pade_order: int
+    describing: str
+    max_amplitude: float
+    cycles: tuple = field(default_factory=tuple)
+    complete: bool = True
+    detail: str = ""
+    status: SearchStatus = SearchStatus.COMPLETE
+    linear_stable: bool | None = None
+    search_bound: float | None = None
+    controller: ControllerParams | None = None
+
+    def __post_init__(self) -> None:
+        if self.controller is not None and not isinstance(self.controller, ControllerParams):
+            raise DFATypeError("controller must be a ControllerParams or None; build results with limit_cycles")
+        st = SearchStatus.coerce(self.status)
+        object.__setattr__(self, "status", st)
+        object.__setattr__(self, "detail", self.detail or st.message)
+        object.__setattr__(self, "cycles", tuple(self.cycles))
+        if self.complete != (st is SearchStatus.COMPLETE):
+            raise DFAValueError(
+                f"complete = {self.complete!r} is invalid with status = {st.value!r}: a search is complete exactly "
+                "when its status is COMPLETE; build results with limit_cycles"
+            )
+        if not all(isinstance(c, LimitCycle) for c in self.cycles):
+            raise DFATypeError("cycles must hold LimitCycle objects; build results with limit_cycles")
+
+    @property
+    def status_code(self) -> SearchStatus:
+        """Deprecated alias of :attr:`status`."""
+        return self.status
+
+    @property
+    def caveat(self) -> str | None:
+        """The sub-tick caveat (:func:`dfa.analysis.cycles.subtick_caveat`), or None.
+
+        A sentence when the smallest unstable cycle lies just above the first quantization level, where the
+        growth verdict resting on it is contradicted by simulation; None otherwise.
+        """
+        return subtick_caveat(self)
+
+    @property
+    def stable_cycles(self) -> tuple:
+        """The stable cycles (Loeb's criterion), by increasing amplitude."""
+        return tuple(c for c in self.cycles if c.stable)
+
+    @property
+    def unstable_cycles(self) -> tuple:
+        """The unstable cycles (Loeb's criterion), by increasing amplitude."""
+        return tuple(c for c in self.cycles if not c.stable)
+
+    def physical(self, device: Device, stiffness: float) -> dict[str, object]:
+        """Every cycle in physical units (:meth:`LimitCycle.physical`), with the device, K and force step KΔ.
+
+        Parameters
+        ----------
+        device : Device
+            The physical device.
+        stiffness : float
+            Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+
+        Returns
+        -------
+        dict
+            The device, K, force step KΔ and units, and ``cycles``: one dict per cycle.
+        """
+        from ...model.units import unit_context
+
+        return {**unit_context(device, stiffness), "cycles": [c.physical(device, stiffness) for c in self.cycles]}
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record (the ``dfa limit-cycles --json`` contract plus extras).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: the cycles, inputs, completeness, status and detail.
+        """
+        extra = {} if self.controller is None else {"controller": self.controller.as_dict()}
+        out = to_jsonable(
+            {
+                **extra,
+                "cycles": [c.as_dict() for c in self.cycles],
+                "mu": self.params.mu,
+                "beta": self.params.beta,
+                "sigma": self.params.sigma,
+                "model": self.model,
+                "delay": self.delay,
+                "complete": self.complete,
+                "max_amplitude": self.max_amplitude,
+                "status": self.status,
+                "status_message": self.detail,
+                "linear_stable": self.linear_stable,
+                "linear_model": "zoh",
+                "search_bound": self.search_bound,
+                "caveat": self.caveat,
+            }
+        )
+        return explain_nulls(out, {"caveat": _NO_CAVEAT})
+
+
+class LimitCycleSearchWarning(RuntimeWarning):
+    """A limit-cycle search ended incomplete because of a numerical failure."""

@@ -1,0 +1,295 @@
+"""The limit-cycle solver: bracket the roots of F(M) = D(M) + U(M, ω(M)) on every piece and refine them (eq. 36)."""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+
+import numpy as np
+from scipy import optimize
+
+from ...checks import check_choice, check_positive
+from ...model.device import Params
+from ...model.wall import ControllerParams
+from ..loop import _check_model, _check_params
+from . import search
+from .characteristic import _DF_CHOICES, _M_FLOOR, _W_GRID, _Loop
+from .controlled import linear_stable_with_controller, resolve_controller
+from .phase import _PieceOmega, _pieces
+from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchStatus
+from .search import _m_samples, envelope_bound
+from .stability import _cycles_at_crossing, _make_cycle
+
+#: What a failing root finder raises; counted as a numerical failure of the search, never raised.
+_NUMERICAL_ERRORS = (ValueError, RuntimeError, FloatingPointError, ZeroDivisionError, OverflowError)
+
+
+def _refine(lp: _Loop, omega_of: _PieceOmega, a: float, b: float) -> float | None:
+    """Root of F(M) = D(M) + U(M, ω(M)) on [a, b] with the scalar ω(M); None when the ends do not bracket."""
+
+    def g(mm):
+        return lp.char(mm, omega_of.scalar(mm)).real
+
+    ga, gb = g(a), g(b)
+    if ga == 0.0 or gb == 0.0:
+        return a if ga == 0.0 else b
+    if (ga < 0) == (gb < 0) or not (math.isfinite(ga) and math.isfinite(gb)):
+        return None
+    return optimize.brentq(g, a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+
+
+def _solve_sigma_zero(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], tuple | None, int, float]:
+    """σ = 0: the loop does not depend on M; its phase crossings are the roots of Im(1/L) with Re(1/L) < 0."""
+    cycles: list[LimitCycle] = []
+    reach, failures, bound = None, 0, 0.0
+    w = _W_GRID
+    c = lp.inv(1.0, w)
+    idx = np.where((np.sign(c.imag[:-1]) != np.sign(c.imag[1:])) & (c.real[:-1] < 0) & (c.real[1:] < 0))[0]
+    for i in idx:
+        w0 = optimize.brentq(lambda x: float(np.imag(lp.inv(1.0, x))), w[i], w[i + 1], xtol=1e-15)
+        g = -float(np.real(lp.inv(1.0, w0)))
+        if g <= 0:
+            continue
+        if lp.df == "exact":
+            mm = min(max_amp, float(search.INTERVAL_BUDGET))  # the same size budget as the σ > 0 scan
+            roots, comp, fails = _df_roots(g, mm)
+            failures += fails
+            if not comp:
+                r = (mm, "budget" if mm < max_amp else "max_amplitude")
+                reach = r if reach is None else min(reach, r)
+            else:
+                bound = max(bound, min(mm, envelope_bound(g)), 2.0 / (math.pi * g))
+        elif lp.df == "small":
+            roots = np.array([2.0 / (math.pi * g)])
+            bound = max(bound, float(roots[0]))
+        else:
+            roots = np.array([])
+        # exact D inversion at an exact phase crossing: nothing to polish
+        cycles += _cycles_at_crossing(lp, np.asarray(roots, dtype=float), w0)
+    return cycles, reach, failures, bound
+
+
+def _df_roots(g: float, max_amp: float) -> tuple[np.ndarray, bool, int]:
+    """quantizer_df_inverse with its failure count (compiled Brent non-convergence)."""
+    from ..describing import _df_inverse_counted
+
+    return _df_inverse_counted(g, max_amp)
+
+
+def _solve(lp: _Loop, max_amp: float, deadline: float = math.inf) -> tuple[list[LimitCycle], tuple | None, int, float]:
+    """All roots up to ``max_amp``: (cycles, reach, failures, bound); reach is None when the search is complete,
+    and then no root exists beyond ``bound`` (ticks). Past ``deadline`` (time.monotonic) the pieces not yet
+    searched are skipped: reach is then (smallest amplitude of a skipped piece, "time_budget", pieces done, pieces)."""
+    if lp.params.sigma == 0.0:
+        return _solve_sigma_zero(lp, max_amp)
+    cycles: list[LimitCycle] = []
+    reach, failures, bound = None, 0, 0.0
+    pieces = [(ws, ms) for ws, ms in _pieces(lp) if np.isfinite(ms).any()]
+    for k, (ws, ms) in enumerate(pieces):
+        finite = np.isfinite(ms)
+        lo = float(np.min(ms[finite]))
+        if time.monotonic() > deadline:  # the time budget: no root below the skipped pieces' lowest amplitude is lost
+            skipped = min(float(np.min(m[np.isfinite(m)])) for _, m in pieces[k:])
+            below = min(skipped, reach[0]) if reach is not None else skipped
+            return cycles, (min(below, max_amp), "time_budget", k, len(pieces)), failures, bound
+        hi = float(np.max(ms))
+        w_inf = float(ws[~finite][0]) if (~finite).any() else None
+        omega_of = _PieceOmega(lp, ws, ms)
+        try:
+            samples, r, b = _m_samples(lo, hi, max_amp, lp, w_inf, omega_of)
+            bound = max(bound, b)
+            if r is not None:
+                reach = r if reach is None else min(reach, r)
+            if samples.size < 2:
+                continue
+            found, fails = _piece_roots(lp, omega_of, samples)
+        except _NUMERICAL_ERRORS:
+            found, fails = [], 1
+        cycles += found
+        failures += fails
+    return cycles, reach, failures, bound
+
+
+def _piece_roots(lp: _Loop, omega_of: _PieceOmega, samples: np.ndarray) -> tuple[list[LimitCycle], int]:
+    """Scan F on the samples, bracket its sign changes and refine each (see the module docstring)."""
+    wsamp = omega_of(samples)
+    dvals = lp.d(samples)
+    u = np.real(lp.inv(samples, wsamp))
+    f = u + dvals
+    # F is a difference of two terms of size ~D: a sign change with both ends at rounding level is noise
+    noise = 64 * np.finfo(float).eps * (np.abs(dvals) + np.abs(u))
+    real = (np.abs(f[:-1]) > noise[:-1]) | (np.abs(f[1:]) > noise[1:])
+    sc = np.where(np.isfinite(f[:-1]) & np.isfinite(f[1:]) & (np.sign(f[:-1]) != np.sign(f[1:])) & real)[0]
+    # ω(M) is NaN only where its root finder failed: a sample that cannot be scanned is a numerical failure
+    out, failures = [], int(np.count_nonzero(np.isnan(wsamp)))
+    for i in sc:
+        m0 = _refine(lp, omega_of, float(samples[i]), float(samples[i + 1]))
+        if m0 is None:
+            failures += 1
+            continue
+        if m0 <= _M_FLOOR * (1 + 1e-6):
+            continue  # on the search floor: the degenerate σ = ½ end of the small family (M → 0, ω → π)
+        out.append(_make_cycle(lp, m0, omega_of.scalar(m0)))
+    return out, failures
+
+
+#: Size budget of the automatic search range (ticks): the envelope bound is followed up to here.
+AUTO_MAX_AMPLITUDE = 1.0e6
+
+#: Default wall-clock budget of one limit-cycle search (seconds).
+DEFAULT_TIME_BUDGET = 10.0
+
+
+def limit_cycles(
+    params: Params,
+    *,
+    model: str = "half-delay",
+    delay: int = 0,
+    pade_order: int = 4,
+    max_amplitude: float | None = None,
+    describing: str = "exact",
+    time_budget: float = DEFAULT_TIME_BUDGET,
+    controller: ControllerParams | None = None,
+) -> LimitCycleResult:
+    """Every limit cycle (M, ω) of the harmonic balance 1 + D(M)L(jω; M) = 0 (eq. 36).
+
+    Parameters
+    ----------
+    params : Params
+        Dimensionless device (μ > 0, β >= 0, σ >= 0).
+    model : {"half-delay", "pade", "zoh"}
+        Model of the hold (:func:`dfa.analysis.loop.loop_response`); ``"zoh"`` is exact.
+    delay : int
+        Computational delay in samples.
+    pade_order : int
+        Order of the Padé approximation for ``model="pade"``.
+    max_amplitude : float, optional
+        Largest amplitude searched, in ticks. Default (None): up to the
+        amplitude beyond which the envelope abs(D − 1) <= 0.38⌊M⌋^{-3/2} of
+        eq. 41 proves that no root exists, for these (μ, β, σ, model, d), within
+        a budget of ``AUTO_MAX_AMPLITUDE`` ticks (beyond it the result is
+        incomplete, status ``BUDGET``).
+    describing : {"exact", "small", "unity"}
+        ``"exact"`` uses eq. 41; ``"small"`` and ``"unity"`` replace D by the
+        paper's approximations 2/(πM) and 1 (to reproduce eq. 42-45).
+    time_budget : float
+        Seconds of wall-clock time the search may take (default
+        ``DEFAULT_TIME_BUDGET``, 10 s; typical searches take milliseconds).
+        When it runs out the pieces of the phase curve not yet searched are
+        skipped and the result is incomplete (status ``TIME_BUDGET``), with
+        ``max_amplitude`` the amplitude below which no cycle was missed.
+    controller : ControllerParams, optional
+        The virtual wall (:class:`dfa.ControllerParams`: damper β_B, velocity filter ν_c, delay d,
+        amplifier lag α); D(M) then multiplies the controller C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω})
+        and the amplifier lag 1/(jωα + 1) sits between hold and device (:func:`dfa.analysis.loop.loop_response`).
+        Default None: the paper's spring. A pure spring (``is_spring``) gives the spring-only result
+        with the controller's delay; ``delay`` must then be 0 or the same. ``linear_stable`` is the
+        exact linear loop with the controller.
+
+    Returns
+    -------
+    LimitCycleResult
+        Cycles sorted by amplitude; an empty tuple when there is none. A
+        numerical failure never raises: it gives ``complete=False``, status
+        ``NUMERICAL`` and a :class:`LimitCycleSearchWarning`.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``params`` is not :class:`Params`, the model or ``describing`` is unknown, the delay or
+        Padé order is not a valid whole number, or ``max_amplitude`` is not a finite number > 0.
+
+    See Also
+    --------
+    growth_threshold : The smallest and largest unstable cycles, in words.
+    small_cycle_closed_form, large_cycle_closed_form : The paper's closed forms (eq. 42-45).
+    nyquist_locus_response : The same balance drawn as a Nyquist plot.
+    """
+    p = _check_params(params)
+    ctl, d = resolve_controller(controller, delay)
+    m, d, n = _check_model(model, d, pade_order)
+    auto = max_amplitude is None
+    amax = (
+        AUTO_MAX_AMPLITUDE
+        if auto
+        else check_positive("max_amplitude", max_amplitude, "give the largest amplitude to search, in ticks")
+    )
+    df = check_choice("describing", describing, _DF_CHOICES)
+    seconds = check_positive("time_budget", time_budget, "give the longest search time in seconds, e.g. 10")
+    lp = _Loop(p, m, d, n, df, ctl)
+    try:
+        cycles, reach, failures, bound = _solve(lp, amax, time.monotonic() + seconds)
+    except _NUMERICAL_ERRORS:  # pragma: no cover - last resort
+        cycles, reach, failures, bound = [], None, 1, math.nan
+    code, status = _search_status(failures, reach, auto, amax, seconds)
+    if code is SearchStatus.NUMERICAL:
+        warnings.warn(
+            f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}"
+            + (f", controller {ctl.as_dict()}" if ctl is not None else "")
+            + f"): {status}",
+            LimitCycleSearchWarning,
+            stacklevel=2,
+        )
+    searched = reach[0] if reach is not None else amax
+    return LimitCycleResult(
+        p,
+        m,
+        d,
+        n,
+        df,
+        searched,
+        _unique(cycles),
+        code is SearchStatus.COMPLETE,
+        status,
+        code,
+        _linear_stable(p.mu, p.beta, d) if ctl is None else linear_stable_with_controller(p.mu, p.beta, ctl),
+        bound if code is SearchStatus.COMPLETE else None,
+        None if controller is None else controller,
+    )
+
+
+def _unique(cycles: list[LimitCycle]) -> tuple[LimitCycle, ...]:
+    """Cycles sorted by amplitude, a root found from two neighbouring brackets kept once."""
+    uniq: list[LimitCycle] = []
+    for c in sorted(cycles, key=lambda c: c.amplitude):
+        if (
+            not uniq
+            or abs(c.amplitude - uniq[-1].amplitude) > 1e-9 * c.amplitude
+            or abs(c.frequency - uniq[-1].frequency) > 1e-9
+        ):
+            uniq.append(c)
+    return tuple(uniq)
+
+
+def _search_status(
+    failures: int, reach: tuple | None, auto: bool, amax: float, seconds: float = math.inf
+) -> tuple[SearchStatus, str]:
+    """How the search ended, and the one-line detail that says so (``""`` when complete: the status message)."""
+    if failures:
+        status = (
+            f"incomplete: {failures} root bracket(s) could not be refined (numerical failure); "
+            "cycles may be missing" + (f", and beyond {reach[0]:g} ticks" if reach is not None else "")
+        )
+        return SearchStatus.NUMERICAL, status
+    if reach is None:
+        return SearchStatus.COMPLETE, ""  # detail: the status message
+    if reach[1] == "time_budget":
+        return SearchStatus.TIME_BUDGET, (
+            f"incomplete: time budget of {seconds:g} s hit after searching {reach[2]} of {reach[3]} pieces of the "
+            f"phase curve; no cycle missed below M = {reach[0]:.4g} ticks (raise time_budget)"
+        )
+    budget = reach[1] == "budget" or (auto and reach[0] >= amax)
+    why = (
+        f"searched up to the size budget ({reach[0]:g} ticks) short of the envelope bound"
+        if budget
+        else f"cycles may exist beyond max_amplitude = {amax:g} ticks"
+    )
+    return (SearchStatus.BUDGET if budget else SearchStatus.MAX_AMPLITUDE), f"incomplete: {why}"
+
+
+def _linear_stable(mu: float, beta: float, delay: int) -> bool:
+    """The linear loop without encoder and Coulomb friction (exact ZOH, d delays) is asymptotically stable."""
+    from ..linear import linear_stable
+
+    return bool(linear_stable(mu, beta, delay))

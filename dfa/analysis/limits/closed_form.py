@@ -1,0 +1,735 @@
+"""Stiffness limits for design (paper eq. 8, 9, 11 and the published bounds of spec section 8).
+
+Solving the physical criterion (eq. 11, generalised to a computational delay of
+d samples as in :mod:`dfa.analysis.criterion`)::
+
+    (b − K T(½ + d))|ẋ0| + (c − K Δ/2) >= 0   and   c >= K Δ/2
+
+for K gives the largest passive stiffness at impact speed ẋ0::
+
+    K_max(ẋ0, d) = min( 2c/Δ, (b|ẋ0| + c)/(T(½ + d)|ẋ0| + Δ/2) )
+
+which falls from 2c/Δ at rest (eq. 9) towards b/(T(½ + d)) at high speed (eq. 8;
+2b/T for d = 0) when b/(T(½ + d)) < 2c/Δ. Every limit here is a *passivity* limit:
+above it the criterion gives no guarantee, which is not a proof of instability.
+Published bounds for comparison:
+
+* Colgate & Schenkel (1997): K < 2b/T (no Coulomb friction, no encoder); with a
+  delay of d samples b/(T(½ + d)) (Diolaiti et al. 2006).
+* Abbott & Okamura (2005): K < min(2b/T, 2c/Δ), the ξ'0 → ∞ and ξ'0 → 0 ends of
+  eq. 11 (with a delay: min(b/(T(½ + d)), 2c/Δ)).
+* Gil, Avello, Rubio & Flórez (2004): for the linear sampled spring (no encoder,
+  no Coulomb friction), K_crit = (b/T) f(γ) with
+  f(γ) = γ(1 − δ)/(1 − δ − γδ), γ = bT/m, δ = e^{−γ} — one Jury condition of
+  the linear sampled spring. :func:`k_gil` is the exact linear bound, all Jury
+  conditions and an optional delay (:mod:`dfa.analysis.linear`); it equals Gil's form for
+  γ < 3.72 without delay.
+
+Examples
+--------
+>>> from dfa.model.catalogue import get_device
+>>> dev = get_device("Impulse Engine").device
+>>> lim = stiffness_limits(dev, velocity=0.05)
+>>> round(lim.k_max, 2), round(lim.k_colgate, 2), round(lim.k_abbott_okamura, 2)
+(120.77, 20.0, 20.0)
+>>> round(gil_beta_critical(100.0), 5)                       # spec section 8
+0.49958
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...checks import check_delay, check_positive, check_real_array, check_speed, check_type
+from ...errors import DFAValueError
+from ...model.device import Device
+from ...results.frozen import check_shape, freeze_fields
+from ...results.jsonable import explain_nulls, to_jsonable
+from ...results.status import CurveStatus, StiffnessStatus, VelocityStatus
+from ..criterion import device_criterion
+from ..linear import critical_beta, critical_stiffness
+
+__all__ = [
+    "StiffnessLimits",
+    "stiffness_limits",
+    "k_max_criterion",
+    "k_colgate",
+    "k_static",
+    "k_abbott_okamura",
+    "k_gil",
+    "gil_factor",
+    "gil_beta_critical",
+    "max_passive_velocity",
+    "StiffnessResponse",
+    "StiffnessCurve",
+    "stiffness_response",
+]
+
+
+def _check_device(device: object) -> Device:
+    return check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
+
+
+def k_static(device: Device) -> float:
+    """Static limit 2c/Δ (paper eq. 9), N/m: above it the criterion gives no passivity guarantee even at rest.
+
+    The one place every stiffness result takes it from.
+    """
+    dev = _check_device(device)
+    return 2.0 * dev.coulomb / dev.resolution
+
+
+def k_max_criterion(device: Device, velocity, delay: int = 0):
+    """Largest stiffness passing the criterion at impact speed ``velocity`` and delay d (eq. 11 generalised), N/m.
+
+    K_max = min(2c/Δ, (b·abs(ẋ0) + c)/(T(½ + d)·abs(ẋ0) + Δ/2)). Vectorised over
+    ``velocity`` (m/s or rad/s; sign ignored); ``delay`` in whole samples.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    velocity : float or array_like
+        Impact speed ẋ0 in m/s (rotary: rad/s); its sign is ignored.
+    delay : int, optional
+        Computational delay d in samples (default 0).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        K_max in N/m (rotary: N·m/rad), a float for a scalar ``velocity``.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, a speed is not finite or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    max_passive_velocity : The inverse: the largest passive speed of a stiffness.
+    stiffness_limits : K_max with the published bounds.
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> dev = get_device("Delta").device
+    >>> k = k_max_criterion(dev, [0.0, 1.0, 1e6])
+    >>> bool(np.isclose(k[0], 2 * dev.coulomb / dev.resolution))
+    True
+    >>> bool(np.isclose(k[-1], 2 * dev.damping / dev.period, rtol=1e-3))
+    True
+    """
+    dev = _check_device(device)
+    v = np.abs(check_real_array("velocity", velocity, "give speeds in m/s (rotary: rad/s)"))
+    d = check_delay(delay)
+    k_dyn = (dev.damping * v + dev.coulomb) / (dev.period * (0.5 + d) * v + 0.5 * dev.resolution)
+    # rounded down by 1e-12 (relative) so that device_criterion accepts K_max itself: the two evaluate
+    # the same inequality in physical and dimensionless form, and margin = 0 must stay on the passive side
+    out = np.minimum(k_static(dev), k_dyn) * (1.0 - 1e-12)
+    return float(out) if out.ndim == 0 else out
+
+
+def k_colgate(device: Device, delay: int = 0) -> float:
+    """Colgate-Schenkel bound 2b/T (paper eq. 8), N/m; b/(T(½ + d)) with a delay of d samples.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    delay : int, optional
+        Computational delay d in samples (default 0).
+
+    Returns
+    -------
+    float
+        The bound in N/m (rotary: N·m/rad).
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device` or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    k_abbott_okamura : This bound capped by the static limit 2c/Δ.
+    k_gil : The exact bound of the linear sampled spring.
+    """
+    dev = _check_device(device)
+    return dev.damping / (dev.period * (0.5 + check_delay(delay)))
+
+
+def k_abbott_okamura(device: Device, delay: int = 0) -> float:
+    """Abbott-Okamura bound min(2b/T, 2c/Δ), N/m; min(b/(T(½ + d)), 2c/Δ) with a delay of d samples.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    delay : int, optional
+        Computational delay d in samples (default 0).
+
+    Returns
+    -------
+    float
+        The bound in N/m (rotary: N·m/rad).
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device` or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    k_colgate : The damping bound 2b/T alone.
+    k_max_criterion : The speed-dependent bound of the criterion.
+    """
+    dev = _check_device(device)
+    return min(k_colgate(dev, delay), k_static(dev))
+
+
+def _bounds(dev: Device, delay: int) -> dict[str, float]:
+    """The speed-independent limits of :class:`StiffnessLimits` (which :class:`StiffnessResponse` reads)."""
+    return dict(
+        k_static=k_static(dev),
+        k_colgate=k_colgate(dev, delay),
+        k_abbott_okamura=k_abbott_okamura(dev, delay),
+        k_gil=k_gil(dev, delay=delay),
+    )
+
+
+def gil_factor(gamma):
+    """f(γ) = γ(1 − e^{−γ}) / (1 − (1 + γ)e^{−γ}) of Gil et al. (2004), vectorised.
+
+    The closed form of one Jury condition only (the pair of roots crossing the
+    unit circle at z = e^{±jθ}, no delay): (b/T) f(bT/m) is the stability bound
+    for bT/m < 3.7208; beyond it a root leaves through z = −1 first and the
+    bound is smaller (:func:`k_gil`, :mod:`dfa.analysis.linear`). Computed without
+    cancellation for small γ (f = φ₁(−γ)/φ₂(−γ), :mod:`dfa.core.exprel`); f(0) = 2, so
+    (b/T) f(γ) → 2b/T as b T/m → 0.
+
+    Examples
+    --------
+    >>> float(gil_factor(0.0)), round(float(gil_factor(1e-9)), 9)
+    (2.0, 2.0)
+    """
+    g = np.asarray(gamma, dtype=float)
+    if np.any(g < 0) or not np.all(np.isfinite(g)):
+        raise DFAValueError(f"gamma = {gamma!r} is invalid: it must be finite and >= 0 (γ = bT/m)")
+    from ...core.exprel import phi1_array, phi2_array  # compiled; loaded on first use
+
+    small = g < 0.5
+    gs = -np.where(small, g, 0.0)
+    # f = φ₁(−γ)/φ₂(−γ): γ(1 − e^{−γ}) = γ² e^{−γ} φ₁(−γ) and 1 − (1 + γ)e^{−γ} = γ² e^{−γ} φ₂(−γ) (dfa.core.exprel)
+    f_small = phi1_array(gs) / phi2_array(gs)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        gl = np.where(small, 1.0, g)
+        one_minus_delta = -np.expm1(-gl)
+        f_large = gl * one_minus_delta / (one_minus_delta - gl * np.exp(-gl))
+    out = np.where(small, f_small, f_large)
+    return float(out) if out.ndim == 0 else out
+
+
+def k_gil(device: Device, *, delay: int = 0) -> float:
+    """Exact linear bound of the sampled spring, all Jury conditions (Gil et al. 2004's closed form is one of them), N/m.
+
+    The smallest K at which the linear loop m ẍ + b ẋ = −K x(h − d) (ZOH, no
+    encoder, no Coulomb friction) loses stability (spec section 8;
+    :func:`dfa.analysis.linear.critical_stiffness`). Without delay it equals Gil et al.'s
+    (b/T) f(bT/m) (:func:`gil_factor`) for bT/m < 3.7208 and is smaller beyond
+    (a root leaves through z = −1). Zero when b = 0: the undamped sampled spring
+    is unstable for every K > 0.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device (its Coulomb friction and encoder are ignored).
+    delay : int, optional
+        Computational delay d in samples (the force of sample h uses x(h − d)).
+
+    Returns
+    -------
+    float
+        The bound in N/m (rotary: N·m/rad).
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device` or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    gil_beta_critical : The same bound in dimensionless form.
+    k_colgate : The bound 2b/T it tends to for a large mass.
+
+    Examples
+    --------
+    >>> from dfa.model.device import Device
+    >>> dev = Device(mass=0.01, damping=5.0, coulomb=0.0, resolution=1e-5, period=0.01)
+    >>> round(k_gil(dev), 1), round(5.0 / 0.01 * float(gil_factor(5.0)), 1)   # z = −1 binds
+    (1651.9, 2587.8)
+    """
+    dev = _check_device(device)
+    return float(critical_stiffness(dev.mass, dev.damping, dev.period, delay))
+
+
+def gil_beta_critical(mu: float, *, delay: int = 0) -> float:
+    """Dimensionless form of :func:`k_gil`: the β below which the linear loop is unstable, all Jury conditions.
+
+    The linear sampled spring μξ'' + βξ' = −ξ(h − d) (no encoder, no Coulomb
+    friction) is stable iff β > β_crit(μ, d) (:func:`dfa.analysis.linear.critical_beta`).
+    Without delay this is Gil et al.'s β f(β/μ) = 1 while β/μ < 3.7208
+    (spec section 8: μ = 1: 0.4617, μ = 5: 0.4918, μ = 100: 0.49958);
+    β_crit → ½ + d as μ → ∞ (Diolaiti et al. 2006).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(K T²) > 0.
+    delay : int, optional
+        Computational delay d in samples.
+
+    Returns
+    -------
+    float
+        The critical dimensionless damping β_crit.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If μ is not a finite number > 0 or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    k_gil : The same bound as a stiffness.
+    """
+    return critical_beta(mu, delay)
+
+
+def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> float | None:
+    """Largest impact speed for which stiffness K passes the criterion with delay d (eq. 11, 12), m/s.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    stiffness : float
+        Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+    delay : int, optional
+        Computational delay d in samples (default 0).
+
+    Returns
+    -------
+    float or None
+        ``math.inf`` when K T(½ + d) <= b and K <= 2c/Δ (passive at every speed),
+        None when K > 2c/Δ (no passivity guarantee even at rest), otherwise
+        (c − KΔ/2)/(KT(½ + d) − b) in m/s (rotary: rad/s).
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, the stiffness is not > 0 or the delay is not a whole
+        number >= 0.
+
+    See Also
+    --------
+    k_max_criterion : The inverse: the largest passive stiffness at a speed.
+    device_criterion : The full verdict at one speed.
+    """
+    dev = _check_device(device)
+    k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+    # one implementation: the criterion's own critical speed (eq. 12), so that this speed and the
+    # verdict of device_criterion agree to rounding even where K T(½ + d) − b cancels
+    r = device_criterion(dev, k, 0.0, delay=check_delay(delay))
+    if r.region in ("b", "c"):
+        return None
+    if r.region == "a":
+        return math.inf
+    return r.critical_velocity
+
+
+@dataclass(frozen=True)
+class StiffnessLimits:
+    """Stiffness limits of a device at an impact speed (all N/m, rotary N·m/rad).
+
+    Attributes
+    ----------
+    device : Device
+    velocity : float
+        Impact speed abs(ẋ0) in m/s (rad/s).
+    xi_dot : float
+        The same speed in encoder ticks per sample.
+    k_max : float
+        Criterion limit (eq. 11, with the delay) at this speed.
+    k_static : float
+        2c/Δ, the limit at rest (eq. 9).
+    k_colgate : float
+        2b/T (eq. 8, Colgate & Schenkel 1997); b/(T(½ + d)) with a delay.
+    k_abbott_okamura : float
+        min(2b/T, 2c/Δ) (Abbott & Okamura 2005); min(b/(T(½ + d)), 2c/Δ) with a delay.
+    k_gil : float
+        Exact linear bound of the sampled spring with the same delay, all Jury conditions (:func:`k_gil`).
+    stiffness : float or None
+        The stiffness under study, if given.
+    max_passive_velocity : float or None
+        For ``stiffness``: largest passive speed (inf: every speed; None: none).
+    velocity_status : VelocityStatus
+        ``NOT_REQUESTED``, ``ALL_SPEEDS``, ``BOUNDED`` or ``NONE`` (codes ``"not requested"``,
+        ``"all speeds"``, ``"bounded"``, ``"none"``).
+    status : StiffnessStatus
+        ``OK`` (code ``"ok"``) when ``stiffness`` passes at ``velocity``, ``TOO_STIFF`` (``"too stiff"``)
+        when it does not, ``NOT_REQUESTED`` (``"not requested"``) when no stiffness was given.
+    delay : int
+        Computational delay d in samples.
+    """
+
+    device: Device
+    velocity: float
+    xi_dot: float
+    k_max: float
+    k_static: float
+    k_colgate: float
+    k_abbott_okamura: float
+    k_gil: float
+    stiffness: float | None = None
+    max_passive_velocity: float | None = None
+    velocity_status: VelocityStatus = VelocityStatus.NOT_REQUESTED
+    status: StiffnessStatus = StiffnessStatus.NOT_REQUESTED
+    delay: int = 0
+
+    def __post_init__(self) -> None:
+        for name in ("velocity", "xi_dot", "k_max", "k_static", "k_colgate", "k_abbott_okamura", "k_gil"):
+            if math.isnan(getattr(self, name)):
+                raise DFAValueError(f"{name} = nan is invalid: limits are numbers; build results with stiffness_limits")
+        vs = VelocityStatus.coerce(self.velocity_status, "velocity_status")
+        st = StiffnessStatus.coerce(self.status)
+        object.__setattr__(self, "velocity_status", vs)
+        object.__setattr__(self, "status", st)
+        mpv = self.max_passive_velocity
+        expected = (
+            VelocityStatus.NOT_REQUESTED
+            if self.stiffness is None
+            else (
+                VelocityStatus.NONE
+                if mpv is None
+                else (VelocityStatus.ALL_SPEEDS if math.isinf(mpv) else VelocityStatus.BOUNDED)
+            )
+        )
+        if vs is not expected or ((self.stiffness is None) != (st is StiffnessStatus.NOT_REQUESTED)):
+            raise DFAValueError(
+                f"velocity_status = {vs.value!r}, status = {st.value!r} are invalid for stiffness = {self.stiffness!r}, "
+                f"max_passive_velocity = {mpv!r}: they must agree; build results with stiffness_limits"
+            )
+
+    def max_passive_velocity_text(self) -> str:
+        """The largest passive speed for ``stiffness`` in words, with units (for tables and reports).
+
+        Returns
+        -------
+        str
+            For example ``"0.2765 m/s"``, ``"every speed (...)"`` or ``"none: ..."``; ``"–"`` without a stiffness.
+        """
+        unit = self.device.units["velocity"]
+        ku = self.device.units["stiffness"]
+        if self.velocity_status == "none":
+            return f"none: no passivity guarantee even at rest (K > 2c/Δ = {self.k_static:.5g} {ku})"
+        if self.velocity_status == "all speeds":
+            return f"every speed (K <= {'2b/T' if self.delay == 0 else 'b/(T(½ + d))'} = {self.k_colgate:.5g} {ku})"
+        if self.velocity_status == "not requested" or self.max_passive_velocity is None:
+            return "–"
+        return f"{self.max_passive_velocity:.4g} {unit}"
+
+    def verdict_text(self) -> str:
+        """The verdict for ``stiffness`` at ``velocity`` in words (CLI and report).
+
+        Returns
+        -------
+        str
+            ``"ok: ..."`` or ``"too stiff: ..."``; ``"–"`` without a stiffness.
+        """
+        if self.stiffness is None:
+            return "–"
+        ku = self.device.units["stiffness"]
+        if self.velocity_status == "none":
+            return (
+                f"too stiff: no passivity guarantee even at rest (K > 2c/Δ = {self.k_static:.5g} {ku}); "
+                "not a proof of instability"
+            )
+        if self.status == "ok":
+            return "ok: passive at this speed (proven)"
+        return (
+            f"too stiff: no passivity guarantee at this speed (K > K_max = {self.k_max:.5g} {ku}); "
+            "not a proof of instability"
+        )
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record (the ``dfa stiffness --json`` contract plus extras).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: the limits in device units, the speeds, status and its message.
+        """
+        mpv = self.max_passive_velocity
+        why = {
+            "max_passive_velocity": {
+                "not requested": "no stiffness given",
+                "all speeds": "passive at every speed (no finite limit)",
+                "none": "no passivity guarantee even at rest (K > 2c/Δ)",
+            }.get(self.velocity_status.value, "undefined"),
+            "stiffness": "no stiffness given to assess",
+        }
+        record = to_jsonable(
+            {
+                "k_max": self.k_max,
+                "k_colgate": self.k_colgate,
+                "k_abbott_okamura": self.k_abbott_okamura,
+                "k_gil": self.k_gil,
+                "k_static": self.k_static,
+                "max_passive_velocity": None if (mpv is None or math.isinf(mpv)) else mpv,
+                "max_passive_velocity_status": self.velocity_status,
+                "stiffness": self.stiffness,
+                "velocity": self.velocity,
+                "xi_dot": self.xi_dot,
+                "device": self.device.name,
+                "status": self.status,
+                "status_message": self.status.message,
+                "delay": self.delay,
+            }
+        )
+        return explain_nulls(record, why)
+
+
+def stiffness_limits(
+    device: Device, velocity: float, stiffness: float | None = None, delay: int = 0
+) -> StiffnessLimits:
+    """All stiffness limits of ``device`` at impact speed ``velocity`` and delay d.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    velocity : float
+        Impact speed, the magnitude of ẋ0, in m/s (rotary: rad/s), >= 0 (a negative is refused).
+    stiffness : float, optional
+        A stiffness K in N/m (rotary: N·m/rad) to assess: its largest passive speed is reported.
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
+
+    Returns
+    -------
+    StiffnessLimits
+        K_max, the published bounds and, with ``stiffness``, its verdict and largest passive speed.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, the speed is not finite, the stiffness is not > 0 or
+        the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    stiffness_response : K_max over a range of speeds.
+    k_max_criterion : K_max alone, vectorised over speeds.
+    """
+    dev = _check_device(device)
+    v = check_speed("velocity", velocity)
+    d = check_delay(delay)
+    mpv: float | None = None
+    vstatus = VelocityStatus.NOT_REQUESTED
+    status = StiffnessStatus.NOT_REQUESTED
+    k = None
+    if stiffness is not None:
+        k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+        mpv = max_passive_velocity(dev, k, d)
+        vstatus = (
+            VelocityStatus.NONE
+            if mpv is None
+            else (VelocityStatus.ALL_SPEEDS if math.isinf(mpv) else VelocityStatus.BOUNDED)
+        )
+        status = StiffnessStatus.OK if (mpv is not None and mpv >= v) else StiffnessStatus.TOO_STIFF
+    return StiffnessLimits(
+        device=dev,
+        velocity=v,
+        xi_dot=dev.xi_dot(v),
+        k_max=float(k_max_criterion(dev, v, d)),
+        **_bounds(dev, d),
+        stiffness=k,
+        max_passive_velocity=mpv,
+        velocity_status=vstatus,
+        status=status,
+        delay=d,
+    )
+
+
+@dataclass(frozen=True)
+class StiffnessResponse:
+    """K_max (eq. 11, with the delay) over a range of impact speeds, with the speed-independent bounds (N/m).
+
+    The bounds and the chosen stiffness's largest passive speed are not recomputed:
+    they are read from :attr:`limits`, the :class:`StiffnessLimits` of the same
+    device, stiffness and delay.
+
+    Attributes
+    ----------
+    device : Device
+    velocity : numpy.ndarray
+        Impact speeds (m/s or rad/s).
+    k_max : numpy.ndarray
+        Criterion limit at each speed.
+    limits : StiffnessLimits
+        The limits at the first speed: source of ``k_static``, ``k_colgate``,
+        ``k_abbott_okamura``, ``k_gil``, ``stiffness``, ``max_passive_velocity``
+        and ``delay`` (read-only properties here).
+    status : CurveStatus
+
+    Arrays are read-only copies of the inputs.
+    """
+
+    device: Device
+    velocity: np.ndarray
+    k_max: np.ndarray
+    limits: StiffnessLimits
+    status: CurveStatus = CurveStatus.OK
+
+    @property
+    def k_static(self) -> float:
+        """2c/Δ (eq. 9), N/m."""
+        return self.limits.k_static
+
+    @property
+    def k_colgate(self) -> float:
+        """2b/T (eq. 8); b/(T(½ + d)) with a delay, N/m."""
+        return self.limits.k_colgate
+
+    @property
+    def k_abbott_okamura(self) -> float:
+        """The Abbott-Okamura bound min(2b/T, 2c/Δ) (with the delay), N/m."""
+        return self.limits.k_abbott_okamura
+
+    @property
+    def k_gil(self) -> float:
+        """Exact linear bound of the sampled spring (:func:`k_gil`), N/m."""
+        return self.limits.k_gil
+
+    @property
+    def stiffness(self) -> float | None:
+        """The chosen stiffness to mark, N/m (None: none)."""
+        return self.limits.stiffness
+
+    @property
+    def max_passive_velocity(self) -> float | None:
+        """Its largest passive speed (inf: every speed; None: none), m/s."""
+        return self.limits.max_passive_velocity
+
+    @property
+    def delay(self) -> int:
+        """Computational delay d in samples."""
+        return self.limits.delay
+
+    def __post_init__(self) -> None:
+        freeze_fields(self, {"velocity": {"ndim": 1}, "k_max": {"ndim": 1}})
+        check_shape("k_max", self.k_max, self.velocity.shape)
+        object.__setattr__(self, "status", CurveStatus.coerce(self.status))
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record: speeds, K_max and the bounds (device units, see ``device.units``).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: speeds, K_max, the bounds, status and its message.
+        """
+        return to_jsonable(
+            {
+                "device": self.device.name,
+                "velocity": self.velocity,
+                "k_max": self.k_max,
+                "k_static": self.k_static,
+                "k_colgate": self.k_colgate,
+                "k_abbott_okamura": self.k_abbott_okamura,
+                "k_gil": self.k_gil,
+                "stiffness": self.stiffness,
+                "max_passive_velocity": self.max_passive_velocity,
+                "status": self.status,
+                "status_message": self.status.message,
+                "delay": self.delay,
+            }
+        )
+
+    def plot(self, ax=None):
+        """K_max against impact speed with the published bounds (:func:`dfa.figures.stiffness_plot`); returns the Axes.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
+        from ...figures import stiffness_plot
+
+        return stiffness_plot(self, ax)
+
+
+#: Deprecated alias of :class:`StiffnessResponse` (the name before the ``*_response`` → ``*Response`` scheme).
+StiffnessCurve = StiffnessResponse
+
+
+def stiffness_response(
+    device: Device, velocity=None, stiffness: float | None = None, delay: int = 0
+) -> StiffnessResponse:
+    """K_max against impact speed for a device (eq. 11, with delay d), for :func:`dfa.figures.stiffness_plot`.
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    velocity : array_like, optional
+        Speeds in m/s (rad/s); default: 200 points spanning three decades on
+        each side of the speed Δ/T (one tick per sample).
+    stiffness : float, optional
+        A chosen stiffness in N/m (rotary: N·m/rad) to assess and mark.
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
+
+    Returns
+    -------
+    StiffnessResponse
+        K_max at each speed with the speed-independent bounds; ``.plot()`` draws it.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, a speed is not finite and > 0, the stiffness is not
+        > 0 or the delay is not a whole number >= 0.
+
+    See Also
+    --------
+    stiffness_limits : The limits at one speed.
+    stiffness_speed_chart : K_max with the simulated and describing-function speeds.
+    """
+    dev = _check_device(device)
+    d = check_delay(delay)
+    if velocity is None:
+        v0 = dev.resolution / dev.period
+        velocity = np.geomspace(1e-3 * v0, 1e3 * v0, 200)
+    fix = f"give impact speeds in {dev.units['velocity']}"
+    v = np.atleast_1d(check_real_array("velocity", velocity, fix)).ravel()
+    if np.any(v < 0):
+        check_speed("velocity", float(v[v < 0][0]), dev.units["velocity"])  # refused: a magnitude, never flipped
+    if v.size == 0 or np.any(v <= 0):
+        shown = "an empty array" if v.size == 0 else f"{float(v[v <= 0][0])!r}"
+        raise DFAValueError(f"velocity = {shown} is invalid: it must hold finite speeds > 0; {fix}")
+    k = (
+        None
+        if stiffness is None
+        else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+    )
+    limits = stiffness_limits(dev, float(v[0]), k, d)
+    return StiffnessResponse(dev, v, np.atleast_1d(k_max_criterion(dev, v, d)), limits)

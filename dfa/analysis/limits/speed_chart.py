@@ -1,0 +1,303 @@
+"""The stiffness–speed chart (issue 14 §2): the largest safe impact speed against the stiffness K.
+
+For each stiffness K of a geometric grid, the largest impact speed (m/s;
+rotary rad/s) that is safe by
+
+* the criterion (eq. 11 with the delay: the critical speed of eq. 12, a
+  proof; :func:`dfa.analysis.limits.closed_form.max_passive_velocity`),
+* the describing function (the smallest speed amplitude M·ω over every
+  unstable cycle, in physical units; a first-harmonic prediction),
+* exact simulation, no divergence: the largest simulated speed such that no
+  impact at it or at any slower simulated speed, from ξ0 = 0 or from the
+  energy preload, diverges (undecided runs count as not safe),
+* exact simulation, rest: the same with "comes to rest",
+
+all limited to hand speeds (``v_top``, default 2 m/s; rotary 10 rad/s, or the
+design speed when larger). Speeds above ``v_top`` are reported as ``v_top``
+(``capped``). The closed-form stiffness bounds (exact linear bound,
+Colgate-Schenkel, Abbott-Okamura, static 2c/Δ) are vertical lines; the
+design point (K, V) is marked. Draw with :meth:`StiffnessSpeedChart.plot`.
+
+Examples
+--------
+>>> from dfa.model.catalogue import get_device
+>>> c = stiffness_speed_chart(get_device("Impulse Engine").device, grid=6, speeds=4)
+>>> c.v_sim.shape, bool(c.v_top == 2.0)
+((6,), True)
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...checks import check_delay, check_int, check_positive, check_real, check_speed, check_type
+from ...errors import DFAValueError
+from ...model.device import Device
+from ...results.frozen import frozen_array
+from ...results.jsonable import explain_nulls
+from ..cycles.caveats import SUBTICK_LIMIT
+from .closed_form import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
+from .kmax import DESIGN_MAX_SAMPLES, RunCache, _Evidence
+
+__all__ = ["StiffnessSpeedChart", "stiffness_speed_chart", "HAND_SPEED"]
+
+#: Why the describing function's largest safe speed is unknown (null) at a stiffness.
+UNKNOWN_DF = (
+    "unknown: the describing function cannot tell there (the sub-tick caveat of dfa.analysis.cycles.caveats: smallest "
+    f"unstable cycle below {SUBTICK_LIMIT:g} ticks; or an incomplete cycle search)"
+)
+
+#: Default top of the speed axis: hand speeds (m/s for a linear device, rad/s for a rotary one).
+HAND_SPEED = {"linear": 2.0, "rotary": 10.0}
+
+
+def _ro(a) -> np.ndarray:
+    out = np.array(a, dtype=float)
+    out.setflags(write=False)
+    return out
+
+
+@dataclass(frozen=True)
+class StiffnessSpeedChart:
+    """Data of the stiffness–speed chart (module docstring); speeds in m/s (rad/s), K in N/m (N·m/rad).
+
+    Attributes
+    ----------
+    device : Device
+    delay : int
+    v_top : float
+        Top of the speed range (hand speeds).
+    stiffness : numpy.ndarray
+        Stiffness grid of the simulated and predicted curves.
+    v_df, v_sim, v_rest : numpy.ndarray
+        Largest safe speed at each K by describing function, simulation (no divergence) and simulation
+        (rest); 0: not even the slowest simulated speed; NaN (``v_df``): unknown (:data:`UNKNOWN_DF`).
+    criterion_stiffness, v_criterion : numpy.ndarray
+        A finer grid and the criterion's largest passive speed on it (0 above 2c/Δ).
+    speeds : numpy.ndarray
+        Impact speeds simulated at each K (geometric, v_top/200 to v_top).
+    k_linear, k_colgate, k_abbott_okamura, k_static : float
+        Closed-form bounds (vertical lines).
+    design_stiffness, design_velocity : float or None
+        The design point.
+    simulations : int
+    """
+
+    device: Device
+    delay: int
+    v_top: float
+    stiffness: np.ndarray = field(repr=False)
+    v_df: np.ndarray = field(repr=False)
+    v_sim: np.ndarray = field(repr=False)
+    v_rest: np.ndarray = field(repr=False)
+    criterion_stiffness: np.ndarray = field(repr=False)
+    v_criterion: np.ndarray = field(repr=False)
+    speeds: np.ndarray = field(repr=False)
+    k_linear: float
+    k_colgate: float
+    k_abbott_okamura: float
+    k_static: float
+    design_stiffness: float | None = None
+    design_velocity: float | None = None
+    simulations: int = 0
+
+    def __post_init__(self) -> None:
+        fix = "StiffnessSpeedChart is built by dfa.stiffness_speed_chart; call that instead"
+        check_type("device", self.device, Device, fix)
+        check_delay(self.delay)
+        check_positive("v_top", self.v_top, fix)
+        arrays = ("stiffness", "v_df", "v_sim", "v_rest", "criterion_stiffness", "v_criterion", "speeds")
+        for name in arrays:  # v_df holds NaN where the describing function cannot tell (documented)
+            object.__setattr__(self, name, frozen_array(name, getattr(self, name), ndim=1, finite=name != "v_df"))
+        for a, b in (("stiffness", "v_df"), ("stiffness", "v_sim"), ("stiffness", "v_rest"),
+                     ("criterion_stiffness", "v_criterion")):  # fmt: skip
+            if getattr(self, a).shape != getattr(self, b).shape:
+                raise DFAValueError(
+                    f"{b} has {getattr(self, b).size} values for {getattr(self, a).size} in {a}: "
+                    f"it must have one per stiffness; {fix}"
+                )
+        for name in ("k_linear", "k_colgate", "k_abbott_okamura", "k_static"):
+            value = getattr(self, name)
+            if not (isinstance(value, float) and value == math.inf):  # inf: no finite bound
+                check_real(name, value, fix)
+        for name in ("design_stiffness", "design_velocity"):
+            if getattr(self, name) is not None:
+                check_real(name, getattr(self, name), fix)
+        check_int("simulations", self.simulations, 0, fix)
+
+    def plot(self, ax=None):
+        """Draw the chart (:func:`dfa.figures.stiffness_speed_plot`); returns the axes.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
+        from ...figures import stiffness_speed_plot
+
+        return stiffness_speed_plot(self, ax)
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record (NaN as null).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: the speeds per stiffness, the bounds, the design point and the units.
+        """
+
+        def lst(a):
+            return [None if not math.isfinite(x) else float(x) for x in a]
+
+        out = {
+            "device": self.device.name,
+            "delay": self.delay,
+            "v_top": self.v_top,
+            "stiffness": lst(self.stiffness),
+            "v_df": lst(self.v_df),
+            "v_sim": lst(self.v_sim),
+            "v_rest": lst(self.v_rest),
+            "criterion_stiffness": lst(self.criterion_stiffness),
+            "v_criterion": lst(self.v_criterion),
+            "speeds": lst(self.speeds),
+            "k_linear": self.k_linear,
+            "k_colgate": self.k_colgate,
+            "k_abbott_okamura": self.k_abbott_okamura,
+            "k_static": self.k_static,
+            "design_stiffness": self.design_stiffness,
+            "design_velocity": self.design_velocity,
+            "simulations": self.simulations,
+            "stiffness_unit": self.device.units["stiffness"],
+            "velocity_unit": self.device.units["velocity"],
+        }
+        return explain_nulls(out, {"v_df": UNKNOWN_DF})
+
+
+def _largest_safe(verdicts: list[bool], speeds: np.ndarray) -> float:
+    """The largest speed such that it and every slower simulated speed are safe (0: none)."""
+    out = 0.0
+    for ok, v in zip(verdicts, speeds, strict=True):
+        if not ok:
+            break
+        out = float(v)
+    return out
+
+
+def _k_range(dev: Device, delay: int, v_top: float, design: float | None) -> tuple[float, float]:
+    lows = [
+        k for k in (k_gil(dev, delay=delay), k_colgate(dev, delay), float(k_max_criterion(dev, v_top, delay))) if k > 0
+    ]
+    highs = [k_static(dev), k_colgate(dev, delay)] + ([design] if design else [])
+    lo = 0.25 * min(lows + ([design] if design else [])) if lows or design else 1e-3
+    return lo, max(8.0 * max(highs), 16.0 * lo)
+
+
+#: Most stiffnesses (``grid``) or speeds (``speeds``) one chart simulates.
+_MAX_COUNT = 1000
+#: Slowest impact speed simulated (``v_top``/200): the smallest normal float.
+_SMALLEST_SPEED = sys.float_info.min
+
+
+def stiffness_speed_chart(
+    device: Device,
+    delay: int = 0,
+    *,
+    stiffness: float | None = None,
+    velocity: float | None = None,
+    v_top: float | None = None,
+    grid: int = 24,
+    speeds: int = 14,
+    max_samples: int = DESIGN_MAX_SAMPLES,
+    cache: RunCache | None = None,
+) -> StiffnessSpeedChart:
+    """Compute the stiffness–speed chart of a device (module docstring).
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    delay : int, optional
+        Computational delay d in samples.
+    stiffness, velocity : float, optional
+        The design point (N/m; m/s), marked on the chart.
+    v_top : float, optional
+        Top of the speed range (default :data:`HAND_SPEED`, or ``velocity`` when larger).
+    grid : int, optional
+        Stiffnesses simulated (default 24, geometric; at most 1000).
+    speeds : int, optional
+        Impact speeds simulated per stiffness (default 14, geometric from v_top/200; at most 1000), two starts each.
+    max_samples : int, optional
+        Longest run in samples.
+    cache : RunCache, optional
+        Runs and predictions already computed (:class:`dfa.analysis.limits.kmax.RunCache`, shared with
+        :func:`dfa.analysis.limits.kmax.design_answer` by the design analysis); a fresh one when None. The chart does not depend on it.
+
+    Returns
+    -------
+    StiffnessSpeedChart
+        For each stiffness, the largest speed that passes the criterion, the simulation and the
+        describing function, with the classic bounds; ``.plot()`` draws it.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``device`` is not a :class:`Device`, a speed or stiffness is not a finite number > 0, or
+        another input is out of range.
+
+    See Also
+    --------
+    design_answer : The largest stiffness at one speed, four ways.
+    stiffness_response : The criterion's K_max over speeds (no simulation).
+    """
+    dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
+    d = check_delay(delay)
+    k_design = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
+    v_design = None if velocity is None else check_speed("velocity", velocity)
+    fix_top = "give the top of the speed range in m/s (rad/s rotary), e.g. 0.5"
+    top = HAND_SPEED["rotary" if dev.rotary else "linear"] if v_top is None else v_top
+    top = max(check_positive("v_top", top, fix_top), v_design or 0.0)
+    if not top / 200.0 >= _SMALLEST_SPEED:  # the slowest speed simulated is v_top/200: a normal float
+        raise DFAValueError(
+            f"v_top = {top!r} is invalid: it must be a finite number >= {200 * _SMALLEST_SPEED!r}; {fix_top}"
+        )
+    n_k = check_int("grid", grid, minimum=2, fix="give at least 2 stiffnesses")
+    n_v = check_int("speeds", speeds, minimum=1, fix="simulate at least one speed")
+    if n_k > _MAX_COUNT or n_v > _MAX_COUNT:
+        arg, n = ("grid", n_k) if n_k > _MAX_COUNT else ("speeds", n_v)
+        raise DFAValueError(
+            f"{arg} = {n} is invalid: it must be a whole number <= {_MAX_COUNT}; each one is a set of simulations"
+        )
+    n_max = check_int("max_samples", max_samples, minimum=1000, fix="give the longest run in samples")
+    vs = np.geomspace(top / 200.0, top, n_v) if n_v > 1 else np.array([top])
+    lo, hi = _k_range(dev, d, top, k_design)
+    ks = np.geomspace(lo, hi, n_k)
+    if cache is not None:
+        check_type("cache", cache, RunCache, "pass a dfa.analysis.limits.kmax.RunCache, or None")
+    ev = _Evidence(dev, vs, d, n_max, "half-delay", cache)
+    v_sim, v_rest, v_df = [], [], []
+    for k in ks:
+        rows = ev.outcomes(float(k))
+        pairs = [rows[2 * i][2:] + rows[2 * i + 1][2:] for i in range(len(vs))]
+        v_sim.append(_largest_safe(["unstable" not in p and "undecided" not in p for p in pairs], vs))
+        v_rest.append(_largest_safe([p == ("rest", "rest") for p in pairs], vs))
+        g, _, subtick = ev.growth_xi_dot(float(k))
+        v_df.append(math.nan if g is None or subtick else min(top, dev.velocity(g) if math.isfinite(g) else math.inf))
+    kc = np.geomspace(lo, hi, 200)
+    vc = []
+    for k in kc:
+        mpv = max_passive_velocity(dev, float(k), d)
+        vc.append(0.0 if mpv is None else min(top, mpv))
+    return StiffnessSpeedChart(
+        dev, d, top, _ro(ks), _ro(v_df), _ro(v_sim), _ro(v_rest), _ro(kc), _ro(vc), _ro(vs),
+        k_gil(dev, delay=d), k_colgate(dev, d), k_abbott_okamura(dev, d), k_static(dev),
+        k_design, v_design, ev.runs,
+    )  # fmt: skip

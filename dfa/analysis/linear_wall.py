@@ -1,0 +1,708 @@
+"""Exact linear stability of the sampled wall with a controller: damper, filter, delay, amplifier lag (issue 15).
+
+The device without encoder and Coulomb friction, μ ξ'' + β ξ' = φ_A (paper
+eq. 4-5 with σ = 0 and no quantizer; time in samples, Table 1 groups), driven
+through the amplifier lag α φ_A' = φ_cmd − φ_A by the held command of the
+controller of :mod:`dfa.model.wall` (dimensionless groups β_B, d, ν_c, α)::
+
+    φ_cmd = −H(z) ξ,   H(z) = z^{−d} [1 + β_B (1 − z^{−1}) F(z)],
+    F(z) = (1 − a_f) z^{−1}/(1 − a_f z^{−1}),  a_f = e^{−2π ν_c}   (F = 1 without filter).
+
+Plant. With a = β/μ = bT/m, p = e^{−a}, and for α > 0 also b_α = 1/α, q = e^{−b_α},
+the exact ZOH pulse transfer of 1/((αs + 1)(μs² + βs)) is (derivation:
+1/(αs + 1) = 1 − αs/(αs + 1) splits the plant into the device alone, whose pulse
+transfer is (c₁z + c₀)/(μ(z − 1)(z − p)) of :mod:`dfa.analysis.linear`, minus
+1/(μ(s + a)(s + b_α)); collecting the residues, every coefficient is a
+divided difference of f(u) = e^{−u}, :mod:`dfa.core.divdiff`)::
+
+    G(z) = (n₂z² + n₁z + n₀)/(μ (z − 1)(z − p)(z − q)),
+    n₂ = −b_α f[0, 0, a, b_α],       n₀ = −b_α f[a, b_α, a + b_α, a + b_α],
+    n₁ = −b_α (f[0, a, a, b_α] + f[a, a, b_α, a + b_α] + f[0, a, b_α, b_α] + f[a, b_α, b_α, a + b_α]).
+
+Every third divided difference of e^{−u} is negative, so n₂, n₁, n₀ > 0 are sums
+of positive terms: no cancellation for any α (tiny α: n₂ → c₁, n₁ → c₀, n₀ → 0;
+huge α: (n₂, n₁, n₀) → (1, 4, 1)/(6α) at a = 0, the ZOH of 1/(αμs³)).
+``tests/test_controlled_linear.py`` compares them with ``control.c2d``. For α so
+small that 1/α overflows (α < 1e-308) the lag is dropped: its effect is below rounding.
+
+Loop. With N_H = N₁ + β_B N₂ over D_H (no filter: N₁ = z, N₂ = z − 1,
+D_H = z^{d+1}; filter: N₁ = z(z − a_f), N₂ = (1 − a_f)(z − 1), D_H = z^{d+1}(z − a_f))
+the closed-loop characteristic polynomial is χ(z) = μ D_G D_H + N_G (N₁ + β_B N₂).
+A filter without a damper (β_B = 0) filters nothing and is left out: its own decaying
+mode a_f is not a pole of the loop, and the spring's polynomial is unchanged.
+
+The stiffness ray at fixed physical damper. With the device, period, B, f_c and
+τ_a fixed, K enters only through κ = KT²/m = 1/μ, because β_B κ = BT/m =: a_B
+is fixed: κχ = P₀(z) + κ Q(z), P₀ = D_G D_H + a_B N_G N₂, Q = N_G N₁, with
+deg Q < deg P₀, so every root moves continuously with κ and the roots go to
+infinity as κ → ∞ (unstable for large K). Stability can change only at a κ > 0
+where a root lies on the unit circle, i.e. κ = −P₀(z)/Q(z) real and positive on
+|z| = 1: at z = −1, and at z = e^{jθ} where Im(P₀ Q̄) = 0 — the unit-circle roots
+of R(z) = P₀(z) z^n Q(1/z) − Q(z) z^n P₀(1/z) (n = deg P₀), joined with the sign
+changes of Im(P₀ Q̄) on a dense θ grid, each polished by bracketing. Between
+consecutive candidates the stability is constant; it is decided by the spectral
+radius at the geometric mean, and the resulting stable set (one interval, several,
+or none) is checked against the spectral radius on an independent geometric grid
+of κ. z = 1 is a root of P₀ (the free mass): it moves inside for small κ when
+a + a_B > 0.
+
+Tiny rates. For (b + B)T/m <= :data:`SERIES_RATE` = 1e-4 the roots cluster at z = 1
+(|z| − 1 = O((b + B)T/m)) and the float crossings lose digits (1e-11 relative at
+1e-4, 1e-8 at 1e-7, nothing below). There κ_crit comes from the Taylor series of
+Φ(s) = P₀/Q at z = e^s (:func:`_series_kappa`; every factor expanded in w = z − 1
+without cancellation): Im Φ(jθ) = 0, κ = −Re Φ(jθ) is solved as a series in θ²,
+κ_crit = (a ρ_L + a_B) κ̃, κ̃ → 1/(½ + d + α) as the rate → 0, i.e.
+K_crit → (b + B)/(T(½ + d + τ_a/T)) (the filter drops out at leading order). K is
+formed from (bρ_L + B)/T, so a rate that underflows (m = 1e300 kg) still gives
+the positive limit. Checked against 60+ digit mpmath for rates 1e-16 … 1e-4 in
+``tests/test_controlled_linear_small_rate.py`` (the float path was off by up to
+3e-8 relative at the catalogue devices' rates, ~1e-5).
+
+Examples
+--------
+>>> r = stable_stiffness(1.0, 2.0, 1e-3, Controller(1.0, damping=1.0))
+>>> r.status.value, round(r.k_crit, 1)          # ≈ (b + B)/(T/2) = 6000 N/m as bT/m → 0
+('interval', 5996.0)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..checks import (
+    check_beta,
+    check_mu,
+    check_nonnegative,
+    check_positive,
+    check_rate,
+    check_real_array,
+    check_type,
+)
+from ..core.zoh import zoh_coefficients
+from ..core.zohlag import amplifier_zoh
+from ..errors import DFAError, DFAValueError
+from ..model.wall import Controller, ControllerParams
+from ..results.frozen import freeze_fields
+from ..results.status import StatusEnum
+
+__all__ = [
+    "LinearStatus",
+    "StiffnessIntervals",
+    "StableRegion",
+    "amplifier_zoh_coefficients",
+    "controlled_characteristic_polynomial",
+    "stable_stiffness",
+    "stable_region",
+]
+
+
+class LinearStatus(StatusEnum):
+    """Shape of the stable set in K of the linear sampled loop (:func:`stable_stiffness`)."""
+
+    INTERVAL = ("interval", "stable exactly for 0 < K < K_crit (every stability condition checked)")
+    SEVERAL = (
+        "several intervals",
+        "the stable set in K has several intervals: K_crit is the top of the one starting at K = 0; see intervals",
+    )
+    NOT_AT_LOW_K = (
+        "not at low K",
+        "unstable for small K: stable only on the listed intervals (K_crit = 0)",
+    )
+    NEVER = ("never", "unstable for every K > 0 (K_crit = 0)")
+
+
+# ----------------------------------------------------------------------------- plant and controller polynomials
+def amplifier_zoh_coefficients(a: float, lag: float) -> tuple[float, float, float, float, float]:
+    """Numerator (n₂, n₁, n₀) and poles p, q of the ZOH pulse transfer of 1/((αs + 1) s (s + a)) (module docstring).
+
+    Parameters
+    ----------
+    a : float
+        a = β/μ = bT/m >= 0 (device pole, per sample).
+    lag : float
+        Amplifier time constant α = τ_a/T > 0, samples.
+
+    Returns
+    -------
+    tuple of float
+        (n₂, n₁, n₀, p, q): G(z) = (n₂z² + n₁z + n₀)/(μ(z − 1)(z − p)(z − q)), p = e^{−a}, q = e^{−1/α}.
+
+    Examples
+    --------
+    >>> [round(c * 6e9, 6) for c in amplifier_zoh_coefficients(0.0, 1e9)[:3]]   # ZOH of 1/(α s³)
+    [1.0, 4.0, 1.0]
+    """
+    n2, n1, n0, p, q = amplifier_zoh(float(a), 1.0 / lag)  # the one implementation (dfa.core.zohlag)
+    return float(n2), float(n1), float(n0), float(p), float(q)
+
+
+def _plant(a: float, lag: float) -> tuple[np.ndarray, np.ndarray]:
+    """(N_G, D_G) of G(z) = N_G/(μ D_G), highest power first (lag 0 or 1/lag overflowing: the device alone)."""
+    if lag == 0.0 or not math.isfinite(1.0 / lag):
+        c1, c0, p = zoh_coefficients(float(a))
+        return np.array([c1, c0]), np.array([1.0, -(1.0 + p), p])
+    n2, n1, n0, p, q = amplifier_zoh_coefficients(a, lag)
+    return np.array([n2, n1, n0]), np.poly([1.0, p, q])
+
+
+def _controller(cutoff: float | None, delay: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(N₁, N₂, D_H) with H = (N₁ + β_B N₂)/D_H (module docstring), highest power first."""
+    shift = np.zeros(delay + 2)
+    shift[0] = 1.0  # z^{d+1}
+    if cutoff is None:
+        return np.array([1.0, 0.0]), np.array([1.0, -1.0]), shift
+    af = math.exp(-2.0 * math.pi * cutoff)
+    return np.array([1.0, -af, 0.0]), np.array([1.0 - af, af - 1.0]), np.polymul(shift, [1.0, -af])
+
+
+def controlled_characteristic_polynomial(mu: float, beta: float, params: ControllerParams) -> np.ndarray:
+    """χ(z) = μ D_G D_H + N_G (N₁ + β_B N₂) of the sampled loop with a controller (module docstring).
+
+    Parameters
+    ----------
+    mu, beta : float
+        Dimensionless mass μ = m/(KT²) > 0 and damping β = b/(KT) >= 0 (paper Table 1).
+    params : ControllerParams
+        β_B, d, ν_c, α.
+
+    Returns
+    -------
+    numpy.ndarray
+        Coefficients, highest power first (degree d + 3 without filter or lag, one more for each).
+
+    Examples
+    --------
+    >>> controlled_characteristic_polynomial(1.0, 0.0, ControllerParams(damping=0.5)).tolist()
+    [1.0, -1.25, 1.5, -0.25]
+
+    (z(z − 1)² + (½z + ½)(1.5z − 0.5) at μ = 1, β = 0, β_B = ½.)
+    """
+    m, b = check_mu(mu), check_beta(beta)
+    params = check_type("params", params, ControllerParams, "give a dfa.ControllerParams")
+    ng, dg = _plant(b / m, params.lag)
+    n1, n2, dh = _controller(params.cutoff if params.damping > 0.0 else None, params.delay)
+    return np.polyadd(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2)))
+
+
+def _rho_rows(rows: np.ndarray) -> np.ndarray:
+    """Spectral radius of each polynomial (row, highest power first, leading coefficient != 0)."""
+    rows = np.atleast_2d(rows)
+    n = rows.shape[1] - 1
+    comp = np.zeros((rows.shape[0], n, n))
+    comp[:, 0, :] = -rows[:, 1:] / rows[:, :1]
+    idx = np.arange(n - 1)
+    comp[:, idx + 1, idx] = 1.0
+    return np.max(np.abs(np.linalg.eigvals(comp)), axis=-1)
+
+
+def controlled_spectral_radius(mu: float, beta: float, params: ControllerParams) -> float:
+    """Largest root modulus of :func:`controlled_characteristic_polynomial` (< 1: asymptotically stable)."""
+    return float(_rho_rows(controlled_characteristic_polynomial(mu, beta, params))[0])
+
+
+# ----------------------------------------------------------------------------- the stiffness ray
+#: (b + B)T/m at or below which :func:`stable_stiffness` takes K_crit from the Taylor series of the ray at z = 1
+#: (:func:`_series_kappa`), where the float root finding loses digits (it agrees with the series to ~1e-11 at
+#: 1e-4 and ~1e-8 at 1e-7; the series' own truncation is checked below 1e-16).
+SERIES_RATE = 1e-4
+
+#: (b + B)T/m below which the float ray analysis is not used (its crossings near z = 1 are lost in rounding).
+#: Kept as a guard: if the series did not converge there, :func:`stable_stiffness` would refuse. Its radius is
+#: set by the poles of P₀/Q: the zeros of N_G (near z = −1 or beyond) and the filter pole a_f, >= 6e-3 from z = 1
+#: for any accepted cutoff (>= 1e-3 cycles per sample), while the crossing is at θ <= 4.5e-4 below this rate; the
+#: amplifier lag adds a zero, not a pole, so no accepted input has been found that reaches the refusal.
+MIN_RESOLVED_RATE = 1e-7
+
+_N_TERMS = 16  # Taylor terms of the ray at z = 1
+
+
+def _poly_series(*coef: float) -> np.ndarray:
+    out = np.zeros(_N_TERMS)
+    out[: len(coef)] = coef
+    return out
+
+
+def _series_mul(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Power series x·y, truncated to :data:`_N_TERMS` terms."""
+    return np.convolve(x, y)[:_N_TERMS]
+
+
+def _series_div(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Power series x/y (y[0] != 0), truncated to :data:`_N_TERMS` terms."""
+    out = np.zeros(_N_TERMS)
+    for k in range(_N_TERMS):
+        out[k] = (x[k] - np.dot(out[:k], y[k:0:-1])) / y[0]
+    return out
+
+
+def _taylor_at_one(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[np.ndarray, float]:
+    """Taylor coefficients φ_k in s of Φ = z^d D_G/N_G + a_B N₂/N₁ at z = e^s (κ = −Φ on the ray), and ρ_L.
+
+    Built in w = z − 1, where every factor has coefficients free of cancellation (1 − p = −expm1(−a),
+    N_G(1) = φ₁(a) or n₂ + n₁ + n₀, the filter's 1 − a_f = −expm1(−2πν_c)), then composed with
+    w = e^s − 1 and multiplied by e^{sd}. φ₀ = 0 and φ₁ = a ρ_L + a_B, ρ_L = 1 (no lag) or
+    φ₁(a)(1 − q)/(n₂ + n₁ + n₀) (→ 1 as a → 0): φ₁ is returned as computed, ρ_L for the caller's exact scaling.
+    """
+    from ..core.exprel import phi1, phi2
+
+    if lag == 0.0 or not math.isfinite(1.0 / lag):
+        dg, ng, rho_l = _poly_series(0.0, -math.expm1(-a), 1.0), _poly_series(phi1(a), phi2(a)), 1.0
+    else:
+        n2, n1, n0, _, _ = amplifier_zoh_coefficients(a, lag)
+        one_q = -math.expm1(-1.0 / lag)
+        dg = _series_mul(_poly_series(0.0, -math.expm1(-a), 1.0), _poly_series(one_q, 1.0))
+        ng = _poly_series(n2 + n1 + n0, 2.0 * n2 + n1, n2)
+        rho_l = phi1(a) * one_q / (n2 + n1 + n0)
+    if a_b > 0.0 and cutoff is not None:
+        g = -math.expm1(-2.0 * math.pi * cutoff)  # 1 − a_f
+        vw = _series_div(_poly_series(0.0, g), _series_mul(_poly_series(1.0, 1.0), _poly_series(g, 1.0)))
+    else:
+        vw = _series_div(_poly_series(0.0, 1.0), _poly_series(1.0, 1.0))
+    lw = _series_div(dg, ng)
+    ws = np.array([0.0] + [1.0 / math.factorial(k) for k in range(1, _N_TERMS)])  # w = e^s − 1
+    lo, vo, pw = np.zeros(_N_TERMS), np.zeros(_N_TERMS), _poly_series(1.0)
+    for k in range(_N_TERMS):
+        lo, vo, pw = lo + lw[k] * pw, vo + vw[k] * pw, _series_mul(pw, ws)
+    ed = np.array([float(delay) ** k / math.factorial(k) for k in range(_N_TERMS)])  # e^{sd}
+    return _series_mul(ed, lo) + a_b * vo, rho_l
+
+
+def _series_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[float, float] | None:
+    """(ρ_L, κ̃) with κ_crit = (a ρ_L + a_B) κ̃ from the Taylor series at z = 1, or None if it does not converge.
+
+    On z = e^{jθ} with u = θ² = φ₁v, Im Φ = 0 and κ = −Re Φ read (φ_k real, :func:`_taylor_at_one`)::
+
+        1 − φ₃v + φ₅φ₁v² − φ₇φ₁²v³ + … = 0,    κ/φ₁ = κ̃ = φ₂v − φ₄φ₁v² + φ₆φ₁²v³ − …
+
+    whose root near v = 1/φ₃ is found by Newton's method; φ₁ only scales the corrections, so an
+    underflowing (b + B)T/m costs no accuracy (the caller forms K from (bρ_L + B)/T · κ̃). As φ₁ → 0:
+    κ̃ → φ₂/φ₃ = 1/(d + ½ + α), i.e. K_crit → (b + B)/(T(½ + d + τ_a/T)). None when φ₃ <= 0 or the
+    last terms are not below 1e-17 of the first (a pole of the filter or lag too close to z = 1).
+    """
+    f, rho_l = _taylor_at_one(a, a_b, cutoff, lag, delay)
+    if not f[3] > 0.0:
+        return None
+    e = f[1]
+    j = np.arange(1, (_N_TERMS - 1) // 2 + 1)
+    im = np.concatenate([[1.0], (-1.0) ** j * f[2 * j + 1] * e ** (j - 1)])  # in powers of v
+    re = np.concatenate([[0.0], (-1.0) ** (j + 1) * f[2 * j] * e ** (j - 1)])
+    poly = np.polynomial.polynomial
+    v = 1.0 / f[3]
+    for _ in range(60):
+        step = poly.polyval(v, im) / poly.polyval(v, poly.polyder(im))
+        v -= step
+        if abs(step) <= 1e-16 * abs(v):
+            break
+    powers = v ** np.arange(im.size)
+    ti, tr = np.abs(im * powers), np.abs(re * powers)
+    if not (v > 0.0 and ti[-1] <= 1e-17 * ti[0] and tr[-1] <= 1e-17 * tr[1] and abs(step) <= 1e-14 * v):
+        return None
+    return rho_l, float(np.dot(re, powers))
+
+
+def _ray(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[np.ndarray, np.ndarray]:
+    """(P₀, Q) of κχ = P₀ + κQ at fixed a = bT/m and a_B = BT/m (module docstring)."""
+    ng, dg = _plant(a, lag)
+    n1, n2, dh = _controller(cutoff if a_b > 0.0 else None, delay)
+    return np.polyadd(np.polymul(dg, dh), a_b * np.polymul(ng, n2)), np.polymul(ng, n1)
+
+
+def _im_part(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
+    z = np.exp(1j * np.asarray(theta, dtype=float))
+    return np.imag(np.polyval(p0, z) * np.conj(np.polyval(q, z)))
+
+
+def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
+    """Angles θ in [0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle, grid sign changes, 0 and π."""
+    n = len(p0) - 1
+    qp = np.concatenate([np.zeros(n + 1 - len(q)), q])
+    r: np.ndarray = np.polysub(np.polymul(p0, qp[::-1]), np.polymul(qp, p0[::-1]))
+    out = [math.pi]
+    if abs(np.polyval(p0, 1.0)) > 1e-9 * np.abs(p0).sum():
+        out.append(0.0)  # z = 1 is a root of P₀ for the device (κ = 0); a crossing only for other pairs
+    nz = np.nonzero(np.abs(r) > 0.0)[0]
+    if nz.size:
+        for z in np.roots(r[nz[0] :]):
+            if abs(abs(z) - 1.0) < 1e-4 and abs(np.angle(z)) > 1e-12:
+                out.append(abs(float(np.angle(z))))
+    grid = np.linspace(0.0, math.pi, 512 * (n + 1))
+    g = _im_part(p0, q, grid)
+    for i in np.nonzero(g[1:-1] * g[2:] < 0.0)[0] + 1:
+        out.append(brentq(lambda t: float(_im_part(p0, q, t)), grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15))
+    return [_polish(p0, q, t) for t in out]
+
+
+def _polish(p0: np.ndarray, q: np.ndarray, t: float) -> float:
+    """Refine a root θ of Im(P₀ Q̄) by bracketing nearby (kept as is at a tangency or at π)."""
+    if t >= math.pi or t <= 0.0:
+        return min(max(t, 0.0), math.pi)
+    f0 = float(_im_part(p0, q, t))
+    for rel in (1e-12, 1e-9, 1e-6, 1e-4):
+        lo, hi = t * (1.0 - rel), min(t * (1.0 + rel), math.pi)
+        for x, y in ((lo, t), (t, hi)):
+            if float(_im_part(p0, q, x)) * float(_im_part(p0, q, y)) < 0.0 or f0 == 0.0:
+                return t if f0 == 0.0 else brentq(lambda s: float(_im_part(p0, q, s)), x, y, xtol=1e-16, rtol=1e-15)
+    return t
+
+
+def _crossings(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Every κ > 0 at which a root of P₀ + κQ lies on the unit circle, ascending, without repeats."""
+    ks = []
+    for t in _candidate_angles(p0, q):
+        z = complex(math.cos(t), math.sin(t)) if 0.0 < t < math.pi else complex(math.cos(t), 0.0)
+        pq = np.polyval(p0, z) * np.conj(np.polyval(q, z))
+        qq = abs(np.polyval(q, z)) ** 2
+        if qq > 0.0:
+            k = -pq.real / qq
+            if k > 0.0 and math.isfinite(k) and abs(pq.imag) <= 1e-6 * abs(pq):
+                ks.append(k)
+    ks.sort()
+    out: list[float] = []
+    for k in ks:
+        if not out or k > out[-1] * (1.0 + 1e-10):
+            out.append(k)
+    return np.array(out)
+
+
+def _stable_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> list[tuple[float, float]]:
+    """The stable set in κ = KT²/m as a list of open intervals (lo, hi), lo = 0 for the one from κ = 0+."""
+    p0, q = _ray(a, a_b, cutoff, lag, delay)
+    return _ray_intervals(p0, q, (a, a_b, cutoff, lag, delay))
+
+
+def _ray_intervals(p0: np.ndarray, q: np.ndarray, args: tuple) -> list[tuple[float, float]]:
+    """Stable set in κ of P₀ + κQ (deg Q < deg P₀) as open intervals; ``args`` names the case in errors."""
+    ks = _crossings(p0, q)
+    if ks.size == 0:
+        ks = np.array([1.0])  # no crossing: stability is the same for every κ (then unstable, deg Q < deg P₀)
+    probes = np.concatenate([[0.5 * ks[0]], np.sqrt(ks[1:] * ks[:-1]), [2.0 * ks[-1]]])
+    stable = _rho_rows(np.array([np.polyadd(p0, k * q) for k in probes])) < 1.0
+    edges = np.concatenate([[0.0], ks, [math.inf]])
+    out: list[tuple[float, float]] = []
+    for i, s in enumerate(stable):
+        if not s:
+            continue
+        if out and out[-1][1] == edges[i]:
+            out[-1] = (out[-1][0], float(edges[i + 1]))  # a candidate that is not a boundary
+        else:
+            out.append((float(edges[i]), float(edges[i + 1])))
+    _check_against_grid(p0, q, ks, out, args)
+    return out
+
+
+def _check_against_grid(p0, q, ks, intervals, args) -> None:
+    """The stable set must agree with the spectral radius on an independent geometric grid of κ."""
+    grid = np.geomspace(ks[0] * 1e-2, ks[-1] * 1e2, 241)
+    near = np.min(np.abs(np.log(grid[:, None] / ks[None, :])), axis=1) < 1e-6
+    rho = _rho_rows(np.array([np.polyadd(p0, k * q) for k in grid]))
+    inside = np.array([any(lo < k < hi for lo, hi in intervals) for k in grid])
+    bad = ~near & (np.abs(rho - 1.0) > 1e-9) & ((rho < 1.0) != inside)
+    if np.any(bad) or any(math.isinf(hi) for _, hi in intervals):
+        raise DFAError(
+            f"the exact linear stability set for (bT/m, BT/m, ν_c, α, d) = {args!r} failed its spectral-radius "
+            "check: please report this as a bug"
+        )
+
+
+def _stable_set(
+    b: float, big_b: float, t: float, m: float, p: ControllerParams
+) -> tuple[list[tuple[float, float]], float | None]:
+    """Stable κ intervals and, when the Taylor series at z = 1 gives it, K_crit in N/m (else None).
+
+    (b + B)T/m > :data:`SERIES_RATE` or 0: the float ray analysis alone. Below, where the series converges:
+    (0, κ_crit) from the series (the float crossings near z = 1 are off there: 3e-5 relative, or a false
+    'never', at (b + B)T/m = 1e-7 with an amplifier lag of 159 or 15915 samples), then any interval of the
+    float ray analysis (from :data:`MIN_RESOLVED_RATE` up) starting at κ >= max(1e-3, 4κ_crit), where the float
+    spectral radius resolves the roots near z = 1; every other κ of a grid up to 1e4 there must be unstable
+    (checked). Between κ_crit and that bound the ray stays unstable: the roots at κ = O((b + B)T/m) lie in the closed unit disk away from
+    z = 1, and the series' crossing is the unique root of its leading balance near z = 1.
+    """
+    a, a_b = b * t / m, big_b * t / m
+    rate = (b + big_b) * t / m
+    series = None
+    if b + big_b > 0.0 and rate <= SERIES_RATE:
+        series = _series_kappa(a, a_b, p.cutoff, p.lag, p.delay)
+    if series is None:
+        if 0.0 < rate < MIN_RESOLVED_RATE or (rate == 0.0 and b + big_b > 0.0):
+            raise DFAValueError(
+                f"(damping + controller.damping)·period/mass = {rate:g} is invalid for the exact linear bound with "
+                f"this controller: below {MIN_RESOLVED_RATE:g} the bound comes from a series at z = 1, which does "
+                "not converge here (the velocity filter's pole as close to z = 1 as the stability boundary); raise "
+                "the filter cutoff, or check the mass and damping"
+            )
+        return _stable_kappa(a, a_b, p.cutoff, p.lag, p.delay), None
+    rho_l, k_tilde = series
+    kappa = (a * rho_l + a_b) * k_tilde
+    k_top = (b * rho_l + big_b) / t * k_tilde
+    lo = max(1e-3, 4.0 * kappa)  # from here on the float spectral radius resolves the roots near z = 1
+    higher: list[tuple[float, float]] = []
+    if rate >= MIN_RESOLVED_RATE:  # below, none is looked for (costly at large d): one found by the grid is an error
+        try:
+            higher = [iv for iv in _stable_kappa(a, a_b, p.cutoff, p.lag, p.delay) if iv[0] >= lo]
+        except DFAError:  # its own check failed (the clustered roots near z = 1): no interval above is listed
+            pass
+    p0, q = _ray(a, a_b, p.cutoff, p.lag, p.delay)
+    grid = np.geomspace(lo, 1e4, 29)
+    grid = grid[[not any(x <= k <= y for x, y in higher) for k in grid]]
+    if grid.size and np.any(_rho_rows(np.array([np.polyadd(p0, k * q) for k in grid])) <= 1.0 + 1e-9):
+        raise DFAError(
+            f"the loop with (bT/m, BT/m, ν_c, α, d) = {(a, a_b, p.cutoff, p.lag, p.delay)!r} is stable at a large K "
+            "outside the listed intervals although (b + B)T/m is small: please report this as a bug"
+        )
+    return [(0.0, kappa), *higher], k_top
+
+
+def _status(intervals: list[tuple[float, float]]) -> LinearStatus:
+    if not intervals:
+        return LinearStatus.NEVER
+    if intervals[0][0] > 0.0:
+        return LinearStatus.NOT_AT_LOW_K
+    return LinearStatus.INTERVAL if len(intervals) == 1 else LinearStatus.SEVERAL
+
+
+# ----------------------------------------------------------------------------- results in physical units
+def _device(mass: Any, damping: Any, period: Any) -> tuple[float, float, float]:
+    m = check_positive("mass", mass, "give the moving mass in kg (rotary: kg·m²)")
+    b = check_nonnegative("damping", damping, "give the viscous friction b in N·s/m")
+    t = check_positive("period", period, "give the sampling period T in s (1 kHz: 0.001)")
+    if not (t * t > 0.0 and math.isfinite(m / (t * t))):  # K = κ m/T²: a subnormal T would divide by zero
+        raise DFAValueError(
+            f"period = {t!r} is invalid with mass = {m!r}: mass/period² must be finite; give T in s (1 kHz: 0.001)"
+        )
+    if not math.isfinite(b * t / m):
+        raise DFAValueError(f"damping·period/mass = {b * t / m!r} is invalid: it must be finite; check the units")
+    return m, b, t
+
+
+@dataclass(frozen=True)
+class StiffnessIntervals:
+    """The stable stiffnesses of the linear sampled loop at a fixed controller damper, filter, delay and lag.
+
+    Attributes
+    ----------
+    intervals : numpy.ndarray
+        (n, 2) open intervals (K_lo, K_hi) of stable stiffness, N/m (rotary: N·m/rad), ascending; empty if none.
+    k_crit : float
+        Top of the interval starting at K = 0 (the loop is stable for every K in (0, k_crit)); 0 if none, N/m.
+    status : LinearStatus
+    mass, damping, period : float
+        The device's m (kg), b (N·s/m) and T (s).
+    controller : dict
+        The controller held fixed: damping B (N·s/m), delay (samples), filter_cutoff (Hz or None),
+        amplifier_bandwidth (Hz or None); its stiffness is what is solved for.
+    """
+
+    intervals: np.ndarray
+    k_crit: float
+    status: LinearStatus
+    mass: float
+    damping: float
+    period: float
+    controller: dict
+
+    def __post_init__(self) -> None:
+        freeze_fields(self, {"intervals": {"ndim": 2}})
+        if self.intervals.shape[1:] != (2,):
+            raise DFAValueError(
+                f"intervals has shape {self.intervals.shape} but must be (n, 2); pass the computed array"
+            )
+        object.__setattr__(self, "status", LinearStatus.coerce(self.status))
+
+    def as_dict(self) -> dict[str, object]:
+        """Return a JSON-ready record (SI units).
+
+        Returns
+        -------
+        dict
+            Intervals, k_crit, status, mass, damping, period and the controller held fixed.
+        """
+        return {
+            "intervals": self.intervals.tolist(),
+            "k_crit": self.k_crit,
+            "status": self.status.value,
+            "mass": self.mass,
+            "damping": self.damping,
+            "period": self.period,
+            "controller": dict(self.controller),
+        }
+
+
+def stable_stiffness(mass: float, damping: float, period: float, controller: Controller) -> StiffnessIntervals:
+    """Every stable stiffness K of the linear sampled loop with ``controller``'s damper, filter, delay and lag.
+
+    The exact closed-loop characteristic polynomial of ZOH, amplifier lag and
+    device with the controller H(z) (module docstring); K varies while the
+    physical B, f_c, τ_a and d stay fixed (so β_B = B/(KT) varies with K).
+
+    Parameters
+    ----------
+    mass : float
+        Moving mass m > 0, kg (rotary: kg·m²).
+    damping : float
+        Viscous friction b >= 0, N·s/m (rotary: N·m·s/rad).
+    period : float
+        Sampling period T > 0, s.
+    controller : Controller
+        Its damping B, delay, filter cutoff and amplifier bandwidth are used; its stiffness is not
+        (K is what is solved for).
+
+    Returns
+    -------
+    StiffnessIntervals
+        Every stable interval of K (N/m), K_crit (top of the one from K = 0) and the status.
+
+    Raises
+    ------
+    DFAValueError
+        A mass, damping or period out of range, a filter cutoff above the Nyquist frequency 1/(2T), or
+        0 < (b + B)T/m < :data:`MIN_RESOLVED_RATE` where the series at z = 1 does not converge (a guard: no
+        accepted input is known to reach it).
+    DFATypeError
+        ``controller`` is not a :class:`dfa.Controller`.
+
+    See Also
+    --------
+    stable_region : The same at each B of a grid (the stable K–B region).
+    dfa.analysis.linear.critical_stiffness : K_crit alone, vectorised; the spring's closed-form path.
+    colgate_schenkel_damping : The (stricter) passivity condition.
+
+    Examples
+    --------
+    >>> r = stable_stiffness(1.0, 0.0, 1e-3, Controller(1.0))     # b = B = 0: never stable
+    >>> r.status.value, r.k_crit
+    ('never', 0.0)
+    """
+    m, b, t = _device(mass, damping, period)
+    c = check_type("controller", controller, Controller, "give a dfa.Controller")
+    p = c.params(t)
+    for name, value in (("damping", b), ("controller.damping", c.damping)):
+        check_rate(name, value, m, t)
+    kap, k_top = _stable_set(b, c.damping, t, m, p)
+    scale = m / (t * t)
+    iv = np.array([[lo * scale, hi * scale] for lo, hi in kap]).reshape(-1, 2)
+    status = _status(kap)
+    if k_top is not None:  # the series' K_crit, formed without the possibly underflowing (b + B)T/m
+        iv[0, 1] = k_top
+    k_crit = float(iv[0, 1]) if status in (LinearStatus.INTERVAL, LinearStatus.SEVERAL) else 0.0
+    ctrl = {k: v for k, v in c.as_dict().items() if k != "stiffness"}
+    return StiffnessIntervals(iv, k_crit, status, m, b, t, ctrl)
+
+
+@dataclass(frozen=True)
+class StableRegion:
+    """The stable region of the (K, B) plane of the linear sampled loop: K_max(B) and every stable interval.
+
+    Attributes
+    ----------
+    virtual_damping : numpy.ndarray
+        Grid of controller damping B >= 0, N·s/m (rotary: N·m·s/rad).
+    k_crit : numpy.ndarray
+        At each B, the top of the stable interval starting at K = 0 (0 if there is none), N/m.
+    rows : tuple of StiffnessIntervals
+        At each B, every stable interval and its status.
+    status : LinearStatus
+        INTERVAL when every B has one interval from K = 0; otherwise the first other status met along the grid.
+    """
+
+    virtual_damping: np.ndarray
+    k_crit: np.ndarray
+    rows: tuple
+    status: LinearStatus
+
+    def __post_init__(self) -> None:
+        freeze_fields(self, {"virtual_damping": {"ndim": 1}, "k_crit": {"ndim": 1}})
+        if not (len(self.rows) == self.k_crit.size == self.virtual_damping.size):
+            raise DFAValueError("rows, k_crit and virtual_damping must have the same length; pass the computed values")
+        object.__setattr__(self, "status", LinearStatus.coerce(self.status))
+
+    def as_dict(self) -> dict[str, object]:
+        """Return a JSON-ready record (SI units).
+
+        Returns
+        -------
+        dict
+            The B grid, K_max(B), the intervals and status per B, the overall status and the device.
+        """
+        return {
+            "virtual_damping": self.virtual_damping.tolist(),
+            "k_crit": self.k_crit.tolist(),
+            "intervals": [r.intervals.tolist() for r in self.rows],
+            "row_status": [r.status.value for r in self.rows],
+            "status": self.status.value,
+            "device": {"mass": self.rows[0].mass, "damping": self.rows[0].damping, "period": self.rows[0].period}
+            if self.rows
+            else None,
+        }
+
+
+def stable_region(
+    mass: float,
+    damping: float,
+    period: float,
+    virtual_damping: Any,
+    *,
+    delay: int = 0,
+    filter_cutoff: float | None = None,
+    amplifier_bandwidth: float | None = None,
+) -> StableRegion:
+    """The stable K–B region of the linear sampled loop: :func:`stable_stiffness` at each B of a grid.
+
+    Parameters
+    ----------
+    mass, damping, period : float
+        Device mass m (kg), viscous friction b (N·s/m), sampling period T (s).
+    virtual_damping : array_like
+        One or more controller dampings B >= 0, N·s/m.
+    delay : int, optional
+        Computational delay d in samples.
+    filter_cutoff, amplifier_bandwidth : float or None, optional
+        Velocity-filter cutoff and amplifier bandwidth in Hz (None: none), as in :class:`Controller`.
+
+    Returns
+    -------
+    StableRegion
+        K_max(B) at each B, every stable interval and the status per B.
+
+    Raises
+    ------
+    DFAValueError
+        An empty grid, a negative B, or device or controller values out of range.
+    DFATypeError
+        A B that is not a real number (text, True/False).
+
+    See Also
+    --------
+    stable_stiffness : One B.
+    colgate_schenkel_damping : The passivity condition at a given K and B.
+
+    Examples
+    --------
+    >>> r = stable_region(1.0, 2.0, 1e-3, [0.0, 1.0])
+    >>> [round(k) for k in r.k_crit], r.status.value      # B = 0: the spring's bound
+    ([4001, 5996], 'interval')
+    """
+    grid = np.atleast_1d(check_real_array("virtual_damping", virtual_damping, "give the dampings B in N·s/m"))
+    if grid.ndim != 1 or grid.size == 0:
+        raise DFAValueError(f"virtual_damping = {virtual_damping!r} is invalid: give one or more dampings B in N·s/m")
+    if (grid < 0).any():  # the message names what the caller typed, not Controller's field `damping`
+        bad = float(grid[grid < 0][0])
+        raise DFAValueError(
+            f"virtual_damping = {bad!r} is invalid: it must be a finite number >= 0; give the virtual damping B in "
+            "N·s/m (0 for none)"
+        )
+    rows = tuple(
+        stable_stiffness(
+            mass,
+            damping,
+            period,
+            Controller(1.0, float(bb), delay, filter_cutoff=filter_cutoff, amplifier_bandwidth=amplifier_bandwidth),
+        )
+        for bb in grid
+    )
+    odd = [r.status for r in rows if r.status is not LinearStatus.INTERVAL]
+    return StableRegion(grid, np.array([r.k_crit for r in rows]), rows, odd[0] if odd else LinearStatus.INTERVAL)

@@ -1,0 +1,580 @@
+"""The linearised haptic loop (paper Fig. 6, eq. 36-40) built with python-control.
+
+A limit cycle ξ = M sin ωτ of the quantized, frictional loop satisfies the
+harmonic balance (eq. 36)::
+
+    1 + D(M) · L(jω; M) = 0,
+
+where D is the quantizer describing function (eq. 41) and L the linear part:
+the device with Coulomb friction replaced by its equivalent viscous damping
+(eq. 40)::
+
+    G(s; M, ω) = 1/(μ s² + β_eq s),   β_eq = β + 4σ/(π M ω),
+
+in series with the zero-order hold and an optional computational delay of d
+samples. Three models of the hold are offered (time in samples, T = 1):
+
+``"half-delay"`` (the paper's)
+    L = e^{−jω(d + ½)} G(jω), exact in the frequency response.
+``"pade"``
+    the delay e^{−s(d + ½)} replaced by a Padé approximation of order
+    ``pade_order``: a rational model for tools that need one.
+``"zoh"`` (exact)
+    L = z^{−d} G_d(z) at z = e^{jω}, with G_d the ZOH-discretised device
+    (``control.c2d(G, 1, 'zoh')``), here in closed form::
+
+        G_d(z) = (c₁ z + c₀) / (μ (z − 1)(z − p)),   a = β_eq/μ, p = e^{−a},
+        c₁ = (a − 1 + p)/a²,   c₀ = (1 − p − a p)/a²     (c₁ = c₀ = ½ at a = 0).
+
+Examples
+--------
+>>> import numpy as np
+>>> from dfa.model.device import Params
+>>> p = Params(mu=5.0, beta=0.1, sigma=0.0)
+>>> L = loop_response(p, [0.1, 1.0])                      # half-delay model
+>>> bool(np.allclose(L, np.exp(-0.5j * np.array([0.1, 1.0])) / (5.0 * (1j * np.array([0.1, 1.0]))**2 + 0.1j * np.array([0.1, 1.0]))))
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import control
+import numpy as np
+
+from ..checks import (
+    check_choice,
+    check_delay,
+    check_int,
+    check_positive,
+    check_positive_array,
+    check_real_array,
+    check_type,
+)
+from ..core.zoh import zoh_coefficients
+from ..errors import DFAValueError
+from ..model.device import Params
+from ..model.wall import ControllerParams
+from ..results.frozen import check_shape, freeze_fields
+from ..results.jsonable import to_jsonable
+from ..results.status import NyquistStatus
+from .describing import coulomb_equivalent_damping, quantizer_df
+
+__all__ = [
+    "LOOP_MODELS",
+    "equivalent_damping",
+    "device_tf",
+    "hold_delay_tf",
+    "device_zoh_tf",
+    "zoh_pulse_response",
+    "loop_response",
+    "loop_system",
+    "NyquistLocusResponse",
+    "nyquist_locus_response",
+]
+
+LOOP_MODELS = ("half-delay", "pade", "zoh")
+
+
+def _check_params(params: object) -> Params:
+    return check_type("params", params, Params, "build it with dfa.Params(mu, beta, sigma) or device.params(stiffness)")
+
+
+def _check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int]:
+    m = check_choice("model", model, LOOP_MODELS)
+    d = check_delay(delay)
+    n = check_int("pade_order", pade_order, minimum=1, fix="use an order of 1 or more (4 is usually enough)")
+    return m, d, n
+
+
+def _omega(omega, name: str = "omega") -> np.ndarray:
+    return check_positive_array(name, omega, "give frequencies in rad per sample")
+
+
+def equivalent_damping(params: Params, amplitude=None, omega=None):
+    """β_eq = β + 4σ/(πMω) of eq. 40, broadcast over ``amplitude`` M and ``omega`` ω.
+
+    With σ = 0, ``amplitude`` and ``omega`` may be omitted (β_eq = β).
+    """
+    p = _check_params(params)
+    if p.sigma == 0.0:
+        shape = np.broadcast_shapes(
+            np.shape(amplitude) if amplitude is not None else (), np.shape(omega) if omega is not None else ()
+        )
+        return np.full(shape, p.beta) if shape else p.beta
+    if amplitude is None or omega is None:
+        raise DFAValueError(
+            f"amplitude = {amplitude!r} is invalid here: with sigma = {p.sigma} > 0 the loop depends on the "
+            "cycle's amplitude M and frequency ω (eq. 40); give both"
+        )
+    return p.beta + coulomb_equivalent_damping(p.sigma, amplitude, omega)
+
+
+def device_tf(params: Params, amplitude: float | None = None, omega: float | None = None) -> control.TransferFunction:
+    """Continuous device G(s) = 1/(μ s² + β_eq s) (time in samples) as a python-control TransferFunction.
+
+    Examples
+    --------
+    >>> from dfa.model.device import Params
+    >>> G = device_tf(Params(2.0, 0.5, 0.0))
+    >>> G.num[0][0].tolist(), G.den[0][0].tolist()
+    ([1.0], [2.0, 0.5, 0.0])
+    """
+    p = _check_params(params)
+    b = float(equivalent_damping(p, amplitude, omega))
+    return control.tf([1.0], [p.mu, b, 0.0])
+
+
+def hold_delay_tf(delay: int = 0, pade_order: int = 4) -> control.TransferFunction:
+    """Padé approximation of the hold's half sample plus ``delay`` samples, e^{−s(d + ½)}."""
+    _m, d, n = _check_model("pade", delay, pade_order)
+    num, den = control.pade(d + 0.5, n)
+    return control.tf(num, den)
+
+
+def device_zoh_tf(
+    params: Params, amplitude: float | None = None, omega: float | None = None
+) -> control.TransferFunction:
+    """Exact ZOH discretisation (T = 1) of the device: ``control.c2d(device_tf(...), 1, 'zoh')``."""
+    return control.c2d(device_tf(params, amplitude, omega), 1.0, method="zoh")
+
+
+def zoh_pulse_response(mu, beta_eq, omega):
+    """G_d(e^{jω}) of the ZOH-discretised device 1/(μ s² + β_eq s), closed form (vectorised).
+
+    Parameters
+    ----------
+    mu : float or array_like
+        Dimensionless mass μ > 0.
+    beta_eq : float or array_like
+        (Equivalent) damping >= 0.
+    omega : float or array_like
+        Frequency in rad per sample, in (0, π].
+    """
+    mu = np.asarray(mu, dtype=float)
+    a = np.asarray(beta_eq, dtype=float) / mu
+    c1, c0, p = zoh_coefficients(a)
+    z = np.exp(1j * np.asarray(omega, dtype=float))
+    return (c1 * z + c0) / (mu * (z - 1.0) * (z - p))
+
+
+def loop_response(
+    params: Params,
+    omega,
+    amplitude=None,
+    *,
+    model: str = "half-delay",
+    delay: int = 0,
+    pade_order: int = 4,
+    controller: ControllerParams | None = None,
+):
+    """Frequency response L(jω; M) of the linear part of the loop (eq. 36).
+
+    Parameters
+    ----------
+    params : Params
+        Dimensionless device (μ, β, σ).
+    omega : float or array_like
+        Frequencies ω > 0 in rad per sample (ω < π for a sampled cycle).
+    amplitude : float or array_like, optional
+        Cycle amplitude M in ticks (needed when σ > 0: it sets β_eq); broadcast with ``omega``.
+    model : {"half-delay", "pade", "zoh"}
+        Model of the zero-order hold (module docstring).
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
+    pade_order : int, optional
+        Order of the Padé approximation for ``model="pade"`` (default 4).
+    controller : ControllerParams, optional
+        The virtual wall (issue 15). L is then multiplied by the controller
+        C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the ZOH-exact velocity filter
+        (1 − a)e^{−jω}/(1 − a e^{−jω}), a = e^{−2πν_c}; 1 without filter), its delay
+        e^{−jωd} replaces ``delay`` (which must be 0 or equal), and the amplifier lag
+        enters as 1/(jωα + 1) (half-delay, Padé) or exactly inside the ZOH-sampled
+        amplifier + device (``"zoh"``, :mod:`dfa.core.zohlag`). Default None: the spring.
+
+    Returns
+    -------
+    complex or numpy.ndarray of complex
+        L with the broadcast shape of ``omega`` and ``amplitude``.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``params`` is not :class:`Params`, a frequency or amplitude is not a finite number > 0, the
+        model is unknown, or the delay or Padé order is not a valid whole number.
+
+    See Also
+    --------
+    loop_system : The same loop as a python-control system.
+    nyquist_locus_response : The loop against the critical locus −1/D(M).
+    """
+    from .cycles.characteristic import _inv_loop  # imported here: dfa.analysis.cycles builds on this module
+    from .cycles.controlled import resolve_controller
+
+    p = _check_params(params)
+    ctl, d = resolve_controller(controller, delay)
+    m, d, n = _check_model(model, d, pade_order)
+    w = _omega(omega)
+    if amplitude is not None:
+        amplitude = check_real_array("amplitude", amplitude, "give the cycle amplitude M in ticks")
+        try:
+            np.broadcast_shapes(w.shape, amplitude.shape)
+        except ValueError:
+            raise DFAValueError(
+                f"amplitude of shape {amplitude.shape} is invalid with omega of shape {w.shape}: they must broadcast "
+                "together; give one amplitude per frequency or a single amplitude"
+            ) from None
+    beq = (
+        equivalent_damping(p, amplitude, w)
+        if p.sigma > 0
+        else np.full(np.broadcast_shapes(w.shape, np.shape(amplitude) if amplitude is not None else ()), p.beta)
+    )
+    w = np.broadcast_to(w, np.shape(beq))
+    if ctl is not None:
+        out = 1.0 / _inv_loop(p.mu, beq, w, m, d, n, ctl)
+    elif m == "zoh":
+        out = zoh_pulse_response(p.mu, beq, w) * np.exp(-1j * w * d)
+    else:
+        s = 1j * w
+        g = 1.0 / (p.mu * s**2 + beq * s)
+        if m == "half-delay":
+            out = g * np.exp(-s * (d + 0.5))
+        else:
+            num, den = control.pade(d + 0.5, n)
+            out = g * np.polyval(num, s) / np.polyval(den, s)
+    out = np.asarray(out, dtype=complex)
+    if not np.all(np.isfinite(out)):
+        bad = float(np.broadcast_to(w, out.shape)[~np.isfinite(out)].ravel()[0])
+        raise DFAValueError(
+            f"omega = {bad!r} is invalid here: L(jω) over- or underflows a float at this frequency; "
+            "give frequencies in rad per sample (a sampled cycle has ω < π)"
+        )
+    return complex(out) if out.ndim == 0 else out
+
+
+def loop_system(
+    params: Params,
+    amplitude: float | None = None,
+    omega: float | None = None,
+    *,
+    model: str = "pade",
+    delay: int = 0,
+    pade_order: int = 4,
+    omega_grid=None,
+):
+    """The linear part as a python-control system, for python-control's own tools.
+
+    ``"pade"`` gives a continuous TransferFunction, ``"zoh"`` a discrete one
+    (dt = 1), and ``"half-delay"`` a FrequencyResponseData on ``omega_grid``
+    (the exact delay is not rational). With σ > 0 the rational models are
+    linearised at the given ``amplitude`` and ``omega`` (eq. 40); the FRD only
+    needs the amplitude, because the Coulomb term adds j·4σ/(πM) to 1/G at
+    every frequency.
+
+    Parameters
+    ----------
+    params : Params
+        Dimensionless device (μ, β, σ).
+    amplitude : float, optional
+        Cycle amplitude M in ticks at which the Coulomb friction is linearised (needed when σ > 0).
+    omega : float, optional
+        Frequency ω in rad per sample at which the rational models linearise the friction (σ > 0).
+    model : {"pade", "zoh", "half-delay"}
+        Model of the zero-order hold (module docstring); default ``"pade"``.
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
+    pade_order : int, optional
+        Order of the Padé approximation for ``model="pade"`` (default 4).
+    omega_grid : array_like, optional
+        Frequencies in rad per sample of the ``"half-delay"`` FRD; default 2000 points from 1e-3 to π.
+
+    Returns
+    -------
+    control.TransferFunction or control.FrequencyResponseData
+        Continuous (``"pade"``) or discrete with dt = 1 (``"zoh"``) transfer function, or the FRD.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If ``params`` is not :class:`Params`, a frequency or amplitude is invalid, the model is
+        unknown, or the delay or Padé order is not a valid whole number.
+
+    See Also
+    --------
+    loop_response : The frequency response itself, vectorised.
+    """
+    p = _check_params(params)
+    m, d, n = _check_model(model, delay, pade_order)
+    if amplitude is not None:
+        amplitude = check_positive("amplitude", amplitude, "give one cycle amplitude M in ticks")
+    if omega is not None:
+        omega = check_positive("omega", omega, "give one frequency in rad per sample")
+    if m == "pade":
+        return device_tf(p, amplitude, omega) * hold_delay_tf(d, n)
+    if m == "zoh":
+        gd = device_zoh_tf(p, amplitude, omega)
+        return gd * control.tf([1.0], [1.0] + [0.0] * d, dt=1.0) if d else gd
+    w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega_grid is None else omega_grid, "omega_grid")
+    amp = None if p.sigma == 0.0 or amplitude is None else np.full_like(w, amplitude)
+    return control.frd(loop_response(p, w, amp, model=m, delay=d), w)
+
+
+@dataclass(frozen=True)
+class NyquistLocusResponse:
+    """Data of a Nyquist plot of the loop against the critical locus −1/D(M).
+
+    Attributes
+    ----------
+    params : Params
+        The inputs.
+    model, delay, pade_order
+        Loop model (see :func:`loop_response`).
+    omega : numpy.ndarray
+        Frequencies (rad per sample) of the curves.
+    amplitudes : numpy.ndarray
+        The amplitude M at which each curve was linearised (NaN when σ = 0:
+        the curve does not depend on M).
+    curves : numpy.ndarray of complex, shape (len(amplitudes), len(omega))
+        L(jω; M) for each amplitude.
+    locus_amplitude : numpy.ndarray
+        Amplitudes M of the critical locus.
+    locus : numpy.ndarray of complex
+        −1/D(M) (on the negative real axis, since D is real).
+    crossings : tuple of (M, ω, point)
+        Harmonic-balance solutions where a curve meets the locus at its own
+        amplitude: for σ = 0 (every curve is the same) the roots of the
+        limit-cycle solver (:func:`dfa.analysis.cycles.limit_cycles`, residual <= 1e-10)
+        with ω in the plotted range and M up to the locus's largest amplitude,
+        the point being −1/D(M); for σ > 0 use the solver directly.
+    status : NyquistStatus
+        ``OK``, ``CROSSINGS_NOT_COMPUTED`` (σ > 0) or ``SEARCH_INCOMPLETE`` (the solver's
+        search ended incomplete; crossings may be missing, why in ``detail``).
+    detail : str
+        The solver's one-line reason when ``SEARCH_INCOMPLETE``; empty otherwise.
+    controller : ControllerParams or None
+        The controller of the loop (None: the paper's spring).
+
+    Arrays are read-only copies.
+    """
+
+    params: Params
+    model: str
+    delay: int
+    pade_order: int
+    omega: np.ndarray = field(repr=False)
+    amplitudes: np.ndarray
+    curves: np.ndarray = field(repr=False)
+    locus_amplitude: np.ndarray = field(repr=False)
+    locus: np.ndarray = field(repr=False)
+    crossings: tuple
+    status: NyquistStatus
+    detail: str = ""
+    controller: ControllerParams | None = None
+
+    def __post_init__(self) -> None:
+        if self.controller is not None:
+            check_type("controller", self.controller, ControllerParams, "build it with nyquist_locus_response")
+        freeze_fields(
+            self,
+            {
+                "omega": {"ndim": 1},
+                "amplitudes": {"ndim": 1, "finite": False},
+                "curves": {"dtype": complex, "ndim": 2, "finite": False},
+                "locus_amplitude": {"ndim": 1},
+                "locus": {"dtype": complex, "ndim": 1, "finite": False},
+            },
+        )
+        check_shape("curves", self.curves, (self.amplitudes.size, self.omega.size))
+        check_shape("locus", self.locus, self.locus_amplitude.shape)
+        object.__setattr__(self, "status", NyquistStatus.coerce(self.status))
+        object.__setattr__(self, "crossings", tuple(self.crossings))
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record: inputs, crossings (M, ω, point) and the curves (complex as ``{"re", "im"}``).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: inputs, crossings, curves, locus, status and detail.
+        """
+        extra = {} if self.controller is None else {"controller": self.controller.as_dict()}
+        return to_jsonable(
+            {
+                **extra,
+                "mu": self.params.mu,
+                "beta": self.params.beta,
+                "sigma": self.params.sigma,
+                "model": self.model,
+                "delay": self.delay,
+                "pade_order": self.pade_order,
+                "crossings": [{"amplitude": m, "frequency": w, "point": pt} for m, w, pt in self.crossings],
+                "omega": self.omega,
+                "amplitudes": self.amplitudes,
+                "curves": self.curves,
+                "locus_amplitude": self.locus_amplitude,
+                "locus": self.locus,
+                "status": self.status,
+                "status_message": self.detail or self.status.message,
+            }
+        )
+
+    def loop_at(self, frequency: float, amplitude: float) -> complex:
+        """The loop L(jω; M) of this response at one frequency and amplitude: where a cycle lies on the plot.
+
+        Parameters
+        ----------
+        frequency : float
+            The angular frequency ω in rad per sample.
+        amplitude : float
+            The amplitude M in encoder ticks.
+
+        Returns
+        -------
+        complex
+            :func:`loop_response` with this response's model, delay and controller.
+        """
+        out = loop_response(
+            self.params, frequency, amplitude, model=self.model, delay=self.delay, pade_order=self.pade_order,
+            controller=self.controller,
+        )  # fmt: skip
+        return complex(out)
+
+    def plot(self, ax=None, **kwargs):
+        """Nyquist plot against the critical locus (:func:`dfa.figures.nyquist_plot`, paper Fig. 6); returns the Axes.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+        **kwargs
+            Passed on to :func:`dfa.figures.nyquist_plot`.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
+        from ..figures import nyquist_plot
+
+        return nyquist_plot(self, ax, **kwargs)
+
+
+def _solver_crossings(
+    p: Params,
+    model: str,
+    delay: int,
+    pade_order: int,
+    omega: np.ndarray,
+    max_amplitude: float,
+    controller: ControllerParams | None = None,
+) -> tuple[list[tuple[float, float, complex]], NyquistStatus, str]:
+    """σ = 0: the harmonic-balance roots of the limit-cycle solver (one implementation, residual <= 1e-10).
+
+    Returns ((M, ω, −1/D(M)) for every root with ω in the plotted range and M <= ``max_amplitude``, status,
+    detail): ``OK`` when the search is complete up to ``max_amplitude``, else ``SEARCH_INCOMPLETE`` and why.
+    """
+    from .cycles import SearchStatus, limit_cycles  # imported here: dfa.analysis.cycles builds on this module
+
+    res = limit_cycles(
+        p, model=model, delay=delay, pade_order=pade_order, max_amplitude=max_amplitude, controller=controller
+    )
+    lo, hi = float(np.min(omega)), float(np.max(omega))
+    out = [
+        (c.amplitude, c.frequency, complex(-1.0 / quantizer_df(c.amplitude), 0.0))
+        for c in res.cycles
+        if lo <= c.frequency <= hi
+    ]
+    if res.complete or res.status is SearchStatus.MAX_AMPLITUDE:
+        return out, NyquistStatus.OK, ""
+    return out, NyquistStatus.SEARCH_INCOMPLETE, res.detail
+
+
+def nyquist_locus_response(
+    params: Params,
+    amplitudes=None,
+    omega=None,
+    *,
+    model: str = "half-delay",
+    delay: int = 0,
+    pade_order: int = 4,
+    locus_amplitude=None,
+    controller: ControllerParams | None = None,
+) -> NyquistLocusResponse:
+    """Nyquist data of the loop L(jω; M) and the critical locus −1/D(M) (paper Fig. 6).
+
+    Parameters
+    ----------
+    params : Params
+        Dimensionless device.
+    amplitudes : array_like, optional
+        Amplitudes M (ticks) at which to linearise the Coulomb friction; needed
+        when σ > 0 (one curve per amplitude), ignored when σ = 0.
+    omega : array_like, optional
+        Frequencies (rad per sample); default 2000 points from 1e-3 to π.
+    model : {"half-delay", "pade", "zoh"}
+        Model of the zero-order hold (see :func:`loop_response`).
+    delay : int, optional
+        Computational delay d in whole samples (default 0).
+    pade_order : int, optional
+        Order of the Padé approximation for ``model="pade"`` (default 4).
+    locus_amplitude : array_like, optional
+        Amplitudes of the critical locus; default 0.05 to 50 ticks.
+    controller : ControllerParams, optional
+        The virtual wall (see :func:`loop_response`); its delay replaces ``delay``
+        (0 or equal). Default None: the paper's spring.
+
+    Returns
+    -------
+    NyquistLocusResponse
+        The curves, the locus and (σ = 0) the crossings from the limit-cycle solver; ``.plot()`` draws them.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an input is invalid, or σ > 0 and no ``amplitudes`` are given.
+
+    See Also
+    --------
+    loop_response : The loop's frequency response.
+    limit_cycles : The harmonic-balance solutions the crossings come from.
+
+    Examples
+    --------
+    >>> from dfa.model.device import Params
+    >>> r = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.0))
+    >>> [(round(m, 4), round(w, 4)) for m, w, pt in r.crossings]
+    [(0.7905, 0.3974), (1.0098, 0.3974)]
+    """
+    from .cycles.controlled import resolve_controller  # imported here: dfa.analysis.cycles builds on this module
+
+    p = _check_params(params)
+    _ctl, d = resolve_controller(controller, delay)
+    m, d, n = _check_model(model, d, pade_order)
+    w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega)
+    la = check_real_array(
+        "locus_amplitude", np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude
+    )
+    locus = -1.0 / quantizer_df(la)
+    crossings: list[tuple[float, float, complex]] = []
+    if p.sigma == 0.0:
+        amps = np.array([np.nan])
+        curves = np.atleast_2d(loop_response(p, w, model=m, delay=d, pade_order=n, controller=controller))
+        crossings, status, detail = _solver_crossings(p, m, d, n, w, float(la.max()), controller)
+    else:
+        if amplitudes is None:
+            raise DFAValueError(
+                f"amplitudes = None is invalid here: with sigma = {p.sigma} > 0 the loop depends on M (eq. 40); "
+                "give the amplitudes (ticks) at which to draw it"
+            )
+        amps = np.atleast_1d(check_real_array("amplitudes", amplitudes, "give the amplitudes M in ticks"))
+        curves = np.vstack(
+            [
+                loop_response(p, w, np.full_like(w, a), model=m, delay=d, pade_order=n, controller=controller)
+                for a in amps
+            ]
+        )
+        status, detail = NyquistStatus.CROSSINGS_NOT_COMPUTED, ""
+    return NyquistLocusResponse(
+        p, m, d, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, detail, controller
+    )

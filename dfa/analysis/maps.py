@@ -1,0 +1,620 @@
+"""Stability maps over the (β, σ) plane (paper Fig. 4).
+
+Every grid point is an independent exact simulation (:func:`dfa.simulate`
+without recording), run in chunks of points, each chunk one compiled call
+(:func:`dfa.analysis.simulation.run_points`); the result does not depend on the number
+of jobs nor on the backend. A tqdm progress bar reports the chunks as they
+finish. With a wall controller (``controller=``) the chunks are the same and run
+the same way (:func:`dfa._parallel.run_in_order`): only the compiled kernel differs.
+An interruption (Ctrl-C) cancels the chunks not started and returns nothing.
+
+Backends
+--------
+``"threads"`` (default): the compiled kernel releases the GIL, so chunks run
+on a thread pool in this process (no worker start-up, no re-import).
+``"processes"``: joblib's process pool (loky). ``"joblib"``: whatever
+``joblib.parallel_config`` selects, e.g. a dask cluster (``pip install
+'dfa-haptics[dask]'``)::
+
+    from dask.distributed import Client
+    import joblib
+    client = Client("tcp://scheduler:8786")
+    with joblib.parallel_config(backend="dask"):
+        m = stability_map(100.0, [1, 2, 5, 10], grid=400, backend="joblib")
+
+Examples
+--------
+>>> m = stability_map(100.0, [2.0], grid=4, samples=2000, n_jobs=1, progress=False)
+>>> m.outcome.shape, sorted(m.counts()[0])
+((1, 4, 4), ['chatter', 'oscillating', 'rest', 'undecided', 'unstable'])
+
+Outcome codes
+-------------
+``StabilityMap.outcome`` holds the kernel's codes, the index of the name in
+:data:`dfa.analysis.simulation.OUTCOMES` (rules in :mod:`dfa.analysis.simulation`):
+
+====  ===============  =====================================================
+code  name             meaning
+====  ===============  =====================================================
+0     ``rest``         came to rest (absorbing state reached)
+1     ``oscillating``  settled persistent cycle of 1 tick or more
+2     ``unstable``     diverged: past the bound, or a growing envelope
+3     ``chatter``      never rests; settled cycle below 1 tick
+4     ``undecided``    envelope still changing at the end: run longer
+====  ===============  =====================================================
+
+The ``.npz`` file stores the names in ``outcome_names`` (index = code);
+:func:`load_map` maps them back and rejects files written before these
+classes existed (their ``stable`` mixed rest with chatter).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import zipfile
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._io import atomic_open, check_memory
+from .._parallel import PARALLEL_BACKENDS, deal, gather, run_in_order
+from ..checks import (
+    _fmt,
+    check_bool,
+    check_bound,
+    check_choice,
+    check_delay,
+    check_int,
+    check_jobs,
+    check_mu,
+    check_nonnegative,
+    check_speed,
+)
+from ..errors import DFATypeError, DFAValueError
+from ..model.wall import ControllerParams
+from ..results.frozen import check_shape, freeze_fields
+from ..results.jsonable import to_jsonable
+from ..results.status import MapStatus
+from .criterion import CriticalLine
+from .simulation import (
+    GROWTH,
+    OUTCOMES,
+    SETTLE,
+    STABLE_AMPLITUDE,
+    check_controller,
+    check_rules,
+    divergence_bound,
+    preload_position,
+    run_points,
+)
+from .wall_criterion import controller_anchor
+
+__all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
+
+#: Execution backends of :func:`stability_map` (module docstring; :mod:`dfa._parallel`).
+MAP_BACKENDS = PARALLEL_BACKENDS
+
+#: Planned peak memory per grid point and initial speed (bytes): four float inputs, three
+#: float outputs in chunks and concatenated, the int8 outcome, with margin.
+MAP_BYTES_PER_RUN = 96
+#: ... and per grid point (the meshgrid axes).
+MAP_BYTES_PER_POINT = 16
+#: Most planned samples (spring-kernel equivalent) in one chunk: about half a second of the spring kernel without
+#: period skipping, so that Ctrl-C waits about that long for the running chunks and the progress bar keeps moving.
+CHUNK_SAMPLES = 2.0e7
+#: Cost per sample of the controller kernel relative to the spring's (measured on sub-tick chatter, which runs
+#: to the end: spring with d = 1 26 ns, damper/filter 36-170 ns, amplifier lag ~1 µs per sample).
+CONTROLLER_COST = {"controller": 4.0, "lag": 40.0}
+
+
+def map_memory_bytes(grid: int, n_speeds: int) -> int:
+    """Estimated peak memory of :func:`stability_map` in bytes (grid² points × speeds)."""
+    return int(grid) ** 2 * (MAP_BYTES_PER_POINT + MAP_BYTES_PER_RUN * int(n_speeds))
+
+
+@dataclass(frozen=True)
+class StabilityMap:
+    """Outcome of the exact simulation over a (β, σ) grid for one μ and several initial speeds.
+
+    Attributes
+    ----------
+    mu : float
+        Dimensionless mass.
+    xi_dots : tuple of float
+        Initial speeds ξ'0 (ticks per sample); with ``preload`` the equivalent
+        speeds of the spring preload (ξ'0 = 0, H_c(ξ0) = ½μξ'0²).
+    beta, sigma : numpy.ndarray
+        Grid axes.
+    outcome : numpy.ndarray of int8, shape (len(xi_dots), len(sigma), len(beta))
+        0 rest, 1 oscillating, 2 unstable, 3 chatter, 4 undecided (module
+        docstring; :data:`dfa.analysis.simulation.OUTCOMES`).
+    amplitude, frequency : numpy.ndarray
+        Measured cycle amplitude (ticks) and frequency (rad per sample); NaN where not measured.
+    samples, delay, quantize, preload
+        Simulation settings.
+    status : MapStatus
+        ``OK``: every point simulated (amplitude and frequency NaN where not measured).
+    controller : ControllerParams or None
+        The wall controller of every run (virtual damper β_B, filter ν_c, amplifier lag α; its delay is
+        ``delay``); None for the paper's spring.
+
+    Arrays are read-only copies; shapes are checked on construction.
+    """
+
+    mu: float
+    xi_dots: tuple
+    beta: np.ndarray = field(repr=False)
+    sigma: np.ndarray = field(repr=False)
+    outcome: np.ndarray = field(repr=False)
+    amplitude: np.ndarray = field(repr=False)
+    frequency: np.ndarray = field(repr=False)
+    samples: int
+    delay: int = 0
+    quantize: bool = True
+    preload: bool = False
+    status: MapStatus = MapStatus.OK
+    controller: ControllerParams | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "xi_dots", tuple(float(v) for v in self.xi_dots))
+        if self.controller is not None:
+            ctl, _ = check_controller(self.controller, self.delay)  # a spring's ControllerParams is stored as None
+            object.__setattr__(self, "controller", ctl)
+        freeze_fields(
+            self,
+            {
+                "beta": {"ndim": 1},
+                "sigma": {"ndim": 1},
+                "outcome": {"dtype": np.int8, "ndim": 3},
+                "amplitude": {"ndim": 3, "finite": False},
+                "frequency": {"ndim": 3, "finite": False},
+            },
+        )
+        shape = (len(self.xi_dots), self.sigma.size, self.beta.size)
+        for name in ("outcome", "amplitude", "frequency"):
+            check_shape(name, getattr(self, name), shape)
+        if self.outcome.size and not (0 <= self.outcome.min() and self.outcome.max() < len(OUTCOMES)):
+            raise DFAValueError(
+                f"outcome holds codes outside 0 … {len(OUTCOMES) - 1}: they index dfa.analysis.simulation.OUTCOMES; "
+                "pass the codes the simulation returned"
+            )
+        object.__setattr__(self, "status", MapStatus.coerce(self.status))
+
+    def critical_line(self, xi_dot: float) -> CriticalLine | None:
+        """The criterion's critical line (eq. 10) at speed ``xi_dot`` for this map's loop; None where none applies.
+
+        The spring's line through (½ + d, ½) (σ₀ = 0 without quantization), or with a controller the line of
+        the criterion extended to it (:func:`dfa.analysis.wall_criterion.controller_anchor`); None with an
+        amplifier lag, which no criterion covers.
+
+        Parameters
+        ----------
+        xi_dot : float
+            The speed V in ticks per sample (sign ignored).
+
+        Returns
+        -------
+        CriticalLine or None
+            The line through the map's corner (β₀, σ₀) with slope −V; None with an amplifier lag.
+        """
+        if self.controller is None:
+            return CriticalLine.of(xi_dot, quantized=self.quantize, delay=self.delay)
+        if self.controller.lag > 0:
+            return None
+        b0, s0 = controller_anchor(self.controller, self.quantize)
+        return CriticalLine(xi_dot, b0, s0)
+
+    def plot(self, ax=None, **kwargs):
+        """Outcome per (β, σ), one panel per speed (:func:`dfa.figures.stability_map_plot`, paper Fig. 4).
+
+        Parameters
+        ----------
+        ax : sequence of matplotlib.axes.Axes, optional
+            One Axes per speed; a new figure when None.
+        **kwargs
+            Passed on to :func:`dfa.figures.stability_map_plot`.
+
+        Returns
+        -------
+        list of matplotlib.axes.Axes
+            The axes drawn on, one per speed.
+        """
+        from ..figures import stability_map_plot
+
+        return stability_map_plot(self, ax, **kwargs)
+
+    def to_xarray(self):
+        """The map as an :class:`xarray.Dataset` with labelled dims ``xi_dot``, ``sigma``, ``beta``.
+
+        Variables ``outcome`` (codes, ``flag_meanings`` names them), ``amplitude`` (ticks) and
+        ``frequency`` (rad/sample); attributes hold μ, the settings and the status.
+
+        Returns
+        -------
+        xarray.Dataset
+            The map with coordinates ``xi_dot`` (ticks per sample), ``sigma`` and ``beta``.
+
+        Raises
+        ------
+        DFAError
+            When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
+        """
+        from ..results.xarray import BETA_ATTRS, SIGMA_ATTRS, XI_DOT_ATTRS, import_xarray
+
+        xr = import_xarray()
+        dims = ("xi_dot", "sigma", "beta")
+        codes = {"flag_values": list(range(len(OUTCOMES))), "flag_meanings": " ".join(OUTCOMES)}
+        return xr.Dataset(
+            {
+                "outcome": (dims, np.array(self.outcome), {"long_name": "simulated outcome", **codes}),
+                "amplitude": (dims, np.array(self.amplitude), {"long_name": "cycle amplitude", "units": "ticks"}),
+                "frequency": (dims, np.array(self.frequency), {"long_name": "cycle frequency", "units": "rad/sample"}),
+            },
+            coords={
+                "xi_dot": ("xi_dot", np.array(self.xi_dots), XI_DOT_ATTRS),
+                "sigma": ("sigma", np.array(self.sigma), SIGMA_ATTRS),
+                "beta": ("beta", np.array(self.beta), BETA_ATTRS),
+            },
+            attrs={
+                "mu": self.mu,
+                "samples": self.samples,
+                "delay": self.delay,
+                "quantize": int(self.quantize),
+                "preload": int(self.preload),
+                "status": self.status.value,
+                "status_message": self.status.message,
+            },
+        )
+
+    def counts(self) -> list[dict[str, int]]:
+        """Number of grid points per outcome, one dict per initial speed.
+
+        Returns
+        -------
+        list of dict
+            ``{outcome name: count}`` for each initial speed, in the order of ``xi_dots``.
+        """
+        return [{name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES)} for o in self.outcome]
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready summary (grid, settings and counts per speed).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: μ, speeds, grid, settings, counts per speed, status and its message.
+        """
+        ctl = {} if self.controller is None else {"controller": self.controller.as_dict()}
+        return to_jsonable(
+            {
+                **ctl,
+                "mu": self.mu,
+                "xi_dots": list(self.xi_dots),
+                "beta_range": [float(self.beta[0]), float(self.beta[-1])],
+                "sigma_range": [float(self.sigma[0]), float(self.sigma[-1])],
+                "grid": [int(self.beta.size), int(self.sigma.size)],
+                "samples": self.samples,
+                "delay": self.delay,
+                "quantize": self.quantize,
+                "preload": self.preload,
+                "counts": [dict(xi_dot=v, **c) for v, c in zip(self.xi_dots, self.counts(), strict=False)],
+                "status": self.status,
+                "status_message": self.status.message,
+            }
+        )
+
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write the map to a ``.npz`` file (see :func:`load_map`), atomically.
+
+        ``.npz`` is appended when ``path`` has another suffix (numpy's rule);
+        the path written is returned.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            File to write.
+
+        Returns
+        -------
+        pathlib.Path
+            The path written (with the ``.npz`` suffix).
+        """
+        p = Path(path)
+        p = p if p.suffix == ".npz" else p.with_name(p.name + ".npz")
+        with atomic_open(p, "wb") as fh:  # never a half-written map (dfa._io)
+            np.savez_compressed(
+                fh,
+                mu=self.mu,
+                xi_dots=np.asarray(self.xi_dots, dtype=float),
+                beta=self.beta,
+                sigma=self.sigma,
+                outcome=self.outcome,
+                outcome_names=np.array(OUTCOMES),
+                amplitude=self.amplitude,
+                frequency=self.frequency,
+                settings=np.array([self.samples, self.delay, int(self.quantize), int(self.preload)], dtype=np.int64),
+                **_controller_arrays(self.controller),
+            )
+        return p
+
+
+def load_map(path: str | os.PathLike) -> StabilityMap:
+    """Read a map written by :meth:`StabilityMap.save` (codes mapped through the file's ``outcome_names``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by :meth:`StabilityMap.save`.
+
+    Returns
+    -------
+    StabilityMap
+        The map as it was saved.
+
+    Raises
+    ------
+    DFAValueError
+        If the file is missing, incomplete, written by an older dfa or names unknown outcomes.
+    DFATypeError
+        If ``path`` is not a path.
+
+    See Also
+    --------
+    stability_map : Compute a map.
+    """
+    if not isinstance(path, (str, os.PathLike)):
+        raise DFATypeError(
+            f"path = {_fmt(path)} has type {type(path).__name__}: it must be the path of a .npz map file"
+        )
+    try:
+        return _load_map(path)
+    except (FileNotFoundError, IsADirectoryError, NotADirectoryError):
+        raise DFAValueError(
+            f"path = {os.fspath(path)!r} is invalid: no such file; give the .npz file written by `dfa map`"
+        ) from None
+    except (ValueError, KeyError, EOFError, zipfile.BadZipFile, TypeError) as exc:
+        if isinstance(exc, DFAValueError):
+            raise
+        raise DFAValueError(
+            f"path = {os.fspath(path)!r} is invalid: it is not a complete dfa map file ({type(exc).__name__}); "
+            "recompute it with `dfa map`"
+        ) from None
+
+
+def _load_map(path: str | os.PathLike) -> StabilityMap:
+    with np.load(path, allow_pickle=False) as z:
+        samples, delay, quantize, preload = (int(v) for v in z["settings"])
+        if "outcome_names" not in z.files:
+            raise DFAValueError(
+                f"map file {str(path)!r} is invalid: it was written by an older dfa whose outcome 'stable' mixed rest "
+                "with sub-tick chatter; recompute it with `dfa map`"
+            )
+        names = [str(v) for v in z["outcome_names"]]
+        unknown = sorted(set(names) - set(OUTCOMES))
+        if unknown:
+            raise DFAValueError(
+                f"map file {str(path)!r} is invalid: unknown outcome names {unknown}; expected {list(OUTCOMES)}"
+            )
+        lut = np.array([OUTCOMES.index(v) for v in names], dtype=np.int8)
+        ctl = _controller_from(z, delay)
+        return StabilityMap(
+            mu=float(z["mu"]),
+            xi_dots=tuple(float(v) for v in z["xi_dots"]),
+            beta=z["beta"],
+            sigma=z["sigma"],
+            outcome=lut[z["outcome"]],
+            amplitude=z["amplitude"],
+            frequency=z["frequency"],
+            samples=samples,
+            delay=delay,
+            quantize=bool(quantize),
+            preload=bool(preload),
+            controller=ctl,
+        )
+
+
+def _controller_arrays(ctl: ControllerParams | None) -> dict[str, Any]:
+    """The ``controller`` entry of a map file: [β_B, ν_c (NaN: no filter), α]; none for the spring."""
+    if ctl is None:
+        return {}
+    cutoff = math.nan if ctl.cutoff is None else ctl.cutoff
+    return {"controller": np.array([ctl.damping, cutoff, ctl.lag], dtype=float)}
+
+
+def _controller_from(z, delay: int) -> ControllerParams | None:
+    """The controller of a map file (None: the spring, or a file written before controllers existed)."""
+    if "controller" not in z.files:
+        return None
+    damping, cutoff, lag = (float(v) for v in z["controller"])
+    return ControllerParams(damping=damping, delay=delay, cutoff=None if math.isnan(cutoff) else cutoff, lag=lag)
+
+
+def _run_chunk(
+    mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth, settle, controller=None
+):
+    """Codes, amplitudes and frequencies of one chunk of points (one compiled call; releases the GIL)."""
+    mus = np.full(betas.size, mu)
+    res = run_points(
+        mus,
+        betas,
+        sigmas,
+        x0s,
+        v0s,
+        samples,
+        delay,
+        quantize,
+        bound,
+        stable_amplitude,
+        growth,
+        settle,
+        controller=controller,
+    )
+    return res[0], res[1], res[2]
+
+
+def _check_range(name: str, rng) -> tuple[float, float]:
+    try:
+        a, b = rng
+    except (TypeError, ValueError):
+        raise DFAValueError(f"{name} = {rng!r} is invalid: it must be a pair (low, high)") from None
+    lo = check_nonnegative(f"{name}[0]", a)
+    hi = check_nonnegative(f"{name}[1]", b)
+    if not hi > lo:
+        raise DFAValueError(f"{name} = ({lo}, {hi}) is invalid: it must satisfy low < high")
+    return lo, hi
+
+
+def stability_map(
+    mu: float,
+    xi_dots,
+    *,
+    beta_range=(0.0, 1.0),
+    sigma_range=(0.0, 2.0),
+    grid: int = 100,
+    samples: int = 50_000,
+    delay: int = 0,
+    quantize: bool = True,
+    preload: bool = False,
+    n_jobs: int = -1,
+    backend: str = "threads",
+    progress: bool = True,
+    bound: float | None = None,
+    stable_amplitude: float = STABLE_AMPLITUDE,
+    growth: float = GROWTH,
+    settle: float = SETTLE,
+    controller: ControllerParams | None = None,
+) -> StabilityMap:
+    """Simulate every point of a (β, σ) grid for each initial speed (paper Fig. 4).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ > 0 (the paper's Fig. 4 uses 100).
+    xi_dots : sequence of float
+        Initial speeds ξ'0 in ticks per sample (from ξ0 = 0), or with
+        ``preload`` the equivalent speeds of an initial spring preload.
+    beta_range, sigma_range : (float, float)
+        Grid extents (inclusive).
+    grid : int
+        Points per axis (>= 2).
+    samples : int
+        Samples per run (paper: 5·10⁴, 50 s at 1 kHz). Fixed for the whole
+        grid; points that need longer are ``"undecided"``.
+    delay : int, optional
+        Computational delay d in samples (default 0).
+    quantize : bool, optional
+        True (default): the encoder quantizes the position; False: the linear spring.
+    preload : bool, optional
+        Start from the spring preload of each speed (:func:`preload_position`) at rest, instead of
+        from ξ0 = 0 with speed ξ'0 (default False).
+    n_jobs : int
+        Workers (-1: all cores; 1: in this thread). The result does not depend on it.
+    backend : {"threads", "processes", "joblib"}
+        Where the workers run (module docstring): threads of this process
+        (default), joblib's process pool, or joblib's configured backend
+        (dask). The result does not depend on it.
+    progress : bool
+        Show a tqdm progress bar.
+    bound, stable_amplitude, growth, settle : float, optional
+        Outcome rules, as in :func:`dfa.simulate` (default bound: beyond the fastest start's own travel,
+        :func:`dfa.analysis.simulation.divergence_bound`).
+    controller : ControllerParams, optional
+        The wall controller of every run (:mod:`dfa.model.wall`; ``Controller(...).params(T)``): virtual
+        damper, velocity filter, amplifier lag, and its delay, which replaces ``delay`` (give one or
+        the same value). Each point is then :func:`dfa.simulate` with ``controller=``. Default: the spring.
+
+    Returns
+    -------
+    StabilityMap
+        Outcome, amplitude and frequency of every point for each speed; ``.plot()`` draws it.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an input is out of range or not a number, a flag (``quantize``, ``preload``, ``progress``) is not
+        True or False, or the map would not fit in memory.
+
+    See Also
+    --------
+    simulate : One point of the map.
+    contour_maps : The describing-function cycles over the same plane.
+    load_map : Read a saved map.
+    """
+    m = check_mu(mu)
+    speeds = _check_speeds(xi_dots)
+    b0, b1 = _check_range("beta_range", beta_range)
+    s0, s1 = _check_range("sigma_range", sigma_range)
+    g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
+    n = check_int("samples", samples, minimum=1)
+    ctl, d = check_controller(controller, check_delay(delay))
+    jobs = check_jobs("n_jobs", n_jobs)
+    how = check_choice("backend", backend, MAP_BACKENDS)
+    quantize = check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
+    preload = check_bool("preload", preload, "pass True (start from the spring preload) or False (from ξ0 = 0)")
+    progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
+    if bound is None:  # beyond the fastest start's own travel (dfa.analysis.simulation.divergence_bound)
+        bound = divergence_bound(0.0, float(np.max(np.abs(speeds))), m)
+    rules = check_rules(bound, stable_amplitude, growth, settle)
+    check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
+    beta, sigma = np.linspace(b0, b1, g), np.linspace(s0, s1, g)
+    pts_b, pts_s, x0, v0 = _points(m, beta, sigma, speeds, preload)
+    if preload:
+        check_bound(rules[0], float(np.max(np.abs(x0))))  # the rule simulate() applies: the bound lies beyond ξ0
+    workers = (os.cpu_count() or 1) if jobs == -1 else jobs
+    chunks = _chunks(pts_b.size, workers, _chunk_cost(n, ctl))
+    tail = (n, d, quantize, *rules)
+    tasks = [(m, pts_b[c], pts_s[c], x0[c], v0[c], *tail, ctl) for c in chunks]
+    _run_chunk(m, pts_b[:1], pts_s[:1], x0[:1], v0[:1], 1, *tail[1:], ctl)  # compile or load the kernel once, first
+
+    from tqdm.auto import tqdm
+
+    bar = tqdm(total=pts_b.size, unit="run", desc=f"stability map μ={m:g}", disable=not progress, leave=False)
+    try:
+        # spring or controller: the same chunks, in order (dfa._parallel), Ctrl-C cancels the pending ones
+        results = run_in_order(_run_chunk, tasks, [c.size for c in chunks], workers, how, bar)
+    finally:
+        bar.close()
+    codes, amps, freqs = (gather(chunks, [r[k] for r in results]).reshape(len(speeds), g, g) for k in range(3))
+    out = (codes.astype(np.int8), amps, freqs, n, d, quantize, preload)
+    return StabilityMap(m, speeds, beta, sigma, *out, controller=ctl)
+
+
+def _check_speeds(xi_dots) -> tuple[float, ...]:
+    speeds = tuple(
+        check_speed("xi_dot", v, "ticks per sample") for v in np.atleast_1d(np.asarray(xi_dots, dtype=object))
+    )
+    if not speeds:
+        raise DFAValueError("xi_dots = [] is invalid: it must hold at least one initial speed")
+    return speeds
+
+
+def _points(mu: float, beta, sigma, speeds, preload: bool) -> tuple[np.ndarray, ...]:
+    """β, σ, ξ0, ξ'0 of every run: grid rows σ, columns β, one grid per speed (or per preload)."""
+    bb, ss = np.meshgrid(beta, sigma)
+    pts_b = np.tile(bb.ravel(), len(speeds))
+    pts_s = np.tile(ss.ravel(), len(speeds))
+    if preload:
+        x0 = np.repeat([preload_position(mu, v) for v in speeds], bb.size)
+        return pts_b, pts_s, x0, np.zeros_like(x0)
+    return pts_b, pts_s, np.zeros(pts_b.size), np.repeat(np.asarray(speeds, dtype=float), bb.size)
+
+
+def _chunk_cost(samples: int, controller: ControllerParams | None) -> float:
+    """Planned cost of one point in spring-kernel samples (:data:`CHUNK_SAMPLES`, :data:`CONTROLLER_COST`)."""
+    if controller is None:
+        return float(samples)
+    return samples * CONTROLLER_COST["lag" if controller.lag > 0 else "controller"]
+
+
+def _chunks(total: int, workers: int, cost: float = 0.0) -> list[np.ndarray]:
+    """Indices of the points in chunks: 16 per worker (progress and load balance), 64 in one thread, and more
+    when a chunk would plan over :data:`CHUNK_SAMPLES` (``cost``: per point, from :func:`_chunk_cost`).
+
+    The points are dealt out in turn (:func:`dfa._parallel.deal`: chunk i holds points i, i + N, … of N chunks),
+    so that the chunks carry like work and the workers finish together.
+    """
+    nchunks = workers * 16 if workers > 1 else 64
+    return deal(total, max(1, nchunks, math.ceil(total * cost / CHUNK_SAMPLES)))

@@ -1,0 +1,1188 @@
+"""Exact time-domain simulation of the sampled, quantized, frictional haptic loop.
+
+The force is constant over each sample, so the dimensionless device
+μξ'' + βξ' + σ sgn ξ' = φ (paper eq. 4-5) is integrated in closed form: no ODE
+solver and no time step, exact to rounding at every sample instant, including
+stick-slip (the exact time at which the velocity reaches zero, stiction while
+|φ| <= σ, restart otherwise). See :mod:`dfa.core.kernel` for the formulas. The
+compiled kernel (numba, cached on disk) allocates nothing per sample when no
+trajectory is recorded.
+
+Outcome of a run (``SimulationResult.outcome``)
+-----------------------------------------------
+Checked in this order; ``P_k`` is the peak |ξ| at the sample instants in the
+k-th eighth of the run (``SimulationResult.envelope``).
+
+``"rest"``
+    the device came to rest: stuck (ξ' = 0, |φ| <= σ) with every pending
+    force unchanged, the absorbing state that ends the run. Only this state
+    is reported as rest. With the encoder (``quantize``) it needs σ >= ½,
+    since |φ| = |⌊ξ⌋ + ½| >= ½ at every level: for σ < ½ a run never rests.
+    Without quantization (``quantize=False``, the linear loop, which decays
+    to rest but never reaches it exactly when σ = 0) rest also means an
+    envelope that shrinks as the unstable rule below grows:
+    P_4 > ``growth`` × P_7 (or a fall below 10⁻¹² of P_0, into the
+    denormal numbers) and P_4 >= P_5 >= P_6 >= P_7.
+``"unstable"``
+    |ξ| exceeded ``bound`` ticks (default 10⁶), or the envelope grows:
+    P_7 > ``growth`` (default 1.25) × P_4, P_7 > 1 tick (no tick floor
+    without quantization: the linear loop has no scale), and
+    P_4 <= P_5 <= P_6 <= P_7, in a run of at least 8 periods 2π√μ of the
+    spring (in a shorter run |ξ| rises from the impact whatever the loop
+    does, so the envelope decides nothing: such a run is undecided).
+``"undecided"``
+    the run was too short to tell: the envelope is still changing
+    (max − min of P_5, P_6, P_7 exceeds ``settle`` (default 10⁻³) times
+    their max: a decaying transient, or growth too slow for the rule above),
+    or the tail holds less than one full cycle. The result carries
+    ``suggested_samples``, a run length to try.
+``"chatter"``
+    never rested; the envelope is settled and the cycle's amplitude is below
+    ``stable_amplitude`` (default 1 tick). The force still toggles between
+    quantization levels (``force_peak_to_peak``, usually one step KΔ): a buzz
+    the user feels (paper region b, "limit cycles of less than one tick").
+``"oscillating"``
+    settled, persistent cycle of ``stable_amplitude`` or more.
+
+On steady cycles (μ from 1 to 1000, 4·10⁵ samples) the relative spread of
+P_5..P_7 is below 10⁻⁴; a decaying or growing envelope shows a spread well
+above 10⁻³ unless it changes by less than 0.1 % over a quarter of the run.
+
+Amplitude and frequency are measured on the tail (the last quarter of the run,
+at most max(8192, 4 periods 2π√μ) samples): amplitude is half the
+peak-to-peak of ξ including the exact turning points inside samples,
+frequency 2π/(mean period between upward crossings of the centre level).
+``force_peak_to_peak`` is max − min of ⌊ξ⌋ over the tail's sample instants
+(the force levels the controller output), in units of KΔ (of ξ itself
+without quantization); multiply by K·Δ for newtons, or use
+:meth:`SimulationResult.physical`.
+
+Default run length
+------------------
+With ``samples=None`` the run length follows the loop's own time scales
+(:func:`default_samples`). The amplitude A of a free oscillation of the
+sampled loop obeys, averaged over a period of 2π√μ samples, the
+describing-function balance
+
+    dA/dτ = −a A − c,   a = (β − ½ − d)/(2μ),   c = 2σ/(π√μ),
+
+(viscous damping less the hold's half-sample delay and the computational
+delay d, eq. 36-40; Coulomb friction removes 4σ ticks of amplitude per
+period). From the energy amplitude A₀ = √(2 H_T(0)) (eq. 18-19) this gives
+the time t_d to decay to one tick (infinite when the loop does not decay,
+or A₀ is at or above the threshold c/|a| when a < 0). The default is
+2 t_d + 40 periods, at least 50 000 samples (the paper's run, 50 s at
+1 kHz) and at most 10⁷ (about 0.2 s of computation); when even that is
+not enough the outcome is ``"undecided"`` rather than a guess. Example: the
+Impulse Engine with its mass overridden to 50 kg (μ = 1.56·10⁵, β = 0.125,
+σ = 0.955) hit at 0.1 m/s predicts t_d ≈ 1.8·10⁵ samples and rests at
+sample 181 900; 50 000 samples alone end in a slowly decaying transient of
+about 200 ticks (undecided).
+
+Before the first sample the controller's past readings are taken equal to ξ0
+(matters only with a computational delay).
+
+With a controller (``controller=ControllerParams(...)``: virtual damper,
+velocity filter, delay, amplifier lag; :mod:`dfa.model.wall`) the run goes
+through :mod:`dfa.core.wall_kernel`, exact to rounding at the sample instants as well
+(closed-form motion under the amplifier's exponential force, stops by a
+bracketed root of the closed form, breakaway in closed form), with the same
+outcome rules; "rest" then needs the proof that every future command and
+amplifier force stays within ±σ while the device is stuck. A pure spring
+controller runs the spring kernel unchanged. The default run length then uses
+the controller's net damping β + β_B·G − ½ − d − α in ``a``
+(:func:`default_samples`, :func:`net_damping`).
+
+Examples
+--------
+>>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000)
+>>> r.outcome.value, r.rest_sample is not None
+('rest', True)
+>>> r = simulate(mu=100.0, beta=0.3, sigma=0.3, xi_dot0=1.0)   # σ < ½: can never rest
+>>> r.outcome.value, r.force_peak_to_peak
+('chatter', 1.0)
+>>> r = simulate(mu=100.0, beta=0.0, sigma=0.2, xi_dot0=2.0, samples=20000)
+>>> r.outcome.value
+'unstable'
+>>> from dfa.model.wall import ControllerParams
+>>> c = ControllerParams(damping=0.5, lag=0.3)   # virtual damper β_B, amplifier lag α (samples)
+>>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000, controller=c)
+>>> r.outcome.value, r.rest_sample
+('rest', 203)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+import numpy as np
+
+from ..checks import (
+    check_beta,
+    check_bool,
+    check_bound,
+    check_delay,
+    check_growth,
+    check_int,
+    check_mu,
+    check_nonnegative,
+    check_positive,
+    check_real,
+    check_sigma,
+)
+from ..core import batch, kernel, wall_kernel
+from ..errors import DFATypeError, DFAValueError
+from ..model.wall import ControllerParams
+from ..results.frozen import check_shape, freeze_fields
+from ..results.jsonable import explain_nulls, to_jsonable
+from ..results.status import SimulationOutcome
+from .criterion import spring_energy
+
+__all__ = [
+    "OUTCOMES",
+    "SimulationResult",
+    "EnergyRecord",
+    "simulate",
+    "preload_position",
+    "stored_energy",
+    "MAX_RECORD_BYTES",
+    "default_samples",
+    "SimulationBatch",
+    "simulate_batch",
+    "CHUNK",
+]
+
+#: Outcome names indexed by the kernel's codes (the codes of ``StabilityMap.outcome``):
+#: 0 rest, 1 oscillating, 2 unstable, 3 chatter, 4 undecided.
+OUTCOMES = tuple(o.value for o in SimulationOutcome)  # ("rest", "oscillating", "unstable", "chatter", "undecided")
+
+#: Bounds of the automatic run length (:func:`default_samples`).
+MIN_DEFAULT_SAMPLES = 50_000
+MAX_DEFAULT_SAMPLES = 10_000_000
+
+#: Largest trajectory (x, v and optional energy arrays) ``simulate`` will record.
+MAX_RECORD_BYTES = 2 * 1024**3
+
+
+def stored_energy(xi, xi_dot, mu: float, quantize: bool = True):
+    """Total stored energy H_T = ½μξ'² + H_c(ξ) (paper eq. 18-19), vectorised.
+
+    H_c(ξ) = ½ξ² + ½(p − p²), p = ξ − ⌊ξ⌋, is the exact integral of the
+    restoring staircase ⌊s⌋ + ½; without quantization H_c = ½ξ².
+    """
+    v = np.asarray(xi_dot, dtype=float)
+    return 0.5 * mu * v * v + spring_energy(xi, quantize)
+
+
+def preload_position(mu: float, xi_dot: float) -> float:
+    """Initial displacement ξ0 >= 0 whose spring energy equals the kinetic energy ½μξ'0² (section 5).
+
+    H_c is linear on each cell [k, k + 1) with slope k + ½ and H_c(k) = k²/2,
+    so ξ0 = k + (E − k²/2)/(k + ½) with E = ½μξ'0² and k the cell holding E.
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(K T²), > 0.
+    xi_dot : float
+        Speed ξ'0 in ticks per sample; its sign is ignored.
+
+    Returns
+    -------
+    float
+        The preload ξ0 in ticks, >= 0.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If μ is not a finite number > 0, the speed is not a finite number, or the kinetic energy
+        overflows a float.
+
+    See Also
+    --------
+    simulate : Start a run from this position (``xi0``).
+    passivity_criterion : The criterion with an initial position.
+
+    Examples
+    --------
+    >>> preload_position(1.0, 1.0)          # E = ½ = H_c(1)
+    1.0
+    >>> round(preload_position(100.0, 0.05), 6)   # E = 0.125 < ½: first cell, slope ½
+    0.25
+    """
+    m = check_mu(mu)
+    v = check_real("xi_dot", xi_dot)
+    two_e = m * v * v  # 2E = μξ'0², exact to one rounding
+    if not math.isfinite(two_e):
+        raise DFAValueError(
+            f"xi_dot = {v!r} is invalid with mu = {m!r}: the kinetic energy ½μξ'0² overflows a float; "
+            "give a smaller speed"
+        )
+    # Closed form, no loop: with r = 2E exactly (a Fraction), the cell is k = isqrt(⌊r⌋), since
+    # k² <= ⌊r⌋ <= r < ⌊r⌋ + 1 <= (k + 1)²; then ξ0 = k + (r − k²)/(2k + 1) exactly, rounded once.
+    r = Fraction(two_e)
+    k = math.isqrt(math.floor(r))
+    return float(k + (r - k * k) / (2 * k + 1))
+
+
+def divergence_bound(xi0: float, xi_dot0: float, mu: float, floor: float = 1.0e6) -> float:
+    """|ξ| (ticks) past which a run from (ξ0, ξ'0) counts as diverged: max(floor, 100 (A₀ + 1)).
+
+    A₀ = √(2 H_T(0)) is the energy amplitude of the start (eq. 18-19), which a passive run never
+    leaves; a fixed bound below it would call the impact's own travel a divergence.
+
+    Examples
+    --------
+    >>> divergence_bound(0.0, 1.0, 100.0)
+    1000000.0
+    >>> divergence_bound(0.0, 1.0e5, 800.0) > 2.8e8
+    True
+    """
+    with np.errstate(over="ignore"):
+        amp0 = math.sqrt(2.0 * float(stored_energy(xi0, xi_dot0, check_mu(mu))))
+    if not math.isfinite(100.0 * (amp0 + 1.0)):
+        raise DFAValueError(
+            f"xi_dot = {xi_dot0!r} is invalid with xi0 = {xi0!r}, mu = {mu!r}: the start's energy ½μξ'0² + H_c(ξ0) "
+            "overflows a float; give a smaller speed or start"
+        )
+    return max(floor, 100.0 * (amp0 + 1.0))
+
+
+def _decay_time(mu: float, net: float, sigma: float, amp0: float) -> float:
+    """Samples for the averaged amplitude dA/dτ = −aA − c, a = net/(2μ), to fall from ``amp0`` to 1 tick (inf: never)."""
+    if amp0 <= 1.0:
+        return 0.0
+    a = net / (2.0 * mu)
+    c = 2.0 * sigma / (math.pi * math.sqrt(mu))
+    if a > 0.0:
+        return math.log((amp0 + c / a) / (1.0 + c / a)) / a
+    if a == 0.0:
+        return (amp0 - 1.0) / c if c > 0.0 else math.inf
+    threshold = c / -a  # the growth threshold: larger amplitudes grow
+    if threshold <= amp0 or threshold <= 1.0:
+        return math.inf
+    return math.log((threshold - 1.0) / (threshold - amp0)) / -a
+
+
+def damper_gain(mu: float, controller: ControllerParams) -> float:
+    """In-phase gain G of the controller's damper at the spring's frequency ω₀ = 1/√μ (rad/sample).
+
+    The damper's force on the plant, per unit of the velocity jωξ, at ω = ω₀ (first harmonic, exact
+    zero-order hold, no quantization): backward difference, filter F, delay d, hold and amplifier lag::
+
+        G = Re{ (1 − e^{−jω})² F(e^{jω}) e^{−jωd} / ((jω)² (1 + jωα)) },
+        F(z) = (1 − a) z⁻¹/(1 − a z⁻¹)   (F = 1 without filter)
+
+    so that the damper adds β_B·G to the physical damping β: G → 1 as ω → 0 (a plain damper), less
+    with a filter whose cutoff is near or below ω₀ or a delay that turns the damper's force out of
+    phase with the velocity (G < 0: the damper then pumps energy in).
+
+    Examples
+    --------
+    >>> round(damper_gain(1.0e6, ControllerParams(damping=1.0)), 4)      # slow oscillation: a plain damper
+    1.0
+    >>> damper_gain(100.0, ControllerParams(damping=1.0, cutoff=0.001)) < 0.2   # filtered well below ω₀
+    True
+    """
+    w = 1.0 / math.sqrt(mu)
+    z1 = complex(math.cos(w), -math.sin(w))  # e^{−jω}
+    a = controller.filter_pole
+    f = 1.0 if controller.cutoff is None else (1.0 - a) * z1 / (1.0 - a * z1)
+    g = (1.0 - z1) ** 2 * f * z1**controller.delay / ((1j * w) ** 2 * (1.0 + 1j * w * controller.lag))
+    return g.real
+
+
+def net_damping(mu: float, beta: float, delay: int, controller: ControllerParams | None = None) -> float:
+    """Net averaged damping of the loop, β − ½ − d for the spring; with a controller − α + β_B·G.
+
+    The hold's half sample, the computational delay d and the amplifier lag α (the low-frequency
+    delay of 1/(1 + jωα)) each turn the spring's force into a negative damping of their length (the
+    linear rule K < b/(T(d + ½) + τ_a) of issue 15); the damper adds β_B·G
+    (:func:`damper_gain`). Without a controller (or with the pure spring) exactly β − ½ − d.
+
+    Examples
+    --------
+    >>> net_damping(100.0, 0.3, 1)
+    -1.2
+    >>> round(net_damping(1.0e6, 0.3, 0, ControllerParams(damping=1.0, lag=0.5)), 4)   # 0.3 − ½ − 0.5 + 1
+    0.3
+    """
+    net = beta - 0.5 - delay
+    if controller is None or controller.is_spring:
+        return net
+    return net - controller.lag + controller.damping * damper_gain(mu, controller)
+
+
+def _check_run(mu, beta, sigma, xi_dot0, xi0, delay) -> tuple[float, float, float, float, float, int]:
+    """The validated inputs of one run (Table 1 groups, initial state, delay), shared by simulate and default_samples."""
+    return (
+        check_mu(mu),
+        check_beta(beta),
+        check_sigma(sigma),
+        check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample"),
+        check_real("xi0", xi0, "give the initial position in ticks"),
+        check_delay(delay),
+    )
+
+
+def default_samples(
+    mu: float,
+    beta: float,
+    sigma: float,
+    xi_dot0: float,
+    xi0: float = 0.0,
+    delay: int = 0,
+    quantize: bool = True,
+    *,
+    cap: bool = True,
+    controller: ControllerParams | None = None,
+) -> int:
+    """Run length (samples) long enough for the outcome to show (module docstring, "Default run length").
+
+    2 t_d + 40 periods 2π√μ, where t_d is the time the averaged amplitude
+    equation dA/dτ = −a·A − 2σ/(π√μ), a = (β − ½ − d)/(2μ), takes from the
+    energy amplitude A₀ = √(2 H_T(0)) (eq. 18-19) to one tick; at least
+    ``MIN_DEFAULT_SAMPLES`` (the paper's 5·10⁴) and, with ``cap``, at most
+    ``MAX_DEFAULT_SAMPLES`` (10⁷). Without ``cap`` an infinite t_d gives
+    ``MAX_DEFAULT_SAMPLES`` times 10.
+
+    With a ``controller`` (its delay replaces ``delay``) the damping in ``a`` is the controller's
+    low-frequency net damping β + β_B·G − ½ − d − α (:func:`net_damping`): the damper counts with its
+    in-phase gain G at the spring's frequency (filter, delay and lag included, :func:`damper_gain`),
+    the amplifier lag α as a further delay. When that net damping is <= 0, t_d is infinite unless
+    Coulomb friction stops the amplitude first (as for the spring). The pure spring controller gives
+    the spring's length exactly.
+
+    Examples
+    --------
+    >>> default_samples(100.0, 0.3, 1.5, 2.0)            # decays within the paper's run
+    50000
+    >>> default_samples(156250.0, 0.125, 0.9554, 0.637)  # Impulse Engine at 50 kg, 0.1 m/s
+    462407
+    >>> default_samples(156250.0, 0.125, 0.9554, 0.637, controller=ControllerParams(damping=0.5))  # damper helps
+    415065
+    """
+    ctl, delay = check_controller(controller, delay)
+    m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
+    cap = check_bool("cap", cap, "pass True to cap the length at MAX_DEFAULT_SAMPLES, False for no cap")
+    amp0 = math.sqrt(2.0 * float(stored_energy(x0, v0, m, check_quantize(quantize))))
+    td = _decay_time(m, net_damping(m, b, d, ctl), s, amp0)
+    top = MAX_DEFAULT_SAMPLES if cap else 10 * MAX_DEFAULT_SAMPLES
+    n = 2.0 * td + 40.0 * 2.0 * math.pi * math.sqrt(m)
+    if not n < top:
+        return top
+    return int(max(MIN_DEFAULT_SAMPLES, math.ceil(n)))
+
+
+@dataclass(frozen=True)
+class EnergyRecord:
+    """Per-sample energy bookkeeping (paper section 6.1, eq. 18-23).
+
+    Arrays of length ``samples``; entry h covers [h, h + 1).
+
+    Attributes
+    ----------
+    generated : numpy.ndarray
+        Energy generated by hold and quantizer, ∫(φ_A + ⌊ξ⌋ + ½)ξ' dτ.
+    dissipated_viscous : numpy.ndarray
+        β∫ξ'² dτ (closed form, computed independently of the trajectory update).
+    dissipated_coulomb : numpy.ndarray
+        σ∫|ξ'| dτ.
+    stored : numpy.ndarray
+        H_T at the end of each sample.
+    initial_stored : float
+        H_T at τ = 0.
+
+    The arrays are read-only copies (NaN after an unstable early stop).
+    """
+
+    generated: np.ndarray = field(repr=False)
+    dissipated_viscous: np.ndarray = field(repr=False)
+    dissipated_coulomb: np.ndarray = field(repr=False)
+    stored: np.ndarray = field(repr=False)
+    initial_stored: float
+
+    def __post_init__(self) -> None:
+        names = ("generated", "dissipated_viscous", "dissipated_coulomb", "stored")
+        freeze_fields(self, {k: {"ndim": 1, "finite": False} for k in names})
+        for k in names[1:]:
+            check_shape(k, getattr(self, k), self.generated.shape)
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready record of the per-sample energies (NaN entries become null, with the reason)."""
+        return to_jsonable(
+            {
+                "generated": self.generated,
+                "dissipated_viscous": self.dissipated_viscous,
+                "dissipated_coulomb": self.dissipated_coulomb,
+                "stored": self.stored,
+                "initial_stored": self.initial_stored,
+            }
+        )
+
+    def balance_residual(self) -> np.ndarray:
+        """ΔH_T − (generated − dissipated) per sample; zero to rounding."""
+        prev = np.concatenate([[self.initial_stored], self.stored[:-1]])
+        return (self.stored - prev) - (self.generated - self.dissipated_viscous - self.dissipated_coulomb)
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Result of :func:`simulate` (inputs, trajectory, outcome and measurements).
+
+    Attributes
+    ----------
+    mu, beta, sigma, xi0, xi_dot0, samples, delay, quantize
+        The inputs.
+    xi, xi_dot : numpy.ndarray or None
+        Position (ticks) and velocity (ticks per sample) at the samples
+        0 … samples (length samples + 1); after an early rest they hold the
+        rest state, after an unstable early stop NaN. None if not recorded.
+    outcome : SimulationOutcome
+        ``REST``, ``CHATTER``, ``OSCILLATING``, ``UNSTABLE`` or ``UNDECIDED``
+        (module docstring); equal to its code ``"rest"``, … (also :attr:`status`).
+    amplitude : float
+        Measured amplitude of the steady cycle in ticks (0 at rest, inf when the bound was exceeded).
+    frequency : float or None
+        Measured frequency in rad per sample (None when not measurable).
+    centre : float
+        Centre of the steady cycle in ticks.
+    rest_sample : int or None
+        First sample at which the device is at rest for good.
+    samples_run : int
+        Samples actually integrated (fewer at rest or past the bound).
+    final_xi, final_xi_dot : float
+        State at the end of the run.
+    force_peak_to_peak : float
+        Peak-to-peak of the force over the tail in units of KΔ: (max − min)
+        of the levels ⌊ξ⌋ read at the tail's sample instants (of ξ without
+        quantization); 0 at rest, inf past the bound.
+    envelope : tuple of float
+        Peak abs(ξ) (ticks, at the sample instants) of each eighth of the run;
+        the growth and settling rules read it.
+    suggested_samples : int or None
+        For ``"undecided"``: a run length to try (at least 4 × samples).
+    samples_auto : bool
+        True when ``samples`` was chosen by :func:`default_samples`.
+    energy : EnergyRecord or None
+        Per-sample energy bookkeeping when requested.
+    controller : ControllerParams or None
+        The controller of a run with a damper, filter or amplifier lag (None: the spring).
+
+    ``xi`` and ``xi_dot`` are read-only copies.
+    """
+
+    mu: float
+    beta: float
+    sigma: float
+    xi0: float
+    xi_dot0: float
+    samples: int
+    delay: int
+    quantize: bool
+    outcome: SimulationOutcome
+    amplitude: float
+    frequency: float | None
+    centre: float
+    rest_sample: int | None
+    samples_run: int
+    final_xi: float
+    final_xi_dot: float
+    force_peak_to_peak: float = 0.0
+    envelope: tuple = ()
+    suggested_samples: int | None = None
+    samples_auto: bool = False
+    xi: np.ndarray | None = field(default=None, repr=False)
+    xi_dot: np.ndarray | None = field(default=None, repr=False)
+    energy: EnergyRecord | None = field(default=None, repr=False)
+    controller: ControllerParams | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "outcome", SimulationOutcome.coerce(self.outcome, "outcome"))
+        freeze_fields(self, {"xi": {"ndim": 1, "finite": False}, "xi_dot": {"ndim": 1, "finite": False}})
+        if self.xi is not None:
+            check_shape("xi", self.xi, (self.samples + 1,))
+        if self.xi_dot is not None:
+            check_shape("xi_dot", self.xi_dot, (self.samples + 1,))
+
+    @property
+    def status(self) -> SimulationOutcome:
+        """How the run ended: the :attr:`outcome` (each member has a ``message``)."""
+        return self.outcome
+
+    def plot(self, ax=None, **kwargs):
+        """Displacement against time (:func:`dfa.figures.trajectory_plot`, paper Fig. 5); returns the Axes.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+        **kwargs
+            Passed on to :func:`dfa.figures.trajectory_plot`.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+
+        Raises
+        ------
+        DFAValueError
+            When the run was not recorded (``record=False``).
+        """
+        if self.xi is None:
+            raise DFAValueError(
+                "xi = None is invalid for plot(): the trajectory was not recorded; run simulate(..., record=True)"
+            )
+        from ..figures import trajectory_plot
+
+        return trajectory_plot(self, ax, **kwargs)
+
+    @property
+    def period(self) -> float | None:
+        """Period of the measured cycle in samples, 2π/ω."""
+        return None if not self.frequency else 2.0 * math.pi / self.frequency
+
+    def physical(self, device, stiffness: float) -> dict[str, object]:
+        """Force step and frequency in physical units for a :class:`~dfa.model.device.Device` at stiffness K.
+
+        Parameters
+        ----------
+        device : Device
+            The physical device.
+        stiffness : float
+            Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+
+        Returns
+        -------
+        dict
+            ``force_peak_to_peak_si`` (``force_peak_to_peak`` × KΔ, in N;
+            N·m for a rotary device), ``force_unit``, ``frequency_hz`` (ω/(2πT),
+            None when not measured) and ``amplitude_si`` (amplitude × Δ, m or rad),
+            and the unit-named keys of :mod:`dfa.model.units` (``amplitude_m``, ``period_s``,
+            ``force_peak_to_peak_n``, ``force_step_n``, …; rad and N·m for a rotary
+            device) with the device and K.
+
+        Raises
+        ------
+        DFAValueError, DFATypeError
+            If the stiffness is not a finite number > 0.
+        """
+        k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+        u = device.units
+        hz = None if not self.frequency else self.frequency / (2.0 * math.pi * device.period)
+        fpp = self.force_peak_to_peak * k * device.resolution
+        amp = self.amplitude * device.resolution
+        from ..model.units import physical_quantities, unit_context
+
+        return {
+            **unit_context(device, k),
+            **physical_quantities(
+                device,
+                k,
+                amplitude=self.amplitude,
+                frequency=math.nan if self.frequency is None else self.frequency,
+                period=math.nan if self.period is None else self.period,
+                force_steps=self.force_peak_to_peak,
+            ),
+            "force_peak_to_peak_si": fpp if math.isfinite(fpp) else None,
+            "force_unit": u["force"],
+            "frequency_hz": hz,
+            "amplitude_si": amp if math.isfinite(amp) else None,
+            "position_unit": u["position"],
+        }
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why each measurement of this run may be null in JSON, by key (also the physical keys of :meth:`physical`).
+
+        Returns
+        -------
+        dict of str to str
+            Reasons for ``amplitude``, ``frequency``, ``period``, ``rest_sample``, ``suggested_samples``, … and
+            their physical counterparts (``amplitude_m``, ``frequency_hz``, ``period_s``, …).
+        """
+        o = self.outcome
+        diverged = "the run diverged: no amplitude to measure (unbounded)"
+        unmeasured = f"not measured: the run's outcome is {o.value} ({o.message})"
+        by_source = {
+            "amplitude": diverged if o == "unstable" else unmeasured,
+            "frequency": unmeasured,
+            "period": unmeasured,
+            "force_peak_to_peak": diverged if o == "unstable" else unmeasured,
+        }
+        physical = {
+            "amplitude": ("amplitude_m", "amplitude_rad", "amplitude_si", "force_amplitude_n", "force_amplitude_nm"),
+            "frequency": ("frequency_hz",),
+            "period": ("period_s",),
+            "force_peak_to_peak": ("force_peak_to_peak_n", "force_peak_to_peak_nm", "force_peak_to_peak_si"),
+        }
+        out = dict(by_source)
+        for src, keys in physical.items():
+            out.update(dict.fromkeys(keys, by_source[src]))
+        out["rest_sample"] = f"the run did not come to rest ({o.value})"
+        out["suggested_samples"] = (
+            "no longer run suggested"
+            if o == "undecided"
+            else f"the outcome ({o.value}) is decided: no longer run needed"
+        )
+        return out
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready summary (the ``dfa simulate --json`` contract plus extras).
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: outcome and its message, the measurements and inputs, and the
+            trajectory when recorded (non-finite values become null, with the reason).
+        """
+        record = to_jsonable(  # non-finite values become null, with the reason (dfa.results.jsonable)
+            {
+                "outcome": self.outcome,
+                "status_message": self.outcome.message,
+                "amplitude": self.amplitude,
+                "frequency": self.frequency,
+                "final_xi": self.final_xi,
+                "final_xi_dot": self.final_xi_dot,
+                "rest_sample": self.rest_sample,
+                "samples_run": self.samples_run,
+                "centre": self.centre,
+                "period": self.period,
+                "force_peak_to_peak": self.force_peak_to_peak,
+                "envelope": self.envelope,
+                "suggested_samples": self.suggested_samples,
+                "samples_auto": self.samples_auto,
+                "mu": self.mu,
+                "beta": self.beta,
+                "sigma": self.sigma,
+                "xi0": self.xi0,
+                "xi_dot0": self.xi_dot0,
+                "samples": self.samples,
+                "delay": self.delay,
+                "quantize": self.quantize,
+                **({} if self.controller is None else {"controller": self.controller.as_dict()}),
+            }
+        )
+        return explain_nulls(record, self.null_reasons())
+
+
+#: Default outcome rules of :func:`simulate`, :func:`simulate_batch` and :func:`dfa.analysis.maps.stability_map`: a
+#: settled cycle below STABLE_AMPLITUDE ticks is chatter; an envelope growing by GROWTH is unstable; one that
+#: changes by more than SETTLE (relative) is undecided.
+STABLE_AMPLITUDE, GROWTH, SETTLE = 1.0, 1.25, 1.0e-3
+
+
+def _tail_lengths(samples: np.ndarray, mu: np.ndarray) -> np.ndarray:
+    """Tail measured for amplitude and frequency: a quarter of the run, at most max(8192, 4 periods 2π√μ)."""
+    periods = np.minimum(4 * 2.0 * math.pi * np.sqrt(mu), 2.0**62)  # above any run length: no int64 overflow
+    cap = np.maximum(8192, periods.astype(np.int64))
+    return np.minimum(samples, np.minimum(cap, np.maximum(2, samples // 4))).astype(np.int64)
+
+
+def _tail_length(samples: int, mu: float) -> int:
+    """:func:`_tail_lengths` of one run."""
+    return int(_tail_lengths(np.array([samples], dtype=np.int64), np.array([mu], dtype=float))[0])
+
+
+#: Samples per kernel call of a long run (:func:`_run_chunked`): about 0.05 s each.
+CHUNK = 1 << 22
+
+
+def _run_chunked(m, b, s, x0, v0, n, d, quantize, bnd, tail_len, rx, rv, re, stats, *, progress=False):
+    """The kernel run of :func:`simulate` in pieces of at most ``CHUNK`` samples, bit for bit the single call.
+
+    The same :func:`dfa.core.kernel.start` / :func:`~dfa.core.kernel.advance` / :func:`~dfa.core.kernel.finish` steps as
+    :func:`dfa.core.kernel.simulate_kernel`, with the sample ranges cut into chunks: the run's state (ξ, ξ', the
+    delay ring, the tail extremes) lives in arrays between calls, so Ctrl-C is honoured between chunks and a
+    progress bar can follow the run. Any delay. Returns (done, rest).
+    """
+    from tqdm.auto import tqdm
+
+    record, energy = rx.shape[0] == n + 1, re.shape[0] == n
+    state, hist, tail = np.empty(kernel.NSTATE), np.empty(d + 1), np.empty(max(tail_len, 1))
+    kernel.start(x0, v0, d, quantize, state, hist, stats)
+    if record:
+        rx[0], rv[0] = x0, v0
+    tail_start, done, rest = n - tail_len, n, -1
+    bar = tqdm(total=n, unit="sample", unit_scale=True, desc="simulate", disable=not progress, leave=False)
+    try:
+        for lo, hi, k in _chunk_spans(n, tail_start):
+            end, why, peak = kernel.advance(
+                state, hist, lo, hi, m, b, s, d, quantize, bnd, tail_start, tail, record, energy, rx, rv, re
+            )
+            if peak > stats[k]:
+                stats[k] = peak
+            bar.update(end - lo)
+            if why != 0:
+                done, rest = end, (end if why == 1 else -1)
+                if why == 2:
+                    stats[kernel.NSEG + 5] = 1.0
+                break
+    finally:
+        bar.close()
+    kernel.finish(state, n, done, rest, tail, tail_len, m, quantize, stats, record, energy, rx, rv, re)
+    return done, rest
+
+
+def _chunk_spans(n: int, tail_start: int):
+    """(first, end, segment) of each kernel call: the eight envelope segments, cut where the tail starts and
+    every ``CHUNK`` samples (the cuts :func:`dfa.core.kernel.simulate_kernel` makes, and more)."""
+    for k in range(kernel.NSEG):
+        lo, cut, hi = kernel.segment_ranges(k, n, tail_start)
+        for a, z in ((lo, cut), (cut, hi)):
+            for c in range(a, z, CHUNK):
+                yield c, min(c + CHUNK, z), k
+
+
+def simulate(
+    mu: float,
+    beta: float,
+    sigma: float,
+    xi_dot0: float,
+    samples: int | None = None,
+    xi0: float = 0.0,
+    delay: int = 0,
+    quantize: bool = True,
+    *,
+    record: bool = True,
+    energy: bool = False,
+    bound: float | None = None,
+    stable_amplitude: float = STABLE_AMPLITUDE,
+    growth: float = GROWTH,
+    settle: float = SETTLE,
+    progress: bool = False,
+    controller: ControllerParams | None = None,
+) -> SimulationResult:
+    """Simulate the sampled haptic loop exactly (paper eq. 4-5) from (ξ0, ξ'0).
+
+    Parameters
+    ----------
+    mu, beta, sigma : float
+        Dimensionless mass (> 0), damping (>= 0) and Coulomb friction (>= 0).
+    xi_dot0 : float
+        Initial velocity ξ'0 in ticks per sample.
+    samples : int or None
+        Number of samples to simulate (>= 1); None (default): chosen from the
+        loop's time scales by :func:`default_samples` (50 000 to 10⁷).
+    xi0 : float, optional
+        Initial position in ticks (default 0). See :func:`preload_position`.
+    delay : int, optional
+        Computational delay d in samples: the force of sample h uses ξ(h − d).
+    quantize : bool, optional
+        True (default): φ = −⌊ξ⌋ − ½; False: the linear spring φ = −ξ.
+    record : bool, optional
+        Keep the trajectory (default True). Turn off for long runs.
+    energy : bool, optional
+        Keep the per-sample energy bookkeeping (off the fast path).
+    bound : float, optional
+        Position abs(ξ) (ticks) beyond which the run is declared unstable and stopped. Default:
+        :func:`divergence_bound`, max(10⁶, 100(A₀ + 1)) with A₀ the start's energy amplitude
+        (eq. 18-19), so that an impact's own travel is never called a divergence.
+    stable_amplitude : float, optional
+        Tail amplitude (ticks) below which a settled cycle is ``"chatter"``
+        rather than ``"oscillating"``.
+    growth : float, optional
+        Envelope growth ratio that marks a run unstable (> 1).
+    settle : float, optional
+        Largest relative spread of the last three envelope peaks of a
+        settled run (>= 0); a larger spread is ``"undecided"``.
+    progress : bool, optional
+        Show a tqdm progress bar with an estimate of the time left on stderr
+        (runs of more than ``CHUNK`` samples; they are integrated in chunks
+        of ``CHUNK`` samples, so Ctrl-C is honoured between chunks, with
+        results identical to a single pass).
+    controller : ControllerParams, optional
+        The wall controller in dimensionless form (``Controller(...).params(T)``): virtual damper,
+        velocity filter, delay, amplifier lag (:mod:`dfa.model.wall`). Its delay replaces
+        ``delay``. None, or a pure spring (``ControllerParams(delay=d)``), runs the spring kernel
+        unchanged; otherwise :mod:`dfa.core.wall_kernel` runs the loop with the controller, exact to
+        rounding at the sample instants (one compiled call: no progress bar, no energy record).
+
+    Returns
+    -------
+    SimulationResult
+        The outcome (rest, chatter, oscillating, unstable, undecided), the measured cycle and,
+        with ``record``, the trajectory; ``.plot()`` draws it.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If an input is out of range or not a number, ``bound`` does not exceed abs(ξ0), or the
+        record would not fit in memory.
+
+    See Also
+    --------
+    preload_position : A start position with the spring energy of a speed.
+    stability_map : The outcome over a (β, σ) grid.
+    passivity_criterion : The proven verdict the simulation is compared with.
+    """
+    record = check_bool("record", record, "pass True to keep the trajectory, False for the outcome only")
+    energy = check_bool("energy", energy, "pass True to keep the energy bookkeeping, False for none")
+    progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
+    ctl, delay = check_controller(controller, delay, energy)
+    m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
+    q = check_quantize(quantize)
+    auto = samples is None
+    fix = "simulate at least one sample"
+    n = (
+        default_samples(m, b, s, v0, x0, d, q, controller=ctl)
+        if auto
+        else check_int("samples", samples, minimum=1, fix=fix)
+    )
+    if bound is None:  # beyond the start's own travel: a passive run never counts as diverged
+        bound = divergence_bound(x0, v0, m)
+    bnd, sa, gr, st = check_rules(bound, stable_amplitude, growth, settle)
+    check_bound(bnd, x0)
+    _check_record_size(n, record, energy)
+    rx = np.empty(n + 1) if record else np.empty(0)
+    rv = np.empty(n + 1) if record else np.empty(0)
+    re = np.empty((n, 4)) if energy else np.empty((0, 4))
+    stats = np.empty(kernel.NSTATS)
+    run = (m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
+    if ctl is not None:
+        done, rest = wall_kernel.simulate_wall_kernel(*run[:10], *_controller_args(ctl), rx, rv, stats)
+    elif n > CHUNK:
+        done, rest = _run_chunked(*run, progress=progress)
+    else:
+        done, rest = kernel.simulate_kernel(*run)
+    code, amp, freq, centre, fpp = kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
+    suggest = (
+        max(4 * n, default_samples(m, b, s, v0, x0, d, q, cap=False, controller=ctl))
+        if code == kernel.UNDECIDED
+        else None
+    )
+    en = None
+    if energy:
+        h0 = float(stored_energy(x0, v0, m, q))
+        en = EnergyRecord(re[:, 0].copy(), re[:, 1].copy(), re[:, 2].copy(), re[:, 3].copy(), h0)
+    fields = (m, b, s, x0, v0, n, d, q, *_measured(code, amp, freq, centre, fpp, done, rest, stats), suggest, auto)
+    return SimulationResult(
+        *fields, xi=rx if record else None, xi_dot=rv if record else None, energy=en, controller=ctl
+    )
+
+
+def check_controller(controller, delay, energy: bool = False) -> tuple[ControllerParams | None, int]:
+    """(controller or None for the pure spring, delay) of a run: the controller's delay replaces ``delay``.
+
+    Raises
+    ------
+    DFATypeError
+        If ``controller`` is not a :class:`~dfa.model.wall.ControllerParams` (or None).
+    DFAValueError
+        If ``delay`` is given and differs from the controller's, or ``energy`` is asked with a
+        damper, filter or amplifier lag (the energy bookkeeping covers the spring only).
+    """
+    if controller is None:
+        return None, delay
+    if not isinstance(controller, ControllerParams):
+        raise DFATypeError(
+            f"controller = {controller!r} is invalid: it must be a ControllerParams or None; "
+            "pass Controller(...).params(period) or ControllerParams(...)"
+        )
+    delay = check_delay(delay)  # before comparing: True == 1 and 1.0 == 1 must not pass as a delay
+    if delay not in (0, controller.delay):
+        raise DFAValueError(
+            f"delay = {delay!r} is invalid with controller.delay = {controller.delay}: the controller carries "
+            "the delay; give it there (or pass the same value)"
+        )
+    if controller.is_spring:
+        return None, controller.delay
+    if energy:
+        raise DFAValueError(
+            "energy = True is invalid with a controller (damper, filter or amplifier lag): the energy "
+            "bookkeeping covers the spring only; pass energy=False"
+        )
+    return controller, controller.delay
+
+
+def check_quantize(quantize: object) -> bool:
+    """``quantize`` if it is True or False (numpy bools too); otherwise the package's error (never ``bool(x)``).
+
+    Raises
+    ------
+    DFATypeError
+        If ``quantize`` is not a bool: a string such as ``"False"`` would otherwise run with the encoder.
+    """
+    return check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
+
+
+def controller_run_codes(mu, beta, sigma, x0, v0, ns, delay, bound, controllers) -> np.ndarray:
+    """Outcome codes (:mod:`dfa.core.kernel`) of runs, each with its own controller, in one compiled call.
+
+    Run i is what :func:`simulate` makes of (``mu[i]``, …, ``v0[i]``), ``ns[i]`` samples, bound ``bound[i]`` and
+    ``controllers[i]`` (a ControllerParams that is not a pure spring, its delay ``delay``), bit for bit, with
+    simulate()'s tail length and default outcome rules (:func:`dfa.core.batch.batch_wall_kernel`, then
+    :func:`dfa.core.kernel.classify_batch`). No GIL is held: callers may run several calls on threads.
+    """
+    k = mu.size
+    damping, pole, filtered, lag = (np.array(c) for c in zip(*map(_controller_args, controllers), strict=True))
+    stats, done, rest = np.empty((k, kernel.NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
+    run = (mu, beta, sigma, x0, v0, ns, delay, True, bound, _tail_lengths(ns, mu), damping, pole, filtered, lag)
+    batch.batch_wall_kernel(*run, stats, done, rest)
+    codes = np.empty(k, dtype=np.int64)
+    out = (codes, np.empty(k), np.empty(k), np.empty(k), np.empty(k))
+    kernel.classify_batch(mu, ns, done, rest, stats, STABLE_AMPLITUDE, GROWTH, SETTLE, True, *out)
+    return codes
+
+
+def _controller_args(ctl: ControllerParams) -> tuple[float, float, bool, float]:
+    """(β_B, a, filtered, α): the controller arguments of :mod:`dfa.core.wall_kernel`."""
+    return ctl.damping, ctl.filter_pole, ctl.cutoff is not None, ctl.lag
+
+
+def _measured(
+    code, amp, freq, centre, fpp, done, rest, stats
+) -> tuple[SimulationOutcome, float, float | None, float, int | None, int, float, float, float, tuple]:
+    """Outcome … envelope fields of a :class:`SimulationResult` (in field order) from the kernel's outputs."""
+    return (
+        list(SimulationOutcome)[code],  # OUTCOMES is in the enum's order
+        float(amp),
+        None if not np.isfinite(freq) else float(freq),
+        float(centre),
+        None if rest < 0 else int(rest),
+        int(done),
+        float(stats[kernel.NSEG + 6]),
+        float(stats[kernel.NSEG + 7]),
+        float(fpp),
+        tuple(float(v) for v in stats[: kernel.NSEG]),
+    )
+
+
+def check_rules(bound, stable_amplitude, growth, settle) -> tuple[float, float, float, float]:
+    """Validated outcome rules (bound > 0, stable_amplitude >= 0, growth > 1, settle >= 0) of a simulation or map."""
+    bnd = check_bound(bound)
+    sa = check_nonnegative("stable_amplitude", stable_amplitude)
+    return bnd, sa, check_growth(growth), check_nonnegative("settle", settle)
+
+
+def _check_record_size(n: int, record: bool, energy: bool) -> None:
+    nbytes = (16 * (n + 1) if record else 0) + (32 * n if energy else 0)
+    if nbytes > MAX_RECORD_BYTES:
+        raise DFAValueError(
+            f"samples = {n} is invalid with record={record}, energy={energy}: the trajectory would need "
+            f"{nbytes / 1024**3:.1f} GiB (limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB); pass record=False "
+            "(and energy=False) to get the outcome without storing the trajectory"
+        )
+
+
+@dataclass(frozen=True)
+class SimulationBatch:
+    """Outcomes of many independent runs (:func:`simulate_batch`), one entry per run.
+
+    Attributes
+    ----------
+    mu, beta, sigma, xi0, xi_dot0 : numpy.ndarray
+        The inputs of each run (dimensionless; ticks, ticks per sample).
+    samples, delay, quantize
+        Settings shared by every run.
+    outcome : numpy.ndarray of int8
+        Codes into :data:`OUTCOMES` (0 rest, 1 oscillating, 2 unstable, 3 chatter, 4 undecided).
+    amplitude, frequency, centre, force_peak_to_peak : numpy.ndarray
+        As in :class:`SimulationResult` (ticks, rad per sample, ticks, KΔ); NaN frequency when not measured.
+    rest_sample : numpy.ndarray of int64
+        First sample at rest, −1 when the run never rested.
+    samples_run : numpy.ndarray of int64
+        Samples integrated.
+    final_xi, final_xi_dot : numpy.ndarray
+        State at the end of each run.
+    envelope : numpy.ndarray, shape (runs, 8)
+        Peak abs(ξ) of each eighth of each run.
+    status : str
+        ``"ok"``.
+    controller : ControllerParams or None
+        The controller shared by every run (None: the spring).
+    """
+
+    mu: np.ndarray = field(repr=False)
+    beta: np.ndarray = field(repr=False)
+    sigma: np.ndarray = field(repr=False)
+    xi0: np.ndarray = field(repr=False)
+    xi_dot0: np.ndarray = field(repr=False)
+    samples: int
+    delay: int
+    quantize: bool
+    outcome: np.ndarray = field(repr=False)
+    amplitude: np.ndarray = field(repr=False)
+    frequency: np.ndarray = field(repr=False)
+    centre: np.ndarray = field(repr=False)
+    force_peak_to_peak: np.ndarray = field(repr=False)
+    rest_sample: np.ndarray = field(repr=False)
+    samples_run: np.ndarray = field(repr=False)
+    final_xi: np.ndarray = field(repr=False)
+    final_xi_dot: np.ndarray = field(repr=False)
+    envelope: np.ndarray = field(repr=False)
+    status: str = "ok"
+    controller: ControllerParams | None = None
+
+    def __post_init__(self) -> None:
+        for f in self.__dataclass_fields__:
+            v = getattr(self, f)
+            if isinstance(v, np.ndarray):
+                v.flags.writeable = False
+
+    def __len__(self) -> int:
+        return int(self.outcome.shape[0])
+
+    def outcomes(self) -> list[str]:
+        """Outcome names of the runs, in order."""
+        return [OUTCOMES[c] for c in self.outcome]
+
+    def as_dict(self) -> dict[str, object]:
+        """JSON-ready lists (non-finite numbers as None)."""
+
+        def lst(a):
+            return [None if isinstance(x, float) and not math.isfinite(x) else x for x in a.tolist()]
+
+        out: dict[str, object] = {"samples": self.samples, "delay": self.delay, "quantize": self.quantize}
+        for name in ("mu", "beta", "sigma", "xi0", "xi_dot0", "amplitude", "frequency", "centre"):
+            out[name] = lst(getattr(self, name))
+        out["force_peak_to_peak"] = lst(self.force_peak_to_peak)
+        out["outcome"] = self.outcomes()
+        out["rest_sample"] = [None if r < 0 else r for r in self.rest_sample.tolist()]
+        out["samples_run"] = self.samples_run.tolist()
+        out["final_xi"], out["final_xi_dot"] = lst(self.final_xi), lst(self.final_xi_dot)
+        out["envelope"] = [lst(row) for row in self.envelope]
+        out["status"] = self.status
+        if self.controller is not None:
+            out["controller"] = self.controller.as_dict()
+        return out
+
+
+def _check_points(mu, beta, sigma, xi_dot0, xi0) -> tuple[np.ndarray, ...]:
+    """Broadcast the per-run inputs to 1-D float arrays, each element checked as :func:`simulate` checks it."""
+    try:
+        arrs = np.broadcast_arrays(
+            *(np.atleast_1d(np.asarray(a, dtype=float)) for a in (mu, beta, sigma, xi_dot0, xi0))
+        )
+    except (TypeError, ValueError) as exc:
+        raise DFAValueError(
+            f"mu, beta, sigma, xi_dot0, xi0 are invalid: they must be numbers or arrays that broadcast together ({exc})"
+        ) from None
+    out = tuple(np.ascontiguousarray(a.ravel()) for a in arrs)
+    m, b, s, v, x = out
+    bad = ~(np.isfinite(m) & (m > 0) & np.isfinite(b) & (b >= 0) & np.isfinite(s) & (s >= 0))
+    bad |= ~(np.isfinite(v) & np.isfinite(x))
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        _check_run(m[i], b[i], s[i], v[i], x[i], 0)  # raises the message simulate would give for this run
+        raise DFAValueError(f"run {i} is invalid: mu = {m[i]!r}, beta = {b[i]!r}, sigma = {s[i]!r} must be finite")
+    return out
+
+
+def simulate_batch(
+    mu,
+    beta,
+    sigma,
+    xi_dot0,
+    samples: int,
+    xi0=0.0,
+    delay: int = 0,
+    quantize: bool = True,
+    *,
+    bound: float | None = None,
+    stable_amplitude: float = STABLE_AMPLITUDE,
+    growth: float = GROWTH,
+    settle: float = SETTLE,
+    controller: ControllerParams | None = None,
+) -> SimulationBatch:
+    """Simulate many independent runs in one compiled call; each equals :func:`simulate` of that run alone.
+
+    Parameters
+    ----------
+    mu, beta, sigma, xi_dot0, xi0 : float or array_like
+        Per-run inputs (as in :func:`simulate`), broadcast together to a 1-D list of runs.
+    samples : int
+        Samples of every run (>= 1); give the same run length you would give :func:`simulate`.
+    delay, quantize, bound, stable_amplitude, growth, settle, controller
+        Shared by every run, as in :func:`simulate`.
+
+    Returns
+    -------
+    SimulationBatch
+        Outcome and measurements of run i at index i; run i is bit for bit
+        ``simulate(mu[i], …, samples, record=False)``.
+
+    Examples
+    --------
+    >>> b = simulate_batch(100.0, [0.3, 0.0], [1.5, 0.2], 2.0, samples=20000)
+    >>> b.outcomes()
+    ['rest', 'unstable']
+    """
+    ctl, delay = check_controller(controller, delay)
+    m, b, s, v0, x0 = _check_points(mu, beta, sigma, xi_dot0, xi0)
+    n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
+    d = check_delay(delay)
+    if bound is None:  # one bound for the batch: beyond the largest start's travel (divergence_bound)
+        bound = max(divergence_bound(float(a), float(c), float(mm)) for a, c, mm in zip(x0, v0, m, strict=True))
+    rules = check_rules(bound, stable_amplitude, growth, settle)
+    if not np.all(rules[0] > np.abs(x0)):
+        raise DFAValueError(f"bound = {rules[0]!r} is invalid: it must exceed every |xi0| ({np.abs(x0).max()!r})")
+    res = run_points(m, b, s, x0, v0, n, d, check_quantize(quantize), *rules, controller=ctl)
+    codes, amps, freqs, centres, fpps, done, rest, stats = res
+    return SimulationBatch(
+        mu=m,
+        beta=b,
+        sigma=s,
+        xi0=x0,
+        xi_dot0=v0,
+        samples=n,
+        delay=d,
+        quantize=bool(quantize),
+        outcome=codes.astype(np.int8),
+        amplitude=amps,
+        frequency=freqs,
+        centre=centres,
+        force_peak_to_peak=fpps,
+        rest_sample=rest,
+        samples_run=done,
+        final_xi=stats[:, kernel.NSEG + 6].copy(),
+        final_xi_dot=stats[:, kernel.NSEG + 7].copy(),
+        envelope=stats[:, : kernel.NSEG].copy(),
+        controller=ctl,
+    )
+
+
+def run_points(
+    mu, beta, sigma, x0, v0, n, delay, quantize, bound, stable_amplitude, growth, settle, *, controller=None
+):
+    """Validated float arrays in, kernel outputs out: (codes, amps, freqs, centres, fpps, done, rest, stats).
+
+    ``n`` (samples) and ``bound`` are one value for every run or one per run. The spring runs in one call of
+    :func:`dfa.core.batch.batch_kernel` (each run bit for bit :func:`dfa.core.kernel.simulate_kernel`, its tail
+    length following its μ and length as in :func:`simulate`);
+    no GIL is held, so callers may run several calls on threads. ``controller`` (a ControllerParams that is not
+    a pure spring, whose delay is ``delay``; see :func:`check_controller`) runs
+    :func:`dfa.core.wall_kernel.serial_wall_kernel` instead, one call per group of runs with the same tail length (one
+    ``n`` and ``bound`` for all).
+    """
+    if controller is not None and controller.delay != delay:
+        raise DFAValueError(
+            f"delay = {delay!r} is invalid with controller.delay = {controller.delay}: run_points needs the "
+            "controller's own delay; pass delay=controller.delay"
+        )
+    k = mu.shape[0]
+    codes = np.empty(k, dtype=np.int64)
+    amps, freqs, centres, fpps = np.empty(k), np.empty(k), np.empty(k), np.empty(k)
+    done = np.empty(k, dtype=np.int64)
+    rest = np.empty(k, dtype=np.int64)
+    stats = np.empty((k, kernel.NSTATS))
+    ns = np.ascontiguousarray(np.broadcast_to(np.asarray(n, dtype=np.int64), (k,)))
+    tails = _tail_lengths(ns, mu)
+    if controller is None or controller.is_spring:
+        bounds = np.ascontiguousarray(np.broadcast_to(np.asarray(bound, dtype=float), (k,)))
+        batch.batch_kernel(mu, beta, sigma, x0, v0, ns, delay, quantize, bounds, tails, stats, done, rest)
+    else:
+        for t in np.unique(tails):
+            j = np.flatnonzero(tails == t)
+            st = np.empty((j.size, kernel.NSTATS))
+            dn = np.empty(j.size, dtype=np.int64)
+            rs = np.empty(j.size, dtype=np.int64)
+            pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], int(n), delay, quantize, float(bound), int(t))
+            wall_kernel.serial_wall_kernel(*pts, *_controller_args(controller), st, dn, rs)
+            stats[j], done[j], rest[j] = st, dn, rs
+    kernel.classify_batch(
+        mu, ns, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
+    )
+    return codes, amps, freqs, centres, fpps, done, rest, stats

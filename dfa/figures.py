@@ -1,0 +1,876 @@
+"""Figures of dfa: the only module that imports matplotlib.
+
+Every function takes a result object and an optional ``ax`` (or ``axes``)
+and returns the axes it drew on, in the style of python-control's ``*_plot``
+functions. Axis labels carry units: dimensionless quantities are marked (–),
+positions are in encoder ticks, time in samples (or seconds when a sample
+period is given). Given a device (``device=``), trajectories get a second axis
+in m (rotary rad) and map panels axes of damping b and Coulomb friction c at K.
+Legends sit beside the axes, never over the data; the operating point has one
+style (``POINT_STYLE``) and each outcome class one colour in every figure.
+
+Examples
+--------
+>>> import matplotlib
+>>> matplotlib.use("Agg")
+>>> import dfa
+>>> from dfa.figures import regions_plot
+>>> ax = regions_plot(dfa.passivity_criterion(0.2, 1.0, 2.0))
+>>> ax.get_xlabel()
+'β = b/(K T) (–)'
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import matplotlib
+import matplotlib.lines
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.artist import Artist
+from matplotlib.colors import ListedColormap
+from matplotlib.patches import Patch
+
+from .formatting import number
+from .results.status import CriterionStatus, SimulationOutcome
+
+__all__ = [
+    "regions_plot",
+    "stability_map_plot",
+    "trajectory_plot",
+    "contour_plot",
+    "nyquist_plot",
+    "stiffness_plot",
+    "stiffness_speed_plot",
+    "cycle_error_plot",
+    "critical_speed_plot",
+    "plot_zwidth",
+    "nyquist_needs_zoom",
+    "BETA_LABEL",
+    "SIGMA_LABEL",
+]
+
+BETA_LABEL = "β = b/(K T) (–)"
+SIGMA_LABEL = "σ = c/(K Δ) (–)"
+REGION_COLORS = {"a": "#d9f0d3", "b": "#c6dbef", "c": "#f4a582", "d": "#fddbc7", "e": "#fff7bc"}
+#: Colour of each simulated outcome (paper Fig. 4: white stable, light persisting oscillation, dark unstable).
+OUTCOME_COLORS = {
+    "rest": "#ffffff",
+    "chatter": "#d4d4d4",
+    "oscillating": "#969696",
+    "unstable": "#252525",
+    "undecided": "#e08214",
+}
+_OUTCOME_LABELS = {
+    "rest": "rest (came to rest)",
+    "chatter": "chatter (persisting, < 1 tick)",
+    "oscillating": "oscillating (persisting, >= 1 tick)",
+    "unstable": "unstable (diverged)",
+    "undecided": "undecided (run too short)",
+}
+
+
+def _outcome_cmap() -> ListedColormap:
+    return ListedColormap([OUTCOME_COLORS[o.value] for o in SimulationOutcome])  # indexed by the outcome code
+
+
+def _axes(ax=None, figsize=(5.0, 4.0)):
+    if ax is None:
+        _fig, ax = plt.subplots(figsize=figsize, constrained_layout=True)
+    return ax
+
+
+#: One style for the operating point (design point) in every (β, σ) figure.
+POINT_STYLE: dict[str, Any] = dict(marker="o", color="#b2182b", ms=8, mec="k", mew=1.0, ls="none", zorder=5)
+#: Styles of further critical lines (regions plot), distinct from the dashed line of the operating point.
+_EXTRA_LINES = (
+    dict(color="#4d4d4d", ls=":", lw=1.4),
+    dict(color="#2166ac", ls=(0, (6, 2)), lw=1.1),
+    dict(color="#762a83", ls=(0, (4, 1.5, 1, 1.5)), lw=1.1),
+    dict(color="#8c510a", ls=(0, (1, 3)), lw=1.6),
+)
+
+
+def _legend_outside(ax, handles=None, fontsize: float = 7) -> None:
+    """The legend to the right of the axes, never over the data."""
+    kw = dict(fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, framealpha=0.9)
+    if handles is None:
+        ax.legend(**kw)
+    else:
+        ax.legend(handles=handles, **kw)
+
+
+def _margin(hi: float) -> float:
+    """A margin left of / below 0 so that a point at β ≈ 0 or σ ≈ 0 is drawn whole (grey: outside the plane)."""
+    return 0.03 * hi
+
+
+def regions_plot(
+    result,
+    ax=None,
+    *,
+    xi_dots: Sequence[float] = (),
+    beta_max: float = 1.0,
+    sigma_max: float = 2.0,
+    legend: bool = True,
+):
+    """The (β, σ) plane with regions a-e shaded for the result's speed and delay (paper Fig. 3, eq. 10).
+
+    Parameters
+    ----------
+    result : CriterionResult
+        The operating point (β, σ), its (energy-equivalent) speed V and delay d;
+        the point is marked and its critical line (``result.critical_line``)
+        drawn dashed.
+    ax : matplotlib Axes, optional
+    xi_dots : sequence of float
+        Further speeds (ticks/sample) whose critical lines (same delay) are drawn, each in its own style.
+    beta_max, sigma_max : float
+        Smallest upper limits of the axes (–); the point and β = ½ + d are always inside.
+    legend : bool
+        Legend to the right of the axes (default True).
+    """
+    ax = _axes(ax, figsize=(7.4, 4.2))
+    line = result.critical_line
+    bmax = max(beta_max, 1.2 * result.beta, 0.6, 1.2 * line.beta0)
+    smax = max(sigma_max, 1.2 * result.sigma, 0.6)
+    b = np.linspace(0, bmax, 400)
+    s = np.linspace(0, smax, 400)
+    reg = line.regions(b[None, :], s[:, None])
+    codes = np.searchsorted(np.array(list("abcde")), reg)
+    cmap = ListedColormap([REGION_COLORS[k] for k in "abcde"])
+    ax.set_facecolor("0.85")  # β < 0 or σ < 0: outside the plane, only there to show a point at the edge whole
+    ax.imshow(
+        codes,
+        origin="lower",
+        extent=(0, bmax, 0, smax),
+        aspect="auto",
+        cmap=cmap,
+        vmin=-0.5,
+        vmax=4.5,
+        interpolation="nearest",
+    )
+    ax.axvline(line.beta0, color="k", lw=0.8, ls="-.")
+    if result.quantized:
+        ax.axhline(line.sigma0, color="k", lw=0.8, ls="-.")
+    dl = f", d = {result.delay}" if result.delay else ""
+    ax.plot(b, line.sigma(b), "k--", lw=1.4, label=f"critical line, ξ'0 = {line.xi_dot:.3g}{dl} (point)")
+    for v, style in zip(xi_dots, _EXTRA_LINES * (1 + len(xi_dots) // len(_EXTRA_LINES)), strict=False):
+        ax.plot(b, line.at_speed(v).sigma(b), label=f"ξ'0 = {v:g}", **style)
+    ax.plot([result.beta], [result.sigma], label=f"operating point (region {result.region})", **POINT_STYLE)
+    ax.set_xlim(-_margin(bmax), bmax)
+    ax.set_ylim(-_margin(smax), smax)
+    ax.set_xlabel(BETA_LABEL)
+    ax.set_ylabel(SIGMA_LABEL)
+    ax.set_title("Regions (eq. 6, 10)" + (f", delay d = {result.delay}" if result.delay else ""), fontsize=9)
+    if legend:
+        handles: list[Artist] = [
+            Patch(
+                facecolor=REGION_COLORS[k],
+                edgecolor="0.5",
+                label=f"{k}: {CriterionStatus.of_region(k).message.split(':')[0]}",
+            )
+            for k in "abcde"
+        ]
+        lines, _labels = ax.get_legend_handles_labels()
+        _legend_outside(ax, handles + lines)
+    return ax
+
+
+def _outcome_handles() -> list[Artist]:
+    """One colour patch per outcome class, every class (also those absent from the figure)."""
+    return [
+        Patch(facecolor=OUTCOME_COLORS[k], edgecolor="0.4", label=_OUTCOME_LABELS[k])
+        for k in ("rest", "chatter", "oscillating", "unstable", "undecided")
+    ]
+
+
+def _physical_map_axes(ax, device, stiffness: float) -> None:
+    """Secondary axes of a (β, σ) panel at the device's K: damping b = βKT and Coulomb friction c = σKΔ (Table 1)."""
+    u = device.units
+    kt, kd = stiffness * device.period, stiffness * device.resolution
+    top = ax.secondary_xaxis("top", functions=(lambda x: x * kt, lambda x: x / kt))
+    top.set_xlabel(f"damping b at K = {stiffness:.5g} {u['stiffness']} ({u['damping']})", fontsize=7)
+    top.tick_params(labelsize=7)
+    right = ax.secondary_yaxis("right", functions=(lambda y: y * kd, lambda y: y / kd))
+    right.set_ylabel(f"Coulomb c ({u['coulomb']})", fontsize=7)
+    right.tick_params(labelsize=7)
+
+
+def _speed_text(xi_dot: float, device) -> str:
+    if device is None:
+        return f"ξ'0 = {xi_dot:.3g} ticks/sample"
+    return f"{device.velocity(xi_dot):.3g} {device.units['velocity']} (ξ'0 = {xi_dot:.3g})"
+
+
+def _map_critical_line(ax, smap, v: float, bb: np.ndarray) -> tuple[float, float] | None:
+    """Draw the critical line of one map panel (``smap.critical_line(v)``: eq. 10, or eq. 10 extended to the map's
+    controller); with an amplifier lag no criterion covers the loop and nothing is drawn (None). Returns the corner."""
+    line = smap.critical_line(v)
+    if line is None:
+        return None
+    ax.plot(bb, line.sigma(bb), "--", color="#b2182b", lw=1.3)
+    ax.axvline(line.beta0, color="#2166ac", ls="-.", lw=1.0)
+    if smap.quantize:
+        ax.axhline(line.sigma0, color="#2166ac", ls="-.", lw=1.0)
+    return line.beta0, line.sigma0
+
+
+def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, stiffness=None, point=None):
+    """Simulated outcome per (β, σ) for each initial speed (paper Fig. 4).
+
+    As in the paper, white: came to rest; light: persisting oscillation, in
+    two shades (lightest: chatter below one tick, darker: oscillating, one
+    tick or more); dark: unstable; orange: undecided (the run was too short,
+    :mod:`dfa.analysis.simulation`). The critical line of each speed
+    (:class:`dfa.analysis.criterion.CriticalLine` with the map's delay d) is dashed, the
+    region boundaries β = ½ + d, σ = ½ dash-dot; with a controller, the line of the
+    criterion extended to it (corner β₀, σ₀), or none with an amplifier lag. The legend
+    (right of the panels) lists every outcome class, present or not.
+
+    Parameters
+    ----------
+    smap : StabilityMap
+    axes : sequence of Axes, optional
+        One per speed.
+    titles : bool
+        A title per panel with μ and the speed (default True).
+    device : Device, optional
+        With ``stiffness``: speeds in physical units in the titles and secondary axes
+        b = βKT (N·s/m; rotary N·m·s/rad) and c = σKΔ (N; N·m).
+    stiffness : float, optional
+        K in N/m (rotary N·m/rad) for the secondary axes.
+    point : (float, float), optional
+        The operating point (β, σ), marked in every panel.
+    """
+    n = len(smap.xi_dots)
+    if axes is None:
+        cols = min(n, 2)
+        rows = int(math.ceil(n / cols))
+        fig, axs = plt.subplots(
+            rows, cols, figsize=(4.0 * cols + 2.3, 3.7 * rows), constrained_layout=True, squeeze=False
+        )
+        axes = list(axs.ravel())
+        for extra in axes[n:]:
+            extra.remove()
+        axes = axes[:n]
+    b, s = smap.beta, smap.sigma
+    db = (b[1] - b[0]) / 2
+    ds = (s[1] - s[0]) / 2
+    extent = (b[0] - db, b[-1] + db, s[0] - ds, s[-1] + ds)
+    cmap = _outcome_cmap()
+    physical = device is not None and stiffness is not None
+    for k, ax in enumerate(axes):
+        ax.imshow(
+            smap.outcome[k],
+            origin="lower",
+            extent=extent,
+            aspect="auto",
+            cmap=cmap,
+            vmin=-0.5,
+            vmax=cmap.N - 0.5,
+            interpolation="nearest",
+        )
+        v = smap.xi_dots[k]
+        bb = np.linspace(b[0], b[-1], 200)
+        corner = _map_critical_line(ax, smap, v, bb)
+        if point is not None:
+            ax.plot([point[0]], [point[1]], clip_on=False, **POINT_STYLE)
+        ax.set_xlim(extent[0], extent[1])
+        ax.set_ylim(extent[2], extent[3])
+        ax.set_xlabel(BETA_LABEL)
+        ax.set_ylabel(SIGMA_LABEL)
+        if physical:
+            _physical_map_axes(ax, device, float(stiffness))
+        if titles:
+            what = "preload ≡" if smap.preload else "impact"
+            ax.set_title(
+                f"μ = {smap.mu:.4g}, {what} {_speed_text(v, device)}" + (f", delay {smap.delay}" if smap.delay else ""),
+                fontsize=8,
+            )
+    handles = _outcome_handles()
+    if getattr(smap, "controller", None) is None:
+        handles += [
+            matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),
+            matplotlib.lines.Line2D(
+                [], [], color="#2166ac", ls="-.", label="β = ½ + d, σ = ½" if smap.delay else "β = ½, σ = ½"
+            ),
+        ]
+    elif corner is not None:
+        handles += [
+            matplotlib.lines.Line2D(
+                [], [], color="#b2182b", ls="--", label="critical line, eq. 10 with the controller"
+            ),
+            matplotlib.lines.Line2D(
+                [], [], color="#2166ac", ls="-.", label=f"β = β₀ = {corner[0]:.3g}, σ = σ₀ = {corner[1]:.3g}"
+            ),
+        ]
+    else:
+        handles.append(matplotlib.lines.Line2D([], [], ls="none", label="no criterion line: amplifier lag"))
+    if point is not None:
+        handles.append(matplotlib.lines.Line2D([], [], label="operating point", **POINT_STYLE))
+    _legend_outside(axes[-1] if len(axes) <= 2 else axes[min(1, len(axes) - 1)], handles)
+    if physical:  # the right-hand secondary axis labels sit where the legend would go
+        axes[-1].get_legend().set_bbox_to_anchor((1.22, 1.0))
+    return axes
+
+
+def _scaled_unit(base: str, largest: float) -> tuple[float, str]:
+    """(factor, unit) so that ``value × factor`` of a quantity in ``base`` (m or rad) reads in m/mm/µm (rad/mrad/µrad)."""
+    for factor, prefix in ((1.0, ""), (1e3, "m"), (1e6, "µ")):
+        if largest * factor >= 1.0:
+            return factor, prefix + base
+    return 1e9, "n" + base
+
+
+def _shown_samples(sim, n: int) -> int:
+    """Samples worth showing: a run that came to rest up to about four times its settling time (>= 20 samples),
+    a run stopped early (diverged) up to its last integrated sample."""
+    if getattr(sim, "rest_sample", None) is not None:
+        return min(n, max(20, 4 * int(sim.rest_sample)) + 1)
+    run = getattr(sim, "samples_run", None)
+    return min(n, int(run) + 1) if run is not None and run > 0 else n
+
+
+def trajectory_plot(
+    sim, ax=None, *, period: float | None = None, max_samples: int | None = None, device=None, window: bool = True
+):
+    """Displacement in ticks against time with ±1 tick marked (paper Fig. 5, right).
+
+    Parameters
+    ----------
+    sim : SimulationResult
+        Must have been recorded (``record=True``).
+    period : float, optional
+        Sample period T in s: the time axis is then in seconds.
+    max_samples : int, optional
+        Draw only the first samples.
+    device : Device, optional
+        Time in s (its period) and a secondary axis with the displacement in m (rotary rad), scaled to mm/µm.
+    window : bool
+        Default True: a run that came to rest is shown up to about four times its settling time, so that its
+        motion fills the axis, a diverged run up to where it stopped; False: the whole run.
+    """
+    ax = _axes(ax, figsize=(6.0, 3.2))
+    if sim.xi is None:
+        raise ValueError("sim has no trajectory: run dfa.simulate(..., record=True)")
+    if device is not None:
+        period = device.period
+    n = sim.xi.size if max_samples is None else min(sim.xi.size, max_samples + 1)
+    if window:
+        n = _shown_samples(sim, n)
+    t = np.arange(n) * (period if period else 1.0)
+    ax.plot(t, sim.xi[:n], lw=0.9, color="#2166ac")
+    for y in (-1.0, 1.0):
+        ax.axhline(y, color="0.4", ls="--", lw=0.8)
+    ax.set_xlabel("time (s)" if period else "time (samples)")
+    ax.set_ylabel("displacement ξ (encoder ticks)")
+    if device is not None:
+        res = device.resolution
+        finite = np.abs(sim.xi[:n][np.isfinite(sim.xi[:n])])
+        factor, unit = _scaled_unit(device.units["position"], res * max(1.0, float(finite.max()) if finite.size else 1))
+        sec = ax.secondary_yaxis("right", functions=(lambda y: y * res * factor, lambda x: x / (res * factor)))
+        sec.set_ylabel(f"displacement ({unit})")
+    ax.set_title(f"μ = {sim.mu:.4g}, β = {sim.beta:.3g}, σ = {sim.sigma:.3g}: {sim.outcome}", fontsize=9)
+    ax.set_xlim(t[0], t[-1] if n > 1 else 1)
+    return ax
+
+
+def contour_plot(maps, axes=None, *, device=None, stiffness=None):
+    """Amplitude and frequency of the small stable and large unstable families (paper Fig. 7).
+
+    Left: small stable cycles, amplitude filled, frequency as labelled white
+    lines. Right: the smallest unstable cycle with the exact D (filled, log
+    levels) with the paper's closed form eq. 44-45 overlaid as dashed contours
+    of the same levels; its frequency is nearly constant and is printed.
+
+    Parameters
+    ----------
+    maps : ContourMaps
+    axes : pair of Axes, optional
+    device : Device, optional
+        With ``stiffness``: secondary axes b = βKT (N·s/m; rotary N·m·s/rad) and c = σKΔ (N; N·m),
+        as on :func:`stability_map_plot`.
+    stiffness : float, optional
+        K in N/m (rotary N·m/rad) for the secondary axes.
+    """
+    from matplotlib.colors import BoundaryNorm
+
+    if axes is None:
+        _fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.2), constrained_layout=True)
+    bb, ss = np.meshgrid(maps.beta, maps.sigma)
+    ax = axes[0]
+    small = np.isfinite(maps.small_amplitude)
+    if small.any():
+        cf = ax.contourf(bb, ss, maps.small_amplitude, levels=np.linspace(0, 1, 11), cmap="viridis")
+        plt.colorbar(cf, ax=ax).set_label("amplitude M (encoder ticks)")
+        cs = ax.contour(bb, ss, maps.small_frequency, levels=6, colors="w", linewidths=0.7)
+        ax.clabel(cs, fontsize=6, fmt="%.2f")
+    ax.set_title(f"μ = {maps.mu:g}: small stable cycles (M < 1, eq. 42-43)\nwhite: ω (rad/sample)", fontsize=9)
+    ax = axes[1]
+    nice = np.array([1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100, 150, 200, 300, 500, 1000])
+    finite = maps.large_amplitude[np.isfinite(maps.large_amplitude)]
+    if finite.size:
+        levels = nice[(nice >= 1) & (nice <= max(2.0, finite.max()))]
+        norm = BoundaryNorm(levels, plt.get_cmap("viridis").N, extend="max")
+        cf = ax.contourf(bb, ss, maps.large_amplitude, levels=levels, cmap="viridis", norm=norm, extend="max")
+        plt.colorbar(cf, ax=ax).set_label("amplitude M_u (encoder ticks)")
+        if np.isfinite(maps.large_amplitude_closed).any():
+            ax.contour(bb, ss, maps.large_amplitude_closed, levels=levels, colors="w", linewidths=0.8, linestyles="--")
+        ax.plot([], [], "w--", label="eq. 45 (D = 1), same levels")
+        ax.legend(fontsize=7, loc="upper right", facecolor="0.5", labelcolor="w")
+    if np.isfinite(maps.large_frequency).any():
+        ax.text(
+            0.52,
+            0.80,
+            f"exact: ω from {np.nanmin(maps.large_frequency):.4f}\nto {np.nanmax(maps.large_frequency):.4f} rad/sample\n"
+            f"eq. 44: ω = {np.nanmax(maps.large_frequency_closed):.5f}",
+            transform=ax.transAxes,
+            fontsize=7,
+            color="k",
+        )
+    ax.set_title(f"μ = {maps.mu:g}: large unstable cycles (exact D, eq. 41)", fontsize=9)
+    beta0, sigma0 = maps.corner  # the maps' loop has no delay: region boundaries β = ½, σ = ½ (eq. 10)
+    for ax in axes:
+        ax.axvline(beta0, color="k", ls="-.", lw=0.8)
+        ax.axhline(sigma0, color="k", ls="-.", lw=0.8)
+        ax.set_xlabel(BETA_LABEL)
+        ax.set_ylabel(SIGMA_LABEL)
+        ax.set_xlim(maps.beta[0], maps.beta[-1])
+        ax.set_ylim(maps.sigma[0], maps.sigma[-1])
+    if small.any():  # the small family needs σ < ½: show the band where it exists, not an empty panel
+        top = float(ss[small].max())
+        axes[0].set_ylim(maps.sigma[0], min(maps.sigma[-1], max(1.15 * top, 0.55)))
+    for ax in axes:
+        _drop_edge_labels(ax)
+        if device is not None and stiffness is not None:
+            _physical_map_axes(ax, device, float(stiffness))
+    return axes
+
+
+def _drop_edge_labels(ax, margin: float = 0.05) -> None:
+    """Remove contour labels centred within ``margin`` (axes fraction) of an edge: they would be clipped."""
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    labels = [t for c in ax.collections for t in getattr(c, "labelTexts", [])]
+    for t in labels:
+        x, y = t.get_position()
+        fx, fy = (x - x0) / (x1 - x0), (y - y0) / (y1 - y0)
+        if not (margin < fx < 1 - margin and margin < fy < 1 - margin):
+            t.remove()
+
+
+#: Names of the loop models in titles and captions (:func:`dfa.analysis.loop.loop_response`).
+MODEL_NAMES = {"half-delay": "half-sample delay", "zoh": "exact ZOH", "pade": "Padé ZOH"}
+
+
+def _cycle_points(nyq, cycles) -> list[tuple[complex, bool, float]]:
+    """(point L(jω; M) of the cycle, stable, M) for each cycle, with the Nyquist data's loop model."""
+    if cycles is None:
+        return []
+    return [(nyq.loop_at(c.frequency, c.amplitude), bool(c.stable), float(c.amplitude)) for c in cycles.cycles]
+
+
+def _nyquist_limits(nyq, pts, room: bool = False) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Limits around the data that matter: the critical locus, every cycle, the origin (x, 15 % margin) and the
+    curves within that x range (y, at most one x range from the real axis, at least a tenth of it); ``room``:
+    the data in the lower half only."""
+    loc = nyq.locus[np.isfinite(nyq.locus)]
+    xs = np.concatenate([loc.real, [p.real for p, _s, _m in pts], [0.0]])
+    pad = 0.15 * max(xs.max() - xs.min(), 1e-9)
+    x0, x1 = xs.min() - pad, xs.max() + pad
+    c = np.asarray(nyq.curves).ravel()
+    inside = c[np.isfinite(c) & (c.real >= x0) & (c.real <= x1)]
+    reach = x1 - x0  # the curves' far branches (resonance, high frequency): not beyond one x range of the real axis
+    near = inside.imag[np.abs(inside.imag) <= reach]
+    ys = np.concatenate([near, [p.imag for p, _s, _m in pts], [0.0]])
+    span = max(ys.max() - ys.min(), 0.1 * (x1 - x0))
+    y0, y1 = ys.min() - 0.1 * span, ys.max() + 0.1 * span
+    if room:
+        y1 = y0 + 2.0 * (y1 - y0)
+    return (x0, x1), (y0, y1)
+
+
+def _nyquist_draw(ax, nyq, pts, *, labels: bool) -> None:
+    for amp, curve in zip(nyq.amplitudes, nyq.curves, strict=False):
+        lab = "L(jω)" if np.isnan(amp) else f"L(jω; M = {amp:.3g} ticks)"
+        ax.plot(curve.real, curve.imag, lw=1.1, label=lab if labels else None)
+    rng = f"M in [{nyq.locus_amplitude[0]:.2g}, {nyq.locus_amplitude[-1]:.2g}] ticks"
+    ax.plot(nyq.locus.real, np.zeros_like(nyq.locus.real), color="#b2182b", lw=3, alpha=0.6,
+            label=f"−1/D(M), {rng}" if labels else None)  # fmt: skip
+    for pt, stable, _m in pts:
+        ax.plot([pt.real], [pt.imag], "o", mfc="k" if stable else "w", mec="k", ms=6, zorder=5)
+    ax.axhline(0, color="0.6", lw=0.5)
+    ax.axvline(0, color="0.6", lw=0.5)
+
+
+def nyquist_needs_zoom(nyq, cycles) -> bool:
+    """True when the cycles need an inset: a cycle below one tick, or several crossings within 10 % of the axis."""
+    pts = _cycle_points(nyq, cycles)
+    if not pts:
+        return False
+    if min(m for _p, _s, m in pts) < 1.0:
+        return True
+    (x0, x1), _y = _nyquist_limits(nyq, pts)
+    xs = [p.real for p, _s, _m in pts]
+    return len(xs) > 1 and (max(xs) - min(xs)) < 0.1 * (x1 - x0)
+
+
+def nyquist_plot(nyq, ax=None, *, cycles=None, controller: str | None = None):
+    """Nyquist plot of the loop L(jω; M) against the critical locus −1/D(M), cycles marked (paper Fig. 6).
+
+    The axes are scaled to the locus, the cycles and the origin; when a cycle is below one tick or several
+    crossings crowd within 10 % of the axis, an inset (upper half, above the data) zooms on them. The title names the loop model.
+
+    Parameters
+    ----------
+    nyq : NyquistLocusResponse
+    cycles : LimitCycleResult, optional
+        Cycles to mark (stable: filled circle, unstable: open circle), computed with the same loop model.
+    controller : str, optional
+        The loop's wall controller in words (e.g. ``"B = 1 N·s/m, f_c = 200 Hz, d = 1"``), named in the
+        title as "… loop with {controller}" in place of the delay (default: the title names the delay only).
+    """
+    ax = _axes(ax, figsize=(7.6, 4.6))
+    pts = _cycle_points(nyq, cycles)
+    _nyquist_draw(ax, nyq, pts, labels=True)
+    if cycles is not None:
+        for stable, name in ((True, "stable cycle"), (False, "unstable cycle")):
+            if any(s == stable for _p, s, _m in pts):
+                ax.plot([], [], "o", mfc="k" if stable else "w", mec="k", label=name)
+        if not pts:
+            ax.plot([], [], " ", label="no limit cycle predicted")
+    zoom = nyquist_needs_zoom(nyq, cycles)
+    xlim, ylim = _nyquist_limits(nyq, pts, room=zoom)  # with a zoom, the data in the lower half, the inset above
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
+    ax.set_xlabel("Re L (force ticks per position tick)")
+    ax.set_ylabel("Im L (force ticks per position tick)")
+    dl = f" with {controller}" if controller else (f", delay {nyq.delay}" if nyq.delay else "")
+    ax.set_title(f"Nyquist, {MODEL_NAMES.get(nyq.model, nyq.model)} loop{dl}", fontsize=9)
+    if zoom:
+        _nyquist_inset(ax, nyq, pts, xlim)
+    _legend_outside(ax)
+    return ax
+
+
+def _nyquist_inset(ax, nyq, pts, xlim) -> None:
+    """Zoom on the crossings (upper left of the axes), linked to the region it shows."""
+    xs = np.array([p.real for p, _s, _m in pts])
+    ys = np.array([p.imag for p, _s, _m in pts])
+    half = max(0.65 * (xs.max() - xs.min()), 0.65 * (ys.max() - ys.min()), 0.02 * (xlim[1] - xlim[0]))
+    cx, cy = (xs.min() + xs.max()) / 2, (ys.min() + ys.max()) / 2
+    ins = ax.inset_axes([0.12, 0.56, 0.4, 0.36])
+    _nyquist_draw(ins, nyq, pts, labels=False)
+    ins.set_xlim(cx - half, cx + half)
+    ins.set_ylim(cy - half, cy + half)
+    ins.tick_params(labelsize=6)
+    ins.set_title("zoom on the cycles", fontsize=7)
+    ax.indicate_inset_zoom(ins, edgecolor="0.3")
+
+
+#: One style per closed-form stiffness bound (stiffness plot, stiffness-speed chart): coinciding lines stay
+#: visible because they differ in width, dash and colour (the wide pale line under the thin ones).
+_BOUND_STYLES = {
+    "abbott_okamura": dict(color="#c2a5cf", lw=6.0, alpha=0.8, ls="-"),
+    "colgate": dict(color="#762a83", lw=1.6, ls="--"),
+    "linear": dict(color="k", lw=1.1, ls=(0, (1, 1.5))),
+    "static": dict(color="#4d9221", lw=1.3, ls="-."),
+}
+
+
+def _bounds(k_static: float, k_colgate: float, k_ao: float, k_linear: float, delay: int):
+    """(key, value, name) of the closed-form bounds (eq. 8, 9 and the exact linear bound), widest line first."""
+    cs = "2b/T" if delay == 0 else f"b/(T(½ + {delay}))"
+    return [
+        ("abbott_okamura", k_ao, f"Abbott–Okamura min({cs}, 2c/Δ)"),
+        ("colgate", k_colgate, f"Colgate–Schenkel {cs}"),
+        ("linear", k_linear, "exact linear bound (no encoder, no friction)"),
+        ("static", k_static, "static limit 2c/Δ (eq. 9)"),
+    ]
+
+
+def _bound_lines(ax, bounds, unit: str, *, vertical: bool) -> None:
+    """Draw each bound as a labelled line; a label names the bounds it coincides with (equal to 0.1 %)."""
+    short = {"abbott_okamura": "A–O", "colgate": "C–S", "linear": "linear", "static": "2c/Δ"}
+    for key, k, name in bounds:
+        if not (k > 0 and np.isfinite(k)):
+            continue
+        same = [short[o] for o, ko, _n in bounds if o != key and ko > 0 and abs(ko - k) <= 1e-3 * k]
+        label = f"{name}: {number(k)} {unit}" + (f" (= {', '.join(same)})" if same else "")
+        (ax.axvline if vertical else ax.axhline)(k, label=label, **_BOUND_STYLES[key])
+
+
+def stiffness_plot(curve, ax=None):
+    """Criterion stiffness limit against impact speed, with the published bounds (eq. 8, 9, 11).
+
+    Parameters
+    ----------
+    curve : StiffnessResponse
+        From :func:`dfa.analysis.limits.closed_form.stiffness_response`.
+    """
+    ax = _axes(ax, figsize=(8.6, 4.0))
+    u = curve.device.units
+    d = getattr(curve, "delay", 0)
+    ax.loglog(
+        curve.velocity,
+        curve.k_max,
+        color="#2166ac",
+        lw=2,
+        label="criterion K_max (eq. 11)" + (f", delay {d}" if d else ""),
+    )
+    bounds = _bounds(curve.k_static, curve.k_colgate, curve.k_abbott_okamura, curve.k_gil, d)
+    _bound_lines(ax, bounds, u["stiffness"], vertical=False)
+    if curve.stiffness is not None:
+        ax.axhline(
+            curve.stiffness, color="#b2182b", lw=1.0, label=f"chosen K = {number(curve.stiffness)} {u['stiffness']}"
+        )
+        if curve.max_passive_velocity is not None and np.isfinite(curve.max_passive_velocity):
+            ax.axvline(curve.max_passive_velocity, color="#b2182b", lw=0.8, ls=":")
+            ax.plot(
+                [curve.max_passive_velocity],
+                [curve.stiffness],
+                label=f"passive up to {number(curve.max_passive_velocity)} {u['velocity']}",
+                **POINT_STYLE,
+            )
+    ax.set_xlabel(f"impact speed |ẋ0| ({u['velocity']})")
+    ax.set_ylabel(f"stiffness K ({u['stiffness']})")
+    ax.set_title(f"{curve.device.name}: largest passive stiffness", fontsize=9)
+    _legend_outside(ax)
+    ax.grid(True, which="both", alpha=0.3)
+    return ax
+
+
+def stiffness_speed_plot(chart, ax=None):
+    """Largest safe impact speed against stiffness K, four ways, with the closed-form bounds (issue 14 §2).
+
+    Parameters
+    ----------
+    chart : StiffnessSpeedChart
+        From :func:`dfa.analysis.limits.speed_chart.stiffness_speed_chart`.
+    """
+    ax = _axes(ax, figsize=(9.6, 4.6))
+    u = chart.device.units
+    floor = float(chart.speeds[0]) / 2.0  # "not even the slowest simulated speed" is drawn here
+
+    def show(v):
+        return np.where(np.asarray(v) < floor, floor, v)
+
+    ax.plot(
+        chart.criterion_stiffness, show(chart.v_criterion), color="#2166ac", lw=2.2, label="criterion (eq. 11, proof)"
+    )
+    ax.plot(
+        chart.stiffness,
+        show(chart.v_df),
+        color="#e08214",
+        lw=1.5,
+        ls="--",
+        marker="^",
+        ms=4,
+        label="describing function (growth speed)",
+    )
+    ax.plot(
+        chart.stiffness, show(chart.v_sim), color="#b2182b", lw=1.5, marker="o", ms=4, label="simulation: no divergence"
+    )
+    ax.plot(
+        chart.stiffness,
+        show(chart.v_rest),
+        color="#1b7837",
+        lw=1.2,
+        ls=":",
+        marker="s",
+        ms=3.5,
+        label="simulation: comes to rest",
+    )
+    bounds = _bounds(chart.k_static, chart.k_colgate, chart.k_abbott_okamura, chart.k_linear, chart.delay)
+    _bound_lines(ax, bounds, u["stiffness"], vertical=True)
+    _design_marks(ax, chart, floor)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_ylim(floor / 1.3, chart.v_top * 1.3)
+    ax.set_xlim(chart.stiffness[0], chart.stiffness[-1])
+    ax.set_xlabel(f"stiffness K ({u['stiffness']})")
+    ax.set_ylabel(f"largest safe impact speed ({u['velocity']})")
+    d = chart.delay
+    ax.set_title(f"{chart.device.name}: how stiff for which impact speed" + (f", delay {d}" if d else ""), fontsize=9)
+    # the details go in a note under the axes (a two-line title crowded the top of the figure)
+    ax.annotate(
+        f"Impact speeds simulated from {chart.speeds[0]:.3g} to {chart.v_top:g} {u['velocity']}; "
+        f"a curve on the bottom edge is not safe even at {chart.speeds[0]:.3g} {u['velocity']}.",
+        xy=(0.0, 0.0),
+        xycoords="axes fraction",
+        xytext=(0.0, -34.0),
+        textcoords="offset points",
+        va="top",
+        ha="left",
+        fontsize=7.5,
+        color="0.25",
+    )
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    return ax
+
+
+def _design_marks(ax, chart, floor: float) -> None:
+    """The design speed (horizontal line) and the design point (star) of the stiffness-speed chart."""
+    u = chart.device.units
+    if chart.design_velocity is not None and chart.design_velocity > 0:
+        ax.axhline(chart.design_velocity, color="0.4", lw=0.8, ls="--",
+                   label=f"design speed V = {chart.design_velocity:.3g} {u['velocity']}")  # fmt: skip
+    if chart.design_stiffness is not None and chart.design_velocity is not None:
+        ax.plot(
+            [chart.design_stiffness],
+            [max(chart.design_velocity, floor)],
+            marker="*",
+            color="k",
+            ms=13,
+            ls="none",
+            label=f"design point K = {number(chart.design_stiffness)} {u['stiffness']}, "
+            f"V = {chart.design_velocity:.3g} {u['velocity']}",
+        )
+
+
+def cycle_error_plot(validation, ax=None):
+    """Relative error of simulated vs predicted stable cycles against their period (validation item 4).
+
+    Errors below 0.1 % are drawn at 0.1 % (log axis).
+    """
+    from matplotlib.ticker import FixedLocator, NullLocator, ScalarFormatter
+
+    ax = _axes(ax, figsize=(6.0, 4.0))
+    floor = 0.1
+    for model, marker in (("half-delay", "o"), ("zoh", "s")):
+        recs = [r for r in validation.cycles if r["model"] == model and r["stable"] and r.get("confirmed")]
+        if recs:
+            per = [r["period"] for r in recs]
+            ax.plot(
+                per,
+                [max(floor, 100 * abs(r["frequency_error"])) for r in recs],
+                marker,
+                mfc="none",
+                alpha=0.8,
+                label=f"{model}: frequency",
+            )
+            ax.plot(
+                per,
+                [max(floor, 100 * abs(r["amplitude_error"])) for r in recs],
+                marker,
+                ms=3,
+                alpha=0.6,
+                label=f"{model}: amplitude",
+            )
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.xaxis.set_major_locator(FixedLocator([2, 4, 8, 16, 32, 64]))
+    ax.xaxis.set_minor_locator(NullLocator())
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.axvline(8, color="0.4", ls="--", lw=0.8)
+    ax.text(8.3, floor * 1.5, "8 samples", fontsize=7, color="0.3")
+    ax.set_xlabel("predicted period (samples)")
+    ax.set_ylabel("|simulated/predicted − 1| (%)")
+    ax.set_title("Describing function vs exact simulation, stable cycles", fontsize=9)
+    ax.legend(fontsize=7, loc="lower right")
+    ax.grid(True, which="both", alpha=0.3)
+    return ax
+
+
+def critical_speed_plot(validation, ax=None):
+    """Critical impact speed three ways per case: criterion, describing function, simulation (validation item 2)."""
+    ax = _axes(ax, figsize=(7.0, 3.8))
+    rows = validation.speeds
+    x = np.arange(len(rows))
+    w = 0.2
+    series = [
+        ("criterion", "criterion (eq. 12)", "#b2182b"),
+        ("df_zoh", "DF growth threshold (exact ZOH)", "#2166ac"),
+        ("simulated", "simulated", "0.2"),
+        ("simulated_preload", "simulated, preload", "0.6"),
+    ]
+    for i, (key, label, color) in enumerate(series):
+        vals = [r[key] if r[key] is not None else np.nan for r in rows]
+        ax.bar(x + (i - 1.5) * w, vals, w, label=label, color=color)
+    ax.set_xticks(x)
+    ax.set_xticklabels([r["name"] for r in rows], rotation=20, ha="right", fontsize=7)
+    ax.set_ylabel("critical speed ξ'0 (ticks per sample)")
+    ax.set_title("Critical impact speed, three ways", fontsize=9)
+    ax.legend(fontsize=7)
+    return ax
+
+
+#: Line styles of the Z-width boundaries, by method (:data:`dfa.analysis.limits.zwidth.ZWIDTH_METHODS`).
+_ZWIDTH_STYLES: dict[str, tuple[str, dict[str, Any]]] = {
+    "linear": ("exact linear bound", dict(color="#2166ac", ls="-", lw=1.6)),
+    "passivity": ("Colgate–Schenkel passivity (linear model)", dict(color="#762a83", ls="--", lw=1.4)),
+    "criterion": ("extended criterion (proof, eq. 6)", dict(color="#1b7837", ls="-", lw=2.0)),
+    "df": ("describing function", dict(color="#8c510a", ls=(0, (4, 1.5, 1, 1.5)), lw=1.4)),
+    "sim": ("simulation: no divergence", dict(color="#b2182b", ls="-", lw=1.4, marker=".", ms=3)),
+    "rest": ("simulation: comes to rest", dict(color="#f4a582", ls=":", lw=1.4)),
+}
+
+
+#: A Z-width method defined at a single B: a marker above the design point's star (zorder 6), never under it.
+_LONE: dict[str, Any] = {"marker": "o", "ms": 6, "mec": "white", "mew": 0.8, "zorder": 7}
+#: The design point on the Z-width.
+_STAR: dict[str, Any] = {"marker": "*", "ms": 16, "color": "k", "mfc": "gold", "ls": "none", "zorder": 6}
+
+
+def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
+    """The Z-width of a device: B across, K up (log), one line per method, the simulated region shaded.
+
+    A method defined at a single B (often the criterion, at B = 0 only) is a marker drawn above
+    everything else, the design point's star included, so that neither hides the other.
+
+    Parameters
+    ----------
+    zw : dfa.analysis.limits.zwidth.ZWidth
+        The result of :func:`dfa.analysis.limits.zwidth.z_width`.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+    design_point : (float, float), optional
+        A design point (B, K) in the device's units (N·s/m, N/m; rotary N·m·s/rad, N·m/rad), starred
+        and in the legend; a K outside the grid is drawn at the grid's edge.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    from .results.codes import BOUNDED, DIVERGES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
+
+    ax = _axes(ax, figsize=(6.4, 4.4))
+    u = zw.device.units
+    ks, bs = np.asarray(zw.stiffness), np.asarray(zw.damping)
+    shade = np.full(zw.outcome.shape, np.nan)
+    colours = {REST: "#d1e5f0", BOUNDED: "#fddbc7", DIVERGES: "#ffffff", UNDECIDED_POINT: "#e0e0e0"}
+    cmap = ListedColormap([colours[c] for c in (REST, BOUNDED, DIVERGES, UNDECIDED_POINT)])
+    shade[:] = zw.outcome
+    kedges = np.sqrt(ks[1:] * ks[:-1])
+    kedges = np.concatenate([[ks[0] ** 2 / kedges[0]], kedges, [ks[-1] ** 2 / kedges[-1]]])
+    bstep = bs[1] - bs[0] if bs.size > 1 else 1.0
+    bedges = np.concatenate([bs - bstep / 2, [bs[-1] + bstep / 2]])
+    ax.pcolormesh(bedges, kedges, shade.T, cmap=cmap, vmin=-0.5, vmax=3.5, shading="flat")
+    for m in ZWIDTH_METHODS:
+        label, style = _ZWIDTH_STYLES[m]
+        y = np.asarray(zw.boundary(m), dtype=float)
+        if np.isfinite(y).any():
+            ax.plot(bs, y, label=label, **{**style, **(_LONE if np.isfinite(y).sum() < 2 else {})})
+    ax.set_yscale("log")
+    ax.set_ylim(kedges[0], kedges[-1])
+    ax.set_xlim(bedges[0], bedges[-1])
+    ax.set_xlabel(f"virtual damping B ({u['damping']})")
+    ax.set_ylabel(f"virtual stiffness K ({u['stiffness']})")
+    ax.set_title(f"Z-width of {zw.device.name}, impacts up to {zw.velocity:.3g} {u['velocity']}", fontsize=9)
+    if design_point is not None:
+        b, k = design_point
+        lo, hi = kedges[0], kedges[-1]
+        ax.plot([b], [min(max(k, lo), hi)], label="design point (B, K)", **_STAR)
+    handles, _ = ax.get_legend_handles_labels()
+    handles += [
+        Patch(facecolor=colours[REST], edgecolor="0.5", label="simulated: rest"),
+        Patch(facecolor=colours[BOUNDED], edgecolor="0.5", label="simulated: bounded (chatter or cycle)"),
+        Patch(facecolor=colours[UNDECIDED_POINT], edgecolor="0.5", label="simulated: undecided"),
+        Patch(facecolor=colours[DIVERGES], edgecolor="0.5", label="simulated: diverges"),
+    ]
+    _legend_outside(ax, handles)
+    return ax

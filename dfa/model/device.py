@@ -1,0 +1,395 @@
+"""Physical device model and its dimensionless form (paper Table 1).
+
+A one-degree-of-freedom haptic device renders a virtual spring of stiffness
+``K`` (paper section 2)::
+
+    m x'' + b x' + c sgn(x') = F_H + F_A,
+    F_A(t) = -K Δ floor(x(t_h)/Δ) - K Δ/2   for t in [t_h, t_h + T)
+
+With τ = t/T, ξ = x/Δ and φ = F/(KΔ) this becomes (paper eq. 4-5)::
+
+    μ ξ'' + β ξ' + σ sgn(ξ') = φ_H + φ_A,
+    μ = m/(K T²),  β = b/(K T),  σ = c/(K Δ).
+
+All analyses in :mod:`dfa` work on :class:`Params` (μ, β, σ); physical units
+live only in :class:`Device`, the catalogue, the command line and report labels.
+
+Examples
+--------
+>>> dev = Device(mass=0.032, damping=0.02, coulomb=0.024,
+...              resolution=314e-6, period=2e-3, name="Impulse Engine")
+>>> p = dev.params(stiffness=80.0)
+>>> round(p.mu, 3), round(p.beta, 4), round(p.sigma, 4)
+(100.0, 0.125, 0.9554)
+>>> round(dev.stiffness_for_beta(0.5), 6)   # K at which β = 1/2 (Colgate-Schenkel)
+20.0
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..checks import _fmt, check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
+from ..errors import DFATypeError, DFAValueError
+
+__all__ = ["Params", "Device", "dimensionless_params"]
+
+
+@dataclass(frozen=True)
+class Params:
+    """Dimensionless device parameters (paper Table 1).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(K T²), > 0.
+    beta : float
+        Dimensionless viscous damping β = b/(K T), >= 0.
+    sigma : float
+        Dimensionless Coulomb friction σ = c/(K Δ), >= 0.
+    """
+
+    mu: float
+    beta: float
+    sigma: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mu", check_mu(self.mu))
+        object.__setattr__(self, "beta", check_beta(self.beta))
+        object.__setattr__(self, "sigma", check_sigma(self.sigma))
+
+    def as_dict(self) -> dict[str, float]:
+        """Return the three groups as a dictionary.
+
+        Returns
+        -------
+        dict
+            ``{"mu": μ, "beta": β, "sigma": σ}`` (plain floats, JSON-able).
+        """
+        return {"mu": self.mu, "beta": self.beta, "sigma": self.sigma}
+
+
+_LINEAR_UNITS = {
+    "mass": "kg",
+    "damping": "N·s/m",
+    "coulomb": "N",
+    "resolution": "m",
+    "period": "s",
+    "stiffness": "N/m",
+    "velocity": "m/s",
+    "position": "m",
+    "force": "N",
+}
+_ROTARY_UNITS = {
+    "mass": "kg·m²",
+    "damping": "N·m·s/rad",
+    "coulomb": "N·m",
+    "resolution": "rad",
+    "period": "s",
+    "stiffness": "N·m/rad",
+    "velocity": "rad/s",
+    "position": "rad",
+    "force": "N·m",
+}
+
+
+@dataclass(frozen=True)
+class Device:
+    """A physical haptic device (SI units; a rotary device uses rad, N·m, kg·m²).
+
+    Parameters
+    ----------
+    mass : float
+        Moving mass m in kg (rotary: inertia in kg·m²), > 0.
+    damping : float
+        Viscous friction b in N·s/m (rotary: N·m·s/rad), >= 0.
+    coulomb : float
+        Dynamic Coulomb friction c in N (rotary: N·m), >= 0.
+    resolution : float
+        Encoder resolution Δ in m (rotary: rad), > 0.
+    period : float
+        Sample period T in s, > 0.
+    name : str, optional
+        A label used in reports.
+    rotary : bool, optional
+        True when positions are angles and forces are torques (only changes units).
+    """
+
+    mass: float
+    damping: float
+    coulomb: float
+    resolution: float
+    period: float
+    name: str = "custom device"
+    rotary: bool = False
+
+    def __post_init__(self) -> None:
+        object.__setattr__(
+            self, "mass", check_positive("mass", self.mass, "give the moving mass in kg (rotary: kg·m²)")
+        )
+        object.__setattr__(
+            self,
+            "damping",
+            check_nonnegative("damping", self.damping, "give the viscous friction b in N·s/m (0 for none)"),
+        )
+        object.__setattr__(
+            self, "coulomb", check_nonnegative("coulomb", self.coulomb, "give the Coulomb friction c in N (0 for none)")
+        )
+        object.__setattr__(
+            self,
+            "resolution",
+            check_positive("resolution", self.resolution, "give the encoder resolution Δ in m (rotary: rad)"),
+        )
+        object.__setattr__(
+            self, "period", check_positive("period", self.period, "give the sample period T in s (1 kHz: 0.001)")
+        )
+        if not isinstance(self.name, str):
+            raise DFATypeError(
+                f"name = {_fmt(self.name)} has type {type(self.name).__name__}: it must be text; give the device name"
+            )
+        if not isinstance(self.rotary, (bool, np.bool_)):
+            raise DFATypeError(
+                f"rotary = {_fmt(self.rotary)} has type {type(self.rotary).__name__}: it must be True or False; pass rotary=True for a rotary joint"
+            )
+        object.__setattr__(self, "rotary", bool(self.rotary))
+
+    # ------------------------------------------------------------------ units
+    @property
+    def units(self) -> dict[str, str]:
+        """Unit strings of each physical quantity for this device."""
+        return dict(_ROTARY_UNITS if self.rotary else _LINEAR_UNITS)
+
+    # ------------------------------------------------------- dimensionless form
+    def params(self, stiffness: float) -> Params:
+        """Dimensionless (μ, β, σ) for a virtual spring of stiffness ``K`` (paper Table 1).
+
+        Parameters
+        ----------
+        stiffness : float
+            Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+
+        Returns
+        -------
+        Params
+            The groups μ = m/(K T²), β = b/(K T), σ = c/(K Δ).
+
+        Raises
+        ------
+        DFAValueError
+            If ``stiffness`` is not a finite number > 0, or a group overflows or vanishes in a float.
+        """
+        k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+        return dimensionless_params(self, k)
+
+    def xi_dot(self, velocity: float) -> float:
+        """Dimensionless speed ξ' = ẋ T/Δ (encoder ticks per sample) of a physical speed.
+
+        Independent of the stiffness K (spec section 2).
+
+        Parameters
+        ----------
+        velocity : float
+            Physical speed ẋ in m/s (rotary: rad/s); its sign is kept.
+
+        Returns
+        -------
+        float
+            The speed ξ' in encoder ticks per sample.
+
+        Raises
+        ------
+        DFAValueError
+            If ``velocity`` is not a finite number or ξ' overflows a float.
+        """
+        v = check_real("velocity", velocity, "give the speed in m/s (rotary: rad/s)")
+        out = v * self.period / self.resolution
+        if not math.isfinite(out):
+            raise DFAValueError(
+                f"velocity = {v!r} is too large: ξ' = ẋT/Δ overflows a float with period = {self.period!r}, "
+                f"resolution = {self.resolution!r}; give the speed in m/s (rotary: rad/s)"
+            )
+        return out
+
+    def velocity(self, xi_dot: float) -> float:
+        """Physical speed ẋ = ξ' Δ/T (m/s or rad/s) of a dimensionless speed.
+
+        Parameters
+        ----------
+        xi_dot : float
+            Dimensionless speed ξ' in encoder ticks per sample; its sign is kept.
+
+        Returns
+        -------
+        float
+            The speed ẋ in m/s (rotary: rad/s).
+
+        Raises
+        ------
+        DFAValueError
+            If ``xi_dot`` is not a finite number or ẋ overflows a float.
+        """
+        xd = check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample")
+        out = xd * self.resolution / self.period
+        if not math.isfinite(out):
+            raise DFAValueError(
+                f"xi_dot = {xd!r} is too large: ẋ = ξ'Δ/T overflows a float with period = {self.period!r}, "
+                f"resolution = {self.resolution!r}; give a smaller speed in ticks per sample"
+            )
+        return out
+
+    def stiffness_for_mu(self, mu: float) -> float:
+        """The stiffness K (N/m) at which μ = m/(K T²) takes the value ``mu``.
+
+        Parameters
+        ----------
+        mu : float
+            Dimensionless mass μ, > 0.
+
+        Returns
+        -------
+        float
+            K = m/(μ T²) in N/m (rotary: N·m/rad).
+        """
+        return self.mass / (check_mu(mu) * self.period**2)
+
+    def stiffness_for_beta(self, beta: float) -> float:
+        """The stiffness K (N/m) at which β = b/(K T) takes the value ``beta``.
+
+        For β = ½ this is the Colgate-Schenkel bound 2b/T (paper eq. 8).
+
+        Parameters
+        ----------
+        beta : float
+            Dimensionless damping β, > 0.
+
+        Returns
+        -------
+        float
+            K = b/(β T) in N/m (rotary: N·m/rad).
+
+        Raises
+        ------
+        DFAValueError
+            If ``beta`` is not > 0 or the device has no damping (b = 0).
+        """
+        b = check_positive("beta", beta, "β must be > 0 to solve for K")
+        if self.damping == 0.0:
+            raise DFAValueError(
+                "damping = 0.0 is invalid here: it must be > 0 to reach a given beta; "
+                "β = b/(K T) is zero for every K when b = 0"
+            )
+        return self.damping / (b * self.period)
+
+    def stiffness_for_sigma(self, sigma: float) -> float:
+        """The stiffness K (N/m) at which σ = c/(K Δ) takes the value ``sigma``.
+
+        For σ = ½ this is the static bound 2c/Δ (paper eq. 9).
+
+        Parameters
+        ----------
+        sigma : float
+            Dimensionless Coulomb friction σ, > 0.
+
+        Returns
+        -------
+        float
+            K = c/(σ Δ) in N/m (rotary: N·m/rad).
+
+        Raises
+        ------
+        DFAValueError
+            If ``sigma`` is not > 0 or the device has no Coulomb friction (c = 0).
+        """
+        s = check_positive("sigma", sigma, "σ must be > 0 to solve for K")
+        if self.coulomb == 0.0:
+            raise DFAValueError(
+                "coulomb = 0.0 is invalid here: it must be > 0 to reach a given sigma; "
+                "σ = c/(K Δ) is zero for every K when c = 0"
+            )
+        return self.coulomb / (s * self.resolution)
+
+    def as_dict(self) -> dict[str, object]:
+        """Physical values in SI units, with name and kind.
+
+        Returns
+        -------
+        dict
+            ``name``, ``rotary``, ``mass``, ``damping``, ``coulomb``, ``resolution``, ``period``.
+        """
+        return {
+            "name": self.name,
+            "rotary": self.rotary,
+            "mass": self.mass,
+            "damping": self.damping,
+            "coulomb": self.coulomb,
+            "resolution": self.resolution,
+            "period": self.period,
+        }
+
+
+_GROUPS = (
+    ("mu", "the dimensionless mass μ = m/(K T²)", ("mass", "stiffness", "period")),
+    ("beta", "the dimensionless damping β = b/(K T)", ("damping", "stiffness", "period")),
+    ("sigma", "the dimensionless friction σ = c/(K Δ)", ("coulomb", "stiffness", "resolution")),
+)
+
+
+def dimensionless_params(device: Device, stiffness: float, names: dict[str, str] | None = None) -> Params:
+    """(μ, β, σ) of ``device`` at stiffness K (paper Table 1), refusing groups a float cannot hold.
+
+    A group overflows (inf) or vanishes (zero or subnormal, below
+    ``sys.float_info.min`` ≈ 2.2e-308, where 1/μ overflows and the simulation
+    returns NaN) only for physically absurd inputs (for example a mass of
+    1e-320 kg); the error names the inputs that produce it.
+
+    Parameters
+    ----------
+    device : Device
+    stiffness : float
+        K in N/m (rotary: N·m/rad), already checked > 0.
+    names : dict, optional
+        How to call each physical input in the message (the command line
+        passes its flags, e.g. ``{"mass": "--mass"}``); default the parameter names.
+    """
+    k = float(stiffness)
+    vals = {
+        "mass": device.mass,
+        "damping": device.damping,
+        "coulomb": device.coulomb,
+        "resolution": device.resolution,
+        "period": device.period,
+        "stiffness": k,
+    }
+
+    def div(
+        a: float, b: float
+    ) -> float:  # a denominator that underflows to 0 gives inf (or NaN for 0/0), not an exception
+        return a / b if b != 0.0 else (math.inf if a > 0.0 else math.nan)
+
+    out = {
+        "mu": div(device.mass, k * (device.period * device.period)),  # p*p: inf, not OverflowError
+        "beta": div(device.damping, k * device.period),
+        "sigma": div(device.coulomb, k * device.resolution),
+    }
+    names = names or {}
+    for key, what, inputs in _GROUPS:
+        value = out[key]
+        if math.isfinite(value) and (value >= sys.float_info.min or (value == 0.0 and key != "mu")):
+            continue
+        given = ", ".join(f"{names.get(n, n)} = {vals[n]:g}" for n in inputs)
+        how = (
+            "overflows to inf"
+            if math.isinf(value)
+            else "is undefined (0/0)"
+            if math.isnan(value)
+            else f"vanishes ({value:.3g}, below {sys.float_info.min:.3g})"
+        )
+        raise DFAValueError(
+            f"{given} is invalid: {what} {how}; give ordinary physical values in SI units "
+            f"({', '.join(device.units[n] for n in inputs)})"
+        )
+    return Params(**out)

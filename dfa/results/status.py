@@ -1,0 +1,291 @@
+"""Status enums of the analysis results: one enum per meaning, every member with a message.
+
+Each result class carries a ``status`` member of one of these enums (like
+diffrax's ``RESULTS``). A member compares equal to its value, a short code
+(``status == "ok"``), so JSON holds the code and :attr:`StatusEnum.message` says
+in words what it means. Where a status needs numbers of the case at hand (how far
+a search reached), the result carries them in a separate field (``detail``).
+
+Examples
+--------
+>>> from dfa.results.status import StiffnessStatus
+>>> StiffnessStatus.TOO_STIFF == "too stiff", StiffnessStatus("ok") is StiffnessStatus.OK
+(True, True)
+>>> StiffnessStatus.OK.message
+'passive at this speed (proven)'
+"""
+
+from __future__ import annotations
+
+import enum
+from typing import Any
+
+from ..errors import DFAValueError
+
+__all__ = [
+    "StatusEnum",
+    "CriterionStatus",
+    "ControllerCriterionStatus",
+    "StiffnessStatus",
+    "VelocityStatus",
+    "CurveStatus",
+    "SimulationOutcome",
+    "SearchStatus",
+    "GrowthStatus",
+    "NyquistStatus",
+    "MapStatus",
+    "ContourStatus",
+    "SoundnessStatus",
+    "ValidationStatus",
+    "DesignStatus",
+    "ReportStatus",
+    "ZWidthStatus",
+]
+
+
+class StatusEnum(str, enum.Enum):
+    """Base of the status enums: value a short code (a ``str``), ``message`` its meaning in words."""
+
+    message: str
+
+    def __new__(cls, value: str, message: str) -> StatusEnum:
+        obj = str.__new__(cls, value)
+        obj._value_ = value
+        obj.message = message
+        return obj
+
+    def __str__(self) -> str:
+        return str(self.value)
+
+    def __format__(self, spec: str) -> str:
+        return format(str(self.value), spec)
+
+    @classmethod
+    def coerce(cls, value: Any, name: str = "status") -> Any:
+        """The member of this enum that ``value`` (a member or its code) names.
+
+        Raises
+        ------
+        DFAValueError
+            When ``value`` names no member.
+        """
+        for member in cls:
+            if value is member or (isinstance(value, str) and value == member.value):
+                return member
+        codes = ", ".join(repr(m.value) for m in cls)
+        raise DFAValueError(
+            f"{name} = {value!r} is invalid: it must be a {cls.__name__} ({codes}); use the enum member"
+        )
+
+
+class CriterionStatus(StatusEnum):
+    """Meaning of the region of paper Fig. 3 (eq. 6, 10) in which an operating point lies."""
+
+    PASSIVE_ALL_SPEEDS = (
+        "passive_all_speeds",
+        "passive at every speed: the energy cannot grow (proven; β >= ½ + d, σ >= ½)",
+    )
+    NOT_PASSIVE_AT_REST = (
+        "not_passive_at_rest",
+        "not passive at rest: σ < ½, the device cannot stop; sub-tick chatter expected (paper, d = 0)",
+    )
+    NO_GUARANTEE = (
+        "no_guarantee",
+        "no passivity guarantee at any speed: σ < ½ and β < ½ + d (not a proof of instability)",
+    )
+    ABOVE_CRITICAL_SPEED = (
+        "above_critical_speed",
+        "no passivity guarantee at this speed: above the critical speed (not a proof of instability)",
+    )
+    PASSIVE_BELOW_CRITICAL_SPEED = (
+        "passive_below_critical_speed",
+        "passive up to the critical speed: the energy cannot grow (proven)",
+    )
+
+    @property
+    def region(self) -> str:
+        """The region letter ``"a"`` … ``"e"`` of paper Fig. 3."""
+        return "abcde"[list(CriterionStatus).index(self)]
+
+    @classmethod
+    def of_region(cls, region: str) -> CriterionStatus:
+        """The status of region ``"a"`` … ``"e"``."""
+        return list(cls)["abcde".index(region)]
+
+
+class ControllerCriterionStatus(StatusEnum):
+    """Meaning of the region of an operating point for the controller's criterion (:mod:`dfa.analysis.wall_criterion`).
+
+    The regions of paper Fig. 3 with the corner moved to (β₀, σ₀): β₀ = ½ + d + β_B and
+    σ₀ = ½ + (1 − a)β_B with the encoder (0 without), a = e^{−2πν_c} (0 without filter).
+    The result's ``status_message`` gives the numbers of the case at hand.
+    """
+
+    PASSIVE_ALL_SPEEDS = (
+        "passive_all_speeds",
+        "passive at every speed: the energy cannot grow (proven; β >= β₀ and σ >= σ₀)",
+    )
+    NO_GUARANTEE_AT_REST = (
+        "no_guarantee_at_rest",
+        "no passivity guarantee even at rest: σ < σ₀ (not a proof of instability; sub-tick chatter possible)",
+    )
+    NO_GUARANTEE = (
+        "no_guarantee",
+        "no passivity guarantee at any speed: σ < σ₀ and β < β₀ (not a proof of instability)",
+    )
+    ABOVE_CRITICAL_SPEED = (
+        "above_critical_speed",
+        "no passivity guarantee at this speed: above the critical speed (σ − σ₀)/(β₀ − β) (not a proof of instability)",
+    )
+    PASSIVE_BELOW_CRITICAL_SPEED = (
+        "passive_below_critical_speed",
+        "passive up to the critical speed (σ − σ₀)/(β₀ − β): the energy cannot grow (proven)",
+    )
+
+    @property
+    def region(self) -> str:
+        """The region letter ``"a"`` … ``"e"`` (paper Fig. 3 with the corner at (β₀, σ₀))."""
+        return "abcde"[list(ControllerCriterionStatus).index(self)]
+
+    @classmethod
+    def of_region(cls, region: str) -> ControllerCriterionStatus:
+        """The status of region ``"a"`` … ``"e"``."""
+        return list(cls)["abcde".index(region)]
+
+
+class StiffnessStatus(StatusEnum):
+    """Verdict on a chosen stiffness at the impact speed (eq. 11)."""
+
+    OK = ("ok", "passive at this speed (proven)")
+    NOT_REQUESTED = ("not requested", "no stiffness given to assess: the limits alone")
+    TOO_STIFF = ("too stiff", "no passivity guarantee at this speed (K > K_max); not a proof of instability")
+
+
+class VelocityStatus(StatusEnum):
+    """What the largest passive speed of a chosen stiffness is (eq. 12)."""
+
+    NOT_REQUESTED = ("not requested", "no stiffness given")
+    ALL_SPEEDS = ("all speeds", "passive at every speed (K <= 2b/T, or b/(T(½ + d)) with a delay)")
+    BOUNDED = ("bounded", "passive up to a finite speed")
+    NONE = ("none", "no passivity guarantee even at rest (K > 2c/Δ)")
+
+
+class CurveStatus(StatusEnum):
+    """Status of a stiffness limit curve over impact speeds."""
+
+    OK = ("ok", "K_max computed at every speed")
+
+
+class SimulationOutcome(StatusEnum):
+    """How an exact simulation ended (:mod:`dfa.analysis.simulation`); the order is the outcome code of the maps."""
+
+    REST = ("rest", "came to rest")
+    OSCILLATING = ("oscillating", "persistent oscillation of one tick or more")
+    UNSTABLE = ("unstable", "diverged (past the bound, or a growing envelope)")
+    CHATTER = ("chatter", "never comes to rest; the force keeps toggling below one tick of motion (a buzz)")
+    UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
+
+
+class SearchStatus(StatusEnum):
+    """How a limit-cycle search ended (:attr:`dfa.analysis.cycles.LimitCycleResult.status`)."""
+
+    COMPLETE = ("complete", "every root of eq. 36 was found: the pieces ended or the envelope bound closed them")
+    MAX_AMPLITUDE = ("max_amplitude", "incomplete: roots may exist beyond the caller's max_amplitude")
+    BUDGET = (
+        "budget",
+        "incomplete: the envelope bound lies beyond the size budget of the automatic search range",
+    )
+    NUMERICAL = (
+        "numerical",
+        "incomplete: a root finder failed (no sign change where the scan saw one, or no convergence)",
+    )
+    TIME_BUDGET = (
+        "time_budget",
+        "incomplete: the time budget ran out before every piece of the phase curve was searched",
+    )
+
+
+class GrowthStatus(StatusEnum):
+    """What the describing function predicts about growth (:class:`dfa.analysis.cycles.GrowthThreshold`)."""
+
+    OK = ("ok", "unstable cycles found: growth is predicted above the band (first-harmonic approximation)")
+    NO_UNSTABLE_CYCLE = ("no unstable cycle", "no unstable cycle predicted")
+    NO_UNSTABLE_CYCLE_SEARCHED = (
+        "no unstable cycle up to the search limit",
+        "no unstable cycle predicted up to the amplitude searched (the search was incomplete)",
+    )
+    LINEAR_UNSTABLE = (
+        "linear unstable",
+        "no unstable cycle predicted, but the linear loop (exact ZOH model) is unstable: amplitudes grow without bound",
+    )
+
+
+class NyquistStatus(StatusEnum):
+    """What a Nyquist locus response holds (:class:`dfa.analysis.loop.NyquistLocusResponse`)."""
+
+    OK = ("ok", "curves, locus and crossings computed")
+    CROSSINGS_NOT_COMPUTED = (
+        "crossings not computed",
+        "crossings not computed for sigma > 0: use the limit-cycle solver",
+    )
+    SEARCH_INCOMPLETE = (
+        "search incomplete",
+        "crossings may be missing: the limit-cycle solver's search ended incomplete (see detail)",
+    )
+
+
+class MapStatus(StatusEnum):
+    """Status of a simulated stability map (:class:`dfa.analysis.maps.StabilityMap`)."""
+
+    OK = ("ok", "every grid point simulated; amplitude and frequency NaN where not measured")
+
+
+class ContourStatus(StatusEnum):
+    """Status of the cycle contour maps (:class:`dfa.analysis.contours.ContourMaps`)."""
+
+    OK = ("ok", "every grid point solved; NaN where a family does not exist or lies beyond max_amplitude")
+    FLAGGED = (
+        "flagged",
+        "the closed forms flagged grid points (NaN): β = σ = 0 is degenerate, or a root finder failed",
+    )
+
+
+class SoundnessStatus(StatusEnum):
+    """Whether simulation contradicted a passivity verdict (:class:`dfa.analysis.soundness.DelaySoundness`)."""
+
+    SOUND = ("sound", "no simulated point called passive gained energy or diverged")
+    VIOLATED = ("violated", "some points called passive gained energy or diverged: the criterion is not sound here")
+
+
+class ValidationStatus(StatusEnum):
+    """Status of a validation run (:class:`dfa.analysis.validation.ValidationResult`)."""
+
+    OK = ("ok", "every validation item ran")
+
+
+class DesignStatus(StatusEnum):
+    """Status of a design analysis (:class:`dfa.analysis.design.DesignAnalysis`)."""
+
+    OK = ("ok", "every number of the design report computed")
+
+
+class ReportStatus(StatusEnum):
+    """Status of a written design report (:class:`dfa.report.ReportResult`)."""
+
+    OK = ("ok", "every file of the report written")
+
+
+class ZWidthStatus(StatusEnum):
+    """What a Z-width rests on (:class:`dfa.analysis.limits.zwidth.ZWidth`)."""
+
+    OK = ("ok", "every grid point decided, every simulated column monotone in K, no counterexample")
+    CAVEATS = (
+        "caveats",
+        "some grid points are undecided (runs too short to tell) or a simulated column is non-monotone in K "
+        "(see the reasons)",
+    )
+    COUNTEREXAMPLE = (
+        "counterexample",
+        "a grid point diverged at a stiffness the extended criterion proves passive: a criterion bug "
+        "(see counterexamples)",
+    )
