@@ -693,7 +693,7 @@ def bench_controller_kernel(quick: bool) -> str:
     Then the period skip (issue 16): ns per sample of the run with skipping, and the samples integrated.
     """
     from dfa.core import wall_kernel
-    from dfa.model.wall import ControllerParams as CP
+    from dfa.model.wall import WallParams as CP
 
     n = 200_000 if quick else 2_000_000
     mu, beta, sigma, v0 = (CTL_RUN[k] for k in ("mu", "beta", "sigma", "xi_dot0"))
@@ -772,7 +772,7 @@ def bench_controller_design_answer(quick: bool) -> str:
 
     from dfa.cli import main as cli_main
     from dfa.core import wall_kernel
-    from dfa.model.wall import ControllerParams as CP
+    from dfa.model.wall import WallParams as CP
 
     e, st, c = np.empty(0), np.empty(kernel.NSTATS), CP(damping=0.5)
     mu, beta, sigma, v0 = (CTL_RUN[k] for k in ("mu", "beta", "sigma", "xi_dot0"))

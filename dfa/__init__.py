@@ -87,7 +87,8 @@ from .model.catalogue import (
     resolve_device,
 )
 from .model.device import Device, Params
-from .model.wall import Controller, ControllerParams
+from .model.elements import AmplifierLag, Damper, Delay, VelocityFilter
+from .model.wall import Wall, WallParams
 
 #: The distribution's name on the package index ("dfa" there is an unrelated project); ``import dfa`` and
 #: the ``dfa`` command keep their names.
@@ -181,8 +182,12 @@ def __dir__() -> list[str]:
 __all__ = [
     "Device",
     "Params",
-    "Controller",
-    "ControllerParams",
+    "Wall",
+    "WallParams",
+    "Damper",
+    "VelocityFilter",
+    "Delay",
+    "AmplifierLag",
     "stable_stiffness",
     "stable_region",
     "StiffnessIntervals",

@@ -33,7 +33,7 @@ from .errors import DFAError, DFAValueError
 from .formatting import number, text_table
 from .model.catalogue import DEFAULT_DEVICE, CatalogueEntry, catalogue, resolve_device
 from .model.device import Device, Params, dimensionless_params
-from .model.wall import MIN_CUTOFF, Controller, ControllerParams
+from .model.wall import MIN_CUTOFF, Wall, WallParams
 from .results.jsonable import dumps, explain_nulls
 
 __all__ = ["main"]
@@ -280,7 +280,7 @@ def _add_filter_amplifier_args(g: Any) -> None:
     )
 
 
-def _controller(args: argparse.Namespace, device: Device | None, stiffness: float | None) -> Controller | None:
+def _controller(args: argparse.Namespace, device: Device | None, stiffness: float | None) -> Wall | None:
     """The wall controller of the flags; None for the paper's spring (no flag, or B = 0 without filter and lag).
 
     Refuses (UsageError, exit 2) a negative B, a cutoff <= 0 or not below the Nyquist frequency, a
@@ -299,7 +299,7 @@ def _controller(args: argparse.Namespace, device: Device | None, stiffness: floa
     if b is not None and b < 0:
         raise UsageError(f"--virtual-damping {b:g} is invalid: B must be >= 0; give the damper in {bu} (0 for none)")
     _check_filter_amplifier(args, device)
-    ctl = Controller(stiffness, b or 0.0, args.delay, fc, bw)
+    ctl = Wall.of(stiffness, b or 0.0, args.delay, fc, bw)
     return None if ctl.params(device.period).is_spring else ctl
 
 
@@ -307,7 +307,7 @@ def _check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
     """Refuse (UsageError, exit 2) a filter cutoff <= 0 or not below the Nyquist frequency, a bandwidth <= 0."""
     fc, bw = args.velocity_filter, args.amplifier_bandwidth
     nyquist = 0.5 / device.period
-    floor = MIN_CUTOFF * 2.0 * nyquist  # as Controller checks it, with the same rounding allowance
+    floor = MIN_CUTOFF * 2.0 * nyquist  # as Wall checks it, with the same rounding allowance
     if fc is not None and not floor * (1 - 1e-12) <= fc < nyquist:
         raise UsageError(
             f"--velocity-filter {fc:g} is invalid: the cutoff must be at least {floor:.6g} Hz ({MIN_CUTOFF:g} cycles "
@@ -321,12 +321,12 @@ def _check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
         )
 
 
-def _ctl_params(ctl: Controller | None, inp: _Inputs) -> ControllerParams | None:
+def _ctl_params(ctl: Wall | None, inp: _Inputs) -> WallParams | None:
     """The dimensionless controller of a run (None: the spring)."""
     return None if ctl is None or inp.device is None else ctl.params(inp.device.period)
 
 
-def _ctl_json(d: dict[str, Any], ctl: Controller | None, inp: _Inputs) -> dict[str, Any]:
+def _ctl_json(d: dict[str, Any], ctl: Wall | None, inp: _Inputs) -> dict[str, Any]:
     """Add the "controller" object (physical values and dimensionless groups) to a JSON record."""
     if ctl is not None and inp.device is not None:
         from .render.controller import controller_dict
@@ -335,7 +335,7 @@ def _ctl_json(d: dict[str, Any], ctl: Controller | None, inp: _Inputs) -> dict[s
     return d
 
 
-def _print_ctl(ctl: Controller | None, inp: _Inputs) -> None:
+def _print_ctl(ctl: Wall | None, inp: _Inputs) -> None:
     """State the controller on its own line (nothing for the spring: its output is unchanged)."""
     if ctl is not None and inp.device is not None:
         from .render.controller import controller_line
@@ -586,7 +586,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, xd: float, v: float | None) -> int:
+def _check_controller(args: argparse.Namespace, inp: _Inputs, ctl: Wall, xd: float, v: float | None) -> int:
     """`dfa check` with a controller: the extended criterion and Colgate–Schenkel; with a lag, not covered."""
     from .analysis.wall_check import controller_check
     from .render.controller import check_table_rows
@@ -682,7 +682,7 @@ def _refuse_controller(args: argparse.Namespace, command: str) -> None:
         )
 
 
-def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Controller, v: float) -> int:
+def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Wall, v: float) -> int:
     """`dfa stiffness` with a controller: K_max four ways (criterion, linear, describing function, simulation)."""
     from .analysis.limits.wall_kmax import controller_stiffness_limits
 

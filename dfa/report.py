@@ -27,7 +27,7 @@ from .checks import _fmt, check_choice, check_int
 from .errors import DFATypeError, DFAValueError
 from .model.catalogue import CatalogueEntry
 from .model.device import Device
-from .model.wall import Controller
+from .model.wall import Wall
 from .results.jsonable import dumps, explain_nulls, to_jsonable
 from .results.status import ReportStatus
 
@@ -142,7 +142,7 @@ def _controller_numbers(a: DesignAnalysis) -> dict[str, Any]:
 
 
 def _identity(
-    device: Device, stiffness: float, velocity: float, delay: int, controller: Controller | None = None
+    device: Device, stiffness: float, velocity: float, delay: int, controller: Wall | None = None
 ) -> dict[str, Any]:
     """What makes two reports the same report: device, stiffness, speed, delay (and the controller, if any)."""
     ident: dict[str, Any] = {"device": device.as_dict(), "stiffness": stiffness, "velocity": velocity, "delay": delay}
@@ -151,13 +151,13 @@ def _identity(
     return json.loads(dumps(ident, ensure_ascii=False))
 
 
-def report_name(name: str, controller: Controller | None = None) -> str:
+def report_name(name: str, controller: Wall | None = None) -> str:
     """File-name part of a report: the device's slug, with ``_controller`` for a report with a wall controller.
 
     Examples
     --------
-    >>> from dfa.model.wall import Controller
-    >>> report_name("Delta"), report_name("Delta", Controller(14500.0, damping=1.0))
+    >>> from dfa.model.wall import Wall
+    >>> report_name("Delta"), report_name("Delta", Wall.of(14500.0, damping=1.0))
     ('delta', 'delta_controller')
     """
     return report_slug(name) + ("_controller" if controller is not None else "")
@@ -283,7 +283,7 @@ def design_report(
     validation: dict[str, Any] | None = None,
     force: bool = False,
     zwidth_grid: int | None = None,
-    controller: Controller | None = None,
+    controller: Wall | None = None,
 ) -> ReportResult:
     """Write the design report of ``device`` at stiffness K, impact speed ẋ0 and computational delay d.
 
@@ -315,8 +315,8 @@ def design_report(
     zwidth_grid : int or None
         Points per axis of a Z-width section (:func:`dfa.analysis.limits.zwidth.z_width`); None (default): no section for the
         spring, a 16 × 16 one with a controller; 0: none.
-    controller : Controller, optional
-        A wall controller (:class:`dfa.Controller`; its K and delay are the report's): the report states it,
+    controller : Wall, optional
+        A wall controller (:class:`dfa.Wall`; its K and delay are the report's): the report states it,
         its passivity check and K_max, computes every section that accepts it with it and leaves out the
         spring-only ones (:func:`dfa.analysis.design.design_analysis`). Files ``design_report_{name}_controller.*``.
 

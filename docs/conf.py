@@ -48,7 +48,14 @@ def _write_api_page() -> None:
         "```{eval-rst}\n.. currentmodule:: dfa\n\n.. autosummary::\n   :toctree: generated\n   :nosignatures:\n\n"
         f"{names}\n```\n"
     )
-    path = os.path.join(os.path.dirname(__file__), "api.md")
+    here = os.path.dirname(__file__)
+    generated = os.path.join(here, "generated")
+    if os.path.isdir(generated):  # stubs of names no longer public (autosummary would build them and fail)
+        keep = {f"dfa.{n}" for n in dfa.__all__}
+        for f in os.listdir(generated):
+            if f.endswith(".rst") and ".".join(f.split(".")[:2]) not in keep:
+                os.remove(os.path.join(generated, f))
+    path = os.path.join(here, "api.md")
     old = open(path, encoding="utf-8").read() if os.path.exists(path) else None
     if old != text:
         with open(path, "w", encoding="utf-8") as f:

@@ -78,7 +78,7 @@ def _stuck(t, fa, c, lag, sigma):
 
 
 def simulate_ivp_ctl(mu, beta, sigma, xi0, xi_dot0, samples, ctl, *, quantize=True):
-    """Reference trajectory (ξ, ξ') at the samples 0 … samples with controller ``ctl`` (ControllerParams)."""
+    """Reference trajectory (ξ, ξ') at the samples 0 … samples with controller ``ctl`` (WallParams)."""
     lag = ctl.lag
     xs, vs = np.empty(samples + 1), np.empty(samples + 1)
     x, v = float(xi0), float(xi_dot0)

@@ -18,7 +18,7 @@ from dfa.analysis.simulation import OUTCOMES, divergence_bound, simulate
 from dfa.analysis.wall_criterion import device_controller_criterion
 from dfa.cli import main
 from dfa.model.catalogue import get_device
-from dfa.model.wall import Controller, ControllerParams
+from dfa.model.wall import Wall, WallParams
 from dfa.render.controller import NOT_COVERED
 
 DEV = get_device("Delta").device
@@ -52,7 +52,7 @@ def test_eq6_controller_check_json_equals_api(capsys):
         "--delay",
         "1",
     )
-    ctl = Controller(K, damping=5.0, delay=1, filter_cutoff=100.0)
+    ctl = Wall.of(K, damping=5.0, delay=1, filter_cutoff=100.0)
     r = device_controller_criterion(DEV, ctl, 0.1)
     for key in ("beta0", "sigma0", "margin", "region", "passive", "critical_velocity", "critical_xi_dot"):
         assert d[key] == getattr(r, key)
@@ -71,7 +71,7 @@ def test_eq6_controller_check_text_names_both_conditions(capsys):
     assert code == 0
     assert "controller: K = 14500 N/m, B = 5 N·s/m" in out and "β_B = B/(KT) = 1.034" in out
     assert "eq. 6 extended to the damper" in out and "Colgate–Schenkel" in out
-    r = device_controller_criterion(DEV, Controller(K, damping=5.0), 0.1)
+    r = device_controller_criterion(DEV, Wall.of(K, damping=5.0), 0.1)
     assert not r.passive and "no: no passivity guarantee (not a proof of instability)" in out
 
 
@@ -90,7 +90,7 @@ def test_check_amplifier_lag_is_not_covered_never_passive(capsys, extra):
 def test_eq4_controller_simulate_json_equals_api(capsys):
     argv = ["simulate", *BASE, "--velocity", "0.1", "--virtual-damping", "2", "--amplifier-bandwidth", "500"]
     d = run_json(capsys, *argv)
-    ctl = Controller(K, damping=2.0, amplifier_bandwidth=500.0).params(DEV.period)
+    ctl = Wall.of(K, damping=2.0, amplifier_bandwidth=500.0).params(DEV.period)
     p = DEV.params(K)
     xd = DEV.xi_dot(0.1)
     r = simulate(p.mu, p.beta, p.sigma, xd, None, controller=ctl, bound=divergence_bound(0.0, xd, p.mu, 1e6))
@@ -102,7 +102,7 @@ def test_eq4_controller_simulate_json_equals_api(capsys):
 
 def test_eq36_controller_limit_cycles_json_equals_api(capsys):
     d = run_json(capsys, "limit-cycles", *BASE, "--virtual-damping", "2", "--delay", "1")
-    ctl = Controller(K, damping=2.0, delay=1).params(DEV.period)
+    ctl = Wall.of(K, damping=2.0, delay=1).params(DEV.period)
     res = limit_cycles(DEV.params(K), controller=ctl)
     assert [c["amplitude"] for c in d["cycles"]] == [c.amplitude for c in res.cycles]
     assert d["controller"]["delay"] == 1 and d["controller"]["dimensionless"]["beta_B"] == ctl.damping
@@ -115,7 +115,7 @@ def test_fig4_controller_map_json_equals_api(capsys, tmp_path):
     argv = ["map", *BASE, "--velocity", "0.1", "--virtual-damping", "2", "--velocity-filter", "200"]
     argv += ["--grid", "3", "--samples", "2000", "--jobs", "1", "--out", str(out)]
     d = run_json(capsys, *argv)
-    ctl = Controller(K, damping=2.0, filter_cutoff=200.0).params(DEV.period)
+    ctl = Wall.of(K, damping=2.0, filter_cutoff=200.0).params(DEV.period)
     p = DEV.params(K)
     m = stability_map(p.mu, [DEV.xi_dot(0.1)], grid=3, samples=2000, n_jobs=1, progress=False, controller=ctl)
     assert d["counts"] == m.as_dict()["counts"]
@@ -125,7 +125,7 @@ def test_fig4_controller_map_json_equals_api(capsys, tmp_path):
 
 def test_fig4_controller_map_outcomes_equal_simulate_per_point():
     """stability_map(controller=) is simulate(controller=) at every point (damper, filter, delay, lag)."""
-    ctl = ControllerParams(damping=0.3, delay=1, cutoff=0.1, lag=0.5)
+    ctl = WallParams.of(damping=0.3, delay=1, cutoff=0.1, lag=0.5)
     m = stability_map(100.0, [2.0], grid=3, samples=3000, n_jobs=2, progress=False, controller=ctl)
     assert m.controller == ctl and m.delay == 1
     for i, s in enumerate(m.sigma):
@@ -136,11 +136,9 @@ def test_fig4_controller_map_outcomes_equal_simulate_per_point():
 
 
 def test_fig4_spring_controller_map_is_the_spring_map():
-    """A ControllerParams without damper, filter or lag gives the spring's map (stored without a controller)."""
+    """A WallParams without damper, filter or lag gives the spring's map (stored without a controller)."""
     a = stability_map(100.0, [2.0], grid=3, samples=2000, delay=1, n_jobs=1, progress=False)
-    b = stability_map(
-        100.0, [2.0], grid=3, samples=2000, n_jobs=1, progress=False, controller=ControllerParams(delay=1)
-    )
+    b = stability_map(100.0, [2.0], grid=3, samples=2000, n_jobs=1, progress=False, controller=WallParams.of(delay=1))
     assert b.controller is None and np.array_equal(a.outcome, b.outcome) and a.as_dict() == b.as_dict()
 
 
@@ -229,7 +227,7 @@ def test_eq11_controller_stiffness_json_equals_api(capsys):
     from dfa.analysis.limits.wall_kmax import controller_stiffness_limits
 
     d = run_json(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
-    r = controller_stiffness_limits(DEV, Controller(K, damping=1.0, delay=1), 0.1)
+    r = controller_stiffness_limits(DEV, Wall.of(K, damping=1.0, delay=1), 0.1)
     assert d["k_criterion"] == r.k_criterion and d["k_linear"] == r.k_linear
     assert d["controller"]["delay"] == 1
     for key in ("k_df", "k_sim", "k_sim_rest"):  # searched with the controller (tests/test_kmax_controller.py)

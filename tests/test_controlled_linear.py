@@ -23,7 +23,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dfa
-from dfa import Controller, ControllerParams
+from dfa import Wall, WallParams
 from dfa.analysis.colgate_schenkel import colgate_schenkel_damping
 from dfa.analysis.linear import characteristic_polynomial, critical_stiffness, linear_stable, spectral_radius
 from dfa.analysis.linear_wall import (
@@ -41,7 +41,7 @@ M, T = 1.0, 1e-3  # the issue's anchor device: m = 1 kg, T = 1 ms
 
 
 # ---------------------------------------------------------------- independent loop: python-control
-def _control_loop(mu: float, beta: float, p: ControllerParams):
+def _control_loop(mu: float, beta: float, p: WallParams):
     """Closed loop of μξ'' + βξ' = φ_A, α φ_A' = φ_cmd − φ_A, φ_cmd = −H ξ, from control.c2d and control.feedback."""
     den = np.polymul([p.lag, 1.0], [mu, beta, 0.0]) if p.lag > 0.0 else np.array([mu, beta, 0.0])
     gd = control.c2d(control.tf([1.0], den), 1.0, method="zoh")
@@ -56,12 +56,12 @@ def _control_loop(mu: float, beta: float, p: ControllerParams):
     return control.feedback(gd, h)
 
 
-def _control_rho(mu: float, beta: float, p: ControllerParams) -> float:
+def _control_rho(mu: float, beta: float, p: WallParams) -> float:
     return float(np.max(np.abs(control.poles(_control_loop(mu, beta, p)))))
 
 
 controllers = st.builds(
-    ControllerParams,
+    WallParams.of,
     damping=st.one_of(st.just(0.0), st.floats(0.0, 5.0)),
     delay=st.integers(0, 3),
     cutoff=st.one_of(st.none(), st.floats(0.005, 0.45)),
@@ -145,38 +145,38 @@ def test_closed_loop_roots_vs_control_feedback(mu, beta, p):
 )
 def test_critical_stiffness_boundary_vs_control_feedback(b, big_b, d, fc, fbw):
     """At K_crit(1 ∓ 1e-5) the independent python-control loop is stable / unstable (B, f_c, τ_a fixed as K varies)."""
-    c = Controller(1.0, big_b, d, fc, fbw)
+    c = Wall.of(1.0, big_b, d, fc, fbw)
     r = stable_stiffness(M, b, T, c)
     assert r.status in (LinearStatus.INTERVAL, LinearStatus.NEVER)  # what this family shows (no gaps seen)
     if r.status is LinearStatus.NEVER:
         k = 1.0 / T  # unstable at small and large K: spot checks
         for kk in (1e-3 * k, k, 1e3 * k):
-            assert _control_rho(M / (kk * T * T), b / (kk * T), Controller(kk, big_b, d, fc, fbw).params(T)) >= 1.0
+            assert _control_rho(M / (kk * T * T), b / (kk * T), Wall.of(kk, big_b, d, fc, fbw).params(T)) >= 1.0
         return
     assert r.k_crit == pytest.approx(critical_stiffness(M, b, T, controller=c), rel=1e-9)
     for f, stable in ((1.0 - 1e-5, True), (1.0 + 1e-5, False)):
         k = r.k_crit * f
-        rho = _control_rho(M / (k * T * T), b / (k * T), Controller(k, big_b, d, fc, fbw).params(T))
+        rho = _control_rho(M / (k * T * T), b / (k * T), Wall.of(k, big_b, d, fc, fbw).params(T))
         assert (rho < 1.0) == stable, (k, rho)
 
 
 # ---------------------------------------------------------------- the spring: unchanged
 @pytest.mark.parametrize("d", [0, 1, 3])
 def test_spring_controller_gives_spring_results_bit_identical(d):
-    """Controller(K, delay=d) / ControllerParams(delay=d): the same numbers as the spring-only functions, bit for bit."""
-    p = ControllerParams(delay=d)
+    """Wall.of(K, delay=d) / WallParams.of(delay=d): the same numbers as the spring-only functions, bit for bit."""
+    p = WallParams.of(delay=d)
     mus, betas = np.array([0.5, 3.0, 200.0]), np.array([0.1, 0.6, 2.0])
     assert np.array_equal(spectral_radius(mus, betas, d), spectral_radius(mus, betas, controller=p))
     assert np.array_equal(characteristic_polynomial(2.0, 0.3, d), characteristic_polynomial(2.0, 0.3, controller=p))
     for m, b, t in ((1.0, 2.0, 1e-3), (0.01, 5.0, 0.01), (0.1, 1e-4, 1e-3)):
-        assert critical_stiffness(m, b, t, d) == critical_stiffness(m, b, t, controller=Controller(123.0, delay=d))
+        assert critical_stiffness(m, b, t, d) == critical_stiffness(m, b, t, controller=Wall.of(123.0, delay=d))
 
 
 @pytest.mark.parametrize("d", [0, 1, 2, 4])
 @pytest.mark.parametrize("a", [1e-4, 0.01, 1.0, 3.0, 5.0, 100.0])
 def test_ray_algorithm_reproduces_spring_bound(a, d):
     """The general ray algorithm (stable_stiffness) finds the spring's K_crit of dfa.analysis.linear to 1e-9: one interval."""
-    r = stable_stiffness(1.0, a, 1.0, Controller(1.0, delay=d))
+    r = stable_stiffness(1.0, a, 1.0, Wall.of(1.0, delay=d))
     assert r.status is LinearStatus.INTERVAL
     assert r.k_crit == pytest.approx(critical_stiffness(1.0, a, 1.0, delay=d), rel=1e-9)
 
@@ -187,7 +187,7 @@ def test_ray_algorithm_reproduces_spring_bound(a, d):
 @pytest.mark.parametrize("big_b", [0.0, 0.5, 2.0, 5.0])
 def test_eq8_linear_rule_with_virtual_damper(b, big_b, d):
     """K_crit → (b + B)/(T(d + ½)) as bT/m → 0: within 1 % for bT/m <= 0.005 (and BT/m <= 0.005), m = 1 kg, T = 1 ms."""
-    k = critical_stiffness(M, b, T, controller=Controller(1.0, big_b, d))
+    k = critical_stiffness(M, b, T, controller=Wall.of(1.0, big_b, d))
     assert k == pytest.approx((b + big_b) / (T * (d + 0.5)), rel=0.01)
 
 
@@ -204,9 +204,9 @@ def test_amplifier_lag_acts_as_extra_delay(b, tau_over_t, d):
     T(d + ½)/(T(d + ½) + τ_a) to 0.1 % (measured 0.042 %).
     """
     tau = tau_over_t * T
-    k = critical_stiffness(M, b, T, controller=Controller(1.0, 0.0, d, amplifier_bandwidth=1.0 / (2 * math.pi * tau)))
+    k = critical_stiffness(M, b, T, controller=Wall.of(1.0, 0.0, d, amplifier_bandwidth=1.0 / (2 * math.pi * tau)))
     assert k == pytest.approx(b / (T * (d + 0.5) + tau), rel=0.005)
-    k0 = critical_stiffness(M, b, T, controller=Controller(1.0, 0.0, d))
+    k0 = critical_stiffness(M, b, T, controller=Wall.of(1.0, 0.0, d))
     assert k / k0 == pytest.approx(T * (d + 0.5) / (T * (d + 0.5) + tau), rel=1e-3)  # the lag's own effect
 
 
@@ -220,8 +220,8 @@ def test_colgate_schenkel_line_inside_linear_bound(b, frac):
     """
     big_b = frac * b
     k_cs = 2.0 * (b - big_b) / T
-    assert colgate_schenkel_damping(Controller(k_cs, big_b), T).damping_min == pytest.approx(b, rel=1e-12)
-    k_lin = critical_stiffness(M, b, T, controller=Controller(1.0, big_b))
+    assert colgate_schenkel_damping(Wall.of(k_cs, big_b), T).damping_min == pytest.approx(b, rel=1e-12)
+    k_lin = critical_stiffness(M, b, T, controller=Wall.of(1.0, big_b))
     assert k_lin > k_cs
     if big_b > 0.0:
         assert k_lin == pytest.approx(2.0 * (b + big_b) / T, rel=0.01)  # not 2(b − B)/T
@@ -230,7 +230,7 @@ def test_colgate_schenkel_line_inside_linear_bound(b, frac):
 def test_amplifier_lag_lowers_the_bound():
     """A slower amplifier never raises K_crit (the lag adds phase lag), for b = 2, B = 0.5, d = 1."""
     ks = [
-        critical_stiffness(M, 2.0, T, controller=Controller(1.0, 0.5, 1, amplifier_bandwidth=f))
+        critical_stiffness(M, 2.0, T, controller=Wall.of(1.0, 0.5, 1, amplifier_bandwidth=f))
         for f in (1e5, 1e4, 1e3, 1e2)
     ]
     assert ks == sorted(ks, reverse=True)
@@ -254,9 +254,9 @@ def test_ray_with_several_intervals_vs_dense_scan():
 
 def test_no_friction_no_damper_never_stable_but_virtual_damper_stabilises():
     """b = B = 0: unstable for every K (status 'never', K_crit 0); B > 0 alone gives a stable interval."""
-    r = stable_stiffness(M, 0.0, T, Controller(1.0))
+    r = stable_stiffness(M, 0.0, T, Wall.of(1.0))
     assert r.status is LinearStatus.NEVER and r.k_crit == 0.0 and r.intervals.shape == (0, 2)
-    r = stable_stiffness(M, 0.0, T, Controller(1.0, damping=2.0))
+    r = stable_stiffness(M, 0.0, T, Wall.of(1.0, damping=2.0))
     assert r.status is LinearStatus.INTERVAL and r.k_crit == pytest.approx(2.0 / (T / 2), rel=0.01)
 
 
@@ -265,7 +265,7 @@ def test_stable_region_matches_stable_stiffness_and_is_json():
     grid = [0.0, 0.5, 2.0, 10.0]
     reg = stable_region(M, 1.0, T, grid, delay=1, filter_cutoff=100.0, amplifier_bandwidth=2000.0)
     for bb, k in zip(grid, reg.k_crit, strict=True):
-        c = Controller(1.0, bb, 1, filter_cutoff=100.0, amplifier_bandwidth=2000.0)
+        c = Wall.of(1.0, bb, 1, filter_cutoff=100.0, amplifier_bandwidth=2000.0)
         assert k == stable_stiffness(M, 1.0, T, c).k_crit
     data = json.loads(dumps(reg.as_dict()))
     assert data["k_crit"] == reg.k_crit.tolist() and len(data["intervals"]) == 4 and data["status"] == reg.status.value
@@ -277,11 +277,11 @@ def test_stable_region_matches_stable_stiffness_and_is_json():
 # ---------------------------------------------------------------- bad input
 def test_bad_input_names_the_parameter():
     with pytest.raises(DFAValueError, match="delay = 2 is invalid with controller.delay = 1"):
-        critical_stiffness(M, 1.0, T, 2, controller=Controller(1.0, delay=1))
+        critical_stiffness(M, 1.0, T, 2, controller=Wall.of(1.0, delay=1))
     with pytest.raises(DFATypeError, match="controller"):
-        critical_stiffness(M, 1.0, T, controller=ControllerParams())
+        critical_stiffness(M, 1.0, T, controller=WallParams.of())
     with pytest.raises(DFAValueError, match="filter_cutoff"):
-        stable_stiffness(M, 1.0, T, Controller(1.0, filter_cutoff=600.0))  # above Nyquist 500 Hz
+        stable_stiffness(M, 1.0, T, Wall.of(1.0, filter_cutoff=600.0))  # above Nyquist 500 Hz
     with pytest.raises(DFAValueError, match="virtual_damping"):
         stable_region(M, 1.0, T, [])
     with pytest.raises(DFAValueError, match="damping"):

@@ -26,7 +26,7 @@ from dfa.analysis.linear_wall import (
     stable_stiffness,
 )
 from dfa.cli import main
-from dfa.model.wall import Controller
+from dfa.model.wall import Wall
 
 T = 1e-3
 #: (B, delay, filter cutoff Hz, amplifier bandwidth Hz) and the device's share of the rate
@@ -38,13 +38,13 @@ CONTROLLERS = {
 }
 
 
-def _case(rate: float, name: str) -> tuple[float, float, Controller]:
+def _case(rate: float, name: str) -> tuple[float, float, Wall]:
     (big_b, d, fc, fa), share = CONTROLLERS[name]
     b = share / (1.0 - share) * big_b
-    return (b + big_b) * T / rate, b, Controller(1000.0, big_b, d, fc, fa)
+    return (b + big_b) * T / rate, b, Wall.of(1000.0, big_b, d, fc, fa)
 
 
-def _check(m: float, b: float, c: Controller, rel: float = 1e-4, period: float = T) -> float:
+def _check(m: float, b: float, c: Wall, rel: float = 1e-4, period: float = T) -> float:
     """K_crit(1 − rel) stable and K_crit(1 + rel) unstable in 60+ digit arithmetic; returns K_crit."""
     r = stable_stiffness(m, b, period, c)
     assert r.status is LinearStatus.INTERVAL and np.isfinite(r.k_crit) and r.k_crit > 0.0
@@ -65,7 +65,7 @@ def test_controlled_linear_small_rate_grid_mpmath(rate, name):
 
 def test_controlled_linear_small_rate_former_counterexample_mpmath():
     """m = 1e8 kg, b = 1, T = 1 ms, B = 0.5, d = 1, 100 Hz filter: formerly refused (before: a false 'never')."""
-    k = _check(1e8, 1.0, Controller(1000.0, 0.5, 1, 100.0))
+    k = _check(1e8, 1.0, Wall.of(1000.0, 0.5, 1, 100.0))
     assert k == pytest.approx(1.5 / (T * 1.5), rel=1e-6)  # → (b + B)/(T(½ + d)): the filter drops out
 
 
@@ -105,18 +105,18 @@ def test_controlled_linear_small_rate_unstable_above_k_crit_mpmath():
 def test_controlled_linear_small_rate_property_stable_below_unstable_above_mpmath(log_rate, name, delay):
     (big_b, _, fc, fa), share = CONTROLLERS[name]
     m, b, _ = _case(10.0**log_rate, name)
-    _check(m, b, Controller(1000.0, big_b, delay, fc, fa))
+    _check(m, b, Wall.of(1000.0, big_b, delay, fc, fa))
 
 
 @pytest.mark.parametrize("d", [0, 3, 100])
 def test_controlled_linear_small_rate_underflow_huge_mass(d):
     """m = 1e300 kg (rates ~1e-303) and b, B = 1e-320 (subnormal): positive, finite K, not 0 or NaN."""
-    for c in (Controller(1.0, 1.0, d), Controller(1.0, 1.0, d, 50.0, 200.0)):
+    for c in (Wall.of(1.0, 1.0, d), Wall.of(1.0, 1.0, d, 50.0, 200.0)):
         p = c.params(T)
         k = stable_stiffness(1e300, 1.0, T, c).k_crit
         assert k == pytest.approx(2.0 / (T * (0.5 + d + p.lag)), rel=1e-14)
         assert d == 100 or critical_stiffness(1e300, 1.0, T, controller=c) == k
-    k = stable_stiffness(1.0, 1e-320, 1e-12, Controller(1.0, 1e-320, d)).k_crit
+    k = stable_stiffness(1.0, 1e-320, 1e-12, Wall.of(1.0, 1e-320, d)).k_crit
     assert k == pytest.approx(2e-320 / (1e-12 * (0.5 + d)), rel=1e-3)  # the subnormal inputs carry ~3 digits
 
 
@@ -150,7 +150,7 @@ def test_controlled_linear_small_rate_catalogue_delta_filter_lag_mpmath():
     from dfa.model.catalogue import get_device
 
     dev = get_device("Delta").device
-    k = _check(dev.mass, dev.damping, Controller(1.0, 1e-6, 0, 30.0, 200.0), rel=1e-9, period=dev.period)
+    k = _check(dev.mass, dev.damping, Wall.of(1.0, 1e-6, 0, 30.0, 200.0), rel=1e-9, period=dev.period)
     assert k == pytest.approx(10.391561444, rel=1e-10)
 
 
@@ -169,12 +169,10 @@ def test_linear_stable_small_rate_verdict_mpmath(beta, d, ctl):
     """linear_stable at μ = 1e14 (β/μ ~ 1e-14): formerly the float spectral radius (rounding decided it: at μ = 1e16,
     β = 0.55 > β_crit ≈ ½ came out unstable); now the small-rate bound, against 60+ digit mpmath."""
     from dfa.analysis.linear import linear_stable
-    from dfa.model.wall import ControllerParams
+    from dfa.model.wall import WallParams
 
     mu = 1e14
-    params = (
-        None if ctl is None else ControllerParams(damping=ctl["a_b"], delay=d, cutoff=ctl["cutoff"], lag=ctl["lag"])
-    )
+    params = None if ctl is None else WallParams.of(damping=ctl["a_b"], delay=d, cutoff=ctl["cutoff"], lag=ctl["lag"])
     extra = {} if ctl is None else {**ctl, "a_b": ctl["a_b"] / mu}
     truth = _rho_mp(beta / mu, 1.0 / mu, d, **extra) < 0.0
     assert bool(linear_stable(mu, beta, controller=params) if params else linear_stable(mu, beta, d)) is truth
@@ -184,7 +182,7 @@ def test_linear_stable_small_rate_verdict_mpmath(beta, d, ctl):
 def test_controlled_linear_small_rate_slow_amplifier_former_counterexample_mpmath(bandwidth):
     """(b + B)T/m = 1e-7 (m = 1e4 kg, b = B = 0.5, T = 1 ms) with a slow amplifier (α = 159, 15915 samples): the float
     ray analysis gave K_crit 3e-5 above the boundary (1 Hz) and a false 'never stable' (0.01 Hz); α = 1.6e8 (1 μHz)."""
-    _check(1e4, 0.5, Controller(1.0, 0.5, 0, None, bandwidth), rel=1e-6)
+    _check(1e4, 0.5, Wall.of(1.0, 0.5, 0, None, bandwidth), rel=1e-6)
 
 
 def test_limit_cycles_linear_verdict_with_controller_uses_the_small_rate_bound():
@@ -192,9 +190,9 @@ def test_limit_cycles_linear_verdict_with_controller_uses_the_small_rate_bound()
     alone said unstable at μ = 1e16, β = 0.55 with a tiny damper, where the loop is stable)."""
     from dfa.analysis.cycles.controlled import linear_stable_with_controller
     from dfa.analysis.linear import linear_stable
-    from dfa.model.wall import ControllerParams
+    from dfa.model.wall import WallParams
 
-    c = ControllerParams(damping=1e-3, delay=1)
+    c = WallParams.of(damping=1e-3, delay=1)
     for mu, beta in ((1e16, 0.55), (1e16, 0.1), (100.0, 0.5), (100.0, 0.1)):
         assert linear_stable_with_controller(mu, beta, c) == bool(linear_stable(mu, beta, controller=c))
     assert linear_stable_with_controller(1e16, 2.0, c) and not linear_stable_with_controller(1e16, 0.5, c)

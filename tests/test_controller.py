@@ -8,11 +8,11 @@ import control
 import numpy as np
 import pytest
 
-from dfa import Controller, ControllerParams, DFATypeError, DFAValueError
+from dfa import DFATypeError, DFAValueError, Wall, WallParams
 
 
 def test_controller_dimensionless_groups_match_definitions():
-    c = Controller(stiffness=2000.0, damping=3.0, delay=2, filter_cutoff=50.0, amplifier_bandwidth=400.0)
+    c = Wall.of(stiffness=2000.0, damping=3.0, delay=2, filter_cutoff=50.0, amplifier_bandwidth=400.0)
     t = 5e-4
     p = c.params(t)
     assert p.damping == pytest.approx(3.0 / (2000.0 * t), rel=1e-15)
@@ -25,9 +25,9 @@ def test_controller_dimensionless_groups_match_definitions():
 
 
 def test_controller_spring_is_paper_model():
-    p = Controller(300.0, delay=3).params(1e-3)
-    assert p.is_spring and p == ControllerParams(delay=3)
-    assert ControllerParams().as_dict() == {"damping": 0.0, "delay": 0, "cutoff": None, "lag": 0.0}
+    p = Wall.of(300.0, delay=3).params(1e-3)
+    assert p.is_spring and p == WallParams.of(delay=3)
+    assert WallParams.of().as_dict() == {"damping": 0.0, "delay": 0, "cutoff": None, "lag": 0.0}
 
 
 def test_controller_filter_pole_equals_c2d_zoh():
@@ -35,7 +35,7 @@ def test_controller_filter_pole_equals_c2d_zoh():
     fc, t = 120.0, 1e-3
     w = 2 * math.pi * fc
     d = control.c2d(control.tf([w], [1, w]), t, method="zoh")
-    a = Controller(1.0, filter_cutoff=fc).params(t).filter_pole
+    a = Wall.of(1.0, filter_cutoff=fc).params(t).filter_pole
     num, den = np.ravel(d.num[0][0]), np.ravel(d.den[0][0])
     assert den[-1] / den[0] == pytest.approx(-a, rel=1e-12)
     assert num[-1] / den[0] == pytest.approx(1 - a, rel=1e-12)
@@ -54,15 +54,15 @@ def test_controller_filter_pole_equals_c2d_zoh():
 )
 def test_controller_bad_input_names_parameter(kwargs, exc, words):
     with pytest.raises(exc, match=words):
-        Controller(**kwargs)
+        Wall.of(**kwargs)
 
 
 def test_controller_cutoff_above_nyquist_is_refused_with_the_fix():
-    c = Controller(1.0, filter_cutoff=600.0)
+    c = Wall.of(1.0, filter_cutoff=600.0)
     with pytest.raises(DFAValueError, match=r"filter_cutoff = 600.*Nyquist frequency 500.*below"):
         c.params(1e-3)
     with pytest.raises(DFAValueError, match="cutoff"):
-        ControllerParams(cutoff=0.5)
+        WallParams.of(cutoff=0.5)
 
 
 def test_controller_subnormal_lag_refused_shortest_lag_runs(capsys):
@@ -73,10 +73,10 @@ def test_controller_subnormal_lag_refused_shortest_lag_runs(capsys):
     from dfa.model.wall import MIN_LAG
 
     with pytest.raises(DFAValueError, match=r"lag = 5e-324 is invalid: it must be 0 or at least 1e-300.*pass 0"):
-        ControllerParams(damping=1.0, lag=5e-324)
+        WallParams.of(damping=1.0, lag=5e-324)
     runs = [
         simulate(100.0, 0.0, 0.0, 10.0, None, quantize=False, record=False, bound=1e12, controller=c)
-        for c in (ControllerParams(damping=1.0, lag=MIN_LAG), ControllerParams(damping=1.0))
+        for c in (WallParams.of(damping=1.0, lag=MIN_LAG), WallParams.of(damping=1.0))
     ]
     assert [r.outcome for r in runs] == ["rest", "rest"]
     assert main(["stiffness", "--device", "delta", "--velocity", "0.1", "--amplifier-bandwidth", "1e306"]) == 2

@@ -16,7 +16,7 @@ from dfa.analysis.linear_wall import stable_stiffness
 from dfa.analysis.simulation import simulate
 from dfa.model.catalogue import get_device
 from dfa.model.device import Device
-from dfa.model.wall import Controller
+from dfa.model.wall import Wall
 
 DELTA = get_device("Delta").device
 
@@ -31,10 +31,10 @@ def _closed_form(dev, ctl, v):
 @pytest.mark.parametrize(
     "ctl",
     [
-        Controller(1.0, damping=1.0),
-        Controller(1.0, damping=1.0, delay=1, filter_cutoff=100.0),
-        Controller(1.0, damping=3.0, delay=2, filter_cutoff=20.0),
-        Controller(1.0, damping=40.0),  # more damper than the friction can pay for: no K at all
+        Wall.of(1.0, damping=1.0),
+        Wall.of(1.0, damping=1.0, delay=1, filter_cutoff=100.0),
+        Wall.of(1.0, damping=3.0, delay=2, filter_cutoff=20.0),
+        Wall.of(1.0, damping=40.0),  # more damper than the friction can pay for: no K at all
     ],
 )
 @pytest.mark.parametrize("v", [0.01, 0.1, 1.0])
@@ -45,22 +45,20 @@ def test_eq11_controller_k_criterion_equals_closed_form(ctl, v):
 
 @pytest.mark.parametrize("v", [0.01, 0.1, 1.0])
 def test_eq11_spring_controller_is_the_spring_k_max(v):
-    r = controller_stiffness_limits(DELTA, Controller(1.0), v, speeds=1, grid=4)  # closed forms: a small search
+    r = controller_stiffness_limits(DELTA, Wall.of(1.0), v, speeds=1, grid=4)  # closed forms: a small search
     s = stiffness_limits(DELTA, v)
     assert r.k_criterion == pytest.approx(s.k_max, rel=1e-9)
     assert r.k_linear == pytest.approx(s.k_gil, rel=1e-9)
 
 
-@pytest.mark.parametrize(
-    "ctl", [Controller(1.0, damping=1.0), Controller(1.0, damping=1.0, delay=1, filter_cutoff=100.0)]
-)
+@pytest.mark.parametrize("ctl", [Wall.of(1.0, damping=1.0), Wall.of(1.0, damping=1.0, delay=1, filter_cutoff=100.0)])
 def test_eq6_controller_k_criterion_sound_by_simulation(ctl):
     """No impact up to the speed diverges at any K the extended criterion proves passive (exact simulation)."""
     v = 0.1
     r = controller_stiffness_limits(DELTA, ctl, v, speeds=1, grid=4)  # k_criterion is what is tested
     assert r.k_criterion is not None and r.k_criterion > 0
     for k in (r.k_criterion, 0.5 * r.k_criterion, 0.1 * r.k_criterion):
-        c = Controller(k, ctl.damping, ctl.delay, ctl.filter_cutoff).params(DELTA.period)
+        c = Wall.of(k, ctl.damping, ctl.delay, ctl.filter_cutoff).params(DELTA.period)
         p = DELTA.params(k)
         for i in (1, 2, 3, 4):
             run = simulate(p.mu, p.beta, p.sigma, DELTA.xi_dot(v * i / 4), 20_000, controller=c)
@@ -69,7 +67,7 @@ def test_eq6_controller_k_criterion_sound_by_simulation(ctl):
 
 @pytest.mark.parametrize(
     "ctl",
-    [Controller(1.0, damping=0.5), Controller(1.0, damping=0.5, delay=1), Controller(1.0, amplifier_bandwidth=300.0)],
+    [Wall.of(1.0, damping=0.5), Wall.of(1.0, damping=0.5, delay=1), Wall.of(1.0, amplifier_bandwidth=300.0)],
 )
 def test_controller_k_linear_matches_a_linear_simulation_scan(ctl):
     """Without encoder and Coulomb friction the loop is linear: it decays below K_linear and diverges above."""
@@ -77,14 +75,14 @@ def test_controller_k_linear_matches_a_linear_simulation_scan(ctl):
     kl = controller_stiffness_limits(dev, ctl, 0.1, speeds=1, grid=4).k_linear  # the search does not matter here
     assert kl > 0
     for k, diverges in ((0.9 * kl, False), (1.1 * kl, True)):
-        c = Controller(k, ctl.damping, ctl.delay, ctl.filter_cutoff, ctl.amplifier_bandwidth).params(dev.period)
+        c = Wall.of(k, ctl.damping, ctl.delay, ctl.filter_cutoff, ctl.amplifier_bandwidth).params(dev.period)
         p = dev.params(k)
         run = simulate(p.mu, p.beta, 0.0, 1.0, 200_000, quantize=False, controller=c, bound=1e8)
         assert (run.outcome == "unstable") is diverges, (k, run.outcome)
 
 
 def test_controller_lag_criterion_not_covered():
-    ctl = Controller(1.0, damping=1.0, amplifier_bandwidth=300.0)
+    ctl = Wall.of(1.0, damping=1.0, amplifier_bandwidth=300.0)
     r = controller_stiffness_limits(DELTA, ctl, 0.1, speeds=2, grid=6)
     assert r.k_criterion is None and r.reasons["k_criterion"] == LAG_REASON
     assert r.k_linear == stable_stiffness(DELTA.mass, DELTA.damping, DELTA.period, ctl).k_crit

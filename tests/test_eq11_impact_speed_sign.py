@@ -22,7 +22,7 @@ from dfa.analysis.wall_check import controller_check
 from dfa.checks import check_speed
 from dfa.cli import main
 from dfa.errors import DFAValueError
-from dfa.model.wall import Controller
+from dfa.model.wall import Wall
 
 IMPULSE = ["--device", "impulse"]
 
@@ -89,12 +89,12 @@ def impulse():
     [
         lambda dev: design_answer(dev, -0.05),
         lambda dev: z_width(dev, -0.05, grid=2),
-        lambda dev: controller_stiffness_limits(dev, Controller(100.0, damping=1.0), -0.05),
+        lambda dev: controller_stiffness_limits(dev, Wall.of(100.0, damping=1.0), -0.05),
         lambda dev: stiffness_speed_chart(dev, velocity=-0.05),
         lambda dev: stiffness_limits(dev, -0.05),
         lambda dev: stiffness_response(dev, [0.1, -0.05]),
         lambda dev: design_analysis(dfa.get_device("impulse"), velocity=-0.05),
-        lambda dev: controller_check(dev, Controller(100.0, damping=1.0), -0.05),
+        lambda dev: controller_check(dev, Wall.of(100.0, damping=1.0), -0.05),
     ],
     ids=[
         "design_answer",

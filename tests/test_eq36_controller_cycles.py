@@ -25,17 +25,17 @@ from dfa.analysis.describing import quantizer_df
 from dfa.analysis.loop import loop_response, nyquist_locus_response
 from dfa.core.zohlag import zoh_lag_response
 from dfa.errors import DFATypeError, DFAValueError
-from dfa.model.wall import Controller, ControllerParams
+from dfa.model.wall import Wall, WallParams
 
 #: These tests check completeness and residuals, not the wall-clock budget: a loaded machine (or a cold numba cache
 #: compiling the amplifier's ZOH) must not turn a complete search into TIME_BUDGET.
 limit_cycles = functools.partial(_limit_cycles, time_budget=600.0)
 
 CONTROLLERS = [
-    ControllerParams(damping=0.05),
-    ControllerParams(damping=0.2, cutoff=0.05),
-    ControllerParams(damping=0.05, cutoff=0.1, lag=0.3, delay=1),
-    ControllerParams(lag=0.5),
+    WallParams.of(damping=0.05),
+    WallParams.of(damping=0.2, cutoff=0.05),
+    WallParams.of(damping=0.05, cutoff=0.1, lag=0.3, delay=1),
+    WallParams.of(lag=0.5),
 ]
 
 
@@ -49,22 +49,22 @@ def _residual(p, m, w, model, ctl):
 @pytest.mark.parametrize("delay", [0, 1])
 def test_eq36_spring_controller_gives_spring_only_result_bit_for_bit(model, params, delay):
     ref = limit_cycles(params, model=model, delay=delay)
-    got = limit_cycles(params, model=model, controller=ControllerParams(delay=delay))
+    got = limit_cycles(params, model=model, controller=WallParams.of(delay=delay))
     assert got.cycles == ref.cycles
     assert (got.status, got.linear_stable, got.search_bound) == (ref.status, ref.linear_stable, ref.search_bound)
-    assert got.controller == ControllerParams(delay=delay) and ref.controller is None
+    assert got.controller == WallParams.of(delay=delay) and ref.controller is None
     assert "controller" not in ref.as_dict() and got.as_dict()["controller"]["delay"] == delay
     w = np.geomspace(1e-3, 3.0, 50)
     amp = None if params.sigma == 0 else np.full_like(w, 1.7)
     np.testing.assert_array_equal(
-        loop_response(params, w, amp, model=model, controller=ControllerParams(delay=delay)),
+        loop_response(params, w, amp, model=model, controller=WallParams.of(delay=delay)),
         loop_response(params, w, amp, model=model, delay=delay),
     )
 
 
 def test_eq36_spring_controller_nyquist_crossings_unchanged():
     p = dfa.Params(5.0, 0.4, 0.0)
-    assert nyquist_locus_response(p, controller=ControllerParams()).crossings == nyquist_locus_response(p).crossings
+    assert nyquist_locus_response(p, controller=WallParams.of()).crossings == nyquist_locus_response(p).crossings
 
 
 @pytest.mark.parametrize("model", ["half-delay", "zoh", "pade"])
@@ -143,7 +143,7 @@ def _neutral_k_from_loop(damping, delay, cutoff, bandwidth, bracket):
     """K at which 1 + L(jω) = 0 for some ω (D = 1, σ = 0): the M → ∞ end of the harmonic balance (ZOH model)."""
 
     def gap(k):
-        ctl = Controller(k, damping, delay, cutoff, bandwidth).params(T_S)
+        ctl = Wall.of(k, damping, delay, cutoff, bandwidth).params(T_S)
         p = dfa.Params(M_KG / (k * T_S**2), B_NSM / (k * T_S), 0.0)
         w = np.linspace(1e-3, math.pi - 1e-6, 4000)
         inv = 1.0 / loop_response(p, w, model="zoh", controller=ctl)
@@ -175,7 +175,7 @@ def test_eq36_neutral_cycle_at_infinite_amplitude_is_the_exact_linear_critical_k
     assert k_df == pytest.approx(k_lin, rel=1e-7)
     # and limit_cycles' linear verdict with the controller agrees on either side
     for k, stable in ((0.98 * k_lin, True), (1.02 * k_lin, False)):
-        ctl = Controller(k, damping, delay, cutoff, bandwidth).params(T_S)
+        ctl = Wall.of(k, damping, delay, cutoff, bandwidth).params(T_S)
         p = dfa.Params(M_KG / (k * T_S**2), B_NSM / (k * T_S), 0.1)
         assert limit_cycles(p, controller=ctl, max_amplitude=50.0).linear_stable is stable
 
@@ -203,12 +203,12 @@ def test_controller_growth_threshold_and_json():
 def test_controller_bad_input():
     p = dfa.Params(5.0, 0.1, 0.3)
     with pytest.raises(DFATypeError, match="controller"):
-        limit_cycles(p, controller=Controller(300.0))
+        limit_cycles(p, controller=Wall.of(300.0))
     with pytest.raises(DFAValueError, match="delay = 2 is invalid with controller.delay = 1"):
-        limit_cycles(p, delay=2, controller=ControllerParams(delay=1))
+        limit_cycles(p, delay=2, controller=WallParams.of(delay=1))
     with pytest.raises(DFAValueError, match="delay"):
-        loop_response(p, 0.5, 1.0, delay=2, controller=ControllerParams(delay=1))
-    assert limit_cycles(p, delay=1, controller=ControllerParams(delay=1)).delay == 1
+        loop_response(p, 0.5, 1.0, delay=2, controller=WallParams.of(delay=1))
+    assert limit_cycles(p, delay=1, controller=WallParams.of(delay=1)).delay == 1
 
 
 # ---------------------------------------------------------------- against the exact simulator (h-csim)
@@ -235,10 +235,8 @@ def test_eq36_controller_growth_threshold_brackets_the_simulated_critical_speed(
 def test_eq42_45_closed_forms_refuse_a_controller_they_do_not_hold_for():
     from dfa.analysis.cycles import large_cycle_closed_form, small_cycle_closed_form, small_cycle_closed_forms
 
-    assert small_cycle_closed_form(5.0, 0.1, 0.3, controller=ControllerParams()) == small_cycle_closed_form(
-        5.0, 0.1, 0.3
-    )
-    for ctl in [*CONTROLLERS, ControllerParams(delay=1)]:
+    assert small_cycle_closed_form(5.0, 0.1, 0.3, controller=WallParams.of()) == small_cycle_closed_form(5.0, 0.1, 0.3)
+    for ctl in [*CONTROLLERS, WallParams.of(delay=1)]:
         with pytest.raises(DFAValueError, match="closed forms .eq. 42-45. hold for the pure spring"):
             large_cycle_closed_form(5.0, 0.1, 0.3, controller=ctl)
         with pytest.raises(DFAValueError, match="limit_cycles"):
@@ -264,8 +262,8 @@ def test_eq36_zoh_phase_condition_has_at_most_one_crossing_per_frequency_with_a_
     bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
     for ctl in [
         *CONTROLLERS,
-        ControllerParams(damping=2.0, cutoff=0.05),
-        ControllerParams(damping=1.0, lag=1.0, delay=2),
+        WallParams.of(damping=2.0, cutoff=0.05),
+        WallParams.of(damping=1.0, lag=1.0, delay=2),
     ]:
         c = _inv_loop(mu, bgrid[None, :], _W_GRID[:, None], "zoh", ctl.delay, 0, ctl)
         sc = (np.sign(c.imag[:, :-1]) != np.sign(c.imag[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)

@@ -13,12 +13,12 @@ from dfa.analysis.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, s
 from dfa.analysis.limits.kmax import SAFE, UNDECIDED, UNSAFE, _growth_xi_dot, df_verdict
 from dfa.analysis.simulation import OUTCOMES, simulate_batch
 from dfa.model.device import Params
-from dfa.model.wall import ControllerParams
+from dfa.model.wall import WallParams
 from dfa.render.text import limit_cycle_lines, limit_cycles_dict
 
 # found by a random search (dfa.analysis.cycles.caveats): damper on a slowly filtered velocity (filter pole a = 0.974), d = 0
 P = Params(3.749, 0.0, 0.155)
-CTL = ControllerParams(damping=0.2838, cutoff=0.0042)
+CTL = WallParams.of(damping=0.2838, cutoff=0.0042)
 
 
 @pytest.fixture(scope="module")

@@ -18,7 +18,7 @@ from reference import recorded_period
 
 from dfa.analysis.simulation import simulate, simulate_batch
 from dfa.core import kernel, wall_kernel
-from dfa.model.wall import ControllerParams
+from dfa.model.wall import WallParams
 
 EMPTY = np.empty(0)
 
@@ -60,14 +60,14 @@ def _boundaries(n, tail_len):
 
 
 CHATTER = [  # (μ, β, σ, ξ'0, controller): runs that settle on an exact cycle after a transient
-    (100.0, 0.5, 0.3, 2.0, ControllerParams()),
-    (100.0, 0.1, 0.1, 2.0, ControllerParams(damping=0.5)),
-    (10.0, 0.5, 0.6, 1.0, ControllerParams(damping=0.5, cutoff=0.1, delay=1)),
-    (10.0, 0.5, 0.3, 2.0, ControllerParams(lag=0.2)),
-    (100.0, 2.0, 0.1, 2.0, ControllerParams(damping=0.5, cutoff=0.1, delay=1, lag=0.2)),
-    (2.0, 2.0, 0.3, 2.0, ControllerParams(delay=3)),
-    (100.0, 2.0, 0.3, 1.0, ControllerParams(damping=0.2, cutoff=0.05, delay=2)),
-    (10.0, 2.0, 0.3, 2.0, ControllerParams(damping=0.3, delay=2, lag=0.1)),
+    (100.0, 0.5, 0.3, 2.0, WallParams.of()),
+    (100.0, 0.1, 0.1, 2.0, WallParams.of(damping=0.5)),
+    (10.0, 0.5, 0.6, 1.0, WallParams.of(damping=0.5, cutoff=0.1, delay=1)),
+    (10.0, 0.5, 0.3, 2.0, WallParams.of(lag=0.2)),
+    (100.0, 2.0, 0.1, 2.0, WallParams.of(damping=0.5, cutoff=0.1, delay=1, lag=0.2)),
+    (2.0, 2.0, 0.3, 2.0, WallParams.of(delay=3)),
+    (100.0, 2.0, 0.3, 1.0, WallParams.of(damping=0.2, cutoff=0.05, delay=2)),
+    (10.0, 2.0, 0.3, 2.0, WallParams.of(damping=0.3, delay=2, lag=0.1)),
 ]
 
 
@@ -110,7 +110,7 @@ def test_eq4_controller_stuck_samples_are_no_period(mu, beta, sigma, x0, v0, dam
     Only the whole state (module docstring) tells these samples apart; a check on (ξ, ξ', r) alone would
     take them for a period of 1 and skip the breakaway.
     """
-    ctl = ControllerParams(damping=damping, cutoff=cutoff, lag=lag)
+    ctl = WallParams.of(damping=damping, cutoff=cutoff, lag=lag)
     _same_as_every_sample(mu, beta, sigma, x0, v0, 3000, ctl, tail_len=750)
     done, rest, _, xs, vs = _recorded(mu, beta, sigma, x0, v0, 3000, ctl, tail_len=750)
     held = (xs[1:] == xs[:-1]) & (vs[1:] == 0.0) & (vs[:-1] == 0.0)  # sample h left (ξ, ξ' = 0) unchanged
@@ -119,15 +119,15 @@ def test_eq4_controller_stuck_samples_are_no_period(mu, beta, sigma, x0, v0, dam
 
 def test_eq4_controller_rest_and_divergence_are_unchanged():
     """A run that rests and one that diverges end where integrating every sample ends them."""
-    rest = _same_as_every_sample(100.0, 0.3, 1.5, 0.0, 2.0, 20_000, ControllerParams(damping=0.5, lag=0.3))
+    rest = _same_as_every_sample(100.0, 0.3, 1.5, 0.0, 2.0, 20_000, WallParams.of(damping=0.5, lag=0.3))
     assert rest[1] >= 0 and rest[0] == rest[1]
-    grow = _same_as_every_sample(100.0, 0.0, 0.0, 0.0, 2.0, 20_000, ControllerParams(delay=3), bound=50.0)
+    grow = _same_as_every_sample(100.0, 0.0, 0.0, 0.0, 2.0, 20_000, WallParams.of(delay=3), bound=50.0)
     assert grow[1] == -1 and grow[0] < 20_000 and grow[3][kernel.NSEG + 5] == 1.0
 
 
 def test_eq4_controller_without_repetition_integrates_every_sample():
     """The linear loop (no encoder) decaying geometrically never repeats bit for bit: nothing is skipped."""
-    ctl = ControllerParams(damping=0.5, cutoff=0.2, delay=1, lag=0.2)
+    ctl = WallParams.of(damping=0.5, cutoff=0.2, delay=1, lag=0.2)
     done, rest, integrated, _ = _same_as_every_sample(100.0, 2.0, 0.0, 0.3, 1.0, 5000, ctl, quantize=False)
     assert done == integrated == 5000 and rest == -1
 
@@ -150,7 +150,7 @@ def test_eq4_controller_without_repetition_integrates_every_sample():
 def test_eq4_controller_skip_is_exact_on_random_controllers(
     mu, beta, sigma, x0, v0, damping, cutoff, delay, lag, quantize, n, tail_frac, bound
 ):
-    ctl = ControllerParams(damping=damping, cutoff=cutoff, delay=delay, lag=lag)
+    ctl = WallParams.of(damping=damping, cutoff=cutoff, delay=delay, lag=lag)
     tail_len = math.ceil(tail_frac * n)
     fast = _same_as_every_sample(mu, beta, sigma, x0, v0, n, ctl, quantize=quantize, bound=bound, tail_len=tail_len)
     rec = _recorded(mu, beta, sigma, x0, v0, n, ctl, quantize=quantize, bound=bound, tail_len=tail_len)
@@ -162,7 +162,7 @@ def test_eq4_controller_skip_is_exact_on_a_seeded_sweep():
     rng = np.random.default_rng(16)
     skipped = 0
     for _ in range(600):
-        ctl = ControllerParams(
+        ctl = WallParams.of(
             damping=float(rng.choice([0.0, rng.uniform(0, 1.5), rng.uniform(1.0, 3.0)])),
             cutoff=None if rng.integers(2) else float(rng.uniform(0.01, 0.45)),
             delay=int(rng.integers(0, 4)),
@@ -184,7 +184,7 @@ def test_eq4_controller_skip_is_exact_on_a_seeded_sweep():
 
 def test_eq4_controller_users_numbers_equal_recorded_runs():
     """dfa.simulate and simulate_batch (skipping) report what recorded runs (every sample) report."""
-    ctl = ControllerParams(damping=0.5, cutoff=0.1, delay=1, lag=0.2)
+    ctl = WallParams.of(damping=0.5, cutoff=0.1, delay=1, lag=0.2)
     for beta, sigma in [(2.0, 0.1), (0.3, 1.5), (0.0, 0.2)]:
         fast = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=False, controller=ctl).as_dict()
         full = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=True, controller=ctl).as_dict()
@@ -201,7 +201,7 @@ def test_eq4_controller_users_numbers_equal_recorded_runs():
 
 def test_eq4_serial_controller_kernel_equals_single_every_sample_runs():
     """serial_wall_kernel (skipping, the batch entry point) against single runs that integrate every sample."""
-    ctl = ControllerParams(damping=0.3, delay=2, lag=0.1)
+    ctl = WallParams.of(damping=0.3, delay=2, lag=0.1)
     mus, betas, sigmas = np.full(4, 2.0), np.array([2.0, 0.5, 0.0, 1.0]), np.array([0.1, 0.3, 0.2, 0.6])
     x0s, v0s = np.zeros(4), np.array([2.0, 1.0, 3.0, 0.5])
     stats, done, rest = np.empty((4, kernel.NSTATS)), np.empty(4, np.int64), np.empty(4, np.int64)

@@ -17,7 +17,7 @@ from reference_ctl import linear_ctl_recursion, simulate_ivp_ctl
 from dfa.analysis.simulation import simulate, simulate_batch
 from dfa.core import kernel, wall_kernel
 from dfa.errors import DFATypeError, DFAValueError
-from dfa.model.wall import Controller, ControllerParams
+from dfa.model.wall import Wall, WallParams
 
 
 def _mp_phi1(u):
@@ -68,7 +68,7 @@ def test_lag_motion_closed_form_against_mpmath(lam, kap, t):
 
 def _one_sample_ivp(x, v, c, fa, mu, beta, sigma, lag):
     """One sample of the device with the lag by solve_ivp with events (stop, breakaway), independently."""
-    ctl = ControllerParams(lag=lag)
+    ctl = WallParams.of(lag=lag)
 
     # reuse the reference's phase logic by driving one sample with a constant command c and φ_A(0) = fa
     from reference_ctl import _ivp, _stuck
@@ -132,11 +132,11 @@ def _compare_ivp(mu, beta, sigma, x0, v0, n, ctl, tol=1e-8):
 @pytest.mark.parametrize(
     "mu, beta, sigma, v0, ctl",
     [
-        (20.0, 0.3, 0.7, 1.5, ControllerParams(lag=0.3)),  # lag, stick-slip, rests
-        (5.0, 0.1, 1.2, 2.0, ControllerParams(damping=0.5, lag=1.0)),  # damper + lag
-        (20.0, 0.3, 0.7, 1.5, ControllerParams(damping=0.5, cutoff=0.1, delay=2)),  # damper, filter, delay
-        (50.0, 0.05, 0.2, 3.0, ControllerParams(damping=0.4, cutoff=0.05, delay=1, lag=0.3)),  # everything
-        (3.0, 0.02, 0.9, 1.0, ControllerParams(damping=2.0, cutoff=0.2, lag=2.0)),  # slow amplifier, chatter
+        (20.0, 0.3, 0.7, 1.5, WallParams.of(lag=0.3)),  # lag, stick-slip, rests
+        (5.0, 0.1, 1.2, 2.0, WallParams.of(damping=0.5, lag=1.0)),  # damper + lag
+        (20.0, 0.3, 0.7, 1.5, WallParams.of(damping=0.5, cutoff=0.1, delay=2)),  # damper, filter, delay
+        (50.0, 0.05, 0.2, 3.0, WallParams.of(damping=0.4, cutoff=0.05, delay=1, lag=0.3)),  # everything
+        (3.0, 0.02, 0.9, 1.0, WallParams.of(damping=2.0, cutoff=0.2, lag=2.0)),  # slow amplifier, chatter
     ],
 )
 def test_eq4_controller_against_solve_ivp(mu, beta, sigma, v0, ctl):
@@ -144,13 +144,13 @@ def test_eq4_controller_against_solve_ivp(mu, beta, sigma, v0, ctl):
 
 
 def test_eq4_controller_rest_is_absorbing_against_solve_ivp():
-    r = _compare_ivp(20.0, 0.3, 0.7, 0.3, 1.5, 160, ControllerParams(damping=0.3, cutoff=0.1, lag=0.3))
+    r = _compare_ivp(20.0, 0.3, 0.7, 0.3, 1.5, 160, WallParams.of(damping=0.3, cutoff=0.1, lag=0.3))
     assert r.outcome == "rest" and r.rest_sample is not None
 
 
 finite = dict(allow_nan=False, allow_infinity=False)
 CONTROLLERS = st.builds(
-    ControllerParams,
+    WallParams.of,
     damping=st.one_of(st.just(0.0), st.floats(0.0, 3.0, **finite)),
     delay=st.integers(0, 2),
     cutoff=st.one_of(st.none(), st.floats(0.02, 0.45, **finite)),
@@ -173,12 +173,12 @@ def test_eq4_random_controllers_against_solve_ivp(ctl, mu, beta, sigma, v0):
 @pytest.mark.parametrize(
     "ctl",
     [
-        ControllerParams(damping=0.5),
-        ControllerParams(damping=0.8, cutoff=0.1, delay=1),
-        ControllerParams(lag=0.4),
-        ControllerParams(damping=0.3, cutoff=0.05, delay=2, lag=0.7),
-        ControllerParams(damping=0.2, lag=1e-6),  # tiny lag: e^{−1/α} underflows
-        ControllerParams(damping=0.2, lag=20.0 / 0.3),  # β/μ = 1/α
+        WallParams.of(damping=0.5),
+        WallParams.of(damping=0.8, cutoff=0.1, delay=1),
+        WallParams.of(lag=0.4),
+        WallParams.of(damping=0.3, cutoff=0.05, delay=2, lag=0.7),
+        WallParams.of(damping=0.2, lag=1e-6),  # tiny lag: e^{−1/α} underflows
+        WallParams.of(damping=0.2, lag=20.0 / 0.3),  # β/μ = 1/α
     ],
 )
 @pytest.mark.parametrize("mu, beta", [(20.0, 0.3), (2.0, 0.0)])
@@ -206,12 +206,12 @@ def test_linear_random_controllers_against_c2d_recursion(ctl, mu, beta):
 @pytest.mark.parametrize("mu, beta, sigma, v0", [(100.0, 0.3, 1.5, 2.0), (100.0, 0.0, 0.2, 2.0), (2.0, 0.4, 0.1, 2.0)])
 def test_eq4_spring_controller_is_bit_identical(delay, mu, beta, sigma, v0):
     plain = simulate(mu, beta, sigma, v0, samples=20000, delay=delay, energy=True)
-    ctl = simulate(mu, beta, sigma, v0, samples=20000, controller=Controller(300.0, delay=delay).params(1e-3))
+    ctl = simulate(mu, beta, sigma, v0, samples=20000, controller=Wall.of(300.0, delay=delay).params(1e-3))
     a, b = plain.as_dict(), ctl.as_dict()
     assert a == b
     assert np.array_equal(plain.xi, ctl.xi, equal_nan=True) and np.array_equal(plain.xi_dot, ctl.xi_dot, equal_nan=True)
     ba = simulate_batch(mu, [beta, 0.1], sigma, v0, samples=5000, delay=delay)
-    bb = simulate_batch(mu, [beta, 0.1], sigma, v0, samples=5000, controller=ControllerParams(delay=delay))
+    bb = simulate_batch(mu, [beta, 0.1], sigma, v0, samples=5000, controller=WallParams.of(delay=delay))
     assert ba.as_dict() == bb.as_dict()
     # the controller kernel itself, given the pure spring, follows the spring kernel bit for bit
     n = 3000
@@ -226,7 +226,7 @@ def test_eq4_spring_controller_is_bit_identical(delay, mu, beta, sigma, v0):
 
 
 def test_batch_with_controller_equals_simulate():
-    ctl = ControllerParams(damping=0.5, cutoff=0.1, delay=1, lag=0.3)
+    ctl = WallParams.of(damping=0.5, cutoff=0.1, delay=1, lag=0.3)
     b = simulate_batch(100.0, [0.3, 0.0, 0.1], [1.5, 0.2, 0.6], 2.0, samples=8000, controller=ctl)
     for i in range(3):
         r = simulate(100.0, b.beta[i], b.sigma[i], 2.0, samples=8000, record=False, controller=ctl)
@@ -237,24 +237,24 @@ def test_batch_with_controller_equals_simulate():
 
 
 def test_controller_result_carries_its_inputs():
-    ctl = ControllerParams(damping=0.5, lag=0.3)
+    ctl = WallParams.of(damping=0.5, lag=0.3)
     r = simulate(100.0, 0.3, 1.5, 2.0, samples=20000, controller=ctl)
     assert r.controller == ctl and r.as_dict()["controller"] == ctl.as_dict()
     assert r.outcome == "rest"
 
 
 def test_controller_bad_input_names_parameter_rule_and_fix():
-    ctl = ControllerParams(damping=0.5)
+    ctl = WallParams.of(damping=0.5)
     with pytest.raises(DFAValueError, match=r"energy = True is invalid .*pass energy=False"):
         simulate(100.0, 0.3, 1.5, 2.0, samples=100, controller=ctl, energy=True)
     with pytest.raises(DFAValueError, match=r"delay = 2 is invalid with controller.delay = 1"):
-        simulate(100.0, 0.3, 1.5, 2.0, samples=100, delay=2, controller=ControllerParams(damping=0.5, delay=1))
-    with pytest.raises(DFATypeError, match=r"controller = .* is invalid: it must be a ControllerParams"):
-        simulate(100.0, 0.3, 1.5, 2.0, samples=100, controller=Controller(300.0))
+        simulate(100.0, 0.3, 1.5, 2.0, samples=100, delay=2, controller=WallParams.of(damping=0.5, delay=1))
+    with pytest.raises(DFATypeError, match=r"controller = .* is invalid: it must be a WallParams"):
+        simulate(100.0, 0.3, 1.5, 2.0, samples=100, controller=Wall.of(300.0))
 
 
 def test_solve_ivp_reference_is_independent():
     """Sanity of the reference itself: the spring with φ_A constant reproduces dfa's spring kernel."""
-    ix, _ = simulate_ivp_ctl(20.0, 0.3, 0.7, 0.3, 1.5, 40, ControllerParams())
+    ix, _ = simulate_ivp_ctl(20.0, 0.3, 0.7, 0.3, 1.5, 40, WallParams.of())
     r = simulate(20.0, 0.3, 0.7, 1.5, samples=40, xi0=0.3)
     assert np.max(np.abs(r.xi - ix)) <= 1e-9

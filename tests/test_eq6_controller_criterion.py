@@ -30,11 +30,11 @@ from dfa.analysis.wall_soundness import controller_soundness, sample_controller_
 from dfa.core import kernel
 from dfa.errors import DFATypeError, DFAValueError
 from dfa.model.catalogue import get_device
-from dfa.model.wall import Controller, ControllerParams
+from dfa.model.wall import Wall, WallParams
 
 
 # ------------------------------------------------------------------ an independent reference loop (pure Python)
-def reference_run(mu, beta, sigma, x0, v0, n, ctl: ControllerParams, quantize=True):
+def reference_run(mu, beta, sigma, x0, v0, n, ctl: WallParams, quantize=True):
     """ξ_h, ξ'_h, forces φ_h and turning-point storages of the loop, written from the transfer-function form.
 
     The damper input is the explicit convolution y_m = Σ_k (1 − a)a^{k−1} v_{m−k} (filter) or v_m,
@@ -59,11 +59,11 @@ def reference_run(mu, beta, sigma, x0, v0, n, ctl: ControllerParams, quantize=Tr
 
 
 CONTROLLERS = [
-    ControllerParams(),
-    ControllerParams(damping=0.7),
-    ControllerParams(damping=0.7, delay=2),
-    ControllerParams(damping=1.3, delay=1, cutoff=0.05),
-    ControllerParams(damping=0.4, cutoff=0.3),
+    WallParams.of(),
+    WallParams.of(damping=0.7),
+    WallParams.of(damping=0.7, delay=2),
+    WallParams.of(damping=1.3, delay=1, cutoff=0.05),
+    WallParams.of(damping=0.4, cutoff=0.3),
 ]
 
 
@@ -142,7 +142,7 @@ def test_eq6_controller_step4_summed_inequality_holds_for_every_parameter(
     mu, beta, sigma, v0, x0, damping, delay, cutoff, quantize
 ):
     """S_n − S_0 <= Σ_h (β₀ − β)Δ_h² + (σ₀ − σ)|Δ_h| for every n, passive or not (the heart of the proof)."""
-    ctl = ControllerParams(damping=damping, delay=delay, cutoff=cutoff)
+    ctl = WallParams.of(damping=damping, delay=delay, cutoff=cutoff)
     xs, vs, _, _ = reference_run(mu, beta, sigma, x0, v0, 120, ctl, quantize)
     if not np.all(np.isfinite(xs)) or np.max(np.abs(xs)) > 1e6:
         return
@@ -176,10 +176,10 @@ def test_eq6_controller_compiled_loop_matches_the_reference_loop(ctl):
 
 @pytest.mark.parametrize("delay", [0, 1, 3])
 def test_eq4_controller_spring_only_reference_loop_equals_dfa_simulate(delay):
-    """ControllerParams(delay=d) is today's spring loop: same trajectory as dfa.simulate."""
+    """WallParams.of(delay=d) is today's spring loop: same trajectory as dfa.simulate."""
     for quantize in (True, False):
         sim = dfa.simulate(7.0, 0.05, 0.6, 3.0, 300, xi0=0.4, delay=delay, quantize=quantize)
-        xs, vs, _, _ = reference_run(7.0, 0.05, 0.6, 0.4, 3.0, 300, ControllerParams(delay=delay), quantize)
+        xs, vs, _, _ = reference_run(7.0, 0.05, 0.6, 0.4, 3.0, 300, WallParams.of(delay=delay), quantize)
         m = int(np.sum(np.isfinite(sim.xi)))  # a diverged run stops at its last integrated sample
         assert m > 20
         np.testing.assert_allclose(xs[:m], sim.xi[:m], rtol=1e-14, atol=1e-12)
@@ -197,7 +197,7 @@ def test_eq4_controller_spring_only_reference_loop_equals_dfa_simulate(delay):
     xi0=st.sampled_from([0.0, 0.3, -4.7]),
 )
 def test_eq6_controller_without_damper_equals_passivity_criterion(beta, sigma, xi_dot, delay, cutoff, quantized, xi0):
-    ctl = ControllerParams(delay=delay, cutoff=cutoff)
+    ctl = WallParams.of(delay=delay, cutoff=cutoff)
     new = controller_criterion(beta, sigma, xi_dot, ctl, quantized=quantized, xi0=xi0, mu=2.0)
     old = dfa.passivity_criterion(beta, sigma, xi_dot, quantized=quantized, delay=delay, xi0=xi0, mu=2.0)
     assert (new.region, new.passive, new.margin, new.critical_xi_dot) == (
@@ -215,7 +215,7 @@ def test_eq6_controller_without_damper_equals_passivity_criterion(beta, sigma, x
 )
 def test_eq6_controller_status_states_the_controller_thresholds(beta, sigma, xi_dot, region):
     """The messages name β₀, σ₀ (not the spring's ½ + d, ½) and the result fills in their values."""
-    ctl = ControllerParams(damping=0.3, delay=1, cutoff=0.1)
+    ctl = WallParams.of(damping=0.3, delay=1, cutoff=0.1)
     r = controller_criterion(beta, sigma, xi_dot, ctl)
     b0, s0 = 1.5 + 0.3, 0.5 + (1.0 - np.exp(-0.2 * np.pi)) * 0.3
     assert r.region == region and r.status.region == region
@@ -235,17 +235,17 @@ def test_eq6_controller_default_is_the_paper_spring():
 @pytest.mark.parametrize("damping", [0.0, 0.25, 1.0, 4.0])
 def test_eq8_controller_colgate_schenkel_b_above_kt_half_plus_b(damping):
     """No encoder, no Coulomb friction, d = 0: passive at every speed iff β >= ½ + β_B (b >= KT/2 + B)."""
-    ctl = ControllerParams(damping=damping)
+    ctl = WallParams.of(damping=damping)
     edge = 0.5 + damping
     assert controller_criterion(edge, 0.0, 7.0, ctl, quantized=False).region == "a"
     assert not controller_criterion(np.nextafter(edge, 0.0), 0.0, 7.0, ctl, quantized=False).passive
 
 
 def test_eq6_controller_anchor_values():
-    assert controller_anchor(ControllerParams(damping=0.3)) == (0.8, 0.8)
-    b0, s0 = controller_anchor(ControllerParams(damping=0.3, delay=2, cutoff=0.1))
+    assert controller_anchor(WallParams.of(damping=0.3)) == (0.8, 0.8)
+    b0, s0 = controller_anchor(WallParams.of(damping=0.3, delay=2, cutoff=0.1))
     assert b0 == pytest.approx(2.8) and s0 == pytest.approx(0.5 + 0.3 * (1 - math.exp(-0.2 * math.pi)))
-    assert controller_anchor(ControllerParams(damping=0.3, delay=2, cutoff=0.1), quantized=False)[1] == 0.0
+    assert controller_anchor(WallParams.of(damping=0.3, delay=2, cutoff=0.1), quantized=False)[1] == 0.0
 
 
 @given(
@@ -257,7 +257,7 @@ def test_eq6_controller_anchor_values():
     cutoff=st.none() | st.floats(0.01, 0.49),
 )
 def test_eq10_controller_regions_and_critical_speed(beta, sigma, xi_dot, damping, delay, cutoff):
-    ctl = ControllerParams(damping=damping, delay=delay, cutoff=cutoff)
+    ctl = WallParams.of(damping=damping, delay=delay, cutoff=cutoff)
     r = controller_criterion(beta, sigma, xi_dot, ctl)
     b0, s0 = r.beta0, r.sigma0
     assert r.passive == (sigma >= s0 and (beta - b0) * xi_dot + (sigma - s0) >= 0.0)
@@ -271,11 +271,11 @@ def test_eq10_controller_regions_and_critical_speed(beta, sigma, xi_dot, damping
 def test_eq11_controller_physical_form_and_spring_equals_device_criterion():
     dev = get_device("Delta").device
     old = dfa.device_criterion(dev, 14500.0, 0.1, delay=1)
-    new = device_controller_criterion(dev, Controller(14500.0, delay=1), 0.1)
+    new = device_controller_criterion(dev, Wall.of(14500.0, delay=1), 0.1)
     assert (new.region, new.critical_velocity) == (old.region, old.critical_velocity)
     k, b_v, v = 3000.0, 1.5, 0.05
     for fc in (None, 50.0):
-        r = device_controller_criterion(dev, Controller(k, damping=b_v, filter_cutoff=fc), v)
+        r = device_controller_criterion(dev, Wall.of(k, damping=b_v, filter_cutoff=fc), v)
         a = 0.0 if fc is None else math.exp(-2 * math.pi * fc * dev.period)
         b, c, t, dx = dev.damping, dev.coulomb, dev.period, dev.resolution
         lhs = (b - b_v - k * t / 2) * v + (c - k * dx / 2 - (1 - a) * b_v * dx / t)
@@ -286,14 +286,14 @@ def test_eq11_controller_physical_form_and_spring_equals_device_criterion():
 # ------------------------------------------------------------------ refusals and bad input
 def test_eq6_controller_refuses_amplifier_lag_and_offers_the_simulated_map():
     with pytest.raises(DFAValueError, match=r"controller.lag = 0.5 is invalid.*stability_map"):
-        controller_criterion(1.0, 1.0, 1.0, ControllerParams(lag=0.5))
+        controller_criterion(1.0, 1.0, 1.0, WallParams.of(lag=0.5))
     dev = get_device("Delta").device
     with pytest.raises(DFAValueError, match="stability_map"):
-        device_controller_criterion(dev, Controller(1000.0, amplifier_bandwidth=500.0), 0.1)
+        device_controller_criterion(dev, Wall.of(1000.0, amplifier_bandwidth=500.0), 0.1)
     with pytest.raises(DFATypeError, match="controller"):
-        controller_criterion(1.0, 1.0, 1.0, Controller(1000.0))
+        controller_criterion(1.0, 1.0, 1.0, Wall.of(1000.0))
     with pytest.raises(DFAValueError, match="mu"):
-        controller_criterion(1.0, 1.0, 1.0, ControllerParams(damping=0.1), xi0=1.0)
+        controller_criterion(1.0, 1.0, 1.0, WallParams.of(damping=0.1), xi0=1.0)
     with pytest.raises(DFATypeError, match="quantized"):
         controller_criterion(1.0, 1.0, 1.0, quantized="yes")
     with pytest.raises(DFAValueError, match="they must agree"):
@@ -321,7 +321,7 @@ def test_eq4_controller_simulator_is_bit_identical_to_the_reference_loop(
     The same arithmetic in the same order: the trajectories agree bit for bit at every sample up to the
     simulator's own stop (rest detected or the bound passed); after a detected rest the reference stays put.
     """
-    ctl = ControllerParams(damping=damping, delay=delay, cutoff=cutoff)
+    ctl = WallParams.of(damping=damping, delay=delay, cutoff=cutoff)
     n = 600
     rec = np.empty((n + 1, 2))
     with np.errstate(all="ignore"):
@@ -352,7 +352,7 @@ def test_eq6_controller_sampler_points_are_passive_and_on_the_boundaries():
     pts = sample_controller_points(150, seed=5)
     for i in range(150):
         cut = pts["cutoff"][i]
-        ctl = ControllerParams(float(pts["damping"][i]), int(pts["delay"][i]), None if math.isnan(cut) else cut)
+        ctl = WallParams.of(float(pts["damping"][i]), int(pts["delay"][i]), None if math.isnan(cut) else cut)
         q = bool(pts["quantized"][i])
         r = controller_criterion(
             pts["beta"][i], pts["sigma"][i], pts["xi_dot"][i], ctl, quantized=q, xi0=pts["xi0"][i], mu=pts["mu"][i]
@@ -379,7 +379,7 @@ def test_eq6_controller_sigma0_needs_the_damper_term():
         2.2556065841556014,
         -0.4135842201830031,
     )
-    ctl = ControllerParams(damping=damping)
+    ctl = WallParams.of(damping=damping)
     assert dfa.passivity_criterion(beta, sigma, v0).passive  # the spring's criterion, damper ignored
     r = controller_criterion(beta, sigma, v0, ctl)
     assert not r.passive and r.region == "b" and sigma < r.sigma0

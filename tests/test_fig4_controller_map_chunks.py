@@ -1,4 +1,4 @@
-"""Controller stability maps (issue 15, Fig. 4 with a wall controller) and the Z-width run like the spring's map.
+"""Wall stability maps (issue 15, Fig. 4 with a wall controller) and the Z-width run like the spring's map.
 
 One runner (:func:`dfa._parallel.run_in_order`) for every grid of simulations: the map's chunks take the
 controller, run in order (the same numbers for any number of jobs or backend, equal point by point to
@@ -25,9 +25,9 @@ from dfa.analysis.maps import stability_map
 from dfa.analysis.simulation import OUTCOMES, divergence_bound, simulate
 from dfa.cli import main
 from dfa.model.catalogue import get_device
-from dfa.model.wall import ControllerParams
+from dfa.model.wall import WallParams
 
-CTL = ControllerParams(damping=0.3, delay=1, cutoff=0.1, lag=0.5)  # damper, filter, delay and amplifier lag
+CTL = WallParams.of(damping=0.3, delay=1, cutoff=0.1, lag=0.5)  # damper, filter, delay and amplifier lag
 DFA = [sys.executable, "-c", "import sys; from dfa.cli import main; sys.exit(main())"]
 
 

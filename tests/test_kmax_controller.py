@@ -24,7 +24,7 @@ from dfa.analysis.simulation import default_samples, divergence_bound, preload_p
 from dfa.cli import main
 from dfa.errors import DFAValueError
 from dfa.model.device import Params
-from dfa.model.wall import MIN_LAG, Controller, ControllerParams
+from dfa.model.wall import MIN_LAG, Wall, WallParams
 
 DELTA = dfa.get_device("Delta").device
 SMALL = {"speeds": 2, "grid": 6}
@@ -35,7 +35,7 @@ def _groups(dev, k, b, d=0, fc=None, fbw=None):
     t = dev.period
     p = Params(dev.mass / (k * t * t), dev.damping / (k * t), dev.coulomb / (k * dev.resolution))
     lag = 0.0 if fbw is None else 1.0 / (2 * math.pi * fbw * t)
-    return p, ControllerParams(damping=b / (k * t), delay=d, cutoff=None if fc is None else fc * t, lag=lag)
+    return p, WallParams.of(damping=b / (k * t), delay=d, cutoff=None if fc is None else fc * t, lag=lag)
 
 
 def _check_theory(r):
@@ -73,7 +73,7 @@ def _diverges(dev, k, speeds, b, d=0):
 
 def test_eq11_controller_k_sim_matches_independent_bisection():
     v, b = 0.1, 1.0
-    r = controller_stiffness_limits(DELTA, Controller(14500.0, damping=b), v, speeds=3, grid=8)
+    r = controller_stiffness_limits(DELTA, Wall.of(14500.0, damping=b), v, speeds=3, grid=8)
     speeds = [v * i / 3 for i in (1, 2, 3)]
     # the grid written here: 8 geometric points from K_criterion/2 to 8 × the largest bound, and K_criterion;
     # safety is not monotone in K near this limit, so the bisection starts from the same bracket as the search
@@ -100,9 +100,9 @@ def _controllers(dev, k):
     t = dev.period
     b = 0.2 * k * t
     return {
-        "damper": Controller(k, damping=b),
-        "filter": Controller(k, damping=b, delay=1, filter_cutoff=0.05 / t),
-        "lag": Controller(k, damping=b, amplifier_bandwidth=1.0 / (2 * math.pi * 0.3 * t)),
+        "damper": Wall.of(k, damping=b),
+        "filter": Wall.of(k, damping=b, delay=1, filter_cutoff=0.05 / t),
+        "lag": Wall.of(k, damping=b, amplifier_bandwidth=1.0 / (2 * math.pi * 0.3 * t)),
     }
 
 
@@ -119,7 +119,7 @@ def test_eq11_controller_kmax_orderings_catalogue(name, kind):
 
 def test_eq11_controller_b0_is_the_spring_design_answer():
     for dev, v, d in ((DELTA, 0.1, 0), (dfa.get_device("Impulse Engine").device, 0.2, 1)):
-        r = controller_stiffness_limits(dev, Controller(100.0, delay=d), v, **SMALL)
+        r = controller_stiffness_limits(dev, Wall.of(100.0, delay=d), v, **SMALL)
         s = design_answer(dev, v, d, **SMALL)
         assert r.k_criterion == s.k_criterion and r.k_linear == s.k_linear
         for key in ("k_df", "k_sim", "k_sim_rest"):
@@ -145,7 +145,7 @@ def _growth(dev, k, b, d=0):
 @pytest.mark.parametrize("b, d", [(1.0, 0), (0.5, 1)])
 def test_eq36_controller_k_df_against_limit_cycles(b, d):
     v = 0.1
-    r = controller_stiffness_limits(DELTA, Controller(14500.0, damping=b, delay=d), v, **SMALL)
+    r = controller_stiffness_limits(DELTA, Wall.of(14500.0, damping=b, delay=d), v, **SMALL)
     s = r.k_df
     assert s.value is not None and s.first_failure is not None
     xd = DELTA.xi_dot(v)
@@ -165,7 +165,7 @@ def test_cli_stiffness_controller_text_and_json(capsys, small_search):
     argv = ["stiffness", "--device", "delta", "--velocity", "0.1", "--virtual-damping", "1"]
     assert main(argv) == 0
     out = capsys.readouterr().out
-    r = controller_stiffness_limits(DELTA, Controller(14500.0, damping=1.0), 0.1, assess="catalogue", **SMALL)
+    r = controller_stiffness_limits(DELTA, Wall.of(14500.0, damping=1.0), 0.1, assess="catalogue", **SMALL)
     for s in (r.k_df, r.k_sim, r.k_sim_rest):
         assert f"{s.value:.5g} N/m" in out
     assert f"{r.simulations} exact simulations" in out and "only the criterion is a proof" in out
@@ -206,14 +206,14 @@ def test_default_samples_controller_spring_unchanged_and_lag_longer():
     ):
         n = default_samples(mu, beta, sigma, xd, delay=d)
         assert default_samples(mu, beta, sigma, xd, delay=d, controller=None) == n
-        assert default_samples(mu, beta, sigma, xd, controller=ControllerParams(delay=d)) == n
+        assert default_samples(mu, beta, sigma, xd, controller=WallParams.of(delay=d)) == n
     # Impulse Engine at 50 kg: the lag's extra delay α = 0.2 makes the net damping more negative: longer
     n = default_samples(156250.0, 0.125, 0.9554, 0.637)
-    assert default_samples(156250.0, 0.125, 0.9554, 0.637, controller=ControllerParams(lag=0.2)) > n
+    assert default_samples(156250.0, 0.125, 0.9554, 0.637, controller=WallParams.of(lag=0.2)) > n
     # a damper that pays for the hold: shorter (net damping β + β_B G − ½ > 0)
-    assert default_samples(156250.0, 0.125, 0.9554, 0.637, controller=ControllerParams(damping=2.0)) < n
+    assert default_samples(156250.0, 0.125, 0.9554, 0.637, controller=WallParams.of(damping=2.0)) < n
     # a damper whose lag eats all of it: no decay at all, Coulomb alone: as for the spring with σ small
-    no_decay = default_samples(1e4, 0.0, 0.0, 5.0, controller=ControllerParams(damping=0.4, lag=0.5))
+    no_decay = default_samples(1e4, 0.0, 0.0, 5.0, controller=WallParams.of(damping=0.4, lag=0.5))
     assert no_decay == dfa.analysis.simulation.MAX_DEFAULT_SAMPLES
 
 
@@ -225,14 +225,14 @@ def test_default_samples_controller_spring_unchanged_and_lag_longer():
     beta=st.floats(0.0, 1.0),
     beta_b=st.floats(0.0, 2.0),
     cutoff=st.one_of(st.none(), st.floats(0.02, 0.45)),
-    lag=st.one_of(st.just(0.0), st.floats(MIN_LAG, 1.5)),  # shorter lags are refused (ControllerParams)
+    lag=st.one_of(st.just(0.0), st.floats(MIN_LAG, 1.5)),  # shorter lags are refused (WallParams)
     delay=st.integers(0, 2),
 )
 def test_default_samples_controller_decaying_linear_run_rests(log_mu, beta, beta_b, cutoff, lag, delay):
     """A run of default length of a loop the exact linear analysis calls decaying ends at rest (no encoder, no
     Coulomb: the linear loop), not undecided: the length covers the decay."""
     mu = 10**log_mu
-    c = ControllerParams(damping=beta_b, delay=delay, cutoff=cutoff, lag=lag)
+    c = WallParams.of(damping=beta_b, delay=delay, cutoff=cutoff, lag=lag)
     rho = controlled_spectral_radius(mu, beta, c)
     assume(rho < 1.0 - 1e-7)  # decays (a margin above rounding), slowly or fast
     xd = 10.0
@@ -245,7 +245,7 @@ def test_default_samples_controller_decaying_linear_run_rests(log_mu, beta, beta
 
 
 def test_default_samples_controller_used_by_simulate_and_search():
-    c = ControllerParams(damping=0.5, lag=0.3)
+    c = WallParams.of(damping=0.5, lag=0.3)
     run = simulate(1e4, 0.1, 0.6, 3.0, None, controller=c, record=False)
     assert run.samples == default_samples(1e4, 0.1, 0.6, 3.0, controller=c)
     outs, lengths = dfa.analysis.limits.kmax.simulate_points([(1e4, 0.1, 0.6, 0.0, 3.0)], 0, 10**6, c)
@@ -257,7 +257,7 @@ def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search)
     argv = ["stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "30000", "--virtual-damping", "1"]
     assert main([*argv, "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
-    r = controller_stiffness_limits(DELTA, Controller(30000.0, damping=1.0), 0.1, assess="--stiffness", **SMALL)
+    r = controller_stiffness_limits(DELTA, Wall.of(30000.0, damping=1.0), 0.1, assess="--stiffness", **SMALL)
     a = r.assessment.as_dict()
     assert d["assessment"] == a and d["stiffness_source"] == "--stiffness"
     assert a["stiffness"] == 30000.0 and a["outcomes"]["impact"] in dfa.analysis.simulation.OUTCOMES
@@ -284,7 +284,7 @@ def test_eq6_extended_zero_criterion_k_reason_in_the_api_and_report_rows():
     from dfa.render.controller import controller_limit_rows
 
     e = dfa.get_device("impulse").device
-    r = controller_stiffness_limits(e, Controller(80.0, damping=0.5), 0.1, **SMALL)
+    r = controller_stiffness_limits(e, Wall.of(80.0, damping=0.5), 0.1, **SMALL)
     assert r.k_criterion == 0.0 and "σ >= σ₀ needs c/Δ > (1 − a)B/T" in r.reasons["k_criterion"]
     row = dict(controller_limit_rows(r, e.units))
     assert row["extended criterion (eq. 11 extended to the damper, filter and delay; a proof)"] == (
@@ -298,10 +298,10 @@ def test_simulate_points_controller_runs_batched_equal_simulate_one_by_one():
     a controller whose delay differs from the search's is refused."""
     rng = np.random.default_rng(16)
     ctls = [
-        ControllerParams(damping=0.5, delay=1),
-        ControllerParams(damping=0.2, cutoff=0.1, delay=1),
-        ControllerParams(damping=0.1, lag=0.3, delay=1),
-        ControllerParams(delay=1),
+        WallParams.of(damping=0.5, delay=1),
+        WallParams.of(damping=0.2, cutoff=0.1, delay=1),
+        WallParams.of(damping=0.1, lag=0.3, delay=1),
+        WallParams.of(delay=1),
     ]
     pts, cs = [], []
     for i in range(24):

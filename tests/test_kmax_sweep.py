@@ -19,7 +19,7 @@ from dfa.analysis.limits.wall_kmax import controller_stiffness_limits
 from dfa.analysis.simulation import default_samples, divergence_bound, preload_position, simulate
 from dfa.cli import main
 from dfa.model.device import Device, Params
-from dfa.model.wall import Controller, ControllerParams
+from dfa.model.wall import Wall, WallParams
 
 RE35 = dfa.get_device("re35").device
 PHANTOM = dfa.get_device("phantom").device
@@ -31,7 +31,7 @@ def _run(dev, ctl, k, v, start):
     p = Params(dev.mass / (k * t * t), dev.damping / (k * t), dev.coulomb / (k * dev.resolution))
     lag = 0.0 if ctl.amplifier_bandwidth is None else 1.0 / (2 * math.pi * ctl.amplifier_bandwidth * t)
     fc = None if ctl.filter_cutoff is None else ctl.filter_cutoff * t
-    c = ControllerParams(damping=ctl.damping / (k * t), delay=ctl.delay, cutoff=fc, lag=lag)
+    c = WallParams.of(damping=ctl.damping / (k * t), delay=ctl.delay, cutoff=fc, lag=lag)
     c = None if c.is_spring else c
     xd = v / (dev.resolution / t)
     x0, v0 = (preload_position(p.mu, xd), 0.0) if start == "preload" else (0.0, xd)
@@ -48,7 +48,7 @@ def _swept_failures(s):
 def test_eq11_sweep_red_team_re35_tiny_damper_preload_divergence_at_33_06_lies_above_k_sim():
     # red team: `dfa stiffness --device "RE35 testbed" --stiffness 40 --virtual-damping 2.1893e-05
     # --velocity-filter 4.9775 --velocity 1.7619` reported K_sim = 60.39 N·m/rad; a preload start diverges at 33.06
-    ctl = Controller(40.0, damping=2.1893e-05, filter_cutoff=4.9775)
+    ctl = Wall.of(40.0, damping=2.1893e-05, filter_cutoff=4.9775)
     assert _run(RE35, ctl, 33.06, 1.7619, "preload") == "unstable"  # the counterexample, reproduced here
     r = controller_stiffness_limits(RE35, ctl, 1.7619, speeds=1, grid=8)
     s = r.k_sim
@@ -62,7 +62,7 @@ def test_eq11_sweep_red_team_re35_tiny_damper_preload_divergence_at_33_06_lies_a
 def test_eq11_sweep_red_team_phantom_damper_delay3_chatter_at_1108_6_lies_above_k_sim_rest():
     # red team: Phantom 1.0, --virtual-damping 5.114 --delay 3: an impact at 0.0125 m/s chatters at K = 1108.6 N/m,
     # below the reported K_sim_rest (2221.6 then; 2304 at this speed before the sweep)
-    ctl = Controller(1015.0, damping=5.114, delay=3)
+    ctl = Wall.of(1015.0, damping=5.114, delay=3)
     assert _run(PHANTOM, ctl, 1108.6, 0.0125, "impact") == "chatter"
     r = controller_stiffness_limits(PHANTOM, ctl, 0.0125, speeds=1, grid=8)
     s = r.k_sim_rest
@@ -78,7 +78,7 @@ def test_eq11_sweep_red_team_phantom_lag_divergence_speckled_below_k_sim_closed_
     # 0.1 m/s before the sweep). A 0.01 N/m scan here finds preload divergence speckled over [461.75, 464] N/m,
     # isolated stiffnesses between safe ones: the fine zone below K catches 462.62 N/m and the limit drops below
     # it, but 461.75 N/m, narrower than any step, stays below the limit; the claim says such bands are not excluded
-    ctl = Controller(1015.0, amplifier_bandwidth=283.58)
+    ctl = Wall.of(1015.0, amplifier_bandwidth=283.58)
     assert _run(PHANTOM, ctl, 462.62, 0.1, "preload") == "unstable"
     assert _run(PHANTOM, ctl, 461.75, 0.1, "preload") == "unstable"
     assert _run(PHANTOM, ctl, 461.7, 0.1, "preload") == _run(PHANTOM, ctl, 461.8, 0.1, "preload") == "rest"

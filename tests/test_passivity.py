@@ -18,7 +18,7 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dfa import Controller, ControllerParams, Device, k_colgate
+from dfa import Device, Wall, WallParams, k_colgate
 from dfa.analysis.colgate_schenkel import PassivityStatus, colgate_schenkel_beta, colgate_schenkel_damping
 from dfa.errors import DFAValueError
 from dfa.results.jsonable import dumps
@@ -26,7 +26,7 @@ from dfa.results.jsonable import dumps
 
 def test_colgate_schenkel_spring_d0_is_eq8():
     """Spring, d = 0: b_min = KT/2 (eq. 8), the ratio being 1 at every ω."""
-    r = colgate_schenkel_damping(Controller(3000.0), 1e-3)
+    r = colgate_schenkel_damping(Wall.of(3000.0), 1e-3)
     assert r.damping_min == pytest.approx(1.5, rel=1e-12) and r.damping_bound >= 1.5
     assert r.status is PassivityStatus.CERTIFIED and r.damping_bound - r.damping_min <= 1e-11
 
@@ -34,7 +34,7 @@ def test_colgate_schenkel_spring_d0_is_eq8():
 @pytest.mark.parametrize("big_b", [0.01, 0.5, 3.0, 40.0])
 def test_colgate_schenkel_spring_damper_d0(big_b):
     """Spring + damper, d = 0: b_min = KT/2 + B, at the Nyquist frequency ω = π/T."""
-    r = colgate_schenkel_damping(Controller(2000.0, damping=big_b), 1e-3)
+    r = colgate_schenkel_damping(Wall.of(2000.0, damping=big_b), 1e-3)
     assert r.damping_min == pytest.approx(1.0 + big_b, rel=1e-12)
     assert r.omega == pytest.approx(math.pi / 1e-3, rel=1e-9) and r.frequency == pytest.approx(500.0, rel=1e-9)
 
@@ -49,15 +49,15 @@ def test_colgate_schenkel_spring_with_delay_sympy(d):
     f = sp.lambdify(th, ratio, "numpy")
     grid = np.linspace(1e-4, math.pi, 20001)
     assert np.max(f(grid)) <= 2 * d + 1  # θ → 0 is the maximum (Dirichlet kernel)
-    r = colgate_schenkel_beta(ControllerParams(delay=d))
+    r = colgate_schenkel_beta(WallParams.of(delay=d))
     assert r.beta_min == pytest.approx(float(peak) / 2, rel=1e-12) and r.theta == 0.0
     # the delay line of eq. 6: passive at every speed for b >= K T (½ + d), i.e. K <= b/(T(½ + d))
     dev = Device(mass=0.1, damping=2.0, coulomb=0.1, resolution=1e-5, period=1e-3)
     k = k_colgate(dev, delay=d)
-    assert colgate_schenkel_damping(Controller(k, delay=d), 1e-3).damping_min == pytest.approx(2.0, rel=1e-12)
+    assert colgate_schenkel_damping(Wall.of(k, delay=d), 1e-3).damping_min == pytest.approx(2.0, rel=1e-12)
 
 
-def _brute(p: ControllerParams) -> float:
+def _brute(p: WallParams) -> float:
     """½ max of Re{(1 − e^{−jθ}) H̃(e^{jθ})}/(1 − cos θ) as written (H̃ from the controller's definition), dense grid."""
     th = np.linspace(0.02, math.pi, 100001)  # from 0.02: 1 − cos θ without cancellation (rel. error < 1e-12)
     z = np.exp(1j * th)
@@ -69,7 +69,7 @@ def _brute(p: ControllerParams) -> float:
 @settings(max_examples=30)
 @given(
     p=st.builds(
-        ControllerParams,
+        WallParams.of,
         damping=st.floats(0.0, 20.0),
         delay=st.integers(0, 6),
         cutoff=st.one_of(st.none(), st.floats(1e-3, 0.49)),
@@ -87,13 +87,13 @@ def test_colgate_schenkel_max_is_certified_vs_brute_force(p):
 
 def test_colgate_schenkel_refuses_amplifier_lag():
     with pytest.raises(DFAValueError, match="amplifier lag .* Colgate–Schenkel"):
-        colgate_schenkel_damping(Controller(1000.0, amplifier_bandwidth=500.0), 1e-3)
+        colgate_schenkel_damping(Wall.of(1000.0, amplifier_bandwidth=500.0), 1e-3)
     with pytest.raises(DFAValueError, match="zero-order hold drives the device directly"):
-        colgate_schenkel_beta(ControllerParams(lag=0.1))
+        colgate_schenkel_beta(WallParams.of(lag=0.1))
 
 
 def test_colgate_schenkel_physical_is_dimensionless_times_kt_and_json():
-    c = Controller(1500.0, damping=0.7, delay=1, filter_cutoff=80.0)
+    c = Wall.of(1500.0, damping=0.7, delay=1, filter_cutoff=80.0)
     r = colgate_schenkel_damping(c, 1e-3)
     assert r.damping_min == 1500.0 * 1e-3 * r.dimensionless.beta_min
     assert r.omega == r.dimensionless.theta / 1e-3
@@ -105,5 +105,5 @@ def test_colgate_schenkel_physical_is_dimensionless_times_kt_and_json():
 
 def test_large_delay_is_fast_and_exact():
     """d = 2000: Dirichlet kernel in closed form, maximum 2d + 1 at θ = 0 (no per-k sum)."""
-    r = colgate_schenkel_beta(ControllerParams(delay=2000))
+    r = colgate_schenkel_beta(WallParams.of(delay=2000))
     assert r.beta_min == pytest.approx(2000.5, rel=1e-12) and r.status is PassivityStatus.CERTIFIED

@@ -17,9 +17,9 @@ from dfa.analysis.colgate_schenkel import colgate_schenkel_beta
 from dfa.analysis.linear_wall import controlled_characteristic_polynomial, stable_stiffness
 from dfa.analysis.simulation import simulate, simulate_batch
 from dfa.errors import DFATypeError, DFAValueError
-from dfa.model.wall import Controller, ControllerParams
+from dfa.model.wall import Wall, WallParams
 
-CTL = ControllerParams(damping=0.2, delay=1, cutoff=0.1)
+CTL = WallParams.of(damping=0.2, delay=1, cutoff=0.1)
 
 
 @pytest.mark.parametrize("delay", [True, 1 + 0j, "1"])
@@ -57,7 +57,7 @@ def test_simulate_quantize_numpy_bool_equals_python_bool():
 def test_stable_stiffness_subnormal_period_is_the_package_error(period):
     # was ZeroDivisionError in K = κ m/T² (T² underflows to 0)
     with pytest.raises(DFAValueError, match=r"^period = .* mass/period² must be finite"):
-        stable_stiffness(1.0, 1.0, period, Controller(1.0))
+        stable_stiffness(1.0, 1.0, period, Wall.of(1.0))
 
 
 @pytest.mark.parametrize("cutoff", [1e-300, 1e-18])
@@ -65,10 +65,10 @@ def test_filter_cutoff_whose_pole_rounds_to_one_is_refused(cutoff):
     # was ZeroDivisionError in colgate_schenkel_beta (curvature bound divides by 1 − a = 0)
     assert math.exp(-2.0 * math.pi * cutoff) == 1.0
     with pytest.raises(DFAValueError, match=r"^cutoff = .* at least 0.001 cycles per sample"):
-        colgate_schenkel_beta(ControllerParams(damping=1.0, cutoff=cutoff))
+        colgate_schenkel_beta(WallParams.of(damping=1.0, cutoff=cutoff))
     with pytest.raises(DFAValueError, match=r"at least 0.001 Hz \(0.001 cycles per sample; below"):
-        Controller(1.0, damping=1.0, filter_cutoff=cutoff).params(1.0)
-    assert ControllerParams(damping=1.0, cutoff=1e-3).filter_pole < 1.0  # the smallest accepted still filters
+        Wall.of(1.0, damping=1.0, filter_cutoff=cutoff).params(1.0)
+    assert WallParams.of(damping=1.0, cutoff=1e-3).filter_pole < 1.0  # the smallest accepted still filters
 
 
 # A counterexample found by the red team and not fixed: b ≈ 0, a large damper behind a
@@ -78,7 +78,7 @@ SLOW_CTL = dict(damping=9.183334519574379, delay=3, filter_cutoff=1e-6 / 0.00056
 SLOW_CTL["amplifier_bandwidth"] = 588.1529142369977
 
 
-def _radius_mp(mu: float, beta: float, params: ControllerParams) -> float:
+def _radius_mp(mu: float, beta: float, params: WallParams) -> float:
     """Spectral radius of the loop's own characteristic polynomial, roots in 60 digits."""
     mpmath.mp.dps = 60
     c = controlled_characteristic_polynomial(mu, beta, params)
@@ -89,23 +89,21 @@ def _radius_mp(mu: float, beta: float, params: ControllerParams) -> float:
 def test_slow_filter_is_refused_not_misjudged():
     """ν_c = 1e-6: the loop is stable at small K (60-digit roots) but double precision called it 'never': refused."""
     k, t = 0.05, SLOW["period"]
-    p = ControllerParams(
-        damping=SLOW_CTL["damping"] / (k * t), delay=3, cutoff=1e-3, lag=1.0 / (2 * math.pi * 588.15 * t)
-    )
+    p = WallParams.of(damping=SLOW_CTL["damping"] / (k * t), delay=3, cutoff=1e-3, lag=1.0 / (2 * math.pi * 588.15 * t))
     good = p.as_dict() | {"cutoff": 1e-6}
-    assert _radius_mp(SLOW["mass"] / (k * t * t), SLOW["damping"] / (k * t), ControllerParams(**p.as_dict())) < 1.0
+    assert _radius_mp(SLOW["mass"] / (k * t * t), SLOW["damping"] / (k * t), WallParams.of(**p.as_dict())) < 1.0
     with pytest.raises(DFAValueError, match=r"cutoff = 1e-06 is invalid: it must be at least 0.001 cycles per sample"):
-        ControllerParams(**good)
+        WallParams.of(**good)
     with pytest.raises(DFAValueError, match=r"filter_cutoff = .* it must be at least 1.78.* Hz"):
-        Controller(1.0, **SLOW_CTL).params(t)
+        Wall.of(1.0, **SLOW_CTL).params(t)
 
 
 def test_slow_filter_at_the_floor_linear_bound_agrees_with_60_digit_roots():
     """At the smallest accepted cutoff the exact bound's verdicts match high-precision roots on both sides."""
     m, b, t = SLOW["mass"], SLOW["damping"], SLOW["period"]
     ctl = dict(SLOW_CTL, filter_cutoff=1e-3 / t)
-    r = stable_stiffness(m, b, t, Controller(1.0, **ctl))
+    r = stable_stiffness(m, b, t, Wall.of(1.0, **ctl))
     assert r.status.value != "never" and r.k_crit > 0
     for k, stable in ((0.5 * r.k_crit, True), (1.05 * r.k_crit, False)):
-        p = Controller(k, **ctl).params(t)
+        p = Wall.of(k, **ctl).params(t)
         assert (_radius_mp(m / (k * t * t), b / (k * t), p) < 1.0) is stable

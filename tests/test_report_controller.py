@@ -29,7 +29,7 @@ from dfa.analysis.design import design_analysis
 from dfa.analysis.linear_wall import stable_stiffness
 from dfa.cli import main
 from dfa.errors import DFAValueError
-from dfa.model.wall import Controller
+from dfa.model.wall import Wall
 from dfa.render.document import design_markdown
 from dfa.results.jsonable import dumps
 
@@ -192,7 +192,7 @@ def test_controller_report_leaves_out_the_spring_only_sections(ctl):
     assert "## Predicted limit cycles (describing function, eq. 36–41) with the controller" in md
     # the sections that accept a controller are computed with it
     dev = dfa.get_device("delta").device
-    cp = Controller(14500.0, 1.0, 1, 200.0).params(dev.period)
+    cp = Wall.of(14500.0, 1.0, 1, 200.0).params(dev.period)
     assert a["stability_map"]["controller"] == cp.as_dict() and a["delay"] == 1
     p = dev.params(14500.0)
     g = dfa.growth_threshold(p, model="zoh", controller=cp)
@@ -212,7 +212,7 @@ def test_controller_report_zwidth_linear_boundary_is_the_exact_bound(ctl):
     assert sum(k is not None for k in lin) >= 2
     for b, k in zip(z["damping"], lin, strict=True):
         if k is not None:
-            exact = stable_stiffness(dev.mass, dev.damping, dev.period, Controller(1.0, b, 1, 200.0)).k_crit
+            exact = stable_stiffness(dev.mass, dev.damping, dev.period, Wall.of(1.0, b, 1, 200.0)).k_crit
             assert k == pytest.approx(exact, rel=1e-12)
     assert "## Z-width: stiffness against virtual damping" in md and "the star in the figure is the design point" in md
 
@@ -290,9 +290,9 @@ def test_controller_report_bad_input_is_one_line_exit_2(capsys, tmp_path, argv, 
 def test_design_analysis_controller_inputs_checked():
     e = dfa.get_device("delta")
     with pytest.raises(DFAValueError, match="controller carries K"):
-        design_analysis(e, 1000.0, controller=Controller(14500.0, 1.0))
+        design_analysis(e, 1000.0, controller=Wall.of(14500.0, 1.0))
     with pytest.raises(DFAValueError, match="carries the delay"):
-        design_analysis(e, delay=2, controller=Controller(14500.0, 1.0, delay=1))
+        design_analysis(e, delay=2, controller=Wall.of(14500.0, 1.0, delay=1))
 
 
 # ------------------------------------------------------------------ null reasons
@@ -306,7 +306,7 @@ def test_controller_report_json_every_null_has_a_reason(case, request):
 def test_spring_report_unchanged_golden_from_before_the_controller():
     """Impulse Engine at 0.05 m/s (small map): JSON key by key (floats to 1e-9) and Markdown byte for byte.
 
-    Recorded from commit 4b5ad71 (before the report took a controller); a pure-spring Controller gives the same.
+    Recorded from commit 4b5ad71 (before the report took a controller); a pure-spring Wall gives the same.
     """
     spec = importlib.util.spec_from_file_location("dfa_make_golden", GOLDEN / "make_golden.py")
     assert spec is not None and spec.loader is not None
@@ -315,7 +315,7 @@ def test_spring_report_unchanged_golden_from_before_the_controller():
     old = json.loads((GOLDEN / "design_analysis_impulse_small.json").read_text(encoding="utf-8"))
     old_md = (GOLDEN / "design_analysis_impulse_small.md").read_text(encoding="utf-8")
     e = dfa.get_device("impulse")
-    for ctl in (None, Controller(e.stiffness)):  # the pure spring as a Controller is the spring
+    for ctl in (None, Wall.of(e.stiffness)):  # the pure spring as a Wall is the spring
         a = design_analysis(e, velocity=0.05, controller=ctl, **SMALL)
         new = json.loads(dumps(a.as_dict(), ensure_ascii=False))
         assert set(new) == set(old) and golden.compare_json(old, new) == []
@@ -332,7 +332,7 @@ def test_fig6_nyquist_cycle_marks_lie_on_the_locus_with_a_controller():
     from dfa.figures import _cycle_points
 
     dev = dfa.get_device("impulse").device
-    cp = Controller(80.0, 0.05, 1, 100.0, 200.0).params(dev.period)
+    cp = Wall.of(80.0, 0.05, 1, 100.0, 200.0).params(dev.period)
     p = dev.params(80.0)
     res = dfa.limit_cycles(p, model="zoh", controller=cp)
     assert res.cycles
@@ -353,13 +353,13 @@ def test_fig6_nyquist_title_names_the_controller(monkeypatch):
 
     monkeypatch.setattr(figures, "_png", keep_title)
     entry = dfa.get_device("delta")
-    ctl = Controller(entry.stiffness, 1.0, 1, 200.0)
+    ctl = Wall.of(entry.stiffness, 1.0, 1, 200.0)
     a = design_analysis(entry, velocity=0.05, controller=ctl, zwidth_grid=0, **SMALL)
     fig = figures._nyquist(a)
     loop = f"Nyquist, {MODEL_NAMES[a.nyquist.model]} loop"
     assert titles[-1] == f"{loop} with B = 1 N·s/m, f_c = 200 Hz, d = 1"
     assert "with the wall controller (β_B = " in fig.caption  # the caption names it too (dimensionless)
-    lag = Controller(entry.stiffness, 0.5, 0, None, 300.0)
+    lag = Wall.of(entry.stiffness, 0.5, 0, None, 300.0)
     figures._nyquist(design_analysis(entry, velocity=0.05, controller=lag, zwidth_grid=0, **SMALL))
     assert titles[-1] == f"{loop} with B = 0.5 N·s/m, f_bw = 300 Hz, d = 0"
     figures._nyquist(design_analysis(entry, velocity=0.05, delay=1, **SMALL))

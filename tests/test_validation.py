@@ -119,9 +119,9 @@ def test_validation_controller_record_is_the_simulated_over_predicted_ratio():
     from dfa.analysis.simulation import simulate
     from dfa.analysis.validation import controller_cycle_checks
     from dfa.model.device import Params
-    from dfa.model.wall import ControllerParams
+    from dfa.model.wall import WallParams
 
-    p, ctl = Params(20.0, 0.05, 0.3), ControllerParams(damping=0.2, cutoff=0.05)
+    p, ctl = Params(20.0, 0.05, 0.3), WallParams.of(damping=0.2, cutoff=0.05)
     recs = controller_cycle_checks([p], samples=20_000, models=("half-delay",), controllers=(("f", ctl),))
     cyc = limit_cycles(p, model="half-delay", max_amplitude=2000.0, controller=ctl).cycles
     assert [r["amplitude"] for r in recs] == [c.amplitude for c in cyc]

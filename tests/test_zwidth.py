@@ -16,7 +16,7 @@ from dfa.analysis.limits.zwidth import DIVERGES, POINT_OUTCOMES, ZWIDTH_METHODS,
 from dfa.analysis.linear_wall import stable_stiffness
 from dfa.cli import main
 from dfa.model.catalogue import get_device
-from dfa.model.wall import Controller
+from dfa.model.wall import Wall
 
 DEV = "Impulse Engine"
 V = 0.1
@@ -33,7 +33,7 @@ def zw_delay():
 
 
 def _exact(dev, b, d=0, fc=None, fbw=None):
-    r = stable_stiffness(dev.mass, dev.damping, dev.period, Controller(1.0, b, d, fc, fbw))
+    r = stable_stiffness(dev.mass, dev.damping, dev.period, Wall.of(1.0, b, d, fc, fbw))
     return r.k_crit if r.k_crit > 0 else math.nan
 
 

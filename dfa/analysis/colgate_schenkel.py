@@ -39,9 +39,9 @@ device directly): with α > 0 the functions refuse; the exact linear bound
 
 Examples
 --------
->>> round(colgate_schenkel_beta(ControllerParams(damping=0.3)).beta_min, 12)
+>>> round(colgate_schenkel_beta(WallParams.of(damping=0.3)).beta_min, 12)
 0.8
->>> r = colgate_schenkel_damping(Controller(2000.0, damping=1.0), period=1e-3)
+>>> r = colgate_schenkel_damping(Wall.of(2000.0, damping=1.0), period=1e-3)
 >>> round(r.damping_min, 9), round(r.frequency, 3)       # KT/2 + B at the Nyquist frequency
 (2.0, 500.0)
 """
@@ -55,7 +55,7 @@ import numpy as np
 
 from ..checks import check_positive, check_type
 from ..errors import DFAValueError
-from ..model.wall import Controller, ControllerParams
+from ..model.wall import Wall, WallParams
 from ..results.status import StatusEnum
 
 __all__ = [
@@ -142,7 +142,7 @@ class ColgateSchenkel:
         Certified upper bound of ½ max f (rounding included): β above it meets the condition.
     theta : float
         Where the maximum was found, rad/sample (ωT), in [0, π].
-    params : ControllerParams
+    params : WallParams
         The controller (β_B, d, ν_c; α = 0).
     status : PassivityStatus
     """
@@ -150,7 +150,7 @@ class ColgateSchenkel:
     beta_min: float
     beta_bound: float
     theta: float
-    params: ControllerParams
+    params: WallParams
     status: PassivityStatus
 
     def __post_init__(self) -> None:
@@ -187,12 +187,12 @@ def _refuse_lag(lag: float) -> None:
         )
 
 
-def colgate_schenkel_beta(controller: ControllerParams) -> ColgateSchenkel:
+def colgate_schenkel_beta(controller: WallParams) -> ColgateSchenkel:
     """Minimum dimensionless damping β = b/(KT) for passivity (Colgate & Schenkel 1997) with a controller.
 
     Parameters
     ----------
-    controller : ControllerParams
+    controller : WallParams
         Virtual damping β_B, delay d, filter cutoff ν_c; the amplifier lag must be 0.
 
     Returns
@@ -205,7 +205,7 @@ def colgate_schenkel_beta(controller: ControllerParams) -> ColgateSchenkel:
     DFAValueError
         With an amplifier lag (the condition does not cover it).
     DFATypeError
-        ``controller`` is not a :class:`dfa.ControllerParams`.
+        ``controller`` is not a :class:`dfa.WallParams`.
 
     See Also
     --------
@@ -214,10 +214,10 @@ def colgate_schenkel_beta(controller: ControllerParams) -> ColgateSchenkel:
 
     Examples
     --------
-    >>> round(colgate_schenkel_beta(ControllerParams(delay=2)).beta_min, 12)     # d + ½
+    >>> round(colgate_schenkel_beta(WallParams.of(delay=2)).beta_min, 12)     # d + ½
     2.5
     """
-    p = check_type("controller", controller, ControllerParams, "give a dfa.ControllerParams")
+    p = check_type("controller", controller, WallParams, "give a dfa.WallParams")
     _refuse_lag(p.lag)
     pole = None if p.cutoff is None else p.filter_pole
     best, arg, ub, _ = _maximise(p.damping, p.delay, pole)
@@ -240,7 +240,7 @@ class ColgateSchenkelDamping:
         K T β_bound: any b above it meets the condition (certified), N·s/m.
     omega : float
         Angular frequency θ/T of the maximum, rad/s.
-    controller : Controller
+    controller : Wall
     period : float
         Sampling period T, s.
     dimensionless : ColgateSchenkel
@@ -249,7 +249,7 @@ class ColgateSchenkelDamping:
     damping_min: float
     damping_bound: float
     omega: float
-    controller: Controller
+    controller: Wall
     period: float
     dimensionless: ColgateSchenkel
 
@@ -299,12 +299,12 @@ class ColgateSchenkelDamping:
         }
 
 
-def colgate_schenkel_damping(controller: Controller, period: float) -> ColgateSchenkelDamping:
+def colgate_schenkel_damping(controller: Wall, period: float) -> ColgateSchenkelDamping:
     """Minimum viscous friction b of the device for the wall ``controller`` to be passive (Colgate & Schenkel 1997).
 
     Parameters
     ----------
-    controller : Controller
+    controller : Wall
         Stiffness K, damping B, delay d, filter cutoff f_c; no amplifier bandwidth (the condition does not cover it).
     period : float
         Sampling period T > 0, s.
@@ -320,7 +320,7 @@ def colgate_schenkel_damping(controller: Controller, period: float) -> ColgateSc
         With an amplifier bandwidth (the condition does not cover the lag), a bad period, or a filter
         cutoff above the Nyquist frequency.
     DFATypeError
-        ``controller`` is not a :class:`dfa.Controller`.
+        ``controller`` is not a :class:`dfa.Wall`.
 
     See Also
     --------
@@ -329,11 +329,11 @@ def colgate_schenkel_damping(controller: Controller, period: float) -> ColgateSc
 
     Examples
     --------
-    >>> r = colgate_schenkel_damping(Controller(1000.0, delay=1), 1e-3)
+    >>> r = colgate_schenkel_damping(Wall.of(1000.0, delay=1), 1e-3)
     >>> round(r.damping_min, 9), r.omega                 # K T (d + ½) at ω → 0
     (1.5, 0.0)
     """
-    c = check_type("controller", controller, Controller, "give a dfa.Controller")
+    c = check_type("controller", controller, Wall, "give a dfa.Wall")
     t = check_positive("period", period, "give the sampling period T in s (1 kHz: 0.001)")
     if c.amplifier_bandwidth is not None:
         _refuse_lag(c.params(t).lag)

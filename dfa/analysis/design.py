@@ -26,7 +26,7 @@ from ..checks import _fmt, check_delay, check_int, check_positive, check_real, c
 from ..errors import DFATypeError, DFAValueError
 from ..model.catalogue import CatalogueEntry
 from ..model.device import Device, Params
-from ..model.wall import Controller, ControllerParams
+from ..model.wall import Wall, WallParams
 from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import DesignStatus
 from .criterion import CriterionResult, device_criterion
@@ -116,7 +116,7 @@ class DesignAnalysis:
         Summary of a validation run (:meth:`dfa.analysis.validation.Validation.summary`) passed in; never read from a file.
     samples, map_grid : int
         Samples per run of the speed scan and the map, and the map's points per axis (inputs of the analysis).
-    controller : Controller or None
+    controller : Wall or None
         The wall controller of every simulation, limit cycle, map and the Z-width (its stiffness is K, its delay
         d); None: the paper's spring.
     controller_check : ControllerCheck or None
@@ -151,7 +151,7 @@ class DesignAnalysis:
     validation: dict[str, Any] | None = None
     samples: int = 30_000
     map_grid: int = 81
-    controller: Controller | None = None
+    controller: Wall | None = None
     controller_check: ControllerCheck | None = None
     controller_limits: ControllerStiffnessLimits | None = field(default=None, repr=False)
     status: DesignStatus = DesignStatus.OK
@@ -207,7 +207,7 @@ class DesignAnalysis:
             if self.controller_check is not None or self.controller_limits is not None:
                 raise DFAValueError(f"controller_check and controller_limits need a controller; {fix}")
             return
-        check_type("controller", self.controller, Controller, fix)
+        check_type("controller", self.controller, Wall, fix)
         check_type("controller_check", self.controller_check, ControllerCheck, fix)
         if self.controller_limits is not None:
             check_type("controller_limits", self.controller_limits, ControllerStiffnessLimits, fix)
@@ -225,7 +225,7 @@ class DesignAnalysis:
         return self.criterion.xi_dot if self.criterion is not None else self.device.xi_dot(self.velocity)
 
     @property
-    def controller_params(self) -> ControllerParams | None:
+    def controller_params(self) -> WallParams | None:
         """The controller's dimensionless groups (β_B, ν_c, α, d) at the device's period; None for the spring."""
         return None if self.controller is None else self.controller.params(self.device.period)
 
@@ -381,7 +381,7 @@ def resolve_design_inputs(
 
 
 def _simulations(
-    p: Params, xi_dot: float, ref: float, v_sim: float | None, samples: int, dl: int, cp: ControllerParams | None
+    p: Params, xi_dot: float, ref: float, v_sim: float | None, samples: int, dl: int, cp: WallParams | None
 ) -> dict[str, Any]:
     """Recorded runs for the figure and full-length runs for the outcomes, at the design speed and above."""
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
@@ -412,7 +412,7 @@ def design_analysis(
     n_jobs: int = -1,
     progress: bool = False,
     zwidth_grid: int | None = None,
-    controller: Controller | None = None,
+    controller: Wall | None = None,
 ) -> DesignAnalysis:
     """Compute every number of the design report of ``device`` at stiffness K, impact speed ẋ0 and delay d.
 
@@ -439,8 +439,8 @@ def design_analysis(
     zwidth_grid : int or None
         Points per axis of the report's Z-width (one impact speed, :func:`dfa.analysis.limits.zwidth.z_width`); default None:
         no Z-width for the spring, ``CONTROLLER_ZWIDTH_GRID`` (16) with a controller; 0: none.
-    controller : Controller, optional
-        The wall controller (physical K, B, d, f_c, f_bw; :class:`dfa.Controller`): every part that accepts
+    controller : Wall, optional
+        The wall controller (physical K, B, d, f_c, f_bw; :class:`dfa.Wall`): every part that accepts
         one is computed with it, the spring-only parts are left out (module docstring). Default None, or a
         controller that is a pure spring: the paper's spring, unchanged.
 
@@ -506,12 +506,12 @@ def design_analysis(
 
 
 def resolve_controller(
-    device: Any, controller: Controller | None, stiffness: float | None, delay: int
-) -> tuple[Controller | None, float | None, int]:
+    device: Any, controller: Wall | None, stiffness: float | None, delay: int
+) -> tuple[Wall | None, float | None, int]:
     """(controller or None for the spring, K, d) of a design analysis: the controller carries K and d."""
     if controller is None:
         return None, stiffness, delay
-    ctl = check_type("controller", controller, Controller, "build one with dfa.Controller(K, B, ...), or None")
+    ctl = check_type("controller", controller, Wall, "build one with dfa.Wall.of(K, B, ...), or None")
     if stiffness is not None and stiffness != ctl.stiffness:
         raise DFAValueError(
             f"stiffness = {_fmt(stiffness)} differs from controller.stiffness = {_fmt(ctl.stiffness)}: the controller "
@@ -538,7 +538,7 @@ def _spring_parts(dev: Device, k: float, v: float, dl: int) -> dict[str, Any]:
     )
 
 
-def _controller_parts(dev: Device, ctl: Controller, v: float) -> dict[str, Any]:
+def _controller_parts(dev: Device, ctl: Wall, v: float) -> dict[str, Any]:
     """The passivity check and K_max with the controller (no spring-only part), with the design and critical speeds."""
     chk = controller_check(dev, ctl, v)
     lim = controller_stiffness_limits(dev, ctl, v) if v > 0 else None
@@ -549,7 +549,7 @@ def _controller_parts(dev: Device, ctl: Controller, v: float) -> dict[str, Any]:
     )  # fmt: skip
 
 
-def _zwidth(dev: Device, v: float, dl: int, ctl: Controller | None, grid: int, n_jobs: int, progress: bool) -> ZWidth:
+def _zwidth(dev: Device, v: float, dl: int, ctl: Wall | None, grid: int, n_jobs: int, progress: bool) -> ZWidth:
     """The Z-width at the design speed, with the controller's delay, filter and lag; B's axis holds the design B."""
     fc = None if ctl is None else ctl.filter_cutoff
     fbw = None if ctl is None else ctl.amplifier_bandwidth
@@ -562,7 +562,7 @@ def _zwidth(dev: Device, v: float, dl: int, ctl: Controller | None, grid: int, n
 
 
 def _map_around(
-    p: Params, xi_dot: float, dl: int, grid: int, samples: int, n_jobs: int, progress: bool, cp: ControllerParams | None
+    p: Params, xi_dot: float, dl: int, grid: int, samples: int, n_jobs: int, progress: bool, cp: WallParams | None
 ) -> StabilityMap:
     """Simulated outcomes on (β, σ) around the operating point, at the design speed and twice it."""
     return stability_map(
@@ -580,7 +580,7 @@ def _map_around(
     )
 
 
-def _nyquist(p: Params, zoh: GrowthThreshold, dl: int, cp: ControllerParams | None) -> NyquistLocusResponse:
+def _nyquist(p: Params, zoh: GrowthThreshold, dl: int, cp: WallParams | None) -> NyquistLocusResponse:
     """The Nyquist view of the exact ZOH loop (the model of the growth threshold): the locus reaches every cycle drawn."""
     res = zoh.result
     amps = [c.amplitude for c in res.cycles[:3]] if p.sigma > 0 else None

@@ -81,7 +81,7 @@ from scipy.optimize import brentq
 from ..checks import check_beta, check_delay, check_mu, check_nonnegative, check_positive, check_rate, check_type
 from ..core.zoh import c1_minus_c0, zoh_coefficients
 from ..errors import DFAError, DFAValueError
-from ..model.wall import Controller, ControllerParams
+from ..model.wall import Wall, WallParams
 
 __all__ = [
     "characteristic_polynomial",
@@ -104,7 +104,7 @@ def _verify_step(a: float) -> float:
 
 # ----------------------------------------------------------------------------- polynomial and spectral radius
 def characteristic_polynomial(
-    mu: float, beta: float, delay: int = 0, *, controller: ControllerParams | None = None
+    mu: float, beta: float, delay: int = 0, *, controller: WallParams | None = None
 ) -> np.ndarray:
     """Closed-loop characteristic polynomial χ(z) = μ z^d (z − 1)(z − p) + c₁ z + c₀ of the sampled spring.
 
@@ -119,7 +119,7 @@ def characteristic_polynomial(
         Dimensionless damping β = b/(KT) >= 0 (β = 0: the limit c₁ = c₀ = ½, p = 1).
     delay : int, optional
         Computational delay d in samples (the force of sample h uses ξ(h − d)).
-    controller : ControllerParams, optional
+    controller : WallParams, optional
         With a damper, filter or amplifier lag: the polynomial of
         :func:`dfa.analysis.linear_wall.controlled_characteristic_polynomial`; None or a
         spring (any delay; a velocity filter without a damper filters nothing): the spring's polynomial unchanged.
@@ -135,7 +135,7 @@ def characteristic_polynomial(
     [1.0, -2.0, 1.5, 0.5]
     """
     m, b = check_mu(mu), check_beta(beta)
-    d, c = _controller_delay(delay, controller, ControllerParams)
+    d, c = _controller_delay(delay, controller, WallParams)
     if c is not None and (c.damping > 0.0 or c.lag > 0.0):
         from .linear_wall import controlled_characteristic_polynomial
 
@@ -190,7 +190,7 @@ def _controller_delay(delay: Any, controller: Any, cls: type) -> tuple[int, Any]
     return c.delay, c
 
 
-def spectral_radius(mu, beta, delay: int = 0, *, controller: ControllerParams | None = None):
+def spectral_radius(mu, beta, delay: int = 0, *, controller: WallParams | None = None):
     """Largest root modulus of :func:`characteristic_polynomial` (vectorised over μ and β).
 
     Parameters
@@ -199,7 +199,7 @@ def spectral_radius(mu, beta, delay: int = 0, *, controller: ControllerParams | 
         Dimensionless mass (> 0) and damping (>= 0), broadcast together.
     delay : int, optional
         Computational delay d in samples.
-    controller : ControllerParams, optional
+    controller : WallParams, optional
         Virtual damper β_B, filter ν_c, delay d and amplifier lag α (:mod:`dfa.analysis.linear_wall`);
         None or a spring (any delay; a filter without a damper filters nothing) gives the spring's result unchanged.
 
@@ -215,7 +215,7 @@ def spectral_radius(mu, beta, delay: int = 0, *, controller: ControllerParams | 
     """
     m = _as_array("mu", mu, lambda n, v: check_mu(v, n))
     b = _as_array("beta", beta, lambda n, v: check_beta(v, n))
-    d, c = _controller_delay(delay, controller, ControllerParams)
+    d, c = _controller_delay(delay, controller, WallParams)
     if c is not None and (c.damping > 0.0 or c.lag > 0.0):
         from .linear_wall import controlled_spectral_radius
 
@@ -228,10 +228,10 @@ def spectral_radius(mu, beta, delay: int = 0, *, controller: ControllerParams | 
     return float(out) if out.ndim == 0 else out
 
 
-def linear_stable(mu, beta, delay: int = 0, *, controller: ControllerParams | None = None):
+def linear_stable(mu, beta, delay: int = 0, *, controller: WallParams | None = None):
     """True where the linear sampled loop is asymptotically stable (spectral radius < 1), vectorised.
 
-    Parameters as :func:`spectral_radius` (``controller``: a :class:`ControllerParams`, or None for the spring).
+    Parameters as :func:`spectral_radius` (``controller``: a :class:`WallParams`, or None for the spring).
     At tiny rates (spring: r_d β/μ <= 1e-6; controller: (β + β_B)/μ < 1e-7), where the float spectral radius is
     decided by rounding, the verdict is 1/μ < κ_crit of the small-rate bound (:func:`critical_stiffness`).
 
@@ -241,7 +241,7 @@ def linear_stable(mu, beta, delay: int = 0, *, controller: ControllerParams | No
     (True, False)
     """
     r = spectral_radius(mu, beta, delay, controller=controller)
-    d, c = _controller_delay(delay, controller, ControllerParams)
+    d, c = _controller_delay(delay, controller, WallParams)
     m, b = np.broadcast_arrays(np.asarray(mu, dtype=float), np.asarray(beta, dtype=float))
     out = np.atleast_1d(np.asarray(r) < 1.0).ravel()
     for i, (x, y) in enumerate(zip(m.ravel(), b.ravel(), strict=True)):
@@ -251,7 +251,7 @@ def linear_stable(mu, beta, delay: int = 0, *, controller: ControllerParams | No
     return bool(out[0]) if isinstance(r, float) else out.reshape(np.shape(r))
 
 
-def _small_rate_verdict(mu: float, beta: float, d: int, c: ControllerParams | None) -> bool | None:
+def _small_rate_verdict(mu: float, beta: float, d: int, c: WallParams | None) -> bool | None:
     """Stability from the small-rate bound (1/μ < κ_crit, in β form: no underflow), or None outside that regime.
 
     Spring: r_d β/μ <= 1e-6, stable iff β(1 + r_d β/μ) > ½ + d (:func:`_small_rate_kappa`). With a damper or
@@ -366,7 +366,7 @@ def _critical_kappa_scan(a: float, d: int) -> float:
     return float(brentq(lambda k: float(_rho(a, k, d)) - 1.0, ks[i - 1], ks[i], xtol=1e-300, rtol=1e-14))
 
 
-def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Controller | None = None):
+def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Wall | None = None):
     """Exact stability limit K_crit of the linear sampled spring, all Jury conditions, with delay (spec section 8).
 
     The smallest K > 0 at which a closed-loop root of :func:`characteristic_polynomial`
@@ -391,7 +391,7 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Con
         Sampling period T > 0, s.
     delay : int, optional
         Computational delay d in samples: F_h = −K x(h − d).
-    controller : Controller, optional
+    controller : Wall, optional
         A wall with virtual damper B, velocity filter, delay and amplifier lag: K_crit is then
         :attr:`dfa.analysis.linear_wall.StiffnessIntervals.k_crit` of
         :func:`dfa.analysis.linear_wall.stable_stiffness` (B, f_c, τ_a, d held fixed while K varies;
@@ -414,7 +414,7 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Con
     m = _as_array("mass", mass, lambda n, v: check_positive(n, v, "give the moving mass in kg (rotary: kg·m²)"))
     b = _as_array("damping", damping, lambda n, v: check_nonnegative(n, v, "give the viscous friction in N·s/m"))
     t = _as_array("period", period, lambda n, v: check_positive(n, v, "give the sampling period in s"))
-    d, c = _controller_delay(delay, controller, Controller)
+    d, c = _controller_delay(delay, controller, Wall)
     m, b, t = np.broadcast_arrays(m, b, t)
     if c is not None and (c.damping > 0.0 or c.amplifier_bandwidth is not None):
         from .linear_wall import stable_stiffness

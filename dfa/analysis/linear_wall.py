@@ -60,7 +60,7 @@ the positive limit. Checked against 60+ digit mpmath for rates 1e-16 … 1e-4 in
 
 Examples
 --------
->>> r = stable_stiffness(1.0, 2.0, 1e-3, Controller(1.0, damping=1.0))
+>>> r = stable_stiffness(1.0, 2.0, 1e-3, Wall.of(1.0, damping=1.0))
 >>> r.status.value, round(r.k_crit, 1)          # ≈ (b + B)/(T/2) = 6000 N/m as bT/m → 0
 ('interval', 5996.0)
 """
@@ -86,7 +86,7 @@ from ..checks import (
 from ..core.zoh import zoh_coefficients
 from ..core.zohlag import amplifier_zoh
 from ..errors import DFAError, DFAValueError
-from ..model.wall import Controller, ControllerParams
+from ..model.wall import Wall, WallParams
 from ..results.frozen import freeze_fields
 from ..results.status import StatusEnum
 
@@ -160,14 +160,14 @@ def _controller(cutoff: float | None, delay: int) -> tuple[np.ndarray, np.ndarra
     return np.array([1.0, -af, 0.0]), np.array([1.0 - af, af - 1.0]), np.polymul(shift, [1.0, -af])
 
 
-def controlled_characteristic_polynomial(mu: float, beta: float, params: ControllerParams) -> np.ndarray:
+def controlled_characteristic_polynomial(mu: float, beta: float, params: WallParams) -> np.ndarray:
     """χ(z) = μ D_G D_H + N_G (N₁ + β_B N₂) of the sampled loop with a controller (module docstring).
 
     Parameters
     ----------
     mu, beta : float
         Dimensionless mass μ = m/(KT²) > 0 and damping β = b/(KT) >= 0 (paper Table 1).
-    params : ControllerParams
+    params : WallParams
         β_B, d, ν_c, α.
 
     Returns
@@ -177,13 +177,13 @@ def controlled_characteristic_polynomial(mu: float, beta: float, params: Control
 
     Examples
     --------
-    >>> controlled_characteristic_polynomial(1.0, 0.0, ControllerParams(damping=0.5)).tolist()
+    >>> controlled_characteristic_polynomial(1.0, 0.0, WallParams.of(damping=0.5)).tolist()
     [1.0, -1.25, 1.5, -0.25]
 
     (z(z − 1)² + (½z + ½)(1.5z − 0.5) at μ = 1, β = 0, β_B = ½.)
     """
     m, b = check_mu(mu), check_beta(beta)
-    params = check_type("params", params, ControllerParams, "give a dfa.ControllerParams")
+    params = check_type("params", params, WallParams, "give a dfa.WallParams")
     ng, dg = _plant(b / m, params.lag)
     n1, n2, dh = _controller(params.cutoff if params.damping > 0.0 else None, params.delay)
     return np.polyadd(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2)))
@@ -200,7 +200,7 @@ def _rho_rows(rows: np.ndarray) -> np.ndarray:
     return np.max(np.abs(np.linalg.eigvals(comp)), axis=-1)
 
 
-def controlled_spectral_radius(mu: float, beta: float, params: ControllerParams) -> float:
+def controlled_spectral_radius(mu: float, beta: float, params: WallParams) -> float:
     """Largest root modulus of :func:`controlled_characteristic_polynomial` (< 1: asymptotically stable)."""
     return float(_rho_rows(controlled_characteristic_polynomial(mu, beta, params))[0])
 
@@ -410,7 +410,7 @@ def _check_against_grid(p0, q, ks, intervals, args) -> None:
 
 
 def _stable_set(
-    b: float, big_b: float, t: float, m: float, p: ControllerParams
+    b: float, big_b: float, t: float, m: float, p: WallParams
 ) -> tuple[list[tuple[float, float]], float | None]:
     """Stable κ intervals and, when the Taylor series at z = 1 gives it, K_crit in N/m (else None).
 
@@ -532,7 +532,7 @@ class StiffnessIntervals:
         }
 
 
-def stable_stiffness(mass: float, damping: float, period: float, controller: Controller) -> StiffnessIntervals:
+def stable_stiffness(mass: float, damping: float, period: float, controller: Wall) -> StiffnessIntervals:
     """Every stable stiffness K of the linear sampled loop with ``controller``'s damper, filter, delay and lag.
 
     The exact closed-loop characteristic polynomial of ZOH, amplifier lag and
@@ -547,7 +547,7 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
         Viscous friction b >= 0, N·s/m (rotary: N·m·s/rad).
     period : float
         Sampling period T > 0, s.
-    controller : Controller
+    controller : Wall
         Its damping B, delay, filter cutoff and amplifier bandwidth are used; its stiffness is not
         (K is what is solved for).
 
@@ -563,7 +563,7 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
         0 < (b + B)T/m < :data:`MIN_RESOLVED_RATE` where the series at z = 1 does not converge (a guard: no
         accepted input is known to reach it).
     DFATypeError
-        ``controller`` is not a :class:`dfa.Controller`.
+        ``controller`` is not a :class:`dfa.Wall`.
 
     See Also
     --------
@@ -573,12 +573,12 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Con
 
     Examples
     --------
-    >>> r = stable_stiffness(1.0, 0.0, 1e-3, Controller(1.0))     # b = B = 0: never stable
+    >>> r = stable_stiffness(1.0, 0.0, 1e-3, Wall.of(1.0))     # b = B = 0: never stable
     >>> r.status.value, r.k_crit
     ('never', 0.0)
     """
     m, b, t = _device(mass, damping, period)
-    c = check_type("controller", controller, Controller, "give a dfa.Controller")
+    c = check_type("controller", controller, Wall, "give a dfa.Wall")
     p = c.params(t)
     for name, value in (("damping", b), ("controller.damping", c.damping)):
         check_rate(name, value, m, t)
@@ -661,7 +661,7 @@ def stable_region(
     delay : int, optional
         Computational delay d in samples.
     filter_cutoff, amplifier_bandwidth : float or None, optional
-        Velocity-filter cutoff and amplifier bandwidth in Hz (None: none), as in :class:`Controller`.
+        Velocity-filter cutoff and amplifier bandwidth in Hz (None: none), as in :class:`Wall`.
 
     Returns
     -------
@@ -689,7 +689,7 @@ def stable_region(
     grid = np.atleast_1d(check_real_array("virtual_damping", virtual_damping, "give the dampings B in N·s/m"))
     if grid.ndim != 1 or grid.size == 0:
         raise DFAValueError(f"virtual_damping = {virtual_damping!r} is invalid: give one or more dampings B in N·s/m")
-    if (grid < 0).any():  # the message names what the caller typed, not Controller's field `damping`
+    if (grid < 0).any():  # the message names what the caller typed, not Wall's field `damping`
         bad = float(grid[grid < 0][0])
         raise DFAValueError(
             f"virtual_damping = {bad!r} is invalid: it must be a finite number >= 0; give the virtual damping B in "
@@ -700,7 +700,7 @@ def stable_region(
             mass,
             damping,
             period,
-            Controller(1.0, float(bb), delay, filter_cutoff=filter_cutoff, amplifier_bandwidth=amplifier_bandwidth),
+            Wall.of(1.0, float(bb), delay, filter_cutoff=filter_cutoff, amplifier_bandwidth=amplifier_bandwidth),
         )
         for bb in grid
     )

@@ -55,7 +55,7 @@ from ..checks import (
 from ..core.zoh import zoh_coefficients
 from ..errors import DFAValueError
 from ..model.device import Params
-from ..model.wall import ControllerParams
+from ..model.wall import WallParams
 from ..results.frozen import check_shape, freeze_fields
 from ..results.jsonable import to_jsonable
 from ..results.status import NyquistStatus
@@ -167,7 +167,7 @@ def loop_response(
     model: str = "half-delay",
     delay: int = 0,
     pade_order: int = 4,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
 ):
     """Frequency response L(jω; M) of the linear part of the loop (eq. 36).
 
@@ -185,7 +185,7 @@ def loop_response(
         Computational delay d in whole samples (default 0).
     pade_order : int, optional
         Order of the Padé approximation for ``model="pade"`` (default 4).
-    controller : ControllerParams, optional
+    controller : WallParams, optional
         The virtual wall (issue 15). L is then multiplied by the controller
         C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the ZOH-exact velocity filter
         (1 − a)e^{−jω}/(1 − a e^{−jω}), a = e^{−2πν_c}; 1 without filter), its delay
@@ -352,7 +352,7 @@ class NyquistLocusResponse:
         search ended incomplete; crossings may be missing, why in ``detail``).
     detail : str
         The solver's one-line reason when ``SEARCH_INCOMPLETE``; empty otherwise.
-    controller : ControllerParams or None
+    controller : WallParams or None
         The controller of the loop (None: the paper's spring).
 
     Arrays are read-only copies.
@@ -370,11 +370,11 @@ class NyquistLocusResponse:
     crossings: tuple
     status: NyquistStatus
     detail: str = ""
-    controller: ControllerParams | None = None
+    controller: WallParams | None = None
 
     def __post_init__(self) -> None:
         if self.controller is not None:
-            check_type("controller", self.controller, ControllerParams, "build it with nyquist_locus_response")
+            check_type("controller", self.controller, WallParams, "build it with nyquist_locus_response")
         freeze_fields(
             self,
             {
@@ -467,7 +467,7 @@ def _solver_crossings(
     pade_order: int,
     omega: np.ndarray,
     max_amplitude: float,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
 ) -> tuple[list[tuple[float, float, complex]], NyquistStatus, str]:
     """σ = 0: the harmonic-balance roots of the limit-cycle solver (one implementation, residual <= 1e-10).
 
@@ -499,7 +499,7 @@ def nyquist_locus_response(
     delay: int = 0,
     pade_order: int = 4,
     locus_amplitude=None,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
 ) -> NyquistLocusResponse:
     """Nyquist data of the loop L(jω; M) and the critical locus −1/D(M) (paper Fig. 6).
 
@@ -520,7 +520,7 @@ def nyquist_locus_response(
         Order of the Padé approximation for ``model="pade"`` (default 4).
     locus_amplitude : array_like, optional
         Amplitudes of the critical locus; default 0.05 to 50 ticks.
-    controller : ControllerParams, optional
+    controller : WallParams, optional
         The virtual wall (see :func:`loop_response`); its delay replaces ``delay``
         (0 or equal). Default None: the paper's spring.
 

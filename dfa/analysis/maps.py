@@ -74,7 +74,7 @@ from ..checks import (
     check_speed,
 )
 from ..errors import DFATypeError, DFAValueError
-from ..model.wall import ControllerParams
+from ..model.wall import WallParams
 from ..results.frozen import check_shape, freeze_fields
 from ..results.jsonable import to_jsonable
 from ..results.status import MapStatus
@@ -137,7 +137,7 @@ class StabilityMap:
         Simulation settings.
     status : MapStatus
         ``OK``: every point simulated (amplitude and frequency NaN where not measured).
-    controller : ControllerParams or None
+    controller : WallParams or None
         The wall controller of every run (virtual damper β_B, filter ν_c, amplifier lag α; its delay is
         ``delay``); None for the paper's spring.
 
@@ -156,12 +156,12 @@ class StabilityMap:
     quantize: bool = True
     preload: bool = False
     status: MapStatus = MapStatus.OK
-    controller: ControllerParams | None = None
+    controller: WallParams | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "xi_dots", tuple(float(v) for v in self.xi_dots))
         if self.controller is not None:
-            ctl, _ = check_controller(self.controller, self.delay)  # a spring's ControllerParams is stored as None
+            ctl, _ = check_controller(self.controller, self.delay)  # a spring's WallParams is stored as None
             object.__setattr__(self, "controller", ctl)
         freeze_fields(
             self,
@@ -416,7 +416,7 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
         )
 
 
-def _controller_arrays(ctl: ControllerParams | None) -> dict[str, Any]:
+def _controller_arrays(ctl: WallParams | None) -> dict[str, Any]:
     """The ``controller`` entry of a map file: [β_B, ν_c (NaN: no filter), α]; none for the spring."""
     if ctl is None:
         return {}
@@ -424,12 +424,12 @@ def _controller_arrays(ctl: ControllerParams | None) -> dict[str, Any]:
     return {"controller": np.array([ctl.damping, cutoff, ctl.lag], dtype=float)}
 
 
-def _controller_from(z, delay: int) -> ControllerParams | None:
+def _controller_from(z, delay: int) -> WallParams | None:
     """The controller of a map file (None: the spring, or a file written before controllers existed)."""
     if "controller" not in z.files:
         return None
     damping, cutoff, lag = (float(v) for v in z["controller"])
-    return ControllerParams(damping=damping, delay=delay, cutoff=None if math.isnan(cutoff) else cutoff, lag=lag)
+    return WallParams.of(damping=damping, delay=delay, cutoff=None if math.isnan(cutoff) else cutoff, lag=lag)
 
 
 def _run_chunk(
@@ -485,7 +485,7 @@ def stability_map(
     stable_amplitude: float = STABLE_AMPLITUDE,
     growth: float = GROWTH,
     settle: float = SETTLE,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
 ) -> StabilityMap:
     """Simulate every point of a (β, σ) grid for each initial speed (paper Fig. 4).
 
@@ -521,8 +521,8 @@ def stability_map(
     bound, stable_amplitude, growth, settle : float, optional
         Outcome rules, as in :func:`dfa.simulate` (default bound: beyond the fastest start's own travel,
         :func:`dfa.analysis.simulation.divergence_bound`).
-    controller : ControllerParams, optional
-        The wall controller of every run (:mod:`dfa.model.wall`; ``Controller(...).params(T)``): virtual
+    controller : WallParams, optional
+        The wall controller of every run (:mod:`dfa.model.wall`; ``Wall.of(...).params(T)``): virtual
         damper, velocity filter, amplifier lag, and its delay, which replaces ``delay`` (give one or
         the same value). Each point is then :func:`dfa.simulate` with ``controller=``. Default: the spring.
 
@@ -602,7 +602,7 @@ def _points(mu: float, beta, sigma, speeds, preload: bool) -> tuple[np.ndarray, 
     return pts_b, pts_s, np.zeros(pts_b.size), np.repeat(np.asarray(speeds, dtype=float), bb.size)
 
 
-def _chunk_cost(samples: int, controller: ControllerParams | None) -> float:
+def _chunk_cost(samples: int, controller: WallParams | None) -> float:
     """Planned cost of one point in spring-kernel samples (:data:`CHUNK_SAMPLES`, :data:`CONTROLLER_COST`)."""
     if controller is None:
         return float(samples)

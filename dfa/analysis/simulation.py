@@ -82,7 +82,7 @@ about 200 ticks (undecided).
 Before the first sample the controller's past readings are taken equal to ξ0
 (matters only with a computational delay).
 
-With a controller (``controller=ControllerParams(...)``: virtual damper,
+With a controller (``controller=WallParams.of(...)``: virtual damper,
 velocity filter, delay, amplifier lag; :mod:`dfa.model.wall`) the run goes
 through :mod:`dfa.core.wall_kernel`, exact to rounding at the sample instants as well
 (closed-form motion under the amplifier's exponential force, stops by a
@@ -104,8 +104,8 @@ Examples
 >>> r = simulate(mu=100.0, beta=0.0, sigma=0.2, xi_dot0=2.0, samples=20000)
 >>> r.outcome.value
 'unstable'
->>> from dfa.model.wall import ControllerParams
->>> c = ControllerParams(damping=0.5, lag=0.3)   # virtual damper β_B, amplifier lag α (samples)
+>>> from dfa.model.wall import WallParams
+>>> c = WallParams.of(damping=0.5, lag=0.3)   # virtual damper β_B, amplifier lag α (samples)
 >>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000, controller=c)
 >>> r.outcome.value, r.rest_sample
 ('rest', 203)
@@ -134,7 +134,7 @@ from ..checks import (
 )
 from ..core import batch, kernel, wall_kernel
 from ..errors import DFATypeError, DFAValueError
-from ..model.wall import ControllerParams
+from ..model.wall import WallParams
 from ..results.frozen import check_shape, freeze_fields
 from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import SimulationOutcome
@@ -266,7 +266,7 @@ def _decay_time(mu: float, net: float, sigma: float, amp0: float) -> float:
     return math.log((threshold - 1.0) / (threshold - amp0)) / -a
 
 
-def damper_gain(mu: float, controller: ControllerParams) -> float:
+def damper_gain(mu: float, controller: WallParams) -> float:
     """In-phase gain G of the controller's damper at the spring's frequency ω₀ = 1/√μ (rad/sample).
 
     The damper's force on the plant, per unit of the velocity jωξ, at ω = ω₀ (first harmonic, exact
@@ -281,9 +281,9 @@ def damper_gain(mu: float, controller: ControllerParams) -> float:
 
     Examples
     --------
-    >>> round(damper_gain(1.0e6, ControllerParams(damping=1.0)), 4)      # slow oscillation: a plain damper
+    >>> round(damper_gain(1.0e6, WallParams.of(damping=1.0)), 4)      # slow oscillation: a plain damper
     1.0
-    >>> damper_gain(100.0, ControllerParams(damping=1.0, cutoff=0.001)) < 0.2   # filtered well below ω₀
+    >>> damper_gain(100.0, WallParams.of(damping=1.0, cutoff=0.001)) < 0.2   # filtered well below ω₀
     True
     """
     w = 1.0 / math.sqrt(mu)
@@ -294,7 +294,7 @@ def damper_gain(mu: float, controller: ControllerParams) -> float:
     return g.real
 
 
-def net_damping(mu: float, beta: float, delay: int, controller: ControllerParams | None = None) -> float:
+def net_damping(mu: float, beta: float, delay: int, controller: WallParams | None = None) -> float:
     """Net averaged damping of the loop, β − ½ − d for the spring; with a controller − α + β_B·G.
 
     The hold's half sample, the computational delay d and the amplifier lag α (the low-frequency
@@ -306,7 +306,7 @@ def net_damping(mu: float, beta: float, delay: int, controller: ControllerParams
     --------
     >>> net_damping(100.0, 0.3, 1)
     -1.2
-    >>> round(net_damping(1.0e6, 0.3, 0, ControllerParams(damping=1.0, lag=0.5)), 4)   # 0.3 − ½ − 0.5 + 1
+    >>> round(net_damping(1.0e6, 0.3, 0, WallParams.of(damping=1.0, lag=0.5)), 4)   # 0.3 − ½ − 0.5 + 1
     0.3
     """
     net = beta - 0.5 - delay
@@ -337,7 +337,7 @@ def default_samples(
     quantize: bool = True,
     *,
     cap: bool = True,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
 ) -> int:
     """Run length (samples) long enough for the outcome to show (module docstring, "Default run length").
 
@@ -361,7 +361,7 @@ def default_samples(
     50000
     >>> default_samples(156250.0, 0.125, 0.9554, 0.637)  # Impulse Engine at 50 kg, 0.1 m/s
     462407
-    >>> default_samples(156250.0, 0.125, 0.9554, 0.637, controller=ControllerParams(damping=0.5))  # damper helps
+    >>> default_samples(156250.0, 0.125, 0.9554, 0.637, controller=WallParams.of(damping=0.5))  # damper helps
     415065
     """
     ctl, delay = check_controller(controller, delay)
@@ -468,7 +468,7 @@ class SimulationResult:
         True when ``samples`` was chosen by :func:`default_samples`.
     energy : EnergyRecord or None
         Per-sample energy bookkeeping when requested.
-    controller : ControllerParams or None
+    controller : WallParams or None
         The controller of a run with a damper, filter or amplifier lag (None: the spring).
 
     ``xi`` and ``xi_dot`` are read-only copies.
@@ -497,7 +497,7 @@ class SimulationResult:
     xi: np.ndarray | None = field(default=None, repr=False)
     xi_dot: np.ndarray | None = field(default=None, repr=False)
     energy: EnergyRecord | None = field(default=None, repr=False)
-    controller: ControllerParams | None = None
+    controller: WallParams | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "outcome", SimulationOutcome.coerce(self.outcome, "outcome"))
@@ -753,7 +753,7 @@ def simulate(
     growth: float = GROWTH,
     settle: float = SETTLE,
     progress: bool = False,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
 ) -> SimulationResult:
     """Simulate the sampled haptic loop exactly (paper eq. 4-5) from (ξ0, ξ'0).
 
@@ -793,10 +793,10 @@ def simulate(
         (runs of more than ``CHUNK`` samples; they are integrated in chunks
         of ``CHUNK`` samples, so Ctrl-C is honoured between chunks, with
         results identical to a single pass).
-    controller : ControllerParams, optional
-        The wall controller in dimensionless form (``Controller(...).params(T)``): virtual damper,
+    controller : WallParams, optional
+        The wall controller in dimensionless form (``Wall.of(...).params(T)``): virtual damper,
         velocity filter, delay, amplifier lag (:mod:`dfa.model.wall`). Its delay replaces
-        ``delay``. None, or a pure spring (``ControllerParams(delay=d)``), runs the spring kernel
+        ``delay``. None, or a pure spring (``WallParams.of(delay=d)``), runs the spring kernel
         unchanged; otherwise :mod:`dfa.core.wall_kernel` runs the loop with the controller, exact to
         rounding at the sample instants (one compiled call: no progress bar, no energy record).
 
@@ -863,23 +863,23 @@ def simulate(
     )
 
 
-def check_controller(controller, delay, energy: bool = False) -> tuple[ControllerParams | None, int]:
+def check_controller(controller, delay, energy: bool = False) -> tuple[WallParams | None, int]:
     """(controller or None for the pure spring, delay) of a run: the controller's delay replaces ``delay``.
 
     Raises
     ------
     DFATypeError
-        If ``controller`` is not a :class:`~dfa.model.wall.ControllerParams` (or None).
+        If ``controller`` is not a :class:`~dfa.model.wall.WallParams` (or None).
     DFAValueError
         If ``delay`` is given and differs from the controller's, or ``energy`` is asked with a
         damper, filter or amplifier lag (the energy bookkeeping covers the spring only).
     """
     if controller is None:
         return None, delay
-    if not isinstance(controller, ControllerParams):
+    if not isinstance(controller, WallParams):
         raise DFATypeError(
-            f"controller = {controller!r} is invalid: it must be a ControllerParams or None; "
-            "pass Controller(...).params(period) or ControllerParams(...)"
+            f"controller = {controller!r} is invalid: it must be a WallParams or None; "
+            "pass Wall.of(...).params(period) or WallParams.of(...)"
         )
     delay = check_delay(delay)  # before comparing: True == 1 and 1.0 == 1 must not pass as a delay
     if delay not in (0, controller.delay):
@@ -912,7 +912,7 @@ def controller_run_codes(mu, beta, sigma, x0, v0, ns, delay, bound, controllers)
     """Outcome codes (:mod:`dfa.core.kernel`) of runs, each with its own controller, in one compiled call.
 
     Run i is what :func:`simulate` makes of (``mu[i]``, …, ``v0[i]``), ``ns[i]`` samples, bound ``bound[i]`` and
-    ``controllers[i]`` (a ControllerParams that is not a pure spring, its delay ``delay``), bit for bit, with
+    ``controllers[i]`` (a WallParams that is not a pure spring, its delay ``delay``), bit for bit, with
     simulate()'s tail length and default outcome rules (:func:`dfa.core.batch.batch_wall_kernel`, then
     :func:`dfa.core.kernel.classify_batch`). No GIL is held: callers may run several calls on threads.
     """
@@ -927,7 +927,7 @@ def controller_run_codes(mu, beta, sigma, x0, v0, ns, delay, bound, controllers)
     return codes
 
 
-def _controller_args(ctl: ControllerParams) -> tuple[float, float, bool, float]:
+def _controller_args(ctl: WallParams) -> tuple[float, float, bool, float]:
     """(β_B, a, filtered, α): the controller arguments of :mod:`dfa.core.wall_kernel`."""
     return ctl.damping, ctl.filter_pole, ctl.cutoff is not None, ctl.lag
 
@@ -991,7 +991,7 @@ class SimulationBatch:
         Peak abs(ξ) of each eighth of each run.
     status : str
         ``"ok"``.
-    controller : ControllerParams or None
+    controller : WallParams or None
         The controller shared by every run (None: the spring).
     """
 
@@ -1014,7 +1014,7 @@ class SimulationBatch:
     final_xi_dot: np.ndarray = field(repr=False)
     envelope: np.ndarray = field(repr=False)
     status: str = "ok"
-    controller: ControllerParams | None = None
+    controller: WallParams | None = None
 
     def __post_init__(self) -> None:
         for f in self.__dataclass_fields__:
@@ -1085,7 +1085,7 @@ def simulate_batch(
     stable_amplitude: float = STABLE_AMPLITUDE,
     growth: float = GROWTH,
     settle: float = SETTLE,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
 ) -> SimulationBatch:
     """Simulate many independent runs in one compiled call; each equals :func:`simulate` of that run alone.
 
@@ -1152,7 +1152,7 @@ def run_points(
     ``n`` (samples) and ``bound`` are one value for every run or one per run. The spring runs in one call of
     :func:`dfa.core.batch.batch_kernel` (each run bit for bit :func:`dfa.core.kernel.simulate_kernel`, its tail
     length following its μ and length as in :func:`simulate`);
-    no GIL is held, so callers may run several calls on threads. ``controller`` (a ControllerParams that is not
+    no GIL is held, so callers may run several calls on threads. ``controller`` (a WallParams that is not
     a pure spring, whose delay is ``delay``; see :func:`check_controller`) runs
     :func:`dfa.core.wall_kernel.serial_wall_kernel` instead, one call per group of runs with the same tail length (one
     ``n`` and ``bound`` for all).

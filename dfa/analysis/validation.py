@@ -53,7 +53,7 @@ from ..checks import _fmt, check_choice, check_jobs
 from ..errors import DFATypeError
 from ..formatting import markdown_table, number, percent
 from ..model.device import Params
-from ..model.wall import ControllerParams
+from ..model.wall import WallParams
 from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import ValidationStatus
 from .criterion import classify_region, passivity_criterion
@@ -88,7 +88,7 @@ def _grid(quick: bool) -> list[Params]:
 
 
 def cycle_checks(
-    points, samples: int = 40_000, models=("half-delay", "zoh"), controller: ControllerParams | None = None
+    points, samples: int = 40_000, models=("half-delay", "zoh"), controller: WallParams | None = None
 ) -> list[dict]:
     """Simulate every predicted cycle of every point (items 1 and 6); one record per (point, model, cycle).
 
@@ -150,10 +150,10 @@ def cycle_checks(
 
 #: Item 6: the wall controllers validated (name, dimensionless groups): β_B = 0.2, ν_c = 0.05, α = 0.5, d = 1.
 CONTROLLERS = (
-    ("damper", ControllerParams(damping=0.2)),
-    ("damper + filter", ControllerParams(damping=0.2, cutoff=0.05)),
-    ("amplifier lag", ControllerParams(lag=0.5)),
-    ("delay 1", ControllerParams(delay=1)),
+    ("damper", WallParams.of(damping=0.2)),
+    ("damper + filter", WallParams.of(damping=0.2, cutoff=0.05)),
+    ("amplifier lag", WallParams.of(lag=0.5)),
+    ("delay 1", WallParams.of(delay=1)),
 )
 
 
@@ -164,7 +164,7 @@ def _controller_grid(quick: bool) -> list[Params]:
 
 
 def controller_cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh"), controllers=CONTROLLERS):
-    """Item 6: :func:`cycle_checks` with each controller of ``controllers`` ((name, ControllerParams) pairs).
+    """Item 6: :func:`cycle_checks` with each controller of ``controllers`` ((name, WallParams) pairs).
 
     Each record also holds ``controller`` (the name), ``controller_params`` (the groups) and ``subtick``: an
     unstable cycle below :data:`dfa.analysis.cycles.SUBTICK_LIMIT` ticks (its separation is the sub-tick caveat's case).
@@ -189,7 +189,7 @@ def first_unstable_speed(
     preload: bool,
     steps: int = 40,
     delay: int = 0,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
 ) -> float | None:
     """Smallest impact speed ξ'0 (ticks/sample) whose exact simulation diverges, or None.
 

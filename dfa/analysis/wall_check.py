@@ -8,12 +8,12 @@ is "not covered", with the reason (:data:`LAG_WHY`). One implementation for the 
 Examples
 --------
 >>> from dfa.model.catalogue import get_device
->>> from dfa.model.wall import Controller
+>>> from dfa.model.wall import Wall
 >>> dev = get_device("Delta").device
->>> chk = controller_check(dev, Controller(14500.0, damping=5.0), 0.1)
+>>> chk = controller_check(dev, Wall.of(14500.0, damping=5.0), 0.1)
 >>> chk.covered, chk.criterion.region, chk.passive
 (True, 'd', False)
->>> controller_check(dev, Controller(14500.0, amplifier_bandwidth=500.0), 0.1).passive is None
+>>> controller_check(dev, Wall.of(14500.0, amplifier_bandwidth=500.0), 0.1).passive is None
 True
 """
 
@@ -25,7 +25,7 @@ from typing import Any
 from ..checks import check_real, check_speed, check_type
 from ..errors import DFAValueError
 from ..model.device import Device
-from ..model.wall import Controller
+from ..model.wall import Wall
 from ..results.jsonable import explain_nulls, to_jsonable
 from .colgate_schenkel import ColgateSchenkelDamping, colgate_schenkel_damping
 from .wall_criterion import ControllerCriterionResult, device_controller_criterion
@@ -48,7 +48,7 @@ class ControllerCheck:
     Attributes
     ----------
     device : Device
-    controller : Controller
+    controller : Wall
     velocity : float
         Impact speed, m/s (rotary: rad/s), >= 0.
     criterion : ControllerCriterionResult or None
@@ -58,7 +58,7 @@ class ControllerCheck:
     """
 
     device: Device
-    controller: Controller
+    controller: Wall
     velocity: float
     criterion: ControllerCriterionResult | None
     colgate_schenkel: ColgateSchenkelDamping | None
@@ -66,7 +66,7 @@ class ControllerCheck:
     def __post_init__(self) -> None:
         fix = "ControllerCheck is built by dfa.analysis.wall_check.controller_check; call that instead"
         check_type("device", self.device, Device, fix)
-        check_type("controller", self.controller, Controller, fix)
+        check_type("controller", self.controller, Wall, fix)
         check_real("velocity", self.velocity, fix)
         lag = self.controller.amplifier_bandwidth is not None
         parts = (self.criterion, self.colgate_schenkel)
@@ -113,7 +113,7 @@ class ControllerCheck:
 
 
 def controller_check(
-    device: Device, controller: Controller, velocity: float, *, position: float = 0.0, quantized: bool = True
+    device: Device, controller: Wall, velocity: float, *, position: float = 0.0, quantized: bool = True
 ) -> ControllerCheck:
     """Check ``device`` with ``controller`` at an impact speed: extended criterion and Colgate–Schenkel.
 
@@ -121,7 +121,7 @@ def controller_check(
     ----------
     device : Device
         The physical device.
-    controller : Controller
+    controller : Wall
         The wall controller (K, B, d, f_c, f_bw in physical units).
     velocity : float
         Impact speed in m/s (rotary: rad/s), >= 0 (a negative is refused, not flipped).
@@ -141,7 +141,7 @@ def controller_check(
         Bad device, controller, speed or position.
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    ctl = check_type("controller", controller, Controller, "build one with dfa.Controller(K, ...)")
+    ctl = check_type("controller", controller, Wall, "build one with dfa.Wall.of(K, ...)")
     v = check_speed("velocity", velocity)
     if ctl.amplifier_bandwidth is not None:
         ctl.params(dev.period)  # refuses a filter cutoff above the Nyquist frequency

@@ -97,11 +97,11 @@ What is not proven (and refused)
 
 Examples
 --------
->>> from dfa.model.wall import ControllerParams
->>> r = controller_criterion(1.2, 1.0, 2.0, ControllerParams(damping=0.3))
+>>> from dfa.model.wall import WallParams
+>>> r = controller_criterion(1.2, 1.0, 2.0, WallParams.of(damping=0.3))
 >>> r.beta0, r.sigma0, r.region, r.passive            # β₀ = ½ + 0.3, σ₀ = ½ + 0.3
 (0.8, 0.8, 'a', True)
->>> controller_criterion(0.2, 2.03, 1.0, ControllerParams(damping=0.1)).region
+>>> controller_criterion(0.2, 2.03, 1.0, WallParams.of(damping=0.1)).region
 'e'
 """
 
@@ -114,7 +114,7 @@ import numpy as np
 from ..checks import _fmt, check_beta, check_mu, check_positive, check_real, check_sigma, check_type
 from ..errors import DFATypeError, DFAValueError
 from ..model.device import Device
-from ..model.wall import Controller, ControllerParams
+from ..model.wall import Wall, WallParams
 from ..results.jsonable import to_jsonable
 from ..results.status import ControllerCriterionStatus
 from .criterion import _margin, equivalent_speed, region_of
@@ -127,15 +127,15 @@ _LAG_FIX = (
 )
 
 
-def _check_controller(controller: object) -> ControllerParams:
-    """A :class:`ControllerParams` without amplifier lag (the criterion's scope), or the package's error."""
-    c = check_type("controller", controller, ControllerParams, "build one with dfa.model.wall.ControllerParams(...)")
+def _check_controller(controller: object) -> WallParams:
+    """A :class:`WallParams` without amplifier lag (the criterion's scope), or the package's error."""
+    c = check_type("controller", controller, WallParams, "build one with dfa.model.wall.WallParams.of(...)")
     if c.lag != 0.0:
         raise DFAValueError(f"controller.lag = {_fmt(c.lag)} is invalid: it must be 0; {_LAG_FIX}")
     return c
 
 
-def controller_anchor(controller: ControllerParams, quantized: bool = True) -> tuple[float, float]:
+def controller_anchor(controller: WallParams, quantized: bool = True) -> tuple[float, float]:
     """The corner (β₀, σ₀) of the critical line with the controller (module docstring, step 4).
 
     β₀ = ½ + d + β_B and σ₀ = ½ + (1 − a)β_B with the encoder (0 without), a the
@@ -143,7 +143,7 @@ def controller_anchor(controller: ControllerParams, quantized: bool = True) -> t
 
     Parameters
     ----------
-    controller : ControllerParams
+    controller : WallParams
         Dimensionless controller without amplifier lag.
     quantized : bool, optional
         True (default) with the encoder; False for the encoder-free loop.
@@ -156,13 +156,13 @@ def controller_anchor(controller: ControllerParams, quantized: bool = True) -> t
     Raises
     ------
     DFAValueError, DFATypeError
-        If ``controller`` is not a ControllerParams or has amplifier lag.
+        If ``controller`` is not a WallParams or has amplifier lag.
 
     Examples
     --------
-    >>> controller_anchor(ControllerParams(damping=1.0, delay=1))
+    >>> controller_anchor(WallParams.of(damping=1.0, delay=1))
     (2.5, 1.5)
-    >>> controller_anchor(ControllerParams(damping=1.0), quantized=False)
+    >>> controller_anchor(WallParams.of(damping=1.0), quantized=False)
     (1.5, 0.0)
     """
     c = _check_controller(controller)
@@ -189,7 +189,7 @@ class ControllerCriterionResult:
         Dimensionless damping β = b/(KT) and Coulomb friction σ = c/(KΔ) (inputs).
     xi_dot : float
         Speed abs(ξ'0) in ticks per sample (input).
-    controller : ControllerParams
+    controller : WallParams
         The dimensionless controller (β_B, d, ν_c; α = 0).
     quantized : bool
         With (True) or without the encoder.
@@ -218,7 +218,7 @@ class ControllerCriterionResult:
     beta: float
     sigma: float
     xi_dot: float
-    controller: ControllerParams
+    controller: WallParams
     quantized: bool
     beta0: float
     sigma0: float
@@ -240,7 +240,7 @@ class ControllerCriterionResult:
         fix = "results hold the numbers controller_criterion computed; use controller_criterion"
         for name in ("beta", "sigma", "xi_dot", "margin", "equivalent_speed", "beta0", "sigma0", "xi0"):
             object.__setattr__(self, name, check_real(name, getattr(self, name), fix))
-        check_type("controller", self.controller, ControllerParams, fix)
+        check_type("controller", self.controller, WallParams, fix)
         for name in ("quantized", "passive"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise DFATypeError(f"{name} = {_fmt(getattr(self, name))} is invalid: it must be True or False; {fix}")
@@ -262,7 +262,7 @@ class ControllerCriterionResult:
 
         Examples
         --------
-        >>> controller_criterion(0.2, 2.03, 5.0, ControllerParams(damping=0.1)).status_message.split("; ")[-1]
+        >>> controller_criterion(0.2, 2.03, 5.0, WallParams.of(damping=0.1)).status_message.split("; ")[-1]
         'here β₀ = 0.6, σ₀ = 0.6, critical speed 3.575 ticks/sample'
         """
         extra = f"here β₀ = {self.beta0:.6g}, σ₀ = {self.sigma0:.6g}"
@@ -288,7 +288,7 @@ def controller_criterion(
     beta: float,
     sigma: float,
     xi_dot: float,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
     *,
     quantized: bool = True,
     xi0: float = 0.0,
@@ -298,7 +298,7 @@ def controller_criterion(
 
     Passive when (β − β₀)V + (σ − σ₀) >= 0 and σ >= σ₀, with β₀ = ½ + d + β_B,
     σ₀ = ½ + (1 − a)β_B (0 without encoder) and V = sqrt(ξ'0² + 2H_c(ξ0)/μ).
-    For ``ControllerParams()`` (and any β_B = 0) this is :func:`dfa.passivity_criterion`.
+    For ``WallParams.of()`` (and any β_B = 0) this is :func:`dfa.passivity_criterion`.
 
     Parameters
     ----------
@@ -308,7 +308,7 @@ def controller_criterion(
         Dimensionless Coulomb friction σ = c/(K Δ) >= 0.
     xi_dot : float
         Largest speed of interest ξ'0 in ticks per sample (sign ignored).
-    controller : ControllerParams, optional
+    controller : WallParams, optional
         The dimensionless controller: damping β_B = B/(KT), delay d (samples),
         cutoff ν_c (cycles per sample); the amplifier lag must be 0. Default: the paper's spring.
     quantized : bool, optional
@@ -336,11 +336,11 @@ def controller_criterion(
 
     Examples
     --------
-    >>> r = controller_criterion(0.4, 1.0, 1.0, ControllerParams(damping=0.2, cutoff=0.1))
+    >>> r = controller_criterion(0.4, 1.0, 1.0, WallParams.of(damping=0.2, cutoff=0.1))
     >>> round(r.sigma0, 4), round(r.critical_xi_dot, 4)   # σ₀ = ½ + (1 − e^{−0.2π})·0.2
     (0.5933, 1.3557)
     """
-    c = ControllerParams() if controller is None else _check_controller(controller)
+    c = WallParams.of() if controller is None else _check_controller(controller)
     b, s = check_beta(beta), check_sigma(sigma)
     q = _check_quantized(quantized)
     xd = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
@@ -370,7 +370,7 @@ def controller_criterion(
 
 
 def device_controller_criterion(
-    device: Device, controller: Controller, velocity: float, *, position: float = 0.0, quantized: bool = True
+    device: Device, controller: Wall, velocity: float, *, position: float = 0.0, quantized: bool = True
 ) -> ControllerCriterionResult:
     """The criterion for a physical device and controller at a speed (eq. 11 extended; SI units at the edge).
 
@@ -378,7 +378,7 @@ def device_controller_criterion(
     ----------
     device : Device
         The physical device.
-    controller : Controller
+    controller : Wall
         Stiffness K, damping B, delay, filter cutoff (no amplifier bandwidth).
     velocity : float
         Largest speed of interest in m/s (rotary: rad/s); sign ignored.
@@ -406,13 +406,13 @@ def device_controller_criterion(
     --------
     >>> from dfa.model.catalogue import get_device
     >>> dev = get_device("Delta").device
-    >>> device_controller_criterion(dev, Controller(14500.0), 0.1).region      # = device_criterion
+    >>> device_controller_criterion(dev, Wall.of(14500.0), 0.1).region      # = device_criterion
     'e'
-    >>> device_controller_criterion(dev, Controller(14500.0, damping=5.0), 0.1).region     # B = 5 N·s/m
+    >>> device_controller_criterion(dev, Wall.of(14500.0, damping=5.0), 0.1).region     # B = 5 N·s/m
     'd'
     """
     check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    check_type("controller", controller, Controller, "build one with dfa.model.wall.Controller(K, ...)")
+    check_type("controller", controller, Wall, "build one with dfa.model.wall.Wall.of(K, ...)")
     x0 = check_real("position", position, "give the initial position in m (rotary: rad)")
     k = check_positive("stiffness", controller.stiffness)
     p = device.params(k)

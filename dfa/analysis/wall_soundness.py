@@ -48,7 +48,7 @@ import numpy as np
 from ..checks import check_choice, check_int
 from ..errors import DFAValueError
 from ..formatting import markdown_table
-from ..model.wall import ControllerParams
+from ..model.wall import WallParams
 from .criterion import passivity_criterion
 from .simulation import simulate
 from .soundness_counts import SoundnessCounts, tally
@@ -72,7 +72,7 @@ def run_samples(mu: float) -> int:
     return int(max(2000, math.ceil(20.0 * 2.0 * math.pi * math.sqrt(mu))))
 
 
-def _verdict(crit: str, b: float, s: float, xd: float, x0: float, mu: float, c: ControllerParams, q: bool):
+def _verdict(crit: str, b: float, s: float, xd: float, x0: float, mu: float, c: WallParams, q: bool):
     """(passive, V) of ``crit`` at one point."""
     if crit == "controller-aware":
         r = controller_criterion(b, s, xd, c, quantized=q, xi0=x0, mu=mu)
@@ -81,7 +81,7 @@ def _verdict(crit: str, b: float, s: float, xd: float, x0: float, mu: float, c: 
     return r2.passive, r2.equivalent_speed
 
 
-def _corner(crit: str, c: ControllerParams, q: bool) -> tuple[float, float]:
+def _corner(crit: str, c: WallParams, q: bool) -> tuple[float, float]:
     if crit == "controller-aware":
         return controller_anchor(c, q)
     return 0.5 + c.delay, 0.5 if q else 0.0
@@ -153,8 +153,8 @@ def sample_controller_points(
     return dict(mu=mu, beta=beta, sigma=sigma, xi0=x0, xi_dot=xd, kind=kind, **ctl)
 
 
-def _params(damping: float, delay: int, cutoff: float) -> ControllerParams:
-    return ControllerParams(damping=float(damping), delay=int(delay), cutoff=None if math.isnan(cutoff) else cutoff)
+def _params(damping: float, delay: int, cutoff: float) -> WallParams:
+    return WallParams.of(damping=float(damping), delay=int(delay), cutoff=None if math.isnan(cutoff) else cutoff)
 
 
 def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:

@@ -46,7 +46,7 @@ def batch_wall_kernel(
 
     As :func:`batch_kernel` (run i: ``ns[i]`` samples, bound ``bounds[i]``, tail ``tail_lens[i]``; one
     ``delay`` for all), and run i has the controller (β_B, a, filtered, α) = (``dampings[i]``, ``poles[i]``,
-    ``filtered[i]``, ``lags[i]``) (:func:`dfa.analysis.simulation._controller_args` of its ControllerParams).
+    ``filtered[i]``, ``lags[i]``) (:func:`dfa.analysis.simulation._controller_args` of its WallParams).
     ``stats[i]`` (NSTATS), ``done[i]`` and ``rest[i]`` receive what
     :func:`dfa.core.wall_kernel.simulate_wall_kernel` returns for it (nothing recorded).
     """

@@ -1,146 +1,207 @@
-"""The virtual-wall controller: spring, damper, velocity filter, delay, amplifier lag.
+"""The virtual wall: the paper's spring and the elements rendered with it, in physical and dimensionless form.
 
-A real haptic wall is rarely a bare spring. At sample h the controller reads the
-quantized position q_h = Δ(⌊x(hT)/Δ⌋ + ½) (paper eq. 2), forms the
-backward-difference velocity v_h = (q_h − q_{h−1})/T, optionally low-pass
-filters it, and commands, d samples later (computational delay)::
+A real haptic wall is rarely a bare spring. At sample h the wall reads the quantized position
+q_h = Δ(⌊x(hT)/Δ⌋ + ½) (paper eq. 2), forms the backward-difference velocity v_h = (q_h − q_{h−1})/T,
+optionally low-pass filters it, and commands, d samples later (computational delay)::
 
     F_cmd,h = −K q_{h−d} − B y_{h−d},      y = filtered v (y = v without filter)
 
-held by the zero-order hold. The velocity filter is the exact (step-invariant,
-``control.c2d(..., method="zoh")``) discretisation of the first-order low-pass
-ω_c/(s + ω_c), ω_c = 2π f_c::
+held by the zero-order hold; a current amplifier of finite bandwidth turns the held command into force
+through a first-order lag. :class:`Wall` is the stiffness K and the elements of :mod:`dfa.model.elements`
+(:class:`~dfa.model.elements.Delay`, :class:`~dfa.model.elements.Damper`,
+:class:`~dfa.model.elements.VelocityFilter`, :class:`~dfa.model.elements.AmplifierLag`); ``Wall(K)`` is the
+paper's spring (eq. 1-2) and every result for it is the spring-only result.
 
-    y_h = a y_{h−1} + (1 − a) v_{h−1},     a = e^{−2π f_c T}
-
-(so the filter adds its own one-sample lag). The amplifier turns the held
-command into force through a first-order lag of time constant
-τ_a = 1/(2π f_bw)::
-
-    τ_a dF_A/dt = F_cmd,h − F_A     on [hT, (h + 1)T)
-
-(F_A = F_cmd without amplifier, the paper's model). ``Controller(K)`` is the
-paper's pure spring (eq. 1-2) and every result for it is the spring-only
-result.
-
-Dimensionless form (beside paper Table 1, with τ = t/T, ξ = x/Δ, φ = F/(KΔ))::
-
-    β_B = B/(K T)        virtual damping (the damper's analogue of β = b/(K T))
-    ν_c = f_c T          filter cutoff in cycles per sample, 0 < ν_c < ½ (Nyquist)
-    α   = τ_a/T          amplifier time constant in samples, >= 0
-    d                    computational delay in whole samples
-
-so that φ_cmd,h = −(⌊ξ_{h−d}⌋ + ½) − β_B ỹ_{h−d} with ỹ the (filtered)
-difference ⌊ξ_h⌋ − ⌊ξ_{h−1}⌋ in ticks per sample, and α φ_A' = φ_cmd − φ_A.
+Dimensionless form (beside paper Table 1, τ = t/T, ξ = x/Δ, φ = F/(KΔ)): :class:`WallParams` holds each
+element's group (β_B = B/(KT), ν_c = f_c T, α = τ_a/T, d), so that φ_cmd,h = −(⌊ξ_{h−d}⌋ + ½) − β_B ỹ_{h−d},
+α φ_A' = φ_cmd − φ_A. It composes the elements' mathematics for the analyses: the criterion's corner
+(:meth:`WallParams.corner`), the simulator's arguments (:meth:`WallParams.kernel_args`), the exact sampled
+loop (:meth:`WallParams.command`, :meth:`WallParams.plant`).
 
 Examples
 --------
->>> c = Controller(stiffness=500.0, damping=0.5, delay=1, filter_cutoff=100.0)
->>> p = c.params(period=1e-3)
+>>> w = Wall.of(stiffness=500.0, damping=0.5, delay=1, filter_cutoff=100.0)
+>>> w.elements
+(Delay(delay=1), Damper(damping=0.5), VelocityFilter(filter_cutoff=100.0))
+>>> p = w.params(period=1e-3)
 >>> round(p.damping, 6), p.delay, round(p.cutoff, 6), p.lag
 (1.0, 1, 0.1, 0.0)
 >>> round(p.filter_pole, 6)   # a = exp(-2π ν_c)
 0.533488
->>> Controller(300.0).params(1e-3).is_spring
+>>> Wall(300.0).params(1e-3).is_spring
 True
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
-from ..checks import _fmt, check_delay, check_nonnegative, check_positive
-from ..errors import DFAValueError
+from ..checks import _fmt, check_positive
+from ..errors import DFATypeError, DFAValueError
+from .elements import (
+    ELEMENTS,
+    MIN_CUTOFF,
+    MIN_LAG,
+    AmplifierLag,
+    CommandPolynomials,
+    Damper,
+    Delay,
+    Element,
+    NotCovered,
+    VelocityFilter,
+)
 
-__all__ = ["Controller", "ControllerParams"]
+__all__ = ["Wall", "WallParams", "MIN_CUTOFF", "MIN_LAG", "SPRING_CORNER"]
 
-_NYQUIST_FIX = "give a cutoff below the Nyquist frequency 1/(2T), or no filter (None)"
-
-
-#: Smallest velocity-filter cutoff accepted, in cycles per sample (1 Hz at 1 kHz). Below it the filter pole
-#: e^{−2πν_c} and the free mass's pole at z = 1 are too close to separate in double precision: a red-team check
-#: found the exact linear bound calling a stable loop "never stable" at ν_c = 1e-6 (verified stable with 60-digit
-#: roots); from 1e-3 to the Nyquist limit no such case was found.
-MIN_CUTOFF = 1.0e-3
+#: The corner (β₀, σ₀) of the paper's spring (eq. 6): (½, ½) with the encoder, (½, 0) without (eq. 7).
+SPRING_CORNER = (0.5, 0.5)
 
 
-def _check_cutoff(name: str, value: object, nyquist: float, unit: str) -> float | None:
-    """A filter cutoff: None (no filter) or MIN_CUTOFF·(2·nyquist) <= value < nyquist."""
-    if value is None:
-        return None
-    out = check_positive(name, value, f"give the velocity-filter cutoff in {unit}, or None for no filter")
-    floor = MIN_CUTOFF * 2.0 * nyquist  # 2·nyquist = samples per unit of the cutoff (1 or 1/T)
-    per_sample = "" if unit == "cycles per sample" else f"{MIN_CUTOFF:g} cycles per sample; "
-    if out < floor * (1 - 1e-12):  # the floor as printed (6 digits) is accepted despite rounding
+def _ordered(elements: Any) -> tuple[Element, ...]:
+    """The elements as a tuple in the order of :data:`~dfa.model.elements.ELEMENTS` (others after, as given)."""
+    if isinstance(elements, Element):
+        elements = (elements,)
+    try:
+        items = tuple(elements)
+    except TypeError:
+        raise DFATypeError(
+            f"elements = {_fmt(elements)} is invalid: it must be a sequence of wall elements; "
+            "give e.g. (dfa.Damper(1.0), dfa.Delay(1))"
+        ) from None
+    for e in items:
+        if not isinstance(e, Element):
+            raise DFATypeError(
+                f"elements holds {_fmt(e)} of type {type(e).__name__}: every element must be a dfa wall element "
+                "(Damper, VelocityFilter, Delay, AmplifierLag)"
+            )
+    kinds = [type(e) for e in items]
+    twice = sorted({k.__name__ for k in kinds if kinds.count(k) > 1})
+    if twice:
         raise DFAValueError(
-            f"{name} = {_fmt(out)} is invalid: it must be at least {floor:.6g} {unit} ({per_sample}below, the filter "
-            "pole and the free mass's pole at z = 1 cannot be told apart in double precision and the linear analysis "
-            f"is unreliable); give a cutoff of at least {floor:.6g} {unit}, "
-            "or no filter"
+            f"elements holds {', '.join(twice)} more than once: a wall has at most one of each element; "
+            "combine them into one"
         )
-    if not out < nyquist:
-        raise DFAValueError(
-            f"{name} = {_fmt(out)} is invalid: it must be below the Nyquist frequency "
-            f"{_fmt(nyquist)} {unit}; {_NYQUIST_FIX}"
-        )
-    return out
-
-
-def _check_lag(lag: object) -> float:
-    """α = 0 or α >= :data:`MIN_LAG`: the kernel's rate κ = 1/α stays finite (at 5e-324 it was inf, and NaN)."""
-    a = check_nonnegative("lag", lag, "α = τ_a/T cannot be negative (0: none)")
-    if 0.0 < a < MIN_LAG:
-        raise DFAValueError(
-            f"lag = {_fmt(a)} is invalid: it must be 0 or at least {_fmt(MIN_LAG)} samples (the kernel's rate "
-            "1/α must stay finite); a lag this short is no lag: pass 0 (or no amplifier bandwidth)"
-        )
-    return a
-
-
-#: Shortest amplifier lag α (samples) other than 0 (:class:`ControllerParams`): 1/α is then a finite float.
-MIN_LAG = 1e-300
+    rank = {k: i for i, k in enumerate(ELEMENTS)}
+    return tuple(sorted(items, key=lambda e: rank.get(type(e), len(ELEMENTS))))
 
 
 @dataclass(frozen=True)
-class ControllerParams:
-    """Dimensionless controller (the groups beside paper Table 1).
+class WallParams:
+    """The wall's dimensionless groups, one per element (beside paper Table 1), composed for the analyses.
 
     Parameters
     ----------
-    damping : float, optional
-        Virtual damping β_B = B/(K T) >= 0 (default 0: no damper).
-    delay : int, optional
-        Computational delay d in whole samples, >= 0 (default 0).
-    cutoff : float or None, optional
-        Velocity-filter cutoff ν_c = f_c T in cycles per sample, 0 < ν_c < ½;
-        None (default) for no filter.
-    lag : float, optional
-        Amplifier time constant α = τ_a/T in samples, >= 0 (default 0: no lag).
+    groups : tuple of (element class, group)
+        Each element of the wall and its group, in the wall's order; :meth:`of` builds it for the built-in
+        elements from their groups. An element that renders nothing (β_B = 0, α = 0, d = 0) is left out.
 
     Examples
     --------
-    >>> ControllerParams(damping=0.2, cutoff=0.05).filter_pole > 0.7
+    >>> WallParams.of(damping=0.2, cutoff=0.05).filter_pole > 0.7
     True
+    >>> WallParams.of(damping=0.3, delay=1).corner(quantized=True)    # (½ + d + β_B, ½ + β_B)
+    (1.8, 0.8)
     """
 
-    damping: float = 0.0
-    delay: int = 0
-    cutoff: float | None = None
-    lag: float = 0.0
+    groups: tuple[tuple[type[Element], Any], ...] = ()
 
     def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "damping", check_nonnegative("damping", self.damping, "β_B = B/(K T) cannot be negative")
-        )
-        object.__setattr__(self, "delay", check_delay(self.delay))
-        object.__setattr__(self, "cutoff", _check_cutoff("cutoff", self.cutoff, 0.5, "cycles per sample"))
-        object.__setattr__(self, "lag", _check_lag(self.lag))
+        fix = "each entry must be (element class, group), e.g. ((dfa.Damper, 0.3),); or use WallParams.of(...)"
+        try:
+            items = [] if isinstance(self.groups, (str, bytes)) else list(self.groups)
+        except TypeError:
+            items = []
+        if not items and not (isinstance(self.groups, (tuple, list)) and len(self.groups) == 0):
+            raise DFATypeError(
+                f"groups of type {type(self.groups).__name__} is invalid: it must be a sequence of pairs; {fix}"
+            )
+        out = []
+        for item in items:
+            pair = tuple(item) if isinstance(item, (tuple, list)) else ()
+            kind = pair[0] if len(pair) == 2 else None
+            if not (isinstance(kind, type) and issubclass(kind, Element)):
+                raise DFATypeError(f"groups holds {_fmt(item)}: it is not an (element class, group) pair; {fix}")
+            g = kind.check_group(pair[1])
+            if not kind.renders_nothing(g):
+                out.append((kind, g))
+        rank = {k: i for i, k in enumerate(ELEMENTS)}
+        kinds = [k for k, _ in out]
+        if len(set(kinds)) != len(kinds):
+            raise DFAValueError("groups holds an element more than once: a wall has at most one of each element")
+        object.__setattr__(self, "groups", tuple(sorted(out, key=lambda kg: rank.get(kg[0], len(ELEMENTS)))))
+
+    @classmethod
+    def of(cls, damping: float = 0.0, delay: int = 0, cutoff: float | None = None, lag: float = 0.0) -> WallParams:
+        """The groups of the built-in elements: β_B, d, ν_c (None: no filter) and α.
+
+        Parameters
+        ----------
+        damping : float, optional
+            Virtual damping β_B = B/(K T) >= 0, dimensionless (B in N·s/m over K T) (default 0: no damper).
+        delay : int, optional
+            Computational delay d in whole samples, >= 0 (default 0).
+        cutoff : float or None, optional
+            Velocity-filter cutoff ν_c = f_c T in cycles per sample, MIN_CUTOFF <= ν_c < ½; None (default):
+            no filter.
+        lag : float, optional
+            Amplifier time constant α = τ_a/T in samples, 0 or >= MIN_LAG (default 0: no lag).
+
+        Returns
+        -------
+        WallParams
+            The groups of the elements that render something.
+        """
+        items: list[tuple[type[Element], Any]] = [(Delay, delay), (Damper, damping), (AmplifierLag, lag)]
+        if cutoff is not None:
+            items.append((VelocityFilter, cutoff))
+        return cls(tuple(items))
+
+    def group(self, kind: type[Element]) -> Any:
+        """Give the group of one element class.
+
+        Parameters
+        ----------
+        kind : type
+            An element class (:mod:`dfa.model.elements`).
+
+        Returns
+        -------
+        float, int or None
+            Its group, or its value when absent (:attr:`~dfa.model.elements.Element.absent`).
+        """
+        for k, g in self.groups:
+            if k is kind:
+                return g
+        return kind.absent
+
+    # ------------------------------------------------------------------ the built-in groups by name
+    @property
+    def damping(self) -> float:
+        """The virtual damping β_B = B/(K T) (0 without damper)."""
+        return float(self.group(Damper))
+
+    @property
+    def delay(self) -> int:
+        """The computational delay d in samples: what every element delays the command by (0: none)."""
+        return int(self.kernel_args()["delay"])
+
+    @property
+    def cutoff(self) -> float | None:
+        """The filter cutoff ν_c = f_c T in cycles per sample (None without filter)."""
+        return self.group(VelocityFilter)
+
+    @property
+    def lag(self) -> float:
+        """The amplifier time constant α = τ_a/T in samples (0 without amplifier lag)."""
+        return float(self.group(AmplifierLag))
 
     @property
     def filter_pole(self) -> float:
         """Pole a = e^{−2π ν_c} of the discretised velocity filter (0 without filter)."""
-        return 0.0 if self.cutoff is None else math.exp(-2.0 * math.pi * self.cutoff)
+        c = self.cutoff
+        return 0.0 if c is None else VelocityFilter.pole(c)
 
     @property
     def amplifier_pole(self) -> float:
@@ -149,85 +210,297 @@ class ControllerParams:
 
     @property
     def is_spring(self) -> bool:
-        """True for the paper's spring (no damper, filter or amplifier lag; any delay)."""
-        return self.damping == 0.0 and self.cutoff is None and self.lag == 0.0
+        """True when the spring's compiled kernel runs the loop: the paper's spring with any delay."""
+        return all(k.spring_kernel(g) for k, g in self.groups)
 
-    def as_dict(self) -> dict[str, object]:
-        """The four groups as a JSON-able dictionary.
+    # ------------------------------------------------------------------ composed mathematics
+    def velocity_gain(self) -> float:
+        """Give the quantization gain of the damper's input.
+
+        Returns
+        -------
+        float
+            The product of every element's (1 − a with a filter, 1 without; the criterion's step 3).
+        """
+        out = 1.0
+        for k, g in self.groups:
+            out *= k.velocity_gain(g)
+        return out
+
+    def corner(self, quantized: bool = True) -> tuple[float, float]:
+        """Give the corner (β₀, σ₀) of the criterion's critical line (eq. 6 extended).
+
+        The spring's (½, ½), or (½, 0) without the encoder, plus every element's contribution
+        (:mod:`dfa.analysis.wall_criterion` derives them).
+
+        Parameters
+        ----------
+        quantized : bool, optional
+            With the encoder (default) or without (σ₀ then collects no quantization term).
+
+        Returns
+        -------
+        tuple of float
+            (β₀, σ₀).
+
+        Raises
+        ------
+        NotCovered
+            When an element is not covered by any sound criterion (the message says why).
+        """
+        beta0, sigma0 = SPRING_CORNER[0], (SPRING_CORNER[1] if quantized else 0.0)
+        gain = self.velocity_gain()
+        for k, g in self.groups:
+            db, ds = k.corner(g, quantized=quantized, velocity_gain=gain)
+            beta0, sigma0 = beta0 + db, sigma0 + ds
+        return beta0, sigma0
+
+    def not_covered(self) -> str | None:
+        """Say why no sound passivity criterion covers this wall.
+
+        Returns
+        -------
+        str or None
+            The reason of the first element the criterion does not cover; None when it covers the wall.
+        """
+        try:
+            self.corner()
+        except NotCovered as why:
+            return str(why)
+        return None
+
+    def colgate_schenkel_reason(self) -> str | None:
+        """Say why the Colgate–Schenkel condition does not cover this wall.
+
+        Returns
+        -------
+        str or None
+            The reasons of the elements it does not cover; None when it covers the wall.
+        """
+        reasons = [k.colgate_schenkel for k, _ in self.groups if k.colgate_schenkel]
+        return "; ".join(reasons) if reasons else None
+
+    def kernel_args(self) -> dict[str, Any]:
+        """Give the compiled simulator's arguments (:mod:`dfa.core.wall_kernel`).
 
         Returns
         -------
         dict
-            ``{"damping": β_B, "delay": d, "cutoff": ν_c or None, "lag": α}``.
+            ``delay`` (samples), ``damping`` β_B, ``pole`` a, ``filtered`` and ``lag`` α, from every element.
         """
-        return {"damping": self.damping, "delay": self.delay, "cutoff": self.cutoff, "lag": self.lag}
+        out: dict[str, Any] = {"delay": 0, "damping": 0.0, "pole": 0.0, "filtered": False, "lag": 0.0}
+        for k, g in self.groups:
+            for key, value in k.kernel(g).items():
+                out[key] = out[key] + value if key == "delay" else value
+        return out
+
+    def command(self) -> CommandPolynomials:
+        """Give the wall's command H(z) = (N₁ + β_B N₂)/(D_H z^d) as polynomials.
+
+        Returns
+        -------
+        CommandPolynomials
+            The spring's H(z) = 1 with every element applied in order (:mod:`dfa.model.elements`).
+        """
+        h = CommandPolynomials.spring_only()
+        for k, g in self.groups:
+            h = k.command(g, h)
+        return h
+
+    def plant(self, rate: float) -> tuple[Any, Any] | None:
+        """Give the exact ZOH plant when an element sits between hold and device.
+
+        Parameters
+        ----------
+        rate : float
+            The device's rate a = β/μ = bT/m (per sample).
+
+        Returns
+        -------
+        tuple of numpy.ndarray, or None
+            (N_G, D_G), G(z) = N_G/(μ D_G); None for the device alone (:mod:`dfa.core.zoh`).
+        """
+        for k, g in self.groups:
+            out = k.plant(g, rate)
+            if out is not None:
+                return out
+        return None
+
+    def plant_response(self, omega: Any) -> Any:
+        """Give the continuous factor between hold and device.
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Angular frequency ω in rad per sample.
+
+        Returns
+        -------
+        complex or numpy.ndarray
+            1/(1 + jωα) with an amplifier lag, 1 without.
+        """
+        out: Any = 1.0
+        for k, g in self.groups:
+            out = out * k.plant_response(g, omega)
+        return out
+
+    def low_frequency_delay(self) -> float:
+        """Give the samples of delay at low frequency.
+
+        Returns
+        -------
+        float
+            The delay d + α (the net damping of :func:`dfa.analysis.simulation.net_damping`).
+        """
+        return sum(k.low_frequency_delay(g) for k, g in self.groups)
+
+    def sweep_points(self) -> int:
+        """Give the most stiffnesses a K_max sweep simulates with this wall.
+
+        Returns
+        -------
+        int
+            The costliest element's :attr:`~dfa.model.elements.Element.sweep_points`.
+        """
+        from .elements import SWEEP_MAX_POINTS
+
+        return min([SWEEP_MAX_POINTS] + [k.sweep_points for k, _ in self.groups])
+
+    def as_dict(self) -> dict[str, Any]:
+        """The groups as a JSON-able dictionary, every registered element's (its ``absent`` value when absent).
+
+        Returns
+        -------
+        dict
+            ``{"damping": β_B, "delay": d, "cutoff": ν_c or None, "lag": α}`` and any further element's group.
+        """
+        out = {k.parameter.group: self.group(k) for k in (Damper, Delay, VelocityFilter, AmplifierLag)}
+        out.update({k.parameter.group: g for k, g in self.groups})
+        return out
 
 
 @dataclass(frozen=True)
-class Controller:
-    """A virtual wall controller in physical units (see the module docstring).
+class Wall:
+    """A virtual wall in physical units: the spring K and its elements (see the module docstring).
 
     Parameters
     ----------
     stiffness : float
         Virtual spring K in N/m (rotary: N·m/rad), > 0.
-    damping : float, optional
-        Virtual damper B in N·s/m (rotary: N·m·s/rad), >= 0 (default 0).
-    delay : int, optional
-        Computational delay d in whole samples, >= 0 (default 0).
-    filter_cutoff : float or None, optional
-        Cutoff f_c in Hz of the first-order low-pass on the velocity estimate,
-        below the Nyquist frequency 1/(2T); None (default) for no filter.
-    amplifier_bandwidth : float or None, optional
-        Bandwidth f_bw in Hz of the current amplifier, modelled as a first-order
-        lag τ_a = 1/(2π f_bw); None (default) for an ideal amplifier.
+    elements : sequence of Element, optional
+        The wall's elements (:mod:`dfa.model.elements`), at most one of each kind; default none, the paper's
+        spring. :meth:`of` builds a wall from the built-in elements' physical values.
 
     Examples
     --------
-    >>> Controller(1000.0, amplifier_bandwidth=1000.0).amplifier_time_constant
+    >>> from dfa.model.elements import AmplifierLag
+    >>> Wall(1000.0, [AmplifierLag(1000.0)]).amplifier_time_constant
     0.00015915494309189535
+    >>> Wall.of(1000.0, damping=0.0).elements      # a damper of 0 is no damper
+    ()
     """
 
     stiffness: float
-    damping: float = 0.0
-    delay: int = 0
-    filter_cutoff: float | None = None
-    amplifier_bandwidth: float | None = None
+    elements: tuple[Element, ...] = field(default=())
 
     def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "stiffness", check_positive("stiffness", self.stiffness, "give the virtual wall stiffness K in N/m")
-        )
-        object.__setattr__(
-            self,
-            "damping",
-            check_nonnegative("damping", self.damping, "give the virtual damping B in N·s/m (0 for none)"),
-        )
-        object.__setattr__(self, "delay", check_delay(self.delay))
-        if self.filter_cutoff is not None:
-            object.__setattr__(
-                self,
-                "filter_cutoff",
-                check_positive("filter_cutoff", self.filter_cutoff, "give the cutoff in Hz, or None for no filter"),
-            )
-        if self.amplifier_bandwidth is not None:
-            object.__setattr__(
-                self,
-                "amplifier_bandwidth",
-                check_positive(
-                    "amplifier_bandwidth",
-                    self.amplifier_bandwidth,
-                    "give the amplifier bandwidth in Hz, or None for an ideal amplifier",
-                ),
-            )
+        fix = "give the virtual wall stiffness K in N/m"
+        object.__setattr__(self, "stiffness", check_positive("stiffness", self.stiffness, fix))
+        object.__setattr__(self, "elements", _ordered(self.elements))
+
+    @classmethod
+    def of(
+        cls,
+        stiffness: float,
+        damping: float = 0.0,
+        delay: int = 0,
+        filter_cutoff: float | None = None,
+        amplifier_bandwidth: float | None = None,
+    ) -> Wall:
+        """A wall of the built-in elements from their physical values (a neutral value adds no element).
+
+        Parameters
+        ----------
+        stiffness : float
+            Virtual spring K in N/m (rotary: N·m/rad), > 0.
+        damping : float, optional
+            Virtual damper B in N·s/m (rotary: N·m·s/rad), >= 0 (default 0: none).
+        delay : int, optional
+            Computational delay d in whole samples, >= 0 (default 0).
+        filter_cutoff : float or None, optional
+            Cutoff f_c in Hz of the first-order low-pass on the velocity estimate, below the Nyquist frequency
+            1/(2T); None (default) for no filter.
+        amplifier_bandwidth : float or None, optional
+            Bandwidth f_bw in Hz of the current amplifier (a first-order lag τ_a = 1/(2π f_bw)); None
+            (default) for an ideal amplifier.
+
+        Returns
+        -------
+        Wall
+        """
+        check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+        elements: list[Element] = []
+        d = Delay(delay)
+        if d.delay:
+            elements.append(d)
+        b = Damper(damping)
+        if b.damping:
+            elements.append(b)
+        if filter_cutoff is not None:
+            elements.append(VelocityFilter(filter_cutoff))
+        if amplifier_bandwidth is not None:
+            elements.append(AmplifierLag(amplifier_bandwidth))
+        return cls(stiffness, tuple(elements))
+
+    def _value(self, kind: type[Element], absent: Any) -> Any:
+        for e in self.elements:
+            if isinstance(e, kind):
+                return e.value
+        return absent
+
+    @property
+    def damping(self) -> float:
+        """Virtual damper B in N·s/m (0: none)."""
+        return float(self._value(Damper, 0.0))
+
+    @property
+    def delay(self) -> int:
+        """Computational delay d in samples (0: none)."""
+        return int(self._value(Delay, 0))
+
+    @property
+    def filter_cutoff(self) -> float | None:
+        """Velocity-filter cutoff f_c in Hz (None: no filter)."""
+        return self._value(VelocityFilter, None)
+
+    @property
+    def amplifier_bandwidth(self) -> float | None:
+        """Amplifier bandwidth f_bw in Hz (None: an ideal amplifier)."""
+        return self._value(AmplifierLag, None)
 
     @property
     def amplifier_time_constant(self) -> float:
         """Amplifier time constant τ_a = 1/(2π f_bw) in s (0 for an ideal amplifier)."""
-        return 0.0 if self.amplifier_bandwidth is None else 1.0 / (2.0 * math.pi * self.amplifier_bandwidth)
+        bw = self.amplifier_bandwidth
+        return 0.0 if bw is None else 1.0 / (2.0 * math.pi * bw)
 
-    def params(self, period: float) -> ControllerParams:
-        """Dimensionless groups (β_B, d, ν_c, α) at sample period ``period``.
+    def with_stiffness(self, stiffness: float) -> Wall:
+        """The same elements at another stiffness K (N/m; N·m/rad): how K_max searches vary K.
+
+        Parameters
+        ----------
+        stiffness : float
+            The new stiffness K in N/m (rotary: N·m/rad), > 0.
+
+        Returns
+        -------
+        Wall
+            This wall's elements with that spring.
+        """
+        return Wall(stiffness, self.elements)
+
+    def params(self, period: float) -> WallParams:
+        """Dimensionless groups (β_B, d, ν_c, α and any further element's) at sample period ``period``.
 
         Parameters
         ----------
@@ -236,8 +509,8 @@ class Controller:
 
         Returns
         -------
-        ControllerParams
-            The groups β_B = B/(K T), d, ν_c = f_c T and α = τ_a/T.
+        WallParams
+            Each element's group, e.g. β_B = B/(K T), d, ν_c = f_c T and α = τ_a/T.
 
         Raises
         ------
@@ -245,16 +518,10 @@ class Controller:
             If the filter cutoff is not below the Nyquist frequency 1/(2T).
         """
         t = check_positive("period", period, "give the sample period T in s (1 kHz: 0.001)")
-        cutoff = _check_cutoff("filter_cutoff", self.filter_cutoff, 0.5 / t, "Hz")
-        return ControllerParams(
-            damping=self.damping / (self.stiffness * t),
-            delay=self.delay,
-            cutoff=None if cutoff is None else cutoff * t,
-            lag=self.amplifier_time_constant / t,
-        )
+        return WallParams(tuple((type(e), e.group(t, self.stiffness)) for e in self.elements))
 
     def as_dict(self) -> dict[str, object]:
-        """The controller's physical parameters as a JSON-able dictionary.
+        """The wall's physical parameters as a JSON-able dictionary.
 
         Returns
         -------

@@ -5,8 +5,8 @@ dimensionless groups beside paper Table 1 (β_B = B/(KT), ν_c = f_c T, α = τ_
 
 Examples
 --------
->>> from dfa.model.wall import Controller
->>> controller_line(Controller(1000.0, damping=0.5, filter_cutoff=100.0), 1e-3, {"stiffness": "N/m",
+>>> from dfa.model.wall import Wall
+>>> controller_line(Wall.of(1000.0, damping=0.5, filter_cutoff=100.0), 1e-3, {"stiffness": "N/m",
 ...     "damping": "N·s/m"})
 'controller: K = 1000 N/m, B = 0.5 N·s/m, delay 0 samples, velocity filter 100 Hz, ideal amplifier; β_B = B/(KT) = 0.5, ν_c = f_c·T = 0.1, α = τ_a/T = 0'
 """
@@ -38,7 +38,7 @@ def controller_dict(controller: Any, period: float, units: dict[str, str]) -> di
 
     Parameters
     ----------
-    controller : dfa.model.wall.Controller
+    controller : dfa.model.wall.Wall
         The wall controller (physical units).
     period : float
         Sample period T in s.
@@ -75,7 +75,7 @@ def controller_short(controller: Any, units: dict[str, str]) -> str:
 
     Parameters
     ----------
-    controller : dfa.model.wall.Controller
+    controller : dfa.model.wall.Wall
         The wall controller.
     units : dict
         The device's unit strings (:attr:`dfa.Device.units`).
@@ -88,8 +88,8 @@ def controller_short(controller: Any, units: dict[str, str]) -> str:
 
     Examples
     --------
-    >>> from dfa.model.wall import Controller
-    >>> controller_short(Controller(1000.0, 1.0, 1, 200.0), {"damping": "N·s/m"})
+    >>> from dfa.model.wall import Wall
+    >>> controller_short(Wall.of(1000.0, 1.0, 1, 200.0), {"damping": "N·s/m"})
     'B = 1 N·s/m, f_c = 200 Hz, d = 1'
     """
     parts = [f"B = {_g(controller.damping)} {units['damping']}"]
@@ -105,7 +105,7 @@ def controller_line(controller: Any, period: float, units: dict[str, str]) -> st
 
     Parameters
     ----------
-    controller : dfa.model.wall.Controller
+    controller : dfa.model.wall.Wall
         The wall controller.
     period : float
         Sample period T in s.
@@ -232,7 +232,7 @@ def controller_rows(controller: Any, period: float, units: dict[str, str]) -> li
 
     Parameters
     ----------
-    controller : dfa.model.wall.Controller
+    controller : dfa.model.wall.Wall
         The wall controller.
     period : float
         Sample period T in s.

@@ -30,7 +30,7 @@ Brent's method too; any bracket that still fails is counted, never raised.
 
 With a controller (issue 15)
 ----------------------------
-``limit_cycles(..., controller=ControllerParams(...))`` puts the virtual wall in the loop: D(M)
+``limit_cycles(..., controller=WallParams.of(...))`` puts the virtual wall in the loop: D(M)
 multiplies the controller C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the ZOH-exact velocity filter)
 and its delay e^{−jωd}; the amplifier lag is 1/(jωα + 1) in the half-delay and Padé models and is
 inside the exact ZOH model (the ZOH-sampled amplifier + device, :mod:`dfa.core.zohlag`). For the half-delay

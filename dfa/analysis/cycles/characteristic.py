@@ -17,7 +17,7 @@ import numpy as np
 from ...core import dfcore
 from ...core.zoh import zoh_coefficients
 from ...model.device import Params
-from ...model.wall import ControllerParams
+from ...model.wall import WallParams
 
 _DF_CHOICES = ("exact", "small", "unity")
 
@@ -70,7 +70,7 @@ def _lead_eval(w, model: str, delay: int, pade_order: int):
     return 2.0 * np.angle(np.polyval(den, 1j * np.asarray(w, dtype=float)))
 
 
-def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int, ctl: ControllerParams | None = None):
+def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int, ctl: WallParams | None = None):
     """1/L(jω) for an equivalent damping β_eq (broadcast), time in samples; plain complex for scalars.
 
     ``ctl`` (a controller that is not a pure spring; None for the paper's spring) divides by the
@@ -98,7 +98,7 @@ def _inv_loop_scalar(mu: float, b: float, w: float, model: str, delay: int, pade
     return complex(z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0))
 
 
-def _controller_factor(ctl: ControllerParams, omega):
+def _controller_factor(ctl: WallParams, omega):
     """C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}), F the ZOH-exact velocity filter (1 without filter)."""
     zi = np.exp(-1j * np.asarray(omega, dtype=float))
     a = ctl.filter_pole
@@ -106,14 +106,14 @@ def _controller_factor(ctl: ControllerParams, omega):
     return 1.0 + ctl.damping * (1.0 - zi) * f
 
 
-def _controller_ratio(ctl: ControllerParams, omega):
+def _controller_ratio(ctl: WallParams, omega):
     """R(ω) = (1 + jωα)/C(e^{jω}): what the controller and amplifier lag multiply 1/L by in the
     half-delay and Padé models (the delay d stays in the hold's phase lead)."""
     w = np.asarray(omega, dtype=float)
     return (1.0 + 1j * w * ctl.lag) / _controller_factor(ctl, w)
 
 
-def _inv_loop_ctl(mu: float, beq, omega, model: str, delay: int, pade_order: int, ctl: ControllerParams):
+def _inv_loop_ctl(mu: float, beq, omega, model: str, delay: int, pade_order: int, ctl: WallParams):
     """1/L(jω) with a controller (see :func:`_inv_loop`); plain complex for scalars."""
     scalar = np.ndim(omega) == 0 and np.ndim(beq) == 0
     w = omega if omega is _W_GRID else np.asarray(omega, dtype=float)
@@ -147,7 +147,7 @@ class _Loop:
     delay: int
     pade_order: int
     df: str = "exact"
-    ctl: ControllerParams | None = None
+    ctl: WallParams | None = None
 
     def beq(self, m, w):
         if isinstance(m, float) and isinstance(w, float):

@@ -120,9 +120,9 @@ def _check_spring(controller: object) -> None:
     if controller is None:
         return
     from ...checks import check_type
-    from ...model.wall import ControllerParams
+    from ...model.wall import WallParams
 
-    ctl = check_type("controller", controller, ControllerParams, "give dfa.ControllerParams(...) or None")
+    ctl = check_type("controller", controller, WallParams, "give dfa.WallParams.of(...) or None")
     if not (ctl.is_spring and ctl.delay == 0):
         raise DFAValueError(
             f"controller = {ctl.as_dict()} is invalid here: the paper's closed forms (eq. 42-45) hold for the "
@@ -171,7 +171,7 @@ def small_cycle_closed_forms(mu, beta, sigma, *, controller=None) -> ClosedFormC
     ----------
     mu, beta, sigma : float or array_like
         Dimensionless mass μ > 0, damping β >= 0 and Coulomb friction σ >= 0 (Table 1).
-    controller : ControllerParams, optional
+    controller : WallParams, optional
         Accepted only as the pure spring without delay (the closed forms' assumption); any other
         controller is refused (DFAValueError): use :func:`dfa.limit_cycles` with it.
 
@@ -224,7 +224,7 @@ def large_cycle_closed_forms(mu, beta, sigma, *, controller=None) -> ClosedFormC
     ----------
     mu, beta, sigma : float or array_like
         Dimensionless mass μ > 0, damping β >= 0 and Coulomb friction σ >= 0 (Table 1).
-    controller : ControllerParams, optional
+    controller : WallParams, optional
         Accepted only as the pure spring without delay; any other controller is refused
         (DFAValueError): use :func:`dfa.limit_cycles` with it.
 
@@ -285,8 +285,8 @@ def large_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=
         Dimensionless viscous damping β = b/(K T), >= 0.
     sigma : float
         Dimensionless Coulomb friction σ = c/(K Δ), >= 0.
-    controller : ControllerParams, optional
-        Only the pure spring without delay (None, the default, or ``ControllerParams()``); any
+    controller : WallParams, optional
+        Only the pure spring without delay (None, the default, or ``WallParams.of()``); any
         other controller is refused: the closed forms assume the paper's loop.
 
     Returns
@@ -323,8 +323,8 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=
         Dimensionless viscous damping β = b/(K T), >= 0.
     sigma : float
         Dimensionless Coulomb friction σ = c/(K Δ), >= 0.
-    controller : ControllerParams, optional
-        Only the pure spring without delay (None, the default, or ``ControllerParams()``); any
+    controller : WallParams, optional
+        Only the pure spring without delay (None, the default, or ``WallParams.of()``); any
         other controller is refused: the closed forms assume the paper's loop.
 
     Returns

@@ -9,7 +9,7 @@ import numpy as np
 from scipy import optimize
 from scipy.optimize.elementwise import find_root
 
-from ...model.wall import ControllerParams
+from ...model.wall import WallParams
 from .characteristic import _W_GRID, _controller_ratio, _inv_loop, _lead, _Loop
 
 # --------------------------------------------------------------- phase curve
@@ -32,13 +32,13 @@ def _phase_beta(lp: _Loop, w: np.ndarray) -> np.ndarray:
 
 
 @lru_cache(maxsize=16)
-def _zoh_phase_beta_grid(mu: float, d: int, ctl: ControllerParams | None = None) -> np.ndarray:
+def _zoh_phase_beta_grid(mu: float, d: int, ctl: WallParams | None = None) -> np.ndarray:
     out = _zoh_phase_beta(mu, d, _W_GRID, ctl)
     out.flags.writeable = False
     return out
 
 
-def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, ctl: ControllerParams | None = None) -> np.ndarray:
+def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, ctl: WallParams | None = None) -> np.ndarray:
     """β*(ω) of the exact ZOH loop: scan β on a log grid, bracket V's crossing with U < 0, bisect (vectorised)."""
     bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
     c = _inv_loop(mu, bgrid[None, :], w[:, None], "zoh", d, 0, ctl)

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from ...checks import check_positive
 from ...errors import DFATypeError, DFAValueError
 from ...model.device import Device, Params
-from ...model.wall import ControllerParams
+from ...model.wall import WallParams
 from ...results.jsonable import explain_nulls, to_jsonable
 from ...results.status import SearchStatus
 from .caveats import _NO_CAVEAT, subtick_caveat
@@ -142,7 +142,7 @@ class LimitCycleResult:
         asymptotically stable; when it is not, amplitudes beyond the largest
         unstable cycle are predicted to grow without bound. With a controller: the
         exact linear loop with that controller (and amplifier lag).
-    controller : ControllerParams or None
+    controller : WallParams or None
         The controller given to :func:`limit_cycles` (None: the paper's spring).
     """
 
@@ -158,11 +158,11 @@ class LimitCycleResult:
     status: SearchStatus = SearchStatus.COMPLETE
     linear_stable: bool | None = None
     search_bound: float | None = None
-    controller: ControllerParams | None = None
+    controller: WallParams | None = None
 
     def __post_init__(self) -> None:
-        if self.controller is not None and not isinstance(self.controller, ControllerParams):
-            raise DFATypeError("controller must be a ControllerParams or None; build results with limit_cycles")
+        if self.controller is not None and not isinstance(self.controller, WallParams):
+            raise DFATypeError("controller must be a WallParams or None; build results with limit_cycles")
         st = SearchStatus.coerce(self.status)
         object.__setattr__(self, "status", st)
         object.__setattr__(self, "detail", self.detail or st.message)

@@ -11,7 +11,7 @@ from scipy import optimize
 
 from ...checks import check_choice, check_positive
 from ...model.device import Params
-from ...model.wall import ControllerParams
+from ...model.wall import WallParams
 from ..loop import _check_model, _check_params
 from . import search
 from .characteristic import _DF_CHOICES, _M_FLOOR, _W_GRID, _Loop
@@ -150,7 +150,7 @@ def limit_cycles(
     max_amplitude: float | None = None,
     describing: str = "exact",
     time_budget: float = DEFAULT_TIME_BUDGET,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
 ) -> LimitCycleResult:
     """Every limit cycle (M, ω) of the harmonic balance 1 + D(M)L(jω; M) = 0 (eq. 36).
 
@@ -179,8 +179,8 @@ def limit_cycles(
         When it runs out the pieces of the phase curve not yet searched are
         skipped and the result is incomplete (status ``TIME_BUDGET``), with
         ``max_amplitude`` the amplitude below which no cycle was missed.
-    controller : ControllerParams, optional
-        The virtual wall (:class:`dfa.ControllerParams`: damper β_B, velocity filter ν_c, delay d,
+    controller : WallParams, optional
+        The virtual wall (:class:`dfa.WallParams`: damper β_B, velocity filter ν_c, delay d,
         amplifier lag α); D(M) then multiplies the controller C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω})
         and the amplifier lag 1/(jωα + 1) sits between hold and device (:func:`dfa.analysis.loop.loop_response`).
         Default None: the paper's spring. A pure spring (``is_spring``) gives the spring-only result

@@ -81,7 +81,7 @@ from ..._parallel import deal, gather
 from ...checks import _fmt, check_choice, check_delay, check_int, check_positive, check_real, check_speed, check_type
 from ...errors import DFATypeError, DFAValueError
 from ...model.device import Device
-from ...model.wall import Controller, ControllerParams
+from ...model.wall import Wall, WallParams
 from ...results.jsonable import explain_nulls
 from ..simulation import (
     GROWTH,
@@ -113,9 +113,9 @@ def simulate_points(
     points: Sequence[tuple[float, ...]],
     delay: int,
     max_samples: int,
-    controller: ControllerParams | None = None,
+    controller: WallParams | None = None,
     *,
-    controllers: Sequence[ControllerParams | None] | None = None,
+    controllers: Sequence[WallParams | None] | None = None,
 ):
     """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), and the samples of each run.
 
@@ -440,7 +440,7 @@ class Growth(NamedTuple):
 def _growth_xi_dot(mu: float, beta: float, sigma: float, delay: int, model: str, controller: Any = None) -> Growth:
     """The describing function's growth prediction (:class:`Growth`) at (μ, β, σ), delay and hold model.
 
-    ``controller`` (a ControllerParams whose delay is ``delay``, or None for the spring) is passed to
+    ``controller`` (a WallParams whose delay is ``delay``, or None for the spring) is passed to
     :func:`dfa.analysis.cycles.limit_cycles`.
     """
     from ...model.device import Params
@@ -505,9 +505,9 @@ class RunCache:
         points: Sequence[tuple[float, float, float, float, float]],
         delay: int,
         max_samples: int,
-        controller: ControllerParams | None = None,
+        controller: WallParams | None = None,
         *,
-        controllers: Sequence[ControllerParams | None] | None = None,
+        controllers: Sequence[WallParams | None] | None = None,
     ):
         """Outcomes and run lengths of ``points`` (as :func:`simulate_points`), simulating only the new ones.
 
@@ -519,9 +519,9 @@ class RunCache:
             Computational delay d in samples.
         max_samples : int
             Longest run in samples.
-        controller : ControllerParams, optional
+        controller : WallParams, optional
             The dimensionless controller of every point (part of each run's key); None: the spring.
-        controllers : sequence of ControllerParams or None, optional
+        controllers : sequence of WallParams or None, optional
             One controller per point instead of ``controller`` (the points of a sweep in K).
 
         Returns
@@ -560,7 +560,7 @@ class _Evidence:
         max_samples: int,
         model: str,
         cache: RunCache | None = None,
-        controller: Controller | None = None,
+        controller: Wall | None = None,
     ):
         self.dev, self.delay, self.max_samples, self.model = dev, delay, max_samples, model
         self.controller = controller
@@ -571,7 +571,7 @@ class _Evidence:
         self.runs = 0
         self.longest = 0
 
-    def params(self, k: float) -> tuple[Any, ControllerParams | None]:
+    def params(self, k: float) -> tuple[Any, WallParams | None]:
         """The device's groups (μ, β, σ) and the controller's (None: the spring) at stiffness ``k``.
 
         Raises DFAValueError when a group is not representable at ``k``.
@@ -590,7 +590,7 @@ class _Evidence:
     def prefetch(self, ks: Sequence[float]) -> None:
         """Simulate the impacts of every stiffness of ``ks`` not yet seen, in one threaded batch (the cache's)."""
         pts: list[tuple[float, float, float, float, float]] = []
-        ctls: list[ControllerParams | None] = []
+        ctls: list[WallParams | None] = []
         tags: list[tuple[float, float, str]] = []
         for k in dict.fromkeys(float(x) for x in ks):
             if k in self.sims:
@@ -1054,7 +1054,7 @@ class KMaxResult(_SearchedLimits):
         return explain_nulls(out, why)
 
 
-def _passive_speed(dev: Device, k: float, delay: int, controller: Controller | None) -> tuple[float | None, str | None]:
+def _passive_speed(dev: Device, k: float, delay: int, controller: Wall | None) -> tuple[float | None, str | None]:
     """Largest speed the criterion proves passive at K (inf: every speed; None: none), and why None.
 
     The spring: eq. 11-12 (:func:`dfa.analysis.limits.closed_form.max_passive_velocity`). A controller without amplifier

@@ -27,8 +27,8 @@ With the controller's physical B, f_c, τ_a and d held fixed (so β_B = B/(KT) f
 Examples
 --------
 >>> from dfa.model.catalogue import get_device
->>> from dfa.model.wall import Controller
->>> r = controller_stiffness_limits(get_device("Delta").device, Controller(14500.0, damping=1.0), 0.1,
+>>> from dfa.model.wall import Wall
+>>> r = controller_stiffness_limits(get_device("Delta").device, Wall.of(14500.0, damping=1.0), 0.1,
 ...                                 speeds=2, grid=6)
 >>> round(r.k_criterion), r.k_criterion <= r.k_sim.value, r.k_sim_rest.value <= r.k_sim.value
 (21916, True, True)
@@ -45,7 +45,7 @@ import numpy as np
 from ...checks import _fmt, check_choice, check_int, check_positive, check_real, check_speed, check_type
 from ...errors import DFATypeError, DFAValueError
 from ...model.device import Device
-from ...model.wall import Controller
+from ...model.wall import Wall
 from ...results.jsonable import explain_nulls
 from ..linear_wall import stable_stiffness
 from ..wall_criterion import device_controller_criterion
@@ -83,7 +83,7 @@ class ControllerStiffnessLimits(_SearchedLimits):
     Attributes
     ----------
     device : Device
-    controller : Controller
+    controller : Wall
         The controller held fixed (its stiffness is the one to assess, not the answer).
     velocity : float
         Impact speed, m/s (rotary: rad/s), > 0.
@@ -116,7 +116,7 @@ class ControllerStiffnessLimits(_SearchedLimits):
     """
 
     device: Device
-    controller: Controller
+    controller: Wall
     velocity: float
     k_criterion: float | None
     k_linear: float
@@ -137,7 +137,7 @@ class ControllerStiffnessLimits(_SearchedLimits):
     def __post_init__(self) -> None:
         fix = "use controller_stiffness_limits"
         check_type("device", self.device, Device, fix)
-        check_type("controller", self.controller, Controller, fix)
+        check_type("controller", self.controller, Wall, fix)
         check_positive("velocity", self.velocity, fix)
         if self.k_criterion is not None:
             check_real("k_criterion", self.k_criterion, fix)
@@ -196,7 +196,7 @@ class ControllerStiffnessLimits(_SearchedLimits):
         return explain_nulls(out, {k: v for k, v in why.items() if k != "counterexamples"})
 
 
-def _passive(dev: Device, ctl: Controller, k: float, v: float) -> bool:
+def _passive(dev: Device, ctl: Wall, k: float, v: float) -> bool:
     """The criterion's verdict at stiffness k; a K whose groups are not representable is not proven passive."""
     try:
         return device_controller_criterion(dev, replace(ctl, stiffness=k), v).passive
@@ -204,7 +204,7 @@ def _passive(dev: Device, ctl: Controller, k: float, v: float) -> bool:
         return False
 
 
-def _k_criterion(dev: Device, ctl: Controller, v: float) -> float:
+def _k_criterion(dev: Device, ctl: Wall, v: float) -> float:
     """Largest K the extended criterion proves passive (bisection; the passive K are an interval (0, K*])."""
     lo, hi = 0.0, 1.0
     while _passive(dev, ctl, hi, v):  # the criterion fails for K large enough (σ₀ grows with K)
@@ -224,7 +224,7 @@ def _k_criterion(dev: Device, ctl: Controller, v: float) -> float:
     return lo
 
 
-def _bounds(dev: Device, ctl: Controller, v: float) -> tuple[float | None, float, float, float, dict[str, str]]:
+def _bounds(dev: Device, ctl: Wall, v: float) -> tuple[float | None, float, float, float, dict[str, str]]:
     """K_criterion (None with a lag), K_linear, the grid's reference K and top, and the reasons for None (or 0).
 
     The pure spring (B = 0, no filter, no lag; any delay) uses the spring's closed forms and grid
@@ -250,7 +250,7 @@ def _bounds(dev: Device, ctl: Controller, v: float) -> tuple[float | None, float
 
 def controller_stiffness_limits(
     device: Device,
-    controller: Controller,
+    controller: Wall,
     velocity: float,
     *,
     speeds: int = 6,
@@ -266,7 +266,7 @@ def controller_stiffness_limits(
     ----------
     device : Device
         The physical device.
-    controller : Controller
+    controller : Wall
         The wall controller; its damping B (N·s/m), delay, filter cutoff (Hz) and amplifier bandwidth (Hz)
         are held fixed while K varies.
     velocity : float
@@ -301,7 +301,7 @@ def controller_stiffness_limits(
     design_answer : The same four ways for the spring.
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    ctl = check_type("controller", controller, Controller, "build one with dfa.model.wall.Controller(K, ...)")
+    ctl = check_type("controller", controller, Wall, "build one with dfa.model.wall.Wall.of(K, ...)")
     v = check_speed("velocity", velocity, zero=False)
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     n_grid = check_int("grid", grid, minimum=2, fix="give at least 2 stiffness grid points")

@@ -80,7 +80,7 @@ from ...checks import (
 from ...core import kernel
 from ...errors import DFAValueError
 from ...model.device import Device
-from ...model.wall import Controller, ControllerParams
+from ...model.wall import Wall, WallParams
 from ...results.codes import BOUNDED, DIVERGES, POINT_OUTCOMES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
 from ...results.jsonable import explain_nulls
 from ...results.status import ZWidthStatus
@@ -283,8 +283,8 @@ class ZWidth:
 
 
 # ----------------------------------------------------------------------------- boundaries per B
-def _ctl(k: float, b: float, d: int, fc: float | None, fbw: float | None) -> Controller:
-    return Controller(k, b, d, filter_cutoff=fc, amplifier_bandwidth=fbw)
+def _ctl(k: float, b: float, d: int, fc: float | None, fbw: float | None) -> Wall:
+    return Wall.of(k, b, d, filter_cutoff=fc, amplifier_bandwidth=fbw)
 
 
 def _linear(dev: Device, b: float, d: int, fc, fbw) -> tuple[float, str | None]:
@@ -360,7 +360,7 @@ def _df_judge(dev: Device, b: float, xi_dot: float, d: int, fc, fbw, model: str,
 
 
 # ----------------------------------------------------------------------------- simulation of the grid
-def _runs(dev: Device, k: float, b: float, ctl: ControllerParams, xi_dots, cap: int) -> list[tuple]:
+def _runs(dev: Device, k: float, b: float, ctl: WallParams, xi_dots, cap: int) -> list[tuple]:
     """The runs (μ, β, σ, ξ0, ξ'0, samples, bound) of one grid point: each speed from ξ0 = 0 and from the preload."""
     p = dev.params(k)
     out = []
@@ -376,7 +376,7 @@ def _runs(dev: Device, k: float, b: float, ctl: ControllerParams, xi_dots, cap: 
 def _chunks(tasks: list[tuple], size: int) -> list[list[int]]:
     """Indices of the tasks in chunks of at most ``size`` consecutive points, spring and controller apart.
 
-    A pure-spring point (:attr:`~dfa.model.wall.ControllerParams.is_spring`: B = 0, no filter, no lag) runs
+    A pure-spring point (:attr:`~dfa.model.wall.WallParams.is_spring`: B = 0, no filter, no lag) runs
     the spring kernel, as :func:`dfa.analysis.simulation.simulate` routes it; every other point the controller kernel.
     """
     out: list[list[int]] = []

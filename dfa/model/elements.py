@@ -1,0 +1,691 @@
+"""The elements of a virtual wall: one class each, carrying its own mathematics.
+
+A wall (:class:`dfa.model.wall.Wall`) is the paper's spring (eq. 1-2) and any of these blocks between the
+encoder reading and the force on the device. Each element is a frozen dataclass in physical units (SI; a
+rotary device uses rad, N·m, kg·m²) and states, as class attributes and class methods:
+
+- its parameter, unit, command-line flag and dimensionless group beside paper Table 1 (:class:`Parameter`);
+- :meth:`Element.group`: that group for a sample period T and a stiffness K, validated;
+- :meth:`Element.corner`: its contribution to the corner (β₀, σ₀) of the passivity criterion (eq. 6 extended,
+  :mod:`dfa.analysis.wall_criterion`), or :class:`NotCovered` with the reason no sound criterion covers it;
+- :attr:`Element.colgate_schenkel`: why the Colgate–Schenkel condition does not cover it (None: it does);
+- :meth:`Element.kernel`: the arguments of the compiled simulator (:mod:`dfa.core.wall_kernel`) it sets;
+- :meth:`Element.command` and :meth:`Element.plant`: its transfer function, as polynomials of the exact
+  sampled loop (:mod:`dfa.analysis.linear_wall`), whose frequency responses the describing function uses;
+- :attr:`Element.sweep_points`: how many stiffnesses a K_max sweep may simulate with it (run cost).
+
+Every analysis reads the elements through these hooks only (:class:`dfa.model.wall.WallParams` composes
+them), so a new element is one class here, its block in :mod:`dfa.core` when the simulator must integrate
+something new, and nothing else (``docs/architecture.md``).
+
+The loop, dimensionless (time in samples, ξ = x/Δ, φ = F/(KΔ)): at sample h the wall reads r_h = ⌊ξ_h⌋,
+forms the backward-difference velocity v_h = r_h − r_{h−1}, optionally filters it (y_h = a y_{h−1} +
+(1 − a) v_{h−1}, a = e^{−2πν_c}), and commands, d samples later, φ_cmd = −(r + ½) − β_B y; the amplifier
+follows the held command through α φ_A' = φ_cmd − φ_A. In z (position to command, per unit K)::
+
+    H(z) = z^{−d} [1 + β_B (1 − z^{−1}) F(z)],   F(z) = (1 − a) z^{−1}/(1 − a z^{−1})   (F = 1 without filter),
+
+kept as H = (N₁ + β_B N₂)/(D_H z^d) (:class:`CommandPolynomials`).
+
+Examples
+--------
+>>> Damper(2.0).group(period=1e-3, stiffness=1000.0)      # β_B = B/(K T)
+2.0
+>>> Damper.parameter.flag, Damper.parameter.units
+('--virtual-damping', ('N·s/m', 'N·m·s/rad'))
+>>> AmplifierLag.corner(0.5, quantized=True)
+Traceback (most recent call last):
+...
+dfa.model.elements.NotCovered: no sound passivity criterion is proven with an amplifier lag (the force varies within a sample)
+"""
+
+from __future__ import annotations
+
+import abc
+import math
+from dataclasses import dataclass
+from typing import Any, ClassVar, NamedTuple
+
+import numpy as np
+
+from ..checks import _fmt, check_delay, check_nonnegative, check_positive
+from ..errors import DFAError, DFAValueError
+
+__all__ = [
+    "Element",
+    "Parameter",
+    "NotCovered",
+    "CommandPolynomials",
+    "Damper",
+    "VelocityFilter",
+    "Delay",
+    "AmplifierLag",
+    "ELEMENTS",
+    "MIN_CUTOFF",
+    "MIN_LAG",
+    "SWEEP_MAX_POINTS",
+]
+
+#: Smallest velocity-filter cutoff accepted, in cycles per sample (1 Hz at 1 kHz). Below it the filter pole
+#: e^{−2πν_c} and the free mass's pole at z = 1 are too close to separate in double precision: a red-team check
+#: found the exact linear bound calling a stable loop "never stable" at ν_c = 1e-6 (verified stable with 60-digit
+#: roots); from 1e-3 to the Nyquist limit no such case was found.
+MIN_CUTOFF = 1.0e-3
+
+#: Shortest amplifier lag α (samples) other than 0: 1/α is then a finite float (at 5e-324 the kernel's rate was
+#: inf, a ZeroDivisionError compiled and NaN, "unstable", for a decaying loop in Python).
+MIN_LAG = 1e-300
+
+#: Most stiffnesses one sweep of a K_max search simulates (:mod:`dfa.analysis.limits.kmax`); an element whose
+#: runs cost more per sample lowers it (:attr:`Element.sweep_points`).
+SWEEP_MAX_POINTS = 600
+
+
+class NotCovered(DFAError):
+    """Raised by :meth:`Element.corner` for an element no sound passivity criterion covers; the message says why."""
+
+
+class Parameter(NamedTuple):
+    """An element's parameter: its name, physical units, flag and dimensionless group.
+
+    ``name`` is the keyword of :meth:`dfa.model.wall.Wall.of` and of the element's constructor; ``units`` the
+    unit of a linear and of a rotary device; ``flag`` and ``metavar`` its command-line option (one row of the
+    flag table of :mod:`dfa.cli`); ``help`` what the option does; ``group`` the keyword of
+    :meth:`dfa.model.wall.WallParams.of` and the JSON key of the group; ``symbol`` its definition.
+    """
+
+    name: str
+    units: tuple[str, str]
+    flag: str
+    metavar: str
+    help: str
+    group: str
+    symbol: str
+
+
+@dataclass(frozen=True)
+class CommandPolynomials:
+    """The wall's command H(z) = (N₁ + β_B N₂)/(D_H z^d) and the device's ZOH plant, as polynomials (highest first).
+
+    Attributes
+    ----------
+    spring, velocity, denominator : numpy.ndarray
+        N₁, N₂ and D_H (without the delay): the spring's path, the damper's path per unit β_B, their
+        common denominator.
+    damping : float
+        β_B, the damper's gain (0: no damper; the velocity path then filters nothing).
+    delay : int
+        d, whole samples of computational delay.
+    """
+
+    spring: np.ndarray
+    velocity: np.ndarray
+    denominator: np.ndarray
+    damping: float = 0.0
+    delay: int = 0
+
+    @classmethod
+    def spring_only(cls) -> CommandPolynomials:
+        """H(z) = 1 of the paper's spring: N₁ = z, N₂ = z − 1 (the backward difference), D_H = z."""
+        return cls(np.array([1.0, 0.0]), np.array([1.0, -1.0]), np.array([1.0, 0.0]))
+
+    def response(self, omega: Any) -> Any:
+        """C(e^{jω}) = (N₁ + β_B N₂)/D_H at z = e^{jω} (the command without its delay), vectorised.
+
+        Examples
+        --------
+        >>> CommandPolynomials.spring_only().response(0.3)
+        (1+0j)
+        """
+        z = np.exp(1j * np.asarray(omega, dtype=float))
+        num = np.polyadd(self.spring, self.damping * self.velocity)
+        out = np.polyval(num, z) / np.polyval(self.denominator, z)
+        return complex(out) if np.ndim(out) == 0 else out
+
+
+@dataclass(frozen=True)
+class Element(abc.ABC):
+    """A block of a virtual wall in physical units (module docstring); subclasses define the hooks.
+
+    A subclass is a frozen dataclass with one field, its physical parameter (:attr:`parameter` names it), and
+    overrides the hooks that concern it; an override without a docstring takes the one of :class:`Element`.
+    """
+
+    #: The element's parameter (name, units, flag, dimensionless group).
+    parameter: ClassVar[Parameter]
+    #: Why the Colgate–Schenkel condition does not cover the element (None: it does).
+    colgate_schenkel: ClassVar[str | None] = None
+    #: Most stiffnesses a sweep of a K_max search simulates with this element in the wall.
+    sweep_points: ClassVar[int] = SWEEP_MAX_POINTS
+    #: The group's value when the element is absent (the wall's groups list every registered element).
+    absent: ClassVar[Any] = 0.0
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        for name, member in vars(cls).items():  # an undocumented override takes the protocol's docstring
+            fn = getattr(member, "__func__", member)
+            base = getattr(Element, name, None)
+            if callable(fn) and not getattr(fn, "__doc__", None) and base is not None:
+                fn.__doc__ = getattr(base, "__doc__", None)
+
+    @property
+    def value(self) -> Any:
+        """The physical parameter (:attr:`parameter` names it and its unit)."""
+        return getattr(self, self.parameter.name)
+
+    @abc.abstractmethod
+    def group(self, period: float, stiffness: float) -> Any:
+        """Give the element's dimensionless group beside paper Table 1, validated.
+
+        Parameters
+        ----------
+        period : float
+            Sample period T in s.
+        stiffness : float
+            Virtual spring K in N/m (rotary: N·m/rad).
+
+        Returns
+        -------
+        float or int
+            The group (:attr:`parameter` gives its symbol).
+        """
+
+    @classmethod
+    @abc.abstractmethod
+    def check_group(cls, value: Any) -> Any:
+        """Check a dimensionless group of this element.
+
+        Parameters
+        ----------
+        value : float or int
+            The group, e.g. β_B for a damper.
+
+        Returns
+        -------
+        float or int
+            The group, if valid.
+
+        Raises
+        ------
+        DFAValueError, DFATypeError
+            If it breaks the element's rule.
+        """
+
+    @classmethod
+    def renders_nothing(cls, g: Any) -> bool:
+        """Tell whether the element with group ``g`` leaves the paper's spring unchanged (it is then left out).
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+
+        Returns
+        -------
+        bool
+            True for a neutral group (β_B = 0, α = 0, d = 0).
+        """
+        return False
+
+    @classmethod
+    def spring_kernel(cls, g: Any) -> bool:
+        """Tell whether the spring's compiled kernel (:mod:`dfa.core.kernel`) runs the loop with this element.
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+
+        Returns
+        -------
+        bool
+            True when the spring's kernel covers it (a delay, or a neutral element).
+        """
+        return cls.renders_nothing(g)
+
+    @classmethod
+    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+        """Give what the element adds to the corner (β₀, σ₀) of the passivity criterion (eq. 6 extended).
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+        quantized : bool
+            With the encoder (True) or without (False: no quantization term in σ₀).
+        velocity_gain : float, optional
+            The product of the wall's :meth:`velocity_gain` (1 − a with a filter, 1 without).
+
+        Returns
+        -------
+        tuple of float
+            (Δβ₀, Δσ₀).
+
+        Raises
+        ------
+        NotCovered
+            When no sound criterion covers the element (the message says why).
+        """
+        return 0.0, 0.0
+
+    @classmethod
+    def velocity_gain(cls, g: Any) -> float:
+        """Give the element's factor on the quantization part of the damper's input (Abel summation).
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+
+        Returns
+        -------
+        float
+            1 − a for a velocity filter of pole a; 1 for an element off the velocity path.
+        """
+        return 1.0
+
+    @classmethod
+    def kernel(cls, g: Any) -> dict[str, Any]:
+        """Give the compiled simulator's arguments the element sets (:mod:`dfa.core.wall_kernel`).
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+
+        Returns
+        -------
+        dict
+            Some of ``delay`` (added up), ``damping``, ``pole``, ``filtered``, ``lag``.
+        """
+        return {}
+
+    @classmethod
+    def command(cls, g: Any, h: CommandPolynomials) -> CommandPolynomials:
+        """Apply the element to the wall's command H(z) (module docstring).
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+        h : CommandPolynomials
+            H(z) of the elements applied before it.
+
+        Returns
+        -------
+        CommandPolynomials
+            H(z) with this element; the default leaves it unchanged.
+        """
+        return h
+
+    @classmethod
+    def plant(cls, g: Any, rate: float) -> tuple[np.ndarray, np.ndarray] | None:
+        """Give the exact ZOH plant with this element between hold and device.
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+        rate : float
+            The device's rate a = β/μ = bT/m (per sample).
+
+        Returns
+        -------
+        tuple of numpy.ndarray, or None
+            (N_G, D_G), G(z) = N_G/(μ D_G); None for an element off the plant.
+        """
+        return None
+
+    @classmethod
+    def low_frequency_delay(cls, g: Any) -> float:
+        """Give the samples of delay the element adds at low frequency.
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+
+        Returns
+        -------
+        float
+            The delay in samples (d for a delay, α for an amplifier lag, 0 otherwise).
+        """
+        return 0.0
+
+    @classmethod
+    def plant_response(cls, g: Any, omega: Any) -> Any:
+        """Give the element's continuous factor between hold and device.
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+        omega : float or array_like
+            Angular frequency ω in rad per sample.
+
+        Returns
+        -------
+        complex or numpy.ndarray
+            1 unless the element sits between hold and device.
+        """
+        return 1.0
+
+    def as_dict(self) -> dict[str, Any]:
+        """Give the element as JSON-able data.
+
+        Returns
+        -------
+        dict
+            Its key (:meth:`key`), physical value and unit (of a linear device).
+        """
+        return {"element": type(self).key(), self.parameter.name: self.value, "unit": self.parameter.units[0]}
+
+    @classmethod
+    def key(cls) -> str:
+        """Give the element's name in outputs.
+
+        Returns
+        -------
+        str
+            Its class name in snake_case (``velocity_filter``).
+        """
+        name = cls.__name__
+        return "".join("_" + c.lower() if c.isupper() and i else c.lower() for i, c in enumerate(name))
+
+
+# ----------------------------------------------------------------------------- the built-in elements
+@dataclass(frozen=True)
+class Delay(Element):
+    """A computational delay of d whole samples: the force of sample h uses the reading of sample h − d.
+
+    Adds d to β₀ (Diolaiti et al. 2006), z^{−d} to H(z), and ``delay`` to the simulator.
+
+    Attributes
+    ----------
+    delay : int
+        Computational delay d in whole samples, >= 0.
+
+    Examples
+    --------
+    >>> Delay(2).group(1e-3, 500.0), Delay.corner(2, quantized=True)
+    (2, (2.0, 0.0))
+    """
+
+    delay: int
+    parameter: ClassVar[Parameter] = Parameter(
+        "delay", ("samples", "samples"), "--delay", "D",
+        "computational delay in whole samples: the force of sample h uses the reading of sample h − D (default 0)",
+        "delay", "d",
+    )  # fmt: skip
+    absent: ClassVar[Any] = 0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "delay", check_delay(self.delay))
+
+    def group(self, period: float, stiffness: float) -> int:
+        return self.delay
+
+    @classmethod
+    def check_group(cls, value: Any) -> int:
+        return check_delay(value)
+
+    @classmethod
+    def renders_nothing(cls, g: Any) -> bool:
+        return g == 0
+
+    @classmethod
+    def spring_kernel(cls, g: Any) -> bool:
+        return True  # the spring kernel keeps a ring of pending readings
+
+    @classmethod
+    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+        return float(g), 0.0
+
+    @classmethod
+    def kernel(cls, g: Any) -> dict[str, Any]:
+        return {"delay": int(g)}
+
+    @classmethod
+    def command(cls, g: Any, h: CommandPolynomials) -> CommandPolynomials:
+        return CommandPolynomials(h.spring, h.velocity, h.denominator, h.damping, h.delay + int(g))
+
+    @classmethod
+    def low_frequency_delay(cls, g: Any) -> float:
+        return float(g)
+
+
+@dataclass(frozen=True)
+class Damper(Element):
+    """A virtual damper B on the backward-difference velocity of the quantized position (N·s/m; N·m·s/rad).
+
+    Group β_B = B/(K T). Adds β_B to β₀ and β_B times the velocity path's quantization gain to σ₀ (the
+    criterion's steps 3-4, :mod:`dfa.analysis.wall_criterion`); β_B (1 − z^{−1}) F(z) to H(z).
+
+    Attributes
+    ----------
+    damping : float
+        Virtual damper B in N·s/m (rotary: N·m·s/rad), >= 0.
+
+    Examples
+    --------
+    >>> Damper.corner(0.3, quantized=True), Damper.corner(0.3, quantized=True, velocity_gain=0.5)
+    ((0.3, 0.3), (0.3, 0.15))
+    """
+
+    damping: float
+    parameter: ClassVar[Parameter] = Parameter(
+        "damping", ("N·s/m", "N·m·s/rad"), "--virtual-damping", "B",
+        "virtual damper B >= 0 in N·s/m (rotary: N·m·s/rad) on the backward-difference velocity (default: none)",
+        "damping", "β_B = B/(K T)",
+    )  # fmt: skip
+
+    def __post_init__(self) -> None:
+        fix = "give the virtual damping B in N·s/m (0 for none)"
+        object.__setattr__(self, "damping", check_nonnegative("damping", self.damping, fix))
+
+    def group(self, period: float, stiffness: float) -> float:
+        return self.damping / (stiffness * period)
+
+    @classmethod
+    def check_group(cls, value: Any) -> float:
+        return check_nonnegative("damping", value, "β_B = B/(K T) cannot be negative")
+
+    @classmethod
+    def renders_nothing(cls, g: Any) -> bool:
+        return g == 0.0
+
+    @classmethod
+    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+        return float(g), (velocity_gain * float(g) if quantized else 0.0)
+
+    @classmethod
+    def kernel(cls, g: Any) -> dict[str, Any]:
+        return {"damping": float(g)}
+
+    @classmethod
+    def command(cls, g: Any, h: CommandPolynomials) -> CommandPolynomials:
+        return CommandPolynomials(h.spring, h.velocity, h.denominator, float(g), h.delay)
+
+
+def _check_cutoff(name: str, value: object, nyquist: float, unit: str) -> float:
+    """A filter cutoff: MIN_CUTOFF·(2·nyquist) <= value < nyquist, in ``unit`` (Hz, or cycles per sample)."""
+    out = check_positive(name, value, f"give the velocity-filter cutoff in {unit}, or no filter")
+    floor = MIN_CUTOFF * 2.0 * nyquist  # 2·nyquist = samples per unit of the cutoff (1 or 1/T)
+    per_sample = "" if unit == "cycles per sample" else f"{MIN_CUTOFF:g} cycles per sample; "
+    if out < floor * (1 - 1e-12):  # the floor as printed (6 digits) is accepted despite rounding
+        raise DFAValueError(
+            f"{name} = {_fmt(out)} is invalid: it must be at least {floor:.6g} {unit} ({per_sample}below, the filter "
+            "pole and the free mass's pole at z = 1 cannot be told apart in double precision and the linear analysis "
+            f"is unreliable); give a cutoff of at least {floor:.6g} {unit}, or no filter"
+        )
+    if not out < nyquist:
+        raise DFAValueError(
+            f"{name} = {_fmt(out)} is invalid: it must be below the Nyquist frequency {_fmt(nyquist)} {unit}; "
+            "give a cutoff below the Nyquist frequency 1/(2T), or no filter (None)"
+        )
+    return out
+
+
+@dataclass(frozen=True)
+class VelocityFilter(Element):
+    """A first-order low-pass of cutoff f_c (Hz) on the damper's velocity, discretised exactly (ZOH).
+
+    y_h = a y_{h−1} + (1 − a) v_{h−1}, a = e^{−2π f_c T} (``control.c2d(..., "zoh")`` of ω_c/(s + ω_c)), so
+    the filter adds its own one-sample lag. Group ν_c = f_c T (cycles per sample), MIN_CUTOFF <= ν_c < ½.
+    It multiplies the damper's path by F(z) = (1 − a)/(z − a) and the damper's quantization part by 1 − a
+    (so σ₀ gains (1 − a)β_B); without a damper it filters nothing and is left out of the linear loop.
+
+    Attributes
+    ----------
+    filter_cutoff : float
+        Cutoff f_c in Hz, below the Nyquist frequency 1/(2T) of the device it runs on.
+
+    Examples
+    --------
+    >>> round(VelocityFilter.pole(0.1), 6), round(VelocityFilter.velocity_gain(0.1), 6)
+    (0.533488, 0.466512)
+    """
+
+    filter_cutoff: float
+    parameter: ClassVar[Parameter] = Parameter(
+        "filter_cutoff", ("Hz", "Hz"), "--velocity-filter", "HZ",
+        "cutoff in Hz of a first-order low-pass on the velocity, below the Nyquist frequency 1/(2T) "
+        "(default: no filter)",
+        "cutoff", "ν_c = f_c T",
+    )  # fmt: skip
+    absent: ClassVar[Any] = None
+
+    def __post_init__(self) -> None:
+        fix = "give the cutoff in Hz, or None for no filter"
+        object.__setattr__(self, "filter_cutoff", check_positive("filter_cutoff", self.filter_cutoff, fix))
+
+    def group(self, period: float, stiffness: float) -> float:
+        return _check_cutoff("filter_cutoff", self.filter_cutoff, 0.5 / period, "Hz") * period
+
+    @classmethod
+    def check_group(cls, value: Any) -> float:
+        return _check_cutoff("cutoff", value, 0.5, "cycles per sample")
+
+    @staticmethod
+    def pole(g: float) -> float:
+        """Give the filter's pole.
+
+        Parameters
+        ----------
+        g : float
+            The cutoff ν_c = f_c T in cycles per sample.
+
+        Returns
+        -------
+        float
+            The pole a = e^{−2πν_c}.
+        """
+        return math.exp(-2.0 * math.pi * g)
+
+    @classmethod
+    def velocity_gain(cls, g: Any) -> float:
+        return 1.0 - cls.pole(g)
+
+    @classmethod
+    def kernel(cls, g: Any) -> dict[str, Any]:
+        return {"pole": cls.pole(g), "filtered": True}
+
+    @classmethod
+    def command(cls, g: Any, h: CommandPolynomials) -> CommandPolynomials:
+        if h.damping == 0.0:  # a filter without a damper filters nothing: its own mode is no pole of the loop
+            return h
+        af = cls.pole(g)
+        return CommandPolynomials(
+            np.polymul(h.spring, [1.0, -af]), np.polymul(h.velocity, [1.0 - af]), np.polymul(h.denominator, [1.0, -af]),
+            h.damping, h.delay,
+        )  # fmt: skip
+
+
+@dataclass(frozen=True)
+class AmplifierLag(Element):
+    """A current amplifier of bandwidth f_bw (Hz): a first-order lag τ_a = 1/(2π f_bw) between hold and device.
+
+    τ_a dF_A/dt = F_cmd − F_A within each sample; group α = τ_a/T (samples), 0 or >= MIN_LAG. The force then
+    varies within a sample, which neither the criterion (eq. 6 extended) nor Colgate–Schenkel covers.
+
+    Attributes
+    ----------
+    amplifier_bandwidth : float
+        Bandwidth f_bw in Hz, > 0.
+
+    Examples
+    --------
+    >>> round(AmplifierLag(1000.0).group(1e-3, 1.0), 6)
+    0.159155
+    """
+
+    amplifier_bandwidth: float
+    parameter: ClassVar[Parameter] = Parameter(
+        "amplifier_bandwidth", ("Hz", "Hz"), "--amplifier-bandwidth", "HZ",
+        "bandwidth in Hz of the current amplifier, a first-order lag τ_a = 1/(2π f_bw) (default: ideal)",
+        "lag", "α = τ_a/T",
+    )  # fmt: skip
+    colgate_schenkel: ClassVar[str | None] = (
+        "the Colgate–Schenkel condition assumes the hold drives the device directly"
+    )
+    #: With an amplifier lag a run costs about 18 times the spring's per sample (reports/benchmarks.md).
+    sweep_points: ClassVar[int] = 150
+
+    def __post_init__(self) -> None:
+        fix = "give the amplifier bandwidth in Hz, or None for an ideal amplifier"
+        object.__setattr__(
+            self, "amplifier_bandwidth", check_positive("amplifier_bandwidth", self.amplifier_bandwidth, fix)
+        )
+
+    @property
+    def time_constant(self) -> float:
+        """The time constant τ_a = 1/(2π f_bw) in s."""
+        return 1.0 / (2.0 * math.pi * self.amplifier_bandwidth)
+
+    def group(self, period: float, stiffness: float) -> float:
+        return self.check_group(self.time_constant / period)
+
+    @classmethod
+    def check_group(cls, value: Any) -> float:
+        a = check_nonnegative("lag", value, "α = τ_a/T cannot be negative (0: none)")
+        if 0.0 < a < MIN_LAG:
+            raise DFAValueError(
+                f"lag = {_fmt(a)} is invalid: it must be 0 or at least {_fmt(MIN_LAG)} samples (the kernel's rate "
+                "1/α must stay finite); a lag this short is no lag: pass 0 (or no amplifier bandwidth)"
+            )
+        return a
+
+    @classmethod
+    def renders_nothing(cls, g: Any) -> bool:
+        return g == 0.0
+
+    @classmethod
+    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+        raise NotCovered(
+            "no sound passivity criterion is proven with an amplifier lag (the force varies within a sample)"
+        )
+
+    @classmethod
+    def kernel(cls, g: Any) -> dict[str, Any]:
+        return {"lag": float(g)}
+
+    @classmethod
+    def plant(cls, g: Any, rate: float) -> tuple[np.ndarray, np.ndarray] | None:
+        if g == 0.0 or not math.isfinite(1.0 / g):  # 1/α overflowing: the lag is below rounding
+            return None
+        from ..core.zohlag import amplifier_zoh  # the one implementation, compiled
+
+        n2, n1, n0, p, q = (float(x) for x in amplifier_zoh(float(rate), 1.0 / g))
+        return np.array([n2, n1, n0]), np.poly([1.0, p, q])
+
+    @classmethod
+    def low_frequency_delay(cls, g: Any) -> float:
+        return float(g)
+
+    @classmethod
+    def plant_response(cls, g: Any, omega: Any) -> Any:
+        return 1.0 / (1.0 + 1j * np.asarray(omega, dtype=float) * g)
+
+
+#: The registered elements, in the order a wall applies them (delay, damper, filter, amplifier).
+ELEMENTS: tuple[type[Element], ...] = (Delay, Damper, VelocityFilter, AmplifierLag)
