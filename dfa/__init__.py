@@ -24,7 +24,7 @@ result named for the same thing:
 
 Every result carries its inputs and a ``status``, a member of an enum of
 :mod:`dfa.results.status` whose ``message`` says what it means; numpy arrays in results
-are read-only copies; ``as_dict()`` returns strict-JSON data (NaN and infinities
+are read-only copies; ``to_dict()`` returns strict-JSON data (NaN and infinities
 become null, with the reason under ``null_reasons``; :mod:`dfa.results.jsonable`);
 results with a figure have ``.plot(ax=None)`` returning the matplotlib Axes
 (matplotlib loads then, never on ``import dfa``); maps and contours have
@@ -40,7 +40,7 @@ Examples
 ('e', True, 'passive_below_critical_speed')
 >>> r.status.message
 'passive up to the critical speed: the energy cannot grow (proven)'
->>> r.as_dict()["status"]
+>>> r.to_dict()["status"]
 'passive_below_critical_speed'
 """
 
@@ -48,6 +48,7 @@ from ._io import ensure_numba_cache_dir as _ensure_numba_cache_dir
 
 _ensure_numba_cache_dir()  # before numba compiles anything: a read-only install still runs
 
+from .analysis.check import PassivityCheck, passivity_check
 from .analysis.colgate_schenkel import (
     ColgateSchenkel,
     ColgateSchenkelDamping,
@@ -75,7 +76,6 @@ from .analysis.limits.closed_form import (
     stiffness_response,
 )
 from .analysis.linear_wall import StableRegion, StiffnessIntervals, stable_region, stable_stiffness
-from .analysis.wall_criterion import ControllerCriterionResult, controller_criterion, device_controller_criterion
 from .errors import DFAError, DFATypeError, DFAValueError
 from .model.catalogue import (
     DEFAULT_DEVICE,
@@ -209,9 +209,8 @@ __all__ = [
     "device_criterion",
     "classify_region",
     "REGION_DESCRIPTIONS",
-    "ControllerCriterionResult",
-    "controller_criterion",
-    "device_controller_criterion",
+    "PassivityCheck",
+    "passivity_check",
     "StiffnessLimits",
     "stiffness_limits",
     "StiffnessResponse",

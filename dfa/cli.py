@@ -482,7 +482,7 @@ def _g(x: float | None, digits: int = 4) -> str:
 def _cmd_devices(args: argparse.Namespace) -> int:
     rows = catalogue()
     if args.json:
-        _emit([r.as_dict() for r in rows])
+        _emit([r.to_dict() for r in rows])
         return 0
     header = ["device", "m or J", "b", "c", "Δ", "T", "K", "μ", "β", "σ", "printed μ, β, σ", "flags"]
     body = []
@@ -523,7 +523,7 @@ def _cmd_params(args: argparse.Namespace) -> int:
     inp = _resolve(args, dimensionless=True)
     assert inp.params is not None
     if args.json:
-        _emit(inp.params.as_dict())
+        _emit(inp.params.to_dict())
         return 0
     print(f"{inp.label}")
     print(
@@ -549,10 +549,9 @@ def _criterion_for_args(args: argparse.Namespace, inp: _Inputs, xd: float, v: fl
             )
         return device_criterion(
             inp.device,
-            inp.stiffness,
+            Wall.of(inp.stiffness, delay=args.delay),
             inp.device.velocity(xd) if v is None else v,
             quantized=quantized,
-            delay=args.delay,
             position=args.position or 0.0,
         )
     if args.position is not None:
@@ -564,7 +563,8 @@ def _criterion_for_args(args: argparse.Namespace, inp: _Inputs, xd: float, v: fl
         raise UsageError(
             f"--xi0 {x0:g} needs --mu: the spring energy enters the speed as 2H_c(ξ0)/μ; give --mu m/(K T²)"
         )
-    return passivity_criterion(inp.beta, inp.sigma, xd, quantized=quantized, delay=args.delay, xi0=x0, mu=args.mu)
+    wall = WallParams.of(delay=args.delay)
+    return passivity_criterion(inp.beta, inp.sigma, xd, wall=wall, quantized=quantized, xi0=x0, mu=args.mu)
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
@@ -578,7 +578,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
         return _check_controller(args, inp, ctl, xd, v)
     r = _criterion_for_args(args, inp, xd, v)
     if args.json:
-        _emit(r.as_dict())
+        _emit(r.to_dict())
         return 0
     vu = inp.device.units["velocity"] if inp.device else ""
     print(inp.label)
@@ -588,7 +588,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
 def _check_controller(args: argparse.Namespace, inp: _Inputs, ctl: Wall, xd: float, v: float | None) -> int:
     """`dfa check` with a controller: the extended criterion and Colgate–Schenkel; with a lag, not covered."""
-    from .analysis.wall_check import controller_check
+    from .analysis.check import passivity_check
     from .render.controller import check_table_rows
 
     dev = inp.device
@@ -598,9 +598,9 @@ def _check_controller(args: argparse.Namespace, inp: _Inputs, ctl: Wall, xd: flo
             "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
         )
     vel = dev.velocity(xd) if v is None else v
-    chk = controller_check(dev, ctl, vel, position=args.position or 0.0, quantized=not args.no_quantization)
+    chk = passivity_check(dev, ctl, vel, position=args.position or 0.0, quantized=not args.no_quantization)
     if args.json:
-        _emit(_ctl_json(chk.as_dict(), ctl, inp))
+        _emit(_ctl_json(chk.to_dict(), ctl, inp))
         return 0
     print(inp.label)
     _print_ctl(ctl, inp)
@@ -697,7 +697,7 @@ def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Wall, v: 
     src = _stiffness_source(args, inp)
     r = controller_stiffness_limits(dev, ctl, v, assess=src)
     if args.json:
-        rec = r.as_dict()
+        rec = r.to_dict()
         rec["stiffness_source"] = src
         explain_nulls(rec, {"stiffness_source": "no --stiffness given and no catalogue K"})
         _emit(_ctl_json(rec, ctl, inp))
@@ -754,7 +754,7 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
         chart = stiffness_speed_chart(dev, args.delay, stiffness=inp.stiffness, velocity=v)
         _save_png("--plot", args.plot, chart.plot())
     if args.json:
-        rec = lim.as_dict()
+        rec = lim.to_dict()
         extra = _design_json(ans, lim.k_max, lim.k_gil)
         reasons: dict[str, str] = {}
         for part in (extra, rec):
@@ -808,7 +808,7 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
 def _design_json(ans, k_max: float, k_gil: float) -> dict[str, object]:
     """The design answer's JSON keys (null with a reason when there is no impact speed)."""
     if ans is not None:
-        return ans.as_dict()
+        return ans.to_dict()
     why = "impact speed 0: the describing-function and simulated limits need a speed > 0"
     out: dict[str, object] = {"k_criterion": k_max, "k_linear": k_gil}
     for key in ("k_df", "k_sim", "k_sim_rest"):
@@ -872,7 +872,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         _write_trace(args.trace, r)
     phys = r.physical(inp.device, inp.stiffness) if inp.device is not None and inp.stiffness is not None else None
     if args.json:
-        d = r.as_dict()
+        d = r.to_dict()
         if phys is not None:
             d.update(phys)
             d["velocity"] = _v
@@ -1089,7 +1089,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
         _mark_operating_point(axes, inp)
         _save_png("--plot", args.plot, axes[0])
     if args.json:
-        d = m.as_dict()
+        d = m.to_dict()
         d["out"] = str(path)
         d.update(_device_json(inp, m.xi_dots))
         if args.plot is not None:
@@ -1178,7 +1178,7 @@ def _cmd_contours(args: argparse.Namespace) -> int:
         max_amplitude=args.max_amplitude,
         progress=_progress(args),
     )
-    d = c.as_dict()
+    d = c.to_dict()
     if args.out is not None:
         d["out"] = str(c.save(args.out))
     if args.plot is not None:
@@ -1267,7 +1267,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
         controller=ctl,
     )
     if args.json:
-        print(dumps(res.as_dict(), ensure_ascii=False))
+        print(dumps(res.to_dict(), ensure_ascii=False))
         return 0
     for pth in res.paths:
         print(f"written {pth}")
@@ -1576,7 +1576,7 @@ def _cmd_zwidth(args: argparse.Namespace) -> int:
     if args.plot is not None:
         _save_png("--plot", args.plot, zw.plot())
     if args.json:
-        rec = zw.as_dict()
+        rec = zw.to_dict()
         if args.plot is not None:
             rec["plot"] = args.plot
         _emit(rec)

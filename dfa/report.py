@@ -63,7 +63,7 @@ class ReportResult:
     def __post_init__(self) -> None:
         object.__setattr__(self, "status", ReportStatus.coerce(self.status))
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """Paths (as text), headline numbers and the full analysis, strict JSON data."""
         return to_jsonable(
             {
@@ -72,7 +72,7 @@ class ReportResult:
                 "numbers": self.numbers,
                 "status": self.status,
                 "status_message": self.status.message,
-                "analysis": self.analysis.as_dict() if self.analysis is not None else None,
+                "analysis": self.analysis.to_dict() if self.analysis is not None else None,
             }
         )
 
@@ -145,9 +145,9 @@ def _identity(
     device: Device, stiffness: float, velocity: float, delay: int, controller: Wall | None = None
 ) -> dict[str, Any]:
     """What makes two reports the same report: device, stiffness, speed, delay (and the controller, if any)."""
-    ident: dict[str, Any] = {"device": device.as_dict(), "stiffness": stiffness, "velocity": velocity, "delay": delay}
+    ident: dict[str, Any] = {"device": device.to_dict(), "stiffness": stiffness, "velocity": velocity, "delay": delay}
     if controller is not None:
-        ident["controller"] = controller.as_dict()
+        ident["controller"] = controller.to_dict()
     return json.loads(dumps(ident, ensure_ascii=False))
 
 
@@ -264,7 +264,7 @@ def write_design_report(
         if fmt in ("html", "both"):
             page = design_html(analysis, {f.name: (f.caption, f.png) for f in figs})
             (stage / docs[-1]).write_text(page, encoding="utf-8")
-        body = {"identity": ident, **res.as_dict()}
+        body = {"identity": ident, **res.to_dict()}
         (stage / meta).write_text(dumps(body, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
     return res
 

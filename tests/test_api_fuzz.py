@@ -207,8 +207,8 @@ def _nonfinite(obj, depth: int = 0) -> list:
         return [f"{k}: {p}" for k, v in obj.items() for p in _nonfinite(v, depth + 1)]
     if isinstance(obj, (tuple, list)):
         return [f"[{i}] {p}" for i, v in enumerate(obj) for p in _nonfinite(v, depth + 1)]
-    if hasattr(obj, "as_dict"):
-        return _nonfinite(obj.as_dict(), depth + 1)
+    if hasattr(obj, "to_dict"):
+        return _nonfinite(obj.to_dict(), depth + 1)
     if dataclasses.is_dataclass(obj):
         return _nonfinite({f.name: getattr(obj, f.name) for f in dataclasses.fields(obj)}, depth + 1)
     return []

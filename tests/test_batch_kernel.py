@@ -64,7 +64,7 @@ def test_eq4_batch_covers_every_outcome_class():
     assert b.outcomes() == ["rest", "oscillating", "unstable", "chatter"]
     short = simulate_batch(156250.0, 0.125, 0.9554, 0.637, 50_000)
     assert short.outcomes() == ["undecided"]
-    d = short.as_dict()
+    d = short.to_dict()
     assert d["outcome"] == ["undecided"] and d["rest_sample"] == [None]
     with pytest.raises(ValueError):
         short.amplitude[0] = 1.0  # read-only arrays

@@ -1,7 +1,7 @@
 """The wall controller on the command line (issue 15 "Command line"): every path through main(argv).
 
 The numbers users read (CLI JSON) equal the API's: the extended criterion of eq. 6
-(:func:`dfa.analysis.wall_criterion.device_controller_criterion`), the general Colgate–Schenkel condition
+(:func:`dfa.analysis.criterion.device_criterion`), the general Colgate–Schenkel condition
 (:func:`dfa.analysis.colgate_schenkel.colgate_schenkel_damping`), :func:`dfa.simulate`, :func:`dfa.limit_cycles` and
 :func:`dfa.stability_map` with ``controller=``. B = 0 without filter or lag is the spring, byte for byte.
 """
@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 from dfa.analysis.colgate_schenkel import colgate_schenkel_damping
+from dfa.analysis.criterion import device_criterion
 from dfa.analysis.cycles import limit_cycles
 from dfa.analysis.maps import load_map, stability_map
 from dfa.analysis.simulation import OUTCOMES, divergence_bound, simulate
-from dfa.analysis.wall_criterion import device_controller_criterion
 from dfa.cli import main
 from dfa.model.catalogue import get_device
 from dfa.model.wall import Wall, WallParams
@@ -53,12 +53,12 @@ def test_eq6_controller_check_json_equals_api(capsys):
         "1",
     )
     ctl = Wall.of(K, damping=5.0, delay=1, filter_cutoff=100.0)
-    r = device_controller_criterion(DEV, ctl, 0.1)
+    r = device_criterion(DEV, ctl, 0.1)
     for key in ("beta0", "sigma0", "margin", "region", "passive", "critical_velocity", "critical_xi_dot"):
-        assert d[key] == getattr(r, key)
+        assert d["criterion"][key] == getattr(r, key)
     cs = colgate_schenkel_damping(ctl, DEV.period)
-    assert d["colgate_schenkel"]["damping_min"] == cs.damping_min
-    assert d["colgate_schenkel"]["met"] is (DEV.damping > cs.damping_bound)
+    assert d["colgate_schenkel_damping"] == cs.damping_min
+    assert d["colgate_schenkel_met"] is (DEV.damping > cs.damping_bound)
     dim = d["controller"]["dimensionless"]
     assert dim["beta_B"] == pytest.approx(5.0 / (K * DEV.period), rel=1e-15)
     assert dim["nu_c"] == pytest.approx(100.0 * DEV.period, rel=1e-15)
@@ -71,7 +71,7 @@ def test_eq6_controller_check_text_names_both_conditions(capsys):
     assert code == 0
     assert "controller: K = 14500 N/m, B = 5 N·s/m" in out and "β_B = B/(KT) = 1.034" in out
     assert "eq. 6 extended to the damper" in out and "Colgate–Schenkel" in out
-    r = device_controller_criterion(DEV, Wall.of(K, damping=5.0), 0.1)
+    r = device_criterion(DEV, Wall.of(K, damping=5.0), 0.1)
     assert not r.passive and "no: no passivity guarantee (not a proof of instability)" in out
 
 
@@ -118,7 +118,7 @@ def test_fig4_controller_map_json_equals_api(capsys, tmp_path):
     ctl = Wall.of(K, damping=2.0, filter_cutoff=200.0).params(DEV.period)
     p = DEV.params(K)
     m = stability_map(p.mu, [DEV.xi_dot(0.1)], grid=3, samples=2000, n_jobs=1, progress=False, controller=ctl)
-    assert d["counts"] == m.as_dict()["counts"]
+    assert d["counts"] == m.to_dict()["counts"]
     assert load_map(out).controller == ctl
     assert d["controller"]["filter_cutoff"] == 200.0
 
@@ -139,7 +139,7 @@ def test_fig4_spring_controller_map_is_the_spring_map():
     """A WallParams without damper, filter or lag gives the spring's map (stored without a controller)."""
     a = stability_map(100.0, [2.0], grid=3, samples=2000, delay=1, n_jobs=1, progress=False)
     b = stability_map(100.0, [2.0], grid=3, samples=2000, n_jobs=1, progress=False, controller=WallParams.of(delay=1))
-    assert b.controller is None and np.array_equal(a.outcome, b.outcome) and a.as_dict() == b.as_dict()
+    assert b.controller is None and np.array_equal(a.outcome, b.outcome) and a.to_dict() == b.to_dict()
 
 
 SPRING_CASES = [

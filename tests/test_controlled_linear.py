@@ -267,10 +267,10 @@ def test_stable_region_matches_stable_stiffness_and_is_json():
     for bb, k in zip(grid, reg.k_crit, strict=True):
         c = Wall.of(1.0, bb, 1, filter_cutoff=100.0, amplifier_bandwidth=2000.0)
         assert k == stable_stiffness(M, 1.0, T, c).k_crit
-    data = json.loads(dumps(reg.as_dict()))
+    data = json.loads(dumps(reg.to_dict()))
     assert data["k_crit"] == reg.k_crit.tolist() and len(data["intervals"]) == 4 and data["status"] == reg.status.value
     assert data["device"] == {"mass": M, "damping": 1.0, "period": T}
-    one = json.loads(dumps(reg.rows[1].as_dict()))
+    one = json.loads(dumps(reg.rows[1].to_dict()))
     assert one["controller"]["filter_cutoff"] == 100.0 and "stiffness" not in one["controller"]
 
 

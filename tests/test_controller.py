@@ -27,7 +27,9 @@ def test_controller_dimensionless_groups_match_definitions():
 def test_controller_spring_is_paper_model():
     p = Wall.of(300.0, delay=3).params(1e-3)
     assert p.is_spring and p == WallParams.of(delay=3)
-    assert WallParams.of().as_dict() == {"damping": 0.0, "delay": 0, "cutoff": None, "lag": 0.0}
+    d = WallParams.of().to_dict()
+    assert d.pop("null_reasons") == {"/cutoff": "no velocity filter"}
+    assert d == {"damping": 0.0, "delay": 0, "cutoff": None, "lag": 0.0}
 
 
 def test_controller_filter_pole_equals_c2d_zoh():

@@ -39,7 +39,7 @@ def _same(a: dfa.StabilityMap, b: dfa.StabilityMap) -> None:
     for name in ("beta", "sigma", "outcome", "amplitude", "frequency"):
         x, y = getattr(a, name), getattr(b, name)
         assert x.dtype == y.dtype and x.shape == y.shape and x.tobytes() == y.tobytes(), name
-    assert a.as_dict() == b.as_dict()
+    assert a.to_dict() == b.to_dict()
 
 
 def test_fig4_map_on_dask_cluster_equals_one_job(client):

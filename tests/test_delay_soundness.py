@@ -9,6 +9,7 @@ import pytest
 import dfa
 from dfa.analysis import soundness
 from dfa.analysis.soundness import delay_soundness, run_samples, sample_passive_points
+from dfa.model.wall import WallParams
 
 
 @pytest.mark.parametrize("d", [0, 1, 2, 3])
@@ -35,7 +36,12 @@ def test_sampler_points_are_passive_and_on_the_boundaries():
     b0 = 2.5
     for i in range(200):
         r = dfa.passivity_criterion(
-            pts["beta"][i], pts["sigma"][i], pts["xi_dot"][i], delay=2, xi0=pts["xi0"][i], mu=pts["mu"][i]
+            pts["beta"][i],
+            pts["sigma"][i],
+            pts["xi_dot"][i],
+            wall=WallParams.of(delay=2),
+            xi0=pts["xi0"][i],
+            mu=pts["mu"][i],
         )
         assert r.passive
         kind = soundness.KINDS[pts["kind"][i]]

@@ -1,6 +1,6 @@
 """K_max with a wall controller (issue 15 item 5): the extended criterion (eq. 6/11) and the exact linear bound.
 
-Independent checks: the physical closed form of the extended criterion (dfa.analysis.wall_criterion docstring,
+Independent checks: the physical closed form of the extended criterion (dfa.analysis.criterion docstring,
 (b − B − KT(½ + d))|v| + (c − KΔ/2 − (1 − a)BΔ/T) >= 0 and c >= KΔ/2 + (1 − a)BΔ/T) against the bisection,
 the spring's eq. 11 K_max, a scan over exact simulations with the controller (no divergence at or below
 K_criterion), and a scan over linear simulations across the exact linear bound.
@@ -87,5 +87,5 @@ def test_controller_lag_criterion_not_covered():
     assert r.k_criterion is None and r.reasons["k_criterion"] == LAG_REASON
     assert r.k_linear == stable_stiffness(DELTA.mass, DELTA.damping, DELTA.period, ctl).k_crit
     assert r.counterexamples == () and r.status != "counterexample"  # nothing to contradict without a criterion
-    d = r.as_dict()
+    d = r.to_dict()
     assert d["null_reasons"]["/k_criterion"] == LAG_REASON and d["counterexample_check"] == NO_CHECK_REASON

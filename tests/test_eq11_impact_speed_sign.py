@@ -11,6 +11,7 @@ from __future__ import annotations
 import pytest
 
 import dfa
+from dfa.analysis.check import passivity_check
 from dfa.analysis.design import design_analysis
 from dfa.analysis.limits.closed_form import stiffness_limits, stiffness_response
 from dfa.analysis.limits.kmax import design_answer
@@ -18,7 +19,6 @@ from dfa.analysis.limits.speed_chart import stiffness_speed_chart
 from dfa.analysis.limits.wall_kmax import controller_stiffness_limits
 from dfa.analysis.limits.zwidth import z_width
 from dfa.analysis.maps import stability_map
-from dfa.analysis.wall_check import controller_check
 from dfa.checks import check_speed
 from dfa.cli import main
 from dfa.errors import DFAValueError
@@ -94,7 +94,7 @@ def impulse():
         lambda dev: stiffness_limits(dev, -0.05),
         lambda dev: stiffness_response(dev, [0.1, -0.05]),
         lambda dev: design_analysis(dfa.get_device("impulse"), velocity=-0.05),
-        lambda dev: controller_check(dev, Wall.of(100.0, damping=1.0), -0.05),
+        lambda dev: passivity_check(dev, Wall.of(100.0, damping=1.0), -0.05),
     ],
     ids=[
         "design_answer",

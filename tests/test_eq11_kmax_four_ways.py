@@ -44,7 +44,7 @@ def test_eq11_kmax_four_ways_catalogue_ordering(entry):
     _check_theory(r)
     assert r.k_criterion == k_max_criterion(dev, v) and r.k_linear == k_gil(dev)
     assert r.speeds[-1] == pytest.approx(v) and len(r.speeds) == 4
-    d = json.loads(json.dumps(r.as_dict(), allow_nan=False))
+    d = json.loads(json.dumps(r.to_dict(), allow_nan=False))
     assert d["k_gil"] == d["k_linear"] == r.k_linear
     for key in ("k_df", "k_sim", "k_sim_rest"):
         assert (d[key] is None) == (d[f"{key}_reason"] is not None and r.searches[key].value is None)
@@ -70,7 +70,7 @@ def test_eq11_kmax_no_friction_is_null_with_reason():
     r = design_answer(dev, 0.1, grid=4, speeds=2)
     for s in r.searches.values():
         assert s.value is None and "neither viscous nor Coulomb" in s.reason
-    d = r.as_dict()
+    d = r.to_dict()
     assert d["k_sim"] is None and d["k_sim_reason"]
 
 
@@ -162,7 +162,7 @@ def test_cli_stiffness_four_ways_json_keeps_existing_keys(capsys):
     assert code == 0, err
     d = json.loads(out)
     dev = dfa.get_device("impulse").device
-    old = dfa.stiffness_limits(dev, 0.2).as_dict()
+    old = dfa.stiffness_limits(dev, 0.2).to_dict()
     for key, val in old.items():  # existing keys and numbers unchanged (their null reasons kept, more added)
         if key == "null_reasons":
             assert val.items() <= d[key].items()
@@ -325,7 +325,7 @@ def test_eq11_k_sim_re35_counterexample_lies_above_the_confirmed_limit():
         bound = dfa.analysis.simulation.divergence_bound(x0, v0, p.mu, 1e6)
         sim = dfa.simulate(p.mu, p.beta, p.sigma, v0, None, xi0=x0, record=False, bound=bound)
         assert sim.outcome == f["outcome"] == "unstable"
-    d = json.loads(json.dumps(r.as_dict()))
+    d = json.loads(json.dumps(r.to_dict()))
     assert d["k_sim"] == s.value and d["searches"]["k_sim"]["searched_value"] == s.searched_value
     assert d["k_sim_reason"] == s.reason and d["searches"]["k_sim"]["confirmed"] == s.confirmed
 
@@ -359,10 +359,10 @@ def test_eq11_kmax_shared_run_cache_gives_identical_results_and_simulates_once()
     n = cache.simulated
     assert 0 < n <= a.simulations  # runs the search and its confirmation share are simulated once
     c = stiffness_speed_chart(dev, stiffness=80.0, velocity=0.2, grid=6, speeds=4, cache=cache)
-    assert a.as_dict() == fresh_a.as_dict()
-    assert json.dumps(c.as_dict()) == json.dumps(fresh_c.as_dict())
+    assert a.to_dict() == fresh_a.to_dict()
+    assert json.dumps(c.to_dict()) == json.dumps(fresh_c.to_dict())
     before = cache.simulated
     again = design_answer(dev, 0.2, grid=8, speeds=3, stiffness=80.0, cache=cache)
-    assert cache.simulated == before and again.as_dict() == a.as_dict()  # nothing simulated twice
+    assert cache.simulated == before and again.to_dict() == a.to_dict()  # nothing simulated twice
     with pytest.raises(dfa.DFATypeError, match="cache"):
         design_answer(dev, 0.2, cache={})

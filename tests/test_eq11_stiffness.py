@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 import dfa
 from dfa.analysis.limits.closed_form import gil_factor, k_max_criterion
+from dfa.model.wall import Wall
 
 DEVICES = ["Delta", "Impulse Engine", "Phantom 1.0", "Toolhandle"]
 
@@ -70,7 +71,7 @@ def test_stiffness_limits_result_and_verdict():
     assert dfa.stiffness_limits(dev, 0.5, stiffness=80.0).status == "too stiff"
     assert dfa.stiffness_limits(dev, 0.5, stiffness=10.0).velocity_status == "all speeds"
     assert dfa.stiffness_limits(dev, 0.5, stiffness=1000.0).velocity_status == "none"
-    d = dfa.stiffness_limits(dev, 0.5, stiffness=10.0).as_dict()
+    d = dfa.stiffness_limits(dev, 0.5, stiffness=10.0).to_dict()
     assert d["max_passive_velocity"] is None  # JSON has no infinity; the status says "all speeds"
     with pytest.raises(dfa.DFATypeError, match="device"):
         dfa.stiffness_limits("Impulse Engine", 0.1)
@@ -142,8 +143,8 @@ def test_eq11_k_max_passes_its_own_criterion_with_delay():
             v = 10 ** rng.uniform(-3, 0.5)
             d = int(rng.integers(0, 3))
             k = dfa.k_max_criterion(dev, v, delay=d)
-            assert dfa.device_criterion(dev, k, v, delay=d).passive, (name, v, d)
+            assert dfa.device_criterion(dev, Wall.of(k, delay=d), v).passive, (name, v, d)
             assert dfa.stiffness_limits(dev, v, k, delay=d).status == "ok"
-            assert not dfa.device_criterion(dev, k * (1 + 1e-9), v, delay=d).passive or k == dfa.k_max_criterion(
-                dev, 0.0
-            )
+            assert not dfa.device_criterion(
+                dev, Wall.of(k * (1 + 1e-9), delay=d), v
+            ).passive or k == dfa.k_max_criterion(dev, 0.0)

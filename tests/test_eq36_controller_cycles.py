@@ -53,7 +53,7 @@ def test_eq36_spring_controller_gives_spring_only_result_bit_for_bit(model, para
     assert got.cycles == ref.cycles
     assert (got.status, got.linear_stable, got.search_bound) == (ref.status, ref.linear_stable, ref.search_bound)
     assert got.controller == WallParams.of(delay=delay) and ref.controller is None
-    assert "controller" not in ref.as_dict() and got.as_dict()["controller"]["delay"] == delay
+    assert "controller" not in ref.to_dict() and got.to_dict()["controller"]["delay"] == delay
     w = np.geomspace(1e-3, 3.0, 50)
     amp = None if params.sigma == 0 else np.full_like(w, 1.7)
     np.testing.assert_array_equal(
@@ -195,9 +195,9 @@ def test_controller_growth_threshold_and_json():
     ctl = CONTROLLERS[2]
     g = growth_threshold(dfa.Params(5.0, 0.1, 0.3), controller=ctl)
     assert g.amplitude is not None and g.result.controller == ctl
-    assert g.as_dict()["status"] == "ok"
-    d = limit_cycles(dfa.Params(5.0, 0.1, 0.3), controller=ctl).as_dict()
-    assert d["controller"] == ctl.as_dict() and d["delay"] == ctl.delay
+    assert g.to_dict()["status"] == "ok"
+    d = limit_cycles(dfa.Params(5.0, 0.1, 0.3), controller=ctl).to_dict()
+    assert d["controller"] == ctl.to_dict() and d["delay"] == ctl.delay
 
 
 def test_controller_bad_input():

@@ -75,7 +75,7 @@ def test_numerical_failure_gives_incomplete_status_and_warning(monkeypatch):
     with pytest.warns(LimitCycleSearchWarning, match="numerical failure"):
         res = limit_cycles(dfa.Params(5.0, 0.1, 0.3))
     assert not res.complete and res.status is SearchStatus.NUMERICAL and "incomplete" in res.detail
-    assert res.as_dict()["status"] == "numerical"
+    assert res.to_dict()["status"] == "numerical"
 
 
 # ------------------------------------------------------------- 2. no silent absence
@@ -163,7 +163,7 @@ def test_eq36_cluster_band_spans_smallest_to_largest_unstable_cycle():
     # the issue's numbers: M_u·ω = 0.51 while simulation diverges from ξ'0 ≈ 2.3; the band's top is above that
     assert g.xi_dot == pytest.approx(0.51, abs=0.01) and g.xi_dot_high > 2.3
     assert g.grows_above and "depends on its initial condition" in g.meaning() and "first-harmonic" in g.meaning()
-    d = g.as_dict()
+    d = g.to_dict()
     assert d["band"]["low"]["amplitude"] == g.amplitude and d["band"]["high"]["xi_dot"] == g.xi_dot_high
     json.dumps(d, allow_nan=False)
 

@@ -49,9 +49,9 @@ def test_eq36_subtick_caveat_on_the_result_and_growth_threshold(res):
     assert "1.014" in res.caveat and "not excluded" in res.caveat
     g = growth_threshold(P, model="zoh", controller=CTL)
     assert g.caveat == res.caveat and "Caveat:" in g.meaning()
-    d = json.loads(json.dumps(g.as_dict()))
+    d = json.loads(json.dumps(g.to_dict()))
     assert d["caveat"] == res.caveat and "Caveat:" in d["meaning"]
-    assert json.loads(json.dumps(res.as_dict()))["caveat"] == res.caveat
+    assert json.loads(json.dumps(res.to_dict()))["caveat"] == res.caveat
 
 
 def test_eq36_subtick_caveat_in_limit_cycles_text_and_json(res):
@@ -78,10 +78,10 @@ def test_eq36_no_caveat_well_above_the_first_level():
     res = limit_cycles(Params(5.0, 0.1, 0.3), model="zoh")
     assert res.unstable_cycles[0].amplitude > 2.0
     assert res.caveat is None and subtick_caveat(res) is None
-    d = res.as_dict()
+    d = res.to_dict()
     assert d["caveat"] is None and "/caveat" in d["null_reasons"]
     g = growth_threshold(Params(5.0, 0.1, 0.3), model="zoh")
-    assert "Caveat" not in g.meaning() and g.as_dict()["caveat"] is None
+    assert "Caveat" not in g.meaning() and g.to_dict()["caveat"] is None
 
 
 def test_eq36_subtick_caveat_spring_alike():

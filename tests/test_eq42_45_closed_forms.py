@@ -60,7 +60,7 @@ def test_eq43_beta_sigma_zero_is_flagged_not_returned_as_tiny_omega():
 def test_fig7_maps_flag_the_beta_sigma_zero_point():
     maps = contour_maps(5.0, grid=5)
     assert np.isnan(maps.small_amplitude_closed[0, 0])  # β = σ = 0 corner
-    assert maps.status == "flagged" and maps.as_dict()["status_message"] == maps.detail
+    assert maps.status == "flagged" and maps.to_dict()["status_message"] == maps.detail
     assert "DEGENERATE" not in maps.detail and "β = σ = 0" in maps.detail and "1 point(s)" in maps.detail
 
 

@@ -186,8 +186,8 @@ def test_eq4_controller_users_numbers_equal_recorded_runs():
     """dfa.simulate and simulate_batch (skipping) report what recorded runs (every sample) report."""
     ctl = WallParams.of(damping=0.5, cutoff=0.1, delay=1, lag=0.2)
     for beta, sigma in [(2.0, 0.1), (0.3, 1.5), (0.0, 0.2)]:
-        fast = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=False, controller=ctl).as_dict()
-        full = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=True, controller=ctl).as_dict()
+        fast = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=False, controller=ctl).to_dict()
+        full = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=True, controller=ctl).to_dict()
         for key in ("xi", "xi_dot", "record"):
             full.pop(key, None)
             fast.pop(key, None)

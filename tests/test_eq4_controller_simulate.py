@@ -207,12 +207,12 @@ def test_linear_random_controllers_against_c2d_recursion(ctl, mu, beta):
 def test_eq4_spring_controller_is_bit_identical(delay, mu, beta, sigma, v0):
     plain = simulate(mu, beta, sigma, v0, samples=20000, delay=delay, energy=True)
     ctl = simulate(mu, beta, sigma, v0, samples=20000, controller=Wall.of(300.0, delay=delay).params(1e-3))
-    a, b = plain.as_dict(), ctl.as_dict()
+    a, b = plain.to_dict(), ctl.to_dict()
     assert a == b
     assert np.array_equal(plain.xi, ctl.xi, equal_nan=True) and np.array_equal(plain.xi_dot, ctl.xi_dot, equal_nan=True)
     ba = simulate_batch(mu, [beta, 0.1], sigma, v0, samples=5000, delay=delay)
     bb = simulate_batch(mu, [beta, 0.1], sigma, v0, samples=5000, controller=WallParams.of(delay=delay))
-    assert ba.as_dict() == bb.as_dict()
+    assert ba.to_dict() == bb.to_dict()
     # the controller kernel itself, given the pure spring, follows the spring kernel bit for bit
     n = 3000
     rx, rv, st_ = np.empty(n + 1), np.empty(n + 1), np.empty(kernel.NSTATS)
@@ -233,13 +233,13 @@ def test_batch_with_controller_equals_simulate():
         assert r.outcome.value == b.outcomes()[i]
         assert (r.final_xi, r.final_xi_dot) == (b.final_xi[i], b.final_xi_dot[i])
         assert r.amplitude == b.amplitude[i] or (np.isnan(r.amplitude) and np.isnan(b.amplitude[i]))
-    assert b.as_dict()["controller"] == ctl.as_dict()
+    assert b.to_dict()["controller"] == ctl.to_dict()
 
 
 def test_controller_result_carries_its_inputs():
     ctl = WallParams.of(damping=0.5, lag=0.3)
     r = simulate(100.0, 0.3, 1.5, 2.0, samples=20000, controller=ctl)
-    assert r.controller == ctl and r.as_dict()["controller"] == ctl.as_dict()
+    assert r.controller == ctl and r.to_dict()["controller"] == ctl.to_dict()
     assert r.outcome == "rest"
 
 

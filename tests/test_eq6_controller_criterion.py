@@ -1,6 +1,6 @@
-"""Eq. 6 extended to a virtual damper, velocity filter and delay (dfa.analysis.wall_criterion; issue 15 item 2).
+"""Eq. 6 extended to a virtual damper, velocity filter and delay (dfa.analysis.criterion; issue 15 item 2).
 
-Theorem (module docstring of dfa.analysis.wall_criterion): with β₀ = ½ + d + β_B and
+Theorem (module docstring of dfa.analysis.criterion): with β₀ = ½ + d + β_B and
 σ₀ = ½ + (1 − a)β_B (0 without the encoder), (β − β₀)V + (σ − σ₀) >= 0 and σ >= σ₀
 imply S = ½μξ'² + ½ξ² never exceeds S(0). Tested here: each step of the derivation
 (sympy identities, the exact decomposition and the summed inequality on simulated
@@ -19,13 +19,8 @@ from hypothesis import strategies as st
 from reference_ctl import controller_run
 
 import dfa
+from dfa.analysis.criterion import CriterionResult, device_criterion, passivity_criterion
 from dfa.analysis.simulation import simulate
-from dfa.analysis.wall_criterion import (
-    ControllerCriterionResult,
-    controller_anchor,
-    controller_criterion,
-    device_controller_criterion,
-)
 from dfa.analysis.wall_soundness import controller_soundness, sample_controller_points
 from dfa.core import kernel
 from dfa.errors import DFATypeError, DFAValueError
@@ -146,7 +141,7 @@ def test_eq6_controller_step4_summed_inequality_holds_for_every_parameter(
     xs, vs, _, _ = reference_run(mu, beta, sigma, x0, v0, 120, ctl, quantize)
     if not np.all(np.isfinite(xs)) or np.max(np.abs(xs)) > 1e6:
         return
-    b0, s0 = controller_anchor(ctl, quantize)
+    b0, s0 = ctl.corner(quantize)
     dx = np.diff(xs)
     bound = np.cumsum((b0 - beta) * dx**2 + (s0 - sigma) * np.abs(dx))
     storage = 0.5 * mu * vs**2 + 0.5 * xs**2
@@ -198,8 +193,10 @@ def test_eq4_controller_spring_only_reference_loop_equals_dfa_simulate(delay):
 )
 def test_eq6_controller_without_damper_equals_passivity_criterion(beta, sigma, xi_dot, delay, cutoff, quantized, xi0):
     ctl = WallParams.of(delay=delay, cutoff=cutoff)
-    new = controller_criterion(beta, sigma, xi_dot, ctl, quantized=quantized, xi0=xi0, mu=2.0)
-    old = dfa.passivity_criterion(beta, sigma, xi_dot, quantized=quantized, delay=delay, xi0=xi0, mu=2.0)
+    new = passivity_criterion(beta, sigma, xi_dot, wall=ctl, quantized=quantized, xi0=xi0, mu=2.0)
+    old = dfa.passivity_criterion(
+        beta, sigma, xi_dot, quantized=quantized, wall=WallParams.of(delay=delay), xi0=xi0, mu=2.0
+    )
     assert (new.region, new.passive, new.margin, new.critical_xi_dot) == (
         old.region,
         old.passive,
@@ -216,19 +213,19 @@ def test_eq6_controller_without_damper_equals_passivity_criterion(beta, sigma, x
 def test_eq6_controller_status_states_the_controller_thresholds(beta, sigma, xi_dot, region):
     """The messages name β₀, σ₀ (not the spring's ½ + d, ½) and the result fills in their values."""
     ctl = WallParams.of(damping=0.3, delay=1, cutoff=0.1)
-    r = controller_criterion(beta, sigma, xi_dot, ctl)
+    r = passivity_criterion(beta, sigma, xi_dot, wall=ctl)
     b0, s0 = 1.5 + 0.3, 0.5 + (1.0 - np.exp(-0.2 * np.pi)) * 0.3
     assert r.region == region and r.status.region == region
     assert "½ + d" not in r.status.message and "σ < ½" not in r.status.message
     assert "not passive at rest" not in r.status.message  # σ < σ₀ is only the lack of a guarantee here
     assert f"β₀ = {b0:.6g}, σ₀ = {s0:.6g}" in r.status_message
-    assert r.as_dict()["status_message"] == r.status_message
+    assert r.to_dict()["status_message"] == r.status_message
     if region in ("b", "c", "d"):
         assert "not a proof of instability" in r.status_message
 
 
 def test_eq6_controller_default_is_the_paper_spring():
-    r = controller_criterion(0.002, 2.03, 1.0)
+    r = passivity_criterion(0.002, 2.03, 1.0)
     assert (r.region, round(r.critical_xi_dot, 3), r.beta0, r.sigma0) == ("e", 3.072, 0.5, 0.5)
 
 
@@ -237,15 +234,15 @@ def test_eq8_controller_colgate_schenkel_b_above_kt_half_plus_b(damping):
     """No encoder, no Coulomb friction, d = 0: passive at every speed iff β >= ½ + β_B (b >= KT/2 + B)."""
     ctl = WallParams.of(damping=damping)
     edge = 0.5 + damping
-    assert controller_criterion(edge, 0.0, 7.0, ctl, quantized=False).region == "a"
-    assert not controller_criterion(np.nextafter(edge, 0.0), 0.0, 7.0, ctl, quantized=False).passive
+    assert passivity_criterion(edge, 0.0, 7.0, wall=ctl, quantized=False).region == "a"
+    assert not passivity_criterion(np.nextafter(edge, 0.0), 0.0, 7.0, wall=ctl, quantized=False).passive
 
 
 def test_eq6_controller_anchor_values():
-    assert controller_anchor(WallParams.of(damping=0.3)) == (0.8, 0.8)
-    b0, s0 = controller_anchor(WallParams.of(damping=0.3, delay=2, cutoff=0.1))
+    assert WallParams.of(damping=0.3).corner() == (0.8, 0.8)
+    b0, s0 = WallParams.of(damping=0.3, delay=2, cutoff=0.1).corner()
     assert b0 == pytest.approx(2.8) and s0 == pytest.approx(0.5 + 0.3 * (1 - math.exp(-0.2 * math.pi)))
-    assert controller_anchor(WallParams.of(damping=0.3, delay=2, cutoff=0.1), quantized=False)[1] == 0.0
+    assert WallParams.of(damping=0.3, delay=2, cutoff=0.1).corner(quantized=False)[1] == 0.0
 
 
 @given(
@@ -258,24 +255,24 @@ def test_eq6_controller_anchor_values():
 )
 def test_eq10_controller_regions_and_critical_speed(beta, sigma, xi_dot, damping, delay, cutoff):
     ctl = WallParams.of(damping=damping, delay=delay, cutoff=cutoff)
-    r = controller_criterion(beta, sigma, xi_dot, ctl)
+    r = passivity_criterion(beta, sigma, xi_dot, wall=ctl)
     b0, s0 = r.beta0, r.sigma0
     assert r.passive == (sigma >= s0 and (beta - b0) * xi_dot + (sigma - s0) >= 0.0)
     if r.critical_xi_dot is not None:  # eq. 12 extended: passive up to V_c
         assert r.region in ("d", "e") and r.passive == (xi_dot <= r.critical_xi_dot * (1 + 1e-12) or r.margin >= 0)
         assert r.critical_xi_dot == pytest.approx((sigma - s0) / (b0 - beta))
-    assert json.loads(json.dumps(r.as_dict(), allow_nan=False))["controller"]["delay"] == delay
+    assert json.loads(json.dumps(r.to_dict(), allow_nan=False))["wall"]["delay"] == delay
 
 
 # ------------------------------------------------------------------ physical form (eq. 11 extended)
 def test_eq11_controller_physical_form_and_spring_equals_device_criterion():
     dev = get_device("Delta").device
-    old = dfa.device_criterion(dev, 14500.0, 0.1, delay=1)
-    new = device_controller_criterion(dev, Wall.of(14500.0, delay=1), 0.1)
+    old = dfa.device_criterion(dev, Wall.of(14500.0, delay=1), 0.1)
+    new = device_criterion(dev, Wall.of(14500.0, delay=1), 0.1)
     assert (new.region, new.critical_velocity) == (old.region, old.critical_velocity)
     k, b_v, v = 3000.0, 1.5, 0.05
     for fc in (None, 50.0):
-        r = device_controller_criterion(dev, Wall.of(k, damping=b_v, filter_cutoff=fc), v)
+        r = device_criterion(dev, Wall.of(k, damping=b_v, filter_cutoff=fc), v)
         a = 0.0 if fc is None else math.exp(-2 * math.pi * fc * dev.period)
         b, c, t, dx = dev.damping, dev.coulomb, dev.period, dev.resolution
         lhs = (b - b_v - k * t / 2) * v + (c - k * dx / 2 - (1 - a) * b_v * dx / t)
@@ -285,20 +282,20 @@ def test_eq11_controller_physical_form_and_spring_equals_device_criterion():
 
 # ------------------------------------------------------------------ refusals and bad input
 def test_eq6_controller_refuses_amplifier_lag_and_offers_the_simulated_map():
-    with pytest.raises(DFAValueError, match=r"controller.lag = 0.5 is invalid.*stability_map"):
-        controller_criterion(1.0, 1.0, 1.0, WallParams.of(lag=0.5))
+    with pytest.raises(DFAValueError, match=r"wall.lag = 0.5 is invalid.*stability_map"):
+        passivity_criterion(1.0, 1.0, 1.0, wall=WallParams.of(lag=0.5))
     dev = get_device("Delta").device
     with pytest.raises(DFAValueError, match="stability_map"):
-        device_controller_criterion(dev, Wall.of(1000.0, amplifier_bandwidth=500.0), 0.1)
-    with pytest.raises(DFATypeError, match="controller"):
-        controller_criterion(1.0, 1.0, 1.0, Wall.of(1000.0))
+        device_criterion(dev, Wall.of(1000.0, amplifier_bandwidth=500.0), 0.1)
+    with pytest.raises(DFATypeError, match="wall"):
+        passivity_criterion(1.0, 1.0, 1.0, wall=Wall.of(1000.0))
     with pytest.raises(DFAValueError, match="mu"):
-        controller_criterion(1.0, 1.0, 1.0, WallParams.of(damping=0.1), xi0=1.0)
+        passivity_criterion(1.0, 1.0, 1.0, wall=WallParams.of(damping=0.1), xi0=1.0)
     with pytest.raises(DFATypeError, match="quantized"):
-        controller_criterion(1.0, 1.0, 1.0, quantized="yes")
+        passivity_criterion(1.0, 1.0, 1.0, quantized="yes")
     with pytest.raises(DFAValueError, match="they must agree"):
-        r = controller_criterion(1.0, 1.0, 1.0)
-        ControllerCriterionResult(**{**r.__dict__, "passive": False})
+        r = passivity_criterion(1.0, 1.0, 1.0)
+        CriterionResult(**{**r.__dict__, "passive": False})
 
 
 @settings(max_examples=40, deadline=None, derandomize=True)
@@ -354,8 +351,8 @@ def test_eq6_controller_sampler_points_are_passive_and_on_the_boundaries():
         cut = pts["cutoff"][i]
         ctl = WallParams.of(float(pts["damping"][i]), int(pts["delay"][i]), None if math.isnan(cut) else cut)
         q = bool(pts["quantized"][i])
-        r = controller_criterion(
-            pts["beta"][i], pts["sigma"][i], pts["xi_dot"][i], ctl, quantized=q, xi0=pts["xi0"][i], mu=pts["mu"][i]
+        r = passivity_criterion(
+            pts["beta"][i], pts["sigma"][i], pts["xi_dot"][i], wall=ctl, quantized=q, xi0=pts["xi0"][i], mu=pts["mu"][i]
         )
         assert r.passive
         if pts["kind"][i] == 1:
@@ -381,7 +378,7 @@ def test_eq6_controller_sigma0_needs_the_damper_term():
     )
     ctl = WallParams.of(damping=damping)
     assert dfa.passivity_criterion(beta, sigma, v0).passive  # the spring's criterion, damper ignored
-    r = controller_criterion(beta, sigma, v0, ctl)
+    r = passivity_criterion(beta, sigma, v0, wall=ctl)
     assert not r.passive and r.region == "b" and sigma < r.sigma0
     worst, _at, div = controller_run(mu, beta, sigma, 0.0, v0, 200, damping, 0, 0.0, False, True, 1e6, np.empty(1))
     assert worst > 0.4 and not div  # S grew by more than 40 %

@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 
 import dfa
 from dfa import CriticalLine, classify_region, passivity_criterion
+from dfa.model.wall import WallParams
 
 beta_s = st.floats(0.0, 2.0)
 sigma_s = st.floats(0.0, 3.0)
@@ -123,7 +124,7 @@ def test_eq11_physical_criterion_and_eq12_physical_critical_speed():
     assert r.critical_velocity == pytest.approx(crit_v, rel=1e-12)
     assert dfa.device_criterion(dev, k, crit_v * 0.999).passive
     assert not dfa.device_criterion(dev, k, crit_v * 1.001).passive
-    assert r.as_dict()["device"] == "Delta"
+    assert r.to_dict()["device"] == "Delta"
 
 
 def test_criterion_bad_input():
@@ -145,7 +146,7 @@ def test_criterion_bad_input():
 )
 def test_eq10_critical_line_is_the_one_margin_of_every_verdict(beta, sigma, v, d, quantized):
     """Eq. 6/10: the result's margin, its CriticalLine and classify_region are one formula (β − ½ − d)V + (σ − σ₀)."""
-    r = passivity_criterion(beta, sigma, v, quantized=quantized, delay=d)
+    r = passivity_criterion(beta, sigma, v, quantized=quantized, wall=WallParams.of(delay=d))
     line = r.critical_line
     s0 = 0.5 if quantized else 0.0
     assert line == CriticalLine.of(v, quantized=quantized, delay=d) and line.sigma0 == s0 and line.beta0 == 0.5 + d

@@ -18,6 +18,7 @@ from dfa.analysis.criterion import CriticalLine, equivalent_speed
 from dfa.analysis.limits.closed_form import k_max_criterion, k_static, stiffness_response
 from dfa.analysis.simulation import simulate
 from dfa.cli import main
+from dfa.model.wall import Wall, WallParams
 
 
 def storage(sim):
@@ -33,7 +34,7 @@ def hc(x):
 def test_eq6_delay_reproducer_mu100_beta_sigma_08_speed5_d1_is_not_passive_and_diverges():
     old = passivity_criterion(0.8, 0.8, 5.0)  # eq. 6 with d ignored: region a
     assert old.passive and old.region == "a"
-    new = passivity_criterion(0.8, 0.8, 5.0, delay=1)
+    new = passivity_criterion(0.8, 0.8, 5.0, wall=WallParams.of(delay=1))
     assert not new.passive and new.region == "d"
     assert new.margin == pytest.approx((0.8 - 1.5) * 5.0 + 0.3)
     assert simulate(100.0, 0.8, 0.8, 5.0, 5000, delay=1, record=False).outcome == "unstable"
@@ -51,7 +52,7 @@ def test_eq19_initial_position_reproducer_mu1_xi0_10_is_not_passive_and_diverges
 @given(st.floats(0.0, 2.0), st.floats(0.0, 3.0), st.floats(-50.0, 50.0), st.floats(0.01, 1e4), st.booleans())
 def test_eq6_unchanged_at_zero_delay_and_zero_position(beta, sigma, v, mu, quantized):
     a = passivity_criterion(beta, sigma, v, quantized=quantized)
-    b = passivity_criterion(beta, sigma, v, quantized=quantized, delay=0, xi0=0.0, mu=mu)
+    b = passivity_criterion(beta, sigma, v, quantized=quantized, wall=WallParams.of(delay=0), xi0=0.0, mu=mu)
     s0 = 0.5 if quantized else 0.0
     assert (a.region, a.passive, a.margin, a.critical_xi_dot) == (b.region, b.passive, b.margin, b.critical_xi_dot)
     assert a.equivalent_speed == abs(v) and a.delay == 0
@@ -62,35 +63,37 @@ def test_eq6_unchanged_at_zero_delay_and_zero_position(beta, sigma, v, mu, quant
 @example(2.5, 0.5, 3.0, 2)  # corner β = ½ + d, σ = ½
 @example(1.5, 0.4999, 0.0, 1)  # σ < ½ at rest: b
 def test_eq6_delay_passive_iff_inequalities_and_region_a_or_e(beta, sigma, v, d):
-    r = passivity_criterion(beta, sigma, v, delay=d)
+    r = passivity_criterion(beta, sigma, v, wall=WallParams.of(delay=d))
     by_hand = (beta - 0.5 - d) * v + (sigma - 0.5) >= 0 and sigma >= 0.5
     assert r.passive == by_hand == (r.region in ("a", "e"))
     assert classify_region(beta, sigma, v, delay=d).item() == r.region
     # a delay can only remove guarantees
     if r.passive and d > 0:
-        assert passivity_criterion(beta, sigma, v, delay=d - 1).passive
+        assert passivity_criterion(beta, sigma, v, wall=WallParams.of(delay=d - 1)).passive
 
 
 @given(st.floats(0.0, 3.49), st.floats(0.5, 3.0), st.integers(0, 3))
 def test_eq12_delay_critical_speed_separates_passive_from_not(beta, sigma, d):
     if beta >= 0.5 + d:
-        assert passivity_criterion(beta, sigma, 0.0, delay=d).critical_xi_dot is None
+        assert passivity_criterion(beta, sigma, 0.0, wall=WallParams.of(delay=d)).critical_xi_dot is None
         return
-    crit = passivity_criterion(beta, sigma, 0.0, delay=d).critical_xi_dot
+    crit = passivity_criterion(beta, sigma, 0.0, wall=WallParams.of(delay=d)).critical_xi_dot
     assert crit == pytest.approx((sigma - 0.5) / (0.5 + d - beta))
-    assert passivity_criterion(beta, sigma, crit * (1 - 1e-9), delay=d).passive
+    assert passivity_criterion(beta, sigma, crit * (1 - 1e-9), wall=WallParams.of(delay=d)).passive
     if crit > 0:
-        assert not passivity_criterion(beta, sigma, crit * (1 + 1e-9) + 1e-12, delay=d).passive
+        assert not passivity_criterion(beta, sigma, crit * (1 + 1e-9) + 1e-12, wall=WallParams.of(delay=d)).passive
 
 
 def test_eq10_delayed_critical_line_through_half_plus_d_with_slope_minus_speed():
-    r = passivity_criterion(0.1, 3.0, 2.0, delay=2)
+    r = passivity_criterion(0.1, 3.0, 2.0, wall=WallParams.of(delay=2))
     line = r.critical_line
     assert (r.delay, line.beta0, line.slope) == (2, 2.5, -2.0)
     assert line.sigma(2.5) == pytest.approx(0.5)
     np.testing.assert_allclose(line.sigma(np.array([0.0, 1.0])), [0.5 + 2.0 * 2.5, 0.5 + 2.0 * 1.5])
     # without quantization the line goes through (½ + d, 0)
-    assert passivity_criterion(0.1, 3.0, 2.0, delay=2, quantized=False).critical_line.sigma(2.5) == 0.0
+    assert (
+        passivity_criterion(0.1, 3.0, 2.0, wall=WallParams.of(delay=2), quantized=False).critical_line.sigma(2.5) == 0.0
+    )
 
 
 def test_eq18_equivalent_speed_uses_hc_and_needs_mu():
@@ -100,9 +103,9 @@ def test_eq18_equivalent_speed_uses_hc_and_needs_mu():
     with pytest.raises(dfa.DFAValueError, match="mu = None"):
         passivity_criterion(0.3, 1.0, 2.0, xi0=1.0)
     with pytest.raises(dfa.DFAValueError, match="delay"):
-        passivity_criterion(0.3, 1.0, 2.0, delay=-1)
+        passivity_criterion(0.3, 1.0, 2.0, wall=WallParams.of(delay=-1))
     with pytest.raises(dfa.DFAValueError, match="delay"):
-        passivity_criterion(0.3, 1.0, 2.0, delay=0.5)
+        passivity_criterion(0.3, 1.0, 2.0, wall=WallParams.of(delay=0.5))
 
 
 def test_classify_region_broadcasts_over_delay_and_quantized_arrays():
@@ -112,7 +115,7 @@ def test_classify_region_broadcasts_over_delay_and_quantized_arrays():
     for i in range(3):
         for j, q in enumerate((True, False)):
             d = [0, 1, 0][i]
-            assert out[i, j] == passivity_criterion(b[i], 0.8, 1.0, quantized=q, delay=d).region
+            assert out[i, j] == passivity_criterion(b[i], 0.8, 1.0, quantized=q, wall=WallParams.of(delay=d)).region
     with pytest.raises(dfa.DFAValueError, match="delay"):
         classify_region(0.5, 0.5, 1.0, delay=[0, -1])
 
@@ -149,10 +152,10 @@ def test_fig3_region_words_do_not_overclaim():
 def test_eq6_delay_soundness_energy_never_grows_on_and_above_the_line(mu, beta, lift, xi_dot, xi0, d):
     v = equivalent_speed(xi_dot, xi0, mu)
     sigma = max(0.5, 0.5 + v * (0.5 + d - beta)) + lift
-    r = passivity_criterion(beta, sigma, xi_dot, delay=d, xi0=xi0, mu=mu)
+    r = passivity_criterion(beta, sigma, xi_dot, wall=WallParams.of(delay=d), xi0=xi0, mu=mu)
     if not r.passive:  # rounding put the point on the line just outside: step up by one ulp
         sigma = float(np.nextafter(sigma, np.inf))
-        r = passivity_criterion(beta, sigma, xi_dot, delay=d, xi0=xi0, mu=mu)
+        r = passivity_criterion(beta, sigma, xi_dot, wall=WallParams.of(delay=d), xi0=xi0, mu=mu)
     assert r.passive
     sim = simulate(mu, beta, sigma, xi_dot, 3000, xi0=xi0, delay=d)
     s = storage(sim)
@@ -177,8 +180,8 @@ def test_eq11_delay_kmax_closed_form_and_flip(d, velocity):
     closed = min(2 * c / dx, (b * velocity + c) / (t * (0.5 + d) * velocity + dx / 2))
     k = k_max_criterion(DEV, velocity, delay=d)
     assert k == pytest.approx(closed, rel=2e-12)  # K_max is rounded down by 1e-12 (k_max_criterion)
-    assert dfa.device_criterion(DEV, k * (1 - 1e-9), velocity, delay=d).passive
-    assert not dfa.device_criterion(DEV, k * (1 + 1e-9), velocity, delay=d).passive
+    assert dfa.device_criterion(DEV, Wall.of(k * (1 - 1e-9), delay=d), velocity).passive
+    assert not dfa.device_criterion(DEV, Wall.of(k * (1 + 1e-9), delay=d), velocity).passive
 
 
 @given(st.floats(1.0, 6e4), st.integers(0, 3))
@@ -189,8 +192,8 @@ def test_eq12_delay_max_passive_velocity_inverts_kmax(k, d):
     elif k * DEV.period * (0.5 + d) <= DEV.damping:
         assert math.isinf(v)
     else:
-        assert dfa.device_criterion(DEV, k, v * (1 - 1e-9), delay=d).passive
-        assert not dfa.device_criterion(DEV, k, v * (1 + 1e-6), delay=d).passive
+        assert dfa.device_criterion(DEV, Wall.of(k, delay=d), v * (1 - 1e-9)).passive
+        assert not dfa.device_criterion(DEV, Wall.of(k, delay=d), v * (1 + 1e-6)).passive
 
 
 def test_eq8_colgate_with_delay_and_one_source_for_the_static_limit():
@@ -285,7 +288,7 @@ def test_cli_check_json_delay_and_initial_position(capsys):
         capsys, "check", "--device", "delta", "--velocity", "0.1", "--position", "3e-4", "--delay", "1", "--json"
     )
     r = json.loads(out)
-    api = dfa.device_criterion(DEV, 14500.0, 0.1, delay=1, position=3e-4)
+    api = dfa.device_criterion(DEV, Wall.of(14500.0, delay=1), 0.1, position=3e-4)
     assert (r["region"], r["margin"], r["equivalent_speed"], r["delay"]) == (
         api.region,
         api.margin,
@@ -369,7 +372,7 @@ def test_fig3_regions_plot_draws_the_result_critical_line_with_delay():
 
     from dfa import figures
 
-    r = passivity_criterion(0.3, 3.0, 2.0, delay=1, xi0=1.0, mu=4.0)
+    r = passivity_criterion(0.3, 3.0, 2.0, wall=WallParams.of(delay=1), xi0=1.0, mu=4.0)
     ax = figures.regions_plot(r, xi_dots=[1.0])
     lines = {ln.get_label(): ln for ln in ax.get_lines()}
     x, y = next(v for k, v in lines.items() if k.startswith("critical line")).get_data()
@@ -387,10 +390,10 @@ def test_eq7_delay_without_quantization_energy_never_grows_on_the_line(d, beta_s
     beta = beta_share * (0.5 + d)
     v = equivalent_speed(xi_dot, xi0, mu, quantized=False)
     sigma = v * (0.5 + d - beta)
-    r = passivity_criterion(beta, sigma, xi_dot, quantized=False, delay=d, xi0=xi0, mu=mu)
+    r = passivity_criterion(beta, sigma, xi_dot, quantized=False, wall=WallParams.of(delay=d), xi0=xi0, mu=mu)
     if not r.passive:
         sigma = float(np.nextafter(sigma, np.inf))
-        r = passivity_criterion(beta, sigma, xi_dot, quantized=False, delay=d, xi0=xi0, mu=mu)
+        r = passivity_criterion(beta, sigma, xi_dot, quantized=False, wall=WallParams.of(delay=d), xi0=xi0, mu=mu)
     assert r.passive
     sim = simulate(mu, beta, sigma, xi_dot, 3000, xi0=xi0, delay=d, quantize=False)
     s = storage(sim)

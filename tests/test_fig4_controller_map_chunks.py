@@ -175,7 +175,7 @@ def test_zwidth_progress_counts_points_and_boundary_columns(bars):
     points, columns = bars
     assert points.total == 9 and sum(points.updates) == 9  # grid points (simulations)
     assert columns.total == 3 and sum(columns.updates) == 3  # one boundary column per B
-    assert z.as_dict() == zmod.z_width(ZDEV, 0.1, grid=3, speeds=1, n_jobs=1).as_dict()
+    assert z.to_dict() == zmod.z_width(ZDEV, 0.1, grid=3, speeds=1, n_jobs=1).to_dict()
 
 
 main_thread_only = pytest.mark.skipif(

@@ -39,7 +39,7 @@ def test_fig_chart_simulation_never_below_criterion_and_rest_below_no_divergence
 def test_fig_chart_rotary_hand_speed_and_json():
     c = stiffness_speed_chart(dfa.get_device("re35").device, grid=4, speeds=3)
     assert c.v_top == HAND_SPEED["rotary"]
-    d = json.loads(json.dumps(c.as_dict(), allow_nan=False))
+    d = json.loads(json.dumps(c.to_dict(), allow_nan=False))
     assert d["stiffness_unit"] == "N·m/rad" and len(d["v_sim"]) == 4
     with pytest.raises(ValueError):
         c.v_sim[0] = 1.0  # read-only

@@ -182,7 +182,7 @@ def test_validators_accept_numpy_scalars():
     assert check_real("x", np.array(2.0)) == 2.0
     assert check_int("n", np.uint8(7), minimum=1) == 7
     p = dfa.Params(np.float32(5.0), np.float64(0.1), np.int32(0))
-    assert p.as_dict() == {"mu": 5.0, "beta": pytest.approx(0.1), "sigma": 0.0}
+    assert p.to_dict() == {"mu": 5.0, "beta": pytest.approx(0.1), "sigma": 0.0}
 
 
 def test_table1_device_groups_refused_when_they_vanish_or_overflow():
@@ -695,7 +695,7 @@ def test_eq36_time_budget_hit_is_incomplete_and_says_so():
     assert part.detail.startswith("incomplete: time budget of 1e-09 s hit after searching 0 of 1 pieces")
     assert part.search_bound is None and part.cycles == ()
     assert 0.0 < part.max_amplitude < full.cycles[0].amplitude and _no_cycle_missed_below(part, full)
-    assert part.as_dict()["status"] == "time_budget" and part.as_dict()["complete"] is False
+    assert part.to_dict()["status"] == "time_budget" and part.to_dict()["complete"] is False
     g = dfa.growth_threshold(p, time_budget=1e-9)
     assert g.amplitude is None and "time budget of 1e-09 s" in g.meaning()
     for bad in (0, -1.0, math.nan, math.inf, "10", None):
@@ -896,7 +896,7 @@ def test_stiffness_speed_chart_record_validates_its_arrays():
     ok = dict(device=dev, delay=0, v_top=0.5, stiffness=[1.0, 2.0], v_df=[0.1, math.nan], v_sim=[0.1, 0.2],
               v_rest=[0.1, 0.2], criterion_stiffness=[1.0], v_criterion=[0.3], speeds=[0.1],
               k_linear=1.0, k_colgate=math.inf, k_abbott_okamura=1.0, k_static=2.0)  # fmt: skip
-    assert dfa.StiffnessSpeedChart(**ok).as_dict()["v_df"] == [0.1, None]
+    assert dfa.StiffnessSpeedChart(**ok).to_dict()["v_df"] == [0.1, None]
     for bad in ({"speeds": 0.0}, {"v_sim": [0.1]}, {"v_rest": [0.1, math.nan]}, {"k_static": "x"}):
         with pytest.raises(DFAError, match=f"^({next(iter(bad))}|v_sim|v_rest|k_static)"):
             dfa.StiffnessSpeedChart(**(ok | bad))
@@ -952,7 +952,7 @@ def test_fig4_load_map_refuses_missing_and_broken_files(tmp_path):
     with pytest.raises(DFATypeError, match="^path"):
         dfa.load_map(None)
     m = dfa.stability_map(100.0, [2.0], grid=2, samples=50, n_jobs=1, progress=False)
-    assert dfa.load_map(m.save(tmp_path / "ok.npz")).as_dict() == m.as_dict()
+    assert dfa.load_map(m.save(tmp_path / "ok.npz")).to_dict() == m.to_dict()
 
 
 @pytest.mark.parametrize(

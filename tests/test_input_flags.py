@@ -82,7 +82,7 @@ def zw():
 
 def test_zwidth_status_is_an_enum_with_a_message(zw):
     assert isinstance(zw.status, ZWidthStatus) and zw.status in (ZWidthStatus.OK, ZWidthStatus.CAVEATS)
-    d = json.loads(json.dumps(zw.as_dict()))
+    d = json.loads(json.dumps(zw.to_dict()))
     assert d["status"] == zw.status.value and d["status_message"] == zw.status.message
     assert {m.value for m in ZWidthStatus} == {"ok", "caveats", "counterexample"}  # JSON values unchanged
 

@@ -49,7 +49,7 @@ def _check_theory(r):
         assert "above" in r.k_sim.reason
     if r.k_sim_rest.value is not None and r.k_sim.value is not None:
         assert r.k_sim_rest.value <= r.k_sim.value * (1 + 1e-9)
-    d = json.loads(json.dumps(r.as_dict(), allow_nan=False))
+    d = json.loads(json.dumps(r.to_dict(), allow_nan=False))
     for key in ("k_df", "k_sim", "k_sim_rest"):
         assert d[key] == r.searches[key].value
         if d[key] is None:
@@ -258,7 +258,7 @@ def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search)
     assert main([*argv, "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     r = controller_stiffness_limits(DELTA, Wall.of(30000.0, damping=1.0), 0.1, assess="--stiffness", **SMALL)
-    a = r.assessment.as_dict()
+    a = r.assessment.to_dict()
     assert d["assessment"] == a and d["stiffness_source"] == "--stiffness"
     assert a["stiffness"] == 30000.0 and a["outcomes"]["impact"] in dfa.analysis.simulation.OUTCOMES
     # the same K's limits: the answer does not depend on the K being assessed (B, f_c, f_bw, d held fixed)

@@ -98,7 +98,7 @@ def test_colgate_schenkel_physical_is_dimensionless_times_kt_and_json():
     assert r.damping_min == 1500.0 * 1e-3 * r.dimensionless.beta_min
     assert r.omega == r.dimensionless.theta / 1e-3
     assert r.passive(r.damping_bound * 1.001) and not r.passive(r.damping_min * 0.999)
-    data = json.loads(dumps(r.as_dict()))
+    data = json.loads(dumps(r.to_dict()))
     assert data["damping_min"] == r.damping_min and data["controller"]["filter_cutoff"] == 80.0
     assert data["dimensionless"]["params"]["delay"] == 1
 

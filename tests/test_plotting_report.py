@@ -21,6 +21,7 @@ from dfa.analysis.loop import nyquist_locus_response
 from dfa.analysis.maps import stability_map
 from dfa.analysis.simulation import simulate
 from dfa.cli import main
+from dfa.model.wall import Wall
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 UNIT = re.compile(
@@ -163,7 +164,7 @@ def _verdict_text(dev, k, v, dl, crit, lim, v_sim):
 
 def test_report_verdict_for_a_stiffness_above_the_static_limit_and_with_delay():
     dev = dfa.get_device("Delta").device
-    crit = dfa.device_criterion(dev, 60000.0, 0.1, delay=1)
+    crit = dfa.device_criterion(dev, Wall.of(60000.0, delay=1), 0.1)
     lim = dfa.stiffness_limits(dev, 0.1, 60000.0, delay=1)
     text = _verdict_text(dev, 60000.0, 0.1, 1, crit, lim, None)
     assert f"**no passivity guarantee even at rest (K > 2c/Δ = {2 * dev.coulomb / dev.resolution:.5g} N/m)**" in text
@@ -174,7 +175,7 @@ def test_report_verdict_for_a_stiffness_above_the_static_limit_and_with_delay():
     assert lim.max_passive_velocity_text().startswith(
         "none: no passivity guarantee even at rest"
     )  # formatted None before the fix
-    crit = dfa.device_criterion(dev, 20000.0, 0.1, delay=1)
+    crit = dfa.device_criterion(dev, Wall.of(20000.0, delay=1), 0.1)
     lim = dfa.stiffness_limits(dev, 0.1, 20000.0, delay=1)
     text = _verdict_text(dev, 20000.0, 0.1, 1, crit, lim, None)
     assert "**not proven passive (the criterion gives no guarantee; that is not a proof of instability)**" in text

@@ -90,8 +90,8 @@ def test_slow_filter_is_refused_not_misjudged():
     """ν_c = 1e-6: the loop is stable at small K (60-digit roots) but double precision called it 'never': refused."""
     k, t = 0.05, SLOW["period"]
     p = WallParams.of(damping=SLOW_CTL["damping"] / (k * t), delay=3, cutoff=1e-3, lag=1.0 / (2 * math.pi * 588.15 * t))
-    good = p.as_dict() | {"cutoff": 1e-6}
-    assert _radius_mp(SLOW["mass"] / (k * t * t), SLOW["damping"] / (k * t), WallParams.of(**p.as_dict())) < 1.0
+    good = p.to_dict() | {"cutoff": 1e-6}
+    assert _radius_mp(SLOW["mass"] / (k * t * t), SLOW["damping"] / (k * t), WallParams.of(**p.to_dict())) < 1.0
     with pytest.raises(DFAValueError, match=r"cutoff = 1e-06 is invalid: it must be at least 0.001 cycles per sample"):
         WallParams.of(**good)
     with pytest.raises(DFAValueError, match=r"filter_cutoff = .* it must be at least 1.78.* Hz"):

@@ -136,11 +136,11 @@ def test_controller_report_states_what_dfa_check_prints(ctl):
     }
     assert data["numbers"]["controller"] == check["controller"]
     assert data["numbers"]["controller"]["dimensionless"]["beta_B"] == pytest.approx(1.0 / (14500.0 / 3000.0))
-    assert data["numbers"]["passive"] is True and data["numbers"]["region"] == check["region"]
-    assert data["numbers"]["critical_xi_dot"] == check["critical_xi_dot"]
+    assert data["numbers"]["passive"] is True and data["numbers"]["region"] == check["criterion"]["region"]
+    assert data["numbers"]["critical_xi_dot"] == check["criterion"]["critical_xi_dot"]
     verdict = md.splitlines()[2]  # the verdict paragraph says the same
     assert "**passive (proven: the energy cannot grow)** by the criterion of eq. 6 extended" in verdict
-    assert f"up to {check['critical_velocity']:.4g} m/s" in verdict
+    assert f"up to {check['criterion']['critical_velocity']:.4g} m/s" in verdict
 
 
 def test_controller_report_kmax_equals_dfa_stiffness(ctl):
@@ -193,11 +193,11 @@ def test_controller_report_leaves_out_the_spring_only_sections(ctl):
     # the sections that accept a controller are computed with it
     dev = dfa.get_device("delta").device
     cp = Wall.of(14500.0, 1.0, 1, 200.0).params(dev.period)
-    assert a["stability_map"]["controller"] == cp.as_dict() and a["delay"] == 1
+    assert a["stability_map"]["controller"] == cp.to_dict() and a["delay"] == 1
     p = dev.params(14500.0)
     g = dfa.growth_threshold(p, model="zoh", controller=cp)
     assert a["growth_thresholds"]["zoh"]["amplitude"] == g.amplitude
-    xi = a["controller_check"]["xi_dot"]
+    xi = a["controller_check"]["criterion"]["xi_dot"]
     bound = dfa.analysis.simulation.divergence_bound(0.0, xi, p.mu)
     sim = dfa.simulate(p.mu, p.beta, p.sigma, xi, None, record=False, controller=cp, bound=bound)
     assert a["outcome"]["outcome"] == sim.outcome.value and a["outcome"]["samples_run"] == sim.samples_run
@@ -317,7 +317,7 @@ def test_spring_report_unchanged_golden_from_before_the_controller():
     e = dfa.get_device("impulse")
     for ctl in (None, Wall.of(e.stiffness)):  # the pure spring as a Wall is the spring
         a = design_analysis(e, velocity=0.05, controller=ctl, **SMALL)
-        new = json.loads(dumps(a.as_dict(), ensure_ascii=False))
+        new = json.loads(dumps(a.to_dict(), ensure_ascii=False))
         assert set(new) == set(old) and golden.compare_json(old, new) == []
         md = design_markdown(a, {n: f"caption of {n}" for n in NAMES}, lambda n: f"figures/{n}.png")
         assert md == old_md

@@ -1,7 +1,7 @@
 """Result objects users work with (issue 13 §3-§4): status enums, read-only arrays, strict JSON, plot(), to_xarray().
 
 Every result class of the package is built here by the analysis that returns it; the properties are:
-``as_dict()`` survives strict JSON (no NaN/Infinity tokens) unchanged, arrays cannot be written,
+``to_dict()`` survives strict JSON (no NaN/Infinity tokens) unchanged, arrays cannot be written,
 status members carry messages, construction refuses inconsistent data, ``.plot()`` returns labelled Axes.
 """
 
@@ -31,6 +31,7 @@ from dfa.analysis.validation import Soundness, ValidationResult
 from dfa.cli import main
 from dfa.errors import DFAError, DFAValueError
 from dfa.model.device import Params
+from dfa.model.wall import WallParams
 from dfa.results import status as status_mod
 from dfa.results.jsonable import NULL_REASONS_KEY, dumps, to_jsonable
 
@@ -46,7 +47,7 @@ def strict_roundtrip(d):
     """``d`` through strict JSON: no NaN/Infinity on the way out, none accepted on the way in, unchanged."""
     text = json.dumps(d, allow_nan=False)
     back = json.loads(text, parse_constant=_refuse_constant)
-    assert back == json.loads(json.dumps(d)), "as_dict() holds tuples or non-string keys that JSON changes"
+    assert back == json.loads(json.dumps(d)), "to_dict() holds tuples or non-string keys that JSON changes"
     return back
 
 
@@ -119,9 +120,9 @@ finite = st.floats(0.0, 3.0, allow_nan=False)
 
 
 @given(beta=finite, sigma=finite, xi_dot=st.floats(-20, 20, allow_nan=False), delay=st.integers(0, 3))
-def test_eq6_criterion_as_dict_is_strict_json(beta, sigma, xi_dot, delay):
-    r = dfa.passivity_criterion(beta, sigma, xi_dot, delay=delay)
-    d = strict_roundtrip(r.as_dict())
+def test_eq6_criterion_to_dict_is_strict_json(beta, sigma, xi_dot, delay):
+    r = dfa.passivity_criterion(beta, sigma, xi_dot, wall=WallParams.of(delay=delay))
+    d = strict_roundtrip(r.to_dict())
     assert d["status"] == r.status.value and d["status_message"] == r.status.message
     assert r.status.region == r.region
 
@@ -131,16 +132,16 @@ def test_eq6_criterion_as_dict_is_strict_json(beta, sigma, xi_dot, delay):
     stiffness=st.one_of(st.none(), st.floats(1.0, 1e6)),
     delay=st.integers(0, 2),
 )
-def test_eq11_stiffness_as_dict_is_strict_json(velocity, stiffness, delay):
+def test_eq11_stiffness_to_dict_is_strict_json(velocity, stiffness, delay):
     lim = stiffness_limits(DEV, velocity, stiffness, delay)
-    d = strict_roundtrip(lim.as_dict())
+    d = strict_roundtrip(lim.to_dict())
     assert (
         d["status"] in ("ok", "too stiff", "not requested")
         and d["max_passive_velocity_status"] == lim.velocity_status.value
     )
     assert (d["status"] == "not requested") == (stiffness is None)  # no "ok" for a verdict nobody asked for
     curve = stiffness_response(DEV, [velocity + 1e-3, velocity + 1.0], stiffness, delay)
-    c = strict_roundtrip(curve.as_dict())
+    c = strict_roundtrip(curve.to_dict())
     assert c["k_max"] == pytest.approx(list(curve.k_max), rel=0, abs=0)
     if stiffness is not None and math.isinf(curve.max_passive_velocity or 0.0):
         assert c["max_passive_velocity"] is None and c[NULL_REASONS_KEY]["/max_passive_velocity"] == "+inf"
@@ -154,29 +155,29 @@ def test_eq11_stiffness_as_dict_is_strict_json(velocity, stiffness, delay):
     xi_dot0=st.floats(-5.0, 5.0),
     quantize=st.booleans(),
 )
-def test_eq4_simulation_as_dict_is_strict_json(mu, beta, sigma, xi_dot0, quantize):
+def test_eq4_simulation_to_dict_is_strict_json(mu, beta, sigma, xi_dot0, quantize):
     r = simulate(mu, beta, sigma, xi_dot0, samples=400, quantize=quantize, energy=True, bound=50.0)
-    d = strict_roundtrip(r.as_dict())
+    d = strict_roundtrip(r.to_dict())
     assert d["outcome"] == r.outcome.value and d["status_message"] == r.status.message
     reasons = d.get(NULL_REASONS_KEY, {})
     for key, reason in reasons.items():  # every reason names a null ...
         assert _resolve(d, key) is None and reason
     assert all(f"/{k}" in reasons for k, v in d.items() if v is None)  # ... and every null has one
-    strict_roundtrip(r.energy.as_dict())
+    strict_roundtrip(r.energy.to_dict())
 
 
 @settings(max_examples=12)
 @given(mu=st.floats(2.0, 50.0), beta=st.floats(0.0, 0.45), sigma=st.floats(0.0, 1.0), delay=st.integers(0, 1))
-def test_eq36_limit_cycles_and_growth_as_dict_are_strict_json(mu, beta, sigma, delay):
+def test_eq36_limit_cycles_and_growth_to_dict_are_strict_json(mu, beta, sigma, delay):
     g = growth_threshold(Params(mu, beta, sigma), DEV, delay=delay)
-    d = strict_roundtrip(g.as_dict())
+    d = strict_roundtrip(g.to_dict())
     assert d["status"] == g.status.value and (d["amplitude"] is None) == (g.status is not status_mod.GrowthStatus.OK)
-    r = strict_roundtrip(g.result.as_dict())
+    r = strict_roundtrip(g.result.to_dict())
     assert r["status"] == g.result.status.value and r["complete"] == (r["status"] == "complete")
 
 
-def test_fig6_nyquist_as_dict_is_strict_json(nyquist):
-    d = strict_roundtrip(nyquist.as_dict())
+def test_fig6_nyquist_to_dict_is_strict_json(nyquist):
+    d = strict_roundtrip(nyquist.to_dict())
     assert [(round(c["amplitude"], 4), round(c["frequency"], 4)) for c in d["crossings"]] == [
         (0.7905, 0.3974),
         (1.0098, 0.3974),
@@ -192,9 +193,9 @@ def test_fig6_nyquist_as_dict_is_strict_json(nyquist):
     sigma=st.floats(0.01, 1.0),
     amplitudes=st.lists(st.floats(0.05, 50.0), min_size=1, max_size=3),
 )
-def test_eq40_nyquist_with_friction_as_dict_is_strict_json(mu, beta, sigma, amplitudes):
+def test_eq40_nyquist_with_friction_to_dict_is_strict_json(mu, beta, sigma, amplitudes):
     r = nyquist_locus_response(Params(mu, beta, sigma), amplitudes, omega=np.geomspace(1e-3, np.pi, 50))
-    d = strict_roundtrip(r.as_dict())
+    d = strict_roundtrip(r.to_dict())
     assert d["status"] == "crossings not computed" and d["crossings"] == [] and len(d["curves"]) == len(amplitudes)
     assert r.status.message.startswith("crossings not computed for sigma > 0")
 
@@ -203,7 +204,7 @@ def test_eq40_nyquist_with_friction_as_dict_is_strict_json(mu, beta, sigma, ampl
 @given(mu=st.floats(1.0, 200.0), grid=st.integers(2, 5))
 def test_fig7_contours_as_dict_is_strict_json(mu, grid):
     c = contour_maps(mu, grid=grid)
-    d = strict_roundtrip(c.as_dict())
+    d = strict_roundtrip(c.to_dict())
     assert d["grid"] == [grid, grid] and d["large_points"] == int(np.isfinite(c.large_amplitude).sum())
 
 
@@ -214,20 +215,20 @@ def test_eq6_criterion_refuses_nan_fields():
 
 
 def test_fig4_map_and_fig7_contours_as_dict_are_strict_json(small_map, contours):
-    m = strict_roundtrip(small_map.as_dict())
+    m = strict_roundtrip(small_map.to_dict())
     assert sum(m["counts"][0][k] for k in dfa.analysis.simulation.OUTCOMES) == 16 and m["status"] == "ok"
-    c = strict_roundtrip(contours.as_dict())
+    c = strict_roundtrip(contours.to_dict())
     assert c["small_points"] == int(np.isfinite(contours.small_amplitude).sum())
 
 
 def test_soundness_and_validation_as_dict_null_nan_with_reason(empty_validation):
-    d = strict_roundtrip(empty_validation.as_dict())
+    d = strict_roundtrip(empty_validation.to_dict())
     assert d["conservatism"] is None and d[NULL_REASONS_KEY]["/conservatism"] == "NaN"
     assert d["status"] == "ok"
-    s = strict_roundtrip(empty_validation.soundness.as_dict())
+    s = strict_roundtrip(empty_validation.soundness.to_dict())
     assert s["conservatism"] is None and s[NULL_REASONS_KEY] == {"/conservatism": "NaN"}
     r = delay_soundness(4, 1, seed=3)
-    j = strict_roundtrip(r.as_dict())
+    j = strict_roundtrip(r.to_dict())
     assert j["violations"] == r.violations and j["status"] == r.status.value
 
 

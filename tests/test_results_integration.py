@@ -33,11 +33,11 @@ def test_one_json_path_the_files_json_is_the_sanitisers():
 def test_design_analysis_status_enum_and_strict_json():
     a = design_analysis(dfa.get_device("impulse"), velocity=0.05, map_grid=3, samples=2000, n_jobs=1)
     assert a.status is DesignStatus.OK and a.status == "ok"
-    d = _strict(a.as_dict())
+    d = _strict(a.to_dict())
     assert d["status"] == "ok" and d["status_message"] == DesignStatus.OK.message
     assert d["outcome"]["outcome"] == a.outcome.outcome.value
     r = ReportResult((), (), {}, analysis=a)
-    rd = _strict(r.as_dict())
+    rd = _strict(r.to_dict())
     assert rd["status"] == "ok" and rd["status_message"] == ReportStatus.OK.message
     assert rd["analysis"]["criterion"]["status"] == a.criterion.status.value
     with pytest.raises(DFAValueError, match="ReportStatus"):
@@ -60,9 +60,9 @@ def test_design_reads_a_null_validation_number_back_as_nan():
 def test_fig7_contours_ok_without_the_degenerate_corner_flagged_with_it():
     ok = contour_maps(5.0, beta_range=(0.1, 1.0), grid=4, max_amplitude=10.0)
     assert ok.status is ContourStatus.OK and ok.detail == ""
-    assert ok.as_dict()["status_message"] == ContourStatus.OK.message
+    assert ok.to_dict()["status_message"] == ContourStatus.OK.message
     flagged = contour_maps(5.0, grid=4, max_amplitude=10.0)
-    d = _strict(flagged.as_dict())
+    d = _strict(flagged.to_dict())
     assert d["status"] == "flagged" and "β = σ = 0" in d["status_message"]
     ds = flagged.to_xarray() if _has_xarray() else None
     if ds is not None:
@@ -80,10 +80,10 @@ def _has_xarray() -> bool:
 def test_fig6_nyquist_sigma_zero_crossings_from_the_solver_status_ok():
     r = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.0))
     assert r.status is NyquistStatus.OK and r.detail == ""
-    d = _strict(r.as_dict())
+    d = _strict(r.to_dict())
     assert d["status"] == "ok" and len(d["crossings"]) == 2
     s = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.3), amplitudes=[1.0, 2.0])
-    assert s.status is NyquistStatus.CROSSINGS_NOT_COMPUTED and s.as_dict()["status_message"] == s.status.message
+    assert s.status is NyquistStatus.CROSSINGS_NOT_COMPUTED and s.to_dict()["status_message"] == s.status.message
 
 
 def test_fig6_nyquist_reports_an_incomplete_solver_search(monkeypatch):
@@ -101,4 +101,4 @@ def test_fig6_nyquist_reports_an_incomplete_solver_search(monkeypatch):
     monkeypatch.setattr(cyc, "limit_cycles", incomplete)
     r = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.0))
     assert r.status is NyquistStatus.SEARCH_INCOMPLETE and "could not be refined" in r.detail
-    assert _strict(r.as_dict())["status_message"] == r.detail
+    assert _strict(r.to_dict())["status_message"] == r.detail

@@ -23,7 +23,7 @@ class _OldCounts:
     def status(self) -> SoundnessStatus:
         return SoundnessStatus.SOUND if getattr(self, "violations") == 0 else SoundnessStatus.VIOLATED  # noqa: B009
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         return to_jsonable({**self.__dict__, "status": self.status, "status_message": self.status.message})
 
 
@@ -76,7 +76,7 @@ def runs():
 def test_soundness_records_json_byte_identical_to_the_field_by_field_declarations(runs):
     olds = [_as_old(r, _OldDelaySoundness if isinstance(r, DelaySoundness) else _OldControllerSoundness) for r in runs]
     for new, old in zip(runs, olds, strict=True):
-        assert list(new.as_dict()) == list(old.as_dict())  # same keys, same order
+        assert list(new.to_dict()) == list(old.to_dict())  # same keys, same order
         assert dumps(new) == dumps(old) and dumps(new, indent=1) == dumps(old, indent=1)
         assert new.status == old.status
     # the files `python -m dfa.analysis.soundness` writes: a list of records, indented

@@ -105,7 +105,7 @@ def test_catalogue_unknown_name_suggests_closest():
 
 
 def test_catalogue_json_record_shape():
-    rec = get_device("Toolhandle").as_dict()
+    rec = get_device("Toolhandle").to_dict()
     for key in (
         "name",
         "mass",

@@ -128,6 +128,6 @@ def test_validation_controller_record_is_the_simulated_over_predicted_ratio():
     st = next(r for r in recs if r["stable"])
     sim = simulate(p.mu, p.beta, p.sigma, st["amplitude"] * st["frequency"], 20_000, record=False, controller=ctl)
     assert st["confirmed"] and st["amplitude_error"] == sim.amplitude / st["amplitude"] - 1
-    assert st["controller"] == "f" and st["controller_params"] == ctl.as_dict()
+    assert st["controller"] == "f" and st["controller_params"] == ctl.to_dict()
     un = next(r for r in recs if not r["stable"])
     assert un["subtick"] == (un["amplitude"] < 1.25)

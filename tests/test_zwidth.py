@@ -51,7 +51,7 @@ def test_zwidth_linear_boundary_with_amplifier_lag_and_passivity_not_covered():
     for m in ("passivity", "criterion"):
         assert np.isnan(z.boundary(m)).all()
         assert all(r.startswith("not covered") for r in z.reasons[m])
-    rec = json.loads(json.dumps(z.as_dict()))
+    rec = json.loads(json.dumps(z.to_dict()))
     assert rec["boundaries"]["criterion"]["k_max"] == [None] * 3
 
 
@@ -85,13 +85,13 @@ def test_eq11_zwidth_B0_column_is_the_spring_kmax(zw):
 
 def test_zwidth_deterministic_for_any_number_of_jobs():
     dev = get_device(DEV).device
-    a = z_width(dev, V, grid=4, speeds=1, n_jobs=1).as_dict()
-    b = z_width(dev, V, grid=4, speeds=1, n_jobs=2).as_dict()
+    a = z_width(dev, V, grid=4, speeds=1, n_jobs=1).to_dict()
+    b = z_width(dev, V, grid=4, speeds=1, n_jobs=2).to_dict()
     assert json.dumps(a, sort_keys=True) == json.dumps(b, sort_keys=True)
 
 
-def test_zwidth_as_dict_is_strict_json_with_reasons(zw):
-    rec = zw.as_dict()
+def test_zwidth_to_dict_is_strict_json_with_reasons(zw):
+    rec = zw.to_dict()
     text = json.dumps(rec, allow_nan=False)
     back = json.loads(text)
     assert set(back["boundaries"]) == set(ZWIDTH_METHODS)
@@ -209,4 +209,4 @@ def test_report_zwidth_section_states_the_api_numbers(tmp_path, capsys):
     from dfa.analysis.design import design_analysis
 
     a = design_analysis(get_device(DEV), velocity=V, map_grid=3, samples=2000, n_jobs=1, zwidth_grid=3)
-    assert a.as_dict()["zwidth"]["boundaries"]["linear"]["k_max"] == z.as_dict()["boundaries"]["linear"]["k_max"]
+    assert a.to_dict()["zwidth"]["boundaries"]["linear"]["k_max"] == z.to_dict()["boundaries"]["linear"]["k_max"]

@@ -119,7 +119,7 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
 def test_zwidth_boundary_columns_in_worker_processes_equal_one_thread(monkeypatch):
     """From PROCESS_COLUMNS values of B the boundary columns run in worker processes: the same ZWidth as n_jobs=1."""
     dev = get_device("Phantom 1.0").device
-    one = z_width(dev, 0.1, delay=1, filter_cutoff=100.0, grid=3, speeds=1, n_jobs=1).as_dict()
+    one = z_width(dev, 0.1, delay=1, filter_cutoff=100.0, grid=3, speeds=1, n_jobs=1).to_dict()
     monkeypatch.setattr(zmod, "PROCESS_COLUMNS", 2)
     calls = []
     real = zmod.run_in_order
@@ -129,6 +129,6 @@ def test_zwidth_boundary_columns_in_worker_processes_equal_one_thread(monkeypatc
         return real(fn, tasks, sizes, workers, backend, bar)
 
     monkeypatch.setattr(zmod, "run_in_order", spy)
-    two = z_width(dev, 0.1, delay=1, filter_cutoff=100.0, grid=3, speeds=1, n_jobs=2).as_dict()
+    two = z_width(dev, 0.1, delay=1, filter_cutoff=100.0, grid=3, speeds=1, n_jobs=2).to_dict()
     assert calls == [("_run_chunk", "threads"), ("_column", "processes")]
     assert json.dumps(one, sort_keys=True) == json.dumps(two, sort_keys=True)

@@ -161,7 +161,7 @@ class ColgateSchenkel:
                 "invalid: they must be finite, beta_min <= beta_bound, 0 <= theta <= π; pass the computed values"
             )
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """Return a JSON-ready record.
 
         Returns
@@ -174,16 +174,18 @@ class ColgateSchenkel:
             "beta_bound": self.beta_bound,
             "theta": self.theta,
             "status": self.status.value,
-            "params": self.params.as_dict(),
+            "params": self.params.to_dict(),
         }
 
 
-def _refuse_lag(lag: float) -> None:
-    if lag > 0.0:
+def _refuse_uncovered(p: WallParams) -> None:
+    """Refuse a wall with an element the condition does not cover (its reason), e.g. an amplifier lag."""
+    why = p.colgate_schenkel_reason()
+    if why is not None:
         raise DFAValueError(
-            f"amplifier lag α = τ_a/T = {lag:g} is invalid for the Colgate–Schenkel condition: it must be 0, "
-            "because the condition assumes the zero-order hold drives the device directly; drop the amplifier "
-            "bandwidth, or use the exact linear bound (dfa.analysis.linear_wall.stable_stiffness) or the simulation"
+            f"wall = {p.to_dict()} (amplifier lag α = τ_a/T = {p.lag:g}) is invalid for the Colgate–Schenkel "
+            f"condition: {why}; drop the amplifier bandwidth, or use the exact linear bound "
+            "(dfa.analysis.linear_wall.stable_stiffness) or the simulation"
         )
 
 
@@ -218,7 +220,7 @@ def colgate_schenkel_beta(controller: WallParams) -> ColgateSchenkel:
     2.5
     """
     p = check_type("controller", controller, WallParams, "give a dfa.WallParams")
-    _refuse_lag(p.lag)
+    _refuse_uncovered(p)
     pole = None if p.cutoff is None else p.filter_pole
     best, arg, ub, _ = _maximise(p.damping, p.delay, pole)
     tol = _REL_TOL * max(1.0, abs(best))
@@ -278,7 +280,7 @@ class ColgateSchenkelDamping:
         """
         return check_positive("damping", damping, "give the device's viscous friction b in N·s/m") > self.damping_bound
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """Return a JSON-ready record (SI units).
 
         Returns
@@ -294,8 +296,8 @@ class ColgateSchenkelDamping:
             "frequency": self.frequency,
             "status": self.status.value,
             "period": self.period,
-            "controller": self.controller.as_dict(),
-            "dimensionless": self.dimensionless.as_dict(),
+            "controller": self.controller.to_dict(),
+            "dimensionless": self.dimensionless.to_dict(),
         }
 
 
@@ -335,8 +337,7 @@ def colgate_schenkel_damping(controller: Wall, period: float) -> ColgateSchenkel
     """
     c = check_type("controller", controller, Wall, "give a dfa.Wall")
     t = check_positive("period", period, "give the sampling period T in s (1 kHz: 0.001)")
-    if c.amplifier_bandwidth is not None:
-        _refuse_lag(c.params(t).lag)
+    _refuse_uncovered(c.params(t))
     dim = colgate_schenkel_beta(c.params(t))
     kt = c.stiffness * t
     return ColgateSchenkelDamping(kt * dim.beta_min, kt * dim.beta_bound, dim.theta / t, c, t, dim)

@@ -199,7 +199,7 @@ class ContourMaps:
             )
         return p
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready summary: grid and how many points carry each family.
 
         Returns

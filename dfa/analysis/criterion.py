@@ -1,69 +1,113 @@
-"""Passivity criterion of Diolaiti et al. (ICRA 2005), eq. 6-12 and 35, with a computational delay and an initial position.
+"""Passivity criterion of Diolaiti et al. (ICRA 2005), eq. 6-12 and 35, for the spring and every wall it covers.
 
-The theorem
------------
-Dimensionless loop (paper eq. 4-5) with a computational delay of d samples: the
-force held over sample h is φ = −q(ξ_{h−d}), q(s) = ⌊s⌋ + ½ (eq. 5), and before the
-first sample the controller's past readings equal ξ0. Let
+One criterion for every wall: the paper's spring with a computational delay of d samples and an initial
+position, and a wall with a virtual damper and a velocity filter (:mod:`dfa.model.elements`). The corner
+(β₀, σ₀) of its critical line is the spring's (½ + d, ½) moved by the elements
+(:meth:`dfa.model.wall.WallParams.corner`); an amplifier lag is covered by no sound criterion, and the
+criterion refuses it with the element's reason.
 
-    S = ½μξ'² + ½ξ²
+The loop (dimensionless, time in samples, ξ = x/Δ, φ = F/(KΔ))
+-------------------------------------------------------------
+Reading n_h = ⌊ξ_h⌋ (ξ_h itself without the encoder), velocity estimate v_h = n_h − n_{h−1} (v_0 = 0),
+damper input y_h = v_h without filter, or the exact ZOH low-pass y_h = a·y_{h−1} + (1 − a)·v_{h−1},
+y_0 = 0, a = e^{−2πν_c}; force held over sample h (ZOH, no amplifier lag)::
 
-(the paper's storage H_T of eq. 19 minus the bounded term ½(p − p²) ∈ [0, 1/8] of
-eq. 18) and Δ_h = ξ_{h+1} − ξ_h. Over sample h the force does work φΔ_h and ½ξ²
-changes by ξ_hΔ_h + ½Δ_h², so
+    φ_h = −(n_{h−d} + ½) − β_B·y_{h−d}          (φ_h = φ_0 for h < d; β_B = 0 for the spring)
 
-    S_{h+1} − S_h = ½Δ_h² + (ξ_h − q(ξ_{h−d}))Δ_h − D_h,
-    D_h = β∫ξ'² + σ∫|ξ'| >= βΔ_h² + σ|Δ_h|          (Cauchy-Schwarz; eq. 30, 32)
-    ξ_h − q(ξ_{h−d}) = Σ_{j=1..d} Δ_{h−j} + (p_{h−d} − ½),   p = ξ − ⌊ξ⌋ (eq. 17), |p − ½| <= ½.
+and the plant μξ'' + βξ' + σ sgn ξ' = φ (eq. 4, stick-slip included). Before the first sample the wall's
+past readings equal ξ0.
 
-Summing over h = 0 … n−1 (Δ_k = 0 for k < 0) and bounding every cross product by
-|Δ_hΔ_{h−j}| <= ½(Δ_h² + Δ_{h−j}²) (each Δ_k² then carries a total weight <= d)::
+Step 1: the energy balance of one sample (exact)
+    With S = ½μξ'² + ½ξ² (the storage H_T of eq. 19 minus ½(p − p²) ∈ [0, 1/8], eq. 18) and
+    Δ_h = ξ_{h+1} − ξ_h, the work of the constant force is φ_hΔ_h and ½ξ² grows by ξ_hΔ_h + ½Δ_h², so
 
-    S_n − S_0 <= Σ_h [ (½ + d − β)Δ_h² + (½ − σ)|Δ_h| ].
+        S_{h+1} − S_h = ½Δ_h² + (φ_h + ξ_h)Δ_h − D_h,
+        D_h = β∫ξ'² + σ∫|ξ'| >= βΔ_h² + σ|Δ_h|     (Cauchy-Schwarz; eq. 30, 32).
 
-The same holds at any instant inside a sample (partial displacement Δ' over a part
-of length ℓ <= 1, viscous ∫ξ'² >= Δ'²/ℓ >= Δ'²). Every bracket is <= 0 when
-|Δ| <= V, σ >= ½ and (β − ½ − d)V + (σ − ½) >= 0. As ½μξ'² <= S, a first-exit-time
-argument gives the criterion implemented here:
+Step 2: the spring's part of φ_h + ξ_h
+    With p = ξ − ⌊ξ⌋ (eq. 17) and Δ_k = 0, p_k = p_0 for k < 0 (the start convention):
+    ξ_h − n_{h−d} − ½ = Σ_{j=1..d} Δ_{h−j} + (p_{h−d} − ½), |p − ½| <= ½.
 
-    (β − ½ − d)V + (σ − ½) >= 0   and   σ >= ½,   V = sqrt(ξ'0² + ξ0²/μ)
+Step 3: the damper's part
+    v_j = Δ_{j−1} − (p_j − p_{j−1}) exactly (also v_0 = 0 with the convention), and
+    y_m = Σ_{k>=1} c_k v_{m−k}, c_k = (1 − a)a^{k−1} (filter; Σc_k <= 1), or y_m = v_m (no filter). Hence
+    −β_B y_{h−d} is a *linear* part −β_B Σ_k c_k Δ_{h−d−k−1} (a combination of earlier displacements) plus a
+    *quantization* part β_B Q_h, Q_h = Σ_k c_k (p_{h−d−k} − p_{h−d−k−1}). By Abel summation the
+    coefficients of the p's in Q_h have positive parts summing to 1 − a and negative parts summing to
+    1 − a; as 0 <= p < 1, |Q_h| < 1 − a (no filter: Q_h = p_{h−d} − p_{h−d−1}, |Q_h| < 1 = 1 − 0).
 
-imply S(t) <= S(0) for all t: the energy never grows, |ξ'| <= V and
-|ξ| <= sqrt(2S(0)); the loop cannot diverge. At equality the partial sample keeps
-|Δ'| <= V, so the boundary is included. d = 0, ξ0 = 0 is the paper's eq. 6 / 35
-exactly. The quantization term (p − ½) is what needs σ >= ½; without quantization
-(Δ → 0) the criterion is (β − ½ − d)V + σ >= 0 (eq. 7 generalised). Its linear part
-β >= ½ + d is the journal extension (Diolaiti et al., IEEE T-RO 22(2), 2006).
+Step 4: summing (the quadratic part)
+    Over h = 0 … n − 1 every cross product is bounded by |Δ_hΔ_m| <= ½(Δ_h² + Δ_m²). The spring pairs
+    (h, h − j), j = 1 … d, give each Δ_k² a total weight <= d; the damper pairs, with weights β_B c_k that
+    sum to <= β_B, give each Δ_k² a weight <= ½β_B as the later sample and <= ½β_B as the earlier one:
+    <= β_B in all. So::
 
-Energy-equivalent speed. This module uses V = sqrt(ξ'0² + 2H_c(ξ0)/μ) with the
-paper's pseudo-elastic energy H_c of eq. 18 (without quantization H_c = ½ξ²). As
-H_c(ξ0) >= ½ξ0², this V is never smaller than the one of the proof, and the left
-side of the criterion falls with V, so the verdict stays sound; it matches the
-paper's storage function H_T = ½μV². With ξ0 = 0, V = |ξ'0|. ξ0 ≠ 0 needs μ.
+        S_n − S_0 <= Σ_h [ (β₀ − β)Δ_h² + (σ₀ − σ)|Δ_h| ],
+        β₀ = ½ + d + β_B,      σ₀ = ½ + (1 − a)β_B     (a = 0 without filter).
+
+    The quantization parts (p_{h−d} − ½) and β_B Q_h are what σ₀ collects; without the encoder they vanish
+    and σ₀ = 0 (eq. 7). The bound holds at any instant inside a sample too (partial displacement Δ' over a
+    part ℓ <= 1 of the sample: the force is constant, ∫ξ'² >= Δ'²/ℓ >= Δ'²).
+
+Step 5: the criterion (first exit)
+    Every bracket is <= 0 when |Δ| <= V, σ >= σ₀ and (β − β₀)V + (σ − σ₀) >= 0. Let V = sqrt(ξ'0² + ξ0²/μ),
+    so S_0 = ½μV², and t* the last time up to which S <= S_0. Up to t*, ½μξ'² <= S <= S_0 gives |ξ'| <= V,
+    so every displacement over at most one sample is <= V; by continuity of ξ' this still holds a little
+    beyond t* (the partial sample is shorter than one), hence S <= S_0 beyond t*: t* = ∞. Therefore::
+
+        (β − β₀)V + (σ − σ₀) >= 0   and   σ >= σ₀
+
+    imply S(t) <= S(0) for all t: the energy never grows, |ξ'| <= V and |ξ| <= sqrt(2S_0); the loop cannot
+    diverge. At equality the partial sample keeps |Δ'| <= V, so the boundary is included.
+
+Reductions (tested). The spring, d = 0, ξ0 = 0: β₀ = σ₀ = ½, the paper's eq. 6 / 35 exactly; its linear
+part β >= ½ + d is the journal extension (Diolaiti et al., IEEE T-RO 22(2), 2006). Without encoder and
+Coulomb friction, d = 0: β >= ½ + β_B, i.e. b >= KT/2 + B, the Colgate-Schenkel bound (spec section 8).
+The wall's criterion at (β, σ) is the spring's at (β − β_B, σ − (1 − a)β_B): the damper costs β_B of
+physical damping and (1 − a)β_B of Coulomb friction. Physical form (eq. 11):
+(b − B − KT(½ + d))|ẋ0| + (c − KΔ/2 − (1 − a)BΔ/T) >= 0 and c >= KΔ/2 + (1 − a)BΔ/T.
+
+Energy-equivalent speed. V = sqrt(ξ'0² + 2H_c(ξ0)/μ) with the paper's pseudo-elastic energy H_c of eq. 18
+(without quantization H_c = ½ξ²). As H_c(ξ0) >= ½ξ0², this V is never smaller than the one of the proof,
+and the left side of the criterion falls with V, so the verdict stays sound; it matches the paper's storage
+function H_T = ½μV². With ξ0 = 0, V = |ξ'0|. ξ0 ≠ 0 needs μ.
+
+What is not proven
+    * Amplifier lag (α > 0): the force varies within the sample, step 1's work φΔ no longer holds, and no
+      sound closed form is derived here (:class:`~dfa.model.elements.AmplifierLag` says so; the criterion
+      refuses it and points to the simulated map, :func:`dfa.stability_map`). A possible route, not carried
+      out: write the lagged force as the exponentially weighted average Σ_j ω_j(τ)·φ_{h−j} of the held
+      commands, keep the exact ½Δ² of the current sample, bound the cross terms by Cauchy-Schwarz with
+      ∫ξ'² and the quantization terms by ½∫|ξ'|: this gives a β₀(α) > ½ + d + β_B that would need its own
+      proof and simulator check.
+    * Tightness: the criterion is sufficient only. β >= ½ + β_B is necessary for passivity of the linear
+      loop at d = 0 (Colgate-Schenkel), but the σ-threshold ½ + (1 − a)β_B and the weights d, β_B with a
+      delay or a filter are bounds, not known to be sharp. Probing below the thresholds by simulation finds
+      storage growth for σ between ½ and σ₀ (about 1 point in 10³, the test
+      ``test_eq6_controller_sigma0_needs_the_damper_term``): σ >= ½ alone is not enough with a damper.
 
 What the verdicts mean (and do not mean)
 ----------------------------------------
-``passive`` (regions a, e) is proven by the argument above. Regions b, c and d only
-mean that the criterion gives *no guarantee*: it is a sufficient condition, and
-failing it is no proof of instability (exact simulation decides that).
+``passive`` (regions a, e) is proven by the argument above. Regions b, c and d only mean that the criterion
+gives *no guarantee*: it is a sufficient condition, and failing it is no proof of instability (exact
+simulation decides that).
 
 =======  ==============================================  ==================================
 region   condition (boundaries as assigned here)          meaning
 =======  ==============================================  ==================================
-``a``    β >= ½ + d and σ >= ½                            passive at every speed (proven)
-``b``    β >= ½ + d and σ <  ½                            not passive at rest: cannot stop
-``c``    β <  ½ + d and σ <  ½                            no guarantee at any speed
-``d``    β <  ½ + d, σ >= ½ and margin < 0                no guarantee at this speed
-``e``    β <  ½ + d, σ >= ½ and margin >= 0               passive up to the critical speed (proven)
+``a``    β >= β₀ and σ >= σ₀                              passive at every speed (proven)
+``b``    β >= β₀ and σ <  σ₀                              no guarantee at rest (σ < ½: cannot stop)
+``c``    β <  β₀ and σ <  σ₀                              no guarantee at any speed
+``d``    β <  β₀, σ >= σ₀ and margin < 0                  no guarantee at this speed
+``e``    β <  β₀, σ >= σ₀ and margin >= 0                 passive up to the critical speed (proven)
 =======  ==============================================  ==================================
 
-with margin = (β − ½ − d)V + (σ − ½). Boundary points follow the non-strict
-inequalities: β = ½ + d belongs to a/b (the margin no longer falls with speed),
-σ = ½ to a/d/e, margin = 0 to e. Hence ``passive`` is exactly ``region in ("a", "e")``.
-The critical speed (eq. 12 generalised) is V_c = (σ − ½)/(½ + d − β): passive for
-every V <= V_c. Without quantization the σ-threshold ½ is replaced by 0 and regions
-b and c are empty. In region b (σ < ½) the paper (d = 0) observes stable sub-tick
-limit cycles; that is an observation, not part of the guarantee.
+with margin = (β − β₀)V + (σ − σ₀). Boundary points follow the non-strict inequalities: β = β₀ belongs to
+a/b (the margin no longer falls with speed), σ = σ₀ to a/d/e, margin = 0 to e. Hence ``passive`` is
+exactly ``region in ("a", "e")``. The critical speed (eq. 12 generalised) is V_c = (σ − σ₀)/(β₀ − β):
+passive for every V <= V_c. Without quantization σ₀ collects no quantization term (0 for the spring)
+and regions b and c are empty. In region b with σ < ½ the paper (d = 0) observes stable sub-tick limit
+cycles; that is an observation, not part of the guarantee.
 
 Examples
 --------
@@ -74,14 +118,18 @@ Examples
 3.072
 >>> passivity_criterion(beta=0.002, sigma=2.03, xi_dot=5.0).region
 'd'
->>> passivity_criterion(beta=0.8, sigma=0.8, xi_dot=5.0, delay=1).passive   # 0.8 < ½ + 1
+>>> passivity_criterion(beta=0.8, sigma=0.8, xi_dot=5.0, wall=WallParams.of(delay=1)).passive   # 0.8 < ½ + 1
 False
+>>> r = passivity_criterion(1.2, 1.0, 2.0, wall=WallParams.of(damping=0.3))
+>>> r.beta0, r.sigma0, r.region, r.passive            # β₀ = ½ + 0.3, σ₀ = ½ + 0.3
+(0.8, 0.8, 'a', True)
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
+from typing import ClassVar
 
 import numpy as np
 
@@ -94,7 +142,6 @@ from ..checks import (
     check_delay,
     check_mu,
     check_nonnegative,
-    check_positive,
     check_real,
     check_real_array,
     check_sigma,
@@ -103,7 +150,8 @@ from ..checks import (
 from ..core.energy import spring_energy_core
 from ..errors import DFATypeError, DFAValueError
 from ..model.device import Device
-from ..results.jsonable import explain_nulls, to_jsonable
+from ..model.wall import Wall, WallParams
+from ..results.base import Result
 from ..results.status import CriterionStatus
 
 __all__ = [
@@ -115,9 +163,10 @@ __all__ = [
     "equivalent_speed",
     "spring_energy",
     "REGION_DESCRIPTIONS",
+    "as_wall",
 ]
 
-#: One-line meaning of each region of paper Fig. 3 (text before the first colon: short label).
+#: One-line meaning of each region of paper Fig. 3 for the spring (text before the first colon: short label).
 #: Only a and e are guarantees; b, c, d say what is *not* guaranteed.
 REGION_DESCRIPTIONS = {s.region: s.message for s in CriterionStatus}
 
@@ -125,7 +174,7 @@ _REGION_CODES = np.array(["a", "b", "c", "d", "e"])
 
 
 def _anchor(quantized, delay):
-    """(σ₀, β₀) of the critical line: σ₀ = ½ with quantization (0 without), β₀ = ½ + d (broadcast)."""
+    """(σ₀, β₀) of the spring's critical line: σ₀ = ½ with quantization (0 without), β₀ = ½ + d (broadcast)."""
     return np.where(np.asarray(quantized, dtype=bool), 0.5, 0.0), 0.5 + np.asarray(delay, dtype=float)
 
 
@@ -195,7 +244,7 @@ class CriticalLine:
 
     A line through the corner (β₀, σ₀) with slope −V, where V is the (energy-equivalent) speed. For the
     paper's spring with a delay of d samples the corner is (½ + d, ½), or (½ + d, 0) without quantization
-    (:meth:`of`); a wall with a damper or a filter moves it (:mod:`dfa.analysis.wall_criterion`). Points
+    (:meth:`of`); a wall with a damper or a filter moves it (:mod:`dfa.analysis.criterion`). Points
     on or above the line satisfy the first inequality of the criterion (eq. 6 for the corner (½, ½)).
 
     Attributes
@@ -338,13 +387,13 @@ class CriticalLine:
 
 
 @dataclass(frozen=True)
-class CriterionResult:
-    """Outcome of the passivity criterion for one operating point, speed, delay and initial position.
+class CriterionResult(Result):
+    """Outcome of the passivity criterion for one operating point, speed, wall and initial position.
 
     Attributes
     ----------
     beta, sigma : float
-        Dimensionless damping and Coulomb friction (inputs).
+        Dimensionless damping β = b/(K T) and Coulomb friction σ = c/(K Δ) (inputs).
     xi_dot : float
         Speed abs(ξ'0) in encoder ticks per sample (input, made non-negative).
     quantized : bool
@@ -352,30 +401,30 @@ class CriterionResult:
     region : str
         ``"a"`` … ``"e"`` as in the module docstring.
     passive : bool
-        Whether the criterion holds (proven: the energy cannot grow); equals
-        ``region in ("a", "e")``.
+        Whether the criterion holds (proven: the energy cannot grow); equals ``region in ("a", "e")``.
     margin : float
-        (β − ½ − d)V + (σ − σ₀), σ₀ = ½ (or 0 without quantization).
+        (β − β₀)V + (σ − σ₀).
     critical_xi_dot : float or None
-        Eq. 12 generalised: the largest energy-equivalent speed V for which
-        the criterion holds, (σ − σ₀)/(½ + d − β), when β < ½ + d and σ >= σ₀;
-        None when it does not exist (regions a, b, c). With ξ0 = 0 it is the
-        critical initial speed abs(ξ'0).
+        Eq. 12 generalised: the largest energy-equivalent speed V for which the criterion holds,
+        (σ − σ₀)/(β₀ − β), when β < β₀ and σ >= σ₀; None when it does not exist (regions a, b, c). With
+        ξ0 = 0 it is the critical initial speed abs(ξ'0).
     critical_line : CriticalLine
-        The line of eq. 10 for this speed and delay.
+        The line of eq. 10 for this speed through the corner (β₀, σ₀).
     equivalent_speed : float
         V = sqrt(ξ'0² + 2H_c(ξ0)/μ) (ticks per sample); V = abs(ξ'0) when ξ0 = 0.
-    delay : int
-        Computational delay d in samples.
     xi0 : float
-        Initial position ξ0 in ticks.
+        Initial position ξ0 in ticks; the wall's past readings equal it.
     mu : float or None
         Dimensionless mass (needed only when ξ0 ≠ 0).
     status : CriterionStatus
-        The region's meaning: its ``message`` is :data:`REGION_DESCRIPTIONS` of the region.
-    device, stiffness, velocity, critical_velocity, position
-        Set by :func:`device_criterion`: the physical inputs and the critical
-        (energy-equivalent) speed in m/s (rad/s); otherwise None.
+        The region's meaning (:attr:`status_message` adds this case's corner and critical speed).
+    wall : WallParams
+        The wall's dimensionless groups (none for the paper's spring).
+    device : Device or None
+        The physical device, set by :func:`device_criterion`; None for dimensionless input.
+    stiffness, velocity, critical_velocity, position : float or None
+        Set by :func:`device_criterion`: K (N/m; N·m/rad), the speed and the critical (energy-equivalent)
+        speed (m/s; rad/s), the initial position (m; rad); otherwise None.
     """
 
     beta: float
@@ -388,72 +437,90 @@ class CriterionResult:
     critical_xi_dot: float | None
     critical_line: CriticalLine
     equivalent_speed: float
-    delay: int
     xi0: float
     mu: float | None
     status: CriterionStatus
-    device: Device | None = None
+    wall: WallParams = field(default_factory=WallParams)
+    device: Device | None = field(default=None, metadata={"json": lambda d: d.name})
     stiffness: float | None = None
     velocity: float | None = None
     critical_velocity: float | None = None
     position: float | None = None
 
-    def as_dict(self) -> dict[str, object]:
-        """JSON-ready summary (the ``dfa check --json`` contract plus extras).
-
-        Returns
-        -------
-        dict
-            Strict-JSON data: region, verdict, margin, inputs, status and its message, and the
-            physical values when set by :func:`device_criterion`.
-        """
-        out: dict[str, object] = {
-            "region": self.region,
-            "passive": self.passive,
-            "margin": self.margin,
-            "critical_xi_dot": self.critical_xi_dot,
-            "beta": self.beta,
-            "sigma": self.sigma,
-            "xi_dot": self.xi_dot,
-            "quantized": self.quantized,
-            "status": self.status,
-            "status_message": self.status.message,
-            "delay": self.delay,
-            "xi0": self.xi0,
-            "mu": self.mu,
-            "equivalent_speed": self.equivalent_speed,
-        }
-        if self.device is not None:
-            out.update(
-                device=self.device.name,
-                stiffness=self.stiffness,
-                velocity=self.velocity,
-                critical_velocity=self.critical_velocity,
-                position=self.position,
-            )
-        none = f"no critical speed: {self.status.message}"
-        why = {"critical_xi_dot": none, "critical_velocity": none, "stiffness": "dimensionless input: no stiffness"}
-        why.update(velocity="no speed in physical units given", position="no position in physical units given")
-        return explain_nulls(to_jsonable(out), why)
+    json_properties: ClassVar[tuple[str, ...]] = ("delay", "beta0", "sigma0")
+    units_of: ClassVar[dict[str, str]] = {
+        "stiffness": "stiffness", "velocity": "velocity", "critical_velocity": "velocity", "position": "position",
+    }  # fmt: skip
 
     def __post_init__(self) -> None:
+        fix = "build results with passivity_criterion"
         for name in ("beta", "sigma", "xi_dot", "margin", "equivalent_speed"):
             if math.isnan(getattr(self, name)):
-                raise DFAValueError(
-                    f"{name} = nan is invalid: results hold numbers; build results with passivity_criterion"
-                )
+                raise DFAValueError(f"{name} = nan is invalid: results hold numbers; {fix}")
+        check_type("wall", self.wall, WallParams, fix)
         status = CriterionStatus.coerce(self.status)
         object.__setattr__(self, "status", status)
         if self.region not in REGION_DESCRIPTIONS or status.region != self.region:
             raise DFAValueError(
                 f"status = {status.value!r} is invalid for region = {self.region!r}: they must agree "
-                "(CriterionStatus.of_region); build results with passivity_criterion"
+                f"(CriterionStatus.of_region); {fix}"
             )
         if self.passive != (self.region in ("a", "e")):
             raise DFAValueError(
-                f"passive = {self.passive!r} is invalid for region {self.region!r}: only regions a and e are passive; "
-                "build results with passivity_criterion"
+                f"passive = {self.passive!r} is invalid for region {self.region!r}: they must agree (only regions a "
+                f"and e are passive); {fix}"
             )
+
+    @property
+    def delay(self) -> int:
+        """Computational delay d in samples (the wall's)."""
+        return self.wall.delay
+
+    @property
+    def beta0(self) -> float:
+        """The corner's β₀: ½ + d for the spring, ½ + d + β_B with a damper."""
+        return self.critical_line.beta0
+
+    @property
+    def sigma0(self) -> float:
+        """The corner's σ₀: ½ for the spring (0 without the encoder), ½ + (1 − a)β_B with a damper."""
+        return self.critical_line.sigma0
+
+    @property
+    def status_message(self) -> str:
+        """The status message, with this case's corner (β₀, σ₀) (and critical speed) filled in for a wall.
+
+        Examples
+        --------
+        >>> passivity_criterion(0.2, 2.03, 5.0, wall=WallParams.of(damping=0.1)).status_message.split("; ")[-1]
+        'here β₀ = 0.6, σ₀ = 0.6, critical speed 3.575 ticks/sample'
+        """
+        if (self.beta0, self.sigma0) == (0.5 + self.delay, 0.5 if self.quantized else 0.0):
+            return self.status.message  # the spring's corner: the message says it
+        extra = f"here β₀ = {self.beta0:.6g}, σ₀ = {self.sigma0:.6g}"
+        if self.critical_xi_dot is not None:
+            extra += f", critical speed {self.critical_xi_dot:.6g} ticks/sample"
+        return f"{self.status.message}; {extra}"
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why each field may be null in JSON, by key.
+
+        Returns
+        -------
+        dict of str to str
+            Reasons for the critical speed, the physical inputs and μ.
+        """
+        none = f"no critical speed: {self.status.message}"
+        return {
+            "critical_xi_dot": none,
+            "critical_velocity": none,
+            "stiffness": "dimensionless input: no stiffness",
+            "velocity": "no speed in physical units given",
+            "position": "no position in physical units given",
+            "device": "dimensionless input: no device",
+            "mu": "not needed: the start is at ξ0 = 0",
+            "cutoff": "no velocity filter",
+        }
 
     def plot(self, ax=None, **kwargs):
         """The (β, σ) plane with regions a-e and this point (:func:`dfa.figures.regions_plot`); returns the Axes.
@@ -542,9 +609,8 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
 def region_of(b, s, v, s0, b0) -> np.ndarray:
     """Region letters a-e of (β, σ) at speed V for the critical line through (β₀, σ₀) (no validation, broadcast).
 
-    The one rule behind :func:`classify_region` and the controller's criterion
-    (:mod:`dfa.analysis.wall_criterion`): a (β >= β₀, σ >= σ₀), b (β >= β₀, σ < σ₀),
-    c (β < β₀, σ < σ₀), d/e (β < β₀, σ >= σ₀, margin < 0 / >= 0).
+    The one rule behind every verdict: a (β >= β₀, σ >= σ₀), b (β >= β₀, σ < σ₀), c (β < β₀, σ < σ₀),
+    d/e (β < β₀, σ >= σ₀, margin < 0 / >= 0).
     """
     with np.errstate(over="ignore"):  # an overflowing margin keeps its sign, which is all that is used
         margin = _margin(b, s, v, s0, b0)
@@ -558,21 +624,33 @@ def region_of(b, s, v, s0, b0) -> np.ndarray:
     return _REGION_CODES[idx]
 
 
+def _corner(wall: WallParams, quantized: bool) -> tuple[float, float]:
+    """(β₀, σ₀) of the wall, or the package's error naming the element no criterion covers."""
+    bad = wall.uncovered()
+    if bad is not None:
+        kind, g, why = bad
+        raise DFAValueError(
+            f"wall.{kind.parameter.group} = {_fmt(g)} is invalid for the passivity criterion: {why}; use the "
+            "simulated map dfa.stability_map (or the exact simulation) instead, or drop that element"
+        )
+    return wall.corner(quantized)
+
+
 def passivity_criterion(
     beta: float,
     sigma: float,
     xi_dot: float,
     *,
+    wall: WallParams | None = None,
     quantized: bool = True,
-    delay: int = 0,
     xi0: float = 0.0,
     mu: float | None = None,
 ) -> CriterionResult:
-    """Evaluate the passivity criterion (eq. 6, or eq. 7 without quantization), with delay and initial position.
+    """Evaluate the passivity criterion (eq. 6, or eq. 7 without quantization) for a wall and an initial position.
 
-    Passive when (β − ½ − d)V + (σ − σ₀) >= 0 and σ >= σ₀ (module docstring), with
-    V = sqrt(ξ'0² + 2H_c(ξ0)/μ) and σ₀ = ½ (0 without quantization). d = 0,
-    ξ0 = 0 is the paper's eq. 6 unchanged.
+    Passive when (β − β₀)V + (σ − σ₀) >= 0 and σ >= σ₀ (module docstring), with V = sqrt(ξ'0² + 2H_c(ξ0)/μ)
+    and the corner (β₀, σ₀) of the wall: (½ + d, ½) for the spring (σ₀ = 0 without quantization), moved by a
+    damper and a filter. The spring, d = 0, ξ0 = 0 is the paper's eq. 6 unchanged.
 
     Parameters
     ----------
@@ -581,15 +659,15 @@ def passivity_criterion(
     sigma : float
         Dimensionless Coulomb friction σ = c/(K Δ) >= 0.
     xi_dot : float
-        Largest speed of interest ξ'0 = ẋ0 T/Δ in encoder ticks per sample
-        (e.g. the impact speed); its sign is ignored.
+        Largest speed of interest ξ'0 = ẋ0 T/Δ in encoder ticks per sample (e.g. the impact speed); its
+        sign is ignored.
+    wall : WallParams, optional
+        The wall's dimensionless groups (computational delay d in samples, damper β_B, filter ν_c); default
+        the paper's spring. An amplifier lag is refused: no sound criterion covers it.
     quantized : bool, optional
         True (default) for eq. 6; False for the encoder-free eq. 7.
-    delay : int, optional
-        Computational delay d in whole samples (the force of sample h uses
-        the reading ξ(h − d)); default 0.
     xi0 : float, optional
-        Initial position ξ0 in ticks (default 0); the past readings equal ξ0.
+        Initial position ξ0 in ticks (default 0); the wall's past readings equal ξ0.
     mu : float, optional
         Dimensionless mass μ = m/(K T²); required when ``xi0`` is not 0.
 
@@ -601,18 +679,18 @@ def passivity_criterion(
     Raises
     ------
     DFAValueError, DFATypeError
-        If β, σ or μ is out of range or not a number, the speed or position is not a finite number,
-        the delay is not a whole number >= 0, or ``xi0`` is not 0 without ``mu``.
+        If β, σ or μ is out of range or not a number, the speed or position is not a finite number, the
+        wall is not a WallParams or holds an element no criterion covers, or ``xi0`` is not 0 without ``mu``.
 
     See Also
     --------
     device_criterion : The same criterion from physical values.
-    classify_region : The region letter over arrays of (β, σ, V, d).
+    classify_region : The spring's region letter over arrays of (β, σ, V, d).
     CriticalLine : The line of eq. 10.
     """
     b = check_beta(beta)
     s = check_sigma(sigma)
-    d = check_delay(delay)
+    w = WallParams() if wall is None else check_type("wall", wall, WallParams, "give WallParams.of(...) or None")
     xd = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
     x0 = check_real("xi0", xi0, "give the initial position in encoder ticks")
     m = None if mu is None else check_mu(mu)
@@ -620,45 +698,64 @@ def passivity_criterion(
         raise DFATypeError(
             f"quantized = {_fmt(quantized)} has type {type(quantized).__name__}: it must be True (eq. 6) or False (eq. 7)"
         )
-    v = equivalent_speed(xd, x0, m, quantized=quantized)
-    line = CriticalLine.of(v, quantized=quantized, delay=d)
-    s0, b0 = line.sigma0, line.beta0
-    margin = float(_margin(b, s, v, s0, b0))
-    region = str(classify_region(b, s, v, quantized, d))
-    critical = (s - s0) / (b0 - b) if (b < b0 and s >= s0) else None
+    q = bool(quantized)
+    v = equivalent_speed(xd, x0, m, quantized=q)
+    b0, s0 = _corner(w, q)
+    region = str(region_of(b, s, v, s0, b0))
     return CriterionResult(
         beta=b,
         sigma=s,
         xi_dot=xd,
-        quantized=bool(quantized),
+        quantized=q,
         region=region,
         passive=region in ("a", "e"),
-        margin=margin,
-        critical_xi_dot=critical,
-        critical_line=line,
+        margin=float(_margin(b, s, v, s0, b0)),
+        critical_xi_dot=(s - s0) / (b0 - b) if (b < b0 and s >= s0) else None,
+        critical_line=CriticalLine(v, b0, s0),
         equivalent_speed=v,
-        delay=d,
         xi0=x0,
         mu=m,
-        status=CriterionStatus.of_region(region),
+        # region b with the spring's σ₀ = ½: σ < ½, the force at rest exceeds σ and the device cannot stop
+        status=CriterionStatus.of_region(region, cannot_stop=s0 <= 0.5),
+        wall=w,
+    )
+
+
+def as_wall(wall: object) -> Wall:
+    """A :class:`~dfa.model.wall.Wall` from a wall or a stiffness K (the paper's spring), else the package's error.
+
+    Parameters
+    ----------
+    wall : Wall or float
+        A wall, or a stiffness K in N/m (rotary: N·m/rad) > 0 for the spring alone.
+
+    Returns
+    -------
+    Wall
+    """
+    if isinstance(wall, Wall):
+        return wall
+    if isinstance(wall, (int, float, np.integer, np.floating)) and not isinstance(wall, (bool, np.bool_)):
+        return Wall(wall)  # type: ignore[arg-type]  # Wall checks K (a finite number > 0)
+    raise DFATypeError(
+        f"wall = {_fmt(wall)} has type {type(wall).__name__}: it must be a dfa.Wall or a stiffness K in N/m; "
+        "give e.g. dfa.Wall.of(1000.0, damping=1.0), or 1000.0 for the spring alone"
     )
 
 
 def device_criterion(
-    device: Device, stiffness: float, velocity: float, *, delay: int = 0, position: float = 0.0, quantized: bool = True
+    device: Device, wall: Wall | float, velocity: float, *, position: float = 0.0, quantized: bool = True
 ) -> CriterionResult:
-    """Passivity criterion for a physical device, stiffness, speed, delay and initial position (paper eq. 11).
+    """Passivity criterion for a physical device, wall, speed and initial position (paper eq. 11, extended).
 
     Parameters
     ----------
     device : Device
         The physical device.
-    stiffness : float
-        Virtual spring stiffness K in N/m (rotary: N·m/rad).
+    wall : Wall or float
+        The wall (its stiffness K in N/m, rotary N·m/rad, and elements), or K alone for the paper's spring.
     velocity : float
         Largest speed of interest ẋ0 in m/s (rotary: rad/s); its sign is ignored.
-    delay : int, optional
-        Computational delay d in whole samples (default 0).
     position : float, optional
         Initial position x0 in m (rotary: rad), default 0; ξ0 = x0/Δ.
     quantized : bool, optional
@@ -667,14 +764,15 @@ def device_criterion(
     Returns
     -------
     CriterionResult
-        As :func:`passivity_criterion`, with ``device``, ``stiffness``, ``velocity``,
-        ``critical_velocity`` (m/s, rotary rad/s) and ``position`` set.
+        As :func:`passivity_criterion`, with ``device``, ``stiffness``, ``velocity``, ``critical_velocity``
+        (m/s, rotary rad/s) and ``position`` set.
 
     Raises
     ------
     DFAValueError, DFATypeError
-        If the stiffness is not > 0, the speed or position is not a finite number, the delay is
-        not a whole number >= 0, or (μ, β, σ) cannot be held in a float.
+        If the stiffness is not > 0, the speed or position is not a finite number, a filter cutoff is above
+        the Nyquist frequency, the wall holds an element no criterion covers (an amplifier lag), or
+        (μ, β, σ) cannot be held in a float.
 
     See Also
     --------
@@ -688,20 +786,19 @@ def device_criterion(
     >>> r = device_criterion(dev, 14500.0, 0.1)
     >>> r.region, round(r.critical_velocity, 4)
     ('e', 0.2765)
-    >>> device_criterion(dev, 14500.0, 0.1, delay=1).region
+    >>> device_criterion(dev, Wall.of(14500.0, delay=1), 0.1).region
+    'd'
+    >>> device_criterion(dev, Wall.of(14500.0, damping=5.0), 0.1).region     # B = 5 N·s/m
     'd'
     """
     check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+    w = as_wall(wall)
+    v = abs(check_real("velocity", velocity, "give the speed in m/s (rotary: rad/s)"))
     x0 = check_real("position", position, "give the initial position in m (rotary: rad)")
-    p = device.params(k)
-    xd = device.xi_dot(velocity)
-    r = passivity_criterion(p.beta, p.sigma, xd, quantized=quantized, delay=delay, xi0=x0 / device.resolution, mu=p.mu)
-    return replace(
-        r,
-        device=device,
-        stiffness=k,
-        velocity=abs(float(velocity)),
-        critical_velocity=None if r.critical_xi_dot is None else device.velocity(r.critical_xi_dot),
-        position=x0,
-    )
+    p = device.params(w.stiffness)
+    r = passivity_criterion(
+        p.beta, p.sigma, device.xi_dot(v), wall=w.params(device.period), quantized=quantized,
+        xi0=x0 / device.resolution, mu=p.mu,
+    )  # fmt: skip
+    crit = None if r.critical_xi_dot is None else device.velocity(r.critical_xi_dot)
+    return replace(r, device=device, stiffness=w.stiffness, velocity=v, critical_velocity=crit, position=x0)

@@ -6,7 +6,7 @@ the simulated critical impact speed, the simulated outcomes and trajectories, th
 operating point and the Nyquist locus, and returns a frozen :class:`DesignAnalysis`.
 
 With a wall controller (``controller=``, issue 15) every part that accepts one is computed with it: the passivity
-check (extended criterion and Colgate–Schenkel, :func:`dfa.analysis.wall_check.controller_check`), K_max with the
+check (extended criterion and Colgate–Schenkel, :func:`dfa.analysis.check.passivity_check`), K_max with the
 controller (:func:`dfa.analysis.limits.wall_kmax.controller_stiffness_limits`), the limit cycles, the simulations, the
 stability map, the Nyquist locus and the Z-width (on by default). The spring-only parts (the criterion of eq. 6
 and its stiffness limits and curve, the four-way design answer and the stiffness–speed chart) are not computed:
@@ -29,6 +29,7 @@ from ..model.device import Device, Params
 from ..model.wall import Wall, WallParams
 from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import DesignStatus
+from .check import PassivityCheck, passivity_check
 from .criterion import CriterionResult, device_criterion
 from .cycles import GrowthThreshold, growth_threshold
 from .limits.closed_form import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
@@ -40,7 +41,6 @@ from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, stability_map
 from .simulation import SimulationResult, divergence_bound, simulate
 from .validation import first_unstable_speed
-from .wall_check import ControllerCheck, controller_check
 
 __all__ = ["DesignAnalysis", "design_analysis"]
 
@@ -119,7 +119,7 @@ class DesignAnalysis:
     controller : Wall or None
         The wall controller of every simulation, limit cycle, map and the Z-width (its stiffness is K, its delay
         d); None: the paper's spring.
-    controller_check : ControllerCheck or None
+    controller_check : PassivityCheck or None
         With a controller: the extended criterion and Colgate–Schenkel at ẋ0 (not covered with an amplifier lag).
     controller_limits : ControllerStiffnessLimits or None
         With a controller and ẋ0 > 0: K_max with the controller (B, f_c, f_bw, d fixed).
@@ -152,7 +152,7 @@ class DesignAnalysis:
     samples: int = 30_000
     map_grid: int = 81
     controller: Wall | None = None
-    controller_check: ControllerCheck | None = None
+    controller_check: PassivityCheck | None = None
     controller_limits: ControllerStiffnessLimits | None = field(default=None, repr=False)
     status: DesignStatus = DesignStatus.OK
 
@@ -208,7 +208,7 @@ class DesignAnalysis:
                 raise DFAValueError(f"controller_check and controller_limits need a controller; {fix}")
             return
         check_type("controller", self.controller, Wall, fix)
-        check_type("controller_check", self.controller_check, ControllerCheck, fix)
+        check_type("controller_check", self.controller_check, PassivityCheck, fix)
         if self.controller_limits is not None:
             check_type("controller_limits", self.controller_limits, ControllerStiffnessLimits, fix)
         present = [n for n, _ in spring if getattr(self, n) is not None]
@@ -249,7 +249,7 @@ class DesignAnalysis:
         """``simulated_xi_dot`` in m/s (rotary rad/s), or None."""
         return None if self.simulated_xi_dot is None else self.device.velocity(self.simulated_xi_dot)
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """The numbers the report states, strict JSON data (SI units; speeds also in ticks/sample).
 
         Returns
@@ -278,35 +278,35 @@ class DesignAnalysis:
     def _controller_record(self) -> dict[str, Any]:
         assert self.controller is not None and self.controller_check is not None
         cp = self.controller.params(self.device.period)
-        ctl = to_jsonable({**self.controller.as_dict(), "dimensionless": cp.as_dict()})
+        ctl = to_jsonable({**self.controller.to_dict(), "dimensionless": cp.to_dict()})
         explain_nulls(ctl, {"filter_cutoff": "no velocity filter", "amplifier_bandwidth": "ideal amplifier (no lag)"})
         explain_nulls(ctl["dimensionless"], {"cutoff": "no velocity filter"})
         lim = None
         if self.controller_limits is not None:
-            lim = to_jsonable(self.controller_limits.as_dict())  # its nulls are explained (JSON pointers)
-        return {"controller": ctl, "controller_check": to_jsonable(self.controller_check.as_dict()),
+            lim = to_jsonable(self.controller_limits.to_dict())  # its nulls are explained (JSON pointers)
+        return {"controller": ctl, "controller_check": to_jsonable(self.controller_check.to_dict()),
                 "controller_limits": lim}  # fmt: skip
 
     def _record(self) -> dict[str, Any]:
         return to_jsonable(
             {
-                "device": self.device.as_dict(),
+                "device": self.device.to_dict(),
                 "stiffness": self.stiffness,
                 "velocity": self.velocity,
                 "delay": self.delay,
-                "params": self.params.as_dict(),
-                "criterion": None if self.criterion is None else self.criterion.as_dict(),
-                "limits": None if self.limits is None else self.limits.as_dict(),
-                "growth_thresholds": {m: g.as_dict() for m, g in self.thresholds},
-                "cycles": {m: g.result.as_dict() for m, g in self.thresholds},
+                "params": self.params.to_dict(),
+                "criterion": None if self.criterion is None else self.criterion.to_dict(),
+                "limits": None if self.limits is None else self.limits.to_dict(),
+                "growth_thresholds": {m: g.to_dict() for m, g in self.thresholds},
+                "cycles": {m: g.result.to_dict() for m, g in self.thresholds},
                 "simulated_xi_dot": self.simulated_xi_dot,
                 "simulated_velocity": self.simulated_velocity,
-                "outcome": self.outcome.as_dict(),
+                "outcome": self.outcome.to_dict(),
                 "high_xi_dot": self.high_xi_dot,
-                "outcome_high": self.outcome_high.as_dict(),
-                "stability_map": self.stability_map.as_dict(),
-                "design_answer": None if self.design_answer is None else self.design_answer.as_dict(),
-                "speed_chart": None if self.speed_chart is None else self.speed_chart.as_dict(),
+                "outcome_high": self.outcome_high.to_dict(),
+                "stability_map": self.stability_map.to_dict(),
+                "design_answer": None if self.design_answer is None else self.design_answer.to_dict(),
+                "speed_chart": None if self.speed_chart is None else self.speed_chart.to_dict(),
                 "zwidth": None if self.zwidth is None else _zwidth_record(self.zwidth),
                 "catalogue": self.catalogue,
                 "validation": self.validation,
@@ -320,7 +320,7 @@ class DesignAnalysis:
 
 def _zwidth_record(z: ZWidth) -> dict[str, Any]:
     """The Z-width's JSON with the meaning of a null in its per-B ``reason`` lists (no caveat at that B)."""
-    rec: dict[str, Any] = z.as_dict()
+    rec: dict[str, Any] = z.to_dict()
     for method in rec["boundaries"].values():
         explain_nulls(method, {"reason": "null: no caveat at that B (the value is plain)"})
     return rec
@@ -447,7 +447,7 @@ def design_analysis(
     Returns
     -------
     DesignAnalysis
-        Every number the design report states (frozen, JSON-able with ``as_dict()``).
+        Every number the design report states (frozen, JSON-able with ``to_dict()``).
 
     Raises
     ------
@@ -530,7 +530,7 @@ def resolve_controller(
 
 def _spring_parts(dev: Device, k: float, v: float, dl: int) -> dict[str, Any]:
     """The spring's criterion (eq. 6), stiffness limits and curve, with the design and critical speeds."""
-    crit = device_criterion(dev, k, v, delay=dl)
+    crit = device_criterion(dev, Wall.of(k, delay=dl), v)
     lim = stiffness_limits(dev, v, k, delay=dl)
     curve = stiffness_response(dev, stiffness=k, delay=dl)
     return dict(
@@ -540,7 +540,7 @@ def _spring_parts(dev: Device, k: float, v: float, dl: int) -> dict[str, Any]:
 
 def _controller_parts(dev: Device, ctl: Wall, v: float) -> dict[str, Any]:
     """The passivity check and K_max with the controller (no spring-only part), with the design and critical speeds."""
-    chk = controller_check(dev, ctl, v)
+    chk = passivity_check(dev, ctl, v)
     lim = controller_stiffness_limits(dev, ctl, v) if v > 0 else None
     crit_xi = None if chk.criterion is None else chk.criterion.critical_xi_dot
     return dict(

@@ -513,7 +513,7 @@ class StiffnessIntervals:
             )
         object.__setattr__(self, "status", LinearStatus.coerce(self.status))
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """Return a JSON-ready record (SI units).
 
         Returns
@@ -589,7 +589,7 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Wal
     if k_top is not None:  # the series' K_crit, formed without the possibly underflowing (b + B)T/m
         iv[0, 1] = k_top
     k_crit = float(iv[0, 1]) if status in (LinearStatus.INTERVAL, LinearStatus.SEVERAL) else 0.0
-    ctrl = {k: v for k, v in c.as_dict().items() if k != "stiffness"}
+    ctrl = {k: v for k, v in c.to_dict().items() if k != "stiffness"}
     return StiffnessIntervals(iv, k_crit, status, m, b, t, ctrl)
 
 
@@ -620,7 +620,7 @@ class StableRegion:
             raise DFAValueError("rows, k_crit and virtual_damping must have the same length; pass the computed values")
         object.__setattr__(self, "status", LinearStatus.coerce(self.status))
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """Return a JSON-ready record (SI units).
 
         Returns

@@ -390,7 +390,7 @@ class NyquistLocusResponse:
         object.__setattr__(self, "status", NyquistStatus.coerce(self.status))
         object.__setattr__(self, "crossings", tuple(self.crossings))
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record: inputs, crossings (M, ω, point) and the curves (complex as ``{"re", "im"}``).
 
         Returns
@@ -398,7 +398,7 @@ class NyquistLocusResponse:
         dict
             Strict-JSON data: inputs, crossings, curves, locus, status and detail.
         """
-        extra = {} if self.controller is None else {"controller": self.controller.as_dict()}
+        extra = {} if self.controller is None else {"controller": self.controller.to_dict()}
         return to_jsonable(
             {
                 **extra,

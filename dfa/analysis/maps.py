@@ -90,7 +90,6 @@ from .simulation import (
     preload_position,
     run_points,
 )
-from .wall_criterion import controller_anchor
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
 
@@ -187,7 +186,7 @@ class StabilityMap:
         """The criterion's critical line (eq. 10) at speed ``xi_dot`` for this map's loop; None where none applies.
 
         The spring's line through (½ + d, ½) (σ₀ = 0 without quantization), or with a controller the line of
-        the criterion extended to it (:func:`dfa.analysis.wall_criterion.controller_anchor`); None with an
+        the criterion extended to it (:meth:`dfa.model.wall.WallParams.corner`); None with an
         amplifier lag, which no criterion covers.
 
         Parameters
@@ -204,7 +203,7 @@ class StabilityMap:
             return CriticalLine.of(xi_dot, quantized=self.quantize, delay=self.delay)
         if self.controller.lag > 0:
             return None
-        b0, s0 = controller_anchor(self.controller, self.quantize)
+        b0, s0 = self.controller.corner(self.quantize)
         return CriticalLine(xi_dot, b0, s0)
 
     def plot(self, ax=None, **kwargs):
@@ -279,7 +278,7 @@ class StabilityMap:
         """
         return [{name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES)} for o in self.outcome]
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready summary (grid, settings and counts per speed).
 
         Returns
@@ -287,7 +286,7 @@ class StabilityMap:
         dict
             Strict-JSON data: μ, speeds, grid, settings, counts per speed, status and its message.
         """
-        ctl = {} if self.controller is None else {"controller": self.controller.as_dict()}
+        ctl = {} if self.controller is None else {"controller": self.controller.to_dict()}
         return to_jsonable(
             {
                 **ctl,

@@ -410,7 +410,7 @@ class EnergyRecord:
         for k in names[1:]:
             check_shape(k, getattr(self, k), self.generated.shape)
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record of the per-sample energies (NaN entries become null, with the reason)."""
         return to_jsonable(
             {
@@ -629,7 +629,7 @@ class SimulationResult:
         )
         return out
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready summary (the ``dfa simulate --json`` contract plus extras).
 
         Returns
@@ -662,7 +662,7 @@ class SimulationResult:
                 "samples": self.samples,
                 "delay": self.delay,
                 "quantize": self.quantize,
-                **({} if self.controller is None else {"controller": self.controller.as_dict()}),
+                **({} if self.controller is None else {"controller": self.controller.to_dict()}),
             }
         )
         return explain_nulls(record, self.null_reasons())
@@ -1029,7 +1029,7 @@ class SimulationBatch:
         """Outcome names of the runs, in order."""
         return [OUTCOMES[c] for c in self.outcome]
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready lists (non-finite numbers as None)."""
 
         def lst(a):
@@ -1046,7 +1046,7 @@ class SimulationBatch:
         out["envelope"] = [lst(row) for row in self.envelope]
         out["status"] = self.status
         if self.controller is not None:
-            out["controller"] = self.controller.as_dict()
+            out["controller"] = self.controller.to_dict()
         return out
 
 

@@ -53,6 +53,7 @@ from ..core import kernel
 from ..core.storage import storage_runs
 from ..errors import DFAValueError
 from ..formatting import markdown_table
+from ..model.wall import WallParams
 from ..results.jsonable import dumps
 from .criterion import CriticalLine, passivity_criterion
 from .soundness_counts import KINDS as KINDS
@@ -71,7 +72,7 @@ def run_samples(mu: float) -> int:
 
 def _passive(criterion: str, beta: float, sigma: float, xi_dot: float, xi0: float, mu: float, delay: int) -> bool:
     if criterion == "delay-aware":
-        return passivity_criterion(beta, sigma, xi_dot, delay=delay, xi0=xi0, mu=mu).passive
+        return passivity_criterion(beta, sigma, xi_dot, wall=WallParams.of(delay=delay), xi0=xi0, mu=mu).passive
     return passivity_criterion(beta, sigma, xi_dot).passive  # eq. 6 unchanged: d and ξ0 ignored
 
 
@@ -120,7 +121,7 @@ def sample_passive_points(
     b0 = 0.5 + d_crit
     for i in range(n):
         v = passivity_criterion(
-            0.0, 0.0, xd[i], delay=d_crit, xi0=x0[i] if crit == "delay-aware" else 0.0, mu=mu[i]
+            0.0, 0.0, xd[i], wall=WallParams.of(delay=d_crit), xi0=x0[i] if crit == "delay-aware" else 0.0, mu=mu[i]
         ).equivalent_speed
         k = kind[i]
         line = CriticalLine.of(v, delay=d_crit)

@@ -71,7 +71,7 @@ _JSON_ORDER = ("delay", "criterion", "points", "by_kind", "by_case", "energy_gre
 
 @dataclass(frozen=True, kw_only=True)
 class SoundnessCounts:
-    """The count of simulated points a criterion called passive: fields, validation, ``status``, ``as_dict``.
+    """The count of simulated points a criterion called passive: fields, validation, ``status``, ``to_dict``.
 
     Attributes
     ----------
@@ -122,7 +122,7 @@ class SoundnessCounts:
         """``SOUND`` when no simulated point violated the criterion, else ``VIOLATED``."""
         return SoundnessStatus.SOUND if self.violations == 0 else SoundnessStatus.VIOLATED
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record (an infinite growth becomes null, with the reason under ``null_reasons``).
 
         Returns

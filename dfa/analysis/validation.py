@@ -174,7 +174,7 @@ def controller_cycle_checks(points, samples: int = 40_000, models=("half-delay",
         for rec in cycle_checks(points, samples, models, controller=ctl):
             rec.update(
                 controller=name,
-                controller_params=ctl.as_dict(),
+                controller_params=ctl.to_dict(),
                 subtick=(not rec["stable"]) and rec["amplitude"] < SUBTICK_LIMIT,
             )
             out.append(rec)
@@ -390,7 +390,7 @@ class Soundness:
         """Share of the simulated points that come to rest (outcome ``"rest"``) the criterion rejects."""
         return self.rejected_rest / self.rest if self.rest else float("nan")
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record of the counts (conservatism null, with the reason, when no point came to rest)."""
         return to_jsonable({**self.__dict__, "conservatism": self.conservatism})
 
@@ -464,7 +464,7 @@ class ValidationResult:
     def __post_init__(self) -> None:
         object.__setattr__(self, "status", ValidationStatus.coerce(self.status))
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready key numbers (:meth:`summary`) and the status; NaN becomes null with its reason."""
         return to_jsonable({**self.summary(), "status": self.status, "status_message": self.status.message})
 
@@ -616,7 +616,7 @@ class ValidationResult:
             "controller_cycles": self.controller_cycle_summary(),
             "controller_errors": self.controller_errors(),
             "controllers": {
-                name: explain_nulls(ctl.as_dict(), {"cutoff": "no velocity filter"}) for name, ctl in CONTROLLERS
+                name: explain_nulls(ctl.to_dict(), {"cutoff": "no velocity filter"}) for name, ctl in CONTROLLERS
             },
         }
 

@@ -1,6 +1,6 @@
 """Soundness of the controller's passivity criterion by exact simulation (issue 15 item 2).
 
-:func:`dfa.analysis.wall_criterion.controller_criterion` claims that, when it calls a
+:func:`dfa.analysis.criterion.passivity_criterion` with a wall claims that, when it calls a
 point passive, the storage S = ½μξ'² + ½ξ² never exceeds its initial value. This
 module samples random points that a criterion calls passive, simulates each
 exactly with the package's simulator, :func:`dfa.simulate` with the controller
@@ -52,7 +52,6 @@ from ..model.wall import WallParams
 from .criterion import passivity_criterion
 from .simulation import simulate
 from .soundness_counts import SoundnessCounts, tally
-from .wall_criterion import controller_anchor, controller_criterion
 
 __all__ = [
     "ControllerSoundness",
@@ -75,16 +74,15 @@ def run_samples(mu: float) -> int:
 def _verdict(crit: str, b: float, s: float, xd: float, x0: float, mu: float, c: WallParams, q: bool):
     """(passive, V) of ``crit`` at one point."""
     if crit == "controller-aware":
-        r = controller_criterion(b, s, xd, c, quantized=q, xi0=x0, mu=mu)
+        r = passivity_criterion(b, s, xd, wall=c, quantized=q, xi0=x0, mu=mu)
         return r.passive, r.equivalent_speed
-    r2 = passivity_criterion(b, s, xd, quantized=q, delay=c.delay, xi0=x0, mu=mu)  # β_B and filter ignored
+    spring = WallParams.of(delay=c.delay)  # β_B and filter ignored
+    r2 = passivity_criterion(b, s, xd, wall=spring, quantized=q, xi0=x0, mu=mu)
     return r2.passive, r2.equivalent_speed
 
 
 def _corner(crit: str, c: WallParams, q: bool) -> tuple[float, float]:
-    if crit == "controller-aware":
-        return controller_anchor(c, q)
-    return 0.5 + c.delay, 0.5 if q else 0.0
+    return (c if crit == "controller-aware" else WallParams.of(delay=c.delay)).corner(q)
 
 
 def _draw_controllers(rng: np.random.Generator, n: int) -> dict[str, np.ndarray]:
@@ -279,7 +277,7 @@ def controller_soundness_markdown(results: list[ControllerSoundness]) -> str:
     lines.append(markdown_table(head, rows))
     lines += [
         "",
-        "*controller-aware*: `dfa.analysis.wall_criterion` ((β − β₀)V + (σ − σ₀) ≥ 0 and σ ≥ σ₀, β₀ = ½ + d + β_B,",
+        "*controller-aware*: `dfa.analysis.criterion` ((β − β₀)V + (σ − σ₀) ≥ 0 and σ ≥ σ₀, β₀ = ½ + d + β_B,",
         "σ₀ = ½ + (1 − a)β_B with the encoder, 0 without; V² = ξ'0² + 2H_c(ξ0)/μ).",
         "*damper-ignoring*: the spring's criterion with the delay (β₀ = ½ + d, σ₀ = ½): its violations show that the",
         "check can fail and that the damper must be paid for. A negative worst growth means the energy fell everywhere.",

@@ -196,7 +196,7 @@ class CatalogueEntry:
                 out.append(Discrepancy(key, text, value, diff / printed))
         return tuple(out)
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record: physical values, recomputed and printed (μ, β, σ), discrepancies.
 
         Returns

@@ -62,7 +62,7 @@ class Params:
         object.__setattr__(self, "beta", check_beta(self.beta))
         object.__setattr__(self, "sigma", check_sigma(self.sigma))
 
-    def as_dict(self) -> dict[str, float]:
+    def to_dict(self) -> dict[str, float]:
         """Return the three groups as a dictionary.
 
         Returns
@@ -312,7 +312,7 @@ class Device:
             )
         return self.coulomb / (s * self.resolution)
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """Physical values in SI units, with name and kind.
 
         Returns

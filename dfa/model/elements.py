@@ -7,7 +7,7 @@ rotary device uses rad, N·m, kg·m²) and states, as class attributes and class
 - its parameter, unit, command-line flag and dimensionless group beside paper Table 1 (:class:`Parameter`);
 - :meth:`Element.group`: that group for a sample period T and a stiffness K, validated;
 - :meth:`Element.corner`: its contribution to the corner (β₀, σ₀) of the passivity criterion (eq. 6 extended,
-  :mod:`dfa.analysis.wall_criterion`), or :class:`NotCovered` with the reason no sound criterion covers it;
+  :mod:`dfa.analysis.criterion`), or :class:`NotCovered` with the reason no sound criterion covers it;
 - :attr:`Element.colgate_schenkel`: why the Colgate–Schenkel condition does not cover it (None: it does);
 - :meth:`Element.kernel`: the arguments of the compiled simulator (:mod:`dfa.core.wall_kernel`) it sets;
 - :meth:`Element.command` and :meth:`Element.plant`: its transfer function, as polynomials of the exact
@@ -370,7 +370,7 @@ class Element(abc.ABC):
         """
         return 1.0
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """Give the element as JSON-able data.
 
         Returns
@@ -459,7 +459,7 @@ class Damper(Element):
     """A virtual damper B on the backward-difference velocity of the quantized position (N·s/m; N·m·s/rad).
 
     Group β_B = B/(K T). Adds β_B to β₀ and β_B times the velocity path's quantization gain to σ₀ (the
-    criterion's steps 3-4, :mod:`dfa.analysis.wall_criterion`); β_B (1 − z^{−1}) F(z) to H(z).
+    criterion's steps 3-4, :mod:`dfa.analysis.criterion`); β_B (1 − z^{−1}) F(z) to H(z).
 
     Attributes
     ----------
@@ -626,7 +626,7 @@ class AmplifierLag(Element):
         "lag", "α = τ_a/T",
     )  # fmt: skip
     colgate_schenkel: ClassVar[str | None] = (
-        "the Colgate–Schenkel condition assumes the hold drives the device directly"
+        "the Colgate–Schenkel condition assumes the zero-order hold drives the device directly"
     )
     #: With an amplifier lag a run costs about 18 times the spring's per sample (reports/benchmarks.md).
     sweep_points: ClassVar[int] = 150

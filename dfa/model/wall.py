@@ -40,6 +40,7 @@ from typing import Any
 
 from ..checks import _fmt, check_positive
 from ..errors import DFATypeError, DFAValueError
+from ..results.jsonable import explain_nulls
 from .elements import (
     ELEMENTS,
     MIN_CUTOFF,
@@ -231,7 +232,7 @@ class WallParams:
         """Give the corner (β₀, σ₀) of the criterion's critical line (eq. 6 extended).
 
         The spring's (½, ½), or (½, 0) without the encoder, plus every element's contribution
-        (:mod:`dfa.analysis.wall_criterion` derives them).
+        (:mod:`dfa.analysis.criterion` derives them).
 
         Parameters
         ----------
@@ -255,6 +256,21 @@ class WallParams:
             beta0, sigma0 = beta0 + db, sigma0 + ds
         return beta0, sigma0
 
+    def uncovered(self) -> tuple[type[Element], Any, str] | None:
+        """Find the first element no sound passivity criterion covers.
+
+        Returns
+        -------
+        tuple or None
+            (element class, its group, the reason), or None when the criterion covers the wall.
+        """
+        for k, g in self.groups:
+            try:
+                k.corner(g, quantized=True)
+            except NotCovered as why:
+                return k, g, str(why)
+        return None
+
     def not_covered(self) -> str | None:
         """Say why no sound passivity criterion covers this wall.
 
@@ -263,11 +279,8 @@ class WallParams:
         str or None
             The reason of the first element the criterion does not cover; None when it covers the wall.
         """
-        try:
-            self.corner()
-        except NotCovered as why:
-            return str(why)
-        return None
+        bad = self.uncovered()
+        return None if bad is None else bad[2]
 
     def colgate_schenkel_reason(self) -> str | None:
         """Say why the Colgate–Schenkel condition does not cover this wall.
@@ -366,7 +379,7 @@ class WallParams:
 
         return min([SWEEP_MAX_POINTS] + [k.sweep_points for k, _ in self.groups])
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """The groups as a JSON-able dictionary, every registered element's (its ``absent`` value when absent).
 
         Returns
@@ -376,7 +389,7 @@ class WallParams:
         """
         out = {k.parameter.group: self.group(k) for k in (Damper, Delay, VelocityFilter, AmplifierLag)}
         out.update({k.parameter.group: g for k, g in self.groups})
-        return out
+        return explain_nulls(out, {"cutoff": "no velocity filter"})
 
 
 @dataclass(frozen=True)
@@ -520,7 +533,7 @@ class Wall:
         t = check_positive("period", period, "give the sample period T in s (1 kHz: 0.001)")
         return WallParams(tuple((type(e), e.group(t, self.stiffness)) for e in self.elements))
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """The wall's physical parameters as a JSON-able dictionary.
 
         Returns
@@ -528,10 +541,12 @@ class Wall:
         dict
             Stiffness, damping, delay, filter cutoff and amplifier bandwidth (SI units, None where absent).
         """
-        return {
+        out = {
             "stiffness": self.stiffness,
             "damping": self.damping,
             "delay": self.delay,
             "filter_cutoff": self.filter_cutoff,
             "amplifier_bandwidth": self.amplifier_bandwidth,
         }
+        why = {"filter_cutoff": "no velocity filter", "amplifier_bandwidth": "ideal amplifier (no lag)"}
+        return explain_nulls(out, why)

@@ -15,9 +15,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..analysis.wall_check import LAG_WHY, NOT_COVERED, ControllerCheck
+from ..analysis.check import PassivityCheck
 from ..formatting import number
 from ..results.jsonable import explain_nulls, to_jsonable
+from ..results.status import CheckStatus
 
 __all__ = [
     "NOT_COVERED",
@@ -27,6 +28,15 @@ __all__ = [
     "controller_line",
     "controller_short",
 ]
+
+
+#: What a check says where no passivity criterion covers the wall (an amplifier lag).
+NOT_COVERED = CheckStatus.NOT_COVERED.message
+
+
+def not_covered_why(chk: PassivityCheck) -> str:
+    """Why the check is not covered: the reasons of the criterion and of Colgate–Schenkel, in one sentence."""
+    return "; ".join(chk.reasons[k] for k in ("criterion", "colgate_schenkel") if k in chk.reasons)
 
 
 def _g(x: float | None, digits: int = 4) -> str:
@@ -53,7 +63,7 @@ def controller_dict(controller: Any, period: float, units: dict[str, str]) -> di
         ``dimensionless`` {beta_B, nu_c, alpha, delay}.
     """
     p = controller.params(period)
-    out = dict(controller.as_dict())
+    out = dict(controller.to_dict())
     out["amplifier_time_constant"] = controller.amplifier_time_constant
     out["units"] = {
         "stiffness": units["stiffness"],
@@ -138,7 +148,7 @@ def controller_line(controller: Any, period: float, units: dict[str, str]) -> st
 
 
 def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
-    """The extended criterion's rows (:func:`dfa.analysis.wall_criterion.controller_criterion`)."""
+    """The extended criterion's rows (:func:`dfa.analysis.criterion.passivity_criterion` with a wall)."""
     crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
     if r.critical_velocity is not None:
         crit += f" ({r.critical_velocity:.4g} {vu})"
@@ -154,7 +164,7 @@ def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
     )
     return [
         ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
-        ["criterion", f"eq. 6 extended to the damper, filter and delay (dfa.analysis.wall_criterion): {rule}"],
+        ["criterion", f"eq. 6 extended to the damper, filter and delay (dfa.analysis.criterion): {rule}"],
         ["corner", corner],
         ["region", f"{r.region}: {r.status.message}"],
         ["passive", verdict],
@@ -163,33 +173,35 @@ def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
     ]
 
 
-def _colgate_rows(cs: Any, b: float, bu: str) -> list[list[str]]:
-    """The general Colgate–Schenkel condition (:func:`dfa.analysis.colgate_schenkel.colgate_schenkel_damping`)."""
-    if b > cs.damping_bound:
+def _colgate_rows(chk: PassivityCheck) -> list[list[str]]:
+    """The general Colgate–Schenkel condition (:func:`dfa.analysis.colgate_schenkel.colgate_schenkel_beta`)."""
+    cs, dev = chk.colgate_schenkel, chk.device
+    assert cs is not None and chk.colgate_schenkel_damping is not None and chk.colgate_schenkel_bound is not None
+    b, bu = dev.damping, dev.units["damping"]
+    if b > chk.colgate_schenkel_bound:
         verdict = "met: the linear sampled loop (no encoder, no Coulomb friction) is passive"
-    elif b <= cs.damping_min:
+    elif b <= chk.colgate_schenkel_damping:
         verdict = "not met: the linear sampled loop is not passive (necessary and sufficient for it)"
     else:
         verdict = "undecided: b lies within the rounding of the bound"
+    hz = cs.theta / dev.period / (2.0 * 3.141592653589793)
     return [
         [
             "Colgate–Schenkel",
-            f"b ≥ (T/2)·max_ω Re{{(1 − e^(−jωT))H(e^(jωT))}}/(1 − cos ωT) = {cs.damping_min:.4g} {bu} "
-            f"(at {cs.frequency:.4g} Hz); device b = {b:.4g} {bu}",
+            f"b ≥ (T/2)·max_ω Re{{(1 − e^(−jωT))H(e^(jωT))}}/(1 − cos ωT) = {chk.colgate_schenkel_damping:.4g} {bu} "
+            f"(at {hz:.4g} Hz); device b = {b:.4g} {bu}",
         ],
         ["linear passivity", verdict],
     ]
 
 
-def controller_check_rows(r: Any, cs: Any, vu: str) -> list[list[str]]:
+def controller_check_rows(chk: PassivityCheck, vu: str) -> list[list[str]]:
     """Rows of `dfa check` with a controller: the extended criterion (eq. 6) and Colgate–Schenkel.
 
     Parameters
     ----------
-    r : dfa.analysis.wall_criterion.ControllerCriterionResult
-        The extended criterion at the device's operating point (device set).
-    cs : dfa.analysis.colgate_schenkel.ColgateSchenkelDamping
-        The general Colgate–Schenkel condition for the same controller.
+    chk : PassivityCheck
+        The check, covered (criterion and Colgate–Schenkel computed).
     vu : str
         Velocity unit.
 
@@ -198,20 +210,22 @@ def controller_check_rows(r: Any, cs: Any, vu: str) -> list[list[str]]:
     list of list of str
         Table rows; every verdict says what is proven and by which condition.
     """
+    r = chk.criterion
+    assert r is not None and r.device is not None
     speed = f"{r.xi_dot:.4g} ticks/sample" + (f" ({r.velocity:.4g} {vu})" if r.velocity is not None else "")
     rows = [["β, σ", f"{r.beta:.4g}, {r.sigma:.4g}"], ["speed |ξ'0|", speed]]
     if r.xi0 != 0.0:
         rows.append(["initial position ξ0", f"{r.xi0:.4g} ticks ({r.position:.4g} {r.device.units['position']})"])
     rows += _criterion_rows(r, vu)
-    return rows + _colgate_rows(cs, r.device.damping, r.device.units["damping"])
+    return rows + _colgate_rows(chk)
 
 
-def check_table_rows(chk: ControllerCheck) -> list[list[str]]:
-    """The table of `dfa check` (and of the design report) for a :class:`~dfa.analysis.wall_check.ControllerCheck`.
+def check_table_rows(chk: PassivityCheck) -> list[list[str]]:
+    """The table of `dfa check` (and of the design report) for a :class:`~dfa.analysis.wall_check.PassivityCheck`.
 
     Parameters
     ----------
-    chk : ControllerCheck
+    chk : PassivityCheck
         The passivity check with the controller.
 
     Returns
@@ -221,10 +235,10 @@ def check_table_rows(chk: ControllerCheck) -> list[list[str]]:
         "not covered" and why.
     """
     dev = chk.device
-    if chk.criterion is None or chk.colgate_schenkel is None:
+    if chk.criterion is None or chk.colgate_schenkel_damping is None:
         speed = f"{chk.velocity:.4g} {dev.units['velocity']}"
-        return [["speed", speed], ["passive", NOT_COVERED], ["why", LAG_WHY]]
-    return controller_check_rows(chk.criterion, chk.colgate_schenkel, dev.units["velocity"])
+        return [["speed", speed], ["passive", NOT_COVERED], ["why", not_covered_why(chk)]]
+    return controller_check_rows(chk, dev.units["velocity"])
 
 
 def controller_rows(controller: Any, period: float, units: dict[str, str]) -> list[list[str]]:

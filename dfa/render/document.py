@@ -73,7 +73,7 @@ def _simulated_text(a: DesignAnalysis) -> str:
 
 def controller_verdict_text(a: DesignAnalysis) -> str:
     """The verdict with a wall controller: the extended criterion (or "not covered"), its K_max, simulation."""
-    from .controller import LAG_WHY, NOT_COVERED
+    from .controller import NOT_COVERED, not_covered_why
 
     dev, u, ctl, chk = a.device, a.device.units, a.controller, a.controller_check
     assert ctl is not None and chk is not None
@@ -84,7 +84,7 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
     )
     r = chk.criterion
     if r is None:
-        text += f"**{NOT_COVERED}**: {LAG_WHY}. "
+        text += f"**{NOT_COVERED}**: {not_covered_why(chk)}. "
     else:
         verdict = (
             "passive (proven: the energy cannot grow)"

@@ -56,7 +56,7 @@ def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
     Returns
     -------
     dict
-        The strict-JSON summary written to ``validation.json`` (:meth:`ValidationResult.as_dict`: the
+        The strict-JSON summary written to ``validation.json`` (:meth:`ValidationResult.to_dict`: the
         summary, NaN as null with ``null_reasons``, and the status).
     """
     import matplotlib
@@ -67,7 +67,7 @@ def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
     from .. import figures
 
     os.makedirs(out, exist_ok=True)
-    summary = result.as_dict()
+    summary = result.to_dict()
     figs = {}
     with staged_folder(out) as stage:
         for key, fn in (("cycles", figures.cycle_error_plot), ("speeds", figures.critical_speed_plot)):

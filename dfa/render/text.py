@@ -184,12 +184,12 @@ def limit_cycle_lines(g: Any, device: Any, phys: dict | None = None) -> list[str
 
 
 def limit_cycles_dict(g: Any, phys: dict | None = None) -> dict[str, object]:
-    """JSON of `dfa limit-cycles`: the cycle search (:meth:`LimitCycleResult.as_dict`) and its growth threshold.
+    """JSON of `dfa limit-cycles`: the cycle search (:meth:`LimitCycleResult.to_dict`) and its growth threshold.
 
     With ``phys`` (:meth:`LimitCycleResult.physical`) each cycle carries both: ticks, rad/sample and m (rad), Hz,
     s, N (N·m), and the record gains the device, K and force step.
     """
-    d = g.result.as_dict()
+    d = g.result.to_dict()
     d["growth_threshold"] = _growth_dict(g)
     if phys is not None:
         phys = dict(phys)
@@ -202,7 +202,7 @@ def limit_cycles_dict(g: Any, phys: dict | None = None) -> dict[str, object]:
 
 def _growth_dict(g: Any) -> dict[str, Any]:
     """The growth threshold's JSON, every null with its reason (no band predicted, or no device for units)."""
-    out = g.as_dict()
+    out = g.to_dict()
     none = f"no growth band: {g.status.message}"
     nodev = none if g.amplitude is None else "no device given: physical values need one"
     why = dict.fromkeys(("amplitude", "frequency", "xi_dot", "grows_above"), none)

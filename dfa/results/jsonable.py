@@ -99,8 +99,8 @@ def _walk(obj: Any, path: str, reasons: dict[str, str]) -> Any:
         return _array(obj)
     if isinstance(obj, os.PathLike):
         return os.fspath(obj)
-    if hasattr(obj, "as_dict") and callable(obj.as_dict):
-        return to_jsonable(obj.as_dict())
+    if hasattr(obj, "to_dict") and callable(obj.to_dict):
+        return to_jsonable(obj.to_dict())
     if isinstance(obj, dict):
         return _dict(obj)
     if isinstance(obj, (list, tuple)):
@@ -126,7 +126,7 @@ def to_jsonable(obj: Any) -> Any:
     ----------
     obj : object
         Numbers, text, None, enums, numpy scalars and arrays, paths, dicts,
-        lists, tuples, results with ``as_dict()`` and dataclasses, nested.
+        lists, tuples, results with ``to_dict()`` and dataclasses, nested.
 
     Returns
     -------

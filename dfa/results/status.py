@@ -25,7 +25,7 @@ from ..errors import DFAValueError
 __all__ = [
     "StatusEnum",
     "CriterionStatus",
-    "ControllerCriterionStatus",
+    "CheckStatus",
     "StiffnessStatus",
     "VelocityStatus",
     "CurveStatus",
@@ -79,11 +79,21 @@ class StatusEnum(str, enum.Enum):
 
 
 class CriterionStatus(StatusEnum):
-    """Meaning of the region of paper Fig. 3 (eq. 6, 10) in which an operating point lies."""
+    """Meaning of the region of paper Fig. 3 (eq. 6, 10) in which an operating point lies, for any covered wall.
+
+    The regions a-e of the (β, σ) plane around the corner (β₀, σ₀) of the criterion's critical line: (½ + d, ½)
+    for the paper's spring with a delay of d samples, moved by a damper or a filter
+    (:mod:`dfa.analysis.criterion`). Region b has two meanings: with σ < ½ the device cannot stop (the force
+    at rest is at least ½ in units of KΔ), with ½ <= σ < σ₀ the criterion gives no guarantee at rest.
+    """
 
     PASSIVE_ALL_SPEEDS = (
         "passive_all_speeds",
-        "passive at every speed: the energy cannot grow (proven; β >= ½ + d, σ >= ½)",
+        "passive at every speed: the energy cannot grow (proven; β >= β₀ and σ >= σ₀)",
+    )
+    NO_GUARANTEE_AT_REST = (
+        "no_guarantee_at_rest",
+        "no passivity guarantee even at rest: σ < σ₀ (not a proof of instability; sub-tick chatter possible)",
     )
     NOT_PASSIVE_AT_REST = (
         "not_passive_at_rest",
@@ -91,7 +101,7 @@ class CriterionStatus(StatusEnum):
     )
     NO_GUARANTEE = (
         "no_guarantee",
-        "no passivity guarantee at any speed: σ < ½ and β < ½ + d (not a proof of instability)",
+        "no passivity guarantee at any speed: σ < σ₀ and β < β₀ (not a proof of instability)",
     )
     ABOVE_CRITICAL_SPEED = (
         "above_critical_speed",
@@ -105,52 +115,32 @@ class CriterionStatus(StatusEnum):
     @property
     def region(self) -> str:
         """The region letter ``"a"`` … ``"e"`` of paper Fig. 3."""
-        return "abcde"[list(CriterionStatus).index(self)]
+        return _REGIONS[self.value]
 
     @classmethod
-    def of_region(cls, region: str) -> CriterionStatus:
-        """The status of region ``"a"`` … ``"e"``."""
-        return list(cls)["abcde".index(region)]
+    def of_region(cls, region: str, *, cannot_stop: bool = True) -> CriterionStatus:
+        """The status of region ``"a"`` … ``"e"``; in region b, ``cannot_stop`` (σ < ½) picks which meaning."""
+        if region == "b":
+            return cls.NOT_PASSIVE_AT_REST if cannot_stop else cls.NO_GUARANTEE_AT_REST
+        return next(s for s in cls if s.region == region)
 
 
-class ControllerCriterionStatus(StatusEnum):
-    """Meaning of the region of an operating point for the controller's criterion (:mod:`dfa.analysis.wall_criterion`).
+_REGIONS = {
+    "passive_all_speeds": "a",
+    "no_guarantee_at_rest": "b",
+    "not_passive_at_rest": "b",
+    "no_guarantee": "c",
+    "above_critical_speed": "d",
+    "passive_below_critical_speed": "e",
+}
 
-    The regions of paper Fig. 3 with the corner moved to (β₀, σ₀): β₀ = ½ + d + β_B and
-    σ₀ = ½ + (1 − a)β_B with the encoder (0 without), a = e^{−2πν_c} (0 without filter).
-    The result's ``status_message`` gives the numbers of the case at hand.
-    """
 
-    PASSIVE_ALL_SPEEDS = (
-        "passive_all_speeds",
-        "passive at every speed: the energy cannot grow (proven; β >= β₀ and σ >= σ₀)",
-    )
-    NO_GUARANTEE_AT_REST = (
-        "no_guarantee_at_rest",
-        "no passivity guarantee even at rest: σ < σ₀ (not a proof of instability; sub-tick chatter possible)",
-    )
-    NO_GUARANTEE = (
-        "no_guarantee",
-        "no passivity guarantee at any speed: σ < σ₀ and β < β₀ (not a proof of instability)",
-    )
-    ABOVE_CRITICAL_SPEED = (
-        "above_critical_speed",
-        "no passivity guarantee at this speed: above the critical speed (σ − σ₀)/(β₀ − β) (not a proof of instability)",
-    )
-    PASSIVE_BELOW_CRITICAL_SPEED = (
-        "passive_below_critical_speed",
-        "passive up to the critical speed (σ − σ₀)/(β₀ − β): the energy cannot grow (proven)",
-    )
+class CheckStatus(StatusEnum):
+    """Verdict of the passivity check of a device with a wall (:class:`dfa.analysis.check.PassivityCheck`)."""
 
-    @property
-    def region(self) -> str:
-        """The region letter ``"a"`` … ``"e"`` (paper Fig. 3 with the corner at (β₀, σ₀))."""
-        return "abcde"[list(ControllerCriterionStatus).index(self)]
-
-    @classmethod
-    def of_region(cls, region: str) -> ControllerCriterionStatus:
-        """The status of region ``"a"`` … ``"e"``."""
-        return list(cls)["abcde".index(region)]
+    PASSIVE = ("passive", "passive: the criterion (eq. 6) proves the energy cannot grow up to this speed")
+    NO_GUARANTEE = ("no_guarantee", "no passivity guarantee at this speed (not a proof of instability)")
+    NOT_COVERED = ("not_covered", "not covered by the criterion; see `dfa map`/`dfa zwidth`")
 
 
 class StiffnessStatus(StatusEnum):

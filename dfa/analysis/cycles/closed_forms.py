@@ -125,7 +125,7 @@ def _check_spring(controller: object) -> None:
     ctl = check_type("controller", controller, WallParams, "give dfa.WallParams.of(...) or None")
     if not (ctl.is_spring and ctl.delay == 0):
         raise DFAValueError(
-            f"controller = {ctl.as_dict()} is invalid here: the paper's closed forms (eq. 42-45) hold for the "
+            f"controller = {ctl.to_dict()} is invalid here: the paper's closed forms (eq. 42-45) hold for the "
             "pure spring without computational delay only; use dfa.limit_cycles(params, controller=...) "
             "(the numeric harmonic-balance solver) instead"
         )

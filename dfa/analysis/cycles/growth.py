@@ -124,7 +124,7 @@ class GrowthThreshold:
             f"inside it, whether an oscillation grows depends on its initial condition; {above}.{tail}"
         )
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record (``dfa limit-cycles --json``, key ``growth_threshold``)."""
         out = to_jsonable(
             {

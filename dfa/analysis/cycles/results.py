@@ -86,7 +86,7 @@ class LimitCycle:
             xi_dot=self.amplitude * self.frequency,
         )
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record of the cycle.
 
         Returns
@@ -218,7 +218,7 @@ class LimitCycleResult:
 
         return {**unit_context(device, stiffness), "cycles": [c.physical(device, stiffness) for c in self.cycles]}
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record (the ``dfa limit-cycles --json`` contract plus extras).
 
         Returns
@@ -226,11 +226,11 @@ class LimitCycleResult:
         dict
             Strict-JSON data: the cycles, inputs, completeness, status and detail.
         """
-        extra = {} if self.controller is None else {"controller": self.controller.as_dict()}
+        extra = {} if self.controller is None else {"controller": self.controller.to_dict()}
         out = to_jsonable(
             {
                 **extra,
-                "cycles": [c.as_dict() for c in self.cycles],
+                "cycles": [c.to_dict() for c in self.cycles],
                 "mu": self.params.mu,
                 "beta": self.params.beta,
                 "sigma": self.params.sigma,

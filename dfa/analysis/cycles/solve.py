@@ -226,7 +226,7 @@ def limit_cycles(
     if code is SearchStatus.NUMERICAL:
         warnings.warn(
             f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}"
-            + (f", controller {ctl.as_dict()}" if ctl is not None else "")
+            + (f", controller {ctl.to_dict()}" if ctl is not None else "")
             + f"): {status}",
             LimitCycleSearchWarning,
             stacklevel=2,

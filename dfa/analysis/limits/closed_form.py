@@ -46,6 +46,7 @@ import numpy as np
 from ...checks import check_delay, check_positive, check_real_array, check_speed, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
+from ...model.wall import Wall
 from ...results.frozen import check_shape, freeze_fields
 from ...results.jsonable import explain_nulls, to_jsonable
 from ...results.status import CurveStatus, StiffnessStatus, VelocityStatus
@@ -342,7 +343,7 @@ def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> fl
     k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     # one implementation: the criterion's own critical speed (eq. 12), so that this speed and the
     # verdict of device_criterion agree to rounding even where K T(½ + d) − b cancels
-    r = device_criterion(dev, k, 0.0, delay=check_delay(delay))
+    r = device_criterion(dev, Wall.of(k, delay=check_delay(delay)), 0.0)
     if r.region in ("b", "c"):
         return None
     if r.region == "a":
@@ -464,7 +465,7 @@ class StiffnessLimits:
             "not a proof of instability"
         )
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record (the ``dfa stiffness --json`` contract plus extras).
 
         Returns
@@ -634,7 +635,7 @@ class StiffnessResponse:
         check_shape("k_max", self.k_max, self.velocity.shape)
         object.__setattr__(self, "status", CurveStatus.coerce(self.status))
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record: speeds, K_max and the bounds (device units, see ``device.units``).
 
         Returns

@@ -255,7 +255,7 @@ class KSearch:
         if self.value is not None and not (math.isfinite(self.value) and self.value > 0):
             raise DFAValueError(f"value = {self.value!r} is invalid: a stiffness limit must be finite and > 0")
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record of the search and its evidence (nulls with their reason).
 
         Returns
@@ -280,7 +280,7 @@ class KSearch:
         return explain_nulls(out, self.null_reasons())
 
     def null_reasons(self) -> dict[str, str]:
-        """Why each field of :meth:`as_dict` may be null, by key.
+        """Why each field of :meth:`to_dict` may be null, by key.
 
         Returns
         -------
@@ -392,7 +392,7 @@ class KMaxAssessment:
     passive_reason: str | None = None
     growth_reason: str | None = None
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         def fin(x):
             return None if x is None or math.isinf(x) else x
 
@@ -929,9 +929,9 @@ class _SearchedLimits:
         )
         return {
             "evidence": evidence,
-            "searches": {k: s.as_dict() for k, s in self.searches.items()},
+            "searches": {k: s.to_dict() for k, s in self.searches.items()},
             "counterexamples": [dict(c) for c in self.counterexamples],
-            "assessment": None if self.assessment is None else self.assessment.as_dict(),
+            "assessment": None if self.assessment is None else self.assessment.to_dict(),
         }
 
 
@@ -1022,7 +1022,7 @@ class KMaxResult(_SearchedLimits):
         if self.status not in ("ok", "caveats", "counterexample"):
             raise DFAValueError(f"status = {self.status!r} is invalid: it must be ok, caveats or counterexample")
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record: the four limits (null with a reason), the bounds, the evidence.
 
         Returns
@@ -1058,16 +1058,16 @@ def _passive_speed(dev: Device, k: float, delay: int, controller: Wall | None) -
     """Largest speed the criterion proves passive at K (inf: every speed; None: none), and why None.
 
     The spring: eq. 11-12 (:func:`dfa.analysis.limits.closed_form.max_passive_velocity`). A controller without amplifier
-    lag: the extended criterion (:mod:`dfa.analysis.wall_criterion`), passive up to (σ − σ₀)/(β₀ − β) ticks per
+    lag: the extended criterion (:mod:`dfa.analysis.criterion`), passive up to (σ − σ₀)/(β₀ − β) ticks per
     sample when σ >= σ₀. With a lag there is no sound criterion (None and the reason).
     """
     if controller is None:
         return max_passive_velocity(dev, k, delay), None
     if controller.amplifier_bandwidth is not None:
         return None, "no sound passivity criterion with an amplifier lag"
-    from ..wall_criterion import device_controller_criterion
+    from ..criterion import device_criterion
 
-    r = device_controller_criterion(dev, dataclasses.replace(controller, stiffness=k), 0.0)
+    r = device_criterion(dev, controller.with_stiffness(k), 0.0)
     if r.sigma < r.sigma0:
         return None, f"no passivity guarantee even at rest (σ = {r.sigma:.4g} < σ₀ = {r.sigma0:.4g})"
     return (math.inf if r.critical_velocity is None else r.critical_velocity), None

@@ -146,7 +146,7 @@ class StiffnessSpeedChart:
 
         return stiffness_speed_plot(self, ax)
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record (NaN as null).
 
         Returns

@@ -3,7 +3,7 @@
 With the controller's physical B, f_c, τ_a and d held fixed (so β_B = B/(KT) falls as K grows):
 
 * ``k_criterion``: the largest K at which the criterion of eq. 6 extended to the damper, filter and
-  delay (:func:`dfa.analysis.wall_criterion.device_controller_criterion`) proves an impact at the speed
+  delay (:func:`dfa.analysis.criterion.device_criterion`) proves an impact at the speed
   passive. In physical form (eq. 11 extended) both of its conditions are linear and decreasing in K, so
   the passive K form an interval (0, K*]; K* is found by bisection on the criterion's own verdict (no
   second copy of the formula). Not covered with an amplifier lag (no sound criterion): None and why.
@@ -38,7 +38,7 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -47,8 +47,8 @@ from ...errors import DFATypeError, DFAValueError
 from ...model.device import Device
 from ...model.wall import Wall
 from ...results.jsonable import explain_nulls
+from ..criterion import device_criterion
 from ..linear_wall import stable_stiffness
-from ..wall_criterion import device_controller_criterion
 from .closed_form import k_colgate, k_gil, k_max_criterion, k_static
 from .kmax import (
     DESIGN_MAX_SAMPLES,
@@ -169,7 +169,7 @@ class ControllerStiffnessLimits(_SearchedLimits):
         """
         return super().evidence_text() + "; each K with its own β_B = B/(KT), filter, lag and delay held fixed"
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record (SI units): the limits (null with a reason), the evidence, status.
 
         Returns
@@ -199,7 +199,7 @@ class ControllerStiffnessLimits(_SearchedLimits):
 def _passive(dev: Device, ctl: Wall, k: float, v: float) -> bool:
     """The criterion's verdict at stiffness k; a K whose groups are not representable is not proven passive."""
     try:
-        return device_controller_criterion(dev, replace(ctl, stiffness=k), v).passive
+        return device_criterion(dev, ctl.with_stiffness(k), v).passive
     except DFAValueError:
         return False
 

@@ -16,7 +16,7 @@ at each B the largest K is found four ways:
     the largest K with b above the certified ``damping_bound`` (the linear
     model's passivity, no encoder); and ``criterion``: the passivity criterion
     of eq. 6 extended to the damper, filter and delay
-    (:func:`dfa.analysis.wall_criterion.device_controller_criterion`), a proof for
+    (:func:`dfa.analysis.criterion.device_criterion`), a proof for
     the quantized device with Coulomb friction for impacts up to V. Both
     refuse an amplifier lag: then they are "not covered" (null with that
     reason), never guessed.
@@ -85,6 +85,7 @@ from ...results.codes import BOUNDED, DIVERGES, POINT_OUTCOMES, REST, UNDECIDED_
 from ...results.jsonable import explain_nulls
 from ...results.status import ZWidthStatus
 from ..colgate_schenkel import colgate_schenkel_damping
+from ..criterion import device_criterion
 from ..linear_wall import LinearStatus, stable_stiffness
 from ..simulation import (
     GROWTH,
@@ -96,7 +97,6 @@ from ..simulation import (
     preload_position,
     run_points,
 )
-from ..wall_criterion import device_controller_criterion
 from .kmax import DIVERGENCE_BOUND, K_RTOL, SAFE, UNDECIDED, UNSAFE, _growth_xi_dot, df_verdict
 
 __all__ = ["ZWidth", "z_width", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
@@ -219,7 +219,7 @@ class ZWidth:
             raise DFAValueError(f"method = {method!r} is invalid: it must be one of {', '.join(ZWIDTH_METHODS)}")
         return self.boundaries[method]
 
-    def as_dict(self) -> dict[str, object]:
+    def to_dict(self) -> dict[str, object]:
         """JSON-ready record: inputs, grids, K_max(B) per method (null with a reason), outcomes, status.
 
         Returns
@@ -333,7 +333,7 @@ def _passivity_judges(dev: Device, b: float, v: float, d: int, fc, fbw):
 
     def crit(k: float) -> str:
         try:
-            r = device_controller_criterion(dev, _ctl(k, b, d, fc, fbw), v)
+            r = device_criterion(dev, _ctl(k, b, d, fc, fbw), v)
         except DFAValueError:  # a group not representable at this K: no proof there
             return UNSAFE
         return SAFE if r.passive else UNSAFE
@@ -558,7 +558,7 @@ def z_width(
     See Also
     --------
     dfa.analysis.linear_wall.stable_stiffness : The exact linear bound at one B.
-    dfa.analysis.wall_criterion.device_controller_criterion : The extended eq. 6 criterion.
+    dfa.analysis.criterion.device_criterion : The extended eq. 6 criterion.
     dfa.analysis.limits.kmax.design_answer : The four K_max of the spring (B = 0).
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
