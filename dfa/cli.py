@@ -27,7 +27,6 @@ from typing import Any
 
 from ._io import check_output_file, check_output_folder, written_paths
 from .analysis.criterion import device_criterion, passivity_criterion
-from .analysis.limits.closed_form import stiffness_limits
 from .checks import MAX_DELAY, check_beta, check_mu, check_real, check_sigma, check_speed
 from .errors import DFAError, DFAValueError
 from .formatting import number, text_table
@@ -321,9 +320,11 @@ def _check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
         )
 
 
-def _ctl_params(ctl: Wall | None, inp: _Inputs) -> WallParams | None:
-    """The dimensionless controller of a run (None: the spring)."""
-    return None if ctl is None or inp.device is None else ctl.params(inp.device.period)
+def _wall_params(args: argparse.Namespace, ctl: Wall | None, inp: _Inputs | None) -> WallParams:
+    """The dimensionless wall of a run: the controller's groups, else the spring with the --delay."""
+    if ctl is None or inp is None or inp.device is None:
+        return WallParams.of(delay=args.delay)
+    return ctl.params(inp.device.period)
 
 
 def _ctl_json(d: dict[str, Any], ctl: Wall | None, inp: _Inputs) -> dict[str, Any]:
@@ -627,193 +628,54 @@ def _stiffness_source(args: argparse.Namespace, inp: _Inputs) -> str | None:
     return "catalogue" if inp.stiffness is not None else None
 
 
-def _design_rows(ans, vu: str) -> list[list[str]]:
-    from .render.text import limit_text
-
-    """Rows of `dfa stiffness` for the describing-function and simulated limits and a chosen K."""
-    ku = ans.device.units["stiffness"]
-    rows = [
-        ["describing function: largest K with growth speed >= V", limit_text(ans.k_df, ku)],
-        ["simulation: largest K, no simulated impact up to V diverges", limit_text(ans.k_sim, ku)],
-        ["simulation: largest K, every simulated impact up to V rests", limit_text(ans.k_sim_rest, ku)],
-    ]
-    for c in ans.counterexamples:
-        rows.append(
-            [
-                "COUNTEREXAMPLE to the criterion",
-                f"K = {c['stiffness']:.5g} {ku}, {c['velocity']:.4g} {vu}, {c['start']}: diverged",
-            ]
-        )
-    a = ans.assessment
-    if a is not None:
-        src = " (catalogue K)" if a.source == "catalogue" else ""
-        if a.growth_speed is None:
-            grow = a.growth_reason or "unknown (search incomplete)"
-        elif math.isinf(a.growth_speed):
-            grow = "no growth predicted"
-        else:
-            grow = f"growth predicted from {a.growth_speed:.4g} {vu} ({a.unstable_cycles} unstable cycle(s))"
-        rows += [
-            [f"predicted cycles at K = {a.stiffness:g}{src}", grow],
-            [
-                f"simulated at K = {a.stiffness:g}, impact at V",
-                f"{a.outcomes['impact']} (from ξ0 = 0), {a.outcomes['preload']} (preload)",
-            ],
-        ]
-    return rows
-
-
-def _design_answer(args: argparse.Namespace, inp: _Inputs, v: float, k: float | None, src: str | None):
-    from .analysis.limits.kmax import design_answer
-
-    assert inp.device is not None
-    if v == 0:
-        return None
-    return design_answer(inp.device, v, args.delay, stiffness=k, stiffness_source=src or "given")
-
-
-def _refuse_controller(args: argparse.Namespace, command: str) -> None:
-    """Refuse the controller flags where the analysis does not yet take a controller (never ignore them)."""
-    given = [f for k, f in _CTL_FLAGS.items() if getattr(args, k, None) is not None]
-    if given:
-        raise UsageError(
-            f"{', '.join(given)} is not yet supported by `dfa {command}` (its K_max searches take the spring only); "
-            "use `dfa check`, `dfa simulate`, `dfa limit-cycles` or `dfa map` with the controller, or drop the flag"
-        )
-
-
-def _stiffness_controller(args: argparse.Namespace, inp: _Inputs, ctl: Wall, v: float) -> int:
-    """`dfa stiffness` with a controller: K_max four ways (criterion, linear, describing function, simulation)."""
-    from .analysis.limits.wall_kmax import controller_stiffness_limits
-
-    if args.plot is not None:
-        given = ", ".join(f for k, f in _CTL_FLAGS.items() if getattr(args, k, None) is not None)
-        raise UsageError(
-            f"--plot is not yet supported with {given}: the stiffness-speed chart draws the spring only; "
-            "drop --plot for the four K_max with the controller, or drop the controller flags for the chart"
-        )
-    dev = inp.device
-    assert dev is not None
-    src = _stiffness_source(args, inp)
-    r = controller_stiffness_limits(dev, ctl, v, assess=src)
-    if args.json:
-        rec = r.to_dict()
-        rec["stiffness_source"] = src
-        explain_nulls(rec, {"stiffness_source": "no --stiffness given and no catalogue K"})
-        _emit(_ctl_json(rec, ctl, inp))
-        return 0
-    ku, vu = dev.units["stiffness"], dev.units["velocity"]
-    kc = str(r.reasons["k_criterion"]) if r.k_criterion is None else f"{r.k_criterion:.5g} {ku}"
-    if r.k_criterion == 0.0 and "k_criterion" in r.reasons:
-        kc += f" ({r.reasons['k_criterion']})"
-    rows: list[list[str]] = [
-        ["criterion K_max at this speed (eq. 6/11 extended to the damper, filter, delay)", kc],
-        ["exact linear bound (the controlled loop, all conditions)", f"{r.k_linear:.5g} {ku}"],
-        *_design_rows(r, vu),
-    ]
-    a = r.assessment
-    if a is not None:
-        mpv = a.max_passive_velocity
-        txt = (
-            f"none: {a.passive_reason or 'no guarantee'}"
-            if mpv is None
-            else "every speed"
-            if math.isinf(mpv)
-            else f"{mpv:.4g} {vu}"
-        )
-        rows.insert(-2, [f"largest passive speed at K = {a.stiffness:g} (extended criterion)", txt])
-    print(f"{dev.name}, impact speed {r.velocity:.4g} {vu}; B, f_c, f_bw and the delay held fixed while K varies")
-    _print_ctl(ctl, inp)
-    print(_table(rows))
-    print(f"evidence: {r.evidence_text()}.")
-    if "counterexamples" in r.reasons:
-        print(f"{r.reasons['counterexamples']}.")
-    print(
-        "only the criterion is a proof; the others hold for the simulated speeds, starts and stiffnesses (or the first harmonic)."
-    )
-    return 0
-
-
 def _cmd_stiffness(args: argparse.Namespace) -> int:
+    """`dfa stiffness`: K_max four ways for the spring or any wall (one path; the wall's K is searched)."""
+    from .analysis.limits.kmax import design_answer
+    from .render.limits import PROOF_NOTE, evidence_text, kmax_rows, verdict_text
+
     inp = _resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
     assert dev is not None
-    xd, v = _speed(args, inp)
+    _xd, v = _speed(args, inp)
     assert v is not None
-    ctl = _controller(args, dev, inp.stiffness)
-    if ctl is not None:
-        return _stiffness_controller(args, inp, ctl, v)
+    k = inp.stiffness
+    ctl = _controller(args, dev, 1.0 if k is None else k)  # K is what is searched: any K states the elements
+    wall = ctl if ctl is not None else Wall.of(1.0 if k is None else k, delay=args.delay)
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
     src = _stiffness_source(args, inp)
-    lim = stiffness_limits(dev, v, args.stiffness, delay=args.delay)  # existing keys: only --stiffness is assessed
-    ans = _design_answer(args, inp, v, inp.stiffness, src)
+    ans = design_answer(dev, v, wall=wall, assess=k is not None, source="catalogue" if src == "catalogue" else "given")
     if args.plot is not None:
         from .analysis.limits.speed_chart import stiffness_speed_chart
 
-        chart = stiffness_speed_chart(dev, args.delay, stiffness=inp.stiffness, velocity=v)
+        chart = stiffness_speed_chart(dev, wall=wall, stiffness=k, velocity=v if v > 0 else None)
         _save_png("--plot", args.plot, chart.plot())
     if args.json:
-        rec = lim.to_dict()
-        extra = _design_json(ans, lim.k_max, lim.k_gil)
-        reasons: dict[str, str] = {}
-        for part in (extra, rec):
-            reasons.update(part.pop("null_reasons", None) or {})  # type: ignore[call-overload]
-        rec.update({key: val for key, val in extra.items() if key not in rec})
+        rec = ans.to_dict()
         rec["stiffness_source"] = src
-        kept = {k: v for k, v in reasons.items() if k.lstrip("/") in rec}
-        if kept:
-            rec["null_reasons"] = kept
         explain_nulls(rec, {"stiffness_source": "no --stiffness given and no catalogue K"})
         if args.plot is not None:
             rec["plot"] = args.plot
-        _emit(rec)
+        _emit(_ctl_json(rec, ctl, inp))
         return 0
-    ku, vu = dev.units["stiffness"], dev.units["velocity"]
-    d = lim.delay
-    cs = "2b/T" if d == 0 else "b/(T(½ + d))"
-    rows = [
-        [f"criterion K_max at this speed (eq. 11, d = {d})", f"{lim.k_max:.5g} {ku}"],
-        ["static limit 2c/Δ (eq. 9)", f"{lim.k_static:.5g} {ku}"],
-        [f"Colgate-Schenkel {cs} (eq. 8)", f"{lim.k_colgate:.5g} {ku}"],
-        [f"Abbott-Okamura min({cs}, 2c/Δ)", f"{lim.k_abbott_okamura:.5g} {ku}"],
-        ["exact linear bound (all Jury conditions" + (f", delay {d})" if d else ")"), f"{lim.k_gil:.5g} {ku}"],
-    ]
-    if ans is not None:
-        rows += _design_rows(ans, vu)
-    k_show = inp.stiffness
-    if k_show is not None:
-        lim_k = lim if lim.stiffness is not None else stiffness_limits(dev, v, k_show, delay=args.delay)
-        src_txt = " (catalogue K)" if src == "catalogue" else ""
-        rows.append([f"largest passive speed at K = {k_show:g}{src_txt}", lim_k.max_passive_velocity_text()])
-        rows.append(["verdict at this speed", lim_k.verdict_text()])
-    else:  # the JSON says "status": "not requested"
-        rows.append(["verdict at this speed", f"{lim.status}: no --stiffness given and no catalogue K"])
+    vu = dev.units["velocity"]
+    d = wall.delay
     print(
-        f"{dev.name}, impact speed {lim.velocity:.4g} {vu} ({lim.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
+        f"{dev.name}, impact speed {v:.4g} {vu} ({ans.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
+        + ("" if ctl is None else "; B, f_c, f_bw held fixed while K varies")
     )
+    _print_ctl(ctl, inp)
+    rows = kmax_rows(ans, explain=args.explain)
+    rows.append(["verdict at this speed", verdict_text(ans)])
     print(_table(rows))
-    if ans is not None:
-        print(f"evidence: {ans.evidence_text()}.")
-        print(
-            "only the criterion is a proof; the others hold for the simulated speeds, starts and stiffnesses (or the first harmonic)."
-        )
+    if v > 0:
+        print(f"evidence: {evidence_text(ans)}.")
+        print(f"{PROOF_NOTE} (or the first harmonic).")
     else:
         print("impact speed 0: the describing-function and simulated limits need a speed > 0.")
     if args.plot is not None:
         print(f"stiffness-speed chart written to {args.plot}")
     return 0
-
-
-def _design_json(ans, k_max: float, k_gil: float) -> dict[str, object]:
-    """The design answer's JSON keys (null with a reason when there is no impact speed)."""
-    if ans is not None:
-        return ans.to_dict()
-    why = "impact speed 0: the describing-function and simulated limits need a speed > 0"
-    out: dict[str, object] = {"k_criterion": k_max, "k_linear": k_gil}
-    for key in ("k_df", "k_sim", "k_sim_rest"):
-        out[key], out[f"{key}_reason"] = None, why
-    return explain_nulls(out, {"k_df": why, "k_sim": why, "k_sim_rest": why})
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -843,9 +705,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     n = (
         args.samples
         if args.samples is not None
-        else default_samples(
-            p.mu, p.beta, p.sigma, v0, x0, args.delay, not args.no_quantization, controller=_ctl_params(ctl, inp)
-        )
+        else default_samples(p.mu, p.beta, p.sigma, v0, x0, not args.no_quantization, wall=_wall_params(args, ctl, inp))
     )
     if args.trace is not None and 16 * (n + 1) > MAX_RECORD_BYTES:
         raise UsageError(
@@ -861,12 +721,11 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         v0,
         args.samples,
         xi0=x0,
-        delay=args.delay,
         quantize=not args.no_quantization,
         record=args.trace is not None,
         progress=_progress(args),
         bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND),
-        controller=_ctl_params(ctl, inp),
+        wall=_wall_params(args, ctl, inp),
     )
     if args.trace is not None:
         _write_trace(args.trace, r)
@@ -1072,13 +931,12 @@ def _cmd_map(args: argparse.Namespace) -> int:
         sigma_range=tuple(args.sigma_range),
         grid=args.grid,
         samples=args.samples,
-        delay=args.delay,
         preload=args.preload,
         quantize=not args.no_quantization,
         n_jobs=args.jobs,
         progress=_progress(args),
         bound=divergence_bound(0.0, max(args.xi_dot), mu, SIMULATION_BOUND),  # beyond every start's travel
-        controller=None if inp is None else _ctl_params(ctl, inp),
+        wall=_wall_params(args, ctl, inp),
     )
     path = m.save(args.out)
     if args.plot is not None:
@@ -1134,8 +992,7 @@ def _cmd_limit_cycles(args: argparse.Namespace) -> int:
         p,
         inp.device,
         model=args.model,
-        delay=args.delay if ctl is None else 0,
-        **({} if ctl is None else {"controller": _ctl_params(ctl, inp)}),
+        wall=_wall_params(args, ctl, inp),
         max_amplitude=args.max_amplitude,
         **({} if args.time_budget is None else {"time_budget": args.time_budget}),
     )
@@ -1370,6 +1227,11 @@ def _add_stiffness(sub: Any) -> None:
     _add_device_args(p, dimensionless=False, speed=True)
     _add_controller_args(p)
     p.add_argument(
+        "--explain",
+        action="store_true",
+        help="state what each simulated limit's confirmation simulated (default: the limits and their caveats)",
+    )
+    p.add_argument(
         "--plot",
         metavar="FILE.png",
         help="write the stiffness-speed chart (largest safe impact speed against K, four ways) to a PNG file "
@@ -1562,12 +1424,12 @@ def _cmd_zwidth(args: argparse.Namespace) -> int:
     _check_filter_amplifier(args, dev)
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
+    wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
+                   amplifier_bandwidth=args.amplifier_bandwidth)  # fmt: skip
     zw = z_width(
         dev,
         _impact_speed("--velocity", args.velocity, inp, zero=False),
-        delay=args.delay,
-        filter_cutoff=args.velocity_filter,
-        amplifier_bandwidth=args.amplifier_bandwidth,
+        wall=wall,
         grid=args.grid,
         speeds=args.speeds,
         n_jobs=args.jobs,
@@ -1587,8 +1449,9 @@ def _cmd_zwidth(args: argparse.Namespace) -> int:
     rows = [[_g(float(b))] + [_g(None if not math.isfinite(x) else float(x)) for x in col]
             for b, col in zip(zw.damping, zip(*(zw.boundary(m) for m in ZWIDTH_METHODS), strict=True), strict=True)]  # fmt: skip
     ctl = f"delay {zw.delay}"
-    ctl += f", velocity filter {_g(zw.filter_cutoff)} Hz" if zw.filter_cutoff is not None else ""
-    ctl += f", amplifier {_g(zw.amplifier_bandwidth)} Hz" if zw.amplifier_bandwidth is not None else ""
+    fc, bw = zw.wall.filter_cutoff, zw.wall.amplifier_bandwidth
+    ctl += f", velocity filter {_g(fc)} Hz" if fc is not None else ""
+    ctl += f", amplifier {_g(bw)} Hz" if bw is not None else ""
     print(f"Z-width of {dev.name}: impacts up to {zw.velocity:.4g} {u['velocity']}, {ctl}; status {zw.status}")
     print(f"K_max(B) in {u['stiffness']} ('-': undefined, see --json for the reason)")
     print(_table(rows, [f"B ({u['damping']})"] + [names[m] for m in ZWIDTH_METHODS]))

@@ -596,9 +596,9 @@ def _bound_lines(ax, bounds, unit: str, *, vertical: bool) -> None:
     """Draw each bound as a labelled line; a label names the bounds it coincides with (equal to 0.1 %)."""
     short = {"abbott_okamura": "A–O", "colgate": "C–S", "linear": "linear", "static": "2c/Δ"}
     for key, k, name in bounds:
-        if not (k > 0 and np.isfinite(k)):
+        if k is None or not (k > 0 and np.isfinite(k)):  # None: a bound the wall does not have (the spring's)
             continue
-        same = [short[o] for o, ko, _n in bounds if o != key and ko > 0 and abs(ko - k) <= 1e-3 * k]
+        same = [short[o] for o, ko, _n in bounds if o != key and ko is not None and ko > 0 and abs(ko - k) <= 1e-3 * k]
         label = f"{name}: {number(k)} {unit}" + (f" (= {', '.join(same)})" if same else "")
         (ax.axvline if vertical else ax.axhline)(k, label=label, **_BOUND_STYLES[key])
 

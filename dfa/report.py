@@ -120,8 +120,8 @@ def _controller_numbers(a: DesignAnalysis) -> dict[str, Any]:
         sigma=p.sigma,
         region=None if r is None else r.region,
         passive=chk.passive,
-        k_max=None if lim is None else lim.k_criterion,
-        k_linear=None if lim is None else lim.k_linear,
+        k_max=None if lim is None else lim.k_criterion.value,
+        k_linear=None if lim is None else lim.k_linear.value,
         delay=a.delay,
         critical_xi_dot=None if r is None else r.critical_xi_dot,
         df_xi_dot=a.threshold("zoh").xi_dot,
@@ -135,7 +135,8 @@ def _controller_numbers(a: DesignAnalysis) -> dict[str, Any]:
         "passive": lag,
         "critical_xi_dot": lag if r is None else "no critical speed: passive at every speed (region a) or at none",
     }
-    why["k_max"] = why["k_linear"] = "impact speed 0: no K_max" if lim is None else str(lim.reasons.get("k_criterion"))
+    why["k_max"] = "impact speed 0: no K_max" if lim is None else lim.k_criterion.status.message
+    why["k_linear"] = "impact speed 0: no K_max" if lim is None else lim.k_linear.status.message
     why["simulated_xi_dot"] = "no scanned impact speed diverged"
     why["df_xi_dot"] = "no unstable cycle predicted"
     return explain_nulls(to_jsonable(out), why)

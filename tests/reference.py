@@ -143,10 +143,9 @@ def zwidth_point_one_by_one(runs, ctl) -> int:
     import dfa.analysis.limits.zwidth as zmod
     from dfa.analysis.simulation import simulate
 
-    c = None if ctl.is_spring else ctl
     outs = set()
     for mu, beta, sigma, x0, v0, n, bound in runs:
-        r = simulate(mu, beta, sigma, v0, n, xi0=x0, delay=ctl.delay, record=False, bound=bound, controller=c)
+        r = simulate(mu, beta, sigma, v0, n, xi0=x0, record=False, bound=bound, wall=ctl)
         outs.add(str(r.outcome))
         if "unstable" in outs:
             return zmod.DIVERGES

@@ -278,7 +278,7 @@ class _WouldRun(Exception):
 _WORK = {
     "validate": ("dfa.analysis.validation", "cycle_checks"),
     "design_report": ("dfa.report", "design_analysis"),
-    "stiffness_speed_chart": ("dfa.analysis.limits.speed_chart", "_Evidence"),
+    "stiffness_speed_chart": ("dfa.analysis.limits.speed_chart", "Evidence"),
     "z_width": ("dfa.analysis.limits.zwidth", "_plan"),
 }
 

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 from dfa import DFAValueError
 from dfa.analysis.maps import stability_map
 from dfa.analysis.simulation import OUTCOMES, simulate, simulate_batch
+from dfa.model.wall import WallParams
 
 
 def _grid(seed: int, size: int):
@@ -46,9 +47,10 @@ def _same(r, b, i) -> bool:
 @pytest.mark.parametrize("delay, quantize", [(0, True), (0, False), (2, True)])
 def test_eq4_batched_runs_equal_single_runs(delay, quantize):
     mu, beta, sigma, v0, x0 = _grid(7 + delay, 60)
-    b = simulate_batch(mu, beta, sigma, v0, 4000, x0, delay, quantize, bound=1e4)
+    wall = WallParams.of(delay=delay)
+    b = simulate_batch(mu, beta, sigma, v0, 4000, x0, quantize, bound=1e4, wall=wall)
     for i in range(len(b)):
-        r = simulate(mu[i], beta[i], sigma[i], v0[i], 4000, x0[i], delay, quantize, record=False, bound=1e4)
+        r = simulate(mu[i], beta[i], sigma[i], v0[i], 4000, x0[i], quantize, record=False, bound=1e4, wall=wall)
         assert _same(r, b, i), i
     seen = Counter(b.outcomes())
     assert seen["rest"] and seen["unstable"] and (seen["chatter"] or not quantize or delay)
@@ -82,7 +84,7 @@ def test_eq4_batch_rejects_bad_runs_naming_them():
 
 
 def test_fig4_map_same_for_threads_and_processes():
-    kw = dict(grid=6, samples=3000, progress=False, delay=1)
+    kw = dict(grid=6, samples=3000, progress=False, wall=WallParams.of(delay=1))
     a = stability_map(30.0, [1.0, 4.0], n_jobs=1, **kw)
     for jobs, backend in ((2, "threads"), (2, "processes")):
         b = stability_map(30.0, [1.0, 4.0], n_jobs=jobs, backend=backend, **kw)
@@ -99,12 +101,12 @@ def test_eq4_plain_benchmark_kernel_agrees_with_simulate():
 
     cases = [(100.0, 0.3, 1.5, 2.0, 0), (5.0, 1.8, 0.8, 1.5, 1), (30.0, 2.8, 1.2, 1.0, 2), (10.0, 0.0, 1.0, 1.0, 0)]
     for mu, beta, sigma, v0, delay in cases:
-        r = simulate(mu, beta, sigma, v0, 20000, delay=delay, record=False)
+        r = simulate(mu, beta, sigma, v0, 20000, record=False, wall=WallParams.of(delay=delay))
         done, x, v = plain_kernel(mu, beta, sigma, 0.0, v0, 20000, delay, True, 1e6)
         assert r.outcome == "rest" and done == r.rest_sample
         assert x == pytest.approx(r.final_xi, rel=1e-12) and v == r.final_xi_dot == 0.0
     for mu, beta, sigma, v0, delay in [(5.0, 0.2, 0.6, 1.5, 1), (30.0, 0.0, 0.7, 1.0, 2)]:  # past the bound
-        r = simulate(mu, beta, sigma, v0, 20000, delay=delay, record=False)
+        r = simulate(mu, beta, sigma, v0, 20000, record=False, wall=WallParams.of(delay=delay))
         done, x, v = plain_kernel(mu, beta, sigma, 0.0, v0, 20000, delay, True, 1e6)
         assert r.outcome == "unstable" and done == r.samples_run and x == pytest.approx(r.final_xi, rel=1e-12)
 
@@ -183,19 +185,20 @@ def test_eq4_two_runs_in_flight_hand_delay_to_serial_kernel():
 
 @pytest.mark.parametrize("delay", [0, 1])
 def test_eq4_design_searches_batch_equals_simulate_per_point(delay):
-    """dfa.analysis.limits.kmax.simulate_points (the K_max searches) batches its spring runs: outcomes and lengths are simulate()'s."""
-    from dfa.analysis.limits.kmax import DIVERGENCE_BOUND, simulate_points
+    """dfa.analysis.limits.runs.simulate_points (the K_max searches) batches its spring runs: outcomes and lengths are simulate()'s."""
+    from dfa.analysis.limits.runs import DIVERGENCE_BOUND, simulate_points
     from dfa.analysis.simulation import default_samples, divergence_bound, preload_position
 
     mu, beta, sigma, v0, _ = _grid(21 + delay, 30)
     v0 = np.abs(v0) + 0.1
     pts = [(m, b, s, 0.0, v) for m, b, s, v in zip(mu, beta, sigma, v0, strict=True)]
     pts += [(m, b, s, preload_position(m, v), 0.0) for m, b, s, v in zip(mu, beta, sigma, v0, strict=True)]
-    outs, lengths = simulate_points(pts, delay, 40_000)
+    wall = WallParams.of(delay=delay)
+    outs, lengths = simulate_points(pts, [wall] * len(pts), 40_000)
     for (m, b, s, x0, v), o, n in zip(pts, outs, lengths, strict=True):
-        assert n == min(default_samples(m, b, s, v, x0, delay), 40_000)
+        assert n == min(default_samples(m, b, s, v, x0, wall=wall), 40_000)
         bound = divergence_bound(x0, v, m, DIVERGENCE_BOUND)
-        assert o == simulate(m, b, s, v, n, xi0=x0, delay=delay, record=False, bound=bound).outcome
+        assert o == simulate(m, b, s, v, n, xi0=x0, record=False, bound=bound, wall=wall).outcome
     assert {"rest", "unstable"} <= set(outs)  # not one trivial class
 
 

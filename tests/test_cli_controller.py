@@ -11,6 +11,7 @@ import json
 import numpy as np
 import pytest
 
+import dfa.analysis.limits.kmax
 from dfa.analysis.colgate_schenkel import colgate_schenkel_damping
 from dfa.analysis.criterion import device_criterion
 from dfa.analysis.cycles import limit_cycles
@@ -18,6 +19,7 @@ from dfa.analysis.maps import load_map, stability_map
 from dfa.analysis.simulation import OUTCOMES, divergence_bound, simulate
 from dfa.cli import main
 from dfa.model.catalogue import get_device
+from dfa.model.device import Device
 from dfa.model.wall import Wall, WallParams
 from dfa.render.controller import NOT_COVERED
 
@@ -93,7 +95,7 @@ def test_eq4_controller_simulate_json_equals_api(capsys):
     ctl = Wall.of(K, damping=2.0, amplifier_bandwidth=500.0).params(DEV.period)
     p = DEV.params(K)
     xd = DEV.xi_dot(0.1)
-    r = simulate(p.mu, p.beta, p.sigma, xd, None, controller=ctl, bound=divergence_bound(0.0, xd, p.mu, 1e6))
+    r = simulate(p.mu, p.beta, p.sigma, xd, None, bound=divergence_bound(0.0, xd, p.mu, 1e6), wall=ctl)
     assert d["outcome"] == r.outcome and d["final_xi"] == r.final_xi and d["rest_sample"] == r.rest_sample
     assert d["controller"]["dimensionless"]["beta_B"] == ctl.damping
     code, out, _ = run(capsys, *argv)
@@ -103,7 +105,7 @@ def test_eq4_controller_simulate_json_equals_api(capsys):
 def test_eq36_controller_limit_cycles_json_equals_api(capsys):
     d = run_json(capsys, "limit-cycles", *BASE, "--virtual-damping", "2", "--delay", "1")
     ctl = Wall.of(K, damping=2.0, delay=1).params(DEV.period)
-    res = limit_cycles(DEV.params(K), controller=ctl)
+    res = limit_cycles(DEV.params(K), wall=ctl)
     assert [c["amplitude"] for c in d["cycles"]] == [c.amplitude for c in res.cycles]
     assert d["controller"]["delay"] == 1 and d["controller"]["dimensionless"]["beta_B"] == ctl.damping
     code, out, _ = run(capsys, "limit-cycles", *BASE, "--virtual-damping", "2", "--delay", "1")
@@ -117,29 +119,33 @@ def test_fig4_controller_map_json_equals_api(capsys, tmp_path):
     d = run_json(capsys, *argv)
     ctl = Wall.of(K, damping=2.0, filter_cutoff=200.0).params(DEV.period)
     p = DEV.params(K)
-    m = stability_map(p.mu, [DEV.xi_dot(0.1)], grid=3, samples=2000, n_jobs=1, progress=False, controller=ctl)
+    m = stability_map(p.mu, [DEV.xi_dot(0.1)], grid=3, samples=2000, n_jobs=1, progress=False, wall=ctl)
     assert d["counts"] == m.to_dict()["counts"]
-    assert load_map(out).controller == ctl
+    assert load_map(out).wall == ctl
     assert d["controller"]["filter_cutoff"] == 200.0
 
 
 def test_fig4_controller_map_outcomes_equal_simulate_per_point():
     """stability_map(controller=) is simulate(controller=) at every point (damper, filter, delay, lag)."""
     ctl = WallParams.of(damping=0.3, delay=1, cutoff=0.1, lag=0.5)
-    m = stability_map(100.0, [2.0], grid=3, samples=3000, n_jobs=2, progress=False, controller=ctl)
-    assert m.controller == ctl and m.delay == 1
+    m = stability_map(100.0, [2.0], grid=3, samples=3000, n_jobs=2, progress=False, wall=ctl)
+    assert m.wall == ctl and m.delay == 1
     for i, s in enumerate(m.sigma):
         for j, b in enumerate(m.beta):
-            r = simulate(100.0, b, s, 2.0, 3000, controller=ctl)
+            r = simulate(100.0, b, s, 2.0, 3000, wall=ctl)
             assert r.outcome == OUTCOMES[m.outcome[0, i, j]]
             assert np.array_equal(r.amplitude, m.amplitude[0, i, j], equal_nan=True)
 
 
-def test_fig4_spring_controller_map_is_the_spring_map():
-    """A WallParams without damper, filter or lag gives the spring's map (stored without a controller)."""
-    a = stability_map(100.0, [2.0], grid=3, samples=2000, delay=1, n_jobs=1, progress=False)
-    b = stability_map(100.0, [2.0], grid=3, samples=2000, n_jobs=1, progress=False, controller=WallParams.of(delay=1))
-    assert b.controller is None and np.array_equal(a.outcome, b.outcome) and a.to_dict() == b.to_dict()
+def test_fig4_spring_wall_map_fast_path_is_the_general_path(monkeypatch):
+    """A spring wall (delay only) runs the spring's kernel; the wall kernel, forced, gives the same map."""
+    kw = dict(grid=3, samples=2000, n_jobs=1, progress=False, wall=WallParams.of(delay=1))
+    a = stability_map(100.0, [2.0], **kw)
+    assert "wall" not in a.to_dict() and a.to_dict()["delay"] == 1  # a spring's map states its delay only
+    monkeypatch.setattr(WallParams, "is_spring", property(lambda self: False))  # force the wall kernel
+    b = stability_map(100.0, [2.0], **kw)
+    assert np.array_equal(a.outcome, b.outcome)
+    np.testing.assert_allclose(b.amplitude, a.amplitude, rtol=1e-9, equal_nan=True)
 
 
 SPRING_CASES = [
@@ -185,10 +191,6 @@ ERRORS = [
         ["map", "--mu", "100", "--xi-dot", "1", "--virtual-damping", "1", "--out", "/tmp/x.npz"],
         "needs a physical device",
     ),
-    (
-        ["stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--plot", "/tmp/ccli-x.png"],
-        "--plot is not yet supported with --virtual-damping: the stiffness-speed chart draws the spring only",
-    ),
     (["stiffness", *BASE, "--velocity", "0.1", "--velocity-filter", "1600"], "Nyquist frequency 1500 Hz"),
     (
         ["report", *BASE, "--velocity", "0.1", "--amplifier-bandwidth", "-100", "--out", "/tmp/ccli-r"],
@@ -224,16 +226,17 @@ def test_controller_json_nulls_have_reasons(capsys, argv):
 
 
 def test_eq11_controller_stiffness_json_equals_api(capsys):
-    from dfa.analysis.limits.wall_kmax import controller_stiffness_limits
+    from dfa.analysis.limits.kmax import design_answer
 
     d = run_json(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
-    r = controller_stiffness_limits(DEV, Wall.of(K, damping=1.0, delay=1), 0.1)
-    assert d["k_criterion"] == r.k_criterion and d["k_linear"] == r.k_linear
-    assert d["controller"]["delay"] == 1
+    r = design_answer(DEV, 0.1, wall=Wall.of(K, damping=1.0, delay=1), assess=True)
+    kc, kl = r.k_criterion.value, r.k_linear.value
+    assert d["k_criterion"]["value"] == kc and d["k_linear"]["value"] == kl
+    assert d["controller"]["delay"] == 1 and d["wall"]["delay"] == 1
     for key in ("k_df", "k_sim", "k_sim_rest"):  # searched with the controller (tests/test_kmax_controller.py)
-        assert d[key] == d["searches"][key]["value"] and (d[key] is not None or d["null_reasons"][f"/{key}"])
+        assert d[key]["value"] == getattr(r, key).value and d[key]["status"] == getattr(r, key).status.value
     code, out, _ = run(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
-    assert code == 0 and f"{r.k_criterion:.5g} N/m" in out and f"{r.k_linear:.5g} N/m" in out
+    assert code == 0 and f"{kc:.5g} N/m" in out and f"{kl:.5g} N/m" in out
     assert "controller: K = 14500 N/m, B = 1 N·s/m, delay 1 sample" in out
 
 
@@ -246,3 +249,21 @@ def test_cli_velocity_filter_below_the_floor_names_the_flag(capsys, cutoff):
     assert err.startswith(f"dfa: error: --velocity-filter {cutoff} is invalid") and "\n" not in err
     assert "at least 3 Hz" in err and "[3, 1500)" in err and "filter_cutoff" not in err
     assert main(["check", "--device", "delta", "--velocity", "0.1", "--velocity-filter", "3"]) == 0
+
+
+def test_stiffness_with_a_wall_searches_k_without_stiffness(capsys):
+    """`dfa stiffness` with a custom device and a damper needs no --stiffness: K is what it searches (issue 25)."""
+    custom = ["--mass", "0.1", "--damping", "0.005", "--coulomb", "0.02", "--resolution", "1e-5", "--period", "0.001"]
+    d = run_json(capsys, "stiffness", *custom, "--velocity", "0.1", "--virtual-damping", "0.5", "--delay", "1")
+    assert d["stiffness_source"] is None and d["assessment"] is None and d["wall"]["damping"] == 0.5
+    dev = Device(mass=0.1, damping=0.005, coulomb=0.02, resolution=1e-5, period=0.001)
+    ref = dfa.analysis.limits.kmax.design_answer(dev, 0.1, wall=Wall.of(1.0, damping=0.5, delay=1))
+    assert d["k_sim"]["value"] == ref.k_sim.value and d["k_criterion"]["value"] == ref.k_criterion.value
+
+
+def test_stiffness_plot_with_a_wall_draws_the_walls_chart(capsys, tmp_path):
+    """The stiffness-speed chart takes the wall's elements (held fixed while K varies), as the four K_max do."""
+    png = tmp_path / "chart.png"
+    argv = ["stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--plot", str(png), "--json"]
+    d = run_json(capsys, *argv)
+    assert png.stat().st_size > 1000 and d["plot"] == str(png)

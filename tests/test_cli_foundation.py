@@ -104,11 +104,13 @@ def test_cli_stiffness_json_contract(capsys):
     r = run_json(capsys, "stiffness", "--device", "impulse", "--velocity", "0.05", "--stiffness", "80")
     dev = dfa.get_device("impulse").device
     lim = dfa.stiffness_limits(dev, 0.05, 80.0)
-    assert r["k_max"] == lim.k_max and r["k_gil"] == lim.k_gil
+    assert r["k_criterion"]["value"] == lim.k_max and r["k_linear"]["value"] == lim.k_gil
     assert r["k_colgate"] == lim.k_colgate and r["k_abbott_okamura"] == lim.k_abbott_okamura
-    assert r["max_passive_velocity"] == pytest.approx(lim.max_passive_velocity)
+    assert r["assessment"]["max_passive_velocity"] == pytest.approx(lim.max_passive_velocity)
+    assert r["assessment"]["verdict"] == lim.status.value and r["assessment"]["velocity_status"] == "bounded"
     r2 = run_json(capsys, "stiffness", "--device", "impulse", "--velocity", "0.05")
-    assert r2["max_passive_velocity"] is None and r2["max_passive_velocity_status"] == "not requested"
+    assert r2["stiffness_source"] == "catalogue" and r2["assessment"]["source"] == "catalogue"  # the catalogue K
+    assert r2["assessment"]["stiffness"] == dfa.get_device("impulse").stiffness
     r3 = run_json(capsys, "stiffness", "--device", "impulse", "--xi-dot", "1")
     assert r3["velocity"] == pytest.approx(dev.velocity(1.0))
 

@@ -128,11 +128,11 @@ def test_zoh_with_amplifier_lag_limits():
 @given(mu=st.floats(0.01, 1e4), beta=st.floats(0.0, 10.0), p=controllers)
 def test_closed_loop_roots_vs_control_feedback(mu, beta, p):
     """Spectral radius of the closed loop equals that of control.c2d + control.feedback (built here) to 1e-6."""
-    ours = spectral_radius(mu, beta, controller=p)
+    ours = spectral_radius(mu, beta, wall=p)
     theirs = _control_rho(mu, beta, p)
     assert ours == pytest.approx(theirs, abs=1e-6)
     if abs(theirs - 1.0) > 1e-6:
-        assert linear_stable(mu, beta, controller=p) == (theirs < 1.0)
+        assert linear_stable(mu, beta, wall=p) == (theirs < 1.0)
 
 
 @settings(max_examples=30)
@@ -153,7 +153,7 @@ def test_critical_stiffness_boundary_vs_control_feedback(b, big_b, d, fc, fbw):
         for kk in (1e-3 * k, k, 1e3 * k):
             assert _control_rho(M / (kk * T * T), b / (kk * T), Wall.of(kk, big_b, d, fc, fbw).params(T)) >= 1.0
         return
-    assert r.k_crit == pytest.approx(critical_stiffness(M, b, T, controller=c), rel=1e-9)
+    assert r.k_crit == pytest.approx(critical_stiffness(M, b, T, wall=c), rel=1e-9)
     for f, stable in ((1.0 - 1e-5, True), (1.0 + 1e-5, False)):
         k = r.k_crit * f
         rho = _control_rho(M / (k * T * T), b / (k * T), Wall.of(k, big_b, d, fc, fbw).params(T))
@@ -166,10 +166,14 @@ def test_spring_controller_gives_spring_results_bit_identical(d):
     """Wall.of(K, delay=d) / WallParams.of(delay=d): the same numbers as the spring-only functions, bit for bit."""
     p = WallParams.of(delay=d)
     mus, betas = np.array([0.5, 3.0, 200.0]), np.array([0.1, 0.6, 2.0])
-    assert np.array_equal(spectral_radius(mus, betas, d), spectral_radius(mus, betas, controller=p))
-    assert np.array_equal(characteristic_polynomial(2.0, 0.3, d), characteristic_polynomial(2.0, 0.3, controller=p))
+    assert np.array_equal(spectral_radius(mus, betas, wall=WallParams.of(delay=d)), spectral_radius(mus, betas, wall=p))
+    assert np.array_equal(
+        characteristic_polynomial(2.0, 0.3, wall=WallParams.of(delay=d)), characteristic_polynomial(2.0, 0.3, wall=p)
+    )
     for m, b, t in ((1.0, 2.0, 1e-3), (0.01, 5.0, 0.01), (0.1, 1e-4, 1e-3)):
-        assert critical_stiffness(m, b, t, d) == critical_stiffness(m, b, t, controller=Wall.of(123.0, delay=d))
+        assert critical_stiffness(m, b, t, wall=Wall.of(1.0, delay=d)) == critical_stiffness(
+            m, b, t, wall=Wall.of(123.0, delay=d)
+        )
 
 
 @pytest.mark.parametrize("d", [0, 1, 2, 4])
@@ -178,7 +182,7 @@ def test_ray_algorithm_reproduces_spring_bound(a, d):
     """The general ray algorithm (stable_stiffness) finds the spring's K_crit of dfa.analysis.linear to 1e-9: one interval."""
     r = stable_stiffness(1.0, a, 1.0, Wall.of(1.0, delay=d))
     assert r.status is LinearStatus.INTERVAL
-    assert r.k_crit == pytest.approx(critical_stiffness(1.0, a, 1.0, delay=d), rel=1e-9)
+    assert r.k_crit == pytest.approx(critical_stiffness(1.0, a, 1.0, wall=Wall.of(1.0, delay=d)), rel=1e-9)
 
 
 # ---------------------------------------------------------------- anchors of issue 15
@@ -187,7 +191,7 @@ def test_ray_algorithm_reproduces_spring_bound(a, d):
 @pytest.mark.parametrize("big_b", [0.0, 0.5, 2.0, 5.0])
 def test_eq8_linear_rule_with_virtual_damper(b, big_b, d):
     """K_crit → (b + B)/(T(d + ½)) as bT/m → 0: within 1 % for bT/m <= 0.005 (and BT/m <= 0.005), m = 1 kg, T = 1 ms."""
-    k = critical_stiffness(M, b, T, controller=Wall.of(1.0, big_b, d))
+    k = critical_stiffness(M, b, T, wall=Wall.of(1.0, big_b, d))
     assert k == pytest.approx((b + big_b) / (T * (d + 0.5)), rel=0.01)
 
 
@@ -204,9 +208,9 @@ def test_amplifier_lag_acts_as_extra_delay(b, tau_over_t, d):
     T(d + ½)/(T(d + ½) + τ_a) to 0.1 % (measured 0.042 %).
     """
     tau = tau_over_t * T
-    k = critical_stiffness(M, b, T, controller=Wall.of(1.0, 0.0, d, amplifier_bandwidth=1.0 / (2 * math.pi * tau)))
+    k = critical_stiffness(M, b, T, wall=Wall.of(1.0, 0.0, d, amplifier_bandwidth=1.0 / (2 * math.pi * tau)))
     assert k == pytest.approx(b / (T * (d + 0.5) + tau), rel=0.005)
-    k0 = critical_stiffness(M, b, T, controller=Wall.of(1.0, 0.0, d))
+    k0 = critical_stiffness(M, b, T, wall=Wall.of(1.0, 0.0, d))
     assert k / k0 == pytest.approx(T * (d + 0.5) / (T * (d + 0.5) + tau), rel=1e-3)  # the lag's own effect
 
 
@@ -221,7 +225,7 @@ def test_colgate_schenkel_line_inside_linear_bound(b, frac):
     big_b = frac * b
     k_cs = 2.0 * (b - big_b) / T
     assert colgate_schenkel_damping(Wall.of(k_cs, big_b), T).damping_min == pytest.approx(b, rel=1e-12)
-    k_lin = critical_stiffness(M, b, T, controller=Wall.of(1.0, big_b))
+    k_lin = critical_stiffness(M, b, T, wall=Wall.of(1.0, big_b))
     assert k_lin > k_cs
     if big_b > 0.0:
         assert k_lin == pytest.approx(2.0 * (b + big_b) / T, rel=0.01)  # not 2(b − B)/T
@@ -229,10 +233,7 @@ def test_colgate_schenkel_line_inside_linear_bound(b, frac):
 
 def test_amplifier_lag_lowers_the_bound():
     """A slower amplifier never raises K_crit (the lag adds phase lag), for b = 2, B = 0.5, d = 1."""
-    ks = [
-        critical_stiffness(M, 2.0, T, controller=Wall.of(1.0, 0.5, 1, amplifier_bandwidth=f))
-        for f in (1e5, 1e4, 1e3, 1e2)
-    ]
+    ks = [critical_stiffness(M, 2.0, T, wall=Wall.of(1.0, 0.5, 1, amplifier_bandwidth=f)) for f in (1e5, 1e4, 1e3, 1e2)]
     assert ks == sorted(ks, reverse=True)
 
 
@@ -263,7 +264,7 @@ def test_no_friction_no_damper_never_stable_but_virtual_damper_stabilises():
 def test_stable_region_matches_stable_stiffness_and_is_json():
     """K_max(B) of stable_region is stable_stiffness's k_crit at each B; JSON strict (no NaN), statuses per B."""
     grid = [0.0, 0.5, 2.0, 10.0]
-    reg = stable_region(M, 1.0, T, grid, delay=1, filter_cutoff=100.0, amplifier_bandwidth=2000.0)
+    reg = stable_region(M, 1.0, T, grid, wall=Wall.of(1.0, delay=1, filter_cutoff=100.0, amplifier_bandwidth=2000.0))
     for bb, k in zip(grid, reg.k_crit, strict=True):
         c = Wall.of(1.0, bb, 1, filter_cutoff=100.0, amplifier_bandwidth=2000.0)
         assert k == stable_stiffness(M, 1.0, T, c).k_crit
@@ -271,15 +272,15 @@ def test_stable_region_matches_stable_stiffness_and_is_json():
     assert data["k_crit"] == reg.k_crit.tolist() and len(data["intervals"]) == 4 and data["status"] == reg.status.value
     assert data["device"] == {"mass": M, "damping": 1.0, "period": T}
     one = json.loads(dumps(reg.rows[1].to_dict()))
-    assert one["controller"]["filter_cutoff"] == 100.0 and "stiffness" not in one["controller"]
+    assert one["wall"]["filter_cutoff"] == 100.0 and "stiffness" not in one["wall"]
 
 
 # ---------------------------------------------------------------- bad input
 def test_bad_input_names_the_parameter():
-    with pytest.raises(DFAValueError, match="delay = 2 is invalid with controller.delay = 1"):
-        critical_stiffness(M, 1.0, T, 2, controller=Wall.of(1.0, delay=1))
-    with pytest.raises(DFATypeError, match="controller"):
-        critical_stiffness(M, 1.0, T, controller=WallParams.of())
+    with pytest.raises(TypeError, match="delay"):
+        critical_stiffness(M, 1.0, T, delay=2, wall=Wall.of(1.0, delay=1))  # the delay lives in the wall
+    with pytest.raises(DFATypeError, match="wall"):
+        critical_stiffness(M, 1.0, T, wall=WallParams.of())  # dimensionless groups: the physical wall is needed
     with pytest.raises(DFAValueError, match="filter_cutoff"):
         stable_stiffness(M, 1.0, T, Wall.of(1.0, filter_cutoff=600.0))  # above Nyquist 500 Hz
     with pytest.raises(DFAValueError, match="virtual_damping"):

@@ -4,7 +4,7 @@ reference helpers of ``test_gil_linear_bound_small_rate``), and against the floa
 
 Formerly refused (0 < (b + B)T/m < 1e-7: a DFAValueError; before that a false 'never stable', and K 3732 N/m above
 the ~3000 N/m limit at m = 1e8 kg). Now K_crit comes from the Taylor series of the ray at z = 1
-(``_series_kappa``) for (b + B)T/m <= SERIES_RATE = 1e-4.
+(``series_kappa``) for (b + B)T/m <= SERIES_RATE = 1e-4.
 """
 
 from __future__ import annotations
@@ -17,16 +17,20 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_gil_linear_bound_small_rate import _rho_mp
 
+from dfa.analysis.limits.kmax import closed_forms
 from dfa.analysis.linear import critical_stiffness
 from dfa.analysis.linear_wall import (
     LinearStatus,
-    _series_kappa,
     _stable_kappa,
+    series_kappa,
     stable_region,
     stable_stiffness,
 )
 from dfa.cli import main
+from dfa.model.device import Device
 from dfa.model.wall import Wall
+from dfa.render.limits import limit_text
+from dfa.results.status import LimitStatus
 
 T = 1e-3
 #: (B, delay, filter cutoff Hz, amplifier bandwidth Hz) and the device's share of the rate
@@ -85,8 +89,8 @@ def test_controlled_linear_small_rate_series_agrees_with_the_float_ray(rate, nam
     m, b, c = _case(rate, name)
     p = c.params(T)
     a, a_b = b * T / m, c.damping * T / m
-    rho_l, k_tilde = _series_kappa(a, a_b, p.cutoff, p.lag, p.delay)
-    assert (a * rho_l + a_b) * k_tilde == pytest.approx(_stable_kappa(a, a_b, p.cutoff, p.lag, p.delay)[0][1], rel=1e-8)
+    rho_l, k_tilde = series_kappa(a, a_b, p.cutoff, p.lag, p.delay)
+    assert (a * rho_l + a_b) * k_tilde == pytest.approx(_stable_kappa(a, a_b, p)[0][1], rel=1e-8)
 
 
 def test_controlled_linear_small_rate_unstable_above_k_crit_mpmath():
@@ -115,7 +119,7 @@ def test_controlled_linear_small_rate_underflow_huge_mass(d):
         p = c.params(T)
         k = stable_stiffness(1e300, 1.0, T, c).k_crit
         assert k == pytest.approx(2.0 / (T * (0.5 + d + p.lag)), rel=1e-14)
-        assert d == 100 or critical_stiffness(1e300, 1.0, T, controller=c) == k
+        assert d == 100 or critical_stiffness(1e300, 1.0, T, wall=c) == k
     k = stable_stiffness(1.0, 1e-320, 1e-12, Wall.of(1.0, 1e-320, d)).k_crit
     assert k == pytest.approx(2e-320 / (1e-12 * (0.5 + d)), rel=1e-3)  # the subnormal inputs carry ~3 digits
 
@@ -123,25 +127,56 @@ def test_controlled_linear_small_rate_underflow_huge_mass(d):
 @pytest.mark.parametrize("d", [0, 3, 100])
 def test_gil_critical_stiffness_underflowing_rate_is_b_over_t_half_plus_d(d):
     """The spring: bT/m underflowing to 0 (b = 1e-320 N·s/m, m = 1e3 kg, T = 1e-12 s) is not reported as 0."""
-    assert critical_stiffness(1e3, 1e-320, 1e-12, delay=d) == pytest.approx(1e-320 / (1e-12 * (0.5 + d)), rel=1e-3)
-    assert critical_stiffness(1e300, 1.0, T, delay=d) == pytest.approx(1.0 / (T * (0.5 + d)), rel=1e-15)
+    assert critical_stiffness(1e3, 1e-320, 1e-12, wall=Wall.of(1.0, delay=d)) == pytest.approx(
+        1e-320 / (1e-12 * (0.5 + d)), rel=1e-3
+    )
+    assert critical_stiffness(1e300, 1.0, T, wall=Wall.of(1.0, delay=d)) == pytest.approx(
+        1.0 / (T * (0.5 + d)), rel=1e-15
+    )
 
 
 def test_controlled_linear_small_rate_stable_region():
     """stable_region at m = 1e10 kg: every B, the series' K_crit (formerly refused)."""
-    r = stable_region(1e10, 1.0, T, [0.0, 0.5, 2.0], delay=2, filter_cutoff=100.0)
+    r = stable_region(1e10, 1.0, T, [0.0, 0.5, 2.0], wall=Wall.of(1.0, delay=2, filter_cutoff=100.0))
     assert r.status is LinearStatus.INTERVAL
     np.testing.assert_allclose(r.k_crit, [(1.0 + bb) / (T * 2.5) for bb in (0.0, 0.5, 2.0)], rtol=1e-9)
 
 
+#: The CLI case: (b + B)T/m = 2e-11 with a delay of 3 and a 100 Hz filter (formerly refused, exit 2).
+SMALL_RATE_ARGV = ["stiffness", "--mass", "1", "--damping", "1e-8", "--coulomb", "0", "--resolution", "1e-6",
+                   "--period", "1e-3", "--stiffness", "1000", "--virtual-damping", "1e-8", "--delay", "3",
+                   "--velocity-filter", "100"]  # fmt: skip
+SMALL_RATE_DEVICE = Device(mass=1.0, damping=1e-8, coulomb=0.0, resolution=1e-6, period=T)
+SMALL_RATE_WALL = Wall.of(1000.0, 1e-8, 3, 100.0)
+SMALL_RATE_K_LINEAR = 2e-8 / (T * 3.5)  # (b + B)/(T(½ + d)): the filter drops out
+
+
+def test_controlled_linear_small_rate_k_linear_of_the_design_answer():
+    """The design answer's K_linear at (b + B)T/m = 2e-11 and 0.1 m/s (formerly refused): finite, (b + B)/(T(½ + d)),
+    not 0 or NaN. The closed forms of :func:`dfa.analysis.limits.kmax.design_answer` alone
+    (:func:`~dfa.analysis.limits.kmax.closed_forms`): the four-way search is not what is tested here."""
+    dev, wall = SMALL_RATE_DEVICE, SMALL_RATE_WALL
+    _kc, kl, _pub, _k_ref, top = closed_forms(dev, wall, 0.1)
+    assert kl.status is LimitStatus.FOUND and np.isfinite(kl.value)
+    assert kl.value == pytest.approx(SMALL_RATE_K_LINEAR, rel=1e-9)
+    assert kl.value == stable_stiffness(dev.mass, dev.damping, T, wall).k_crit
+    assert np.isfinite(top) and top > 0.0  # the searches have a finite grid
+    assert closed_forms(dev, wall, 0.0)[1] == kl  # the linear bound does not depend on the impact speed
+
+
 def test_controlled_linear_small_rate_cli_prints_finite_numbers(capsys):
-    """`dfa stiffness --virtual-damping` at (b + B)T/m = 2e-11 (formerly: one line on stderr, exit 2)."""
-    argv = ["stiffness", "--mass", "1", "--damping", "1e-8", "--coulomb", "0", "--resolution", "1e-6"]
-    argv += ["--period", "1e-3", "--velocity", "0.1", "--stiffness", "1000", "--virtual-damping", "1e-8"]
-    argv += ["--delay", "3", "--velocity-filter", "100", "--json"]
-    assert main(argv) == 0
+    """`dfa stiffness --virtual-damping` at (b + B)T/m = 2e-11 (formerly: one line on stderr, exit 2): the JSON and
+    the text state the finite K_linear. At impact speed 0: the closed forms without the four-way search (K_linear
+    does not depend on the speed, the test above)."""
+    argv = [*SMALL_RATE_ARGV, "--velocity", "0"]
+    assert main([*argv, "--json"]) == 0
     rec = json.loads(capsys.readouterr().out)
-    assert rec["k_linear"] == pytest.approx(2e-8 / (T * 3.5), rel=1e-9)  # (b + B)/(T(½ + d)), no NaN, not 0
+    assert rec["k_linear"]["value"] == pytest.approx(SMALL_RATE_K_LINEAR, rel=1e-9)  # no NaN, not 0
+    assert rec["k_linear"]["status"] == "found"
+    assert main(argv) == 0
+    row = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("exact linear bound"))
+    kl = closed_forms(SMALL_RATE_DEVICE, SMALL_RATE_WALL, 0.0)[1]
+    assert row.endswith(f"  {limit_text(kl, 'N/m')}") and limit_text(kl, "N/m") == "5.7143e-06 N/m"
 
 
 def test_controlled_linear_small_rate_catalogue_delta_filter_lag_mpmath():
@@ -172,10 +207,12 @@ def test_linear_stable_small_rate_verdict_mpmath(beta, d, ctl):
     from dfa.model.wall import WallParams
 
     mu = 1e14
-    params = None if ctl is None else WallParams.of(damping=ctl["a_b"], delay=d, cutoff=ctl["cutoff"], lag=ctl["lag"])
+    wall = WallParams.of(delay=d)
+    if ctl is not None:
+        wall = WallParams.of(damping=ctl["a_b"], delay=d, cutoff=ctl["cutoff"], lag=ctl["lag"])
     extra = {} if ctl is None else {**ctl, "a_b": ctl["a_b"] / mu}
     truth = _rho_mp(beta / mu, 1.0 / mu, d, **extra) < 0.0
-    assert bool(linear_stable(mu, beta, controller=params) if params else linear_stable(mu, beta, d)) is truth
+    assert bool(linear_stable(mu, beta, wall=wall)) is truth
 
 
 @pytest.mark.parametrize("bandwidth", [1.0, 0.01, 1e-6])
@@ -188,11 +225,11 @@ def test_controlled_linear_small_rate_slow_amplifier_former_counterexample_mpmat
 def test_limit_cycles_linear_verdict_with_controller_uses_the_small_rate_bound():
     """dfa.analysis.cycles' linear verdict with a controller is dfa.analysis.linear.linear_stable's (the float spectral radius
     alone said unstable at μ = 1e16, β = 0.55 with a tiny damper, where the loop is stable)."""
-    from dfa.analysis.cycles.controlled import linear_stable_with_controller
+    from dfa.analysis.cycles.controlled import linear_stable_of
     from dfa.analysis.linear import linear_stable
     from dfa.model.wall import WallParams
 
     c = WallParams.of(damping=1e-3, delay=1)
     for mu, beta in ((1e16, 0.55), (1e16, 0.1), (100.0, 0.5), (100.0, 0.1)):
-        assert linear_stable_with_controller(mu, beta, c) == bool(linear_stable(mu, beta, controller=c))
-    assert linear_stable_with_controller(1e16, 2.0, c) and not linear_stable_with_controller(1e16, 0.5, c)
+        assert linear_stable_of(mu, beta, c) == bool(linear_stable(mu, beta, wall=c))
+    assert linear_stable_of(1e16, 2.0, c) and not linear_stable_of(1e16, 0.5, c)

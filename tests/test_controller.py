@@ -77,7 +77,7 @@ def test_controller_subnormal_lag_refused_shortest_lag_runs(capsys):
     with pytest.raises(DFAValueError, match=r"lag = 5e-324 is invalid: it must be 0 or at least 1e-300.*pass 0"):
         WallParams.of(damping=1.0, lag=5e-324)
     runs = [
-        simulate(100.0, 0.0, 0.0, 10.0, None, quantize=False, record=False, bound=1e12, controller=c)
+        simulate(100.0, 0.0, 0.0, 10.0, None, quantize=False, record=False, bound=1e12, wall=c)
         for c in (WallParams.of(damping=1.0, lag=MIN_LAG), WallParams.of(damping=1.0))
     ]
     assert [r.outcome for r in runs] == ["rest", "rest"]

@@ -16,13 +16,13 @@ from dfa.analysis.design import design_analysis
 from dfa.analysis.limits.closed_form import stiffness_limits, stiffness_response
 from dfa.analysis.limits.kmax import design_answer
 from dfa.analysis.limits.speed_chart import stiffness_speed_chart
-from dfa.analysis.limits.wall_kmax import controller_stiffness_limits
 from dfa.analysis.limits.zwidth import z_width
 from dfa.analysis.maps import stability_map
 from dfa.checks import check_speed
 from dfa.cli import main
 from dfa.errors import DFAValueError
 from dfa.model.wall import Wall
+from dfa.results.status import KMaxStatus, LimitStatus
 
 IMPULSE = ["--device", "impulse"]
 
@@ -89,7 +89,7 @@ def impulse():
     [
         lambda dev: design_answer(dev, -0.05),
         lambda dev: z_width(dev, -0.05, grid=2),
-        lambda dev: controller_stiffness_limits(dev, Wall.of(100.0, damping=1.0), -0.05),
+        lambda dev: design_answer(dev, -0.05, wall=Wall.of(100.0, damping=1.0)),
         lambda dev: stiffness_speed_chart(dev, velocity=-0.05),
         lambda dev: stiffness_limits(dev, -0.05),
         lambda dev: stiffness_response(dev, [0.1, -0.05]),
@@ -99,7 +99,7 @@ def impulse():
     ids=[
         "design_answer",
         "z_width",
-        "controller_stiffness_limits",
+        "design_answer_wall",
         "speed_chart",
         "limits",
         "response",
@@ -114,10 +114,20 @@ def test_eq11_api_refuses_a_negative_impact_speed_naming_the_parameter(impulse, 
     assert "the impact speed's magnitude" in str(err.value) and "e.g. 0.05" in str(err.value)
 
 
-@pytest.mark.parametrize("call", [lambda dev: design_answer(dev, 0.0), lambda dev: z_width(dev, 0.0, grid=2)])
-def test_eq11_api_refuses_zero_where_no_impact_is_analysed(impulse, call):
+def test_eq11_api_refuses_zero_where_no_impact_is_analysed(impulse):
     with pytest.raises(DFAValueError, match=r"^velocity = 0\.0 is invalid: it must be a finite number > 0"):
-        call(impulse)
+        z_width(impulse, 0.0, grid=2)
+
+
+@pytest.mark.parametrize("wall", [None, Wall.of(100.0, damping=1.0)], ids=["spring", "wall"])
+def test_eq11_design_answer_at_zero_speed_searches_nothing(impulse, wall):
+    """design_answer takes V = 0 (the static end of eq. 11, as `dfa stiffness --velocity 0`): the closed forms hold
+    at rest, the describing-function and simulated limits are not searched (no impact to analyse), no run."""
+    r = design_answer(impulse, 0.0, wall=wall)
+    for lim in (r.k_df, r.k_sim, r.k_sim_rest):
+        assert lim.value is None and lim.status is LimitStatus.NOT_SEARCHED
+    assert r.evidence.simulations == 0 and r.counterexamples == () and r.status is KMaxStatus.OK
+    assert r.k_linear.status is LimitStatus.FOUND
 
 
 def test_fig4_stability_map_refuses_a_negative_speed():

@@ -68,11 +68,11 @@ def test_stiffness_limits_result_and_verdict():
     lim = dfa.stiffness_limits(dev, 0.05, stiffness=80.0)
     assert lim.status == "ok" and lim.velocity_status == "bounded"
     assert lim.max_passive_velocity == pytest.approx((0.024 - 80 * 314e-6 / 2) / (80 * 2e-3 / 2 - 0.02))
-    assert dfa.stiffness_limits(dev, 0.5, stiffness=80.0).status == "too stiff"
-    assert dfa.stiffness_limits(dev, 0.5, stiffness=10.0).velocity_status == "all speeds"
+    assert dfa.stiffness_limits(dev, 0.5, stiffness=80.0).status == "too_stiff"
+    assert dfa.stiffness_limits(dev, 0.5, stiffness=10.0).velocity_status == "all_speeds"
     assert dfa.stiffness_limits(dev, 0.5, stiffness=1000.0).velocity_status == "none"
     d = dfa.stiffness_limits(dev, 0.5, stiffness=10.0).to_dict()
-    assert d["max_passive_velocity"] is None  # JSON has no infinity; the status says "all speeds"
+    assert d["max_passive_velocity"] is None  # JSON has no infinity; the status says "all_speeds"
     with pytest.raises(dfa.DFATypeError, match="device"):
         dfa.stiffness_limits("Impulse Engine", 0.1)
 

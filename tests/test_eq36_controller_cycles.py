@@ -41,39 +41,45 @@ CONTROLLERS = [
 
 def _residual(p, m, w, model, ctl):
     """|1 + D(M)·L(jω; M)| recomputed from the public loop_response (independent of the solver's inverse)."""
-    return abs(1.0 + quantizer_df(m) * loop_response(p, w, m, model=model, controller=ctl))
+    return abs(1.0 + quantizer_df(m) * loop_response(p, w, m, model=model, wall=ctl))
 
 
 @pytest.mark.parametrize("model", ["half-delay", "zoh", "pade"])
 @pytest.mark.parametrize("params", [dfa.Params(5.0, 0.1, 0.3), dfa.Params(5.0, 0.4, 0.0), dfa.Params(20.0, 0.8, 0.9)])
 @pytest.mark.parametrize("delay", [0, 1])
-def test_eq36_spring_controller_gives_spring_only_result_bit_for_bit(model, params, delay):
-    ref = limit_cycles(params, model=model, delay=delay)
-    got = limit_cycles(params, model=model, controller=WallParams.of(delay=delay))
-    assert got.cycles == ref.cycles
-    assert (got.status, got.linear_stable, got.search_bound) == (ref.status, ref.linear_stable, ref.search_bound)
-    assert got.controller == WallParams.of(delay=delay) and ref.controller is None
-    assert "controller" not in ref.to_dict() and got.to_dict()["controller"]["delay"] == delay
+def test_eq36_spring_wall_fast_path_matches_the_general_path(model, params, delay, monkeypatch):
+    """The spring's fast path (chosen from the wall) and the general wall path give the same cycles."""
     w = np.geomspace(1e-3, 3.0, 50)
     amp = None if params.sigma == 0 else np.full_like(w, 1.7)
-    np.testing.assert_array_equal(
-        loop_response(params, w, amp, model=model, controller=WallParams.of(delay=delay)),
-        loop_response(params, w, amp, model=model, delay=delay),
-    )
+    ref = limit_cycles(params, model=model, wall=WallParams.of(delay=delay))
+    ref_loop = loop_response(params, w, amp, model=model, wall=WallParams.of(delay=delay))
+    assert ref.wall == WallParams.of(delay=delay) and ref.to_dict()["wall"]["delay"] == delay
+    monkeypatch.setattr(WallParams, "is_spring", property(lambda self: False))  # force the general path
+    got = limit_cycles(params, model=model, wall=WallParams.of(delay=delay))
+    assert len(got.cycles) == len(ref.cycles)
+    for a, b in zip(got.cycles, ref.cycles, strict=True):
+        assert (a.amplitude, a.frequency, a.stable) == (
+            pytest.approx(b.amplitude, rel=1e-7),
+            pytest.approx(b.frequency, rel=1e-7),
+            b.stable,
+        )
+    assert (got.status, got.linear_stable) == (ref.status, ref.linear_stable)
+    got_loop = loop_response(params, w, amp, model=model, wall=WallParams.of(delay=delay))
+    np.testing.assert_allclose(got_loop, ref_loop, rtol=1e-9)
 
 
 def test_eq36_spring_controller_nyquist_crossings_unchanged():
     p = dfa.Params(5.0, 0.4, 0.0)
-    assert nyquist_locus_response(p, controller=WallParams.of()).crossings == nyquist_locus_response(p).crossings
+    assert nyquist_locus_response(p, wall=WallParams.of()).crossings == nyquist_locus_response(p).crossings
 
 
 @pytest.mark.parametrize("model", ["half-delay", "zoh", "pade"])
 @pytest.mark.parametrize("ctl", CONTROLLERS)
 @pytest.mark.parametrize("params", [dfa.Params(5.0, 0.1, 0.3), dfa.Params(5.0, 0.4, 0.0), dfa.Params(20.0, 0.3, 0.2)])
 def test_eq36_residual_at_every_root_with_a_controller(model, ctl, params):
-    res = limit_cycles(params, model=model, controller=ctl)
+    res = limit_cycles(params, model=model, wall=ctl)
     assert res.complete, res.detail
-    assert res.controller == ctl
+    assert res.wall == ctl
     for c in res.cycles:
         assert c.residual <= 1e-10
         assert _residual(params, c.amplitude, c.frequency, model, ctl) <= 1e-10
@@ -84,7 +90,7 @@ def test_eq36_controller_changes_the_cycles():
     p = dfa.Params(5.0, 0.1, 0.3)
     spring = limit_cycles(p).cycles
     for ctl in CONTROLLERS:
-        got = limit_cycles(p, controller=ctl).cycles
+        got = limit_cycles(p, wall=ctl).cycles
         assert got and [c.amplitude for c in got] != [c.amplitude for c in spring]
 
 
@@ -146,14 +152,12 @@ def _neutral_k_from_loop(damping, delay, cutoff, bandwidth, bracket):
         ctl = Wall.of(k, damping, delay, cutoff, bandwidth).params(T_S)
         p = dfa.Params(M_KG / (k * T_S**2), B_NSM / (k * T_S), 0.0)
         w = np.linspace(1e-3, math.pi - 1e-6, 4000)
-        inv = 1.0 / loop_response(p, w, model="zoh", controller=ctl)
+        inv = 1.0 / loop_response(p, w, model="zoh", wall=ctl)
         idx = np.flatnonzero((np.sign(inv.imag[:-1]) != np.sign(inv.imag[1:])) & (inv.real[:-1] < 0))
         vals = []
         for i in idx:
-            w0 = optimize.brentq(
-                lambda x: (1.0 / loop_response(p, x, model="zoh", controller=ctl)).imag, w[i], w[i + 1]
-            )
-            vals.append(-(1.0 / loop_response(p, w0, model="zoh", controller=ctl)).real - 1.0)
+            w0 = optimize.brentq(lambda x: (1.0 / loop_response(p, x, model="zoh", wall=ctl)).imag, w[i], w[i + 1])
+            vals.append(-(1.0 / loop_response(p, w0, model="zoh", wall=ctl)).real - 1.0)
         return min(vals, key=abs)
 
     return optimize.brentq(gap, *bracket, xtol=1e-12, rtol=1e-13)
@@ -177,7 +181,7 @@ def test_eq36_neutral_cycle_at_infinite_amplitude_is_the_exact_linear_critical_k
     for k, stable in ((0.98 * k_lin, True), (1.02 * k_lin, False)):
         ctl = Wall.of(k, damping, delay, cutoff, bandwidth).params(T_S)
         p = dfa.Params(M_KG / (k * T_S**2), B_NSM / (k * T_S), 0.1)
-        assert limit_cycles(p, controller=ctl, max_amplitude=50.0).linear_stable is stable
+        assert limit_cycles(p, max_amplitude=50.0, wall=ctl).linear_stable is stable
 
 
 @pytest.mark.parametrize("ctl", CONTROLLERS)
@@ -185,38 +189,37 @@ def test_eq36_half_delay_and_zoh_models_agree_as_frequency_tends_to_zero(ctl):
     p = dfa.Params(5.0, 0.3, 0.0)
     errs = []
     for w in (1e-2, 1e-3, 1e-4):
-        hd = loop_response(p, w, model="half-delay", controller=ctl)
-        zo = loop_response(p, w, model="zoh", controller=ctl)
+        hd = loop_response(p, w, model="half-delay", wall=ctl)
+        zo = loop_response(p, w, model="zoh", wall=ctl)
         errs.append(abs(zo / hd - 1.0))
     assert errs[2] < 1e-6 and errs[2] < errs[1] < errs[0]
 
 
 def test_controller_growth_threshold_and_json():
     ctl = CONTROLLERS[2]
-    g = growth_threshold(dfa.Params(5.0, 0.1, 0.3), controller=ctl)
-    assert g.amplitude is not None and g.result.controller == ctl
+    g = growth_threshold(dfa.Params(5.0, 0.1, 0.3), wall=ctl)
+    assert g.amplitude is not None and g.result.wall == ctl
     assert g.to_dict()["status"] == "ok"
-    d = limit_cycles(dfa.Params(5.0, 0.1, 0.3), controller=ctl).to_dict()
-    assert d["controller"] == ctl.to_dict() and d["delay"] == ctl.delay
+    d = limit_cycles(dfa.Params(5.0, 0.1, 0.3), wall=ctl).to_dict()
+    assert d["wall"] == ctl.to_dict() and d["delay"] == ctl.delay
 
 
 def test_controller_bad_input():
     p = dfa.Params(5.0, 0.1, 0.3)
-    with pytest.raises(DFATypeError, match="controller"):
-        limit_cycles(p, controller=Wall.of(300.0))
-    with pytest.raises(DFAValueError, match="delay = 2 is invalid with controller.delay = 1"):
-        limit_cycles(p, delay=2, controller=WallParams.of(delay=1))
-    with pytest.raises(DFAValueError, match="delay"):
-        loop_response(p, 0.5, 1.0, delay=2, controller=WallParams.of(delay=1))
-    assert limit_cycles(p, delay=1, controller=WallParams.of(delay=1)).delay == 1
+    with pytest.raises(DFATypeError, match="wall"):
+        limit_cycles(p, wall=Wall.of(300.0))  # physical: its groups need the period
+    with pytest.raises(TypeError, match="delay"):
+        limit_cycles(p, delay=2, wall=WallParams.of(delay=1))  # one place for the delay: the wall
+    with pytest.raises(TypeError, match="delay"):
+        loop_response(p, 0.5, 1.0, delay=2)
+    assert limit_cycles(p, wall=WallParams.of(delay=1)).delay == 1
 
 
 # ---------------------------------------------------------------- against the exact simulator (h-csim)
 def _simulate_with_controller():
     from dfa.analysis import simulation
 
-    if "controller" not in inspect.signature(simulation.simulate).parameters:
-        pytest.skip("dfa.analysis.simulation.simulate has no controller= keyword yet (issue 15 item 4, h-csim)")
+    assert "wall" in inspect.signature(simulation.simulate).parameters
     return simulation.simulate
 
 
@@ -225,39 +228,39 @@ def test_eq36_controller_growth_threshold_brackets_the_simulated_critical_speed(
     """Below the smallest unstable cycle's speed the simulation does not diverge; well above it, it does."""
     simulate = _simulate_with_controller()
     p = dfa.Params(5.0, 0.1, 0.3)
-    g = growth_threshold(p, model="zoh", controller=ctl)
+    g = growth_threshold(p, model="zoh", wall=ctl)
     assert g.amplitude is not None and g.grows_above
-    lo = simulate(p.mu, p.beta, p.sigma, 0.5 * g.xi_dot, 20_000, record=False, controller=ctl)
-    hi = simulate(p.mu, p.beta, p.sigma, 3.0 * g.xi_dot_high, 20_000, record=False, controller=ctl)
+    lo = simulate(p.mu, p.beta, p.sigma, 0.5 * g.xi_dot, 20_000, record=False, wall=ctl)
+    hi = simulate(p.mu, p.beta, p.sigma, 3.0 * g.xi_dot_high, 20_000, record=False, wall=ctl)
     assert lo.outcome != "unstable" and hi.outcome == "unstable"
 
 
 def test_eq42_45_closed_forms_refuse_a_controller_they_do_not_hold_for():
     from dfa.analysis.cycles import large_cycle_closed_form, small_cycle_closed_form, small_cycle_closed_forms
 
-    assert small_cycle_closed_form(5.0, 0.1, 0.3, controller=WallParams.of()) == small_cycle_closed_form(5.0, 0.1, 0.3)
+    assert small_cycle_closed_form(5.0, 0.1, 0.3, wall=WallParams.of()) == small_cycle_closed_form(5.0, 0.1, 0.3)
     for ctl in [*CONTROLLERS, WallParams.of(delay=1)]:
         with pytest.raises(DFAValueError, match="closed forms .eq. 42-45. hold for the pure spring"):
-            large_cycle_closed_form(5.0, 0.1, 0.3, controller=ctl)
+            large_cycle_closed_form(5.0, 0.1, 0.3, wall=ctl)
         with pytest.raises(DFAValueError, match="limit_cycles"):
-            small_cycle_closed_forms([5.0], [0.1], [0.3], controller=ctl)
-    with pytest.raises(DFATypeError, match="controller"):
-        small_cycle_closed_form(5.0, 0.1, 0.3, controller="spring")
+            small_cycle_closed_forms([5.0], [0.1], [0.3], wall=ctl)
+    with pytest.raises(DFATypeError, match="wall"):
+        small_cycle_closed_form(5.0, 0.1, 0.3, wall="spring")
 
 
 @pytest.mark.parametrize("ctl", CONTROLLERS)
 def test_eq36_controller_describing_small_reproduces_the_exact_small_cycle(ctl):
     """describing='small' (D = 2/(πM), exact for M < 1) gives the same small cycles as the exact D."""
     p = dfa.Params(5.0, 0.1, 0.3)
-    exact = [c for c in limit_cycles(p, controller=ctl).cycles if c.amplitude < 1.0]
-    small = [c for c in limit_cycles(p, controller=ctl, describing="small").cycles if c.amplitude < 1.0]
+    exact = [c for c in limit_cycles(p, wall=ctl).cycles if c.amplitude < 1.0]
+    small = [c for c in limit_cycles(p, describing="small", wall=ctl).cycles if c.amplitude < 1.0]
     assert [c.amplitude for c in small] == pytest.approx([c.amplitude for c in exact], rel=1e-9)
 
 
 @pytest.mark.parametrize("mu", [0.5, 5.0, 100.0])
 def test_eq36_zoh_phase_condition_has_at_most_one_crossing_per_frequency_with_a_controller(mu):
     """The solver's premise for the exact ZOH model (one β* per ω with U < 0), checked on its own β grid."""
-    from dfa.analysis.cycles.characteristic import _W_GRID, _inv_loop
+    from dfa.analysis.cycles.characteristic import W_GRID, _inv_loop
 
     bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
     for ctl in [
@@ -265,7 +268,7 @@ def test_eq36_zoh_phase_condition_has_at_most_one_crossing_per_frequency_with_a_
         WallParams.of(damping=2.0, cutoff=0.05),
         WallParams.of(damping=1.0, lag=1.0, delay=2),
     ]:
-        c = _inv_loop(mu, bgrid[None, :], _W_GRID[:, None], "zoh", ctl.delay, 0, ctl)
+        c = _inv_loop(mu, bgrid[None, :], W_GRID[:, None], "zoh", ctl.delay, 0, ctl)
         sc = (np.sign(c.imag[:, :-1]) != np.sign(c.imag[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)
         assert sc.sum(axis=1).max() <= 1
 
@@ -287,7 +290,7 @@ def test_eq36_zoh_loop_equals_python_control_c2d_with_the_controller(ctl, sigma,
         h = z ** (-ctl.delay) * (1.0 + ctl.damping * (1.0 - 1.0 / z) * f)
         ref.append(h * control.c2d(plant, 1.0, method="zoh")(z))
     amps = None if amp is None else np.full_like(w, amp)
-    np.testing.assert_allclose(loop_response(p, w, amps, model="zoh", controller=ctl), ref, rtol=1e-9)
+    np.testing.assert_allclose(loop_response(p, w, amps, model="zoh", wall=ctl), ref, rtol=1e-9)
 
 
 @pytest.mark.parametrize("ctl", CONTROLLERS)
@@ -300,7 +303,7 @@ def test_eq36_half_delay_loop_is_the_stated_product(ctl):
     c = 1.0 + ctl.damping * (1.0 - 1.0 / z) * f
     beq = p.beta + 4 * p.sigma / (math.pi * 1.5 * w)
     ref = np.exp(-s * (ctl.delay + 0.5)) * c / (ctl.lag * s + 1.0) / (p.mu * s * s + beq * s)
-    np.testing.assert_allclose(loop_response(p, w, 1.5, controller=ctl), ref, rtol=1e-12)
+    np.testing.assert_allclose(loop_response(p, w, 1.5, wall=ctl), ref, rtol=1e-12)
 
 
 def test_eq36_controller_stable_cycle_matches_simulated_chatter():
@@ -309,9 +312,9 @@ def test_eq36_controller_stable_cycle_matches_simulated_chatter():
     0.51 or 0.64 ticks when measured with h-csim's simulator): frequency within 12 %, amplitude within 25 %."""
     simulate = _simulate_with_controller()
     p, ctl = dfa.Params(5.0, 0.1, 0.3), CONTROLLERS[2]
-    (cyc,) = [c for c in limit_cycles(p, model="zoh", controller=ctl).cycles if c.stable]
+    (cyc,) = [c for c in limit_cycles(p, model="zoh", wall=ctl).cycles if c.stable]
     for v in (0.1, 0.2, 0.3):
-        r = simulate(p.mu, p.beta, p.sigma, v, 20_000, record=False, controller=ctl)
+        r = simulate(p.mu, p.beta, p.sigma, v, 20_000, record=False, wall=ctl)
         assert r.outcome == "chatter"
         assert r.frequency == pytest.approx(cyc.frequency, rel=0.12)
         assert r.amplitude == pytest.approx(cyc.amplitude, rel=0.25)

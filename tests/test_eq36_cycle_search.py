@@ -23,10 +23,11 @@ from dfa.analysis.describing import DF_ENVELOPE, quantizer_df, quantizer_df_deri
 from dfa.analysis.loop import loop_response
 from dfa.cli import main
 from dfa.core import dfcore
+from dfa.model.wall import WallParams
 
 
 def residual(p, m, w, model="half-delay", delay=0):
-    return abs(1 + quantizer_df(m) * loop_response(p, w, m, model=model, delay=delay))
+    return abs(1 + quantizer_df(m) * loop_response(p, w, m, model=model, wall=WallParams.of(delay=delay)))
 
 
 # ------------------------------------------------------------- 1. σ = ½ (K = 2c/Δ, eq. 9)
@@ -45,7 +46,7 @@ def residual(p, m, w, model="half-delay", delay=0):
 @example(100.0, 0.3, 1e-6, -1.0, "zoh", 2)
 def test_eq9_sigma_half_no_exception_and_small_residuals(mu, beta, offset, sign, model, delay):
     p = dfa.Params(mu, beta, 0.5 + sign * offset)
-    res = limit_cycles(p, model=model, delay=delay)
+    res = limit_cycles(p, model=model, wall=WallParams.of(delay=delay))
     assert isinstance(res.status, SearchStatus)
     assert res.complete == (res.status is SearchStatus.COMPLETE)
     for c in res.cycles:

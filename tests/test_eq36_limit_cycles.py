@@ -20,18 +20,22 @@ from dfa.analysis.cycles import (
 )
 from dfa.analysis.describing import QuantizerNonlinearity, quantizer_df
 from dfa.analysis.loop import loop_response, loop_system
+from dfa.model.wall import WallParams
 
 params_st = st.builds(dfa.Params, st.floats(0.5, 200.0), st.floats(0.0, 0.6), st.floats(0.0, 2.5))
 
 
 def residual(p, m, w, model="half-delay", delay=0, pade_order=4):
-    return abs(1 + quantizer_df(m) * loop_response(p, w, m, model=model, delay=delay, pade_order=pade_order))
+    return abs(
+        1
+        + quantizer_df(m) * loop_response(p, w, m, model=model, pade_order=pade_order, wall=WallParams.of(delay=delay))
+    )
 
 
 @settings(max_examples=60)
 @given(params_st, st.sampled_from(["half-delay", "pade", "zoh"]), st.integers(0, 2))
 def test_eq36_every_root_has_residual_below_1e10(p, model, delay):
-    res = limit_cycles(p, model=model, delay=delay)
+    res = limit_cycles(p, model=model, wall=WallParams.of(delay=delay))
     for c in res.cycles:
         assert residual(p, c.amplitude, c.frequency, model, delay) <= 1e-10
         assert c.residual <= 1e-10
@@ -126,7 +130,7 @@ def test_eq36_sigma_zero_and_beta_zero():
 @pytest.mark.parametrize("model", ["half-delay", "zoh"])
 def test_eq36_computational_delay(model):
     p = dfa.Params(20.0, 0.8, 0.9)
-    res = limit_cycles(p, model=model, delay=1)
+    res = limit_cycles(p, model=model, wall=WallParams.of(delay=1))
     assert res.cycles
     for c in res.cycles:
         assert residual(p, c.amplitude, c.frequency, model, delay=1) <= 1e-10
@@ -182,7 +186,6 @@ def test_growth_threshold_physical_units():
     "kwargs, needle",
     [
         (dict(model="exact"), "model"),
-        (dict(delay=-1), "delay"),
         (dict(max_amplitude=0), "max_amplitude"),
         (dict(describing="approx"), "describing"),
     ],
@@ -192,6 +195,10 @@ def test_limit_cycles_bad_input(kwargs, needle):
         limit_cycles(dfa.Params(5.0, 0.1, 0.3), **kwargs)
     with pytest.raises(dfa.DFATypeError):
         limit_cycles((5.0, 0.1, 0.3))
+    with pytest.raises(dfa.DFATypeError, match="wall"):
+        limit_cycles(dfa.Params(5.0, 0.1, 0.3), wall=1)
+    with pytest.raises(dfa.DFAValueError, match="delay"):
+        limit_cycles(dfa.Params(5.0, 0.1, 0.3), wall=WallParams.of(delay=-1))
 
 
 # ------------------------------------------- the solver's fast loop inverse (dfa.analysis.cycles)
@@ -208,7 +215,7 @@ def test_eq36_solver_loop_inverse_scalar_and_vector_paths_equal_loop_response(mu
     from dfa.analysis.cycles import _inv_loop
 
     p = dfa.Params(mu, beq, 0.0)
-    ref = 1.0 / complex(loop_response(p, w, model=model, delay=delay, pade_order=6))
+    ref = 1.0 / complex(loop_response(p, w, model=model, pade_order=6, wall=WallParams.of(delay=delay)))
     scalar = _inv_loop(mu, beq, w, model, delay, 6)
     vector = _inv_loop(mu, np.array([beq, beq]), np.array([w, w]), model, delay, 6)
     assert isinstance(scalar, complex)
@@ -219,7 +226,8 @@ def test_eq36_solver_loop_inverse_scalar_and_vector_paths_equal_loop_response(mu
 @pytest.mark.parametrize("model, delay", [("half-delay", 0), ("pade", 0), ("pade", 1), ("zoh", 0), ("zoh", 1)])
 def test_eq36_phase_curve_beta_star_puts_the_loop_on_the_negative_real_axis(model, delay):
     """β*(ω) (closed form μω tan φ for half-delay and Padé, numeric for ZOH) gives V = 0 with U < 0 (eq. 36 phase condition)."""
-    from dfa.analysis.cycles import _W_GRID, _Loop, _phase_beta
+    from dfa.analysis.cycles import _Loop, _phase_beta
+    from dfa.analysis.cycles.characteristic import W_GRID as _W_GRID
 
     mu = 7.0
     lp = _Loop(dfa.Params(mu, 0.0, 0.0), model, delay, 4)
@@ -229,7 +237,7 @@ def test_eq36_phase_curve_beta_star_puts_the_loop_on_the_negative_real_axis(mode
         assert ok.sum() > 100 if w is _W_GRID else ok.sum() > 3
         inv = np.array(
             [
-                1.0 / complex(loop_response(dfa.Params(mu, b, 0.0), x, model=model, delay=delay))
+                1.0 / complex(loop_response(dfa.Params(mu, b, 0.0), x, model=model, wall=WallParams.of(delay=delay)))
                 for x, b in zip(w[ok], bs[ok], strict=False)
             ]
         )

@@ -18,6 +18,7 @@ from dfa.analysis.loop import (
     nyquist_locus_response,
     zoh_pulse_response,
 )
+from dfa.model.wall import WallParams
 
 W = np.linspace(0.01, 3.1, 300)
 
@@ -94,16 +95,18 @@ def test_computational_delay_adds_whole_samples(model):
     p = dfa.Params(5.0, 0.2, 0.3)
     amp = np.full_like(W, 2.0)
     l0 = loop_response(p, W, amp, model=model, pade_order=8)
-    l2 = loop_response(p, W, amp, model=model, delay=2, pade_order=8)
+    l2 = loop_response(p, W, amp, model=model, pade_order=8, wall=WallParams.of(delay=2))
     tol = 1e-12 if model != "pade" else 1e-2
     np.testing.assert_allclose(l2, l0 * np.exp(-2j * W), rtol=tol)
 
 
 def test_zoh_discrete_system_with_delay_matches_response():
     p = dfa.Params(5.0, 0.2, 0.0)
-    H = loop_system(p, model="zoh", delay=1)
+    H = loop_system(p, model="zoh", wall=WallParams.of(delay=1))
     assert H.dt == 1.0
-    np.testing.assert_allclose(H(np.exp(1j * W)), loop_response(p, W, model="zoh", delay=1), rtol=1e-10)
+    np.testing.assert_allclose(
+        H(np.exp(1j * W)), loop_response(p, W, model="zoh", wall=WallParams.of(delay=1)), rtol=1e-10
+    )
 
 
 def test_fig6_nyquist_crossings_satisfy_harmonic_balance():
@@ -123,14 +126,21 @@ def test_fig6_nyquist_crossings_satisfy_harmonic_balance():
     "kwargs, needle",
     [
         (dict(model="exact"), "model"),
-        (dict(delay=-1), "delay"),
-        (dict(delay=0.5), "delay"),
         (dict(model="pade", pade_order=0), "pade_order"),
     ],
 )
 def test_loop_bad_input(kwargs, needle):
     with pytest.raises(dfa.DFAValueError, match=needle):
         loop_response(dfa.Params(1.0, 0.1, 0.0), 0.5, **kwargs)
+
+
+@pytest.mark.parametrize("delay", [-1, 0.5])
+def test_loop_bad_delay_is_refused_by_the_wall(delay):
+    """The delay lives in the wall: a bad one is refused where the wall is built, naming ``delay``."""
+    with pytest.raises((dfa.DFAValueError, dfa.DFATypeError), match="delay"):
+        loop_response(dfa.Params(1.0, 0.1, 0.0), 0.5, wall=WallParams.of(delay=delay))
+    with pytest.raises(dfa.DFATypeError, match="wall"):
+        loop_response(dfa.Params(1.0, 0.1, 0.0), 0.5, wall=delay)
 
 
 def test_loop_rejects_bad_frequency_and_params_type():

@@ -1,7 +1,7 @@
 """The describing function's sub-tick caveat (issue 15): where eq. 36's smallest unstable cycle lies just above the
 first quantization level, "no growth below it" is contradicted by exact simulation, so every growth verdict resting
 on it carries a caveat (limit_cycles, growth_threshold, `dfa limit-cycles` text and JSON) or becomes unknown (the
-describing-function K_max with a controller, dfa.analysis.limits.kmax._growth_xi_dot, used by the Z-width)."""
+describing-function K_max with a wall, dfa.analysis.limits.runs.growth_at, used by the Z-width)."""
 
 import json
 
@@ -10,10 +10,11 @@ import pytest
 
 import dfa
 from dfa.analysis.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, subtick_caveat
-from dfa.analysis.limits.kmax import SAFE, UNDECIDED, UNSAFE, _growth_xi_dot, df_verdict
+from dfa.analysis.limits.runs import SAFE, UNDECIDED, UNSAFE, Evidence, df_verdict, growth_at
 from dfa.analysis.simulation import OUTCOMES, simulate_batch
 from dfa.model.device import Params
-from dfa.model.wall import WallParams
+from dfa.model.wall import Wall, WallParams
+from dfa.render.limits import limit_text
 from dfa.render.text import limit_cycle_lines, limit_cycles_dict
 
 # found by a random search (dfa.analysis.cycles.caveats): damper on a slowly filtered velocity (filter pole a = 0.974), d = 0
@@ -23,7 +24,7 @@ CTL = WallParams.of(damping=0.2838, cutoff=0.0042)
 
 @pytest.fixture(scope="module")
 def res():
-    return limit_cycles(P, model="zoh", controller=CTL)
+    return limit_cycles(P, model="zoh", wall=CTL)
 
 
 def test_eq36_subtick_point_df_predicts_settling_below_one_tick(res):
@@ -39,7 +40,7 @@ def test_eq36_subtick_point_simulation_diverges_from_sub_tick_starts(res):
     ang = np.linspace(0.0, 2.0 * np.pi, 16, endpoint=False)
     x0 = np.concatenate([r * np.cos(ang) for r in (0.25, 0.5)])
     v0 = np.concatenate([r * np.sin(ang) * w for r in (0.25, 0.5)])
-    b = simulate_batch(P.mu, P.beta, P.sigma, v0, 20_000, xi0=x0, controller=CTL)
+    b = simulate_batch(P.mu, P.beta, P.sigma, v0, 20_000, xi0=x0, wall=CTL)
     diverged = int(np.count_nonzero(np.asarray(b.outcome) == OUTCOMES.index("unstable")))
     assert diverged >= 10
 
@@ -47,7 +48,7 @@ def test_eq36_subtick_point_simulation_diverges_from_sub_tick_starts(res):
 def test_eq36_subtick_caveat_on_the_result_and_growth_threshold(res):
     assert res.caveat is not None and res.caveat == subtick_caveat(res)
     assert "1.014" in res.caveat and "not excluded" in res.caveat
-    g = growth_threshold(P, model="zoh", controller=CTL)
+    g = growth_threshold(P, model="zoh", wall=CTL)
     assert g.caveat == res.caveat and "Caveat:" in g.meaning()
     d = json.loads(json.dumps(g.to_dict()))
     assert d["caveat"] == res.caveat and "Caveat:" in d["meaning"]
@@ -57,18 +58,18 @@ def test_eq36_subtick_caveat_on_the_result_and_growth_threshold(res):
 def test_eq36_subtick_caveat_in_limit_cycles_text_and_json(res):
     """The numbers users read: `dfa limit-cycles` prints its lines with limit_cycle_lines and its JSON with
     limit_cycles_dict."""
-    g = growth_threshold(P, model="zoh", controller=CTL)
+    g = growth_threshold(P, model="zoh", wall=CTL)
     text = "\n".join(limit_cycle_lines(g, None))
     assert "Caveat: the smallest unstable cycle (M = 1.014 ticks)" in text
     d = limit_cycles_dict(g)
     assert d["caveat"] == d["growth_threshold"]["caveat"] == res.caveat
 
 
-def test_eq36_subtick_growth_speed_with_a_controller_is_not_relied_on():
+def test_eq36_subtick_growth_speed_with_a_wall_is_not_relied_on():
     """Before the caveat, the describing-function K_max and the Z-width used M_u·ω = 0.47 ticks/sample here as the
     speed below which no impact grows; simulation contradicts it, so impacts below it are now undecided (growth
     predicted from above it stays unsafe)."""
-    growth = _growth_xi_dot(P.mu, P.beta, P.sigma, 0, "zoh", CTL)
+    growth = growth_at(P, CTL, "zoh")
     assert growth.subtick and growth.unstable == 1 and growth.xi_dot is not None
     assert df_verdict(growth, 0.5 * growth.xi_dot) == UNDECIDED
     assert df_verdict(growth, 1.5 * growth.xi_dot) == UNSAFE
@@ -86,11 +87,11 @@ def test_eq36_no_caveat_well_above_the_first_level():
 
 def test_eq36_subtick_caveat_spring_alike():
     """The paper's spring shows the same failure (random search, dfa.analysis.cycles.caveats): its result carries the caveat
-    and, as with a controller, its describing function no longer calls impacts below M_u·ω safe (one rule)."""
+    and, as with a wall, its describing function no longer calls impacts below M_u·ω safe (one rule)."""
     p = Params(1.2433, 0.41264, 0.21593)
-    res = limit_cycles(p, model="zoh", delay=1)
+    res = limit_cycles(p, model="zoh", wall=WallParams.of(delay=1))
     assert res.unstable_cycles[0].amplitude < 1.01 and res.caveat is not None
-    growth = _growth_xi_dot(p.mu, p.beta, p.sigma, 1, "zoh", None)
+    growth = growth_at(p, WallParams.of(delay=1), "zoh")
     assert growth.subtick and growth.xi_dot == pytest.approx(
         min(c.amplitude * c.frequency for c in res.unstable_cycles)
     )
@@ -99,17 +100,25 @@ def test_eq36_subtick_caveat_spring_alike():
 
 
 def test_eq36_subtick_caveat_named_in_the_zwidth_df_reason():
-    """A device whose controlled loop at K = 1000 N/m is the point above (μ = 3.749, β = 0, σ = 0.155,
-    β_B = B/(KT) = 0.2838, ν_c = f_c·T = 0.0042): the Z-width's describing-function column says why it stops."""
-    from dfa.analysis.limits.zwidth import _column, _df_judge
+    """A device whose wall at K = 1000 N/m is the point above (μ = 3.749, β = 0, σ = 0.155,
+    β_B = B/(KT) = 0.2838, ν_c = f_c·T = 0.0042): the Z-width's describing-function column says why it stops.
+
+    The column is now k_df of design_answer at this B (its own grid, not the Z-width's K grid): it stops where the
+    sub-tick caveat makes the prediction undecided (``limited_by``), and its text must name that caveat."""
+    from dfa.analysis.limits.zwidth import _column
     from dfa.model.device import Device
 
     dev = Device(mass=3.749e-3, damping=0.0, coulomb=1.55e-3, resolution=1e-5, period=1e-3)
-    seen: list = []
-    assert _df_judge(dev, 0.2838, 0.01, 0, 4.2, None, "zoh", seen)(1000.0) == "undecided" and seen == [1000.0]
+    wall = Wall.of(1000.0, damping=0.2838, filter_cutoff=4.2)
+    v = dev.velocity(0.01)
+    ev = Evidence(dev, wall, np.array([v]), 10**6, "zoh")
+    assert ev.predicted(1000.0, 0.01) == UNDECIDED and ev.growth_xi_dot(1000.0).subtick
     ks = np.array([900.0, 1000.0])
-    k_df, why = _column(dev, dev.velocity(0.01), 0, 4.2, None, ks, 0.2838, np.zeros(2, dtype=np.int8), "zoh")[3]
-    assert np.isnan(k_df) and "sub-tick caveat" in why and f"below {SUBTICK_LIMIT:g} ticks" in why
+    k_df = _column(dev, wall, v, ks, np.zeros(2, dtype=np.int8), "zoh")[3]
+    assert k_df.limited_by is not None and ev.growth_xi_dot(k_df.limited_by).subtick
+    assert k_df.limited_by in k_df.undecided and k_df.caveat
+    why = limit_text(k_df, "N/m")
+    assert "sub-tick caveat" in why and f"below {SUBTICK_LIMIT:g} ticks" in why
 
 
 _CLI = ["limit-cycles", "--mass", "3.749e-3", "--damping", "0", "--coulomb", "1.55e-3", "--resolution", "1e-5",
@@ -133,16 +142,21 @@ def test_eq36_subtick_caveat_printed_by_dfa_limit_cycles(capsys):
 def test_eq36_subtick_assessed_stiffness_says_why_its_growth_speed_is_unknown(capsys):
     """Impulse Engine at K = 540 N/m: the smallest unstable cycle lies below SUBTICK_LIMIT (the caveat), so the
     assessment of that K in `dfa stiffness` states the sub-tick reason, not "search incomplete" (text and JSON)."""
-    from dfa.analysis.limits.kmax import SUBTICK_UNKNOWN
+    from dfa.analysis.limits.kmax import KMaxAssessment
     from dfa.cli import main
 
     e = dfa.get_device("impulse").device
     p = e.params(540.0)
-    assert _growth_xi_dot(p.mu, p.beta, p.sigma, 0, "half-delay").subtick
+    assert growth_at(p, WallParams(), "half-delay").subtick
+    reasons = {
+        why: KMaxAssessment(540.0, "given", None, "none", "too_stiff", None, why, 1).null_reasons()["growth_speed"]
+        for why in ("subtick", "incomplete")
+    }
     argv = ["stiffness", "--device", "impulse", "--velocity", "0.02", "--stiffness", "540"]
     assert main(argv) == 0
     row = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("predicted cycles at K = 540"))
-    assert SUBTICK_UNKNOWN in row and "search incomplete" not in row
+    assert reasons["subtick"] in row and "search incomplete" not in row and reasons["incomplete"] not in row
     assert main([*argv, "--json"]) == 0
     a = json.loads(capsys.readouterr().out)["assessment"]
-    assert a["growth_speed"] is None and a["null_reasons"]["/growth_speed"] == SUBTICK_UNKNOWN
+    assert a["growth_speed"] is None and a["growth_unknown"] == "subtick"
+    assert a["null_reasons"]["/growth_speed"] == reasons["subtick"]

@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 import dfa
 import dfa.analysis.simulation as simulation
 from dfa.cli import main
+from dfa.model.wall import WallParams
 
 
 def _same(a, b):
@@ -74,8 +75,8 @@ def test_eq4_chunked_run_equals_single_call(mu, beta, sigma, v, n, chunk, record
 @pytest.mark.parametrize("v", [1.0, 2.0, 8.0])
 def test_eq4_delay_runs_in_chunks_equal_single_call(monkeypatch, delay, v):
     # the pending forces of a delay live in the kernel's ring buffer between chunks: chunked = one call
-    ref = dfa.simulate(100.0, 0.3, 0.3, v, 2000, delay=delay, energy=True)
-    got, used = _chunked(monkeypatch, 10, 100.0, 0.3, 0.3, v, 2000, delay=delay, energy=True)
+    ref = dfa.simulate(100.0, 0.3, 0.3, v, 2000, energy=True, wall=WallParams.of(delay=delay))
+    got, used = _chunked(monkeypatch, 10, 100.0, 0.3, 0.3, v, 2000, wall=WallParams.of(delay=delay), energy=True)
     assert used and got.delay == delay
     _same(ref, got)
 

@@ -186,15 +186,15 @@ def test_eq4_controller_users_numbers_equal_recorded_runs():
     """dfa.simulate and simulate_batch (skipping) report what recorded runs (every sample) report."""
     ctl = WallParams.of(damping=0.5, cutoff=0.1, delay=1, lag=0.2)
     for beta, sigma in [(2.0, 0.1), (0.3, 1.5), (0.0, 0.2)]:
-        fast = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=False, controller=ctl).to_dict()
-        full = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=True, controller=ctl).to_dict()
+        fast = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=False, wall=ctl).to_dict()
+        full = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=True, wall=ctl).to_dict()
         for key in ("xi", "xi_dot", "record"):
             full.pop(key, None)
             fast.pop(key, None)
         assert fast == full
-    b = simulate_batch(2.0, [2.0, 0.3, 0.0], [0.1, 1.5, 0.2], 2.0, samples=30_000, controller=ctl)
+    b = simulate_batch(2.0, [2.0, 0.3, 0.0], [0.1, 1.5, 0.2], 2.0, samples=30_000, wall=ctl)
     for i, (beta, sigma) in enumerate([(2.0, 0.1), (0.3, 1.5), (0.0, 0.2)]):
-        r = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=True, controller=ctl)
+        r = simulate(2.0, beta, sigma, 2.0, samples=30_000, record=True, wall=ctl)
         assert (r.samples_run, r.outcome.value) == (b.samples_run[i], b.outcomes()[i])
         assert np.array_equal([r.amplitude, r.centre, r.final_xi], [b.amplitude[i], b.centre[i], b.final_xi[i]])
 

@@ -119,7 +119,7 @@ def test_eq4_lag_sample_stick_slip_against_solve_ivp(x, v, c, fa, sigma, lag, be
 
 
 def _compare_ivp(mu, beta, sigma, x0, v0, n, ctl, tol=1e-8):
-    r = simulate(mu, beta, sigma, v0, samples=n, xi0=x0, controller=ctl)
+    r = simulate(mu, beta, sigma, v0, samples=n, xi0=x0, wall=ctl)
     ix, iv = simulate_ivp_ctl(mu, beta, sigma, x0, v0, n, ctl)
     k = r.samples_run + 1 if r.outcome != "unstable" else r.samples_run
     k = n + 1 if r.rest_sample is not None else k  # after rest: the reference stays put too (rest is sound)
@@ -184,7 +184,7 @@ def test_eq4_random_controllers_against_solve_ivp(ctl, mu, beta, sigma, v0):
 @pytest.mark.parametrize("mu, beta", [(20.0, 0.3), (2.0, 0.0)])
 def test_linear_controller_against_c2d_recursion(ctl, mu, beta):
     n = 300
-    r = simulate(mu, beta, 0.0, 1.5, samples=n, xi0=0.3, quantize=False, controller=ctl, bound=1e300)
+    r = simulate(mu, beta, 0.0, 1.5, samples=n, xi0=0.3, quantize=False, bound=1e300, wall=ctl)
     lx, lv = linear_ctl_recursion(mu, beta, 0.3, 1.5, n, ctl)
     scale = np.maximum(1.0, np.abs(lx))
     assert np.all(np.abs(r.xi - lx) <= 1e-10 * scale)
@@ -195,7 +195,7 @@ def test_linear_controller_against_c2d_recursion(ctl, mu, beta):
 @given(CONTROLLERS, st.floats(0.5, 50.0, **finite), st.floats(0.0, 1.0, **finite))
 def test_linear_random_controllers_against_c2d_recursion(ctl, mu, beta):
     n = 150
-    r = simulate(mu, beta, 0.0, 1.5, samples=n, xi0=0.3, quantize=False, controller=ctl, bound=1e300)
+    r = simulate(mu, beta, 0.0, 1.5, samples=n, xi0=0.3, quantize=False, bound=1e300, wall=ctl)
     lx, lv = linear_ctl_recursion(mu, beta, 0.3, 1.5, n, ctl)
     scale = np.maximum.accumulate(np.maximum(1.0, np.abs(lx)))  # relative to the largest |ξ| so far
     assert np.all(np.abs(r.xi - lx) <= 1e-10 * scale)
@@ -205,13 +205,13 @@ def test_linear_random_controllers_against_c2d_recursion(ctl, mu, beta):
 @pytest.mark.parametrize("delay", [0, 1, 3])
 @pytest.mark.parametrize("mu, beta, sigma, v0", [(100.0, 0.3, 1.5, 2.0), (100.0, 0.0, 0.2, 2.0), (2.0, 0.4, 0.1, 2.0)])
 def test_eq4_spring_controller_is_bit_identical(delay, mu, beta, sigma, v0):
-    plain = simulate(mu, beta, sigma, v0, samples=20000, delay=delay, energy=True)
-    ctl = simulate(mu, beta, sigma, v0, samples=20000, controller=Wall.of(300.0, delay=delay).params(1e-3))
+    plain = simulate(mu, beta, sigma, v0, samples=20000, energy=True, wall=WallParams.of(delay=delay))
+    ctl = simulate(mu, beta, sigma, v0, samples=20000, wall=Wall.of(300.0, delay=delay).params(1e-3))
     a, b = plain.to_dict(), ctl.to_dict()
     assert a == b
     assert np.array_equal(plain.xi, ctl.xi, equal_nan=True) and np.array_equal(plain.xi_dot, ctl.xi_dot, equal_nan=True)
-    ba = simulate_batch(mu, [beta, 0.1], sigma, v0, samples=5000, delay=delay)
-    bb = simulate_batch(mu, [beta, 0.1], sigma, v0, samples=5000, controller=WallParams.of(delay=delay))
+    ba = simulate_batch(mu, [beta, 0.1], sigma, v0, samples=5000, wall=WallParams.of(delay=delay))
+    bb = simulate_batch(mu, [beta, 0.1], sigma, v0, samples=5000, wall=WallParams.of(delay=delay))
     assert ba.to_dict() == bb.to_dict()
     # the controller kernel itself, given the pure spring, follows the spring kernel bit for bit
     n = 3000
@@ -219,7 +219,7 @@ def test_eq4_spring_controller_is_bit_identical(delay, mu, beta, sigma, v0):
     done, rest = wall_kernel.simulate_wall_kernel(
         mu, beta, sigma, 0.0, v0, n, delay, True, 1e6, 750, 0.0, 0.0, False, 0.0, rx, rv, st_
     )
-    ref = simulate(mu, beta, sigma, v0, samples=n, delay=delay)
+    ref = simulate(mu, beta, sigma, v0, samples=n, wall=WallParams.of(delay=delay))
     stop = n + 1 if rest < 0 and ref.rest_sample is None else min(done, ref.samples_run) + 1
     assert np.array_equal(rx[:stop], ref.xi[:stop], equal_nan=True)
     assert np.array_equal(rv[:stop], ref.xi_dot[:stop], equal_nan=True)
@@ -227,30 +227,30 @@ def test_eq4_spring_controller_is_bit_identical(delay, mu, beta, sigma, v0):
 
 def test_batch_with_controller_equals_simulate():
     ctl = WallParams.of(damping=0.5, cutoff=0.1, delay=1, lag=0.3)
-    b = simulate_batch(100.0, [0.3, 0.0, 0.1], [1.5, 0.2, 0.6], 2.0, samples=8000, controller=ctl)
+    b = simulate_batch(100.0, [0.3, 0.0, 0.1], [1.5, 0.2, 0.6], 2.0, samples=8000, wall=ctl)
     for i in range(3):
-        r = simulate(100.0, b.beta[i], b.sigma[i], 2.0, samples=8000, record=False, controller=ctl)
+        r = simulate(100.0, b.beta[i], b.sigma[i], 2.0, samples=8000, record=False, wall=ctl)
         assert r.outcome.value == b.outcomes()[i]
         assert (r.final_xi, r.final_xi_dot) == (b.final_xi[i], b.final_xi_dot[i])
         assert r.amplitude == b.amplitude[i] or (np.isnan(r.amplitude) and np.isnan(b.amplitude[i]))
-    assert b.to_dict()["controller"] == ctl.to_dict()
+    assert b.to_dict()["wall"] == ctl.to_dict()
 
 
 def test_controller_result_carries_its_inputs():
     ctl = WallParams.of(damping=0.5, lag=0.3)
-    r = simulate(100.0, 0.3, 1.5, 2.0, samples=20000, controller=ctl)
-    assert r.controller == ctl and r.to_dict()["controller"] == ctl.to_dict()
+    r = simulate(100.0, 0.3, 1.5, 2.0, samples=20000, wall=ctl)
+    assert r.wall == ctl and r.to_dict()["wall"] == ctl.to_dict()
     assert r.outcome == "rest"
 
 
 def test_controller_bad_input_names_parameter_rule_and_fix():
     ctl = WallParams.of(damping=0.5)
     with pytest.raises(DFAValueError, match=r"energy = True is invalid .*pass energy=False"):
-        simulate(100.0, 0.3, 1.5, 2.0, samples=100, controller=ctl, energy=True)
-    with pytest.raises(DFAValueError, match=r"delay = 2 is invalid with controller.delay = 1"):
-        simulate(100.0, 0.3, 1.5, 2.0, samples=100, delay=2, controller=WallParams.of(damping=0.5, delay=1))
-    with pytest.raises(DFATypeError, match=r"controller = .* is invalid: it must be a WallParams"):
-        simulate(100.0, 0.3, 1.5, 2.0, samples=100, controller=Wall.of(300.0))
+        simulate(100.0, 0.3, 1.5, 2.0, samples=100, energy=True, wall=ctl)
+    with pytest.raises(TypeError, match=r"delay"):
+        simulate(100.0, 0.3, 1.5, 2.0, samples=100, delay=2, wall=WallParams.of(damping=0.5, delay=1))
+    with pytest.raises(DFATypeError, match=r"wall = .* is invalid: it must be a WallParams"):
+        simulate(100.0, 0.3, 1.5, 2.0, samples=100, wall=Wall.of(300.0))
 
 
 def test_solve_ivp_reference_is_independent():

@@ -11,6 +11,7 @@ from reference import linear_zoh_recursion, simulate_control, simulate_ivp
 
 import dfa
 from dfa.analysis.simulation import preload_position, simulate, stored_energy
+from dfa.model.wall import WallParams
 
 CASES = [  # (μ, β, σ, ξ0, ξ'0): stick-slip, β = 0, σ = 0, offsets
     (100.0, 0.1, 0.9, 0.0, 2.0),
@@ -49,7 +50,7 @@ def test_eq4_stick_slip_really_happens_in_the_checked_cases():
 
 @pytest.mark.parametrize("delay", [1, 3])
 def test_eq4_delay_matches_solve_ivp(delay):
-    r = simulate(5.0, 0.2, 0.6, 1.5, 150, delay=delay)
+    r = simulate(5.0, 0.2, 0.6, 1.5, 150, wall=WallParams.of(delay=delay))
     xs, _ = simulate_ivp(5.0, 0.2, 0.6, 0.0, 1.5, 150, delay=delay)
     ok = np.isfinite(r.xi)
     assert np.max(np.abs(r.xi[ok] - xs[ok]) / np.maximum(1, np.abs(xs[ok]))) <= 1e-8
@@ -66,7 +67,7 @@ def test_eq4_python_control_io_simulation_agrees():
 )
 def test_linear_variant_matches_exact_zoh_recursion_from_c2d(mu, beta, delay):
     n = 10_000 if beta > 0 else 2_000
-    r = simulate(mu, beta, 0.0, 1.0, n, xi0=0.5, delay=delay, quantize=False, bound=1e300)
+    r = simulate(mu, beta, 0.0, 1.0, n, xi0=0.5, quantize=False, bound=1e300, wall=WallParams.of(delay=delay))
     xl, vl = linear_zoh_recursion(mu, beta, 0.5, 1.0, n, delay=delay)
     scale = max(1.0, np.max(np.abs(xl)))
     assert np.max(np.abs(r.xi - xl)) <= 1e-10 * scale
@@ -191,7 +192,7 @@ def test_section5_preload_stores_the_kinetic_energy(mu, v):
     [
         (dict(samples=0), "samples"),
         (dict(samples=2.5), "samples"),
-        (dict(delay=-1), "delay"),
+        (dict(wall=WallParams.of(damping=0.1), energy=True), "energy"),
         (dict(mu=0.0), "mu"),
         (dict(beta=-0.1), "beta"),
         (dict(sigma=math.nan), "sigma"),

@@ -173,7 +173,7 @@ def test_eq6_controller_compiled_loop_matches_the_reference_loop(ctl):
 def test_eq4_controller_spring_only_reference_loop_equals_dfa_simulate(delay):
     """WallParams.of(delay=d) is today's spring loop: same trajectory as dfa.simulate."""
     for quantize in (True, False):
-        sim = dfa.simulate(7.0, 0.05, 0.6, 3.0, 300, xi0=0.4, delay=delay, quantize=quantize)
+        sim = dfa.simulate(7.0, 0.05, 0.6, 3.0, 300, xi0=0.4, quantize=quantize, wall=WallParams.of(delay=delay))
         xs, vs, _, _ = reference_run(7.0, 0.05, 0.6, 0.4, 3.0, 300, WallParams.of(delay=delay), quantize)
         m = int(np.sum(np.isfinite(sim.xi)))  # a diverged run stops at its last integrated sample
         assert m > 20
@@ -324,7 +324,7 @@ def test_eq4_controller_simulator_is_bit_identical_to_the_reference_loop(
     with np.errstate(all="ignore"):
         controller_run(mu, beta, sigma, x0, v0, n, damping, delay, ctl.filter_pole, cutoff is not None, quantize,
                        1e6, np.empty(delay + 1), rec)  # fmt: skip
-        r = simulate(mu, beta, sigma, v0, n, x0, quantize=quantize, controller=ctl, bound=1e6)
+        r = simulate(mu, beta, sigma, v0, n, x0, quantize=quantize, bound=1e6, wall=ctl)
     xs, vs = np.asarray(r.xi), np.asarray(r.xi_dot)
     ok = np.isfinite(xs) & (np.abs(rec[:, 0]) <= 1e6)  # the simulator's record is NaN after a bound exit
     assert ok[: n // 2].all() or r.outcome == "unstable"

@@ -37,7 +37,7 @@ def test_eq6_delay_reproducer_mu100_beta_sigma_08_speed5_d1_is_not_passive_and_d
     new = passivity_criterion(0.8, 0.8, 5.0, wall=WallParams.of(delay=1))
     assert not new.passive and new.region == "d"
     assert new.margin == pytest.approx((0.8 - 1.5) * 5.0 + 0.3)
-    assert simulate(100.0, 0.8, 0.8, 5.0, 5000, delay=1, record=False).outcome == "unstable"
+    assert simulate(100.0, 0.8, 0.8, 5.0, 5000, record=False, wall=WallParams.of(delay=1)).outcome == "unstable"
 
 
 def test_eq19_initial_position_reproducer_mu1_xi0_10_is_not_passive_and_diverges():
@@ -157,7 +157,7 @@ def test_eq6_delay_soundness_energy_never_grows_on_and_above_the_line(mu, beta, 
         sigma = float(np.nextafter(sigma, np.inf))
         r = passivity_criterion(beta, sigma, xi_dot, wall=WallParams.of(delay=d), xi0=xi0, mu=mu)
     assert r.passive
-    sim = simulate(mu, beta, sigma, xi_dot, 3000, xi0=xi0, delay=d)
+    sim = simulate(mu, beta, sigma, xi_dot, 3000, xi0=xi0, wall=WallParams.of(delay=d))
     s = storage(sim)
     assert sim.outcome != "unstable"
     assert np.all(s <= s[0] * (1 + 1e-9) + 1e-300)
@@ -165,7 +165,7 @@ def test_eq6_delay_soundness_energy_never_grows_on_and_above_the_line(mu, beta, 
 
 def test_eq6_delay_soundness_check_can_fail_old_criterion_point_gains_energy():
     # the same storage check on the reproducer (passive under eq. 6 with d ignored) fails at once
-    sim = simulate(100.0, 0.8, 0.8, 5.0, 3000, delay=1)
+    sim = simulate(100.0, 0.8, 0.8, 5.0, 3000, wall=WallParams.of(delay=1))
     assert storage(sim).max() > storage(sim)[0] * 1.1
 
 
@@ -328,10 +328,8 @@ def test_cli_stiffness_above_static_limit_is_answered_not_crashed(capsys):
     )
     assert row(out, "largest passive speed at K = 60000").startswith("none: no passivity guarantee even at rest")
     code, out, _ = run(capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "60000", "--json")
-    r = json.loads(out)
-    assert (
-        r["max_passive_velocity_status"] == "none" and r["status"] == "too stiff" and r["max_passive_velocity"] is None
-    )
+    a = json.loads(out)["assessment"]
+    assert a["velocity_status"] == "none" and a["verdict"] == "too_stiff" and a["max_passive_velocity"] is None
 
 
 def test_cli_stiffness_with_delay(capsys):
@@ -347,7 +345,7 @@ def test_cli_stiffness_with_delay(capsys):
         capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "20000", "--delay", "1", "--json"
     )
     r = json.loads(out)
-    assert r["delay"] == 1 and r["k_max"] == pytest.approx(k)
+    assert r["delay"] == 1 and r["k_criterion"]["value"] == pytest.approx(k)
 
 
 # ------------------------------------------------------------------ plots draw the CriticalLine
@@ -357,7 +355,9 @@ def test_fig4_map_plot_draws_the_delayed_critical_line():
     from dfa import figures
     from dfa.analysis.maps import stability_map
 
-    m = stability_map(100.0, [2.0], beta_range=(0.0, 2.0), grid=4, samples=300, delay=1, n_jobs=1, progress=False)
+    m = stability_map(
+        100.0, [2.0], beta_range=(0.0, 2.0), grid=4, samples=300, n_jobs=1, progress=False, wall=WallParams.of(delay=1)
+    )
     ax = figures.stability_map_plot(m)[0]
     dashed = [ln for ln in ax.get_lines() if ln.get_linestyle() == "--"]
     assert len(dashed) == 1
@@ -395,10 +395,10 @@ def test_eq7_delay_without_quantization_energy_never_grows_on_the_line(d, beta_s
         sigma = float(np.nextafter(sigma, np.inf))
         r = passivity_criterion(beta, sigma, xi_dot, quantized=False, wall=WallParams.of(delay=d), xi0=xi0, mu=mu)
     assert r.passive
-    sim = simulate(mu, beta, sigma, xi_dot, 3000, xi0=xi0, delay=d, quantize=False)
+    sim = simulate(mu, beta, sigma, xi_dot, 3000, xi0=xi0, quantize=False, wall=WallParams.of(delay=d))
     s = storage(sim)
     assert np.all(s <= s[0] * (1 + 1e-9))
     # just below the line (β = 0, σ = 0) the same loop gains energy
     if beta_share == 0.0:
-        s_bad = storage(simulate(mu, 0.0, 0.0, xi_dot, 3000, xi0=xi0, delay=d, quantize=False))
+        s_bad = storage(simulate(mu, 0.0, 0.0, xi_dot, 3000, xi0=xi0, quantize=False, wall=WallParams.of(delay=d)))
         assert np.nanmax(s_bad) > s_bad[0] * 1.01  # NaN: diverged past the bound

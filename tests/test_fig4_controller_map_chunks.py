@@ -65,12 +65,12 @@ def test_fig4_controller_map_runs_in_chunks_with_progress(monkeypatch, bars):
     real = maps._run_chunk
 
     def spy(*task):
-        seen.append((task[1].size, task[-1]))
+        seen.append((task[1].size, task[6]))  # (μ, β, σ, ξ0, ξ′0, samples, wall, …)
         return real(*task)
 
     monkeypatch.setattr(maps, "_run_chunk", spy)
-    m = stability_map(100.0, [1.0, 2.0], grid=4, samples=3000, n_jobs=1, progress=True, controller=CTL)
-    assert m.controller == CTL
+    m = stability_map(100.0, [1.0, 2.0], grid=4, samples=3000, n_jobs=1, progress=True, wall=CTL)
+    assert m.wall == CTL
     assert all(ctl == CTL for _, ctl in seen)  # every chunk (and the warm-up) runs the controller's kernel
     chunks = [size for size, _ in seen[1:]]  # seen[0]: the one-point warm-up that compiles the kernel
     assert len(chunks) > 1 and sum(chunks) == 2 * 4 * 4
@@ -80,7 +80,7 @@ def test_fig4_controller_map_runs_in_chunks_with_progress(monkeypatch, bars):
 
 def test_fig4_controller_map_same_for_any_jobs_and_backend_and_equal_to_simulate():
     """n_jobs 1, 2 threads and 2 processes give the same arrays, each point equal to simulate(controller=)."""
-    kw = dict(grid=3, samples=3000, progress=False, controller=CTL)
+    kw = dict(grid=3, samples=3000, progress=False, wall=CTL)
     one = stability_map(100.0, [1.0, 2.0], n_jobs=1, **kw)
     for other in (
         stability_map(100.0, [1.0, 2.0], n_jobs=2, **kw),
@@ -92,7 +92,7 @@ def test_fig4_controller_map_same_for_any_jobs_and_backend_and_equal_to_simulate
     for n, v in enumerate(one.xi_dots):
         for i, s in enumerate(one.sigma):
             for j, b in enumerate(one.beta):
-                r = simulate(100.0, b, s, v, 3000, bound=bound, record=False, controller=CTL)
+                r = simulate(100.0, b, s, v, 3000, bound=bound, record=False, wall=CTL)
                 assert r.outcome == OUTCOMES[one.outcome[n, i, j]]
                 assert np.array_equal(r.amplitude, one.amplitude[n, i, j], equal_nan=True)
                 freq = np.nan if r.frequency is None else r.frequency
@@ -106,9 +106,9 @@ def test_fig4_map_chunks_sized_by_planned_work_same_result(monkeypatch):
     dealt = maps._chunks(10, 1)  # fewer points than 64 chunks: one each
     assert sorted(np.concatenate(maps._chunks(1000, 2)).tolist()) == list(range(1000)) and len(dealt) == 10
     assert maps._chunks(100, 2)[3].tolist() == [3, 35, 67, 99]  # dealt out in turn over 32 chunks
-    assert maps._chunk_cost(100, CTL) == 100 * maps.CONTROLLER_COST["lag"] and maps._chunk_cost(100, None) == 100
+    assert maps._chunk_cost(100, CTL) == 100 * maps.WALL_COST["lag"] and maps._chunk_cost(100, WallParams()) == 100
     assert len(maps._chunks(10_000, 2)) == 32 and len(maps._chunks(10_000, 2, 1.0e5)) == 50  # 10^9 samples / 2e7
-    kw = dict(grid=3, samples=2000, n_jobs=2, progress=False, controller=CTL)
+    kw = dict(grid=3, samples=2000, n_jobs=2, progress=False, wall=CTL)
     one = stability_map(100.0, [1.0, 2.0], **kw)
     monkeypatch.setattr(maps, "CHUNK_SAMPLES", 1.0)  # one point per chunk
     for a, b in zip(_arrays(one), _arrays(stability_map(100.0, [1.0, 2.0], **kw)), strict=True):

@@ -24,6 +24,7 @@ from dfa.analysis.limits.speed_chart import stiffness_speed_chart
 from dfa.analysis.loop import loop_response, nyquist_locus_response
 from dfa.analysis.maps import stability_map
 from dfa.analysis.simulation import simulate
+from dfa.model.wall import WallParams
 
 
 @pytest.fixture(autouse=True)
@@ -100,7 +101,9 @@ def test_fig_chart_bounds_legend_gives_values_with_rotary_units():
 
 def _cycle_points(nyq, cycles):
     return [
-        complex(loop_response(nyq.params, c.frequency, c.amplitude, model=nyq.model, delay=nyq.delay))
+        complex(
+            loop_response(nyq.params, c.frequency, c.amplitude, model=nyq.model, wall=WallParams.of(delay=nyq.delay))
+        )
         for c in cycles.cycles
     ]
 

@@ -40,7 +40,7 @@ def test_fig_chart_rotary_hand_speed_and_json():
     c = stiffness_speed_chart(dfa.get_device("re35").device, grid=4, speeds=3)
     assert c.v_top == HAND_SPEED["rotary"]
     d = json.loads(json.dumps(c.to_dict(), allow_nan=False))
-    assert d["stiffness_unit"] == "N·m/rad" and len(d["v_sim"]) == 4
+    assert d["units"]["stiffness"] == "N·m/rad" and d["units"]["v_sim"] == "rad/s" and len(d["v_sim"]) == 4
     with pytest.raises(ValueError):
         c.v_sim[0] = 1.0  # read-only
 

@@ -31,6 +31,7 @@ from dfa.analysis.linear import (
 )
 from dfa.analysis.simulation import simulate
 from dfa.cli import main
+from dfa.model.wall import Wall, WallParams
 
 A_STAR = 3.720753996  # Gil's condition and the z = −1 condition give the same K here (d = 0)
 REPRO = dict(mass=0.01, damping=5.0, period=0.01)  # bT/m = 5
@@ -92,11 +93,20 @@ def test_gil_reproducer_bound_is_1652_not_2588():
 def test_gil_reproducer_linear_simulation_grows_above_and_decays_below(delay, samples):
     """dfa.simulate(quantize=False): |ξ| grows by > 1e3 at 1.01 K_crit and falls by > 1e3 at 0.99 K_crit."""
     m, b, t = REPRO["mass"], REPRO["damping"], REPRO["period"]
-    k_crit = critical_stiffness(m, b, t, delay=delay)
+    k_crit = critical_stiffness(m, b, t, wall=Wall.of(1.0, delay=delay))
     ratios = []
     for f in (0.99, 1.01):
         k = f * k_crit
-        r = simulate(m / (k * t * t), b / (k * t), 0.0, 1e-3, samples, delay=delay, quantize=False, bound=1e300)
+        r = simulate(
+            m / (k * t * t),
+            b / (k * t),
+            0.0,
+            1e-3,
+            samples,
+            quantize=False,
+            bound=1e300,
+            wall=WallParams.of(delay=delay),
+        )
         tenth = samples // 10
         ratios.append(np.max(np.abs(r.xi[-tenth:])) / np.max(np.abs(r.xi[:tenth])))
     assert ratios[0] < 1e-3 < 1e3 < ratios[1]
@@ -114,10 +124,10 @@ def test_gil_old_closed_form_is_unstable_in_the_packages_own_simulation():
 # ---------------------------------------------------------------- independent state-space model
 @pytest.mark.parametrize("mu, beta, d", [(2.0, 0.3, 0), (0.05, 4.0, 0), (50.0, 1e-3, 1), (1.0, 0.0, 2), (0.3, 7.0, 3)])
 def test_characteristic_polynomial_equals_that_of_the_expm_state_space_loop(mu, beta, d):
-    chi = characteristic_polynomial(mu, beta, d)
+    chi = characteristic_polynomial(mu, beta, wall=WallParams.of(delay=d))
     assert chi.shape == (d + 3,) and chi[0] == mu
     np.testing.assert_allclose(chi / mu, np.poly(_ss_loop(mu, beta, d)), rtol=1e-9, atol=1e-12)
-    assert spectral_radius(mu, beta, d) == pytest.approx(_ss_rho(mu, beta, d), rel=1e-9)
+    assert spectral_radius(mu, beta, wall=WallParams.of(delay=d)) == pytest.approx(_ss_rho(mu, beta, d), rel=1e-9)
 
 
 _A_GRID = sorted(set(np.geomspace(1e-4, 50.0, 24).tolist() + [A_STAR - 1e-3, A_STAR, A_STAR + 1e-3, 3.72]))
@@ -125,7 +135,7 @@ _A_GRID = sorted(set(np.geomspace(1e-4, 50.0, 24).tolist() + [A_STAR - 1e-3, A_S
 
 @pytest.mark.parametrize("d", [0, 1, 2, 3])
 def test_critical_stiffness_is_where_the_expm_loop_crosses_the_unit_circle(d):
-    k = critical_stiffness(1.0, np.array(_A_GRID), 1.0, delay=d)  # m = T = 1, b = a: K = κ
+    k = critical_stiffness(1.0, np.array(_A_GRID), 1.0, wall=Wall.of(1.0, delay=d))  # m = T = 1, b = a: K = κ
     for a, kc in zip(_A_GRID, k, strict=False):
         assert _ss_rho_physical(kc * (1 - 1e-6), a, d) < 1.0 < _ss_rho_physical(kc * (1 + 1e-6), a, d), (a, d)
 
@@ -141,7 +151,7 @@ def test_critical_stiffness_matches_expm_loop_property(log_a, d):
     a = 10.0**log_a
     m, t = 0.3, 2e-3
     b = a * m / t
-    k = critical_stiffness(m, b, t, delay=d)
+    k = critical_stiffness(m, b, t, wall=Wall.of(1.0, delay=d))
     for step in (1e-6, 1e-4):
         lo, hi = k * (1 - step), k * (1 + step)
         assert _ss_rho(m / (lo * t * t), b / (lo * t), d) < 1.0 < _ss_rho(m / (hi * t * t), b / (hi * t), d)
@@ -149,7 +159,7 @@ def test_critical_stiffness_matches_expm_loop_property(log_a, d):
 
 @pytest.mark.parametrize("a, d", [(0.01, 0), (1.0, 0), (5.0, 0), (20.0, 0), (0.5, 1), (8.0, 2), (2.0, 3)])
 def test_stable_set_in_k_is_the_interval_below_the_bound(a, d):
-    k = critical_stiffness(1.0, a, 1.0, delay=d)
+    k = critical_stiffness(1.0, a, 1.0, wall=Wall.of(1.0, delay=d))
     below = k * np.geomspace(1e-4, 1 - 1e-5, 60)
     above = k * np.geomspace(1 + 1e-5, 1e3, 60)
     assert all(_ss_rho_physical(x, a, d) < 1.0 for x in below)
@@ -160,7 +170,7 @@ def test_critical_kappa_increases_with_bt_over_m_so_beta_stable_set_is_an_interv
     """The documented reason β > β_crit(μ, d) is the whole stable set at fixed μ."""
     a = np.geomspace(1e-4, 1e3, 150)
     for d in range(7):
-        k = critical_stiffness(1.0, a, 1.0, delay=d)
+        k = critical_stiffness(1.0, a, 1.0, wall=Wall.of(1.0, delay=d))
         assert np.all(np.diff(k) > 0), d
 
 
@@ -168,7 +178,7 @@ def test_critical_kappa_increases_with_bt_over_m_so_beta_stable_set_is_an_interv
 def test_linear_stable_over_beta_is_exactly_beta_above_critical_beta(mu, d):
     bc = critical_beta(mu, d)
     betas = np.concatenate([bc * np.geomspace(1e-3, 1 - 1e-5, 40), bc * np.geomspace(1 + 1e-5, 1e3, 40)])
-    stable = linear_stable(np.full_like(betas, mu), betas, d)
+    stable = linear_stable(np.full_like(betas, mu), betas, wall=WallParams.of(delay=d))
     np.testing.assert_array_equal(stable, betas > bc)
     assert [_ss_rho(mu, b, d) < 1.0 for b in betas] == (betas > bc).tolist()
 
@@ -202,9 +212,9 @@ def test_a_star_is_where_the_two_jury_conditions_meet():
 def test_z_minus_one_crossing_needs_an_even_delay():
     """(−1)^d flips the sign of −D(−1)/N(−1): odd delays never lose stability through z = −1."""
     a = 20.0
-    k = {d: critical_stiffness(1.0, a, 1.0, delay=d) for d in (1, 3)}
+    k = {d: critical_stiffness(1.0, a, 1.0, wall=Wall.of(1.0, delay=d)) for d in (1, 3)}
     for d, kc in k.items():
-        z = np.roots(characteristic_polynomial(1.0 / (kc * 1.0001), a / (kc * 1.0001), d))
+        z = np.roots(characteristic_polynomial(1.0 / (kc * 1.0001), a / (kc * 1.0001), wall=WallParams.of(delay=d)))
         outside = z[np.abs(z) > 1]
         assert outside.size and np.all(np.abs(outside.imag) > 1e-3)  # a complex pair, not z = −1
 
@@ -212,7 +222,7 @@ def test_z_minus_one_crossing_needs_an_even_delay():
 @pytest.mark.parametrize("d", [0, 1, 2, 3])
 def test_small_bt_over_m_limit_is_b_over_t_half_plus_d(d):
     for a in (1e-4, 1e-3, 5e-3):
-        k = critical_stiffness(0.5, a * 0.5 / 1e-3, 1e-3, delay=d)
+        k = critical_stiffness(0.5, a * 0.5 / 1e-3, 1e-3, wall=Wall.of(1.0, delay=d))
         limit = (a * 0.5 / 1e-3) / (1e-3 * (0.5 + d))
         assert k == pytest.approx(limit, rel=1e-2)
         assert 0 < k / limit - 1 < a  # approached from above, O(bT/m)
@@ -251,7 +261,7 @@ def test_undamped_loop_has_no_stable_stiffness():
     assert dfa.k_gil(dfa.Device(mass=1.0, damping=0.0, coulomb=0.1, resolution=1e-5, period=1e-3)) == 0.0
     assert characteristic_polynomial(2.0, 0.0).tolist() == [2.0, -3.5, 2.5]  # β → 0 limit: c₁ = c₀ = ½, p = 1
     for mu in (1e-2, 1.0, 1e4):
-        assert spectral_radius(mu, 0.0) > 1.0 and spectral_radius(mu, 0.0, 2) > 1.0
+        assert spectral_radius(mu, 0.0) > 1.0 and spectral_radius(mu, 0.0, wall=WallParams.of(delay=2)) > 1.0
 
 
 def test_characteristic_polynomial_is_continuous_at_small_beta():
@@ -265,13 +275,15 @@ def test_characteristic_polynomial_is_continuous_at_small_beta():
 
 def test_vectorised_calls_equal_scalar_calls():
     m = np.array([0.01, 0.2, 1.0])
-    k = critical_stiffness(m, 5.0, 0.01, delay=1)
-    assert k.shape == (3,) and k.tolist() == [critical_stiffness(float(x), 5.0, 0.01, delay=1) for x in m]
+    k = critical_stiffness(m, 5.0, 0.01, wall=Wall.of(1.0, delay=1))
+    assert k.shape == (3,) and k.tolist() == [
+        critical_stiffness(float(x), 5.0, 0.01, wall=Wall.of(1.0, delay=1)) for x in m
+    ]
     mu = np.array([[0.5], [5.0]])
     beta = np.array([0.1, 0.6, 3.0])
-    r = spectral_radius(mu, beta, 2)
+    r = spectral_radius(mu, beta, wall=WallParams.of(delay=2))
     assert r.shape == (2, 3)
-    assert r[1, 2] == spectral_radius(5.0, 3.0, 2)
+    assert r[1, 2] == spectral_radius(5.0, 3.0, wall=WallParams.of(delay=2))
     np.testing.assert_array_equal(linear_stable(mu, beta), spectral_radius(mu, beta) < 1.0)
 
 
@@ -289,12 +301,12 @@ def test_fallback_scan_agrees_with_the_crossings(monkeypatch):
         (lambda: critical_stiffness(-1.0, 5.0, 0.01), "mass"),
         (lambda: critical_stiffness(0.01, -5.0, 0.01), "damping"),
         (lambda: critical_stiffness(0.01, 5.0, [0.01, 0.0]), "period"),
-        (lambda: critical_stiffness(0.01, 5.0, 0.01, delay=-1), "delay"),
+        (lambda: critical_stiffness(0.01, 5.0, 0.01, wall=Wall.of(1.0, delay=-1)), "delay"),
         (lambda: critical_beta(0.0), "mu"),
         (lambda: critical_beta(1.0, delay=1.5), "delay"),
         (lambda: spectral_radius([1.0, np.nan], 0.1), "mu"),
         (lambda: spectral_radius(1.0, -0.1), "beta"),
-        (lambda: characteristic_polynomial(1.0, 0.1, delay=-2), "delay"),
+        (lambda: characteristic_polynomial(1.0, 0.1, wall=WallParams.of(delay=-2)), "delay"),
         (lambda: dfa.k_gil(dfa.get_device("Delta").device, delay=-1), "delay"),
     ],
 )
@@ -307,7 +319,7 @@ def test_type_errors_are_dfa_type_errors():
     with pytest.raises(dfa.DFATypeError, match="^mu = "):
         spectral_radius("1", 0.1)
     with pytest.raises(dfa.DFATypeError, match="^delay = "):
-        critical_stiffness(0.01, 5.0, 0.01, delay="1")
+        critical_stiffness(0.01, 5.0, 0.01, wall=Wall.of(1.0, delay="1"))
 
 
 # ---------------------------------------------------------------- what users read
@@ -340,8 +352,8 @@ def test_gil_cli_row_prints_the_exact_linear_bound(capsys):
 def test_gil_cli_json_k_gil(capsys):
     assert main(_CLI + ["--json"]) == 0
     rec = json.loads(capsys.readouterr().out)
-    assert rec["k_gil"] == pytest.approx(1652.0, rel=1e-3)
-    assert rec["k_gil"] == critical_stiffness(**REPRO)
+    assert rec["k_linear"]["value"] == pytest.approx(1652.0, rel=1e-3)
+    assert rec["k_linear"]["value"] == critical_stiffness(**REPRO)
 
 
 def test_gil_cli_row_follows_the_delay(capsys):
@@ -352,5 +364,7 @@ def test_gil_cli_row_follows_the_delay(capsys):
     out = capsys.readouterr().out
     row = next(line for line in out.splitlines() if line.startswith("exact linear bound"))
     assert "delay 1" in row
-    assert float(row.split()[-2]) == pytest.approx(critical_stiffness(0.01, 5.0, 0.01, delay=1), rel=1e-4)
+    assert float(row.split()[-2]) == pytest.approx(
+        critical_stiffness(0.01, 5.0, 0.01, wall=Wall.of(1.0, delay=1)), rel=1e-4
+    )
     assert float(row.split()[-2]) < 1651.9

@@ -26,6 +26,7 @@ from dfa.analysis.simulation import preload_position, stored_energy
 from dfa.checks import check_beta, check_int, check_mu, check_nonnegative, check_positive, check_real, check_sigma
 from dfa.cli import main
 from dfa.errors import DFAError, DFATypeError, DFAValueError
+from dfa.model.wall import Wall, WallParams
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DFA = [sys.executable, "-c", "import sys; from dfa.cli import main; sys.exit(main())"]
@@ -673,7 +674,7 @@ def test_cli_huge_delay_refused_with_the_limit(capsys, cmd):
     err = refused(capsys, *cmd, "--delay", "999999999999999999")
     assert "delay" in err and str(dfa.checks.MAX_DELAY) in err
     with pytest.raises(dfa.errors.DFAValueError, match="at most"):
-        dfa.analysis.linear.critical_stiffness(0.1, 1.0, 1e-3, delay=dfa.checks.MAX_DELAY + 1)
+        dfa.analysis.linear.critical_stiffness(0.1, 1.0, 1e-3, wall=Wall.of(1.0, delay=dfa.checks.MAX_DELAY + 1))
 
 
 # ------------------------------------------------------------------ 9. limit-cycle time budget (eq. 36 search)
@@ -708,10 +709,12 @@ def test_eq36_time_budget_stops_between_pieces(monkeypatch):
     import dfa.analysis.cycles.solve as cycles
 
     p = dfa.Params(100.0, 0.2, 0.3)
-    full = dfa.limit_cycles(p, delay=2)
+    full = dfa.limit_cycles(p, wall=WallParams.of(delay=2))
     ticks = iter(range(10**6))
     monkeypatch.setattr(cycles.time, "monotonic", lambda: float(next(ticks)))
-    part = dfa.limit_cycles(p, delay=2, time_budget=1.5)  # deadline 1.5: the check at 1 passes, at 2 stops
+    part = dfa.limit_cycles(
+        p, time_budget=1.5, wall=WallParams.of(delay=2)
+    )  # deadline 1.5: the check at 1 passes, at 2 stops
     assert not part.complete and "after searching 1 of 2 pieces" in part.detail
     assert 0 < len(part.cycles) < len(full.cycles) and _no_cycle_missed_below(part, full)
     assert all(c in full.cycles for c in part.cycles)
@@ -874,26 +877,29 @@ def test_result_records_refuse_fields_of_the_wrong_kind(cls):
     kw = _record_kwargs(cls)
     with pytest.raises(DFATypeError, match="^device"):
         cls(**kw)
-    kw.update({"device": dev, "delay": 0} | ({"stiffness": 10.0} if "stiffness" in kw else {}))
+    extra = {"wall": dfa.Wall(10.0)} if "wall" in kw else {"delay": 0}
+    kw.update({"device": dev, **extra} | ({"stiffness": 10.0} if "stiffness" in kw else {}))
     with pytest.raises(DFAError, match=r"^\w+ = "):
         cls(**kw)
 
 
-def test_ksearch_refuses_a_limit_that_is_not_a_number():
-    # found by the API fuzz (KMaxResult fields): KSearch("x") raised TypeError from math.isfinite
-    from dfa.analysis.limits.kmax import KSearch
+def test_klimit_refuses_a_limit_that_is_not_a_number():
+    # found by the API fuzz (KMaxResult fields): KSearch("x") raised TypeError from math.isfinite; KLimit replaces
+    # KSearch (its status, not a reason sentence, says why a limit is None)
+    from dfa.analysis.limits.search import KLimit
+    from dfa.results.status import LimitStatus
 
     with pytest.raises(DFATypeError, match="^value"):
-        KSearch("x")
+        KLimit("x")
     with pytest.raises(DFAValueError, match="^value"):
-        KSearch(math.inf)
-    assert KSearch(None, reason="the loop is unstable").value is None
+        KLimit(math.inf)
+    assert KLimit(None, status=LimitStatus.NO_STABLE_K).value is None
 
 
 def test_stiffness_speed_chart_record_validates_its_arrays():
     # found by the API fuzz: StiffnessSpeedChart(speeds=0.0, ...) was built and as_dict raised "'float' is not iterable"
     dev = dfa.get_device("delta").device
-    ok = dict(device=dev, delay=0, v_top=0.5, stiffness=[1.0, 2.0], v_df=[0.1, math.nan], v_sim=[0.1, 0.2],
+    ok = dict(device=dev, wall=dfa.Wall(1.0), v_top=0.5, stiffness=[1.0, 2.0], v_df=[0.1, math.nan], v_sim=[0.1, 0.2],
               v_rest=[0.1, 0.2], criterion_stiffness=[1.0], v_criterion=[0.3], speeds=[0.1],
               k_linear=1.0, k_colgate=math.inf, k_abbott_okamura=1.0, k_static=2.0)  # fmt: skip
     assert dfa.StiffnessSpeedChart(**ok).to_dict()["v_df"] == [0.1, None]

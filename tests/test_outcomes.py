@@ -16,6 +16,7 @@ from dfa.analysis.maps import StabilityMap, load_map, stability_map
 from dfa.analysis.simulation import OUTCOMES, _tail_length, default_samples, simulate
 from dfa.cli import main
 from dfa.core import kernel
+from dfa.model.wall import Wall, WallParams
 
 BELOW_HALF = math.nextafter(0.5, 0.0)
 
@@ -50,7 +51,7 @@ def test_sigma_below_half_never_rests(mu, beta, sigma, v0):
 @example(5.0, 0.2, 0.5, 0.0, 0)  # σ = ½ exactly at ξ = 0: |φ| = σ sticks at once
 def test_rest_only_at_the_absorbing_state(mu, beta, sigma, v0, delay):
     """ "rest" iff the kernel found the absorbing state: ξ' = 0, |φ| <= σ, every pending force equal."""
-    r = simulate(mu, beta, sigma, v0, 4000, delay=delay)
+    r = simulate(mu, beta, sigma, v0, 4000, wall=WallParams.of(delay=delay))
     assert (r.outcome == "rest") == (r.rest_sample is not None)
     if r.outcome == "rest":
         phi = -(math.floor(r.final_xi) + 0.5)
@@ -392,11 +393,13 @@ def test_gil_linear_loop_outcome_flips_at_the_exact_linear_bound(delay):
     from dfa.model.device import Device
 
     dev = Device(0.01, 5.0, 0.0, 1e-5, 0.01)  # bT/m = 5: the z = -1 condition binds at d = 0
-    k = critical_stiffness(dev.mass, dev.damping, dev.period, delay=delay)
+    k = critical_stiffness(dev.mass, dev.damping, dev.period, wall=Wall.of(1.0, delay=delay))
     out = {}
     for f in (0.98, 1.02):
         p = dev.params(k * f)
-        out[f] = simulate(p.mu, p.beta, 0.0, 1e-3, 4000, delay=delay, quantize=False, record=False).outcome
+        out[f] = simulate(
+            p.mu, p.beta, 0.0, 1e-3, 4000, quantize=False, record=False, wall=WallParams.of(delay=delay)
+        ).outcome
     assert out == {0.98: "rest", 1.02: "unstable"}
 
 

@@ -23,17 +23,17 @@ CTL = WallParams.of(damping=0.2, delay=1, cutoff=0.1)
 
 
 @pytest.mark.parametrize("delay", [True, 1 + 0j, "1"])
-def test_simulate_controller_delay_is_checked_before_the_comparison(delay):
-    # was accepted: True == 1 and (1 + 0j) == 1 equal the controller's delay, so no check ran
+def test_wall_delay_must_be_a_whole_number(delay):
+    # was accepted: True == 1 and (1 + 0j) == 1; the delay is checked where the wall is built
     with pytest.raises(DFATypeError, match=r"^delay = .* whole number"):
-        simulate(20.0, 0.3, 0.7, 1.0, samples=10, delay=delay, controller=CTL)
-    with pytest.raises(DFATypeError, match=r"^delay = .* whole number"):
-        simulate_batch([20.0], [0.3], [0.7], [1.0], 10, delay=delay, controller=CTL)
+        WallParams.of(damping=0.2, delay=delay, cutoff=0.1)
 
 
-def test_simulate_controller_delay_conflict_still_named():
-    with pytest.raises(DFAValueError, match=r"delay = 2 is invalid with controller.delay = 1"):
-        simulate(20.0, 0.3, 0.7, 1.0, samples=10, delay=2, controller=CTL)
+def test_simulate_takes_the_delay_from_the_wall_only():
+    with pytest.raises(TypeError, match=r"delay"):
+        simulate(20.0, 0.3, 0.7, 1.0, samples=10, delay=2, wall=CTL)
+    with pytest.raises(TypeError, match=r"delay"):
+        simulate_batch([20.0], [0.3], [0.7], [1.0], 10, delay=1, wall=CTL)
 
 
 @pytest.mark.parametrize("quantize", ["False", None, 0, 1.0, [True]])
@@ -42,14 +42,14 @@ def test_simulate_quantize_must_be_a_bool(quantize):
     with pytest.raises(DFATypeError, match=r"^quantize = .* must be True .* or False"):
         simulate(20.0, 0.3, 0.7, 1.0, samples=10, quantize=quantize)
     with pytest.raises(DFATypeError, match=r"^quantize = "):
-        simulate(20.0, 0.3, 0.7, 1.0, samples=10, quantize=quantize, controller=CTL)
+        simulate(20.0, 0.3, 0.7, 1.0, samples=10, quantize=quantize, wall=CTL)
     with pytest.raises(DFATypeError, match=r"^quantize = "):
         simulate_batch([20.0], [0.3], [0.7], [1.0], 10, quantize=quantize)
 
 
 def test_simulate_quantize_numpy_bool_equals_python_bool():
-    a = simulate(20.0, 0.3, 0.7, 1.0, samples=200, quantize=np.bool_(False), controller=CTL)
-    b = simulate(20.0, 0.3, 0.7, 1.0, samples=200, quantize=False, controller=CTL)
+    a = simulate(20.0, 0.3, 0.7, 1.0, samples=200, quantize=np.bool_(False), wall=CTL)
+    b = simulate(20.0, 0.3, 0.7, 1.0, samples=200, quantize=False, wall=CTL)
     assert a.quantize is False and np.array_equal(a.xi, b.xi)
 
 

@@ -23,6 +23,7 @@ from test_cli_json_null_reasons import unexplained_nulls
 
 import dfa
 import dfa.analysis.design
+import dfa.analysis.limits.kmax
 import dfa.render.report_figures as figures
 import dfa.report
 from dfa.analysis.design import design_analysis
@@ -148,21 +149,29 @@ def test_controller_report_kmax_equals_dfa_stiffness(ctl):
     lim = data["analysis"]["controller_limits"]
     for key in ("k_criterion", "k_linear", "k_df", "k_sim", "k_sim_rest"):
         assert lim[key] == stiff[key], key
-        if lim[key] is None:  # every null of the record is stated with its reason
-            assert lim["null_reasons"][f"/{key}"] in md
-    assert data["numbers"]["k_max"] == stiff["k_criterion"] and data["numbers"]["k_linear"] == stiff["k_linear"]
-    label = "extended criterion (eq. 11 extended to the damper, filter and delay; a proof)"
-    assert md_row(label, f"{stiff['k_criterion']:.5g} N/m") in md
-    assert f"{stiff['k_linear']:.5g} N/m" in md
+        if lim[key]["value"] is None:  # every null of the record is stated with its reason
+            assert lim[key]["null_reasons"]["/value"] in md
+    kc, kl = stiff["k_criterion"]["value"], stiff["k_linear"]["value"]
+    assert data["numbers"]["k_max"] == kc and data["numbers"]["k_linear"] == kl
+    label = "criterion K_max at this speed (eq. 6/11 extended to the damper, filter and delay)"
+    assert md_row(label, f"{kc:.5g} N/m") in md
+    assert f"{kl:.5g} N/m" in md
     for key, label in (
-        ("k_df", "describing function with the controller (growth speed >= V; first harmonic)"),
-        ("k_sim", "simulation: no simulated impact up to V diverges"),
-        ("k_sim_rest", "simulation: every simulated impact up to V rests"),
+        ("k_df", "describing function: largest K with growth speed >= V"),
+        ("k_sim", "simulation: largest K, no simulated impact up to V diverges"),
+        ("k_sim_rest", "simulation: largest K, every simulated impact up to V rests"),
     ):  # the searched limits read as in `dfa stiffness`: the number with its unit, never a raw record
         row = next(line for line in md.splitlines() if line.startswith(f"| {label} |"))
-        value = "none:" if stiff[key] is None else f"| {stiff[key]:.5g} N/m"
+        v = stiff[key]["value"]
+        value = "none:" if v is None else f"| {v:.5g} N/m"
         assert value in row and "{'" not in row, row
-    assert md_row("evidence", lim["evidence"]["text"]) in md  # `dfa stiffness` also assesses K: 2 runs more
+    from dfa.render.limits import evidence_text
+
+    ans = dfa.analysis.limits.kmax.design_answer(
+        dfa.get_device("delta").device, data["analysis"]["velocity"], wall=Wall.of(14500.0, 1.0, 1, 200.0)
+    )  # the report's own answer (without `dfa stiffness`'s assessment of K)
+    assert lim["evidence"] == json.loads(dumps(ans.to_dict()))["evidence"]
+    assert md_row("evidence", evidence_text(ans)) in md
     assert "{'" not in md and "not available (" not in md
 
 
@@ -171,8 +180,9 @@ def test_controller_report_with_lag_is_not_covered(lag):
     assert check["status"] == "not_covered" and check["passive"] is None
     a = data["analysis"]
     assert a["controller_check"] == {k: v for k, v in check.items() if k != "controller"}
-    assert a["controller_limits"]["k_criterion"] is None
-    assert "amplifier lag" in a["controller_limits"]["null_reasons"]["/k_criterion"]
+    kc = a["controller_limits"]["k_criterion"]
+    assert kc["value"] is None and kc["status"] == "not_covered"
+    assert "amplifier lag" in kc["null_reasons"]["/value"]
     assert data["numbers"]["passive"] is None and "/passive" in data["numbers"]["null_reasons"]
     section = md.split("## Passivity with the controller")[1].split("\n## ")[0]
     assert "not covered by the criterion" in section and "(proven)" not in section and "yes:" not in section
@@ -193,22 +203,22 @@ def test_controller_report_leaves_out_the_spring_only_sections(ctl):
     # the sections that accept a controller are computed with it
     dev = dfa.get_device("delta").device
     cp = Wall.of(14500.0, 1.0, 1, 200.0).params(dev.period)
-    assert a["stability_map"]["controller"] == cp.to_dict() and a["delay"] == 1
+    assert a["stability_map"]["wall"] == cp.to_dict() and a["delay"] == 1
     p = dev.params(14500.0)
-    g = dfa.growth_threshold(p, model="zoh", controller=cp)
+    g = dfa.growth_threshold(p, model="zoh", wall=cp)
     assert a["growth_thresholds"]["zoh"]["amplitude"] == g.amplitude
     xi = a["controller_check"]["criterion"]["xi_dot"]
     bound = dfa.analysis.simulation.divergence_bound(0.0, xi, p.mu)
-    sim = dfa.simulate(p.mu, p.beta, p.sigma, xi, None, record=False, controller=cp, bound=bound)
+    sim = dfa.simulate(p.mu, p.beta, p.sigma, xi, None, record=False, bound=bound, wall=cp)
     assert a["outcome"]["outcome"] == sim.outcome.value and a["outcome"]["samples_run"] == sim.samples_run
 
 
 # ------------------------------------------------------------------ the Z-width of the controller
 def test_controller_report_zwidth_linear_boundary_is_the_exact_bound(ctl):
     z, md = ctl["data"]["analysis"]["zwidth"], ctl["md"]
-    assert z["filter_cutoff"] == 200.0 and z["delay"] == 1 and z["amplifier_bandwidth"] is None
+    assert z["wall"]["filter_cutoff"] == 200.0 and z["delay"] == 1 and z["wall"]["amplifier_bandwidth"] is None
     dev = dfa.get_device("delta").device
-    lin = z["boundaries"]["linear"]["k_max"]
+    lin = z["boundaries"]["linear"]
     assert sum(k is not None for k in lin) >= 2
     for b, k in zip(z["damping"], lin, strict=True):
         if k is not None:
@@ -334,9 +344,9 @@ def test_fig6_nyquist_cycle_marks_lie_on_the_locus_with_a_controller():
     dev = dfa.get_device("impulse").device
     cp = Wall.of(80.0, 0.05, 1, 100.0, 200.0).params(dev.period)
     p = dev.params(80.0)
-    res = dfa.limit_cycles(p, model="zoh", controller=cp)
+    res = dfa.limit_cycles(p, model="zoh", wall=cp)
     assert res.cycles
-    ny = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles], model="zoh", controller=cp)
+    ny = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles], model="zoh", wall=cp)
     for pt, _stable, m in _cycle_points(ny, res):
         assert abs(pt - (-1.0 / quantizer_df(m))) <= 1e-8
 

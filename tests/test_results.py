@@ -136,10 +136,10 @@ def test_eq11_stiffness_to_dict_is_strict_json(velocity, stiffness, delay):
     lim = stiffness_limits(DEV, velocity, stiffness, delay)
     d = strict_roundtrip(lim.to_dict())
     assert (
-        d["status"] in ("ok", "too stiff", "not requested")
+        d["status"] in ("ok", "too_stiff", "not_requested")
         and d["max_passive_velocity_status"] == lim.velocity_status.value
     )
-    assert (d["status"] == "not requested") == (stiffness is None)  # no "ok" for a verdict nobody asked for
+    assert (d["status"] == "not_requested") == (stiffness is None)  # no "ok" for a verdict nobody asked for
     curve = stiffness_response(DEV, [velocity + 1e-3, velocity + 1.0], stiffness, delay)
     c = strict_roundtrip(curve.to_dict())
     assert c["k_max"] == pytest.approx(list(curve.k_max), rel=0, abs=0)
@@ -169,7 +169,7 @@ def test_eq4_simulation_to_dict_is_strict_json(mu, beta, sigma, xi_dot0, quantiz
 @settings(max_examples=12)
 @given(mu=st.floats(2.0, 50.0), beta=st.floats(0.0, 0.45), sigma=st.floats(0.0, 1.0), delay=st.integers(0, 1))
 def test_eq36_limit_cycles_and_growth_to_dict_are_strict_json(mu, beta, sigma, delay):
-    g = growth_threshold(Params(mu, beta, sigma), DEV, delay=delay)
+    g = growth_threshold(Params(mu, beta, sigma), DEV, wall=WallParams.of(delay=delay))
     d = strict_roundtrip(g.to_dict())
     assert d["status"] == g.status.value and (d["amplitude"] is None) == (g.status is not status_mod.GrowthStatus.OK)
     r = strict_roundtrip(g.result.to_dict())
@@ -196,7 +196,7 @@ def test_fig6_nyquist_to_dict_is_strict_json(nyquist):
 def test_eq40_nyquist_with_friction_to_dict_is_strict_json(mu, beta, sigma, amplitudes):
     r = nyquist_locus_response(Params(mu, beta, sigma), amplitudes, omega=np.geomspace(1e-3, np.pi, 50))
     d = strict_roundtrip(r.to_dict())
-    assert d["status"] == "crossings not computed" and d["crossings"] == [] and len(d["curves"]) == len(amplitudes)
+    assert d["status"] == "crossings_not_computed" and d["crossings"] == [] and len(d["curves"]) == len(amplitudes)
     assert r.status.message.startswith("crossings not computed for sigma > 0")
 
 
@@ -369,7 +369,7 @@ def test_eq6_criterion_refuses_inconsistent_status():
 def test_eq11_stiffness_refuses_inconsistent_status():
     lim = stiffness_limits(DEV, 0.1, 14500.0)
     with pytest.raises(DFAValueError, match="velocity_status"):
-        type(lim)(**{**vars(lim), "velocity_status": "all speeds"})
+        type(lim)(**{**vars(lim), "velocity_status": "all_speeds"})
 
 
 def test_eq36_results_refuse_inconsistent_status():

@@ -94,7 +94,7 @@ def test_fig6_nyquist_reports_an_incomplete_solver_search(monkeypatch):
     def incomplete(p, **kw):
         res = real(p, **kw)
         return cyc.LimitCycleResult(
-            res.params, res.model, res.delay, res.pade_order, res.describing, res.max_amplitude, res.cycles,
+            res.params, res.model, res.wall, res.pade_order, res.describing, res.max_amplitude, res.cycles,
             False, "incomplete: 1 root bracket(s) could not be refined", cyc.SearchStatus.NUMERICAL,
         )  # fmt: skip
 

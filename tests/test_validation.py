@@ -123,10 +123,10 @@ def test_validation_controller_record_is_the_simulated_over_predicted_ratio():
 
     p, ctl = Params(20.0, 0.05, 0.3), WallParams.of(damping=0.2, cutoff=0.05)
     recs = controller_cycle_checks([p], samples=20_000, models=("half-delay",), controllers=(("f", ctl),))
-    cyc = limit_cycles(p, model="half-delay", max_amplitude=2000.0, controller=ctl).cycles
+    cyc = limit_cycles(p, model="half-delay", max_amplitude=2000.0, wall=ctl).cycles
     assert [r["amplitude"] for r in recs] == [c.amplitude for c in cyc]
     st = next(r for r in recs if r["stable"])
-    sim = simulate(p.mu, p.beta, p.sigma, st["amplitude"] * st["frequency"], 20_000, record=False, controller=ctl)
+    sim = simulate(p.mu, p.beta, p.sigma, st["amplitude"] * st["frequency"], 20_000, record=False, wall=ctl)
     assert st["confirmed"] and st["amplitude_error"] == sim.amplitude / st["amplitude"] - 1
     assert st["controller"] == "f" and st["controller_params"] == ctl.to_dict()
     un = next(r for r in recs if not r["stable"])

@@ -1,6 +1,7 @@
 """Z-width (issue 15): the linear boundary is the exact bound at each B, simulation never diverges below the
-extended criterion (eq. 6 redone), the B = 0 column is the spring-only K_max of dfa.analysis.limits.kmax, jobs do not change
-the result, and `dfa zwidth` prints the API's numbers and refuses bad input with exit 2."""
+extended criterion (eq. 6 redone), the B = 0 column is the spring-only K_max of dfa.analysis.limits.kmax (its
+describing-function limit the design answer's, whatever the grid), jobs do not change the result, and `dfa zwidth`
+prints the API's numbers and refuses bad input with exit 2."""
 
 import json
 import math
@@ -11,12 +12,16 @@ import pytest
 import dfa
 import dfa.analysis.limits.zwidth as zmod
 from dfa.analysis.limits.closed_form import k_gil, k_max_criterion
-from dfa.analysis.limits.kmax import K_RTOL, SAFE, _Evidence
+from dfa.analysis.limits.kmax import design_answer
+from dfa.analysis.limits.runs import SAFE, Evidence
+from dfa.analysis.limits.search import K_RTOL
 from dfa.analysis.limits.zwidth import DIVERGES, POINT_OUTCOMES, ZWIDTH_METHODS, z_width
 from dfa.analysis.linear_wall import stable_stiffness
 from dfa.cli import main
 from dfa.model.catalogue import get_device
+from dfa.model.device import Device
 from dfa.model.wall import Wall
+from dfa.results.status import LimitStatus, ZWidthStatus
 
 DEV = "Impulse Engine"
 V = 0.1
@@ -29,7 +34,9 @@ def zw():
 
 @pytest.fixture(scope="module")
 def zw_delay():
-    return z_width(get_device(DEV).device, V, delay=1, filter_cutoff=100.0, grid=4, speeds=1, n_jobs=1)
+    return z_width(
+        get_device(DEV).device, V, grid=4, speeds=1, n_jobs=1, wall=Wall.of(1.0, delay=1, filter_cutoff=100.0)
+    )
 
 
 def _exact(dev, b, d=0, fc=None, fbw=None):
@@ -39,20 +46,22 @@ def _exact(dev, b, d=0, fc=None, fbw=None):
 
 def test_zwidth_linear_boundary_equals_exact_bound_at_each_B(zw, zw_delay):
     for z in (zw, zw_delay):
-        want = [_exact(z.device, float(b), z.delay, z.filter_cutoff) for b in z.damping]
+        want = [_exact(z.device, float(b), z.delay, z.wall.filter_cutoff) for b in z.damping]
         np.testing.assert_array_equal(z.boundary("linear"), np.array(want))
 
 
 def test_zwidth_linear_boundary_with_amplifier_lag_and_passivity_not_covered():
     dev = get_device(DEV).device
-    z = z_width(dev, V, amplifier_bandwidth=200.0, grid=3, speeds=1, n_jobs=1)
+    z = z_width(dev, V, grid=3, speeds=1, n_jobs=1, wall=Wall.of(1.0, amplifier_bandwidth=200.0))
     want = [_exact(dev, float(b), 0, None, 200.0) for b in z.damping]
     np.testing.assert_array_equal(z.boundary("linear"), np.array(want))
     for m in ("passivity", "criterion"):
         assert np.isnan(z.boundary(m)).all()
-        assert all(r.startswith("not covered") for r in z.reasons[m])
+        assert all(x.value is None and x.status is LimitStatus.NOT_COVERED for x in z.limits[m])
     rec = json.loads(json.dumps(z.to_dict()))
-    assert rec["boundaries"]["criterion"]["k_max"] == [None] * 3
+    assert rec["boundaries"]["criterion"] == [None] * 3
+    for x in rec["limits"]["criterion"]:
+        assert x["status"] == "not_covered" and x["null_reasons"]["/value"] == LimitStatus.NOT_COVERED.message
 
 
 @pytest.mark.parametrize("name", ["zw", "zw_delay"])
@@ -60,7 +69,7 @@ def test_eq6_zwidth_simulation_never_diverges_below_the_criterion(name, request)
     """Soundness: every simulated point at or below the extended criterion's K_max(B) stays bounded."""
     z = request.getfixturevalue(name)
     assert z.counterexamples == ()
-    assert z.status in ("ok", "caveats")
+    assert z.status in (ZWidthStatus.OK, ZWidthStatus.CAVEATS)
     crit, sim = z.boundary("criterion"), z.boundary("sim")
     for i in range(z.damping.size):
         below = z.stiffness <= crit[i] if math.isfinite(crit[i]) else np.zeros(z.stiffness.size, bool)
@@ -74,13 +83,31 @@ def test_eq11_zwidth_B0_column_is_the_spring_kmax(zw):
     assert zw.boundary("linear")[0] == pytest.approx(k_gil(dev, delay=0), rel=1e-9)
     assert zw.boundary("criterion")[0] == pytest.approx(k_max_criterion(dev, V, 0), rel=2 * K_RTOL)
     # the simulated column against dfa.analysis.limits.kmax's own runs (simulate_points) at every grid K
-    ev = _Evidence(dev, np.array(zw.speeds), 0, zw.max_samples, "half-delay")
+    ev = Evidence(dev, Wall(1.0), np.array(zw.speeds), zw.max_samples, "half-delay")
     kmax_safe = [ev.no_divergence(float(k)) == SAFE for k in zw.stiffness]
     zw_safe = [POINT_OUTCOMES[c] in ("rest", "bounded") for c in zw.outcome[0]]
     assert kmax_safe == zw_safe
     first = kmax_safe.index(False) if False in kmax_safe else None
     if first is not None and first > 0:
         assert zw.boundary("sim")[0] == zw.stiffness[first - 1]
+
+
+#: The device of the grid-dependent describing-function column (fixed): the Z-width's K_max at B = 0 was 173.2 N/m
+#: with grid 10 but 3.328 N/m with grid 40, where `dfa stiffness --delay 1` gives 173.18 N/m.
+DF_GRID_DEVICE = Device(mass=0.1, damping=0.005, coulomb=0.02, resolution=1e-5, period=1e-3)
+
+
+@pytest.mark.parametrize("grid", [3, 4])
+def test_zwidth_df_column_at_B0_is_the_design_answer_k_df_for_any_grid(grid):
+    """The describing-function column at B = 0 is k_df of the design answer with the same wall, whatever the Z-width's
+    grid (its own search over the design answer's grid; before the fix it searched the Z-width's K grid: 173.196 N/m
+    with grid 3, 172.988 N/m with grid 4, 3.328 N/m with grid 40)."""
+    wall = Wall.of(1.0, delay=1)
+    z = z_width(DF_GRID_DEVICE, 0.1, wall=wall, grid=grid, speeds=1, n_jobs=1)
+    want = design_answer(DF_GRID_DEVICE, 0.1, wall=wall).k_df
+    assert want.status is LimitStatus.FOUND and want.value == pytest.approx(173.18, rel=K_RTOL)
+    assert z.boundary("df")[0] == want.value
+    assert z.limits["df"][0] == want
 
 
 def test_zwidth_deterministic_for_any_number_of_jobs():
@@ -94,11 +121,16 @@ def test_zwidth_to_dict_is_strict_json_with_reasons(zw):
     rec = zw.to_dict()
     text = json.dumps(rec, allow_nan=False)
     back = json.loads(text)
-    assert set(back["boundaries"]) == set(ZWIDTH_METHODS)
+    assert set(back["boundaries"]) - {"null_reasons"} == set(ZWIDTH_METHODS) == set(back["limits"])
     for m in ZWIDTH_METHODS:
-        vals, why = back["boundaries"][m]["k_max"], back["boundaries"][m]["reason"]
-        assert len(vals) == len(why) == 6
-        assert all(w for v, w in zip(vals, why, strict=True) if v is None)  # every null has its reason
+        vals, lims = back["boundaries"][m], back["limits"][m]
+        assert len(vals) == len(lims) == 6
+        assert vals == [x["value"] for x in lims]
+        if None in vals:  # the boundary's nulls point to the limits' records ...
+            assert f"/{m}" in back["boundaries"]["null_reasons"]
+        for x in lims:  # ... and every null has its reason: the status and its message
+            if x["value"] is None:
+                assert x["status"] != "found" and x["null_reasons"]["/value"] == LimitStatus(x["status"]).message
     assert back["units"]["damping"] == "N·s/m"
 
 
@@ -140,7 +172,7 @@ def test_zwidth_bad_input_is_refused():
     with pytest.raises(dfa.DFAValueError, match="grid"):
         z_width(dev, V, grid=201)
     with pytest.raises(dfa.DFAValueError, match="Nyquist"):
-        z_width(dev, V, filter_cutoff=1e4, grid=2)
+        z_width(dev, V, grid=2, wall=Wall.of(1.0, filter_cutoff=1e4))
     with pytest.raises(dfa.DFAValueError, match="velocity"):
         z_width(dev, 0.0, grid=2)
     with pytest.raises(dfa.DFAValueError, match="b_range"):
@@ -162,7 +194,7 @@ def test_cli_zwidth_json_numbers_equal_the_api(capsys):
     api = z_width(get_device(DEV).device, V, grid=3, speeds=1, n_jobs=1)
     for m in ZWIDTH_METHODS:
         want = [None if not math.isfinite(x) else x for x in api.boundary(m).tolist()]
-        assert rec["boundaries"][m]["k_max"] == want
+        assert rec["boundaries"][m] == want
     assert rec["stiffness"] == api.stiffness.tolist()
 
 
@@ -209,4 +241,4 @@ def test_report_zwidth_section_states_the_api_numbers(tmp_path, capsys):
     from dfa.analysis.design import design_analysis
 
     a = design_analysis(get_device(DEV), velocity=V, map_grid=3, samples=2000, n_jobs=1, zwidth_grid=3)
-    assert a.to_dict()["zwidth"]["boundaries"]["linear"]["k_max"] == z.to_dict()["boundaries"]["linear"]["k_max"]
+    assert a.to_dict()["zwidth"]["boundaries"]["linear"] == z.to_dict()["boundaries"]["linear"]

@@ -16,13 +16,15 @@ from dfa.core.batch import batch_wall_kernel
 from dfa.core.kernel import NSEG, NSTATS, OSCILLATING, REST, UNDECIDED, UNSTABLE
 from dfa.core.wall_kernel import simulate_wall_kernel
 from dfa.model.catalogue import get_device
+from dfa.model.wall import Wall
 
 
 def _tasks(name, v, d, fc, fbw, grid, speeds, cap=zmod.ZWIDTH_MAX_SAMPLES):
     dev = get_device(name).device
-    ks, bs = zmod._grids(dev, v, d, fc, fbw, grid, None, None)
+    wall = Wall.of(1.0, delay=d, filter_cutoff=fc, amplifier_bandwidth=fbw)
+    ks, bs = zmod._grids(dev, wall, grid, None, None)
     vs = v * np.arange(1, speeds + 1) / speeds
-    return zmod._plan(dev, ks, bs, d, fc, fbw, [dev.xi_dot(float(s)) for s in vs], cap)[0]
+    return zmod._plan(dev, wall, ks, bs, [dev.xi_dot(float(s)) for s in vs], cap)[0]
 
 
 CASES = {
@@ -119,7 +121,7 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
 def test_zwidth_boundary_columns_in_worker_processes_equal_one_thread(monkeypatch):
     """From PROCESS_COLUMNS values of B the boundary columns run in worker processes: the same ZWidth as n_jobs=1."""
     dev = get_device("Phantom 1.0").device
-    one = z_width(dev, 0.1, delay=1, filter_cutoff=100.0, grid=3, speeds=1, n_jobs=1).to_dict()
+    one = z_width(dev, 0.1, wall=Wall.of(1.0, delay=1, filter_cutoff=100.0), grid=3, speeds=1, n_jobs=1).to_dict()
     monkeypatch.setattr(zmod, "PROCESS_COLUMNS", 2)
     calls = []
     real = zmod.run_in_order
@@ -129,6 +131,6 @@ def test_zwidth_boundary_columns_in_worker_processes_equal_one_thread(monkeypatc
         return real(fn, tasks, sizes, workers, backend, bar)
 
     monkeypatch.setattr(zmod, "run_in_order", spy)
-    two = z_width(dev, 0.1, delay=1, filter_cutoff=100.0, grid=3, speeds=1, n_jobs=2).to_dict()
+    two = z_width(dev, 0.1, grid=3, speeds=1, n_jobs=2, wall=Wall.of(1.0, delay=1, filter_cutoff=100.0)).to_dict()
     assert calls == [("_run_chunk", "threads"), ("_column", "processes")]
     assert json.dumps(one, sort_keys=True) == json.dumps(two, sort_keys=True)

@@ -7,7 +7,7 @@ operating point and the Nyquist locus, and returns a frozen :class:`DesignAnalys
 
 With a wall controller (``controller=``, issue 15) every part that accepts one is computed with it: the passivity
 check (extended criterion and Colgate–Schenkel, :func:`dfa.analysis.check.passivity_check`), K_max with the
-controller (:func:`dfa.analysis.limits.wall_kmax.controller_stiffness_limits`), the limit cycles, the simulations, the
+controller (:func:`dfa.analysis.limits.kmax.design_answer` with the wall), the limit cycles, the simulations, the
 stability map, the Nyquist locus and the Z-width (on by default). The spring-only parts (the criterion of eq. 6
 and its stiffness limits and curve, the four-way design answer and the stiffness–speed chart) are not computed:
 they would state the bare spring's numbers, not the controller's. Rendering
@@ -35,7 +35,6 @@ from .cycles import GrowthThreshold, growth_threshold
 from .limits.closed_form import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
 from .limits.kmax import KMaxResult, RunCache, design_answer
 from .limits.speed_chart import StiffnessSpeedChart, stiffness_speed_chart
-from .limits.wall_kmax import ControllerStiffnessLimits, controller_stiffness_limits
 from .limits.zwidth import ZWidth, z_width
 from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, stability_map
@@ -121,8 +120,9 @@ class DesignAnalysis:
         d); None: the paper's spring.
     controller_check : PassivityCheck or None
         With a controller: the extended criterion and Colgate–Schenkel at ẋ0 (not covered with an amplifier lag).
-    controller_limits : ControllerStiffnessLimits or None
-        With a controller and ẋ0 > 0: K_max with the controller (B, f_c, f_bw, d fixed).
+    controller_limits : KMaxResult or None
+        With a controller and ẋ0 > 0: K_max with the controller (B, f_c, f_bw, d fixed;
+        :func:`dfa.analysis.limits.kmax.design_answer` with the wall).
     status : DesignStatus
         ``OK``.
     """
@@ -153,7 +153,7 @@ class DesignAnalysis:
     map_grid: int = 81
     controller: Wall | None = None
     controller_check: PassivityCheck | None = None
-    controller_limits: ControllerStiffnessLimits | None = field(default=None, repr=False)
+    controller_limits: KMaxResult | None = field(default=None, repr=False)
     status: DesignStatus = DesignStatus.OK
 
     def __post_init__(self) -> None:
@@ -210,7 +210,7 @@ class DesignAnalysis:
         check_type("controller", self.controller, Wall, fix)
         check_type("controller_check", self.controller_check, PassivityCheck, fix)
         if self.controller_limits is not None:
-            check_type("controller_limits", self.controller_limits, ControllerStiffnessLimits, fix)
+            check_type("controller_limits", self.controller_limits, KMaxResult, fix)
         present = [n for n, _ in spring if getattr(self, n) is not None]
         present += [n for n in ("design_answer", "speed_chart") if getattr(self, n) is not None]
         if present or self.controller.stiffness != self.stiffness or self.controller.delay != self.delay:
@@ -307,7 +307,7 @@ class DesignAnalysis:
                 "stability_map": self.stability_map.to_dict(),
                 "design_answer": None if self.design_answer is None else self.design_answer.to_dict(),
                 "speed_chart": None if self.speed_chart is None else self.speed_chart.to_dict(),
-                "zwidth": None if self.zwidth is None else _zwidth_record(self.zwidth),
+                "zwidth": None if self.zwidth is None else self.zwidth.to_dict(),
                 "catalogue": self.catalogue,
                 "validation": self.validation,
                 "samples": self.samples,
@@ -316,14 +316,6 @@ class DesignAnalysis:
                 "status_message": self.status.message,
             }
         )
-
-
-def _zwidth_record(z: ZWidth) -> dict[str, Any]:
-    """The Z-width's JSON with the meaning of a null in its per-B ``reason`` lists (no caveat at that B)."""
-    rec: dict[str, Any] = z.to_dict()
-    for method in rec["boundaries"].values():
-        explain_nulls(method, {"reason": "null: no caveat at that B (the value is plain)"})
-    return rec
 
 
 def _explain_filter_nulls(obj: Any) -> None:
@@ -381,13 +373,13 @@ def resolve_design_inputs(
 
 
 def _simulations(
-    p: Params, xi_dot: float, ref: float, v_sim: float | None, samples: int, dl: int, cp: WallParams | None
+    p: Params, xi_dot: float, ref: float, v_sim: float | None, samples: int, wp: WallParams
 ) -> dict[str, Any]:
     """Recorded runs for the figure and full-length runs for the outcomes, at the design speed and above."""
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
     v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
     run = lambda v, n, rec: simulate(  # diverged only far beyond the impact's own travel (eq. 18-19)
-        p.mu, p.beta, p.sigma, v, n, delay=dl, record=rec, bound=divergence_bound(0.0, v, p.mu), controller=cp
+        p.mu, p.beta, p.sigma, v, n, record=rec, bound=divergence_bound(0.0, v, p.mu), wall=wp
     )
     return dict(
         trajectory=run(xi_dot, n_traj, True),
@@ -476,29 +468,28 @@ def design_analysis(
         zwidth_grid is not None) else (CONTROLLER_ZWIDTH_GRID if ctl is not None else 0)  # fmt: skip
     steps = tqdm(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False)
     p = dev.params(k)
-    cp = None if ctl is None else ctl.params(dev.period)
+    wall = Wall.of(k, delay=dl) if ctl is None else ctl
+    wp = wall.params(dev.period)
     head = _spring_parts(dev, k, v, dl) if ctl is None else _controller_parts(dev, ctl, v)
     steps.update()
-    thr = tuple(
-        (m, growth_threshold(p, dev, model=m, delay=dl, controller=cp)) for m in MODELS
-    )  # search range follows the problem
+    thr = tuple((m, growth_threshold(p, dev, model=m, wall=wp)) for m in MODELS)  # search range follows the problem
     steps.update()
     xi, crit_xi = head.pop("xi_dot"), head.pop("critical_xi_dot")
     ref = crit_xi if crit_xi else max(1.0, xi)
-    v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, delay=dl, controller=cp)
+    v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, wall=wp)
     steps.update()
-    sims = _simulations(p, xi, ref, v_sim, samples, dl, cp)
-    ny = _nyquist(p, thr[1][1], dl, cp)
+    sims = _simulations(p, xi, ref, v_sim, samples, wp)
+    ny = _nyquist(p, thr[1][1], wp)
     steps.update()
-    smap = _map_around(p, xi, dl, map_grid, samples, n_jobs, progress, cp)
+    smap = _map_around(p, xi, map_grid, samples, n_jobs, progress, wp)
     steps.close()
     figs: dict[str, Any] = dict(nyquist=ny, stability_map=smap)
     if v > 0 and ctl is None:  # the design answer, first in the report: K_max four ways and the stiffness-speed chart
         cache = RunCache()  # one set of runs for both: no (K, speed, start) simulated twice
-        figs["design_answer"] = design_answer(dev, v, dl, stiffness=k, cache=cache)
-        figs["speed_chart"] = stiffness_speed_chart(dev, dl, stiffness=k, velocity=v, cache=cache)
+        figs["design_answer"] = design_answer(dev, v, wall=wall, assess=True, cache=cache)
+        figs["speed_chart"] = stiffness_speed_chart(dev, wall=wall, stiffness=k, velocity=v, cache=cache)
     if v > 0 and zg:
-        figs["zwidth"] = _zwidth(dev, v, dl, ctl, zg, n_jobs, progress)
+        figs["zwidth"] = _zwidth(dev, v, wall, ctl is not None, zg, n_jobs, progress)
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )
@@ -541,7 +532,7 @@ def _spring_parts(dev: Device, k: float, v: float, dl: int) -> dict[str, Any]:
 def _controller_parts(dev: Device, ctl: Wall, v: float) -> dict[str, Any]:
     """The passivity check and K_max with the controller (no spring-only part), with the design and critical speeds."""
     chk = passivity_check(dev, ctl, v)
-    lim = controller_stiffness_limits(dev, ctl, v) if v > 0 else None
+    lim = design_answer(dev, v, wall=ctl) if v > 0 else None
     crit_xi = None if chk.criterion is None else chk.criterion.critical_xi_dot
     return dict(
         criterion=None, limits=None, stiffness_curve=None, controller=ctl, controller_check=chk,
@@ -549,20 +540,15 @@ def _controller_parts(dev: Device, ctl: Wall, v: float) -> dict[str, Any]:
     )  # fmt: skip
 
 
-def _zwidth(dev: Device, v: float, dl: int, ctl: Wall | None, grid: int, n_jobs: int, progress: bool) -> ZWidth:
-    """The Z-width at the design speed, with the controller's delay, filter and lag; B's axis holds the design B."""
-    fc = None if ctl is None else ctl.filter_cutoff
-    fbw = None if ctl is None else ctl.amplifier_bandwidth
+def _zwidth(dev: Device, v: float, wall: Wall, widen: bool, grid: int, n_jobs: int, progress: bool) -> ZWidth:
+    """The Z-width at the design speed, with the wall's delay, filter and lag; B's axis holds the wall's B."""
     b_top = dev.mass / dev.period  # z_width's default range, widened to show the controller's B
-    b_range = None if ctl is None or ctl.damping <= b_top else (0.0, 1.25 * ctl.damping)
-    return z_width(
-        dev, v, delay=dl, filter_cutoff=fc, amplifier_bandwidth=fbw, grid=grid, b_range=b_range, speeds=1,
-        n_jobs=n_jobs, progress=progress,
-    )  # fmt: skip
+    b_range = (0.0, 1.25 * wall.damping) if widen and wall.damping > b_top else None
+    return z_width(dev, v, wall=wall, grid=grid, b_range=b_range, speeds=1, n_jobs=n_jobs, progress=progress)
 
 
 def _map_around(
-    p: Params, xi_dot: float, dl: int, grid: int, samples: int, n_jobs: int, progress: bool, cp: WallParams | None
+    p: Params, xi_dot: float, grid: int, samples: int, n_jobs: int, progress: bool, wp: WallParams
 ) -> StabilityMap:
     """Simulated outcomes on (β, σ) around the operating point, at the design speed and twice it."""
     return stability_map(
@@ -573,14 +559,13 @@ def _map_around(
         grid=grid,
         samples=samples,
         progress=progress,
-        delay=dl,
         n_jobs=n_jobs,
         bound=divergence_bound(0.0, 2 * xi_dot if xi_dot > 0 else 2.0, p.mu),  # beyond every start's travel
-        controller=cp,
+        wall=wp,
     )
 
 
-def _nyquist(p: Params, zoh: GrowthThreshold, dl: int, cp: WallParams | None) -> NyquistLocusResponse:
+def _nyquist(p: Params, zoh: GrowthThreshold, wp: WallParams) -> NyquistLocusResponse:
     """The Nyquist view of the exact ZOH loop (the model of the growth threshold): the locus reaches every cycle drawn."""
     res = zoh.result
     amps = [c.amplitude for c in res.cycles[:3]] if p.sigma > 0 else None
@@ -588,5 +573,5 @@ def _nyquist(p: Params, zoh: GrowthThreshold, dl: int, cp: WallParams | None) ->
         amps = [1.0]
     m_top = max([50.0] + [2.0 * c.amplitude for c in res.cycles])
     return nyquist_locus_response(
-        p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), model="zoh", delay=dl, controller=cp
+        p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), model="zoh", wall=wp
     )

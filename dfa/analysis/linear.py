@@ -72,7 +72,6 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 from numpy.polynomial import chebyshev
@@ -103,9 +102,7 @@ def _verify_step(a: float) -> float:
 
 
 # ----------------------------------------------------------------------------- polynomial and spectral radius
-def characteristic_polynomial(
-    mu: float, beta: float, delay: int = 0, *, controller: WallParams | None = None
-) -> np.ndarray:
+def characteristic_polynomial(mu: float, beta: float, *, wall: WallParams | None = None) -> np.ndarray:
     """Closed-loop characteristic polynomial χ(z) = μ z^d (z − 1)(z − p) + c₁ z + c₀ of the sampled spring.
 
     The exact ZOH loop of μξ'' + βξ' = −ξ(h − d) (module docstring; spec
@@ -117,12 +114,11 @@ def characteristic_polynomial(
         Dimensionless mass μ = m/(KT²) > 0.
     beta : float
         Dimensionless damping β = b/(KT) >= 0 (β = 0: the limit c₁ = c₀ = ½, p = 1).
-    delay : int, optional
-        Computational delay d in samples (the force of sample h uses ξ(h − d)).
-    controller : WallParams, optional
-        With a damper, filter or amplifier lag: the polynomial of
-        :func:`dfa.analysis.linear_wall.controlled_characteristic_polynomial`; None or a
-        spring (any delay; a velocity filter without a damper filters nothing): the spring's polynomial unchanged.
+    wall : WallParams, optional
+        The wall's groups: its computational delay d in samples (the force of sample h uses ξ(h − d)); with a
+        damper or an amplifier lag the polynomial of
+        :func:`dfa.analysis.linear_wall.controlled_characteristic_polynomial`. None or a spring (any delay; a
+        velocity filter without a damper filters nothing): the spring's polynomial.
 
     Returns
     -------
@@ -131,12 +127,13 @@ def characteristic_polynomial(
 
     Examples
     --------
-    >>> characteristic_polynomial(1.0, 0.0, delay=1).tolist()   # z(z − 1)² + ½z + ½
+    >>> characteristic_polynomial(1.0, 0.0, wall=WallParams.of(delay=1)).tolist()   # z(z − 1)² + ½z + ½
     [1.0, -2.0, 1.5, 0.5]
     """
     m, b = check_mu(mu), check_beta(beta)
-    d, c = _controller_delay(delay, controller, WallParams)
-    if c is not None and (c.damping > 0.0 or c.lag > 0.0):
+    c = _wall(wall)
+    d = c.delay
+    if _beyond_spring(c):
         from .linear_wall import controlled_characteristic_polynomial
 
         return controlled_characteristic_polynomial(m, b, c)
@@ -176,32 +173,28 @@ def _as_array(name: str, value, check) -> np.ndarray:
     return arr
 
 
-def _controller_delay(delay: Any, controller: Any, cls: type) -> tuple[int, Any]:
-    """(d, controller): the delay given once, either as ``delay`` or in the controller (checked)."""
-    d = check_delay(delay)
-    if controller is None:
-        return d, None
-    c = check_type("controller", controller, cls, f"give a dfa.{cls.__name__} or None")
-    if d not in (0, c.delay):
-        raise DFAValueError(
-            f"delay = {d} is invalid with controller.delay = {c.delay}: they must agree; give the delay in the "
-            "controller only"
-        )
-    return c.delay, c
+def _wall(wall: object) -> WallParams:
+    """The wall's groups (None: the paper's spring), or the package's error."""
+    return WallParams() if wall is None else check_type("wall", wall, WallParams, "give a dfa.WallParams or None")
 
 
-def spectral_radius(mu, beta, delay: int = 0, *, controller: WallParams | None = None):
+def _beyond_spring(wall: WallParams) -> bool:
+    """True when the wall's linear loop is not the spring's: a damper or an amplifier lag (a filter without a
+    damper filters nothing)."""
+    return wall.damping > 0.0 or wall.lag > 0.0
+
+
+def spectral_radius(mu, beta, *, wall: WallParams | None = None):
     """Largest root modulus of :func:`characteristic_polynomial` (vectorised over μ and β).
 
     Parameters
     ----------
     mu, beta : float or array_like
         Dimensionless mass (> 0) and damping (>= 0), broadcast together.
-    delay : int, optional
-        Computational delay d in samples.
-    controller : WallParams, optional
-        Virtual damper β_B, filter ν_c, delay d and amplifier lag α (:mod:`dfa.analysis.linear_wall`);
-        None or a spring (any delay; a filter without a damper filters nothing) gives the spring's result unchanged.
+    wall : WallParams, optional
+        The wall's groups: delay d, virtual damper β_B, filter ν_c and amplifier lag α
+        (:mod:`dfa.analysis.linear_wall`); None or a spring (any delay; a filter without a damper filters
+        nothing) gives the spring's result.
 
     Returns
     -------
@@ -215,8 +208,9 @@ def spectral_radius(mu, beta, delay: int = 0, *, controller: WallParams | None =
     """
     m = _as_array("mu", mu, lambda n, v: check_mu(v, n))
     b = _as_array("beta", beta, lambda n, v: check_beta(v, n))
-    d, c = _controller_delay(delay, controller, WallParams)
-    if c is not None and (c.damping > 0.0 or c.lag > 0.0):
+    c = _wall(wall)
+    d = c.delay
+    if _beyond_spring(c):
         from .linear_wall import controlled_spectral_radius
 
         m, b = np.broadcast_arrays(m, b)
@@ -228,10 +222,10 @@ def spectral_radius(mu, beta, delay: int = 0, *, controller: WallParams | None =
     return float(out) if out.ndim == 0 else out
 
 
-def linear_stable(mu, beta, delay: int = 0, *, controller: WallParams | None = None):
+def linear_stable(mu, beta, *, wall: WallParams | None = None):
     """True where the linear sampled loop is asymptotically stable (spectral radius < 1), vectorised.
 
-    Parameters as :func:`spectral_radius` (``controller``: a :class:`WallParams`, or None for the spring).
+    Parameters as :func:`spectral_radius` (``wall``: a :class:`WallParams`, or None for the spring).
     At tiny rates (spring: r_d β/μ <= 1e-6; controller: (β + β_B)/μ < 1e-7), where the float spectral radius is
     decided by rounding, the verdict is 1/μ < κ_crit of the small-rate bound (:func:`critical_stiffness`).
 
@@ -240,8 +234,9 @@ def linear_stable(mu, beta, delay: int = 0, *, controller: WallParams | None = N
     >>> linear_stable(100.0, 0.5), linear_stable(100.0, 0.49)
     (True, False)
     """
-    r = spectral_radius(mu, beta, delay, controller=controller)
-    d, c = _controller_delay(delay, controller, WallParams)
+    r = spectral_radius(mu, beta, wall=wall)
+    c = _wall(wall)
+    d = c.delay
     m, b = np.broadcast_arrays(np.asarray(mu, dtype=float), np.asarray(beta, dtype=float))
     out = np.atleast_1d(np.asarray(r) < 1.0).ravel()
     for i, (x, y) in enumerate(zip(m.ravel(), b.ravel(), strict=True)):
@@ -251,7 +246,7 @@ def linear_stable(mu, beta, delay: int = 0, *, controller: WallParams | None = N
     return bool(out[0]) if isinstance(r, float) else out.reshape(np.shape(r))
 
 
-def _small_rate_verdict(mu: float, beta: float, d: int, c: WallParams | None) -> bool | None:
+def _small_rate_verdict(mu: float, beta: float, d: int, c: WallParams) -> bool | None:
     """Stability from the small-rate bound (1/μ < κ_crit, in β form: no underflow), or None outside that regime.
 
     Spring: r_d β/μ <= 1e-6, stable iff β(1 + r_d β/μ) > ½ + d (:func:`_small_rate_kappa`). With a damper or
@@ -259,12 +254,12 @@ def _small_rate_verdict(mu: float, beta: float, d: int, c: WallParams | None) ->
     (:func:`dfa.analysis.linear_wall._series_kappa`).
     """
     a = beta / mu
-    if c is not None and (c.damping > 0.0 or c.lag > 0.0):
-        from .linear_wall import MIN_RESOLVED_RATE, _series_kappa
+    if _beyond_spring(c):
+        from .linear_wall import MIN_RESOLVED_RATE, series_kappa
 
         if not (beta + c.damping > 0.0 and (beta + c.damping) / mu < MIN_RESOLVED_RATE):
             return None
-        series = _series_kappa(a, c.damping / mu, c.cutoff, c.lag, d)
+        series = series_kappa(a, c.damping / mu, c.cutoff, c.lag, d)
         return None if series is None else bool((beta * series[0] + c.damping) * series[1] > 1.0)
     r = (2.0 * d * d + 2.0 * d + 1.0) / (6.0 * (2.0 * d + 1.0))
     if not (beta > 0.0 and r * a <= _ASYMPTOTIC_LIMIT):
@@ -366,7 +361,7 @@ def _critical_kappa_scan(a: float, d: int) -> float:
     return float(brentq(lambda k: float(_rho(a, k, d)) - 1.0, ks[i - 1], ks[i], xtol=1e-300, rtol=1e-14))
 
 
-def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Wall | None = None):
+def critical_stiffness(mass, damping, period, *, wall: Wall | None = None):
     """Exact stability limit K_crit of the linear sampled spring, all Jury conditions, with delay (spec section 8).
 
     The smallest K > 0 at which a closed-loop root of :func:`characteristic_polynomial`
@@ -389,15 +384,13 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Wal
         Viscous friction b >= 0, N·s/m (rotary: N·m·s/rad).
     period : float or array_like
         Sampling period T > 0, s.
-    delay : int, optional
-        Computational delay d in samples: F_h = −K x(h − d).
-    controller : Wall, optional
-        A wall with virtual damper B, velocity filter, delay and amplifier lag: K_crit is then
-        :attr:`dfa.analysis.linear_wall.StiffnessIntervals.k_crit` of
-        :func:`dfa.analysis.linear_wall.stable_stiffness` (B, f_c, τ_a, d held fixed while K varies;
-        the controller's own stiffness is not used; the stable set may have further intervals
-        above K_crit, which that function lists). None or a spring (a filter without a damper filters
-        nothing): the spring's result unchanged.
+    wall : Wall, optional
+        The wall: its computational delay d in samples (F_h = −K x(h − d)); with a virtual damper B or an
+        amplifier lag, K_crit is :attr:`dfa.analysis.linear_wall.StiffnessIntervals.k_crit` of
+        :func:`dfa.analysis.linear_wall.stable_stiffness` (B, f_c, τ_a, d held fixed while K varies; the
+        wall's own stiffness is not used; the stable set may have further intervals above K_crit, which
+        that function lists). None or a spring (a filter without a damper filters nothing): the spring's
+        result.
 
     Returns
     -------
@@ -406,7 +399,7 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Wal
 
     Examples
     --------
-    >>> round(critical_stiffness(0.01, 5.0, 0.01, delay=1), 1)
+    >>> round(critical_stiffness(0.01, 5.0, 0.01, wall=Wall.of(1.0, delay=1)), 1)
     482.1
     >>> critical_stiffness(1.0, 0.0, 1e-3)
     0.0
@@ -414,9 +407,10 @@ def critical_stiffness(mass, damping, period, delay: int = 0, *, controller: Wal
     m = _as_array("mass", mass, lambda n, v: check_positive(n, v, "give the moving mass in kg (rotary: kg·m²)"))
     b = _as_array("damping", damping, lambda n, v: check_nonnegative(n, v, "give the viscous friction in N·s/m"))
     t = _as_array("period", period, lambda n, v: check_positive(n, v, "give the sampling period in s"))
-    d, c = _controller_delay(delay, controller, Wall)
+    c = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
+    d = c.delay
     m, b, t = np.broadcast_arrays(m, b, t)
-    if c is not None and (c.damping > 0.0 or c.amplifier_bandwidth is not None):
+    if c.damping > 0.0 or c.amplifier_bandwidth is not None:
         from .linear_wall import stable_stiffness
 
         rows = zip(m.ravel(), b.ravel(), t.ravel(), strict=True)

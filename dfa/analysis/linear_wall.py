@@ -49,7 +49,7 @@ a + a_B > 0.
 Tiny rates. For (b + B)T/m <= :data:`SERIES_RATE` = 1e-4 the roots cluster at z = 1
 (|z| − 1 = O((b + B)T/m)) and the float crossings lose digits (1e-11 relative at
 1e-4, 1e-8 at 1e-7, nothing below). There κ_crit comes from the Taylor series of
-Φ(s) = P₀/Q at z = e^s (:func:`_series_kappa`; every factor expanded in w = z − 1
+Φ(s) = P₀/Q at z = e^s (:func:`series_kappa`; every factor expanded in w = z − 1
 without cancellation): Im Φ(jθ) = 0, κ = −Re Φ(jθ) is solved as a series in θ²,
 κ_crit = (a ρ_L + a_B) κ̃, κ̃ → 1/(½ + d + α) as the rate → 0, i.e.
 K_crit → (b + B)/(T(½ + d + τ_a/T)) (the filter drops out at leading order). K is
@@ -106,11 +106,11 @@ class LinearStatus(StatusEnum):
 
     INTERVAL = ("interval", "stable exactly for 0 < K < K_crit (every stability condition checked)")
     SEVERAL = (
-        "several intervals",
+        "several_intervals",
         "the stable set in K has several intervals: K_crit is the top of the one starting at K = 0; see intervals",
     )
     NOT_AT_LOW_K = (
-        "not at low K",
+        "not_at_low_k",
         "unstable for small K: stable only on the listed intervals (K_crit = 0)",
     )
     NEVER = ("never", "unstable for every K > 0 (K_crit = 0)")
@@ -141,23 +141,23 @@ def amplifier_zoh_coefficients(a: float, lag: float) -> tuple[float, float, floa
     return float(n2), float(n1), float(n0), float(p), float(q)
 
 
-def _plant(a: float, lag: float) -> tuple[np.ndarray, np.ndarray]:
-    """(N_G, D_G) of G(z) = N_G/(μ D_G), highest power first (lag 0 or 1/lag overflowing: the device alone)."""
-    if lag == 0.0 or not math.isfinite(1.0 / lag):
-        c1, c0, p = zoh_coefficients(float(a))
-        return np.array([c1, c0]), np.array([1.0, -(1.0 + p), p])
-    n2, n1, n0, p, q = amplifier_zoh_coefficients(a, lag)
-    return np.array([n2, n1, n0]), np.poly([1.0, p, q])
+def _plant(a: float, wall: WallParams) -> tuple[np.ndarray, np.ndarray]:
+    """(N_G, D_G) of G(z) = N_G/(μ D_G), highest power first: an element's between hold and device
+    (:meth:`dfa.model.wall.WallParams.plant`, the amplifier lag), else the device alone (:mod:`dfa.core.zoh`)."""
+    out = wall.plant(float(a))
+    if out is not None:
+        return out
+    c1, c0, p = zoh_coefficients(float(a))
+    return np.array([c1, c0]), np.array([1.0, -(1.0 + p), p])
 
 
-def _controller(cutoff: float | None, delay: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(N₁, N₂, D_H) with H = (N₁ + β_B N₂)/D_H (module docstring), highest power first."""
-    shift = np.zeros(delay + 2)
-    shift[0] = 1.0  # z^{d+1}
-    if cutoff is None:
-        return np.array([1.0, 0.0]), np.array([1.0, -1.0]), shift
-    af = math.exp(-2.0 * math.pi * cutoff)
-    return np.array([1.0, -af, 0.0]), np.array([1.0 - af, af - 1.0]), np.polymul(shift, [1.0, -af])
+def _command(wall: WallParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(N₁, N₂, D_H) with H = (N₁ + β_B N₂)/D_H (module docstring), highest power first: the elements'
+    polynomials (:meth:`dfa.model.wall.WallParams.command`), the delay's z^d in D_H."""
+    h = wall.command()
+    shift = np.zeros(h.delay + 1)
+    shift[0] = 1.0  # z^d
+    return h.spring, h.velocity, np.polymul(h.denominator, shift)
 
 
 def controlled_characteristic_polynomial(mu: float, beta: float, params: WallParams) -> np.ndarray:
@@ -184,8 +184,8 @@ def controlled_characteristic_polynomial(mu: float, beta: float, params: WallPar
     """
     m, b = check_mu(mu), check_beta(beta)
     params = check_type("params", params, WallParams, "give a dfa.WallParams")
-    ng, dg = _plant(b / m, params.lag)
-    n1, n2, dh = _controller(params.cutoff if params.damping > 0.0 else None, params.delay)
+    ng, dg = _plant(b / m, params)
+    n1, n2, dh = _command(params)
     return np.polyadd(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2)))
 
 
@@ -207,7 +207,7 @@ def controlled_spectral_radius(mu: float, beta: float, params: WallParams) -> fl
 
 # ----------------------------------------------------------------------------- the stiffness ray
 #: (b + B)T/m at or below which :func:`stable_stiffness` takes K_crit from the Taylor series of the ray at z = 1
-#: (:func:`_series_kappa`), where the float root finding loses digits (it agrees with the series to ~1e-11 at
+#: (:func:`series_kappa`), where the float root finding loses digits (it agrees with the series to ~1e-11 at
 #: 1e-4 and ~1e-8 at 1e-7; the series' own truncation is checked below 1e-16).
 SERIES_RATE = 1e-4
 
@@ -272,7 +272,7 @@ def _taylor_at_one(a: float, a_b: float, cutoff: float | None, lag: float, delay
     return _series_mul(ed, lo) + a_b * vo, rho_l
 
 
-def _series_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[float, float] | None:
+def series_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[float, float] | None:
     """(ρ_L, κ̃) with κ_crit = (a ρ_L + a_B) κ̃ from the Taylor series at z = 1, or None if it does not converge.
 
     On z = e^{jθ} with u = θ² = φ₁v, Im Φ = 0 and κ = −Re Φ read (φ_k real, :func:`_taylor_at_one`)::
@@ -305,10 +305,11 @@ def _series_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay:
     return rho_l, float(np.dot(re, powers))
 
 
-def _ray(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[np.ndarray, np.ndarray]:
-    """(P₀, Q) of κχ = P₀ + κQ at fixed a = bT/m and a_B = BT/m (module docstring)."""
-    ng, dg = _plant(a, lag)
-    n1, n2, dh = _controller(cutoff if a_b > 0.0 else None, delay)
+def _ray(a: float, a_b: float, wall: WallParams) -> tuple[np.ndarray, np.ndarray]:
+    """(P₀, Q) of κχ = P₀ + κQ at fixed a = bT/m and a_B = BT/m (module docstring); ``wall`` gives the
+    elements' structure (a filter counts only with a damper, a_B > 0)."""
+    ng, dg = _plant(a, wall)
+    n1, n2, dh = _command(wall)
     return np.polyadd(np.polymul(dg, dh), a_b * np.polymul(ng, n2)), np.polymul(ng, n1)
 
 
@@ -369,10 +370,10 @@ def _crossings(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
     return np.array(out)
 
 
-def _stable_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> list[tuple[float, float]]:
+def _stable_kappa(a: float, a_b: float, wall: WallParams) -> list[tuple[float, float]]:
     """The stable set in κ = KT²/m as a list of open intervals (lo, hi), lo = 0 for the one from κ = 0+."""
-    p0, q = _ray(a, a_b, cutoff, lag, delay)
-    return _ray_intervals(p0, q, (a, a_b, cutoff, lag, delay))
+    p0, q = _ray(a, a_b, wall)
+    return _ray_intervals(p0, q, (a, a_b, wall.cutoff, wall.lag, wall.delay))
 
 
 def _ray_intervals(p0: np.ndarray, q: np.ndarray, args: tuple) -> list[tuple[float, float]]:
@@ -426,7 +427,7 @@ def _stable_set(
     rate = (b + big_b) * t / m
     series = None
     if b + big_b > 0.0 and rate <= SERIES_RATE:
-        series = _series_kappa(a, a_b, p.cutoff, p.lag, p.delay)
+        series = series_kappa(a, a_b, p.cutoff, p.lag, p.delay)
     if series is None:
         if 0.0 < rate < MIN_RESOLVED_RATE or (rate == 0.0 and b + big_b > 0.0):
             raise DFAValueError(
@@ -435,7 +436,7 @@ def _stable_set(
                 "not converge here (the velocity filter's pole as close to z = 1 as the stability boundary); raise "
                 "the filter cutoff, or check the mass and damping"
             )
-        return _stable_kappa(a, a_b, p.cutoff, p.lag, p.delay), None
+        return _stable_kappa(a, a_b, p), None
     rho_l, k_tilde = series
     kappa = (a * rho_l + a_b) * k_tilde
     k_top = (b * rho_l + big_b) / t * k_tilde
@@ -443,10 +444,10 @@ def _stable_set(
     higher: list[tuple[float, float]] = []
     if rate >= MIN_RESOLVED_RATE:  # below, none is looked for (costly at large d): one found by the grid is an error
         try:
-            higher = [iv for iv in _stable_kappa(a, a_b, p.cutoff, p.lag, p.delay) if iv[0] >= lo]
+            higher = [iv for iv in _stable_kappa(a, a_b, p) if iv[0] >= lo]
         except DFAError:  # its own check failed (the clustered roots near z = 1): no interval above is listed
             pass
-    p0, q = _ray(a, a_b, p.cutoff, p.lag, p.delay)
+    p0, q = _ray(a, a_b, p)
     grid = np.geomspace(lo, 1e4, 29)
     grid = grid[[not any(x <= k <= y for x, y in higher) for k in grid]]
     if grid.size and np.any(_rho_rows(np.array([np.polyadd(p0, k * q) for k in grid])) <= 1.0 + 1e-9):
@@ -492,8 +493,8 @@ class StiffnessIntervals:
     status : LinearStatus
     mass, damping, period : float
         The device's m (kg), b (N·s/m) and T (s).
-    controller : dict
-        The controller held fixed: damping B (N·s/m), delay (samples), filter_cutoff (Hz or None),
+    wall : dict
+        The wall held fixed: damping B (N·s/m), delay (samples), filter_cutoff (Hz or None),
         amplifier_bandwidth (Hz or None); its stiffness is what is solved for.
     """
 
@@ -503,7 +504,7 @@ class StiffnessIntervals:
     mass: float
     damping: float
     period: float
-    controller: dict
+    wall: dict
 
     def __post_init__(self) -> None:
         freeze_fields(self, {"intervals": {"ndim": 2}})
@@ -528,12 +529,12 @@ class StiffnessIntervals:
             "mass": self.mass,
             "damping": self.damping,
             "period": self.period,
-            "controller": dict(self.controller),
+            "wall": dict(self.wall),
         }
 
 
-def stable_stiffness(mass: float, damping: float, period: float, controller: Wall) -> StiffnessIntervals:
-    """Every stable stiffness K of the linear sampled loop with ``controller``'s damper, filter, delay and lag.
+def stable_stiffness(mass: float, damping: float, period: float, wall: Wall) -> StiffnessIntervals:
+    """Every stable stiffness K of the linear sampled loop with ``wall``'s damper, filter, delay and lag.
 
     The exact closed-loop characteristic polynomial of ZOH, amplifier lag and
     device with the controller H(z) (module docstring); K varies while the
@@ -547,7 +548,7 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Wal
         Viscous friction b >= 0, N·s/m (rotary: N·m·s/rad).
     period : float
         Sampling period T > 0, s.
-    controller : Wall
+    wall : Wall
         Its damping B, delay, filter cutoff and amplifier bandwidth are used; its stiffness is not
         (K is what is solved for).
 
@@ -563,7 +564,7 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Wal
         0 < (b + B)T/m < :data:`MIN_RESOLVED_RATE` where the series at z = 1 does not converge (a guard: no
         accepted input is known to reach it).
     DFATypeError
-        ``controller`` is not a :class:`dfa.Wall`.
+        ``wall`` is not a :class:`dfa.Wall`.
 
     See Also
     --------
@@ -578,9 +579,9 @@ def stable_stiffness(mass: float, damping: float, period: float, controller: Wal
     ('never', 0.0)
     """
     m, b, t = _device(mass, damping, period)
-    c = check_type("controller", controller, Wall, "give a dfa.Wall")
+    c = check_type("wall", wall, Wall, "give a dfa.Wall")
     p = c.params(t)
-    for name, value in (("damping", b), ("controller.damping", c.damping)):
+    for name, value in (("damping", b), ("wall.damping", c.damping)):
         check_rate(name, value, m, t)
     kap, k_top = _stable_set(b, c.damping, t, m, p)
     scale = m / (t * t)
@@ -646,9 +647,7 @@ def stable_region(
     period: float,
     virtual_damping: Any,
     *,
-    delay: int = 0,
-    filter_cutoff: float | None = None,
-    amplifier_bandwidth: float | None = None,
+    wall: Wall | None = None,
 ) -> StableRegion:
     """The stable K–B region of the linear sampled loop: :func:`stable_stiffness` at each B of a grid.
 
@@ -657,11 +656,10 @@ def stable_region(
     mass, damping, period : float
         Device mass m (kg), viscous friction b (N·s/m), sampling period T (s).
     virtual_damping : array_like
-        One or more controller dampings B >= 0, N·s/m.
-    delay : int, optional
-        Computational delay d in samples.
-    filter_cutoff, amplifier_bandwidth : float or None, optional
-        Velocity-filter cutoff and amplifier bandwidth in Hz (None: none), as in :class:`Wall`.
+        One or more virtual dampings B >= 0, N·s/m: the wall's damper at each point of the grid.
+    wall : Wall, optional
+        The rest of the wall, held fixed: its delay (samples), velocity filter and amplifier (its stiffness
+        and damper are not used); default the spring.
 
     Returns
     -------
@@ -695,14 +693,7 @@ def stable_region(
             f"virtual_damping = {bad!r} is invalid: it must be a finite number >= 0; give the virtual damping B in "
             "N·s/m (0 for none)"
         )
-    rows = tuple(
-        stable_stiffness(
-            mass,
-            damping,
-            period,
-            Wall.of(1.0, float(bb), delay, filter_cutoff=filter_cutoff, amplifier_bandwidth=amplifier_bandwidth),
-        )
-        for bb in grid
-    )
+    base = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
+    rows = tuple(stable_stiffness(mass, damping, period, base.with_damping(float(bb))) for bb in grid)
     odd = [r.status for r in rows if r.status is not LinearStatus.INTERVAL]
     return StableRegion(grid, np.array([r.k_crit for r in rows]), rows, odd[0] if odd else LinearStatus.INTERVAL)

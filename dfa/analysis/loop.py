@@ -165,9 +165,8 @@ def loop_response(
     amplitude=None,
     *,
     model: str = "half-delay",
-    delay: int = 0,
     pade_order: int = 4,
-    controller: WallParams | None = None,
+    wall: WallParams | None = None,
 ):
     """Frequency response L(jω; M) of the linear part of the loop (eq. 36).
 
@@ -181,17 +180,14 @@ def loop_response(
         Cycle amplitude M in ticks (needed when σ > 0: it sets β_eq); broadcast with ``omega``.
     model : {"half-delay", "pade", "zoh"}
         Model of the zero-order hold (module docstring).
-    delay : int, optional
-        Computational delay d in whole samples (default 0).
     pade_order : int, optional
         Order of the Padé approximation for ``model="pade"`` (default 4).
-    controller : WallParams, optional
-        The virtual wall (issue 15). L is then multiplied by the controller
-        C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the ZOH-exact velocity filter
-        (1 − a)e^{−jω}/(1 − a e^{−jω}), a = e^{−2πν_c}; 1 without filter), its delay
-        e^{−jωd} replaces ``delay`` (which must be 0 or equal), and the amplifier lag
-        enters as 1/(jωα + 1) (half-delay, Padé) or exactly inside the ZOH-sampled
-        amplifier + device (``"zoh"``, :mod:`dfa.core.zohlag`). Default None: the spring.
+    wall : WallParams, optional
+        The virtual wall's groups (issue 15): its computational delay d in whole samples multiplies L by
+        e^{−jωd}; a damper and filter by the command C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the
+        ZOH-exact velocity filter (1 − a)e^{−jω}/(1 − a e^{−jω}), a = e^{−2πν_c}; 1 without filter); an
+        amplifier lag enters as 1/(jωα + 1) (half-delay, Padé) or exactly inside the ZOH-sampled amplifier +
+        device (``"zoh"``, :mod:`dfa.core.zohlag`). Default None: the paper's spring.
 
     Returns
     -------
@@ -210,10 +206,10 @@ def loop_response(
     nyquist_locus_response : The loop against the critical locus −1/D(M).
     """
     from .cycles.characteristic import _inv_loop  # imported here: dfa.analysis.cycles builds on this module
-    from .cycles.controlled import resolve_controller
+    from .cycles.controlled import resolve_wall
 
     p = _check_params(params)
-    ctl, d = resolve_controller(controller, delay)
+    _w, ctl, d = resolve_wall(wall)
     m, d, n = _check_model(model, d, pade_order)
     w = _omega(omega)
     if amplitude is not None:
@@ -259,9 +255,9 @@ def loop_system(
     omega: float | None = None,
     *,
     model: str = "pade",
-    delay: int = 0,
     pade_order: int = 4,
     omega_grid=None,
+    wall: WallParams | None = None,
 ):
     """The linear part as a python-control system, for python-control's own tools.
 
@@ -282,12 +278,13 @@ def loop_system(
         Frequency ω in rad per sample at which the rational models linearise the friction (σ > 0).
     model : {"pade", "zoh", "half-delay"}
         Model of the zero-order hold (module docstring); default ``"pade"``.
-    delay : int, optional
-        Computational delay d in whole samples (default 0).
     pade_order : int, optional
         Order of the Padé approximation for ``model="pade"`` (default 4).
     omega_grid : array_like, optional
         Frequencies in rad per sample of the ``"half-delay"`` FRD; default 2000 points from 1e-3 to π.
+    wall : WallParams, optional
+        The paper's spring with a computational delay d in whole samples (``WallParams.of(delay=d)``);
+        default None, no delay. A damper, filter or lag is refused: use :func:`loop_response`.
 
     Returns
     -------
@@ -304,8 +301,16 @@ def loop_system(
     --------
     loop_response : The frequency response itself, vectorised.
     """
+    from .cycles.controlled import resolve_wall
+
     p = _check_params(params)
-    m, d, n = _check_model(model, delay, pade_order)
+    _w, ctl, d = resolve_wall(wall)
+    if ctl is not None:
+        raise DFAValueError(
+            f"wall = {ctl.to_dict()} is invalid for loop_system: it builds the spring's loop with a delay only; "
+            "use loop_response(..., wall=...) for a wall with a damper, filter or amplifier lag"
+        )
+    m, d, n = _check_model(model, d, pade_order)
     if amplitude is not None:
         amplitude = check_positive("amplitude", amplitude, "give one cycle amplitude M in ticks")
     if omega is not None:
@@ -317,7 +322,7 @@ def loop_system(
         return gd * control.tf([1.0], [1.0] + [0.0] * d, dt=1.0) if d else gd
     w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega_grid is None else omega_grid, "omega_grid")
     amp = None if p.sigma == 0.0 or amplitude is None else np.full_like(w, amplitude)
-    return control.frd(loop_response(p, w, amp, model=m, delay=d), w)
+    return control.frd(loop_response(p, w, amp, model=m, wall=wall), w)
 
 
 @dataclass(frozen=True)
@@ -328,8 +333,10 @@ class NyquistLocusResponse:
     ----------
     params : Params
         The inputs.
-    model, delay, pade_order
+    model, pade_order
         Loop model (see :func:`loop_response`).
+    wall : WallParams
+        The wall's groups in the loop (none for the paper's spring; :attr:`delay` its delay).
     omega : numpy.ndarray
         Frequencies (rad per sample) of the curves.
     amplitudes : numpy.ndarray
@@ -352,15 +359,13 @@ class NyquistLocusResponse:
         search ended incomplete; crossings may be missing, why in ``detail``).
     detail : str
         The solver's one-line reason when ``SEARCH_INCOMPLETE``; empty otherwise.
-    controller : WallParams or None
-        The controller of the loop (None: the paper's spring).
 
     Arrays are read-only copies.
     """
 
     params: Params
     model: str
-    delay: int
+    wall: WallParams
     pade_order: int
     omega: np.ndarray = field(repr=False)
     amplitudes: np.ndarray
@@ -370,11 +375,9 @@ class NyquistLocusResponse:
     crossings: tuple
     status: NyquistStatus
     detail: str = ""
-    controller: WallParams | None = None
 
     def __post_init__(self) -> None:
-        if self.controller is not None:
-            check_type("controller", self.controller, WallParams, "build it with nyquist_locus_response")
+        check_type("wall", self.wall, WallParams, "build it with nyquist_locus_response")
         freeze_fields(
             self,
             {
@@ -398,10 +401,9 @@ class NyquistLocusResponse:
         dict
             Strict-JSON data: inputs, crossings, curves, locus, status and detail.
         """
-        extra = {} if self.controller is None else {"controller": self.controller.to_dict()}
         return to_jsonable(
             {
-                **extra,
+                "wall": self.wall.to_dict(),
                 "mu": self.params.mu,
                 "beta": self.params.beta,
                 "sigma": self.params.sigma,
@@ -419,6 +421,11 @@ class NyquistLocusResponse:
             }
         )
 
+    @property
+    def delay(self) -> int:
+        """The wall's computational delay d in samples."""
+        return self.wall.delay
+
     def loop_at(self, frequency: float, amplitude: float) -> complex:
         """The loop L(jω; M) of this response at one frequency and amplitude: where a cycle lies on the plot.
 
@@ -432,11 +439,10 @@ class NyquistLocusResponse:
         Returns
         -------
         complex
-            :func:`loop_response` with this response's model, delay and controller.
+            :func:`loop_response` with this response's model and wall.
         """
         out = loop_response(
-            self.params, frequency, amplitude, model=self.model, delay=self.delay, pade_order=self.pade_order,
-            controller=self.controller,
+            self.params, frequency, amplitude, model=self.model, pade_order=self.pade_order, wall=self.wall,
         )  # fmt: skip
         return complex(out)
 
@@ -461,13 +467,7 @@ class NyquistLocusResponse:
 
 
 def _solver_crossings(
-    p: Params,
-    model: str,
-    delay: int,
-    pade_order: int,
-    omega: np.ndarray,
-    max_amplitude: float,
-    controller: WallParams | None = None,
+    p: Params, model: str, pade_order: int, omega: np.ndarray, max_amplitude: float, wall: WallParams
 ) -> tuple[list[tuple[float, float, complex]], NyquistStatus, str]:
     """σ = 0: the harmonic-balance roots of the limit-cycle solver (one implementation, residual <= 1e-10).
 
@@ -476,9 +476,7 @@ def _solver_crossings(
     """
     from .cycles import SearchStatus, limit_cycles  # imported here: dfa.analysis.cycles builds on this module
 
-    res = limit_cycles(
-        p, model=model, delay=delay, pade_order=pade_order, max_amplitude=max_amplitude, controller=controller
-    )
+    res = limit_cycles(p, model=model, pade_order=pade_order, max_amplitude=max_amplitude, wall=wall)
     lo, hi = float(np.min(omega)), float(np.max(omega))
     out = [
         (c.amplitude, c.frequency, complex(-1.0 / quantizer_df(c.amplitude), 0.0))
@@ -496,10 +494,9 @@ def nyquist_locus_response(
     omega=None,
     *,
     model: str = "half-delay",
-    delay: int = 0,
     pade_order: int = 4,
     locus_amplitude=None,
-    controller: WallParams | None = None,
+    wall: WallParams | None = None,
 ) -> NyquistLocusResponse:
     """Nyquist data of the loop L(jω; M) and the critical locus −1/D(M) (paper Fig. 6).
 
@@ -514,15 +511,12 @@ def nyquist_locus_response(
         Frequencies (rad per sample); default 2000 points from 1e-3 to π.
     model : {"half-delay", "pade", "zoh"}
         Model of the zero-order hold (see :func:`loop_response`).
-    delay : int, optional
-        Computational delay d in whole samples (default 0).
     pade_order : int, optional
         Order of the Padé approximation for ``model="pade"`` (default 4).
     locus_amplitude : array_like, optional
         Amplitudes of the critical locus; default 0.05 to 50 ticks.
-    controller : WallParams, optional
-        The virtual wall (see :func:`loop_response`); its delay replaces ``delay``
-        (0 or equal). Default None: the paper's spring.
+    wall : WallParams, optional
+        The virtual wall's groups, delay included (see :func:`loop_response`). Default None: the paper's spring.
 
     Returns
     -------
@@ -546,10 +540,10 @@ def nyquist_locus_response(
     >>> [(round(m, 4), round(w, 4)) for m, w, pt in r.crossings]
     [(0.7905, 0.3974), (1.0098, 0.3974)]
     """
-    from .cycles.controlled import resolve_controller  # imported here: dfa.analysis.cycles builds on this module
+    from .cycles.controlled import resolve_wall  # imported here: dfa.analysis.cycles builds on this module
 
     p = _check_params(params)
-    _ctl, d = resolve_controller(controller, delay)
+    wp, _ctl, d = resolve_wall(wall)
     m, d, n = _check_model(model, d, pade_order)
     w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega)
     la = check_real_array(
@@ -559,8 +553,8 @@ def nyquist_locus_response(
     crossings: list[tuple[float, float, complex]] = []
     if p.sigma == 0.0:
         amps = np.array([np.nan])
-        curves = np.atleast_2d(loop_response(p, w, model=m, delay=d, pade_order=n, controller=controller))
-        crossings, status, detail = _solver_crossings(p, m, d, n, w, float(la.max()), controller)
+        curves = np.atleast_2d(loop_response(p, w, model=m, pade_order=n, wall=wp))
+        crossings, status, detail = _solver_crossings(p, m, n, w, float(la.max()), wp)
     else:
         if amplitudes is None:
             raise DFAValueError(
@@ -568,13 +562,6 @@ def nyquist_locus_response(
                 "give the amplitudes (ticks) at which to draw it"
             )
         amps = np.atleast_1d(check_real_array("amplitudes", amplitudes, "give the amplitudes M in ticks"))
-        curves = np.vstack(
-            [
-                loop_response(p, w, np.full_like(w, a), model=m, delay=d, pade_order=n, controller=controller)
-                for a in amps
-            ]
-        )
+        curves = np.vstack([loop_response(p, w, np.full_like(w, a), model=m, pade_order=n, wall=wp) for a in amps])
         status, detail = NyquistStatus.CROSSINGS_NOT_COMPUTED, ""
-    return NyquistLocusResponse(
-        p, m, d, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, detail, controller
-    )
+    return NyquistLocusResponse(p, m, wp, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, detail)

@@ -4,7 +4,7 @@ Every grid point is an independent exact simulation (:func:`dfa.simulate`
 without recording), run in chunks of points, each chunk one compiled call
 (:func:`dfa.analysis.simulation.run_points`); the result does not depend on the number
 of jobs nor on the backend. A tqdm progress bar reports the chunks as they
-finish. With a wall controller (``controller=``) the chunks are the same and run
+finish. With a wall of more than a spring (``wall=``) the chunks are the same and run
 the same way (:func:`dfa._parallel.run_in_order`): only the compiled kernel differs.
 An interruption (Ctrl-C) cancels the chunks not started and returns nothing.
 
@@ -66,7 +66,6 @@ from ..checks import (
     check_bool,
     check_bound,
     check_choice,
-    check_delay,
     check_int,
     check_jobs,
     check_mu,
@@ -84,8 +83,8 @@ from .simulation import (
     OUTCOMES,
     SETTLE,
     STABLE_AMPLITUDE,
-    check_controller,
     check_rules,
+    check_wall,
     divergence_bound,
     preload_position,
     run_points,
@@ -104,9 +103,9 @@ MAP_BYTES_PER_POINT = 16
 #: Most planned samples (spring-kernel equivalent) in one chunk: about half a second of the spring kernel without
 #: period skipping, so that Ctrl-C waits about that long for the running chunks and the progress bar keeps moving.
 CHUNK_SAMPLES = 2.0e7
-#: Cost per sample of the controller kernel relative to the spring's (measured on sub-tick chatter, which runs
+#: Cost per sample of the wall kernel relative to the spring's (measured on sub-tick chatter, which runs
 #: to the end: spring with d = 1 26 ns, damper/filter 36-170 ns, amplifier lag ~1 µs per sample).
-CONTROLLER_COST = {"controller": 4.0, "lag": 40.0}
+WALL_COST = {"wall": 4.0, "lag": 40.0}
 
 
 def map_memory_bytes(grid: int, n_speeds: int) -> int:
@@ -132,13 +131,13 @@ class StabilityMap:
         docstring; :data:`dfa.analysis.simulation.OUTCOMES`).
     amplitude, frequency : numpy.ndarray
         Measured cycle amplitude (ticks) and frequency (rad per sample); NaN where not measured.
-    samples, delay, quantize, preload
+    samples, quantize, preload
         Simulation settings.
     status : MapStatus
         ``OK``: every point simulated (amplitude and frequency NaN where not measured).
-    controller : WallParams or None
-        The wall controller of every run (virtual damper β_B, filter ν_c, amplifier lag α; its delay is
-        ``delay``); None for the paper's spring.
+    wall : WallParams
+        The wall of every run (delay d, virtual damper β_B, filter ν_c, amplifier lag α); default the
+        paper's spring. ``delay`` is its delay.
 
     Arrays are read-only copies; shapes are checked on construction.
     """
@@ -151,17 +150,14 @@ class StabilityMap:
     amplitude: np.ndarray = field(repr=False)
     frequency: np.ndarray = field(repr=False)
     samples: int
-    delay: int = 0
     quantize: bool = True
     preload: bool = False
     status: MapStatus = MapStatus.OK
-    controller: WallParams | None = None
+    wall: WallParams = field(default_factory=WallParams)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "xi_dots", tuple(float(v) for v in self.xi_dots))
-        if self.controller is not None:
-            ctl, _ = check_controller(self.controller, self.delay)  # a spring's WallParams is stored as None
-            object.__setattr__(self, "controller", ctl)
+        object.__setattr__(self, "wall", check_wall(self.wall))
         freeze_fields(
             self,
             {
@@ -182,11 +178,16 @@ class StabilityMap:
             )
         object.__setattr__(self, "status", MapStatus.coerce(self.status))
 
+    @property
+    def delay(self) -> int:
+        """Computational delay d of the wall, samples."""
+        return self.wall.delay
+
     def critical_line(self, xi_dot: float) -> CriticalLine | None:
         """The criterion's critical line (eq. 10) at speed ``xi_dot`` for this map's loop; None where none applies.
 
-        The spring's line through (½ + d, ½) (σ₀ = 0 without quantization), or with a controller the line of
-        the criterion extended to it (:meth:`dfa.model.wall.WallParams.corner`); None with an
+        The spring's line through (½ + d, ½) (σ₀ = 0 without quantization), or with more elements the line
+        of the criterion extended to them (:meth:`dfa.model.wall.WallParams.corner`); None with an
         amplifier lag, which no criterion covers.
 
         Parameters
@@ -199,11 +200,9 @@ class StabilityMap:
         CriticalLine or None
             The line through the map's corner (β₀, σ₀) with slope −V; None with an amplifier lag.
         """
-        if self.controller is None:
-            return CriticalLine.of(xi_dot, quantized=self.quantize, delay=self.delay)
-        if self.controller.lag > 0:
+        if self.wall.not_covered() is not None:
             return None
-        b0, s0 = self.controller.corner(self.quantize)
+        b0, s0 = self.wall.corner(self.quantize)
         return CriticalLine(xi_dot, b0, s0)
 
     def plot(self, ax=None, **kwargs):
@@ -286,10 +285,10 @@ class StabilityMap:
         dict
             Strict-JSON data: μ, speeds, grid, settings, counts per speed, status and its message.
         """
-        ctl = {} if self.controller is None else {"controller": self.controller.to_dict()}
+        wall = {} if self.wall.is_spring else {"wall": self.wall.to_dict()}
         return to_jsonable(
             {
-                **ctl,
+                **wall,
                 "mu": self.mu,
                 "xi_dots": list(self.xi_dots),
                 "beta_range": [float(self.beta[0]), float(self.beta[-1])],
@@ -335,7 +334,7 @@ class StabilityMap:
                 amplitude=self.amplitude,
                 frequency=self.frequency,
                 settings=np.array([self.samples, self.delay, int(self.quantize), int(self.preload)], dtype=np.int64),
-                **_controller_arrays(self.controller),
+                **_wall_arrays(self.wall),
             )
         return p
 
@@ -398,7 +397,7 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
                 f"map file {str(path)!r} is invalid: unknown outcome names {unknown}; expected {list(OUTCOMES)}"
             )
         lut = np.array([OUTCOMES.index(v) for v in names], dtype=np.int8)
-        ctl = _controller_from(z, delay)
+        wall = _wall_from(z, delay)
         return StabilityMap(
             mu=float(z["mu"]),
             xi_dots=tuple(float(v) for v in z["xi_dots"]),
@@ -408,49 +407,35 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
             amplitude=z["amplitude"],
             frequency=z["frequency"],
             samples=samples,
-            delay=delay,
             quantize=bool(quantize),
             preload=bool(preload),
-            controller=ctl,
+            wall=wall,
         )
 
 
-def _controller_arrays(ctl: WallParams | None) -> dict[str, Any]:
-    """The ``controller`` entry of a map file: [β_B, ν_c (NaN: no filter), α]; none for the spring."""
-    if ctl is None:
+def _wall_arrays(wall: WallParams) -> dict[str, Any]:
+    """The ``wall`` entry of a map file: [β_B, ν_c (NaN: no filter), α]; none for the spring (its delay is
+    in ``settings``)."""
+    if wall.is_spring:
         return {}
-    cutoff = math.nan if ctl.cutoff is None else ctl.cutoff
-    return {"controller": np.array([ctl.damping, cutoff, ctl.lag], dtype=float)}
+    cutoff = math.nan if wall.cutoff is None else wall.cutoff
+    return {"wall": np.array([wall.damping, cutoff, wall.lag], dtype=float)}
 
 
-def _controller_from(z, delay: int) -> WallParams | None:
-    """The controller of a map file (None: the spring, or a file written before controllers existed)."""
-    if "controller" not in z.files:
-        return None
-    damping, cutoff, lag = (float(v) for v in z["controller"])
+def _wall_from(z, delay: int) -> WallParams:
+    """The wall of a map file (``wall``, or ``controller`` as earlier files named it; the spring when
+    neither is there)."""
+    key = next((k for k in ("wall", "controller") if k in z.files), None)
+    if key is None:
+        return WallParams.of(delay=delay)
+    damping, cutoff, lag = (float(v) for v in z[key])
     return WallParams.of(damping=damping, delay=delay, cutoff=None if math.isnan(cutoff) else cutoff, lag=lag)
 
 
-def _run_chunk(
-    mu, betas, sigmas, x0s, v0s, samples, delay, quantize, bound, stable_amplitude, growth, settle, controller=None
-):
+def _run_chunk(mu, betas, sigmas, x0s, v0s, samples, wall, quantize, bound, stable_amplitude, growth, settle):
     """Codes, amplitudes and frequencies of one chunk of points (one compiled call; releases the GIL)."""
     mus = np.full(betas.size, mu)
-    res = run_points(
-        mus,
-        betas,
-        sigmas,
-        x0s,
-        v0s,
-        samples,
-        delay,
-        quantize,
-        bound,
-        stable_amplitude,
-        growth,
-        settle,
-        controller=controller,
-    )
+    res = run_points(mus, betas, sigmas, x0s, v0s, samples, wall, quantize, bound, stable_amplitude, growth, settle)
     return res[0], res[1], res[2]
 
 
@@ -474,7 +459,6 @@ def stability_map(
     sigma_range=(0.0, 2.0),
     grid: int = 100,
     samples: int = 50_000,
-    delay: int = 0,
     quantize: bool = True,
     preload: bool = False,
     n_jobs: int = -1,
@@ -484,7 +468,7 @@ def stability_map(
     stable_amplitude: float = STABLE_AMPLITUDE,
     growth: float = GROWTH,
     settle: float = SETTLE,
-    controller: WallParams | None = None,
+    wall: WallParams | None = None,
 ) -> StabilityMap:
     """Simulate every point of a (β, σ) grid for each initial speed (paper Fig. 4).
 
@@ -502,8 +486,6 @@ def stability_map(
     samples : int
         Samples per run (paper: 5·10⁴, 50 s at 1 kHz). Fixed for the whole
         grid; points that need longer are ``"undecided"``.
-    delay : int, optional
-        Computational delay d in samples (default 0).
     quantize : bool, optional
         True (default): the encoder quantizes the position; False: the linear spring.
     preload : bool, optional
@@ -520,10 +502,10 @@ def stability_map(
     bound, stable_amplitude, growth, settle : float, optional
         Outcome rules, as in :func:`dfa.simulate` (default bound: beyond the fastest start's own travel,
         :func:`dfa.analysis.simulation.divergence_bound`).
-    controller : WallParams, optional
-        The wall controller of every run (:mod:`dfa.model.wall`; ``Wall.of(...).params(T)``): virtual
-        damper, velocity filter, amplifier lag, and its delay, which replaces ``delay`` (give one or
-        the same value). Each point is then :func:`dfa.simulate` with ``controller=``. Default: the spring.
+    wall : WallParams, optional
+        The wall of every run (:mod:`dfa.model.wall`; ``Wall.of(...).params(T)`` or ``WallParams.of(...)``):
+        computational delay, virtual damper, velocity filter, amplifier lag. Each point is then
+        :func:`dfa.simulate` with ``wall=``. Default: the paper's spring without delay.
 
     Returns
     -------
@@ -548,7 +530,7 @@ def stability_map(
     s0, s1 = _check_range("sigma_range", sigma_range)
     g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
     n = check_int("samples", samples, minimum=1)
-    ctl, d = check_controller(controller, check_delay(delay))
+    w = check_wall(wall)
     jobs = check_jobs("n_jobs", n_jobs)
     how = check_choice("backend", backend, MAP_BACKENDS)
     quantize = check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
@@ -563,22 +545,22 @@ def stability_map(
     if preload:
         check_bound(rules[0], float(np.max(np.abs(x0))))  # the rule simulate() applies: the bound lies beyond ξ0
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
-    chunks = _chunks(pts_b.size, workers, _chunk_cost(n, ctl))
-    tail = (n, d, quantize, *rules)
-    tasks = [(m, pts_b[c], pts_s[c], x0[c], v0[c], *tail, ctl) for c in chunks]
-    _run_chunk(m, pts_b[:1], pts_s[:1], x0[:1], v0[:1], 1, *tail[1:], ctl)  # compile or load the kernel once, first
+    chunks = _chunks(pts_b.size, workers, _chunk_cost(n, w))
+    tail = (n, w, quantize, *rules)
+    tasks = [(m, pts_b[c], pts_s[c], x0[c], v0[c], *tail) for c in chunks]
+    _run_chunk(m, pts_b[:1], pts_s[:1], x0[:1], v0[:1], 1, *tail[1:])  # compile or load the kernel once, first
 
     from tqdm.auto import tqdm
 
     bar = tqdm(total=pts_b.size, unit="run", desc=f"stability map μ={m:g}", disable=not progress, leave=False)
     try:
-        # spring or controller: the same chunks, in order (dfa._parallel), Ctrl-C cancels the pending ones
+        # any wall: the same chunks, in order (dfa._parallel), Ctrl-C cancels the pending ones
         results = run_in_order(_run_chunk, tasks, [c.size for c in chunks], workers, how, bar)
     finally:
         bar.close()
     codes, amps, freqs = (gather(chunks, [r[k] for r in results]).reshape(len(speeds), g, g) for k in range(3))
-    out = (codes.astype(np.int8), amps, freqs, n, d, quantize, preload)
-    return StabilityMap(m, speeds, beta, sigma, *out, controller=ctl)
+    out = (codes.astype(np.int8), amps, freqs, n, quantize, preload)
+    return StabilityMap(m, speeds, beta, sigma, *out, wall=w)
 
 
 def _check_speeds(xi_dots) -> tuple[float, ...]:
@@ -601,11 +583,11 @@ def _points(mu: float, beta, sigma, speeds, preload: bool) -> tuple[np.ndarray, 
     return pts_b, pts_s, np.zeros(pts_b.size), np.repeat(np.asarray(speeds, dtype=float), bb.size)
 
 
-def _chunk_cost(samples: int, controller: WallParams | None) -> float:
-    """Planned cost of one point in spring-kernel samples (:data:`CHUNK_SAMPLES`, :data:`CONTROLLER_COST`)."""
-    if controller is None:
+def _chunk_cost(samples: int, wall: WallParams) -> float:
+    """Planned cost of one point in spring-kernel samples (:data:`CHUNK_SAMPLES`, :data:`WALL_COST`)."""
+    if wall.is_spring:
         return float(samples)
-    return samples * CONTROLLER_COST["lag" if controller.lag > 0 else "controller"]
+    return samples * WALL_COST["lag" if wall.lag > 0 else "wall"]
 
 
 def _chunks(total: int, workers: int, cost: float = 0.0) -> list[np.ndarray]:

@@ -82,8 +82,8 @@ about 200 ticks (undecided).
 Before the first sample the controller's past readings are taken equal to ξ0
 (matters only with a computational delay).
 
-With a controller (``controller=WallParams.of(...)``: virtual damper,
-velocity filter, delay, amplifier lag; :mod:`dfa.model.wall`) the run goes
+With a wall (``wall=WallParams.of(...)``: computational delay, virtual damper,
+velocity filter, amplifier lag; :mod:`dfa.model.wall`) the run goes
 through :mod:`dfa.core.wall_kernel`, exact to rounding at the sample instants as well
 (closed-form motion under the amplifier's exponential force, stops by a
 bracketed root of the closed form, breakaway in closed form), with the same
@@ -106,7 +106,7 @@ Examples
 'unstable'
 >>> from dfa.model.wall import WallParams
 >>> c = WallParams.of(damping=0.5, lag=0.3)   # virtual damper β_B, amplifier lag α (samples)
->>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000, controller=c)
+>>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000, wall=c)
 >>> r.outcome.value, r.rest_sample
 ('rest', 203)
 """
@@ -116,6 +116,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import ClassVar
 
 import numpy as np
 
@@ -123,7 +124,6 @@ from ..checks import (
     check_beta,
     check_bool,
     check_bound,
-    check_delay,
     check_growth,
     check_int,
     check_mu,
@@ -131,13 +131,15 @@ from ..checks import (
     check_positive,
     check_real,
     check_sigma,
+    check_type,
 )
 from ..core import batch, kernel, wall_kernel
 from ..errors import DFATypeError, DFAValueError
 from ..model.wall import WallParams
+from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
-from ..results.jsonable import explain_nulls, to_jsonable
-from ..results.status import SimulationOutcome
+from ..results.jsonable import to_jsonable
+from ..results.status import BatchStatus, SimulationOutcome
 from .criterion import spring_energy
 
 __all__ = [
@@ -152,6 +154,8 @@ __all__ = [
     "SimulationBatch",
     "simulate_batch",
     "CHUNK",
+    "check_wall",
+    "wall_run_codes",
 ]
 
 #: Outcome names indexed by the kernel's codes (the codes of ``StabilityMap.outcome``):
@@ -266,7 +270,7 @@ def _decay_time(mu: float, net: float, sigma: float, amp0: float) -> float:
     return math.log((threshold - 1.0) / (threshold - amp0)) / -a
 
 
-def damper_gain(mu: float, controller: WallParams) -> float:
+def damper_gain(mu: float, wall: WallParams) -> float:
     """In-phase gain G of the controller's damper at the spring's frequency ω₀ = 1/√μ (rad/sample).
 
     The damper's force on the plant, per unit of the velocity jωξ, at ω = ω₀ (first harmonic, exact
@@ -288,42 +292,41 @@ def damper_gain(mu: float, controller: WallParams) -> float:
     """
     w = 1.0 / math.sqrt(mu)
     z1 = complex(math.cos(w), -math.sin(w))  # e^{−jω}
-    a = controller.filter_pole
-    f = 1.0 if controller.cutoff is None else (1.0 - a) * z1 / (1.0 - a * z1)
-    g = (1.0 - z1) ** 2 * f * z1**controller.delay / ((1j * w) ** 2 * (1.0 + 1j * w * controller.lag))
+    a = wall.filter_pole
+    f = 1.0 if wall.cutoff is None else (1.0 - a) * z1 / (1.0 - a * z1)
+    g = (1.0 - z1) ** 2 * f * z1**wall.delay / ((1j * w) ** 2 * (1.0 + 1j * w * wall.lag))
     return g.real
 
 
-def net_damping(mu: float, beta: float, delay: int, controller: WallParams | None = None) -> float:
-    """Net averaged damping of the loop, β − ½ − d for the spring; with a controller − α + β_B·G.
+def net_damping(mu: float, beta: float, wall: WallParams) -> float:
+    """Net averaged damping of the loop, β − ½ − d for the spring; with a damper or lag also − α + β_B·G.
 
     The hold's half sample, the computational delay d and the amplifier lag α (the low-frequency
     delay of 1/(1 + jωα)) each turn the spring's force into a negative damping of their length (the
     linear rule K < b/(T(d + ½) + τ_a) of issue 15); the damper adds β_B·G
-    (:func:`damper_gain`). Without a controller (or with the pure spring) exactly β − ½ − d.
+    (:func:`damper_gain`). For the spring (any delay) exactly β − ½ − d.
 
     Examples
     --------
-    >>> net_damping(100.0, 0.3, 1)
+    >>> net_damping(100.0, 0.3, WallParams.of(delay=1))
     -1.2
-    >>> round(net_damping(1.0e6, 0.3, 0, WallParams.of(damping=1.0, lag=0.5)), 4)   # 0.3 − ½ − 0.5 + 1
+    >>> round(net_damping(1.0e6, 0.3, WallParams.of(damping=1.0, lag=0.5)), 4)   # 0.3 − ½ − 0.5 + 1
     0.3
     """
-    net = beta - 0.5 - delay
-    if controller is None or controller.is_spring:
+    net = beta - 0.5 - wall.delay
+    if wall.is_spring:
         return net
-    return net - controller.lag + controller.damping * damper_gain(mu, controller)
+    return net - wall.lag + wall.damping * damper_gain(mu, wall)
 
 
-def _check_run(mu, beta, sigma, xi_dot0, xi0, delay) -> tuple[float, float, float, float, float, int]:
-    """The validated inputs of one run (Table 1 groups, initial state, delay), shared by simulate and default_samples."""
+def _check_run(mu, beta, sigma, xi_dot0, xi0) -> tuple[float, float, float, float, float]:
+    """The validated inputs of one run (Table 1 groups, initial state), shared by simulate and default_samples."""
     return (
         check_mu(mu),
         check_beta(beta),
         check_sigma(sigma),
         check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample"),
         check_real("xi0", xi0, "give the initial position in ticks"),
-        check_delay(delay),
     )
 
 
@@ -333,11 +336,10 @@ def default_samples(
     sigma: float,
     xi_dot0: float,
     xi0: float = 0.0,
-    delay: int = 0,
     quantize: bool = True,
     *,
     cap: bool = True,
-    controller: WallParams | None = None,
+    wall: WallParams | None = None,
 ) -> int:
     """Run length (samples) long enough for the outcome to show (module docstring, "Default run length").
 
@@ -348,12 +350,11 @@ def default_samples(
     ``MAX_DEFAULT_SAMPLES`` (10⁷). Without ``cap`` an infinite t_d gives
     ``MAX_DEFAULT_SAMPLES`` times 10.
 
-    With a ``controller`` (its delay replaces ``delay``) the damping in ``a`` is the controller's
-    low-frequency net damping β + β_B·G − ½ − d − α (:func:`net_damping`): the damper counts with its
-    in-phase gain G at the spring's frequency (filter, delay and lag included, :func:`damper_gain`),
-    the amplifier lag α as a further delay. When that net damping is <= 0, t_d is infinite unless
-    Coulomb friction stops the amplitude first (as for the spring). The pure spring controller gives
-    the spring's length exactly.
+    With a ``wall`` the damping in ``a`` is the wall's low-frequency net damping β + β_B·G − ½ − d − α
+    (:func:`net_damping`): the damper counts with its in-phase gain G at the spring's frequency (filter,
+    delay and lag included, :func:`damper_gain`), the amplifier lag α as a further delay. When that net
+    damping is <= 0, t_d is infinite unless Coulomb friction stops the amplitude first (as for the spring).
+    The spring's wall (any delay) gives the spring's length exactly.
 
     Examples
     --------
@@ -361,14 +362,14 @@ def default_samples(
     50000
     >>> default_samples(156250.0, 0.125, 0.9554, 0.637)  # Impulse Engine at 50 kg, 0.1 m/s
     462407
-    >>> default_samples(156250.0, 0.125, 0.9554, 0.637, controller=WallParams.of(damping=0.5))  # damper helps
+    >>> default_samples(156250.0, 0.125, 0.9554, 0.637, wall=WallParams.of(damping=0.5))  # damper helps
     415065
     """
-    ctl, delay = check_controller(controller, delay)
-    m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
+    w = check_wall(wall)
+    m, b, s, v0, x0 = _check_run(mu, beta, sigma, xi_dot0, xi0)
     cap = check_bool("cap", cap, "pass True to cap the length at MAX_DEFAULT_SAMPLES, False for no cap")
     amp0 = math.sqrt(2.0 * float(stored_energy(x0, v0, m, check_quantize(quantize))))
-    td = _decay_time(m, net_damping(m, b, d, ctl), s, amp0)
+    td = _decay_time(m, net_damping(m, b, w), s, amp0)
     top = MAX_DEFAULT_SAMPLES if cap else 10 * MAX_DEFAULT_SAMPLES
     n = 2.0 * td + 40.0 * 2.0 * math.pi * math.sqrt(m)
     if not n < top:
@@ -429,13 +430,13 @@ class EnergyRecord:
 
 
 @dataclass(frozen=True)
-class SimulationResult:
+class SimulationResult(Result):
     """Result of :func:`simulate` (inputs, trajectory, outcome and measurements).
 
     Attributes
     ----------
-    mu, beta, sigma, xi0, xi_dot0, samples, delay, quantize
-        The inputs.
+    mu, beta, sigma, xi0, xi_dot0, samples, wall, quantize
+        The inputs (``wall``: the wall's groups; :attr:`delay` its delay).
     xi, xi_dot : numpy.ndarray or None
         Position (ticks) and velocity (ticks per sample) at the samples
         0 … samples (length samples + 1); after an early rest they hold the
@@ -468,10 +469,8 @@ class SimulationResult:
         True when ``samples`` was chosen by :func:`default_samples`.
     energy : EnergyRecord or None
         Per-sample energy bookkeeping when requested.
-    controller : WallParams or None
-        The controller of a run with a damper, filter or amplifier lag (None: the spring).
 
-    ``xi`` and ``xi_dot`` are read-only copies.
+    ``xi`` and ``xi_dot`` are read-only copies, written to JSON only by a trace file.
     """
 
     mu: float
@@ -480,7 +479,7 @@ class SimulationResult:
     xi0: float
     xi_dot0: float
     samples: int
-    delay: int
+    wall: WallParams
     quantize: bool
     outcome: SimulationOutcome
     amplitude: float
@@ -494,13 +493,15 @@ class SimulationResult:
     envelope: tuple = ()
     suggested_samples: int | None = None
     samples_auto: bool = False
-    xi: np.ndarray | None = field(default=None, repr=False)
-    xi_dot: np.ndarray | None = field(default=None, repr=False)
-    energy: EnergyRecord | None = field(default=None, repr=False)
-    controller: WallParams | None = None
+    xi: np.ndarray | None = field(default=None, repr=False, metadata={"json": None})
+    xi_dot: np.ndarray | None = field(default=None, repr=False, metadata={"json": None})
+    energy: EnergyRecord | None = field(default=None, repr=False, metadata={"json": None})
+
+    json_properties: ClassVar[tuple[str, ...]] = ("period", "delay")
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "outcome", SimulationOutcome.coerce(self.outcome, "outcome"))
+        check_type("wall", self.wall, WallParams, "build results with simulate")
         freeze_fields(self, {"xi": {"ndim": 1, "finite": False}, "xi_dot": {"ndim": 1, "finite": False}})
         if self.xi is not None:
             check_shape("xi", self.xi, (self.samples + 1,))
@@ -511,6 +512,11 @@ class SimulationResult:
     def status(self) -> SimulationOutcome:
         """How the run ended: the :attr:`outcome` (each member has a ``message``)."""
         return self.outcome
+
+    @property
+    def delay(self) -> int:
+        """The wall's computational delay d in samples."""
+        return self.wall.delay
 
     def plot(self, ax=None, **kwargs):
         """Displacement against time (:func:`dfa.figures.trajectory_plot`, paper Fig. 5); returns the Axes.
@@ -629,44 +635,6 @@ class SimulationResult:
         )
         return out
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready summary (the ``dfa simulate --json`` contract plus extras).
-
-        Returns
-        -------
-        dict
-            Strict-JSON data: outcome and its message, the measurements and inputs, and the
-            trajectory when recorded (non-finite values become null, with the reason).
-        """
-        record = to_jsonable(  # non-finite values become null, with the reason (dfa.results.jsonable)
-            {
-                "outcome": self.outcome,
-                "status_message": self.outcome.message,
-                "amplitude": self.amplitude,
-                "frequency": self.frequency,
-                "final_xi": self.final_xi,
-                "final_xi_dot": self.final_xi_dot,
-                "rest_sample": self.rest_sample,
-                "samples_run": self.samples_run,
-                "centre": self.centre,
-                "period": self.period,
-                "force_peak_to_peak": self.force_peak_to_peak,
-                "envelope": self.envelope,
-                "suggested_samples": self.suggested_samples,
-                "samples_auto": self.samples_auto,
-                "mu": self.mu,
-                "beta": self.beta,
-                "sigma": self.sigma,
-                "xi0": self.xi0,
-                "xi_dot0": self.xi_dot0,
-                "samples": self.samples,
-                "delay": self.delay,
-                "quantize": self.quantize,
-                **({} if self.controller is None else {"controller": self.controller.to_dict()}),
-            }
-        )
-        return explain_nulls(record, self.null_reasons())
-
 
 #: Default outcome rules of :func:`simulate`, :func:`simulate_batch` and :func:`dfa.analysis.maps.stability_map`: a
 #: settled cycle below STABLE_AMPLITUDE ticks is chatter; an envelope growing by GROWTH is unstable; one that
@@ -743,7 +711,6 @@ def simulate(
     xi_dot0: float,
     samples: int | None = None,
     xi0: float = 0.0,
-    delay: int = 0,
     quantize: bool = True,
     *,
     record: bool = True,
@@ -753,7 +720,7 @@ def simulate(
     growth: float = GROWTH,
     settle: float = SETTLE,
     progress: bool = False,
-    controller: WallParams | None = None,
+    wall: WallParams | None = None,
 ) -> SimulationResult:
     """Simulate the sampled haptic loop exactly (paper eq. 4-5) from (ξ0, ξ'0).
 
@@ -768,8 +735,6 @@ def simulate(
         loop's time scales by :func:`default_samples` (50 000 to 10⁷).
     xi0 : float, optional
         Initial position in ticks (default 0). See :func:`preload_position`.
-    delay : int, optional
-        Computational delay d in samples: the force of sample h uses ξ(h − d).
     quantize : bool, optional
         True (default): φ = −⌊ξ⌋ − ½; False: the linear spring φ = −ξ.
     record : bool, optional
@@ -793,12 +758,12 @@ def simulate(
         (runs of more than ``CHUNK`` samples; they are integrated in chunks
         of ``CHUNK`` samples, so Ctrl-C is honoured between chunks, with
         results identical to a single pass).
-    controller : WallParams, optional
-        The wall controller in dimensionless form (``Wall.of(...).params(T)``): virtual damper,
-        velocity filter, delay, amplifier lag (:mod:`dfa.model.wall`). Its delay replaces
-        ``delay``. None, or a pure spring (``WallParams.of(delay=d)``), runs the spring kernel
-        unchanged; otherwise :mod:`dfa.core.wall_kernel` runs the loop with the controller, exact to
-        rounding at the sample instants (one compiled call: no progress bar, no energy record).
+    wall : WallParams, optional
+        The wall's dimensionless groups (``Wall.of(...).params(T)``, :mod:`dfa.model.wall`): computational
+        delay d (the force of sample h uses ξ(h − d)), virtual damper, velocity filter, amplifier lag.
+        None (default), or a spring with any delay (``WallParams.of(delay=d)``), runs the spring kernel;
+        otherwise :mod:`dfa.core.wall_kernel` runs the loop with the wall, exact to rounding at the sample
+        instants (one compiled call: no progress bar, no energy record).
 
     Returns
     -------
@@ -821,16 +786,13 @@ def simulate(
     record = check_bool("record", record, "pass True to keep the trajectory, False for the outcome only")
     energy = check_bool("energy", energy, "pass True to keep the energy bookkeeping, False for none")
     progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
-    ctl, delay = check_controller(controller, delay, energy)
-    m, b, s, v0, x0, d = _check_run(mu, beta, sigma, xi_dot0, xi0, delay)
+    w = check_wall(wall, energy)
+    d = w.delay
+    m, b, s, v0, x0 = _check_run(mu, beta, sigma, xi_dot0, xi0)
     q = check_quantize(quantize)
     auto = samples is None
     fix = "simulate at least one sample"
-    n = (
-        default_samples(m, b, s, v0, x0, d, q, controller=ctl)
-        if auto
-        else check_int("samples", samples, minimum=1, fix=fix)
-    )
+    n = default_samples(m, b, s, v0, x0, q, wall=w) if auto else check_int("samples", samples, minimum=1, fix=fix)
     if bound is None:  # beyond the start's own travel: a passive run never counts as diverged
         bound = divergence_bound(x0, v0, m)
     bnd, sa, gr, st = check_rules(bound, stable_amplitude, growth, settle)
@@ -841,60 +803,46 @@ def simulate(
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
     stats = np.empty(kernel.NSTATS)
     run = (m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
-    if ctl is not None:
-        done, rest = wall_kernel.simulate_wall_kernel(*run[:10], *_controller_args(ctl), rx, rv, stats)
+    if not w.is_spring:
+        done, rest = wall_kernel.simulate_wall_kernel(*run[:10], *_wall_args(w), rx, rv, stats)
     elif n > CHUNK:
         done, rest = _run_chunked(*run, progress=progress)
     else:
         done, rest = kernel.simulate_kernel(*run)
     code, amp, freq, centre, fpp = kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
-    suggest = (
-        max(4 * n, default_samples(m, b, s, v0, x0, d, q, cap=False, controller=ctl))
-        if code == kernel.UNDECIDED
-        else None
-    )
+    suggest = max(4 * n, default_samples(m, b, s, v0, x0, q, cap=False, wall=w)) if code == kernel.UNDECIDED else None
     en = None
     if energy:
         h0 = float(stored_energy(x0, v0, m, q))
         en = EnergyRecord(re[:, 0].copy(), re[:, 1].copy(), re[:, 2].copy(), re[:, 3].copy(), h0)
-    fields = (m, b, s, x0, v0, n, d, q, *_measured(code, amp, freq, centre, fpp, done, rest, stats), suggest, auto)
-    return SimulationResult(
-        *fields, xi=rx if record else None, xi_dot=rv if record else None, energy=en, controller=ctl
-    )
+    fields = (m, b, s, x0, v0, n, w, q, *_measured(code, amp, freq, centre, fpp, done, rest, stats), suggest, auto)
+    return SimulationResult(*fields, xi=rx if record else None, xi_dot=rv if record else None, energy=en)
 
 
-def check_controller(controller, delay, energy: bool = False) -> tuple[WallParams | None, int]:
-    """(controller or None for the pure spring, delay) of a run: the controller's delay replaces ``delay``.
+def check_wall(wall: object, energy: bool = False) -> WallParams:
+    """The wall's groups of a run (None: the paper's spring), or the package's error.
 
     Raises
     ------
     DFATypeError
-        If ``controller`` is not a :class:`~dfa.model.wall.WallParams` (or None).
+        If ``wall`` is not a :class:`~dfa.model.wall.WallParams` (or None).
     DFAValueError
-        If ``delay`` is given and differs from the controller's, or ``energy`` is asked with a
-        damper, filter or amplifier lag (the energy bookkeeping covers the spring only).
+        If ``energy`` is asked with a damper, filter or amplifier lag (the energy bookkeeping covers the
+        spring only).
     """
-    if controller is None:
-        return None, delay
-    if not isinstance(controller, WallParams):
+    if wall is None:
+        return WallParams()
+    if not isinstance(wall, WallParams):
         raise DFATypeError(
-            f"controller = {controller!r} is invalid: it must be a WallParams or None; "
+            f"wall = {wall!r} is invalid: it must be a WallParams or None; "
             "pass Wall.of(...).params(period) or WallParams.of(...)"
         )
-    delay = check_delay(delay)  # before comparing: True == 1 and 1.0 == 1 must not pass as a delay
-    if delay not in (0, controller.delay):
+    if energy and not wall.is_spring:
         raise DFAValueError(
-            f"delay = {delay!r} is invalid with controller.delay = {controller.delay}: the controller carries "
-            "the delay; give it there (or pass the same value)"
-        )
-    if controller.is_spring:
-        return None, controller.delay
-    if energy:
-        raise DFAValueError(
-            "energy = True is invalid with a controller (damper, filter or amplifier lag): the energy "
+            "energy = True is invalid with a damper, filter or amplifier lag in the wall: the energy "
             "bookkeeping covers the spring only; pass energy=False"
         )
-    return controller, controller.delay
+    return wall
 
 
 def check_quantize(quantize: object) -> bool:
@@ -908,16 +856,16 @@ def check_quantize(quantize: object) -> bool:
     return check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
 
 
-def controller_run_codes(mu, beta, sigma, x0, v0, ns, delay, bound, controllers) -> np.ndarray:
-    """Outcome codes (:mod:`dfa.core.kernel`) of runs, each with its own controller, in one compiled call.
+def wall_run_codes(mu, beta, sigma, x0, v0, ns, delay, bound, walls) -> np.ndarray:
+    """Outcome codes (:mod:`dfa.core.kernel`) of runs, each with its own wall, in one compiled call.
 
     Run i is what :func:`simulate` makes of (``mu[i]``, …, ``v0[i]``), ``ns[i]`` samples, bound ``bound[i]`` and
-    ``controllers[i]`` (a WallParams that is not a pure spring, its delay ``delay``), bit for bit, with
-    simulate()'s tail length and default outcome rules (:func:`dfa.core.batch.batch_wall_kernel`, then
+    ``walls[i]`` (WallParams the spring kernel does not run, of delay ``delay``), bit for bit, with simulate()'s
+    tail length and default outcome rules (:func:`dfa.core.batch.batch_wall_kernel`, then
     :func:`dfa.core.kernel.classify_batch`). No GIL is held: callers may run several calls on threads.
     """
     k = mu.size
-    damping, pole, filtered, lag = (np.array(c) for c in zip(*map(_controller_args, controllers), strict=True))
+    damping, pole, filtered, lag = (np.array(c) for c in zip(*map(_wall_args, walls), strict=True))
     stats, done, rest = np.empty((k, kernel.NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
     run = (mu, beta, sigma, x0, v0, ns, delay, True, bound, _tail_lengths(ns, mu), damping, pole, filtered, lag)
     batch.batch_wall_kernel(*run, stats, done, rest)
@@ -927,9 +875,10 @@ def controller_run_codes(mu, beta, sigma, x0, v0, ns, delay, bound, controllers)
     return codes
 
 
-def _controller_args(ctl: WallParams) -> tuple[float, float, bool, float]:
-    """(β_B, a, filtered, α): the controller arguments of :mod:`dfa.core.wall_kernel`."""
-    return ctl.damping, ctl.filter_pole, ctl.cutoff is not None, ctl.lag
+def _wall_args(wall: WallParams) -> tuple[float, float, bool, float]:
+    """(β_B, a, filtered, α): the wall's arguments of :mod:`dfa.core.wall_kernel` (:meth:`WallParams.kernel_args`)."""
+    a = wall.kernel_args()
+    return a["damping"], a["pole"], a["filtered"], a["lag"]
 
 
 def _measured(
@@ -968,15 +917,15 @@ def _check_record_size(n: int, record: bool, energy: bool) -> None:
 
 
 @dataclass(frozen=True)
-class SimulationBatch:
+class SimulationBatch(Result):
     """Outcomes of many independent runs (:func:`simulate_batch`), one entry per run.
 
     Attributes
     ----------
     mu, beta, sigma, xi0, xi_dot0 : numpy.ndarray
         The inputs of each run (dimensionless; ticks, ticks per sample).
-    samples, delay, quantize
-        Settings shared by every run.
+    samples, wall, quantize
+        Settings shared by every run (``wall``: the wall's groups, :attr:`delay` its delay).
     outcome : numpy.ndarray of int8
         Codes into :data:`OUTCOMES` (0 rest, 1 oscillating, 2 unstable, 3 chatter, 4 undecided).
     amplitude, frequency, centre, force_peak_to_peak : numpy.ndarray
@@ -989,10 +938,8 @@ class SimulationBatch:
         State at the end of each run.
     envelope : numpy.ndarray, shape (runs, 8)
         Peak abs(ξ) of each eighth of each run.
-    status : str
-        ``"ok"``.
-    controller : WallParams or None
-        The controller shared by every run (None: the spring).
+    status : BatchStatus
+        ``ok``.
     """
 
     mu: np.ndarray = field(repr=False)
@@ -1001,22 +948,25 @@ class SimulationBatch:
     xi0: np.ndarray = field(repr=False)
     xi_dot0: np.ndarray = field(repr=False)
     samples: int
-    delay: int
+    wall: WallParams
     quantize: bool
-    outcome: np.ndarray = field(repr=False)
+    outcome: np.ndarray = field(repr=False, metadata={"json": lambda a: [OUTCOMES[c] for c in a]})
     amplitude: np.ndarray = field(repr=False)
     frequency: np.ndarray = field(repr=False)
     centre: np.ndarray = field(repr=False)
     force_peak_to_peak: np.ndarray = field(repr=False)
-    rest_sample: np.ndarray = field(repr=False)
+    rest_sample: np.ndarray = field(repr=False, metadata={"json": lambda a: [None if r < 0 else int(r) for r in a]})
     samples_run: np.ndarray = field(repr=False)
     final_xi: np.ndarray = field(repr=False)
     final_xi_dot: np.ndarray = field(repr=False)
     envelope: np.ndarray = field(repr=False)
-    status: str = "ok"
-    controller: WallParams | None = None
+    status: BatchStatus = BatchStatus.OK
+
+    json_properties: ClassVar[tuple[str, ...]] = ("delay",)
 
     def __post_init__(self) -> None:
+        check_type("wall", self.wall, WallParams, "build results with simulate_batch")
+        object.__setattr__(self, "status", BatchStatus.coerce(self.status))
         for f in self.__dataclass_fields__:
             v = getattr(self, f)
             if isinstance(v, np.ndarray):
@@ -1029,25 +979,20 @@ class SimulationBatch:
         """Outcome names of the runs, in order."""
         return [OUTCOMES[c] for c in self.outcome]
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready lists (non-finite numbers as None)."""
+    @property
+    def delay(self) -> int:
+        """The wall's computational delay d in samples."""
+        return self.wall.delay
 
-        def lst(a):
-            return [None if isinstance(x, float) and not math.isfinite(x) else x for x in a.tolist()]
+    def null_reasons(self) -> dict[str, str]:
+        """Why each field may be null in JSON, by key.
 
-        out: dict[str, object] = {"samples": self.samples, "delay": self.delay, "quantize": self.quantize}
-        for name in ("mu", "beta", "sigma", "xi0", "xi_dot0", "amplitude", "frequency", "centre"):
-            out[name] = lst(getattr(self, name))
-        out["force_peak_to_peak"] = lst(self.force_peak_to_peak)
-        out["outcome"] = self.outcomes()
-        out["rest_sample"] = [None if r < 0 else r for r in self.rest_sample.tolist()]
-        out["samples_run"] = self.samples_run.tolist()
-        out["final_xi"], out["final_xi_dot"] = lst(self.final_xi), lst(self.final_xi_dot)
-        out["envelope"] = [lst(row) for row in self.envelope]
-        out["status"] = self.status
-        if self.controller is not None:
-            out["controller"] = self.controller.to_dict()
-        return out
+        Returns
+        -------
+        dict of str to str
+            The reason a run has no rest sample.
+        """
+        return {"rest_sample": "a run that did not come to rest has no rest sample"}
 
 
 def _check_points(mu, beta, sigma, xi_dot0, xi0) -> tuple[np.ndarray, ...]:
@@ -1066,7 +1011,7 @@ def _check_points(mu, beta, sigma, xi_dot0, xi0) -> tuple[np.ndarray, ...]:
     bad |= ~(np.isfinite(v) & np.isfinite(x))
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
-        _check_run(m[i], b[i], s[i], v[i], x[i], 0)  # raises the message simulate would give for this run
+        _check_run(m[i], b[i], s[i], v[i], x[i])  # raises the message simulate would give for this run
         raise DFAValueError(f"run {i} is invalid: mu = {m[i]!r}, beta = {b[i]!r}, sigma = {s[i]!r} must be finite")
     return out
 
@@ -1078,14 +1023,13 @@ def simulate_batch(
     xi_dot0,
     samples: int,
     xi0=0.0,
-    delay: int = 0,
     quantize: bool = True,
     *,
     bound: float | None = None,
     stable_amplitude: float = STABLE_AMPLITUDE,
     growth: float = GROWTH,
     settle: float = SETTLE,
-    controller: WallParams | None = None,
+    wall: WallParams | None = None,
 ) -> SimulationBatch:
     """Simulate many independent runs in one compiled call; each equals :func:`simulate` of that run alone.
 
@@ -1095,7 +1039,7 @@ def simulate_batch(
         Per-run inputs (as in :func:`simulate`), broadcast together to a 1-D list of runs.
     samples : int
         Samples of every run (>= 1); give the same run length you would give :func:`simulate`.
-    delay, quantize, bound, stable_amplitude, growth, settle, controller
+    quantize, bound, stable_amplitude, growth, settle, wall
         Shared by every run, as in :func:`simulate`.
 
     Returns
@@ -1110,16 +1054,15 @@ def simulate_batch(
     >>> b.outcomes()
     ['rest', 'unstable']
     """
-    ctl, delay = check_controller(controller, delay)
+    w = check_wall(wall)
     m, b, s, v0, x0 = _check_points(mu, beta, sigma, xi_dot0, xi0)
     n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
-    d = check_delay(delay)
     if bound is None:  # one bound for the batch: beyond the largest start's travel (divergence_bound)
         bound = max(divergence_bound(float(a), float(c), float(mm)) for a, c, mm in zip(x0, v0, m, strict=True))
     rules = check_rules(bound, stable_amplitude, growth, settle)
     if not np.all(rules[0] > np.abs(x0)):
         raise DFAValueError(f"bound = {rules[0]!r} is invalid: it must exceed every |xi0| ({np.abs(x0).max()!r})")
-    res = run_points(m, b, s, x0, v0, n, d, check_quantize(quantize), *rules, controller=ctl)
+    res = run_points(m, b, s, x0, v0, n, w, check_quantize(quantize), *rules)
     codes, amps, freqs, centres, fpps, done, rest, stats = res
     return SimulationBatch(
         mu=m,
@@ -1128,7 +1071,7 @@ def simulate_batch(
         xi0=x0,
         xi_dot0=v0,
         samples=n,
-        delay=d,
+        wall=w,
         quantize=bool(quantize),
         outcome=codes.astype(np.int8),
         amplitude=amps,
@@ -1140,28 +1083,20 @@ def simulate_batch(
         final_xi=stats[:, kernel.NSEG + 6].copy(),
         final_xi_dot=stats[:, kernel.NSEG + 7].copy(),
         envelope=stats[:, : kernel.NSEG].copy(),
-        controller=ctl,
     )
 
 
-def run_points(
-    mu, beta, sigma, x0, v0, n, delay, quantize, bound, stable_amplitude, growth, settle, *, controller=None
-):
+def run_points(mu, beta, sigma, x0, v0, n, wall, quantize, bound, stable_amplitude, growth, settle):
     """Validated float arrays in, kernel outputs out: (codes, amps, freqs, centres, fpps, done, rest, stats).
 
     ``n`` (samples) and ``bound`` are one value for every run or one per run. The spring runs in one call of
     :func:`dfa.core.batch.batch_kernel` (each run bit for bit :func:`dfa.core.kernel.simulate_kernel`, its tail
     length following its μ and length as in :func:`simulate`);
-    no GIL is held, so callers may run several calls on threads. ``controller`` (a WallParams that is not
-    a pure spring, whose delay is ``delay``; see :func:`check_controller`) runs
-    :func:`dfa.core.wall_kernel.serial_wall_kernel` instead, one call per group of runs with the same tail length (one
-    ``n`` and ``bound`` for all).
+    no GIL is held, so callers may run several calls on threads. A ``wall`` (WallParams) the spring's kernel
+    does not run (a damper, filter or lag) runs :func:`dfa.core.wall_kernel.serial_wall_kernel` instead, one
+    call per group of runs with the same tail length (one ``n`` and ``bound`` for all).
     """
-    if controller is not None and controller.delay != delay:
-        raise DFAValueError(
-            f"delay = {delay!r} is invalid with controller.delay = {controller.delay}: run_points needs the "
-            "controller's own delay; pass delay=controller.delay"
-        )
+    delay = wall.delay
     k = mu.shape[0]
     codes = np.empty(k, dtype=np.int64)
     amps, freqs, centres, fpps = np.empty(k), np.empty(k), np.empty(k), np.empty(k)
@@ -1170,7 +1105,7 @@ def run_points(
     stats = np.empty((k, kernel.NSTATS))
     ns = np.ascontiguousarray(np.broadcast_to(np.asarray(n, dtype=np.int64), (k,)))
     tails = _tail_lengths(ns, mu)
-    if controller is None or controller.is_spring:
+    if wall.is_spring:
         bounds = np.ascontiguousarray(np.broadcast_to(np.asarray(bound, dtype=float), (k,)))
         batch.batch_kernel(mu, beta, sigma, x0, v0, ns, delay, quantize, bounds, tails, stats, done, rest)
     else:
@@ -1180,7 +1115,7 @@ def run_points(
             dn = np.empty(j.size, dtype=np.int64)
             rs = np.empty(j.size, dtype=np.int64)
             pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], int(n), delay, quantize, float(bound), int(t))
-            wall_kernel.serial_wall_kernel(*pts, *_controller_args(controller), st, dn, rs)
+            wall_kernel.serial_wall_kernel(*pts, *_wall_args(wall), st, dn, rs)
             stats[j], done[j], rest[j] = st, dn, rs
     kernel.classify_batch(
         mu, ns, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps

@@ -88,22 +88,22 @@ def _grid(quick: bool) -> list[Params]:
 
 
 def cycle_checks(
-    points, samples: int = 40_000, models=("half-delay", "zoh"), controller: WallParams | None = None
+    points, samples: int = 40_000, models=("half-delay", "zoh"), wall: WallParams | None = None
 ) -> list[dict]:
     """Simulate every predicted cycle of every point (items 1 and 6); one record per (point, model, cycle).
 
-    With ``controller`` the cycles are those of the controlled loop and the simulations use the same
-    controller (:func:`simulate` with ``controller=``).
+    With ``wall`` the cycles are those of the loop with that wall and the simulations use the same
+    wall (:func:`simulate` with ``wall=``).
     """
     out = []
     for p in points:
         region = str(classify_region(p.beta, p.sigma, 0.0))
 
         def run(v: float, p=p):
-            return simulate(p.mu, p.beta, p.sigma, v, samples, record=False, controller=controller)
+            return simulate(p.mu, p.beta, p.sigma, v, samples, record=False, wall=wall)
 
         for model in models:
-            res = limit_cycles(p, model=model, max_amplitude=2000.0, controller=controller)
+            res = limit_cycles(p, model=model, max_amplitude=2000.0, wall=wall)
             for c in res.cycles:
                 rec = dict(
                     mu=p.mu,
@@ -171,7 +171,7 @@ def controller_cycle_checks(points, samples: int = 40_000, models=("half-delay",
     """
     out = []
     for name, ctl in controllers:
-        for rec in cycle_checks(points, samples, models, controller=ctl):
+        for rec in cycle_checks(points, samples, models, wall=ctl):
             rec.update(
                 controller=name,
                 controller_params=ctl.to_dict(),
@@ -188,24 +188,21 @@ def first_unstable_speed(
     samples: int,
     preload: bool,
     steps: int = 40,
-    delay: int = 0,
-    controller: WallParams | None = None,
+    wall: WallParams | None = None,
 ) -> float | None:
     """Smallest impact speed ξ'0 (ticks/sample) whose exact simulation diverges, or None.
 
     A geometric scan of ``steps`` speeds from ``v_lo`` to ``v_hi`` (ticks/sample); the first unstable one is
     refined by 12 bisection steps against the scan point below it. Runs start at ξ0 = 0 with speed ξ'0, or at
-    rest with the spring preloaded to the same energy (``preload``); ``samples`` per run, delay ``delay``
-    samples (with ``controller``, its wall; :func:`dfa.simulate`). Stability need not be monotone in speed:
+    rest with the spring preloaded to the same energy (``preload``); ``samples`` per run, with the wall
+    ``wall`` (default the spring without delay; :func:`dfa.simulate`). Stability need not be monotone in speed:
     slower speeds between scan points may diverge too.
     """
 
     def unstable(v: float) -> bool:
         x0, v0 = (preload_position(p.mu, v), 0.0) if preload else (0.0, v)
         bound = divergence_bound(x0, v0, p.mu)  # beyond the impact's own travel (eq. 18-19)
-        r = simulate(
-            p.mu, p.beta, p.sigma, v0, samples, xi0=x0, delay=delay, record=False, bound=bound, controller=controller
-        )
+        r = simulate(p.mu, p.beta, p.sigma, v0, samples, xi0=x0, record=False, bound=bound, wall=wall)
         return r.outcome == "unstable"
 
     speeds = np.geomspace(v_lo, v_hi, steps)

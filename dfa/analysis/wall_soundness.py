@@ -161,7 +161,7 @@ def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:
     mu, x0, v0 = float(pt["mu"]), float(pt["xi0"]), float(pt["xi_dot"])
     with np.errstate(all="ignore"):
         r = simulate(
-            mu, float(pt["beta"]), float(pt["sigma"]), v0, n, x0, quantize=bool(pt["quantized"]), controller=c,
+            mu, float(pt["beta"]), float(pt["sigma"]), v0, n, x0, quantize=bool(pt["quantized"]), wall=c,
             bound=BOUND,
         )  # fmt: skip
         xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]

@@ -370,6 +370,28 @@ class Element(abc.ABC):
         """
         return 1.0
 
+    @classmethod
+    def zoh_response(cls, g: Any, mu: float, beta: Any, omega: Any) -> Any:
+        """Give the exact ZOH plant's response with this element between hold and device, if it sits there.
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+        mu : float
+            Dimensionless mass μ = m/(K T²).
+        beta : float or array_like
+            The (equivalent) dimensionless damping β.
+        omega : float or array_like
+            Angular frequency ω in rad per sample.
+
+        Returns
+        -------
+        complex, numpy.ndarray or None
+            G(e^{jω}) of hold, element and device; None for an element off the plant.
+        """
+        return None
+
     def to_dict(self) -> dict[str, Any]:
         """Give the element as JSON-able data.
 
@@ -685,6 +707,12 @@ class AmplifierLag(Element):
     @classmethod
     def plant_response(cls, g: Any, omega: Any) -> Any:
         return 1.0 / (1.0 + 1j * np.asarray(omega, dtype=float) * g)
+
+    @classmethod
+    def zoh_response(cls, g: Any, mu: float, beta: Any, omega: Any) -> Any:
+        from ..core.zohlag import zoh_lag_response  # the one implementation, compiled
+
+        return zoh_lag_response(mu, beta, omega, g)
 
 
 #: The registered elements, in the order a wall applies them (delay, damper, filter, amplifier).

@@ -357,6 +357,29 @@ class WallParams:
             out = out * k.plant_response(g, omega)
         return out
 
+    def zoh_response(self, mu: float, beta: Any, omega: Any) -> Any:
+        """Give the exact ZOH plant's response when an element sits between hold and device.
+
+        Parameters
+        ----------
+        mu : float
+            Dimensionless mass μ = m/(K T²).
+        beta : float or array_like
+            The (equivalent) dimensionless damping β.
+        omega : float or array_like
+            Angular frequency ω in rad per sample.
+
+        Returns
+        -------
+        complex, numpy.ndarray or None
+            G(e^{jω}) of hold, element and device (:mod:`dfa.core.zohlag`); None for the device alone.
+        """
+        for k, g in self.groups:
+            out = k.zoh_response(g, mu, beta, omega)
+            if out is not None:
+                return out
+        return None
+
     def low_frequency_delay(self) -> float:
         """Give the samples of delay at low frequency.
 
@@ -511,6 +534,23 @@ class Wall:
             This wall's elements with that spring.
         """
         return Wall(stiffness, self.elements)
+
+    def with_damping(self, damping: float) -> Wall:
+        """The same wall with its virtual damper set to B (N·s/m; rotary N·m·s/rad; 0: no damper).
+
+        Parameters
+        ----------
+        damping : float
+            The virtual damping B in N·s/m (rotary: N·m·s/rad), >= 0.
+
+        Returns
+        -------
+        Wall
+            This wall's other elements and stiffness with that damper: how a Z-width varies B.
+        """
+        others = tuple(e for e in self.elements if not isinstance(e, Damper))
+        b = Damper(damping)
+        return Wall(self.stiffness, others + ((b,) if b.damping else ()))
 
     def params(self, period: float) -> WallParams:
         """Dimensionless groups (β_B, d, ν_c, α and any further element's) at sample period ``period``.

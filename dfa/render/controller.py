@@ -276,11 +276,11 @@ def controller_rows(controller: Any, period: float, units: dict[str, str]) -> li
 
 
 def controller_limit_rows(lim: Any, units: dict[str, str]) -> list[list[str]]:
-    """Rows of K_max with a controller, worded as the spring's design answer (the same :func:`limit_text`).
+    """Rows of K_max with a controller, worded as the spring's design answer (:func:`dfa.render.limits.kmax_rows`).
 
     Parameters
     ----------
-    lim : dfa.analysis.limits.wall_kmax.ControllerStiffnessLimits
+    lim : dfa.analysis.limits.kmax.KMaxResult
         The limits with the controller held fixed.
     units : dict
         The device's unit strings.
@@ -288,29 +288,14 @@ def controller_limit_rows(lim: Any, units: dict[str, str]) -> list[list[str]]:
     Returns
     -------
     list of list of str
-        (quantity, value) rows: speed, the four K_max (null with its reason, searched ones with their caveats
-        and confirmation), counterexamples, status and the evidence sentence.
+        (quantity, value) rows: speed, the four K_max (with their caveats and confirmation), counterexamples,
+        status and the evidence sentence.
     """
-    from .text import limit_text
+    from .limits import evidence_text, kmax_rows
 
-    ku = units["stiffness"]
-    kc = f"none: {lim.reasons['k_criterion']}" if lim.k_criterion is None else f"{number(lim.k_criterion, 5)} {ku}"
-    if lim.k_criterion == 0.0 and "k_criterion" in lim.reasons:
-        kc += f" ({lim.reasons['k_criterion']})"
-    ce = lim.reasons.get("counterexamples") or (
-        "none: no divergent run at or below the criterion's K"
-        if not lim.counterexamples
-        else f"{len(lim.counterexamples)} divergent run(s) at or below the criterion's K (see the JSON)"
-    )
     return [
         ["impact speed V", f"{number(lim.velocity, 4)} {units['velocity']}"],
-        ["extended criterion (eq. 11 extended to the damper, filter and delay; a proof)", kc],
-        ["exact linear bound of the controlled loop (no encoder, no friction; all conditions)",
-         f"{number(lim.k_linear, 5)} {ku}"],
-        ["describing function with the controller (growth speed >= V; first harmonic)", limit_text(lim.k_df, ku)],
-        ["simulation: no simulated impact up to V diverges", limit_text(lim.k_sim, ku)],
-        ["simulation: every simulated impact up to V rests", limit_text(lim.k_sim_rest, ku)],
-        ["counterexamples to the criterion", ce],
+        *kmax_rows(lim, explain=True),
         ["status", str(lim.status)],
-        ["evidence", lim.evidence_text()],
-    ]  # fmt: skip
+        ["evidence", evidence_text(lim)],
+    ]

@@ -98,10 +98,10 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
         if r.critical_velocity:
             text += f"It guarantees passivity up to {number(r.critical_velocity)} {u['velocity']}. "
     lim = a.controller_limits
-    if lim is not None and lim.k_criterion is not None:
+    if lim is not None and lim.k_criterion.value is not None:
         text += (
             f"With this B, filter and delay the largest stiffness it proves passive at {a.velocity:g} {u['velocity']} "
-            f"is {lim.k_criterion:.5g} {u['stiffness']}. "
+            f"is {lim.k_criterion.value:.5g} {u['stiffness']}. "
         )
     return text + _simulated_text(a)
 
@@ -372,19 +372,21 @@ def _template() -> Any:
 
 def answer_rows(a: DesignAnalysis) -> list[list[str]]:
     """Rows of the report's design answer: K_max four ways at the design speed, each with what it rests on."""
-    from .text import limit_text
+    from .limits import evidence_text, limit_text
 
     ans = a.design_answer
     assert ans is not None
-    ku = a.device.units["stiffness"]
+    ku, vu = a.device.units["stiffness"], a.device.units["velocity"]
     return [
-        ["criterion (eq. 11; a proof)", f"{ans.k_criterion:.5g} {ku}"],
-        ["exact linear bound (no encoder, no friction)", f"{ans.k_linear:.5g} {ku}"],
+        ["criterion (eq. 11; a proof)", limit_text(ans.k_criterion, ku)],
+        ["exact linear bound (no encoder, no friction)", limit_text(ans.k_linear, ku)],
         ["describing function (growth speed >= V; first harmonic)", limit_text(ans.k_df, ku)],
-        ["simulation: no simulated impact up to V diverges", limit_text(ans.k_sim, ku)],
-        ["simulation: every simulated impact up to V rests", limit_text(ans.k_sim_rest, ku)],
-        ["evidence", ans.evidence_text()],
-    ]
+        ["simulation: no simulated impact up to V diverges",
+         limit_text(ans.k_sim, ku, explain=True, velocity_unit=vu)],
+        ["simulation: every simulated impact up to V rests",
+         limit_text(ans.k_sim_rest, ku, explain=True, velocity_unit=vu)],
+        ["evidence", evidence_text(ans)],
+    ]  # fmt: skip
 
 
 def zwidth_rows(a: DesignAnalysis) -> list[list[str]]:

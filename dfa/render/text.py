@@ -210,17 +210,3 @@ def _growth_dict(g: Any) -> dict[str, Any]:
     for part in (out, out["band"]["low"], out["band"]["high"]):
         explain_nulls(part, why)
     return out
-
-
-def limit_text(s: Any, ku: str) -> str:
-    """One searched limit (:class:`dfa.analysis.limits.kmax.KSearch`) in words, with its caveats (reason, non-monotone)."""
-    if s.value is None:
-        return f"none: {s.reason}"
-    txt = f"{s.value:.5g} {ku}"
-    if s.reason:
-        txt += f" ({s.reason})"
-    if s.non_monotone:
-        txt += f"; NOT monotone: safe again at {', '.join(f'{k:.4g}' for k in s.safe_above)} {ku}"
-    if getattr(s, "confirmed", None):
-        txt += f"; confirmed: {s.confirmed}"
-    return txt

@@ -9,7 +9,7 @@ a search reached), the result carries them in a separate field (``detail``).
 Examples
 --------
 >>> from dfa.results.status import StiffnessStatus
->>> StiffnessStatus.TOO_STIFF == "too stiff", StiffnessStatus("ok") is StiffnessStatus.OK
+>>> StiffnessStatus.TOO_STIFF == "too_stiff", StiffnessStatus("ok") is StiffnessStatus.OK
 (True, True)
 >>> StiffnessStatus.OK.message
 'passive at this speed (proven)'
@@ -30,6 +30,9 @@ __all__ = [
     "VelocityStatus",
     "CurveStatus",
     "SimulationOutcome",
+    "BatchStatus",
+    "LimitStatus",
+    "KMaxStatus",
     "SearchStatus",
     "GrowthStatus",
     "NyquistStatus",
@@ -147,17 +150,19 @@ class StiffnessStatus(StatusEnum):
     """Verdict on a chosen stiffness at the impact speed (eq. 11)."""
 
     OK = ("ok", "passive at this speed (proven)")
-    NOT_REQUESTED = ("not requested", "no stiffness given to assess: the limits alone")
-    TOO_STIFF = ("too stiff", "no passivity guarantee at this speed (K > K_max); not a proof of instability")
+    NOT_REQUESTED = ("not_requested", "no stiffness given to assess: the limits alone")
+    TOO_STIFF = ("too_stiff", "no passivity guarantee at this speed (K > K_max); not a proof of instability")
+    NOT_COVERED = ("not_covered", "no sound passivity criterion covers the wall (an amplifier lag): no verdict")
 
 
 class VelocityStatus(StatusEnum):
     """What the largest passive speed of a chosen stiffness is (eq. 12)."""
 
-    NOT_REQUESTED = ("not requested", "no stiffness given")
-    ALL_SPEEDS = ("all speeds", "passive at every speed (K <= 2b/T, or b/(T(½ + d)) with a delay)")
+    NOT_REQUESTED = ("not_requested", "no stiffness given")
+    ALL_SPEEDS = ("all_speeds", "passive at every speed (K <= 2b/T, or b/(T(½ + d)) with a delay)")
     BOUNDED = ("bounded", "passive up to a finite speed")
-    NONE = ("none", "no passivity guarantee even at rest (K > 2c/Δ)")
+    NONE = ("none", "no passivity guarantee even at rest (K > 2c/Δ; with a damper σ < σ₀)")
+    NOT_COVERED = ("not_covered", "no sound passivity criterion covers the wall (an amplifier lag)")
 
 
 class CurveStatus(StatusEnum):
@@ -174,6 +179,55 @@ class SimulationOutcome(StatusEnum):
     UNSTABLE = ("unstable", "diverged (past the bound, or a growing envelope)")
     CHATTER = ("chatter", "never comes to rest; the force keeps toggling below one tick of motion (a buzz)")
     UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
+
+
+class BatchStatus(StatusEnum):
+    """Status of a batch of simulations (:class:`dfa.analysis.simulation.SimulationBatch`)."""
+
+    OK = ("ok", "every run simulated")
+
+
+class LimitStatus(StatusEnum):
+    """What a stiffness limit is, or why it has no value (:class:`dfa.analysis.limits.search.KLimit`)."""
+
+    FOUND = ("found", "the limit stands as stated, with its evidence")
+    ABOVE_RANGE = ("above_range", "no failure at any stiffness searched: the limit lies above the range searched")
+    BELOW_RANGE = ("below_range", "it fails already at the smallest stiffness searched")
+    NO_RANGE = (
+        "no_range",
+        "no search range: the device has neither viscous nor Coulomb friction, or there is no finite closed-form bound",
+    )
+    NOT_CONFIRMED = (
+        "not_confirmed",
+        "no stiffness confirmed: failures below the searched limit reach the lowest stiffness searched, or the "
+        "confirmation did not settle",
+    )
+    NOT_COVERED = (
+        "not_covered",
+        "not covered by the criterion: no sound passivity criterion covers an element of the wall (an amplifier lag)",
+    )
+    NONE_PROVEN = ("none_proven", "the criterion proves no stiffness passive at this speed")
+    NEVER = (
+        "never",
+        "the criterion proves no stiffness passive even at rest with this wall: σ >= σ₀ needs c/Δ > (1 − a)B/T",
+    )
+    NO_STABLE_K = ("no_stable_k", "the linear loop is unstable already at small K (no stable interval from K = 0)")
+    NOT_SEARCHED = ("not_searched", "not searched: the describing-function and simulated limits need a speed > 0")
+
+
+class KMaxStatus(StatusEnum):
+    """What a K_max answer rests on (:class:`dfa.analysis.limits.kmax.KMaxResult`)."""
+
+    OK = ("ok", "every searched limit stands as searched: monotone, decided, confirmed")
+    CAVEATS = (
+        "caveats",
+        "a searched limit is non-monotone in K, limited by undecided judgements, or was lowered by failures the "
+        "sweep or the confirmation found (see each limit)",
+    )
+    COUNTEREXAMPLE = (
+        "counterexample",
+        "an impact diverged at a stiffness the criterion proves passive: a criterion bug (see counterexamples)",
+    )
 
 
 class SearchStatus(StatusEnum):
@@ -199,13 +253,13 @@ class GrowthStatus(StatusEnum):
     """What the describing function predicts about growth (:class:`dfa.analysis.cycles.GrowthThreshold`)."""
 
     OK = ("ok", "unstable cycles found: growth is predicted above the band (first-harmonic approximation)")
-    NO_UNSTABLE_CYCLE = ("no unstable cycle", "no unstable cycle predicted")
+    NO_UNSTABLE_CYCLE = ("no_unstable_cycle", "no unstable cycle predicted")
     NO_UNSTABLE_CYCLE_SEARCHED = (
-        "no unstable cycle up to the search limit",
+        "no_unstable_cycle_searched",
         "no unstable cycle predicted up to the amplitude searched (the search was incomplete)",
     )
     LINEAR_UNSTABLE = (
-        "linear unstable",
+        "linear_unstable",
         "no unstable cycle predicted, but the linear loop (exact ZOH model) is unstable: amplitudes grow without bound",
     )
 
@@ -215,11 +269,11 @@ class NyquistStatus(StatusEnum):
 
     OK = ("ok", "curves, locus and crossings computed")
     CROSSINGS_NOT_COMPUTED = (
-        "crossings not computed",
+        "crossings_not_computed",
         "crossings not computed for sigma > 0: use the limit-cycle solver",
     )
     SEARCH_INCOMPLETE = (
-        "search incomplete",
+        "search_incomplete",
         "crossings may be missing: the limit-cycle solver's search ended incomplete (see detail)",
     )
 

@@ -28,17 +28,18 @@ evaluate ω(M) by one rule (a bracket without a sign change of V gives its end
 with the smaller |V| in both), so a bracket the scan found is a bracket for
 Brent's method too; any bracket that still fails is counted, never raised.
 
-With a controller (issue 15)
-----------------------------
-``limit_cycles(..., controller=WallParams.of(...))`` puts the virtual wall in the loop: D(M)
-multiplies the controller C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the ZOH-exact velocity filter)
-and its delay e^{−jωd}; the amplifier lag is 1/(jωα + 1) in the half-delay and Padé models and is
-inside the exact ZOH model (the ZOH-sampled amplifier + device, :mod:`dfa.core.zohlag`). For the half-delay
-and Padé models the factor R(ω) = (1 + jωα)/C(e^{jω}) does not depend on β_eq, so the phase condition
-keeps its closed form with the lead φ + arg R(ω); the ZOH model bisects as before (its premise of one
-crossing per ω is checked in the tests). A pure spring runs the spring-only code, bit for bit; the
-closed forms (eq. 42-45) refuse any other controller; ``linear_stable`` is the exact linear loop with
-the controller (:mod:`dfa.analysis.cycles.controlled`).
+With a wall (issue 15)
+----------------------
+``limit_cycles(..., wall=WallParams.of(...))`` puts the virtual wall in the loop: D(M)
+multiplies the wall's command C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the ZOH-exact velocity filter;
+the elements' polynomials, :meth:`dfa.model.wall.WallParams.command`) and its delay e^{−jωd}; the amplifier
+lag is 1/(jωα + 1) in the half-delay and Padé models and is inside the exact ZOH model (the ZOH-sampled
+amplifier + device, :mod:`dfa.core.zohlag`). For the half-delay and Padé models the factor
+R(ω) = (1 + jωα)/C(e^{jω}) does not depend on β_eq, so the phase condition keeps its closed form with the
+lead φ + arg R(ω); the ZOH model bisects as before (its premise of one crossing per ω is checked in the
+tests). A spring with any delay runs the spring-only code, bit for bit; the closed forms (eq. 42-45)
+refuse any other wall; ``linear_stable`` is the exact linear loop with the wall
+(:mod:`dfa.analysis.cycles.controlled`).
 
 How far the search goes
 -----------------------
@@ -82,7 +83,7 @@ from __future__ import annotations
 
 # private names re-exported for the tests and benchmarks that reach into the solver
 from .caveats import SUBTICK_LIMIT, subtick_caveat
-from .characteristic import _W_GRID, _grid_lead, _inv_loop, _Loop, _pade  # noqa: F401
+from .characteristic import W_GRID, _grid_lead, _inv_loop, _Loop, _pade  # noqa: F401
 from .closed_forms import (
     ClosedFormCycles,
     ClosedFormStatus,

@@ -26,8 +26,8 @@ _M_FLOOR = 1e-9
 
 
 #: Frequency grid (rad per sample) on which the phase curve is scanned before bracketing.
-_W_GRID = np.concatenate([np.geomspace(1e-5, 0.05, 600, endpoint=False), np.linspace(0.05, math.pi - 1e-9, 3000)])
-_W_GRID.flags.writeable = False
+W_GRID = np.concatenate([np.geomspace(1e-5, 0.05, 600, endpoint=False), np.linspace(0.05, math.pi - 1e-9, 3000)])
+W_GRID.flags.writeable = False
 
 
 # ------------------------------------------------------------ loop inverse
@@ -39,21 +39,21 @@ _W_GRID.flags.writeable = False
 
 @lru_cache(maxsize=64)
 def _grid_lead(model: str, delay: int, pade_order: int) -> tuple[np.ndarray, np.ndarray]:
-    """(φ, e^{jφ}) on _W_GRID, cached: the grid is scanned once per solve."""
-    lead = _lead_eval(_W_GRID, model, delay, pade_order)
+    """(φ, e^{jφ}) on W_GRID, cached: the grid is scanned once per solve."""
+    lead = _lead_eval(W_GRID, model, delay, pade_order)
     return lead, np.exp(1j * lead)
 
 
 def _lead(w, model: str, delay: int, pade_order: int):
     """Phase lead φ(ω) of 1/L over the device's inverse (half-delay and Padé models), rad."""
-    if w is _W_GRID:
+    if w is W_GRID:
         return _grid_lead(model, delay, pade_order)[0]
     return _lead_eval(w, model, delay, pade_order)
 
 
 def _rotation(w, model: str, delay: int, pade_order: int):
-    """e^{jφ(ω)} (vectorised), cached on _W_GRID."""
-    if w is _W_GRID:
+    """e^{jφ(ω)} (vectorised), cached on W_GRID."""
+    if w is W_GRID:
         return _grid_lead(model, delay, pade_order)[1]
     return np.exp(1j * _lead_eval(w, model, delay, pade_order))
 
@@ -70,17 +70,17 @@ def _lead_eval(w, model: str, delay: int, pade_order: int):
     return 2.0 * np.angle(np.polyval(den, 1j * np.asarray(w, dtype=float)))
 
 
-def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int, ctl: WallParams | None = None):
+def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int, wall: WallParams | None = None):
     """1/L(jω) for an equivalent damping β_eq (broadcast), time in samples; plain complex for scalars.
 
-    ``ctl`` (a controller that is not a pure spring; None for the paper's spring) divides by the
-    controller factor C(e^{jω}) and the amplifier lag (:func:`_controller_ratio`, :func:`dfa.analysis.loop.loop_response`).
+    ``wall`` (groups the spring's fast path does not cover; None for the paper's spring, any delay) divides by
+    the wall's command C(e^{jω}) and its plant factor (:func:`wall_ratio`, :func:`dfa.analysis.loop.loop_response`).
     """
-    if ctl is not None:
-        return _inv_loop_ctl(mu, beq, omega, model, delay, pade_order, ctl)
+    if wall is not None:
+        return _inv_loop_wall(mu, beq, omega, model, delay, pade_order, wall)
     if (isinstance(omega, float) or np.ndim(omega) == 0) and (isinstance(beq, float) or np.ndim(beq) == 0):
         return _inv_loop_scalar(mu, float(beq), float(omega), model, delay, pade_order)
-    w = omega if omega is _W_GRID else np.asarray(omega, dtype=float)
+    w = omega if omega is W_GRID else np.asarray(omega, dtype=float)
     b = np.asarray(beq, dtype=float)
     if model != "zoh":
         return _rotation(w, model, delay, pade_order) * (-mu * w * w + 1j * w * b)
@@ -98,33 +98,26 @@ def _inv_loop_scalar(mu: float, b: float, w: float, model: str, delay: int, pade
     return complex(z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0))
 
 
-def _controller_factor(ctl: WallParams, omega):
-    """C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}), F the ZOH-exact velocity filter (1 without filter)."""
-    zi = np.exp(-1j * np.asarray(omega, dtype=float))
-    a = ctl.filter_pole
-    f = 1.0 if ctl.cutoff is None else (1.0 - a) * zi / (1.0 - a * zi)
-    return 1.0 + ctl.damping * (1.0 - zi) * f
-
-
-def _controller_ratio(ctl: WallParams, omega):
-    """R(ω) = (1 + jωα)/C(e^{jω}): what the controller and amplifier lag multiply 1/L by in the
-    half-delay and Padé models (the delay d stays in the hold's phase lead)."""
+def wall_ratio(wall: WallParams, omega):
+    """R(ω) = 1/(P(ω)·C(e^{jω})): what the wall multiplies 1/L by in the half-delay and Padé models (the delay
+    stays in the hold's phase lead): C the command without its delay (the elements' polynomials,
+    :meth:`dfa.model.wall.WallParams.command`), P the continuous factor between hold and device
+    (:meth:`~dfa.model.wall.WallParams.plant_response`, 1/(1 + jωα) with an amplifier lag)."""
     w = np.asarray(omega, dtype=float)
-    return (1.0 + 1j * w * ctl.lag) / _controller_factor(ctl, w)
+    return 1.0 / (wall.plant_response(w) * wall.command().response(w))
 
 
-def _inv_loop_ctl(mu: float, beq, omega, model: str, delay: int, pade_order: int, ctl: WallParams):
-    """1/L(jω) with a controller (see :func:`_inv_loop`); plain complex for scalars."""
+def _inv_loop_wall(mu: float, beq, omega, model: str, delay: int, pade_order: int, wall: WallParams):
+    """1/L(jω) with a wall (see :func:`_inv_loop`); plain complex for scalars."""
     scalar = np.ndim(omega) == 0 and np.ndim(beq) == 0
-    w = omega if omega is _W_GRID else np.asarray(omega, dtype=float)
-    if model != "zoh" or ctl.lag == 0.0:
+    w = omega if omega is W_GRID else np.asarray(omega, dtype=float)
+    g = wall.zoh_response(mu, beq, w) if model == "zoh" else None
+    if g is None:
         out = _inv_loop(mu, beq, omega, model, delay, pade_order)
-        out = out * (_controller_ratio(ctl, w) if model != "zoh" else 1.0 / _controller_factor(ctl, w))
+        out = out * (wall_ratio(wall, w) if model != "zoh" else 1.0 / wall.command().response(w))
     else:
-        from ...core.zohlag import zoh_lag_response
-
         z = np.exp(1j * w)
-        out = z**delay / (zoh_lag_response(mu, beq, w, ctl.lag) * _controller_factor(ctl, w))
+        out = z**delay / (g * wall.command().response(w))
     return complex(out) if scalar else out
 
 
@@ -147,7 +140,7 @@ class _Loop:
     delay: int
     pade_order: int
     df: str = "exact"
-    ctl: WallParams | None = None
+    wall: WallParams | None = None
 
     def beq(self, m, w):
         if isinstance(m, float) and isinstance(w, float):
@@ -155,7 +148,7 @@ class _Loop:
         return self.params.beta + 4.0 * self.params.sigma / (math.pi * np.asarray(m) * np.asarray(w))
 
     def inv(self, m, w):
-        return _inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order, self.ctl)
+        return _inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order, self.wall)
 
     def d(self, m):
         """D(M) (compiled eq. 41 for the exact describing function; M > 0 is the solver's own)."""

@@ -115,18 +115,18 @@ class ClosedFormCycles:
         return [ClosedFormStatus(int(s)) for s in self.status.ravel()]
 
 
-def _check_spring(controller: object) -> None:
-    """Refuse a controller the closed forms do not hold for: they assume the spring and the half-sample hold."""
-    if controller is None:
+def _check_spring(wall: object) -> None:
+    """Refuse a wall the closed forms do not hold for: they assume the spring and the half-sample hold."""
+    if wall is None:
         return
     from ...checks import check_type
     from ...model.wall import WallParams
 
-    ctl = check_type("controller", controller, WallParams, "give dfa.WallParams.of(...) or None")
+    ctl = check_type("wall", wall, WallParams, "give dfa.WallParams.of(...) or None")
     if not (ctl.is_spring and ctl.delay == 0):
         raise DFAValueError(
-            f"controller = {ctl.to_dict()} is invalid here: the paper's closed forms (eq. 42-45) hold for the "
-            "pure spring without computational delay only; use dfa.limit_cycles(params, controller=...) "
+            f"wall = {ctl.to_dict()} is invalid here: the paper's closed forms (eq. 42-45) hold for the "
+            "pure spring without computational delay only; use dfa.limit_cycles(params, wall=...) "
             "(the numeric harmonic-balance solver) instead"
         )
 
@@ -164,16 +164,16 @@ def _f44(w, mu):
     return mu * w * w - np.cos(w / 2)
 
 
-def small_cycle_closed_forms(mu, beta, sigma, *, controller=None) -> ClosedFormCycles:
+def small_cycle_closed_forms(mu, beta, sigma, *, wall=None) -> ClosedFormCycles:
     """Small stable cycles of eq. 42-43 (D = 2/(πM)) over broadcast (μ, β, σ).
 
     Parameters
     ----------
     mu, beta, sigma : float or array_like
         Dimensionless mass μ > 0, damping β >= 0 and Coulomb friction σ >= 0 (Table 1).
-    controller : WallParams, optional
+    wall : WallParams, optional
         Accepted only as the pure spring without delay (the closed forms' assumption); any other
-        controller is refused (DFAValueError): use :func:`dfa.limit_cycles` with it.
+        wall is refused (DFAValueError): use :func:`dfa.limit_cycles` with it.
 
     Returns
     -------
@@ -181,7 +181,7 @@ def small_cycle_closed_forms(mu, beta, sigma, *, controller=None) -> ClosedFormC
         M (ticks) and ω (rad per sample); NaN with ``NO_CYCLE`` where σ >= ½ and
         ``DEGENERATE`` at β = σ = 0.
     """
-    _check_spring(controller)
+    _check_spring(wall)
     m, b, s = _grid(mu, beta, sigma)
     w = np.full(m.shape, np.nan)
     status = np.full(m.shape, int(ClosedFormStatus.NO_CYCLE), dtype=np.int8)
@@ -217,15 +217,15 @@ def large_cycle_frequencies(mu) -> np.ndarray:
     return np.where(ok, root, np.nan).reshape(m.shape)
 
 
-def large_cycle_closed_forms(mu, beta, sigma, *, controller=None) -> ClosedFormCycles:
+def large_cycle_closed_forms(mu, beta, sigma, *, wall=None) -> ClosedFormCycles:
     """Large unstable cycles of eq. 44-45 (D ≈ 1) over broadcast (μ, β, σ).
 
     Parameters
     ----------
     mu, beta, sigma : float or array_like
         Dimensionless mass μ > 0, damping β >= 0 and Coulomb friction σ >= 0 (Table 1).
-    controller : WallParams, optional
-        Accepted only as the pure spring without delay; any other controller is refused
+    wall : WallParams, optional
+        Accepted only as the pure spring without delay; any other wall is refused
         (DFAValueError): use :func:`dfa.limit_cycles` with it.
 
     Returns
@@ -234,7 +234,7 @@ def large_cycle_closed_forms(mu, beta, sigma, *, controller=None) -> ClosedFormC
         M = (4σ/π)/(sin(ω/2) − βω) (ticks) and ω of eq. 44; NaN with
         ``NO_CYCLE`` where sin(ω/2) <= βω.
     """
-    _check_spring(controller)
+    _check_spring(wall)
     m, b, s = _grid(mu, beta, sigma)
     w = large_cycle_frequencies(m)
     den = np.sin(w / 2) - b * w
@@ -271,7 +271,7 @@ def _scalar(cf: ClosedFormCycles, p: Params) -> tuple[float, float] | None:
     return (float(cf.amplitude), float(cf.frequency)) if int(cf.status) == ClosedFormStatus.OK else None
 
 
-def large_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=None) -> tuple[float, float] | None:
+def large_cycle_closed_form(mu: float, beta: float, sigma: float, *, wall=None) -> tuple[float, float] | None:
     """(M, ω) of the paper's large unstable cycle (eq. 44-45, D ≈ 1), or None when sin(ω/2) <= βω.
 
     M = (4σ/π)/(sin(ω/2) − βω) with ω from :func:`large_cycle_frequency`
@@ -285,9 +285,9 @@ def large_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=
         Dimensionless viscous damping β = b/(K T), >= 0.
     sigma : float
         Dimensionless Coulomb friction σ = c/(K Δ), >= 0.
-    controller : WallParams, optional
+    wall : WallParams, optional
         Only the pure spring without delay (None, the default, or ``WallParams.of()``); any
-        other controller is refused: the closed forms assume the paper's loop.
+        other wall is refused: the closed forms assume the paper's loop.
 
     Returns
     -------
@@ -297,7 +297,7 @@ def large_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=
     Raises
     ------
     DFAValueError, DFATypeError
-        If μ, β or σ is out of range or not a number, or a controller other than the spring is given.
+        If μ, β or σ is out of range or not a number, or a wall other than the spring is given.
 
     See Also
     --------
@@ -305,10 +305,10 @@ def large_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=
     limit_cycles : Every cycle with the exact describing function.
     """
     p = Params(mu, beta, sigma)
-    return _scalar(large_cycle_closed_forms(p.mu, p.beta, p.sigma, controller=controller), p)
+    return _scalar(large_cycle_closed_forms(p.mu, p.beta, p.sigma, wall=wall), p)
 
 
-def small_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=None) -> tuple[float, float] | None:
+def small_cycle_closed_form(mu: float, beta: float, sigma: float, *, wall=None) -> tuple[float, float] | None:
     """(M, ω) of the paper's small stable cycle (eq. 42-43, D = 2/(πM)), or None when σ >= ½ or β = σ = 0.
 
     ω solves σ = ½ sin(ω/2) − β cos(ω/2)/(2μω) on (0, π) (the right side
@@ -323,9 +323,9 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=
         Dimensionless viscous damping β = b/(K T), >= 0.
     sigma : float
         Dimensionless Coulomb friction σ = c/(K Δ), >= 0.
-    controller : WallParams, optional
+    wall : WallParams, optional
         Only the pure spring without delay (None, the default, or ``WallParams.of()``); any
-        other controller is refused: the closed forms assume the paper's loop.
+        other wall is refused: the closed forms assume the paper's loop.
 
     Returns
     -------
@@ -335,7 +335,7 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=
     Raises
     ------
     DFAValueError, DFATypeError
-        If μ, β or σ is out of range or not a number, or a controller other than the spring is given.
+        If μ, β or σ is out of range or not a number, or a wall other than the spring is given.
 
     See Also
     --------
@@ -343,4 +343,4 @@ def small_cycle_closed_form(mu: float, beta: float, sigma: float, *, controller=
     limit_cycles : Every cycle with the exact describing function.
     """
     p = Params(mu, beta, sigma)
-    return _scalar(small_cycle_closed_forms(p.mu, p.beta, p.sigma, controller=controller), p)
+    return _scalar(small_cycle_closed_forms(p.mu, p.beta, p.sigma, wall=wall), p)

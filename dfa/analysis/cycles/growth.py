@@ -173,7 +173,7 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
     device : Device, optional
         To express the amplitudes and speeds in physical units.
     **kwargs
-        Passed to :func:`limit_cycles` (model, delay, …).
+        Passed to :func:`limit_cycles` (model, wall, …).
 
     Returns
     -------

@@ -10,7 +10,7 @@ from scipy import optimize
 from scipy.optimize.elementwise import find_root
 
 from ...model.wall import WallParams
-from .characteristic import _W_GRID, _controller_ratio, _inv_loop, _lead, _Loop
+from .characteristic import W_GRID, _inv_loop, _lead, _Loop, wall_ratio
 
 # --------------------------------------------------------------- phase curve
 
@@ -21,27 +21,27 @@ def _phase_beta(lp: _Loop, w: np.ndarray) -> np.ndarray:
     if lp.model != "zoh":
         # V = 0 ⇔ β_eq = μω tan φ, and then U = −μω²/cos φ < 0 ⇔ cos φ > 0; β_eq >= 0 ⇒ φ mod 2π ∈ [0, π/2)
         th = _lead(w, lp.model, d, lp.pade_order)
-        if lp.ctl is not None:  # 1/L = e^{jθ}·R(ω)·(−μω² + jωβ_eq): R adds its phase to the lead, |R| > 0
-            th = th + np.angle(_controller_ratio(lp.ctl, w))
+        if lp.wall is not None:  # 1/L = e^{jθ}·R(ω)·(−μω² + jωβ_eq): R adds its phase to the lead, |R| > 0
+            th = th + np.angle(wall_ratio(lp.wall, w))
         ok = np.mod(th, 2 * math.pi) < math.pi / 2
         with np.errstate(invalid="ignore"):
             return np.where(ok, mu * w * np.tan(th), np.nan)
-    if w is _W_GRID:  # β* does not depend on β or σ: a sweep at fixed μ scans the grid once
-        return _zoh_phase_beta_grid(mu, d, lp.ctl)
-    return _zoh_phase_beta(mu, d, w, lp.ctl)
+    if w is W_GRID:  # β* does not depend on β or σ: a sweep at fixed μ scans the grid once
+        return _zoh_phase_beta_grid(mu, d, lp.wall)
+    return _zoh_phase_beta(mu, d, w, lp.wall)
 
 
 @lru_cache(maxsize=16)
-def _zoh_phase_beta_grid(mu: float, d: int, ctl: WallParams | None = None) -> np.ndarray:
-    out = _zoh_phase_beta(mu, d, _W_GRID, ctl)
+def _zoh_phase_beta_grid(mu: float, d: int, wall: WallParams | None = None) -> np.ndarray:
+    out = _zoh_phase_beta(mu, d, W_GRID, wall)
     out.flags.writeable = False
     return out
 
 
-def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, ctl: WallParams | None = None) -> np.ndarray:
+def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, wall: WallParams | None = None) -> np.ndarray:
     """β*(ω) of the exact ZOH loop: scan β on a log grid, bracket V's crossing with U < 0, bisect (vectorised)."""
     bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
-    c = _inv_loop(mu, bgrid[None, :], w[:, None], "zoh", d, 0, ctl)
+    c = _inv_loop(mu, bgrid[None, :], w[:, None], "zoh", d, 0, wall)
     v = c.imag
     sc = (np.sign(v[:, :-1]) != np.sign(v[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)
     has = sc.any(axis=1)
@@ -54,7 +54,7 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, ctl: WallParams | None = N
         for i in np.flatnonzero(has):
             wi = float(w[i])
             out[i] = optimize.brentq(
-                lambda b, wi=wi: _inv_loop(mu, b, wi, "zoh", d, 0, ctl).imag,
+                lambda b, wi=wi: _inv_loop(mu, b, wi, "zoh", d, 0, wall).imag,
                 float(lo[i]),
                 float(hi[i]),
                 xtol=1e-300,
@@ -63,7 +63,7 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, ctl: WallParams | None = N
         return out
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        vm = _inv_loop(mu, mid, w, "zoh", d, 0, ctl).imag
+        vm = _inv_loop(mu, mid, w, "zoh", d, 0, wall).imag
         left = np.sign(vm) == np.sign(vlo)
         lo = np.where(left, mid, lo)
         vlo = np.where(left, vm, vlo)
@@ -91,7 +91,7 @@ def _omega_for_m(lp: _Loop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np
 
 def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
     """Monotone pieces (ω, M) of the phase curve, each with an exact M = ∞ end where it reaches β* = β."""
-    w = _W_GRID
+    w = W_GRID
     bs = _phase_beta(lp, w)
     beta, sigma = lp.params.beta, lp.params.sigma
     excess = bs - beta

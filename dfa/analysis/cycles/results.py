@@ -115,7 +115,9 @@ class LimitCycleResult:
     Attributes
     ----------
     params : Params
-    model, delay, pade_order : loop model (see :func:`dfa.analysis.loop.loop_response`)
+    model, pade_order : loop model (see :func:`dfa.analysis.loop.loop_response`)
+    wall : WallParams
+        The wall's groups in the loop (none for the paper's spring; :attr:`delay` its delay).
     describing : str
         ``"exact"`` (eq. 41), or the paper's approximations ``"small"`` (2/(πM)) and ``"unity"`` (1).
     max_amplitude : float
@@ -142,13 +144,11 @@ class LimitCycleResult:
         asymptotically stable; when it is not, amplitudes beyond the largest
         unstable cycle are predicted to grow without bound. With a controller: the
         exact linear loop with that controller (and amplifier lag).
-    controller : WallParams or None
-        The controller given to :func:`limit_cycles` (None: the paper's spring).
     """
 
     params: Params
     model: str
-    delay: int
+    wall: WallParams
     pade_order: int
     describing: str
     max_amplitude: float
@@ -158,11 +158,10 @@ class LimitCycleResult:
     status: SearchStatus = SearchStatus.COMPLETE
     linear_stable: bool | None = None
     search_bound: float | None = None
-    controller: WallParams | None = None
 
     def __post_init__(self) -> None:
-        if self.controller is not None and not isinstance(self.controller, WallParams):
-            raise DFATypeError("controller must be a WallParams or None; build results with limit_cycles")
+        if not isinstance(self.wall, WallParams):
+            raise DFATypeError("wall must be a WallParams; build results with limit_cycles")
         st = SearchStatus.coerce(self.status)
         object.__setattr__(self, "status", st)
         object.__setattr__(self, "detail", self.detail or st.message)
@@ -174,6 +173,11 @@ class LimitCycleResult:
             )
         if not all(isinstance(c, LimitCycle) for c in self.cycles):
             raise DFATypeError("cycles must hold LimitCycle objects; build results with limit_cycles")
+
+    @property
+    def delay(self) -> int:
+        """The wall's computational delay d in samples."""
+        return self.wall.delay
 
     @property
     def status_code(self) -> SearchStatus:
@@ -226,10 +230,9 @@ class LimitCycleResult:
         dict
             Strict-JSON data: the cycles, inputs, completeness, status and detail.
         """
-        extra = {} if self.controller is None else {"controller": self.controller.to_dict()}
         out = to_jsonable(
             {
-                **extra,
+                "wall": self.wall.to_dict(),
                 "cycles": [c.to_dict() for c in self.cycles],
                 "mu": self.params.mu,
                 "beta": self.params.beta,

@@ -45,7 +45,7 @@ def _m_samples(
                 0.0
                 if w_inf == 0.0
                 else -float(
-                    np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order, lp.ctl))
+                    np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order, lp.wall))
                 )
             )
         else:  # a finite far end (hi, its ω)

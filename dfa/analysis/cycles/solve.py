@@ -14,8 +14,8 @@ from ...model.device import Params
 from ...model.wall import WallParams
 from ..loop import _check_model, _check_params
 from . import search
-from .characteristic import _DF_CHOICES, _M_FLOOR, _W_GRID, _Loop
-from .controlled import linear_stable_with_controller, resolve_controller
+from .characteristic import _DF_CHOICES, _M_FLOOR, W_GRID, _Loop
+from .controlled import linear_stable_of, resolve_wall
 from .phase import _PieceOmega, _pieces
 from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchStatus
 from .search import _m_samples, envelope_bound
@@ -43,7 +43,7 @@ def _solve_sigma_zero(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], tupl
     """σ = 0: the loop does not depend on M; its phase crossings are the roots of Im(1/L) with Re(1/L) < 0."""
     cycles: list[LimitCycle] = []
     reach, failures, bound = None, 0, 0.0
-    w = _W_GRID
+    w = W_GRID
     c = lp.inv(1.0, w)
     idx = np.where((np.sign(c.imag[:-1]) != np.sign(c.imag[1:])) & (c.real[:-1] < 0) & (c.real[1:] < 0))[0]
     for i in idx:
@@ -145,12 +145,11 @@ def limit_cycles(
     params: Params,
     *,
     model: str = "half-delay",
-    delay: int = 0,
     pade_order: int = 4,
     max_amplitude: float | None = None,
     describing: str = "exact",
     time_budget: float = DEFAULT_TIME_BUDGET,
-    controller: WallParams | None = None,
+    wall: WallParams | None = None,
 ) -> LimitCycleResult:
     """Every limit cycle (M, ω) of the harmonic balance 1 + D(M)L(jω; M) = 0 (eq. 36).
 
@@ -160,8 +159,6 @@ def limit_cycles(
         Dimensionless device (μ > 0, β >= 0, σ >= 0).
     model : {"half-delay", "pade", "zoh"}
         Model of the hold (:func:`dfa.analysis.loop.loop_response`); ``"zoh"`` is exact.
-    delay : int
-        Computational delay in samples.
     pade_order : int
         Order of the Padé approximation for ``model="pade"``.
     max_amplitude : float, optional
@@ -179,13 +176,13 @@ def limit_cycles(
         When it runs out the pieces of the phase curve not yet searched are
         skipped and the result is incomplete (status ``TIME_BUDGET``), with
         ``max_amplitude`` the amplitude below which no cycle was missed.
-    controller : WallParams, optional
-        The virtual wall (:class:`dfa.WallParams`: damper β_B, velocity filter ν_c, delay d,
-        amplifier lag α); D(M) then multiplies the controller C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω})
-        and the amplifier lag 1/(jωα + 1) sits between hold and device (:func:`dfa.analysis.loop.loop_response`).
-        Default None: the paper's spring. A pure spring (``is_spring``) gives the spring-only result
-        with the controller's delay; ``delay`` must then be 0 or the same. ``linear_stable`` is the
-        exact linear loop with the controller.
+    wall : WallParams, optional
+        The virtual wall's groups (:class:`dfa.WallParams`: delay d, damper β_B, velocity filter ν_c,
+        amplifier lag α); D(M) then multiplies the wall's command C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω})
+        and its delay, and the amplifier lag 1/(jωα + 1) sits between hold and device
+        (:func:`dfa.analysis.loop.loop_response`). Default None: the paper's spring. A spring with a delay
+        (``is_spring``) runs the spring-only code with that delay. ``linear_stable`` is the exact linear
+        loop with the wall.
 
     Returns
     -------
@@ -207,7 +204,7 @@ def limit_cycles(
     nyquist_locus_response : The same balance drawn as a Nyquist plot.
     """
     p = _check_params(params)
-    ctl, d = resolve_controller(controller, delay)
+    w, ctl, d = resolve_wall(wall)
     m, d, n = _check_model(model, d, pade_order)
     auto = max_amplitude is None
     amax = (
@@ -226,7 +223,7 @@ def limit_cycles(
     if code is SearchStatus.NUMERICAL:
         warnings.warn(
             f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}"
-            + (f", controller {ctl.to_dict()}" if ctl is not None else "")
+            + (f", wall {ctl.to_dict()}" if ctl is not None else "")
             + f"): {status}",
             LimitCycleSearchWarning,
             stacklevel=2,
@@ -235,7 +232,7 @@ def limit_cycles(
     return LimitCycleResult(
         p,
         m,
-        d,
+        w,
         n,
         df,
         searched,
@@ -243,9 +240,8 @@ def limit_cycles(
         code is SearchStatus.COMPLETE,
         status,
         code,
-        _linear_stable(p.mu, p.beta, d) if ctl is None else linear_stable_with_controller(p.mu, p.beta, ctl),
+        linear_stable_of(p.mu, p.beta, w),
         bound if code is SearchStatus.COMPLETE else None,
-        None if controller is None else controller,
     )
 
 
@@ -286,10 +282,3 @@ def _search_status(
         else f"cycles may exist beyond max_amplitude = {amax:g} ticks"
     )
     return (SearchStatus.BUDGET if budget else SearchStatus.MAX_AMPLITUDE), f"incomplete: {why}"
-
-
-def _linear_stable(mu: float, beta: float, delay: int) -> bool:
-    """The linear loop without encoder and Coulomb friction (exact ZOH, d delays) is asymptotically stable."""
-    from ..linear import linear_stable
-
-    return bool(linear_stable(mu, beta, delay))

@@ -273,7 +273,7 @@ def k_gil(device: Device, *, delay: int = 0) -> float:
     (1651.9, 2587.8)
     """
     dev = _check_device(device)
-    return float(critical_stiffness(dev.mass, dev.damping, dev.period, delay))
+    return float(critical_stiffness(dev.mass, dev.damping, dev.period, wall=Wall.of(1.0, delay=check_delay(delay))))
 
 
 def gil_beta_critical(mu: float, *, delay: int = 0) -> float:
@@ -377,11 +377,11 @@ class StiffnessLimits:
     max_passive_velocity : float or None
         For ``stiffness``: largest passive speed (inf: every speed; None: none).
     velocity_status : VelocityStatus
-        ``NOT_REQUESTED``, ``ALL_SPEEDS``, ``BOUNDED`` or ``NONE`` (codes ``"not requested"``,
-        ``"all speeds"``, ``"bounded"``, ``"none"``).
+        ``NOT_REQUESTED``, ``ALL_SPEEDS``, ``BOUNDED`` or ``NONE`` (codes ``"not_requested"``,
+        ``"all_speeds"``, ``"bounded"``, ``"none"``).
     status : StiffnessStatus
-        ``OK`` (code ``"ok"``) when ``stiffness`` passes at ``velocity``, ``TOO_STIFF`` (``"too stiff"``)
-        when it does not, ``NOT_REQUESTED`` (``"not requested"``) when no stiffness was given.
+        ``OK`` (code ``"ok"``) when ``stiffness`` passes at ``velocity``, ``TOO_STIFF`` (``"too_stiff"``)
+        when it does not, ``NOT_REQUESTED`` (``"not_requested"``) when no stiffness was given.
     delay : int
         Computational delay d in samples.
     """
@@ -436,9 +436,9 @@ class StiffnessLimits:
         ku = self.device.units["stiffness"]
         if self.velocity_status == "none":
             return f"none: no passivity guarantee even at rest (K > 2c/Δ = {self.k_static:.5g} {ku})"
-        if self.velocity_status == "all speeds":
+        if self.velocity_status == "all_speeds":
             return f"every speed (K <= {'2b/T' if self.delay == 0 else 'b/(T(½ + d))'} = {self.k_colgate:.5g} {ku})"
-        if self.velocity_status == "not requested" or self.max_passive_velocity is None:
+        if self.velocity_status == "not_requested" or self.max_passive_velocity is None:
             return "–"
         return f"{self.max_passive_velocity:.4g} {unit}"
 
@@ -476,8 +476,8 @@ class StiffnessLimits:
         mpv = self.max_passive_velocity
         why = {
             "max_passive_velocity": {
-                "not requested": "no stiffness given",
-                "all speeds": "passive at every speed (no finite limit)",
+                "not_requested": "no stiffness given",
+                "all_speeds": "passive at every speed (no finite limit)",
                 "none": "no passivity guarantee even at rest (K > 2c/Δ)",
             }.get(self.velocity_status.value, "undefined"),
             "stiffness": "no stiffness given to assess",

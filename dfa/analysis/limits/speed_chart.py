@@ -31,17 +31,20 @@ from __future__ import annotations
 import math
 import sys
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 
-from ...checks import check_delay, check_int, check_positive, check_real, check_speed, check_type
+from ...checks import check_int, check_positive, check_real, check_speed, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
+from ...model.wall import Wall
+from ...results.base import Result
 from ...results.frozen import frozen_array
-from ...results.jsonable import explain_nulls
 from ..cycles.caveats import SUBTICK_LIMIT
-from .closed_form import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
-from .kmax import DESIGN_MAX_SAMPLES, RunCache, _Evidence
+from .closed_form import k_static
+from .kmax import DESIGN_MAX_SAMPLES, closed_forms, passive_speed
+from .runs import Evidence, Growth, RunCache
 
 __all__ = ["StiffnessSpeedChart", "stiffness_speed_chart", "HAND_SPEED"]
 
@@ -62,13 +65,14 @@ def _ro(a) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class StiffnessSpeedChart:
+class StiffnessSpeedChart(Result):
     """Data of the stiffness–speed chart (module docstring); speeds in m/s (rad/s), K in N/m (N·m/rad).
 
     Attributes
     ----------
     device : Device
-    delay : int
+    wall : Wall
+        The wall whose elements are held fixed while K varies (:attr:`delay` its delay).
     v_top : float
         Top of the speed range (hand speeds).
     stiffness : numpy.ndarray
@@ -80,15 +84,17 @@ class StiffnessSpeedChart:
         A finer grid and the criterion's largest passive speed on it (0 above 2c/Δ).
     speeds : numpy.ndarray
         Impact speeds simulated at each K (geometric, v_top/200 to v_top).
-    k_linear, k_colgate, k_abbott_okamura, k_static : float
-        Closed-form bounds (vertical lines).
+    k_linear : float
+        The exact linear bound (a vertical line; 0: none).
+    k_colgate, k_abbott_okamura, k_static : float or None
+        The spring's published bounds (vertical lines); None for a wall with a damper, filter or lag.
     design_stiffness, design_velocity : float or None
         The design point.
     simulations : int
     """
 
-    device: Device
-    delay: int
+    device: Device = field(metadata={"json": lambda d: d.name})
+    wall: Wall = field(metadata={"json": lambda w: w.to_dict()})
     v_top: float
     stiffness: np.ndarray = field(repr=False)
     v_df: np.ndarray = field(repr=False)
@@ -98,17 +104,25 @@ class StiffnessSpeedChart:
     v_criterion: np.ndarray = field(repr=False)
     speeds: np.ndarray = field(repr=False)
     k_linear: float
-    k_colgate: float
-    k_abbott_okamura: float
-    k_static: float
+    k_colgate: float | None
+    k_abbott_okamura: float | None
+    k_static: float | None
     design_stiffness: float | None = None
     design_velocity: float | None = None
     simulations: int = 0
 
+    json_properties: ClassVar[tuple[str, ...]] = ("delay",)
+    units_of: ClassVar[dict[str, str]] = {
+        "v_top": "velocity", "stiffness": "stiffness", "v_df": "velocity", "v_sim": "velocity", "v_rest": "velocity",
+        "criterion_stiffness": "stiffness", "v_criterion": "velocity", "speeds": "velocity", "k_linear": "stiffness",
+        "k_colgate": "stiffness", "k_abbott_okamura": "stiffness", "k_static": "stiffness",
+        "design_stiffness": "stiffness", "design_velocity": "velocity",
+    }  # fmt: skip
+
     def __post_init__(self) -> None:
         fix = "StiffnessSpeedChart is built by dfa.stiffness_speed_chart; call that instead"
         check_type("device", self.device, Device, fix)
-        check_delay(self.delay)
+        check_type("wall", self.wall, Wall, fix)
         check_positive("v_top", self.v_top, fix)
         arrays = ("stiffness", "v_df", "v_sim", "v_rest", "criterion_stiffness", "v_criterion", "speeds")
         for name in arrays:  # v_df holds NaN where the describing function cannot tell (documented)
@@ -122,7 +136,7 @@ class StiffnessSpeedChart:
                 )
         for name in ("k_linear", "k_colgate", "k_abbott_okamura", "k_static"):
             value = getattr(self, name)
-            if not (isinstance(value, float) and value == math.inf):  # inf: no finite bound
+            if value is not None and not (isinstance(value, float) and value == math.inf):  # inf: no finite bound
                 check_real(name, value, fix)
         for name in ("design_stiffness", "design_velocity"):
             if getattr(self, name) is not None:
@@ -146,40 +160,24 @@ class StiffnessSpeedChart:
 
         return stiffness_speed_plot(self, ax)
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready record (NaN as null).
+    @property
+    def delay(self) -> int:
+        """The wall's computational delay d in samples."""
+        return self.wall.delay
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why each field may be null in JSON, by key.
 
         Returns
         -------
-        dict
-            Strict-JSON data: the speeds per stiffness, the bounds, the design point and the units.
+        dict of str to str
+            Reasons for the describing function's unknown speeds, the spring's bounds and the design point.
         """
-
-        def lst(a):
-            return [None if not math.isfinite(x) else float(x) for x in a]
-
-        out = {
-            "device": self.device.name,
-            "delay": self.delay,
-            "v_top": self.v_top,
-            "stiffness": lst(self.stiffness),
-            "v_df": lst(self.v_df),
-            "v_sim": lst(self.v_sim),
-            "v_rest": lst(self.v_rest),
-            "criterion_stiffness": lst(self.criterion_stiffness),
-            "v_criterion": lst(self.v_criterion),
-            "speeds": lst(self.speeds),
-            "k_linear": self.k_linear,
-            "k_colgate": self.k_colgate,
-            "k_abbott_okamura": self.k_abbott_okamura,
-            "k_static": self.k_static,
-            "design_stiffness": self.design_stiffness,
-            "design_velocity": self.design_velocity,
-            "simulations": self.simulations,
-            "stiffness_unit": self.device.units["stiffness"],
-            "velocity_unit": self.device.units["velocity"],
-        }
-        return explain_nulls(out, {"v_df": UNKNOWN_DF})
+        spring = "the spring's published bound (B = 0, no filter, no lag): not this wall's"
+        return {
+            "v_df": UNKNOWN_DF, "k_colgate": spring, "k_abbott_okamura": spring, "k_static": spring,
+            "design_stiffness": "no design point given", "design_velocity": "no design point given",
+        }  # fmt: skip
 
 
 def _largest_safe(verdicts: list[bool], speeds: np.ndarray) -> float:
@@ -192,11 +190,12 @@ def _largest_safe(verdicts: list[bool], speeds: np.ndarray) -> float:
     return out
 
 
-def _k_range(dev: Device, delay: int, v_top: float, design: float | None) -> tuple[float, float]:
-    lows = [
-        k for k in (k_gil(dev, delay=delay), k_colgate(dev, delay), float(k_max_criterion(dev, v_top, delay))) if k > 0
-    ]
-    highs = [k_static(dev), k_colgate(dev, delay)] + ([design] if design else [])
+def _k_range(dev: Device, wall: Wall, v_top: float, design: float | None) -> tuple[float, float]:
+    """The stiffness range: from a quarter of the lowest closed-form bound to 8 × the highest (and the design K)."""
+    kc, kl, pub, _ref, _top = closed_forms(dev, wall, v_top)
+    lows = [k for k in (kl.value, pub["k_colgate"], kc.value) if k is not None and k > 0]
+    spring = (pub["k_static"], pub["k_colgate"]) if pub["k_static"] is not None else (k_static(dev), kl.value)
+    highs = [k for k in spring if k is not None] + ([design] if design else [])
     lo = 0.25 * min(lows + ([design] if design else [])) if lows or design else 1e-3
     return lo, max(8.0 * max(highs), 16.0 * lo)
 
@@ -209,8 +208,8 @@ _SMALLEST_SPEED = sys.float_info.min
 
 def stiffness_speed_chart(
     device: Device,
-    delay: int = 0,
     *,
+    wall: Wall | None = None,
     stiffness: float | None = None,
     velocity: float | None = None,
     v_top: float | None = None,
@@ -225,8 +224,9 @@ def stiffness_speed_chart(
     ----------
     device : Device
         The physical device.
-    delay : int, optional
-        Computational delay d in samples.
+    wall : Wall, optional
+        The wall whose elements (delay d in samples, damper B in N·s/m, filter, amplifier) are held fixed while
+        K varies; default the spring.
     stiffness, velocity : float, optional
         The design point (N/m; m/s), marked on the chart.
     v_top : float, optional
@@ -259,7 +259,7 @@ def stiffness_speed_chart(
     stiffness_response : The criterion's K_max over speeds (no simulation).
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    d = check_delay(delay)
+    w = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
     k_design = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
     v_design = None if velocity is None else check_speed("velocity", velocity)
     fix_top = "give the top of the speed range in m/s (rad/s rotary), e.g. 0.5"
@@ -278,26 +278,36 @@ def stiffness_speed_chart(
         )
     n_max = check_int("max_samples", max_samples, minimum=1000, fix="give the longest run in samples")
     vs = np.geomspace(top / 200.0, top, n_v) if n_v > 1 else np.array([top])
-    lo, hi = _k_range(dev, d, top, k_design)
+    lo, hi = _k_range(dev, w, top, k_design)
     ks = np.geomspace(lo, hi, n_k)
     if cache is not None:
-        check_type("cache", cache, RunCache, "pass a dfa.analysis.limits.kmax.RunCache, or None")
-    ev = _Evidence(dev, vs, d, n_max, "half-delay", cache)
+        check_type("cache", cache, RunCache, "pass a dfa.analysis.limits.runs.RunCache, or None")
+    ev = Evidence(dev, w, vs, n_max, "half-delay", cache)
     v_sim, v_rest, v_df = [], [], []
     for k in ks:
         rows = ev.outcomes(float(k))
         pairs = [rows[2 * i][2:] + rows[2 * i + 1][2:] for i in range(len(vs))]
         v_sim.append(_largest_safe(["unstable" not in p and "undecided" not in p for p in pairs], vs))
         v_rest.append(_largest_safe([p == ("rest", "rest") for p in pairs], vs))
-        g, _, subtick = ev.growth_xi_dot(float(k))
-        v_df.append(math.nan if g is None or subtick else min(top, dev.velocity(g) if math.isfinite(g) else math.inf))
+        v_df.append(_df_speed(ev.growth_xi_dot(float(k)), dev, top))
     kc = np.geomspace(lo, hi, 200)
     vc = []
     for k in kc:
-        mpv = max_passive_velocity(dev, float(k), d)
+        mpv, _status = passive_speed(dev, w, float(k))
         vc.append(0.0 if mpv is None else min(top, mpv))
+    _c, kl, pub, _r, _t = closed_forms(dev, w, top)
     return StiffnessSpeedChart(
-        dev, d, top, _ro(ks), _ro(v_df), _ro(v_sim), _ro(v_rest), _ro(kc), _ro(vc), _ro(vs),
-        k_gil(dev, delay=d), k_colgate(dev, d), k_abbott_okamura(dev, d), k_static(dev),
-        k_design, v_design, ev.runs,
+        dev, w, top, _ro(ks), _ro(v_df), _ro(v_sim), _ro(v_rest), _ro(kc), _ro(vc), _ro(vs),
+        kl.value or 0.0, pub["k_colgate"], pub["k_abbott_okamura"], pub["k_static"], k_design, v_design, ev.runs,
     )  # fmt: skip
+
+
+def _df_speed(g: Growth, dev: Device, top: float) -> float:
+    """The describing function's largest safe speed (m/s) from its growth prediction: NaN where unknown (the sub-tick
+    caveat, a failed search, or a lower bound below ``top``), at most ``top``."""
+    if g.xi_dot is None or g.subtick:
+        return math.nan
+    v = dev.velocity(g.xi_dot) if math.isfinite(g.xi_dot) else math.inf
+    if g.lower_bound and v < top:
+        return math.nan
+    return min(top, v)

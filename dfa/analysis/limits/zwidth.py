@@ -1,10 +1,9 @@
 """The Z-width of a device: the renderable region of the (K, B) plane, four ways (issue 15, "Z-width").
 
-For a device, an impact speed V, a computational delay d and optionally a
-velocity-filter cutoff f_c and an amplifier bandwidth f_bw, the wall
-F = −K q_{h−d} − B v_{h−d} (:mod:`dfa.model.wall`) is judged on a grid of
-virtual stiffness K (N/m, geometric) × virtual damping B (N·s/m, linear), and
-at each B the largest K is found four ways:
+For a device, an impact speed V and a wall (:class:`dfa.model.wall.Wall`: its delay, velocity filter and
+amplifier held fixed), the wall F = −K q_{h−d} − B v_{h−d} is judged on a grid of virtual stiffness K (N/m,
+geometric) × virtual damping B (N·s/m, linear; the wall's damper set to each B), and at each B the largest K
+is found four ways, each a :class:`~dfa.analysis.limits.search.KLimit` with its status and evidence:
 
 ``linear``
     the exact linear bound: top of the stable K interval starting at K = 0 of
@@ -21,10 +20,9 @@ at each B the largest K is found four ways:
     refuse an amplifier lag: then they are "not covered" (null with that
     reason), never guessed.
 ``df``
-    the describing function, by the rule of :mod:`dfa.analysis.limits.kmax` (``k_df``): the
-    first crossing of an ascending scan of the K grid, then bisection, of the
-    predicted growth speed (smallest M·ω over every unstable cycle,
-    :func:`dfa.analysis.cycles.limit_cycles` with the controller) against V.
+    the describing function: ``k_df`` of :func:`dfa.analysis.limits.kmax.design_answer` at this B, the same
+    search over the same grid (from K_criterion/2 to 8 × the largest closed-form bound), so that the Z-width and
+    the design answer give one answer to one question.
 ``sim``
     exact simulation at every grid point: impacts at the speeds V/n, 2V/n, …,
     V from ξ0 = 0 and, separately, from rest with the spring preloaded to the
@@ -60,8 +58,8 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -69,7 +67,7 @@ from ..._parallel import run_in_order
 from ...checks import (
     _fmt,
     check_bool,
-    check_delay,
+    check_choice,
     check_int,
     check_jobs,
     check_nonnegative,
@@ -81,23 +79,24 @@ from ...core import kernel
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.wall import Wall, WallParams
+from ...results.base import Result
 from ...results.codes import BOUNDED, DIVERGES, POINT_OUTCOMES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
-from ...results.jsonable import explain_nulls
-from ...results.status import ZWidthStatus
+from ...results.status import LimitStatus, ZWidthStatus
 from ..colgate_schenkel import colgate_schenkel_damping
-from ..criterion import device_criterion
 from ..linear_wall import LinearStatus, stable_stiffness
 from ..simulation import (
     GROWTH,
     SETTLE,
     STABLE_AMPLITUDE,
-    controller_run_codes,
     default_samples,
     divergence_bound,
     preload_position,
     run_points,
+    wall_run_codes,
 )
-from .kmax import DIVERGENCE_BOUND, K_RTOL, SAFE, UNDECIDED, UNSAFE, _growth_xi_dot, df_verdict
+from .kmax import closed_forms, wall_k_criterion
+from .runs import DIVERGENCE_BOUND, SAFE, UNSAFE, Evidence, RunCache
+from .search import KLimit, df_limit, grid_search, search_grid
 
 __all__ = ["ZWidth", "z_width", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
 
@@ -115,35 +114,30 @@ POINTS_PER_CALL = 16
 #: worker process starts in about 2 s of one core (imports), once per session (joblib reuses its workers).
 PROCESS_COLUMNS = 16
 
-_NOT_COVERED = (
-    "not covered: the condition assumes the zero-order hold drives the device directly; with an amplifier lag no "
-    "sound passivity condition is available here (see the linear bound and the simulation)"
-)
+#: Points of the describing function's search grid at each B (as :func:`~dfa.analysis.limits.kmax.design_answer`).
+DF_GRID = 16
 
 
 @dataclass(frozen=True)
-class ZWidth:
+class ZWidth(Result):
     """The Z-width of a device (module docstring): K_max(B) per method and the simulated grid, physical units.
 
     Attributes
     ----------
     device : Device
+    wall : Wall
+        The wall whose delay, velocity filter and amplifier are held fixed (its damper and K are the grid's).
     velocity : float
         Impact speed V, m/s (rotary: rad/s).
-    delay : int
-        Computational delay d, samples.
-    filter_cutoff, amplifier_bandwidth : float or None
-        Velocity-filter cutoff and amplifier bandwidth, Hz (None: none).
     speeds : tuple of float
         Impact speeds simulated (m/s), each from ξ0 = 0 and from the preload.
     stiffness : numpy.ndarray
         K grid, N/m (rotary: N·m/rad), ascending geometric.
     damping : numpy.ndarray
         B grid, N·s/m (rotary: N·m·s/rad), ascending.
-    boundaries : dict of str to numpy.ndarray
-        K_max(B) per method (:data:`ZWIDTH_METHODS`), N/m; NaN where undefined (``reasons`` says why).
-    reasons : dict of str to tuple
-        Per method, per B: why the value is NaN, or a caveat; None when plain.
+    limits : dict of str to tuple of KLimit
+        K_max(B) per method (:data:`ZWIDTH_METHODS`), one limit per B, each with its status and evidence
+        (:meth:`boundary` gives the values, NaN where undefined).
     outcome : numpy.ndarray of int8, shape (len(damping), len(stiffness))
         Code of each simulated grid point (:data:`POINT_OUTCOMES`).
     max_samples : int
@@ -153,25 +147,21 @@ class ZWidth:
     df_model : str
         Hold model of the describing function.
     counterexamples : tuple of dict
-        Divergent grid points at a K the extended criterion proves passive (must be empty).
+        Divergent grid points at a K the criterion proves passive (must be empty).
     linear_passivity_violations : tuple of dict
         Divergent grid points below the Colgate–Schenkel boundary (linear model; not a proof for the device).
     status : ZWidthStatus
-        ``OK``, ``CAVEATS`` (undecided points or non-monotone columns) or ``COUNTEREXAMPLE``; its value (the JSON
-        ``status``) is ``"ok"``, ``"caveats"`` or ``"counterexample"`` and ``status.message`` says what it means.
+        ``ok``, ``caveats`` (undecided points or non-monotone columns) or ``counterexample``.
     """
 
-    device: Device
+    device: Device = field(metadata={"json": lambda d: d.name})
+    wall: Wall = field(metadata={"json": lambda w: w.to_dict()})
     velocity: float
-    delay: int
-    filter_cutoff: float | None
-    amplifier_bandwidth: float | None
     speeds: tuple[float, ...]
     stiffness: np.ndarray
     damping: np.ndarray
-    boundaries: dict[str, np.ndarray]
-    reasons: dict[str, tuple[str | None, ...]]
-    outcome: np.ndarray
+    limits: dict[str, tuple[KLimit, ...]]
+    outcome: np.ndarray = field(metadata={"json": lambda a: [[POINT_OUTCOMES[c] for c in row] for row in a.tolist()]})
     max_samples: int
     simulations: int
     df_model: str
@@ -179,19 +169,22 @@ class ZWidth:
     linear_passivity_violations: tuple[dict[str, object], ...] = ()
     status: ZWidthStatus = ZWidthStatus.OK
 
+    json_properties: ClassVar[tuple[str, ...]] = ("delay", "boundaries", "outcome_layout")
+    units_of: ClassVar[dict[str, str]] = {"velocity": "velocity", "stiffness": "stiffness", "damping": "damping"}
+
     def __post_init__(self) -> None:
         fix = "ZWidth is built by dfa.analysis.limits.zwidth.z_width; call that instead"
         check_type("device", self.device, Device, fix)
+        check_type("wall", self.wall, Wall, fix)
         check_positive("velocity", self.velocity, fix)
-        check_delay(self.delay)
         nk, nb = self.stiffness.size, self.damping.size
         if self.outcome.shape != (nb, nk):
             raise DFAValueError(f"outcome has shape {self.outcome.shape} but must be ({nb}, {nk}); {fix}")
-        if set(self.boundaries) != set(ZWIDTH_METHODS) or set(self.reasons) != set(ZWIDTH_METHODS):
-            raise DFAValueError(f"boundaries and reasons must have the keys {ZWIDTH_METHODS}; {fix}")
+        if set(self.limits) != set(ZWIDTH_METHODS):
+            raise DFAValueError(f"limits must have the keys {ZWIDTH_METHODS}; {fix}")
         for name in ZWIDTH_METHODS:
-            if self.boundaries[name].shape != (nb,) or len(self.reasons[name]) != nb:
-                raise DFAValueError(f"boundary {name!r} must have one value per B ({nb}); {fix}")
+            if len(self.limits[name]) != nb or not all(isinstance(x, KLimit) for x in self.limits[name]):
+                raise DFAValueError(f"limits[{name!r}] must hold one KLimit per B ({nb}); {fix}")
         st = ZWidthStatus.coerce(self.status)
         object.__setattr__(self, "status", st)
         if (st is ZWidthStatus.COUNTEREXAMPLE) != bool(self.counterexamples):
@@ -199,8 +192,23 @@ class ZWidth:
                 f"status = {st.value!r} is invalid with {len(self.counterexamples)} counterexample(s): the status is "
                 f"'counterexample' exactly when there is one; {fix}"
             )
-        for arr in (self.stiffness, self.damping, self.outcome, *self.boundaries.values()):
+        for arr in (self.stiffness, self.damping, self.outcome):
             arr.flags.writeable = False
+
+    @property
+    def delay(self) -> int:
+        """The wall's computational delay d in samples."""
+        return self.wall.delay
+
+    @property
+    def boundaries(self) -> dict[str, np.ndarray]:
+        """K_max(B) per method, N/m: :meth:`boundary` of every method."""
+        return {m: self.boundary(m) for m in ZWIDTH_METHODS}
+
+    @property
+    def outcome_layout(self) -> str:
+        """How ``outcome`` is laid out."""
+        return "outcome[i][j]: damping[i], stiffness[j]"
 
     def boundary(self, method: str) -> np.ndarray:
         """K_max(B) of one method (:data:`ZWIDTH_METHODS`), N/m; NaN where undefined.
@@ -213,54 +221,23 @@ class ZWidth:
         Returns
         -------
         numpy.ndarray
-            One value per B of the grid.
+            One value per B of the grid (read-only).
         """
         if method not in ZWIDTH_METHODS:
             raise DFAValueError(f"method = {method!r} is invalid: it must be one of {', '.join(ZWIDTH_METHODS)}")
-        return self.boundaries[method]
+        out = np.array([math.nan if x.value is None else x.value for x in self.limits[method]], dtype=float)
+        out.flags.writeable = False
+        return out
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready record: inputs, grids, K_max(B) per method (null with a reason), outcomes, status.
+    def null_reasons(self) -> dict[str, str]:
+        """Why each field may be null in JSON, by key.
 
         Returns
         -------
-        dict
-            Strict-JSON data in the device's units (``units``).
+        dict of str to str
+            The boundaries hold NaN (null) where a method's limit is undefined; its ``limits`` record says why.
         """
-        methods = {}
-        for name in ZWIDTH_METHODS:
-            vals = [None if not math.isfinite(x) else float(x) for x in self.boundaries[name]]
-            rec = {"k_max": vals, "reason": list(self.reasons[name])}
-            methods[name] = explain_nulls(rec, {"k_max": "undefined at some B: see reason"})
-        u = self.device.units
-        out: dict[str, object] = {
-            "device": self.device.name,
-            "velocity": self.velocity,
-            "delay": self.delay,
-            "filter_cutoff": self.filter_cutoff,
-            "amplifier_bandwidth": self.amplifier_bandwidth,
-            "speeds": list(self.speeds),
-            "stiffness": self.stiffness.tolist(),
-            "damping": self.damping.tolist(),
-            "boundaries": methods,
-            "outcome": [[POINT_OUTCOMES[c] for c in row] for row in self.outcome.tolist()],
-            "outcome_layout": "outcome[i][j]: damping[i], stiffness[j]",
-            "max_samples": self.max_samples,
-            "simulations": self.simulations,
-            "df_model": self.df_model,
-            "counterexamples": [dict(c) for c in self.counterexamples],
-            "linear_passivity_violations": [dict(c) for c in self.linear_passivity_violations],
-            "status": self.status.value,
-            "status_message": self.status.message,
-            "units": {"stiffness": u["stiffness"], "damping": u["damping"], "velocity": u["velocity"]},
-        }
-        return explain_nulls(
-            out,
-            {
-                "filter_cutoff": "no velocity filter",
-                "amplifier_bandwidth": "ideal amplifier (no lag)",
-            },
-        )
+        return {"boundaries": "undefined at some B: see that B's record under limits"}
 
     def plot(self, ax: Any = None, design_point: tuple[float, float] | None = None) -> Any:
         """Draw the Z-width (B across, K up on a log axis, one line per method, simulated region shaded).
@@ -283,84 +260,48 @@ class ZWidth:
 
 
 # ----------------------------------------------------------------------------- boundaries per B
-def _ctl(k: float, b: float, d: int, fc: float | None, fbw: float | None) -> Wall:
-    return Wall.of(k, b, d, filter_cutoff=fc, amplifier_bandwidth=fbw)
-
-
-def _linear(dev: Device, b: float, d: int, fc, fbw) -> tuple[float, str | None]:
-    """Top of the stable K interval from K = 0 of the linear loop (exact), with a caveat for other shapes."""
-    r = stable_stiffness(dev.mass, dev.damping, dev.period, _ctl(1.0, b, d, fc, fbw))
+def _linear(dev: Device, wall: Wall) -> KLimit:
+    """Top of the stable K interval from K = 0 of the linear loop (exact); further intervals as ``safe_above``."""
+    r = stable_stiffness(dev.mass, dev.damping, dev.period, wall)
     if r.status in (LinearStatus.NEVER, LinearStatus.NOT_AT_LOW_K):
-        iv = ", ".join(f"({lo:.4g}, {hi:.4g})" for lo, hi in r.intervals)
-        return math.nan, f"linear loop {r.status.value} stable" + (f"; stable K intervals: {iv}" if iv else "")
-    if r.status is LinearStatus.SEVERAL:
-        more = ", ".join(f"({lo:.4g}, {hi:.4g})" for lo, hi in r.intervals[1:])
-        return r.k_crit, f"further stable intervals above K_crit: {more}"
-    return r.k_crit, None
+        return KLimit(None, LimitStatus.NO_STABLE_K, safe_above=tuple(float(lo) for lo, _ in r.intervals))
+    more = tuple(float(lo) for lo, _ in r.intervals[1:])
+    return KLimit(r.k_crit, non_monotone=bool(more), safe_above=more)
 
 
-def _crossing(judge, ks: np.ndarray, what: str, unit: str, bisect: bool) -> tuple[float, str | None, int]:
-    """Largest K before the first non-safe judgement of an ascending scan of ``ks`` (then bisection).
-
-    Returns (value or NaN, reason or None, index of the first non-safe grid point or len(ks)).
-    """
-    verdicts = []
-    for k in ks:
-        verdicts.append(judge(float(k)))
-        if verdicts[-1] != SAFE:
-            break
-    i = len(verdicts) - 1
-    if verdicts[-1] == SAFE:
-        return math.nan, f"{what} at every K of the grid, up to {ks[-1]:.5g} {unit}: the limit is above it", len(ks)
-    if i == 0:
-        return math.nan, f"{what} fails already at the smallest K of the grid, {ks[0]:.5g} {unit}", 0
-    lo, hi, last = float(ks[i - 1]), float(ks[i]), verdicts[-1]
-    while bisect and hi - lo > K_RTOL * hi:
-        mid = math.sqrt(lo * hi)
-        v = judge(mid)
-        lo, hi = (mid, hi) if v == SAFE else (lo, mid)
-        last = last if v == SAFE else v
-    reason = f"limited by an undecided verdict at {hi:.5g} {unit}" if last == UNDECIDED else None
-    return lo, reason, i
-
-
-def _passivity_judges(dev: Device, b: float, v: float, d: int, fc, fbw):
-    """Judges SAFE/UNSAFE of Colgate–Schenkel (certified bound) and of the extended criterion at damper B."""
-
-    def cs(k: float) -> str:
-        r = colgate_schenkel_damping(_ctl(k, b, d, fc, fbw), dev.period)
-        return SAFE if dev.damping > r.damping_bound else UNSAFE
-
-    def crit(k: float) -> str:
-        try:
-            r = device_criterion(dev, _ctl(k, b, d, fc, fbw), v)
-        except DFAValueError:  # a group not representable at this K: no proof there
-            return UNSAFE
-        return SAFE if r.passive else UNSAFE
-
-    return cs, crit
-
-
-def _df_judge(dev: Device, b: float, xi_dot: float, d: int, fc, fbw, model: str, subtick: list | None = None):
-    """Judge of the describing function at damper B; the K it calls undecided under the sub-tick caveat of
-    :mod:`dfa.analysis.cycles.caveats` (growth speed not relied on, spring and controller alike) are appended to ``subtick``."""
+def _colgate_schenkel(dev: Device, wall: Wall, ks: np.ndarray) -> KLimit:
+    """Largest K of the grid (then bisection) with b above the certified Colgate–Schenkel bound at this wall."""
+    if wall.params(dev.period).colgate_schenkel_reason() is not None:
+        return KLimit(None, LimitStatus.NOT_COVERED)
 
     def judge(k: float) -> str:
-        try:
-            p, ctl = dev.params(k), _ctl(k, b, d, fc, fbw).params(dev.period)
-        except DFAValueError:
-            return UNDECIDED
-        growth = _growth_xi_dot(p.mu, p.beta, p.sigma, d, model, None if ctl.is_spring else ctl)
-        verdict = df_verdict(growth, xi_dot)
-        if verdict == UNDECIDED and growth.subtick and subtick is not None:
-            subtick.append(k)
-        return verdict
+        return (
+            SAFE if dev.damping > colgate_schenkel_damping(wall.with_stiffness(k), dev.period).damping_bound else UNSAFE
+        )
 
-    return judge
+    return grid_search(judge, ks)
+
+
+def _criterion(dev: Device, wall: Wall, v: float) -> KLimit:
+    """The largest K the criterion proves passive at this wall (:func:`~dfa.analysis.limits.kmax.wall_k_criterion`)."""
+    if wall.params(dev.period).not_covered() is not None:
+        return KLimit(None, LimitStatus.NOT_COVERED)
+    k = wall_k_criterion(dev, wall, v)
+    return KLimit(k) if k > 0.0 else KLimit(None, LimitStatus.NONE_PROVEN)
+
+
+def _describing(dev: Device, wall: Wall, v: float, model: str, cache: RunCache) -> KLimit:
+    """``k_df`` of :func:`~dfa.analysis.limits.kmax.design_answer` at this wall: the same grid and search."""
+    _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall, v)
+    if not (top > 0 and math.isfinite(top)):
+        return KLimit(None, LimitStatus.NO_RANGE)
+    ev = Evidence(dev, wall, np.array([v]), ZWIDTH_MAX_SAMPLES, model, cache)
+    xd = dev.xi_dot(v)
+    return df_limit(ev, search_grid(k_ref, top, DF_GRID), xd)
 
 
 # ----------------------------------------------------------------------------- simulation of the grid
-def _runs(dev: Device, k: float, b: float, ctl: WallParams, xi_dots, cap: int) -> list[tuple]:
+def _runs(dev: Device, k: float, ctl: WallParams, xi_dots, cap: int) -> list[tuple]:
     """The runs (μ, β, σ, ξ0, ξ'0, samples, bound) of one grid point: each speed from ξ0 = 0 and from the preload."""
     p = dev.params(k)
     out = []
@@ -368,7 +309,7 @@ def _runs(dev: Device, k: float, b: float, ctl: WallParams, xi_dots, cap: int) -
         for x0, v0 in ((0.0, xd), (preload_position(p.mu, xd), 0.0)):
             # run length from the loop's time scales with the controller's net damping (an estimate: a run
             # too short to tell is "undecided", never a verdict)
-            n = min(default_samples(p.mu, p.beta, p.sigma, v0, x0, ctl.delay, controller=ctl), cap)
+            n = min(default_samples(p.mu, p.beta, p.sigma, v0, x0, wall=ctl), cap)
             out.append((p.mu, p.beta, p.sigma, x0, v0, n, divergence_bound(x0, v0, p.mu, DIVERGENCE_BOUND)))
     return out
 
@@ -398,11 +339,11 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
     runs = [r for rs, _ in tasks for r in rs]
     mu, beta, sigma, x0, v0, n, bound = (np.array(c) for c in zip(*runs, strict=True))
     ns = n.astype(np.int64)
-    d, spring = tasks[0][1].delay, tasks[0][1].is_spring
-    if spring:
-        codes = run_points(mu, beta, sigma, x0, v0, ns, d, True, bound, STABLE_AMPLITUDE, GROWTH, SETTLE)[0]
+    w = tasks[0][1]
+    if w.is_spring:
+        codes = run_points(mu, beta, sigma, x0, v0, ns, w, True, bound, STABLE_AMPLITUDE, GROWTH, SETTLE)[0]
     else:
-        codes = controller_run_codes(mu, beta, sigma, x0, v0, ns, d, bound, [c for rs, c in tasks for _ in rs])
+        codes = wall_run_codes(mu, beta, sigma, x0, v0, ns, w.delay, bound, [c for rs, c in tasks for _ in rs])
     return _point_codes(codes.reshape(len(tasks), -1))
 
 
@@ -442,26 +383,26 @@ def _simulate_grid(tasks: list[tuple], jobs: int, progress: bool, label: str) ->
     return codes
 
 
-def _grid_boundary(row: np.ndarray, ks: np.ndarray, bad: set[int], what: str, unit: str) -> tuple[float, str | None]:
-    """Largest grid K below the first point of ``row`` whose code is in ``bad`` (NaN with a reason if none)."""
+def _grid_boundary(row: np.ndarray, ks: np.ndarray, bad: set[int]) -> KLimit:
+    """Largest grid K below the first point of ``row`` whose code is in ``bad`` (a grid value: ``first_failure`` is
+    the next grid K, the limit lies between them)."""
     hit = [j for j, c in enumerate(row) if c in bad]
     if not hit:
-        return math.nan, f"{what} at every K of the grid, up to {ks[-1]:.5g} {unit}: the limit is above it"
+        return KLimit(None, LimitStatus.ABOVE_RANGE, range_end=float(ks[-1]), evaluations=len(ks))
     j = hit[0]
     if j == 0:
-        return math.nan, f"{what} fails already at the smallest K of the grid, {ks[0]:.5g} {unit}"
-    notes = []
-    if row[j] == UNDECIDED_POINT:
-        notes.append(f"limited by undecided runs at {ks[j]:.5g} {unit} (too short to tell, counted as not safe)")
-    above = sum(1 for c in row[j + 1 :] if c not in bad)
-    if above:
-        notes.append(f"non-monotone: {above} grid K above the first failure found safe again")
-    notes.append(f"grid value: the limit lies in [{ks[j - 1]:.5g}, {ks[j]:.5g}) {unit}")
-    return float(ks[j - 1]), "; ".join(notes)
+        return KLimit(None, LimitStatus.BELOW_RANGE, range_end=float(ks[0]), first_failure=float(ks[0]))
+    above = tuple(float(k) for k, c in zip(ks[j + 1 :], row[j + 1 :], strict=True) if c not in bad)
+    undecided = float(ks[j]) if row[j] == UNDECIDED_POINT else None
+    return KLimit(
+        float(ks[j - 1]), limited_by=undecided, limited_why=None if undecided is None else "short_runs",
+        non_monotone=bool(above), safe_above=above,
+        first_failure=float(ks[j]), evaluations=len(ks),
+    )  # fmt: skip
 
 
 # ----------------------------------------------------------------------------- the analysis
-def _grids(dev: Device, v: float, d: int, fc, fbw, grid: int, k_range, b_range) -> tuple[np.ndarray, np.ndarray]:
+def _grids(dev: Device, wall: Wall, grid: int, k_range, b_range) -> tuple[np.ndarray, np.ndarray]:
     """Default grids: B from 0 to m/T; K geometric up to 8 × the largest linear bound or static limit 2c/Δ."""
     if b_range is None:
         b_range = (0.0, dev.mass / dev.period)
@@ -471,9 +412,9 @@ def _grids(dev: Device, v: float, d: int, fc, fbw, grid: int, k_range, b_range) 
         raise DFAValueError(f"b_range = ({_fmt(b0)}, {_fmt(b1)}) is invalid: it must satisfy low < high")
     bs = np.linspace(b0, b1, grid)
     if k_range is None:
-        lin = [_linear(dev, float(b), d, fc, fbw)[0] for b in (b0, b1)]
-        top = 8.0 * max([2.0 * dev.coulomb / dev.resolution] + [k for k in lin if math.isfinite(k)])
-        low = 0.5 * lin[0] if math.isfinite(lin[0]) and lin[0] > 0 else top * 1e-4
+        lin = [_linear(dev, wall.with_damping(float(b))).value for b in (b0, b1)]
+        top = 8.0 * max([2.0 * dev.coulomb / dev.resolution] + [k for k in lin if k is not None])
+        low = 0.5 * lin[0] if lin[0] is not None else top * 1e-4
         k_range = (min(low, top * 1e-2), top)
     k0 = check_positive("k_range[0]", k_range[0], "give the smallest stiffness K > 0")
     k1 = check_positive("k_range[1]", k_range[1], "give the largest stiffness K")
@@ -482,13 +423,14 @@ def _grids(dev: Device, v: float, d: int, fc, fbw, grid: int, k_range, b_range) 
     return np.geomspace(k0, k1, grid), bs
 
 
-def _plan(dev: Device, ks, bs, d, fc, fbw, xi_dots, cap: int) -> tuple[list[tuple], float]:
+def _plan(dev: Device, wall: Wall, ks, bs, xi_dots, cap: int) -> tuple[list[tuple], float]:
     """The simulation tasks of the grid (B-major) and their planned samples."""
     tasks, work = [], 0.0
     for b in bs:
+        wb = wall.with_damping(float(b))
         for k in ks:
-            ctl = _ctl(float(k), float(b), d, fc, fbw).params(dev.period)
-            runs = _runs(dev, float(k), float(b), ctl, xi_dots, cap)
+            ctl = wb.with_stiffness(float(k)).params(dev.period)
+            runs = _runs(dev, float(k), ctl, xi_dots, cap)
             work += sum(r[5] for r in runs)
             tasks.append((runs, ctl))
     return tasks, work
@@ -498,9 +440,7 @@ def z_width(
     device: Device,
     velocity: float,
     *,
-    delay: int = 0,
-    filter_cutoff: float | None = None,
-    amplifier_bandwidth: float | None = None,
+    wall: Wall | None = None,
     grid: int = 40,
     k_range: tuple[float, float] | None = None,
     b_range: tuple[float, float] | None = None,
@@ -518,12 +458,9 @@ def z_width(
         The physical device.
     velocity : float
         Impact speed V, m/s (rotary: rad/s), > 0 (a negative is refused, not flipped).
-    delay : int, optional
-        Computational delay d, samples (default 0).
-    filter_cutoff : float or None, optional
-        Velocity-filter cutoff f_c, Hz, below the Nyquist frequency (default None: no filter).
-    amplifier_bandwidth : float or None, optional
-        Amplifier bandwidth f_bw, Hz (default None: ideal amplifier).
+    wall : Wall, optional
+        The wall whose computational delay (samples), velocity filter (Hz) and amplifier (Hz) are held fixed;
+        its stiffness and damper are the grid's (default: the spring, no delay).
     grid : int, optional
         Points per axis (default 40, at most 200).
     k_range : (float, float), optional
@@ -547,117 +484,87 @@ def z_width(
     Returns
     -------
     ZWidth
-        K_max(B) per method with reasons, the grid outcomes and the status.
+        K_max(B) per method with their evidence, the grid outcomes and the status.
 
     Raises
     ------
     DFAValueError, DFATypeError
-        Bad inputs (negative B, cutoff above Nyquist, bad delay, ...), or planned work above
-        :data:`MAX_WORK_SAMPLES` simulated samples (the message says how to lower it).
+        Bad inputs (cutoff above Nyquist, ...), or planned work above :data:`MAX_WORK_SAMPLES` simulated
+        samples (the message says how to lower it).
 
     See Also
     --------
     dfa.analysis.linear_wall.stable_stiffness : The exact linear bound at one B.
-    dfa.analysis.criterion.device_criterion : The extended eq. 6 criterion.
-    dfa.analysis.limits.kmax.design_answer : The four K_max of the spring (B = 0).
+    dfa.analysis.criterion.device_criterion : The criterion with the wall.
+    dfa.analysis.limits.kmax.design_answer : The four K_max at one B.
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    v = check_speed("velocity", velocity, zero=False)
-    d = check_delay(delay)
+    v = check_speed("velocity", velocity, dev.units["velocity"], zero=False)
+    base = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
     g = check_int("grid", grid, minimum=2, fix="give at least 2 points per axis")
     if g > MAX_GRID:
         raise DFAValueError(f"grid = {g} is invalid: it must be at most {MAX_GRID} points per axis; lower --grid")
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")
-    if df_model not in ("half-delay", "zoh", "pade"):
-        raise DFAValueError(f"df_model = {df_model!r} is invalid: it must be half-delay, zoh or pade")
+    model = check_choice("df_model", df_model, ("half-delay", "zoh", "pade"))
     jobs = check_jobs("n_jobs", n_jobs)
     progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
-    _ctl(1.0, 0.0, d, filter_cutoff, amplifier_bandwidth).params(dev.period)  # bad controller values: refuse first
-    ks, bs = _grids(dev, v, d, filter_cutoff, amplifier_bandwidth, g, k_range, b_range)
+    base.params(dev.period)  # bad wall values (a cutoff above Nyquist): refuse first
+    ks, bs = _grids(dev, base, g, k_range, b_range)
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
     xi_dots = [dev.xi_dot(float(s)) for s in vs]
-    tasks, work = _plan(dev, ks, bs, d, filter_cutoff, amplifier_bandwidth, xi_dots, cap)
+    tasks, work = _plan(dev, base, ks, bs, xi_dots, cap)
     if work > MAX_WORK_SAMPLES:
         raise DFAValueError(
             f"grid = {g} is invalid with speeds = {n_speeds} and max_samples = {cap}: the Z-width would simulate "
             f"{work:.3g} samples (limit {MAX_WORK_SAMPLES:.3g}); lower the grid, the speeds or max_samples"
         )
     codes = _simulate_grid(tasks, workers, progress, f"Z-width {dev.name}").reshape(g, g)
-    return _assemble(
-        dev, v, d, filter_cutoff, amplifier_bandwidth, vs, ks, bs, codes, cap, len(tasks), df_model, workers, progress
-    )
+    return _assemble(dev, base, v, vs, ks, bs, codes, cap, len(tasks), model, workers, progress)
 
 
-def _column(dev, v, d, fc, fbw, ks, b: float, row: np.ndarray, model: str) -> list[tuple[float, str | None]]:
-    """(K_max, reason) of every method (:data:`ZWIDTH_METHODS` order) at one B."""
-    unit = dev.units["stiffness"]
-    out = [_linear(dev, b, d, fc, fbw)]
-    if fbw is not None:
-        out += [(math.nan, _NOT_COVERED), (math.nan, _NOT_COVERED)]
-    else:
-        cs, crit = _passivity_judges(dev, b, v, d, fc, fbw)
-        out.append(_crossing(cs, ks, "b >= the Colgate–Schenkel bound", unit, True)[:2])
-        out.append(
-            _crossing(
-                crit,
-                ks,
-                "the extended criterion's passivity guarantee (its absence is no proof of instability)",
-                unit,
-                True,
-            )[:2]
-        )
-    subtick: list[float] = []
-    df = _df_judge(dev, b, dev.xi_dot(v), d, fc, fbw, model, subtick)
-    k_df, why = _crossing(df, ks, "predicted growth speed >= V", unit, True)[:2]
-    if why is not None and subtick:  # say when an unknown verdict came from the sub-tick caveat
-        from ..cycles import SUBTICK_LIMIT
-
-        why += (
-            f"; growth speed unknown from K = {min(subtick):.5g} {unit} (the describing function's sub-tick caveat: "
-            f"smallest unstable cycle below {SUBTICK_LIMIT:g} ticks, where simulation diverges from starts it says "
-            "settle; see dfa.analysis.cycles.caveats)"
-        )
-    out.append((k_df, why))
-    out.append(_grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}, "no divergence", unit))
-    out.append(_grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}, "rest after every impact", unit))
-    return out
+def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, row: np.ndarray, model: str) -> list[KLimit]:
+    """The limit of every method (:data:`ZWIDTH_METHODS` order) at one B (``wall`` has that damper)."""
+    return [
+        _linear(dev, wall),
+        _colgate_schenkel(dev, wall, ks),
+        _criterion(dev, wall, v),
+        _describing(dev, wall, v, model, RunCache()),
+        _grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}),
+        _grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}),
+    ]
 
 
-def _assemble(dev, v, d, fc, fbw, vs, ks, bs, codes, cap, n_points, model, workers: int, progress=False) -> ZWidth:
-    """Boundaries per method from the grid and the closed forms (columns on ``workers`` threads, or processes
-    from :data:`PROCESS_COLUMNS` columns on); status."""
+def _assemble(dev, wall, v, vs, ks, bs, codes, cap, n_points, model, workers: int, progress=False) -> ZWidth:
+    """Limits per method from the grid and the closed forms (columns on ``workers`` threads, or processes from
+    :data:`PROCESS_COLUMNS` columns on); status."""
     from tqdm.auto import tqdm
 
-    args = [(dev, v, d, fc, fbw, ks, float(b), codes[i], model) for i, b in enumerate(bs)]
+    args = [(dev, wall.with_damping(float(b)), v, ks, codes[i], model) for i, b in enumerate(bs)]
     bar = tqdm(total=len(args), unit="B", desc=f"Z-width {dev.name} boundaries", disable=not progress, leave=False)
     try:  # in order (dfa._parallel): the result does not depend on workers; Ctrl-C cancels the columns not started
         how = "processes" if workers > 1 and len(args) >= PROCESS_COLUMNS else "threads"
         cols = run_in_order(_column, args, [1] * len(args), workers, how, bar)
     finally:
         bar.close()
-    arrays = {m: np.array([c[n][0] for c in cols], dtype=float) for n, m in enumerate(ZWIDTH_METHODS)}
-    reasons = {m: tuple(c[n][1] for c in cols) for n, m in enumerate(ZWIDTH_METHODS)}
-    unit = dev.units["stiffness"]
-    ce, lpv = _violations(codes, ks, bs, arrays, unit)
-    caveat = bool((codes == UNDECIDED_POINT).any()) or any(
-        r is not None and "non-monotone" in r for m in ("sim", "rest") for r in reasons[m]
-    )
+    limits = {m: tuple(c[n] for c in cols) for n, m in enumerate(ZWIDTH_METHODS)}
+    ce, lpv = _violations(codes, ks, bs, limits, dev.units["stiffness"])
+    caveat = bool((codes == UNDECIDED_POINT).any()) or any(x.non_monotone for m in ("sim", "rest") for x in limits[m])
     status = ZWidthStatus.COUNTEREXAMPLE if ce else (ZWidthStatus.CAVEATS if caveat else ZWidthStatus.OK)
     return ZWidth(
-        dev, v, d, fc, fbw, tuple(float(s) for s in vs), ks, bs, arrays, reasons, codes, cap,
-        n_points * 2 * len(vs), model, ce, lpv, status,
+        dev, wall, v, tuple(float(s) for s in vs), ks, bs, limits, codes, cap, n_points * 2 * len(vs), model, ce,
+        lpv, status,
     )  # fmt: skip
 
 
-def _violations(codes, ks, bs, arrays, unit) -> tuple[tuple[dict, ...], tuple[dict, ...]]:
+def _violations(codes, ks, bs, limits, unit) -> tuple[tuple[dict, ...], tuple[dict, ...]]:
     """Divergent grid points at or below the criterion's and Colgate–Schenkel's boundaries."""
     out: dict[str, list[dict]] = {"criterion": [], "passivity": []}
     for name, rows in out.items():
         for i, b in enumerate(bs):
-            top = arrays[name][i]
+            top = limits[name][i].value
             for j, k in enumerate(ks):
-                if math.isfinite(top) and k <= top and codes[i, j] == DIVERGES:
+                if top is not None and k <= top and codes[i, j] == DIVERGES:
                     rows.append({"stiffness": float(k), "damping": float(b), "outcome": "diverges", "unit": unit})
     return tuple(out["criterion"]), tuple(out["passivity"])

@@ -1,0 +1,358 @@
+"""The runs and predictions behind every searched stiffness limit: what each K gives, simulated or predicted once.
+
+A K_max search (:mod:`dfa.analysis.limits.kmax`), the stiffness–speed chart and the Z-width ask, at many
+stiffnesses K, two questions of the same wall (:class:`dfa.model.wall.Wall`, its elements held fixed in
+physical units while K varies):
+
+- how do impacts end in exact simulation (:func:`simulate_points`: runs on threads through the compiled
+  batch kernels, each run :func:`dfa.simulate`'s bit for bit), from ξ0 = 0 and from rest with the spring
+  preloaded to the same energy (section 5, :func:`dfa.analysis.simulation.preload_position`);
+- what growth does the describing function predict (:func:`growth_at`, :func:`df_verdict`).
+
+:class:`RunCache` keeps every run and prediction by its dimensionless inputs; :class:`Evidence` asks it per K
+and counts what each search rests on.
+
+Examples
+--------
+>>> c = RunCache()
+>>> c.simulate([(100.0, 0.3, 1.5, 0.0, 2.0)] * 2, WallParams(), 10**6)[0], c.simulated
+(['rest', 'rest'], 1)
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Sequence
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from ..._parallel import deal, gather
+from ...errors import DFAValueError
+from ...model.device import Device, Params
+from ...model.wall import Wall, WallParams
+from ..simulation import (
+    GROWTH,
+    OUTCOMES,
+    SETTLE,
+    STABLE_AMPLITUDE,
+    default_samples,
+    divergence_bound,
+    preload_position,
+    run_points,
+    wall_run_codes,
+)
+
+__all__ = [
+    "SAFE",
+    "UNSAFE",
+    "UNDECIDED",
+    "FAILING",
+    "DIVERGENCE_BOUND",
+    "STARTS",
+    "Growth",
+    "growth_at",
+    "df_verdict",
+    "simulate_points",
+    "RunCache",
+    "Evidence",
+]
+
+SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
+
+#: Outcomes that fail each simulated limit; "undecided" neither passes nor fails (it is counted as not safe).
+FAILING = {"unstable": frozenset({"unstable"}), "rest": frozenset({"oscillating", "unstable", "chatter"})}
+
+#: |ξ| (ticks) past which a design run counts as diverged: at least this, and 100 × the energy amplitude.
+DIVERGENCE_BOUND = 1.0e6
+
+#: The two starts of every simulated impact: from ξ0 = 0 at the speed, and from rest with the spring preloaded
+#: to the same energy (the damper's velocity estimate and filter at 0, the delayed commands and the amplifier's
+#: force at the spring's force at ξ0: the steady state of a device held still there).
+STARTS = ("impact", "preload")
+
+
+def simulate_points(points: Sequence[tuple[float, ...]], walls: Sequence[WallParams], max_samples: int):
+    """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), each with its wall's groups.
+
+    The run length of each point is :func:`dfa.analysis.simulation.default_samples` (with its wall), at most
+    ``max_samples``; a run diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of
+    its start. Runs go on threads (one per core) through the compiled batch kernels, which release the GIL;
+    each outcome depends on its own point only. A wall the spring's kernel runs (``is_spring``) takes it.
+
+    Returns
+    -------
+    (list of str, list of int)
+        Outcome names (:data:`dfa.analysis.simulation.OUTCOMES`) and run lengths.
+    """
+    if len(walls) != len(points):
+        raise DFAValueError(f"walls has {len(walls)} entries for {len(points)} points: give one per point")
+    jobs = []
+    for (mu, beta, sigma, xi0, xi_dot0), w in zip(points, walls, strict=True):
+        n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, wall=w), max_samples)
+        bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
+        jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound, w))
+    workers = min(len(jobs), os.cpu_count() or 1)
+    outcomes = [""] * len(jobs)
+    for spring in (True, False):  # the spring kernel, as simulate() routes a wall it runs, then the wall kernel
+        idx = [i for i, j in enumerate(jobs) if j[7].is_spring == spring]
+        by_delay: dict[int, list[int]] = {}
+        for i in idx:
+            by_delay.setdefault(jobs[i][7].delay, []).append(i)
+        for d, ids in by_delay.items():
+            for i, o in zip(ids, _batched_outcomes([jobs[i] for i in ids], d, workers, spring), strict=True):
+                outcomes[i] = o
+    return outcomes, [j[4] for j in jobs]
+
+
+def _batched_outcomes(jobs: list[tuple], delay: int, workers: int, spring: bool) -> list[str]:
+    """Outcomes of runs of one delay through the batch kernels, chunks on threads: the spring's
+    (:func:`dfa.analysis.simulation.run_points`), or each job's own wall (:func:`~dfa.analysis.simulation.wall_run_codes`).
+
+    Each run is :func:`dfa.simulate`'s, bit for bit (its own length, bound and tail; the default outcome rules).
+    """
+    if not jobs:
+        return []
+    mu, beta, sigma, v0, n, x0, bound = (np.array(c) for c in list(zip(*jobs, strict=True))[:7])
+    walls = [j[7] for j in jobs]
+    chunks = deal(len(jobs), 4 * workers)
+
+    def chunk(j: np.ndarray) -> np.ndarray:
+        pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], n[j])
+        if not spring:
+            return wall_run_codes(*pts, delay, bound[j], [walls[i] for i in j])
+        return run_points(*pts, walls[j[0]], True, bound[j], STABLE_AMPLITUDE, GROWTH, SETTLE)[0]  # simulate()'s rules
+
+    if workers > 1:  # the compiled kernels release the GIL: threads overlap the chunks, results are per run
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            codes = gather(chunks, list(pool.map(chunk, chunks)))
+    else:
+        codes = gather(chunks, [chunk(j) for j in chunks])
+    return [OUTCOMES[c] for c in codes]
+
+
+class Growth(NamedTuple):
+    """The describing function's growth prediction at one operating point (:func:`growth_at`).
+
+    ``xi_dot``: smallest speed amplitude M·ω (ticks/sample) over every unstable cycle; inf: no growth predicted
+    (no unstable cycle, stable linear loop, complete search); 0: growth from any size (no unstable cycle, unstable
+    linear loop, complete search); a positive lower bound when the search found none below its reach (the
+    unstable cycle of an unstable linear loop lies beyond it); None: unknown (a search that failed).
+    ``unstable``: number of unstable cycles. ``lower_bound``: ``xi_dot`` only bounds the growth speed from below.
+    ``subtick``: the smallest unstable cycle lies below
+    :data:`dfa.analysis.cycles.SUBTICK_LIMIT` ticks (the sub-tick caveat of :mod:`dfa.analysis.cycles.caveats`),
+    so that "no growth below ``xi_dot``" is not a prediction to rely on.
+    """
+
+    xi_dot: float | None
+    unstable: int
+    subtick: bool
+    lower_bound: bool = False
+
+
+def growth_at(params: Params, wall: WallParams, model: str) -> Growth:
+    """The describing function's growth prediction (:class:`Growth`) at (μ, β, σ) with the wall's groups.
+
+    Without an unstable cycle: a complete search with an unstable linear loop predicts growth from any size
+    (0), with a stable one none (inf). A search that stopped at its size budget (no cycle missed below
+    ``max_amplitude``) bounds the growth speed from below by the smallest speed amplitude a cycle beyond that
+    reach can have, M_reach·ω_min over the searched frequencies; the growth speed is otherwise unknown (None).
+    """
+    from ...results.status import SearchStatus
+    from ..cycles import limit_cycles
+    from ..cycles.characteristic import W_GRID
+
+    res = limit_cycles(params, model=model, wall=wall)
+    unstable = res.unstable_cycles
+    if unstable:
+        return Growth(min(c.amplitude * c.frequency for c in unstable), len(unstable), res.caveat is not None)
+    if res.complete:
+        return Growth(math.inf if res.linear_stable else 0.0, 0, False)
+    if res.status is SearchStatus.BUDGET:  # no cycle missed below max_amplitude: any growth starts beyond it
+        return Growth(res.max_amplitude * float(W_GRID[0]), 0, False, lower_bound=True)
+    return Growth(None, 0, False)
+
+
+def df_verdict(growth: Growth, xi_dot: float) -> str:
+    """The describing function's verdict on impacts up to ``xi_dot`` (ticks/sample): SAFE, UNSAFE or UNDECIDED.
+
+    UNSAFE when growth is predicted from below ``xi_dot``; SAFE when it is predicted only from above, unless the
+    sub-tick caveat holds (then UNDECIDED: simulation has diverged from starts the first harmonic says settle,
+    spring and wall alike, :mod:`dfa.analysis.cycles.caveats`); UNDECIDED when the prediction is unknown, or
+    only bounded from below by less than ``xi_dot`` (a search stopped at its size budget).
+
+    Examples
+    --------
+    >>> df_verdict(Growth(0.5, 1, False), 0.4), df_verdict(Growth(0.5, 1, True), 0.4), df_verdict(Growth(0.5, 1, True), 0.6)
+    ('safe', 'undecided', 'unsafe')
+    """
+    if growth.xi_dot is None:
+        return UNDECIDED
+    if growth.xi_dot < xi_dot:
+        return UNDECIDED if growth.lower_bound else UNSAFE  # a bound below V says nothing about V
+    return UNDECIDED if growth.subtick else SAFE
+
+
+class RunCache:
+    """Outcomes of design runs by their inputs, and growth predictions by (μ, β, σ, wall, model).
+
+    One cache shared by the searches of a design analysis (:func:`dfa.analysis.limits.kmax.design_answer`, the
+    confirmation, :func:`dfa.analysis.limits.speed_chart.stiffness_speed_chart`) simulates each run
+    (μ, β, σ, ξ0, ξ'0, wall's groups, run cap) at most once. Results do not depend on it: each search still
+    counts every run it rests on.
+    """
+
+    def __init__(self) -> None:
+        self.runs: dict[tuple, tuple[str, int]] = {}
+        self.growth: dict[tuple, Growth] = {}
+        self.simulated = 0
+
+    def simulate(
+        self,
+        points: Sequence[tuple[float, float, float, float, float]],
+        walls: WallParams | Sequence[WallParams],
+        max_samples: int,
+    ):
+        """Outcomes and run lengths of ``points`` (as :func:`simulate_points`), simulating only the new ones.
+
+        Parameters
+        ----------
+        points : sequence of (μ, β, σ, ξ0, ξ'0)
+            Dimensionless runs (ξ0 in ticks, ξ'0 in ticks per sample).
+        walls : WallParams or sequence of WallParams
+            The wall's groups of every point, or one per point (the points of a sweep in K).
+        max_samples : int
+            Longest run in samples.
+
+        Returns
+        -------
+        (list of str, list of int)
+            Outcome names and run lengths, one per point.
+        """
+        ws = [walls] * len(points) if isinstance(walls, WallParams) else list(walls)
+        keys = [(tuple(float(x) for x in pt), w, max_samples) for pt, w in zip(points, ws, strict=True)]
+        todo = list(dict.fromkeys(k for k in keys if k not in self.runs))
+        if todo:
+            outs, lengths = simulate_points([k[0] for k in todo], [k[1] for k in todo], max_samples)
+            self.simulated += len(todo)
+            self.runs.update({k: (o, n) for k, o, n in zip(todo, outs, lengths, strict=True)})
+        return [self.runs[k][0] for k in keys], [self.runs[k][1] for k in keys]
+
+    def growth_at(self, params: Params, wall: WallParams, model: str) -> Growth:
+        """:func:`growth_at`, computed once per (μ, β, σ, wall's groups, model)."""
+        key = (params.mu, params.beta, params.sigma, wall, model)
+        if key not in self.growth:
+            self.growth[key] = growth_at(params, wall, model)
+        return self.growth[key]
+
+
+class Evidence:
+    """Simulations and predictions of one design search, per stiffness (dimensionless inside), through a cache.
+
+    The wall's elements are held fixed in physical units (B, f_c, f_bw, d): each stiffness K runs with its own
+    groups ``wall.with_stiffness(K).params(T)`` (β_B = B/(KT) falls as K grows), in the simulations and in the
+    growth prediction. The impacts of each K are at the speeds ``speeds`` (m/s; rad/s), from both
+    :data:`STARTS`.
+    """
+
+    def __init__(
+        self,
+        dev: Device,
+        wall: Wall,
+        speeds: np.ndarray,
+        max_samples: int,
+        model: str,
+        cache: RunCache | None = None,
+    ):
+        self.dev, self.wall, self.max_samples, self.model = dev, wall, max_samples, model
+        self.cache = RunCache() if cache is None else cache
+        self.xi_dots = [dev.xi_dot(float(v)) for v in speeds]
+        self.sims: dict[float, list[tuple[float, str, str]]] = {}
+        self.growth: dict[float, Growth] = {}
+        self.runs = 0
+        self.longest = 0
+
+    @property
+    def speeds(self) -> tuple[float, ...]:
+        """The impact speeds simulated, m/s (rotary: rad/s)."""
+        return tuple(self.dev.velocity(x) for x in self.xi_dots)
+
+    def params(self, k: float) -> tuple[Params, WallParams]:
+        """The device's groups (μ, β, σ) and the wall's at stiffness ``k``.
+
+        Raises DFAValueError when a group is not representable at ``k``.
+        """
+        return self.dev.params(k), self.wall.with_stiffness(k).params(self.dev.period)
+
+    def outcomes(self, k: float) -> list[tuple[float, str, str]]:
+        """(ξ'0, start, outcome) of every impact simulated at stiffness ``k``."""
+        self.prefetch([k])
+        return self.sims[k]
+
+    def prefetch(self, ks: Sequence[float]) -> None:
+        """Simulate the impacts of every stiffness of ``ks`` not yet seen, in one threaded batch (the cache's)."""
+        pts: list[tuple[float, float, float, float, float]] = []
+        walls: list[WallParams] = []
+        tags: list[tuple[float, float, str]] = []
+        for k in dict.fromkeys(float(x) for x in ks):
+            if k in self.sims:
+                continue
+            try:
+                p, w = self.params(k)
+            except DFAValueError:  # μ, β or σ not representable at this K: nothing can be decided there
+                self.sims[k] = [(xd, start, "undecided") for xd in self.xi_dots for start in STARTS]
+                continue
+            for xd in self.xi_dots:
+                pts += [(p.mu, p.beta, p.sigma, 0.0, xd), (p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0)]
+                walls += [w, w]
+                tags += [(k, xd, STARTS[0]), (k, xd, STARTS[1])]
+        if not pts:
+            return
+        outs, lengths = self.cache.simulate(pts, walls, self.max_samples)
+        self.runs += len(pts)  # every run this evidence rests on, simulated here or earlier
+        self.longest = max(self.longest, *lengths)
+        for (k, xd, start), o in zip(tags, outs, strict=True):
+            self.sims.setdefault(k, []).append((xd, start, o))
+
+    def judge(self, k: float, limit: str) -> str:
+        """SAFE, UNSAFE (an outcome in ``FAILING[limit]``) or UNDECIDED for every impact at stiffness ``k``."""
+        outs = {o for _, _, o in self.outcomes(k)}
+        if outs & FAILING[limit]:
+            return UNSAFE
+        return UNDECIDED if "undecided" in outs else SAFE
+
+    def no_divergence(self, k: float) -> str:
+        """The judgement of the limit "no simulated impact diverges" at ``k``."""
+        return self.judge(k, "unstable")
+
+    def rest(self, k: float) -> str:
+        """The judgement of the limit "every simulated impact comes to rest" at ``k``."""
+        return self.judge(k, "rest")
+
+    def growth_xi_dot(self, k: float) -> Growth:
+        """The describing function's growth prediction at ``k`` (:func:`growth_at`; unknown where not representable)."""
+        if k not in self.growth:
+            try:
+                p, w = self.params(k)
+            except DFAValueError:  # not representable at this K
+                self.growth[k] = Growth(None, 0, False)
+                return self.growth[k]
+            self.growth[k] = self.cache.growth_at(p, w, self.model)
+        return self.growth[k]
+
+    def predicted(self, k: float, xi_dot: float) -> str:
+        """The describing function's verdict at ``k`` on impacts up to ``xi_dot`` (:func:`df_verdict`)."""
+        return df_verdict(self.growth_xi_dot(k), xi_dot)
+
+    def counterexamples(self, k_criterion: float | None) -> tuple[dict[str, Any], ...]:
+        """Divergent impacts at stiffnesses the criterion proves passive (there must be none; None: no criterion)."""
+        if k_criterion is None:  # no sound criterion (amplifier lag): nothing to contradict
+            return ()
+        out: list[dict[str, Any]] = []
+        for k, rows in sorted(self.sims.items()):
+            for xd, start, o in rows:
+                if k <= k_criterion and o == "unstable":
+                    out.append({"stiffness": k, "velocity": self.dev.velocity(xd), "start": start, "outcome": o})
+        return tuple(out)

@@ -1,0 +1,539 @@
+"""The search behind a simulated or predicted stiffness limit: a grid, a bisection, a sweep and a confirmation.
+
+Every searched limit of :mod:`dfa.analysis.limits.kmax` (``k_df``, ``k_sim``, ``k_sim_rest``), for the spring
+and every wall alike, is found here, and its evidence is returned as typed records (no sentences: the
+rendering layer words them, :mod:`dfa.render.limits`):
+
+:func:`grid_search`
+    the largest K before the first non-safe judgement on an ascending geometric grid, then bisection
+    between the last safe and the first failing grid point to a relative :data:`K_RTOL`. Safety need not
+    be monotone in K: grid points found safe again above the first failure are kept (``safe_above``).
+:func:`confirm`
+    the largest *swept and confirmed* K at or below a simulated limit: from both starts, no run fails and
+    none is undecided at the search speeds over a sweep in K (:class:`Sweep`: relative steps of
+    :data:`SWEEP_STEP`, coarser past the wall's sweep budget) from K_criterion (else the grid's lowest point)
+    up to K, over a fine zone just below K (:data:`FINE_POINTS` steps of :data:`FINE_STEP`), and at
+    :data:`DENSE_FACTOR` times as many speeds over a band below K (:func:`band`). A failure drops the
+    candidate just below it and every check runs again; each failure met is kept (:class:`Failure`).
+
+Examples
+--------
+>>> s = grid_search(lambda k: "safe" if k < 3.0 else "unsafe", np.geomspace(1.0, 10.0, 5))
+>>> 3.0 * (1 - K_RTOL) <= s.value < 3.0 <= s.first_failure, s.status.value
+(True, 'found')
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, ClassVar, NamedTuple
+
+import numpy as np
+
+from ...checks import check_positive
+from ...errors import DFATypeError, DFAValueError
+from ...results.base import Result
+from ...results.status import LimitStatus
+from .runs import FAILING, SAFE, UNDECIDED, Evidence
+
+__all__ = [
+    "K_RTOL",
+    "Failure",
+    "SweepRecord",
+    "Confirmation",
+    "KLimit",
+    "Sweep",
+    "grid_search",
+    "df_limit",
+    "simulated_limit",
+    "UNDECIDED_WHY",
+    "confirm",
+    "search_grid",
+    "band",
+    "SWEEP_STEP",
+    "FINE_STEP",
+    "FINE_POINTS",
+    "DENSE_FACTOR",
+    "DENSE_BAND",
+    "DENSE_RUNGS",
+    "DENSE_FINE",
+    "MAX_LOWERINGS",
+]
+
+#: Relative width at which the bisection of a searched limit stops.
+K_RTOL = 2e-3
+#: Why a judgement can be undecided (:attr:`KLimit.limited_why`), with what it means.
+UNDECIDED_WHY = {
+    "short_runs": "simulated runs too short to tell",
+    "subtick": "the sub-tick caveat: the smallest unstable cycle lies below dfa.analysis.cycles.SUBTICK_LIMIT ticks",
+    "below_reach": "a cycle search that stopped at its size budget bounds the growth speed only from below V",
+    "unknown_growth": "a cycle search that failed: the growth speed is unknown",
+}
+#: The confirmation of a simulated limit K uses this many times the searched speeds ...
+DENSE_FACTOR = 4
+#: ... at the stiffnesses of a band below K: DENSE_RUNGS geometric rungs spanning a relative width DENSE_BAND ...
+DENSE_RUNGS = 5
+DENSE_BAND = 0.03
+#: ... and at these fractions below K (where a search's bisection ended).
+DENSE_FINE = (0.001, 0.003)
+#: The sweep in K below a simulated limit: relative step between its stiffnesses (target; at most the wall's
+#: :meth:`~dfa.model.wall.WallParams.sweep_points` stiffnesses per sweep: a wider range takes a coarser step) ...
+SWEEP_STEP = 0.005
+#: ... and, just below K, a fine zone of FINE_POINTS stiffnesses K (1 - FINE_STEP)^j, j = 0 … FINE_POINTS - 1
+#: (unsafe K can lie speckled within a few tenths of a percent below a limit, red team of issue 14) ...
+FINE_STEP = 0.0005
+FINE_POINTS = 21
+#: ... lowering the candidate at most this many times (each time just below the lowest failure found).
+MAX_LOWERINGS = 200
+
+
+@dataclass(frozen=True)
+class Failure:
+    """One simulated impact that failed a limit, or was undecided (neither counts as safe).
+
+    Attributes
+    ----------
+    stiffness : float
+        K, N/m (rotary: N·m/rad).
+    velocity : float
+        Impact speed, m/s (rotary: rad/s).
+    start : str
+        ``"impact"`` (from ξ0 = 0) or ``"preload"`` (from rest, spring preloaded to the same energy).
+    outcome : str
+        The run's outcome (:class:`dfa.results.status.SimulationOutcome` code).
+    found_by : str
+        ``"sweep"`` (the sweep in K or its fine zone), ``"confirmation"`` (the dense speeds over the band)
+        or ``"earlier runs"`` (the searches', another limit's checks).
+    """
+
+    stiffness: float
+    velocity: float
+    start: str
+    outcome: str
+    found_by: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """The failure as JSON-able data (its fields)."""
+        return dataclasses.asdict(self)
+
+
+@dataclass(frozen=True)
+class SweepRecord:
+    """What a sweep in K below a limit simulated, at the search speeds and both starts.
+
+    Attributes
+    ----------
+    start : float
+        Its lowest stiffness, N/m: K_criterion (``from_criterion``), or the search grid's lowest point.
+    step : float
+        Relative step between its stiffnesses (at least :data:`SWEEP_STEP`; coarser when the budget binds).
+    from_criterion : bool
+        True when it starts at K_criterion.
+    points : int
+        Stiffnesses swept, from ``start`` up to the limit (0: the limit lies below the start).
+    max_points : int
+        The sweep's budget of stiffnesses (the wall's :meth:`~dfa.model.wall.WallParams.sweep_points`).
+    coarse : bool
+        True when the budget made the step coarser than :data:`SWEEP_STEP`.
+    fine_points, fine_step : int, float
+        The fine zone just below K: :data:`FINE_POINTS` stiffnesses K (1 − fine_step)^j.
+    """
+
+    start: float
+    step: float
+    from_criterion: bool
+    points: int
+    max_points: int
+    coarse: bool
+    fine_points: int = FINE_POINTS
+    fine_step: float = FINE_STEP
+
+    def to_dict(self) -> dict[str, Any]:
+        """The sweep as JSON-able data (its fields)."""
+        return dataclasses.asdict(self)
+
+
+@dataclass(frozen=True)
+class Confirmation:
+    """What a confirmed simulated limit claims: every run at these speeds, starts and stiffnesses passed.
+
+    Attributes
+    ----------
+    limit : str
+        ``"unstable"`` (no run diverges) or ``"rest"`` (every run comes to rest); none is undecided.
+    speeds : tuple of float
+        The dense speeds of the band, m/s (rotary: rad/s), each from both starts.
+    band : tuple of float
+        The band's relative bounds (1 − :data:`DENSE_BAND`, 1): stiffnesses in [band[0]·K, K].
+    band_stiffnesses : int
+        Stiffnesses simulated over the band.
+    search_speeds : tuple of float
+        The search speeds of the sweep, m/s.
+    sweep : SweepRecord
+        The sweep in K below the limit at the search speeds.
+
+    A finite set of speeds and stiffnesses: narrower unsafe bands between the swept stiffnesses, and
+    unsafe speeds between those simulated, are not excluded (stability need not be monotone in K).
+    """
+
+    limit: str
+    speeds: tuple[float, ...]
+    band: tuple[float, float]
+    band_stiffnesses: int
+    search_speeds: tuple[float, ...]
+    sweep: SweepRecord
+
+    def to_dict(self) -> dict[str, Any]:
+        """The confirmation as JSON-able data (its fields, the sweep nested)."""
+        return dataclasses.asdict(self)
+
+
+@dataclass(frozen=True)
+class KLimit(Result):
+    """One stiffness limit (N/m; rotary N·m/rad) and the evidence behind it; None with a status that says why.
+
+    The same record for every limit of :class:`dfa.analysis.limits.kmax.KMaxResult`: a closed form (the
+    criterion's, the exact linear bound) carries its value and status; a searched one (describing function,
+    simulation) also its search and confirmation.
+
+    Attributes
+    ----------
+    value : float or None
+        The limit; None when undefined (``status`` says why).
+    status : LimitStatus
+        ``found``; or why ``value`` is None (``above_range``, ``below_range``, ``no_range``, ``not_confirmed``,
+        ``not_covered``, ``none_proven``, ``not_searched``).
+    limited_by : float or None
+        Where an undecided judgement (runs too short to tell, or a prediction the describing function cannot
+        make) stopped the search, counted as not safe; None when a definite failure did.
+    limited_why : str or None
+        Why the judgement at ``limited_by`` was undecided (:data:`UNDECIDED_WHY`): ``short_runs`` (simulated
+        runs too short to tell), ``subtick`` (the sub-tick caveat of :mod:`dfa.analysis.cycles.caveats`),
+        ``below_reach`` (a cycle search that stopped at its size budget bounds the growth speed only from below
+        V), ``unknown_growth`` (a cycle search that failed); None with ``limited_by`` None.
+    range_end : float or None
+        The stiffness that bounds the answer where ``status`` is ``above_range`` (the grid's top) or
+        ``below_range`` (its lowest point); for ``not_confirmed`` the lowest stiffness reached.
+    range_verdict : str or None
+        The judgement at the grid's lowest point for ``below_range``.
+    non_monotone : bool
+        True when grid stiffnesses above ``value`` were found safe again.
+    safe_above : tuple of float
+        Those stiffnesses.
+    undecided : tuple of float
+        Stiffnesses at which some judgement was undecided (counted as not safe).
+    first_failure : float or None
+        The smallest stiffness the search found not safe.
+    evaluations : int
+        Stiffnesses judged.
+    failures : tuple of Failure
+        Failing or undecided runs the sweep and the confirmation met above ``value`` (evidence that safety is
+        not monotone in K); non-empty means the limit was lowered from ``searched_value``.
+    searched_value : float or None
+        The limit the search found before the sweep and the confirmation (None: not confirmed, a prediction).
+    capped_at : float or None
+        The limit was capped there (``k_sim_rest`` at ``k_sim``: coming to rest implies no divergence).
+    lowerings : int
+        How many times the confirmation lowered the candidate (``not_confirmed``: it gave up after
+        :data:`MAX_LOWERINGS`).
+    confirmation : Confirmation or None
+        What a simulated limit claims (None: not confirmed by simulation).
+    """
+
+    value: float | None
+    status: LimitStatus = LimitStatus.FOUND
+    limited_by: float | None = None
+    limited_why: str | None = None
+    range_end: float | None = None
+    range_verdict: str | None = None
+    non_monotone: bool = False
+    safe_above: tuple[float, ...] = ()
+    undecided: tuple[float, ...] = ()
+    first_failure: float | None = None
+    evaluations: int = 0
+    failures: tuple[Failure, ...] = ()
+    searched_value: float | None = None
+    capped_at: float | None = None
+    lowerings: int = 0
+    confirmation: Confirmation | None = None
+
+    json_properties: ClassVar[tuple[str, ...]] = ()
+
+    def __post_init__(self) -> None:
+        fix = "a stiffness limit is a finite K > 0, or None with its status"
+        for name in ("value", "limited_by", "first_failure", "searched_value", "capped_at"):
+            if getattr(self, name) is not None:
+                check_positive(name, getattr(self, name), fix)
+        object.__setattr__(self, "status", LimitStatus.coerce(self.status))
+        if (self.value is None) == (self.status is LimitStatus.FOUND):
+            raise DFAValueError(
+                f"value = {self.value!r} is invalid with status = {self.status.value!r}: a limit has a value exactly "
+                f"when its status is found; {fix}"
+            )
+        if (self.limited_why is None) != (self.limited_by is None) or (
+            self.limited_why is not None and self.limited_why not in UNDECIDED_WHY
+        ):
+            raise DFAValueError(
+                f"limited_why = {self.limited_why!r} is invalid with limited_by = {self.limited_by!r}: give one of "
+                f"{sorted(UNDECIDED_WHY)} exactly when limited_by is set; {fix}"
+            )
+        for name in ("safe_above", "undecided", "failures"):
+            if not isinstance(getattr(self, name), tuple):
+                raise DFATypeError(f"{name} = {getattr(self, name)!r} must be a tuple; {fix}")
+        if self.confirmation is not None and not isinstance(self.confirmation, Confirmation):
+            raise DFATypeError(f"confirmation must be a Confirmation or None; {fix}")
+
+    @property
+    def lowered(self) -> bool:
+        """True when the sweep or the confirmation lowered the limit below the searched one."""
+        return bool(self.failures)
+
+    @property
+    def caveat(self) -> bool:
+        """True when the limit stands with a caveat: non-monotone, undecided, or lowered by failures."""
+        return bool(self.non_monotone or self.undecided or self.failures)
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why each field may be null in JSON, by key.
+
+        Returns
+        -------
+        dict of str to str
+            The limit's status message for ``value``, and what the absence of each other field means.
+        """
+        return {
+            "value": self.status.message,
+            "limited_by": "a definite failure, not an undecided judgement, bounds the limit",
+            "limited_why": "a definite failure, not an undecided judgement, bounds the limit",
+            "range_end": "the limit lies inside the searched range",
+            "range_verdict": "the lowest stiffness searched passed",
+            "first_failure": "no stiffness searched failed",
+            "searched_value": "not a simulated search: a closed form or a prediction, with nothing to confirm",
+            "capped_at": "not capped",
+            "confirmation": "not confirmed by simulation: a closed form or a first-harmonic prediction",
+        }
+
+
+def grid_search(
+    judge: Callable[[float], str], grid: np.ndarray, why: str | Callable[[float], str] = "short_runs"
+) -> KLimit:
+    """The largest K before the first non-safe judgement on an ascending ``grid``, refined by bisection.
+
+    Parameters
+    ----------
+    judge : callable
+        K (N/m) -> ``"safe"``, ``"unsafe"`` or ``"undecided"`` (counted as not safe).
+    grid : numpy.ndarray
+        Ascending stiffnesses to judge first.
+    why : str or callable, optional
+        What an undecided judgement means (a key of :data:`UNDECIDED_WHY`; default ``"short_runs"``), or a
+        callable giving it at the stiffness where one stopped the search.
+
+    Returns
+    -------
+    KLimit
+        ``found`` with the search's evidence, or ``above_range``/``below_range``.
+    """
+    verdicts = [judge(float(k)) for k in grid]
+    undecided = {float(k) for k, v in zip(grid, verdicts, strict=True) if v == UNDECIDED}
+    bad = [i for i, v in enumerate(verdicts) if v != SAFE]
+    if not bad:
+        return KLimit(None, LimitStatus.ABOVE_RANGE, range_end=float(grid[-1]), evaluations=len(grid))
+    i = bad[0]
+    safe_above = tuple(float(k) for k, v in zip(grid[i + 1 :], verdicts[i + 1 :], strict=True) if v == SAFE)
+    if i == 0:
+        return KLimit(
+            None, LimitStatus.BELOW_RANGE, range_end=float(grid[0]), range_verdict=verdicts[0],
+            non_monotone=bool(safe_above), safe_above=safe_above, undecided=tuple(sorted(undecided)),
+            first_failure=float(grid[0]), evaluations=len(grid),
+        )  # fmt: skip
+    lo, hi, n = float(grid[i - 1]), float(grid[i]), len(grid)
+    hi_verdict = verdicts[i]
+    while hi - lo > K_RTOL * hi:
+        mid = math.sqrt(lo * hi)
+        v = judge(mid)
+        n += 1
+        if v == UNDECIDED:
+            undecided.add(mid)
+        if v == SAFE:
+            lo = mid
+        else:
+            hi, hi_verdict = mid, v
+    limited = hi_verdict == UNDECIDED
+    return KLimit(
+        lo, limited_by=hi if limited else None, limited_why=(why(hi) if callable(why) else why) if limited else None,
+        non_monotone=bool(safe_above), safe_above=safe_above,
+        undecided=tuple(sorted(undecided)), first_failure=hi, evaluations=n,
+    )  # fmt: skip
+
+
+def df_limit(ev: Evidence, grid: np.ndarray, xi_dot: float) -> KLimit:
+    """The describing function's limit ``k_df`` on ``grid``: growth predicted only from speeds >= ``xi_dot``.
+
+    Where an undecided prediction stopped the search, :attr:`KLimit.limited_why` says why (the sub-tick caveat,
+    a search that stopped at its size budget, or one that failed).
+    """
+
+    def why(k: float) -> str:
+        g = ev.growth_xi_dot(k)
+        return "subtick" if g.subtick else ("below_reach" if g.lower_bound else "unknown_growth")
+
+    return grid_search(lambda k: ev.predicted(k, xi_dot), grid, why)
+
+
+def simulated_limit(ev: Evidence, grid: np.ndarray, limit: str) -> KLimit:
+    """A simulated limit on ``grid``: no run fails ``limit`` (``"unstable"`` or ``"rest"``) at the search speeds."""
+    return grid_search(lambda k: ev.judge(k, limit), grid, "short_runs")
+
+
+def search_grid(k_ref: float, top: float, grid: int) -> np.ndarray:
+    """Ascending stiffness grid from k_ref/2 to ``top``, holding k_ref itself (k_ref <= 0: from top·10⁻⁴)."""
+    lo = 0.5 * k_ref if k_ref > 0 else top * 1e-4
+    pts = np.geomspace(lo, top, grid)
+    if k_ref > 0:
+        pts = np.unique(np.append(pts, k_ref))
+    return pts
+
+
+def band(k: float) -> list[float]:
+    """The confirmation band below K, descending: K, K (1 - f) for f in DENSE_FINE, then the rungs
+    K (1 - DENSE_BAND)^(i / (DENSE_RUNGS - 1)), i = 1 … DENSE_RUNGS - 1."""
+    rungs = [k * (1.0 - DENSE_BAND) ** (i / (DENSE_RUNGS - 1)) for i in range(1, DENSE_RUNGS)]
+    return [k] + [k * (1.0 - f) for f in DENSE_FINE] + rungs
+
+
+def _fine(k: float) -> list[float]:
+    """The fine zone just below K, descending: K (1 - FINE_STEP)^j, j = 0 … FINE_POINTS - 1."""
+    return [k * (1.0 - FINE_STEP) ** j for j in range(FINE_POINTS)]
+
+
+class Sweep(NamedTuple):
+    """A sweep in K: ascending stiffnesses ``start`` (1 + ``step``)^j, j = 0, 1, …, at the search speeds.
+
+    ``start`` is K_criterion (``from_criterion``) or, without a criterion K > 0, the search grid's lowest point.
+    """
+
+    start: float
+    step: float
+    from_criterion: bool
+    max_points: int
+
+    @classmethod
+    def up_to(cls, k_lo: float, from_criterion: bool, k_hi: float, max_points: int) -> Sweep:
+        """The sweep from ``k_lo`` up to ``k_hi``: :data:`SWEEP_STEP`, coarser when that takes over ``max_points``."""
+        need = math.log(max(k_hi, k_lo) / k_lo) / max_points
+        return cls(k_lo, max(SWEEP_STEP, math.expm1(need)), from_criterion, max_points)
+
+    def points(self, top: float) -> list[float]:
+        """The sweep's stiffnesses up to ``top``, ascending (every limit swept from ``start`` shares them)."""
+        n = math.floor(math.log(top / self.start) / math.log1p(self.step) + 1e-9) if top >= self.start else -1
+        return [self.start * (1.0 + self.step) ** j for j in range(n + 1)]
+
+    def record(self, k: float) -> SweepRecord:
+        """What this sweep simulates below a limit K (:class:`SweepRecord`)."""
+        coarse = self.step > SWEEP_STEP * (1 + 1e-9)
+        return SweepRecord(self.start, self.step, self.from_criterion, len(self.points(k)), self.max_points, coarse)
+
+
+def _failures(ev: Evidence, k: float, bad: str, found_by: str) -> list[Failure]:
+    """Runs of ``ev`` at ``k`` that fail limit ``bad`` or are undecided (neither counts as safe)."""
+    return [
+        Failure(k, ev.dev.velocity(xd), start, str(o), found_by)
+        for xd, start, o in ev.outcomes(k)
+        if o in FAILING[bad] or o == "undecided"
+    ]
+
+
+def _lowest_failures(k: float, ev: Evidence, dense: Evidence, bad: str, sweep: Sweep) -> list[Failure]:
+    """The failing runs of the first check at K that fails (empty: none fails): the sweep up to K and the fine zone
+    at the search speeds (``ev``), the confirmation band at the dense speeds, then every run already simulated at
+    or below K (``"earlier runs"``: the searches', another limit's checks); each new check is one threaded batch."""
+    checks = (
+        (ev, sweep.points(k), "sweep"),
+        (ev, _fine(k), "sweep"),
+        (dense, band(k), "confirmation"),
+        (ev, [kk for kk in ev.sims if kk <= k], "earlier runs"),
+        (dense, [kk for kk in dense.sims if kk <= k], "earlier runs"),
+    )
+    for e, ks, by in checks:
+        e.prefetch(ks)  # the cache's runs are free
+        fails = [f for kk in ks for f in _failures(e, kk, bad, by)]
+        if fails:
+            return fails
+    return []
+
+
+def _settle(
+    k0: float, ev: Evidence, dense: Evidence, bad: str, sweep: Sweep, floor: float
+) -> tuple[float | None, list[Failure], int, Sweep]:
+    """The largest K at or below ``k0`` that every check of :func:`_lowest_failures` passes, lowering the candidate
+    to just below (1 - FINE_STEP) the lowest failure found each time; the failures met, the lowerings, and the sweep
+    (restarted from ``floor``, the search grid's lowest point, when the candidate falls below its start). None when
+    the failures reach ``floor`` or :data:`MAX_LOWERINGS` is spent."""
+    k = k0
+    fails: list[Failure] = []
+    for n in range(MAX_LOWERINGS):
+        if k < sweep.start * (1.0 - 1e-12):
+            if sweep.start <= floor:
+                return None, fails, n, sweep
+            sweep = Sweep.up_to(floor, False, k, sweep.max_points)
+        f = _lowest_failures(k, ev, dense, bad, sweep)
+        if not f:
+            return k, fails, n, sweep
+        fails += f
+        k = min(r.stiffness for r in f) * (1.0 - FINE_STEP)
+    return None, fails, MAX_LOWERINGS, sweep
+
+
+def confirm(
+    found: KLimit, ev: Evidence, dense: Evidence, bad: str, sweep: Sweep, floor: float, top: float | None = None
+) -> KLimit:
+    """The largest *swept and confirmed* K at or below a searched limit (and at or below ``top``; module docstring).
+
+    Parameters
+    ----------
+    found : KLimit
+        The searched limit.
+    ev, dense : Evidence
+        The runs at the search speeds, and at :data:`DENSE_FACTOR` times as many speeds.
+    bad : str
+        ``"unstable"`` (the limit "no divergence") or ``"rest"`` (the limit "every run at rest").
+    sweep : Sweep
+        The sweep in K below the limit.
+    floor : float
+        The search grid's lowest point, where a sweep restarts when the candidate falls below its start.
+    top : float, optional
+        A cap (``k_sim`` for ``k_sim_rest``).
+
+    Returns
+    -------
+    KLimit
+        Confirmed (``confirmation`` says what was simulated), lowered below failures (``failures``), capped,
+        or ``not_confirmed``.
+    """
+    if found.value is None:
+        return found
+    k0 = found.value if top is None else min(found.value, top)
+    value, fails, lowerings, sweep = _settle(k0, ev, dense, bad, sweep, floor)
+    fields: dict[str, Any] = dict(searched_value=found.value, failures=tuple(fails), lowerings=lowerings)
+    if value is None:  # the failures reached the grid's lowest point, or the lowerings ran out at the last one
+        last = min([f.stiffness for f in fails] + [k0]) * (1.0 - FINE_STEP)
+        end = floor if lowerings < MAX_LOWERINGS else last
+        return dataclasses.replace(
+            found, value=None, status=LimitStatus.NOT_CONFIRMED, range_end=end,
+            confirmation=_claim(ev, dense, bad, sweep, k0), **fields,
+        )  # fmt: skip
+    capped = k0 if k0 < found.value else None
+    return dataclasses.replace(
+        found, value=value, capped_at=capped, confirmation=_claim(ev, dense, bad, sweep, value), **fields
+    )
+
+
+def _claim(ev: Evidence, dense: Evidence, bad: str, sweep: Sweep, k: float) -> Confirmation:
+    """What a limit K confirmed by ``ev`` and ``dense`` over ``sweep`` claims (:class:`Confirmation`)."""
+    return Confirmation(
+        bad, dense.speeds, (1.0 - DENSE_BAND, 1.0), DENSE_RUNGS + len(DENSE_FINE), ev.speeds, sweep.record(k)
+    )
