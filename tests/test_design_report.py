@@ -293,9 +293,9 @@ def test_cli_bare_dfa_prints_the_help_and_exits_2(capsys):
 def _subparsers():
     import argparse
 
-    from dfa.cli import _build_parser
+    from dfa.cli.app import build_parser
 
-    parser = _build_parser()
+    parser = build_parser()
     (sub,) = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
     return sub.choices
 

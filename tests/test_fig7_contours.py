@@ -127,11 +127,11 @@ def test_fig7_cli_contours_plot_physical_axes_with_device(
     capsys, tmp_path, monkeypatch, argv, k, period, resolution, units
 ):
     """`dfa contours --plot` with a device: b = βKT and c = σKΔ on secondary axes, as `dfa map --plot` (issue 14 §3)."""
-    import dfa.cli as cli
+    import dfa.cli.contours as cli
 
     shown = []
-    real = cli._save_png
-    monkeypatch.setattr(cli, "_save_png", lambda flag, path, ax: shown.append(ax) or real(flag, path, ax))
+    real = cli.save_png
+    monkeypatch.setattr(cli, "save_png", lambda flag, path, ax: shown.append(ax) or real(flag, path, ax))
     png = tmp_path / "c.png"
     assert main(["contours", *argv, "--grid", "6", "--max-amplitude", "20", "--plot", str(png)]) == 0
     assert png.stat().st_size > 0 and f"figure written to {png}" in capsys.readouterr().out
@@ -147,11 +147,11 @@ def test_fig7_cli_contours_plot_physical_axes_with_device(
 
 
 def test_fig7_cli_contours_plot_dimensionless_has_no_physical_axes(tmp_path, monkeypatch):
-    import dfa.cli as cli
+    import dfa.cli.contours as cli
 
     shown = []
-    real = cli._save_png
-    monkeypatch.setattr(cli, "_save_png", lambda flag, path, ax: shown.append(ax) or real(flag, path, ax))
+    real = cli.save_png
+    monkeypatch.setattr(cli, "save_png", lambda flag, path, ax: shown.append(ax) or real(flag, path, ax))
     assert (
         main(["contours", "--mu", "5", "--grid", "6", "--max-amplitude", "20", "--plot", str(tmp_path / "c.png")]) == 0
     )

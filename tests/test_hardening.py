@@ -388,7 +388,7 @@ def test_cli_signal_during_map_nothing_written(capsys, tmp_path, monkeypatch, si
     assert rc == code
     assert err == f"dfa: interrupted ({signal.Signals(sig).name}); nothing written\n"
     assert os.listdir(tmp_path) == []
-    assert signal.getsignal(signal.SIGTERM) is not dfa.cli._on_signal  # handlers restored
+    assert signal.getsignal(signal.SIGTERM) is not dfa.cli.app.on_signal  # handlers restored
 
 
 @main_thread_only
@@ -407,13 +407,13 @@ def test_cli_signal_while_writing_trace(capsys, tmp_path, monkeypatch):
 
 @main_thread_only
 def test_cli_signal_after_a_file_was_kept(capsys, tmp_path, monkeypatch):
-    import dfa.cli as cli
+    import dfa.cli.maps as cli
 
     def interrupted(obj):
         os.kill(os.getpid(), signal.SIGINT)
         time.sleep(5)
 
-    monkeypatch.setattr(cli, "_emit", interrupted)
+    monkeypatch.setattr(cli, "emit", interrupted)
     out = tmp_path / "m.npz"
     rc, _, err = run(
         capsys,
@@ -532,7 +532,7 @@ def test_memory_estimates_and_limit(monkeypatch):
 
 
 def test_cli_simulate_force_runs_beyond_the_estimate(capsys, monkeypatch):
-    import dfa.cli as cli
+    import dfa.cli.output as cli
 
     monkeypatch.setattr(cli, "SIMULATE_TIME_LIMIT", 1e-6)
     assert "--force" in refused(capsys, "simulate", *DIMLESS, "--xi-dot", "1", "--samples", "100")
@@ -925,9 +925,7 @@ def test_cli_progress_bar_policy(capsys, tmp_path, extra, shown):
 
 
 def test_cli_progress_bar_on_a_terminal(capsys, tmp_path, monkeypatch):
-    import dfa.cli as cli
-
-    monkeypatch.setattr(cli.sys.stderr, "isatty", lambda: True, raising=False)
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
     code, _, err = run(capsys, *MAP_SMALL, str(tmp_path / "m.npz"))
     assert code == 0 and "stability map" in err
     code, out, err = run(capsys, *MAP_SMALL, str(tmp_path / "m.npz"), "--json")

@@ -408,9 +408,10 @@ def critical_stiffness(mass, damping, period, *, wall: Wall | None = None):
     b = _as_array("damping", damping, lambda n, v: check_nonnegative(n, v, "give the viscous friction in N·s/m"))
     t = _as_array("period", period, lambda n, v: check_positive(n, v, "give the sampling period in s"))
     c = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
-    d = c.delay
     m, b, t = np.broadcast_arrays(m, b, t)
-    if c.damping > 0.0 or c.amplifier_bandwidth is not None:
+    groups = c.params(float(t.flat[0])) if t.size else WallParams()  # every element's delay, summed
+    d = groups.delay
+    if _beyond_spring(groups):
         from .linear_wall import stable_stiffness
 
         rows = zip(m.ravel(), b.ravel(), t.ravel(), strict=True)

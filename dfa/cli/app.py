@@ -1,0 +1,181 @@
+"""The ``dfa`` program: its parser (one subcommand per module of :mod:`dfa.cli`), signals, exit codes.
+
+Exit codes: 0 ok; 2 bad input (one line on stderr, before any work is done), or no command at all (bare ``dfa``
+prints the help on stdout); 1 a file could not be written or memory ran out; 130 / 143 interrupted by SIGINT /
+SIGTERM (one line on stderr naming what was kept: files are written atomically, so nothing is half-written);
+141 stdout was a closed pipe (``dfa devices | head -1``), ended quietly.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import sys
+import warnings
+from collections.abc import Sequence
+from types import ModuleType
+from typing import Any
+
+from .._io import written_paths
+from ..errors import DFAError
+from . import check, contours, devices, limit_cycles, maps, params, report, simulate, stiffness, validate, zwidth
+from .parsing import Parser, UsageError
+
+__all__ = ["COMMANDS", "build_parser", "main", "on_signal", "package_version"]
+
+#: The subcommands, in the order of ``dfa --help``: each module has COMMAND, HELP, EXAMPLE, add_arguments, run.
+COMMANDS: tuple[ModuleType, ...] = (
+    devices, params, check, stiffness, simulate, maps, limit_cycles, contours, report, validate, zwidth,
+)  # fmt: skip
+
+
+class _Version(argparse.Action):
+    """``--version``: the installed distribution's version (importlib.metadata), looked up only when asked."""
+
+    def __init__(self, option_strings: Sequence[str], dest: str = argparse.SUPPRESS, **kwargs: Any) -> None:
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS, **kwargs)
+
+    def __call__(self, parser: argparse.ArgumentParser, *args: Any, **kwargs: Any) -> None:
+        print(f"dfa {package_version()}")
+        parser.exit(0)
+
+
+def package_version() -> str:
+    """Version of the installed distribution (``dfa.__version__``, from ``importlib.metadata``)."""
+    from .. import __version__
+
+    return __version__
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``dfa`` parser: every subcommand of :data:`COMMANDS` with its help, example and arguments."""
+    parser = Parser(
+        prog="dfa",
+        description="Passivity, limit cycles and stiffness limits of sampled, quantized haptic devices "
+        "(Diolaiti, Niemeyer, Barbagli & Salisbury, ICRA 2005).",
+        epilog="`dfa COMMAND --help` describes each command. Without a command, dfa prints this help and exits with 2.",
+    )
+    parser.add_argument("--version", action=_Version, help="print the installed version and exit")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
+    for cmd in COMMANDS:
+        p = sub.add_parser(
+            cmd.COMMAND,
+            help=cmd.HELP,
+            description=cmd.HELP[0].upper() + cmd.HELP[1:] + ".",
+            epilog=f"example:\n  {cmd.EXAMPLE}",
+            formatter_class=argparse.RawDescriptionHelpFormatter,
+        )
+        cmd.add_arguments(p)
+        p.set_defaults(func=cmd.run)
+    return parser
+
+
+class Interrupted(KeyboardInterrupt):
+    """SIGINT or SIGTERM received: unwinds like Ctrl-C so that every ``finally`` cleans up."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+_SIGNALS = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM") if hasattr(signal, n))
+
+
+def on_signal(signum: int, frame: object) -> None:
+    """The handler of SIGINT and SIGTERM: ignore further signals (the clean-up must finish), raise :class:`Interrupted`."""
+    for sig in _SIGNALS:  # a second signal must not interrupt the clean-up of the first
+        signal.signal(sig, signal.SIG_IGN)
+    raise Interrupted(signum)
+
+
+def _install_signal_handlers() -> dict[Any, Any]:
+    """Route SIGINT and SIGTERM to :class:`Interrupted` (main thread only); return the old handlers."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+    old = {}
+    for sig in _SIGNALS:
+        old[sig] = signal.getsignal(sig)
+        signal.signal(sig, on_signal)
+    return old
+
+
+def _one_line_warning(message: Warning | str, category: type[Warning], *_args: object, **_kw: object) -> str:
+    """A warning on stderr as one line, like the errors (no source file or code line)."""
+    text = " ".join(str(message).split())
+    return f"dfa: warning: {text} ({category.__name__})\n"
+
+
+def _quiet_stdout() -> None:
+    """After a closed pipe: send what is left on stdout to /dev/null, so exiting does not raise again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, AttributeError, ValueError):  # not a real file (captured in tests)
+        pass
+
+
+def _run(parser: argparse.ArgumentParser, argv: list[str]) -> int:
+    if not argv:  # bare `dfa`: the help, and exit code 2 (no command ran)
+        parser.print_help()
+        return 2
+    args = parser.parse_args(argv)
+    if getattr(args, "func", None) is None:
+        raise UsageError("dfa: error: give a COMMAND (see `dfa --help`)")
+    return int(args.func(args) or 0)
+
+
+def _error(err: BaseException, before: int) -> int:
+    """The exit code of an exception (module docstring), with its one line on stderr."""
+    if isinstance(err, DFAError):
+        msg = str(err)
+        print((msg if msg.startswith("dfa") else f"dfa: error: {msg}").replace("\n", " "), file=sys.stderr)
+        return 2
+    if isinstance(err, SystemExit):  # --help and --version
+        return int(err.code or 0)
+    if isinstance(err, KeyboardInterrupt):
+        signum = getattr(err, "signum", int(signal.SIGINT))
+        kept = written_paths()[before:]
+        what = "nothing written" if not kept else "kept " + ", ".join(kept) + " (complete)"
+        print(f"dfa: interrupted ({signal.Signals(signum).name}); {what}", file=sys.stderr)
+        return 128 + int(signum)
+    if isinstance(err, BrokenPipeError):
+        _quiet_stdout()
+        return 141
+    if isinstance(err, MemoryError):
+        print("dfa: error: out of memory; lower --grid, --samples or the number of speeds", file=sys.stderr)
+        return 1
+    assert isinstance(err, OSError)
+    where = f"{err.filename!r}: " if err.filename else ""
+    print(f"dfa: error: {where}{err.strerror or err}; check the path, its permissions and free space", file=sys.stderr)
+    return 1
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``dfa`` command line; return the exit code (module docstring).
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The arguments after ``dfa`` (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        0 ok, 2 bad input, 1 a file or memory error, 128 + signal when interrupted, 141 a closed pipe.
+    """
+    parser = build_parser()
+    before = len(written_paths())
+    old_handlers = _install_signal_handlers()
+    old_format = warnings.formatwarning
+    warnings.formatwarning = _one_line_warning
+    try:
+        return _run(parser, list(sys.argv[1:] if argv is None else argv))
+    except (DFAError, SystemExit, KeyboardInterrupt, BrokenPipeError, MemoryError, OSError) as err:
+        return _error(err, before)
+    finally:
+        warnings.formatwarning = old_format
+        for sig, handler in old_handlers.items():
+            signal.signal(sig, handler if handler is not None else signal.SIG_DFL)

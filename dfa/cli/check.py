@@ -1,0 +1,103 @@
+"""``dfa check``: the passivity criterion and its region at an impact speed (eq. 6-12), spring or wall."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from ..analysis.criterion import device_criterion, passivity_criterion
+from ..model.wall import Wall, WallParams
+from .inputs import Inputs, add_device_args, resolve, speed
+from .output import emit, table
+from .parsing import UsageError, number
+from .walls import add_wall_args, print_wall, wall_from_args, wall_json
+
+COMMAND = "check"
+HELP = "passivity criterion and region at an impact speed (eq. 6-12)"
+EXAMPLE = "dfa check --device delta --velocity 0.1"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The device or (β, σ), one speed, the wall, the start position and --no-quantization."""
+    add_device_args(p, dimensionless=True, speed=True)
+    p.add_argument("--no-quantization", action="store_true", help="use eq. 7 (Δ → 0) instead of eq. 6 (default: eq. 6)")
+    add_wall_args(p)
+    p.add_argument(
+        "--xi0",
+        type=number("--xi0", "ticks"),
+        metavar="X",
+        help="initial position ξ0 in ticks (dimensionless input; needs --mu); default: 0",
+    )
+    p.add_argument(
+        "--position",
+        type=number("--position", "m (rotary: rad)"),
+        metavar="X",
+        help="initial position in m (rotary: rad; device input); default: 0",
+    )
+
+
+def _criterion(args: argparse.Namespace, inp: Inputs, xd: float, v: float | None) -> Any:
+    """The criterion: device mode takes --position (m, rad), dimensionless mode --xi0 (ticks)."""
+    quantized = not args.no_quantization
+    if inp.device is not None:
+        assert inp.stiffness is not None  # a device always comes with its K (resolve)
+        if args.xi0 is not None:
+            raise UsageError(
+                "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
+            )
+        vel = inp.device.velocity(xd) if v is None else v
+        spring = Wall.of(inp.stiffness, delay=args.delay)
+        return device_criterion(inp.device, spring, vel, quantized=quantized, position=args.position or 0.0)
+    if args.position is not None:
+        raise UsageError(
+            "--position needs a physical device: with --beta --sigma give the initial position as --xi0 (ticks)"
+        )
+    x0 = 0.0 if args.xi0 is None else args.xi0
+    if x0 != 0.0 and args.mu is None:
+        raise UsageError(
+            f"--xi0 {x0:g} needs --mu: the spring energy enters the speed as 2H_c(ξ0)/μ; give --mu m/(K T²)"
+        )
+    groups = WallParams.of(delay=args.delay)
+    return passivity_criterion(inp.beta, inp.sigma, xd, wall=groups, quantized=quantized, xi0=x0, mu=args.mu)
+
+
+def _check_wall(args: argparse.Namespace, inp: Inputs, wall: Wall, xd: float, v: float | None) -> int:
+    """With a wall beyond a spring: the criterion with it and Colgate–Schenkel; with a lag, not covered."""
+    from ..analysis.check import passivity_check
+    from ..render.controller import check_table_rows
+
+    dev = inp.device
+    assert dev is not None  # wall_from_args refuses a wall without a device
+    if args.xi0 is not None:
+        raise UsageError(
+            "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
+        )
+    vel = dev.velocity(xd) if v is None else v
+    chk = passivity_check(dev, wall, vel, position=args.position or 0.0, quantized=not args.no_quantization)
+    if args.json:
+        emit(wall_json(chk.to_dict(), wall, inp))
+        return 0
+    print(inp.label)
+    print_wall(wall, inp)
+    print(table(check_table_rows(chk)))
+    return 0
+
+
+def run(args: argparse.Namespace) -> int:
+    """Print the criterion's region, verdict, margin and critical speed (and Colgate–Schenkel with a wall)."""
+    from ..render.text import check_rows
+
+    inp = resolve(args, dimensionless=True, need_mu=False)
+    xd, v = speed(args, inp)
+    assert xd is not None
+    wall = wall_from_args(args, inp.device, inp.stiffness)
+    if wall is not None:
+        return _check_wall(args, inp, wall, xd, v)
+    r = _criterion(args, inp, xd, v)
+    if args.json:
+        emit(r.to_dict())
+        return 0
+    vu = inp.device.units["velocity"] if inp.device else ""
+    print(inp.label)
+    print(table(check_rows(r, not args.no_quantization, vu)))
+    return 0

@@ -1,0 +1,329 @@
+"""The device, the dimensionless loop and the speed of a command, from its flags.
+
+A device is a catalogue name (``--device``) and/or physical values in SI units; the dimensionless (μ, β, σ)
+replace it where a command takes them. :func:`resolve` turns the flags into :class:`Inputs` and refuses
+contradictions with one line naming the flags.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from ..checks import check_beta, check_mu, check_real, check_sigma, check_speed
+from ..model.catalogue import CatalogueEntry, resolve_device
+from ..model.device import Device, Params, dimensionless_params
+from .parsing import UsageError, integer, name, number
+
+__all__ = [
+    "PHYS_FLAGS",
+    "Inputs",
+    "add_device_group",
+    "add_device_args",
+    "add_plane_args",
+    "check_plane",
+    "device_given",
+    "device_json",
+    "impact_speed",
+    "outside_note",
+    "plane_device",
+    "range_arg",
+    "resolve",
+    "speed",
+]
+
+#: The physical flags of a device: dest -> (flag, unit).
+PHYS_FLAGS = {
+    "mass": ("--mass", "kg (rotary: inertia in kg·m²)"),
+    "damping": ("--damping", "N·s/m (rotary: N·m·s/rad)"),
+    "coulomb": ("--coulomb", "N (rotary: N·m)"),
+    "resolution": ("--resolution", "m (rotary: rad)"),
+    "period": ("--period", "s"),
+}
+_PHYS_WHAT = {
+    "mass": "moving mass m",
+    "damping": "viscous friction b",
+    "coulomb": "Coulomb friction c",
+    "resolution": "encoder resolution Δ",
+    "period": "sample period T",
+}
+_DIMLESS_FLAGS = {"mu": "--mu", "beta": "--beta", "sigma": "--sigma"}
+_FLAG_NAMES = {k: f for k, (f, _u) in PHYS_FLAGS.items()} | {
+    "stiffness": "--stiffness",
+    "counts": "--counts",
+    "name": "--name",
+}
+
+
+def _add_counts_name_args(g: Any) -> None:
+    """--counts and --name, for every command that takes a device."""
+    g.add_argument(
+        "--counts",
+        type=integer("--counts"),
+        metavar="N",
+        help="encoder counts per metre (with --rotary: per revolution) instead of --resolution: Δ = 1/N m "
+        "(2π/N rad); default: none",
+    )
+    g.add_argument(
+        "--name",
+        type=name,
+        metavar="TEXT",
+        help="device name in outputs and report file names; default: the catalogue name, else 'custom device'",
+    )
+
+
+def add_device_group(p: argparse.ArgumentParser, title: str) -> Any:
+    """--device, the physical flags, --counts, --name, --stiffness and --rotary (:func:`dfa.model.catalogue.resolve_device`)."""
+    g = p.add_argument_group(title)
+    g.add_argument(
+        "--device",
+        metavar="NAME",
+        help="catalogue device, case-insensitive prefix (e.g. 'phantom'; list: `dfa devices`); default: none",
+    )
+    for key, (flag, unit) in PHYS_FLAGS.items():
+        g.add_argument(
+            flag,
+            dest=key,
+            type=number(flag, unit),
+            metavar="X",
+            help=f"{_PHYS_WHAT[key]} in {unit}; default: the catalogue value",
+        )
+    _add_counts_name_args(g)
+    g.add_argument(
+        "--stiffness",
+        type=number("--stiffness", "N/m"),
+        metavar="K",
+        help="virtual wall stiffness K in N/m (rotary: N·m/rad); default: the catalogue K",
+    )
+    g.add_argument(
+        "--rotary",
+        action="store_true",
+        help="physical values are rotary (rad, N·m, inertia in kg·m²); default: linear (m, N, kg)",
+    )
+    return g
+
+
+def add_device_args(
+    p: argparse.ArgumentParser,
+    dimensionless: bool,
+    speed: bool,
+    json_help: str = "print one JSON object on stdout (default: a text table)",
+) -> None:
+    """The device group, the dimensionless group (``dimensionless``), one impact speed (``speed``) and --json."""
+    add_device_group(p, "device (a catalogue name, or physical values in SI units)")
+    if dimensionless:
+        d = p.add_argument_group("dimensionless parameters (instead of a device)")
+        for flag, what in (("--mu", "μ = m/(K T²)"), ("--beta", "β = b/(K T)"), ("--sigma", "σ = c/(K Δ)")):
+            d.add_argument(flag, type=number(flag, "dimensionless units"), help=f"{what}, dimensionless; default: none")
+    if speed:
+        s = p.add_argument_group("speed (one of)")
+        s.add_argument(
+            "--velocity",
+            type=number("--velocity", "m/s (rotary: rad/s)"),
+            metavar="V",
+            help="impact speed in m/s (rotary: rad/s); default: none",
+        )
+        s.add_argument(
+            "--xi-dot",
+            dest="xi_dot",
+            type=number("--xi-dot", "encoder ticks per sample"),
+            metavar="V",
+            help="impact speed ξ'0 in encoder ticks per sample; default: none",
+        )
+    p.add_argument("--json", action="store_true", help=json_help)
+
+
+@dataclass(frozen=True)
+class Inputs:
+    """What the device flags resolved to: the loop's (μ, β, σ) when known, the device and K, a label."""
+
+    params: Params | None  # full (μ, β, σ) when known
+    beta: float
+    sigma: float
+    device: Device | None
+    stiffness: float | None
+    label: str
+    entry: CatalogueEntry | None = None  # the catalogue row, when the device is that row unchanged
+
+
+def _dimensionless(args: argparse.Namespace, phys_given: list[str], dim_given: list[str], need_mu: bool) -> Inputs:
+    others = (["--device"] if args.device else []) + [PHYS_FLAGS[k][0] for k in phys_given]
+    others += [f"--{k}" for k in ("counts", "name") if getattr(args, k, None) is not None]
+    others += ["--stiffness"] if args.stiffness is not None else []
+    others += ["--velocity"] if getattr(args, "velocity", None) is not None else []
+    if others:
+        raise UsageError(
+            f"{', '.join(_DIMLESS_FLAGS[k] for k in dim_given)} cannot be combined with {', '.join(others)}: "
+            "give either dimensionless (--mu --beta --sigma, --xi-dot) or physical inputs"
+        )
+    required = ["beta", "sigma"] + (["mu"] if need_mu else [])
+    missing = [_DIMLESS_FLAGS[k] for k in required if getattr(args, k) is None]
+    if missing:
+        raise UsageError(
+            f"missing {', '.join(missing)}: dimensionless input needs {' '.join(_DIMLESS_FLAGS[k] for k in required)}"
+        )
+    b = check_beta(args.beta, "--beta")
+    s = check_sigma(args.sigma, "--sigma")
+    p = Params(check_mu(args.mu, "--mu"), b, s) if args.mu is not None else None
+    return Inputs(p, b, s, None, None, "dimensionless input")
+
+
+def resolve(
+    args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = True, need_stiffness: bool = True
+) -> Inputs:
+    """Turn device/physical/dimensionless flags into parameters, rejecting contradictions.
+
+    With ``need_stiffness=False`` a device without any stiffness (no --stiffness, no catalogue K) gives
+    ``params=None`` and ``stiffness=None``.
+    """
+    phys_given = [k for k in PHYS_FLAGS if getattr(args, k, None) is not None]
+    dim_given = [k for k in _DIMLESS_FLAGS if getattr(args, k, None) is not None] if dimensionless else []
+    if dim_given:
+        return _dimensionless(args, phys_given, dim_given, need_mu)
+    custom = phys_given + [k for k in ("counts", "name") if getattr(args, k, None) is not None]
+    if not args.device and not custom:
+        raise UsageError(
+            "no device given: use --device NAME (see `dfa devices`), or --mass --damping --coulomb "
+            "--resolution --period" + (", or --mu --beta --sigma" if dimensionless else "")
+        )
+    r = resolve_device(
+        args.device,
+        overrides={k: getattr(args, k, None) for k in PHYS_FLAGS},
+        counts=getattr(args, "counts", None),
+        rotary=bool(getattr(args, "rotary", False)),
+        stiffness=args.stiffness,
+        label=getattr(args, "name", None),
+        flags=_FLAG_NAMES,
+    )
+    dev = r.device
+    if r.stiffness is None and not need_stiffness:
+        return Inputs(None, math.nan, math.nan, dev, None, r.label, r.entry)
+    if r.stiffness is None:
+        raise UsageError(
+            f"missing --stiffness: no catalogue stiffness for {dev.name!r}; give K in {dev.units['stiffness']}"
+        )
+    p = dimensionless_params(dev, r.stiffness)  # resolve_device has refused groups that overflow or vanish
+    return Inputs(p, p.beta, p.sigma, dev, r.stiffness, r.label, r.entry)
+
+
+def device_given(args: argparse.Namespace) -> bool:
+    """True when any device flag (--device, a physical value, --counts, --name, --stiffness) is given."""
+    keys = (*PHYS_FLAGS, "stiffness", "counts", "name")
+    return bool(args.device) or any(getattr(args, k, None) is not None for k in keys)
+
+
+def impact_speed(flag: str, value: float, inputs: Inputs | None, zero: bool = True) -> float:
+    """An impact speed from ``flag``: its magnitude, >= 0 (> 0 if not ``zero``); a negative is refused, not flipped."""
+    if flag == "--xi-dot":
+        unit = "ticks per sample"
+    else:
+        unit = inputs.device.units["velocity"] if inputs is not None and inputs.device is not None else "m/s (rad/s)"
+    return check_speed(flag, value, unit, zero=zero)
+
+
+def speed(
+    args: argparse.Namespace, inputs: Inputs, required: bool = True, signed: bool = False
+) -> tuple[float | None, float | None]:
+    """Return (xi_dot, velocity) from --xi-dot / --velocity; unless ``signed``, an impact speed (>= 0)."""
+    v, xd = args.velocity, args.xi_dot
+    if not signed:
+        v = None if v is None else impact_speed("--velocity", v, inputs)
+        xd = None if xd is None else impact_speed("--xi-dot", xd, inputs)
+    if v is not None and xd is not None:
+        raise UsageError("--velocity and --xi-dot cannot both be given: choose one speed")
+    if v is None and xd is None:
+        if required:
+            raise UsageError("missing speed: give --velocity V (m/s, rad/s) or --xi-dot V (encoder ticks per sample)")
+        return None, None
+    if v is not None:
+        if inputs.device is None:
+            raise UsageError("--velocity needs a physical device: with --mu/--beta/--sigma give --xi-dot instead")
+        return inputs.device.xi_dot(v), v
+    xd = check_real("--xi-dot", xd, "give the speed in encoder ticks per sample")
+    return xd, (inputs.device.velocity(xd) if inputs.device is not None else None)
+
+
+# ----------------------------------------------------------------- the (β, σ) plane of `map` and `contours`
+def range_arg(p: argparse.ArgumentParser, flag: str, default: list[float], what: str) -> None:
+    """A LOW HIGH range of a dimensionless group."""
+    p.add_argument(
+        flag,
+        type=number(flag, "dimensionless units"),
+        nargs=2,
+        default=default,
+        metavar=("A", "B"),
+        help=f"{what} range, dimensionless (default: {default[0]:g} {default[1]:g})",
+    )
+
+
+def add_plane_args(p: argparse.ArgumentParser, speeds: bool) -> None:
+    """A device instead of --mu for `map` and `contours` (μ from the device at K; its (β, σ) is marked), and --plot."""
+    g = add_device_group(p, "device (instead of --mu: a catalogue name, or physical values in SI units)")
+    if speeds:
+        g.add_argument(
+            "--velocity",
+            type=number("--velocity", "m/s (rotary: rad/s)"),
+            nargs="+",
+            metavar="V",
+            help="initial speeds in m/s (rotary: rad/s; needs a device), instead of --xi-dot; default: none",
+        )
+    p.add_argument("--plot", metavar="FILE.png", help="write the figure to a PNG file (default: none)")
+
+
+def check_plane(args: argparse.Namespace) -> None:
+    """--grid, --beta-range and --sigma-range of `map` and `contours`, refused with the flag's name."""
+    if args.grid < 2:
+        raise UsageError(
+            f"--grid {args.grid} is invalid: it must be a whole number >= 2 (points per axis); give e.g. --grid 50"
+        )
+    for flag, (lo, hi), sym in (("--beta-range", args.beta_range, "β"), ("--sigma-range", args.sigma_range, "σ")):
+        if lo < 0.0 or not hi > lo:
+            raise UsageError(
+                f"{flag} {lo:g} {hi:g} is invalid: it must be LOW HIGH with 0 <= LOW < HIGH ({sym} >= 0); "
+                f"give e.g. {flag} 0 {max(lo, hi, 1.0):g}"
+            )
+
+
+def plane_device(args: argparse.Namespace) -> tuple[float, Inputs | None]:
+    """μ of `map`/`contours`: --mu, or a device at its stiffness (never both)."""
+    check_plane(args)
+    given = device_given(args)
+    if args.mu is not None and given:
+        raise UsageError("--mu cannot be combined with a device: give --mu, or --device/physical values (μ follows)")
+    if args.mu is None and not given:
+        raise UsageError(
+            "missing --mu: give --mu, or a device (--device NAME, or --mass --damping --coulomb --resolution --period)"
+        )
+    if args.mu is not None:
+        return check_mu(args.mu, "--mu"), None
+    inp = resolve(args, dimensionless=False)
+    assert inp.params is not None
+    return inp.params.mu, inp
+
+
+def device_json(inp: Inputs | None, xi_dots: Sequence[float] = ()) -> dict[str, object]:
+    """Device, K, force step, operating point and physical speeds for the JSON of `map`/`contours`."""
+    if inp is None or inp.device is None or inp.stiffness is None or inp.params is None:
+        return {}
+    from ..model.units import unit_context
+
+    d = unit_context(inp.device, inp.stiffness)
+    d.pop("velocity")
+    d["operating_point"] = {"mu": inp.params.mu, "beta": inp.params.beta, "sigma": inp.params.sigma}
+    d["tick_" + ("rad" if inp.device.rotary else "m")] = inp.device.resolution
+    if xi_dots:
+        d["velocities"] = [inp.device.velocity(x) for x in xi_dots]
+    return d
+
+
+def outside_note(args: argparse.Namespace, inp: Inputs) -> str:
+    """A warning when the device's (β, σ) lies outside the plotted ranges (empty otherwise)."""
+    assert inp.params is not None
+    b0, b1 = sorted(args.beta_range)
+    s0, s1 = sorted(args.sigma_range)
+    if b0 <= inp.params.beta <= b1 and s0 <= inp.params.sigma <= s1:
+        return ""
+    return " (outside the (β, σ) range of the map: widen --beta-range/--sigma-range to see it)"

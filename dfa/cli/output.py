@@ -1,0 +1,129 @@
+"""What every command shares on the way out: JSON, tables, figures, progress bars and the work limits."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Sequence
+from typing import Any
+
+from ..formatting import number, text_table
+from ..results.jsonable import dumps
+from .inputs import Inputs
+from .parsing import UsageError
+
+__all__ = [
+    "MAP_TIME_LIMIT_HOURS",
+    "SIMULATE_NS_PER_SAMPLE",
+    "SIMULATE_TIME_LIMIT",
+    "SIMULATION_BOUND",
+    "add_progress_args",
+    "check_samples",
+    "cores",
+    "emit",
+    "fmt",
+    "mark_operating_point",
+    "progress",
+    "save_png",
+    "table",
+]
+
+#: Planned cost of one simulated sample in the worst case measured (an oscillating run, loaded machine).
+SIMULATE_NS_PER_SAMPLE = 100
+#: ``dfa simulate`` refuses runs estimated longer than this (seconds) unless --force (work is refused up
+#: front; a run without delay is integrated in chunks and stops at Ctrl-C, one with a delay or one run of a
+#: map cannot be interrupted before the compiled kernel returns).
+SIMULATE_TIME_LIMIT = 30.0
+#: ``dfa map`` refuses maps estimated longer than this (hours, at the worst-case cost per sample) unless --force.
+MAP_TIME_LIMIT_HOURS = 24.0
+#: |ξ| (ticks) beyond which a run counts as unstable (the default ``bound`` of :func:`dfa.simulate`).
+SIMULATION_BOUND = 1.0e6
+
+
+def emit(obj: object, ensure_ascii: bool = True) -> None:
+    """Print one strict-JSON object (NaN/inf become null with the reason, :mod:`dfa.results.jsonable`)."""
+    print(dumps(obj, ensure_ascii=ensure_ascii))
+
+
+def table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:
+    """A plain-text table (:func:`dfa.formatting.text_table`)."""
+    return text_table(rows, header)
+
+
+def fmt(x: float | None, digits: int = 4) -> str:
+    """A number for a table: ``digits`` significant digits, ``-`` for None, ``inf``."""
+    return number(x, digits, none="-", inf="inf")
+
+
+def save_png(flag: str, path: str, ax: Any) -> str:
+    """Write the figure of ``ax`` to ``path`` as PNG, atomically; close it."""
+    import matplotlib.pyplot as plt
+
+    from .._io import atomic_open
+
+    with atomic_open(path, "wb") as fh:
+        ax.figure.savefig(fh, format="png", dpi=120, bbox_inches="tight")
+    plt.close(ax.figure)
+    return path
+
+
+def mark_operating_point(axes: Any, inp: Inputs | None) -> None:
+    """Mark the device's (β, σ) at its K on each panel of a map or contour figure."""
+    if inp is None or inp.params is None:
+        return
+    from ..figures import POINT_STYLE
+
+    for ax in axes:
+        ax.plot([inp.params.beta], [inp.params.sigma], **POINT_STYLE)
+        ax.annotate(
+            f"{inp.device.name if inp.device else ''}, K = {inp.stiffness:g}",
+            (inp.params.beta, inp.params.sigma),
+            textcoords="offset points",
+            xytext=(6, 6),
+            fontsize=7,
+            clip_on=True,
+        )
+
+
+def add_progress_args(p: argparse.ArgumentParser, quiet: bool = True) -> None:
+    """--progress (and --quiet): the progress bar policy of :func:`progress`."""
+    p.add_argument(
+        "--progress",
+        action="store_true",
+        help="progress bar with an estimate on stderr even when it is not a terminal (default: only on a terminal)",
+    )
+    if quiet:
+        p.add_argument("--quiet", action="store_true", help="no progress bar (default: a bar on a terminal)")
+
+
+def progress(args: argparse.Namespace) -> bool:
+    """Show progress bars: never with --quiet; always with --progress; else only on a terminal and without --json."""
+    if getattr(args, "quiet", False):
+        return False
+    if getattr(args, "progress", False):
+        return True
+    if getattr(args, "json", False):
+        return False
+    try:
+        return sys.stderr.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
+def check_samples(samples: int, force: bool) -> None:
+    """Refuse a run estimated over :data:`SIMULATE_TIME_LIMIT` seconds unless ``force`` (up front, with the fix)."""
+    if samples < 1:
+        raise UsageError(f"--samples {samples} is invalid: simulate at least one sample")
+    seconds = samples * SIMULATE_NS_PER_SAMPLE * 1e-9
+    if seconds > SIMULATE_TIME_LIMIT and not force:
+        raise UsageError(
+            f"--samples {samples} could take up to {seconds:.3g} s (estimated {SIMULATE_NS_PER_SAMPLE} ns per sample; "
+            f"limit {SIMULATE_TIME_LIMIT:g} s): lower --samples "
+            f"(at most {int(SIMULATE_TIME_LIMIT / (SIMULATE_NS_PER_SAMPLE * 1e-9))}) or add --force"
+        )
+
+
+def cores(jobs: int) -> int:
+    """The number of workers of ``--jobs`` (-1: every core)."""
+    return (os.cpu_count() or 1) if jobs == -1 else jobs

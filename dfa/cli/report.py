@@ -1,0 +1,97 @@
+"""``dfa report``: the design report of a device (HTML and/or Markdown with figures), spring or wall."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+from typing import Any
+
+from .._io import check_output_folder
+from ..model.catalogue import DEFAULT_DEVICE
+from .inputs import PHYS_FLAGS, add_device_args, resolve, speed
+from .output import add_progress_args, emit, progress
+from .parsing import UsageError, integer
+from .walls import add_wall_args, wall_from_args
+
+COMMAND = "report"
+HELP = "design report of a device: verdict, limits, cycles, figures (HTML or Markdown)"
+EXAMPLE = "dfa report --device phantom --velocity 0.1 --out reports --format both"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The device (default: the built-in one), one speed, --out, --format, --validation, --zwidth and the wall."""
+    json_help = "print the paths written and the numbers stated as one JSON object (default: one line per file)"
+    add_device_args(p, False, True, json_help)
+    p.add_argument(
+        "--out", default="reports", metavar="DIR", help="output folder, created if missing (default: reports)"
+    )
+    p.add_argument(
+        "--format",
+        choices=["html", "md", "both"],
+        default="html",
+        help="html (self-contained), md (with PNGs in DIR/figures) or both (default: html)",
+    )
+    p.add_argument(
+        "--validation",
+        metavar="FILE.json",
+        help="validation summary for the 'how far to trust' paragraph, as written by `dfa validate` (default: none)",
+    )
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help="replace a report of the same name made for another device, stiffness, speed or delay (default: refuse)",
+    )
+    p.add_argument(
+        "--zwidth",
+        type=integer("--zwidth"),
+        metavar="N",
+        help="Z-width section on an N x N grid (K against virtual damping B; default: none for the spring, "
+        "16 with a wall flag; 0: none)",
+    )
+    add_progress_args(p)
+    add_wall_args(p)
+
+
+def _read_validation(path: str) -> dict[str, Any]:
+    """A validation summary the user names (``dfa validate`` writes it as validation.json)."""
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = json.load(fh)
+    except (OSError, ValueError) as exc:
+        why = exc.strerror if isinstance(exc, OSError) else "not JSON"
+        raise UsageError(
+            f"--validation {path!r} cannot be read ({why}): give the validation.json that `dfa validate --out DIR` wrote"
+        ) from None
+    if not isinstance(data, dict) or "soundness_violations" not in data:
+        raise UsageError(
+            f"--validation {path!r} is not a validation summary: give the validation.json that `dfa validate` wrote"
+        )
+    return data
+
+
+def run(args: argparse.Namespace) -> int:
+    """Write the report; print the paths written (or, with --json, the paths and the numbers stated)."""
+    from ..report import design_report
+
+    if args.device is None and not any(getattr(args, k, None) is not None for k in (*PHYS_FLAGS, "counts")):
+        args.device = DEFAULT_DEVICE
+    check_output_folder("--out", args.out, create=True)  # the parent must exist; the folder is created
+    inp = resolve(args, dimensionless=False)
+    assert inp.device is not None
+    ctl = wall_from_args(args, inp.device, inp.stiffness)  # None: the spring (no flag, or B = 0 without filter/lag)
+    if args.zwidth is not None and args.zwidth < 0:
+        raise UsageError(f"--zwidth {args.zwidth} is invalid: give the points per axis (0: no Z-width section)")
+    _xd, v = speed(args, inp, required=False)
+    summary = _read_validation(args.validation) if args.validation is not None else None
+    os.makedirs(args.out, exist_ok=True)
+    res = design_report(
+        inp.entry or inp.device, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=progress(args),
+        delay=args.delay, validation=summary, force=args.force, zwidth_grid=args.zwidth, controller=ctl,
+    )  # fmt: skip
+    if args.json:
+        emit(res.to_dict(), ensure_ascii=False)
+        return 0
+    for pth in res.paths:
+        print(f"written {pth}")
+    return 0

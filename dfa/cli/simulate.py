@@ -1,0 +1,127 @@
+"""``dfa simulate``: one exact simulation of the sampled, quantized, frictional loop (eq. 4-5), spring or wall."""
+
+from __future__ import annotations
+
+import argparse
+
+from .._io import check_output_file
+from ..results.jsonable import explain_nulls
+from .inputs import add_device_args, resolve, speed
+from .output import (
+    SIMULATE_TIME_LIMIT,
+    SIMULATION_BOUND,
+    add_progress_args,
+    check_samples,
+    emit,
+    progress,
+    table,
+)
+from .parsing import UsageError, integer, number
+from .walls import add_wall_args, print_wall, wall_from_args, wall_json, wall_params
+
+COMMAND = "simulate"
+HELP = "exact simulation of the sampled, quantized, frictional loop (eq. 4-5)"
+EXAMPLE = "dfa simulate --device delta --velocity 0.5"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The device or (μ, β, σ), the initial state, the run length, the wall, --trace and the work limit."""
+    add_device_args(p, dimensionless=True, speed=True)
+    p.add_argument("--xi0", type=number("--xi0", "ticks"), metavar="X", help="initial position in ticks (default: 0)")
+    p.add_argument(
+        "--samples",
+        type=integer("--samples"),
+        default=None,
+        metavar="N",
+        help="samples to simulate (default: from the loop's time scales, 50000 to 10^7)",
+    )
+    add_wall_args(p)
+    p.add_argument(
+        "--preload",
+        action="store_true",
+        help="start at rest with the spring preloaded to the speed's kinetic energy (section 5; default: off)",
+    )
+    p.add_argument(
+        "--no-quantization",
+        action="store_true",
+        help="linear spring φ = −ξ instead of the encoder staircase (default: with the encoder)",
+    )
+    p.add_argument("--trace", metavar="FILE.csv", help="write sample, xi, xi_dot (ticks) to a CSV file (default: none)")
+    add_progress_args(p)
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s (default: refuse)",
+    )
+
+
+def _start(args: argparse.Namespace, mu: float, xd: float) -> tuple[float, float]:
+    """(ξ0, ξ'0) of the run: the preload of the speed's energy, or --xi0 with the speed."""
+    from ..analysis.simulation import preload_position
+
+    if args.preload and args.xi0 is not None:
+        raise UsageError("--preload and --xi0 cannot both be given: the preload sets ξ0 from the speed")
+    x0, v0 = (preload_position(mu, xd), 0.0) if args.preload else ((0.0 if args.xi0 is None else args.xi0), xd)
+    if not abs(x0) < SIMULATION_BOUND:
+        src = "--xi0" if args.xi0 is not None else "the --preload position of this speed"
+        raise UsageError(
+            f"ξ0 = {x0:.4g} ticks from {src} is beyond the simulation bound of {SIMULATION_BOUND:g} ticks "
+            "(the run would stop at once as unstable): give a smaller start"
+        )
+    return x0, v0
+
+
+def _write_trace(path: str, r: object) -> None:
+    from ..render.files import write_trace_csv
+
+    try:
+        write_trace_csv(r, path)
+    except OSError as exc:
+        raise UsageError(f"--trace {path!r} cannot be written: {exc.strerror}; choose a writable file") from None
+
+
+def run(args: argparse.Namespace) -> int:
+    """Simulate one impact; print its outcome, amplitude, frequency and final state."""
+    from ..analysis.simulation import MAX_RECORD_BYTES, default_samples, divergence_bound, simulate
+    from ..render.text import simulation_rows
+
+    inp = resolve(args, dimensionless=True)
+    p = inp.params
+    assert p is not None
+    xd, vel = speed(args, inp, signed=True)  # an initial condition: the sign of ξ'0 is the direction of motion
+    assert xd is not None
+    ctl = wall_from_args(args, inp.device, inp.stiffness)
+    wp = wall_params(args, ctl, inp)
+    if args.trace is not None:
+        check_output_file("--trace", args.trace)
+    x0, v0 = _start(args, p.mu, xd)
+    quantize = not args.no_quantization
+    n = args.samples if args.samples is not None else default_samples(p.mu, p.beta, p.sigma, v0, x0, quantize, wall=wp)
+    if args.trace is not None and 16 * (n + 1) > MAX_RECORD_BYTES:
+        raise UsageError(
+            f"--trace with --samples {n} would need {16 * (n + 1) / 1024**3:.1f} GiB of trajectory "
+            f"(limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB): drop --trace or lower --samples"
+        )
+    if args.samples is not None:  # the automatic length is capped (dfa.analysis.simulation.default_samples)
+        check_samples(args.samples, args.force)
+    r = simulate(
+        p.mu, p.beta, p.sigma, v0, args.samples, xi0=x0, quantize=quantize, record=args.trace is not None,
+        progress=progress(args), bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND), wall=wp,
+    )  # fmt: skip
+    if args.trace is not None:
+        _write_trace(args.trace, r)
+    phys = r.physical(inp.device, inp.stiffness) if inp.device is not None and inp.stiffness is not None else None
+    if args.json:
+        d = r.to_dict()
+        if phys is not None:
+            d.update(phys)
+            d["velocity"] = vel
+            explain_nulls(d, r.null_reasons())
+        emit(wall_json(d, ctl, inp))
+        return 0
+    print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
+    print_wall(ctl, inp)
+    print(table(simulation_rows(r, x0, v0, args.preload, phys)))
+    if args.trace is not None:
+        print(f"trace written to {args.trace}")
+    return 0

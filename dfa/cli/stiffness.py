@@ -1,0 +1,96 @@
+"""``dfa stiffness``: the largest stiffness for an impact speed, four ways, for the spring and any wall.
+
+One path: the wall of the flags (the spring with its delay when none is given) is held fixed while K varies
+(:func:`dfa.analysis.limits.kmax.design_answer`); K itself, when given or in the catalogue, is assessed.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from .._io import check_output_file
+from ..model.wall import Wall
+from ..results.jsonable import explain_nulls
+from .inputs import Inputs, add_device_args, resolve, speed
+from .output import emit, save_png, table
+from .walls import add_wall_args, print_wall, wall_from_args, wall_json
+
+COMMAND = "stiffness"
+HELP = (
+    "largest stiffness for an impact speed, four ways: criterion (eq. 11), exact linear bound, "
+    "describing function, simulation; bounds of eq. 8, 9"
+)
+EXAMPLE = "dfa stiffness --device impulse --velocity 0.05 --stiffness 80"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The device, one speed, the wall, --explain and --plot."""
+    add_device_args(p, dimensionless=False, speed=True)
+    add_wall_args(p)
+    p.add_argument(
+        "--explain",
+        action="store_true",
+        help="state what each simulated limit's confirmation simulated (default: the limits and their caveats)",
+    )
+    p.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        help="write the stiffness-speed chart (largest safe impact speed against K, four ways) to a PNG file "
+        "(default: none)",
+    )
+
+
+def _source(args: argparse.Namespace, inp: Inputs) -> str | None:
+    """Where the assessed K came from: --stiffness, the catalogue, or nowhere (None)."""
+    if args.stiffness is not None:
+        return "--stiffness"
+    return "catalogue" if inp.stiffness is not None else None
+
+
+def run(args: argparse.Namespace) -> int:
+    """K_max four ways for the spring or any wall (the wall's K is what is searched)."""
+    from ..analysis.limits.kmax import design_answer
+    from ..render.limits import PROOF_NOTE, evidence_text, kmax_rows, verdict_text
+
+    inp = resolve(args, dimensionless=False, need_stiffness=False)
+    dev = inp.device
+    assert dev is not None
+    _xd, v = speed(args, inp)
+    assert v is not None
+    k = inp.stiffness
+    ctl = wall_from_args(args, dev, 1.0 if k is None else k)  # K is what is searched: any K states the elements
+    wall = ctl if ctl is not None else Wall.of(1.0 if k is None else k, delay=args.delay)
+    if args.plot is not None:
+        check_output_file("--plot", args.plot, ".png")
+    src = _source(args, inp)
+    ans = design_answer(dev, v, wall=wall, assess=k is not None, source="catalogue" if src == "catalogue" else "given")
+    if args.plot is not None:
+        from ..analysis.limits.speed_chart import stiffness_speed_chart
+
+        chart = stiffness_speed_chart(dev, wall=wall, stiffness=k, velocity=v if v > 0 else None)
+        save_png("--plot", args.plot, chart.plot())
+    if args.json:
+        rec = ans.to_dict()
+        rec["stiffness_source"] = src
+        explain_nulls(rec, {"stiffness_source": "no --stiffness given and no catalogue K"})
+        if args.plot is not None:
+            rec["plot"] = args.plot
+        emit(wall_json(rec, ctl, inp))
+        return 0
+    vu, d = dev.units["velocity"], wall.delay
+    print(
+        f"{dev.name}, impact speed {v:.4g} {vu} ({ans.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
+        + ("" if ctl is None else "; B, f_c, f_bw held fixed while K varies")
+    )
+    print_wall(ctl, inp)
+    rows = kmax_rows(ans, explain=args.explain)
+    rows.append(["verdict at this speed", verdict_text(ans)])
+    print(table(rows))
+    if v > 0:
+        print(f"evidence: {evidence_text(ans)}.")
+        print(f"{PROOF_NOTE} (or the first harmonic).")
+    else:
+        print("impact speed 0: the describing-function and simulated limits need a speed > 0.")
+    if args.plot is not None:
+        print(f"stiffness-speed chart written to {args.plot}")
+    return 0

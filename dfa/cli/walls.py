@@ -1,0 +1,138 @@
+"""The wall's flags: one row per wall element, from the element's own :class:`~dfa.model.elements.Parameter`.
+
+Adding an element to :data:`dfa.model.elements.ELEMENTS` adds its flag to every command that takes a wall
+(``--delay``, ``--virtual-damping``, ``--velocity-filter``, ``--amplifier-bandwidth`` today); the physical
+values become a :class:`~dfa.model.wall.Wall` with :meth:`~dfa.model.wall.Wall.of` and its groups with
+:meth:`~dfa.model.wall.Wall.params`.
+"""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from ..model.device import Device
+from ..model.elements import ELEMENTS, Delay, Element
+from ..model.wall import MIN_CUTOFF, Wall, WallParams
+from .inputs import Inputs
+from .parsing import UsageError, delay, number
+
+__all__ = [
+    "WALL_FLAGS",
+    "add_wall_args",
+    "check_filter_amplifier",
+    "given_flags",
+    "print_wall",
+    "wall_from_args",
+    "wall_json",
+    "wall_params",
+]
+
+
+def _dest(kind: type[Element]) -> str:
+    """The argparse destination of an element's flag (``--virtual-damping`` -> ``virtual_damping``)."""
+    return kind.parameter.flag.lstrip("-").replace("-", "_")
+
+
+#: The flag table: element class -> (flag, argparse destination). The delay is a plain flag (default 0); the
+#: others form the wall group (default: no such element).
+WALL_FLAGS: dict[type[Element], tuple[str, str]] = {k: (k.parameter.flag, _dest(k)) for k in ELEMENTS}
+
+
+def _add_element(g: Any, kind: type[Element], help_text: str | None = None) -> None:
+    par = kind.parameter
+    flag, dest = WALL_FLAGS[kind]
+    if kind is Delay:
+        g.add_argument(flag, dest=dest, type=delay, default=0, metavar="N", help=par.help)
+        return
+    unit = par.units[0] if par.units[0] == par.units[1] else f"{par.units[0]} (rotary: {par.units[1]})"
+    g.add_argument(flag, dest=dest, type=number(flag, unit), metavar=par.metavar, help=help_text or par.help)
+
+
+def add_wall_args(p: argparse.ArgumentParser, *, zwidth: bool = False) -> None:
+    """--delay and the other elements' flags. With ``zwidth`` the damper's flag is refused (B is the Z-width's axis)."""
+    _add_element(p, Delay)
+    title = (
+        "wall (B is the Z-width's axis)"
+        if zwidth
+        else "wall (default: the paper's spring; needs a physical device and K)"
+    )
+    g = p.add_argument_group(title)
+    for kind in ELEMENTS:
+        if kind is not Delay:
+            refused = "not accepted here: B is the Z-width's axis, its grid spans B from 0 (default: the grid)"
+            _add_element(g, kind, refused if zwidth and WALL_FLAGS[kind][1] == "virtual_damping" else None)
+
+
+def given_flags(args: argparse.Namespace) -> list[str]:
+    """The wall flags given on the command line, besides --delay."""
+    return [
+        flag for kind, (flag, dest) in WALL_FLAGS.items() if kind is not Delay and getattr(args, dest, None) is not None
+    ]
+
+
+def check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
+    """Refuse (UsageError, exit 2) a filter cutoff <= 0 or not below the Nyquist frequency, a bandwidth <= 0."""
+    fc, bw = args.velocity_filter, args.amplifier_bandwidth
+    nyquist = 0.5 / device.period
+    floor = MIN_CUTOFF * 2.0 * nyquist  # as Wall checks it, with the same rounding allowance
+    if fc is not None and not floor * (1 - 1e-12) <= fc < nyquist:
+        raise UsageError(
+            f"--velocity-filter {fc:g} is invalid: the cutoff must be at least {floor:.6g} Hz ({MIN_CUTOFF:g} cycles "
+            f"per sample: below, the filter pole cannot be told from the mass's pole in double precision) and below "
+            f"the Nyquist frequency {nyquist:.6g} Hz (1/(2T), T = {device.period:g} s); give a cutoff in Hz in "
+            f"[{floor:.6g}, {nyquist:.6g}), or drop the flag"
+        )
+    if bw is not None and not bw > 0:
+        raise UsageError(
+            f"--amplifier-bandwidth {bw:g} is invalid: it must be > 0 Hz; give f_bw in Hz, or drop the flag"
+        )
+
+
+def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: float | None) -> Wall | None:
+    """The wall of the flags beyond a spring; None for the paper's spring (no flag, or B = 0 without filter and lag).
+
+    Refuses (UsageError, exit 2) a negative B, a cutoff <= 0 or not below the Nyquist frequency, a
+    bandwidth <= 0, and wall flags without a physical device and stiffness.
+    """
+    given = given_flags(args)
+    if not given:
+        return None
+    if device is None or stiffness is None:
+        raise UsageError(
+            f"{', '.join(given)} needs a physical device and stiffness (K and T turn B, f_c, f_bw into β_B, ν_c, α): "
+            "give --device NAME (or --mass --damping --coulomb --resolution --period) and --stiffness K"
+        )
+    b = args.virtual_damping
+    if b is not None and b < 0:
+        bu = device.units["damping"]
+        raise UsageError(f"--virtual-damping {b:g} is invalid: B must be >= 0; give the damper in {bu} (0 for none)")
+    check_filter_amplifier(args, device)
+    values: dict[str, Any] = {kind.parameter.name: getattr(args, dest) for kind, (_f, dest) in WALL_FLAGS.items()}
+    values["damping"] = values["damping"] or 0.0
+    wall = Wall.of(stiffness, **values)
+    return None if wall.params(device.period).is_spring else wall
+
+
+def wall_params(args: argparse.Namespace, wall: Wall | None, inp: Inputs | None) -> WallParams:
+    """The dimensionless wall of a run: the wall's groups, else the spring with the --delay."""
+    if wall is None or inp is None or inp.device is None:
+        return WallParams.of(delay=args.delay)
+    return wall.params(inp.device.period)
+
+
+def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[str, Any]:
+    """Add the ``"controller"`` object (physical values, units and dimensionless groups) to a JSON record."""
+    if wall is not None and inp is not None and inp.device is not None:
+        from ..render.controller import controller_dict
+
+        d["controller"] = controller_dict(wall, inp.device.period, inp.device.units)
+    return d
+
+
+def print_wall(wall: Wall | None, inp: Inputs | None) -> None:
+    """State the wall on its own line (nothing for the spring: its output is unchanged)."""
+    if wall is not None and inp is not None and inp.device is not None:
+        from ..render.controller import controller_line
+
+        print(controller_line(wall, inp.device.period, inp.device.units))

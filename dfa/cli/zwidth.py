@@ -1,0 +1,111 @@
+"""``dfa zwidth``: the Z-width, the renderable (K, B) region by the linear bound, passivity, the describing
+function and simulation, with the wall's delay, filter and amplifier held fixed."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from .._io import check_output_file
+from ..model.wall import Wall
+from .inputs import add_device_group, impact_speed, resolve
+from .output import add_progress_args, emit, fmt, progress, save_png, table
+from .parsing import UsageError, integer, number
+from .walls import add_wall_args, check_filter_amplifier
+
+COMMAND = "zwidth"
+HELP = (
+    "Z-width: the renderable region of the (K, B) plane by the exact linear bound, passivity, "
+    "the describing function and exact simulation"
+)
+EXAMPLE = "dfa zwidth --device impulse --velocity 0.1 --grid 20"
+
+#: Column titles of the table, by method (dfa.analysis.limits.zwidth.ZWIDTH_METHODS).
+COLUMNS = {"linear": "linear", "passivity": "C-S passivity", "criterion": "criterion", "df": "describing fn",
+           "sim": "sim (no div.)", "rest": "sim (rest)"}  # fmt: skip
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The device, one speed, the wall (its damper refused: B is the axis), the grid and --plot."""
+    add_device_group(p, "device (a catalogue name, or physical values in SI units)")
+    p.add_argument(
+        "--velocity",
+        required=True,
+        type=number("--velocity", "m/s (rotary: rad/s)"),
+        metavar="V",
+        help="impact speed in m/s (rotary: rad/s); required",
+    )
+    add_wall_args(p, zwidth=True)
+    p.add_argument("--grid", type=integer("--grid"), default=40, metavar="N", help="points per axis (default: 40)")
+    p.add_argument(
+        "--speeds",
+        type=integer("--speeds"),
+        default=2,
+        metavar="N",
+        help="impact speeds simulated, V/N ... V (default: 2)",
+    )
+    p.add_argument("--jobs", type=integer("--jobs"), default=-1, metavar="N", help="threads (default: -1, all cores)")
+    p.add_argument("--plot", metavar="FILE.png", help="write the Z-width figure to a PNG file (default: none)")
+    p.add_argument("--json", action="store_true", help="print one JSON object on stdout (default: a text table)")
+    add_progress_args(p)
+
+
+def _refuse(args: argparse.Namespace) -> None:
+    """--stiffness and --virtual-damping are the grid's axes; the grid and speeds are whole numbers >= 2, >= 1."""
+    from ..checks import check_jobs
+
+    if args.stiffness is not None:
+        raise UsageError("--stiffness cannot be given to zwidth: the Z-width spans a grid of K (see --grid)")
+    if args.virtual_damping is not None:
+        raise UsageError(
+            "--virtual-damping cannot be given to zwidth: the Z-width spans a grid of B from 0 (see --grid); "
+            "drop the flag, or use `dfa stiffness`/`dfa report` with it for one damper"
+        )
+    for flag, value, least in (("--grid", args.grid, 2), ("--speeds", args.speeds, 1)):
+        if value < least:
+            raise UsageError(f"{flag} {value} is invalid: it must be a whole number >= {least}; give e.g. {flag} 4")
+    check_jobs("--jobs", args.jobs)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Compute the Z-width; print K_max(B) per method."""
+    from ..analysis.limits.zwidth import ZWIDTH_METHODS, z_width
+
+    _refuse(args)
+    inp = resolve(args, dimensionless=False, need_stiffness=False)
+    dev = inp.device
+    assert dev is not None
+    check_filter_amplifier(args, dev)
+    if args.plot is not None:
+        check_output_file("--plot", args.plot, ".png")
+    wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
+                   amplifier_bandwidth=args.amplifier_bandwidth)  # fmt: skip
+    v = impact_speed("--velocity", args.velocity, inp, zero=False)
+    zw = z_width(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, progress=progress(args))
+    if args.plot is not None:
+        save_png("--plot", args.plot, zw.plot())
+    if args.json:
+        rec = zw.to_dict()
+        if args.plot is not None:
+            rec["plot"] = args.plot
+        emit(rec)
+        return 0
+    u = dev.units
+    cols = zip(*(zw.boundary(m) for m in ZWIDTH_METHODS), strict=True)
+    rows = [[fmt(float(b))] + [fmt(None if not math.isfinite(x) else float(x)) for x in col]
+            for b, col in zip(zw.damping, cols, strict=True)]  # fmt: skip
+    fc, bw = zw.wall.filter_cutoff, zw.wall.amplifier_bandwidth
+    elements = f"delay {zw.delay}" + (f", velocity filter {fmt(fc)} Hz" if fc is not None else "")
+    elements += f", amplifier {fmt(bw)} Hz" if bw is not None else ""
+    print(f"Z-width of {dev.name}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}")
+    print(f"K_max(B) in {u['stiffness']} ('-': undefined, see --json for the reason)")
+    print(table(rows, [f"B ({u['damping']})"] + [COLUMNS[m] for m in ZWIDTH_METHODS]))
+    print(
+        f"{zw.simulations} exact simulations on a {zw.stiffness.size} x {zw.damping.size} grid "
+        f"(K {zw.stiffness[0]:.4g} to {zw.stiffness[-1]:.4g} {u['stiffness']}); simulated limits are grid values"
+    )
+    if zw.counterexamples:
+        print(f"COUNTEREXAMPLES to the extended criterion: {len(zw.counterexamples)} (see --json)")
+    if args.plot is not None:
+        print(f"Z-width figure written to {args.plot}")
+    return 0
