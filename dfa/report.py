@@ -5,9 +5,9 @@
 and/or one self-contained HTML file (figures embedded, no PNG written). The files of one report appear
 together or not at all (:func:`dfa._io.staged_folder`), with ``design_report_{name}.json`` beside them: the
 inputs and numbers stated, used to refuse overwriting the report of another device, stiffness, speed or delay.
-A report with a wall controller is named ``design_report_{name}_controller.*`` (figures
-``{name}_controller_*.png``): it never replaces the spring report of the same device, and a report of another
-controller in the way is refused like any report of other inputs.
+A report of a wall beyond the paper's spring (a virtual damper, velocity filter or amplifier lag) is named
+``design_report_{name}_controller.*`` (figures ``{name}_controller_*.png``): it never replaces the spring report of
+the same device, and a report of another wall in the way is refused like any report of other inputs.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from ._io import staged_folder
-from .analysis.design import DesignAnalysis, design_analysis, resolve_controller, resolve_design_inputs
+from .analysis.design import DesignAnalysis, design_analysis, resolve_design_inputs
 from .checks import _fmt, check_choice, check_int
 from .errors import DFATypeError, DFAValueError
 from .model.catalogue import CatalogueEntry
@@ -45,9 +45,9 @@ class ReportResult:
     figures : tuple of Path
         PNG files written (only with Markdown; HTML embeds its figures).
     numbers : dict
-        Headline numbers (μ, β, σ, region, passive, K_max, speeds in ticks/sample, cycle amplitudes); with a
-        controller those of the extended criterion and of K_max with it, ``k_linear`` and the ``controller``
-        object of `dfa check --json` (nulls explained in ``null_reasons``).
+        Headline numbers (μ, β, σ, region, passive, K_max, speeds in ticks/sample, cycle amplitudes); for a wall
+        beyond the spring those of the criterion extended to it and of K_max with it, ``k_linear`` and the
+        ``controller`` object of `dfa check --json` (nulls explained in ``null_reasons``).
     status : ReportStatus
         ``OK``.
     analysis : DesignAnalysis or None
@@ -89,37 +89,36 @@ def report_slug(name: str) -> str:
 
 
 def _numbers(a: DesignAnalysis) -> dict[str, Any]:
+    """The headline numbers: the spring's closed forms, or for a wall its extended criterion and K_max."""
     p, crit = a.params, a.criterion
-    if crit is None or a.limits is None:
-        return _controller_numbers(a)
-    return dict(
-        mu=p.mu,
-        beta=p.beta,
-        sigma=p.sigma,
-        region=crit.region,
-        passive=crit.passive,
-        k_max=a.limits.k_max,
-        delay=a.delay,
-        critical_xi_dot=crit.critical_xi_dot,
-        df_xi_dot=a.threshold("zoh").xi_dot,
-        simulated_xi_dot=a.simulated_xi_dot,
-        cycles=[c.amplitude for c in a.threshold("half-delay").result.cycles],
-    )
+    if a.is_spring and crit is not None and a.limits is not None:
+        return dict(
+            mu=p.mu,
+            beta=p.beta,
+            sigma=p.sigma,
+            region=crit.region,
+            passive=crit.passive,
+            k_max=a.limits.k_max,
+            delay=a.delay,
+            critical_xi_dot=crit.critical_xi_dot,
+            df_xi_dot=a.threshold("zoh").xi_dot,
+            simulated_xi_dot=a.simulated_xi_dot,
+            cycles=[c.amplitude for c in a.threshold("half-delay").result.cycles],
+        )
+    return _wall_numbers(a)
 
 
-def _controller_numbers(a: DesignAnalysis) -> dict[str, Any]:
-    """The headline numbers with a controller: the extended criterion's, K_max with the controller, its groups."""
+def _wall_numbers(a: DesignAnalysis) -> dict[str, Any]:
+    """The headline numbers of a wall beyond the spring: the extended criterion's, K_max with the wall, its groups."""
     from .render.controller import controller_dict
 
-    p, chk, lim = a.params, a.controller_check, a.controller_limits
-    assert a.controller is not None and chk is not None
-    r = chk.criterion
+    p, r, lim = a.params, a.criterion, a.design_answer
     out = dict(
         mu=p.mu,
         beta=p.beta,
         sigma=p.sigma,
         region=None if r is None else r.region,
-        passive=chk.passive,
+        passive=a.check.passive,
         k_max=None if lim is None else lim.k_criterion.value,
         k_linear=None if lim is None else lim.k_linear.value,
         delay=a.delay,
@@ -127,7 +126,7 @@ def _controller_numbers(a: DesignAnalysis) -> dict[str, Any]:
         df_xi_dot=a.threshold("zoh").xi_dot,
         simulated_xi_dot=a.simulated_xi_dot,
         cycles=[c.amplitude for c in a.threshold("half-delay").result.cycles],
-        controller=controller_dict(a.controller, a.device.period, a.device.units),
+        controller=controller_dict(a.wall, a.device.period, a.device.units),
     )
     lag = "not covered: no passivity criterion is proven with an amplifier lag"
     why = {
@@ -142,26 +141,34 @@ def _controller_numbers(a: DesignAnalysis) -> dict[str, Any]:
     return explain_nulls(to_jsonable(out), why)
 
 
-def _identity(
-    device: Device, stiffness: float, velocity: float, delay: int, controller: Wall | None = None
-) -> dict[str, Any]:
-    """What makes two reports the same report: device, stiffness, speed, delay (and the controller, if any)."""
-    ident: dict[str, Any] = {"device": device.to_dict(), "stiffness": stiffness, "velocity": velocity, "delay": delay}
-    if controller is not None:
-        ident["controller"] = controller.to_dict()
+def _beyond_spring(device: Device, wall: Wall) -> bool:
+    """True for a wall with a damper, filter or amplifier lag (its report is a separate file)."""
+    return not wall.params(device.period).is_spring
+
+
+def _identity(device: Device, wall: Wall, velocity: float) -> dict[str, Any]:
+    """What makes two reports the same report: device, stiffness, speed, delay (and the wall's elements, if any)."""
+    delay = wall.params(device.period).delay
+    ident: dict[str, Any] = {
+        "device": device.to_dict(),
+        "stiffness": wall.stiffness,
+        "velocity": velocity,
+        "delay": delay,
+    }
+    if _beyond_spring(device, wall):
+        ident["controller"] = wall.to_dict()
     return json.loads(dumps(ident, ensure_ascii=False))
 
 
-def report_name(name: str, controller: Wall | None = None) -> str:
-    """File-name part of a report: the device's slug, with ``_controller`` for a report with a wall controller.
+def report_name(name: str, beyond_spring: bool = False) -> str:
+    """File-name part of a report: the device's slug, with ``_controller`` for a wall beyond the spring.
 
     Examples
     --------
-    >>> from dfa.model.wall import Wall
-    >>> report_name("Delta"), report_name("Delta", Wall.of(14500.0, damping=1.0))
+    >>> report_name("Delta"), report_name("Delta", True)
     ('delta', 'delta_controller')
     """
-    return report_slug(name) + ("_controller" if controller is not None else "")
+    return report_slug(name) + ("_controller" if beyond_spring else "")
 
 
 def _doc_names(slug: str, fmt: str) -> tuple[list[str], str]:
@@ -245,9 +252,9 @@ def write_design_report(
     if not out.is_dir():
         raise DFAValueError(f"out_dir = {str(out)!r} is invalid: the folder does not exist; create it first")
     a = analysis
-    slug = report_name(a.device.name, a.controller)
+    slug = report_name(a.device.name, not a.is_spring)
     docs, meta = _doc_names(slug, fmt)
-    ident = _identity(a.device, a.stiffness, a.velocity, a.delay, a.controller)
+    ident = _identity(a.device, a.wall, a.velocity)
     if not force:
         _check_overwrite(out, fmt, ident)
     figs = design_figures(analysis)
@@ -272,7 +279,7 @@ def write_design_report(
 
 def design_report(
     device: Device | CatalogueEntry,
-    stiffness: float | None = None,
+    wall: Wall | float | None = None,
     velocity: float | None = None,
     *,
     out_dir: str | os.PathLike = "reports",
@@ -280,13 +287,11 @@ def design_report(
     progress: bool = True,
     map_grid: int = 81,
     samples: int = 30_000,
-    delay: int = 0,
     validation: dict[str, Any] | None = None,
     force: bool = False,
     zwidth_grid: int | None = None,
-    controller: Wall | None = None,
 ) -> ReportResult:
-    """Write the design report of ``device`` at stiffness K, impact speed ẋ0 and computational delay d.
+    """Write the design report of ``device`` with ``wall`` at impact speed ẋ0.
 
     :func:`dfa.analysis.design.design_analysis` followed by :func:`write_design_report`.
 
@@ -294,8 +299,10 @@ def design_report(
     ----------
     device : Device or CatalogueEntry
         A catalogue entry adds the paper's printed values and notes.
-    stiffness : float, optional
-        K in N/m (rotary N·m/rad); default the catalogue K.
+    wall : Wall or float, optional
+        The wall (:class:`dfa.Wall`: K in N/m, rotary N·m/rad, and its elements: computational delay d in samples,
+        virtual damper, velocity filter, amplifier), or a stiffness K for the paper's spring; default the spring
+        at the catalogue K. A wall beyond the spring writes ``design_report_{name}_controller.*``.
     velocity : float, optional
         Impact speed in m/s (rotary rad/s); default 0.1 m/s (1 rad/s rotary).
     out_dir : path
@@ -306,20 +313,13 @@ def design_report(
         Progress bars on the long parts.
     map_grid, samples : int
         Size of the simulated stability map around the operating point.
-    delay : int
-        Computational delay d in whole samples (default 0): used by the criterion, the stiffness limits,
-        the describing function and every simulation of the report.
     validation : dict, optional
         Summary of a validation run (``dfa.validate(...).summary()``) for the "how far to trust" paragraph.
     force : bool
         Replace a report of the same name made for other inputs.
     zwidth_grid : int or None
-        Points per axis of a Z-width section (:func:`dfa.analysis.limits.zwidth.z_width`); None (default): no section for the
-        spring, a 16 × 16 one with a controller; 0: none.
-    controller : Wall, optional
-        A wall controller (:class:`dfa.Wall`; its K and delay are the report's): the report states it,
-        its passivity check and K_max, computes every section that accepts it with it and leaves out the
-        spring-only ones (:func:`dfa.analysis.design.design_analysis`). Files ``design_report_{name}_controller.*``.
+        Points per axis of a Z-width section (:func:`dfa.analysis.limits.zwidth.z_width`); None (default): no
+        section for the spring, a 16 × 16 one for a wall beyond it; 0: none.
 
     Returns
     -------
@@ -344,12 +344,11 @@ def design_report(
         raise DFATypeError(f"out_dir = {_fmt(out_dir)} has type {type(out_dir).__name__}: it must be a folder path")
     if not Path(out_dir).is_dir():
         raise DFAValueError(f"out_dir = {str(out_dir)!r} is invalid: the folder does not exist; create it first")
-    ctl, k_in, d_in = resolve_controller(device, controller, stiffness, delay)
-    _entry, dev, k, v, dl = resolve_design_inputs(device, k_in, velocity, d_in)
+    _entry, dev, w, v = resolve_design_inputs(device, wall, velocity)
     if not force:  # before the analysis: refuse in a second, not after a minute of simulation
-        _check_overwrite(Path(out_dir), fmt, _identity(dev, k, v, dl, ctl))
+        _check_overwrite(Path(out_dir), fmt, _identity(dev, w, v))
     a = design_analysis(
-        device, stiffness, velocity, delay=delay, map_grid=map_grid, samples=samples, validation=validation,
-        progress=progress, zwidth_grid=zwidth_grid, controller=controller,
+        device, w, v, map_grid=map_grid, samples=samples, validation=validation, progress=progress,
+        zwidth_grid=zwidth_grid,
     )  # fmt: skip
     return write_design_report(a, out_dir, fmt, force=force)

@@ -35,7 +35,7 @@ def test_eq19_design_analysis_finds_no_divergence_where_eq6_proves_passivity():
     from dfa.model.catalogue import get_device
 
     dev = dataclasses.replace(get_device("impulse").device, resolution=1e-8)
-    a = design_analysis(dev, stiffness=10, velocity=0.5, map_grid=3, samples=30_000, n_jobs=1)
+    a = design_analysis(dev, 10.0, velocity=0.5, map_grid=3, samples=30_000, n_jobs=1)
     assert a.criterion.region == "a" and a.criterion.passive
     assert a.simulated_xi_dot is None
     assert a.outcome.outcome == "rest" and a.outcome_high.outcome == "rest"

@@ -132,7 +132,7 @@ def test_controller_report_states_what_dfa_check_prints(ctl):
         assert md_row(label, value) in md, label
     a = data["analysis"]
     # dfa check states the physical controller once (its "controller"); the analysis keeps the criterion's groups
-    assert {k: v for k, v in a["controller_check"].items() if k != "controller"} == {
+    assert {k: v for k, v in a["check"].items() if k != "controller"} == {
         k: v for k, v in check.items() if k != "controller"
     }
     assert data["numbers"]["controller"] == check["controller"]
@@ -146,7 +146,7 @@ def test_controller_report_states_what_dfa_check_prints(ctl):
 
 def test_controller_report_kmax_equals_dfa_stiffness(ctl):
     data, md, stiff = ctl["data"], ctl["md"], ctl["stiffness"]
-    lim = data["analysis"]["controller_limits"]
+    lim = data["analysis"]["design_answer"]
     for key in ("k_criterion", "k_linear", "k_df", "k_sim", "k_sim_rest"):
         assert lim[key] == stiff[key], key
         if lim[key]["value"] is None:  # every null of the record is stated with its reason
@@ -179,8 +179,8 @@ def test_controller_report_with_lag_is_not_covered(lag):
     check, data, md = lag["check"], lag["data"], lag["md"]
     assert check["status"] == "not_covered" and check["passive"] is None
     a = data["analysis"]
-    assert a["controller_check"] == {k: v for k, v in check.items() if k != "controller"}
-    kc = a["controller_limits"]["k_criterion"]
+    assert a["check"] == {k: v for k, v in check.items() if k != "controller"}
+    kc = a["design_answer"]["k_criterion"]
     assert kc["value"] is None and kc["status"] == "not_covered"
     assert "amplifier lag" in kc["null_reasons"]["/value"]
     assert data["numbers"]["passive"] is None and "/passive" in data["numbers"]["null_reasons"]
@@ -194,8 +194,9 @@ def test_controller_report_with_lag_is_not_covered(lag):
 
 def test_controller_report_leaves_out_the_spring_only_sections(ctl):
     a, md = ctl["data"]["analysis"], ctl["md"]
-    for key in ("criterion", "limits", "design_answer", "speed_chart"):
-        assert a[key] is None and "not this controller's" in a["null_reasons"][f"/{key}"]
+    for key in ("limits", "speed_chart"):  # the spring's closed forms and chart
+        assert a.get(key) is None and "not this wall's" in a["null_reasons"][f"/{key}"]
+    assert a["criterion"] == a["check"]["criterion"] and a["design_answer"]["wall"]["damping"] == 1.0
     assert "## Passivity and stiffness limits" not in md and "How stiff may the wall be? (four ways" not in md
     assert "Not in this report: the criterion of eq. 6 for the bare spring" in md
     assert "caption of regions" not in md and "caption of stiffness" not in md and "caption of speed_chart" not in md
@@ -207,7 +208,7 @@ def test_controller_report_leaves_out_the_spring_only_sections(ctl):
     p = dev.params(14500.0)
     g = dfa.growth_threshold(p, model="zoh", wall=cp)
     assert a["growth_thresholds"]["zoh"]["amplitude"] == g.amplitude
-    xi = a["controller_check"]["criterion"]["xi_dot"]
+    xi = a["check"]["criterion"]["xi_dot"]
     bound = dfa.analysis.simulation.divergence_bound(0.0, xi, p.mu)
     sim = dfa.simulate(p.mu, p.beta, p.sigma, xi, None, record=False, bound=bound, wall=cp)
     assert a["outcome"]["outcome"] == sim.outcome.value and a["outcome"]["samples_run"] == sim.samples_run
@@ -229,7 +230,7 @@ def test_controller_report_zwidth_linear_boundary_is_the_exact_bound(ctl):
 
 def test_controller_zwidth_on_by_default_and_can_be_turned_off(ctl, lag):
     """With a controller the report has a 16 x 16 Z-width unless asked otherwise (0: none)."""
-    assert ctl["grids"] == [dfa.analysis.design.CONTROLLER_ZWIDTH_GRID] == [16] and ctl["data"]["analysis"]["zwidth"]
+    assert ctl["grids"] == [dfa.analysis.design.WALL_ZWIDTH_GRID] == [16] and ctl["data"]["analysis"]["zwidth"]
     a = lag["data"]["analysis"]
     assert lag["grids"] == [] and a["zwidth"] is None and "## Z-width" not in lag["md"]
     assert "zwidth_grid=0" in a["null_reasons"]["/zwidth"]
@@ -297,12 +298,15 @@ def test_controller_report_bad_input_is_one_line_exit_2(capsys, tmp_path, argv, 
     assert text in err and err.count("\n") == 1 and "Traceback" not in err
 
 
-def test_design_analysis_controller_inputs_checked():
+def test_design_analysis_takes_k_and_the_delay_from_the_wall_only():
+    """One place for K and the delay: the wall (the "must match" checks of stiffness= and delay= are gone)."""
     e = dfa.get_device("delta")
-    with pytest.raises(DFAValueError, match="controller carries K"):
-        design_analysis(e, 1000.0, controller=Wall.of(14500.0, 1.0))
-    with pytest.raises(DFAValueError, match="carries the delay"):
-        design_analysis(e, delay=2, controller=Wall.of(14500.0, 1.0, delay=1))
+    with pytest.raises(TypeError, match="controller"):
+        design_analysis(e, 1000.0, controller=Wall.of(14500.0, 1.0))  # type: ignore[call-arg]
+    with pytest.raises(TypeError, match="delay"):
+        design_analysis(e, delay=2)  # type: ignore[call-arg]
+    with pytest.raises(DFAValueError, match="filter_cutoff"):
+        design_analysis(e, Wall.of(14500.0, 1.0, filter_cutoff=1e6))  # above Nyquist: refused before any work
 
 
 # ------------------------------------------------------------------ null reasons
@@ -325,8 +329,8 @@ def test_spring_report_unchanged_golden_from_before_the_controller():
     old = json.loads((GOLDEN / "design_analysis_impulse_small.json").read_text(encoding="utf-8"))
     old_md = (GOLDEN / "design_analysis_impulse_small.md").read_text(encoding="utf-8")
     e = dfa.get_device("impulse")
-    for ctl in (None, Wall.of(e.stiffness)):  # the pure spring as a Wall is the spring
-        a = design_analysis(e, velocity=0.05, controller=ctl, **SMALL)
+    for wall in (None, Wall.of(e.stiffness)):  # the pure spring as a Wall is the spring
+        a = design_analysis(e, wall, velocity=0.05, **SMALL)
         new = json.loads(dumps(a.to_dict(), ensure_ascii=False))
         assert set(new) == set(old) and golden.compare_json(old, new) == []
         md = design_markdown(a, {n: f"caption of {n}" for n in NAMES}, lambda n: f"figures/{n}.png")
@@ -364,13 +368,13 @@ def test_fig6_nyquist_title_names_the_controller(monkeypatch):
     monkeypatch.setattr(figures, "_png", keep_title)
     entry = dfa.get_device("delta")
     ctl = Wall.of(entry.stiffness, 1.0, 1, 200.0)
-    a = design_analysis(entry, velocity=0.05, controller=ctl, zwidth_grid=0, **SMALL)
+    a = design_analysis(entry, ctl, velocity=0.05, zwidth_grid=0, **SMALL)
     fig = figures._nyquist(a)
     loop = f"Nyquist, {MODEL_NAMES[a.nyquist.model]} loop"
     assert titles[-1] == f"{loop} with B = 1 N·s/m, f_c = 200 Hz, d = 1"
     assert "with the wall controller (β_B = " in fig.caption  # the caption names it too (dimensionless)
     lag = Wall.of(entry.stiffness, 0.5, 0, None, 300.0)
-    figures._nyquist(design_analysis(entry, velocity=0.05, controller=lag, zwidth_grid=0, **SMALL))
+    figures._nyquist(design_analysis(entry, lag, velocity=0.05, zwidth_grid=0, **SMALL))
     assert titles[-1] == f"{loop} with B = 0.5 N·s/m, f_bw = 300 Hz, d = 0"
-    figures._nyquist(design_analysis(entry, velocity=0.05, delay=1, **SMALL))
+    figures._nyquist(design_analysis(entry, Wall.of(entry.stiffness, delay=1), velocity=0.05, **SMALL))
     assert titles[-1] == f"{loop}, delay 1"

@@ -1,17 +1,16 @@
 """The design analysis of one device: every number the design report states, computed once, rendered elsewhere.
 
-:func:`design_analysis` runs the criterion (eq. 6-12), the stiffness limits (eq. 8, 9, 11 and the exact linear
-bound), the limit cycles and growth thresholds of the describing function (eq. 36-45, half-delay and exact ZOH),
-the simulated critical impact speed, the simulated outcomes and trajectories, the stability map around the
-operating point and the Nyquist locus, and returns a frozen :class:`DesignAnalysis`.
+:func:`design_analysis` runs, for a device and a wall (the paper's spring with its delay, or a wall with a virtual
+damper, velocity filter or amplifier lag, :class:`dfa.model.wall.Wall`), the passivity check (the criterion,
+eq. 6-12, extended to the wall, and Colgate–Schenkel, :func:`dfa.analysis.check.passivity_check`), K_max four
+ways (:func:`dfa.analysis.limits.kmax.design_answer`, the wall's elements held fixed while K varies), the limit
+cycles and growth thresholds of the describing function (eq. 36-45, half-delay and exact ZOH), the simulated
+critical impact speed, the simulated outcomes and trajectories, the stability map around the operating point,
+the Nyquist locus and the Z-width, and returns a frozen :class:`DesignAnalysis`.
 
-With a wall controller (``controller=``, issue 15) every part that accepts one is computed with it: the passivity
-check (extended criterion and Colgate–Schenkel, :func:`dfa.analysis.check.passivity_check`), K_max with the
-controller (:func:`dfa.analysis.limits.kmax.design_answer` with the wall), the limit cycles, the simulations, the
-stability map, the Nyquist locus and the Z-width (on by default). The spring-only parts (the criterion of eq. 6
-and its stiffness limits and curve, the four-way design answer and the stiffness–speed chart) are not computed:
-they would state the bare spring's numbers, not the controller's. Rendering
-(:mod:`dfa.render`, :func:`dfa.report.design_report`) only reads it. Nothing here reads or writes files.
+The spring's closed forms (the stiffness limits of eq. 8-11, their curve over speeds) and the stiffness–speed
+chart are computed for the spring only: a wall's K_max is the design answer. Rendering (:mod:`dfa.render`,
+:func:`dfa.report.design_report`) only reads it. Nothing here reads or writes files.
 """
 
 from __future__ import annotations
@@ -22,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from ..checks import _fmt, check_delay, check_int, check_positive, check_real, check_speed, check_type
+from ..checks import _fmt, check_int, check_positive, check_real, check_speed, check_type
 from ..errors import DFATypeError, DFAValueError
 from ..model.catalogue import CatalogueEntry
 from ..model.device import Device, Params
@@ -30,7 +29,7 @@ from ..model.wall import Wall, WallParams
 from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import DesignStatus
 from .check import PassivityCheck, passivity_check
-from .criterion import CriterionResult, device_criterion
+from .criterion import CriterionResult
 from .cycles import GrowthThreshold, growth_threshold
 from .limits.closed_form import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
 from .limits.kmax import KMaxResult, RunCache, design_answer
@@ -45,12 +44,12 @@ __all__ = ["DesignAnalysis", "design_analysis"]
 
 #: Loop models of the describing-function analysis, in the order the report lists them.
 MODELS = ("half-delay", "zoh")
-#: Points per axis of the Z-width of a report with a controller when none is asked for (about 10 s on 2 cores).
-CONTROLLER_ZWIDTH_GRID = 16
-#: Why the spring-only parts are absent from an analysis with a controller.
+#: Points per axis of the Z-width of a report with a wall beyond the spring when none is asked for (about 10 s).
+WALL_ZWIDTH_GRID = 16
+#: Why the spring's closed forms are absent from an analysis of a wall with a damper, filter or lag.
 SPRING_ONLY = (
-    "the spring's (B = 0, no filter, ideal amplifier) result, not this controller's: not computed with a controller; "
-    "see controller_check and controller_limits"
+    "the spring's closed form (B = 0, no filter, ideal amplifier), not this wall's: not computed for a wall with a "
+    "damper, filter or amplifier lag; its K_max is design_answer"
 )
 
 _VALIDATION_KEYS = (
@@ -64,24 +63,25 @@ _VALIDATION_KEYS = (
 
 @dataclass(frozen=True)
 class DesignAnalysis:
-    """Everything the design report of one device states, at stiffness K, impact speed ẋ0 and delay d.
+    """Everything the design report of one device states, for a wall and an impact speed ẋ0.
 
     Attributes
     ----------
     device : Device
         The device (physical units: SI, rotary in rad, N·m, kg·m²).
-    stiffness : float
-        Virtual wall stiffness K in N/m (rotary N·m/rad).
+    wall : Wall
+        The wall of every part: its stiffness K (N/m, rotary N·m/rad) and elements (delay d, virtual damper B,
+        velocity filter, amplifier lag); the paper's spring with its delay when it has no other element.
     velocity : float
         Impact speed ẋ0 in m/s (rotary rad/s), ≥ 0.
-    delay : int
-        Computational delay d in samples.
     params : Params
         (μ, β, σ) of the device at K (paper Table 1).
-    criterion : CriterionResult or None
-        The passivity criterion at ẋ0 (eq. 6, 10, 12); None with a controller (``controller_check``).
+    check : PassivityCheck
+        The criterion at ẋ0 (eq. 6, 10, 12, extended to the wall) and Colgate–Schenkel; not covered with an
+        amplifier lag.
     limits : StiffnessLimits or None
-        Stiffness limits at ẋ0 (eq. 8, 9, 11, exact linear bound); None with a controller (``controller_limits``).
+        The spring's stiffness limits at ẋ0 (eq. 8, 9, 11, exact linear bound); None for a wall with a damper,
+        filter or lag (its K_max is ``design_answer``).
     thresholds : tuple of (str, GrowthThreshold)
         Limit cycles and growth threshold per loop model (``half-delay``, ``zoh``; eq. 36-45).
     simulated_xi_dot : float or None
@@ -96,43 +96,35 @@ class DesignAnalysis:
     trajectory, trajectory_high : SimulationResult
         Recorded runs (figure windows) at the two speeds.
     stiffness_curve : StiffnessResponse or None
-        Largest passive stiffness against speed (figure); None with a controller.
+        The spring's largest passive stiffness against speed (figure); None for a wall beyond the spring.
     nyquist : NyquistLocusResponse
         Linearised loop and −1/D(M) (figure).
     stability_map : StabilityMap
         Simulated outcomes around the operating point at the design speed and twice it.
     design_answer : KMaxResult or None
-        K_max four ways at the design speed (:func:`dfa.analysis.limits.kmax.design_answer`); None at speed 0 or with a controller.
+        K_max four ways at the design speed with the wall's elements held fixed
+        (:func:`dfa.analysis.limits.kmax.design_answer`, K assessed); None at speed 0.
     speed_chart : StiffnessSpeedChart or None
-        Largest safe impact speed against K (:func:`dfa.analysis.limits.speed_chart.stiffness_speed_chart`); None at speed 0 or
-        with a controller.
+        Largest safe impact speed against K (:func:`dfa.analysis.limits.speed_chart.stiffness_speed_chart`); the
+        spring's, None at speed 0 or for a wall beyond the spring.
     zwidth : ZWidth or None
-        The Z-width at the design speed and delay (:func:`dfa.analysis.limits.zwidth.z_width`, a ``zwidth_grid`` grid); None at
-        speed 0 or when not asked.
+        The Z-width at the design speed with the wall's delay, filter and lag (:func:`dfa.analysis.limits.zwidth.z_width`,
+        a ``zwidth_grid`` grid); None at speed 0 or when not asked.
     catalogue : dict or None
         The paper's printed (μ, β, σ), the disagreements and the notes of a catalogue device.
     validation : dict or None
         Summary of a validation run (:meth:`dfa.analysis.validation.Validation.summary`) passed in; never read from a file.
     samples, map_grid : int
         Samples per run of the speed scan and the map, and the map's points per axis (inputs of the analysis).
-    controller : Wall or None
-        The wall controller of every simulation, limit cycle, map and the Z-width (its stiffness is K, its delay
-        d); None: the paper's spring.
-    controller_check : PassivityCheck or None
-        With a controller: the extended criterion and Colgate–Schenkel at ẋ0 (not covered with an amplifier lag).
-    controller_limits : KMaxResult or None
-        With a controller and ẋ0 > 0: K_max with the controller (B, f_c, f_bw, d fixed;
-        :func:`dfa.analysis.limits.kmax.design_answer` with the wall).
     status : DesignStatus
         ``OK``.
     """
 
     device: Device
-    stiffness: float
+    wall: Wall
     velocity: float
-    delay: int
     params: Params
-    criterion: CriterionResult | None
+    check: PassivityCheck
     limits: StiffnessLimits | None
     thresholds: tuple[tuple[str, GrowthThreshold], ...]
     simulated_xi_dot: float | None
@@ -151,29 +143,22 @@ class DesignAnalysis:
     validation: dict[str, Any] | None = None
     samples: int = 30_000
     map_grid: int = 81
-    controller: Wall | None = None
-    controller_check: PassivityCheck | None = None
-    controller_limits: KMaxResult | None = field(default=None, repr=False)
     status: DesignStatus = DesignStatus.OK
 
     def __post_init__(self) -> None:
+        fix = "DesignAnalysis is built by dfa.design_analysis; call that instead"
         if not isinstance(self.device, Device):
             raise DFATypeError(f"device = {self.device!r} is invalid: it must be a dfa.Device")
-        check_positive("stiffness", self.stiffness, "give the virtual wall stiffness K")
+        check_type("wall", self.wall, Wall, fix)
         if not check_real("velocity", self.velocity, "give the impact speed") >= 0.0:
             raise DFAValueError(f"velocity = {self.velocity!r} is invalid: the analysis holds |ẋ0| >= 0")
-        check_delay(self.delay)
-        fix = "DesignAnalysis is built by dfa.design_analysis; call that instead"
         for name, cls in (
-            ("params", Params), ("outcome", SimulationResult), ("outcome_high", SimulationResult),
-            ("trajectory", SimulationResult), ("trajectory_high", SimulationResult),
-            ("nyquist", NyquistLocusResponse), ("stability_map", StabilityMap),
+            ("params", Params), ("check", PassivityCheck), ("outcome", SimulationResult),
+            ("outcome_high", SimulationResult), ("trajectory", SimulationResult),
+            ("trajectory_high", SimulationResult), ("nyquist", NyquistLocusResponse), ("stability_map", StabilityMap),
         ):  # fmt: skip
             check_type(name, getattr(self, name), cls, fix)
         self._check_parts(fix)
-        for name, opt in (("design_answer", KMaxResult), ("speed_chart", StiffnessSpeedChart), ("zwidth", ZWidth)):
-            if getattr(self, name) is not None:
-                check_type(name, getattr(self, name), opt, fix)
         if self.simulated_xi_dot is not None:
             check_real("simulated_xi_dot", self.simulated_xi_dot, fix)
         check_real("high_xi_dot", self.high_xi_dot, fix)
@@ -185,6 +170,24 @@ class DesignAnalysis:
                 )
         check_int("samples", self.samples, 1, fix)
         check_int("map_grid", self.map_grid, 2, fix)
+        self._check_thresholds(fix)
+        object.__setattr__(self, "status", DesignStatus.coerce(self.status))
+
+    def _check_parts(self, fix: str) -> None:
+        """The optional parts' types; the spring's closed forms only for the spring."""
+        for name, cls in (
+            ("limits", StiffnessLimits), ("stiffness_curve", StiffnessResponse), ("design_answer", KMaxResult),
+            ("speed_chart", StiffnessSpeedChart), ("zwidth", ZWidth),
+        ):  # fmt: skip
+            if getattr(self, name) is not None:
+                check_type(name, getattr(self, name), cls, fix)
+        if self.is_spring and (self.limits is None or self.stiffness_curve is None):
+            raise DFAValueError(f"limits and stiffness_curve are required for the spring; {fix}")
+        present = [n for n in ("limits", "stiffness_curve", "speed_chart") if getattr(self, n) is not None]
+        if not self.is_spring and present:
+            raise DFAValueError(f"{', '.join(present)} hold the spring's closed forms: None for this wall; {fix}")
+
+    def _check_thresholds(self, fix: str) -> None:
         if not isinstance(self.thresholds, tuple) or not all(
             isinstance(t, tuple) and len(t) == 2 and isinstance(t[1], GrowthThreshold) for t in self.thresholds
         ):
@@ -196,38 +199,36 @@ class DesignAnalysis:
             raise DFAValueError(
                 f"thresholds are for {[m for m, _ in self.thresholds]}: they must be for {list(MODELS)}"
             )
-        object.__setattr__(self, "status", DesignStatus.coerce(self.status))
 
-    def _check_parts(self, fix: str) -> None:
-        """The spring's parts without a controller; the controller's (and none of the spring's) with one."""
-        spring = (("criterion", CriterionResult), ("limits", StiffnessLimits), ("stiffness_curve", StiffnessResponse))
-        if self.controller is None:
-            for name, cls in spring:
-                check_type(name, getattr(self, name), cls, fix)
-            if self.controller_check is not None or self.controller_limits is not None:
-                raise DFAValueError(f"controller_check and controller_limits need a controller; {fix}")
-            return
-        check_type("controller", self.controller, Wall, fix)
-        check_type("controller_check", self.controller_check, PassivityCheck, fix)
-        if self.controller_limits is not None:
-            check_type("controller_limits", self.controller_limits, KMaxResult, fix)
-        present = [n for n, _ in spring if getattr(self, n) is not None]
-        present += [n for n in ("design_answer", "speed_chart") if getattr(self, n) is not None]
-        if present or self.controller.stiffness != self.stiffness or self.controller.delay != self.delay:
-            raise DFAValueError(
-                f"with a controller the spring-only parts must be None (given: {', '.join(present) or 'none'}) and "
-                f"the controller's K and delay must be the analysis's; {fix}"
-            )
+    @property
+    def stiffness(self) -> float:
+        """Virtual wall stiffness K in N/m (rotary N·m/rad): the wall's."""
+        return self.wall.stiffness
+
+    @property
+    def delay(self) -> int:
+        """Computational delay d in samples: the wall's."""
+        return self.wall_params.delay
+
+    @property
+    def wall_params(self) -> WallParams:
+        """The wall's dimensionless groups (β_B, ν_c, α, d) at the device's period."""
+        return self.wall.params(self.device.period)
+
+    @property
+    def is_spring(self) -> bool:
+        """True for the paper's spring (with its delay): no damper, filter or amplifier lag."""
+        return self.wall_params.is_spring
+
+    @property
+    def criterion(self) -> CriterionResult | None:
+        """The criterion at ẋ0 (the check's); None where no criterion covers the wall (an amplifier lag)."""
+        return self.check.criterion
 
     @property
     def xi_dot(self) -> float:
-        """The design speed in ticks/sample (the criterion's, or converted by the device with a controller)."""
-        return self.criterion.xi_dot if self.criterion is not None else self.device.xi_dot(self.velocity)
-
-    @property
-    def controller_params(self) -> WallParams | None:
-        """The controller's dimensionless groups (β_B, ν_c, α, d) at the device's period; None for the spring."""
-        return None if self.controller is None else self.controller.params(self.device.period)
+        """The design speed in ticks/sample."""
+        return self.device.xi_dot(self.velocity)
 
     def threshold(self, model: str) -> GrowthThreshold:
         """The growth threshold of loop model ``model`` (``"half-delay"`` or ``"zoh"``).
@@ -255,7 +256,7 @@ class DesignAnalysis:
         Returns
         -------
         dict
-            Strict-JSON data: device, inputs and every analysis of the report, with the status.
+            Strict-JSON data: device, wall, inputs and every analysis of the report, with the status.
         """
         why = {
             "validation": "no validation summary passed in (dfa report --validation FILE)",
@@ -264,38 +265,30 @@ class DesignAnalysis:
             "simulated_velocity": "no scanned impact speed diverged",
             "design_answer": "impact speed 0: the design answer needs a speed > 0",
             "speed_chart": "impact speed 0: the chart needs a speed > 0",
-            "zwidth": "impact speed 0 or zwidth_grid=None: no Z-width computed",
+            "zwidth": "impact speed 0 or zwidth_grid=0: no Z-width computed",
+            "criterion": "no passivity criterion covers this wall (an amplifier lag): see check",
         }
-        rec = self._record()
-        if self.controller is not None:  # the spring's record is unchanged; a controller adds its parts
-            why.update(criterion=SPRING_ONLY, limits=SPRING_ONLY, design_answer=SPRING_ONLY, speed_chart=SPRING_ONLY)
-            why.update(zwidth="impact speed 0 or zwidth_grid=0: no Z-width computed")
-            why.update(controller_limits="impact speed 0: K_max with the controller needs a speed > 0")
-            rec.update(self._controller_record())
-            _explain_filter_nulls(rec)
-        return explain_nulls(rec, why)
+        if not self.is_spring:
+            why.update(limits=SPRING_ONLY, stiffness_curve=SPRING_ONLY, speed_chart=SPRING_ONLY)
+        return explain_nulls(self._record(), why)
 
-    def _controller_record(self) -> dict[str, Any]:
-        assert self.controller is not None and self.controller_check is not None
-        cp = self.controller.params(self.device.period)
-        ctl = to_jsonable({**self.controller.to_dict(), "dimensionless": cp.to_dict()})
-        explain_nulls(ctl, {"filter_cutoff": "no velocity filter", "amplifier_bandwidth": "ideal amplifier (no lag)"})
-        explain_nulls(ctl["dimensionless"], {"cutoff": "no velocity filter"})
-        lim = None
-        if self.controller_limits is not None:
-            lim = to_jsonable(self.controller_limits.to_dict())  # its nulls are explained (JSON pointers)
-        return {"controller": ctl, "controller_check": to_jsonable(self.controller_check.to_dict()),
-                "controller_limits": lim}  # fmt: skip
+    def _wall_record(self) -> dict[str, Any]:
+        rec = to_jsonable({**self.wall.to_dict(), "dimensionless": self.wall_params.to_dict()})
+        explain_nulls(rec, {"filter_cutoff": "no velocity filter", "amplifier_bandwidth": "ideal amplifier (no lag)"})
+        return rec
 
     def _record(self) -> dict[str, Any]:
+        crit = self.criterion
         return to_jsonable(
             {
                 "device": self.device.to_dict(),
+                "wall": self._wall_record(),
                 "stiffness": self.stiffness,
                 "velocity": self.velocity,
                 "delay": self.delay,
                 "params": self.params.to_dict(),
-                "criterion": None if self.criterion is None else self.criterion.to_dict(),
+                "check": self.check.to_dict(),
+                "criterion": None if crit is None else crit.to_dict(),
                 "limits": None if self.limits is None else self.limits.to_dict(),
                 "growth_thresholds": {m: g.to_dict() for m, g in self.thresholds},
                 "cycles": {m: g.result.to_dict() for m, g in self.thresholds},
@@ -316,18 +309,6 @@ class DesignAnalysis:
                 "status_message": self.status.message,
             }
         )
-
-
-def _explain_filter_nulls(obj: Any) -> None:
-    """Explain the null ``cutoff`` of every nested ``controller`` record (its dimensionless groups): no filter."""
-    if isinstance(obj, list):
-        for x in obj:
-            _explain_filter_nulls(x)
-    elif isinstance(obj, dict):
-        for key, value in obj.items():
-            if key == "controller" and isinstance(value, dict) and "cutoff" in value:
-                explain_nulls(value, {"cutoff": "no velocity filter"})
-            _explain_filter_nulls(value)
 
 
 def _catalogue_notes(entry: CatalogueEntry | None) -> dict[str, Any] | None:
@@ -355,21 +336,28 @@ def _check_validation(summary: dict[str, Any] | None) -> dict[str, Any] | None:
 
 
 def resolve_design_inputs(
-    device, stiffness, velocity, delay
-) -> tuple[CatalogueEntry | None, Device, float, float, int]:
-    """(catalogue entry or None, device, K, |ẋ0|, d) of a design analysis, checked; the defaults filled in."""
+    device: Device | CatalogueEntry, wall: Wall | float | None, velocity: float | None
+) -> tuple[CatalogueEntry | None, Device, Wall, float]:
+    """(catalogue entry or None, device, wall, |ẋ0|) of a design analysis, checked; the defaults filled in.
+
+    ``wall`` is a :class:`Wall`, a stiffness K (the spring), or None (the spring at the catalogue K).
+    """
     entry = device if isinstance(device, CatalogueEntry) else None
     dev = entry.device if entry is not None else device
     if not isinstance(dev, Device):
         raise DFAValueError(f"device = {device!r} is invalid: it must be a dfa.Device or a catalogue entry")
-    k = stiffness if stiffness is not None else (entry.stiffness if entry is not None else None)
-    if k is None:
-        raise DFAValueError(
-            f"stiffness = None is invalid for {dev.name!r}: the catalogue gives no K; pass the stiffness in {dev.units['stiffness']}"
-        )
-    k = check_positive("stiffness", k, "give the virtual wall stiffness K")
+    if wall is None:
+        if entry is None or entry.stiffness is None:
+            raise DFAValueError(
+                f"wall = None is invalid for {dev.name!r}: the catalogue gives no K; pass the wall, or its stiffness "
+                f"in {dev.units['stiffness']}"
+            )
+        wall = entry.stiffness
+    if not isinstance(wall, Wall):
+        wall = Wall(check_positive("wall", wall, "give the wall, or the virtual wall stiffness K"))
     v = check_speed("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1))
-    return entry, dev, k, v, check_delay(delay)
+    wall.params(dev.period)  # a filter above Nyquist or a group out of range is refused here, before any work
+    return entry, dev, wall, v
 
 
 def _simulations(
@@ -394,31 +382,27 @@ def _simulations(
 
 def design_analysis(
     device: Device | CatalogueEntry,
-    stiffness: float | None = None,
+    wall: Wall | float | None = None,
     velocity: float | None = None,
     *,
-    delay: int = 0,
     map_grid: int = 81,
     samples: int = 30_000,
     validation: dict[str, Any] | None = None,
     n_jobs: int = -1,
     progress: bool = False,
     zwidth_grid: int | None = None,
-    controller: Wall | None = None,
 ) -> DesignAnalysis:
-    """Compute every number of the design report of ``device`` at stiffness K, impact speed ẋ0 and delay d.
+    """Compute every number of the design report of ``device`` with ``wall`` at impact speed ẋ0.
 
     Parameters
     ----------
     device : Device or CatalogueEntry
         A catalogue entry adds the paper's printed values and notes.
-    stiffness : float, optional
-        K in N/m (rotary N·m/rad); default the controller's K, else the catalogue K.
+    wall : Wall or float, optional
+        The wall (:class:`dfa.Wall`: K in N/m, rotary N·m/rad, and its elements: delay, virtual damper B, velocity
+        filter, amplifier), or a stiffness K for the paper's spring; default the spring at the catalogue K.
     velocity : float, optional
         Impact speed in m/s (rotary rad/s); default 0.1 m/s (1 rad/s rotary); >= 0 (a negative is refused).
-    delay : int
-        Computational delay d in whole samples (default 0), used by every part of the analysis; with a
-        controller it is the controller's (give 0 or the same value).
     map_grid, samples : int
         Points per axis of the stability map (default 81); samples per run of it and of the speed scan (30000).
     validation : dict, optional
@@ -429,12 +413,8 @@ def design_analysis(
     progress : bool
         Progress bar over the parts (default False).
     zwidth_grid : int or None
-        Points per axis of the report's Z-width (one impact speed, :func:`dfa.analysis.limits.zwidth.z_width`); default None:
-        no Z-width for the spring, ``CONTROLLER_ZWIDTH_GRID`` (16) with a controller; 0: none.
-    controller : Wall, optional
-        The wall controller (physical K, B, d, f_c, f_bw; :class:`dfa.Wall`): every part that accepts
-        one is computed with it, the spring-only parts are left out (module docstring). Default None, or a
-        controller that is a pure spring: the paper's spring, unchanged.
+        Points per axis of the report's Z-width (one impact speed, :func:`dfa.analysis.limits.zwidth.z_width`);
+        default None: none for the spring, :data:`WALL_ZWIDTH_GRID` (16) for a wall beyond it; 0: none.
 
     Returns
     -------
@@ -444,8 +424,8 @@ def design_analysis(
     Raises
     ------
     DFAValueError, DFATypeError
-        Not a Device or catalogue entry, no stiffness, a non-finite speed, a bad delay, a bad validation summary,
-        a controller whose K or delay differs from ``stiffness`` or ``delay``, or a filter cutoff above Nyquist.
+        Not a Device or catalogue entry, no stiffness, a non-finite speed, a bad validation summary, or a wall
+        element out of range (a filter cutoff above Nyquist).
 
     See Also
     --------
@@ -461,83 +441,49 @@ def design_analysis(
     """
     from tqdm.auto import tqdm
 
-    ctl, stiffness, delay = resolve_controller(device, controller, stiffness, delay)
-    entry, dev, k, v, dl = resolve_design_inputs(device, stiffness, velocity, delay)
+    entry, dev, wall, v = resolve_design_inputs(device, wall, velocity)
     checked = _check_validation(validation)
     zg = check_int("zwidth_grid", zwidth_grid, 0, "give the Z-width's points per axis, or 0 for none") if (
-        zwidth_grid is not None) else (CONTROLLER_ZWIDTH_GRID if ctl is not None else 0)  # fmt: skip
+        zwidth_grid is not None) else (0 if wall.params(dev.period).is_spring else WALL_ZWIDTH_GRID)  # fmt: skip
     steps = tqdm(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False)
-    p = dev.params(k)
-    wall = Wall.of(k, delay=dl) if ctl is None else ctl
-    wp = wall.params(dev.period)
-    head = _spring_parts(dev, k, v, dl) if ctl is None else _controller_parts(dev, ctl, v)
+    p, wp = dev.params(wall.stiffness), wall.params(dev.period)
+    head = _closed_forms(dev, wall, v)
     steps.update()
     thr = tuple((m, growth_threshold(p, dev, model=m, wall=wp)) for m in MODELS)  # search range follows the problem
     steps.update()
-    xi, crit_xi = head.pop("xi_dot"), head.pop("critical_xi_dot")
-    ref = crit_xi if crit_xi else max(1.0, xi)
+    crit = head["check"].criterion
+    ref = crit.critical_xi_dot if crit is not None and crit.critical_xi_dot else max(1.0, dev.xi_dot(v))
     v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, wall=wp)
     steps.update()
-    sims = _simulations(p, xi, ref, v_sim, samples, wp)
+    sims = _simulations(p, dev.xi_dot(v), ref, v_sim, samples, wp)
     ny = _nyquist(p, thr[1][1], wp)
     steps.update()
-    smap = _map_around(p, xi, map_grid, samples, n_jobs, progress, wp)
+    smap = _map_around(p, dev.xi_dot(v), map_grid, samples, n_jobs, progress, wp)
     steps.close()
     figs: dict[str, Any] = dict(nyquist=ny, stability_map=smap)
-    if v > 0 and ctl is None:  # the design answer, first in the report: K_max four ways and the stiffness-speed chart
+    if v > 0:  # the design answer, first in the report: K_max four ways (and the spring's stiffness-speed chart)
         cache = RunCache()  # one set of runs for both: no (K, speed, start) simulated twice
         figs["design_answer"] = design_answer(dev, v, wall=wall, assess=True, cache=cache)
-        figs["speed_chart"] = stiffness_speed_chart(dev, wall=wall, stiffness=k, velocity=v, cache=cache)
+        if wp.is_spring:
+            figs["speed_chart"] = stiffness_speed_chart(
+                dev, wall=wall, stiffness=wall.stiffness, velocity=v, cache=cache
+            )
     if v > 0 and zg:
-        figs["zwidth"] = _zwidth(dev, v, wall, ctl is not None, zg, n_jobs, progress)
+        figs["zwidth"] = _zwidth(dev, v, wall, not wp.is_spring, zg, n_jobs, progress)
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )
-    return DesignAnalysis(dev, k, v, dl, p, thresholds=thr, simulated_xi_dot=v_sim, **head, **figs, **inputs, **sims)
+    return DesignAnalysis(dev, wall, v, p, thresholds=thr, simulated_xi_dot=v_sim, **head, **figs, **inputs, **sims)
 
 
-def resolve_controller(
-    device: Any, controller: Wall | None, stiffness: float | None, delay: int
-) -> tuple[Wall | None, float | None, int]:
-    """(controller or None for the spring, K, d) of a design analysis: the controller carries K and d."""
-    if controller is None:
-        return None, stiffness, delay
-    ctl = check_type("controller", controller, Wall, "build one with dfa.Wall.of(K, B, ...), or None")
-    if stiffness is not None and stiffness != ctl.stiffness:
-        raise DFAValueError(
-            f"stiffness = {_fmt(stiffness)} differs from controller.stiffness = {_fmt(ctl.stiffness)}: the controller "
-            "carries K; give stiffness=None or the same value"
-        )
-    if check_delay(delay) not in (0, ctl.delay):
-        raise DFAValueError(
-            f"delay = {delay} is invalid with controller.delay = {ctl.delay}: the controller carries the delay; "
-            "leave delay at 0 or give the same value"
-        )
-    dev = device.device if isinstance(device, CatalogueEntry) else device
-    if isinstance(dev, Device) and ctl.params(dev.period).is_spring:  # B = 0, no filter, no lag: the spring
-        return None, ctl.stiffness, ctl.delay
-    return ctl, ctl.stiffness, ctl.delay
-
-
-def _spring_parts(dev: Device, k: float, v: float, dl: int) -> dict[str, Any]:
-    """The spring's criterion (eq. 6), stiffness limits and curve, with the design and critical speeds."""
-    crit = device_criterion(dev, Wall.of(k, delay=dl), v)
-    lim = stiffness_limits(dev, v, k, delay=dl)
-    curve = stiffness_response(dev, stiffness=k, delay=dl)
-    return dict(
-        criterion=crit, limits=lim, stiffness_curve=curve, xi_dot=crit.xi_dot, critical_xi_dot=crit.critical_xi_dot
-    )
-
-
-def _controller_parts(dev: Device, ctl: Wall, v: float) -> dict[str, Any]:
-    """The passivity check and K_max with the controller (no spring-only part), with the design and critical speeds."""
-    chk = passivity_check(dev, ctl, v)
-    lim = design_answer(dev, v, wall=ctl) if v > 0 else None
-    crit_xi = None if chk.criterion is None else chk.criterion.critical_xi_dot
-    return dict(
-        criterion=None, limits=None, stiffness_curve=None, controller=ctl, controller_check=chk,
-        controller_limits=lim, xi_dot=dev.xi_dot(v), critical_xi_dot=crit_xi,
-    )  # fmt: skip
+def _closed_forms(dev: Device, wall: Wall, v: float) -> dict[str, Any]:
+    """The passivity check at the design speed; for the spring also its stiffness limits and curve (eq. 8-11)."""
+    chk = passivity_check(dev, wall, v)
+    if not wall.params(dev.period).is_spring:
+        return dict(check=chk, limits=None, stiffness_curve=None)
+    k, d = wall.stiffness, wall.params(dev.period).delay
+    lim = stiffness_limits(dev, v, k, delay=d)
+    return dict(check=chk, limits=lim, stiffness_curve=stiffness_response(dev, stiffness=k, delay=d))
 
 
 def _zwidth(dev: Device, v: float, wall: Wall, widen: bool, grid: int, n_jobs: int, progress: bool) -> ZWidth:

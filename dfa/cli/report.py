@@ -9,6 +9,7 @@ from typing import Any
 
 from .._io import check_output_folder
 from ..model.catalogue import DEFAULT_DEVICE
+from ..model.wall import Wall
 from .inputs import PHYS_FLAGS, add_device_args, resolve, speed
 from .output import add_progress_args, emit, progress
 from .parsing import UsageError, integer
@@ -85,9 +86,11 @@ def run(args: argparse.Namespace) -> int:
     _xd, v = speed(args, inp, required=False)
     summary = _read_validation(args.validation) if args.validation is not None else None
     os.makedirs(args.out, exist_ok=True)
+    assert inp.stiffness is not None  # resolve() refuses a device without K here
+    wall = ctl if ctl is not None else Wall.of(inp.stiffness, delay=args.delay)
     res = design_report(
-        inp.entry or inp.device, inp.stiffness, v, out_dir=args.out, fmt=args.format, progress=progress(args),
-        delay=args.delay, validation=summary, force=args.force, zwidth_grid=args.zwidth, controller=ctl,
+        inp.entry or inp.device, wall, v, out_dir=args.out, fmt=args.format, progress=progress(args),
+        validation=summary, force=args.force, zwidth_grid=args.zwidth,
     )  # fmt: skip
     if args.json:
         emit(res.to_dict(), ensure_ascii=False)

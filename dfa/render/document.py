@@ -31,7 +31,7 @@ def _samples(n: int) -> str:
 
 def verdict_text(a: DesignAnalysis) -> str:
     """The verdict paragraph: what the criterion proves, at which speed and delay, and what simulation found."""
-    if getattr(a, "controller", None) is not None:  # read as an attribute: a namespace of the fields also renders
+    if not a.is_spring:
         return controller_verdict_text(a)
     dev, crit, lim, k, v = a.device, a.criterion, a.limits, a.stiffness, a.velocity
     assert crit is not None and lim is not None
@@ -59,7 +59,7 @@ def verdict_text(a: DesignAnalysis) -> str:
 def _simulated_text(a: DesignAnalysis) -> str:
     """What the speed scan of exact simulations found (with the controller, if any)."""
     u = a.device.units
-    with_ctl = " with the controller" if getattr(a, "controller", None) is not None else ""
+    with_ctl = "" if a.is_spring else " with the controller"
     if a.simulated_xi_dot:
         return (
             f"In exact simulation{with_ctl} an impact at {number(a.simulated_velocity)} {u['velocity']} diverges: the "
@@ -75,8 +75,7 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
     """The verdict with a wall controller: the extended criterion (or "not covered"), its K_max, simulation."""
     from .controller import NOT_COVERED, not_covered_why
 
-    dev, u, ctl, chk = a.device, a.device.units, a.controller, a.controller_check
-    assert ctl is not None and chk is not None
+    dev, u, ctl, chk = a.device, a.device.units, a.wall, a.check
     text = (
         f"**Verdict.** With the wall controller below (K = {a.stiffness:g} {u['stiffness']}, virtual damping "
         f"B = {ctl.damping:g} {u['damping']}), an impact speed of {a.velocity:g} {u['velocity']} and a computational "
@@ -97,7 +96,7 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
         )
         if r.critical_velocity:
             text += f"It guarantees passivity up to {number(r.critical_velocity)} {u['velocity']}. "
-    lim = a.controller_limits
+    lim = a.design_answer
     if lim is not None and lim.k_criterion.value is not None:
         text += (
             f"With this B, filter and delay the largest stiffness it proves passive at {a.velocity:g} {u['velocity']} "
@@ -108,13 +107,14 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
 
 def spring_only_text(a: DesignAnalysis) -> str:
     """Which sections a report with a controller leaves out, and why ('' for the spring)."""
-    if a.controller is None:
+    if a.is_spring:
         return ""
     return (
         "Not in this report: the criterion of eq. 6 for the bare spring with its stiffness limits (eq. 8–11), the "
-        "stiffness–speed chart, and the regions and stiffness figures. They hold for the "
-        "paper's spring (B = 0, no velocity filter, ideal amplifier), not for this controller, and the package "
-        "does not compute them with one; `dfa report` without the controller flags writes them (a separate file). "
+        "stiffness–speed chart, and the regions and stiffness figures. The closed forms hold for the "
+        "paper's spring (B = 0, no velocity filter, ideal amplifier), not for this controller; `dfa report` "
+        "without the controller flags writes them (a separate file), and `dfa stiffness --plot` with the same flags "
+        "draws this controller's stiffness–speed chart. "
         "Everything below is computed with the controller; the device table's μ, β, σ are the device's groups at K "
         "(paper Table 1)."
     )
@@ -293,7 +293,7 @@ def trust_rows(a: DesignAnalysis) -> list[list[str]]:
 def _criterion_speed_row(a: DesignAnalysis) -> list[str]:
     """The criterion's critical speed (the extended criterion's with a controller; "not covered" with a lag)."""
     u = a.device.units
-    if a.criterion is not None:
+    if a.is_spring and a.criterion is not None:
         crit = a.criterion
         return [
             "criterion (eq. 12), guaranteed",
@@ -302,8 +302,7 @@ def _criterion_speed_row(a: DesignAnalysis) -> list[str]:
         ]
     from .controller import NOT_COVERED
 
-    assert a.controller_check is not None
-    r = a.controller_check.criterion
+    r = a.criterion
     if r is None:
         return ["extended criterion, guaranteed", "–", NOT_COVERED]
     return [
@@ -314,10 +313,7 @@ def _criterion_speed_row(a: DesignAnalysis) -> list[str]:
 
 
 def _critical_xi_dot(a: DesignAnalysis) -> float | None:
-    if a.criterion is not None:
-        return a.criterion.critical_xi_dot
-    chk = a.controller_check
-    return None if chk is None or chk.criterion is None else chk.criterion.critical_xi_dot
+    return None if a.criterion is None else a.criterion.critical_xi_dot
 
 
 def trust_text(a: DesignAnalysis) -> str:
@@ -325,7 +321,7 @@ def trust_text(a: DesignAnalysis) -> str:
     v_sim, crit_xi, g = a.simulated_xi_dot, _critical_xi_dot(a), a.threshold("zoh")
     msg = []
     if v_sim and crit_xi:
-        name = "The extended criterion" if a.controller is not None else "The criterion"
+        name = "The criterion" if a.is_spring else "The extended criterion"
         msg.append(f"{name} is conservative by a factor {v_sim / crit_xi:.3g} for this device")
     if v_sim and g.xi_dot:
         msg.append(
@@ -412,14 +408,14 @@ def _controller_parts(a: DesignAnalysis) -> dict[str, str]:
     from .controller import check_table_rows, controller_limit_rows, controller_line, controller_rows
 
     keys = ("controller_line", "controller_table", "check_table", "climits_table", "spring_only", "with_ctl")
-    if a.controller is None or a.controller_check is None:
+    if a.is_spring:
         return dict.fromkeys(keys, "")
     dev, u = a.device, a.device.units
-    lim = a.controller_limits
+    lim = a.design_answer
     return dict(
-        controller_line=controller_line(a.controller, dev.period, u),
-        controller_table=markdown_table(["quantity", "value"], controller_rows(a.controller, dev.period, u)),
-        check_table=markdown_table(["quantity", "value"], check_table_rows(a.controller_check)),
+        controller_line=controller_line(a.wall, dev.period, u),
+        controller_table=markdown_table(["quantity", "value"], controller_rows(a.wall, dev.period, u)),
+        check_table=markdown_table(["quantity", "value"], check_table_rows(a.check)),
         climits_table="" if lim is None else markdown_table(
             ["largest stiffness K with this controller", "value"], controller_limit_rows(lim, u)
         ),
@@ -451,9 +447,9 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
         **_controller_parts(a),
         device_table=markdown_table(["quantity", "value"], device_rows(a)),
         catalogue_text=catalogue_text(a),
-        limits_table=markdown_table(["quantity", "value"], limits_rows(a)) if a.criterion is not None else "",
+        limits_table=markdown_table(["quantity", "value"], limits_rows(a)) if a.limits is not None else "",
         answer_table=markdown_table(["largest stiffness K at this speed", "value"], answer_rows(a))
-        if a.design_answer is not None
+        if a.design_answer is not None and a.is_spring
         else "",
         cycle_table=markdown_table(
             ["loop model", "M (ticks)", "amplitude", "ω (rad/sample)", "frequency", "stability", "family"], cycles

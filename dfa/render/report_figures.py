@@ -35,9 +35,9 @@ def _delay_text(dl: int) -> str:
 
 def _with_ctl(a: DesignAnalysis) -> str:
     """' with the wall controller (β_B = …, ν_c = …, α = …)' for a report with a controller, '' for the spring."""
-    cp = a.controller_params
-    if cp is None:
+    if a.is_spring:
         return ""
+    cp = a.wall_params
     nu = "none" if cp.cutoff is None else f"{cp.cutoff:.3g}"
     return f" with the wall controller (β_B = {cp.damping:.3g}, ν_c = {nu}, α = {cp.lag:.3g}, d = {cp.delay})"
 
@@ -79,7 +79,7 @@ def _nyquist(a: DesignAnalysis) -> ReportFigure:
     from .controller import controller_short
 
     model = a.nyquist.model
-    ctl = None if a.controller is None else controller_short(a.controller, a.device.units)
+    ctl = None if a.is_spring else controller_short(a.wall, a.device.units)
     ax = figures.nyquist_plot(a.nyquist, cycles=a.threshold(model).result, controller=ctl)
     name = figures.MODEL_NAMES.get(model, model)
     caption = (
@@ -124,7 +124,7 @@ def _map(a: DesignAnalysis) -> ReportFigure:
     )
     caption = (
         f"Simulated stability{_with_ctl(a)} around the operating point (red circle) at the design speed and twice it"
-        + ("; the controller's groups are held fixed over the map" if a.controller is not None else "")
+        + ("; the controller's groups are held fixed over the map" if not a.is_spring else "")
         + "; "
         f"μ = {a.params.mu:.4g}. Top and right axes: the damping b and Coulomb friction c that give β and σ at "
         f"K = {a.stiffness:.4g} {a.device.units['stiffness']}. The legend lists every outcome class, present or not."
@@ -147,29 +147,28 @@ def _zwidth(a: DesignAnalysis) -> ReportFigure | None:
     if a.zwidth is None:
         return None
     z = a.zwidth
-    ax = z.plot(design_point=None if a.controller is None else (a.controller.damping, a.stiffness))
+    ax = z.plot(design_point=None if a.is_spring else (a.wall.damping, a.stiffness))
     caption = (
         f"Z-width of the {a.device.name}{_delay_text(a.delay)} for impacts up to {z.velocity:.3g} "
         f"{a.device.units['velocity']}: largest K at each virtual damping B by the exact linear bound, passivity, "
         f"the describing function and exact simulation on a {z.stiffness.size} × {z.damping.size} grid (shaded)."
     )
-    if a.controller is not None:
+    if not a.is_spring:
         caption += _design_point_text(ax, a)
     return ReportFigure("zwidth", caption, _png(ax.figure))
 
 
 def _design_point_text(ax: Any, a: DesignAnalysis) -> str:
     """The caption's sentence about the controller's (B, K), starred on the Z-width by its ``plot``."""
-    assert a.controller is not None
-    b, k = a.controller.damping, a.stiffness
+    b, k = a.wall.damping, a.stiffness
     u = a.device.units
     lo, hi = ax.get_ylim()
     where = "" if lo <= k <= hi else " (outside the K grid: drawn at its edge)"
     filt = []
-    if a.controller.filter_cutoff is not None:
-        filt.append(f"velocity filter {a.controller.filter_cutoff:.4g} Hz")
-    if a.controller.amplifier_bandwidth is not None:
-        filt.append(f"amplifier bandwidth {a.controller.amplifier_bandwidth:.4g} Hz")
+    if a.wall.filter_cutoff is not None:
+        filt.append(f"velocity filter {a.wall.filter_cutoff:.4g} Hz")
+    if a.wall.amplifier_bandwidth is not None:
+        filt.append(f"amplifier bandwidth {a.wall.amplifier_bandwidth:.4g} Hz")
     return (
         f" With the controller's {', '.join(filt) or 'delay'}; the star is the design point K = {k:.5g} "
         f"{u['stiffness']}, B = {b:.4g} {u['damping']}{where}."
