@@ -299,7 +299,7 @@ def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search)
 
 
 #: The criterion's row of `dfa stiffness` and of the report with a damper, filter or delay.
-CRITERION_ROW = "criterion K_max at this speed (eq. 6/11 extended to the damper, filter and delay)"
+CRITERION_ROW = "criterion K_max at this speed (eq. 11 extended to the wall)"
 
 
 def test_eq6_extended_cli_explains_a_zero_criterion_k(capsys, small_search):

@@ -153,7 +153,7 @@ def test_controller_report_kmax_equals_dfa_stiffness(ctl):
             assert lim[key]["null_reasons"]["/value"] in md
     kc, kl = stiff["k_criterion"]["value"], stiff["k_linear"]["value"]
     assert data["numbers"]["k_max"] == kc and data["numbers"]["k_linear"] == kl
-    label = "criterion K_max at this speed (eq. 6/11 extended to the damper, filter and delay)"
+    label = "criterion K_max at this speed (eq. 11 extended to the wall)"
     assert md_row(label, f"{kc:.5g} N/m") in md
     assert f"{kl:.5g} N/m" in md
     for key, label in (

@@ -23,33 +23,23 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         emit([r.to_dict() for r in rows])
         return 0
-    header = ["device", "m or J", "b", "c", "Δ", "T", "K", "μ", "β", "σ", "printed μ, β, σ", "flags"]
-    body = []
+    phys, dims = [], []
     for r in rows:
         p = r.params
         pr = r.printed_params
         flags = ["incomplete"] if r.incomplete else []
         flags += [f"{d.parameter} {100 * d.relative:+.0f}%" for d in r.discrepancies]
         printed = ", ".join(pr.get(k) and f"{pr[k]:g}" or "-" for k in ("mu", "beta", "sigma")) if pr else "-"
-        body.append(
-            [
-                r.name,
-                fmt(r.mass),
-                fmt(r.damping),
-                fmt(r.coulomb),
-                fmt(r.resolution),
-                fmt(r.period),
-                fmt(r.stiffness),
-                fmt(p.mu if p else None),
-                fmt(p.beta if p else None, 3),
-                fmt(p.sigma if p else None),
-                printed,
-                "; ".join(flags) or "ok",
-            ]  # fmt: skip
-        )
-    print(table(body, header))
+        phys.append([r.name, fmt(r.mass), fmt(r.damping), fmt(r.coulomb), fmt(r.resolution), fmt(r.period),
+                     fmt(r.stiffness)])  # fmt: skip
+        dims.append([r.name, fmt(p.mu if p else None), fmt(p.beta if p else None, 3), fmt(p.sigma if p else None),
+                     printed, "; ".join(flags) or "ok"])  # fmt: skip
+    print(table(phys, ["device", "m or J", "b", "c", "Δ", "T", "K"]))
+    print()
+    print(table(dims, ["device", "μ", "β", "σ", "printed μ, β, σ", "flags"]))
+    print()
     print(
-        "\nSI units (linear: mass m in kg, N·s/m, N, m, s, N/m; rotary: inertia J in kg·m², N·m·s/rad, N·m, rad, s, N·m/rad)."
+        "SI units (linear: mass m in kg, N·s/m, N, m, s, N/m; rotary: inertia J in kg·m², N·m·s/rad, N·m, rad, s, N·m/rad)."
     )
     print(
         "μ, β, σ recomputed from the physical columns (paper Table 1); flags: printed value disagrees (> 5 % and beyond its last digit)."

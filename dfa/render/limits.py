@@ -251,7 +251,7 @@ def assessment_rows(r: KMaxResult) -> list[list[str]]:
 def _criterion_row(r: KMaxResult) -> list[str]:
     ku = r.device.units["stiffness"]
     p = r.wall.params(r.device.period)
-    what = f"eq. 11, d = {p.delay}" if p.is_spring else "eq. 6/11 extended to the damper, filter and delay"
+    what = f"eq. 11, d = {p.delay}" if p.is_spring else "eq. 11 extended to the wall"
     return [f"criterion K_max at this speed ({what})", limit_text(r.k_criterion, ku)]
 
 
@@ -287,7 +287,7 @@ def kmax_rows(r: KMaxResult, *, explain: bool = False) -> list[list[str]]:
     ku, vu = u["stiffness"], u["velocity"]
     p = r.wall.params(r.device.period)
     loop = (f"all Jury conditions, delay {p.delay}" if p.delay else "all Jury conditions") if p.is_spring else (
-        "the loop with the wall; all Jury conditions")  # fmt: skip
+        "the wall's loop, all Jury conditions")  # fmt: skip
     rows = [_criterion_row(r), *_published_rows(r)]
     rows.append([f"exact linear bound ({loop})", limit_text(r.k_linear, ku)])
     for name, what in (
