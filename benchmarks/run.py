@@ -306,8 +306,8 @@ def bench_solver(quick: bool) -> list[dict]:
 
         def cold(p=p):
             # the loop model's caches (Padé coefficients, phase on the scan grid) emptied before the solve
-            _cycles._pade.cache_clear()
-            _cycles._grid_lead.cache_clear()
+            _cycles.pade_denominator.cache_clear()
+            _cycles.grid_lead.cache_clear()
             limit_cycles(p, model="pade", pade_order=6)
 
         t_cold = best_of(cold, 5)
@@ -391,8 +391,8 @@ def bench_solver_friction(solver_rows: list[dict]) -> list[dict]:
         for model in ("half-delay", "pade", "zoh"):
 
             def cold(p=p, model=model):
-                _cycles._zoh_phase_beta_grid.cache_clear()
-                _cycles._grid_lead.cache_clear()
+                _cycles.zoh_phase_beta_grid.cache_clear()
+                _cycles.grid_lead.cache_clear()
                 return limit_cycles(p, model=model)
 
             row[f"n_{model}"] = len(cold().cycles)

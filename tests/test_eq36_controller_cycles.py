@@ -260,7 +260,7 @@ def test_eq36_controller_describing_small_reproduces_the_exact_small_cycle(ctl):
 @pytest.mark.parametrize("mu", [0.5, 5.0, 100.0])
 def test_eq36_zoh_phase_condition_has_at_most_one_crossing_per_frequency_with_a_controller(mu):
     """The solver's premise for the exact ZOH model (one β* per ω with U < 0), checked on its own β grid."""
-    from dfa.analysis.cycles.characteristic import W_GRID, _inv_loop
+    from dfa.analysis.cycles.characteristic import W_GRID, inv_loop
 
     bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
     for ctl in [
@@ -268,7 +268,7 @@ def test_eq36_zoh_phase_condition_has_at_most_one_crossing_per_frequency_with_a_
         WallParams.of(damping=2.0, cutoff=0.05),
         WallParams.of(damping=1.0, lag=1.0, delay=2),
     ]:
-        c = _inv_loop(mu, bgrid[None, :], W_GRID[:, None], "zoh", ctl.delay, 0, ctl)
+        c = inv_loop(mu, bgrid[None, :], W_GRID[:, None], "zoh", ctl.delay, 0, ctl)
         sc = (np.sign(c.imag[:, :-1]) != np.sign(c.imag[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)
         assert sc.sum(axis=1).max() <= 1
 

@@ -72,7 +72,7 @@ def test_numerical_failure_gives_incomplete_status_and_warning(monkeypatch):
     def broken(self, m):
         raise ValueError("f(a) and f(b) must have different signs")
 
-    monkeypatch.setattr(cyc._PieceOmega, "scalar", broken)
+    monkeypatch.setattr(cyc.PieceOmega, "scalar", broken)
     with pytest.warns(LimitCycleSearchWarning, match="numerical failure"):
         res = limit_cycles(dfa.Params(5.0, 0.1, 0.3))
     assert not res.complete and res.status is SearchStatus.NUMERICAL and "incomplete" in res.detail
@@ -227,9 +227,9 @@ def test_loeb_sign_matches_an_independent_evaluation(p, model):
 
 @pytest.mark.parametrize("period, flag", [(7.999, True), (8.001, False)])
 def test_few_samples_flag_at_eight_samples(period, flag):
-    from dfa.analysis.cycles import _cycle
+    from dfa.analysis.cycles import limit_cycle_at
 
-    c = _cycle(0.5, 2 * math.pi / period, 1.0, 0.0)
+    c = limit_cycle_at(0.5, 2 * math.pi / period, 1.0, 0.0)
     assert c.few_samples is flag and c.period == pytest.approx(period)
 
 

@@ -212,12 +212,12 @@ def test_limit_cycles_bad_input(kwargs, needle):
 )
 def test_eq36_solver_loop_inverse_scalar_and_vector_paths_equal_loop_response(mu, beq, w, model, delay):
     """The solver's 1/L (plain-complex scalar path, numpy path, Padé as an all-pass phase lead) is loop_response's."""
-    from dfa.analysis.cycles import _inv_loop
+    from dfa.analysis.cycles import inv_loop
 
     p = dfa.Params(mu, beq, 0.0)
     ref = 1.0 / complex(loop_response(p, w, model=model, pade_order=6, wall=WallParams.of(delay=delay)))
-    scalar = _inv_loop(mu, beq, w, model, delay, 6)
-    vector = _inv_loop(mu, np.array([beq, beq]), np.array([w, w]), model, delay, 6)
+    scalar = inv_loop(mu, beq, w, model, delay, 6)
+    vector = inv_loop(mu, np.array([beq, beq]), np.array([w, w]), model, delay, 6)
     assert isinstance(scalar, complex)
     tol = 1e-12 * abs(ref) + 1e-300
     assert abs(scalar - ref) <= tol and np.all(np.abs(vector - ref) <= tol)
@@ -226,13 +226,13 @@ def test_eq36_solver_loop_inverse_scalar_and_vector_paths_equal_loop_response(mu
 @pytest.mark.parametrize("model, delay", [("half-delay", 0), ("pade", 0), ("pade", 1), ("zoh", 0), ("zoh", 1)])
 def test_eq36_phase_curve_beta_star_puts_the_loop_on_the_negative_real_axis(model, delay):
     """β*(ω) (closed form μω tan φ for half-delay and Padé, numeric for ZOH) gives V = 0 with U < 0 (eq. 36 phase condition)."""
-    from dfa.analysis.cycles import _Loop, _phase_beta
+    from dfa.analysis.cycles import HarmonicLoop, phase_beta
     from dfa.analysis.cycles.characteristic import W_GRID as _W_GRID
 
     mu = 7.0
-    lp = _Loop(dfa.Params(mu, 0.0, 0.0), model, delay, 4)
+    lp = HarmonicLoop(dfa.Params(mu, 0.0, 0.0), model, delay, 4)
     for w in (_W_GRID, np.array(_W_GRID[::97])):  # the cached grid and a fresh array
-        bs = _phase_beta(lp, w)
+        bs = phase_beta(lp, w)
         ok = np.isfinite(bs)
         assert ok.sum() > 100 if w is _W_GRID else ok.sum() > 3
         inv = np.array(

@@ -331,7 +331,7 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
     """
     g = check_positive("gain", gain, "D(M) is positive for every amplitude")
     mmax = check_positive("max_amplitude", max_amplitude)
-    out, complete, failures = _df_inverse_counted(g, mmax)
+    out, complete, failures = df_inverse_counted(g, mmax)
     if failures:
         import warnings
 
@@ -347,7 +347,7 @@ def quantizer_df_inverse(gain: float, max_amplitude: float = 1.0e4) -> tuple[np.
 INVERSE_MAX_INTERVALS = 2_000_000
 
 
-def _df_inverse_counted(g: float, mmax: float) -> tuple[np.ndarray, bool, int]:
+def df_inverse_counted(g: float, mmax: float) -> tuple[np.ndarray, bool, int]:
     """(roots, complete, failures) of D(M) = g up to ``mmax`` (validated inputs)."""
     roots = [2 / (math.pi * g)] if g >= 2 / math.pi and 2 / (math.pi * g) <= mmax else []
     n_last = (

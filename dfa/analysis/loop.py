@@ -77,11 +77,11 @@ __all__ = [
 LOOP_MODELS = ("half-delay", "pade", "zoh")
 
 
-def _check_params(params: object) -> Params:
+def check_params(params: object) -> Params:
     return check_type("params", params, Params, "build it with dfa.Params(mu, beta, sigma) or device.params(stiffness)")
 
 
-def _check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int]:
+def check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int]:
     m = check_choice("model", model, LOOP_MODELS)
     d = check_delay(delay)
     n = check_int("pade_order", pade_order, minimum=1, fix="use an order of 1 or more (4 is usually enough)")
@@ -97,7 +97,7 @@ def equivalent_damping(params: Params, amplitude=None, omega=None):
 
     With σ = 0, ``amplitude`` and ``omega`` may be omitted (β_eq = β).
     """
-    p = _check_params(params)
+    p = check_params(params)
     if p.sigma == 0.0:
         shape = np.broadcast_shapes(
             np.shape(amplitude) if amplitude is not None else (), np.shape(omega) if omega is not None else ()
@@ -121,14 +121,14 @@ def device_tf(params: Params, amplitude: float | None = None, omega: float | Non
     >>> G.num[0][0].tolist(), G.den[0][0].tolist()
     ([1.0], [2.0, 0.5, 0.0])
     """
-    p = _check_params(params)
+    p = check_params(params)
     b = float(equivalent_damping(p, amplitude, omega))
     return control.tf([1.0], [p.mu, b, 0.0])
 
 
 def hold_delay_tf(delay: int = 0, pade_order: int = 4) -> control.TransferFunction:
     """Padé approximation of the hold's half sample plus ``delay`` samples, e^{−s(d + ½)}."""
-    _m, d, n = _check_model("pade", delay, pade_order)
+    _m, d, n = check_model("pade", delay, pade_order)
     num, den = control.pade(d + 0.5, n)
     return control.tf(num, den)
 
@@ -205,12 +205,12 @@ def loop_response(
     loop_system : The same loop as a python-control system.
     nyquist_locus_response : The loop against the critical locus −1/D(M).
     """
-    from .cycles.characteristic import _inv_loop  # imported here: dfa.analysis.cycles builds on this module
+    from .cycles.characteristic import inv_loop  # imported here: dfa.analysis.cycles builds on this module
     from .cycles.controlled import resolve_wall
 
-    p = _check_params(params)
+    p = check_params(params)
     _w, ctl, d = resolve_wall(wall)
-    m, d, n = _check_model(model, d, pade_order)
+    m, d, n = check_model(model, d, pade_order)
     w = _omega(omega)
     if amplitude is not None:
         amplitude = check_real_array("amplitude", amplitude, "give the cycle amplitude M in ticks")
@@ -228,7 +228,7 @@ def loop_response(
     )
     w = np.broadcast_to(w, np.shape(beq))
     if ctl is not None:
-        out = 1.0 / _inv_loop(p.mu, beq, w, m, d, n, ctl)
+        out = 1.0 / inv_loop(p.mu, beq, w, m, d, n, ctl)
     elif m == "zoh":
         out = zoh_pulse_response(p.mu, beq, w) * np.exp(-1j * w * d)
     else:
@@ -303,14 +303,14 @@ def loop_system(
     """
     from .cycles.controlled import resolve_wall
 
-    p = _check_params(params)
+    p = check_params(params)
     _w, ctl, d = resolve_wall(wall)
     if ctl is not None:
         raise DFAValueError(
             f"wall = {ctl.to_dict()} is invalid for loop_system: it builds the spring's loop with a delay only; "
             "use loop_response(..., wall=...) for a wall with a damper, filter or amplifier lag"
         )
-    m, d, n = _check_model(model, d, pade_order)
+    m, d, n = check_model(model, d, pade_order)
     if amplitude is not None:
         amplitude = check_positive("amplitude", amplitude, "give one cycle amplitude M in ticks")
     if omega is not None:
@@ -542,9 +542,9 @@ def nyquist_locus_response(
     """
     from .cycles.controlled import resolve_wall  # imported here: dfa.analysis.cycles builds on this module
 
-    p = _check_params(params)
+    p = check_params(params)
     wp, _ctl, d = resolve_wall(wall)
-    m, d, n = _check_model(model, d, pade_order)
+    m, d, n = check_model(model, d, pade_order)
     w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega)
     la = check_real_array(
         "locus_amplitude", np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude

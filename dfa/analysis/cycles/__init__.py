@@ -83,7 +83,7 @@ from __future__ import annotations
 
 # private names re-exported for the tests and benchmarks that reach into the solver
 from .caveats import SUBTICK_LIMIT, subtick_caveat
-from .characteristic import W_GRID, _grid_lead, _inv_loop, _Loop, _pade  # noqa: F401
+from .characteristic import W_GRID, HarmonicLoop, grid_lead, inv_loop, pade_denominator  # noqa: F401
 from .closed_forms import (
     ClosedFormCycles,
     ClosedFormStatus,
@@ -95,11 +95,11 @@ from .closed_forms import (
     small_cycle_closed_forms,
 )
 from .growth import GrowthThreshold, growth_threshold
-from .phase import _phase_beta, _PieceOmega, _zoh_phase_beta_grid  # noqa: F401
+from .phase import PieceOmega, phase_beta, zoh_phase_beta_grid  # noqa: F401
 from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchStatus
 from .search import INTERVAL_BUDGET, envelope_bound
 from .solve import AUTO_MAX_AMPLITUDE, DEFAULT_TIME_BUDGET, limit_cycles
-from .stability import _cycle  # noqa: F401
+from .stability import limit_cycle_at  # noqa: F401
 
 __all__ = [
     "LimitCycle",

@@ -45,7 +45,7 @@ __all__ = ["SUBTICK_LIMIT", "subtick_caveat"]
 SUBTICK_LIMIT = 1.25
 
 #: The reason of a null ``caveat`` in JSON.
-_NO_CAVEAT = f"no caveat: no unstable cycle below SUBTICK_LIMIT = {SUBTICK_LIMIT:g} ticks"
+NO_CAVEAT = f"no caveat: no unstable cycle below SUBTICK_LIMIT = {SUBTICK_LIMIT:g} ticks"
 
 
 def subtick_caveat(result: Any) -> str | None:

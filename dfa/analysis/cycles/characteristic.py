@@ -19,10 +19,10 @@ from ...core.zoh import zoh_coefficients
 from ...model.device import Params
 from ...model.wall import WallParams
 
-_DF_CHOICES = ("exact", "small", "unity")
+DF_CHOICES = ("exact", "small", "unity")
 
 #: Amplitudes below this (ticks) are not searched: there F ≈ (2 − 4σ)/(πM) keeps its sign.
-_M_FLOOR = 1e-9
+M_FLOOR = 1e-9
 
 
 #: Frequency grid (rad per sample) on which the phase curve is scanned before bracketing.
@@ -38,30 +38,30 @@ W_GRID.flags.writeable = False
 
 
 @lru_cache(maxsize=64)
-def _grid_lead(model: str, delay: int, pade_order: int) -> tuple[np.ndarray, np.ndarray]:
+def grid_lead(model: str, delay: int, pade_order: int) -> tuple[np.ndarray, np.ndarray]:
     """(φ, e^{jφ}) on W_GRID, cached: the grid is scanned once per solve."""
     lead = _lead_eval(W_GRID, model, delay, pade_order)
     return lead, np.exp(1j * lead)
 
 
-def _lead(w, model: str, delay: int, pade_order: int):
+def phase_lead(w, model: str, delay: int, pade_order: int):
     """Phase lead φ(ω) of 1/L over the device's inverse (half-delay and Padé models), rad."""
     if w is W_GRID:
-        return _grid_lead(model, delay, pade_order)[0]
+        return grid_lead(model, delay, pade_order)[0]
     return _lead_eval(w, model, delay, pade_order)
 
 
 def _rotation(w, model: str, delay: int, pade_order: int):
     """e^{jφ(ω)} (vectorised), cached on W_GRID."""
     if w is W_GRID:
-        return _grid_lead(model, delay, pade_order)[1]
+        return grid_lead(model, delay, pade_order)[1]
     return np.exp(1j * _lead_eval(w, model, delay, pade_order))
 
 
 def _lead_eval(w, model: str, delay: int, pade_order: int):
     if model == "half-delay":
         return w * (delay + 0.5)
-    den = _pade(delay + 0.5, pade_order)
+    den = pade_denominator(delay + 0.5, pade_order)
     if np.ndim(w) == 0:
         s, pd = 1j * float(w), 0j
         for c in den:
@@ -70,7 +70,7 @@ def _lead_eval(w, model: str, delay: int, pade_order: int):
     return 2.0 * np.angle(np.polyval(den, 1j * np.asarray(w, dtype=float)))
 
 
-def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int, wall: WallParams | None = None):
+def inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int, wall: WallParams | None = None):
     """1/L(jω) for an equivalent damping β_eq (broadcast), time in samples; plain complex for scalars.
 
     ``wall`` (groups the spring's fast path does not cover; None for the paper's spring, any delay) divides by
@@ -92,7 +92,7 @@ def _inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int, wa
 def _inv_loop_scalar(mu: float, b: float, w: float, model: str, delay: int, pade_order: int) -> complex:
     """1/L(jω) for one (β_eq, ω), in plain complex arithmetic."""
     if model != "zoh":
-        return cmath.exp(1j * _lead(w, model, delay, pade_order)) * complex(-mu * w * w, w * b)
+        return cmath.exp(1j * phase_lead(w, model, delay, pade_order)) * complex(-mu * w * w, w * b)
     c1, c0, p = (float(x) for x in zoh_coefficients(b / mu))
     z = cmath.exp(1j * w)
     return complex(z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0))
@@ -108,12 +108,12 @@ def wall_ratio(wall: WallParams, omega):
 
 
 def _inv_loop_wall(mu: float, beq, omega, model: str, delay: int, pade_order: int, wall: WallParams):
-    """1/L(jω) with a wall (see :func:`_inv_loop`); plain complex for scalars."""
+    """1/L(jω) with a wall (see :func:`inv_loop`); plain complex for scalars."""
     scalar = np.ndim(omega) == 0 and np.ndim(beq) == 0
     w = omega if omega is W_GRID else np.asarray(omega, dtype=float)
     g = wall.zoh_response(mu, beq, w) if model == "zoh" else None
     if g is None:
-        out = _inv_loop(mu, beq, omega, model, delay, pade_order)
+        out = inv_loop(mu, beq, omega, model, delay, pade_order)
         out = out * (wall_ratio(wall, w) if model != "zoh" else 1.0 / wall.command().response(w))
     else:
         z = np.exp(1j * w)
@@ -122,7 +122,7 @@ def _inv_loop_wall(mu: float, beq, omega, model: str, delay: int, pade_order: in
 
 
 @lru_cache(maxsize=64)
-def _pade(t: float, order: int) -> tuple[float, ...]:
+def pade_denominator(t: float, order: int) -> tuple[float, ...]:
     """Denominator of python-control's Padé approximant of e^{−st} (its numerator is den(−s))."""
     import control
 
@@ -134,7 +134,7 @@ def _pade(t: float, order: int) -> tuple[float, ...]:
 
 
 @dataclass(frozen=True)
-class _Loop:
+class HarmonicLoop:
     params: Params
     model: str
     delay: int
@@ -148,7 +148,7 @@ class _Loop:
         return self.params.beta + 4.0 * self.params.sigma / (math.pi * np.asarray(m) * np.asarray(w))
 
     def inv(self, m, w):
-        return _inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order, self.wall)
+        return inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order, self.wall)
 
     def d(self, m):
         """D(M) (compiled eq. 41 for the exact describing function; M > 0 is the solver's own)."""

@@ -9,7 +9,7 @@ from ...errors import DFAValueError
 from ...model.device import Device, Params
 from ...results.jsonable import explain_nulls, to_jsonable
 from ...results.status import GrowthStatus
-from .caveats import _NO_CAVEAT
+from .caveats import NO_CAVEAT
 from .results import LimitCycleResult
 from .solve import limit_cycles
 
@@ -160,7 +160,7 @@ class GrowthThreshold:
                 "caveat": self.caveat,
             }
         )
-        return explain_nulls(out, {"caveat": _NO_CAVEAT})
+        return explain_nulls(out, {"caveat": NO_CAVEAT})
 
 
 def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> GrowthThreshold:

@@ -10,29 +10,29 @@ from scipy import optimize
 from scipy.optimize.elementwise import find_root
 
 from ...model.wall import WallParams
-from .characteristic import W_GRID, _inv_loop, _lead, _Loop, wall_ratio
+from .characteristic import W_GRID, HarmonicLoop, inv_loop, phase_lead, wall_ratio
 
 # --------------------------------------------------------------- phase curve
 
 
-def _phase_beta(lp: _Loop, w: np.ndarray) -> np.ndarray:
+def phase_beta(lp: HarmonicLoop, w: np.ndarray) -> np.ndarray:
     """β*(ω): the damping at which V = 0 with U < 0 (NaN where there is none)."""
     mu, d = lp.params.mu, lp.delay
     if lp.model != "zoh":
         # V = 0 ⇔ β_eq = μω tan φ, and then U = −μω²/cos φ < 0 ⇔ cos φ > 0; β_eq >= 0 ⇒ φ mod 2π ∈ [0, π/2)
-        th = _lead(w, lp.model, d, lp.pade_order)
+        th = phase_lead(w, lp.model, d, lp.pade_order)
         if lp.wall is not None:  # 1/L = e^{jθ}·R(ω)·(−μω² + jωβ_eq): R adds its phase to the lead, |R| > 0
             th = th + np.angle(wall_ratio(lp.wall, w))
         ok = np.mod(th, 2 * math.pi) < math.pi / 2
         with np.errstate(invalid="ignore"):
             return np.where(ok, mu * w * np.tan(th), np.nan)
     if w is W_GRID:  # β* does not depend on β or σ: a sweep at fixed μ scans the grid once
-        return _zoh_phase_beta_grid(mu, d, lp.wall)
+        return zoh_phase_beta_grid(mu, d, lp.wall)
     return _zoh_phase_beta(mu, d, w, lp.wall)
 
 
 @lru_cache(maxsize=16)
-def _zoh_phase_beta_grid(mu: float, d: int, wall: WallParams | None = None) -> np.ndarray:
+def zoh_phase_beta_grid(mu: float, d: int, wall: WallParams | None = None) -> np.ndarray:
     out = _zoh_phase_beta(mu, d, W_GRID, wall)
     out.flags.writeable = False
     return out
@@ -41,7 +41,7 @@ def _zoh_phase_beta_grid(mu: float, d: int, wall: WallParams | None = None) -> n
 def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, wall: WallParams | None = None) -> np.ndarray:
     """β*(ω) of the exact ZOH loop: scan β on a log grid, bracket V's crossing with U < 0, bisect (vectorised)."""
     bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
-    c = _inv_loop(mu, bgrid[None, :], w[:, None], "zoh", d, 0, wall)
+    c = inv_loop(mu, bgrid[None, :], w[:, None], "zoh", d, 0, wall)
     v = c.imag
     sc = (np.sign(v[:, :-1]) != np.sign(v[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)
     has = sc.any(axis=1)
@@ -54,7 +54,7 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, wall: WallParams | None = 
         for i in np.flatnonzero(has):
             wi = float(w[i])
             out[i] = optimize.brentq(
-                lambda b, wi=wi: _inv_loop(mu, b, wi, "zoh", d, 0, wall).imag,
+                lambda b, wi=wi: inv_loop(mu, b, wi, "zoh", d, 0, wall).imag,
                 float(lo[i]),
                 float(hi[i]),
                 xtol=1e-300,
@@ -63,7 +63,7 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, wall: WallParams | None = 
         return out
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        vm = _inv_loop(mu, mid, w, "zoh", d, 0, wall).imag
+        vm = inv_loop(mu, mid, w, "zoh", d, 0, wall).imag
         left = np.sign(vm) == np.sign(vlo)
         lo = np.where(left, mid, lo)
         vlo = np.where(left, vm, vlo)
@@ -71,11 +71,11 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, wall: WallParams | None = 
     return np.where(has, 0.5 * (lo + hi), np.nan)
 
 
-def _omega_for_m(lp: _Loop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np.ndarray:
+def _omega_for_m(lp: HarmonicLoop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np.ndarray:
     """Solve V(M, ω) = 0 for ω in the brackets [wa, wb] (scipy's elementwise find_root).
 
     Where V does not change sign over a bracket (a root at an end, to rounding), the end with the
-    smaller |V| is returned: the same rule as :meth:`_PieceOmega.scalar`, so that the scan and the
+    smaller |V| is returned: the same rule as :meth:`PieceOmega.scalar`, so that the scan and the
     refinement of a root evaluate F(M) = D(M) + U(M, ω(M)) as one function.
     """
     va = lp.inv(m, wa).imag
@@ -89,10 +89,10 @@ def _omega_for_m(lp: _Loop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np
     return np.where(no_change, end, np.where(res.status == 0, res.x, np.nan))
 
 
-def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
+def phase_pieces(lp: HarmonicLoop) -> list[tuple[np.ndarray, np.ndarray]]:
     """Monotone pieces (ω, M) of the phase curve, each with an exact M = ∞ end where it reaches β* = β."""
     w = W_GRID
-    bs = _phase_beta(lp, w)
+    bs = phase_beta(lp, w)
     beta, sigma = lp.params.beta, lp.params.sigma
     excess = bs - beta
     valid = np.isfinite(excess) & (excess > 0)
@@ -112,7 +112,7 @@ def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
         ends = []
         for k_in, k_out in ((i, i - 1), (j, j + 1)):
             if 0 <= k_out < n and np.isfinite(excess[k_out]) and excess[k_out] <= 0:
-                f = lambda x: float(_phase_beta(lp, np.array([x]))[0] - beta)
+                f = lambda x: float(phase_beta(lp, np.array([x]))[0] - beta)
                 try:
                     ends.append((k_in, optimize.brentq(f, min(w[k_in], w[k_out]), max(w[k_in], w[k_out]), xtol=1e-15)))
                 except ValueError:
@@ -137,10 +137,10 @@ def _pieces(lp: _Loop) -> list[tuple[np.ndarray, np.ndarray]]:
     return out
 
 
-class _PieceOmega:
+class PieceOmega:
     """ω(M) on one monotone piece of the phase curve: V(M, ω) = 0 bracketed by the piece's grid."""
 
-    def __init__(self, lp: _Loop, ws: np.ndarray, ms: np.ndarray):
+    def __init__(self, lp: HarmonicLoop, ws: np.ndarray, ms: np.ndarray):
         order = np.argsort(ms)
         self.lp, self.ms, self.ws = lp, ms[order], ws[order]
 

@@ -11,7 +11,7 @@ from ...model.device import Device, Params
 from ...model.wall import WallParams
 from ...results.jsonable import explain_nulls, to_jsonable
 from ...results.status import SearchStatus
-from .caveats import _NO_CAVEAT, subtick_caveat
+from .caveats import NO_CAVEAT, subtick_caveat
 
 
 # ------------------------------------------------------------------ results
@@ -249,7 +249,7 @@ class LimitCycleResult:
                 "caveat": self.caveat,
             }
         )
-        return explain_nulls(out, {"caveat": _NO_CAVEAT})
+        return explain_nulls(out, {"caveat": NO_CAVEAT})
 
 
 class LimitCycleSearchWarning(RuntimeWarning):

@@ -7,14 +7,14 @@ import math
 import numpy as np
 
 from ..describing import DF_ENVELOPE
-from .characteristic import _M_FLOOR, _inv_loop, _Loop
+from .characteristic import M_FLOOR, HarmonicLoop, inv_loop
 
 #: Most far intervals [n, n + 1] (n > 32) sampled point by point per piece; beyond, the search ends incomplete.
 INTERVAL_BUDGET = 20_000
 
 
-def _m_samples(
-    lo: float, hi: float, max_amp: float, lp: _Loop, w_inf: float | None, omega_of
+def m_samples(
+    lo: float, hi: float, max_amp: float, lp: HarmonicLoop, w_inf: float | None, omega_of
 ) -> tuple[np.ndarray, tuple[float, str] | None, float]:
     """Sample amplitudes on [lo, hi] ∩ (0, max_amp], stopping by the envelope rule.
 
@@ -25,8 +25,8 @@ def _m_samples(
     (ticks) beyond which the piece has no root when ``reach`` is None.
     """
     pts = []
-    if lo < 1.0 and hi > _M_FLOOR:
-        pts.append(np.geomspace(max(lo, _M_FLOOR), min(1.0, hi), 400))
+    if lo < 1.0 and hi > M_FLOOR:
+        pts.append(np.geomspace(max(lo, M_FLOOR), min(1.0, hi), 400))
     reach, bound = None, min(hi, 1.0)
     if hi > 1.0:
         n0 = max(1, int(math.floor(lo)))
@@ -45,7 +45,7 @@ def _m_samples(
                 0.0
                 if w_inf == 0.0
                 else -float(
-                    np.real(_inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order, lp.wall))
+                    np.real(inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order, lp.wall))
                 )
             )
         else:  # a finite far end (hi, its ω)
@@ -68,7 +68,7 @@ def _m_samples(
     return np.unique(np.concatenate(pts)), reach, bound
 
 
-def _far_intervals(lp: _Loop, n_from: int, n_end: int, u_far: float, omega_of, lo: float, hi: float):
+def _far_intervals(lp: HarmonicLoop, n_from: int, n_end: int, u_far: float, omega_of, lo: float, hi: float):
     """Far intervals [n, n + 1] (n >= n_from > 32) that can hold a root, up to the envelope stop.
 
     −U = −Re(1/L) along the piece decides both, under the premise that far out −U moves

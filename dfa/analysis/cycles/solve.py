@@ -12,20 +12,20 @@ from scipy import optimize
 from ...checks import check_choice, check_positive
 from ...model.device import Params
 from ...model.wall import WallParams
-from ..loop import _check_model, _check_params
+from ..loop import check_model, check_params
 from . import search
-from .characteristic import _DF_CHOICES, _M_FLOOR, W_GRID, _Loop
+from .characteristic import DF_CHOICES, M_FLOOR, W_GRID, HarmonicLoop
 from .controlled import linear_stable_of, resolve_wall
-from .phase import _PieceOmega, _pieces
+from .phase import PieceOmega, phase_pieces
 from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchStatus
-from .search import _m_samples, envelope_bound
-from .stability import _cycles_at_crossing, _make_cycle
+from .search import envelope_bound, m_samples
+from .stability import cycles_at_crossing, make_cycle
 
 #: What a failing root finder raises; counted as a numerical failure of the search, never raised.
 _NUMERICAL_ERRORS = (ValueError, RuntimeError, FloatingPointError, ZeroDivisionError, OverflowError)
 
 
-def _refine(lp: _Loop, omega_of: _PieceOmega, a: float, b: float) -> float | None:
+def _refine(lp: HarmonicLoop, omega_of: PieceOmega, a: float, b: float) -> float | None:
     """Root of F(M) = D(M) + U(M, ω(M)) on [a, b] with the scalar ω(M); None when the ends do not bracket."""
 
     def g(mm):
@@ -39,7 +39,7 @@ def _refine(lp: _Loop, omega_of: _PieceOmega, a: float, b: float) -> float | Non
     return optimize.brentq(g, a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps)
 
 
-def _solve_sigma_zero(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], tuple | None, int, float]:
+def _solve_sigma_zero(lp: HarmonicLoop, max_amp: float) -> tuple[list[LimitCycle], tuple | None, int, float]:
     """σ = 0: the loop does not depend on M; its phase crossings are the roots of Im(1/L) with Re(1/L) < 0."""
     cycles: list[LimitCycle] = []
     reach, failures, bound = None, 0, 0.0
@@ -66,18 +66,20 @@ def _solve_sigma_zero(lp: _Loop, max_amp: float) -> tuple[list[LimitCycle], tupl
         else:
             roots = np.array([])
         # exact D inversion at an exact phase crossing: nothing to polish
-        cycles += _cycles_at_crossing(lp, np.asarray(roots, dtype=float), w0)
+        cycles += cycles_at_crossing(lp, np.asarray(roots, dtype=float), w0)
     return cycles, reach, failures, bound
 
 
 def _df_roots(g: float, max_amp: float) -> tuple[np.ndarray, bool, int]:
     """quantizer_df_inverse with its failure count (compiled Brent non-convergence)."""
-    from ..describing import _df_inverse_counted
+    from ..describing import df_inverse_counted
 
-    return _df_inverse_counted(g, max_amp)
+    return df_inverse_counted(g, max_amp)
 
 
-def _solve(lp: _Loop, max_amp: float, deadline: float = math.inf) -> tuple[list[LimitCycle], tuple | None, int, float]:
+def _solve(
+    lp: HarmonicLoop, max_amp: float, deadline: float = math.inf
+) -> tuple[list[LimitCycle], tuple | None, int, float]:
     """All roots up to ``max_amp``: (cycles, reach, failures, bound); reach is None when the search is complete,
     and then no root exists beyond ``bound`` (ticks). Past ``deadline`` (time.monotonic) the pieces not yet
     searched are skipped: reach is then (smallest amplitude of a skipped piece, "time_budget", pieces done, pieces)."""
@@ -85,7 +87,7 @@ def _solve(lp: _Loop, max_amp: float, deadline: float = math.inf) -> tuple[list[
         return _solve_sigma_zero(lp, max_amp)
     cycles: list[LimitCycle] = []
     reach, failures, bound = None, 0, 0.0
-    pieces = [(ws, ms) for ws, ms in _pieces(lp) if np.isfinite(ms).any()]
+    pieces = [(ws, ms) for ws, ms in phase_pieces(lp) if np.isfinite(ms).any()]
     for k, (ws, ms) in enumerate(pieces):
         finite = np.isfinite(ms)
         lo = float(np.min(ms[finite]))
@@ -95,9 +97,9 @@ def _solve(lp: _Loop, max_amp: float, deadline: float = math.inf) -> tuple[list[
             return cycles, (min(below, max_amp), "time_budget", k, len(pieces)), failures, bound
         hi = float(np.max(ms))
         w_inf = float(ws[~finite][0]) if (~finite).any() else None
-        omega_of = _PieceOmega(lp, ws, ms)
+        omega_of = PieceOmega(lp, ws, ms)
         try:
-            samples, r, b = _m_samples(lo, hi, max_amp, lp, w_inf, omega_of)
+            samples, r, b = m_samples(lo, hi, max_amp, lp, w_inf, omega_of)
             bound = max(bound, b)
             if r is not None:
                 reach = r if reach is None else min(reach, r)
@@ -111,7 +113,7 @@ def _solve(lp: _Loop, max_amp: float, deadline: float = math.inf) -> tuple[list[
     return cycles, reach, failures, bound
 
 
-def _piece_roots(lp: _Loop, omega_of: _PieceOmega, samples: np.ndarray) -> tuple[list[LimitCycle], int]:
+def _piece_roots(lp: HarmonicLoop, omega_of: PieceOmega, samples: np.ndarray) -> tuple[list[LimitCycle], int]:
     """Scan F on the samples, bracket its sign changes and refine each (see the module docstring)."""
     wsamp = omega_of(samples)
     dvals = lp.d(samples)
@@ -128,9 +130,9 @@ def _piece_roots(lp: _Loop, omega_of: _PieceOmega, samples: np.ndarray) -> tuple
         if m0 is None:
             failures += 1
             continue
-        if m0 <= _M_FLOOR * (1 + 1e-6):
+        if m0 <= M_FLOOR * (1 + 1e-6):
             continue  # on the search floor: the degenerate σ = ½ end of the small family (M → 0, ω → π)
-        out.append(_make_cycle(lp, m0, omega_of.scalar(m0)))
+        out.append(make_cycle(lp, m0, omega_of.scalar(m0)))
     return out, failures
 
 
@@ -203,18 +205,18 @@ def limit_cycles(
     small_cycle_closed_form, large_cycle_closed_form : The paper's closed forms (eq. 42-45).
     nyquist_locus_response : The same balance drawn as a Nyquist plot.
     """
-    p = _check_params(params)
+    p = check_params(params)
     w, ctl, d = resolve_wall(wall)
-    m, d, n = _check_model(model, d, pade_order)
+    m, d, n = check_model(model, d, pade_order)
     auto = max_amplitude is None
     amax = (
         AUTO_MAX_AMPLITUDE
         if auto
         else check_positive("max_amplitude", max_amplitude, "give the largest amplitude to search, in ticks")
     )
-    df = check_choice("describing", describing, _DF_CHOICES)
+    df = check_choice("describing", describing, DF_CHOICES)
     seconds = check_positive("time_budget", time_budget, "give the longest search time in seconds, e.g. 10")
-    lp = _Loop(p, m, d, n, df, ctl)
+    lp = HarmonicLoop(p, m, d, n, df, ctl)
     try:
         cycles, reach, failures, bound = _solve(lp, amax, time.monotonic() + seconds)
     except _NUMERICAL_ERRORS:  # pragma: no cover - last resort

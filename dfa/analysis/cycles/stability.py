@@ -7,12 +7,12 @@ import math
 import numpy as np
 from scipy import optimize
 
-from .characteristic import _Loop
+from .characteristic import HarmonicLoop
 from .results import LimitCycle
 
 
 # ------------------------------------------------------------------- solver
-def _loeb(lp: _Loop, m: float, w: float) -> float:
+def _loeb(lp: HarmonicLoop, m: float, w: float) -> float:
     hm = 1e-7 * max(m, 1e-3)
     hw = 1e-7 * w
     cm = (lp.inv(m + hm, w) - lp.inv(m - hm, w)) / (2 * hm) + lp.dprime(m)
@@ -20,7 +20,7 @@ def _loeb(lp: _Loop, m: float, w: float) -> float:
     return float(cm.real * cw.imag - cw.real * cm.imag)
 
 
-def _polish(lp: _Loop, m: float, w: float) -> tuple[float, float]:
+def _polish(lp: HarmonicLoop, m: float, w: float) -> tuple[float, float]:
     """2-D Newton on (U, V) from a bracketed root; keeps the start if Newton wanders."""
 
     def f(x):
@@ -44,14 +44,14 @@ def _polish(lp: _Loop, m: float, w: float) -> tuple[float, float]:
     return m, w
 
 
-def _make_cycle(lp: _Loop, m: float, w: float, polish: bool = True) -> LimitCycle:
+def make_cycle(lp: HarmonicLoop, m: float, w: float, polish: bool = True) -> LimitCycle:
     if polish:
         m, w = _polish(lp, m, w)
     inv = lp.inv(m, w)
-    return _cycle(m, w, _loeb(lp, m, w), float(abs(1.0 + lp.d(m) / inv)))
+    return limit_cycle_at(m, w, _loeb(lp, m, w), float(abs(1.0 + lp.d(m) / inv)))
 
 
-def _cycle(m: float, w: float, loeb: float, residual: float) -> LimitCycle:
+def limit_cycle_at(m: float, w: float, loeb: float, residual: float) -> LimitCycle:
     return LimitCycle(
         amplitude=float(m),
         frequency=float(w),
@@ -63,7 +63,7 @@ def _cycle(m: float, w: float, loeb: float, residual: float) -> LimitCycle:
     )
 
 
-def _cycles_at_crossing(lp: _Loop, roots: np.ndarray, w: float) -> list[LimitCycle]:
+def cycles_at_crossing(lp: HarmonicLoop, roots: np.ndarray, w: float) -> list[LimitCycle]:
     """Cycles at one phase crossing ω of an amplitude-independent loop (σ = 0), all roots at once.
 
     There ∂(1/L)/∂M = 0, so the Loeb quantity reduces to D'(M)·∂V/∂ω.
@@ -75,4 +75,6 @@ def _cycles_at_crossing(lp: _Loop, roots: np.ndarray, w: float) -> list[LimitCyc
     cw = complex((lp.inv(1.0, w + hw) - lp.inv(1.0, w - hw)) / (2 * hw))
     loeb = np.asarray(lp.dprime(roots), dtype=float) * cw.imag
     resid = np.abs(1.0 + np.asarray(lp.d(roots), dtype=float) / inv)
-    return [_cycle(m, w, lo, r) for m, lo, r in zip(roots.tolist(), loeb.tolist(), resid.tolist(), strict=False)]
+    return [
+        limit_cycle_at(m, w, lo, r) for m, lo, r in zip(roots.tolist(), loeb.tolist(), resid.tolist(), strict=False)
+    ]
