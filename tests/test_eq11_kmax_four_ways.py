@@ -19,7 +19,7 @@ from dfa.analysis.limits.runs import SAFE, UNDECIDED, UNSAFE, simulate_points
 from dfa.analysis.limits.search import KLimit, grid_search
 from dfa.cli import main
 from dfa.model.wall import Wall, WallParams
-from dfa.render.limits import confirmation_text, limit_text
+from dfa.render.limits import confirmation_text, limit_text, spring_verdict_text
 from dfa.results.status import LimitStatus
 
 SPEED = {"linear": 0.2, "rotary": 2.0}
@@ -234,7 +234,7 @@ def test_cli_stiffness_json_without_stiffness_says_not_requested(capsys):
     code, out, _ = run(capsys, *argv, "--period", "1e-3", "--velocity", "0.1", "--stiffness", "20", "--json")
     assert json.loads(out)["assessment"]["verdict"] in ("ok", "too_stiff")
     lim = dfa.stiffness_limits(dfa.get_device("impulse").device, 0.1)
-    assert lim.status == "not_requested" and lim.verdict_text() == "–"
+    assert lim.status == "not_requested" and spring_verdict_text(lim) == "–"
     with pytest.raises(dfa.DFAValueError, match="must agree"):
         dataclasses.replace(lim, status="ok")
 

@@ -15,7 +15,7 @@ from dfa.analysis.simulation import OUTCOMES, simulate_batch
 from dfa.model.device import Params
 from dfa.model.wall import Wall, WallParams
 from dfa.render.limits import limit_text
-from dfa.render.text import limit_cycle_lines, limit_cycles_dict
+from dfa.render.text import growth_meaning, limit_cycle_lines, limit_cycles_dict
 
 # found by a random search (dfa.analysis.cycles.caveats): damper on a slowly filtered velocity (filter pole a = 0.974), d = 0
 P = Params(3.749, 0.0, 0.155)
@@ -49,9 +49,9 @@ def test_eq36_subtick_caveat_on_the_result_and_growth_threshold(res):
     assert res.caveat is not None and res.caveat == subtick_caveat(res)
     assert "1.014" in res.caveat and "not excluded" in res.caveat
     g = growth_threshold(P, model="zoh", wall=CTL)
-    assert g.caveat == res.caveat and "Caveat:" in g.meaning()
+    assert g.caveat == res.caveat and "Caveat:" in growth_meaning(g)
     d = json.loads(json.dumps(g.to_dict()))
-    assert d["caveat"] == res.caveat and "Caveat:" in d["meaning"]
+    assert d["caveat"] == res.caveat and "meaning" not in d  # the record states the caveat; rendering words it
     assert json.loads(json.dumps(res.to_dict()))["caveat"] == res.caveat
 
 
@@ -82,7 +82,7 @@ def test_eq36_no_caveat_well_above_the_first_level():
     d = res.to_dict()
     assert d["caveat"] is None and "/caveat" in d["null_reasons"]
     g = growth_threshold(Params(5.0, 0.1, 0.3), model="zoh")
-    assert "Caveat" not in g.meaning() and g.to_dict()["caveat"] is None
+    assert "Caveat" not in growth_meaning(g) and g.to_dict()["caveat"] is None
 
 
 def test_eq36_subtick_caveat_spring_alike():

@@ -27,6 +27,7 @@ from dfa.checks import check_beta, check_int, check_mu, check_nonnegative, check
 from dfa.cli import main
 from dfa.errors import DFAError, DFATypeError, DFAValueError
 from dfa.model.wall import Wall, WallParams
+from dfa.render.text import growth_meaning
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DFA = [sys.executable, "-c", "import sys; from dfa.cli import main; sys.exit(main())"]
@@ -698,7 +699,7 @@ def test_eq36_time_budget_hit_is_incomplete_and_says_so():
     assert 0.0 < part.max_amplitude < full.cycles[0].amplitude and _no_cycle_missed_below(part, full)
     assert part.to_dict()["status"] == "time_budget" and part.to_dict()["complete"] is False
     g = dfa.growth_threshold(p, time_budget=1e-9)
-    assert g.amplitude is None and "time budget of 1e-09 s" in g.meaning()
+    assert g.amplitude is None and "time budget of 1e-09 s" in growth_meaning(g)
     for bad in (0, -1.0, math.nan, math.inf, "10", None):
         with pytest.raises(DFAError, match="time_budget"):
             dfa.limit_cycles(p, time_budget=bad)

@@ -14,6 +14,8 @@ from typing import Any
 
 from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
+from .limits import spring_passive_text, spring_verdict_text
+from .text import growth_meaning
 
 __all__ = ["design_html", "design_markdown", "markdown_to_html"]
 
@@ -206,8 +208,8 @@ def limits_rows(a: DesignAnalysis) -> list[list[str]]:
             "exact linear bound of the sampled spring (all Jury conditions; Gil et al. where binding)",
             f"{lim.k_gil:.5g} {u['stiffness']}",
         ],
-        [f"largest passive speed at K = {a.stiffness:g}", lim.max_passive_velocity_text()],
-        ["verdict for this K at this speed", lim.verdict_text()],
+        [f"largest passive speed at K = {a.stiffness:g}", spring_passive_text(lim)],
+        ["verdict for this K at this speed", spring_verdict_text(lim)],
     ]
 
 
@@ -264,11 +266,11 @@ def growth_text(a: DesignAnalysis) -> str:
         return (
             f"**Growth band** (exact ZOH loop): {g.unstable_count} unstable cycles from M = {g.amplitude:.4g} to {g.amplitude_high:.4g} ticks "
             f"({number(g.position)} to {number(g.position_high)} {u['position']}); speeds M·ω = {g.xi_dot:.4g} to {g.xi_dot_high:.4g} ticks/sample "
-            f"= {number(g.velocity)} to {number(g.velocity_high)} {u['velocity']}. {g.meaning()}"
+            f"= {number(g.velocity)} to {number(g.velocity_high)} {u['velocity']}. {growth_meaning(g)}"
         )
     return (
         f"**Growth threshold** (exact ZOH loop): M_u = {g.amplitude:.4g} ticks ({number(g.position)} {u['position']}); "
-        f"the matching impact speed is M_u·ω = {g.xi_dot:.4g} ticks/sample = {number(g.velocity)} {u['velocity']}. {g.meaning()}"
+        f"the matching impact speed is M_u·ω = {g.xi_dot:.4g} ticks/sample = {number(g.velocity)} {u['velocity']}. {growth_meaning(g)}"
     )
 
 

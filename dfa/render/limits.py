@@ -17,6 +17,7 @@ Examples
 from __future__ import annotations
 
 from ..analysis.cycles import SUBTICK_LIMIT
+from ..analysis.limits.closed_form import StiffnessLimits
 from ..analysis.limits.kmax import KMaxAssessment, KMaxResult
 from ..analysis.limits.search import FINE_POINTS, FINE_STEP, SWEEP_STEP, Confirmation, KLimit
 from ..formatting import number
@@ -32,6 +33,8 @@ __all__ = [
     "kmax_rows",
     "limit_text",
     "passive_text",
+    "spring_passive_text",
+    "spring_verdict_text",
     "verdict_text",
     "undecided_text",
 ]
@@ -298,3 +301,41 @@ def kmax_rows(r: KMaxResult, *, explain: bool = False) -> list[list[str]]:
         rows.append([what, limit_text(getattr(r, name), ku, explain=explain, velocity_unit=vu)])
     rows += counterexample_lines(r)
     return rows + assessment_rows(r)
+
+
+def spring_passive_text(lim: StiffnessLimits) -> str:
+    """The spring's largest passive speed at the assessed K in words (eq. 12; ``"–"`` without a stiffness).
+
+    Examples
+    --------
+    >>> from dfa.analysis.limits.closed_form import stiffness_limits
+    >>> from dfa.model.catalogue import get_device
+    >>> spring_passive_text(stiffness_limits(get_device("impulse").device, 0.1, 80.0))
+    '0.1907 m/s'
+    """
+    unit, ku = lim.device.units["velocity"], lim.device.units["stiffness"]
+    if lim.velocity_status == "none":
+        return f"none: no passivity guarantee even at rest (K > 2c/Δ = {lim.k_static:.5g} {ku})"
+    if lim.velocity_status == "all_speeds":
+        return f"every speed (K <= {'2b/T' if lim.delay == 0 else 'b/(T(½ + d))'} = {lim.k_colgate:.5g} {ku})"
+    if lim.velocity_status == "not_requested" or lim.max_passive_velocity is None:
+        return "–"
+    return f"{lim.max_passive_velocity:.4g} {unit}"
+
+
+def spring_verdict_text(lim: StiffnessLimits) -> str:
+    """The spring's verdict on the assessed K at the impact speed in words (eq. 11; ``"–"`` without a stiffness)."""
+    if lim.stiffness is None:
+        return "–"
+    ku = lim.device.units["stiffness"]
+    if lim.velocity_status == "none":
+        return (
+            f"too stiff: no passivity guarantee even at rest (K > 2c/Δ = {lim.k_static:.5g} {ku}); "
+            "not a proof of instability"
+        )
+    if lim.status == "ok":
+        return "ok: passive at this speed (proven)"
+    return (
+        f"too stiff: no passivity guarantee at this speed (K > K_max = {lim.k_max:.5g} {ku}); "
+        "not a proof of instability"
+    )

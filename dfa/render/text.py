@@ -7,8 +7,9 @@ from typing import Any
 
 from ..formatting import number, text_table
 from ..results.jsonable import explain_nulls
+from ..results.status import GrowthStatus
 
-__all__ = ["OUTCOME_TEXT", "check_rows", "limit_cycle_lines", "limit_cycles_dict", "simulation_rows"]
+__all__ = ["OUTCOME_TEXT", "check_rows", "growth_meaning", "limit_cycle_lines", "limit_cycles_dict", "simulation_rows"]
 
 #: One phrase per simulated outcome class (:mod:`dfa.analysis.simulation`).
 OUTCOME_TEXT = {
@@ -172,7 +173,7 @@ def limit_cycle_lines(g: Any, device: Any, phys: dict | None = None) -> list[str
             why = res.detail.removeprefix("incomplete: ")
             lines.append(f"search incomplete beyond M = {res.max_amplitude:g} ticks ({why}): more cycles may exist")
     if g.amplitude is not None:
-        lines += [_growth_line(g, device), g.meaning()]
+        lines += [_growth_line(g, device), growth_meaning(g)]
     elif res.cycles and res.linear_stable is False:
         lines.append(
             f"no unstable cycle predicted{'' if res.complete else ' in the range searched'}, but {lin} is unstable: "
@@ -203,6 +204,7 @@ def limit_cycles_dict(g: Any, phys: dict | None = None) -> dict[str, object]:
 def _growth_dict(g: Any) -> dict[str, Any]:
     """The growth threshold's JSON, every null with its reason (no band predicted, or no device for units)."""
     out = g.to_dict()
+    out["meaning"] = growth_meaning(g)
     none = f"no growth band: {g.status.message}"
     nodev = none if g.amplitude is None else "no device given: physical values need one"
     why = dict.fromkeys(("amplitude", "frequency", "xi_dot", "grows_above"), none)
@@ -210,3 +212,41 @@ def _growth_dict(g: Any) -> dict[str, Any]:
     for part in (out, out["band"]["low"], out["band"]["high"]):
         explain_nulls(part, why)
     return out
+
+
+def growth_meaning(g: Any) -> str:
+    """What a growth band (:class:`dfa.analysis.cycles.GrowthThreshold`) means, in words that claim no more than
+    the describing function shows, with the sub-tick caveat when it holds."""
+    text = _growth_meaning(g)
+    return text if g.caveat is None else f"{text} Caveat: {g.caveat.removeprefix('sub-tick caveat: ')}."
+
+
+def _growth_meaning(g: Any) -> str:
+    res = g.result
+    if g.status is GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED:
+        return f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail})"
+    if g.status is GrowthStatus.LINEAR_UNSTABLE and not res.complete:
+        return (
+            f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail}), but the "
+            "linear loop (exact ZOH model) is unstable: amplitudes grow without bound"
+        )
+    if g.amplitude is None:
+        return g.status.message
+    lo, hi = g.amplitude, g.amplitude_high
+    tail = ""
+    if not res.complete:
+        tail = f" The search was incomplete ({res.detail}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
+    if g.grows_above:
+        above = f"above {hi:.4g} ticks the first-harmonic analysis predicts growth" + (
+            " without bound (the linear loop, exact ZOH model, is unstable)" if res.linear_stable is False else ""
+        )
+    else:
+        nxt = next(c for c in res.cycles if c.amplitude > hi and c.stable)
+        above = f"above {hi:.4g} ticks it predicts settling on the stable cycle at M = {nxt.amplitude:.4g} ticks"
+    if not g.is_band:
+        return f"Describing function (first-harmonic approximation): below M_u = {lo:.4g} ticks no growth is predicted; {above}.{tail}"
+    return (
+        f"Describing function (first-harmonic approximation): {g.unstable_count} unstable cycles alternate with stable ones "
+        f"between {lo:.4g} and {hi:.4g} ticks. Below the band every predicted cycle is stable (no growth predicted); "
+        f"inside it, whether an oscillation grows depends on its initial condition; {above}.{tail}"
+    )

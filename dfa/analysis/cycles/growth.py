@@ -89,41 +89,6 @@ class GrowthThreshold:
         """
         return self.result.caveat
 
-    def meaning(self) -> str:
-        """What the band means, in words that claim no more than the describing function shows."""
-        text = self._meaning()
-        return text if self.caveat is None else f"{text} Caveat: {self.caveat.removeprefix('sub-tick caveat: ')}."
-
-    def _meaning(self) -> str:
-        res = self.result
-        if self.status is GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED:
-            return f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail})"
-        if self.status is GrowthStatus.LINEAR_UNSTABLE and not res.complete:
-            return (
-                f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail}), but the "
-                "linear loop (exact ZOH model) is unstable: amplitudes grow without bound"
-            )
-        if self.amplitude is None:
-            return self.status.message
-        lo, hi = self.amplitude, self.amplitude_high
-        tail = ""
-        if not res.complete:
-            tail = f" The search was incomplete ({res.detail}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
-        if self.grows_above:
-            above = f"above {hi:.4g} ticks the first-harmonic analysis predicts growth" + (
-                " without bound (the linear loop, exact ZOH model, is unstable)" if res.linear_stable is False else ""
-            )
-        else:
-            nxt = next(c for c in res.cycles if c.amplitude > hi and c.stable)
-            above = f"above {hi:.4g} ticks it predicts settling on the stable cycle at M = {nxt.amplitude:.4g} ticks"
-        if not self.is_band:
-            return f"Describing function (first-harmonic approximation): below M_u = {lo:.4g} ticks no growth is predicted; {above}.{tail}"
-        return (
-            f"Describing function (first-harmonic approximation): {self.unstable_count} unstable cycles alternate with stable ones "
-            f"between {lo:.4g} and {hi:.4g} ticks. Below the band every predicted cycle is stable (no growth predicted); "
-            f"inside it, whether an oscillation grows depends on its initial condition; {above}.{tail}"
-        )
-
     def to_dict(self) -> dict[str, object]:
         """JSON-ready record (``dfa limit-cycles --json``, key ``growth_threshold``)."""
         out = to_jsonable(
@@ -156,7 +121,6 @@ class GrowthThreshold:
                 "linear_model": "zoh",
                 "status": self.status,
                 "status_message": self.status.message,
-                "meaning": self.meaning(),
                 "caveat": self.caveat,
             }
         )

@@ -424,47 +424,6 @@ class StiffnessLimits:
                 f"max_passive_velocity = {mpv!r}: they must agree; build results with stiffness_limits"
             )
 
-    def max_passive_velocity_text(self) -> str:
-        """The largest passive speed for ``stiffness`` in words, with units (for tables and reports).
-
-        Returns
-        -------
-        str
-            For example ``"0.2765 m/s"``, ``"every speed (...)"`` or ``"none: ..."``; ``"–"`` without a stiffness.
-        """
-        unit = self.device.units["velocity"]
-        ku = self.device.units["stiffness"]
-        if self.velocity_status == "none":
-            return f"none: no passivity guarantee even at rest (K > 2c/Δ = {self.k_static:.5g} {ku})"
-        if self.velocity_status == "all_speeds":
-            return f"every speed (K <= {'2b/T' if self.delay == 0 else 'b/(T(½ + d))'} = {self.k_colgate:.5g} {ku})"
-        if self.velocity_status == "not_requested" or self.max_passive_velocity is None:
-            return "–"
-        return f"{self.max_passive_velocity:.4g} {unit}"
-
-    def verdict_text(self) -> str:
-        """The verdict for ``stiffness`` at ``velocity`` in words (CLI and report).
-
-        Returns
-        -------
-        str
-            ``"ok: ..."`` or ``"too stiff: ..."``; ``"–"`` without a stiffness.
-        """
-        if self.stiffness is None:
-            return "–"
-        ku = self.device.units["stiffness"]
-        if self.velocity_status == "none":
-            return (
-                f"too stiff: no passivity guarantee even at rest (K > 2c/Δ = {self.k_static:.5g} {ku}); "
-                "not a proof of instability"
-            )
-        if self.status == "ok":
-            return "ok: passive at this speed (proven)"
-        return (
-            f"too stiff: no passivity guarantee at this speed (K > K_max = {self.k_max:.5g} {ku}); "
-            "not a proof of instability"
-        )
-
     def to_dict(self) -> dict[str, object]:
         """JSON-ready record (the ``dfa stiffness --json`` contract plus extras).
 
