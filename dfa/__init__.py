@@ -14,7 +14,7 @@ result named for the same thing:
 
 - noun → the noun in CamelCase: ``stiffness_limits`` → :class:`StiffnessLimits`,
   ``stability_map`` → ``StabilityMap``, ``contour_maps`` → ``ContourMaps``,
-  ``growth_threshold`` → ``GrowthThreshold``, ``delay_soundness`` → ``DelaySoundness``;
+  ``growth_threshold`` → ``GrowthThreshold``, ``criterion_soundness`` → ``CriterionSoundness``;
 - verb or criterion → the noun + ``Result``: ``simulate`` → ``SimulationResult``,
   ``passivity_criterion`` / ``device_criterion`` → :class:`CriterionResult`,
   ``limit_cycles`` → ``LimitCycleResult``, ``validate`` → ``ValidationResult``;

@@ -11,7 +11,8 @@ import os
 import numpy as np
 
 import dfa
-from dfa.analysis.validation import CLUSTER_POINTS, cluster_note, cluster_threshold
+from dfa.analysis.validation import CLUSTER_POINTS, cluster_threshold
+from dfa.render.validation import cluster_note
 
 
 def main() -> None:

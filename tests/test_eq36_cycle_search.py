@@ -303,7 +303,8 @@ def test_eq41_envelope_constant_from_the_expansion():
 
 # ------------------------------------------------------------- validation item 5: clusters against simulation
 def test_validation_cluster_threshold_record_matches_independent_runs():
-    from dfa.analysis.validation import CLUSTER_POINTS, cluster_note, cluster_threshold
+    from dfa.analysis.validation import CLUSTER_POINTS, cluster_threshold
+    from dfa.render.validation import cluster_note
 
     name, p = CLUSTER_POINTS[0]
     speeds = [0.3, 0.6, 1.0, 2.3, 2.5, 9.0]

@@ -21,7 +21,7 @@ from reference_ctl import controller_run
 import dfa
 from dfa.analysis.criterion import CriterionResult, device_criterion, passivity_criterion
 from dfa.analysis.simulation import simulate
-from dfa.analysis.wall_soundness import controller_soundness, sample_controller_points
+from dfa.analysis.soundness import Population, criterion_soundness, sample_passive_points
 from dfa.core import kernel
 from dfa.errors import DFATypeError, DFAValueError
 from dfa.model.catalogue import get_device
@@ -33,7 +33,7 @@ def reference_run(mu, beta, sigma, x0, v0, n, ctl: WallParams, quantize=True):
     """ξ_h, ξ'_h, forces φ_h and turning-point storages of the loop, written from the transfer-function form.
 
     The damper input is the explicit convolution y_m = Σ_k (1 − a)a^{k−1} v_{m−k} (filter) or v_m,
-    not the recursion of dfa.analysis.wall_soundness; the step is the exact per-sample step of dfa.simulate.
+    not the recursion of the wall kernel; the step is the exact per-sample step of dfa.simulate.
     """
     k = kernel.sample_constants(mu, beta)
     a, filtered = ctl.filter_pole, ctl.cutoff is not None
@@ -333,20 +333,21 @@ def test_eq4_controller_simulator_is_bit_identical_to_the_reference_loop(
 
 # ------------------------------------------------------------------ soundness by simulation (fast version)
 def test_eq6_controller_sampled_passive_points_never_gain_energy():
-    """Derandomised sample; the 10⁵-point run is python -m dfa.analysis.soundness --controller (reports/validation)."""
-    r = controller_soundness(1500, seed=2024)
+    """Derandomised sample; the 10⁵-point run is python -m dfa.cli.soundness_report --walls (reports/validation)."""
+    r = criterion_soundness(1500, Population(), seed=2024)
+    assert r.criterion == "controller-aware" and r.delay is None
     assert r.points == 1500 and r.violations == 0 and r.energy_grew == 0 and r.diverged == 0
     assert r.by_kind["line"] > 300 and r.by_kind["sigma-edge"] > 120 and r.by_kind["beta-edge"] > 120
     assert r.by_case["filter"] > 600 and r.by_case["no encoder"] > 150 and r.by_case["xi0 = 0"] > 1000
 
 
 def test_eq6_controller_the_same_sampler_finds_violations_of_the_damper_ignoring_criterion():
-    r = controller_soundness(1500, criterion="damper-ignoring", seed=2024)
+    r = criterion_soundness(1500, Population(), criterion="damper-ignoring", seed=2024)
     assert r.energy_grew > 5 and r.diverged > 0  # the check can fail: the damper must be paid for
 
 
 def test_eq6_controller_sampler_points_are_passive_and_on_the_boundaries():
-    pts = sample_controller_points(150, seed=5)
+    pts = sample_passive_points(150, Population(), seed=5)
     for i in range(150):
         cut = pts["cutoff"][i]
         ctl = WallParams.of(float(pts["damping"][i]), int(pts["delay"][i]), None if math.isnan(cut) else cut)
@@ -385,9 +386,9 @@ def test_eq6_controller_sigma0_needs_the_damper_term():
 
 
 def test_eq6_controller_soundness_command_writes_markdown_and_json(tmp_path, capsys):
-    from dfa.analysis.soundness import main
+    from dfa.cli.soundness_report import main
 
-    assert main(["--controller", "--points", "40", "--out", str(tmp_path)]) == 0
+    assert main(["--walls", "--points", "40", "--out", str(tmp_path)]) == 0
     md = (tmp_path / "controller_soundness.md").read_text()
     data = json.loads((tmp_path / "controller_soundness.json").read_text())
     assert "| controller-aware | 40 |" in md and "| damper-ignoring | 40 |" in md

@@ -1,7 +1,7 @@
 """The README's trust claims are the committed validation runs' numbers (reports/validation/*.json).
 
 `make readme` rewrites the console examples; the prose numbers below are checked here against the
-JSON written by `dfa validate` and `python -m dfa.analysis.soundness`, so a regenerated report that changes
+JSON written by `dfa validate` and `python -m dfa.cli.soundness_report`, so a regenerated report that changes
 them fails the suite until the README says the same.
 """
 

@@ -26,7 +26,7 @@ from dfa.analysis.limits.closed_form import stiffness_limits, stiffness_response
 from dfa.analysis.loop import nyquist_locus_response
 from dfa.analysis.maps import StabilityMap, stability_map
 from dfa.analysis.simulation import simulate
-from dfa.analysis.soundness import delay_soundness
+from dfa.analysis.soundness import Population, criterion_soundness
 from dfa.analysis.validation import Soundness, ValidationResult
 from dfa.cli import main
 from dfa.errors import DFAError, DFAValueError
@@ -227,7 +227,7 @@ def test_soundness_and_validation_as_dict_null_nan_with_reason(empty_validation)
     assert d["status"] == "ok"
     s = strict_roundtrip(empty_validation.soundness.to_dict())
     assert s["conservatism"] is None and s[NULL_REASONS_KEY] == {"/conservatism": "NaN"}
-    r = delay_soundness(4, 1, seed=3)
+    r = criterion_soundness(4, Population(delay=1), seed=3)
     j = strict_roundtrip(r.to_dict())
     assert j["violations"] == r.violations and j["status"] == r.status.value
 

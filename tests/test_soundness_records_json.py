@@ -1,6 +1,7 @@
-"""The two soundness records (dfa.analysis.soundness.DelaySoundness, dfa.analysis.wall_soundness.ControllerSoundness) share one
-declaration of their count fields; their JSON is byte-identical to the records declared field by field before
-(the declarations of commit 9829bef, kept below as the reference and fed the same small runs)."""
+"""The soundness record (dfa.analysis.soundness.CriterionSoundness, one for both populations: the spring with a
+delay and random walls) declares its count fields once (dfa.analysis.soundness_counts.SoundnessCounts); its JSON is
+byte-identical to the two records declared field by field before (the declarations of commit 9829bef, kept below as
+the reference and fed the same small runs)."""
 
 from __future__ import annotations
 
@@ -9,8 +10,7 @@ from dataclasses import dataclass, field
 
 import pytest
 
-from dfa.analysis.soundness import DelaySoundness, delay_soundness
-from dfa.analysis.wall_soundness import ControllerSoundness, controller_soundness
+from dfa.analysis.soundness import CriterionSoundness, Population, criterion_soundness
 from dfa.errors import DFAValueError
 from dfa.results.jsonable import dumps, to_jsonable
 from dfa.results.status import SoundnessStatus
@@ -59,27 +59,28 @@ class _OldControllerSoundness(_OldCounts):
     seed: int = 0
 
 
-def _as_old(record, old_cls):
-    return old_cls(**{f.name: getattr(record, f.name) for f in dataclasses.fields(record)})
+def _as_old(record):
+    old_cls = _OldControllerSoundness if record.delay is None else _OldDelaySoundness
+    return old_cls(**{f.name: getattr(record, f.name) for f in dataclasses.fields(old_cls)})
 
 
 @pytest.fixture(scope="module")
 def runs():
     return [
-        delay_soundness(24, 1, seed=5),
-        delay_soundness(12, 2, criterion="d-ignoring", seed=7),
-        controller_soundness(8, seed=3),
-        controller_soundness(8, criterion="damper-ignoring", seed=4),
+        criterion_soundness(24, Population(delay=1), seed=5),
+        criterion_soundness(12, Population(delay=2), criterion="d-ignoring", seed=7),
+        criterion_soundness(8, Population(), seed=3),
+        criterion_soundness(8, Population(), criterion="damper-ignoring", seed=4),
     ]
 
 
 def test_soundness_records_json_byte_identical_to_the_field_by_field_declarations(runs):
-    olds = [_as_old(r, _OldDelaySoundness if isinstance(r, DelaySoundness) else _OldControllerSoundness) for r in runs]
+    olds = [_as_old(r) for r in runs]
     for new, old in zip(runs, olds, strict=True):
         assert list(new.to_dict()) == list(old.to_dict())  # same keys, same order
         assert dumps(new) == dumps(old) and dumps(new, indent=1) == dumps(old, indent=1)
         assert new.status == old.status
-    # the files `python -m dfa.analysis.soundness` writes: a list of records, indented
+    # the files `python -m dfa.cli.soundness_report` writes: a list of records, indented
     assert dumps(runs[:2], indent=1) == dumps(olds[:2], indent=1)
     assert dumps(runs[2:], indent=1) == dumps(olds[2:], indent=1)
 
@@ -89,11 +90,9 @@ def test_soundness_records_declare_the_counts_once():
 
     shared = {f.name for f in dataclasses.fields(SoundnessCounts)}
     assert {"points", "energy_grew", "diverged", "violations", "worst_growth", "seed"} <= shared
-    for cls in (DelaySoundness, ControllerSoundness):
-        own = set(cls.__dict__.get("__annotations__", {}))
-        assert not own & shared, (cls.__name__, own & shared)  # nothing declared twice
-    assert set(DelaySoundness.__annotations__) == {"delay"}
-    assert set(ControllerSoundness.__annotations__) == {"by_case"}
+    own = {k for k, v in CriterionSoundness.__dict__.get("__annotations__", {}).items() if "ClassVar" not in str(v)}
+    assert not own & shared, own & shared  # nothing declared twice
+    assert own == {"delay", "by_case"}  # the fields of one population each
 
 
 def test_soundness_records_still_validated_on_construction(runs):
@@ -101,5 +100,5 @@ def test_soundness_records_still_validated_on_construction(runs):
         dataclasses.replace(runs[0], violations=30)
     with pytest.raises(DFAValueError, match="^diverged = -1 is invalid"):
         dataclasses.replace(runs[2], diverged=-1)
-    with pytest.raises(DFAValueError, match="pass the counts controller_soundness returned"):
+    with pytest.raises(DFAValueError, match="pass the counts criterion_soundness returned"):
         dataclasses.replace(runs[2], points=-1)

@@ -1,90 +1,255 @@
-"""Soundness of the delay-aware passivity criterion by exact simulation (issue 12 item 6).
+"""Soundness of the passivity criterion by exact simulation, for every wall (issue 12 item 6, issue 15 item 2).
 
-The criterion of :mod:`dfa.analysis.criterion` claims more than "does not diverge": when
-it calls a point passive, the storage S = ½μξ'² + ½ξ² (eq. 18-19 without the
-bounded ½(p − p²) term) can never exceed its initial value. This module samples
-random points that a criterion calls passive, simulates each exactly
-(:func:`dfa.core.kernel.simulate_kernel`, the kernel of :func:`dfa.simulate`, with the
-same delay d and initial state) and checks at every sample
+The criterion of :mod:`dfa.analysis.criterion` (:func:`~dfa.analysis.criterion.passivity_criterion` with
+``wall=``) claims more than "does not diverge": when it calls a point passive, the storage
+S = ½μξ'² + ½ξ² (eq. 18-19 without the bounded ½(p − p²) term) can never exceed its initial value. This
+module samples random points that a criterion calls passive, simulates each exactly with the same wall,
+encoder and initial state, and checks at every sample instant
 
-    S(h) <= S(0)(1 + 1e-9)      and      no divergence (outcome not "unstable").
+    S(h) <= S(0)(1 + 1e-9)      and      no divergence.
 
-Sampling (per delay d): μ log-uniform in [0.1, 10⁴]; ξ'0 uniform in [0, 10]
-ticks/sample with a random sign; ξ0 = 0 for half the points, uniform in
-[−10, 10] ticks for the other half. Half the points lie exactly on a boundary of
-the passive set, a quarter each of: the critical line σ = ½ + V(½ + d − β)
-(β < ½ + d), and the edges σ = ½ (β >= ½ + d) / β = ½ + d (σ >= ½) including the
-corner; the other half are drawn uniformly from the box β in [0, ½ + d + 1],
-σ in [0, ½ + V(½ + d) + 1] and kept when the criterion calls them passive
-(rejection sampling: this half does not rely on the boundary formula, so a
-criterion that accepts too much is caught). Every point is confirmed passive by
-the criterion itself (:func:`dfa.passivity_criterion`) before it is simulated; a
+Two populations of points (:class:`Population`) share one sampler, one criterion and one simulation:
+
+**The spring with delay d** (``Population(delay=d)``; issue 12): every point has the wall
+``WallParams.of(delay=d)`` and the encoder; ξ0 = 0 for half the points, uniform in [−10, 10] ticks for
+the other half. Its criteria: ``"delay-aware"`` (this package's) and ``"d-ignoring"`` (eq. 6 unchanged:
+d = 0 and V = |ξ'0| whatever the delay and the initial position), whose violations are the bug of issue 12
+(many of its "passive" points gain energy or diverge once d >= 1, or ξ0 ≠ 0).
+
+**Random walls** (``Population()``; issue 15): per point d uniform in {0, …, 3}; β_B = 0 for a tenth of the
+points, else log-uniform in [10⁻³, 3]; no filter for half the points, else ν_c uniform in [0.01, 0.49]; the
+encoder on for 85 % of the points (off: the linear loop); no amplifier lag (no criterion covers it); ξ0 = 0
+(impact at the wall's boundary, from its rest position) for three quarters of the points, else uniform in
+[−10, 10] ticks. Its criteria: ``"controller-aware"`` (this package's, the same criterion as
+``"delay-aware"``) and ``"damper-ignoring"`` (the spring's criterion with the wall's delay: β_B and the
+filter ignored), whose violations show that the check can fail and that the damper must be paid for.
+
+Sampling, both populations: μ log-uniform in [0.1, 10⁴]; ξ'0 uniform in [0, 10] ticks/sample with a
+random sign. Half the points lie exactly on a boundary of the criterion's passive set, with the corner
+(β₀, σ₀) of the wall the criterion sees: a quarter on the critical line σ = σ₀ + V(β₀ − β) (β < β₀), an
+eighth on each edge σ = σ₀ (β >= β₀) and β = β₀ (σ >= σ₀), corners included. The other half are drawn
+uniformly from the box β in [0, β₀ + 1], σ in [0, σ₀ + Vβ₀ + 1] and kept when the criterion calls them
+passive (rejection sampling: this half does not rely on the boundary formula, so a criterion that accepts
+too much is caught). Every point is confirmed passive by the criterion itself before it is simulated; a
 point on the line that rounding puts just outside is moved up by a few ulps of σ.
 
-Samples per run: max(2000, 20·2π√μ), twenty periods of the undamped spring
-(2π√μ samples). Energy growth, when it happens, shows within the first period
-(the start of a run is where the speed is largest); divergence of the
-d-ignoring criterion's points takes tens of periods (μ = 100, d = 1: about 3000
+Samples per run: max(2000, 20·2π√μ) (:func:`run_samples`), twenty periods of the undamped spring. Energy
+growth, when it happens, shows within the first period (the start of a run is where the speed is
+largest); divergence of the d-ignoring criterion's points takes tens of periods (μ = 100, d = 1: about 3000
 samples), which the 2000-sample floor covers for μ <= 100.
 
-The same sampler applied to the d- and ξ0-ignoring criterion (eq. 6 unchanged,
-V = |ξ'0|) finds the bug this module documents: many of its "passive" points
-gain energy or diverge once d >= 1 (or ξ0 ≠ 0).
+The simulation (:func:`storage_growth`) takes the spring's fast path for a wall that is a spring (any delay,
+encoder on or off): :func:`dfa.core.storage.storage_runs`, the kernel of :func:`dfa.simulate` compiled with
+the storage check, all such points in one call. There a run diverged when its outcome is ``"unstable"``
+(past the bound of 10⁶ ticks, or a growing envelope), and its growth is S/S(0) − 1 at every sample it ran,
+the sample past the bound included. Any other wall runs :func:`dfa.simulate` (:mod:`dfa.core.wall_kernel`)
+point by point; there a run diverged when |ξ| leaves 10⁶ ticks at a sample instant, and its growth from that
+sample on is inf. Turning points inside a sample (ξ' = 0 between two instants) are not checked here: the
+simulator records the sample instants only; the reference loop ``tests/reference_ctl.controller_run``
+(bit-identical trajectories, tested) also checks them.
 
-Run ``python -m dfa.analysis.soundness --points 100000 --out reports/validation`` to
-write ``delay_soundness.md`` and ``delay_soundness.json``; with ``--controller``,
-the controller's criterion (:mod:`dfa.analysis.wall_soundness`) is checked instead
-and ``controller_soundness.md``/``.json`` are written.
+``python -m dfa.cli.soundness_report --points 100000 --out reports/validation`` writes
+``delay_soundness.md``/``.json`` (the spring with d = 0, …, 3); with ``--walls``, ``controller_soundness.md``/
+``.json`` (random walls).
 """
 
 from __future__ import annotations
 
-import argparse
 import math
-import os
-import sys
 from dataclasses import dataclass
+from typing import Any, ClassVar
 
 import numpy as np
 
-from .._io import atomic_write_text
-from ..checks import check_choice, check_delay, check_int
+from ..checks import check_choice, check_delay, check_int, check_positive, check_type
 from ..core import kernel
 from ..core.storage import storage_runs
-from ..errors import DFAValueError
-from ..formatting import markdown_table
+from ..errors import DFATypeError, DFAValueError
 from ..model.wall import WallParams
-from ..results.jsonable import dumps
-from .criterion import CriticalLine, passivity_criterion
+from .criterion import CriterionResult, passivity_criterion
+from .simulation import simulate
 from .soundness_counts import KINDS as KINDS
 from .soundness_counts import TOLERANCE as TOLERANCE
 from .soundness_counts import SoundnessCounts, tally
 
-__all__ = ["DelaySoundness", "sample_passive_points", "delay_soundness", "soundness_markdown", "main"]
+__all__ = [
+    "Population",
+    "CriterionSoundness",
+    "CRITERIA",
+    "sample_passive_points",
+    "storage_growth",
+    "criterion_soundness",
+    "run_samples",
+    "point_wall",
+    "BOUND",
+    "KINDS",
+    "TOLERANCE",
+]
 
-CRITERIA = ("delay-aware", "d-ignoring")
+#: |ξ| beyond this (ticks) counts as divergence.
+BOUND = 1.0e6
+#: What each criterion sees of a point (module docstring): the wall (``"wall"``), its delay alone (``"delay"``)
+#: or nothing of it (``"nothing"``, the paper's spring), and whether it sees the initial position ξ0.
+CRITERIA: dict[str, tuple[str, bool]] = {
+    "delay-aware": ("wall", True),
+    "controller-aware": ("wall", True),
+    "d-ignoring": ("nothing", False),
+    "damper-ignoring": ("delay", True),
+}
+#: The fields that describe a point, and those of its wall.
+STATE_KEYS = ("mu", "beta", "sigma", "xi0", "xi_dot")
+WALL_KEYS = ("damping", "delay", "cutoff", "quantized")
 
 
 def run_samples(mu: float) -> int:
-    """Samples simulated for one point: max(2000, 20·2π√μ) (twenty undamped periods)."""
+    """Samples simulated for one point: max(2000, 20·2π√μ) (twenty undamped periods).
+
+    Parameters
+    ----------
+    mu : float
+        Dimensionless mass μ = m/(K T²).
+
+    Returns
+    -------
+    int
+        Run length, samples.
+    """
     return int(max(2000, math.ceil(20.0 * 2.0 * math.pi * math.sqrt(mu))))
 
 
-def _passive(criterion: str, beta: float, sigma: float, xi_dot: float, xi0: float, mu: float, delay: int) -> bool:
-    if criterion == "delay-aware":
-        return passivity_criterion(beta, sigma, xi_dot, wall=WallParams.of(delay=delay), xi0=xi0, mu=mu).passive
-    return passivity_criterion(beta, sigma, xi_dot).passive  # eq. 6 unchanged: d and ξ0 ignored
+@dataclass(frozen=True)
+class Population:
+    """How the points are drawn (module docstring): the spring with a delay, or random walls.
+
+    Attributes
+    ----------
+    delay : int or None
+        The spring's delay d, samples: every point has the wall ``WallParams.of(delay=d)`` and the encoder.
+        None (default): a random wall and encoder setting per point.
+    mu_range : tuple of float
+        Range of μ (log-uniform), dimensionless.
+    xi_dot_max : float
+        Largest |ξ'0|, ticks per sample (uniform, random sign).
+    xi0_max : float
+        Largest |ξ0| of the points not at ξ0 = 0, ticks (uniform).
+    """
+
+    delay: int | None = None
+    mu_range: tuple[float, float] = (0.1, 1.0e4)
+    xi_dot_max: float = 10.0
+    xi0_max: float = 10.0
+
+    def __post_init__(self) -> None:
+        if self.delay is not None:
+            object.__setattr__(self, "delay", check_delay(self.delay))
+        fix = "give (smallest, largest) μ > 0, e.g. (0.1, 1e4)"
+        pair = tuple(self.mu_range) if isinstance(self.mu_range, (tuple, list)) else ()
+        if len(pair) != 2:
+            raise DFATypeError(f"mu_range = {self.mu_range!r} is invalid: {fix}")
+        lo, hi = (check_positive("mu_range", m, fix) for m in pair)
+        if not lo <= hi:
+            raise DFAValueError(f"mu_range = {self.mu_range!r} is invalid: give (smallest, largest) μ")
+        object.__setattr__(self, "mu_range", (lo, hi))
+        object.__setattr__(self, "xi_dot_max", check_positive("xi_dot_max", self.xi_dot_max))
+        object.__setattr__(self, "xi0_max", check_positive("xi0_max", self.xi0_max))
+
+    @property
+    def criteria(self) -> tuple[str, str]:
+        """This package's criterion and the one that ignores what this population's check is about."""
+        return ("controller-aware", "damper-ignoring") if self.delay is None else ("delay-aware", "d-ignoring")
+
+    @property
+    def at_rest(self) -> float:
+        """Share of the points that start at ξ0 = 0."""
+        return 0.75 if self.delay is None else 0.5
+
+    @property
+    def point_keys(self) -> tuple[str, ...]:
+        """The fields that describe a point of this population (its state; with random walls, its wall too)."""
+        return STATE_KEYS + WALL_KEYS if self.delay is None else STATE_KEYS
+
+
+def _seen(criterion: str, wall: WallParams) -> tuple[WallParams, bool]:
+    """The wall a criterion sees of ``wall`` and whether it sees ξ0 (:data:`CRITERIA`)."""
+    sees, sees_xi0 = CRITERIA[criterion]
+    if sees == "wall":
+        return wall, sees_xi0
+    return (WallParams.of(delay=wall.delay) if sees == "delay" else WallParams.of()), sees_xi0
+
+
+def _verdict(
+    crit: str, b: float, s: float, xd: float, x0: float, mu: float, wall: WallParams, q: bool
+) -> CriterionResult:
+    """The criterion's result at one point (β, σ) of the point (ξ'0, ξ0, μ, wall, encoder)."""
+    seen, sees_xi0 = _seen(crit, wall)
+    if sees_xi0:
+        return passivity_criterion(b, s, xd, wall=seen, quantized=q, xi0=x0, mu=mu)
+    return passivity_criterion(b, s, xd, wall=seen, quantized=q)  # V = |ξ'0|
+
+
+def _point(
+    rng: np.random.Generator, crit: str, kind: int, xd: float, x0: float, mu: float, wall: WallParams, q: bool
+) -> tuple[float, float]:
+    """(β, σ) of one point of ``kind`` that ``crit`` calls passive (module docstring)."""
+    b0, s0 = _seen(crit, wall)[0].corner(q)
+    v = _verdict(crit, 0.0, 0.0, xd, x0, mu, wall, q).equivalent_speed
+    if kind == 0:  # interior: rejection sampling of the criterion's own passive set in a box (formula-free)
+        for _ in range(10_000):
+            b, s = rng.uniform(0.0, b0 + 1.0), rng.uniform(0.0, s0 + v * b0 + 1.0)
+            if _verdict(crit, b, s, xd, x0, mu, wall, q).passive:
+                break
+    elif kind == 1:  # exactly on the critical line
+        b = rng.uniform(0.0, b0)
+        s = s0 + v * (b0 - b)
+    elif kind == 2:  # σ = σ₀ edge, β >= β₀ (corner included)
+        b, s = b0 + (0.0 if rng.random() < 0.2 else rng.uniform(0.0, 1.0)), s0
+    else:  # β = β₀ edge
+        b, s = b0, s0 + (0.0 if rng.random() < 0.2 else rng.uniform(0.0, 1.0))
+    for _ in range(8):  # rounding on the line: move up by ulps until the criterion accepts
+        if _verdict(crit, b, s, xd, x0, mu, wall, q).passive:
+            return b, s
+        s = float(np.nextafter(s, np.inf))
+    raise DFAValueError(f"sampler bug: point beta = {b!r}, sigma = {s!r} is not passive under {crit}")
+
+
+def _draw_walls(rng: np.random.Generator, n: int, delay: int | None) -> dict[str, np.ndarray]:
+    """The walls and encoder flags of ``n`` points: the spring with ``delay``, or random (module docstring)."""
+    if delay is not None:
+        return dict(damping=np.zeros(n), delay=np.full(n, delay), cutoff=np.full(n, np.nan), quantized=np.ones(n, bool))
+    damping = np.where(rng.random(n) < 0.1, 0.0, 10.0 ** rng.uniform(-3.0, math.log10(3.0), n))
+    cutoff = np.where(rng.random(n) < 0.5, np.nan, rng.uniform(0.01, 0.49, n))
+    return dict(damping=damping, delay=rng.integers(0, 4, n), cutoff=cutoff, quantized=rng.random(n) < 0.85)
+
+
+def point_wall(damping: float, delay: int, cutoff: float) -> WallParams:
+    """The wall of one point from its fields (``cutoff`` NaN: no filter).
+
+    Parameters
+    ----------
+    damping : float
+        Virtual damping β_B, dimensionless.
+    delay : int
+        Computational delay d, samples.
+    cutoff : float
+        Filter cutoff ν_c, cycles per sample (NaN: no filter).
+
+    Returns
+    -------
+    WallParams
+    """
+    return WallParams.of(damping=float(damping), delay=int(delay), cutoff=None if math.isnan(cutoff) else cutoff)
+
+
+def _population(population: Population | None) -> Population:
+    """The population of a call (None: random walls), or the package's error."""
+    if population is None:
+        return Population()
+    fix = "give Population(delay=d) for the spring with delay d, or Population() for random walls"
+    return check_type("population", population, Population, fix)
 
 
 def sample_passive_points(
-    n: int,
-    delay: int,
-    *,
-    criterion: str = "delay-aware",
-    seed: int = 0,
-    mu_range: tuple[float, float] = (0.1, 1.0e4),
-    xi_dot_max: float = 10.0,
-    xi0_max: float = 10.0,
+    n: int, population: Population | None = None, *, criterion: str | None = None, seed: int = 0
 ) -> dict[str, np.ndarray]:
     """Random points that ``criterion`` calls passive, half on its boundaries (module docstring).
 
@@ -92,204 +257,173 @@ def sample_passive_points(
     ----------
     n : int
         Number of points.
-    delay : int
-        Delay d (samples) of the loop; the ``"delay-aware"`` criterion uses it,
-        the ``"d-ignoring"`` one (eq. 6 unchanged) uses d = 0 and ξ0 = 0.
-    criterion : {"delay-aware", "d-ignoring"}
+    population : Population, optional
+        How the points are drawn (default: random walls).
+    criterion : str, optional
+        One of the population's :attr:`~Population.criteria` (default: this package's criterion).
     seed : int
         Seed of :func:`numpy.random.default_rng`.
-    mu_range, xi_dot_max, xi0_max
-        Sampling ranges (μ log-uniform; |ξ'0| and |ξ0| uniform, ticks).
 
     Returns
     -------
     dict of numpy.ndarray
-        ``mu, beta, sigma, xi0, xi_dot, kind`` (kind: index into :data:`KINDS`).
+        ``mu, beta, sigma, xi0, xi_dot`` (ticks, ticks/sample), ``kind`` (an index into :data:`KINDS`) and
+        each point's wall: ``damping``, ``delay``, ``cutoff`` (NaN: no filter), ``quantized``.
     """
     n = check_int("n", n, minimum=1)
-    d = check_delay(delay)
-    crit = check_choice("criterion", criterion, CRITERIA)
+    pop = _population(population)
+    crit = check_choice("criterion", pop.criteria[0] if criterion is None else criterion, pop.criteria)
     rng = np.random.default_rng(seed)
-    lo, hi = np.log10(mu_range[0]), np.log10(mu_range[1])
-    mu = 10.0 ** rng.uniform(lo, hi, n)
-    xd = rng.uniform(0.0, xi_dot_max, n) * rng.choice([-1.0, 1.0], n)
-    x0 = np.where(rng.random(n) < 0.5, 0.0, rng.uniform(-xi0_max, xi0_max, n))
+    mu = 10.0 ** rng.uniform(np.log10(pop.mu_range[0]), np.log10(pop.mu_range[1]), n)
+    xd = rng.uniform(0.0, pop.xi_dot_max, n) * rng.choice([-1.0, 1.0], n)
+    x0 = np.where(rng.random(n) < pop.at_rest, 0.0, rng.uniform(-pop.xi0_max, pop.xi0_max, n))
+    walls = _draw_walls(rng, n, pop.delay)
     kind = rng.choice(4, n, p=[0.5, 0.25, 0.125, 0.125])
-    beta = np.empty(n)
-    sigma = np.empty(n)
-    d_crit = d if crit == "delay-aware" else 0
-    b0 = 0.5 + d_crit
+    beta, sigma = np.empty(n), np.empty(n)
     for i in range(n):
-        v = passivity_criterion(
-            0.0, 0.0, xd[i], wall=WallParams.of(delay=d_crit), xi0=x0[i] if crit == "delay-aware" else 0.0, mu=mu[i]
-        ).equivalent_speed
-        k = kind[i]
-        line = CriticalLine.of(v, delay=d_crit)
-        if k == 0:  # interior: rejection sampling of the criterion's own passive set in a box (formula-free)
-            top = float(line.sigma(0.0)) + 1.0
-            for _ in range(10_000):
-                b = rng.uniform(0.0, b0 + 1.0)
-                s = rng.uniform(0.0, top)
-                if _passive(crit, b, s, xd[i], x0[i], mu[i], d):
-                    break
-        elif k == 1:  # exactly on the critical line
-            b = rng.uniform(0.0, b0)
-            s = float(line.sigma(b))
-        elif k == 2:  # σ = ½ edge, β >= ½ + d (corner included)
-            b = b0 + (0.0 if rng.random() < 0.2 else rng.uniform(0.0, 1.0))
-            s = 0.5
-        else:  # β = ½ + d edge
-            b = b0
-            s = 0.5 + (0.0 if rng.random() < 0.2 else rng.uniform(0.0, 1.0))
-        for _ in range(8):  # rounding on the line: move up by ulps until the criterion accepts
-            if _passive(crit, b, s, xd[i], x0[i], mu[i], d):
-                break
-            s = float(np.nextafter(s, np.inf))
-        else:
-            raise DFAValueError(f"sampler bug: point beta = {b!r}, sigma = {s!r} is not passive under {crit}")
-        beta[i], sigma[i] = b, s
-    return dict(mu=mu, beta=beta, sigma=sigma, xi0=x0, xi_dot=xd, kind=kind)
+        w = point_wall(walls["damping"][i], walls["delay"][i], walls["cutoff"][i])
+        beta[i], sigma[i] = _point(rng, crit, kind[i], xd[i], x0[i], mu[i], w, bool(walls["quantized"][i]))
+    return dict(mu=mu, beta=beta, sigma=sigma, xi0=x0, xi_dot=xd, kind=kind, **walls)
+
+
+def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:
+    """(largest S/S(0) − 1 at the sample instants, the sample where it occurred, diverged) of one point."""
+    c = point_wall(pt["damping"], pt["delay"], pt["cutoff"])
+    mu, x0, v0 = float(pt["mu"]), float(pt["xi0"]), float(pt["xi_dot"])
+    with np.errstate(all="ignore"):
+        r = simulate(
+            mu, float(pt["beta"]), float(pt["sigma"]), v0, n, x0, quantize=bool(pt["quantized"]), wall=c,
+            bound=BOUND,
+        )  # fmt: skip
+        xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
+        past = np.flatnonzero(~(np.abs(xs) <= BOUND))  # beyond the bound or NaN (after a bound exit)
+        if past.size:
+            return math.inf, int(past[0]) + 1, True
+        s0 = 0.5 * mu * v0 * v0 + 0.5 * x0 * x0
+        s = 0.5 * mu * vs * vs + 0.5 * xs * xs
+        ratio = (s - s0) / s0 if s0 > 0.0 else np.where(s > 0.0, np.inf, 0.0)
+    h = int(np.argmax(ratio))
+    return float(ratio[h]), h + 1, False
+
+
+def storage_growth(pts: dict[str, np.ndarray], ns: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Simulate every point of :func:`sample_passive_points` for ``ns[i]`` samples; the storage at every sample.
+
+    The spring's walls run in one compiled call (:func:`dfa.core.storage.storage_runs`), the others with
+    :func:`dfa.simulate` point by point; each path's rule of divergence is in the module docstring.
+
+    Parameters
+    ----------
+    pts : dict of numpy.ndarray
+        The points (:func:`sample_passive_points`).
+    ns : numpy.ndarray
+        Run length of each point, samples.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (largest S/S(0) − 1, the sample where it occurred, diverged) per point.
+    """
+    m = pts["mu"].shape[0]
+    ratio, at, div = np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.bool_)
+    walls = [point_wall(b, d, c) for b, d, c in zip(pts["damping"], pts["delay"], pts["cutoff"], strict=True)]
+    spring = np.array([w.is_spring for w in walls], dtype=np.bool_)  # the spring with any delay: its fast path
+    fast = np.flatnonzero(spring)
+    if fast.size:
+        r, codes, a = np.empty(fast.size), np.empty(fast.size, dtype=np.int64), np.empty(fast.size, dtype=np.int64)
+        mu, beta, sigma, x0, v0 = (pts[k][fast] for k in STATE_KEYS)  # fancy indexing: contiguous copies
+        delays, quantized = pts["delay"][fast].astype(np.int64), pts["quantized"][fast].astype(np.bool_)
+        storage_runs(mu, beta, sigma, x0, v0, ns[fast].astype(np.int64), delays, quantized, r, codes, a)
+        ratio[fast], at[fast], div[fast] = r, a, codes == kernel.UNSTABLE
+    for i in np.flatnonzero(~spring):
+        ratio[i], at[i], div[i] = _storage_run({key: val[i] for key, val in pts.items()}, int(ns[i]))
+    return ratio, at, div
 
 
 @dataclass(frozen=True, kw_only=True)
-class DelaySoundness(SoundnessCounts):
-    """Outcome of :func:`delay_soundness` for one delay and one criterion.
+class CriterionSoundness(SoundnessCounts):
+    """Outcome of :func:`criterion_soundness` for one population and one criterion.
 
     Attributes
     ----------
-    delay : int
-        Delay d of the simulated loop (samples).
+    delay : int or None
+        The spring's delay d, samples (None with random walls: each point's is in ``worst_point``).
     criterion : str
-        ``"delay-aware"`` (this package) or ``"d-ignoring"`` (eq. 6 unchanged).
+        The criterion that called the points passive (:data:`CRITERIA`).
     points : int
         Points simulated (all called passive by ``criterion``).
-    by_kind : dict
+    by_kind : dict of str to int
         Points per sampling kind (interior, line, sigma-edge, beta-edge).
+    by_case : dict of str to int or None
+        Random walls: points with a filter, without the encoder, at the wall's rest position (ξ0 = 0), with
+        β_B = 0 (None for the spring).
     energy_grew : int
         Points where S(h) > S(0)(1 + 1e-9) at some sample.
     diverged : int
-        Points whose run ended ``"unstable"`` (bound exceeded or growing envelope).
+        Points whose run diverged (module docstring).
     violations : int
         Points with grown energy or divergence.
     worst_growth : float
-        Largest max_h S(h)/S(0) − 1 over all points (inf: past the bound).
+        Largest max_h S(h)/S(0) − 1 over all points, dimensionless (inf: past the bound).
     worst_point : dict
-        The point with that growth (μ, β, σ, ξ0, ξ'0, sample).
+        The point with that growth (μ, β, σ, ξ0, ξ'0; with random walls its wall too; the sample, the kind).
     samples_min, samples_max : int
-        Samples per run (module docstring).
+        Shortest and longest run, samples (:func:`run_samples`).
     seed : int
+        Seed of the random draw.
     status : SoundnessStatus
-        ``SOUND`` when ``violations`` is 0, else ``VIOLATED`` (derived).
+        ``sound`` when ``violations`` is 0, else ``violated`` (derived).
     """
 
-    delay: int  # the count fields: SoundnessCounts (keyword-only)
+    delay: int | None = None
+    by_case: dict[str, int] | None = None
 
-    _SOURCE = "delay_soundness"
+    SOURCE: ClassVar[str] = "criterion_soundness"
+    POPULATION_FIELDS: ClassVar[tuple[str, ...]] = ("delay", "by_case")
 
 
-def delay_soundness(
-    points: int, delay: int, *, criterion: str = "delay-aware", seed: int = 0, **ranges
-) -> DelaySoundness:
-    """Sample ``points`` passive points of ``criterion`` for delay d, simulate each and count violations.
+def _cases(pts: dict[str, np.ndarray]) -> dict[str, int]:
+    """Points with a filter, without the encoder, at ξ0 = 0, without a damper."""
+    return {
+        "filter": int(np.sum(~np.isnan(pts["cutoff"]))),
+        "no encoder": int(np.sum(~pts["quantized"])),
+        "xi0 = 0": int(np.sum(pts["xi0"] == 0.0)),
+        "no damper": int(np.sum(pts["damping"] == 0.0)),
+    }
+
+
+def criterion_soundness(
+    points: int, population: Population | None = None, *, criterion: str | None = None, seed: int = 0
+) -> CriterionSoundness:
+    """Sample ``points`` passive points of ``criterion``, simulate each exactly and count violations.
 
     Parameters
     ----------
     points : int
-    delay : int
-        Delay d of the simulated loop (samples).
-    criterion : {"delay-aware", "d-ignoring"}
+        Number of points.
+    population : Population, optional
+        How the points are drawn: ``Population(delay=d)`` the spring with delay d (the wall
+        ``WallParams.of(delay=d)``), ``Population()`` (default) random walls.
+    criterion : str, optional
+        One of the population's :attr:`~Population.criteria` (default: this package's criterion).
     seed : int
-    **ranges
-        ``mu_range``, ``xi_dot_max``, ``xi0_max`` of :func:`sample_passive_points`.
+        Seed of the random draw.
+
+    Returns
+    -------
+    CriterionSoundness
+
+    Examples
+    --------
+    >>> r = criterion_soundness(50, Population(delay=1), seed=1)
+    >>> r.criterion, r.points, r.violations, r.status.value
+    ('delay-aware', 50, 0, 'sound')
     """
-    pts = sample_passive_points(points, delay, criterion=criterion, seed=seed, **ranges)
+    pop = _population(population)
+    crit = pop.criteria[0] if criterion is None else criterion
+    pts = sample_passive_points(points, pop, criterion=crit, seed=seed)
     ns = np.array([run_samples(m) for m in pts["mu"]], dtype=np.int64)
-    ratio = np.empty(points)
-    codes = np.empty(points, dtype=np.int64)
-    at = np.empty(points, dtype=np.int64)
-    storage_runs(pts["mu"], pts["beta"], pts["sigma"], pts["xi0"], pts["xi_dot"], ns, int(delay), ratio, codes, at)
-    div = codes == kernel.UNSTABLE
-    counts = tally(pts, ("mu", "beta", "sigma", "xi0", "xi_dot"), ns, ratio, at, div)
-    return DelaySoundness(delay=int(delay), criterion=criterion, points=int(points), seed=seed, **counts)
-
-
-def soundness_markdown(results: list[DelaySoundness]) -> str:
-    """The summary table of ``reports/validation/delay_soundness.md``."""
-    lines = [
-        "# Soundness of the delay-aware passivity criterion (exact simulation)",
-        "",
-        "Generated by `python -m dfa.analysis.soundness` (module `dfa.analysis.soundness`). For each computational delay d, random points that a",
-        "criterion calls passive (half exactly on its boundaries: critical line, σ = ½, β = ½ + d; half drawn uniformly from",
-        "the box β ≤ ½ + d + 1, σ ≤ ½ + V(½ + d) + 1 and kept when the criterion accepts them) are simulated exactly",
-        "with that delay and initial state; μ log-uniform in [0.1, 10⁴], |ξ'0| ≤ 10 ticks/sample, ξ0 = 0 for half the",
-        "points and |ξ0| ≤ 10 ticks for the rest; max(2000, 20·2π√μ) samples per run. A violation is a run whose",
-        "storage S = ½μξ'² + ½ξ² exceeds S(0)(1 + 1e-9) at some sample, or that diverges.",
-        "",
-    ]
-    head = ["criterion", "d", "points", "on line / σ-edge / β-edge", "energy grew", "diverged", "violations",
-            "worst max S/S(0) − 1"]  # fmt: skip
-    rows = [
-        [r.criterion, r.delay, r.points, f"{r.by_kind['line']} / {r.by_kind['sigma-edge']} / {r.by_kind['beta-edge']}",
-         r.energy_grew, r.diverged, r.violations, f"{r.worst_growth:.3g}" if math.isfinite(r.worst_growth) else "∞"]
-        for r in results
-    ]  # fmt: skip
-    lines.append(markdown_table(head, rows))
-    lines += [
-        "",
-        "*delay-aware*: the criterion of `dfa.analysis.criterion` ((β − ½ − d)V + (σ − ½) ≥ 0, σ ≥ ½, V² = ξ'0² + 2H_c(ξ0)/μ).",
-        "*d-ignoring*: eq. 6 unchanged (d = 0 and V = |ξ'0| whatever the delay and initial position): its violations",
-        "are the evidence of the bug the delay-aware criterion fixes (issue 12). A negative worst growth means the",
-        "energy fell at every sample of every run.",
-        "",
-    ]
-    return "\n".join(lines)
-
-
-def main(argv: list[str] | None = None) -> int:
-    """``python -m dfa.analysis.soundness``: run the check and write the Markdown and JSON summaries."""
-    ap = argparse.ArgumentParser(prog="python -m dfa.analysis.soundness", description=__doc__.split("\n")[0])
-    ap.add_argument("--points", type=int, default=100_000, help="points per delay and criterion (default 100000)")
-    ap.add_argument(
-        "--old-points", type=int, default=None, help="points for the d-ignoring criterion (default: --points)"
-    )
-    ap.add_argument("--delays", type=int, nargs="+", default=[0, 1, 2, 3])
-    ap.add_argument("--seed", type=int, default=12)
-    ap.add_argument("--out", default="reports/validation", help="folder for delay_soundness.md/.json")
-    ap.add_argument(
-        "--controller",
-        action="store_true",
-        help="check the controller's criterion (damper, filter, delay; dfa.analysis.wall_soundness) instead and write "
-        "controller_soundness.md/.json",
-    )
-    args = ap.parse_args(argv)
-    if args.controller:
-        return _controller_main(args)
-    results = []
-    for crit, n in (("delay-aware", args.points), ("d-ignoring", args.old_points or args.points)):
-        for d in args.delays:
-            r = delay_soundness(n, d, criterion=crit, seed=args.seed + d)
-            print(f"{crit} d = {d}: {r.violations} violations of {r.points}", file=sys.stderr)
-            results.append(r)
-    os.makedirs(args.out, exist_ok=True)
-    atomic_write_text(os.path.join(args.out, "delay_soundness.md"), soundness_markdown(results))
-    atomic_write_text(os.path.join(args.out, "delay_soundness.json"), dumps(results, indent=1))
-    return 0
-
-
-def _controller_main(args: argparse.Namespace) -> int:
-    """``--controller``: both criteria of :mod:`dfa.analysis.wall_soundness`, written beside the delay check."""
-    from .wall_soundness import controller_soundness, controller_soundness_markdown
-
-    results = []
-    for crit, n in (("controller-aware", args.points), ("damper-ignoring", args.old_points or args.points)):
-        r = controller_soundness(n, criterion=crit, seed=args.seed)
-        print(f"{crit}: {r.violations} violations of {r.points}", file=sys.stderr)
-        results.append(r)
-    os.makedirs(args.out, exist_ok=True)
-    atomic_write_text(os.path.join(args.out, "controller_soundness.md"), controller_soundness_markdown(results))
-    atomic_write_text(os.path.join(args.out, "controller_soundness.json"), dumps(results, indent=1))
-    return 0
-
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    ratio, at, div = storage_growth(pts, ns)
+    counts = tally(pts, pop.point_keys, ns, ratio, at, div)
+    case = _cases(pts) if pop.delay is None else None
+    return CriterionSoundness(delay=pop.delay, criterion=crit, points=int(points), by_case=case, seed=seed, **counts)

@@ -1,7 +1,8 @@
-"""What every soundness count shares: its fields, checks, status and JSON (one declaration, one implementation).
+"""What a soundness count is: its fields, checks, status and JSON, and the tally that fills them.
 
-The frozen base of the result records :class:`dfa.analysis.soundness.DelaySoundness` (which adds ``delay``) and
-:class:`dfa.analysis.wall_soundness.ControllerSoundness` (which adds ``by_case``).
+The frozen base of :class:`dfa.analysis.soundness.CriterionSoundness` (which adds what belongs to one
+population of points: the spring's ``delay``, the random walls' ``by_case``), and :func:`tally`, which counts
+the simulated points of either population.
 """
 
 from __future__ import annotations
@@ -14,8 +15,10 @@ import numpy as np
 
 from ..checks import check_int
 from ..errors import DFAValueError
-from ..results.jsonable import to_jsonable
+from ..results.base import Result
 from ..results.status import SoundnessStatus
+
+__all__ = ["TOLERANCE", "KINDS", "SoundnessCounts", "tally"]
 
 #: Relative tolerance on S(h) <= S(0): rounding of the exact integrator only.
 TOLERANCE = 1e-9
@@ -30,7 +33,7 @@ def tally(
     ratio: np.ndarray,
     at: np.ndarray,
     div: np.ndarray,
-):
+) -> dict[str, Any]:
     """The count fields of a soundness record from its simulations (one implementation).
 
     Parameters
@@ -39,8 +42,14 @@ def tally(
         The sampled points (arrays ``keys`` and ``kind``, an index into :data:`KINDS`).
     keys : tuple of str
         The fields that describe a point (reported for the worst one).
-    ns, ratio, at, div : numpy.ndarray
-        Run length, max S/S(0) − 1, its sample, and whether the run diverged, per point.
+    ns : numpy.ndarray
+        Run length of each point, samples.
+    ratio : numpy.ndarray
+        Largest S/S(0) − 1 of each run, dimensionless (inf: past the bound).
+    at : numpy.ndarray
+        The sample where it occurred.
+    div : numpy.ndarray
+        Whether each run diverged.
 
     Returns
     -------
@@ -64,13 +73,13 @@ def tally(
     )
 
 
-#: Key order of a soundness record's JSON: a record's own field (``delay``, ``by_case``) where it always stood.
-_JSON_ORDER = ("delay", "criterion", "points", "by_kind", "by_case", "energy_grew", "diverged", "violations",
-               "worst_growth", "worst_point", "samples_min", "samples_max", "seed")  # fmt: skip
+#: Key order of a soundness record's JSON: a population's own field (``delay``, ``by_case``) where it always stood.
+JSON_ORDER = ("delay", "criterion", "points", "by_kind", "by_case", "energy_grew", "diverged", "violations",
+              "worst_growth", "worst_point", "samples_min", "samples_max", "seed", "status", "status_message")  # fmt: skip
 
 
 @dataclass(frozen=True, kw_only=True)
-class SoundnessCounts:
+class SoundnessCounts(Result):
     """The count of simulated points a criterion called passive: fields, validation, ``status``, ``to_dict``.
 
     Attributes
@@ -79,37 +88,46 @@ class SoundnessCounts:
         The criterion that called the points passive.
     points : int
         Points simulated.
-    by_kind : dict
+    by_kind : dict of str to int
         Points per sampling kind (:data:`KINDS`).
-    energy_grew, diverged, violations : int
-        Points where the storage S exceeded S(0)(1 + :data:`TOLERANCE`) at some sample; that diverged; either.
+    energy_grew : int
+        Points where the storage S exceeded S(0)(1 + :data:`TOLERANCE`) at some sample.
+    diverged : int
+        Points whose run diverged.
+    violations : int
+        Points with grown energy or divergence.
     worst_growth : float
-        Largest max S/S(0) − 1 over all points (inf: diverged).
+        Largest max S/S(0) − 1 over all points, dimensionless (inf: past the bound).
     worst_point : dict
-        The point with that growth.
-    samples_min, samples_max, seed : int
-        Shortest and longest run (samples) and the random seed.
+        The point with that growth: its fields, the ``sample`` where the growth occurred and its ``kind``.
+    samples_min, samples_max : int
+        Shortest and longest run, samples.
+    seed : int
+        Seed of the random draw.
     status : SoundnessStatus
-        ``SOUND`` when ``violations`` is 0, else ``VIOLATED`` (derived).
+        ``sound`` when ``violations`` is 0, else ``violated`` (derived).
     """
 
     criterion: str
     points: int
-    by_kind: dict
+    by_kind: dict[str, int]
     energy_grew: int
     diverged: int
     violations: int
     worst_growth: float
-    worst_point: dict = field(default_factory=dict)
+    worst_point: dict[str, Any] = field(default_factory=dict)
     samples_min: int = 0
     samples_max: int = 0
     seed: int = 0
 
+    json_properties: ClassVar[tuple[str, ...]] = ("status",)
     #: The function whose counts the record holds (named in the fix of a bad record).
-    _SOURCE: ClassVar[str] = "the soundness function"
+    SOURCE: ClassVar[str] = "the soundness function"
+    #: Fields of one population only: left out of the JSON when None (the other population's record).
+    POPULATION_FIELDS: ClassVar[tuple[str, ...]] = ()
 
     def __post_init__(self) -> None:
-        fix = f"pass the counts {self._SOURCE} returned"
+        fix = f"pass the counts {self.SOURCE} returned"
         for name in ("points", "energy_grew", "diverged", "violations"):
             check_int(name, getattr(self, name), 0, fix)
         if self.violations > self.points:
@@ -122,14 +140,20 @@ class SoundnessCounts:
         """``SOUND`` when no simulated point violated the criterion, else ``VIOLATED``."""
         return SoundnessStatus.SOUND if self.violations == 0 else SoundnessStatus.VIOLATED
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready record (an infinite growth becomes null, with the reason under ``null_reasons``).
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready record: :meth:`Result.to_dict` in the key order of :data:`JSON_ORDER`.
+
+        A field of :attr:`POPULATION_FIELDS` that is None (it belongs to the other population) is left out;
+        an infinite growth becomes null, with the reason under ``null_reasons``.
 
         Returns
         -------
         dict
-            Every field (in the order of ``_JSON_ORDER``, then any other), plus ``status`` and ``status_message``.
+            The fields, ``status`` and ``status_message`` (then ``null_reasons`` if a value was nulled).
         """
-        rank = {k: i for i, k in enumerate(_JSON_ORDER)}
-        ordered = sorted(self.__dict__.items(), key=lambda kv: rank.get(kv[0], len(rank)))
-        return to_jsonable({**dict(ordered), "status": self.status, "status_message": self.status.message})
+        out = super().to_dict()
+        for name in self.POPULATION_FIELDS:
+            if getattr(self, name) is None:
+                del out[name]
+        rank = {k: i for i, k in enumerate(JSON_ORDER)}
+        return dict(sorted(out.items(), key=lambda kv: rank.get(kv[0], len(rank))))

@@ -35,6 +35,8 @@ Six measurements, published whatever they show:
    :data:`dfa.analysis.cycles.SUBTICK_LIMIT` of the first level counted apart (the
    sub-tick caveat of :func:`dfa.analysis.cycles.subtick_caveat`).
 
+The result holds numbers and records only; :mod:`dfa.render.validation` words it (``validation.md``).
+
 Examples
 --------
 >>> s = soundness((5.0,), (1.0,), grid=4, samples=2000, n_jobs=1, progress=False)
@@ -49,9 +51,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..checks import _fmt, check_choice, check_jobs
-from ..errors import DFATypeError
-from ..formatting import markdown_table, number, percent
+from ..checks import check_bool, check_choice, check_jobs
 from ..model.device import Params
 from ..model.wall import WallParams
 from ..results.jsonable import explain_nulls, to_jsonable
@@ -71,7 +71,6 @@ __all__ = [
     "first_unstable_speed",
     "soundness",
     "cluster_threshold",
-    "cluster_note",
     "CLUSTER_POINTS",
     "PERIOD_BINS",
 ]
@@ -302,64 +301,6 @@ def cluster_threshold(name: str, p: Params, speeds, samples: int) -> dict:
         for key in (f"band_{model}", f"band_amplitude_{model}", f"grows_above_{model}"):
             why[key] = "no growth band: no unstable cycle predicted by this model"
     return explain_nulls(rec, why)
-
-
-def cluster_note(records: list) -> str:
-    """Markdown of item 5 (also written alone as ``cluster_threshold.md``); every number from ``records``."""
-    L = [
-        "## 5. Clusters of cycles: growth band against the simulated threshold",
-        "",
-        "ξ'0 scanned from ξ0 = 0 in simulation (exact integrator); speeds in ticks per sample. The describing function's band runs from",
-        "the smallest to the largest unstable cycle (speed M·ω); eq. 45 is the paper's closed form with D = 1.",
-        "",
-        "| point | μ | β | σ | ZOH linear loop | band, half-delay | band, exact ZOH | eq. 45 M·ω | first diverging | last non-diverging | non-diverging above the first diverging |",
-        "|---|---:|---:|---:|---|---|---|---:|---:|---:|---:|",
-    ]
-    for r in records:
-
-        def band(m, r=r):
-            lo, hi = r[f"band_{m}"]
-            return "–" if lo is None else f"{lo:.3g} to {hi:.3g} ({r[f'unstable_{m}']} unstable)"
-
-        L.append(
-            f"| {r['name']} | {r['mu']:g} | {r['beta']:.4g} | {r['sigma']:.4g} | {'stable' if r['linear_stable_zoh'] else 'unstable'} | "
-            f"{band('half-delay')} | {band('zoh')} | {_f(r['eq45_xi_dot'])} | {_f(r['first_diverging'])} | {_f(r['last_non_diverging'])} | "
-            f"{r['interleaved']} |"
-        )
-    L += [
-        "",
-        f"Scan: {records[0]['scan'][2]} speeds from {records[0]['scan'][0]:g} to {records[0]['scan'][1]:g}, {records[0]['samples']} samples each."
-        if records
-        else "",
-        "",
-    ]
-    for r in records:
-        if r["first_diverging"] is None:
-            L.append(
-                f"- {r['name']}: no scanned start diverged. The exact ZOH linear loop is "
-                f"{'stable' if r['linear_stable_zoh'] else 'unstable'} here; the exact-ZOH describing function has "
-                f"{r['unstable_zoh']} unstable cycle(s)"
-                + ("" if r["grows_above_zoh"] else " with a stable cycle above the largest")
-                + ". The half-delay threshold (and eq. 45) do not describe a disturbance the loop fails to tolerate at this point."
-            )
-        else:
-            lo, hi = r["band_zoh"]
-            first, last = r["first_diverging"], r["last_non_diverging"]
-            where = "below" if lo is None or first < lo else ("inside" if first <= hi else "above")
-            L.append(
-                f"- {r['name']}: divergence starts at ξ'0 = {first:.3g}, {where} the exact-ZOH band"
-                + ("" if lo is None else f" ({lo:.3g} to {hi:.3g})")
-                + f"; {r['interleaved']} non-diverging speeds are interleaved above it, the last at {_f(last)}"
-                + (
-                    f", {last / hi:.2g}× the band's top: starts above the band did not all diverge within {r['samples']} samples, "
-                    "so the first-harmonic prediction of growth above the band is a rough guide, not a bound"
-                    if (lo is not None and last is not None and last > hi)
-                    else ""
-                )
-                + ". The smallest unstable cycle is not a threshold"
-                + (": no start below the band diverged." if where != "below" else ".")
-            )
-    return "\n".join(L) + "\n"
 
 
 @dataclass(frozen=True)
@@ -617,159 +558,6 @@ class ValidationResult:
             },
         }
 
-    # ----- output
-    def to_markdown(self, figures: dict | None = None) -> str:
-        """The validation report (tables and summary statistics); ``figures`` maps cycles/speeds/periods to PNG paths."""
-        f = figures or {}
-        parts = [
-            "# Validation: predictions against exact simulation",
-            f"Generated by `dfa validate{' --quick' if self.quick else ''}`. Every number below was computed by that run;\n"
-            f"simulations use the exact sampled-data integrator ({self.samples} samples for cycles).",
-            *self._md_cycles(f),
-            *self._md_speeds(f),
-            *self._md_soundness(),
-            *self._md_periods(f),
-        ]
-        if self.clusters:
-            parts.append(cluster_note(self.clusters).rstrip("\n"))
-        if self.controller_cycles:
-            parts += self._md_controller()
-        return "\n\n".join(parts) + "\n"
-
-    def _md_controller(self) -> list[str]:
-        rows = [
-            [s["controller"], s["model"], s["predicted"], s["persisted"], _pct(s["amplitude"]["median"]),
-             _pct(s["amplitude"]["worst"]), _pct(s["frequency"]["median"]), _pct(s["frequency"]["worst"]),
-             f"{s['unstable_confirmed']} of {s['unstable']}", f"{s['subtick_confirmed']} of {s['subtick_unstable']}"]
-            for s in self.controller_cycle_summary()
-        ]  # fmt: skip
-        head = ["controller", "model", "stable predicted", "persisted", "amplitude error median", "worst",
-                "frequency error median", "worst", "unstable separated", f"of which M < {SUBTICK_LIMIT:g}"]  # fmt: skip
-        groups = "; ".join(
-            f"{n}: β_B = {c.damping:g}"
-            + (f", ν_c = {c.cutoff:g}" if c.cutoff else "")
-            + f", α = {c.lag:g}, d = {c.delay}"
-            for n, c in CONTROLLERS
-        )
-        pts = sorted({(r["mu"], r["beta"], r["sigma"]) for r in self.controller_cycles})
-        e = self.controller_errors()
-        return [
-            "## 6. Limit cycles with a wall controller",
-            f"The describing function of the controlled loop against the exact simulator with the same controller ({groups}),\n"
-            f"at (μ, β, σ) ∈ {[tuple(float(f'{x:g}') for x in p) for p in pts]}; stable cycles started on the cycle, "
-            "unstable ones 25 % below and above (as in section 1).",
-            markdown_table(head, rows, "llrrrrrrrr"),
-            f"Pooled: {e['persisted']} of {e['predicted']} predicted stable cycles persisted; amplitude error median "
-            f"{_pct(e['amplitude']['median'])}, worst {_pct(e['amplitude']['worst'])}; frequency error median "
-            f"{_pct(e['frequency']['median'])}, worst {_pct(e['frequency']['worst'])}. Unstable cycles below "
-            f"{SUBTICK_LIMIT:g} ticks sit on the steep flank of D(M) just above the first quantization level; the "
-            "limit-cycle and growth verdicts resting on them carry the sub-tick caveat (`dfa.analysis.cycles.subtick_caveat`).",
-        ]
-
-    def _md_cycles(self, f: dict) -> list[str]:
-        rows = [
-            [s["model"], s["family"], s["predicted"], s["persisted"], _pct(s["amplitude"]["median"]),
-             _pct(s["amplitude"]["worst"]), _pct(s["frequency"]["median"]), _pct(s["frequency"]["worst"])]
-            for s in self.cycle_summary()
-        ]  # fmt: skip
-        head = ["model", "family", "stable predicted", "persisted", "amplitude error median", "worst",
-                "frequency error median", "worst"]  # fmt: skip
-        lb = self.loeb_summary()
-        out = [
-            "## 1. Limit cycles: predicted vs simulated",
-            "Stable cycles were started on the predicted cycle (ξ0 = 0, ξ'0 = Mω) and measured on the tail;\n"
-            "errors are simulated/predicted − 1 over the cycles that persisted.",
-            markdown_table(head, rows, "llrrrrrr"),
-            f"**Loeb sign convention.** Of {lb['stable']} cycles predicted stable, {lb['stable_confirmed']} persisted in simulation; "
-            f"of {lb['unstable']} predicted unstable, {lb['unstable_confirmed']} separated decay from growth: started 25 % below, "
-            "the motion ended smaller than the cycle; started 25 % above, it grew (or was caught by a larger stable cycle). The convention (stable when ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M > 0 for U + jV = 1/L + D) is the one the simulator confirms.",
-        ]
-        return out + ([f"![cycle errors]({f['cycles']})"] if "cycles" in f else [])
-
-    def _md_speeds(self, f: dict) -> list[str]:
-        rows = []
-        for r in self.speeds:
-            ratio1 = r["simulated"] / r["criterion"] if (r["simulated"] and r["criterion"]) else None
-            ratio2 = r["df_zoh"] / r["simulated"] if (r["simulated"] and r["df_zoh"]) else None
-            rows.append(
-                [r["name"], f"{r['mu']:.4g}", f"{r['beta']:.3g}", f"{r['sigma']:.3g}", _f(r["criterion"]),
-                 _f(r["df_half_delay"]), _f(r["df_zoh"]), _f(r["simulated"]), _f(r["simulated_preload"]), _f(ratio1),
-                 _f(ratio2)]
-            )  # fmt: skip
-        head = ["case", "μ", "β", "σ", "criterion (eq. 12)", "DF half-delay M_u·ω", "DF exact ZOH M_u·ω", "simulated",
-                "simulated, preload", "simulated / criterion", "DF ZOH / simulated"]  # fmt: skip
-        ordered = self.speeds_ordered()
-        out = [
-            "## 2. Critical impact speed, three ways (ticks per sample)",
-            markdown_table(head, rows, "l" + "r" * 10),
-            f"The criterion's speed is at or below the simulated threshold in {sum(ordered)} of {len(ordered)} cases"
-            + ("." if all(ordered) else "; the others are counterexamples and are listed above."),
-        ]
-        return out + ([f"![critical speeds]({f['speeds']})"] if "speeds" in f else [])
-
-    def _md_soundness(self) -> list[str]:
-        s = self.soundness
-        rows: list[list[object]] = [
-            ["points the criterion calls passive", s.passive],
-            ["…of which simulated unstable (soundness violations)", f"**{len(s.violations)}**"],
-            ["simulated not unstable", s.not_unstable],
-            ["…of which the criterion rejects", s.rejected_not_unstable],
-            ["simulated rest (came to rest)", s.rest],
-            ["…of which the criterion rejects (conservatism)", f"{s.rejected_rest} ({_pct(s.conservatism)})"],
-            ["simulated undecided (run too short to tell)", s.undecided],
-        ]
-        out = [
-            "## 3. Criterion soundness and conservatism",
-            f"Grid: μ ∈ {list(s.mus)}, ξ'0 ∈ {list(s.xi_dots)}, (β, σ) ∈ [0, 1] × [0, 2.5]: {s.points} simulations.",
-            markdown_table(["measure", "value"], rows, "lr"),
-        ]
-        if s.violations:
-            bad = [
-                [f"{v['mu']:g}", f"{v['beta']:.4g}", f"{v['sigma']:.4g}", f"{v['xi_dot']:g}"] for v in s.violations[:50]
-            ]
-            out += [
-                "Counterexamples (criterion passive, simulation unstable):",
-                markdown_table(["μ", "β", "σ", "ξ'0"], bad, "rrrr"),
-            ]
-        return out
-
-    def _md_periods(self, f: dict) -> list[str]:
-        rows = []
-        for b in self.period_summary("zoh"):
-            lo, hi = b["period"]
-            fr, am = b["frequency"], b["amplitude"]
-            rows.append(
-                [
-                    f"[{lo:g}, {hi:g})",
-                    fr["n"],
-                    _pct(fr["median"]),
-                    _pct(fr["worst"]),
-                    _pct(am["median"]),
-                    _pct(am["worst"]),
-                ]
-            )
-        head = ["period (samples)", "cycles", "frequency error median", "worst", "amplitude error median", "worst"]
-        sm = self.summary()
-        out = [
-            "## 4. Where the describing function breaks down",
-            "Errors of confirmed stable cycles (exact-ZOH model) by period in samples:",
-            markdown_table(head, rows, "lrrrrr"),
-            f"Median frequency error: {_pct(sm['short_period_frequency_error'])} for periods under 8 samples, "
-            f"{_pct(sm['long_period_frequency_error'])} for longer ones. Most stable cycles the describing function predicts are\n"
-            "sub-tick chattering sampled a few times per period; for these the first harmonic is a rough guide to the frequency and a\n"
-            "poor one to the amplitude. The solver flags cycles with a period under 8 samples (`few_samples`). The growth\n"
-            "threshold (section 2), which is what a designer needs, is predicted far better than the stable cycles themselves.",
-        ]
-        return out + ([f"![errors by period]({f['periods']})"] if "periods" in f else [])
-
-
-def _pct(x) -> str:
-    return percent(None if x is None else float(x))
-
-
-def _f(x) -> str:
-    return number(x)
-
 
 def _speed_cases(quick: bool) -> list[tuple[str, Params]]:
     from ..model.catalogue import get_device
@@ -818,8 +606,7 @@ def validate(quick: bool = False, n_jobs: int = -1, progress: bool = True) -> Va
     simulate : The exact simulation used as the reference.
     """
     for name, flag in (("quick", quick), ("progress", progress)):
-        if not isinstance(flag, (bool, np.bool_)):
-            raise DFATypeError(f"{name} = {_fmt(flag)} has type {type(flag).__name__}: it must be True or False")
+        check_bool(name, flag)
     check_jobs("n_jobs", n_jobs)
     samples = 20_000 if quick else 40_000
     cycles = cycle_checks(_grid(quick), samples=samples)

@@ -1,7 +1,8 @@
-"""Runs that record the storage function S = ½μξ'² + ½ξ² (paper eq. 18-19), for the soundness checks.
+"""Runs that record the storage function S = ½μξ'² + ½ξ² (paper eq. 18-19), for the soundness check.
 
-:func:`storage_runs` simulates a list of points with the spring kernel and keeps, for each, the largest
-relative growth of S over its samples: what :mod:`dfa.analysis.soundness` checks a passivity verdict against.
+:func:`storage_runs` simulates a list of points with the spring kernel (each with its own delay and encoder
+setting) and keeps, for each, the largest relative growth of S over its samples: the fast path of the
+spring's walls in :mod:`dfa.analysis.soundness`, which checks a passivity verdict against it.
 """
 
 from __future__ import annotations
@@ -15,11 +16,12 @@ __all__ = ["storage_runs"]
 
 
 @njit(cache=True)
-def storage_runs(mus, betas, sigmas, x0s, v0s, ns, delay, ratio, codes, worst_sample):
+def storage_runs(mus, betas, sigmas, x0s, v0s, ns, delays, quantized, ratio, codes, worst_sample):
     """Simulate every point (recording ξ, ξ') and the largest S(h)/S(0) − 1 over its samples.
 
     Point i is :func:`dfa.core.kernel.simulate_kernel` of (``mus[i]``, ``betas[i]``, ``sigmas[i]``, ``x0s[i]``,
-    ``v0s[i]``) over ``ns[i]`` samples with the delay ``delay``, bound 10⁶ and the default outcome rules;
+    ``v0s[i]``) over ``ns[i]`` samples with the delay ``delays[i]`` (samples), the encoder ``quantized[i]``,
+    bound 10⁶ and the default outcome rules;
     ``codes[i]`` receives its outcome code, ``ratio[i]`` the largest S(h)/S(0) − 1 with S = ½μξ'² + ½ξ² (NaN
     past the bound counts as growth: inf) and ``worst_sample[i]`` the sample where it occurs.
     """
@@ -41,8 +43,8 @@ def storage_runs(mus, betas, sigmas, x0s, v0s, ns, delay, ratio, codes, worst_sa
             x0s[i],
             v0s[i],
             n,
-            delay,
-            True,
+            delays[i],
+            quantized[i],
             1.0e6,
             tail,
             rx[: n + 1],
@@ -50,7 +52,7 @@ def storage_runs(mus, betas, sigmas, x0s, v0s, ns, delay, ratio, codes, worst_sa
             empty2,
             stats,
         )
-        c, _a, _f, _c, _fpp = kernel.classify(n, done, rest, stats, 1.0, 1.25, 1.0e-3, True, mu)
+        c, _a, _f, _c, _fpp = kernel.classify(n, done, rest, stats, 1.0, 1.25, 1.0e-3, quantized[i], mu)
         codes[i] = c
         s0 = 0.5 * mu * v0s[i] * v0s[i] + 0.5 * x0s[i] * x0s[i]
         worst = -np.inf

@@ -4,7 +4,9 @@
 - :mod:`dfa.render.document`: the Jinja2 template ``templates/design_report.md.j2`` filled from a
   :class:`~dfa.analysis.design.DesignAnalysis`, and Markdown → self-contained HTML with markdown-it-py;
 - :mod:`dfa.render.text`: the tables and sentences the ``dfa`` commands print;
-- :mod:`dfa.render.files`: a trajectory as CSV and the validation report (written atomically).
+- :mod:`dfa.render.validation`: ``validation.md`` from a :class:`~dfa.analysis.validation.ValidationResult`;
+- :mod:`dfa.render.soundness`: the soundness reports from :class:`~dfa.analysis.soundness.CriterionSoundness` records;
+- :mod:`dfa.render.files`: a trajectory as CSV, the validation and soundness reports (written atomically).
 
 Numbers are formatted by :mod:`dfa.formatting`. Analyses never import this package (import contracts in
 ``pyproject.toml``).

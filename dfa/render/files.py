@@ -1,15 +1,19 @@
-"""Files other than the design report: a simulated trajectory as CSV, the validation report (all written atomically)."""
+"""Files other than the design report: a simulated trajectory as CSV, the validation and soundness reports.
+
+All written atomically (:mod:`dfa._io`): a report's files appear together, or none.
+"""
 
 from __future__ import annotations
 
 import os
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from .._io import atomic_open, staged_folder
 from ..results.jsonable import dumps
 
-__all__ = ["write_trace_csv", "write_validation"]
+__all__ = ["write_trace_csv", "write_validation", "write_soundness"]
 
 
 def write_trace_csv(result: Any, path: str | os.PathLike) -> Path:
@@ -65,6 +69,7 @@ def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
     import matplotlib.pyplot as plt
 
     from .. import figures
+    from .validation import validation_markdown
 
     os.makedirs(out, exist_ok=True)
     summary = result.to_dict()
@@ -75,6 +80,33 @@ def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
             figs[key] = f"validation_{key}.png"
             ax.figure.savefig(stage / figs[key], dpi=120)
             plt.close(ax.figure)
-        (stage / "validation.md").write_text(result.to_markdown(figs), encoding="utf-8")
+        (stage / "validation.md").write_text(validation_markdown(result, figs), encoding="utf-8")
         (stage / "validation.json").write_text(dumps(summary, indent=1), encoding="utf-8")
     return summary
+
+
+def write_soundness(results: Sequence[Any], out: str | os.PathLike) -> Path:
+    """Write a soundness report, its Markdown and JSON, into the folder ``out`` (both files, or none).
+
+    Parameters
+    ----------
+    results : sequence of CriterionSoundness
+        Records of one population (:func:`dfa.analysis.soundness.criterion_soundness`): the spring's write
+        ``delay_soundness.md``/``.json``, random walls' ``controller_soundness.md``/``.json``.
+    out : path
+        Folder (created if missing; its parent must exist).
+
+    Returns
+    -------
+    Path
+        The Markdown file.
+    """
+    from .soundness import report_stem, soundness_markdown
+
+    stem = report_stem(results)
+    text = soundness_markdown(results)
+    os.makedirs(out, exist_ok=True)
+    with staged_folder(out) as stage:
+        (stage / f"{stem}.md").write_text(text, encoding="utf-8")
+        (stage / f"{stem}.json").write_text(dumps(list(results), indent=1), encoding="utf-8")
+    return Path(out) / f"{stem}.md"

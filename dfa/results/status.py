@@ -295,7 +295,7 @@ class ContourStatus(StatusEnum):
 
 
 class SoundnessStatus(StatusEnum):
-    """Whether simulation contradicted a passivity verdict (:class:`dfa.analysis.soundness.DelaySoundness`)."""
+    """Whether simulation contradicted a passivity verdict (:class:`dfa.analysis.soundness.CriterionSoundness`)."""
 
     SOUND = ("sound", "no simulated point called passive gained energy or diverged")
     VIOLATED = ("violated", "some points called passive gained energy or diverged: the criterion is not sound here")
