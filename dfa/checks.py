@@ -48,6 +48,8 @@ __all__ = [
     "check_bound",
     "check_positive_array",
     "check_rate",
+    "check_range",
+    "format_value",
     "INT_MAX",
     "MAX_RATE",
     "MAX_DELAY",
@@ -58,7 +60,7 @@ __all__ = [
 _MAX_SHOWN = 60  # characters of a value shown in a message
 
 
-def _fmt(value: Any) -> str:
+def format_value(value: Any) -> str:
     """A short, safe text for ``value`` in an error message (huge values abbreviated)."""
     try:
         if isinstance(value, (bool, np.bool_)):
@@ -95,11 +97,11 @@ def _is_bool(value: Any) -> bool:
 
 def _type_error(name: str, value: Any, what: str, fix: str | None) -> DFATypeError:
     kind = f"array of shape {value.shape}" if isinstance(value, np.ndarray) else f"type {type(value).__name__}"
-    return DFATypeError(f"{name} = {_fmt(value)} has {kind}: it must be {what}" + (f"; {fix}" if fix else ""))
+    return DFATypeError(f"{name} = {format_value(value)} has {kind}: it must be {what}" + (f"; {fix}" if fix else ""))
 
 
 def _message(name: str, value: Any, rule: str, fix: str | None) -> str:
-    msg = f"{name} = {_fmt(value)} is invalid: it must be {rule}"
+    msg = f"{name} = {format_value(value)} is invalid: it must be {rule}"
     if fix:
         msg += f"; {fix}"
     return msg
@@ -220,7 +222,7 @@ def check_type(name: str, value: Any, cls: type, fix: str) -> Any:
     """Return ``value`` if it is an instance of ``cls``, else raise :class:`DFATypeError` with ``fix``."""
     if not isinstance(value, cls):
         raise DFATypeError(
-            f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}"
+            f"{name} = {format_value(value)} has type {type(value).__name__}: it must be a dfa.{cls.__name__}; {fix}"
         )
     return value
 
@@ -439,3 +441,16 @@ def check_real_array(name: str, value: Any, fix: str | None = None) -> np.ndarra
         where = f" (element {i} is {float(out.ravel()[i])!r})" if out.ndim else ""
         raise DFAValueError(_message(name, value, "finite numbers" + where, fix))
     return out
+
+
+def check_range(name: str, rng: Any) -> tuple[float, float]:
+    """A (low, high) pair of numbers >= 0 with low < high, or the package's error naming ``name``."""
+    try:
+        a, b = rng
+    except (TypeError, ValueError):
+        raise DFAValueError(f"{name} = {rng!r} is invalid: it must be a pair (low, high)") from None
+    lo = check_nonnegative(f"{name}[0]", a)
+    hi = check_nonnegative(f"{name}[1]", b)
+    if not hi > lo:
+        raise DFAValueError(f"{name} = ({lo}, {hi}) is invalid: it must satisfy low < high")
+    return lo, hi

@@ -23,7 +23,7 @@ import numpy as np
 
 from ._io import staged_folder
 from .analysis.design import DesignAnalysis, design_analysis, resolve_design_inputs
-from .checks import _fmt, check_choice, check_int
+from .checks import check_choice, check_int, format_value
 from .errors import DFATypeError, DFAValueError
 from .model.catalogue import CatalogueEntry
 from .model.device import Device
@@ -339,9 +339,13 @@ def design_report(
     check_int("map_grid", map_grid, minimum=2, fix="use at least 2 points per axis")
     check_int("samples", samples, minimum=1, fix="simulate at least one sample")
     if not isinstance(progress, (bool, np.bool_)):
-        raise DFATypeError(f"progress = {_fmt(progress)} has type {type(progress).__name__}: it must be True or False")
+        raise DFATypeError(
+            f"progress = {format_value(progress)} has type {type(progress).__name__}: it must be True or False"
+        )
     if not isinstance(out_dir, (str, os.PathLike)):
-        raise DFATypeError(f"out_dir = {_fmt(out_dir)} has type {type(out_dir).__name__}: it must be a folder path")
+        raise DFATypeError(
+            f"out_dir = {format_value(out_dir)} has type {type(out_dir).__name__}: it must be a folder path"
+        )
     if not Path(out_dir).is_dir():
         raise DFAValueError(f"out_dir = {str(out_dir)!r} is invalid: the folder does not exist; create it first")
     _entry, dev, w, v = resolve_design_inputs(device, wall, velocity)

@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from .._io import atomic_open, check_memory
-from ..checks import check_bool, check_int, check_mu, check_positive
+from ..checks import check_bool, check_int, check_mu, check_positive, check_range
 from ..errors import DFAValueError
 from ..results.frozen import check_shape, freeze_fields
 from ..results.jsonable import to_jsonable
@@ -44,7 +44,6 @@ from ..results.status import ContourStatus
 from .criterion import CriticalLine
 from .cycles import ClosedFormStatus, large_cycle_closed_forms, small_cycle_closed_forms
 from .describing import quantizer_df
-from .maps import _check_range
 
 __all__ = ["ContourMaps", "contour_maps", "load_contours", "contour_memory_bytes"]
 
@@ -350,8 +349,8 @@ def contour_maps(
     stability_map : The simulated outcome over the same plane.
     """
     m = check_mu(mu)
-    b0, b1 = _check_range("beta_range", beta_range)
-    s0, s1 = _check_range("sigma_range", sigma_range)
+    b0, b1 = check_range("beta_range", beta_range)
+    s0, s1 = check_range("sigma_range", sigma_range)
     g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
     amax = check_positive("max_amplitude", max_amplitude)
     if amax < 1.0:

@@ -136,7 +136,6 @@ import numpy as np
 from ..checks import (
     DELAY_FIX,
     MAX_DELAY,
-    _fmt,
     check_beta,
     check_bool,
     check_delay,
@@ -146,6 +145,7 @@ from ..checks import (
     check_real_array,
     check_sigma,
     check_type,
+    format_value,
 )
 from ..core.energy import spring_energy_core
 from ..errors import DFATypeError, DFAValueError
@@ -597,11 +597,13 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
         or np.any(d != np.floor(d))
     ):
         raise DFAValueError(
-            f"delay = {_fmt(delay)} is invalid: it must be a whole number from 0 to {MAX_DELAY}; {DELAY_FIX}"
+            f"delay = {format_value(delay)} is invalid: it must be a whole number from 0 to {MAX_DELAY}; {DELAY_FIX}"
         )
     q = np.asarray(quantized)
     if q.dtype != bool:
-        raise DFATypeError(f"quantized = {_fmt(quantized)} is invalid: it must be True or False (or an array of them)")
+        raise DFATypeError(
+            f"quantized = {format_value(quantized)} is invalid: it must be True or False (or an array of them)"
+        )
     s0, b0 = _anchor(q, d)
     return region_of(b, s, v, s0, b0)
 
@@ -630,7 +632,7 @@ def _corner(wall: WallParams, quantized: bool) -> tuple[float, float]:
     if bad is not None:
         kind, g, why = bad
         raise DFAValueError(
-            f"wall.{kind.parameter.group} = {_fmt(g)} is invalid for the passivity criterion: {why}; use the "
+            f"wall.{kind.parameter.group} = {format_value(g)} is invalid for the passivity criterion: {why}; use the "
             "simulated map dfa.stability_map (or the exact simulation) instead, or drop that element"
         )
     return wall.corner(quantized)
@@ -696,7 +698,7 @@ def passivity_criterion(
     m = None if mu is None else check_mu(mu)
     if not isinstance(quantized, (bool, np.bool_)):
         raise DFATypeError(
-            f"quantized = {_fmt(quantized)} has type {type(quantized).__name__}: it must be True (eq. 6) or False (eq. 7)"
+            f"quantized = {format_value(quantized)} has type {type(quantized).__name__}: it must be True (eq. 6) or False (eq. 7)"
         )
     q = bool(quantized)
     v = equivalent_speed(xd, x0, m, quantized=q)
@@ -738,7 +740,7 @@ def as_wall(wall: object) -> Wall:
     if isinstance(wall, (int, float, np.integer, np.floating)) and not isinstance(wall, (bool, np.bool_)):
         return Wall(wall)  # type: ignore[arg-type]  # Wall checks K (a finite number > 0)
     raise DFATypeError(
-        f"wall = {_fmt(wall)} has type {type(wall).__name__}: it must be a dfa.Wall or a stiffness K in N/m; "
+        f"wall = {format_value(wall)} has type {type(wall).__name__}: it must be a dfa.Wall or a stiffness K in N/m; "
         "give e.g. dfa.Wall.of(1000.0, damping=1.0), or 1000.0 for the spring alone"
     )
 

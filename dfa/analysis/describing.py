@@ -53,7 +53,7 @@ import control
 import numpy as np
 from scipy import integrate
 
-from ..checks import _fmt, check_positive, check_positive_array, check_real_array, check_sigma
+from ..checks import check_positive, check_positive_array, check_real_array, check_sigma, format_value
 from ..core import dfcore
 from ..errors import DFATypeError, DFAValueError
 
@@ -461,7 +461,7 @@ def coulomb_equivalent_damping(sigma: float, amplitude, omega):
         ) from None
     if np.any(speed == 0.0):
         raise DFAValueError(
-            f"amplitude = {_fmt(amplitude)} with omega = {_fmt(omega)} is invalid: the velocity amplitude M·ω "
+            f"amplitude = {format_value(amplitude)} with omega = {format_value(omega)} is invalid: the velocity amplitude M·ω "
             "underflows to 0 (below 1e-308); give a larger amplitude or frequency"
         )
     return coulomb_df(speed, sigma)
@@ -508,7 +508,9 @@ def numeric_df(f: Callable[[np.ndarray], np.ndarray], amplitude, jumps: Sequence
     True
     """
     if not callable(f):
-        raise DFATypeError(f"f = {_fmt(f)} is invalid: it must be a function of the input (an odd static nonlinearity)")
+        raise DFATypeError(
+            f"f = {format_value(f)} is invalid: it must be a function of the input (an odd static nonlinearity)"
+        )
     m = _amplitudes(amplitude)
     js = check_real_array("jumps", jumps, "give the inputs at which f jumps, e.g. [1, 2]").ravel()
     tol = check_positive("tol", tol, "give the quadrature tolerance, e.g. 1e-13")

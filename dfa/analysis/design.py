@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from ..checks import _fmt, check_int, check_positive, check_real, check_speed, check_type
+from ..checks import check_int, check_positive, check_real, check_speed, check_type, format_value
 from ..errors import DFATypeError, DFAValueError
 from ..model.catalogue import CatalogueEntry
 from ..model.device import Device, Params
@@ -166,7 +166,7 @@ class DesignAnalysis:
             value = getattr(self, name)
             if value is not None and not isinstance(value, dict):
                 raise DFATypeError(
-                    f"{name} = {_fmt(value)} has type {type(value).__name__}: it must be a dict or None; {fix}"
+                    f"{name} = {format_value(value)} has type {type(value).__name__}: it must be a dict or None; {fix}"
                 )
         check_int("samples", self.samples, 1, fix)
         check_int("map_grid", self.map_grid, 2, fix)
@@ -192,7 +192,7 @@ class DesignAnalysis:
             isinstance(t, tuple) and len(t) == 2 and isinstance(t[1], GrowthThreshold) for t in self.thresholds
         ):
             raise DFATypeError(
-                f"thresholds = {_fmt(self.thresholds)} is invalid: it must be a tuple of (model, GrowthThreshold) "
+                f"thresholds = {format_value(self.thresholds)} is invalid: it must be a tuple of (model, GrowthThreshold) "
                 f"pairs; {fix}"
             )
         if tuple(m for m, _ in self.thresholds) != MODELS:

@@ -62,15 +62,15 @@ import numpy as np
 from .._io import atomic_open, check_memory
 from .._parallel import PARALLEL_BACKENDS, deal, gather, run_in_order
 from ..checks import (
-    _fmt,
     check_bool,
     check_bound,
     check_choice,
     check_int,
     check_jobs,
     check_mu,
-    check_nonnegative,
+    check_range,
     check_speed,
+    format_value,
 )
 from ..errors import DFATypeError, DFAValueError
 from ..model.wall import WallParams
@@ -365,7 +365,7 @@ def load_map(path: str | os.PathLike) -> StabilityMap:
     """
     if not isinstance(path, (str, os.PathLike)):
         raise DFATypeError(
-            f"path = {_fmt(path)} has type {type(path).__name__}: it must be the path of a .npz map file"
+            f"path = {format_value(path)} has type {type(path).__name__}: it must be the path of a .npz map file"
         )
     try:
         return _load_map(path)
@@ -437,18 +437,6 @@ def _run_chunk(mu, betas, sigmas, x0s, v0s, samples, wall, quantize, bound, stab
     mus = np.full(betas.size, mu)
     res = run_points(mus, betas, sigmas, x0s, v0s, samples, wall, quantize, bound, stable_amplitude, growth, settle)
     return res[0], res[1], res[2]
-
-
-def _check_range(name: str, rng) -> tuple[float, float]:
-    try:
-        a, b = rng
-    except (TypeError, ValueError):
-        raise DFAValueError(f"{name} = {rng!r} is invalid: it must be a pair (low, high)") from None
-    lo = check_nonnegative(f"{name}[0]", a)
-    hi = check_nonnegative(f"{name}[1]", b)
-    if not hi > lo:
-        raise DFAValueError(f"{name} = ({lo}, {hi}) is invalid: it must satisfy low < high")
-    return lo, hi
 
 
 def stability_map(
@@ -526,8 +514,8 @@ def stability_map(
     """
     m = check_mu(mu)
     speeds = _check_speeds(xi_dots)
-    b0, b1 = _check_range("beta_range", beta_range)
-    s0, s1 = _check_range("sigma_range", sigma_range)
+    b0, b1 = check_range("beta_range", beta_range)
+    s0, s1 = check_range("sigma_range", sigma_range)
     g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
     n = check_int("samples", samples, minimum=1)
     w = check_wall(wall)

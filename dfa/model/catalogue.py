@@ -425,22 +425,24 @@ def resolve_device(
     >>> round(r.device.resolution, 6), r.label
     (0.003142, 'testbed, K = 0.5 N·m/rad')
     """
-    from ..checks import _fmt, check_positive
+    from ..checks import check_positive, format_value
     from .device import dimensionless_params
 
     for arg, mapping in (("overrides", overrides), ("flags", flags)):
         if mapping is not None and not isinstance(mapping, dict):
             raise DFATypeError(
-                f"{arg} = {_fmt(mapping)} has type {type(mapping).__name__}: it must be a dict or None; "
+                f"{arg} = {format_value(mapping)} has type {type(mapping).__name__}: it must be a dict or None; "
                 f"give a dict such as {{'mass': 0.1}}"
             )
     for arg, text in (("name", name), ("label", label)):
         if text is not None and not isinstance(text, str):
             raise DFATypeError(
-                f"{arg} = {_fmt(text)} has type {type(text).__name__}: it must be text or None; give a device name"
+                f"{arg} = {format_value(text)} has type {type(text).__name__}: it must be text or None; give a device name"
             )
     if not isinstance(rotary, bool):
-        raise DFATypeError(f"rotary = {_fmt(rotary)} has type {type(rotary).__name__}: it must be True or False")
+        raise DFATypeError(
+            f"rotary = {format_value(rotary)} has type {type(rotary).__name__}: it must be True or False"
+        )
     fl = {k: k for k in (*_PHYSICAL, "stiffness", "counts", "name")} | (flags or {})
     given = {k: v for k, v in (overrides or {}).items() if v is not None}
     unknown = sorted(set(given) - set(_PHYSICAL))

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..checks import _fmt, check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma
+from ..checks import check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma, format_value
 from ..errors import DFATypeError, DFAValueError
 
 __all__ = ["Params", "Device", "dimensionless_params"]
@@ -149,11 +149,11 @@ class Device:
         )
         if not isinstance(self.name, str):
             raise DFATypeError(
-                f"name = {_fmt(self.name)} has type {type(self.name).__name__}: it must be text; give the device name"
+                f"name = {format_value(self.name)} has type {type(self.name).__name__}: it must be text; give the device name"
             )
         if not isinstance(self.rotary, (bool, np.bool_)):
             raise DFATypeError(
-                f"rotary = {_fmt(self.rotary)} has type {type(self.rotary).__name__}: it must be True or False; pass rotary=True for a rotary joint"
+                f"rotary = {format_value(self.rotary)} has type {type(self.rotary).__name__}: it must be True or False; pass rotary=True for a rotary joint"
             )
         object.__setattr__(self, "rotary", bool(self.rotary))
 

@@ -48,7 +48,7 @@ from typing import Any, ClassVar, NamedTuple
 
 import numpy as np
 
-from ..checks import _fmt, check_delay, check_nonnegative, check_positive
+from ..checks import check_delay, check_nonnegative, check_positive, format_value
 from ..errors import DFAError, DFAValueError
 
 __all__ = [
@@ -536,13 +536,13 @@ def _check_cutoff(name: str, value: object, nyquist: float, unit: str) -> float:
     per_sample = "" if unit == "cycles per sample" else f"{MIN_CUTOFF:g} cycles per sample; "
     if out < floor * (1 - 1e-12):  # the floor as printed (6 digits) is accepted despite rounding
         raise DFAValueError(
-            f"{name} = {_fmt(out)} is invalid: it must be at least {floor:.6g} {unit} ({per_sample}below, the filter "
+            f"{name} = {format_value(out)} is invalid: it must be at least {floor:.6g} {unit} ({per_sample}below, the filter "
             "pole and the free mass's pole at z = 1 cannot be told apart in double precision and the linear analysis "
             f"is unreliable); give a cutoff of at least {floor:.6g} {unit}, or no filter"
         )
     if not out < nyquist:
         raise DFAValueError(
-            f"{name} = {_fmt(out)} is invalid: it must be below the Nyquist frequency {_fmt(nyquist)} {unit}; "
+            f"{name} = {format_value(out)} is invalid: it must be below the Nyquist frequency {format_value(nyquist)} {unit}; "
             "give a cutoff below the Nyquist frequency 1/(2T), or no filter (None)"
         )
     return out
@@ -672,7 +672,7 @@ class AmplifierLag(Element):
         a = check_nonnegative("lag", value, "α = τ_a/T cannot be negative (0: none)")
         if 0.0 < a < MIN_LAG:
             raise DFAValueError(
-                f"lag = {_fmt(a)} is invalid: it must be 0 or at least {_fmt(MIN_LAG)} samples (the kernel's rate "
+                f"lag = {format_value(a)} is invalid: it must be 0 or at least {format_value(MIN_LAG)} samples (the kernel's rate "
                 "1/α must stay finite); a lag this short is no lag: pass 0 (or no amplifier bandwidth)"
             )
         return a

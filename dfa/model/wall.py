@@ -38,7 +38,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..checks import _fmt, check_positive
+from ..checks import check_positive, format_value
 from ..errors import DFATypeError, DFAValueError
 from ..results.jsonable import explain_nulls
 from .elements import (
@@ -68,13 +68,13 @@ def _ordered(elements: Any) -> tuple[Element, ...]:
         items = tuple(elements)
     except TypeError:
         raise DFATypeError(
-            f"elements = {_fmt(elements)} is invalid: it must be a sequence of wall elements; "
+            f"elements = {format_value(elements)} is invalid: it must be a sequence of wall elements; "
             "give e.g. (dfa.Damper(1.0), dfa.Delay(1))"
         ) from None
     for e in items:
         if not isinstance(e, Element):
             raise DFATypeError(
-                f"elements holds {_fmt(e)} of type {type(e).__name__}: every element must be a dfa wall element "
+                f"elements holds {format_value(e)} of type {type(e).__name__}: every element must be a dfa wall element "
                 "(Damper, VelocityFilter, Delay, AmplifierLag)"
             )
     kinds = [type(e) for e in items]
@@ -123,7 +123,9 @@ class WallParams:
             pair = tuple(item) if isinstance(item, (tuple, list)) else ()
             kind = pair[0] if len(pair) == 2 else None
             if not (isinstance(kind, type) and issubclass(kind, Element)):
-                raise DFATypeError(f"groups holds {_fmt(item)}: it is not an (element class, group) pair; {fix}")
+                raise DFATypeError(
+                    f"groups holds {format_value(item)}: it is not an (element class, group) pair; {fix}"
+                )
             g = kind.check_group(pair[1])
             if not kind.renders_nothing(g):
                 out.append((kind, g))

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ..checks import _fmt
+from ..checks import format_value
 from ..errors import DFAValueError
 
 __all__ = ["frozen_array", "freeze_fields", "check_shape"]
@@ -52,15 +52,15 @@ def frozen_array(
         a = np.array(value, dtype=dtype, copy=True)
     except (TypeError, ValueError, OverflowError) as err:
         raise DFAValueError(
-            f"{name} = {_fmt(value)} is invalid: it must be an array of {np.dtype(dtype)} ({err}); {_FIX}"
+            f"{name} = {format_value(value)} is invalid: it must be an array of {np.dtype(dtype)} ({err}); {_FIX}"
         ) from None
     if ndim is not None and a.ndim != ndim:
         raise DFAValueError(
-            f"{name} = {_fmt(value)} is invalid: it must have {ndim} dimension(s), not {a.ndim}; {_FIX}"
+            f"{name} = {format_value(value)} is invalid: it must have {ndim} dimension(s), not {a.ndim}; {_FIX}"
         )
     if finite and a.dtype.kind in "fc" and not np.all(np.isfinite(a)):
         raise DFAValueError(
-            f"{name} = {_fmt(value)} is invalid: it must hold finite numbers (NaN or inf given); {_FIX}"
+            f"{name} = {format_value(value)} is invalid: it must hold finite numbers (NaN or inf given); {_FIX}"
         )
     a.setflags(write=False)
     return a

@@ -65,7 +65,6 @@ import numpy as np
 
 from ..._parallel import run_in_order
 from ...checks import (
-    _fmt,
     check_bool,
     check_choice,
     check_int,
@@ -74,6 +73,7 @@ from ...checks import (
     check_positive,
     check_speed,
     check_type,
+    format_value,
 )
 from ...core import kernel
 from ...errors import DFAValueError
@@ -409,7 +409,9 @@ def _grids(dev: Device, wall: Wall, grid: int, k_range, b_range) -> tuple[np.nda
     b0 = check_nonnegative("b_range[0]", b_range[0], "give the smallest virtual damping B >= 0")
     b1 = check_positive("b_range[1]", b_range[1], "give the largest virtual damping B > 0")
     if not b1 > b0:
-        raise DFAValueError(f"b_range = ({_fmt(b0)}, {_fmt(b1)}) is invalid: it must satisfy low < high")
+        raise DFAValueError(
+            f"b_range = ({format_value(b0)}, {format_value(b1)}) is invalid: it must satisfy low < high"
+        )
     bs = np.linspace(b0, b1, grid)
     if k_range is None:
         lin = [_linear(dev, wall.with_damping(float(b))).value for b in (b0, b1)]
@@ -419,7 +421,9 @@ def _grids(dev: Device, wall: Wall, grid: int, k_range, b_range) -> tuple[np.nda
     k0 = check_positive("k_range[0]", k_range[0], "give the smallest stiffness K > 0")
     k1 = check_positive("k_range[1]", k_range[1], "give the largest stiffness K")
     if not k1 > k0:
-        raise DFAValueError(f"k_range = ({_fmt(k0)}, {_fmt(k1)}) is invalid: it must satisfy low < high")
+        raise DFAValueError(
+            f"k_range = ({format_value(k0)}, {format_value(k1)}) is invalid: it must satisfy low < high"
+        )
     return np.geomspace(k0, k1, grid), bs
 
 
