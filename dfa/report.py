@@ -47,7 +47,7 @@ class ReportResult:
     numbers : dict
         Headline numbers (μ, β, σ, region, passive, K_max, speeds in ticks/sample, cycle amplitudes); for a wall
         beyond the spring those of the criterion extended to it and of K_max with it, ``k_linear`` and the
-        ``controller`` object of `dfa check --json` (nulls explained in ``null_reasons``).
+        ``wall`` object of `dfa check --json` (nulls explained in ``null_reasons``).
     status : ReportStatus
         ``OK``.
     analysis : DesignAnalysis or None
@@ -110,7 +110,7 @@ def _numbers(a: DesignAnalysis) -> dict[str, Any]:
 
 def _wall_numbers(a: DesignAnalysis) -> dict[str, Any]:
     """The headline numbers of a wall beyond the spring: the extended criterion's, K_max with the wall, its groups."""
-    from .render.controller import controller_dict
+    from .render.controller import wall_dict
 
     p, r, lim = a.params, a.criterion, a.design_answer
     out = dict(
@@ -126,7 +126,7 @@ def _wall_numbers(a: DesignAnalysis) -> dict[str, Any]:
         df_xi_dot=a.threshold("zoh").xi_dot,
         simulated_xi_dot=a.simulated_xi_dot,
         cycles=[c.amplitude for c in a.threshold("half-delay").result.cycles],
-        controller=controller_dict(a.wall, a.device.period, a.device.units),
+        wall=wall_dict(a.wall, a.device.period, a.device.units),
     )
     lag = "not covered: no passivity criterion is proven with an amplifier lag"
     why = {

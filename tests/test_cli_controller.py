@@ -61,11 +61,11 @@ def test_eq6_controller_check_json_equals_api(capsys):
     cs = colgate_schenkel_damping(ctl, DEV.period)
     assert d["colgate_schenkel_damping"] == cs.damping_min
     assert d["colgate_schenkel_met"] is (DEV.damping > cs.damping_bound)
-    dim = d["controller"]["dimensionless"]
-    assert dim["beta_B"] == pytest.approx(5.0 / (K * DEV.period), rel=1e-15)
-    assert dim["nu_c"] == pytest.approx(100.0 * DEV.period, rel=1e-15)
-    assert dim["alpha"] == 0.0 and dim["delay"] == 1
-    assert d["controller"]["damping"] == 5.0 and d["controller"]["units"]["damping"] == "N·s/m"
+    dim = d["wall"]["dimensionless"]
+    assert dim["damping"] == pytest.approx(5.0 / (K * DEV.period), rel=1e-15)
+    assert dim["cutoff"] == pytest.approx(100.0 * DEV.period, rel=1e-15)
+    assert dim["lag"] == 0.0 and dim["delay"] == 1
+    assert d["wall"]["damping"] == 5.0 and d["wall"]["units"]["damping"] == "N·s/m"
 
 
 def test_eq6_controller_check_text_names_both_conditions(capsys):
@@ -85,8 +85,8 @@ def test_check_amplifier_lag_is_not_covered_never_passive(capsys, extra):
     assert code == 0 and f"passive  {NOT_COVERED}" in out and "yes:" not in out and "(proven)" not in out
     d = run_json(capsys, "check", *BASE, "--velocity", "0.01", "--amplifier-bandwidth", "300", *extra)
     assert d["passive"] is None and d["status"] == "not_covered"
-    assert d["controller"]["amplifier_bandwidth"] == 300.0
-    assert d["controller"]["dimensionless"]["alpha"] == pytest.approx(1.0 / (2 * np.pi * 300.0 * DEV.period))
+    assert d["wall"]["amplifier_bandwidth"] == 300.0
+    assert d["wall"]["dimensionless"]["lag"] == pytest.approx(1.0 / (2 * np.pi * 300.0 * DEV.period))
 
 
 def test_eq4_controller_simulate_json_equals_api(capsys):
@@ -97,7 +97,7 @@ def test_eq4_controller_simulate_json_equals_api(capsys):
     xd = DEV.xi_dot(0.1)
     r = simulate(p.mu, p.beta, p.sigma, xd, None, bound=divergence_bound(0.0, xd, p.mu, 1e6), wall=ctl)
     assert d["outcome"] == r.outcome and d["final_xi"] == r.final_xi and d["rest_sample"] == r.rest_sample
-    assert d["controller"]["dimensionless"]["beta_B"] == ctl.damping
+    assert d["wall"]["dimensionless"]["damping"] == ctl.damping
     code, out, _ = run(capsys, *argv)
     assert code == 0 and "controller: K = 14500 N/m, B = 2 N·s/m" in out and "amplifier bandwidth 500 Hz" in out
 
@@ -107,7 +107,7 @@ def test_eq36_controller_limit_cycles_json_equals_api(capsys):
     ctl = Wall.of(K, damping=2.0, delay=1).params(DEV.period)
     res = limit_cycles(DEV.params(K), wall=ctl)
     assert [c["amplitude"] for c in d["cycles"]] == [c.amplitude for c in res.cycles]
-    assert d["controller"]["delay"] == 1 and d["controller"]["dimensionless"]["beta_B"] == ctl.damping
+    assert d["wall"]["delay"] == 1 and d["wall"]["dimensionless"]["damping"] == ctl.damping
     code, out, _ = run(capsys, "limit-cycles", *BASE, "--virtual-damping", "2", "--delay", "1")
     assert code == 0 and "controller: K = 14500 N/m, B = 2 N·s/m, delay 1 sample" in out
 
@@ -122,7 +122,7 @@ def test_fig4_controller_map_json_equals_api(capsys, tmp_path):
     m = stability_map(p.mu, [DEV.xi_dot(0.1)], grid=3, samples=2000, n_jobs=1, progress=False, wall=ctl)
     assert d["counts"] == m.to_dict()["counts"]
     assert load_map(out).wall == ctl
-    assert d["controller"]["filter_cutoff"] == 200.0
+    assert d["wall"]["filter_cutoff"] == 200.0
 
 
 def test_fig4_controller_map_outcomes_equal_simulate_per_point():
@@ -232,7 +232,7 @@ def test_eq11_controller_stiffness_json_equals_api(capsys):
     r = design_answer(DEV, 0.1, wall=Wall.of(K, damping=1.0, delay=1), assess=True)
     kc, kl = r.k_criterion.value, r.k_linear.value
     assert d["k_criterion"]["value"] == kc and d["k_linear"]["value"] == kl
-    assert d["controller"]["delay"] == 1 and d["wall"]["delay"] == 1
+    assert d["wall"]["delay"] == 1 and d["wall"]["dimensionless"]["delay"] == 1
     for key in ("k_df", "k_sim", "k_sim_rest"):  # searched with the controller (tests/test_kmax_controller.py)
         assert d[key]["value"] == getattr(r, key).value and d[key]["status"] == getattr(r, key).status.value
     code, out, _ = run(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")

@@ -132,11 +132,9 @@ def test_controller_report_states_what_dfa_check_prints(ctl):
         assert md_row(label, value) in md, label
     a = data["analysis"]
     # dfa check states the physical controller once (its "controller"); the analysis keeps the criterion's groups
-    assert {k: v for k, v in a["check"].items() if k != "controller"} == {
-        k: v for k, v in check.items() if k != "controller"
-    }
-    assert data["numbers"]["controller"] == check["controller"]
-    assert data["numbers"]["controller"]["dimensionless"]["beta_B"] == pytest.approx(1.0 / (14500.0 / 3000.0))
+    assert {k: v for k, v in a["check"].items() if k != "wall"} == {k: v for k, v in check.items() if k != "wall"}
+    assert data["numbers"]["wall"] == check["wall"]
+    assert data["numbers"]["wall"]["dimensionless"]["damping"] == pytest.approx(1.0 / (14500.0 / 3000.0))
     assert data["numbers"]["passive"] is True and data["numbers"]["region"] == check["criterion"]["region"]
     assert data["numbers"]["critical_xi_dot"] == check["criterion"]["critical_xi_dot"]
     verdict = md.splitlines()[2]  # the verdict paragraph says the same
@@ -179,7 +177,7 @@ def test_controller_report_with_lag_is_not_covered(lag):
     check, data, md = lag["check"], lag["data"], lag["md"]
     assert check["status"] == "not_covered" and check["passive"] is None
     a = data["analysis"]
-    assert a["check"] == {k: v for k, v in check.items() if k != "controller"}
+    assert {k: v for k, v in a["check"].items() if k != "wall"} == {k: v for k, v in check.items() if k != "wall"}
     kc = a["design_answer"]["k_criterion"]
     assert kc["value"] is None and kc["status"] == "not_covered"
     assert "amplifier lag" in kc["null_reasons"]["/value"]

@@ -122,11 +122,12 @@ def wall_params(args: argparse.Namespace, wall: Wall | None, inp: Inputs | None)
 
 
 def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[str, Any]:
-    """Add the ``"controller"`` object (physical values, units and dimensionless groups) to a JSON record."""
+    """Set the record's ``"wall"`` to the wall's physical values, units and dimensionless groups (nothing for the
+    spring: its record is unchanged)."""
     if wall is not None and inp is not None and inp.device is not None:
-        from ..render.controller import controller_dict
+        from ..render.controller import wall_dict
 
-        d["controller"] = controller_dict(wall, inp.device.period, inp.device.units)
+        d["wall"] = wall_dict(wall, inp.device.period, inp.device.units)
     return d
 
 

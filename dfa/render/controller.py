@@ -24,7 +24,7 @@ __all__ = [
     "NOT_COVERED",
     "check_table_rows",
     "controller_check_rows",
-    "controller_dict",
+    "wall_dict",
     "controller_line",
     "controller_short",
 ]
@@ -43,8 +43,8 @@ def _g(x: float | None, digits: int = 4) -> str:
     return number(x, digits, none="-", inf="inf")
 
 
-def controller_dict(controller: Any, period: float, units: dict[str, str]) -> dict[str, object]:
-    """The ``"controller"`` object of the JSON output: physical values, units and dimensionless groups.
+def wall_dict(controller: Any, period: float, units: dict[str, str]) -> dict[str, object]:
+    """The ``"wall"`` object of the JSON output: physical values, units and dimensionless groups.
 
     Parameters
     ----------
@@ -60,7 +60,8 @@ def controller_dict(controller: Any, period: float, units: dict[str, str]) -> di
     dict
         Strict-JSON data: stiffness K, damping B, delay d (samples), filter_cutoff f_c (Hz or null),
         amplifier_bandwidth f_bw (Hz or null), amplifier_time_constant τ_a (s), ``units``, and
-        ``dimensionless`` {beta_B, nu_c, alpha, delay}.
+        ``dimensionless``: the groups as :meth:`dfa.model.wall.WallParams.to_dict` names them (damping β_B,
+        delay d, cutoff ν_c, lag α).
     """
     p = controller.params(period)
     out = dict(controller.to_dict())
@@ -74,8 +75,7 @@ def controller_dict(controller: Any, period: float, units: dict[str, str]) -> di
         "amplifier_time_constant": "s",
     }
     no_filter = "no velocity filter"
-    dim = {"beta_B": p.damping, "nu_c": p.cutoff, "alpha": p.lag, "delay": p.delay}
-    out["dimensionless"] = explain_nulls(to_jsonable(dim), {"nu_c": no_filter})
+    out["dimensionless"] = explain_nulls(to_jsonable(p.to_dict()), {"cutoff": no_filter})
     why = {"filter_cutoff": no_filter, "amplifier_bandwidth": "ideal amplifier (no lag)"}
     return explain_nulls(to_jsonable(out), why)
 
@@ -256,9 +256,9 @@ def controller_rows(controller: Any, period: float, units: dict[str, str]) -> li
     Returns
     -------
     list of list of str
-        (quantity, value) rows, read from :func:`controller_dict`.
+        (quantity, value) rows, read from :func:`wall_dict`.
     """
-    c: dict[str, Any] = controller_dict(controller, period, units)
+    c: dict[str, Any] = wall_dict(controller, period, units)
     dim: Any = c["dimensionless"]
     fc, bw = c["filter_cutoff"], c["amplifier_bandwidth"]
     amp = "ideal (no lag)" if bw is None else f"{_g(bw)} Hz (τ_a = 1/(2π f_bw) = {_g(c['amplifier_time_constant'])} s)"
@@ -269,9 +269,9 @@ def controller_rows(controller: Any, period: float, units: dict[str, str]) -> li
         ["computational delay d", f"{d} sample{'s' if d != 1 else ''}"],
         ["velocity filter cutoff f_c", "none" if fc is None else f"{_g(fc)} Hz (first-order low-pass)"],
         ["amplifier bandwidth f_bw", amp],
-        ["β_B = B/(KT)", _g(dim["beta_B"])],
-        ["ν_c = f_c·T", "none" if dim["nu_c"] is None else _g(dim["nu_c"])],
-        ["α = τ_a/T", _g(dim["alpha"])],
+        ["β_B = B/(KT)", _g(dim["damping"])],
+        ["ν_c = f_c·T", "none" if dim["cutoff"] is None else _g(dim["cutoff"])],
+        ["α = τ_a/T", _g(dim["lag"])],
     ]
 
 
