@@ -7,7 +7,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from .._io import check_output_file
-from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device, range_arg
+from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import add_progress_args, emit, mark_operating_point, progress, save_png, table
 from .parsing import UsageError, integer, number
 
@@ -21,14 +21,7 @@ EXAMPLE = "dfa contours --mu 100 --grid 200 --out fig7.npz"
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """μ (or a device), the plane, the largest amplitude, --out and --json."""
-    p.add_argument(
-        "--mu",
-        type=number("--mu", "dimensionless units"),
-        help="μ = m/(K T²), dimensionless (required unless a device is given)",
-    )
     add_plane_args(p, speeds=False)
-    range_arg(p, "--beta-range", [0.0, 1.0], "β")
-    range_arg(p, "--sigma-range", [0.0, 2.0], "σ")
     p.add_argument("--grid", type=integer("--grid"), default=200, metavar="N", help="points per axis (default: 200)")
     p.add_argument(
         "--max-amplitude",

@@ -260,7 +260,15 @@ def range_arg(p: argparse.ArgumentParser, flag: str, default: list[float], what:
 
 
 def add_plane_args(p: argparse.ArgumentParser, speeds: bool) -> None:
-    """A device instead of --mu for `map` and `contours` (μ from the device at K; its (β, σ) is marked), and --plot."""
+    """The (β, σ) plane of `map` and `contours`: --mu (or a device at its K, whose (β, σ) is marked), the β and σ
+    ranges, and --plot."""
+    p.add_argument(
+        "--mu",
+        type=number("--mu", "dimensionless units"),
+        help="μ = m/(K T²), dimensionless (required unless a device is given)",
+    )
+    range_arg(p, "--beta-range", [0.0, 1.0], "β")
+    range_arg(p, "--sigma-range", [0.0, 2.0], "σ")
     g = add_device_group(p, "device (instead of --mu: a catalogue name, or physical values in SI units)")
     if speeds:
         g.add_argument(

@@ -6,7 +6,7 @@ import argparse
 from typing import TYPE_CHECKING
 
 from .._io import check_output_file
-from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device, range_arg
+from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import (
     MAP_TIME_LIMIT_HOURS,
     SIMULATE_NS_PER_SAMPLE,
@@ -35,11 +35,7 @@ EXAMPLE = "dfa map --mu 100 --xi-dot 1 5 --grid 50 --out fig4.npz"
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """μ (or a device), the speeds, the plane, the run length, the wall, --out and the work limits."""
-    p.add_argument(
-        "--mu",
-        type=number("--mu", "dimensionless units"),
-        help="μ = m/(K T²), dimensionless (required unless a device is given)",
-    )
+    add_plane_args(p, speeds=True)
     p.add_argument(
         "--xi-dot",
         dest="xi_dot",
@@ -48,8 +44,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         metavar="V",
         help="initial speeds ξ'0 in ticks per sample (required unless --velocity is given with a device)",
     )
-    range_arg(p, "--beta-range", [0.0, 1.0], "β")
-    range_arg(p, "--sigma-range", [0.0, 2.0], "σ")
     p.add_argument("--grid", type=integer("--grid"), default=100, metavar="N", help="points per axis (default: 100)")
     p.add_argument(
         "--samples", type=integer("--samples"), default=50_000, metavar="N", help="samples per run (default: 50000)"
@@ -59,7 +53,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--no-quantization", action="store_true", help="linear spring, no encoder (default: with the encoder)"
     )
-    add_plane_args(p, speeds=True)
     p.add_argument(
         "--jobs", type=integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default: -1, all cores)"
     )

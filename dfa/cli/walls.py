@@ -43,7 +43,7 @@ def _add_element(g: Any, kind: type[Element], help_text: str | None = None) -> N
     par = kind.parameter
     flag, dest = WALL_FLAGS[kind]
     if kind is Delay:
-        g.add_argument(flag, dest=dest, type=delay, default=0, metavar="N", help=par.help)
+        g.add_argument(flag, dest=dest, type=delay, default=0, metavar=par.metavar, help=par.help)
         return
     unit = par.units[0] if par.units[0] == par.units[1] else f"{par.units[0]} (rotary: {par.units[1]})"
     g.add_argument(flag, dest=dest, type=number(flag, unit), metavar=par.metavar, help=help_text or par.help)
