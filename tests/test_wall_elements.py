@@ -168,3 +168,27 @@ def test_spring_wall_linear_bound_closed_form_equals_the_general_loop(mass, damp
     finally:
         mp.undo()
     assert general == pytest.approx(fast, rel=1e-7)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    mass=st.floats(1e-3, 10.0),
+    damping=st.floats(0.0, 5.0),
+    coulomb=st.floats(1e-3, 1.0),
+    resolution=st.floats(1e-6, 1e-3),
+    period=st.floats(1e-4, 1e-2),
+    velocity=st.floats(0.0, 1.0),
+    d=st.integers(0, 3),
+)
+def test_eq11_spring_k_criterion_closed_form_equals_the_walls_bisection(
+    mass, damping, coulomb, resolution, period, velocity, d
+):
+    """K_max of eq. 11 (the spring's closed form, with delay) is the largest K the criterion itself passes: the
+    bisection on the criterion's verdict that serves every wall (dfa.analysis.limits.kmax.wall_k_criterion)."""
+    from dfa.analysis.limits.closed_form import k_max_criterion
+    from dfa.analysis.limits.kmax import wall_k_criterion
+
+    dev = dfa.Device(mass=mass, damping=damping, coulomb=coulomb, resolution=resolution, period=period)
+    closed = float(k_max_criterion(dev, velocity, d))
+    general = wall_k_criterion(dev, Wall.of(1.0, delay=d), velocity)
+    assert general == pytest.approx(closed, rel=1e-9, abs=1e-300)
