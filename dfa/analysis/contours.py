@@ -32,6 +32,7 @@ import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -117,7 +118,7 @@ class ContourMaps:
         line = CriticalLine.of(0.0)
         return line.beta0, line.sigma0
 
-    def plot(self, ax=None):
+    def plot(self, ax: Any = None) -> Any:
         """Amplitude and frequency of both families (:func:`dfa.figures.contour_plot`, paper Fig. 7).
 
         Parameters
@@ -134,7 +135,7 @@ class ContourMaps:
 
         return contour_plot(self, ax)
 
-    def to_xarray(self):
+    def to_xarray(self) -> Any:
         """The maps as an :class:`xarray.Dataset` with labelled dims ``sigma``, ``beta``.
 
         One variable per array (amplitudes in ticks, frequencies in rad/sample; NaN where a
@@ -149,6 +150,12 @@ class ContourMaps:
         ------
         DFAError
             When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
+
+        Examples
+        --------
+        >>> ds = contour_maps(5.0, grid=3).to_xarray()
+        >>> ds["large_amplitude"].dims, ds["small_frequency"].attrs["units"], ds["beta"].attrs["units"]
+        (('sigma', 'beta'), 'rad/sample', '1')
         """
         from ..results.xarray import BETA_ATTRS, SIGMA_ATTRS, import_xarray
 
@@ -310,8 +317,8 @@ def check_contour_memory(grid: int, max_amplitude: float, names: tuple[str, str]
 def contour_maps(
     mu: float,
     *,
-    beta_range=(0.0, 1.0),
-    sigma_range=(0.0, 2.0),
+    beta_range: tuple[float, float] = (0.0, 1.0),
+    sigma_range: tuple[float, float] = (0.0, 2.0),
     grid: int = 200,
     max_amplitude: float = 200.0,
     progress: bool = False,
@@ -373,7 +380,7 @@ def contour_maps(
     return ContourMaps(m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax, status, detail)
 
 
-def _closed_form_detail(small, large) -> str:
+def _closed_form_detail(small: Any, large: Any) -> str:
     """Which grid points the closed forms flag (β = σ = 0, solver failures) and why; ``""`` when none."""
     notes = []
     for name, cf in (("eq. 42-43", small), ("eq. 44-45", large)):

@@ -129,9 +129,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..checks import (
     DELAY_FIX,
@@ -154,6 +155,9 @@ from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.status import CriterionStatus
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
 __all__ = [
     "CriticalLine",
     "CriterionResult",
@@ -173,12 +177,18 @@ REGION_DESCRIPTIONS = {s.region: s.message for s in CriterionStatus}
 _REGION_CODES = np.array(["a", "b", "c", "d", "e"])
 
 
-def _anchor(quantized, delay):
+def _anchor(quantized: ArrayLike, delay: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """(σ₀, β₀) of the spring's critical line: σ₀ = ½ with quantization (0 without), β₀ = ½ + d (broadcast)."""
     return np.where(np.asarray(quantized, dtype=bool), 0.5, 0.0), 0.5 + np.asarray(delay, dtype=float)
 
 
-def _margin(beta, sigma, speed, sigma0, beta0):
+def _margin(
+    beta: float | np.ndarray,
+    sigma: float | np.ndarray,
+    speed: float | np.ndarray,
+    sigma0: float | np.ndarray,
+    beta0: float | np.ndarray,
+) -> float | np.ndarray:
     """(β − β₀)V + (σ − σ₀): the left side of eq. 6 (eq. 10's line is margin = 0). The one evaluation every verdict uses."""
     return (beta - beta0) * speed + (sigma - sigma0)
 
@@ -224,7 +234,7 @@ def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *
     return math.sqrt(v * v + 2.0 * float(spring_energy(x, quantized)) / m)
 
 
-def spring_energy(xi, quantize: bool = True):
+def spring_energy(xi: ArrayLike, quantize: bool = True) -> float | np.ndarray:
     """Pseudo-elastic energy H_c(ξ) = ½ξ² + ½(p − p²), p = ξ − ⌊ξ⌋, of the quantized spring (eq. 18), vectorised.
 
     The exact integral of the restoring staircase ⌊s⌋ + ½ from 0 to ξ; ½ξ² without quantization.
@@ -324,7 +334,7 @@ class CriticalLine:
         """
         return replace(self, xi_dot=xi_dot)
 
-    def regions(self, beta, sigma) -> np.ndarray:
+    def regions(self, beta: ArrayLike, sigma: ArrayLike) -> np.ndarray:
         """Region letters a-e (paper Fig. 3) of (β, σ) at this line's speed and corner (vectorised, broadcast).
 
         Parameters
@@ -362,7 +372,7 @@ class CriticalLine:
         out = self.sigma0 + self.xi_dot * (self.beta0 - np.asarray(beta, dtype=float))
         return float(out) if out.ndim == 0 else out
 
-    def margin(self, beta, sigma) -> float | np.ndarray:
+    def margin(self, beta: ArrayLike, sigma: ArrayLike) -> float | np.ndarray:
         """(β − β₀)V + (σ − σ₀) at (β, σ) (vectorised): >= 0 on or above the line (eq. 6, 10).
 
         Parameters
@@ -522,7 +532,7 @@ class CriterionResult(Result):
             "cutoff": "no velocity filter",
         }
 
-    def plot(self, ax=None, **kwargs):
+    def plot(self, ax: Axes | None = None, **kwargs: Any) -> Axes:
         """The (β, σ) plane with regions a-e and this point (:func:`dfa.figures.regions_plot`); returns the Axes.
 
         Parameters
@@ -542,7 +552,9 @@ class CriterionResult(Result):
         return regions_plot(self, ax, **kwargs)
 
 
-def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
+def classify_region(
+    beta: ArrayLike, sigma: ArrayLike, xi_dot: ArrayLike, quantized: ArrayLike = True, delay: ArrayLike = 0
+) -> np.ndarray:
     """Vectorised region a-e of the criterion over arrays of β, σ, speed V and delay d (broadcast).
 
     ``xi_dot`` is the (energy-equivalent) speed V; every argument, including
@@ -608,7 +620,9 @@ def classify_region(beta, sigma, xi_dot, quantized=True, delay=0) -> np.ndarray:
     return region_of(b, s, v, s0, b0)
 
 
-def region_of(b, s, v, s0, b0) -> np.ndarray:
+def region_of(
+    b: float | np.ndarray, s: float | np.ndarray, v: float | np.ndarray, s0: float | np.ndarray, b0: float | np.ndarray
+) -> np.ndarray:
     """Region letters a-e of (β, σ) at speed V for the critical line through (β₀, σ₀) (no validation, broadcast).
 
     The one rule behind every verdict: a (β >= β₀, σ >= σ₀), b (β >= β₀, σ < σ₀), c (β < β₀, σ < σ₀),

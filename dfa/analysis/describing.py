@@ -48,14 +48,19 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from functools import lru_cache
+from typing import TYPE_CHECKING, Any
 
 import control
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy import integrate
 
 from ..checks import check_positive, check_positive_array, check_real_array, check_sigma, format_value
 from ..core import dfcore
 from ..errors import DFATypeError, DFAValueError
+
+if TYPE_CHECKING:
+    import sympy as sp
 
 __all__ = [
     "quantizer_df",
@@ -79,7 +84,7 @@ DF_ENVELOPE = 0.38
 
 # ---------------------------------------------------------------- derivations
 @lru_cache(maxsize=1)
-def _level_derivation():
+def _level_derivation() -> tuple[sp.Symbol, sp.Symbol, sp.Expr, sp.Expr, sp.Expr]:
     """sympy: fundamental of a unit relay with dead zone k driven by M sin θ.
 
     Returns the sympy symbols (M, k) and expressions (N_k(M), dN_k/dM), where
@@ -115,7 +120,7 @@ def _level_functions() -> tuple[Callable, Callable]:
     return sp.lambdify((k, M), stable, "numpy"), sp.lambdify((k, M), dlevel, "numpy")
 
 
-def quantizer_df_expression():
+def quantizer_df_expression() -> sp.Expr:
     """sympy expression of eq. 41, D(M), with the sum over the ⌊M⌋ crossed levels.
 
     Examples
@@ -133,7 +138,7 @@ def quantizer_df_expression():
 
 
 @lru_cache(maxsize=1)
-def _coulomb_derivation():
+def _coulomb_derivation() -> tuple[sp.Symbol, sp.Symbol, sp.Expr]:
     import sympy as sp
 
     A, sig, th = sp.symbols("A sigma theta", positive=True)
@@ -151,7 +156,7 @@ def _coulomb_derivation():
     return A, sig, sp.simplify(a1 / A)
 
 
-def coulomb_df_expression():
+def coulomb_df_expression() -> sp.Expr:
     """sympy expression of the Coulomb describing function 4σ/(πA) of velocity amplitude A.
 
     Examples
@@ -171,7 +176,7 @@ def _coulomb_function() -> Callable:
 
 
 # ------------------------------------------------------------------ numerics
-def _amplitudes(amplitude, name: str = "amplitude") -> np.ndarray:
+def _amplitudes(amplitude: ArrayLike, name: str = "amplitude") -> np.ndarray:
     fix = (
         "give the sinusoid's amplitude in encoder ticks"
         if name == "amplitude"
@@ -206,7 +211,7 @@ def _level_sum(m: np.ndarray, fn: Callable, budget: int = 4_000_000) -> np.ndarr
     return out.reshape(m.shape)
 
 
-def quantizer_df(amplitude):
+def quantizer_df(amplitude: ArrayLike) -> Any:  # float for one amplitude, else numpy.ndarray
     """Describing function D(M) of the quantizer q(ξ) = ⌊ξ⌋ + ½ (paper eq. 41).
 
     Parameters
@@ -247,7 +252,7 @@ def quantizer_df(amplitude):
     return float(out) if out.ndim == 0 else out
 
 
-def _check_finite_df(name: str, m: np.ndarray, out) -> None:
+def _check_finite_df(name: str, m: np.ndarray, out: ArrayLike) -> None:
     """Refuse amplitudes so small that the describing function (∝ 1/M) overflows a float."""
     bad = ~np.isfinite(np.asarray(out))
     if np.any(bad):
@@ -258,7 +263,7 @@ def _check_finite_df(name: str, m: np.ndarray, out) -> None:
         )
 
 
-def quantizer_df_derivative(amplitude):
+def quantizer_df_derivative(amplitude: ArrayLike) -> float | np.ndarray:
     """dD/dM (1/tick) of eq. 41, from the sympy derivative of each level's term.
 
     Infinite from the right at integer M (a new level's √ starts there); this
@@ -392,7 +397,7 @@ def quantizer_df_peak() -> tuple[float, float]:
     return _interval_peak(1)
 
 
-def coulomb_df(amplitude, sigma: float):
+def coulomb_df(amplitude: ArrayLike, sigma: float) -> float | np.ndarray:
     """Describing function 4σ/(πA) of Coulomb friction σ·sgn(v) at velocity amplitude A.
 
     Parameters
@@ -425,7 +430,7 @@ def coulomb_df(amplitude, sigma: float):
     return float(out) if out.ndim == 0 else out
 
 
-def coulomb_equivalent_damping(sigma: float, amplitude, omega):
+def coulomb_equivalent_damping(sigma: float, amplitude: ArrayLike, omega: ArrayLike) -> float | np.ndarray:
     """Equivalent viscous damping 4σ/(πMω) of Coulomb friction on ξ = M sin ωτ (eq. 40).
 
     Parameters
@@ -467,7 +472,9 @@ def coulomb_equivalent_damping(sigma: float, amplitude, omega):
     return coulomb_df(speed, sigma)
 
 
-def numeric_df(f: Callable[[np.ndarray], np.ndarray], amplitude, jumps: Sequence[float] = (), tol: float = 1e-13):
+def numeric_df(
+    f: Callable[[float], float], amplitude: ArrayLike, jumps: Sequence[float] = (), tol: float = 1e-13
+) -> float | np.ndarray:
     """Describing function of an odd static nonlinearity by quadrature over one period.
 
     Computes b1/M with b1 = (1/π)∫₀^{2π} f(M sin θ) sin θ dθ = (4/π)∫₀^{π/2} f(M sin θ) sin θ dθ
@@ -517,7 +524,7 @@ def numeric_df(f: Callable[[np.ndarray], np.ndarray], amplitude, jumps: Sequence
     if tol < 1e-13:
         raise DFAValueError(f"tol = {tol!r} is invalid: it must be at least 1e-13 (the quadrature's finest); use 1e-13")
 
-    def fval(x) -> float:  # x: the input, a numpy float as before
+    def fval(x: float) -> float:  # x: the input, a numpy float as before
         try:
             y = float(f(x))
         except (TypeError, ValueError, OverflowError):
@@ -560,14 +567,14 @@ class QuantizerNonlinearity(control.DescribingFunctionNonlinearity):
     True
     """
 
-    def __call__(self, x):
+    def __call__(self, x: ArrayLike) -> float | np.ndarray:
         out = np.floor(np.asarray(x, dtype=float)) + 0.5
         return float(out) if out.ndim == 0 else out
 
     def _isstatic(self) -> bool:
         return True
 
-    def describing_function(self, A):
+    def describing_function(self, A: ArrayLike) -> float | np.ndarray:
         """Exact D(A) of eq. 41 (real), vectorised over the amplitude A > 0 in ticks.
 
         Parameters
@@ -604,14 +611,14 @@ class CoulombNonlinearity(control.DescribingFunctionNonlinearity):
         super().__init__()
         self.sigma = check_sigma(sigma)
 
-    def __call__(self, v):
+    def __call__(self, v: ArrayLike) -> float | np.ndarray:
         out = self.sigma * np.sign(np.asarray(v, dtype=float))
         return float(out) if out.ndim == 0 else out
 
     def _isstatic(self) -> bool:
         return True
 
-    def describing_function(self, A):
+    def describing_function(self, A: ArrayLike) -> float | np.ndarray:
         """Return 4σ/(πA), vectorised over the velocity amplitude A > 0.
 
         Parameters

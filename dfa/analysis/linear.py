@@ -72,9 +72,12 @@ Examples
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from numpy.polynomial import chebyshev
+from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from ..checks import check_beta, check_delay, check_mu, check_nonnegative, check_positive, check_rate, check_type
@@ -145,7 +148,7 @@ def characteristic_polynomial(mu: float, beta: float, *, wall: WallParams | None
     return coef
 
 
-def _rho(a, kappa, d: int):
+def _rho(a: float | np.ndarray, kappa: float | np.ndarray, d: int) -> np.ndarray:
     """Spectral radius of D + κN (monic, degree d + 2), vectorised over a and κ (batched companion matrices)."""
     a, kappa = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(kappa, dtype=float))
     c1, c0, p = zoh_coefficients(a.ravel())
@@ -163,7 +166,7 @@ def _rho(a, kappa, d: int):
     return rho.reshape(a.shape)
 
 
-def _as_array(name: str, value, check) -> np.ndarray:
+def _as_array(name: str, value: ArrayLike, check: Callable[[str, Any], float]) -> np.ndarray:
     """``value`` as a float array, every element passing ``check(name, element)`` (scalars: their own type check)."""
     if np.ndim(value) == 0:
         return np.asarray(check(name, value))
@@ -184,7 +187,7 @@ def _beyond_spring(wall: WallParams) -> bool:
     return wall.damping > 0.0 or wall.lag > 0.0
 
 
-def spectral_radius(mu, beta, *, wall: WallParams | None = None):
+def spectral_radius(mu: ArrayLike, beta: ArrayLike, *, wall: WallParams | None = None) -> float | np.ndarray:
     """Largest root modulus of :func:`characteristic_polynomial` (vectorised over μ and β).
 
     Parameters
@@ -222,7 +225,7 @@ def spectral_radius(mu, beta, *, wall: WallParams | None = None):
     return float(out) if out.ndim == 0 else out
 
 
-def linear_stable(mu, beta, *, wall: WallParams | None = None):
+def linear_stable(mu: ArrayLike, beta: ArrayLike, *, wall: WallParams | None = None) -> bool | np.ndarray:
     """True where the linear sampled loop is asymptotically stable (spectral radius < 1), vectorised.
 
     Parameters as :func:`spectral_radius` (``wall``: a :class:`WallParams`, or None for the spring).
@@ -304,7 +307,7 @@ def _crossings(a: float, d: int) -> list[float]:
     return sorted(k for k in out if k > 0.0 and math.isfinite(k))
 
 
-def _polish(f, t: float) -> float:
+def _polish(f: Callable[[float], float], t: float) -> float:
     """Refine a root t of f (a candidate from the Chebyshev roots) by bisection on a sign change nearby."""
     f0 = f(t)
     if f0 == 0.0:
@@ -361,7 +364,9 @@ def _critical_kappa_scan(a: float, d: int) -> float:
     return float(brentq(lambda k: float(_rho(a, k, d)) - 1.0, ks[i - 1], ks[i], xtol=1e-300, rtol=1e-14))
 
 
-def critical_stiffness(mass, damping, period, *, wall: Wall | None = None):
+def critical_stiffness(
+    mass: ArrayLike, damping: ArrayLike, period: ArrayLike, *, wall: Wall | None = None
+) -> float | np.ndarray:
     """Exact stability limit K_crit of the linear sampled spring, all Jury conditions, with delay (spec section 8).
 
     The smallest K > 0 at which a closed-loop root of :func:`characteristic_polynomial`

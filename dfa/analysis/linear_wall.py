@@ -396,7 +396,7 @@ def _ray_intervals(p0: np.ndarray, q: np.ndarray, args: tuple) -> list[tuple[flo
     return out
 
 
-def _check_against_grid(p0, q, ks, intervals, args) -> None:
+def _check_against_grid(p0: Any, q: Any, ks: Any, intervals: Any, args: Any) -> None:
     """The stable set must agree with the spectral radius on an independent geometric grid of κ."""
     grid = np.geomspace(ks[0] * 1e-2, ks[-1] * 1e2, 241)
     near = np.min(np.abs(np.log(grid[:, None] / ks[None, :])), axis=1) < 1e-6
@@ -639,6 +639,86 @@ class StableRegion:
             if self.rows
             else None,
         }
+
+    def to_xarray(self, rotary: bool = False) -> Any:
+        """The region as an :class:`xarray.Dataset` with the labelled dim ``virtual_damping`` (B).
+
+        Variables over ``virtual_damping``: ``k_crit`` (K_max(B), the top of the stable interval from K = 0;
+        0 where there is none) and ``row_status`` (the status code at each B); ``intervals`` over
+        (``virtual_damping``, ``interval``, ``end``) holds every stable interval (K_lo, K_hi) at each B, NaN
+        past the last one of that B. Attributes hold the device's m, b and T (units in ``mass_units``,
+        ``damping_units``, ``period_units``), the wall held fixed (``delay`` in samples, ``filter_cutoff`` and
+        ``amplifier_bandwidth`` in Hz, absent without one) and the status.
+
+        Parameters
+        ----------
+        rotary : bool, optional
+            Label the values with a rotary device's units (N·m/rad, N·m·s/rad, kg·m²) instead of the linear
+            ones (N/m, N·s/m, kg); the region holds the device's numbers, not the device. Default False.
+
+        Returns
+        -------
+        xarray.Dataset
+            K_max(B), the status and the stable intervals at each B, with the coordinate ``virtual_damping``.
+
+        Raises
+        ------
+        DFAError
+            When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
+        DFATypeError
+            When ``rotary`` is not True or False.
+
+        Examples
+        --------
+        >>> ds = stable_region(1.0, 2.0, 1e-3, [0.0, 1.0]).to_xarray()
+        >>> ds["k_crit"].dims, ds["k_crit"].attrs["units"], ds["virtual_damping"].attrs["units"]
+        (('virtual_damping',), 'N/m', 'N·s/m')
+        """
+        from ..checks import check_bool
+        from ..model.device import device_units
+        from ..results.xarray import import_xarray, netcdf_attrs, physical_attrs
+
+        rot = check_bool("rotary", rotary, "pass True for a rotary device's units, False for SI")
+        u = device_units(rot)
+        xr = import_xarray()
+        codes = np.array([r.status.value for r in self.rows], dtype=str)
+        n = max([len(r.intervals) for r in self.rows], default=0)
+        intervals = np.full((len(self.rows), n, 2), np.nan)
+        for i, r in enumerate(self.rows):
+            intervals[i, : len(r.intervals)] = r.intervals
+        stable = physical_attrs("stable stiffness intervals (K_lo, K_hi)", u["stiffness"], comment="NaN: no more")
+        first = self.rows[0] if self.rows else None
+        return xr.Dataset(
+            {
+                "k_crit": ("virtual_damping", np.array(self.k_crit), physical_attrs("K_max(B)", u["stiffness"])),
+                "row_status": ("virtual_damping", codes, {"long_name": "status of the stable set at each B"}),
+                "intervals": (("virtual_damping", "interval", "end"), intervals, stable),
+            },
+            coords={
+                "virtual_damping": (
+                    "virtual_damping",
+                    np.array(self.virtual_damping),
+                    physical_attrs("virtual damping B", u["damping"]),
+                ),
+                "end": ("end", np.array(["low", "high"])),
+            },
+            attrs=netcdf_attrs(
+                {
+                    "rotary": rot,
+                    "mass": None if first is None else first.mass,
+                    "damping": None if first is None else first.damping,
+                    "period": None if first is None else first.period,
+                    "mass_units": u["mass"],
+                    "damping_units": u["damping"],
+                    "period_units": u["period"],
+                    "delay": None if first is None else first.wall["delay"],
+                    "filter_cutoff": None if first is None else first.wall["filter_cutoff"],
+                    "amplifier_bandwidth": None if first is None else first.wall["amplifier_bandwidth"],
+                    "status": self.status,
+                    "status_message": self.status.message,
+                }
+            ),
+        )
 
 
 def stable_region(

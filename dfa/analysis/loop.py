@@ -39,9 +39,11 @@ True
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import control
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..checks import (
     check_choice,
@@ -60,6 +62,9 @@ from ..results.frozen import check_shape, freeze_fields
 from ..results.jsonable import to_jsonable
 from ..results.status import NyquistStatus
 from .describing import coulomb_equivalent_damping, quantizer_df
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 __all__ = [
     "LOOP_MODELS",
@@ -88,11 +93,13 @@ def check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int]
     return m, d, n
 
 
-def _omega(omega, name: str = "omega") -> np.ndarray:
+def _omega(omega: ArrayLike, name: str = "omega") -> np.ndarray:
     return check_positive_array(name, omega, "give frequencies in rad per sample")
 
 
-def equivalent_damping(params: Params, amplitude=None, omega=None):
+def equivalent_damping(
+    params: Params, amplitude: ArrayLike | None = None, omega: ArrayLike | None = None
+) -> float | np.ndarray:
     """β_eq = β + 4σ/(πMω) of eq. 40, broadcast over ``amplitude`` M and ``omega`` ω.
 
     With σ = 0, ``amplitude`` and ``omega`` may be omitted (β_eq = β).
@@ -140,7 +147,7 @@ def device_zoh_tf(
     return control.c2d(device_tf(params, amplitude, omega), 1.0, method="zoh")
 
 
-def zoh_pulse_response(mu, beta_eq, omega):
+def zoh_pulse_response(mu: ArrayLike, beta_eq: ArrayLike, omega: ArrayLike) -> complex | np.ndarray:
     """G_d(e^{jω}) of the ZOH-discretised device 1/(μ s² + β_eq s), closed form (vectorised).
 
     Parameters
@@ -161,13 +168,13 @@ def zoh_pulse_response(mu, beta_eq, omega):
 
 def loop_response(
     params: Params,
-    omega,
-    amplitude=None,
+    omega: ArrayLike,
+    amplitude: ArrayLike | None = None,
     *,
     model: str = "half-delay",
     pade_order: int = 4,
     wall: WallParams | None = None,
-):
+) -> complex | np.ndarray:
     """Frequency response L(jω; M) of the linear part of the loop (eq. 36).
 
     Parameters
@@ -256,9 +263,9 @@ def loop_system(
     *,
     model: str = "pade",
     pade_order: int = 4,
-    omega_grid=None,
+    omega_grid: ArrayLike | None = None,
     wall: WallParams | None = None,
-):
+) -> control.TransferFunction | control.FrequencyResponseData:
     """The linear part as a python-control system, for python-control's own tools.
 
     ``"pade"`` gives a continuous TransferFunction, ``"zoh"`` a discrete one
@@ -446,7 +453,7 @@ class NyquistLocusResponse:
         )  # fmt: skip
         return complex(out)
 
-    def plot(self, ax=None, **kwargs):
+    def plot(self, ax: Axes | None = None, **kwargs: Any) -> Axes:
         """Nyquist plot against the critical locus (:func:`dfa.figures.nyquist_plot`, paper Fig. 6); returns the Axes.
 
         Parameters
@@ -490,12 +497,12 @@ def _solver_crossings(
 
 def nyquist_locus_response(
     params: Params,
-    amplitudes=None,
-    omega=None,
+    amplitudes: ArrayLike | None = None,
+    omega: ArrayLike | None = None,
     *,
     model: str = "half-delay",
     pade_order: int = 4,
-    locus_amplitude=None,
+    locus_amplitude: ArrayLike | None = None,
     wall: WallParams | None = None,
 ) -> NyquistLocusResponse:
     """Nyquist data of the loop L(jω; M) and the critical locus −1/D(M) (paper Fig. 6).
@@ -546,8 +553,10 @@ def nyquist_locus_response(
     wp, _ctl, d = resolve_wall(wall)
     m, d, n = check_model(model, d, pade_order)
     w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega)
-    la = check_real_array(
-        "locus_amplitude", np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude
+    la = np.atleast_1d(  # one amplitude: a locus of one point (a 0-d array was refused by the result's shape check)
+        check_real_array(
+            "locus_amplitude", np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude
+        )
     )
     locus = -1.0 / quantizer_df(la)
     crossings: list[tuple[float, float, complex]] = []

@@ -53,11 +53,13 @@ from __future__ import annotations
 import math
 import os
 import zipfile
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._io import atomic_open, check_memory
 from .._parallel import PARALLEL_BACKENDS, deal, gather, run_in_order
@@ -89,6 +91,10 @@ from .simulation import (
     preload_position,
     run_points,
 )
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.axes import Axes
 
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
 
@@ -205,7 +211,7 @@ class StabilityMap:
         b0, s0 = self.wall.corner(self.quantize)
         return CriticalLine(xi_dot, b0, s0)
 
-    def plot(self, ax=None, **kwargs):
+    def plot(self, ax: Sequence[Axes] | None = None, **kwargs: Any) -> list[Axes]:
         """Outcome per (β, σ), one panel per speed (:func:`dfa.figures.stability_map_plot`, paper Fig. 4).
 
         Parameters
@@ -224,7 +230,7 @@ class StabilityMap:
 
         return stability_map_plot(self, ax, **kwargs)
 
-    def to_xarray(self):
+    def to_xarray(self) -> xr.Dataset:
         """The map as an :class:`xarray.Dataset` with labelled dims ``xi_dot``, ``sigma``, ``beta``.
 
         Variables ``outcome`` (codes, ``flag_meanings`` names them), ``amplitude`` (ticks) and
@@ -422,7 +428,7 @@ def _wall_arrays(wall: WallParams) -> dict[str, Any]:
     return {"wall": np.array([wall.damping, cutoff, wall.lag], dtype=float)}
 
 
-def _wall_from(z, delay: int) -> WallParams:
+def _wall_from(z: np.lib.npyio.NpzFile, delay: int) -> WallParams:
     """The wall of a map file (``wall``, or ``controller`` as earlier files named it; the spring when
     neither is there)."""
     key = next((k for k in ("wall", "controller") if k in z.files), None)
@@ -432,7 +438,20 @@ def _wall_from(z, delay: int) -> WallParams:
     return WallParams.of(damping=damping, delay=delay, cutoff=None if math.isnan(cutoff) else cutoff, lag=lag)
 
 
-def _run_chunk(mu, betas, sigmas, x0s, v0s, samples, wall, quantize, bound, stable_amplitude, growth, settle):
+def _run_chunk(
+    mu: float,
+    betas: np.ndarray,
+    sigmas: np.ndarray,
+    x0s: np.ndarray,
+    v0s: np.ndarray,
+    samples: int,
+    wall: WallParams,
+    quantize: bool,
+    bound: float,
+    stable_amplitude: float,
+    growth: float,
+    settle: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Codes, amplitudes and frequencies of one chunk of points (one compiled call; releases the GIL)."""
     mus = np.full(betas.size, mu)
     res = run_points(mus, betas, sigmas, x0s, v0s, samples, wall, quantize, bound, stable_amplitude, growth, settle)
@@ -441,10 +460,10 @@ def _run_chunk(mu, betas, sigmas, x0s, v0s, samples, wall, quantize, bound, stab
 
 def stability_map(
     mu: float,
-    xi_dots,
+    xi_dots: ArrayLike,
     *,
-    beta_range=(0.0, 1.0),
-    sigma_range=(0.0, 2.0),
+    beta_range: tuple[float, float] = (0.0, 1.0),
+    sigma_range: tuple[float, float] = (0.0, 2.0),
     grid: int = 100,
     samples: int = 50_000,
     quantize: bool = True,
@@ -551,7 +570,7 @@ def stability_map(
     return StabilityMap(m, speeds, beta, sigma, *out, wall=w)
 
 
-def _check_speeds(xi_dots) -> tuple[float, ...]:
+def _check_speeds(xi_dots: ArrayLike) -> tuple[float, ...]:
     speeds = tuple(
         check_speed("xi_dot", v, "ticks per sample") for v in np.atleast_1d(np.asarray(xi_dots, dtype=object))
     )
@@ -560,7 +579,9 @@ def _check_speeds(xi_dots) -> tuple[float, ...]:
     return speeds
 
 
-def _points(mu: float, beta, sigma, speeds, preload: bool) -> tuple[np.ndarray, ...]:
+def _points(
+    mu: float, beta: np.ndarray, sigma: np.ndarray, speeds: tuple[float, ...], preload: bool
+) -> tuple[np.ndarray, ...]:
     """β, σ, ξ0, ξ'0 of every run: grid rows σ, columns β, one grid per speed (or per preload)."""
     bb, ss = np.meshgrid(beta, sigma)
     pts_b = np.tile(bb.ravel(), len(speeds))

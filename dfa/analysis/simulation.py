@@ -114,11 +114,13 @@ Examples
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..checks import (
     check_beta,
@@ -141,6 +143,11 @@ from ..results.frozen import check_shape, freeze_fields
 from ..results.jsonable import to_jsonable
 from ..results.status import BatchStatus, SimulationOutcome
 from .criterion import spring_energy
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from ..model.device import Device
 
 __all__ = [
     "OUTCOMES",
@@ -170,7 +177,7 @@ MAX_DEFAULT_SAMPLES = 10_000_000
 MAX_RECORD_BYTES = 2 * 1024**3
 
 
-def stored_energy(xi, xi_dot, mu: float, quantize: bool = True):
+def stored_energy(xi: ArrayLike, xi_dot: ArrayLike, mu: float, quantize: bool = True) -> float | np.ndarray:
     """Total stored energy H_T = ½μξ'² + H_c(ξ) (paper eq. 18-19), vectorised.
 
     H_c(ξ) = ½ξ² + ½(p − p²), p = ξ − ⌊ξ⌋, is the exact integral of the
@@ -319,7 +326,9 @@ def net_damping(mu: float, beta: float, wall: WallParams) -> float:
     return net - wall.lag + wall.damping * damper_gain(mu, wall)
 
 
-def _check_run(mu, beta, sigma, xi_dot0, xi0) -> tuple[float, float, float, float, float]:
+def _check_run(
+    mu: float, beta: float, sigma: float, xi_dot0: float, xi0: float
+) -> tuple[float, float, float, float, float]:
     """The validated inputs of one run (Table 1 groups, initial state), shared by simulate and default_samples."""
     return (
         check_mu(mu),
@@ -518,7 +527,7 @@ class SimulationResult(Result):
         """The wall's computational delay d in samples."""
         return self.wall.delay
 
-    def plot(self, ax=None, **kwargs):
+    def plot(self, ax: Axes | None = None, **kwargs: Any) -> Axes:
         """Displacement against time (:func:`dfa.figures.trajectory_plot`, paper Fig. 5); returns the Axes.
 
         Parameters
@@ -551,7 +560,7 @@ class SimulationResult(Result):
         """Period of the measured cycle in samples, 2π/ω."""
         return None if not self.frequency else 2.0 * math.pi / self.frequency
 
-    def physical(self, device, stiffness: float) -> dict[str, object]:
+    def physical(self, device: Device, stiffness: float) -> dict[str, object]:
         """Force step and frequency in physical units for a :class:`~dfa.model.device.Device` at stiffness K.
 
         Parameters
@@ -658,7 +667,24 @@ def _tail_length(samples: int, mu: float) -> int:
 CHUNK = 1 << 22
 
 
-def _run_chunked(m, b, s, x0, v0, n, d, quantize, bnd, tail_len, rx, rv, re, stats, *, progress=False):
+def _run_chunked(
+    m: float,
+    b: float,
+    s: float,
+    x0: float,
+    v0: float,
+    n: int,
+    d: int,
+    quantize: bool,
+    bnd: float,
+    tail_len: int,
+    rx: np.ndarray,
+    rv: np.ndarray,
+    re: np.ndarray,
+    stats: np.ndarray,
+    *,
+    progress: bool = False,
+) -> tuple[int, int]:
     """The kernel run of :func:`simulate` in pieces of at most ``CHUNK`` samples, bit for bit the single call.
 
     The same :func:`dfa.core.kernel.start` / :func:`~dfa.core.kernel.advance` / :func:`~dfa.core.kernel.finish` steps as
@@ -694,7 +720,7 @@ def _run_chunked(m, b, s, x0, v0, n, d, quantize, bnd, tail_len, rx, rv, re, sta
     return done, rest
 
 
-def _chunk_spans(n: int, tail_start: int):
+def _chunk_spans(n: int, tail_start: int) -> Iterator[tuple[int, int, int]]:
     """(first, end, segment) of each kernel call: the eight envelope segments, cut where the tail starts and
     every ``CHUNK`` samples (the cuts :func:`dfa.core.kernel.simulate_kernel` makes, and more)."""
     for k in range(kernel.NSEG):
@@ -856,7 +882,17 @@ def check_quantize(quantize: object) -> bool:
     return check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
 
 
-def wall_run_codes(mu, beta, sigma, x0, v0, ns, delay, bound, walls) -> np.ndarray:
+def wall_run_codes(
+    mu: np.ndarray,
+    beta: np.ndarray,
+    sigma: np.ndarray,
+    x0: np.ndarray,
+    v0: np.ndarray,
+    ns: np.ndarray,
+    delay: int,
+    bound: np.ndarray,
+    walls: Sequence[WallParams],
+) -> np.ndarray:
     """Outcome codes (:mod:`dfa.core.kernel`) of runs, each with its own wall, in one compiled call.
 
     Run i is what :func:`simulate` makes of (``mu[i]``, …, ``v0[i]``), ``ns[i]`` samples, bound ``bound[i]`` and
@@ -882,7 +918,7 @@ def _wall_args(wall: WallParams) -> tuple[float, float, bool, float]:
 
 
 def _measured(
-    code, amp, freq, centre, fpp, done, rest, stats
+    code: int, amp: float, freq: float, centre: float, fpp: float, done: int, rest: int, stats: np.ndarray
 ) -> tuple[SimulationOutcome, float, float | None, float, int | None, int, float, float, float, tuple]:
     """Outcome … envelope fields of a :class:`SimulationResult` (in field order) from the kernel's outputs."""
     return (
@@ -899,7 +935,9 @@ def _measured(
     )
 
 
-def check_rules(bound, stable_amplitude, growth, settle) -> tuple[float, float, float, float]:
+def check_rules(
+    bound: float, stable_amplitude: float, growth: float, settle: float
+) -> tuple[float, float, float, float]:
     """Validated outcome rules (bound > 0, stable_amplitude >= 0, growth > 1, settle >= 0) of a simulation or map."""
     bnd = check_bound(bound)
     sa = check_nonnegative("stable_amplitude", stable_amplitude)
@@ -995,7 +1033,9 @@ class SimulationBatch(Result):
         return {"rest_sample": "a run that did not come to rest has no rest sample"}
 
 
-def _check_points(mu, beta, sigma, xi_dot0, xi0) -> tuple[np.ndarray, ...]:
+def _check_points(
+    mu: ArrayLike, beta: ArrayLike, sigma: ArrayLike, xi_dot0: ArrayLike, xi0: ArrayLike
+) -> tuple[np.ndarray, ...]:
     """Broadcast the per-run inputs to 1-D float arrays, each element checked as :func:`simulate` checks it."""
     try:
         arrs = np.broadcast_arrays(
@@ -1017,12 +1057,12 @@ def _check_points(mu, beta, sigma, xi_dot0, xi0) -> tuple[np.ndarray, ...]:
 
 
 def simulate_batch(
-    mu,
-    beta,
-    sigma,
-    xi_dot0,
+    mu: ArrayLike,
+    beta: ArrayLike,
+    sigma: ArrayLike,
+    xi_dot0: ArrayLike,
     samples: int,
-    xi0=0.0,
+    xi0: ArrayLike = 0.0,
     quantize: bool = True,
     *,
     bound: float | None = None,
@@ -1086,7 +1126,20 @@ def simulate_batch(
     )
 
 
-def run_points(mu, beta, sigma, x0, v0, n, wall, quantize, bound, stable_amplitude, growth, settle):
+def run_points(
+    mu: np.ndarray,
+    beta: np.ndarray,
+    sigma: np.ndarray,
+    x0: np.ndarray,
+    v0: np.ndarray,
+    n: int | np.ndarray,
+    wall: WallParams,
+    quantize: bool,
+    bound: float | np.ndarray,
+    stable_amplitude: float,
+    growth: float,
+    settle: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Validated float arrays in, kernel outputs out: (codes, amps, freqs, centres, fpps, done, rest, stats).
 
     ``n`` (samples) and ``bound`` are one value for every run or one per run. The spring runs in one call of

@@ -47,9 +47,12 @@ Examples
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..checks import check_bool, check_choice, check_jobs
 from ..model.device import Params
@@ -59,7 +62,10 @@ from ..results.status import ValidationStatus
 from .criterion import classify_region, passivity_criterion
 from .cycles import SUBTICK_LIMIT, growth_threshold, large_cycle_closed_form, limit_cycles
 from .maps import stability_map
-from .simulation import OUTCOMES, divergence_bound, preload_position, simulate
+from .simulation import OUTCOMES, SimulationResult, divergence_bound, preload_position, simulate
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 __all__ = [
     "ValidationResult",
@@ -87,7 +93,10 @@ def _grid(quick: bool) -> list[Params]:
 
 
 def cycle_checks(
-    points, samples: int = 40_000, models=("half-delay", "zoh"), wall: WallParams | None = None
+    points: Iterable[Params],
+    samples: int = 40_000,
+    models: Sequence[str] = ("half-delay", "zoh"),
+    wall: WallParams | None = None,
 ) -> list[dict]:
     """Simulate every predicted cycle of every point (items 1 and 6); one record per (point, model, cycle).
 
@@ -98,7 +107,7 @@ def cycle_checks(
     for p in points:
         region = str(classify_region(p.beta, p.sigma, 0.0))
 
-        def run(v: float, p=p):
+        def run(v: float, p: Params = p) -> SimulationResult:
             return simulate(p.mu, p.beta, p.sigma, v, samples, record=False, wall=wall)
 
         for model in models:
@@ -162,7 +171,12 @@ def _controller_grid(quick: bool) -> list[Params]:
     return [Params(m, b, s) for m in (2.0, 5.0, 20.0, 100.0) for b in (0.05, 0.3) for s in (0.1, 0.3)]
 
 
-def controller_cycle_checks(points, samples: int = 40_000, models=("half-delay", "zoh"), controllers=CONTROLLERS):
+def controller_cycle_checks(
+    points: Iterable[Params],
+    samples: int = 40_000,
+    models: Sequence[str] = ("half-delay", "zoh"),
+    controllers: Sequence[tuple[str, WallParams]] = CONTROLLERS,
+) -> list[dict]:
     """Item 6: :func:`cycle_checks` with each controller of ``controllers`` ((name, WallParams) pairs).
 
     Each record also holds ``controller`` (the name), ``controller_params`` (the groups) and ``subtick``: an
@@ -222,7 +236,7 @@ def first_unstable_speed(
     return None
 
 
-def critical_speeds(points, samples: int = 20_000) -> list[dict]:
+def critical_speeds(points: Iterable[tuple[str, Params]], samples: int = 20_000) -> list[dict]:
     """Item 2: criterion (eq. 12), describing function (M_u·ω) and simulated critical speeds, ticks per sample."""
     rows = []
     for name, p in points:
@@ -258,7 +272,7 @@ CLUSTER_POINTS = (
 )
 
 
-def cluster_threshold(name: str, p: Params, speeds, samples: int) -> dict:
+def cluster_threshold(name: str, p: Params, speeds: ArrayLike, samples: int) -> dict:
     """Item 5: growth band (both loop models) and eq. 45 against simulated divergence over a fine ξ'0 scan (ξ0 = 0).
 
     Returns a JSON-ready record: ``first_diverging`` (smallest scanned ξ'0 whose run went unstable, or None),
@@ -334,14 +348,14 @@ class Soundness:
 
 
 def soundness(
-    mus,
-    xi_dots,
+    mus: Sequence[float],
+    xi_dots: Sequence[float],
     grid: int,
     samples: int,
     n_jobs: int = -1,
     progress: bool = True,
-    beta_range=(0.0, 1.0),
-    sigma_range=(0.0, 2.5),
+    beta_range: tuple[float, float] = (0.0, 1.0),
+    sigma_range: tuple[float, float] = (0.0, 2.5),
 ) -> Soundness:
     """Compare the criterion with simulated outcomes on (β, σ, ξ'0) grids for each μ (item 3)."""
     total = passive_n = not_unst = rej_nu = rest = rej_rest = undecided = 0
@@ -379,7 +393,7 @@ def soundness(
     )
 
 
-def _stats(values) -> dict:
+def _stats(values: Iterable[float | None]) -> dict:
     a = np.abs(np.asarray([v for v in values if v is not None and np.isfinite(v)], dtype=float))
     if a.size == 0:
         return dict(n=0, median=float("nan"), worst=float("nan"))
@@ -406,7 +420,7 @@ class ValidationResult:
         """JSON-ready key numbers (:meth:`summary`) and the status; NaN becomes null with its reason."""
         return to_jsonable({**self.summary(), "status": self.status, "status_message": self.status.message})
 
-    def plot(self, ax=None, which: str = "cycles"):
+    def plot(self, ax: Axes | None = None, which: str = "cycles") -> Axes:
         """A validation figure: ``which="cycles"`` (:func:`dfa.figures.cycle_error_plot`) or ``"speeds"``
         (:func:`dfa.figures.critical_speed_plot`); returns the Axes."""
         from .. import figures

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .kernel import BoolArray, FloatArray, IntArray
 from .pair import pair_kernel
 from .wall_kernel import simulate_wall_kernel
 
@@ -26,7 +27,21 @@ __all__ = ["batch_kernel", "batch_wall_kernel"]
 
 
 @njit(cache=True, nogil=True)
-def batch_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest):
+def batch_kernel(
+    mus: FloatArray,
+    betas: FloatArray,
+    sigmas: FloatArray,
+    x0s: FloatArray,
+    v0s: FloatArray,
+    ns: IntArray,
+    delay: int,
+    quantize: bool,
+    bounds: FloatArray,
+    tail_lens: IntArray,
+    stats: FloatArray,
+    done: IntArray,
+    rest: IntArray,
+) -> None:
     """Independent runs, two in flight: run i is :func:`dfa.core.kernel.simulate_kernel` of its own inputs, bit for bit.
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]`` and
@@ -38,9 +53,11 @@ def batch_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail
 
 @njit(cache=True, nogil=True)
 def batch_wall_kernel(
-    mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, dampings, poles, filtered, lags,
-    stats, done, rest,
-):  # fmt: skip
+    mus: FloatArray, betas: FloatArray, sigmas: FloatArray, x0s: FloatArray, v0s: FloatArray, ns: IntArray,
+    delay: int, quantize: bool, bounds: FloatArray, tail_lens: IntArray,
+    dampings: FloatArray, poles: FloatArray, filtered: BoolArray, lags: FloatArray,
+    stats: FloatArray, done: IntArray, rest: IntArray,
+) -> None:  # fmt: skip
     """Independent runs with a controller, one after the other: run i is
     :func:`dfa.core.wall_kernel.simulate_wall_kernel` of its own inputs.
 

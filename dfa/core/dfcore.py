@@ -36,6 +36,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import numpy.typing as npt
 from numba import njit
 
 _PI = math.pi
@@ -62,7 +63,7 @@ _K_ASYM = 4.0 * math.sqrt(2.0) / math.pi
 
 
 @njit(cache=True, error_model="numpy")
-def hurwitz_zeta(s, q):
+def hurwitz_zeta(s: float, q: float) -> float:
     """Hurwitz ζ(s, q) = Σ_{k>=0} (q + k)^{−s} (analytically continued), real s ≠ 1, q > 0 (or q = 0 when s < 0).
 
     Euler–Maclaurin with a shift of 20 terms and 8 Bernoulli corrections
@@ -84,7 +85,7 @@ def hurwitz_zeta(s, q):
 
 
 @njit(cache=True, error_model="numpy")
-def _asym_value(m, th):
+def _asym_value(m: float, th: float) -> float:
     """D(M) − 1 by the expansion of the module docstring (M >= ASYMPTOTIC_FROM, θ = M − ⌊M⌋ in [0, 1])."""
     acc = 0.0
     scale = 1.0
@@ -95,7 +96,7 @@ def _asym_value(m, th):
 
 
 @njit(cache=True, error_model="numpy")
-def _asym_derivative(m, th, t):
+def _asym_derivative(m: float, th: float, t: float) -> float:
     """dD/dM by the expansion at M = ⌊M⌋ + θ, θ in (0, 1]; with t >= 0 (θ = t²) returns 2t·dD/dM, finite at t = 0.
 
     ∂ζ(s, θ)/∂θ = −s ζ(s + 1, θ); the singular θ^{−½} of ζ(½, θ) is taken out so that 2t·½θ^{−½} = 1 exactly.
@@ -120,7 +121,7 @@ def _asym_derivative(m, th, t):
 
 
 @njit(cache=True, error_model="numpy")
-def df_value(m):
+def df_value(m: float) -> float:
     """D(M) of eq. 41 for a scalar M > 0."""
     if m <= 1.0:
         return 2.0 / (_PI * m)
@@ -134,7 +135,7 @@ def df_value(m):
 
 
 @njit(cache=True, error_model="numpy")
-def df_derivative(m):
+def df_derivative(m: float) -> float:
     """dD/dM of eq. 41 for a scalar M > 0 (the left derivative at an integer M)."""
     if m >= ASYMPTOTIC_FROM:
         th = m % 1.0
@@ -149,7 +150,7 @@ def df_derivative(m):
 
 
 @njit(cache=True, error_model="numpy")
-def df_array(m, derivative=False):
+def df_array(m: npt.NDArray[np.float64], derivative: bool = False) -> npt.NDArray[np.float64]:
     """D(M), or dD/dM when ``derivative``, for a 1-D array of amplitudes."""
     out = np.empty(m.size)
     for i in range(m.size):
@@ -158,7 +159,7 @@ def df_array(m, derivative=False):
 
 
 @njit(cache=True, error_model="numpy")
-def _d_in_t(n, t):
+def _d_in_t(n: int, t: float) -> float:
     """D(n + t²) for t in [0, 1]: levels k <= n (the level n + 1 contributes 0 at t = 1)."""
     m = n + t * t
     if n >= ASYMPTOTIC_FROM:
@@ -170,7 +171,7 @@ def _d_in_t(n, t):
 
 
 @njit(cache=True, error_model="numpy")
-def _dd_dt(n, t):
+def _dd_dt(n: int, t: float) -> float:
     """d/dt D(n + t²) = 2t·D'(n + t²), finite at t = 0 (where the level n's √ starts)."""
     m = n + t * t
     if n >= ASYMPTOTIC_FROM:
@@ -184,14 +185,14 @@ def _dd_dt(n, t):
 
 
 @njit(cache=True, error_model="numpy")
-def _f(kind, n, g, x):
+def _f(kind: int, n: int, g: float, x: float) -> float:
     if kind == 0:
         return _d_in_t(n, x) - g
     return _dd_dt(n, x)
 
 
 @njit(cache=True, error_model="numpy")
-def _brent(kind, n, g, xa, xb, xtol, rtol):
+def _brent(kind: int, n: int, g: float, xa: float, xb: float, xtol: float, rtol: float) -> float:
     """scipy's brentq (bracketing, superlinear) on _f(kind, n, g, ·) over [xa, xb]; the ends must bracket."""
     xpre, xcur = xa, xb
     xblk = 0.0
@@ -249,14 +250,14 @@ _EPS4 = 4.0 * np.finfo(np.float64).eps
 
 
 @njit(cache=True, error_model="numpy")
-def interval_peak(n):
+def interval_peak(n: int) -> tuple[float, float]:
     """(M, D) of the maximum of D on [n, n + 1], n >= 1 (D is unimodal there)."""
     t = _brent(1, n, 0.0, 0.0, 1.0, 1e-15, _EPS4)
     return n + t * t, _d_in_t(n, t)
 
 
 @njit(cache=True, error_model="numpy")
-def df_inverse(g, n_stop, mmax, envelope):
+def df_inverse(g: float, n_stop: int, mmax: float, envelope: float) -> tuple[npt.NDArray[np.float64], int]:
     """Amplitudes M > 1 in [1, min(n_stop + 1, mmax)] with D(M) = g, increasing (at most two per interval).
 
     Returns (roots, failures): ``failures`` counts the Brent solves (peak or

@@ -47,7 +47,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import numpy.typing as npt
 from numba import njit
+from numpy.typing import ArrayLike
 
 __all__ = ["phi1", "phi2", "phi12", "psi", "chi", "log1p_ratio", "phi1_array", "phi2_array"]
 
@@ -65,7 +67,7 @@ SHORT_Y = 0.0078125
 
 
 @njit(cache=True, inline="always")
-def _poly16(x, c):
+def _poly16(x: float, c: tuple[float, ...]) -> float:
     """Σ c[n] xⁿ, n = 0 … 15, by Estrin's scheme (depth 4: short dependency chains)."""
     x2 = x * x
     x4 = x2 * x2
@@ -78,7 +80,7 @@ def _poly16(x, c):
 
 
 @njit(cache=True, inline="always")
-def _poly8(x, c):
+def _poly8(x: float, c: tuple[float, ...]) -> float:
     """Σ c[n] xⁿ, n = 0 … 7, by Estrin's scheme (depth 3), for arguments near 0."""
     x2 = x * x
     r0 = (c[0] + c[1] * x) + (c[2] + c[3] * x) * x2
@@ -161,23 +163,23 @@ def chi(u: float) -> float:
 
 
 @njit(cache=True)
-def _phi_flat(u, order):  # pragma: no cover - compiled
+def _phi_flat(u: npt.NDArray[np.float64], order: int) -> npt.NDArray[np.float64]:  # pragma: no cover - compiled
     out = np.empty(u.shape[0])
     for i in range(u.shape[0]):
         out[i] = phi1(u[i]) if order == 1 else phi2(u[i])
     return out
 
 
-def _elementwise(u, order: int) -> np.ndarray:
+def _elementwise(u: ArrayLike, order: int) -> np.ndarray:
     a = np.asarray(u, dtype=float)
     return _phi_flat(np.ascontiguousarray(a).ravel(), order).reshape(a.shape)
 
 
-def phi1_array(u) -> np.ndarray:
+def phi1_array(u: ArrayLike) -> np.ndarray:
     """φ₁ elementwise on an array (any shape), the compiled scalar :func:`phi1`."""
     return _elementwise(u, 1)
 
 
-def phi2_array(u) -> np.ndarray:
+def phi2_array(u: ArrayLike) -> np.ndarray:
     """φ₂ elementwise on an array (any shape), the compiled scalar :func:`phi2`."""
     return _elementwise(u, 2)

@@ -59,12 +59,20 @@ as do the points of the same three maps.
 from __future__ import annotations
 
 import math
+from typing import TypeAlias
 
 import numpy as np
+import numpy.typing as npt
 from numba import njit
 
 from .energy import spring_energy_core
 from .exprel import chi, log1p_ratio, phi1, phi2, phi12, psi
+
+# The kernels' array and tuple arguments, for annotations (numba compiles from the values passed)
+FloatArray: TypeAlias = npt.NDArray[np.float64]
+IntArray: TypeAlias = npt.NDArray[np.int64]
+BoolArray: TypeAlias = npt.NDArray[np.bool_]
+SampleConstants: TypeAlias = tuple[float, float, float, float, float, float]  # sample_constants
 
 # outcome codes (also the codes of dfa.analysis.maps.StabilityMap.outcome and its .npz file)
 REST = 0  # came to rest: the absorbing state was reached
@@ -84,13 +92,13 @@ _spring = njit(cache=True, inline="always")(spring_energy_core)  # H_c (eq. 18):
 
 
 @njit(cache=True, inline="always")
-def force(x, quantize):
+def force(x: float, quantize: bool) -> float:
     """Force read from position ``x``: −⌊ξ⌋ − ½ with the encoder, −ξ without (units of KΔ)."""
     return -(math.floor(x) + 0.5) if quantize else -x
 
 
 @njit(cache=True, inline="always")
-def delayed_force(fnew, hist, pos, delay):
+def delayed_force(fnew: float, hist: FloatArray, pos: int, delay: int) -> tuple[float, int]:
     """Push this sample's reading into the ring ``hist`` (length d + 1); return (φ, new pos).
 
     ``hist[pos]`` holds the oldest reading; φ is the reading of d samples ago.
@@ -105,7 +113,7 @@ def delayed_force(fnew, hist, pos, delay):
 
 
 @njit(cache=True, inline="always")
-def at_rest(v, phi, sigma, hist, delay):
+def at_rest(v: float, phi: float, sigma: float, hist: FloatArray, delay: int) -> bool:
     """The absorbing state: stuck (ξ' = 0, |φ| <= σ) and every pending force equal to φ."""
     if v != 0.0 or not abs(phi) <= sigma:
         return False
@@ -116,7 +124,7 @@ def at_rest(v, phi, sigma, hist, delay):
 
 
 @njit(cache=True, inline="always")
-def sample_constants(mu, beta):
+def sample_constants(mu: float, beta: float) -> SampleConstants:
     """Per-run constants of :func:`step`: (β/μ, e^{−β/μ}, φ₁(β/μ), φ₂(β/μ), φ₁/μ, φ₂/μ)."""
     rate = beta / mu
     p1 = phi1(rate)
@@ -125,7 +133,9 @@ def sample_constants(mu, beta):
 
 
 @njit(cache=True, inline="always")
-def step(x, v, phi, mu, sigma, k):
+def step(
+    x: float, v: float, phi: float, mu: float, sigma: float, k: SampleConstants
+) -> tuple[float, float, float, float, float, float, float, bool]:
     """Exact motion over one sample under the constant force φ (stick-slip included).
 
     ``k`` is :func:`sample_constants`. Returns (ξ, ξ' at the end; ξ_r, the
@@ -166,7 +176,7 @@ def step(x, v, phi, mu, sigma, k):
 
 
 @njit(cache=True, inline="always")
-def viscous(v, a, beta, mu, t):
+def viscous(v: float, a: float, beta: float, mu: float, t: float) -> float:
     """β ∫₀ᵗ ξ'² dt for one phase starting at speed v with acceleration a."""
     if beta == 0.0:
         return 0.0
@@ -175,7 +185,22 @@ def viscous(v, a, beta, mu, t):
 
 
 @njit(cache=True, inline="always")
-def energy_terms(xs, vs, x, v, phi, xr, tstar, a, a2, tr, mu, beta, sigma, quantize):
+def energy_terms(
+    xs: float,
+    vs: float,
+    x: float,
+    v: float,
+    phi: float,
+    xr: float,
+    tstar: float,
+    a: float,
+    a2: float,
+    tr: float,
+    mu: float,
+    beta: float,
+    sigma: float,
+    quantize: bool,
+) -> tuple[float, float, float, float]:
     """(generated, viscous, Coulomb, stored) of one sample from (ξs, ξ's) to (ξ, ξ') (eq. 18-23)."""
     dvisc = viscous(vs, a, beta, mu, tstar) if tstar > 0.0 else 0.0
     dcoul = sigma * abs(xr - xs) if tstar > 0.0 else 0.0
@@ -189,7 +214,7 @@ def energy_terms(xs, vs, x, v, phi, xr, tstar, a, a2, tr, mu, beta, sigma, quant
 
 
 @njit(cache=True, inline="always")
-def tail_extremes(x, xr, stopped, tmin, tmax):
+def tail_extremes(x: float, xr: float, stopped: bool, tmin: float, tmax: float) -> tuple[float, float]:
     """Tail min and max updated with the sample's end position and, if ξ' reached 0 inside it, the turning point."""
     if stopped:
         if xr < tmin:
@@ -204,7 +229,9 @@ def tail_extremes(x, xr, stopped, tmin, tmax):
 
 
 @njit(cache=True, inline="always")
-def free_sample(x, v, peak, mu, sigma, quantize, bound, k):
+def free_sample(
+    x: float, v: float, peak: float, mu: float, sigma: float, quantize: bool, bound: float, k: SampleConstants
+) -> tuple[float, float, float, int, float, bool]:
     """One unrecorded sample without delay: the body of :func:`advance_free`.
 
     Returns (ξ, ξ', peak |ξ|, why, ξ_r, stopped) (ξ_r, stopped: :func:`step`'s):
@@ -225,7 +252,7 @@ def free_sample(x, v, peak, mu, sigma, quantize, bound, k):
 
 
 @njit(cache=True, inline="always")
-def same_state(x, v, rx, rv):
+def same_state(x: float, v: float, rx: float, rv: float) -> bool:
     """(ξ, ξ') equals (rx, rv) bit for bit (so ±0 differ; NaN never equals)."""
     return (
         x == rx
@@ -236,7 +263,18 @@ def same_state(x, v, rx, rv):
 
 
 @njit(cache=True, nogil=True)
-def advance_free(state, h0, h1, mu, sigma, quantize, bound, k, tail, tail_start):
+def advance_free(
+    state: FloatArray,
+    h0: int,
+    h1: int,
+    mu: float,
+    sigma: float,
+    quantize: bool,
+    bound: float,
+    k: SampleConstants,
+    tail: FloatArray,
+    tail_start: int,
+) -> tuple[int, int, float]:
     """:func:`advance` over samples h0 … h1 − 1 without delay, unrecorded (the hot path).
 
     The range lies before the tail (h1 <= ``tail_start``) or in it (h0 >= ``tail_start``).
@@ -285,7 +323,9 @@ NSTATE = 5
 
 
 @njit(cache=True, nogil=True)
-def start(x0, v0, delay, quantize, state, hist, stats):
+def start(
+    x0: float, v0: float, delay: int, quantize: bool, state: FloatArray, hist: FloatArray, stats: FloatArray
+) -> None:
     """Initial state of a run: (ξ0, ξ'0), past readings equal to ξ0's, stats cleared."""
     f0 = force(x0, quantize)
     for i in range(delay + 1):
@@ -301,8 +341,24 @@ def start(x0, v0, delay, quantize, state, hist, stats):
 
 @njit(cache=True, nogil=True)
 def advance(
-    state, hist, h0, h1, mu, beta, sigma, delay, quantize, bound, tail_start, tail, record, energy, rec_x, rec_v, rec_e
-):
+    state: FloatArray,
+    hist: FloatArray,
+    h0: int,
+    h1: int,
+    mu: float,
+    beta: float,
+    sigma: float,
+    delay: int,
+    quantize: bool,
+    bound: float,
+    tail_start: int,
+    tail: FloatArray,
+    record: bool,
+    energy: bool,
+    rec_x: FloatArray,
+    rec_v: FloatArray,
+    rec_e: FloatArray,
+) -> tuple[int, int, float]:
     """Run samples h0 … h1 − 1 from ``state``; return (end, why, peak).
 
     why = 0: ran through (end = h1); 1: at rest at sample ``end`` (not
@@ -361,13 +417,13 @@ def advance(
 
 
 @njit(cache=True, inline="always")
-def segment_bounds(k, n):
+def segment_bounds(k: int, n: int) -> tuple[int, int]:
     """First and one-past-last sample of the k-th of NSEG segments of a run of n samples."""
     return (k * n + NSEG - 1) // NSEG, ((k + 1) * n + NSEG - 1) // NSEG
 
 
 @njit(cache=True, inline="always")
-def segment_ranges(k, n, tail_start):
+def segment_ranges(k: int, n: int, tail_start: int) -> tuple[int, int, int]:
     """(lo, cut, hi): the k-th segment [lo, hi) of a run cut where the tail starts, its two ranges [lo, cut) and
     [cut, hi) (either may be empty): the ranges every kernel runs a run in (one implementation)."""
     lo, hi = segment_bounds(k, n)
@@ -375,7 +431,7 @@ def segment_ranges(k, n, tail_start):
 
 
 @njit(cache=True, inline="always")
-def tail_stats(tail, tail_len, tmin, tmax, stats):
+def tail_stats(tail: FloatArray, tail_len: int, tmin: float, tmax: float, stats: FloatArray) -> None:
     """Crossings of the tail's centre level (interpolated), its extremes and instant extremes into ``stats``."""
     centre = 0.5 * (tmin + tmax)
     count = 0
@@ -406,7 +462,22 @@ def tail_stats(tail, tail_len, tmin, tmax, stats):
 
 
 @njit(cache=True, nogil=True)
-def finish(state, n, done, rest, tail, tail_len, mu, quantize, stats, record, energy, rec_x, rec_v, rec_e):
+def finish(
+    state: FloatArray,
+    n: int,
+    done: int,
+    rest: int,
+    tail: FloatArray,
+    tail_len: int,
+    mu: float,
+    quantize: bool,
+    stats: FloatArray,
+    record: bool,
+    energy: bool,
+    rec_x: FloatArray,
+    rec_v: FloatArray,
+    rec_e: FloatArray,
+) -> None:
     """Tail statistics, final state, and the records past an early stop (rest state, or NaN)."""
     x = state[SX]
     v = state[SV]
@@ -429,7 +500,22 @@ def finish(state, n, done, rest, tail, tail_len, mu, quantize, stats, record, en
 
 
 @njit(cache=True, nogil=True)
-def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len, rec_x, rec_v, rec_e, stats):
+def simulate_kernel(
+    mu: float,
+    beta: float,
+    sigma: float,
+    x0: float,
+    v0: float,
+    n: int,
+    delay: int,
+    quantize: bool,
+    bound: float,
+    tail_len: int,
+    rec_x: FloatArray,
+    rec_v: FloatArray,
+    rec_e: FloatArray,
+    stats: FloatArray,
+) -> tuple[int, int]:
     """Run ``n`` samples; return the number of samples done and the rest sample (−1: none).
 
     ``rec_x``/``rec_v`` (length n + 1) and ``rec_e`` (n × 4: generated,
@@ -495,7 +581,17 @@ def simulate_kernel(mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len
 
 
 @njit(cache=True, nogil=True)
-def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, mu):
+def classify(
+    n: int,
+    done: int,
+    rest: int,
+    stats: FloatArray,
+    stable_amplitude: float,
+    growth: float,
+    settle: float,
+    quantize: bool,
+    mu: float,
+) -> tuple[int, float, float, float, float]:
     """Outcome code, amplitude, frequency, centre and force peak-to-peak of a run from its stats.
 
     In this order (``P_k``: peak |ξ| at the sample instants in the k-th eighth of the run):
@@ -565,8 +661,21 @@ def classify(n, done, rest, stats, stable_amplitude, growth, settle, quantize, m
 
 @njit(cache=True, nogil=True)
 def classify_batch(
-    mus, ns, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
-):
+    mus: FloatArray,
+    ns: IntArray,
+    done: IntArray,
+    rest: IntArray,
+    stats: FloatArray,
+    stable_amplitude: float,
+    growth: float,
+    settle: float,
+    quantize: bool,
+    codes: IntArray,
+    amps: FloatArray,
+    freqs: FloatArray,
+    centres: FloatArray,
+    fpps: FloatArray,
+) -> None:
     """:func:`classify` for every run of a batch, run i of ``ns[i]`` samples (outputs written in place)."""
     for i in range(mus.shape[0]):
         c, a, f, ce, fp = classify(
@@ -580,7 +689,21 @@ def classify_batch(
 
 
 @njit(cache=True, nogil=True)
-def serial_kernel(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
+def serial_kernel(
+    mus: FloatArray,
+    betas: FloatArray,
+    sigmas: FloatArray,
+    x0s: FloatArray,
+    v0s: FloatArray,
+    n: int,
+    delay: int,
+    quantize: bool,
+    bound: float,
+    tail_len: int,
+    stats: FloatArray,
+    done: IntArray,
+    rest: IntArray,
+) -> None:
     """Independent runs of ``n`` samples, one after the other; nothing recorded.
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``); ``stats[i]``

@@ -46,6 +46,9 @@ from .kernel import (
     STMIN,
     SV,
     SX,
+    FloatArray,
+    IntArray,
+    SampleConstants,
     advance,
     advance_free,
     at_rest,
@@ -71,8 +74,26 @@ NLANE = 7
 
 @njit(cache=True, nogil=True)
 def advance_pair(
-    sa, ha, h1a, mua, siga, ka, taila, bounda, ta, sb, hb, h1b, mub, sigb, kb, tailb, boundb, tb, quantize
-):
+    sa: FloatArray,
+    ha: int,
+    h1a: int,
+    mua: float,
+    siga: float,
+    ka: SampleConstants,
+    taila: FloatArray,
+    bounda: float,
+    ta: int,
+    sb: FloatArray,
+    hb: int,
+    h1b: int,
+    mub: float,
+    sigb: float,
+    kb: SampleConstants,
+    tailb: FloatArray,
+    boundb: float,
+    tb: int,
+    quantize: bool,
+) -> tuple[int, int, float, bool, int, int, float, bool]:
     """:func:`dfa.core.kernel.advance_free` of two runs A and B at once, until either's range ends.
 
     ``sa``/``sb`` are the runs' state arrays (ξ, ξ', tail min and max), ``ha … h1a`` and ``hb … h1b``
@@ -138,10 +159,12 @@ def advance_pair(
 
 @njit(cache=True, nogil=True)
 def advance_pair_delayed(
-    sa, ha, h1a, mua, siga, ka, taila, bounda, ta, hista,
-    sb, hb, h1b, mub, sigb, kb, tailb, boundb, tb, histb,
-    delay, quantize,
-):  # fmt: skip
+    sa: FloatArray, ha: int, h1a: int, mua: float, siga: float, ka: SampleConstants,
+    taila: FloatArray, bounda: float, ta: int, hista: FloatArray,
+    sb: FloatArray, hb: int, h1b: int, mub: float, sigb: float, kb: SampleConstants,
+    tailb: FloatArray, boundb: float, tb: int, histb: FloatArray,
+    delay: int, quantize: bool,
+) -> tuple[int, int, float, bool, int, int, float, bool]:  # fmt: skip
     """:func:`dfa.core.kernel.advance` (no records) of two runs with a delay of ``delay`` samples, until either's range ends.
 
     As :func:`advance_pair`, with each run's ring of pending readings (``hista``, ``histb``; its position in the
@@ -189,7 +212,7 @@ def advance_pair_delayed(
 
 
 @njit(cache=True, inline="always")
-def _next_range(lane):
+def _next_range(lane: IntArray) -> bool:
     """Move ``lane`` (its row of integer state) to its run's next nonempty range; False when none is left.
 
     The order of :func:`dfa.core.kernel.simulate_kernel`: segment k = 0 … NSEG − 1, each split where the tail starts.
@@ -210,7 +233,22 @@ def _next_range(lane):
 
 
 @njit(cache=True, nogil=True)
-def _load(lane, i, x0s, v0s, mus, betas, ns, tail_lens, delay, quantize, state, hist, stats, consts):
+def _load(
+    lane: IntArray,
+    i: int,
+    x0s: FloatArray,
+    v0s: FloatArray,
+    mus: FloatArray,
+    betas: FloatArray,
+    ns: IntArray,
+    tail_lens: IntArray,
+    delay: int,
+    quantize: bool,
+    state: FloatArray,
+    hist: FloatArray,
+    stats: FloatArray,
+    consts: FloatArray,
+) -> None:
     """Start run ``i`` in ``lane`` (state, delay ring, stats cleared, its sample constants, its first range)."""
     start(x0s[i], v0s[i], delay, quantize, state, hist, stats[i])
     rate, e1, p1, p2, q1, q2 = sample_constants(mus[i], betas[i])
@@ -220,7 +258,21 @@ def _load(lane, i, x0s, v0s, mus, betas, ns, tail_lens, delay, quantize, state, 
 
 
 @njit(cache=True, nogil=True)
-def _book(lane, h, why, peak, ended, state, tail, tail_len, mu, quantize, stats, done, rest):
+def _book(
+    lane: IntArray,
+    h: int,
+    why: int,
+    peak: float,
+    ended: bool,
+    state: FloatArray,
+    tail: FloatArray,
+    tail_len: int,
+    mu: float,
+    quantize: bool,
+    stats: FloatArray,
+    done: IntArray,
+    rest: IntArray,
+) -> bool:
     """Book a lane's advance: its range's peak; if the range ended, the next range or the run's end.
 
     Returns True while the lane's run goes on, False when it is over (``done``, ``rest``, stats finished
@@ -243,7 +295,21 @@ def _book(lane, h, why, peak, ended, state, tail, tail_len, mu, quantize, stats,
 
 
 @njit(cache=True, nogil=True)
-def pair_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest):
+def pair_kernel(
+    mus: FloatArray,
+    betas: FloatArray,
+    sigmas: FloatArray,
+    x0s: FloatArray,
+    v0s: FloatArray,
+    ns: IntArray,
+    delay: int,
+    quantize: bool,
+    bounds: FloatArray,
+    tail_lens: IntArray,
+    stats: FloatArray,
+    done: IntArray,
+    rest: IntArray,
+) -> None:
     """Independent runs, two in flight: run i is :func:`dfa.core.kernel.simulate_kernel` of its own inputs.
 
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]``
@@ -253,7 +319,8 @@ def pair_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_
     lanes = np.full((2, NLANE), -1, dtype=np.int64)
     states = np.empty((2, NSTATE))
     hists = np.empty((2, delay + 1))
-    tails = np.empty((2, max(1, np.max(tail_lens)) if tail_lens.shape[0] else 1))
+    # numpy's stubs type max(1, np.int64) as a comparable, not an int: the shape is ints at run time
+    tails = np.empty((2, max(1, np.max(tail_lens)) if tail_lens.shape[0] else 1))  # type: ignore[type-var]
     consts = np.empty((2, 6))
     nxt = 0
     while True:
@@ -301,12 +368,24 @@ def pair_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_
 
 
 @njit(cache=True, inline="always")
-def _kc(c):
+def _kc(c: FloatArray) -> SampleConstants:
     return (c[0], c[1], c[2], c[3], c[4], c[5])
 
 
 @njit(cache=True, inline="always")
-def _advance_lanes(lanes, states, hists, tails, consts, mus, betas, sigmas, delay, quantize, bounds):
+def _advance_lanes(
+    lanes: IntArray,
+    states: FloatArray,
+    hists: FloatArray,
+    tails: FloatArray,
+    consts: FloatArray,
+    mus: FloatArray,
+    betas: FloatArray,
+    sigmas: FloatArray,
+    delay: int,
+    quantize: bool,
+    bounds: FloatArray,
+) -> tuple[tuple[int, int, float, bool], tuple[int, int, float, bool]]:
     """Advance the lanes in flight: both together (:func:`advance_pair`, :func:`advance_pair_delayed`), or the
     only one alone (:func:`dfa.core.kernel.advance_free`, :func:`dfa.core.kernel.advance`)."""
     a, b = lanes[0], lanes[1]

@@ -11,12 +11,25 @@ import numpy as np
 from numba import njit
 
 from . import kernel
+from .kernel import BoolArray, FloatArray, IntArray
 
 __all__ = ["storage_runs"]
 
 
 @njit(cache=True)
-def storage_runs(mus, betas, sigmas, x0s, v0s, ns, delays, quantized, ratio, codes, worst_sample):
+def storage_runs(
+    mus: FloatArray,
+    betas: FloatArray,
+    sigmas: FloatArray,
+    x0s: FloatArray,
+    v0s: FloatArray,
+    ns: IntArray,
+    delays: IntArray,
+    quantized: BoolArray,
+    ratio: FloatArray,
+    codes: IntArray,
+    worst_sample: IntArray,
+) -> None:
     """Simulate every point (recording ξ, ξ') and the largest S(h)/S(0) − 1 over its samples.
 
     Point i is :func:`dfa.core.kernel.simulate_kernel` of (``mus[i]``, ``betas[i]``, ``sigmas[i]``, ``x0s[i]``,

@@ -102,12 +102,23 @@ cache of this module does not notice edits there: clear it
 from __future__ import annotations
 
 import math
+from typing import TypeAlias
 
 import numpy as np
 from numba import njit
 
 from .exprel import phi1, phi2
-from .kernel import NSEG, sample_constants, segment_ranges, step, tail_extremes, tail_stats
+from .kernel import (
+    NSEG,
+    FloatArray,
+    IntArray,
+    SampleConstants,
+    sample_constants,
+    segment_ranges,
+    step,
+    tail_extremes,
+    tail_stats,
+)
 
 __all__ = ["rho", "lag_motion", "lag_sample", "simulate_wall_kernel", "serial_wall_kernel"]
 
@@ -116,6 +127,9 @@ _CR = tuple((n + 1) / math.factorial(n + 2) for n in range(18))
 
 _ULP4 = 4.0 * 2.220446049250313e-16  # four units in the last place, relative
 MAX_PHASES = 16  # per sample; the derivation allows at most 5 (stuck, breakaway, stop, restart, stop)
+
+Model: TypeAlias = tuple[float, float, float, int, bool]  # (μ, β, σ, d, quantize) of _sample
+Controller: TypeAlias = tuple[float, float, bool, float]  # (β_B, a, filtered, α): ctl of _sample and _advance
 
 
 @njit(cache=True, inline="always")
@@ -139,7 +153,9 @@ def rho(u: float) -> float:
 
 
 @njit(cache=True, inline="always")
-def lag_motion(x0, v0, f, d, mu, lam, kap, t):
+def lag_motion(
+    x0: float, v0: float, f: float, d: float, mu: float, lam: float, kap: float, t: float
+) -> tuple[float, float]:
     """(ξ, ξ') after time ``t`` of μξ'' + βξ' = f + d e^{−κt} from (ξ₀, ξ'₀) (module docstring); λ = β/μ.
 
     Units: ticks, ticks per sample, samples; f, d in KΔ.
@@ -165,7 +181,9 @@ def lag_motion(x0, v0, f, d, mu, lam, kap, t):
 
 
 @njit(cache=True, inline="always")
-def _root(x0, v0, f, d, mu, lam, kap, s, lo, hi):
+def _root(
+    x0: float, v0: float, f: float, d: float, mu: float, lam: float, kap: float, s: float, lo: float, hi: float
+) -> float:
     """Time in [lo, hi] where s ξ' falls to 0 (s ξ'(lo) > 0 >= s ξ'(hi)): Newton safeguarded by bisection."""
     t = hi
     for _ in range(200):
@@ -194,7 +212,9 @@ def _root(x0, v0, f, d, mu, lam, kap, s, lo, hi):
 
 
 @njit(cache=True, inline="always")
-def _stop_time(x0, v0, f, d, mu, lam, kap, s, tmax):
+def _stop_time(
+    x0: float, v0: float, f: float, d: float, mu: float, lam: float, kap: float, s: float, tmax: float
+) -> float:
     """First time in (0, tmax] at which ξ' reaches 0 in a phase of direction s, or −1 if it does not."""
     g0 = s * (f + d)
     g1 = s * (f + d * math.exp(-kap * tmax))
@@ -219,7 +239,9 @@ def _stop_time(x0, v0, f, d, mu, lam, kap, s, tmax):
 
 
 @njit(cache=True, inline="always")
-def lag_sample(x, v, c, fa, mu, beta, sigma, lag):
+def lag_sample(
+    x: float, v: float, c: float, fa: float, mu: float, beta: float, sigma: float, lag: float
+) -> tuple[float, float, float, float]:
     """One sample with the amplifier lag: (ξ, ξ', lowest and highest turning point; ±inf when none).
 
     ``c`` is the applied command, ``fa`` = φ_A at the start of the sample.
@@ -266,12 +288,12 @@ def lag_sample(x, v, c, fa, mu, beta, sigma, lag):
 
 
 @njit(cache=True, inline="always")
-def _inside(c, sigma):
+def _inside(c: float, sigma: float) -> bool:
     return abs(c) <= sigma
 
 
 @njit(cache=True, inline="always")
-def _absorbing(v, fa, sigma, ring, base, damping, ynext):
+def _absorbing(v: float, fa: float, sigma: float, ring: FloatArray, base: float, damping: float, ynext: float) -> bool:
     """The proven rest state (module docstring): stuck, and every future command and φ_A within [−σ, σ]."""
     if v != 0.0 or not _inside(fa, sigma) or not _inside(base, sigma):
         return False
@@ -291,13 +313,24 @@ _REF = 6  # the reference state: ξ, ξ', r, v, y, φ_A at ref[0:6], then the d 
 
 
 @njit(cache=True, inline="always")
-def _same(a, b):
+def _same(a: float, b: float) -> bool:
     """``a`` equals ``b`` bit for bit (±0 differ; NaN never equals): :func:`dfa.core.kernel.same_state`'s rule."""
     return a == b and math.copysign(1.0, a) == math.copysign(1.0, b)
 
 
 @njit(cache=True, inline="always")
-def _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa):
+def _keep(
+    ref: FloatArray,
+    ring: FloatArray,
+    pos: int,
+    delay: int,
+    x: float,
+    v: float,
+    r_prev: float,
+    v_prev: float,
+    y: float,
+    fa: float,
+) -> None:
     """Store the loop's state in ``ref``, the pending commands in logical order (oldest first)."""
     ref[0], ref[1], ref[2], ref[3], ref[4], ref[5] = x, v, r_prev, v_prev, y, fa
     i = pos
@@ -307,7 +340,20 @@ def _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa):
 
 
 @njit(cache=True, inline="always")
-def _same_loop(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa, filtered, lag):
+def _same_loop(
+    ref: FloatArray,
+    ring: FloatArray,
+    pos: int,
+    delay: int,
+    x: float,
+    v: float,
+    r_prev: float,
+    v_prev: float,
+    y: float,
+    fa: float,
+    filtered: bool,
+    lag: float,
+) -> bool:
     """The loop's state equals the one kept in ``ref`` bit for bit (what the next sample reads; docstring)."""
     if not (_same(x, ref[0]) and _same(v, ref[1]) and _same(r_prev, ref[2])):
         return False
@@ -324,7 +370,21 @@ def _same_loop(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa, filtered, lag
 
 
 @njit(cache=True, inline="always")
-def _sample(x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag):
+def _sample(
+    x: float,
+    v: float,
+    r_prev: float,
+    v_prev: float,
+    y: float,
+    fa: float,
+    pos: int,
+    ring: FloatArray,
+    h: int,
+    model: Model,
+    ctl: Controller,
+    k: SampleConstants,
+    e_lag: float,
+) -> tuple[float, float, float, float, float, float, int, float, float, bool]:
     """Sample h from the state between samples (module docstring); ``model`` = (μ, β, σ, d, quantize).
 
     Returns the next state (ξ, ξ', r, v, y, φ_A, ring position), the sample's
@@ -359,7 +419,25 @@ def _sample(x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag):
 
 
 @njit(cache=True, nogil=True)
-def _advance(st, ring, ref, h0, h1, mu, beta, sigma, delay, quantize, bound, ctl, tail, tail_start, rec_x, rec_v, skip):
+def _advance(
+    st: FloatArray,
+    ring: FloatArray,
+    ref: FloatArray,
+    h0: int,
+    h1: int,
+    mu: float,
+    beta: float,
+    sigma: float,
+    delay: int,
+    quantize: bool,
+    bound: float,
+    ctl: Controller,
+    tail: FloatArray,
+    tail_start: int,
+    rec_x: FloatArray,
+    rec_v: FloatArray,
+    skip: bool,
+) -> tuple[int, int, float, int]:
     """Samples h0 … h1 − 1 from the state ``st``; return (end, why, peak |ξ|, samples skipped).
 
     ``ctl`` = (β_B, a, filtered, α); why as :func:`dfa.core.kernel.advance` (0 ran
@@ -420,7 +498,7 @@ def _advance(st, ring, ref, h0, h1, mu, beta, sigma, delay, quantize, bound, ctl
 
 
 @njit(cache=True, inline="always")
-def _start(st, ring, x0, v0, quantize):
+def _start(st: FloatArray, ring: FloatArray, x0: float, v0: float, quantize: bool) -> None:
     """Initial state: r_{−1} = r_0, v_{−1} = y_{−1} = 0, every past command and φ_A equal to c_0."""
     r0 = math.floor(x0) if quantize else x0
     base0 = -(r0 + 0.5) if quantize else -r0
@@ -432,25 +510,25 @@ def _start(st, ring, x0, v0, quantize):
 
 @njit(cache=True, nogil=True)
 def run_wall_kernel(
-    mu,
-    beta,
-    sigma,
-    x0,
-    v0,
-    n,
-    delay,
-    quantize,
-    bound,
-    tail_len,
-    damping,
-    pole,
-    filtered,
-    lag,
-    rec_x,
-    rec_v,
-    stats,
-    skip,
-):
+    mu: float,
+    beta: float,
+    sigma: float,
+    x0: float,
+    v0: float,
+    n: int,
+    delay: int,
+    quantize: bool,
+    bound: float,
+    tail_len: int,
+    damping: float,
+    pole: float,
+    filtered: bool,
+    lag: float,
+    rec_x: FloatArray,
+    rec_v: FloatArray,
+    stats: FloatArray,
+    skip: bool,
+) -> tuple[int, int, int]:
     """:func:`simulate_wall_kernel` with period skipping on or off; return (done, rest, samples integrated).
 
     The run is each of the NSEG segments (split where the tail starts) in
@@ -511,8 +589,24 @@ def run_wall_kernel(
 
 @njit(cache=True, nogil=True)
 def simulate_wall_kernel(
-    mu, beta, sigma, x0, v0, n, delay, quantize, bound, tail_len, damping, pole, filtered, lag, rec_x, rec_v, stats
-):
+    mu: float,
+    beta: float,
+    sigma: float,
+    x0: float,
+    v0: float,
+    n: int,
+    delay: int,
+    quantize: bool,
+    bound: float,
+    tail_len: int,
+    damping: float,
+    pole: float,
+    filtered: bool,
+    lag: float,
+    rec_x: FloatArray,
+    rec_v: FloatArray,
+    stats: FloatArray,
+) -> tuple[int, int]:
     """Run ``n`` samples with the controller; return (samples done, rest sample or −1).
 
     ``damping`` β_B, ``pole`` a (used when ``filtered``), ``lag`` α. ``rec_x``/``rec_v``
@@ -545,8 +639,24 @@ def simulate_wall_kernel(
 
 @njit(cache=True, nogil=True)
 def serial_wall_kernel(
-    mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, damping, pole, filtered, lag, stats, done, rest
-):
+    mus: FloatArray,
+    betas: FloatArray,
+    sigmas: FloatArray,
+    x0s: FloatArray,
+    v0s: FloatArray,
+    n: int,
+    delay: int,
+    quantize: bool,
+    bound: float,
+    tail_len: int,
+    damping: float,
+    pole: float,
+    filtered: bool,
+    lag: float,
+    stats: FloatArray,
+    done: IntArray,
+    rest: IntArray,
+) -> None:
     """:func:`simulate_wall_kernel` for independent runs, one after the other; nothing recorded."""
     empty = np.empty(0)
     for i in range(mus.shape[0]):

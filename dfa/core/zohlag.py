@@ -33,7 +33,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import numpy.typing as npt
 from numba import njit
+from numpy.typing import ArrayLike
 
 from .divdiff import exp_dd
 
@@ -72,7 +74,9 @@ def _coefficients(a: np.ndarray, b: float) -> np.ndarray:
     return out
 
 
-def zoh_lag_response(mu: float, beta_eq, omega, lag: float):
+def zoh_lag_response(
+    mu: float, beta_eq: ArrayLike, omega: ArrayLike, lag: float
+) -> complex | npt.NDArray[np.complex128]:
     """G(e^{jω}) of the ZOH-sampled amplifier lag + device (module docstring), broadcast over β_eq and ω.
 
     Parameters
@@ -92,7 +96,8 @@ def zoh_lag_response(mu: float, beta_eq, omega, lag: float):
         The pulse response, shape of ``beta_eq`` and ``omega`` broadcast.
     """
     if np.ndim(beta_eq) == 0 and np.ndim(omega) == 0:
-        return complex(_response(float(mu), float(beta_eq), float(omega), float(lag)))
+        # 0-d here: a number (or a 0-d array), which numpy.typing's ArrayLike does not tell apart
+        return complex(_response(float(mu), float(beta_eq), float(omega), float(lag)))  # type: ignore[arg-type]
     beq = np.asarray(beta_eq, dtype=float)
     c = _coefficients(np.ascontiguousarray(beq.ravel()) / mu, 1.0 / lag).reshape(beq.shape + (5,))
     n2, n1, n0, p, q = np.moveaxis(c, -1, 0)

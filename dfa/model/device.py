@@ -36,7 +36,7 @@ import numpy as np
 from ..checks import check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma, format_value
 from ..errors import DFATypeError, DFAValueError
 
-__all__ = ["Params", "Device", "dimensionless_params"]
+__all__ = ["Params", "Device", "dimensionless_params", "device_units"]
 
 
 @dataclass(frozen=True)
@@ -95,6 +95,29 @@ _ROTARY_UNITS = {
     "position": "rad",
     "force": "N·m",
 }
+
+
+def device_units(rotary: bool = False) -> dict[str, str]:
+    """Unit strings of each physical quantity: SI for a linear device; rad, N·m and kg·m² for a rotary one.
+
+    :attr:`Device.units` of a device; for results that hold a device's values but not the device.
+
+    Parameters
+    ----------
+    rotary : bool, optional
+        True for a rotary joint (positions are angles, forces are torques).
+
+    Returns
+    -------
+    dict of str to str
+        Quantity (``"stiffness"``, ``"velocity"``, ``"damping"``, ...) to its unit.
+
+    Examples
+    --------
+    >>> device_units()["stiffness"], device_units(rotary=True)["stiffness"]
+    ('N/m', 'N·m/rad')
+    """
+    return dict(_ROTARY_UNITS if rotary else _LINEAR_UNITS)
 
 
 @dataclass(frozen=True)
@@ -160,8 +183,8 @@ class Device:
     # ------------------------------------------------------------------ units
     @property
     def units(self) -> dict[str, str]:
-        """Unit strings of each physical quantity for this device."""
-        return dict(_ROTARY_UNITS if self.rotary else _LINEAR_UNITS)
+        """Unit strings of each physical quantity for this device (:func:`device_units`)."""
+        return device_units(self.rotary)
 
     # ------------------------------------------------------- dimensionless form
     def params(self, stiffness: float) -> Params:

@@ -11,6 +11,7 @@ import cmath
 import math
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
@@ -44,21 +45,21 @@ def grid_lead(model: str, delay: int, pade_order: int) -> tuple[np.ndarray, np.n
     return lead, np.exp(1j * lead)
 
 
-def phase_lead(w, model: str, delay: int, pade_order: int):
+def phase_lead(w: float | np.ndarray, model: str, delay: int, pade_order: int) -> Any:
     """Phase lead φ(ω) of 1/L over the device's inverse (half-delay and Padé models), rad."""
     if w is W_GRID:
         return grid_lead(model, delay, pade_order)[0]
     return _lead_eval(w, model, delay, pade_order)
 
 
-def _rotation(w, model: str, delay: int, pade_order: int):
+def _rotation(w: float | np.ndarray, model: str, delay: int, pade_order: int) -> Any:
     """e^{jφ(ω)} (vectorised), cached on W_GRID."""
     if w is W_GRID:
         return grid_lead(model, delay, pade_order)[1]
     return np.exp(1j * _lead_eval(w, model, delay, pade_order))
 
 
-def _lead_eval(w, model: str, delay: int, pade_order: int):
+def _lead_eval(w: float | np.ndarray, model: str, delay: int, pade_order: int) -> Any:
     if model == "half-delay":
         return w * (delay + 0.5)
     den = pade_denominator(delay + 0.5, pade_order)
@@ -70,7 +71,15 @@ def _lead_eval(w, model: str, delay: int, pade_order: int):
     return 2.0 * np.angle(np.polyval(den, 1j * np.asarray(w, dtype=float)))
 
 
-def inv_loop(mu: float, beq, omega, model: str, delay: int, pade_order: int, wall: WallParams | None = None):
+def inv_loop(
+    mu: float,
+    beq: float | np.ndarray,
+    omega: float | np.ndarray,
+    model: str,
+    delay: int,
+    pade_order: int,
+    wall: WallParams | None = None,
+) -> Any:
     """1/L(jω) for an equivalent damping β_eq (broadcast), time in samples; plain complex for scalars.
 
     ``wall`` (groups the spring's fast path does not cover; None for the paper's spring, any delay) divides by
@@ -98,7 +107,7 @@ def _inv_loop_scalar(mu: float, b: float, w: float, model: str, delay: int, pade
     return complex(z**delay * mu * (z - 1.0) * (z - p) / (c1 * z + c0))
 
 
-def wall_ratio(wall: WallParams, omega):
+def wall_ratio(wall: WallParams, omega: float | np.ndarray) -> complex | np.ndarray:
     """R(ω) = 1/(P(ω)·C(e^{jω})): what the wall multiplies 1/L by in the half-delay and Padé models (the delay
     stays in the hold's phase lead): C the command without its delay (the elements' polynomials,
     :meth:`dfa.model.wall.WallParams.command`), P the continuous factor between hold and device
@@ -107,7 +116,15 @@ def wall_ratio(wall: WallParams, omega):
     return 1.0 / (wall.plant_response(w) * wall.command().response(w))
 
 
-def _inv_loop_wall(mu: float, beq, omega, model: str, delay: int, pade_order: int, wall: WallParams):
+def _inv_loop_wall(
+    mu: float,
+    beq: float | np.ndarray,
+    omega: float | np.ndarray,
+    model: str,
+    delay: int,
+    pade_order: int,
+    wall: WallParams,
+) -> Any:
     """1/L(jω) with a wall (see :func:`inv_loop`); plain complex for scalars."""
     scalar = np.ndim(omega) == 0 and np.ndim(beq) == 0
     w = omega if omega is W_GRID else np.asarray(omega, dtype=float)
@@ -142,15 +159,15 @@ class HarmonicLoop:
     df: str = "exact"
     wall: WallParams | None = None
 
-    def beq(self, m, w):
+    def beq(self, m: float | np.ndarray, w: float | np.ndarray) -> float | np.ndarray:
         if isinstance(m, float) and isinstance(w, float):
             return self.params.beta + 4.0 * self.params.sigma / (math.pi * m * w)
         return self.params.beta + 4.0 * self.params.sigma / (math.pi * np.asarray(m) * np.asarray(w))
 
-    def inv(self, m, w):
+    def inv(self, m: float | np.ndarray, w: float | np.ndarray) -> Any:
         return inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order, self.wall)
 
-    def d(self, m):
+    def d(self, m: float | np.ndarray) -> float | np.ndarray:
         """D(M) (compiled eq. 41 for the exact describing function; M > 0 is the solver's own)."""
         m = np.asarray(m, dtype=float)
         if self.df == "exact":
@@ -159,7 +176,7 @@ class HarmonicLoop:
             return 2.0 / (math.pi * m)
         return np.ones_like(m) if m.ndim else 1.0
 
-    def dprime(self, m):
+    def dprime(self, m: float | np.ndarray) -> float | np.ndarray:
         m = np.asarray(m, dtype=float)
         if self.df == "exact":
             return dfcore.df_array(m.ravel(), True).reshape(m.shape) if m.ndim else dfcore.df_derivative(float(m))
@@ -167,5 +184,5 @@ class HarmonicLoop:
             return -2.0 / (math.pi * m * m)
         return np.zeros_like(m) if m.ndim else 0.0
 
-    def char(self, m, w):
+    def char(self, m: float | np.ndarray, w: float | np.ndarray) -> Any:
         return self.inv(m, w) + self.d(m)

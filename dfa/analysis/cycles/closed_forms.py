@@ -34,14 +34,20 @@ from __future__ import annotations
 import enum
 import math
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.optimize.elementwise import find_root
 
 from ...checks import check_beta, check_mu, check_sigma
 from ...errors import DFAValueError
 from ...model.device import Params
+
+if TYPE_CHECKING:
+    from ...model.wall import WallParams
 
 __all__ = [
     "ClosedFormStatus",
@@ -131,7 +137,7 @@ def _check_spring(wall: object) -> None:
         )
 
 
-def _grid(mu, beta, sigma) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _grid(mu: ArrayLike, beta: ArrayLike, sigma: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Broadcast float arrays of μ > 0, β >= 0, σ >= 0; a bad element raises the scalar rule's own message."""
     out = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (mu, beta, sigma)))
     for a, lowest, check in (
@@ -145,7 +151,7 @@ def _grid(mu, beta, sigma) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return out[0].copy(), out[1].copy(), out[2].copy()
 
 
-def _solve(f, lo: np.ndarray, hi: np.ndarray, args: tuple) -> tuple[np.ndarray, np.ndarray]:
+def _solve(f: Callable[..., np.ndarray], lo: np.ndarray, hi: np.ndarray, args: tuple) -> tuple[np.ndarray, np.ndarray]:
     """find_root of an increasing ``f`` on [lo, hi] elementwise: (root, ok); a root at ``hi`` to rounding is kept."""
     if lo.size == 0:
         return lo.copy(), np.ones(lo.shape, dtype=bool)
@@ -156,15 +162,17 @@ def _solve(f, lo: np.ndarray, hi: np.ndarray, args: tuple) -> tuple[np.ndarray, 
     return np.where(at_hi, hi, x), ok | at_hi
 
 
-def _f43(w, mu, beta, sigma):
+def _f43(w: np.ndarray, mu: np.ndarray, beta: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     return 0.5 * np.sin(w / 2) - beta * np.cos(w / 2) / (2 * mu * w) - sigma
 
 
-def _f44(w, mu):
+def _f44(w: np.ndarray, mu: np.ndarray) -> np.ndarray:
     return mu * w * w - np.cos(w / 2)
 
 
-def small_cycle_closed_forms(mu, beta, sigma, *, wall=None) -> ClosedFormCycles:
+def small_cycle_closed_forms(
+    mu: ArrayLike, beta: ArrayLike, sigma: ArrayLike, *, wall: WallParams | None = None
+) -> ClosedFormCycles:
     """Small stable cycles of eq. 42-43 (D = 2/(πM)) over broadcast (μ, β, σ).
 
     Parameters
@@ -202,7 +210,7 @@ def small_cycle_closed_forms(mu, beta, sigma, *, wall=None) -> ClosedFormCycles:
     return ClosedFormCycles(amp, w, status)
 
 
-def large_cycle_frequencies(mu) -> np.ndarray:
+def large_cycle_frequencies(mu: ArrayLike) -> np.ndarray:
     """ω of the large-cycle family, cos(ω/2) = μω² (eq. 44), rad per sample, vectorised over μ > 0.
 
     Examples
@@ -217,7 +225,9 @@ def large_cycle_frequencies(mu) -> np.ndarray:
     return np.where(ok, root, np.nan).reshape(m.shape)
 
 
-def large_cycle_closed_forms(mu, beta, sigma, *, wall=None) -> ClosedFormCycles:
+def large_cycle_closed_forms(
+    mu: ArrayLike, beta: ArrayLike, sigma: ArrayLike, *, wall: WallParams | None = None
+) -> ClosedFormCycles:
     """Large unstable cycles of eq. 44-45 (D ≈ 1) over broadcast (μ, β, σ).
 
     Parameters
@@ -271,7 +281,9 @@ def _scalar(cf: ClosedFormCycles, p: Params) -> tuple[float, float] | None:
     return (float(cf.amplitude), float(cf.frequency)) if int(cf.status) == ClosedFormStatus.OK else None
 
 
-def large_cycle_closed_form(mu: float, beta: float, sigma: float, *, wall=None) -> tuple[float, float] | None:
+def large_cycle_closed_form(
+    mu: float, beta: float, sigma: float, *, wall: WallParams | None = None
+) -> tuple[float, float] | None:
     """(M, ω) of the paper's large unstable cycle (eq. 44-45, D ≈ 1), or None when sin(ω/2) <= βω.
 
     M = (4σ/π)/(sin(ω/2) − βω) with ω from :func:`large_cycle_frequency`
@@ -308,7 +320,9 @@ def large_cycle_closed_form(mu: float, beta: float, sigma: float, *, wall=None) 
     return _scalar(large_cycle_closed_forms(p.mu, p.beta, p.sigma, wall=wall), p)
 
 
-def small_cycle_closed_form(mu: float, beta: float, sigma: float, *, wall=None) -> tuple[float, float] | None:
+def small_cycle_closed_form(
+    mu: float, beta: float, sigma: float, *, wall: WallParams | None = None
+) -> tuple[float, float] | None:
     """(M, ω) of the paper's small stable cycle (eq. 42-43, D = 2/(πM)), or None when σ >= ½ or β = σ = 0.
 
     ω solves σ = ½ sin(ω/2) − β cos(ω/2)/(2μω) on (0, π) (the right side

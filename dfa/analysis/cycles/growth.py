@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from ...checks import check_type
 from ...errors import DFAValueError
@@ -10,7 +11,7 @@ from ...model.device import Device, Params
 from ...results.jsonable import explain_nulls, to_jsonable
 from ...results.status import GrowthStatus
 from .caveats import NO_CAVEAT
-from .results import LimitCycleResult
+from .results import LimitCycle, LimitCycleResult
 from .solve import limit_cycles
 
 
@@ -127,7 +128,7 @@ class GrowthThreshold:
         return explain_nulls(out, {"caveat": NO_CAVEAT})
 
 
-def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> GrowthThreshold:
+def growth_threshold(params: Params, device: Device | None = None, **kwargs: Any) -> GrowthThreshold:
     """Growth band of the describing function: smallest and largest unstable cycles (beyond the paper).
 
     Parameters
@@ -168,7 +169,7 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs) -> 
         )
     lo, hi = unstable[0], unstable[-1]
 
-    def phys(c):
+    def phys(c: LimitCycle) -> tuple[float | None, float | None]:
         if device is None:
             return None, None
         return c.amplitude * device.resolution, device.velocity(c.amplitude * c.frequency)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 from scipy import optimize
@@ -144,7 +145,7 @@ class PieceOmega:
         order = np.argsort(ms)
         self.lp, self.ms, self.ws = lp, ms[order], ws[order]
 
-    def _brackets(self, m):
+    def _brackets(self, m: float | np.ndarray) -> tuple[Any, Any]:
         k = np.clip(np.searchsorted(self.ms, m), 1, self.ms.size - 1)
         return self.ws[k - 1], self.ws[k]
 
@@ -157,7 +158,7 @@ class PieceOmega:
         wa, wb = (float(x) for x in self._brackets(m))
         lp = self.lp
 
-        def v(w):
+        def v(w: float) -> float:
             return lp.inv(m, w).imag
 
         va, vb = v(wa), v(wb)

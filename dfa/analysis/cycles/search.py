@@ -3,18 +3,22 @@
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..describing import DF_ENVELOPE
 from .characteristic import M_FLOOR, HarmonicLoop, inv_loop
 
+if TYPE_CHECKING:
+    from .phase import PieceOmega
+
 #: Most far intervals [n, n + 1] (n > 32) sampled point by point per piece; beyond, the search ends incomplete.
 INTERVAL_BUDGET = 20_000
 
 
 def m_samples(
-    lo: float, hi: float, max_amp: float, lp: HarmonicLoop, w_inf: float | None, omega_of
+    lo: float, hi: float, max_amp: float, lp: HarmonicLoop, w_inf: float | None, omega_of: PieceOmega
 ) -> tuple[np.ndarray, tuple[float, str] | None, float]:
     """Sample amplitudes on [lo, hi] ∩ (0, max_amp], stopping by the envelope rule.
 
@@ -68,7 +72,9 @@ def m_samples(
     return np.unique(np.concatenate(pts)), reach, bound
 
 
-def _far_intervals(lp: HarmonicLoop, n_from: int, n_end: int, u_far: float, omega_of, lo: float, hi: float):
+def _far_intervals(
+    lp: HarmonicLoop, n_from: int, n_end: int, u_far: float, omega_of: PieceOmega, lo: float, hi: float
+) -> tuple[np.ndarray, int, bool]:
     """Far intervals [n, n + 1] (n >= n_from > 32) that can hold a root, up to the envelope stop.
 
     −U = −Re(1/L) along the piece decides both, under the premise that far out −U moves

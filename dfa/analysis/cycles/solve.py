@@ -28,7 +28,7 @@ _NUMERICAL_ERRORS = (ValueError, RuntimeError, FloatingPointError, ZeroDivisionE
 def _refine(lp: HarmonicLoop, omega_of: PieceOmega, a: float, b: float) -> float | None:
     """Root of F(M) = D(M) + U(M, ω(M)) on [a, b] with the scalar ω(M); None when the ends do not bracket."""
 
-    def g(mm):
+    def g(mm: float) -> float:
         return lp.char(mm, omega_of.scalar(mm)).real
 
     ga, gb = g(a), g(b)

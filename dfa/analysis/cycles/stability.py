@@ -23,7 +23,7 @@ def _loeb(lp: HarmonicLoop, m: float, w: float) -> float:
 def _polish(lp: HarmonicLoop, m: float, w: float) -> tuple[float, float]:
     """2-D Newton on (U, V) from a bracketed root; keeps the start if Newton wanders."""
 
-    def f(x):
+    def f(x: np.ndarray) -> list[float]:
         c = lp.char(x[0], x[1])
         return [float(np.real(c)), float(np.imag(c))]
 

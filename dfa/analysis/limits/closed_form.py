@@ -40,8 +40,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ...checks import check_delay, check_positive, check_real_array, check_speed, check_type
 from ...errors import DFAValueError
@@ -83,7 +85,7 @@ def k_static(device: Device) -> float:
     return 2.0 * dev.coulomb / dev.resolution
 
 
-def k_max_criterion(device: Device, velocity, delay: int = 0):
+def k_max_criterion(device: Device, velocity: ArrayLike, delay: int = 0) -> Any:
     """Largest stiffness passing the criterion at impact speed ``velocity`` and delay d (eq. 11 generalised), N/m.
 
     K_max = min(2c/Δ, (b·abs(ẋ0) + c)/(T(½ + d)·abs(ẋ0) + Δ/2)). Vectorised over
@@ -201,7 +203,7 @@ def _bounds(dev: Device, delay: int) -> dict[str, float]:
     )
 
 
-def gil_factor(gamma):
+def gil_factor(gamma: ArrayLike) -> Any:
     """f(γ) = γ(1 − e^{−γ}) / (1 − (1 + γ)e^{−γ}) of Gil et al. (2004), vectorised.
 
     The closed form of one Jury condition only (the pair of roots crossing the
@@ -619,7 +621,7 @@ class StiffnessResponse:
             }
         )
 
-    def plot(self, ax=None):
+    def plot(self, ax: Any = None) -> Any:
         """K_max against impact speed with the published bounds (:func:`dfa.figures.stiffness_plot`); returns the Axes.
 
         Parameters
@@ -636,13 +638,66 @@ class StiffnessResponse:
 
         return stiffness_plot(self, ax)
 
+    def to_xarray(self) -> Any:
+        """The curve as an :class:`xarray.Dataset` with the labelled dim ``velocity`` (the impact speeds).
+
+        Variable ``k_max``: the criterion's largest passive stiffness at each speed (eq. 11 with the delay).
+        Units are the device's (``device.units``: N/m and m/s; rotary N·m/rad and rad/s). Attributes hold the
+        device, the delay (samples), the speed-independent bounds ``k_static``, ``k_colgate``,
+        ``k_abbott_okamura`` and ``k_gil`` (in ``stiffness_units``), the chosen ``stiffness`` and its
+        ``max_passive_velocity`` (in ``velocity_units``; inf: every speed; absent when None) and the status.
+
+        Returns
+        -------
+        xarray.Dataset
+            K_max with the coordinate ``velocity``.
+
+        Raises
+        ------
+        DFAError
+            When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
+
+        Examples
+        --------
+        >>> from dfa.model.catalogue import get_device
+        >>> ds = stiffness_response(get_device("Impulse Engine").device, [0.01, 0.1]).to_xarray()
+        >>> ds["k_max"].dims, ds["k_max"].attrs["units"], ds["velocity"].attrs["units"]
+        (('velocity',), 'N/m', 'm/s')
+        """
+        from ...results.xarray import import_xarray, netcdf_attrs, physical_attrs
+
+        xr = import_xarray()
+        u = self.device.units
+        k_max = physical_attrs("largest passive stiffness K_max, criterion (eq. 11)", u["stiffness"])
+        return xr.Dataset(
+            {"k_max": ("velocity", np.array(self.k_max), k_max)},
+            coords={"velocity": ("velocity", np.array(self.velocity), physical_attrs("impact speed", u["velocity"]))},
+            attrs=netcdf_attrs(
+                {
+                    "device": self.device.name,
+                    "rotary": self.device.rotary,
+                    "delay": self.delay,
+                    "k_static": self.k_static,
+                    "k_colgate": self.k_colgate,
+                    "k_abbott_okamura": self.k_abbott_okamura,
+                    "k_gil": self.k_gil,
+                    "stiffness": self.stiffness,
+                    "max_passive_velocity": self.max_passive_velocity,
+                    "stiffness_units": u["stiffness"],
+                    "velocity_units": u["velocity"],
+                    "status": self.status,
+                    "status_message": self.status.message,
+                }
+            ),
+        )
+
 
 #: Deprecated alias of :class:`StiffnessResponse` (the name before the ``*_response`` → ``*Response`` scheme).
 StiffnessCurve = StiffnessResponse
 
 
 def stiffness_response(
-    device: Device, velocity=None, stiffness: float | None = None, delay: int = 0
+    device: Device, velocity: ArrayLike | None = None, stiffness: float | None = None, delay: int = 0
 ) -> StiffnessResponse:
     """K_max against impact speed for a device (eq. 11, with delay d), for :func:`dfa.figures.stiffness_plot`.
 

@@ -363,7 +363,9 @@ def _searches(ev: Evidence, v: float, k_ref: float, top: float, n_grid: int) -> 
     return k_df, k_sim, k_rest, (float(pts[0]), float(pts[-1]))
 
 
-def searched_limits(ev: Evidence, v: float, n_speeds: int, kc: float | None, k_ref: float, top: float, n_grid: int):
+def searched_limits(
+    ev: Evidence, v: float, n_speeds: int, kc: float | None, k_ref: float, top: float, n_grid: int
+) -> tuple[KLimit, KLimit, KLimit, tuple[float, float], tuple[Failure, ...], KMaxStatus]:
     """K_df, K_sim, K_sim_rest searched and confirmed with ``ev`` (the one implementation, spring or wall).
 
     The simulated limits are swept in K from ``kc`` (None or 0: from the grid's lowest point) at the search

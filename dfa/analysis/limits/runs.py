@@ -74,7 +74,9 @@ DIVERGENCE_BOUND = 1.0e6
 STARTS = ("impact", "preload")
 
 
-def simulate_points(points: Sequence[tuple[float, ...]], walls: Sequence[WallParams], max_samples: int):
+def simulate_points(
+    points: Sequence[tuple[float, ...]], walls: Sequence[WallParams], max_samples: int
+) -> tuple[list[str], list[int]]:
     """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), each with its wall's groups.
 
     The run length of each point is :func:`dfa.analysis.simulation.default_samples` (with its wall), at most
@@ -214,7 +216,7 @@ class RunCache:
         points: Sequence[tuple[float, float, float, float, float]],
         walls: WallParams | Sequence[WallParams],
         max_samples: int,
-    ):
+    ) -> tuple[list[str], list[int]]:
         """Outcomes and run lengths of ``points`` (as :func:`simulate_points`), simulating only the new ones.
 
         Parameters

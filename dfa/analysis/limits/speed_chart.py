@@ -31,7 +31,7 @@ from __future__ import annotations
 import math
 import sys
 from dataclasses import dataclass, field
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -58,7 +58,7 @@ UNKNOWN_DF = (
 HAND_SPEED = {"linear": 2.0, "rotary": 10.0}
 
 
-def _ro(a) -> np.ndarray:
+def _ro(a: Any) -> np.ndarray:
     out = np.array(a, dtype=float)
     out.setflags(write=False)
     return out
@@ -143,7 +143,7 @@ class StiffnessSpeedChart(Result):
                 check_real(name, getattr(self, name), fix)
         check_int("simulations", self.simulations, 0, fix)
 
-    def plot(self, ax=None):
+    def plot(self, ax: Any = None) -> Any:
         """Draw the chart (:func:`dfa.figures.stiffness_speed_plot`); returns the axes.
 
         Parameters
@@ -159,6 +159,87 @@ class StiffnessSpeedChart(Result):
         from ...figures import stiffness_speed_plot
 
         return stiffness_speed_plot(self, ax)
+
+    def to_xarray(self) -> Any:
+        """The chart as an :class:`xarray.Dataset` with labelled dims ``stiffness`` and ``criterion_stiffness``.
+
+        Variables over ``stiffness``: ``v_df``, ``v_sim`` and ``v_rest``, the largest safe impact speed by the
+        describing function, by simulation (no divergence) and by simulation (comes to rest); over
+        ``criterion_stiffness`` (its own, finer grid): ``v_criterion``, the criterion's largest passive speed.
+        Values are the chart's: 0 where not even the slowest simulated speed is safe (the criterion: none
+        proven), NaN in ``v_df`` where the describing function cannot tell (:data:`UNKNOWN_DF`), and speeds
+        above ``v_top`` are the analysis's ``v_top`` (capped there, not here). The coordinate ``speeds`` holds
+        the impact speeds simulated at each K. Units are the device's (``device.units``: m/s and N/m; rotary
+        rad/s and N·m/rad). Attributes hold the device, ``v_top``, the closed-form bounds and the design point
+        (absent when None; in ``stiffness_units`` and ``velocity_units``), the wall held fixed (its damper
+        ``virtual_damping`` in ``damping_units``, ``delay`` in samples, ``filter_cutoff`` and
+        ``amplifier_bandwidth`` in Hz) and the number of simulations.
+
+        Returns
+        -------
+        xarray.Dataset
+            The largest safe speeds with coordinates ``stiffness``, ``criterion_stiffness`` and ``speeds``.
+
+        Raises
+        ------
+        DFAError
+            When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
+
+        Examples
+        --------
+        >>> from dfa.model.catalogue import get_device
+        >>> ds = stiffness_speed_chart(get_device("Impulse Engine").device, grid=3, speeds=2).to_xarray()
+        >>> ds["v_sim"].dims, ds["v_criterion"].dims, ds["v_sim"].attrs["units"]
+        (('stiffness',), ('criterion_stiffness',), 'm/s')
+        """
+        from ...results.xarray import import_xarray, netcdf_attrs, physical_attrs
+
+        xr = import_xarray()
+        u = self.device.units
+        capped = "at most v_top (speeds above it are reported as v_top); 0: not even the slowest simulated speed"
+        speed = {
+            "v_df": ("describing function", f"{capped}; NaN: {UNKNOWN_DF}"),
+            "v_sim": ("simulation: no divergence", capped),
+            "v_rest": ("simulation: comes to rest", capped),
+        }
+        data = {}
+        for name, (what, comment) in speed.items():
+            attrs = physical_attrs(f"largest safe impact speed, {what}", u["velocity"], comment=comment)
+            data[name] = ("stiffness", np.array(getattr(self, name)), attrs)
+        criterion = physical_attrs(
+            "largest passive impact speed, criterion (proof)", u["velocity"], comment="at most v_top; 0: none proven"
+        )
+        data["v_criterion"] = ("criterion_stiffness", np.array(self.v_criterion), criterion)
+        k_attrs = physical_attrs("virtual stiffness K", u["stiffness"])
+        return xr.Dataset(
+            data,
+            coords={
+                "stiffness": ("stiffness", np.array(self.stiffness), k_attrs),
+                "criterion_stiffness": ("criterion_stiffness", np.array(self.criterion_stiffness), k_attrs),
+                "speeds": ("speeds", np.array(self.speeds), physical_attrs("impact speed simulated", u["velocity"])),
+            },
+            attrs=netcdf_attrs(
+                {
+                    "device": self.device.name,
+                    "rotary": self.device.rotary,
+                    "v_top": self.v_top,
+                    "k_linear": self.k_linear,
+                    "k_colgate": self.k_colgate,
+                    "k_abbott_okamura": self.k_abbott_okamura,
+                    "k_static": self.k_static,
+                    "design_stiffness": self.design_stiffness,
+                    "design_velocity": self.design_velocity,
+                    "stiffness_units": u["stiffness"],
+                    "velocity_units": u["velocity"],
+                    "virtual_damping": self.wall.damping,
+                    "damping_units": u["damping"],
+                    "delay": self.delay,
+                    "filter_cutoff": self.wall.filter_cutoff,
+                    "amplifier_bandwidth": self.wall.amplifier_bandwidth,
+                    "simulations": self.simulations,
+                }
+            ),
+        )
 
     @property
     def delay(self) -> int:

@@ -258,6 +258,85 @@ class ZWidth(Result):
 
         return plot_zwidth(self, ax=ax, design_point=design_point)
 
+    def to_xarray(self) -> Any:
+        """The Z-width as an :class:`xarray.Dataset` with labelled dims ``damping`` (B) and ``stiffness`` (K).
+
+        Variables: ``outcome`` over (``damping``, ``stiffness``), the code of each simulated grid point
+        (``flag_values`` and ``flag_meanings`` name them: :data:`POINT_OUTCOMES`); for each method of
+        :data:`ZWIDTH_METHODS` its boundary ``k_max_<method>`` over ``damping`` (:meth:`boundary`, NaN where
+        undefined) and ``k_max_<method>_status``, its limit's status code at each B (which says why). Units are
+        the device's (``device.units``: N/m and N·s/m; rotary N·m/rad and N·m·s/rad). Attributes hold the device,
+        the impact speed ``velocity`` and the ``speeds`` simulated (in ``velocity_units``), the wall held fixed
+        (``delay`` in samples; ``filter_cutoff`` and ``amplifier_bandwidth`` in Hz, absent without one), the run
+        settings, the numbers of counterexamples and of linear passivity violations, and the status.
+
+        Returns
+        -------
+        xarray.Dataset
+            The grid's outcome codes and the boundaries K_max(B), with coordinates ``damping`` and ``stiffness``.
+
+        Raises
+        ------
+        DFAError
+            When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
+
+        Examples
+        --------
+        >>> from dfa.model.catalogue import get_device
+        >>> z = z_width(get_device("Impulse Engine").device, 0.1, grid=3, speeds=1, n_jobs=1)
+        >>> ds = z.to_xarray()
+        >>> ds["outcome"].dims, ds["k_max_linear"].dims, ds["stiffness"].attrs["units"]
+        (('damping', 'stiffness'), ('damping',), 'N/m')
+        """
+        from ...results.xarray import flag_attrs, import_xarray, netcdf_attrs, physical_attrs
+
+        xr = import_xarray()
+        u = self.device.units
+        grid = ("damping", "stiffness")
+        outcome = flag_attrs("simulated outcome", POINT_OUTCOMES)
+        data: dict[str, Any] = {"outcome": (grid, np.array(self.outcome), outcome)}
+        how = {
+            "linear": "exact linear bound",
+            "passivity": "Colgate–Schenkel passivity (linear model)",
+            "criterion": "extended criterion (proof)",
+            "df": "describing function",
+            "sim": "simulation: no divergence",
+            "rest": "simulation: comes to rest",
+        }
+        for m in ZWIDTH_METHODS:
+            k_max = physical_attrs(f"K_max(B), {m}", u["stiffness"], description=how[m])
+            data[f"k_max_{m}"] = ("damping", np.array(self.boundary(m)), k_max)
+            codes = np.array([x.status.value for x in self.limits[m]], dtype=str)
+            data[f"k_max_{m}_status"] = ("damping", codes, {"long_name": f"status of K_max(B), {m}"})
+        b_attrs = physical_attrs("virtual damping B", u["damping"])
+        k_attrs = physical_attrs("virtual stiffness K", u["stiffness"])
+        return xr.Dataset(
+            data,
+            coords={
+                "damping": ("damping", np.array(self.damping), b_attrs),
+                "stiffness": ("stiffness", np.array(self.stiffness), k_attrs),
+            },
+            attrs=netcdf_attrs(
+                {
+                    "device": self.device.name,
+                    "rotary": self.device.rotary,
+                    "velocity": self.velocity,
+                    "speeds": self.speeds,
+                    "velocity_units": u["velocity"],
+                    "delay": self.delay,
+                    "filter_cutoff": self.wall.filter_cutoff,
+                    "amplifier_bandwidth": self.wall.amplifier_bandwidth,
+                    "max_samples": self.max_samples,
+                    "simulations": self.simulations,
+                    "df_model": self.df_model,
+                    "counterexamples": len(self.counterexamples),
+                    "linear_passivity_violations": len(self.linear_passivity_violations),
+                    "status": self.status,
+                    "status_message": self.status_message,
+                }
+            ),
+        )
+
 
 # ----------------------------------------------------------------------------- boundaries per B
 def _linear(dev: Device, wall: Wall) -> KLimit:
@@ -301,7 +380,7 @@ def _describing(dev: Device, wall: Wall, v: float, model: str, cache: RunCache) 
 
 
 # ----------------------------------------------------------------------------- simulation of the grid
-def _runs(dev: Device, k: float, ctl: WallParams, xi_dots, cap: int) -> list[tuple]:
+def _runs(dev: Device, k: float, ctl: WallParams, xi_dots: Any, cap: int) -> list[tuple]:
     """The runs (μ, β, σ, ξ0, ξ'0, samples, bound) of one grid point: each speed from ξ0 = 0 and from the preload."""
     p = dev.params(k)
     out = []
@@ -402,7 +481,7 @@ def _grid_boundary(row: np.ndarray, ks: np.ndarray, bad: set[int]) -> KLimit:
 
 
 # ----------------------------------------------------------------------------- the analysis
-def _grids(dev: Device, wall: Wall, grid: int, k_range, b_range) -> tuple[np.ndarray, np.ndarray]:
+def _grids(dev: Device, wall: Wall, grid: int, k_range: Any, b_range: Any) -> tuple[np.ndarray, np.ndarray]:
     """Default grids: B from 0 to m/T; K geometric up to 8 × the largest linear bound or static limit 2c/Δ."""
     if b_range is None:
         b_range = (0.0, dev.mass / dev.period)
@@ -427,7 +506,7 @@ def _grids(dev: Device, wall: Wall, grid: int, k_range, b_range) -> tuple[np.nda
     return np.geomspace(k0, k1, grid), bs
 
 
-def _plan(dev: Device, wall: Wall, ks, bs, xi_dots, cap: int) -> tuple[list[tuple], float]:
+def _plan(dev: Device, wall: Wall, ks: Any, bs: Any, xi_dots: Any, cap: int) -> tuple[list[tuple], float]:
     """The simulation tasks of the grid (B-major) and their planned samples."""
     tasks, work = [], 0.0
     for b in bs:
@@ -540,7 +619,20 @@ def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, row: np.ndarray, 
     ]
 
 
-def _assemble(dev, wall, v, vs, ks, bs, codes, cap, n_points, model, workers: int, progress=False) -> ZWidth:
+def _assemble(
+    dev: Device,
+    wall: Wall,
+    v: float,
+    vs: Any,
+    ks: Any,
+    bs: Any,
+    codes: Any,
+    cap: int,
+    n_points: int,
+    model: str,
+    workers: int,
+    progress: bool = False,
+) -> ZWidth:
     """Limits per method from the grid and the closed forms (columns on ``workers`` threads, or processes from
     :data:`PROCESS_COLUMNS` columns on); status."""
     from tqdm.auto import tqdm
@@ -562,7 +654,7 @@ def _assemble(dev, wall, v, vs, ks, bs, codes, cap, n_points, model, workers: in
     )  # fmt: skip
 
 
-def _violations(codes, ks, bs, limits, unit) -> tuple[tuple[dict, ...], tuple[dict, ...]]:
+def _violations(codes: Any, ks: Any, bs: Any, limits: Any, unit: str) -> tuple[tuple[dict, ...], tuple[dict, ...]]:
     """Divergent grid points at or below the criterion's and Colgate–Schenkel's boundaries."""
     out: dict[str, list[dict]] = {"criterion": [], "passivity": []}
     for name, rows in out.items():
