@@ -63,3 +63,52 @@ def test_describing_function_numbers_in_readme_match_the_committed_run():
     assert f"diverges at ξ'0 = {cl['first_diverging']:.2g}" in flat
     assert f"exact-ZOH band ({lo:.2f} to {hi:.2f})" in flat
     assert f"with {cl['interleaved']} non-diverging speeds above it up to {cl['last_non_diverging']:.0f}" in flat
+
+
+def _public(name: str):
+    """A name of `dfa`, else of the `dfa.analysis` module that defines it (the README names both)."""
+    import importlib
+    import pkgutil
+
+    import dfa
+    import dfa.analysis
+
+    if hasattr(dfa, name):
+        return getattr(dfa, name)
+    for mod in pkgutil.walk_packages(dfa.analysis.__path__, "dfa.analysis."):
+        module = importlib.import_module(mod.name)
+        if name in getattr(module, "__all__", ()):
+            return getattr(module, name)
+    raise AssertionError(f"the README names {name}, which no public module defines")
+
+
+def test_readme_results_table_names_each_analysis_its_result_status_and_xarray_dims():
+    """Every row of the README's results table: the analysis is public, returns the class named, whose status
+    field is the enum named; a to_xarray column's dims are those of the Dataset the class builds (its doctest)."""
+    import dataclasses
+    import inspect
+    import typing
+
+    import dfa
+
+    table = README[README.index("| scheme | analysis → result") : README.index("- `status` is an enum member")]
+    rows = [r for r in table.splitlines()[2:] if r.startswith("|")]
+    assert len(rows) >= 18
+    for row in rows:
+        cells = [c.strip() for c in row.strip("|").split("|")]
+        names = re.findall(r"`(\w+)`", cells[1])
+        *analyses, result = names
+        hints = [typing.get_type_hints(_public(name))["return"] for name in analyses]
+        assert hints and all(h.__name__ == result for h in hints), (analyses, hints, result)
+        cls = hints[0]
+        types = [str(f.type) for f in dataclasses.fields(cls)]
+        if isinstance(getattr(cls, "status", None), property):  # a status computed from the fields
+            types.append(str(typing.get_type_hints(cls.status.fget)["return"]))
+        for status in re.findall(r"`(\w+)`", cells[2]):
+            assert any(status in t for t in types), (result, status)
+        if cells[4]:
+            doc = inspect.getdoc(cls.to_xarray)
+            for dim in re.findall(r"`([\w, ]+)`", cells[4]):
+                assert all(d.strip() in doc for d in dim.split(",")), (result, dim)
+        else:
+            assert not hasattr(cls, "to_xarray"), f"{result}.to_xarray is missing from the README's table"
