@@ -40,11 +40,11 @@ samples), which the 2000-sample floor covers for μ <= 100.
 
 The simulation (:func:`storage_growth`) takes the spring's fast path for a wall that is a spring (any delay,
 encoder on or off): :func:`dfa.core.storage.storage_runs`, the kernel of :func:`dfa.simulate` compiled with
-the storage check, all such points in one call. There a run diverged when its outcome is ``"unstable"``
-(past the bound of 10⁶ ticks, or a growing envelope), and its growth is S/S(0) − 1 at every sample it ran,
-the sample past the bound included. Any other wall runs :func:`dfa.simulate` (:mod:`dfa.core.wall_kernel`)
-point by point; there a run diverged when |ξ| leaves 10⁶ ticks at a sample instant, and its growth from that
-sample on is inf. Turning points inside a sample (ξ' = 0 between two instants) are not checked here: the
+the storage check, all such points in one call; any other wall runs :func:`dfa.simulate`
+(:mod:`dfa.core.wall_kernel`) point by point. Both paths share one rule: a run diverged when its outcome is
+``"unstable"`` (|ξ| past the bound of 10⁶ ticks, or a growing envelope: the outcome rules of
+:func:`dfa.simulate`), and its growth is the largest S/S(0) − 1 over the sample instants it ran, inf from the first sample
+past the bound. Turning points inside a sample (ξ' = 0 between two instants) are not checked here: the
 simulator records the sample instants only; the reference loop ``tests/reference_ctl.controller_run``
 (bit-identical trajectories, tested) also checks them.
 
@@ -66,6 +66,7 @@ from ..core import kernel
 from ..core.storage import storage_runs
 from ..errors import DFATypeError, DFAValueError
 from ..model.wall import WallParams
+from ..results.status import SimulationOutcome
 from .criterion import CriterionResult, passivity_criterion
 from .simulation import simulate
 from .soundness_counts import KINDS as KINDS
@@ -296,21 +297,20 @@ def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:
             bound=BOUND,
         )  # fmt: skip
         xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
-        past = np.flatnonzero(~(np.abs(xs) <= BOUND))  # beyond the bound or NaN (after a bound exit)
-        if past.size:
-            return math.inf, int(past[0]) + 1, True
+        diverged = r.outcome is SimulationOutcome.UNSTABLE  # the compiled path's rule (module docstring)
         s0 = 0.5 * mu * v0 * v0 + 0.5 * x0 * x0
         s = 0.5 * mu * vs * vs + 0.5 * xs * xs
         ratio = (s - s0) / s0 if s0 > 0.0 else np.where(s > 0.0, np.inf, 0.0)
+        ratio = np.where(np.abs(xs) <= BOUND, ratio, np.inf)  # past the bound, or NaN after it: inf
     h = int(np.argmax(ratio))
-    return float(ratio[h]), h + 1, False
+    return float(ratio[h]), h + 1, diverged
 
 
 def storage_growth(pts: dict[str, np.ndarray], ns: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Simulate every point of :func:`sample_passive_points` for ``ns[i]`` samples; the storage at every sample.
 
     The spring's walls run in one compiled call (:func:`dfa.core.storage.storage_runs`), the others with
-    :func:`dfa.simulate` point by point; each path's rule of divergence is in the module docstring.
+    :func:`dfa.simulate` point by point; both share one rule of divergence (module docstring).
 
     Parameters
     ----------

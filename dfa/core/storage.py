@@ -35,8 +35,8 @@ def storage_runs(
     Point i is :func:`dfa.core.kernel.simulate_kernel` of (``mus[i]``, ``betas[i]``, ``sigmas[i]``, ``x0s[i]``,
     ``v0s[i]``) over ``ns[i]`` samples with the delay ``delays[i]`` (samples), the encoder ``quantized[i]``,
     bound 10⁶ and the default outcome rules;
-    ``codes[i]`` receives its outcome code, ``ratio[i]`` the largest S(h)/S(0) − 1 with S = ½μξ'² + ½ξ² (NaN
-    past the bound counts as growth: inf) and ``worst_sample[i]`` the sample where it occurs.
+    ``codes[i]`` receives its outcome code, ``ratio[i]`` the largest S(h)/S(0) − 1 with S = ½μξ'² + ½ξ² (a
+    sample past the bound, and every NaN sample after it, counts as growth: inf) and ``worst_sample[i]`` the sample where it occurs.
     """
     nmax = 0
     for i in range(ns.shape[0]):
@@ -73,8 +73,10 @@ def storage_runs(
         for h in range(1, done + 1):
             s = 0.5 * mu * rv[h] * rv[h] + 0.5 * rx[h] * rx[h]
             r = (s - s0) / s0 if s0 > 0.0 else (np.inf if s > 0.0 else 0.0)
-            if not r <= worst:  # NaN (past the bound) counts as growth
-                worst = r if r == r else np.inf
+            if not abs(rx[h]) <= 1.0e6:  # past the bound (or NaN after it): growth without limit
+                r = np.inf
+            if not r <= worst:
+                worst = r
                 at = h
         ratio[i] = worst if done >= 1 else 0.0
         worst_sample[i] = at

@@ -31,7 +31,7 @@ _SPRING_FOOT = [
     "*delay-aware*: the criterion of `dfa.analysis.criterion` ((β − ½ − d)V + (σ − ½) ≥ 0, σ ≥ ½, V² = ξ'0² + 2H_c(ξ0)/μ).",
     "*d-ignoring*: eq. 6 unchanged (d = 0 and V = |ξ'0| whatever the delay and initial position): its violations",
     "are the evidence of the bug the delay-aware criterion fixes (issue 12). A negative worst growth means the",
-    "energy fell at every sample of every run.",
+    "energy fell at every sample of every run; ∞ means a run diverged (|ξ| past 10⁶ ticks).",
     "",
 ]
 _WALLS_HEAD = [
@@ -50,7 +50,8 @@ _WALLS_FOOT = [
     "*controller-aware*: `dfa.analysis.criterion` ((β − β₀)V + (σ − σ₀) ≥ 0 and σ ≥ σ₀, β₀ = ½ + d + β_B,",
     "σ₀ = ½ + (1 − a)β_B with the encoder, 0 without; V² = ξ'0² + 2H_c(ξ0)/μ).",
     "*damper-ignoring*: the spring's criterion with the delay (β₀ = ½ + d, σ₀ = ½): its violations show that the",
-    "check can fail and that the damper must be paid for. A negative worst growth means the energy fell everywhere.",
+    "check can fail and that the damper must be paid for. A negative worst growth means the energy fell everywhere;",
+    "∞ means a run diverged (|ξ| past 10⁶ ticks).",
     "",
 ]
 
