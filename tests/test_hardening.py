@@ -904,6 +904,9 @@ def test_stiffness_speed_chart_record_validates_its_arrays():
               v_rest=[0.1, 0.2], criterion_stiffness=[1.0], v_criterion=[0.3], speeds=[0.1],
               k_linear=1.0, k_colgate=math.inf, k_abbott_okamura=1.0, k_static=2.0)  # fmt: skip
     assert dfa.StiffnessSpeedChart(**ok).to_dict()["v_df"] == [0.1, None]
+    # the status follows v_df: a stiffness where the describing function cannot tell makes it df_unknown
+    assert dfa.StiffnessSpeedChart(**ok).to_dict()["status"] == "df_unknown"
+    assert dfa.StiffnessSpeedChart(**(ok | {"v_df": [0.1, 0.2]})).status == "ok"
     for bad in ({"speeds": 0.0}, {"v_sim": [0.1]}, {"v_rest": [0.1, math.nan]}, {"k_static": "x"}):
         with pytest.raises(DFAError, match=f"^({next(iter(bad))}|v_sim|v_rest|k_static)"):
             dfa.StiffnessSpeedChart(**(ok | bad))

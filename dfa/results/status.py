@@ -29,6 +29,7 @@ __all__ = [
     "StiffnessStatus",
     "VelocityStatus",
     "CurveStatus",
+    "ChartStatus",
     "SimulationOutcome",
     "BatchStatus",
     "LimitStatus",
@@ -169,6 +170,16 @@ class CurveStatus(StatusEnum):
     """Status of a stiffness limit curve over impact speeds."""
 
     OK = ("ok", "K_max computed at every speed")
+
+
+class ChartStatus(StatusEnum):
+    """Status of the stiffness–speed chart (:mod:`dfa.analysis.limits.speed_chart`)."""
+
+    OK = ("ok", "every method's largest safe speed found at every stiffness")
+    DF_UNKNOWN = (
+        "df_unknown",
+        "the describing function cannot tell at some stiffnesses (no value there); the other methods are complete",
+    )
 
 
 class SimulationOutcome(StatusEnum):

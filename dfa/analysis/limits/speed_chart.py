@@ -41,6 +41,7 @@ from ...model.device import Device
 from ...model.wall import Wall
 from ...results.base import Result
 from ...results.frozen import frozen_array
+from ...results.status import ChartStatus
 from ..cycles.caveats import SUBTICK_LIMIT
 from .closed_form import k_static
 from .kmax import DESIGN_MAX_SAMPLES, closed_forms, passive_speed
@@ -91,6 +92,9 @@ class StiffnessSpeedChart(Result):
     design_stiffness, design_velocity : float or None
         The design point.
     simulations : int
+        Runs simulated.
+    status : ChartStatus
+        Derived from ``v_df`` (:attr:`status`).
     """
 
     device: Device = field(metadata={"json": lambda d: d.name})
@@ -111,7 +115,7 @@ class StiffnessSpeedChart(Result):
     design_velocity: float | None = None
     simulations: int = 0
 
-    json_properties: ClassVar[tuple[str, ...]] = ("delay",)
+    json_properties: ClassVar[tuple[str, ...]] = ("delay", "status")
     units_of: ClassVar[dict[str, str]] = {
         "v_top": "velocity", "stiffness": "stiffness", "v_df": "velocity", "v_sim": "velocity", "v_rest": "velocity",
         "criterion_stiffness": "stiffness", "v_criterion": "velocity", "speeds": "velocity", "k_linear": "stiffness",
@@ -142,6 +146,18 @@ class StiffnessSpeedChart(Result):
             if getattr(self, name) is not None:
                 check_real(name, getattr(self, name), fix)
         check_int("simulations", self.simulations, 0, fix)
+
+    @property
+    def status(self) -> ChartStatus:
+        """``df_unknown`` where the describing function cannot tell at some stiffness (NaN in ``v_df``), else ``ok``.
+
+        Examples
+        --------
+        >>> from dfa.model.catalogue import get_device
+        >>> stiffness_speed_chart(get_device("Impulse Engine").device, grid=4, speeds=3).status.value
+        'ok'
+        """
+        return ChartStatus.DF_UNKNOWN if bool(np.isnan(self.v_df).any()) else ChartStatus.OK
 
     def plot(self, ax: Any = None) -> Any:
         """Draw the chart (:func:`dfa.figures.stiffness_speed_plot`); returns the axes.
