@@ -7,6 +7,7 @@ status members carry messages, construction refuses inconsistent data, ``.plot()
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 import importlib.metadata
 import json
@@ -37,6 +38,26 @@ from dfa.results.jsonable import NULL_REASONS_KEY, dumps, to_jsonable
 
 ROOT = Path(__file__).resolve().parents[1]
 DEV = dfa.get_device("Delta").device
+
+
+def _json_keys(result) -> set[str]:
+    """The keys :meth:`dfa.results.base.Result.to_dict` writes: fields (but ``json: None``), json_properties, message."""
+    keys = {f.name for f in dataclasses.fields(result) if f.metadata.get("json", True) is not None}
+    keys |= set(type(result).json_properties)
+    if getattr(result, "status", None) is not None:
+        keys.add("status_message")
+    if result.units():
+        keys.add("units")
+    return keys
+
+
+def _assert_json_from_fields(result, extra=frozenset()) -> dict:
+    """``to_dict()`` has exactly :func:`_json_keys` (plus ``extra``; ``null_reasons`` where a value is null) and is
+    strict JSON."""
+    d = result.to_dict()
+    assert set(d) - {"null_reasons"} == _json_keys(result) | set(extra)
+    json.dumps(d, allow_nan=False)
+    return d
 
 
 def _refuse_constant(token):
@@ -476,3 +497,12 @@ def test_import_dfa_and_result_helpers_load_no_matplotlib_nor_xarray():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
     assert out == "[]"
+
+
+def test_soundness_and_validation_result_json_from_their_fields(empty_validation):
+    """Soundness and ValidationResult write the Result base's JSON (the latter: the key numbers of summary())."""
+    snd = Soundness((5.0,), (1.0,), 4, 2, rest=2, rejected_rest=1)
+    d = _assert_json_from_fields(snd)
+    assert d["conservatism"] == 0.5
+    d = _assert_json_from_fields(empty_validation, extra={"speeds_ordered", "controller_errors"})
+    assert set(d) - {"status", "status_message", "null_reasons"} == set(empty_validation.summary())

@@ -50,12 +50,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
 from ..checks import check_positive, check_type
 from ..errors import DFAValueError
 from ..model.wall import Wall, WallParams
+from ..results.base import Result
 from ..results.status import StatusEnum
 
 __all__ = [
@@ -131,8 +133,11 @@ def _maximise(damping: float, delay: int, pole: float | None) -> tuple[float, fl
 
 
 @dataclass(frozen=True)
-class ColgateSchenkel:
+class ColgateSchenkel(Result):
     """Dimensionless Colgate–Schenkel condition: passive iff β = b/(KT) > β_min (module docstring).
+
+    Its JSON (:meth:`~dfa.results.base.Result.to_dict`) holds every field (``params`` as the wall's groups) and
+    the status's message.
 
     Attributes
     ----------
@@ -160,22 +165,6 @@ class ColgateSchenkel:
                 f"beta_min = {self.beta_min!r}, beta_bound = {self.beta_bound!r}, theta = {self.theta!r} are "
                 "invalid: they must be finite, beta_min <= beta_bound, 0 <= theta <= π; pass the computed values"
             )
-
-    def to_dict(self) -> dict[str, object]:
-        """Return a JSON-ready record.
-
-        Returns
-        -------
-        dict
-            The keys beta_min, beta_bound, theta (rad/sample), status and params (the controller groups).
-        """
-        return {
-            "beta_min": self.beta_min,
-            "beta_bound": self.beta_bound,
-            "theta": self.theta,
-            "status": self.status.value,
-            "params": self.params.to_dict(),
-        }
 
 
 def _refuse_uncovered(p: WallParams) -> None:
@@ -231,8 +220,11 @@ def colgate_schenkel_beta(controller: WallParams) -> ColgateSchenkel:
 
 
 @dataclass(frozen=True)
-class ColgateSchenkelDamping:
-    """Minimum physical damping b for passivity of a device with ``controller`` at period T (Colgate–Schenkel).
+class ColgateSchenkelDamping(Result):
+    """Minimum physical damping b for passivity of a device with ``wall`` at period T (Colgate–Schenkel).
+
+    Its JSON (:meth:`~dfa.results.base.Result.to_dict`, SI units) holds every field, the :attr:`frequency` (Hz),
+    the :attr:`status` and its message.
 
     Attributes
     ----------
@@ -242,7 +234,8 @@ class ColgateSchenkelDamping:
         K T β_bound: any b above it meets the condition (certified), N·s/m.
     omega : float
         Angular frequency θ/T of the maximum, rad/s.
-    controller : Wall
+    wall : Wall
+        The wall (stiffness K and its elements) whose H(z) is checked.
     period : float
         Sampling period T, s.
     dimensionless : ColgateSchenkel
@@ -251,9 +244,17 @@ class ColgateSchenkelDamping:
     damping_min: float
     damping_bound: float
     omega: float
-    controller: Wall
+    wall: Wall
     period: float
     dimensionless: ColgateSchenkel
+
+    json_properties: ClassVar[tuple[str, ...]] = ("frequency", "status")
+
+    def __post_init__(self) -> None:
+        fix = "ColgateSchenkelDamping is built by colgate_schenkel_damping; call that instead"
+        check_type("wall", self.wall, Wall, fix)
+        check_type("dimensionless", self.dimensionless, ColgateSchenkel, fix)
+        check_positive("period", self.period, fix)
 
     @property
     def frequency(self) -> float:
@@ -280,33 +281,13 @@ class ColgateSchenkelDamping:
         """
         return check_positive("damping", damping, "give the device's viscous friction b in N·s/m") > self.damping_bound
 
-    def to_dict(self) -> dict[str, object]:
-        """Return a JSON-ready record (SI units).
 
-        Returns
-        -------
-        dict
-            The keys damping_min, damping_bound (N·s/m), omega (rad/s), frequency (Hz), status, period (s),
-            the controller and the dimensionless record.
-        """
-        return {
-            "damping_min": self.damping_min,
-            "damping_bound": self.damping_bound,
-            "omega": self.omega,
-            "frequency": self.frequency,
-            "status": self.status.value,
-            "period": self.period,
-            "controller": self.controller.to_dict(),
-            "dimensionless": self.dimensionless.to_dict(),
-        }
-
-
-def colgate_schenkel_damping(controller: Wall, period: float) -> ColgateSchenkelDamping:
-    """Minimum viscous friction b of the device for the wall ``controller`` to be passive (Colgate & Schenkel 1997).
+def colgate_schenkel_damping(wall: Wall, period: float) -> ColgateSchenkelDamping:
+    """Minimum viscous friction b of the device for ``wall`` to be passive (Colgate & Schenkel 1997).
 
     Parameters
     ----------
-    controller : Wall
+    wall : Wall
         Stiffness K, damping B, delay d, filter cutoff f_c; no amplifier bandwidth (the condition does not cover it).
     period : float
         Sampling period T > 0, s.
@@ -322,7 +303,7 @@ def colgate_schenkel_damping(controller: Wall, period: float) -> ColgateSchenkel
         With an amplifier bandwidth (the condition does not cover the lag), a bad period, or a filter
         cutoff above the Nyquist frequency.
     DFATypeError
-        ``controller`` is not a :class:`dfa.Wall`.
+        ``wall`` is not a :class:`dfa.Wall`.
 
     See Also
     --------
@@ -335,7 +316,7 @@ def colgate_schenkel_damping(controller: Wall, period: float) -> ColgateSchenkel
     >>> round(r.damping_min, 9), r.omega                 # K T (d + ½) at ω → 0
     (1.5, 0.0)
     """
-    c = check_type("controller", controller, Wall, "give a dfa.Wall")
+    c = check_type("wall", wall, Wall, "give a dfa.Wall")
     t = check_positive("period", period, "give the sampling period T in s (1 kHz: 0.001)")
     _refuse_uncovered(c.params(t))
     dim = colgate_schenkel_beta(c.params(t))

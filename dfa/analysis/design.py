@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -26,11 +26,12 @@ from ..errors import DFATypeError, DFAValueError
 from ..model.catalogue import CatalogueEntry
 from ..model.device import Device, Params
 from ..model.wall import Wall, WallParams
+from ..results.base import Result
 from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import DesignStatus
 from .check import PassivityCheck, passivity_check
 from .criterion import CriterionResult
-from .cycles import GrowthThreshold, growth_threshold
+from .cycles import GrowthThreshold, LimitCycleResult, growth_threshold
 from .limits.closed_form import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
 from .limits.kmax import KMaxResult, RunCache, design_answer
 from .limits.speed_chart import StiffnessSpeedChart, stiffness_speed_chart
@@ -62,8 +63,13 @@ _VALIDATION_KEYS = (
 
 
 @dataclass(frozen=True)
-class DesignAnalysis:
+class DesignAnalysis(Result):
     """Everything the design report of one device states, for a wall and an impact speed ẋ0.
+
+    Its JSON (:meth:`to_dict`) holds the numbers the report states: the fields but the figures' data
+    (``trajectory``, ``trajectory_high``, ``stiffness_curve``, ``nyquist``), the thresholds as
+    ``growth_thresholds`` and their ``cycles``, and the derived ``stiffness``, ``delay``, ``criterion`` and
+    ``simulated_velocity`` (:attr:`json_properties`); every null with its reason (:meth:`null_reasons`).
 
     Attributes
     ----------
@@ -126,15 +132,15 @@ class DesignAnalysis:
     params: Params
     check: PassivityCheck
     limits: StiffnessLimits | None
-    thresholds: tuple[tuple[str, GrowthThreshold], ...]
+    thresholds: tuple[tuple[str, GrowthThreshold], ...] = field(metadata={"json": None})
     simulated_xi_dot: float | None
     outcome: SimulationResult
     high_xi_dot: float
     outcome_high: SimulationResult
-    trajectory: SimulationResult = field(repr=False)
-    trajectory_high: SimulationResult = field(repr=False)
-    stiffness_curve: StiffnessResponse | None = field(repr=False)
-    nyquist: NyquistLocusResponse = field(repr=False)
+    trajectory: SimulationResult = field(repr=False, metadata={"json": None})
+    trajectory_high: SimulationResult = field(repr=False, metadata={"json": None})
+    stiffness_curve: StiffnessResponse | None = field(repr=False, metadata={"json": None})
+    nyquist: NyquistLocusResponse = field(repr=False, metadata={"json": None})
     stability_map: StabilityMap = field(repr=False)
     design_answer: KMaxResult | None = field(default=None, repr=False)
     speed_chart: StiffnessSpeedChart | None = field(default=None, repr=False)
@@ -144,6 +150,10 @@ class DesignAnalysis:
     samples: int = 30_000
     map_grid: int = 81
     status: DesignStatus = DesignStatus.OK
+
+    json_properties: ClassVar[tuple[str, ...]] = (
+        "stiffness", "delay", "criterion", "growth_thresholds", "cycles", "simulated_velocity",
+    )  # fmt: skip
 
     def __post_init__(self) -> None:
         fix = "DesignAnalysis is built by dfa.design_analysis; call that instead"
@@ -246,17 +256,27 @@ class DesignAnalysis:
         return dict(self.thresholds)[model]
 
     @property
+    def growth_thresholds(self) -> dict[str, GrowthThreshold]:
+        """The growth threshold of each loop model (:data:`MODELS`), by model."""
+        return dict(self.thresholds)
+
+    @property
+    def cycles(self) -> dict[str, LimitCycleResult]:
+        """The limit cycles of each loop model (its threshold's :class:`~dfa.analysis.cycles.LimitCycleResult`)."""
+        return {m: g.result for m, g in self.thresholds}
+
+    @property
     def simulated_velocity(self) -> float | None:
         """``simulated_xi_dot`` in m/s (rotary rad/s), or None."""
         return None if self.simulated_xi_dot is None else self.device.velocity(self.simulated_xi_dot)
 
-    def to_dict(self) -> dict[str, object]:
-        """The numbers the report states, strict JSON data (SI units; speeds also in ticks/sample).
+    def null_reasons(self) -> dict[str, str]:
+        """Why each field may be null in JSON, by key.
 
         Returns
         -------
-        dict
-            Strict-JSON data: device, wall, inputs and every analysis of the report, with the status.
+        dict of str to str
+            Why a part was not computed or passed in; the spring's closed forms for a wall beyond the spring.
         """
         why = {
             "validation": "no validation summary passed in (dfa report --validation FILE)",
@@ -270,45 +290,26 @@ class DesignAnalysis:
         }
         if not self.is_spring:
             why.update(limits=SPRING_ONLY, stiffness_curve=SPRING_ONLY, speed_chart=SPRING_ONLY)
-        return explain_nulls(self._record(), why)
+        return why
 
-    def _wall_record(self) -> dict[str, Any]:
-        rec = to_jsonable({**self.wall.to_dict(), "dimensionless": self.wall_params.to_dict()})
-        explain_nulls(rec, {"filter_cutoff": "no velocity filter", "amplifier_bandwidth": "ideal amplifier (no lag)"})
-        return rec
+    def to_dict(self) -> dict[str, Any]:
+        """The numbers the report states, strict JSON data (SI units; speeds also in ticks/sample).
 
-    def _record(self) -> dict[str, Any]:
-        crit = self.criterion
-        return to_jsonable(
-            {
-                "device": self.device.to_dict(),
-                "wall": self._wall_record(),
-                "stiffness": self.stiffness,
-                "velocity": self.velocity,
-                "delay": self.delay,
-                "params": self.params.to_dict(),
-                "check": self.check.to_dict(),
-                "criterion": None if crit is None else crit.to_dict(),
-                "limits": None if self.limits is None else self.limits.to_dict(),
-                "growth_thresholds": {m: g.to_dict() for m, g in self.thresholds},
-                "cycles": {m: g.result.to_dict() for m, g in self.thresholds},
-                "simulated_xi_dot": self.simulated_xi_dot,
-                "simulated_velocity": self.simulated_velocity,
-                "outcome": self.outcome.to_dict(),
-                "high_xi_dot": self.high_xi_dot,
-                "outcome_high": self.outcome_high.to_dict(),
-                "stability_map": self.stability_map.to_dict(),
-                "design_answer": None if self.design_answer is None else self.design_answer.to_dict(),
-                "speed_chart": None if self.speed_chart is None else self.speed_chart.to_dict(),
-                "zwidth": None if self.zwidth is None else self.zwidth.to_dict(),
-                "catalogue": self.catalogue,
-                "validation": self.validation,
-                "samples": self.samples,
-                "map_grid": self.map_grid,
-                "status": self.status,
-                "status_message": self.status.message,
-            }
+        :meth:`dfa.results.base.Result.to_dict` (the fields, :attr:`json_properties`, the status message and
+        :meth:`null_reasons`), the wall's record completed by its dimensionless groups at the device's period,
+        which the wall alone does not know.
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: device, wall, inputs and every analysis of the report, with the status.
+        """
+        out = super().to_dict()
+        wall = to_jsonable({**self.wall.to_dict(), "dimensionless": self.wall_params.to_dict()})
+        out["wall"] = explain_nulls(
+            wall, {"filter_cutoff": "no velocity filter", "amplifier_bandwidth": "ideal amplifier (no lag)"}
         )
+        return out
 
 
 def _catalogue_notes(entry: CatalogueEntry | None) -> dict[str, Any] | None:

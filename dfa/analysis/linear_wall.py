@@ -68,8 +68,8 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
 
 import numpy as np
 from scipy.optimize import brentq
@@ -87,6 +87,7 @@ from ..core.zoh import zoh_coefficients
 from ..core.zohlag import amplifier_zoh
 from ..errors import DFAError, DFAValueError
 from ..model.wall import Wall, WallParams
+from ..results.base import Result
 from ..results.frozen import freeze_fields
 from ..results.status import StatusEnum
 
@@ -481,8 +482,10 @@ def _device(mass: Any, damping: Any, period: Any) -> tuple[float, float, float]:
 
 
 @dataclass(frozen=True)
-class StiffnessIntervals:
+class StiffnessIntervals(Result):
     """The stable stiffnesses of the linear sampled loop at a fixed controller damper, filter, delay and lag.
+
+    Its JSON (:meth:`~dfa.results.base.Result.to_dict`, SI units) holds every field and the status's message.
 
     Attributes
     ----------
@@ -513,24 +516,6 @@ class StiffnessIntervals:
                 f"intervals has shape {self.intervals.shape} but must be (n, 2); pass the computed array"
             )
         object.__setattr__(self, "status", LinearStatus.coerce(self.status))
-
-    def to_dict(self) -> dict[str, object]:
-        """Return a JSON-ready record (SI units).
-
-        Returns
-        -------
-        dict
-            Intervals, k_crit, status, mass, damping, period and the controller held fixed.
-        """
-        return {
-            "intervals": self.intervals.tolist(),
-            "k_crit": self.k_crit,
-            "status": self.status.value,
-            "mass": self.mass,
-            "damping": self.damping,
-            "period": self.period,
-            "wall": dict(self.wall),
-        }
 
 
 def stable_stiffness(mass: float, damping: float, period: float, wall: Wall) -> StiffnessIntervals:
@@ -595,8 +580,11 @@ def stable_stiffness(mass: float, damping: float, period: float, wall: Wall) -> 
 
 
 @dataclass(frozen=True)
-class StableRegion:
+class StableRegion(Result):
     """The stable region of the (K, B) plane of the linear sampled loop: K_max(B) and every stable interval.
+
+    Its JSON (:meth:`~dfa.results.base.Result.to_dict`, SI units) holds the B grid, K_max(B), the status and,
+    instead of the rows, their :attr:`intervals` and :attr:`row_status` and the :attr:`device`'s m, b and T.
 
     Attributes
     ----------
@@ -612,8 +600,10 @@ class StableRegion:
 
     virtual_damping: np.ndarray
     k_crit: np.ndarray
-    rows: tuple
+    rows: tuple = field(metadata={"json": None})
     status: LinearStatus
+
+    json_properties: ClassVar[tuple[str, ...]] = ("intervals", "row_status", "device")
 
     def __post_init__(self) -> None:
         freeze_fields(self, {"virtual_damping": {"ndim": 1}, "k_crit": {"ndim": 1}})
@@ -621,24 +611,36 @@ class StableRegion:
             raise DFAValueError("rows, k_crit and virtual_damping must have the same length; pass the computed values")
         object.__setattr__(self, "status", LinearStatus.coerce(self.status))
 
-    def to_dict(self) -> dict[str, object]:
-        """Return a JSON-ready record (SI units).
+    @property
+    def intervals(self) -> list[np.ndarray]:
+        """At each B, the (n, 2) stable intervals (K_lo, K_hi) of its row, N/m."""
+        return [r.intervals for r in self.rows]
+
+    @property
+    def row_status(self) -> list[LinearStatus]:
+        """At each B, the status of its row."""
+        return [r.status for r in self.rows]
+
+    @property
+    def device(self) -> dict[str, float] | None:
+        """The device's ``mass`` (kg), ``damping`` b (N·s/m) and ``period`` T (s) of the rows; None without a row.
+
+        The region holds the device's numbers, not a :class:`dfa.Device`.
+        """
+        if not self.rows:
+            return None
+        first = self.rows[0]
+        return {"mass": first.mass, "damping": first.damping, "period": first.period}
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why each field may be null in JSON, by key.
 
         Returns
         -------
-        dict
-            The B grid, K_max(B), the intervals and status per B, the overall status and the device.
+        dict of str to str
+            ``device`` is null for a region without a B (not one :func:`stable_region` builds).
         """
-        return {
-            "virtual_damping": self.virtual_damping.tolist(),
-            "k_crit": self.k_crit.tolist(),
-            "intervals": [r.intervals.tolist() for r in self.rows],
-            "row_status": [r.status.value for r in self.rows],
-            "status": self.status.value,
-            "device": {"mass": self.rows[0].mass, "damping": self.rows[0].damping, "period": self.rows[0].period}
-            if self.rows
-            else None,
-        }
+        return {"device": "no B in the grid"}
 
     def to_xarray(self, rotary: bool = False) -> Any:
         """The region as an :class:`xarray.Dataset` with the labelled dim ``virtual_damping`` (B).

@@ -39,7 +39,7 @@ True
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import control
 import numpy as np
@@ -58,8 +58,8 @@ from ..core.zoh import zoh_coefficients
 from ..errors import DFAValueError
 from ..model.device import Params
 from ..model.wall import WallParams
+from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
-from ..results.jsonable import to_jsonable
 from ..results.status import NyquistStatus
 from .describing import coulomb_equivalent_damping, quantizer_df
 
@@ -333,8 +333,12 @@ def loop_system(
 
 
 @dataclass(frozen=True)
-class NyquistLocusResponse:
+class NyquistLocusResponse(Result):
     """Data of a Nyquist plot of the loop against the critical locus −1/D(M).
+
+    Its JSON (:meth:`~dfa.results.base.Result.to_dict`; complex numbers as ``{"re", "im"}``) holds the fields,
+    (μ, β, σ) of ``params`` flat, the delay, the crossings as ``{"amplitude", "frequency", "point"}`` records,
+    and ``detail`` as the status message when there is one.
 
     Attributes
     ----------
@@ -370,7 +374,7 @@ class NyquistLocusResponse:
     Arrays are read-only copies.
     """
 
-    params: Params
+    params: Params = field(metadata={"json": None})  # written as mu, beta, sigma
     model: str
     wall: WallParams
     pade_order: int
@@ -379,9 +383,13 @@ class NyquistLocusResponse:
     curves: np.ndarray = field(repr=False)
     locus_amplitude: np.ndarray = field(repr=False)
     locus: np.ndarray = field(repr=False)
-    crossings: tuple
+    crossings: tuple = field(
+        metadata={"json": lambda c: [{"amplitude": m, "frequency": w, "point": pt} for m, w, pt in c]}
+    )
     status: NyquistStatus
-    detail: str = ""
+    detail: str = field(default="", metadata={"json": None})  # written as the status message
+
+    json_properties: ClassVar[tuple[str, ...]] = ("mu", "beta", "sigma", "delay")
 
     def __post_init__(self) -> None:
         check_type("wall", self.wall, WallParams, "build it with nyquist_locus_response")
@@ -400,33 +408,25 @@ class NyquistLocusResponse:
         object.__setattr__(self, "status", NyquistStatus.coerce(self.status))
         object.__setattr__(self, "crossings", tuple(self.crossings))
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready record: inputs, crossings (M, ω, point) and the curves (complex as ``{"re", "im"}``).
+    @property
+    def status_message(self) -> str:
+        """The solver's reason (:attr:`detail`) when there is one, otherwise the status's message."""
+        return self.detail or self.status.message
 
-        Returns
-        -------
-        dict
-            Strict-JSON data: inputs, crossings, curves, locus, status and detail.
-        """
-        return to_jsonable(
-            {
-                "wall": self.wall.to_dict(),
-                "mu": self.params.mu,
-                "beta": self.params.beta,
-                "sigma": self.params.sigma,
-                "model": self.model,
-                "delay": self.delay,
-                "pade_order": self.pade_order,
-                "crossings": [{"amplitude": m, "frequency": w, "point": pt} for m, w, pt in self.crossings],
-                "omega": self.omega,
-                "amplitudes": self.amplitudes,
-                "curves": self.curves,
-                "locus_amplitude": self.locus_amplitude,
-                "locus": self.locus,
-                "status": self.status,
-                "status_message": self.detail or self.status.message,
-            }
-        )
+    @property
+    def mu(self) -> float:
+        """The device's μ (:attr:`params`), written flat to JSON as ``mu``."""
+        return self.params.mu
+
+    @property
+    def beta(self) -> float:
+        """The device's β (:attr:`params`), written flat to JSON as ``beta``."""
+        return self.params.beta
+
+    @property
+    def sigma(self) -> float:
+        """The device's σ (:attr:`params`), written flat to JSON as ``sigma``."""
+        return self.params.sigma
 
     @property
     def delay(self) -> int:

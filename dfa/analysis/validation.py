@@ -49,14 +49,15 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..checks import check_bool, check_choice, check_jobs
+from ..checks import check_bool, check_choice, check_jobs, check_type
 from ..model.device import Params
 from ..model.wall import WallParams
+from ..results.base import Result
 from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import ValidationStatus
 from .criterion import classify_region, passivity_criterion
@@ -318,8 +319,12 @@ def cluster_threshold(name: str, p: Params, speeds: ArrayLike, samples: int) -> 
 
 
 @dataclass(frozen=True)
-class Soundness:
-    """Item 3 over a grid: criterion verdicts against simulated outcomes."""
+class Soundness(Result):
+    """Item 3 over a grid: criterion verdicts against simulated outcomes.
+
+    Its JSON (:meth:`~dfa.results.base.Result.to_dict`) holds every field and the :attr:`conservatism` (null,
+    with the reason, when no point came to rest).
+    """
 
     mus: tuple
     xi_dots: tuple
@@ -332,6 +337,8 @@ class Soundness:
     rejected_rest: int = 0
     undecided: int = 0
 
+    json_properties: ClassVar[tuple[str, ...]] = ("conservatism",)
+
     def __post_init__(self) -> None:
         object.__setattr__(self, "mus", tuple(self.mus))
         object.__setattr__(self, "xi_dots", tuple(self.xi_dots))
@@ -341,10 +348,6 @@ class Soundness:
     def conservatism(self) -> float:
         """Share of the simulated points that come to rest (outcome ``"rest"``) the criterion rejects."""
         return self.rejected_rest / self.rest if self.rest else float("nan")
-
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready record of the counts (conservatism null, with the reason, when no point came to rest)."""
-        return to_jsonable({**self.__dict__, "conservatism": self.conservatism})
 
 
 def soundness(
@@ -400,25 +403,102 @@ def _stats(values: Iterable[float | None]) -> dict:
     return dict(n=int(a.size), median=float(np.median(a)), worst=float(np.max(a)))
 
 
+def _median(values: list[float]) -> float:
+    return float(np.median(values)) if values else float("nan")
+
+
+def _cycle_summary(cycles: list[dict]) -> list[dict]:
+    """Item 1 per model and family: confirmed stable cycles' errors (:meth:`ValidationResult.cycle_summary`)."""
+    out = []
+    for model in ("half-delay", "zoh"):
+        for fam in ("small", "large"):
+            recs = [
+                r for r in cycles if r["model"] == model and r["family"] == fam and r["stable"] and r.get("confirmed")
+            ]
+            tried = [r for r in cycles if r["model"] == model and r["family"] == fam and r["stable"]]
+            out.append(
+                dict(
+                    model=model,
+                    family=fam,
+                    predicted=len(tried),
+                    persisted=len(recs),
+                    amplitude=_stats(r["amplitude_error"] for r in recs),
+                    frequency=_stats(r["frequency_error"] for r in recs),
+                )
+            )
+    return out
+
+
+def _controller_cycle_summary(records: list[dict]) -> list[dict]:
+    """Item 6 per controller and model (:meth:`ValidationResult.controller_cycle_summary`)."""
+    out = []
+    names = list(dict.fromkeys(r["controller"] for r in records))
+    for name in names:
+        for model in ("half-delay", "zoh"):
+            recs = [r for r in records if r["controller"] == name and r["model"] == model]
+            st = [r for r in recs if r["stable"]]
+            ok = [r for r in st if r.get("confirmed")]
+            un = [r for r in recs if not r["stable"]]
+            sub = [r for r in un if r["subtick"]]
+            out.append(
+                dict(
+                    controller=name,
+                    model=model,
+                    predicted=len(st),
+                    persisted=len(ok),
+                    amplitude=_stats(r["amplitude_error"] for r in ok),
+                    frequency=_stats(r["frequency_error"] for r in ok),
+                    unstable=len(un),
+                    unstable_confirmed=sum(bool(r["confirmed"]) for r in un),
+                    subtick_unstable=len(sub),
+                    subtick_confirmed=sum(bool(r["confirmed"]) for r in sub),
+                )
+            )
+    return out
+
+
 @dataclass(frozen=True)
-class ValidationResult:
-    """All validation measurements and their summaries (see module docstring)."""
+class ValidationResult(Result):
+    """All validation measurements and their summaries (see module docstring).
+
+    Its JSON (:meth:`to_dict`) is the key numbers of :meth:`summary` and the status: ``quick``, ``clusters``,
+    the summaries of ``cycles`` and ``controller_cycles`` (:meth:`cycle_summary`,
+    :meth:`controller_cycle_summary`) under their names, the numbers of :attr:`json_properties`, and
+    ``speeds_ordered`` and ``controller_errors``; not the raw ``speeds``, ``soundness`` and ``samples``.
+    """
 
     quick: bool
-    cycles: list
-    speeds: list
-    soundness: Soundness
-    samples: int
+    cycles: list = field(metadata={"json": _cycle_summary})  # written as its summary
+    speeds: list = field(metadata={"json": None})
+    soundness: Soundness = field(metadata={"json": None})  # its key numbers are properties
+    samples: int = field(metadata={"json": None})
     status: ValidationStatus = ValidationStatus.OK
     clusters: list = field(default_factory=list)
-    controller_cycles: list = field(default_factory=list)
+    controller_cycles: list = field(default_factory=list, metadata={"json": _controller_cycle_summary})
+
+    json_properties: ClassVar[tuple[str, ...]] = (
+        "soundness_violations", "soundness_passive", "soundness_points", "conservatism", "speed_df_median_error",
+        "speed_df_worst_error", "criterion_conservatism_median", "criterion_conservatism_min",
+        "short_period_frequency_error", "long_period_frequency_error", "loeb", "controllers",
+    )  # fmt: skip
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "status", ValidationStatus.coerce(self.status))
+        check_type("soundness", self.soundness, Soundness, "ValidationResult is built by dfa.validate; call that")
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready key numbers (:meth:`summary`) and the status; NaN becomes null with its reason."""
-        return to_jsonable({**self.summary(), "status": self.status, "status_message": self.status.message})
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready key numbers (:meth:`summary`) and the status; NaN becomes null with its reason.
+
+        :meth:`dfa.results.base.Result.to_dict` with ``speeds_ordered`` and ``controller_errors`` added: both
+        name methods (:meth:`speeds_ordered` per case, :meth:`controller_errors`), which the JSON holds pooled.
+
+        Returns
+        -------
+        dict
+            Strict-JSON data: the key numbers of :meth:`summary`, the status and its message.
+        """
+        pooled = {"speeds_ordered": all(self.speeds_ordered()), "controller_errors": self.controller_errors()}
+        return to_jsonable({**super().to_dict(), **pooled})
 
     def plot(self, ax: Axes | None = None, which: str = "cycles") -> Axes:
         """A validation figure: ``which="cycles"`` (:func:`dfa.figures.cycle_error_plot`) or ``"speeds"``
@@ -431,55 +511,13 @@ class ValidationResult:
     # ----- summaries
     def cycle_summary(self) -> list[dict]:
         """Median and worst relative error of amplitude and frequency per model and family (confirmed stable cycles)."""
-        out = []
-        for model in ("half-delay", "zoh"):
-            for fam in ("small", "large"):
-                recs = [
-                    r
-                    for r in self.cycles
-                    if r["model"] == model and r["family"] == fam and r["stable"] and r.get("confirmed")
-                ]
-                tried = [r for r in self.cycles if r["model"] == model and r["family"] == fam and r["stable"]]
-                out.append(
-                    dict(
-                        model=model,
-                        family=fam,
-                        predicted=len(tried),
-                        persisted=len(recs),
-                        amplitude=_stats(r["amplitude_error"] for r in recs),
-                        frequency=_stats(r["frequency_error"] for r in recs),
-                    )
-                )
-        return out
+        return _cycle_summary(self.cycles)
 
     def controller_cycle_summary(self) -> list[dict]:
         """Item 6, per controller and model: stable cycles predicted and persisted, their amplitude and frequency
         errors (median and worst of abs(simulated/predicted − 1)), unstable cycles predicted and separated (Loeb),
         and those below :data:`dfa.analysis.cycles.SUBTICK_LIMIT` ticks (``subtick``) with how many separated."""
-        out = []
-        names = list(dict.fromkeys(r["controller"] for r in self.controller_cycles))
-        for name in names:
-            for model in ("half-delay", "zoh"):
-                recs = [r for r in self.controller_cycles if r["controller"] == name and r["model"] == model]
-                st = [r for r in recs if r["stable"]]
-                ok = [r for r in st if r.get("confirmed")]
-                un = [r for r in recs if not r["stable"]]
-                sub = [r for r in un if r["subtick"]]
-                out.append(
-                    dict(
-                        controller=name,
-                        model=model,
-                        predicted=len(st),
-                        persisted=len(ok),
-                        amplitude=_stats(r["amplitude_error"] for r in ok),
-                        frequency=_stats(r["frequency_error"] for r in ok),
-                        unstable=len(un),
-                        unstable_confirmed=sum(bool(r["confirmed"]) for r in un),
-                        subtick_unstable=len(sub),
-                        subtick_confirmed=sum(bool(r["confirmed"]) for r in sub),
-                    )
-                )
-        return out
+        return _controller_cycle_summary(self.controller_cycles)
 
     def controller_errors(self) -> dict:
         """Item 6 pooled over every controller and model: median and worst amplitude and frequency error of the
@@ -526,7 +564,78 @@ class ValidationResult:
 
     @property
     def soundness_violations(self) -> int:
+        """Points the criterion calls passive that the simulation finds unstable (item 3; expected 0)."""
         return len(self.soundness.violations)
+
+    @property
+    def soundness_passive(self) -> int:
+        """Points of the soundness grid the criterion calls passive."""
+        return self.soundness.passive
+
+    @property
+    def soundness_points(self) -> int:
+        """Points of the soundness grid."""
+        return self.soundness.points
+
+    @property
+    def conservatism(self) -> float:
+        """Share of the points that come to rest that the criterion rejects (:attr:`Soundness.conservatism`)."""
+        return self.soundness.conservatism
+
+    def _speed_df_errors(self) -> list[float]:
+        return [abs(r["df_zoh"] / r["simulated"] - 1) for r in self.speeds if r["df_zoh"] and r["simulated"]]
+
+    @property
+    def speed_df_median_error(self) -> float:
+        """Median of abs(M·ω growth threshold (exact ZOH) / simulated critical speed − 1); NaN without a case."""
+        return _median(self._speed_df_errors())
+
+    @property
+    def speed_df_worst_error(self) -> float:
+        """Largest of those errors; NaN without a case."""
+        errors = self._speed_df_errors()
+        return float(np.max(errors)) if errors else float("nan")
+
+    def _criterion_ratios(self) -> list[float]:
+        return [r["simulated"] / r["criterion"] for r in self.speeds if r["simulated"] and r["criterion"]]
+
+    @property
+    def criterion_conservatism_median(self) -> float:
+        """Median of simulated critical speed / the criterion's speed (eq. 12); NaN without a case."""
+        return _median(self._criterion_ratios())
+
+    @property
+    def criterion_conservatism_min(self) -> float:
+        """Smallest of those ratios; NaN without a case."""
+        ratios = self._criterion_ratios()
+        return float(np.min(ratios)) if ratios else float("nan")
+
+    def _zoh_frequency_errors(self, short: bool) -> list[float]:
+        return [
+            abs(r["frequency_error"])
+            for r in self.cycles
+            if r["model"] == "zoh" and r["stable"] and r.get("confirmed") and (r["period"] < 8) == short
+        ]
+
+    @property
+    def short_period_frequency_error(self) -> float:
+        """Median frequency error of the confirmed stable exact-ZOH cycles of period < 8 samples; NaN without one."""
+        return _median(self._zoh_frequency_errors(True))
+
+    @property
+    def long_period_frequency_error(self) -> float:
+        """The same for periods >= 8 samples; NaN without one."""
+        return _median(self._zoh_frequency_errors(False))
+
+    @property
+    def loeb(self) -> dict:
+        """:meth:`loeb_summary`."""
+        return self.loeb_summary()
+
+    @property
+    def controllers(self) -> dict[str, dict]:
+        """The groups of each wall controller of item 6 (:data:`CONTROLLERS`), by name."""
+        return {name: explain_nulls(ctl.to_dict(), {"cutoff": "no velocity filter"}) for name, ctl in CONTROLLERS}
 
     def speeds_ordered(self) -> list[bool]:
         """For each critical-speed case: criterion <= simulated (the criterion is conservative)."""
@@ -537,39 +646,25 @@ class ValidationResult:
 
     def summary(self) -> dict:
         """Key numbers (JSON-ready), used by the design report and the tests."""
-        sp = [abs(r["df_zoh"] / r["simulated"] - 1) for r in self.speeds if r["df_zoh"] and r["simulated"]]
-        cons = [r["simulated"] / r["criterion"] for r in self.speeds if r["simulated"] and r["criterion"]]
-        short = [
-            abs(r["frequency_error"])
-            for r in self.cycles
-            if r["model"] == "zoh" and r["stable"] and r.get("confirmed") and r["period"] < 8
-        ]
-        longp = [
-            abs(r["frequency_error"])
-            for r in self.cycles
-            if r["model"] == "zoh" and r["stable"] and r.get("confirmed") and r["period"] >= 8
-        ]
         return {
             "quick": self.quick,
             "soundness_violations": self.soundness_violations,
-            "soundness_passive": self.soundness.passive,
-            "soundness_points": self.soundness.points,
-            "conservatism": self.soundness.conservatism,
-            "speed_df_median_error": float(np.median(sp)) if sp else float("nan"),
-            "speed_df_worst_error": float(np.max(sp)) if sp else float("nan"),
-            "criterion_conservatism_median": float(np.median(cons)) if cons else float("nan"),
-            "criterion_conservatism_min": float(np.min(cons)) if cons else float("nan"),
+            "soundness_passive": self.soundness_passive,
+            "soundness_points": self.soundness_points,
+            "conservatism": self.conservatism,
+            "speed_df_median_error": self.speed_df_median_error,
+            "speed_df_worst_error": self.speed_df_worst_error,
+            "criterion_conservatism_median": self.criterion_conservatism_median,
+            "criterion_conservatism_min": self.criterion_conservatism_min,
             "speeds_ordered": all(self.speeds_ordered()),
-            "short_period_frequency_error": float(np.median(short)) if short else float("nan"),
-            "long_period_frequency_error": float(np.median(longp)) if longp else float("nan"),
-            "loeb": self.loeb_summary(),
+            "short_period_frequency_error": self.short_period_frequency_error,
+            "long_period_frequency_error": self.long_period_frequency_error,
+            "loeb": self.loeb,
             "cycles": self.cycle_summary(),
             "clusters": self.clusters,
             "controller_cycles": self.controller_cycle_summary(),
             "controller_errors": self.controller_errors(),
-            "controllers": {
-                name: explain_nulls(ctl.to_dict(), {"cutoff": "no velocity filter"}) for name, ctl in CONTROLLERS
-            },
+            "controllers": self.controllers,
         }
 
 

@@ -39,8 +39,8 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -49,8 +49,8 @@ from ...checks import check_delay, check_positive, check_real_array, check_speed
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.wall import Wall
+from ...results.base import Result
 from ...results.frozen import check_shape, freeze_fields
-from ...results.jsonable import explain_nulls, to_jsonable
 from ...results.status import CurveStatus, StiffnessStatus, VelocityStatus
 from ..criterion import device_criterion
 from ..linear import critical_beta, critical_stiffness
@@ -354,8 +354,12 @@ def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> fl
 
 
 @dataclass(frozen=True)
-class StiffnessLimits:
+class StiffnessLimits(Result):
     """Stiffness limits of a device at an impact speed (all N/m, rotary N·m/rad).
+
+    Its JSON (:meth:`~dfa.results.base.Result.to_dict`, the ``dfa stiffness --json`` contract plus extras) holds
+    the fields, the device by name and ``velocity_status`` as ``max_passive_velocity_status``; an infinite
+    ``max_passive_velocity`` (every speed) is null with the reason of its status.
 
     Attributes
     ----------
@@ -388,7 +392,7 @@ class StiffnessLimits:
         Computational delay d in samples.
     """
 
-    device: Device
+    device: Device = field(metadata={"json": lambda d: d.name})
     velocity: float
     xi_dot: float
     k_max: float
@@ -397,10 +401,14 @@ class StiffnessLimits:
     k_abbott_okamura: float
     k_gil: float
     stiffness: float | None = None
-    max_passive_velocity: float | None = None
-    velocity_status: VelocityStatus = VelocityStatus.NOT_REQUESTED
+    max_passive_velocity: float | None = field(  # inf (every speed) is null with its status's reason
+        default=None, metadata={"json": lambda v: None if math.isinf(v) else v}
+    )
+    velocity_status: VelocityStatus = field(default=VelocityStatus.NOT_REQUESTED, metadata={"json": None})
     status: StiffnessStatus = StiffnessStatus.NOT_REQUESTED
     delay: int = 0
+
+    json_properties: ClassVar[tuple[str, ...]] = ("max_passive_velocity_status",)
 
     def __post_init__(self) -> None:
         for name in ("velocity", "xi_dot", "k_max", "k_static", "k_colgate", "k_abbott_okamura", "k_gil"):
@@ -426,42 +434,25 @@ class StiffnessLimits:
                 f"max_passive_velocity = {mpv!r}: they must agree; build results with stiffness_limits"
             )
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready record (the ``dfa stiffness --json`` contract plus extras).
+    @property
+    def max_passive_velocity_status(self) -> VelocityStatus:
+        """:attr:`velocity_status`, under the name the JSON gives it (the status of ``max_passive_velocity``)."""
+        return self.velocity_status
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why each field may be null in JSON, by key.
 
         Returns
         -------
-        dict
-            Strict-JSON data: the limits in device units, the speeds, status and its message.
+        dict of str to str
+            Why ``max_passive_velocity`` is null (by :attr:`velocity_status`) and why ``stiffness`` is.
         """
-        mpv = self.max_passive_velocity
         why = {
-            "max_passive_velocity": {
-                "not_requested": "no stiffness given",
-                "all_speeds": "passive at every speed (no finite limit)",
-                "none": "no passivity guarantee even at rest (K > 2c/Δ)",
-            }.get(self.velocity_status.value, "undefined"),
-            "stiffness": "no stiffness given to assess",
-        }
-        record = to_jsonable(
-            {
-                "k_max": self.k_max,
-                "k_colgate": self.k_colgate,
-                "k_abbott_okamura": self.k_abbott_okamura,
-                "k_gil": self.k_gil,
-                "k_static": self.k_static,
-                "max_passive_velocity": None if (mpv is None or math.isinf(mpv)) else mpv,
-                "max_passive_velocity_status": self.velocity_status,
-                "stiffness": self.stiffness,
-                "velocity": self.velocity,
-                "xi_dot": self.xi_dot,
-                "device": self.device.name,
-                "status": self.status,
-                "status_message": self.status.message,
-                "delay": self.delay,
-            }
-        )
-        return explain_nulls(record, why)
+            VelocityStatus.NOT_REQUESTED: "no stiffness given",
+            VelocityStatus.ALL_SPEEDS: "passive at every speed (no finite limit)",
+            VelocityStatus.NONE: "no passivity guarantee even at rest (K > 2c/Δ)",
+        }.get(self.velocity_status, "undefined")
+        return {"max_passive_velocity": why, "stiffness": "no stiffness given to assess"}
 
 
 def stiffness_limits(
@@ -527,12 +518,14 @@ def stiffness_limits(
 
 
 @dataclass(frozen=True)
-class StiffnessResponse:
+class StiffnessResponse(Result):
     """K_max (eq. 11, with the delay) over a range of impact speeds, with the speed-independent bounds (N/m).
 
     The bounds and the chosen stiffness's largest passive speed are not recomputed:
     they are read from :attr:`limits`, the :class:`StiffnessLimits` of the same
-    device, stiffness and delay.
+    device, stiffness and delay. Its JSON (:meth:`~dfa.results.base.Result.to_dict`, device units) holds the
+    device by name, the speeds, K_max, those bounds, the stiffness, its largest passive speed and the delay
+    (:attr:`json_properties`), not :attr:`limits` itself.
 
     Attributes
     ----------
@@ -550,11 +543,15 @@ class StiffnessResponse:
     Arrays are read-only copies of the inputs.
     """
 
-    device: Device
+    device: Device = field(metadata={"json": lambda d: d.name})
     velocity: np.ndarray
     k_max: np.ndarray
-    limits: StiffnessLimits
+    limits: StiffnessLimits = field(metadata={"json": None})
     status: CurveStatus = CurveStatus.OK
+
+    json_properties: ClassVar[tuple[str, ...]] = (
+        "k_static", "k_colgate", "k_abbott_okamura", "k_gil", "stiffness", "max_passive_velocity", "delay",
+    )  # fmt: skip
 
     @property
     def k_static(self) -> float:
@@ -595,31 +592,6 @@ class StiffnessResponse:
         freeze_fields(self, {"velocity": {"ndim": 1}, "k_max": {"ndim": 1}})
         check_shape("k_max", self.k_max, self.velocity.shape)
         object.__setattr__(self, "status", CurveStatus.coerce(self.status))
-
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready record: speeds, K_max and the bounds (device units, see ``device.units``).
-
-        Returns
-        -------
-        dict
-            Strict-JSON data: speeds, K_max, the bounds, status and its message.
-        """
-        return to_jsonable(
-            {
-                "device": self.device.name,
-                "velocity": self.velocity,
-                "k_max": self.k_max,
-                "k_static": self.k_static,
-                "k_colgate": self.k_colgate,
-                "k_abbott_okamura": self.k_abbott_okamura,
-                "k_gil": self.k_gil,
-                "stiffness": self.stiffness,
-                "max_passive_velocity": self.max_passive_velocity,
-                "status": self.status,
-                "status_message": self.status.message,
-                "delay": self.delay,
-            }
-        )
 
     def plot(self, ax: Any = None) -> Any:
         """K_max against impact speed with the published bounds (:func:`dfa.figures.stiffness_plot`); returns the Axes.
