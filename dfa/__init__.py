@@ -118,7 +118,7 @@ _LAZY = {
     "numeric_df": "analysis.describing",
     "QuantizerNonlinearity": "analysis.describing",
     "CoulombNonlinearity": "analysis.describing",
-    "LOOP_MODELS": "analysis.loop",
+    "LOOP_MODELS": "analysis.loop_models",
     "loop_response": "analysis.loop",
     "loop_system": "analysis.loop",
     "NyquistLocusResponse": "analysis.loop",

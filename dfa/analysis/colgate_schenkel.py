@@ -58,7 +58,7 @@ from ..checks import check_positive, check_type
 from ..errors import DFAValueError
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
-from ..results.status import StatusEnum
+from ..results.status import PassivityStatus
 
 __all__ = [
     "PassivityStatus",
@@ -72,16 +72,6 @@ _REL_TOL = 1e-12
 _GRID = 4096
 _BUDGET = 2_000_000  # evaluations of f
 _EPS = np.finfo(float).eps
-
-
-class PassivityStatus(StatusEnum):
-    """How tightly the maximum of the Colgate–Schenkel condition is known."""
-
-    CERTIFIED = ("certified", "maximum found and certified to 1e-12 (relative)")
-    BOUNDED = (
-        "bounded",
-        "evaluation budget spent: the maximum lies between beta_min and beta_bound (use the bound to be safe)",
-    )
 
 
 def _f(theta: np.ndarray, damping: float, delay: int, pole: float | None) -> np.ndarray:
@@ -178,13 +168,14 @@ def _refuse_uncovered(p: WallParams) -> None:
         )
 
 
-def colgate_schenkel_beta(controller: WallParams) -> ColgateSchenkel:
-    """Minimum dimensionless damping β = b/(KT) for passivity (Colgate & Schenkel 1997) with a controller.
+def colgate_schenkel_beta(wall: WallParams) -> ColgateSchenkel:
+    """Minimum dimensionless damping β = b/(KT) for passivity (Colgate & Schenkel 1997) with a wall.
 
     Parameters
     ----------
-    controller : WallParams
-        Virtual damping β_B, delay d, filter cutoff ν_c; the amplifier lag must be 0.
+    wall : WallParams
+        The wall's dimensionless groups: virtual damping β_B, delay d, filter cutoff ν_c; the amplifier lag
+        must be 0.
 
     Returns
     -------
@@ -196,7 +187,7 @@ def colgate_schenkel_beta(controller: WallParams) -> ColgateSchenkel:
     DFAValueError
         With an amplifier lag (the condition does not cover it).
     DFATypeError
-        ``controller`` is not a :class:`dfa.WallParams`.
+        ``wall`` is not a :class:`dfa.WallParams`.
 
     See Also
     --------
@@ -208,7 +199,7 @@ def colgate_schenkel_beta(controller: WallParams) -> ColgateSchenkel:
     >>> round(colgate_schenkel_beta(WallParams.of(delay=2)).beta_min, 12)     # d + ½
     2.5
     """
-    p = check_type("controller", controller, WallParams, "give a dfa.WallParams")
+    p = check_type("wall", wall, WallParams, "give a dfa.WallParams (wall.params(period) of a dfa.Wall)")
     _refuse_uncovered(p)
     pole = None if p.cutoff is None else p.filter_pole
     best, arg, ub, _ = _maximise(p.damping, p.delay, pole)

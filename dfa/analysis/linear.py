@@ -78,7 +78,6 @@ from typing import Any
 import numpy as np
 from numpy.polynomial import chebyshev
 from numpy.typing import ArrayLike
-from scipy.optimize import brentq
 
 from ..checks import check_beta, check_delay, check_mu, check_nonnegative, check_positive, check_rate, check_type
 from ..core.zoh import c1_minus_c0, zoh_coefficients
@@ -309,6 +308,8 @@ def _crossings(a: float, d: int) -> list[float]:
 
 def _polish(f: Callable[[float], float], t: float) -> float:
     """Refine a root t of f (a candidate from the Chebyshev roots) by bisection on a sign change nearby."""
+    from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
+
     f0 = f(t)
     if f0 == 0.0:
         return t
@@ -354,6 +355,8 @@ def _critical_kappa(a: float, d: int) -> float:
 
 def _critical_kappa_scan(a: float, d: int) -> float:
     """Fallback: first κ with spectral radius >= 1 on a fine geometric grid, then bisection on ρ − 1."""
+    from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
+
     hint = a / (0.5 + d) if a < 1.0 else 2.0 * a
     ks = np.geomspace(1e-6 * hint, 1e3 * hint, 4000)
     rho = _rho(a, ks, d)
@@ -480,6 +483,8 @@ def critical_beta(mu: float, delay: int = 0) -> float:
     >>> round(critical_beta(1.0), 4), round(critical_beta(1.0, delay=1), 4)
     (0.4617, 1.2127)
     """
+    from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
+
     m, d = check_mu(mu), check_delay(delay)
     lo_mu, hi_mu = CRITICAL_BETA_MU_RANGE
     if not lo_mu <= m <= hi_mu:

@@ -72,7 +72,6 @@ from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..checks import (
     check_beta,
@@ -89,7 +88,7 @@ from ..errors import DFAError, DFAValueError
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.frozen import freeze_fields
-from ..results.status import StatusEnum
+from ..results.status import LinearStatus
 
 __all__ = [
     "LinearStatus",
@@ -100,21 +99,6 @@ __all__ = [
     "stable_stiffness",
     "stable_region",
 ]
-
-
-class LinearStatus(StatusEnum):
-    """Shape of the stable set in K of the linear sampled loop (:func:`stable_stiffness`)."""
-
-    INTERVAL = ("interval", "stable exactly for 0 < K < K_crit (every stability condition checked)")
-    SEVERAL = (
-        "several_intervals",
-        "the stable set in K has several intervals: K_crit is the top of the one starting at K = 0; see intervals",
-    )
-    NOT_AT_LOW_K = (
-        "not_at_low_k",
-        "unstable for small K: stable only on the listed intervals (K_crit = 0)",
-    )
-    NEVER = ("never", "unstable for every K > 0 (K_crit = 0)")
 
 
 # ----------------------------------------------------------------------------- plant and controller polynomials
@@ -321,6 +305,8 @@ def _im_part(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
 
 def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
     """Angles θ in [0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle, grid sign changes, 0 and π."""
+    from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
+
     n = len(p0) - 1
     qp = np.concatenate([np.zeros(n + 1 - len(q)), q])
     r: np.ndarray = np.polysub(np.polymul(p0, qp[::-1]), np.polymul(qp, p0[::-1]))
@@ -341,6 +327,8 @@ def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
 
 def _polish(p0: np.ndarray, q: np.ndarray, t: float) -> float:
     """Refine a root θ of Im(P₀ Q̄) by bracketing nearby (kept as is at a tangency or at π)."""
+    from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
+
     if t >= math.pi or t <= 0.0:
         return min(max(t, 0.0), math.pi)
     f0 = float(_im_part(p0, q, t))

@@ -46,9 +46,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..checks import (
-    check_choice,
-    check_delay,
-    check_int,
     check_positive,
     check_positive_array,
     check_real_array,
@@ -60,8 +57,11 @@ from ..model.device import Params
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
-from ..results.status import NyquistStatus
+from ..results.status import NyquistStatus, SearchStatus
+from .cycles.characteristic import inv_loop
+from .cycles.controlled import resolve_wall
 from .describing import coulomb_equivalent_damping, quantizer_df
+from .loop_models import LOOP_MODELS, check_model, check_params
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -78,19 +78,6 @@ __all__ = [
     "NyquistLocusResponse",
     "nyquist_locus_response",
 ]
-
-LOOP_MODELS = ("half-delay", "pade", "zoh")
-
-
-def check_params(params: object) -> Params:
-    return check_type("params", params, Params, "build it with dfa.Params(mu, beta, sigma) or device.params(stiffness)")
-
-
-def check_model(model: str, delay: int, pade_order: int) -> tuple[str, int, int]:
-    m = check_choice("model", model, LOOP_MODELS)
-    d = check_delay(delay)
-    n = check_int("pade_order", pade_order, minimum=1, fix="use an order of 1 or more (4 is usually enough)")
-    return m, d, n
 
 
 def _omega(omega: ArrayLike, name: str = "omega") -> np.ndarray:
@@ -212,8 +199,6 @@ def loop_response(
     loop_system : The same loop as a python-control system.
     nyquist_locus_response : The loop against the critical locus −1/D(M).
     """
-    from .cycles.characteristic import inv_loop  # imported here: dfa.analysis.cycles builds on this module
-    from .cycles.controlled import resolve_wall
 
     p = check_params(params)
     _w, ctl, d = resolve_wall(wall)
@@ -308,7 +293,6 @@ def loop_system(
     --------
     loop_response : The frequency response itself, vectorised.
     """
-    from .cycles.controlled import resolve_wall
 
     p = check_params(params)
     _w, ctl, d = resolve_wall(wall)
@@ -481,7 +465,7 @@ def _solver_crossings(
     Returns ((M, ω, −1/D(M)) for every root with ω in the plotted range and M <= ``max_amplitude``, status,
     detail): ``OK`` when the search is complete up to ``max_amplitude``, else ``SEARCH_INCOMPLETE`` and why.
     """
-    from .cycles import SearchStatus, limit_cycles  # imported here: dfa.analysis.cycles builds on this module
+    from .cycles.solve import limit_cycles  # imported here: it loads scipy.optimize
 
     res = limit_cycles(p, model=model, pade_order=pade_order, max_amplitude=max_amplitude, wall=wall)
     lo, hi = float(np.min(omega)), float(np.max(omega))
@@ -547,7 +531,6 @@ def nyquist_locus_response(
     >>> [(round(m, 4), round(w, 4)) for m, w, pt in r.crossings]
     [(0.7905, 0.3974), (1.0098, 0.3974)]
     """
-    from .cycles.controlled import resolve_wall  # imported here: dfa.analysis.cycles builds on this module
 
     p = check_params(params)
     wp, _ctl, d = resolve_wall(wall)

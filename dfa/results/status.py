@@ -44,6 +44,8 @@ __all__ = [
     "DesignStatus",
     "ReportStatus",
     "ZWidthStatus",
+    "LinearStatus",
+    "PassivityStatus",
 ]
 
 
@@ -343,4 +345,29 @@ class ZWidthStatus(StatusEnum):
         "counterexample",
         "a grid point diverged at a stiffness the extended criterion proves passive: a criterion bug "
         "(see counterexamples)",
+    )
+
+
+class LinearStatus(StatusEnum):
+    """Shape of the stable set in K of the linear sampled loop (:func:`dfa.analysis.linear_wall.stable_stiffness`)."""
+
+    INTERVAL = ("interval", "stable exactly for 0 < K < K_crit (every stability condition checked)")
+    SEVERAL = (
+        "several_intervals",
+        "the stable set in K has several intervals: K_crit is the top of the one starting at K = 0; see intervals",
+    )
+    NOT_AT_LOW_K = (
+        "not_at_low_k",
+        "unstable for small K: stable only on the listed intervals (K_crit = 0)",
+    )
+    NEVER = ("never", "unstable for every K > 0 (K_crit = 0)")
+
+
+class PassivityStatus(StatusEnum):
+    """How tightly the maximum of the Colgate–Schenkel condition is known."""
+
+    CERTIFIED = ("certified", "maximum found and certified to 1e-12 (relative)")
+    BOUNDED = (
+        "bounded",
+        "evaluation budget spent: the maximum lies between beta_min and beta_bound (use the bound to be safe)",
     )

@@ -12,7 +12,7 @@ from scipy import optimize
 from ...checks import check_choice, check_positive
 from ...model.device import Params
 from ...model.wall import WallParams
-from ..loop import check_model, check_params
+from ..loop_models import check_model, check_params
 from . import search
 from .characteristic import DF_CHOICES, M_FLOOR, W_GRID, HarmonicLoop
 from .controlled import linear_stable_of, resolve_wall

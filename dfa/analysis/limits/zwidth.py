@@ -81,9 +81,9 @@ from ...model.device import Device
 from ...model.wall import Wall, WallParams
 from ...results.base import Result
 from ...results.codes import BOUNDED, DIVERGES, POINT_OUTCOMES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
-from ...results.status import LimitStatus, ZWidthStatus
+from ...results.status import LimitStatus, LinearStatus, ZWidthStatus
 from ..colgate_schenkel import colgate_schenkel_damping
-from ..linear_wall import LinearStatus, stable_stiffness
+from ..linear_wall import stable_stiffness
 from ..simulation import (
     GROWTH,
     SETTLE,
