@@ -235,7 +235,9 @@ def test_eq11_controller_stiffness_json_equals_api(capsys):
     assert d["wall"]["delay"] == 1 and d["wall"]["dimensionless"]["delay"] == 1
     for key in ("k_df", "k_sim", "k_sim_rest"):  # searched with the controller (tests/test_kmax_controller.py)
         assert d[key]["value"] == getattr(r, key).value and d[key]["status"] == getattr(r, key).status.value
-    code, out, _ = run(capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1")
+    code, out, _ = run(
+        capsys, "stiffness", *BASE, "--velocity", "0.1", "--virtual-damping", "1", "--delay", "1", "--explain"
+    )
     assert code == 0 and f"{kc:.5g} N/m" in out and f"{kl:.5g} N/m" in out
     assert "controller: K = 14500 N/m, B = 1 N·s/m, delay 1 sample" in out
 

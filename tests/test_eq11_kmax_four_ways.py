@@ -207,7 +207,7 @@ def test_cli_stiffness_four_ways_json_states_the_closed_form_numbers(capsys):
 
 def test_cli_stiffness_custom_device_without_stiffness_prints_four(capsys):
     argv = ["stiffness", "--mass", "0.05", "--damping", "0.5", "--coulomb", "0.05", "--resolution", "1e-5"]
-    code, out, err = run(capsys, *argv, "--period", "2.5e-4", "--velocity", "0.2", "--delay", "1")
+    code, out, err = run(capsys, *argv, "--period", "2.5e-4", "--velocity", "0.2", "--delay", "1", "--explain")
     assert code == 0, err
     dev = dfa.Device(mass=0.05, damping=0.5, coulomb=0.05, resolution=1e-5, period=2.5e-4)
     r = design_answer(dev, 0.2, wall=Wall.of(1.0, delay=1))
@@ -240,18 +240,20 @@ def test_cli_stiffness_json_without_stiffness_says_not_requested(capsys):
 
 
 def test_cli_stiffness_catalogue_k_is_assessed_and_said(capsys):
-    code, out, _ = run(capsys, "stiffness", "--device", "phantom", "--velocity", "0.2")
+    code, out, _ = run(capsys, "stiffness", "--device", "phantom", "--velocity", "0.2", "--explain")
     assert code == 0
     assert "at K = 1015 (catalogue K)" in out and "unstable (from ξ0 = 0)" in out
-    code, out, _ = run(capsys, "stiffness", "--device", "phantom", "--velocity", "0.2", "--stiffness", "300")
+    code, out, _ = run(
+        capsys, "stiffness", "--device", "phantom", "--velocity", "0.2", "--stiffness", "300", "--explain"
+    )
     assert "catalogue K" not in out and "at K = 300" in out
 
 
 def test_cli_stiffness_rotary_reports_non_monotone(capsys):
-    code, out, _ = run(capsys, "stiffness", "--device", "re35", "--velocity", "2")
+    code, out, _ = run(capsys, "stiffness", "--device", "re35", "--velocity", "2", "--explain")
     assert code == 0 and "N·m/rad" in out
     r = design_answer(dfa.get_device("re35").device, 2.0)
-    assert limit_text(r.k_sim, "N·m/rad") in out
+    assert limit_text(r.k_sim, "N·m/rad", explain=True, velocity_unit="rad/s") in out
     if r.k_sim.non_monotone:
         assert "non-monotone: safe again at" in out
 

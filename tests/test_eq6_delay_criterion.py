@@ -320,7 +320,9 @@ def test_cli_delay_and_position_errors_are_one_line(capsys, argv, needle):
 
 
 def test_cli_stiffness_above_static_limit_is_answered_not_crashed(capsys):
-    code, out, err = run(capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "60000")
+    code, out, err = run(
+        capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "60000", "--explain"
+    )
     assert code == 0, err
     static = 2 * DEV.coulomb / DEV.resolution
     assert row(out, "verdict at this speed") == (
@@ -334,7 +336,17 @@ def test_cli_stiffness_above_static_limit_is_answered_not_crashed(capsys):
 
 def test_cli_stiffness_with_delay(capsys):
     code, out, _ = run(
-        capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "20000", "--delay", "1"
+        capsys,
+        "stiffness",
+        "--device",
+        "delta",
+        "--velocity",
+        "0.1",
+        "--stiffness",
+        "20000",
+        "--delay",
+        "1",
+        "--explain",
     )
     assert code == 0
     k = k_max_criterion(DEV, 0.1, delay=1)

@@ -343,7 +343,7 @@ _CLI = [
 
 
 def test_gil_cli_row_prints_the_exact_linear_bound(capsys):
-    assert main(_CLI) == 0
+    assert main([*_CLI, "--explain"]) == 0
     out = capsys.readouterr().out
     row = next(line for line in out.splitlines() if line.startswith("exact linear bound"))
     assert row.split()[-2:] == ["1651.9", "N/m"]
@@ -360,7 +360,7 @@ def test_gil_cli_row_follows_the_delay(capsys):
     """`dfa stiffness --delay 1` prints the exact linear bound of the delayed loop (smaller than without delay)."""
     from dfa.analysis.linear import critical_stiffness
 
-    assert main(_CLI + ["--delay", "1"]) == 0
+    assert main(_CLI + ["--delay", "1", "--explain"]) == 0
     out = capsys.readouterr().out
     row = next(line for line in out.splitlines() if line.startswith("exact linear bound"))
     assert "delay 1" in row

@@ -18,6 +18,7 @@ import dfa.analysis.limits.kmax as kmax
 from dfa.analysis.cycles import limit_cycles
 from dfa.analysis.limits.closed_form import k_gil, k_max_criterion
 from dfa.analysis.limits.kmax import design_answer
+from dfa.analysis.limits.recommend import recommend_stiffness
 from dfa.analysis.limits.runs import simulate_points
 from dfa.analysis.linear_wall import controlled_spectral_radius
 from dfa.analysis.simulation import default_samples, divergence_bound, preload_position, simulate
@@ -25,6 +26,7 @@ from dfa.cli import main
 from dfa.errors import DFAValueError
 from dfa.model.device import Params
 from dfa.model.wall import MIN_LAG, Wall, WallParams
+from dfa.render.answer import stiffness_screen
 from dfa.render.controller import controller_limit_rows
 from dfa.render.limits import BELOW_K, PROOF_NOTE, evidence_text, limit_text
 from dfa.results.status import KMaxStatus, LimitStatus
@@ -180,11 +182,17 @@ def _values(d):
 def test_cli_stiffness_controller_text_and_json(capsys, small_search):
     argv = ["stiffness", "--device", "delta", "--velocity", "0.1", "--virtual-damping", "1"]
     assert main(argv) == 0
-    out = capsys.readouterr().out
+    screen = capsys.readouterr().out
     r = design_answer(DELTA, 0.1, wall=Wall.of(14500.0, damping=1.0), assess=True, source="catalogue", **SMALL)
+    # the default: one screen rendered from the same result, every line under 100 characters (issue 26)
+    assert screen.splitlines() == stiffness_screen(r, recommend_stiffness(r))
+    assert max(len(line) for line in screen.splitlines()) <= 100
     for s in r.searches.values():
-        assert s.value is not None and f"{s.value:.5g} N/m" in out
-        assert f"  {limit_text(s, 'N/m')}\n" in out  # each row states its limit and caveats as rendered
+        assert s.value is not None and f"{s.value:.5g} N/m" in screen
+    assert main([*argv, "--explain"]) == 0
+    out = capsys.readouterr().out
+    for s in r.searches.values():
+        assert f"  {limit_text(s, 'N/m', explain=True, velocity_unit='m/s')}\n" in out  # each limit as rendered
     assert f"{r.evidence.simulations} exact simulations" in out and f"evidence: {evidence_text(r)}." in out
     # a simulated K_max claims the simulated speeds, starts and stiffnesses, not every K below it (red team:
     # divergent bands below K_sim): the closing note always, and with --explain each confirmation's claim
@@ -194,8 +202,7 @@ def test_cli_stiffness_controller_text_and_json(capsys, small_search):
     a = r.assessment
     assert f"{a.max_passive_velocity:.4g} m/s" in out
     assert f"{a.outcomes['impact']} (from ξ0 = 0), {a.outcomes['preload']} (preload)" in out
-    assert main([*argv, "--explain"]) == 0
-    explained = capsys.readouterr().out
+    explained = out
     assert explained.count(BELOW_K) == 2  # k_sim and k_sim_rest: each says what its confirmation does not exclude
     for s in r.searches.values():
         assert limit_text(s, "N/m", explain=True, velocity_unit="m/s") in explained
@@ -293,7 +300,7 @@ def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search)
     assert d["k_sim"]["value"] == r.k_sim.value and d["k_criterion"]["value"] == r.k_criterion.value
     r14 = design_answer(DELTA, 0.1, wall=Wall.of(14500.0, damping=1.0), **SMALL)
     assert [getattr(r14, k) for k in r.limits] == [getattr(r, k) for k in r.limits]
-    assert main(argv) == 0
+    assert main([*argv, "--explain"]) == 0
     out = capsys.readouterr().out
     assert "simulated at K = 30000, impact at V" in out and "predicted cycles at K = 30000" in out
 
@@ -307,7 +314,7 @@ def test_eq6_extended_cli_explains_a_zero_criterion_k(capsys, small_search):
     (eq. 6 extended): the criterion gives no K_max and the text says why (red-team: a bare "0 N/m")."""
     e = dfa.get_device("impulse").device
     assert e.coulomb / e.resolution <= 0.5 / e.period
-    assert main(["stiffness", "--device", "impulse", "--velocity", "0.1", "--virtual-damping", "0.5"]) == 0
+    assert main(["stiffness", "--device", "impulse", "--velocity", "0.1", "--virtual-damping", "0.5", "--explain"]) == 0
     row = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("criterion K_max"))
     assert row.startswith(CRITERION_ROW)
     assert row.endswith(f"  none: {LimitStatus.NEVER.message}") and "σ >= σ₀ needs c/Δ > (1 − a)B/T" in row

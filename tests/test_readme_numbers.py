@@ -89,7 +89,6 @@ def test_readme_results_table_names_each_analysis_its_result_status_and_xarray_d
     import inspect
     import typing
 
-
     table = README[README.index("| scheme | analysis → result") : README.index("- `status` is an enum member")]
     rows = [r for r in table.splitlines()[2:] if r.startswith("|")]
     assert len(rows) >= 18

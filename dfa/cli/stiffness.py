@@ -7,6 +7,7 @@ One path: the wall of the flags (the spring with its delay when none is given) i
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
 
 from .._io import check_output_file
 from ..model.wall import Wall
@@ -14,6 +15,10 @@ from ..results.jsonable import explain_nulls
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, save_png, table
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
+
+if TYPE_CHECKING:
+    from ..analysis.limits.kmax import KMaxResult
+    from ..analysis.limits.recommend import Recommendation
 
 COMMAND = "stiffness"
 HELP = (
@@ -30,7 +35,16 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--explain",
         action="store_true",
-        help="state what each simulated limit's confirmation simulated (default: the limits and their caveats)",
+        help="the full evidence: each limit's caveats in words, what its confirmation simulated, the runs "
+        "(default: one screen, lines under 100 characters)",
+    )
+    p.add_argument(
+        "--margin",
+        type=float,
+        default=2.0,
+        metavar="G",
+        help="gain margin >= 1 of the recommended K when no proof exists: the simulated no-divergence limit "
+        "divided by G (default 2, about 6 dB)",
     )
     p.add_argument(
         "--plot",
@@ -50,7 +64,7 @@ def _source(args: argparse.Namespace, inp: Inputs) -> str | None:
 def run(args: argparse.Namespace) -> int:
     """K_max four ways for the spring or any wall (the wall's K is what is searched)."""
     from ..analysis.limits.kmax import design_answer
-    from ..render.limits import PROOF_NOTE, evidence_text, kmax_rows, verdict_text
+    from ..analysis.limits.recommend import recommend_stiffness
 
     inp = resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
@@ -64,26 +78,46 @@ def run(args: argparse.Namespace) -> int:
         check_output_file("--plot", args.plot, ".png")
     src = _source(args, inp)
     ans = design_answer(dev, v, wall=wall, assess=k is not None, source="catalogue" if src == "catalogue" else "given")
+    rec = recommend_stiffness(ans, args.margin)
     if args.plot is not None:
         from ..analysis.limits.speed_chart import stiffness_speed_chart
 
         chart = stiffness_speed_chart(dev, wall=wall, stiffness=k, velocity=v if v > 0 else None)
         save_png("--plot", args.plot, chart.plot())
     if args.json:
-        rec = ans.to_dict()
-        rec["stiffness_source"] = src
-        explain_nulls(rec, {"stiffness_source": "no --stiffness given and no catalogue K"})
+        out = ans.to_dict()
+        out["stiffness_source"] = src
+        out["recommendation"] = rec.to_dict()
+        explain_nulls(out, {"stiffness_source": "no --stiffness given and no catalogue K"})
         if args.plot is not None:
-            rec["plot"] = args.plot
-        emit(wall_json(rec, ctl, inp))
+            out["plot"] = args.plot
+        emit(wall_json(out, ctl, inp))
         return 0
+    if args.explain:
+        _print_explained(ans, rec, ctl, inp)
+    else:
+        from ..render.answer import stiffness_screen
+
+        print("\n".join(stiffness_screen(ans, rec)))
+    if args.plot is not None:
+        print(f"stiffness-speed chart written to {args.plot}")
+    return 0
+
+
+def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp: Inputs) -> None:
+    """The full answer (``--explain``): every limit in words with what its confirmation simulated."""
+    from ..render.answer import recommendation_line
+    from ..render.limits import PROOF_NOTE, evidence_text, kmax_rows, verdict_text
+
+    dev, v, wall = ans.device, ans.velocity, ans.wall
     vu, d = dev.units["velocity"], wall.delay
     print(
         f"{dev.name}, impact speed {v:.4g} {vu} ({ans.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
         + ("" if ctl is None else "; B, f_c, f_bw held fixed while K varies")
     )
     print_wall(ctl, inp)
-    rows = kmax_rows(ans, explain=args.explain)
+    print(recommendation_line(rec))
+    rows = kmax_rows(ans, explain=True)
     rows.append(["verdict at this speed", verdict_text(ans)])
     print(table(rows))
     if v > 0:
@@ -91,6 +125,3 @@ def run(args: argparse.Namespace) -> int:
         print(f"{PROOF_NOTE} (or the first harmonic).")
     else:
         print("impact speed 0: the describing-function and simulated limits need a speed > 0.")
-    if args.plot is not None:
-        print(f"stiffness-speed chart written to {args.plot}")
-    return 0

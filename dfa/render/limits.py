@@ -31,6 +31,7 @@ __all__ = [
     "counterexample_lines",
     "evidence_text",
     "kmax_rows",
+    "limit_tags",
     "limit_text",
     "passive_text",
     "spring_passive_text",
@@ -93,7 +94,7 @@ def _lowered(lim: KLimit, unit: str, explain: bool, vu: str) -> str:
     )
 
 
-def _tags(lim: KLimit, unit: str, explain: bool = False, vu: str = "") -> list[str]:
+def limit_tags(lim: KLimit, unit: str, explain: bool = False, vu: str = "") -> list[str]:
     """The caveats of a found limit, each a few words (with ``explain``, the lowering in full)."""
     tags = []
     if lim.limited_by is not None:
@@ -129,7 +130,7 @@ def limit_text(lim: KLimit, unit: str, *, explain: bool = False, velocity_unit: 
     if lim.value is None:
         return _none_text(lim, unit)
     txt = _k(lim.value, unit)
-    tags = _tags(lim, unit, explain, velocity_unit)
+    tags = limit_tags(lim, unit, explain, velocity_unit)
     if tags:
         txt += f" ({'; '.join(tags)})"
     if explain and lim.confirmation is not None:

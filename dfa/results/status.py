@@ -44,6 +44,7 @@ __all__ = [
     "DesignStatus",
     "ReportStatus",
     "ZWidthStatus",
+    "RecommendRule",
     "LinearStatus",
     "PassivityStatus",
 ]
@@ -371,3 +372,14 @@ class PassivityStatus(StatusEnum):
         "bounded",
         "evaluation budget spent: the maximum lies between beta_min and beta_bound (use the bound to be safe)",
     )
+
+
+class RecommendRule(StatusEnum):
+    """The rule a recommended stiffness follows (:func:`dfa.analysis.limits.recommend.recommend_stiffness`)."""
+
+    PROVEN = ("proven", "the largest K the criterion proves passive at this speed (a proof: no margin needed)")
+    SIMULATED = (
+        "simulated",
+        "no proof at this speed: the largest K no simulated impact diverged at, divided by the gain margin",
+    )
+    NONE = ("none", "no K to recommend: no proof, and no simulated stiffness free of divergence, at this speed")

@@ -1,0 +1,175 @@
+"""The design answer on one screen: the recommended stiffness, the four ways, the user's K (issue 26).
+
+Every line is at most :data:`WIDTH` characters; the evidence (the speeds, starts and stiffnesses simulated,
+the failures that lowered a limit) is for ``explain`` (:func:`dfa.render.limits.kmax_rows`) and the JSON.
+
+Examples
+--------
+>>> wrap("a " * 60).count("\\n")
+1
+"""
+
+from __future__ import annotations
+
+import textwrap
+
+from ..analysis.limits.kmax import KMaxResult
+from ..analysis.limits.recommend import Recommendation
+from ..analysis.limits.search import KLimit
+from ..formatting import number, text_table
+from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
+from .limits import counterexample_lines, limit_tags, passive_text
+
+__all__ = ["WIDTH", "wrap", "recommendation_line", "stiffness_screen", "user_verdict"]
+
+#: Longest line of the default output, characters.
+WIDTH = 100
+
+
+def wrap(text: str, indent: str = "  ") -> str:
+    """``text`` wrapped at :data:`WIDTH` characters, continuation lines indented by ``indent``."""
+    return textwrap.fill(text, WIDTH, subsequent_indent=indent, break_on_hyphens=False)
+
+
+def _k(x: float, unit: str) -> str:
+    return f"{number(x, 5)} {unit}"
+
+
+def _limit_cell(lim: KLimit, unit: str, notes: list[str], name: str) -> str:
+    """The K cell of one method: its value, or "none"; a note mark when there is something to say."""
+    if lim.value is None:
+        notes.append(f"{name}: none, {lim.status.message}")
+        return f"none *{len(notes)}"
+    tags = limit_tags(lim, unit)
+    if not tags:
+        return _k(lim.value, unit)
+    notes.append(f"{name}: {'; '.join(tags)}")
+    return f"{_k(lim.value, unit)} *{len(notes)}"
+
+
+def recommendation_line(rec: Recommendation) -> str:
+    """The recommended stiffness and its rule, wrapped at :data:`WIDTH`."""
+    u = rec.device.units
+    at = f"at {number(rec.velocity, 4)} {u['velocity']}"
+    if rec.status is RecommendRule.PROVEN:
+        why = f"the largest K the criterion proves passive {at} (a proof; no margin needed)"
+    elif rec.status is RecommendRule.SIMULATED:
+        assert rec.k_basis is not None
+        why = (
+            f"no proof {at}: the largest K no simulated impact diverged at, {_k(rec.k_basis, u['stiffness'])}, "
+            f"divided by the gain margin {number(rec.margin, 3)} (--margin); not a proof"
+        )
+    else:
+        return wrap(f"recommended K: none. {rec.status.message}")
+    assert rec.k_recommended is not None
+    return wrap(f"recommended K = {_k(rec.k_recommended, u['stiffness'])}: {why}")
+
+
+def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
+    """(method, K, what it rests on) for each way and the spring's published bounds."""
+    ku = r.device.units["stiffness"]
+    n = len(r.evidence.speeds)
+    sims = f"simulated: {n} speed{'s' if n != 1 else ''} up to V, 2 starts"
+    spring = r.wall.params(r.device.period).is_spring
+    rows = [["criterion (eq. 11" + (")" if spring else ", extended)"),
+             _limit_cell(r.k_criterion, ku, notes, "criterion"), "proof"]]  # fmt: skip
+    published = (
+        ("static limit 2c/Δ (eq. 9)", r.k_static, "proof, at rest only"),
+        ("Colgate-Schenkel (eq. 8)", r.k_colgate, "linear, no encoder or Coulomb"),
+        ("Abbott-Okamura", r.k_abbott_okamura, "min of eq. 8 and eq. 9"),
+    )
+    rows += [[name, _k(k, ku), why] for name, k, why in published if k is not None]
+    rows += [
+        [
+            "exact linear bound",
+            _limit_cell(r.k_linear, ku, notes, "exact linear bound"),
+            "linear, no encoder or Coulomb",
+        ],
+        ["describing function", _limit_cell(r.k_df, ku, notes, "describing function"), "first harmonic"],
+        ["simulation, no divergence", _limit_cell(r.k_sim, ku, notes, "simulation, no divergence"), sims],
+        ["simulation, every impact rests", _limit_cell(r.k_sim_rest, ku, notes, "simulation, rests"), sims],
+    ]
+    return rows
+
+
+def _proof_text(r: KMaxResult, at: str) -> str:
+    """What the criterion says of the assessed K at the speed, in a few words."""
+    a = r.assessment
+    assert a is not None
+    if a.velocity_status is VelocityStatus.NOT_COVERED:
+        return "no criterion covers this wall"
+    upto = passive_text(r)
+    if a.verdict is StiffnessStatus.OK:
+        return f"passive {at} (proven, up to {upto})"
+    if a.velocity_status is VelocityStatus.NONE:
+        return upto.replace("none: ", "", 1)
+    return f"no passivity guarantee {at} (proven passive up to {upto})"
+
+
+def user_verdict(r: KMaxResult) -> str:
+    """The verdict on the wall's own K, consistent with the criterion and the runs at V (one line or two)."""
+    a = r.assessment
+    if a is None:
+        return ""
+    u = r.device.units
+    src = " (catalogue K)" if a.source == "catalogue" else ""
+    at = f"at {number(r.velocity, 4)} {u['velocity']}"
+    runs = a.outcomes
+    diverged = [s for s in ("impact", "preload") if runs.get(s) == "unstable"]
+    proof = _proof_text(r, at)
+    if len(diverged) == 2:
+        head = f"diverges in simulation {at} from both starts; {proof}"
+    elif diverged:
+        head = f"diverges in simulation {at} from the {diverged[0]} start; {proof}"
+    else:
+        sim = ", ".join(f"{runs.get(s, '-')} ({s})" for s in ("impact", "preload"))
+        head = f"{proof}; simulated {at}: {sim}"
+    return wrap(f"your K = {_k(a.stiffness, u['stiffness'])}{src}: {head}")
+
+
+def _header(r: KMaxResult) -> list[str]:
+    """The device and speed; the wall held fixed while K varies (the spring: its delay)."""
+    u = r.device.units
+    w = r.wall
+    d = f"delay {w.delay} sample{'s' if w.delay != 1 else ''}"
+    head = f"{r.device.name}, impact at {number(r.velocity, 4)} {u['velocity']} ({number(r.xi_dot, 4)} ticks/sample)"
+    if w.params(r.device.period).is_spring:
+        return [wrap(f"{head}; the spring, {d}")]
+    parts = [f"B = {number(w.damping, 4)} {u['damping']}"] if w.damping else []
+    parts.append(d)
+    if w.filter_cutoff is not None:
+        parts.append(f"velocity filter {number(w.filter_cutoff, 4)} Hz")
+    if w.amplifier_bandwidth is not None:
+        parts.append(f"amplifier bandwidth {number(w.amplifier_bandwidth, 4)} Hz")
+    return [wrap(head), wrap(f"wall held fixed while K varies: {', '.join(parts)}")]
+
+
+def stiffness_screen(r: KMaxResult, rec: Recommendation) -> list[str]:
+    """The default output of ``dfa stiffness``: every line at most :data:`WIDTH` characters.
+
+    Parameters
+    ----------
+    r : KMaxResult
+        K_max four ways.
+    rec : Recommendation
+        The recommended stiffness (:func:`dfa.analysis.limits.recommend.recommend_stiffness`).
+
+    Returns
+    -------
+    list of str
+        The lines (none holds a newline): the device and wall, the recommendation, the table of methods, the caveats, the verdict on
+        the wall's own K, and where the evidence is.
+    """
+    notes: list[str] = []
+    lines = [*_header(r), recommendation_line(rec), ""]
+    lines += text_table(_method_rows(r, notes), ["method", "K", "rests on"]).splitlines()
+    lines += [wrap(f"{row[0]}: {row[1]}") for row in counterexample_lines(r)]
+    lines += [wrap(f"*{i} {note}", "    ") for i, note in enumerate(notes, 1)]
+    verdict = user_verdict(r)
+    if verdict:
+        lines += ["", verdict]
+    if r.velocity > 0:
+        lines.append("only the criterion is a proof; --explain for the evidence, --json for every number")
+    else:
+        lines.append("impact speed 0: the describing-function and simulated limits need a speed > 0")
+    return "\n".join(lines).split("\n")
