@@ -141,7 +141,8 @@ def test_fig4_spring_wall_map_fast_path_is_the_general_path(monkeypatch):
     """A spring wall (delay only) runs the spring's kernel; the wall kernel, forced, gives the same map."""
     kw = dict(grid=3, samples=2000, n_jobs=1, progress=False, wall=WallParams.of(delay=1))
     a = stability_map(100.0, [2.0], **kw)
-    assert "wall" not in a.to_dict() and a.to_dict()["delay"] == 1  # a spring's map states its delay only
+    d = a.to_dict()  # a spring's map states its wall (the delay alone) like every result
+    assert d["delay"] == 1 and d["wall"]["delay"] == 1 and d["wall"]["damping"] == 0.0
     monkeypatch.setattr(WallParams, "is_spring", property(lambda self: False))  # force the wall kernel
     b = stability_map(100.0, [2.0], **kw)
     assert np.array_equal(a.outcome, b.outcome)

@@ -12,7 +12,6 @@ lying inside the linear bound; a dense spectral-radius scan where the stable set
 several intervals.
 """
 
-import dataclasses
 import json
 import math
 
@@ -22,6 +21,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from result_json import assert_json_from_fields
 
 import dfa
 from dfa import Wall, WallParams
@@ -42,26 +42,6 @@ M, T = 1.0, 1e-3  # the issue's anchor device: m = 1 kg, T = 1 ms
 
 
 # ---------------------------------------------------------------- independent loop: python-control
-
-
-def _json_keys(result) -> set[str]:
-    """The keys :meth:`dfa.results.base.Result.to_dict` writes: fields (but ``json: None``), json_properties, message."""
-    keys = {f.name for f in dataclasses.fields(result) if f.metadata.get("json", True) is not None}
-    keys |= set(type(result).json_properties)
-    if getattr(result, "status", None) is not None:
-        keys.add("status_message")
-    if result.units():
-        keys.add("units")
-    return keys
-
-
-def _assert_json_from_fields(result, extra=frozenset()) -> dict:
-    """``to_dict()`` has exactly :func:`_json_keys` (plus ``extra``; ``null_reasons`` where a value is null) and is
-    strict JSON."""
-    d = result.to_dict()
-    assert set(d) - {"null_reasons"} == _json_keys(result) | set(extra)
-    json.dumps(d, allow_nan=False)
-    return d
 
 
 def _control_loop(mu: float, beta: float, p: WallParams):
@@ -359,9 +339,9 @@ def test_zoh_with_amplifier_lag_vs_mpmath(a, lag):
 def test_stiffness_intervals_and_stable_region_json_from_their_fields():
     """StiffnessIntervals and StableRegion write the Result base's JSON: fields, json_properties, message."""
     r = stable_stiffness(0.1, 0.5, 1e-3, Wall.of(1.0, damping=1.0, delay=1, filter_cutoff=100.0))
-    d = _assert_json_from_fields(r)
+    d = assert_json_from_fields(r)
     assert d["intervals"] == r.intervals.tolist() and d["wall"]["filter_cutoff"] == 100.0
     region = stable_region(1.0, 2.0, 1e-3, [0.0, 1.0])
-    d = _assert_json_from_fields(region)
+    d = assert_json_from_fields(region)
     assert "rows" not in d and d["row_status"] == ["interval", "interval"]
     assert d["device"] == {"mass": 1.0, "damping": 2.0, "period": 1e-3}

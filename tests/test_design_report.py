@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import math
 import re
 from functools import partial
 
 import pytest
+from result_json import assert_json_from_fields
 
 import dfa
 import dfa.report
@@ -18,26 +18,6 @@ from dfa.errors import DFAValueError
 from dfa.render.document import design_markdown, markdown_to_html
 
 SMALL = dict(map_grid=5, samples=3000, n_jobs=1)  # a small map: the numbers of the text do not depend on it
-
-
-def _json_keys(result) -> set[str]:
-    """The keys :meth:`dfa.results.base.Result.to_dict` writes: fields (but ``json: None``), json_properties, message."""
-    keys = {f.name for f in dataclasses.fields(result) if f.metadata.get("json", True) is not None}
-    keys |= set(type(result).json_properties)
-    if getattr(result, "status", None) is not None:
-        keys.add("status_message")
-    if result.units():
-        keys.add("units")
-    return keys
-
-
-def _assert_json_from_fields(result, extra=frozenset()) -> dict:
-    """``to_dict()`` has exactly :func:`_json_keys` (plus ``extra``; ``null_reasons`` where a value is null) and is
-    strict JSON."""
-    d = result.to_dict()
-    assert set(d) - {"null_reasons"} == _json_keys(result) | set(extra)
-    json.dumps(d, allow_nan=False)
-    return d
 
 
 @pytest.fixture(scope="module")
@@ -342,7 +322,7 @@ def test_cli_subcommand_help_runs(capsys, name):
 
 def test_design_analysis_json_from_its_fields(impulse):
     """DesignAnalysis writes the Result base's JSON: the fields but the figures' data, json_properties, message."""
-    d = _assert_json_from_fields(impulse)
+    d = assert_json_from_fields(impulse)
     assert not {"thresholds", "trajectory", "trajectory_high", "stiffness_curve", "nyquist"} & set(d)
     assert set(d["growth_thresholds"]) == set(d["cycles"]) == {"half-delay", "zoh"}
     assert d["wall"]["dimensionless"] == json.loads(json.dumps(impulse.wall_params.to_dict()))

@@ -1,7 +1,5 @@
 """Stiffness limits for design: eq. 8, 9, 11 and the bounds of spec section 8."""
 
-import dataclasses
-import json
 import math
 
 import control
@@ -9,32 +7,13 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from result_json import assert_json_from_fields
 
 import dfa
 from dfa.analysis.limits.closed_form import gil_factor, k_max_criterion
 from dfa.model.wall import Wall
 
 DEVICES = ["Delta", "Impulse Engine", "Phantom 1.0", "Toolhandle"]
-
-
-def _json_keys(result) -> set[str]:
-    """The keys :meth:`dfa.results.base.Result.to_dict` writes: fields (but ``json: None``), json_properties, message."""
-    keys = {f.name for f in dataclasses.fields(result) if f.metadata.get("json", True) is not None}
-    keys |= set(type(result).json_properties)
-    if getattr(result, "status", None) is not None:
-        keys.add("status_message")
-    if result.units():
-        keys.add("units")
-    return keys
-
-
-def _assert_json_from_fields(result, extra=frozenset()) -> dict:
-    """``to_dict()`` has exactly :func:`_json_keys` (plus ``extra``; ``null_reasons`` where a value is null) and is
-    strict JSON."""
-    d = result.to_dict()
-    assert set(d) - {"null_reasons"} == _json_keys(result) | set(extra)
-    json.dumps(d, allow_nan=False)
-    return d
 
 
 @pytest.mark.parametrize("name", DEVICES)
@@ -180,10 +159,10 @@ def test_stiffness_limits_and_response_json_from_their_fields():
         dfa.stiffness_limits(dev, 0.05, stiffness=80.0, delay=1),
         dfa.stiffness_limits(dev, 0.5, stiffness=10.0),  # every speed: max_passive_velocity null, with its reason
     ):
-        d = _assert_json_from_fields(lim)
+        d = assert_json_from_fields(lim)
         assert d["device"] == dev.name and d["max_passive_velocity_status"] == lim.velocity_status.value
-    d = _assert_json_from_fields(dfa.stiffness_limits(dev, 0.5, stiffness=10.0))
+    d = assert_json_from_fields(dfa.stiffness_limits(dev, 0.5, stiffness=10.0))
     assert d["null_reasons"] == {"/max_passive_velocity": "passive at every speed (no finite limit)"}
     resp = dfa.stiffness_response(dev, [0.01, 0.1], stiffness=80.0, delay=1)
-    d = _assert_json_from_fields(resp)
+    d = assert_json_from_fields(resp)
     assert "limits" not in d and d["k_colgate"] == resp.limits.k_colgate and d["delay"] == 1

@@ -1,13 +1,12 @@
 """The linearised loop of paper Fig. 6 / eq. 36-40: half-sample delay, Padé and exact ZOH models."""
 
-import dataclasses
-import json
 import math
 
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from result_json import assert_json_from_fields
 
 import dfa
 from dfa.analysis.loop import (
@@ -23,26 +22,6 @@ from dfa.analysis.loop import (
 from dfa.model.wall import WallParams
 
 W = np.linspace(0.01, 3.1, 300)
-
-
-def _json_keys(result) -> set[str]:
-    """The keys :meth:`dfa.results.base.Result.to_dict` writes: fields (but ``json: None``), json_properties, message."""
-    keys = {f.name for f in dataclasses.fields(result) if f.metadata.get("json", True) is not None}
-    keys |= set(type(result).json_properties)
-    if getattr(result, "status", None) is not None:
-        keys.add("status_message")
-    if result.units():
-        keys.add("units")
-    return keys
-
-
-def _assert_json_from_fields(result, extra=frozenset()) -> dict:
-    """``to_dict()`` has exactly :func:`_json_keys` (plus ``extra``; ``null_reasons`` where a value is null) and is
-    strict JSON."""
-    d = result.to_dict()
-    assert set(d) - {"null_reasons"} == _json_keys(result) | set(extra)
-    json.dumps(d, allow_nan=False)
-    return d
 
 
 def test_eq40_device_transfer_function_and_equivalent_damping():
@@ -204,7 +183,7 @@ def test_nyquist_locus_response_json_from_its_fields():
 
     for p, wall in ((Params(5.0, 0.1, 0.0), None), (Params(5.0, 0.1, 0.5), WallParams.of(damping=0.2, delay=1))):
         r = nyquist_locus_response(p, amplitudes=[1.0, 3.0], omega=np.geomspace(0.01, 3.0, 20), wall=wall)
-        d = _assert_json_from_fields(r)
+        d = assert_json_from_fields(r)
         assert (d["mu"], d["beta"], d["sigma"]) == (p.mu, p.beta, p.sigma)
         assert d["status_message"] == (r.detail or r.status.message)
         assert all(set(c) == {"amplitude", "frequency", "point"} for c in d["crossings"])

@@ -9,7 +9,6 @@ Re{(1 − e^{−jθ}) H(e^{jθ})}/(1 − cos θ) on a dense grid, for random con
 refusal with an amplifier lag.
 """
 
-import dataclasses
 import json
 import math
 
@@ -18,31 +17,12 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from result_json import assert_json_from_fields
 
 from dfa import Device, Wall, WallParams, k_colgate
 from dfa.analysis.colgate_schenkel import PassivityStatus, colgate_schenkel_beta, colgate_schenkel_damping
 from dfa.errors import DFAValueError
 from dfa.results.jsonable import dumps
-
-
-def _json_keys(result) -> set[str]:
-    """The keys :meth:`dfa.results.base.Result.to_dict` writes: fields (but ``json: None``), json_properties, message."""
-    keys = {f.name for f in dataclasses.fields(result) if f.metadata.get("json", True) is not None}
-    keys |= set(type(result).json_properties)
-    if getattr(result, "status", None) is not None:
-        keys.add("status_message")
-    if result.units():
-        keys.add("units")
-    return keys
-
-
-def _assert_json_from_fields(result, extra=frozenset()) -> dict:
-    """``to_dict()`` has exactly :func:`_json_keys` (plus ``extra``; ``null_reasons`` where a value is null) and is
-    strict JSON."""
-    d = result.to_dict()
-    assert set(d) - {"null_reasons"} == _json_keys(result) | set(extra)
-    json.dumps(d, allow_nan=False)
-    return d
 
 
 def test_colgate_schenkel_spring_d0_is_eq8():
@@ -132,8 +112,8 @@ def test_large_delay_is_fast_and_exact():
 
 def test_colgate_schenkel_json_from_its_fields():
     """ColgateSchenkel and ColgateSchenkelDamping write the Result base's JSON; the wall is under "wall"."""
-    _assert_json_from_fields(colgate_schenkel_beta(WallParams.of(damping=0.3, cutoff=0.05)))
+    assert_json_from_fields(colgate_schenkel_beta(WallParams.of(damping=0.3, cutoff=0.05)))
     r = colgate_schenkel_damping(Wall.of(1500.0, damping=0.7, filter_cutoff=80.0), 1e-3)
-    d = _assert_json_from_fields(r)
+    d = assert_json_from_fields(r)
     assert d["wall"] == json.loads(dumps(r.wall.to_dict())) and "controller" not in d
     assert d["status"] == r.status.value and d["frequency"] == r.frequency

@@ -7,7 +7,6 @@ status members carry messages, construction refuses inconsistent data, ``.plot()
 
 from __future__ import annotations
 
-import dataclasses
 import enum
 import importlib.metadata
 import json
@@ -19,6 +18,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from result_json import assert_json_from_fields
 
 import dfa
 from dfa.analysis.contours import contour_maps
@@ -38,26 +38,6 @@ from dfa.results.jsonable import NULL_REASONS_KEY, dumps, to_jsonable
 
 ROOT = Path(__file__).resolve().parents[1]
 DEV = dfa.get_device("Delta").device
-
-
-def _json_keys(result) -> set[str]:
-    """The keys :meth:`dfa.results.base.Result.to_dict` writes: fields (but ``json: None``), json_properties, message."""
-    keys = {f.name for f in dataclasses.fields(result) if f.metadata.get("json", True) is not None}
-    keys |= set(type(result).json_properties)
-    if getattr(result, "status", None) is not None:
-        keys.add("status_message")
-    if result.units():
-        keys.add("units")
-    return keys
-
-
-def _assert_json_from_fields(result, extra=frozenset()) -> dict:
-    """``to_dict()`` has exactly :func:`_json_keys` (plus ``extra``; ``null_reasons`` where a value is null) and is
-    strict JSON."""
-    d = result.to_dict()
-    assert set(d) - {"null_reasons"} == _json_keys(result) | set(extra)
-    json.dumps(d, allow_nan=False)
-    return d
 
 
 def _refuse_constant(token):
@@ -502,7 +482,32 @@ def test_import_dfa_and_result_helpers_load_no_matplotlib_nor_xarray():
 def test_soundness_and_validation_result_json_from_their_fields(empty_validation):
     """Soundness and ValidationResult write the Result base's JSON (the latter: the key numbers of summary())."""
     snd = Soundness((5.0,), (1.0,), 4, 2, rest=2, rejected_rest=1)
-    d = _assert_json_from_fields(snd)
+    d = assert_json_from_fields(snd)
     assert d["conservatism"] == 0.5
-    d = _assert_json_from_fields(empty_validation, extra={"speeds_ordered", "controller_errors"})
+    d = assert_json_from_fields(empty_validation, extra={"speeds_ordered", "controller_errors"})
     assert set(d) - {"status", "status_message", "null_reasons"} == set(empty_validation.summary())
+
+
+def test_maps_and_cycles_json_from_fields():
+    """StabilityMap, ContourMaps, LimitCycle, LimitCycleResult and GrowthThreshold on the Result base: their JSON
+    is the fields (the arrays and the inner search left out) and the summary properties, strict JSON."""
+    from dfa.analysis.contours import contour_maps
+    from dfa.analysis.cycles.growth import growth_threshold
+
+    dev = dfa.get_device("delta").device
+    m = dfa.stability_map(100.0, [1.0, 5.0], grid=4, samples=2000, n_jobs=1)
+    d = assert_json_from_fields(m, extra={"counts"})
+    assert d["grid"] == [4, 4] and [c["xi_dot"] for c in d["counts"]] == [1.0, 5.0]
+    assert all(sum(v for k, v in c.items() if k != "xi_dot") == 16 for c in d["counts"])
+    assert "outcome" not in d and d["wall"]["delay"] == 0
+    c = assert_json_from_fields(contour_maps(5.0, grid=6))
+    assert c["small_points"] <= 36 and c["status_message"] == (c["detail"] or c["status_message"])
+    r = dfa.limit_cycles(dev.params(14500.0), model="zoh")
+    d = assert_json_from_fields(r)
+    assert (d["mu"], d["beta"], d["sigma"]) == (r.params.mu, r.params.beta, r.params.sigma)
+    assert d["status_message"] == r.detail and d["linear_model"] == "zoh"
+    assert [assert_json_from_fields(x)["period"] for x in r.cycles] == [x.period for x in r.cycles]
+    g = growth_threshold(dev.params(14500.0), dev)
+    d = assert_json_from_fields(g)
+    assert d["band"]["low"]["amplitude"] == g.amplitude and d["band"]["high"]["amplitude"] == g.amplitude_high
+    assert d["complete"] is g.result.complete and "result" not in d

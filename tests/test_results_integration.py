@@ -88,8 +88,9 @@ def test_fig6_nyquist_sigma_zero_crossings_from_the_solver_status_ok():
 
 def test_fig6_nyquist_reports_an_incomplete_solver_search(monkeypatch):
     import dfa.analysis.cycles as cyc
+    import dfa.analysis.cycles.solve as solve
 
-    real = cyc.limit_cycles
+    real = solve.limit_cycles
 
     def incomplete(p, **kw):
         res = real(p, **kw)
@@ -98,7 +99,7 @@ def test_fig6_nyquist_reports_an_incomplete_solver_search(monkeypatch):
             False, "incomplete: 1 root bracket(s) could not be refined", cyc.SearchStatus.NUMERICAL,
         )  # fmt: skip
 
-    monkeypatch.setattr(cyc, "limit_cycles", incomplete)
+    monkeypatch.setattr(solve, "limit_cycles", incomplete)  # the function the locus calls
     r = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.0))
     assert r.status is NyquistStatus.SEARCH_INCOMPLETE and "could not be refined" in r.detail
     assert _strict(r.to_dict())["status_message"] == r.detail

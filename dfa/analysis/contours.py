@@ -32,15 +32,15 @@ import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
 from .._io import atomic_open, check_memory
 from ..checks import check_bool, check_int, check_mu, check_positive, check_range
 from ..errors import DFAValueError
+from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
-from ..results.jsonable import to_jsonable
 from ..results.status import ContourStatus
 from .criterion import CriticalLine
 from .cycles import ClosedFormStatus, large_cycle_closed_forms, small_cycle_closed_forms
@@ -62,7 +62,7 @@ _ARRAYS = (
 
 
 @dataclass(frozen=True)
-class ContourMaps:
+class ContourMaps(Result):
     """Amplitude (ticks) and frequency (rad per sample) of both cycle families over a (β, σ) grid.
 
     Arrays have shape (len(sigma), len(beta)); NaN where the family does not
@@ -91,18 +91,22 @@ class ContourMaps:
     """
 
     mu: float
-    beta: np.ndarray = field(repr=False)
-    sigma: np.ndarray = field(repr=False)
-    small_amplitude: np.ndarray = field(repr=False)
-    small_frequency: np.ndarray = field(repr=False)
-    large_amplitude: np.ndarray = field(repr=False)
-    large_frequency: np.ndarray = field(repr=False)
-    large_amplitude_closed: np.ndarray = field(repr=False)
-    large_frequency_closed: np.ndarray = field(repr=False)
-    small_amplitude_closed: np.ndarray = field(repr=False)
+    beta: np.ndarray = field(repr=False, metadata={"json": None})
+    sigma: np.ndarray = field(repr=False, metadata={"json": None})
+    small_amplitude: np.ndarray = field(repr=False, metadata={"json": None})
+    small_frequency: np.ndarray = field(repr=False, metadata={"json": None})
+    large_amplitude: np.ndarray = field(repr=False, metadata={"json": None})
+    large_frequency: np.ndarray = field(repr=False, metadata={"json": None})
+    large_amplitude_closed: np.ndarray = field(repr=False, metadata={"json": None})
+    large_frequency_closed: np.ndarray = field(repr=False, metadata={"json": None})
+    small_amplitude_closed: np.ndarray = field(repr=False, metadata={"json": None})
     max_amplitude: float = 200.0
     status: ContourStatus = ContourStatus.OK
     detail: str = ""
+
+    json_properties: ClassVar[tuple[str, ...]] = (
+        "beta_range", "sigma_range", "grid", "small_points", "large_points", "large_closed_points",
+    )  # fmt: skip
 
     def __post_init__(self) -> None:
         freeze_fields(self, {"beta": {"ndim": 1}, "sigma": {"ndim": 1}})
@@ -205,28 +209,40 @@ class ContourMaps:
             )
         return p
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready summary: grid and how many points carry each family.
+    @property
+    def beta_range(self) -> list[float]:
+        """The first and last β of the grid."""
+        return [float(self.beta[0]), float(self.beta[-1])]
 
-        Returns
-        -------
-        dict
-            Strict-JSON data: μ, grid, counts per family, status and detail.
-        """
-        return to_jsonable(
-            {
-                "mu": self.mu,
-                "beta_range": [float(self.beta[0]), float(self.beta[-1])],
-                "sigma_range": [float(self.sigma[0]), float(self.sigma[-1])],
-                "grid": [int(self.beta.size), int(self.sigma.size)],
-                "small_points": int(np.isfinite(self.small_amplitude).sum()),
-                "large_points": int(np.isfinite(self.large_amplitude).sum()),
-                "large_closed_points": int(np.isfinite(self.large_amplitude_closed).sum()),
-                "max_amplitude": self.max_amplitude,
-                "status": self.status,
-                "status_message": self.detail or self.status.message,
-            }
-        )
+    @property
+    def sigma_range(self) -> list[float]:
+        """The first and last σ of the grid."""
+        return [float(self.sigma[0]), float(self.sigma[-1])]
+
+    @property
+    def grid(self) -> list[int]:
+        """Points along β and along σ."""
+        return [int(self.beta.size), int(self.sigma.size)]
+
+    @property
+    def small_points(self) -> int:
+        """Grid points that carry a small-family cycle."""
+        return int(np.isfinite(self.small_amplitude).sum())
+
+    @property
+    def large_points(self) -> int:
+        """Grid points that carry a large-family cycle (exact describing function)."""
+        return int(np.isfinite(self.large_amplitude).sum())
+
+    @property
+    def large_closed_points(self) -> int:
+        """Grid points that carry a large-family cycle by the closed forms (eq. 44-45)."""
+        return int(np.isfinite(self.large_amplitude_closed).sum())
+
+    @property
+    def status_message(self) -> str:
+        """Which points the closed forms flag and why (:attr:`detail`), else the status's message."""
+        return self.detail or self.status.message
 
 
 def load_contours(path: str | os.PathLike) -> ContourMaps:

@@ -56,7 +56,7 @@ import zipfile
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -76,8 +76,8 @@ from ..checks import (
 )
 from ..errors import DFATypeError, DFAValueError
 from ..model.wall import WallParams
+from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
-from ..results.jsonable import to_jsonable
 from ..results.status import MapStatus
 from .criterion import CriticalLine
 from .simulation import (
@@ -120,7 +120,7 @@ def map_memory_bytes(grid: int, n_speeds: int) -> int:
 
 
 @dataclass(frozen=True)
-class StabilityMap:
+class StabilityMap(Result):
     """Outcome of the exact simulation over a (β, σ) grid for one μ and several initial speeds.
 
     Attributes
@@ -150,16 +150,18 @@ class StabilityMap:
 
     mu: float
     xi_dots: tuple
-    beta: np.ndarray = field(repr=False)
-    sigma: np.ndarray = field(repr=False)
-    outcome: np.ndarray = field(repr=False)
-    amplitude: np.ndarray = field(repr=False)
-    frequency: np.ndarray = field(repr=False)
+    beta: np.ndarray = field(repr=False, metadata={"json": None})
+    sigma: np.ndarray = field(repr=False, metadata={"json": None})
+    outcome: np.ndarray = field(repr=False, metadata={"json": None})
+    amplitude: np.ndarray = field(repr=False, metadata={"json": None})
+    frequency: np.ndarray = field(repr=False, metadata={"json": None})
     samples: int
     quantize: bool = True
     preload: bool = False
     status: MapStatus = MapStatus.OK
     wall: WallParams = field(default_factory=WallParams)
+
+    json_properties: ClassVar[tuple[str, ...]] = ("beta_range", "sigma_range", "grid", "delay")
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "xi_dots", tuple(float(v) for v in self.xi_dots))
@@ -283,32 +285,34 @@ class StabilityMap:
         """
         return [{name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES)} for o in self.outcome]
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready summary (grid, settings and counts per speed).
+    @property
+    def beta_range(self) -> list[float]:
+        """The first and last β of the grid."""
+        return [float(self.beta[0]), float(self.beta[-1])]
+
+    @property
+    def sigma_range(self) -> list[float]:
+        """The first and last σ of the grid."""
+        return [float(self.sigma[0]), float(self.sigma[-1])]
+
+    @property
+    def grid(self) -> list[int]:
+        """Points along β and along σ."""
+        return [int(self.beta.size), int(self.sigma.size)]
+
+    def to_dict(self) -> dict[str, Any]:
+        """Strict-JSON summary: the scalar fields, the grid and the counts per speed, not the arrays.
+
+        :meth:`dfa.results.base.Result.to_dict` (the arrays left out; :attr:`json_properties`) with ``counts``,
+        the outcome counts of :meth:`counts` with their speed ``xi_dot``.
 
         Returns
         -------
         dict
-            Strict-JSON data: μ, speeds, grid, settings, counts per speed, status and its message.
+            The μ, speeds, wall, grid, settings, counts per speed, status and its message.
         """
-        wall = {} if self.wall.is_spring else {"wall": self.wall.to_dict()}
-        return to_jsonable(
-            {
-                **wall,
-                "mu": self.mu,
-                "xi_dots": list(self.xi_dots),
-                "beta_range": [float(self.beta[0]), float(self.beta[-1])],
-                "sigma_range": [float(self.sigma[0]), float(self.sigma[-1])],
-                "grid": [int(self.beta.size), int(self.sigma.size)],
-                "samples": self.samples,
-                "delay": self.delay,
-                "quantize": self.quantize,
-                "preload": self.preload,
-                "counts": [dict(xi_dot=v, **c) for v, c in zip(self.xi_dots, self.counts(), strict=False)],
-                "status": self.status,
-                "status_message": self.status.message,
-            }
-        )
+        counts = [dict(xi_dot=v, **c) for v, c in zip(self.xi_dots, self.counts(), strict=True)]
+        return {**super().to_dict(), "counts": counts}
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write the map to a ``.npz`` file (see :func:`load_map`), atomically.

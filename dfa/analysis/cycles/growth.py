@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
 
 from ...checks import check_type
 from ...errors import DFAValueError
 from ...model.device import Device, Params
-from ...results.jsonable import explain_nulls, to_jsonable
+from ...results.base import Result
 from ...results.status import GrowthStatus
 from .caveats import NO_CAVEAT
 from .results import LimitCycle, LimitCycleResult
@@ -17,7 +17,7 @@ from .solve import limit_cycles
 
 # --------------------------------------------------------- design threshold
 @dataclass(frozen=True)
-class GrowthThreshold:
+class GrowthThreshold(Result):
     """The describing function's growth band: from the smallest to the largest unstable cycle.
 
     Where the large family is a single unstable cycle the band is one amplitude
@@ -53,7 +53,7 @@ class GrowthThreshold:
     amplitude: float | None
     frequency: float | None
     xi_dot: float | None
-    result: LimitCycleResult
+    result: LimitCycleResult = field(metadata={"json": None})  # its numbers: band, complete, linear_stable
     position: float | None = None
     velocity: float | None = None
     status: GrowthStatus = GrowthStatus.OK
@@ -64,6 +64,8 @@ class GrowthThreshold:
     velocity_high: float | None = None
     unstable_count: int = 0
     grows_above: bool | None = None
+
+    json_properties: ClassVar[tuple[str, ...]] = ("band", "complete", "linear_stable", "linear_model", "caveat")
 
     def __post_init__(self) -> None:
         st = GrowthStatus.coerce(self.status)
@@ -90,42 +92,46 @@ class GrowthThreshold:
         """
         return self.result.caveat
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready record (``dfa limit-cycles --json``, key ``growth_threshold``)."""
-        out = to_jsonable(
-            {
-                "amplitude": self.amplitude,
-                "frequency": self.frequency,
-                "xi_dot": self.xi_dot,
-                "position": self.position,
-                "velocity": self.velocity,
-                "band": {
-                    "low": {
-                        "amplitude": self.amplitude,
-                        "frequency": self.frequency,
-                        "xi_dot": self.xi_dot,
-                        "position": self.position,
-                        "velocity": self.velocity,
-                    },
-                    "high": {
-                        "amplitude": self.amplitude_high,
-                        "frequency": self.frequency_high,
-                        "xi_dot": self.xi_dot_high,
-                        "position": self.position_high,
-                        "velocity": self.velocity_high,
-                    },
-                },
-                "unstable_count": self.unstable_count,
-                "grows_above": self.grows_above,
-                "complete": self.result.complete,
-                "linear_stable": self.result.linear_stable,
-                "linear_model": "zoh",
-                "status": self.status,
-                "status_message": self.status.message,
-                "caveat": self.caveat,
-            }
-        )
-        return explain_nulls(out, {"caveat": NO_CAVEAT})
+    @property
+    def band(self) -> dict[str, dict[str, float | None]]:
+        """The band's bottom (``low``: the smallest unstable cycle) and top (``high``: the largest), each as
+        amplitude, frequency, xi_dot, position and velocity (None where undefined)."""
+        names = ("amplitude", "frequency", "xi_dot", "position", "velocity")
+        return {
+            "low": {n: getattr(self, n) for n in names},
+            "high": {n: getattr(self, f"{n}_high") for n in names},
+        }
+
+    @property
+    def complete(self) -> bool:
+        """Whether the cycle search was complete (:attr:`LimitCycleResult.complete`)."""
+        return self.result.complete
+
+    @property
+    def linear_stable(self) -> bool | None:
+        """Whether the linear loop is stable (:attr:`LimitCycleResult.linear_stable`)."""
+        return self.result.linear_stable
+
+    @property
+    def linear_model(self) -> str:
+        """The model of :attr:`linear_stable`: always the exact ZOH loop (``"zoh"``)."""
+        return "zoh"
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why the caveat (:data:`~dfa.analysis.cycles.caveats.NO_CAVEAT`) and the band's top may be null in JSON.
+
+        Returns
+        -------
+        dict of str to str
+            The reason by key.
+        """
+        none = "no unstable cycle: no growth band"
+        phys = "no unstable cycle, or no device given (physical units need one)"
+        return {
+            "caveat": NO_CAVEAT,
+            **{n: none for n in ("amplitude_high", "frequency_high", "xi_dot_high")},
+            **{n: phys for n in ("position_high", "velocity_high")},
+        }
 
 
 def growth_threshold(params: Params, device: Device | None = None, **kwargs: Any) -> GrowthThreshold:

@@ -4,19 +4,20 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 from ...checks import check_positive
 from ...errors import DFATypeError, DFAValueError
 from ...model.device import Device, Params
 from ...model.wall import WallParams
-from ...results.jsonable import explain_nulls, to_jsonable
+from ...results.base import Result
 from ...results.status import SearchStatus
 from .caveats import NO_CAVEAT, subtick_caveat
 
 
 # ------------------------------------------------------------------ results
 @dataclass(frozen=True)
-class LimitCycle:
+class LimitCycle(Result):
     """One harmonic-balance solution ξ = M sin ωτ.
 
     Attributes
@@ -45,6 +46,8 @@ class LimitCycle:
     loeb: float
     residual: float
     few_samples: bool = False
+
+    json_properties: ClassVar[tuple[str, ...]] = ("period",)
 
     @property
     def period(self) -> float:
@@ -86,30 +89,9 @@ class LimitCycle:
             xi_dot=self.amplitude * self.frequency,
         )
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready record of the cycle.
-
-        Returns
-        -------
-        dict
-            Strict-JSON data: amplitude, frequency, period, stability, family and the checks.
-        """
-        return to_jsonable(
-            {
-                "amplitude": self.amplitude,
-                "frequency": self.frequency,
-                "period": self.period,
-                "stable": self.stable,
-                "family": self.family,
-                "loeb": self.loeb,
-                "residual": self.residual,
-                "few_samples": self.few_samples,
-            }
-        )
-
 
 @dataclass(frozen=True)
-class LimitCycleResult:
+class LimitCycleResult(Result):
     """All limit cycles of one operating point (an empty tuple is a valid answer).
 
     Attributes
@@ -146,7 +128,7 @@ class LimitCycleResult:
         exact linear loop with that controller (and amplifier lag).
     """
 
-    params: Params
+    params: Params = field(metadata={"json": None})  # written as mu, beta, sigma
     model: str
     wall: WallParams
     pade_order: int
@@ -158,6 +140,8 @@ class LimitCycleResult:
     status: SearchStatus = SearchStatus.COMPLETE
     linear_stable: bool | None = None
     search_bound: float | None = None
+
+    json_properties: ClassVar[tuple[str, ...]] = ("mu", "beta", "sigma", "delay", "linear_model", "caveat")
 
     def __post_init__(self) -> None:
         if not isinstance(self.wall, WallParams):
@@ -178,6 +162,31 @@ class LimitCycleResult:
     def delay(self) -> int:
         """The wall's computational delay d in samples."""
         return self.wall.delay
+
+    @property
+    def mu(self) -> float:
+        """The μ of the operating point (:attr:`params`)."""
+        return self.params.mu
+
+    @property
+    def beta(self) -> float:
+        """The β of the operating point (:attr:`params`)."""
+        return self.params.beta
+
+    @property
+    def sigma(self) -> float:
+        """The σ of the operating point (:attr:`params`)."""
+        return self.params.sigma
+
+    @property
+    def linear_model(self) -> str:
+        """The model of :attr:`linear_stable`: always the exact ZOH loop (``"zoh"``)."""
+        return "zoh"
+
+    @property
+    def status_message(self) -> str:
+        """The numbers of this search (:attr:`detail`; the status's message when complete)."""
+        return self.detail
 
     @property
     def status_code(self) -> SearchStatus:
@@ -222,34 +231,15 @@ class LimitCycleResult:
 
         return {**unit_context(device, stiffness), "cycles": [c.physical(device, stiffness) for c in self.cycles]}
 
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready record (the ``dfa limit-cycles --json`` contract plus extras).
+    def null_reasons(self) -> dict[str, str]:
+        """Why the caveat may be null in JSON (:data:`~dfa.analysis.cycles.caveats.NO_CAVEAT`).
 
         Returns
         -------
-        dict
-            Strict-JSON data: the cycles, inputs, completeness, status and detail.
+        dict of str to str
+            The reason by key.
         """
-        out = to_jsonable(
-            {
-                "wall": self.wall.to_dict(),
-                "cycles": [c.to_dict() for c in self.cycles],
-                "mu": self.params.mu,
-                "beta": self.params.beta,
-                "sigma": self.params.sigma,
-                "model": self.model,
-                "delay": self.delay,
-                "complete": self.complete,
-                "max_amplitude": self.max_amplitude,
-                "status": self.status,
-                "status_message": self.detail,
-                "linear_stable": self.linear_stable,
-                "linear_model": "zoh",
-                "search_bound": self.search_bound,
-                "caveat": self.caveat,
-            }
-        )
-        return explain_nulls(out, {"caveat": NO_CAVEAT})
+        return {"caveat": NO_CAVEAT}
 
 
 class LimitCycleSearchWarning(RuntimeWarning):

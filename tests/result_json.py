@@ -1,0 +1,24 @@
+"""Shared check of results on dfa.results.base.Result: ``to_dict()`` is derived from the fields."""
+
+import dataclasses
+import json
+
+
+def json_keys(result) -> set[str]:
+    """The keys :meth:`dfa.results.base.Result.to_dict` writes: fields (but ``json: None``), json_properties, message."""
+    keys = {f.name for f in dataclasses.fields(result) if f.metadata.get("json", True) is not None}
+    keys |= set(type(result).json_properties)
+    if getattr(result, "status", None) is not None:
+        keys.add("status_message")
+    if result.units():
+        keys.add("units")
+    return keys
+
+
+def assert_json_from_fields(result, extra=frozenset()) -> dict:
+    """``to_dict()`` has exactly :func:`json_keys` (plus ``extra``; ``null_reasons`` where a value is null) and is
+    strict JSON; returns it."""
+    d = result.to_dict()
+    assert set(d) - {"null_reasons"} == json_keys(result) | set(extra)
+    json.dumps(d, allow_nan=False)
+    return d
