@@ -29,8 +29,10 @@ venv: $(STAMP)
 # The validation paragraph of the report comes from the summary named here, never from a file found by chance.
 VALIDATION_SUMMARY := $(wildcard reports/validation/validation.json)
 
+# The default device's report with its 20 × 20 Z-width: it reproduces the committed reports/design_report_delta.*
+# and reports/figures/delta_* byte for byte (git status stays clean).
 report: $(STAMP)
-	$(BIN)/dfa report --out reports --format both $(if $(VALIDATION_SUMMARY),--validation $(VALIDATION_SUMMARY))
+	$(BIN)/dfa report --out reports --format both --zwidth 20 $(if $(VALIDATION_SUMMARY),--validation $(VALIDATION_SUMMARY))
 
 # The whole suite (doctests included), then format, lint, layering and types.
 test: $(STAMP)
