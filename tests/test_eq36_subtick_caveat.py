@@ -10,12 +10,13 @@ import pytest
 
 import dfa
 from dfa.analysis.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, subtick_caveat
+from dfa.analysis.cycles.caveats import SubtickCaveat
 from dfa.analysis.limits.runs import SAFE, UNDECIDED, UNSAFE, Evidence, df_verdict, growth_at
 from dfa.analysis.simulation import OUTCOMES, simulate_batch
 from dfa.model.device import Params
 from dfa.model.wall import Wall, WallParams
 from dfa.render.limits import limit_text
-from dfa.render.text import growth_meaning, limit_cycle_lines, limit_cycles_dict
+from dfa.render.text import caveat_text, growth_meaning, limit_cycle_lines, limit_cycles_dict
 
 # found by a random search (dfa.analysis.cycles.caveats): damper on a slowly filtered velocity (filter pole a = 0.974), d = 0
 P = Params(3.749, 0.0, 0.155)
@@ -47,12 +48,14 @@ def test_eq36_subtick_point_simulation_diverges_from_sub_tick_starts(res):
 
 def test_eq36_subtick_caveat_on_the_result_and_growth_threshold(res):
     assert res.caveat is not None and res.caveat == subtick_caveat(res)
-    assert "1.014" in res.caveat and "not excluded" in res.caveat
+    assert res.caveat == SubtickCaveat(res.unstable_cycles[0].amplitude) and f"{res.caveat.amplitude:.4g}" == "1.014"
+    assert "not excluded" in caveat_text(res.caveat)  # the rendering layer words it
     g = growth_threshold(P, model="zoh", wall=CTL)
     assert g.caveat == res.caveat and "Caveat:" in growth_meaning(g)
     d = json.loads(json.dumps(g.to_dict()))
-    assert d["caveat"] == res.caveat and "meaning" not in d  # the record states the caveat; rendering words it
-    assert json.loads(json.dumps(res.to_dict()))["caveat"] == res.caveat
+    caveat = {"amplitude": res.caveat.amplitude, "limit": SUBTICK_LIMIT}
+    assert d["caveat"] == caveat and "meaning" not in d  # the record states the caveat as data; rendering words it
+    assert json.loads(json.dumps(res.to_dict()))["caveat"] == caveat
 
 
 def test_eq36_subtick_caveat_in_limit_cycles_text_and_json(res):
@@ -62,7 +65,7 @@ def test_eq36_subtick_caveat_in_limit_cycles_text_and_json(res):
     text = "\n".join(limit_cycle_lines(g, None))
     assert "Caveat: the smallest unstable cycle (M = 1.014 ticks)" in text
     d = limit_cycles_dict(g)
-    assert d["caveat"] == d["growth_threshold"]["caveat"] == res.caveat
+    assert d["caveat"] == d["growth_threshold"]["caveat"] == {"amplitude": res.caveat.amplitude, "limit": 1.25}
 
 
 def test_eq36_subtick_growth_speed_with_a_wall_is_not_relied_on():
@@ -135,7 +138,7 @@ def test_eq36_subtick_caveat_printed_by_dfa_limit_cycles(capsys):
     assert "Caveat: the smallest unstable cycle (M = 1.014 ticks) lies below 1.25 ticks" in text
     assert main([*_CLI, "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
-    assert d["caveat"].startswith("sub-tick caveat: the smallest unstable cycle (M = 1.014 ticks)")
+    assert f"{d['caveat']['amplitude']:.4g}" == "1.014" and d["caveat"]["limit"] == 1.25
     assert d["growth_threshold"]["caveat"] == d["caveat"] and "Caveat:" in d["growth_threshold"]["meaning"]
 
 

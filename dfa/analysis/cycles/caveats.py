@@ -31,13 +31,19 @@ Examples
 >>> from dfa.analysis.cycles import limit_cycles
 >>> subtick_caveat(limit_cycles(Params(5.0, 0.1, 0.3))) is None     # M_u = 2.1 ticks
 True
+>>> SubtickCaveat(1.014)
+SubtickCaveat(amplitude=1.014, limit=1.25)
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["SUBTICK_LIMIT", "subtick_caveat"]
+from ...errors import DFAValueError
+
+__all__ = ["SUBTICK_LIMIT", "SubtickCaveat", "subtick_caveat"]
 
 #: Smallest unstable cycles below this amplitude (ticks) get the sub-tick caveat: 1.25, the top of the rising
 #: flank of D(M) above the first level (its peak, 1.1206 at M ≈ 1.242); simulation found sub-tick starts diverging
@@ -48,7 +54,30 @@ SUBTICK_LIMIT = 1.25
 NO_CAVEAT = f"no caveat: no unstable cycle below SUBTICK_LIMIT = {SUBTICK_LIMIT:g} ticks"
 
 
-def subtick_caveat(result: Any) -> str | None:
+@dataclass(frozen=True)
+class SubtickCaveat:
+    """The sub-tick caveat of a growth verdict (module docstring), as data: the rendering layer words it.
+
+    Attributes
+    ----------
+    amplitude : float
+        M of the smallest unstable cycle, ticks (below ``limit``).
+    limit : float
+        :data:`SUBTICK_LIMIT`, ticks.
+    """
+
+    amplitude: float
+    limit: float = SUBTICK_LIMIT
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.amplitude) and 0.0 < self.amplitude < self.limit):
+            raise DFAValueError(
+                f"amplitude = {self.amplitude!r} is invalid: the caveat holds for 0 < M < {self.limit:g} ticks; "
+                "build it with subtick_caveat"
+            )
+
+
+def subtick_caveat(result: Any) -> SubtickCaveat | None:
     """The sub-tick caveat of a limit-cycle result, or None when its growth verdict does not rest on it.
 
     Parameters
@@ -58,18 +87,11 @@ def subtick_caveat(result: Any) -> str | None:
 
     Returns
     -------
-    str or None
-        A sentence when the smallest unstable cycle lies below :data:`SUBTICK_LIMIT` ticks (module
-        docstring); None otherwise (no unstable cycle, or the smallest is larger).
+    SubtickCaveat or None
+        The caveat when the smallest unstable cycle lies below :data:`SUBTICK_LIMIT` ticks (module docstring);
+        None otherwise (no unstable cycle, or the smallest is larger).
     """
     unstable = [c for c in result.cycles if not c.stable]
     if not unstable or unstable[0].amplitude >= SUBTICK_LIMIT:
         return None
-    m = unstable[0].amplitude
-    return (
-        f"sub-tick caveat: the smallest unstable cycle (M = {m:.4g} ticks) lies below {SUBTICK_LIMIT:g} ticks, just "
-        "above the first quantization level, where the first harmonic is a poor guide to the sub-tick chatter's "
-        "amplitude; exact simulation has diverged from sub-tick starts at such points (from a third of them or more "
-        "at most random cases with M < 1.005 ticks, and at some up to 1.07 ticks), so growth from below M is not "
-        "excluded (check with `dfa simulate`)"
-    )
+    return SubtickCaveat(float(unstable[0].amplitude))

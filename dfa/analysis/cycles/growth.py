@@ -10,7 +10,7 @@ from ...errors import DFAValueError
 from ...model.device import Device, Params
 from ...results.base import Result
 from ...results.status import GrowthStatus
-from .caveats import NO_CAVEAT
+from .caveats import NO_CAVEAT, SubtickCaveat
 from .results import LimitCycle, LimitCycleResult
 from .solve import limit_cycles
 
@@ -84,7 +84,7 @@ class GrowthThreshold(Result):
         return self.unstable_count > 1
 
     @property
-    def caveat(self) -> str | None:
+    def caveat(self) -> SubtickCaveat | None:
         """The sub-tick caveat of the search (:attr:`LimitCycleResult.caveat`), or None.
 
         Set when the band's bottom lies just above the first quantization level, where "no growth below it"

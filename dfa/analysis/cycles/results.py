@@ -12,7 +12,7 @@ from ...model.device import Device, Params
 from ...model.wall import WallParams
 from ...results.base import Result
 from ...results.status import SearchStatus
-from .caveats import NO_CAVEAT, subtick_caveat
+from .caveats import NO_CAVEAT, SubtickCaveat, subtick_caveat
 
 
 # ------------------------------------------------------------------ results
@@ -194,10 +194,10 @@ class LimitCycleResult(Result):
         return self.status
 
     @property
-    def caveat(self) -> str | None:
+    def caveat(self) -> SubtickCaveat | None:
         """The sub-tick caveat (:func:`dfa.analysis.cycles.subtick_caveat`), or None.
 
-        A sentence when the smallest unstable cycle lies just above the first quantization level, where the
+        Set (M of the smallest unstable cycle) when that cycle lies just above the first quantization level, where the
         growth verdict resting on it is contradicted by simulation; None otherwise.
         """
         return subtick_caveat(self)
