@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-__all__ = ["markdown_table", "number", "percent", "text_table"]
+__all__ = ["fill", "markdown_table", "number", "percent", "text_table"]
 
 
 def number(x: float | int | None, digits: int = 4, *, none: str = "–", inf: str = "∞") -> str:
@@ -91,8 +91,11 @@ def markdown_table(header: Sequence[object], rows: Sequence[Sequence[object]], a
     return "\n".join(lines)
 
 
-def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:
+def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None, width: int | None = None) -> str:
     """Columns aligned with two spaces for the terminal; a dashed rule under the header.
+
+    With ``width``, a last cell that would make its line longer is wrapped, its continuation lines indented
+    to the last column (the other columns are never wrapped).
 
     Examples
     --------
@@ -101,10 +104,47 @@ def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = 
     ----  -----
     β     0.5
     σ     12
+    >>> print(text_table([["verdict", "no passivity guarantee at this speed"]], width=30))
+    verdict  no passivity
+             guarantee at this
+             speed
     """
     cells = [[str(c) for c in r] for r in ([header] if header else []) + list(rows)]
     widths = [max(len(r[i]) for r in cells) for i in range(len(cells[0]))]
-    lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths, strict=False)).rstrip() for r in cells]
+    lead = sum(widths[:-1]) + 2 * (len(widths) - 1)
+    room = None if width is None else max(width - lead, 20)
+    if room is not None and widths[-1] > room:
+        cells = [[*r[:-1], *_wrapped(r[-1], room)] for r in cells]
+        widths[-1] = max(len(line) for r in cells for line in r[-1].split("\n"))
+    lines = []
+    for r in cells:
+        first, *more = r[-1].split("\n")
+        lines.append("  ".join(c.ljust(w) for c, w in zip([*r[:-1], first], widths, strict=False)).rstrip())
+        lines += [" " * lead + m for m in more]
     if header:
         lines.insert(1, "  ".join("-" * w for w in widths))
     return "\n".join(lines)
+
+
+def _wrapped(text: str, room: int) -> list[str]:
+    """``text`` in lines of at most ``room`` characters, joined by newlines (one cell)."""
+    import textwrap
+
+    return ["\n".join(textwrap.wrap(text, room, break_on_hyphens=False)) or text]
+
+
+def fill(text: str, width: int = 100, indent: str = "  ") -> str:
+    """Each line of ``text`` wrapped at ``width`` characters, continuation lines indented by ``indent``.
+
+    Examples
+    --------
+    >>> print(fill("a b c d e f", width=5))
+    a b c
+      d e
+      f
+    """
+    import textwrap
+
+    out = [textwrap.fill(line, width, subsequent_indent=indent, break_on_hyphens=False) if len(line) > width
+           else line for line in text.split("\n")]  # fmt: skip
+    return "\n".join(out)

@@ -10,6 +10,7 @@ import json
 
 import numpy as np
 import pytest
+from cli_text import unwrap
 
 import dfa.analysis.limits.kmax
 from dfa.analysis.colgate_schenkel import colgate_schenkel_damping
@@ -70,6 +71,7 @@ def test_eq6_controller_check_json_equals_api(capsys):
 
 def test_eq6_controller_check_text_names_both_conditions(capsys):
     code, out, _ = run(capsys, "check", *BASE, "--velocity", "0.1", "--virtual-damping", "5")
+    out = unwrap(out)
     assert code == 0
     assert "controller: K = 14500 N/m, B = 5 N·s/m" in out and "β_B = B/(KT) = 1.034" in out
     assert "eq. 6 extended to the damper" in out and "Colgate–Schenkel" in out
@@ -99,6 +101,7 @@ def test_eq4_controller_simulate_json_equals_api(capsys):
     assert d["outcome"] == r.outcome and d["final_xi"] == r.final_xi and d["rest_sample"] == r.rest_sample
     assert d["wall"]["dimensionless"]["damping"] == ctl.damping
     code, out, _ = run(capsys, *argv)
+    out = unwrap(out)
     assert code == 0 and "controller: K = 14500 N/m, B = 2 N·s/m" in out and "amplifier bandwidth 500 Hz" in out
 
 

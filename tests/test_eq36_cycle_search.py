@@ -7,6 +7,7 @@ import re
 import mpmath
 import numpy as np
 import pytest
+from cli_text import unwrap
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
@@ -181,7 +182,7 @@ def _numbers(text):
 def test_cli_prints_the_band_numbers_of_the_api(capsys):
     g = growth_threshold(CLUSTER)
     assert main(["limit-cycles", "--mu", "5", "--beta", "0.48", "--sigma", "0.0201"]) == 0
-    out = capsys.readouterr().out
+    out = unwrap(capsys.readouterr().out)
     line = next(s for s in out.splitlines() if s.startswith("growth band"))
     nums = _numbers(line)
     assert nums[0] == g.unstable_count

@@ -7,6 +7,7 @@ import json
 
 import numpy as np
 import pytest
+from cli_text import unwrap
 
 import dfa
 from dfa.analysis.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, subtick_caveat
@@ -133,7 +134,7 @@ def test_eq36_subtick_caveat_printed_by_dfa_limit_cycles(capsys):
     from dfa.cli import main
 
     assert main(_CLI) == 0
-    text = capsys.readouterr().out
+    text = unwrap(capsys.readouterr().out)
     assert "μ = 3.749, β = 0, σ = 0.155" in text
     assert "Caveat: the smallest unstable cycle (M = 1.014 ticks) lies below 1.25 ticks" in text
     assert main([*_CLI, "--json"]) == 0

@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+from cli_text import unwrap
 from hypothesis import example, given
 from hypothesis import strategies as st
 
@@ -236,7 +237,7 @@ def run(capsys, *argv):
 
 
 def row(out, label):
-    lines = [ln for ln in out.splitlines() if ln.startswith(label)]
+    lines = [ln for ln in unwrap(out).splitlines() if ln.startswith(label)]
     assert len(lines) == 1, (label, out)
     return lines[0][len(label) :].strip()
 

@@ -74,3 +74,6 @@ def test_compare_text_catches_a_changed_number_allows_new_lines_and_numbers():
     )
     assert golden.compare_text(g, "K_max  641.14 N/m\nstatic limit 2c/Δ (eq. 9)  3781 N/m\n")
     assert golden.compare_text(g, "K_max  641.13 N/m\nstatic limit 2c/Δ (eq. 8)  3781 N/m\n")
+    # a line wrapped at 100 characters (continuations indented) keeps its numbers; a new line is no continuation
+    assert golden.compare_text(g, "K_max  641.13\n       N/m\nstatic limit 2c/Δ (eq.\n  9)  3781 N/m\n") == []
+    assert golden.compare_text(g, "K_max  641.13 N/m\nstatic limit 2c/Δ (eq.\n9)  3781 N/m\n")

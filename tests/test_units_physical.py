@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from cli_text import unwrap
 
 import dfa
 from dfa.cli import main
@@ -123,6 +124,7 @@ def test_cli_contours_with_device_text_json_and_plot(capsys, tmp_path):
     png = tmp_path / "c.png"
     code, out, err = run(capsys, "contours", "--device", "re35", "--stiffness", "5", "--grid", "6", "--plot", str(png))
     assert code == 0, err
+    out = unwrap(out)
     assert "1 tick = 0.000767 rad" in out and "159.2 Hz" in out and "outside the (β, σ) range" in out
     assert png.read_bytes()[:4] == b"\x89PNG"
     code, out, _ = run(capsys, "contours", "--device", "impulse", "--grid", "4", "--json")

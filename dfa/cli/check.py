@@ -8,7 +8,7 @@ from typing import Any
 from ..analysis.criterion import device_criterion, passivity_criterion
 from ..model.wall import Wall, WallParams
 from .inputs import Inputs, add_device_args, resolve, speed
-from .output import emit, table
+from .output import emit, say, table
 from .parsing import UsageError, number
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
 
@@ -77,9 +77,9 @@ def _check_wall(args: argparse.Namespace, inp: Inputs, wall: Wall, xd: float, v:
     if args.json:
         emit(wall_json(chk.to_dict(), wall, inp))
         return 0
-    print(inp.label)
+    say(inp.label)
     print_wall(wall, inp)
-    print(table(check_table_rows(chk)))
+    say(table(check_table_rows(chk)))
     return 0
 
 
@@ -98,6 +98,6 @@ def run(args: argparse.Namespace) -> int:
         emit(r.to_dict())
         return 0
     vu = inp.device.units["velocity"] if inp.device else ""
-    print(inp.label)
-    print(table(check_rows(r, not args.no_quantization, vu)))
+    say(inp.label)
+    say(table(check_rows(r, not args.no_quantization, vu)))
     return 0

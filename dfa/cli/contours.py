@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 from .._io import check_output_file
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
-from .output import add_progress_args, emit, mark_operating_point, progress, save_png, table
+from .output import add_progress_args, emit, mark_operating_point, progress, save_png, say, table
 from .parsing import UsageError, integer, number
 
 if TYPE_CHECKING:
@@ -38,16 +38,16 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def _print(args: argparse.Namespace, c: ContourMaps, d: dict[str, Any], inp: Inputs | None) -> None:
     """The grid points of each family, with the device's operating point and units."""
     b, s = c.beta, c.sigma
-    print(f"contour maps μ = {c.mu:g}, β in [{b[0]:g}, {b[-1]:g}], σ in [{s[0]:g}, {s[-1]:g}], {b.size}×{s.size}")
+    say(f"contour maps μ = {c.mu:g}, β in [{b[0]:g}, {b[-1]:g}], σ in [{s[0]:g}, {s[-1]:g}], {b.size}×{s.size}")
     rows = [
         ["small stable (M < 1, eq. 42-43)", d["small_points"]],
         ["large unstable, exact D (eq. 41)", d["large_points"]],
         ["large unstable, closed form (eq. 44-45)", d["large_closed_points"]],
     ]
-    print(table(rows, ["family", "grid points"]))
+    say(table(rows, ["family", "grid points"]))
     if inp is not None and inp.params is not None and inp.device is not None and inp.stiffness is not None:
         u = inp.device.units
-        print(
+        say(
             f"{inp.label}: operating point β = {inp.params.beta:.5g}, σ = {inp.params.sigma:.5g}"
             f"{outside_note(args, inp)}; 1 tick = {inp.device.resolution:.4g} {u['position']}, ω = 1 rad/sample = "
             f"{d['frequency_hz_per_rad_per_sample']:.4g} Hz, force step KΔ = "
@@ -92,7 +92,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     _print(args, c, d, inp)
     if args.out is not None:
-        print(f"written to {d['out']}")
+        say(f"written to {d['out']}")
     if args.plot is not None:
-        print(f"figure written to {args.plot}")
+        say(f"figure written to {args.plot}")
     return 0

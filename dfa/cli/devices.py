@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..model.catalogue import catalogue
-from .output import emit, fmt, table
+from .output import emit, fmt, say, table
 
 COMMAND = "devices"
 HELP = "list the device catalogue (paper Table 2)"
@@ -34,14 +34,14 @@ def run(args: argparse.Namespace) -> int:
                      fmt(r.stiffness)])  # fmt: skip
         dims.append([r.name, fmt(p.mu if p else None), fmt(p.beta if p else None, 3), fmt(p.sigma if p else None),
                      printed, "; ".join(flags) or "ok"])  # fmt: skip
-    print(table(phys, ["device", "m or J", "b", "c", "Δ", "T", "K"]))
-    print()
-    print(table(dims, ["device", "μ", "β", "σ", "printed μ, β, σ", "flags"]))
-    print()
-    print(
+    say(table(phys, ["device", "m or J", "b", "c", "Δ", "T", "K"]))
+    say()
+    say(table(dims, ["device", "μ", "β", "σ", "printed μ, β, σ", "flags"]))
+    say()
+    say(
         "SI units (linear: mass m in kg, N·s/m, N, m, s, N/m; rotary: inertia J in kg·m², N·m·s/rad, N·m, rad, s, N·m/rad)."
     )
-    print(
+    say(
         "μ, β, σ recomputed from the physical columns (paper Table 1); flags: printed value disagrees (> 5 % and beyond its last digit)."
     )
     return 0

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from .inputs import add_device_args, resolve
-from .output import emit
+from .output import emit, say
 from .parsing import UsageError, number
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json, wall_params
 
@@ -62,11 +62,11 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         emit(wall_json(limit_cycles_dict(g, phys), ctl, inp))
         return 0
-    print(
+    say(
         f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}; model {res.model}"
         + (f", delay {res.delay}" if res.delay else "")
     )
     print_wall(ctl, inp)
     for line in limit_cycle_lines(g, inp.device, phys):
-        print(line)
+        say(line)
     return 0

@@ -19,6 +19,7 @@ from .output import (
     mark_operating_point,
     progress,
     save_png,
+    say,
     table,
 )
 from .parsing import UsageError, integer, number
@@ -115,17 +116,17 @@ def _print(args: argparse.Namespace, m: StabilityMap, path: object, inp: Inputs 
         vu = inp.device.units["velocity"]
         speeds = ", ".join(f"{x:g} ticks/sample = {inp.device.velocity(x):.4g} {vu}" for x in m.xi_dots)
         beta, sigma = inp.params.beta, inp.params.sigma
-        print(f"{inp.label}: operating point β = {beta:.5g}, σ = {sigma:.5g}{outside_note(args, inp)}; speeds {speeds}")
+        say(f"{inp.label}: operating point β = {beta:.5g}, σ = {sigma:.5g}{outside_note(args, inp)}; speeds {speeds}")
         print_wall(ctl, inp)
     b, s = m.beta, m.sigma
-    print(
+    say(
         f"stability map μ = {m.mu:g}, β in [{b[0]:g}, {b[-1]:g}], σ in [{s[0]:g}, {s[-1]:g}], "
         f"{b.size}×{s.size} points, {m.samples} samples" + (", spring preload" if m.preload else "")
     )
     names = ("rest", "chatter", "oscillating", "unstable", "undecided")
     rows = [[f"{v:g}", *(c[k] for k in names)] for v, c in zip(m.xi_dots, m.counts(), strict=False)]
-    print(table(rows, ["ξ'0", *names]))
-    print(f"written to {path}")
+    say(table(rows, ["ξ'0", *names]))
+    say(f"written to {path}")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -164,5 +165,5 @@ def run(args: argparse.Namespace) -> int:
         return 0
     _print(args, m, path, inp, ctl)
     if args.plot is not None:
-        print(f"figure written to {args.plot}")
+        say(f"figure written to {args.plot}")
     return 0

@@ -8,7 +8,7 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from ..formatting import number, text_table
+from ..formatting import fill, number, text_table
 from ..results.jsonable import dumps
 from .inputs import Inputs
 from .parsing import UsageError
@@ -46,9 +46,18 @@ def emit(obj: object, ensure_ascii: bool = True) -> None:
     print(dumps(obj, ensure_ascii=ensure_ascii))
 
 
+#: Longest line of the default text output, characters (``--explain`` and ``--json`` are not bound by it).
+WIDTH = 100
+
+
 def table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:
-    """A plain-text table (:func:`dfa.formatting.text_table`)."""
-    return text_table(rows, header)
+    """A plain-text table (:func:`dfa.formatting.text_table`), its last column wrapped to fit :data:`WIDTH`."""
+    return text_table(rows, header, width=WIDTH)
+
+
+def say(text: object = "") -> None:
+    """Print ``text``, each line wrapped at :data:`WIDTH` characters (continuation lines indented)."""
+    print(fill(str(text), WIDTH))
 
 
 def fmt(x: float | None, digits: int = 4) -> str:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from .inputs import add_device_args, resolve
-from .output import emit, table
+from .output import emit, say, table
 
 COMMAND = "params"
 HELP = "dimensionless (μ, β, σ) of a device and stiffness (paper Table 1)"
@@ -24,7 +24,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         emit(inp.params.to_dict())
         return 0
-    print(f"{inp.label}")
+    say(f"{inp.label}")
     p = inp.params
-    print(table([["μ = m/(K T²)", f"{p.mu:.6g}"], ["β = b/(K T)", f"{p.beta:.6g}"], ["σ = c/(K Δ)", f"{p.sigma:.6g}"]]))
+    say(table([["μ = m/(K T²)", f"{p.mu:.6g}"], ["β = b/(K T)", f"{p.beta:.6g}"], ["σ = c/(K Δ)", f"{p.sigma:.6g}"]]))
     return 0

@@ -11,7 +11,7 @@ from .._io import check_output_folder
 from ..model.catalogue import DEFAULT_DEVICE
 from ..model.wall import Wall
 from .inputs import PHYS_FLAGS, add_device_args, resolve, speed
-from .output import add_progress_args, emit, progress
+from .output import add_progress_args, emit, progress, say
 from .parsing import UsageError, integer
 from .walls import add_wall_args, wall_from_args
 
@@ -96,5 +96,5 @@ def run(args: argparse.Namespace) -> int:
         emit(res.to_dict(), ensure_ascii=False)
         return 0
     for pth in res.paths:
-        print(f"written {pth}")
+        say(f"written {pth}")
     return 0

@@ -14,6 +14,7 @@ from .output import (
     check_samples,
     emit,
     progress,
+    say,
     table,
 )
 from .parsing import UsageError, integer, number
@@ -119,9 +120,9 @@ def run(args: argparse.Namespace) -> int:
             explain_nulls(d, r.null_reasons())
         emit(wall_json(d, ctl, inp))
         return 0
-    print(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
+    say(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
     print_wall(ctl, inp)
-    print(table(simulation_rows(r, x0, v0, args.preload, phys)))
+    say(table(simulation_rows(r, x0, v0, args.preload, phys)))
     if args.trace is not None:
-        print(f"trace written to {args.trace}")
+        say(f"trace written to {args.trace}")
     return 0

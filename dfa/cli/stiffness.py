@@ -10,10 +10,11 @@ import argparse
 from typing import TYPE_CHECKING
 
 from .._io import check_output_file
+from ..formatting import text_table
 from ..model.wall import Wall
 from ..results.jsonable import explain_nulls
 from .inputs import Inputs, add_device_args, resolve, speed
-from .output import emit, save_png, table
+from .output import emit, save_png
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
 
 if TYPE_CHECKING:
@@ -115,11 +116,11 @@ def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp
         f"{dev.name}, impact speed {v:.4g} {vu} ({ans.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
         + ("" if ctl is None else "; B, f_c, f_bw held fixed while K varies")
     )
-    print_wall(ctl, inp)
+    print_wall(ctl, inp, wrap=False)
     print(recommendation_line(rec))
     rows = kmax_rows(ans, explain=True)
     rows.append(["verdict at this speed", verdict_text(ans)])
-    print(table(rows))
+    print(text_table(rows))  # the full evidence: a row a line, however long
     if v > 0:
         print(f"evidence: {evidence_text(ans)}.")
         print(f"{PROOF_NOTE} (or the first harmonic).")

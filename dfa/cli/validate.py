@@ -6,7 +6,7 @@ import argparse
 import os
 
 from .._io import check_output_folder
-from .output import add_progress_args, emit, progress, table
+from .output import add_progress_args, emit, progress, say, table
 from .parsing import integer
 
 COMMAND = "validate"
@@ -40,12 +40,12 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         emit(summary, ensure_ascii=False)
         return 0
-    print(f"validation written to {os.path.join(args.out, 'validation.md')}")
+    say(f"validation written to {os.path.join(args.out, 'validation.md')}")
     rows = [
         ["soundness violations", summary["soundness_violations"]],
         ["criterion rejects (share of points that come to rest)", f"{100 * summary['conservatism']:.1f} %"],
         ["DF growth threshold vs simulated speed, median error", f"{100 * summary['speed_df_median_error']:.2g} %"],
         ["criterion speed ≤ simulated in every case", "yes" if summary["speeds_ordered"] else "no"],
     ]
-    print(table(rows))
+    say(table(rows))
     return 0

@@ -15,6 +15,7 @@ from ..model.device import Device
 from ..model.elements import ELEMENTS, Delay, Element
 from ..model.wall import MIN_CUTOFF, Wall, WallParams
 from .inputs import Inputs
+from .output import say
 from .parsing import UsageError, delay, number
 
 __all__ = [
@@ -131,9 +132,15 @@ def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[
     return d
 
 
-def print_wall(wall: Wall | None, inp: Inputs | None) -> None:
-    """State the wall on its own line (nothing for the spring: its output is unchanged)."""
+def print_wall(wall: Wall | None, inp: Inputs | None, *, wrap: bool = True) -> None:
+    """State the wall (nothing for the spring: its output is unchanged), wrapped to the screen unless ``wrap`` is
+    False (``--explain``: the full evidence, one line each)."""
     if wall is not None and inp is not None and inp.device is not None:
         from ..render.controller import controller_line
 
-        print(controller_line(wall, inp.device.period, inp.device.units))
+        line = controller_line(wall, inp.device.period, inp.device.units)
+        if not wrap:
+            print(line)
+            return
+        values, _, groups = line.partition("; ")  # physical values; then the dimensionless groups
+        say(f"{values};\n  {groups}" if groups else values)

@@ -9,7 +9,7 @@ import math
 from .._io import check_output_file
 from ..model.wall import Wall
 from .inputs import add_device_group, impact_speed, resolve
-from .output import add_progress_args, emit, fmt, progress, save_png, table
+from .output import add_progress_args, emit, fmt, progress, save_png, say, table
 from .parsing import UsageError, integer, number
 from .walls import add_wall_args, check_filter_amplifier
 
@@ -97,15 +97,15 @@ def run(args: argparse.Namespace) -> int:
     fc, bw = zw.wall.filter_cutoff, zw.wall.amplifier_bandwidth
     elements = f"delay {zw.delay}" + (f", velocity filter {fmt(fc)} Hz" if fc is not None else "")
     elements += f", amplifier {fmt(bw)} Hz" if bw is not None else ""
-    print(f"Z-width of {dev.name}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}")
-    print(f"K_max(B) in {u['stiffness']} ('-': undefined, see --json for the reason)")
-    print(table(rows, [f"B ({u['damping']})"] + [COLUMNS[m] for m in ZWIDTH_METHODS]))
-    print(
+    say(f"Z-width of {dev.name}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}")
+    say(f"K_max(B) in {u['stiffness']} ('-': undefined, see --json for the reason)")
+    say(table(rows, [f"B ({u['damping']})"] + [COLUMNS[m] for m in ZWIDTH_METHODS]))
+    say(
         f"{zw.simulations} exact simulations on a {zw.stiffness.size} x {zw.damping.size} grid "
         f"(K {zw.stiffness[0]:.4g} to {zw.stiffness[-1]:.4g} {u['stiffness']}); simulated limits are grid values"
     )
     if zw.counterexamples:
-        print(f"COUNTEREXAMPLES to the extended criterion: {len(zw.counterexamples)} (see --json)")
+        say(f"COUNTEREXAMPLES to the extended criterion: {len(zw.counterexamples)} (see --json)")
     if args.plot is not None:
-        print(f"Z-width figure written to {args.plot}")
+        say(f"Z-width figure written to {args.plot}")
     return 0

@@ -11,12 +11,10 @@ Examples
 
 from __future__ import annotations
 
-import textwrap
-
 from ..analysis.limits.kmax import KMaxResult
 from ..analysis.limits.recommend import Recommendation
 from ..analysis.limits.search import KLimit
-from ..formatting import number, text_table
+from ..formatting import fill, number, text_table
 from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
 from .limits import counterexample_lines, limit_tags, passive_text
 
@@ -28,7 +26,7 @@ WIDTH = 100
 
 def wrap(text: str, indent: str = "  ") -> str:
     """``text`` wrapped at :data:`WIDTH` characters, continuation lines indented by ``indent``."""
-    return textwrap.fill(text, WIDTH, subsequent_indent=indent, break_on_hyphens=False)
+    return fill(text, WIDTH, indent)
 
 
 def _k(x: float, unit: str) -> str:

@@ -122,7 +122,7 @@ def _no_cycle_line(res: Any, lin: str) -> str:
 
 def _cycle_table(res: Any, phys: dict | None = None) -> str:
     """Table of the cycles: ticks and rad/sample, and with a device (``phys``) m (rad), Hz, s and N (N·m)."""
-    header = ["M (ticks)", "ω (rad/sample)", "period (samples)", "stability", "family"]
+    header = ["M (ticks)", "ω (rad/sample)", "samples/cycle", "stability", "family"]
     rows = [
         [
             f"{c.amplitude:.6g}",
@@ -139,8 +139,8 @@ def _cycle_table(res: Any, phys: dict | None = None) -> str:
         fk = "force_amplitude_nm" if phys["rotary"] else "force_amplitude_n"
         for row, q in zip(rows, phys["cycles"], strict=True):
             row[3:3] = [f"{q[pk]:.4g}", f"{q['frequency_hz']:.4g}", f"{q['period_s']:.4g}", f"{q[fk]:.4g}"]
-        header[3:3] = [f"M ({pos})", "f (Hz)", "period (s)", f"force amplitude ({force})"]
-    return text_table(rows, header)
+        header[3:3] = [f"M ({pos})", "f (Hz)", "period (s)", f"force ({force})"]
+    return text_table(rows, header, width=100)  # force: the amplitude of K·q
 
 
 def _growth_line(g: Any, device: Any) -> str:

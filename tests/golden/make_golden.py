@@ -211,9 +211,22 @@ def _is_subsequence(small: list[str], big: list[str]) -> bool:
     return all(any(x == y for y in it) for x in small)
 
 
+def unwrap(text: str) -> list[str]:
+    """The logical lines of ``text``: a line that starts with blanks continues the one before (the output wraps
+    long lines at 100 characters, indenting what follows; wrapping moves no number)."""
+    out: list[str] = []
+    for line in text.splitlines():
+        if out and line[:1] == " " and line.strip():
+            out[-1] += " " + line.strip()
+        else:
+            out.append(line)
+    return out
+
+
 def compare_text(golden: str, new: str, where: str = "") -> list[str]:
-    """Problems: golden lines whose numbers (in order) appear on no line of ``new``; empty when all are there."""
-    new_numbers = [numbers(line) for line in new.splitlines()]
+    """Problems: golden lines whose numbers (in order) appear on no logical line of ``new`` (:func:`unwrap`);
+    empty when all are there."""
+    new_numbers = [numbers(line) for line in unwrap(new)]
     problems = []
     for line in golden.splitlines():
         want = numbers(line)
