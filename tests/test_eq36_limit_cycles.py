@@ -242,3 +242,89 @@ def test_eq36_phase_curve_beta_star_puts_the_loop_on_the_negative_real_axis(mode
             ]
         )
         assert np.all(np.abs(inv.imag) <= 1e-9 * np.abs(inv)) and np.all(inv.real < 0)
+
+
+# ------------------------------------------------------------- JSON of the results: the dfa.results.base.Result base
+#: Keys of the former hand-written to_dict of each result (before they moved onto the Result base).
+CYCLE_JSON_KEYS = {"amplitude", "frequency", "period", "stable", "family", "loeb", "residual", "few_samples"}
+SEARCH_JSON_KEYS = {
+    "wall", "cycles", "mu", "beta", "sigma", "model", "delay", "complete", "max_amplitude", "status",
+    "status_message", "linear_stable", "linear_model", "search_bound", "caveat",
+}  # fmt: skip
+GROWTH_JSON_KEYS = {
+    "amplitude", "frequency", "xi_dot", "position", "velocity", "band", "unstable_count", "grows_above", "complete",
+    "linear_stable", "linear_model", "status", "status_message", "caveat",
+}  # fmt: skip
+
+
+def test_limit_cycle_json_is_the_result_base():
+    """LimitCycle.to_dict is the Result base's: its fields and the period, exactly the former keys."""
+    from result_json import assert_json_from_fields
+
+    cycles = limit_cycles(dfa.Params(5.0, 0.48, 0.0201)).cycles
+    assert len(cycles) >= 2
+    for c in cycles:
+        d = assert_json_from_fields(c)
+        assert set(d) == CYCLE_JSON_KEYS and d["period"] == c.period == 2 * math.pi / c.frequency
+        for key in CYCLE_JSON_KEYS - {"period"}:
+            assert d[key] == getattr(c, key)
+
+
+@pytest.mark.parametrize(
+    "params, kwargs",
+    [
+        (dfa.Params(5.0, 0.48, 0.0201), {}),  # a cluster, with the sub-tick caveat
+        (dfa.Params(5.0, 0.1, 0.3), dict(max_amplitude=1.5)),  # incomplete: no caveat, its null explained
+        (dfa.Params(5.0, 0.1, 0.3), dict(model="zoh", wall=WallParams.of(damping=0.1, cutoff=0.3, lag=0.2))),
+    ],
+)
+def test_limit_cycle_result_json_is_the_result_base(params, kwargs):
+    """LimitCycleResult.to_dict is the Result base's: the fields but params (written as mu, beta, sigma; new:
+    describing, pade_order, detail), delay, linear_model, caveat; every former key there with its value."""
+    from result_json import assert_json_from_fields
+
+    from dfa.results.jsonable import to_jsonable
+
+    r = limit_cycles(params, **kwargs)
+    d = assert_json_from_fields(r)
+    assert set(d) >= SEARCH_JSON_KEYS | {"describing", "pade_order", "detail"} and "params" not in d
+    assert (d["mu"], d["beta"], d["sigma"]) == (params.mu, params.beta, params.sigma)
+    assert d["wall"] == to_jsonable(r.wall) and d["cycles"] == [c.to_dict() for c in r.cycles]
+    for key in ("model", "delay", "complete", "max_amplitude", "pade_order", "describing", "linear_stable"):
+        assert d[key] == getattr(r, key)
+    assert (d["status"], d["status_message"], d["detail"]) == (r.status.value, r.detail, r.detail)
+    assert (d["linear_model"], d["search_bound"]) == ("zoh", r.search_bound)
+    assert d["caveat"] == to_jsonable(r.caveat) and (r.caveat is not None or "/caveat" in d["null_reasons"])
+
+
+@pytest.mark.parametrize(
+    "params, device",
+    [
+        (dfa.Params(5.0, 0.48, 0.0201), None),  # a band of several unstable cycles
+        (dfa.Params(5.0, 0.8, 1.0), None),  # no unstable cycle
+        ("delta", "delta"),  # one threshold, in physical units
+    ],
+)
+def test_growth_threshold_json_is_the_result_base(params, device):
+    """GrowthThreshold.to_dict is the Result base's: the fields but the inner search (new: the band's top at the top
+    level, each null with its reason), band, complete, linear_stable, linear_model, caveat; every former key there
+    with its value."""
+    from result_json import assert_json_from_fields
+
+    from dfa.results.jsonable import to_jsonable
+
+    if params == "delta":
+        entry = dfa.get_device("Delta")
+        params, device = entry.device.params(entry.stiffness), entry.device
+    g = growth_threshold(params, device)
+    d = assert_json_from_fields(g)
+    assert set(d) >= GROWTH_JSON_KEYS and "result" not in d
+    names = ("amplitude", "frequency", "xi_dot", "position", "velocity")
+    assert d["band"] == {"low": {n: d[n] for n in names}, "high": {n: d[f"{n}_high"] for n in names}}
+    assert [d[n] for n in names] == [getattr(g, n) for n in names]
+    assert [d[f"{n}_high"] for n in names] == [getattr(g, f"{n}_high") for n in names]
+    assert (d["unstable_count"], d["grows_above"], d["status"]) == (g.unstable_count, g.grows_above, g.status.value)
+    assert (d["complete"], d["linear_stable"], d["linear_model"]) == (g.result.complete, g.result.linear_stable, "zoh")
+    assert d["caveat"] == to_jsonable(g.caveat) and d["status_message"] == g.status.message
+    for key in ("caveat", *(f"{n}_high" for n in names)):
+        assert d[key] is not None or f"/{key}" in d["null_reasons"]

@@ -215,3 +215,31 @@ def test_table1_map_and_contours_take_counts_and_name(capsys, tmp_path, command)
     assert outs[0]["mu"] == pytest.approx(outs[1]["mu"]) == pytest.approx(500.0)
     assert outs[0]["tick_m"] == pytest.approx(outs[1]["tick_m"]) == pytest.approx(0.0005)
     assert outs[0]["operating_point"] == pytest.approx(outs[1]["operating_point"])
+
+
+#: Keys of the former hand-written StabilityMap.to_dict (before it moved onto dfa.results.base.Result).
+MAP_JSON_KEYS = {
+    "mu", "xi_dots", "beta_range", "sigma_range", "grid", "samples", "delay", "quantize", "preload", "counts",
+    "status", "status_message",
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("wall", [None, "damper"])
+def test_stability_map_json_is_the_result_base_plus_counts(wall):
+    """StabilityMap.to_dict is the Result base's (the fields but the arrays, and beta_range, sigma_range, grid,
+    delay) plus ``counts`` per speed; every former key is there with its value, and ``wall`` now also for the spring."""
+    from result_json import assert_json_from_fields
+
+    from dfa.model.wall import WallParams
+    from dfa.results.jsonable import to_jsonable
+
+    w = None if wall is None else WallParams.of(damping=0.2, delay=1, cutoff=0.3)
+    m = stability_map(50.0, [2.0, 5.0], grid=3, samples=1000, n_jobs=1, progress=False, wall=w)
+    d = assert_json_from_fields(m, extra={"counts"})
+    assert set(d) >= MAP_JSON_KEYS | {"wall"}
+    assert not set(d) & {"beta", "sigma", "outcome", "amplitude", "frequency"}
+    assert (d["mu"], d["xi_dots"], d["samples"], d["quantize"], d["preload"]) == (50.0, [2.0, 5.0], 1000, True, False)
+    assert (d["beta_range"], d["sigma_range"], d["grid"]) == ([0.0, 1.0], [0.0, 2.0], [3, 3])
+    assert d["delay"] == m.delay == (0 if wall is None else 1) and d["wall"] == to_jsonable(m.wall)
+    assert (d["status"], d["status_message"]) == ("ok", m.status.message)
+    assert d["counts"] == [dict(xi_dot=v, **c) for v, c in zip(m.xi_dots, m.counts(), strict=True)]

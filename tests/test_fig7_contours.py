@@ -156,3 +156,30 @@ def test_fig7_cli_contours_plot_dimensionless_has_no_physical_axes(tmp_path, mon
         main(["contours", "--mu", "5", "--grid", "6", "--max-amplitude", "20", "--plot", str(tmp_path / "c.png")]) == 0
     )
     assert all(not ax.child_axes for ax in shown[0].figure.axes)
+
+
+#: Keys of the former hand-written ContourMaps.to_dict (before it moved onto dfa.results.base.Result).
+CONTOUR_JSON_KEYS = {
+    "mu", "beta_range", "sigma_range", "grid", "small_points", "large_points", "large_closed_points", "max_amplitude",
+    "status", "status_message",
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("beta_range", [(0.0, 1.0), (0.1, 0.9)])
+def test_contour_maps_json_is_the_result_base(beta_range):
+    """ContourMaps.to_dict is the Result base's: the scalar fields (``detail`` new), the grid and the point counts,
+    not the arrays; every former key is there with its value (the message is the detail when points are flagged)."""
+    from result_json import assert_json_from_fields
+
+    from dfa.analysis.contours import _ARRAYS
+
+    c = contour_maps(5.0, grid=4, beta_range=beta_range, max_amplitude=30.0)
+    d = assert_json_from_fields(c)
+    assert set(d) >= CONTOUR_JSON_KEYS | {"detail"} and not set(d) & set(_ARRAYS)
+    assert (d["mu"], d["max_amplitude"], d["grid"]) == (5.0, 30.0, [4, 4])
+    assert (d["beta_range"], d["sigma_range"]) == (list(beta_range), [0.0, 2.0])
+    for key, arr in (("small_points", "small_amplitude"), ("large_points", "large_amplitude")):
+        assert d[key] == int(np.isfinite(getattr(c, arr)).sum())
+    assert d["large_closed_points"] == int(np.isfinite(c.large_amplitude_closed).sum())
+    assert d["status"] == c.status.value == ("flagged" if beta_range[0] == 0.0 else "ok")
+    assert d["detail"] == c.detail and d["status_message"] == (c.detail or c.status.message)
