@@ -42,6 +42,7 @@ from ..errors import DFAValueError
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
 from ..results.status import ContourStatus
+from ..results.summaries import PlaneGrid
 from .criterion import CriticalLine
 from .cycles import ClosedFormStatus, large_cycle_closed_forms, small_cycle_closed_forms
 from .describing import quantizer_df
@@ -62,7 +63,7 @@ _ARRAYS = (
 
 
 @dataclass(frozen=True)
-class ContourMaps(Result):
+class ContourMaps(PlaneGrid, Result):
     """Amplitude (ticks) and frequency (rad per sample) of both cycle families over a (β, σ) grid.
 
     Arrays have shape (len(sigma), len(beta)); NaN where the family does not
@@ -208,21 +209,6 @@ class ContourMaps(Result):
                 fh, mu=self.mu, max_amplitude=self.max_amplitude, **{k: getattr(self, k) for k in _ARRAYS}
             )
         return p
-
-    @property
-    def beta_range(self) -> list[float]:
-        """The first and last β of the grid."""
-        return [float(self.beta[0]), float(self.beta[-1])]
-
-    @property
-    def sigma_range(self) -> list[float]:
-        """The first and last σ of the grid."""
-        return [float(self.sigma[0]), float(self.sigma[-1])]
-
-    @property
-    def grid(self) -> list[int]:
-        """Points along β and along σ."""
-        return [int(self.beta.size), int(self.sigma.size)]
 
     @property
     def small_points(self) -> int:

@@ -58,6 +58,7 @@ from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
 from ..results.status import NyquistStatus, SearchStatus
+from ..results.summaries import OperatingPoint
 from .cycles.characteristic import inv_loop
 from .cycles.controlled import resolve_wall
 from .describing import coulomb_equivalent_damping, quantizer_df
@@ -317,7 +318,7 @@ def loop_system(
 
 
 @dataclass(frozen=True)
-class NyquistLocusResponse(Result):
+class NyquistLocusResponse(OperatingPoint, Result):
     """Data of a Nyquist plot of the loop against the critical locus −1/D(M).
 
     Its JSON (:meth:`~dfa.results.base.Result.to_dict`; complex numbers as ``{"re", "im"}``) holds the fields,
@@ -396,21 +397,6 @@ class NyquistLocusResponse(Result):
     def status_message(self) -> str:
         """The solver's reason (:attr:`detail`) when there is one, otherwise the status's message."""
         return self.detail or self.status.message
-
-    @property
-    def mu(self) -> float:
-        """The device's μ (:attr:`params`), written flat to JSON as ``mu``."""
-        return self.params.mu
-
-    @property
-    def beta(self) -> float:
-        """The device's β (:attr:`params`), written flat to JSON as ``beta``."""
-        return self.params.beta
-
-    @property
-    def sigma(self) -> float:
-        """The device's σ (:attr:`params`), written flat to JSON as ``sigma``."""
-        return self.params.sigma
 
     @property
     def delay(self) -> int:

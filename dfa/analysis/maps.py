@@ -79,6 +79,7 @@ from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
 from ..results.status import MapStatus
+from ..results.summaries import PlaneGrid
 from .criterion import CriticalLine
 from .simulation import (
     GROWTH,
@@ -120,7 +121,7 @@ def map_memory_bytes(grid: int, n_speeds: int) -> int:
 
 
 @dataclass(frozen=True)
-class StabilityMap(Result):
+class StabilityMap(PlaneGrid, Result):
     """Outcome of the exact simulation over a (β, σ) grid for one μ and several initial speeds.
 
     Attributes
@@ -284,21 +285,6 @@ class StabilityMap(Result):
             ``{outcome name: count}`` for each initial speed, in the order of ``xi_dots``.
         """
         return [{name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES)} for o in self.outcome]
-
-    @property
-    def beta_range(self) -> list[float]:
-        """The first and last β of the grid."""
-        return [float(self.beta[0]), float(self.beta[-1])]
-
-    @property
-    def sigma_range(self) -> list[float]:
-        """The first and last σ of the grid."""
-        return [float(self.sigma[0]), float(self.sigma[-1])]
-
-    @property
-    def grid(self) -> list[int]:
-        """Points along β and along σ."""
-        return [int(self.beta.size), int(self.sigma.size)]
 
     def to_dict(self) -> dict[str, Any]:
         """Strict-JSON summary: the scalar fields, the grid and the counts per speed, not the arrays.

@@ -12,6 +12,7 @@ from ...model.device import Device, Params
 from ...model.wall import WallParams
 from ...results.base import Result
 from ...results.status import SearchStatus
+from ...results.summaries import OperatingPoint
 from .caveats import NO_CAVEAT, SubtickCaveat, subtick_caveat
 
 
@@ -91,7 +92,7 @@ class LimitCycle(Result):
 
 
 @dataclass(frozen=True)
-class LimitCycleResult(Result):
+class LimitCycleResult(OperatingPoint, Result):
     """All limit cycles of one operating point (an empty tuple is a valid answer).
 
     Attributes
@@ -162,21 +163,6 @@ class LimitCycleResult(Result):
     def delay(self) -> int:
         """The wall's computational delay d in samples."""
         return self.wall.delay
-
-    @property
-    def mu(self) -> float:
-        """The μ of the operating point (:attr:`params`)."""
-        return self.params.mu
-
-    @property
-    def beta(self) -> float:
-        """The β of the operating point (:attr:`params`)."""
-        return self.params.beta
-
-    @property
-    def sigma(self) -> float:
-        """The σ of the operating point (:attr:`params`)."""
-        return self.params.sigma
 
     @property
     def linear_model(self) -> str:
