@@ -10,7 +10,10 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-__all__ = ["fill", "markdown_table", "number", "percent", "text_table"]
+__all__ = ["WIDTH", "fill", "markdown_table", "number", "percent", "text_table"]
+
+#: Longest line of the default text output, characters (the answer fits one screen).
+WIDTH = 100
 
 
 def number(x: float | int | None, digits: int = 4, *, none: str = "–", inf: str = "∞") -> str:
@@ -133,7 +136,7 @@ def _wrapped(text: str, room: int) -> list[str]:
     return ["\n".join(textwrap.wrap(text, room, break_on_hyphens=False)) or text]
 
 
-def fill(text: str, width: int = 100, indent: str = "  ") -> str:
+def fill(text: str, width: int = WIDTH, indent: str = "  ") -> str:
     """Each line of ``text`` wrapped at ``width`` characters, continuation lines indented by ``indent``.
 
     Examples

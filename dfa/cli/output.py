@@ -8,7 +8,7 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from ..formatting import fill, number, text_table
+from ..formatting import WIDTH, fill, number, text_table
 from ..results.jsonable import dumps
 from .inputs import Inputs
 from .parsing import UsageError
@@ -18,6 +18,7 @@ __all__ = [
     "SIMULATE_NS_PER_SAMPLE",
     "SIMULATE_TIME_LIMIT",
     "SIMULATION_BOUND",
+    "WIDTH",
     "add_progress_args",
     "check_samples",
     "cores",
@@ -26,6 +27,7 @@ __all__ = [
     "mark_operating_point",
     "progress",
     "save_png",
+    "say",
     "table",
 ]
 
@@ -44,10 +46,6 @@ SIMULATION_BOUND = 1.0e6
 def emit(obj: object, ensure_ascii: bool = True) -> None:
     """Print one strict-JSON object (NaN/inf become null with the reason, :mod:`dfa.results.jsonable`)."""
     print(dumps(obj, ensure_ascii=ensure_ascii))
-
-
-#: Longest line of the default text output, characters (``--explain`` and ``--json`` are not bound by it).
-WIDTH = 100
 
 
 def table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None) -> str:

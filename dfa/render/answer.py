@@ -14,14 +14,11 @@ from __future__ import annotations
 from ..analysis.limits.kmax import KMaxResult
 from ..analysis.limits.recommend import Recommendation
 from ..analysis.limits.search import KLimit
-from ..formatting import fill, number, text_table
+from ..formatting import WIDTH, fill, number, text_table
 from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
 from .limits import counterexample_lines, limit_tags, passive_text
 
 __all__ = ["WIDTH", "wrap", "recommendation_line", "stiffness_screen", "user_verdict"]
-
-#: Longest line of the default output, characters.
-WIDTH = 100
 
 
 def wrap(text: str, indent: str = "  ") -> str:
