@@ -133,14 +133,13 @@ def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[
 
 
 def print_wall(wall: Wall | None, inp: Inputs | None, *, wrap: bool = True) -> None:
-    """State the wall (nothing for the spring: its output is unchanged), wrapped to the screen unless ``wrap`` is
-    False (``--explain``: the full evidence, one line each)."""
+    """State the wall (nothing for the spring: its output is unchanged): its physical values, then its
+    dimensionless groups on a second line; one line, unwrapped, when ``wrap`` is False (``--explain``)."""
     if wall is not None and inp is not None and inp.device is not None:
-        from ..render.controller import controller_line
+        from ..render.controller import controller_parts
 
-        line = controller_line(wall, inp.device.period, inp.device.units)
-        if not wrap:
-            print(line)
-            return
-        values, _, groups = line.partition("; ")  # physical values; then the dimensionless groups
-        say(f"{values};\n  {groups}" if groups else values)
+        values, groups = controller_parts(wall, inp.device.period, inp.device.units)
+        if wrap:
+            say(f"{values};\n  {groups}")
+        else:
+            print(f"{values}; {groups}")

@@ -26,6 +26,7 @@ __all__ = [
     "controller_check_rows",
     "wall_dict",
     "controller_line",
+    "controller_parts",
     "controller_short",
 ]
 
@@ -110,8 +111,45 @@ def controller_short(controller: Any, units: dict[str, str]) -> str:
     return ", ".join([*parts, f"d = {controller.delay}"])
 
 
+def controller_parts(controller: Any, period: float, units: dict[str, str]) -> tuple[str, str]:
+    """The controller's physical values and its dimensionless groups, the two halves of :func:`controller_line`.
+
+    Parameters
+    ----------
+    controller : dfa.model.wall.Wall
+        The wall controller.
+    period : float
+        Sample period T in s.
+    units : dict
+        The device's unit strings.
+
+    Returns
+    -------
+    tuple of str
+        ``controller: K = …, B = …, delay …, velocity filter …, amplifier …`` and ``β_B = …, ν_c = …, α = …``.
+    """
+    p = controller.params(period)
+    d = controller.delay
+    filt = (
+        "no velocity filter"
+        if controller.filter_cutoff is None
+        else f"velocity filter {_g(controller.filter_cutoff)} Hz"
+    )
+    amp = (
+        "ideal amplifier"
+        if controller.amplifier_bandwidth is None
+        else f"amplifier bandwidth {_g(controller.amplifier_bandwidth)} Hz (τ_a = {_g(controller.amplifier_time_constant)} s)"
+    )
+    nu = "none" if p.cutoff is None else _g(p.cutoff)
+    values = (
+        f"controller: K = {_g(controller.stiffness, 5)} {units['stiffness']}, B = {_g(controller.damping)} "
+        f"{units['damping']}, delay {d} sample{'s' if d != 1 else ''}, {filt}, {amp}"
+    )
+    return values, f"β_B = B/(KT) = {_g(p.damping)}, ν_c = f_c·T = {nu}, α = τ_a/T = {_g(p.lag)}"
+
+
 def controller_line(controller: Any, period: float, units: dict[str, str]) -> str:
-    """One text line stating the controller, physical values then the dimensionless groups.
+    """One text line stating the controller, physical values then the dimensionless groups (:func:`controller_parts`).
 
     Parameters
     ----------
@@ -127,24 +165,7 @@ def controller_line(controller: Any, period: float, units: dict[str, str]) -> st
     str
         ``controller: K = …, B = …, delay …, velocity filter …, amplifier …; β_B = …, ν_c = …, α = …``.
     """
-    p = controller.params(period)
-    d = controller.delay
-    filt = (
-        "no velocity filter"
-        if controller.filter_cutoff is None
-        else f"velocity filter {_g(controller.filter_cutoff)} Hz"
-    )
-    amp = (
-        "ideal amplifier"
-        if controller.amplifier_bandwidth is None
-        else f"amplifier bandwidth {_g(controller.amplifier_bandwidth)} Hz (τ_a = {_g(controller.amplifier_time_constant)} s)"
-    )
-    nu = "none" if p.cutoff is None else _g(p.cutoff)
-    groups = f"β_B = B/(KT) = {_g(p.damping)}, ν_c = f_c·T = {nu}, α = τ_a/T = {_g(p.lag)}"
-    return (
-        f"controller: K = {_g(controller.stiffness, 5)} {units['stiffness']}, B = {_g(controller.damping)} "
-        f"{units['damping']}, delay {d} sample{'s' if d != 1 else ''}, {filt}, {amp}; {groups}"
-    )
+    return "; ".join(controller_parts(controller, period, units))
 
 
 def _criterion_rows(r: Any, vu: str) -> list[list[str]]:

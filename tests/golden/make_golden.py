@@ -22,6 +22,10 @@ import tempfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent))  # tests/, for cli_text (also when run as a script)
+
+from cli_text import unwrap  # noqa: E402
+
 TMP = "<TMP>"
 
 _CUSTOM = ["--mass", "0.05", "--damping", "0.01", "--coulomb", "0.02", "--resolution", "2e-5", "--period", "0.001"]
@@ -211,22 +215,10 @@ def _is_subsequence(small: list[str], big: list[str]) -> bool:
     return all(any(x == y for y in it) for x in small)
 
 
-def unwrap(text: str) -> list[str]:
-    """The logical lines of ``text``: a line that starts with blanks continues the one before (the output wraps
-    long lines at 100 characters, indenting what follows; wrapping moves no number)."""
-    out: list[str] = []
-    for line in text.splitlines():
-        if out and line[:1] == " " and line.strip():
-            out[-1] += " " + line.strip()
-        else:
-            out.append(line)
-    return out
-
-
 def compare_text(golden: str, new: str, where: str = "") -> list[str]:
-    """Problems: golden lines whose numbers (in order) appear on no logical line of ``new`` (:func:`unwrap`);
-    empty when all are there."""
-    new_numbers = [numbers(line) for line in unwrap(new)]
+    """Problems: golden lines whose numbers (in order) appear on no logical line of ``new`` (wrapped lines joined
+    back, ``tests/cli_text.unwrap``: wrapping moves no number); empty when all are there."""
+    new_numbers = [numbers(line) for line in unwrap(new).splitlines()]
     problems = []
     for line in golden.splitlines():
         want = numbers(line)
