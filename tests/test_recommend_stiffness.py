@@ -139,12 +139,13 @@ def test_cli_stiffness_leads_with_the_recommendation_on_one_screen(capsys, small
         assert k == pytest.approx(d["k_sim"]["value"] / rec["margin"], rel=1e-12)
 
 
-def test_cli_stiffness_margin_changes_the_simulated_recommendation(capsys, small_search):
+def test_cli_stiffness_margin_changes_the_simulated_recommendation(capsys, small_search, monkeypatch):
     argv = ["stiffness", "--device", "phantom", "--velocity", "0.1", "--amplifier-bandwidth", "500", "--json"]
     assert main([*argv, "--margin", "4"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["recommendation"]["k_recommended"] == pytest.approx(d["k_sim"]["value"] / 4, rel=1e-12)
-    assert main([*argv, "--margin", "0.5"]) == 2
+    monkeypatch.setattr(kmax, "design_answer", lambda *a, **k: pytest.fail("searched before refusing the margin"))
+    assert main([*argv, "--margin", "0.5"]) == 2  # refused up front, before the search
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "margin" in err[0] and "Traceback" not in err[0]
 

@@ -65,7 +65,7 @@ def _source(args: argparse.Namespace, inp: Inputs) -> str | None:
 def run(args: argparse.Namespace) -> int:
     """K_max four ways for the spring or any wall (the wall's K is what is searched)."""
     from ..analysis.limits.kmax import design_answer
-    from ..analysis.limits.recommend import recommend_stiffness
+    from ..analysis.limits.recommend import check_margin, recommend_stiffness
 
     inp = resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
@@ -78,6 +78,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plot is not None:
         check_output_file("--plot", args.plot, ".png")
     src = _source(args, inp)
+    check_margin(args.margin)  # refused before the search, not after it
     ans = design_answer(dev, v, wall=wall, assess=k is not None, source="catalogue" if src == "catalogue" else "given")
     rec = recommend_stiffness(ans, args.margin)
     if args.plot is not None:

@@ -33,7 +33,7 @@ from ...results.base import Result
 from ...results.status import KMaxStatus, LimitStatus, RecommendRule
 from .kmax import KMaxResult
 
-__all__ = ["Recommendation", "recommend_stiffness", "DEFAULT_MARGIN"]
+__all__ = ["Recommendation", "recommend_stiffness", "check_margin", "DEFAULT_MARGIN"]
 
 #: Default gain margin of the simulated rule: the simulated limit divided by 2 (about 6 dB).
 DEFAULT_MARGIN = 2.0
@@ -80,7 +80,7 @@ class Recommendation(Result):
         check_type("device", self.device, Device, fix)
         check_type("wall", self.wall, Wall, fix)
         object.__setattr__(self, "status", RecommendRule.coerce(self.status))
-        _check_margin(self.margin)
+        check_margin(self.margin)
         none = self.status is RecommendRule.NONE
         if none != (self.k_recommended is None) or none != (self.basis is None):
             raise DFAValueError(
@@ -101,8 +101,24 @@ class Recommendation(Result):
         return {name: self.status.message for name in ("k_recommended", "basis", "k_basis")}
 
 
-def _check_margin(margin: float) -> float:
-    """The gain margin, a finite number >= 1 (1: the simulated limit itself)."""
+def check_margin(margin: float) -> float:
+    """The gain margin, a finite number >= 1 (1: the simulated limit itself), or the package's error naming it.
+
+    Parameters
+    ----------
+    margin : float
+        Gain margin of the simulated rule.
+
+    Returns
+    -------
+    float
+        ``margin``.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        If it is not a finite number >= 1.
+    """
     m = check_positive("margin", margin, "give a gain margin >= 1, e.g. 2 (about 6 dB)")
     if not (math.isfinite(m) and m >= 1.0):
         raise DFAValueError(f"margin = {margin!r} is invalid: it must be a finite number >= 1; give e.g. 2 (6 dB)")
@@ -130,7 +146,7 @@ def recommend_stiffness(answer: KMaxResult, margin: float = DEFAULT_MARGIN) -> R
         If ``answer`` is not a :class:`KMaxResult` or ``margin`` is not a finite number >= 1.
     """
     a = check_type("answer", answer, KMaxResult, "pass the result of dfa.design_answer")
-    m = _check_margin(margin)
+    m = check_margin(margin)
     base = dict(device=a.device, wall=a.wall, velocity=a.velocity, margin=m)
     kc, ks = a.k_criterion, a.k_sim
     trusted = a.status is not KMaxStatus.COUNTEREXAMPLE
