@@ -172,9 +172,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     old_format = warnings.formatwarning
     warnings.formatwarning = _one_line_warning
     try:
-        return _run(parser, list(sys.argv[1:] if argv is None else argv))
-    except (DFAError, SystemExit, KeyboardInterrupt, BrokenPipeError, MemoryError, OSError) as err:
-        return _error(err, before)
+        try:
+            code = _run(parser, list(sys.argv[1:] if argv is None else argv))
+        except (DFAError, SystemExit, KeyboardInterrupt, BrokenPipeError, MemoryError, OSError) as err:
+            code = _error(err, before)
+        try:  # a buffered stdout meets a closed pipe here, not at exit ("Exception ignored ...", exit 120)
+            sys.stdout.flush()
+        except BrokenPipeError as err:
+            code = _error(err, before)
+        except (OSError, ValueError, AttributeError):  # no stdout, or a closed one: nothing left to say
+            pass
+        return code
     finally:
         warnings.formatwarning = old_format
         for sig, handler in old_handlers.items():

@@ -9,23 +9,63 @@ from __future__ import annotations
 import argparse
 import math
 import re
+import sys
 from collections.abc import Callable
+from typing import Any
 
 from ..checks import MAX_DELAY
 from ..errors import DFAValueError
 
-__all__ = ["UsageError", "Parser", "number", "integer", "name", "delay"]
+__all__ = ["NEGATIVE_NUMBER", "UsageError", "Parser", "number", "integer", "name", "delay"]
 
 
 class UsageError(DFAValueError):
     """Wrong or contradictory command-line inputs."""
 
 
+#: What argparse must read as a value, not as a flag: a number with a minus sign, in every form :func:`number`
+#: takes (argparse's own pattern knows only ``-1`` and ``-1.5``, so ``--position -1e-5`` failed with "expected one
+#: argument"), and the non-finite words, so that ``--mu -inf`` gets the number's own message.
+NEGATIVE_NUMBER = re.compile(r"^-(?:(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?|nan|inf|infinity)$", re.IGNORECASE)
+
+
 class Parser(argparse.ArgumentParser):
-    """ArgumentParser whose errors are one line on stderr and exit code 2."""
+    """ArgumentParser whose errors are one line on stderr and exit code 2.
+
+    Three departures from argparse, so that every flag behaves the same whichever way it is written:
+
+    - ``--flag -1e-5`` takes ``-1e-5`` as the value (:data:`NEGATIVE_NUMBER`; no flag of dfa looks like a number);
+    - ``--flag=--`` gives the flag the value ``--``, which its type refuses with its one-line message (Python
+      3.11's argparse dropped the ``--`` and stored an empty list without calling the type);
+    - a closed stdout while printing the help raises :class:`BrokenPipeError` (exit 141) instead of being ignored.
+    """
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = NEGATIVE_NUMBER
 
     def error(self, message: str) -> None:  # type: ignore[override]
         raise UsageError(f"{self.prog}: error: {message}")
+
+    def _get_values(self, action: argparse.Action, arg_strings: list[str]) -> Any:
+        if (
+            action.option_strings
+            and arg_strings == ["--"]
+            and action.nargs not in (0, argparse.PARSER, argparse.REMAINDER)
+        ):
+            value = self._get_value(action, "--")  # the flag's type refuses it (or takes it, for a file name)
+            self._check_value(action, value)
+            return value if action.nargs in (None, argparse.OPTIONAL) else [value]
+        return super()._get_values(action, arg_strings)
+
+    def _print_message(self, message: str, file: Any = None) -> None:
+        if message:
+            try:
+                (file or sys.stderr).write(message)
+            except BrokenPipeError:
+                raise
+            except (AttributeError, OSError):  # as argparse: nowhere to print
+                pass
 
 
 # Decimal ASCII only: no '1_000', no Arabic-Indic or full-width digits, no 'nan'/'inf' (float() takes them all).

@@ -15,6 +15,7 @@ from ..model.wall import Wall
 from ..results.jsonable import explain_nulls
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, save_png
+from .parsing import number
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
 
 if TYPE_CHECKING:
@@ -41,7 +42,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--margin",
-        type=float,
+        type=number("--margin", "dimensionless units (a gain >= 1)"),
         default=2.0,
         metavar="G",
         help="gain margin >= 1 of the recommended K when no proof exists: the simulated no-divergence limit "
