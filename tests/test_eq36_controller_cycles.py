@@ -78,7 +78,7 @@ def test_eq36_spring_controller_nyquist_crossings_unchanged():
 @pytest.mark.parametrize("params", [dfa.Params(5.0, 0.1, 0.3), dfa.Params(5.0, 0.4, 0.0), dfa.Params(20.0, 0.3, 0.2)])
 def test_eq36_residual_at_every_root_with_a_controller(model, ctl, params):
     res = limit_cycles(params, model=model, wall=ctl)
-    assert res.complete, res.detail
+    assert res.complete, res.search
     assert res.wall == ctl
     for c in res.cycles:
         assert c.residual <= 1e-10

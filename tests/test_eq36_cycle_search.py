@@ -25,7 +25,7 @@ from dfa.analysis.loop import loop_response
 from dfa.cli import main
 from dfa.core import dfcore
 from dfa.model.wall import WallParams
-from dfa.render.text import growth_meaning
+from dfa.render.text import growth_meaning, search_text
 
 
 def residual(p, m, w, model="half-delay", delay=0):
@@ -77,7 +77,8 @@ def test_numerical_failure_gives_incomplete_status_and_warning(monkeypatch):
     monkeypatch.setattr(cyc.PieceOmega, "scalar", broken)
     with pytest.warns(LimitCycleSearchWarning, match="numerical failure"):
         res = limit_cycles(dfa.Params(5.0, 0.1, 0.3))
-    assert not res.complete and res.status is SearchStatus.NUMERICAL and "incomplete" in res.detail
+    assert not res.complete and res.status is SearchStatus.NUMERICAL and res.search.failures >= 1
+    assert search_text(res).startswith(f"incomplete: {res.search.failures} root bracket(s)")
     assert res.to_dict()["status"] == "numerical"
 
 
@@ -386,7 +387,8 @@ def test_size_budget_ends_incomplete_not_open_ended(monkeypatch, capsys):
     _dev, p = _delta_10nm()
     res = limit_cycles(p)
     assert res.status is SearchStatus.BUDGET and not res.complete and res.search_bound is None
-    assert not res.cycles and "budget" in res.detail and res.max_amplitude < 2e5
+    assert not res.cycles and res.search.reached == res.max_amplitude < 2e5
+    assert "size budget" in search_text(res)
     assert main(["limit-cycles", "--device", "delta", "--resolution", "1e-8"]) == 0
     out = capsys.readouterr().out
     assert f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: " in out

@@ -287,12 +287,13 @@ def test_limit_cycle_result_json_is_the_result_base(params, kwargs):
 
     r = limit_cycles(params, **kwargs)
     d = assert_json_from_fields(r)
-    assert set(d) >= SEARCH_JSON_KEYS | {"describing", "pade_order", "detail"} and "params" not in d
+    assert set(d) >= SEARCH_JSON_KEYS | {"describing", "pade_order", "search"} and "params" not in d
     assert (d["mu"], d["beta"], d["sigma"]) == (params.mu, params.beta, params.sigma)
     assert d["wall"] == to_jsonable(r.wall) and d["cycles"] == [c.to_dict() for c in r.cycles]
     for key in ("model", "delay", "complete", "max_amplitude", "pade_order", "describing", "linear_stable"):
         assert d[key] == getattr(r, key)
-    assert (d["status"], d["status_message"], d["detail"]) == (r.status.value, r.detail, r.detail)
+    assert (d["status"], d["status_message"]) == (r.status.value, r.status.message)
+    assert d["search"] == to_jsonable(r.search) and d["search"]["requested"] >= r.max_amplitude
     assert (d["linear_model"], d["search_bound"]) == ("zoh", r.search_bound)
     assert d["caveat"] == to_jsonable(r.caveat) and (r.caveat is not None or "/caveat" in d["null_reasons"])
 

@@ -185,5 +185,6 @@ def test_nyquist_locus_response_json_from_its_fields():
         r = nyquist_locus_response(p, amplitudes=[1.0, 3.0], omega=np.geomspace(0.01, 3.0, 20), wall=wall)
         d = assert_json_from_fields(r)
         assert (d["mu"], d["beta"], d["sigma"]) == (p.mu, p.beta, p.sigma)
-        assert d["status_message"] == (r.detail or r.status.message)
+        assert d["status_message"] == r.status.message
+        assert (d["search"] is None) == (p.sigma > 0)  # the solver's evidence where it ran (σ = 0)
         assert all(set(c) == {"amplitude", "frequency", "point"} for c in d["crossings"])

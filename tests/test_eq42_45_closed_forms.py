@@ -20,6 +20,7 @@ from dfa.analysis.cycles import (
     small_cycle_closed_forms,
 )
 from dfa.errors import DFAValueError
+from dfa.render.text import flagged_text
 
 
 def _mp_small(mu: float, beta: float, sigma: float) -> tuple[float, float]:
@@ -60,8 +61,11 @@ def test_eq43_beta_sigma_zero_is_flagged_not_returned_as_tiny_omega():
 def test_fig7_maps_flag_the_beta_sigma_zero_point():
     maps = contour_maps(5.0, grid=5)
     assert np.isnan(maps.small_amplitude_closed[0, 0])  # β = σ = 0 corner
-    assert maps.status == "flagged" and maps.to_dict()["status_message"] == maps.detail
-    assert "DEGENERATE" not in maps.detail and "β = σ = 0" in maps.detail and "1 point(s)" in maps.detail
+    assert maps.status == "flagged" and [(f.family, f.reason, f.points) for f in maps.flagged] == [
+        ("small", "degenerate", 1)
+    ]
+    text = flagged_text(maps)
+    assert "DEGENERATE" not in text and "β = σ = 0" in text and "1 point(s)" in text
 
 
 def test_eq44_frequency_matches_mpmath_and_paper():

@@ -167,19 +167,22 @@ CONTOUR_JSON_KEYS = {
 
 @pytest.mark.parametrize("beta_range", [(0.0, 1.0), (0.1, 0.9)])
 def test_contour_maps_json_is_the_result_base(beta_range):
-    """ContourMaps.to_dict is the Result base's: the scalar fields (``detail`` new), the grid and the point counts,
-    not the arrays; every former key is there with its value (the message is the detail when points are flagged)."""
+    """ContourMaps.to_dict is the Result base's: the scalar fields (``flagged`` typed), the grid and the point counts,
+    not the arrays; every former key is there with its value; the flagged points are counted, not worded."""
     from result_json import assert_json_from_fields
 
     from dfa.analysis.contours import _ARRAYS
 
     c = contour_maps(5.0, grid=4, beta_range=beta_range, max_amplitude=30.0)
     d = assert_json_from_fields(c)
-    assert set(d) >= CONTOUR_JSON_KEYS | {"detail"} and not set(d) & set(_ARRAYS)
+    assert set(d) >= CONTOUR_JSON_KEYS | {"flagged"} and not set(d) & set(_ARRAYS)
     assert (d["mu"], d["max_amplitude"], d["grid"]) == (5.0, 30.0, [4, 4])
     assert (d["beta_range"], d["sigma_range"]) == (list(beta_range), [0.0, 2.0])
     for key, arr in (("small_points", "small_amplitude"), ("large_points", "large_amplitude")):
         assert d[key] == int(np.isfinite(getattr(c, arr)).sum())
     assert d["large_closed_points"] == int(np.isfinite(c.large_amplitude_closed).sum())
     assert d["status"] == c.status.value == ("flagged" if beta_range[0] == 0.0 else "ok")
-    assert d["detail"] == c.detail and d["status_message"] == (c.detail or c.status.message)
+    assert d["status_message"] == c.status.message
+    # the flagged groups count exactly the points the closed forms mark (β = σ = 0 is one degenerate point)
+    flags = {(f["family"], f["reason"]): f["points"] for f in d["flagged"]}
+    assert flags == ({("small", "degenerate"): 1} if beta_range[0] == 0.0 else {})

@@ -27,7 +27,7 @@ from dfa.checks import check_beta, check_int, check_mu, check_nonnegative, check
 from dfa.cli import main
 from dfa.errors import DFAError, DFATypeError, DFAValueError
 from dfa.model.wall import Wall, WallParams
-from dfa.render.text import growth_meaning
+from dfa.render.text import growth_meaning, search_text
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DFA = [sys.executable, "-c", "import sys; from dfa.cli import main; sys.exit(main())"]
@@ -694,7 +694,10 @@ def test_eq36_time_budget_hit_is_incomplete_and_says_so():
     assert full.complete and DEFAULT_TIME_BUDGET == 10.0 and len(full.cycles) == 2
     part = dfa.limit_cycles(p, time_budget=1e-9)
     assert not part.complete and part.status is SearchStatus.TIME_BUDGET
-    assert part.detail.startswith("incomplete: time budget of 1e-09 s hit after searching 0 of 1 pieces")
+    ev = part.search
+    assert (ev.time_budget, ev.pieces_searched, ev.pieces_total, ev.reached) == (1e-9, 0, 1, part.max_amplitude)
+    assert search_text(part).startswith("incomplete: time budget of 1e-09 s hit after searching 0 of 1 pieces")
+    assert part.to_dict()["search"]["pieces_total"] == 1
     assert part.search_bound is None and part.cycles == ()
     assert 0.0 < part.max_amplitude < full.cycles[0].amplitude and _no_cycle_missed_below(part, full)
     assert part.to_dict()["status"] == "time_budget" and part.to_dict()["complete"] is False
@@ -716,7 +719,8 @@ def test_eq36_time_budget_stops_between_pieces(monkeypatch):
     part = dfa.limit_cycles(
         p, time_budget=1.5, wall=WallParams.of(delay=2)
     )  # deadline 1.5: the check at 1 passes, at 2 stops
-    assert not part.complete and "after searching 1 of 2 pieces" in part.detail
+    assert not part.complete and (part.search.pieces_searched, part.search.pieces_total) == (1, 2)
+    assert "after searching 1 of 2 pieces" in search_text(part)
     assert 0 < len(part.cycles) < len(full.cycles) and _no_cycle_missed_below(part, full)
     assert all(c in full.cycles for c in part.cycles)
 

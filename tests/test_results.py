@@ -501,11 +501,12 @@ def test_maps_and_cycles_json_from_fields():
     assert all(sum(v for k, v in c.items() if k != "xi_dot") == 16 for c in d["counts"])
     assert "outcome" not in d and d["wall"]["delay"] == 0
     c = assert_json_from_fields(contour_maps(5.0, grid=6))
-    assert c["small_points"] <= 36 and c["status_message"] == (c["detail"] or c["status_message"])
+    assert c["small_points"] <= 36 and c["status_message"] == status_mod.ContourStatus(c["status"]).message
     r = dfa.limit_cycles(dev.params(14500.0), model="zoh")
     d = assert_json_from_fields(r)
     assert (d["mu"], d["beta"], d["sigma"]) == (r.params.mu, r.params.beta, r.params.sigma)
-    assert d["status_message"] == r.detail and d["linear_model"] == "zoh"
+    assert d["status_message"] == r.status.message and d["linear_model"] == "zoh"
+    assert d["search"]["requested"] == r.search.requested and d["search"]["failures"] == 0
     assert [assert_json_from_fields(x)["period"] for x in r.cycles] == [x.period for x in r.cycles]
     g = growth_threshold(dev.params(14500.0), dev)
     d = assert_json_from_fields(g)

@@ -14,6 +14,7 @@ from dfa.analysis.design import _check_validation, design_analysis
 from dfa.analysis.loop import nyquist_locus_response
 from dfa.errors import DFAValueError
 from dfa.model.device import Params
+from dfa.render.text import flagged_text, search_why
 from dfa.report import ReportResult
 from dfa.results.jsonable import NULL_REASONS_KEY, dumps
 from dfa.results.status import ContourStatus, DesignStatus, NyquistStatus, ReportStatus
@@ -59,14 +60,17 @@ def test_design_reads_a_null_validation_number_back_as_nan():
 
 def test_fig7_contours_ok_without_the_degenerate_corner_flagged_with_it():
     ok = contour_maps(5.0, beta_range=(0.1, 1.0), grid=4, max_amplitude=10.0)
-    assert ok.status is ContourStatus.OK and ok.detail == ""
+    assert ok.status is ContourStatus.OK and ok.flagged == () and flagged_text(ok) == ""
     assert ok.to_dict()["status_message"] == ContourStatus.OK.message
     flagged = contour_maps(5.0, grid=4, max_amplitude=10.0)
     d = _strict(flagged.to_dict())
-    assert d["status"] == "flagged" and "β = σ = 0" in d["status_message"]
+    assert d["status"] == "flagged" and d["status_message"] == ContourStatus.FLAGGED.message
+    assert d["flagged"] == [{"family": "small", "reason": "degenerate", "points": 1, "equations": "eq. 42-43"}]
+    text = flagged_text(flagged)
+    assert text.startswith("eq. 42-43: 1 point(s) NaN") and "β = σ = 0" in text and "DEGENERATE" not in text
     ds = flagged.to_xarray() if _has_xarray() else None
     if ds is not None:
-        assert ds.attrs["status"] == "flagged" and ds.attrs["status_message"] == flagged.detail
+        assert ds.attrs["status"] == "flagged" and ds.attrs["flagged_points"] == 1
 
 
 def _has_xarray() -> bool:
@@ -79,7 +83,7 @@ def _has_xarray() -> bool:
 
 def test_fig6_nyquist_sigma_zero_crossings_from_the_solver_status_ok():
     r = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.0))
-    assert r.status is NyquistStatus.OK and r.detail == ""
+    assert r.status is NyquistStatus.OK and r.search is not None and r.search.reached is None
     d = _strict(r.to_dict())
     assert d["status"] == "ok" and len(d["crossings"]) == 2
     s = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.3), amplitudes=[1.0, 2.0])
@@ -96,10 +100,11 @@ def test_fig6_nyquist_reports_an_incomplete_solver_search(monkeypatch):
         res = real(p, **kw)
         return cyc.LimitCycleResult(
             res.params, res.model, res.wall, res.pade_order, res.describing, res.max_amplitude, res.cycles,
-            False, "incomplete: 1 root bracket(s) could not be refined", cyc.SearchStatus.NUMERICAL,
+            False, cyc.SearchEvidence(res.max_amplitude, failures=1), cyc.SearchStatus.NUMERICAL,
         )  # fmt: skip
 
     monkeypatch.setattr(solve, "limit_cycles", incomplete)  # the function the locus calls
     r = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.0))
-    assert r.status is NyquistStatus.SEARCH_INCOMPLETE and "could not be refined" in r.detail
-    assert _strict(r.to_dict())["status_message"] == r.detail
+    assert r.status is NyquistStatus.SEARCH_INCOMPLETE and r.search.failures == 1
+    assert "1 root bracket(s) could not be refined" in search_why(r)
+    assert _strict(r.to_dict())["search"]["failures"] == 1

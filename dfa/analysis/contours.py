@@ -37,7 +37,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .._io import atomic_open, check_memory
-from ..checks import check_bool, check_int, check_mu, check_positive, check_range
+from ..checks import check_bool, check_choice, check_int, check_mu, check_positive, check_range, check_type
 from ..errors import DFAValueError
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
@@ -47,7 +47,7 @@ from .criterion import CriticalLine
 from .cycles import ClosedFormStatus, large_cycle_closed_forms, small_cycle_closed_forms
 from .describing import quantizer_df
 
-__all__ = ["ContourMaps", "contour_maps", "load_contours", "contour_memory_bytes"]
+__all__ = ["ContourMaps", "FlaggedPoints", "contour_maps", "load_contours", "contour_memory_bytes"]
 
 _ARRAYS = (
     "beta",
@@ -60,6 +60,43 @@ _ARRAYS = (
     "large_frequency_closed",
     "small_amplitude_closed",
 )
+
+
+@dataclass(frozen=True)
+class FlaggedPoints(Result):
+    """Grid points of :class:`ContourMaps` that one closed form flags (NaN), and why, as data.
+
+    Attributes
+    ----------
+    family : str
+        ``"small"`` (eq. 42-43) or ``"large"`` (eq. 44-45).
+    reason : str
+        The :class:`~dfa.analysis.cycles.ClosedFormStatus` name in snake_case: ``"degenerate"`` (β = σ = 0)
+        or ``"not_solved"`` (the root finder failed).
+    points : int
+        How many grid points, >= 1.
+
+    Examples
+    --------
+    >>> FlaggedPoints("small", "degenerate", 1).equations
+    'eq. 42-43'
+    """
+
+    family: str
+    reason: str
+    points: int
+
+    json_properties: ClassVar[tuple[str, ...]] = ("equations",)
+
+    def __post_init__(self) -> None:
+        check_choice("family", self.family, ("small", "large"))
+        check_choice("reason", self.reason, ("degenerate", "not_solved"))
+        check_int("points", self.points, minimum=1, fix="count the flagged grid points")
+
+    @property
+    def equations(self) -> str:
+        """The paper's equations of the family's closed form."""
+        return "eq. 42-43" if self.family == "small" else "eq. 44-45"
 
 
 @dataclass(frozen=True)
@@ -84,8 +121,8 @@ class ContourMaps(PlaneGrid, Result):
     max_amplitude : float
     status : ContourStatus
         ``OK``: every point solved (NaN where a family does not exist or lies beyond ``max_amplitude``);
-        ``FLAGGED``: the closed forms flagged grid points (NaN), counted in ``detail``.
-    detail : str
+        ``FLAGGED``: the closed forms flagged grid points (NaN), counted in ``flagged``.
+    flagged : tuple of FlaggedPoints
         Which grid points the closed forms flag (β = σ = 0, solver failures) and why; empty when ``OK``.
 
     Arrays are read-only copies; shapes are checked on construction.
@@ -103,7 +140,7 @@ class ContourMaps(PlaneGrid, Result):
     small_amplitude_closed: np.ndarray = field(repr=False, metadata={"json": None})
     max_amplitude: float = 200.0
     status: ContourStatus = ContourStatus.OK
-    detail: str = ""
+    flagged: tuple[FlaggedPoints, ...] = ()
 
     json_properties: ClassVar[tuple[str, ...]] = (
         "beta_range", "sigma_range", "grid", "small_points", "large_points", "large_closed_points",
@@ -116,6 +153,14 @@ class ContourMaps(PlaneGrid, Result):
             if k not in ("beta", "sigma"):
                 check_shape(k, getattr(self, k), (self.sigma.size, self.beta.size))
         object.__setattr__(self, "status", ContourStatus.coerce(self.status))
+        object.__setattr__(self, "flagged", tuple(self.flagged))
+        for f in self.flagged:
+            check_type("flagged", f, FlaggedPoints, "build the maps with contour_maps")
+        if bool(self.flagged) != (self.status is ContourStatus.FLAGGED):
+            raise DFAValueError(
+                f"status = {self.status.value!r} is invalid with {len(self.flagged)} flagged group(s): the maps are "
+                "flagged exactly when a closed form flags points; build the maps with contour_maps"
+            )
 
     @property
     def corner(self) -> tuple[float, float]:
@@ -185,7 +230,8 @@ class ContourMaps(PlaneGrid, Result):
                 "mu": self.mu,
                 "max_amplitude": self.max_amplitude,
                 "status": self.status.value,
-                "status_message": self.detail or self.status.message,
+                "status_message": self.status.message,
+                "flagged_points": sum(f.points for f in self.flagged),
             },
         )
 
@@ -224,11 +270,6 @@ class ContourMaps(PlaneGrid, Result):
     def large_closed_points(self) -> int:
         """Grid points that carry a large-family cycle by the closed forms (eq. 44-45)."""
         return int(np.isfinite(self.large_amplitude_closed).sum())
-
-    @property
-    def status_message(self) -> str:
-        """Which points the closed forms flag and why (:attr:`detail`), else the status's message."""
-        return self.detail or self.status.message
 
 
 def load_contours(path: str | os.PathLike) -> ContourMaps:
@@ -377,17 +418,17 @@ def contour_maps(
     small_m = np.where(sm_cf < 1.0, sm_cf, np.nan)
     small_w = np.where(sm_cf < 1.0, sw_cf, np.nan)
     large_m, large_w = _large_exact(m, beta, sigma, amax, check_bool("progress", progress, "pass True or False"))
-    detail = _closed_form_detail(small, large)
-    status = ContourStatus.FLAGGED if detail else ContourStatus.OK
-    return ContourMaps(m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax, status, detail)
+    flagged = _flagged_points(small, large)
+    status = ContourStatus.FLAGGED if flagged else ContourStatus.OK
+    return ContourMaps(m, beta, sigma, small_m, small_w, large_m, large_w, lm_cf, lw_cf, sm_cf, amax, status, flagged)
 
 
-def _closed_form_detail(small: Any, large: Any) -> str:
-    """Which grid points the closed forms flag (β = σ = 0, solver failures) and why; ``""`` when none."""
-    notes = []
-    for name, cf in (("eq. 42-43", small), ("eq. 44-45", large)):
+def _flagged_points(small: Any, large: Any) -> tuple[FlaggedPoints, ...]:
+    """Which grid points the closed forms flag (β = σ = 0, solver failures) and why; empty when none."""
+    out = []
+    for family, cf in (("small", small), ("large", large)):
         for code in (ClosedFormStatus.DEGENERATE, ClosedFormStatus.NOT_SOLVED):
             count = int(np.count_nonzero(cf.status == code))
             if count:
-                notes.append(f"{name}: {count} point(s) NaN, {code.reason}")
-    return "; ".join(notes)
+                out.append(FlaggedPoints(family, code.name.lower(), count))
+    return tuple(out)

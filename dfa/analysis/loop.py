@@ -61,6 +61,7 @@ from ..results.status import NyquistStatus, SearchStatus
 from ..results.summaries import OperatingPoint
 from .cycles.characteristic import inv_loop
 from .cycles.controlled import resolve_wall
+from .cycles.results import SearchEvidence
 from .describing import coulomb_equivalent_damping, quantizer_df
 from .loop_models import LOOP_MODELS, check_model, check_params
 
@@ -323,7 +324,7 @@ class NyquistLocusResponse(OperatingPoint, Result):
 
     Its JSON (:meth:`~dfa.results.base.Result.to_dict`; complex numbers as ``{"re", "im"}``) holds the fields,
     (μ, β, σ) of ``params`` flat, the delay, the crossings as ``{"amplitude", "frequency", "point"}`` records,
-    and ``detail`` as the status message when there is one.
+    and ``search``, the solver's evidence (:class:`~dfa.analysis.cycles.SearchEvidence`) when it ran.
 
     Attributes
     ----------
@@ -352,9 +353,9 @@ class NyquistLocusResponse(OperatingPoint, Result):
         the point being −1/D(M); for σ > 0 use the solver directly.
     status : NyquistStatus
         ``OK``, ``CROSSINGS_NOT_COMPUTED`` (σ > 0) or ``SEARCH_INCOMPLETE`` (the solver's
-        search ended incomplete; crossings may be missing, why in ``detail``).
-    detail : str
-        The solver's one-line reason when ``SEARCH_INCOMPLETE``; empty otherwise.
+        search ended incomplete; crossings may be missing, the numbers in ``search``).
+    search : SearchEvidence or None
+        How far the limit-cycle solver's search got (σ = 0, where it runs); None when it did not run.
 
     Arrays are read-only copies.
     """
@@ -372,7 +373,7 @@ class NyquistLocusResponse(OperatingPoint, Result):
         metadata={"json": lambda c: [{"amplitude": m, "frequency": w, "point": pt} for m, w, pt in c]}
     )
     status: NyquistStatus
-    detail: str = field(default="", metadata={"json": None})  # written as the status message
+    search: SearchEvidence | None = None
 
     json_properties: ClassVar[tuple[str, ...]] = ("mu", "beta", "sigma", "delay")
 
@@ -392,11 +393,8 @@ class NyquistLocusResponse(OperatingPoint, Result):
         check_shape("locus", self.locus, self.locus_amplitude.shape)
         object.__setattr__(self, "status", NyquistStatus.coerce(self.status))
         object.__setattr__(self, "crossings", tuple(self.crossings))
-
-    @property
-    def status_message(self) -> str:
-        """The solver's reason (:attr:`detail`) when there is one, otherwise the status's message."""
-        return self.detail or self.status.message
+        if self.search is not None:
+            check_type("search", self.search, SearchEvidence, "build it with nyquist_locus_response")
 
     @property
     def delay(self) -> int:
@@ -445,11 +443,11 @@ class NyquistLocusResponse(OperatingPoint, Result):
 
 def _solver_crossings(
     p: Params, model: str, pade_order: int, omega: np.ndarray, max_amplitude: float, wall: WallParams
-) -> tuple[list[tuple[float, float, complex]], NyquistStatus, str]:
+) -> tuple[list[tuple[float, float, complex]], NyquistStatus, SearchEvidence]:
     """σ = 0: the harmonic-balance roots of the limit-cycle solver (one implementation, residual <= 1e-10).
 
     Returns ((M, ω, −1/D(M)) for every root with ω in the plotted range and M <= ``max_amplitude``, status,
-    detail): ``OK`` when the search is complete up to ``max_amplitude``, else ``SEARCH_INCOMPLETE`` and why.
+    the solver's evidence): ``OK`` when the search is complete up to ``max_amplitude``, else ``SEARCH_INCOMPLETE``.
     """
     from .cycles.solve import limit_cycles  # imported here: it loads scipy.optimize
 
@@ -460,9 +458,10 @@ def _solver_crossings(
         for c in res.cycles
         if lo <= c.frequency <= hi
     ]
+    assert res.search is not None  # set on construction
     if res.complete or res.status is SearchStatus.MAX_AMPLITUDE:
-        return out, NyquistStatus.OK, ""
-    return out, NyquistStatus.SEARCH_INCOMPLETE, res.detail
+        return out, NyquistStatus.OK, res.search
+    return out, NyquistStatus.SEARCH_INCOMPLETE, res.search
 
 
 def nyquist_locus_response(
@@ -532,7 +531,7 @@ def nyquist_locus_response(
     if p.sigma == 0.0:
         amps = np.array([np.nan])
         curves = np.atleast_2d(loop_response(p, w, model=m, pade_order=n, wall=wp))
-        crossings, status, detail = _solver_crossings(p, m, n, w, float(la.max()), wp)
+        crossings, status, evidence = _solver_crossings(p, m, n, w, float(la.max()), wp)
     else:
         if amplitudes is None:
             raise DFAValueError(
@@ -541,5 +540,5 @@ def nyquist_locus_response(
             )
         amps = np.atleast_1d(check_real_array("amplitudes", amplitudes, "give the amplitudes M in ticks"))
         curves = np.vstack([loop_response(p, w, np.full_like(w, a), model=m, pade_order=n, wall=wp) for a in amps])
-        status, detail = NyquistStatus.CROSSINGS_NOT_COMPUTED, ""
-    return NyquistLocusResponse(p, m, wp, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, detail)
+        status, evidence = NyquistStatus.CROSSINGS_NOT_COMPUTED, None
+    return NyquistLocusResponse(p, m, wp, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, evidence)

@@ -15,7 +15,7 @@ from typing import Any
 from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
 from .limits import spring_passive_text, spring_verdict_text
-from .text import growth_meaning
+from .text import growth_meaning, search_why
 
 __all__ = ["design_html", "design_markdown", "markdown_to_html"]
 
@@ -236,7 +236,7 @@ def absence_lines(a: DesignAnalysis) -> list[str]:
     out = []
     for m, g in a.thresholds:
         res = g.result
-        why = res.detail.removeprefix("incomplete: ")
+        why = search_why(res)
         if res.cycles:
             if not res.complete:
                 out.append(

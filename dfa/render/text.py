@@ -8,15 +8,18 @@ from typing import Any
 from ..analysis.cycles.caveats import SubtickCaveat
 from ..formatting import number, text_table
 from ..results.jsonable import explain_nulls
-from ..results.status import GrowthStatus
+from ..results.status import GrowthStatus, SearchStatus
 
 __all__ = [
     "OUTCOME_TEXT",
     "caveat_text",
     "check_rows",
+    "flagged_text",
     "growth_meaning",
     "limit_cycle_lines",
     "limit_cycles_dict",
+    "search_text",
+    "search_why",
     "simulation_rows",
 ]
 
@@ -109,8 +112,94 @@ def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | No
     return rows
 
 
+def search_why(res: Any) -> str:
+    """Why a limit-cycle search (:class:`~dfa.analysis.cycles.LimitCycleResult`) ended incomplete, from its evidence.
+
+    Parameters
+    ----------
+    res : LimitCycleResult or NyquistLocusResponse
+        A result whose ``search`` holds :class:`~dfa.analysis.cycles.SearchEvidence` and whose status says how
+        the search ended.
+
+    Returns
+    -------
+    str
+        One clause with the numbers; the status's message when the search was complete.
+
+    Examples
+    --------
+    >>> from dfa.analysis.cycles import limit_cycles
+    >>> from dfa.model.device import Params
+    >>> search_why(limit_cycles(Params(5.0, 0.1, 0.3), max_amplitude=1.5))
+    'cycles may exist beyond max_amplitude = 1.5 ticks'
+    """
+    ev = res.search
+    status = getattr(res, "status", None)
+    code = status if isinstance(status, SearchStatus) else _solver_status(ev, res)
+    if code is SearchStatus.NUMERICAL:
+        beyond = f", and beyond {ev.reached:g} ticks" if ev.reached is not None else ""
+        return f"{ev.failures} root bracket(s) could not be refined (numerical failure); cycles may be missing{beyond}"
+    if code is SearchStatus.TIME_BUDGET:
+        return (
+            f"time budget of {ev.time_budget:g} s hit after searching {ev.pieces_searched} of {ev.pieces_total} "
+            f"pieces of the phase curve; no cycle missed below M = {ev.reached:.4g} ticks (raise time_budget)"
+        )
+    if code is SearchStatus.BUDGET:
+        return f"searched up to the size budget ({ev.reached:g} ticks) short of the envelope bound"
+    if code is SearchStatus.MAX_AMPLITUDE:
+        return f"cycles may exist beyond max_amplitude = {ev.requested:g} ticks"
+    return str(SearchStatus.COMPLETE.message)
+
+
+def _solver_status(ev: Any, res: Any) -> SearchStatus:
+    """The solver's status behind a Nyquist response's evidence (its own status says only incomplete or not)."""
+    if ev.failures:
+        return SearchStatus.NUMERICAL
+    if ev.time_budget is not None:
+        return SearchStatus.TIME_BUDGET
+    if ev.reached is None:
+        return SearchStatus.COMPLETE
+    return SearchStatus.BUDGET if ev.reached < ev.requested else SearchStatus.MAX_AMPLITUDE
+
+
+def search_text(res: Any) -> str:
+    """How a limit-cycle search ended, in words: ``"incomplete: …"`` with the numbers, or the status's message.
+
+    Parameters
+    ----------
+    res : LimitCycleResult
+        From :func:`dfa.analysis.cycles.limit_cycles`.
+
+    Returns
+    -------
+    str
+        One line.
+    """
+    return str(res.status.message) if res.complete else f"incomplete: {search_why(res)}"
+
+
+def flagged_text(maps: Any) -> str:
+    """Which grid points of contour maps (:class:`~dfa.analysis.contours.ContourMaps`) the closed forms flag.
+
+    Parameters
+    ----------
+    maps : ContourMaps
+        From :func:`dfa.analysis.contours.contour_maps`.
+
+    Returns
+    -------
+    str
+        ``"eq. 42-43: 1 point(s) NaN, …"`` per group, joined by ``"; "``; empty when none is flagged.
+    """
+    from ..analysis.cycles import ClosedFormStatus
+
+    return "; ".join(
+        f"{f.equations}: {f.points} point(s) NaN, {ClosedFormStatus[f.reason.upper()].reason}" for f in maps.flagged
+    )
+
+
 def _no_cycle_line(res: Any, lin: str) -> str:
-    why = res.detail.removeprefix("incomplete: ")
+    why = search_why(res)
     if not res.complete:
         return f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})"
     if res.linear_stable is False:
@@ -179,7 +268,7 @@ def limit_cycle_lines(g: Any, device: Any, phys: dict | None = None) -> list[str
                 f"one tick = {device.resolution:.4g} {phys['position_unit']} = one force step KΔ = {fs:.4g} {phys['force_unit']}"
             )
         if not res.complete:
-            why = res.detail.removeprefix("incomplete: ")
+            why = search_why(res)
             lines.append(f"search incomplete beyond M = {res.max_amplitude:g} ticks ({why}): more cycles may exist")
     if g.amplitude is not None:
         lines += [_growth_line(g, device), growth_meaning(g)]
@@ -251,10 +340,10 @@ def growth_meaning(g: Any) -> str:
 def _growth_meaning(g: Any) -> str:
     res = g.result
     if g.status is GrowthStatus.NO_UNSTABLE_CYCLE_SEARCHED:
-        return f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail})"
+        return f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {search_text(res)})"
     if g.status is GrowthStatus.LINEAR_UNSTABLE and not res.complete:
         return (
-            f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {res.detail}), but the "
+            f"no unstable cycle predicted up to M = {res.max_amplitude:g} ticks (search {search_text(res)}), but the "
             "linear loop (exact ZOH model) is unstable: amplitudes grow without bound"
         )
     if g.amplitude is None:
@@ -262,7 +351,7 @@ def _growth_meaning(g: Any) -> str:
     lo, hi = g.amplitude, g.amplitude_high
     tail = ""
     if not res.complete:
-        tail = f" The search was incomplete ({res.detail}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
+        tail = f" The search was incomplete ({search_text(res)}): more unstable cycles may lie above {res.max_amplitude:g} ticks."
     if g.grows_above:
         above = f"above {hi:.4g} ticks the first-harmonic analysis predicts growth" + (
             " without bound (the linear loop, exact ZOH model, is unstable)" if res.linear_stable is False else ""

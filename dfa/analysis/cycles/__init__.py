@@ -96,7 +96,7 @@ from .closed_forms import (
 )
 from .growth import GrowthThreshold, growth_threshold
 from .phase import PieceOmega, phase_beta, zoh_phase_beta_grid  # noqa: F401
-from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchStatus
+from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchEvidence, SearchStatus
 from .search import INTERVAL_BUDGET, envelope_bound
 from .solve import AUTO_MAX_AMPLITUDE, DEFAULT_TIME_BUDGET, limit_cycles
 from .stability import limit_cycle_at  # noqa: F401
@@ -116,6 +116,7 @@ __all__ = [
     "GrowthThreshold",
     "growth_threshold",
     "SearchStatus",
+    "SearchEvidence",
     "LimitCycleSearchWarning",
     "envelope_bound",
     "AUTO_MAX_AMPLITUDE",

@@ -18,6 +18,63 @@ from .caveats import NO_CAVEAT, SubtickCaveat, subtick_caveat
 
 # ------------------------------------------------------------------ results
 @dataclass(frozen=True)
+class SearchEvidence(Result):
+    """The numbers behind a limit-cycle search's status (:class:`~dfa.results.status.SearchStatus`), as data.
+
+    The rendering layer words them (:func:`dfa.render.text.search_text`); the JSON carries them under ``search``.
+
+    Attributes
+    ----------
+    requested : float
+        The largest amplitude asked for, ticks (the caller's ``max_amplitude``, or the automatic range).
+    reached : float or None
+        Where an incomplete search stopped, ticks: no root below it was missed (None: complete, or a numerical
+        failure with no range lost).
+    failures : int
+        Root brackets that could not be refined (status ``NUMERICAL``).
+    pieces_searched, pieces_total : int or None
+        Pieces of the phase curve searched and in all, when the time budget ended the search.
+    time_budget : float or None
+        The time budget in seconds, when it ended the search.
+
+    Examples
+    --------
+    >>> SearchEvidence(requested=10.0, reached=4.0).reached
+    4.0
+    """
+
+    requested: float
+    reached: float | None = None
+    failures: int = 0
+    pieces_searched: int | None = None
+    pieces_total: int | None = None
+    time_budget: float | None = None
+
+    def __post_init__(self) -> None:
+        check_positive("requested", self.requested, "give the largest amplitude searched, in ticks")
+        if self.reached is not None:
+            check_positive("reached", self.reached, "give the amplitude where the search stopped, in ticks")
+        if isinstance(self.failures, bool) or not isinstance(self.failures, int) or self.failures < 0:
+            raise DFAValueError(f"failures = {self.failures!r} is invalid: it must be a whole number >= 0")
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why ``reached`` and the time-budget numbers may be null (JSON).
+
+        Returns
+        -------
+        dict of str to str
+            Reasons by field name.
+        """
+        budget = "the time budget did not end the search"
+        return {
+            "reached": "the search did not stop short of the range asked for",
+            "pieces_searched": budget,
+            "pieces_total": budget,
+            "time_budget": budget,
+        }
+
+
+@dataclass(frozen=True)
 class LimitCycle(Result):
     """One harmonic-balance solution ξ = M sin ωτ.
 
@@ -111,9 +168,8 @@ class LimitCycleResult(OperatingPoint, Result):
         Sorted by amplitude.
     complete : bool
         True only when the search provably found every root (status ``COMPLETE``).
-    detail : str
-        One-line message with the numbers of this search: ``"incomplete: …"`` (why), or the
-        status message when complete (the default).
+    search : SearchEvidence
+        The numbers behind the status: how far the search got, failures, the time budget.
     status : SearchStatus
         How the search ended (``COMPLETE``, ``MAX_AMPLITUDE``, ``BUDGET``, ``NUMERICAL``);
         ``status_code`` is a deprecated alias.
@@ -137,7 +193,7 @@ class LimitCycleResult(OperatingPoint, Result):
     max_amplitude: float
     cycles: tuple = field(default_factory=tuple)
     complete: bool = True
-    detail: str = ""
+    search: SearchEvidence | None = None
     status: SearchStatus = SearchStatus.COMPLETE
     linear_stable: bool | None = None
     search_bound: float | None = None
@@ -149,7 +205,10 @@ class LimitCycleResult(OperatingPoint, Result):
             raise DFATypeError("wall must be a WallParams; build results with limit_cycles")
         st = SearchStatus.coerce(self.status)
         object.__setattr__(self, "status", st)
-        object.__setattr__(self, "detail", self.detail or st.message)
+        if self.search is None:
+            object.__setattr__(self, "search", SearchEvidence(requested=self.max_amplitude))
+        elif not isinstance(self.search, SearchEvidence):
+            raise DFATypeError("search must be a SearchEvidence; build results with limit_cycles")
         object.__setattr__(self, "cycles", tuple(self.cycles))
         if self.complete != (st is SearchStatus.COMPLETE):
             raise DFAValueError(
@@ -168,11 +227,6 @@ class LimitCycleResult(OperatingPoint, Result):
     def linear_model(self) -> str:
         """The model of :attr:`linear_stable`: always the exact ZOH loop (``"zoh"``)."""
         return "zoh"
-
-    @property
-    def status_message(self) -> str:
-        """The numbers of this search (:attr:`detail`; the status's message when complete)."""
-        return self.detail
 
     @property
     def status_code(self) -> SearchStatus:

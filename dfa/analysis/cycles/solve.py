@@ -17,7 +17,7 @@ from . import search
 from .characteristic import DF_CHOICES, M_FLOOR, W_GRID, HarmonicLoop
 from .controlled import linear_stable_of, resolve_wall
 from .phase import PieceOmega, phase_pieces
-from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchStatus
+from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchEvidence, SearchStatus
 from .search import envelope_bound, m_samples
 from .stability import cycles_at_crossing, make_cycle
 
@@ -221,12 +221,12 @@ def limit_cycles(
         cycles, reach, failures, bound = _solve(lp, amax, time.monotonic() + seconds)
     except _NUMERICAL_ERRORS:  # pragma: no cover - last resort
         cycles, reach, failures, bound = [], None, 1, math.nan
-    code, status = _search_status(failures, reach, auto, amax, seconds)
+    code, evidence = _search_status(failures, reach, auto, amax, seconds)
     if code is SearchStatus.NUMERICAL:
         warnings.warn(
             f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}"
             + (f", wall {ctl.to_dict()}" if ctl is not None else "")
-            + f"): {status}",
+            + f"): {failures} root bracket(s) could not be refined (numerical failure); cycles may be missing",
             LimitCycleSearchWarning,
             stacklevel=2,
         )
@@ -240,7 +240,7 @@ def limit_cycles(
         searched,
         _unique(cycles),
         code is SearchStatus.COMPLETE,
-        status,
+        evidence,
         code,
         linear_stable_of(p.mu, p.beta, w),
         bound if code is SearchStatus.COMPLETE else None,
@@ -262,25 +262,14 @@ def _unique(cycles: list[LimitCycle]) -> tuple[LimitCycle, ...]:
 
 def _search_status(
     failures: int, reach: tuple | None, auto: bool, amax: float, seconds: float = math.inf
-) -> tuple[SearchStatus, str]:
-    """How the search ended, and the one-line detail that says so (``""`` when complete: the status message)."""
+) -> tuple[SearchStatus, SearchEvidence]:
+    """How the search ended, and its numbers as data (:class:`SearchEvidence`; the renderer words them)."""
+    reached = float(reach[0]) if reach is not None else None
     if failures:
-        status = (
-            f"incomplete: {failures} root bracket(s) could not be refined (numerical failure); "
-            "cycles may be missing" + (f", and beyond {reach[0]:g} ticks" if reach is not None else "")
-        )
-        return SearchStatus.NUMERICAL, status
+        return SearchStatus.NUMERICAL, SearchEvidence(amax, reached, failures)
     if reach is None:
-        return SearchStatus.COMPLETE, ""  # detail: the status message
+        return SearchStatus.COMPLETE, SearchEvidence(amax)
     if reach[1] == "time_budget":
-        return SearchStatus.TIME_BUDGET, (
-            f"incomplete: time budget of {seconds:g} s hit after searching {reach[2]} of {reach[3]} pieces of the "
-            f"phase curve; no cycle missed below M = {reach[0]:.4g} ticks (raise time_budget)"
-        )
+        return SearchStatus.TIME_BUDGET, SearchEvidence(amax, reached, 0, int(reach[2]), int(reach[3]), seconds)
     budget = reach[1] == "budget" or (auto and reach[0] >= amax)
-    why = (
-        f"searched up to the size budget ({reach[0]:g} ticks) short of the envelope bound"
-        if budget
-        else f"cycles may exist beyond max_amplitude = {amax:g} ticks"
-    )
-    return (SearchStatus.BUDGET if budget else SearchStatus.MAX_AMPLITUDE), f"incomplete: {why}"
+    return (SearchStatus.BUDGET if budget else SearchStatus.MAX_AMPLITUDE), SearchEvidence(amax, reached)
