@@ -48,6 +48,7 @@ __all__ = [
     "staged_folder",
     "check_output_file",
     "check_output_folder",
+    "make_output_folder",
     "available_memory",
     "check_memory",
     "MEMORY_FRACTION",
@@ -205,29 +206,66 @@ def check_output_file(flag: str, path: str, suffix: str | None = None) -> str:
     return path
 
 
+def _probe(folder: str) -> str | None:
+    """Why no file can be made in the existing ``folder`` (a temporary folder is made and removed), or None.
+
+    :func:`os.access` says yes to root for a read-only file system or ``/proc``; only trying tells.
+    """
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=_TMP_PREFIX, dir=folder))
+    except OSError as exc:
+        return exc.strerror or type(exc).__name__
+    return None
+
+
 def check_output_folder(flag: str, path: str, create: bool) -> str:
     """Refuse an output *folder* that cannot be used; return it.
 
-    Rule: a non-empty path that is an existing folder or (with ``create``) a
-    not-yet-existing folder whose parent exists; never an existing file.
+    Rule: a non-empty path that is an existing folder or (with ``create``) a not-yet-existing folder whose
+    parent is an existing folder (one level is created, :func:`make_output_folder`); never an existing file, nor
+    a path through one; and something must be writable there (tried, not asked: :func:`os.access` says yes to root
+    for ``/proc``).
     """
     if not isinstance(path, str) or not path.strip():
         raise DFAValueError(f"{flag} {path!r} is invalid: it must name a folder; give e.g. {flag} reports")
     _check_path_text(flag, path)
     if os.path.exists(path) and not os.path.isdir(path):
         raise DFAValueError(f"{flag} {path!r} is not a folder: it is an existing file; choose a folder")
+    folder = os.path.abspath(path)
     if not os.path.isdir(path):
-        parent = os.path.dirname(os.path.abspath(path))
         if not create:
+            raise DFAValueError(f"{flag} {path!r} is invalid: folder {folder!r} does not exist; create it first")
+        folder = os.path.dirname(folder)
+        if not os.path.isdir(folder):
+            up = folder
+            while not os.path.lexists(up) and os.path.dirname(up) != up:
+                up = os.path.dirname(up)
+            if os.path.lexists(up) and not os.path.isdir(up):
+                raise DFAValueError(f"{flag} {path!r} is invalid: {up!r} is a file, not a folder; choose a folder path")
             raise DFAValueError(
-                f"{flag} {path!r} is invalid: folder {os.path.abspath(path)!r} does not exist; create it first"
+                f"{flag} {path!r} is invalid: folder {folder!r} does not exist; create it first (only the last "
+                "folder of the path is created)"
             )
-        if not os.path.isdir(parent):
-            raise DFAValueError(f"{flag} {path!r} is invalid: folder {parent!r} does not exist; create it first")
-        if not os.access(parent, os.W_OK):
-            raise DFAValueError(f"{flag} {path!r} is invalid: folder {parent!r} is not writable; choose another folder")
-    elif not os.access(path, os.W_OK):
-        raise DFAValueError(f"{flag} {path!r} is invalid: the folder is not writable; choose another folder")
+    why = _probe(folder)
+    if why is not None:
+        where = "the folder" if folder == os.path.abspath(path) else f"folder {folder!r}"
+        raise DFAValueError(
+            f"{flag} {path!r} is invalid: nothing can be written in {where} ({why}); choose another folder"
+        )
+    return path
+
+
+def make_output_folder(flag: str, path: str) -> str:
+    """Create the output folder ``path`` if missing (checked first by :func:`check_output_folder`).
+
+    A folder that still cannot be made is bad input (:class:`DFAValueError`, exit 2), not a failed write.
+    """
+    try:
+        os.makedirs(path, exist_ok=True)
+    except OSError as exc:
+        raise DFAValueError(
+            f"{flag} {path!r} is invalid: the folder cannot be created ({exc.strerror or exc}); choose another folder"
+        ) from None
     return path
 
 

@@ -5,9 +5,10 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import stat
 from typing import Any
 
-from .._io import check_output_folder
+from .._io import check_output_folder, make_output_folder
 from ..model.catalogue import DEFAULT_DEVICE
 from ..model.wall import Wall
 from .inputs import PHYS_FLAGS, add_device_args, resolve, speed
@@ -25,7 +26,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     json_help = "print the paths written and the numbers stated as one JSON object (default: one line per file)"
     add_device_args(p, False, True, json_help)
     p.add_argument(
-        "--out", default="reports", metavar="DIR", help="output folder, created if missing (default: reports)"
+        "--out",
+        default="reports",
+        metavar="DIR",
+        help="output folder, created if missing (its parent must exist; default: reports)",
     )
     p.add_argument(
         "--format",
@@ -54,16 +58,35 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_wall_args(p)
 
 
+#: Largest validation summary ``--validation`` reads (bytes); ``dfa validate`` writes about 8 kB.
+VALIDATION_MAX_BYTES = 1_000_000
+
+
 def _read_validation(path: str) -> dict[str, Any]:
-    """A validation summary the user names (``dfa validate`` writes it as validation.json)."""
+    """A validation summary the user names (``dfa validate`` writes it as validation.json).
+
+    Only a regular file of at most :data:`VALIDATION_MAX_BYTES` is read: ``/dev/zero`` or a pipe is refused
+    before it is opened, not read until memory runs out.
+    """
+    fix = "give the validation.json that `dfa validate --out DIR` wrote"
     try:
-        with open(path, encoding="utf-8") as fh:
-            data = json.load(fh)
+        st = os.stat(path)
     except (OSError, ValueError) as exc:
-        why = exc.strerror if isinstance(exc, OSError) else "not JSON"
+        why = exc.strerror if isinstance(exc, OSError) else "not a path"
+        raise UsageError(f"--validation {path!r} cannot be read ({why}): {fix}") from None
+    if not stat.S_ISREG(st.st_mode):
+        raise UsageError(f"--validation {path!r} is not a regular file: {fix}")
+    if st.st_size > VALIDATION_MAX_BYTES:
         raise UsageError(
-            f"--validation {path!r} cannot be read ({why}): give the validation.json that `dfa validate --out DIR` wrote"
-        ) from None
+            f"--validation {path!r} is too large ({st.st_size} bytes; a validation summary is about 8 kB, at most "
+            f"{VALIDATION_MAX_BYTES} bytes are read): {fix}"
+        )
+    try:
+        with open(path, "rb") as fh:
+            data = json.loads(fh.read(VALIDATION_MAX_BYTES + 1).decode("utf-8"))
+    except (OSError, ValueError) as exc:  # UnicodeDecodeError and JSONDecodeError are ValueErrors
+        why = exc.strerror if isinstance(exc, OSError) else "not JSON"
+        raise UsageError(f"--validation {path!r} cannot be read ({why}): {fix}") from None
     if not isinstance(data, dict) or "soundness_violations" not in data:
         raise UsageError(
             f"--validation {path!r} is not a validation summary: give the validation.json that `dfa validate` wrote"
@@ -77,7 +100,7 @@ def run(args: argparse.Namespace) -> int:
 
     if args.device is None and not any(getattr(args, k, None) is not None for k in (*PHYS_FLAGS, "counts")):
         args.device = DEFAULT_DEVICE
-    check_output_folder("--out", args.out, create=True)  # the parent must exist; the folder is created
+    check_output_folder("--out", args.out, create=True)  # created (one level) once the inputs pass
     inp = resolve(args, dimensionless=False)
     assert inp.device is not None
     ctl = wall_from_args(args, inp.device, inp.stiffness)  # None: the spring (no flag, or B = 0 without filter/lag)
@@ -85,7 +108,7 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError(f"--zwidth {args.zwidth} is invalid: give the points per axis (0: no Z-width section)")
     _xd, v = speed(args, inp, required=False)
     summary = _read_validation(args.validation) if args.validation is not None else None
-    os.makedirs(args.out, exist_ok=True)
+    make_output_folder("--out", args.out)
     assert inp.stiffness is not None  # resolve() refuses a device without K here
     wall = ctl if ctl is not None else Wall.of(inp.stiffness, delay=args.delay)
     res = design_report(

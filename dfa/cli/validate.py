@@ -21,7 +21,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--jobs", type=integer("--jobs"), default=-1, metavar="J", help="parallel jobs (default: -1, all cores)"
     )
     p.add_argument(
-        "--out", default="reports/validation", metavar="DIR", help="output folder (default: reports/validation)"
+        "--out",
+        default="reports/validation",
+        metavar="DIR",
+        help="output folder, created if missing (its parent must exist; default: reports/validation)",
     )
     add_progress_args(p)
     p.add_argument("--json", action="store_true", help="print the summary as JSON (default: text)")
