@@ -5,12 +5,10 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.dfa-installed
-# numba compiles the kernels once and caches them here (cache=True), in a directory named after the compiled
-# sources: every numba kernel lives in dfa/core/ (nothing else compiles), and numba keys a cached kernel on its own
-# file only, so a kernel that inlines an edited function of another file (dfa/core/exprel.py into
-# dfa/core/kernel.py) would otherwise keep stale code.
-KERNEL_SOURCES := $(sort $(wildcard dfa/core/*.py))
-export NUMBA_CACHE_DIR := $(CURDIR)/.cache/numba/$(firstword $(shell cat $(KERNEL_SOURCES) | cksum))
+# numba compiles the kernels once and caches them where `.venv/bin/dfa` does (dfa/core/cache.py): in
+# ~/.cache/dfa/numba/<key>, the key a hash of dfa/core/*.py and of the Python and numba versions, so `make` and
+# the command share one cache and an edited kernel never loads stale code. DFA_CACHE_DIR moves the folder; an
+# explicit NUMBA_CACHE_DIR is used as it is (then clear it yourself after editing dfa/core/).
 export MPLBACKEND := Agg
 
 .PHONY: all venv report test lint docs explore bench readme clean

@@ -44,10 +44,6 @@ Examples
 'passive_below_critical_speed'
 """
 
-from ._io import ensure_numba_cache_dir as _ensure_numba_cache_dir
-
-_ensure_numba_cache_dir()  # before numba compiles anything: a read-only install still runs
-
 from .analysis.check import PassivityCheck, passivity_check
 from .analysis.colgate_schenkel import (
     ColgateSchenkel,

@@ -1,4 +1,4 @@
-"""Atomic file writes, output-path rules, resource limits and the numba cache folder.
+"""Atomic file writes, output-path rules and resource limits.
 
 Every file :mod:`dfa` writes goes through :func:`atomic_write_bytes`,
 :func:`atomic_write_text` or :func:`atomic_open`: the data are written to a
@@ -32,7 +32,6 @@ from __future__ import annotations
 import contextlib
 import os
 import shutil
-import sys
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
@@ -52,7 +51,6 @@ __all__ = [
     "available_memory",
     "check_memory",
     "MEMORY_FRACTION",
-    "ensure_numba_cache_dir",
 ]
 
 #: Paths written (moved into place) by this process, oldest first.
@@ -313,50 +311,3 @@ def check_memory(name: str, value: object, nbytes: float, fix: str) -> None:
             f"{name} = {value} is too large: it needs about {_gib(nbytes)} of memory, more than "
             f"{MEMORY_FRACTION:.0%} of the {_gib(avail)} available; {fix}"
         )
-
-
-# ------------------------------------------------------------ numba cache
-def _writable_dir(path: str) -> bool:
-    try:
-        os.makedirs(path, exist_ok=True)
-    except OSError:
-        return False
-    if not os.path.isdir(path) or not os.access(path, os.W_OK | os.X_OK):
-        return False
-    try:
-        fd, probe = tempfile.mkstemp(prefix=_TMP_PREFIX, dir=path)
-    except OSError:
-        return False
-    os.close(fd)
-    os.unlink(probe)
-    return True
-
-
-def ensure_numba_cache_dir() -> str | None:
-    """Point numba's on-disk cache at a writable folder before anything is compiled.
-
-    numba caches compiled functions next to the sources (``__pycache__``) or
-    in ``NUMBA_CACHE_DIR``; with a read-only package and no writable
-    ``NUMBA_CACHE_DIR`` it raises "cannot cache function … no locator
-    available". When ``NUMBA_CACHE_DIR`` is set but not writable, or unset and
-    the package folder is not writable, this sets it to
-    ``<tempdir>/dfa-numba-cache-<uid>``. Returns the folder chosen, or None
-    when nothing was changed.
-    """
-    current = os.environ.get("NUMBA_CACHE_DIR")
-    if current:
-        if _writable_dir(current):
-            return None
-    else:
-        pkg = os.path.dirname(os.path.abspath(__file__))
-        if _writable_dir(os.path.join(pkg, "__pycache__")):
-            return None
-    uid = os.getuid() if hasattr(os, "getuid") else "user"
-    fallback = os.path.join(tempfile.gettempdir(), f"dfa-numba-cache-{uid}")
-    if not _writable_dir(fallback):
-        fallback = tempfile.mkdtemp(prefix="dfa-numba-cache-")
-    os.environ["NUMBA_CACHE_DIR"] = fallback
-    cfg = sys.modules.get("numba.core.config")
-    if cfg is not None:  # numba was imported before dfa: update its parsed setting too
-        cfg.CACHE_DIR = fallback  # type: ignore[attr-defined]
-    return fallback

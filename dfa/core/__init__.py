@@ -1,7 +1,8 @@
 """The compiled numerical core of dfa: dimensionless, no units, nothing of dfa above it.
 
-Every numba kernel of the package lives here, and only here (the numba cache is keyed on this
-folder alone, see the Makefile). The modules import numpy, numba and one another only:
+Every numba kernel of the package lives here, and only here: importing this package first points numba's
+on-disk cache at one folder named after these sources (:mod:`~dfa.core.cache`), whatever starts dfa. The
+modules import numpy, numba and one another only:
 
 - :mod:`~dfa.core.exprel`: the relative exponentials φ₁, φ₂, ψ, χ and λ of the exact solution;
 - :mod:`~dfa.core.energy`: the pseudo-elastic energy H_c of the quantized spring (paper eq. 18);
@@ -10,8 +11,14 @@ folder alone, see the Makefile). The modules import numpy, numba and one another
 - :mod:`~dfa.core.pair` and :mod:`~dfa.core.batch`: many runs in one compiled call;
 - :mod:`~dfa.core.storage`: runs that record the storage function, for the soundness checks;
 - :mod:`~dfa.core.dfcore`: the quantizer's describing function (eq. 41) in compiled sums;
-- :mod:`~dfa.core.divdiff` and :mod:`~dfa.core.zohlag`: the ZOH pulse transfer with an amplifier lag.
+- :mod:`~dfa.core.divdiff` and :mod:`~dfa.core.zohlag`: the ZOH pulse transfer with an amplifier lag;
+- :mod:`~dfa.core.cache`: the cache folder of the compiled kernels (no kernel; imports no numba).
 
 Analyses (:mod:`dfa.analysis.simulation`, :mod:`dfa.analysis.describing`, …) call these with validated dimensionless
 inputs; nothing here checks its arguments.
 """
+
+from .cache import configure as _configure
+
+#: The folder numba caches these kernels in (:mod:`~dfa.core.cache`), set before any kernel is defined.
+CACHE_DIR = _configure()
