@@ -48,6 +48,7 @@ __all__ = [
     "check_output_file",
     "check_output_folder",
     "make_output_folder",
+    "FIGURE_SUFFIXES",
     "available_memory",
     "check_memory",
     "MEMORY_FRACTION",
@@ -63,6 +64,9 @@ MEMORY_FRACTION = 0.5
 FALLBACK_MEMORY = 2 * 1024**3
 
 _TMP_PREFIX = ".dfa-tmp-"
+
+#: The file types a figure is written as, by the suffix of its path (:func:`dfa.figures.save_figure`).
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
 def written_paths() -> list[str]:
@@ -175,33 +179,52 @@ def _check_path_text(flag: str, path: str) -> None:
         )
 
 
-def check_output_file(flag: str, path: str, suffix: str | None = None) -> str:
+def check_output_file(flag: str, path: str, suffix: str | tuple[str, ...] | None = None) -> str:
     """Refuse an output *file* path that cannot be written as given; return it.
 
     Rule: a non-empty path that does not end in a path separator, is not an
     existing folder or special file (``/dev/null``), whose folder exists, and
-    (when ``suffix`` is given) ends in ``suffix``: the file is written exactly
-    there, never at a derived name.
+    (when ``suffix`` is given) ends in ``suffix`` (one of them for a tuple, e.g.
+    :data:`FIGURE_SUFFIXES` for a figure): the file is written exactly there,
+    never at a derived name.
     """
+    suffixes = (suffix,) if isinstance(suffix, str) else tuple(suffix or ())
+    example = suffixes[0] if suffixes else ".csv"
     if not isinstance(path, str) or not path.strip():
-        raise DFAValueError(f"{flag} {path!r} is invalid: it must name a file; give e.g. {flag} out{suffix or '.csv'}")
+        raise DFAValueError(f"{flag} {path!r} is invalid: it must name a file; give e.g. {flag} out{example}")
     _check_path_text(flag, path)
     if path.endswith(("/", os.sep)) or os.path.isdir(path):
         raise DFAValueError(
-            f"{flag} {path!r} is a folder: it must name a file; give e.g. {flag} {os.path.join(path, 'out' + (suffix or '.csv'))}"
+            f"{flag} {path!r} is a folder: it must name a file; give e.g. {flag} {os.path.join(path, 'out' + example)}"
         )
     if os.path.exists(path) and not os.path.isfile(path):
         raise DFAValueError(f"{flag} {path!r} is not a regular file: it cannot be replaced; choose a file path")
-    if suffix is not None and not path.endswith(suffix):
-        raise DFAValueError(
-            f"{flag} {path!r} is invalid: the file name must end in {suffix}; give {flag} {path}{suffix}"
-        )
+    if suffixes and not path.endswith(suffixes):
+        raise DFAValueError(f"{flag} {path!r} is invalid: {_suffix_rule(path, suffixes)}; give {flag} "
+                            f"{os.path.splitext(path)[0] if len(suffixes) > 1 else path}{example}")  # fmt: skip
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise DFAValueError(f"{flag} {path!r} is invalid: folder {folder!r} does not exist; create it first")
     if not os.access(folder, os.W_OK):
         raise DFAValueError(f"{flag} {path!r} is invalid: folder {folder!r} is not writable; choose another folder")
     return path
+
+
+def _suffix_rule(path: str, suffixes: tuple[str, ...]) -> str:
+    """Why ``path`` is refused for its suffix, in words: which suffixes are accepted (and the one it has).
+
+    Examples
+    --------
+    >>> _suffix_rule("fig.jpg", FIGURE_SUFFIXES)
+    'the file name must end in .png, .pdf or .svg, not .jpg'
+    >>> _suffix_rule("map", (".npz",))
+    'the file name must end in .npz'
+    """
+    if len(suffixes) == 1:
+        return f"the file name must end in {suffixes[0]}"
+    has = os.path.splitext(path)[1]
+    listed = ", ".join(suffixes[:-1]) + f" or {suffixes[-1]}"
+    return f"the file name must end in {listed}" + (f", not {has}" if has else "")
 
 
 def _probe(folder: str) -> str | None:

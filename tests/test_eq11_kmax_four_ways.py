@@ -273,9 +273,9 @@ def test_cli_stiffness_plot_png(capsys, tmp_path):
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".dfa-tmp-")]
     code, _, err = run(
-        capsys, "stiffness", "--device", "impulse", "--velocity", "0.2", "--plot", str(tmp_path / "x.pdf")
+        capsys, "stiffness", "--device", "impulse", "--velocity", "0.2", "--plot", str(tmp_path / "x.jpg")
     )
-    assert code == 2 and err.count("\n") == 1 and "--plot" in err and ".png" in err
+    assert code == 2 and err.count("\n") == 1 and "--plot" in err and ".png, .pdf or .svg" in err
 
 
 def test_eq11_kmax_heavy_device_impacts_beyond_a_million_ticks():

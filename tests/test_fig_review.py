@@ -249,3 +249,65 @@ def test_fig5_a_diverged_run_is_shown_up_to_where_it_stopped():
     assert r.outcome == "unstable" and r.samples_run < 20_000
     ax = figures.trajectory_plot(r, period=1e-3)
     assert ax.get_xlim()[1] == pytest.approx(r.samples_run * 1e-3)
+
+
+# --- issue 26 §3: figures are written as .png, .pdf or .svg wherever a figure path is accepted ---------------------
+
+_MAGIC = {".png": b"\x89PNG\r\n\x1a\n", ".pdf": b"%PDF-", ".svg": b"<?xml"}
+
+
+@pytest.mark.parametrize("suffix", sorted(_MAGIC))
+def test_save_figure_writes_each_file_type_by_its_suffix(tmp_path, suffix):
+    ax = figures.regions_plot(dfa.passivity_criterion(0.2, 1.0, 2.0))
+    for target in (ax, ax.figure):  # an Axes (as the *_plot functions return) or its Figure; a Path or a str
+        path = figures.save_figure(
+            target, tmp_path / f"regions{suffix}" if target is ax else str(tmp_path / f"f{suffix}")
+        )
+        data = path.read_bytes()
+        assert data.startswith(_MAGIC[suffix]) and len(data) > 5000
+        if suffix == ".svg":
+            assert b"<svg" in data and b"</svg>" in data
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([f"regions{suffix}", f"f{suffix}"])
+
+
+@pytest.mark.parametrize("name", ["regions.jpg", "regions.PDF", "regions", "regions.png.eps"])
+def test_save_figure_refuses_another_suffix_and_writes_nothing(tmp_path, name):
+    ax = figures.regions_plot(dfa.passivity_criterion(0.2, 1.0, 2.0))
+    with pytest.raises(dfa.DFAValueError, match=r"must end in \.png, \.pdf or \.svg"):
+        figures.save_figure(ax, tmp_path / name)
+    assert list(tmp_path.iterdir()) == []
+
+
+def _cli(capsys, *argv):
+    from dfa.cli import main
+
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize("suffix", sorted(_MAGIC))
+def test_cli_plot_writes_each_file_type(capsys, tmp_path, suffix):
+    path = tmp_path / f"z{suffix}"
+    code, out, err = _cli(capsys, "zwidth", "--device", "impulse", "--velocity", "0.1", "--grid", "3", "--speeds",
+                          "1", "--jobs", "1", "--quiet", "--plot", str(path))  # fmt: skip
+    assert code == 0, err
+    assert path.read_bytes().startswith(_MAGIC[suffix]) and path.stat().st_size > 5000
+    assert [p.name for p in tmp_path.iterdir()] == [path.name]
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["zwidth", "--device", "impulse", "--velocity", "0.1", "--grid", "3"],
+        ["stiffness", "--device", "impulse", "--velocity", "0.2"],
+        ["contours", "--mu", "5", "--grid", "6"],
+        ["map", "--mu", "5", "--xi-dot", "1", "--grid", "3", "--out", "{tmp}/m.npz"],
+    ],
+)
+def test_cli_plot_refuses_another_suffix_before_any_work(capsys, tmp_path, argv):
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
+    code, out, err = _cli(capsys, *argv, "--plot", str(tmp_path / "f.jpg"))
+    assert code == 2 and err.count("\n") == 1
+    assert "--plot" in err and "must end in .png, .pdf or .svg, not .jpg" in err and "f.png" in err
+    assert list(tmp_path.iterdir()) == []

@@ -108,7 +108,7 @@ def test_cli_map_with_device_json_and_plot(capsys, tmp_path):
         (["map", "--mu", "100", "--velocity", "0.1"], "--velocity needs a device"),
         (["map", "--device", "impulse", "--velocity", "0.1", "--xi-dot", "1"], "cannot both be given"),
         (["map", "--device", "impulse"], "missing speeds"),
-        (["map", "--mu", "100", "--xi-dot", "1", "--plot", "x.pdf"], "--plot"),
+        (["map", "--mu", "100", "--xi-dot", "1", "--plot", "x.jpg"], "--plot"),
         (["contours", "--device", "re35"], "--stiffness"),
         (["contours", "--mu", "5", "--mass", "1"], "--mu cannot be combined"),
     ],

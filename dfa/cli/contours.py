@@ -6,7 +6,7 @@ import argparse
 import math
 from typing import TYPE_CHECKING, Any
 
-from .._io import check_output_file
+from .._io import FIGURE_SUFFIXES, check_output_file
 from ..render.text import flagged_text
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import add_progress_args, emit, mark_operating_point, progress, save_png, say, table
@@ -65,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
     if args.out is not None:
         check_output_file("--out", args.out, ".npz")
     if args.plot is not None:
-        check_output_file("--plot", args.plot, ".png")
+        check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
     mu, inp = plane_device(args)
     if not args.max_amplitude >= 1.0:
         raise UsageError(

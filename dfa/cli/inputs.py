@@ -278,7 +278,9 @@ def add_plane_args(p: argparse.ArgumentParser, speeds: bool) -> None:
             metavar="V",
             help="initial speeds in m/s (rotary: rad/s; needs a device), instead of --xi-dot; default: none",
         )
-    p.add_argument("--plot", metavar="FILE.png", help="write the figure to a PNG file (default: none)")
+    p.add_argument(
+        "--plot", metavar="FILE", help="write the figure to FILE: .png, .pdf or .svg by its suffix (default: none)"
+    )
 
 
 def check_plane(args: argparse.Namespace) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING
 
-from .._io import check_output_file
+from .._io import FIGURE_SUFFIXES, check_output_file
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import (
     MAP_TIME_LIMIT_HOURS,
@@ -136,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
 
     check_output_file("--out", args.out, ".npz")
     if args.plot is not None:
-        check_output_file("--plot", args.plot, ".png")
+        check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
     mu, inp = plane_device(args)
     speeds = _speeds(args, inp)
     _check_work(args, speeds)

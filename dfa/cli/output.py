@@ -64,13 +64,14 @@ def fmt(x: float | None, digits: int = 4) -> str:
 
 
 def save_png(flag: str, path: str, ax: Any) -> str:
-    """Write the figure of ``ax`` to ``path`` as PNG, atomically; close it."""
+    """Write the figure of ``ax`` to ``path`` (checked for ``flag``), atomically, as PNG, PDF or SVG by the path's
+    suffix (:func:`dfa.figures.save_figure`); close it."""
     import matplotlib.pyplot as plt
 
-    from .._io import atomic_open
+    from .._io import FIGURE_SUFFIXES, check_output_file
+    from ..figures import save_figure
 
-    with atomic_open(path, "wb") as fh:
-        ax.figure.savefig(fh, format="png", dpi=120, bbox_inches="tight")
+    save_figure(ax, check_output_file(flag, path, FIGURE_SUFFIXES))
     plt.close(ax.figure)
     return path
 

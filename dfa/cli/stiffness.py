@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING
 
-from .._io import check_output_file
+from .._io import FIGURE_SUFFIXES, check_output_file
 from ..formatting import text_table
 from ..model.wall import Wall
 from ..results.jsonable import explain_nulls
@@ -50,9 +50,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--plot",
-        metavar="FILE.png",
-        help="write the stiffness-speed chart (largest safe impact speed against K, four ways) to a PNG file "
-        "(default: none)",
+        metavar="FILE",
+        help="write the stiffness-speed chart (largest safe impact speed against K, four ways) to FILE: .png, "
+        ".pdf or .svg by its suffix (default: none)",
     )
 
 
@@ -77,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
     ctl = wall_from_args(args, dev, 1.0 if k is None else k)  # K is what is searched: any K states the elements
     wall = ctl if ctl is not None else Wall.of(1.0 if k is None else k, delay=args.delay)
     if args.plot is not None:
-        check_output_file("--plot", args.plot, ".png")
+        check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
     src = _source(args, inp)
     check_margin(args.margin)  # refused before the search, not after it
     ans = design_answer(dev, v, wall=wall, assess=k is not None, source="catalogue" if src == "catalogue" else "given")

@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from .._io import check_output_file
+from .._io import FIGURE_SUFFIXES, check_output_file
 from ..model.wall import Wall
 from .inputs import add_device_group, impact_speed, resolve
 from .output import add_progress_args, emit, fmt, progress, save_png, say, table
@@ -45,7 +45,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="impact speeds simulated, V/N ... V (default: 2)",
     )
     p.add_argument("--jobs", type=integer("--jobs"), default=-1, metavar="N", help="threads (default: -1, all cores)")
-    p.add_argument("--plot", metavar="FILE.png", help="write the Z-width figure to a PNG file (default: none)")
+    p.add_argument(
+        "--plot",
+        metavar="FILE",
+        help="write the Z-width figure to FILE: .png, .pdf or .svg by its suffix (default: none)",
+    )
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout (default: a text table)")
     add_progress_args(p)
 
@@ -77,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
     assert dev is not None
     check_filter_amplifier(args, dev)
     if args.plot is not None:
-        check_output_file("--plot", args.plot, ".png")
+        check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
     wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
                    amplifier_bandwidth=args.amplifier_bandwidth)  # fmt: skip
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
