@@ -26,7 +26,6 @@ from .wall_kernel import simulate_wall_kernel
 __all__ = ["batch_kernel", "batch_wall_kernel"]
 
 
-@njit(cache=True, nogil=True)
 def batch_kernel(
     mus: FloatArray,
     betas: FloatArray,
@@ -47,6 +46,9 @@ def batch_kernel(
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]`` and
     tail ``tail_lens[i]``; every run has the delay ``delay``. ``stats[i]`` (NSTATS), ``done[i]`` and
     ``rest[i]`` receive what :func:`dfa.core.kernel.simulate_kernel` returns for it (nothing recorded).
+
+    A Python function, not a kernel: :func:`dfa.core.pair.pair_kernel` compiles the loops of a delay only when
+    ``delay`` >= 1.
     """
     pair_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest)
 

@@ -64,7 +64,7 @@ from .kernel import (
     tail_extremes,
 )
 
-__all__ = ["advance_pair", "advance_pair_delayed", "pair_kernel"]
+__all__ = ["advance_pair", "advance_pair_delayed", "pair_delayed_kernel", "pair_free_kernel", "pair_kernel"]
 
 # integer state of a lane: run index (-1: none), segment, part (0: before the tail, 1: in it), next sample, range end,
 # the run's length and where its tail starts
@@ -294,7 +294,6 @@ def _book(
     return False
 
 
-@njit(cache=True, nogil=True)
 def pair_kernel(
     mus: FloatArray,
     betas: FloatArray,
@@ -315,14 +314,83 @@ def pair_kernel(
     Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]``
     and tail ``tail_lens[i]``; every run has the delay ``delay``. ``stats[i]`` (NSTATS), ``done[i]`` and
     ``rest[i]`` receive what :func:`dfa.core.kernel.simulate_kernel` returns for it, bit for bit (nothing recorded).
+
+    Not compiled itself: it calls :func:`pair_free_kernel` without a delay and :func:`pair_delayed_kernel` with
+    one, so that a command without a delay never compiles the delayed loops (numba compiles every branch of a
+    kernel, taken or not).
     """
+    if delay == 0:
+        pair_free_kernel(mus, betas, sigmas, x0s, v0s, ns, quantize, bounds, tail_lens, stats, done, rest)
+    else:
+        pair_delayed_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest)
+
+
+@njit(cache=True, nogil=True)
+def pair_free_kernel(
+    mus: FloatArray,
+    betas: FloatArray,
+    sigmas: FloatArray,
+    x0s: FloatArray,
+    v0s: FloatArray,
+    ns: IntArray,
+    quantize: bool,
+    bounds: FloatArray,
+    tail_lens: IntArray,
+    stats: FloatArray,
+    done: IntArray,
+    rest: IntArray,
+) -> None:
+    """:func:`pair_kernel` without a delay: only :func:`advance_pair` and :func:`dfa.core.kernel.advance_free` compiled."""
+    _pair_runs(mus, betas, sigmas, x0s, v0s, ns, 0, quantize, bounds, tail_lens, stats, done, rest, False)
+
+
+@njit(cache=True, nogil=True)
+def pair_delayed_kernel(
+    mus: FloatArray,
+    betas: FloatArray,
+    sigmas: FloatArray,
+    x0s: FloatArray,
+    v0s: FloatArray,
+    ns: IntArray,
+    delay: int,
+    quantize: bool,
+    bounds: FloatArray,
+    tail_lens: IntArray,
+    stats: FloatArray,
+    done: IntArray,
+    rest: IntArray,
+) -> None:
+    """:func:`pair_kernel` with a delay of ``delay`` >= 1 samples: only :func:`advance_pair_delayed` and
+    :func:`dfa.core.kernel.advance` compiled."""
+    _pair_runs(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest, True)
+
+
+@njit(cache=True, inline="always")
+def _pair_runs(
+    mus: FloatArray,
+    betas: FloatArray,
+    sigmas: FloatArray,
+    x0s: FloatArray,
+    v0s: FloatArray,
+    ns: IntArray,
+    delay: int,
+    quantize: bool,
+    bounds: FloatArray,
+    tail_lens: IntArray,
+    stats: FloatArray,
+    done: IntArray,
+    rest: IntArray,
+    delayed: bool,
+) -> None:
+    """The loop of :func:`pair_kernel`; ``delayed`` (a constant where it is inlined) picks the lanes' loops,
+    the other branches are pruned before numba compiles them (:func:`_advance_lanes`)."""
     lanes = np.full((2, NLANE), -1, dtype=np.int64)
     states = np.empty((2, NSTATE))
     hists = np.empty((2, delay + 1))
     # numpy's stubs type max(1, np.int64) as a comparable, not an int: the shape is ints at run time
     tails = np.empty((2, max(1, np.max(tail_lens)) if tail_lens.shape[0] else 1))  # type: ignore[type-var]
     consts = np.empty((2, 6))
-    nxt = 0
+    nxt = np.int64(0)  # not the literal 0: numba would compile _load once more for it
     while True:
         for w in range(2):  # an empty lane takes the next run
             if lanes[w, PT] < 0 and nxt < mus.shape[0]:
@@ -345,7 +413,7 @@ def pair_kernel(
                 nxt += 1
         if lanes[0, PT] < 0 and lanes[1, PT] < 0:
             return
-        res = _advance_lanes(lanes, states, hists, tails, consts, mus, betas, sigmas, delay, quantize, bounds)
+        res = _advance_lanes(lanes, states, hists, tails, consts, mus, betas, sigmas, delay, quantize, bounds, delayed)
         for w in range(2):
             i = lanes[w, PT]
             if i >= 0:
@@ -385,32 +453,37 @@ def _advance_lanes(
     delay: int,
     quantize: bool,
     bounds: FloatArray,
+    delayed: bool,
 ) -> tuple[tuple[int, int, float, bool], tuple[int, int, float, bool]]:
     """Advance the lanes in flight: both together (:func:`advance_pair`, :func:`advance_pair_delayed`), or the
-    only one alone (:func:`dfa.core.kernel.advance_free`, :func:`dfa.core.kernel.advance`)."""
+    only one alone (:func:`dfa.core.kernel.advance_free`, :func:`dfa.core.kernel.advance`).
+
+    ``delayed`` (``delay`` >= 1) is a constant where this is inlined: the branches test it alone (``if
+    delayed``), the form numba prunes before typing, so the loops of the other case are never compiled.
+    """
     a, b = lanes[0], lanes[1]
     ia, ib = a[PT], b[PT]
     if ia >= 0 and ib >= 0:
         run_a = (states[0], a[H], a[END], mus[ia], sigmas[ia], _kc(consts[0]), tails[0], bounds[ia], a[TAIL])
         run_b = (states[1], b[H], b[END], mus[ib], sigmas[ib], _kc(consts[1]), tails[1], bounds[ib], b[TAIL])
-        if delay == 0:
-            ha, wa, pa, fa, hb, wb, pb, fb = advance_pair(*run_a, *run_b, quantize)
-        else:
+        if delayed:
             ha, wa, pa, fa, hb, wb, pb, fb = advance_pair_delayed(*run_a, hists[0], *run_b, hists[1], delay, quantize)
+        else:
+            ha, wa, pa, fa, hb, wb, pb, fb = advance_pair(*run_a, *run_b, quantize)
         return (ha, wa, pa, fa), (hb, wb, pb, fb)
     w = 0 if ia >= 0 else 1
     lane = lanes[w]
     i = lane[PT]
-    if delay == 0:
-        h, why, peak = advance_free(
-            states[w], lane[H], lane[END], mus[i], sigmas[i], quantize, bounds[i], _kc(consts[w]), tails[w], lane[TAIL]
-        )
-    else:
+    if delayed:
         e = np.empty(0)
         h, why, peak = advance(
             states[w], hists[w], lane[H], lane[END], mus[i], betas[i], sigmas[i], delay, quantize, bounds[i], lane[TAIL],
             tails[w], False, False, e, e, np.empty((0, 4)),
         )  # fmt: skip
+    else:
+        h, why, peak = advance_free(
+            states[w], lane[H], lane[END], mus[i], sigmas[i], quantize, bounds[i], _kc(consts[w]), tails[w], lane[TAIL]
+        )
     one = (h, why, peak, True)
     other = (0, 0, 0.0, False)
     return (one, other) if w == 0 else (other, one)
