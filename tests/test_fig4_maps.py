@@ -109,7 +109,7 @@ def test_cli_simulate_device_preload_and_trace(capsys, tmp_path):
     )
     out = json.loads(capsys.readouterr().out)
     rows = list(csv.reader(trace.open()))
-    assert rows[0] == ["sample", "xi", "xi_dot"] and len(rows) == 502
+    assert rows[0][:4] == ["sample", "xi", "xi_dot", "phi"] and len(rows) == 502  # then t_s, x_m, … (a device)
     p = dfa.get_device("impulse").device.params(80.0)
     x0 = preload_position(p.mu, dfa.get_device("impulse").device.xi_dot(0.05))
     assert float(rows[1][1]) == pytest.approx(x0) and float(rows[1][2]) == 0.0

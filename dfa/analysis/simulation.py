@@ -560,53 +560,99 @@ class SimulationResult(Result):
         """Period of the measured cycle in samples, 2π/ω."""
         return None if not self.frequency else 2.0 * math.pi / self.frequency
 
-    def physical(self, device: Device, stiffness: float) -> dict[str, object]:
-        """Force step and frequency in physical units for a :class:`~dfa.model.device.Device` at stiffness K.
+    def applied_force(self) -> np.ndarray:
+        """The force φ_A on the device at each recorded sample instant, in units of KΔ (length samples + 1).
+
+        Entry h is the force the wall applies from instant h: the held command c_{h−d} (−⌊ξ(h − d)⌋ − ½ for the
+        paper's spring; −ξ(h − d) without quantization) over [h, h + 1), or with an amplifier lag its output at
+        the instant; the last entry is what the next sample would apply. Replayed from the recorded positions,
+        which are all the wall reads, by the simulator's own controller step
+        (:func:`dfa.core.wall_kernel.applied_forces`): bit for bit the force the run applied. NaN after a
+        divergence, like the trajectory.
+
+        Returns
+        -------
+        numpy.ndarray
+            The force φ_A in units of KΔ; ``dfa.model.units.force`` converts it to N (rotary N·m).
+
+        Raises
+        ------
+        DFAValueError
+            When the run was not recorded (``record=False``).
+        """
+        if self.xi is None:
+            raise DFAValueError(
+                "xi = None is invalid for applied_force(): the trajectory was not recorded; "
+                "run simulate(..., record=True)"
+            )
+        out = np.empty(self.xi.size)
+        xs = np.ascontiguousarray(self.xi, dtype=float)
+        wall_kernel.applied_forces(xs, self.delay, self.quantize, *_wall_args(self.wall), out)
+        out.flags.writeable = False
+        return out
+
+    def physical(self, device: Device | None, stiffness: float | None) -> dict[str, object]:
+        """The run in physical units for a :class:`~dfa.model.device.Device` at stiffness K (:mod:`dfa.model.units`).
 
         Parameters
         ----------
-        device : Device
-            The physical device.
-        stiffness : float
-            Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0.
+        device : Device or None
+            The physical device; None (dimensionless input): the same keys, every value None.
+        stiffness : float or None
+            Virtual spring stiffness K in N/m (rotary: N·m/rad), > 0 (ignored without a device).
 
         Returns
         -------
         dict
-            ``force_peak_to_peak_si`` (``force_peak_to_peak`` × KΔ, in N;
-            N·m for a rotary device), ``force_unit``, ``frequency_hz`` (ω/(2πT),
-            None when not measured) and ``amplitude_si`` (amplitude × Δ, m or rad),
-            and the unit-named keys of :mod:`dfa.model.units` (``amplitude_m``, ``period_s``,
-            ``force_peak_to_peak_n``, ``force_step_n``, …; rad and N·m for a rotary
-            device) with the device and K.
+            The device, K, the force step KΔ and the unit strings (:func:`~dfa.model.units.unit_context`); the
+            measured cycle (``amplitude_m``, ``force_amplitude_n``, ``frequency_hz``, ``period_s``,
+            ``force_peak_to_peak_n``; also as ``amplitude_si``, ``force_peak_to_peak_si``); time
+            (``duration_s``: the run's length, ``integrated_s``: the samples integrated, ``rest_time_s``,
+            ``suggested_duration_s``); one tick Δ (``tick_m``); the
+            initial and final states (``x0_m``, ``v0_m_s``, ``final_x_m``, ``final_v_m_s``). A rotary device
+            has rad, rad/s and N·m (``amplitude_rad``, ``v0_rad_s``, ``force_step_nm``, …). None where the
+            value is not measured (:meth:`null_reasons`) or non-finite.
 
         Raises
         ------
         DFAValueError, DFATypeError
-            If the stiffness is not a finite number > 0.
+            If the stiffness is not a finite number > 0 (with a device).
         """
-        k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
-        u = device.units
-        hz = None if not self.frequency else self.frequency / (2.0 * math.pi * device.period)
-        fpp = self.force_peak_to_peak * k * device.resolution
-        amp = self.amplitude * device.resolution
-        from ..model.units import physical_quantities, unit_context
+        from ..model.units import physical_quantities, position, seconds, speed, suffixes, unit_context
 
+        dev = device
+        k = None if dev is None else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+        ctx = unit_context(dev, k)
+        sx = suffixes(dev)
+        q = physical_quantities(
+            dev,
+            k,
+            amplitude=self.amplitude,
+            frequency=math.nan if self.frequency is None else self.frequency,
+            period=math.nan if self.period is None else self.period,
+            force_steps=self.force_peak_to_peak,
+        )
+
+        def fin(x: float | None) -> float | None:
+            return None if x is None or not math.isfinite(x) else float(x)
+
+        pos, vel = sx["position"], sx["velocity"]
         return {
-            **unit_context(device, k),
-            **physical_quantities(
-                device,
-                k,
-                amplitude=self.amplitude,
-                frequency=math.nan if self.frequency is None else self.frequency,
-                period=math.nan if self.period is None else self.period,
-                force_steps=self.force_peak_to_peak,
+            **ctx,
+            **q,
+            "force_peak_to_peak_si": q[f"force_peak_to_peak_{sx['force']}"],
+            "amplitude_si": q[f"amplitude_{pos}"],
+            f"tick_{pos}": fin(position(dev, 1.0)),
+            "duration_s": fin(seconds(dev, self.samples)),
+            "integrated_s": fin(seconds(dev, self.samples_run)),
+            "rest_time_s": None if self.rest_sample is None else fin(seconds(dev, self.rest_sample)),
+            "suggested_duration_s": (
+                None if self.suggested_samples is None else fin(seconds(dev, self.suggested_samples))
             ),
-            "force_peak_to_peak_si": fpp if math.isfinite(fpp) else None,
-            "force_unit": u["force"],
-            "frequency_hz": hz,
-            "amplitude_si": amp if math.isfinite(amp) else None,
-            "position_unit": u["position"],
+            f"x0_{pos}": fin(position(dev, self.xi0)),
+            f"v0_{vel}": fin(speed(dev, self.xi_dot0)),
+            f"final_x_{pos}": fin(position(dev, self.final_xi)),
+            f"final_v_{vel}": fin(speed(dev, self.final_xi_dot)),
         }
 
     def null_reasons(self) -> dict[str, str]:
@@ -636,8 +682,8 @@ class SimulationResult(Result):
         out = dict(by_source)
         for src, keys in physical.items():
             out.update(dict.fromkeys(keys, by_source[src]))
-        out["rest_sample"] = f"the run did not come to rest ({o.value})"
-        out["suggested_samples"] = (
+        out["rest_sample"] = out["rest_time_s"] = f"the run did not come to rest ({o.value})"
+        out["suggested_samples"] = out["suggested_duration_s"] = (
             "no longer run suggested"
             if o == "undecided"
             else f"the outcome ({o.value}) is decided: no longer run needed"

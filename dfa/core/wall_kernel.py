@@ -120,7 +120,7 @@ from .kernel import (
     tail_stats,
 )
 
-__all__ = ["rho", "lag_motion", "lag_sample", "simulate_wall_kernel", "serial_wall_kernel"]
+__all__ = ["rho", "lag_motion", "lag_sample", "simulate_wall_kernel", "serial_wall_kernel", "applied_forces"]
 
 # Taylor coefficients of ρ in x = −P: (n + 1)/(n + 2)!, n = 0 … 17 (first omitted term < 10⁻¹⁸ at |P| < ½)
 _CR = tuple((n + 1) / math.factorial(n + 2) for n in range(18))
@@ -370,6 +370,37 @@ def _same_loop(
 
 
 @njit(cache=True, inline="always")
+def _command(
+    x: float,
+    r_prev: float,
+    v_prev: float,
+    y: float,
+    pos: int,
+    ring: FloatArray,
+    h: int,
+    delay: int,
+    quantize: bool,
+    ctl: Controller,
+) -> tuple[float, float, float, float, int, float]:
+    """The controller at sample h (module docstring): read ξ(h), command c_h into the delay ring.
+
+    Returns the reading r_h, the difference v_h, the filtered y_h, the spring's part −(r_h + ½), the ring's
+    new position and the command applied now, c_{h−d}.
+    """
+    damping, pole, filtered, _ = ctl
+    r = math.floor(x) if quantize else x
+    vh = r - r_prev
+    if filtered:
+        y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
+    else:
+        y = vh
+    base = -(r + 0.5) if quantize else -r
+    ring[pos] = base - damping * y
+    pos = pos + 1 if pos < delay else 0
+    return r, vh, y, base, pos, ring[pos]
+
+
+@njit(cache=True, inline="always")
 def _sample(
     x: float,
     v: float,
@@ -393,16 +424,7 @@ def _sample(
     """
     mu, beta, sigma, delay, quantize = model
     damping, pole, filtered, lag = ctl
-    r = math.floor(x) if quantize else x
-    vh = r - r_prev
-    if filtered:
-        y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
-    else:
-        y = vh
-    base = -(r + 0.5) if quantize else -r
-    ring[pos] = base - damping * y
-    pos = pos + 1 if pos < delay else 0
-    c = ring[pos]
+    r, vh, y, base, pos, c = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl)
     if lag == 0.0:
         fa = c
     if v == 0.0:
@@ -506,6 +528,42 @@ def _start(st: FloatArray, ring: FloatArray, x0: float, v0: float, quantize: boo
         ring[i] = base0
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x0, v0, r0, 0.0, 0.0, base0
     st[CPOS], st[CTMIN], st[CTMAX], st[CPER] = 0.0, np.inf, -np.inf, 0.0
+
+
+@njit(cache=True, nogil=True)
+def applied_forces(
+    xs: FloatArray,
+    delay: int,
+    quantize: bool,
+    damping: float,
+    pole: float,
+    filtered: bool,
+    lag: float,
+    out: FloatArray,
+) -> None:
+    """The force φ_A on the device at each sample instant of a recorded run (units of KΔ) into ``out``.
+
+    ``xs`` holds ξ at the instants 0 … n (:func:`simulate_wall_kernel`'s ``rec_x``, or the spring kernel's:
+    the spring is this loop with β_B = 0, no filter, no lag). The controller reads only these positions, so
+    replaying it on them (the same :func:`_command` and lag update as the run) gives, bit for bit, the
+    command applied from instant h (c_{h−d}, held over [h, h + 1) without a lag) or, with a lag, the
+    amplifier's output at the instant; at h = n the force the next sample would apply.
+    """
+    ring, st = np.empty(delay + 1), np.empty(NCSTATE)
+    _start(st, ring, xs[0], 0.0, quantize)
+    r_prev, v_prev, y, fa, pos = st[CRP], st[CVP], st[CY], st[CFA], 0
+    ctl = (damping, pole, filtered, lag)
+    e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
+    for h in range(xs.shape[0]):
+        if not math.isfinite(xs[h]):  # past a divergence the record holds NaN: so does the force
+            out[h:] = np.nan
+            break
+        r_prev, v_prev, y, _, pos, c = _command(xs[h], r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl)
+        if lag == 0.0:
+            fa = c
+        out[h] = fa
+        if lag != 0.0:
+            fa = c + (fa - c) * e_lag
 
 
 @njit(cache=True, nogil=True)

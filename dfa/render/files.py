@@ -16,9 +16,13 @@ from ..results.jsonable import dumps
 __all__ = ["write_trace_csv", "write_validation", "write_soundness"]
 
 
-def write_trace_csv(result: Any, path: str | os.PathLike) -> Path:
-    """Write a recorded simulation (``record=True``) as CSV: ``sample,xi,xi_dot`` (ticks, ticks/sample).
+def write_trace_csv(result: Any, path: str | os.PathLike, device: Any = None, stiffness: float | None = None) -> Path:
+    """Write a recorded simulation (``record=True``) as CSV, one row per sample instant.
 
+    Columns ``sample,xi,xi_dot,phi``: ticks, ticks per sample, and the force on the device φ_A in units of KΔ
+    (:meth:`~dfa.analysis.simulation.SimulationResult.applied_force`). With a device (and K) the same in
+    physical units beside them (:func:`dfa.model.units.trace_columns`): ``t_s`` (sample × T), ``x_m`` (ξΔ),
+    ``v_m_per_s`` (ξ'Δ/T), ``force_n`` (φ_A·KΔ); rotary ``x_rad``, ``v_rad_per_s``, ``force_nm``.
     A run that stopped early (``unstable``) is written up to its last integrated sample
     (``samples_run``), without the NaN rows after it.
 
@@ -28,6 +32,10 @@ def write_trace_csv(result: Any, path: str | os.PathLike) -> Path:
         A run of :func:`dfa.simulate` with ``record=True``.
     path : path
         The CSV file; replaced atomically (the old file stays if writing fails).
+    device : Device, optional
+        The physical device, for the physical columns (none without it: dimensionless input).
+    stiffness : float, optional
+        K in N/m (rotary N·m/rad), with ``device``.
 
     Returns
     -------
@@ -35,15 +43,29 @@ def write_trace_csv(result: Any, path: str | os.PathLike) -> Path:
     """
     import numpy as np
 
-    xi, xi_dot = result.xi, result.xi_dot
+    from ..checks import check_positive
+    from ..model import units
+
+    xi, xi_dot, phi = result.xi, result.xi_dot, result.applied_force()
     # A run stopped early (diverged) holds NaN after its last sample: those rows are not data, leave them out.
     last = int(result.samples_run) + 1
     if last < xi.size and not (np.isfinite(xi[last:]).any() or np.isfinite(xi_dot[last:]).any()):
-        xi, xi_dot = xi[:last], xi_dot[:last]
+        xi, xi_dot, phi = xi[:last], xi_dot[:last], phi[:last]
+    sample = np.arange(xi.size)
+    names, cols = ["sample", "xi", "xi_dot", "phi"], [sample, xi, xi_dot, phi]
+    if device is not None:
+        stiffness = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+        c = units.trace_columns(device)
+        names += [c["time"], c["position"], c["velocity"], c["force"]]
+        cols += [
+            units.seconds(device, sample),
+            units.position(device, xi),
+            units.speed(device, xi_dot),
+            units.force(device, stiffness, phi),
+        ]
     with atomic_open(path, "w") as fh:
-        fh.write("sample,xi,xi_dot\n")
-        table = np.column_stack([np.arange(xi.size), xi, xi_dot])
-        np.savetxt(fh, table, delimiter=",", fmt=["%d", "%.17g", "%.17g"])
+        fh.write(",".join(names) + "\n")
+        np.savetxt(fh, np.column_stack(cols), delimiter=",", fmt=["%d"] + ["%.17g"] * (len(cols) - 1))
     return Path(path)
 
 
