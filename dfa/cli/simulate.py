@@ -6,7 +6,7 @@ import argparse
 
 from .._io import check_output_file
 from ..results.jsonable import explain_nulls
-from .inputs import add_device_args, resolve, speed
+from .inputs import Inputs, add_device_args, resolve, speed
 from .output import (
     SIMULATE_TIME_LIMIT,
     SIMULATION_BOUND,
@@ -21,6 +21,8 @@ from .parsing import UsageError, integer, number
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json, wall_params
 
 COMMAND = "simulate"
+#: Why a physical value is null in the JSON of a run without a device.
+NO_DEVICE = "dimensionless input: no device, so no physical units (positions in ticks, time in samples)"
 HELP = "exact simulation of the sampled, quantized, frictional loop (eq. 4-5)"
 EXAMPLE = "dfa simulate --device delta --velocity 0.5"
 
@@ -47,7 +49,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         action="store_true",
         help="linear spring φ = −ξ instead of the encoder staircase (default: with the encoder)",
     )
-    p.add_argument("--trace", metavar="FILE.csv", help="write sample, xi, xi_dot (ticks) to a CSV file (default: none)")
+    p.add_argument(
+        "--trace",
+        metavar="FILE.csv",
+        help="write sample, xi, xi_dot, phi (ticks, KΔ) and with a device t_s, x_m, v_m_per_s, force_n to a CSV "
+        "file (default: none)",
+    )
     add_progress_args(p)
     p.add_argument(
         "--force",
@@ -72,11 +79,11 @@ def _start(args: argparse.Namespace, mu: float, xd: float) -> tuple[float, float
     return x0, v0
 
 
-def _write_trace(path: str, r: object) -> None:
+def _write_trace(path: str, r: object, inp: Inputs) -> None:
     from ..render.files import write_trace_csv
 
     try:
-        write_trace_csv(r, path)
+        write_trace_csv(r, path, inp.device, inp.stiffness)
     except OSError as exc:
         raise UsageError(f"--trace {path!r} cannot be written: {exc.strerror}; choose a writable file") from None
 
@@ -110,19 +117,21 @@ def run(args: argparse.Namespace) -> int:
         progress=progress(args), bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND), wall=wp,
     )  # fmt: skip
     if args.trace is not None:
-        _write_trace(args.trace, r)
-    phys = r.physical(inp.device, inp.stiffness) if inp.device is not None and inp.stiffness is not None else None
+        _write_trace(args.trace, r, inp)
+    known = inp.device is not None and inp.stiffness is not None
+    phys = r.physical(inp.device, inp.stiffness) if known else r.physical(None, None)
     if args.json:
         d = r.to_dict()
-        if phys is not None:
-            d.update(phys)
-            d["velocity"] = vel
-            explain_nulls(d, r.null_reasons())
+        d.update(phys)
+        d["velocity"] = vel
+        if not known:  # the same keys, null: no device, no physical units
+            explain_nulls(d, dict.fromkeys(phys, NO_DEVICE) | {"velocity": NO_DEVICE})
+        explain_nulls(d, r.null_reasons())
         emit(wall_json(d, ctl, inp))
         return 0
     say(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
     print_wall(ctl, inp)
-    say(table(simulation_rows(r, x0, v0, args.preload, phys)))
+    say(table(simulation_rows(r, x0, v0, args.preload, phys if known else None)))
     if args.trace is not None:
         say(f"trace written to {args.trace}")
     return 0

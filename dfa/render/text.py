@@ -77,38 +77,70 @@ def check_rows(r: Any, quantized: bool, vu: str) -> list[list[str]]:
 
 
 def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | None) -> list[list[str]]:
-    """Rows of the `dfa simulate` table (ticks and samples; Hz and N when a device is known)."""
+    """Rows of the `dfa simulate` table: ticks, samples and KΔ, and beside them s, m (rad), m/s (rad/s), Hz and
+    N (N·m) when a device is known (``phys``: :meth:`~dfa.analysis.simulation.SimulationResult.physical`);
+    without one the last row says the output is dimensionless."""
+    u = None if phys is None or phys.get("device") is None else phys
+    pos = "" if u is None else u["position_unit"]
+    vel = "" if u is None else u["velocity_unit"]
+    px, vx = ("rad", "rad_s") if u is not None and u["rotary"] else ("m", "m_s")
+
+    def si(key: str, unit: str) -> str:
+        """`` = value unit`` of a physical key, empty without a device or a value."""
+        return "" if u is None or u.get(key) is None else f" = {_g(u[key])} {unit}"
+
     freq = "-" if r.frequency is None else f"{r.frequency:.4g} rad/sample (period {r.period:.4g} samples)"
-    if phys is not None and phys["frequency_hz"] is not None:
-        freq += f", {phys['frequency_hz']:.4g} Hz (period {phys['period_s']:.4g} s)"
-    amp_si = None if phys is None else phys.get("amplitude_si")
-    amp_unit = "" if phys is None else phys["position_unit"]
+    if u is not None and u["frequency_hz"] is not None:
+        freq += f", {u['frequency_hz']:.4g} Hz (period {u['period_s']:.4g} s)"
+    amp_si = None if u is None else u.get("amplitude_si")
+    samples = f"{r.samples_run} of {r.samples} integrated"
+    if u is not None:
+        samples += f" = {_g(u['integrated_s'])} s of {_g(u['duration_s'])} s"
     rows = [
         [
             "initial state",
-            f"ξ0 = {x0:.5g} ticks, ξ'0 = {v0:.5g} ticks/sample" + (" (spring preload)" if preload else ""),
+            f"ξ0 = {x0:.5g} ticks{si(f'x0_{px}', pos)}, ξ'0 = {v0:.5g} ticks/sample{si(f'v0_{vx}', vel)}"
+            + (" (spring preload)" if preload else ""),
         ],
         [
             "samples",
-            f"{r.samples_run} of {r.samples} integrated"
+            samples
             + (" (length from the loop's time scales)" if r.samples_auto else "")
             + (f", delay {r.delay}" if r.delay else ""),
         ],
         ["outcome", f"{r.outcome}: {OUTCOME_TEXT[r.outcome]}"],
     ]
     if r.suggested_samples is not None:
-        rows.append(["to decide", f"run longer: --samples {r.suggested_samples}"])
+        longer = "" if u is None else f" ({_g(u['suggested_duration_s'])} s)"
+        rows.append(["to decide", f"run longer: --samples {r.suggested_samples}{longer}"])
     rows += [
-        ["rest at sample", "-" if r.rest_sample is None else str(r.rest_sample)],
-        ["amplitude", _amplitude_text(r, amp_si, amp_unit)],
+        ["rest at sample", "-" if r.rest_sample is None else f"{r.rest_sample}{si('rest_time_s', 's')}"],
+        ["amplitude", _amplitude_text(r, amp_si, pos)],
         ["frequency", freq],
     ]
     if r.outcome in ("chatter", "oscillating", "undecided"):
         force = f"{_g(r.force_peak_to_peak)} KΔ" + ("" if r.quantize else " (linear spring)")
-        if phys is not None and phys["force_peak_to_peak_si"] is not None:
-            force += f" = {phys['force_peak_to_peak_si']:.4g} {phys['force_unit']}"
+        if u is not None and u["force_peak_to_peak_si"] is not None:
+            force += f" = {u['force_peak_to_peak_si']:.4g} {u['force_unit']}"
         rows.append(["force peak-to-peak", force + " (tail)"])
-    rows.append(["final state", f"ξ = {_g(r.final_xi)}, ξ' = {_g(r.final_xi_dot)}"])
+    rows.append(
+        [
+            "final state",
+            f"ξ = {_g(r.final_xi)}{' ticks' if u else ''}{si(f'final_x_{px}', pos)}, "
+            f"ξ' = {_g(r.final_xi_dot)}{' ticks/sample' if u else ''}{si(f'final_v_{vx}', vel)}",
+        ]
+    )
+    if u is None:
+        rows.append(["units", "dimensionless (no device): positions in ticks, time in samples, forces in KΔ"])
+    else:
+        step = u["force_step_nm" if u["rotary"] else "force_step_n"]
+        rows.append(
+            [
+                "units",
+                f"1 tick = Δ = {_g(u[f'tick_{px}'])} {pos}, 1 sample = T = "
+                f"{_g(u['sample_period_s'])} s, force step KΔ = {_g(step)} {u['force_unit']}",
+            ]
+        )
     return rows
 
 
