@@ -148,7 +148,13 @@ _EXTRA_LINES = (
 )
 
 
-def _legend_outside(ax, handles=None, fontsize: float = 7) -> None:
+#: Font size of every legend, points at the saved size (a figure is saved at its own size in inches, any dpi).
+LEGEND_FONTSIZE = 9.0
+#: Font size of secondary texts (physical axes, insets, contour labels, notes), points.
+SMALL_FONTSIZE = 8.0
+
+
+def _legend_outside(ax, handles=None, fontsize: float = LEGEND_FONTSIZE) -> None:
     """The legend to the right of the axes, never over the data."""
     kw = dict(fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, framealpha=0.9)
     if handles is None:
@@ -187,7 +193,7 @@ def regions_plot(
     legend : bool
         Legend to the right of the axes (default True).
     """
-    ax = _axes(ax, figsize=(7.4, 4.2))
+    ax = _axes(ax, figsize=(8.2, 4.4))
     line = result.critical_line
     bmax = max(beta_max, 1.2 * result.beta, 0.6, 1.2 * line.beta0)
     smax = max(sigma_max, 1.2 * result.sigma, 0.6)
@@ -247,11 +253,11 @@ def _physical_map_axes(ax, device, stiffness: float) -> None:
     u = device.units
     kt, kd = stiffness * device.period, stiffness * device.resolution
     top = ax.secondary_xaxis("top", functions=(lambda x: x * kt, lambda x: x / kt))
-    top.set_xlabel(f"damping b at K = {stiffness:.5g} {u['stiffness']} ({u['damping']})", fontsize=7)
-    top.tick_params(labelsize=7)
+    top.set_xlabel(f"damping b at K = {stiffness:.5g} {u['stiffness']} ({u['damping']})", fontsize=SMALL_FONTSIZE)
+    top.tick_params(labelsize=SMALL_FONTSIZE)
     right = ax.secondary_yaxis("right", functions=(lambda y: y * kd, lambda y: y / kd))
-    right.set_ylabel(f"Coulomb c ({u['coulomb']})", fontsize=7)
-    right.tick_params(labelsize=7)
+    right.set_ylabel(f"Coulomb c ({u['coulomb']})", fontsize=SMALL_FONTSIZE)
+    right.tick_params(labelsize=SMALL_FONTSIZE)
 
 
 def _speed_text(xi_dot: float, device) -> str:
@@ -305,7 +311,7 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
         cols = min(n, 2)
         rows = int(math.ceil(n / cols))
         fig, axs = plt.subplots(
-            rows, cols, figsize=(4.0 * cols + 2.3, 3.7 * rows), constrained_layout=True, squeeze=False
+            rows, cols, figsize=(4.0 * cols + 3.0, 3.8 * rows), constrained_layout=True, squeeze=False
         )
         axes = list(axs.ravel())
         for extra in axes[n:]:
@@ -462,7 +468,7 @@ def contour_plot(maps, axes=None, *, device=None, stiffness=None):
         cf = ax.contourf(bb, ss, maps.small_amplitude, levels=np.linspace(0, 1, 11), cmap="viridis")
         plt.colorbar(cf, ax=ax).set_label("amplitude M (encoder ticks)")
         cs = ax.contour(bb, ss, maps.small_frequency, levels=6, colors="w", linewidths=0.7)
-        ax.clabel(cs, fontsize=6, fmt="%.2f")
+        ax.clabel(cs, fontsize=SMALL_FONTSIZE, fmt="%.2f")
     ax.set_title(f"μ = {maps.mu:g}: small stable cycles (M < 1, eq. 42-43)\nwhite: ω (rad/sample)", fontsize=9)
     ax = axes[1]
     nice = np.array([1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100, 150, 200, 300, 500, 1000])
@@ -475,7 +481,7 @@ def contour_plot(maps, axes=None, *, device=None, stiffness=None):
         if np.isfinite(maps.large_amplitude_closed).any():
             ax.contour(bb, ss, maps.large_amplitude_closed, levels=levels, colors="w", linewidths=0.8, linestyles="--")
         ax.plot([], [], "w--", label="eq. 45 (D = 1), same levels")
-        ax.legend(fontsize=7, loc="upper right", facecolor="0.5", labelcolor="w")
+        ax.legend(fontsize=LEGEND_FONTSIZE, loc="upper right", facecolor="0.5", labelcolor="w")
     if np.isfinite(maps.large_frequency).any():
         ax.text(
             0.52,
@@ -483,7 +489,7 @@ def contour_plot(maps, axes=None, *, device=None, stiffness=None):
             f"exact: ω from {np.nanmin(maps.large_frequency):.4f}\nto {np.nanmax(maps.large_frequency):.4f} rad/sample\n"
             f"eq. 44: ω = {np.nanmax(maps.large_frequency_closed):.5f}",
             transform=ax.transAxes,
-            fontsize=7,
+            fontsize=SMALL_FONTSIZE,
             color="k",
         )
     ax.set_title(f"μ = {maps.mu:g}: large unstable cycles (exact D, eq. 41)", fontsize=9)
@@ -587,7 +593,7 @@ def nyquist_plot(nyq, ax=None, *, cycles=None, controller: str | None = None):
         The loop's wall controller in words (e.g. ``"B = 1 N·s/m, f_c = 200 Hz, d = 1"``), named in the
         title as "… loop with {controller}" in place of the delay (default: the title names the delay only).
     """
-    ax = _axes(ax, figsize=(7.6, 4.6))
+    ax = _axes(ax, figsize=(8.4, 4.6))
     pts = _cycle_points(nyq, cycles)
     _nyquist_draw(ax, nyq, pts, labels=True)
     if cycles is not None:
@@ -620,8 +626,8 @@ def _nyquist_inset(ax, nyq, pts, xlim) -> None:
     _nyquist_draw(ins, nyq, pts, labels=False)
     ins.set_xlim(cx - half, cx + half)
     ins.set_ylim(cy - half, cy + half)
-    ins.tick_params(labelsize=6)
-    ins.set_title("zoom on the cycles", fontsize=7)
+    ins.tick_params(labelsize=SMALL_FONTSIZE - 1)
+    ins.set_title("zoom on the cycles", fontsize=SMALL_FONTSIZE)
     ax.indicate_inset_zoom(ins, edgecolor="0.3")
 
 
@@ -665,7 +671,7 @@ def stiffness_plot(curve, ax=None):
     curve : StiffnessResponse
         From :func:`dfa.analysis.limits.closed_form.stiffness_response`.
     """
-    ax = _axes(ax, figsize=(8.6, 4.0))
+    ax = _axes(ax, figsize=(9.8, 4.2))
     u = curve.device.units
     d = getattr(curve, "delay", 0)
     ax.loglog(
@@ -705,7 +711,7 @@ def stiffness_speed_plot(chart, ax=None):
     chart : StiffnessSpeedChart
         From :func:`dfa.analysis.limits.speed_chart.stiffness_speed_chart`.
     """
-    ax = _axes(ax, figsize=(9.6, 4.6))
+    ax = _axes(ax, figsize=(11.0, 4.8))
     u = chart.device.units
     floor = float(chart.speeds[0]) / 2.0  # "not even the slowest simulated speed" is drawn here
 
@@ -759,11 +765,11 @@ def stiffness_speed_plot(chart, ax=None):
         textcoords="offset points",
         va="top",
         ha="left",
-        fontsize=7.5,
+        fontsize=SMALL_FONTSIZE,
         color="0.25",
     )
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    ax.legend(fontsize=LEGEND_FONTSIZE, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     return ax
 
 
@@ -821,11 +827,11 @@ def cycle_error_plot(validation, ax=None):
     ax.xaxis.set_minor_locator(NullLocator())
     ax.xaxis.set_major_formatter(ScalarFormatter())
     ax.axvline(8, color="0.4", ls="--", lw=0.8)
-    ax.text(8.3, floor * 1.5, "8 samples", fontsize=7, color="0.3")
+    ax.text(8.3, floor * 1.5, "8 samples", fontsize=SMALL_FONTSIZE, color="0.3")
     ax.set_xlabel("predicted period (samples)")
     ax.set_ylabel("|simulated/predicted − 1| (%)")
     ax.set_title("Describing function vs exact simulation, stable cycles", fontsize=9)
-    ax.legend(fontsize=7, loc="lower right")
+    ax.legend(fontsize=LEGEND_FONTSIZE, loc="lower right")
     ax.grid(True, which="both", alpha=0.3)
     return ax
 
@@ -846,10 +852,10 @@ def critical_speed_plot(validation, ax=None):
         vals = [r[key] if r[key] is not None else np.nan for r in rows]
         ax.bar(x + (i - 1.5) * w, vals, w, label=label, color=color)
     ax.set_xticks(x)
-    ax.set_xticklabels([r["name"] for r in rows], rotation=20, ha="right", fontsize=7)
+    ax.set_xticklabels([r["name"] for r in rows], rotation=20, ha="right", fontsize=SMALL_FONTSIZE)
     ax.set_ylabel("critical speed ξ'0 (ticks per sample)")
     ax.set_title("Critical impact speed, three ways", fontsize=9)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=LEGEND_FONTSIZE)
     return ax
 
 
@@ -892,7 +898,7 @@ def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
     """
     from .results.codes import BOUNDED, DIVERGES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
 
-    ax = _axes(ax, figsize=(6.4, 4.4))
+    ax = _axes(ax, figsize=(7.6, 4.6))
     u = zw.device.units
     ks, bs = np.asarray(zw.stiffness), np.asarray(zw.damping)
     shade = np.full(zw.outcome.shape, np.nan)

@@ -109,7 +109,7 @@ def main(out: str, quick: bool = False) -> dict:
         Line2D([], [], label="operating point", **POINT_STYLE),
         Line2D([], [], color="0.4", ls="--", lw=0.8, label="±1 tick"),
     ]
-    fig.legend(handles=handles, loc="outside lower center", ncol=4, fontsize=8)
+    fig.legend(handles=handles, loc="outside lower center", ncol=4, fontsize=9)
     path = os.path.join(out, "fig5_trajectories.png")
     fig.savefig(path, dpi=120)
     for r in results:

@@ -311,3 +311,53 @@ def test_cli_plot_refuses_another_suffix_before_any_work(capsys, tmp_path, argv)
     assert code == 2 and err.count("\n") == 1
     assert "--plot" in err and "must end in .png, .pdf or .svg, not .jpg" in err and "f.png" in err
     assert list(tmp_path.iterdir()) == []
+
+
+# --- issue 26 §4: legends readable at the saved size (>= 9 pt) ----------------------------------------------------
+
+
+def _validation_stub():
+    from types import SimpleNamespace
+
+    cycles = [
+        dict(model=m, stable=True, confirmed=True, period=p, frequency_error=e, amplitude_error=2 * e)
+        for m in ("half-delay", "zoh")
+        for p, e in ((3.0, 0.2), (12.0, 0.01))
+    ]
+    speeds = [dict(name=n, criterion=1.0, df_zoh=2.0, simulated=2.2, simulated_preload=2.1) for n in ("a", "b")]
+    return SimpleNamespace(cycles=cycles, speeds=speeds)
+
+
+def _impulse():
+    return dfa.get_device("impulse").device
+
+
+_FIGURES = {
+    "regions": lambda: figures.regions_plot(dfa.passivity_criterion(0.2, 1.0, 2.0), xi_dots=[5.0]),
+    "stiffness": lambda: figures.stiffness_plot(stiffness_response(_impulse(), stiffness=80.0)),
+    "speed chart": lambda: stiffness_speed_chart(_impulse(), stiffness=80.0, velocity=0.1, grid=3, speeds=2).plot(),
+    "nyquist": lambda: figures.nyquist_plot(
+        nyquist_locus_response(dfa.Params(2.0, 0.4, 0.1), amplitudes=[0.3, 3.0], model="zoh"),
+        cycles=limit_cycles(dfa.Params(2.0, 0.4, 0.1), model="zoh"),
+    ),
+    "map": lambda: figures.stability_map_plot(
+        stability_map(100.0, [1.0], grid=3, samples=500, n_jobs=1, progress=False), point=(0.1, 0.9)
+    )[0],
+    "contours": lambda: figures.contour_plot(contour_maps(5.0, grid=12))[1],
+    "zwidth": lambda: (
+        __import__("dfa.analysis.limits.zwidth", fromlist=["z_width"])
+        .z_width(_impulse(), 0.1, grid=3, speeds=1, n_jobs=1)
+        .plot(design_point=(0.0, 80.0))
+    ),
+    "cycle errors": lambda: figures.cycle_error_plot(_validation_stub()),
+    "critical speeds": lambda: figures.critical_speed_plot(_validation_stub()),
+}
+
+
+@pytest.mark.parametrize("name", sorted(_FIGURES))
+def test_every_legend_is_at_least_9_pt_at_the_saved_size(name):
+    fig = _FIGURES[name]().figure
+    legends = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None] + list(fig.legends)
+    assert legends, name
+    sizes = [t.get_fontsize() for leg in legends for t in leg.get_texts()]
+    assert sizes and min(sizes) >= 9.0, (name, min(sizes))
