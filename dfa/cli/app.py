@@ -19,14 +19,27 @@ from typing import Any
 
 from .._io import written_paths
 from ..errors import DFAError
-from . import check, contours, devices, limit_cycles, maps, params, report, simulate, stiffness, validate, zwidth
+from . import (
+    check,
+    contours,
+    devices,
+    limit_cycles,
+    maps,
+    params,
+    report,
+    require,
+    simulate,
+    stiffness,
+    validate,
+    zwidth,
+)
 from .parsing import Parser, UsageError
 
 __all__ = ["COMMANDS", "build_parser", "main", "on_signal", "package_version"]
 
 #: The subcommands, in the order of ``dfa --help``: each module has COMMAND, HELP, EXAMPLE, add_arguments, run.
 COMMANDS: tuple[ModuleType, ...] = (
-    devices, params, check, stiffness, simulate, maps, limit_cycles, contours, report, validate, zwidth,
+    devices, params, check, stiffness, require, simulate, maps, limit_cycles, contours, report, validate, zwidth,
 )  # fmt: skip
 
 

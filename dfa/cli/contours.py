@@ -7,7 +7,6 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
-from ..render.text import flagged_text
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import add_progress_args, emit, mark_operating_point, progress, save_png, say, table
 from .parsing import UsageError, integer, number
@@ -47,6 +46,8 @@ def _print(args: argparse.Namespace, c: ContourMaps, d: dict[str, Any], inp: Inp
     ]
     say(table(rows, ["family", "grid points"]))
     if c.flagged:
+        from ..render.text import flagged_text  # here: it loads the limit-cycle package
+
         say(f"flagged (NaN): {flagged_text(c)}")
     if inp is not None and inp.params is not None and inp.device is not None and inp.stiffness is not None:
         u = inp.device.units

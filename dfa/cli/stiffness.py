@@ -67,6 +67,7 @@ def run(args: argparse.Namespace) -> int:
     """K_max four ways for the spring or any wall (the wall's K is what is searched)."""
     from ..analysis.limits.kmax import design_answer
     from ..analysis.limits.recommend import check_margin, recommend_stiffness
+    from ..analysis.limits.require import damper_guidance
 
     inp = resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
@@ -82,6 +83,7 @@ def run(args: argparse.Namespace) -> int:
     check_margin(args.margin)  # refused before the search, not after it
     ans = design_answer(dev, v, wall=wall, assess=k is not None, source="catalogue" if src == "catalogue" else "given")
     rec = recommend_stiffness(ans, args.margin)
+    guide = damper_guidance(dev, wall, v) if wall.damping > 0 else None
     if args.plot is not None:
         from ..analysis.limits.speed_chart import stiffness_speed_chart
 
@@ -91,7 +93,11 @@ def run(args: argparse.Namespace) -> int:
         out = ans.to_dict()
         out["stiffness_source"] = src
         out["recommendation"] = rec.to_dict()
-        explain_nulls(out, {"stiffness_source": "no --stiffness given and no catalogue K"})
+        out["damper_guidance"] = None if guide is None else guide.to_dict()
+        explain_nulls(
+            out,
+            {"stiffness_source": "no --stiffness given and no catalogue K", "damper_guidance": "no virtual damper"},
+        )
         if args.plot is not None:
             out["plot"] = args.plot
         emit(wall_json(out, ctl, inp))
@@ -101,7 +107,7 @@ def run(args: argparse.Namespace) -> int:
     else:
         from ..render.answer import stiffness_screen
 
-        print("\n".join(stiffness_screen(ans, rec)))
+        print("\n".join(stiffness_screen(ans, rec, guide)))
     if args.plot is not None:
         print(f"stiffness-speed chart written to {args.plot}")
     return 0

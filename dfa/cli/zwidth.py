@@ -71,9 +71,16 @@ def _refuse(args: argparse.Namespace) -> None:
     check_jobs("--jobs", args.jobs)
 
 
+def _cell(value: float | None) -> str:
+    """A K_max cell: ``-`` where the limit is undefined (None or not finite)."""
+    return fmt(value if value is not None and math.isfinite(value) else None)
+
+
 def run(args: argparse.Namespace) -> int:
     """Compute the Z-width; print K_max(B) per method."""
+    from ..analysis.limits.require import damper_guidance
     from ..analysis.limits.zwidth import ZWIDTH_METHODS, z_width
+    from ..render.zwidth import criterion_damper_note, non_monotone_mark, non_monotone_notes
 
     _refuse(args)
     inp = resolve(args, dimensionless=False, need_stiffness=False)
@@ -95,9 +102,11 @@ def run(args: argparse.Namespace) -> int:
         emit(rec)
         return 0
     u = dev.units
-    cols = zip(*(zw.boundary(m) for m in ZWIDTH_METHODS), strict=True)
-    rows = [[fmt(float(b))] + [fmt(None if not math.isfinite(x) else float(x)) for x in col]
-            for b, col in zip(zw.damping, cols, strict=True)]  # fmt: skip
+    rows = [
+        [fmt(float(b))]
+        + [_cell(lim.value) + non_monotone_mark(lim.non_monotone) for lim in (zw.limits[m][i] for m in ZWIDTH_METHODS)]
+        for i, b in enumerate(zw.damping)
+    ]
     fc, bw = zw.wall.filter_cutoff, zw.wall.amplifier_bandwidth
     elements = f"delay {zw.delay}" + (f", velocity filter {fmt(fc)} Hz" if fc is not None else "")
     elements += f", amplifier {fmt(bw)} Hz" if bw is not None else ""
@@ -108,6 +117,13 @@ def run(args: argparse.Namespace) -> int:
         f"{zw.simulations} exact simulations on a {zw.stiffness.size} x {zw.damping.size} grid "
         f"(K {zw.stiffness[0]:.4g} to {zw.stiffness[-1]:.4g} {u['stiffness']}); simulated limits are grid values"
     )
+    for line in non_monotone_notes(zw, {m: COLUMNS[m] for m in ZWIDTH_METHODS}):
+        say(line)
+    first = next((float(b) for b in zw.damping if b > 0), None)
+    if first is not None:
+        note = criterion_damper_note(damper_guidance(dev, zw.wall.with_damping(first), zw.velocity), zw)
+        if note:
+            say(note)
     if zw.counterexamples:
         say(f"COUNTEREXAMPLES to the extended criterion: {len(zw.counterexamples)} (see --json)")
     if args.plot is not None:

@@ -13,10 +13,12 @@ from __future__ import annotations
 
 from ..analysis.limits.kmax import KMaxResult
 from ..analysis.limits.recommend import Recommendation
+from ..analysis.limits.require import DamperGuidance
 from ..analysis.limits.search import KLimit
 from ..formatting import WIDTH, fill, number, text_table
 from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
 from .limits import counterexample_lines, limit_tags, passive_text
+from .require import damper_line
 
 __all__ = ["WIDTH", "wrap", "recommendation_line", "stiffness_screen", "user_verdict"]
 
@@ -139,7 +141,7 @@ def _header(r: KMaxResult) -> list[str]:
     return [wrap(head), wrap(f"wall held fixed while K varies: {', '.join(parts)}")]
 
 
-def stiffness_screen(r: KMaxResult, rec: Recommendation) -> list[str]:
+def stiffness_screen(r: KMaxResult, rec: Recommendation, guidance: DamperGuidance | None = None) -> list[str]:
     """The default output of ``dfa stiffness``: every line at most :data:`WIDTH` characters.
 
     Parameters
@@ -148,6 +150,9 @@ def stiffness_screen(r: KMaxResult, rec: Recommendation) -> list[str]:
         K_max four ways.
     rec : Recommendation
         The recommended stiffness (:func:`dfa.analysis.limits.recommend.recommend_stiffness`).
+    guidance : DamperGuidance, optional
+        What would let the criterion prove a K with the wall's damper
+        (:func:`dfa.analysis.limits.require.damper_guidance`): one line when it proves none.
 
     Returns
     -------
@@ -160,6 +165,8 @@ def stiffness_screen(r: KMaxResult, rec: Recommendation) -> list[str]:
     lines += text_table(_method_rows(r, notes), ["method", "K", "rests on"]).splitlines()
     lines += [wrap(f"{row[0]}: {row[1]}") for row in counterexample_lines(r)]
     lines += [wrap(f"*{i} {note}", "    ") for i, note in enumerate(notes, 1)]
+    if guidance is not None and not guidance.proves_some_k:
+        lines.append(wrap(damper_line(guidance, r.device.units, r.wall.damping)))
     verdict = user_verdict(r)
     if verdict:
         lines += ["", verdict]

@@ -24,6 +24,7 @@ from ..errors import DFAValueError
 
 __all__ = [
     "StatusEnum",
+    "RequireStatus",
     "CriterionStatus",
     "CheckStatus",
     "StiffnessStatus",
@@ -383,3 +384,14 @@ class RecommendRule(StatusEnum):
         "no proof at this speed: the largest K no simulated impact diverged at, divided by the gain margin",
     )
     NONE = ("none", "no K to recommend: no proof, and no simulated stiffness free of divergence, at this speed")
+
+
+class RequireStatus(StatusEnum):
+    """What one parameter must be for a target stiffness, by one method (:class:`dfa.analysis.limits.require.Requirement`)."""
+
+    MET = ("met", "the target K holds now; the value is how far this parameter may move before it fails")
+    CHANGE = ("change", "the target K does not hold now; the value is the least change that makes it hold")
+    UNREACHABLE = ("unreachable", "no value of this parameter in the range searched makes the target K hold")
+    ANY = ("any", "the target K holds at every value of this parameter in the range searched")
+    NO_EFFECT = ("no_effect", "this method does not depend on this parameter")
+    NOT_COVERED = ("not_covered", "the criterion does not cover this wall (no proof either way)")

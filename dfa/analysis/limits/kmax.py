@@ -283,7 +283,7 @@ class KMaxResult(Result):
 
 
 # ----------------------------------------------------------------------------- the closed-form limits of a wall
-def _criterion_passes(dev: Device, wall: Wall, k: float, v: float) -> bool:
+def criterion_passes(dev: Device, wall: Wall, k: float, v: float) -> bool:
     """The criterion's verdict at stiffness k; a K whose groups are not representable is not proven passive."""
     try:
         return device_criterion(dev, wall.with_stiffness(k), v).passive
@@ -298,20 +298,20 @@ def wall_k_criterion(dev: Device, wall: Wall, v: float) -> float:
     (module docstring). Found on the criterion's own verdict, to a relative :data:`CRITERION_RTOL`.
     """
     lo, hi = 0.0, 1.0
-    while _criterion_passes(dev, wall, hi, v):  # the criterion fails for K large enough (σ₀ grows with K)
+    while criterion_passes(dev, wall, hi, v):  # the criterion fails for K large enough (σ₀ grows with K)
         lo, hi = hi, 2.0 * hi
         if hi > 1e300:
             raise DFAValueError("the criterion passes at every stiffness: check the device's friction values")
     if lo == 0.0:
         lo = hi
-        while lo > 1e-300 and not _criterion_passes(dev, wall, lo, v):
+        while lo > 1e-300 and not criterion_passes(dev, wall, lo, v):
             lo *= 0.5
-        if not _criterion_passes(dev, wall, lo, v):
+        if not criterion_passes(dev, wall, lo, v):
             return 0.0
         hi = 2.0 * lo
     while hi - lo > CRITERION_RTOL * hi:
         mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if _criterion_passes(dev, wall, mid, v) else (lo, mid)
+        lo, hi = (mid, hi) if criterion_passes(dev, wall, mid, v) else (lo, mid)
     return lo
 
 
@@ -322,19 +322,17 @@ def closed_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dic
     from K_criterion/2 to 8 × the largest closed-form bound; a wall, the criterion's verdict (none where no
     criterion covers it) and the linear loop with the wall, its grid from K_criterion/2 (else K_linear/2).
     """
-    from ..linear_wall import stable_stiffness
-
     p = wall.params(dev.period)
+    kl = linear_limit(dev, wall)
     if p.is_spring:
         d = p.delay
-        kc, kl = float(k_max_criterion(dev, v, d)), k_gil(dev, delay=d)
+        kc = float(k_max_criterion(dev, v, d))
         pub: dict[str, float | None] = dict(
             k_static=k_static(dev), k_colgate=k_colgate(dev, d), k_abbott_okamura=k_abbott_okamura(dev, d)
         )
         top = 8.0 * max(k_static(dev), k_colgate(dev, d), kl, kc)
         return _limit(kc, LimitStatus.NONE_PROVEN), _limit(kl, LimitStatus.NO_STABLE_K), pub, kc, top
     pub = dict(k_static=None, k_colgate=None, k_abbott_okamura=None)
-    kl = stable_stiffness(dev.mass, dev.damping, dev.period, wall).k_crit
     if p.not_covered() is not None:
         crit = KLimit(None, LimitStatus.NOT_COVERED)
         return crit, _limit(kl, LimitStatus.NO_STABLE_K), pub, kl, 8.0 * max(k_static(dev), kl)
@@ -342,6 +340,20 @@ def closed_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dic
     never = dev.coulomb / dev.resolution <= (1.0 - p.filter_pole) * wall.damping / dev.period
     crit = _limit(kc, LimitStatus.NEVER if never else LimitStatus.NONE_PROVEN)
     return crit, _limit(kl, LimitStatus.NO_STABLE_K), pub, kc, 8.0 * max(k_static(dev), kl, kc)
+
+
+def linear_limit(dev: Device, wall: Wall) -> float:
+    """K_linear: the top of the stable interval from K = 0 of the linear loop (no encoder, no Coulomb friction).
+
+    The spring (any delay) takes the exact bound :func:`~dfa.analysis.limits.closed_form.k_gil`; a wall, the
+    linear loop with its elements (:func:`~dfa.analysis.linear_wall.stable_stiffness`). 0 when no K is stable.
+    """
+    from ..linear_wall import stable_stiffness
+
+    p = wall.params(dev.period)
+    if p.is_spring:
+        return float(k_gil(dev, delay=p.delay))
+    return float(stable_stiffness(dev.mass, dev.damping, dev.period, wall).k_crit)
 
 
 def _limit(k: float, why: LimitStatus) -> KLimit:

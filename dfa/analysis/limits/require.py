@@ -1,0 +1,390 @@
+"""The inverse question: for a target stiffness at an impact speed, what must each parameter be?
+
+:func:`requirements` holds everything else fixed and, for each parameter (sample period T, encoder resolution
+Δ, Coulomb friction c, viscous damping b, virtual damper B, delay d) and each method that can answer it,
+finds the value at which the target K is exactly that method's limit:
+
+- ``criterion``: the passivity criterion (eq. 6, 11, extended to the wall's damper, filter and delay;
+  :func:`~dfa.analysis.limits.kmax.criterion_passes`) proves K passive at the speed: a proof;
+- ``linear``: K lies in the stable interval from K = 0 of the linear loop without encoder and Coulomb
+  friction (:func:`~dfa.analysis.limits.kmax.linear_limit`): necessary for stability, not sufficient.
+
+The describing function and the simulation answer the same question only by a search per value (run
+``dfa stiffness`` after changing the parameter).
+
+How a value is found: each method's verdict at K is evaluated with the parameter changed and everything else
+held. When K holds now, the parameter is moved away (the harmful way) until it fails; when it does not, the
+helpful way until it holds. The move doubles or halves (whole samples for the delay) over a stated range, and
+the change of verdict is bisected to a relative :data:`RTOL`; the value returned is the last one at which K
+holds, so at it the target K is the method's limit (``dfa stiffness`` there reads K). A parameter whose
+verdict changes more than once in the range is reported at the change nearest to today's value.
+
+The one-line guidance for a damper that leaves the criterion nothing to prove is :func:`damper_guidance`: the
+criterion needs c/Δ > (1 − a)B/T at every K (eq. 11 with the damper's terms), whatever K.
+
+Examples
+--------
+>>> from dfa.model.catalogue import get_device
+>>> dev = get_device("delta").device
+>>> req = requirements(dev, 1000.0, 0.1)
+>>> r = req.find("criterion", "coulomb")
+>>> r.status.value, r.bound
+('met', 'at_least')
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+from ...checks import check_choice, check_nonnegative, check_positive, check_type
+from ...errors import DFAValueError
+from ...model.device import Device
+from ...model.elements import Damper, Delay
+from ...model.wall import Wall
+from ...results.base import Result
+from ...results.status import RequireStatus
+from .kmax import criterion_passes, linear_limit
+
+__all__ = [
+    "PARAMETERS",
+    "METHODS",
+    "RTOL",
+    "HELPS",
+    "DamperGuidance",
+    "Requirement",
+    "Requirements",
+    "damper_guidance",
+    "requirements",
+]
+
+#: The parameters asked about, with their unit kind (a key of ``Device.units``; the delay in samples).
+PARAMETERS: dict[str, str] = {
+    "period": "period",
+    "resolution": "resolution",
+    "coulomb": "coulomb",
+    "damping": "damping",
+    "virtual_damping": "damping",
+    "delay": "samples",
+}
+#: The direction of each parameter that helps each method (+1: larger helps). The criterion: eq. 11 with the
+#: damper's terms (B costs damping and friction). The linear loop: damping of either kind helps (its stable B
+#: form an interval; the bound reported is its lower end when K holds, the least B that stabilises when not).
+HELPS: dict[str, dict[str, int]] = {
+    "criterion": {"period": -1, "resolution": -1, "coulomb": +1, "damping": +1, "virtual_damping": -1, "delay": -1},
+    "linear": {"period": -1, "resolution": -1, "coulomb": +1, "damping": +1, "virtual_damping": +1, "delay": -1},
+}
+#: The methods that answer the inverse question by evaluation, not by a search per value.
+METHODS = ("criterion", "linear")
+#: Relative resolution of a returned value (bisection on the method's own verdict).
+RTOL = 1e-9
+#: How far a parameter is moved: by factors of two up to this ratio of today's value (the delay: samples).
+RANGE_RATIO = 2.0**20
+DELAY_RANGE = 64
+#: Parameters the linear loop does not see (it has no encoder and no Coulomb friction).
+_LINEAR_BLIND = ("resolution", "coulomb")
+
+
+@dataclass(frozen=True)
+class Requirement(Result):
+    """What one parameter must be for the target K, by one method.
+
+    Attributes
+    ----------
+    method : str
+        ``"criterion"`` (a proof) or ``"linear"`` (the linear loop's stability: necessary, not sufficient).
+    parameter : str
+        A key of :data:`PARAMETERS`.
+    current : float
+        Today's value (SI units; the delay in samples).
+    required : float or None
+        The value at which the target K is exactly the method's limit (None: see the status).
+    bound : str
+        ``"at_most"`` or ``"at_least"``: which side of ``required`` keeps the target K.
+    status : RequireStatus
+        ``met`` (K holds now; ``required`` is how far the parameter may move), ``change`` (the least change that
+        makes K hold), ``unreachable``, ``any``, ``no_effect`` or ``not_covered``.
+    searched : (float, float)
+        The range of values evaluated.
+    """
+
+    method: str
+    parameter: str
+    current: float
+    required: float | None
+    bound: str
+    status: RequireStatus
+    searched: tuple[float, float] = (0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        check_choice("method", self.method, METHODS)
+        check_choice("parameter", self.parameter, tuple(PARAMETERS))
+        check_choice("bound", self.bound, ("at_most", "at_least"))
+        object.__setattr__(self, "status", RequireStatus.coerce(self.status))
+        has = self.status in (RequireStatus.MET, RequireStatus.CHANGE)
+        if (self.required is not None) != has:
+            raise DFAValueError(
+                f"required = {self.required!r} is invalid with status {self.status.value!r}: a value is given "
+                "exactly when the status is 'met' or 'change'; build it with requirements"
+            )
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why ``required`` may be null (JSON): the status's message."""
+        return {"required": self.status.message}
+
+
+@dataclass(frozen=True)
+class Requirements(Result):
+    """The inverse answer for one target stiffness and speed: each parameter by each method.
+
+    Attributes
+    ----------
+    device : Device
+    wall : Wall
+        The wall held fixed, at the target stiffness.
+    velocity : float
+        Impact speed, m/s (rotary: rad/s).
+    requirements : tuple of Requirement
+        One per (method, parameter), methods first.
+    status : RequireStatus
+        ``met`` when every method holds K today, else ``change``.
+    """
+
+    device: Device = field(metadata={"json": lambda d: d.to_dict()})
+    wall: Wall = field(metadata={"json": lambda w: w.to_dict()})
+    velocity: float
+    requirements: tuple[Requirement, ...]
+    status: RequireStatus
+
+    json_properties: ClassVar[tuple[str, ...]] = ("stiffness",)
+
+    @property
+    def stiffness(self) -> float:
+        """The target stiffness K, N/m (rotary: N·m/rad)."""
+        return self.wall.stiffness
+
+    def find(self, method: str, parameter: str) -> Requirement:
+        """The requirement of one method on one parameter.
+
+        Parameters
+        ----------
+        method : str
+            One of :data:`METHODS`.
+        parameter : str
+            A key of :data:`PARAMETERS`.
+
+        Returns
+        -------
+        Requirement
+        """
+        for r in self.requirements:
+            if (r.method, r.parameter) == (method, parameter):
+                return r
+        raise DFAValueError(f"({method!r}, {parameter!r}) is not answered here: give one of {METHODS} and a key "
+                            f"of {tuple(PARAMETERS)}")  # fmt: skip
+
+
+def _changed(dev: Device, wall: Wall, name: str, x: float) -> tuple[Device, Wall]:
+    """The device and wall with one parameter set to ``x`` (may raise DFAValueError: not representable)."""
+    if name in ("period", "resolution", "coulomb", "damping"):
+        values: dict[str, Any] = {name: x}
+        return dataclasses.replace(dev, **values), wall
+    kind: type = Damper if name == "virtual_damping" else Delay
+    others = tuple(e for e in wall.elements if not isinstance(e, kind))
+    new = kind(int(x)) if kind is Delay else kind(x)
+    return dev, Wall(wall.stiffness, others + ((new,) if new.value else ()))
+
+
+def _verdict(method: str, k: float, v: float) -> Callable[[Device, Wall], bool]:
+    """Whether K holds by ``method`` for a device and wall (a configuration that cannot be built does not)."""
+
+    def holds(dev: Device, wall: Wall) -> bool:
+        try:
+            if method == "criterion":
+                return criterion_passes(dev, wall, k, v)
+            return k < linear_limit(dev, wall)
+        except DFAValueError:
+            return False
+
+    return holds
+
+
+def _current(dev: Device, wall: Wall, name: str) -> float:
+    if name == "virtual_damping":
+        return wall.damping
+    if name == "delay":
+        return float(wall.delay)
+    return float(getattr(dev, name))
+
+
+def _scale(dev: Device, k: float, name: str) -> float:
+    """A starting value for a parameter that is 0 today: the size at which it meets K (eq. 11's terms)."""
+    return {"coulomb": 0.5 * k * dev.resolution, "damping": k * dev.period, "virtual_damping": k * dev.period}.get(
+        name, 1.0
+    )
+
+
+def _bisect(ok: Callable[[float], bool], good: float, bad: float, integer: bool) -> float:
+    """The last value at which ``ok`` holds between ``good`` (holds) and ``bad`` (fails)."""
+    while abs(bad - good) > 1 if integer else abs(bad - good) > RTOL * max(abs(good), abs(bad)):
+        mid = math.floor(0.5 * (good + bad)) if integer else 0.5 * (good + bad)
+        if mid in (good, bad):
+            break
+        good, bad = (mid, bad) if ok(mid) else (good, mid)
+    return good
+
+
+def _steps(x0: float, up: bool, integer: bool, scale: float) -> list[float]:
+    """The values tried from ``x0`` one way: doubling or halving (0 reached at the end going down)."""
+    if integer:
+        return [float(d) for d in (range(int(x0) + 1, int(x0) + DELAY_RANGE + 1) if up else range(int(x0) - 1, -1, -1))]
+    start = x0 if x0 > 0 else scale
+    n = int(math.log2(RANGE_RATIO))
+    vals = [start * 2.0**i for i in range(1, n + 1)] if up else [start * 0.5**i for i in range(1, n + 1)] + [0.0]
+    if up and x0 == 0:
+        vals = [start * 2.0**i for i in range(-n, n + 1)]
+    return vals
+
+
+def _one(dev: Device, wall: Wall, method: str, name: str, k: float, v: float) -> Requirement:
+    """One parameter by one method (module docstring)."""
+    helpful = HELPS[method][name]
+    bound = "at_least" if helpful > 0 else "at_most"
+    x0 = _current(dev, wall, name)
+    if method == "linear" and name in _LINEAR_BLIND:
+        return Requirement(method, name, x0, None, bound, RequireStatus.NO_EFFECT, (x0, x0))
+    holds = _verdict(method, k, v)
+    integer = name == "delay"
+
+    def ok(x: float) -> bool:
+        try:
+            return holds(*_changed(dev, wall, name, x))
+        except DFAValueError:
+            return False
+
+    now = ok(x0)
+    go_up = (helpful > 0) != now  # holds now: move the harmful way; else the helpful way
+    prev, tried = x0, [x0]
+    for x in _steps(x0, go_up, integer, _scale(dev, k, name)):
+        if x == 0.0 and name in ("period", "resolution"):
+            break
+        tried.append(x)
+        if ok(x) != now:
+            good, bad = (prev, x) if now else (x, prev)
+            value = _bisect(ok, good, bad, integer)
+            status = RequireStatus.MET if now else RequireStatus.CHANGE
+            return Requirement(method, name, x0, float(value), bound, status, (min(tried), max(tried)))
+        prev = x
+    status = RequireStatus.ANY if now else RequireStatus.UNREACHABLE
+    return Requirement(method, name, x0, None, bound, status, (min(tried), max(tried)))
+
+
+def requirements(
+    device: Device, stiffness: float, velocity: float, *, wall: Wall | None = None, methods: tuple[str, ...] = METHODS
+) -> Requirements:
+    """What each parameter must be for a target stiffness at an impact speed, by each method (module docstring).
+
+    Parameters
+    ----------
+    device : Device
+        The physical device.
+    stiffness : float
+        Target stiffness K in N/m (rotary: N·m/rad), > 0.
+    velocity : float
+        Impact speed in m/s (rotary: rad/s), >= 0.
+    wall : Wall, optional
+        The wall's elements held fixed (its stiffness is replaced by ``stiffness``); default the spring.
+    methods : tuple of str, optional
+        Some of :data:`METHODS` (default both).
+
+    Returns
+    -------
+    Requirements
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        On a stiffness that is not a finite number > 0, a negative speed, or an unknown method.
+    """
+    dev = check_type("device", device, Device, "build it with Device(...) or get_device(name).device")
+    k = check_positive("stiffness", stiffness, "give the target stiffness K in N/m")
+    v = check_nonnegative("velocity", velocity, "give the impact speed in m/s")
+    w = Wall(k) if wall is None else check_type("wall", wall, Wall, "build it with Wall.of(...)").with_stiffness(k)
+    ms = tuple(check_choice("methods", m, METHODS) for m in methods)
+    out = []
+    for m in ms:
+        if m == "criterion" and w.params(dev.period).not_covered() is not None:
+            out += [Requirement(m, n, _current(dev, w, n), None, "at_least" if HELPS[m][n] > 0 else "at_most",
+                                RequireStatus.NOT_COVERED) for n in PARAMETERS]  # fmt: skip
+            continue
+        out += [_one(dev, w, m, n, k, v) for n in PARAMETERS]
+    met = all(r.status in (RequireStatus.MET, RequireStatus.ANY, RequireStatus.NO_EFFECT) for r in out)
+    return Requirements(dev, w, v, tuple(out), RequireStatus.MET if met else RequireStatus.CHANGE)
+
+
+@dataclass(frozen=True)
+class DamperGuidance(Result):
+    """What would let the criterion prove anything with a virtual damper at a speed (K → 0, eq. 11 extended).
+
+    With the damper the criterion needs (b − B)|ẋ0| + c − (1 − a)BΔ/T > 0 and c − (1 − a)BΔ/T > 0 for some
+    K > 0 (the wall's criterion is the spring's with β − β_B and σ − (1 − a)β_B). Each field is the bound on one
+    parameter with the others held; None where no value of it helps.
+
+    Attributes
+    ----------
+    proves_some_k : bool
+        Whether some K > 0 is proven passive today.
+    max_virtual_damping : float
+        The largest B for which some K is proven, N·s/m.
+    min_coulomb : float
+        The least c, N.
+    max_resolution : float or None
+        The largest Δ, m (None: no Δ helps, the speed term alone fails).
+    """
+
+    proves_some_k: bool
+    max_virtual_damping: float
+    min_coulomb: float
+    max_resolution: float | None
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why ``max_resolution`` may be null (JSON)."""
+        return {"max_resolution": "no encoder resolution helps: (B − b)·speed exceeds the Coulomb friction"}
+
+
+def damper_guidance(device: Device, wall: Wall, velocity: float) -> DamperGuidance:
+    """The one-line guidance for a damper the criterion cannot prove anything with (:class:`DamperGuidance`).
+
+    Parameters
+    ----------
+    device : Device
+    wall : Wall
+        Its damper B and velocity filter (pole a = e^{−2π f_c T}; 0 without a filter) are read.
+    velocity : float
+        Impact speed, m/s (rotary: rad/s), >= 0.
+
+    Returns
+    -------
+    DamperGuidance
+
+    Examples
+    --------
+    >>> dev = Device(0.1, 0.005, 0.02, 1e-5, 1e-3)
+    >>> g = damper_guidance(dev, Wall.of(1.0, damping=0.5), 0.1)
+    >>> g.proves_some_k, round(g.max_virtual_damping, 4)
+    (False, 0.1864)
+    """
+    v = check_nonnegative("velocity", velocity, "give the impact speed in m/s")
+    one_a = 1.0 - wall.params(device.period).filter_pole
+    b, c, res, t, big_b = device.damping, device.coulomb, device.resolution, device.period, wall.damping
+    per_b = one_a * res / t  # the Coulomb friction one unit of B costs (eq. 11's (1 − a)BΔ/T)
+    max_b = min(c / per_b, (b * v + c) / (v + per_b))
+    min_c = big_b * per_b + max(0.0, (big_b - b) * v)
+    room = c - max(0.0, (big_b - b) * v)
+    max_res = None if room <= 0 or big_b == 0 else room * t / (one_a * big_b)
+    if big_b == 0:
+        max_res = math.inf
+    return DamperGuidance(big_b < max_b, max_b, min_c, max_res)

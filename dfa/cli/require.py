@@ -1,0 +1,51 @@
+"""``dfa require``: the inverse question, what each parameter must be for a target stiffness at a speed."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..model.wall import Wall
+from .inputs import add_device_args, resolve, speed
+from .output import emit
+from .parsing import UsageError
+from .walls import add_wall_args, print_wall, wall_from_args, wall_json
+
+COMMAND = "require"
+HELP = (
+    "the inverse question: what the sample period, encoder, friction, damping, virtual damper or delay must be "
+    "for a target stiffness at an impact speed"
+)
+EXAMPLE = "dfa require --device delta --stiffness 20000 --velocity 0.1"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The device, the target stiffness (--stiffness), one speed and the wall held fixed."""
+    add_device_args(p, dimensionless=False, speed=True)
+    add_wall_args(p)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Each parameter by the criterion (a proof) and by the linear loop (necessary), the others held."""
+    from ..analysis.limits.require import requirements
+
+    inp = resolve(args, dimensionless=False, need_stiffness=False)
+    dev = inp.device
+    assert dev is not None
+    if args.stiffness is None:
+        raise UsageError("dfa require needs the target stiffness: give --stiffness K in N/m (rotary: N·m/rad)")
+    k = float(args.stiffness)
+    _xd, v = speed(args, inp)
+    assert v is not None
+    ctl = wall_from_args(args, dev, k)
+    wall = ctl if ctl is not None else Wall.of(k, delay=args.delay)
+    req = requirements(dev, k, v, wall=wall)
+    if args.json:
+        emit(wall_json(req.to_dict(), ctl, inp))
+        return 0
+    from ..render.require import require_screen
+
+    lines = require_screen(req)
+    print(lines[0])
+    print_wall(ctl, inp)
+    print("\n".join(lines[1:]))
+    return 0
