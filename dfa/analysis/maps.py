@@ -97,6 +97,8 @@ if TYPE_CHECKING:
     import xarray as xr
     from matplotlib.axes import Axes
 
+    from .simulation import SimulationResult
+
 __all__ = ["StabilityMap", "stability_map", "load_map", "map_memory_bytes", "check_jobs", "MAP_BACKENDS"]
 
 #: Execution backends of :func:`stability_map` (module docstring; :mod:`dfa._parallel`).
@@ -232,6 +234,48 @@ class StabilityMap(PlaneGrid, Result):
         from ..figures import stability_map_plot
 
         return stability_map_plot(self, ax, **kwargs)
+
+    def simulate_point(self, beta: float, sigma: float, *, bound: float | None = None) -> tuple[SimulationResult, ...]:
+        """The runs the map would hold at (β, σ) were it a grid point: one per speed, with the map's settings.
+
+        Each is :func:`dfa.simulate` of (μ, β, σ) at the map's speed (or its spring preload), run length,
+        wall and quantization, with the default outcome rules; :func:`stability_map` runs its grid points the
+        same way (bit for bit). For a device's operating point, which rarely lies on the grid.
+
+        Parameters
+        ----------
+        beta, sigma : float
+            The point, dimensionless (>= 0).
+        bound : float, optional
+            Divergence bound (ticks); default :func:`stability_map`'s, beyond the fastest start's own travel.
+
+        Returns
+        -------
+        tuple of SimulationResult
+            One run per speed, in the order of :attr:`xi_dots` (nothing recorded).
+        """
+        from .simulation import simulate
+
+        if bound is None:
+            bound = divergence_bound(0.0, max(abs(v) for v in self.xi_dots), self.mu)
+        runs = []
+        for v in self.xi_dots:
+            x0, v0 = (preload_position(self.mu, v), 0.0) if self.preload else (0.0, v)
+            runs.append(
+                simulate(
+                    self.mu,
+                    beta,
+                    sigma,
+                    v0,
+                    self.samples,
+                    xi0=x0,
+                    quantize=self.quantize,
+                    record=False,
+                    bound=bound,
+                    wall=self.wall,
+                )  # fmt: skip
+            )
+        return tuple(runs)
 
     def to_xarray(self) -> xr.Dataset:
         """The map as an :class:`xarray.Dataset` with labelled dims ``xi_dot``, ``sigma``, ``beta``.

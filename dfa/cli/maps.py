@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import argparse
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
+from ..results.jsonable import explain_nulls
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import (
     MAP_TIME_LIMIT_HOURS,
@@ -27,6 +28,7 @@ from .walls import add_wall_args, print_wall, wall_from_args, wall_json, wall_pa
 
 if TYPE_CHECKING:
     from ..analysis.maps import StabilityMap
+    from ..analysis.simulation import SimulationResult
     from ..model.wall import Wall
 
 COMMAND = "map"
@@ -110,7 +112,57 @@ def _check_work(args: argparse.Namespace, speeds: list[float]) -> None:
     check_memory("--grid", args.grid, map_memory_bytes(args.grid, len(speeds)), fix)
 
 
-def _print(args: argparse.Namespace, m: StabilityMap, path: object, inp: Inputs | None, ctl: Wall | None) -> None:
+#: Why the map's JSON has no operating point without a device.
+NO_POINT = "dimensionless input (--mu): no device, so no operating point and no physical units"
+
+
+def _point_runs(m: StabilityMap, inp: Inputs | None, bound: float) -> tuple[SimulationResult, ...]:
+    """The device's operating point simulated at each speed with the map's settings (none without a device)."""
+    if inp is None or inp.params is None or inp.device is None:
+        return ()
+    return m.simulate_point(inp.params.beta, inp.params.sigma, bound=bound)
+
+
+def _point_note(r: SimulationResult, phys: dict[str, Any]) -> str:
+    """The outcome of one run at the operating point, with its time to rest or amplitude in physical units."""
+    if r.outcome == "rest":
+        return f"rest at {phys['rest_time_s']:.4g} s"
+    amp = phys["amplitude_si"]
+    return str(r.outcome.value) + ("" if amp is None else f", amplitude {amp:.3g} {phys['position_unit']}")
+
+
+def _point_json(m: StabilityMap, runs: tuple[SimulationResult, ...], inp: Inputs) -> list[dict[str, Any]]:
+    """Each speed's run at the operating point: outcome and measurements in ticks and in physical units."""
+    keep = ("outcome", "status_message", "amplitude", "frequency", "period", "rest_sample", "samples_run",
+            "force_peak_to_peak", "suggested_samples")  # fmt: skip
+    from ..model.units import speed, suffixes
+
+    out = []
+    for v, r in zip(m.xi_dots, runs, strict=True):
+        phys = r.physical(inp.device, inp.stiffness)
+        d = r.to_dict()
+        rec: dict[str, Any] = {"xi_dot": v, f"velocity_{suffixes(inp.device)['velocity']}": speed(inp.device, v)}
+        rec.update({k: d[k] for k in keep})
+        rec.update({k: phys[k] for k in phys if k not in _CONTEXT and not k.startswith(("x0_", "v0_", "final_"))})
+        explain_nulls(rec, r.null_reasons())
+        out.append(rec)
+    return out
+
+
+#: Keys of :meth:`SimulationResult.physical` the map's JSON states once (device_json), not per run.
+_CONTEXT = ("device", "rotary", "stiffness", "stiffness_unit", "force_unit", "position_unit", "velocity",
+            "velocity_unit", "sample_period_s", "force_step_n", "force_step_nm", "tick_m", "tick_rad",
+            "duration_s")  # fmt: skip
+
+
+def _print(
+    args: argparse.Namespace,
+    m: StabilityMap,
+    path: object,
+    inp: Inputs | None,
+    ctl: Wall | None,
+    runs: tuple[SimulationResult, ...] = (),
+) -> None:
     """The map's counts per outcome and speed, with the device's operating point."""
     if inp is not None and inp.params is not None and inp.device is not None:
         vu = inp.device.units["velocity"]
@@ -126,6 +178,15 @@ def _print(args: argparse.Namespace, m: StabilityMap, path: object, inp: Inputs 
     names = ("rest", "chatter", "oscillating", "unstable", "undecided")
     rows = [[f"{v:g}", *(c[k] for k in names)] for v, c in zip(m.xi_dots, m.counts(), strict=False)]
     say(table(rows, ["ξ'0", *names]))
+    if runs and inp is not None and inp.device is not None and inp.params is not None:
+        vu = inp.device.units["velocity"]
+        how = f"--samples {m.samples}" + (" --preload" if m.preload else "")
+        say(f"at the operating point β = {inp.params.beta:.5g}, σ = {inp.params.sigma:.5g} (as `dfa simulate {how}`):")
+        rows = [
+            [f"{v:g}", f"{inp.device.velocity(v):.4g}", _point_note(r, r.physical(inp.device, inp.stiffness))]
+            for v, r in zip(m.xi_dots, runs, strict=True)
+        ]
+        say(table(rows, ["ξ'0", f"speed ({vu})", "outcome"]))
     say(f"written to {path}")
 
 
@@ -141,29 +202,36 @@ def run(args: argparse.Namespace) -> int:
     speeds = _speeds(args, inp)
     _check_work(args, speeds)
     ctl = wall_from_args(args, *((inp.device, inp.stiffness) if inp is not None else (None, None)))
+    bound = divergence_bound(0.0, max(speeds), mu, SIMULATION_BOUND)
     m = stability_map(
         mu, speeds, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range), grid=args.grid,
         samples=args.samples, preload=args.preload, quantize=not args.no_quantization, n_jobs=args.jobs,
-        progress=progress(args), bound=divergence_bound(0.0, max(speeds), mu, SIMULATION_BOUND),
-        wall=wall_params(args, ctl, inp),
+        progress=progress(args), bound=bound, wall=wall_params(args, ctl, inp),
     )  # fmt: skip
     path = m.save(args.out)
+    runs = _point_runs(m, inp, bound)
     if args.plot is not None:
         from ..figures import stability_map_plot
 
         dev, k = (inp.device, inp.stiffness) if inp is not None else (None, None)
         axes = stability_map_plot(m, device=dev, stiffness=k)
-        mark_operating_point(axes, inp)
+        notes = [_point_note(r, r.physical(dev, k)) for r in runs] if runs else None
+        mark_operating_point(axes, inp, notes)
         save_png("--plot", args.plot, axes[0])
     if args.json:
         d = m.to_dict()
         d["out"] = str(path)
         d.update(device_json(inp, m.xi_dots))
+        if runs and inp is not None:
+            d["operating_point_runs"] = _point_json(m, runs, inp)
+        else:
+            d["operating_point"] = d["operating_point_runs"] = None
+            explain_nulls(d, dict.fromkeys(("operating_point", "operating_point_runs"), NO_POINT))
         if args.plot is not None:
             d["plot"] = args.plot
         emit(wall_json(d, ctl, inp))
         return 0
-    _print(args, m, path, inp, ctl)
+    _print(args, m, path, inp, ctl, runs)
     if args.plot is not None:
         say(f"figure written to {args.plot}")
     return 0

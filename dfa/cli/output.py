@@ -76,21 +76,30 @@ def save_png(flag: str, path: str, ax: Any) -> str:
     return path
 
 
-def mark_operating_point(axes: Any, inp: Inputs | None) -> None:
-    """Mark the device's (β, σ) at its K on each panel of a map or contour figure."""
+def mark_operating_point(axes: Any, inp: Inputs | None, notes: Sequence[str] | None = None) -> None:
+    """Mark the device's (β, σ) at its K on each panel of a map or contour figure, with the panel's note (the
+    simulated outcome there, for a map) after the label."""
     if inp is None or inp.params is None:
         return
     from ..figures import POINT_STYLE
 
-    for ax in axes:
-        ax.plot([inp.params.beta], [inp.params.sigma], **POINT_STYLE)
-        ax.annotate(
-            f"{inp.device.name if inp.device else ''}, K = {inp.stiffness:g}",
-            (inp.params.beta, inp.params.sigma),
+    b, s = inp.params.beta, inp.params.sigma
+    unit = f" {inp.device.units['stiffness']}" if inp.device is not None else ""
+    for k, ax in enumerate(axes):
+        note = f": {notes[k]}" if notes is not None else ""
+        ax.plot([b], [s], **POINT_STYLE)
+        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+        right, top = b > (x0 + x1) / 2, s > (y0 + y1) / 2  # the label toward the panel's middle, readable on any
+        ax.annotate(  # outcome's colour
+            f"{inp.device.name if inp.device else ''}, K = {inp.stiffness:g}{unit}{note}",
+            (b, s),
             textcoords="offset points",
-            xytext=(6, 6),
-            fontsize=7,
+            xytext=(-8 if right else 8, -8 if top else 8),
+            ha="right" if right else "left",
+            va="top" if top else "bottom",
+            fontsize=8,
             clip_on=True,
+            bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "0.5", "alpha": 0.85},
         )
 
 
