@@ -54,6 +54,7 @@ __all__ = [
     "nyquist_needs_zoom",
     "save_figure",
     "FIGURE_SUFFIXES",
+    "ZWIDTH_COLORS",
     "BETA_LABEL",
     "SIGMA_LABEL",
 ]
@@ -865,9 +866,17 @@ _ZWIDTH_STYLES: dict[str, tuple[str, dict[str, Any]]] = {
     "passivity": ("Colgate–Schenkel passivity (linear model)", dict(color="#762a83", ls="--", lw=1.4)),
     "criterion": ("extended criterion (proof, eq. 6)", dict(color="#1b7837", ls="-", lw=2.0)),
     "df": ("describing function", dict(color="#8c510a", ls=(0, (4, 1.5, 1, 1.5)), lw=1.4)),
-    "sim": ("simulation: no divergence", dict(color="#b2182b", ls="-", lw=1.4, marker=".", ms=3)),
-    "rest": ("simulation: comes to rest", dict(color="#f4a582", ls=":", lw=1.4)),
+    "sim": ("simulation: no divergence (grid value)", dict(color="#b2182b", ls="none", marker="o", ms=4.5)),
+    "rest": (
+        "simulation: comes to rest (grid value)",
+        dict(color="#333333", ls="none", marker="s", ms=5, mfc="none", mew=1.2),
+    ),
 }
+#: The Z-width's methods whose boundary is a value of the K grid: markers only, never joined by a line (a line
+#: between two B would claim values between grid stiffnesses, and one isolated grid point draws a spike).
+_ZWIDTH_GRID_VALUED = ("sim", "rest")
+#: Shade of each simulated outcome of the Z-width grid; "diverges" is dark as in the maps (never white on white).
+ZWIDTH_COLORS = {"rest": "#d1e5f0", "bounded": "#fddbc7", "diverges": "#a3a3a3", "undecided": "#e08214"}
 
 
 #: A Z-width method defined at a single B: a marker above the design point's star (zorder 6), never under it.
@@ -879,8 +888,11 @@ _STAR: dict[str, Any] = {"marker": "*", "ms": 16, "color": "k", "mfc": "gold", "
 def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
     """The Z-width of a device: B across, K up (log), one line per method, the simulated region shaded.
 
-    A method defined at a single B (often the criterion, at B = 0 only) is a marker drawn above
-    everything else, the design point's star included, so that neither hides the other.
+    The simulated boundaries are values of the K grid and are drawn as markers, one per B, never joined
+    (a line would claim stiffnesses between the grid's and draw an isolated grid value as a spike). A
+    method defined at a single B (often the criterion, at B = 0 only) is a marker drawn above
+    everything else, the design point's star included, so that neither hides the other. The shades are
+    :data:`ZWIDTH_COLORS`: where the grid's runs diverge is grey, distinct from the white of the page.
 
     Parameters
     ----------
@@ -902,7 +914,8 @@ def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
     u = zw.device.units
     ks, bs = np.asarray(zw.stiffness), np.asarray(zw.damping)
     shade = np.full(zw.outcome.shape, np.nan)
-    colours = {REST: "#d1e5f0", BOUNDED: "#fddbc7", DIVERGES: "#ffffff", UNDECIDED_POINT: "#e0e0e0"}
+    colours = {REST: ZWIDTH_COLORS["rest"], BOUNDED: ZWIDTH_COLORS["bounded"], DIVERGES: ZWIDTH_COLORS["diverges"],
+               UNDECIDED_POINT: ZWIDTH_COLORS["undecided"]}  # fmt: skip
     cmap = ListedColormap([colours[c] for c in (REST, BOUNDED, DIVERGES, UNDECIDED_POINT)])
     shade[:] = zw.outcome
     kedges = np.sqrt(ks[1:] * ks[:-1])
@@ -914,7 +927,8 @@ def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
         label, style = _ZWIDTH_STYLES[m]
         y = np.asarray(zw.boundary(m), dtype=float)
         if np.isfinite(y).any():
-            ax.plot(bs, y, label=label, **{**style, **(_LONE if np.isfinite(y).sum() < 2 else {})})
+            lone = {"zorder": _LONE["zorder"]} if m in _ZWIDTH_GRID_VALUED else _LONE
+            ax.plot(bs, y, label=label, **{**style, **(lone if np.isfinite(y).sum() < 2 else {})})
     ax.set_yscale("log")
     ax.set_ylim(kedges[0], kedges[-1])
     ax.set_xlim(bedges[0], bedges[-1])

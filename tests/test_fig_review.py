@@ -361,3 +361,52 @@ def test_every_legend_is_at_least_9_pt_at_the_saved_size(name):
     assert legends, name
     sizes = [t.get_fontsize() for leg in legends for t in leg.get_texts()]
     assert sizes and min(sizes) >= 9.0, (name, min(sizes))
+
+
+# --- issue 26 §4: the Z-width's "diverges" is visible, its grid values are markers ---------------------------------
+
+
+def _luminance(colour) -> float:
+    """Relative luminance (WCAG) of a matplotlib colour, 0 (black) to 1 (white)."""
+    rgb = np.array(matplotlib.colors.to_rgb(colour))
+    lin = np.where(rgb <= 0.03928, rgb / 12.92, ((rgb + 0.055) / 1.055) ** 2.4)
+    return float(lin @ [0.2126, 0.7152, 0.0722])
+
+
+def _contrast(a, b) -> float:
+    la, lb = sorted((_luminance(a), _luminance(b)))
+    return (lb + 0.05) / (la + 0.05)
+
+
+@pytest.fixture(scope="module")
+def small_zwidth():
+    from dfa.analysis.limits.zwidth import z_width
+
+    return z_width(_impulse(), 0.1, grid=4, speeds=1, n_jobs=1)
+
+
+def test_zwidth_diverges_shade_stands_out_from_the_page_and_the_legend(small_zwidth):
+    ax = small_zwidth.plot()
+    legend = ax.get_legend()
+    patch = next(h for h, t in zip(legend.legend_handles, legend.get_texts(), strict=True)
+                 if t.get_text() == "simulated: diverges")  # fmt: skip
+    face = patch.get_facecolor()
+    for background in (legend.get_frame().get_facecolor(), ax.get_facecolor(), ax.figure.get_facecolor()):
+        assert _contrast(face, background) >= 1.5, (face, background)  # was white on white (contrast 1)
+    mesh = next(c for c in ax.collections if isinstance(c, matplotlib.collections.QuadMesh))
+    shades = {matplotlib.colors.to_hex(mesh.cmap(i)) for i in range(mesh.cmap.N)}
+    assert shades == {c.lower() for c in figures.ZWIDTH_COLORS.values()}  # the grid is drawn in these shades
+    assert matplotlib.colors.to_hex(face) == figures.ZWIDTH_COLORS["diverges"]  # and the legend says which
+
+
+def test_zwidth_grid_valued_boundaries_are_markers_never_a_joined_line(small_zwidth):
+    ax = small_zwidth.plot()
+    grid_valued = [ln for ln in ax.get_lines() if ln.get_label().startswith("simulation:")]
+    assert {ln.get_label() for ln in grid_valued} == {
+        "simulation: no divergence (grid value)",
+        "simulation: comes to rest (grid value)",
+    }
+    for ln in grid_valued:
+        assert ln.get_linestyle() == "None" and ln.get_marker() not in (None, "None", "", " "), ln.get_label()
+    linear = next(ln for ln in ax.get_lines() if ln.get_label() == "exact linear bound")
+    assert linear.get_linestyle() == "-"  # a closed form stays a line
