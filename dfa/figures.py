@@ -603,30 +603,65 @@ def nyquist_plot(nyq, ax=None, *, cycles=None, controller: str | None = None):
                 ax.plot([], [], "o", mfc="k" if stable else "w", mec="k", label=name)
         if not pts:
             ax.plot([], [], " ", label="no limit cycle predicted")
-    zoom = nyquist_needs_zoom(nyq, cycles)
-    xlim, ylim = _nyquist_limits(nyq, pts, room=zoom)  # with a zoom, the data in the lower half, the inset above
+    xlim, ylim = _nyquist_limits(nyq, pts)
+    window = _inset_window(nyq, pts, xlim, ylim) if nyquist_needs_zoom(nyq, cycles) else None
+    if window is not None:  # the data in the lower half, the inset above it
+        ylim = (ylim[0], ylim[0] + 2.0 * (ylim[1] - ylim[0]))
     ax.set_xlim(*xlim)
     ax.set_ylim(*ylim)
     ax.set_xlabel("Re L (force ticks per position tick)")
     ax.set_ylabel("Im L (force ticks per position tick)")
     dl = f" with {controller}" if controller else (f", delay {nyq.delay}" if nyq.delay else "")
     ax.set_title(f"Nyquist, {MODEL_NAMES.get(nyq.model, nyq.model)} loop{dl}", fontsize=9)
-    if zoom:
-        _nyquist_inset(ax, nyq, pts, xlim)
+    if window is not None:
+        _nyquist_inset(ax, nyq, pts, window)
     _legend_outside(ax)
     return ax
 
 
-def _nyquist_inset(ax, nyq, pts, xlim) -> None:
-    """Zoom on the crossings (upper left of the axes), linked to the region it shows."""
-    xs = np.array([p.real for p, _s, _m in pts])
-    ys = np.array([p.imag for p, _s, _m in pts])
-    half = max(0.65 * (xs.max() - xs.min()), 0.65 * (ys.max() - ys.min()), 0.02 * (xlim[1] - xlim[0]))
-    cx, cy = (xs.min() + xs.max()) / 2, (ys.min() + ys.max()) / 2
+#: Largest share of the main axes' data range (each direction) an inset may show: beyond it, it is no zoom.
+_MAX_ZOOM_SHARE = 0.45
+
+
+def _inset_window(nyq, pts, xlim, ylim) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """The region the Nyquist inset shows: around every crossing, or only the cycles below one tick when the
+    crossings span too much, with the curves of those cycles near them; inside the main axes' data range
+    (``xlim``, ``ylim``) and at most :data:`_MAX_ZOOM_SHARE` of it in each direction. None when even the cycles
+    below one tick span more (no zoom to show)."""
+    (x0, x1), (y0, y1) = xlim, ylim
+    wx, wy = x1 - x0, y1 - y0
+
+    def half_width(group) -> float:
+        xs = [p.real for p, _s, _m in group]
+        return max(0.65 * (max(xs) - min(xs)), 0.04 * wx)
+
+    targets = pts if 2.0 * half_width(pts) <= _MAX_ZOOM_SHARE * wx else [p for p in pts if p[2] < 1.0]
+    if not targets or 2.0 * half_width(targets) > _MAX_ZOOM_SHARE * wx:
+        return None
+    hx = half_width(targets)
+    xs = np.array([p.real for p, _s, _m in targets])
+    ys = np.array([p.imag for p, _s, _m in targets])
+    cx = float(np.clip((xs.min() + xs.max()) / 2, x0 + hx, x1 - hx))
+    cy = (ys.min() + ys.max()) / 2
+    amps = np.asarray(nyq.amplitudes, dtype=float)
+    near = [0.65 * (ys.max() - ys.min()), 0.04 * wy]
+    for _p, _s, m in targets:  # the target cycles' own curves within the window's x range: their loop near the cycle
+        if amps.size and np.isfinite(amps).any():
+            curve = np.asarray(nyq.curves[int(np.nanargmin(np.abs(amps - m)))])
+            inside = curve[np.isfinite(curve) & (np.abs(curve.real - cx) <= hx)]
+            near.append(1.1 * float(np.abs(inside.imag - cy).max()) if inside.size else 0.0)
+    hy = min(max(near), _MAX_ZOOM_SHARE * wy / 2.0)
+    cy = float(np.clip(cy, y0 + hy, y1 - hy))
+    return (cx - hx, cx + hx), (cy - hy, cy + hy)
+
+
+def _nyquist_inset(ax, nyq, pts, window) -> None:
+    """Zoom on ``window`` (:func:`_inset_window`, inside the main axes) in an inset at the upper left of the axes,
+    linked to the region it shows."""
     ins = ax.inset_axes([0.12, 0.56, 0.4, 0.36])
     _nyquist_draw(ins, nyq, pts, labels=False)
-    ins.set_xlim(cx - half, cx + half)
-    ins.set_ylim(cy - half, cy + half)
+    ins.set_xlim(*window[0])
+    ins.set_ylim(*window[1])
     ins.tick_params(labelsize=SMALL_FONTSIZE - 1)
     ins.set_title("zoom on the cycles", fontsize=SMALL_FONTSIZE)
     ax.indicate_inset_zoom(ins, edgecolor="0.3")

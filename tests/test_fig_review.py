@@ -410,3 +410,54 @@ def test_zwidth_grid_valued_boundaries_are_markers_never_a_joined_line(small_zwi
         assert ln.get_linestyle() == "None" and ln.get_marker() not in (None, "None", "", " "), ln.get_label()
     linear = next(ln for ln in ax.get_lines() if ln.get_label() == "exact linear bound")
     assert linear.get_linestyle() == "-"  # a closed form stays a line
+
+
+# --- issue 26 §4: the Nyquist inset zooms in, inside the main axes, its connectors inside the figure --------------
+
+
+def _assert_inset_zooms_in(ax):
+    (ins,) = ax.child_axes
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    (i0, i1), (j0, j1) = ins.get_xlim(), ins.get_ylim()
+    assert x0 <= i0 < i1 <= x1 and y0 <= j0 < j1 <= y1, ((i0, i1, j0, j1), (x0, x1, y0, y1))
+    assert (i1 - i0) <= 0.5 * (x1 - x0) and (j1 - j0) <= 0.5 * (y1 - y0)  # a zoom in both directions
+    r = _boxes(ax.figure)
+    page = ax.figure.bbox
+    (indicator,) = [c for c in ax.get_children() if type(c).__name__ == "InsetIndicator"]
+    for c in indicator.connectors:
+        if c.get_visible():
+            box = c.get_window_extent(r)
+            assert page.x0 - 1 <= box.x0 and box.x1 <= page.x1 + 1 and page.y0 - 1 <= box.y0 and box.y1 <= page.y1 + 1
+    return ins
+
+
+def test_fig6_controller_nyquist_inset_zooms_in_on_the_sub_tick_cycle():
+    """The Toolhandle with B = 5 N·s/m, f_c = 200 Hz, d = 1: a 0.07-tick stable cycle near the origin and a 25-tick
+    unstable one at −1; the inset was a square in data units, taller than the main axes (zoomed out), its
+    connectors running off the figure."""
+    from dfa.model.wall import Wall
+
+    dev = dfa.get_device("toolhandle").device
+    wp = Wall.of(3125.0, damping=5.0, delay=1, filter_cutoff=200.0).params(dev.period)
+    p = dev.params(3125.0)
+    res = limit_cycles(p, model="zoh", wall=wp)
+    assert sorted(c.amplitude < 1.0 for c in res.cycles) == [False, True]
+    nyq = nyquist_locus_response(
+        p,
+        amplitudes=[c.amplitude for c in res.cycles],
+        model="zoh",
+        wall=wp,
+        locus_amplitude=np.geomspace(0.05, 60, 400),
+    )
+    ax = figures.nyquist_plot(nyq, cycles=res, controller="B = 5 N·s/m, f_c = 200 Hz, d = 1")
+    ins = _assert_inset_zooms_in(ax)
+    small = next(c for c in res.cycles if c.amplitude < 1.0)
+    pt = nyq.loop_at(small.frequency, small.amplitude)
+    assert ins.get_xlim()[0] < pt.real < ins.get_xlim()[1] and ins.get_ylim()[0] < pt.imag < ins.get_ylim()[1]
+
+
+def test_fig6_paper_nyquist_inset_zooms_in_on_every_crossing():
+    p = dfa.Params(mu=2.0, beta=0.4, sigma=0.1)
+    res = limit_cycles(p, model="zoh")
+    nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh")
+    _assert_inset_zooms_in(figures.nyquist_plot(nyq, cycles=res))
