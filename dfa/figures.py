@@ -267,17 +267,63 @@ def _speed_text(xi_dot: float, device) -> str:
     return f"{device.velocity(xi_dot):.3g} {device.units['velocity']} (ξ'0 = {xi_dot:.3g})"
 
 
-def _map_critical_line(ax, smap, v: float, bb: np.ndarray) -> tuple[float, float] | None:
+def _map_critical_line(
+    ax, smap, v: float, bb: np.ndarray, ylim: tuple[float, float]
+) -> tuple[float, float, str] | None:
     """Draw the critical line of one map panel (``smap.critical_line(v)``: eq. 10, or eq. 10 extended to the map's
-    controller); with an amplifier lag no criterion covers the loop and nothing is drawn (None). Returns the corner."""
+    wall); with an amplifier lag no criterion covers the loop and nothing is drawn (None). Returns the corner
+    (β₀, σ₀) and where the line lies: ``"in view"``, ``"above"`` or ``"below"`` the panel (``ylim``)."""
     line = smap.critical_line(v)
     if line is None:
         return None
-    ax.plot(bb, line.sigma(bb), "--", color="#b2182b", lw=1.3)
+    sig = np.asarray(line.sigma(bb), dtype=float)
+    ax.plot(bb, sig, "--", color="#b2182b", lw=1.3)
     ax.axvline(line.beta0, color="#2166ac", ls="-.", lw=1.0)
     if smap.quantize:
         ax.axhline(line.sigma0, color="#2166ac", ls="-.", lw=1.0)
-    return line.beta0, line.sigma0
+    seen = bool(np.any((sig >= ylim[0]) & (sig <= ylim[1])))
+    return line.beta0, line.sigma0, "in view" if seen else ("above" if np.all(sig > ylim[1]) else "below")
+
+
+def _map_line_handles(smap, drawn: list, extent: tuple[float, float, float, float]) -> list[Artist]:
+    """Legend entries of the map's criterion lines: a line only for what lies inside the panels; what lies
+    outside them is said in words (which side), without a line."""
+    if all(d is None for d in drawn):
+        return [matplotlib.lines.Line2D([], [], ls="none", label="no criterion line: amplifier lag")]
+    spring = smap.wall.is_spring
+    name = "critical line (eq. 10)" if spring else "critical line, eq. 10 with the wall"
+    wheres = [d[2] for d in drawn if d is not None]
+    out: list[Artist] = []
+    if "in view" in wheres:
+        out.append(matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label=name))
+    else:
+        side = "above" if all(w == "above" for w in wheres) else "outside"
+        out.append(matplotlib.lines.Line2D([], [], ls="none", label=f"{name}: {side} the panels"))
+    b0, s0, _w = next(d for d in drawn if d is not None)
+    x0, x1, y0, y1 = extent
+    parts = [("β = ½ + d" if smap.delay else "β = ½") if spring else f"β = β₀ = {b0:.3g}", b0, x0, x1, "left", "right"]
+    rows = [parts]
+    if smap.quantize:
+        rows.append(["σ = ½" if spring else f"σ = σ₀ = {s0:.3g}", s0, y0, y1, "below", "above"])
+    shown = [r[0] for r in rows if r[2] <= r[1] <= r[3]]
+    hidden = [f"{r[0]}{f' = {r[1]:.3g}' if spring else ''}: {r[4] if r[1] < r[2] else r[5]} of the panels"
+              for r in rows if not r[2] <= r[1] <= r[3]]  # fmt: skip
+    if shown:
+        label = ", ".join(shown) + (f" ({'; '.join(hidden)})" if hidden else "")
+        out.append(matplotlib.lines.Line2D([], [], color="#2166ac", ls="-.", label=label))
+    else:
+        out.append(matplotlib.lines.Line2D([], [], ls="none", label="; ".join(hidden)))
+    return out
+
+
+def _uniform_note(ax, outcome: np.ndarray) -> None:
+    """Say it in the panel when every grid point has one outcome (an all-dark panel reads as a rendering fault)."""
+    codes = np.unique(outcome)
+    if codes.size != 1:
+        return
+    what = _OUTCOME_LABELS[list(SimulationOutcome)[int(codes[0])].value]
+    ax.text(0.5, 0.5, f"all {outcome.size} grid points:\n{what}", transform=ax.transAxes, ha="center", va="center",
+            fontsize=LEGEND_FONTSIZE, bbox={"boxstyle": "round,pad=0.3", "fc": "white", "ec": "0.4", "alpha": 0.9})  # fmt: skip
 
 
 def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, stiffness=None, point=None):
@@ -290,7 +336,9 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
     (:class:`dfa.analysis.criterion.CriticalLine` with the map's delay d) is dashed, the
     region boundaries β = ½ + d, σ = ½ dash-dot; with a controller, the line of the
     criterion extended to it (corner β₀, σ₀), or none with an amplifier lag. The legend
-    (right of the panels) lists every outcome class, present or not.
+    (right of the panels) lists every outcome class, present or not, and the lines: those
+    outside the panels are named with their side, without a line. A panel whose grid points
+    all have one outcome says so in its middle.
 
     Parameters
     ----------
@@ -324,6 +372,7 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
     extent = (b[0] - db, b[-1] + db, s[0] - ds, s[-1] + ds)
     cmap = _outcome_cmap()
     physical = device is not None and stiffness is not None
+    drawn: list[tuple[float, float, str] | None] = []
     for k, ax in enumerate(axes):
         ax.imshow(
             smap.outcome[k],
@@ -337,7 +386,8 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
         )
         v = smap.xi_dots[k]
         bb = np.linspace(b[0], b[-1], 200)
-        corner = _map_critical_line(ax, smap, v, bb)
+        drawn.append(_map_critical_line(ax, smap, v, bb, (extent[2], extent[3])))
+        _uniform_note(ax, smap.outcome[k])
         if point is not None:
             ax.plot([point[0]], [point[1]], clip_on=False, **POINT_STYLE)
         ax.set_xlim(extent[0], extent[1])
@@ -352,30 +402,12 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
                 f"μ = {smap.mu:.4g}, {what} {_speed_text(v, device)}" + (f", delay {smap.delay}" if smap.delay else ""),
                 fontsize=8,
             )
-    handles = _outcome_handles()
-    if getattr(smap, "controller", None) is None:
-        handles += [
-            matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label="critical line (eq. 10)"),
-            matplotlib.lines.Line2D(
-                [], [], color="#2166ac", ls="-.", label="β = ½ + d, σ = ½" if smap.delay else "β = ½, σ = ½"
-            ),
-        ]
-    elif corner is not None:
-        handles += [
-            matplotlib.lines.Line2D(
-                [], [], color="#b2182b", ls="--", label="critical line, eq. 10 with the controller"
-            ),
-            matplotlib.lines.Line2D(
-                [], [], color="#2166ac", ls="-.", label=f"β = β₀ = {corner[0]:.3g}, σ = σ₀ = {corner[1]:.3g}"
-            ),
-        ]
-    else:
-        handles.append(matplotlib.lines.Line2D([], [], ls="none", label="no criterion line: amplifier lag"))
+    handles = _outcome_handles() + _map_line_handles(smap, drawn, extent)
     if point is not None:
         handles.append(matplotlib.lines.Line2D([], [], label="operating point", **POINT_STYLE))
     _legend_outside(axes[-1] if len(axes) <= 2 else axes[min(1, len(axes) - 1)], handles)
     if physical:  # the right-hand secondary axis labels sit where the legend would go
-        axes[-1].get_legend().set_bbox_to_anchor((1.22, 1.0))
+        axes[-1].get_legend().set_bbox_to_anchor((1.3, 1.0))
     return axes
 
 

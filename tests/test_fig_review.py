@@ -461,3 +461,67 @@ def test_fig6_paper_nyquist_inset_zooms_in_on_every_crossing():
     res = limit_cycles(p, model="zoh")
     nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh")
     _assert_inset_zooms_in(figures.nyquist_plot(nyq, cycles=res))
+
+
+# --- issue 26 §4: a map's legend draws only the lines in view; a uniform panel says so ----------------------------
+
+
+def _drawn_in_view(ax, handle) -> bool:
+    """Some line of ``ax`` in the handle's colour and dash has a vertex inside the axes (display coordinates)."""
+    _boxes(ax.figure)
+    box = ax.get_window_extent()
+    for ln in ax.get_lines():
+        same = matplotlib.colors.to_hex(ln.get_color()) == matplotlib.colors.to_hex(handle.get_color())
+        if same and ln.get_linestyle() == handle.get_linestyle():
+            pts = ln.get_transform().transform(ln.get_xydata())
+            inside = (pts[:, 0] >= box.x0 - 0.5) & (pts[:, 0] <= box.x1 + 0.5)
+            inside &= (pts[:, 1] >= box.y0 - 0.5) & (pts[:, 1] <= box.y1 + 0.5)
+            if inside.any():
+                return True
+    return False
+
+
+def _map_legend(axes):
+    legend = next(ax.get_legend() for ax in axes if ax.get_legend() is not None)
+    return list(zip(legend.legend_handles, [t.get_text() for t in legend.get_texts()], strict=True))
+
+
+def test_fig4_controller_map_legend_draws_only_lines_in_view_and_names_the_others():
+    """The custom device (0.1 kg, 0.005 N·s/m, 0.02 N, 10 µm, 1 kHz) at K = 2000 N/m with B = 1 N·s/m, f_c =
+    200 Hz, d = 1: every point diverges, the extended criterion's line lies above the panels and its β₀ right of
+    them. The legend showed the spring's lines (the map's wall was read from a field that no longer exists)."""
+    from dfa.analysis.simulation import OUTCOMES
+    from dfa.model.device import Device
+    from dfa.model.wall import Wall
+
+    dev = Device(name="custom", mass=0.1, damping=0.005, coulomb=0.02, resolution=1e-5, period=1e-3)
+    k = 2000.0
+    p = dev.params(k)
+    wp = Wall.of(k, damping=1.0, delay=1, filter_cutoff=200.0).params(dev.period)
+    m = stability_map(p.mu, [dev.xi_dot(0.1)], beta_range=(0, 0.25), sigma_range=(0, 2), grid=3, samples=600,
+                      n_jobs=1, progress=False, wall=wp)  # fmt: skip
+    assert (m.outcome == OUTCOMES.index("unstable")).all()  # every point diverges: an all-dark panel
+    (ax,) = figures.stability_map_plot(m, device=dev, stiffness=k, point=(p.beta, p.sigma))
+    entries = _map_legend([ax])
+    texts = [t for _h, t in entries]
+    assert "critical line, eq. 10 with the wall: above the panels" in texts
+    corner = next(t for t in texts if t.startswith("σ = σ₀"))
+    assert "β = β₀ = " in corner and "right of the panels" in corner
+    assert not any(t.startswith("β = ½") or t == "critical line (eq. 10)" for t in texts)  # not the spring's lines
+    for handle, text in entries:
+        if isinstance(handle, matplotlib.lines.Line2D) and handle.get_linestyle() != "None":
+            assert _drawn_in_view(ax, handle), text
+    notes = [t.get_text() for t in ax.texts]
+    assert "all 9 grid points:\nunstable (diverged)" in notes
+
+
+def test_fig4_spring_map_with_delay_names_its_corner_off_the_panel():
+    m = stability_map(155.2, [1.11], beta_range=(0, 0.25), sigma_range=(0, 2), grid=3, samples=600, n_jobs=1,
+                      progress=False, wall=WallParams.of(delay=1))  # fmt: skip
+    (ax,) = figures.stability_map_plot(m)
+    texts = [t for _h, t in _map_legend([ax])]
+    assert "critical line (eq. 10)" in texts
+    assert "σ = ½ (β = ½ + d = 1.5: right of the panels)" in texts
+    for handle, text in _map_legend([ax]):
+        if isinstance(handle, matplotlib.lines.Line2D) and handle.get_linestyle() != "None":
+            assert _drawn_in_view(ax, handle), text
