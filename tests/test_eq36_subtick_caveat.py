@@ -164,3 +164,24 @@ def test_eq36_subtick_assessed_stiffness_says_why_its_growth_speed_is_unknown(ca
     a = json.loads(capsys.readouterr().out)["assessment"]
     assert a["growth_speed"] is None and a["growth_unknown"] == "subtick"
     assert a["null_reasons"]["/growth_speed"] == reasons["subtick"]
+
+
+def test_eq36_no_limit_cycle_at_sigma_below_half_carries_the_rest_caveat(capsys):
+    """σ < ½ (eq. 9: c < KΔ/2): the search finds no cycle, yet the device never rests; it chatters below a tick."""
+    from dfa.analysis.cycles import NoRestCaveat, limit_cycles
+    from dfa.analysis.simulation import simulate
+    from dfa.cli import main
+    from dfa.model.device import Params
+
+    res = limit_cycles(Params(20.0, 0.55, 0.45), model="zoh")
+    assert res.complete and not res.cycles and res.rest_caveat == NoRestCaveat(0.45)
+    for xd in (0.05, 0.5, 2.0):  # independent: exact simulation never comes to rest, and stays below a tick
+        r = simulate(20.0, 0.55, 0.45, xd, record=False)
+        assert r.outcome == "chatter" and r.amplitude < 1.0
+    ok = limit_cycles(Params(20.0, 0.55, 0.6), model="zoh")
+    assert ok.rest_caveat is None and simulate(20.0, 0.55, 0.6, 0.5, record=False).outcome == "rest"
+    assert ok.to_dict()["null_reasons"]["/rest_caveat"].startswith("no caveat")
+    assert main(["limit-cycles", "--mu", "20", "--beta", "0.55", "--sigma", "0.45", "--model", "zoh"]) == 0
+    out = capsys.readouterr().out
+    assert "no limit cycle predicted" in out and "caveat: σ = 0.45 < ½" in out
+    assert all(len(line) <= 100 for line in out.splitlines())

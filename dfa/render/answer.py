@@ -83,10 +83,26 @@ def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
             "linear, no encoder or Coulomb",
         ],
         ["describing function", _limit_cell(r.k_df, ku, notes, "describing function"), "first harmonic"],
-        ["simulation, no divergence", _limit_cell(r.k_sim, ku, notes, "simulation, no divergence"), sims],
-        ["simulation, every impact rests", _limit_cell(r.k_sim_rest, ku, notes, "simulation, rests"), sims],
+        [
+            "simulation, no divergence",
+            _limit_cell(r.k_sim, ku, notes, "simulation, no divergence"),
+            sims + _resolution(r.k_sim),
+        ],
+        [
+            "simulation, every impact rests",
+            _limit_cell(r.k_sim_rest, ku, notes, "simulation, rests"),
+            sims + _resolution(r.k_sim_rest),
+        ],
     ]
     return rows
+
+
+def _resolution(lim: KLimit) -> str:
+    """The K resolution a simulated limit's claim rests on: its sweep's step (narrower bands are not excluded)."""
+    c = lim.confirmation
+    if c is None or c.sweep.points == 0:
+        return ""
+    return f", K steps {number(100.0 * c.sweep.step, 2)} %"
 
 
 def _proof_text(r: KMaxResult, at: str) -> str:
@@ -162,7 +178,7 @@ def stiffness_screen(r: KMaxResult, rec: Recommendation, guidance: DamperGuidanc
     """
     notes: list[str] = []
     lines = [*_header(r), recommendation_line(rec), ""]
-    lines += text_table(_method_rows(r, notes), ["method", "K", "rests on"]).splitlines()
+    lines += text_table(_method_rows(r, notes), ["method", "K", "rests on"], width=WIDTH).splitlines()
     lines += [wrap(f"{row[0]}: {row[1]}") for row in counterexample_lines(r)]
     lines += [wrap(f"*{i} {note}", "    ") for i, note in enumerate(notes, 1)]
     if guidance is not None and not guidance.proves_some_k:
@@ -171,7 +187,8 @@ def stiffness_screen(r: KMaxResult, rec: Recommendation, guidance: DamperGuidanc
     if verdict:
         lines += ["", verdict]
     if r.velocity > 0:
-        lines.append("only the criterion is a proof; --explain for the evidence, --json for every number")
+        lines.append("only the criterion is a proof; simulated limits hold at the stiffnesses and speeds simulated")
+        lines.append("(narrower unsafe bands between them are not excluded); --explain for the evidence")
     else:
         lines.append("impact speed 0: the describing-function and simulated limits need a speed > 0")
     return "\n".join(lines).split("\n")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ..analysis.cycles.caveats import SubtickCaveat
+from ..analysis.cycles.caveats import NoRestCaveat, SubtickCaveat
 from ..formatting import number, text_table
 from ..results.jsonable import explain_nulls
 from ..results.status import GrowthStatus, SearchStatus
@@ -18,6 +18,7 @@ __all__ = [
     "growth_meaning",
     "limit_cycle_lines",
     "limit_cycles_dict",
+    "rest_caveat_text",
     "search_text",
     "search_why",
     "simulation_rows",
@@ -302,6 +303,8 @@ def limit_cycle_lines(g: Any, device: Any, phys: dict | None = None) -> list[str
         if not res.complete:
             why = search_why(res)
             lines.append(f"search incomplete beyond M = {res.max_amplitude:g} ticks ({why}): more cycles may exist")
+    if res.rest_caveat is not None and not any(c.amplitude < 1.0 for c in res.cycles):
+        lines.append(f"caveat: {rest_caveat_text(res.rest_caveat)}")
     if g.amplitude is not None:
         lines += [_growth_line(g, device), growth_meaning(g)]
     elif res.cycles and res.linear_stable is False:
@@ -359,6 +362,22 @@ def caveat_text(c: SubtickCaveat) -> str:
         "amplitude; exact simulation has diverged from sub-tick starts at such points (from a third of them or more "
         "at most random cases with M < 1.005 ticks, and at some up to 1.07 ticks), so growth from below M is not "
         "excluded (check with `dfa simulate`)"
+    )
+
+
+def rest_caveat_text(c: NoRestCaveat) -> str:
+    """The no-rest caveat (:class:`dfa.analysis.cycles.caveats.NoRestCaveat`) in words.
+
+    Examples
+    --------
+    >>> from dfa.analysis.cycles.caveats import NoRestCaveat
+    >>> rest_caveat_text(NoRestCaveat(0.45))[:40]
+    'σ = 0.45 < ½: the Coulomb friction canno'
+    """
+    return (
+        f"σ = {c.sigma:.4g} < ½: the Coulomb friction cannot hold the spring's half force step KΔ/2, so the device "
+        "never rests; it chatters below one tick, which the describing function does not predict here (check "
+        "with `dfa simulate`)"
     )
 
 

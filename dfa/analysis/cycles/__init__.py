@@ -82,7 +82,7 @@ Examples
 from __future__ import annotations
 
 # private names re-exported for the tests and benchmarks that reach into the solver
-from .caveats import SUBTICK_LIMIT, SubtickCaveat, subtick_caveat
+from .caveats import SUBTICK_LIMIT, NoRestCaveat, SubtickCaveat, no_rest_caveat, subtick_caveat
 from .characteristic import W_GRID, HarmonicLoop, grid_lead, inv_loop, pade_denominator  # noqa: F401
 from .closed_forms import (
     ClosedFormCycles,
@@ -124,5 +124,7 @@ __all__ = [
     "INTERVAL_BUDGET",
     "SUBTICK_LIMIT",
     "subtick_caveat",
+    "NoRestCaveat",
+    "no_rest_caveat",
     "SubtickCaveat",
 ]

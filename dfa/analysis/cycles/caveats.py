@@ -43,7 +43,7 @@ from typing import Any
 
 from ...errors import DFAValueError
 
-__all__ = ["SUBTICK_LIMIT", "SubtickCaveat", "subtick_caveat"]
+__all__ = ["SUBTICK_LIMIT", "SubtickCaveat", "subtick_caveat", "NoRestCaveat", "no_rest_caveat", "NO_REST_CAVEAT"]
 
 #: Smallest unstable cycles below this amplitude (ticks) get the sub-tick caveat: 1.25, the top of the rising
 #: flank of D(M) above the first level (its peak, 1.1206 at M ≈ 1.242); simulation found sub-tick starts diverging
@@ -95,3 +95,52 @@ def subtick_caveat(result: Any) -> SubtickCaveat | None:
     if not unstable or unstable[0].amplitude >= SUBTICK_LIMIT:
         return None
     return SubtickCaveat(float(unstable[0].amplitude))
+
+
+#: The reason of a null ``rest_caveat`` in JSON.
+NO_REST_CAVEAT = "no caveat: σ >= ½, the friction can hold the spring's half force step KΔ/2 (the device can rest)"
+
+
+@dataclass(frozen=True)
+class NoRestCaveat:
+    """σ < ½: the device can never rest, so "no limit cycle" does not mean it comes to rest (issue 26 §2).
+
+    At rest the quantized spring pushes with up to half a force step KΔ/2, which Coulomb friction c holds only
+    when σ = c/(KΔ) >= ½ (eq. 9). Below, the device moves at every sample and chatters below one tick (measured
+    at 0.0005-0.005 tick at μ = 20, β = 0.55, σ = 0.45, exact ZOH model, where the search finds no cycle): the
+    describing function of eq. 41 has no such cycle, so "no limit cycle predicted" holds above one tick only.
+
+    Attributes
+    ----------
+    sigma : float
+        The operating point's σ, in [0, ½).
+
+    Examples
+    --------
+    >>> NoRestCaveat(0.45).sigma
+    0.45
+    """
+
+    sigma: float
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.sigma) and 0.0 <= self.sigma < 0.5):
+            raise DFAValueError(
+                f"sigma = {self.sigma!r} is invalid: the caveat holds for 0 <= σ < ½; build it with no_rest_caveat"
+            )
+
+
+def no_rest_caveat(result: Any) -> NoRestCaveat | None:
+    """The no-rest caveat of a limit-cycle result (:class:`NoRestCaveat`), or None when σ >= ½.
+
+    Parameters
+    ----------
+    result : LimitCycleResult
+        From :func:`dfa.analysis.cycles.limit_cycles`.
+
+    Returns
+    -------
+    NoRestCaveat or None
+    """
+    sigma = float(result.params.sigma)
+    return NoRestCaveat(sigma) if sigma < 0.5 else None

@@ -13,7 +13,7 @@ from ...model.wall import WallParams
 from ...results.base import Result
 from ...results.status import SearchStatus
 from ...results.summaries import OperatingPoint
-from .caveats import NO_CAVEAT, SubtickCaveat, subtick_caveat
+from .caveats import NO_CAVEAT, NO_REST_CAVEAT, NoRestCaveat, SubtickCaveat, no_rest_caveat, subtick_caveat
 
 
 # ------------------------------------------------------------------ results
@@ -198,7 +198,9 @@ class LimitCycleResult(OperatingPoint, Result):
     linear_stable: bool | None = None
     search_bound: float | None = None
 
-    json_properties: ClassVar[tuple[str, ...]] = ("mu", "beta", "sigma", "delay", "linear_model", "caveat")
+    json_properties: ClassVar[tuple[str, ...]] = (
+        "mu", "beta", "sigma", "delay", "linear_model", "caveat", "rest_caveat",
+    )  # fmt: skip
 
     def __post_init__(self) -> None:
         if not isinstance(self.wall, WallParams):
@@ -243,6 +245,15 @@ class LimitCycleResult(OperatingPoint, Result):
         return subtick_caveat(self)
 
     @property
+    def rest_caveat(self) -> NoRestCaveat | None:
+        """The no-rest caveat (:func:`dfa.analysis.cycles.caveats.no_rest_caveat`), or None.
+
+        Set when σ < ½: the device never rests, it chatters below one tick where the describing function sees no
+        cycle, so "no limit cycle" speaks of amplitudes above one tick only.
+        """
+        return no_rest_caveat(self)
+
+    @property
     def stable_cycles(self) -> tuple:
         """The stable cycles (Loeb's criterion), by increasing amplitude."""
         return tuple(c for c in self.cycles if c.stable)
@@ -279,7 +290,7 @@ class LimitCycleResult(OperatingPoint, Result):
         dict of str to str
             The reason by key.
         """
-        return {"caveat": NO_CAVEAT}
+        return {"caveat": NO_CAVEAT, "rest_caveat": NO_REST_CAVEAT}
 
 
 class LimitCycleSearchWarning(RuntimeWarning):

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any, NamedTuple
 
@@ -56,6 +56,9 @@ __all__ = [
     "growth_at",
     "df_verdict",
     "simulate_points",
+    "decide_undecided",
+    "EXTEND_STEP",
+    "EXTEND_CAP",
     "RunCache",
     "Evidence",
 ]
@@ -74,13 +77,62 @@ DIVERGENCE_BOUND = 1.0e6
 STARTS = ("impact", "preload")
 
 
+#: An undecided design run (too short to tell) is run again this many times longer, until it is decided ...
+EXTEND_STEP = 4
+#: ... or reaches this many times its own length (:func:`decide_undecided`); only then is it counted undecided.
+EXTEND_CAP = 16
+
+
+def decide_undecided(
+    codes: Sequence[Any], lengths: Sequence[int], undecided: Any, rerun: Callable[[np.ndarray, np.ndarray], Any]
+) -> tuple[np.ndarray, np.ndarray]:
+    """Run the undecided runs again, :data:`EXTEND_STEP` times longer each time, up to :data:`EXTEND_CAP` times.
+
+    A run too short to tell (slowly decaying sub-tick chatter, a slow envelope) is not counted as not safe at
+    its first length: it is simulated again, longer, until its outcome is decided or its length reaches
+    :data:`EXTEND_CAP` times its first (each run then is :func:`dfa.simulate`'s with ``samples`` that length).
+
+    Parameters
+    ----------
+    codes : sequence
+        Outcome of each run (names or kernel codes).
+    lengths : sequence of int
+        Length of each run, samples.
+    undecided : object
+        The value of ``codes`` that means undecided.
+    rerun : callable
+        ``rerun(indices, lengths)`` gives the outcomes of those runs at those lengths.
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        The outcomes and the lengths they were decided at (the cap where still undecided).
+
+    Examples
+    --------
+    >>> decide_undecided(["undecided", "rest"], [100, 100], "undecided",
+    ...                  lambda i, n: ["chatter" if m >= 800 else "undecided" for m in n])[0].tolist()
+    ['chatter', 'rest']
+    """
+    out = np.array(codes, dtype=object)
+    ns = np.array(lengths, dtype=np.int64)
+    caps = ns * EXTEND_CAP
+    while True:
+        idx = np.flatnonzero((out == undecided) & (ns < caps))
+        if idx.size == 0:
+            return out, ns
+        ns[idx] = np.minimum(ns[idx] * EXTEND_STEP, caps[idx])
+        out[idx] = np.array(rerun(idx, ns[idx]), dtype=object)
+
+
 def simulate_points(
     points: Sequence[tuple[float, ...]], walls: Sequence[WallParams], max_samples: int
 ) -> tuple[list[str], list[int]]:
     """Outcomes of exact simulations at a list of points (μ, β, σ, ξ0, ξ'0), each with its wall's groups.
 
     The run length of each point is :func:`dfa.analysis.simulation.default_samples` (with its wall), at most
-    ``max_samples``; a run diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of
+    ``max_samples``; an undecided run is run again longer (:func:`decide_undecided`, up to :data:`EXTEND_CAP`
+    times); a run diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of
     its start. Runs go on threads (one per core) through the compiled batch kernels, which release the GIL;
     each outcome depends on its own point only. A wall the spring's kernel runs (``is_spring``) takes it.
 
@@ -96,6 +148,16 @@ def simulate_points(
         n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, wall=w), max_samples)
         bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
         jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound, w))
+
+    def rerun(idx: np.ndarray, ns: np.ndarray) -> list[str]:
+        return _outcomes([jobs[i][:4] + (int(n),) + jobs[i][5:] for i, n in zip(idx, ns, strict=True)])
+
+    outs, lengths = decide_undecided(_outcomes(jobs), [j[4] for j in jobs], "undecided", rerun)
+    return [str(o) for o in outs], [int(n) for n in lengths]
+
+
+def _outcomes(jobs: list[tuple]) -> list[str]:
+    """Outcome names of runs (μ, β, σ, ξ'0, n, ξ0, bound, wall): the spring kernel, then the wall kernel, by delay."""
     workers = min(len(jobs), os.cpu_count() or 1)
     outcomes = [""] * len(jobs)
     for spring in (True, False):  # the spring kernel, as simulate() routes a wall it runs, then the wall kernel
@@ -106,7 +168,7 @@ def simulate_points(
         for d, ids in by_delay.items():
             for i, o in zip(ids, _batched_outcomes([jobs[i] for i in ids], d, workers, spring), strict=True):
                 outcomes[i] = o
-    return outcomes, [j[4] for j in jobs]
+    return outcomes
 
 
 def _batched_outcomes(jobs: list[tuple], delay: int, workers: int, spring: bool) -> list[str]:

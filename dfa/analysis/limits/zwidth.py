@@ -28,7 +28,8 @@ is found four ways, each a :class:`~dfa.analysis.limits.search.KLimit` with its 
     V from ξ0 = 0 and, separately, from rest with the spring preloaded to the
     same energy (as ``k_sim`` of :mod:`dfa.analysis.limits.kmax`). A point *diverges* when any
     run diverges, is *undecided* when none diverges and some run is too
-    short to tell, comes *to rest* when every run rests, else is *bounded*
+    short to tell even when run again up to 16 times longer (as the design runs,
+    :func:`~dfa.analysis.limits.runs.decide_undecided`), comes *to rest* when every run rests, else is *bounded*
     (chatter or a sustained cycle). ``k_sim`` is the largest grid K below the
     first point (ascending in K) that diverges or is undecided; ``k_rest`` the
     largest below the first point that does not come to rest. These are grid
@@ -95,7 +96,7 @@ from ..simulation import (
     wall_run_codes,
 )
 from .kmax import closed_forms, wall_k_criterion
-from .runs import DIVERGENCE_BOUND, SAFE, UNSAFE, Evidence, RunCache
+from .runs import DIVERGENCE_BOUND, SAFE, UNSAFE, Evidence, RunCache, decide_undecided
 from .search import KLimit, df_limit, grid_search, search_grid
 
 __all__ = ["ZWidth", "z_width", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
@@ -417,13 +418,19 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
     """
     runs = [r for rs, _ in tasks for r in rs]
     mu, beta, sigma, x0, v0, n, bound = (np.array(c) for c in zip(*runs, strict=True))
-    ns = n.astype(np.int64)
     w = tasks[0][1]
-    if w.is_spring:
-        codes = run_points(mu, beta, sigma, x0, v0, ns, w, True, bound, STABLE_AMPLITUDE, GROWTH, SETTLE)[0]
-    else:
-        codes = wall_run_codes(mu, beta, sigma, x0, v0, ns, w.delay, bound, [c for rs, c in tasks for _ in rs])
-    return _point_codes(codes.reshape(len(tasks), -1))
+    walls = [c for rs, c in tasks for _ in rs]
+
+    def codes_of(i: np.ndarray, ns: np.ndarray) -> np.ndarray:
+        ns = np.asarray(ns, dtype=np.int64)
+        if w.is_spring:
+            return run_points(mu[i], beta[i], sigma[i], x0[i], v0[i], ns, w, True, bound[i], STABLE_AMPLITUDE, GROWTH,
+                              SETTLE)[0]  # fmt: skip
+        return wall_run_codes(mu[i], beta[i], sigma[i], x0[i], v0[i], ns, w.delay, bound[i], [walls[j] for j in i])
+
+    every = np.arange(len(runs))
+    codes, _ = decide_undecided(codes_of(every, n), n, kernel.UNDECIDED, codes_of)  # as the design runs
+    return _point_codes(codes.astype(np.int64).reshape(len(tasks), -1))
 
 
 def _point_codes(run_codes: np.ndarray) -> np.ndarray:
