@@ -738,6 +738,9 @@ def stiffness_plot(curve, ax=None):
     ----------
     curve : StiffnessResponse
         From :func:`dfa.analysis.limits.closed_form.stiffness_response`.
+
+    The speed axis spans the curve's speeds exactly (by default up to hand speeds), widened only to show the
+    chosen K's largest passive speed.
     """
     ax = _axes(ax, figsize=(9.8, 4.2))
     u = curve.device.units
@@ -763,6 +766,13 @@ def stiffness_plot(curve, ax=None):
                 label=f"passive up to {number(curve.max_passive_velocity)} {u['velocity']}",
                 **POINT_STYLE,
             )
+    v = np.asarray(curve.velocity, dtype=float)
+    lo, hi = float(v.min()), float(v.max())
+    mpv = curve.max_passive_velocity if curve.stiffness is not None else None
+    if mpv is not None and np.isfinite(mpv) and mpv > 0:
+        lo, hi = min(lo, mpv / 1.5), max(hi, mpv * 1.5)
+    if hi > lo:  # one speed: matplotlib's own limits
+        ax.set_xlim(lo, hi)
     ax.set_xlabel(f"impact speed |ẋ0| ({u['velocity']})")
     ax.set_ylabel(f"stiffness K ({u['stiffness']})")
     ax.set_title(f"{curve.device.name}: largest passive stiffness", fontsize=9)
@@ -778,17 +788,26 @@ def stiffness_speed_plot(chart, ax=None):
     ----------
     chart : StiffnessSpeedChart
         From :func:`dfa.analysis.limits.speed_chart.stiffness_speed_chart`.
+
+    Notes
+    -----
+    The chart's speeds stop at its top speed ``v_top`` (the band above it is shaded): a simulated curve at
+    ``v_top`` is safe at every speed simulated, one on the bottom edge not even at the slowest. The criterion is
+    a closed form, not a simulation: where it proves more than ``v_top`` its curve leaves through the top edge
+    instead of running flat along ``v_top`` (which read as a plateau).
     """
     ax = _axes(ax, figsize=(11.0, 4.8))
     u = chart.device.units
     floor = float(chart.speeds[0]) / 2.0  # "not even the slowest simulated speed" is drawn here
+    ceiling = chart.v_top * 1.3
 
     def show(v):
         return np.where(np.asarray(v) < floor, floor, v)
 
-    ax.plot(
-        chart.criterion_stiffness, show(chart.v_criterion), color="#2166ac", lw=2.2, label="criterion (eq. 11, proof)"
-    )
+    ax.axhspan(chart.v_top, ceiling * 10, color="0.92", lw=0, zorder=0,
+               label=f"above the simulated speeds (> {chart.v_top:g} {u['velocity']})")  # fmt: skip
+    kc, vc = _leaving_top(chart.criterion_stiffness, show(chart.v_criterion), chart.v_top, ceiling * 3)
+    ax.plot(kc, vc, color="#2166ac", lw=2.2, label="criterion (eq. 11, proof)")
     ax.plot(
         chart.stiffness,
         show(chart.v_df),
@@ -817,7 +836,7 @@ def stiffness_speed_plot(chart, ax=None):
     _design_marks(ax, chart, floor)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_ylim(floor / 1.3, chart.v_top * 1.3)
+    ax.set_ylim(floor / 1.3, ceiling)
     ax.set_xlim(chart.stiffness[0], chart.stiffness[-1])
     ax.set_xlabel(f"stiffness K ({u['stiffness']})")
     ax.set_ylabel(f"largest safe impact speed ({u['velocity']})")
@@ -825,8 +844,10 @@ def stiffness_speed_plot(chart, ax=None):
     ax.set_title(f"{chart.device.name}: how stiff for which impact speed" + (f", delay {d}" if d else ""), fontsize=9)
     # the details go in a note under the axes (a two-line title crowded the top of the figure)
     ax.annotate(
-        f"Impact speeds simulated from {chart.speeds[0]:.3g} to {chart.v_top:g} {u['velocity']}; "
-        f"a curve on the bottom edge is not safe even at {chart.speeds[0]:.3g} {u['velocity']}.",
+        f"Impact speeds simulated from {chart.speeds[0]:.3g} to {chart.v_top:g} {u['velocity']}: a simulated curve at "
+        f"{chart.v_top:g} {u['velocity']} is safe at every speed simulated, one on the bottom edge not even at "
+        f"{chart.speeds[0]:.3g} {u['velocity']};\nthe criterion's curve leaves the top where it proves more than "
+        f"{chart.v_top:g} {u['velocity']}.",
         xy=(0.0, 0.0),
         xycoords="axes fraction",
         xytext=(0.0, -34.0),
@@ -839,6 +860,28 @@ def stiffness_speed_plot(chart, ax=None):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=LEGEND_FONTSIZE, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     return ax
+
+
+def _leaving_top(k: np.ndarray, v: np.ndarray, top: float, beyond: float) -> tuple[np.ndarray, np.ndarray]:
+    """A curve capped at ``top`` (its data say "at least top") drawn as leaving the axes upward: capped points are
+    dropped (a gap, not a flat run along ``top``), and each capped neighbour of an uncapped point is moved to
+    ``beyond`` (above the axes) along the curve's last slope (log-log), so that the line exits through the top
+    edge as it was heading."""
+    k, v = np.array(k, dtype=float), np.asarray(v, dtype=float)
+    capped = v >= top * (1.0 - 1e-9)
+    out = np.where(capped, np.nan, v)
+    lk, lv = np.log(k), np.log(np.where(capped, top, np.maximum(v, 1e-300)))
+    for e in np.flatnonzero(capped):
+        for u, w in ((e - 1, e - 2), (e + 1, e + 2)):  # the uncapped neighbour u and the one beyond it, w
+            if 0 <= u < k.size and not capped[u]:
+                out[e] = beyond
+                if 0 <= w < k.size and not capped[w] and lk[u] != lk[w]:
+                    slope = (lv[u] - lv[w]) / (lk[u] - lk[w])
+                    step = (np.log(beyond) - lv[u]) / slope if slope != 0 else np.inf
+                    if np.isfinite(step) and np.sign(step) == np.sign(lk[e] - lk[u]):
+                        k[e] = np.exp(lk[u] + np.clip(step, -abs(lk[e] - lk[u]) * 10, abs(lk[e] - lk[u]) * 10))
+                break
+    return k, out
 
 
 def _design_marks(ax, chart, floor: float) -> None:

@@ -525,3 +525,38 @@ def test_fig4_spring_map_with_delay_names_its_corner_off_the_panel():
     for handle, text in _map_legend([ax]):
         if isinstance(handle, matplotlib.lines.Line2D) and handle.get_linestyle() != "None":
             assert _drawn_in_view(ax, handle), text
+
+
+# --- issue 26 §4: the stiffness-speed chart's criterion is not clipped flat; the stiffness figure's speeds -----------
+
+
+def test_fig_chart_criterion_leaves_through_the_top_instead_of_running_flat_along_the_top_speed():
+    chart = stiffness_speed_chart(_impulse(), stiffness=80.0, velocity=0.1, grid=3, speeds=2)
+    capped = np.asarray(chart.v_criterion) >= chart.v_top
+    assert capped.any() and (~capped).any()  # the criterion proves more than v_top at the softest stiffnesses
+    ax = chart.plot()
+    (line,) = [ln for ln in ax.get_lines() if ln.get_label().startswith("criterion")]
+    y = np.asarray(line.get_ydata(), dtype=float)
+    y0, y1 = ax.get_ylim()
+    assert chart.v_top < y1 <= 1.5 * chart.v_top
+    drawn = y[np.isfinite(y)]
+    assert not np.any(np.isclose(drawn, chart.v_top, rtol=1e-9))  # no point, let alone a run, on the cap
+    assert np.any(drawn > y1)  # it exits through the top edge
+    inside = drawn[drawn <= y1]
+    assert inside.size >= 0.2 * (~capped).sum()  # the uncapped curve itself is drawn
+    x0, x1 = ax.get_xlim()
+    assert x0 >= chart.stiffness[0] * (1 - 1e-9) and x1 <= chart.stiffness[-1] * (1 + 1e-9)
+
+
+@pytest.mark.parametrize(("name", "top"), [("delta", 2.0), ("impulse", 2.0), ("re35", 10.0)])
+def test_fig_stiffness_speed_axis_stays_within_the_speeds_computed_up_to_hand_speeds(name, top):
+    import warnings
+
+    dev = dfa.get_device(name).device
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the default speeds are plausible ones: no warning about 100 m/s
+        curve = stiffness_response(dev)
+    assert curve.velocity.max() == pytest.approx(top)  # was 1000 Δ/T: 92 m/s for the Delta
+    ax = figures.stiffness_plot(curve)
+    x0, x1 = ax.get_xlim()
+    assert curve.velocity.min() * (1 - 1e-9) <= x0 < x1 <= curve.velocity.max() * (1 + 1e-9)

@@ -68,8 +68,13 @@ __all__ = [
     "max_passive_velocity",
     "StiffnessResponse",
     "StiffnessCurve",
+    "HAND_SPEED",
     "stiffness_response",
 ]
+
+#: Top of the speeds a hand brings to a wall (m/s for a linear device, rad/s for a rotary one): the default end of
+#: the speed axes (:func:`stiffness_response`, :func:`dfa.analysis.limits.speed_chart.stiffness_speed_chart`).
+HAND_SPEED = {"linear": 2.0, "rotary": 10.0}
 
 
 def _check_device(device: object) -> Device:
@@ -678,8 +683,8 @@ def stiffness_response(
     device : Device
         The physical device.
     velocity : array_like, optional
-        Speeds in m/s (rad/s); default: 200 points spanning three decades on
-        each side of the speed Δ/T (one tick per sample).
+        Speeds in m/s (rad/s); default: 200 points from three decades below the speed Δ/T (one tick per
+        sample; lower still when Δ/T is fast) up to hand speeds, :data:`HAND_SPEED` (2 m/s; rotary 10 rad/s).
     stiffness : float, optional
         A chosen stiffness in N/m (rotary: N·m/rad) to assess and mark.
     delay : int, optional
@@ -704,8 +709,8 @@ def stiffness_response(
     dev = _check_device(device)
     d = check_delay(delay)
     if velocity is None:
-        v0 = dev.resolution / dev.period
-        velocity = np.geomspace(1e-3 * v0, 1e3 * v0, 200)
+        top = HAND_SPEED["rotary" if dev.rotary else "linear"]  # no haptic device sees impacts of 100 m/s
+        velocity = np.geomspace(min(1e-3 * dev.resolution / dev.period, 1e-3 * top), top, 200)
     fix = f"give impact speeds in {dev.units['velocity']}"
     v = np.atleast_1d(check_real_array("velocity", velocity, fix)).ravel()
     if np.any(v < 0):

@@ -43,7 +43,7 @@ from ...results.base import Result
 from ...results.frozen import frozen_array
 from ...results.status import ChartStatus
 from ..cycles.caveats import SUBTICK_LIMIT
-from .closed_form import k_static
+from .closed_form import HAND_SPEED, k_static
 from .kmax import DESIGN_MAX_SAMPLES, closed_forms, passive_speed
 from .runs import Evidence, Growth, RunCache
 
@@ -54,9 +54,6 @@ UNKNOWN_DF = (
     "unknown: the describing function cannot tell there (the sub-tick caveat of dfa.analysis.cycles.caveats: smallest "
     f"unstable cycle below {SUBTICK_LIMIT:g} ticks; or an incomplete cycle search)"
 )
-
-#: Default top of the speed axis: hand speeds (m/s for a linear device, rad/s for a rotary one).
-HAND_SPEED = {"linear": 2.0, "rotary": 10.0}
 
 
 def _ro(a: Any) -> np.ndarray:
