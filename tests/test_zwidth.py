@@ -242,3 +242,22 @@ def test_report_zwidth_section_states_the_api_numbers(tmp_path, capsys):
 
     a = design_analysis(get_device(DEV), velocity=V, map_grid=3, samples=2000, n_jobs=1, zwidth_grid=3)
     assert a.to_dict()["zwidth"]["boundaries"]["linear"] == z.to_dict()["boundaries"]["linear"]
+
+
+@pytest.mark.parametrize("seed", [7])
+def test_zwidth_columns_at_B_positive_equal_dfa_stiffness_with_that_B(seed):
+    """Issue 26 §2: at a grid value B > 0 the criterion, linear and describing-function columns are `design_answer`
+    (what `dfa stiffness --virtual-damping B` prints) with that damper, on a random device: one number per question."""
+    rng = np.random.default_rng(seed)
+    dev = Device(
+        mass=float(rng.uniform(0.05, 0.5)), damping=float(rng.uniform(0.001, 0.05)),
+        coulomb=float(rng.uniform(0.05, 0.5)), resolution=float(10 ** rng.uniform(-5.5, -4.5)), period=1e-3,
+    )  # fmt: skip
+    z = z_width(dev, 0.05, wall=Wall.of(1.0, delay=1), grid=3, speeds=1, n_jobs=1)
+    i = 1
+    b = float(z.damping[i])
+    ans = design_answer(dev, 0.05, wall=Wall.of(1.0, damping=b, delay=1), speeds=1)
+    for col, lim in (("criterion", ans.k_criterion), ("linear", ans.k_linear), ("df", ans.k_df)):
+        want = math.nan if lim.value is None else lim.value
+        got = z.boundary(col)[i]
+        assert (math.isnan(got) and math.isnan(want)) or got == pytest.approx(want, rel=2 * K_RTOL), (col, got, want)
