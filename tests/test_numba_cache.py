@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import os
 import shutil
 import subprocess
@@ -86,26 +87,79 @@ def _snapshot(folder: Path) -> dict[str, int]:
     return {str(p): p.stat().st_mtime_ns for p in folder.rglob("*") if p.suffix in (".nbi", ".nbc")}
 
 
+def _run_on_a_terminal(argv: list[str], env: dict[str, str], cwd: Path) -> tuple[int, str, str]:
+    """Run ``argv`` with stderr on a pseudo-terminal (as in a shell); return (exit code, stdout, stderr)."""
+    import pty
+
+    master, slave = pty.openpty()
+    try:
+        proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=slave, text=True, env=env, cwd=cwd)
+        os.close(slave)
+        out, _ = proc.communicate(timeout=300)
+        err = b""
+        while True:
+            try:
+                chunk = os.read(master, 65536)
+            except OSError:  # EIO: the terminal's other end is closed and drained
+                break
+            if not chunk:
+                break
+            err += chunk
+    finally:
+        os.close(master)
+    return proc.returncode, out, err.decode(errors="replace")
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="pseudo-terminals are POSIX")
 def test_console_script_caches_in_one_folder_and_compiles_once(tmp_path):
-    script = Path(sys.executable).parent / ("dfa.exe" if sys.platform == "win32" else "dfa")
+    """``dfa`` started as the README says, on a fresh cache: kernels go to the cache folder only, a terminal
+    is told once that they compile, and a second start compiles nothing (numba's debug log: loads only)."""
+    script = Path(sys.executable).parent / "dfa"
     if not script.exists():
         pytest.skip("the dfa console script is not installed (pip install -e .)")
     env = {k: v for k, v in os.environ.items() if k not in (cache.NUMBA_ENV, cache._CHOSEN_ENV)}
     env.update({cache.BASE_ENV: str(tmp_path / "cache"), "NUMBA_DEBUG_CACHE": "1"})
     in_tree = _snapshot(CORE / "__pycache__")
 
-    def start() -> str:
-        proc = subprocess.run(
-            [str(script), *COMMAND], capture_output=True, text=True, env=env, cwd=tmp_path, timeout=300
-        )
-        assert proc.returncode == 0, proc.stderr
-        return proc.stdout
-
-    first = start()
+    code, first, err = _run_on_a_terminal([str(script), *COMMAND], env, tmp_path)
+    assert code == 0, err
     files = _snapshot(tmp_path / "cache")
     assert "[cache] data saved to" in first and files
     assert all(Path(f).is_relative_to(tmp_path / "cache" / "numba" / cache.kernel_key()) for f in files)
-    second = start()
+    assert err.count("dfa: compiling kernels once (") == 1, err
+    code, second, err = _run_on_a_terminal([str(script), *COMMAND], env, tmp_path)
+    assert code == 0, err
     assert "[cache] data loaded from" in second and "saved to" not in second  # nothing compiled
+    assert "compiling" not in err  # and nothing said
     assert _snapshot(tmp_path / "cache") == files
     assert _snapshot(CORE / "__pycache__") == in_tree  # nothing next to the sources
+    env[cache.BASE_ENV] = str(tmp_path / "piped")  # compiles again, stderr not a terminal: nothing said
+    piped = subprocess.run([str(script), *COMMAND], capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert piped.returncode == 0 and "[cache] data saved to" in piped.stdout and "compiling" not in piped.stderr
+
+
+class _Terminal(io.StringIO):
+    def isatty(self) -> bool:
+        return True
+
+
+def test_compile_note_once_on_a_terminal_when_a_kernel_compiles():
+    from numba.core import event
+
+    from dfa.cli.compile_note import compile_note, note_text
+    from dfa.core import CACHE_DIR, dfcore
+
+    def compile_event(dispatcher: object) -> None:  # what numba fires around a real compile (never on a cache load)
+        with event.trigger_event("numba:compile", data={"dispatcher": dispatcher, "args": (), "return_type": None}):
+            pass
+
+    other = type("Dispatcher", (), {"py_func": test_key_follows_every_kernel_source})()
+    for stream, expected in ((_Terminal(), note_text("stiffness", CACHE_DIR) + "\n"), (io.StringIO(), "")):
+        with compile_note("stiffness", stream):
+            compile_event(other)  # not a kernel of dfa.core: no note
+            compile_event(dfcore.df_value)
+            compile_event(dfcore.df_array)  # once only
+        compile_event(dfcore.df_value)  # after the command: no listener left
+        assert stream.getvalue() == expected
+    assert note_text("stiffness", CACHE_DIR).startswith("dfa: compiling kernels once (about ")
+    assert len(note_text(None, "/x" * 200)) <= 100

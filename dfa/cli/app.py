@@ -33,6 +33,7 @@ from . import (
     validate,
     zwidth,
 )
+from .compile_note import compile_note
 from .parsing import Parser, UsageError
 
 __all__ = ["COMMANDS", "build_parser", "main", "on_signal", "package_version"]
@@ -137,7 +138,8 @@ def _run(parser: argparse.ArgumentParser, argv: list[str]) -> int:
     args = parser.parse_args(argv)
     if getattr(args, "func", None) is None:
         raise UsageError("dfa: error: give a COMMAND (see `dfa --help`)")
-    return int(args.func(args) or 0)
+    with compile_note(args.command):  # one line on a terminal while kernels compile (first run only)
+        return int(args.func(args) or 0)
 
 
 def _error(err: BaseException, before: int) -> int:
