@@ -1202,10 +1202,11 @@ def run_points(
     done = np.empty(k, dtype=np.int64)
     rest = np.empty(k, dtype=np.int64)
     stats = np.empty((k, kernel.NSTATS))
-    ns = np.ascontiguousarray(np.broadcast_to(np.asarray(n, dtype=np.int64), (k,)))
+    # writable copies: a read-only view (k = 1) would be another type, compiled once more by numba
+    ns = np.array(np.broadcast_to(np.asarray(n, dtype=np.int64), (k,)))
     tails = _tail_lengths(ns, mu)
     if wall.is_spring:
-        bounds = np.ascontiguousarray(np.broadcast_to(np.asarray(bound, dtype=float), (k,)))
+        bounds = np.array(np.broadcast_to(np.asarray(bound, dtype=float), (k,)))
         batch.batch_kernel(mu, beta, sigma, x0, v0, ns, delay, quantize, bounds, tails, stats, done, rest)
     else:
         for t in np.unique(tails):
