@@ -10,8 +10,10 @@ after the other (:func:`dfa.core.kernel.serial_kernel`) on the points of a stabi
 each :func:`dfa.core.wall_kernel.simulate_wall_kernel` alone, bit for bit): :func:`dfa.analysis.limits.zwidth.z_width` runs a chunk of
 grid points per call.
 
-Developers: numba's on-disk cache of this module does not notice edits in :mod:`dfa.core.kernel` or
-:mod:`dfa.core.wall_kernel`, whose kernels it compiles in: clear it (``rm -rf .cache/numba``) after such an edit.
+Developers: numba keys the cached kernels of this module on this file alone, while they compile in
+:mod:`dfa.core.kernel` and :mod:`dfa.core.wall_kernel`; dfa's cache folder is named after every file of
+:mod:`dfa.core` (:mod:`dfa.core.cache`), so an edit there takes a fresh folder. With your own ``NUMBA_CACHE_DIR``,
+clear it after such an edit.
 """
 
 from __future__ import annotations

@@ -27,11 +27,12 @@ inlines them, and Python calls them like plain functions on floats. The
 ``*_array`` wrappers evaluate the same compiled scalar code elementwise on
 arrays of any shape.
 
-Developers: numba's on-disk cache of :mod:`dfa.core.kernel` is keyed on that
-file alone and does not notice edits here (or to
-:func:`dfa.analysis.criterion.spring_energy_core`, also compiled into the kernel):
-after such an edit clear the cache (``rm -rf .cache/numba``), or the kernel
-keeps the old code. ``tests/test_kernel_steps.py`` compares the compiled
+Developers: numba keys its cache of :mod:`dfa.core.kernel` on that file alone
+and does not notice edits here (or to :func:`dfa.core.energy.spring_energy_core`,
+also compiled into the kernel); dfa's cache folder is named after every file of
+:mod:`dfa.core` (:mod:`dfa.core.cache`), so an edit here takes a fresh folder. With
+your own ``NUMBA_CACHE_DIR``, clear it after such an edit, or the kernel keeps the
+old code. ``tests/test_kernel_steps.py`` compares the compiled
 steps with the Python reference step, which calls these functions afresh.
 
 Examples
