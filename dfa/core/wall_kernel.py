@@ -94,9 +94,10 @@ Energy bookkeeping is not implemented for the controller path
 
 Developers: this module compiles in :func:`dfa.core.kernel.step`,
 :func:`~dfa.core.kernel.sample_constants`, :func:`~dfa.core.kernel.tail_stats`,
-:func:`~dfa.core.kernel.tail_extremes` and :mod:`dfa.core.exprel`; numba's on-disk
-cache of this module does not notice edits there: clear it
-(``rm -rf .cache/numba``) after such an edit.
+:func:`~dfa.core.kernel.tail_extremes` and :mod:`dfa.core.exprel`; numba keys its
+cache of this module on this file alone, but dfa's cache folder is named after every
+file of :mod:`dfa.core` (:mod:`dfa.core.cache`): only your own ``NUMBA_CACHE_DIR``
+needs clearing after such an edit.
 """
 
 from __future__ import annotations
