@@ -55,13 +55,19 @@ __all__ = [
     "save_figure",
     "FIGURE_SUFFIXES",
     "ZWIDTH_COLORS",
+    "REGION_COLORS",
+    "REGION_HATCH",
     "BETA_LABEL",
     "SIGMA_LABEL",
 ]
 
 BETA_LABEL = "β = b/(K T) (–)"
 SIGMA_LABEL = "σ = c/(K Δ) (–)"
-REGION_COLORS = {"a": "#d9f0d3", "b": "#c6dbef", "c": "#f4a582", "d": "#fddbc7", "e": "#fff7bc"}
+#: Shade of each region of eq. 10 (Fig. 3); c (no guarantee at any speed) is also hatched (:data:`REGION_HATCH`) and
+#: d (no guarantee at this speed) pink, so that the two read apart (they were two tints of one orange).
+REGION_COLORS = {"a": "#d9f0d3", "b": "#c6dbef", "c": "#f4a582", "d": "#f1b6da", "e": "#fff7bc"}
+#: Hatching of region c and its colour.
+REGION_HATCH = {"c": ("///", "#b35806")}
 #: Colour of each simulated outcome (paper Fig. 4: white stable, light persisting oscillation, dark unstable).
 OUTCOME_COLORS = {
     "rest": "#ffffff",
@@ -214,11 +220,22 @@ def regions_plot(
         vmax=4.5,
         interpolation="nearest",
     )
+    for k, (hatch, colour) in REGION_HATCH.items():
+        inside = (codes == "abcde".index(k)).astype(float)
+        if inside.any():
+            with plt.rc_context({"hatch.color": colour, "hatch.linewidth": 0.7}):
+                ax.contourf(b, s, inside, levels=[0.5, 1.5], colors="none", hatches=[hatch])
     ax.axvline(line.beta0, color="k", lw=0.8, ls="-.")
     if result.quantized:
         ax.axhline(line.sigma0, color="k", lw=0.8, ls="-.")
     dl = f", d = {result.delay}" if result.delay else ""
-    ax.plot(b, line.sigma(b), "k--", lw=1.4, label=f"critical line, ξ'0 = {line.xi_dot:.3g}{dl} (point)")
+    ax.plot(
+        b,
+        line.sigma(b),
+        "k--",
+        lw=1.4,
+        label=f"critical line at the operating point's speed, ξ'0 = {line.xi_dot:.3g}{dl}",
+    )
     for v, style in zip(xi_dots, _EXTRA_LINES * (1 + len(xi_dots) // len(_EXTRA_LINES)), strict=False):
         ax.plot(b, line.at_speed(v).sigma(b), label=f"ξ'0 = {v:g}", **style)
     ax.plot([result.beta], [result.sigma], label=f"operating point (region {result.region})", **POINT_STYLE)
@@ -231,7 +248,8 @@ def regions_plot(
         handles: list[Artist] = [
             Patch(
                 facecolor=REGION_COLORS[k],
-                edgecolor="0.5",
+                edgecolor=REGION_HATCH[k][1] if k in REGION_HATCH else "0.5",
+                hatch=REGION_HATCH[k][0] if k in REGION_HATCH else None,
                 label=f"{k}: {CriterionStatus.of_region(k).message.split(':')[0]}",
             )
             for k in "abcde"
@@ -498,8 +516,8 @@ def contour_plot(maps, axes=None, *, device=None, stiffness=None):
     ax = axes[0]
     small = np.isfinite(maps.small_amplitude)
     if small.any():
-        cf = ax.contourf(bb, ss, maps.small_amplitude, levels=np.linspace(0, 1, 11), cmap="viridis")
-        plt.colorbar(cf, ax=ax).set_label("amplitude M (encoder ticks)")
+        small_fill = ax.contourf(bb, ss, maps.small_amplitude, levels=np.linspace(0, 1, 11), cmap="viridis")
+        plt.colorbar(small_fill, ax=ax).set_label("amplitude M (encoder ticks)")
         cs = ax.contour(bb, ss, maps.small_frequency, levels=6, colors="w", linewidths=0.7)
         ax.clabel(cs, fontsize=SMALL_FONTSIZE, fmt="%.2f")
     ax.set_title(f"μ = {maps.mu:g}: small stable cycles (M < 1, eq. 42-43)\nwhite: ω (rad/sample)", fontsize=9)
@@ -541,6 +559,8 @@ def contour_plot(maps, axes=None, *, device=None, stiffness=None):
         _drop_edge_labels(ax)
         if device is not None and stiffness is not None:
             _physical_map_axes(ax, device, float(stiffness))
+    fill = _band_colour(small_fill, maps.beta, maps.sigma, maps.small_amplitude) if small.any() else None
+    _clear_labels_of_lines(axes[0], beta0, sigma0, fill)
     return axes
 
 
@@ -553,6 +573,41 @@ def _drop_edge_labels(ax, margin: float = 0.05) -> None:
         fx, fy = (x - x0) / (x1 - x0), (y - y0) / (y1 - y0)
         if not (margin < fx < 1 - margin and margin < fy < 1 - margin):
             t.remove()
+
+
+def _clear_labels_of_lines(ax, beta0: float, sigma0: float, fill=None) -> None:
+    """Contour labels that the region boundaries β = β₀, σ = σ₀ would cross (Fig. 7's "2.80" on σ = ½) get a box
+    in the colour of the fill under them (``fill(β, σ)``), drawn over the line: the number reads whole and the
+    line resumes beyond it. Without ``fill`` such a label is removed. Measured on the laid-out figure (one draw)."""
+    labels = [t for c in ax.collections for t in getattr(c, "labelTexts", []) if t.axes is ax]
+    if not labels:
+        return
+    ax.figure.canvas.draw()  # the layout (colour bars, constrained layout) fixes the label boxes in pixels
+    px, py = ax.transData.transform((beta0, sigma0))
+    pad = 1.5  # pixels: the dash-dot line's half width and a little air
+    for t in labels:
+        box = t.get_window_extent()
+        if not (box.y0 - pad <= py <= box.y1 + pad or box.x0 - pad <= px <= box.x1 + pad):
+            continue
+        if fill is None:
+            t.remove()
+            continue
+        t.set_bbox({"boxstyle": "square,pad=0.1", "fc": fill(*t.get_position()), "ec": "none"})
+        t.set_zorder(3)  # over the boundary lines (zorder 2)
+
+
+def _band_colour(cf, beta: np.ndarray, sigma: np.ndarray, values: np.ndarray):
+    """The colour a filled contour ``cf`` of ``values`` (rows σ, columns β) paints at a point (white outside it)."""
+    levels = np.asarray(cf.levels, dtype=float)
+
+    def colour(x: float, y: float):
+        v = values[int(np.argmin(np.abs(sigma - y))), int(np.argmin(np.abs(beta - x)))]
+        if not np.isfinite(v):
+            return "white"
+        k = int(np.clip(np.searchsorted(levels, v) - 1, 0, levels.size - 2))
+        return cf.cmap(cf.norm(0.5 * (levels[k] + levels[k + 1])))
+
+    return colour
 
 
 #: Names of the loop models in titles and captions (:func:`dfa.analysis.loop.loop_response`).

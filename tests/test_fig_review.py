@@ -560,3 +560,63 @@ def test_fig_stiffness_speed_axis_stays_within_the_speeds_computed_up_to_hand_sp
     ax = figures.stiffness_plot(curve)
     x0, x1 = ax.get_xlim()
     assert curve.velocity.min() * (1 - 1e-9) <= x0 < x1 <= curve.velocity.max() * (1 + 1e-9)
+
+
+# --- issue 26 §4: Fig. 7's contour labels are not cut by the region boundaries ---------------------------------------
+
+
+def test_fig7_a_contour_label_on_a_region_boundary_is_boxed_over_the_line():
+    """On an 80 × 80 grid the small family's "2.00" label lands on β = ½ (in the report's 200 × 200 figure "2.80"
+    lands on σ = ½): a label the line would cut gets a box in the fill's colour, drawn over the line."""
+    c = contour_maps(5.0, grid=80)
+    ax = figures.contour_plot(c)[0]
+    ax.figure.canvas.draw()
+    beta0, sigma0 = c.corner
+    px, py = ax.transData.transform((beta0, sigma0))
+    lines = [ln for ln in ax.get_lines() if ln.get_linestyle() == "-."]
+    assert len(lines) == 2
+    crossed = []
+    for t in ax.texts:
+        box = t.get_window_extent()
+        if box.y0 - 1.5 <= py <= box.y1 + 1.5 or box.x0 - 1.5 <= px <= box.x1 + 1.5:
+            crossed.append(t.get_text())
+            patch = t.get_bbox_patch()
+            assert patch is not None and patch.get_facecolor()[3] == 1.0, t.get_text()  # opaque
+            assert t.get_zorder() > max(ln.get_zorder() for ln in lines)
+            fill = matplotlib.colors.to_hex(patch.get_facecolor())
+            assert fill not in ("#ffffff", "#000000")  # the viridis band under the label, not a white patch
+    assert crossed == ["2.00"]
+
+
+# --- issue 26 §4: Fig. 3's legend and regions c and d --------------------------------------------------------------
+
+
+def _lab(colour) -> np.ndarray:
+    """CIE L*a*b* (D65) of a matplotlib colour."""
+    rgb = np.array(matplotlib.colors.to_rgb(colour))
+    lin = np.where(rgb <= 0.04045, rgb / 12.92, ((rgb + 0.055) / 1.055) ** 2.4)
+    m = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]])
+    xyz = m @ lin / np.array([0.95047, 1.0, 1.08883])
+    f = np.where(xyz > 216 / 24389, np.cbrt(xyz), (24389 / 27 * xyz + 16) / 116)
+    return np.array([116 * f[1] - 16, 500 * (f[0] - f[1]), 200 * (f[1] - f[2])])
+
+
+def test_fig3_legend_names_the_operating_points_critical_line_in_words():
+    r = dfa.passivity_criterion(0.00207, 2.03, 1.11, wall=WallParams.of(delay=1))
+    ax = figures.regions_plot(r, xi_dots=[5.0])
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "critical line at the operating point's speed, ξ'0 = 1.11, d = 1" in texts
+    assert not any("(point)" in t for t in texts)
+
+
+def test_fig3_regions_c_and_d_read_apart_in_colour_and_hatching():
+    r = dfa.passivity_criterion(0.2, 1.0, 2.0)  # regions c and d both on the plane
+    ax = figures.regions_plot(r)
+    c, d = figures.REGION_COLORS["c"], figures.REGION_COLORS["d"]
+    assert np.linalg.norm(_lab(c) - _lab(d)) >= 35.0  # two tints of one orange were 27 apart, mostly in lightness
+    legend = ax.get_legend()
+    patches = {t.get_text()[0]: h for h, t in zip(legend.legend_handles, legend.get_texts(), strict=True)
+               if t.get_text()[1:2] == ":"}  # fmt: skip
+    assert patches["c"].get_hatch() and not patches["d"].get_hatch()
+    hatched = [col for col in ax.collections if any(h for h in getattr(col, "hatches", None) or [])]
+    assert hatched  # region c is hatched in the plane too, not only in the legend
