@@ -326,3 +326,19 @@ def test_design_analysis_json_from_its_fields(impulse):
     assert not {"thresholds", "trajectory", "trajectory_high", "stiffness_curve", "nyquist"} & set(d)
     assert set(d["growth_thresholds"]) == set(d["cycles"]) == {"half-delay", "zoh"}
     assert d["wall"]["dimensionless"] == json.loads(json.dumps(impulse.wall_params.to_dict()))
+
+
+def test_report_first_section_leads_with_the_recommended_stiffness(impulse):
+    """Issue 26: the report's first section states the recommendation of `dfa stiffness` (one answer), JSON too."""
+    from collections import defaultdict
+
+    from dfa.analysis.limits.recommend import recommend_stiffness
+
+    rec = recommend_stiffness(impulse.design_answer)
+    assert impulse.recommendation == rec and rec.k_recommended is not None
+    md = design_markdown(impulse, defaultdict(str), lambda name: name)
+    first = md.split("\n## ", 1)[0]
+    assert f"**Recommended stiffness:** K = {rec.k_recommended:.5g} N/m" in first
+    d = impulse.to_dict()
+    assert d["recommendation"]["k_recommended"] == pytest.approx(rec.k_recommended)
+    assert d["recommendation"]["status"] == rec.status.value

@@ -34,6 +34,7 @@ from .criterion import CriterionResult
 from .cycles import GrowthThreshold, LimitCycleResult, growth_threshold
 from .limits.closed_form import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
 from .limits.kmax import KMaxResult, RunCache, design_answer
+from .limits.recommend import Recommendation, recommend_stiffness
 from .limits.speed_chart import StiffnessSpeedChart, stiffness_speed_chart
 from .limits.zwidth import ZWidth, z_width
 from .loop import NyquistLocusResponse, nyquist_locus_response
@@ -152,7 +153,7 @@ class DesignAnalysis(Result):
     status: DesignStatus = DesignStatus.OK
 
     json_properties: ClassVar[tuple[str, ...]] = (
-        "stiffness", "delay", "criterion", "growth_thresholds", "cycles", "simulated_velocity",
+        "stiffness", "delay", "criterion", "growth_thresholds", "cycles", "simulated_velocity", "recommendation",
     )  # fmt: skip
 
     def __post_init__(self) -> None:
@@ -270,6 +271,14 @@ class DesignAnalysis(Result):
         """``simulated_xi_dot`` in m/s (rotary rad/s), or None."""
         return None if self.simulated_xi_dot is None else self.device.velocity(self.simulated_xi_dot)
 
+    @property
+    def recommendation(self) -> Recommendation | None:
+        """The recommended stiffness of the design answer (:func:`~dfa.analysis.limits.recommend.recommend_stiffness`,
+        the default gain margin), or None at speed 0 (no design answer)."""
+        if self.design_answer is None:
+            return None
+        return recommend_stiffness(self.design_answer)
+
     def null_reasons(self) -> dict[str, str]:
         """Why each field may be null in JSON, by key.
 
@@ -279,6 +288,7 @@ class DesignAnalysis(Result):
             Why a part was not computed or passed in; the spring's closed forms for a wall beyond the spring.
         """
         why = {
+            "recommendation": "impact speed 0: the recommendation needs the design answer (a speed > 0)",
             "validation": "no validation summary passed in (dfa report --validation FILE)",
             "catalogue": "not a catalogue device with printed (μ, β, σ)",
             "simulated_xi_dot": "no scanned impact speed diverged",

@@ -20,7 +20,7 @@ from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
 from .limits import counterexample_lines, limit_tags, passive_text
 from .require import damper_line
 
-__all__ = ["WIDTH", "wrap", "recommendation_line", "stiffness_screen", "user_verdict"]
+__all__ = ["WIDTH", "wrap", "recommendation_line", "recommendation_text", "stiffness_screen", "user_verdict"]
 
 
 def wrap(text: str, indent: str = "  ") -> str:
@@ -46,6 +46,21 @@ def _limit_cell(lim: KLimit, unit: str, notes: list[str], name: str) -> str:
 
 def recommendation_line(rec: Recommendation) -> str:
     """The recommended stiffness and its rule, wrapped at :data:`WIDTH`."""
+    return wrap(recommendation_text(rec))
+
+
+def recommendation_text(rec: Recommendation) -> str:
+    """The recommended stiffness and its rule in one sentence (unwrapped: the report's, the terminal wraps it).
+
+    Parameters
+    ----------
+    rec : Recommendation
+        From :func:`dfa.analysis.limits.recommend.recommend_stiffness`.
+
+    Returns
+    -------
+    str
+    """
     u = rec.device.units
     at = f"at {number(rec.velocity, 4)} {u['velocity']}"
     if rec.status is RecommendRule.PROVEN:
@@ -57,9 +72,9 @@ def recommendation_line(rec: Recommendation) -> str:
             f"divided by the gain margin {number(rec.margin, 3)} (--margin); not a proof"
         )
     else:
-        return wrap(f"recommended K: none. {rec.status.message}")
+        return f"recommended K: none. {rec.status.message}"
     assert rec.k_recommended is not None
-    return wrap(f"recommended K = {_k(rec.k_recommended, u['stiffness'])}: {why}")
+    return f"recommended K = {_k(rec.k_recommended, u['stiffness'])}: {why}"
 
 
 def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:

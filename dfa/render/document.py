@@ -14,6 +14,7 @@ from typing import Any
 
 from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
+from .answer import recommendation_text
 from .limits import spring_passive_text, spring_verdict_text
 from .text import growth_meaning, search_why
 
@@ -446,6 +447,9 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
     return _template().render(
         a=a,
         verdict=verdict_text(a),
+        recommendation=""
+        if a.recommendation is None
+        else recommendation_text(a.recommendation).removeprefix("recommended "),
         **_controller_parts(a),
         device_table=markdown_table(["quantity", "value"], device_rows(a)),
         catalogue_text=catalogue_text(a),
