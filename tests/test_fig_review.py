@@ -620,3 +620,45 @@ def test_fig3_regions_c_and_d_read_apart_in_colour_and_hatching():
     assert patches["c"].get_hatch() and not patches["d"].get_hatch()
     hatched = [col for col in ax.collections if any(h for h in getattr(col, "hatches", None) or [])]
     assert hatched  # region c is hatched in the plane too, not only in the legend
+
+
+# --- issue 26 §4: the report's K_max tables keep their cells short, the evidence goes below them -------------------
+
+
+@pytest.fixture(scope="module")
+def delta_answers():
+    from dfa.analysis.limits.kmax import design_answer
+    from dfa.model.wall import Wall
+
+    dev = dfa.get_device("delta").device
+    small = dict(speeds=2, grid=6, max_samples=20000)
+    spring = design_answer(dev, 0.1, **small)
+    ctl = design_answer(dev, 0.1, wall=Wall.of(14500.0, 1.0, 1, 200.0), **small)
+    return dev, spring, ctl
+
+
+def _words(cell: str) -> int:
+    return len(cell.split())
+
+
+def test_report_kmax_tables_cells_short_and_the_evidence_below_them(delta_answers):
+    """The committed reports' cells held 47-130 words (600-900 characters) of confirmation and evidence."""
+    from types import SimpleNamespace
+
+    from dfa.render.controller import controller_limit_rows
+    from dfa.render.document import answer_rows, evidence_markdown
+    from dfa.render.limits import evidence_lines
+
+    dev, spring, ctl = delta_answers
+    rows = answer_rows(SimpleNamespace(design_answer=spring, device=dev, is_spring=True))
+    for r, tables in ((spring, [rows]), (ctl, [controller_limit_rows(ctl, dev.units)])):
+        for table in tables:
+            cells = [c for row in table for c in row]
+            assert max(_words(c) for c in cells) <= 30, max(cells, key=_words)
+            assert not any("confirmed:" in c or "exact simulations:" in c for c in cells)
+        below = evidence_markdown(r)
+        lines = evidence_lines(r)
+        assert any("confirmed:" in line for line in lines) and lines[-1].startswith("simulations run: ")
+        for line in lines:  # every sentence of evidence is in the list below the table
+            assert line.partition(": ")[2] in below
+        assert below.startswith("What the simulated limits rest on:") and below.count("\n- **") == len(lines)

@@ -170,7 +170,8 @@ def test_controller_report_kmax_equals_dfa_stiffness(ctl):
         dfa.get_device("delta").device, data["analysis"]["velocity"], wall=Wall.of(14500.0, 1.0, 1, 200.0)
     )  # the report's own answer (without `dfa stiffness`'s assessment of K)
     assert lim["evidence"] == json.loads(dumps(ans.to_dict()))["evidence"]
-    assert md_row("evidence", evidence_text(ans)) in md
+    assert md_row("evidence", evidence_text(ans)) not in md  # below the table, not in a cell (issue 26 §4)
+    assert f"- **Simulations run:** {evidence_text(ans)}." in md.split("| status |", 1)[1]
     assert "{'" not in md and "not available (" not in md
 
 

@@ -309,14 +309,13 @@ def controller_limit_rows(lim: Any, units: dict[str, str]) -> list[list[str]]:
     Returns
     -------
     list of list of str
-        (quantity, value) rows: speed, the four K_max (with their caveats and confirmation), counterexamples,
-        status and the evidence sentence.
+        (quantity, value) rows: speed, the four K_max (values and short caveats), counterexamples and status;
+        what the simulated limits rest on, in full, goes below the table (:func:`dfa.render.limits.evidence_lines`).
     """
-    from .limits import evidence_text, kmax_rows
+    from .limits import kmax_rows
 
     return [
         ["impact speed V", f"{number(lim.velocity, 4)} {units['velocity']}"],
-        *kmax_rows(lim, explain=True),
+        *kmax_rows(lim),
         ["status", str(lim.status)],
-        ["evidence", evidence_text(lim)],
     ]

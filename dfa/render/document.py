@@ -370,22 +370,41 @@ def _template() -> Any:
 
 
 def answer_rows(a: DesignAnalysis) -> list[list[str]]:
-    """Rows of the report's design answer: K_max four ways at the design speed, each with what it rests on."""
-    from .limits import evidence_text, limit_text
+    """Rows of the report's design answer: K_max four ways at the design speed, each with what it rests on in a
+    few words (the full evidence goes below the table, :func:`evidence_markdown`)."""
+    from .limits import limit_text
 
     ans = a.design_answer
     assert ans is not None
-    ku, vu = a.device.units["stiffness"], a.device.units["velocity"]
+    ku = a.device.units["stiffness"]
     return [
         ["criterion (eq. 11; a proof)", limit_text(ans.k_criterion, ku)],
         ["exact linear bound (no encoder, no friction)", limit_text(ans.k_linear, ku)],
         ["describing function (growth speed >= V; first harmonic)", limit_text(ans.k_df, ku)],
-        ["simulation: no simulated impact up to V diverges",
-         limit_text(ans.k_sim, ku, explain=True, velocity_unit=vu)],
-        ["simulation: every simulated impact up to V rests",
-         limit_text(ans.k_sim_rest, ku, explain=True, velocity_unit=vu)],
-        ["evidence", evidence_text(ans)],
-    ]  # fmt: skip
+        ["simulation: no simulated impact up to V diverges", limit_text(ans.k_sim, ku)],
+        ["simulation: every simulated impact up to V rests", limit_text(ans.k_sim_rest, ku)],
+    ]
+
+
+def evidence_markdown(r: Any) -> str:
+    """What a K_max table's simulated limits rest on, as a Markdown list below the table (its cells stay short).
+
+    Parameters
+    ----------
+    r : dfa.analysis.limits.kmax.KMaxResult
+        The answer the table shows.
+
+    Returns
+    -------
+    str
+    """
+    from .limits import evidence_lines
+
+    items = []
+    for line in evidence_lines(r):
+        what, _sep, text = line.partition(": ")
+        items.append(f"- **{what[0].upper()}{what[1:]}:** {text}.")
+    return "What the simulated limits rest on:\n\n" + "\n".join(items)
 
 
 def zwidth_rows(a: DesignAnalysis) -> list[list[str]]:
@@ -410,7 +429,8 @@ def _controller_parts(a: DesignAnalysis) -> dict[str, str]:
     """The template's controller sections (empty strings for the spring: its report is unchanged)."""
     from .controller import check_table_rows, controller_limit_rows, controller_line, controller_rows
 
-    keys = ("controller_line", "controller_table", "check_table", "climits_table", "spring_only", "with_ctl")
+    keys = ("controller_line", "controller_table", "check_table", "climits_table", "climits_evidence", "spring_only",
+            "with_ctl")  # fmt: skip
     if a.is_spring:
         return dict.fromkeys(keys, "")
     dev, u = a.device, a.device.units
@@ -422,6 +442,7 @@ def _controller_parts(a: DesignAnalysis) -> dict[str, str]:
         climits_table="" if lim is None else markdown_table(
             ["largest stiffness K with this controller", "value"], controller_limit_rows(lim, u)
         ),
+        climits_evidence="" if lim is None else evidence_markdown(lim),
         spring_only=spring_only_text(a),
         with_ctl=" with the controller",
     )  # fmt: skip
@@ -457,6 +478,7 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
         answer_table=markdown_table(["largest stiffness K at this speed", "value"], answer_rows(a))
         if a.design_answer is not None and a.is_spring
         else "",
+        answer_evidence=evidence_markdown(a.design_answer) if a.design_answer is not None and a.is_spring else "",
         cycle_table=markdown_table(
             ["loop model", "M (ticks)", "amplitude", "ω (rad/sample)", "frequency", "stability", "family"], cycles
         )

@@ -30,6 +30,7 @@ __all__ = [
     "confirmation_text",
     "counterexample_lines",
     "evidence_text",
+    "evidence_lines",
     "kmax_rows",
     "limit_tags",
     "limit_text",
@@ -177,6 +178,35 @@ def evidence_text(r: KMaxResult) -> str:
         f"from the loop's time scales, longest {e.longest_run} samples (cap {e.max_samples}); describing "
         f"function: {e.df_model} hold model, every unstable cycle"
     )
+
+
+def evidence_lines(r: KMaxResult) -> list[str]:
+    """What a K_max answer's simulated limits rest on, in full sentences: one line per limit with more to say than
+    its value and short tags (its lowering and confirmation, :func:`limit_text` with ``explain``), and the
+    simulations run (:func:`evidence_text`). For below a table whose cells hold the short form.
+
+    Parameters
+    ----------
+    r : KMaxResult
+        The answer (:func:`dfa.analysis.limits.kmax.design_answer`).
+
+    Returns
+    -------
+    list of str
+        ``"what: sentence"`` lines, the simulations last.
+    """
+    ku, vu = r.device.units["stiffness"], r.device.units["velocity"]
+    out = []
+    for name, what in (
+        ("k_sim", "simulation, no simulated impact up to V diverges"),
+        ("k_sim_rest", "simulation, every simulated impact up to V rests"),
+    ):
+        lim = getattr(r, name)
+        full = limit_text(lim, ku, explain=True, velocity_unit=vu)
+        if full != limit_text(lim, ku):
+            out.append(f"{what}: {full}")
+    out.append(f"simulations run: {evidence_text(r)}")
+    return out
 
 
 def counterexample_lines(r: KMaxResult) -> list[list[str]]:
