@@ -335,13 +335,14 @@ def _map_line_handles(smap, drawn: list, extent: tuple[float, float, float, floa
 
 
 def _uniform_note(ax, outcome: np.ndarray) -> None:
-    """Say it in the panel when every grid point has one outcome (an all-dark panel reads as a rendering fault)."""
+    """Say it in the panel when every grid point has one outcome (an all-dark panel reads as a rendering fault); at
+    the bottom, clear of the operating point's label, which points to the panel's middle."""
     codes = np.unique(outcome)
     if codes.size != 1:
         return
     what = _OUTCOME_LABELS[list(SimulationOutcome)[int(codes[0])].value]
-    ax.text(0.5, 0.5, f"all {outcome.size} grid points:\n{what}", transform=ax.transAxes, ha="center", va="center",
-            fontsize=LEGEND_FONTSIZE, bbox={"boxstyle": "round,pad=0.3", "fc": "white", "ec": "0.4", "alpha": 0.9})  # fmt: skip
+    ax.text(0.5, 0.04, f"all {outcome.size} grid points: {what}", transform=ax.transAxes, ha="center", va="bottom",
+            fontsize=SMALL_FONTSIZE, bbox={"boxstyle": "round,pad=0.3", "fc": "white", "ec": "0.4", "alpha": 0.9})  # fmt: skip
 
 
 def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, stiffness=None, point=None):

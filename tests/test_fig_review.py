@@ -512,7 +512,7 @@ def test_fig4_controller_map_legend_draws_only_lines_in_view_and_names_the_other
         if isinstance(handle, matplotlib.lines.Line2D) and handle.get_linestyle() != "None":
             assert _drawn_in_view(ax, handle), text
     notes = [t.get_text() for t in ax.texts]
-    assert "all 9 grid points:\nunstable (diverged)" in notes
+    assert "all 9 grid points: unstable (diverged)" in notes
 
 
 def test_fig4_spring_map_with_delay_names_its_corner_off_the_panel():
