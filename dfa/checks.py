@@ -297,9 +297,11 @@ def check_rate(name: str, value: float, mass: float, period: float) -> None:
         )
 
 
-#: Largest computational delay accepted, in samples (10 s at 1 kHz): the exact linear bound solves a
-#: polynomial of degree d + 2 and the simulator keeps d + 1 pending forces.
-MAX_DELAY = 10_000
+#: Largest computational delay accepted, in samples (0.1 s at 1 kHz, far beyond a haptic servo's few samples):
+#: the exact linear bound finds the roots of a polynomial of degree d + 2, at a cost growing as d³, for every
+#: stiffness a search tries (`dfa stiffness --delay 300` took a minute; 10 000 ran out of memory), and the
+#: simulator keeps d + 1 pending forces.
+MAX_DELAY = 100
 
 #: How to fix a bad delay (the one hint of every delay message).
 DELAY_FIX = "give the computational delay in whole samples (0: the force uses the current reading)"

@@ -28,9 +28,9 @@ MAP = ["map", "--mu", "100", "--xi-dot", "1", "--grid", "2", "--samples", "10", 
     [
         # --delay: ASCII digits only (int() took '1_0' as 10), and the flag's name in every command
         (["check", "--device", "impulse", "--velocity", "0.05", "--delay", "1_0"], "'1_0' is not a whole number"),
-        (["check", "--device", "impulse", "--velocity", "0.05", "--delay", "9" * 25], "--delay takes at most 10000"),
+        (["check", "--device", "impulse", "--velocity", "0.05", "--delay", "9" * 25], "--delay takes at most 100"),
         (["simulate", *DIMLESS, "--xi-dot", "1", "--delay=-1"], "--delay must be a whole number of samples >= 0"),
-        (["simulate", *DIMLESS, "--xi-dot", "1", "--delay", "20000"], "--delay takes at most 10000 samples"),
+        (["simulate", *DIMLESS, "--xi-dot", "1", "--delay", "20000"], "--delay takes at most 100 samples"),
         (["limit-cycles", *DIMLESS, "--delay=-1"], "--delay must be a whole number of samples >= 0"),
         ([*MAP, "--delay=-2"], "--delay must be a whole number of samples >= 0"),
         # map / contours: --mu, --grid, the ranges, --max-amplitude named as typed

@@ -105,9 +105,11 @@ def test_colgate_schenkel_physical_is_dimensionless_times_kt_and_json():
 
 
 def test_large_delay_is_fast_and_exact():
-    """d = 2000: Dirichlet kernel in closed form, maximum 2d + 1 at θ = 0 (no per-k sum)."""
-    r = colgate_schenkel_beta(WallParams.of(delay=2000))
-    assert r.beta_min == pytest.approx(2000.5, rel=1e-12) and r.status is PassivityStatus.CERTIFIED
+    """d = MAX_DELAY: Dirichlet kernel in closed form, maximum 2d + 1 at θ = 0 (no per-k sum): β_min = d + ½."""
+    from dfa.checks import MAX_DELAY
+
+    r = colgate_schenkel_beta(WallParams.of(delay=MAX_DELAY))
+    assert r.beta_min == pytest.approx(MAX_DELAY + 0.5, rel=1e-12) and r.status is PassivityStatus.CERTIFIED
 
 
 def test_colgate_schenkel_json_from_its_fields():
