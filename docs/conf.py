@@ -26,6 +26,18 @@ extensions = [
     "myst_parser",
 ]
 autosummary_generate = True
+
+
+def _keep_paper_abbreviations() -> None:
+    """Autosummary ends a summary at the first ". ": teach it the paper's abbreviations ("the critical line of
+    eq. 6" was cut at "eq."), as it knows "e.g." and "et al."."""
+    import sphinx.ext.autosummary as autosummary
+
+    ours = ("eq.", "eqs.", "Eq.", "Fig.", "fig.", "cf.", "Sec.", "sec.", "approx.")
+    autosummary.WELL_KNOWN_ABBREVIATIONS = (*autosummary.WELL_KNOWN_ABBREVIATIONS, *ours)  # type: ignore[attr-defined]
+
+
+_keep_paper_abbreviations()
 autodoc_typehints = "none"  # numpydoc's Parameters sections carry the types and units
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
@@ -63,3 +75,28 @@ def _write_api_page() -> None:
 
 
 _write_api_page()
+
+
+def _constant_doc(app: object, what: str, name: str, obj: object, options: object, lines: list[str]) -> None:
+    """A public constant's docstring is its ``#:`` comment where it is defined, not its type's (``str``, ``tuple``):
+    autosummary showed "Built-in immutable sequence." for ``dfa.LOOP_MODELS``."""
+    if what not in ("data", "attribute") or not name.startswith("dfa."):
+        return
+    from sphinx.pycode import ModuleAnalyzer
+
+    short = name.rsplit(".", 1)[-1]
+    for modname, module in sorted(sys.modules.items()):
+        if not modname.startswith("dfa.") or getattr(module, short, None) is not obj:
+            continue
+        try:
+            docs = ModuleAnalyzer.for_module(modname).find_attr_docs()
+        except Exception:  # noqa: BLE001 - a module without source: look further
+            continue
+        if ("", short) in docs:
+            lines[:] = [line for line in docs[("", short)] if line is not None]
+            return
+
+
+def setup(app: object) -> None:
+    """Connect the constants' docstrings (:func:`_constant_doc`)."""
+    app.connect("autodoc-process-docstring", _constant_doc)  # type: ignore[attr-defined]
