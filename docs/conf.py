@@ -90,7 +90,7 @@ def _constant_doc(app: object, what: str, name: str, obj: object, options: objec
             continue
         try:
             docs = ModuleAnalyzer.for_module(modname).find_attr_docs()
-        except Exception:  # noqa: BLE001 - a module without source: look further
+        except Exception:
             continue
         if ("", short) in docs:
             lines[:] = [line for line in docs[("", short)] if line is not None]
