@@ -273,8 +273,11 @@ class DesignAnalysis(Result):
 
     @property
     def recommendation(self) -> Recommendation | None:
-        """The recommended stiffness of the design answer (:func:`~dfa.analysis.limits.recommend.recommend_stiffness`,
-        the default gain margin), or None at speed 0 (no design answer)."""
+        """The recommended stiffness of the design answer, or None at speed 0 (no design answer).
+
+        :func:`~dfa.analysis.limits.recommend.recommend_stiffness` with the default gain margin: what
+        ``dfa stiffness`` recommends for this wall and speed.
+        """
         if self.design_answer is None:
             return None
         return recommend_stiffness(self.design_answer)
