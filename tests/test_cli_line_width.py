@@ -22,6 +22,28 @@ WITH_WALL = {
     "check_wall": ["check", "--device", "delta", "--velocity", "0.1", *WALL],
     "simulate_wall": ["simulate", "--device", "delta", "--velocity", "0.1", *WALL],
     "cycles_wall": ["limit-cycles", "--device", "delta", "--model", "zoh", *WALL],
+    "require_wall": ["require", "--device", "delta", "--stiffness", "20000", "--velocity", "0.1", *WALL],
+    "zwidth_custom": [
+        "zwidth",
+        "--mass",
+        "0.1",
+        "--damping",
+        "0.005",
+        "--coulomb",
+        "0.02",
+        "--resolution",
+        "1e-5",
+        "--period",
+        "1e-3",
+        "--velocity",
+        "0.1",
+        "--delay",
+        "1",
+        "--grid",
+        "3",
+        "--speeds",
+        "1",
+    ],
 }
 
 
