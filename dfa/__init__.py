@@ -72,14 +72,16 @@ from .analysis.limits.closed_form import (
     stiffness_response,
 )
 from .analysis.linear_wall import StableRegion, StiffnessIntervals, stable_region, stable_stiffness
-from .errors import DFAError, DFATypeError, DFAValueError
+from .errors import DeviceFileError, DFAError, DFATypeError, DFAValueError, ImplausibleInputWarning
 from .model.catalogue import (
     DEFAULT_DEVICE,
     CatalogueEntry,
     Discrepancy,
     ResolvedDevice,
     catalogue,
+    device_template,
     get_device,
+    load_device_file,
     resolve_device,
 )
 from .model.device import Device, Params
@@ -198,6 +200,8 @@ __all__ = [
     "get_device",
     "resolve_device",
     "ResolvedDevice",
+    "load_device_file",
+    "device_template",
     "DEFAULT_DEVICE",
     "CriterionResult",
     "CriticalLine",
@@ -221,4 +225,6 @@ __all__ = [
     "DFAError",
     "DFAValueError",
     "DFATypeError",
+    "DeviceFileError",
+    "ImplausibleInputWarning",
 ]

@@ -162,7 +162,7 @@ EXAMPLES = {
 }
 
 #: The package's error types (builtin signatures): checked to derive from DFAError and the builtins.
-ERRORS = {"DFAError", "DFAValueError", "DFATypeError"}
+ERRORS = {"DFAError", "DFAValueError", "DFATypeError", "DeviceFileError", "ImplausibleInputWarning"}
 
 NAMES = [n for n in dfa.__all__ if n not in CONSTANTS | RESULTS | ERRORS]
 
@@ -318,6 +318,7 @@ def test_api_fuzz_every_public_name(name):
 def test_api_fuzz_covers_every_name():
     assert set(NAMES) | CONSTANTS | RESULTS | ERRORS == set(dfa.__all__)
     assert issubclass(dfa.DFAValueError, (dfa.DFAError, ValueError)) and issubclass(dfa.DFATypeError, TypeError)
+    assert issubclass(dfa.DeviceFileError, dfa.DFAValueError) and issubclass(dfa.ImplausibleInputWarning, UserWarning)
     assert dfa.DEFAULT_DEVICE in {e.name for e in dfa.catalogue()}
     assert set(dfa.LOOP_MODELS) == {"half-delay", "pade", "zoh"}
     assert all(isinstance(v, str) for v in dfa.REGION_DESCRIPTIONS.values())

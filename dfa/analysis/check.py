@@ -33,6 +33,7 @@ from ..checks import check_real, check_speed, check_type
 from ..errors import DFAValueError
 from ..model.device import Device
 from ..model.wall import Wall
+from ..plausibility import warn_if_from_outside
 from ..results.base import Result
 from ..results.status import CheckStatus
 from .colgate_schenkel import ColgateSchenkel, colgate_schenkel_beta
@@ -167,6 +168,7 @@ def passivity_check(
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     w = as_wall(wall)
     v = check_speed("velocity", velocity, dev.units["velocity"])
+    warn_if_from_outside("velocity", v, rotary=dev.rotary)
     p = w.params(dev.period)  # refuses a filter cutoff above the Nyquist frequency
     reasons: dict[str, Any] = {}
     crit: CriterionResult | None = None

@@ -4,6 +4,10 @@ Exit codes: 0 ok; 2 bad input (one line on stderr, before any work is done), or 
 prints the help on stdout); 1 a file could not be written or memory ran out; 130 / 143 interrupted by SIGINT /
 SIGTERM (one line on stderr naming what was kept: files are written atomically, so nothing is half-written);
 141 stdout was a closed pipe (``dfa devices | head -1``), ended quietly.
+
+An input no haptic device has (``--resolution 10``, :mod:`dfa.plausibility`) is computed as given with one
+``dfa: warning:`` line naming the likely slip, printed once the inputs are accepted: a refused run prints only its
+error line.
 """
 
 from __future__ import annotations
@@ -18,7 +22,7 @@ from types import ModuleType
 from typing import Any
 
 from .._io import written_paths
-from ..errors import DFAError
+from ..errors import DFAError, ImplausibleInputWarning
 from . import (
     check,
     contours,
@@ -34,6 +38,7 @@ from . import (
     zwidth,
 )
 from .compile_note import compile_note
+from .output import drop_warnings, flush_warnings, hold_warning
 from .parsing import Parser, UsageError
 
 __all__ = ["COMMANDS", "build_parser", "main", "on_signal", "package_version"]
@@ -122,6 +127,20 @@ def _one_line_warning(message: Warning | str, category: type[Warning], *_args: o
     return f"dfa: warning: {text} ({category.__name__})\n"
 
 
+def _show_implausible(previous: Any) -> Any:
+    """A ``warnings.showwarning`` that holds :class:`ImplausibleInputWarning` as one line for stderr
+    (:func:`~dfa.cli.output.hold_warning`: printed once the inputs are accepted, also where a test framework records
+    warnings) and passes every other warning on to ``previous``."""
+
+    def show(message: Warning | str, category: type[Warning], *args: Any, **kwargs: Any) -> None:
+        if issubclass(category, ImplausibleInputWarning):
+            hold_warning(_one_line_warning(message, category))
+        else:
+            previous(message, category, *args, **kwargs)
+
+    return show
+
+
 def _quiet_stdout() -> None:
     """After a closed pipe: send what is left on stdout to /dev/null, so exiting does not raise again."""
     try:
@@ -188,9 +207,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     warnings.formatwarning = _one_line_warning
     try:
         try:
-            code = _run(parser, list(sys.argv[1:] if argv is None else argv))
+            with warnings.catch_warnings():  # a slip is said on every run, not once per process as by default
+                warnings.simplefilter("always", ImplausibleInputWarning)
+                warnings.showwarning = _show_implausible(warnings.showwarning)
+                code = _run(parser, list(sys.argv[1:] if argv is None else argv))
         except (DFAError, SystemExit, KeyboardInterrupt, BrokenPipeError, MemoryError, OSError) as err:
+            (drop_warnings if isinstance(err, DFAError) else flush_warnings)()  # refused: the error line alone
             code = _error(err, before)
+        else:
+            flush_warnings()
         try:  # a buffered stdout meets a closed pipe here, not at exit ("Exception ignored ...", exit 120)
             sys.stdout.flush()
         except BrokenPipeError as err:

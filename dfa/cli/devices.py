@@ -1,11 +1,12 @@
-"""``dfa devices``: the device catalogue (paper Table 2)."""
+"""``dfa devices``: the device catalogue (paper Table 2), or a device file to start from (``--template``)."""
 
 from __future__ import annotations
 
 import argparse
 
-from ..model.catalogue import catalogue
+from ..model.catalogue import catalogue, device_template
 from .output import emit, fmt, say, table
+from .parsing import UsageError
 
 COMMAND = "devices"
 HELP = "list the device catalogue (paper Table 2)"
@@ -13,12 +14,23 @@ EXAMPLE = "dfa devices --json"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    """--json."""
+    """--json, --template."""
     p.add_argument("--json", action="store_true", help="print one JSON list on stdout (default: a text table)")
+    p.add_argument(
+        "--template",
+        action="store_true",
+        help="print a commented device file (TOML, the catalogue's format) to fill in and use with --device-file: "
+        "`dfa devices --template > my_device.toml` (default: the catalogue)",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
     """List the catalogue: physical values, recomputed (μ, β, σ), printed values and disagreements."""
+    if args.template:
+        if args.json:
+            raise UsageError("--template and --json cannot both be given: the template is TOML; give one of them")
+        print(device_template(), end="")
+        return 0
     rows = catalogue()
     if args.json:
         emit([r.to_dict() for r in rows])

@@ -1,8 +1,10 @@
 """The device, the dimensionless loop and the speed of a command, from its flags.
 
-A device is a catalogue name (``--device``) and/or physical values in SI units; the dimensionless (μ, β, σ)
-replace it where a command takes them. :func:`resolve` turns the flags into :class:`Inputs` and refuses
-contradictions with one line naming the flags.
+A device is a catalogue name (``--device``) or a file of your own (``--device-file``, the catalogue's format),
+and/or physical values in SI units, which replace the named device's; the dimensionless (μ, β, σ) replace it
+where a command takes them. :func:`resolve` turns the flags into :class:`Inputs` and refuses contradictions with
+one line naming the flags; a physical value no haptic device has gets one warning line naming the flag (or the
+file's key) and the likely slip (:mod:`dfa.plausibility`).
 """
 
 from __future__ import annotations
@@ -14,8 +16,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..checks import check_beta, check_mu, check_real, check_sigma, check_speed
-from ..model.catalogue import CatalogueEntry, resolve_device
+from ..errors import DFAError
+from ..model.catalogue import CatalogueEntry, get_device, load_device_file, resolve_device
 from ..model.device import Device, Params, dimensionless_params
+from ..plausibility import warn_implausible
 from .parsing import UsageError, integer, name, number
 
 __all__ = [
@@ -76,12 +80,21 @@ def _add_counts_name_args(g: Any) -> None:
 
 
 def add_device_group(p: argparse.ArgumentParser, title: str) -> Any:
-    """--device, the physical flags, --counts, --name, --stiffness and --rotary (:func:`dfa.model.catalogue.resolve_device`)."""
+    """--device, --device-file, the physical flags, --counts, --name, --stiffness and --rotary
+    (:func:`dfa.model.catalogue.resolve_device`)."""
     g = p.add_argument_group(title)
     g.add_argument(
         "--device",
         metavar="NAME",
         help="catalogue device, case-insensitive prefix (e.g. 'phantom'; list: `dfa devices`); default: none",
+    )
+    g.add_argument(
+        "--device-file",
+        dest="device_file",
+        metavar="FILE.toml",
+        help="a device of your own, in the catalogue's TOML format (`dfa devices --template` writes one); "
+        "instead of --device; the physical flags, --counts, --stiffness, --name and --rotary replace its "
+        "values; default: none",
     )
     for key, (flag, unit) in PHYS_FLAGS.items():
         g.add_argument(
@@ -150,7 +163,8 @@ class Inputs:
 
 
 def _dimensionless(args: argparse.Namespace, phys_given: list[str], dim_given: list[str], need_mu: bool) -> Inputs:
-    others = (["--device"] if args.device else []) + [PHYS_FLAGS[k][0] for k in phys_given]
+    others = (["--device"] if args.device else []) + (["--device-file"] if _device_file(args) else [])
+    others += [PHYS_FLAGS[k][0] for k in phys_given]
     others += [f"--{k}" for k in ("counts", "name") if getattr(args, k, None) is not None]
     others += ["--stiffness"] if args.stiffness is not None else []
     others += ["--velocity"] if getattr(args, "velocity", None) is not None else []
@@ -184,13 +198,23 @@ def resolve(
     if dim_given:
         return _dimensionless(args, phys_given, dim_given, need_mu)
     custom = phys_given + [k for k in ("counts", "name") if getattr(args, k, None) is not None]
-    if not args.device and not custom:
+    path = _device_file(args)
+    if args.device and path is not None:
         raise UsageError(
-            "no device given: use --device NAME (see `dfa devices`), or --mass --damping --coulomb "
-            "--resolution --period" + (", or --mu --beta --sigma" if dimensionless else "")
+            f"--device {args.device!r} and --device-file {path!r} cannot both be given: give one device (a catalogue "
+            "name or your file; flags such as --mass replace either's values)"
         )
+    if not args.device and path is None and not custom:
+        raise UsageError(
+            "no device given: use --device NAME (see `dfa devices`), --device-file FILE.toml (`dfa devices "
+            "--template` writes one), or --mass --damping --coulomb --resolution --period"
+            + (", or --mu --beta --sigma" if dimensionless else "")
+        )
+    entry = None if path is None else load_device_file(path)
+    _warn_implausible(args, entry, path)  # held until the inputs are accepted (dfa.cli.output.hold_warning)
     r = resolve_device(
-        args.device,
+        args.device or None,
+        entry=entry,
         overrides={k: getattr(args, k, None) for k in PHYS_FLAGS},
         counts=getattr(args, "counts", None),
         rotary=bool(getattr(args, "rotary", False)),
@@ -202,17 +226,43 @@ def resolve(
     if r.stiffness is None and not need_stiffness:
         return Inputs(None, math.nan, math.nan, dev, None, r.label, r.entry)
     if r.stiffness is None:
-        raise UsageError(
-            f"missing --stiffness: no catalogue stiffness for {dev.name!r}; give K in {dev.units['stiffness']}"
-        )
+        where = f"device file {path!r} gives no stiffness" if path is not None else "no catalogue stiffness"
+        raise UsageError(f"missing --stiffness: {where} for {dev.name!r}; give K in {dev.units['stiffness']}")
     p = dimensionless_params(dev, r.stiffness)  # resolve_device has refused groups that overflow or vanish
     return Inputs(p, p.beta, p.sigma, dev, r.stiffness, r.label, r.entry)
 
 
+def _device_file(args: argparse.Namespace) -> str | None:
+    """--device-file, or None (also for a command without it)."""
+    path = getattr(args, "device_file", None)
+    return None if path is None else str(path)
+
+
+def _warn_implausible(args: argparse.Namespace, entry: CatalogueEntry | None, path: str | None) -> None:
+    """One warning line per value no haptic device has, naming where it came from: the flag, --counts, or the
+    device file's key (the catalogue's own values are not checked)."""
+    if entry is None and args.device:
+        try:
+            entry = get_device(args.device)  # for its units (a rotary device); its values are not checked
+        except DFAError:
+            return  # resolve_device refuses the name, with its message
+    rotary = bool(getattr(args, "rotary", False)) or (entry is not None and entry.rotary)
+    counts = getattr(args, "counts", None)
+    for key in ("mass", "resolution", "period", "stiffness"):
+        value, subject, hint = getattr(args, key, None), _FLAG_NAMES[key], None
+        if value is None and key == "resolution" and isinstance(counts, int) and counts >= 1:
+            value = (2.0 * math.pi if rotary else 1.0) / counts
+            subject, hint = f"--counts {counts}: resolution", "--counts is per metre (with --rotary: per revolution)"
+        elif value is None and path is not None and entry is not None:
+            value, subject = getattr(entry, key), f"{path}: {key}"
+        if value is not None:
+            warn_implausible(key, value, rotary=rotary, subject=subject, hint=hint)
+
+
 def device_given(args: argparse.Namespace) -> bool:
-    """True when any device flag (--device, a physical value, --counts, --name, --stiffness) is given."""
+    """True when any device flag (--device, --device-file, a physical value, --counts, --name, --stiffness) is given."""
     keys = (*PHYS_FLAGS, "stiffness", "counts", "name")
-    return bool(args.device) or any(getattr(args, k, None) is not None for k in keys)
+    return bool(args.device) or _device_file(args) is not None or any(getattr(args, k, None) is not None for k in keys)
 
 
 def impact_speed(flag: str, value: float, inputs: Inputs | None, zero: bool = True) -> float:
@@ -221,7 +271,10 @@ def impact_speed(flag: str, value: float, inputs: Inputs | None, zero: bool = Tr
         unit = "ticks per sample"
     else:
         unit = inputs.device.units["velocity"] if inputs is not None and inputs.device is not None else "m/s (rad/s)"
-    return check_speed(flag, value, unit, zero=zero)
+    out = check_speed(flag, value, unit, zero=zero)
+    if flag != "--xi-dot" and inputs is not None and inputs.device is not None:
+        warn_implausible("velocity", out, rotary=inputs.device.rotary, subject=flag)
+    return out
 
 
 def speed(
@@ -241,6 +294,8 @@ def speed(
     if v is not None:
         if inputs.device is None:
             raise UsageError("--velocity needs a physical device: with --mu/--beta/--sigma give --xi-dot instead")
+        if signed:  # an impact speed (not signed) was checked by impact_speed
+            warn_implausible("velocity", v, rotary=inputs.device.rotary, subject="--velocity")
         return inputs.device.xi_dot(v), v
     xd = check_real("--xi-dot", xd, "give the speed in encoder ticks per sample")
     return xd, (inputs.device.velocity(xd) if inputs.device is not None else None)
@@ -310,7 +365,10 @@ def plane_device(args: argparse.Namespace) -> tuple[float, Inputs | None]:
     if args.mu is not None:
         return check_mu(args.mu, "--mu"), None
     inp = resolve(args, dimensionless=False)
-    assert inp.params is not None
+    assert inp.params is not None and inp.device is not None
+    speeds = getattr(args, "velocity", None) or []
+    if speeds:  # the largest initial speed (a sign is refused later, with the flag's message)
+        warn_implausible("velocity", max(abs(v) for v in speeds), rotary=inp.device.rotary, subject="--velocity")
     return inp.params.mu, inp
 
 

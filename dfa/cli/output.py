@@ -22,7 +22,10 @@ __all__ = [
     "add_progress_args",
     "check_samples",
     "cores",
+    "drop_warnings",
     "emit",
+    "flush_warnings",
+    "hold_warning",
     "fmt",
     "mark_operating_point",
     "progress",
@@ -43,8 +46,36 @@ MAP_TIME_LIMIT_HOURS = 24.0
 SIMULATION_BOUND = 1.0e6
 
 
+#: The warning lines of this run not printed yet (:func:`hold_warning`).
+_HELD: list[str] = []
+
+
+def hold_warning(line: str) -> None:
+    """Keep a warning line until the run's inputs are accepted: a refused run (exit 2) prints only its error.
+
+    The lines are printed on stderr by :func:`flush_warnings`, which the first output of the run (:func:`say`,
+    :func:`emit`, :func:`progress`) and the end of :func:`dfa.cli.main` call; :func:`drop_warnings` forgets them.
+    """
+    _HELD.append(line)
+
+
+def flush_warnings() -> None:
+    """Print the held warning lines on stderr (:func:`hold_warning`)."""
+    lines, _HELD[:] = list(_HELD), []
+    for line in lines:
+        sys.stderr.write(line)
+    if lines:
+        sys.stderr.flush()
+
+
+def drop_warnings() -> None:
+    """Forget the held warning lines (the run was refused: its one error line says what to fix)."""
+    _HELD.clear()
+
+
 def emit(obj: object, ensure_ascii: bool = True) -> None:
     """Print one strict-JSON object (NaN/inf become null with the reason, :mod:`dfa.results.jsonable`)."""
+    flush_warnings()
     print(dumps(obj, ensure_ascii=ensure_ascii))
 
 
@@ -55,6 +86,7 @@ def table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None)
 
 def say(text: object = "") -> None:
     """Print ``text``, each line wrapped at :data:`WIDTH` characters (continuation lines indented)."""
+    flush_warnings()
     print(fill(str(text), WIDTH))
 
 
@@ -115,7 +147,11 @@ def add_progress_args(p: argparse.ArgumentParser, quiet: bool = True) -> None:
 
 
 def progress(args: argparse.Namespace) -> bool:
-    """Show progress bars: never with --quiet; always with --progress; else only on a terminal and without --json."""
+    """Show progress bars: never with --quiet; always with --progress; else only on a terminal and without --json.
+
+    Asked when the work starts: the held warnings (:func:`hold_warning`) are printed first.
+    """
+    flush_warnings()
     if getattr(args, "quiet", False):
         return False
     if getattr(args, "progress", False):

@@ -98,7 +98,11 @@ def run(args: argparse.Namespace) -> int:
     """Write the report; print the paths written (or, with --json, the paths and the numbers stated)."""
     from ..report import design_report
 
-    if args.device is None and not any(getattr(args, k, None) is not None for k in (*PHYS_FLAGS, "counts")):
+    if (
+        args.device is None
+        and args.device_file is None
+        and not any(getattr(args, k, None) is not None for k in (*PHYS_FLAGS, "counts"))
+    ):
         args.device = DEFAULT_DEVICE
     check_output_folder("--out", args.out, create=True)  # created (one level) once the inputs pass
     inp = resolve(args, dimensionless=False)

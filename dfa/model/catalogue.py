@@ -19,20 +19,26 @@ Examples
 1.863
 >>> get_device("Omega").incomplete
 True
+
+A device of your own is a file in the same format (:func:`device_template` writes one,
+:func:`load_device_file` reads it back): one ``[[devices]]`` table of SI values.
 """
 
 from __future__ import annotations
 
 import difflib
+import json
 import math
+import os
 import re
+import stat
 import sys
 from dataclasses import dataclass, field
 from decimal import Decimal
 from functools import lru_cache
 from importlib import resources
 
-from ..errors import DFATypeError, DFAValueError
+from ..errors import DeviceFileError, DFAError, DFATypeError, DFAValueError
 from ..results.jsonable import explain_nulls
 from .device import Device, Params
 
@@ -48,7 +54,10 @@ __all__ = [
     "catalogue",
     "get_device",
     "resolve_device",
+    "load_device_file",
+    "device_template",
     "DEFAULT_DEVICE",
+    "DEVICE_FILE_MAX_BYTES",
 ]
 
 #: Name of the catalogue device used by ``make report`` and the CLI examples.
@@ -378,6 +387,7 @@ def resolve_device(
     stiffness: float | None = None,
     label: str | None = None,
     flags: dict[str, str] | None = None,
+    entry: CatalogueEntry | None = None,
 ) -> ResolvedDevice:
     """A device from a catalogue name, physical values, or a catalogue device with some values replaced.
 
@@ -399,6 +409,10 @@ def resolve_device(
         Device name used in outputs and report file names (default the catalogue name, or ``"custom device"``).
     flags : dict, optional
         Names of the inputs in messages (the command line passes ``{"mass": "--mass", ...}``).
+    entry : CatalogueEntry, optional
+        A row that is not in the catalogue, instead of ``name``: a device file (:func:`load_device_file`);
+        ``overrides``, ``counts``, ``stiffness`` and ``label`` replace its values as they replace a catalogue
+        row's.
 
     Returns
     -------
@@ -443,12 +457,23 @@ def resolve_device(
         raise DFATypeError(
             f"rotary = {format_value(rotary)} has type {type(rotary).__name__}: it must be True or False"
         )
+    if entry is not None and not isinstance(entry, CatalogueEntry):
+        raise DFATypeError(
+            f"entry = {format_value(entry)} has type {type(entry).__name__}: it must be a CatalogueEntry or None; "
+            "read a device file with load_device_file(path)"
+        )
+    if entry is not None and name is not None:
+        raise DFAValueError(
+            f"name = {name!r} and entry = {entry.name!r} cannot both be given: give one device (a catalogue name or "
+            "a device file's row)"
+        )
     fl = {k: k for k in (*_PHYSICAL, "stiffness", "counts", "name")} | (flags or {})
     given = {k: v for k, v in (overrides or {}).items() if v is not None}
     unknown = sorted(set(given) - set(_PHYSICAL))
     if unknown:
         raise DFAValueError(f"overrides has {unknown}: physical values are {', '.join(_PHYSICAL)}")
-    entry = get_device(name) if name else None
+    if entry is None and name:
+        entry = get_device(name)
     values: dict[str, float | None] = {k: getattr(entry, k) for k in _PHYSICAL} if entry else {}
     rotary = bool(rotary or (entry is not None and entry.rotary))
     if counts is not None:
@@ -500,3 +525,275 @@ def _refuse_missing(entry: CatalogueEntry | None, given: dict, missing: list[str
     if not given:
         raise DFAValueError(f"no device given: give a catalogue name (see `dfa devices`), or {every}")
     raise DFAValueError(f"missing {' '.join(missing)}: a physical device needs all of {every}")
+
+
+# ------------------------------------------------------------------ device files
+#: Largest device file read (bytes): a device is a few hundred bytes; ``/dev/zero`` is refused, not read.
+DEVICE_FILE_MAX_BYTES = 100_000
+
+_KINDS = ("haptic device", "experimental testbed", "human")
+_TEXT_KEYS = ("name", "kind", "source", "notes")
+_FILE_KEYS = ("name", "kind", "source", "rotary", *_PHYSICAL, "stiffness", "printed", "notes", "incomplete")
+_REQUIRED = ("name", *_PHYSICAL)
+_TEMPLATE = "`dfa devices --template > my_device.toml` writes one"
+
+
+def _file_error(path: str, what: str) -> DeviceFileError:
+    return DeviceFileError(f"device file {path!r} {what}")
+
+
+def _read_toml(path: str) -> dict:
+    """The file's TOML table; every way it cannot be read is a :class:`DeviceFileError`."""
+    try:
+        st = os.stat(path)
+    except (OSError, ValueError) as exc:
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else "not a path"
+        raise _file_error(path, f"cannot be read ({why}): give the path of a TOML file ({_TEMPLATE})") from None
+    if not stat.S_ISREG(st.st_mode):
+        raise _file_error(path, f"is not a regular file: give the path of a TOML file ({_TEMPLATE})")
+    if st.st_size > DEVICE_FILE_MAX_BYTES:
+        raise _file_error(
+            path, f"is too large ({st.st_size} bytes, at most {DEVICE_FILE_MAX_BYTES}): a device file holds one device"
+        )
+    try:
+        with open(path, "rb") as fh:
+            text = fh.read(DEVICE_FILE_MAX_BYTES + 1).decode("utf-8")
+    except OSError as exc:
+        raise _file_error(path, f"cannot be read ({exc.strerror or exc}): check its permissions") from None
+    except UnicodeDecodeError:
+        raise _file_error(path, "is not UTF-8 text: save it as a UTF-8 TOML file") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise _file_error(path, f"is not valid TOML ({exc}); compare it with `dfa devices --template`") from None
+
+
+def _unknown(path: str, keys: list[str], allowed: tuple[str, ...], where: str) -> DeviceFileError:
+    close = difflib.get_close_matches(keys[0], allowed, n=1, cutoff=0.6)
+    hint = f"did you mean {close[0]!r}? " if close else ""
+    return _file_error(
+        path,
+        f"has unknown key{'s' if len(keys) > 1 else ''} {', '.join(map(repr, keys))} {where}: {hint}"
+        f"the keys are {', '.join(allowed)}",
+    )
+
+
+def _file_row(path: str, data: dict) -> dict:
+    """The one ``[[devices]]`` table of a device file."""
+    rows = data.get("devices")
+    if set(data) - {"devices"}:
+        extra = sorted(set(data) - {"devices"})
+        if rows is None and set(extra) & set(_FILE_KEYS):
+            raise _file_error(
+                path, f"has its keys at the top: put them under a [[devices]] line, as the catalogue does ({_TEMPLATE})"
+            )
+        raise _unknown(path, extra, ("devices",), "at the top")
+    if not isinstance(rows, list) or not rows or not all(isinstance(r, dict) for r in rows):
+        raise _file_error(path, f"has no [[devices]] table: a device file holds one ({_TEMPLATE})")
+    if len(rows) > 1:
+        raise _file_error(
+            path, f"holds {len(rows)} [[devices]] tables: a device file holds one device; put each in its own file"
+        )
+    return rows[0]
+
+
+def _file_value(path: str, key: str, value: object) -> object:
+    """One value of a device file, checked by the rule of its key."""
+    from ..checks import check_nonnegative, check_positive, format_value
+
+    if key in _TEXT_KEYS:
+        if not isinstance(value, str):
+            raise _file_error(path, f"has {key} = {format_value(value)}: it must be text in quotes")
+        text = " ".join(value.split()) if key == "notes" else value.strip()
+        if key == "name" and (not text or len(text) > 100 or not text.isprintable()):
+            raise _file_error(path, f"has name = {value[:40]!r}: it must be printable text of 1 to 100 characters")
+        if key == "kind" and text not in _KINDS:
+            raise _file_error(path, f"has kind = {value[:40]!r}: it must be one of {', '.join(map(repr, _KINDS))}")
+        return text
+    if key in ("rotary", "incomplete"):
+        if not isinstance(value, bool):
+            raise _file_error(path, f"has {key} = {format_value(value)}: it must be true or false")
+        if key == "incomplete" and value:
+            raise _file_error(
+                path,
+                "has incomplete = true: a device file gives every physical value (mass, damping, coulomb, "
+                "resolution, period)",
+            )
+        return value
+    if key == "printed":
+        if not isinstance(value, dict):
+            raise _file_error(path, 'has printed that is not a table: write printed = { mu = "155.2", ... }')
+        unknown = sorted(set(value) - {"mu", "beta", "sigma"})
+        if unknown:
+            raise _unknown(path, unknown, ("mu", "beta", "sigma"), "in printed")
+        out = []
+        for k in ("mu", "beta", "sigma"):
+            if k in value:
+                v = value[k]
+                digits = ""
+                if isinstance(v, str):
+                    digits = v.strip()
+                elif isinstance(v, (int, float)) and not isinstance(v, bool):
+                    digits = repr(v)
+                try:
+                    ok = bool(digits) and math.isfinite(float(Decimal(digits)))
+                except (ArithmeticError, ValueError):
+                    ok = False
+                if not ok:
+                    raise _file_error(path, f"has printed {k} = {format_value(v)}: it must be a finite decimal number")
+                out.append((k, digits))
+        return tuple(out)
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise _file_error(
+            path,
+            f"has {key} = {format_value(value)}: it must be a number in SI units, without quotes (e.g. {key} = 0.25)",
+        )
+    check = check_positive if key in ("mass", "resolution", "period", "stiffness") else check_nonnegative
+    try:
+        return check(key, value, f"give {key} in {_UNITS.get(key, 'N/m (rotary: N·m/rad)')}")
+    except DFAError as exc:
+        raise DeviceFileError(f"device file {path!r}: {exc}") from None
+
+
+def load_device_file(path: str | os.PathLike) -> CatalogueEntry:
+    """Read a device of your own from a TOML file in the catalogue's format (:func:`device_template`).
+
+    The file holds one ``[[devices]]`` table: ``name`` and the five physical values in SI units (``mass``,
+    ``damping``, ``coulomb``, ``resolution``, ``period``) are required; ``stiffness``, ``rotary``, ``kind``,
+    ``source``, ``notes`` and ``printed`` (the (μ, β, σ) a source printed) are optional.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file (at most :data:`DEVICE_FILE_MAX_BYTES` bytes, UTF-8).
+
+    Returns
+    -------
+    CatalogueEntry
+        The row; ``.device`` is its :class:`Device` (which warns, :class:`~dfa.errors.ImplausibleInputWarning`,
+        for values no haptic device has), ``.params`` its (μ, β, σ) at its stiffness.
+
+    Raises
+    ------
+    DeviceFileError
+        A missing or unreadable file, not TOML, no or several ``[[devices]]`` tables, a key missing or unknown,
+        a value of the wrong type or outside its rule; the message names the file and the key (a
+        :class:`~dfa.errors.DFAValueError`).
+    DFATypeError
+        If ``path`` is not a path.
+
+    See Also
+    --------
+    device_template : A commented file to start from.
+    resolve_device : The device with some values replaced (``entry=``).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "delta.toml")
+    >>> with open(path, "w", encoding="utf-8") as fh:
+    ...     _ = fh.write(device_template())
+    >>> load_device_file(path) == get_device("Delta")
+    True
+    """
+    if not isinstance(path, (str, os.PathLike)):
+        raise DFATypeError(f"path = {path!r} has type {type(path).__name__}: it must be a file path (str)")
+    name = os.fspath(path)
+    if not isinstance(name, str):
+        name = os.fsdecode(name)
+    row = _file_row(name, _read_toml(name))
+    unknown = [k for k in row if k not in _FILE_KEYS]
+    if unknown:
+        raise _unknown(name, unknown, _FILE_KEYS, "in [[devices]]")
+    missing = [k for k in _REQUIRED if k not in row]
+    if missing:
+        raise _file_error(
+            name,
+            f"lacks {', '.join(missing)}: a device file gives name, mass, damping, coulomb, resolution and period "
+            f"(stiffness is optional; {_TEMPLATE})",
+        )
+    values = {k: _file_value(name, k, v) for k, v in row.items()}
+    values.pop("incomplete", None)
+    fields: dict = {"kind": "haptic device", "source": "", "notes": ""} | values
+    fields["source"] = fields["source"] or f"device file {os.path.basename(name)}"
+    return CatalogueEntry(**fields)
+
+
+def _toml_value(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value)
+    return json.dumps(value, ensure_ascii=False)  # a TOML basic string: JSON's escapes are TOML's
+
+
+_TEMPLATE_COMMENTS = {
+    "name": "shown in outputs and report file names (1 to 100 characters)",
+    "kind": '"haptic device", "experimental testbed" or "human"',
+    "source": "where the values come from (a datasheet, a measurement)",
+    "rotary": "true: positions in rad, forces in N·m, the mass an inertia in kg·m²",
+    "mass": "moving mass m in kg (rotary: inertia J in kg·m²), > 0",
+    "damping": "viscous friction b in N·s/m (rotary: N·m·s/rad), >= 0",
+    "coulomb": "Coulomb friction c in N (rotary: N·m), >= 0",
+    "resolution": "encoder resolution Δ in m (rotary: rad), > 0: 30 µm is 30e-6",
+    "period": "sample period T in s, > 0: a 1 kHz servo loop is 0.001",
+    "stiffness": "virtual wall stiffness K in N/m (rotary: N·m/rad), > 0; optional",
+    "printed": "optional: the (μ, β, σ) your source printed, compared with the recomputed ones",
+    "notes": "optional remarks",
+}
+
+
+def device_template(entry: CatalogueEntry | None = None) -> str:
+    """A commented device file (TOML, the catalogue's format) that :func:`load_device_file` reads back unchanged.
+
+    Parameters
+    ----------
+    entry : CatalogueEntry, optional
+        The row to write (default the catalogue's :data:`DEFAULT_DEVICE`, a complete example to edit).
+
+    Returns
+    -------
+    str
+        The file's text: a header saying how to use it, then one ``[[devices]]`` table, each key under a comment
+        with its unit and rule.
+
+    Raises
+    ------
+    DFAValueError
+        For an incomplete row (a device file gives every physical value).
+    DFATypeError
+        If ``entry`` is not a :class:`CatalogueEntry`.
+
+    See Also
+    --------
+    load_device_file : Reads the file back.
+    catalogue : The rows of the catalogue.
+    """
+    e = get_device(DEFAULT_DEVICE) if entry is None else entry
+    if not isinstance(e, CatalogueEntry):
+        raise DFATypeError(f"entry = {e!r} has type {type(e).__name__}: it must be a CatalogueEntry or None")
+    if e.missing:
+        raise DFAValueError(
+            f"entry = {e.name!r} is incomplete (unknown: {', '.join(e.missing)}): a device file gives every physical "
+            "value; choose a complete row"
+        )
+    values: dict[str, object] = {"name": e.name, "kind": e.kind, "source": e.source, "rotary": e.rotary}
+    values |= {k: getattr(e, k) for k in _PHYSICAL}
+    if e.stiffness is not None:
+        values["stiffness"] = e.stiffness
+    lines = [f"{k} = {_toml_value(v)}" for k, v in values.items()]
+    if e.printed:
+        lines.append("printed = { " + ", ".join(f"{k} = {_toml_value(v)}" for k, v in e.printed) + " }")
+    if e.notes:
+        lines.append(f"notes = {_toml_value(e.notes)}")
+    body = [part for line in lines for part in (f"# {_TEMPLATE_COMMENTS[line.split(' ', 1)[0]]}", line)]
+    head = [
+        "# A device for dfa, in the format of dfa's own catalogue: one [[devices]] table, SI units.",
+        "# Use it with every command that takes a device, e.g.",
+        "#   dfa check --device-file my_device.toml --velocity 0.1",
+        "# Flags given with it (--mass ... --period, --counts, --stiffness, --name, --rotary) replace its values.",
+        f"# The values below are the catalogue's {e.name}: put your device's in their place.",
+        "",
+        "[[devices]]",
+    ]
+    return "\n".join(head + body) + "\n"

@@ -35,6 +35,7 @@ import numpy as np
 
 from ..checks import check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma, format_value
 from ..errors import DFATypeError, DFAValueError
+from ..plausibility import warn_if_from_outside
 
 __all__ = ["Params", "Device", "dimensionless_params", "device_units"]
 
@@ -140,6 +141,12 @@ class Device:
         A label used in reports.
     rotary : bool, optional
         True when positions are angles and forces are torques (only changes units).
+
+    Warns
+    -----
+    ImplausibleInputWarning
+        For a mass, resolution or period no haptic device has (:mod:`dfa.plausibility`: a resolution above
+        1 mm is most likely µm written as m), when the device is built outside dfa (a script, a notebook).
     """
 
     mass: float
@@ -179,6 +186,8 @@ class Device:
                 f"rotary = {format_value(self.rotary)} has type {type(self.rotary).__name__}: it must be True or False; pass rotary=True for a rotary joint"
             )
         object.__setattr__(self, "rotary", bool(self.rotary))
+        for quantity in ("mass", "resolution", "period"):  # a value no haptic device has: warn, naming the slip
+            warn_if_from_outside(quantity, getattr(self, quantity), rotary=self.rotary)
 
     # ------------------------------------------------------------------ units
     @property
@@ -204,8 +213,14 @@ class Device:
         ------
         DFAValueError
             If ``stiffness`` is not a finite number > 0, or a group overflows or vanishes in a float.
+
+        Warns
+        -----
+        ImplausibleInputWarning
+            If K is above what any haptic device renders (:mod:`dfa.plausibility`), given from outside dfa.
         """
         k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
+        warn_if_from_outside("stiffness", k, rotary=self.rotary)
         return dimensionless_params(self, k)
 
     def xi_dot(self, velocity: float) -> float:
@@ -227,8 +242,14 @@ class Device:
         ------
         DFAValueError
             If ``velocity`` is not a finite number or ξ' overflows a float.
+
+        Warns
+        -----
+        ImplausibleInputWarning
+            If |ẋ| is above any impact speed on a haptic device (:mod:`dfa.plausibility`), given from outside dfa.
         """
         v = check_real("velocity", velocity, "give the speed in m/s (rotary: rad/s)")
+        warn_if_from_outside("velocity", v, rotary=self.rotary)
         out = v * self.period / self.resolution
         if not math.isfinite(out):
             raise DFAValueError(

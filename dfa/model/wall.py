@@ -40,6 +40,7 @@ from typing import Any
 
 from ..checks import check_positive, format_value
 from ..errors import DFATypeError, DFAValueError
+from ..plausibility import warn_if_from_outside
 from ..results.jsonable import explain_nulls
 from .elements import (
     ELEMENTS,
@@ -429,6 +430,12 @@ class Wall:
         The wall's elements (:mod:`dfa.model.elements`), at most one of each kind; default none, the paper's
         spring. :meth:`of` builds a wall from the built-in elements' physical values.
 
+    Warns
+    -----
+    ImplausibleInputWarning
+        For a K above 1e7 (N/m or N·m/rad), which no haptic device renders (:mod:`dfa.plausibility`), when the
+        wall is built outside dfa; dfa's own searches over K never warn.
+
     Examples
     --------
     >>> from dfa.model.elements import AmplifierLag
@@ -445,6 +452,7 @@ class Wall:
         fix = "give the virtual wall stiffness K in N/m"
         object.__setattr__(self, "stiffness", check_positive("stiffness", self.stiffness, fix))
         object.__setattr__(self, "elements", _ordered(self.elements))
+        warn_if_from_outside("stiffness", self.stiffness)  # K above any haptic wall, given from outside dfa
 
     @classmethod
     def of(

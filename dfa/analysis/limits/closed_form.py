@@ -49,6 +49,7 @@ from ...checks import check_delay, check_positive, check_real_array, check_speed
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.wall import Wall
+from ...plausibility import warn_if_from_outside
 from ...results.base import Result
 from ...results.frozen import check_shape, freeze_fields
 from ...results.status import CurveStatus, StiffnessStatus, VelocityStatus
@@ -133,6 +134,8 @@ def k_max_criterion(device: Device, velocity: ArrayLike, delay: int = 0) -> Any:
     dev = _check_device(device)
     v = np.abs(check_real_array("velocity", velocity, "give speeds in m/s (rotary: rad/s)"))
     d = check_delay(delay)
+    if v.size:
+        warn_if_from_outside("velocity", float(np.max(v)), rotary=dev.rotary)  # the user's, not a search's
     k_dyn = (dev.damping * v + dev.coulomb) / (dev.period * (0.5 + d) * v + 0.5 * dev.resolution)
     # rounded down by 1e-12 (relative) so that device_criterion accepts K_max itself: the two evaluate
     # the same inequality in physical and dimensionless form, and margin = 0 must stay on the passive side
@@ -723,5 +726,8 @@ def stiffness_response(
         if stiffness is None
         else check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     )
+    warn_if_from_outside("velocity", float(np.max(v)), rotary=dev.rotary)
+    if k is not None:
+        warn_if_from_outside("stiffness", k, rotary=dev.rotary)
     limits = stiffness_limits(dev, float(v[0]), k, d)
     return StiffnessResponse(dev, v, np.atleast_1d(k_max_criterion(dev, v, d)), limits)

@@ -39,6 +39,7 @@ from ...checks import check_int, check_positive, check_real, check_speed, check_
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.wall import Wall
+from ...plausibility import warn_if_from_outside
 from ...results.base import Result
 from ...results.frozen import frozen_array
 from ...results.status import ChartStatus
@@ -356,6 +357,9 @@ def stiffness_speed_chart(
     w = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
     k_design = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
     v_design = None if velocity is None else check_speed("velocity", velocity)
+    for quantity, value in (("stiffness", k_design), ("velocity", v_design)):
+        if value is not None:
+            warn_if_from_outside(quantity, value, rotary=dev.rotary)
     fix_top = "give the top of the speed range in m/s (rad/s rotary), e.g. 0.5"
     top = HAND_SPEED["rotary" if dev.rotary else "linear"] if v_top is None else v_top
     top = max(check_positive("v_top", top, fix_top), v_design or 0.0)

@@ -80,6 +80,7 @@ from ...core import kernel
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.wall import Wall, WallParams
+from ...plausibility import warn_if_from_outside
 from ...results.base import Result
 from ...results.codes import BOUNDED, DIVERGES, POINT_OUTCOMES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
 from ...results.status import LimitStatus, LinearStatus, ZWidthStatus
@@ -590,6 +591,7 @@ def z_width(
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     v = check_speed("velocity", velocity, dev.units["velocity"], zero=False)
+    warn_if_from_outside("velocity", v, rotary=dev.rotary)
     base = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
     g = check_int("grid", grid, minimum=2, fix="give at least 2 points per axis")
     if g > MAX_GRID:

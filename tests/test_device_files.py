@@ -1,0 +1,237 @@
+"""Devices from a file (issue 27, section 1): ``--device-file my_device.toml`` in the catalogue's own format for
+every command that takes a device, ``dfa devices --template`` that loads back unchanged, and one clear error
+(:class:`~dfa.errors.DeviceFileError`; on the command line one line, exit 2) for every way a file can be wrong."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+
+import pytest
+
+import dfa
+from dfa.cli import main
+from dfa.cli.app import build_parser
+from dfa.errors import DeviceFileError, DFAValueError
+from dfa.model.catalogue import (
+    DEFAULT_DEVICE,
+    DEVICE_FILE_MAX_BYTES,
+    catalogue,
+    device_template,
+    get_device,
+    load_device_file,
+    resolve_device,
+)
+
+COMPLETE = [e for e in catalogue() if not e.missing]
+
+
+def _run(capsys, *argv: str) -> tuple[int, str, str]:
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def _refused(capsys, *argv: str) -> str:
+    code, out, err = _run(capsys, *argv)
+    assert code == 2, (argv, out, err)
+    assert err.count("\n") == 1 and err.startswith("dfa") and "Traceback" not in err, err
+    return err
+
+
+def _write(tmp_path, text: str, name: str = "dev.toml") -> str:
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return str(path)
+
+
+# ------------------------------------------------------------------ the template and the round trip
+@pytest.mark.parametrize("entry", COMPLETE, ids=[e.name for e in COMPLETE])
+def test_template_of_every_complete_row_loads_back_unchanged(tmp_path, entry):
+    path = _write(tmp_path, device_template(entry))
+    assert load_device_file(path) == entry  # every field: values to the last bit, text, printed, notes
+
+
+def test_template_is_commented_and_short(tmp_path):
+    text = device_template()
+    assert text.startswith("# ") and "[[devices]]" in text and "--device-file" in text
+    assert all(len(line) <= 110 for line in text.splitlines())
+    for key in ("name", "mass", "damping", "coulomb", "resolution", "period", "stiffness"):
+        i = next(i for i, line in enumerate(text.splitlines()) if line.startswith(f"{key} = "))
+        assert text.splitlines()[i - 1].startswith("# "), key  # each key under its comment
+
+
+def test_cli_template_round_trip(capsys, tmp_path):
+    """`dfa devices --template > f.toml` and `--device-file f.toml` give the template device's own numbers."""
+    code, out, err = _run(capsys, "devices", "--template")
+    assert code == 0 and err == "" and out == device_template()
+    path = _write(tmp_path, out)
+    for cmd in (["params", "--json"], ["check", "--velocity", "0.1", "--json"]):
+        from_file = _run(capsys, cmd[0], "--device-file", path, *cmd[1:])
+        from_name = _run(capsys, cmd[0], "--device", DEFAULT_DEVICE, *cmd[1:])
+        assert from_file[0] == 0 and from_file[2] == "", from_file
+        assert json.loads(from_file[1]) == json.loads(from_name[1])
+
+
+def test_template_refuses_an_incomplete_row():
+    with pytest.raises(DFAValueError, match="incomplete"):
+        device_template(get_device("Omega"))
+
+
+# ------------------------------------------------------------------ every command that takes a device
+def _commands() -> dict[str, argparse.ArgumentParser]:
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return dict(sub.choices)
+
+
+def test_every_command_with_device_takes_device_file():
+    with_device = [c for c, p in _commands().items() if any("--device" in a.option_strings for a in p._actions)]
+    assert len(with_device) >= 9
+    for cmd in with_device:
+        p = _commands()[cmd]
+        assert any("--device-file" in a.option_strings for a in p._actions), cmd
+        assert "replace its values" in " ".join(p.format_help().split()), cmd  # the rule is in --help
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["params"],
+        ["check", "--velocity", "0.05"],
+        ["simulate", "--velocity", "0.05", "--samples", "100"],
+        ["limit-cycles", "--max-amplitude", "5"],
+        ["map", "--velocity", "0.05", "--grid", "2", "--samples", "10", "--jobs", "1", "--quiet", "--out", "{m}"],
+        ["contours", "--grid", "2", "--max-amplitude", "2"],
+    ],
+    ids=lambda a: a[0],
+)
+def test_commands_run_with_a_device_file(capsys, tmp_path, argv):
+    path = _write(tmp_path, device_template(get_device("impulse")))
+    argv = [a.replace("{m}", str(tmp_path / "m.npz")) for a in argv]
+    code, out, err = _run(capsys, argv[0], "--device-file", path, *argv[1:])
+    assert code == 0 and err == "", err
+    _run(capsys, argv[0], "--device", "impulse", *argv[1:])
+
+
+# ------------------------------------------------------------------ the rule with --device and the flags
+def test_flags_replace_the_files_values(capsys, tmp_path):
+    path = _write(tmp_path, device_template(get_device("impulse")))
+    got = json.loads(
+        _run(capsys, "params", "--device-file", path, "--coulomb", "0.05", "--stiffness", "100", "--json")[1]
+    )
+    want = dfa.resolve_device("impulse", overrides={"coulomb": 0.05}, stiffness=100.0)
+    assert got == want.device.params(want.stiffness).to_dict()
+    code, out, _ = _run(capsys, "params", "--device-file", path, "--name", "my pen")
+    assert code == 0 and out.startswith("my pen, K = 80 N/m")
+
+
+def test_device_and_device_file_together_are_refused(capsys, tmp_path):
+    path = _write(tmp_path, device_template())
+    err = _refused(capsys, "params", "--device", "delta", "--device-file", path)
+    assert "--device 'delta' and --device-file" in err and "cannot both be given" in err
+    assert "cannot be combined with --device-file" in _refused(
+        capsys, "params", "--device-file", path, "--mu", "5", "--beta", "0.1", "--sigma", "0.3"
+    )
+
+
+def test_a_file_without_stiffness_names_the_file(capsys, tmp_path):
+    text = "\n".join(line for line in device_template().splitlines() if not line.startswith("stiffness"))
+    path = _write(tmp_path, text)
+    err = _refused(capsys, "params", "--device-file", path)
+    assert f"device file {path!r} gives no stiffness" in err
+    assert _run(capsys, "params", "--device-file", path, "--stiffness", "1000")[0] == 0
+    assert load_device_file(path).stiffness is None
+
+
+def test_report_takes_the_file_not_the_default_device(capsys, tmp_path):
+    path = _write(tmp_path, device_template(get_device("impulse")))
+    err = _refused(capsys, "report", "--device-file", path, "--format", "pdf")  # refused before any work
+    assert "invalid choice" in err
+    args = build_parser().parse_args(["report", "--device-file", path])
+    assert args.device is None and args.device_file == path
+
+
+def test_resolve_device_takes_an_entry(tmp_path):
+    entry = load_device_file(_write(tmp_path, device_template(get_device("phantom"))))
+    r = resolve_device(entry=entry, overrides={"coulomb": 0.05})
+    assert r.device.coulomb == 0.05 and r.stiffness == 1015.0 and r.entry is None
+    assert resolve_device(entry=entry).entry == entry
+    with pytest.raises(DFAValueError, match="cannot both be given"):
+        resolve_device("delta", entry=entry)
+
+
+# ------------------------------------------------------------------ every way a file can be wrong
+GOOD = device_template()
+
+
+def _without(key: str) -> str:
+    return "\n".join(line for line in GOOD.splitlines() if not line.startswith(f"{key} = "))
+
+
+def _with(key: str, value: str) -> str:
+    return "\n".join(f"{key} = {value}" if line.startswith(f"{key} = ") else line for line in GOOD.splitlines())
+
+
+BAD_FILES = {
+    "not TOML": ("mass = = 1", "is not valid TOML ("),
+    "not UTF-8": (b"\xff\xfe name", "is not UTF-8 text"),
+    "empty": ("", "has no [[devices]] table"),
+    "keys at the top": ('name = "x"\nmass = 1.0\n', "has its keys at the top: put them under a [[devices]] line"),
+    "unknown top key": (GOOD + "\n[other]\na = 1\n", "has unknown key 'other' at the top"),
+    "two devices": (GOOD + "\n[[devices]]\n" + GOOD.split("\n[[devices]]\n")[1], "holds 2 [[devices]]"),
+    "unknown key": (GOOD + "mas = 1.0\n", "has unknown key 'mas' in [[devices]]: did you mean 'mass'?"),
+    "missing keys": (_without("period"), "lacks period: a device file gives name, mass"),
+    "text number": (_with("mass", '"0.25"'), "has mass = '0.25': it must be a number in SI units, without quotes"),
+    "bool number": (_with("damping", "true"), "has damping = True: it must be a number"),
+    "negative": (_with("coulomb", "-0.1"), ": coulomb = -0.1 is invalid: it must be a finite number >= 0"),
+    "zero period": (_with("period", "0.0"), ": period = 0.0 is invalid: it must be a finite number > 0"),
+    "nan": (_with("resolution", "nan"), ": resolution = nan is invalid"),
+    "inf": (_with("stiffness", "inf"), ": stiffness = inf is invalid"),
+    "empty name": (_with("name", '"  "'), "has name = '  ': it must be printable text of 1 to 100 characters"),
+    "name type": (_with("name", "3"), "has name = 3: it must be text in quotes"),
+    "kind": (_with("kind", '"robot"'), "has kind = 'robot': it must be one of 'haptic device'"),
+    "rotary": (_with("rotary", '"no"'), "has rotary = 'no': it must be true or false"),
+    "incomplete": (GOOD + "incomplete = true\n", "has incomplete = true: a device file gives every physical value"),
+    "printed key": (
+        _with("printed", '{ sgima = "1" }'),
+        "has unknown key 'sgima' in printed: did you mean 'sigma'?",
+    ),
+    "printed value": (_with("printed", '{ mu = "x" }'), "has printed mu = 'x': it must be a finite decimal number"),
+}
+
+
+@pytest.mark.parametrize("case", list(BAD_FILES))
+def test_bad_files_are_one_clear_error(capsys, tmp_path, case):
+    content, needle = BAD_FILES[case]
+    path = tmp_path / "dev.toml"
+    path.write_bytes(content if isinstance(content, bytes) else content.encode("utf-8"))
+    with pytest.raises(DeviceFileError) as info:
+        load_device_file(path)
+    assert str(info.value).startswith(f"device file {str(path)!r}") and needle in str(info.value), str(info.value)
+    err = _refused(capsys, "params", "--device-file", str(path))
+    assert needle in err
+
+
+def test_missing_unreadable_and_huge_files(capsys, tmp_path):
+    missing = str(tmp_path / "nope.toml")
+    assert "cannot be read (No such file or directory)" in _refused(capsys, "params", "--device-file", missing)
+    assert "is not a regular file" in _refused(capsys, "params", "--device-file", str(tmp_path))
+    if os.path.exists("/dev/zero"):
+        assert "is not a regular file" in _refused(capsys, "check", "--device-file", "/dev/zero", "--velocity", "1")
+    big = tmp_path / "big.toml"
+    with open(big, "wb") as fh:
+        fh.truncate(DEVICE_FILE_MAX_BYTES + 1)
+    assert "is too large" in _refused(capsys, "params", "--device-file", str(big))
+    assert "'--' cannot be read" in _refused(capsys, "params", "--device-file=--")
+
+
+def test_load_device_file_refuses_a_non_path():
+    with pytest.raises(dfa.DFATypeError, match="it must be a file path"):
+        load_device_file(3)  # type: ignore[arg-type]
+
+
+def test_the_package_exports_the_device_file_api():
+    assert dfa.load_device_file is load_device_file and dfa.device_template is device_template
+    assert issubclass(dfa.DeviceFileError, dfa.DFAValueError)
