@@ -1,20 +1,29 @@
 """CLI fuzzing (issue 17): thousands of generated ``dfa`` invocations, in process.
 
 Every invocation must end with exit code 0 or 2, no exception may escape
-:func:`dfa.cli.main`, an exit 2 prints exactly one line on stderr, and a
+:func:`dfa.cli.main`, an exit 2 prints exactly one line on stderr (warnings about
+implausible inputs are held and dropped when the run is refused), and a
 successful ``--json`` run prints valid JSON. The generator is seeded
 (deterministic); each invocation is cheap (tiny grids and sample counts).
 Report and validate runs always carry one input that must be refused before
 any work (a full run takes seconds).
+
+Issue 27: every flag that takes a value is also written ``--flag=--``,
+``--flag=-X`` and ``--flag -X`` (Python 3.11's argparse passed ``[]`` for
+``--flag=--`` and read ``-1e-5`` as a flag): one such flag is added to about a
+third of the random invocations, and :func:`test_every_flag_in_every_form` runs
+each flag of each command in the three forms once.
 """
 
+import argparse
 import json
 import os
 import random
 
 import pytest
 
-from dfa.cli import main
+from dfa.cli import main, parsing
+from dfa.cli.app import build_parser
 
 SEED = 17
 N_INVOCATIONS = 2200
@@ -144,7 +153,50 @@ def _device_args(rng, dimensionless, speed, stiffness=True):
     return args
 
 
-def _invocation(rng, tmp):
+def _value_flags() -> dict[str, list[tuple[str, object, bool]]]:
+    """Every flag that takes a value, per command: (flag, nargs, whether it takes a number)."""
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return {
+        cmd: [
+            (a.option_strings[0], a.nargs, a.type is not None and a.type is not parsing.name)
+            for a in p._actions
+            if a.option_strings and a.nargs != 0 and a.option_strings[0] not in ("-h", "--help")
+        ]
+        for cmd, p in sub.choices.items()
+    }
+
+
+VALUE_FLAGS = _value_flags()
+#: What follows the minus sign of ``--flag=-X`` and ``--flag -X``.
+NEGATIVES = ["1", "2.5e0", "1e-5", ".5", "0", "1e308", "1e-320", "inf", "nan", "x", "-", "1_0"]
+
+
+def _forms(flag: str, nargs: object, x: str) -> list[list[str]]:
+    """The flag written three ways: ``--flag=--``, ``--flag=-X`` and ``--flag -X`` (as many values as it takes)."""
+    n = nargs if isinstance(nargs, int) else 1
+    return [[f"{flag}=--"], [f"{flag}=-{x}"], [flag] + [f"-{x}"] * n]
+
+
+def _mutate(rng, argv):
+    """Add one of the command's value flags in one of the three forms: after the command for report and validate
+    (their input that must be refused comes later and wins), else at the end (it wins)."""
+    flags = VALUE_FLAGS.get(argv[0])
+    if not flags or rng.random() > 0.35:
+        return argv
+    flag, nargs, _numeric = rng.choice(flags)
+    extra = rng.choice(_forms(flag, nargs, rng.choice(NEGATIVES)))
+    return [argv[0], *extra, *argv[1:]] if argv[0] in ("report", "validate") else [*argv, *extra]
+
+
+def _invocation(rng, tmp, forms_rng=None):
+    """One invocation; with ``forms_rng`` (a generator of its own, so that the base invocations stay those of
+    issue 17), possibly one more flag in one of the three forms (:func:`_mutate`)."""
+    argv = _base_invocation(rng, tmp)
+    return argv if forms_rng is None else _mutate(forms_rng, argv)
+
+
+def _base_invocation(rng, tmp):
     cmd = rng.choice(
         [
             "devices",
@@ -242,13 +294,15 @@ CHUNKS = 4
 
 
 @pytest.mark.parametrize("chunk", range(CHUNKS))
-def test_cli_fuzz(tmp_path, capsys, chunk):
+def test_cli_fuzz(tmp_path, capsys, monkeypatch, chunk):
+    monkeypatch.chdir(tmp_path)  # a relative path the forms produce (`--trace -1`) is written here
     (tmp_path / "sub").mkdir()
     (tmp_path / "afile.txt").write_text("keep me")
     rng = random.Random(SEED + chunk)
+    forms_rng = random.Random(f"{SEED}-{chunk}-forms")
     codes = {0: 0, 2: 0}
     for i in range(N_INVOCATIONS // CHUNKS):
-        argv = _invocation(rng, tmp_path)
+        argv = _invocation(rng, tmp_path, forms_rng)
         try:
             code = main(argv)
         except BaseException as exc:
@@ -265,3 +319,34 @@ def test_cli_fuzz(tmp_path, capsys, chunk):
     assert (tmp_path / "afile.txt").read_text() == "keep me"
     assert not any(name.startswith(".dfa-tmp-") for name in os.listdir(tmp_path))
     assert not os.path.exists(os.devnull + ".npz")
+
+
+#: Appended to every run of the sweep for the commands that would otherwise do seconds of work: refused by the
+#: parser, after the flag under test (so a bad value of that flag is still the error shown).
+GUARD = {"report": ["--format", "pdf"], "validate": ["--jobs", "x"]}
+
+
+@pytest.mark.parametrize("cmd", sorted(VALUE_FLAGS))
+def test_every_flag_in_every_form(tmp_path, capsys, monkeypatch, cmd):
+    """Each value flag of ``cmd`` as ``--flag=--``, ``--flag=-X`` and ``--flag -X``: exit 0 or 2, one line on
+    stderr when refused, and a number flag refuses ``--`` with its own message (not an empty list, a traceback)."""
+    monkeypatch.chdir(tmp_path)  # a text flag given "--" writes nowhere it should not
+    rng = random.Random(f"{SEED}-{cmd}")
+    runs = 0
+    for flag, nargs, numeric in VALUE_FLAGS[cmd]:
+        for form in _forms(flag, nargs, rng.choice(NEGATIVES)):
+            argv = [cmd, *form, *GUARD.get(cmd, [])]
+            try:
+                code = main(argv)
+            except BaseException as exc:
+                pytest.fail(f"dfa {argv!r} raised {type(exc).__name__}: {exc}")
+            out, err = capsys.readouterr()
+            assert code in (0, 2), f"dfa {argv!r} exited {code}: {err}"
+            if code == 2:
+                assert err.count("\n") == 1 and err.startswith("dfa"), f"dfa {argv!r}: {err!r}"
+            if form[0].endswith("=--") and numeric:  # a pair (--beta-range) takes no value after '='
+                want = "expected 2 arguments" if nargs == 2 else "'--' is not"
+                assert code == 2 and f"argument {flag}: {want}" in err, f"dfa {argv!r}: {err!r}"
+            runs += 1
+    assert runs == 3 * len(VALUE_FLAGS[cmd])
+    assert os.listdir(tmp_path) == [] or cmd in ("devices",), os.listdir(tmp_path)
