@@ -84,7 +84,10 @@ EXTEND_CAP = 16
 
 
 def decide_undecided(
-    codes: Sequence[Any], lengths: Sequence[int], undecided: Any, rerun: Callable[[np.ndarray, np.ndarray], Any]
+    codes: Sequence[Any] | np.ndarray,
+    lengths: Sequence[int] | np.ndarray,
+    undecided: Any,
+    rerun: Callable[[np.ndarray, np.ndarray], Any],
 ) -> tuple[np.ndarray, np.ndarray]:
     """Run the undecided runs again, :data:`EXTEND_STEP` times longer each time, up to :data:`EXTEND_CAP` times.
 
