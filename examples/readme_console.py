@@ -1,11 +1,11 @@
 """Keep the README's command-line examples true: run every ``$ dfa ...`` line of its console blocks.
 
-Each ```` ```console ```` block of README.md holds commands (lines starting with ``$ dfa``) each followed by
+Each ```` ```console ```` block of README.md and of the docs pages in :data:`FILES` holds commands (lines starting with ``$ dfa``) each followed by
 its output. This script runs every command in-process (``dfa.cli.main``, in a temporary folder so files they
 write go nowhere) and either checks that the README shows exactly what the code prints now, or rewrites the
 README with the new output.
 
-Run: python examples/readme_console.py [--write] [--readme README.md]
+Run: python examples/readme_console.py [--write] [--readme FILE]  (default: every file of FILES)
 (``make readme`` rewrites; ``tests/test_readme_console.py`` checks.)
 """
 
@@ -24,6 +24,8 @@ from pathlib import Path
 
 BLOCK = re.compile(r"(```console\n)(.*?)(```)", re.S)
 ROOT = Path(__file__).resolve().parent.parent
+#: The documents whose console blocks are run: the README's quick start and the command-line page.
+FILES = ("README.md", "docs/cli.md")
 
 
 def sessions(block: str) -> list[tuple[str, str]]:
@@ -70,13 +72,20 @@ def render(text: str) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--write", action="store_true", help="rewrite the README instead of checking it")
-    ap.add_argument("--readme", default=str(ROOT / "README.md"))
+    ap.add_argument("--write", action="store_true", help="rewrite the files instead of checking them")
+    ap.add_argument("--readme", default=None, help="one file to check or rewrite (default: every file of FILES)")
     args = ap.parse_args(argv)
-    path = Path(args.readme)
+    paths = [Path(args.readme)] if args.readme else [ROOT / f for f in FILES]
+    status = 0
+    for path in paths:
+        status |= _one(path, args.write)
+    return status
+
+
+def _one(path: Path, write: bool) -> int:
     old = path.read_text(encoding="utf-8")
     new = render(old)
-    if args.write:
+    if write:
         tmp = path.with_name(path.name + ".tmp")
         tmp.write_text(new, encoding="utf-8")
         os.replace(tmp, path)
@@ -84,7 +93,9 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if new != old:
         sys.stdout.writelines(
-            difflib.unified_diff(old.splitlines(True), new.splitlines(True), "README (committed)", "README (code now)")
+            difflib.unified_diff(
+                old.splitlines(True), new.splitlines(True), f"{path.name} (committed)", f"{path.name} (code now)"
+            )
         )
         return 1
     print(f"{path}: every console example matches the code")

@@ -1,4 +1,5 @@
-"""README examples are what the code prints: the console blocks run verbatim, the Python block's commented values hold."""
+"""README and docs examples are what the code prints: the console blocks run verbatim (README.md and the command-line
+page, ``readme_console.FILES``), the README's Python block's commented values hold."""
 
 import contextlib
 import io
@@ -14,25 +15,28 @@ sys.path.insert(0, str(ROOT / "examples"))
 import readme_console  # noqa: E402
 
 README = (ROOT / "README.md").read_text(encoding="utf-8")
+CLI_PAGE = (ROOT / "docs" / "cli.md").read_text(encoding="utf-8")
 
 
-def test_readme_console_blocks_match_the_cli():
-    """Every `$ dfa ...` line of README.md prints exactly the output shown under it (make readme rewrites them)."""
-    assert readme_console.BLOCK.search(README), "README has no console block"
-    rendered = readme_console.render(README)
-    if rendered != README:
+@pytest.mark.parametrize("name", readme_console.FILES)
+def test_readme_console_blocks_match_the_cli(name):
+    """Every `$ dfa ...` line of the file prints exactly the output shown under it (make readme rewrites them)."""
+    text = (ROOT / name).read_text(encoding="utf-8")
+    assert readme_console.BLOCK.search(text), f"{name} has no console block"
+    rendered = readme_console.render(text)
+    if rendered != text:
         import difflib
 
-        diff = "".join(difflib.unified_diff(README.splitlines(True), rendered.splitlines(True), "README", "code now"))
-        pytest.fail("README console output differs from the code; run `make readme`:\n" + diff[:4000])
+        diff = "".join(difflib.unified_diff(text.splitlines(True), rendered.splitlines(True), name, "code now"))
+        pytest.fail(f"{name} console output differs from the code; run `make readme`:\n" + diff[:4000])
 
 
 def test_readme_console_check_detects_a_changed_number(tmp_path):
-    """The checker can fail: one changed digit in a README output is reported."""
-    m = re.search(r"margin\s+(\d\.\d+)", README)
-    assert m, "README's dfa check example shows a margin row"
-    bad = README.replace(m.group(0), m.group(0)[:-1] + str((int(m.group(0)[-1]) + 1) % 10), 1)
-    path = tmp_path / "README.md"
+    """The checker can fail: one changed digit in a documented output is reported."""
+    m = re.search(r"margin\s+(\d\.\d+)", CLI_PAGE)
+    assert m, "the command-line page's dfa check example shows a margin row"
+    bad = CLI_PAGE.replace(m.group(0), m.group(0)[:-1] + str((int(m.group(0)[-1]) + 1) % 10), 1)
+    path = tmp_path / "cli.md"
     path.write_text(bad, encoding="utf-8")
     with contextlib.redirect_stdout(io.StringIO()):
         assert readme_console.main(["--readme", str(path)]) == 1
