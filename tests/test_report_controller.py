@@ -199,7 +199,9 @@ def test_controller_report_leaves_out_the_spring_only_sections(ctl):
     assert a["criterion"] == a["check"]["criterion"] and a["design_answer"]["wall"]["damping"] == 1.0
     assert "## Passivity and stiffness limits" not in md and "How stiff may the wall be? (four ways" not in md
     assert "Not in this report: the criterion of eq. 6 for the bare spring" in md
-    assert "caption of regions" not in md and "caption of stiffness" not in md and "caption of speed_chart" not in md
+    assert "caption of stiffness" not in md and "caption of speed_chart" not in md
+    # the regions figure is the extended criterion's (it covers a damper, filter and delay), in the controller's section
+    assert md.index("caption of regions") > md.index("## Passivity with the controller")
     assert "## Predicted limit cycles (describing function, eq. 36–41) with the controller" in md
     # the sections that accept a controller are computed with it
     dev = dfa.get_device("delta").device
@@ -237,12 +239,13 @@ def test_controller_zwidth_on_by_default_and_can_be_turned_off(ctl, lag):
 
 
 def test_controller_report_html_self_contained_with_its_figures(tmp_path, monkeypatch):
-    """Real figures: the four that take the controller, embedded; no spring-only figure, no PNG file."""
+    """Real figures: the five that take the controller (the extended criterion's regions, Nyquist, trajectories, map,
+    Z-width), embedded; no spring-only figure, no PNG file."""
     monkeypatch.setattr(dfa.report, "design_analysis", partial(design_analysis, **SMALL))
     code, _ = call("report", *B1, "--zwidth", "3", "--out", str(tmp_path), "--format", "html")
     assert code == 0
     page = (tmp_path / "design_report_delta_controller.html").read_text(encoding="utf-8")
-    assert page.count("data:image/png;base64,") == 4  # Nyquist, trajectories, map, Z-width
+    assert page.count("data:image/png;base64,") == 5  # regions, Nyquist, trajectories, map, Z-width
     assert not list(tmp_path.glob("**/*.png")) and "<h2>Wall controller</h2>" in page
 
 

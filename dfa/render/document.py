@@ -114,7 +114,8 @@ def spring_only_text(a: DesignAnalysis) -> str:
         return ""
     return (
         "Not in this report: the criterion of eq. 6 for the bare spring with its stiffness limits (eq. 8–11), the "
-        "stiffness–speed chart, and the regions and stiffness figures. The closed forms hold for the "
+        "stiffness–speed chart, and the stiffness figure (the regions figure below is the extended criterion's, "
+        "where one covers the wall). The closed forms hold for the "
         "paper's spring (B = 0, no velocity filter, ideal amplifier), not for this controller; `dfa report` "
         "without the controller flags writes them (a separate file), and `dfa stiffness --plot` with the same flags "
         "draws this controller's stiffness–speed chart. "
@@ -348,7 +349,9 @@ def validation_text(a: DesignAnalysis) -> str:
 
 
 def _figure_markdown(captions: Mapping[str, str], src: Callable[[str], str]) -> Callable[[str], str]:
-    def figure(name: str) -> str:
+    def figure(name: str, optional: bool = False) -> str:
+        if optional and name not in captions:  # e.g. no regions figure where no criterion covers the wall
+            return ""
         return f"![{captions[name]}]({src(name)})\n\n*{captions[name]}*"
 
     return figure
