@@ -683,6 +683,41 @@ def bench_design_answer(quick: bool) -> str:
     )
 
 
+def bench_startup(quick: bool) -> str:
+    """Start-up of `dfa check` (issue 27 §1) against `python -c "import numpy"`, each a fresh process, one run.
+
+    Goal: `dfa check` at most 3 times the time of importing numpy (best of several starts each, side by side).
+    """
+    import subprocess
+
+    def start(argv: list[str]) -> float:
+        t0 = time.perf_counter()
+        subprocess.run(argv, check=True, capture_output=True)
+        return time.perf_counter() - t0
+
+    repeat = 3 if quick else 7
+    numpy_t = min(start([sys.executable, "-c", "import numpy"]) for _ in range(repeat))
+    check = [sys.executable, "-m", "dfa.cli", "check", "--device", "delta", "--velocity", "0.1"]
+    check_t = min(start(check) for _ in range(repeat))
+    ratio = check_t / numpy_t
+    return (
+        "\n".join(
+            [
+                "",
+                '## Start-up: `dfa check --device delta --velocity 0.1` against `python -c "import numpy"`',
+                "",
+                f"Fresh processes, best of {repeat} starts each, measured side by side in this run.",
+                "",
+                "| command | seconds | × import numpy | goal |",
+                "|---|---:|---:|---|",
+                f'| python -c "import numpy" | {numpy_t:.3f} | 1 | baseline |',
+                f"| dfa check (python -m dfa.cli) | {check_t:.3f} | {ratio:.2f} | <= 3x: {'met' if ratio <= 3 else 'NOT met'} |",
+            ]
+        )
+        + "\n"
+    )
+
+
 # the controller path (issue 15 item 4): a loop that chatters for ever (σ < ½ never rests)
 CTL_RUN = dict(mu=2.0, beta=2.0, sigma=0.1, xi_dot0=2.0)
 
@@ -907,6 +942,7 @@ def main() -> int:
     contours = bench_contours(args.quick)
     text = render(sim, fig4, args.quick, solver, friction, contours, kernel, mapspeed)
     text += bench_find_root(args.quick)
+    text += bench_startup(args.quick)
     text += bench_design_answer(args.quick)
     text += bench_controller_kernel(args.quick)
     text += bench_controller_design_answer(args.quick)

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import math
-from typing import Any
-
-from ..analysis.cycles.caveats import NoRestCaveat, SubtickCaveat
+from typing import TYPE_CHECKING, Any
 from ..formatting import number, text_table
 from ..results.jsonable import explain_nulls
 from ..results.status import GrowthStatus, SearchStatus
+
+if TYPE_CHECKING:  # annotations only: importing the limit-cycle package would load python-control (`dfa check`)
+    from ..analysis.cycles.caveats import NoRestCaveat, SubtickCaveat
 
 __all__ = [
     "OUTCOME_TEXT",
