@@ -14,6 +14,19 @@ def test_import_dfa_does_not_load_matplotlib():
     assert out == "False"
 
 
+def test_dfa_check_loads_neither_python_control_nor_the_limit_cycle_package():
+    """`dfa check` starts fast (issue 27 §1): its text needs neither python-control nor the cycle solver."""
+    code = (
+        "import io, sys, contextlib\n"
+        "from dfa.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    assert main(['check', '--device', 'delta', '--velocity', '0.1']) == 0\n"
+        "print(sorted(m for m in ('control', 'matplotlib', 'dfa.analysis.cycles', 'scipy.optimize') if m in sys.modules))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
+    assert out == "[]"
+
+
 def test_public_api_is_listed_and_importable():
     for name in dfa.__all__:
         assert hasattr(dfa, name), name
