@@ -142,3 +142,28 @@ def test_eq11_stiffness_and_zwidth_say_what_restores_the_proof_with_a_damper(cap
     assert main(["zwidth", *dev_flags, "--grid", "3", "--speeds", "1"]) == 0
     out = capsys.readouterr().out.replace("\n  ", " ")
     assert f"unless B < {g.max_virtual_damping:.4g} N·s/m" in out
+
+
+def test_eq11_require_describing_function_substituted_back(capsys):
+    """`--describing-function`: at the least Coulomb friction returned, K_df (the design answer's) is the target K;
+    a little less friction and it falls below (each value to DF_RTOL). Text and JSON agree."""
+    from dfa.analysis.limits.kmax import describing_limit
+    from dfa.analysis.limits.require import DF_RTOL
+
+    dev, k, v = get_device("delta").device, 20000.0, 0.1
+    argv = ["require", "--device", "delta", "--stiffness", "20000", "--velocity", "0.1", "--describing-function",
+            "--parameter", "coulomb"]  # fmt: skip
+    assert main([*argv, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    rows = {(r["method"], r["parameter"]): r for r in d["requirements"]}
+    assert set(rows) == {("criterion", "coulomb"), ("linear", "coulomb"), ("df", "coulomb")}
+    r = rows[("df", "coulomb")]
+    assert r["status"] == "met" and r["bound"] == "at_least"
+    c = r["required"]
+    at = describing_limit(dataclasses.replace(dev, coulomb=c), Wall(k), v).value
+    below = describing_limit(dataclasses.replace(dev, coulomb=c * (1 - 3 * DF_RTOL)), Wall(k), v).value
+    assert at is not None and at >= k and (below is None or below < k)
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "describing fn" in text and f"≥ {c:.4g} N (holds now)" in text
+    assert all(len(line) <= 100 for line in text.splitlines())

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..model.wall import Wall
+from ..results.codes import REQUIRE_PARAMETERS
 from .inputs import add_device_args, resolve, speed
 from .output import emit
 from .parsing import UsageError
@@ -22,11 +23,24 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     """The device, the target stiffness (--stiffness), one speed and the wall held fixed."""
     add_device_args(p, dimensionless=False, speed=True)
     add_wall_args(p)
+    p.add_argument(
+        "--describing-function",
+        action="store_true",
+        help="also answer by the describing function (a K search per value tried: tens of seconds; "
+        "default: the criterion and the linear loop)",
+    )
+    p.add_argument(
+        "--parameter",
+        action="append",
+        choices=list(REQUIRE_PARAMETERS),
+        metavar="NAME",
+        help=f"only this parameter (repeatable; one of {', '.join(REQUIRE_PARAMETERS)}; default: all)",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
     """Each parameter by the criterion (a proof) and by the linear loop (necessary), the others held."""
-    from ..analysis.limits.require import requirements
+    from ..analysis.limits.require import METHODS, requirements
 
     inp = resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
@@ -38,7 +52,9 @@ def run(args: argparse.Namespace) -> int:
     assert v is not None
     ctl = wall_from_args(args, dev, k)
     wall = ctl if ctl is not None else Wall.of(k, delay=args.delay)
-    req = requirements(dev, k, v, wall=wall)
+    methods = (*METHODS, "df") if args.describing_function else METHODS
+    names = tuple(args.parameter) if args.parameter else REQUIRE_PARAMETERS
+    req = requirements(dev, k, v, wall=wall, methods=methods, parameters=names)
     if args.json:
         emit(wall_json(req.to_dict(), ctl, inp))
         return 0

@@ -6,7 +6,7 @@ Every line is at most :data:`~dfa.formatting.WIDTH` characters; the JSON carries
 
 from __future__ import annotations
 
-from ..analysis.limits.require import METHODS, PARAMETERS, DamperGuidance, Requirement, Requirements
+from ..analysis.limits.require import ALL_METHODS, PARAMETERS, DamperGuidance, Requirement, Requirements
 from ..formatting import WIDTH, fill, number, text_table
 from ..results.status import RequireStatus
 
@@ -21,7 +21,11 @@ LABELS = {
     "virtual_damping": "virtual damper B",
     "delay": "delay d",
 }
-_METHOD_HEADS = {"criterion": "criterion (proof)", "linear": "linear loop (necessary)"}
+_METHOD_HEADS = {
+    "criterion": "criterion (proof)",
+    "linear": "linear loop (necessary)",
+    "df": "describing fn (1st harmonic)",
+}
 _CELL = {
     RequireStatus.UNREACHABLE: "no value helps",
     RequireStatus.ANY: "any value",
@@ -71,13 +75,14 @@ def require_screen(req: Requirements) -> list[str]:
         Lines of at most :data:`WIDTH` characters.
     """
     dev, u = req.device, req.device.units
-    methods = [m for m in METHODS if any(r.method == m for r in req.requirements)]
+    methods = [m for m in ALL_METHODS if any(r.method == m for r in req.requirements)]
+    names = [n for n in PARAMETERS if any(r.parameter == n for r in req.requirements)]
     head = (
         f"{dev.name}: what each parameter must be for K = {number(req.stiffness, 5)} {u['stiffness']} at "
         f"{number(req.velocity, 4)} {u['velocity']}, the others held"
     )
     rows = []
-    for name in PARAMETERS:
+    for name in names:
         current = req.find(methods[0], name).current
         now = f"{number(current, 4)} {_unit(u, name, current)}"
         rows.append([LABELS[name], now, *(requirement_cell(req.find(m, name), u) for m in methods)])
@@ -87,7 +92,13 @@ def require_screen(req: Requirements) -> list[str]:
         fill(
             "'holds now': K holds today and the value is how far the parameter may go before it fails; 'change': "
             "the least change that makes K hold. Only the criterion is a proof; the linear loop (no encoder, no "
-            "Coulomb friction) is necessary for stability, not sufficient. --json for every number.",
+            "Coulomb friction) is necessary for stability, not sufficient"
+            + (
+                "; the describing function is a first-harmonic prediction, each value to 0.1 %"
+                if "df" in methods
+                else ""
+            )
+            + ". --json for every number.",
             WIDTH,
             "",
         )

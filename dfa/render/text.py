@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from typing import TYPE_CHECKING, Any
+
 from ..formatting import number, text_table
 from ..results.jsonable import explain_nulls
 from ..results.status import GrowthStatus, SearchStatus

@@ -13,7 +13,9 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["POINT_OUTCOMES", "REST", "BOUNDED", "DIVERGES", "UNDECIDED_POINT", "ZWIDTH_METHODS"]
+__all__ = [
+    "POINT_OUTCOMES", "REST", "BOUNDED", "DIVERGES", "UNDECIDED_POINT", "ZWIDTH_METHODS", "REQUIRE_PARAMETERS",
+]  # fmt: skip
 
 #: Outcome of a Z-width grid point (index = code): every run rests; none diverges but some does not rest;
 #: some run diverges; none diverges and some run was too short to tell.
@@ -21,3 +23,5 @@ POINT_OUTCOMES = ("rest", "bounded", "diverges", "undecided")
 REST, BOUNDED, DIVERGES, UNDECIDED_POINT = range(4)
 #: The per-method boundaries K_max(B) of a Z-width, in the order of the table and the plot.
 ZWIDTH_METHODS = ("linear", "passivity", "criterion", "df", "sim", "rest")
+#: The parameters of the inverse question (:mod:`dfa.analysis.limits.require`, ``dfa require --parameter``).
+REQUIRE_PARAMETERS = ("period", "resolution", "coulomb", "damping", "virtual_damping", "delay")

@@ -356,6 +356,21 @@ def linear_limit(dev: Device, wall: Wall) -> float:
     return float(stable_stiffness(dev.mass, dev.damping, dev.period, wall).k_crit)
 
 
+def describing_limit(
+    dev: Device, wall: Wall, v: float, model: str = "half-delay", cache: RunCache | None = None, grid: int = 16
+) -> KLimit:
+    """K_df of :func:`design_answer` for ``wall`` at speed v: the same grid (:func:`closed_forms`) and search.
+
+    The one describing-function limit of a wall: the Z-width's column and the inverse question
+    (:mod:`dfa.analysis.limits.require`) call it; the design answer computes it in the same way.
+    """
+    _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall, v)
+    if not (top > 0 and math.isfinite(top)):
+        return KLimit(None, LimitStatus.NO_RANGE)
+    ev = Evidence(dev, wall, np.array([v]), DESIGN_MAX_SAMPLES, model, RunCache() if cache is None else cache)
+    return df_limit(ev, search_grid(k_ref, top, grid), dev.xi_dot(v))
+
+
 def _limit(k: float, why: LimitStatus) -> KLimit:
     """A closed-form limit: its value, or None with ``why`` when it is 0."""
     return KLimit(k) if k > 0.0 else KLimit(None, why)

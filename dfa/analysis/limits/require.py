@@ -7,10 +7,13 @@ finds the value at which the target K is exactly that method's limit:
 - ``criterion``: the passivity criterion (eq. 6, 11, extended to the wall's damper, filter and delay;
   :func:`~dfa.analysis.limits.kmax.criterion_passes`) proves K passive at the speed: a proof;
 - ``linear``: K lies in the stable interval from K = 0 of the linear loop without encoder and Coulomb
-  friction (:func:`~dfa.analysis.limits.kmax.linear_limit`): necessary for stability, not sufficient.
+  friction (:func:`~dfa.analysis.limits.kmax.linear_limit`): necessary for stability, not sufficient;
+- ``df`` (asked for: ``methods=(..., "df")``, ``dfa require --describing-function``): K is at most the
+  describing function's K_df (:func:`~dfa.analysis.limits.kmax.describing_limit`, the design answer's), a
+  first-harmonic prediction. Each value tried is a K search, so it is slower, and found to :data:`DF_RTOL`.
 
-The describing function and the simulation answer the same question only by a search per value (run
-``dfa stiffness`` after changing the parameter).
+The simulation answers the same question only by a confirmed search per value (seconds each): change the
+parameter and run ``dfa stiffness``.
 
 How a value is found: each method's verdict at K is evaluated with the parameter changed and everything else
 held. When K holds now, the parameter is moved away (the harmful way) until it fails; when it does not, the
@@ -46,12 +49,15 @@ from ...model.device import Device
 from ...model.elements import Damper, Delay
 from ...model.wall import Wall
 from ...results.base import Result
+from ...results.codes import REQUIRE_PARAMETERS
 from ...results.status import RequireStatus
-from .kmax import criterion_passes, linear_limit
+from .kmax import criterion_passes, describing_limit, linear_limit
 
 __all__ = [
     "PARAMETERS",
     "METHODS",
+    "ALL_METHODS",
+    "DF_RTOL",
     "RTOL",
     "HELPS",
     "DamperGuidance",
@@ -62,28 +68,30 @@ __all__ = [
 ]
 
 #: The parameters asked about, with their unit kind (a key of ``Device.units``; the delay in samples).
-PARAMETERS: dict[str, str] = {
-    "period": "period",
-    "resolution": "resolution",
-    "coulomb": "coulomb",
-    "damping": "damping",
-    "virtual_damping": "damping",
-    "delay": "samples",
-}
+PARAMETERS: dict[str, str] = dict(
+    zip(REQUIRE_PARAMETERS, ("period", "resolution", "coulomb", "damping", "damping", "samples"), strict=True)
+)
 #: The direction of each parameter that helps each method (+1: larger helps). The criterion: eq. 11 with the
 #: damper's terms (B costs damping and friction). The linear loop: damping of either kind helps (its stable B
 #: form an interval; the bound reported is its lower end when K holds, the least B that stabilises when not).
 HELPS: dict[str, dict[str, int]] = {
     "criterion": {"period": -1, "resolution": -1, "coulomb": +1, "damping": +1, "virtual_damping": -1, "delay": -1},
     "linear": {"period": -1, "resolution": -1, "coulomb": +1, "damping": +1, "virtual_damping": +1, "delay": -1},
+    "df": {"period": -1, "resolution": -1, "coulomb": +1, "damping": +1, "virtual_damping": +1, "delay": -1},
 }
-#: The methods that answer the inverse question by evaluation, not by a search per value.
+#: The methods of the inverse question: by default the two that evaluate in closed form; ``"df"`` when asked.
 METHODS = ("criterion", "linear")
+ALL_METHODS = ("criterion", "linear", "df")
+#: Relative resolution of a value found by the describing function (each value tried is a K search).
+DF_RTOL = 1e-3
 #: Relative resolution of a returned value (bisection on the method's own verdict).
 RTOL = 1e-9
 #: How far a parameter is moved: by factors of two up to this ratio of today's value (the delay: samples).
 RANGE_RATIO = 2.0**20
 DELAY_RANGE = 64
+#: The describing function's narrower range (each value tried is a K search): factors of two up to 2^8, 8 samples.
+DF_RANGE_RATIO = 2.0**8
+DF_DELAY_RANGE = 8
 #: Parameters the linear loop does not see (it has no encoder and no Coulomb friction).
 _LINEAR_BLIND = ("resolution", "coulomb")
 
@@ -120,7 +128,7 @@ class Requirement(Result):
     searched: tuple[float, float] = (0.0, 0.0)
 
     def __post_init__(self) -> None:
-        check_choice("method", self.method, METHODS)
+        check_choice("method", self.method, ALL_METHODS)
         check_choice("parameter", self.parameter, tuple(PARAMETERS))
         check_choice("bound", self.bound, ("at_most", "at_least"))
         object.__setattr__(self, "status", RequireStatus.coerce(self.status))
@@ -205,6 +213,9 @@ def _verdict(method: str, k: float, v: float) -> Callable[[Device, Wall], bool]:
         try:
             if method == "criterion":
                 return criterion_passes(dev, wall, k, v)
+            if method == "df":
+                kdf = describing_limit(dev, wall, v).value
+                return kdf is not None and k <= kdf
             return k < linear_limit(dev, wall)
         except DFAValueError:
             return False
@@ -227,9 +238,9 @@ def _scale(dev: Device, k: float, name: str) -> float:
     )
 
 
-def _bisect(ok: Callable[[float], bool], good: float, bad: float, integer: bool) -> float:
+def _bisect(ok: Callable[[float], bool], good: float, bad: float, integer: bool, rtol: float = RTOL) -> float:
     """The last value at which ``ok`` holds between ``good`` (holds) and ``bad`` (fails)."""
-    while abs(bad - good) > 1 if integer else abs(bad - good) > RTOL * max(abs(good), abs(bad)):
+    while abs(bad - good) > 1 if integer else abs(bad - good) > rtol * max(abs(good), abs(bad)):
         mid = math.floor(0.5 * (good + bad)) if integer else 0.5 * (good + bad)
         if mid in (good, bad):
             break
@@ -237,12 +248,16 @@ def _bisect(ok: Callable[[float], bool], good: float, bad: float, integer: bool)
     return good
 
 
-def _steps(x0: float, up: bool, integer: bool, scale: float) -> list[float]:
-    """The values tried from ``x0`` one way: doubling or halving (0 reached at the end going down)."""
+def _steps(x0: float, up: bool, integer: bool, scale: float, short: bool = False) -> list[float]:
+    """The values tried from ``x0`` one way: doubling or halving (0 reached at the end going down); ``short``: the
+    describing function's narrower range (:data:`DF_RANGE_RATIO`, :data:`DF_DELAY_RANGE`)."""
     if integer:
-        return [float(d) for d in (range(int(x0) + 1, int(x0) + DELAY_RANGE + 1) if up else range(int(x0) - 1, -1, -1))]
+        top = DF_DELAY_RANGE if short else DELAY_RANGE
+        return [float(d) for d in (range(int(x0) + 1, int(x0) + top + 1) if up else range(int(x0) - 1, -1, -1))]
+    if not up and x0 == 0.0:
+        return []  # already at the floor: nothing below to try
     start = x0 if x0 > 0 else scale
-    n = int(math.log2(RANGE_RATIO))
+    n = int(math.log2(DF_RANGE_RATIO if short else RANGE_RATIO))
     vals = [start * 2.0**i for i in range(1, n + 1)] if up else [start * 0.5**i for i in range(1, n + 1)] + [0.0]
     if up and x0 == 0:
         vals = [start * 2.0**i for i in range(-n, n + 1)]
@@ -268,13 +283,13 @@ def _one(dev: Device, wall: Wall, method: str, name: str, k: float, v: float) ->
     now = ok(x0)
     go_up = (helpful > 0) != now  # holds now: move the harmful way; else the helpful way
     prev, tried = x0, [x0]
-    for x in _steps(x0, go_up, integer, _scale(dev, k, name)):
+    for x in _steps(x0, go_up, integer, _scale(dev, k, name), short=method == "df"):
         if x == 0.0 and name in ("period", "resolution"):
             break
         tried.append(x)
         if ok(x) != now:
             good, bad = (prev, x) if now else (x, prev)
-            value = _bisect(ok, good, bad, integer)
+            value = _bisect(ok, good, bad, integer, DF_RTOL if method == "df" else RTOL)
             status = RequireStatus.MET if now else RequireStatus.CHANGE
             return Requirement(method, name, x0, float(value), bound, status, (min(tried), max(tried)))
         prev = x
@@ -283,7 +298,13 @@ def _one(dev: Device, wall: Wall, method: str, name: str, k: float, v: float) ->
 
 
 def requirements(
-    device: Device, stiffness: float, velocity: float, *, wall: Wall | None = None, methods: tuple[str, ...] = METHODS
+    device: Device,
+    stiffness: float,
+    velocity: float,
+    *,
+    wall: Wall | None = None,
+    methods: tuple[str, ...] = METHODS,
+    parameters: tuple[str, ...] = tuple(PARAMETERS),
 ) -> Requirements:
     """What each parameter must be for a target stiffness at an impact speed, by each method (module docstring).
 
@@ -298,7 +319,9 @@ def requirements(
     wall : Wall, optional
         The wall's elements held fixed (its stiffness is replaced by ``stiffness``); default the spring.
     methods : tuple of str, optional
-        Some of :data:`METHODS` (default both).
+        Some of :data:`ALL_METHODS` (default :data:`METHODS`; ``"df"`` adds the describing function, slower).
+    parameters : tuple of str, optional
+        Some keys of :data:`PARAMETERS` (default all), in that order.
 
     Returns
     -------
@@ -313,14 +336,17 @@ def requirements(
     k = check_positive("stiffness", stiffness, "give the target stiffness K in N/m")
     v = check_nonnegative("velocity", velocity, "give the impact speed in m/s")
     w = Wall(k) if wall is None else check_type("wall", wall, Wall, "build it with Wall.of(...)").with_stiffness(k)
-    ms = tuple(check_choice("methods", m, METHODS) for m in methods)
+    ms = tuple(check_choice("methods", m, ALL_METHODS) for m in methods)
+    names = [n for n in PARAMETERS if n in {check_choice("parameters", p, tuple(PARAMETERS)) for p in parameters}]
+    if not names or not ms:
+        raise DFAValueError("methods and parameters must each name at least one; give e.g. methods=('criterion',)")
     out = []
     for m in ms:
         if m == "criterion" and w.params(dev.period).not_covered() is not None:
             out += [Requirement(m, n, _current(dev, w, n), None, "at_least" if HELPS[m][n] > 0 else "at_most",
-                                RequireStatus.NOT_COVERED) for n in PARAMETERS]  # fmt: skip
+                                RequireStatus.NOT_COVERED) for n in names]  # fmt: skip
             continue
-        out += [_one(dev, w, m, n, k, v) for n in PARAMETERS]
+        out += [_one(dev, w, m, n, k, v) for n in names]
     met = all(r.status in (RequireStatus.MET, RequireStatus.ANY, RequireStatus.NO_EFFECT) for r in out)
     return Requirements(dev, w, v, tuple(out), RequireStatus.MET if met else RequireStatus.CHANGE)
 

@@ -96,9 +96,9 @@ from ..simulation import (
     run_points,
     wall_run_codes,
 )
-from .kmax import closed_forms, wall_k_criterion
-from .runs import DIVERGENCE_BOUND, SAFE, UNSAFE, Evidence, RunCache, decide_undecided
-from .search import KLimit, df_limit, grid_search, search_grid
+from .kmax import describing_limit, wall_k_criterion
+from .runs import DIVERGENCE_BOUND, SAFE, UNSAFE, RunCache, decide_undecided
+from .search import KLimit, grid_search
 
 __all__ = ["ZWidth", "z_width", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
 
@@ -373,12 +373,7 @@ def _criterion(dev: Device, wall: Wall, v: float) -> KLimit:
 
 def _describing(dev: Device, wall: Wall, v: float, model: str, cache: RunCache) -> KLimit:
     """``k_df`` of :func:`~dfa.analysis.limits.kmax.design_answer` at this wall: the same grid and search."""
-    _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall, v)
-    if not (top > 0 and math.isfinite(top)):
-        return KLimit(None, LimitStatus.NO_RANGE)
-    ev = Evidence(dev, wall, np.array([v]), ZWIDTH_MAX_SAMPLES, model, cache)
-    xd = dev.xi_dot(v)
-    return df_limit(ev, search_grid(k_ref, top, DF_GRID), xd)
+    return describing_limit(dev, wall, v, model, cache, DF_GRID)
 
 
 # ----------------------------------------------------------------------------- simulation of the grid
