@@ -495,6 +495,82 @@ def test_cli_sigterm_stops_joblib_workers(tmp_path):
     assert _children_gone(proc.pid), "joblib workers still running"
 
 
+# Issue 27 §2: a signal while the interpreter exits (worker threads or the process pool still finishing) killed dfa
+# by the signal (status -15), or printed "Exception ignored in threading._shutdown ... KeyboardInterrupt" and
+# exited 0, because main() restored the default handlers before the process ended.
+_LATE = """
+import os, signal, sys, threading, time
+import dfa.cli.devices as devices
+from dfa.cli import main
+
+def run(args):
+    threading.Thread(target=time.sleep, args=(2.0,)).start()  # a worker still finishing when main returns
+    if {interrupt}:
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(5)  # the handler raises before this ends
+    print("done")
+    return 0
+
+devices.run = run
+sys.argv = ["dfa", "devices"]
+sys.exit(main())
+"""
+
+
+def _late(interrupt: bool) -> subprocess.Popen:
+    code = _LATE.format(interrupt=interrupt)
+    return subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+def test_cli_second_signal_while_exiting_keeps_the_first_code():
+    proc = _late(interrupt=True)
+    first = proc.stderr.readline()  # the interruption's line: main() has returned, the thread still runs
+    assert first == b"dfa: interrupted (SIGINT); nothing written\n", first
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 130 and err == b"", (proc.returncode, err)
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+def test_cli_signal_after_the_run_exits_with_one_line():
+    proc = _late(interrupt=False)
+    assert proc.stdout.readline() == b"done\n"  # main() has printed and returned; the thread still runs
+    time.sleep(0.2)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 130, (proc.returncode, err)
+    assert err == b"dfa: interrupted (SIGINT); nothing written\n", err
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="needs 2 cores")
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["map", "--mu", "100", "--xi-dot", "1", "--grid", "300", "--delay", "1", "--jobs", "2", "--out", "m.npz"],
+        ["zwidth", "--device", "impulse", "--velocity", "0.1", "--grid", "6", "--jobs", "2", "--plot", "z.png"],
+    ],
+    ids=["map", "zwidth"],
+)
+def test_cli_sigint_then_sigterm_exits_130(tmp_path, argv):
+    env = dict(os.environ, PYTHONUNBUFFERED="1")
+    cmd = DFA + argv + ["--progress", "--force"] if argv[0] == "map" else DFA + argv + ["--progress"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, cwd=tmp_path)
+    first = proc.stderr.read(1)  # the progress bar: the run has started
+    assert first, "no progress bar"
+    time.sleep(0.5)
+    proc.send_signal(signal.SIGINT)
+    time.sleep(0.3)
+    if proc.poll() is None:
+        proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    text = (first + err).decode()
+    assert proc.returncode == 130, text
+    assert text.replace("\r", "\n").strip().splitlines()[-1].startswith("dfa: interrupted (SIGINT); "), text
+    assert "Traceback" not in text and "Exception ignored" not in text
+
+
 def test_cli_closed_pipe_ends_quietly():
     proc = subprocess.Popen(DFA + ["devices"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     proc.stdout.close()  # like `dfa devices | head -0`: the reader is gone before dfa writes

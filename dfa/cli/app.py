@@ -5,6 +5,13 @@ prints the help on stdout); 1 a file could not be written or memory ran out; 130
 SIGTERM (one line on stderr naming what was kept: files are written atomically, so nothing is half-written);
 141 stdout was a closed pipe (``dfa devices | head -1``), ended quietly.
 
+Signals: the first SIGINT or SIGTERM unwinds the run (:class:`Interrupted`); later ones are ignored while it cleans
+up. As the program (``main()`` without ``argv``: the ``dfa`` script, ``python -m dfa.cli``) the handlers stay
+installed to the end: a second signal while the interpreter exits (worker threads or the process pool still
+finishing) changes nothing, and a first one arriving after the run ends exits at once with its one line and
+128 + the signal's number (:func:`_exit_on_signal`), never by the signal itself nor with a traceback from
+``threading._shutdown``. Called with ``argv`` (in-process, as the tests do), ``main`` restores the caller's handlers.
+
 An input no haptic device has (``--resolution 10``, :mod:`dfa.plausibility`) is computed as given with one
 ``dfa: warning:`` line naming the likely slip, printed once the inputs are accepted: a refused run prints only its
 error line.
@@ -161,6 +168,49 @@ def _run(parser: argparse.ArgumentParser, argv: list[str]) -> int:
         return int(args.func(args) or 0)
 
 
+def _interrupted_line(signum: int, before: int) -> str:
+    """The one line of an interruption: the signal, and the files this run kept (complete) or none."""
+    kept = written_paths()[before:]
+    what = "nothing written" if not kept else "kept " + ", ".join(kept) + " (complete)"
+    return f"dfa: interrupted ({signal.Signals(signum).name}); {what}"
+
+
+def _exit_on_signal(before: int) -> Any:
+    """The handler of a signal that arrives after the run (the interpreter exiting): its one line, then exit.
+
+    ``os._exit(128 + signum)``: nothing is left to clean up (every file was written atomically, stdout is
+    flushed), and raising would end in ``threading._shutdown``'s traceback while worker threads finish.
+    """
+
+    def handler(signum: int, frame: object) -> None:
+        for sig in _SIGNALS:
+            signal.signal(sig, signal.SIG_IGN)
+        try:
+            sys.stderr.flush()
+        except (OSError, ValueError, AttributeError):  # a closed or broken stderr: the line below is what matters
+            pass
+        try:
+            os.write(2, (_interrupted_line(signum, before) + "\n").encode())
+        except OSError:
+            pass
+        os._exit(128 + int(signum))
+
+    return handler
+
+
+def _after_run(old_handlers: dict[Any, Any], program: bool, before: int) -> None:
+    """The signal handlers once ``main`` is done: the caller's again (in-process), or, as the program, ignored
+    after an interruption (the clean-up finishes) and :func:`_exit_on_signal` otherwise."""
+    if not program:
+        for sig, handler in old_handlers.items():
+            signal.signal(sig, handler if handler is not None else signal.SIG_DFL)
+        return
+    late = _exit_on_signal(before)
+    for sig in old_handlers:
+        if signal.getsignal(sig) is on_signal:  # not interrupted: a late signal exits with its line
+            signal.signal(sig, late)
+
+
 def _error(err: BaseException, before: int) -> int:
     """The exit code of an exception (module docstring), with its one line on stderr."""
     if isinstance(err, DFAError):
@@ -171,9 +221,7 @@ def _error(err: BaseException, before: int) -> int:
         return int(err.code or 0)
     if isinstance(err, KeyboardInterrupt):
         signum = getattr(err, "signum", int(signal.SIGINT))
-        kept = written_paths()[before:]
-        what = "nothing written" if not kept else "kept " + ", ".join(kept) + " (complete)"
-        print(f"dfa: interrupted ({signal.Signals(signum).name}); {what}", file=sys.stderr)
+        print(_interrupted_line(signum, before), file=sys.stderr)
         return 128 + int(signum)
     if isinstance(err, BrokenPipeError):
         _quiet_stdout()
@@ -200,6 +248,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     int
         0 ok, 2 bad input, 1 a file or memory error, 128 + signal when interrupted, 141 a closed pipe.
     """
+    program = argv is None  # the dfa program itself: signals are handled until the process ends
     parser = build_parser()
     before = len(written_paths())
     old_handlers = _install_signal_handlers()
@@ -223,7 +272,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         except (OSError, ValueError, AttributeError):  # no stdout, or a closed one: nothing left to say
             pass
         return code
+    except KeyboardInterrupt as err:  # the first signal while the outcome is being printed: its line too
+        return _error(err, before)
     finally:
         warnings.formatwarning = old_format
-        for sig, handler in old_handlers.items():
-            signal.signal(sig, handler if handler is not None else signal.SIG_DFL)
+        _after_run(old_handlers, program, before)
