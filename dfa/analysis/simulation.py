@@ -251,14 +251,27 @@ def divergence_bound(xi0: float, xi_dot0: float, mu: float, floor: float = 1.0e6
     >>> divergence_bound(0.0, 1.0e5, 800.0) > 2.8e8
     True
     """
-    with np.errstate(over="ignore"):
-        amp0 = math.sqrt(2.0 * float(stored_energy(xi0, xi_dot0, check_mu(mu))))
+    amp0 = _start_amplitude(xi0, xi_dot0, check_mu(mu))
+    return max(floor, 100.0 * (amp0 + 1.0))
+
+
+def _start_amplitude(xi0: float, xi_dot0: float, mu: float, quantize: bool = True) -> float:
+    """A₀ = √(2 H_T(0)), the energy amplitude of the start (eq. 18-19), or the package's error where 100 (A₀ + 1)
+    (the divergence bound) overflows a float: the one rule of :func:`divergence_bound` and :func:`default_samples`.
+
+    Examples
+    --------
+    >>> _start_amplitude(0.0, 2.0, 1.0)
+    2.0
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        amp0 = math.sqrt(2.0 * float(stored_energy(xi0, xi_dot0, mu, quantize)))
     if not math.isfinite(100.0 * (amp0 + 1.0)):
         raise DFAValueError(
             f"xi_dot = {xi_dot0!r} is invalid with xi0 = {xi0!r}, mu = {mu!r}: the start's energy ½μξ'0² + H_c(ξ0) "
             "overflows a float; give a smaller speed or start"
         )
-    return max(floor, 100.0 * (amp0 + 1.0))
+    return amp0
 
 
 def _decay_time(mu: float, net: float, sigma: float, amp0: float) -> float:
@@ -330,13 +343,14 @@ def _check_run(
     mu: float, beta: float, sigma: float, xi_dot0: float, xi0: float
 ) -> tuple[float, float, float, float, float]:
     """The validated inputs of one run (Table 1 groups, initial state), shared by simulate and default_samples."""
-    return (
+    out = (
         check_mu(mu),
         check_beta(beta),
         check_sigma(sigma),
         check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample"),
         check_real("xi0", xi0, "give the initial position in ticks"),
     )
+    return out
 
 
 def default_samples(
@@ -377,7 +391,7 @@ def default_samples(
     w = check_wall(wall)
     m, b, s, v0, x0 = _check_run(mu, beta, sigma, xi_dot0, xi0)
     cap = check_bool("cap", cap, "pass True to cap the length at MAX_DEFAULT_SAMPLES, False for no cap")
-    amp0 = math.sqrt(2.0 * float(stored_energy(x0, v0, m, check_quantize(quantize))))
+    amp0 = _start_amplitude(x0, v0, m, check_quantize(quantize))
     td = _decay_time(m, net_damping(m, b, w), s, amp0)
     top = MAX_DEFAULT_SAMPLES if cap else 10 * MAX_DEFAULT_SAMPLES
     n = 2.0 * td + 40.0 * 2.0 * math.pi * math.sqrt(m)

@@ -14,7 +14,8 @@ finishing) changes nothing, and a first one arriving after the run ends exits at
 
 An input no haptic device has (``--resolution 10``, :mod:`dfa.plausibility`) is computed as given with one
 ``dfa: warning:`` line naming the likely slip, printed once the inputs are accepted: a refused run prints only its
-error line.
+error line. numpy's ``RuntimeWarning`` lines ("overflow encountered in multiply") are never printed as they come:
+a run that succeeds ends with one warning line counting them, a refused or interrupted one prints none.
 """
 
 from __future__ import annotations
@@ -134,18 +135,35 @@ def _one_line_warning(message: Warning | str, category: type[Warning], *_args: o
     return f"dfa: warning: {text} ({category.__name__})\n"
 
 
-def _show_implausible(previous: Any) -> Any:
+def _show_implausible(previous: Any, numeric: list[str]) -> Any:
     """A ``warnings.showwarning`` that holds :class:`ImplausibleInputWarning` as one line for stderr
     (:func:`~dfa.cli.output.hold_warning`: printed once the inputs are accepted, also where a test framework records
-    warnings) and passes every other warning on to ``previous``."""
+    warnings), collects the text of every plain ``RuntimeWarning`` (numpy's "overflow encountered in multiply") in
+    ``numeric`` (:func:`_numeric_note`) and passes every other warning on to ``previous``."""
 
     def show(message: Warning | str, category: type[Warning], *args: Any, **kwargs: Any) -> None:
         if issubclass(category, ImplausibleInputWarning):
             hold_warning(_one_line_warning(message, category))
+        elif category is RuntimeWarning:  # numpy's floating-point warnings (not dfa's own subclasses)
+            numeric.append(" ".join(str(message).split()))
         else:
             previous(message, category, *args, **kwargs)
 
     return show
+
+
+def _numeric_note(numeric: list[str]) -> str:
+    """The one warning line of a run that met floating-point overflow or invalid operations (numpy's
+    ``RuntimeWarning``), or "" when it met none; a refused or interrupted run prints none (its one line says it all).
+    """
+    if not numeric:
+        return ""
+    kinds = list(dict.fromkeys(numeric))
+    shown = "; ".join(kinds[:3]) + (f"; {len(kinds) - 3} more" if len(kinds) > 3 else "")
+    return (
+        f"dfa: warning: numpy reported {len(numeric)} floating-point exception(s) ({shown}): with inputs this far "
+        "from a haptic device's values the numbers above may be inexact; check the inputs' units (RuntimeWarning)\n"
+    )
 
 
 def _quiet_stdout() -> None:
@@ -252,18 +270,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     before = len(written_paths())
     old_handlers = _install_signal_handlers()
+    numeric: list[str] = []  # the RuntimeWarnings of this run (_numeric_note)
     old_format = warnings.formatwarning
     warnings.formatwarning = _one_line_warning
     try:
         try:
             with warnings.catch_warnings():  # a slip is said on every run, not once per process as by default
                 warnings.simplefilter("always", ImplausibleInputWarning)
-                warnings.showwarning = _show_implausible(warnings.showwarning)
+                warnings.showwarning = _show_implausible(warnings.showwarning, numeric)
                 code = _run(parser, list(sys.argv[1:] if argv is None else argv))
         except (DFAError, SystemExit, KeyboardInterrupt, BrokenPipeError, MemoryError, OSError) as err:
             (drop_warnings if isinstance(err, DFAError) else flush_warnings)()  # refused: the error line alone
             code = _error(err, before)
         else:
+            note = _numeric_note(numeric)
+            if note:
+                hold_warning(note)
             flush_warnings()
         try:  # a buffered stdout meets a closed pipe here, not at exit ("Exception ignored ...", exit 120)
             sys.stdout.flush()
