@@ -48,6 +48,7 @@ __all__ = [
     "check_bound",
     "check_positive_array",
     "check_rate",
+    "check_damping_rate",
     "check_range",
     "format_value",
     "INT_MAX",
@@ -294,6 +295,36 @@ def check_rate(name: str, value: float, mass: float, period: float) -> None:
         raise DFAValueError(
             f"{name} = {value:g} is invalid with mass = {mass:g} and period = {period:g}: {name}·period/mass must be "
             f"at most {MAX_RATE:g} (beyond, the loop's polynomials overflow); check the units"
+        )
+
+
+def check_damping_rate(beta: Any, mu: Any, names: tuple[str, str] = ("beta", "mu")) -> None:
+    """Refuse β/μ = bT/m above :data:`MAX_RATE`: the rule of :func:`check_rate` in the dimensionless groups.
+
+    β/μ is the damping's decay per sample, e^{−β/μ} (the same for every stiffness K). Above 1e8 the damping's time
+    constant m/b is under 1e-8 samples; beyond, the exact step of the simulator (NaN at β = 1e308) and the linear
+    loop's polynomials (an eigenvalue solver given inf) overflow. ``beta`` and ``mu`` may be arrays (broadcast):
+    the message names the first offending pair.
+
+    Examples
+    --------
+    >>> check_damping_rate(0.1, 5.0)
+    >>> try:
+    ...     check_damping_rate(1e308, 100.0)
+    ... except DFAValueError as err:
+    ...     print(err)
+    beta = 1e+308 is invalid with mu = 100: β/μ = bT/m must be at most 1e+08 (the damping's time constant m/b would be under 1e-08 samples; beyond, the loop's exponentials and polynomials overflow); check the units of the damping and the mass
+    """
+    b, m = np.broadcast_arrays(np.asarray(beta, dtype=float), np.asarray(mu, dtype=float))
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        bad = ~(b / m <= MAX_RATE)
+    if np.any(bad):
+        i = np.flatnonzero(bad.ravel())[0]
+        nb, nm = names
+        raise DFAValueError(
+            f"{nb} = {float(b.ravel()[i]):g} is invalid with {nm} = {float(m.ravel()[i]):g}: β/μ = bT/m must be at most "
+            f"{MAX_RATE:g} (the damping's time constant m/b would be under {1 / MAX_RATE:g} samples; beyond, the loop's "
+            "exponentials and polynomials overflow); check the units of the damping and the mass"
         )
 
 

@@ -79,7 +79,16 @@ import numpy as np
 from numpy.polynomial import chebyshev
 from numpy.typing import ArrayLike
 
-from ..checks import check_beta, check_delay, check_mu, check_nonnegative, check_positive, check_rate, check_type
+from ..checks import (
+    check_beta,
+    check_damping_rate,
+    check_delay,
+    check_mu,
+    check_nonnegative,
+    check_positive,
+    check_rate,
+    check_type,
+)
 from ..core.zoh import c1_minus_c0, zoh_coefficients
 from ..errors import DFAError, DFAValueError
 from ..model.wall import Wall, WallParams
@@ -210,6 +219,7 @@ def spectral_radius(mu: ArrayLike, beta: ArrayLike, *, wall: WallParams | None =
     """
     m = _as_array("mu", mu, lambda n, v: check_mu(v, n))
     b = _as_array("beta", beta, lambda n, v: check_beta(v, n))
+    check_damping_rate(b, m)  # beyond, b/μ overflows and the eigenvalue solver is given inf
     c = _wall(wall)
     d = c.delay
     if _beyond_spring(c):

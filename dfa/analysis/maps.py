@@ -67,6 +67,7 @@ from ..checks import (
     check_bool,
     check_bound,
     check_choice,
+    check_damping_rate,
     check_int,
     check_jobs,
     check_mu,
@@ -568,6 +569,7 @@ def stability_map(
     m = check_mu(mu)
     speeds = _check_speeds(xi_dots)
     b0, b1 = check_range("beta_range", beta_range)
+    check_damping_rate(b1, m, ("beta_range[1]", "mu"))  # the simulator's rule, at the map's largest β
     s0, s1 = check_range("sigma_range", sigma_range)
     g = check_int("grid", grid, minimum=2, fix="use at least 2 points per axis")
     n = check_int("samples", samples, minimum=1)

@@ -126,6 +126,7 @@ from ..checks import (
     check_beta,
     check_bool,
     check_bound,
+    check_damping_rate,
     check_growth,
     check_int,
     check_mu,
@@ -350,6 +351,7 @@ def _check_run(
         check_real("xi_dot0", xi_dot0, "give the initial speed in ticks per sample"),
         check_real("xi0", xi0, "give the initial position in ticks"),
     )
+    check_damping_rate(out[1], out[0])  # beyond, the exact step overflows to NaN (a false "unstable")
     return out
 
 
@@ -1113,6 +1115,7 @@ def _check_points(
         i = int(np.flatnonzero(bad)[0])
         _check_run(m[i], b[i], s[i], v[i], x[i])  # raises the message simulate would give for this run
         raise DFAValueError(f"run {i} is invalid: mu = {m[i]!r}, beta = {b[i]!r}, sigma = {s[i]!r} must be finite")
+    check_damping_rate(b, m)
     return out
 
 

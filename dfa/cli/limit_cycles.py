@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import argparse
 
+from ..checks import check_damping_rate
 from .inputs import add_device_args, resolve
-from .output import emit, say
+from .output import RATE_NAMES, emit, say
 from .parsing import UsageError, number
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json, wall_params
 
@@ -52,6 +53,7 @@ def run(args: argparse.Namespace) -> int:
     inp = resolve(args, dimensionless=True)
     p = inp.params
     assert p is not None
+    check_damping_rate(p.beta, p.mu, RATE_NAMES[inp.device is None])
     ctl = wall_from_args(args, inp.device, inp.stiffness)
     budget = {} if args.time_budget is None else {"time_budget": args.time_budget}
     g = growth_threshold(

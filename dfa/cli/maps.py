@@ -6,6 +6,7 @@ import argparse
 from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
+from ..checks import check_damping_rate
 from ..results.jsonable import explain_nulls
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import (
@@ -201,6 +202,8 @@ def run(args: argparse.Namespace) -> int:
     mu, inp = plane_device(args)
     speeds = _speeds(args, inp)
     _check_work(args, speeds)
+    top = max(args.beta_range + ([inp.params.beta] if inp is not None and inp.params is not None else []))
+    check_damping_rate(top, mu, ("--beta-range", "--mu") if inp is None else ("β", "μ = m/(K T²)"))
     ctl = wall_from_args(args, *((inp.device, inp.stiffness) if inp is not None else (None, None)))
     bound = divergence_bound(0.0, max(speeds), mu, SIMULATION_BOUND)
     m = stability_map(

@@ -15,6 +15,7 @@ from .parsing import UsageError
 
 __all__ = [
     "MAP_TIME_LIMIT_HOURS",
+    "RATE_NAMES",
     "SIMULATE_NS_PER_SAMPLE",
     "SIMULATE_TIME_LIMIT",
     "SIMULATION_BOUND",
@@ -42,6 +43,9 @@ SIMULATE_NS_PER_SAMPLE = 100
 SIMULATE_TIME_LIMIT = 30.0
 #: ``dfa map`` refuses maps estimated longer than this (hours, at the worst-case cost per sample) unless --force.
 MAP_TIME_LIMIT_HOURS = 24.0
+#: How the messages of :func:`dfa.checks.check_damping_rate` name (β, μ), by whether the input is dimensionless
+#: (the flags) or a device (the groups, at the device's K).
+RATE_NAMES = {True: ("--beta", "--mu"), False: ("β = b/(K T)", "μ = m/(K T²)")}
 #: |ξ| (ticks) beyond which a run counts as unstable (the default ``bound`` of :func:`dfa.simulate`).
 SIMULATION_BOUND = 1.0e6
 

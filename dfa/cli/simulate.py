@@ -5,9 +5,11 @@ from __future__ import annotations
 import argparse
 
 from .._io import check_output_file
+from ..checks import check_damping_rate
 from ..results.jsonable import explain_nulls
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import (
+    RATE_NAMES,
     SIMULATE_TIME_LIMIT,
     SIMULATION_BOUND,
     add_progress_args,
@@ -96,6 +98,7 @@ def run(args: argparse.Namespace) -> int:
     inp = resolve(args, dimensionless=True)
     p = inp.params
     assert p is not None
+    check_damping_rate(p.beta, p.mu, RATE_NAMES[inp.device is None])
     xd, vel = speed(args, inp, signed=True)  # an initial condition: the sign of ξ'0 is the direction of motion
     assert xd is not None
     ctl = wall_from_args(args, inp.device, inp.stiffness)
