@@ -548,7 +548,8 @@ def test_cli_signal_after_the_run_exits_with_one_line():
 @pytest.mark.parametrize(
     "argv",
     [
-        ["map", "--mu", "100", "--xi-dot", "1", "--grid", "300", "--delay", "1", "--jobs", "2", "--out", "m.npz"],
+        ["map", "--mu", "100", "--xi-dot", "1", "2", "--grid", "200", "--samples", "5000000", "--delay", "1"]
+        + ["--jobs", "2", "--out", "m.npz"],  # about 8 s on 2 cores: still running at the signal
         ["zwidth", "--device", "impulse", "--velocity", "0.1", "--grid", "6", "--jobs", "2", "--plot", "z.png"],
     ],
     ids=["map", "zwidth"],

@@ -10,7 +10,8 @@ up. As the program (``main()`` without ``argv``: the ``dfa`` script, ``python -m
 installed to the end: a second signal while the interpreter exits (worker threads or the process pool still
 finishing) changes nothing, and a first one arriving after the run ends exits at once with its one line and
 128 + the signal's number (:func:`_exit_on_signal`), never by the signal itself nor with a traceback from
-``threading._shutdown``. Called with ``argv`` (in-process, as the tests do), ``main`` restores the caller's handlers.
+``threading._shutdown``; once the worker threads are joined, the last moments of the interpreter ignore both
+(:func:`_ignore_signals`). Called with ``argv`` (in-process, as the tests do), ``main`` restores the caller's handlers.
 
 An input no haptic device has (``--resolution 10``, :mod:`dfa.plausibility`) is computed as given with one
 ``dfa: warning:`` line naming the likely slip, printed once the inputs are accepted: a refused run prints only its
@@ -21,6 +22,7 @@ a run that succeeds ends with one warning line counting them, a refused or inter
 from __future__ import annotations
 
 import argparse
+import atexit
 import os
 import signal
 import sys
@@ -227,6 +229,14 @@ def _after_run(old_handlers: dict[Any, Any], program: bool, before: int) -> None
     for sig in old_handlers:
         if signal.getsignal(sig) is on_signal:  # not interrupted: a late signal exits with its line
             signal.signal(sig, late)
+    atexit.register(_ignore_signals)  # runs once threading._shutdown has joined the workers
+
+
+def _ignore_signals() -> None:
+    """Ignore SIGINT and SIGTERM for the last moments of the interpreter: Python resets a handler written in Python
+    to the default action when it finalizes the signal module, and a signal then killed dfa (status -2, -15)."""
+    for sig in _SIGNALS:
+        signal.signal(sig, signal.SIG_IGN)
 
 
 def _error(err: BaseException, before: int) -> int:
