@@ -90,3 +90,27 @@ def test_map_and_limit_cycles_refuse_a_huge_damping_rate(capsys, tmp_path):
     )
     assert "--beta = 1e+308 is invalid with --mu = 0.001" in err
     assert os.listdir(tmp_path) == []
+
+
+# ------------------------------------------------------------------ dfa check: margin and critical speed
+def test_check_margin_or_critical_speed_that_overflows_is_refused(capsys):
+    from dfa.analysis.criterion import passivity_criterion
+
+    # found: `dfa check --mu 100 --beta 1e308 --sigma 1 --xi-dot 2` printed "margin inf"
+    err = refused(capsys, "check", "--mu", "100", "--beta", "1e308", "--sigma", "1", "--xi-dot", "2")
+    assert err.startswith(
+        "dfa: error: --beta = 1e+308, --sigma = 1, --xi-dot = 2 are invalid together: the criterion's"
+    )
+    assert "margin" in err and "inf" not in err.split(":")[2]
+    # found: `... --beta 0 --sigma 1e308 --xi-dot 1` printed "critical speed inf ticks/sample"
+    err = refused(capsys, "check", "--mu", "100", "--beta", "0", "--sigma", "1e308", "--xi-dot", "1")
+    assert "the critical speed (σ − σ₀)/(β₀ − β) (eq. 12) must be a finite number" in err
+    with pytest.raises(DFAValueError, match="beta = 1e\\+308, sigma = 1, xi_dot = 2 are invalid together"):
+        passivity_criterion(1e308, 1.0, 2.0)
+    with pytest.raises(DFAValueError, match="critical speed"):
+        passivity_criterion(0.0, 1e308, 1.0)
+    r = passivity_criterion(1e308, 1.0, 1.0)  # the margin 1e308 is a float: answered
+    assert r.margin == 1e308 and r.passive
+    code = main(["check", "--mu", "100", "--beta", "0", "--sigma", "1e300", "--xi-dot", "1"])
+    out, _ = capsys.readouterr()
+    assert code == 0 and "inf" not in out and "2e+300 ticks/sample" in out

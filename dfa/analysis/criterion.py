@@ -128,6 +128,7 @@ False
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -168,6 +169,7 @@ __all__ = [
     "spring_energy",
     "REGION_DESCRIPTIONS",
     "as_wall",
+    "check_finite_verdict",
 ]
 
 #: One-line meaning of each region of paper Fig. 3 for the spring (text before the first colon: short label).
@@ -661,6 +663,7 @@ def passivity_criterion(
     quantized: bool = True,
     xi0: float = 0.0,
     mu: float | None = None,
+    names: Mapping[str, str] | None = None,
 ) -> CriterionResult:
     """Evaluate the passivity criterion (eq. 6, or eq. 7 without quantization) for a wall and an initial position.
 
@@ -686,6 +689,9 @@ def passivity_criterion(
         Initial position ξ0 in ticks (default 0); the wall's past readings equal ξ0.
     mu : float, optional
         Dimensionless mass μ = m/(K T²); required when ``xi0`` is not 0.
+    names : mapping of str to str, optional
+        How the message of a margin or critical speed that overflows names ``beta``, ``sigma`` and ``xi_dot``
+        (the command line passes its flags); default those names.
 
     Returns
     -------
@@ -696,7 +702,8 @@ def passivity_criterion(
     ------
     DFAValueError, DFATypeError
         If β, σ or μ is out of range or not a number, the speed or position is not a finite number, the
-        wall is not a WallParams or holds an element no criterion covers, or ``xi0`` is not 0 without ``mu``.
+        wall is not a WallParams or holds an element no criterion covers, ``xi0`` is not 0 without ``mu``, or
+        the margin or the critical speed overflows a float (:func:`check_finite_verdict`).
 
     See Also
     --------
@@ -718,6 +725,9 @@ def passivity_criterion(
     v = equivalent_speed(xd, x0, m, quantized=q)
     b0, s0 = _corner(w, q)
     region = str(region_of(b, s, v, s0, b0))
+    margin = float(_margin(b, s, v, s0, b0))
+    critical = (s - s0) / (b0 - b) if (b < b0 and s >= s0) else None
+    check_finite_verdict(margin, critical, {"beta": b, "sigma": s, "xi_dot": xd}, names)
     return CriterionResult(
         beta=b,
         sigma=s,
@@ -725,8 +735,8 @@ def passivity_criterion(
         quantized=q,
         region=region,
         passive=region in ("a", "e"),
-        margin=float(_margin(b, s, v, s0, b0)),
-        critical_xi_dot=(s - s0) / (b0 - b) if (b < b0 and s >= s0) else None,
+        margin=margin,
+        critical_xi_dot=critical,
         critical_line=CriticalLine(v, b0, s0),
         equivalent_speed=v,
         xi0=x0,
@@ -734,6 +744,47 @@ def passivity_criterion(
         # region b with the spring's σ₀ = ½: σ < ½, the force at rest exceeds σ and the device cannot stop
         status=CriterionStatus.of_region(region, cannot_stop=s0 <= 0.5),
         wall=w,
+    )
+
+
+def check_finite_verdict(
+    margin: float, critical: float | None, given: Mapping[str, float], names: Mapping[str, str] | None = None
+) -> None:
+    """Refuse inputs whose margin (β − β₀)V + (σ − σ₀) or critical speed (σ − σ₀)/(β₀ − β) overflows a float.
+
+    The verdict itself keeps its sign, but a margin or a critical speed of inf is no answer to state (``dfa check
+    --beta 1e308 --xi-dot 2`` printed "margin inf"); such values lie far beyond any haptic device.
+
+    Parameters
+    ----------
+    margin, critical : float, float or None
+        The criterion's margin and critical speed (None where there is none).
+    given : mapping of str to float
+        The inputs named in the message (``beta``, ``sigma``, ``xi_dot``), by name.
+    names : mapping of str to str, optional
+        How to call each input (the command line passes its flags); default its name.
+
+    Examples
+    --------
+    >>> check_finite_verdict(1.5, None, {"beta": 0.6, "sigma": 1.0, "xi_dot": 2.0})
+    >>> try:
+    ...     check_finite_verdict(float("inf"), None, {"beta": 1e308, "sigma": 1.0, "xi_dot": 2.0})
+    ... except DFAValueError as err:
+    ...     print(err)
+    beta = 1e+308, sigma = 1, xi_dot = 2 are invalid together: the criterion's margin (β − β₀)V + (σ − σ₀) must be a finite number (it overflows a float here); give the β, σ and speed of a haptic device (β and σ below about 1e3, a few ticks per sample)
+    """
+    what = None
+    if not math.isfinite(margin):
+        what = "the criterion's margin (β − β₀)V + (σ − σ₀)"
+    elif critical is not None and not math.isfinite(critical):
+        what = "the critical speed (σ − σ₀)/(β₀ − β) (eq. 12)"
+    if what is None:
+        return
+    called = names or {}
+    inputs = ", ".join(f"{called.get(k, k)} = {v:g}" for k, v in given.items())
+    raise DFAValueError(
+        f"{inputs} are invalid together: {what} must be a finite number (it overflows a float here); give the β, σ "
+        "and speed of a haptic device (β and σ below about 1e3, a few ticks per sample)"
     )
 
 

@@ -13,6 +13,8 @@ from .parsing import UsageError, number
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
 
 COMMAND = "check"
+#: The flags of the dimensionless inputs, as the criterion's messages name them.
+_FLAGS = {"beta": "--beta", "sigma": "--sigma", "xi_dot": "--xi-dot"}
 HELP = "passivity criterion and region at an impact speed (eq. 6-12)"
 EXAMPLE = "dfa check --device delta --velocity 0.1"
 
@@ -58,7 +60,9 @@ def _criterion(args: argparse.Namespace, inp: Inputs, xd: float, v: float | None
             f"--xi0 {x0:g} needs --mu: the spring energy enters the speed as 2H_c(ξ0)/μ; give --mu m/(K T²)"
         )
     groups = WallParams.of(delay=args.delay)
-    return passivity_criterion(inp.beta, inp.sigma, xd, wall=groups, quantized=quantized, xi0=x0, mu=args.mu)
+    return passivity_criterion(
+        inp.beta, inp.sigma, xd, wall=groups, quantized=quantized, xi0=x0, mu=args.mu, names=_FLAGS
+    )
 
 
 def _check_wall(args: argparse.Namespace, inp: Inputs, wall: Wall, xd: float, v: float | None) -> int:
