@@ -114,3 +114,52 @@ def test_check_margin_or_critical_speed_that_overflows_is_refused(capsys):
     code = main(["check", "--mu", "100", "--beta", "0", "--sigma", "1e300", "--xi-dot", "1"])
     out, _ = capsys.readouterr()
     assert code == 0 and "inf" not in out and "2e+300 ticks/sample" in out
+
+
+# ------------------------------------------------------------------ the stiffness searches and the chart
+def test_grid_search_bisects_huge_and_tiny_stiffnesses():
+    from dfa.analysis.limits.search import geometric_mean, grid_search
+
+    # found: `dfa stiffness --device delta --velocity 0.1 --coulomb 1e300` ended in "limited_by = inf is invalid"
+    # (√(lo·hi) overflowed to inf between 1e303 and 1e305 N/m; below 1e-154 the product underflows to 0)
+    for grid, edge in ((np.array([1e300, 1e303, 1e305]), 2e303), (np.array([1e-300, 1e-297, 1e-295]), 2e-297)):
+        lim = grid_search(lambda k, e=edge: "safe" if k < e else "undecided", grid)
+        assert lim.value is not None and lim.limited_by is not None
+        assert lim.value < edge <= lim.limited_by <= lim.value * 1.01, lim
+    assert geometric_mean(1e-300, 1e-290) == pytest.approx(1e-295) and geometric_mean(2.0, 8.0) == 4.0
+
+
+@pytest.mark.parametrize(
+    "flag, value, mu",
+    [("--resolution", "1e300", "2.55e+306 at K = 8.83e-301"), ("--coulomb", "1e300", "4.22e-300 at K = 5.33e+305")],
+)
+def test_stiffness_search_outside_the_mu_range_refused_up_front(capsys, flag, value, mu):
+    # found: --resolution 1e300 printed 4 overflow warnings and "limited_by = 0.0 is invalid"; --coulomb 1e300
+    # 17 LimitCycleSearchWarnings and "limited_by = inf is invalid"
+    err = refused(capsys, "stiffness", "--device", "delta", "--velocity", "0.1", flag, value)
+    assert f"where μ = m/(K T²) reaches {mu}: it must stay within 1e-150 … 1e+150" in err, err
+    assert f"{flag.lstrip('-')} = {float(value):g}" in err
+
+
+def test_design_answer_and_chart_refuse_their_ranges_before_any_work():
+    from dataclasses import replace
+
+    from dfa.analysis.limits.kmax import design_answer
+    from dfa.analysis.limits.speed_chart import stiffness_speed_chart
+    from dfa.model.catalogue import get_device
+
+    dev = get_device("Delta").device
+    with pytest.raises(DFAValueError, match="the stiffness search .* μ = m/\\(K T²\\) reaches"):
+        design_answer(replace(dev, coulomb=1e300), 0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", dfa.ImplausibleInputWarning)
+        with pytest.raises(DFAValueError, match="runs from K = 15 N/m to beyond the largest float"):
+            stiffness_speed_chart(dev, stiffness=1e308, velocity=0.1)
+
+
+def test_report_with_a_stiffness_beyond_the_chart_prints_one_line(capsys, tmp_path):
+    # found: `dfa report ... --stiffness 1e308` printed 5 RuntimeWarning lines, then "stiffness = inf is invalid"
+    out = tmp_path / "rep"
+    err = refused(capsys, "report", "--device", "delta", "--velocity", "0.1", "--stiffness", "1e308", "--out", str(out))
+    assert "the stiffness–speed chart" in err and "stiffness = 1e+308 N/m" in err and "inf" not in err
+    assert not out.exists()

@@ -33,9 +33,9 @@ from .check import PassivityCheck, passivity_check
 from .criterion import CriterionResult
 from .cycles import GrowthThreshold, LimitCycleResult, growth_threshold
 from .limits.closed_form import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
-from .limits.kmax import KMaxResult, RunCache, design_answer
+from .limits.kmax import KMaxResult, RunCache, check_search_range, design_answer
 from .limits.recommend import Recommendation, recommend_stiffness
-from .limits.speed_chart import StiffnessSpeedChart, stiffness_speed_chart
+from .limits.speed_chart import StiffnessSpeedChart, check_chart_range, stiffness_speed_chart
 from .limits.zwidth import ZWidth, z_width
 from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, stability_map
@@ -370,7 +370,10 @@ def resolve_design_inputs(
     if not isinstance(wall, Wall):
         wall = Wall(check_positive("wall", wall, "give the wall, or the virtual wall stiffness K"))
     v = check_speed("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1))
-    wall.params(dev.period)  # a filter above Nyquist or a group out of range is refused here, before any work
+    wp = wall.params(dev.period)  # a filter above Nyquist or a group out of range is refused here, before any work
+    check_search_range(dev, wall, v)  # so is a stiffness range no float search can run (the design answer's …
+    if v > 0 and wp.is_spring:
+        check_chart_range(dev, wall, wall.stiffness, v)  # … and the chart's: 8 K = inf at K = 1e308
     return entry, dev, wall, v
 
 

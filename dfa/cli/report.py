@@ -96,6 +96,7 @@ def _read_validation(path: str) -> dict[str, Any]:
 
 def run(args: argparse.Namespace) -> int:
     """Write the report; print the paths written (or, with --json, the paths and the numbers stated)."""
+    from ..analysis.design import resolve_design_inputs
     from ..report import design_report
 
     if (
@@ -112,9 +113,10 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError(f"--zwidth {args.zwidth} is invalid: give the points per axis (0: no Z-width section)")
     _xd, v = speed(args, inp, required=False)
     summary = _read_validation(args.validation) if args.validation is not None else None
-    make_output_folder("--out", args.out)
     assert inp.stiffness is not None  # resolve() refuses a device without K here
     wall = ctl if ctl is not None else Wall.of(inp.stiffness, delay=args.delay)
+    resolve_design_inputs(inp.entry or inp.device, wall, v)  # refused before any output (its ranges, issue 27)
+    make_output_folder("--out", args.out)
     res = design_report(
         inp.entry or inp.device, wall, v, out_dir=args.out, fmt=args.format, progress=progress(args),
         validation=summary, force=args.force, zwidth_grid=args.zwidth,

@@ -56,7 +56,17 @@ from ..criterion import as_wall, device_criterion
 from ..simulation import preload_position
 from .closed_form import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 from .runs import STARTS, Evidence, RunCache
-from .search import DENSE_FACTOR, Failure, KLimit, Sweep, confirm, df_limit, search_grid, simulated_limit
+from .search import (
+    DENSE_FACTOR,
+    Failure,
+    KLimit,
+    Sweep,
+    check_stiffness_range,
+    confirm,
+    df_limit,
+    search_grid,
+    simulated_limit,
+)
 
 __all__ = [
     "KMaxAssessment",
@@ -64,6 +74,7 @@ __all__ = [
     "SearchEvidence",
     "design_answer",
     "closed_forms",
+    "check_search_range",
     "wall_k_criterion",
     "searched_limits",
     "passive_speed",
@@ -371,6 +382,30 @@ def describing_limit(
     return df_limit(ev, search_grid(k_ref, top, grid), dev.xi_dot(v))
 
 
+def _check_search_range(dev: Device, k_ref: float, top: float, grid: int) -> None:
+    """Refuse the searches' grid (:func:`search_grid`) where μ leaves its range (:func:`check_stiffness_range`);
+    a top that is not finite is no range (the searches say ``no_range``)."""
+    if top > 0 and math.isfinite(top):
+        pts = search_grid(k_ref, top, grid)
+        what = "the stiffness search (K_criterion/2 to 8 × the largest closed-form bound)"
+        check_stiffness_range(dev, float(pts[0]), float(pts[-1]), what)
+
+
+def check_search_range(device: Device, wall: Wall, velocity: float, grid: int = 16) -> None:
+    """Refuse, before any work, a device and wall whose stiffness search (:func:`design_answer` at ``velocity``)
+    would run where μ = m/(K T²) leaves :data:`~dfa.analysis.limits.search.MU_RANGE` (``dfa stiffness --resolution
+    1e300``: μ = 2.5e306 at the grid's lowest K).
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> check_search_range(get_device("Delta").device, Wall(1.0), 0.1)
+    """
+    if velocity > 0:
+        _kc, _kl, _pub, k_ref, top = closed_forms(device, wall, velocity)
+        _check_search_range(device, k_ref, top, grid)
+
+
 def _limit(k: float, why: LimitStatus) -> KLimit:
     """A closed-form limit: its value, or None with ``why`` when it is 0."""
     return KLimit(k) if k > 0.0 else KLimit(None, why)
@@ -533,6 +568,8 @@ def design_answer(
     if assess and wall is None:
         raise DFAValueError("assess = True is invalid without a wall: give the wall (or its K) to assess")
     kc, kl, published, k_ref, top = closed_forms(dev, w, v)
+    if v > 0:
+        _check_search_range(dev, k_ref, top, n_grid)  # up front: a range no float search can run
     vs = v * np.arange(1, n_speeds + 1) / n_speeds if v > 0 else np.zeros(0)
     ev = Evidence(dev, w, vs, cap, model, RunCache() if cache is None else cache)
     # the criterion's K for the sweep and the counterexample check: None where no criterion covers the wall

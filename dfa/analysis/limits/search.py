@@ -27,9 +27,10 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, ClassVar, NamedTuple
+from typing import TYPE_CHECKING, Any, ClassVar, NamedTuple
 
 import numpy as np
 
@@ -39,6 +40,9 @@ from ...results.base import Result
 from ...results.status import LimitStatus
 from .runs import FAILING, SAFE, UNDECIDED, Evidence
 
+if TYPE_CHECKING:
+    from ...model.device import Device
+
 __all__ = [
     "K_RTOL",
     "Failure",
@@ -47,11 +51,14 @@ __all__ = [
     "KLimit",
     "Sweep",
     "grid_search",
+    "geometric_mean",
     "df_limit",
     "simulated_limit",
     "UNDECIDED_WHY",
     "confirm",
     "search_grid",
+    "check_stiffness_range",
+    "MU_RANGE",
     "band",
     "SWEEP_STEP",
     "FINE_STEP",
@@ -317,6 +324,22 @@ class KLimit(Result):
         }
 
 
+def geometric_mean(lo: float, hi: float) -> float:
+    """√(lo·hi) of two stiffnesses > 0, also where lo·hi overflows or underflows a float (then √lo·√hi).
+
+    ``math.sqrt(lo * hi)`` gave inf between 1e155 and 1e305 N/m (``dfa stiffness --coulomb 1e300``: "undecided
+    runs at inf N/m"); the product's own value is kept wherever it is a normal float, so results elsewhere are
+    bit for bit those of before.
+
+    Examples
+    --------
+    >>> geometric_mean(4.0, 9.0), geometric_mean(4e300, 9e300)
+    (6.0, 6e+300)
+    """
+    p = lo * hi
+    return math.sqrt(p) if sys.float_info.min <= p < math.inf else math.sqrt(lo) * math.sqrt(hi)
+
+
 def grid_search(
     judge: Callable[[float], str], grid: np.ndarray, why: str | Callable[[float], str] = "short_runs"
 ) -> KLimit:
@@ -353,7 +376,7 @@ def grid_search(
     lo, hi, n = float(grid[i - 1]), float(grid[i]), len(grid)
     hi_verdict = verdicts[i]
     while hi - lo > K_RTOL * hi:
-        mid = math.sqrt(lo * hi)
+        mid = geometric_mean(lo, hi)
         v = judge(mid)
         n += 1
         if v == UNDECIDED:
@@ -387,6 +410,54 @@ def df_limit(ev: Evidence, grid: np.ndarray, xi_dot: float) -> KLimit:
 def simulated_limit(ev: Evidence, grid: np.ndarray, limit: str) -> KLimit:
     """A simulated limit on ``grid``: no run fails ``limit`` (``"unstable"`` or ``"rest"``) at the search speeds."""
     return grid_search(lambda k: ev.judge(k, limit), grid, "short_runs")
+
+
+#: The dimensionless mass μ = m/(K T²) a stiffness search or chart may reach at either end of its range: μ and 1/μ
+#: at most 1e150, so that μ² (the loop's polynomials, the harmonic balance) stays a float. Haptic devices lie
+#: between about 1e-2 and 1e7; beyond this range the searches overflowed (``dfa stiffness --resolution 1e300``:
+#: μ = 2.5e306 at the grid's lowest K) or ran for minutes.
+MU_RANGE = (1e-150, 1e150)
+
+
+def check_stiffness_range(dev: Device, lo: float, hi: float, what: str, stiffness: float | None = None) -> None:
+    """Refuse a stiffness range [lo, hi] (N/m) that is not finite or where μ = m/(K T²) leaves :data:`MU_RANGE`.
+
+    Parameters
+    ----------
+    dev : Device
+        The device (its values are named in the message: the likely slip is a unit).
+    lo, hi : float
+        The range's ends, N/m (rotary: N·m/rad).
+    what : str
+        What runs over the range, for the message (e.g. ``"the stiffness search (K_criterion/2 to 8 × the largest
+        closed-form bound)"``).
+    stiffness : float, optional
+        A stiffness the range holds (the chart's design K), named in the message with the device's values.
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> check_stiffness_range(get_device("Delta").device, 100.0, 1e6, "the search")
+    """
+    unit = dev.units["stiffness"]
+    values = ", ".join(f"{k} = {getattr(dev, k):g}" for k in ("mass", "damping", "coulomb", "resolution", "period"))
+    if stiffness is None:
+        fix = f"check the units of the device's values ({values})"
+    else:
+        fix = f"check the units of the stiffness = {stiffness:g} {unit} and of the device's values ({values})"
+    if not (0.0 < lo <= hi < math.inf):
+        end = f"{hi:.3g} {unit}" if math.isfinite(hi) else f"beyond the largest float ({sys.float_info.max:.3g})"
+        raise DFAValueError(f"{what} runs from K = {lo:.3g} {unit} to {end}: it must be a finite range of K > 0; {fix}")
+    t2 = dev.period * dev.period
+    mu_lo, mu_hi = dev.mass / (hi * t2), dev.mass / (lo * t2)  # μ falls as K grows
+    low, high = MU_RANGE
+    if not (low <= mu_lo and mu_hi <= high):
+        k, mu = (lo, mu_hi) if mu_hi > high else (hi, mu_lo)
+        raise DFAValueError(
+            f"{what} runs from K = {lo:.3g} {unit} to {hi:.3g} {unit}, where μ = m/(K T²) reaches {mu:.3g} at K = {k:.3g}: "
+            f"it must stay within {low:g} … {high:g} (μ² must be a float; haptic devices lie between about 1e-2 "
+            f"and 1e7); {fix}"
+        )
 
 
 def search_grid(k_ref: float, top: float, grid: int) -> np.ndarray:

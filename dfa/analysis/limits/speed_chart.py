@@ -47,8 +47,9 @@ from ..cycles.caveats import SUBTICK_LIMIT
 from .closed_form import HAND_SPEED, k_static
 from .kmax import DESIGN_MAX_SAMPLES, closed_forms, passive_speed
 from .runs import Evidence, Growth, RunCache
+from .search import check_stiffness_range
 
-__all__ = ["StiffnessSpeedChart", "stiffness_speed_chart", "HAND_SPEED"]
+__all__ = ["StiffnessSpeedChart", "stiffness_speed_chart", "check_chart_range", "HAND_SPEED"]
 
 #: Why the describing function's largest safe speed is unknown (null) at a stiffness.
 UNKNOWN_DF = (
@@ -295,6 +296,26 @@ def _k_range(dev: Device, wall: Wall, v_top: float, design: float | None) -> tup
     return lo, max(8.0 * max(highs), 16.0 * lo)
 
 
+#: What the chart's stiffness range is, in the message of :func:`~dfa.analysis.limits.search.check_stiffness_range`.
+CHART_RANGE = (
+    "the stiffness–speed chart (a quarter of the lowest closed-form bound to 8 × the highest and the design K)"
+)
+
+
+def check_chart_range(device: Device, wall: Wall, stiffness: float, velocity: float) -> None:
+    """Refuse, before any work, a design point whose chart (:func:`stiffness_speed_chart` with the default
+    ``v_top``) would run over a stiffness range no float search can (:func:`~dfa.analysis.limits.search
+    .check_stiffness_range`): ``dfa report --stiffness 1e308`` reached K = 8e308 = inf.
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> check_chart_range(get_device("Delta").device, Wall(14500.0), 14500.0, 0.1)
+    """
+    top = max(HAND_SPEED["rotary" if device.rotary else "linear"], velocity)
+    check_stiffness_range(device, *_k_range(device, wall, top, stiffness), CHART_RANGE, stiffness)
+
+
 #: Most stiffnesses (``grid``) or speeds (``speeds``) one chart simulates.
 _MAX_COUNT = 1000
 #: Slowest impact speed simulated (``v_top``/200): the smallest normal float.
@@ -377,6 +398,7 @@ def stiffness_speed_chart(
     n_max = check_int("max_samples", max_samples, minimum=1000, fix="give the longest run in samples")
     vs = np.geomspace(top / 200.0, top, n_v) if n_v > 1 else np.array([top])
     lo, hi = _k_range(dev, w, top, k_design)
+    check_stiffness_range(dev, lo, hi, CHART_RANGE, k_design)
     ks = np.geomspace(lo, hi, n_k)
     if cache is not None:
         check_type("cache", cache, RunCache, "pass a dfa.analysis.limits.runs.RunCache, or None")
