@@ -47,6 +47,7 @@ __all__ = [
     "check_growth",
     "check_bound",
     "check_positive_array",
+    "check_nonempty",
     "check_rate",
     "check_damping_rate",
     "check_range",
@@ -430,6 +431,22 @@ def check_positive_array(name: str, value: Any, fix: str | None = None) -> np.nd
     if a.size and not np.all(good):
         raise DFAValueError(_message(name, float(a[~good].ravel()[0]), "a finite number > 0", fix))
     return a
+
+
+def check_nonempty(name: str, value: np.ndarray, fix: str | None = None) -> np.ndarray:
+    """Return the array ``value`` if it holds at least one element, else the package's error.
+
+    Examples
+    --------
+    >>> try:
+    ...     check_nonempty("amplitudes", np.array([]), "give the amplitudes M in ticks")
+    ... except DFAValueError as err:
+    ...     print(err)
+    amplitudes = <array of shape (0,)> is invalid: it must be an array of at least one value (it is empty); give the amplitudes M in ticks
+    """
+    if np.size(value) == 0:
+        raise DFAValueError(_message(name, value, "an array of at least one value (it is empty)", fix))
+    return value
 
 
 def check_real_array(name: str, value: Any, fix: str | None = None) -> np.ndarray:

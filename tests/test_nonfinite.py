@@ -5,6 +5,7 @@ up front with the package's error (one line on stderr, exit 2, naming the value,
 answer is finite.
 """
 
+import math
 import os
 import subprocess
 import sys
@@ -163,3 +164,107 @@ def test_report_with_a_stiffness_beyond_the_chart_prints_one_line(capsys, tmp_pa
     err = refused(capsys, "report", "--device", "delta", "--velocity", "0.1", "--stiffness", "1e308", "--out", str(out))
     assert "the stiffness–speed chart" in err and "stiffness = 1e+308 N/m" in err and "inf" not in err
     assert not out.exists()
+
+
+# ------------------------------------------------------------------ the API findings
+@pytest.fixture(scope="module")
+def saved_map(tmp_path_factory):
+    m = dfa.stability_map(100.0, [1.0], grid=3, samples=200, n_jobs=1)
+    path = m.save(tmp_path_factory.mktemp("map") / "m.npz")
+    with np.load(path) as z:
+        return path, dict(z)
+
+
+@pytest.mark.parametrize(
+    "change, says",
+    [
+        (lambda z: {"outcome": z["outcome"].astype(float)}, "its outcome array holds float64 values"),
+        (lambda z: {"outcome": z["outcome"].astype(np.int64) + 10}, "its outcome array holds codes 10"),
+        (lambda z: {"outcome": z["outcome"].astype(np.int64) - 1}, "its outcome array holds codes -1"),
+        (lambda z: {"mu": np.float64("nan")}, "(mu = nan is invalid"),
+        (lambda z: {"mu": np.array([1.0, 2.0])}, "(mu = <array of shape (2,)>"),
+        (lambda z: {"xi_dots": np.array([np.inf])}, "(xi_dots = <array of shape (1,)> is invalid"),
+        (lambda z: {"beta": z["beta"] * np.nan}, "(beta = <array of shape (3,)> is invalid"),
+    ],
+)
+def test_load_map_validates_a_corrupted_file(saved_map, tmp_path, change, says):
+    # found: an outcome array of floats raised IndexError, and a NaN mu loaded silently
+    path, z = saved_map
+    bad = tmp_path / "bad.npz"
+    np.savez(bad, **{**z, **change(z)})
+    with pytest.raises(DFAValueError, match="recompute it with `dfa map`") as err:
+        dfa.load_map(bad)
+    assert f"map file {str(bad)!r} is invalid" in str(err.value) and says in str(err.value)
+    assert dfa.load_map(path).mu == 100.0
+
+
+def test_stability_map_validates_mu_and_speeds_on_construction(saved_map):
+    m = dfa.load_map(saved_map[0])
+    from dataclasses import replace
+
+    for field, value in (("mu", float("nan")), ("mu", 1 + 1j), ("xi_dots", (float("nan"),)), ("samples", 0)):
+        with pytest.raises((DFAValueError, dfa.DFATypeError)):
+            replace(m, **{field: value})
+
+
+@pytest.mark.parametrize("kw", [{"amplitudes": np.array([])}, {"omega": np.array([])}])
+def test_nyquist_locus_response_refuses_empty_arrays(kw):
+    # found: amplitudes=np.array([]) raised numpy's "need at least one array to concatenate"
+    p = dfa.Params(5.0, 0.1, 0.3)
+    name = next(iter(kw))
+    with pytest.raises(
+        DFAValueError, match=f"{name} = <array of shape \\(0,\\)> is invalid: it must be an array of at"
+    ):
+        dfa.nyquist_locus_response(p, **kw)
+    with pytest.raises(DFAValueError, match="locus_amplitude"):
+        dfa.nyquist_locus_response(dfa.Params(5.0, 0.1, 0.0), locus_amplitude=[])
+
+
+def test_numeric_df_refuses_what_quantizer_df_refuses():
+    # found: numeric_df(f, 1e-320) returned inf where quantizer_df refuses the same amplitude
+    def q(x):
+        return math.floor(x) + 0.5
+
+    for fn in (dfa.quantizer_df, lambda a: dfa.numeric_df(q, a)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            with pytest.raises(DFAValueError, match="amplitude = 1e-320 is invalid: the describing function"):
+                fn(1e-320)
+    assert dfa.numeric_df(q, 1e-300) == pytest.approx(dfa.quantizer_df(1e-300), rel=1e-12)
+
+
+def test_k_max_criterion_at_huge_speeds_is_its_limit_not_nan():
+    from dfa.analysis.limits.closed_form import k_max_criterion
+
+    # found: k_max_criterion(dev, 1e308) returned nan (b·ẋ0 and T·ẋ0 both overflow) or 2c/Δ (b·ẋ0 alone)
+    for period in (1e-3, 4.0):
+        dev = dfa.Device(mass=1.0, damping=2.0, coulomb=1.0, resolution=1e-5, period=period)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", dfa.ImplausibleInputWarning)
+            k = k_max_criterion(dev, [1e308, 1e300, 0.1])
+        assert np.all(np.isfinite(k)) and k[0] == pytest.approx(2.0 / (0.5 * period), rel=1e-9), k
+        assert k[2] == (2.0 * 0.1 + 1.0) / (0.5 * period * 0.1 + 0.5e-5) * (1.0 - 1e-12)  # unchanged below
+    huge = dfa.Device(mass=1.0, damping=2.0, coulomb=1e308, resolution=1e-5, period=1e-3)
+    with pytest.raises(DFAValueError, match="K_max <= 2c/Δ overflows a float"):
+        k_max_criterion(huge, 0.1)
+
+
+@pytest.mark.parametrize(
+    "field, value",
+    [
+        ("amplitude", float("nan")),
+        ("frequency", 1 + 2j),
+        ("loeb", np.array([1.0, 2.0])),
+        ("loeb", float("nan")),
+        ("residual", float("inf")),
+        ("residual", -1.0),
+        ("stable", "yes"),
+        ("few_samples", 1),
+        ("family", ["small"]),
+    ],
+)
+def test_limit_cycle_validated_on_construction(field, value):
+    good = dict(amplitude=1.5, frequency=0.4, stable=True, family="large", loeb=0.2, residual=1e-12)
+    assert dfa.LimitCycle(**good).period == pytest.approx(2 * math.pi / 0.4)
+    with pytest.raises((DFAValueError, dfa.DFATypeError), match=f"{field} = "):
+        dfa.LimitCycle(**{**good, field: value})

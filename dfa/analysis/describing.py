@@ -502,7 +502,8 @@ def numeric_df(
     Raises
     ------
     DFAValueError, DFATypeError
-        If an amplitude is not a finite number > 0.
+        If an amplitude is not a finite number > 0, or so small that b1/M overflows a float (the rule of
+        :func:`quantizer_df`).
 
     See Also
     --------
@@ -545,7 +546,9 @@ def numeric_df(
                     lambda t, mv=mv: fval(mv * math.sin(t)) * math.sin(t), a, b, epsabs=tol, epsrel=tol, limit=200
                 )
                 total += val
-        out[idx] = 4.0 / math.pi * total / mv
+        with np.errstate(over="ignore"):  # refused below, with quantizer_df's message
+            out[idx] = 4.0 / math.pi * total / mv
+    _check_finite_df("amplitude", m, out)  # quantizer_df's rule: a ratio b1/M that overflows is refused
     return float(out) if out.ndim == 0 else out
 
 

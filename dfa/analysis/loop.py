@@ -46,6 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..checks import (
+    check_nonempty,
     check_positive,
     check_positive_array,
     check_real_array,
@@ -84,6 +85,11 @@ __all__ = [
 
 def _omega(omega: ArrayLike, name: str = "omega") -> np.ndarray:
     return check_positive_array(name, omega, "give frequencies in rad per sample")
+
+
+def _nonempty(name: str, value: ArrayLike, fix: str) -> np.ndarray:
+    """``value`` as a 1-d float array of finite values holding at least one (one number: one point)."""
+    return check_nonempty(name, np.atleast_1d(check_real_array(name, value, fix)), fix)
 
 
 def equivalent_damping(
@@ -520,11 +526,11 @@ def nyquist_locus_response(
     p = check_params(params)
     wp, _ctl, d = resolve_wall(wall)
     m, d, n = check_model(model, d, pade_order)
-    w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega)
-    la = np.atleast_1d(  # one amplitude: a locus of one point (a 0-d array was refused by the result's shape check)
-        check_real_array(
-            "locus_amplitude", np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude
-        )
+    w = check_nonempty("omega", _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega))
+    la = _nonempty(  # one amplitude: a locus of one point (a 0-d array was refused by the result's shape check)
+        "locus_amplitude",
+        np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude,
+        "give the describing function's amplitudes in ticks",
     )
     locus = -1.0 / quantizer_df(la)
     crossings: list[tuple[float, float, complex]] = []
@@ -538,7 +544,7 @@ def nyquist_locus_response(
                 f"amplitudes = None is invalid here: with sigma = {p.sigma} > 0 the loop depends on M (eq. 40); "
                 "give the amplitudes (ticks) at which to draw it"
             )
-        amps = np.atleast_1d(check_real_array("amplitudes", amplitudes, "give the amplitudes M in ticks"))
+        amps = _nonempty("amplitudes", amplitudes, "give the amplitudes M in ticks")
         curves = np.vstack([loop_response(p, w, np.full_like(w, a), model=m, pade_order=n, wall=wp) for a in amps])
         status, evidence = NyquistStatus.CROSSINGS_NOT_COMPUTED, None
     return NyquistLocusResponse(p, m, wp, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, evidence)

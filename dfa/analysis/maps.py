@@ -72,6 +72,7 @@ from ..checks import (
     check_jobs,
     check_mu,
     check_range,
+    check_real_array,
     check_speed,
     format_value,
 )
@@ -168,7 +169,10 @@ class StabilityMap(PlaneGrid, Result):
     json_properties: ClassVar[tuple[str, ...]] = ("beta_range", "sigma_range", "grid", "delay")
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "xi_dots", tuple(float(v) for v in self.xi_dots))
+        object.__setattr__(self, "mu", check_mu(self.mu))
+        xd = check_real_array("xi_dots", self.xi_dots, "give the initial speeds in ticks per sample")
+        object.__setattr__(self, "xi_dots", tuple(float(v) for v in np.atleast_1d(xd).ravel()))
+        object.__setattr__(self, "samples", check_int("samples", self.samples, minimum=1))
         object.__setattr__(self, "wall", check_wall(self.wall))
         freeze_fields(
             self,
@@ -438,20 +442,31 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
                 f"map file {str(path)!r} is invalid: unknown outcome names {unknown}; expected {list(OUTCOMES)}"
             )
         lut = np.array([OUTCOMES.index(v) for v in names], dtype=np.int8)
+        codes = z["outcome"]
+        integral = codes.dtype.kind in "iu"
+        if not integral or (codes.size and not (0 <= codes.min() and codes.max() < lut.size)):
+            held = f"codes {codes.min()} … {codes.max()}" if integral else f"{codes.dtype} values"
+            raise DFAValueError(
+                f"map file {str(path)!r} is invalid: its outcome array holds {held}, not the codes 0 … {lut.size - 1} "
+                "of its outcome_names; recompute it with `dfa map`"
+            )
         wall = _wall_from(z, delay)
-        return StabilityMap(
-            mu=float(z["mu"]),
-            xi_dots=tuple(float(v) for v in z["xi_dots"]),
-            beta=z["beta"],
-            sigma=z["sigma"],
-            outcome=lut[z["outcome"]],
-            amplitude=z["amplitude"],
-            frequency=z["frequency"],
-            samples=samples,
-            quantize=bool(quantize),
-            preload=bool(preload),
-            wall=wall,
-        )
+        try:
+            return StabilityMap(
+                mu=z["mu"][()],
+                xi_dots=z["xi_dots"],
+                beta=z["beta"],
+                sigma=z["sigma"],
+                outcome=lut[codes],
+                amplitude=z["amplitude"],
+                frequency=z["frequency"],
+                samples=samples,
+                quantize=bool(quantize),
+                preload=bool(preload),
+                wall=wall,
+            )
+        except (DFAValueError, DFATypeError) as err:  # a value outside its rule: the file names it
+            raise DFAValueError(f"map file {str(path)!r} is invalid ({err}); recompute it with `dfa map`") from None
 
 
 def _wall_arrays(wall: WallParams) -> dict[str, Any]:

@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from ...checks import check_positive
+from ...checks import check_bool, check_nonnegative, check_positive, check_real, format_value
 from ...errors import DFATypeError, DFAValueError
 from ...model.device import Device, Params
 from ...model.wall import WallParams
@@ -113,12 +113,17 @@ class LimitCycle(Result):
         return 2.0 * math.pi / self.frequency
 
     def __post_init__(self) -> None:
-        if self.family not in ("small", "large"):
+        fix = "build cycles with limit_cycles"
+        if not isinstance(self.family, str) or self.family not in ("small", "large"):
             raise DFAValueError(
-                f"family = {self.family!r} is invalid: it must be 'small' or 'large'; build cycles with limit_cycles"
+                f"family = {format_value(self.family)} is invalid: it must be 'small' or 'large'; {fix}"
             )
         for name in ("amplitude", "frequency"):
-            check_positive(name, getattr(self, name), "build cycles with limit_cycles")
+            object.__setattr__(self, name, check_positive(name, getattr(self, name), fix))
+        object.__setattr__(self, "loeb", check_real("loeb", self.loeb, fix))
+        object.__setattr__(self, "residual", check_nonnegative("residual", self.residual, fix))
+        for name in ("stable", "few_samples"):
+            object.__setattr__(self, name, check_bool(name, getattr(self, name), fix))
 
     def physical(self, device: Device, stiffness: float) -> dict[str, float | None]:
         """Express this cycle in physical units for a device at stiffness K (:mod:`dfa.model.units`).

@@ -136,10 +136,23 @@ def k_max_criterion(device: Device, velocity: ArrayLike, delay: int = 0) -> Any:
     d = check_delay(delay)
     if v.size:
         warn_if_from_outside("velocity", float(np.max(v)), rotary=dev.rotary)  # the user's, not a search's
-    k_dyn = (dev.damping * v + dev.coulomb) / (dev.period * (0.5 + d) * v + 0.5 * dev.resolution)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        num = dev.damping * v + dev.coulomb
+        den = dev.period * (0.5 + d) * v + 0.5 * dev.resolution
+        k_dyn = num / den
+        big = ~(np.isfinite(num) & np.isfinite(den))  # b·ẋ0 or T·ẋ0 overflows (ẋ0 = 1e308): divide through by ẋ0
+        if np.any(big):
+            k_dyn = np.where(
+                big, (dev.damping + dev.coulomb / v) / (dev.period * (0.5 + d) + 0.5 * dev.resolution / v), k_dyn
+            )
     # rounded down by 1e-12 (relative) so that device_criterion accepts K_max itself: the two evaluate
     # the same inequality in physical and dimensionless form, and margin = 0 must stay on the passive side
     out = np.minimum(k_static(dev), k_dyn) * (1.0 - 1e-12)
+    if not np.all(np.isfinite(out)):
+        raise DFAValueError(
+            f"coulomb = {dev.coulomb:g} is invalid with resolution = {dev.resolution:g}: K_max <= 2c/Δ overflows a "
+            f"float; give the Coulomb friction in {dev.units['force']} and the resolution in {dev.units['position']}"
+        )
     return float(out) if out.ndim == 0 else out
 
 
