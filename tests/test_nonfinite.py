@@ -7,6 +7,7 @@ answer is finite.
 
 import math
 import os
+import re
 import subprocess
 import sys
 import warnings
@@ -268,3 +269,64 @@ def test_limit_cycle_validated_on_construction(field, value):
     assert dfa.LimitCycle(**good).period == pytest.approx(2 * math.pi / 0.4)
     with pytest.raises((DFAValueError, dfa.DFATypeError), match=f"{field} = "):
         dfa.LimitCycle(**{**good, field: value})
+
+
+def test_stiffness_for_a_group_that_overflows_is_refused():
+    from dfa.model.catalogue import get_device
+
+    dev = get_device("Delta").device
+    # found: Device.stiffness_for_sigma(2.2e-313) returned inf
+    for method, value, formula in (
+        ("stiffness_for_sigma", 2.2e-313, "K = c/(σ Δ)"),
+        ("stiffness_for_beta", 1e-310, "K = b/(β T)"),
+        ("stiffness_for_mu", 2.3e-308, "K = m/(μ T²)"),
+    ):
+        with pytest.raises(DFAValueError, match=f"is invalid for this device: {re.escape(formula)} overflows a float"):
+            getattr(dev, method)(value)
+    assert dev.stiffness_for_sigma(0.5) == pytest.approx(2 * dev.coulomb / dev.resolution)
+
+
+def test_contours_force_step_that_overflows_is_refused(capsys):
+    # found: `dfa contours --device impulse --resolution 1e308` printed "force step KΔ = inf N" (σ = c/inf = 0)
+    err = refused(capsys, "contours", "--device", "impulse", "--resolution", "1e308")
+    assert "σ = c/(K Δ) cannot be formed (the force step K Δ overflows a float)" in err and "--resolution" in err
+    dev = dfa.Device(mass=0.032, damping=0.02, coulomb=0.0, resolution=1e308, period=0.002)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", dfa.ImplausibleInputWarning)
+        with pytest.raises(DFAValueError, match="force step K Δ overflows"):
+            dev.params(80.0)  # c = 0: σ would be 0/inf = 0, the force step still inf
+
+
+@pytest.mark.parametrize(
+    "field, value",
+    [
+        ("mass", float("nan")),
+        ("damping", 1 + 1j),
+        ("coulomb", np.array([1.0, 2.0])),
+        ("stiffness", -1.0),
+        ("rotary", "no"),
+        ("name", 3),
+        ("printed", (("mu", "nan"),)),
+        ("printed", [("mu", "1")]),
+    ],
+)
+def test_catalogue_entry_validated_on_construction(field, value):
+    from dfa.model.catalogue import CatalogueEntry
+
+    good = dict(name="pen", kind="haptic device", source="s", notes="", mass=0.1, damping=0.01, coulomb=0.02)
+    good |= dict(resolution=1e-5, period=1e-3, stiffness=1000.0, printed=(("mu", "100"),))
+    assert CatalogueEntry(**good).params is not None
+    with pytest.raises((DFAValueError, dfa.DFATypeError), match=f"{field}"):
+        CatalogueEntry(**{**good, field: value})
+
+
+@pytest.mark.parametrize(
+    "field, value", [("recomputed", float("nan")), ("relative", 1j), ("parameter", "zeta"), ("printed", 0.3)]
+)
+def test_discrepancy_validated_on_construction(field, value):
+    from dfa.model.catalogue import Discrepancy
+
+    good = dict(parameter="mu", printed="0.3", recomputed=0.31, relative=0.0333)
+    assert str(Discrepancy(**good)).startswith("mu: printed 0.3")
+    with pytest.raises((DFAValueError, dfa.DFATypeError), match=f"{field}"):
+        Discrepancy(**{**good, field: value})

@@ -90,6 +90,17 @@ class Discrepancy:
     recomputed: float
     relative: float
 
+    def __post_init__(self) -> None:
+        from ..checks import check_choice, check_real, format_value
+
+        fix = "discrepancies are computed by CatalogueEntry.discrepancies"
+        check_choice("parameter", self.parameter, ("mu", "beta", "sigma"))
+        if not isinstance(self.printed, str):
+            raise DFATypeError(f"printed = {format_value(self.printed)} has type {type(self.printed).__name__}: it "
+                               f"must be the printed decimal text; {fix}")  # fmt: skip
+        for name in ("recomputed", "relative"):
+            object.__setattr__(self, name, check_real(name, getattr(self, name), fix))
+
     def __str__(self) -> str:
         return (
             f"{self.parameter}: printed {self.printed}, recomputed {self.recomputed:.4g} ({100 * self.relative:+.1f} %)"
@@ -153,6 +164,37 @@ class CatalogueEntry:
     rotary: bool = False
     incomplete: bool = False
     printed: tuple[tuple[str, str], ...] = field(default_factory=tuple)
+
+    def __post_init__(self) -> None:
+        from ..checks import check_bool, check_choice, check_nonnegative, check_positive, format_value
+
+        fix = "build rows with get_device or load_device_file, or give the values in SI units"
+        for name in ("name", "kind", "source", "notes"):
+            value = getattr(self, name)
+            if not isinstance(value, str):
+                raise DFATypeError(
+                    f"{name} = {format_value(value)} has type {type(value).__name__}: it must be text; {fix}"
+                )
+        for name in (*_PHYSICAL, "stiffness"):  # the rules of Device and of a device file; None: unknown
+            if getattr(self, name) is not None:
+                check = check_nonnegative if name in ("damping", "coulomb") else check_positive
+                object.__setattr__(self, name, check(name, getattr(self, name), fix))
+        for name in ("rotary", "incomplete"):
+            object.__setattr__(self, name, check_bool(name, getattr(self, name), fix))
+        pairs = self.printed if isinstance(self.printed, tuple) else None
+        if pairs is None or not all(isinstance(p, tuple) and len(p) == 2 and isinstance(p[1], str) for p in pairs):
+            raise DFATypeError(
+                f"printed = {format_value(self.printed)} is invalid: it must be a tuple of (name, decimal text) pairs, "
+                f"e.g. (('mu', '0.3'),); {fix}"
+            )
+        for key, text in pairs:
+            check_choice("printed name", key, ("mu", "beta", "sigma"))
+            try:
+                ok = math.isfinite(float(Decimal(text)))
+            except ArithmeticError:
+                ok = False
+            if not ok:
+                raise DFAValueError(f"printed {key} = {text!r} is invalid: it must be a finite decimal number; {fix}")
 
     @property
     def missing(self) -> tuple[str, ...]:

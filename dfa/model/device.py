@@ -298,7 +298,8 @@ class Device:
         float
             K = m/(μ T²) in N/m (rotary: N·m/rad).
         """
-        return self.mass / (check_mu(mu) * self.period**2)
+        m = check_mu(mu)
+        return _stiffness("mu", m, self.mass / (m * self.period**2), "K = m/(μ T²)")
 
     def stiffness_for_beta(self, beta: float) -> float:
         """The stiffness K (N/m) at which β = b/(K T) takes the value ``beta``.
@@ -326,7 +327,7 @@ class Device:
                 "damping = 0.0 is invalid here: it must be > 0 to reach a given beta; "
                 "β = b/(K T) is zero for every K when b = 0"
             )
-        return self.damping / (b * self.period)
+        return _stiffness("beta", b, self.damping / (b * self.period), "K = b/(β T)")
 
     def stiffness_for_sigma(self, sigma: float) -> float:
         """The stiffness K (N/m) at which σ = c/(K Δ) takes the value ``sigma``.
@@ -354,7 +355,7 @@ class Device:
                 "coulomb = 0.0 is invalid here: it must be > 0 to reach a given sigma; "
                 "σ = c/(K Δ) is zero for every K when c = 0"
             )
-        return self.coulomb / (s * self.resolution)
+        return _stiffness("sigma", s, self.coulomb / (s * self.resolution), "K = c/(σ Δ)")
 
     def to_dict(self) -> dict[str, object]:
         """Physical values in SI units, with name and kind.
@@ -373,6 +374,16 @@ class Device:
             "resolution": self.resolution,
             "period": self.period,
         }
+
+
+def _stiffness(name: str, value: float, k: float, formula: str) -> float:
+    """The stiffness K solved for a group, or the package's error where it overflows a float (``sigma = 2.2e-313``
+    gave K = inf)."""
+    if not math.isfinite(k):
+        raise DFAValueError(
+            f"{name} = {value!r} is invalid for this device: {formula} overflows a float; give a larger {name}"
+        )
+    return k
 
 
 _GROUPS = (
@@ -414,20 +425,26 @@ def dimensionless_params(device: Device, stiffness: float, names: dict[str, str]
     ) -> float:  # a denominator that underflows to 0 gives inf (or NaN for 0/0), not an exception
         return a / b if b != 0.0 else (math.inf if a > 0.0 else math.nan)
 
-    out = {
-        "mu": div(device.mass, k * (device.period * device.period)),  # p*p: inf, not OverflowError
-        "beta": div(device.damping, k * device.period),
-        "sigma": div(device.coulomb, k * device.resolution),
+    dens = {"mu": k * (device.period * device.period), "beta": k * device.period, "sigma": k * device.resolution}
+    out = {  # p*p: inf, not OverflowError
+        "mu": div(device.mass, dens["mu"]),
+        "beta": div(device.damping, dens["beta"]),
+        "sigma": div(device.coulomb, dens["sigma"]),
     }
+    products = {"mu": "K T²", "beta": "K T", "sigma": "the force step K Δ"}
     names = names or {}
     for key, what, inputs in _GROUPS:
         value = out[key]
-        if math.isfinite(value) and (value >= sys.float_info.min or (value == 0.0 and key != "mu")):
+        if math.isinf(dens[key]):  # c/inf = 0 is no group (contours --resolution 1e308 printed KΔ = inf N)
+            value = math.nan
+        elif math.isfinite(value) and (value >= sys.float_info.min or (value == 0.0 and key != "mu")):
             continue
         given = ", ".join(f"{names.get(n, n)} = {vals[n]:g}" for n in inputs)
         how = (
             "overflows to inf"
             if math.isinf(value)
+            else f"cannot be formed ({products[key]} overflows a float)"
+            if math.isinf(dens[key])
             else "is undefined (0/0)"
             if math.isnan(value)
             else f"vanishes ({value:.3g}, below {sys.float_info.min:.3g})"
