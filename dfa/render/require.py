@@ -98,7 +98,8 @@ def require_screen(req: Requirements) -> list[str]:
                 if "df" in methods
                 else ""
             )
-            + ". --json for every number.",
+            + ". The simulation answers only by a search per value: change a parameter, run `dfa stiffness`. "
+            "--json for every number.",
             WIDTH,
             "",
         )
