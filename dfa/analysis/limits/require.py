@@ -191,7 +191,7 @@ class Requirements(Result):
         for r in self.requirements:
             if (r.method, r.parameter) == (method, parameter):
                 return r
-        raise DFAValueError(f"({method!r}, {parameter!r}) is not answered here: give one of {METHODS} and a key "
+        raise DFAValueError(f"({method!r}, {parameter!r}) is not answered here: give one of {ALL_METHODS} and a key "
                             f"of {tuple(PARAMETERS)}")  # fmt: skip
 
 
@@ -256,12 +256,12 @@ def _steps(x0: float, up: bool, integer: bool, scale: float, short: bool = False
         return [float(d) for d in (range(int(x0) + 1, int(x0) + top + 1) if up else range(int(x0) - 1, -1, -1))]
     if not up and x0 == 0.0:
         return []  # already at the floor: nothing below to try
-    start = x0 if x0 > 0 else scale
     n = int(math.log2(DF_RANGE_RATIO if short else RANGE_RATIO))
-    vals = [start * 2.0**i for i in range(1, n + 1)] if up else [start * 0.5**i for i in range(1, n + 1)] + [0.0]
-    if up and x0 == 0:
-        vals = [start * 2.0**i for i in range(-n, n + 1)]
-    return vals
+    if x0 == 0.0:  # up from nothing: around the scale at which the parameter meets K
+        return [scale * 2.0**i for i in range(-n, n + 1)]
+    if up:
+        return [x0 * 2.0**i for i in range(1, n + 1)]
+    return [x0 * 0.5**i for i in range(1, n + 1)] + [0.0]
 
 
 def _one(dev: Device, wall: Wall, method: str, name: str, k: float, v: float) -> Requirement:
@@ -407,10 +407,11 @@ def damper_guidance(device: Device, wall: Wall, velocity: float) -> DamperGuidan
     one_a = 1.0 - wall.params(device.period).filter_pole
     b, c, res, t, big_b = device.damping, device.coulomb, device.resolution, device.period, wall.damping
     per_b = one_a * res / t  # the Coulomb friction one unit of B costs (eq. 11's (1 − a)BΔ/T)
+    speed_cost = max(0.0, (big_b - b) * v)  # the friction the speed term needs when B exceeds b
     max_b = min(c / per_b, (b * v + c) / (v + per_b))
-    min_c = big_b * per_b + max(0.0, (big_b - b) * v)
-    room = c - max(0.0, (big_b - b) * v)
-    max_res = None if room <= 0 or big_b == 0 else room * t / (one_a * big_b)
+    room = c - speed_cost  # what friction is left for the damper's (1 − a)BΔ/T
     if big_b == 0:
-        max_res = math.inf
-    return DamperGuidance(big_b < max_b, max_b, min_c, max_res)
+        max_res: float | None = math.inf
+    else:
+        max_res = room * t / (one_a * big_b) if room > 0 else None
+    return DamperGuidance(big_b < max_b, max_b, big_b * per_b + speed_cost, max_res)

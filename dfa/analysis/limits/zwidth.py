@@ -371,11 +371,6 @@ def _criterion(dev: Device, wall: Wall, v: float) -> KLimit:
     return KLimit(k) if k > 0.0 else KLimit(None, LimitStatus.NONE_PROVEN)
 
 
-def _describing(dev: Device, wall: Wall, v: float, model: str, cache: RunCache) -> KLimit:
-    """``k_df`` of :func:`~dfa.analysis.limits.kmax.design_answer` at this wall: the same grid and search."""
-    return describing_limit(dev, wall, v, model, cache, DF_GRID)
-
-
 # ----------------------------------------------------------------------------- simulation of the grid
 def _runs(dev: Device, k: float, ctl: WallParams, xi_dots: Any, cap: int) -> list[tuple]:
     """The runs (μ, β, σ, ξ0, ξ'0, samples, bound) of one grid point: each speed from ξ0 = 0 and from the preload."""
@@ -617,7 +612,7 @@ def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, row: np.ndarray, 
         _linear(dev, wall),
         _colgate_schenkel(dev, wall, ks),
         _criterion(dev, wall, v),
-        _describing(dev, wall, v, model, RunCache()),
+        describing_limit(dev, wall, v, model, RunCache(), DF_GRID),  # the design answer's k_df
         _grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}),
         _grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}),
     ]
