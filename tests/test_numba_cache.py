@@ -157,9 +157,32 @@ def test_compile_note_once_on_a_terminal_when_a_kernel_compiles():
     for stream, expected in ((_Terminal(), note_text("stiffness", CACHE_DIR) + "\n"), (io.StringIO(), "")):
         with compile_note("stiffness", stream):
             compile_event(other)  # not a kernel of dfa.core: no note
-            compile_event(dfcore.df_value)
-            compile_event(dfcore.df_array)  # once only
-        compile_event(dfcore.df_value)  # after the command: no listener left
+            compile_event(dfcore.df_value.dispatcher)
+            compile_event(dfcore.df_array.dispatcher)  # once only
+        compile_event(dfcore.df_value.dispatcher)  # after the command: no listener left
         assert stream.getvalue() == expected
     assert note_text("stiffness", CACHE_DIR).startswith("dfa: compiling kernels once (about ")
     assert len(note_text(None, "/x" * 200)) <= 100
+
+
+def test_compile_note_listens_from_the_first_kernel_when_the_command_starts_without_numba():
+    """The note's listener waits for numba (dfa.core.jit): a command that runs no kernel never imports it."""
+    code = (
+        "import io, sys\n"
+        "from dfa.cli.compile_note import compile_note, note_text\n"
+        "from dfa.core import CACHE_DIR, dfcore\n"
+        "class T(io.StringIO):\n"
+        "    def isatty(self): return True\n"
+        "quiet, s = T(), T()\n"
+        "with compile_note('check', quiet):\n"
+        "    pass\n"
+        "with compile_note('stiffness', s):\n"
+        "    before = 'numba' in sys.modules\n"
+        "    d = dfcore.df_value.dispatcher\n"
+        "    from numba.core import event\n"
+        "    with event.trigger_event('numba:compile', data={'dispatcher': d, 'args': (), 'return_type': None}):\n"
+        "        pass\n"
+        "print(before, quiet.getvalue() == '', s.getvalue() == note_text('stiffness', CACHE_DIR) + '\\n')\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+    assert out == ["False", "True", "True"]

@@ -9,19 +9,20 @@ import dfa
 
 def test_import_dfa_does_not_load_matplotlib():
     # python-control imports matplotlib itself, so it must not be imported eagerly either
-    code = "import sys, dfa, dfa.cli; print('matplotlib' in sys.modules or 'control' in sys.modules)"
+    # nor numba: kernels import it on their first call (dfa.core.jit)
+    code = "import sys, dfa, dfa.cli; print(sorted(m for m in ('matplotlib', 'control', 'numba') if m in sys.modules))"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
-    assert out == "False"
+    assert out == "[]"
 
 
-def test_dfa_check_loads_neither_python_control_nor_the_limit_cycle_package():
-    """`dfa check` starts fast (issue 27 §1): its text needs neither python-control nor the cycle solver."""
+def test_dfa_check_loads_neither_python_control_nor_numba_nor_the_limit_cycle_package():
+    """`dfa check` starts fast (issue 27 §1): its text needs no python-control, no numba, no cycle solver."""
     code = (
         "import io, sys, contextlib\n"
         "from dfa.cli import main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
         "    assert main(['check', '--device', 'delta', '--velocity', '0.1']) == 0\n"
-        "print(sorted(m for m in ('control', 'matplotlib', 'dfa.analysis.cycles', 'scipy.optimize') if m in sys.modules))"
+        "print(sorted(m for m in ('control', 'matplotlib', 'numba', 'dfa.analysis.cycles', 'scipy.optimize') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
     assert out == "[]"

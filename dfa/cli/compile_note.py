@@ -81,27 +81,42 @@ def compile_note(command: str | None, stream: TextIO | None = None) -> Iterator[
     if not _is_terminal(out):
         yield
         return
-    from numba.core import event
-
     from ..core import CACHE_DIR
+    from ..core.jit import when_numba_loads
 
     lock = threading.Lock()
     said = False
+    installed: list[tuple[Any, Any]] = []
 
-    class _Note(event.Listener):
-        def on_start(self, ev: Any) -> None:
-            nonlocal said
-            py_func = getattr(ev.data.get("dispatcher") if ev.data else None, "py_func", None)
-            if said or not getattr(py_func, "__module__", "").startswith("dfa.core."):
+    def on_start(ev: Any) -> None:
+        nonlocal said
+        py_func = getattr(ev.data.get("dispatcher") if ev.data else None, "py_func", None)
+        if said or not getattr(py_func, "__module__", "").startswith("dfa.core."):
+            return
+        with lock:  # kernels may start compiling in worker threads
+            if said:
                 return
-            with lock:  # kernels may start compiling in worker threads
-                if said:
-                    return
-                said = True
-            print(note_text(command, CACHE_DIR), file=out, flush=True)
+            said = True
+        print(note_text(command, CACHE_DIR), file=out, flush=True)
 
-        def on_end(self, ev: Any) -> None:
-            pass
+    def install(numba: Any) -> None:  # numba's event API, once a kernel has imported numba
+        from numba.core import event
 
-    with event.install_listener("numba:compile", _Note()):
+        class _Note(event.Listener):
+            def on_start(self, ev: Any) -> None:
+                on_start(ev)
+
+            def on_end(self, ev: Any) -> None:
+                pass
+
+        listener = _Note()
+        event.register("numba:compile", listener)
+        installed.append((event, listener))
+
+    withdraw = when_numba_loads(install)
+    try:
         yield
+    finally:
+        withdraw()
+        for event, listener in installed:
+            event.unregister("numba:compile", listener)

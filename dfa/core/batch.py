@@ -19,8 +19,8 @@ clear it after such an edit.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from .jit import njit
 from .kernel import BoolArray, FloatArray, IntArray
 from .pair import pair_kernel
 from .wall_kernel import simulate_wall_kernel

@@ -37,7 +37,8 @@ import math
 
 import numpy as np
 import numpy.typing as npt
-from numba import njit
+
+from .jit import njit
 
 _PI = math.pi
 

@@ -31,9 +31,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from ..errors import DFAValueError
+from .jit import njit
 
 __all__ = ["exp_divided_difference", "exp_dd"]
 

@@ -49,8 +49,9 @@ import math
 
 import numpy as np
 import numpy.typing as npt
-from numba import njit
 from numpy.typing import ArrayLike
+
+from .jit import njit
 
 __all__ = ["phi1", "phi2", "phi12", "psi", "chi", "log1p_ratio", "phi1_array", "phi2_array"]
 

@@ -63,10 +63,10 @@ from typing import TypeAlias
 
 import numpy as np
 import numpy.typing as npt
-from numba import njit
 
 from .energy import spring_energy_core
 from .exprel import chi, log1p_ratio, phi1, phi2, phi12, psi
+from .jit import njit
 
 # The kernels' array and tuple arguments, for annotations (numba compiles from the values passed)
 FloatArray: TypeAlias = npt.NDArray[np.float64]

@@ -36,8 +36,8 @@ Runs with a delay pair the same way (:func:`advance_pair_delayed`, the loop of
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from .jit import njit
 from .kernel import (
     NSEG,
     NSTATE,

@@ -8,9 +8,9 @@ spring's walls in :mod:`dfa.analysis.soundness`, which checks a passivity verdic
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from . import kernel
+from .jit import njit
 from .kernel import BoolArray, FloatArray, IntArray
 
 __all__ = ["storage_runs"]

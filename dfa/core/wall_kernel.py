@@ -106,9 +106,9 @@ import math
 from typing import TypeAlias
 
 import numpy as np
-from numba import njit
 
 from .exprel import phi1, phi2
+from .jit import njit
 from .kernel import (
     NSEG,
     FloatArray,

@@ -34,10 +34,10 @@ import math
 
 import numpy as np
 import numpy.typing as npt
-from numba import njit
 from numpy.typing import ArrayLike
 
 from .divdiff import exp_dd
+from .jit import njit
 
 __all__ = ["amplifier_zoh", "zoh_lag_response"]
 

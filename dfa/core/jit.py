@@ -1,0 +1,151 @@
+"""Kernels compiled on first call: ``njit`` without importing numba until a kernel runs.
+
+Importing numba costs about 0.2 s, three times what ``dfa check`` needs for its whole answer, and most
+commands never run a kernel. Every kernel of :mod:`dfa.core` is therefore defined with :func:`njit` from
+this module: it returns a :class:`Deferred`, which holds the Python function and numba's options and
+imports numba, makes the dispatcher (``numba.njit(**options)(py_func)``) and compiles (or loads from the
+cache) only when the kernel is first called.
+
+A compiled kernel may call a deferred one: numba sees through a :class:`Deferred` because
+
+- it carries the ``py_func`` and ``targetoptions`` that numba's inlining pass reads, so ``inline="always"``
+  still inlines it, and
+- :func:`_numba` registers its type with numba (``typeof`` of its dispatcher) before anything compiles, since
+  every compilation starts from a :class:`Deferred`'s first call.
+
+One implementation runs: a Python caller calls the compiled dispatcher, never the Python function.
+
+Examples
+--------
+>>> import sys
+>>> @njit(cache=False)
+... def twice(x):
+...     return 2.0 * x
+>>> twice
+Deferred(dfa.core.jit.twice)
+>>> twice(1.5)
+3.0
+>>> "numba" in sys.modules   # imported by the first call
+True
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable
+from typing import Any
+
+__all__ = ["njit", "Deferred", "when_numba_loads"]
+
+_REGISTERED: list[bool] = []
+_WAITING: list[Callable[[Any], None]] = []
+
+
+def _numba() -> Any:
+    """numba, imported once, with :class:`Deferred` registered as a type numba can call from compiled code."""
+    import numba
+    from numba.extending import typeof_impl
+
+    if not _REGISTERED:
+
+        @typeof_impl.register(Deferred)
+        def _typeof_deferred(val: Deferred, c: Any) -> Any:
+            return typeof_impl(val.dispatcher, c)
+
+        _REGISTERED.append(True)
+        while _WAITING:
+            _WAITING.pop(0)(numba)
+    return numba
+
+
+def when_numba_loads(callback: Callable[[Any], None]) -> Callable[[], None]:
+    """Call ``callback(numba)`` when the first kernel imports numba (now, if one has).
+
+    The command line's compile note (:func:`dfa.cli.compile_note.compile_note`) listens to numba's compile
+    events this way without importing numba for a command that runs no kernel.
+
+    Returns
+    -------
+    callable
+        Withdraws the callback if it has not run yet (else does nothing).
+    """
+    if _REGISTERED:
+        callback(_numba())
+    else:
+        _WAITING.append(callback)
+
+    def withdraw() -> None:
+        if callback in _WAITING:
+            _WAITING.remove(callback)
+
+    return withdraw
+
+
+class Deferred:
+    """A numba kernel made and compiled on its first call (see the module docstring).
+
+    Parameters
+    ----------
+    py_func : callable
+        The kernel's Python source, compiled unchanged.
+    targetoptions : dict
+        ``numba.njit``'s options (``cache``, ``inline``, …).
+    """
+
+    def __init__(self, py_func: Callable[..., Any], targetoptions: dict[str, Any]) -> None:
+        self.py_func = py_func
+        self.targetoptions = dict(targetoptions)
+        self._dispatcher: Any = None
+        functools.update_wrapper(self, py_func)
+
+    @property
+    def dispatcher(self) -> Any:
+        """numba's dispatcher of the kernel (imports numba the first time)."""
+        if self._dispatcher is None:
+            self._dispatcher = _numba().njit(**self.targetoptions)(self.py_func)
+        return self._dispatcher
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        return self.dispatcher(*args, **kwargs)
+
+    def __getattr__(self, name: str) -> Any:
+        # numba's own attributes (signatures, stats, inspect_types, …); only reached for names not set above
+        if name.startswith("__") or name == "_dispatcher":
+            raise AttributeError(name)
+        return getattr(self.dispatcher, name)
+
+    def __reduce__(self) -> tuple[Any, tuple[str, str]]:
+        return _resolve, (self.py_func.__module__, self.py_func.__qualname__)
+
+    def __repr__(self) -> str:
+        return f"Deferred({self.py_func.__module__}.{self.py_func.__qualname__})"
+
+
+def _resolve(module: str, qualname: str) -> Deferred:
+    """The kernel ``module.qualname`` (unpickling a :class:`Deferred` finds the module's own)."""
+    import importlib
+
+    obj: Any = importlib.import_module(module)
+    for part in qualname.split("."):
+        obj = getattr(obj, part)
+    return obj
+
+
+def njit(func: Callable[..., Any] | None = None, **options: Any) -> Any:
+    """``numba.njit`` deferred to the first call: ``@njit``, ``@njit(cache=True)`` or ``njit(**o)(f)``.
+
+    Parameters
+    ----------
+    func : callable, optional
+        The function, when used as ``@njit`` without options.
+    **options
+        numba's ``njit`` options, passed on unchanged.
+
+    Returns
+    -------
+    Deferred or callable
+        The deferred kernel, or a decorator making one.
+    """
+    if func is not None:
+        return Deferred(func, options)
+    return lambda f: Deferred(f, options)
