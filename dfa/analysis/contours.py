@@ -47,7 +47,7 @@ from .criterion import CriticalLine
 from .cycles import ClosedFormStatus, large_cycle_closed_forms, small_cycle_closed_forms
 from .describing import quantizer_df
 
-__all__ = ["ContourMaps", "FlaggedPoints", "contour_maps", "load_contours", "contour_memory_bytes"]
+__all__ = ["ContourMaps", "FlaggedPoints", "contour_maps", "load_contours", "contour_memory_bytes", "contour_seconds"]
 
 _ARRAYS = (
     "beta",
@@ -340,6 +340,29 @@ def contour_memory_bytes(grid: int, max_amplitude: float) -> float:
     """Estimated peak memory of :func:`contour_maps` in bytes."""
     n_m = CONTOUR_SAMPLES_PER_TICK * (float(max_amplitude) + 1.0)
     return float(grid) ** 2 * CONTOUR_BYTES_PER_POINT + float(grid) * n_m * CONTOUR_BYTES_PER_ROW_SAMPLE + 32.0 * n_m
+
+
+#: Planned time of :func:`contour_maps`, measured on one core with the kernels cached (an upper estimate):
+#: a fixed part (imports, the limit-cycle package), per grid point, per grid row and amplitude sample.
+CONTOUR_SECONDS_FIXED = 5.0
+CONTOUR_SECONDS_PER_POINT = 1.0e-4
+CONTOUR_SECONDS_PER_ROW_SAMPLE = 5.0e-6
+
+
+def contour_seconds(grid: int, max_amplitude: float) -> float:
+    """Planned time of :func:`contour_maps` in seconds (an upper estimate, before any work).
+
+    Examples
+    --------
+    >>> contour_seconds(2000, 200.0) > 60.0 > contour_seconds(200, 200.0)
+    True
+    """
+    n_m = CONTOUR_SAMPLES_PER_TICK * (float(max_amplitude) + 1.0)
+    return (
+        CONTOUR_SECONDS_FIXED
+        + float(grid) ** 2 * CONTOUR_SECONDS_PER_POINT
+        + float(grid) * n_m * CONTOUR_SECONDS_PER_ROW_SAMPLE
+    )
 
 
 def check_contour_memory(grid: int, max_amplitude: float, names: tuple[str, str] = ("grid", "max_amplitude")) -> None:

@@ -8,7 +8,17 @@ from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
-from .output import add_progress_args, emit, mark_operating_point, progress, save_png, say, table
+from .output import (
+    WORK_TIME_LIMIT,
+    add_progress_args,
+    check_work_time,
+    emit,
+    mark_operating_point,
+    progress,
+    save_png,
+    say,
+    table,
+)
 from .parsing import UsageError, integer, number
 
 if TYPE_CHECKING:
@@ -31,6 +41,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="largest amplitude in ticks (default: 200)",
     )
     p.add_argument("--out", metavar="FILE.npz", help="write the maps (default: not written)")
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help=f"run even when the maps are estimated over {WORK_TIME_LIMIT:g} s (default: refuse)",
+    )
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout (default: text)")
     add_progress_args(p)
 
@@ -61,7 +76,7 @@ def _print(args: argparse.Namespace, c: ContourMaps, d: dict[str, Any], inp: Inp
 
 def run(args: argparse.Namespace) -> int:
     """Map the small stable and the large unstable cycles over the plane; print the counts."""
-    from ..analysis.contours import check_contour_memory, contour_maps
+    from ..analysis.contours import check_contour_memory, contour_maps, contour_seconds
 
     if args.out is not None:
         check_output_file("--out", args.out, ".npz")
@@ -74,6 +89,12 @@ def run(args: argparse.Namespace) -> int:
             "M >= 1); give e.g. --max-amplitude 10"
         )
     check_contour_memory(args.grid, args.max_amplitude, ("--grid", "--max-amplitude"))
+    check_work_time(
+        f"--grid {args.grid} with --max-amplitude {args.max_amplitude:g}",
+        contour_seconds(args.grid, args.max_amplitude),
+        "lower --grid or --max-amplitude",
+        args.force,
+    )
     c = contour_maps(
         mu, beta_range=tuple(args.beta_range), sigma_range=tuple(args.sigma_range), grid=args.grid,
         max_amplitude=args.max_amplitude, progress=progress(args),

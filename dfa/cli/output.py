@@ -27,6 +27,7 @@ __all__ = [
     "emit",
     "flush_warnings",
     "hold_warning",
+    "check_work_time",
     "fmt",
     "mark_operating_point",
     "progress",
@@ -43,6 +44,9 @@ SIMULATE_NS_PER_SAMPLE = 100
 SIMULATE_TIME_LIMIT = 30.0
 #: ``dfa map`` refuses maps estimated longer than this (hours, at the worst-case cost per sample) unless --force.
 MAP_TIME_LIMIT_HOURS = 24.0
+#: ``dfa contours``, ``dfa zwidth`` and ``dfa report --zwidth`` refuse work estimated longer than this (seconds)
+#: unless --force: a larger grid than meant (``--grid 2000``) is caught before minutes of silence.
+WORK_TIME_LIMIT = 120.0
 #: How the messages of :func:`dfa.checks.check_damping_rate` name (β, μ), by whether the input is dimensionless
 #: (the flags) or a device (the groups, at the device's K).
 RATE_NAMES = {True: ("--beta", "--mu"), False: ("β = b/(K T)", "μ = m/(K T²)")}
@@ -178,6 +182,27 @@ def check_samples(samples: int, force: bool) -> None:
             f"--samples {samples} could take up to {seconds:.3g} s (estimated {SIMULATE_NS_PER_SAMPLE} ns per sample; "
             f"limit {SIMULATE_TIME_LIMIT:g} s): lower --samples "
             f"(at most {int(SIMULATE_TIME_LIMIT / (SIMULATE_NS_PER_SAMPLE * 1e-9))}) or add --force"
+        )
+
+
+def check_work_time(what: str, seconds: float, fix: str, force: bool) -> None:
+    """Refuse work estimated over :data:`WORK_TIME_LIMIT` unless ``force`` (one line: the estimate and the fix).
+
+    Parameters
+    ----------
+    what : str
+        The flags that set the work, as given (``"--grid 2000"``).
+    seconds : float
+        The analysis's own estimate (an upper one).
+    fix : str
+        How to make it smaller.
+    force : bool
+        --force was given: run anyway.
+    """
+    if seconds > WORK_TIME_LIMIT and not force:
+        took = f"{seconds / 60.0:.3g} min" if seconds >= 120.0 else f"{seconds:.3g} s"
+        raise UsageError(
+            f"{what} could take up to {took} (estimated; limit {WORK_TIME_LIMIT:g} s): {fix}, or add --force"
         )
 
 

@@ -12,7 +12,7 @@ from .._io import check_output_folder, make_output_folder
 from ..model.catalogue import DEFAULT_DEVICE
 from ..model.wall import Wall
 from .inputs import PHYS_FLAGS, add_device_args, resolve, speed
-from .output import add_progress_args, emit, progress, say
+from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, progress, say
 from .parsing import UsageError, integer
 from .walls import add_wall_args, wall_from_args
 
@@ -45,7 +45,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--force",
         action="store_true",
-        help="replace a report of the same name made for another device, stiffness, speed or delay (default: refuse)",
+        help="replace a report of the same name made for another device, stiffness, speed or delay, and run a "
+        f"--zwidth grid estimated over {WORK_TIME_LIMIT:g} s (default: refuse both)",
     )
     p.add_argument(
         "--zwidth",
@@ -116,6 +117,11 @@ def run(args: argparse.Namespace) -> int:
     assert inp.stiffness is not None  # resolve() refuses a device without K here
     wall = ctl if ctl is not None else Wall.of(inp.stiffness, delay=args.delay)
     resolve_design_inputs(inp.entry or inp.device, wall, v)  # refused before any output (its ranges, issue 27)
+    if args.zwidth and v > 0:
+        from ..analysis.limits.zwidth import z_width_seconds
+
+        seconds = z_width_seconds(inp.device, v, wall=wall, grid=args.zwidth, speeds=1)
+        check_work_time(f"--zwidth {args.zwidth}", seconds, "lower --zwidth", args.force)
     make_output_folder("--out", args.out)
     res = design_report(
         inp.entry or inp.device, wall, v, out_dir=args.out, fmt=args.format, progress=progress(args),

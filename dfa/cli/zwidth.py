@@ -9,7 +9,7 @@ import math
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..model.wall import Wall
 from .inputs import add_device_group, impact_speed, resolve
-from .output import add_progress_args, emit, fmt, progress, save_png, say, table
+from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, fmt, progress, save_png, say, table
 from .parsing import UsageError, integer, number
 from .walls import add_wall_args, check_filter_amplifier
 
@@ -46,6 +46,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument("--jobs", type=integer("--jobs"), default=-1, metavar="N", help="threads (default: -1, all cores)")
     p.add_argument(
+        "--force",
+        action="store_true",
+        help=f"run even when the Z-width is estimated over {WORK_TIME_LIMIT:g} s (default: refuse)",
+    )
+    p.add_argument(
         "--plot",
         metavar="FILE",
         help="write the Z-width figure to FILE: .png, .pdf or .svg by its suffix (default: none)",
@@ -79,7 +84,7 @@ def _cell(value: float | None) -> str:
 def run(args: argparse.Namespace) -> int:
     """Compute the Z-width; print K_max(B) per method."""
     from ..analysis.limits.require import damper_guidance
-    from ..analysis.limits.zwidth import ZWIDTH_METHODS, z_width
+    from ..analysis.limits.zwidth import MAX_SPEEDS, ZWIDTH_METHODS, z_width, z_width_seconds
     from ..render.zwidth import criterion_damper_note, non_monotone_mark, non_monotone_notes
 
     _refuse(args)
@@ -92,6 +97,10 @@ def run(args: argparse.Namespace) -> int:
     wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
                    amplifier_bandwidth=args.amplifier_bandwidth)  # fmt: skip
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
+    if args.speeds > MAX_SPEEDS:
+        raise UsageError(f"--speeds {args.speeds} is invalid: it must be at most {MAX_SPEEDS}; give e.g. --speeds 4")
+    seconds = z_width_seconds(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs)
+    check_work_time(f"--grid {args.grid} with --speeds {args.speeds}", seconds, "lower --grid or --speeds", args.force)
     zw = z_width(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, progress=progress(args))
     if args.plot is not None:
         save_png("--plot", args.plot, zw.plot())

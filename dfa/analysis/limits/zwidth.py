@@ -100,7 +100,7 @@ from .kmax import describing_limit, wall_k_criterion
 from .runs import DIVERGENCE_BOUND, SAFE, UNSAFE, RunCache, decide_undecided
 from .search import KLimit, grid_search
 
-__all__ = ["ZWidth", "z_width", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
+__all__ = ["ZWidth", "z_width", "z_width_seconds", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
 
 #: Longest run of one Z-width simulation (samples); longer automatic lengths are cut (and may be undecided).
 ZWIDTH_MAX_SAMPLES = 200_000
@@ -108,6 +108,15 @@ ZWIDTH_MAX_SAMPLES = 200_000
 MAX_WORK_SAMPLES = 2.0e10
 #: Largest grid (points per axis).
 MAX_GRID = 200
+#: Most impact speeds simulated at each grid point (each from two starts).
+MAX_SPEEDS = 100
+#: Planned cost of one simulated sample (ns, one core; the worst case measured, as ``dfa simulate``'s).
+NS_PER_SAMPLE = 100.0
+#: Planned cost of the boundaries at one B (s, one core): the describing-function scan, the criterion, the
+#: linear bound (about 0.25 s measured on the catalogue devices; planned at twice that).
+COLUMN_SECONDS = 0.5
+#: Points per axis of the small grid whose planned samples :func:`z_width_seconds` scales up.
+ESTIMATE_GRID = 6
 #: Grid points per compiled call of the simulations (every run of each point; one chunk per thread task).
 POINTS_PER_CALL = 16
 #: Fewest values of B whose boundary columns run in worker processes when several workers are asked (fewer:
@@ -587,6 +596,11 @@ def z_width(
     if g > MAX_GRID:
         raise DFAValueError(f"grid = {g} is invalid: it must be at most {MAX_GRID} points per axis; lower --grid")
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
+    if n_speeds > MAX_SPEEDS:
+        raise DFAValueError(
+            f"speeds = {n_speeds} is invalid: it must be at most {MAX_SPEEDS} impact speeds per grid point (each "
+            "simulated from two starts); give fewer speeds"
+        )
     cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")
     model = check_choice("df_model", df_model, ("half-delay", "zoh", "pade"))
     jobs = check_jobs("n_jobs", n_jobs)
@@ -604,6 +618,50 @@ def z_width(
         )
     codes = _simulate_grid(tasks, workers, progress, f"Z-width {dev.name}").reshape(g, g)
     return _assemble(dev, base, v, vs, ks, bs, codes, cap, len(tasks), model, workers, progress)
+
+
+def z_width_seconds(
+    device: Device,
+    velocity: float,
+    *,
+    wall: Wall | None = None,
+    grid: int = 40,
+    speeds: int = 2,
+    max_samples: int = ZWIDTH_MAX_SAMPLES,
+    n_jobs: int = -1,
+) -> float:
+    """The planned time of :func:`z_width` with these inputs (s, wall clock): an upper estimate, before any work.
+
+    The samples of an :data:`ESTIMATE_GRID`-point grid's plan, scaled by the number of grid points, at
+    :data:`NS_PER_SAMPLE` each, plus :data:`COLUMN_SECONDS` per value of B, over the workers. Runs stop
+    early (at rest or divergence), so the Z-width usually takes less; undecided runs extended 4× to 16×
+    (:func:`~dfa.analysis.limits.runs.decide_undecided`) can take more.
+
+    Parameters
+    ----------
+    device, velocity, wall, grid, speeds, max_samples, n_jobs
+        As :func:`z_width` (the inputs are not validated here: :func:`z_width` does that).
+
+    Returns
+    -------
+    float
+        Seconds.
+
+    Examples
+    --------
+    >>> from dfa import get_device
+    >>> dev = get_device("Impulse Engine").device
+    >>> z_width_seconds(dev, 0.1, grid=200) > 60.0 > z_width_seconds(dev, 0.1, grid=12)
+    True
+    """
+    base = Wall(1.0) if wall is None else wall
+    small = min(int(grid), ESTIMATE_GRID)
+    ks, bs = _grids(device, base, small, None, None)
+    vs = velocity * np.arange(1, speeds + 1) / speeds
+    _, work = _plan(device, base, ks, bs, [device.xi_dot(float(s)) for s in vs], max_samples)
+    workers = (os.cpu_count() or 1) if n_jobs == -1 else max(int(n_jobs), 1)
+    samples = work * (float(grid) / small) ** 2
+    return (samples * NS_PER_SAMPLE * 1e-9 + grid * COLUMN_SECONDS) / workers
 
 
 def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, row: np.ndarray, model: str) -> list[KLimit]:
