@@ -117,7 +117,7 @@ def run(args: argparse.Namespace) -> int:
     assert inp.stiffness is not None  # resolve() refuses a device without K here
     wall = ctl if ctl is not None else Wall.of(inp.stiffness, delay=args.delay)
     resolve_design_inputs(inp.entry or inp.device, wall, v)  # refused before any output (its ranges, issue 27)
-    if args.zwidth and v > 0:
+    if args.zwidth and v is not None and v > 0:
         from ..analysis.limits.zwidth import z_width_seconds
 
         seconds = z_width_seconds(inp.device, v, wall=wall, grid=args.zwidth, speeds=1)
