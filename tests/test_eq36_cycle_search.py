@@ -410,3 +410,42 @@ def test_eq36_failed_omega_solve_in_the_scan_is_counted_not_skipped(monkeypatch)
     with pytest.warns(LimitCycleSearchWarning, match="numerical failure"):
         res = limit_cycles(dfa.Params(5.0, 0.1, 0.3))
     assert res.status_code is SearchStatus.NUMERICAL and not res.complete
+
+
+# ----------------------------------------------------------------------------- the μ range the search covers
+@pytest.mark.parametrize(("mu", "beta", "sigma"), [(1e-6, 5e-9, 5.0), (1e8, 0.1, 0.3), (1e8, 0.1, 0.8)])
+def test_eq36_cycles_at_the_ends_of_searched_mu_lie_well_inside_the_frequency_grid(mu, beta, sigma):
+    """At both ends of SEARCHED_MU the extreme cycles are found, about 10× or more inside W_GRID's gaps: near Nyquist
+    (π − ω ≈ 20μ, tiny μ) and at the large family's ω ≈ 1/√μ (large μ). The search is complete there."""
+    from dfa.analysis.cycles import SEARCHED_MU, W_GRID
+
+    assert mu in SEARCHED_MU
+    res = limit_cycles(dfa.Params(mu, beta, sigma))
+    assert res.status is SearchStatus.COMPLETE and res.cycles
+    w = [c.frequency for c in res.cycles]
+    assert min(w) >= 9.0 * W_GRID[0] and math.pi - max(w) >= 9.0 * (math.pi - W_GRID[-1])
+    # beyond the ends the same cycle moves into the gap: π − ω and ω scale as predicted
+    if mu < 1.0:
+        assert math.pi - max(w) == pytest.approx(20.0 * mu, rel=0.1)
+    else:
+        assert min(w) * math.sqrt(mu) == pytest.approx(1.0, rel=0.1)
+
+
+@pytest.mark.parametrize("mu", [1e-11, 1e10, 1e-49])
+def test_eq36_outside_searched_mu_nothing_is_claimed_and_nothing_warns(mu, recwarn):
+    # at μ = 1e-11 and 1e10 the search used to miss the cycle (ω in the grid's gap) and say "complete";
+    # at μ = 1e-49 (dfa stiffness --coulomb 1e50) it printed a numerical-failure warning per stiffness
+    res = limit_cycles(dfa.Params(mu, 0.005 * mu if mu < 1 else 0.1, 5.0 if mu < 1 else 0.3))
+    assert res.status is SearchStatus.FREQUENCY_RANGE and not res.complete and res.cycles == ()
+    assert res.search.frequency_range and res.to_dict()["search"]["frequency_range"] is True
+    assert search_text(res).startswith(f"incomplete: not searched: μ = {mu:.3g} lies outside 1e-06 … 1e+08")
+    assert not [w for w in recwarn if issubclass(w.category, LimitCycleSearchWarning)]
+
+
+def test_eq36_stiffness_says_why_the_describing_function_has_no_limit_outside_searched_mu(capsys):
+    argv = ["stiffness", "--mass", "0.1", "--damping", "0.5", "--coulomb", "1e50", "--resolution", "1e-5"]
+    assert main([*argv, "--period", "1e-3", "--velocity", "0.1"]) == 0
+    out, err = capsys.readouterr()
+    assert "LimitCycleSearchWarning" not in err
+    assert "describing function: none: undecided already at" in unwrap(out)
+    assert "outside the range the cycle search covers (1e-6 … 1e8)" in unwrap(out)

@@ -17,7 +17,7 @@ from ..analysis.limits.require import DamperGuidance
 from ..analysis.limits.search import KLimit
 from ..formatting import WIDTH, fill, number, text_table
 from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
-from .limits import counterexample_lines, limit_tags, passive_text
+from .limits import counterexample_lines, limit_tags, none_text, passive_text
 from .require import damper_line
 
 __all__ = ["WIDTH", "wrap", "recommendation_line", "recommendation_text", "stiffness_screen", "user_verdict"]
@@ -35,7 +35,7 @@ def _k(x: float, unit: str) -> str:
 def _limit_cell(lim: KLimit, unit: str, notes: list[str], name: str) -> str:
     """The K cell of one method: its value, or "none"; a note mark when there is something to say."""
     if lim.value is None:
-        notes.append(f"{name}: none, {lim.status.message}")
+        notes.append(f"{name}: {none_text(lim, unit)}")
         return f"none *{len(notes)}"
     tags = limit_tags(lim, unit)
     if not tags:

@@ -34,6 +34,7 @@ __all__ = [
     "kmax_rows",
     "limit_tags",
     "limit_text",
+    "none_text",
     "passive_text",
     "spring_passive_text",
     "spring_verdict_text",
@@ -55,6 +56,7 @@ _UNDECIDED = {
     "subtick": f"the sub-tick caveat (smallest unstable cycle below {SUBTICK_LIMIT:g} ticks)",
     "below_reach": "a growth speed bounded only from below V (cycle search at its size budget)",
     "unknown_growth": "an unknown growth speed (a cycle search that failed)",
+    "outside_mu": "μ = m/(K T²) outside the range the cycle search covers (1e-6 … 1e8)",
 }
 
 
@@ -67,11 +69,13 @@ def undecided_text(why: str | None) -> str:
     return _UNDECIDED.get(why or "", "an undecided judgement")
 
 
-def _none_text(lim: KLimit, unit: str) -> str:
+def none_text(lim: KLimit, unit: str) -> str:
     """Why a limit has no value, with the stiffness that bounds it where there is one."""
     s = lim.status
     if s is LimitStatus.ABOVE_RANGE and lim.range_end is not None:
         return f"none: no failure up to {_k(lim.range_end, unit)}, the top of the range searched"
+    if s is LimitStatus.BELOW_RANGE and lim.range_end is not None and lim.limited_why is not None:
+        return f"none: undecided already at {_k(lim.range_end, unit)}, the lowest K searched: {undecided_text(lim.limited_why)}"
     if s is LimitStatus.BELOW_RANGE and lim.range_end is not None:
         return f"none: fails already at {_k(lim.range_end, unit)}, the lowest K searched ({lim.range_verdict})"
     if s is LimitStatus.NOT_CONFIRMED and lim.range_end is not None:
@@ -129,7 +133,7 @@ def limit_text(lim: KLimit, unit: str, *, explain: bool = False, velocity_unit: 
         ``"517.13 N/m"``, with caveats in parentheses; ``"none: …"`` without a value.
     """
     if lim.value is None:
-        return _none_text(lim, unit)
+        return none_text(lim, unit)
     txt = _k(lim.value, unit)
     tags = limit_tags(lim, unit, explain, velocity_unit)
     if tags:

@@ -171,6 +171,13 @@ def search_why(res: Any) -> str:
     ev = res.search
     status = getattr(res, "status", None)
     code = status if isinstance(status, SearchStatus) else _solver_status(ev, res)
+    if code is SearchStatus.FREQUENCY_RANGE:
+        from ..analysis.cycles import SEARCHED_MU  # here: it loads the limit-cycle package
+
+        return (
+            f"not searched: μ = {res.mu:.3g} lies outside {SEARCHED_MU[0]:g} … {SEARCHED_MU[1]:g}, where cycle "
+            "frequencies may fall outside the scanned grid (haptic devices lie between about 1e-2 and 1e7)"
+        )
     if code is SearchStatus.NUMERICAL:
         beyond = f", and beyond {ev.reached:g} ticks" if ev.reached is not None else ""
         return f"{ev.failures} root bracket(s) could not be refined (numerical failure); cycles may be missing{beyond}"
@@ -188,6 +195,8 @@ def search_why(res: Any) -> str:
 
 def _solver_status(ev: Any, res: Any) -> SearchStatus:
     """The solver's status behind a Nyquist response's evidence (its own status says only incomplete or not)."""
+    if ev.frequency_range:
+        return SearchStatus.FREQUENCY_RANGE
     if ev.failures:
         return SearchStatus.NUMERICAL
     if ev.time_budget is not None:

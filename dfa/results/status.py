@@ -262,6 +262,10 @@ class SearchStatus(StatusEnum):
         "time_budget",
         "incomplete: the time budget ran out before every piece of the phase curve was searched",
     )
+    FREQUENCY_RANGE = (
+        "frequency_range",
+        "not searched: μ lies outside the range where every cycle's frequency falls inside the scanned ω grid",
+    )
 
 
 class GrowthStatus(StatusEnum):

@@ -98,7 +98,7 @@ from .growth import GrowthThreshold, growth_threshold
 from .phase import PieceOmega, phase_beta, zoh_phase_beta_grid  # noqa: F401
 from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchEvidence, SearchStatus
 from .search import INTERVAL_BUDGET, envelope_bound
-from .solve import AUTO_MAX_AMPLITUDE, DEFAULT_TIME_BUDGET, limit_cycles
+from .solve import AUTO_MAX_AMPLITUDE, DEFAULT_TIME_BUDGET, SEARCHED_MU, limit_cycles
 from .stability import limit_cycle_at  # noqa: F401
 
 __all__ = [
@@ -121,6 +121,7 @@ __all__ = [
     "envelope_bound",
     "AUTO_MAX_AMPLITUDE",
     "DEFAULT_TIME_BUDGET",
+    "SEARCHED_MU",
     "INTERVAL_BUDGET",
     "SUBTICK_LIMIT",
     "subtick_caveat",

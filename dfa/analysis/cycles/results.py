@@ -36,6 +36,9 @@ class SearchEvidence(Result):
         Pieces of the phase curve searched and in all, when the time budget ended the search.
     time_budget : float or None
         The time budget in seconds, when it ended the search.
+    frequency_range : bool
+        μ lies outside :data:`~dfa.analysis.cycles.SEARCHED_MU`, where a cycle's frequency may fall outside the
+        scanned ω grid: nothing was searched (status ``FREQUENCY_RANGE``).
 
     Examples
     --------
@@ -49,6 +52,7 @@ class SearchEvidence(Result):
     pieces_searched: int | None = None
     pieces_total: int | None = None
     time_budget: float | None = None
+    frequency_range: bool = False
 
     def __post_init__(self) -> None:
         check_positive("requested", self.requested, "give the largest amplitude searched, in ticks")

@@ -143,6 +143,13 @@ AUTO_MAX_AMPLITUDE = 1.0e6
 DEFAULT_TIME_BUDGET = 10.0
 
 
+#: μ = m/(KT²) over which the search claims completeness: there every cycle's frequency lies well inside the
+#: scanned grid ``W_GRID`` = [1e-5, π − 1e-9] rad/sample (the large family's ω ≈ 1/√μ reaches 1e-5 at μ = 1e10,
+#: a cycle near Nyquist has π − ω ≈ 20μ; ``tests/test_eq36_cycle_search.py`` checks both ends). Outside it
+#: :func:`limit_cycles` searches nothing and says so (status ``FREQUENCY_RANGE``).
+SEARCHED_MU = (1e-6, 1e8)
+
+
 def limit_cycles(
     params: Params,
     *,
@@ -217,11 +224,16 @@ def limit_cycles(
     df = check_choice("describing", describing, DF_CHOICES)
     seconds = check_positive("time_budget", time_budget, "give the longest search time in seconds, e.g. 10")
     lp = HarmonicLoop(p, m, d, n, df, ctl)
-    try:
-        cycles, reach, failures, bound = _solve(lp, amax, time.monotonic() + seconds)
-    except _NUMERICAL_ERRORS:  # pragma: no cover - last resort
-        cycles, reach, failures, bound = [], None, 1, math.nan
-    code, evidence = _search_status(failures, reach, auto, amax, seconds)
+    if not SEARCHED_MU[0] <= p.mu <= SEARCHED_MU[1]:  # a cycle's frequency may lie outside W_GRID: no claim
+        cycles: list[LimitCycle] = []
+        reach, failures, bound = None, 0, math.nan
+        code, evidence = SearchStatus.FREQUENCY_RANGE, SearchEvidence(amax, frequency_range=True)
+    else:
+        try:
+            cycles, reach, failures, bound = _solve(lp, amax, time.monotonic() + seconds)
+        except _NUMERICAL_ERRORS:  # pragma: no cover - last resort
+            cycles, reach, failures, bound = [], None, 1, math.nan
+        code, evidence = _search_status(failures, reach, auto, amax, seconds)
     if code is SearchStatus.NUMERICAL:
         warnings.warn(
             f"limit_cycles(μ = {p.mu:g}, β = {p.beta:g}, σ = {p.sigma:g}, model {m}, delay {d}"

@@ -210,13 +210,15 @@ class Growth(NamedTuple):
     ``unstable``: number of unstable cycles. ``lower_bound``: ``xi_dot`` only bounds the growth speed from below.
     ``subtick``: the smallest unstable cycle lies below
     :data:`dfa.analysis.cycles.SUBTICK_LIMIT` ticks (the sub-tick caveat of :mod:`dfa.analysis.cycles.caveats`),
-    so that "no growth below ``xi_dot``" is not a prediction to rely on.
+    so that "no growth below ``xi_dot``" is not a prediction to rely on. ``not_searched``: μ lies outside
+    :data:`dfa.analysis.cycles.SEARCHED_MU`, where the cycle search claims nothing (``xi_dot`` None).
     """
 
     xi_dot: float | None
     unstable: int
     subtick: bool
     lower_bound: bool = False
+    not_searched: bool = False
 
 
 def growth_at(params: Params, wall: WallParams, model: str) -> Growth:
@@ -239,7 +241,7 @@ def growth_at(params: Params, wall: WallParams, model: str) -> Growth:
         return Growth(math.inf if res.linear_stable else 0.0, 0, False)
     if res.status is SearchStatus.BUDGET:  # no cycle missed below max_amplitude: any growth starts beyond it
         return Growth(res.max_amplitude * float(W_GRID[0]), 0, False, lower_bound=True)
-    return Growth(None, 0, False)
+    return Growth(None, 0, False, not_searched=res.status is SearchStatus.FREQUENCY_RANGE)
 
 
 def df_verdict(growth: Growth, xi_dot: float) -> str:

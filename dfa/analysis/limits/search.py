@@ -78,6 +78,7 @@ UNDECIDED_WHY = {
     "subtick": "the sub-tick caveat: the smallest unstable cycle lies below dfa.analysis.cycles.SUBTICK_LIMIT ticks",
     "below_reach": "a cycle search that stopped at its size budget bounds the growth speed only from below V",
     "unknown_growth": "a cycle search that failed: the growth speed is unknown",
+    "outside_mu": "μ = m/(K T²) outside dfa.analysis.cycles.SEARCHED_MU, where the cycle search claims nothing",
 }
 #: The confirmation of a simulated limit K uses this many times the searched speeds ...
 DENSE_FACTOR = 4
@@ -220,7 +221,8 @@ class KLimit(Result):
         Why the judgement at ``limited_by`` was undecided (:data:`UNDECIDED_WHY`): ``short_runs`` (simulated
         runs too short to tell), ``subtick`` (the sub-tick caveat of :mod:`dfa.analysis.cycles.caveats`),
         ``below_reach`` (a cycle search that stopped at its size budget bounds the growth speed only from below
-        V), ``unknown_growth`` (a cycle search that failed); None with ``limited_by`` None.
+        V), ``unknown_growth`` (a cycle search that failed), ``outside_mu`` (μ outside the range the cycle search
+        covers); None with ``limited_by`` None.
     range_end : float or None
         The stiffness that bounds the answer where ``status`` is ``above_range`` (the grid's top) or
         ``below_range`` (its lowest point); for ``not_confirmed`` the lowest stiffness reached.
@@ -367,11 +369,14 @@ def grid_search(
         return KLimit(None, LimitStatus.ABOVE_RANGE, range_end=float(grid[-1]), evaluations=len(grid))
     i = bad[0]
     safe_above = tuple(float(k) for k, v in zip(grid[i + 1 :], verdicts[i + 1 :], strict=True) if v == SAFE)
-    if i == 0:
+    if i == 0:  # an undecided first judgement says why (limited_by: the lowest K)
+        k0 = float(grid[0])
+        why0 = (why(k0) if callable(why) else why) if verdicts[0] == UNDECIDED else None
         return KLimit(
-            None, LimitStatus.BELOW_RANGE, range_end=float(grid[0]), range_verdict=verdicts[0],
+            None, LimitStatus.BELOW_RANGE, range_end=k0, range_verdict=verdicts[0],
+            limited_by=None if why0 is None else k0, limited_why=why0,
             non_monotone=bool(safe_above), safe_above=safe_above, undecided=tuple(sorted(undecided)),
-            first_failure=float(grid[0]), evaluations=len(grid),
+            first_failure=k0, evaluations=len(grid),
         )  # fmt: skip
     lo, hi, n = float(grid[i - 1]), float(grid[i]), len(grid)
     hi_verdict = verdicts[i]
@@ -402,6 +407,8 @@ def df_limit(ev: Evidence, grid: np.ndarray, xi_dot: float) -> KLimit:
 
     def why(k: float) -> str:
         g = ev.growth_xi_dot(k)
+        if g.not_searched:
+            return "outside_mu"
         return "subtick" if g.subtick else ("below_reach" if g.lower_bound else "unknown_growth")
 
     return grid_search(lambda k: ev.predicted(k, xi_dot), grid, why)
