@@ -241,13 +241,21 @@ def test_amplifier_lag_lowers_the_bound():
 
 
 # ---------------------------------------------------------------- several intervals, none, the K–B region
+def _in_w(pz):
+    """The coefficients in w = z − 1 of a polynomial in z (substitute z = w + 1, Horner)."""
+    out = np.zeros(1)
+    for c in pz:
+        out = np.polyadd(np.polymul(out, [1.0, 1.0]), [c])
+    return out[-len(pz) :]
+
+
 def test_ray_with_several_intervals_vs_dense_scan():
     """A pair (P₀, Q) whose stable set has two intervals: its edges agree with a dense np.roots scan."""
     p0 = np.array([1.0, 1.069237163630643, -0.6243535942878822, -0.9539866170654505, 0.01508063820712044,
                    0.3891335795425942, 0.1831520815358585, 0.02654394356156959])  # fmt: skip
     q = np.array([2.2110571623347774, 0.011622013918882693, -0.7581270719825384, -1.0256240581930005,
                   -0.2011986994848956, -0.629343213365391])  # fmt: skip
-    iv = _ray_intervals(p0, q, ())
+    iv = _ray_intervals(_in_w(p0), _in_w(q), ())  # the ray analysis takes its polynomials in w = z − 1
     assert len(iv) == 2 and iv[0][0] == 0.0
     ks = np.linspace(1e-4, 0.7, 7001)
     rho = np.array([max(abs(np.roots(np.polyadd(p0, k * q)))) for k in ks])
@@ -345,3 +353,54 @@ def test_stiffness_intervals_and_stable_region_json_from_their_fields():
     d = assert_json_from_fields(region)
     assert "rows" not in d and d["row_status"] == ["interval", "interval"]
     assert d["device"] == {"mass": 1.0, "damping": 2.0, "period": 1e-3}
+
+
+# ---------------------------------------------------------------- accuracy where the poles cluster at z = 1
+def _mp_divided_difference(nodes, mp):
+    """f[x₀ … x₃] of f(u) = e^{−u}, repeated nodes by a 1e-60 spread at 200 digits (independent of dfa.core)."""
+    with mp.workdps(200):
+        x = [mp.mpf(v) + mp.mpf(10) ** -60 * i * (i + 1) for i, v in enumerate(nodes)]
+        t = [mp.e ** (-v) for v in x]
+        for k in range(1, len(x)):
+            t = [(t[i + 1] - t[i]) / (x[i + k] - x[i]) for i in range(len(t) - 1)]
+        return +t[0]
+
+
+def _mp_rho(m, b, t, big_b, fc, fbw, d, k, mp):
+    """Spectral radius of the loop at stiffness k in 60 digits, the polynomials built from the module docstring's
+    formulas (plant by divided differences, filter, delay), not from dfa's elements."""
+    m, b, t, big_b, k = (mp.mpf(v) for v in (m, b, t, big_b, k))
+    a, ba = b * t / m, 2 * mp.pi * mp.mpf(fbw) * t  # 1/α = 2π f_bw T
+    dd = lambda *n: _mp_divided_difference(n, mp)
+    ng = [-ba * dd(0, 0, a, ba), -ba * (dd(0, a, a, ba) + dd(a, a, ba, a + ba) + dd(0, a, ba, ba)
+          + dd(a, ba, ba, a + ba)), -ba * dd(a, ba, a + ba, a + ba)]  # fmt: skip
+    af = mp.e ** (-2 * mp.pi * mp.mpf(fc) * t)
+    mul = lambda x, y: [
+        sum(x[i] * y[j - i] for i in range(len(x)) if 0 <= j - i < len(y)) for j in range(len(x) + len(y) - 1)
+    ]
+    dg = mul(mul([1, -1], [1, -(mp.e ** (-a))]), [1, -(mp.e ** (-ba))])
+    dh = mul([1] + [0] * (d + 1), [1, -af])
+    h = [x + big_b / (k * t) * y for x, y in zip([1, -af, 0], [0, 1 - af, -(1 - af)], strict=True)]
+    mu = m / (k * t * t)
+    left, right = [mu * c for c in mul(dg, dh)], mul(ng, h)
+    chi = [x + y for x, y in zip(left, [0] * (len(left) - len(right)) + right, strict=True)]
+    return max(abs(r) for r in mp.polyroots(chi, maxsteps=400, extraprec=400))
+
+
+@pytest.mark.parametrize(
+    ("m", "b", "t", "big_b", "fc", "fbw", "d"),
+    [
+        (0.04322, 0.04703, 2.7729e-3, 0.23376, 0.528, 0.0804, 2),  # issue 27: 1.5e-6 high before (slow filter, amp)
+        (1.0, 0.0, 1e-3, 0.023, 1.0001, 25.67015211159602, 5),  # b = 0, filter at its floor, α = 6.2, d = 5
+    ],
+)
+def test_exact_linear_bound_within_1e_12_of_a_60_digit_check_where_poles_cluster_at_one(m, b, t, big_b, fc, fbw, d):
+    """K_crit is computed in w = z − 1 (dfa.model.elements.CommandPolynomials): 1e-12 below it the 60-digit loop is
+    stable, 1e-12 above it unstable (the expanded powers of z were 6e-7 high at the first point)."""
+    mp = pytest.importorskip("mpmath")
+    with mp.workdps(60):
+        k = stable_stiffness(
+            m, b, t, Wall.of(1.0, damping=big_b, delay=d, filter_cutoff=fc, amplifier_bandwidth=fbw)
+        ).k_crit
+        assert _mp_rho(m, b, t, big_b, fc, fbw, d, k * (1 - 1e-12), mp) < 1
+        assert _mp_rho(m, b, t, big_b, fc, fbw, d, k * (1 + 1e-12), mp) > 1

@@ -46,6 +46,14 @@ or none) is checked against the spectral radius on an independent geometric grid
 of κ. z = 1 is a root of P₀ (the free mass): it moves inside for small κ when
 a + a_B > 0.
 
+Accuracy. Every polynomial is built and evaluated in w = z − 1 (the elements' own basis,
+:class:`dfa.model.elements.CommandPolynomials`): each factor z − r is w + (1 − r) with 1 − r from
+``expm1``, products of such factors have positive coefficients, and on the circle w = e^{jθ} − 1 is
+formed without cancellation, so P₀, Q and the spectral radius keep full relative accuracy where the
+device's, filter's and amplifier's poles cluster near z = 1. Expanded in powers of z they lost up to
+six digits there (K_crit 6e-7 high with a 0.5 Hz filter and a 0.08 Hz amplifier at T = 2.8 ms);
+``tests/test_controlled_linear.py`` checks K_crit to 1e-12 against a 60-digit construction.
+
 Tiny rates. For (b + B)T/m <= :data:`SERIES_RATE` = 1e-4 the roots cluster at z = 1
 (|z| − 1 = O((b + B)T/m)) and the float crossings lose digits (1e-11 relative at
 1e-4, 1e-8 at 1e-7, nothing below). There κ_crit comes from the Taylor series of
@@ -85,6 +93,7 @@ from ..checks import (
 from ..core.zoh import zoh_coefficients
 from ..core.zohlag import amplifier_zoh
 from ..errors import DFAError, DFAValueError
+from ..model.elements import unit_circle_w
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.frozen import freeze_fields
@@ -127,22 +136,30 @@ def amplifier_zoh_coefficients(a: float, lag: float) -> tuple[float, float, floa
 
 
 def _plant(a: float, wall: WallParams) -> tuple[np.ndarray, np.ndarray]:
-    """(N_G, D_G) of G(z) = N_G/(μ D_G), highest power first: an element's between hold and device
-    (:meth:`dfa.model.wall.WallParams.plant`, the amplifier lag), else the device alone (:mod:`dfa.core.zoh`)."""
+    """(N_G, D_G) of G(z) = N_G/(μ D_G) in w = z − 1, highest power first: an element's between hold and device
+    (:meth:`dfa.model.wall.WallParams.plant`, the amplifier lag), else the device alone (:mod:`dfa.core.zoh`:
+    N_G = c₁z + c₀ = c₁w + φ₁(a), D_G = (z − 1)(z − p) = w(w + 1 − p))."""
     out = wall.plant(float(a))
     if out is not None:
         return out
-    c1, c0, p = zoh_coefficients(float(a))
-    return np.array([c1, c0]), np.array([1.0, -(1.0 + p), p])
+    c1, c0, _p = zoh_coefficients(float(a))
+    return np.array([c1, c1 + c0]), np.array([1.0, -math.expm1(-float(a)), 0.0])
 
 
 def _command(wall: WallParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(N₁, N₂, D_H) with H = (N₁ + β_B N₂)/D_H (module docstring), highest power first: the elements'
-    polynomials (:meth:`dfa.model.wall.WallParams.command`), the delay's z^d in D_H."""
+    """(N₁, N₂, D_H) with H = (N₁ + β_B N₂)/D_H (module docstring) in w = z − 1, highest power first: the
+    elements' polynomials (:meth:`dfa.model.wall.WallParams.command`), the delay's z^d = (w + 1)^d in D_H."""
     h = wall.command()
-    shift = np.zeros(h.delay + 1)
-    shift[0] = 1.0  # z^d
+    shift = np.array([math.comb(h.delay, k) for k in range(h.delay + 1)], dtype=float)  # (w + 1)^d
     return h.spring, h.velocity, np.polymul(h.denominator, shift)
+
+
+def _to_z(pw: np.ndarray) -> np.ndarray:
+    """The coefficients in z of a polynomial given in w = z − 1 (highest power first), by Horner's scheme."""
+    out = np.zeros(1)
+    for c in pw:
+        out = np.polyadd(np.polymul(out, [1.0, -1.0]), [c])
+    return np.asarray(out[-len(pw) :], dtype=float)
 
 
 def controlled_characteristic_polynomial(mu: float, beta: float, params: WallParams) -> np.ndarray:
@@ -167,27 +184,33 @@ def controlled_characteristic_polynomial(mu: float, beta: float, params: WallPar
 
     (z(z − 1)² + (½z + ½)(1.5z − 0.5) at μ = 1, β = 0, β_B = ½.)
     """
+    return _to_z(_characteristic_w(mu, beta, params))
+
+
+def _characteristic_w(mu: float, beta: float, params: WallParams) -> np.ndarray:
+    """χ of :func:`controlled_characteristic_polynomial` in w = z − 1 (checked inputs)."""
     m, b = check_mu(mu), check_beta(beta)
     params = check_type("params", params, WallParams, "give a dfa.WallParams")
     ng, dg = _plant(b / m, params)
     n1, n2, dh = _command(params)
-    return np.polyadd(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2)))
+    return np.asarray(np.polyadd(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2))))
 
 
 def _rho_rows(rows: np.ndarray) -> np.ndarray:
-    """Spectral radius of each polynomial (row, highest power first, leading coefficient != 0)."""
+    """Spectral radius max |1 + w| over the roots w of each polynomial in w = z − 1 (row, highest power first,
+    leading coefficient != 0): roots clustered near z = 1 keep their accuracy in w."""
     rows = np.atleast_2d(rows)
     n = rows.shape[1] - 1
     comp = np.zeros((rows.shape[0], n, n))
     comp[:, 0, :] = -rows[:, 1:] / rows[:, :1]
     idx = np.arange(n - 1)
     comp[:, idx + 1, idx] = 1.0
-    return np.max(np.abs(np.linalg.eigvals(comp)), axis=-1)
+    return np.max(np.abs(1.0 + np.linalg.eigvals(comp)), axis=-1)
 
 
 def controlled_spectral_radius(mu: float, beta: float, params: WallParams) -> float:
     """Largest root modulus of :func:`controlled_characteristic_polynomial` (< 1: asymptotically stable)."""
-    return float(_rho_rows(controlled_characteristic_polynomial(mu, beta, params))[0])
+    return float(_rho_rows(_characteristic_w(mu, beta, params))[0])
 
 
 # ----------------------------------------------------------------------------- the stiffness ray
@@ -298,20 +321,27 @@ def _ray(a: float, a_b: float, wall: WallParams) -> tuple[np.ndarray, np.ndarray
     return np.polyadd(np.polymul(dg, dh), a_b * np.polymul(ng, n2)), np.polymul(ng, n1)
 
 
+def _pq(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
+    """P₀(z) conj(Q(z)) at z = e^{jθ}, evaluated in w = z − 1 (the polynomials' own basis: full accuracy)."""
+    w = unit_circle_w(theta)
+    return np.polyval(p0, w) * np.conj(np.polyval(q, w))
+
+
 def _im_part(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
-    z = np.exp(1j * np.asarray(theta, dtype=float))
-    return np.imag(np.polyval(p0, z) * np.conj(np.polyval(q, z)))
+    return np.imag(_pq(p0, q, theta))
 
 
 def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
-    """Angles θ in [0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle, grid sign changes, 0 and π."""
+    """Angles θ in [0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle (found in z, then polished in w),
+    grid sign changes, 0 and π (P₀, Q in w = z − 1)."""
     from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
 
     n = len(p0) - 1
-    qp = np.concatenate([np.zeros(n + 1 - len(q)), q])
-    r: np.ndarray = np.polysub(np.polymul(p0, qp[::-1]), np.polymul(qp, p0[::-1]))
+    pz, qz = _to_z(p0), _to_z(q)
+    qp = np.concatenate([np.zeros(n + 1 - len(qz)), qz])
+    r: np.ndarray = np.polysub(np.polymul(pz, qp[::-1]), np.polymul(qp, pz[::-1]))
     out = [math.pi]
-    if abs(np.polyval(p0, 1.0)) > 1e-9 * np.abs(p0).sum():
+    if abs(p0[-1]) > 1e-9 * np.abs(pz).sum():  # P₀(z = 1) = P₀(w = 0)
         out.append(0.0)  # z = 1 is a root of P₀ for the device (κ = 0); a crossing only for other pairs
     nz = np.nonzero(np.abs(r) > 0.0)[0]
     if nz.size:
@@ -344,9 +374,9 @@ def _crossings(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Every κ > 0 at which a root of P₀ + κQ lies on the unit circle, ascending, without repeats."""
     ks = []
     for t in _candidate_angles(p0, q):
-        z = complex(math.cos(t), math.sin(t)) if 0.0 < t < math.pi else complex(math.cos(t), 0.0)
-        pq = np.polyval(p0, z) * np.conj(np.polyval(q, z))
-        qq = abs(np.polyval(q, z)) ** 2
+        w = unit_circle_w(t) if 0.0 < t < math.pi else complex(-2.0 if t >= math.pi else 0.0, 0.0)
+        pq = np.polyval(p0, w) * np.conj(np.polyval(q, w))
+        qq = abs(np.polyval(q, w)) ** 2
         if qq > 0.0:
             k = -pq.real / qq
             if k > 0.0 and math.isfinite(k) and abs(pq.imag) <= 1e-6 * abs(pq):

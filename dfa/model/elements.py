@@ -56,6 +56,7 @@ __all__ = [
     "Parameter",
     "NotCovered",
     "CommandPolynomials",
+    "unit_circle_w",
     "Damper",
     "VelocityFilter",
     "Delay",
@@ -105,12 +106,17 @@ class Parameter(NamedTuple):
 
 @dataclass(frozen=True)
 class CommandPolynomials:
-    """The wall's command H(z) = (N₁ + β_B N₂)/(D_H z^d) and the device's ZOH plant, as polynomials (highest first).
+    """The wall's command H(z) = (N₁ + β_B N₂)/(D_H z^d) as polynomials in w = z − 1 (highest power first).
+
+    In w every factor z − r is w + (1 − r) with 1 − r computed without cancellation (``expm1``), and the
+    coefficients of a product of such factors (0 <= r <= 1) are sums of positive terms: the loop's
+    polynomials keep full relative accuracy where their roots cluster near z = 1 (slow filters and
+    amplifiers), which the expanded powers of z lose (:mod:`dfa.analysis.linear_wall`).
 
     Attributes
     ----------
     spring, velocity, denominator : numpy.ndarray
-        N₁, N₂ and D_H (without the delay): the spring's path, the damper's path per unit β_B, their
+        N₁, N₂ and D_H (without the delay) in w: the spring's path, the damper's path per unit β_B, their
         common denominator.
     damping : float
         β_B, the damper's gain (0: no damper; the velocity path then filters nothing).
@@ -126,8 +132,8 @@ class CommandPolynomials:
 
     @classmethod
     def spring_only(cls) -> CommandPolynomials:
-        """H(z) = 1 of the paper's spring: N₁ = z, N₂ = z − 1 (the backward difference), D_H = z."""
-        return cls(np.array([1.0, 0.0]), np.array([1.0, -1.0]), np.array([1.0, 0.0]))
+        """H(z) = 1 of the paper's spring: N₁ = z = w + 1, N₂ = z − 1 = w (the backward difference), D_H = z."""
+        return cls(np.array([1.0, 1.0]), np.array([1.0, 0.0]), np.array([1.0, 1.0]))
 
     def response(self, omega: Any) -> Any:
         """C(e^{jω}) = (N₁ + β_B N₂)/D_H at z = e^{jω} (the command without its delay), vectorised.
@@ -137,10 +143,23 @@ class CommandPolynomials:
         >>> CommandPolynomials.spring_only().response(0.3)
         (1+0j)
         """
-        z = np.exp(1j * np.asarray(omega, dtype=float))
+        w = unit_circle_w(omega)
         num = np.polyadd(self.spring, self.damping * self.velocity)
-        out = np.polyval(num, z) / np.polyval(self.denominator, z)
+        out = np.polyval(num, w) / np.polyval(self.denominator, w)
         return complex(out) if np.ndim(out) == 0 else out
+
+
+def unit_circle_w(omega: Any) -> Any:
+    """w = e^{jω} − 1 = −2 sin²(ω/2) + j sin ω, without the cancellation of cos ω − 1 near ω = 0.
+
+    Examples
+    --------
+    >>> unit_circle_w(1e-9)
+    (-5e-19+1e-09j)
+    """
+    om = np.asarray(omega, dtype=float)
+    out = -2.0 * np.sin(0.5 * om) ** 2 + 1j * np.sin(om)
+    return complex(out) if np.ndim(out) == 0 else out
 
 
 @dataclass(frozen=True)
@@ -332,7 +351,8 @@ class Element(abc.ABC):
         Returns
         -------
         tuple of numpy.ndarray, or None
-            (N_G, D_G), G(z) = N_G/(μ D_G); None for an element off the plant.
+            (N_G, D_G) in w = z − 1 (:class:`CommandPolynomials`), G(z) = N_G/(μ D_G); None for an element off
+            the plant.
         """
         return None
 
@@ -604,9 +624,30 @@ class VelocityFilter(Element):
         """
         return math.exp(-2.0 * math.pi * g)
 
+    @staticmethod
+    def pole_gap(g: float) -> float:
+        """Give 1 − a_f = −expm1(−2πν_c), without cancellation for a slow filter (a_f near 1).
+
+        Parameters
+        ----------
+        g : float
+            The cutoff ν_c = f_c T in cycles per sample.
+
+        Returns
+        -------
+        float
+            1 − a_f, the gap between the filter's pole and z = 1.
+
+        Examples
+        --------
+        >>> round(VelocityFilter.pole_gap(1e-12) / (2e-12 * math.pi), 9)   # 1 − e^{−x} = x(1 − x/2 + …)
+        1.0
+        """
+        return -math.expm1(-2.0 * math.pi * g)
+
     @classmethod
     def velocity_gain(cls, g: Any) -> float:
-        return 1.0 - cls.pole(g)
+        return cls.pole_gap(g)
 
     @classmethod
     def kernel(cls, g: Any) -> dict[str, Any]:
@@ -616,9 +657,9 @@ class VelocityFilter(Element):
     def command(cls, g: Any, h: CommandPolynomials) -> CommandPolynomials:
         if h.damping == 0.0:  # a filter without a damper filters nothing: its own mode is no pole of the loop
             return h
-        af = cls.pole(g)
+        gap = cls.pole_gap(g)  # z − a_f = w + (1 − a_f)
         return CommandPolynomials(
-            np.polymul(h.spring, [1.0, -af]), np.polymul(h.velocity, [1.0 - af]), np.polymul(h.denominator, [1.0, -af]),
+            np.polymul(h.spring, [1.0, gap]), np.polymul(h.velocity, [gap]), np.polymul(h.denominator, [1.0, gap]),
             h.damping, h.delay,
         )  # fmt: skip
 
@@ -697,8 +738,10 @@ class AmplifierLag(Element):
             return None
         from ..core.zohlag import amplifier_zoh  # the one implementation, compiled
 
-        n2, n1, n0, p, q = (float(x) for x in amplifier_zoh(float(rate), 1.0 / g))
-        return np.array([n2, n1, n0]), np.poly([1.0, p, q])
+        n2, n1, n0, _p, _q = (float(x) for x in amplifier_zoh(float(rate), 1.0 / g))
+        # in w = z − 1: N_G(w + 1) (sums of positive terms) and D_G = w (w + 1 − p)(w + 1 − q)
+        gaps = np.polymul([1.0, -math.expm1(-float(rate))], [1.0, -math.expm1(-1.0 / g)])
+        return np.array([n2, 2.0 * n2 + n1, n2 + n1 + n0]), np.polymul([1.0, 0.0], gaps)
 
     @classmethod
     def low_frequency_delay(cls, g: Any) -> float:

@@ -334,7 +334,7 @@ class WallParams:
         Returns
         -------
         tuple of numpy.ndarray, or None
-            (N_G, D_G), G(z) = N_G/(μ D_G); None for the device alone (:mod:`dfa.core.zoh`).
+            (N_G, D_G) in w = z − 1, G(z) = N_G/(μ D_G); None for the device alone (:mod:`dfa.core.zoh`).
         """
         for k, g in self.groups:
             out = k.plant(g, rate)
