@@ -10,6 +10,7 @@ Run: python examples/fig5_trajectories.py [--out DIR]
 """
 
 import os
+import warnings
 
 import matplotlib
 
@@ -26,6 +27,14 @@ from dfa.figures import POINT_STYLE, REGION_COLORS, regions_plot, trajectory_plo
 
 
 def cases():
+    # deliberately coarse encoders (0.13 and 0.67 rad) that place the paper's cases in each region: the
+    # plausibility warning (no haptic device has them) is expected here
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", dfa.ImplausibleInputWarning)
+        return _cases()
+
+
+def _cases():
     re35 = dfa.get_device("RE35").device
     fine = re35.resolution
     return [

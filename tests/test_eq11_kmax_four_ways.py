@@ -278,6 +278,7 @@ def test_cli_stiffness_plot_png(capsys, tmp_path):
     assert code == 2 and err.count("\n") == 1 and "--plot" in err and ".png, .pdf or .svg" in err
 
 
+@pytest.mark.filterwarnings("ignore::dfa.ImplausibleInputWarning")  # a 1 t "device" on purpose
 def test_eq11_kmax_heavy_device_impacts_beyond_a_million_ticks():
     # 1 nm encoder, 1 t mass: the energy-preload start lies beyond 10⁶ ticks (simulate's default bound);
     # the design runs scale the divergence bound with the start's energy, so no false divergence at K <= K_criterion

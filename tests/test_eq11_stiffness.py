@@ -13,6 +13,11 @@ import dfa
 from dfa.analysis.limits.closed_form import gil_factor, k_max_criterion
 from dfa.model.wall import Wall
 
+#: Deliberately outside what haptic devices have (extreme values test the numerics): the plausibility warning
+#: (dfa.plausibility) is expected here, and tested in tests/test_plausibility.py.
+pytestmark = pytest.mark.filterwarnings("ignore::dfa.ImplausibleInputWarning")
+
+
 DEVICES = ["Delta", "Impulse Engine", "Phantom 1.0", "Toolhandle"]
 
 

@@ -503,6 +503,11 @@ import os, signal, sys, threading, time
 import dfa.cli.devices as devices
 from dfa.cli import main
 
+#: Deliberately outside what haptic devices have (extreme values test the numerics): the plausibility warning
+#: (dfa.plausibility) is expected here, and tested in tests/test_plausibility.py.
+pytestmark = pytest.mark.filterwarnings("ignore::dfa.ImplausibleInputWarning")
+
+
 def run(args):
     threading.Thread(target=time.sleep, args=(2.0,)).start()  # a worker still finishing when main returns
     if {interrupt}:

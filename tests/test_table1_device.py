@@ -8,6 +8,11 @@ from hypothesis import strategies as st
 
 import dfa
 
+#: Deliberately outside what haptic devices have (extreme values test the numerics): the plausibility warning
+#: (dfa.plausibility) is expected here, and tested in tests/test_plausibility.py.
+pytestmark = pytest.mark.filterwarnings("ignore::dfa.ImplausibleInputWarning")
+
+
 pos = st.floats(1e-6, 1e6, allow_nan=False)
 
 
