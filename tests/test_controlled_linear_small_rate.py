@@ -89,7 +89,7 @@ def test_controlled_linear_small_rate_series_agrees_with_the_float_ray(rate, nam
     m, b, c = _case(rate, name)
     p = c.params(T)
     a, a_b = b * T / m, c.damping * T / m
-    rho_l, k_tilde = series_kappa(a, a_b, p.cutoff, p.lag, p.delay)
+    rho_l, k_tilde = series_kappa(a, a_b, p)
     assert (a * rho_l + a_b) * k_tilde == pytest.approx(_stable_kappa(a, a_b, p)[0][1], rel=1e-8)
 
 

@@ -263,7 +263,7 @@ def _small_rate_verdict(mu: float, beta: float, d: int, c: WallParams) -> bool |
 
     Spring: r_d β/μ <= 1e-6, stable iff β(1 + r_d β/μ) > ½ + d (:func:`_small_rate_kappa`). With a damper or
     lag: (β + β_B)/μ < :data:`dfa.analysis.linear_wall.MIN_RESOLVED_RATE`, stable iff (βρ_L + β_B) κ̃ > 1
-    (:func:`dfa.analysis.linear_wall._series_kappa`).
+    (:func:`dfa.analysis.linear_wall.series_kappa`).
     """
     a = beta / mu
     if _beyond_spring(c):
@@ -271,7 +271,7 @@ def _small_rate_verdict(mu: float, beta: float, d: int, c: WallParams) -> bool |
 
         if not (beta + c.damping > 0.0 and (beta + c.damping) / mu < MIN_RESOLVED_RATE):
             return None
-        series = series_kappa(a, c.damping / mu, c.cutoff, c.lag, d)
+        series = series_kappa(a, c.damping / mu, c)
         return None if series is None else bool((beta * series[0] + c.damping) * series[1] > 1.0)
     r = (2.0 * d * d + 2.0 * d + 1.0) / (6.0 * (2.0 * d + 1.0))
     if not (beta > 0.0 and r * a <= _ASYMPTOTIC_LIMIT):

@@ -248,39 +248,31 @@ def _series_div(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return out
 
 
-def _taylor_at_one(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[np.ndarray, float]:
+def _taylor_at_one(a: float, a_b: float, wall: WallParams) -> tuple[np.ndarray, float]:
     """Taylor coefficients φ_k in s of Φ = z^d D_G/N_G + a_B N₂/N₁ at z = e^s (κ = −Φ on the ray), and ρ_L.
 
-    Built in w = z − 1, where every factor has coefficients free of cancellation (1 − p = −expm1(−a),
-    N_G(1) = φ₁(a) or n₂ + n₁ + n₀, the filter's 1 − a_f = −expm1(−2πν_c)), then composed with
-    w = e^s − 1 and multiplied by e^{sd}. φ₀ = 0 and φ₁ = a ρ_L + a_B, ρ_L = 1 (no lag) or
-    φ₁(a)(1 − q)/(n₂ + n₁ + n₀) (→ 1 as a → 0): φ₁ is returned as computed, ρ_L for the caller's exact scaling.
+    From the elements' own polynomials in w = z − 1 (:func:`_plant`, :meth:`WallParams.command
+    <dfa.model.wall.WallParams.command>`; free of cancellation), divided as power series in w, composed with
+    w = e^s − 1 and multiplied by e^{sd}. φ₀ = 0 and φ₁ = a ρ_L + a_B, with a ρ_L = D_G'(0)/N_G(0) (ρ_L = 1
+    for the device alone, φ₁(a)(1 − q)/(n₂ + n₁ + n₀) with an amplifier lag, → 1 as a → 0): ρ_L is returned
+    for the caller's exact scaling, taken at a = 1e-300 when a is smaller (where it equals its limit to rounding).
     """
-    from ..core.exprel import phi1, phi2
-
-    if lag == 0.0 or not math.isfinite(1.0 / lag):
-        dg, ng, rho_l = _poly_series(0.0, -math.expm1(-a), 1.0), _poly_series(phi1(a), phi2(a)), 1.0
-    else:
-        n2, n1, n0, _, _ = amplifier_zoh_coefficients(a, lag)
-        one_q = -math.expm1(-1.0 / lag)
-        dg = _series_mul(_poly_series(0.0, -math.expm1(-a), 1.0), _poly_series(one_q, 1.0))
-        ng = _poly_series(n2 + n1 + n0, 2.0 * n2 + n1, n2)
-        rho_l = phi1(a) * one_q / (n2 + n1 + n0)
-    if a_b > 0.0 and cutoff is not None:
-        g = -math.expm1(-2.0 * math.pi * cutoff)  # 1 − a_f
-        vw = _series_div(_poly_series(0.0, g), _series_mul(_poly_series(1.0, 1.0), _poly_series(g, 1.0)))
-    else:
-        vw = _series_div(_poly_series(0.0, 1.0), _poly_series(1.0, 1.0))
-    lw = _series_div(dg, ng)
+    a_eff = max(a, 1e-300)  # a that underflows (m = 1e300 kg) keeps ρ_L: its limit, to rounding
+    ng, dg = _plant(a_eff, wall)
+    h = wall.command()
+    lw = _series_div(_poly_series(*dg[::-1]), _poly_series(*ng[::-1]))
+    rho_l = float(lw[1] / a_eff)
+    lw[1] = a * rho_l
+    vw = _series_div(_poly_series(*h.velocity[::-1]), _poly_series(*h.spring[::-1]))
     ws = np.array([0.0] + [1.0 / math.factorial(k) for k in range(1, _N_TERMS)])  # w = e^s − 1
     lo, vo, pw = np.zeros(_N_TERMS), np.zeros(_N_TERMS), _poly_series(1.0)
     for k in range(_N_TERMS):
         lo, vo, pw = lo + lw[k] * pw, vo + vw[k] * pw, _series_mul(pw, ws)
-    ed = np.array([float(delay) ** k / math.factorial(k) for k in range(_N_TERMS)])  # e^{sd}
+    ed = np.array([float(h.delay) ** k / math.factorial(k) for k in range(_N_TERMS)])  # e^{sd}
     return _series_mul(ed, lo) + a_b * vo, rho_l
 
 
-def series_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay: int) -> tuple[float, float] | None:
+def series_kappa(a: float, a_b: float, wall: WallParams) -> tuple[float, float] | None:
     """(ρ_L, κ̃) with κ_crit = (a ρ_L + a_B) κ̃ from the Taylor series at z = 1, or None if it does not converge.
 
     On z = e^{jθ} with u = θ² = φ₁v, Im Φ = 0 and κ = −Re Φ read (φ_k real, :func:`_taylor_at_one`)::
@@ -292,7 +284,7 @@ def series_kappa(a: float, a_b: float, cutoff: float | None, lag: float, delay: 
     κ̃ → φ₂/φ₃ = 1/(d + ½ + α), i.e. K_crit → (b + B)/(T(½ + d + τ_a/T)). None when φ₃ <= 0 or the
     last terms are not below 1e-17 of the first (a pole of the filter or lag too close to z = 1).
     """
-    f, rho_l = _taylor_at_one(a, a_b, cutoff, lag, delay)
+    f, rho_l = _taylor_at_one(a, a_b, wall)
     if not f[3] > 0.0:
         return None
     e = f[1]
@@ -446,7 +438,7 @@ def _stable_set(
     rate = (b + big_b) * t / m
     series = None
     if b + big_b > 0.0 and rate <= SERIES_RATE:
-        series = series_kappa(a, a_b, p.cutoff, p.lag, p.delay)
+        series = series_kappa(a, a_b, p)
     if series is None:
         if 0.0 < rate < MIN_RESOLVED_RATE or (rate == 0.0 and b + big_b > 0.0):
             raise DFAValueError(
