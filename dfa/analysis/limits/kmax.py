@@ -78,6 +78,7 @@ __all__ = [
     "wall_k_criterion",
     "searched_limits",
     "passive_speed",
+    "damper_friction_per_damping",
     "DESIGN_MAX_SAMPLES",
 ]
 
@@ -302,6 +303,24 @@ def criterion_passes(dev: Device, wall: Wall, k: float, v: float) -> bool:
         return False
 
 
+def damper_friction_per_damping(dev: Device, wall: Wall) -> float:
+    """The Coulomb friction one unit of virtual damping B costs the criterion: (1 − a)Δ/T (N per N·s/m).
+
+    Eq. 11 with a damper spends (1 − a)BΔ/T of the friction c on the damper's quantized velocity (a the
+    velocity filter's pole, 0 without filter; :mod:`dfa.analysis.criterion`): with c <= (1 − a)BΔ/T no K is
+    proven passive. The one formula of :func:`closed_forms` (status ``never``) and of
+    :func:`dfa.analysis.limits.require.damper_guidance`.
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> dev = get_device("Delta").device
+    >>> damper_friction_per_damping(dev, Wall.of(1.0, damping=1.0)) == dev.resolution / dev.period
+    True
+    """
+    return wall.params(dev.period).velocity_gain() * dev.resolution / dev.period
+
+
 def wall_k_criterion(dev: Device, wall: Wall, v: float) -> float:
     """Largest K the criterion proves passive with ``wall``'s elements at speed v (bisection; 0 if none).
 
@@ -348,7 +367,7 @@ def closed_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dic
         crit = KLimit(None, LimitStatus.NOT_COVERED)
         return crit, _limit(kl, LimitStatus.NO_STABLE_K), pub, kl, 8.0 * max(k_static(dev), kl)
     kc = wall_k_criterion(dev, wall, v)
-    never = dev.coulomb / dev.resolution <= (1.0 - p.filter_pole) * wall.damping / dev.period
+    never = dev.coulomb <= wall.damping * damper_friction_per_damping(dev, wall)
     crit = _limit(kc, LimitStatus.NEVER if never else LimitStatus.NONE_PROVEN)
     return crit, _limit(kl, LimitStatus.NO_STABLE_K), pub, kc, 8.0 * max(k_static(dev), kl, kc)
 

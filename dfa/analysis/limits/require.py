@@ -51,7 +51,7 @@ from ...model.wall import Wall
 from ...results.base import Result
 from ...results.codes import REQUIRE_PARAMETERS
 from ...results.status import RequireStatus
-from .kmax import criterion_passes, describing_limit, linear_limit
+from .kmax import criterion_passes, damper_friction_per_damping, describing_limit, linear_limit
 
 __all__ = [
     "PARAMETERS",
@@ -404,14 +404,13 @@ def damper_guidance(device: Device, wall: Wall, velocity: float) -> DamperGuidan
     (False, 0.1864)
     """
     v = check_nonnegative("velocity", velocity, "give the impact speed in m/s")
-    one_a = 1.0 - wall.params(device.period).filter_pole
-    b, c, res, t, big_b = device.damping, device.coulomb, device.resolution, device.period, wall.damping
-    per_b = one_a * res / t  # the Coulomb friction one unit of B costs (eq. 11's (1 − a)BΔ/T)
+    b, c, big_b = device.damping, device.coulomb, wall.damping
+    per_b = damper_friction_per_damping(device, wall)  # eq. 11's (1 − a)Δ/T per unit of B
     speed_cost = max(0.0, (big_b - b) * v)  # the friction the speed term needs when B exceeds b
     max_b = min(c / per_b, (b * v + c) / (v + per_b))
     room = c - speed_cost  # what friction is left for the damper's (1 − a)BΔ/T
     if big_b == 0:
         max_res: float | None = math.inf
     else:
-        max_res = room * t / (one_a * big_b) if room > 0 else None
+        max_res = room * device.resolution / (per_b * big_b) if room > 0 else None  # (1 − a)BΔ/T = room
     return DamperGuidance(big_b < max_b, max_b, big_b * per_b + speed_cost, max_res)
