@@ -29,6 +29,10 @@ from dfa.errors import DFAError, DFATypeError, DFAValueError
 from dfa.model.wall import Wall, WallParams
 from dfa.render.text import growth_meaning, search_text
 
+#: Deliberately outside what haptic devices have (extreme values test the numerics): the plausibility warning
+#: (dfa.plausibility) is expected here, and tested in tests/test_plausibility.py.
+pytestmark = pytest.mark.filterwarnings("ignore::dfa.ImplausibleInputWarning")
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DFA = [sys.executable, "-c", "import sys; from dfa.cli import main; sys.exit(main())"]
 
@@ -502,10 +506,6 @@ _LATE = """
 import os, signal, sys, threading, time
 import dfa.cli.devices as devices
 from dfa.cli import main
-
-#: Deliberately outside what haptic devices have (extreme values test the numerics): the plausibility warning
-#: (dfa.plausibility) is expected here, and tested in tests/test_plausibility.py.
-pytestmark = pytest.mark.filterwarnings("ignore::dfa.ImplausibleInputWarning")
 
 
 def run(args):
