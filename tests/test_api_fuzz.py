@@ -29,7 +29,10 @@ import dfa
 
 #: Deliberately outside what haptic devices have (extreme values test the numerics): the plausibility warning
 #: (dfa.plausibility) is expected here, and tested in tests/test_plausibility.py.
-pytestmark = pytest.mark.filterwarnings("ignore::dfa.ImplausibleInputWarning")
+pytestmark = [
+    pytest.mark.filterwarnings("ignore::dfa.ImplausibleInputWarning"),
+    pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning"),  # numeric_df's quad at extreme M
+]
 
 
 EXPLORE = os.environ.get("HYPOTHESIS_PROFILE") == "explore"
