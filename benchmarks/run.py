@@ -205,7 +205,7 @@ def bench_kernel(quick: bool) -> dict:
     runs, nb = 64, 50_000
     pts = [np.full(runs, 100.0), rng.uniform(0, 1, runs), rng.uniform(0, 2, runs), np.zeros(runs), np.full(runs, 2.0)]
     tail = (nb, 0, True, 1e6, 8192)
-    batch = {}
+    rows = {}
     for name, fn in (
         ("one run at a time (dfa.core.kernel.serial_kernel)", kernel.serial_kernel),
         ("two runs in flight (dfa.core.batch.batch_kernel, used by maps and searches)", _per_run(batch.batch_kernel)),
@@ -213,12 +213,12 @@ def bench_kernel(quick: bool) -> dict:
     ):
         st, dn, rs = np.empty((runs, kernel.NSTATS)), np.empty(runs, np.int64), np.empty(runs, np.int64)
         fn(*pts, *tail, st, dn, rs)
-        batch[name] = (
+        rows[name] = (
             1e9
             * min(cpu_best(lambda fn=fn, st=st, dn=dn, rs=rs: fn(*pts, *tail, st, dn, rs), 1) for _ in range(repeat))
             / dn.sum()
         )
-    out["batch"] = batch
+    out["batch"] = rows
     return out
 
 

@@ -64,3 +64,27 @@ def test_estimates_grow_with_the_work_they_plan():
     assert z_width_seconds(dev, 0.1, grid=24, n_jobs=2) == pytest.approx(one / 2)
     assert z_width_seconds(dev, 0.1, grid=48, n_jobs=1) >= 3.0 * one  # samples ×4, boundary columns ×2
     assert z_width_seconds(dev, 0.1, grid=24, speeds=4, n_jobs=1) > one
+
+
+def test_grid_limits_come_before_the_time_estimate_so_force_cannot_reach_them(capsys, tmp_path):
+    # --force used to lift the time refusal only to meet the 200-point limit (report: after its other sections)
+    code, _, err = run(capsys, "zwidth", "--device", "impulse", "--velocity", "0.1", "--grid", "300", "--force")
+    assert code == 2 and "--grid 300 is invalid: it must be at most 200" in err
+    argv = (
+        "report",
+        "--device",
+        "impulse",
+        "--velocity",
+        "0.1",
+        "--zwidth",
+        "300",
+        "--force",
+        "--out",
+        str(tmp_path / "r"),
+    )
+    code, _, err = run(capsys, *argv)
+    assert code == 2 and "--zwidth 300 is invalid: it must be at most 200" in err and not (tmp_path / "r").exists()
+    from dfa.analysis.design import design_analysis
+
+    with pytest.raises(DFAValueError, match="zwidth_grid = 300 is invalid"):
+        design_analysis(get_device("Impulse Engine"), velocity=0.1, zwidth_grid=300)

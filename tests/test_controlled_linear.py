@@ -19,7 +19,7 @@ import control
 import mpmath
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from result_json import assert_json_from_fields
 
@@ -370,15 +370,19 @@ def _mp_rho(m, b, t, big_b, fc, fbw, d, k, mp):
     """Spectral radius of the loop at stiffness k in 60 digits, the polynomials built from the module docstring's
     formulas (plant by divided differences, filter, delay), not from dfa's elements."""
     m, b, t, big_b, k = (mp.mpf(v) for v in (m, b, t, big_b, k))
-    a, ba = b * t / m, 2 * mp.pi * mp.mpf(fbw) * t  # 1/α = 2π f_bw T
-    dd = lambda *n: _mp_divided_difference(n, mp)
-    ng = [-ba * dd(0, 0, a, ba), -ba * (dd(0, a, a, ba) + dd(a, a, ba, a + ba) + dd(0, a, ba, ba)
-          + dd(a, ba, ba, a + ba)), -ba * dd(a, ba, a + ba, a + ba)]  # fmt: skip
-    af = mp.e ** (-2 * mp.pi * mp.mpf(fc) * t)
     mul = lambda x, y: [
         sum(x[i] * y[j - i] for i in range(len(x)) if 0 <= j - i < len(y)) for j in range(len(x) + len(y) - 1)
     ]
-    dg = mul(mul([1, -1], [1, -(mp.e ** (-a))]), [1, -(mp.e ** (-ba))])
+    a, p = b * t / m, mp.e ** (-b * t / m)
+    if fbw is None:  # the device alone: (c₁z + c₀)/((z − 1)(z − p)), c₁ = (a − 1 + p)/a², c₀ = (1 − p − ap)/a²
+        ng, dg = [(a - 1 + p) / a**2, (1 - p - a * p) / a**2], mul([1, -1], [1, -p])
+    else:
+        ba = 2 * mp.pi * mp.mpf(fbw) * t  # 1/α = 2π f_bw T
+        dd = lambda *n: _mp_divided_difference(n, mp)
+        ng = [-ba * dd(0, 0, a, ba), -ba * (dd(0, a, a, ba) + dd(a, a, ba, a + ba) + dd(0, a, ba, ba)
+              + dd(a, ba, ba, a + ba)), -ba * dd(a, ba, a + ba, a + ba)]  # fmt: skip
+        dg = mul(mul([1, -1], [1, -p]), [1, -(mp.e ** (-ba))])
+    af = mp.e ** (-2 * mp.pi * mp.mpf(fc) * t)
     dh = mul([1] + [0] * (d + 1), [1, -af])
     h = [x + big_b / (k * t) * y for x, y in zip([1, -af, 0], [0, 1 - af, -(1 - af)], strict=True)]
     mu = m / (k * t * t)
@@ -392,6 +396,8 @@ def _mp_rho(m, b, t, big_b, fc, fbw, d, k, mp):
     [
         (0.04322, 0.04703, 2.7729e-3, 0.23376, 0.528, 0.0804, 2),  # issue 27: 1.5e-6 high before (slow filter, amp)
         (1.0, 0.0, 1e-3, 0.023, 1.0001, 25.67015211159602, 5),  # b = 0, filter at its floor, α = 6.2, d = 5
+        (1.0, 5e-4, 1e-3, 5e-4, 1.0, None, 2),  # crossing at θ = 6e-4 inside the first scan cell: was 'never'
+        (1.0, 1.5e-4, 1e-3, 1.5e-4, 1.0, None, 0),  # (b + B)T/m = 3e-7, filter at its floor, no delay
     ],
 )
 def test_exact_linear_bound_within_1e_12_of_a_60_digit_check_where_poles_cluster_at_one(m, b, t, big_b, fc, fbw, d):
@@ -404,3 +410,30 @@ def test_exact_linear_bound_within_1e_12_of_a_60_digit_check_where_poles_cluster
         ).k_crit
         assert _mp_rho(m, b, t, big_b, fc, fbw, d, k * (1 - 1e-12), mp) < 1
         assert _mp_rho(m, b, t, big_b, fc, fbw, d, k * (1 + 1e-12), mp) > 1
+
+
+@settings(max_examples=60, deadline=None)
+@example(rate=1e-6, share=0.5, cutoff=1e-3, delay=2)  # found by review: 'never' for a loop stable up to 0.398 N/m
+@given(
+    rate=st.floats(1e-7, 1e-2),
+    share=st.floats(0.0, 1.0),
+    cutoff=st.one_of(st.none(), st.floats(1e-3, 0.4)),
+    delay=st.integers(0, 4),
+)
+def test_slow_poles_status_agrees_with_the_spectral_radius_on_both_sides_of_k_crit(rate, share, cutoff, delay):
+    """Slow filters and tiny rates (the crossing deep inside the first scan cell): 'interval' is stable at K/2 and
+    unstable at 2K; 'never' is unstable at every K of a wide grid (it was reported for a stable loop)."""
+    from dfa.analysis.linear_wall import controlled_spectral_radius
+
+    m, t = 1.0, 1e-3
+    b, big_b = share * rate * m / t, (1 - share) * rate * m / t
+    wall = Wall.of(1.0, damping=big_b, delay=delay, filter_cutoff=None if cutoff is None else cutoff / t)
+    r = stable_stiffness(m, b, t, wall)
+
+    def rho(k):
+        return controlled_spectral_radius(m / (k * t * t), b / (k * t), wall.with_stiffness(k).params(t))
+
+    if r.status is LinearStatus.INTERVAL:
+        assert rho(0.5 * r.k_crit) < 1.0 < rho(2.0 * r.k_crit)
+    elif r.status is LinearStatus.NEVER:
+        assert all(rho(k) >= 1.0 for k in np.geomspace(1e-12, 1e6, 73) * m / t**2)

@@ -440,6 +440,9 @@ def test_eq36_outside_searched_mu_nothing_is_claimed_and_nothing_warns(mu, recwa
     assert res.search.frequency_range and res.to_dict()["search"]["frequency_range"] is True
     assert search_text(res).startswith(f"incomplete: not searched: μ = {mu:.3g} lies outside 1e-06 … 1e+08")
     assert not [w for w in recwarn if issubclass(w.category, LimitCycleSearchWarning)]
+    # nor a claim on growth (it said "amplitudes grow without bound" from the linear loop alone)
+    g = growth_threshold(res.params)
+    assert g.status.value == "not_searched" and g.grows_above is None and g.amplitude is None
 
 
 def test_eq36_stiffness_says_why_the_describing_function_has_no_limit_outside_searched_mu(capsys):

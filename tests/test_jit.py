@@ -19,6 +19,23 @@ def test_deferred_kernel_pickles_to_the_module_own_kernel():
     assert exprel.phi1.__doc__ == exprel.phi1.py_func.__doc__
 
 
+def test_a_kernel_bound_under_another_name_pickles_to_a_deferred_of_its_function():
+    from dfa.core import kernel
+
+    back = pickle.loads(pickle.dumps(kernel._spring))  # njit(...)(spring_energy_core): not the module's own name
+    assert isinstance(back, jit.Deferred) and back.py_func is kernel._spring.py_func
+    assert back.targetoptions == kernel._spring.targetoptions
+
+
+def test_threads_calling_a_kernel_first_share_one_dispatcher():
+    import concurrent.futures
+
+    fresh = jit.njit(cache=False)(exprel.phi1.py_func)
+    with concurrent.futures.ThreadPoolExecutor(8) as pool:
+        got = list(pool.map(lambda _: fresh.dispatcher, range(8)))
+    assert all(d is got[0] for d in got) and fresh(0.25) == exprel.phi1(0.25)
+
+
 @settings(max_examples=300)
 @given(st.floats(min_value=-30.0, max_value=1e6, allow_nan=False))
 def test_exprel_compiled_equals_its_python_source_bit_for_bit(u):

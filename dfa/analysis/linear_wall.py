@@ -55,8 +55,10 @@ six digits there (K_crit 6e-7 high with a 0.5 Hz filter and a 0.08 Hz amplifier 
 ``tests/test_controlled_linear.py`` checks K_crit to 1e-12 against a 60-digit construction.
 
 Tiny rates. For (b + B)T/m <= :data:`SERIES_RATE` = 1e-4 the roots cluster at z = 1
-(|z| − 1 = O((b + B)T/m)) and the float crossings lose digits (1e-11 relative at
-1e-4, 1e-8 at 1e-7, nothing below). There κ_crit comes from the Taylor series of
+(|z| − 1 = O((b + B)T/m)) and the crossing lies at θ = O(√rate), deep inside the first
+cell of the angle scan (which is refined geometrically down to θ = 1e-10 for it); in
+powers of z the float crossings lost digits there (1e-11 relative at 1e-4, 1e-8 at 1e-7,
+all below), in w they agree with the series where both are found. There κ_crit comes from the Taylor series of
 Φ(s) = P₀/Q at z = e^s (:func:`series_kappa`; every factor expanded in w = z − 1
 without cancellation): Im Φ(jθ) = 0, κ = −Re Φ(jθ) is solved as a series in θ²,
 κ_crit = (a ρ_L + a_B) κ̃, κ̃ → 1/(½ + d + α) as the rate → 0, i.e.
@@ -215,8 +217,8 @@ def controlled_spectral_radius(mu: float, beta: float, params: WallParams) -> fl
 
 # ----------------------------------------------------------------------------- the stiffness ray
 #: (b + B)T/m at or below which :func:`stable_stiffness` takes K_crit from the Taylor series of the ray at z = 1
-#: (:func:`series_kappa`), where the float root finding loses digits (it agrees with the series to ~1e-11 at
-#: 1e-4 and ~1e-8 at 1e-7; the series' own truncation is checked below 1e-16).
+#: (:func:`series_kappa`): a closed expansion there, which needs no root finding near z = 1 (the float crossings
+#: in w agree with it where both are found; the series' own truncation is checked below 1e-16).
 SERIES_RATE = 1e-4
 
 #: (b + B)T/m below which the float ray analysis is not used (its crossings near z = 1 are lost in rounding).
@@ -333,16 +335,18 @@ def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
     qp = np.concatenate([np.zeros(n + 1 - len(qz)), qz])
     r: np.ndarray = np.polysub(np.polymul(pz, qp[::-1]), np.polymul(qp, pz[::-1]))
     out = [math.pi]
-    if abs(p0[-1]) > 1e-9 * np.abs(pz).sum():  # P₀(z = 1) = P₀(w = 0)
+    if abs(p0[-1]) > 1e-9 * np.abs(p0).sum():  # P₀(z = 1) = P₀(w = 0)
         out.append(0.0)  # z = 1 is a root of P₀ for the device (κ = 0); a crossing only for other pairs
     nz = np.nonzero(np.abs(r) > 0.0)[0]
     if nz.size:
         for z in np.roots(r[nz[0] :]):
             if abs(abs(z) - 1.0) < 1e-4 and abs(np.angle(z)) > 1e-12:
                 out.append(abs(float(np.angle(z))))
-    grid = np.linspace(0.0, math.pi, 512 * (n + 1))
+    lin = np.linspace(0.0, math.pi, 512 * (n + 1))
+    # and geometrically down to 1e-10 inside the first cell: slow poles put the crossing at θ ~ 1e-4 … 1e-3
+    grid = np.concatenate([[0.0], np.geomspace(1e-10, lin[1], 400, endpoint=False), lin[1:]])
     g = _im_part(p0, q, grid)
-    for i in np.nonzero(g[1:-1] * g[2:] < 0.0)[0] + 1:
+    for i in np.nonzero(g[1:-1] * g[2:] < 0.0)[0] + 1:  # from the first θ > 0: Im(P₀ Q̄) = 0 at θ = 0
         out.append(brentq(lambda t: float(_im_part(p0, q, t)), grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15))
     return [_polish(p0, q, t) for t in out]
 
@@ -354,7 +358,7 @@ def _polish(p0: np.ndarray, q: np.ndarray, t: float) -> float:
     if t >= math.pi or t <= 0.0:
         return min(max(t, 0.0), math.pi)
     f0 = float(_im_part(p0, q, t))
-    for rel in (1e-12, 1e-9, 1e-6, 1e-4):
+    for rel in (1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 1e-2):
         lo, hi = t * (1.0 - rel), min(t * (1.0 + rel), math.pi)
         for x, y in ((lo, t), (t, hi)):
             if float(_im_part(p0, q, x)) * float(_im_part(p0, q, y)) < 0.0 or f0 == 0.0:
@@ -409,7 +413,9 @@ def _ray_intervals(p0: np.ndarray, q: np.ndarray, args: tuple) -> list[tuple[flo
 
 def _check_against_grid(p0: Any, q: Any, ks: Any, intervals: Any, args: Any) -> None:
     """The stable set must agree with the spectral radius on an independent geometric grid of κ."""
-    grid = np.geomspace(ks[0] * 1e-2, ks[-1] * 1e2, 241)
+    low = p0[-2] / q[-1] if q[-1] != 0.0 else 0.0  # φ₁ = P₀'(w = 0)/Q(0): the scale of a crossing near z = 1
+    low = low if 0.0 < low < ks[0] and math.isfinite(low) else ks[0]
+    grid = np.geomspace(low * 1e-2, ks[-1] * 1e2, 241)
     near = np.min(np.abs(np.log(grid[:, None] / ks[None, :])), axis=1) < 1e-6
     rho = _rho_rows(np.array([np.polyadd(p0, k * q) for k in grid]))
     inside = np.array([any(lo < k < hi for lo, hi in intervals) for k in grid])

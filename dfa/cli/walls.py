@@ -80,7 +80,7 @@ def check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
     if fc is not None and not floor * (1 - 1e-12) <= fc < nyquist:
         raise UsageError(
             f"--velocity-filter {fc:g} is invalid: the cutoff must be at least {floor:.6g} Hz ({MIN_CUTOFF:g} cycles "
-            f"per sample: below, the filter pole cannot be told from the mass's pole in double precision) and below "
+            f"per sample: below, the linear analysis of a pole that close to the mass's has not been validated) and below "
             f"the Nyquist frequency {nyquist:.6g} Hz (1/(2T), T = {device.period:g} s); give a cutoff in Hz in "
             f"[{floor:.6g}, {nyquist:.6g}), or drop the flag"
         )

@@ -32,6 +32,7 @@ True
 from __future__ import annotations
 
 import functools
+import threading
 from collections.abc import Callable
 from typing import Any
 
@@ -39,6 +40,9 @@ __all__ = ["njit", "Deferred", "when_numba_loads"]
 
 _REGISTERED: list[bool] = []
 _WAITING: list[Callable[[Any], None]] = []
+#: One kernel made at a time: kernels are first called from worker threads (one dispatcher each, not one per
+#: thread), and the callbacks waiting for numba run once.
+_LOCK = threading.RLock()
 
 
 def _numba() -> Any:
@@ -46,16 +50,21 @@ def _numba() -> Any:
     import numba
     from numba.extending import typeof_impl
 
-    if not _REGISTERED:
-
-        @typeof_impl.register(Deferred)
-        def _typeof_deferred(val: Deferred, c: Any) -> Any:
-            return typeof_impl(val.dispatcher, c)
-
-        _REGISTERED.append(True)
-        while _WAITING:
-            _WAITING.pop(0)(numba)
+    with _LOCK:
+        if not _REGISTERED:
+            _register(typeof_impl)
+            _REGISTERED.append(True)
+            while _WAITING:
+                _WAITING.pop(0)(numba)
     return numba
+
+
+def _register(typeof_impl: Any) -> None:
+    """Let numba type a :class:`Deferred` as its dispatcher (a compiled kernel calling a deferred one)."""
+
+    @typeof_impl.register(Deferred)
+    def _typeof_deferred(val: Deferred, c: Any) -> Any:
+        return typeof_impl(val.dispatcher, c)
 
 
 def when_numba_loads(callback: Callable[[Any], None]) -> Callable[[], None]:
@@ -69,14 +78,17 @@ def when_numba_loads(callback: Callable[[Any], None]) -> Callable[[], None]:
     callable
         Withdraws the callback if it has not run yet (else does nothing).
     """
-    if _REGISTERED:
+    with _LOCK:
+        waiting = not _REGISTERED
+        if waiting:
+            _WAITING.append(callback)
+    if not waiting:
         callback(_numba())
-    else:
-        _WAITING.append(callback)
 
     def withdraw() -> None:
-        if callback in _WAITING:
-            _WAITING.remove(callback)
+        with _LOCK:
+            if callback in _WAITING:
+                _WAITING.remove(callback)
 
     return withdraw
 
@@ -102,7 +114,10 @@ class Deferred:
     def dispatcher(self) -> Any:
         """numba's dispatcher of the kernel (imports numba the first time)."""
         if self._dispatcher is None:
-            self._dispatcher = _numba().njit(**self.targetoptions)(self.py_func)
+            numba = _numba()
+            with _LOCK:
+                if self._dispatcher is None:
+                    self._dispatcher = numba.njit(**self.targetoptions)(self.py_func)
         return self._dispatcher
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
@@ -114,8 +129,16 @@ class Deferred:
             raise AttributeError(name)
         return getattr(self.dispatcher, name)
 
-    def __reduce__(self) -> tuple[Any, tuple[str, str]]:
-        return _resolve, (self.py_func.__module__, self.py_func.__qualname__)
+    def __reduce__(self) -> tuple[Any, tuple[Any, ...]]:
+        # by name when the module holds this kernel under its function's name (workers then share it), else a
+        # new Deferred of the same function (``_spring = njit(...)(spring_energy_core)`` in dfa.core.kernel)
+        try:
+            same = _resolve(self.py_func.__module__, self.py_func.__qualname__) is self
+        except (ImportError, AttributeError):
+            same = False
+        if same:
+            return _resolve, (self.py_func.__module__, self.py_func.__qualname__)
+        return Deferred, (self.py_func, self.targetoptions)
 
     def __repr__(self) -> str:
         return f"Deferred({self.py_func.__module__}.{self.py_func.__qualname__})"

@@ -68,9 +68,10 @@ __all__ = [
 ]
 
 #: Smallest velocity-filter cutoff accepted, in cycles per sample (1 Hz at 1 kHz). Below it the filter pole
-#: e^{−2πν_c} and the free mass's pole at z = 1 are too close to separate in double precision: a red-team check
-#: found the exact linear bound calling a stable loop "never stable" at ν_c = 1e-6 (verified stable with 60-digit
-#: roots); from 1e-3 to the Nyquist limit no such case was found.
+#: e^{−2πν_c} and the free mass's pole at z = 1 were too close to separate in powers of z: a red-team check found
+#: the exact linear bound calling a stable loop "never stable" at ν_c = 1e-6 (verified stable with 60-digit roots).
+#: The loop is now built in w = z − 1 (:class:`CommandPolynomials`), which keeps such poles apart; the floor stays
+#: where the analyses have been validated (from 1e-3 to the Nyquist limit).
 MIN_CUTOFF = 1.0e-3
 
 #: Shortest amplifier lag α (samples) other than 0: 1/α is then a finite float (at 5e-324 the kernel's rate was
@@ -557,8 +558,8 @@ def _check_cutoff(name: str, value: object, nyquist: float, unit: str) -> float:
     if out < floor * (1 - 1e-12):  # the floor as printed (6 digits) is accepted despite rounding
         raise DFAValueError(
             f"{name} = {format_value(out)} is invalid: it must be at least {floor:.6g} {unit} ({per_sample}below, the filter "
-            "pole and the free mass's pole at z = 1 cannot be told apart in double precision and the linear analysis "
-            f"is unreliable); give a cutoff of at least {floor:.6g} {unit}, or no filter"
+            "pole lies so close to the free mass's pole at z = 1 that the linear analysis has not been validated "
+            f"there); give a cutoff of at least {floor:.6g} {unit}, or no filter"
         )
     if not out < nyquist:
         raise DFAValueError(

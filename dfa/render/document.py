@@ -14,6 +14,7 @@ from typing import Any
 
 from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
+from ..results.status import SearchStatus
 from .answer import recommendation_text
 from .limits import spring_passive_text, spring_verdict_text
 from .text import growth_meaning, search_why
@@ -245,7 +246,9 @@ def absence_lines(a: DesignAnalysis) -> list[str]:
                     f"{m} loop: search incomplete beyond M = {res.max_amplitude:g} ticks ({why}); more cycles may exist."
                 )
             continue
-        if not res.complete:
+        if res.status is SearchStatus.FREQUENCY_RANGE:
+            out.append(f"{m} loop: no limit-cycle search: {why.removeprefix('not searched: ')}.")
+        elif not res.complete:
             out.append(
                 f"{m} loop: no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})."
             )

@@ -244,6 +244,8 @@ def flagged_text(maps: Any) -> str:
 
 def _no_cycle_line(res: Any, lin: str) -> str:
     why = search_why(res)
+    if res.status is SearchStatus.FREQUENCY_RANGE:
+        return f"no limit-cycle search: {why.removeprefix('not searched: ')}"
     if not res.complete:
         return f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})"
     if res.linear_stable is False:

@@ -281,6 +281,10 @@ class GrowthStatus(StatusEnum):
         "linear_unstable",
         "no unstable cycle predicted, but the linear loop (exact ZOH model) is unstable: amplitudes grow without bound",
     )
+    NOT_SEARCHED = (
+        "not_searched",
+        "no prediction: μ lies outside the range the limit-cycle search covers (dfa.analysis.cycles.SEARCHED_MU)",
+    )
 
 
 class NyquistStatus(StatusEnum):

@@ -9,7 +9,7 @@ from ...checks import check_type
 from ...errors import DFAValueError
 from ...model.device import Device, Params
 from ...results.base import Result
-from ...results.status import GrowthStatus
+from ...results.status import GrowthStatus, SearchStatus
 from .caveats import NO_CAVEAT, SubtickCaveat
 from .results import LimitCycle, LimitCycleResult
 from .solve import limit_cycles
@@ -165,6 +165,8 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs: Any
         check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     res = limit_cycles(params, **kwargs)
     unstable = res.unstable_cycles
+    if res.status is SearchStatus.FREQUENCY_RANGE:  # nothing searched: no claim on growth either way
+        return GrowthThreshold(None, None, None, res, status=GrowthStatus.NOT_SEARCHED, grows_above=None)
     if not unstable:
         if res.linear_stable is False:
             status = GrowthStatus.LINEAR_UNSTABLE
