@@ -748,21 +748,21 @@ def bench_controller_kernel(quick: bool) -> str:
         f()  # compile / load the cache
         return min(best_of(f, 1) for _ in range(3)) / f()[0]
 
-    full = CP(damping=0.5, cutoff=0.1, delay=1, lag=0.2)
+    full = CP.of(damping=0.5, cutoff=0.1, delay=1, lag=0.2)
     rows = []
     base = per_sample(lambda: (spring(), 0))
     rows.append(f"| spring kernel (dfa.core.kernel), delay 1 | {n} | {1e9 * base:.3g} | 1.00 |")
     for name, c in [
-        ("controller kernel, pure spring", CP()),
-        ("damper β_B = 0.5", CP(damping=0.5)),
-        ("damper + filter ν_c = 0.1 + delay 1", CP(damping=0.5, cutoff=0.1, delay=1)),
-        ("amplifier lag α = 0.2", CP(lag=0.2)),
+        ("controller kernel, pure spring", CP.of()),
+        ("damper β_B = 0.5", CP.of(damping=0.5)),
+        ("damper + filter ν_c = 0.1 + delay 1", CP.of(damping=0.5, cutoff=0.1, delay=1)),
+        ("amplifier lag α = 0.2", CP.of(lag=0.2)),
         ("damper + filter + delay 1 + lag α = 0.2", full),
     ]:
         t = per_sample(lambda c=c: ctl(c))
         rows.append(f"| {name} | {n} | {1e9 * t:.3g} | {t / base:.2f} |")
     skips = []
-    for name, c in [("damper + filter + delay 1 + lag α = 0.2", full), ("pure spring (never repeats here)", CP())]:
+    for name, c in [("damper + filter + delay 1 + lag α = 0.2", full), ("pure spring (never repeats here)", CP.of())]:
         t_all = per_sample(lambda c=c: ctl(c))
         t = per_sample(lambda c=c: ctl(c, True))
         skips.append(f"| {name} | {n} | {ctl(c, True)[1]} | {1e9 * t:.3g} | {t / t_all:.3g} |")
@@ -809,7 +809,7 @@ def bench_controller_design_answer(quick: bool) -> str:
     from dfa.core import wall_kernel
     from dfa.model.wall import WallParams as CP
 
-    e, st, c = np.empty(0), np.empty(kernel.NSTATS), CP(damping=0.5)
+    e, st, c = np.empty(0), np.empty(kernel.NSTATS), CP.of(damping=0.5)
     mu, beta, sigma, v0 = (CTL_RUN[k] for k in ("mu", "beta", "sigma", "xi_dot0"))
     run = (mu, beta, sigma, 0.0, v0, 50_000, 0, True, 1e6, 8192, c.damping, 0.0, False, 0.0, e, e, st, False)
     wall_kernel.run_wall_kernel(*run)
