@@ -19,17 +19,18 @@ from typing import Any, TextIO
 
 __all__ = ["FIRST_RUN_SECONDS", "compile_note", "note_text"]
 
-#: Seconds each command's first run spends compiling on a fresh cache (its example of ``dfa COMMAND --help``,
-#: measured on 2 shared cores, rounded); a command not listed says "up to a few minutes". Commands that compile
+#: Seconds each command's first run spends compiling on a fresh cache (its example of ``dfa COMMAND --help``:
+#: first run less a second one, measured on 2 cores on 2026-11-27, rounded); a command not listed says "up to a few minutes". Commands that compile
 #: nothing (devices, params, check, contours) never print the note.
 FIRST_RUN_SECONDS = {
-    "stiffness": 30,
-    "simulate": 20,
-    "map": 25,
-    "limit-cycles": 10,
-    "report": 70,
-    "zwidth": 150,
-    "validate": 150,
+    "stiffness": 25,
+    "simulate": 6,
+    "map": 12,
+    "limit-cycles": 3,
+    "require": 1,
+    "report": 15,
+    "zwidth": 30,
+    "validate": 40,
 }
 
 
@@ -39,7 +40,7 @@ def note_text(command: str | None, cache_dir: str) -> str:
     Examples
     --------
     >>> note_text("stiffness", os.path.expanduser("~/.cache/dfa/numba/0123456789abcdef"))
-    'dfa: compiling kernels once (about 30 s), cached in ~/.cache/dfa/numba/0123456789abcdef'
+    'dfa: compiling kernels once (about 25 s), cached in ~/.cache/dfa/numba/0123456789abcdef'
     """
     seconds = FIRST_RUN_SECONDS.get(command or "")
     about = f"about {seconds} s" if seconds else "up to a few minutes"
