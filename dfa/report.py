@@ -19,11 +19,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from ._io import staged_folder
 from .analysis.design import DesignAnalysis, design_analysis, resolve_design_inputs
-from .checks import check_choice, check_int, format_value
+from .checks import check_bool, check_choice, check_int, format_value
 from .errors import DFATypeError, DFAValueError
 from .model.catalogue import CatalogueEntry
 from .model.device import Device
@@ -338,10 +336,8 @@ def design_report(
     fmt = check_choice("fmt", fmt, ("html", "md", "both"))
     check_int("map_grid", map_grid, minimum=2, fix="use at least 2 points per axis")
     check_int("samples", samples, minimum=1, fix="simulate at least one sample")
-    if not isinstance(progress, (bool, np.bool_)):
-        raise DFATypeError(
-            f"progress = {format_value(progress)} has type {type(progress).__name__}: it must be True or False"
-        )
+    progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
+    force = check_bool("force", force, "pass True to replace a report of other inputs, False to refuse it")
     if not isinstance(out_dir, (str, os.PathLike)):
         raise DFATypeError(
             f"out_dir = {format_value(out_dir)} has type {type(out_dir).__name__}: it must be a folder path"

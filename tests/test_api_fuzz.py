@@ -271,8 +271,10 @@ def _strategy_for(name: str, obj):
     for pname, par in sig.parameters.items():
         if par.kind in (par.VAR_POSITIONAL, par.VAR_KEYWORD):
             continue
-        if par.default is not inspect.Parameter.empty:
+        if par.default is not inspect.Parameter.empty and not (pname in SIZES and name in SIZED):
             fields[pname] = st.one_of(st.just(inspect.Parameter.empty), _arg(pname, name))
+        elif par.default is not inspect.Parameter.empty:  # a size left out runs the default (contour_maps: 200²)
+            fields[pname] = _arg(pname, name)
         else:
             fields[pname] = _arg(pname, name)
     return st.fixed_dictionaries(fields).map(lambda d: {k: v for k, v in d.items() if v is not inspect.Parameter.empty})

@@ -163,7 +163,8 @@ def _solve(f: Callable[..., np.ndarray], lo: np.ndarray, hi: np.ndarray, args: t
 
 
 def _f43(w: np.ndarray, mu: np.ndarray, beta: np.ndarray, sigma: np.ndarray) -> np.ndarray:
-    return 0.5 * np.sin(w / 2) - beta * np.cos(w / 2) / (2 * mu * w) - sigma
+    with np.errstate(divide="ignore"):  # −∞ at ω = 0, the bracket's low end when √(β/μ) underflows: its limit
+        return 0.5 * np.sin(w / 2) - beta * np.cos(w / 2) / (2 * mu * w) - sigma
 
 
 def _f44(w: np.ndarray, mu: np.ndarray) -> np.ndarray:
