@@ -36,8 +36,7 @@ from .limits.closed_form import StiffnessLimits, StiffnessResponse, stiffness_li
 from .limits.kmax import KMaxResult, RunCache, check_search_range, design_answer
 from .limits.recommend import Recommendation, recommend_stiffness
 from .limits.speed_chart import StiffnessSpeedChart, check_chart_range, stiffness_speed_chart
-from .limits.zwidth import MAX_GRID as ZWIDTH_MAX_GRID
-from .limits.zwidth import ZWidth, z_width
+from .limits.zwidth import ZWidth, check_zwidth_size, z_width
 from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, stability_map
 from .simulation import SimulationResult, divergence_bound, simulate
@@ -463,10 +462,7 @@ def design_analysis(
     checked = _check_validation(validation)
     zg = check_int("zwidth_grid", zwidth_grid, 0, "give the Z-width's points per axis, or 0 for none") if (
         zwidth_grid is not None) else (0 if wall.params(dev.period).is_spring else WALL_ZWIDTH_GRID)  # fmt: skip
-    if zg > ZWIDTH_MAX_GRID:  # refused here, before the sections that run first
-        raise DFAValueError(
-            f"zwidth_grid = {zg} is invalid: it must be at most {ZWIDTH_MAX_GRID} points per axis; lower zwidth_grid"
-        )
+    check_zwidth_size(zg, names=("zwidth_grid", "speeds"))  # here, before the sections that run first
     steps = tqdm(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False)
     p, wp = dev.params(wall.stiffness), wall.params(dev.period)
     head = _closed_forms(dev, wall, v)

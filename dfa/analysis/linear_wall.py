@@ -315,14 +315,15 @@ def _ray(a: float, a_b: float, wall: WallParams) -> tuple[np.ndarray, np.ndarray
     return np.polyadd(np.polymul(dg, dh), a_b * np.polymul(ng, n2)), np.polymul(ng, n1)
 
 
-def _pq(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
-    """P₀(z) conj(Q(z)) at z = e^{jθ}, evaluated in w = z − 1 (the polynomials' own basis: full accuracy)."""
-    w = unit_circle_w(theta)
-    return np.polyval(p0, w) * np.conj(np.polyval(q, w))
+def _pq(p0: np.ndarray, q: np.ndarray, w: Any) -> tuple[Any, Any]:
+    """(P₀ conj(Q), Q) at w = z − 1, in the polynomials' own basis (full accuracy)."""
+    qw = np.polyval(q, w)
+    return np.polyval(p0, w) * np.conj(qw), qw
 
 
 def _im_part(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
-    return np.imag(_pq(p0, q, theta))
+    """Im(P₀ Q̄) at z = e^{jθ}."""
+    return np.imag(_pq(p0, q, unit_circle_w(theta))[0])
 
 
 def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
@@ -371,8 +372,8 @@ def _crossings(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
     ks = []
     for t in _candidate_angles(p0, q):
         w = unit_circle_w(t) if 0.0 < t < math.pi else complex(-2.0 if t >= math.pi else 0.0, 0.0)
-        pq = np.polyval(p0, w) * np.conj(np.polyval(q, w))
-        qq = abs(np.polyval(q, w)) ** 2
+        pq, qw = _pq(p0, q, w)
+        qq = abs(qw) ** 2
         if qq > 0.0:
             k = -pq.real / qq
             if k > 0.0 and math.isfinite(k) and abs(pq.imag) <= 1e-6 * abs(pq):

@@ -118,11 +118,9 @@ def run(args: argparse.Namespace) -> int:
     wall = ctl if ctl is not None else Wall.of(inp.stiffness, delay=args.delay)
     resolve_design_inputs(inp.entry or inp.device, wall, v)  # refused before any output (its ranges, issue 27)
     if args.zwidth and v is not None and v > 0:
-        from ..analysis.limits.zwidth import MAX_GRID, z_width_seconds
+        from ..analysis.limits.zwidth import check_zwidth_size, z_width_seconds
 
-        if args.zwidth > MAX_GRID:  # before any section runs (the Z-width is the report's last)
-            raise UsageError(f"--zwidth {args.zwidth} is invalid: it must be at most {MAX_GRID}; lower --zwidth")
-
+        check_zwidth_size(args.zwidth, names=("--zwidth", "--speeds"))  # before any section runs
         seconds = z_width_seconds(inp.device, v, wall=wall, grid=args.zwidth, speeds=1)
         check_work_time(f"--zwidth {args.zwidth}", seconds, "lower --zwidth", args.force)
     make_output_folder("--out", args.out)

@@ -84,7 +84,7 @@ def _cell(value: float | None) -> str:
 def run(args: argparse.Namespace) -> int:
     """Compute the Z-width; print K_max(B) per method."""
     from ..analysis.limits.require import damper_guidance
-    from ..analysis.limits.zwidth import MAX_GRID, MAX_SPEEDS, ZWIDTH_METHODS, z_width, z_width_seconds
+    from ..analysis.limits.zwidth import ZWIDTH_METHODS, check_zwidth_size, z_width, z_width_seconds
     from ..render.zwidth import criterion_damper_note, non_monotone_mark, non_monotone_notes
 
     _refuse(args)
@@ -97,10 +97,7 @@ def run(args: argparse.Namespace) -> int:
     wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
                    amplifier_bandwidth=args.amplifier_bandwidth)  # fmt: skip
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
-    if args.grid > MAX_GRID:  # before the time estimate: --force cannot lift it
-        raise UsageError(f"--grid {args.grid} is invalid: it must be at most {MAX_GRID} points per axis; lower --grid")
-    if args.speeds > MAX_SPEEDS:
-        raise UsageError(f"--speeds {args.speeds} is invalid: it must be at most {MAX_SPEEDS}; give e.g. --speeds 4")
+    check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
     seconds = z_width_seconds(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs)
     check_work_time(f"--grid {args.grid} with --speeds {args.speeds}", seconds, "lower --grid or --speeds", args.force)
     zw = z_width(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, progress=progress(args))

@@ -17,7 +17,7 @@ from ..formatting import markdown_table, number, percent
 from ..results.status import SearchStatus
 from .answer import recommendation_text
 from .limits import spring_passive_text, spring_verdict_text
-from .text import growth_meaning, search_why
+from .text import growth_meaning, outside_searched_mu, search_why
 
 __all__ = ["design_html", "design_markdown", "markdown_to_html"]
 
@@ -247,7 +247,7 @@ def absence_lines(a: DesignAnalysis) -> list[str]:
                 )
             continue
         if res.status is SearchStatus.FREQUENCY_RANGE:
-            out.append(f"{m} loop: no limit-cycle search: {why.removeprefix('not searched: ')}.")
+            out.append(f"{m} loop: no limit-cycle search: {outside_searched_mu(res.mu)}.")
         elif not res.complete:
             out.append(
                 f"{m} loop: no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})."

@@ -20,6 +20,7 @@ __all__ = [
     "growth_meaning",
     "limit_cycle_lines",
     "limit_cycles_dict",
+    "outside_searched_mu",
     "rest_caveat_text",
     "search_text",
     "search_why",
@@ -172,12 +173,7 @@ def search_why(res: Any) -> str:
     status = getattr(res, "status", None)
     code = status if isinstance(status, SearchStatus) else _solver_status(ev, res)
     if code is SearchStatus.FREQUENCY_RANGE:
-        from ..analysis.cycles import SEARCHED_MU  # here: it loads the limit-cycle package
-
-        return (
-            f"not searched: μ = {res.mu:.3g} lies outside {SEARCHED_MU[0]:g} … {SEARCHED_MU[1]:g}, where cycle "
-            "frequencies may fall outside the scanned grid (haptic devices lie between about 1e-2 and 1e7)"
-        )
+        return f"not searched: {outside_searched_mu(res.mu)}"
     if code is SearchStatus.NUMERICAL:
         beyond = f", and beyond {ev.reached:g} ticks" if ev.reached is not None else ""
         return f"{ev.failures} root bracket(s) could not be refined (numerical failure); cycles may be missing{beyond}"
@@ -191,6 +187,22 @@ def search_why(res: Any) -> str:
     if code is SearchStatus.MAX_AMPLITUDE:
         return f"cycles may exist beyond max_amplitude = {ev.requested:g} ticks"
     return str(SearchStatus.COMPLETE.message)
+
+
+def outside_searched_mu(mu: float) -> str:
+    """Why a limit-cycle search at ``mu`` searched nothing (status ``frequency_range``), one clause.
+
+    Examples
+    --------
+    >>> outside_searched_mu(1e10)[:40]
+    'μ = 1e+10 lies outside 1e-06 … 1e+08, wh'
+    """
+    from ..analysis.cycles import SEARCHED_MU  # here: it loads the limit-cycle package
+
+    return (
+        f"μ = {mu:.3g} lies outside {SEARCHED_MU[0]:g} … {SEARCHED_MU[1]:g}, where cycle "
+        "frequencies may fall outside the scanned grid (haptic devices lie between about 1e-2 and 1e7)"
+    )
 
 
 def _solver_status(ev: Any, res: Any) -> SearchStatus:
@@ -245,7 +257,7 @@ def flagged_text(maps: Any) -> str:
 def _no_cycle_line(res: Any, lin: str) -> str:
     why = search_why(res)
     if res.status is SearchStatus.FREQUENCY_RANGE:
-        return f"no limit-cycle search: {why.removeprefix('not searched: ')}"
+        return f"no limit-cycle search: {outside_searched_mu(res.mu)}"
     if not res.complete:
         return f"no limit cycle found up to M = {res.max_amplitude:g} ticks (search incomplete: {why})"
     if res.linear_stable is False:

@@ -100,7 +100,7 @@ from .kmax import describing_limit, wall_k_criterion
 from .runs import DIVERGENCE_BOUND, SAFE, UNSAFE, RunCache, decide_undecided
 from .search import KLimit, grid_search
 
-__all__ = ["ZWidth", "z_width", "z_width_seconds", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
+__all__ = ["ZWidth", "z_width", "z_width_seconds", "check_zwidth_size", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
 
 #: Longest run of one Z-width simulation (samples); longer automatic lengths are cut (and may be undecided).
 ZWIDTH_MAX_SAMPLES = 200_000
@@ -593,19 +593,13 @@ def z_width(
     warn_if_from_outside("velocity", v, rotary=dev.rotary)
     base = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
     g = check_int("grid", grid, minimum=2, fix="give at least 2 points per axis")
-    if g > MAX_GRID:
-        raise DFAValueError(f"grid = {g} is invalid: it must be at most {MAX_GRID} points per axis; lower --grid")
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
-    if n_speeds > MAX_SPEEDS:
-        raise DFAValueError(
-            f"speeds = {n_speeds} is invalid: it must be at most {MAX_SPEEDS} impact speeds per grid point (each "
-            "simulated from two starts); give fewer speeds"
-        )
+    check_zwidth_size(g, n_speeds)
     cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")
     model = check_choice("df_model", df_model, ("half-delay", "zoh", "pade"))
     jobs = check_jobs("n_jobs", n_jobs)
     progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
-    workers = (os.cpu_count() or 1) if jobs == -1 else jobs
+    workers = _workers(jobs)
     base.params(dev.period)  # bad wall values (a cutoff above Nyquist): refuse first
     ks, bs = _grids(dev, base, g, k_range, b_range)
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
@@ -618,6 +612,35 @@ def z_width(
         )
     codes = _simulate_grid(tasks, workers, progress, f"Z-width {dev.name}").reshape(g, g)
     return _assemble(dev, base, v, vs, ks, bs, codes, cap, len(tasks), model, workers, progress)
+
+
+def check_zwidth_size(grid: int, speeds: int = 1, names: tuple[str, str] = ("grid", "speeds")) -> None:
+    """Refuse a Z-width grid above :data:`MAX_GRID` points per axis or more than :data:`MAX_SPEEDS` speeds.
+
+    The one rule of :func:`z_width`, the report's Z-width and the command line (``names``: the inputs as the
+    caller calls them, a flag printed as ``--grid 300``), checked before any work or time estimate.
+
+    Examples
+    --------
+    >>> check_zwidth_size(300, names=("--zwidth", "--speeds"))
+    Traceback (most recent call last):
+    ...
+    dfa.errors.DFAValueError: --zwidth 300 is invalid: it must be at most 200 points per axis; lower --zwidth
+    """
+    limits = ((grid, MAX_GRID, "points per axis", "lower"), (speeds, MAX_SPEEDS, _PER_POINT, "give fewer"))
+    for name, (value, top, what, fix) in zip(names, limits, strict=True):
+        if value > top:
+            shown = f"{name} {value}" if name.startswith("--") else f"{name} = {value}"
+            raise DFAValueError(f"{shown} is invalid: it must be at most {top} {what}; {fix} {name}")
+
+
+#: What a speed limit counts (the message of :func:`check_zwidth_size`).
+_PER_POINT = "impact speeds per grid point (each simulated from two starts)"
+
+
+def _workers(jobs: int) -> int:
+    """The workers of ``n_jobs`` (-1: every core)."""
+    return (os.cpu_count() or 1) if jobs == -1 else jobs
 
 
 def z_width_seconds(
@@ -659,7 +682,7 @@ def z_width_seconds(
     ks, bs = _grids(device, base, small, None, None)
     vs = velocity * np.arange(1, speeds + 1) / speeds
     _, work = _plan(device, base, ks, bs, [device.xi_dot(float(s)) for s in vs], max_samples)
-    workers = (os.cpu_count() or 1) if n_jobs == -1 else max(int(n_jobs), 1)
+    workers = max(_workers(int(n_jobs)), 1)
     samples = work * (float(grid) / small) ** 2
     return (samples * NS_PER_SAMPLE * 1e-9 + grid * COLUMN_SECONDS) / workers
 
