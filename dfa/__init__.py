@@ -86,6 +86,7 @@ from .model.catalogue import (
 )
 from .model.device import Device, Params
 from .model.elements import AmplifierLag, Damper, Delay, VelocityFilter
+from .model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
 from .model.wall import Wall, WallParams
 
 #: The distribution's name on the package index ("dfa" there is an unrelated project); ``import dfa`` and
@@ -180,6 +181,10 @@ def __dir__() -> list[str]:
 __all__ = [
     "Device",
     "Params",
+    "Hand",
+    "HAND_PRESETS",
+    "HandNotCovered",
+    "get_hand",
     "Wall",
     "WallParams",
     "Damper",

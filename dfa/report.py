@@ -7,7 +7,8 @@ together or not at all (:func:`dfa._io.staged_folder`), with ``design_report_{na
 inputs and numbers stated, used to refuse overwriting the report of another device, stiffness, speed or delay.
 A report of a wall beyond the paper's spring (a virtual damper, velocity filter or amplifier lag) is named
 ``design_report_{name}_controller.*`` (figures ``{name}_controller_*.png``): it never replaces the spring report of
-the same device, and a report of another wall in the way is refused like any report of other inputs.
+the same device, and a report of another wall in the way is refused like any report of other inputs. A device
+held by a hand (:meth:`dfa.Device.holding`) adds ``_held`` to the name (``design_report_{name}_held.*``).
 """
 
 from __future__ import annotations
@@ -158,15 +159,16 @@ def _identity(device: Device, wall: Wall, velocity: float) -> dict[str, Any]:
     return json.loads(dumps(ident, ensure_ascii=False))
 
 
-def report_name(name: str, beyond_spring: bool = False) -> str:
-    """File-name part of a report: the device's slug, with ``_controller`` for a wall beyond the spring.
+def report_name(name: str, beyond_spring: bool = False, held: bool = False) -> str:
+    """File-name part of a report: the device's slug, with ``_held`` for a device held by a hand and
+    ``_controller`` for a wall beyond the spring.
 
     Examples
     --------
-    >>> report_name("Delta"), report_name("Delta", True)
-    ('delta', 'delta_controller')
+    >>> report_name("Delta"), report_name("Delta", True), report_name("Delta", held=True)
+    ('delta', 'delta_controller', 'delta_held')
     """
-    return report_slug(name) + ("_controller" if beyond_spring else "")
+    return report_slug(name) + ("_held" if held else "") + ("_controller" if beyond_spring else "")
 
 
 def _doc_names(slug: str, fmt: str) -> tuple[list[str], str]:
@@ -179,7 +181,7 @@ def _check_overwrite(out: Path, fmt: str, ident: dict[str, Any]) -> None:
     """Refuse to replace a report of another device, stiffness, speed or delay (the fix: --name, --out, --force)."""
     name = ident["device"]["name"]
     ctl = ident.get("controller")
-    docs, meta = _doc_names(report_slug(name) + ("_controller" if ctl is not None else ""), fmt)
+    docs, meta = _doc_names(report_name(name, ctl is not None, "hand" in ident["device"]), fmt)
     existing = [n for n in docs + [meta] if (out / n).exists()]
     if not existing:
         return
@@ -250,7 +252,7 @@ def write_design_report(
     if not out.is_dir():
         raise DFAValueError(f"out_dir = {str(out)!r} is invalid: the folder does not exist; create it first")
     a = analysis
-    slug = report_name(a.device.name, not a.is_spring)
+    slug = report_name(a.device.name, not a.is_spring, a.device.hand is not None)
     docs, meta = _doc_names(slug, fmt)
     ident = _identity(a.device, a.wall, a.velocity)
     if not force:

@@ -131,7 +131,7 @@ VALID = {
 }
 
 #: Names that are not callables: checked to be the documented constants.
-CONSTANTS = {"DEFAULT_DEVICE", "REGION_DESCRIPTIONS", "LOOP_MODELS"}
+CONSTANTS = {"DEFAULT_DEVICE", "REGION_DESCRIPTIONS", "LOOP_MODELS", "HAND_PRESETS"}
 
 #: Result records: built by the package from validated inputs, not by users (their construction-time
 #: validation is the result-objects work); the fuzz calls the functions that return them instead.
@@ -170,7 +170,7 @@ EXAMPLES = {
 }
 
 #: The package's error types (builtin signatures): checked to derive from DFAError and the builtins.
-ERRORS = {"DFAError", "DFAValueError", "DFATypeError", "DeviceFileError", "ImplausibleInputWarning"}
+ERRORS = {"DFAError", "DFAValueError", "DFATypeError", "DeviceFileError", "ImplausibleInputWarning", "HandNotCovered"}
 
 NAMES = [n for n in dfa.__all__ if n not in CONSTANTS | RESULTS | ERRORS]
 
@@ -330,6 +330,8 @@ def test_api_fuzz_covers_every_name():
     assert issubclass(dfa.DFAValueError, (dfa.DFAError, ValueError)) and issubclass(dfa.DFATypeError, TypeError)
     assert issubclass(dfa.DeviceFileError, dfa.DFAValueError) and issubclass(dfa.ImplausibleInputWarning, UserWarning)
     assert dfa.DEFAULT_DEVICE in {e.name for e in dfa.catalogue()}
+    assert issubclass(dfa.HandNotCovered, dfa.DFAValueError)
+    assert all(isinstance(h, dfa.Hand) and h.stiffness == 0.0 for h in dfa.HAND_PRESETS.values())
     assert set(dfa.LOOP_MODELS) == {"half-delay", "pade", "zoh"}
     assert all(isinstance(v, str) for v in dfa.REGION_DESCRIPTIONS.values())
 

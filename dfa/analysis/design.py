@@ -33,6 +33,7 @@ from .check import PassivityCheck, passivity_check
 from .criterion import CriterionResult
 from .cycles import GrowthThreshold, LimitCycleResult, growth_threshold
 from .limits.closed_form import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
+from .limits.grip import GripSweep, grip_sweep
 from .limits.kmax import KMaxResult, RunCache, check_search_range, design_answer
 from .limits.recommend import Recommendation, recommend_stiffness
 from .limits.speed_chart import StiffnessSpeedChart, check_chart_range, stiffness_speed_chart
@@ -117,6 +118,9 @@ class DesignAnalysis(Result):
     zwidth : ZWidth or None
         The Z-width at the design speed with the wall's delay, filter and lag (:func:`dfa.analysis.limits.zwidth.z_width`,
         a ``zwidth_grid`` grid); None at speed 0 or when not asked.
+    grip : GripSweep or None
+        How firm a grip the wall needs at K and ẋ0 (:func:`dfa.analysis.limits.grip.grip_sweep`: the bare device,
+        the hand's mass held); None at speed 0.
     catalogue : dict or None
         The paper's printed (μ, β, σ), the disagreements and the notes of a catalogue device.
     validation : dict or None
@@ -146,6 +150,7 @@ class DesignAnalysis(Result):
     design_answer: KMaxResult | None = field(default=None, repr=False)
     speed_chart: StiffnessSpeedChart | None = field(default=None, repr=False)
     zwidth: ZWidth | None = field(default=None, repr=False)
+    grip: GripSweep | None = field(default=None, repr=False)
     catalogue: dict[str, Any] | None = None
     validation: dict[str, Any] | None = None
     samples: int = 30_000
@@ -486,6 +491,8 @@ def design_analysis(
             figs["speed_chart"] = stiffness_speed_chart(
                 dev, wall=wall, stiffness=wall.stiffness, velocity=v, cache=cache
             )
+    if v > 0:  # how firm a grip the wall needs (the bare device, the hand's mass held)
+        figs["grip"] = grip_sweep(dev.bare, wall, v, hand_mass=0.0 if dev.hand is None else dev.hand.mass)
     if v > 0 and zg:
         figs["zwidth"] = _zwidth(dev, v, wall, not wp.is_spring, zg, n_jobs, progress)
     inputs: dict[str, Any] = dict(

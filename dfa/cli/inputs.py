@@ -19,10 +19,13 @@ from ..checks import check_beta, check_mu, check_real, check_sigma, check_speed
 from ..errors import DFAError
 from ..model.catalogue import CatalogueEntry, get_device, load_device_file, resolve_device
 from ..model.device import Device, Params, dimensionless_params
+from ..model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
 from ..plausibility import warn_implausible
+from ..render.hand import hand_label
 from .parsing import UsageError, integer, name, number
 
 __all__ = [
+    "HAND_FLAGS",
     "PHYS_FLAGS",
     "Inputs",
     "add_device_group",
@@ -36,9 +39,16 @@ __all__ = [
     "plane_device",
     "range_arg",
     "resolve",
+    "resolve_hand",
     "speed",
 ]
 
+#: The hand's flags: dest -> (flag, unit).
+HAND_FLAGS = {
+    "hand_mass": ("--hand-mass", "kg (rotary: kg·m²)"),
+    "hand_damping": ("--hand-damping", "N·s/m (rotary: N·m·s/rad)"),
+    "hand_stiffness": ("--hand-stiffness", "N/m (rotary: N·m/rad)"),
+}
 #: The physical flags of a device: dest -> (flag, unit).
 PHYS_FLAGS = {
     "mass": ("--mass", "kg (rotary: inertia in kg·m²)"),
@@ -116,7 +126,58 @@ def add_device_group(p: argparse.ArgumentParser, title: str) -> Any:
         action="store_true",
         help="physical values are rotary (rad, N·m, inertia in kg·m²); default: linear (m, N, kg)",
     )
+    _add_hand_args(p)
     return g
+
+
+def _add_hand_args(p: argparse.ArgumentParser) -> None:
+    """--hand and --hand-mass/-damping/-stiffness: a hand holding the device (dfa.model.hand)."""
+    h = p.add_argument_group("a hand holding the device (default: none, the paper's worst case)")
+    h.add_argument(
+        "--hand",
+        metavar="PRESET",
+        help=f"hand preset: {', '.join(HAND_PRESETS)} (paper: Table 2's human operator, 0.150 kg and 4.8 N·s/m "
+        "added to the device's); the flags below replace its values; default: none",
+    )
+    for key, (flag, unit) in HAND_FLAGS.items():
+        h.add_argument(
+            flag,
+            dest=key,
+            type=number(flag, unit),
+            metavar="X",
+            help=f"hand {key.removeprefix('hand_')} in {unit}"
+            + (" (only 0 is covered yet)" if key == "hand_stiffness" else ", added to the device's")
+            + "; default: the preset's, else 0",
+        )
+
+
+def resolve_hand(args: argparse.Namespace, rotary: bool) -> Hand | None:
+    """The hand of --hand and --hand-mass/-damping/-stiffness, or None when none is given."""
+    preset = getattr(args, "hand", None)
+    values = {k.removeprefix("hand_"): getattr(args, k, None) for k in HAND_FLAGS}
+    if preset is None and all(v is None for v in values.values()):
+        return None
+    base = Hand(0.0, name="hand")
+    if preset is not None:
+        try:
+            base = get_hand(preset)
+        except DFAError:
+            raise UsageError(
+                f"--hand {preset!r} is not a hand preset: choose one of {', '.join(HAND_PRESETS)}, "
+                "or give --hand-mass and --hand-damping"
+            ) from None
+        if rotary and not base.is_empty:
+            raise UsageError(
+                f"--hand {preset} holds a linear device's values (kg, N·s/m): for a rotary device give "
+                "--hand-mass (kg·m²) and --hand-damping (N·m·s/rad) instead"
+            )
+    given = {k: v for k, v in values.items() if v is not None}
+    for key, v in given.items():
+        flag = HAND_FLAGS["hand_" + key][0]
+        if not (math.isfinite(v) and v >= 0.0):
+            raise UsageError(f"{flag} {v:g} is invalid: it must be a finite number >= 0; give 0 for none")
+    name = base.name if not given else ("hand" if preset is None else f"{base.name}, changed")
+    return Hand(**{**{k: getattr(base, k) for k in values}, **given}, name=name, source=base.source)
 
 
 def add_device_args(
@@ -168,6 +229,8 @@ def _dimensionless(args: argparse.Namespace, phys_given: list[str], dim_given: l
     others += [f"--{k}" for k in ("counts", "name") if getattr(args, k, None) is not None]
     others += ["--stiffness"] if args.stiffness is not None else []
     others += ["--velocity"] if getattr(args, "velocity", None) is not None else []
+    others += ["--hand"] if getattr(args, "hand", None) is not None else []
+    others += [f for k, (f, _u) in HAND_FLAGS.items() if getattr(args, k, None) is not None]
     if others:
         raise UsageError(
             f"{', '.join(_DIMLESS_FLAGS[k] for k in dim_given)} cannot be combined with {', '.join(others)}: "
@@ -222,14 +285,21 @@ def resolve(
         label=getattr(args, "name", None),
         flags=_FLAG_NAMES,
     )
-    dev = r.device
+    dev, label, entry = r.device, r.label, r.entry
+    hand = resolve_hand(args, dev.rotary)
+    if hand is not None:
+        try:
+            dev = dev.holding(hand)
+        except HandNotCovered as err:
+            raise UsageError(str(err).replace("hand_stiffness = ", "--hand-stiffness ")) from None
+        label, entry = f"{label}, held by {hand_label(hand, dev.units)}", None  # no longer the catalogue row
     if r.stiffness is None and not need_stiffness:
-        return Inputs(None, math.nan, math.nan, dev, None, r.label, r.entry)
+        return Inputs(None, math.nan, math.nan, dev, None, label, entry)
     if r.stiffness is None:
         where = f"device file {path!r} gives no stiffness" if path is not None else "no catalogue stiffness"
         raise UsageError(f"missing --stiffness: {where} for {dev.name!r}; give K in {dev.units['stiffness']}")
     p = dimensionless_params(dev, r.stiffness)  # resolve_device has refused groups that overflow or vanish
-    return Inputs(p, p.beta, p.sigma, dev, r.stiffness, r.label, r.entry)
+    return Inputs(p, p.beta, p.sigma, dev, r.stiffness, label, entry)
 
 
 def _device_file(args: argparse.Namespace) -> str | None:
@@ -261,7 +331,7 @@ def _warn_implausible(args: argparse.Namespace, entry: CatalogueEntry | None, pa
 
 def device_given(args: argparse.Namespace) -> bool:
     """True when any device flag (--device, --device-file, a physical value, --counts, --name, --stiffness) is given."""
-    keys = (*PHYS_FLAGS, "stiffness", "counts", "name")
+    keys = (*PHYS_FLAGS, "stiffness", "counts", "name", "hand", *HAND_FLAGS)
     return bool(args.device) or _device_file(args) is not None or any(getattr(args, k, None) is not None for k in keys)
 
 

@@ -116,12 +116,13 @@ def run(args: argparse.Namespace) -> int:
 def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp: Inputs) -> None:
     """The full answer (``--explain``): every limit in words with what its confirmation simulated."""
     from ..render.answer import recommendation_line
+    from ..render.hand import device_title
     from ..render.limits import PROOF_NOTE, evidence_text, kmax_rows, verdict_text
 
     dev, v, wall = ans.device, ans.velocity, ans.wall
     vu, d = dev.units["velocity"], wall.delay
     print(
-        f"{dev.name}, impact speed {v:.4g} {vu} ({ans.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
+        f"{device_title(dev)}, impact speed {v:.4g} {vu} ({ans.xi_dot:.4g} ticks/sample), delay {d} sample{'s' if d != 1 else ''}"
         + ("" if ctl is None else "; B, f_c, f_bw held fixed while K varies")
     )
     print_wall(ctl, inp, wrap=False)

@@ -8,6 +8,7 @@ import math
 
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..model.wall import Wall
+from ..render.hand import device_title
 from .inputs import add_device_group, impact_speed, resolve
 from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, fmt, progress, save_png, say, table
 from .parsing import UsageError, integer, number
@@ -118,7 +119,9 @@ def run(args: argparse.Namespace) -> int:
     fc, bw = zw.wall.filter_cutoff, zw.wall.amplifier_bandwidth
     elements = f"delay {zw.delay}" + (f", velocity filter {fmt(fc)} Hz" if fc is not None else "")
     elements += f", amplifier {fmt(bw)} Hz" if bw is not None else ""
-    say(f"Z-width of {dev.name}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}")
+    say(
+        f"Z-width of {device_title(dev)}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}"
+    )
     say(f"K_max(B) in {u['stiffness']} ('-': undefined, see --json for the reason)")
     say(table(rows, [f"B ({u['damping']})"] + [COLUMNS[m] for m in ZWIDTH_METHODS]))
     say(

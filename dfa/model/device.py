@@ -33,9 +33,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..checks import check_beta, check_mu, check_nonnegative, check_positive, check_real, check_sigma, format_value
+from ..checks import (
+    check_beta,
+    check_mu,
+    check_nonnegative,
+    check_positive,
+    check_real,
+    check_sigma,
+    check_type,
+    format_value,
+)
 from ..errors import DFATypeError, DFAValueError
 from ..plausibility import warn_if_from_outside
+from .hand import Hand
 
 __all__ = ["Params", "Device", "dimensionless_params", "device_units"]
 
@@ -141,6 +151,10 @@ class Device:
         A label used in reports.
     rotary : bool, optional
         True when positions are angles and forces are torques (only changes units).
+    hand : Hand or None, optional
+        The hand holding the device, when ``mass`` and ``damping`` include its own (a device built by
+        :meth:`holding`); None for the bare device (default). It is provenance for outputs: every analysis
+        reads ``mass`` and ``damping``.
 
     Warns
     -----
@@ -156,6 +170,7 @@ class Device:
     period: float
     name: str = "custom device"
     rotary: bool = False
+    hand: Hand | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(
@@ -186,6 +201,9 @@ class Device:
                 f"rotary = {format_value(self.rotary)} has type {type(self.rotary).__name__}: it must be True or False; pass rotary=True for a rotary joint"
             )
         object.__setattr__(self, "rotary", bool(self.rotary))
+        if self.hand is not None:
+            check_type("hand", self.hand, Hand, "give a dfa.Hand, or use device.holding(hand)")
+            self.hand.check_covered()
         for quantity in ("mass", "resolution", "period"):  # a value no haptic device has: warn, naming the slip
             warn_if_from_outside(quantity, getattr(self, quantity), rotary=self.rotary)
 
@@ -194,6 +212,70 @@ class Device:
     def units(self) -> dict[str, str]:
         """Unit strings of each physical quantity for this device (:func:`device_units`)."""
         return device_units(self.rotary)
+
+    # ------------------------------------------------------------------ a hand
+    def holding(self, hand: Hand) -> Device:
+        """The device held by ``hand``: its mass and damping added to the device's (paper Table 2).
+
+        A hand that holds the handle moves with it: (m + m_h) ẍ + (b + b_h) ẋ + c sgn(ẋ) = F_A (paper eq. 3
+        with F_H = −m_h ẍ − b_h ẋ), so every analysis of the held device is that of a bare device with
+        m + m_h and b + b_h, exactly (a hand of zero mass and damping gives the device back bit for bit).
+
+        Parameters
+        ----------
+        hand : Hand
+            The hand (:func:`dfa.get_hand` for a preset); its stiffness must be 0 (not covered yet).
+
+        Returns
+        -------
+        Device
+            Same name, friction, encoder and period; ``mass`` m + m_h, ``damping`` b + b_h, ``hand`` set.
+
+        Raises
+        ------
+        HandNotCovered
+            For a hand stiffness > 0.
+        DFAValueError
+            If the device already holds a hand.
+
+        Examples
+        --------
+        >>> from dfa.model.hand import Hand
+        >>> dev = Device(0.25, 0.01, 0.883, 30e-6, 1 / 3000, name="Delta").holding(Hand(0.15, 4.8))
+        >>> round(dev.mass, 12), round(dev.damping, 12), dev.hand.mass
+        (0.4, 4.81, 0.15)
+        """
+        hand = check_type("hand", hand, Hand, "give a dfa.Hand (dfa.get_hand('paper') for the paper's)")
+        hand.check_covered()
+        if self.hand is not None:
+            raise DFAValueError(
+                f"hand = {hand.name!r} cannot be added: the device {self.name!r} already holds {self.hand.name!r}; "
+                "call holding() on the bare device"
+            )
+        return Device(
+            self.mass + hand.mass, self.damping + hand.damping, self.coulomb, self.resolution, self.period,
+            name=self.name, rotary=self.rotary, hand=hand,
+        )  # fmt: skip
+
+    @property
+    def bare(self) -> Device:
+        """The device without its hand (itself when none holds it): ``mass`` and ``damping`` less the hand's."""
+        if self.hand is None:
+            return self
+        return Device(
+            self.own_mass, self.own_damping, self.coulomb, self.resolution, self.period, name=self.name,
+            rotary=self.rotary,
+        )  # fmt: skip
+
+    @property
+    def own_mass(self) -> float:
+        """The device's own moving mass (kg, rotary kg·m²): ``mass`` less the hand's (for outputs)."""
+        return self.mass if self.hand is None else self.mass - self.hand.mass
+
+    @property
+    def own_damping(self) -> float:
+        """The device's own viscous friction (N·s/m): ``damping`` less the hand's (for outputs)."""
+        return self.damping if self.hand is None else self.damping - self.hand.damping
 
     # ------------------------------------------------------- dimensionless form
     def params(self, stiffness: float) -> Params:
@@ -363,9 +445,10 @@ class Device:
         Returns
         -------
         dict
-            ``name``, ``rotary``, ``mass``, ``damping``, ``coulomb``, ``resolution``, ``period``.
+            ``name``, ``rotary``, ``mass``, ``damping``, ``coulomb``, ``resolution``, ``period``; with a hand
+            also ``hand`` (:meth:`Hand.to_dict`), and ``mass`` and ``damping`` include the hand's.
         """
-        return {
+        out: dict[str, object] = {
             "name": self.name,
             "rotary": self.rotary,
             "mass": self.mass,
@@ -374,6 +457,9 @@ class Device:
             "resolution": self.resolution,
             "period": self.period,
         }
+        if self.hand is not None:
+            out["hand"] = self.hand.to_dict()
+        return out
 
 
 def _stiffness(name: str, value: float, k: float, formula: str) -> float:

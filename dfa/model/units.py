@@ -159,7 +159,8 @@ def unit_context(device: Device | None, stiffness: float | None, velocity: float
     (every value None without a device)."""
     dev, k = _checked(device, stiffness)
     u = dev.units if dev is not None else None
-    return {
+    hand = {} if dev is None or dev.hand is None else {"hand": dev.hand.to_dict()}
+    return hand | {
         "device": None if dev is None else dev.name,
         "rotary": None if dev is None else dev.rotary,
         "stiffness": k,

@@ -17,6 +17,7 @@ from ..analysis.limits.require import DamperGuidance
 from ..analysis.limits.search import KLimit
 from ..formatting import WIDTH, fill, number, text_table
 from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
+from .hand import device_title
 from .limits import counterexample_lines, limit_tags, none_text, passive_text
 from .require import damper_line
 
@@ -160,7 +161,7 @@ def _header(r: KMaxResult) -> list[str]:
     u = r.device.units
     w = r.wall
     d = f"delay {w.delay} sample{'s' if w.delay != 1 else ''}"
-    head = f"{r.device.name}, impact at {number(r.velocity, 4)} {u['velocity']} ({number(r.xi_dot, 4)} ticks/sample)"
+    head = f"{device_title(r.device)}, impact at {number(r.velocity, 4)} {u['velocity']} ({number(r.xi_dot, 4)} ticks/sample)"
     if w.params(r.device.period).is_spring:
         return [wrap(f"{head}; the spring, {d}")]
     parts = [f"B = {number(w.damping, 4)} {u['damping']}"] if w.damping else []

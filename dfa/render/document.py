@@ -16,6 +16,7 @@ from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
 from ..results.status import SearchStatus
 from .answer import recommendation_text
+from .hand import grasp_text, grip_rows, grip_text
 from .limits import spring_passive_text, spring_verdict_text
 from .text import growth_meaning, outside_searched_mu, search_why
 
@@ -160,6 +161,7 @@ def device_rows(a: DesignAnalysis) -> list[list[str]]:
     return [
         ["inertia J" if dev.rotary else "mass m", f"{dev.mass:g} {u['mass']}"],
         ["viscous damping b", f"{dev.damping:g} {u['damping']}"],
+        *([["grasp", grasp_text(dev).removeprefix("grasp: ")]] if dev.hand is not None else []),
         ["Coulomb friction c", f"{dev.coulomb:g} {u['force']}"],
         ["encoder resolution Δ", f"{dev.resolution:.4g} {u['resolution']}"],
         ["sample period T", f"{dev.period:.4g} s ({1 / dev.period:.4g} Hz)"],
@@ -479,6 +481,10 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
         else recommendation_text(a.recommendation).removeprefix("recommended "),
         **_controller_parts(a),
         device_table=markdown_table(["quantity", "value"], device_rows(a)),
+        grip_text=grip_text(a.grip) if a.grip is not None else "",
+        grip_table=markdown_table(["method", "least hand damping b_h", "meaning"], grip_rows(a.grip))
+        if a.grip is not None
+        else "",
         catalogue_text=catalogue_text(a),
         limits_table=markdown_table(["quantity", "value"], limits_rows(a)) if a.limits is not None else "",
         answer_table=markdown_table(["largest stiffness K at this speed", "value"], answer_rows(a))

@@ -9,6 +9,7 @@ from __future__ import annotations
 from ..analysis.limits.require import ALL_METHODS, PARAMETERS, DamperGuidance, Requirement, Requirements
 from ..formatting import WIDTH, fill, number, text_table
 from ..results.status import RequireStatus
+from .hand import device_title
 
 __all__ = ["LABELS", "damper_line", "require_screen", "requirement_cell"]
 
@@ -78,7 +79,7 @@ def require_screen(req: Requirements) -> list[str]:
     methods = [m for m in ALL_METHODS if any(r.method == m for r in req.requirements)]
     names = [n for n in PARAMETERS if any(r.parameter == n for r in req.requirements)]
     head = (
-        f"{dev.name}: what each parameter must be for K = {number(req.stiffness, 5)} {u['stiffness']} at "
+        f"{device_title(dev)}: what each parameter must be for K = {number(req.stiffness, 5)} {u['stiffness']} at "
         f"{number(req.velocity, 4)} {u['velocity']}, the others held"
     )
     rows = []

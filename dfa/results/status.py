@@ -25,6 +25,7 @@ from ..errors import DFAValueError
 __all__ = [
     "StatusEnum",
     "RequireStatus",
+    "GripStatus",
     "CriterionStatus",
     "CheckStatus",
     "StiffnessStatus",
@@ -402,4 +403,13 @@ class RequireStatus(StatusEnum):
     UNREACHABLE = ("unreachable", "no value of this parameter in the range searched makes the target K hold")
     ANY = ("any", "the target K holds at every value of this parameter in the range searched")
     NO_EFFECT = ("no_effect", "this method does not depend on this parameter")
+    NOT_COVERED = ("not_covered", "the criterion does not cover this wall (no proof either way)")
+
+
+class GripStatus(StatusEnum):
+    """How firm a grip one method needs at the design K (:class:`dfa.analysis.limits.grip.GripNeed`)."""
+
+    ANY_GRIP = ("any_grip", "holds with no hand damping: any grip, the lightest included")
+    AT_LEAST = ("at_least", "holds for a hand damping at least this (a firmer grip)")
+    UNREACHABLE = ("unreachable", "no hand damping in the range searched makes it hold")
     NOT_COVERED = ("not_covered", "the criterion does not cover this wall (no proof either way)")

@@ -1,0 +1,236 @@
+"""The grip sweep: how firm a grip the wall needs at its stiffness (paper Table 2; issue 28).
+
+The paper analyses the device with nobody touching it and says a firm grip stabilises the wall while a light one
+is the hardest case. A hand that holds the handle moves with it (:meth:`dfa.Device.holding`): its damping b_h
+adds to the device's b. :func:`grip_sweep` answers, at the wall's stiffness K and an impact speed V, with the
+hand's mass m_h held:
+
+- per method, the least hand damping b_h with which K holds: the criterion (eq. 6 and 11 with b + b_h, a proof)
+  and the exact linear bound (necessary for stability, not sufficient). Both come from the inverse question's
+  one search (:func:`dfa.analysis.limits.require.requirements` for the device's damping, less the device's own);
+- the exact simulator on a scan of grips (b_h = 0 and KT·2^i): the impact at V from ξ0 = 0 at each, and the
+  least scanned b_h from which no firmer scanned grip diverges.
+
+The hand's mass is not searched: the criterion (eq. 6) does not contain μ, and the exact linear bound falls
+slightly as the mass grows (for the catalogue's Delta at K = 1000 N/m and b = 4.8 N·s/m, from 29589 N/m at
+0.01 kg to 28801 N/m at 10 kg), so no grip is "stable for a hand at least this heavy" by either; the mass is an
+input, and the simulated scan uses it.
+
+Examples
+--------
+>>> from dfa.model.catalogue import get_device
+>>> e = get_device("phantom")
+>>> g = grip_sweep(e.device, e.stiffness, 0.1, hand_mass=0.15, simulate_scan=False)
+>>> [(n.method, n.status.value, round(n.hand_damping, 3)) for n in g.needs]
+[('criterion', 'at_least', 0.225), ('linear', 'at_least', 0.502)]
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+import numpy as np
+
+from ...checks import check_bool, check_choice, check_nonnegative, check_positive, check_type
+from ...errors import DFAValueError
+from ...model.device import Device
+from ...model.hand import Hand
+from ...model.wall import Wall
+from ...results.base import Result
+from ...results.status import GripStatus, RequireStatus, SimulationOutcome
+from ..simulation import divergence_bound, simulate
+from .require import Requirement, requirements
+
+__all__ = ["GRIP_METHODS", "GRIP_SCAN", "GripNeed", "GripSweep", "grip_sweep"]
+
+#: The methods that answer how firm a grip must be (in the order of the report's table).
+GRIP_METHODS = ("criterion", "linear")
+#: Exponents i of the simulated grips b_h = K T 2^i (with b_h = 0 first).
+GRIP_SCAN = tuple(range(-6, 6))
+
+
+@dataclass(frozen=True)
+class GripNeed(Result):
+    """The least hand damping with which the wall's K holds, by one method.
+
+    Attributes
+    ----------
+    method : str
+        ``"criterion"`` (a proof) or ``"linear"`` (the linear loop's stability: necessary, not sufficient).
+    hand_damping : float or None
+        b_h in N·s/m (rotary N·m·s/rad): 0 when any grip will do; None when unreachable or not covered.
+    status : GripStatus
+    requirement : Requirement
+        The device-damping requirement it rests on (:func:`dfa.analysis.limits.require.requirements`).
+    """
+
+    method: str
+    hand_damping: float | None
+    status: GripStatus
+    requirement: Requirement
+
+    units_of: ClassVar[dict[str, str]] = {"hand_damping": "damping"}
+
+    def __post_init__(self) -> None:
+        check_choice("method", self.method, GRIP_METHODS)
+        object.__setattr__(self, "status", GripStatus.coerce(self.status))
+        has = self.status in (GripStatus.ANY_GRIP, GripStatus.AT_LEAST)
+        if (self.hand_damping is not None) != has:
+            raise DFAValueError(
+                f"hand_damping = {self.hand_damping!r} is invalid with status {self.status.value!r}: a value is "
+                "given exactly when the status is 'any_grip' or 'at_least'; build it with grip_sweep"
+            )
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why ``hand_damping`` may be null (JSON): the status's message."""
+        return {"hand_damping": self.status.message}
+
+
+@dataclass(frozen=True)
+class GripSweep(Result):
+    """How firm a grip the wall needs at its stiffness and an impact speed (module docstring).
+
+    Attributes
+    ----------
+    device : Device
+        The bare device (no hand).
+    wall : Wall
+        The wall, with its stiffness K.
+    velocity : float
+        Impact speed V in m/s (rotary rad/s), >= 0.
+    hand_mass : float
+        The hand's mass m_h held while its damping varies, kg (rotary kg·m²).
+    needs : tuple of GripNeed
+        One per method of :data:`GRIP_METHODS`.
+    scan_damping : tuple of float
+        The simulated hand dampings b_h, N·s/m (empty when not simulated or V = 0).
+    scan_outcome : tuple of str
+        The simulated outcome of the impact at V from ξ0 = 0 at each (a :class:`SimulationOutcome` value).
+    simulated_damping : float or None
+        The least scanned b_h from which no firmer scanned grip diverges; None when the firmest diverges or
+        nothing was simulated.
+    """
+
+    device: Device = field(metadata={"json": lambda d: d.name})
+    wall: Wall = field(metadata={"json": lambda w: w.to_dict()})
+    velocity: float
+    hand_mass: float
+    needs: tuple[GripNeed, ...]
+    scan_damping: tuple[float, ...] = ()
+    scan_outcome: tuple[str, ...] = ()
+    simulated_damping: float | None = None
+
+    units_of: ClassVar[dict[str, str]] = {"velocity": "velocity", "hand_mass": "mass", "simulated_damping": "damping"}
+
+    def __post_init__(self) -> None:
+        fix = "GripSweep is built by grip_sweep; call that instead"
+        check_type("device", self.device, Device, fix)
+        check_type("wall", self.wall, Wall, fix)
+        if self.device.hand is not None:
+            raise DFAValueError(
+                f"device = {self.device.name!r} holds a hand: a grip sweep is of the bare device; {fix}"
+            )
+        if len(self.scan_damping) != len(self.scan_outcome):
+            raise DFAValueError(f"scan_damping and scan_outcome must have one entry per simulated grip; {fix}")
+        for o in self.scan_outcome:
+            SimulationOutcome.coerce(o)
+
+    def need(self, method: str) -> GripNeed:
+        """The answer of one method of :data:`GRIP_METHODS`."""
+        for n in self.needs:
+            if n.method == method:
+                return n
+        raise DFAValueError(f"method = {method!r} is not answered here: give one of {GRIP_METHODS}")
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why ``simulated_damping`` may be null (JSON)."""
+        if self.simulated_damping is not None:
+            return {}
+        why = "not simulated" if not self.scan_damping else "the firmest scanned grip diverges"
+        return {"simulated_damping": why}
+
+
+def _need(req: Requirement, own: float) -> GripNeed:
+    """A device-damping requirement as a hand damping: what the hand must add to the device's own b."""
+    if req.status in (RequireStatus.MET, RequireStatus.ANY):
+        return GripNeed(req.method, 0.0, GripStatus.ANY_GRIP, req)
+    if req.status is RequireStatus.CHANGE and req.required is not None:
+        return GripNeed(req.method, max(0.0, req.required - own), GripStatus.AT_LEAST, req)
+    status = GripStatus.NOT_COVERED if req.status is RequireStatus.NOT_COVERED else GripStatus.UNREACHABLE
+    return GripNeed(req.method, None, status, req)
+
+
+def _scan(dev: Device, wall: Wall, v: float, hand_mass: float) -> tuple[tuple[float, ...], tuple[str, ...]]:
+    """The impact at V from ξ0 = 0 for each scanned grip (b_h = 0, K T 2^i)."""
+    dampings = (0.0, *(wall.stiffness * dev.period * 2.0**i for i in GRIP_SCAN))
+    outcomes = []
+    for b_h in dampings:
+        held = dev.holding(Hand(hand_mass, b_h))
+        p, wp = held.params(wall.stiffness), wall.params(dev.period)
+        xd = dev.xi_dot(v)
+        r = simulate(p.mu, p.beta, p.sigma, xd, None, record=False, bound=divergence_bound(0.0, xd, p.mu), wall=wp)
+        outcomes.append(r.outcome.value)
+    return dampings, tuple(outcomes)
+
+
+def _least_safe(dampings: tuple[float, ...], outcomes: tuple[str, ...]) -> float | None:
+    """The least scanned b_h from which no firmer scanned grip diverges (None if the firmest does)."""
+    best = None
+    for b_h, o in reversed(list(zip(dampings, outcomes, strict=True))):
+        if o == SimulationOutcome.UNSTABLE.value:
+            break
+        best = b_h
+    return best
+
+
+def grip_sweep(
+    device: Device,
+    wall: Wall | float,
+    velocity: float,
+    *,
+    hand_mass: float = 0.0,
+    simulate_scan: bool = True,
+) -> GripSweep:
+    """How firm a grip the wall needs at its stiffness and an impact speed (module docstring).
+
+    Parameters
+    ----------
+    device : Device
+        The bare device (a held device is refused: give ``device`` without its hand and ``hand_mass``).
+    wall : Wall or float
+        The wall with its stiffness K (N/m, rotary N·m/rad), or K for the spring alone.
+    velocity : float
+        Impact speed V in m/s (rotary rad/s), >= 0.
+    hand_mass : float, optional
+        The hand's mass m_h in kg (rotary kg·m²), >= 0, held while its damping varies (default 0).
+    simulate_scan : bool, optional
+        Also simulate the impact at each scanned grip (default True; about 13 runs).
+
+    Returns
+    -------
+    GripSweep
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        On a held device, a negative speed or mass, or a wall that is not a Wall or a stiffness.
+    """
+    dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
+    if dev.hand is not None:
+        raise DFAValueError(
+            f"device = {dev.name!r} already holds {dev.hand.name!r}: give the bare device and hand_mass; the sweep "
+            "varies the hand's damping"
+        )
+    w = wall if isinstance(wall, Wall) else Wall(check_positive("wall", wall, "give the stiffness K in N/m"))
+    v = check_nonnegative("velocity", velocity, "give the impact speed in m/s")
+    m_h = check_nonnegative("hand_mass", hand_mass, "give the hand's mass in kg (0 for none)")
+    held = dev.holding(Hand(m_h)) if m_h > 0.0 else dev
+    reqs = requirements(held, w.stiffness, v, wall=w, methods=GRIP_METHODS, parameters=("damping",))
+    needs = tuple(_need(r, dev.damping) for r in reqs.requirements)
+    if not check_bool("simulate_scan", simulate_scan) or v == 0.0 or not math.isfinite(dev.xi_dot(v)):
+        return GripSweep(dev, w, v, m_h, needs)
+    dampings, outcomes = _scan(dev, w, v, m_h)
+    least = _least_safe(dampings, outcomes)
+    return GripSweep(dev, w, v, m_h, needs, tuple(float(x) for x in np.asarray(dampings)), outcomes, least)
