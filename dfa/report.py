@@ -213,9 +213,15 @@ def _describe(identity: dict[str, Any]) -> str:
         else f", controller B = {ctl.get('damping')}, "
         + (f"filter {ctl.get('filter_cutoff')} Hz, amplifier {ctl.get('amplifier_bandwidth')} Hz")
     )
+    hand = dev.get("hand")
+    held = (
+        ""
+        if not isinstance(hand, dict)
+        else f" held by {hand.get('name')!r} ({hand.get('mass')} kg, {hand.get('damping')} N·s/m)"
+    )
     return (
-        f"the report of {dev.get('name', '?')!r} at K = {identity.get('stiffness')}, speed {identity.get('velocity')}, "
-        f"delay {identity.get('delay')}{with_ctl}"
+        f"the report of {dev.get('name', '?')!r}{held} at K = {identity.get('stiffness')}, speed "
+        f"{identity.get('velocity')}, delay {identity.get('delay')}{with_ctl}"
     )
 
 

@@ -21,6 +21,7 @@ from dfa.analysis.limits.kmax import linear_limit
 from dfa.analysis.simulation import divergence_bound, simulate
 from dfa.cli import main
 from dfa.model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
+from dfa.render.hand import at_least
 
 IMPULSE = dfa.get_device("impulse").device
 
@@ -75,10 +76,11 @@ def test_table2_hand_mass_damping_is_the_heavier_device(capsys, cmd):
 @pytest.mark.parametrize("cmd", COMMANDS[:3], ids=[c[0] for c in COMMANDS[:3]])
 def test_table2_hand_of_nothing_is_the_bare_device(capsys, cmd):
     """A hand of zero mass, damping and stiffness reproduces the bare device exactly (issue 28 §2, tests)."""
-    held = _json(capsys, *cmd, "--device", "impulse", "--hand", "none")
+    nothing = _json(capsys, *cmd, "--device", "impulse", "--hand-mass", "0", "--hand-damping", "0")
+    none = _json(capsys, *cmd, "--device", "impulse", "--hand", "none")  # the preset: no hand at all
     bare = _json(capsys, *cmd, "--device", "impulse")
-    assert held["hand"]["mass"] == 0.0 and "hand" not in bare
-    assert _without_hand(held) == _without_hand(bare)
+    assert nothing["hand"]["mass"] == 0.0 and "hand" not in bare and none == bare
+    assert _without_hand(nothing) == bare
     assert IMPULSE.holding(get_hand("none")).params(80.0) == IMPULSE.params(80.0)
 
 
@@ -140,6 +142,24 @@ def test_table2_hand_api_rules():
         held.holding(Hand(0.1))
     assert held.bare.mass == pytest.approx(IMPULSE.mass, rel=1e-14) and held.bare.hand is None
     assert held.to_dict()["hand"]["damping"] == 4.8 and "hand" not in IMPULSE.to_dict()
+    with pytest.raises(TypeError):  # a hand is set by holding() only: mass and damping then include it
+        dfa.Device(0.25, 0.01, 0.883, 30e-6, 1 / 3000, hand=get_hand("paper"))  # type: ignore[call-arg]
+
+
+def test_table2_hand_params_json_and_labels(capsys):
+    """`dfa params` states the hand in its JSON and names the groups of the moving mass and damping."""
+    d = _json(capsys, "params", "--device", "impulse", "--hand", "paper")
+    assert d["hand"]["mass"] == 0.15 and d["beta"] == pytest.approx(4.82 / (80.0 * 2e-3), rel=1e-12)
+    assert main(["params", "--device", "impulse", "--hand", "paper"]) == 0
+    out = capsys.readouterr().out
+    assert "μ = (m + m_h)/(K T²)" in out and "β = (b + b_h)/(K T)" in out
+
+
+def test_table2_hand_mass_slip_warned(capsys):
+    """A hand of 150 kg (grams written as kg) gets the plausibility warning naming --hand-mass."""
+    assert main(["check", "--device", "impulse", "--xi-dot", "1", "--hand-mass", "150"]) == 0
+    err = capsys.readouterr().err
+    assert "--hand-mass" in err and "150" in err
 
 
 def _eq11_hand_damping(dev: dfa.Device, k: float, v: float) -> float:
@@ -209,14 +229,21 @@ def test_table2_hand_report_states_grasp_and_grip(tmp_path: Path, capsys):
     """`dfa report --hand paper` writes a separate _held report stating the grasp and the grip table's numbers."""
     code = main(["report", "--device", "phantom", "--hand", "paper", "--velocity", "0.1", "--out", str(tmp_path),
                  "--format", "md", "--quiet"])  # fmt: skip
-    assert code == 0, capsys.readouterr().err
+    written = capsys.readouterr()
+    assert code == 0, written.err
     md = (tmp_path / "design_report_phantom-1-0_held.md").read_text(encoding="utf-8")
     assert md.startswith("# Design report: Phantom 1.0, held by human operator (paper Table 2)")
     assert "| grasp | human operator (paper Table 2): 0.15 kg, 4.8 N·s/m" in md
     e = dfa.get_device("phantom")
     g = grip_sweep(e.device, e.stiffness, 0.1, hand_mass=0.15)
     for n in g.needs:
-        assert f"| {dfa.formatting.number(n.hand_damping, 4)} N·s/m |" in md
+        printed = at_least(n.hand_damping)
+        assert f"| {printed} N·s/m |" in md and float(printed) >= n.hand_damping
+    crit = at_least(g.need("criterion").hand_damping)  # the least value as printed: the criterion holds there
+    d = _json(
+        capsys, "check", "--device", "phantom", "--velocity", "0.1", "--hand-mass", "0.15", "--hand-damping", crit
+    )
+    assert d["passive"] is True
     meta = json.loads((tmp_path / "design_report_phantom-1-0_held.json").read_text(encoding="utf-8"))
     assert meta["identity"]["device"]["hand"]["mass"] == 0.15
     assert not (tmp_path / "design_report_phantom-1-0.md").exists()

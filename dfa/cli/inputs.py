@@ -176,6 +176,12 @@ def resolve_hand(args: argparse.Namespace, rotary: bool) -> Hand | None:
         flag = HAND_FLAGS["hand_" + key][0]
         if not (math.isfinite(v) and v >= 0.0):
             raise UsageError(f"{flag} {v:g} is invalid: it must be a finite number >= 0; give 0 for none")
+        if key == "mass" and v > 0.0:  # a hand of 150 kg is most likely grams (dfa.plausibility)
+            warn_implausible("mass", v, rotary=rotary, subject=flag)
+    if base.is_empty and not given:
+        return None  # --hand none: nobody holds the device, exactly as without the flag
+    if base.is_empty:
+        base = Hand(0.0, name="hand")
     name = base.name if not given else ("hand" if preset is None else f"{base.name}, changed")
     return Hand(**{**{k: getattr(base, k) for k in values}, **given}, name=name, source=base.source)
 
@@ -427,7 +433,10 @@ def plane_device(args: argparse.Namespace) -> tuple[float, Inputs | None]:
     check_plane(args)
     given = device_given(args)
     if args.mu is not None and given:
-        raise UsageError("--mu cannot be combined with a device: give --mu, or --device/physical values (μ follows)")
+        raise UsageError(
+            "--mu cannot be combined with a device or a hand: give --mu, or --device/physical values (μ follows; "
+            "a hand needs a device)"
+        )
     if args.mu is None and not given:
         raise UsageError(
             "missing --mu: give --mu, or a device (--device NAME, or --mass --damping --coulomb --resolution --period)"

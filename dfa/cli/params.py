@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..render.hand import moving_symbols
 from .inputs import add_device_args, resolve
 from .output import emit, say, table
 
@@ -21,10 +22,17 @@ def run(args: argparse.Namespace) -> int:
     """Print μ = m/(K T²), β = b/(K T), σ = c/(K Δ)."""
     inp = resolve(args, dimensionless=True)
     assert inp.params is not None
+    dev = inp.device
     if args.json:
-        emit(inp.params.to_dict())
+        hand = {} if dev is None or dev.hand is None else {"hand": dev.hand.to_dict()}
+        emit(inp.params.to_dict() | hand)
         return 0
     say(f"{inp.label}")
     p = inp.params
-    say(table([["μ = m/(K T²)", f"{p.mu:.6g}"], ["β = b/(K T)", f"{p.beta:.6g}"], ["σ = c/(K Δ)", f"{p.sigma:.6g}"]]))
+    m, b = moving_symbols(dev)
+    say(
+        table(
+            [[f"μ = {m}/(K T²)", f"{p.mu:.6g}"], [f"β = {b}/(K T)", f"{p.beta:.6g}"], ["σ = c/(K Δ)", f"{p.sigma:.6g}"]]
+        )
+    )
     return 0

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -151,10 +151,13 @@ class Device:
         A label used in reports.
     rotary : bool, optional
         True when positions are angles and forces are torques (only changes units).
-    hand : Hand or None, optional
-        The hand holding the device, when ``mass`` and ``damping`` include its own (a device built by
-        :meth:`holding`); None for the bare device (default). It is provenance for outputs: every analysis
-        reads ``mass`` and ``damping``.
+
+    Attributes
+    ----------
+    hand : Hand or None
+        The hand holding the device, set only by :meth:`holding` (then ``mass`` and ``damping`` include the
+        hand's); None for the bare device. It is provenance for outputs: every analysis reads ``mass`` and
+        ``damping``.
 
     Warns
     -----
@@ -170,7 +173,7 @@ class Device:
     period: float
     name: str = "custom device"
     rotary: bool = False
-    hand: Hand | None = None
+    hand: Hand | None = field(default=None, init=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(
@@ -201,9 +204,6 @@ class Device:
                 f"rotary = {format_value(self.rotary)} has type {type(self.rotary).__name__}: it must be True or False; pass rotary=True for a rotary joint"
             )
         object.__setattr__(self, "rotary", bool(self.rotary))
-        if self.hand is not None:
-            check_type("hand", self.hand, Hand, "give a dfa.Hand, or use device.holding(hand)")
-            self.hand.check_covered()
         for quantity in ("mass", "resolution", "period"):  # a value no haptic device has: warn, naming the slip
             warn_if_from_outside(quantity, getattr(self, quantity), rotary=self.rotary)
 
@@ -252,10 +252,12 @@ class Device:
                 f"hand = {hand.name!r} cannot be added: the device {self.name!r} already holds {self.hand.name!r}; "
                 "call holding() on the bare device"
             )
-        return Device(
+        held = Device(
             self.mass + hand.mass, self.damping + hand.damping, self.coulomb, self.resolution, self.period,
-            name=self.name, rotary=self.rotary, hand=hand,
+            name=self.name, rotary=self.rotary,
         )  # fmt: skip
+        object.__setattr__(held, "hand", hand)  # not an argument of Device(): mass and damping include it
+        return held
 
     @property
     def bare(self) -> Device:

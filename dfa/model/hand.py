@@ -85,7 +85,7 @@ class Hand:
             raise HandNotCovered(
                 f"hand_stiffness = {format_value(self.stiffness)} is not covered yet: the analyses take a hand as "
                 "mass and damping moving with the device (paper Table 2), not a spring to a fixed reference; "
-                "give hand stiffness 0 (--hand-stiffness 0)"
+                "give a hand stiffness of 0"
             )
 
     def to_dict(self) -> dict[str, object]:

@@ -16,7 +16,7 @@ from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
 from ..results.status import SearchStatus
 from .answer import recommendation_text
-from .hand import grasp_text, grip_rows, grip_text
+from .hand import grasp_text, grip_rows, grip_text, held_name, moving_symbols
 from .limits import spring_passive_text, spring_verdict_text
 from .text import growth_meaning, outside_searched_mu, search_why
 
@@ -49,7 +49,7 @@ def verdict_text(a: DesignAnalysis) -> str:
     else:
         verdict = "not proven passive (the criterion gives no guarantee; that is not a proof of instability)"
     text = (
-        f"**Verdict.** With K = {k:g} {u['stiffness']}, an impact speed of {v:g} {u['velocity']} and {ds}, the {dev.name} is "
+        f"**Verdict.** With K = {k:g} {u['stiffness']}, an impact speed of {v:g} {u['velocity']} and {ds}, the {held_name(dev)} is "
         f"**{verdict}** (region {crit.region}: {crit.status.message}). "
     )
     if crit.critical_velocity:
@@ -84,7 +84,7 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
     text = (
         f"**Verdict.** With the wall controller below (K = {a.stiffness:g} {u['stiffness']}, virtual damping "
         f"B = {ctl.damping:g} {u['damping']}), an impact speed of {a.velocity:g} {u['velocity']} and a computational "
-        f"delay of {_samples(a.delay)}, the {dev.name} is "
+        f"delay of {_samples(a.delay)}, the {held_name(dev)} is "
     )
     r = chk.criterion
     if r is None:
@@ -158,16 +158,18 @@ def outcome_text(a: DesignAnalysis) -> str:
 def device_rows(a: DesignAnalysis) -> list[list[str]]:
     """Rows of the device table; a rotary device's first row is its inertia (kg·m²), not a mass."""
     dev, p, u = a.device, a.params, a.device.units
+    m, b = moving_symbols(dev)
+    mass = ("inertia J" if dev.rotary else "mass m") + (" + m_h" if dev.hand is not None else "")
     return [
-        ["inertia J" if dev.rotary else "mass m", f"{dev.mass:g} {u['mass']}"],
-        ["viscous damping b", f"{dev.damping:g} {u['damping']}"],
+        [mass, f"{dev.mass:g} {u['mass']}"],
+        ["viscous damping " + b.strip("()"), f"{dev.damping:g} {u['damping']}"],
         *([["grasp", grasp_text(dev).removeprefix("grasp: ")]] if dev.hand is not None else []),
         ["Coulomb friction c", f"{dev.coulomb:g} {u['force']}"],
         ["encoder resolution Δ", f"{dev.resolution:.4g} {u['resolution']}"],
         ["sample period T", f"{dev.period:.4g} s ({1 / dev.period:.4g} Hz)"],
         ["stiffness K", f"{a.stiffness:g} {u['stiffness']}"],
-        ["μ = m/(K T²)", f"{p.mu:.5g}"],
-        ["β = b/(K T)", f"{p.beta:.5g}"],
+        [f"μ = {m}/(K T²)", f"{p.mu:.5g}"],
+        [f"β = {b}/(K T)", f"{p.beta:.5g}"],
         ["σ = c/(K Δ)", f"{p.sigma:.5g}"],
     ]
 
@@ -482,7 +484,7 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
         **_controller_parts(a),
         device_table=markdown_table(["quantity", "value"], device_rows(a)),
         grip_text=grip_text(a.grip) if a.grip is not None else "",
-        grip_table=markdown_table(["method", "least hand damping b_h", "meaning"], grip_rows(a.grip))
+        grip_table=markdown_table(["method", "least hand damping b_h", "rests on"], grip_rows(a.grip))
         if a.grip is not None
         else "",
         catalogue_text=catalogue_text(a),
@@ -531,4 +533,4 @@ def design_html(a: DesignAnalysis, figures: Mapping[str, tuple[str, bytes]]) -> 
     """The report as one self-contained HTML page: figures (name → (caption, PNG bytes)) embedded as base64."""
     captions = {n: c for n, (c, _png) in figures.items()}
     data = lambda n: "data:image/png;base64," + base64.b64encode(figures[n][1]).decode("ascii")
-    return markdown_to_html(design_markdown(a, captions, data), f"dfa design report: {a.device.name}")
+    return markdown_to_html(design_markdown(a, captions, data), f"dfa design report: {held_name(a.device)}")

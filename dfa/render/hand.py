@@ -2,16 +2,20 @@
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 from ..formatting import number
+from ..results.status import GripStatus
 
 if TYPE_CHECKING:
-    from ..analysis.limits.grip import GripSweep
+    from ..analysis.limits.grip import GripNeed, GripSweep
     from ..model.device import Device
     from ..model.hand import Hand
 
-__all__ = ["hand_label", "grasp_text", "device_title", "grip_rows", "grip_text"]
+__all__ = [
+    "hand_label", "grasp_text", "device_title", "held_name", "moving_symbols", "grip_rows", "grip_text", "at_least",
+]  # fmt: skip
 
 
 def hand_label(hand: Hand, units: dict[str, str]) -> str:
@@ -49,6 +53,24 @@ def grasp_text(device: Device) -> str:
     )
 
 
+def held_name(device: Device) -> str:
+    """The device's name, with the name of the hand that holds it: ``"Delta held by human operator (...)"``."""
+    return device.name if device.hand is None else f"{device.name} held by {device.hand.name}"
+
+
+def moving_symbols(device: Device | None) -> tuple[str, str]:
+    """The symbols of the moving mass and damping: ``("m", "b")``, or ``("(m + m_h)", "(b + b_h)")`` when held.
+
+    Examples
+    --------
+    >>> from dfa.model.device import Device
+    >>> from dfa.model.hand import Hand
+    >>> moving_symbols(Device(0.25, 0.01, 0.883, 30e-6, 1 / 3000).holding(Hand(0.15, 4.8)))
+    ('(m + m_h)', '(b + b_h)')
+    """
+    return ("m", "b") if device is None or device.hand is None else ("(m + m_h)", "(b + b_h)")
+
+
 def device_title(device: Device) -> str:
     """The device's name, with the hand that holds it: ``"Delta, held by a hand: 0.15 kg, 4.8 N·s/m"``.
 
@@ -64,29 +86,52 @@ def device_title(device: Device) -> str:
     return device.name if hand is None else f"{device.name}, held by {hand_label(hand, device.units)}"
 
 
-_GRIP_METHOD = {
-    "criterion": "criterion (eq. 6 with b + b_h; a proof)",
-    "linear": "exact linear bound (necessary, not sufficient)",
+#: What each grip answer rests on (the report's third column).
+_GRIP_BASIS = {
+    "criterion": "a proof: eq. 6 and 11 with b + b_h",
+    "linear": "the linear loop without encoder or Coulomb friction (friction can hold a wall below it)",
 }
+_GRIP_METHOD = {"criterion": "criterion", "linear": "exact linear bound"}
+
+
+def at_least(x: float, digits: int = 4) -> str:
+    """``x`` rounded up to ``digits`` significant digits: a least value as printed still holds.
+
+    Examples
+    --------
+    >>> at_least(0.2245075), at_least(0.5), at_least(0.0)
+    ('0.2246', '0.5', '0')
+    """
+    text = number(x, digits)
+    if not (math.isfinite(x) and x > 0.0) or float(text) >= x:
+        return text
+    step = 10.0 ** (math.floor(math.log10(x)) - digits + 1)
+    v = math.ceil(x / step) * step
+    while float(number(v, digits)) < x:  # rounding of v itself
+        v += step
+    return number(v, digits)
+
+
+def _need_value(n: GripNeed, unit: str) -> str:
+    if n.status is GripStatus.ANY_GRIP:
+        return "0: any grip"
+    if n.hand_damping is None:
+        return "none found" if n.status is GripStatus.UNREACHABLE else "not covered"
+    return f"{at_least(n.hand_damping)} {unit}"
 
 
 def grip_rows(g: GripSweep) -> list[list[str]]:
-    """Rows (method, least hand damping, meaning) of the grip sweep's table; the simulated scan last."""
-    u = g.device.units
-    rows = []
-    for n in g.needs:
-        value = "–" if n.hand_damping is None else f"{number(n.hand_damping, 4)} {u['damping']}"
-        rows.append([_GRIP_METHOD[n.method], value, n.status.message])
+    """Rows (method, least hand damping, what it rests on) of the grip sweep's table; the simulated scan last."""
+    unit = g.device.units["damping"]
+    rows = [[_GRIP_METHOD[n.method], _need_value(n, unit), _GRIP_BASIS[n.method]] for n in g.needs]
     if g.scan_damping:
-        value = "–" if g.simulated_damping is None else f"{number(g.simulated_damping, 4)} {u['damping']}"
-        diverged = sum(o == "unstable" for o in g.scan_outcome)
+        value = "none found" if g.simulated_damping is None else f"{number(g.simulated_damping, 4)} {unit}"
+        bad = {o: sum(x == o for x in g.scan_outcome) for o in ("unstable", "undecided")}
         why = (
-            f"{len(g.scan_damping)} grips simulated (0 and K T·2^i); {diverged} diverged; none diverges from this "
-            "grip up"
-            if g.simulated_damping is not None
-            else "the firmest scanned grip diverges"
+            f"the impact at V from ξ0 = 0 on {len(g.scan_damping)} grips (0 and K T·2^i): {bad['unstable']} "
+            f"diverged, {bad['undecided']} undecided; none from this grip up"
         )
-        rows.append(["exact simulation, impact from ξ0 = 0", value, why])
+        rows.append(["exact simulation", value, why])
     return rows
 
 
@@ -94,8 +139,7 @@ def grip_text(g: GripSweep) -> str:
     """The sentence above the grip table: the stiffness, speed and the hand's mass held."""
     u = g.device.units
     return (
-        f"Least hand damping b_h with which K = {number(g.wall.stiffness, 5)} {u['stiffness']} holds at "
+        f"The least hand damping b_h with which K = {number(g.wall.stiffness, 5)} {u['stiffness']} holds at "
         f"{number(g.velocity, 4)} {u['velocity']}, for a hand of mass m_h = {number(g.hand_mass, 4)} {u['mass']} "
-        "(a firmer grip damps more; the lightest grip is the hardest case). By each method, K holds for grips at "
-        "least this firm:"
+        "(a firmer grip damps more; the lightest grip is the hardest case), by each method; values are rounded up:"
     )

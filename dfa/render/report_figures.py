@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..analysis.design import DesignAnalysis
+from .hand import held_name
 
 __all__ = ["ReportFigure", "design_figures"]
 
@@ -55,7 +56,7 @@ def _regions(a: DesignAnalysis) -> ReportFigure | None:
         sigma_max=max(2.0, 1.5 * p.sigma),
     )
     caption = (
-        f"Operating point of the {a.device.name} in the (β, σ) plane with its critical line at {a.velocity:g} "
+        f"Operating point of the {held_name(a.device)} in the (β, σ) plane with its critical line at {a.velocity:g} "
         f"{u['velocity']}{_delay_text(a.delay)} (eq. 6, 10)."
     )
     return ReportFigure("regions", caption, _png(ax.figure))
@@ -137,7 +138,7 @@ def _speed_chart(a: DesignAnalysis) -> ReportFigure | None:
         return None
     ax = a.speed_chart.plot()
     caption = (
-        f"Largest safe impact speed against stiffness K for the {a.device.name}{_delay_text(a.delay)}: criterion "
+        f"Largest safe impact speed against stiffness K for the {held_name(a.device)}{_delay_text(a.delay)}: criterion "
         "(proof), describing function and simulation, with the closed-form bounds; the star is the design point."
     )
     return ReportFigure("speed_chart", caption, _png(ax.figure))
@@ -149,7 +150,7 @@ def _zwidth(a: DesignAnalysis) -> ReportFigure | None:
     z = a.zwidth
     ax = z.plot(design_point=None if a.is_spring else (a.wall.damping, a.stiffness))
     caption = (
-        f"Z-width of the {a.device.name}{_delay_text(a.delay)} for impacts up to {z.velocity:.3g} "
+        f"Z-width of the {held_name(a.device)}{_delay_text(a.delay)} for impacts up to {z.velocity:.3g} "
         f"{a.device.units['velocity']}: largest K at each virtual damping B by the exact linear bound, passivity, "
         f"the describing function and exact simulation on a {z.stiffness.size} × {z.damping.size} grid (shaded)."
     )

@@ -9,11 +9,11 @@ hand's mass m_h held:
   and the exact linear bound (necessary for stability, not sufficient). Both come from the inverse question's
   one search (:func:`dfa.analysis.limits.require.requirements` for the device's damping, less the device's own);
 - the exact simulator on a scan of grips (b_h = 0 and KT·2^i): the impact at V from ξ0 = 0 at each, and the
-  least scanned b_h from which no firmer scanned grip diverges.
+  least scanned b_h from which no firmer scanned grip diverges or is undecided.
 
 The hand's mass is not searched: the criterion (eq. 6) does not contain μ, and the exact linear bound falls
-slightly as the mass grows (for the catalogue's Delta at K = 1000 N/m and b = 4.8 N·s/m, from 29589 N/m at
-0.01 kg to 28801 N/m at 10 kg), so no grip is "stable for a hand at least this heavy" by either; the mass is an
+slightly as the moving mass grows (the catalogue's Delta with b = 4.8 N·s/m: 29589 N/m at a moving mass of
+0.01 kg, 28801 N/m at 10 kg), so no grip is "stable for a hand at least this heavy" by either; the mass is an
 input, and the simulated scan uses it.
 
 Examples
@@ -109,8 +109,8 @@ class GripSweep(Result):
     scan_outcome : tuple of str
         The simulated outcome of the impact at V from ξ0 = 0 at each (a :class:`SimulationOutcome` value).
     simulated_damping : float or None
-        The least scanned b_h from which no firmer scanned grip diverges; None when the firmest diverges or
-        nothing was simulated.
+        The least scanned b_h from which no firmer scanned grip diverges or is undecided; None when the firmest
+        does or nothing was simulated.
     """
 
     device: Device = field(metadata={"json": lambda d: d.name})
@@ -148,7 +148,7 @@ class GripSweep(Result):
         """Why ``simulated_damping`` may be null (JSON)."""
         if self.simulated_damping is not None:
             return {}
-        why = "not simulated" if not self.scan_damping else "the firmest scanned grip diverges"
+        why = "not simulated" if not self.scan_damping else "the firmest scanned grip diverges or is undecided"
         return {"simulated_damping": why}
 
 
@@ -176,10 +176,10 @@ def _scan(dev: Device, wall: Wall, v: float, hand_mass: float) -> tuple[tuple[fl
 
 
 def _least_safe(dampings: tuple[float, ...], outcomes: tuple[str, ...]) -> float | None:
-    """The least scanned b_h from which no firmer scanned grip diverges (None if the firmest does)."""
+    """The least scanned b_h from which no firmer scanned grip diverges or is undecided (None if the firmest is)."""
     best = None
     for b_h, o in reversed(list(zip(dampings, outcomes, strict=True))):
-        if o == SimulationOutcome.UNSTABLE.value:
+        if o in (SimulationOutcome.UNSTABLE.value, SimulationOutcome.UNDECIDED.value):
             break
         best = b_h
     return best
