@@ -87,6 +87,7 @@ from .model.catalogue import (
 from .model.device import Device, Params
 from .model.elements import AmplifierLag, Damper, Delay, VelocityFilter
 from .model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
+from .model.log import DeviceLog, LogError, read_log
 from .model.wall import Wall, WallParams
 
 #: The distribution's name on the package index ("dfa" there is an unrelated project); ``import dfa`` and
@@ -146,6 +147,8 @@ _LAZY = {
     "StiffnessSpeedChart": "analysis.limits.speed_chart",
     "z_width": "analysis.limits.zwidth",
     "ZWidth": "analysis.limits.zwidth",
+    "identify": "analysis.identify",
+    "Identification": "analysis.identify",
 }
 _SUBMODULES = {
     "core",
@@ -185,6 +188,9 @@ __all__ = [
     "HAND_PRESETS",
     "HandNotCovered",
     "get_hand",
+    "DeviceLog",
+    "LogError",
+    "read_log",
     "Wall",
     "WallParams",
     "Damper",

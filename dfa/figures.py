@@ -51,6 +51,7 @@ __all__ = [
     "cycle_error_plot",
     "critical_speed_plot",
     "plot_zwidth",
+    "plot_identification",
     "nyquist_needs_zoom",
     "save_figure",
     "FIGURE_SUFFIXES",
@@ -1114,3 +1115,36 @@ def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
     ]
     _legend_outside(ax, handles)
     return ax
+
+
+def plot_identification(ident, axes=None):
+    """A logged run against the identified model (issue 29): ticks over time above, residual below.
+
+    Parameters
+    ----------
+    ident : Identification
+        :func:`dfa.analysis.identify.identify`'s result.
+    axes : pair of Axes, optional
+        Top (trajectory) and bottom (residual) axes; a new figure when None.
+
+    Returns
+    -------
+    pair of Axes
+    """
+    if axes is None:
+        _fig, axes = plt.subplots(2, 1, figsize=(9.0, 5.0), sharex=True, constrained_layout=True,
+                                  gridspec_kw={"height_ratios": [3, 1]})  # fmt: skip
+    t = np.arange(ident.samples) * ident.device.period
+    top, bottom = axes
+    top.step(t, ident.logged, where="post", color="0.3", lw=1.0, label="logged reading")
+    top.plot(t, ident.predicted, color="C0", lw=1.0, label="identified model, run once from the start")
+    top.set_ylabel("position (encoder ticks)")
+    top.set_title(f"{ident.source}: {100 * ident.free_run.within_one_tick:.4g} % of samples within one tick",
+                  fontsize=10)  # fmt: skip
+    _legend_outside(top)
+    bottom.plot(t, ident.predicted - ident.logged - 0.5, color="C3", lw=0.8)
+    for y in (-0.5, 0.5):
+        bottom.axhline(y, color="0.6", lw=0.6, ls="--")
+    bottom.set_ylabel("model − tick middle\n(ticks)")
+    bottom.set_xlabel("time (s)")
+    return axes

@@ -46,6 +46,7 @@ def run(command: str) -> str:
     argv = shlex.split(command)
     if argv[:1] != ["dfa"]:
         raise ValueError(f"README console command {command!r} does not start with 'dfa'")
+    argv = [str(ROOT / a) if a.startswith("examples/") and (ROOT / a).is_file() else a for a in argv]  # shipped files
     buf = io.StringIO()
     here = os.getcwd()
     with tempfile.TemporaryDirectory() as tmp:

@@ -151,6 +151,8 @@ RESULTS = {
     "ColgateSchenkel",
     "ColgateSchenkelDamping",
     "ZWidth",
+    "Identification",
+    "DeviceLog",
 }
 
 #: Calls that take seconds when every argument is valid: only their refusals are fuzzed
@@ -170,7 +172,15 @@ EXAMPLES = {
 }
 
 #: The package's error types (builtin signatures): checked to derive from DFAError and the builtins.
-ERRORS = {"DFAError", "DFAValueError", "DFATypeError", "DeviceFileError", "ImplausibleInputWarning", "HandNotCovered"}
+ERRORS = {
+    "DFAError",
+    "DFAValueError",
+    "DFATypeError",
+    "DeviceFileError",
+    "ImplausibleInputWarning",
+    "HandNotCovered",
+    "LogError",
+}
 
 NAMES = [n for n in dfa.__all__ if n not in CONSTANTS | RESULTS | ERRORS]
 

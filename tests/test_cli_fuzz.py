@@ -178,10 +178,16 @@ def _forms(flag: str, nargs: object, x: str) -> list[list[str]]:
     return [[f"{flag}=--"], [f"{flag}=-{x}"], [flag] + [f"-{x}"] * n]
 
 
+#: Flags added after issue 27's forms were seeded: left out of the random mutations so that the seeded
+#: invocations stay those of issue 27 (a new flag in the pool shifts every later draw); each is still written in
+#: the three forms by :func:`test_every_flag_in_every_form`, and the hand's by tests/test_table2_hand.py.
+LATER_FLAGS = {"--hand", "--hand-mass", "--hand-damping", "--hand-stiffness"}
+
+
 def _mutate(rng, argv):
     """Add one of the command's value flags in one of the three forms: after the command for report and validate
     (their input that must be refused comes later and wins), else at the end (it wins)."""
-    flags = VALUE_FLAGS.get(argv[0])
+    flags = [f for f in VALUE_FLAGS.get(argv[0], []) if f[0] not in LATER_FLAGS]
     if not flags or rng.random() > 0.35:
         return argv
     flag, nargs, _numeric = rng.choice(flags)

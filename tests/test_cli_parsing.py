@@ -66,6 +66,8 @@ def _parse(cmd: str, flag: str, nargs: object, value: str, joined: bool) -> argp
         argv += ["--out", "m.npz"]
     if cmd == "zwidth" and flag != "--velocity":
         argv += ["--velocity", "1"]
+    if cmd == "identify":
+        argv.insert(1, "log.csv")  # its positional LOG.csv
     try:
         return PARSER.parse_args(argv)
     except UsageError as err:

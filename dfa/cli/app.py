@@ -37,6 +37,7 @@ from . import (
     check,
     contours,
     devices,
+    identify,
     limit_cycles,
     maps,
     params,
@@ -56,6 +57,7 @@ __all__ = ["COMMANDS", "build_parser", "main", "on_signal", "package_version"]
 #: The subcommands, in the order of ``dfa --help``: each module has COMMAND, HELP, EXAMPLE, add_arguments, run.
 COMMANDS: tuple[ModuleType, ...] = (
     devices, params, check, stiffness, require, simulate, maps, limit_cycles, contours, report, validate, zwidth,
+    identify,
 )  # fmt: skip
 
 

@@ -31,6 +31,7 @@ FIRST_RUN_SECONDS = {
     "report": 15,
     "zwidth": 30,
     "validate": 40,
+    "identify": 3,
 }
 
 

@@ -26,6 +26,8 @@ __all__ = [
     "StatusEnum",
     "RequireStatus",
     "GripStatus",
+    "IdentifyStatus",
+    "IdentifyWarning",
     "CriterionStatus",
     "CheckStatus",
     "StiffnessStatus",
@@ -413,3 +415,37 @@ class GripStatus(StatusEnum):
     AT_LEAST = ("at_least", "holds for a hand damping at least this (a firmer grip)")
     UNREACHABLE = ("unreachable", "no hand damping in the range searched makes it hold")
     NOT_COVERED = ("not_covered", "the criterion does not cover this wall (no proof either way)")
+
+
+class IdentifyStatus(StatusEnum):
+    """How far an identification from a log can be used (:class:`dfa.analysis.identify.Identification`)."""
+
+    OK = ("ok", "identified: the model reproduces the log and every parameter is excited")
+    CAVEATS = ("caveats", "identified, with warnings: the log does not excite every parameter well")
+    POOR_FIT = ("poor_fit", "the identified model does not reproduce the log: its values are not to be trusted")
+
+
+class IdentifyWarning(StatusEnum):
+    """What a log does not show (:class:`dfa.analysis.identify.Identification`)."""
+
+    NO_REVERSAL = (
+        "no_reversal",
+        "the device moves one way only: Coulomb friction and a force offset cannot be told apart",
+    )
+    DAMPING_FRICTION_CONFOUNDED = (
+        "damping_friction_confounded",
+        "damping and Coulomb friction are not separated: the log has no motion both fast and slow",
+    )
+    LITTLE_MOTION = (
+        "little_motion",
+        "the log holds little motion (fewer than 300 samples in which the reading changes): the estimates rest on it",
+    )
+    FRICTION_UNRESOLVED = (
+        "friction_unresolved",
+        "the Coulomb friction is below 10⁻⁴ of the largest logged force: the log cannot resolve it, whatever "
+        "its interval says",
+    )
+    LOOSE_MASS = ("loose_mass", "the mass is poorly determined (95 % interval wider than ±25 %)")
+    LOOSE_DAMPING = ("loose_damping", "the damping is poorly determined (95 % interval wider than ±25 %)")
+    LOOSE_COULOMB = ("loose_coulomb", "the Coulomb friction is poorly determined (95 % interval wider than ±25 %)")
+    POOR_FIT = ("poor_fit", "fewer than 90 % of the samples are predicted within one tick")

@@ -1,0 +1,543 @@
+"""Identify a device from its log: mass, damping, Coulomb friction, encoder resolution and sample period.
+
+A log (:class:`dfa.model.log.DeviceLog`) holds, per sample, the encoder reading x_h (a whole number of ticks)
+and the force f_h held over the sample. :func:`identify` estimates what every analysis of :mod:`dfa` starts
+from:
+
+1. **The grid.** The sample period T is the median step of ``t`` (a log whose steps differ by more than
+   :data:`PERIOD_RTOL` is refused: the model holds the force over equal samples); the resolution Δ is the
+   step of the lattice the readings lie on (the smallest gap between distinct readings, refined over the whole
+   range; readings off that lattice by more than :data:`GRID_RTOL` are refused). Either may be given instead.
+2. **A first guess** by equation error: a smoothed second derivative of the readings (Savitzky–Golay) in
+   m ẍ + b ẋ + c sgn(ẋ) = f, by non-negative least squares over the samples in motion. Biased (finite
+   differences of quantized positions), it only starts the fit.
+3. **The output-error fit.** The exact per-sample solution of the simulator (paper eq. 4 driven by the held
+   forces, stick-slip included; :func:`dfa.core.open_loop.segments_kernel`) predicts the position at every
+   sample; (m, b, c), a force offset f₀ (the force applied is f + f₀) and the start of every segment of
+   two time constants m/b, at least :data:`SEGMENT` samples (velocity, position within its first tick:
+   multiple shooting, so that a small error
+   does not accumulate over the whole log and trap the fit) minimise the distance, in ticks, between the
+   prediction and the middle of each logged tick (``scipy.optimize.least_squares``, sparse Jacobian). Quantization is respected: a reading says the position lies in its
+   tick, and the residual of a right model is the position within the tick, about ±½.
+4. **The evidence.** 95 % intervals from the fit's Jacobian, widened by the residuals' integrated
+   autocorrelation time (:func:`correlation_time`: correlated residuals carry fewer independent samples); the
+   share of samples whose predicted tick is within
+   one of the logged one; and warnings when the log does not excite a parameter (:class:`IdentifyWarning`).
+
+Examples
+--------
+>>> import numpy as np
+>>> from dfa.model.device import Device
+>>> dev = Device(0.1, 0.5, 0.2, 1e-5, 1e-3)
+>>> t = np.arange(3000) * 1e-3
+>>> log = synthetic_log(dev, 2.0 * np.sign(np.sin(2 * np.pi * 2.0 * t)) + 1.0 * np.sin(2 * np.pi * 7.0 * t))
+>>> r = identify(log)
+>>> [round(v, 2) for v in (r.mass.value, r.damping.value, r.coulomb.value)]
+[0.1, 0.5, 0.2]
+>>> r.status.value, r.fit.within_one_tick > 0.99
+('ok', True)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..checks import check_nonnegative, check_positive, check_type
+from ..core.open_loop import open_loop_kernel, segments_kernel
+from ..errors import DFAValueError
+from ..model.device import Device
+from ..model.log import DeviceLog, LogError
+from ..results.base import Result
+from ..results.status import IdentifyStatus, IdentifyWarning
+
+__all__ = [
+    "Estimate",
+    "FitQuality",
+    "Identification",
+    "identify",
+    "synthetic_log",
+    "impact_log",
+    "estimate_period",
+    "correlation_time",
+    "estimate_resolution",
+    "PERIOD_RTOL",
+    "SEGMENT",
+    "GRID_RTOL",
+]
+
+#: Largest relative difference between a log's sample steps and their median.
+PERIOD_RTOL = 1e-3
+#: Largest distance of a reading from the lattice of the estimated resolution, in ticks.
+GRID_RTOL = 1e-2
+#: Speed (ticks per sample, smoothed) above which a sample counts as moving, for the first guess.
+MOVING = 0.2
+#: Relative step of the fit's finite-difference Jacobian (scipy's default when None).
+DIFF_STEP: float | None = None
+#: Fewest samples per segment of the multiple-shooting fit (each segment starts from its own fitted state);
+#: segments span two time constants m/b of the first guess when that is longer (:func:`_segments`).
+SEGMENT = 200
+#: Variance of the residual of a right model, ticks²: the position within its tick, uniform over [−½, ½). The
+#: residual variance used for the intervals is at least this (a run mostly at rest fits its rest exactly).
+QUANTIZATION_VARIANCE = 1.0 / 12.0
+#: Fewest samples in motion (the reading changes) for a log to count as exciting the dynamics.
+FEW_MOVING = 300
+#: Coulomb friction below this share of the largest logged force is not resolved by the log (a diverging
+#: impact with forces of kN against a friction of 1 N fits any friction within a few per cent).
+FRICTION_SHARE = 1e-4
+#: Relative half-width of a 95 % interval above which an estimate is called poorly determined.
+LOOSE = 0.25
+#: |correlation| of the damping and Coulomb estimates above which they are called not separated.
+CONFOUNDED = 0.95
+#: Share of samples predicted within one tick below which the fit is called poor.
+POOR_FIT = 0.9
+
+
+def estimate_period(t: ArrayLike, source: str = "log") -> float:
+    """The sample period T (s): the median step of ``t``; refused when a step differs by more than
+    :data:`PERIOD_RTOL` (the message names the row).
+
+    Examples
+    --------
+    >>> estimate_period([0.0, 1e-3, 2e-3, 3e-3])
+    0.001
+    """
+    dt = np.diff(np.asarray(t, dtype=float))
+    period = float(np.median(dt))
+    off = np.abs(dt - period) > PERIOD_RTOL * period
+    if off.any():
+        i = int(np.flatnonzero(off)[0])
+        raise LogError(
+            f"{source}: the sample period is not uniform: the step before row {i + 3} is {dt[i]!r} s against "
+            f"the median {period!r} s (more than {PERIOD_RTOL:g} apart); give a log of equal samples, or cut it "
+            "to a part without gaps"
+        )
+    return period
+
+
+def estimate_resolution(x: ArrayLike, source: str = "log") -> float:
+    """The encoder resolution Δ: the step of the lattice the readings lie on (module docstring).
+
+    Examples
+    --------
+    >>> estimate_resolution([0.0, 2e-5, 1e-5, 5e-5, 3e-5])
+    1e-05
+    """
+    u = np.unique(np.asarray(x, dtype=float))
+    if u.size < 3:
+        raise LogError(
+            f"{source}: the readings take {u.size} value(s): too few to tell the encoder's resolution; give it "
+            "(--resolution), or log a run that moves over several ticks"
+        )
+    gaps = np.diff(u)
+    ticks = np.rint(gaps / gaps.min())
+    off = float(np.max(np.abs(gaps / gaps.min() - ticks)))
+    if off > GRID_RTOL:
+        raise LogError(
+            f"{source}: the readings do not lie on one grid (a gap is {off:.3g} ticks off the smallest gap "
+            f"{gaps.min()!r}): are they quantized encoder readings? give the resolution (--resolution)"
+        )
+    return float((u[-1] - u[0]) / ticks.sum())
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """One identified value with its standard error and 95 % interval (SI units of its quantity)."""
+
+    value: float
+    stderr: float
+    low: float
+    high: float
+
+    def to_dict(self) -> dict[str, float]:
+        """The four numbers."""
+        return {"value": self.value, "stderr": self.stderr, "low": self.low, "high": self.high}
+
+
+@dataclass(frozen=True)
+class FitQuality:
+    """How well the identified device reproduces the log.
+
+    Attributes
+    ----------
+    rms_ticks : float
+        RMS distance of the predicted position from the middle of each logged tick (about 0.29 for a perfect
+        model: the position within the tick).
+    max_tick_error : int
+        Largest |predicted tick − logged tick|.
+    within_one_tick : float
+        Share of samples whose predicted tick is within one of the logged one.
+    """
+
+    rms_ticks: float
+    max_tick_error: int
+    within_one_tick: float
+
+    def to_dict(self) -> dict[str, float | int]:
+        """The three numbers."""
+        return {"rms_ticks": self.rms_ticks, "max_tick_error": self.max_tick_error,
+                "within_one_tick": self.within_one_tick}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Identification(Result):
+    """A device identified from its log (:func:`identify`).
+
+    Attributes
+    ----------
+    device : Device
+        The identified device (m, b, c, Δ, T).
+    source : str
+        The log's name.
+    samples : int
+        Samples in the log.
+    mass, damping, coulomb, force_offset : Estimate
+        m (kg), b (N·s/m), c (N) and the force offset f₀ (N; the force applied is f + f₀); rotary kg·m², N·m·s/rad,
+        N·m.
+    resolution_given, period_given : bool
+        Whether Δ and T were given (else estimated from the log).
+    segment : int
+        Samples per segment of the multiple-shooting fit (the last one may be longer).
+    fit : FitQuality
+        The fit's own prediction: each segment from its fitted start.
+    free_run : FitQuality
+        The identified model run once over the whole log from the fitted start (errors accumulate).
+    warnings : tuple of IdentifyWarning
+        What the log does not excite, or a poor fit.
+    velocity_peak : float
+        Largest speed of the fitted run, m/s (rad/s).
+    predicted, logged : ndarray
+        The free run's position and the logged tick at each sample, in ticks from the lowest reading (the figure).
+    status : IdentifyStatus
+    """
+
+    device: Device = field(metadata={"json": lambda d: d.to_dict()})
+    source: str
+    samples: int
+    mass: Estimate
+    damping: Estimate
+    coulomb: Estimate
+    force_offset: Estimate
+    resolution_given: bool
+    period_given: bool
+    segment: int
+    fit: FitQuality
+    free_run: FitQuality
+    warnings: tuple[IdentifyWarning, ...]
+    velocity_peak: float
+    predicted: np.ndarray = field(repr=False, metadata={"json": None})
+    logged: np.ndarray = field(repr=False, metadata={"json": None})
+    status: IdentifyStatus = IdentifyStatus.OK
+
+    units_of: ClassVar[dict[str, str]] = {"velocity_peak": "velocity"}
+
+    def __post_init__(self) -> None:
+        fix = "Identification is built by dfa.identify; call that instead"
+        check_type("device", self.device, Device, fix)
+        for name in ("mass", "damping", "coulomb", "force_offset"):
+            check_type(name, getattr(self, name), Estimate, fix)
+        object.__setattr__(self, "warnings", tuple(IdentifyWarning.coerce(w) for w in self.warnings))
+        object.__setattr__(self, "status", IdentifyStatus.coerce(self.status))
+        for name in ("predicted", "logged"):
+            a = np.array(getattr(self, name), dtype=float)
+            a.setflags(write=False)
+            object.__setattr__(self, name, a)
+
+    def plot(self, ax: Any = None) -> Any:
+        """The logged ticks against the identified model's free run, residual below.
+
+        Parameters
+        ----------
+        ax : pair of matplotlib Axes, optional
+            Top and bottom axes; a new figure when None.
+
+        Returns
+        -------
+        pair of matplotlib Axes
+            The trajectory axes and the residual axes (:func:`dfa.figures.plot_identification`).
+        """
+        from ..figures import plot_identification
+
+        return plot_identification(self, ax)
+
+
+def _first_guess(n: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
+    """(μ, β, σ) by equation error on the smoothed readings (only a start for the output-error fit)."""
+    from scipy.optimize import nnls
+    from scipy.signal import savgol_filter
+
+    w = max(5, min(31, (len(n) // 3) | 1))
+    v = savgol_filter(n.astype(float), w, 3, deriv=1)
+    a = savgol_filter(n.astype(float), w, 3, deriv=2)
+    moving = np.abs(v) > MOVING
+    if moving.sum() < 10:
+        raise LogError(
+            "the device barely moves in this log (fewer than 10 samples faster than "
+            f"{MOVING:g} ticks per sample): nothing to identify; log a run with motion"
+        )
+    rows = np.column_stack([a[moving], v[moving], np.sign(v[moving])])
+    (mu, beta, sigma), _ = nnls(rows, phi[moving])
+    scale = float(np.median(np.abs(phi[moving])) / max(np.median(np.abs(a[moving])), 1e-12))
+    return (mu if mu > 0.0 else scale), float(beta), float(sigma)
+
+
+def _segments(n: int, mu: float, beta: float) -> np.ndarray:
+    """Start of each segment of the multiple-shooting fit: segments of twice the first guess's time constant
+    μ/β (damping shows over a time constant), at least :data:`SEGMENT` samples, equal (the last one longer)."""
+    length = SEGMENT if beta <= 0.0 else max(SEGMENT, min(n, int(2.0 * mu / beta)))
+    k = max(1, n // length)
+    return (np.arange(k) * (n // k)).astype(np.int64)
+
+
+def _fit(n: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """(global θ = (log μ, β, σ, φ₀), its covariance, the segments' prediction ξ): step 3 of the module docstring.
+
+    Multiple shooting: each segment of :data:`SEGMENT` samples starts from its own state (its position within
+    the first tick and its velocity, fitted), so that an error of the start does not carry over the whole log.
+    """
+    from scipy.optimize import least_squares
+    from scipy.signal import savgol_filter
+    from scipy.sparse import lil_matrix
+
+    mu, beta, sigma = _first_guess(n, phi)
+    starts = _segments(len(n), mu, beta)
+    j = len(starts)
+    w = max(5, min(31, (len(n) // 3) | 1))
+    v_start = savgol_filter(n.astype(float), w, 3, deriv=1)[starts]
+    target, out = n + 0.5, np.empty(len(n))
+    theta0 = np.concatenate([[math.log(mu), beta, sigma, 0.0], np.full(j, 0.5), v_start])
+    lo = np.concatenate([[-np.inf, 0.0, 0.0, -np.inf], np.zeros(j), np.full(j, -np.inf)])
+    hi = np.concatenate([[np.inf] * 4, np.ones(j), np.full(j, np.inf)])
+    seg = np.searchsorted(starts, np.arange(len(n)), side="right") - 1
+    sparsity = lil_matrix((len(n), 4 + 2 * j), dtype=int)
+    sparsity[:, :4] = 1
+    sparsity[np.arange(len(n)), 4 + seg] = 1
+    sparsity[np.arange(len(n)), 4 + j + seg] = 1
+
+    def predict(theta: np.ndarray, into: np.ndarray) -> np.ndarray:
+        x0s = n[starts] + theta[4 : 4 + j]
+        segments_kernel(x0s, theta[4 + j :].copy(), starts, phi + theta[3], math.exp(theta[0]), theta[1], theta[2],
+                        into)  # fmt: skip
+        return into
+
+    best = least_squares(lambda th: predict(th, out) - target, theta0, bounds=(lo, hi), jac_sparsity=sparsity,
+                         x_scale="jac", method="trf", tr_solver="lsmr", diff_step=DIFF_STEP)  # fmt: skip
+    dof = max(1, len(n) - len(theta0))
+    s2 = max(float(best.fun @ best.fun) / dof, QUANTIZATION_VARIANCE)
+    cov = s2 * correlation_time(best.fun) * _global_covariance(best.jac.tocsc(), seg, j)
+    return best.x, cov, predict(best.x, np.empty(len(n))), int(len(n) // j)
+
+
+def _global_covariance(jac: Any, seg: np.ndarray, j: int) -> np.ndarray:
+    """(JᵀJ)⁻¹ of the 4 global parameters with each segment's 2 start parameters eliminated (Schur complement)."""
+    g = jac[:, :4].toarray()
+    a = g.T @ g
+    local = np.column_stack([np.asarray(jac[:, 4 : 4 + j].sum(axis=1)).ravel(),
+                             np.asarray(jac[:, 4 + j :].sum(axis=1)).ravel()])  # one nonzero each per row: its segment's  # fmt: skip
+    for k in range(j):
+        rows = seg == k
+        lk, gk = local[rows], g[rows]
+        a -= (gk.T @ lk) @ np.linalg.pinv(lk.T @ lk) @ (lk.T @ gk)
+    return np.linalg.pinv(a)
+
+
+def _free_run(theta: np.ndarray, n: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """The identified model run once over the whole log from the first segment's fitted start."""
+    j = (len(theta) - 4) // 2
+    out = np.empty(len(n))
+    open_loop_kernel(n[0] + theta[4], theta[4 + j], phi + theta[3], math.exp(theta[0]), theta[1], theta[2], out)
+    return out
+
+
+def correlation_time(r: np.ndarray) -> float:
+    """The integrated autocorrelation time 1 + 2 Σ ρ_k of residuals ``r`` (>= 1; summed while ρ_k > 0.05).
+
+    Correlated residuals carry fewer independent samples than their number: the least-squares covariance,
+    which assumes independent residuals, is multiplied by this factor (the effective sample size N/τ).
+
+    Examples
+    --------
+    >>> correlation_time(np.array([1.0, -1.0] * 50))
+    1.0
+    >>> correlation_time(np.repeat([1.0, -1.0], 25)) > 10
+    True
+    """
+    x = r - r.mean()
+    spec = np.fft.rfft(x, 2 * len(x))
+    acf = np.fft.irfft(spec * np.conj(spec))[: len(x)]
+    if acf[0] <= 0.0:
+        return 1.0
+    rho = acf / acf[0]
+    tau = 1.0
+    for k in range(1, len(x) // 2):
+        if rho[k] <= 0.05:
+            break
+        tau += 2.0 * rho[k]
+    return float(tau)
+
+
+def _estimate(value: float, se: float) -> Estimate:
+    value, se = float(value), float(se)
+    return Estimate(value, se, value - 1.959964 * se, value + 1.959964 * se)
+
+
+def _warnings(
+    est: dict[str, Estimate], cov: np.ndarray, n: np.ndarray, fit: FitQuality, f_max: float
+) -> list[IdentifyWarning]:
+    out = []
+    if est["coulomb"].value < FRICTION_SHARE * f_max:
+        out.append(IdentifyWarning.FRICTION_UNRESOLVED)
+    steps = np.diff(n)
+    if np.count_nonzero(steps) < FEW_MOVING:
+        out.append(IdentifyWarning.LITTLE_MOTION)
+    if not ((steps > 0).any() and (steps < 0).any()):
+        out.append(IdentifyWarning.NO_REVERSAL)
+    loose = [n for n, e in est.items() if n != "force_offset" and e.high - e.value > LOOSE * abs(e.value)]
+    sd = np.sqrt(np.maximum(np.diag(cov)[1:3], 0.0))
+    if sd.min() > 0.0 and abs(cov[1, 2] / (sd[0] * sd[1])) > CONFOUNDED and {"damping", "coulomb"} & set(loose):
+        out.append(IdentifyWarning.DAMPING_FRICTION_CONFOUNDED)
+    out += [IdentifyWarning.coerce(f"loose_{n}") for n in loose]
+    if fit.within_one_tick < POOR_FIT:
+        out.append(IdentifyWarning.POOR_FIT)
+    return out
+
+
+def identify(
+    log: DeviceLog, *, resolution: float | None = None, period: float | None = None, name: str | None = None
+) -> Identification:
+    """Identify m, b, c (and Δ, T unless given) of the device that produced ``log`` (module docstring).
+
+    Parameters
+    ----------
+    log : DeviceLog
+        The logged run (:func:`dfa.model.log.read_log` reads one from CSV).
+    resolution : float, optional
+        Encoder resolution Δ in m (rotary rad), > 0; default: estimated from the readings.
+    period : float, optional
+        Sample period T in s, > 0; default: estimated from the times.
+    name : str, optional
+        Name of the identified device (default ``"identified from <source>"``).
+
+    Returns
+    -------
+    Identification
+        The identified device, each estimate with its 95 % interval, the fit's quality and the warnings.
+
+    Raises
+    ------
+    LogError
+        (a DFAValueError) A log that is not on a uniform time grid or an encoder lattice, or that barely moves.
+    DFAValueError, DFATypeError
+        A resolution or period that is not a number > 0; a log that is not a DeviceLog.
+
+    See Also
+    --------
+    dfa.read_log : Read a log from CSV.
+    synthetic_log, impact_log : Logs made by the exact simulator, to try identification on.
+    """
+    lg = check_type("log", log, DeviceLog, "read one with dfa.read_log(path)")
+    dx = check_positive("resolution", resolution, "give Δ in m") if resolution is not None else None
+    ts = check_positive("period", period, "give T in s") if period is not None else None
+    delta = dx if dx is not None else estimate_resolution(lg.x, lg.source)
+    t = ts if ts is not None else estimate_period(lg.t, lg.source)
+    n = np.rint((lg.x - lg.x.min()) / delta)
+    if float(np.max(np.abs((lg.x - lg.x.min()) / delta - n))) > GRID_RTOL:
+        raise LogError(f"{lg.source}: the readings are not whole ticks of resolution = {delta!r}; check --resolution")
+    k_ref = 1.0  # the dimensionless groups at K = 1 N/m: μ = m/T², β = b/T, σ = c/Δ, φ = f/Δ
+    phi = lg.f / (k_ref * delta)
+    theta, cov, xi, segment = _fit(n, phi)
+    se = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    m = math.exp(theta[0]) * k_ref * t * t
+    scale = {"damping": k_ref * t, "coulomb": k_ref * delta, "force_offset": k_ref * delta}
+    est = {"mass": _estimate(m, m * se[0])}
+    for i, key in ((1, "damping"), (2, "coulomb"), (3, "force_offset")):
+        est[key] = _estimate(float(theta[i]) * scale[key], float(se[i]) * scale[key])
+    run = _free_run(theta, n, phi)
+    fit, free = _quality(xi, n), _quality(run, n)
+    warns = _warnings(est, cov, n, fit, float(np.max(np.abs(lg.f))))
+    dev = Device(est["mass"].value, est["damping"].value, est["coulomb"].value, delta, t,
+                 name=name or f"identified from {lg.source}", rotary=lg.rotary)  # fmt: skip
+    v_peak = float(np.max(np.abs(np.diff(run)))) * delta / t
+    status = IdentifyStatus.POOR_FIT if IdentifyWarning.POOR_FIT in warns else (
+        IdentifyStatus.CAVEATS if warns else IdentifyStatus.OK)  # fmt: skip
+    return Identification(dev, lg.source, lg.samples, est["mass"], est["damping"], est["coulomb"],
+                          est["force_offset"], dx is not None, ts is not None, segment, fit, free, tuple(warns),
+                          v_peak, run, n, status)  # fmt: skip
+
+
+def _quality(xi: np.ndarray, n: np.ndarray) -> FitQuality:
+    """How a prediction ξ (ticks) matches the logged ticks n."""
+    ticks = np.floor(xi) - n
+    return FitQuality(float(np.sqrt(np.mean((xi - n - 0.5) ** 2))), int(np.max(np.abs(ticks))),
+                      float(np.mean(np.abs(ticks) <= 1.0)))  # fmt: skip
+
+
+def synthetic_log(
+    device: Device,
+    force: ArrayLike,
+    *,
+    x0: float = 0.0,
+    v0: float = 0.0,
+    force_offset: float = 0.0,
+    force_noise: float = 0.0,
+    seed: int = 0,
+    source: str = "synthetic",
+) -> DeviceLog:
+    """A log made by the exact simulator: ``device`` driven by the held forces ``force`` (N), read by its encoder.
+
+    Parameters
+    ----------
+    device : Device
+        The device (its m, b, c, Δ, T).
+    force : array_like
+        The force commanded at each sample and held over it, N (rotary N·m): one per sample.
+    x0, v0 : float, optional
+        Start position (m) and velocity (m/s); default at rest at 0.
+    force_offset : float, optional
+        A force added to what is applied but not logged (an amplifier offset), N (default 0).
+    force_noise : float, optional
+        Standard deviation of noise on the logged force column, N (default 0): the log is not what was applied.
+    seed : int, optional
+        Seed of the noise (default 0).
+    source : str, optional
+        The log's name (default ``"synthetic"``).
+
+    Returns
+    -------
+    DeviceLog
+        Readings Δ⌊x/Δ⌋, times hT, the logged forces.
+    """
+    dev = check_type("device", device, Device, "build one with dfa.Device(...)")
+    f = np.asarray(force, dtype=float)
+    if f.ndim != 1 or f.size == 0 or not np.all(np.isfinite(f)):
+        raise DFAValueError("force must be a one-dimensional array of finite forces in N, one per sample")
+    noise = check_nonnegative("force_noise", force_noise, "give the noise's standard deviation in N")
+    xi = np.empty(f.size)
+    delta, t = dev.resolution, dev.period
+    open_loop_kernel(x0 / delta, v0 * t / delta, (f + force_offset) / delta, dev.mass / (t * t),
+                     dev.damping / t, dev.coulomb / delta, xi)  # fmt: skip
+    logged = f + (np.random.default_rng(seed).normal(0.0, noise, f.size) if noise > 0.0 else 0.0)
+    return DeviceLog(np.arange(f.size) * t, delta * np.floor(xi), logged, source=source, rotary=dev.rotary)
+
+
+def impact_log(device: Device, stiffness: float, velocity: float, samples: int, *, source: str = "impact") -> DeviceLog:
+    """A log of an impact on the paper's spring (exact simulation): readings and the wall's force, per sample.
+
+    The device arrives at ``velocity`` (m/s) at the wall's origin; the logged force is the wall's,
+    −KΔ(⌊x/Δ⌋ + ½) (paper eq. 2), which identification takes as the held force like any other. A run that
+    diverges is logged up to its divergence.
+    """
+    from .simulation import simulate
+
+    dev = check_type("device", device, Device, "build one with dfa.Device(...)")
+    p = dev.params(stiffness)
+    r = simulate(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), samples - 1, record=True)
+    assert r.xi is not None
+    keep = int(np.argmax(~np.isfinite(r.xi))) if not np.all(np.isfinite(r.xi)) else samples  # up to a divergence
+    force = r.applied_force()[:keep] * stiffness * dev.resolution
+    t = np.arange(keep) * dev.period
+    return DeviceLog(t, dev.resolution * np.floor(r.xi[:keep]), force, source=source, rotary=dev.rotary)

@@ -1,0 +1,212 @@
+"""A logged run of a device: sample times, encoder readings and held forces (the input of identification).
+
+A log is what a designer with a real device has: at each sample instant t_h the encoder's reading x_h (a
+whole number of ticks Δ) and the force f_h commanded at t_h and held by the zero-order hold until t_{h+1}
+(paper eq. 1-2; rotary: rad and N·m). :func:`read_log` reads one from a CSV file with a header naming the
+columns ``t`` (s), ``x`` (m or rad) and ``f`` (N or N·m); other columns are ignored. Every rule a log must keep
+is checked before anything is analysed, and a bad log is refused in one line naming the row and the rule:
+missing columns, text or NaN in a number, fewer than :data:`MIN_SAMPLES` rows, time not strictly increasing, a
+file larger than :data:`MAX_LOG_BYTES` (refused before it is read).
+
+Examples
+--------
+>>> import numpy as np
+>>> log = DeviceLog(np.arange(20) * 1e-3, 1e-5 * np.arange(20), np.zeros(20), source="example")
+>>> log.samples, round(log.duration, 6)
+(20, 0.019)
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .._io import atomic_write_text
+from ..checks import check_bool, check_int, format_value
+from ..errors import DFATypeError, DFAValueError
+
+__all__ = ["DeviceLog", "LogError", "read_log", "write_log", "MAX_LOG_BYTES", "MIN_SAMPLES", "COLUMNS"]
+
+#: Largest log read (bytes): about 4 million rows of three numbers; a larger file is refused before reading.
+MAX_LOG_BYTES = 200_000_000
+#: Fewest samples a log must hold to identify anything.
+MIN_SAMPLES = 20
+#: The columns a log must have: time (s), encoder reading (m or rad), held force (N or N·m).
+COLUMNS = ("t", "x", "f")
+
+
+class LogError(DFAValueError):
+    """A log that cannot be used: the message names the file, the row or column, and the rule."""
+
+
+def _array(name: str, value: Any, source: str) -> np.ndarray:
+    try:
+        a = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise DFATypeError(f"{source}: column {name!r} must hold numbers") from None
+    if a.ndim != 1:
+        raise LogError(f"{source}: column {name!r} must be one-dimensional, not of shape {a.shape}")
+    bad = np.flatnonzero(~np.isfinite(a))
+    if bad.size:
+        raise LogError(
+            f"{source}: column {name!r} holds {format_value(a[bad[0]])} at row {bad[0] + 1}: every value must be a "
+            "finite number; remove or repair that row"
+        )
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True)
+class DeviceLog:
+    """A logged run: sample times ``t`` (s), encoder readings ``x`` (m; rotary rad), held forces ``f`` (N; N·m).
+
+    Parameters
+    ----------
+    t, x, f : array_like
+        One value per sample, finite; ``t`` strictly increasing; at least :data:`MIN_SAMPLES` samples.
+    source : str, optional
+        Where the log came from (a file name), for messages and outputs.
+    rotary : bool, optional
+        True when positions are angles and forces torques (only changes units).
+    """
+
+    t: np.ndarray = field(repr=False)
+    x: np.ndarray = field(repr=False)
+    f: np.ndarray = field(repr=False)
+    source: str = "log"
+    rotary: bool = False
+
+    def __post_init__(self) -> None:
+        src = self.source
+        for name in COLUMNS:
+            object.__setattr__(self, name, _array(name, getattr(self, name), src))
+        n = {len(self.t), len(self.x), len(self.f)}
+        if len(n) != 1:
+            raise LogError(f"{src}: columns t, x and f must have one value per sample each, not {sorted(n)}")
+        if len(self.t) < MIN_SAMPLES:
+            raise LogError(
+                f"{src}: {len(self.t)} samples is too few: a log needs at least {MIN_SAMPLES}; log a longer run"
+            )
+        dt = np.diff(self.t)
+        bad = np.flatnonzero(~(dt > 0.0))
+        if bad.size:
+            raise LogError(
+                f"{src}: time is not strictly increasing at row {bad[0] + 2} (t = {self.t[bad[0] + 1]!r} after "
+                f"{self.t[bad[0]]!r}); give the samples in time order, one row each"
+            )
+
+    @property
+    def samples(self) -> int:
+        """Number of samples."""
+        return len(self.t)
+
+    @property
+    def duration(self) -> float:
+        """Time from the first sample to the last, s."""
+        return float(self.t[-1] - self.t[0])
+
+
+def _header(row: list[str], source: str) -> dict[str, int]:
+    names = [c.strip().lower() for c in row]
+    missing = [c for c in COLUMNS if c not in names]
+    if missing:
+        raise LogError(
+            f"{source}: the header {','.join(row)!r} has no column {', '.join(repr(m) for m in missing)}: a log needs "
+            "a header with t (s), x (m, the encoder reading) and f (N, the force held over each sample)"
+        )
+    return {c: names.index(c) for c in COLUMNS}
+
+
+def _parse(text: str, source: str) -> tuple[list[float], list[float], list[float]]:
+    rows = csv.reader(io.StringIO(text))
+    head = next(rows, None)
+    if head is None or not any(c.strip() for c in head):
+        raise LogError(f"{source}: the file is empty: a log needs a header (t,x,f) and one row per sample")
+    where = _header(head, source)
+    cols: tuple[list[float], list[float], list[float]] = ([], [], [])
+    for i, row in enumerate(rows, start=2):
+        if not any(c.strip() for c in row):
+            continue
+        for j, c in enumerate(COLUMNS):
+            try:
+                cols[j].append(float(row[where[c]]))
+            except (IndexError, ValueError):
+                cell = row[where[c]] if where[c] < len(row) else "nothing"
+                raise LogError(f"{source}: row {i}, column {c!r} holds {cell!r}: it must be a number") from None
+    return cols
+
+
+def read_log(path: str | os.PathLike[str], *, rotary: bool = False, max_bytes: int = MAX_LOG_BYTES) -> DeviceLog:
+    """Read a log from a CSV file with a header naming ``t``, ``x`` and ``f`` (module docstring).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The CSV file (UTF-8; other columns are ignored).
+    rotary : bool, optional
+        Positions in rad and forces in N·m (default False: m and N).
+    max_bytes : int, optional
+        Largest file read (default :data:`MAX_LOG_BYTES`); a larger one is refused before it is opened.
+
+    Returns
+    -------
+    DeviceLog
+        The log's times, readings and forces, named after the file.
+
+    Raises
+    ------
+    LogError
+        (a DFAValueError) A missing or unreadable file, a file too large, no header, a missing column, a cell
+        that is not a finite number, too few rows, or time not strictly increasing (the message names the row).
+    DFATypeError
+        A path that is not text or path-like.
+
+    See Also
+    --------
+    write_log : Write a log in this format.
+    dfa.identify : Identify the device that produced a log.
+    """
+    if not isinstance(path, (str, os.PathLike)):
+        raise DFATypeError(f"path = {format_value(path)} has type {type(path).__name__}: give the path of a CSV log")
+    check_bool("rotary", rotary)
+    limit = check_int("max_bytes", max_bytes, 1, "give the largest file to read, in bytes")
+    src = os.fspath(path)
+    try:
+        size = os.stat(src).st_size
+        regular = os.path.isfile(src)
+    except OSError as exc:
+        raise LogError(f"{src}: cannot be read ({exc.strerror}); give the path of a CSV log") from None
+    if not regular:
+        raise LogError(f"{src}: is not a regular file; give the path of a CSV log")
+    if size > limit:
+        raise LogError(
+            f"{src}: is {size / 1e6:.4g} MB, larger than the {limit / 1e6:.4g} MB a log may be; log a shorter "
+            "run, or cut the file to the part to identify"
+        )
+    try:
+        with open(src, encoding="utf-8", newline="") as fh:
+            text = fh.read(limit + 1)
+    except (OSError, UnicodeDecodeError) as exc:
+        why = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
+        raise LogError(f"{src}: cannot be read ({why}); give a CSV log") from None
+    t, x, f = _parse(text, src)
+    if not t:
+        raise LogError(f"{src}: has a header but no rows: log at least {MIN_SAMPLES} samples")
+    return DeviceLog(np.array(t), np.array(x), np.array(f), source=os.path.basename(src), rotary=rotary)
+
+
+def write_log(log: DeviceLog, path: str | os.PathLike[str]) -> str:
+    """Write ``log`` as CSV (header ``t,x,f``; 12 significant digits), atomically: what :func:`read_log` reads.
+
+    Returns
+    -------
+    str
+        The path written.
+    """
+    rows = "".join(f"{t:.12g},{x:.12g},{f:.12g}\n" for t, x, f in zip(log.t, log.x, log.f, strict=True))
+    return str(atomic_write_text(path, "t,x,f\n" + rows))

@@ -1,0 +1,91 @@
+"""Text of an identification from a log (:mod:`dfa.analysis.identify`): one screen, the evidence on request."""
+
+from __future__ import annotations
+
+import shlex
+from typing import TYPE_CHECKING
+
+from ..formatting import fill, number, text_table
+
+if TYPE_CHECKING:
+    from ..analysis.check import PassivityCheck
+    from ..analysis.identify import Estimate, Identification
+    from ..analysis.limits.closed_form import StiffnessLimits
+
+__all__ = ["identify_lines", "loop_lines", "device_flags"]
+
+
+def _interval(e: Estimate, unit: str) -> list[str]:
+    return [f"{number(e.value, 4)} {unit}", f"{number(e.low, 4)} … {number(e.high, 4)}"]
+
+
+def identify_lines(r: Identification) -> list[str]:
+    """The identified values with their 95 % intervals, the grid, the fit and the warnings."""
+    dev, u = r.device, r.device.units
+    grid = (
+        f"T = {number(dev.period * 1e3, 4)} ms ({'given' if r.period_given else 'from the times'}), "
+        f"Δ = {number(dev.resolution, 4)} {u['resolution']} ({'given' if r.resolution_given else 'from the readings'})"
+    )
+    rows = [
+        ["mass m" if not dev.rotary else "inertia J", *_interval(r.mass, u["mass"])],
+        ["viscous damping b", *_interval(r.damping, u["damping"])],
+        ["Coulomb friction c", *_interval(r.coulomb, u["force"])],
+        ["force offset f₀", *_interval(r.force_offset, u["force"])],
+    ]
+    fit = r.fit
+    lines = [
+        fill(f"{r.source}: {r.samples} samples, {number(r.samples * dev.period, 4)} s; {grid}"),
+        "",
+        *text_table(rows, ["identified", "value", "95 % interval"]).splitlines(),
+        "",
+        fill(
+            f"fit: {100 * fit.within_one_tick:.4g} % of samples predicted within one tick of the log "
+            + (f"from each {r.segment}-sample segment's start" if r.segment < r.samples else "from its start")
+            + " (largest "
+            f"error {fit.max_tick_error} tick{'' if fit.max_tick_error == 1 else 's'}; RMS {number(fit.rms_ticks, 3)} ticks from the tick middles, about "
+            "0.29 for a perfect model)"
+        ),
+        fill(
+            f"run once over the whole log from its start, the model predicts {100 * r.free_run.within_one_tick:.4g} "
+            f"% of the samples within one tick (largest error {r.free_run.max_tick_error})"
+        ),
+        fill(f"status {r.status.value}: {r.status.message}"),
+    ]
+    lines += [fill(f"warning: {w.message}") for w in r.warnings]
+    return lines
+
+
+def device_flags(r: Identification) -> str:
+    """The identified device as the flags of every other command (``--mass ... --period ...``)."""
+    d = r.device
+    parts = ["--mass", repr(round(d.mass, 6)), "--damping", repr(round(d.damping, 6)), "--coulomb",
+             repr(round(d.coulomb, 6)), "--resolution", f"{d.resolution:.6g}", "--period", f"{d.period:.6g}"]  # fmt: skip
+    return " ".join(shlex.quote(p) for p in parts) + (" --rotary" if d.rotary else "")
+
+
+def loop_lines(r: Identification, check: PassivityCheck, limits: StiffnessLimits, measured: bool) -> list[str]:
+    """The identified device with a wall: the criterion at K and the stiffness limits at the speed."""
+    u = r.device.units
+    crit = check.criterion
+    speed = f"{number(limits.velocity, 4)} {u['velocity']}" + (" (the log's peak speed)" if measured else "")
+    verdict = "not covered" if crit is None else (
+        "passive (proven)" if crit.passive else "not proven passive (no guarantee; not a proof of instability)")  # fmt: skip
+    k = number(check.wall.stiffness, 5)
+    rows = [
+        ["criterion (eq. 11) at this speed", f"{number(limits.k_max, 5)} {u['stiffness']}"],
+        ["static limit 2c/Δ (eq. 9)", f"{number(limits.k_static, 5)} {u['stiffness']}"],
+        ["Colgate-Schenkel 2b/T (eq. 8)", f"{number(limits.k_colgate, 5)} {u['stiffness']}"],
+        ["exact linear bound (no encoder or friction)", f"{number(limits.k_gil, 5)} {u['stiffness']}"],
+    ]
+    return [
+        "",
+        fill(
+            f"with K = {k} {u['stiffness']} at {speed}: {verdict}"
+            + ("" if crit is None else f" (region {crit.region})")
+        ),  # fmt: skip
+        *text_table(rows, ["largest K of the identified device", "value"]).splitlines(),
+        fill(
+            f"K_max four ways, limit cycles and a report of this device: dfa stiffness {device_flags(r)} "
+            f"--velocity {number(limits.velocity, 4)}"
+        ),  # fmt: skip
+    ]
