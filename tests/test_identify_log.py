@@ -156,12 +156,13 @@ def test_identify_cli_numbers_equal_the_api(tmp_path, capsys):
     for key in ("mass", "damping", "coulomb", "force_offset"):
         assert d[key]["value"] == getattr(r, key).value
     v = r.velocity_peak
-    assert d["loop"]["limits"]["k_max"] == pytest.approx(float(k_max_criterion(r.device, v)), rel=1e-12)
-    assert d["loop"]["limits"]["k_static"] == pytest.approx(2 * r.device.coulomb / r.device.resolution, rel=1e-12)
+    assert d["loop"]["k_criterion"]["value"] == pytest.approx(float(k_max_criterion(r.device, v)), rel=1e-9)
+    assert d["loop"]["k_static"] == pytest.approx(2 * r.device.coulomb / r.device.resolution, rel=1e-12)
+    assert d["loop"]["velocity"] == v and d["loop"]["assessment"] is not None
     assert main(["identify", str(path), "--stiffness", "500", "--plot", str(tmp_path / "fit.png")]) == 0
     out = capsys.readouterr().out
     assert f"{number(r.mass.value, 4)} kg" in out and f"{number(r.coulomb.value, 4)} N" in out
-    assert "with K = 500 N/m" in out and (tmp_path / "fit.png").stat().st_size > 0
+    assert "your K = 500 N/m" in out and (tmp_path / "fit.png").stat().st_size > 0
     assert max(len(line) for line in out.splitlines()) <= 100
 
 
@@ -255,7 +256,7 @@ def test_example_logs_are_current_and_give_the_catalogue_back(tmp_path):
 
 
 def test_identify_cli_fuzz(tmp_path, capsys, monkeypatch):
-    """300 seeded `dfa identify` invocations over good and bad logs and hostile flag values: exit 0 or 2, one line
+    """120 seeded `dfa identify` invocations over good and bad logs and hostile flag values: exit 0 or 2, one line
     on stderr when refused, valid JSON when asked."""
     import random
 
@@ -269,7 +270,7 @@ def test_identify_cli_fuzz(tmp_path, capsys, monkeypatch):
     values = ["1e-5", "0.001", "500", "0.1", "-1", "0", "nan", "inf", "x", "1e400", "--", "1e-320"]
     rng = random.Random(29)
     codes = {0: 0, 2: 0}
-    for _ in range(300):
+    for _ in range(120):
         argv = ["identify", rng.choice(paths)]
         for flag in ("--resolution", "--period", "--stiffness", "--velocity"):
             if rng.random() < 0.25:
@@ -285,4 +286,4 @@ def test_identify_cli_fuzz(tmp_path, capsys, monkeypatch):
             assert err.count("\n") == 1 and "Traceback" not in err, (argv, err)
         elif "--json" in argv:
             json.loads(out)
-    assert codes[0] > 20 and codes[2] > 100, codes
+    assert codes[0] > 8 and codes[2] > 40, codes

@@ -24,8 +24,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--rotary", action="store_true", help="the log is in rad and N·m (default: m and N)")
     p.add_argument("--name", type=name, metavar="TEXT", help="name of the identified device (default: from the file)")
     p.add_argument("--stiffness", type=number("--stiffness", "N/m"), metavar="K",
-                   help="close the loop: the criterion and stiffness limits of the identified device with a wall "
-                   "of stiffness K in N/m (rotary N·m/rad); default: none")  # fmt: skip
+                   help="close the loop: K_max four ways of the identified device (as `dfa stiffness`), a wall "
+                   "of stiffness K in N/m (rotary N·m/rad) assessed; default: none")  # fmt: skip
     p.add_argument("--velocity", type=number("--velocity", "m/s"), metavar="V",
                    help="impact speed for --stiffness in m/s (rad/s); default: the log's peak speed")  # fmt: skip
     p.add_argument("--plot", metavar="FILE", help="write the log against the identified model to FILE (.png, .pdf, "
@@ -41,11 +41,12 @@ def _positive(flag: str, value: float | None) -> float | None:
 
 def run(args: argparse.Namespace) -> int:
     """Read the log, identify, optionally close the loop; print the result (text or JSON)."""
-    from ..analysis.check import passivity_check
     from ..analysis.identify import identify
-    from ..analysis.limits.closed_form import stiffness_limits
+    from ..analysis.limits.kmax import design_answer
+    from ..analysis.limits.recommend import recommend_stiffness
     from ..model.log import read_log
-    from ..render.identify import identify_lines, loop_lines
+    from ..render.answer import stiffness_screen
+    from ..render.identify import identify_lines, loop_head
 
     for flag in ("--resolution", "--period", "--stiffness"):
         _positive(flag, getattr(args, flag[2:]))
@@ -62,12 +63,12 @@ def run(args: argparse.Namespace) -> int:
     r = identify(log, resolution=args.resolution, period=args.period, name=args.name)
     out = r.to_dict()
     lines = identify_lines(r)
-    if args.stiffness is not None:
+    if args.stiffness is not None:  # K_max four ways of the identified device, the given K assessed
         v = r.velocity_peak if args.velocity is None else args.velocity
-        chk = passivity_check(r.device, args.stiffness, v)
-        lim = stiffness_limits(r.device, v, args.stiffness)
-        out["loop"] = {"check": chk.to_dict(), "limits": lim.to_dict()}
-        lines += loop_lines(r, chk, lim, args.velocity is None)
+        ans = design_answer(r.device, v, wall=args.stiffness, assess=True)
+        rec = recommend_stiffness(ans)
+        out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict()}
+        lines += loop_head(r, v, args.velocity is None) + stiffness_screen(ans, rec)
     if args.plot is not None:
         written = save_png("--plot", args.plot, r.plot()[0])
         lines.append(f"written {written}")

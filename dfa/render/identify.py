@@ -8,11 +8,9 @@ from typing import TYPE_CHECKING
 from ..formatting import fill, number, text_table
 
 if TYPE_CHECKING:
-    from ..analysis.check import PassivityCheck
     from ..analysis.identify import Estimate, Identification
-    from ..analysis.limits.closed_form import StiffnessLimits
 
-__all__ = ["identify_lines", "loop_lines", "device_flags"]
+__all__ = ["identify_lines", "loop_head", "device_flags"]
 
 
 def _interval(e: Estimate, unit: str) -> list[str]:
@@ -63,29 +61,9 @@ def device_flags(r: Identification) -> str:
     return " ".join(shlex.quote(p) for p in parts) + (" --rotary" if d.rotary else "")
 
 
-def loop_lines(r: Identification, check: PassivityCheck, limits: StiffnessLimits, measured: bool) -> list[str]:
-    """The identified device with a wall: the criterion at K and the stiffness limits at the speed."""
+def loop_head(r: Identification, velocity: float, measured: bool) -> list[str]:
+    """The line that introduces the identified device's K_max (the speed, and where it came from)."""
     u = r.device.units
-    crit = check.criterion
-    speed = f"{number(limits.velocity, 4)} {u['velocity']}" + (" (the log's peak speed)" if measured else "")
-    verdict = "not covered" if crit is None else (
-        "passive (proven)" if crit.passive else "not proven passive (no guarantee; not a proof of instability)")  # fmt: skip
-    k = number(check.wall.stiffness, 5)
-    rows = [
-        ["criterion (eq. 11) at this speed", f"{number(limits.k_max, 5)} {u['stiffness']}"],
-        ["static limit 2c/Δ (eq. 9)", f"{number(limits.k_static, 5)} {u['stiffness']}"],
-        ["Colgate-Schenkel 2b/T (eq. 8)", f"{number(limits.k_colgate, 5)} {u['stiffness']}"],
-        ["exact linear bound (no encoder or friction)", f"{number(limits.k_gil, 5)} {u['stiffness']}"],
-    ]
-    return [
-        "",
-        fill(
-            f"with K = {k} {u['stiffness']} at {speed}: {verdict}"
-            + ("" if crit is None else f" (region {crit.region})")
-        ),  # fmt: skip
-        *text_table(rows, ["largest K of the identified device", "value"]).splitlines(),
-        fill(
-            f"K_max four ways, limit cycles and a report of this device: dfa stiffness {device_flags(r)} "
-            f"--velocity {number(limits.velocity, 4)}"
-        ),  # fmt: skip
-    ]
+    speed = f"{number(velocity, 4)} {u['velocity']}" + (" (the log's peak speed)" if measured else "")
+    return ["", fill(f"the identified device at {speed}; the same with any other speed or wall: "
+                     f"dfa stiffness {device_flags(r)}"), ""]  # fmt: skip
