@@ -32,9 +32,11 @@ VALIDATION_SUMMARY := $(wildcard reports/validation/validation.json)
 report: $(STAMP)
 	$(BIN)/dfa report --out reports --format both --zwidth 20 $(if $(VALIDATION_SUMMARY),--validation $(VALIDATION_SUMMARY))
 
-# The whole suite (doctests included), then format, lint, layering and types.
+# The whole suite (doctests included), then format, lint, layering and types. Work stealing: an idle worker takes
+# tests queued on the other (with the default distribution one worker sat idle while the other finished its slow
+# tests: 392 s against 294 s for the same suite on 2 cores).
 test: $(STAMP)
-	HYPOTHESIS_PROFILE=ci $(BIN)/python -m pytest -q -n 2
+	HYPOTHESIS_PROFILE=ci $(BIN)/python -m pytest -q -n 2 --dist worksteal
 	$(MAKE) --no-print-directory lint
 
 # Format, lint, layering (import contracts in pyproject.toml) and types.
@@ -46,7 +48,7 @@ lint: $(STAMP)
 
 # Random hypothesis examples, many more of them: hunt for counterexamples on demand.
 explore: $(STAMP)
-	HYPOTHESIS_PROFILE=explore $(BIN)/python -m pytest -q -n 2 -p no:cacheprovider
+	HYPOTHESIS_PROFILE=explore $(BIN)/python -m pytest -q -n 2 --dist worksteal -p no:cacheprovider
 
 # Rewrite the README's console examples with what the code prints now (tests check them).
 readme: $(STAMP)

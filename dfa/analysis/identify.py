@@ -265,14 +265,17 @@ class Identification(Result):
         return plot_identification(self, ax)
 
 
+def _window(n: int) -> int:
+    """Samples (odd) of the Savitzky–Golay window that smooths the readings: up to 31, at most a third of the log."""
+    return max(5, min(31, (n // 3) | 1))
+
+
 def _first_guess(n: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
     """(μ, β, σ) by equation error on the smoothed readings (only a start for the output-error fit)."""
     from scipy.optimize import nnls
     from scipy.signal import savgol_filter
 
-    w = max(5, min(31, (len(n) // 3) | 1))
-    v = savgol_filter(n.astype(float), w, 3, deriv=1)
-    a = savgol_filter(n.astype(float), w, 3, deriv=2)
+    v, a = (savgol_filter(n.astype(float), _window(len(n)), 3, deriv=k) for k in (1, 2))
     moving = np.abs(v) > MOVING
     if moving.sum() < 10:
         raise LogError(
@@ -306,8 +309,7 @@ def _fit(n: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
     mu, beta, sigma = _first_guess(n, phi)
     starts = _segments(len(n), mu, beta)
     j = len(starts)
-    w = max(5, min(31, (len(n) // 3) | 1))
-    v_start = savgol_filter(n.astype(float), w, 3, deriv=1)[starts]
+    v_start = savgol_filter(n.astype(float), _window(len(n)), 3, deriv=1)[starts]
     target, out = n + 0.5, np.empty(len(n))
     theta0 = np.concatenate([[math.log(mu), beta, sigma, 0.0], np.full(j, 0.5), v_start])
     lo = np.concatenate([[-np.inf, 0.0, 0.0, -np.inf], np.zeros(j), np.full(j, -np.inf)])

@@ -32,8 +32,8 @@ from ..errors import DFATypeError, DFAValueError
 
 __all__ = ["DeviceLog", "LogError", "read_log", "write_log", "MAX_LOG_BYTES", "MIN_SAMPLES", "COLUMNS"]
 
-#: Largest log read (bytes): about 4 million rows of three numbers; a larger file is refused before reading.
-MAX_LOG_BYTES = 200_000_000
+#: Largest log read (bytes): about a million rows of three numbers; a larger file is refused before reading.
+MAX_LOG_BYTES = 50_000_000
 #: Fewest samples a log must hold to identify anything.
 MIN_SAMPLES = 20
 #: The columns a log must have: time (s), encoder reading (m or rad), held force (N or N·m).
