@@ -183,6 +183,7 @@ BAD = {
     "empty": "",
     "header only": "t,x,f\n",
     "too short": "t,x,f\n0,0,1\n0.001,1e-5,1\n",
+    "column twice": "t,x,f,x\n" + "".join(f"{i * 1e-3},{i * 1e-5},1,0\n" for i in range(30)),
 }
 WORDS = {
     "missing column": "no column 'f'",
@@ -193,6 +194,7 @@ WORDS = {
     "empty": "empty",
     "header only": "no rows",
     "too short": "too few",
+    "column twice": "column 'x' 2 times",
 }
 
 
@@ -287,3 +289,69 @@ def test_identify_cli_fuzz(tmp_path, capsys, monkeypatch):
         elif "--json" in argv:
             json.loads(out)
     assert codes[0] > 8 and codes[2] > 40, codes
+
+
+def _csv(path: Path, log: DeviceLog, t_fmt: str = ".12g", x_fmt: str = ".12g", head: str = "t,x,f", sep: str = ",",
+         t_offset: float = 0.0, comment: str = "") -> Path:  # fmt: skip
+    rows = "".join(
+        f"{t + t_offset:{t_fmt}}{sep}{x:{x_fmt}}{sep}{f:.12g}\n" for t, x, f in zip(log.t, log.x, log.f, strict=True)
+    )
+    path.write_text(comment + head.replace(",", sep) + "\n" + rows, encoding="utf-8")
+    return path
+
+
+def test_identify_reads_logs_as_they_are_written(tmp_path, capsys):
+    """Found by review: µs-rounded times at 3 kHz, Unix times, units in the header, a comment line, semicolons,
+    readings with few digits (resolution given) are read; the values match the log's own identification."""
+    delta = dfa.get_device("delta").device
+    t = np.arange(3000) * delta.period
+    log = synthetic_log(delta, 3.0 * np.sin(2 * np.pi * np.geomspace(1, 40, 3000) * t))
+    ref = identify(log)
+    cases = [
+        (_csv(tmp_path / "us.csv", log, t_fmt=".6f"), []),
+        (_csv(tmp_path / "unix.csv", log, t_fmt=".7f", t_offset=1.7e9), []),
+        (_csv(tmp_path / "units.csv", log, head="t (s),x [m],f (N)", comment="# logged by hand\n"), []),
+        (_csv(tmp_path / "semi.csv", log, sep=";"), []),
+        (_csv(tmp_path / "digits.csv", log, x_fmt=".5g"), ["--resolution", "3e-5"]),
+    ]
+    for path, extra in cases:
+        assert main(["identify", str(path), "--json", *extra]) == 0, (path.name, capsys.readouterr().err)
+        d = json.loads(capsys.readouterr().out)
+        assert d["mass"]["value"] == pytest.approx(ref.mass.value, rel=1e-3), path.name
+        assert d["device"]["period"] == pytest.approx(delta.period, rel=1e-6), path.name
+
+
+def test_identify_no_reversal_gives_no_interval_for_c_and_offset(capsys, tmp_path):
+    """Found by review: one-way motion printed c and f₀ to ±0.003 % while 15 % off; now they have no interval,
+    null with its reason in the JSON, "undetermined" in the text."""
+    dev = dfa.get_device("phantom").device
+    t = np.arange(4000) * dev.period
+    log = synthetic_log(dev, 0.114 * (1.2 + np.sin(2 * np.pi * np.geomspace(0.5, 20, 4000) * t)))
+    r = identify(log)
+    assert IdentifyWarning.NO_REVERSAL in r.warnings
+    assert r.coulomb.low is None and r.force_offset.high is None and r.mass.low is not None
+    d = r.to_dict()
+    assert d["coulomb"]["low"] is None and "no reversal" in d["coulomb"]["null_reasons"]["/low"]
+    path = tmp_path / "oneway.csv"
+    write_log(log, path)
+    assert main(["identify", str(path)]) == 0
+    assert "undetermined (no reversal" in capsys.readouterr().out
+
+
+def test_identify_refuses_a_zero_force_column_and_flags_counts(tmp_path, capsys):
+    """Found by review: a zero force column ended in a traceback (log of 0); positions in counts gave Δ = 1 m
+    silently. Now one line, exit 2; and a warning naming the identified resolution. No numpy reprs in messages."""
+    path, _dev = _log_file(tmp_path)
+    log = read_log(path)
+    write_log(DeviceLog(log.t, log.x, np.zeros(log.samples)), tmp_path / "zero.csv")
+    assert main(["identify", str(tmp_path / "zero.csv")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "force column is zero" in err
+    counts = DeviceLog(log.t, log.x / 1e-5, log.f)  # positions in encoder counts, not m
+    write_log(counts, tmp_path / "counts.csv")
+    assert main(["identify", str(tmp_path / "counts.csv")]) == 0
+    assert "identified resolution" in capsys.readouterr().err
+    for kind in ("nan", "time backwards"):
+        (tmp_path / "bad.csv").write_text(BAD[kind], encoding="utf-8")
+        assert main(["identify", str(tmp_path / "bad.csv")]) == 2
+        assert "np.float64" not in capsys.readouterr().err

@@ -6,6 +6,7 @@ import argparse
 
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..errors import DFAError
+from ..plausibility import warn_implausible
 from .output import emit, save_png, say
 from .parsing import UsageError, name, number
 
@@ -61,6 +62,9 @@ def run(args: argparse.Namespace) -> int:
     except DFAError as err:
         raise UsageError(str(err)) from None
     r = identify(log, resolution=args.resolution, period=args.period, name=args.name)
+    for key, hint in (("mass", None), ("resolution", "positions in encoder counts? give x in m (rad)"),
+                      ("period", "times in ms? give t in s")):  # fmt: skip
+        warn_implausible(key, getattr(r.device, key), rotary=args.rotary, subject=f"identified {key}", hint=hint)
     out = r.to_dict()
     lines = identify_lines(r)
     if args.stiffness is not None:  # K_max four ways of the identified device, the given K assessed

@@ -3,7 +3,8 @@
 A log is what a designer with a real device has: at each sample instant t_h the encoder's reading x_h (a
 whole number of ticks Δ) and the force f_h commanded at t_h and held by the zero-order hold until t_{h+1}
 (paper eq. 1-2; rotary: rad and N·m). :func:`read_log` reads one from a CSV file with a header naming the
-columns ``t`` (s), ``x`` (m or rad) and ``f`` (N or N·m); other columns are ignored. Every rule a log must keep
+columns ``t`` (s), ``x`` (m or rad) and ``f`` (N or N·m), a unit in brackets after the name allowed
+(``t (s)``); other columns, and lines starting with ``#``, are ignored; commas, semicolons or tabs separate. Every rule a log must keep
 is checked before anything is analysed, and a bad log is refused in one line naming the row and the rule:
 missing columns, text or NaN in a number, fewer than :data:`MIN_SAMPLES` rows, time not strictly increasing, a
 file larger than :data:`MAX_LOG_BYTES` (refused before it is read).
@@ -32,8 +33,9 @@ from ..errors import DFATypeError, DFAValueError
 
 __all__ = ["DeviceLog", "LogError", "read_log", "write_log", "MAX_LOG_BYTES", "MIN_SAMPLES", "COLUMNS"]
 
-#: Largest log read (bytes): about a million rows of three numbers; a larger file is refused before reading.
-MAX_LOG_BYTES = 50_000_000
+#: Largest log read (bytes): about half a million rows of three numbers, which identification fits in under
+#: 1 GB of memory; a larger file is refused before reading.
+MAX_LOG_BYTES = 20_000_000
 #: Fewest samples a log must hold to identify anything.
 MIN_SAMPLES = 20
 #: The columns a log must have: time (s), encoder reading (m or rad), held force (N or N·m).
@@ -54,7 +56,7 @@ def _array(name: str, value: Any, source: str) -> np.ndarray:
     bad = np.flatnonzero(~np.isfinite(a))
     if bad.size:
         raise LogError(
-            f"{source}: column {name!r} holds {format_value(a[bad[0]])} at row {bad[0] + 1}: every value must be a "
+            f"{source}: column {name!r} holds {format_value(float(a[bad[0]]))} at row {bad[0] + 2}: every value must be a "
             "finite number; remove or repair that row"
         )
     a.setflags(write=False)
@@ -96,8 +98,8 @@ class DeviceLog:
         bad = np.flatnonzero(~(dt > 0.0))
         if bad.size:
             raise LogError(
-                f"{src}: time is not strictly increasing at row {bad[0] + 2} (t = {self.t[bad[0] + 1]!r} after "
-                f"{self.t[bad[0]]!r}); give the samples in time order, one row each"
+                f"{src}: time is not strictly increasing at row {bad[0] + 3} (t = {format_value(float(self.t[bad[0] + 1]))}"
+                f" after {format_value(float(self.t[bad[0]]))}); give the samples in time order, one row each"
             )
 
     @property
@@ -112,7 +114,12 @@ class DeviceLog:
 
 
 def _header(row: list[str], source: str) -> dict[str, int]:
-    names = [c.strip().lower() for c in row]
+    names = [c.split("(")[0].split("[")[0].strip().lower() for c in row]  # "t (s)", "x [m]": the name before a unit
+    twice = [c for c in COLUMNS if names.count(c) > 1]
+    if twice:
+        raise LogError(
+            f"{source}: the header names column {twice[0]!r} {names.count(twice[0])} times: name each of t, x, f once"
+        )
     missing = [c for c in COLUMNS if c not in names]
     if missing:
         raise LogError(
@@ -123,7 +130,10 @@ def _header(row: list[str], source: str) -> dict[str, int]:
 
 
 def _parse(text: str, source: str) -> tuple[list[float], list[float], list[float]]:
-    rows = csv.reader(io.StringIO(text))
+    lines = [ln for ln in text.splitlines() if not ln.lstrip().startswith("#")]  # comment lines
+    first = next((ln for ln in lines if ln.strip()), "")
+    delimiter = ";" if ";" in first and "," not in first else "\t" if "\t" in first and "," not in first else ","
+    rows = csv.reader(io.StringIO("\n".join(lines)), delimiter=delimiter)
     head = next(rows, None)
     if head is None or not any(c.strip() for c in head):
         raise LogError(f"{source}: the file is empty: a log needs a header (t,x,f) and one row per sample")
@@ -189,7 +199,7 @@ def read_log(path: str | os.PathLike[str], *, rotary: bool = False, max_bytes: i
             "run, or cut the file to the part to identify"
         )
     try:
-        with open(src, encoding="utf-8", newline="") as fh:
+        with open(src, encoding="utf-8-sig", newline="") as fh:  # a BOM (spreadsheet export) is dropped
             text = fh.read(limit + 1)
     except (OSError, UnicodeDecodeError) as exc:
         why = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"

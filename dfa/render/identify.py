@@ -14,11 +14,13 @@ __all__ = ["identify_lines", "loop_head", "device_flags"]
 
 
 def _interval(e: Estimate, unit: str) -> list[str]:
+    if e.low is None or e.high is None:
+        return [f"{number(e.value, 4)} {unit}", "undetermined (no reversal: only c − f₀)"]
     return [f"{number(e.value, 4)} {unit}", f"{number(e.low, 4)} … {number(e.high, 4)}"]
 
 
 def identify_lines(r: Identification) -> list[str]:
-    """The identified values with their 95 % intervals, the grid, the fit and the warnings."""
+    """The identified values with their intervals (quantization only), the grid, the fit and the warnings."""
     dev, u = r.device, r.device.units
     grid = (
         f"T = {number(dev.period * 1e3, 4)} ms ({'given' if r.period_given else 'from the times'}), "
@@ -34,7 +36,11 @@ def identify_lines(r: Identification) -> list[str]:
     lines = [
         fill(f"{r.source}: {r.samples} samples, {number(r.samples * dev.period, 4)} s; {grid}"),
         "",
-        *text_table(rows, ["identified", "value", "95 % interval"]).splitlines(),
+        *text_table(rows, ["identified", "value", "±1.96σ, quantization only"]).splitlines(),
+        fill(
+            "the intervals leave out force noise, the fit's convergence and unmodelled dynamics: read them as a "
+            "lower bound on the uncertainty"
+        ),
         "",
         fill(
             f"fit: {100 * fit.within_one_tick:.4g} % of samples predicted within one tick of the log "

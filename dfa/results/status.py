@@ -420,7 +420,7 @@ class GripStatus(StatusEnum):
 class IdentifyStatus(StatusEnum):
     """How far an identification from a log can be used (:class:`dfa.analysis.identify.Identification`)."""
 
-    OK = ("ok", "identified: the model reproduces the log and every parameter is excited")
+    OK = ("ok", "identified: the fit reproduces the log segment by segment, and every parameter is excited")
     CAVEATS = ("caveats", "identified, with warnings: the log does not excite every parameter well")
     POOR_FIT = ("poor_fit", "the identified model does not reproduce the log: its values are not to be trusted")
 
