@@ -26,7 +26,7 @@ from dfa.cli import main, parsing
 from dfa.cli.app import build_parser
 
 SEED = 17
-N_INVOCATIONS = 2200
+N_INVOCATIONS = 1800  # 2200 until the suite outgrew its 6 minutes (issue 29); the same seeds, the first 450 a chunk
 
 GARBAGE = [
     "",

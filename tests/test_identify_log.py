@@ -258,7 +258,7 @@ def test_example_logs_are_current_and_give_the_catalogue_back(tmp_path):
 
 
 def test_identify_cli_fuzz(tmp_path, capsys, monkeypatch):
-    """120 seeded `dfa identify` invocations over good and bad logs and hostile flag values: exit 0 or 2, one line
+    """60 seeded `dfa identify` invocations over good and bad logs and hostile flag values: exit 0 or 2, one line
     on stderr when refused, valid JSON when asked."""
     import random
 
@@ -272,7 +272,7 @@ def test_identify_cli_fuzz(tmp_path, capsys, monkeypatch):
     values = ["1e-5", "0.001", "500", "0.1", "-1", "0", "nan", "inf", "x", "1e400", "--", "1e-320"]
     rng = random.Random(29)
     codes = {0: 0, 2: 0}
-    for _ in range(120):
+    for _ in range(60):
         argv = ["identify", rng.choice(paths)]
         for flag in ("--resolution", "--period", "--stiffness", "--velocity"):
             if rng.random() < 0.25:
@@ -288,7 +288,7 @@ def test_identify_cli_fuzz(tmp_path, capsys, monkeypatch):
             assert err.count("\n") == 1 and "Traceback" not in err, (argv, err)
         elif "--json" in argv:
             json.loads(out)
-    assert codes[0] > 8 and codes[2] > 40, codes
+    assert codes[0] > 4 and codes[2] > 20, codes
 
 
 def _csv(path: Path, log: DeviceLog, t_fmt: str = ".12g", x_fmt: str = ".12g", head: str = "t,x,f", sep: str = ",",
