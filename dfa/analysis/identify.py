@@ -293,12 +293,11 @@ def _window(n: int) -> int:
     return max(5, min(31, (n // 3) | 1))
 
 
-def _first_guess(n: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
-    """(μ, β, σ) by equation error on the smoothed readings (only a start for the output-error fit)."""
+def _first_guess(v: np.ndarray, a: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
+    """(μ, β, σ) by equation error on the smoothed velocity ``v`` and acceleration ``a`` of the readings (only a
+    start for the output-error fit)."""
     from scipy.optimize import nnls
-    from scipy.signal import savgol_filter
 
-    v, a = (savgol_filter(n.astype(float), _window(len(n)), 3, deriv=k) for k in (1, 2))
     moving = np.abs(v) > MOVING
     if moving.sum() < 10:
         raise LogError(
@@ -328,19 +327,21 @@ def _segments(n: int, mu: float, beta: float) -> np.ndarray:
 
 
 def _fit(n: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
-    """(global θ = (log μ, β, σ, φ₀), its covariance, the segments' prediction ξ): step 3 of the module docstring.
+    """(global θ = (log μ, β, σ, φ₀), its covariance, the segments' prediction ξ, the segment length): step 3 of
+    the module docstring.
 
-    Multiple shooting: each segment of :data:`SEGMENT` samples starts from its own state (its position within
-    the first tick and its velocity, fitted), so that an error of the start does not carry over the whole log.
+    Multiple shooting: each segment (:func:`_segments`) starts from its own state (its position within the
+    first tick and its velocity, fitted), so that an error of the start does not carry over the whole log.
     """
     from scipy.optimize import least_squares
     from scipy.signal import savgol_filter
     from scipy.sparse import lil_matrix
 
-    mu, beta, sigma = _first_guess(n, phi)
+    v, a = (savgol_filter(n.astype(float), _window(len(n)), 3, deriv=k) for k in (1, 2))
+    mu, beta, sigma = _first_guess(v, a, phi)
     starts = _segments(len(n), mu, beta)
     j = len(starts)
-    v_start = savgol_filter(n.astype(float), _window(len(n)), 3, deriv=1)[starts]
+    v_start = v[starts]
     target, out = n + 0.5, np.empty(len(n))
     theta0 = np.concatenate([[math.log(mu), beta, sigma, 0.0], np.full(j, 0.5), v_start])
     lo = np.concatenate([[-np.inf, 0.0, 0.0, -np.inf], np.zeros(j), np.full(j, -np.inf)])
@@ -443,7 +444,7 @@ def _warnings(
     sd = np.sqrt(np.maximum(np.diag(cov)[1:3], 0.0))
     if sd.min() > 0.0 and abs(cov[1, 2] / (sd[0] * sd[1])) > CONFOUNDED and {"damping", "coulomb"} & set(loose):
         out.append(IdentifyWarning.DAMPING_FRICTION_CONFOUNDED)
-    out += [IdentifyWarning.coerce(f"loose_{n}") for n in loose]
+    out += [IdentifyWarning.coerce(f"loose_{k}") for k in loose]
     if fit.within_one_tick < POOR_FIT:
         out.append(IdentifyWarning.POOR_FIT)
     return out

@@ -19,28 +19,24 @@ Examples
 
 from __future__ import annotations
 
+import numpy as np
+
 from .jit import njit
 from .kernel import FloatArray, IntArray, sample_constants, step
 
 __all__ = ["open_loop_kernel", "segments_kernel"]
 
 
-@njit(cache=True, nogil=True)
 def open_loop_kernel(
     x0: float, v0: float, phis: FloatArray, mu: float, beta: float, sigma: float, out: FloatArray
 ) -> None:
     """Positions ξ at the sample instants 0, 1, …, n − 1 from (ξ0, ξ'0) under the held forces ``phis``.
 
     ``out[h]`` is ξ(h) (``out[0] = x0``); the force ``phis[h]`` acts over [h, h + 1) for h < n − 1 (the last
-    force acts after the last position and is not used). A velocity exactly 0 with |φ| <= σ sticks.
+    force acts after the last position and is not used). A velocity exactly 0 with |φ| <= σ sticks. The one
+    segment of :func:`segments_kernel`.
     """
-    k = sample_constants(mu, beta)
-    x, v = x0, v0
-    n = out.shape[0]
-    for h in range(n):
-        out[h] = x
-        if h + 1 < n:
-            x, v, _xr, _t, _a, _a2, _tr, _s = step(x, v, phis[h], mu, sigma, k)
+    segments_kernel(np.array([x0]), np.array([v0]), np.zeros(1, dtype=np.int64), phis, mu, beta, sigma, out)
 
 
 @njit(cache=True, nogil=True)
@@ -55,7 +51,8 @@ def segments_kernel(
     out: FloatArray,
 ) -> None:
     """:func:`open_loop_kernel` restarted at each segment: segment j covers samples ``starts[j]`` to
-    ``starts[j + 1] - 1`` (the last to the end) and starts from (``x0s[j]``, ``v0s[j]``)."""
+    ``starts[j + 1] - 1`` (the last to the end) and starts from (``x0s[j]``, ``v0s[j]``); the force
+    ``phis[h]`` is held over [h, h + 1) (stick when a velocity exactly 0 meets |φ| <= σ)."""
     k = sample_constants(mu, beta)
     n = out.shape[0]
     for j in range(starts.shape[0]):

@@ -31,8 +31,6 @@ import math
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-import numpy as np
-
 from ...checks import check_bool, check_choice, check_nonnegative, check_positive, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
@@ -165,11 +163,10 @@ def _need(req: Requirement, own: float) -> GripNeed:
 def _scan(dev: Device, wall: Wall, v: float, hand_mass: float) -> tuple[tuple[float, ...], tuple[str, ...]]:
     """The impact at V from ξ0 = 0 for each scanned grip (b_h = 0, K T 2^i)."""
     dampings = (0.0, *(wall.stiffness * dev.period * 2.0**i for i in GRIP_SCAN))
+    wp, xd = wall.params(dev.period), dev.xi_dot(v)
     outcomes = []
     for b_h in dampings:
-        held = dev.holding(Hand(hand_mass, b_h))
-        p, wp = held.params(wall.stiffness), wall.params(dev.period)
-        xd = dev.xi_dot(v)
+        p = dev.holding(Hand(hand_mass, b_h)).params(wall.stiffness)
         r = simulate(p.mu, p.beta, p.sigma, xd, None, record=False, bound=divergence_bound(0.0, xd, p.mu), wall=wp)
         outcomes.append(r.outcome.value)
     return dampings, tuple(outcomes)
@@ -233,4 +230,4 @@ def grip_sweep(
         return GripSweep(dev, w, v, m_h, needs)
     dampings, outcomes = _scan(dev, w, v, m_h)
     least = _least_safe(dampings, outcomes)
-    return GripSweep(dev, w, v, m_h, needs, tuple(float(x) for x in np.asarray(dampings)), outcomes, least)
+    return GripSweep(dev, w, v, m_h, needs, dampings, outcomes, least)
