@@ -24,8 +24,7 @@ def run(args: argparse.Namespace) -> int:
     assert inp.params is not None
     dev = inp.device
     if args.json:
-        hand = {} if dev is None or dev.hand is None else {"hand": dev.hand.to_dict()}
-        emit(inp.params.to_dict() | hand)
+        emit(inp.params.to_dict() | ({} if dev is None else dev.hand_json()))
         return 0
     say(f"{inp.label}")
     p = inp.params

@@ -459,9 +459,12 @@ class Device:
             "resolution": self.resolution,
             "period": self.period,
         }
-        if self.hand is not None:
-            out["hand"] = self.hand.to_dict()
-        return out
+        return out | self.hand_json()
+
+    def hand_json(self) -> dict[str, object]:
+        """``{"hand": ...}`` (:meth:`Hand.to_dict`) for a held device, ``{}`` for a bare one: what every JSON
+        output that names the device adds for its grasp."""
+        return {} if self.hand is None else {"hand": self.hand.to_dict()}
 
 
 def _stiffness(name: str, value: float, k: float, formula: str) -> float:

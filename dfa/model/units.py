@@ -159,8 +159,7 @@ def unit_context(device: Device | None, stiffness: float | None, velocity: float
     (every value None without a device)."""
     dev, k = _checked(device, stiffness)
     u = dev.units if dev is not None else None
-    hand = {} if dev is None or dev.hand is None else {"hand": dev.hand.to_dict()}
-    return hand | {
+    return ({} if dev is None else dev.hand_json()) | {
         "device": None if dev is None else dev.name,
         "rotary": None if dev is None else dev.rotary,
         "stiffness": k,

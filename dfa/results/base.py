@@ -89,9 +89,9 @@ class Result:
             out[f.name] = value if how is _SELF or value is None else how(value)
         for name in self.json_properties:
             out[name] = getattr(self, name)
-        hand = getattr(getattr(self, "device", None), "hand", None)  # a grasped device states its hand
-        if hand is not None:
-            out["hand"] = hand.to_dict()
+        hand_json = getattr(getattr(self, "device", None), "hand_json", None)  # a held device states its hand
+        if hand_json is not None:
+            out.update(hand_json())
         if getattr(self, "status", None) is not None:
             out["status_message"] = self.status_message
         units = self.units()
