@@ -462,8 +462,13 @@ class Device:
         return out | self.hand_json()
 
     def hand_json(self) -> dict[str, object]:
-        """``{"hand": ...}`` (:meth:`Hand.to_dict`) for a held device, ``{}`` for a bare one: what every JSON
-        output that names the device adds for its grasp."""
+        """The entry every JSON output that names the device adds for its grasp.
+
+        Returns
+        -------
+        dict
+            ``{"hand": ...}`` (:meth:`Hand.to_dict`) for a held device, ``{}`` for a bare one.
+        """
         return {} if self.hand is None else {"hand": self.hand.to_dict()}
 
 
