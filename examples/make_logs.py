@@ -8,7 +8,10 @@ imperfections: a force offset the log does not show, and noise on the force colu
   0.01 N of noise on the logged force;
 - ``impulse_pulses.csv``: the Impulse Engine driven by force pulses of ±0.08 N, 4 s, 0.0005 N of force noise;
 - ``phantom_impact.csv``: an impact of the Phantom 1.0 on its catalogue wall at 0.1 m/s (the force column is the
-  wall's force), 2 s.
+  wall's force), 2 s;
+- ``limit_cycle.csv``: an impact at 0.012 m/s of a light device (10 g, 0.4 N·s/m, 1 mN of friction, 10 µm, 1 ms)
+  on a wall of 1000 N/m (μ = 10, β = 0.4, σ = 0.1) that ends in a sustained limit cycle of 2.5 ticks at 50 Hz,
+  6 s: ``dfa identify examples/logs/limit_cycle.csv --stiffness 1000``.
 
 Run: python examples/make_logs.py (``tests/test_identify_log.py`` checks that the committed files are what this
 writes, and that identifying them gives the catalogue's values back).
@@ -25,6 +28,9 @@ from dfa.analysis.identify import impact_log, synthetic_log
 from dfa.model.log import DeviceLog, write_log
 
 LOGS = Path(__file__).resolve().parent / "logs"
+#: The wall and device of ``limit_cycle.csv`` (μ = 10, β = 0.4, σ = 0.1 at T = 1 ms, Δ = 10 µm).
+CYCLE_K = 1000.0
+CYCLE_DEVICE = dfa.Device(0.01, 0.4, 0.001, 1e-5, 1e-3, name="light device")
 
 
 def example_logs() -> dict[str, DeviceLog]:
@@ -41,6 +47,7 @@ def example_logs() -> dict[str, DeviceLog]:
                                          source="delta_chirp.csv"),
         "impulse_pulses.csv": synthetic_log(impulse, pulses, force_noise=5e-4, seed=2, source="impulse_pulses.csv"),
         "phantom_impact.csv": impact_log(phantom.device, phantom.stiffness, 0.1, 2000, source="phantom_impact.csv"),
+        "limit_cycle.csv": impact_log(CYCLE_DEVICE, CYCLE_K, 0.012, 6000, source="limit_cycle.csv"),
     }  # fmt: skip
 
 

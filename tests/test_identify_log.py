@@ -86,10 +86,10 @@ def test_identify_recovers_random_devices_within_2_percent(c, delta, period, tic
     """m, b, c of a random device back from a well-excited free-motion log within 2 %; the model reproduces the
     log within one tick (issue 29, tests)."""
     dev, force = _excited(c, delta, period, ticks, tau)
-    r = identify(synthetic_log(dev, force))
+    r = identify(synthetic_log(dev, force), bootstrap=0)  # the values; the intervals' coverage is tested below
     for est, true in ((r.mass, dev.mass), (r.damping, dev.damping), (r.coulomb, dev.coulomb)):
         assert est.value == pytest.approx(true, rel=0.02)
-        assert abs(est.value - true) <= 2.0 * (est.high - est.value)  # the interval is not overconfident
+        assert abs(est.value - true) <= 2.0 * (est.high - est.value)  # even the Jacobian's interval is not far off
     assert r.device.resolution == pytest.approx(delta, rel=1e-9) and r.device.period == pytest.approx(period)
     assert r.fit.within_one_tick >= 0.99 and IdentifyWarning.NO_REVERSAL not in r.warnings
 
@@ -109,17 +109,19 @@ def test_table2_identify_from_impact_logs(samples):
 
 def test_table2_impact_at_rest_says_little_motion():
     """An impact that rests within 140 samples (the Delta at its catalogue K) warns that the log holds little
-    motion, and the damping it cannot see is loose (not a confident wrong value)."""
+    motion and gives no interval at all (its fit can be far off and look exact: not a confident wrong value)."""
     e = dfa.get_device("delta")
     r = identify(impact_log(e.device, e.stiffness, 0.1, 3000))
-    assert IdentifyWarning.LITTLE_MOTION in r.warnings and IdentifyWarning.LOOSE_DAMPING in r.warnings
-    assert r.status.value == "caveats"
+    assert IdentifyWarning.LITTLE_MOTION in r.warnings and r.status.value == "caveats"
+    for est in (r.mass, r.damping, r.coulomb, r.force_offset):
+        assert est.low is None and est.high is None and "fewer than 300 samples in motion" in est.undetermined
+    assert r.bootstrap == 0
 
 
 def test_identify_offset_and_noise_measurement_like():
     """A force offset is identified; noise on the logged force leaves m, b, c within 5 % on a chirp."""
     dev, force = _excited(0.2, 1e-5, 1e-3, 5.0, 80.0)
-    r = identify(synthetic_log(dev, force, force_offset=0.05, force_noise=0.004, seed=2))
+    r = identify(synthetic_log(dev, force, force_offset=0.05, force_noise=0.004, seed=2), bootstrap=0)
     assert r.force_offset.value == pytest.approx(0.05, rel=0.05)
     for est, true in ((r.mass, dev.mass), (r.damping, dev.damping), (r.coulomb, dev.coulomb)):
         assert est.value == pytest.approx(true, rel=0.05)
@@ -249,6 +251,10 @@ def test_example_logs_are_current_and_give_the_catalogue_back(tmp_path):
     for name, log in mod.example_logs().items():
         fresh = write_log(log, tmp_path / name)
         assert Path(fresh).read_bytes() == (root / "examples" / "logs" / name).read_bytes(), name
+        if name not in devices:  # the limit cycle's log: test_sec5_logged_limit_cycle_is_the_predicted_one
+            p = mod.CYCLE_DEVICE.params(mod.CYCLE_K)
+            assert (p.mu, p.beta, p.sigma) == pytest.approx((10.0, 0.4, 0.1))
+            continue
         dev = dfa.get_device(devices[name]).device
         r = identify(read_log(root / "examples" / "logs" / name))
         assert r.mass.value == pytest.approx(dev.mass, rel=0.01)
@@ -273,7 +279,7 @@ def test_identify_cli_fuzz(tmp_path, capsys, monkeypatch):
     rng = random.Random(29)
     codes = {0: 0, 2: 0}
     for _ in range(60):
-        argv = ["identify", rng.choice(paths)]
+        argv = ["identify", rng.choice(paths), "--bootstrap", rng.choice(["0"] * 6 + ["2", "-1", "x"])]
         for flag in ("--resolution", "--period", "--stiffness", "--velocity"):
             if rng.random() < 0.25:
                 argv += [f"{flag}={rng.choice(values)}"]
@@ -306,7 +312,7 @@ def test_identify_reads_logs_as_they_are_written(tmp_path, capsys):
     delta = dfa.get_device("delta").device
     t = np.arange(3000) * delta.period
     log = synthetic_log(delta, 3.0 * np.sin(2 * np.pi * np.geomspace(1, 40, 3000) * t))
-    ref = identify(log)
+    ref = identify(log, bootstrap=0)
     cases = [
         (_csv(tmp_path / "us.csv", log, t_fmt=".6f"), []),
         (_csv(tmp_path / "unix.csv", log, t_fmt=".7f", t_offset=1.7e9), []),
@@ -315,7 +321,10 @@ def test_identify_reads_logs_as_they_are_written(tmp_path, capsys):
         (_csv(tmp_path / "digits.csv", log, x_fmt=".5g"), ["--resolution", "3e-5"]),
     ]
     for path, extra in cases:
-        assert main(["identify", str(path), "--json", *extra]) == 0, (path.name, capsys.readouterr().err)
+        assert main(["identify", str(path), "--json", "--bootstrap", "0", *extra]) == 0, (
+            path.name,
+            capsys.readouterr().err,
+        )
         d = json.loads(capsys.readouterr().out)
         assert d["mass"]["value"] == pytest.approx(ref.mass.value, rel=1e-3), path.name
         assert d["device"]["period"] == pytest.approx(delta.period, rel=1e-6), path.name
@@ -355,3 +364,121 @@ def test_identify_refuses_a_zero_force_column_and_flags_counts(tmp_path, capsys)
         (tmp_path / "bad.csv").write_text(BAD[kind], encoding="utf-8")
         assert main(["identify", str(tmp_path / "bad.csv")]) == 2
         assert "np.float64" not in capsys.readouterr().err
+
+
+def _coverage_logs():
+    """Nine noiseless logs of catalogue-like devices (paper Table 2's m, b, c each scaled by up to 3×): chirps,
+    pulses and square-plus-sine forces, from a random start within the first tick (fixed seeds)."""
+    rng = np.random.default_rng(2029)
+    logs = []
+    for i in range(9):
+        d = dfa.get_device(("delta", "phantom", "impulse")[i % 3]).device
+        dev = dfa.Device(*(v * 10 ** rng.uniform(-0.5, 0.5) for v in (d.mass, d.damping, d.coulomb)), d.resolution,
+                         d.period)  # fmt: skip
+        t = np.arange(int(rng.integers(1500, 3000))) * dev.period
+        a = dev.coulomb * rng.uniform(2.0, 10.0)
+        force = [a * np.sin(2 * np.pi * np.geomspace(1.0, rng.uniform(20, 60), t.size) * t),
+                 a * np.sign(np.sin(2 * np.pi * rng.uniform(0.5, 3) * t)) * (np.sin(2 * np.pi * 0.5 * t) > -0.5),
+                 a * np.sign(np.sin(2 * np.pi * 2.0 * t)) + 0.5 * a * np.sin(2 * np.pi * 7.0 * t)][i // 3]  # fmt: skip
+        logs.append((dev, synthetic_log(dev, force, x0=rng.uniform() * dev.resolution)))
+    return logs
+
+
+def test_identify_intervals_hold_the_truth_at_their_95_percent():
+    """Found by review: the Jacobian's intervals held the truth 62 to 88 % of the time. The bootstrapped ones hold
+    it for all but at most one of 9 logs per parameter (a review's 80 logs: 94 to 100 % on free motion); an
+    estimate the replicates leave unbounded has no interval and a warning; and the Jacobian alone (bootstrap=0) is
+    narrower: the replicates are what widen the intervals."""
+    hits, held, wider = {"mass": 0, "damping": 0, "coulomb": 0}, {"mass": 0, "damping": 0, "coulomb": 0}, 0
+    for dev, log in _coverage_logs():
+        r, lin = identify(log), identify(log, bootstrap=0)
+        assert r.bootstrap == dfa.analysis.identify.BOOTSTRAP and lin.bootstrap == 0
+        for key in hits:
+            est, true = getattr(r, key), getattr(dev, key)
+            assert est.value == getattr(lin, key).value  # the same fit: only the interval differs
+            if est.low is None:  # unbounded: said so, never a confident wrong value
+                assert IdentifyWarning.coerce(f"loose_{key}") in r.warnings and r.status.value != "ok"
+                continue
+            held[key] += 1
+            hits[key] += est.low <= true <= est.high
+            wider += est.high - est.low > getattr(lin, key).high - getattr(lin, key).low
+    assert all(hits[k] >= held[k] - 1 and held[k] >= 7 for k in hits), (hits, held)
+    assert wider >= 15, wider
+
+
+def test_identify_friction_below_the_forces_resolution_has_no_interval():
+    """Coulomb friction below 10⁻⁴ of the largest force: warned, and c gets no interval (its fit says nothing)."""
+    dev = dfa.Device(0.05, 0.02, 2e-5, 1e-5, 1e-3)
+    t = np.arange(2000) * dev.period
+    r = identify(synthetic_log(dev, 0.5 * np.sign(np.cos(2 * np.pi * 2.0 * t))), bootstrap=0)  # reverses
+    assert IdentifyWarning.FRICTION_UNRESOLVED in r.warnings
+    assert r.coulomb.low is None and "unresolved" in r.coulomb.undetermined and r.mass.low is not None
+
+
+#: A device whose impacts on K = 1000 N/m end in sustained limit cycles: μ = 10, β = 0.4, σ = 0.1 (T = 1 ms,
+#: Δ = 10 µm); from 0.012 m/s a cycle of 2.5 ticks (examples/logs/limit_cycle.csv), from 0.03 m/s one of 10.5,
+#: both at π/10 rad per sample.
+CYCLE_K = 1000.0
+CYCLE_DEVICE = dfa.Device(10 * CYCLE_K * 1e-6, 0.4 * CYCLE_K * 1e-3, 0.1 * CYCLE_K * 1e-5, 1e-5, 1e-3)
+
+
+@pytest.mark.parametrize("speed", [0.012, 0.03])
+def test_sec5_logged_limit_cycle_is_the_predicted_one(tmp_path, capsys, speed):
+    """A log that ends in a sustained oscillation (an impact on the paper's spring, eq. 2): measured on its readings
+    as the exact simulator measures the same run (independent: the kernel's own amplitude and frequency), and
+    called the predicted limit cycle of the identified device with that K; with 2K it is not, and the force column
+    is flagged as not that wall. The CLI's JSON and text carry the same numbers."""
+    from dfa.analysis.logged_cycle import compare_logged_cycle, measure_oscillation
+    from dfa.analysis.simulation import simulate
+
+    log = impact_log(CYCLE_DEVICE, CYCLE_K, speed, 6000)
+    p = CYCLE_DEVICE.params(CYCLE_K)
+    run = simulate(p.mu, p.beta, p.sigma, CYCLE_DEVICE.xi_dot(speed), 6000, record=True)
+    measured = measure_oscillation(np.floor(run.xi))
+    assert run.outcome == "oscillating" and measured is not None
+    assert measured.frequency == pytest.approx(run.frequency, rel=0.02)
+    assert abs(measured.amplitude - run.amplitude) <= 0.5  # readings: ±½ tick
+    r = identify(log)
+    c = compare_logged_cycle(r, log, CYCLE_K)
+    assert c.status.value == "predicted" and 1 <= c.matching <= len(c.replays)
+    assert c.logged.amplitude == measured.amplitude and c.origin_spread < 1e-9
+    wrong = compare_logged_cycle(r, log, 2 * CYCLE_K)
+    assert wrong.status.value == "not_predicted" and wrong.matching == 0 and wrong.origin_spread > 1.0
+    path = tmp_path / "cycle.csv"
+    write_log(log, path)
+    assert main(["identify", str(path), "--stiffness", str(CYCLE_K), "--json", "--bootstrap", "0"]) == 0
+    d = json.loads(capsys.readouterr().out)["cycle"]
+    assert d["status"] == "predicted" and d["logged"]["amplitude"] == measured.amplitude
+    assert main(["identify", str(path), "--stiffness", str(2 * CYCLE_K), "--bootstrap", "0"]) == 0
+    out = capsys.readouterr().out
+    hz = number(measured.frequency / (2 * math.pi * 1e-3), 4)
+    assert f"oscillation of {number(measured.amplitude, 3)} ticks" in out and f"at {hz} Hz" in out
+    assert "it is not one predicted" in out and "is not the paper's spring of K = 2000 N/m" in out
+
+
+def test_identify_report_is_the_identified_device(tmp_path, capsys):
+    """--report writes the design report of the identified device and the wall: its JSON names the identified
+    m, b, c and K; without --stiffness it is refused in one line."""
+    path, _dev = _log_file(tmp_path)
+    r = identify(read_log(path), bootstrap=0)
+    argv = [
+        "identify",
+        str(path),
+        "--stiffness",
+        "500",
+        "--report",
+        str(tmp_path / "rep"),
+        "--json",
+        "--bootstrap",
+        "0",
+    ]
+    assert main(argv) == 0
+    d = json.loads(capsys.readouterr().out)
+    html = [p for p in d["report"]["paths"] if p.endswith(".html")]
+    assert html and Path(html[0]).stat().st_size > 0
+    jpath = [p for p in d["report"]["paths"] if p.endswith(".json")][0]
+    rep = json.loads(Path(jpath).read_text(encoding="utf-8"))
+    text = json.dumps(rep)
+    assert f"{r.device.mass!r}" in text and f"{r.device.coulomb!r}" in text
+    assert main(["identify", str(path), "--report", str(tmp_path / "rep2")]) == 2
+    assert "--report needs --stiffness" in capsys.readouterr().err

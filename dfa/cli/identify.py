@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
-from .._io import FIGURE_SUFFIXES, check_output_file
+from .._io import FIGURE_SUFFIXES, check_output_file, check_output_folder, make_output_folder
+from ..analysis.identify import BOOTSTRAP
 from ..errors import DFAError
 from ..plausibility import warn_implausible
-from .output import emit, save_png, say
-from .parsing import UsageError, name, number
+from .output import add_progress_args, emit, progress, save_png, say
+from .parsing import UsageError, integer, name, number
 
 COMMAND = "identify"
 HELP = "identify a device (m, b, c, Δ, T) from a logged run (CSV with t, x, f)"
@@ -26,12 +28,21 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--name", type=name, metavar="TEXT", help="name of the identified device (default: from the file)")
     p.add_argument("--stiffness", type=number("--stiffness", "N/m"), metavar="K",
                    help="close the loop: K_max four ways of the identified device (as `dfa stiffness`), a wall "
-                   "of stiffness K in N/m (rotary N·m/rad) assessed; default: none")  # fmt: skip
+                   "of stiffness K in N/m (rotary N·m/rad) assessed, and a sustained oscillation in a log of that "
+                   "wall set next to the predicted limit cycles; default: none")  # fmt: skip
     p.add_argument("--velocity", type=number("--velocity", "m/s"), metavar="V",
                    help="impact speed for --stiffness in m/s (rad/s); default: the log's peak speed")  # fmt: skip
+    p.add_argument("--bootstrap", type=integer("--bootstrap"), default=BOOTSTRAP, metavar="N",
+                   help=f"replicate fits that set the 95 %% intervals (default {BOOTSTRAP}; each costs one fit; 0: "
+                   "the fit's Jacobian alone, too narrow)")  # fmt: skip
+    p.add_argument("--report", metavar="DIR", help="with --stiffness: write the design report of the identified "
+                   "device and that wall to DIR (HTML, as `dfa report`); default: none")  # fmt: skip
+    p.add_argument("--force", action="store_true", help="with --report: replace a report of the same name made for "
+                   "another device (default: refuse)")  # fmt: skip
     p.add_argument("--plot", metavar="FILE", help="write the log against the identified model to FILE (.png, .pdf, "
                    ".svg); default: none")  # fmt: skip
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout (default: text)")
+    add_progress_args(p)
 
 
 def _positive(flag: str, value: float | None) -> float | None:
@@ -40,14 +51,26 @@ def _positive(flag: str, value: float | None) -> float | None:
     return value
 
 
+def _report(args: argparse.Namespace, device: Any, velocity: float) -> dict[str, Any]:
+    """The design report of the identified device and the wall of --stiffness (as `dfa report`), written to --report."""
+    from ..model.wall import Wall
+    from ..report import design_report
+
+    make_output_folder("--report", args.report)
+    res = design_report(device, Wall.of(args.stiffness), velocity, out_dir=args.report, fmt="html",
+                        progress=progress(args), force=args.force)  # fmt: skip
+    return dict(res.to_dict())
+
+
 def run(args: argparse.Namespace) -> int:
     """Read the log, identify, optionally close the loop; print the result (text or JSON)."""
     from ..analysis.identify import identify
     from ..analysis.limits.kmax import design_answer
     from ..analysis.limits.recommend import recommend_stiffness
+    from ..analysis.logged_cycle import compare_logged_cycle
     from ..model.log import read_log
     from ..render.answer import stiffness_screen
-    from ..render.identify import identify_lines, loop_head
+    from ..render.identify import cycle_lines, identify_lines, loop_head
 
     for flag in ("--resolution", "--period", "--stiffness"):
         _positive(flag, getattr(args, flag[2:]))
@@ -55,13 +78,20 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError("--velocity needs --stiffness: it is the impact speed of the wall the device is checked with")
     if args.velocity is not None and not args.velocity >= 0.0:
         raise UsageError(f"--velocity {args.velocity:g} is invalid: give the impact speed, >= 0")
+    if args.bootstrap < 0:
+        raise UsageError(f"--bootstrap {args.bootstrap} is invalid: give a whole number of replicate fits >= 0")
+    if args.report is not None:
+        if args.stiffness is None:
+            raise UsageError("--report needs --stiffness: the report is of the identified device and a wall of K")
+        check_output_folder("--report", args.report, create=True)
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
     try:
         log = read_log(args.log, rotary=args.rotary)
     except DFAError as err:
         raise UsageError(str(err)) from None
-    r = identify(log, resolution=args.resolution, period=args.period, name=args.name)
+    r = identify(log, resolution=args.resolution, period=args.period, name=args.name, bootstrap=args.bootstrap,
+                 progress=progress(args))  # fmt: skip
     for key, hint in (("mass", None), ("resolution", "positions in encoder counts? give x in m (rad)"),
                       ("period", "times in ms? give t in s")):  # fmt: skip
         warn_implausible(key, getattr(r.device, key), rotary=args.rotary, subject=f"identified {key}", hint=hint)
@@ -73,6 +103,12 @@ def run(args: argparse.Namespace) -> int:
         rec = recommend_stiffness(ans)
         out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict()}
         lines += loop_head(r, v, args.velocity is None) + stiffness_screen(ans, rec)
+        cyc = compare_logged_cycle(r, log, args.stiffness)
+        out["cycle"] = cyc.to_dict()
+        lines += cycle_lines(cyc)
+    if args.report is not None:
+        out["report"] = _report(args, r.device, v)
+        lines += [f"written {p}" for p in out["report"]["paths"]]
     if args.plot is not None:
         written = save_png("--plot", args.plot, r.plot()[0])
         lines.append(f"written {written}")

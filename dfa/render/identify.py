@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import shlex
 from typing import TYPE_CHECKING
 
@@ -9,14 +10,24 @@ from ..formatting import fill, number, text_table
 
 if TYPE_CHECKING:
     from ..analysis.identify import Estimate, Identification
+    from ..analysis.logged_cycle import LoggedCycle
 
-__all__ = ["identify_lines", "loop_head", "device_flags"]
+__all__ = ["identify_lines", "loop_head", "device_flags", "cycle_lines"]
 
 
 def _interval(e: Estimate, unit: str) -> list[str]:
     if e.low is None or e.high is None:
-        return [f"{number(e.value, 4)} {unit}", "undetermined (no reversal: only c − f₀)"]
+        return [f"{number(e.value, 4)} {unit}", f"undetermined ({_short(e.undetermined)})"]
     return [f"{number(e.value, 4)} {unit}", f"{number(e.low, 4)} … {number(e.high, 4)}"]
+
+
+def _short(why: str) -> str:
+    """A few words for a table cell of why an estimate has no interval (the full reason is in the JSON)."""
+    from ..analysis.identify import FRICTION_UNRESOLVED_WHY, NO_REVERSAL_WHY, SCATTER_WHY
+
+    short = {NO_REVERSAL_WHY: "no reversal: only c − f₀", FRICTION_UNRESOLVED_WHY: "below the forces' resolution",
+             SCATTER_WHY: "unbounded by the log"}  # fmt: skip
+    return short.get(why, "too little motion")
 
 
 def identify_lines(r: Identification) -> list[str]:
@@ -36,11 +47,8 @@ def identify_lines(r: Identification) -> list[str]:
     lines = [
         fill(f"{r.source}: {r.samples} samples, {number(r.samples * dev.period, 4)} s; {grid}"),
         "",
-        *text_table(rows, ["identified", "value", "±1.96σ, quantization only"]).splitlines(),
-        fill(
-            "the intervals leave out force noise, the fit's convergence and unmodelled dynamics: read them as a "
-            "lower bound on the uncertainty"
-        ),
+        *text_table(rows, ["identified", "value", "95 % interval"]).splitlines(),
+        fill(_interval_note(r)),
         "",
         fill(
             f"fit: {100 * fit.within_one_tick:.4g} % of samples predicted within one tick of the log "
@@ -56,6 +64,40 @@ def identify_lines(r: Identification) -> list[str]:
         fill(f"status {r.status.value}: {r.status.message}"),
     ]
     lines += [fill(f"warning: {w.message}") for w in r.warnings]
+    return lines
+
+
+def _interval_note(r: Identification) -> str:
+    """How the intervals were made, and what they leave out."""
+    if r.bootstrap:
+        how = f"from the fit and {r.bootstrap} replicate fits with the encoder's origin shifted"
+    else:
+        how = "from the fit's Jacobian alone (--bootstrap 0): too narrow, read them as a lower bound"
+    return f"intervals {how}; they leave out noise on the force column and dynamics the model lacks"
+
+
+def cycle_lines(c: LoggedCycle) -> list[str]:
+    """The log's sustained oscillation next to the predicted limit cycles (:mod:`dfa.analysis.logged_cycle`)."""
+    dev, u = c.device, c.device.units
+    if c.logged is None:
+        return ["", fill(f"oscillation: {c.status.message}")]
+    lines = [""]
+    if c.origin_spread > 1.0:  # the replays assume the log is of this wall
+        lines.append(fill(
+            f"warning: the force column is not the paper's spring of K = {number(c.stiffness, 4)} "
+            f"{u['stiffness']}: the wall's origin it implies wanders by {number(c.origin_spread, 3)} ticks"))  # fmt: skip
+    hz = c.logged.frequency / (2.0 * math.pi * dev.period)
+    amp = c.logged.amplitude * dev.resolution
+    lines.append(fill(
+        f"the log ends in a sustained oscillation of {number(c.logged.amplitude, 3)} ticks "
+        f"({number(amp, 3)} {u['resolution']}, ±½ tick) at {number(hz, 4)} Hz over {c.logged.periods} periods"))  # fmt: skip
+    verdict = "it is the limit cycle predicted" if c.matching else "it is not one predicted"
+    lines.append(fill(
+        f"{verdict} for the identified device and this wall: {c.matching} of {len(c.replays)} exact replays "
+        "from the fitted state end in it"))  # fmt: skip
+    cycles = ", ".join(f"{number(a, 3)} ticks at {number(w / (2.0 * math.pi * dev.period), 4)} Hz"
+                       for a, w in c.describing) or "none"  # fmt: skip
+    lines.append(fill(f"describing function's stable cycles (eq. 36-45, exact hold): {cycles}"))
     return lines
 
 

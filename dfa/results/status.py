@@ -28,6 +28,7 @@ __all__ = [
     "GripStatus",
     "IdentifyStatus",
     "IdentifyWarning",
+    "LoggedCycleStatus",
     "CriterionStatus",
     "CheckStatus",
     "StiffnessStatus",
@@ -425,6 +426,22 @@ class IdentifyStatus(StatusEnum):
     POOR_FIT = ("poor_fit", "the identified model does not reproduce the log: its values are not to be trusted")
 
 
+class LoggedCycleStatus(StatusEnum):
+    """Whether a logged oscillation is a predicted limit cycle (:class:`dfa.analysis.logged_cycle.LoggedCycle`)."""
+
+    PREDICTED = (
+        "predicted",
+        "the log's sustained oscillation is the limit cycle predicted for the identified device and this wall "
+        "(the exact simulation's, within tolerance)",
+    )
+    NOT_PREDICTED = (
+        "not_predicted",
+        "the log oscillates, but not as predicted for the identified device and this wall: another wall, a "
+        "delay or filter, or dynamics the model lacks",
+    )
+    NO_OSCILLATION = ("no_oscillation", "the log ends without a sustained oscillation")
+
+
 class IdentifyWarning(StatusEnum):
     """What a log does not show (:class:`dfa.analysis.identify.Identification`)."""
 
@@ -438,14 +455,18 @@ class IdentifyWarning(StatusEnum):
     )
     LITTLE_MOTION = (
         "little_motion",
-        "the log holds little motion (fewer than 300 samples in which the reading changes): the estimates rest on it",
+        "the log holds little motion (fewer than 300 samples in which the reading changes): too little to bound "
+        "the estimates, which get no interval",
     )
     FRICTION_UNRESOLVED = (
         "friction_unresolved",
         "the Coulomb friction is below 10⁻⁴ of the largest logged force: the log cannot resolve it, whatever "
         "its interval says",
     )
-    LOOSE_MASS = ("loose_mass", "the mass is poorly determined (95 % interval wider than ±25 %)")
-    LOOSE_DAMPING = ("loose_damping", "the damping is poorly determined (95 % interval wider than ±25 %)")
-    LOOSE_COULOMB = ("loose_coulomb", "the Coulomb friction is poorly determined (95 % interval wider than ±25 %)")
+    LOOSE_MASS = ("loose_mass", "the mass is poorly determined (95 % interval wider than ±25 %, or unbounded)")
+    LOOSE_DAMPING = ("loose_damping", "the damping is poorly determined (95 % interval wider than ±25 %, or unbounded)")
+    LOOSE_COULOMB = (
+        "loose_coulomb",
+        "the Coulomb friction is poorly determined (95 % interval wider than ±25 %, or unbounded)",
+    )
     POOR_FIT = ("poor_fit", "fewer than 90 % of the samples are predicted within one tick")
