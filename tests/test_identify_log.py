@@ -306,9 +306,16 @@ def _csv(path: Path, log: DeviceLog, t_fmt: str = ".12g", x_fmt: str = ".12g", h
     return path
 
 
+def _decimal_comma(path: Path) -> Path:
+    """The same file as a European spreadsheet writes it: decimal commas (the separator is a semicolon)."""
+    path.write_text(path.read_text(encoding="utf-8").replace(".", ","), encoding="utf-8")
+    return path
+
+
 def test_identify_reads_logs_as_they_are_written(tmp_path, capsys):
     """Found by review: µs-rounded times at 3 kHz, Unix times, units in the header, a comment line, semicolons,
-    readings with few digits (resolution given) are read; the values match the log's own identification."""
+    decimal commas, readings with few digits (resolution given) are read; the values match the log's own
+    identification."""
     delta = dfa.get_device("delta").device
     t = np.arange(3000) * delta.period
     log = synthetic_log(delta, 3.0 * np.sin(2 * np.pi * np.geomspace(1, 40, 3000) * t))
@@ -318,6 +325,7 @@ def test_identify_reads_logs_as_they_are_written(tmp_path, capsys):
         (_csv(tmp_path / "unix.csv", log, t_fmt=".7f", t_offset=1.7e9), []),
         (_csv(tmp_path / "units.csv", log, head="t (s),x [m],f (N)", comment="# logged by hand\n"), []),
         (_csv(tmp_path / "semi.csv", log, sep=";"), []),
+        (_decimal_comma(_csv(tmp_path / "comma.csv", log, sep=";")), []),
         (_csv(tmp_path / "digits.csv", log, x_fmt=".5g"), ["--resolution", "3e-5"]),
     ]
     for path, extra in cases:

@@ -128,7 +128,8 @@ def test_controller_report_states_what_dfa_check_prints(ctl):
     line = text.splitlines()[1]
     assert line.startswith("controller: ") and "ν_c = f_c·T = 0.06667" in line and line in md.splitlines()
     rows = check_table(text)
-    assert len(rows) == 11 and rows[6][0] == "passive" and rows[6][1].startswith("yes: ")
+    assert len(rows) == 12 and rows[6][0] == "passive" and rows[6][1].startswith("yes: ")
+    assert rows[7] == ("start state", dfa.analysis.criterion.START_STATE)
     for label, value in rows:
         assert md_row(label, value) in md, label
     a = data["analysis"]
@@ -139,7 +140,10 @@ def test_controller_report_states_what_dfa_check_prints(ctl):
     assert data["numbers"]["passive"] is True and data["numbers"]["region"] == check["criterion"]["region"]
     assert data["numbers"]["critical_xi_dot"] == check["criterion"]["critical_xi_dot"]
     verdict = md.splitlines()[2]  # the verdict paragraph says the same
-    assert "**passive (proven: the energy cannot grow)** by the criterion of eq. 6 extended" in verdict
+    assert (
+        "**passive (proven: the energy cannot grow from a start with no motion before the impact)** by the criterion of eq. 6 extended"
+        in verdict
+    )
     assert f"up to {check['criterion']['critical_velocity']:.4g} m/s" in verdict
 
 
@@ -324,8 +328,9 @@ def test_spring_report_unchanged_golden_from_before_the_controller():
     """Impulse Engine at 0.05 m/s (small map): JSON key by key (floats to 1e-9) and Markdown byte for byte.
 
     Recorded from commit 4b5ad71 (before the report took a controller); a pure-spring Wall gives the same. The
-    grip section (issue 28, added later) is the one addition: it is removed before comparing, everything else
-    is as recorded.
+    grip section (issue 28, added later) is removed before comparing; the start state of the proof (issue 28 §1,
+    added later: the verdict's words and one row) is written into the recorded Markdown; everything else is as
+    recorded.
     """
     spec = importlib.util.spec_from_file_location("dfa_make_golden", GOLDEN / "make_golden.py")
     assert spec is not None and spec.loader is not None

@@ -10,7 +10,7 @@ import argparse
 from typing import TYPE_CHECKING
 
 from .._io import FIGURE_SUFFIXES, check_output_file
-from ..formatting import text_table
+from ..formatting import fill, text_table
 from ..model.wall import Wall
 from ..results.jsonable import explain_nulls
 from .inputs import Inputs, add_device_args, resolve, speed
@@ -132,6 +132,6 @@ def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp
     print(text_table(rows))  # the full evidence: a row a line, however long
     if v > 0:
         print(f"evidence: {evidence_text(ans)}.")
-        print(f"{PROOF_NOTE} (or the first harmonic).")
+        print(fill(f"{PROOF_NOTE} (or the first harmonic)."))
     else:
         print("impact speed 0: the describing-function and simulated limits need a speed > 0.")

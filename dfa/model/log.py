@@ -4,7 +4,8 @@ A log is what a designer with a real device has: at each sample instant t_h the 
 whole number of ticks Δ) and the force f_h commanded at t_h and held by the zero-order hold until t_{h+1}
 (paper eq. 1-2; rotary: rad and N·m). :func:`read_log` reads one from a CSV file with a header naming the
 columns ``t`` (s), ``x`` (m or rad) and ``f`` (N or N·m), a unit in brackets after the name allowed
-(``t (s)``); other columns, and lines starting with ``#``, are ignored; commas, semicolons or tabs separate. Every rule a log must keep
+(``t (s)``); other columns, and lines starting with ``#``, are ignored; commas, semicolons or tabs separate
+(with semicolons or tabs a decimal comma is read as a point: ``0,001``). Every rule a log must keep
 is checked before anything is analysed, and a bad log is refused in one line naming the row and the rule:
 missing columns, text or NaN in a number, fewer than :data:`MIN_SAMPLES` rows, time not strictly increasing, a
 file larger than :data:`MAX_LOG_BYTES` (refused before it is read).
@@ -138,13 +139,15 @@ def _parse(text: str, source: str) -> tuple[list[float], list[float], list[float
     if head is None or not any(c.strip() for c in head):
         raise LogError(f"{source}: the file is empty: a log needs a header (t,x,f) and one row per sample")
     where = _header(head, source)
+    comma = delimiter != ","  # a decimal comma (3,25) where the separator is not one (spreadsheet exports)
     cols: tuple[list[float], list[float], list[float]] = ([], [], [])
     for i, row in enumerate(rows, start=2):
         if not any(c.strip() for c in row):
             continue
         for j, c in enumerate(COLUMNS):
             try:
-                cols[j].append(float(row[where[c]]))
+                cell = row[where[c]]
+                cols[j].append(float(cell.replace(",", ".") if comma else cell))
             except (IndexError, ValueError):
                 cell = row[where[c]] if where[c] < len(row) else "nothing"
                 raise LogError(f"{source}: row {i}, column {c!r} holds {cell!r}: it must be a number") from None

@@ -189,6 +189,7 @@ def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
         ["corner", corner],
         ["region", f"{r.region}: {r.status.message}"],
         ["passive", verdict],
+        ["start state", r.start_state],
         ["margin", f"{r.margin:.4g}"],
         ["critical speed (eq. 12 extended)", crit],
     ]

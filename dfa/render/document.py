@@ -43,7 +43,7 @@ def verdict_text(a: DesignAnalysis) -> str:
     u = dev.units
     ds = f"a computational delay of {_samples(a.delay)}"
     if crit.passive:
-        verdict = "passive (proven: the energy cannot grow)"
+        verdict = "passive (proven: the energy cannot grow from a start with no motion before the impact)"
     elif lim.velocity_status == "none":
         verdict = f"no passivity guarantee even at rest (K > 2c/Δ = {lim.k_static:.5g} {u['stiffness']})"
     else:
@@ -91,7 +91,7 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
         text += f"**{NOT_COVERED}**: {not_covered_why(chk)}. "
     else:
         verdict = (
-            "passive (proven: the energy cannot grow)"
+            "passive (proven: the energy cannot grow from a start with no motion before the impact)"
             if r.passive
             else "not proven passive (the extended criterion gives no guarantee; that is not a proof of instability)"
         )
@@ -205,6 +205,7 @@ def limits_rows(a: DesignAnalysis) -> list[list[str]]:
             "passive (eq. 6)",
             "yes (proven: the energy cannot grow)" if crit.passive else "no guarantee (not a proof of instability)",
         ],
+        ["start state of the proof", crit.start_state],
         ["margin (β − ½ − d)|ξ'0| + (σ − ½)", f"{crit.margin:.4g}"],
         ["critical speed (eq. 12)", crit_speed],
         ["K_max at this speed (eq. 11)", f"{lim.k_max:.5g} {u['stiffness']}"],

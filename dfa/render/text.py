@@ -74,6 +74,7 @@ def check_rows(r: Any, quantized: bool, vu: str) -> list[list[str]]:
         ["criterion", ("eq. 6 (with encoder)" if quantized else "eq. 7 (no quantization)") + f": {rule}"],
         ["region", f"{r.region}: {r.status.message}"],
         ["passive", verdict],
+        ["start state", r.start_state],
         ["margin", f"{r.margin:.4g}"],
         [f"critical speed (eq. 12, d = {d})", crit],
     ]
