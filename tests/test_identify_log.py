@@ -22,6 +22,7 @@ from scipy.integrate import solve_ivp
 
 import dfa
 from dfa.analysis.identify import (
+    BOOTSTRAP,
     estimate_period,
     estimate_resolution,
     identify,
@@ -157,9 +158,11 @@ def test_identify_cli_numbers_equal_the_api(tmp_path, capsys):
     d = json.loads(capsys.readouterr().out)
     for key in ("mass", "damping", "coulomb", "force_offset"):
         assert d[key]["value"] == getattr(r, key).value
-    v = r.velocity_peak
-    assert d["loop"]["k_criterion"]["value"] == pytest.approx(float(k_max_criterion(r.device, v)), rel=1e-9)
-    assert d["loop"]["k_static"] == pytest.approx(2 * r.device.coulomb / r.device.resolution, rel=1e-12)
+    v, cautious = r.velocity_peak, r.cautious()  # b and c at the lower ends of their intervals
+    assert cautious.damping == r.damping.low and cautious.coulomb == r.coulomb.low and cautious.mass == r.mass.value
+    assert d["loop"]["device"]["coulomb"] == cautious.coulomb
+    assert d["loop"]["k_criterion"]["value"] == pytest.approx(float(k_max_criterion(cautious, v)), rel=1e-9)
+    assert d["loop"]["k_static"] == pytest.approx(2 * cautious.coulomb / cautious.resolution, rel=1e-12)
     assert d["loop"]["velocity"] == v and d["loop"]["assessment"] is not None
     assert main(["identify", str(path), "--stiffness", "500", "--plot", str(tmp_path / "fit.png")]) == 0
     out = capsys.readouterr().out
@@ -259,7 +262,8 @@ def test_example_logs_are_current_and_give_the_catalogue_back(tmp_path):
         r = identify(read_log(root / "examples" / "logs" / name))
         assert r.mass.value == pytest.approx(dev.mass, rel=0.01)
         assert r.coulomb.value == pytest.approx(dev.coulomb, rel=0.02)
-        assert r.damping.value == pytest.approx(dev.damping, rel=0.05)
+        assert r.damping.value == pytest.approx(dev.damping, rel=0.06)
+        assert r.damping.low <= dev.damping <= r.damping.high  # c's can miss by 0.2 %: force noise is not in them
         assert r.status.value == "ok", (name, r.warnings)
 
 
@@ -344,14 +348,14 @@ def test_identify_no_reversal_gives_no_interval_for_c_and_offset(capsys, tmp_pat
     dev = dfa.get_device("phantom").device
     t = np.arange(4000) * dev.period
     log = synthetic_log(dev, 0.114 * (1.2 + np.sin(2 * np.pi * np.geomspace(0.5, 20, 4000) * t)))
-    r = identify(log)
+    r = identify(log, bootstrap=0)  # withheld whatever the replicates say
     assert IdentifyWarning.NO_REVERSAL in r.warnings
     assert r.coulomb.low is None and r.force_offset.high is None and r.mass.low is not None
     d = r.to_dict()
     assert d["coulomb"]["low"] is None and "no reversal" in d["coulomb"]["null_reasons"]["/low"]
     path = tmp_path / "oneway.csv"
     write_log(log, path)
-    assert main(["identify", str(path)]) == 0
+    assert main(["identify", str(path), "--bootstrap", "0"]) == 0
     assert "undetermined (no reversal" in capsys.readouterr().out
 
 
@@ -400,12 +404,13 @@ def test_identify_intervals_hold_the_truth_at_their_95_percent():
     hits, held, wider = {"mass": 0, "damping": 0, "coulomb": 0}, {"mass": 0, "damping": 0, "coulomb": 0}, 0
     for dev, log in _coverage_logs():
         r, lin = identify(log), identify(log, bootstrap=0)
-        assert r.bootstrap == dfa.analysis.identify.BOOTSTRAP and lin.bootstrap == 0
+        assert lin.bootstrap == 0 and r.bootstrap == (0 if r.status.value == "poor_fit" else BOOTSTRAP)
         for key in hits:
             est, true = getattr(r, key), getattr(dev, key)
             assert est.value == getattr(lin, key).value  # the same fit: only the interval differs
-            if est.low is None:  # unbounded: said so, never a confident wrong value
-                assert IdentifyWarning.coerce(f"loose_{key}") in r.warnings and r.status.value != "ok"
+            if est.low is None:  # unbounded or a poor fit: said so, never a confident wrong value
+                warned = {IdentifyWarning.coerce(f"loose_{key}"), IdentifyWarning.POOR_FIT} & set(r.warnings)
+                assert warned and r.status.value != "ok"
                 continue
             held[key] += 1
             hits[key] += est.low <= true <= est.high
@@ -487,6 +492,75 @@ def test_identify_report_is_the_identified_device(tmp_path, capsys):
     jpath = [p for p in d["report"]["paths"] if p.endswith(".json")][0]
     rep = json.loads(Path(jpath).read_text(encoding="utf-8"))
     text = json.dumps(rep)
-    assert f"{r.device.mass!r}" in text and f"{r.device.coulomb!r}" in text
+    assert f"{r.device.mass!r}" in text and f"{r.cautious().coulomb!r}" in text and "(cautious)" in text
     assert main(["identify", str(path), "--report", str(tmp_path / "rep2")]) == 2
     assert "--report needs --stiffness" in capsys.readouterr().err
+
+
+def test_identify_poor_fit_gives_no_intervals_and_no_limits(tmp_path, capsys):
+    """Found by review: a constant one-way push the model cannot follow printed a mass of 4e-17 kg with an interval
+    and stiffness limits "a proof". A poor fit now has no interval and --stiffness computes no limit."""
+    ph = dfa.get_device("phantom").device
+    log = synthetic_log(ph, np.full(3000, 0.1))
+    r = identify(log, bootstrap=0)
+    assert r.status.value == "poor_fit" and r.fit.within_one_tick < 0.9
+    assert all(getattr(r, k).low is None and "poor fit" in getattr(r, k).undetermined for k in ("mass", "damping"))
+    path = write_log(log, tmp_path / "push.csv")
+    assert main(["identify", path, "--stiffness", "1000", "--json", "--bootstrap", "0"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["loop"] is None and "poor fit" in d["null_reasons"]["/loop"]
+    assert main(["identify", path, "--stiffness", "1000", "--bootstrap", "0"]) == 0
+    out = capsys.readouterr().out
+    assert "no stiffness limits" in out and "a proof" not in out and "recommended K" not in out
+
+
+def test_identify_header_units_period_and_gaps(tmp_path, capsys):
+    """Found by review: units in the header were ignored (mm read as m), --period overrode the times unchecked, and
+    a gap was blamed on row 2. Units are converted or refused, a period the times contradict is refused, and a gap
+    is named at its row."""
+    path, _dev = _log_file(tmp_path)
+    ref = identify(read_log(path), bootstrap=0)
+    rows = path.read_text(encoding="utf-8").splitlines()[1:]
+    scaled = [f"{float(t) * 1e3!r},{float(x) * 1e3!r},{f}" for t, x, f in (r.split(",") for r in rows)]
+    (tmp_path / "mm.csv").write_text("t (ms),x [mm],f (N)\n" + "\n".join(scaled) + "\n", encoding="utf-8")
+    got = identify(read_log(tmp_path / "mm.csv"), bootstrap=0)
+    assert got.mass.value == pytest.approx(ref.mass.value, rel=1e-6)
+    assert got.device.resolution == pytest.approx(ref.device.resolution, rel=1e-9)
+    for head, why in (("t,x (inch),f", "'inch'"), ("t,x (rad),f", "give --rotary")):
+        (tmp_path / "u.csv").write_text(head + "\n" + "\n".join(rows) + "\n", encoding="utf-8")
+        assert main(["identify", str(tmp_path / "u.csv")]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and why in err
+    assert main(["identify", str(path), "--period", "0.0005"]) == 2
+    assert "disagrees with the log's times" in capsys.readouterr().err
+    (tmp_path / "gap.csv").write_text("t,x,f\n" + "\n".join(rows[:500] + rows[501:]) + "\n", encoding="utf-8")
+    assert main(["identify", str(tmp_path / "gap.csv")]) == 2
+    assert "row 502 (t = 0.501 s)" in capsys.readouterr().err
+    assert main(["identify", str(path), "--force"]) == 2
+    assert "--force needs --report" in capsys.readouterr().err
+
+
+def test_identify_flags_keep_six_significant_digits(tmp_path, capsys):
+    """Found by review: the printed `dfa stiffness` flags rounded to 6 decimals (J = 6.28e-6 printed as 6e-06)."""
+    from dfa.render.identify import device_flags
+
+    dev = dfa.Device(6.28e-6, 9e-5, 0.02, 7.67e-4, 1e-3, rotary=True)
+    flags = device_flags(dev)
+    assert "--mass 6.28e-06" in flags and "--damping 9e-05" in flags and flags.endswith("--rotary")
+
+
+def test_sec5_chatter_is_not_compared_and_cycle_json_carries_si(tmp_path, capsys):
+    """A log that ends chattering between two readings is no sustained oscillation (any replay's chatter would
+    match it); a compared cycle's JSON gives its amplitude in m and frequency in Hz, as the text prints them."""
+    from dfa.analysis.logged_cycle import compare_logged_cycle
+
+    dev = dfa.Device(0.02, 0.3, 0.002, 1e-5, 1e-3)
+    log = impact_log(dev, 800.0, 0.02, 6000)
+    c = compare_logged_cycle(identify(log, bootstrap=0), log, 800.0)
+    assert np.ptp(np.rint(log.x[-1500:] / 1e-5)) == 1.0 and c.status.value == "no_oscillation"
+    log = impact_log(CYCLE_DEVICE, CYCLE_K, 0.012, 6000)
+    d = compare_logged_cycle(identify(log, bootstrap=0), log, CYCLE_K).to_dict()
+    assert d["logged"]["amplitude_si"] == pytest.approx(d["logged"]["amplitude"] * 1e-5)
+    assert d["logged"]["frequency_hz"] == pytest.approx(d["logged"]["frequency"] / (2 * math.pi * 1e-3))
+    assert all(set(r) == {"damping", "coulomb", "outcome", "amplitude", "frequency"} for r in d["replays"])
+    assert all(k.endswith("/frequency") for k in d["null_reasons"] if k.startswith("/replays"))

@@ -20,6 +20,7 @@ from dfa.analysis.limits.grip import GripSweep, grip_sweep
 from dfa.analysis.limits.kmax import linear_limit
 from dfa.analysis.simulation import divergence_bound, simulate
 from dfa.cli import main
+from dfa.formatting import number
 from dfa.model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
 from dfa.render.hand import at_least
 
@@ -247,3 +248,12 @@ def test_table2_hand_report_states_grasp_and_grip(tmp_path: Path, capsys):
     meta = json.loads((tmp_path / "design_report_phantom-1-0_held.json").read_text(encoding="utf-8"))
     assert meta["identity"]["device"]["hand"]["mass"] == 0.15
     assert not (tmp_path / "design_report_phantom-1-0.md").exists()
+
+
+def test_table2_hand_require_labels_the_total_damping(capsys):
+    """Found by review: `dfa require` with a hand labelled the total damping b + b_h as the device's b; the row
+    now says it is the device's and the hand's, and its value is their sum."""
+    assert main(["require", "--device", "delta", "--hand", "paper", "--stiffness", "20000", "--velocity", "0.1"]) == 0
+    out = capsys.readouterr().out
+    row = next(line for line in out.splitlines() if line.startswith("damping b + b_h (device and hand)"))
+    assert f"{number(0.01 + 4.8, 4)} N·s/m" in row

@@ -56,11 +56,11 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..checks import check_int, check_nonnegative, check_positive, check_type, format_value
+from ..checks import check_int, check_nonnegative, check_positive, check_real, check_type, format_value
 from ..core.open_loop import open_loop_kernel, segments_kernel
 from ..errors import DFAValueError
 from ..model.device import Device
-from ..model.log import DeviceLog, LogError
+from ..model.log import MIN_SAMPLES, DeviceLog, LogError
 from ..results.base import Result
 from ..results.jsonable import explain_nulls
 from ..results.status import IdentifyStatus, IdentifyWarning
@@ -79,12 +79,15 @@ __all__ = [
     "BOOTSTRAP",
     "MAX_BOOTSTRAP",
     "SEGMENT",
+    "SEGMENT_MAX",
     "GRID_RTOL",
 ]
 
 #: Largest distance of a sample time from the log's uniform grid, in periods (rounding of written times is
 #: far below it; a gap or a missed sample is a whole period).
 PERIOD_RTOL = 0.1
+#: Largest relative difference of a given period from the median step of the log's times.
+GIVEN_PERIOD_RTOL = 0.01
 #: Largest distance of a reading from the lattice of the estimated resolution, in ticks.
 GRID_RTOL = 1e-2
 #: The same with the resolution given (readings written with few digits are rounded to their tick).
@@ -96,6 +99,10 @@ DIFF_STEP: float | None = None
 #: Fewest samples per segment of the multiple-shooting fit (each segment starts from its own fitted state);
 #: segments span two time constants m/b of the first guess when that is longer (:func:`_segments`).
 SEGMENT = 200
+#: Most samples per segment: a light-damped device's two time constants can span the whole log, and one long
+#: segment lets noise on the force column accumulate (a 20 s Phantom log with 1 % force noise: b 33 % off as one
+#: segment, 12 % in segments of 1000).
+SEGMENT_MAX = 1000
 #: Variance of the residual of a right model, ticks²: the position within its tick, uniform over [−½, ½). The
 #: residual variance used for the intervals is at least this (a run mostly at rest fits its rest exactly).
 QUANTIZATION_VARIANCE = 1.0 / 12.0
@@ -130,6 +137,16 @@ def estimate_period(t: ArrayLike, source: str = "log") -> float:
     1.0
     """
     times = np.asarray(t, dtype=float)
+    steps = np.diff(times)
+    step = float(np.median(steps))
+    jump = np.abs(steps - step) > PERIOD_RTOL * step
+    if jump.any():  # a gap, a missed or a doubled sample: name the row after it
+        i = int(np.flatnonzero(jump)[0]) + 1
+        raise LogError(
+            f"{source}: the sample period is not uniform: row {i + 2} (t = {float(times[i]):.9g} s) comes "
+            f"{float(steps[i - 1]):.6g} s after the row before it, the other steps are "
+            f"{step:.6g} s; cut the log at the gap and identify the parts, or log equal samples"
+        )
     h = np.arange(times.size, dtype=float)
     slope, start = np.polyfit(h, times - times[0], 1)
     off = np.abs(times - times[0] - (start + slope * h)) > PERIOD_RTOL * slope
@@ -164,7 +181,8 @@ def estimate_resolution(x: ArrayLike, source: str = "log") -> float:
     if off > GRID_RTOL:
         raise LogError(
             f"{source}: the readings do not lie on one grid (a gap is {off:.3g} ticks off the smallest gap "
-            f"{gaps.min()!r}): are they quantized encoder readings? give the resolution (--resolution)"
+            f"{format_value(float(gaps.min()))}): are they quantized encoder readings? give the resolution "
+            "(--resolution)"
         )
     return float((u[-1] - u[0]) / ticks.sum())
 
@@ -237,6 +255,9 @@ class Identification(Result):
         Samples per segment of the multiple-shooting fit (the last one may be longer).
     bootstrap : int
         Replicate logs whose fits set the intervals (0: the linearized intervals alone; module docstring, step 4).
+    bootstrap_requested : int
+        Replicates asked for: more than ``bootstrap`` when some did not move enough to be fitted, or when the
+        intervals were withheld (little motion, a poor fit) and none was run.
     fit : FitQuality
         The fit's own prediction: each segment from its fitted start.
     free_run : FitQuality
@@ -266,6 +287,7 @@ class Identification(Result):
     period_given: bool
     segment: int
     bootstrap: int
+    bootstrap_requested: int
     fit: FitQuality
     free_run: FitQuality
     warnings: tuple[IdentifyWarning, ...]
@@ -289,6 +311,21 @@ class Identification(Result):
             a = np.array(getattr(self, name), dtype=float)
             a.setflags(write=False)
             object.__setattr__(self, name, a)
+
+    def cautious(self) -> Device:
+        """The identified device with b and c at the lower ends of their 95 % intervals.
+
+        Where the log does not bound them they are 0. A stiffness limit for the real device can rest on this
+        device, as every limit of :mod:`dfa` rises with damping and friction.
+
+        Returns
+        -------
+        Device
+            The identified m, Δ and T with b and c lowered, named ``"<name> (cautious)"``.
+        """
+        b, c = (e.low if e.low is not None else 0.0 for e in (self.damping, self.coulomb))
+        d = self.device
+        return Device(d.mass, b, c, d.resolution, d.period, name=f"{d.name} (cautious)", rotary=d.rotary)
 
     def plot(self, ax: Any = None) -> Any:
         """The logged ticks against the identified model's free run, residual below.
@@ -340,8 +377,9 @@ def _first_guess(v: np.ndarray, a: np.ndarray, phi: np.ndarray) -> tuple[float, 
 
 def _segments(n: int, mu: float, beta: float) -> np.ndarray:
     """Start of each segment of the multiple-shooting fit: segments of twice the first guess's time constant
-    μ/β (damping shows over a time constant), at least :data:`SEGMENT` samples, equal (the last one longer)."""
-    length = SEGMENT if beta <= 0.0 else max(SEGMENT, min(n, int(2.0 * mu / beta)))
+    μ/β (damping shows over a time constant), at least :data:`SEGMENT` and at most :data:`SEGMENT_MAX` samples,
+    equal (the last one longer)."""
+    length = SEGMENT if beta <= 0.0 else max(SEGMENT, min(n, SEGMENT_MAX, int(2.0 * mu / beta)))
     k = max(1, n // length)
     return (np.arange(k) * (n // k)).astype(np.int64)
 
@@ -483,6 +521,11 @@ def _half(e: Estimate) -> float:
 NO_REVERSAL_WHY = "no reversal in the log: Coulomb friction and the force offset act the same way, only c − f₀ is seen"
 #: Why c has no interval when it is below :data:`FRICTION_SHARE` of the largest force.
 FRICTION_UNRESOLVED_WHY = f"unresolved: below {FRICTION_SHARE:g} of the largest logged force, the log cannot resolve it, whatever its fit says"
+#: Why no estimate has an interval when the fit is poor.
+POOR_FIT_WHY = (
+    "poor fit: the model does not reproduce the log (noise on the force column, or dynamics the model lacks), "
+    "so the fit's spread says nothing about the values"
+)
 #: Why no estimate has an interval in a log with little motion.
 LITTLE_MOTION_WHY = (
     "the log holds fewer than {} samples in motion: too few to bound the estimates (a fit of a device at rest "
@@ -538,6 +581,8 @@ def _withhold(est: dict[str, Estimate], warns: list[IdentifyWarning]) -> dict[st
     """The estimates without the intervals the log cannot give (little motion: none; no reversal: c and f₀;
     friction below the forces' resolution: c)."""
     why: dict[str, str] = {}
+    if IdentifyWarning.POOR_FIT in warns:
+        return {k: Estimate(e.value, None, None, None, POOR_FIT_WHY) for k, e in est.items()}
     if IdentifyWarning.FRICTION_UNRESOLVED in warns:
         why["coulomb"] = FRICTION_UNRESOLVED_WHY
     if IdentifyWarning.NO_REVERSAL in warns:
@@ -547,8 +592,8 @@ def _withhold(est: dict[str, Estimate], warns: list[IdentifyWarning]) -> dict[st
     return {k: Estimate(e.value, None, None, None, why[k]) if k in why else e for k, e in est.items()}
 
 
-def _fit_warnings(est: dict[str, Estimate], cov: np.ndarray, fit: FitQuality) -> list[IdentifyWarning]:
-    """Loose estimates (of those with an interval), damping and friction not separated, a poor fit."""
+def _fit_warnings(est: dict[str, Estimate], cov: np.ndarray) -> list[IdentifyWarning]:
+    """Loose estimates (of those with an interval), damping and friction not separated."""
     out = []
     loose = [k for k, e in est.items() if k != "force_offset" and (e.undetermined == SCATTER_WHY or (
         e.high is not None and _half(e) > LOOSE * abs(e.value)))]  # fmt: skip
@@ -556,8 +601,6 @@ def _fit_warnings(est: dict[str, Estimate], cov: np.ndarray, fit: FitQuality) ->
     if sd.min() > 0.0 and abs(cov[1, 2] / (sd[0] * sd[1])) > CONFOUNDED and {"damping", "coulomb"} & set(loose):
         out.append(IdentifyWarning.DAMPING_FRICTION_CONFOUNDED)
     out += [IdentifyWarning.coerce(f"loose_{k}") for k in loose]
-    if fit.within_one_tick < POOR_FIT:
-        out.append(IdentifyWarning.POOR_FIT)
     return out
 
 
@@ -565,6 +608,12 @@ def _ticks(lg: DeviceLog, resolution: float | None, period: float | None) -> tup
     """(Δ, T, the readings in whole ticks from the lowest): step 1 of the module docstring."""
     dx = check_positive("resolution", resolution, "give Δ in m") if resolution is not None else None
     ts = check_positive("period", period, "give T in s") if period is not None else None
+    if ts is not None and abs(float(np.median(np.diff(lg.t))) / ts - 1.0) > GIVEN_PERIOD_RTOL:
+        raise LogError(
+            f"{lg.source}: period = {format_value(ts)} s disagrees with the log's times (their step is "
+            f"{float(np.median(np.diff(lg.t))):.6g} s): give the period the log was sampled at, or "
+            "leave it out"
+        )
     delta = dx if dx is not None else estimate_resolution(lg.x, lg.source)
     t = ts if ts is not None else estimate_period(lg.t, lg.source)
     n = np.rint((lg.x - lg.x.min()) / delta)
@@ -573,7 +622,7 @@ def _ticks(lg: DeviceLog, resolution: float | None, period: float | None) -> tup
         i = int(np.argmax(off))
         raise LogError(
             f"{lg.source}: the readings are not whole ticks of resolution = {format_value(delta)}: row {i + 2} is "
-            f"{format_value(float(off[i]))} ticks off; another resolution, or readings written with too few digits?"
+            f"{float(off[i]):.3g} ticks off; another resolution, or readings written with too few digits?"
         )
     return delta, t, n
 
@@ -598,7 +647,7 @@ def identify(
     period : float, optional
         Sample period T in s, > 0; default: estimated from the times.
     name : str, optional
-        Name of the identified device (default ``"identified from <source>"``).
+        Name of the identified device (default ``"device identified from <source>"``).
     bootstrap : int, optional
         Replicate logs of the intervals' bootstrap, 0 to :data:`MAX_BOOTSTRAP` (default :data:`BOOTSTRAP`; each
         costs one more fit). 0 gives the linearized intervals alone, which are too narrow (module docstring,
@@ -633,23 +682,30 @@ def identify(
         )
     delta, t, n = _ticks(lg, resolution, period)
     phi = lg.f / delta
-    best, starts = _fit(n, phi)
+    try:
+        best, starts = _fit(n, phi)
+    except LogError as err:
+        raise LogError(f"{lg.source}: {err}") from None
     theta, xi = best.x, _predict(best.x, n, phi, starts, np.empty(len(n)))
     cov = _linear_covariance(best, starts)
+    fit = _quality(xi, n)
     warns = _motion_warnings(n, float(theta[2]) * delta, float(np.max(np.abs(lg.f))))
-    draws = _bootstrap(xi, phi, 0 if IdentifyWarning.LITTLE_MOTION in warns else reps, progress)
+    if fit.within_one_tick < POOR_FIT:
+        warns.append(IdentifyWarning.POOR_FIT)
+    skip = {IdentifyWarning.LITTLE_MOTION, IdentifyWarning.POOR_FIT} & set(warns)
+    draws = _bootstrap(xi, phi, 0 if skip else reps, progress)
     est = _withhold(_estimates(theta, cov, draws, delta, t), warns)
     run = _free_run(theta, n, phi)
-    fit, free = _quality(xi, n), _quality(run, n)
-    warns += _fit_warnings(est, cov, fit)
+    free = _quality(run, n)
+    warns += _fit_warnings(est, cov)
     dev = Device(est["mass"].value, est["damping"].value, est["coulomb"].value, delta, t,
-                 name=name or f"identified from {lg.source}", rotary=lg.rotary)  # fmt: skip
+                 name=name or f"device identified from {lg.source}", rotary=lg.rotary)  # fmt: skip
     v_peak = float(np.max(np.abs(np.diff(run)))) * delta / t
     status = IdentifyStatus.POOR_FIT if IdentifyWarning.POOR_FIT in warns else (
         IdentifyStatus.CAVEATS if warns else IdentifyStatus.OK)  # fmt: skip
     return Identification(dev, lg.source, lg.samples, est["mass"], est["damping"], est["coulomb"],
                           est["force_offset"], resolution is not None, period is not None, int(len(n) // len(starts)),
-                          len(draws), fit, free, tuple(warns), v_peak, float(theta[4 + len(starts)]) * delta / t,
+                          len(draws), reps, fit, free, tuple(warns), v_peak, float(theta[4 + len(starts)]) * delta / t,
                           _states(theta, n, starts), run, n, status)  # fmt: skip
 
 
@@ -706,9 +762,10 @@ def synthetic_log(
     if f.ndim != 1 or f.size == 0 or not np.all(np.isfinite(f)):
         raise DFAValueError("force must be a one-dimensional array of finite forces in N, one per sample")
     noise = check_nonnegative("force_noise", force_noise, "give the noise's standard deviation in N")
+    offset = check_real("force_offset", force_offset, "give the offset in N")
     xi = np.empty(f.size)
     delta, t = dev.resolution, dev.period
-    open_loop_kernel(x0 / delta, v0 * t / delta, (f + force_offset) / delta, dev.mass / (t * t),
+    open_loop_kernel(x0 / delta, v0 * t / delta, (f + offset) / delta, dev.mass / (t * t),
                      dev.damping / t, dev.coulomb / delta, xi)  # fmt: skip
     logged = f + (np.random.default_rng(seed).normal(0.0, noise, f.size) if noise > 0.0 else 0.0)
     return DeviceLog(np.arange(f.size) * t, delta * np.floor(xi), logged, source=source, rotary=dev.rotary)
@@ -724,6 +781,7 @@ def impact_log(device: Device, stiffness: float, velocity: float, samples: int, 
     from .simulation import simulate
 
     dev = check_type("device", device, Device, "build one with dfa.Device(...)")
+    check_int("samples", samples, MIN_SAMPLES, f"a log needs at least {MIN_SAMPLES} samples")
     p = dev.params(stiffness)
     r = simulate(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), samples - 1, record=True)
     assert r.xi is not None

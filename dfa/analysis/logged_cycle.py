@@ -11,15 +11,18 @@ tail's two halves within one tick and :data:`STEADY` of each other).
 
 - the exact simulation (paper eq. 4-5) replayed from the fitted state (position and velocity) of the last
   segment of the identification's fit that starts before the tail, relative to the wall's origin
-  (:func:`wall_origin`, from the force column), and from :data:`REPLAYS` − 1 states around it (a quantized
-  loop's cycles can have basins smaller than a tick: one start may end in the logged cycle and its neighbour in
-  chatter or growth);
-- the describing function's stable limit cycles (eq. 36-45, the exact zero-order hold).
+  (:func:`wall_origin`, from the force column), and from 8 states around it (a quantized loop's cycles can have
+  basins smaller than a tick: one start may end in the logged cycle and its neighbour in chatter or growth),
+  each with b and c at the ends of their 95 % intervals and at their values (0 and the value where the log
+  does not bound them): up to 81 replays;
+- the describing function's stable limit cycles of at least :data:`DF_SMALLEST` tick (eq. 36-45, the exact
+  zero-order hold) for the identified values.
 
 The verdict rests on the simulation, which is exact: the logged oscillation is a predicted limit cycle when at
-least one replay ends in a sustained oscillation of its amplitude (within one tick and :data:`AMPLITUDE_TOL`)
-and frequency (within :data:`FREQUENCY_TOL`); the result says how many did. Otherwise it is not one the package
-predicts for this device and wall (another wall, a delay, a filter, or dynamics the model lacks).
+least one replay ends in an oscillation of its amplitude (within ½ tick and :data:`AMPLITUDE_TOL`) and frequency
+(within :data:`FREQUENCY_TOL`); the result says how many did, and what the others did. Otherwise it is not one
+the package predicts for this device and wall (another wall, a delay, a filter, values outside their intervals,
+or dynamics the model lacks). A chatter between two readings is not compared.
 
 Examples
 --------
@@ -44,7 +47,7 @@ from ..model.device import Device
 from ..model.log import DeviceLog
 from ..results.base import Result
 from ..results.status import LoggedCycleStatus
-from .identify import Identification
+from .identify import Estimate, Identification
 
 __all__ = [
     "LoggedOscillation",
@@ -67,12 +70,14 @@ STEADY = 0.2
 AMPLITUDE_TOL = 0.15
 #: Largest relative difference of the logged and the simulated frequency of the same cycle.
 FREQUENCY_TOL = 0.1
+#: Smallest amplitude (ticks) of a describing-function cycle listed (smaller ones are sub-tick artefacts).
+DF_SMALLEST = 0.5
 #: Samples of each replay.
 REPLAY_SAMPLES = 20_000
 #: Offsets of the replays' start positions (ticks) and velocities (ticks per sample) from the fitted state.
 REPLAY_POSITIONS = (-0.1, 0.0, 0.1)
 REPLAY_VELOCITIES = (-0.03, 0.0, 0.03)
-#: Replays per comparison.
+#: Replays per pair of (b, c) values (up to 9 pairs: each at its interval's ends and its value).
 REPLAYS = len(REPLAY_POSITIONS) * len(REPLAY_VELOCITIES)
 
 
@@ -114,8 +119,8 @@ def measure_oscillation(readings: ArrayLike) -> LoggedOscillation | None:
     -------
     LoggedOscillation or None
         Amplitude (ticks), frequency (rad per sample) and the number of full periods (module docstring); None when
-        the tail is at rest, moves less than a tick, holds fewer than :data:`FEW_PERIODS` periods or its envelope
-        is not steady.
+        the tail is at rest or chatters between two readings (less than a tick), holds fewer than
+        :data:`FEW_PERIODS` periods or its envelope is not steady.
     """
     n = np.asarray(readings, dtype=float)
     start = len(n) - len(n) // 4
@@ -123,7 +128,7 @@ def measure_oscillation(readings: ArrayLike) -> LoggedOscillation | None:
     if len(tail) < 8:
         return None
     first, second = float(np.ptp(tail[: len(tail) // 2])), float(np.ptp(tail[len(tail) // 2 :]))
-    if min(first, second) < 1.0 or abs(first - second) > 1.0 + STEADY * max(first, second):
+    if min(first, second) < 2.0 or abs(first - second) > 1.0 + STEADY * max(first, second):  # 1 tick: chatter
         return None
     centre = 0.5 * (tail.max() + tail.min())
     below = tail[:-1] < centre
@@ -151,9 +156,9 @@ class LoggedCycle(Result):
         from it, ticks (:func:`wall_origin`; more than a tick: the force column is not this wall).
     logged : LoggedOscillation or None
         The log's sustained oscillation (None: none).
-    replays : tuple of (str, float, float)
-        Each replay's outcome (``dfa.analysis.simulation``), amplitude (ticks) and frequency (rad per sample; NaN
-        when not measured); empty when no oscillation was logged.
+    replays : tuple of (float, float, str, float, float)
+        Each replay's damping b (N·s/m) and friction c (N), outcome (``dfa.analysis.simulation``), amplitude
+        (ticks) and frequency (rad per sample; NaN when not measured); empty when no oscillation was logged.
     matching : int
         Replays that end in the logged cycle.
     describing : tuple of (float, float)
@@ -166,7 +171,7 @@ class LoggedCycle(Result):
     origin: float
     origin_spread: float
     logged: LoggedOscillation | None
-    replays: tuple[tuple[str, float, float], ...]
+    replays: tuple[tuple[float, float, str, float, float], ...]
     matching: int
     describing: tuple[tuple[float, float], ...]
     status: LoggedCycleStatus
@@ -180,17 +185,29 @@ class LoggedCycle(Result):
     def to_dict(self) -> dict[str, Any]:
         """Every field, the oscillations as their numbers (null when there is none)."""
         out = super().to_dict()
-        out["logged"] = None if self.logged is None else self.logged.to_dict()
-        out["replays"] = [{"outcome": o, "amplitude": a, "frequency": None if math.isnan(w) else w}
-                          for o, a, w in self.replays]  # fmt: skip
+        dev = self.device
+        si = {"amplitude_si": 0.0, "frequency_hz": 0.0}
+        if self.logged is not None:
+            si = {"amplitude_si": self.logged.amplitude * dev.resolution,
+                  "frequency_hz": self.logged.frequency / (2.0 * math.pi * dev.period)}  # fmt: skip
+        out["logged"] = None if self.logged is None else self.logged.to_dict() | si
+        out["replays"] = [{"damping": b, "coulomb": c, "outcome": o, "amplitude": a,
+                           "frequency": None if math.isnan(w) else w} for b, c, o, a, w in self.replays]  # fmt: skip
         out["describing"] = [{"amplitude": a, "frequency": w} for a, w in self.describing]
+        reasons = {
+            k: v for k, v in out.get("null_reasons", {}).items() if not k.startswith(("/replays", "/describing"))
+        }
+        reasons |= {f"/replays/{i}/frequency": "not measured: the replay did not settle in a cycle"
+                    for i, r in enumerate(self.replays) if math.isnan(r[4])}  # fmt: skip
+        out["null_reasons"] = reasons
+        out["units_of_cycles"] = "amplitude in ticks (amplitude_si in m or rad), frequency in rad per sample"
         return out
 
 
 def _same(logged: LoggedOscillation, outcome: str, amplitude: float, frequency: float) -> bool:
     """Whether a replay ends in the logged cycle (module docstring's tolerances)."""
-    return (outcome in ("oscillating", "chatter") and abs(amplitude - logged.amplitude) <= 1.0
-            + AMPLITUDE_TOL * logged.amplitude and abs(frequency / logged.frequency - 1.0) <= FREQUENCY_TOL)  # fmt: skip
+    return (outcome == "oscillating" and abs(amplitude - logged.amplitude) <= 0.5 + AMPLITUDE_TOL * logged.amplitude
+            and abs(frequency / logged.frequency - 1.0) <= FREQUENCY_TOL)  # fmt: skip
 
 
 def wall_origin(log: DeviceLog, resolution: float, stiffness: float) -> tuple[float, float]:
@@ -244,13 +261,23 @@ def compare_logged_cycle(identification: Identification, log: DeviceLog, stiffne
     if logged is None:
         return LoggedCycle(dev, k, origin, spread, None, (), 0, (), LoggedCycleStatus.NO_OSCILLATION)
     p = dev.params(k)
-    df = tuple((c.amplitude, c.frequency) for c in limit_cycles(p, model="zoh").cycles if c.stable)
+    df = tuple((c.amplitude, c.frequency) for c in limit_cycles(p, model="zoh").cycles
+               if c.stable and c.amplitude >= DF_SMALLEST)  # fmt: skip
     states = ident.segment_states
     row = states[max(0, int(np.searchsorted(states[:, 0], logged.start, side="right")) - 1)]
-    dx, dv = np.meshgrid(REPLAY_POSITIONS, REPLAY_VELOCITIES)
-    runs = simulate_batch(p.mu, p.beta, p.sigma, row[2] + dv.ravel(), REPLAY_SAMPLES, xi0=row[1] + dx.ravel() - origin)
-    replays = tuple((OUTCOMES[int(c)], float(a), float(w))
-                    for c, a, w in zip(runs.outcome, runs.amplitude, runs.frequency, strict=True))  # fmt: skip
-    matching = sum(_same(logged, *r) for r in replays)
+    b, c, dx, dv = (a.ravel() for a in np.meshgrid(_span(ident.damping), _span(ident.coulomb), REPLAY_POSITIONS,
+                                                    REPLAY_VELOCITIES, indexing="ij"))  # fmt: skip
+    runs = simulate_batch(p.mu, b / (k * dev.period), c / (k * dev.resolution), row[2] + dv, REPLAY_SAMPLES,
+                          xi0=row[1] + dx - origin)  # fmt: skip
+    replays = tuple((float(bi), float(ci), OUTCOMES[int(o)], float(a), float(w))
+                    for bi, ci, o, a, w in zip(b, c, runs.outcome, runs.amplitude, runs.frequency, strict=True))  # fmt: skip
+    matching = sum(_same(logged, *r[2:]) for r in replays)
     status = LoggedCycleStatus.PREDICTED if matching else LoggedCycleStatus.NOT_PREDICTED
     return LoggedCycle(dev, k, origin, spread, logged, replays, matching, df, status)
+
+
+def _span(e: Estimate) -> list[float]:
+    """The values of one estimate the replays take: its interval's ends and its value (0 and the value when the
+    log does not bound it), N·s/m or N."""
+    ends = [0.0, e.value] if e.low is None or e.high is None else [e.low, e.value, e.high]
+    return sorted(set(ends))

@@ -27,7 +27,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--rotary", action="store_true", help="the log is in rad and N·m (default: m and N)")
     p.add_argument("--name", type=name, metavar="TEXT", help="name of the identified device (default: from the file)")
     p.add_argument("--stiffness", type=number("--stiffness", "N/m"), metavar="K",
-                   help="close the loop: K_max four ways of the identified device (as `dfa stiffness`), a wall "
+                   help="close the loop: K_max four ways of the identified device with b and c at the lower ends of "
+                   "their 95 %% intervals (as `dfa stiffness`), a wall "
                    "of stiffness K in N/m (rotary N·m/rad) assessed, and a sustained oscillation in a log of that "
                    "wall set next to the predicted limit cycles; default: none")  # fmt: skip
     p.add_argument("--velocity", type=number("--velocity", "m/s"), metavar="V",
@@ -62,30 +63,66 @@ def _report(args: argparse.Namespace, device: Any, velocity: float) -> dict[str,
     return dict(res.to_dict())
 
 
-def run(args: argparse.Namespace) -> int:
-    """Read the log, identify, optionally close the loop; print the result (text or JSON)."""
-    from ..analysis.identify import identify
-    from ..analysis.limits.kmax import design_answer
-    from ..analysis.limits.recommend import recommend_stiffness
-    from ..analysis.logged_cycle import compare_logged_cycle
-    from ..model.log import read_log
-    from ..render.answer import stiffness_screen
-    from ..render.identify import cycle_lines, identify_lines, loop_head
-
+def _check_flags(args: argparse.Namespace) -> None:
+    """Refuse flag values and combinations that cannot run, before the log is read."""
     for flag in ("--resolution", "--period", "--stiffness"):
         _positive(flag, getattr(args, flag[2:]))
-    if args.velocity is not None and args.stiffness is None:
-        raise UsageError("--velocity needs --stiffness: it is the impact speed of the wall the device is checked with")
+    for flag, needs in (("--velocity", "--stiffness"), ("--report", "--stiffness"), ("--force", "--report")):
+        if getattr(args, flag[2:]) not in (None, False) and getattr(args, needs[2:]) is None:
+            raise UsageError(f"{flag} needs {needs}: {NEEDS[flag]}")
     if args.velocity is not None and not args.velocity >= 0.0:
         raise UsageError(f"--velocity {args.velocity:g} is invalid: give the impact speed, >= 0")
     if args.bootstrap < 0:
         raise UsageError(f"--bootstrap {args.bootstrap} is invalid: give a whole number of replicate fits >= 0")
     if args.report is not None:
-        if args.stiffness is None:
-            raise UsageError("--report needs --stiffness: the report is of the identified device and a wall of K")
         check_output_folder("--report", args.report, create=True)
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
+
+
+#: Why a flag needs another.
+NEEDS = {
+    "--velocity": "it is the impact speed of the wall the device is checked with",
+    "--report": "the report is of the identified device and a wall of K",
+    "--force": "it lets --report replace a report made for another device",
+}
+
+
+def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], lines: list[str]) -> None:
+    """K_max four ways of the cautious identified device (b, c at their lower 95 % bounds), the given K assessed,
+    the logged oscillation against the predicted cycles, and the report; nothing on a poor fit."""
+    from ..analysis.limits.kmax import design_answer
+    from ..analysis.limits.recommend import recommend_stiffness
+    from ..analysis.logged_cycle import compare_logged_cycle
+    from ..render.answer import stiffness_screen
+    from ..render.identify import cycle_lines, loop_head, poor_fit_loop
+
+    if r.status.value == "poor_fit":
+        out["loop"] = None
+        out.setdefault("null_reasons", {})["/loop"] = "poor fit: no limits for a model that does not reproduce the log"
+        lines += poor_fit_loop(r)
+        return
+    dev = r.cautious()
+    v = r.velocity_peak if args.velocity is None else args.velocity
+    ans = design_answer(dev, v, wall=args.stiffness, assess=True)
+    rec = recommend_stiffness(ans)
+    out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}
+    lines += loop_head(dev, v, args.velocity is None) + stiffness_screen(ans, rec)
+    cyc = compare_logged_cycle(r, log, args.stiffness)
+    out["cycle"] = cyc.to_dict()
+    lines += cycle_lines(cyc)
+    if args.report is not None:
+        out["report"] = _report(args, dev, v)
+        lines += [f"written {p}" for p in out["report"]["paths"]]
+
+
+def run(args: argparse.Namespace) -> int:
+    """Read the log, identify, optionally close the loop; print the result (text or JSON)."""
+    from ..analysis.identify import identify
+    from ..model.log import read_log
+    from ..render.identify import identify_lines
+
+    _check_flags(args)
     try:
         log = read_log(args.log, rotary=args.rotary)
     except DFAError as err:
@@ -97,21 +134,11 @@ def run(args: argparse.Namespace) -> int:
         warn_implausible(key, getattr(r.device, key), rotary=args.rotary, subject=f"identified {key}", hint=hint)
     out = r.to_dict()
     lines = identify_lines(r)
-    if args.stiffness is not None:  # K_max four ways of the identified device, the given K assessed
-        v = r.velocity_peak if args.velocity is None else args.velocity
-        ans = design_answer(r.device, v, wall=args.stiffness, assess=True)
-        rec = recommend_stiffness(ans)
-        out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict()}
-        lines += loop_head(r, v, args.velocity is None) + stiffness_screen(ans, rec)
-        cyc = compare_logged_cycle(r, log, args.stiffness)
-        out["cycle"] = cyc.to_dict()
-        lines += cycle_lines(cyc)
-    if args.report is not None:
-        out["report"] = _report(args, r.device, v)
-        lines += [f"written {p}" for p in out["report"]["paths"]]
+    if args.stiffness is not None:
+        _close_loop(args, r, log, out, lines)
     if args.plot is not None:
-        written = save_png("--plot", args.plot, r.plot()[0])
-        lines.append(f"written {written}")
+        out["plot"] = save_png("--plot", args.plot, r.plot()[0])
+        lines.append(f"written {out['plot']}")
     if args.json:
         emit(out, ensure_ascii=False)
         return 0

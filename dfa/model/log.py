@@ -4,7 +4,8 @@ A log is what a designer with a real device has: at each sample instant t_h the 
 whole number of ticks Δ) and the force f_h commanded at t_h and held by the zero-order hold until t_{h+1}
 (paper eq. 1-2; rotary: rad and N·m). :func:`read_log` reads one from a CSV file with a header naming the
 columns ``t`` (s), ``x`` (m or rad) and ``f`` (N or N·m), a unit in brackets after the name allowed
-(``t (s)``); other columns, and lines starting with ``#``, are ignored; commas, semicolons or tabs separate
+(``t (s)``; ms, µs, mm, µm, mN and rotary mrad, deg, mN·m are converted to SI, another unit is refused); other
+columns, and lines starting with ``#``, are ignored; commas, semicolons or tabs separate
 (with semicolons or tabs a decimal comma is read as a point: ``0,001``). Every rule a log must keep
 is checked before anything is analysed, and a bad log is refused in one line naming the row and the rule:
 missing columns, text or NaN in a number, fewer than :data:`MIN_SAMPLES` rows, time not strictly increasing, a
@@ -130,7 +131,50 @@ def _header(row: list[str], source: str) -> dict[str, int]:
     return {c: names.index(c) for c in COLUMNS}
 
 
-def _parse(text: str, source: str) -> tuple[list[float], list[float], list[float]]:
+#: Units a header may give each column, and their factor to SI (linear; rotary below).
+UNITS = {
+    "t": {"s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "μs": 1e-6},
+    "x": {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9},
+    "f": {"n": 1.0, "mn": 1e-3, "kn": 1e3},
+}
+#: The same for a rotary log (--rotary): rad, mrad, deg and N·m, mN·m.
+ROTARY_UNITS = {
+    "t": UNITS["t"],
+    "x": {"rad": 1.0, "mrad": 1e-3, "deg": 0.017453292519943295, "°": 0.017453292519943295},
+    "f": {"n·m": 1.0, "nm": 1.0, "n m": 1.0, "n*m": 1.0, "mn·m": 1e-3, "mnm": 1e-3, "mn m": 1e-3},
+}
+
+
+def _unit(cell: str) -> str | None:
+    """The unit written in brackets after a column's name (``t (ms)``, ``x [mm]``), None when none is."""
+    for open_, close in (("(", ")"), ("[", "]")):
+        if open_ in cell:
+            return cell.split(open_, 1)[1].split(close, 1)[0].strip()
+    return None
+
+
+def _scales(row: list[str], where: dict[str, int], rotary: bool, source: str) -> tuple[float, float, float]:
+    """The factor that brings each column to SI, from the units in the header (1 where none is written)."""
+    table = ROTARY_UNITS if rotary else UNITS
+    out = []
+    for c in COLUMNS:
+        unit = _unit(row[where[c]])
+        key = None if unit is None else unit.lower() if c != "x" or unit.lower() in table[c] else unit
+        if key is None or key == "":
+            out.append(1.0)
+            continue
+        if key not in table[c]:
+            kinds = ", ".join(table[c])
+            other = " (a rotary log? give --rotary)" if not rotary and key.lower() in ROTARY_UNITS[c] else ""
+            raise LogError(
+                f"{source}: column {c!r} is in {unit!r}{other}: give it in one of {kinds}, or write the header "
+                "without a unit for SI"
+            )
+        out.append(table[c][key])
+    return out[0], out[1], out[2]
+
+
+def _parse(text: str, source: str, rotary: bool = False) -> tuple[list[float], list[float], list[float]]:
     lines = [ln for ln in text.splitlines() if not ln.lstrip().startswith("#")]  # comment lines
     first = next((ln for ln in lines if ln.strip()), "")
     delimiter = ";" if ";" in first and "," not in first else "\t" if "\t" in first and "," not in first else ","
@@ -139,6 +183,7 @@ def _parse(text: str, source: str) -> tuple[list[float], list[float], list[float
     if head is None or not any(c.strip() for c in head):
         raise LogError(f"{source}: the file is empty: a log needs a header (t,x,f) and one row per sample")
     where = _header(head, source)
+    scale = _scales(head, where, rotary, source)
     comma = delimiter != ","  # a decimal comma (3,25) where the separator is not one (spreadsheet exports)
     cols: tuple[list[float], list[float], list[float]] = ([], [], [])
     for i, row in enumerate(rows, start=2):
@@ -147,7 +192,7 @@ def _parse(text: str, source: str) -> tuple[list[float], list[float], list[float
         for j, c in enumerate(COLUMNS):
             try:
                 cell = row[where[c]]
-                cols[j].append(float(cell.replace(",", ".") if comma else cell))
+                cols[j].append(float(cell.replace(",", ".") if comma else cell) * scale[j])
             except (IndexError, ValueError):
                 cell = row[where[c]] if where[c] < len(row) else "nothing"
                 raise LogError(f"{source}: row {i}, column {c!r} holds {cell!r}: it must be a number") from None
@@ -207,7 +252,7 @@ def read_log(path: str | os.PathLike[str], *, rotary: bool = False, max_bytes: i
     except (OSError, UnicodeDecodeError) as exc:
         why = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
         raise LogError(f"{src}: cannot be read ({why}); give a CSV log") from None
-    t, x, f = _parse(text, src)
+    t, x, f = _parse(text, src, rotary)
     if not t:
         raise LogError(f"{src}: has a header but no rows: log at least {MIN_SAMPLES} samples")
     return DeviceLog(np.array(t), np.array(x), np.array(f), source=os.path.basename(src), rotary=rotary)

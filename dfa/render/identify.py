@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import shlex
+from collections import Counter
 from typing import TYPE_CHECKING
 
 from ..formatting import fill, number, text_table
@@ -11,22 +12,26 @@ from ..formatting import fill, number, text_table
 if TYPE_CHECKING:
     from ..analysis.identify import Estimate, Identification
     from ..analysis.logged_cycle import LoggedCycle
+    from ..model.device import Device
 
-__all__ = ["identify_lines", "loop_head", "device_flags", "cycle_lines"]
+__all__ = ["identify_lines", "loop_head", "device_flags", "cycle_lines", "poor_fit_loop"]
 
 
 def _interval(e: Estimate, unit: str) -> list[str]:
     if e.low is None or e.high is None:
         return [f"{number(e.value, 4)} {unit}", f"undetermined ({_short(e.undetermined)})"]
-    return [f"{number(e.value, 4)} {unit}", f"{number(e.low, 4)} … {number(e.high, 4)}"]
+    digits = 4
+    while digits < 8 and number(e.low, digits) == number(e.high, digits):  # a narrow interval: enough digits
+        digits += 1
+    return [f"{number(e.value, digits)} {unit}", f"{number(e.low, digits)} … {number(e.high, digits)}"]
 
 
 def _short(why: str) -> str:
     """A few words for a table cell of why an estimate has no interval (the full reason is in the JSON)."""
-    from ..analysis.identify import FRICTION_UNRESOLVED_WHY, NO_REVERSAL_WHY, SCATTER_WHY
+    from ..analysis.identify import FRICTION_UNRESOLVED_WHY, NO_REVERSAL_WHY, POOR_FIT_WHY, SCATTER_WHY
 
     short = {NO_REVERSAL_WHY: "no reversal: only c − f₀", FRICTION_UNRESOLVED_WHY: "below the forces' resolution",
-             SCATTER_WHY: "unbounded by the log"}  # fmt: skip
+             SCATTER_WHY: "unbounded by the log", POOR_FIT_WHY: "poor fit"}  # fmt: skip
     return short.get(why, "too little motion")
 
 
@@ -69,8 +74,14 @@ def identify_lines(r: Identification) -> list[str]:
 
 def _interval_note(r: Identification) -> str:
     """How the intervals were made, and what they leave out."""
+    if all(e.low is None for e in (r.mass, r.damping, r.coulomb, r.force_offset)):
+        return "no intervals: the log does not bound the values (the table says why)"
     if r.bootstrap:
         how = f"from the fit and {r.bootstrap} replicate fits with the encoder's origin shifted"
+        if r.bootstrap < r.bootstrap_requested:
+            how += f" ({r.bootstrap_requested - r.bootstrap} of {r.bootstrap_requested} replicates too still to fit)"
+    elif r.bootstrap_requested:
+        how = "from the fit's Jacobian alone (no replicate moved enough to fit): too narrow, a lower bound"
     else:
         how = "from the fit's Jacobian alone (--bootstrap 0): too narrow, read them as a lower bound"
     return f"intervals {how}; they leave out noise on the force column and dynamics the model lacks"
@@ -91,27 +102,41 @@ def cycle_lines(c: LoggedCycle) -> list[str]:
     lines.append(fill(
         f"the log ends in a sustained oscillation of {number(c.logged.amplitude, 3)} ticks "
         f"({number(amp, 3)} {u['resolution']}, ±½ tick) at {number(hz, 4)} Hz over {c.logged.periods} periods"))  # fmt: skip
-    verdict = "it is the limit cycle predicted" if c.matching else "it is not one predicted"
-    lines.append(fill(
-        f"{verdict} for the identified device and this wall: {c.matching} of {len(c.replays)} exact replays "
-        "from the fitted state end in it"))  # fmt: skip
+    counts = Counter("diverge" if o == "unstable" else o for _b, _c, o, _a, _w in c.replays)
+    counts["oscillating"] -= c.matching
+    others = ", ".join(f"{n} {'another cycle' if o == 'oscillating' else o}" for o, n in sorted(counts.items()) if n)
+    how = (f"{c.matching} of {len(c.replays)} exact replays (b and c across their 95 % intervals, 9 starts near the "
+           f"fitted state) end in it" + (f"; the others: {others}" if others else ""))  # fmt: skip
+    if c.matching:
+        lines.append(fill(f"it is the limit cycle predicted for the identified device and this wall: {how}"))
+    else:
+        lines.append(fill(f"it is not one predicted for the identified device and this wall: {how} (another wall, "
+                          "a delay or filter, values outside their intervals, or dynamics the model lacks)"))  # fmt: skip
     cycles = ", ".join(f"{number(a, 3)} ticks at {number(w / (2.0 * math.pi * dev.period), 4)} Hz"
                        for a, w in c.describing) or "none"  # fmt: skip
     lines.append(fill(f"describing function's stable cycles (eq. 36-45, exact hold): {cycles}"))
     return lines
 
 
-def device_flags(r: Identification) -> str:
-    """The identified device as the flags of every other command (``--mass ... --period ...``)."""
-    d = r.device
-    parts = ["--mass", repr(round(d.mass, 6)), "--damping", repr(round(d.damping, 6)), "--coulomb",
-             repr(round(d.coulomb, 6)), "--resolution", f"{d.resolution:.6g}", "--period", f"{d.period:.6g}"]  # fmt: skip
+def device_flags(d: Device) -> str:
+    """A device as the flags of every other command (``--mass ... --period ...``, 6 significant digits)."""
+    parts = ["--mass", f"{d.mass:.6g}", "--damping", f"{d.damping:.6g}", "--coulomb", f"{d.coulomb:.6g}",
+             "--resolution", f"{d.resolution:.6g}", "--period", f"{d.period:.6g}"]  # fmt: skip
     return " ".join(shlex.quote(p) for p in parts) + (" --rotary" if d.rotary else "")
 
 
-def loop_head(r: Identification, velocity: float, measured: bool) -> list[str]:
-    """The line that introduces the identified device's K_max (the speed, and where it came from)."""
-    u = r.device.units
+def loop_head(device: Device, velocity: float, measured: bool) -> list[str]:
+    """The lines that introduce the limits of the cautious device (:meth:`Identification.cautious`)."""
+    u = device.units
     speed = f"{number(velocity, 4)} {u['velocity']}" + (" (the log's peak speed)" if measured else "")
-    return ["", fill(f"the identified device at {speed}; the same with any other speed or wall: "
-                     f"dfa stiffness {device_flags(r)}"), ""]  # fmt: skip
+    low = f"b = {number(device.damping, 4)} {u['damping']}, c = {number(device.coulomb, 4)} {u['force']}"
+    return ["", fill(f"the identified device with b and c at the lower ends of their 95 % intervals ({low}; 0 where "
+                     f"undetermined), at {speed}; the same with any other speed or wall: dfa stiffness "
+                     f"{device_flags(device)}"), ""]  # fmt: skip
+
+
+def poor_fit_loop(r: Identification) -> list[str]:
+    """What --stiffness says when the fit is poor: no limits."""
+    return ["", fill(f"no stiffness limits: the identified model reproduces only {100 * r.fit.within_one_tick:.3g} % "
+                     "of the log within one tick, so no limit computed from it would hold for the device; log a run "
+                     "with less noise on the force column, or check the log's units and columns")]  # fmt: skip

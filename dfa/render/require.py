@@ -86,7 +86,8 @@ def require_screen(req: Requirements) -> list[str]:
     for name in names:
         current = req.find(methods[0], name).current
         now = f"{number(current, 4)} {_unit(u, name, current)}"
-        rows.append([LABELS[name], now, *(requirement_cell(req.find(m, name), u) for m in methods)])
+        label = "damping b + b_h (device and hand)" if name == "damping" and dev.hand is not None else LABELS[name]
+        rows.append([label, now, *(requirement_cell(req.find(m, name), u) for m in methods)])
     lines = [fill(head, WIDTH, "  "), ""]
     lines += text_table(rows, ["parameter", "now", *(_METHOD_HEADS[m] for m in methods)], width=WIDTH).split("\n")
     lines.append(
