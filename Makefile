@@ -32,12 +32,15 @@ VALIDATION_SUMMARY := $(wildcard reports/validation/validation.json)
 report: $(STAMP)
 	$(BIN)/dfa report --out reports --format both --zwidth 20 $(if $(VALIDATION_SUMMARY),--validation $(VALIDATION_SUMMARY))
 
-# The whole suite (doctests included), then format, lint, layering and types. Work stealing: an idle worker takes
-# tests queued on the other (with the default distribution one worker sat idle while the other finished its slow
-# tests: 392 s against 294 s for the same suite on 2 cores).
+# The whole suite (doctests included), and beside it format, lint, layering and types (their output is printed
+# when the suite ends; either failing fails the target). Work stealing: an idle worker takes tests queued on the
+# other (with the default distribution one worker sat idle while the other finished its slow tests: 392 s against
+# 294 s for the same suite on 2 cores). Lint beside the suite instead of after it: 15 s less on 2 cores.
 test: $(STAMP)
-	HYPOTHESIS_PROFILE=ci $(BIN)/python -m pytest -q -n 2 --dist worksteal
-	$(MAKE) --no-print-directory lint
+	@mkdir -p .cache; $(MAKE) --no-print-directory lint > .cache/lint.log 2>&1 & lint=$$!; \
+	HYPOTHESIS_PROFILE=ci $(BIN)/python -m pytest -q -n 2 --dist worksteal; tests=$$?; \
+	wait $$lint; linted=$$?; cat .cache/lint.log; \
+	if [ $$tests -ne 0 ] || [ $$linted -ne 0 ]; then echo "make test: tests exit $$tests, lint exit $$linted"; exit 1; fi
 
 # Format, lint, layering (import contracts in pyproject.toml) and types.
 lint: $(STAMP)

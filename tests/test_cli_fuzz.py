@@ -26,7 +26,7 @@ from dfa.cli import main, parsing
 from dfa.cli.app import build_parser
 
 SEED = 17
-N_INVOCATIONS = 1800  # 2200 until the suite outgrew its 6 minutes (issue 29); the same seeds, the first 450 a chunk
+N_INVOCATIONS = 1400  # 2200, then 1800, until the suite outgrew its 6 minutes (issue 29); the same seeds, the first 350 a chunk
 
 GARBAGE = [
     "",
@@ -321,7 +321,7 @@ def test_cli_fuzz(tmp_path, capsys, monkeypatch, chunk):
         elif "--json" in argv:
             json.loads(out)
     # the run exercised both outcomes, and nothing wrote where it should not
-    assert codes[0] > 100 // CHUNKS and codes[2] > 1000 // CHUNKS, codes
+    assert codes[0] > N_INVOCATIONS // 18 // CHUNKS and codes[2] > N_INVOCATIONS * 5 // 9 // CHUNKS, codes
     assert (tmp_path / "afile.txt").read_text() == "keep me"
     assert not any(name.startswith(".dfa-tmp-") for name in os.listdir(tmp_path))
     assert not os.path.exists(os.devnull + ".npz")

@@ -137,7 +137,7 @@ def test_identify_warns_no_reversal_and_unexcited_damping():
     e = dfa.get_device("toolhandle")
     t = np.arange(6000) * e.device.period
     chirp = 0.1 * np.sin(2 * np.pi * np.geomspace(0.5, 20, 6000) * t)
-    r2 = identify(synthetic_log(e.device, chirp, force_noise=5e-4))
+    r2 = identify(synthetic_log(e.device, chirp, force_noise=5e-4), bootstrap=0)  # loose even by the Jacobian
     assert IdentifyWarning.LOOSE_DAMPING in r2.warnings
     ok = identify(synthetic_log(*_excited(0.2, 1e-5, 1e-3, 5.0, 80.0)))
     assert ok.warnings == () and ok.status.value == "ok"
