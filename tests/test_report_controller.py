@@ -31,7 +31,7 @@ from dfa.analysis.design import design_analysis
 from dfa.analysis.linear_wall import stable_stiffness
 from dfa.cli import main
 from dfa.errors import DFAValueError
-from dfa.model.wall import Wall
+from dfa.model.wall import Wall, WallParams
 from dfa.render.document import design_markdown
 from dfa.results.jsonable import dumps
 
@@ -129,7 +129,8 @@ def test_controller_report_states_what_dfa_check_prints(ctl):
     assert line.startswith("controller: ") and "ν_c = f_c·T = 0.06667" in line and line in md.splitlines()
     rows = check_table(text)
     assert len(rows) == 12 and rows[6][0] == "passive" and rows[6][1].startswith("yes: ")
-    assert rows[7] == ("start state", dfa.analysis.criterion.START_STATE)
+    fresh = dfa.analysis.criterion.start_state(WallParams.of(damping=0.2, delay=1, cutoff=0.05))  # d, B, filter
+    assert rows[7] == ("start state", fresh) and "the pending command equals the first" in fresh and "filter's" in fresh
     for label, value in rows:
         assert md_row(label, value) in md, label
     a = data["analysis"]
@@ -141,7 +142,7 @@ def test_controller_report_states_what_dfa_check_prints(ctl):
     assert data["numbers"]["critical_xi_dot"] == check["criterion"]["critical_xi_dot"]
     verdict = md.splitlines()[2]  # the verdict paragraph says the same
     assert (
-        "**passive (proven: the energy cannot grow from a start with no motion before the impact)** by the criterion of eq. 6 extended"
+        "**passive (proven: the energy cannot grow, for a wall whose memory is fresh at t = 0)** by the criterion of eq. 6 extended"
         in verdict
     )
     assert f"up to {check['criterion']['critical_velocity']:.4g} m/s" in verdict
@@ -328,9 +329,8 @@ def test_spring_report_unchanged_golden_from_before_the_controller():
     """Impulse Engine at 0.05 m/s (small map): JSON key by key (floats to 1e-9) and Markdown byte for byte.
 
     Recorded from commit 4b5ad71 (before the report took a controller); a pure-spring Wall gives the same. The
-    grip section (issue 28, added later) is removed before comparing; the start state of the proof (issue 28 §1,
-    added later: the verdict's words and one row) is written into the recorded Markdown; everything else is as
-    recorded.
+    grip section (issue 28, added later) is removed before comparing; the start state's row (issue 28 §1, added
+    later) is written into the recorded Markdown; everything else is as recorded.
     """
     spec = importlib.util.spec_from_file_location("dfa_make_golden", GOLDEN / "make_golden.py")
     assert spec is not None and spec.loader is not None

@@ -163,7 +163,8 @@ __all__ = [
     "CriticalLine",
     "CriterionResult",
     "passivity_criterion",
-    "START_STATE",
+    "start_state",
+    "start_state_note",
     "device_criterion",
     "classify_region",
     "equivalent_speed",
@@ -173,14 +174,63 @@ __all__ = [
     "check_finite_verdict",
 ]
 
-#: The start state every guarantee of the criterion is proven for (module docstring, steps 2 and 3). From other
-#: starts an independent check found the energy above its start at points called passive: after motion
-#: against the spring before t = 0 (5 % of them, up to 32×; none diverged), and after an approach from free
-#: space with a damper and a low-cutoff filter (2 % of those with a damper). Issue 28 §1 is to cover them.
-START_STATE = (
-    "no motion before t = 0: the wall's past readings equal ξ0, the velocity estimate and filter are at 0 and "
-    "pending commands equal the first; a start after motion (a filled filter or delay line) is not covered"
-)
+#: The short form of the start state of a wall with memory (:func:`start_state_note`).
+FRESH_NOTE = "for a wall whose memory is fresh at t = 0"
+
+
+def start_state(wall: Any) -> str:
+    """The start state the criterion's guarantee for ``wall`` is proven for (module docstring, steps 2 and 3).
+
+    A wall without delay or damper has no memory: only the reading at t = 0 (a sample instant) enters the proof,
+    so any history will do. Otherwise the wall's memory must be fresh at t = 0, as if at rest there: the d pending
+    commands equal the first (the spring force at the first reading), the previous reading equals the first (a
+    velocity estimate of 0) and the filter's output is 0. From a memory of earlier motion an independent check
+    found the energy above its start at points called passive (with a delay, and with a damper and a low-cutoff
+    filter after an approach from free space); issue 28 §1 is to cover them.
+
+    Parameters
+    ----------
+    wall : Wall or WallParams
+        Anything with ``delay`` (samples) and ``damping`` (the virtual damper; 0 for none).
+
+    Returns
+    -------
+    str
+        The start state, in words.
+
+    Examples
+    --------
+    >>> start_state(WallParams())[:40]
+    'any: this wall has no memory (only the r'
+    """
+    if wall.delay == 0 and wall.damping == 0.0:
+        return "any: this wall has no memory (only the reading at t = 0, a sample instant, enters the proof)"
+    fresh = []
+    if wall.delay:
+        pending = "the pending command equals" if wall.delay == 1 else f"the {wall.delay} pending commands equal"
+        fresh.append(f"{pending} the first (the spring force at the first reading)")
+    if wall.damping:
+        fresh.append("the previous reading equals the first (velocity estimate 0)")
+        if getattr(wall, "cutoff", getattr(wall, "filter_cutoff", None)) is not None:
+            fresh.append("the filter's output is 0")
+    return f"the wall's memory fresh at t = 0: {'; '.join(fresh)}; a memory of earlier motion is not covered"
+
+
+def start_state_note(wall: Any) -> str:
+    """``" (for a wall whose memory is fresh at t = 0)"`` for a wall with memory, else empty (:func:`start_state`).
+
+    Parameters
+    ----------
+    wall : Wall or WallParams
+        Anything with ``delay`` and ``damping``.
+
+    Returns
+    -------
+    str
+        The note, with its leading space and brackets; empty for a wall without memory.
+    """
+    return "" if wall.delay == 0 and wall.damping == 0.0 else f" ({FRESH_NOTE})"
+
 
 #: One-line meaning of each region of paper Fig. 3 for the spring (text before the first colon: short label).
 #: Only a and e are guarantees; b, c, d say what is *not* guaranteed.
@@ -500,8 +550,8 @@ class CriterionResult(Result):
 
     @property
     def start_state(self) -> str:
-        """The loop's state at t = 0 that the guarantee assumes (:data:`START_STATE`)."""
-        return START_STATE
+        """The loop's state at t = 0 that the guarantee assumes (:func:`start_state` of the wall)."""
+        return start_state(self.wall)
 
     @property
     def beta0(self) -> float:

@@ -115,6 +115,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp: Inputs) -> None:
     """The full answer (``--explain``): every limit in words with what its confirmation simulated."""
+    from ..analysis.criterion import start_state_note
     from ..render.answer import recommendation_line
     from ..render.hand import device_title
     from ..render.limits import PROOF_NOTE, evidence_text, kmax_rows, verdict_text
@@ -132,6 +133,7 @@ def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp
     print(text_table(rows))  # the full evidence: a row a line, however long
     if v > 0:
         print(f"evidence: {evidence_text(ans)}.")
-        print(fill(f"{PROOF_NOTE} (or the first harmonic)."))
+        note = PROOF_NOTE.replace("a proof", f"a proof{start_state_note(ans.wall)}")
+        print(fill(f"{note} (the describing function's: the first harmonic)."))
     else:
         print("impact speed 0: the describing-function and simulated limits need a speed > 0.")

@@ -11,6 +11,7 @@ Examples
 
 from __future__ import annotations
 
+from ..analysis.criterion import start_state_note
 from ..analysis.limits.kmax import KMaxResult
 from ..analysis.limits.recommend import Recommendation
 from ..analysis.limits.require import DamperGuidance
@@ -203,9 +204,9 @@ def stiffness_screen(r: KMaxResult, rec: Recommendation, guidance: DamperGuidanc
     if verdict:
         lines += ["", verdict]
     if r.velocity > 0:
-        lines.append("only the criterion is a proof (for a start with no motion before the impact); simulated")
-        lines.append("limits hold at the stiffnesses and speeds simulated (narrower unsafe bands between them are")
-        lines.append("not excluded); --explain for the evidence")
+        lines.append(fill(f"only the criterion is a proof{start_state_note(r.wall)}; simulated limits hold at the "
+                          "stiffnesses and speeds simulated (narrower unsafe bands between them are not excluded); "
+                          "--explain for the evidence", indent=""))  # fmt: skip
     else:
         lines.append("impact speed 0: the describing-function and simulated limits need a speed > 0")
     return "\n".join(lines).split("\n")

@@ -12,6 +12,7 @@ from collections.abc import Callable, Mapping
 from functools import lru_cache
 from typing import Any
 
+from ..analysis.criterion import start_state_note
 from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
 from ..results.status import SearchStatus
@@ -30,6 +31,12 @@ _CSS = (
 )
 
 
+def _fresh(wall: Any) -> str:
+    """ ", for a wall whose memory is fresh at t = 0" for a wall with memory, else empty (the start state)."""
+    note = start_state_note(wall).strip(" ()")
+    return f", {note}" if note else ""
+
+
 def _samples(n: int) -> str:
     return f"{n} sample{'s' if n != 1 else ''}"
 
@@ -43,7 +50,7 @@ def verdict_text(a: DesignAnalysis) -> str:
     u = dev.units
     ds = f"a computational delay of {_samples(a.delay)}"
     if crit.passive:
-        verdict = "passive (proven: the energy cannot grow from a start with no motion before the impact)"
+        verdict = f"passive (proven: the energy cannot grow{_fresh(crit.wall)})"
     elif lim.velocity_status == "none":
         verdict = f"no passivity guarantee even at rest (K > 2c/Δ = {lim.k_static:.5g} {u['stiffness']})"
     else:
@@ -91,7 +98,7 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
         text += f"**{NOT_COVERED}**: {not_covered_why(chk)}. "
     else:
         verdict = (
-            "passive (proven: the energy cannot grow from a start with no motion before the impact)"
+            f"passive (proven: the energy cannot grow{_fresh(r.wall)})"
             if r.passive
             else "not proven passive (the extended criterion gives no guarantee; that is not a proof of instability)"
         )
@@ -205,7 +212,7 @@ def limits_rows(a: DesignAnalysis) -> list[list[str]]:
             "passive (eq. 6)",
             "yes (proven: the energy cannot grow)" if crit.passive else "no guarantee (not a proof of instability)",
         ],
-        ["start state of the proof", crit.start_state],
+        ["start state", crit.start_state],
         ["margin (β − ½ − d)|ξ'0| + (σ − ½)", f"{crit.margin:.4g}"],
         ["critical speed (eq. 12)", crit_speed],
         ["K_max at this speed (eq. 11)", f"{lim.k_max:.5g} {u['stiffness']}"],

@@ -48,10 +48,7 @@ BELOW_K = (
     "excluded: stability need not be monotone in K"
 )
 #: The closing line of every K_max answer.
-PROOF_NOTE = (
-    "only the criterion is a proof (for a start with no motion before the impact); the others hold for the "
-    "simulated speeds, starts and stiffnesses"
-)
+PROOF_NOTE = "only the criterion is a proof; the others hold for the simulated speeds, starts and stiffnesses"
 
 #: What stopped a search at an undecided judgement, in a few words (:data:`~dfa.analysis.limits.search.UNDECIDED_WHY`).
 _UNDECIDED = {

@@ -88,6 +88,7 @@ def decide_undecided(
     lengths: Sequence[int] | np.ndarray,
     undecided: Any,
     rerun: Callable[[np.ndarray, np.ndarray], Any],
+    extend: Sequence[bool] | np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Run the undecided runs again, :data:`EXTEND_STEP` times longer each time, up to :data:`EXTEND_CAP` times.
 
@@ -105,6 +106,10 @@ def decide_undecided(
         The value of ``codes`` that means undecided.
     rerun : callable
         ``rerun(indices, lengths)`` gives the outcomes of those runs at those lengths.
+    extend : sequence of bool, optional
+        Which runs may be run again (default all): a run already cut to the search's longest run is not, as
+        the loop's time scales exceed what is simulated and longer runs would only take time; it stays undecided
+        (not safe).
 
     Returns
     -------
@@ -119,7 +124,7 @@ def decide_undecided(
     """
     out = np.array(codes, dtype=object)
     ns = np.array(lengths, dtype=np.int64)
-    caps = ns * EXTEND_CAP
+    caps = ns * np.where(np.ones(len(ns), bool) if extend is None else np.asarray(extend, bool), EXTEND_CAP, 1)
     while True:
         idx = np.flatnonzero((out == undecided) & (ns < caps))
         if idx.size == 0:
@@ -135,7 +140,7 @@ def simulate_points(
 
     The run length of each point is :func:`dfa.analysis.simulation.default_samples` (with its wall), at most
     ``max_samples``; an undecided run is run again longer (:func:`decide_undecided`, up to :data:`EXTEND_CAP`
-    times); a run diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of
+    times) unless it was cut to ``max_samples`` (then it stays undecided: not safe); a run diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of
     its start. Runs go on threads (one per core) through the compiled batch kernels, which release the GIL;
     each outcome depends on its own point only. A wall the spring's kernel runs (``is_spring``) takes it.
 
@@ -146,16 +151,17 @@ def simulate_points(
     """
     if len(walls) != len(points):
         raise DFAValueError(f"walls has {len(walls)} entries for {len(points)} points: give one per point")
-    jobs = []
+    jobs, extend = [], []
     for (mu, beta, sigma, xi0, xi_dot0), w in zip(points, walls, strict=True):
-        n = min(default_samples(mu, beta, sigma, xi_dot0, xi0, wall=w), max_samples)
+        natural = default_samples(mu, beta, sigma, xi_dot0, xi0, wall=w)
         bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
-        jobs.append((mu, beta, sigma, xi_dot0, n, xi0, bound, w))
+        jobs.append((mu, beta, sigma, xi_dot0, min(natural, max_samples), xi0, bound, w))
+        extend.append(natural <= max_samples)  # cut to max_samples already: longer runs would only take time
 
     def rerun(idx: np.ndarray, ns: np.ndarray) -> list[str]:
         return _outcomes([jobs[i][:4] + (int(n),) + jobs[i][5:] for i, n in zip(idx, ns, strict=True)])
 
-    outs, lengths = decide_undecided(_outcomes(jobs), [j[4] for j in jobs], "undecided", rerun)
+    outs, lengths = decide_undecided(_outcomes(jobs), [j[4] for j in jobs], "undecided", rerun, extend)
     return [str(o) for o in outs], [int(n) for n in lengths]
 
 
