@@ -57,3 +57,17 @@ def test_runs_cut_to_the_longest_are_not_run_again():
     out, ns = decide_undecided(["undecided", "undecided"], [100, 100], "undecided", rerun, extend=[True, False])
     assert set(asked) == {0} and ns.tolist() == [100 * EXTEND_CAP, 100] and list(out) == ["undecided"] * 2
     assert np.all(out == "undecided")
+
+
+def test_eq6_every_proof_claim_of_a_wall_with_memory_says_fresh(capsys):
+    """The recommendation "(a proof …)", `dfa stiffness`'s closing note and `dfa require`'s "Only the criterion is a
+    proof" carry the start state for a wall with memory (a delay), and nothing for the spring without delay."""
+    base = ["--device", "delta", "--velocity", "0.1"]
+    for extra, fresh in (([], False), (["--delay", "1"], True)):
+        assert main(["stiffness", *base, *extra]) == 0
+        out = " ".join(capsys.readouterr().out.split())
+        assert ("a proof, for a wall whose memory is fresh at t = 0; no margin needed" in out) == fresh
+        assert ("only the criterion is a proof (for a wall whose memory is fresh at t = 0)" in out) == fresh
+        assert main(["require", *base, "--stiffness", "20000", *extra]) == 0
+        out = " ".join(capsys.readouterr().out.split())
+        assert ("Only the criterion is a proof, for a wall whose memory is fresh at t = 0;" in out) == fresh

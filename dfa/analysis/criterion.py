@@ -165,6 +165,7 @@ __all__ = [
     "passivity_criterion",
     "start_state",
     "start_state_note",
+    "start_state_clause",
     "device_criterion",
     "classify_region",
     "equivalent_speed",
@@ -214,6 +215,22 @@ def start_state(wall: Any) -> str:
         if getattr(wall, "cutoff", getattr(wall, "filter_cutoff", None)) is not None:
             fresh.append("the filter's output is 0")
     return f"the wall's memory fresh at t = 0: {'; '.join(fresh)}; a memory of earlier motion is not covered"
+
+
+def start_state_clause(wall: Any) -> str:
+    """``", for a wall whose memory is fresh at t = 0"`` for a wall with memory, else empty (:func:`start_state`).
+
+    Parameters
+    ----------
+    wall : Wall or WallParams
+        Anything with ``delay`` and ``damping``.
+
+    Returns
+    -------
+    str
+        The clause, with its leading comma; empty for a wall without memory.
+    """
+    return "" if wall.delay == 0 and wall.damping == 0.0 else f", {FRESH_NOTE}"
 
 
 def start_state_note(wall: Any) -> str:

@@ -11,7 +11,7 @@ Examples
 
 from __future__ import annotations
 
-from ..analysis.criterion import start_state_note
+from ..analysis.criterion import start_state_clause, start_state_note
 from ..analysis.limits.kmax import KMaxResult
 from ..analysis.limits.recommend import Recommendation
 from ..analysis.limits.require import DamperGuidance
@@ -66,7 +66,9 @@ def recommendation_text(rec: Recommendation) -> str:
     u = rec.device.units
     at = f"at {number(rec.velocity, 4)} {u['velocity']}"
     if rec.status is RecommendRule.PROVEN:
-        why = f"the largest K the criterion proves passive {at} (a proof; no margin needed)"
+        why = (
+            f"the largest K the criterion proves passive {at} (a proof{start_state_clause(rec.wall)}; no margin needed)"
+        )
     elif rec.status is RecommendRule.SIMULATED:
         assert rec.k_basis is not None
         why = (

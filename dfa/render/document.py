@@ -12,7 +12,7 @@ from collections.abc import Callable, Mapping
 from functools import lru_cache
 from typing import Any
 
-from ..analysis.criterion import start_state_note
+from ..analysis.criterion import start_state_clause
 from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
 from ..results.status import SearchStatus
@@ -31,12 +31,6 @@ _CSS = (
 )
 
 
-def _fresh(wall: Any) -> str:
-    """ ", for a wall whose memory is fresh at t = 0" for a wall with memory, else empty (the start state)."""
-    note = start_state_note(wall).strip(" ()")
-    return f", {note}" if note else ""
-
-
 def _samples(n: int) -> str:
     return f"{n} sample{'s' if n != 1 else ''}"
 
@@ -50,7 +44,7 @@ def verdict_text(a: DesignAnalysis) -> str:
     u = dev.units
     ds = f"a computational delay of {_samples(a.delay)}"
     if crit.passive:
-        verdict = f"passive (proven: the energy cannot grow{_fresh(crit.wall)})"
+        verdict = f"passive (proven: the energy cannot grow{start_state_clause(crit.wall)})"
     elif lim.velocity_status == "none":
         verdict = f"no passivity guarantee even at rest (K > 2c/Δ = {lim.k_static:.5g} {u['stiffness']})"
     else:
@@ -98,7 +92,7 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
         text += f"**{NOT_COVERED}**: {not_covered_why(chk)}. "
     else:
         verdict = (
-            f"passive (proven: the energy cannot grow{_fresh(r.wall)})"
+            f"passive (proven: the energy cannot grow{start_state_clause(r.wall)})"
             if r.passive
             else "not proven passive (the extended criterion gives no guarantee; that is not a proof of instability)"
         )
@@ -486,6 +480,7 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
     return _template().render(
         a=a,
         verdict=verdict_text(a),
+        fresh=start_state_clause(a.wall),
         recommendation=""
         if a.recommendation is None
         else recommendation_text(a.recommendation).removeprefix("recommended "),

@@ -6,6 +6,7 @@ Every line is at most :data:`~dfa.formatting.WIDTH` characters; the JSON carries
 
 from __future__ import annotations
 
+from ..analysis.criterion import start_state_clause
 from ..analysis.limits.require import ALL_METHODS, PARAMETERS, DamperGuidance, Requirement, Requirements
 from ..formatting import WIDTH, fill, number, text_table
 from ..results.status import RequireStatus
@@ -93,7 +94,8 @@ def require_screen(req: Requirements) -> list[str]:
     lines.append(
         fill(
             "'holds now': K holds today and the value is how far the parameter may go before it fails; 'change': "
-            "the least change that makes K hold. Only the criterion is a proof; the linear loop (no encoder, no "
+            f"the least change that makes K hold. Only the criterion is a proof{start_state_clause(req.wall)}; the "
+            "linear loop (no encoder, no "
             "Coulomb friction) is necessary for stability, not sufficient"
             + (
                 "; the describing function is a first-harmonic prediction, each value to 0.1 %"
