@@ -166,6 +166,7 @@ __all__ = [
     "start_state",
     "start_state_note",
     "start_state_clause",
+    "has_memory",
     "device_criterion",
     "classify_region",
     "equivalent_speed",
@@ -204,7 +205,7 @@ def start_state(wall: Any) -> str:
     >>> start_state(WallParams())[:40]
     'any: this wall has no memory (only the r'
     """
-    if wall.delay == 0 and wall.damping == 0.0:
+    if not has_memory(wall):
         return "any: this wall has no memory (only the reading at t = 0, a sample instant, enters the proof)"
     fresh = []
     if wall.delay:
@@ -217,36 +218,30 @@ def start_state(wall: Any) -> str:
     return f"the wall's memory fresh at t = 0: {'; '.join(fresh)}; a memory of earlier motion is not covered"
 
 
+def has_memory(wall: Any) -> bool:
+    """Whether ``wall`` (a Wall or WallParams) has memory: a delay or a damper (:func:`start_state`)."""
+    return not (wall.delay == 0 and wall.damping == 0.0)
+
+
 def start_state_clause(wall: Any) -> str:
     """``", for a wall whose memory is fresh at t = 0"`` for a wall with memory, else empty (:func:`start_state`).
 
     Parameters
     ----------
     wall : Wall or WallParams
-        Anything with ``delay`` and ``damping``.
+        Anything with ``delay`` and ``damping``; :func:`start_state_note` is the same in brackets.
 
     Returns
     -------
     str
-        The clause, with its leading comma; empty for a wall without memory.
+        The clause; empty for a wall without memory.
     """
-    return "" if wall.delay == 0 and wall.damping == 0.0 else f", {FRESH_NOTE}"
+    return f", {FRESH_NOTE}" if has_memory(wall) else ""
 
 
 def start_state_note(wall: Any) -> str:
-    """``" (for a wall whose memory is fresh at t = 0)"`` for a wall with memory, else empty (:func:`start_state`).
-
-    Parameters
-    ----------
-    wall : Wall or WallParams
-        Anything with ``delay`` and ``damping``.
-
-    Returns
-    -------
-    str
-        The note, with its leading space and brackets; empty for a wall without memory.
-    """
-    return "" if wall.delay == 0 and wall.damping == 0.0 else f" ({FRESH_NOTE})"
+    """The same as :func:`start_state_clause` in brackets: ``" (for a wall …)"``, or empty."""
+    return f" ({FRESH_NOTE})" if has_memory(wall) else ""
 
 
 #: One-line meaning of each region of paper Fig. 3 for the spring (text before the first colon: short label).
