@@ -38,7 +38,8 @@ def test_eq6_start_state_in_the_cli_text_and_json(capsys):
     for extra, memory in (([], False), (["--delay", "2"], True), (["--virtual-damping", "1"], True)):
         assert main(["check", "--device", "delta", "--velocity", "0.1", *extra, "--json"]) == 0
         d = json.loads(capsys.readouterr().out)
-        state = d.get("start_state") or d["criterion"]["start_state"]
+        state = d["start_state"]  # top level, for the spring's check and the controller's
+        assert state == (d.get("criterion") or d)["start_state"]
         assert state.startswith("the wall's memory fresh") == memory
         assert main(["check", "--device", "delta", "--velocity", "0.1", *extra]) == 0
         out = " ".join(capsys.readouterr().out.split())

@@ -37,7 +37,7 @@ from ..plausibility import warn_if_from_outside
 from ..results.base import Result
 from ..results.status import CheckStatus
 from .colgate_schenkel import ColgateSchenkel, colgate_schenkel_beta
-from .criterion import CriterionResult, as_wall, device_criterion
+from .criterion import CriterionResult, as_wall, device_criterion, start_state
 
 __all__ = ["PassivityCheck", "passivity_check"]
 
@@ -71,7 +71,7 @@ class PassivityCheck(Result):
     status: CheckStatus
 
     json_properties: ClassVar[tuple[str, ...]] = (
-        "passive", "colgate_schenkel_damping", "colgate_schenkel_bound", "colgate_schenkel_met",
+        "passive", "start_state", "colgate_schenkel_damping", "colgate_schenkel_bound", "colgate_schenkel_met",
     )  # fmt: skip
     units_of: ClassVar[dict[str, str]] = {
         "velocity": "velocity", "colgate_schenkel_damping": "damping", "colgate_schenkel_bound": "damping",
@@ -96,6 +96,11 @@ class PassivityCheck(Result):
     def passive(self) -> bool | None:
         """The criterion's verdict (proven passive, or no guarantee); None where not covered."""
         return None if self.criterion is None else bool(self.criterion.passive)
+
+    @property
+    def start_state(self) -> str:
+        """The start state ``passive`` is proven for (:func:`dfa.analysis.criterion.start_state` of the wall)."""
+        return start_state(self.wall)
 
     @property
     def colgate_schenkel_damping(self) -> float | None:

@@ -16,11 +16,13 @@ Examples
 
 from __future__ import annotations
 
+from ..analysis.criterion import start_state_clause
 from ..analysis.cycles import SUBTICK_LIMIT
 from ..analysis.limits.closed_form import StiffnessLimits
 from ..analysis.limits.kmax import KMaxAssessment, KMaxResult
 from ..analysis.limits.search import FINE_POINTS, FINE_STEP, SWEEP_STEP, Confirmation, KLimit
 from ..formatting import number
+from ..model.wall import WallParams
 from ..results.status import LimitStatus, StiffnessStatus, VelocityStatus
 
 __all__ = [
@@ -265,7 +267,7 @@ def verdict_text(r: KMaxResult) -> str:
     if a.velocity_status is VelocityStatus.NONE:
         return f"too stiff: no passivity guarantee even at rest ({_rest_bound(r)}); {not_proof}"
     if a.verdict is StiffnessStatus.OK:
-        return "ok: passive at this speed (proven)"
+        return f"ok: passive at this speed (proven{start_state_clause(r.wall)})"
     kc = r.k_criterion.value
     bound = "" if kc is None else f" (K > K_max = {_k(kc, r.device.units['stiffness'])})"
     return f"too stiff: no passivity guarantee at this speed{bound}; {not_proof}"
@@ -369,7 +371,7 @@ def spring_verdict_text(lim: StiffnessLimits) -> str:
             "not a proof of instability"
         )
     if lim.status == "ok":
-        return "ok: passive at this speed (proven)"
+        return f"ok: passive at this speed (proven{start_state_clause(WallParams.of(delay=lim.delay))})"
     return (
         f"too stiff: no passivity guarantee at this speed (K > K_max = {lim.k_max:.5g} {ku}); "
         "not a proof of instability"
