@@ -66,7 +66,7 @@ __all__ = [
 FEW_PERIODS = 4
 #: Largest relative difference of the peak-to-peak of the tail's two halves (beyond one tick) of a steady cycle.
 STEADY = 0.2
-#: Largest relative difference of the logged and the simulated amplitude (beyond one tick) of the same cycle.
+#: Largest relative difference of the logged and the simulated amplitude (beyond ½ tick) of the same cycle.
 AMPLITUDE_TOL = 0.15
 #: Largest relative difference of the logged and the simulated frequency of the same cycle.
 FREQUENCY_TOL = 0.1
