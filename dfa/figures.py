@@ -1117,8 +1117,13 @@ def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
     return ax
 
 
+#: Samples above which the identification figure adds an inset of the log's last samples.
+ZOOM_AFTER = 1500
+
+
 def plot_identification(ident, axes=None):
-    """A logged run against the identified model (issue 29): ticks over time above, residual below.
+    """A logged run against the identified model (issue 29): ticks over time above, residual below; a log longer
+    than :data:`ZOOM_AFTER` samples gets an inset of its last twentieth (at least 375 samples).
 
     Parameters
     ----------
@@ -1142,6 +1147,13 @@ def plot_identification(ident, axes=None):
     top.set_title(f"{ident.source}: {100 * ident.free_run.within_one_tick:.4g} % of samples within one tick",
                   fontsize=10)  # fmt: skip
     _legend_outside(top)
+    if ident.samples > ZOOM_AFTER:  # a long log is a band at this scale: its last samples, where a cycle shows
+        k = max(ZOOM_AFTER // 4, ident.samples // 20)
+        inset = top.inset_axes((0.62, 0.58, 0.36, 0.38))
+        inset.step(t[-k:], ident.logged[-k:], where="post", color="0.3", lw=0.8)
+        inset.plot(t[-k:], ident.predicted[-k:], color="C0", lw=0.8)
+        inset.set_title(f"last {k} samples", fontsize=7)
+        inset.tick_params(labelsize=6)
     bottom.plot(t, ident.predicted - ident.logged - 0.5, color="C3", lw=0.8)
     for y in (-0.5, 0.5):
         bottom.axhline(y, color="0.6", lw=0.6, ls="--")

@@ -564,3 +564,21 @@ def test_sec5_chatter_is_not_compared_and_cycle_json_carries_si(tmp_path, capsys
     assert d["logged"]["frequency_hz"] == pytest.approx(d["logged"]["frequency"] / (2 * math.pi * 1e-3))
     assert all(set(r) == {"damping", "coulomb", "outcome", "amplitude", "frequency"} for r in d["replays"])
     assert all(k.endswith("/frequency") for k in d["null_reasons"] if k.startswith("/replays"))
+
+
+def test_identify_plot_zooms_on_the_end_of_a_long_log():
+    """Found by review: the figure of a 6 s oscillation was a solid band. A log longer than ZOOM_AFTER samples gets
+    an inset of its last samples, with the logged readings and the model; a short one none."""
+    import matplotlib.pyplot as plt
+
+    from dfa.figures import ZOOM_AFTER
+
+    long_log = impact_log(CYCLE_DEVICE, CYCLE_K, 0.012, 6000)
+    for log, insets in ((long_log, 1), (synthetic_log(*_excited(0.2, 1e-5, 1e-3, 5.0, 80.0, 1.0)), 0)):
+        r = identify(log, bootstrap=0)
+        top, _bottom = r.plot()
+        assert len(top.child_axes) == insets and (r.samples > ZOOM_AFTER) == bool(insets)
+        if insets:
+            lines = top.child_axes[0].get_lines()
+            assert len(lines) == 2 and len(lines[1].get_xdata()) == max(ZOOM_AFTER // 4, r.samples // 20)
+        plt.close("all")
