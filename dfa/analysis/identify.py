@@ -61,6 +61,7 @@ from ..core.open_loop import open_loop_kernel, segments_kernel
 from ..errors import DFAValueError
 from ..model.device import Device
 from ..model.log import MIN_SAMPLES, DeviceLog, LogError
+from ..model.units import speed
 from ..results.base import Result
 from ..results.jsonable import explain_nulls
 from ..results.status import IdentifyStatus, IdentifyWarning
@@ -266,8 +267,6 @@ class Identification(Result):
         What the log does not excite, or a poor fit.
     velocity_peak : float
         Largest speed of the fitted run, m/s (rad/s).
-    start_velocity : float
-        The fitted velocity at the log's first sample, m/s (rad/s): the free run's start.
     segment_states : ndarray
         One row per segment of the fit: its first sample, fitted position there (ticks from the lowest reading)
         and velocity (ticks per sample).
@@ -292,12 +291,12 @@ class Identification(Result):
     free_run: FitQuality
     warnings: tuple[IdentifyWarning, ...]
     velocity_peak: float
-    start_velocity: float
     segment_states: np.ndarray = field(repr=False, metadata={"json": None})
     predicted: np.ndarray = field(repr=False, metadata={"json": None})
     logged: np.ndarray = field(repr=False, metadata={"json": None})
     status: IdentifyStatus = IdentifyStatus.OK
 
+    json_properties: ClassVar[tuple[str, ...]] = ("start_velocity",)
     units_of: ClassVar[dict[str, str]] = {"velocity_peak": "velocity", "start_velocity": "velocity"}
 
     def __post_init__(self) -> None:
@@ -311,6 +310,11 @@ class Identification(Result):
             a = np.array(getattr(self, name), dtype=float)
             a.setflags(write=False)
             object.__setattr__(self, name, a)
+
+    @property
+    def start_velocity(self) -> float:
+        """The fitted velocity at the log's first sample, m/s (rad/s): the free run's start (the first segment's)."""
+        return float(speed(self.device, self.segment_states[0, 2]))
 
     def cautious(self) -> Device:
         """The identified device with b and c at the lower ends of their 95 % intervals.
@@ -608,11 +612,11 @@ def _ticks(lg: DeviceLog, resolution: float | None, period: float | None) -> tup
     """(Δ, T, the readings in whole ticks from the lowest): step 1 of the module docstring."""
     dx = check_positive("resolution", resolution, "give Δ in m") if resolution is not None else None
     ts = check_positive("period", period, "give T in s") if period is not None else None
-    if ts is not None and abs(float(np.median(np.diff(lg.t))) / ts - 1.0) > GIVEN_PERIOD_RTOL:
+    step = float(np.median(np.diff(lg.t)))
+    if ts is not None and abs(step / ts - 1.0) > GIVEN_PERIOD_RTOL:
         raise LogError(
-            f"{lg.source}: period = {format_value(ts)} s disagrees with the log's times (their step is "
-            f"{float(np.median(np.diff(lg.t))):.6g} s): give the period the log was sampled at, or "
-            "leave it out"
+            f"{lg.source}: period = {format_value(ts)} s disagrees with the log's times (their step is {step:.6g} s): "
+            "give the period the log was sampled at, or leave it out"
         )
     delta = dx if dx is not None else estimate_resolution(lg.x, lg.source)
     t = ts if ts is not None else estimate_period(lg.t, lg.source)
@@ -705,8 +709,8 @@ def identify(
         IdentifyStatus.CAVEATS if warns else IdentifyStatus.OK)  # fmt: skip
     return Identification(dev, lg.source, lg.samples, est["mass"], est["damping"], est["coulomb"],
                           est["force_offset"], resolution is not None, period is not None, int(len(n) // len(starts)),
-                          len(draws), reps, fit, free, tuple(warns), v_peak, float(theta[4 + len(starts)]) * delta / t,
-                          _states(theta, n, starts), run, n, status)  # fmt: skip
+                          len(draws), reps, fit, free, tuple(warns), v_peak, _states(theta, n, starts), run, n,
+                          status)  # fmt: skip
 
 
 def _states(theta: np.ndarray, n: np.ndarray, starts: np.ndarray) -> np.ndarray:

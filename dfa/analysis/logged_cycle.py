@@ -45,6 +45,7 @@ from numpy.typing import ArrayLike
 from ..checks import check_positive, check_type
 from ..model.device import Device
 from ..model.log import DeviceLog
+from ..model.units import hertz, position
 from ..results.base import Result
 from ..results.status import LoggedCycleStatus
 from .identify import Estimate, Identification
@@ -185,12 +186,9 @@ class LoggedCycle(Result):
     def to_dict(self) -> dict[str, Any]:
         """Every field, the oscillations as their numbers (null when there is none)."""
         out = super().to_dict()
-        dev = self.device
-        si = {"amplitude_si": 0.0, "frequency_hz": 0.0}
-        if self.logged is not None:
-            si = {"amplitude_si": self.logged.amplitude * dev.resolution,
-                  "frequency_hz": self.logged.frequency / (2.0 * math.pi * dev.period)}  # fmt: skip
-        out["logged"] = None if self.logged is None else self.logged.to_dict() | si
+        lg = self.logged
+        out["logged"] = None if lg is None else lg.to_dict() | {
+            "amplitude_si": position(self.device, lg.amplitude), "frequency_hz": hertz(self.device, lg.frequency)}  # fmt: skip
         out["replays"] = [{"damping": b, "coulomb": c, "outcome": o, "amplitude": a,
                            "frequency": None if math.isnan(w) else w} for b, c, o, a, w in self.replays]  # fmt: skip
         out["describing"] = [{"amplitude": a, "frequency": w} for a, w in self.describing]

@@ -159,13 +159,13 @@ def _scales(row: list[str], where: dict[str, int], rotary: bool, source: str) ->
     out = []
     for c in COLUMNS:
         unit = _unit(row[where[c]])
-        key = None if unit is None else unit.lower() if c != "x" or unit.lower() in table[c] else unit
-        if key is None or key == "":
+        if not unit:
             out.append(1.0)
             continue
+        key = unit.lower()
         if key not in table[c]:
             kinds = ", ".join(table[c])
-            other = " (a rotary log? give --rotary)" if not rotary and key.lower() in ROTARY_UNITS[c] else ""
+            other = " (a rotary log? give --rotary)" if not rotary and key in ROTARY_UNITS[c] else ""
             raise LogError(
                 f"{source}: column {c!r} is in {unit!r}{other}: give it in one of {kinds}, or write the header "
                 "without a unit for SI"

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import math
 import shlex
 from collections import Counter
 from typing import TYPE_CHECKING
 
 from ..formatting import fill, number, text_table
+from ..model.units import hertz, position
 
 if TYPE_CHECKING:
     from ..analysis.identify import Estimate, Identification
@@ -97,8 +97,7 @@ def cycle_lines(c: LoggedCycle) -> list[str]:
         lines.append(fill(
             f"warning: the force column is not the paper's spring of K = {number(c.stiffness, 4)} "
             f"{u['stiffness']}: the wall's origin it implies wanders by {number(c.origin_spread, 3)} ticks"))  # fmt: skip
-    hz = c.logged.frequency / (2.0 * math.pi * dev.period)
-    amp = c.logged.amplitude * dev.resolution
+    hz, amp = hertz(dev, c.logged.frequency), position(dev, c.logged.amplitude)
     lines.append(fill(
         f"the log ends in a sustained oscillation of {number(c.logged.amplitude, 3)} ticks "
         f"({number(amp, 3)} {u['resolution']}, ±½ tick) at {number(hz, 4)} Hz over {c.logged.periods} periods"))  # fmt: skip
@@ -112,7 +111,7 @@ def cycle_lines(c: LoggedCycle) -> list[str]:
     else:
         lines.append(fill(f"it is not one predicted for the identified device and this wall: {how} (another wall, "
                           "a delay or filter, values outside their intervals, or dynamics the model lacks)"))  # fmt: skip
-    cycles = ", ".join(f"{number(a, 3)} ticks at {number(w / (2.0 * math.pi * dev.period), 4)} Hz"
+    cycles = ", ".join(f"{number(a, 3)} ticks at {number(hertz(dev, w), 4)} Hz"
                        for a, w in c.describing) or "none"  # fmt: skip
     lines.append(fill(f"describing function's stable cycles (eq. 36-45, exact hold): {cycles}"))
     return lines

@@ -124,7 +124,8 @@ def decide_undecided(
     """
     out = np.array(codes, dtype=object)
     ns = np.array(lengths, dtype=np.int64)
-    caps = ns * np.where(np.ones(len(ns), bool) if extend is None else np.asarray(extend, bool), EXTEND_CAP, 1)
+    allowed = np.ones(len(ns), bool) if extend is None else np.asarray(extend, bool)
+    caps = ns * np.where(allowed, EXTEND_CAP, 1)
     while True:
         idx = np.flatnonzero((out == undecided) & (ns < caps))
         if idx.size == 0:
@@ -140,7 +141,8 @@ def simulate_points(
 
     The run length of each point is :func:`dfa.analysis.simulation.default_samples` (with its wall), at most
     ``max_samples``; an undecided run is run again longer (:func:`decide_undecided`, up to :data:`EXTEND_CAP`
-    times) unless it was cut to ``max_samples`` (then it stays undecided: not safe); a run diverges past max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of
+    times) unless it was cut to ``max_samples`` (then it stays undecided: not safe); a run diverges past
+    max(10⁶, 100 (A₀ + 1)) ticks, A₀ = √(2 H_T(0)) the energy amplitude of
     its start. Runs go on threads (one per core) through the compiled batch kernels, which release the GIL;
     each outcome depends on its own point only. A wall the spring's kernel runs (``is_spring``) takes it.
 
