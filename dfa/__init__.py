@@ -85,7 +85,8 @@ from .model.catalogue import (
     resolve_device,
 )
 from .model.device import Device, Params
-from .model.elements import AmplifierLag, Damper, Delay, VelocityFilter
+from .model.elements import AmplifierLag, Damper, Delay, HandSpring, VelocityFilter
+from .model.grasp import hold
 from .model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
 from .model.log import DeviceLog, LogError, read_log
 from .model.wall import Wall, WallParams
@@ -188,6 +189,7 @@ __all__ = [
     "HAND_PRESETS",
     "HandNotCovered",
     "get_hand",
+    "hold",
     "DeviceLog",
     "LogError",
     "read_log",
@@ -197,6 +199,7 @@ __all__ = [
     "VelocityFilter",
     "Delay",
     "AmplifierLag",
+    "HandSpring",
     "stable_stiffness",
     "stable_region",
     "StiffnessIntervals",

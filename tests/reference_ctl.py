@@ -79,7 +79,7 @@ def _stuck(t, fa, c, lag, sigma):
 
 def simulate_ivp_ctl(mu, beta, sigma, xi0, xi_dot0, samples, ctl, *, quantize=True):
     """Reference trajectory (ξ, ξ') at the samples 0 … samples with controller ``ctl`` (WallParams)."""
-    lag = ctl.lag
+    lag, kap = ctl.lag, ctl.hand_stiffness  # a hand stiffness only without a lag (the model refuses both)
     xs, vs = np.empty(samples + 1), np.empty(samples + 1)
     x, v = float(xi0), float(xi_dot0)
     xs[0], vs[0] = x, v
@@ -91,17 +91,17 @@ def simulate_ivp_ctl(mu, beta, sigma, xi0, xi_dot0, samples, ctl, *, quantize=Tr
         t = 0.0
         while t < 1.0:
             if v == 0.0:
-                if abs(fa) <= sigma:
+                if abs(fa - kap * x) <= sigma:
                     t, fa, broke = _stuck(t, fa, c, lag, sigma)
                     if not broke:
                         break
-                s = math.copysign(1.0, fa)
+                s = math.copysign(1.0, fa - kap * x)
             else:
                 s = math.copysign(1.0, v)
 
             def rhs(_t, y, s=s, c=c):
                 dfa = 0.0 if lag == 0.0 else (c - y[2]) / lag
-                return [y[1], (y[2] - beta * y[1] - sigma * s) / mu, dfa]
+                return [y[1], (y[2] - kap * y[0] - beta * y[1] - sigma * s) / mu, dfa]
 
             def stop(_t, y):
                 return y[1]

@@ -341,7 +341,8 @@ def test_api_fuzz_covers_every_name():
     assert issubclass(dfa.DeviceFileError, dfa.DFAValueError) and issubclass(dfa.ImplausibleInputWarning, UserWarning)
     assert dfa.DEFAULT_DEVICE in {e.name for e in dfa.catalogue()}
     assert issubclass(dfa.HandNotCovered, dfa.DFAValueError)
-    assert all(isinstance(h, dfa.Hand) and h.stiffness == 0.0 for h in dfa.HAND_PRESETS.values())
+    assert all(isinstance(h, dfa.Hand) and h.stiffness >= 0.0 for h in dfa.HAND_PRESETS.values())
+    assert dfa.HAND_PRESETS["hapticmaster"].stiffness == 135.0 and dfa.HandSpring(135.0).value == 135.0
     assert set(dfa.LOOP_MODELS) == {"half-delay", "pade", "zoh"}
     assert all(isinstance(v, str) for v in dfa.REGION_DESCRIPTIONS.values())
 

@@ -191,15 +191,20 @@ def test_linear_controller_against_c2d_recursion(ctl, mu, beta):
     assert np.all(np.abs(r.xi_dot - lv) <= 1e-10 * np.maximum(1.0, np.abs(lv)))
 
 
+# β from 0 or 1e-6 up: the reference's control.c2d returns a wrong A (A[0, 1] = −0 for the amplifier's plant) at
+# β = 2.4e-35, which a random run of this test found (the simulator was right: it equals β = 0 there)
 @settings(max_examples=25, derandomize=True, deadline=None)
-@given(CONTROLLERS, st.floats(0.5, 50.0, **finite), st.floats(0.0, 1.0, **finite))
+@given(CONTROLLERS, st.floats(0.5, 50.0, **finite), st.one_of(st.just(0.0), st.floats(1e-6, 1.0, **finite)))
 def test_linear_random_controllers_against_c2d_recursion(ctl, mu, beta):
     n = 150
     r = simulate(mu, beta, 0.0, 1.5, samples=n, xi0=0.3, quantize=False, bound=1e300, wall=ctl)
     lx, lv = linear_ctl_recursion(mu, beta, 0.3, 1.5, n, ctl)
-    scale = np.maximum.accumulate(np.maximum(1.0, np.abs(lx)))  # relative to the largest |ξ| so far
-    assert np.all(np.abs(r.xi - lx) <= 1e-10 * scale)
-    assert np.all(np.abs(r.xi_dot - lv) <= 1e-10 * np.maximum.accumulate(np.maximum(1.0, np.abs(lv))))
+    # 1e-8 of the largest |ξ| so far: with a fast amplifier (α = 0.01, a pole at −100 per sample) the reference's
+    # scipy expm is good to about 4e-10 there (μ = 2.23, β_B = 2.23); which examples run depends on the order
+    # of the suite, so 1e-10 failed in some orders only
+    scale = np.maximum.accumulate(np.maximum(1.0, np.abs(lx)))
+    assert np.all(np.abs(r.xi - lx) <= 1e-8 * scale)
+    assert np.all(np.abs(r.xi_dot - lv) <= 1e-8 * np.maximum.accumulate(np.maximum(1.0, np.abs(lv))))
 
 
 @pytest.mark.parametrize("delay", [0, 1, 3])
@@ -217,7 +222,7 @@ def test_eq4_spring_controller_is_bit_identical(delay, mu, beta, sigma, v0):
     n = 3000
     rx, rv, st_ = np.empty(n + 1), np.empty(n + 1), np.empty(kernel.NSTATS)
     done, rest = wall_kernel.simulate_wall_kernel(
-        mu, beta, sigma, 0.0, v0, n, delay, True, 1e6, 750, 0.0, 0.0, False, 0.0, rx, rv, st_
+        mu, beta, sigma, 0.0, v0, n, delay, True, 1e6, 750, 0.0, 0.0, False, 0.0, 0.0, rx, rv, st_
     )
     ref = simulate(mu, beta, sigma, v0, samples=n, wall=WallParams.of(delay=delay))
     stop = n + 1 if rest < 0 and ref.rest_sample is None else min(done, ref.samples_run) + 1

@@ -38,6 +38,17 @@ def test_eq6_delay_soundness_counts_in_readme_match_the_committed_run():
     assert f"{counts[0]} (d = 0, ξ0 ≠ 0), {counts[1]}, {counts[2]} and {counts[3]}" in flat
 
 
+def test_eq6_hand_soundness_counts_in_trust_page_match_the_committed_run():
+    """docs/trust.md's hand-stiffness claim is reports/validation/hand_soundness.json (10⁵ points, no violation)."""
+    hand = json.loads((ROOT / "reports/validation/hand_soundness.json").read_text(encoding="utf-8"))
+    aware, ignoring = hand[0], hand[1]
+    assert aware["criterion"] == "controller-aware" and aware["points"] == 100_000 and aware["violations"] == 0
+    flat = _flat(TRUST)
+    assert "0 violations on 10⁵ random walls' passive points," in flat
+    assert f"{_int(aware['by_case']['hand stiffness'])} of them held by a hand" in flat
+    assert f"the damper-ignoring criterion fails on {_int(ignoring['violations'])}." in flat
+
+
 def test_eq6_grid_soundness_and_conservatism_in_readme_match_the_committed_run():
     flat = _flat(TRUST)
     assert SUMMARY["soundness_violations"] == 0

@@ -2,7 +2,7 @@
 
 Checks: a hand of zero mass and damping reproduces the bare device; a hand's mass and damping give the results
 of a device with m + m_h and b + b_h, through every command (the JSON numbers users read); β = (b + b_h)/(K T)
-from Table 1 by hand; a hand stiffness is refused, never left out; the grip sweep against closed forms (eq. 11
+from Table 1 by hand; a hand stiffness goes to the wall (dfa.hold), never left out; the grip sweep against closed forms (eq. 11
 solved for b), the exact linear bound at its answer, and exact simulation at the criterion's answer (a proof
 must not diverge); the report states the grasp and its grip table.
 """
@@ -99,13 +99,15 @@ def test_table2_hand_paper_preset_beta_by_table1(capsys):
     assert code == 0 and out.splitlines()[0].endswith("held by human operator (paper Table 2): 0.15 kg, 4.8 N·s/m")
 
 
-def test_table2_hand_stiffness_refused_not_left_out(capsys):
-    """A hand stiffness k_h > 0 is refused by the API and the CLI (no analysis covers it yet)."""
-    with pytest.raises(HandNotCovered, match="hand_stiffness = 135"):
+def test_table2_hand_stiffness_goes_to_the_wall_not_left_out(capsys):
+    """holding() alone refuses a hand stiffness (it would be left out) and names dfa.hold; the CLI puts it in the
+    wall (dfa.HandSpring), so the check's JSON states κ_h = k_h/K."""
+    with pytest.raises(HandNotCovered, match="hand_stiffness = 135.*dfa.hold"):
         IMPULSE.holding(Hand(0.554, 6.45, 135.0))
-    err = _refused(capsys, "check", "--device", "impulse", "--velocity", "0.1", "--hand-stiffness", "135")
-    assert "--hand-stiffness 135" in err and "not covered" in err
-    assert "0" in _refused(capsys, "simulate", "--device", "impulse", "--xi-dot", "1", "--hand-stiffness", "1")
+    d = _json(capsys, "check", "--device", "impulse", "--velocity", "0.1", "--hand-stiffness", "135")
+    k = dfa.get_device("impulse").stiffness
+    assert d["wall"]["hand_stiffness"] == 135.0 and d["wall"]["units"]["hand_stiffness"] == "N/m"
+    assert d["wall"]["dimensionless"]["hand_stiffness"] == pytest.approx(135.0 / k, rel=1e-15)
 
 
 @pytest.mark.parametrize(

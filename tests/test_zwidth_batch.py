@@ -102,7 +102,24 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
     lag = np.where(rng.random(k) < 0.4, rng.uniform(0.05, 2, k), 0.0)
     stats, done, rest = np.empty((k, NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
     batch_wall_kernel(
-        mu, beta, sigma, x0, v0, ns, delay, True, bounds, tails, damping, pole, filtered, lag, stats, done, rest
+        mu,
+        beta,
+        sigma,
+        x0,
+        v0,
+        ns,
+        delay,
+        True,
+        bounds,
+        tails,
+        damping,
+        pole,
+        filtered,
+        lag,
+        np.zeros(k),
+        stats,
+        done,
+        rest,
     )
     e = np.empty(0)
     seen = set()
@@ -110,7 +127,7 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
         st = np.empty(NSTATS)
         dn, rs = simulate_wall_kernel(
             mu[i], beta[i], sigma[i], x0[i], v0[i], ns[i], delay, True, bounds[i], tails[i],
-            damping[i], pole[i], filtered[i], lag[i], e, e, st,
+            damping[i], pole[i], filtered[i], lag[i], 0.0, e, e, st,
         )  # fmt: skip
         assert (dn, rs) == (done[i], rest[i])
         np.testing.assert_array_equal(st, stats[i])

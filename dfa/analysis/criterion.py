@@ -72,6 +72,17 @@ Energy-equivalent speed. V = sqrt(ξ'0² + 2H_c(ξ0)/μ) with the paper's pseudo
 and the left side of the criterion falls with V, so the verdict stays sound; it matches the paper's storage
 function H_T = ½μV². With ξ0 = 0, V = |ξ'0|. ξ0 ≠ 0 needs μ.
 
+A hand holding the device
+    A hand's mass and damping move with the device (m + m_h, b + b_h: :meth:`dfa.Device.holding`), so β and μ
+    include them and eq. 6 and 11 hold as written. A hand stiffness κ_h = k_h/K to a fixed reference at the
+    wall's origin (:class:`~dfa.model.elements.HandSpring`) adds −κ_h ξ to the plant: μξ'' + βξ' + κ_hξ +
+    σ sgn ξ' = φ. Its work over any motion is exactly −Δ(½κ_hξ²), so with S = ½μξ'² + ½ξ² + ½κ_hξ² step 1
+    holds unchanged (the spring stores what it takes; the bounds on D_h hold for any motion within the sample),
+    steps 2-4 concern the wall alone, and step 5 holds with S_0 = ½μV², V = sqrt(ξ'0² + (1 + κ_h)ξ0²/μ)
+    (:func:`equivalent_speed`): the corner (β₀, σ₀) is unchanged, and the hand's stiffness has no memory to
+    start in. ``tests/test_hand_stiffness_criterion.py`` checks S(h) <= S(0) by exact simulation
+    (:mod:`dfa.core.oscillator`) at random points the criterion calls passive.
+
 What is not proven
     * Amplifier lag (α > 0): the force varies within the sample, step 1's work φΔ no longer holds, and no
       sound closed form is derived here (:class:`~dfa.model.elements.AmplifierLag` says so; the criterion
@@ -267,12 +278,15 @@ def _margin(
     return (beta - beta0) * speed + (sigma - sigma0)
 
 
-def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *, quantized: bool = True) -> float:
-    """Energy-equivalent speed V = sqrt(ξ'0² + 2H_c(ξ0)/μ) in ticks per sample (eq. 18-19).
+def equivalent_speed(
+    xi_dot: float, xi0: float = 0.0, mu: float | None = None, *, quantized: bool = True, hand_stiffness: float = 0.0
+) -> float:
+    """Energy-equivalent speed V = sqrt(ξ'0² + (2H_c(ξ0) + κ_h ξ0²)/μ) in ticks per sample (eq. 18-19).
 
     ½μV² is the paper's total stored energy H_T(ξ0, ξ'0) (eq. 19), with
-    H_c(ξ) = ½ξ² + ½(p − p²) (eq. 18; ½ξ² without quantization). V >= the
-    sqrt(ξ'0² + ξ0²/μ) of the proof in the module docstring, so using it is sound.
+    H_c(ξ) = ½ξ² + ½(p − p²) (eq. 18; ½ξ² without quantization), plus the hand spring's ½κ_h ξ0² when a hand
+    of stiffness κ_h = k_h/K holds the device. V >= the sqrt(ξ'0² + (1 + κ_h)ξ0²/μ) of the proof in the
+    module docstring, so using it is sound.
 
     Parameters
     ----------
@@ -284,6 +298,13 @@ def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *
         Dimensionless mass μ = m/(K T²); required when ``xi0`` is not 0.
     quantized : bool, optional
         Use H_c of eq. 18 (default) or ½ξ0² (no encoder).
+    hand_stiffness : float, optional
+        The hand stiffness κ_h = k_h/K >= 0 (default 0: none; :class:`~dfa.model.elements.HandSpring`).
+
+    Returns
+    -------
+    float
+        V in ticks per sample.
 
     Examples
     --------
@@ -291,6 +312,8 @@ def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *
     2.0
     >>> equivalent_speed(0.0, xi0=1.0, mu=1.0)            # H_c(1) = ½
     1.0
+    >>> equivalent_speed(0.0, xi0=1.0, mu=1.0, hand_stiffness=3.0)   # and ½κ_h ξ0² = 3/2
+    2.0
     """
     v = abs(check_real("xi_dot", xi_dot, "give the speed in encoder ticks per sample"))
     x = check_real("xi0", xi0, "give the initial position in encoder ticks")
@@ -305,7 +328,8 @@ def equivalent_speed(xi_dot: float, xi0: float = 0.0, mu: float | None = None, *
             "H_c(ξ0) enters the speed only through 2H_c/μ; pass mu, or use device_criterion(..., position=...)"
         )
     m = check_mu(mu)
-    return math.sqrt(v * v + 2.0 * float(spring_energy(x, quantized)) / m)
+    kap = check_nonnegative("hand_stiffness", hand_stiffness, "give κ_h = k_h/K >= 0 (0: no hand stiffness)")
+    return math.sqrt(v * v + (2.0 * float(spring_energy(x, quantized)) + kap * x * x) / m)
 
 
 def spring_energy(xi: ArrayLike, quantize: bool = True) -> float | np.ndarray:
@@ -799,7 +823,7 @@ def passivity_criterion(
             f"quantized = {format_value(quantized)} has type {type(quantized).__name__}: it must be True (eq. 6) or False (eq. 7)"
         )
     q = bool(quantized)
-    v = equivalent_speed(xd, x0, m, quantized=q)
+    v = equivalent_speed(xd, x0, m, quantized=q, hand_stiffness=w.hand_stiffness)
     b0, s0 = _corner(w, q)
     region = str(region_of(b, s, v, s0, b0))
     margin = float(_margin(b, s, v, s0, b0))

@@ -190,9 +190,9 @@ def _wall(wall: object) -> WallParams:
 
 
 def _beyond_spring(wall: WallParams) -> bool:
-    """True when the wall's linear loop is not the spring's: a damper or an amplifier lag (a filter without a
-    damper filters nothing)."""
-    return wall.damping > 0.0 or wall.lag > 0.0
+    """True when the wall's linear loop is not the spring's: a damper, an amplifier lag or a hand stiffness (a
+    filter without a damper filters nothing)."""
+    return wall.damping > 0.0 or wall.lag > 0.0 or wall.hand_stiffness > 0.0
 
 
 def spectral_radius(mu: ArrayLike, beta: ArrayLike, *, wall: WallParams | None = None) -> float | np.ndarray:

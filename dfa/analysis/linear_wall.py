@@ -137,11 +137,11 @@ def amplifier_zoh_coefficients(a: float, lag: float) -> tuple[float, float, floa
     return float(n2), float(n1), float(n0), float(p), float(q)
 
 
-def _plant(a: float, wall: WallParams) -> tuple[np.ndarray, np.ndarray]:
+def _plant(a: float, wall: WallParams, mu: float) -> tuple[np.ndarray, np.ndarray]:
     """(N_G, D_G) of G(z) = N_G/(μ D_G) in w = z − 1, highest power first: an element's between hold and device
     (:meth:`dfa.model.wall.WallParams.plant`, the amplifier lag), else the device alone (:mod:`dfa.core.zoh`:
     N_G = c₁z + c₀ = c₁w + φ₁(a), D_G = (z − 1)(z − p) = w(w + 1 − p))."""
-    out = wall.plant(float(a))
+    out = wall.plant(float(a), mu)
     if out is not None:
         return out
     c1, c0, _p = zoh_coefficients(float(a))
@@ -193,7 +193,7 @@ def _characteristic_w(mu: float, beta: float, params: WallParams) -> np.ndarray:
     """χ of :func:`controlled_characteristic_polynomial` in w = z − 1 (checked inputs)."""
     m, b = check_mu(mu), check_beta(beta)
     params = check_type("params", params, WallParams, "give a dfa.WallParams")
-    ng, dg = _plant(b / m, params)
+    ng, dg = _plant(b / m, params, m)
     n1, n2, dh = _command(params)
     return np.asarray(np.polyadd(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2))))
 
@@ -260,7 +260,7 @@ def _taylor_at_one(a: float, a_b: float, wall: WallParams) -> tuple[np.ndarray, 
     for the caller's exact scaling, taken at a = 1e-300 when a is smaller (where it equals its limit to rounding).
     """
     a_eff = max(a, 1e-300)  # a that underflows (m = 1e300 kg) keeps ρ_L: its limit, to rounding
-    ng, dg = _plant(a_eff, wall)
+    ng, dg = _plant(a_eff, wall, 1.0)  # no hand spring here (series_kappa)
     h = wall.command()
     lw = _series_div(_poly_series(*dg[::-1]), _poly_series(*ng[::-1]))
     rho_l = float(lw[1] / a_eff)
@@ -286,6 +286,8 @@ def series_kappa(a: float, a_b: float, wall: WallParams) -> tuple[float, float] 
     κ̃ → φ₂/φ₃ = 1/(d + ½ + α), i.e. K_crit → (b + B)/(T(½ + d + τ_a/T)). None when φ₃ <= 0 or the
     last terms are not below 1e-17 of the first (a pole of the filter or lag too close to z = 1).
     """
+    if wall.hand_stiffness > 0.0:
+        return None  # a hand spring moves the device's pole off z = 1: the series' premise
     f, rho_l = _taylor_at_one(a, a_b, wall)
     if not f[3] > 0.0:
         return None
@@ -307,10 +309,11 @@ def series_kappa(a: float, a_b: float, wall: WallParams) -> tuple[float, float] 
     return rho_l, float(np.dot(re, powers))
 
 
-def _ray(a: float, a_b: float, wall: WallParams) -> tuple[np.ndarray, np.ndarray]:
+def _ray(a: float, a_b: float, wall: WallParams, mu: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
     """(P₀, Q) of κχ = P₀ + κQ at fixed a = bT/m and a_B = BT/m (module docstring); ``wall`` gives the
-    elements' structure (a filter counts only with a damper, a_B > 0)."""
-    ng, dg = _plant(a, wall)
+    elements' structure (a filter counts only with a damper, a_B > 0) and ``mu`` its μ (a hand spring's
+    ω² = κ_h/μ = k_h T²/m is fixed on the ray)."""
+    ng, dg = _plant(a, wall, mu)
     n1, n2, dh = _command(wall)
     return np.polyadd(np.polymul(dg, dh), a_b * np.polymul(ng, n2)), np.polymul(ng, n1)
 
@@ -386,9 +389,9 @@ def _crossings(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
     return np.array(out)
 
 
-def _stable_kappa(a: float, a_b: float, wall: WallParams) -> list[tuple[float, float]]:
+def _stable_kappa(a: float, a_b: float, wall: WallParams, mu: float = 1.0) -> list[tuple[float, float]]:
     """The stable set in κ = KT²/m as a list of open intervals (lo, hi), lo = 0 for the one from κ = 0+."""
-    p0, q = _ray(a, a_b, wall)
+    p0, q = _ray(a, a_b, wall, mu)
     return _ray_intervals(p0, q, (a, a_b, wall.cutoff, wall.lag, wall.delay))
 
 
@@ -429,7 +432,7 @@ def _check_against_grid(p0: Any, q: Any, ks: Any, intervals: Any, args: Any) -> 
 
 
 def _stable_set(
-    b: float, big_b: float, t: float, m: float, p: WallParams
+    b: float, big_b: float, t: float, m: float, p: WallParams, mu: float = 1.0
 ) -> tuple[list[tuple[float, float]], float | None]:
     """Stable κ intervals and, when the Taylor series at z = 1 gives it, K_crit in N/m (else None).
 
@@ -447,6 +450,8 @@ def _stable_set(
     if b + big_b > 0.0 and rate <= SERIES_RATE:
         series = series_kappa(a, a_b, p)
     if series is None:
+        if p.hand_stiffness > 0.0:  # the hand spring keeps the device's poles off z = 1: the float ray
+            return _stable_kappa(a, a_b, p, mu), None
         if 0.0 < rate < MIN_RESOLVED_RATE or (rate == 0.0 and b + big_b > 0.0):
             raise DFAValueError(
                 f"(damping + controller.damping)·period/mass = {rate:g} is invalid for the exact linear bound with "
@@ -585,7 +590,7 @@ def stable_stiffness(mass: float, damping: float, period: float, wall: Wall) -> 
     p = c.params(t)
     for name, value in (("damping", b), ("wall.damping", c.damping)):
         check_rate(name, value, m, t)
-    kap, k_top = _stable_set(b, c.damping, t, m, p)
+    kap, k_top = _stable_set(b, c.damping, t, m, p, m / (c.stiffness * t * t))  # μ at the wall's own K
     scale = m / (t * t)
     iv = np.array([[lo * scale, hi * scale] for lo, hi in kap]).reshape(-1, 2)
     status = _status(kap)

@@ -135,6 +135,7 @@ from ..checks import (
     check_real,
     check_sigma,
     check_type,
+    format_value,
 )
 from ..core import batch, kernel, wall_kernel
 from ..errors import DFATypeError, DFAValueError
@@ -603,7 +604,7 @@ class SimulationResult(Result):
             )
         out = np.empty(self.xi.size)
         xs = np.ascontiguousarray(self.xi, dtype=float)
-        wall_kernel.applied_forces(xs, self.delay, self.quantize, *_wall_args(self.wall), out)
+        wall_kernel.applied_forces(xs, self.delay, self.quantize, *_wall_args(self.wall)[:4], out)
         out.flags.writeable = False
         return out
 
@@ -877,6 +878,7 @@ def simulate(
     w = check_wall(wall, energy)
     d = w.delay
     m, b, s, v0, x0 = _check_run(mu, beta, sigma, xi_dot0, xi0)
+    check_hand_resonance(m, w)
     q = check_quantize(quantize)
     auto = samples is None
     fix = "simulate at least one sample"
@@ -933,6 +935,29 @@ def check_wall(wall: object, energy: bool = False) -> WallParams:
     return wall
 
 
+def check_hand_resonance(mu: float | np.ndarray, wall: WallParams) -> None:
+    """Refuse a hand stiffness whose resonance with the held mass reaches the Nyquist frequency.
+
+    The device held by a spring of κ_h = k_h/K oscillates at ω = √(κ_h/μ) rad per sample
+    (:mod:`dfa.core.oscillator`); the simulator's sample holds at most a few stops while ω < π, i.e.
+    √(k_h/m)/(2π) below the Nyquist frequency 1/(2T), where every haptic grasp lies (k_h T²/m of the
+    HapticMaster trial at 1 kHz: 2.4e-4).
+
+    Raises
+    ------
+    DFAValueError
+        If κ_h/μ >= π² for any μ.
+    """
+    kap = wall.hand_stiffness
+    if kap > 0.0 and np.any(kap / np.asarray(mu, dtype=float) >= math.pi**2):
+        w = math.sqrt(kap / float(np.min(mu)))
+        raise DFAValueError(
+            f"hand_stiffness = {format_value(kap)} (κ_h = k_h/K) is invalid with μ = {format_value(float(np.min(mu)))}: the "
+            f"hand's resonance √(κ_h/μ) = {w:.4g} rad per sample must stay below π (the Nyquist frequency; "
+            "√(k_h/m)/(2π) < 1/(2T)); give a hand stiffness below π² m/T², or check its units"
+        )
+
+
 def check_quantize(quantize: object) -> bool:
     """``quantize`` if it is True or False (numpy bools too); otherwise the package's error (never ``bool(x)``).
 
@@ -963,9 +988,11 @@ def wall_run_codes(
     :func:`dfa.core.kernel.classify_batch`). No GIL is held: callers may run several calls on threads.
     """
     k = mu.size
-    damping, pole, filtered, lag = (np.array(c) for c in zip(*map(_wall_args, walls), strict=True))
+    for w in walls:
+        check_hand_resonance(mu, w)
+    damping, pole, filtered, lag, spring = (np.array(c) for c in zip(*map(_wall_args, walls), strict=True))
     stats, done, rest = np.empty((k, kernel.NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
-    run = (mu, beta, sigma, x0, v0, ns, delay, True, bound, _tail_lengths(ns, mu), damping, pole, filtered, lag)
+    run = (mu, beta, sigma, x0, v0, ns, delay, True, bound, _tail_lengths(ns, mu), damping, pole, filtered, lag, spring)
     batch.batch_wall_kernel(*run, stats, done, rest)
     codes = np.empty(k, dtype=np.int64)
     out = (codes, np.empty(k), np.empty(k), np.empty(k), np.empty(k))
@@ -973,10 +1000,10 @@ def wall_run_codes(
     return codes
 
 
-def _wall_args(wall: WallParams) -> tuple[float, float, bool, float]:
-    """(β_B, a, filtered, α): the wall's arguments of :mod:`dfa.core.wall_kernel` (:meth:`WallParams.kernel_args`)."""
+def _wall_args(wall: WallParams) -> tuple[float, float, bool, float, float]:
+    """(β_B, a, filtered, α, κ_h): the wall's arguments of :mod:`dfa.core.wall_kernel` (:meth:`WallParams.kernel_args`)."""
     a = wall.kernel_args()
-    return a["damping"], a["pole"], a["filtered"], a["lag"]
+    return a["damping"], a["pole"], a["filtered"], a["lag"], a["spring"]
 
 
 def _measured(
@@ -1213,6 +1240,7 @@ def run_points(
     call per group of runs with the same tail length (one ``n`` and ``bound`` for all).
     """
     delay = wall.delay
+    check_hand_resonance(mu, wall)
     k = mu.shape[0]
     codes = np.empty(k, dtype=np.int64)
     amps, freqs, centres, fpps = np.empty(k), np.empty(k), np.empty(k), np.empty(k)

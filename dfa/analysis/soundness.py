@@ -61,7 +61,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..checks import check_choice, check_delay, check_int, check_positive, check_type
+from ..checks import check_bool, check_choice, check_delay, check_int, check_positive, check_type
 from ..core import kernel
 from ..core.storage import storage_runs
 from ..errors import DFATypeError, DFAValueError
@@ -133,12 +133,17 @@ class Population:
         Largest |ξ'0|, ticks per sample (uniform, random sign).
     xi0_max : float
         Largest |ξ0| of the points not at ξ0 = 0, ticks (uniform).
+    hand : bool
+        Random walls only: a hand stiffness κ_h = k_h/K on half the points, log-uniform in [10⁻⁴, 1] and below
+        ½π²μ (the hand's resonance below the Nyquist frequency; :class:`~dfa.model.elements.HandSpring`), drawn
+        after the rest so that the other fields are those of ``hand=False`` (default False: no hand).
     """
 
     delay: int | None = None
     mu_range: tuple[float, float] = (0.1, 1.0e4)
     xi_dot_max: float = 10.0
     xi0_max: float = 10.0
+    hand: bool = False
 
     def __post_init__(self) -> None:
         if self.delay is not None:
@@ -153,6 +158,12 @@ class Population:
         object.__setattr__(self, "mu_range", (lo, hi))
         object.__setattr__(self, "xi_dot_max", check_positive("xi_dot_max", self.xi_dot_max))
         object.__setattr__(self, "xi0_max", check_positive("xi0_max", self.xi0_max))
+        hand = check_bool("hand", self.hand, "pass True for a hand stiffness on half the points, False for none")
+        if hand and self.delay is not None:
+            raise DFAValueError(
+                "hand = True is invalid with delay = d: the hand is drawn with random walls; pass delay=None"
+            )
+        object.__setattr__(self, "hand", hand)
 
     @property
     def criteria(self) -> tuple[str, str]:
@@ -167,7 +178,9 @@ class Population:
     @property
     def point_keys(self) -> tuple[str, ...]:
         """The fields that describe a point of this population (its state; with random walls, its wall too)."""
-        return STATE_KEYS + WALL_KEYS if self.delay is None else STATE_KEYS
+        if self.delay is not None:
+            return STATE_KEYS
+        return STATE_KEYS + WALL_KEYS + (("hand_stiffness",) if self.hand else ())
 
 
 def _seen(criterion: str, wall: WallParams) -> tuple[WallParams, bool]:
@@ -222,7 +235,7 @@ def _draw_walls(rng: np.random.Generator, n: int, delay: int | None) -> dict[str
     return dict(damping=damping, delay=rng.integers(0, 4, n), cutoff=cutoff, quantized=rng.random(n) < 0.85)
 
 
-def point_wall(damping: float, delay: int, cutoff: float) -> WallParams:
+def point_wall(damping: float, delay: int, cutoff: float, hand_stiffness: float = 0.0) -> WallParams:
     """The wall of one point from its fields (``cutoff`` NaN: no filter).
 
     Parameters
@@ -233,12 +246,22 @@ def point_wall(damping: float, delay: int, cutoff: float) -> WallParams:
         Computational delay d, samples.
     cutoff : float
         Filter cutoff ν_c, cycles per sample (NaN: no filter).
+    hand_stiffness : float, optional
+        Hand stiffness κ_h = k_h/K (default 0: none).
 
     Returns
     -------
     WallParams
     """
-    return WallParams.of(damping=float(damping), delay=int(delay), cutoff=None if math.isnan(cutoff) else cutoff)
+    cut = None if math.isnan(cutoff) else cutoff
+    return WallParams.of(damping=float(damping), delay=int(delay), cutoff=cut, hand_stiffness=float(hand_stiffness))
+
+
+def _walls_of(pts: dict[str, np.ndarray]) -> list[WallParams]:
+    """Each point's wall (:func:`point_wall`; no hand stiffness when the points have none)."""
+    hand = pts.get("hand_stiffness", np.zeros(pts["mu"].shape[0]))
+    keys = (pts["damping"], pts["delay"], pts["cutoff"], hand)
+    return [point_wall(b, d, c, k) for b, d, c, k in zip(*keys, strict=True)]
 
 
 def _population(population: Population | None) -> Population:
@@ -280,17 +303,21 @@ def sample_passive_points(
     x0 = np.where(rng.random(n) < pop.at_rest, 0.0, rng.uniform(-pop.xi0_max, pop.xi0_max, n))
     walls = _draw_walls(rng, n, pop.delay)
     kind = rng.choice(4, n, p=[0.5, 0.25, 0.125, 0.125])
+    if pop.hand:  # drawn from a second stream: the other fields are those of the population without the hand
+        hr = np.random.default_rng([seed, 28])
+        kap = np.minimum(10.0 ** hr.uniform(-4.0, 0.0, n), 0.5 * math.pi**2 * mu)
+        walls["hand_stiffness"] = np.where(hr.random(n) < 0.5, 0.0, kap)
     beta, sigma = np.empty(n), np.empty(n)
-    for i in range(n):
-        w = point_wall(walls["damping"][i], walls["delay"][i], walls["cutoff"][i])
+    for i, w in enumerate(_walls_of(walls | {"mu": mu})):
         beta[i], sigma[i] = _point(rng, crit, kind[i], xd[i], x0[i], mu[i], w, bool(walls["quantized"][i]))
     return dict(mu=mu, beta=beta, sigma=sigma, xi0=x0, xi_dot=xd, kind=kind, **walls)
 
 
 def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:
     """(largest S/S(0) − 1 at the sample instants, the sample where it occurred, diverged) of one point."""
-    c = point_wall(pt["damping"], pt["delay"], pt["cutoff"])
+    c = point_wall(pt["damping"], pt["delay"], pt["cutoff"], pt.get("hand_stiffness", 0.0))
     mu, x0, v0 = float(pt["mu"]), float(pt["xi0"]), float(pt["xi_dot"])
+    kap = c.hand_stiffness  # the hand spring's ½κ_h ξ² is stored energy (dfa.analysis.criterion)
     with np.errstate(all="ignore"):
         r = simulate(
             mu, float(pt["beta"]), float(pt["sigma"]), v0, n, x0, quantize=bool(pt["quantized"]), wall=c,
@@ -298,8 +325,8 @@ def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:
         )  # fmt: skip
         xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
         diverged = r.outcome is SimulationOutcome.UNSTABLE  # the compiled path's rule (module docstring)
-        s0 = 0.5 * mu * v0 * v0 + 0.5 * x0 * x0
-        s = 0.5 * mu * vs * vs + 0.5 * xs * xs
+        s0 = 0.5 * mu * v0 * v0 + 0.5 * (1.0 + kap) * x0 * x0
+        s = 0.5 * mu * vs * vs + 0.5 * (1.0 + kap) * xs * xs
         ratio = (s - s0) / s0 if s0 > 0.0 else np.where(s > 0.0, np.inf, 0.0)
         ratio = np.where(np.abs(xs) <= BOUND, ratio, np.inf)  # past the bound, or NaN after it: inf
     h = int(np.argmax(ratio))
@@ -326,7 +353,7 @@ def storage_growth(pts: dict[str, np.ndarray], ns: np.ndarray) -> tuple[np.ndarr
     """
     m = pts["mu"].shape[0]
     ratio, at, div = np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.bool_)
-    walls = [point_wall(b, d, c) for b, d, c in zip(pts["damping"], pts["delay"], pts["cutoff"], strict=True)]
+    walls = _walls_of(pts)
     spring = np.array([w.is_spring for w in walls], dtype=np.bool_)  # the spring with any delay: its fast path
     fast = np.flatnonzero(spring)
     if fast.size:
@@ -389,7 +416,7 @@ def _cases(pts: dict[str, np.ndarray]) -> dict[str, int]:
         "no encoder": int(np.sum(~pts["quantized"])),
         "xi0 = 0": int(np.sum(pts["xi0"] == 0.0)),
         "no damper": int(np.sum(pts["damping"] == 0.0)),
-    }
+    } | ({"hand stiffness": int(np.sum(pts["hand_stiffness"] > 0.0))} if "hand_stiffness" in pts else {})
 
 
 def criterion_soundness(

@@ -19,7 +19,7 @@ from ..checks import check_beta, check_mu, check_real, check_sigma, check_speed
 from ..errors import DFAError
 from ..model.catalogue import CatalogueEntry, get_device, load_device_file, resolve_device
 from ..model.device import Device, Params, dimensionless_params
-from ..model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
+from ..model.hand import HAND_PRESETS, Hand, get_hand
 from ..plausibility import warn_implausible
 from ..render.hand import hand_label
 from .parsing import UsageError, integer, name, number
@@ -146,7 +146,7 @@ def _add_hand_args(p: argparse.ArgumentParser) -> None:
             type=number(flag, unit),
             metavar="X",
             help=f"hand {key.removeprefix('hand_')} in {unit}"
-            + (" (only 0 is covered yet)" if key == "hand_stiffness" else ", added to the device's")
+            + (" to a fixed reference at the wall's origin" if key == "hand_stiffness" else ", added to the device's")
             + "; default: the preset's, else 0",
         )
 
@@ -294,10 +294,7 @@ def resolve(
     dev, label, entry = r.device, r.label, r.entry
     hand = resolve_hand(args, dev.rotary)
     if hand is not None:
-        try:
-            dev = dev.holding(hand)
-        except HandNotCovered as err:
-            raise UsageError(str(err).replace("hand_stiffness = ", "--hand-stiffness ")) from None
+        dev = dev.held_by(hand)  # its stiffness joins the wall (dfa.cli.walls.wall_from_args: dfa.HandSpring)
         label, entry = f"{label}, held by {hand_label(hand, dev.units)}", None  # no longer the catalogue row
     if r.stiffness is None and not need_stiffness:
         return Inputs(None, math.nan, math.nan, dev, None, label, entry)

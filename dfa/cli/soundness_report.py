@@ -6,6 +6,7 @@ subcommand: it regenerates the committed reports::
 
     python -m dfa.cli.soundness_report --points 100000 --out reports/validation           # delay_soundness.md
     python -m dfa.cli.soundness_report --walls --points 100000 --out reports/validation   # controller_soundness.md
+    python -m dfa.cli.soundness_report --walls --hand --points 100000 --out reports/validation  # hand_soundness.md
 
 The spring's check runs each delay of ``--delays`` with the seed ``--seed`` + d; the random walls' runs once
 with ``--seed``. One line per record on stderr as it completes. Exit codes: 0 ok; 2 bad input (one line on
@@ -22,7 +23,7 @@ from collections.abc import Sequence
 from .._io import check_output_folder
 from ..analysis.soundness import CriterionSoundness, Population, criterion_soundness
 from ..checks import check_delay, check_int
-from ..errors import DFAError
+from ..errors import DFAError, DFAValueError
 from ..render.files import write_soundness
 from ..render.soundness import soundness_line
 from .parsing import Parser, integer
@@ -33,7 +34,7 @@ PROG = "python -m dfa.cli.soundness_report"
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The parser: --points, --old-points, --delays, --seed, --out and --walls."""
+    """The parser: --points, --old-points, --delays, --seed, --out, --walls and --hand."""
     ap = Parser(prog=PROG, description=(__doc__ or "").split("\n")[0])
     ap.add_argument(
         "--points", type=integer("--points"), default=100_000, help="points per delay and criterion (default 100000)"
@@ -65,6 +66,11 @@ def build_parser() -> argparse.ArgumentParser:
         help="check random walls (damper, filter, delay, encoder on or off) and write controller_soundness.md/.json "
         "instead of the spring's delay_soundness.md/.json",
     )
+    ap.add_argument(
+        "--hand",
+        action="store_true",
+        help="with --walls: hold half the points by a hand with stiffness and write hand_soundness.md/.json",
+    )
     return ap
 
 
@@ -78,11 +84,14 @@ def _check(args: argparse.Namespace) -> None:
         check_delay(check_int("--delays", d, 0, "give the spring's delays in whole samples >= 0, e.g. 0 1 2 3"))
     check_int("--seed", args.seed, 0, "give a whole number >= 0")
     check_output_folder("--out", args.out, create=True)
+    if args.hand and not args.walls:
+        raise DFAValueError("--hand needs --walls: the hand is drawn with random walls; add --walls")
 
 
 def _records(args: argparse.Namespace) -> list[CriterionSoundness]:
     """Run every check the arguments ask for, one line on stderr per record."""
-    pops = [(Population(), args.seed)] if args.walls else [(Population(delay=d), args.seed + d) for d in args.delays]
+    walls = [(Population(hand=args.hand), args.seed)]
+    pops = walls if args.walls else [(Population(delay=d), args.seed + d) for d in args.delays]
     results = []
     for k, crit in enumerate(pops[0][0].criteria):
         n = args.points if k == 0 else (args.old_points or args.points)

@@ -37,7 +37,7 @@ def _dest(kind: type[Element]) -> str:
 
 #: The flag table: element class -> (flag, argparse destination). The delay is a plain flag (default 0); the
 #: others form the wall group (default: no such element).
-WALL_FLAGS: dict[type[Element], tuple[str, str]] = {k: (k.parameter.flag, _dest(k)) for k in ELEMENTS}
+WALL_FLAGS: dict[type[Element], tuple[str, str]] = {k: (k.parameter.flag, _dest(k)) for k in ELEMENTS if k.wall_flag}
 
 
 def _add_element(g: Any, kind: type[Element], help_text: str | None = None) -> None:
@@ -59,7 +59,7 @@ def add_wall_args(p: argparse.ArgumentParser, *, zwidth: bool = False) -> None:
         else "wall (default: the paper's spring; needs a physical device and K)"
     )
     g = p.add_argument_group(title)
-    for kind in ELEMENTS:
+    for kind in WALL_FLAGS:
         if kind is not Delay:
             refused = "not accepted here: B is the Z-width's axis, its grid spans B from 0 (default: the grid)"
             _add_element(g, kind, refused if zwidth and WALL_FLAGS[kind][1] == "virtual_damping" else None)
@@ -97,7 +97,8 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
     bandwidth <= 0, and wall flags without a physical device and stiffness.
     """
     given = given_flags(args)
-    if not given:
+    hand = device.hand.stiffness if device is not None and device.hand is not None else 0.0
+    if not given and not hand:
         return None
     if device is None or stiffness is None:
         raise UsageError(
@@ -111,7 +112,13 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
     check_filter_amplifier(args, device)
     values: dict[str, Any] = {kind.parameter.name: getattr(args, dest) for kind, (_f, dest) in WALL_FLAGS.items()}
     values["damping"] = values["damping"] or 0.0
-    wall = Wall.of(stiffness, **values)
+    if hand and args.amplifier_bandwidth is not None:
+        raise UsageError(
+            "--amplifier-bandwidth cannot be combined with a hand stiffness (--hand-stiffness or --hand PRESET): the "
+            "simulator's step with both is not derived yet; drop one of them (--hand-stiffness 0 keeps the hand's "
+            "mass and damping)"
+        )
+    wall = Wall.of(stiffness, hand_stiffness=hand, **values)
     return None if wall.params(device.period).is_spring else wall
 
 

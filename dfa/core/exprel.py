@@ -56,7 +56,7 @@ from numpy.typing import ArrayLike
 
 from .jit import njit
 
-__all__ = ["phi1", "phi2", "phi12", "psi", "chi", "log1p_ratio", "phi1_array", "phi2_array"]
+__all__ = ["phi1", "phi2", "phi12", "rho", "psi", "chi", "log1p_ratio", "phi1_array", "phi2_array"]
 
 
 # Taylor coefficients in x = −u: φ₁ = Σ xⁿ/(n + 1)!, φ₂ = Σ xⁿ/(n + 2)!, n = 0 … 15
@@ -136,6 +136,30 @@ def log1p_ratio(y: float) -> float:
     if abs(y) < 0.0625:
         return _poly16(-y, _CL)
     return math.log1p(y) / y
+
+
+# Taylor coefficients of ρ in x = −P: (n + 1)/(n + 2)!, n = 0 … 17 (first omitted term < 10⁻¹⁸ at |P| < ½)
+_CR = tuple((n + 1) / math.factorial(n + 2) for n in range(18))
+
+
+@njit(cache=True, inline="always")
+def rho(u: float) -> float:
+    """ρ(u) = (1 − e^{−u}(1 + u))/u² (ρ(0) = ½), dimensionless, for u >= 0.
+
+    Examples
+    --------
+    >>> rho(0.0), round(rho(1.0), 12)   # ½ and 1 − 2/e
+    (0.5, 0.264241117657)
+    """
+    if u < 0.5:
+        s = 0.0
+        for n in range(17, -1, -1):
+            s = s * (-u) + _CR[n]
+        return s
+    num = -math.expm1(-u) - u * math.exp(-u)
+    if u > 1e100:
+        return num / u / u
+    return num / (u * u)
 
 
 @njit(cache=True, inline="never")

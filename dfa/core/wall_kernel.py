@@ -107,7 +107,7 @@ from typing import TypeAlias
 
 import numpy as np
 
-from .exprel import phi1, phi2
+from .exprel import phi1, phi2, rho
 from .jit import njit
 from .kernel import (
     NSEG,
@@ -120,37 +120,16 @@ from .kernel import (
     tail_extremes,
     tail_stats,
 )
+from .oscillator import hand_sample
 
 __all__ = ["rho", "lag_motion", "lag_sample", "simulate_wall_kernel", "serial_wall_kernel", "applied_forces"]
 
-# Taylor coefficients of ρ in x = −P: (n + 1)/(n + 2)!, n = 0 … 17 (first omitted term < 10⁻¹⁸ at |P| < ½)
-_CR = tuple((n + 1) / math.factorial(n + 2) for n in range(18))
 
 _ULP4 = 4.0 * 2.220446049250313e-16  # four units in the last place, relative
 MAX_PHASES = 16  # per sample; the derivation allows at most 5 (stuck, breakaway, stop, restart, stop)
 
 Model: TypeAlias = tuple[float, float, float, int, bool]  # (μ, β, σ, d, quantize) of _sample
-Controller: TypeAlias = tuple[float, float, bool, float]  # (β_B, a, filtered, α): ctl of _sample and _advance
-
-
-@njit(cache=True, inline="always")
-def rho(u: float) -> float:
-    """ρ(u) = (1 − e^{−u}(1 + u))/u² (ρ(0) = ½), dimensionless, for u >= 0.
-
-    Examples
-    --------
-    >>> rho(0.0), round(rho(1.0), 12)   # ½ and 1 − 2/e
-    (0.5, 0.264241117657)
-    """
-    if u < 0.5:
-        s = 0.0
-        for n in range(17, -1, -1):
-            s = s * (-u) + _CR[n]
-        return s
-    num = -math.expm1(-u) - u * math.exp(-u)
-    if u > 1e100:
-        return num / u / u
-    return num / (u * u)
+Controller: TypeAlias = tuple[float, float, bool, float, float]  # (β_B, a, filtered, α, κ_h): ctl of _sample, _advance
 
 
 @njit(cache=True, inline="always")
@@ -294,14 +273,17 @@ def _inside(c: float, sigma: float) -> bool:
 
 
 @njit(cache=True, inline="always")
-def _absorbing(v: float, fa: float, sigma: float, ring: FloatArray, base: float, damping: float, ynext: float) -> bool:
-    """The proven rest state (module docstring): stuck, and every future command and φ_A within [−σ, σ]."""
-    if v != 0.0 or not _inside(fa, sigma) or not _inside(base, sigma):
+def _absorbing(
+    v: float, fa: float, sigma: float, ring: FloatArray, base: float, damping: float, ynext: float, held: float
+) -> bool:
+    """The proven rest state (module docstring): stuck, and every future command and φ_A within [−σ, σ] of the
+    hand spring's force κ_h ξ (``held``; 0 without a hand stiffness: ξ does not change while stuck)."""
+    if v != 0.0 or not _inside(fa - held, sigma) or not _inside(base - held, sigma):
         return False
-    if not _inside(base - damping * ynext, sigma):
+    if not _inside(base - damping * ynext - held, sigma):
         return False
     for i in range(ring.shape[0]):
-        if not _inside(ring[i], sigma):
+        if not _inside(ring[i] - held, sigma):
             return False
     return True
 
@@ -388,7 +370,7 @@ def _command(
     Returns the reading r_h, the difference v_h, the filtered y_h, the spring's part −(r_h + ½), the ring's
     new position and the command applied now, c_{h−d}.
     """
-    damping, pole, filtered, _ = ctl
+    damping, pole, filtered = ctl[0], ctl[1], ctl[2]
     r = math.floor(x) if quantize else x
     vh = r - r_prev
     if filtered:
@@ -424,15 +406,19 @@ def _sample(
     was in the absorbing state at the start of the sample (then not integrated).
     """
     mu, beta, sigma, delay, quantize = model
-    damping, pole, filtered, lag = ctl
+    damping, pole, filtered, lag, kap = ctl
     r, vh, y, base, pos, c = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl)
     if lag == 0.0:
         fa = c
     if v == 0.0:
         ynext = pole * y + (1.0 - pole) * vh if filtered else 0.0
-        if _absorbing(v, fa, sigma, ring, base, damping, ynext):
+        if _absorbing(v, fa, sigma, ring, base, damping, ynext, kap * x):
             return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, True
-    if lag == 0.0:
+    if kap > 0.0:
+        if lag != 0.0:
+            raise RuntimeError("dfa.core.wall_kernel: an amplifier lag with a hand stiffness is not covered")
+        x, v, lo_t, hi_t = hand_sample(x, v, c, mu, beta, sigma, kap)
+    elif lag == 0.0:
         x, v, xr, _, _, _, _, stopped = step(x, v, c, mu, sigma, k)
         lo_t, hi_t = (xr, xr) if stopped else (np.inf, -np.inf)
     else:
@@ -463,13 +449,13 @@ def _advance(
 ) -> tuple[int, int, float, int]:
     """Samples h0 … h1 − 1 from the state ``st``; return (end, why, peak |ξ|, samples skipped).
 
-    ``ctl`` = (β_B, a, filtered, α); why as :func:`dfa.core.kernel.advance` (0 ran
+    ``ctl`` = (β_B, a, filtered, α, κ_h); why as :func:`dfa.core.kernel.advance` (0 ran
     through, 1 at rest at sample ``end``, 2 past ``bound`` in sample end − 1).
     The range lies before the tail or in it. With ``skip`` (no records),
     whole periods are skipped once the loop's state repeats bit for bit
     (Brent's cycle detection, the reference within this range; module docstring).
     """
-    damping, pole, filtered, lag = ctl
+    damping, pole, filtered, lag, kap = ctl
     model = (mu, beta, sigma, delay, quantize)
     k = sample_constants(mu, beta)
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
@@ -553,7 +539,7 @@ def applied_forces(
     ring, st = np.empty(delay + 1), np.empty(NCSTATE)
     _start(st, ring, xs[0], 0.0, quantize)
     r_prev, v_prev, y, fa, pos = st[CRP], st[CVP], st[CY], st[CFA], 0
-    ctl = (damping, pole, filtered, lag)
+    ctl = (damping, pole, filtered, lag, 0.0)  # the hand stiffness acts on the device, not on the command
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
     for h in range(xs.shape[0]):
         if not math.isfinite(xs[h]):  # past a divergence the record holds NaN: so does the force
@@ -583,6 +569,7 @@ def run_wall_kernel(
     pole: float,
     filtered: bool,
     lag: float,
+    spring: float,
     rec_x: FloatArray,
     rec_v: FloatArray,
     stats: FloatArray,
@@ -600,7 +587,7 @@ def run_wall_kernel(
     settles on a cycle of its whole state, bit for bit: of 50 001 samples, 231 are integrated.
 
     >>> e, stats = np.empty(0), np.empty(NSEG + 10)
-    >>> ctl = (0.5, math.exp(-0.2 * math.pi), True, 0.2)
+    >>> ctl = (0.5, math.exp(-0.2 * math.pi), True, 0.2, 0.0)
     >>> run_wall_kernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, True)
     (50001, -1, 231)
     >>> run_wall_kernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, False)
@@ -616,7 +603,7 @@ def run_wall_kernel(
     if record:
         rec_x[0], rec_v[0] = x0, v0
     tail_start = n - tail_len
-    ctl = (damping, pole, filtered, lag)
+    ctl = (damping, pole, filtered, lag, spring)
     done, rest, integrated = n, -1, 0
     for seg in range(NSEG):
         lo, cut, hi = segment_ranges(seg, n, tail_start)
@@ -662,13 +649,15 @@ def simulate_wall_kernel(
     pole: float,
     filtered: bool,
     lag: float,
+    spring: float,
     rec_x: FloatArray,
     rec_v: FloatArray,
     stats: FloatArray,
 ) -> tuple[int, int]:
     """Run ``n`` samples with the controller; return (samples done, rest sample or −1).
 
-    ``damping`` β_B, ``pole`` a (used when ``filtered``), ``lag`` α. ``rec_x``/``rec_v``
+    ``damping`` β_B, ``pole`` a (used when ``filtered``), ``lag`` α, ``spring`` the hand stiffness κ_h
+    (:mod:`dfa.core.oscillator`; not with a lag). ``rec_x``/``rec_v``
     (length n + 1) are written when they have that length. ``stats`` as in
     :func:`dfa.core.kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
     Unrecorded runs skip repeated periods (:func:`run_wall_kernel`; same results bit for bit).
@@ -688,6 +677,7 @@ def simulate_wall_kernel(
         pole,
         filtered,
         lag,
+        spring,
         rec_x,
         rec_v,
         stats,
@@ -712,6 +702,7 @@ def serial_wall_kernel(
     pole: float,
     filtered: bool,
     lag: float,
+    spring: float,
     stats: FloatArray,
     done: IntArray,
     rest: IntArray,
@@ -734,6 +725,7 @@ def serial_wall_kernel(
             pole,
             filtered,
             lag,
+            spring,
             empty,
             empty,
             stats[i],

@@ -224,7 +224,8 @@ class Device:
         Parameters
         ----------
         hand : Hand
-            The hand (:func:`dfa.get_hand` for a preset); its stiffness must be 0 (not covered yet).
+            The hand (:func:`dfa.get_hand` for a preset); its stiffness must be 0 (a hand stiffness acts beside
+            the wall: :func:`dfa.hold` gives the device and the wall with it).
 
         Returns
         -------
@@ -234,7 +235,7 @@ class Device:
         Raises
         ------
         HandNotCovered
-            For a hand stiffness > 0.
+            For a hand stiffness > 0 (use :func:`dfa.hold`).
         DFAValueError
             If the device already holds a hand.
 
@@ -247,6 +248,21 @@ class Device:
         """
         hand = check_type("hand", hand, Hand, "give a dfa.Hand (dfa.get_hand('paper') for the paper's)")
         hand.check_covered()
+        return self.held_by(hand)
+
+    def held_by(self, hand: Hand) -> Device:
+        """:meth:`holding` without its refusal of a hand stiffness, for :func:`dfa.hold` (which adds it to the wall).
+
+        Parameters
+        ----------
+        hand : Hand
+            The hand; its mass and damping are added, its stiffness is only recorded in ``hand``.
+
+        Returns
+        -------
+        Device
+            As :meth:`holding`.
+        """
         if self.hand is not None:
             raise DFAValueError(
                 f"hand = {hand.name!r} cannot be added: the device {self.name!r} already holds {self.hand.name!r}; "

@@ -61,6 +61,7 @@ __all__ = [
     "VelocityFilter",
     "Delay",
     "AmplifierLag",
+    "HandSpring",
     "ELEMENTS",
     "MIN_CUTOFF",
     "MIN_LAG",
@@ -179,6 +180,8 @@ class Element(abc.ABC):
     sweep_points: ClassVar[int] = SWEEP_MAX_POINTS
     #: The group's value when the element is absent (the wall's groups list every registered element).
     absent: ClassVar[Any] = 0.0
+    #: Whether the element's flag is a row of the wall's flag table (:mod:`dfa.cli.walls`).
+    wall_flag: ClassVar[bool] = True
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -316,7 +319,7 @@ class Element(abc.ABC):
         Returns
         -------
         dict
-            Some of ``delay`` (added up), ``damping``, ``pole``, ``filtered``, ``lag``.
+            Some of ``delay`` (added up), ``damping``, ``pole``, ``filtered``, ``lag``, ``spring``.
         """
         return {}
 
@@ -339,8 +342,8 @@ class Element(abc.ABC):
         return h
 
     @classmethod
-    def plant(cls, g: Any, rate: float) -> tuple[np.ndarray, np.ndarray] | None:
-        """Give the exact ZOH plant with this element between hold and device.
+    def plant(cls, g: Any, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
+        """Give the exact ZOH plant with this element between hold and device, or acting on the device.
 
         Parameters
         ----------
@@ -348,6 +351,8 @@ class Element(abc.ABC):
             The element's dimensionless group.
         rate : float
             The device's rate a = β/μ = bT/m (per sample).
+        mu : float
+            The dimensionless mass μ = m/(K T²) at the stiffness K of ``g`` (a hand spring's ω² = κ_h/μ).
 
         Returns
         -------
@@ -734,7 +739,7 @@ class AmplifierLag(Element):
         return {"lag": float(g)}
 
     @classmethod
-    def plant(cls, g: Any, rate: float) -> tuple[np.ndarray, np.ndarray] | None:
+    def plant(cls, g: Any, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
         if g == 0.0 or not math.isfinite(1.0 / g):  # 1/α overflowing: the lag is below rounding
             return None
         from ..core.zohlag import amplifier_zoh  # the one implementation, compiled
@@ -759,5 +764,93 @@ class AmplifierLag(Element):
         return zoh_lag_response(mu, beta, omega, g)
 
 
-#: The registered elements, in the order a wall applies them (delay, damper, filter, amplifier).
-ELEMENTS: tuple[type[Element], ...] = (Delay, Damper, VelocityFilter, AmplifierLag)
+@dataclass(frozen=True)
+class HandSpring(Element):
+    """The stiffness k_h of a hand holding the device, a spring to a fixed reference at the wall's origin.
+
+    The hand's mass and damping move with the device (:meth:`dfa.Device.holding`); its stiffness acts on the
+    device in continuous time, beside the wall's held force: μ ξ'' + β ξ' + κ_h ξ + σ sgn ξ' = φ
+    (:mod:`dfa.core.oscillator`), group κ_h = k_h/K. The spring stores ½κ_h ξ² and neither generates nor
+    dissipates energy, so the criterion's corner (β₀, σ₀) is unchanged and its storage gains ½κ_h ξ²
+    (:mod:`dfa.analysis.criterion`); Colgate–Schenkel's condition is the wall's passivity, which a passive
+    hand does not change. The plant of the exact linear bound is the ZOH of 1/(μs² + βs + κ_h): with h, H of
+    :func:`dfa.core.oscillator.responses` at t = 1 (λ = a = β/μ, ω² = κ_h/μ) the state transition is
+    Φ = [[1 − ω²H, h], [−ω²h, h']], Γ = [H, h]/μ, and with 1 − h' = λh + ω²H (positive terms)::
+
+        N_G = H w + H(λh + ω²H) + h²,   D_G = w² + (λh + 2ω²H) w + ω² N_G(0)     (w = z − 1, G(1) = 1/κ_h)
+
+    which at κ_h → 0 are the device's c₁ w + c₁ + c₀ and w(w + 1 − e^{−a}) (:mod:`dfa.core.zoh`).
+
+    Its flag, ``--hand-stiffness``, belongs to the hand's group of the command line (with ``--hand PRESET``).
+
+    Attributes
+    ----------
+    hand_stiffness : float
+        Hand stiffness k_h in N/m (rotary: N·m/rad), >= 0.
+
+    Examples
+    --------
+    >>> HandSpring(135.0).group(1e-3, 1350.0), HandSpring.corner(0.1, quantized=True)
+    (0.1, (0.0, 0.0))
+    """
+
+    hand_stiffness: float
+    parameter: ClassVar[Parameter] = Parameter(
+        "hand_stiffness", ("N/m", "N·m/rad"), "--hand-stiffness", "X",
+        "hand stiffness k_h to a fixed reference at the wall's origin, in N/m (rotary: N·m/rad) (default: none)",
+        "hand_stiffness", "κ_h = k_h/K",
+    )  # fmt: skip
+    #: Its flag is the hand group's (:mod:`dfa.cli.inputs`), not a row of the wall's flag table.
+    wall_flag: ClassVar[bool] = False
+
+    def __post_init__(self) -> None:
+        fix = "give the hand stiffness k_h in N/m (0 for none)"
+        object.__setattr__(self, "hand_stiffness", check_nonnegative("hand_stiffness", self.hand_stiffness, fix))
+
+    def group(self, period: float, stiffness: float) -> float:
+        return self.check_group(self.hand_stiffness / stiffness)
+
+    @classmethod
+    def check_group(cls, value: Any) -> float:
+        return check_nonnegative("hand_stiffness", value, "κ_h = k_h/K cannot be negative (0: no hand stiffness)")
+
+    @classmethod
+    def renders_nothing(cls, g: Any) -> bool:
+        return g == 0.0
+
+    @classmethod
+    def kernel(cls, g: Any) -> dict[str, Any]:
+        return {"spring": float(g)}
+
+    @classmethod
+    def plant(cls, g: Any, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
+        # the class docstring's N_G, D_G (the state transition over one sample)
+        if g == 0.0:
+            return None
+        from ..core.oscillator import responses  # the simulator's own closed form, compiled
+
+        w2 = float(g) / mu
+        h, hp, big = (float(x) for x in responses(float(rate), w2, 1.0))
+        one_minus = float(rate) * h + w2 * big  # 1 − h'
+        n0 = big * one_minus + h * h
+        return np.array([big, n0]), np.array([1.0, float(rate) * h + 2.0 * w2 * big, w2 * n0])
+
+    @classmethod
+    def zoh_response(cls, g: Any, mu: float, beta: Any, omega: Any) -> Any:
+        # G(e^{jω}) = N_G/(μ D_G) of plant(), vectorised over β (and ω) for the harmonic balance
+        if g == 0.0:
+            return None
+        from ..core.oscillator import responses_array  # the simulator's own closed form, compiled
+
+        b, om = np.broadcast_arrays(np.asarray(beta, dtype=float), np.asarray(omega, dtype=float))
+        rate = b / mu
+        w2 = float(g) / mu
+        h, _hp, big = responses_array(rate, w2)
+        n0 = big * (rate * h + w2 * big) + h * h
+        w = unit_circle_w(om)
+        out = (big * w + n0) / (mu * (w * w + (rate * h + 2.0 * w2 * big) * w + w2 * n0))
+        return complex(out) if np.ndim(out) == 0 else out
+
+
+#: The registered elements, in the order a wall applies them (delay, damper, filter, amplifier, hand spring).
+ELEMENTS: tuple[type[Element], ...] = (Delay, Damper, VelocityFilter, AmplifierLag, HandSpring)

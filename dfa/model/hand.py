@@ -10,9 +10,10 @@ it, so (paper eq. 3, F_H the hand's force)::
 
 With k_h = 0 this is the bare device with m + m_h and b + b_h, exactly, and every analysis of :mod:`dfa` holds
 for it as for any device (:meth:`dfa.Device.holding`): the criterion's β = (b + b_h)/(K T) (eq. 6), the exact
-linear bound, the describing function, the simulator. A hand stiffness k_h > 0 (to a fixed reference x_h) is a
-different loop, a damped oscillator between samples; no analysis covers it yet, and :meth:`Device.holding`
-refuses it rather than leave it out.
+linear bound, the describing function, the simulator. A hand stiffness k_h > 0 (to a fixed reference at the
+wall's origin) makes the device a damped oscillator between samples: it joins the loop as a wall element,
+:class:`~dfa.model.elements.HandSpring`, and :func:`dfa.hold` gives the held device and that wall together
+(:meth:`Device.holding` alone refuses it rather than leave it out).
 
 Examples
 --------
@@ -34,7 +35,7 @@ __all__ = ["Hand", "HAND_PRESETS", "get_hand", "HandNotCovered"]
 
 
 class HandNotCovered(DFAValueError):
-    """A hand the analyses do not cover yet (a hand stiffness k_h > 0)."""
+    """A hand stiffness k_h > 0 given where only mass and damping can be added (:meth:`dfa.Device.holding`)."""
 
 
 @dataclass(frozen=True)
@@ -48,8 +49,8 @@ class Hand:
     damping : float, optional
         Hand damping b_h in N·s/m (rotary: N·m·s/rad), >= 0 (default 0); adds to the device's.
     stiffness : float, optional
-        Hand stiffness k_h to a fixed reference in N/m (rotary: N·m/rad), >= 0 (default 0). Only k_h = 0 is
-        covered by the analyses yet (:meth:`dfa.Device.holding` refuses more).
+        Hand stiffness k_h to a fixed reference at the wall's origin in N/m (rotary: N·m/rad), >= 0 (default 0);
+        :func:`dfa.hold` adds it to the wall (:meth:`dfa.Device.holding` alone refuses it).
     name : str, optional
         A label for outputs (default ``"hand"``).
     source : str, optional
@@ -80,12 +81,12 @@ class Hand:
         return self.mass == 0.0 and self.damping == 0.0 and self.stiffness == 0.0
 
     def check_covered(self) -> None:
-        """Refuse a hand the analyses do not cover yet (:class:`HandNotCovered`, naming the fix)."""
+        """Refuse a hand stiffness where only mass and damping can be added (:class:`HandNotCovered`, naming the fix)."""
         if self.stiffness > 0.0:
             raise HandNotCovered(
-                f"hand_stiffness = {format_value(self.stiffness)} is not covered yet: the analyses take a hand as "
-                "mass and damping moving with the device (paper Table 2), not a spring to a fixed reference; "
-                "give a hand stiffness of 0"
+                f"hand_stiffness = {format_value(self.stiffness)} cannot be added to the device alone: a hand "
+                "stiffness is a spring to a fixed reference acting beside the wall; use dfa.hold(device, wall, hand), "
+                "which adds the hand's mass and damping to the device and its stiffness to the wall (dfa.HandSpring)"
             )
 
     def to_dict(self) -> dict[str, object]:
@@ -116,6 +117,15 @@ HAND_PRESETS: dict[str, Hand] = {
         source="Diolaiti et al., ICRA 2005, Table 2: 0.150 kg, about 4.8 N·s/m, added to the device's own; "
         "its stiffness column (about 600 N/m) is not applied",
     ),
+    "hapticmaster": Hand(
+        0.554,
+        6.45,
+        135.0,
+        name="arm on a HapticMaster (one trial)",
+        source="'Haptic perception of force magnitude and its relation to postural arm dynamics in 3D', "
+        "Sci. Rep. 5, 18004 (2015), Fig. 3: one trial's mass-damper-spring fit, M = 0.554 kg, B = 6.45 N·s/m, "
+        "K = 135 N/m",
+    ),
 }
 
 
@@ -125,7 +135,7 @@ def get_hand(name: str) -> Hand:
     Parameters
     ----------
     name : str
-        ``"none"`` or ``"paper"``.
+        ``"none"``, ``"paper"`` or ``"hapticmaster"``.
 
     Returns
     -------

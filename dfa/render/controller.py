@@ -75,6 +75,8 @@ def wall_dict(controller: Any, period: float, units: dict[str, str]) -> dict[str
         "amplifier_bandwidth": "Hz",
         "amplifier_time_constant": "s",
     }
+    if controller.hand_stiffness:
+        out["units"]["hand_stiffness"] = units["stiffness"]
     no_filter = "no velocity filter"
     out["dimensionless"] = explain_nulls(to_jsonable(p.to_dict()), {"cutoff": no_filter})
     why = {"filter_cutoff": no_filter, "amplifier_bandwidth": "ideal amplifier (no lag)"}
@@ -145,7 +147,11 @@ def controller_parts(controller: Any, period: float, units: dict[str, str]) -> t
         f"controller: K = {_g(controller.stiffness, 5)} {units['stiffness']}, B = {_g(controller.damping)} "
         f"{units['damping']}, delay {d} sample{'s' if d != 1 else ''}, {filt}, {amp}"
     )
-    return values, f"β_B = B/(KT) = {_g(p.damping)}, ν_c = f_c·T = {nu}, α = τ_a/T = {_g(p.lag)}"
+    groups = f"β_B = B/(KT) = {_g(p.damping)}, ν_c = f_c·T = {nu}, α = τ_a/T = {_g(p.lag)}"
+    if controller.hand_stiffness:  # the hand's spring acts beside the controller: named after it
+        values += f"; hand stiffness k_h = {_g(controller.hand_stiffness)} {units['stiffness']}"
+        groups += f", κ_h = k_h/K = {_g(p.hand_stiffness)}"
+    return values, groups
 
 
 def controller_line(controller: Any, period: float, units: dict[str, str]) -> str:

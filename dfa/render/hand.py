@@ -28,7 +28,8 @@ def hand_label(hand: Hand, units: dict[str, str]) -> str:
     >>> hand_label(Hand(0.15, 4.8, name="a hand"), device_units())
     'a hand: 0.15 kg, 4.8 N·s/m'
     """
-    return f"{hand.name}: {number(hand.mass, 4)} {units['mass']}, {number(hand.damping, 4)} {units['damping']}"
+    out = f"{hand.name}: {number(hand.mass, 4)} {units['mass']}, {number(hand.damping, 4)} {units['damping']}"
+    return out + (f", {number(hand.stiffness, 4)} {units['stiffness']}" if hand.stiffness else "")
 
 
 def grasp_text(device: Device) -> str:
@@ -47,9 +48,10 @@ def grasp_text(device: Device) -> str:
     hand, u = device.hand, device.units
     if hand is None:
         return "grasp: none (nobody holds the device: the paper's worst case)"
+    spring = "; its stiffness pulls toward the wall's origin" if hand.stiffness else ""
     return (
         f"grasp: {hand_label(hand, u)}, moving with the device (m = {number(device.mass, 4)} {u['mass']}, "
-        f"b = {number(device.damping, 4)} {u['damping']} in all)"
+        f"b = {number(device.damping, 4)} {u['damping']} in all){spring}"
     )
 
 

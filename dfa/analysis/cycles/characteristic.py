@@ -131,6 +131,8 @@ def _inv_loop_wall(
     g = wall.zoh_response(mu, beq, w) if model == "zoh" else None
     if g is None:
         out = inv_loop(mu, beq, omega, model, delay, pade_order)
+        if wall.hand_stiffness > 0.0:  # the hand spring acts on the device behind the hold: + κ_h in its inverse
+            out = out + _rotation(w, model, delay, pade_order) * wall.hand_stiffness
         out = out * (wall_ratio(wall, w) if model != "zoh" else 1.0 / wall.command().response(w))
     else:
         z = np.exp(1j * w)

@@ -24,12 +24,23 @@ def phase_beta(lp: HarmonicLoop, w: np.ndarray) -> np.ndarray:
         th = phase_lead(w, lp.model, d, lp.pade_order)
         if lp.wall is not None:  # 1/L = e^{jθ}·R(ω)·(−μω² + jωβ_eq): R adds its phase to the lead, |R| > 0
             th = th + np.angle(wall_ratio(lp.wall, w))
+            if lp.wall.hand_stiffness > 0.0:
+                return _hand_phase_beta(mu, lp.wall.hand_stiffness, w, th)
         ok = np.mod(th, 2 * math.pi) < math.pi / 2
         with np.errstate(invalid="ignore"):
             return np.where(ok, mu * w * np.tan(th), np.nan)
     if w is W_GRID:  # β* does not depend on β or σ: a sweep at fixed μ scans the grid once
         return zoh_phase_beta_grid(mu, d, lp.wall)
     return _zoh_phase_beta(mu, d, w, lp.wall)
+
+
+def _hand_phase_beta(mu: float, kap: float, w: np.ndarray, th: np.ndarray) -> np.ndarray:
+    """β*(ω) with a hand spring: 1/L = e^{jθ}(κ_h − μω² + jωβ_eq), so with a = μω² − κ_h, V = 0 ⇔
+    β_eq = a tan θ/ω, and U = −a/cos θ < 0 ⇔ a/cos θ > 0; β_eq >= 0 ⇔ a tan θ >= 0 (a > 0: the spring's rule)."""
+    a = mu * w * w - kap
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ok = (a / np.cos(th) > 0.0) & (a * np.tan(th) >= 0.0)
+        return np.where(ok, a * np.tan(th) / w, np.nan)
 
 
 @lru_cache(maxsize=16)
