@@ -740,7 +740,7 @@ def bench_controller_kernel(quick: bool) -> str:
 
     def ctl(c, skip=False):  # (samples run, samples integrated); skip=False integrates every sample
         st = np.empty(kernel.NSTATS)
-        args = (c.damping, c.filter_pole, c.cutoff is not None, c.lag, c.hand_stiffness)
+        args = (c.damping, c.filter_pole, c.cutoff is not None, c.lag, c.hand_stiffness, False, 0.0, 0.0)
         out = wall_kernel.run_wall_kernel(mu, beta, sigma, 0.0, v0, n, c.delay, True, 1e6, 8192, *args, e, e, st, skip)
         return out[0], out[2]
 
@@ -811,7 +811,30 @@ def bench_controller_design_answer(quick: bool) -> str:
 
     e, st, c = np.empty(0), np.empty(kernel.NSTATS), CP.of(damping=0.5)
     mu, beta, sigma, v0 = (CTL_RUN[k] for k in ("mu", "beta", "sigma", "xi_dot0"))
-    run = (mu, beta, sigma, 0.0, v0, 50_000, 0, True, 1e6, 8192, c.damping, 0.0, False, 0.0, 0.0, e, e, st, False)
+    run = (
+        mu,
+        beta,
+        sigma,
+        0.0,
+        v0,
+        50_000,
+        0,
+        True,
+        1e6,
+        8192,
+        c.damping,
+        0.0,
+        False,
+        0.0,
+        0.0,
+        False,
+        0.0,
+        0.0,
+        e,
+        e,
+        st,
+        False,
+    )
     wall_kernel.run_wall_kernel(*run)
     one = best_of(lambda: wall_kernel.run_wall_kernel(*run), 3)
     cases = [("Delta", "0.1", ["--virtual-damping", "1"]), ("Delta", "0.1", ["--virtual-damping", "1", "--delay", "1"])]

@@ -85,7 +85,7 @@ from .model.catalogue import (
     resolve_device,
 )
 from .model.device import Device, Params
-from .model.elements import AmplifierLag, Damper, Delay, HandSpring, VelocityFilter
+from .model.elements import AmplifierLag, Damper, Delay, HandSpring, OneSided, Push, VelocityFilter
 from .model.grasp import hold
 from .model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
 from .model.log import DeviceLog, LogError, read_log
@@ -132,6 +132,7 @@ _LAZY = {
     "large_cycle_closed_form": "analysis.cycles",
     "SimulationResult": "analysis.simulation",
     "simulate": "analysis.simulation",
+    "approach_start": "analysis.approach",
     "preload_position": "analysis.simulation",
     "StabilityMap": "analysis.maps",
     "stability_map": "analysis.maps",
@@ -200,6 +201,9 @@ __all__ = [
     "Delay",
     "AmplifierLag",
     "HandSpring",
+    "OneSided",
+    "Push",
+    "approach_start",
     "stable_stiffness",
     "stable_region",
     "StiffnessIntervals",

@@ -76,6 +76,7 @@ OUTCOME_COLORS = {
     "oscillating": "#969696",
     "unstable": "#252525",
     "undecided": "#e08214",
+    "left": "#9ecae1",  # a one-sided wall's run only (dfa.OneSided)
 }
 _OUTCOME_LABELS = {
     "rest": "rest (came to rest)",
@@ -83,6 +84,7 @@ _OUTCOME_LABELS = {
     "oscillating": "oscillating (persisting, >= 1 tick)",
     "unstable": "unstable (diverged)",
     "undecided": "undecided (run too short)",
+    "left": "left (a one-sided wall, for good)",
 }
 
 

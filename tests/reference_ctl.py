@@ -49,7 +49,14 @@ class Commands:
             a = self.ctl.filter_pole
             y = 0.0 if first else a * self.y + (1.0 - a) * self.prev_v
         self.prev_r, self.prev_v, self.y = r, v, y
-        c = (-(r + 0.5) if self.q else -r) - self.ctl.damping * y
+        q = r + 0.5 if self.q else r
+        a = self.ctl.kernel_args()
+        if a["onesided"]:  # pushes only beyond the surface, never pulls
+            inside = q > a["surface"]
+            self.inside = inside
+            c = min(-(q - a["surface"]) - self.ctl.damping * y, 0.0) if inside else 0.0
+        else:
+            c = -q - self.ctl.damping * y
         if first:
             self.hist = [c] * (self.ctl.delay + 1)
         self.hist = self.hist[1:] + [c]
@@ -80,6 +87,12 @@ def _stuck(t, fa, c, lag, sigma):
 def simulate_ivp_ctl(mu, beta, sigma, xi0, xi_dot0, samples, ctl, *, quantize=True):
     """Reference trajectory (ξ, ξ') at the samples 0 … samples with controller ``ctl`` (WallParams)."""
     lag, kap = ctl.lag, ctl.hand_stiffness  # a hand stiffness only without a lag (the model refuses both)
+    args = ctl.kernel_args()
+    q0 = math.floor(xi0) + 0.5 if quantize else xi0
+    # a one-sided wall's run that starts outside moving toward it is an approach at constant speed: the
+    # operator's force balances friction and damping until the wall first reads contact, then is the push
+    approaching = args["onesided"] and not q0 > args["surface"] and xi_dot0 > 0.0
+    push = sigma + beta * xi_dot0 if approaching else args["push"]
     xs, vs = np.empty(samples + 1), np.empty(samples + 1)
     x, v = float(xi0), float(xi_dot0)
     xs[0], vs[0] = x, v
@@ -87,21 +100,24 @@ def simulate_ivp_ctl(mu, beta, sigma, xi0, xi_dot0, samples, ctl, *, quantize=Tr
     fa = None
     for h in range(samples):
         c = cmd.applied(x)
+        if getattr(cmd, "inside", False):
+            push = args["push"]
         fa = c if (fa is None or lag == 0.0) else fa
         t = 0.0
         while t < 1.0:
             if v == 0.0:
-                if abs(fa - kap * x) <= sigma:
-                    t, fa, broke = _stuck(t, fa, c, lag, sigma)
+                if abs(fa + push - kap * x) <= sigma:
+                    t, fa, broke = _stuck(t, fa + push, c + push, lag, sigma)
+                    fa -= push
                     if not broke:
                         break
-                s = math.copysign(1.0, fa - kap * x)
+                s = math.copysign(1.0, fa + push - kap * x)
             else:
                 s = math.copysign(1.0, v)
 
-            def rhs(_t, y, s=s, c=c):
+            def rhs(_t, y, s=s, c=c, push=push):
                 dfa = 0.0 if lag == 0.0 else (c - y[2]) / lag
-                return [y[1], (y[2] - kap * y[0] - beta * y[1] - sigma * s) / mu, dfa]
+                return [y[1], (y[2] + push - kap * y[0] - beta * y[1] - sigma * s) / mu, dfa]
 
             def stop(_t, y):
                 return y[1]

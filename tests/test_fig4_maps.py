@@ -141,8 +141,8 @@ def test_cli_map_json_counts(capsys, tmp_path):
     assert code == 0
     d = json.loads(capsys.readouterr().out)
     assert [c["xi_dot"] for c in d["counts"]] == [1.0, 5.0]
-    assert all(sum(c[k] for k in OUTCOMES) == 36 for c in d["counts"])
-    assert load_map(out_file).counts() == [{k: c[k] for k in OUTCOMES} for c in d["counts"]]
+    assert all(sum(c.get(k, 0) for k in OUTCOMES) == 36 and "left" not in c for c in d["counts"])  # bilateral
+    assert load_map(out_file).counts() == [{k: c[k] for k in OUTCOMES[:5]} for c in d["counts"]]
 
 
 @pytest.mark.parametrize(

@@ -156,7 +156,7 @@ def test_eq4_hand_period_skip_is_bit_identical_to_every_sample():
     from dfa.core import kernel, wall_kernel
 
     ctl = WallParams.of(damping=0.4, delay=1, hand_stiffness=0.05)
-    args = (5.0, 0.1, 0.3, 0.0, 1.5, 20_000, 1, True, 1e6, 5000, 0.4, 0.0, False, 0.0, 0.05)
+    args = (5.0, 0.1, 0.3, 0.0, 1.5, 20_000, 1, True, 1e6, 5000, 0.4, 0.0, False, 0.0, 0.05, False, 0.0, 0.0)
     out = []
     for skip in (True, False):
         st_ = np.empty(kernel.NSTATS)
@@ -288,3 +288,30 @@ def test_hand_cli_states_the_hand_and_its_group(capsys):
     t = 1.0 / 3000.0
     assert d["criterion"]["beta"] == pytest.approx((0.01 + 6.45) / (2000.0 * t), rel=1e-12)
     assert d["wall"]["dimensionless"]["hand_stiffness"] == pytest.approx(0.0675, rel=1e-15)
+
+
+def test_hand_every_command_takes_or_refuses_it(capsys):
+    """The Z-width's wall holds k_h (its linear K_max moves with it); the contour maps (the spring's closed forms)
+    refuse it; a resonance at the Nyquist frequency is refused with the largest k_h in N/m; a spring below
+    rounding is the free device (no crash)."""
+    base = ["zwidth", "--device", "delta", "--velocity", "0.05", "--grid", "3", "--speeds", "1", "--json"]
+    rows = []
+    for k in ("135", "0"):
+        assert main([*base, "--hand", "hapticmaster", "--hand-stiffness", k]) == 0
+        rows.append(json.loads(capsys.readouterr().out))
+    assert rows[0]["wall"]["hand_stiffness"] == 135.0 and "hand_stiffness" not in rows[1]["wall"]
+    assert rows[0]["limits"]["linear"][0]["value"] != rows[1]["limits"]["linear"][0]["value"]
+    assert main(["contours", "--device", "delta", "--stiffness", "2000", "--hand", "hapticmaster"]) == 2
+    assert "closed forms for the spring" in capsys.readouterr().err
+    argv = ["check", "--device", "delta", "--stiffness", "2000", "--velocity", "0.05", "--hand-stiffness", "1e8"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    top = math.pi**2 * 0.25 / (1.0 / 3000.0) ** 2
+    assert err.count("\n") == 1 and f"π² m/T² = {top:.4g} N/m" in err
+    tiny = ["simulate", "--mass", "1", "--damping", "0", "--coulomb", "0.1", "--resolution", "1e-5", "--period",
+            "1e-3", "--stiffness", "1000", "--velocity", "0.01"]  # fmt: skip
+    assert main([*tiny, "--hand-stiffness", "1e-320", "--json"]) == 0
+    held = json.loads(capsys.readouterr().out)
+    assert main([*tiny, "--json"]) == 0
+    free = json.loads(capsys.readouterr().out)
+    assert held["outcome"] == free["outcome"] and held["final_xi"] == pytest.approx(free["final_xi"], rel=1e-12)

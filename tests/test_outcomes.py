@@ -169,8 +169,9 @@ def test_rule_defaults_are_the_documented_ones():
             1e-3,
             None,  # None: dfa.analysis.simulation.divergence_bound, max(1e6, 100(A0 + 1)) (eq. 18-19)
         )
-    assert OUTCOMES == ("rest", "oscillating", "unstable", "chatter", "undecided")
-    assert (kernel.REST, kernel.OSCILLATING, kernel.UNSTABLE, kernel.CHATTER, kernel.UNDECIDED) == (0, 1, 2, 3, 4)
+    assert OUTCOMES == ("rest", "oscillating", "unstable", "chatter", "undecided", "left")
+    codes = (kernel.REST, kernel.OSCILLATING, kernel.UNSTABLE, kernel.CHATTER, kernel.UNDECIDED, kernel.LEFT)
+    assert codes == (0, 1, 2, 3, 4, 5)
 
 
 def test_growth_threshold_either_side():
@@ -296,7 +297,7 @@ def test_fig4_map_codes_round_trip_with_their_names(tmp_path):
     m = _all_classes_map()
     back = load_map(m.save(tmp_path / "all.npz"))
     assert np.array_equal(back.outcome, m.outcome)
-    assert back.counts() == [{name: 20 for name in OUTCOMES}]
+    assert back.counts() == [{name: 20 for name in OUTCOMES[:5]}]  # "left" (a one-sided wall's) only where present
     with np.load(tmp_path / "all.npz") as z:
         assert [str(v) for v in z["outcome_names"]] == list(OUTCOMES)
         fields = {k: z[k] for k in z.files}
@@ -335,9 +336,9 @@ def test_fig4_plot_colours_and_legend_per_class():
         for t, h in zip(legend.get_texts(), legend.legend_handles, strict=False)
         if isinstance(h, Patch)
     }
-    assert set(OUTCOMES) <= set(leg)
+    assert set(OUTCOMES[:5]) <= set(leg)  # a map of a bilateral wall has no "left": its legend names the five
     colours = {}
-    for code, name in enumerate(OUTCOMES):
+    for code, name in enumerate(OUTCOMES[:5]):
         x, y = ax.transData.transform((m.beta[2 * code], m.sigma[1]))
         px = img[int(round(img.shape[0] - y)), int(round(x))]
         assert px == pytest.approx(np.array(leg[name]), abs=2 / 255), name

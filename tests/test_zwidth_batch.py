@@ -67,7 +67,7 @@ def test_eq4_zwidth_spring_points_run_the_spring_kernel_like_simulate():
 def test_eq4_zwidth_point_code_from_run_codes_is_the_per_run_rule():
     """Every combination of 3 run outcomes gives the code of the previous per-run rule (early exit included)."""
     names = {REST: "rest", OSCILLATING: "oscillating", UNSTABLE: "unstable", 3: "chatter", UNDECIDED: "undecided"}
-    assert [names[i] for i in range(5)] == list(OUTCOMES)
+    assert [names[i] for i in range(5)] == list(OUTCOMES[:5]) and OUTCOMES[5:] == ("left",)  # one-sided walls only
     combos = np.array(list(itertools.product(range(5), repeat=3)))
     got = zmod._point_codes(combos)
     for row, code in zip(combos, got, strict=True):
@@ -117,6 +117,9 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
         filtered,
         lag,
         np.zeros(k),
+        np.zeros(k, dtype=np.bool_),
+        np.zeros(k),
+        np.zeros(k),
         stats,
         done,
         rest,
@@ -127,7 +130,7 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
         st = np.empty(NSTATS)
         dn, rs = simulate_wall_kernel(
             mu[i], beta[i], sigma[i], x0[i], v0[i], ns[i], delay, True, bounds[i], tails[i],
-            damping[i], pole[i], filtered[i], lag[i], 0.0, e, e, st,
+            damping[i], pole[i], filtered[i], lag[i], 0.0, False, 0.0, 0.0, e, e, st,
         )  # fmt: skip
         assert (dn, rs) == (done[i], rest[i])
         np.testing.assert_array_equal(st, stats[i])

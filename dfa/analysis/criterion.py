@@ -80,7 +80,7 @@ A hand holding the device
     holds unchanged (the spring stores what it takes; the bounds on D_h hold for any motion within the sample),
     steps 2-4 concern the wall alone, and step 5 holds with S_0 = ½μV², V = sqrt(ξ'0² + (1 + κ_h)ξ0²/μ)
     (:func:`equivalent_speed`): the corner (β₀, σ₀) is unchanged, and the hand's stiffness has no memory to
-    start in. ``tests/test_hand_stiffness_criterion.py`` checks S(h) <= S(0) by exact simulation
+    start in. ``tests/test_hand_stiffness.py`` checks S(h) <= S(0) by exact simulation
     (:mod:`dfa.core.oscillator`) at random points the criterion calls passive.
 
 What is not proven

@@ -331,9 +331,14 @@ class StabilityMap(PlaneGrid, Result):
         Returns
         -------
         list of dict
-            ``{outcome name: count}`` for each initial speed, in the order of ``xi_dots``.
+            ``{outcome name: count}`` for each initial speed, in the order of ``xi_dots`` (``left``, a one-sided
+            wall's outcome, only where some run left).
         """
-        return [{name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES)} for o in self.outcome]
+        left = OUTCOMES.index("left")
+        return [
+            {name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES) if code != left or np.any(o == left)}
+            for o in self.outcome
+        ]
 
     def to_dict(self) -> dict[str, Any]:
         """Strict-JSON summary: the scalar fields, the grid and the counts per speed, not the arrays.

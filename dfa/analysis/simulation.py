@@ -604,7 +604,8 @@ class SimulationResult(Result):
             )
         out = np.empty(self.xi.size)
         xs = np.ascontiguousarray(self.xi, dtype=float)
-        wall_kernel.applied_forces(xs, self.delay, self.quantize, *_wall_args(self.wall)[:4], out)
+        args = _wall_args(self.wall)
+        wall_kernel.applied_forces(xs, self.delay, self.quantize, *args[:4], args[5], args[6], out)
         out.flags.writeable = False
         return out
 
@@ -990,9 +991,9 @@ def wall_run_codes(
     k = mu.size
     for w in walls:
         check_hand_resonance(mu, w)
-    damping, pole, filtered, lag, spring = (np.array(c) for c in zip(*map(_wall_args, walls), strict=True))
+    groups = (np.array(c) for c in zip(*map(_wall_args, walls), strict=True))
     stats, done, rest = np.empty((k, kernel.NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
-    run = (mu, beta, sigma, x0, v0, ns, delay, True, bound, _tail_lengths(ns, mu), damping, pole, filtered, lag, spring)
+    run = (mu, beta, sigma, x0, v0, ns, delay, True, bound, _tail_lengths(ns, mu), *groups)
     batch.batch_wall_kernel(*run, stats, done, rest)
     codes = np.empty(k, dtype=np.int64)
     out = (codes, np.empty(k), np.empty(k), np.empty(k), np.empty(k))
@@ -1000,10 +1001,12 @@ def wall_run_codes(
     return codes
 
 
-def _wall_args(wall: WallParams) -> tuple[float, float, bool, float, float]:
-    """(β_B, a, filtered, α, κ_h): the wall's arguments of :mod:`dfa.core.wall_kernel` (:meth:`WallParams.kernel_args`)."""
+def _wall_args(wall: WallParams) -> tuple[float, float, bool, float, float, bool, float, float]:
+    """(β_B, a, filtered, α, κ_h, one-sided, s, p): the wall's arguments of :mod:`dfa.core.wall_kernel`
+    (:meth:`WallParams.kernel_args`)."""
     a = wall.kernel_args()
-    return a["damping"], a["pole"], a["filtered"], a["lag"], a["spring"]
+    keys = ("damping", "pole", "filtered", "lag", "spring", "onesided", "surface", "push")
+    return tuple(a[k] for k in keys)
 
 
 def _measured(

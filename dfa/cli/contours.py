@@ -83,6 +83,12 @@ def run(args: argparse.Namespace) -> int:
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
     mu, inp = plane_device(args)
+    if inp is not None and inp.device is not None and inp.device.hand is not None and inp.device.hand.stiffness:
+        raise UsageError(
+            f"--hand-stiffness {inp.device.hand.stiffness:g} is not covered here: the contour maps are the paper's "
+            "closed forms for the spring (eq. 42-45); drop the hand's stiffness (its mass and damping are taken), or "
+            "use dfa limit-cycles with it"
+        )
     if not args.max_amplitude >= 1.0:
         raise UsageError(
             f"--max-amplitude {args.max_amplitude:g} is invalid: it must be >= 1 tick (the large cycle family has "

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from .._io import check_output_file
 from ..checks import check_damping_rate
 from ..results.jsonable import explain_nulls
+from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import (
     RATE_NAMES,
@@ -41,6 +43,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="samples to simulate (default: from the loop's time scales, 50000 to 10^7)",
     )
     add_wall_args(p)
+    add_contact_args(p)
     p.add_argument(
         "--preload",
         action="store_true",
@@ -63,6 +66,20 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         action="store_true",
         help=f"run even when --samples is estimated to take over {SIMULATE_TIME_LIMIT:g} s (default: refuse)",
     )
+
+
+def _approach(args: argparse.Namespace, p: Any, xd: float, wp: Any, quantize: bool) -> tuple[float, float, int]:
+    """(ξ0, ξ'0, D) of a one-sided wall's run: D samples of approach from free space at the speed."""
+    from ..analysis.approach import approach_start
+
+    given = [f for f, v in (("--preload", args.preload), ("--xi0", args.xi0 is not None)) if v]
+    if given:
+        raise UsageError(
+            f"{', '.join(given)} cannot be combined with --one-sided: the run starts in free space before contact"
+        )
+    if not xd > 0.0:
+        raise UsageError(f"the speed {xd:g} is invalid with --one-sided: the device must approach the wall (> 0)")
+    return approach_start(xd, wall=wp, quantize=quantize)
 
 
 def _start(args: argparse.Namespace, mu: float, xd: float) -> tuple[float, float]:
@@ -93,6 +110,7 @@ def _write_trace(path: str, r: object, inp: Inputs) -> None:
 def run(args: argparse.Namespace) -> int:
     """Simulate one impact; print its outcome, amplitude, frequency and final state."""
     from ..analysis.simulation import MAX_RECORD_BYTES, default_samples, divergence_bound, simulate
+    from ..render.contact import contact_line
     from ..render.text import simulation_rows
 
     inp = resolve(args, dimensionless=True)
@@ -105,9 +123,11 @@ def run(args: argparse.Namespace) -> int:
     wp = wall_params(args, ctl, inp)
     if args.trace is not None:
         check_output_file("--trace", args.trace)
-    x0, v0 = _start(args, p.mu, xd)
     quantize = not args.no_quantization
+    approach = _approach(args, p, xd, wp, quantize) if wp.one_sided else None
+    x0, v0 = _start(args, p.mu, xd) if approach is None else approach[:2]
     n = args.samples if args.samples is not None else default_samples(p.mu, p.beta, p.sigma, v0, x0, quantize, wall=wp)
+    n += 0 if approach is None or args.samples is not None else approach[2]  # the approach, before contact
     if args.trace is not None and 16 * (n + 1) > MAX_RECORD_BYTES:
         raise UsageError(
             f"--trace with --samples {n} would need {16 * (n + 1) / 1024**3:.1f} GiB of trajectory "
@@ -134,6 +154,8 @@ def run(args: argparse.Namespace) -> int:
         return 0
     say(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
     print_wall(ctl, inp)
+    if approach is not None:
+        say(contact_line(wp, approach[2], xd))
     say(table(simulation_rows(r, x0, v0, args.preload, phys if known else None)))
     if args.trace is not None:
         say(f"trace written to {args.trace}")

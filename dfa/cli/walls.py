@@ -9,6 +9,7 @@ values become a :class:`~dfa.model.wall.Wall` with :meth:`~dfa.model.wall.Wall.o
 from __future__ import annotations
 
 import argparse
+import math
 from typing import Any
 
 from ..model.device import Device
@@ -20,6 +21,7 @@ from .parsing import UsageError, delay, number
 
 __all__ = [
     "WALL_FLAGS",
+    "hand_stiffness_of",
     "add_wall_args",
     "check_filter_amplifier",
     "given_flags",
@@ -90,17 +92,39 @@ def check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
         )
 
 
+def hand_stiffness_of(device: Device | None) -> float:
+    """The stiffness k_h of the hand holding ``device`` (0 for none), refused at or above the Nyquist resonance.
+
+    The simulator's step needs the held device's resonance √(k_h/m)/(2π) below the Nyquist frequency 1/(2T)
+    (:func:`dfa.analysis.simulation.check_hand_resonance`): k_h < π² m/T², m the moving mass with the hand's.
+    """
+    hand = device.hand.stiffness if device is not None and device.hand is not None else 0.0
+    if hand and device is not None:
+        top = math.pi**2 * device.mass / device.period**2
+        if not hand < top:
+            unit = device.units["stiffness"]
+            raise UsageError(
+                f"--hand-stiffness {hand:g} is invalid: the held device's resonance √(k_h/m)/(2π) must lie below the "
+                f"Nyquist frequency 1/(2T); give k_h below π² m/T² = {top:.4g} {unit}"
+            )
+    return hand
+
+
 def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: float | None) -> Wall | None:
     """The wall of the flags beyond a spring; None for the paper's spring (no flag, or B = 0 without filter and lag).
 
     Refuses (UsageError, exit 2) a negative B, a cutoff <= 0 or not below the Nyquist frequency, a
     bandwidth <= 0, and wall flags without a physical device and stiffness.
     """
+    from .contact import contact_elements
+
     given = given_flags(args)
-    hand = device.hand.stiffness if device is not None and device.hand is not None else 0.0
-    if not given and not hand:
+    hand = hand_stiffness_of(device)
+    contact = contact_elements(args, device)
+    if not given and not hand and not contact:
         return None
     if device is None or stiffness is None:
+        given += ["--one-sided"] if contact else []
         raise UsageError(
             f"{', '.join(given)} needs a physical device and stiffness (K and T turn B, f_c, f_bw into β_B, ν_c, α): "
             "give --device NAME (or --mass --damping --coulomb --resolution --period) and --stiffness K"
@@ -119,14 +143,15 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
             "mass and damping)"
         )
     wall = Wall.of(stiffness, hand_stiffness=hand, **values)
-    return None if wall.params(device.period).is_spring else wall
+    wall = Wall(stiffness, (*wall.elements, *contact)) if contact else wall
+    return None if wall.params(device.period, device.resolution).is_spring else wall
 
 
 def wall_params(args: argparse.Namespace, wall: Wall | None, inp: Inputs | None) -> WallParams:
     """The dimensionless wall of a run: the wall's groups, else the spring with the --delay."""
     if wall is None or inp is None or inp.device is None:
         return WallParams.of(delay=args.delay)
-    return wall.params(inp.device.period)
+    return wall.params(inp.device.period, inp.device.resolution)
 
 
 def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[str, Any]:
@@ -135,7 +160,7 @@ def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[
     if wall is not None and inp is not None and inp.device is not None:
         from ..render.controller import wall_dict
 
-        d["wall"] = wall_dict(wall, inp.device.period, inp.device.units)
+        d["wall"] = wall_dict(wall, inp.device.period, inp.device.units, inp.device.resolution)
     return d
 
 
@@ -145,7 +170,7 @@ def print_wall(wall: Wall | None, inp: Inputs | None, *, wrap: bool = True) -> N
     if wall is not None and inp is not None and inp.device is not None:
         from ..render.controller import controller_parts
 
-        values, groups = controller_parts(wall, inp.device.period, inp.device.units)
+        values, groups = controller_parts(wall, inp.device.period, inp.device.units, inp.device.resolution)
         if wrap:
             say(f"{values};\n  {groups}")
         else:

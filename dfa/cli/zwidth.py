@@ -12,7 +12,7 @@ from ..render.hand import device_title
 from .inputs import add_device_group, impact_speed, resolve
 from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, fmt, progress, save_png, say, table
 from .parsing import UsageError, integer, number
-from .walls import add_wall_args, check_filter_amplifier
+from .walls import add_wall_args, check_filter_amplifier, hand_stiffness_of
 
 COMMAND = "zwidth"
 HELP = (
@@ -95,8 +95,14 @@ def run(args: argparse.Namespace) -> int:
     check_filter_amplifier(args, dev)
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
+    hand = hand_stiffness_of(dev)  # the hand's stiffness joins the wall (dfa.HandSpring)
+    if hand and args.amplifier_bandwidth is not None:
+        raise UsageError(
+            "--amplifier-bandwidth cannot be combined with a hand stiffness (--hand-stiffness or --hand PRESET): the "
+            "simulator's step with both is not derived yet; drop one of them"
+        )
     wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
-                   amplifier_bandwidth=args.amplifier_bandwidth)  # fmt: skip
+                   amplifier_bandwidth=args.amplifier_bandwidth, hand_stiffness=hand)  # fmt: skip
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
     check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
     seconds = z_width_seconds(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs)

@@ -60,14 +60,14 @@ def batch_wall_kernel(
     mus: FloatArray, betas: FloatArray, sigmas: FloatArray, x0s: FloatArray, v0s: FloatArray, ns: IntArray,
     delay: int, quantize: bool, bounds: FloatArray, tail_lens: IntArray,
     dampings: FloatArray, poles: FloatArray, filtered: BoolArray, lags: FloatArray, springs: FloatArray,
-    stats: FloatArray, done: IntArray, rest: IntArray,
+    onesided: BoolArray, surfaces: FloatArray, pushes: FloatArray, stats: FloatArray, done: IntArray, rest: IntArray,
 ) -> None:  # fmt: skip
     """Independent runs with a controller, one after the other: run i is
     :func:`dfa.core.wall_kernel.simulate_wall_kernel` of its own inputs.
 
     As :func:`batch_kernel` (run i: ``ns[i]`` samples, bound ``bounds[i]``, tail ``tail_lens[i]``; one
-    ``delay`` for all), and run i has the controller (β_B, a, filtered, α, κ_h) = (``dampings[i]``, ``poles[i]``,
-    ``filtered[i]``, ``lags[i]``, ``springs[i]``) (:func:`dfa.analysis.simulation._controller_args` of its WallParams).
+    ``delay`` for all), and run i has the controller (β_B, a, filtered, α, κ_h, one-sided, s, p) = (``dampings[i]``, ``poles[i]``,
+    ``filtered[i]``, ``lags[i]``, ``springs[i]``, ``onesided[i]``, ``surfaces[i]``, ``pushes[i]``) (:func:`dfa.analysis.simulation._controller_args` of its WallParams).
     ``stats[i]`` (NSTATS), ``done[i]`` and ``rest[i]`` receive what
     :func:`dfa.core.wall_kernel.simulate_wall_kernel` returns for it (nothing recorded).
     """
@@ -75,5 +75,6 @@ def batch_wall_kernel(
     for i in range(mus.shape[0]):
         done[i], rest[i] = simulate_wall_kernel(
             mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], delay, quantize, bounds[i], tail_lens[i],
-            dampings[i], poles[i], filtered[i], lags[i], springs[i], e, e, stats[i],
+            dampings[i], poles[i], filtered[i], lags[i], springs[i], onesided[i], surfaces[i], pushes[i], e, e,
+            stats[i],
         )  # fmt: skip

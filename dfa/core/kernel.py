@@ -80,6 +80,7 @@ OSCILLATING = 1  # persistent, settled cycle of amplitude >= stable_amplitude (1
 UNSTABLE = 2  # |ξ| beyond the bound, or a growing envelope
 CHATTER = 3  # never rested; persistent, settled cycle below stable_amplitude
 UNDECIDED = 4  # the envelope is still changing at the end of the run: run longer
+LEFT = 5  # a one-sided wall left for good: outside, moving away, nothing can bring the device back
 
 NSEG = 8  # segments of the run used to judge a growing or changing envelope
 NSTATS = NSEG + 10  # length of the stats array of simulate_kernel
@@ -597,6 +598,7 @@ def classify(
     In this order (``P_k``: peak |ξ| at the sample instants in the k-th eighth of the run):
 
     * rest: the kernel reached the absorbing state (``rest >= 0``);
+    * left: the device left a one-sided wall for good (flag 2 in ``stats[NSEG + 5]``);
     * unstable: |ξ| exceeded the bound, or the envelope grows: P_7 exceeds
       ``growth`` times P_4 and 1 tick, and P_4 <= P_5 <= P_6 <= P_7, in a run
       of at least 8 periods 2π√μ (shorter runs are never called unstable by
@@ -618,6 +620,8 @@ def classify(
     freq = np.nan
     if rest >= 0:
         return REST, 0.0, np.nan, 0.0, 0.0
+    if stats[NSEG + 5] == 2.0:  # the controller kernel's exit from a one-sided wall (dfa.core.wall_kernel._gone)
+        return LEFT, 0.0, np.nan, 0.0, 0.0
     if stats[NSEG + 5] > 0.0:
         return UNSTABLE, np.inf, np.nan, 0.0, np.inf
     tmin = stats[NSEG]

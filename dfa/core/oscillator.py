@@ -35,7 +35,7 @@ sgn(φ − κ_h ξ). A sample is a chain of such phases; the hand's resonance is
 (ω < π, checked by the model), so there are at most a few.
 
 The amplifier lag with a hand stiffness is not covered (the model refuses the pair).
-``tests/test_hand_stiffness_simulate.py`` checks the samples against ``solve_ivp`` with stick-slip events.
+``tests/test_hand_stiffness.py`` checks the samples against ``solve_ivp`` with stick-slip events.
 
 Examples
 --------
@@ -55,7 +55,11 @@ from .jit import njit
 
 __all__ = ["responses", "responses_array", "hand_motion", "hand_stop", "hand_sample"]
 
-MAX_PHASES = 16  # per sample; with ω < π a sample holds at most two stops and restarts
+#: ω² = κ_h/μ below this is a spring below rounding: the free device (its force on |ξ| <= 1e6 ticks is < 1e-194,
+#: and ω_d = √(ω²) would underflow in the stop time's division).
+TINY = 1e-200
+
+MAX_PHASES = 16  # per sample; with ω < π a sample holds at most one stop and restart (more are refused)
 
 
 @njit(cache=True, inline="always")
@@ -84,7 +88,10 @@ def responses(lam: float, w2: float, t: float) -> tuple[float, float, float]:
     (1.0, 0.0, 1.0)
     """
     half = 0.5 * lam
+    w2 = w2 if w2 >= TINY else 0.0
     om = math.sqrt(w2)
+    if w2 == 0.0:  # a spring below rounding (κ_h/μ < TINY): the free device (dfa.core.kernel.step's φ₁, φ₂)
+        return t * phi1(lam * t), math.exp(-lam * t), t * t * phi2(lam * t)
     if half >= om:  # over-damped or critical: two real rates
         gam = math.sqrt((half - om) * (half + om))
         s2 = half + gam
@@ -152,11 +159,12 @@ def hand_stop(v0: float, g: float, lam: float, w2: float, s: float) -> float:
     1.570796326795
     """
     half = 0.5 * lam
+    w2 = w2 if w2 >= TINY else 0.0
     om = math.sqrt(w2)
     if half >= om:
         gam = math.sqrt((half - om) * (half + om))
         s2 = half + gam
-        s1 = w2 / s2
+        s1 = w2 / s2 if s2 > 0.0 else 0.0  # s2 = 0 only for the undamped free device (ω² underflowed)
         den = g - s1 * v0
         if v0 == 0.0 or not s * den < 0.0:
             return np.inf  # the net acceleration never opposes the motion enough to stop it

@@ -129,7 +129,8 @@ _ULP4 = 4.0 * 2.220446049250313e-16  # four units in the last place, relative
 MAX_PHASES = 16  # per sample; the derivation allows at most 5 (stuck, breakaway, stop, restart, stop)
 
 Model: TypeAlias = tuple[float, float, float, int, bool]  # (μ, β, σ, d, quantize) of _sample
-Controller: TypeAlias = tuple[float, float, bool, float, float]  # (β_B, a, filtered, α, κ_h): ctl of _sample, _advance
+# (β_B, a, filtered, α, κ_h, one-sided, surface s, push p): ctl of _sample and _advance
+Controller: TypeAlias = tuple[float, float, bool, float, float, bool, float, float]
 
 
 @njit(cache=True, inline="always")
@@ -273,14 +274,14 @@ def _inside(c: float, sigma: float) -> bool:
 
 
 @njit(cache=True, inline="always")
-def _absorbing(
-    v: float, fa: float, sigma: float, ring: FloatArray, base: float, damping: float, ynext: float, held: float
-) -> bool:
-    """The proven rest state (module docstring): stuck, and every future command and φ_A within [−σ, σ] of the
-    hand spring's force κ_h ξ (``held``; 0 without a hand stiffness: ξ does not change while stuck)."""
-    if v != 0.0 or not _inside(fa - held, sigma) or not _inside(base - held, sigma):
+def _absorbing(v: float, fa: float, sigma: float, ring: FloatArray, cbase: float, cnext: float, held: float) -> bool:
+    """The proven rest state (module docstring): stuck, and every future command and φ_A within [−σ, σ] of
+    ``held`` = κ_h ξ − p (the hand spring's force less the push; ξ does not change while stuck). ``cbase`` is
+    the command at this reading with y = 0, ``cnext`` with y_{h+1} (a one-sided wall's clip keeps the
+    commands between them: it is monotone in y)."""
+    if v != 0.0 or not _inside(fa - held, sigma) or not _inside(cbase - held, sigma):
         return False
-    if not _inside(base - damping * ynext - held, sigma):
+    if not _inside(cnext - held, sigma):
         return False
     for i in range(ring.shape[0]):
         if not _inside(ring[i] - held, sigma):
@@ -288,10 +289,31 @@ def _absorbing(
     return True
 
 
+@njit(cache=True, inline="always")
+def _gone(v: float, fa: float, ring: FloatArray, inside: bool, ctl: Controller) -> bool:
+    """A one-sided wall left for good: the reading outside, the device moving away (ξ' < 0), no push and no hand
+    spring (nothing can bring it back: friction and damping only oppose the motion), and no force pending
+    (every command in the delay line and φ_A zero). Every later reading is outside, so every command is 0."""
+    if not ctl[5] or inside or not v < 0.0 or ctl[7] != 0.0 or ctl[4] != 0.0 or fa != 0.0:
+        return False
+    for i in range(ring.shape[0]):
+        if ring[i] != 0.0:
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def _shape(c: float, inside: bool, onesided: bool) -> float:
+    """The command a one-sided wall applies: none outside, and inside it pushes only (min(c, 0)); c otherwise."""
+    if not onesided:
+        return c
+    return min(c, 0.0) if inside else 0.0
+
+
 # state of a controller run between samples (module docstring, "Period skipping"): ξ, ξ', r_{h−1}, v_{h−1},
 # y_{h−1}, φ_A, ring position; then bookkeeping: tail min and max, the period found (0: none yet)
-CX, CV, CRP, CVP, CY, CFA, CPOS, CTMIN, CTMAX, CPER = range(10)
-NCSTATE = 10
+CX, CV, CRP, CVP, CY, CFA, CPOS, CTMIN, CTMAX, CPER, CEXT = range(11)
+NCSTATE = 11  # CEXT: the operator's force now (the approach's, σ + βV, until a one-sided wall first reads contact)
 _REF = 6  # the reference state: ξ, ξ', r, v, y, φ_A at ref[0:6], then the d pending commands, oldest first
 
 
@@ -364,23 +386,29 @@ def _command(
     delay: int,
     quantize: bool,
     ctl: Controller,
-) -> tuple[float, float, float, float, int, float]:
+) -> tuple[float, float, float, float, int, float, bool]:
     """The controller at sample h (module docstring): read ξ(h), command c_h into the delay ring.
 
-    Returns the reading r_h, the difference v_h, the filtered y_h, the spring's part −(r_h + ½), the ring's
-    new position and the command applied now, c_{h−d}.
+    Returns the reading r_h, the difference v_h, the filtered y_h, the spring's part −(r_h + ½) (a one-sided
+    wall's: −(r_h + ½ − s) inside, 0 outside), the ring's new position, the command applied now, c_{h−d},
+    and whether the reading is inside a one-sided wall (r_h + ½ > s; r_h > s without the encoder).
     """
-    damping, pole, filtered = ctl[0], ctl[1], ctl[2]
+    damping, pole, filtered, onesided, surface = ctl[0], ctl[1], ctl[2], ctl[5], ctl[6]
     r = math.floor(x) if quantize else x
     vh = r - r_prev
     if filtered:
         y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
     else:
         y = vh
-    base = -(r + 0.5) if quantize else -r
-    ring[pos] = base - damping * y
+    q = r + 0.5 if quantize else r
+    inside = q > surface
+    if onesided:
+        base = -(q - surface) if inside else 0.0
+    else:
+        base = -q
+    ring[pos] = _shape(base - damping * y, inside, onesided)
     pos = pos + 1 if pos < delay else 0
-    return r, vh, y, base, pos, ring[pos]
+    return r, vh, y, base, pos, ring[pos], inside
 
 
 @njit(cache=True, inline="always")
@@ -398,33 +426,42 @@ def _sample(
     ctl: Controller,
     k: SampleConstants,
     e_lag: float,
-) -> tuple[float, float, float, float, float, float, int, float, float, bool]:
+    ext: float,
+) -> tuple[float, float, float, float, float, float, int, float, float, int, float]:
     """Sample h from the state between samples (module docstring); ``model`` = (μ, β, σ, d, quantize).
 
     Returns the next state (ξ, ξ', r, v, y, φ_A, ring position), the sample's
-    lowest and highest turning point (±inf when none) and whether the loop
-    was in the absorbing state at the start of the sample (then not integrated).
+    lowest and highest turning point (±inf when none), whether the loop
+    was in an absorbing state at the start of the sample (then not integrated): 0 no, 1 at rest, 3 a one-sided
+    wall left for good (:func:`_gone`), and the operator's force ``ext``: the push p from the first reading
+    inside a one-sided wall on (the approach's force before it; p throughout otherwise).
     """
     mu, beta, sigma, delay, quantize = model
-    damping, pole, filtered, lag, kap = ctl
-    r, vh, y, base, pos, c = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl)
+    damping, pole, filtered, lag, kap, onesided, _, push = ctl
+    r, vh, y, base, pos, c, inside = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl)
+    if inside:
+        ext = push  # contact: the operator's force is the push from now on
     if lag == 0.0:
         fa = c
     if v == 0.0:
         ynext = pole * y + (1.0 - pole) * vh if filtered else 0.0
-        if _absorbing(v, fa, sigma, ring, base, damping, ynext, kap * x):
-            return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, True
+        cbase, cnext = _shape(base, inside, onesided), _shape(base - damping * ynext, inside, onesided)
+        if ext == push and _absorbing(v, fa, sigma, ring, cbase, cnext, kap * x - push):
+            return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 1, ext
+    elif ext == push and _gone(v, fa, ring, inside, ctl):
+        return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 3, ext
+    push = ext
     if kap > 0.0:
         if lag != 0.0:
             raise RuntimeError("dfa.core.wall_kernel: an amplifier lag with a hand stiffness is not covered")
-        x, v, lo_t, hi_t = hand_sample(x, v, c, mu, beta, sigma, kap)
+        x, v, lo_t, hi_t = hand_sample(x, v, c + push, mu, beta, sigma, kap)
     elif lag == 0.0:
-        x, v, xr, _, _, _, _, stopped = step(x, v, c, mu, sigma, k)
+        x, v, xr, _, _, _, _, stopped = step(x, v, c + push, mu, sigma, k)
         lo_t, hi_t = (xr, xr) if stopped else (np.inf, -np.inf)
     else:
-        x, v, lo_t, hi_t = lag_sample(x, v, c, fa, mu, beta, sigma, lag)
+        x, v, lo_t, hi_t = lag_sample(x, v, c + push, fa + push, mu, beta, sigma, lag)
         fa = c + (fa - c) * e_lag  # e_lag = e^{−1/α}
-    return x, v, r, vh, y, fa, pos, lo_t, hi_t, False
+    return x, v, r, vh, y, fa, pos, lo_t, hi_t, 0, ext
 
 
 @njit(cache=True, nogil=True)
@@ -449,32 +486,35 @@ def _advance(
 ) -> tuple[int, int, float, int]:
     """Samples h0 … h1 − 1 from the state ``st``; return (end, why, peak |ξ|, samples skipped).
 
-    ``ctl`` = (β_B, a, filtered, α, κ_h); why as :func:`dfa.core.kernel.advance` (0 ran
-    through, 1 at rest at sample ``end``, 2 past ``bound`` in sample end − 1).
+    ``ctl`` = (β_B, a, filtered, α, κ_h, one-sided, s, p); why as :func:`dfa.core.kernel.advance` (0 ran
+    through, 1 at rest at sample ``end``, 2 past ``bound`` in sample end − 1, 3 left a one-sided wall for good
+    at sample ``end``).
     The range lies before the tail or in it. With ``skip`` (no records),
     whole periods are skipped once the loop's state repeats bit for bit
     (Brent's cycle detection, the reference within this range; module docstring).
     """
-    damping, pole, filtered, lag, kap = ctl
+    filtered, lag = ctl[2], ctl[3]
     model = (mu, beta, sigma, delay, quantize)
     k = sample_constants(mu, beta)
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
     x, v, r_prev, v_prev, y, fa = st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA]
-    pos, tmin, tmax, period = int(st[CPOS]), st[CTMIN], st[CTMAX], int(st[CPER])
+    pos, tmin, tmax, period, ext = int(st[CPOS]), st[CTMIN], st[CTMAX], int(st[CPER]), st[CEXT]
+    push = ctl[7]
     record = rec_x.shape[0] > 0
     skip = skip and not record
     in_tail = h0 >= tail_start
     peak, why, skipped, h = 0.0, 0, 0, h0
-    # reference: the state at sample rh (none at sample 0, where y_0 = 0 is forced), renewed after span samples
-    rx, rh, span = (x if h0 > 0 else np.nan), h0, (period if period > 0 else 1)
+    # reference: the state at sample rh (none at sample 0, where y_0 = 0 is forced, nor during an approach, whose
+    # operator's force is not part of the compared state), renewed after span samples
+    rx, rh, span = (x if h0 > 0 and ext == push else np.nan), h0, (period if period > 0 else 1)
     if skip:
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
     while h < h1:
-        x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, rested = _sample(
-            x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag
+        x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext = _sample(
+            x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext
         )
-        if rested:
-            why = 1
+        if absorbed:
+            why = absorbed  # 1 at rest, 3 left the one-sided wall for good
             break
         if record:
             rec_x[h + 1], rec_v[h + 1] = x, v
@@ -499,22 +539,33 @@ def _advance(
             skipped += jump
             span = h1  # no more renewals: fewer than one period is left
         elif skip and h - rh == span:
-            rx, rh, span = x, h, 2 * span
+            rx, rh, span = (x if ext == push else np.nan), h, 2 * span
             _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x, v, r_prev, v_prev, y, fa
-    st[CPOS], st[CTMIN], st[CTMAX], st[CPER] = pos, tmin, tmax, period
+    st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CEXT] = pos, tmin, tmax, period, ext
     return h, why, peak, skipped
 
 
 @njit(cache=True, inline="always")
-def _start(st: FloatArray, ring: FloatArray, x0: float, v0: float, quantize: bool) -> None:
-    """Initial state: r_{−1} = r_0, v_{−1} = y_{−1} = 0, every past command and φ_A equal to c_0."""
+def _start(
+    st: FloatArray, ring: FloatArray, x0: float, v0: float, quantize: bool, ctl: Controller, friction: float
+) -> None:
+    """Initial state: r_{−1} = r_0, v_{−1} = y_{−1} = 0, every past command and φ_A equal to c_0 (y = 0).
+
+    A one-sided wall's run that starts outside, moving toward it (ξ'0 > 0), is an approach at constant speed: the
+    operator's force balances the friction, ``friction`` = σ + β ξ'0, until the wall first reads the device inside,
+    and is the push p from then on (:func:`_sample`); otherwise it is p throughout.
+    """
     r0 = math.floor(x0) if quantize else x0
-    base0 = -(r0 + 0.5) if quantize else -r0
+    q0 = r0 + 0.5 if quantize else r0
+    onesided, surface = ctl[5], ctl[6]
+    inside = q0 > surface
+    base0 = _shape(-(q0 - surface) if onesided else -q0, inside, onesided)
     for i in range(ring.shape[0]):
         ring[i] = base0
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x0, v0, r0, 0.0, 0.0, base0
     st[CPOS], st[CTMIN], st[CTMAX], st[CPER] = 0.0, np.inf, -np.inf, 0.0
+    st[CEXT] = friction if onesided and not inside and v0 > 0.0 else ctl[7]
 
 
 @njit(cache=True, nogil=True)
@@ -526,6 +577,8 @@ def applied_forces(
     pole: float,
     filtered: bool,
     lag: float,
+    onesided: bool,
+    surface: float,
     out: FloatArray,
 ) -> None:
     """The force φ_A on the device at each sample instant of a recorded run (units of KΔ) into ``out``.
@@ -537,15 +590,15 @@ def applied_forces(
     amplifier's output at the instant; at h = n the force the next sample would apply.
     """
     ring, st = np.empty(delay + 1), np.empty(NCSTATE)
-    _start(st, ring, xs[0], 0.0, quantize)
+    ctl = (damping, pole, filtered, lag, 0.0, onesided, surface, 0.0)  # the wall's force: no hand, no push
+    _start(st, ring, xs[0], 0.0, quantize, ctl, 0.0)
     r_prev, v_prev, y, fa, pos = st[CRP], st[CVP], st[CY], st[CFA], 0
-    ctl = (damping, pole, filtered, lag, 0.0)  # the hand stiffness acts on the device, not on the command
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
     for h in range(xs.shape[0]):
         if not math.isfinite(xs[h]):  # past a divergence the record holds NaN: so does the force
             out[h:] = np.nan
             break
-        r_prev, v_prev, y, _, pos, c = _command(xs[h], r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl)
+        r_prev, v_prev, y, _, pos, c, _ = _command(xs[h], r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl)
         if lag == 0.0:
             fa = c
         out[h] = fa
@@ -570,6 +623,9 @@ def run_wall_kernel(
     filtered: bool,
     lag: float,
     spring: float,
+    onesided: bool,
+    surface: float,
+    push: float,
     rec_x: FloatArray,
     rec_v: FloatArray,
     stats: FloatArray,
@@ -587,7 +643,7 @@ def run_wall_kernel(
     settles on a cycle of its whole state, bit for bit: of 50 001 samples, 231 are integrated.
 
     >>> e, stats = np.empty(0), np.empty(NSEG + 10)
-    >>> ctl = (0.5, math.exp(-0.2 * math.pi), True, 0.2, 0.0)
+    >>> ctl = (0.5, math.exp(-0.2 * math.pi), True, 0.2, 0.0, False, 0.0, 0.0)
     >>> run_wall_kernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, True)
     (50001, -1, 231)
     >>> run_wall_kernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, False)
@@ -599,11 +655,11 @@ def run_wall_kernel(
         stats[i] = 0.0
     st, ring, ref = np.empty(NCSTATE), np.empty(delay + 1), np.empty(_REF + delay)
     tail = np.empty(max(tail_len, 1))
-    _start(st, ring, x0, v0, quantize)
+    ctl = (damping, pole, filtered, lag, spring, onesided, surface, push)
+    _start(st, ring, x0, v0, quantize, ctl, sigma + beta * v0)
     if record:
         rec_x[0], rec_v[0] = x0, v0
     tail_start = n - tail_len
-    ctl = (damping, pole, filtered, lag, spring)
     done, rest, integrated = n, -1, 0
     for seg in range(NSEG):
         lo, cut, hi = segment_ranges(seg, n, tail_start)
@@ -618,7 +674,7 @@ def run_wall_kernel(
                     stats[seg] = peak
                 if why != 0:
                     done, rest = end, (end if why == 1 else -1)
-                    stats[NSEG + 5] = 1.0 if why == 2 else 0.0
+                    stats[NSEG + 5] = 1.0 if why == 2 else (2.0 if why == 3 else 0.0)  # past the bound; left
                     break
         if why != 0:
             break
@@ -650,6 +706,9 @@ def simulate_wall_kernel(
     filtered: bool,
     lag: float,
     spring: float,
+    onesided: bool,
+    surface: float,
+    push: float,
     rec_x: FloatArray,
     rec_v: FloatArray,
     stats: FloatArray,
@@ -657,7 +716,8 @@ def simulate_wall_kernel(
     """Run ``n`` samples with the controller; return (samples done, rest sample or −1).
 
     ``damping`` β_B, ``pole`` a (used when ``filtered``), ``lag`` α, ``spring`` the hand stiffness κ_h
-    (:mod:`dfa.core.oscillator`; not with a lag). ``rec_x``/``rec_v``
+    (:mod:`dfa.core.oscillator`; not with a lag); ``onesided`` a wall that pushes only while the reading is
+    beyond the surface ``surface`` s (ticks), ``push`` p a constant force toward the wall (KΔ). ``rec_x``/``rec_v``
     (length n + 1) are written when they have that length. ``stats`` as in
     :func:`dfa.core.kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
     Unrecorded runs skip repeated periods (:func:`run_wall_kernel`; same results bit for bit).
@@ -678,6 +738,9 @@ def simulate_wall_kernel(
         filtered,
         lag,
         spring,
+        onesided,
+        surface,
+        push,
         rec_x,
         rec_v,
         stats,
@@ -703,6 +766,9 @@ def serial_wall_kernel(
     filtered: bool,
     lag: float,
     spring: float,
+    onesided: bool,
+    surface: float,
+    push: float,
     stats: FloatArray,
     done: IntArray,
     rest: IntArray,
@@ -726,6 +792,9 @@ def serial_wall_kernel(
             filtered,
             lag,
             spring,
+            onesided,
+            surface,
+            push,
             empty,
             empty,
             stats[i],

@@ -48,7 +48,7 @@ from typing import Any, ClassVar, NamedTuple
 
 import numpy as np
 
-from ..checks import check_delay, check_nonnegative, check_positive, format_value
+from ..checks import check_delay, check_nonnegative, check_positive, check_real, format_value
 from ..errors import DFAError, DFAValueError
 
 __all__ = [
@@ -62,6 +62,8 @@ __all__ = [
     "Delay",
     "AmplifierLag",
     "HandSpring",
+    "OneSided",
+    "Push",
     "ELEMENTS",
     "MIN_CUTOFF",
     "MIN_LAG",
@@ -182,6 +184,10 @@ class Element(abc.ABC):
     absent: ClassVar[Any] = 0.0
     #: Whether the element's flag is a row of the wall's flag table (:mod:`dfa.cli.walls`).
     wall_flag: ClassVar[bool] = True
+    #: Whether its group needs the encoder resolution Δ (``group(period, stiffness, resolution=Δ)``).
+    needs_resolution: ClassVar[bool] = False
+    #: Why the linear loop (exact linear bound, describing function) does not cover it (None: it does).
+    linear_reason: ClassVar[str | None] = None
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -319,7 +325,8 @@ class Element(abc.ABC):
         Returns
         -------
         dict
-            Some of ``delay`` (added up), ``damping``, ``pole``, ``filtered``, ``lag``, ``spring``.
+            Some of ``delay`` (added up), ``damping``, ``pole``, ``filtered``, ``lag``, ``spring``, ``onesided``,
+            ``surface``, ``push``.
         """
         return {}
 
@@ -852,5 +859,148 @@ class HandSpring(Element):
         return complex(out) if np.ndim(out) == 0 else out
 
 
-#: The registered elements, in the order a wall applies them (delay, damper, filter, amplifier, hand spring).
-ELEMENTS: tuple[type[Element], ...] = (Delay, Damper, VelocityFilter, AmplifierLag, HandSpring)
+_ONE_SIDED_LINEAR = (
+    "a one-sided wall is not a linear loop (it pushes only inside and is zero outside): the exact linear bound, "
+    "Colgate–Schenkel and the describing function do not cover it; the exact simulation does"
+)
+
+
+@dataclass(frozen=True)
+class OneSided(Element):
+    """A one-sided wall: it pushes only while the reading is beyond the surface, and is zero outside.
+
+    With the surface at s ticks of the encoder grid (default 0, the paper's origin; the wall occupies ξ > s) the
+    wall reads q_h = ⌊ξ_h⌋ + ½ (ξ_h without the encoder) and commands, d samples later,
+    φ = min(0, −(q_h − s) − β_B y_h) while q_h > s, and 0 otherwise: it never pulls (a damper's pull on the way
+    out is cut at 0). The device arrives from free space (:func:`dfa.analysis.simulation.approach_start`), and may
+    leave the wall for good (outcome ``left``). The simulator runs it exactly (:mod:`dfa.core.wall_kernel`); no
+    passivity criterion, linear bound or describing function is derived for it yet, and each says so.
+
+    Attributes
+    ----------
+    surface : float
+        The surface's position s in encoder ticks (a fraction of a tick places it within the grid), default 0.
+
+    Examples
+    --------
+    >>> OneSided().group(1e-3, 1000.0), OneSided.kernel(0.25)["surface"]
+    (0.0, 0.25)
+    """
+
+    surface: float = 0.0
+    parameter: ClassVar[Parameter] = Parameter(
+        "surface", ("ticks", "ticks"), "--surface", "TICKS",
+        "with --one-sided: the surface's position in encoder ticks (default 0, the paper's origin)",
+        "one_sided", "s (ticks)",
+    )  # fmt: skip
+    colgate_schenkel: ClassVar[str | None] = _ONE_SIDED_LINEAR
+    #: Its flags (--one-sided, --surface) are the contact group's (:mod:`dfa.cli.contact`).
+    wall_flag: ClassVar[bool] = False
+    absent: ClassVar[Any] = None
+    #: Why the linear loop (exact linear bound, describing function) does not cover the element.
+    linear_reason: ClassVar[str | None] = _ONE_SIDED_LINEAR
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "surface", self.check_group(self.surface))
+
+    def group(self, period: float, stiffness: float) -> float:
+        return self.surface
+
+    @classmethod
+    def check_group(cls, value: Any) -> float:
+        return check_real("surface", value, "give the surface's position in encoder ticks (0: the paper's origin)")
+
+    @classmethod
+    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+        raise NotCovered(
+            "no passivity criterion is derived yet for a one-sided wall reached from free space (issue 28 §1: the "
+            "controller's memory after the approach is not fresh); the exact simulation covers it"
+        )
+
+    @classmethod
+    def kernel(cls, g: Any) -> dict[str, Any]:
+        return {"onesided": True, "surface": float(g)}
+
+
+@dataclass(frozen=True)
+class Push(Element):
+    """The operator's constant force toward the wall (N; rotary N·m), which keeps the device in contact.
+
+    The paper's bias force: F_p >= 0 pushes in +ξ, into the wall, beside the wall's force; group
+    p = F_p/(K Δ), so it needs the encoder resolution (:meth:`dfa.model.wall.Wall.params` with ``resolution``).
+    Default none: a free impact that may leave the wall for good.
+
+    Attributes
+    ----------
+    push : float
+        The force F_p >= 0 in N (rotary: N·m).
+
+    Examples
+    --------
+    >>> Push(0.9).group(1e-3, 1000.0, resolution=3e-5)     # p = F_p/(K Δ)
+    30.0
+    """
+
+    push: float
+    parameter: ClassVar[Parameter] = Parameter(
+        "push", ("N", "N·m"), "--push", "N",
+        "with --one-sided: the operator's constant force toward the wall in N (rotary: N·m) (default: none)",
+        "push", "p = F_p/(K Δ)",
+    )  # fmt: skip
+    colgate_schenkel: ClassVar[str | None] = "the Colgate–Schenkel condition has no operator's force"
+    wall_flag: ClassVar[bool] = False
+    #: Its group needs the encoder resolution Δ (:meth:`dfa.model.wall.Wall.params`).
+    needs_resolution: ClassVar[bool] = True
+
+    def __post_init__(self) -> None:
+        fix = "give the operator's force toward the wall in N (0 for none)"
+        object.__setattr__(self, "push", check_nonnegative("push", self.push, fix))
+
+    def group(self, period: float, stiffness: float, resolution: float | None = None) -> float:
+        """Give the push's group p = F_p/(K Δ), validated.
+
+        Parameters
+        ----------
+        period : float
+            Sample period T in s (unused).
+        stiffness : float
+            Virtual spring K in N/m (rotary: N·m/rad).
+        resolution : float
+            Encoder resolution Δ in m (rotary: rad); required.
+
+        Returns
+        -------
+        float
+            The push p, in units of the force step K Δ.
+
+        Raises
+        ------
+        DFAValueError
+            Without a resolution.
+        """
+        if resolution is None:
+            raise DFAValueError(
+                "push needs the encoder resolution Δ for its group F_p/(K Δ): call Wall.params(period, resolution=Δ)"
+            )
+        return self.check_group(self.push / (stiffness * resolution))
+
+    @classmethod
+    def check_group(cls, value: Any) -> float:
+        return check_nonnegative("push", value, "p = F_p/(K Δ) cannot be negative (0: no push)")
+
+    @classmethod
+    def renders_nothing(cls, g: Any) -> bool:
+        return g == 0.0
+
+    @classmethod
+    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+        raise NotCovered("no passivity criterion is derived yet with the operator's constant push (issue 28 §1)")
+
+    @classmethod
+    def kernel(cls, g: Any) -> dict[str, Any]:
+        return {"push": float(g)}
+
+
+#: The registered elements, in the order a wall applies them (delay, damper, filter, amplifier, hand spring,
+#: one-sided contact, push).
+ELEMENTS: tuple[type[Element], ...] = (Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push)

@@ -53,6 +53,7 @@ from .elements import (
     Element,
     HandSpring,
     NotCovered,
+    OneSided,
     VelocityFilter,
 )
 
@@ -330,10 +331,13 @@ class WallParams:
         Returns
         -------
         dict
-            ``delay`` (samples), ``damping`` β_B, ``pole`` a, ``filtered``, ``lag`` α and ``spring`` κ_h (the hand
-            stiffness), from every element.
+            ``delay`` (samples), ``damping`` β_B, ``pole`` a, ``filtered``, ``lag`` α, ``spring`` κ_h (the hand
+            stiffness), ``onesided``, ``surface`` s and ``push`` p, from every element.
         """
-        out: dict[str, Any] = {"delay": 0, "damping": 0.0, "pole": 0.0, "filtered": False, "lag": 0.0, "spring": 0.0}
+        out: dict[str, Any] = {
+            "delay": 0, "damping": 0.0, "pole": 0.0, "filtered": False, "lag": 0.0, "spring": 0.0,
+            "onesided": False, "surface": 0.0, "push": 0.0,
+        }  # fmt: skip
         for k, g in self.groups:
             for key, value in k.kernel(g).items():
                 out[key] = out[key] + value if key == "delay" else value
@@ -347,10 +351,34 @@ class WallParams:
         CommandPolynomials
             The spring's H(z) = 1 with every element applied in order (:mod:`dfa.model.elements`).
         """
+        self.check_linear()
         h = CommandPolynomials.spring_only()
         for k, g in self.groups:
             h = k.command(g, h)
         return h
+
+    def linear_reason(self) -> str | None:
+        """Say why the linear loop (exact linear bound, describing function) does not cover this wall.
+
+        Returns
+        -------
+        str or None
+            The first element's reason (a one-sided wall); None when the linear loop covers the wall.
+        """
+        reasons = [k.linear_reason for k, _ in self.groups if k.linear_reason]
+        return reasons[0] if reasons else None
+
+    def check_linear(self) -> None:
+        """Refuse a wall the linear loop does not cover (:meth:`linear_reason`), rather than treat it as bilateral.
+
+        Raises
+        ------
+        NotCovered
+            With the element's reason.
+        """
+        why = self.linear_reason()
+        if why is not None:
+            raise NotCovered(why)
 
     def plant(self, rate: float, mu: float) -> tuple[Any, Any] | None:
         """Give the exact ZOH plant when an element sits between hold and device, or acts on the device.
@@ -372,6 +400,11 @@ class WallParams:
             if out is not None:
                 return out
         return None
+
+    @property
+    def one_sided(self) -> bool:
+        """True for a one-sided wall (:class:`~dfa.model.elements.OneSided`)."""
+        return self.group(OneSided) is not None
 
     def plant_response(self, omega: Any) -> Any:
         """Give the continuous factor between hold and device.
@@ -605,13 +638,15 @@ class Wall:
         b = Damper(damping)
         return Wall(self.stiffness, others + ((b,) if b.damping else ()))
 
-    def params(self, period: float) -> WallParams:
+    def params(self, period: float, resolution: float | None = None) -> WallParams:
         """Dimensionless groups (β_B, d, ν_c, α and any further element's) at sample period ``period``.
 
         Parameters
         ----------
         period : float
             Sample period T in s, > 0.
+        resolution : float, optional
+            Encoder resolution Δ in m (rotary: rad), for elements whose group needs it (a push, p = F_p/(K Δ)).
 
         Returns
         -------
@@ -624,7 +659,13 @@ class Wall:
             If the filter cutoff is not below the Nyquist frequency 1/(2T).
         """
         t = check_positive("period", period, "give the sample period T in s (1 kHz: 0.001)")
-        return WallParams(tuple((type(e), e.group(t, self.stiffness)) for e in self.elements))
+
+        def group(e: Element) -> Any:
+            if type(e).needs_resolution:
+                return e.group(t, self.stiffness, resolution=resolution)  # type: ignore[call-arg]
+            return e.group(t, self.stiffness)
+
+        return WallParams(tuple((type(e), group(e)) for e in self.elements))
 
     def to_dict(self) -> dict[str, object]:
         """The wall's physical parameters as a JSON-able dictionary.

@@ -44,7 +44,9 @@ def _g(x: float | None, digits: int = 4) -> str:
     return number(x, digits, none="-", inf="inf")
 
 
-def wall_dict(controller: Any, period: float, units: dict[str, str]) -> dict[str, object]:
+def wall_dict(
+    controller: Any, period: float, units: dict[str, str], resolution: float | None = None
+) -> dict[str, object]:
     """The ``"wall"`` object of the JSON output: physical values, units and dimensionless groups.
 
     Parameters
@@ -55,6 +57,8 @@ def wall_dict(controller: Any, period: float, units: dict[str, str]) -> dict[str
         Sample period T in s.
     units : dict
         The device's unit strings (:attr:`dfa.Device.units`).
+    resolution : float, optional
+        The encoder resolution Δ (m, rad), for a push's group F_p/(K Δ).
 
     Returns
     -------
@@ -64,7 +68,7 @@ def wall_dict(controller: Any, period: float, units: dict[str, str]) -> dict[str
         ``dimensionless``: the groups as :meth:`dfa.model.wall.WallParams.to_dict` names them (damping β_B,
         delay d, cutoff ν_c, lag α).
     """
-    p = controller.params(period)
+    p = controller.params(period, resolution)
     out = dict(controller.to_dict())
     out["amplifier_time_constant"] = controller.amplifier_time_constant
     out["units"] = {
@@ -113,7 +117,9 @@ def controller_short(controller: Any, units: dict[str, str]) -> str:
     return ", ".join([*parts, f"d = {controller.delay}"])
 
 
-def controller_parts(controller: Any, period: float, units: dict[str, str]) -> tuple[str, str]:
+def controller_parts(
+    controller: Any, period: float, units: dict[str, str], resolution: float | None = None
+) -> tuple[str, str]:
     """The controller's physical values and its dimensionless groups, the two halves of :func:`controller_line`.
 
     Parameters
@@ -124,13 +130,15 @@ def controller_parts(controller: Any, period: float, units: dict[str, str]) -> t
         Sample period T in s.
     units : dict
         The device's unit strings.
+    resolution : float, optional
+        The encoder resolution Δ (m, rad), for a push's group F_p/(K Δ).
 
     Returns
     -------
     tuple of str
         ``controller: K = …, B = …, delay …, velocity filter …, amplifier …`` and ``β_B = …, ν_c = …, α = …``.
     """
-    p = controller.params(period)
+    p = controller.params(period, resolution)
     d = controller.delay
     filt = (
         "no velocity filter"

@@ -34,6 +34,7 @@ OUTCOME_TEXT = {
     "oscillating": "persistent oscillation of one tick or more",
     "unstable": "diverged (past the bound, or a growing envelope)",
     "undecided": "the motion is still changing at the end of the run",
+    "left": "left the one-sided wall for good: outside, moving away, and nothing brings it back",
 }
 
 

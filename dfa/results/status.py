@@ -198,6 +198,7 @@ class SimulationOutcome(StatusEnum):
     UNSTABLE = ("unstable", "diverged (past the bound, or a growing envelope)")
     CHATTER = ("chatter", "never comes to rest; the force keeps toggling below one tick of motion (a buzz)")
     UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
+    LEFT = ("left", "left the one-sided wall for good: outside, moving away, and nothing brings it back")
 
 
 class BatchStatus(StatusEnum):

@@ -1,0 +1,54 @@
+"""The contact flags: ``--one-sided``, ``--surface TICKS`` and ``--push N`` (issue 28 §1), on ``dfa simulate``.
+
+A one-sided wall (:class:`~dfa.model.elements.OneSided`) pushes only while the reading is beyond its surface, and
+the operator may push toward it with a constant force (:class:`~dfa.model.elements.Push`). The run then starts
+in free space, D samples before the device reaches the wall at the impact speed, with the controller's memory
+of the approach (:func:`dfa.analysis.approach.approach_start`). The other commands do not take these flags yet:
+no criterion, linear bound or describing function is derived for a one-sided wall.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from ..model.device import Device
+from ..model.elements import Element, OneSided, Push
+from .parsing import UsageError, number
+
+__all__ = ["add_contact_args", "contact_elements"]
+
+
+def add_contact_args(p: argparse.ArgumentParser) -> None:
+    """--one-sided, --surface and --push, in their own group."""
+    g = p.add_argument_group("contact (default: the paper's bilateral spring)")
+    g.add_argument(
+        "--one-sided",
+        action="store_true",
+        help="a one-sided wall reached from free space: it pushes only while the reading is beyond the surface "
+        "and never pulls; the run starts in free space before contact (default: bilateral)",
+    )
+    g.add_argument("--surface", type=number("--surface", "ticks"), metavar="TICKS", help=OneSided.parameter.help)
+    g.add_argument("--push", type=number("--push", "N"), metavar="N", help=Push.parameter.help)
+
+
+def contact_elements(args: argparse.Namespace, device: Device | None) -> tuple[Element, ...]:
+    """The contact's wall elements of the flags (none without --one-sided), or a one-line refusal (exit 2)."""
+    surface, push = getattr(args, "surface", None), getattr(args, "push", None)
+    if not getattr(args, "one_sided", False):
+        given = [f for f, v in (("--surface", surface), ("--push", push)) if v is not None]
+        if given:
+            raise UsageError(f"{', '.join(given)} needs --one-sided: they describe a one-sided wall; add --one-sided")
+        return ()
+    if device is None:
+        raise UsageError(
+            "--one-sided needs a physical device and stiffness (the push and the approach are in physical "
+            "units): give --device NAME (or --mass --damping --coulomb --resolution --period) and --stiffness K"
+        )
+    if surface is not None and not abs(surface) < 1e9:
+        raise UsageError(f"--surface {surface:g} is invalid: give the surface's position in ticks, e.g. 0 or 0.25")
+    if push is not None and not push >= 0.0:
+        raise UsageError(f"--push {push:g} is invalid: the operator's force toward the wall must be >= 0 N")
+    out: list[Element] = [OneSided(0.0 if surface is None else surface)]
+    if push:
+        out.append(Push(push))
+    return tuple(out)

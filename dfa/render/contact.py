@@ -1,0 +1,38 @@
+"""The contact a run assumed, in words (issue 28 §1): a one-sided wall reached from free space, and the push."""
+
+from __future__ import annotations
+
+from ..formatting import number
+from ..model.wall import WallParams
+
+__all__ = ["contact_line"]
+
+
+def contact_line(wall: WallParams, samples: int, speed: float) -> str:
+    """One sentence: the surface, the push and the approach of a one-sided wall's run.
+
+    Parameters
+    ----------
+    wall : WallParams
+        The one-sided wall's groups.
+    samples : int
+        Samples of approach before the device reaches the wall.
+    speed : float
+        Impact speed, ticks per sample.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from dfa.model.elements import OneSided
+    >>> contact_line(WallParams(((OneSided, 0.0),)), 3, 2.0)
+    'contact: one-sided wall, surface at 0 ticks, no push; the run starts 3 samples before the device reaches it at 2 ticks/sample, with the memory of that approach'
+    """
+    a = wall.kernel_args()
+    push = f"push p = F_p/(KΔ) = {number(a['push'], 4)}" if a["push"] else "no push"
+    return (
+        f"contact: one-sided wall, surface at {number(a['surface'], 4)} ticks, {push}; the run starts {samples} "
+        f"samples before the device reaches it at {number(speed, 4)} ticks/sample, with the memory of that approach"
+    )
