@@ -129,6 +129,7 @@ def test_one_sided_cli_simulate_text_json_and_refusals(capsys):
     assert main([*argv, "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["outcome"] == "left" and d["wall"]["dimensionless"]["one_sided"] == 0.0
+    assert (d["wall"]["one_sided_surface"], d["wall"]["push"], d["wall"]["units"]["push"]) == (0.0, 0.0, "N")
     assert d["xi0"] == pytest.approx(-1.5 * 0.05 / (3e-5 * 3000.0), rel=1e-12)  # ξ_e − V(D − ½), D = 2
     for extra, words in (
         (["--preload"], "--preload cannot be combined with --one-sided"),

@@ -54,6 +54,7 @@ from .elements import (
     HandSpring,
     NotCovered,
     OneSided,
+    Push,
     VelocityFilter,
 )
 
@@ -684,5 +685,9 @@ class Wall:
         }
         if self.hand_stiffness:  # only with a hand stiffness: every other wall's record is unchanged
             out["hand_stiffness"] = self.hand_stiffness
+        surface = self._value(OneSided, None)
+        if surface is not None:  # only for a one-sided wall, and its push if any
+            out["one_sided_surface"] = surface
+            out["push"] = float(self._value(Push, 0.0))
         why = {"filter_cutoff": "no velocity filter", "amplifier_bandwidth": "ideal amplifier (no lag)"}
         return explain_nulls(out, why)

@@ -81,6 +81,8 @@ def wall_dict(
     }
     if controller.hand_stiffness:
         out["units"]["hand_stiffness"] = units["stiffness"]
+    if "one_sided_surface" in out:
+        out["units"] |= {"one_sided_surface": "ticks", "push": units["force"]}
     no_filter = "no velocity filter"
     out["dimensionless"] = explain_nulls(to_jsonable(p.to_dict()), {"cutoff": no_filter})
     why = {"filter_cutoff": no_filter, "amplifier_bandwidth": "ideal amplifier (no lag)"}
