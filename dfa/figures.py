@@ -262,11 +262,12 @@ def regions_plot(
     return ax
 
 
-def _outcome_handles() -> list[Artist]:
-    """One colour patch per outcome class, every class (also those absent from the figure)."""
+def _outcome_handles(left: bool = False) -> list[Artist]:
+    """One colour patch per outcome class, every class (also those absent from the figure); ``left`` (a one-sided
+    wall's) only when ``left``."""
     return [
         Patch(facecolor=OUTCOME_COLORS[k], edgecolor="0.4", label=_OUTCOME_LABELS[k])
-        for k in ("rest", "chatter", "oscillating", "unstable", "undecided")
+        for k in ("rest", "chatter", "oscillating", "unstable", "undecided") + (("left",) if left else ())
     ]
 
 
@@ -310,7 +311,8 @@ def _map_line_handles(smap, drawn: list, extent: tuple[float, float, float, floa
     """Legend entries of the map's criterion lines: a line only for what lies inside the panels; what lies
     outside them is said in words (which side), without a line."""
     if all(d is None for d in drawn):
-        return [matplotlib.lines.Line2D([], [], ls="none", label="no criterion line: amplifier lag")]
+        why = "one-sided wall" if smap.wall.one_sided else ("amplifier lag" if smap.wall.lag else "not covered")
+        return [matplotlib.lines.Line2D([], [], ls="none", label=f"no criterion line: {why}")]
     spring = smap.wall.is_spring
     name = "critical line (eq. 10)" if spring else "critical line, eq. 10 with the wall"
     wheres = [d[2] for d in drawn if d is not None]
@@ -424,7 +426,7 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
                 f"μ = {smap.mu:.4g}, {what} {_speed_text(v, device)}" + (f", delay {smap.delay}" if smap.delay else ""),
                 fontsize=8,
             )
-    handles = _outcome_handles() + _map_line_handles(smap, drawn, extent)
+    handles = _outcome_handles(bool(smap.wall.one_sided)) + _map_line_handles(smap, drawn, extent)
     if point is not None:
         handles.append(matplotlib.lines.Line2D([], [], label="operating point", **POINT_STYLE))
     _legend_outside(axes[-1] if len(axes) <= 2 else axes[min(1, len(axes) - 1)], handles)

@@ -141,3 +141,27 @@ def test_one_sided_cli_simulate_text_json_and_refusals(capsys):
         assert err.count("\n") == 1 and words in err, err
     assert main(argv[:-1] + ["--surface", "0.5"]) == 2
     assert "--surface needs --one-sided" in capsys.readouterr().err
+
+
+def test_fig4_one_sided_map_points_are_the_approach_runs(capsys, tmp_path):
+    """Every point of a one-sided wall's map is `simulate` from the approach start, with the approach's samples
+    added to the run length; its counts and legend name `left`; a preload is refused."""
+    from dfa.analysis.maps import stability_map
+
+    w = _wall(damping=0.3, delay=1)
+    m = stability_map(20.0, [0.8], grid=3, samples=300, wall=w, n_jobs=1, progress=False)
+    x0, v0, d = approach_start(0.8, wall=w)
+    assert m.samples == 300 + d
+    for i, s in enumerate(m.sigma):
+        for j, b in enumerate(m.beta):
+            r = simulate(20.0, b, s, v0, samples=m.samples, xi0=x0, wall=w)
+            assert dfa.analysis.simulation.OUTCOMES[m.outcome[0, i, j]] == r.outcome.value
+    assert "left" in m.counts()[0] and sum(m.counts()[0].values()) == 9
+    with pytest.raises(dfa.DFAValueError, match="preload = True is invalid with a one-sided wall"):
+        stability_map(20.0, [0.8], grid=2, samples=100, wall=w, preload=True, n_jobs=1, progress=False)
+    argv = ["map", "--device", "delta", "--stiffness", "20000", "--velocity", "0.05", "--one-sided", "--grid", "4"]
+    assert main([*argv, "--out", str(tmp_path / "m.npz"), "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["counts"][0]["left"] == 16 and d["operating_point_runs"][0]["outcome"] == "left"  # free impacts
+    assert main([*argv, "--out", str(tmp_path / "m.npz"), "--preload"]) == 2
+    assert "preload" in capsys.readouterr().err

@@ -261,11 +261,11 @@ class StabilityMap(PlaneGrid, Result):
         """
         from .simulation import simulate
 
+        starts = [map_start(self.mu, v, self.preload, self.wall, self.quantize) for v in self.xi_dots]
         if bound is None:
-            bound = divergence_bound(0.0, max(abs(v) for v in self.xi_dots), self.mu)
+            bound = max(divergence_bound(x, v, self.mu) for x, v in starts)
         runs = []
-        for v in self.xi_dots:
-            x0, v0 = (preload_position(self.mu, v), 0.0) if self.preload else (0.0, v)
+        for x0, v0 in starts:
             runs.append(
                 simulate(
                     self.mu,
@@ -599,13 +599,19 @@ def stability_map(
     quantize = check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
     preload = check_bool("preload", preload, "pass True (start from the spring preload) or False (from ξ0 = 0)")
     progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
+    if w.one_sided:  # the approach's samples before contact come first
+        from .approach import approach_samples
+
+        n += approach_samples(w)
     if bound is None:  # beyond the fastest start's own travel (dfa.analysis.simulation.divergence_bound)
-        bound = divergence_bound(0.0, float(np.max(np.abs(speeds))), m)
+        starts = [map_start(m, v, preload, w, quantize) for v in speeds]
+        bound = max(divergence_bound(x, v, m) for x, v in starts) if w.one_sided else None
+        bound = divergence_bound(0.0, float(np.max(np.abs(speeds))), m) if bound is None else bound
     rules = check_rules(bound, stable_amplitude, growth, settle)
     check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
     beta, sigma = np.linspace(b0, b1, g), np.linspace(s0, s1, g)
-    pts_b, pts_s, x0, v0 = _points(m, beta, sigma, speeds, preload)
-    if preload:
+    pts_b, pts_s, x0, v0 = _points(m, beta, sigma, speeds, preload, w, quantize)
+    if preload or w.one_sided:
         check_bound(rules[0], float(np.max(np.abs(x0))))  # the rule simulate() applies: the bound lies beyond ξ0
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
     chunks = _chunks(pts_b.size, workers, _chunk_cost(n, w))
@@ -635,17 +641,44 @@ def _check_speeds(xi_dots: ArrayLike) -> tuple[float, ...]:
     return speeds
 
 
+def map_start(mu: float, speed: float, preload: bool, wall: WallParams, quantize: bool = True) -> tuple[float, float]:
+    """(ξ0, ξ'0) of a map's runs at one speed: the impact at the wall's origin, its spring preload, or a one-sided
+    wall's approach from free space (:func:`dfa.analysis.approach.approach_start`; the map's run length counts
+    the approach's samples too).
+
+    Raises
+    ------
+    DFAValueError
+        For a preload with a one-sided wall (its runs start with the approach).
+    """
+    if wall.one_sided:
+        if preload:
+            raise DFAValueError(
+                "preload = True is invalid with a one-sided wall: its runs start in free space with the approach; "
+                "pass preload=False"
+            )
+        from .approach import approach_start
+
+        x0, v0, _d = approach_start(speed, wall=wall, quantize=quantize)
+        return x0, v0
+    return (preload_position(mu, speed), 0.0) if preload else (0.0, speed)
+
+
 def _points(
-    mu: float, beta: np.ndarray, sigma: np.ndarray, speeds: tuple[float, ...], preload: bool
+    mu: float,
+    beta: np.ndarray,
+    sigma: np.ndarray,
+    speeds: tuple[float, ...],
+    preload: bool,
+    wall: WallParams,
+    quantize: bool,
 ) -> tuple[np.ndarray, ...]:
-    """β, σ, ξ0, ξ'0 of every run: grid rows σ, columns β, one grid per speed (or per preload)."""
+    """β, σ, ξ0, ξ'0 of every run: grid rows σ, columns β, one grid per speed (:func:`map_start`)."""
     bb, ss = np.meshgrid(beta, sigma)
     pts_b = np.tile(bb.ravel(), len(speeds))
     pts_s = np.tile(ss.ravel(), len(speeds))
-    if preload:
-        x0 = np.repeat([preload_position(mu, v) for v in speeds], bb.size)
-        return pts_b, pts_s, x0, np.zeros_like(x0)
-    return pts_b, pts_s, np.zeros(pts_b.size), np.repeat(np.asarray(speeds, dtype=float), bb.size)
+    starts = np.array([map_start(mu, v, preload, wall, quantize) for v in speeds])
+    return pts_b, pts_s, np.repeat(starts[:, 0], bb.size), np.repeat(starts[:, 1], bb.size)
 
 
 def _chunk_cost(samples: int, wall: WallParams) -> float:

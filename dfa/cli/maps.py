@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..checks import check_damping_rate
 from ..results.jsonable import explain_nulls
+from .contact import add_contact_args
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import (
     MAP_TIME_LIMIT_HOURS,
@@ -53,6 +54,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--samples", type=integer("--samples"), default=50_000, metavar="N", help="samples per run (default: 50000)"
     )
     add_wall_args(p)
+    add_contact_args(p)
     p.add_argument("--preload", action="store_true", help="spring preload instead of an initial speed (default: off)")
     p.add_argument(
         "--no-quantization", action="store_true", help="linear spring, no encoder (default: with the encoder)"
@@ -129,6 +131,8 @@ def _point_note(r: SimulationResult, phys: dict[str, Any]) -> str:
     if r.outcome == "rest":
         return f"rest at {phys['rest_time_s']:.4g} s"
     amp = phys["amplitude_si"]
+    if r.outcome == "left":
+        return "left the one-sided wall for good"
     return str(r.outcome.value) + ("" if amp is None else f", amplitude {amp:.3g} {phys['position_unit']}")
 
 
@@ -176,8 +180,10 @@ def _print(
         f"stability map μ = {m.mu:g}, β in [{b[0]:g}, {b[-1]:g}], σ in [{s[0]:g}, {s[-1]:g}], "
         f"{b.size}×{s.size} points, {m.samples} samples" + (", spring preload" if m.preload else "")
     )
-    names = ("rest", "chatter", "oscillating", "unstable", "undecided")
-    rows = [[f"{v:g}", *(c[k] for k in names)] for v, c in zip(m.xi_dots, m.counts(), strict=False)]
+    counts = m.counts()
+    names: tuple[str, ...] = ("rest", "chatter", "oscillating", "unstable", "undecided")
+    names += ("left",) if any("left" in c for c in counts) else ()  # a one-sided wall's runs only
+    rows = [[f"{v:g}", *(c.get(k, 0) for k in names)] for v, c in zip(m.xi_dots, counts, strict=False)]
     say(table(rows, ["ξ'0", *names]))
     if runs and inp is not None and inp.device is not None and inp.params is not None:
         vu = inp.device.units["velocity"]
