@@ -283,6 +283,7 @@ def test_hand_cli_states_the_hand_and_its_group(capsys):
     assert main(argv) == 0
     out = " ".join(capsys.readouterr().out.split())  # the lines wrap at 100 characters
     assert "hand stiffness k_h = 135 N/m" in out and "κ_h = k_h/K = 0.0675" in out
+    assert "eq. 6 extended to the damper, filter and delay, with the hand's storage ½κ_h ξ²" in out
     assert main([*argv, "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     t = 1.0 / 3000.0

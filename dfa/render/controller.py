@@ -119,6 +119,11 @@ def controller_short(controller: Any, units: dict[str, str]) -> str:
     return ", ".join([*parts, f"d = {controller.delay}"])
 
 
+def _hand_storage(wall: Any) -> str:
+    """``", with the hand's storage ½κ_h ξ²"`` when a hand stiffness is in the wall, else empty."""
+    return ", with the hand's storage ½κ_h ξ²" if getattr(wall, "hand_stiffness", 0.0) else ""
+
+
 def controller_parts(
     controller: Any, period: float, units: dict[str, str], resolution: float | None = None
 ) -> tuple[str, str]:
@@ -201,7 +206,10 @@ def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
     )
     return [
         ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
-        ["criterion", f"eq. 6 extended to the damper, filter and delay (dfa.analysis.criterion): {rule}"],
+        [
+            "criterion",
+            f"eq. 6 extended to the damper, filter and delay{_hand_storage(r.wall)} (dfa.analysis.criterion): {rule}",
+        ],
         ["corner", corner],
         ["region", f"{r.region}: {r.status.message}"],
         ["passive", verdict],
