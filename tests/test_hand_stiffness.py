@@ -316,3 +316,14 @@ def test_hand_every_command_takes_or_refuses_it(capsys):
     assert main([*tiny, "--json"]) == 0
     free = json.loads(capsys.readouterr().out)
     assert held["outcome"] == free["outcome"] and held["final_xi"] == pytest.approx(free["final_xi"], rel=1e-12)
+
+
+def test_hand_report_wall_table_names_k_h_and_its_group():
+    """The design report's wall table (dfa.render.controller.controller_rows) has k_h and κ_h = k_h/K rows with a
+    hand stiffness, and no such rows without one."""
+    from dfa.render.controller import controller_rows
+
+    dev = dfa.get_device("delta").device
+    rows = dict(controller_rows(Wall.of(2000.0, hand_stiffness=135.0), dev.period, dev.units))
+    assert rows["hand stiffness k_h (to the wall's origin)"] == "135 N/m" and rows["κ_h = k_h/K"] == "0.0675"
+    assert not any("k_h" in k for k in dict(controller_rows(Wall.of(2000.0, damping=1.0), dev.period, dev.units)))

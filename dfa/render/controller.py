@@ -309,15 +309,23 @@ def controller_rows(controller: Any, period: float, units: dict[str, str]) -> li
     fc, bw = c["filter_cutoff"], c["amplifier_bandwidth"]
     amp = "ideal (no lag)" if bw is None else f"{_g(bw)} Hz (τ_a = 1/(2π f_bw) = {_g(c['amplifier_time_constant'])} s)"
     d = controller.delay
+    hand = (  # only with a hand stiffness: every other wall's table is unchanged
+        [["hand stiffness k_h (to the wall's origin)", f"{_g(controller.hand_stiffness)} {units['stiffness']}"]]
+        if controller.hand_stiffness
+        else []
+    )
+    groups = [["κ_h = k_h/K", _g(dim["hand_stiffness"])]] if controller.hand_stiffness else []
     return [
         ["stiffness K", f"{_g(controller.stiffness, 5)} {units['stiffness']}"],
         ["virtual damping B (backward-difference velocity)", f"{_g(controller.damping)} {units['damping']}"],
         ["computational delay d", f"{d} sample{'s' if d != 1 else ''}"],
         ["velocity filter cutoff f_c", "none" if fc is None else f"{_g(fc)} Hz (first-order low-pass)"],
         ["amplifier bandwidth f_bw", amp],
+        *hand,
         ["β_B = B/(KT)", _g(dim["damping"])],
         ["ν_c = f_c·T", "none" if dim["cutoff"] is None else _g(dim["cutoff"])],
         ["α = τ_a/T", _g(dim["lag"])],
+        *groups,
     ]
 
 
