@@ -103,14 +103,17 @@ def test_eq4_one_sided_approach_memory_is_the_approach_not_the_start():
 
 
 def test_one_sided_analyses_without_a_derivation_refuse():
-    """The criterion, the linear loop and the describing function refuse a one-sided wall with the reason."""
+    """The criterion refuses a one-sided wall with memory or a push; the linear loop and the describing function
+    refuse any one-sided wall, with the reason."""
     w = _wall()
-    with pytest.raises(NotCovered, match="one-sided wall reached from free space"):
-        w.corner()
+    with pytest.raises(NotCovered, match="one-sided wall with delay, damper reached from free space"):
+        _wall(damping=0.2, delay=1).corner()
+    with pytest.raises(dfa.DFAValueError, match="operator.s constant push"):
+        passivity_criterion(1.0, 1.0, 1.0, wall=_wall(push=0.5), mu=10.0)
     assert "not a linear loop" in (w.linear_reason() or "") and w.colgate_schenkel_reason()
     with pytest.raises(NotCovered, match="not a linear loop"):
         w.command()
-    with pytest.raises(dfa.DFAError):
+    with pytest.raises(dfa.DFAError, match="needs μ"):
         passivity_criterion(1.0, 1.0, 1.0, wall=w)
     with pytest.raises(dfa.DFAError, match="not a linear loop"):
         dfa.limit_cycles(dfa.Params(100.0, 0.1, 0.3), wall=w)
@@ -165,3 +168,28 @@ def test_fig4_one_sided_map_points_are_the_approach_runs(capsys, tmp_path):
     assert d["counts"][0]["left"] == 16 and d["operating_point_runs"][0]["outcome"] == "left"  # free impacts
     assert main([*argv, "--out", str(tmp_path / "m.npz"), "--preload"]) == 2
     assert "preload" in capsys.readouterr().err
+
+
+def test_eq6_one_sided_criterion_is_the_spring_at_the_contact_speed():
+    """The lone one-sided spring: corner (½, ½) at V' = √(V² + ε²/μ), ε = ⌊s + ½⌋ − s + V (s − s + V = V without
+    the encoder), and its start state is the approach."""
+    from dfa.analysis.criterion import start_state
+
+    for s, q, eps in ((0.0, True, 2.0), (0.3, True, 0.0 - 0.3 + 2.0), (0.7, True, 1.0 - 0.7 + 2.0), (0.3, False, 2.0)):
+        r = passivity_criterion(0.3, 1.0, 2.0, wall=_wall(s), mu=10.0, quantized=q)
+        assert (r.critical_line.beta0, r.critical_line.sigma0) == (0.5, 0.5 if q else 0.0)
+        assert r.equivalent_speed == pytest.approx(np.sqrt(4.0 + eps * eps / 10.0), rel=1e-14)
+    assert start_state(_wall()).startswith("an approach from free space at V")
+
+
+def test_eq6_one_sided_sampled_passive_points_never_exceed_the_contact_energy():
+    """1500 derandomised points: S = ½μξ'² + ½((ξ − s)⁺)² never exceeds ½μV'² after an exact approach; the
+    bilateral spring's claim S <= ½μV² fails at almost every point (the check can fail).
+
+    The 10⁵-point run: ``python -m dfa.cli.soundness_report --one-sided`` (reports/validation)."""
+    from dfa.analysis.soundness import one_sided_soundness
+
+    r = one_sided_soundness(1500, seed=2024)
+    assert r.points == 1500 and r.violations == 0 and r.criterion == "one-sided"
+    assert r.by_case is not None and r.by_case["surface != 0"] > 900 and r.by_case["no encoder"] > 150
+    assert one_sided_soundness(300, criterion="bilateral", seed=2024).energy_grew > 250

@@ -49,6 +49,16 @@ def test_eq6_hand_soundness_counts_in_trust_page_match_the_committed_run():
     assert f"the damper-ignoring criterion fails on {_int(ignoring['violations'])}." in flat
 
 
+def test_eq6_one_sided_soundness_counts_in_trust_page_match_the_committed_run():
+    """docs/trust.md's one-sided claim is reports/validation/one_sided_soundness.json (10⁵ points, no violation)."""
+    runs = json.loads((ROOT / "reports/validation/one_sided_soundness.json").read_text(encoding="utf-8"))
+    ours, bilateral = runs[0], runs[1]
+    assert ours["criterion"] == "one-sided" and ours["points"] == 100_000 and ours["violations"] == 0
+    flat = _flat(TRUST)
+    assert "0 violations on 10⁵ random passive points after an exactly simulated approach" in flat
+    assert f"the bilateral criterion's claim (½μV²) fails on {_int(bilateral['violations'])}." in flat
+
+
 def test_eq6_grid_soundness_and_conservatism_in_readme_match_the_committed_run():
     flat = _flat(TRUST)
     assert SUMMARY["soundness_violations"] == 0

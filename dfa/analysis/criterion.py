@@ -83,6 +83,21 @@ A hand holding the device
     start in. ``tests/test_hand_stiffness.py`` checks S(h) <= S(0) by exact simulation
     (:mod:`dfa.core.oscillator`) at random points the criterion calls passive.
 
+A one-sided wall reached from free space (issue 28 §1; :class:`~dfa.model.elements.OneSided`, alone)
+    The wall commands φ = −(q − s) while the reading q = ⌊ξ⌋ + ½ is beyond the surface s, and 0 otherwise. Take
+    S = ½μξ'² + H_1(ξ), H_1 = ½((ξ − s)⁺)², f = −(ξ − s)⁺ (1-Lipschitz, non-increasing, so over a sample the
+    storage's part is at most f(ξ_h)Δ + ½Δ²). The quantization error |φ_h − f(ξ_h)| <= ½ at every reading
+    (inside with ξ >= s: ξ − q; inside with ξ < s: −(q − s) ∈ (−½, 0); outside with ξ > s: (ξ − s) ∈ (0, ½)),
+    so step 1 and the bracket of step 4 read as the spring's: (½ − β)Δ² + (½ − σ)|Δ|. The approach: until the
+    first reading inside the operator's force σ + βV balances friction exactly (ξ' = V, S changes only by H_1),
+    so at the first reading inside S = ½μV² + ½ε², ε = (ξ − s)⁺ < ξ_e − s + V, ξ_e = ⌊s + ½⌋ the first position
+    the wall sees (:meth:`~dfa.model.elements.OneSided.contact_excess`; ξ_e = s without the encoder). From then
+    on (no push, no delay, no damper: no memory) step 5 holds with ½μV'² = S: the corner (½, ½) at
+    V' = √(V² + ε²/μ), and S(t) <= ½μV'² for all t. With a delay, a damper, a filter, a push or a hand stiffness
+    the controller's memory of the approach (or the push's work) enters the energy: not derived yet, refused
+    (:meth:`dfa.model.wall.WallParams.uncovered`). ``tests/test_one_sided.py`` checks S(h) <= ½μV'² by exact
+    simulation of the approach at random points the criterion calls passive.
+
 What is not proven
     * Amplifier lag (α > 0): the force varies within the sample, step 1's work φΔ no longer holds, and no
       sound closed form is derived here (:class:`~dfa.model.elements.AmplifierLag` says so; the criterion
@@ -163,6 +178,7 @@ from ..checks import (
 from ..core.energy import spring_energy_core
 from ..errors import DFATypeError, DFAValueError
 from ..model.device import Device
+from ..model.elements import OneSided
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.status import CriterionStatus
@@ -216,6 +232,11 @@ def start_state(wall: Any) -> str:
     >>> start_state(WallParams())[:40]
     'any: this wall has no memory (only the r'
     """
+    if getattr(wall, "one_sided", False):
+        return (
+            "an approach from free space at V: the device reaches the wall's first seen position at V (the "
+            "operator's force balancing friction until the first reading inside, none after)"
+        )
     if not has_memory(wall):
         return "any: this wall has no memory (only the reading at t = 0, a sample instant, enters the proof)"
     fresh = []
@@ -743,6 +764,18 @@ def region_of(
     return _REGION_CODES[idx]
 
 
+def _one_sided_speed(xd: float, x0: float, mu: float | None, wall: WallParams, quantized: bool) -> float:
+    """V' = √(V² + ε²/μ) of a one-sided wall's approach at V (module docstring, "A one-sided wall"), or the error."""
+    if mu is None or x0 != 0.0:
+        raise DFAValueError(
+            f"mu = {mu!r}, xi0 = {x0!r} are invalid with a one-sided wall: its criterion is for an approach from free "
+            "space at xi_dot and needs μ (the storage at the first reading inside enters through ½ε²/μ); pass mu "
+            "and xi0 = 0"
+        )
+    eps = OneSided.contact_excess(float(wall.kernel_args()["surface"]), xd, quantized)
+    return math.sqrt(xd * xd + eps * eps / mu)
+
+
 def _corner(wall: WallParams, quantized: bool) -> tuple[float, float]:
     """(β₀, σ₀) of the wall, or the package's error naming the element no criterion covers."""
     bad = wall.uncovered()
@@ -823,8 +856,10 @@ def passivity_criterion(
             f"quantized = {format_value(quantized)} has type {type(quantized).__name__}: it must be True (eq. 6) or False (eq. 7)"
         )
     q = bool(quantized)
-    v = equivalent_speed(xd, x0, m, quantized=q, hand_stiffness=w.hand_stiffness)
     b0, s0 = _corner(w, q)
+    v = _one_sided_speed(xd, x0, m, w, q) if w.one_sided else equivalent_speed(
+        xd, x0, m, quantized=q, hand_stiffness=w.hand_stiffness
+    )  # fmt: skip
     region = str(region_of(b, s, v, s0, b0))
     margin = float(_margin(b, s, v, s0, b0))
     critical = (s - s0) / (b0 - b) if (b < b0 and s >= s0) else None

@@ -80,6 +80,7 @@ __all__ = [
     "sample_passive_points",
     "storage_growth",
     "criterion_soundness",
+    "one_sided_soundness",
     "run_samples",
     "point_wall",
     "BOUND",
@@ -454,3 +455,79 @@ def criterion_soundness(
     counts = tally(pts, pop.point_keys, ns, ratio, at, div)
     case = _cases(pts) if pop.delay is None else None
     return CriterionSoundness(delay=pop.delay, criterion=crit, points=int(points), by_case=case, seed=seed, **counts)
+
+
+def _one_sided_run(
+    mu: float, beta: float, sigma: float, speed: float, surface: float, q: bool, bilateral: bool = False
+) -> tuple:
+    """(largest S/(½μV'²) − 1 from contact on, its sample, diverged, run length) of one approach to a one-sided
+    wall: S = ½μξ'² + ½((ξ − s)⁺)², the bound the criterion states (dfa.analysis.criterion, "A one-sided wall")."""
+    from ..model.elements import OneSided
+    from .approach import approach_start
+
+    wall = WallParams(((OneSided, surface),))
+    x0, v0, d = approach_start(speed, wall=wall, quantize=q)
+    n = d + run_samples(mu)
+    eps = 0.0 if bilateral else OneSided.contact_excess(surface, speed, q)
+    claim = 0.5 * mu * speed * speed + 0.5 * eps * eps  # ½μV'² (½μV² for the bilateral spring's claim)
+    with np.errstate(all="ignore"):
+        r = simulate(mu, beta, sigma, v0, n, x0, quantize=q, wall=wall, bound=BOUND, record=True)
+        xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
+        s = 0.5 * mu * vs * vs + 0.5 * np.maximum(xs - surface, 0.0) ** 2
+        ratio = np.where(np.abs(xs) <= BOUND, s / claim - 1.0, np.inf)
+        ratio = np.where(np.isnan(xs) & (r.outcome is SimulationOutcome.LEFT), -1.0, ratio)  # left: nothing after
+    h = int(np.argmax(ratio))
+    return float(ratio[h]), h + 1, r.outcome is SimulationOutcome.UNSTABLE, n
+
+
+def one_sided_soundness(points: int, *, criterion: str = "one-sided", seed: int = 0) -> CriterionSoundness:
+    """The criterion for a one-sided wall reached from free space, checked by exact simulation of the approach.
+
+    Points: μ log-uniform in [0.1, 10⁴], V uniform in (0, 10] ticks/sample, the surface s uniform in [−1, 1]
+    ticks, the encoder on for 85 %; half on the criterion's boundaries (as :func:`sample_passive_points`). Each
+    run starts :func:`~dfa.analysis.approach.approach_start` samples before contact and runs
+    :func:`run_samples` more; a violation is S = ½μξ'² + ½((ξ − s)⁺)² above ½μV'² (1 + 1e-9) at a sample
+    instant, or divergence (module docstring of :mod:`dfa.analysis.criterion`, "A one-sided wall").
+
+    Parameters
+    ----------
+    points : int
+        Number of points.
+    criterion : {"one-sided", "bilateral"}
+        This package's (V' = √(V² + ε²/μ)), or the bilateral spring's applied to the approach (V, claim ½μV²),
+        whose violations show that the check can fail and that ε must be paid for.
+    seed : int
+        Seed of :func:`numpy.random.default_rng`.
+
+    Returns
+    -------
+    CriterionSoundness
+        With ``by_case``: points with s ≠ 0 and without the encoder.
+    """
+    from ..model.elements import OneSided
+
+    n = check_int("points", points, minimum=1)
+    crit = check_choice("criterion", criterion, ("one-sided", "bilateral"))
+    bilateral = crit == "bilateral"
+    rng = np.random.default_rng(seed)
+    mu = 10.0 ** rng.uniform(-1.0, 4.0, n)
+    xd = rng.uniform(0.0, 10.0, n)
+    xd = np.where(xd > 0.0, xd, 1.0)
+    surface = np.where(rng.random(n) < 0.3, 0.0, rng.uniform(-1.0, 1.0, n))
+    quantized = rng.random(n) < 0.85
+    kind = rng.choice(4, n, p=[0.5, 0.25, 0.125, 0.125])
+    beta, sigma = np.empty(n), np.empty(n)
+    for i in range(n):
+        w = WallParams() if bilateral else WallParams(((OneSided, float(surface[i])),))
+        beta[i], sigma[i] = _point(rng, "controller-aware", kind[i], xd[i], 0.0, mu[i], w, bool(quantized[i]))
+    pts = dict(mu=mu, beta=beta, sigma=sigma, xi0=np.zeros(n), xi_dot=xd, kind=kind, surface=surface,
+               quantized=quantized)  # fmt: skip
+    runs = [
+        _one_sided_run(float(mu[i]), float(beta[i]), float(sigma[i]), float(xd[i]), float(surface[i]),
+                       bool(quantized[i]), bilateral)
+        for i in range(n)
+    ]  # fmt: skip
+    ratio, at, div, ns = (np.array(c) for c in zip(*runs, strict=True))
+    counts = tally(pts, (*STATE_KEYS, "surface", "quantized"), ns, ratio, at, div)
+    case = {"surface != 0": int(np.sum(surface != 0.0)), "no encoder": int(np.sum(~quantized))}
+    return CriterionSoundness(delay=None, criterion=crit, points=n, by_case=case, seed=seed, **counts)

@@ -7,6 +7,7 @@ subcommand: it regenerates the committed reports::
     python -m dfa.cli.soundness_report --points 100000 --out reports/validation           # delay_soundness.md
     python -m dfa.cli.soundness_report --walls --points 100000 --out reports/validation   # controller_soundness.md
     python -m dfa.cli.soundness_report --walls --hand --points 100000 --out reports/validation  # hand_soundness.md
+    python -m dfa.cli.soundness_report --one-sided --points 100000 --out reports/validation  # one_sided_soundness.md
 
 The spring's check runs each delay of ``--delays`` with the seed ``--seed`` + d; the random walls' runs once
 with ``--seed``. One line per record on stderr as it completes. Exit codes: 0 ok; 2 bad input (one line on
@@ -21,7 +22,7 @@ import sys
 from collections.abc import Sequence
 
 from .._io import check_output_folder
-from ..analysis.soundness import CriterionSoundness, Population, criterion_soundness
+from ..analysis.soundness import CriterionSoundness, Population, criterion_soundness, one_sided_soundness
 from ..checks import check_delay, check_int
 from ..errors import DFAError, DFAValueError
 from ..render.files import write_soundness
@@ -71,6 +72,11 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="with --walls: hold half the points by a hand with stiffness and write hand_soundness.md/.json",
     )
+    ap.add_argument(
+        "--one-sided",
+        action="store_true",
+        help="check a one-sided wall reached from free space and write one_sided_soundness.md/.json",
+    )
     return ap
 
 
@@ -86,10 +92,20 @@ def _check(args: argparse.Namespace) -> None:
     check_output_folder("--out", args.out, create=True)
     if args.hand and not args.walls:
         raise DFAValueError("--hand needs --walls: the hand is drawn with random walls; add --walls")
+    if args.one_sided and (args.walls or args.hand):
+        raise DFAValueError("--one-sided cannot be combined with --walls or --hand: it is its own population")
 
 
 def _records(args: argparse.Namespace) -> list[CriterionSoundness]:
     """Run every check the arguments ask for, one line on stderr per record."""
+    if args.one_sided:
+        out = []
+        for k, crit in enumerate(("one-sided", "bilateral")):
+            n = args.points if k == 0 else (args.old_points or args.points)
+            r = one_sided_soundness(n, criterion=crit, seed=args.seed)
+            print(soundness_line(r), file=sys.stderr, flush=True)
+            out.append(r)
+        return out
     walls = [(Population(hand=args.hand), args.seed)]
     pops = walls if args.walls else [(Population(delay=d), args.seed + d) for d in args.delays]
     results = []

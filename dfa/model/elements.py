@@ -872,9 +872,13 @@ class OneSided(Element):
     With the surface at s ticks of the encoder grid (default 0, the paper's origin; the wall occupies ξ > s) the
     wall reads q_h = ⌊ξ_h⌋ + ½ (ξ_h without the encoder) and commands, d samples later,
     φ = min(0, −(q_h − s) − β_B y_h) while q_h > s, and 0 otherwise: it never pulls (a damper's pull on the way
-    out is cut at 0). The device arrives from free space (:func:`dfa.analysis.simulation.approach_start`), and may
-    leave the wall for good (outcome ``left``). The simulator runs it exactly (:mod:`dfa.core.wall_kernel`); no
-    passivity criterion, linear bound or describing function is derived for it yet, and each says so.
+    out is cut at 0). The device arrives from free space (:func:`dfa.analysis.approach.approach_start`), and may
+    leave the wall for good (outcome ``left``). The simulator runs it exactly (:mod:`dfa.core.wall_kernel`).
+
+    The criterion covers it alone (no delay, damper, filter, push or hand stiffness), for an approach at V
+    (:mod:`dfa.analysis.criterion`, "A one-sided wall"): the spring's corner (½, ½) at the speed
+    V' = √(V² + ε²/μ), ε = :meth:`contact_excess`. The linear bound and the describing function do not cover
+    it (not a linear loop), and say so.
 
     Attributes
     ----------
@@ -912,14 +916,35 @@ class OneSided(Element):
 
     @classmethod
     def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
-        raise NotCovered(
-            "no passivity criterion is derived yet for a one-sided wall reached from free space (issue 28 §1: the "
-            "controller's memory after the approach is not fresh); the exact simulation covers it"
-        )
+        return 0.0, 0.0  # the spring's corner; only alone (dfa.model.wall.WallParams.uncovered), see the class
 
     @classmethod
     def kernel(cls, g: Any) -> dict[str, Any]:
         return {"onesided": True, "surface": float(g)}
+
+    @staticmethod
+    def contact_excess(surface: float, speed: float, quantized: bool = True) -> float:
+        """Give the most the storage ½((ξ − s)⁺)² holds at the first reading inside, as a length ε (ticks).
+
+        The device reaches the first position the wall sees, ξ_e = ⌊s + ½⌋ (s without the encoder), moving at V:
+        at the first reading inside it is less than a sample's travel beyond it, so ε = (ξ − s)⁺ < ξ_e − s + V.
+
+        Parameters
+        ----------
+        surface : float
+            The surface s in ticks.
+        speed : float
+            The impact speed V in ticks per sample.
+        quantized : bool, optional
+            With the encoder (default).
+
+        Returns
+        -------
+        float
+            The length ε >= 0 in ticks.
+        """
+        engage = math.floor(surface + 0.5) if quantized else surface
+        return max(engage - surface + abs(speed), 0.0)
 
 
 @dataclass(frozen=True)
