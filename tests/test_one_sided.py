@@ -193,3 +193,23 @@ def test_eq6_one_sided_sampled_passive_points_never_exceed_the_contact_energy():
     assert r.points == 1500 and r.violations == 0 and r.criterion == "one-sided"
     assert r.by_case is not None and r.by_case["surface != 0"] > 900 and r.by_case["no encoder"] > 150
     assert one_sided_soundness(300, criterion="bilateral", seed=2024).energy_grew > 250
+
+
+def test_one_sided_searches_that_start_at_the_origin_refuse_it():
+    """K_max, the Z-width, the speed chart and the design report start their runs at the wall's origin: they
+    refuse a one-sided wall (rather than miss its approach)."""
+    from dfa.analysis.design import design_analysis
+    from dfa.analysis.limits.kmax import design_answer
+    from dfa.analysis.limits.speed_chart import stiffness_speed_chart
+    from dfa.analysis.limits.zwidth import z_width
+
+    dev = dfa.get_device("delta").device
+    w = Wall(2000.0, (OneSided(0.0),))
+    for call in (
+        lambda: design_answer(dev, 0.05, wall=w),
+        lambda: z_width(dev, 0.05, wall=w, grid=2),
+        lambda: stiffness_speed_chart(dev, wall=w),
+        lambda: design_analysis(dev, w, 0.05),
+    ):
+        with pytest.raises(dfa.DFAValueError, match="one-sided wall is not covered by"):
+            call()

@@ -32,7 +32,7 @@ from ..checks import check_int, check_real, check_type
 from ..errors import DFAValueError
 from ..model.wall import WallParams
 
-__all__ = ["approach_start", "approach_samples"]
+__all__ = ["approach_start", "approach_samples", "refuse_one_sided"]
 
 #: The filter's memory of the fresh start is forgotten to this factor by the time the device arrives.
 FORGOTTEN = 1e-16
@@ -118,3 +118,28 @@ def approach_start(
     surface = float(w.kernel_args()["surface"])
     engage = float(math.floor(surface + 0.5)) if quantize else surface  # the first position the wall sees
     return engage - v * (d - ph), v, int(d)
+
+
+def refuse_one_sided(wall: object, what: str) -> None:
+    """Refuse a one-sided wall in an analysis that does not start its runs with the approach yet.
+
+    Parameters
+    ----------
+    wall : Wall or None
+        The analysis's wall.
+    what : str
+        The analysis, for the message (``"the K_max searches"``).
+
+    Raises
+    ------
+    DFAValueError
+        For a wall with a :class:`~dfa.model.elements.OneSided` element.
+    """
+    from ..model.elements import OneSided
+
+    if any(isinstance(e, OneSided) for e in getattr(wall, "elements", ())):
+        raise DFAValueError(
+            f"wall = a one-sided wall is not covered by {what} yet: their runs start at the wall's origin, not with "
+            "the approach from free space; use dfa.simulate from dfa.approach_start, dfa.stability_map, or "
+            "dfa.passivity_criterion (the lone one-sided spring)"
+        )

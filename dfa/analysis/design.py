@@ -29,6 +29,7 @@ from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import DesignStatus
+from .approach import refuse_one_sided
 from .check import PassivityCheck, passivity_check
 from .criterion import CriterionResult
 from .cycles import GrowthThreshold, LimitCycleResult, growth_threshold
@@ -375,6 +376,7 @@ def resolve_design_inputs(
     if not isinstance(wall, Wall):
         wall = Wall(check_positive("wall", wall, "give the wall, or the virtual wall stiffness K"))
     v = check_speed("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1))
+    refuse_one_sided(wall, "the design report")
     wp = wall.params(dev.period)  # a filter above Nyquist or a group out of range is refused here, before any work
     check_search_range(dev, wall, v)  # so is a stiffness range no float search can run (the design answer's …
     if v > 0 and wp.is_spring:

@@ -52,6 +52,7 @@ from ...model.device import Device
 from ...model.wall import Wall
 from ...results.base import Result
 from ...results.status import KMaxStatus, LimitStatus, StiffnessStatus, VelocityStatus
+from ..approach import refuse_one_sided
 from ..criterion import as_wall, device_criterion
 from ..simulation import preload_position
 from .closed_form import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
@@ -577,6 +578,7 @@ def design_answer(
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     v = check_speed("velocity", velocity, dev.units["velocity"])
     w = Wall(1.0) if wall is None else as_wall(wall)
+    refuse_one_sided(w, "the K_max searches")
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     n_grid = check_int("grid", grid, minimum=2, fix="give at least 2 stiffness grid points")
     cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")

@@ -43,6 +43,7 @@ from ...plausibility import warn_if_from_outside
 from ...results.base import Result
 from ...results.frozen import frozen_array
 from ...results.status import ChartStatus
+from ..approach import refuse_one_sided
 from ..cycles.caveats import SUBTICK_LIMIT
 from .closed_form import HAND_SPEED, k_static
 from .kmax import DESIGN_MAX_SAMPLES, closed_forms, passive_speed
@@ -376,6 +377,7 @@ def stiffness_speed_chart(
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     w = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
+    refuse_one_sided(w, "the stiffness-speed chart")
     k_design = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
     v_design = None if velocity is None else check_speed("velocity", velocity)
     for quantity, value in (("stiffness", k_design), ("velocity", v_design)):

@@ -84,6 +84,7 @@ from ...plausibility import warn_if_from_outside
 from ...results.base import Result
 from ...results.codes import BOUNDED, DIVERGES, POINT_OUTCOMES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
 from ...results.status import LimitStatus, LinearStatus, ZWidthStatus
+from ..approach import refuse_one_sided
 from ..colgate_schenkel import colgate_schenkel_damping
 from ..linear_wall import stable_stiffness
 from ..simulation import (
@@ -592,6 +593,7 @@ def z_width(
     v = check_speed("velocity", velocity, dev.units["velocity"], zero=False)
     warn_if_from_outside("velocity", v, rotary=dev.rotary)
     base = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
+    refuse_one_sided(base, "the Z-width")
     g = check_int("grid", grid, minimum=2, fix="give at least 2 points per axis")
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     check_zwidth_size(g, n_speeds)
