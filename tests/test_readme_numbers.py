@@ -38,11 +38,16 @@ def test_eq6_delay_soundness_counts_in_readme_match_the_committed_run():
     assert f"{counts[0]} (d = 0, ξ0 ≠ 0), {counts[1]}, {counts[2]} and {counts[3]}" in flat
 
 
+def _committed_sound_run(stem: str, criterion: str) -> tuple[dict, dict]:
+    """(this package's record, the failing criterion's) of reports/validation/{stem}.json: 10⁵ points, no violation."""
+    ours, other = json.loads((ROOT / f"reports/validation/{stem}.json").read_text(encoding="utf-8"))[:2]
+    assert ours["criterion"] == criterion and ours["points"] == 100_000 and ours["violations"] == 0
+    return ours, other
+
+
 def test_eq6_hand_soundness_counts_in_trust_page_match_the_committed_run():
-    """docs/trust.md's hand-stiffness claim is reports/validation/hand_soundness.json (10⁵ points, no violation)."""
-    hand = json.loads((ROOT / "reports/validation/hand_soundness.json").read_text(encoding="utf-8"))
-    aware, ignoring = hand[0], hand[1]
-    assert aware["criterion"] == "controller-aware" and aware["points"] == 100_000 and aware["violations"] == 0
+    """docs/trust.md's hand-stiffness claim is reports/validation/hand_soundness.json."""
+    aware, ignoring = _committed_sound_run("hand_soundness", "controller-aware")
     flat = _flat(TRUST)
     assert "0 violations on 10⁵ random walls' passive points," in flat
     assert f"{_int(aware['by_case']['hand stiffness'])} of them held by a hand" in flat
@@ -50,10 +55,8 @@ def test_eq6_hand_soundness_counts_in_trust_page_match_the_committed_run():
 
 
 def test_eq6_one_sided_soundness_counts_in_trust_page_match_the_committed_run():
-    """docs/trust.md's one-sided claim is reports/validation/one_sided_soundness.json (10⁵ points, no violation)."""
-    runs = json.loads((ROOT / "reports/validation/one_sided_soundness.json").read_text(encoding="utf-8"))
-    ours, bilateral = runs[0], runs[1]
-    assert ours["criterion"] == "one-sided" and ours["points"] == 100_000 and ours["violations"] == 0
+    """docs/trust.md's one-sided claim is reports/validation/one_sided_soundness.json."""
+    _ours, bilateral = _committed_sound_run("one_sided_soundness", "one-sided")
     flat = _flat(TRUST)
     assert "0 violations on 10⁵ random passive points after an exactly simulated approach" in flat
     assert f"the bilateral criterion's claim (½μV²) fails on {_int(bilateral['violations'])}." in flat
