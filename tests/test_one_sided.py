@@ -213,3 +213,25 @@ def test_one_sided_searches_that_start_at_the_origin_refuse_it():
     ):
         with pytest.raises(dfa.DFAValueError, match="one-sided wall is not covered by"):
             call()
+
+
+def test_eq6_one_sided_cli_check_states_the_proof_its_start_and_the_linear_refusal(capsys):
+    """`dfa check --one-sided`: the criterion's verdict at V' (the same as the API's), the approach as its start
+    state, Colgate–Schenkel not covered; and the device's approach run keeps S <= ½μV'²."""
+    argv = ["check", "--device", "delta", "--stiffness", "20000", "--velocity", "0.05", "--one-sided"]
+    assert main([*argv, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    dev = dfa.get_device("delta").device
+    p = dev.params(20000.0)
+    r = passivity_criterion(p.beta, p.sigma, dev.xi_dot(0.05), wall=_wall(), mu=p.mu)
+    assert d["passive"] is r.passive is True and d["criterion"]["equivalent_speed"] == r.equivalent_speed
+    assert d["start_state"].startswith("an approach from free space") and "colgate_schenkel" in d["reasons"]
+    assert main(argv) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "eq. 6 for a one-sided spring reached from free space" in out and "Colgate–Schenkel not covered" in out
+    x0, v0, n0 = approach_start(dev.xi_dot(0.05), wall=_wall())
+    run = simulate(p.mu, p.beta, p.sigma, v0, samples=n0 + 4000, xi0=x0, wall=_wall(), record=True)
+    xs, vs = run.xi[np.isfinite(run.xi)], run.xi_dot[np.isfinite(run.xi)]
+    assert np.max(0.5 * p.mu * vs**2 + 0.5 * np.maximum(xs, 0.0) ** 2) <= 0.5 * p.mu * r.equivalent_speed**2 * (
+        1 + 1e-9
+    )

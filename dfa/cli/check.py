@@ -7,6 +7,7 @@ from typing import Any
 
 from ..analysis.criterion import device_criterion, passivity_criterion
 from ..model.wall import Wall, WallParams
+from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, say, table
 from .parsing import UsageError, number
@@ -24,6 +25,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_device_args(p, dimensionless=True, speed=True)
     p.add_argument("--no-quantization", action="store_true", help="use eq. 7 (Δ → 0) instead of eq. 6 (default: eq. 6)")
     add_wall_args(p)
+    add_contact_args(p)
     p.add_argument(
         "--xi0",
         type=number("--xi0", "ticks"),

@@ -1,12 +1,12 @@
-"""The contact flags: ``--one-sided``, ``--surface TICKS`` and ``--push N`` (issue 28 §1), on ``dfa simulate``
-and ``dfa map``.
+"""The contact flags: ``--one-sided``, ``--surface TICKS`` and ``--push N`` (issue 28 §1), on ``dfa check``,
+``dfa simulate`` and ``dfa map``.
 
 A one-sided wall (:class:`~dfa.model.elements.OneSided`) pushes only while the reading is beyond its surface, and
 the operator may push toward it with a constant force (:class:`~dfa.model.elements.Push`). The run then starts
 in free space, D samples before the device reaches the wall at the impact speed, with the controller's memory
 of the approach (:func:`dfa.analysis.approach.approach_start`). The other commands do not take these flags yet:
-no criterion, linear bound or describing function is derived for a one-sided wall, and the K_max searches and
-the Z-width do not start their runs with the approach yet.
+the K_max searches and the Z-width do not start their runs with the approach yet, and no linear bound or
+describing function covers a one-sided wall.
 """
 
 from __future__ import annotations

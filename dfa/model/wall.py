@@ -617,6 +617,11 @@ class Wall:
         return float(self._value(HandSpring, 0.0))
 
     @property
+    def one_sided(self) -> bool:
+        """True for a one-sided wall (:class:`~dfa.model.elements.OneSided`)."""
+        return self._value(OneSided, None) is not None
+
+    @property
     def amplifier_time_constant(self) -> float:
         """Amplifier time constant τ_a = 1/(2π f_bw) in s (0 for an ideal amplifier)."""
         bw = self.amplifier_bandwidth

@@ -204,12 +204,15 @@ def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
     corner = f"β₀ = ½ + d + β_B = {r.beta0:.4g}, σ₀ = " + (
         f"½ + (1 − a)β_B = {r.sigma0:.4g}" if r.quantized else "0 (no encoder)"
     )
+    if getattr(r.wall, "one_sided", False):
+        energy = "½μV² = the most energy at the first reading inside, after the approach"
+        family = "eq. 6 for a one-sided spring reached from free space"
+    else:
+        energy = "½μV² = stored energy, eq. 19"
+        family = f"eq. 6 extended to the damper, filter and delay{_hand_storage(r.wall)}"
     return [
-        ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
-        [
-            "criterion",
-            f"eq. 6 extended to the damper, filter and delay{_hand_storage(r.wall)} (dfa.analysis.criterion): {rule}",
-        ],
+        ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample ({energy})"],
+        ["criterion", f"{family} (dfa.analysis.criterion): {rule}"],
         ["corner", corner],
         ["region", f"{r.region}: {r.status.message}"],
         ["passive", verdict],
@@ -263,6 +266,8 @@ def controller_check_rows(chk: PassivityCheck, vu: str) -> list[list[str]]:
     if r.xi0 != 0.0:
         rows.append(["initial position ξ0", f"{r.xi0:.4g} ticks ({r.position:.4g} {r.device.units['position']})"])
     rows += _criterion_rows(r, vu)
+    if chk.colgate_schenkel is None:  # a one-sided wall: the criterion covers it, the linear loop does not
+        return rows + [["Colgate–Schenkel", f"not covered: {chk.reasons.get('colgate_schenkel', '')}"]]
     return rows + _colgate_rows(chk)
 
 
@@ -277,11 +282,11 @@ def check_table_rows(chk: PassivityCheck) -> list[list[str]]:
     Returns
     -------
     list of list of str
-        :func:`controller_check_rows` where the check is covered; with an amplifier lag the speed,
-        "not covered" and why.
+        :func:`controller_check_rows` where the criterion covers the wall (with Colgate–Schenkel's reason where
+        it does not: a one-sided wall); with an amplifier lag the speed, "not covered" and why.
     """
     dev = chk.device
-    if chk.criterion is None or chk.colgate_schenkel_damping is None:
+    if chk.criterion is None or (chk.colgate_schenkel_damping is None and "colgate_schenkel" not in chk.reasons):
         speed = f"{chk.velocity:.4g} {dev.units['velocity']}"
         return [["speed", speed], ["passive", NOT_COVERED], ["why", not_covered_why(chk)]]
     return controller_check_rows(chk, dev.units["velocity"])
