@@ -552,7 +552,8 @@ def stability_map(
         True (default): the encoder quantizes the position; False: the linear spring.
     preload : bool, optional
         Start from the spring preload of each speed (:func:`preload_position`) at rest, instead of
-        from ξ0 = 0 with speed ξ'0 (default False).
+        from ξ0 = 0 with speed ξ'0 (default False). A one-sided wall's runs start with the approach from free
+        space instead (:func:`map_start`; ``samples`` then counts after the approach), and refuse a preload.
     n_jobs : int
         Workers (-1: all cores; 1: in this thread). The result does not depend on it.
     backend : {"threads", "processes", "joblib"}

@@ -853,7 +853,9 @@ def simulate(
         delay d (the force of sample h uses ξ(h − d)), virtual damper, velocity filter, amplifier lag.
         None (default), or a spring with any delay (``WallParams.of(delay=d)``), runs the spring kernel;
         otherwise :mod:`dfa.core.wall_kernel` runs the loop with the wall, exact to rounding at the sample
-        instants (one compiled call: no progress bar, no energy record).
+        instants (one compiled call: no progress bar, no energy record). A one-sided wall's run that starts
+        outside moving toward it is an approach at constant speed (the operator's force balances friction until
+        the first reading inside, then is the wall's push; :func:`dfa.approach_start` gives such a start).
 
     Returns
     -------
