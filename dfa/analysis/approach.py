@@ -30,6 +30,7 @@ import math
 
 from ..checks import check_int, check_real, check_type
 from ..errors import DFAValueError
+from ..model.elements import OneSided
 from ..model.wall import WallParams
 
 __all__ = ["approach_start", "approach_samples", "refuse_one_sided"]
@@ -115,8 +116,7 @@ def approach_start(
     ph = check_real("phase", phase, "give the arrival's phase in samples, in [0, 1)")
     if not 0.0 <= ph < 1.0:
         raise DFAValueError(f"phase = {ph!r} is invalid: it must lie in [0, 1) samples; give e.g. 0.5")
-    surface = float(w.kernel_args()["surface"])
-    engage = float(math.floor(surface + 0.5)) if quantize else surface  # the first position the wall sees
+    engage = OneSided.engage(float(w.kernel_args()["surface"]), quantize)  # the first position the wall sees
     return engage - v * (d - ph), v, int(d)
 
 
@@ -135,9 +135,7 @@ def refuse_one_sided(wall: object, what: str) -> None:
     DFAValueError
         For a wall with a :class:`~dfa.model.elements.OneSided` element.
     """
-    from ..model.elements import OneSided
-
-    if any(isinstance(e, OneSided) for e in getattr(wall, "elements", ())):
+    if getattr(wall, "one_sided", False):
         raise DFAValueError(
             f"wall = a one-sided wall is not covered by {what} yet: their runs start at the wall's origin, not with "
             "the approach from free space; use dfa.simulate from dfa.approach_start, dfa.stability_map, or "

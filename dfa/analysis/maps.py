@@ -263,7 +263,7 @@ class StabilityMap(PlaneGrid, Result):
 
         starts = [map_start(self.mu, v, self.preload, self.wall, self.quantize) for v in self.xi_dots]
         if bound is None:
-            bound = max(divergence_bound(x, v, self.mu) for x, v in starts)
+            bound = _map_bound(self.mu, self.xi_dots, starts, self.wall)
         runs = []
         for x0, v0 in starts:
             runs.append(
@@ -604,14 +604,13 @@ def stability_map(
         from .approach import approach_samples
 
         n += approach_samples(w)
-    if bound is None:  # beyond the fastest start's own travel (dfa.analysis.simulation.divergence_bound)
-        starts = [map_start(m, v, preload, w, quantize) for v in speeds]
-        bound = max(divergence_bound(x, v, m) for x, v in starts) if w.one_sided else None
-        bound = divergence_bound(0.0, float(np.max(np.abs(speeds))), m) if bound is None else bound
+    starts = [map_start(m, v, preload, w, quantize) for v in speeds]
+    if bound is None:
+        bound = _map_bound(m, speeds, starts, w)
     rules = check_rules(bound, stable_amplitude, growth, settle)
     check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
     beta, sigma = np.linspace(b0, b1, g), np.linspace(s0, s1, g)
-    pts_b, pts_s, x0, v0 = _points(m, beta, sigma, speeds, preload, w, quantize)
+    pts_b, pts_s, x0, v0 = _points(beta, sigma, starts)
     if preload or w.one_sided:
         check_bound(rules[0], float(np.max(np.abs(x0))))  # the rule simulate() applies: the bound lies beyond ξ0
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
@@ -665,21 +664,21 @@ def map_start(mu: float, speed: float, preload: bool, wall: WallParams, quantize
     return (preload_position(mu, speed), 0.0) if preload else (0.0, speed)
 
 
-def _points(
-    mu: float,
-    beta: np.ndarray,
-    sigma: np.ndarray,
-    speeds: tuple[float, ...],
-    preload: bool,
-    wall: WallParams,
-    quantize: bool,
-) -> tuple[np.ndarray, ...]:
-    """β, σ, ξ0, ξ'0 of every run: grid rows σ, columns β, one grid per speed (:func:`map_start`)."""
+def _map_bound(mu: float, speeds: Sequence[float], starts: Sequence[tuple[float, float]], wall: WallParams) -> float:
+    """|ξ| past which a map's run diverged: beyond the fastest start's own travel
+    (:func:`dfa.analysis.simulation.divergence_bound`), and beyond a one-sided wall's approach start."""
+    if wall.one_sided:
+        return max(divergence_bound(x, v, mu) for x, v in starts)
+    return divergence_bound(0.0, float(np.max(np.abs(speeds))), mu)
+
+
+def _points(beta: np.ndarray, sigma: np.ndarray, starts: Sequence[tuple[float, float]]) -> tuple[np.ndarray, ...]:
+    """β, σ, ξ0, ξ'0 of every run: grid rows σ, columns β, one grid per start (:func:`map_start`, one per speed)."""
     bb, ss = np.meshgrid(beta, sigma)
-    pts_b = np.tile(bb.ravel(), len(speeds))
-    pts_s = np.tile(ss.ravel(), len(speeds))
-    starts = np.array([map_start(mu, v, preload, wall, quantize) for v in speeds])
-    return pts_b, pts_s, np.repeat(starts[:, 0], bb.size), np.repeat(starts[:, 1], bb.size)
+    pts_b = np.tile(bb.ravel(), len(starts))
+    pts_s = np.tile(ss.ravel(), len(starts))
+    s = np.array(starts, dtype=float)
+    return pts_b, pts_s, np.repeat(s[:, 0], bb.size), np.repeat(s[:, 1], bb.size)
 
 
 def _chunk_cost(samples: int, wall: WallParams) -> float:

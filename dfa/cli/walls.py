@@ -92,13 +92,20 @@ def check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
         )
 
 
-def hand_stiffness_of(device: Device | None) -> float:
-    """The stiffness k_h of the hand holding ``device`` (0 for none), refused at or above the Nyquist resonance.
+def hand_stiffness_of(args: argparse.Namespace, device: Device | None) -> float:
+    """The stiffness k_h of the hand holding ``device`` (0 for none), refused at or above the Nyquist resonance
+    and with ``--amplifier-bandwidth``.
 
     The simulator's step needs the held device's resonance √(k_h/m)/(2π) below the Nyquist frequency 1/(2T)
     (:func:`dfa.analysis.simulation.check_hand_resonance`): k_h < π² m/T², m the moving mass with the hand's.
     """
     hand = device.hand.stiffness if device is not None and device.hand is not None else 0.0
+    if hand and getattr(args, "amplifier_bandwidth", None) is not None:
+        raise UsageError(
+            "--amplifier-bandwidth cannot be combined with a hand stiffness (--hand-stiffness or --hand PRESET): the "
+            "simulator's step with both is not derived yet; drop one of them (--hand-stiffness 0 keeps the hand's "
+            "mass and damping)"
+        )
     if hand and device is not None:
         top = math.pi**2 * device.mass / device.period**2
         if not hand < top:
@@ -119,7 +126,7 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
     from .contact import contact_elements
 
     given = given_flags(args)
-    hand = hand_stiffness_of(device)
+    hand = hand_stiffness_of(args, device)
     contact = contact_elements(args, device)
     if not given and not hand and not contact:
         return None
@@ -136,12 +143,6 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
     check_filter_amplifier(args, device)
     values: dict[str, Any] = {kind.parameter.name: getattr(args, dest) for kind, (_f, dest) in WALL_FLAGS.items()}
     values["damping"] = values["damping"] or 0.0
-    if hand and args.amplifier_bandwidth is not None:
-        raise UsageError(
-            "--amplifier-bandwidth cannot be combined with a hand stiffness (--hand-stiffness or --hand PRESET): the "
-            "simulator's step with both is not derived yet; drop one of them (--hand-stiffness 0 keeps the hand's "
-            "mass and damping)"
-        )
     wall = Wall.of(stiffness, hand_stiffness=hand, **values)
     wall = Wall(stiffness, (*wall.elements, *contact)) if contact else wall
     return None if wall.params(device.period, device.resolution).is_spring else wall

@@ -95,12 +95,7 @@ def run(args: argparse.Namespace) -> int:
     check_filter_amplifier(args, dev)
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
-    hand = hand_stiffness_of(dev)  # the hand's stiffness joins the wall (dfa.HandSpring)
-    if hand and args.amplifier_bandwidth is not None:
-        raise UsageError(
-            "--amplifier-bandwidth cannot be combined with a hand stiffness (--hand-stiffness or --hand PRESET): the "
-            "simulator's step with both is not derived yet; drop one of them"
-        )
+    hand = hand_stiffness_of(args, dev)  # the hand's stiffness joins the wall (dfa.HandSpring)
     wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
                    amplifier_bandwidth=args.amplifier_bandwidth, hand_stiffness=hand)  # fmt: skip
     v = impact_speed("--velocity", args.velocity, inp, zero=False)

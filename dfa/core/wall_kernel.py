@@ -303,6 +303,18 @@ def _gone(v: float, fa: float, ring: FloatArray, inside: bool, ctl: Controller) 
 
 
 @njit(cache=True, inline="always")
+def _base(r: float, quantize: bool, ctl: Controller) -> tuple[float, bool]:
+    """The spring's part of the command at the reading r, −(r + ½) (−r without the encoder), or a one-sided
+    wall's −(q − s) inside and 0 outside; and whether q = r + ½ (r) lies beyond the surface s."""
+    onesided, surface = ctl[5], ctl[6]
+    q = r + 0.5 if quantize else r
+    inside = q > surface
+    if not onesided:
+        return -q, inside
+    return (-(q - surface) if inside else 0.0), inside
+
+
+@njit(cache=True, inline="always")
 def _shape(c: float, inside: bool, onesided: bool) -> float:
     """The command a one-sided wall applies: none outside, and inside it pushes only (min(c, 0)); c otherwise."""
     if not onesided:
@@ -393,20 +405,15 @@ def _command(
     wall's: −(r_h + ½ − s) inside, 0 outside), the ring's new position, the command applied now, c_{h−d},
     and whether the reading is inside a one-sided wall (r_h + ½ > s; r_h > s without the encoder).
     """
-    damping, pole, filtered, onesided, surface = ctl[0], ctl[1], ctl[2], ctl[5], ctl[6]
+    damping, pole, filtered = ctl[0], ctl[1], ctl[2]
     r = math.floor(x) if quantize else x
     vh = r - r_prev
     if filtered:
         y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
     else:
         y = vh
-    q = r + 0.5 if quantize else r
-    inside = q > surface
-    if onesided:
-        base = -(q - surface) if inside else 0.0
-    else:
-        base = -q
-    ring[pos] = _shape(base - damping * y, inside, onesided)
+    base, inside = _base(r, quantize, ctl)
+    ring[pos] = _shape(base - damping * y, inside, ctl[5])
     pos = pos + 1 if pos < delay else 0
     return r, vh, y, base, pos, ring[pos], inside
 
@@ -557,10 +564,9 @@ def _start(
     and is the push p from then on (:func:`_sample`); otherwise it is p throughout.
     """
     r0 = math.floor(x0) if quantize else x0
-    q0 = r0 + 0.5 if quantize else r0
-    onesided, surface = ctl[5], ctl[6]
-    inside = q0 > surface
-    base0 = _shape(-(q0 - surface) if onesided else -q0, inside, onesided)
+    base, inside = _base(r0, quantize, ctl)
+    onesided = ctl[5]
+    base0 = _shape(base, inside, onesided)
     for i in range(ring.shape[0]):
         ring[i] = base0
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x0, v0, r0, 0.0, 0.0, base0

@@ -943,8 +943,25 @@ class OneSided(Element):
         float
             The length ε >= 0 in ticks.
         """
-        engage = math.floor(surface + 0.5) if quantized else surface
-        return max(engage - surface + abs(speed), 0.0)
+        return max(OneSided.engage(surface, quantized) - surface + abs(speed), 0.0)
+
+    @staticmethod
+    def engage(surface: float, quantized: bool = True) -> float:
+        """Give the first position the wall sees, ξ_e = ⌊s + ½⌋ (the first whose reading ⌊ξ⌋ + ½ lies beyond s).
+
+        Parameters
+        ----------
+        surface : float
+            The surface s in ticks.
+        quantized : bool, optional
+            With the encoder (default); without it ξ_e = s.
+
+        Returns
+        -------
+        float
+            The position ξ_e in ticks.
+        """
+        return float(math.floor(surface + 0.5)) if quantized else float(surface)
 
 
 @dataclass(frozen=True)
