@@ -868,7 +868,11 @@ def stiffness_speed_plot(chart, ax=None):
     ax.axhspan(chart.v_top, ceiling * 10, color="0.92", lw=0, zorder=0,
                label=f"above the simulated speeds (> {chart.v_top:g} {u['velocity']})")  # fmt: skip
     kc, vc = _leaving_top(chart.criterion_stiffness, show(chart.v_criterion), chart.v_top, ceiling * 3)
-    ax.plot(kc, vc, color="#2166ac", lw=2.2, label="criterion (eq. 11, proof)")
+    one_sided = chart.wall.one_sided
+    if chart.criterion_covered:
+        ax.plot(kc, vc, color="#2166ac", lw=2.2, label="criterion (eq. 11, proof)")
+    else:
+        ax.plot([], [], color="#2166ac", lw=2.2, label="criterion: not covered (no proof for this wall)")
     ax.plot(
         chart.stiffness,
         show(chart.v_df),
@@ -877,7 +881,7 @@ def stiffness_speed_plot(chart, ax=None):
         ls="--",
         marker="^",
         ms=4,
-        label="describing function (growth speed)",
+        label="describing function: not a linear loop" if one_sided else "describing function (growth speed)",
     )
     ax.plot(
         chart.stiffness, show(chart.v_sim), color="#b2182b", lw=1.5, marker="o", ms=4, label="simulation: no divergence"
@@ -890,7 +894,7 @@ def stiffness_speed_plot(chart, ax=None):
         ls=":",
         marker="s",
         ms=3.5,
-        label="simulation: comes to rest",
+        label="simulation: comes to rest" + (" or leaves" if one_sided else ""),
     )
     bounds = _bounds(chart.k_static, chart.k_colgate, chart.k_abbott_okamura, chart.k_linear, chart.delay)
     _bound_lines(ax, bounds, u["stiffness"], vertical=True)
@@ -1105,14 +1109,15 @@ def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
     ax.set_xlim(bedges[0], bedges[-1])
     ax.set_xlabel(f"virtual damping B ({u['damping']})")
     ax.set_ylabel(f"virtual stiffness K ({u['stiffness']})")
-    ax.set_title(f"Z-width of {zw.device.name}, impacts up to {zw.velocity:.3g} {u['velocity']}", fontsize=9)
+    contact = ", one-sided wall reached from free space" if zw.wall.one_sided else ""
+    ax.set_title(f"Z-width of {zw.device.name}, impacts up to {zw.velocity:.3g} {u['velocity']}{contact}", fontsize=9)
     if design_point is not None:
         b, k = design_point
         lo, hi = kedges[0], kedges[-1]
         ax.plot([b], [min(max(k, lo), hi)], label="design point (B, K)", **_STAR)
     handles, _ = ax.get_legend_handles_labels()
     handles += [
-        Patch(facecolor=colours[REST], edgecolor="0.5", label="simulated: rest"),
+        Patch(facecolor=colours[REST], edgecolor="0.5", label="simulated: rest" + (" or left" if contact else "")),
         Patch(facecolor=colours[BOUNDED], edgecolor="0.5", label="simulated: bounded (chatter or cycle)"),
         Patch(facecolor=colours[UNDECIDED_POINT], edgecolor="0.5", label="simulated: undecided"),
         Patch(facecolor=colours[DIVERGES], edgecolor="0.5", label="simulated: diverges"),

@@ -142,12 +142,12 @@ def _wall_numbers(a: DesignAnalysis) -> dict[str, Any]:
 
 def _beyond_spring(device: Device, wall: Wall) -> bool:
     """True for a wall with a damper, filter or amplifier lag (its report is a separate file)."""
-    return not wall.params(device.period).is_spring
+    return not wall.params(device.period, device.resolution).is_spring
 
 
 def _identity(device: Device, wall: Wall, velocity: float) -> dict[str, Any]:
     """What makes two reports the same report: device, stiffness, speed, delay (and the wall's elements, if any)."""
-    delay = wall.params(device.period).delay
+    delay = wall.params(device.period, device.resolution).delay
     ident: dict[str, Any] = {
         "device": device.to_dict(),
         "stiffness": wall.stiffness,

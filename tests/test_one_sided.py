@@ -103,13 +103,14 @@ def test_eq4_one_sided_approach_memory_is_the_approach_not_the_start():
 
 
 def test_one_sided_analyses_without_a_derivation_refuse():
-    """The criterion refuses a one-sided wall with memory or a push; the linear loop and the describing function
-    refuse any one-sided wall, with the reason."""
+    """The criterion refuses a one-sided wall with a damper, filter or hand stiffness, and a push on a bilateral
+    wall; the linear loop and the describing function refuse any one-sided wall, with the reason."""
     w = _wall()
-    with pytest.raises(NotCovered, match="one-sided wall with delay, damper reached from free space"):
+    with pytest.raises(NotCovered, match="one-sided wall with damper reached from free space"):
         _wall(damping=0.2, delay=1).corner()
-    with pytest.raises(dfa.DFAValueError, match="operator.s constant push"):
-        passivity_criterion(1.0, 1.0, 1.0, wall=_wall(push=0.5), mu=10.0)
+    with pytest.raises(dfa.DFAValueError, match="push needs a one-sided wall"):
+        passivity_criterion(1.0, 1.0, 1.0, wall=WallParams(((Push, 0.5),)), mu=10.0)
+    assert _wall(push=0.5, delay=2).corner() == (2.5, 0.5)  # the delay's corner; the push enters V*
     assert "not a linear loop" in (w.linear_reason() or "") and w.colgate_schenkel_reason()
     with pytest.raises(NotCovered, match="not a linear loop"):
         w.command()
@@ -131,7 +132,10 @@ def test_one_sided_cli_simulate_text_json_and_refusals(capsys):
     assert "the run starts 2 samples before the device reaches it at 0.5556 ticks/sample" in out
     assert main([*argv, "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
-    assert d["outcome"] == "left" and d["wall"]["dimensionless"]["one_sided"] == 0.0
+    assert d["outcome"] == d["contact"] == "left" and d["wall"]["dimensionless"]["one_sided"] == 0.0
+    assert main([*argv, "--push", "1", "--json"]) == 0
+    kind = json.loads(capsys.readouterr().out)["contact"]
+    assert f"contact {kind}: " in out  # the text's contact row is the JSON's
     assert (d["wall"]["one_sided_surface"], d["wall"]["push"], d["wall"]["units"]["push"]) == (0.0, 0.0, "N")
     assert d["xi0"] == pytest.approx(-1.5 * 0.05 / (3e-5 * 3000.0), rel=1e-12)  # ξ_e − V(D − ½), D = 2
     for extra, words in (
@@ -182,6 +186,28 @@ def test_eq6_one_sided_criterion_is_the_spring_at_the_contact_speed():
     assert start_state(_wall()).startswith("an approach from free space at V")
 
 
+@settings(max_examples=60, derandomize=True, deadline=None)
+@given(
+    st.sampled_from([0.0, 0.3, -0.4, 0.7, 12.45]),
+    st.booleans(),
+    st.floats(1e-3, 1e4, **finite),
+    st.floats(0.0, 0.49, **finite),
+    st.floats(0.5, 50.0, **finite),
+)
+def test_eq12_one_sided_critical_speed_is_the_largest_passive_impact_speed(surface, q, mu, beta, sigma):
+    """Eq. 12 for a one-sided wall: the critical speed is an impact speed V (OneSided.impact_speed inverts
+    V' = √(V² + ε(V)²/μ)); the criterion's own verdict passes just below it and fails just above it."""
+    w = _wall(surface)
+    r = passivity_criterion(beta, sigma, 1.0, wall=w, mu=mu, quantized=q)
+    vc = r.critical_xi_dot
+    assume(vc is not None and vc > 1e-6)
+    assert passivity_criterion(beta, sigma, vc * (1 - 1e-9), wall=w, mu=mu, quantized=q).passive
+    assert not passivity_criterion(beta, sigma, vc * (1 + 1e-9), wall=w, mu=mu, quantized=q).passive
+    # and V' at the critical impact speed is eq. 12's (σ − σ₀)/(β₀ − β)
+    at = passivity_criterion(beta, sigma, vc, wall=w, mu=mu, quantized=q).equivalent_speed
+    assert at == pytest.approx((sigma - (0.5 if q else 0.0)) / (0.5 - beta), rel=1e-9)
+
+
 def test_eq6_one_sided_sampled_passive_points_never_exceed_the_contact_energy():
     """1500 derandomised points: S = ½μξ'² + ½((ξ − s)⁺)² never exceeds ½μV'² after an exact approach; the
     bilateral spring's claim S <= ½μV² fails at almost every point (the check can fail).
@@ -196,23 +222,14 @@ def test_eq6_one_sided_sampled_passive_points_never_exceed_the_contact_energy():
 
 
 def test_one_sided_searches_that_start_at_the_origin_refuse_it():
-    """K_max, the Z-width, the speed chart and the design report start their runs at the wall's origin: they
-    refuse a one-sided wall (rather than miss its approach)."""
+    """The design report starts its runs at the wall's origin: it refuses a one-sided wall (rather than miss its
+    approach)."""
     from dfa.analysis.design import design_analysis
-    from dfa.analysis.limits.kmax import design_answer
-    from dfa.analysis.limits.speed_chart import stiffness_speed_chart
-    from dfa.analysis.limits.zwidth import z_width
 
     dev = dfa.get_device("delta").device
     w = Wall(2000.0, (OneSided(0.0),))
-    for call in (
-        lambda: design_answer(dev, 0.05, wall=w),
-        lambda: z_width(dev, 0.05, wall=w, grid=2),
-        lambda: stiffness_speed_chart(dev, wall=w),
-        lambda: design_analysis(dev, w, 0.05),
-    ):
-        with pytest.raises(dfa.DFAValueError, match="one-sided wall is not covered by"):
-            call()
+    with pytest.raises(dfa.DFAValueError, match="one-sided wall is not covered by"):
+        design_analysis(dev, w, 0.05)
 
 
 def test_eq6_one_sided_cli_check_states_the_proof_its_start_and_the_linear_refusal(capsys):
@@ -235,3 +252,165 @@ def test_eq6_one_sided_cli_check_states_the_proof_its_start_and_the_linear_refus
     assert np.max(0.5 * p.mu * vs**2 + 0.5 * np.maximum(xs, 0.0) ** 2) <= 0.5 * p.mu * r.equivalent_speed**2 * (
         1 + 1e-9
     )
+
+
+def test_eq11_one_sided_kmax_criterion_approach_runs_and_no_linear_loop():
+    """K_max four ways for a one-sided wall: K_criterion is the largest K whose criterion (at V', the approach)
+    passes; the linear bound and the describing function say "not a linear loop"; every simulated impact is the
+    approach run of dfa.simulate (the assessed K's outcome is the approach's); with a push, the one-sided wall
+    does not diverge where the bilateral spring does (it cannot pull the device back)."""
+    from dfa.analysis.criterion import device_criterion
+    from dfa.analysis.limits.kmax import design_answer
+
+    dev = dfa.get_device("delta").device
+    w = Wall(14500.0, (OneSided(0.25),))
+    r = design_answer(dev, 0.05, wall=w, assess=True, grid=8, speeds=2)
+    kc = r.k_criterion.value
+    assert kc is not None
+    assert device_criterion(dev, w.with_stiffness(kc * (1 - 1e-6)), 0.05).passive
+    assert not device_criterion(dev, w.with_stiffness(kc * (1 + 1e-6)), 0.05).passive
+    assert r.k_linear.status.value == r.k_df.status.value == "not_linear" and r.evidence.starts == ("approach",)
+    a = r.assessment
+    assert a is not None and set(a.outcomes) == {"approach"} and a.growth_unknown == "not_linear"
+    p, wp = dev.params(14500.0), w.params(dev.period, dev.resolution)
+    x0, v0, _n = approach_start(dev.xi_dot(0.05), wall=wp)
+    assert a.outcomes["approach"] == simulate(p.mu, p.beta, p.sigma, v0, xi0=x0, wall=wp).outcome
+    # the critical speed is the impact speed: at it, the criterion passes
+    assert a.max_passive_velocity == pytest.approx(device_criterion(dev, w, 0.0).critical_velocity, rel=1e-12)
+    assert device_criterion(dev, w, a.max_passive_velocity * (1 - 1e-9)).passive
+
+    push = Wall(1.0, (OneSided(0.0), Push(2.0)))
+    pushed = design_answer(dev, 0.05, wall=push, grid=8, speeds=2)
+    bilateral = design_answer(dev, 0.05, grid=8, speeds=2)
+    kp = pushed.k_criterion.value
+    assert kp is not None and device_criterion(dev, push.with_stiffness(kp * (1 - 1e-6)), 0.05).passive
+    assert not device_criterion(dev, push.with_stiffness(kp * (1 + 1e-6)), 0.05).passive
+    # the verdict is monotone in K (criterion module docstring): every K below K_criterion passes
+    assert all(device_criterion(dev, push.with_stiffness(k), 0.05).passive for k in np.geomspace(kp * 1e-6, kp, 400))
+    assert bilateral.k_sim.value is not None and pushed.k_sim.value is None
+    assert pushed.k_sim.status.value == "above_range" and pushed.k_sim.range_end > 2 * bilateral.k_sim.value
+
+
+def test_one_sided_cli_stiffness_text_and_json(capsys):
+    """`dfa stiffness --one-sided`: the contact in the header, the linear rows "not a linear loop", the runs
+    "after the approach", and the JSON's starts and limits as the API's."""
+    from dfa.analysis.limits.kmax import design_answer
+
+    argv = ["stiffness", "--device", "delta", "--velocity", "0.05", "--one-sided", "--surface", "0.25"]
+    assert main(argv) == 0
+    raw = capsys.readouterr().out
+    out = " ".join(raw.split())
+    assert "one-sided wall reached from free space (surface at 0.25 ticks), no push (a free impact)" in out
+    assert "not a linear loop" in out and "after the approach" in out and "rests or leaves" in out
+    assert max(len(line) for line in raw.splitlines()) <= 100  # the package's WIDTH
+    assert main([*argv, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    dev = dfa.get_device("delta").device
+    r = design_answer(dev, 0.05, wall=Wall(14500.0, (OneSided(0.25),)), assess=True)
+    assert d["evidence"]["starts"] == ["approach"] and d["k_criterion"]["value"] == r.k_criterion.value
+    assert d["wall"]["one_sided_surface"] == 0.25 and d["assessment"]["outcomes"] == r.assessment.outcomes
+
+
+def _approach_outcome(dev, k, wall, speed):
+    """dfa.simulate's outcome of an impact at ``speed`` (m/s) on ``wall`` at K = k, after the approach."""
+    p, wp = dev.params(k), wall.with_stiffness(k).params(dev.period, dev.resolution)
+    x0, v0, _n = approach_start(dev.xi_dot(speed), wall=wp)
+    return simulate(p.mu, p.beta, p.sigma, v0, xi0=x0, wall=wp).outcome
+
+
+@pytest.mark.filterwarnings("ignore::dfa.ImplausibleInputWarning")  # the grid's top K, 1.2e7 N/m
+def test_zwidth_one_sided_points_are_approach_runs_and_agree_with_kmax():
+    """The Z-width of a one-sided wall: every grid point's code follows from dfa.simulate's approach runs (rest or
+    left: rest; unstable: diverges), no linear columns ("not a linear loop"), and its criterion column at B = 0 is
+    the K_max answer's K_criterion (two answers to one question)."""
+    from dfa.analysis.limits.kmax import design_answer
+    from dfa.analysis.limits.zwidth import z_width
+    from dfa.results.codes import BOUNDED, DIVERGES, REST, UNDECIDED_POINT
+
+    dev = dfa.get_device("delta").device
+    for w in (Wall(1.0, (OneSided(0.0), Push(2.0))), Wall(1.0, (OneSided(0.3),))):
+        z = z_width(dev, 0.05, wall=w, grid=3, speeds=1, n_jobs=1)
+        assert {x.status.value for m in ("linear", "df") for x in z.limits[m]} == {"not_linear"}
+        assert z.simulations == 9  # one start per speed: the approach
+        for i, b in enumerate(z.damping):
+            for j, k in enumerate(z.stiffness):
+                o = _approach_outcome(dev, float(k), w.with_damping(float(b)), 0.05)
+                want = {"rest": REST, "left": REST, "unstable": DIVERGES, "undecided": UNDECIDED_POINT}.get(o, BOUNDED)
+                assert z.outcome[i, j] == want, (b, k, o)
+    free = Wall(1.0, (OneSided(0.3),))
+    z = z_width(dev, 0.05, wall=free, grid=2, speeds=1, n_jobs=1)
+    assert z.limits["criterion"][0].value == design_answer(dev, 0.05, wall=free, grid=4, speeds=1).k_criterion.value
+
+
+def test_speed_chart_one_sided_safe_speeds_are_approach_runs():
+    """The stiffness–speed chart of a one-sided wall: at every K, each simulated speed up to v_sim is an approach
+    run that does not diverge (and up to v_rest one that rests or leaves); the criterion's curve is the criterion's
+    critical impact speed."""
+    from dfa.analysis.criterion import device_criterion
+    from dfa.analysis.limits.speed_chart import stiffness_speed_chart
+    from dfa.model.elements import Damper
+
+    dev = dfa.get_device("delta").device
+    assert not stiffness_speed_chart(dev, wall=Wall(1.0, (OneSided(0.0), Damper(5.0))), grid=2).criterion_covered
+    w = Wall(1.0, (OneSided(0.0), Push(2.0)))
+    c = stiffness_speed_chart(dev, wall=w, grid=3, speeds=3)
+    assert c.criterion_covered
+    for k, vs, vr in zip(c.stiffness, c.v_sim, c.v_rest, strict=True):
+        outs = {v: _approach_outcome(dev, float(k), w, float(v)) for v in c.speeds}
+        assert all(outs[v] not in ("unstable", "undecided") for v in c.speeds if v <= vs)
+        assert all(outs[v] in ("rest", "left") for v in c.speeds if v <= vr)
+    free = Wall(1.0, (OneSided(0.0),))
+    c = stiffness_speed_chart(dev, wall=free, grid=3, speeds=2)
+    k = float(c.criterion_stiffness[50])
+    mpv = device_criterion(dev, free.with_stiffness(k), 0.0).critical_velocity
+    assert c.v_criterion[50] == pytest.approx(min(mpv, c.v_top), rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("push", "k", "kind"),
+    [(0.0, 30000.0, "left"), (0.0, 5000.0, "rests"), (0.3, 30000.0, "rests_off"), (2.0, 3e5, "bounces"),
+     (5.0, 2e5, "in_contact"), (20.0, 7e4, "grows")],
+)  # fmt: skip
+def test_one_sided_contact_outcome_agrees_with_the_recorded_readings(push, k, kind):
+    """The contact kinds of a one-sided wall's run (issue 28 §1: rests, chatters or cycles in contact, bounces,
+    grows, leaves), from the kernel's statistics, against the recorded trajectory: a tail reading outside
+    (ξ < ⌊s + ½⌋) between readings inside is a bounce; none, in contact; at rest, on or off the wall by the final
+    reading; ``left`` outside moving away. Each kind occurs among these Delta runs (0.05 m/s, the approach)."""
+    from dfa.analysis.simulation import _tail_length
+
+    dev = dfa.get_device("delta").device
+    w = Wall(k, (OneSided(0.0),) + ((Push(push),) if push else ()))
+    p, wp = dev.params(k), w.params(dev.period, dev.resolution)
+    x0, v0, _n = approach_start(dev.xi_dot(0.05), wall=wp)
+    n = 200_000
+    run = simulate(p.mu, p.beta, p.sigma, v0, samples=n, xi0=x0, wall=wp, record=True)
+    assert run.contact is not None and run.contact.value == kind
+    assert simulate(p.mu, p.beta, p.sigma, v0, samples=n, xi0=x0, wall=wp).contact == run.contact  # unrecorded
+    tail = run.xi[n - _tail_length(n, p.mu) :]
+    inside = tail >= 0.0  # ⌊0 + ½⌋ = 0: the first position the wall sees
+    if kind == "bounces":
+        assert inside.any() and not inside.all() and np.count_nonzero(np.diff(inside.astype(int)) == 1) >= 2
+    elif kind == "in_contact":
+        assert inside.all() and np.ptp(tail) > 0
+    elif kind in ("rests", "rests_off"):
+        assert run.rest_sample is not None and (run.xi[-1] >= 0.0) == (kind == "rests")
+    elif kind == "left":
+        assert run.final_xi < 0.0 and run.final_xi_dot < 0.0
+    else:
+        assert run.outcome == "unstable"
+    assert json.loads(json.dumps(run.to_dict()))["contact"] == kind
+    bilateral = simulate(p.mu, p.beta, p.sigma, 0.5, samples=1000)
+    assert bilateral.contact is None and "contact" not in bilateral.to_dict()
+
+
+def test_one_sided_cli_limit_cycles_and_report_refuse_with_the_reason(capsys, tmp_path):
+    """`dfa limit-cycles --one-sided` and `dfa report --one-sided`: one line on stderr, exit 2, the reason (no
+    describing function for a one-sided wall; the report's runs start at the origin) and where it is covered."""
+    for argv, why in (
+        (["limit-cycles", "--device", "delta", "--one-sided"], "not a linear loop"),
+        (["report", "--device", "delta", "--one-sided", "--out", str(tmp_path)], "start at the wall's origin"),
+    ):
+        assert main(argv) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and why in err and "stiffness or zwidth with --one-sided" in err
+    assert not any(tmp_path.iterdir())

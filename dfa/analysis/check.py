@@ -174,7 +174,7 @@ def passivity_check(
     w = as_wall(wall)
     v = check_speed("velocity", velocity, dev.units["velocity"])
     warn_if_from_outside("velocity", v, rotary=dev.rotary)
-    p = w.params(dev.period)  # refuses a filter cutoff above the Nyquist frequency
+    p = w.params(dev.period, dev.resolution)  # refuses a filter cutoff above the Nyquist frequency
     reasons: dict[str, Any] = {}
     crit: CriterionResult | None = None
     why = p.not_covered()

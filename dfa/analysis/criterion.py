@@ -83,20 +83,38 @@ A hand holding the device
     start in. ``tests/test_hand_stiffness.py`` checks S(h) <= S(0) by exact simulation
     (:mod:`dfa.core.oscillator`) at random points the criterion calls passive.
 
-A one-sided wall reached from free space (issue 28 §1; :class:`~dfa.model.elements.OneSided`, alone)
-    The wall commands φ = −(q − s) while the reading q = ⌊ξ⌋ + ½ is beyond the surface s, and 0 otherwise. Take
-    S = ½μξ'² + H_1(ξ), H_1 = ½((ξ − s)⁺)², f = −(ξ − s)⁺ (1-Lipschitz, non-increasing, so over a sample the
-    storage's part is at most f(ξ_h)Δ + ½Δ²). The quantization error |φ_h − f(ξ_h)| <= ½ at every reading
-    (inside with ξ >= s: ξ − q; inside with ξ < s: −(q − s) ∈ (−½, 0); outside with ξ > s: (ξ − s) ∈ (0, ½)),
-    so step 1 and the bracket of step 4 read as the spring's: (½ − β)Δ² + (½ − σ)|Δ|. The approach: until the
-    first reading inside the operator's force σ + βV balances friction exactly (ξ' = V, S changes only by H_1),
-    so at the first reading inside S = ½μV² + ½ε², ε = (ξ − s)⁺ < ξ_e − s + V, ξ_e = ⌊s + ½⌋ the first position
-    the wall sees (:meth:`~dfa.model.elements.OneSided.contact_excess`; ξ_e = s without the encoder). From then
-    on (no push, no delay, no damper: no memory) step 5 holds with ½μV'² = S: the corner (½, ½) at
-    V' = √(V² + ε²/μ), and S(t) <= ½μV'² for all t. With a delay, a damper, a filter, a push or a hand stiffness
-    the controller's memory of the approach (or the push's work) enters the energy: not derived yet, refused
-    (:meth:`dfa.model.wall.WallParams.uncovered`). ``tests/test_one_sided.py`` checks S(h) <= ½μV'² by exact
-    simulation of the approach at random points the criterion calls passive.
+A one-sided wall reached from free space (issue 28 §1; :class:`~dfa.model.elements.OneSided`, with a delay and a push)
+    The wall commands c = −(q − s) while the reading q = ⌊ξ⌋ + ½ is beyond the surface s, and 0 otherwise, held
+    d samples later; from the first reading inside on the operator pushes with p >= 0
+    (:class:`~dfa.model.elements.Push`). Take f = −(ξ − s)⁺ (1-Lipschitz, non-increasing), H_1 = ½((ξ − s)⁺)²
+    and Q = ½μξ'² + H_1(ξ) − p(ξ − s) + ½p² >= ½μξ'² (H_1 − p(ξ − s) >= −½p²). The push's work is what its
+    term −p(ξ − s) loses, and H_1(ξ + Δ) <= H_1(ξ) − f(ξ)Δ + ½Δ², so step 1 reads
+    Q_{h+1} − Q_h <= ½Δ_h² + (φ_h − f(ξ_h))Δ_h − D_h. The quantization error |c_h − f(ξ_h)| <= ½ at every
+    reading (inside with ξ >= s: ξ − q; inside with ξ < s: −(q − s) ∈ (−½, 0); outside with ξ > s: (ξ − s) ∈
+    (0, ½)), and f(ξ_{h−d}) − f(ξ_h) = λ_h Σ_{j=1..d} Δ_{h−j} with a slope λ_h ∈ [0, 1]: steps 2 and 4 hold as
+    for the spring, each cross term |λ_hΔ_{h−j}Δ_h| <= ½(Δ_{h−j}² + Δ_h²), so the corner is (½ + d, ½).
+    The start: until the first reading inside (sample h_c) the operator's force σ + βV balances friction
+    exactly (ξ' = V, nothing else changes), so at h_c, Q = ½μV² + φ(δ), φ(δ) = ½(δ⁺)² − pδ + ½p², δ = ξ − s in
+    [c, c + V), c = ξ_e − s, ξ_e = ⌊s + ½⌋ the first position the wall sees
+    (:meth:`~dfa.model.elements.OneSided.engage`; ξ_e = s without the encoder). φ is convex: Q <= ½μV² + ½m²,
+    ½m² = max(φ(c), φ(c + V)) (without a push m = ε_max = (c + V)⁺,
+    :meth:`~dfa.model.elements.OneSided.contact_excess`). From h_c the proof runs as for a fresh wall (past
+    readings equal ξ_{h_c}), except that the d commands still pending are the approach's 0, not c_{h_c}: over
+    samples h_c … h_c + d − 1 the wall pushes ε_q = q_{h_c} − s < c + V + ½ (c + V without the encoder) less
+    than the fresh proof assumes, which adds at most ε_q·dV* (the displacement over d samples while
+    |ξ'| <= V*). With V* the root of ½μV*² = ½μV² + ½m² + ε_q dV*
+    (:meth:`~dfa.model.elements.OneSided.contact_speed`), step 5 (first exit at Q = ½μV*²) gives
+    Q(t) <= ½μV*² for all t >= h_c: the corner (½ + d, ½) at V*. Alone (d = 0, p = 0), V* = √(V² + ε_max²/μ).
+    The critical speed is the impact speed V whose V* is (σ − σ₀)/(β₀ − β)
+    (:meth:`~dfa.model.elements.OneSided.impact_speed`). The verdict is monotone in K at fixed physical
+    values (the passive K form an interval (0, K*], as :func:`~dfa.analysis.limits.kmax.wall_k_criterion`
+    needs): with u = 1/K, β, σ, μ and p are proportional to u, and every term of μV*² grows at most in
+    proportion to u (the push's p²/μ and −pc/μ; the others fall), so dV*/du <= V*/(2u); where the margin
+    g = (β₀ − β)V* + ½ − σ is <= 0 (β < β₀), g' <= (V*(β₀ − 3β)/2 − σ)/u < 0, as (β₀ − β)V* <= σ − ½. With a damper or a filter (the approach's velocity estimate, and the clip at 0
+    that keeps the wall from pulling) or a hand stiffness: not derived, refused
+    (:meth:`dfa.model.wall.WallParams.uncovered`). ``tests/test_one_sided.py`` and ``python -m
+    dfa.cli.soundness_report --one-sided`` check Q <= ½μV*² by exact simulation of the approach at random
+    points the criterion calls passive.
 
 What is not proven
     * Amplifier lag (α > 0): the force varies within the sample, step 1's work φΔ no longer holds, and no
@@ -205,6 +223,8 @@ __all__ = [
 
 #: The short form of the start state of a wall with memory (:func:`start_state_note`).
 FRESH_NOTE = "for a wall whose memory is fresh at t = 0"
+#: ... and of a one-sided wall's (the lone spring's: :func:`start_state`).
+APPROACH_NOTE = "for an approach from free space at the impact speed"
 
 
 def start_state(wall: Any) -> str:
@@ -235,7 +255,7 @@ def start_state(wall: Any) -> str:
     if getattr(wall, "one_sided", False):
         return (
             "an approach from free space at V: the device reaches the wall's first seen position at V (the "
-            "operator's force balancing friction until the first reading inside, none after)"
+            "operator's force balancing friction until the first reading inside, then the push, if any)"
         )
     if not has_memory(wall):
         return "any: this wall has no memory (only the reading at t = 0, a sample instant, enters the proof)"
@@ -266,14 +286,23 @@ def start_state_clause(wall: Any) -> str:
     Returns
     -------
     str
-        The clause; empty for a wall without memory.
+        The clause; empty for a wall without memory; a one-sided wall's :data:`APPROACH_NOTE`.
     """
-    return f", {FRESH_NOTE}" if has_memory(wall) else ""
+    note = _start_note(wall)
+    return f", {note}" if note else ""
 
 
 def start_state_note(wall: Any) -> str:
     """The same as :func:`start_state_clause` in brackets: ``" (for a wall …)"``, or empty."""
-    return f" ({FRESH_NOTE})" if has_memory(wall) else ""
+    note = _start_note(wall)
+    return f" ({note})" if note else ""
+
+
+def _start_note(wall: Any) -> str:
+    """The short start state of a guarantee: a one-sided wall's approach, a wall with memory's fresh memory, or ""."""
+    if getattr(wall, "one_sided", False):
+        return APPROACH_NOTE
+    return FRESH_NOTE if has_memory(wall) else ""
 
 
 #: One-line meaning of each region of paper Fig. 3 for the spring (text before the first colon: short label).
@@ -536,7 +565,8 @@ class CriterionResult(Result):
     critical_xi_dot : float or None
         Eq. 12 generalised: the largest energy-equivalent speed V for which the criterion holds,
         (σ − σ₀)/(β₀ − β), when β < β₀ and σ >= σ₀; None when it does not exist (regions a, b, c). With
-        ξ0 = 0 it is the critical initial speed abs(ξ'0).
+        ξ0 = 0 it is the critical initial speed abs(ξ'0); for a one-sided wall, the largest impact speed V
+        whose V' it is (:meth:`~dfa.model.elements.OneSided.impact_speed`).
     critical_line : CriticalLine
         The line of eq. 10 for this speed through the corner (β₀, σ₀).
     equivalent_speed : float
@@ -765,15 +795,25 @@ def region_of(
 
 
 def _one_sided_speed(xd: float, x0: float, mu: float | None, wall: WallParams, quantized: bool) -> float:
-    """V' = √(V² + ε²/μ) of a one-sided wall's approach at V (module docstring, "A one-sided wall"), or the error."""
+    """V* of a one-sided wall's approach at V (:meth:`~dfa.model.elements.OneSided.contact_speed`; module
+    docstring, "A one-sided wall"), or the error."""
     if mu is None or x0 != 0.0:
         raise DFAValueError(
             f"mu = {mu!r}, xi0 = {x0!r} are invalid with a one-sided wall: its criterion is for an approach from free "
             "space at xi_dot and needs μ (the storage at the first reading inside enters through ½ε²/μ); pass mu "
             "and xi0 = 0"
         )
-    eps = OneSided.contact_excess(float(wall.kernel_args()["surface"]), xd, quantized)
-    return math.sqrt(xd * xd + eps * eps / mu)
+    return OneSided.contact_speed(_surface(wall), xd, mu, wall.delay, _push(wall), quantized)
+
+
+def _surface(wall: WallParams) -> float:
+    """The surface s of a one-sided wall, ticks."""
+    return float(wall.kernel_args()["surface"])
+
+
+def _push(wall: WallParams) -> float:
+    """The push group p of a one-sided wall (0 without one)."""
+    return float(wall.kernel_args()["push"])
 
 
 def _corner(wall: WallParams, quantized: bool) -> tuple[float, float]:
@@ -864,6 +904,8 @@ def passivity_criterion(
     margin = float(_margin(b, s, v, s0, b0))
     critical = (s - s0) / (b0 - b) if (b < b0 and s >= s0) else None
     check_finite_verdict(margin, critical, {"beta": b, "sigma": s, "xi_dot": xd}, names)
+    if w.one_sided and critical is not None and m is not None:  # in impact speed V, not V*
+        critical = OneSided.impact_speed(_surface(w), critical, m, w.delay, _push(w), q)
     return CriterionResult(
         beta=b,
         sigma=s,
@@ -1000,7 +1042,7 @@ def device_criterion(
     x0 = check_real("position", position, "give the initial position in m (rotary: rad)")
     p = device.params(w.stiffness)
     r = passivity_criterion(
-        p.beta, p.sigma, device.xi_dot(v), wall=w.params(device.period), quantized=quantized,
+        p.beta, p.sigma, device.xi_dot(v), wall=w.params(device.period, device.resolution), quantized=quantized,
         xi0=x0 / device.resolution, mu=p.mu,
     )  # fmt: skip
     crit = None if r.critical_xi_dot is None else device.velocity(r.critical_xi_dot)

@@ -230,7 +230,7 @@ class DesignAnalysis(Result):
     @property
     def wall_params(self) -> WallParams:
         """The wall's dimensionless groups (β_B, ν_c, α, d) at the device's period."""
-        return self.wall.params(self.device.period)
+        return self.wall.params(self.device.period, self.device.resolution)
 
     @property
     def is_spring(self) -> bool:
@@ -377,7 +377,9 @@ def resolve_design_inputs(
         wall = Wall(check_positive("wall", wall, "give the wall, or the virtual wall stiffness K"))
     v = check_speed("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1))
     refuse_one_sided(wall, "the design report")
-    wp = wall.params(dev.period)  # a filter above Nyquist or a group out of range is refused here, before any work
+    wp = wall.params(
+        dev.period, dev.resolution
+    )  # a filter above Nyquist or a group out of range is refused here, before any work
     check_search_range(dev, wall, v)  # so is a stiffness range no float search can run (the design answer's …
     if v > 0 and wp.is_spring:
         check_chart_range(dev, wall, wall.stiffness, v)  # … and the chart's: 8 K = inf at K = 1e308
@@ -468,10 +470,10 @@ def design_analysis(
     entry, dev, wall, v = resolve_design_inputs(device, wall, velocity)
     checked = _check_validation(validation)
     zg = check_int("zwidth_grid", zwidth_grid, 0, "give the Z-width's points per axis, or 0 for none") if (
-        zwidth_grid is not None) else (0 if wall.params(dev.period).is_spring else WALL_ZWIDTH_GRID)  # fmt: skip
+        zwidth_grid is not None) else (0 if wall.params(dev.period, dev.resolution).is_spring else WALL_ZWIDTH_GRID)  # fmt: skip
     check_zwidth_size(zg, names=("zwidth_grid", "speeds"))  # here, before the sections that run first
     steps = tqdm(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False)
-    p, wp = dev.params(wall.stiffness), wall.params(dev.period)
+    p, wp = dev.params(wall.stiffness), wall.params(dev.period, dev.resolution)
     head = _closed_forms(dev, wall, v)
     steps.update()
     thr = tuple((m, growth_threshold(p, dev, model=m, wall=wp)) for m in MODELS)  # search range follows the problem
@@ -506,9 +508,9 @@ def design_analysis(
 def _closed_forms(dev: Device, wall: Wall, v: float) -> dict[str, Any]:
     """The passivity check at the design speed; for the spring also its stiffness limits and curve (eq. 8-11)."""
     chk = passivity_check(dev, wall, v)
-    if not wall.params(dev.period).is_spring:
+    if not wall.params(dev.period, dev.resolution).is_spring:
         return dict(check=chk, limits=None, stiffness_curve=None)
-    k, d = wall.stiffness, wall.params(dev.period).delay
+    k, d = wall.stiffness, wall.params(dev.period, dev.resolution).delay
     lim = stiffness_limits(dev, v, k, delay=d)
     return dict(check=chk, limits=lim, stiffness_curve=stiffness_response(dev, stiffness=k, delay=d))
 

@@ -139,11 +139,12 @@ from ..checks import (
 )
 from ..core import batch, kernel, wall_kernel
 from ..errors import DFATypeError, DFAValueError
+from ..model.elements import OneSided
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
 from ..results.jsonable import to_jsonable
-from ..results.status import BatchStatus, SimulationOutcome
+from ..results.status import BatchStatus, ContactOutcome, SimulationOutcome
 from .criterion import spring_energy
 
 if TYPE_CHECKING:
@@ -493,6 +494,9 @@ class SimulationResult(Result):
         For ``"undecided"``: a run length to try (at least 4 × samples).
     samples_auto : bool
         True when ``samples`` was chosen by :func:`default_samples`.
+    contact : ContactOutcome or None
+        A one-sided wall's run as contact (:func:`contact_outcome`): ``rests``, ``rests_off``, ``in_contact``,
+        ``bounces``, ``grows``, ``left`` or ``undecided``; None for a bilateral wall.
     energy : EnergyRecord or None
         Per-sample energy bookkeeping when requested.
 
@@ -519,6 +523,7 @@ class SimulationResult(Result):
     envelope: tuple = ()
     suggested_samples: int | None = None
     samples_auto: bool = False
+    contact: ContactOutcome | None = field(default=None, metadata={"omit_none": True})  # a bilateral wall's: none
     xi: np.ndarray | None = field(default=None, repr=False, metadata={"json": None})
     xi_dot: np.ndarray | None = field(default=None, repr=False, metadata={"json": None})
     energy: EnergyRecord | None = field(default=None, repr=False, metadata={"json": None})
@@ -528,6 +533,8 @@ class SimulationResult(Result):
     def __post_init__(self) -> None:
         object.__setattr__(self, "outcome", SimulationOutcome.coerce(self.outcome, "outcome"))
         check_type("wall", self.wall, WallParams, "build results with simulate")
+        if self.contact is not None:
+            object.__setattr__(self, "contact", ContactOutcome.coerce(self.contact, "contact"))
         freeze_fields(self, {"xi": {"ndim": 1, "finite": False}, "xi_dot": {"ndim": 1, "finite": False}})
         if self.xi is not None:
             check_shape("xi", self.xi, (self.samples + 1,))
@@ -909,7 +916,52 @@ def simulate(
         h0 = float(stored_energy(x0, v0, m, q))
         en = EnergyRecord(re[:, 0].copy(), re[:, 1].copy(), re[:, 2].copy(), re[:, 3].copy(), h0)
     fields = (m, b, s, x0, v0, n, w, q, *_measured(code, amp, freq, centre, fpp, done, rest, stats), suggest, auto)
-    return SimulationResult(*fields, xi=rx if record else None, xi_dot=rv if record else None, energy=en)
+    contact = contact_outcome(code, float(stats[kernel.NSEG + 6]), float(stats[kernel.NSEG + 8]), w, q)
+    return SimulationResult(
+        *fields, contact=contact, xi=rx if record else None, xi_dot=rv if record else None, energy=en
+    )
+
+
+def contact_outcome(
+    code: int, final_xi: float, tail_min: float, wall: WallParams, quantize: bool = True
+) -> ContactOutcome | None:
+    """A one-sided wall's run as contact (issue 28 §1), from its outcome code and where the wall saw it.
+
+    The wall sees the device inside while ξ >= ξ_e = ⌊s + ½⌋ (:meth:`~dfa.model.elements.OneSided.engage`; s
+    without the encoder). At rest: on the wall when the final position is inside, else off it; a bounded run
+    (oscillating, chatter) is ``bounces`` when a tail sample reads outside (``tail_min`` < ξ_e: contact lost and
+    regained), else ``in_contact``; ``unstable`` is ``grows`` and ``left`` is ``left``.
+
+    Parameters
+    ----------
+    code : int
+        The kernel's outcome code (:data:`OUTCOMES` order).
+    final_xi, tail_min : float
+        The final position and the smallest position at the tail's sample instants, ticks.
+    wall : WallParams
+        The wall (None returned for a bilateral one).
+    quantize : bool, optional
+        With the encoder (default).
+
+    Returns
+    -------
+    ContactOutcome or None
+
+    Examples
+    --------
+    >>> w = WallParams(((OneSided, 0.0),))
+    >>> contact_outcome(kernel.CHATTER, 0.2, -0.3, w).value, contact_outcome(kernel.REST, 0.4, 0.0, w).value
+    ('bounces', 'rests')
+    """
+    if not wall.one_sided:
+        return None
+    engage = OneSided.engage(float(wall.kernel_args()["surface"]), quantize)
+    if code == kernel.REST:
+        return ContactOutcome.RESTS if final_xi >= engage else ContactOutcome.RESTS_OFF
+    if code in (kernel.OSCILLATING, kernel.CHATTER):
+        return ContactOutcome.BOUNCES if tail_min < engage else ContactOutcome.IN_CONTACT
+    named = {kernel.UNSTABLE: ContactOutcome.GROWS, kernel.LEFT: ContactOutcome.LEFT}
+    return named.get(code, ContactOutcome.UNDECIDED)
 
 
 def check_wall(wall: object, energy: bool = False) -> WallParams:

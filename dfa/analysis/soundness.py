@@ -457,25 +457,38 @@ def criterion_soundness(
     return CriterionSoundness(delay=pop.delay, criterion=crit, points=int(points), by_case=case, seed=seed, **counts)
 
 
+def _one_sided_wall(surface: float, delay: int, push: float, bilateral: bool = False) -> WallParams:
+    """The one-sided wall of a soundness point (the bilateral spring's claim: the same wall, no push)."""
+    from ..model.elements import OneSided, Push
+
+    extra = ((Push, push),) if push and not bilateral else ()
+    return WallParams(((OneSided, surface), *extra, *WallParams.of(delay=delay).groups))
+
+
 def _one_sided_run(
-    mu: float, beta: float, sigma: float, speed: float, surface: float, q: bool, bilateral: bool = False
+    mu: float, beta: float, sigma: float, speed: float, wall: WallParams, q: bool, bilateral: bool = False
 ) -> tuple:
-    """(largest S/(½μV'²) − 1 from contact on, its sample, diverged, run length) of one approach to a one-sided
-    wall: S = ½μξ'² + ½((ξ − s)⁺)², the bound the criterion states (dfa.analysis.criterion, "A one-sided wall")."""
-    from ..model.elements import OneSided
+    """(largest Q/(½μV*²) − 1 from the first reading inside on, its sample, diverged, run length) of one approach
+    to a one-sided wall: Q = ½μξ'² + ½((ξ − s)⁺)² − p(ξ − s) + ½p², the bound the criterion states
+    (dfa.analysis.criterion, "A one-sided wall"; the bilateral spring's claim: ½μV², Q without the push)."""
     from .approach import approach_start
 
-    wall = WallParams(((OneSided, surface),))
+    a = wall.kernel_args()
+    surface, push = float(a["surface"]), float(a["push"])
     x0, v0, d = approach_start(speed, wall=wall, quantize=q)
     n = d + run_samples(mu)
-    eps = 0.0 if bilateral else OneSided.contact_excess(surface, speed, q)
-    claim = 0.5 * mu * speed * speed + 0.5 * eps * eps  # ½μV'² (½μV² for the bilateral spring's claim)
+    vstar = speed if bilateral else passivity_criterion(1.0, 1.0, speed, wall=wall, quantized=q, mu=mu).equivalent_speed
+    claim = 0.5 * mu * vstar * vstar
     with np.errstate(all="ignore"):
         r = simulate(mu, beta, sigma, v0, n, x0, quantize=q, wall=wall, bound=BOUND, record=True)
         xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
-        s = 0.5 * mu * vs * vs + 0.5 * np.maximum(xs - surface, 0.0) ** 2
-        ratio = np.where(np.abs(xs) <= BOUND, s / claim - 1.0, np.inf)
+        dl = xs - surface
+        stored = 0.5 * mu * vs * vs + 0.5 * np.maximum(dl, 0.0) ** 2 - push * dl + 0.5 * push * push
+        ratio = np.where(np.abs(xs) <= BOUND, stored / claim - 1.0, np.inf)
         ratio = np.where(np.isnan(xs) & (r.outcome is SimulationOutcome.LEFT), -1.0, ratio)  # left: nothing after
+        reading = np.floor(xs) + 0.5 if q else xs
+        contact = np.flatnonzero(reading > surface)  # the claim holds from the first reading inside on
+        ratio[: contact[0] if contact.size else len(ratio)] = -1.0
     h = int(np.argmax(ratio))
     return float(ratio[h]), h + 1, r.outcome is SimulationOutcome.UNSTABLE, n
 
@@ -484,28 +497,29 @@ def one_sided_soundness(points: int, *, criterion: str = "one-sided", seed: int 
     """The criterion for a one-sided wall reached from free space, checked by exact simulation of the approach.
 
     Points: μ log-uniform in [0.1, 10⁴], V uniform in (0, 10] ticks/sample, the surface s uniform in [−1, 1]
-    ticks, the encoder on for 85 %; half on the criterion's boundaries (as :func:`sample_passive_points`). Each
-    run starts :func:`~dfa.analysis.approach.approach_start` samples before contact and runs
-    :func:`run_samples` more; a violation is S = ½μξ'² + ½((ξ − s)⁺)² above ½μV'² (1 + 1e-9) at a sample
-    instant, or divergence (module docstring of :mod:`dfa.analysis.criterion`, "A one-sided wall").
+    ticks (0 for 30 %), a delay d of 0 (half) to 3 samples, a push p = F_p/(KΔ) (none for half, else
+    log-uniform in [0.01, 10]), the encoder on for 85 %; half on the criterion's boundaries (as
+    :func:`sample_passive_points`). Each run starts :func:`~dfa.analysis.approach.approach_start` samples
+    before contact and runs :func:`run_samples` more; a violation is Q = ½μξ'² + ½((ξ − s)⁺)² − p(ξ − s) + ½p²
+    above ½μV*² (1 + 1e-9) at a sample instant from the first reading inside on, or divergence (module
+    docstring of :mod:`dfa.analysis.criterion`, "A one-sided wall").
 
     Parameters
     ----------
     points : int
         Number of points.
     criterion : {"one-sided", "bilateral"}
-        This package's (V' = √(V² + ε²/μ)), or the bilateral spring's applied to the approach (V, claim ½μV²),
-        whose violations show that the check can fail and that ε must be paid for.
+        This package's (V* of :meth:`~dfa.model.elements.OneSided.contact_speed`), or the bilateral spring's
+        with its delay applied to the approach without a push (V, claim ½μV²), whose violations show that the
+        check can fail and that the approach must be paid for.
     seed : int
         Seed of :func:`numpy.random.default_rng`.
 
     Returns
     -------
     CriterionSoundness
-        With ``by_case``: points with s ≠ 0 and without the encoder.
+        With ``by_case``: points with s ≠ 0, without the encoder, with a delay and with a push.
     """
-    from ..model.elements import OneSided
-
     n = check_int("points", points, minimum=1)
     crit = check_choice("criterion", criterion, ("one-sided", "bilateral"))
     bilateral = crit == "bilateral"
@@ -515,19 +529,25 @@ def one_sided_soundness(points: int, *, criterion: str = "one-sided", seed: int 
     xd = np.where(xd > 0.0, xd, 1.0)
     surface = np.where(rng.random(n) < 0.3, 0.0, rng.uniform(-1.0, 1.0, n))
     quantized = rng.random(n) < 0.85
+    delay = np.where(rng.random(n) < 0.5, 0, rng.integers(1, 4, n))
+    push = np.where((rng.random(n) < 0.5) | bilateral, 0.0, 10.0 ** rng.uniform(-2.0, 1.0, n))
     kind = rng.choice(4, n, p=[0.5, 0.25, 0.125, 0.125])
+    walls = [_one_sided_wall(float(surface[i]), int(delay[i]), float(push[i]), bilateral) for i in range(n)]
     beta, sigma = np.empty(n), np.empty(n)
     for i in range(n):
-        w = WallParams() if bilateral else WallParams(((OneSided, float(surface[i])),))
+        w = WallParams.of(delay=int(delay[i])) if bilateral else walls[i]
         beta[i], sigma[i] = _point(rng, "controller-aware", kind[i], xd[i], 0.0, mu[i], w, bool(quantized[i]))
     pts = dict(mu=mu, beta=beta, sigma=sigma, xi0=np.zeros(n), xi_dot=xd, kind=kind, surface=surface,
-               quantized=quantized)  # fmt: skip
+               delay=delay, push=push, quantized=quantized)  # fmt: skip
     runs = [
-        _one_sided_run(float(mu[i]), float(beta[i]), float(sigma[i]), float(xd[i]), float(surface[i]),
-                       bool(quantized[i]), bilateral)
+        _one_sided_run(float(mu[i]), float(beta[i]), float(sigma[i]), float(xd[i]), walls[i], bool(quantized[i]),
+                       bilateral)
         for i in range(n)
     ]  # fmt: skip
     ratio, at, div, ns = (np.array(c) for c in zip(*runs, strict=True))
-    counts = tally(pts, (*STATE_KEYS, "surface", "quantized"), ns, ratio, at, div)
-    case = {"surface != 0": int(np.sum(surface != 0.0)), "no encoder": int(np.sum(~quantized))}
+    counts = tally(pts, (*STATE_KEYS, "surface", "delay", "push", "quantized"), ns, ratio, at, div)
+    case = {
+        "surface != 0": int(np.sum(surface != 0.0)), "no encoder": int(np.sum(~quantized)),
+        "delay > 0": int(np.sum(delay > 0)), "push > 0": int(np.sum(push > 0.0)),
+    }  # fmt: skip
     return CriterionSoundness(delay=None, criterion=crit, points=n, by_case=case, seed=seed, **counts)

@@ -4,9 +4,9 @@
 A one-sided wall (:class:`~dfa.model.elements.OneSided`) pushes only while the reading is beyond its surface, and
 the operator may push toward it with a constant force (:class:`~dfa.model.elements.Push`). The run then starts
 in free space, D samples before the device reaches the wall at the impact speed, with the controller's memory
-of the approach (:func:`dfa.analysis.approach.approach_start`). The other commands do not take these flags yet:
-the K_max searches and the Z-width do not start their runs with the approach yet, and no linear bound or
-describing function covers a one-sided wall.
+of the approach (:func:`dfa.analysis.approach.approach_start`). ``dfa stiffness`` and ``dfa zwidth`` start every
+impact with that approach too. ``dfa limit-cycles`` and ``dfa report`` take the flags only to refuse them with
+the reason: no describing function covers a one-sided wall, and the report's parts start at the wall's origin.
 """
 
 from __future__ import annotations
@@ -17,7 +17,10 @@ from ..model.device import Device
 from ..model.elements import Element, OneSided, Push
 from .parsing import UsageError, number
 
-__all__ = ["add_contact_args", "contact_elements"]
+__all__ = ["add_contact_args", "contact_elements", "refuse_one_sided_flag", "CONTACT_COMMANDS"]
+
+#: The commands that take a one-sided wall (the others refuse --one-sided with the reason).
+CONTACT_COMMANDS = "dfa check, simulate, map, stiffness or zwidth"
 
 
 def add_contact_args(p: argparse.ArgumentParser) -> None:
@@ -54,3 +57,9 @@ def contact_elements(args: argparse.Namespace, device: Device | None) -> tuple[E
     if push:
         out.append(Push(push))
     return tuple(out)
+
+
+def refuse_one_sided_flag(args: argparse.Namespace, why: str) -> None:
+    """Refuse --one-sided on a command that does not cover a one-sided wall (UsageError, exit 2), saying why."""
+    if getattr(args, "one_sided", False):
+        raise UsageError(f"--one-sided is not covered here: {why}; use {CONTACT_COMMANDS} with --one-sided")

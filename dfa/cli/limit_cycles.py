@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..checks import check_damping_rate
+from .contact import add_contact_args, refuse_one_sided_flag
 from .inputs import add_device_args, resolve
 from .output import RATE_NAMES, emit, say
 from .parsing import UsageError, number
@@ -25,6 +26,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="hold model (default: half-delay; zoh is exact)",
     )
     add_wall_args(p)
+    add_contact_args(p)
     p.add_argument(
         "--max-amplitude",
         type=number("--max-amplitude", "ticks"),
@@ -54,6 +56,10 @@ def run(args: argparse.Namespace) -> int:
     p = inp.params
     assert p is not None
     check_damping_rate(p.beta, p.mu, RATE_NAMES[inp.device is None])
+    refuse_one_sided_flag(
+        args,
+        "a one-sided wall is not a linear loop (a cycle that leaves the wall is not first-harmonic, and one in contact about a push's offset needs a biased describing function, not derived)",
+    )
     ctl = wall_from_args(args, inp.device, inp.stiffness)
     budget = {} if args.time_budget is None else {"time_budget": args.time_budget}
     g = growth_threshold(

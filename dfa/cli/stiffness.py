@@ -13,6 +13,7 @@ from .._io import FIGURE_SUFFIXES, check_output_file
 from ..formatting import fill, text_table
 from ..model.wall import Wall
 from ..results.jsonable import explain_nulls
+from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, save_png
 from .parsing import number
@@ -34,6 +35,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     """The device, one speed, the wall, --explain and --plot."""
     add_device_args(p, dimensionless=False, speed=True)
     add_wall_args(p)
+    add_contact_args(p)
     p.add_argument(
         "--explain",
         action="store_true",
@@ -67,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
     """K_max four ways for the spring or any wall (the wall's K is what is searched)."""
     from ..analysis.limits.kmax import design_answer
     from ..analysis.limits.recommend import check_margin, recommend_stiffness
-    from ..analysis.limits.require import damper_guidance
+    from ..analysis.limits.require import damper_guidance_for
 
     inp = resolve(args, dimensionless=False, need_stiffness=False)
     dev = inp.device
@@ -83,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
     check_margin(args.margin)  # refused before the search, not after it
     ans = design_answer(dev, v, wall=wall, assess=k is not None, source="catalogue" if src == "catalogue" else "given")
     rec = recommend_stiffness(ans, args.margin)
-    guide = damper_guidance(dev, wall, v) if wall.damping > 0 else None
+    guide = damper_guidance_for(dev, wall, v)
     if args.plot is not None:
         from ..analysis.limits.speed_chart import stiffness_speed_chart
 
@@ -127,6 +129,10 @@ def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp
         + ("" if ctl is None else "; B, f_c, f_bw held fixed while K varies")
     )
     print_wall(ctl, inp, wrap=False)
+    if wall.one_sided:
+        from ..render.contact import contact_text
+
+        print(f"contact: {contact_text(wall, dev.units)}")
     print(recommendation_line(rec))
     rows = kmax_rows(ans, explain=True)
     rows.append(["verdict at this speed", verdict_text(ans)])

@@ -9,6 +9,7 @@ import math
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..model.wall import Wall
 from ..render.hand import device_title
+from .contact import add_contact_args, contact_elements
 from .inputs import add_device_group, impact_speed, resolve
 from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, fmt, progress, save_png, say, table
 from .parsing import UsageError, integer, number
@@ -37,6 +38,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="impact speed in m/s (rotary: rad/s); required",
     )
     add_wall_args(p, zwidth=True)
+    add_contact_args(p)
     p.add_argument("--grid", type=integer("--grid"), default=40, metavar="N", help="points per axis (default: 40)")
     p.add_argument(
         "--speeds",
@@ -84,7 +86,7 @@ def _cell(value: float | None) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the Z-width; print K_max(B) per method."""
-    from ..analysis.limits.require import damper_guidance
+    from ..analysis.limits.require import damper_guidance_for
     from ..analysis.limits.zwidth import ZWIDTH_METHODS, check_zwidth_size, z_width, z_width_seconds
     from ..render.zwidth import criterion_damper_note, non_monotone_mark, non_monotone_notes
 
@@ -98,6 +100,7 @@ def run(args: argparse.Namespace) -> int:
     hand = hand_stiffness_of(args, dev)  # the hand's stiffness joins the wall (dfa.HandSpring)
     wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
                    amplifier_bandwidth=args.amplifier_bandwidth, hand_stiffness=hand)  # fmt: skip
+    wall = Wall(1.0, (*wall.elements, *contact_elements(args, dev)))
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
     check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
     seconds = z_width_seconds(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs)
@@ -120,6 +123,10 @@ def run(args: argparse.Namespace) -> int:
     fc, bw = zw.wall.filter_cutoff, zw.wall.amplifier_bandwidth
     elements = f"delay {zw.delay}" + (f", velocity filter {fmt(fc)} Hz" if fc is not None else "")
     elements += f", amplifier {fmt(bw)} Hz" if bw is not None else ""
+    if zw.wall.one_sided:
+        from ..render.contact import contact_text
+
+        elements += f"; {contact_text(zw.wall, u)}"
     say(
         f"Z-width of {device_title(dev)}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}"
     )
@@ -132,8 +139,9 @@ def run(args: argparse.Namespace) -> int:
     for line in non_monotone_notes(zw, {m: COLUMNS[m] for m in ZWIDTH_METHODS}):
         say(line)
     first = next((float(b) for b in zw.damping if b > 0), None)
-    if first is not None:
-        note = criterion_damper_note(damper_guidance(dev, zw.wall.with_damping(first), zw.velocity), zw)
+    guide = None if first is None else damper_guidance_for(dev, zw.wall.with_damping(first), zw.velocity)
+    if guide is not None:
+        note = criterion_damper_note(guide, zw)
         if note:
             say(note)
     if zw.counterexamples:

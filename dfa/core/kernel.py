@@ -599,6 +599,9 @@ def classify(
 
     * rest: the kernel reached the absorbing state (``rest >= 0``);
     * left: the device left a one-sided wall for good (flag 2 in ``stats[NSEG + 5]``);
+    * a one-sided wall's run (flag −1) is unstable only past the bound: a growing envelope is undecided, as
+      its bounces carry the device away from the wall and back while its storage stays bounded (a run too
+      short to see it return or stop is no divergence);
     * unstable: |ξ| exceeded the bound, or the envelope grows: P_7 exceeds
       ``growth`` times P_4 and 1 tick, and P_4 <= P_5 <= P_6 <= P_7, in a run
       of at least 8 periods 2π√μ (shorter runs are never called unstable by
@@ -651,7 +654,7 @@ def classify(
         if stats[i + 1] > stats[i]:
             decay = False
     if grow:
-        return UNSTABLE, amp, freq, centre, fpp
+        return (UNDECIDED if stats[NSEG + 5] < 0.0 else UNSTABLE), amp, freq, centre, fpp
     if decay:  # linear loop: the envelope shrinks geometrically, i.e. it decays to rest
         return REST, amp, freq, centre, fpp
     hi = max(stats[NSEG - 3], stats[NSEG - 2], stats[NSEG - 1])

@@ -659,6 +659,8 @@ def run_wall_kernel(
     rx_, rv_ = (rec_x, rec_v) if record else (rec_x[:0], rec_v[:0])
     for i in range(stats.shape[0]):
         stats[i] = 0.0
+    if onesided:  # flag −1: a one-sided wall's run, never unstable by its envelope alone (kernel.classify)
+        stats[NSEG + 5] = -1.0
     st, ring, ref = np.empty(NCSTATE), np.empty(delay + 1), np.empty(_REF + delay)
     tail = np.empty(max(tail_len, 1))
     ctl = (damping, pole, filtered, lag, spring, onesided, surface, push)
@@ -680,7 +682,8 @@ def run_wall_kernel(
                     stats[seg] = peak
                 if why != 0:
                     done, rest = end, (end if why == 1 else -1)
-                    stats[NSEG + 5] = 1.0 if why == 2 else (2.0 if why == 3 else 0.0)  # past the bound; left
+                    if why >= 2:
+                        stats[NSEG + 5] = 1.0 if why == 2 else 2.0  # past the bound; left
                     break
         if why != 0:
             break

@@ -875,10 +875,10 @@ class OneSided(Element):
     out is cut at 0). The device arrives from free space (:func:`dfa.analysis.approach.approach_start`), and may
     leave the wall for good (outcome ``left``). The simulator runs it exactly (:mod:`dfa.core.wall_kernel`).
 
-    The criterion covers it alone (no delay, damper, filter, push or hand stiffness), for an approach at V
-    (:mod:`dfa.analysis.criterion`, "A one-sided wall"): the spring's corner (½, ½) at the speed
-    V' = √(V² + ε²/μ), ε = :meth:`contact_excess`. The linear bound and the describing function do not cover
-    it (not a linear loop), and say so.
+    The criterion covers it with a delay and a push (no damper, filter, amplifier lag or hand stiffness), for an
+    approach at V (:mod:`dfa.analysis.criterion`, "A one-sided wall"): the corner (½ + d, ½) at the speed V*
+    of :meth:`contact_speed` (V' = √(V² + ε²/μ) alone, ε = :meth:`contact_excess`). The linear bound and the
+    describing function do not cover it (not a linear loop), and say so.
 
     Attributes
     ----------
@@ -944,6 +944,107 @@ class OneSided(Element):
             The length ε >= 0 in ticks.
         """
         return max(OneSided.engage(surface, quantized) - surface + abs(speed), 0.0)
+
+    @staticmethod
+    def contact_speed(
+        surface: float, speed: float, mu: float, delay: int = 0, push: float = 0.0, quantized: bool = True
+    ) -> float:
+        """Give the criterion's speed V* of an approach at V (:mod:`dfa.analysis.criterion`, "A one-sided wall").
+
+        At the first reading inside, δ = ξ − s lies in [c, c + V), c = ξ_e − s (ξ_e = :meth:`engage`), and the
+        storage Q = ½μξ'² + ½(δ⁺)² − pδ + ½p² (>= ½μξ'²) is ½μV² + φ(δ), φ convex: at most ½μV² + ½m²,
+        ½m² = max(φ(c), φ(c + V)). The d commands still pending from the approach (0) differ from the first one
+        inside by at most ε_q = c + V + ½ (c + V = V without the encoder) and add at most ε_q·d·V*. Hence
+        ½μV*² = ½μV² + ½m² + ε_q d V*:
+
+            V* = (ε_q d + √((ε_q d)² + μ(μV² + m²)))/μ,    V* = √(V² + ε²/μ) for d = 0, p = 0
+            (ε = :meth:`contact_excess`).
+
+        Parameters
+        ----------
+        surface : float
+            The surface s in ticks.
+        speed : float
+            The impact speed V >= 0 in ticks per sample.
+        mu : float
+            Dimensionless mass μ = m/(K T²) > 0.
+        delay : int, optional
+            The computational delay d in samples (default 0).
+        push : float, optional
+            The operator's push p = F_p/(K Δ) from the first reading inside on (default 0).
+        quantized : bool, optional
+            With the encoder (default).
+
+        Returns
+        -------
+        float
+            V* in ticks per sample (>= V).
+
+        Examples
+        --------
+        >>> round(OneSided.contact_speed(0.0, 3.0, 1.0) ** 2, 12)      # V² + ε²/μ, ε = V
+        18.0
+        """
+        c = OneSided.engage(surface, quantized) - surface
+        top = c + speed
+
+        def phi(d: float) -> float:  # ½(δ⁺)² − pδ + ½p²: the storage beyond ½μV² at δ = ξ − s
+            return 0.5 * max(d, 0.0) ** 2 - push * d + 0.5 * push * push
+
+        m2 = 2.0 * max(phi(c), phi(top))
+        if delay == 0:
+            return math.sqrt(speed * speed + m2 / mu)
+        eq = (top + 0.5 if quantized else top) * delay
+        return (eq + math.sqrt(eq * eq + mu * (mu * speed * speed + m2))) / mu
+
+    @staticmethod
+    def impact_speed(
+        surface: float, equivalent: float, mu: float, delay: int = 0, push: float = 0.0, quantized: bool = True
+    ) -> float:
+        """Give the largest impact speed V whose :meth:`contact_speed` V* is at most ``equivalent``.
+
+        V* grows with V, and V <= V*: bisection on [0, ``equivalent``] to the last double (one formula for V*).
+
+        Parameters
+        ----------
+        surface : float
+            The surface s in ticks.
+        equivalent : float
+            The speed V* >= 0 in ticks per sample (the criterion's critical speed).
+        mu : float
+            Dimensionless mass μ = m/(K T²) > 0.
+        delay : int, optional
+            The computational delay d in samples.
+        push : float, optional
+            The push p = F_p/(K Δ).
+        quantized : bool, optional
+            With the encoder (default).
+
+        Returns
+        -------
+        float
+            The impact speed V >= 0 in ticks per sample; 0 when not even V = 0 reaches (then V*(0) > ``equivalent``).
+
+        Examples
+        --------
+        >>> v = OneSided.impact_speed(0.0, 3.0, 2.0)           # c = 0: V² (1 + 1/μ) = V*²
+        >>> round(v * v * 1.5, 12)
+        9.0
+        """
+
+        def within(v: float) -> bool:
+            return OneSided.contact_speed(surface, v, mu, delay, push, quantized) <= equivalent
+
+        lo, hi = 0.0, float(equivalent)
+        if within(hi):
+            return hi
+        if not within(lo):
+            return 0.0
+        while True:
+            mid = 0.5 * (lo + hi)
+            if mid in (lo, hi):
+                return lo
+            lo, hi = (mid, hi) if within(mid) else (lo, mid)
 
     @staticmethod
     def engage(surface: float, quantized: bool = True) -> float:
@@ -1036,7 +1137,7 @@ class Push(Element):
 
     @classmethod
     def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
-        raise NotCovered("no passivity criterion is derived yet with the operator's constant push (issue 28 §1)")
+        return 0.0, 0.0  # on a one-sided wall only (WallParams.uncovered); it enters V* (OneSided.contact_speed)
 
     @classmethod
     def kernel(cls, g: Any) -> dict[str, Any]:

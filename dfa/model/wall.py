@@ -305,16 +305,22 @@ class WallParams:
                 k.corner(g, quantized=True)
             except NotCovered as why:
                 return k, g, str(why)
-        others = [k for k, _ in self.groups if k is not OneSided]
-        if self.one_sided and others:
+        if not self.one_sided:
+            push = self.group(Push)
+            if push:
+                return Push, push, "a constant push on a bilateral wall is not derived (a push needs a one-sided wall)"
+            return None
+        others = [k for k, g in self.groups if k not in (OneSided, Delay, Push) and not k.renders_nothing(g)]
+        if others:
             return (
                 OneSided,
                 self.group(OneSided),
                 (
                     "no passivity criterion is derived yet for a one-sided wall with "
                     + ", ".join(k.key().replace("_", " ") for k in others)
-                    + " reached from free space (issue 28 §1: the controller's memory of the approach enters the "
-                    "energy; the spring alone is covered); the exact simulation covers it"
+                    + " reached from free space (issue 28 §1: the damper's memory of the approach and its clip at "
+                    "0 enter the energy; the spring with a delay and a push is covered); the exact simulation "
+                    "covers it"
                 ),
             )
         return None
@@ -622,6 +628,17 @@ class Wall:
         return self._value(OneSided, None) is not None
 
     @property
+    def surface(self) -> float | None:
+        """A one-sided wall's surface s in encoder ticks (None for a bilateral wall)."""
+        value = self._value(OneSided, None)
+        return None if value is None else float(value)
+
+    @property
+    def push(self) -> float:
+        """The operator's push toward a one-sided wall F_p in N (rotary: N·m); 0 for none."""
+        return float(self._value(Push, 0.0))
+
+    @property
     def amplifier_time_constant(self) -> float:
         """Amplifier time constant τ_a = 1/(2π f_bw) in s (0 for an ideal amplifier)."""
         bw = self.amplifier_bandwidth
@@ -641,6 +658,23 @@ class Wall:
             This wall's elements with that spring.
         """
         return Wall(stiffness, self.elements)
+
+    def in_contact(self) -> Wall:
+        """The wall as it acts while the device is in contact: without its one-sided contact and push.
+
+        Returns
+        -------
+        Wall
+            This wall's stiffness and other elements (the bilateral wall a one-sided wall is in contact); the wall
+            itself when it is bilateral.
+
+        Examples
+        --------
+        >>> from dfa.model.elements import OneSided
+        >>> Wall(100.0, (OneSided(0.25),)).in_contact().one_sided
+        False
+        """
+        return Wall(self.stiffness, tuple(e for e in self.elements if not isinstance(e, (OneSided, Push))))
 
     def with_damping(self, damping: float) -> Wall:
         """The same wall with its virtual damper set to B (N·s/m; rotary N·m·s/rad; 0: no damper).
@@ -705,9 +739,8 @@ class Wall:
         }
         if self.hand_stiffness:  # only with a hand stiffness: every other wall's record is unchanged
             out["hand_stiffness"] = self.hand_stiffness
-        surface = self._value(OneSided, None)
-        if surface is not None:  # only for a one-sided wall, and its push if any
-            out["one_sided_surface"] = surface
-            out["push"] = float(self._value(Push, 0.0))
+        if self.surface is not None:  # only for a one-sided wall, and its push if any
+            out["one_sided_surface"] = self.surface
+            out["push"] = self.push
         why = {"filter_cutoff": "no velocity filter", "amplifier_bandwidth": "ideal amplifier (no lag)"}
         return explain_nulls(out, why)

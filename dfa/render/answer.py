@@ -18,6 +18,7 @@ from ..analysis.limits.require import DamperGuidance
 from ..analysis.limits.search import KLimit
 from ..formatting import WIDTH, fill, number, text_table
 from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
+from .contact import contact_text
 from .hand import device_title
 from .limits import counterexample_lines, limit_tags, none_text, passive_text
 from .require import damper_line
@@ -37,13 +38,22 @@ def _k(x: float, unit: str) -> str:
 def _limit_cell(lim: KLimit, unit: str, notes: list[str], name: str) -> str:
     """The K cell of one method: its value, or "none"; a note mark when there is something to say."""
     if lim.value is None:
-        notes.append(f"{name}: {none_text(lim, unit)}")
-        return f"none *{len(notes)}"
+        return f"none *{_note(notes, name, none_text(lim, unit))}"
     tags = limit_tags(lim, unit)
     if not tags:
         return _k(lim.value, unit)
-    notes.append(f"{name}: {'; '.join(tags)}")
-    return f"{_k(lim.value, unit)} *{len(notes)}"
+    return f"{_k(lim.value, unit)} *{_note(notes, name, '; '.join(tags))}"
+
+
+def _note(notes: list[str], name: str, text: str) -> int:
+    """The mark of a note ``"name: text"``: a new one, or the one that already says ``text`` (names joined)."""
+    for i, note in enumerate(notes):
+        head, _, body = note.partition(": ")
+        if body == text:
+            notes[i] = f"{head}, {name}: {text}"
+            return i + 1
+    notes.append(f"{name}: {text}")
+    return len(notes)
 
 
 def recommendation_line(rec: Recommendation) -> str:
@@ -85,8 +95,9 @@ def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
     """(method, K, what it rests on) for each way and the spring's published bounds."""
     ku = r.device.units["stiffness"]
     n = len(r.evidence.speeds)
-    sims = f"simulated: {n} speed{'s' if n != 1 else ''} up to V, 2 starts"
-    spring = r.wall.params(r.device.period).is_spring
+    starts = "after the approach" if r.wall.one_sided else "2 starts"
+    sims = f"simulated: {n} speed{'s' if n != 1 else ''} up to V, {starts}"
+    spring = r.wall.params(r.device.period, r.device.resolution).is_spring
     rows = [["criterion (eq. 11" + (")" if spring else ", extended)"),
              _limit_cell(r.k_criterion, ku, notes, "criterion"), "proof"]]  # fmt: skip
     published = (
@@ -108,7 +119,7 @@ def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
             sims + _resolution(r.k_sim),
         ],
         [
-            "simulation, every impact rests",
+            "simulation, every impact rests" + (" or leaves" if r.wall.one_sided else ""),
             _limit_cell(r.k_sim_rest, ku, notes, "simulation, rests"),
             sims + _resolution(r.k_sim_rest),
         ],
@@ -147,14 +158,14 @@ def user_verdict(r: KMaxResult) -> str:
     src = " (catalogue K)" if a.source == "catalogue" else ""
     at = f"at {number(r.velocity, 4)} {u['velocity']}"
     runs = a.outcomes
-    diverged = [s for s in ("impact", "preload") if runs.get(s) == "unstable"]
+    diverged = [s for s, o in runs.items() if o == "unstable"]
     proof = _proof_text(r, at)
     if len(diverged) == 2:
         head = f"diverges in simulation {at} from both starts; {proof}"
     elif diverged:
         head = f"diverges in simulation {at} from the {diverged[0]} start; {proof}"
     else:
-        sim = ", ".join(f"{runs.get(s, '-')} ({s})" for s in ("impact", "preload"))
+        sim = ", ".join(f"{o} ({s})" for s, o in runs.items())
         head = f"{proof}; simulated {at}: {sim}"
     return wrap(f"your K = {_k(a.stiffness, u['stiffness'])}{src}: {head}")
 
@@ -165,9 +176,10 @@ def _header(r: KMaxResult) -> list[str]:
     w = r.wall
     d = f"delay {w.delay} sample{'s' if w.delay != 1 else ''}"
     head = f"{device_title(r.device)}, impact at {number(r.velocity, 4)} {u['velocity']} ({number(r.xi_dot, 4)} ticks/sample)"
-    if w.params(r.device.period).is_spring:
+    if w.params(r.device.period, r.device.resolution).is_spring:
         return [wrap(f"{head}; the spring, {d}")]
-    parts = [f"B = {number(w.damping, 4)} {u['damping']}"] if w.damping else []
+    parts = [contact_text(w, u)] if w.one_sided else []
+    parts += [f"B = {number(w.damping, 4)} {u['damping']}"] if w.damping else []
     parts.append(d)
     if w.filter_cutoff is not None:
         parts.append(f"velocity filter {number(w.filter_cutoff, 4)} Hz")

@@ -3,9 +3,23 @@
 from __future__ import annotations
 
 from ..formatting import number
-from ..model.wall import WallParams
+from ..model.wall import Wall, WallParams
 
-__all__ = ["contact_line"]
+__all__ = ["contact_line", "contact_text"]
+
+
+def contact_text(wall: Wall, units: dict[str, str]) -> str:
+    """A one-sided wall's contact in physical units, a few words (the K_max answer's header).
+
+    Examples
+    --------
+    >>> from dfa.model.elements import OneSided, Push
+    >>> contact_text(Wall(1.0, (OneSided(0.25), Push(2.0))), {"force": "N"})
+    'one-sided wall reached from free space (surface at 0.25 ticks), push 2 N'
+    """
+    f = wall.push
+    push = f"push {number(f, 4)} {units.get('force', 'N')}" if f else "no push (a free impact)"
+    return f"one-sided wall reached from free space (surface at {number(wall.surface, 4)} ticks), {push}"
 
 
 def contact_line(wall: WallParams, samples: int, speed: float) -> str:

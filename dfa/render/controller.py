@@ -205,7 +205,10 @@ def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
         f"½ + (1 − a)β_B = {r.sigma0:.4g}" if r.quantized else "0 (no encoder)"
     )
     if getattr(r.wall, "one_sided", False):
-        energy = "½μV² = the most energy at the first reading inside, after the approach"
+        energy = (
+            "½μV² = the most the storage holds from the first reading inside on: the penetration, the push and the "
+            "commands pending from the approach"
+        )
         family = "eq. 6 for a one-sided spring reached from free space"
     else:
         energy = "½μV² = stored energy, eq. 19"

@@ -158,18 +158,48 @@ def _sweep_text(c: Confirmation, unit: str, velocity_unit: str) -> str:
         else f"no sweep below, K lies below its start, {where} = {_k(sw.start, unit)}"
     )
     return (
-        f"at the {len(vs)} search speeds in [{min(vs):.4g}, {max(vs):.4g}] {velocity_unit} (both starts), "
+        f"at the {len(vs)} search speeds in [{min(vs):.4g}, {max(vs):.4g}] {velocity_unit} ({starts_text(c.starts)}), "
         f"{FINE_POINTS} stiffnesses in [{fine_lo:.4g}K, K] (steps of {100 * FINE_STEP:g} %) and {below}"
     )
 
 
+#: A one-sided wall's rest limit: a run that leaves the wall for good ends its contact as one at rest does.
+LEAVES = {False: "", True: " or leaves"}
+
+#: The starts of each impact (:func:`dfa.analysis.limits.runs.starts_of`) in words: in two words, in a
+#: confirmation, in a search's evidence.
+START_WORDS = {
+    ("impact", "preload"): (
+        "both starts",
+        "from ξ0 = 0 and from the preload",
+        "each from ξ0 = 0 and from the energy preload",
+    ),
+    ("approach",): (
+        "the approach",
+        "each after the approach from free space",
+        "each after the approach from free space",
+    ),
+}
+
+
+def starts_text(starts: tuple[str, ...]) -> str:
+    """The starts of each impact in two words: ``"both starts"`` or ``"the approach"``.
+
+    Examples
+    --------
+    >>> starts_text(("approach",))
+    'the approach'
+    """
+    return START_WORDS[tuple(starts)][0]
+
+
 def confirmation_text(c: Confirmation, unit: str, velocity_unit: str) -> str:
     """What a confirmed limit K claims, in words: the dense band, the sweep below it, and what is not excluded."""
-    what = "no divergence" if c.limit == "unstable" else "every run at rest"
+    what = "no divergence" if c.limit == "unstable" else "every run at rest" + LEAVES[c.starts == ("approach",)]
     vs = c.speeds
     return (
         f"{what}, none undecided, at {len(vs)} speeds in [{min(vs):.4g}, {max(vs):.4g}] {velocity_unit} "
-        f"(from ξ0 = 0 and from the preload) and {c.band_stiffnesses} stiffnesses in [{c.band[0]:g}K, K]; "
+        f"({START_WORDS[tuple(c.starts)][1]}) and {c.band_stiffnesses} stiffnesses in [{c.band[0]:g}K, K]; "
         f"{_sweep_text(c, unit, velocity_unit)}; {BELOW_K}"
     )
 
@@ -179,8 +209,8 @@ def evidence_text(r: KMaxResult) -> str:
     e, u = r.evidence, r.device.units
     sp = ", ".join(f"{v:.3g}" for v in e.speeds)
     return (
-        f"{e.simulations} exact simulations: impacts at {sp} {u['velocity']}, each from ξ0 = 0 and from the "
-        f"energy preload, over stiffnesses {e.k_range[0]:.4g} to {e.k_range[1]:.4g} {u['stiffness']}; runs "
+        f"{e.simulations} exact simulations: impacts at {sp} {u['velocity']}, {START_WORDS[tuple(e.starts)][2]}, "
+        f"over stiffnesses {e.k_range[0]:.4g} to {e.k_range[1]:.4g} {u['stiffness']}; runs "
         f"from the loop's time scales, longest {e.longest_run} samples (cap {e.max_samples}); describing "
         f"function: {e.df_model} hold model, every unstable cycle"
     )
@@ -226,7 +256,8 @@ def counterexample_lines(r: KMaxResult) -> list[list[str]]:
 
 def _growth_text(a: KMaxAssessment, vu: str) -> str:
     if a.growth_speed is None:
-        return "unknown: " + str(a.null_reasons()["growth_speed"]).removeprefix("unknown: ")
+        why = str(a.null_reasons()["growth_speed"])
+        return why if why.startswith("not predicted") else "unknown: " + why.removeprefix("unknown: ")
     if a.growth_speed == float("inf"):
         return "no growth predicted"
     return f"growth predicted from {a.growth_speed:.4g} {vu} ({a.unstable_cycles} unstable cycle(s))"
@@ -284,13 +315,25 @@ def assessment_rows(r: KMaxResult) -> list[list[str]]:
     return [
         [f"largest passive speed at {k}", passive_text(r)],
         [f"predicted cycles at {k}", _growth_text(a, vu)],
-        [f"simulated at {k}, impact at V", f"{a.outcomes['impact']} (from ξ0 = 0), {a.outcomes['preload']} (preload)"],
+        [f"simulated at {k}, impact at V", outcomes_text(a.outcomes)],
     ]
+
+
+def outcomes_text(outcomes: dict[str, str]) -> str:
+    """The simulated outcome of each start of an impact, in words.
+
+    Examples
+    --------
+    >>> outcomes_text({"impact": "rest", "preload": "chatter"}), outcomes_text({"approach": "left"})
+    ('rest (from ξ0 = 0), chatter (preload)', 'left (after the approach)')
+    """
+    where = {"impact": "from ξ0 = 0", "preload": "preload", "approach": "after the approach"}
+    return ", ".join(f"{o} ({where[s]})" for s, o in outcomes.items())
 
 
 def _criterion_row(r: KMaxResult) -> list[str]:
     ku = r.device.units["stiffness"]
-    p = r.wall.params(r.device.period)
+    p = r.wall.params(r.device.period, r.device.resolution)
     what = f"eq. 11, d = {p.delay}" if p.is_spring else "eq. 11 extended to the wall"
     return [f"criterion K_max at this speed ({what})", limit_text(r.k_criterion, ku)]
 
@@ -325,7 +368,7 @@ def kmax_rows(r: KMaxResult, *, explain: bool = False) -> list[list[str]]:
     """
     u = r.device.units
     ku, vu = u["stiffness"], u["velocity"]
-    p = r.wall.params(r.device.period)
+    p = r.wall.params(r.device.period, r.device.resolution)
     loop = (f"all Jury conditions, delay {p.delay}" if p.delay else "all Jury conditions") if p.is_spring else (
         "the wall's loop, all Jury conditions")  # fmt: skip
     rows = [_criterion_row(r), *_published_rows(r)]
@@ -333,7 +376,7 @@ def kmax_rows(r: KMaxResult, *, explain: bool = False) -> list[list[str]]:
     for name, what in (
         ("k_df", "describing function: largest K with growth speed >= V"),
         ("k_sim", "simulation: largest K, no simulated impact up to V diverges"),
-        ("k_sim_rest", "simulation: largest K, every simulated impact up to V rests"),
+        ("k_sim_rest", "simulation: largest K, every simulated impact up to V rests" + LEAVES[r.wall.one_sided]),
     ):
         rows.append([what, limit_text(getattr(r, name), ku, explain=explain, velocity_unit=vu)])
     rows += counterexample_lines(r)

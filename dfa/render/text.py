@@ -116,6 +116,8 @@ def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | No
         ],
         ["outcome", f"{r.outcome}: {OUTCOME_TEXT[r.outcome]}"],
     ]
+    if getattr(r, "contact", None) is not None:  # a one-sided wall's run, as contact
+        rows.append(["contact", f"{r.contact.value}: {r.contact.message}"])
     if r.suggested_samples is not None:
         longer = "" if u is None else f" ({_g(u['suggested_duration_s'])} s)"
         rows.append(["to decide", f"run longer: --samples {r.suggested_samples}{longer}"])

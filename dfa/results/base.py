@@ -10,7 +10,8 @@ A result class subclasses :class:`Result` (``@dataclass(frozen=True)``) and decl
 
 :meth:`Result.to_dict` builds strict JSON (:mod:`dfa.results.jsonable`) from exactly these, so no result
 writes its JSON by hand; a field's ``metadata={"json": fn}`` gives what it writes instead of itself (the
-device's name, say), ``metadata={"json": None}`` leaves it out.
+device's name, say), ``metadata={"json": None}`` leaves it out, ``metadata={"omit_none": True}`` leaves it out
+when it is None (a field of some cases only).
 
 Examples
 --------
@@ -84,7 +85,7 @@ class Result:
         for f in dataclasses.fields(self):  # type: ignore[arg-type]
             value = getattr(self, f.name)
             how = f.metadata.get("json", _SELF)
-            if how is None:
+            if how is None or (value is None and f.metadata.get("omit_none")):  # absent: not part of this case
                 continue
             out[f.name] = value if how is _SELF or value is None else how(value)
         for name in self.json_properties:

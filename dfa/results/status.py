@@ -201,6 +201,22 @@ class SimulationOutcome(StatusEnum):
     LEFT = ("left", "left the one-sided wall for good: outside, moving away, and nothing brings it back")
 
 
+class ContactOutcome(StatusEnum):
+    """How a run on a one-sided wall ended, as contact (:attr:`dfa.analysis.simulation.SimulationResult.contact`).
+
+    From the outcome and where the wall saw the device (issue 28 §1): over the tail, a reading outside between
+    readings inside is a bounce.
+    """
+
+    RESTS = ("rests", "comes to rest on the wall")
+    RESTS_OFF = ("rests_off", "comes to rest off the wall (the push does not overcome friction)")
+    IN_CONTACT = ("in_contact", "keeps moving (a cycle or a buzz) without leaving the wall")
+    BOUNCES = ("bounces", "leaves the wall and returns, again and again, with bounded peaks")
+    GROWS = ("grows", "each bounce higher: diverged")
+    LEFT = ("left", "leaves the wall for good")
+    UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
+
+
 class BatchStatus(StatusEnum):
     """Status of a batch of simulations (:class:`dfa.analysis.simulation.SimulationBatch`)."""
 
@@ -224,7 +240,13 @@ class LimitStatus(StatusEnum):
     )
     NOT_COVERED = (
         "not_covered",
-        "not covered by the criterion: no sound passivity criterion covers an element of the wall (an amplifier lag)",
+        "not covered by the criterion: no sound passivity criterion covers an element of the wall (an amplifier lag; "
+        "a one-sided wall with a push, delay, damper, filter or hand stiffness)",
+    )
+    NOT_LINEAR = (
+        "not_linear",
+        "not covered: a one-sided wall is not a linear loop (it leaves the wall); the exact linear bound and the "
+        "describing function need one",
     )
     NONE_PROVEN = ("none_proven", "the criterion proves no stiffness passive at this speed")
     NEVER = (

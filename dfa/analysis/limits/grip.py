@@ -163,7 +163,7 @@ def _need(req: Requirement, own: float) -> GripNeed:
 def _scan(dev: Device, wall: Wall, v: float, hand_mass: float) -> tuple[tuple[float, ...], tuple[str, ...]]:
     """The impact at V from ξ0 = 0 for each scanned grip (b_h = 0, K T 2^i)."""
     dampings = (0.0, *(wall.stiffness * dev.period * 2.0**i for i in GRIP_SCAN))
-    wp, xd = wall.params(dev.period), dev.xi_dot(v)
+    wp, xd = wall.params(dev.period, dev.resolution), dev.xi_dot(v)
     outcomes = []
     for b_h in dampings:
         p = dev.holding(Hand(hand_mass, b_h)).params(wall.stiffness)

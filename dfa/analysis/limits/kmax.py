@@ -52,11 +52,9 @@ from ...model.device import Device
 from ...model.wall import Wall
 from ...results.base import Result
 from ...results.status import KMaxStatus, LimitStatus, StiffnessStatus, VelocityStatus
-from ..approach import refuse_one_sided
 from ..criterion import as_wall, device_criterion
-from ..simulation import preload_position
 from .closed_form import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
-from .runs import STARTS, Evidence, RunCache
+from .runs import Evidence, RunCache, start_points
 from .search import (
     DENSE_FACTOR,
     Failure,
@@ -113,11 +111,13 @@ class KMaxAssessment(Result):
         Smallest predicted growth speed over every unstable cycle, m/s (inf: none; None: ``growth_unknown``).
     growth_unknown : str or None
         Why the growth speed is unknown: ``"subtick"`` (the sub-tick caveat of
-        :mod:`dfa.analysis.cycles.caveats`) or ``"incomplete"`` (the cycle search was incomplete).
+        :mod:`dfa.analysis.cycles.caveats`), ``"incomplete"`` (the cycle search was incomplete) or
+        ``"not_linear"`` (a one-sided wall: no describing function).
     unstable_cycles : int
         Unstable cycles predicted (describing function).
     outcomes : dict
-        Simulated outcome of an impact at V from ξ0 = 0 (``"impact"``) and from the preload (``"preload"``).
+        Simulated outcome of an impact at V from ξ0 = 0 (``"impact"``) and from the preload (``"preload"``);
+        a one-sided wall's after the approach from free space (``"approach"``).
     """
 
     stiffness: float
@@ -160,6 +160,7 @@ class KMaxAssessment(Result):
                 "subtick": "unknown: the smallest unstable cycle lies below dfa.analysis.cycles.SUBTICK_LIMIT ticks "
                 "(the sub-tick caveat), where simulation has diverged from starts the first harmonic says settle",
                 "incomplete": "unknown: the cycle search was incomplete and found no unstable cycle",
+                "not_linear": "not predicted: a one-sided wall is not a linear loop (the describing function needs one)",
             }.get(self.growth_unknown or "", "no growth predicted (no unstable cycle, stable linear loop)"),
             "growth_unknown": "the growth speed is known",
         }
@@ -300,7 +301,7 @@ def criterion_passes(dev: Device, wall: Wall, k: float, v: float) -> bool:
     """The criterion's verdict at stiffness k; a K whose groups are not representable is not proven passive."""
     try:
         return device_criterion(dev, wall.with_stiffness(k), v).passive
-    except DFAValueError:
+    except DFAValueError:  # (a one-sided wall's impact at v is monotone in K too: V'² = V² + ε²KT²/m)
         return False
 
 
@@ -319,7 +320,7 @@ def damper_friction_per_damping(dev: Device, wall: Wall) -> float:
     >>> damper_friction_per_damping(dev, Wall.of(1.0, damping=1.0)) == dev.resolution / dev.period
     True
     """
-    return wall.params(dev.period).velocity_gain() * dev.resolution / dev.period
+    return wall.params(dev.period, dev.resolution).velocity_gain() * dev.resolution / dev.period
 
 
 def wall_k_criterion(dev: Device, wall: Wall, v: float) -> float:
@@ -353,7 +354,9 @@ def closed_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dic
     from K_criterion/2 to 8 × the largest closed-form bound; a wall, the criterion's verdict (none where no
     criterion covers it) and the linear loop with the wall, its grid from K_criterion/2 (else K_linear/2).
     """
-    p = wall.params(dev.period)
+    if wall.one_sided:
+        return _one_sided_forms(dev, wall, v)
+    p = wall.params(dev.period, dev.resolution)
     kl = linear_limit(dev, wall)
     if p.is_spring:
         d = p.delay
@@ -373,6 +376,19 @@ def closed_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dic
     return crit, _limit(kl, LimitStatus.NO_STABLE_K), pub, kc, 8.0 * max(k_static(dev), kl, kc)
 
 
+def _one_sided_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dict[str, float | None], float, float]:
+    """:func:`closed_forms` of a one-sided wall: the criterion where one covers it (the lone spring, its impact
+    at v from free space), no linear bound (not a linear loop), and the grid of the wall it is in contact
+    (:meth:`~dfa.model.wall.Wall.in_contact`), from its own K_criterion/2 where it has one."""
+    _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall.in_contact(), v)
+    pub: dict[str, float | None] = dict(k_static=None, k_colgate=None, k_abbott_okamura=None)
+    linear = KLimit(None, LimitStatus.NOT_LINEAR)
+    if wall.params(dev.period, dev.resolution).not_covered() is not None:
+        return KLimit(None, LimitStatus.NOT_COVERED), linear, pub, k_ref, top
+    kc = wall_k_criterion(dev, wall, v)
+    return _limit(kc, LimitStatus.NONE_PROVEN), linear, pub, (kc if kc > 0.0 else k_ref), top
+
+
 def linear_limit(dev: Device, wall: Wall) -> float:
     """K_linear: the top of the stable interval from K = 0 of the linear loop (no encoder, no Coulomb friction).
 
@@ -381,7 +397,7 @@ def linear_limit(dev: Device, wall: Wall) -> float:
     """
     from ..linear_wall import stable_stiffness
 
-    p = wall.params(dev.period)
+    p = wall.params(dev.period, dev.resolution)
     if p.is_spring:
         return float(k_gil(dev, delay=p.delay))
     return float(stable_stiffness(dev.mass, dev.damping, dev.period, wall).k_crit)
@@ -395,6 +411,8 @@ def describing_limit(
     The one describing-function limit of a wall: the Z-width's column and the inverse question
     (:mod:`dfa.analysis.limits.require`) call it; the design answer computes it in the same way.
     """
+    if wall.one_sided:
+        return KLimit(None, LimitStatus.NOT_LINEAR)
     _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall, v)
     if not (top > 0 and math.isfinite(top)):
         return KLimit(None, LimitStatus.NO_RANGE)
@@ -439,7 +457,7 @@ def _searches(ev: Evidence, v: float, k_ref: float, top: float, n_grid: int) -> 
         return none, none, none, (0.0, 0.0)
     pts = search_grid(k_ref, top, n_grid)
     xd = ev.dev.xi_dot(v)
-    k_df = df_limit(ev, pts, xd)
+    k_df = KLimit(None, LimitStatus.NOT_LINEAR) if ev.wall.one_sided else df_limit(ev, pts, xd)  # describing_limit's
     k_sim = simulated_limit(ev, pts, "unstable")
     k_rest = simulated_limit(ev, pts, "rest")
     return k_df, k_sim, k_rest, (float(pts[0]), float(pts[-1]))
@@ -466,7 +484,7 @@ def searched_limits(
     found = [s.value for s in (k_sim, k_rest) if s.value is not None]
     if found:  # one sweep from K_criterion (else the grid's lowest point): k_sim_rest's points are k_sim's
         k_lo, by_criterion = (kc, True) if kc else (k_range[0], False)
-        budget = ev.wall.params(ev.dev.period).sweep_points()
+        budget = ev.wall.params(ev.dev.period, ev.dev.resolution).sweep_points()
         sweep = Sweep.up_to(k_lo, by_criterion, max(found), budget)
         ev.prefetch(sweep.points(max(found)))  # one threaded batch for both limits
         k_sim = confirm(k_sim, ev, dense, "unstable", sweep, k_range[0])
@@ -483,7 +501,7 @@ def searched_limits(
 def passive_speed(dev: Device, wall: Wall, k: float) -> tuple[float | None, VelocityStatus]:
     """Largest speed (m/s) the criterion proves passive at K with ``wall``'s elements (inf: every speed; None:
     none), and its status: eq. 11-12 for the spring, the criterion with the wall otherwise."""
-    p = wall.params(dev.period)
+    p = wall.params(dev.period, dev.resolution)
     if p.is_spring:
         mpv = max_passive_velocity(dev, k, p.delay)
     elif p.not_covered() is not None:
@@ -501,18 +519,18 @@ def _assess(ev: Evidence, k: float, source: str, velocity: float) -> KMaxAssessm
     dev = ev.dev
     g = ev.growth_xi_dot(k)
     unknown = "subtick" if g.subtick else ("incomplete" if g.xi_dot is None else None)
+    unknown = "not_linear" if ev.wall.one_sided else unknown
     xi = None if g.subtick else g.xi_dot  # the sub-tick caveat: the growth speed is not a threshold to rely on
     p, w = ev.params(k)
-    xd = dev.xi_dot(velocity)
-    pts = [(p.mu, p.beta, p.sigma, 0.0, xd), (p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0)]
-    outs, _ = ev.cache.simulate(pts, w, ev.max_samples)
-    ev.runs += 2
+    pts = start_points(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), w)
+    outs, _ = ev.cache.simulate(pts, w, ev.max_samples)  # type: ignore[arg-type]
+    ev.runs += len(pts)
     gs = None if xi is None else (math.inf if math.isinf(xi) else dev.velocity(xi))
     mpv, vstatus = passive_speed(dev, ev.wall, k)
     verdict = StiffnessStatus.OK if mpv is not None and mpv >= velocity else StiffnessStatus.TOO_STIFF
     if vstatus is VelocityStatus.NOT_COVERED:
         verdict = StiffnessStatus.NOT_COVERED
-    outcomes = dict(zip(STARTS, outs, strict=True))
+    outcomes = dict(zip(ev.starts, outs, strict=True))
     return KMaxAssessment(k, source, mpv, vstatus, verdict, gs, unknown, g.unstable, outcomes)
 
 
@@ -578,7 +596,6 @@ def design_answer(
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     v = check_speed("velocity", velocity, dev.units["velocity"])
     w = Wall(1.0) if wall is None else as_wall(wall)
-    refuse_one_sided(w, "the K_max searches")
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     n_grid = check_int("grid", grid, minimum=2, fix="give at least 2 stiffness grid points")
     cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")
@@ -600,7 +617,7 @@ def design_answer(
     else:  # no impact: nothing to search (the closed forms hold at rest)
         k_df = k_sim = k_rest = KLimit(None, LimitStatus.NOT_SEARCHED)
         k_range, ce, status = (0.0, 0.0), (), KMaxStatus.OK
-    evidence = SearchEvidence(ev.speeds, STARTS, DENSE_FACTOR, ev.runs, ev.longest, cap, model, k_range)
+    evidence = SearchEvidence(ev.speeds, ev.starts, DENSE_FACTOR, ev.runs, ev.longest, cap, model, k_range)
     a = _assess(ev, w.stiffness, source, v) if assess else None  # its two runs are not the limits' evidence
     return KMaxResult(
         dev, w, v, dev.xi_dot(v), kc, kl, k_df, k_sim, k_rest, published["k_static"], published["k_colgate"],

@@ -64,6 +64,7 @@ __all__ = [
     "Requirement",
     "Requirements",
     "damper_guidance",
+    "damper_guidance_for",
     "requirements",
 ]
 
@@ -342,7 +343,7 @@ def requirements(
         raise DFAValueError("methods and parameters must each name at least one; give e.g. methods=('criterion',)")
     out = []
     for m in ms:
-        if m == "criterion" and w.params(dev.period).not_covered() is not None:
+        if m == "criterion" and w.params(dev.period, dev.resolution).not_covered() is not None:
             out += [Requirement(m, n, _current(dev, w, n), None, "at_least" if HELPS[m][n] > 0 else "at_most",
                                 RequireStatus.NOT_COVERED) for n in names]  # fmt: skip
             continue
@@ -379,6 +380,26 @@ class DamperGuidance(Result):
     def null_reasons(self) -> dict[str, str]:
         """Why ``max_resolution`` may be null (JSON)."""
         return {"max_resolution": "no encoder resolution helps: (B − b)·speed exceeds the Coulomb friction"}
+
+
+def damper_guidance_for(device: Device, wall: Wall, velocity: float) -> DamperGuidance | None:
+    """:func:`damper_guidance` where it means something: None without a damper, or where no criterion covers the
+    wall at all (an amplifier lag, a one-sided wall with a damper: no B would let it prove a K).
+
+    Parameters
+    ----------
+    device : Device
+    wall : Wall
+    velocity : float
+        Impact speed, m/s (rotary: rad/s), >= 0.
+
+    Returns
+    -------
+    DamperGuidance or None
+    """
+    if wall.damping == 0 or wall.params(device.period, device.resolution).not_covered() is not None:
+        return None
+    return damper_guidance(device, wall, velocity)
 
 
 def damper_guidance(device: Device, wall: Wall, velocity: float) -> DamperGuidance:

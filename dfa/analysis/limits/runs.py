@@ -52,11 +52,15 @@ __all__ = [
     "FAILING",
     "DIVERGENCE_BOUND",
     "STARTS",
+    "ONE_SIDED_STARTS",
+    "starts_of",
+    "start_points",
     "Growth",
     "growth_at",
     "df_verdict",
     "simulate_points",
     "decide_undecided",
+    "judge_outcomes",
     "EXTEND_STEP",
     "EXTEND_CAP",
     "RunCache",
@@ -75,6 +79,35 @@ DIVERGENCE_BOUND = 1.0e6
 #: to the same energy (the damper's velocity estimate and filter at 0, the delayed commands and the amplifier's
 #: force at the spring's force at ξ0: the steady state of a device held still there).
 STARTS = ("impact", "preload")
+#: The one start of a one-sided wall's impact: the approach from free space at the speed
+#: (:func:`dfa.analysis.maps.map_start`, the map's rule).
+ONE_SIDED_STARTS = ("approach",)
+
+
+def starts_of(wall: WallParams | Wall) -> tuple[str, ...]:
+    """The starts of every simulated impact with ``wall``: :data:`STARTS`, or a one-sided wall's approach.
+
+    Examples
+    --------
+    >>> starts_of(WallParams())
+    ('impact', 'preload')
+    """
+    return ONE_SIDED_STARTS if wall.one_sided else STARTS
+
+
+def start_points(mu: float, beta: float, sigma: float, xi_dot: float, wall: WallParams) -> list[tuple[float, ...]]:
+    """The runs (μ, β, σ, ξ0, ξ'0) of an impact at ``xi_dot``, one per start of :func:`starts_of`.
+
+    Examples
+    --------
+    >>> start_points(100.0, 0.3, 1.5, 2.0, WallParams())[0]
+    (100.0, 0.3, 1.5, 0.0, 2.0)
+    """
+    if wall.one_sided:
+        from ..maps import map_start
+
+        return [(mu, beta, sigma, *map_start(mu, xi_dot, False, wall))]
+    return [(mu, beta, sigma, 0.0, xi_dot), (mu, beta, sigma, preload_position(mu, xi_dot), 0.0)]
 
 
 #: An undecided design run (too short to tell) is run again this many times longer, until it is decided ...
@@ -206,6 +239,19 @@ def _batched_outcomes(jobs: list[tuple], delay: int, workers: int, spring: bool)
     else:
         codes = gather(chunks, [chunk(j) for j in chunks])
     return [OUTCOMES[c] for c in codes]
+
+
+def judge_outcomes(outcomes: set[str] | frozenset[str], limit: str) -> str:
+    """SAFE, UNSAFE (an outcome in ``FAILING[limit]``) or UNDECIDED (one undecided, none failing) for a set of runs.
+
+    Examples
+    --------
+    >>> judge_outcomes({"rest", "chatter"}, "unstable"), judge_outcomes({"left", "rest"}, "rest")
+    ('safe', 'safe')
+    """
+    if outcomes & FAILING[limit]:
+        return UNSAFE
+    return UNDECIDED if "undecided" in outcomes else SAFE
 
 
 class Growth(NamedTuple):
@@ -356,12 +402,17 @@ class Evidence:
         """The impact speeds simulated, m/s (rotary: rad/s)."""
         return tuple(self.dev.velocity(x) for x in self.xi_dots)
 
+    @property
+    def starts(self) -> tuple[str, ...]:
+        """The starts of every impact (:func:`starts_of`)."""
+        return starts_of(self.wall)
+
     def params(self, k: float) -> tuple[Params, WallParams]:
         """The device's groups (μ, β, σ) and the wall's at stiffness ``k``.
 
         Raises DFAValueError when a group is not representable at ``k``.
         """
-        return self.dev.params(k), self.wall.with_stiffness(k).params(self.dev.period)
+        return self.dev.params(k), self.wall.with_stiffness(k).params(self.dev.period, self.dev.resolution)
 
     def outcomes(self, k: float) -> list[tuple[float, str, str]]:
         """(ξ'0, start, outcome) of every impact simulated at stiffness ``k``."""
@@ -379,12 +430,13 @@ class Evidence:
             try:
                 p, w = self.params(k)
             except DFAValueError:  # μ, β or σ not representable at this K: nothing can be decided there
-                self.sims[k] = [(xd, start, "undecided") for xd in self.xi_dots for start in STARTS]
+                self.sims[k] = [(xd, start, "undecided") for xd in self.xi_dots for start in self.starts]
                 continue
             for xd in self.xi_dots:
-                pts += [(p.mu, p.beta, p.sigma, 0.0, xd), (p.mu, p.beta, p.sigma, preload_position(p.mu, xd), 0.0)]
-                walls += [w, w]
-                tags += [(k, xd, STARTS[0]), (k, xd, STARTS[1])]
+                for start, pt in zip(self.starts, start_points(p.mu, p.beta, p.sigma, xd, w), strict=True):
+                    pts.append(pt)  # type: ignore[arg-type]
+                    walls.append(w)
+                    tags.append((k, xd, start))
         if not pts:
             return
         outs, lengths = self.cache.simulate(pts, walls, self.max_samples)
@@ -395,10 +447,7 @@ class Evidence:
 
     def judge(self, k: float, limit: str) -> str:
         """SAFE, UNSAFE (an outcome in ``FAILING[limit]``) or UNDECIDED for every impact at stiffness ``k``."""
-        outs = {o for _, _, o in self.outcomes(k)}
-        if outs & FAILING[limit]:
-            return UNSAFE
-        return UNDECIDED if "undecided" in outs else SAFE
+        return judge_outcomes({o for _, _, o in self.outcomes(k)}, limit)
 
     def no_divergence(self, k: float) -> str:
         """The judgement of the limit "no simulated impact diverges" at ``k``."""
@@ -410,6 +459,8 @@ class Evidence:
 
     def growth_xi_dot(self, k: float) -> Growth:
         """The describing function's growth prediction at ``k`` (:func:`growth_at`; unknown where not representable)."""
+        if k not in self.growth and self.wall.one_sided:  # not a linear loop: nothing to predict
+            self.growth[k] = Growth(None, 0, False)
         if k not in self.growth:
             try:
                 p, w = self.params(k)

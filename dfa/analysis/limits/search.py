@@ -173,7 +173,7 @@ class Confirmation:
     limit : str
         ``"unstable"`` (no run diverges) or ``"rest"`` (every run comes to rest); none is undecided.
     speeds : tuple of float
-        The dense speeds of the band, m/s (rotary: rad/s), each from both starts.
+        The dense speeds of the band, m/s (rotary: rad/s), each from every start of ``starts``.
     band : tuple of float
         The band's relative bounds (1 − :data:`DENSE_BAND`, 1): stiffnesses in [band[0]·K, K].
     band_stiffnesses : int
@@ -182,6 +182,9 @@ class Confirmation:
         The search speeds of the sweep, m/s.
     sweep : SweepRecord
         The sweep in K below the limit at the search speeds.
+    starts : tuple of str
+        The starts of every impact (:func:`dfa.analysis.limits.runs.starts_of`): ``("impact", "preload")``,
+        or a one-sided wall's ``("approach",)``.
 
     A finite set of speeds and stiffnesses: narrower unsafe bands between the swept stiffnesses, and
     unsafe speeds between those simulated, are not excluded (stability need not be monotone in K).
@@ -193,6 +196,7 @@ class Confirmation:
     band_stiffnesses: int
     search_speeds: tuple[float, ...]
     sweep: SweepRecord
+    starts: tuple[str, ...] = ("impact", "preload")
 
     def to_dict(self) -> dict[str, Any]:
         """The confirmation as JSON-able data (its fields, the sweep nested)."""
@@ -613,5 +617,6 @@ def confirm(
 def _claim(ev: Evidence, dense: Evidence, bad: str, sweep: Sweep, k: float) -> Confirmation:
     """What a limit K confirmed by ``ev`` and ``dense`` over ``sweep`` claims (:class:`Confirmation`)."""
     return Confirmation(
-        bad, dense.speeds, (1.0 - DENSE_BAND, 1.0), DENSE_RUNGS + len(DENSE_FINE), ev.speeds, sweep.record(k)
-    )
+        bad, dense.speeds, (1.0 - DENSE_BAND, 1.0), DENSE_RUNGS + len(DENSE_FINE), ev.speeds, sweep.record(k),
+        ev.starts,
+    )  # fmt: skip

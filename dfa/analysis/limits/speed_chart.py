@@ -43,11 +43,10 @@ from ...plausibility import warn_if_from_outside
 from ...results.base import Result
 from ...results.frozen import frozen_array
 from ...results.status import ChartStatus
-from ..approach import refuse_one_sided
 from ..cycles.caveats import SUBTICK_LIMIT
 from .closed_form import HAND_SPEED, k_static
 from .kmax import DESIGN_MAX_SAMPLES, closed_forms, passive_speed
-from .runs import Evidence, Growth, RunCache
+from .runs import SAFE, Evidence, Growth, RunCache, judge_outcomes
 from .search import check_stiffness_range
 
 __all__ = ["StiffnessSpeedChart", "stiffness_speed_chart", "check_chart_range", "HAND_SPEED"]
@@ -55,7 +54,8 @@ __all__ = ["StiffnessSpeedChart", "stiffness_speed_chart", "check_chart_range", 
 #: Why the describing function's largest safe speed is unknown (null) at a stiffness.
 UNKNOWN_DF = (
     "unknown: the describing function cannot tell there (the sub-tick caveat of dfa.analysis.cycles.caveats: smallest "
-    f"unstable cycle below {SUBTICK_LIMIT:g} ticks; or an incomplete cycle search)"
+    f"unstable cycle below {SUBTICK_LIMIT:g} ticks; or an incomplete cycle search; or a one-sided wall, not a linear "
+    "loop)"
 )
 
 
@@ -262,6 +262,11 @@ class StiffnessSpeedChart(Result):
         """The wall's computational delay d in samples."""
         return self.wall.delay
 
+    @property
+    def criterion_covered(self) -> bool:
+        """True when a passivity criterion covers the wall (``v_criterion`` is then a proof; else all 0)."""
+        return self.wall.params(self.device.period, self.device.resolution).not_covered() is None
+
     def null_reasons(self) -> dict[str, str]:
         """Why each field may be null in JSON, by key.
 
@@ -288,8 +293,11 @@ def _largest_safe(verdicts: list[bool], speeds: np.ndarray) -> float:
 
 
 def _k_range(dev: Device, wall: Wall, v_top: float, design: float | None) -> tuple[float, float]:
-    """The stiffness range: from a quarter of the lowest closed-form bound to 8 × the highest (and the design K)."""
+    """The stiffness range: from a quarter of the lowest closed-form bound to 8 × the highest (and the design K);
+    a one-sided wall's bounds but the criterion's are those of the wall it is in contact."""
     kc, kl, pub, _ref, _top = closed_forms(dev, wall, v_top)
+    if wall.one_sided:
+        _kc, kl, pub, _ref, _top = closed_forms(dev, wall.in_contact(), v_top)
     lows = [k for k in (kl.value, pub["k_colgate"], kc.value) if k is not None and k > 0]
     spring = (pub["k_static"], pub["k_colgate"]) if pub["k_static"] is not None else (k_static(dev), kl.value)
     highs = [k for k in spring if k is not None] + ([design] if design else [])
@@ -377,7 +385,6 @@ def stiffness_speed_chart(
     """
     dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
     w = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
-    refuse_one_sided(w, "the stiffness-speed chart")
     k_design = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
     v_design = None if velocity is None else check_speed("velocity", velocity)
     for quantity, value in (("stiffness", k_design), ("velocity", v_design)):
@@ -406,11 +413,12 @@ def stiffness_speed_chart(
         check_type("cache", cache, RunCache, "pass a dfa.analysis.limits.runs.RunCache, or None")
     ev = Evidence(dev, w, vs, n_max, "half-delay", cache)
     v_sim, v_rest, v_df = [], [], []
+    n = len(ev.starts)
     for k in ks:
         rows = ev.outcomes(float(k))
-        pairs = [rows[2 * i][2:] + rows[2 * i + 1][2:] for i in range(len(vs))]
-        v_sim.append(_largest_safe(["unstable" not in p and "undecided" not in p for p in pairs], vs))
-        v_rest.append(_largest_safe([p == ("rest", "rest") for p in pairs], vs))
+        per_speed = [{o for _, _, o in rows[n * i : n * (i + 1)]} for i in range(len(vs))]  # every start
+        v_sim.append(_largest_safe([judge_outcomes(o, "unstable") == SAFE for o in per_speed], vs))
+        v_rest.append(_largest_safe([judge_outcomes(o, "rest") == SAFE for o in per_speed], vs))
         v_df.append(_df_speed(ev.growth_xi_dot(float(k)), dev, top))
     kc = np.geomspace(lo, hi, 200)
     vc = []

@@ -84,7 +84,6 @@ from ...plausibility import warn_if_from_outside
 from ...results.base import Result
 from ...results.codes import BOUNDED, DIVERGES, POINT_OUTCOMES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
 from ...results.status import LimitStatus, LinearStatus, ZWidthStatus
-from ..approach import refuse_one_sided
 from ..colgate_schenkel import colgate_schenkel_damping
 from ..linear_wall import stable_stiffness
 from ..simulation import (
@@ -93,12 +92,11 @@ from ..simulation import (
     STABLE_AMPLITUDE,
     default_samples,
     divergence_bound,
-    preload_position,
     run_points,
     wall_run_codes,
 )
 from .kmax import describing_limit, wall_k_criterion
-from .runs import DIVERGENCE_BOUND, SAFE, UNSAFE, RunCache, decide_undecided
+from .runs import DIVERGENCE_BOUND, SAFE, UNSAFE, RunCache, decide_undecided, start_points, starts_of
 from .search import KLimit, grid_search
 
 __all__ = ["ZWidth", "z_width", "z_width_seconds", "check_zwidth_size", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
@@ -352,7 +350,10 @@ class ZWidth(Result):
 
 # ----------------------------------------------------------------------------- boundaries per B
 def _linear(dev: Device, wall: Wall) -> KLimit:
-    """Top of the stable K interval from K = 0 of the linear loop (exact); further intervals as ``safe_above``."""
+    """Top of the stable K interval from K = 0 of the linear loop (exact); further intervals as ``safe_above``;
+    none for a one-sided wall (not a linear loop)."""
+    if wall.one_sided:
+        return KLimit(None, LimitStatus.NOT_LINEAR)
     r = stable_stiffness(dev.mass, dev.damping, dev.period, wall)
     if r.status in (LinearStatus.NEVER, LinearStatus.NOT_AT_LOW_K):
         return KLimit(None, LimitStatus.NO_STABLE_K, safe_above=tuple(float(lo) for lo, _ in r.intervals))
@@ -362,7 +363,7 @@ def _linear(dev: Device, wall: Wall) -> KLimit:
 
 def _colgate_schenkel(dev: Device, wall: Wall, ks: np.ndarray) -> KLimit:
     """Largest K of the grid (then bisection) with b above the certified Colgate–Schenkel bound at this wall."""
-    if wall.params(dev.period).colgate_schenkel_reason() is not None:
+    if wall.params(dev.period, dev.resolution).colgate_schenkel_reason() is not None:
         return KLimit(None, LimitStatus.NOT_COVERED)
 
     def judge(k: float) -> str:
@@ -375,7 +376,7 @@ def _colgate_schenkel(dev: Device, wall: Wall, ks: np.ndarray) -> KLimit:
 
 def _criterion(dev: Device, wall: Wall, v: float) -> KLimit:
     """The largest K the criterion proves passive at this wall (:func:`~dfa.analysis.limits.kmax.wall_k_criterion`)."""
-    if wall.params(dev.period).not_covered() is not None:
+    if wall.params(dev.period, dev.resolution).not_covered() is not None:
         return KLimit(None, LimitStatus.NOT_COVERED)
     k = wall_k_criterion(dev, wall, v)
     return KLimit(k) if k > 0.0 else KLimit(None, LimitStatus.NONE_PROVEN)
@@ -383,11 +384,12 @@ def _criterion(dev: Device, wall: Wall, v: float) -> KLimit:
 
 # ----------------------------------------------------------------------------- simulation of the grid
 def _runs(dev: Device, k: float, ctl: WallParams, xi_dots: Any, cap: int) -> list[tuple]:
-    """The runs (μ, β, σ, ξ0, ξ'0, samples, bound) of one grid point: each speed from ξ0 = 0 and from the preload."""
+    """The runs (μ, β, σ, ξ0, ξ'0, samples, bound) of one grid point: each speed from ξ0 = 0 and from the preload
+    (a one-sided wall's: after the approach, :func:`~dfa.analysis.limits.runs.start_points`)."""
     p = dev.params(k)
     out = []
     for xd in xi_dots:
-        for x0, v0 in ((0.0, xd), (preload_position(p.mu, xd), 0.0)):
+        for _mu, _b, _s, x0, v0 in start_points(p.mu, p.beta, p.sigma, xd, ctl):
             # run length from the loop's time scales with the controller's net damping (an estimate: a run
             # too short to tell is "undecided", never a verdict)
             n = min(default_samples(p.mu, p.beta, p.sigma, v0, x0, wall=ctl), cap)
@@ -437,10 +439,11 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
 def _point_codes(run_codes: np.ndarray) -> np.ndarray:
     """Code of each point (row) from its runs' outcome codes (:mod:`dfa.core.kernel`; module docstring).
 
-    Diverges if any run is unstable, else undecided if any run is, else rest if every run rests, else bounded.
+    Diverges if any run is unstable, else undecided if any run is, else rest if every run rests (or, on a
+    one-sided wall, leaves it for good), else bounded.
     """
     out = np.full(run_codes.shape[0], BOUNDED, dtype=np.int8)
-    out[(run_codes == kernel.REST).all(axis=1)] = REST
+    out[np.isin(run_codes, (kernel.REST, kernel.LEFT)).all(axis=1)] = REST  # a one-sided wall's run may leave
     out[(run_codes == kernel.UNDECIDED).any(axis=1)] = UNDECIDED_POINT
     out[(run_codes == kernel.UNSTABLE).any(axis=1)] = DIVERGES
     return out
@@ -501,7 +504,7 @@ def _grids(dev: Device, wall: Wall, grid: int, k_range: Any, b_range: Any) -> tu
         )
     bs = np.linspace(b0, b1, grid)
     if k_range is None:
-        lin = [_linear(dev, wall.with_damping(float(b))).value for b in (b0, b1)]
+        lin = [_linear(dev, wall.in_contact().with_damping(float(b))).value for b in (b0, b1)]
         top = 8.0 * max([2.0 * dev.coulomb / dev.resolution] + [k for k in lin if k is not None])
         low = 0.5 * lin[0] if lin[0] is not None else top * 1e-4
         k_range = (min(low, top * 1e-2), top)
@@ -520,7 +523,7 @@ def _plan(dev: Device, wall: Wall, ks: Any, bs: Any, xi_dots: Any, cap: int) -> 
     for b in bs:
         wb = wall.with_damping(float(b))
         for k in ks:
-            ctl = wb.with_stiffness(float(k)).params(dev.period)
+            ctl = wb.with_stiffness(float(k)).params(dev.period, dev.resolution)
             runs = _runs(dev, float(k), ctl, xi_dots, cap)
             work += sum(r[5] for r in runs)
             tasks.append((runs, ctl))
@@ -593,7 +596,6 @@ def z_width(
     v = check_speed("velocity", velocity, dev.units["velocity"], zero=False)
     warn_if_from_outside("velocity", v, rotary=dev.rotary)
     base = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
-    refuse_one_sided(base, "the Z-width")
     g = check_int("grid", grid, minimum=2, fix="give at least 2 points per axis")
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     check_zwidth_size(g, n_speeds)
@@ -602,7 +604,7 @@ def z_width(
     jobs = check_jobs("n_jobs", n_jobs)
     progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
     workers = _workers(jobs)
-    base.params(dev.period)  # bad wall values (a cutoff above Nyquist): refuse first
+    base.params(dev.period, dev.resolution)  # bad wall values (a cutoff above Nyquist): refuse first
     ks, bs = _grids(dev, base, g, k_range, b_range)
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
     xi_dots = [dev.xi_dot(float(s)) for s in vs]
@@ -731,7 +733,8 @@ def _assemble(
     caveat = bool((codes == UNDECIDED_POINT).any()) or any(x.non_monotone for m in ("sim", "rest") for x in limits[m])
     status = ZWidthStatus.COUNTEREXAMPLE if ce else (ZWidthStatus.CAVEATS if caveat else ZWidthStatus.OK)
     return ZWidth(
-        dev, wall, v, tuple(float(s) for s in vs), ks, bs, limits, codes, cap, n_points * 2 * len(vs), model, ce,
+        dev, wall, v, tuple(float(s) for s in vs), ks, bs, limits, codes, cap, n_points * len(starts_of(wall)) * len(vs),
+        model, ce,
         lpv, status,
     )  # fmt: skip
 
