@@ -137,3 +137,24 @@ def test_readme_results_table_names_each_analysis_its_result_status_and_xarray_d
                 assert all(d.strip() in doc for d in dim.split(",")), (result, dim)
         else:
             assert not hasattr(cls, "to_xarray"), f"{result}.to_xarray is missing from the README's table"
+
+
+def test_one_sided_comparison_numbers_in_trust_page_match_the_committed_run():
+    """docs/trust.md's bilateral-versus-one-sided numbers are reports/validation/one_sided_comparison.json's."""
+    d = json.loads((ROOT / "reports" / "validation" / "one_sided_comparison.json").read_text(encoding="utf-8"))
+    free, crit, pushed_found = [], [], []
+    for lim in d["limits"]:
+        b = lim["bilateral"]["k_sim"]["value"]
+        f = lim["one_sided"]["k_sim"]
+        assert f["status"] == "above_range"  # "no free impact diverged up to the top of the searched range"
+        free.append(f["range_end"] / b)
+        crit.append(lim["one_sided"]["k_criterion"]["value"] / lim["bilateral"]["k_criterion"]["value"])
+        if lim["pushed"]["k_sim"]["value"] is not None:
+            pushed_found.append(lim["pushed"]["k_sim"]["value"] / b)
+    flat = _flat(TRUST)
+    n = len(d["devices"])
+    assert f"on the {n} complete catalogue devices" in flat
+    assert f"{min(free):.1f} to {max(free):.1f} times the bilateral spring's no-divergence limit" in flat
+    assert f"the criterion's K is {min(crit):.2f} to {max(crit):.2f} times the bilateral one" in flat
+    assert len(pushed_found) == 1 and f"never diverged in the range on {n - 1} of them" in flat
+    assert f"diverged at {pushed_found[0]:.2f} times the bilateral limit" in flat

@@ -37,6 +37,8 @@ __all__ = [
     "ChartStatus",
     "SimulationOutcome",
     "BatchStatus",
+    "ContactOutcome",
+    "ComparisonStatus",
     "LimitStatus",
     "KMaxStatus",
     "SearchStatus",
@@ -215,6 +217,16 @@ class ContactOutcome(StatusEnum):
     GROWS = ("grows", "each bounce higher: diverged")
     LEFT = ("left", "leaves the wall for good")
     UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
+
+
+class ComparisonStatus(StatusEnum):
+    """What the bilateral-versus-one-sided comparison rests on (:mod:`dfa.analysis.contact_comparison`)."""
+
+    OK = ("ok", "every limit found or bounded by its search, no counterexample")
+    COUNTEREXAMPLE = (
+        "counterexample",
+        "a simulated impact diverged at a stiffness the criterion proves passive: a criterion bug (see the rows)",
+    )
 
 
 class BatchStatus(StatusEnum):
