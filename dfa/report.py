@@ -122,10 +122,10 @@ def _wall_numbers(a: DesignAnalysis) -> dict[str, Any]:
         k_linear=None if lim is None else lim.k_linear.value,
         delay=a.delay,
         critical_xi_dot=None if r is None else r.critical_xi_dot,
-        df_xi_dot=a.threshold("zoh").xi_dot,
+        df_xi_dot=None if a.wall.one_sided else a.threshold("zoh").xi_dot,
         simulated_xi_dot=a.simulated_xi_dot,
-        cycles=[c.amplitude for c in a.threshold("half-delay").result.cycles],
-        wall=wall_dict(a.wall, a.device.period, a.device.units),
+        cycles=[] if a.wall.one_sided else [c.amplitude for c in a.threshold("half-delay").result.cycles],
+        wall=wall_dict(a.wall, a.device.period, a.device.units, a.device.resolution),
     )
     lag = "not covered: no passivity criterion is proven with an amplifier lag"
     why = {
@@ -136,7 +136,9 @@ def _wall_numbers(a: DesignAnalysis) -> dict[str, Any]:
     why["k_max"] = "impact speed 0: no K_max" if lim is None else lim.k_criterion.status.message
     why["k_linear"] = "impact speed 0: no K_max" if lim is None else lim.k_linear.status.message
     why["simulated_xi_dot"] = "no scanned impact speed diverged"
-    why["df_xi_dot"] = "no unstable cycle predicted"
+    why["df_xi_dot"] = (
+        "not a linear loop: no describing function" if a.wall.one_sided else "no unstable cycle predicted"
+    )
     return explain_nulls(to_jsonable(out), why)
 
 
@@ -159,16 +161,19 @@ def _identity(device: Device, wall: Wall, velocity: float) -> dict[str, Any]:
     return json.loads(dumps(ident, ensure_ascii=False))
 
 
-def report_name(name: str, beyond_spring: bool = False, held: bool = False) -> str:
-    """File-name part of a report: the device's slug, with ``_held`` for a device held by a hand and
-    ``_controller`` for a wall beyond the spring.
+def report_name(name: str, beyond_spring: bool = False, held: bool = False, one_sided: bool = False) -> str:
+    """File-name part of a report: the device's slug, with ``_held`` for a device held by a hand,
+    ``_one_sided`` for a one-sided wall and ``_controller`` for another wall beyond the spring.
 
     Examples
     --------
     >>> report_name("Delta"), report_name("Delta", True), report_name("Delta", held=True)
     ('delta', 'delta_controller', 'delta_held')
+    >>> report_name("Delta", True, one_sided=True)
+    'delta_one_sided'
     """
-    return report_slug(name) + ("_held" if held else "") + ("_controller" if beyond_spring else "")
+    wall = "_one_sided" if one_sided else ("_controller" if beyond_spring else "")
+    return report_slug(name) + ("_held" if held else "") + wall
 
 
 def _doc_names(slug: str, fmt: str) -> tuple[list[str], str]:
@@ -181,7 +186,8 @@ def _check_overwrite(out: Path, fmt: str, ident: dict[str, Any]) -> None:
     """Refuse to replace a report of another device, stiffness, speed or delay (the fix: --name, --out, --force)."""
     name = ident["device"]["name"]
     ctl = ident.get("controller")
-    docs, meta = _doc_names(report_name(name, ctl is not None, "hand" in ident["device"]), fmt)
+    one_sided = ctl is not None and "one_sided_surface" in ctl
+    docs, meta = _doc_names(report_name(name, ctl is not None, "hand" in ident["device"], one_sided), fmt)
     existing = [n for n in docs + [meta] if (out / n).exists()]
     if not existing:
         return
@@ -258,7 +264,7 @@ def write_design_report(
     if not out.is_dir():
         raise DFAValueError(f"out_dir = {str(out)!r} is invalid: the folder does not exist; create it first")
     a = analysis
-    slug = report_name(a.device.name, not a.is_spring, a.device.hand is not None)
+    slug = report_name(a.device.name, not a.is_spring, a.device.hand is not None, a.wall.one_sided)
     docs, meta = _doc_names(slug, fmt)
     ident = _identity(a.device, a.wall, a.velocity)
     if not force:

@@ -221,17 +221,6 @@ def test_eq6_one_sided_sampled_passive_points_never_exceed_the_contact_energy():
     assert one_sided_soundness(300, criterion="bilateral", seed=2024).energy_grew > 250
 
 
-def test_one_sided_searches_that_start_at_the_origin_refuse_it():
-    """The design report starts its runs at the wall's origin: it refuses a one-sided wall (rather than miss its
-    approach)."""
-    from dfa.analysis.design import design_analysis
-
-    dev = dfa.get_device("delta").device
-    w = Wall(2000.0, (OneSided(0.0),))
-    with pytest.raises(dfa.DFAValueError, match="one-sided wall is not covered by"):
-        design_analysis(dev, w, 0.05)
-
-
 def test_eq6_one_sided_cli_check_states_the_proof_its_start_and_the_linear_refusal(capsys):
     """`dfa check --one-sided`: the criterion's verdict at V' (the same as the API's), the approach as its start
     state, Colgate–Schenkel not covered; and the device's approach run keeps S <= ½μV'²."""
@@ -403,14 +392,39 @@ def test_one_sided_contact_outcome_agrees_with_the_recorded_readings(push, k, ki
     assert bilateral.contact is None and "contact" not in bilateral.to_dict()
 
 
-def test_one_sided_cli_limit_cycles_and_report_refuse_with_the_reason(capsys, tmp_path):
-    """`dfa limit-cycles --one-sided` and `dfa report --one-sided`: one line on stderr, exit 2, the reason (no
-    describing function for a one-sided wall; the report's runs start at the origin) and where it is covered."""
-    for argv, why in (
-        (["limit-cycles", "--device", "delta", "--one-sided"], "not a linear loop"),
-        (["report", "--device", "delta", "--one-sided", "--out", str(tmp_path)], "start at the wall's origin"),
-    ):
+def test_one_sided_cli_limit_cycles_refuses_with_the_reason(capsys, tmp_path):
+    """`dfa limit-cycles --one-sided`: one line on stderr, exit 2, the reason (no describing function for a
+    one-sided wall) and where it is covered."""
+    for argv, why in ((["limit-cycles", "--device", "delta", "--one-sided"], "not a linear loop"),):
         assert main(argv) == 2
         err = capsys.readouterr().err
-        assert err.count("\n") == 1 and why in err and "stiffness or zwidth with --one-sided" in err
+        assert err.count("\n") == 1 and why in err and "zwidth or report with --one-sided" in err
     assert not any(tmp_path.iterdir())
+
+
+def test_one_sided_design_report_runs_start_with_the_approach(tmp_path):
+    """`dfa report --one-sided --push`: the design analysis's runs are the approach runs of dfa.simulate, no
+    describing function (no thresholds, no Nyquist figure; the report says why), the contact stated, and its
+    own file name; the JSON's headline numbers say why the describing function's are null."""
+    from dfa.analysis.design import design_analysis
+    from dfa.analysis.maps import map_start
+
+    dev = dfa.get_device("delta")
+    w = Wall(14500.0, (OneSided(0.0), Push(2.0)))
+    a = design_analysis(dev, w, 0.1, map_grid=3, samples=3000, n_jobs=1, zwidth_grid=0)
+    assert a.thresholds == () and a.nyquist is None and a.design_answer is not None
+    p, wp = a.params, w.params(dev.device.period, dev.device.resolution)
+    x0, v0 = map_start(p.mu, a.xi_dot, False, wp)
+    r = simulate(p.mu, p.beta, p.sigma, v0, xi0=x0, wall=wp)
+    assert (a.outcome.outcome, a.outcome.rest_sample, a.outcome.final_xi) == (r.outcome, r.rest_sample, r.final_xi)
+    assert a.outcome.contact is not None and a.grip is not None
+    assert main(["report", "--device", "delta", "--one-sided", "--push", "2", "--zwidth", "0", "--out", str(tmp_path),
+                 "--format", "md"]) == 0  # fmt: skip
+    text = " ".join((tmp_path / "design_report_delta_one_sided.md").read_text(encoding="utf-8").split())
+    assert "No describing function: a one-sided wall is not a linear loop" in text
+    assert "Contact: one-sided wall reached from free space (surface at 0 ticks), push 2 N" in text
+    assert "nyquist" not in text and "after the approach from free space" in text
+    d = json.loads((tmp_path / "design_report_delta_one_sided.json").read_text(encoding="utf-8"))
+    assert d["analysis"]["growth_thresholds"] == {} and d["numbers"]["wall"]["push"] == 2.0
+    assert d["numbers"]["null_reasons"]["/df_xi_dot"] == "not a linear loop: no describing function"
+    assert not any("nyquist" in f for f in d["figures"])

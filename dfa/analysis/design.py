@@ -29,7 +29,7 @@ from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import DesignStatus
-from .approach import refuse_one_sided
+from .approach import approach_samples
 from .check import PassivityCheck, passivity_check
 from .criterion import CriterionResult
 from .cycles import GrowthThreshold, LimitCycleResult, growth_threshold
@@ -40,7 +40,7 @@ from .limits.recommend import Recommendation, recommend_stiffness
 from .limits.speed_chart import StiffnessSpeedChart, check_chart_range, stiffness_speed_chart
 from .limits.zwidth import ZWidth, check_zwidth_size, z_width
 from .loop import NyquistLocusResponse, nyquist_locus_response
-from .maps import StabilityMap, stability_map
+from .maps import StabilityMap, map_start, stability_map
 from .simulation import SimulationResult, divergence_bound, simulate
 from .validation import first_unstable_speed
 
@@ -92,10 +92,12 @@ class DesignAnalysis(Result):
         The spring's stiffness limits at ẋ0 (eq. 8, 9, 11, exact linear bound); None for a wall with a damper,
         filter or lag (its K_max is ``design_answer``).
     thresholds : tuple of (str, GrowthThreshold)
-        Limit cycles and growth threshold per loop model (``half-delay``, ``zoh``; eq. 36-45).
+        Limit cycles and growth threshold per loop model (``half-delay``, ``zoh``; eq. 36-45); empty for a
+        one-sided wall (not a linear loop: no describing function).
     simulated_xi_dot : float or None
         Lowest impact speed ξ'0 (ticks/sample) that diverged in exact simulation (40-point scan, bisection);
-        None when no scanned speed diverged.
+        None when no scanned speed diverged. Every run of a one-sided wall (the scan, the outcomes, the
+        trajectories, the map) starts with the approach from free space (:func:`dfa.analysis.maps.map_start`).
     outcome : SimulationResult
         Exact simulation at the design speed, as long as the loop's time scales need.
     high_xi_dot : float
@@ -106,8 +108,8 @@ class DesignAnalysis(Result):
         Recorded runs (figure windows) at the two speeds.
     stiffness_curve : StiffnessResponse or None
         The spring's largest passive stiffness against speed (figure); None for a wall beyond the spring.
-    nyquist : NyquistLocusResponse
-        Linearised loop and −1/D(M) (figure).
+    nyquist : NyquistLocusResponse or None
+        Linearised loop and −1/D(M) (figure); None for a one-sided wall.
     stability_map : StabilityMap
         Simulated outcomes around the operating point at the design speed and twice it.
     design_answer : KMaxResult or None
@@ -146,7 +148,7 @@ class DesignAnalysis(Result):
     trajectory: SimulationResult = field(repr=False, metadata={"json": None})
     trajectory_high: SimulationResult = field(repr=False, metadata={"json": None})
     stiffness_curve: StiffnessResponse | None = field(repr=False, metadata={"json": None})
-    nyquist: NyquistLocusResponse = field(repr=False, metadata={"json": None})
+    nyquist: NyquistLocusResponse | None = field(repr=False, metadata={"json": None})
     stability_map: StabilityMap = field(repr=False)
     design_answer: KMaxResult | None = field(default=None, repr=False)
     speed_chart: StiffnessSpeedChart | None = field(default=None, repr=False)
@@ -172,9 +174,13 @@ class DesignAnalysis(Result):
         for name, cls in (
             ("params", Params), ("check", PassivityCheck), ("outcome", SimulationResult),
             ("outcome_high", SimulationResult), ("trajectory", SimulationResult),
-            ("trajectory_high", SimulationResult), ("nyquist", NyquistLocusResponse), ("stability_map", StabilityMap),
+            ("trajectory_high", SimulationResult), ("stability_map", StabilityMap),
         ):  # fmt: skip
             check_type(name, getattr(self, name), cls, fix)
+        if self.wall.one_sided != (self.nyquist is None):
+            raise DFAValueError(f"nyquist must be None exactly for a one-sided wall (not a linear loop); {fix}")
+        if self.nyquist is not None:
+            check_type("nyquist", self.nyquist, NyquistLocusResponse, fix)
         self._check_parts(fix)
         if self.simulated_xi_dot is not None:
             check_real("simulated_xi_dot", self.simulated_xi_dot, fix)
@@ -212,7 +218,7 @@ class DesignAnalysis(Result):
                 f"thresholds = {format_value(self.thresholds)} is invalid: it must be a tuple of (model, GrowthThreshold) "
                 f"pairs; {fix}"
             )
-        if tuple(m for m, _ in self.thresholds) != MODELS:
+        if tuple(m for m, _ in self.thresholds) != (() if self.wall.one_sided else MODELS):
             raise DFAValueError(
                 f"thresholds are for {[m for m, _ in self.thresholds]}: they must be for {list(MODELS)}"
             )
@@ -376,7 +382,6 @@ def resolve_design_inputs(
     if not isinstance(wall, Wall):
         wall = Wall(check_positive("wall", wall, "give the wall, or the virtual wall stiffness K"))
     v = check_speed("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1))
-    refuse_one_sided(wall, "the design report")
     wp = wall.params(
         dev.period, dev.resolution
     )  # a filter above Nyquist or a group out of range is refused here, before any work
@@ -391,10 +396,15 @@ def _simulations(
 ) -> dict[str, Any]:
     """Recorded runs for the figure and full-length runs for the outcomes, at the design speed and above."""
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
+    n_traj += approach_samples(wp) if wp.one_sided else 0  # a one-sided wall's runs start with the approach
     v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
-    run = lambda v, n, rec: simulate(  # diverged only far beyond the impact's own travel (eq. 18-19)
-        p.mu, p.beta, p.sigma, v, n, record=rec, bound=divergence_bound(0.0, v, p.mu), wall=wp
-    )
+
+    def run(v: float, n: int | None, rec: bool) -> SimulationResult:
+        x0, v0 = map_start(p.mu, v, False, wp)  # the impact at ξ0 = 0, or a one-sided wall's approach
+        return simulate(  # diverged only far beyond the impact's own travel (eq. 18-19)
+            p.mu, p.beta, p.sigma, v0, n, xi0=x0, record=rec, bound=divergence_bound(x0, v0, p.mu), wall=wp
+        )
+
     return dict(
         trajectory=run(xi_dot, n_traj, True),
         outcome=run(
@@ -476,14 +486,14 @@ def design_analysis(
     p, wp = dev.params(wall.stiffness), wall.params(dev.period, dev.resolution)
     head = _closed_forms(dev, wall, v)
     steps.update()
-    thr = tuple((m, growth_threshold(p, dev, model=m, wall=wp)) for m in MODELS)  # search range follows the problem
+    thr = () if wp.one_sided else tuple((m, growth_threshold(p, dev, model=m, wall=wp)) for m in MODELS)
     steps.update()
     crit = head["check"].criterion
     ref = crit.critical_xi_dot if crit is not None and crit.critical_xi_dot else max(1.0, dev.xi_dot(v))
     v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, wall=wp)
     steps.update()
     sims = _simulations(p, dev.xi_dot(v), ref, v_sim, samples, wp)
-    ny = _nyquist(p, thr[1][1], wp)
+    ny = None if wp.one_sided else _nyquist(p, thr[1][1], wp)
     steps.update()
     smap = _map_around(p, dev.xi_dot(v), map_grid, samples, n_jobs, progress, wp)
     steps.close()

@@ -62,8 +62,8 @@ from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import ValidationStatus
 from .criterion import classify_region, passivity_criterion
 from .cycles import SUBTICK_LIMIT, growth_threshold, large_cycle_closed_form, limit_cycles
-from .maps import stability_map
-from .simulation import OUTCOMES, SimulationResult, divergence_bound, preload_position, simulate
+from .maps import map_start, stability_map
+from .simulation import OUTCOMES, SimulationResult, divergence_bound, simulate
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -208,15 +208,20 @@ def first_unstable_speed(
 
     A geometric scan of ``steps`` speeds from ``v_lo`` to ``v_hi`` (ticks/sample); the first unstable one is
     refined by 12 bisection steps against the scan point below it. Runs start at ξ0 = 0 with speed ξ'0, or at
-    rest with the spring preloaded to the same energy (``preload``); ``samples`` per run, with the wall
-    ``wall`` (default the spring without delay; :func:`dfa.simulate`). Stability need not be monotone in speed:
-    slower speeds between scan points may diverge too.
+    rest with the spring preloaded to the same energy (``preload``), or a one-sided wall's with the approach
+    (:func:`dfa.analysis.maps.map_start`, its samples added); ``samples`` per run, with the wall ``wall``
+    (default the spring without delay; :func:`dfa.simulate`). Stability need not be monotone in speed: slower
+    speeds between scan points may diverge too.
     """
+    from .approach import approach_samples
+
+    w = WallParams() if wall is None else wall
+    n = samples + (approach_samples(w) if w.one_sided else 0)
 
     def unstable(v: float) -> bool:
-        x0, v0 = (preload_position(p.mu, v), 0.0) if preload else (0.0, v)
+        x0, v0 = map_start(p.mu, v, preload, w)
         bound = divergence_bound(x0, v0, p.mu)  # beyond the impact's own travel (eq. 18-19)
-        r = simulate(p.mu, p.beta, p.sigma, v0, samples, xi0=x0, record=False, bound=bound, wall=wall)
+        r = simulate(p.mu, p.beta, p.sigma, v0, n, xi0=x0, record=False, bound=bound, wall=w)
         return r.outcome == "unstable"
 
     speeds = np.geomspace(v_lo, v_hi, steps)

@@ -4,9 +4,9 @@
 A one-sided wall (:class:`~dfa.model.elements.OneSided`) pushes only while the reading is beyond its surface, and
 the operator may push toward it with a constant force (:class:`~dfa.model.elements.Push`). The run then starts
 in free space, D samples before the device reaches the wall at the impact speed, with the controller's memory
-of the approach (:func:`dfa.analysis.approach.approach_start`). ``dfa stiffness`` and ``dfa zwidth`` start every
-impact with that approach too. ``dfa limit-cycles`` and ``dfa report`` take the flags only to refuse them with
-the reason: no describing function covers a one-sided wall, and the report's parts start at the wall's origin.
+of the approach (:func:`dfa.analysis.approach.approach_start`). ``dfa stiffness``, ``dfa zwidth`` and ``dfa report`` start
+every impact with that approach too. ``dfa limit-cycles`` takes the flags only to refuse them with the reason:
+no describing function covers a one-sided wall.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from .parsing import UsageError, number
 __all__ = ["add_contact_args", "contact_elements", "refuse_one_sided_flag", "CONTACT_COMMANDS"]
 
 #: The commands that take a one-sided wall (the others refuse --one-sided with the reason).
-CONTACT_COMMANDS = "dfa check, simulate, map, stiffness or zwidth"
+CONTACT_COMMANDS = "dfa check, simulate, map, stiffness, zwidth or report"
 
 
 def add_contact_args(p: argparse.ArgumentParser) -> None:

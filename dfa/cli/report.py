@@ -11,7 +11,7 @@ from typing import Any
 from .._io import check_output_folder, make_output_folder
 from ..model.catalogue import DEFAULT_DEVICE
 from ..model.wall import Wall
-from .contact import add_contact_args, refuse_one_sided_flag
+from .contact import add_contact_args
 from .inputs import PHYS_FLAGS, add_device_args, resolve, speed
 from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, progress, say
 from .parsing import UsageError, integer
@@ -111,10 +111,6 @@ def run(args: argparse.Namespace) -> int:
     check_output_folder("--out", args.out, create=True)  # created (one level) once the inputs pass
     inp = resolve(args, dimensionless=False)
     assert inp.device is not None
-    refuse_one_sided_flag(
-        args,
-        "the design report's runs, cycles and Nyquist plot start at the wall's origin (not yet with the approach from free space)",
-    )
     ctl = wall_from_args(args, inp.device, inp.stiffness)  # None: the spring (no flag, or B = 0 without filter/lag)
     if args.zwidth is not None and args.zwidth < 0:
         raise UsageError(f"--zwidth {args.zwidth} is invalid: give the points per axis (0: no Z-width section)")

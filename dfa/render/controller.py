@@ -169,7 +169,7 @@ def controller_parts(
     return values, groups
 
 
-def controller_line(controller: Any, period: float, units: dict[str, str]) -> str:
+def controller_line(controller: Any, period: float, units: dict[str, str], resolution: float | None = None) -> str:
     """One text line stating the controller, physical values then the dimensionless groups (:func:`controller_parts`).
 
     Parameters
@@ -180,13 +180,15 @@ def controller_line(controller: Any, period: float, units: dict[str, str]) -> st
         Sample period T in s.
     units : dict
         The device's unit strings.
+    resolution : float, optional
+        Encoder resolution Δ (for a push's group).
 
     Returns
     -------
     str
         ``controller: K = …, B = …, delay …, velocity filter …, amplifier …; β_B = …, ν_c = …, α = …``.
     """
-    return "; ".join(controller_parts(controller, period, units))
+    return "; ".join(controller_parts(controller, period, units, resolution))
 
 
 def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
@@ -295,7 +297,9 @@ def check_table_rows(chk: PassivityCheck) -> list[list[str]]:
     return controller_check_rows(chk, dev.units["velocity"])
 
 
-def controller_rows(controller: Any, period: float, units: dict[str, str]) -> list[list[str]]:
+def controller_rows(
+    controller: Any, period: float, units: dict[str, str], resolution: float | None = None
+) -> list[list[str]]:
     """Table rows of the controller: physical values, then the dimensionless groups beside paper Table 1.
 
     Parameters
@@ -306,13 +310,15 @@ def controller_rows(controller: Any, period: float, units: dict[str, str]) -> li
         Sample period T in s.
     units : dict
         The device's unit strings.
+    resolution : float, optional
+        Encoder resolution Δ (for a push's group).
 
     Returns
     -------
     list of list of str
-        (quantity, value) rows, read from :func:`wall_dict`.
+        (quantity, value) rows, read from :func:`wall_dict`; a one-sided wall's surface and push too.
     """
-    c: dict[str, Any] = wall_dict(controller, period, units)
+    c: dict[str, Any] = wall_dict(controller, period, units, resolution)
     dim: Any = c["dimensionless"]
     fc, bw = c["filter_cutoff"], c["amplifier_bandwidth"]
     amp = "ideal (no lag)" if bw is None else f"{_g(bw)} Hz (τ_a = 1/(2π f_bw) = {_g(c['amplifier_time_constant'])} s)"
@@ -323,6 +329,13 @@ def controller_rows(controller: Any, period: float, units: dict[str, str]) -> li
         else []
     )
     groups = [["κ_h = k_h/K", _g(dim["hand_stiffness"])]] if controller.hand_stiffness else []
+    if controller.one_sided:  # only for a one-sided wall: every other wall's table is unchanged
+        hand += [
+            ["contact", "one-sided wall reached from free space (pushes only inside, never pulls)"],
+            ["surface s", f"{_g(controller.surface)} ticks"],
+            ["operator's push F_p", f"{_g(controller.push)} {units['force']}" if controller.push else "none"],
+        ]
+        groups += [["p = F_p/(KΔ)", _g(dim["push"])]] if controller.push else []
     return [
         ["stiffness K", f"{_g(controller.stiffness, 5)} {units['stiffness']}"],
         ["virtual damping B (backward-difference velocity)", f"{_g(controller.damping)} {units['damping']}"],

@@ -17,6 +17,7 @@ from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
 from ..results.status import SearchStatus
 from .answer import recommendation_text
+from .contact import contact_text
 from .hand import grasp_text, grip_rows, grip_text, held_name, moving_symbols
 from .limits import spring_passive_text, spring_verdict_text
 from .text import growth_meaning, outside_searched_mu, search_why
@@ -77,6 +78,16 @@ def _simulated_text(a: DesignAnalysis) -> str:
     )
 
 
+def _one_sided(a: Any) -> bool:
+    """True for a one-sided wall's analysis (no describing function; runs start with the approach)."""
+    return bool(getattr(getattr(a, "wall", None), "one_sided", False))
+
+
+def _extended_to(wall: Any) -> str:
+    """What the criterion is extended to, in words."""
+    return "a one-sided wall reached from free space" if wall.one_sided else "the damper, filter and delay"
+
+
 def controller_verdict_text(a: DesignAnalysis) -> str:
     """The verdict with a wall controller: the extended criterion (or "not covered"), its K_max, simulation."""
     from .controller import NOT_COVERED, not_covered_why
@@ -85,7 +96,9 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
     text = (
         f"**Verdict.** With the wall controller below (K = {a.stiffness:g} {u['stiffness']}, virtual damping "
         f"B = {ctl.damping:g} {u['damping']}), an impact speed of {a.velocity:g} {u['velocity']} and a computational "
-        f"delay of {_samples(a.delay)}, the {held_name(dev)} is "
+        f"delay of {_samples(a.delay)}"
+        + (f", a {contact_text(ctl, u)}" if ctl.one_sided else "")
+        + f", the {held_name(dev)} is "
     )
     r = chk.criterion
     if r is None:
@@ -97,7 +110,7 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
             else "not proven passive (the extended criterion gives no guarantee; that is not a proof of instability)"
         )
         text += (
-            f"**{verdict}** by the criterion of eq. 6 extended to the damper, filter and delay (region {r.region}: "
+            f"**{verdict}** by the criterion of eq. 6 extended to {_extended_to(ctl)} (region {r.region}: "
             f"{r.status_message}). "
         )
         if r.critical_velocity:
@@ -240,8 +253,17 @@ def cycle_rows(a: DesignAnalysis) -> list[list[str]]:
     ]
 
 
+#: The limit-cycle section of a one-sided wall's report.
+NOT_LINEAR = (
+    "No describing function: a one-sided wall is not a linear loop (it pushes only inside and leaves the wall), "
+    "so first-harmonic cycles do not describe it; the exact simulation below does (`dfa map --one-sided`)."
+)
+
+
 def absence_lines(a: DesignAnalysis) -> list[str]:
     """Sentences for loop models without cycles: never an absence the search did not prove."""
+    if _one_sided(a):
+        return [NOT_LINEAR]
     out = []
     for m, g in a.thresholds:
         res = g.result
@@ -270,6 +292,8 @@ def absence_lines(a: DesignAnalysis) -> list[str]:
 
 def growth_text(a: DesignAnalysis) -> str:
     """The exact-ZOH growth threshold, or band for a cluster, with its meaning ('' when there is none)."""
+    if _one_sided(a):
+        return ""
     g, u = a.threshold("zoh"), a.device.units
     if g.amplitude is None:
         return ""
@@ -289,7 +313,8 @@ def trust_rows(a: DesignAnalysis) -> list[list[str]]:
     """Critical impact speed four ways: criterion, describing function (two loop models), exact simulation."""
     u, v_sim = a.device.units, a.simulated_xi_dot
     rows = [_criterion_speed_row(a)]
-    for m, t in (("half-delay", a.threshold("half-delay")), ("exact ZOH", a.threshold("zoh"))):
+    for m, t in a.thresholds:
+        m = "exact ZOH" if m == "zoh" else m
         band = t.is_band
         rows.append(
             [
@@ -299,7 +324,8 @@ def trust_rows(a: DesignAnalysis) -> list[list[str]]:
             ]
         )
     sim = f"{number(a.simulated_velocity) if v_sim else '–'} {u['velocity']}"
-    rows.append(["exact simulation (bisection on ξ'0, from ξ0 = 0)", number(v_sim), sim])
+    start = "after the approach from free space" if _one_sided(a) else "from ξ0 = 0"
+    rows.append([f"exact simulation (bisection on ξ'0, {start})", number(v_sim), sim])
     return rows
 
 
@@ -331,12 +357,13 @@ def _critical_xi_dot(a: DesignAnalysis) -> float | None:
 
 def trust_text(a: DesignAnalysis) -> str:
     """How conservative the criterion is and how close the describing function comes, for this device."""
-    v_sim, crit_xi, g = a.simulated_xi_dot, _critical_xi_dot(a), a.threshold("zoh")
+    v_sim, crit_xi = a.simulated_xi_dot, _critical_xi_dot(a)
+    g = None if _one_sided(a) else a.threshold("zoh")
     msg = []
     if v_sim and crit_xi:
         name = "The criterion" if a.is_spring else "The extended criterion"
         msg.append(f"{name} is conservative by a factor {v_sim / crit_xi:.3g} for this device")
-    if v_sim and g.xi_dot:
+    if v_sim and g is not None and g.xi_dot:
         msg.append(
             f"the describing function's threshold is within {100 * abs(g.xi_dot / v_sim - 1):.2g} % of the simulated one"
         )
@@ -447,9 +474,12 @@ def _controller_parts(a: DesignAnalysis) -> dict[str, str]:
         return dict.fromkeys(keys, "")
     dev, u = a.device, a.device.units
     lim = a.design_answer
+    line = controller_line(a.wall, dev.period, u, dev.resolution)
+    if a.wall.one_sided:
+        line += f". Contact: {contact_text(a.wall, u)}; every simulated impact starts with the approach"
     return dict(
-        controller_line=controller_line(a.wall, dev.period, u),
-        controller_table=markdown_table(["quantity", "value"], controller_rows(a.wall, dev.period, u)),
+        controller_line=line,
+        controller_table=markdown_table(["quantity", "value"], controller_rows(a.wall, dev.period, u, dev.resolution)),
         check_table=markdown_table(["quantity", "value"], check_table_rows(a.check)),
         climits_table="" if lim is None else markdown_table(
             ["largest stiffness K with this controller", "value"], controller_limit_rows(lim, u)

@@ -130,7 +130,8 @@ def grip_rows(g: GripSweep) -> list[list[str]]:
         value = "none found" if g.simulated_damping is None else f"{number(g.simulated_damping, 4)} {unit}"
         bad = {o: sum(x == o for x in g.scan_outcome) for o in ("unstable", "undecided")}
         why = (
-            f"the impact at V from ξ0 = 0 on {len(g.scan_damping)} grips (0 and K T·2^i): {bad['unstable']} "
+            f"the impact at V {'after the approach' if g.wall.one_sided else 'from ξ0 = 0'} on {len(g.scan_damping)} "
+            f"grips (0 and K T·2^i): {bad['unstable']} "
             f"diverged, {bad['undecided']} undecided; none from this grip up"
         )
         rows.append(["exact simulation", value, why])

@@ -75,10 +75,12 @@ def _stiffness(a: DesignAnalysis) -> ReportFigure | None:
     return ReportFigure("stiffness", caption, _png(ax.figure))
 
 
-def _nyquist(a: DesignAnalysis) -> ReportFigure:
+def _nyquist(a: DesignAnalysis) -> ReportFigure | None:
     from .. import figures
     from .controller import controller_short
 
+    if a.nyquist is None:  # a one-sided wall: not a linear loop
+        return None
     model = a.nyquist.model
     ctl = None if a.is_spring else controller_short(a.wall, a.device.units)
     ax = figures.nyquist_plot(a.nyquist, cycles=a.threshold(model).result, controller=ctl)

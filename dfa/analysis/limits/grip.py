@@ -161,13 +161,18 @@ def _need(req: Requirement, own: float) -> GripNeed:
 
 
 def _scan(dev: Device, wall: Wall, v: float, hand_mass: float) -> tuple[tuple[float, ...], tuple[str, ...]]:
-    """The impact at V from ξ0 = 0 for each scanned grip (b_h = 0, K T 2^i)."""
+    """The impact at V from ξ0 = 0 (a one-sided wall's: after the approach) for each scanned grip (b_h = 0, K T 2^i)."""
+    from ..maps import map_start
+
     dampings = (0.0, *(wall.stiffness * dev.period * 2.0**i for i in GRIP_SCAN))
     wp, xd = wall.params(dev.period, dev.resolution), dev.xi_dot(v)
     outcomes = []
     for b_h in dampings:
         p = dev.holding(Hand(hand_mass, b_h)).params(wall.stiffness)
-        r = simulate(p.mu, p.beta, p.sigma, xd, None, record=False, bound=divergence_bound(0.0, xd, p.mu), wall=wp)
+        x0, v0 = map_start(p.mu, xd, False, wp)
+        r = simulate(
+            p.mu, p.beta, p.sigma, v0, None, xi0=x0, record=False, bound=divergence_bound(x0, v0, p.mu), wall=wp
+        )
         outcomes.append(r.outcome.value)
     return dampings, tuple(outcomes)
 

@@ -343,7 +343,8 @@ def requirements(
         raise DFAValueError("methods and parameters must each name at least one; give e.g. methods=('criterion',)")
     out = []
     for m in ms:
-        if m == "criterion" and w.params(dev.period, dev.resolution).not_covered() is not None:
+        uncovered = w.params(dev.period, dev.resolution).not_covered() if m == "criterion" else None
+        if uncovered is not None or (m != "criterion" and w.one_sided):  # a one-sided wall: not a linear loop
             out += [Requirement(m, n, _current(dev, w, n), None, "at_least" if HELPS[m][n] > 0 else "at_most",
                                 RequireStatus.NOT_COVERED) for n in names]  # fmt: skip
             continue
