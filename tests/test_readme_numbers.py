@@ -158,3 +158,12 @@ def test_one_sided_comparison_numbers_in_trust_page_match_the_committed_run():
     assert f"the criterion's K is {min(crit):.2f} to {max(crit):.2f} times the bilateral one" in flat
     assert len(pushed_found) == 1 and f"never diverged in the range on {n - 1} of them" in flat
     assert f"diverged at {pushed_found[0]:.2f} times the bilateral limit" in flat
+
+
+def test_eq6_moving_history_soundness_counts_in_trust_page_match_the_committed_run():
+    """docs/trust.md's moving-history claim is reports/validation/history_soundness.json."""
+    ours, fresh = _committed_sound_run("history_soundness", "moving")
+    flat = _flat(TRUST)
+    assert ours["violations"] == 0 and ours["points"] == 100_000
+    assert "finds 0 violations on 10⁵ random passive points of it," in flat
+    assert f"where the fresh start's claim fails on {_int(fresh['violations'])}." in flat

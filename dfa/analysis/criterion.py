@@ -116,6 +116,18 @@ A one-sided wall reached from free space (issue 28 §1; :class:`~dfa.model.eleme
     dfa.cli.soundness_report --one-sided`` check Q <= ½μV*² by exact simulation of the approach at random
     points the criterion calls passive.
 
+A moving history (``history="moving"``; the spring with a delay, no damper or filter)
+    The fresh start assumes the d pending commands equal the first one, c_0 = −(⌊ξ0⌋ + ½). If instead the
+    device moved at ξ'0 for the d samples before t = 0, they are those of the readings ξ0 − jξ'0: over sample
+    h < d the force is c_{h−d} instead of c_0, which differ by ⌊ξ0⌋ − ⌊ξ0 − (d − h)ξ'0⌋, less than
+    (d − h)|ξ'0| + 1 in magnitude ((d − h)|ξ'0| without the encoder). Every other term of steps 1-4 is the
+    fresh proof's, so the extra work is at most Σ_h ((d − h)|ξ'0| + 1)|Δ_h| <= E·V* while |Δ_h| <= V*,
+    E = |ξ'0|d(d + 1)/2 + d. Step 5 with ½μV*² = ½μV² + E·V* (:func:`moving_history_speed`) gives
+    S(t) <= ½μV*²: the corner (½ + d, ½) at V*. The critical speed is then the speed ξ'0 whose V* is
+    (σ − σ₀)/(β₀ − β). With a damper or a filter the velocity estimate and the filter's state of the motion
+    enter the energy too: not derived, refused. ``python -m dfa.cli.soundness_report --history`` checks it by
+    exact simulation of that start (:func:`dfa.simulate` with ``history="moving"``).
+
 What is not proven
     * Amplifier lag (α > 0): the force varies within the sample, step 1's work φΔ no longer holds, and no
       sound closed form is derived here (:class:`~dfa.model.elements.AmplifierLag` says so; the criterion
@@ -184,6 +196,7 @@ from ..checks import (
     MAX_DELAY,
     check_beta,
     check_bool,
+    check_choice,
     check_delay,
     check_mu,
     check_nonnegative,
@@ -196,7 +209,7 @@ from ..checks import (
 from ..core.energy import spring_energy_core
 from ..errors import DFATypeError, DFAValueError
 from ..model.device import Device
-from ..model.elements import OneSided
+from ..model.elements import OneSided, largest_speed
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.status import CriterionStatus
@@ -210,6 +223,8 @@ __all__ = [
     "passivity_criterion",
     "start_state",
     "start_state_note",
+    "HISTORIES",
+    "moving_history_speed",
     "start_state_clause",
     "has_memory",
     "device_criterion",
@@ -227,7 +242,50 @@ FRESH_NOTE = "for a wall whose memory is fresh at t = 0"
 APPROACH_NOTE = "for an approach from free space at the impact speed"
 
 
-def start_state(wall: Any) -> str:
+#: The loop's memory at t = 0 a guarantee can be asked for: the documented fresh start, or a moving history.
+HISTORIES = ("fresh", "moving")
+
+
+def moving_history_speed(speed: float, xi_dot: float, mu: float, delay: int, quantized: bool = True) -> float:
+    """The criterion's speed V* for a moving history (module docstring, "A moving history").
+
+    The device has moved at ξ'0 for the d samples before t = 0, so the d pending commands are those of the
+    readings ξ0 − jξ'0 (j = 1 … d), not the first one: over samples 0 … d − 1 they differ from it by less than
+    (d − h)|ξ'0| + 1 (without the encoder (d − h)|ξ'0|) and add at most E·V*, E = |ξ'0|d(d + 1)/2 + d. Hence
+    ½μV*² = ½μV² + E V*:  V* = (E + √(E² + μ²V²))/μ (V* = V for d = 0).
+
+    Parameters
+    ----------
+    speed : float
+        The energy-equivalent speed V of the start (:func:`equivalent_speed`), ticks per sample.
+    xi_dot : float
+        The speed ξ'0 of the history (and of the start), ticks per sample; its sign is ignored.
+    mu : float
+        Dimensionless mass μ = m/(K T²) > 0.
+    delay : int
+        The computational delay d, samples.
+    quantized : bool, optional
+        With the encoder (default).
+
+    Returns
+    -------
+    float
+        V* in ticks per sample (>= V).
+
+    Examples
+    --------
+    >>> moving_history_speed(2.0, 2.0, 1.0, 0)
+    2.0
+    >>> round(moving_history_speed(0.0, 2.0, 1.0, 1), 12)   # E = 2·1 + 1 = 3: ½V*² = 3V*
+    6.0
+    """
+    if delay == 0:
+        return speed
+    e = abs(xi_dot) * delay * (delay + 1) / 2.0 + (delay if quantized else 0.0)
+    return (e + math.sqrt(e * e + mu * mu * speed * speed)) / mu
+
+
+def start_state(wall: Any, history: str = "fresh") -> str:
     """The start state the criterion's guarantee for ``wall`` is proven for (module docstring, steps 2 and 3).
 
     A wall without delay or damper has no memory: only the reading at t = 0 (a sample instant) enters the proof,
@@ -235,12 +293,15 @@ def start_state(wall: Any) -> str:
     commands equal the first (the spring force at the first reading), the previous reading equals the first (a
     velocity estimate of 0) and the filter's output is 0. From a memory of earlier motion an independent check
     found the energy above its start at points called passive (with a delay, and with a damper and a low-cutoff
-    filter after an approach from free space); issue 28 §1 is to cover them.
+    filter after an approach from free space): the spring with a delay is covered for a moving history
+    (``history="moving"``, :func:`moving_history_speed`), a one-sided wall for its approach from free space.
 
     Parameters
     ----------
     wall : Wall or WallParams
         Anything with ``delay`` (samples) and ``damping`` (the virtual damper; 0 for none).
+    history : {"fresh", "moving"}, optional
+        The memory the guarantee was asked for (:data:`HISTORIES`; default the fresh start).
 
     Returns
     -------
@@ -257,6 +318,11 @@ def start_state(wall: Any) -> str:
             "an approach from free space at V: the device reaches the wall's first seen position at V (the "
             "operator's force balancing friction until the first reading inside, then the push, if any)"
         )
+    if history == "moving" and wall.delay:
+        return (
+            f"a moving history: the device moved at ξ'0 for the {wall.delay} sample{'s' if wall.delay != 1 else ''} "
+            "before t = 0, and the pending commands are that motion's readings"
+        )
     if not has_memory(wall):
         return "any: this wall has no memory (only the reading at t = 0, a sample instant, enters the proof)"
     fresh = []
@@ -267,7 +333,8 @@ def start_state(wall: Any) -> str:
         fresh.append("the previous reading equals the first (velocity estimate 0)")
         if getattr(wall, "cutoff", getattr(wall, "filter_cutoff", None)) is not None:
             fresh.append("the filter's output is 0")
-    return f"the wall's memory fresh at t = 0: {'; '.join(fresh)}; a memory of earlier motion is not covered"
+    moving = ": see history='moving' (--history moving)" if not wall.damping else " is not covered"
+    return f"the wall's memory fresh at t = 0: {'; '.join(fresh)}; a memory of earlier motion{moving}"
 
 
 def has_memory(wall: Any) -> bool:
@@ -584,6 +651,8 @@ class CriterionResult(Result):
     stiffness, velocity, critical_velocity, position : float or None
         Set by :func:`device_criterion`: K (N/m; N·m/rad), the speed and the critical (energy-equivalent)
         speed (m/s; rad/s), the initial position (m; rad); otherwise None.
+    history : {"fresh", "moving"}
+        The loop's memory at t = 0 the verdict is for (:data:`HISTORIES`; :attr:`start_state` says it).
     """
 
     beta: float
@@ -605,6 +674,7 @@ class CriterionResult(Result):
     velocity: float | None = None
     critical_velocity: float | None = None
     position: float | None = None
+    history: str = "fresh"
 
     json_properties: ClassVar[tuple[str, ...]] = ("delay", "beta0", "sigma0", "start_state")
     units_of: ClassVar[dict[str, str]] = {
@@ -637,8 +707,8 @@ class CriterionResult(Result):
 
     @property
     def start_state(self) -> str:
-        """The loop's state at t = 0 that the guarantee assumes (:func:`start_state` of the wall)."""
-        return start_state(self.wall)
+        """The loop's state at t = 0 that the guarantee assumes (:func:`start_state` of the wall and history)."""
+        return start_state(self.wall, self.history)
 
     @property
     def beta0(self) -> float:
@@ -816,6 +886,36 @@ def _push(wall: WallParams) -> float:
     return float(wall.kernel_args()["push"])
 
 
+def _speed(xd: float, x0: float, mu: float | None, wall: WallParams, quantized: bool, history: str) -> float:
+    """The criterion's speed: a one-sided wall's V*, a moving history's V*, else the energy-equivalent V."""
+    if wall.one_sided:
+        return _one_sided_speed(xd, x0, mu, wall, quantized)
+    v = equivalent_speed(xd, x0, mu, quantized=quantized, hand_stiffness=wall.hand_stiffness)
+    if history == "moving" and mu is not None:
+        return moving_history_speed(v, xd, mu, wall.delay, quantized)
+    return v
+
+
+def _check_history(history: object, wall: WallParams, mu: float | None) -> str:
+    """The history of a verdict (:data:`HISTORIES`), or the package's error where it is not derived."""
+    h = check_choice("history", history, HISTORIES)
+    if h == "fresh" or not wall.delay:
+        return h  # no pending commands: a moving history is the fresh start
+    if wall.one_sided:
+        raise DFAValueError(
+            "history = 'moving' is invalid with a one-sided wall: its start is the approach from free space; "
+            "pass history='fresh'"
+        )
+    if wall.damping or wall.cutoff is not None:
+        raise DFAValueError(
+            "history = 'moving' is not derived with a virtual damper or filter (the velocity estimate and the "
+            "filter's state of the motion enter the energy); pass history='fresh' or drop the damper"
+        )
+    if mu is None:
+        raise DFAValueError("history = 'moving' needs mu: the pending commands' work enters through E·V*/μ; pass mu")
+    return h
+
+
 def _corner(wall: WallParams, quantized: bool) -> tuple[float, float]:
     """(β₀, σ₀) of the wall, or the package's error naming the element no criterion covers."""
     bad = wall.uncovered()
@@ -838,6 +938,7 @@ def passivity_criterion(
     xi0: float = 0.0,
     mu: float | None = None,
     names: Mapping[str, str] | None = None,
+    history: str = "fresh",
 ) -> CriterionResult:
     """Evaluate the passivity criterion (eq. 6, or eq. 7 without quantization) for a wall and an initial position.
 
@@ -866,6 +967,10 @@ def passivity_criterion(
     names : mapping of str to str, optional
         How the message of a margin or critical speed that overflows names ``beta``, ``sigma`` and ``xi_dot``
         (the command line passes its flags); default those names.
+    history : {"fresh", "moving"}, optional
+        The loop's memory at t = 0 (:data:`HISTORIES`): ``"fresh"`` (default, module docstring) or
+        ``"moving"``, the device having moved at ξ'0 for the d samples before (the spring with a delay; needs
+        ``mu``; the speed is then :func:`moving_history_speed`'s V*, the critical speed a speed ξ'0).
 
     Returns
     -------
@@ -896,16 +1001,15 @@ def passivity_criterion(
             f"quantized = {format_value(quantized)} has type {type(quantized).__name__}: it must be True (eq. 6) or False (eq. 7)"
         )
     q = bool(quantized)
+    hist = _check_history(history, w, m)
     b0, s0 = _corner(w, q)
-    v = _one_sided_speed(xd, x0, m, w, q) if w.one_sided else equivalent_speed(
-        xd, x0, m, quantized=q, hand_stiffness=w.hand_stiffness
-    )  # fmt: skip
+    v = _speed(xd, x0, m, w, q, hist)
     region = str(region_of(b, s, v, s0, b0))
     margin = float(_margin(b, s, v, s0, b0))
     critical = (s - s0) / (b0 - b) if (b < b0 and s >= s0) else None
     check_finite_verdict(margin, critical, {"beta": b, "sigma": s, "xi_dot": xd}, names)
-    if w.one_sided and critical is not None and m is not None:  # in impact speed V, not V*
-        critical = OneSided.impact_speed(_surface(w), critical, m, w.delay, _push(w), q)
+    if critical is not None and m is not None and (w.one_sided or (hist == "moving" and w.delay)):
+        critical = largest_speed(lambda u: _speed(u, x0, m, w, q, hist), critical)  # a speed ξ'0, not V*
     return CriterionResult(
         beta=b,
         sigma=s,
@@ -919,6 +1023,7 @@ def passivity_criterion(
         equivalent_speed=v,
         xi0=x0,
         mu=m,
+        history=hist,
         # region b with the spring's σ₀ = ½: σ < ½, the force at rest exceeds σ and the device cannot stop
         status=CriterionStatus.of_region(region, cannot_stop=s0 <= 0.5),
         wall=w,
@@ -989,7 +1094,13 @@ def as_wall(wall: object) -> Wall:
 
 
 def device_criterion(
-    device: Device, wall: Wall | float, velocity: float, *, position: float = 0.0, quantized: bool = True
+    device: Device,
+    wall: Wall | float,
+    velocity: float,
+    *,
+    position: float = 0.0,
+    quantized: bool = True,
+    history: str = "fresh",
 ) -> CriterionResult:
     """Passivity criterion for a physical device, wall, speed and initial position (paper eq. 11, extended).
 
@@ -1005,6 +1116,8 @@ def device_criterion(
         Initial position x0 in m (rotary: rad), default 0; ξ0 = x0/Δ.
     quantized : bool, optional
         True (default) for eq. 6; False for eq. 7.
+    history : {"fresh", "moving"}, optional
+        The loop's memory at t = 0 (:func:`passivity_criterion`).
 
     Returns
     -------
@@ -1043,7 +1156,7 @@ def device_criterion(
     p = device.params(w.stiffness)
     r = passivity_criterion(
         p.beta, p.sigma, device.xi_dot(v), wall=w.params(device.period, device.resolution), quantized=quantized,
-        xi0=x0 / device.resolution, mu=p.mu,
+        xi0=x0 / device.resolution, mu=p.mu, history=history,
     )  # fmt: skip
     crit = None if r.critical_xi_dot is None else device.velocity(r.critical_xi_dot)
     return replace(r, device=device, stiffness=w.stiffness, velocity=v, critical_velocity=crit, position=x0)

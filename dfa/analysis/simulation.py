@@ -755,19 +755,25 @@ def _run_chunked(
     stats: np.ndarray,
     *,
     progress: bool = False,
+    moving: bool = False,
 ) -> tuple[int, int]:
     """The kernel run of :func:`simulate` in pieces of at most ``CHUNK`` samples, bit for bit the single call.
 
     The same :func:`dfa.core.kernel.start` / :func:`~dfa.core.kernel.advance` / :func:`~dfa.core.kernel.finish` steps as
     :func:`dfa.core.kernel.simulate_kernel`, with the sample ranges cut into chunks: the run's state (ξ, ξ', the
     delay ring, the tail extremes) lives in arrays between calls, so Ctrl-C is honoured between chunks and a
-    progress bar can follow the run. Any delay. Returns (done, rest).
+    progress bar can follow the run. Any delay. With ``moving`` the delay ring starts with the forces of the
+    readings ξ0 − jξ'0 (j = d … 1, oldest first: a motion at ξ'0 before t = 0) instead of ξ0's. Returns
+    (done, rest).
     """
     from tqdm.auto import tqdm
 
     record, energy = rx.shape[0] == n + 1, re.shape[0] == n
     state, hist, tail = np.empty(kernel.NSTATE), np.empty(d + 1), np.empty(max(tail_len, 1))
     kernel.start(x0, v0, d, quantize, state, hist, stats)
+    if moving:  # hist[j] is read j samples from now as the force of d samples before: ξ0 − (d + 1 − j)ξ'0
+        for j in range(1, d + 1):
+            hist[j] = kernel.force(x0 - (d + 1 - j) * v0, quantize)
     if record:
         rx[0], rv[0] = x0, v0
     tail_start, done, rest = n - tail_len, n, -1
@@ -818,6 +824,7 @@ def simulate(
     settle: float = SETTLE,
     progress: bool = False,
     wall: WallParams | None = None,
+    history: str = "fresh",
 ) -> SimulationResult:
     """Simulate the sampled haptic loop exactly (paper eq. 4-5) from (ξ0, ξ'0).
 
@@ -863,6 +870,11 @@ def simulate(
         instants (one compiled call: no progress bar, no energy record). A one-sided wall's run that starts
         outside moving toward it is an approach at constant speed (the operator's force balances friction until
         the first reading inside, then is the wall's push; :func:`dfa.approach_start` gives such a start).
+    history : {"fresh", "moving"}, optional
+        The loop's memory at t = 0: ``"fresh"`` (default: the past readings equal the first, as if at rest
+        there) or ``"moving"``: the device moved at ξ'0 for the d samples before, so the d pending forces are
+        those of the readings ξ0 − jξ'0, j = 1 … d (the spring with a delay; the start of
+        :func:`~dfa.analysis.criterion.passivity_criterion`'s ``history="moving"``).
 
     Returns
     -------
@@ -903,10 +915,11 @@ def simulate(
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
     stats = np.empty(kernel.NSTATS)
     run = (m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
+    moving = _check_history(history, w)
     if not w.is_spring:
         done, rest = wall_kernel.simulate_wall_kernel(*run[:10], *_wall_args(w), rx, rv, stats)
-    elif n > CHUNK:
-        done, rest = _run_chunked(*run, progress=progress)
+    elif n > CHUNK or moving:
+        done, rest = _run_chunked(*run, progress=progress, moving=moving)
     else:
         done, rest = kernel.simulate_kernel(*run)
     code, amp, freq, centre, fpp = kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
@@ -962,6 +975,19 @@ def contact_outcome(
         return ContactOutcome.BOUNCES if tail_min < engage else ContactOutcome.IN_CONTACT
     named = {kernel.UNSTABLE: ContactOutcome.GROWS, kernel.LEFT: ContactOutcome.LEFT}
     return named.get(code, ContactOutcome.UNDECIDED)
+
+
+def _check_history(history: object, wall: WallParams) -> bool:
+    """True for a moving history (:func:`simulate`'s ``history``), or the package's error."""
+    from ..checks import check_choice
+
+    h = check_choice("history", history, ("fresh", "moving"))
+    if h == "moving" and not wall.is_spring:
+        raise DFAValueError(
+            "history = 'moving' is invalid with this wall: it is run for the spring with a delay (the delay ring); "
+            "pass history='fresh'"
+        )
+    return h == "moving" and wall.delay > 0
 
 
 def check_wall(wall: object, energy: bool = False) -> WallParams:

@@ -81,6 +81,7 @@ __all__ = [
     "storage_growth",
     "criterion_soundness",
     "one_sided_soundness",
+    "history_soundness",
     "run_samples",
     "point_wall",
     "BOUND",
@@ -193,25 +194,33 @@ def _seen(criterion: str, wall: WallParams) -> tuple[WallParams, bool]:
 
 
 def _verdict(
-    crit: str, b: float, s: float, xd: float, x0: float, mu: float, wall: WallParams, q: bool
+    crit: str, b: float, s: float, xd: float, x0: float, mu: float, wall: WallParams, q: bool, history: str = "fresh"
 ) -> CriterionResult:
-    """The criterion's result at one point (β, σ) of the point (ξ'0, ξ0, μ, wall, encoder)."""
+    """The criterion's result at one point (β, σ) of the point (ξ'0, ξ0, μ, wall, encoder, history)."""
     seen, sees_xi0 = _seen(crit, wall)
     if sees_xi0:
-        return passivity_criterion(b, s, xd, wall=seen, quantized=q, xi0=x0, mu=mu)
+        return passivity_criterion(b, s, xd, wall=seen, quantized=q, xi0=x0, mu=mu, history=history)
     return passivity_criterion(b, s, xd, wall=seen, quantized=q)  # V = |ξ'0|
 
 
 def _point(
-    rng: np.random.Generator, crit: str, kind: int, xd: float, x0: float, mu: float, wall: WallParams, q: bool
+    rng: np.random.Generator,
+    crit: str,
+    kind: int,
+    xd: float,
+    x0: float,
+    mu: float,
+    wall: WallParams,
+    q: bool,
+    history: str = "fresh",
 ) -> tuple[float, float]:
     """(β, σ) of one point of ``kind`` that ``crit`` calls passive (module docstring)."""
     b0, s0 = _seen(crit, wall)[0].corner(q)
-    v = _verdict(crit, 0.0, 0.0, xd, x0, mu, wall, q).equivalent_speed
+    v = _verdict(crit, 0.0, 0.0, xd, x0, mu, wall, q, history).equivalent_speed
     if kind == 0:  # interior: rejection sampling of the criterion's own passive set in a box (formula-free)
         for _ in range(10_000):
             b, s = rng.uniform(0.0, b0 + 1.0), rng.uniform(0.0, s0 + v * b0 + 1.0)
-            if _verdict(crit, b, s, xd, x0, mu, wall, q).passive:
+            if _verdict(crit, b, s, xd, x0, mu, wall, q, history).passive:
                 break
     elif kind == 1:  # exactly on the critical line
         b = rng.uniform(0.0, b0)
@@ -221,7 +230,7 @@ def _point(
     else:  # β = β₀ edge
         b, s = b0, s0 + (0.0 if rng.random() < 0.2 else rng.uniform(0.0, 1.0))
     for _ in range(8):  # rounding on the line: move up by ulps until the criterion accepts
-        if _verdict(crit, b, s, xd, x0, mu, wall, q).passive:
+        if _verdict(crit, b, s, xd, x0, mu, wall, q, history).passive:
             return b, s
         s = float(np.nextafter(s, np.inf))
     raise DFAValueError(f"sampler bug: point beta = {b!r}, sigma = {s!r} is not passive under {crit}")
@@ -549,5 +558,76 @@ def one_sided_soundness(points: int, *, criterion: str = "one-sided", seed: int 
     case = {
         "surface != 0": int(np.sum(surface != 0.0)), "no encoder": int(np.sum(~quantized)),
         "delay > 0": int(np.sum(delay > 0)), "push > 0": int(np.sum(push > 0.0)),
+    }  # fmt: skip
+    return CriterionSoundness(delay=None, criterion=crit, points=n, by_case=case, seed=seed, **counts)
+
+
+def _history_run(mu: float, beta: float, sigma: float, x0: float, xd: float, d: int, q: bool, fresh: bool) -> tuple:
+    """(largest S/(½μV*²) − 1, its sample, diverged, run length) of one moving-history start of the spring with
+    delay d: S = ½μξ'² + ½ξ², V* of :func:`~dfa.analysis.criterion.moving_history_speed` (``fresh``: the fresh
+    start's claim, S <= ½μV², V the energy-equivalent speed)."""
+    wall = WallParams.of(delay=d)
+    hist = "fresh" if fresh else "moving"
+    vstar = passivity_criterion(1.0, 1.0, xd, wall=wall, quantized=q, xi0=x0, mu=mu, history=hist).equivalent_speed
+    n = run_samples(mu)
+    with np.errstate(all="ignore"):
+        r = simulate(mu, beta, sigma, xd, n, x0, quantize=q, wall=wall, bound=BOUND, record=True, history="moving")
+        xs, vs = np.asarray(r.xi), np.asarray(r.xi_dot)
+        stored = 0.5 * mu * vs * vs + 0.5 * xs * xs
+        ratio = np.where(np.abs(xs) <= BOUND, stored / (0.5 * mu * vstar * vstar) - 1.0, np.inf)
+    h = int(np.argmax(ratio))
+    return float(ratio[h]), h, r.outcome is SimulationOutcome.UNSTABLE, n
+
+
+def history_soundness(points: int, *, criterion: str = "moving", seed: int = 0) -> CriterionSoundness:
+    """The spring's criterion with a delay for a moving history (the device moved at ξ'0 for the d samples before
+    t = 0), checked by exact simulation of that start (:func:`~dfa.analysis.simulation.simulate` with
+    ``history="moving"``).
+
+    Points: d uniform in {1, 2, 3}, μ log-uniform in [0.1, 10⁴], ξ'0 uniform in [−10, 10] ticks/sample, ξ0 = 0
+    for half and uniform in [−10, 10] ticks for the rest, the encoder on for 85 %; half on the criterion's
+    boundaries. A violation is S = ½μξ'² + ½ξ² above ½μV*² (1 + 1e-9) at a sample instant, or divergence (the
+    criterion's module docstring, "A moving history"; the ½ξ² of the proof, below the paper's H_c).
+
+    Parameters
+    ----------
+    points : int
+        Number of points.
+    criterion : {"moving", "fresh"}
+        This package's criterion for the moving history (V* of
+        :func:`~dfa.analysis.criterion.moving_history_speed`), or the fresh start's applied to it (claim ½μV²),
+        whose violations show that the check can fail and that the pending commands must be paid for.
+    seed : int
+        Seed of :func:`numpy.random.default_rng`.
+
+    Returns
+    -------
+    CriterionSoundness
+        With ``by_case``: points per delay, at ξ0 = 0 and without the encoder.
+    """
+    n = check_int("points", points, minimum=1)
+    crit = check_choice("criterion", criterion, ("moving", "fresh"))
+    rng = np.random.default_rng(seed)
+    delay = rng.integers(1, 4, n)
+    mu = 10.0 ** rng.uniform(-1.0, 4.0, n)
+    xd = rng.uniform(-10.0, 10.0, n)
+    x0 = np.where(rng.random(n) < 0.5, 0.0, rng.uniform(-10.0, 10.0, n))
+    quantized = rng.random(n) < 0.85
+    kind = rng.choice(4, n, p=[0.5, 0.25, 0.125, 0.125])
+    beta, sigma = np.empty(n), np.empty(n)
+    for i in range(n):
+        w = WallParams.of(delay=int(delay[i]))
+        beta[i], sigma[i] = _point(rng, "delay-aware", kind[i], xd[i], x0[i], mu[i], w, bool(quantized[i]),
+                                   "fresh" if crit == "fresh" else "moving")  # fmt: skip
+    pts = dict(mu=mu, beta=beta, sigma=sigma, xi0=x0, xi_dot=xd, kind=kind, delay=delay, quantized=quantized)
+    runs = [
+        _history_run(float(mu[i]), float(beta[i]), float(sigma[i]), float(x0[i]), float(xd[i]), int(delay[i]),
+                     bool(quantized[i]), crit == "fresh")
+        for i in range(n)
+    ]  # fmt: skip
+    ratio, at, div, ns = (np.array(c) for c in zip(*runs, strict=True))
+    counts = tally(pts, (*STATE_KEYS, "delay", "quantized"), ns, ratio, at, div)
+    case = {f"d = {d}": int(np.sum(delay == d)) for d in (1, 2, 3)} | {
+        "xi0 = 0": int(np.sum(x0 == 0.0)), "no encoder": int(np.sum(~quantized)),
     }  # fmt: skip
     return CriterionSoundness(delay=None, criterion=crit, points=n, by_case=case, seed=seed, **counts)

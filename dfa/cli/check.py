@@ -38,6 +38,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         metavar="X",
         help="initial position in m (rotary: rad; device input); default: 0",
     )
+    p.add_argument(
+        "--history",
+        choices=("fresh", "moving"),
+        default="fresh",
+        help="the loop's memory at t = 0: fresh (default: as if at rest there) or moving (the device moved at the "
+        "speed for the d samples before; the spring with a delay, needs --mu without a device)",
+    )
 
 
 def _criterion(args: argparse.Namespace, inp: Inputs, xd: float, v: float | None) -> Any:
@@ -51,7 +58,9 @@ def _criterion(args: argparse.Namespace, inp: Inputs, xd: float, v: float | None
             )
         vel = inp.device.velocity(xd) if v is None else v
         spring = Wall.of(inp.stiffness, delay=args.delay)
-        return device_criterion(inp.device, spring, vel, quantized=quantized, position=args.position or 0.0)
+        return device_criterion(
+            inp.device, spring, vel, quantized=quantized, position=args.position or 0.0, history=args.history
+        )
     if args.position is not None:
         raise UsageError(
             "--position needs a physical device: with --beta --sigma give the initial position as --xi0 (ticks)"
@@ -62,9 +71,12 @@ def _criterion(args: argparse.Namespace, inp: Inputs, xd: float, v: float | None
             f"--xi0 {x0:g} needs --mu: the spring energy enters the speed as 2H_c(ξ0)/μ; give --mu m/(K T²)"
         )
     groups = WallParams.of(delay=args.delay)
+    if args.history == "moving" and args.delay and args.mu is None:
+        raise UsageError("--history moving needs --mu: the pending commands' work enters through μ; give --mu")
     return passivity_criterion(
-        inp.beta, inp.sigma, xd, wall=groups, quantized=quantized, xi0=x0, mu=args.mu, names=_FLAGS
-    )
+        inp.beta, inp.sigma, xd, wall=groups, quantized=quantized, xi0=x0, mu=args.mu, names=_FLAGS,
+        history=args.history,
+    )  # fmt: skip
 
 
 def _check_wall(args: argparse.Namespace, inp: Inputs, wall: Wall, xd: float, v: float | None) -> int:
@@ -77,6 +89,11 @@ def _check_wall(args: argparse.Namespace, inp: Inputs, wall: Wall, xd: float, v:
     if args.xi0 is not None:
         raise UsageError(
             "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
+        )
+    if args.history != "fresh":
+        raise UsageError(
+            f"--history {args.history} is derived for the spring with a delay only (a damper's or filter's memory, "
+            "and a one-sided wall's approach, are other starts); drop it or the wall flags"
         )
     vel = dev.velocity(xd) if v is None else v
     chk = passivity_check(dev, wall, vel, position=args.position or 0.0, quantized=not args.no_quantization)

@@ -8,6 +8,7 @@ subcommand: it regenerates the committed reports::
     python -m dfa.cli.soundness_report --walls --points 100000 --out reports/validation   # controller_soundness.md
     python -m dfa.cli.soundness_report --walls --hand --points 100000 --out reports/validation  # hand_soundness.md
     python -m dfa.cli.soundness_report --one-sided --points 100000 --out reports/validation  # one_sided_soundness.md
+    python -m dfa.cli.soundness_report --history --points 100000 --out reports/validation    # history_soundness.md
 
 The spring's check runs each delay of ``--delays`` with the seed ``--seed`` + d; the random walls' runs once
 with ``--seed``. One line per record on stderr as it completes. Exit codes: 0 ok; 2 bad input (one line on
@@ -22,7 +23,13 @@ import sys
 from collections.abc import Sequence
 
 from .._io import check_output_folder
-from ..analysis.soundness import CriterionSoundness, Population, criterion_soundness, one_sided_soundness
+from ..analysis.soundness import (
+    CriterionSoundness,
+    Population,
+    criterion_soundness,
+    history_soundness,
+    one_sided_soundness,
+)
 from ..checks import check_delay, check_int
 from ..errors import DFAError, DFAValueError
 from ..render.files import write_soundness
@@ -77,6 +84,11 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="check a one-sided wall reached from free space and write one_sided_soundness.md/.json",
     )
+    ap.add_argument(
+        "--history",
+        action="store_true",
+        help="check the spring with a delay from a moving history and write history_soundness.md/.json",
+    )
     return ap
 
 
@@ -92,17 +104,21 @@ def _check(args: argparse.Namespace) -> None:
     check_output_folder("--out", args.out, create=True)
     if args.hand and not args.walls:
         raise DFAValueError("--hand needs --walls: the hand is drawn with random walls; add --walls")
-    if args.one_sided and (args.walls or args.hand):
-        raise DFAValueError("--one-sided cannot be combined with --walls or --hand: it is its own population")
+    if sum(map(bool, (args.one_sided, args.history, args.walls))) > 1:
+        raise DFAValueError(
+            "--one-sided, --history and --walls (with --hand) are populations of their own: give one of them"
+        )
 
 
 def _records(args: argparse.Namespace) -> list[CriterionSoundness]:
     """Run every check the arguments ask for, one line on stderr per record."""
-    if args.one_sided:
+    if args.one_sided or args.history:
+        check, crits = (one_sided_soundness, ("one-sided", "bilateral")) if args.one_sided else (
+            history_soundness, ("moving", "fresh"))  # fmt: skip
         out = []
-        for k, crit in enumerate(("one-sided", "bilateral")):
+        for k, crit in enumerate(crits):
             n = args.points if k == 0 else (args.old_points or args.points)
-            r = one_sided_soundness(n, criterion=crit, seed=args.seed)
+            r = check(n, criterion=crit, seed=args.seed)
             print(soundness_line(r), file=sys.stderr, flush=True)
             out.append(r)
         return out

@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import abc
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar, NamedTuple
 
@@ -64,6 +65,7 @@ __all__ = [
     "HandSpring",
     "OneSided",
     "Push",
+    "largest_speed",
     "ELEMENTS",
     "MIN_CUTOFF",
     "MIN_LAG",
@@ -859,6 +861,41 @@ class HandSpring(Element):
         return complex(out) if np.ndim(out) == 0 else out
 
 
+def largest_speed(speed_of: Callable[[float], float], equivalent: float) -> float:
+    """Give the largest speed V in [0, ``equivalent``] whose ``speed_of(V)`` is at most ``equivalent``.
+
+    For a criterion whose speed V* = ``speed_of(V)`` grows with the speed of interest V and is never below it
+    (a one-sided wall's approach, a moving history): bisection to the last double, one implementation.
+
+    Parameters
+    ----------
+    speed_of : callable
+        V ↦ V*, non-decreasing, V* >= V.
+    equivalent : float
+        The largest V* allowed (the criterion's critical speed), >= 0.
+
+    Returns
+    -------
+    float
+        V; 0 when not even ``speed_of(0)`` is within.
+
+    Examples
+    --------
+    >>> largest_speed(lambda v: 2.0 * v, 3.0)
+    1.5
+    """
+    lo, hi = 0.0, float(equivalent)
+    if speed_of(hi) <= equivalent:
+        return hi
+    if not speed_of(lo) <= equivalent:
+        return 0.0
+    while True:
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            return lo
+        lo, hi = (mid, hi) if speed_of(mid) <= equivalent else (lo, mid)
+
+
 _ONE_SIDED_LINEAR = (
     "a one-sided wall is not a linear loop (it pushes only inside and is zero outside): the exact linear bound, "
     "Colgate–Schenkel and the describing function do not cover it; the exact simulation does"
@@ -1032,19 +1069,7 @@ class OneSided(Element):
         9.0
         """
 
-        def within(v: float) -> bool:
-            return OneSided.contact_speed(surface, v, mu, delay, push, quantized) <= equivalent
-
-        lo, hi = 0.0, float(equivalent)
-        if within(hi):
-            return hi
-        if not within(lo):
-            return 0.0
-        while True:
-            mid = 0.5 * (lo + hi)
-            if mid in (lo, hi):
-                return lo
-            lo, hi = (mid, hi) if within(mid) else (lo, mid)
+        return largest_speed(lambda v: OneSided.contact_speed(surface, v, mu, delay, push, quantized), equivalent)
 
     @staticmethod
     def engage(surface: float, quantized: bool = True) -> float:

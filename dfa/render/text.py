@@ -70,7 +70,10 @@ def check_rows(r: Any, quantized: bool, vu: str) -> list[list[str]]:
         pos = f" ({r.position:.4g} {r.device.units['position']})" if r.device is not None else ""
         rows.append(["initial position ξ0", f"{r.xi0:.4g} ticks{pos}"])
     rows += [
-        ["equivalent speed V", f"{r.equivalent_speed:.4g} ticks/sample (½μV² = stored energy, eq. 19)"],
+        [
+            "equivalent speed V",
+            f"{r.equivalent_speed:.4g} ticks/sample ({ENERGY_OF[r.history if r.delay else 'fresh']})",
+        ],
         ["delay d", f"{d} sample{'s' if d != 1 else ''}"],
         ["criterion", ("eq. 6 (with encoder)" if quantized else "eq. 7 (no quantization)") + f": {rule}"],
         ["region", f"{r.region}: {r.status.message}"],
@@ -80,6 +83,13 @@ def check_rows(r: Any, quantized: bool, vu: str) -> list[list[str]]:
         [f"critical speed (eq. 12, d = {d})", crit],
     ]
     return rows
+
+
+#: What ½μV² of the criterion's speed stands for, by the start's memory (:data:`dfa.analysis.criterion.HISTORIES`).
+ENERGY_OF = {
+    "fresh": "½μV² = stored energy, eq. 19",
+    "moving": "½μV² = stored energy and the pending commands' work, moving history",
+}
 
 
 def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | None) -> list[list[str]]:
