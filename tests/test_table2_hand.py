@@ -99,6 +99,18 @@ def test_table2_hand_paper_preset_beta_by_table1(capsys):
     assert code == 0 and out.splitlines()[0].endswith("held by human operator (paper Table 2): 0.15 kg, 4.8 N·s/m")
 
 
+def test_table2_hand_light_preset_is_the_paper_mass_without_damping(capsys):
+    """`--hand light`: Table 2's hand mass with no damping (a bound, said in its source): μ grows with the mass,
+    β is the bare device's, and the criterion's verdict is the bare device's at that μ (β and σ unchanged)."""
+    h = HAND_PRESETS["light"]
+    assert (h.mass, h.damping, h.stiffness) == (HAND_PRESETS["paper"].mass, 0.0, 0.0) and "bound" in h.source
+    d = _json(capsys, "check", "--device", "impulse", "--hand", "light", "--velocity", "0.1")
+    bare = _json(capsys, "check", "--device", "impulse", "--velocity", "0.1")
+    k, t = 80.0, 2e-3
+    assert d["beta"] == bare["beta"] and d["sigma"] == bare["sigma"] and d["passive"] == bare["passive"]
+    assert d["mu"] == pytest.approx((0.032 + 0.150) / (k * t * t), rel=1e-12) and d["hand"]["name"] == h.name
+
+
 def test_table2_hand_stiffness_goes_to_the_wall_not_left_out(capsys):
     """holding() alone refuses a hand stiffness (it would be left out) and names dfa.hold; the CLI puts it in the
     wall (dfa.HandSpring), so the check's JSON states κ_h = k_h/K."""

@@ -117,6 +117,15 @@ HAND_PRESETS: dict[str, Hand] = {
         source="Diolaiti et al., ICRA 2005, Table 2: 0.150 kg, about 4.8 N·s/m, added to the device's own; "
         "its stiffness column (about 600 N/m) is not applied",
     ),
+    "light": Hand(
+        0.150,
+        0.0,
+        0.0,
+        name="light touch (a bound: the paper's hand mass, no damping)",
+        source="Diolaiti et al., ICRA 2005, Table 2's hand mass (0.150 kg) with none of its damping: the light end "
+        "of a grasp as a bound, not a measured grasp (no published light-touch values were found); the report's "
+        "grip sweep spans the grasps between it and a firm one",
+    ),
     "hapticmaster": Hand(
         0.554,
         6.45,
@@ -135,7 +144,7 @@ def get_hand(name: str) -> Hand:
     Parameters
     ----------
     name : str
-        ``"none"``, ``"paper"`` or ``"hapticmaster"``.
+        ``"none"``, ``"paper"``, ``"light"`` or ``"hapticmaster"``.
 
     Returns
     -------
