@@ -163,13 +163,20 @@ def test_fig4_one_sided_map_points_are_the_approach_runs(capsys, tmp_path):
         for j, b in enumerate(m.beta):
             r = simulate(20.0, b, s, v0, samples=m.samples, xi0=x0, wall=w)
             assert dfa.analysis.simulation.OUTCOMES[m.outcome[0, i, j]] == r.outcome.value
+            assert dfa.analysis.simulation.CONTACTS[m.contact[0, i, j]] is r.contact  # the contact kind too
     assert "left" in m.counts()[0] and sum(m.counts()[0].values()) == 9
+    assert sum(m.contact_counts()[0].values()) == 9 and m.contact_counts()[0]["left"] == m.counts()[0]["left"]
+    back = dfa.load_map(m.save(tmp_path / "os.npz"))  # the file keeps the one-sided wall and the contact kinds
+    assert back.wall == w and np.array_equal(back.contact, m.contact)
     with pytest.raises(dfa.DFAValueError, match="preload = True is invalid with a one-sided wall"):
         stability_map(20.0, [0.8], grid=2, samples=100, wall=w, preload=True, n_jobs=1, progress=False)
     argv = ["map", "--device", "delta", "--stiffness", "20000", "--velocity", "0.05", "--one-sided", "--grid", "4"]
     assert main([*argv, "--out", str(tmp_path / "m.npz"), "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["counts"][0]["left"] == 16 and d["operating_point_runs"][0]["outcome"] == "left"  # free impacts
+    assert d["contact_counts"][0]["left"] == 16
+    assert main([*argv, "--out", str(tmp_path / "m.npz")]) == 0
+    assert "as contact:" in capsys.readouterr().out
     assert main([*argv, "--out", str(tmp_path / "m.npz"), "--preload"]) == 2
     assert "preload" in capsys.readouterr().err
 

@@ -76,7 +76,9 @@ from ..checks import (
     check_speed,
     format_value,
 )
+from ..core import kernel
 from ..errors import DFATypeError, DFAValueError
+from ..model.elements import OneSided, Push
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
@@ -84,12 +86,14 @@ from ..results.status import MapStatus
 from ..results.summaries import PlaneGrid
 from .criterion import CriticalLine
 from .simulation import (
+    CONTACTS,
     GROWTH,
     OUTCOMES,
     SETTLE,
     STABLE_AMPLITUDE,
     check_rules,
     check_wall,
+    contact_codes,
     divergence_bound,
     preload_position,
     run_points,
@@ -165,6 +169,7 @@ class StabilityMap(PlaneGrid, Result):
     preload: bool = False
     status: MapStatus = MapStatus.OK
     wall: WallParams = field(default_factory=WallParams)
+    contact: np.ndarray | None = field(default=None, repr=False, metadata={"json": None})
 
     json_properties: ClassVar[tuple[str, ...]] = ("beta_range", "sigma_range", "grid", "delay")
 
@@ -192,6 +197,13 @@ class StabilityMap(PlaneGrid, Result):
                 f"outcome holds codes outside 0 … {len(OUTCOMES) - 1}: they index dfa.analysis.simulation.OUTCOMES; "
                 "pass the codes the simulation returned"
             )
+        if (self.contact is None) == self.wall.one_sided:
+            raise DFAValueError(
+                "contact must be given exactly for a one-sided wall's map; build maps with stability_map"
+            )
+        if self.contact is not None:
+            freeze_fields(self, {"contact": {"dtype": np.int8, "ndim": 3}})
+            check_shape("contact", self.contact, shape)
         object.__setattr__(self, "status", MapStatus.coerce(self.status))
 
     @property
@@ -340,6 +352,19 @@ class StabilityMap(PlaneGrid, Result):
             for o in self.outcome
         ]
 
+    def contact_counts(self) -> list[dict[str, int]] | None:
+        """A one-sided wall's grid points per contact kind (:class:`~dfa.results.status.ContactOutcome`), one dict
+        per initial speed; None for a bilateral wall.
+
+        Returns
+        -------
+        list of dict or None
+            ``{contact kind: count}`` for each initial speed, every kind.
+        """
+        if self.contact is None:
+            return None
+        return [{k.value: int(np.sum(c == i)) for i, k in enumerate(CONTACTS)} for c in self.contact]
+
     def to_dict(self) -> dict[str, Any]:
         """Strict-JSON summary: the scalar fields, the grid and the counts per speed, not the arrays.
 
@@ -352,7 +377,11 @@ class StabilityMap(PlaneGrid, Result):
             The μ, speeds, wall, grid, settings, counts per speed, status and its message.
         """
         counts = [dict(xi_dot=v, **c) for v, c in zip(self.xi_dots, self.counts(), strict=True)]
-        return {**super().to_dict(), "counts": counts}
+        out = {**super().to_dict(), "counts": counts}
+        contact = self.contact_counts()
+        if contact is not None:  # a one-sided wall's map only: a bilateral map's record is unchanged
+            out["contact_counts"] = [dict(xi_dot=v, **c) for v, c in zip(self.xi_dots, contact, strict=True)]
+        return out
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write the map to a ``.npz`` file (see :func:`load_map`), atomically.
@@ -384,7 +413,7 @@ class StabilityMap(PlaneGrid, Result):
                 amplitude=self.amplitude,
                 frequency=self.frequency,
                 settings=np.array([self.samples, self.delay, int(self.quantize), int(self.preload)], dtype=np.int64),
-                **_wall_arrays(self.wall),
+                **_wall_arrays(self.wall, self.contact),
             )
         return p
 
@@ -469,18 +498,27 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
                 quantize=bool(quantize),
                 preload=bool(preload),
                 wall=wall,
+                contact=z["contact"].astype(np.int8) if wall.one_sided and "contact" in z.files else None,
             )
         except (DFAValueError, DFATypeError) as err:  # a value outside its rule: the file names it
             raise DFAValueError(f"map file {str(path)!r} is invalid ({err}); recompute it with `dfa map`") from None
 
 
-def _wall_arrays(wall: WallParams) -> dict[str, Any]:
-    """The ``wall`` entry of a map file: [β_B, ν_c (NaN: no filter), α]; none for the spring (its delay is
-    in ``settings``)."""
+def _wall_arrays(wall: WallParams, contact: np.ndarray | None = None) -> dict[str, Any]:
+    """The ``wall`` entry of a map file: [β_B, ν_c (NaN: no filter), α], with ``hand`` [κ_h] and a one-sided
+    wall's ``one_sided`` [s, p] and ``contact`` kinds; none for the spring (its delay is in ``settings``)."""
     if wall.is_spring:
         return {}
     cutoff = math.nan if wall.cutoff is None else wall.cutoff
-    return {"wall": np.array([wall.damping, cutoff, wall.lag], dtype=float)}
+    out = {"wall": np.array([wall.damping, cutoff, wall.lag], dtype=float)}
+    if wall.hand_stiffness:
+        out["hand"] = np.array([wall.hand_stiffness], dtype=float)
+    if wall.one_sided:
+        a = wall.kernel_args()
+        out["one_sided"] = np.array([a["surface"], a["push"]], dtype=float)
+    if contact is not None:
+        out["contact"] = contact
+    return out
 
 
 def _wall_from(z: np.lib.npyio.NpzFile, delay: int) -> WallParams:
@@ -490,7 +528,14 @@ def _wall_from(z: np.lib.npyio.NpzFile, delay: int) -> WallParams:
     if key is None:
         return WallParams.of(delay=delay)
     damping, cutoff, lag = (float(v) for v in z[key])
-    return WallParams.of(damping=damping, delay=delay, cutoff=None if math.isnan(cutoff) else cutoff, lag=lag)
+    hand = float(z["hand"][0]) if "hand" in z.files else 0.0
+    w = WallParams.of(
+        damping=damping, delay=delay, cutoff=None if math.isnan(cutoff) else cutoff, lag=lag, hand_stiffness=hand
+    )
+    if "one_sided" not in z.files:
+        return w
+    surface, push = (float(v) for v in z["one_sided"])
+    return WallParams(((OneSided, surface), *(((Push, push),) if push else ()), *w.groups))
 
 
 def _run_chunk(
@@ -506,11 +551,17 @@ def _run_chunk(
     stable_amplitude: float,
     growth: float,
     settle: float,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Codes, amplitudes and frequencies of one chunk of points (one compiled call; releases the GIL)."""
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Codes, amplitudes, frequencies and (a one-sided wall's) contact kinds of one chunk of points (one compiled
+    call; releases the GIL); the contact kinds are −1 for a bilateral wall."""
     mus = np.full(betas.size, mu)
     res = run_points(mus, betas, sigmas, x0s, v0s, samples, wall, quantize, bound, stable_amplitude, growth, settle)
-    return res[0], res[1], res[2]
+    if wall.one_sided:
+        stats = res[7]
+        contact = contact_codes(res[0], stats[:, kernel.NSEG + 6], stats[:, kernel.NSEG + 8], wall, quantize)
+    else:
+        contact = np.full(betas.size, -1, dtype=np.int8)
+    return res[0], res[1], res[2], contact
 
 
 def stability_map(
@@ -627,9 +678,10 @@ def stability_map(
         results = run_in_order(_run_chunk, tasks, [c.size for c in chunks], workers, how, bar)
     finally:
         bar.close()
-    codes, amps, freqs = (gather(chunks, [r[k] for r in results]).reshape(len(speeds), g, g) for k in range(3))
+    codes, amps, freqs, contact = (gather(chunks, [r[k] for r in results]).reshape(len(speeds), g, g) for k in range(4))
     out = (codes.astype(np.int8), amps, freqs, n, quantize, preload)
-    return StabilityMap(m, speeds, beta, sigma, *out, wall=w)
+    kinds = contact.astype(np.int8) if w.one_sided else None
+    return StabilityMap(m, speeds, beta, sigma, *out, wall=w, contact=kinds)
 
 
 def _check_speeds(xi_dots: ArrayLike) -> tuple[float, ...]:

@@ -968,13 +968,48 @@ def contact_outcome(
     """
     if not wall.one_sided:
         return None
+    arrays = (np.array([code]), np.array([final_xi]), np.array([tail_min]))
+    return CONTACTS[int(contact_codes(*arrays, wall, quantize)[0])]
+
+
+#: The contact kinds in code order: :func:`contact_codes` indexes it.
+CONTACTS = tuple(ContactOutcome)
+
+
+def contact_codes(
+    codes: np.ndarray, final_xi: np.ndarray, tail_min: np.ndarray, wall: WallParams, quantize: bool = True
+) -> np.ndarray:
+    """:func:`contact_outcome` of many runs of one one-sided wall, as indices into :data:`CONTACTS` (one rule).
+
+    Parameters
+    ----------
+    codes : numpy.ndarray of int
+        The kernel's outcome codes.
+    final_xi, tail_min : numpy.ndarray
+        Final positions and the tails' smallest positions at the sample instants, ticks.
+    wall : WallParams
+        The one-sided wall.
+    quantize : bool, optional
+        With the encoder (default).
+
+    Returns
+    -------
+    numpy.ndarray of int8
+        Indices into :data:`CONTACTS`.
+    """
     engage = OneSided.engage(float(wall.kernel_args()["surface"]), quantize)
-    if code == kernel.REST:
-        return ContactOutcome.RESTS if final_xi >= engage else ContactOutcome.RESTS_OFF
-    if code in (kernel.OSCILLATING, kernel.CHATTER):
-        return ContactOutcome.BOUNCES if tail_min < engage else ContactOutcome.IN_CONTACT
-    named = {kernel.UNSTABLE: ContactOutcome.GROWS, kernel.LEFT: ContactOutcome.LEFT}
-    return named.get(code, ContactOutcome.UNDECIDED)
+    c = np.asarray(codes)
+    idx = {k: CONTACTS.index(k) for k in CONTACTS}
+    out = np.full(c.shape, idx[ContactOutcome.UNDECIDED], dtype=np.int8)
+    inside = np.asarray(final_xi) >= engage
+    out[(c == kernel.REST) & inside] = idx[ContactOutcome.RESTS]
+    out[(c == kernel.REST) & ~inside] = idx[ContactOutcome.RESTS_OFF]
+    bounded = (c == kernel.OSCILLATING) | (c == kernel.CHATTER)
+    out[bounded & (np.asarray(tail_min) < engage)] = idx[ContactOutcome.BOUNCES]
+    out[bounded & ~(np.asarray(tail_min) < engage)] = idx[ContactOutcome.IN_CONTACT]
+    out[c == kernel.UNSTABLE] = idx[ContactOutcome.GROWS]
+    out[c == kernel.LEFT] = idx[ContactOutcome.LEFT]
+    return out
 
 
 def _check_history(history: object, wall: WallParams) -> bool:

@@ -185,6 +185,15 @@ def _print(
     names += ("left",) if any("left" in c for c in counts) else ()  # a one-sided wall's runs only
     rows = [[f"{v:g}", *(c.get(k, 0) for k in names)] for v, c in zip(m.xi_dots, counts, strict=False)]
     say(table(rows, ["ξ'0", *names]))
+    contact = m.contact_counts()
+    if contact is not None:  # a one-sided wall: how each run ended as contact (dfa simulate's contact row)
+        kinds = [k for k in contact[0] if any(c[k] for c in contact)]
+        say("as contact:")
+        say(
+            table(
+                [[f"{v:g}", *(c[k] for k in kinds)] for v, c in zip(m.xi_dots, contact, strict=True)], ["ξ'0", *kinds]
+            )
+        )
     if runs and inp is not None and inp.device is not None and inp.params is not None:
         vu = inp.device.units["velocity"]
         how = f"--samples {m.samples}" + (" --preload" if m.preload else "")
