@@ -84,13 +84,12 @@ def test_eq6_moving_history_criterion_is_sound_where_the_fresh_claim_fails():
 def test_eq6_moving_history_the_issue_counterexample():
     """The independent check's point (μ = 171.9, β = 3.379, σ = 3.127, d = 3, ξ'0 = 21.71): the fresh criterion
     calls it passive and its fresh start keeps S <= S(0); from a moving history S rises above S(0), and the
-    moving criterion does not call it passive (V* = (E + √(E² + μ²V²))/μ, E = ξ'0·d(d + 1)/2 + d)."""
+    moving criterion does not call it passive (V*² = V² + d(d + 1)ξ'0²/(2μ))."""
     mu, beta, sigma, d, v = 171.9, 3.379, 3.127, 3, 21.71
     w = WallParams.of(delay=d)
     assert passivity_criterion(beta, sigma, v, wall=w, mu=mu).passive
     moving = passivity_criterion(beta, sigma, v, wall=w, mu=mu, history="moving")
-    e = v * d * (d + 1) / 2 + d
-    assert moving.equivalent_speed == pytest.approx((e + math.sqrt(e * e + mu * mu * v * v)) / mu, rel=1e-14)
+    assert moving.equivalent_speed == pytest.approx(math.sqrt(v * v + d * (d + 1) * v * v / (2 * mu)), rel=1e-14)
     assert not moving.passive and moving.start_state.startswith("a moving history")
     for history, grows in (("fresh", False), ("moving", True)):
         run = simulate(mu, beta, sigma, v, 20_000, wall=w, history=history)

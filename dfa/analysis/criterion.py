@@ -117,13 +117,14 @@ A one-sided wall reached from free space (issue 28 §1; :class:`~dfa.model.eleme
     points the criterion calls passive.
 
 A moving history (``history="moving"``; the spring with a delay, no damper or filter)
-    The fresh start assumes the d pending commands equal the first one, c_0 = −(⌊ξ0⌋ + ½). If instead the
-    device moved at ξ'0 for the d samples before t = 0, they are those of the readings ξ0 − jξ'0: over sample
-    h < d the force is c_{h−d} instead of c_0, which differ by ⌊ξ0⌋ − ⌊ξ0 − (d − h)ξ'0⌋, less than
-    (d − h)|ξ'0| + 1 in magnitude ((d − h)|ξ'0| without the encoder). Every other term of steps 1-4 is the
-    fresh proof's, so the extra work is at most Σ_h ((d − h)|ξ'0| + 1)|Δ_h| <= E·V* while |Δ_h| <= V*,
-    E = |ξ'0|d(d + 1)/2 + d. Step 5 with ½μV*² = ½μV² + E·V* (:func:`moving_history_speed`) gives
-    S(t) <= ½μV*²: the corner (½ + d, ½) at V*. The critical speed is then the speed ξ'0 whose V* is
+    The fresh start takes the displacements before t = 0 as 0 (the d pending commands equal the first one). If
+    instead the device moved at ξ'0 for the d samples before, they are Δ_k = ξ'0 (k < 0), and step 2's identity
+    ξ_h − n_{h−d} − ½ = Σ_{j=1..d} Δ_{h−j} + (p_{h−d} − ½) holds as it stands (the readings of the motion
+    included, |p − ½| <= ½ for any reading). Step 4's cross terms then pair, for h < d, the d − h displacements
+    of the history with Δ_h: each |ξ'0Δ_h| <= ½(ξ'0² + Δ_h²), the Δ_h² halves in the weight d already, the
+    ½ξ'0² halves, d(d + 1)/2 of them, paid by no dissipation. So S_n − S_0 <= ¼d(d + 1)ξ'0² + Σ_h brackets, and
+    step 5 with ½μV*² = ½μV² + ¼d(d + 1)ξ'0² (:func:`moving_history_speed`) gives S(t) <= ½μV*²: the corner
+    (½ + d, ½) at V* = √(V² + d(d + 1)ξ'0²/(2μ)). The critical speed is then the speed ξ'0 whose V* is
     (σ − σ₀)/(β₀ − β). With a damper or a filter the velocity estimate and the filter's state of the motion
     enter the energy too: not derived, refused. ``python -m dfa.cli.soundness_report --history`` checks it by
     exact simulation of that start (:func:`dfa.simulate` with ``history="moving"``).
@@ -246,13 +247,13 @@ APPROACH_NOTE = "for an approach from free space at the impact speed"
 HISTORIES = ("fresh", "moving")
 
 
-def moving_history_speed(speed: float, xi_dot: float, mu: float, delay: int, quantized: bool = True) -> float:
+def moving_history_speed(speed: float, xi_dot: float, mu: float, delay: int) -> float:
     """The criterion's speed V* for a moving history (module docstring, "A moving history").
 
-    The device has moved at ξ'0 for the d samples before t = 0, so the d pending commands are those of the
-    readings ξ0 − jξ'0 (j = 1 … d), not the first one: over samples 0 … d − 1 they differ from it by less than
-    (d − h)|ξ'0| + 1 (without the encoder (d − h)|ξ'0|) and add at most E·V*, E = |ξ'0|d(d + 1)/2 + d. Hence
-    ½μV*² = ½μV² + E V*:  V* = (E + √(E² + μ²V²))/μ (V* = V for d = 0).
+    The device has moved at ξ'0 for the d samples before t = 0, so the displacements before the start are
+    Δ_k = ξ'0 (k < 0), not 0: step 2's cross terms pair d(d + 1)/2 of them with the first d samples', each at
+    most ½(ξ'0² + Δ_h²), and the Δ_h² halves are in step 4's weights already. Hence
+    ½μV*² = ½μV² + ¼d(d + 1)ξ'0²:  V* = √(V² + d(d + 1)ξ'0²/(2μ)) (V* = V for d = 0), with or without the encoder.
 
     Parameters
     ----------
@@ -264,8 +265,6 @@ def moving_history_speed(speed: float, xi_dot: float, mu: float, delay: int, qua
         Dimensionless mass μ = m/(K T²) > 0.
     delay : int
         The computational delay d, samples.
-    quantized : bool, optional
-        With the encoder (default).
 
     Returns
     -------
@@ -276,13 +275,10 @@ def moving_history_speed(speed: float, xi_dot: float, mu: float, delay: int, qua
     --------
     >>> moving_history_speed(2.0, 2.0, 1.0, 0)
     2.0
-    >>> round(moving_history_speed(0.0, 2.0, 1.0, 1), 12)   # E = 2·1 + 1 = 3: ½V*² = 3V*
-    6.0
+    >>> round(moving_history_speed(0.0, 2.0, 1.0, 1), 12)   # ½V*² = ¼·2·4
+    2.0
     """
-    if delay == 0:
-        return speed
-    e = abs(xi_dot) * delay * (delay + 1) / 2.0 + (delay if quantized else 0.0)
-    return (e + math.sqrt(e * e + mu * mu * speed * speed)) / mu
+    return math.sqrt(speed * speed + delay * (delay + 1) * xi_dot * xi_dot / (2.0 * mu))
 
 
 def start_state(wall: Any, history: str = "fresh") -> str:
@@ -892,7 +888,7 @@ def _speed(xd: float, x0: float, mu: float | None, wall: WallParams, quantized: 
         return _one_sided_speed(xd, x0, mu, wall, quantized)
     v = equivalent_speed(xd, x0, mu, quantized=quantized, hand_stiffness=wall.hand_stiffness)
     if history == "moving" and mu is not None:
-        return moving_history_speed(v, xd, mu, wall.delay, quantized)
+        return moving_history_speed(v, xd, mu, wall.delay)
     return v
 
 
@@ -912,7 +908,9 @@ def _check_history(history: object, wall: WallParams, mu: float | None) -> str:
             "filter's state of the motion enter the energy); pass history='fresh' or drop the damper"
         )
     if mu is None:
-        raise DFAValueError("history = 'moving' needs mu: the pending commands' work enters through E·V*/μ; pass mu")
+        raise DFAValueError(
+            "history = 'moving' needs mu: the motion's energy enters through d(d + 1)ξ'0²/(2μ); pass mu"
+        )
     return h
 
 

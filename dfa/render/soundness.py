@@ -117,10 +117,10 @@ _HISTORY_HEAD = [
 _HISTORY_FOOT = [
     "",
     '*moving*: `dfa.analysis.criterion` ("A moving history"): the corner (½ + d, ½) at V* of',
-    "`moving_history_speed`, ½μV*² = ½μV² + E·V*, E = |ξ'0|d(d + 1)/2 + d: what the pending commands of the",
-    "motion add over the first d samples. *fresh*: the criterion for the fresh start (the documented one) applied",
-    "to this start, claiming S <= ½μV²: its violations are the independent check's finding, and show that the",
-    "check can fail.",
+    "`moving_history_speed`, ½μV*² = ½μV² + ¼d(d + 1)ξ'0²: what the motion's displacements before t = 0 add",
+    "through the pending commands. *fresh*: the criterion for the fresh start (the documented one) applied to",
+    "this start, claiming S <= ½μV²: its violations are the independent check's finding, and show that the check",
+    "can fail.",
     "",
 ]
 
