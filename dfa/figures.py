@@ -1051,7 +1051,9 @@ _ZWIDTH_STYLES: dict[str, tuple[str, dict[str, Any]]] = {
 #: between two B would claim values between grid stiffnesses, and one isolated grid point draws a spike).
 _ZWIDTH_GRID_VALUED = ("sim", "rest")
 #: Shade of each simulated outcome of the Z-width grid; "diverges" is dark as in the maps (never white on white).
-ZWIDTH_COLORS = {"rest": "#d1e5f0", "bounded": "#fddbc7", "diverges": "#a3a3a3", "undecided": "#e08214"}
+ZWIDTH_COLORS = {
+    "rest": "#d1e5f0", "bounded": "#fddbc7", "diverges": "#a3a3a3", "undecided": "#e08214", "left": "#e7f4e4",
+}  # fmt: skip
 
 
 #: A Z-width method defined at a single B: a marker above the design point's star (zorder 6), never under it.
@@ -1083,21 +1085,21 @@ def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
     -------
     matplotlib.axes.Axes
     """
-    from .results.codes import BOUNDED, DIVERGES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
+    from .results.codes import BOUNDED, DIVERGES, LEFT_POINT, REST, UNDECIDED_POINT, ZWIDTH_METHODS
 
     ax = _axes(ax, figsize=(7.6, 4.6))
     u = zw.device.units
     ks, bs = np.asarray(zw.stiffness), np.asarray(zw.damping)
     shade = np.full(zw.outcome.shape, np.nan)
     colours = {REST: ZWIDTH_COLORS["rest"], BOUNDED: ZWIDTH_COLORS["bounded"], DIVERGES: ZWIDTH_COLORS["diverges"],
-               UNDECIDED_POINT: ZWIDTH_COLORS["undecided"]}  # fmt: skip
-    cmap = ListedColormap([colours[c] for c in (REST, BOUNDED, DIVERGES, UNDECIDED_POINT)])
+               UNDECIDED_POINT: ZWIDTH_COLORS["undecided"], LEFT_POINT: ZWIDTH_COLORS["left"]}  # fmt: skip
+    cmap = ListedColormap([colours[c] for c in (REST, BOUNDED, DIVERGES, UNDECIDED_POINT, LEFT_POINT)])
     shade[:] = zw.outcome
     kedges = np.sqrt(ks[1:] * ks[:-1])
     kedges = np.concatenate([[ks[0] ** 2 / kedges[0]], kedges, [ks[-1] ** 2 / kedges[-1]]])
     bstep = bs[1] - bs[0] if bs.size > 1 else 1.0
     bedges = np.concatenate([bs - bstep / 2, [bs[-1] + bstep / 2]])
-    ax.pcolormesh(bedges, kedges, shade.T, cmap=cmap, vmin=-0.5, vmax=3.5, shading="flat")
+    ax.pcolormesh(bedges, kedges, shade.T, cmap=cmap, vmin=-0.5, vmax=4.5, shading="flat")
     for m in ZWIDTH_METHODS:
         label, style = _ZWIDTH_STYLES[m]
         y = np.asarray(zw.boundary(m), dtype=float)
@@ -1117,7 +1119,12 @@ def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
         ax.plot([b], [min(max(k, lo), hi)], label="design point (B, K)", **_STAR)
     handles, _ = ax.get_legend_handles_labels()
     handles += [
-        Patch(facecolor=colours[REST], edgecolor="0.5", label="simulated: rest" + (" or left" if contact else "")),
+        Patch(facecolor=colours[REST], edgecolor="0.5", label="simulated: rest"),
+        *(
+            [Patch(facecolor=colours[LEFT_POINT], edgecolor="0.5", label="simulated: rest or left the wall")]
+            if contact
+            else []
+        ),  # fmt: skip
         Patch(facecolor=colours[BOUNDED], edgecolor="0.5", label="simulated: bounded (chatter or cycle)"),
         Patch(facecolor=colours[UNDECIDED_POINT], edgecolor="0.5", label="simulated: undecided"),
         Patch(facecolor=colours[DIVERGES], edgecolor="0.5", label="simulated: diverges"),

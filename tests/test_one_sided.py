@@ -316,12 +316,12 @@ def _approach_outcome(dev, k, wall, speed):
 
 @pytest.mark.filterwarnings("ignore::dfa.ImplausibleInputWarning")  # the grid's top K, 1.2e7 N/m
 def test_zwidth_one_sided_points_are_approach_runs_and_agree_with_kmax():
-    """The Z-width of a one-sided wall: every grid point's code follows from dfa.simulate's approach runs (rest or
-    left: rest; unstable: diverges), no linear columns ("not a linear loop"), and its criterion column at B = 0 is
+    """The Z-width of a one-sided wall: every grid point's code follows from dfa.simulate's approach runs (left:
+    left, which the rest limit counts as ended; unstable: diverges), no linear columns ("not a linear loop"), and its criterion column at B = 0 is
     the K_max answer's K_criterion (two answers to one question)."""
     from dfa.analysis.limits.kmax import design_answer
     from dfa.analysis.limits.zwidth import z_width
-    from dfa.results.codes import BOUNDED, DIVERGES, REST, UNDECIDED_POINT
+    from dfa.results.codes import BOUNDED, DIVERGES, LEFT_POINT, REST, UNDECIDED_POINT
 
     dev = dfa.get_device("delta").device
     for w in (Wall(1.0, (OneSided(0.0), Push(2.0))), Wall(1.0, (OneSided(0.3),))):
@@ -331,7 +331,9 @@ def test_zwidth_one_sided_points_are_approach_runs_and_agree_with_kmax():
         for i, b in enumerate(z.damping):
             for j, k in enumerate(z.stiffness):
                 o = _approach_outcome(dev, float(k), w.with_damping(float(b)), 0.05)
-                want = {"rest": REST, "left": REST, "unstable": DIVERGES, "undecided": UNDECIDED_POINT}.get(o, BOUNDED)
+                want = {"rest": REST, "left": LEFT_POINT, "unstable": DIVERGES, "undecided": UNDECIDED_POINT}.get(
+                    o, BOUNDED
+                )
                 assert z.outcome[i, j] == want, (b, k, o)
     free = Wall(1.0, (OneSided(0.3),))
     z = z_width(dev, 0.05, wall=free, grid=2, speeds=1, n_jobs=1)

@@ -707,6 +707,14 @@ class CriterionResult(Result):
         return start_state(self.wall, self.history)
 
     @property
+    def critical_symbol(self) -> str:
+        """Name what :attr:`critical_xi_dot` bounds: the speed ξ'0 itself, or the energy-equivalent V.
+
+        ``"ξ'0"`` for a one-sided wall's impact and a moving history, ``"V"`` otherwise (ξ'0 when ξ0 = 0).
+        """
+        return "ξ'0" if self.wall.one_sided or (self.history == "moving" and self.delay) else "V"
+
+    @property
     def beta0(self) -> float:
         """The corner's β₀: ½ + d for the spring, ½ + d + β_B with a damper."""
         return self.critical_line.beta0

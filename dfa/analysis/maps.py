@@ -148,6 +148,10 @@ class StabilityMap(PlaneGrid, Result):
         Measured cycle amplitude (ticks) and frequency (rad per sample); NaN where not measured.
     samples, quantize, preload
         Simulation settings.
+    contact : numpy.ndarray of int8 or None
+        A one-sided wall's contact kind of each run (index into :data:`dfa.analysis.simulation.CONTACTS`:
+        :func:`~dfa.analysis.simulation.contact_codes`, :attr:`SimulationResult.contact`'s rule); None for a
+        bilateral wall.
     status : MapStatus
         ``OK``: every point simulated (amplitude and frequency NaN where not measured).
     wall : WallParams
@@ -353,8 +357,9 @@ class StabilityMap(PlaneGrid, Result):
         ]
 
     def contact_counts(self) -> list[dict[str, int]] | None:
-        """A one-sided wall's grid points per contact kind (:class:`~dfa.results.status.ContactOutcome`), one dict
-        per initial speed; None for a bilateral wall.
+        """Count a one-sided wall's grid points per contact kind, one dict per initial speed.
+
+        The kinds are :class:`~dfa.results.status.ContactOutcome`'s; None for a bilateral wall.
 
         Returns
         -------

@@ -93,7 +93,8 @@ def _check_wall(args: argparse.Namespace, inp: Inputs, wall: Wall, xd: float, v:
     if args.history != "fresh":
         raise UsageError(
             f"--history {args.history} is derived for the spring with a delay only (a damper's or filter's memory, "
-            "and a one-sided wall's approach, are other starts); drop it or the wall flags"
+            "a one-sided wall's approach and a hand stiffness are other cases); drop it, or the wall, contact and "
+            "hand-stiffness flags"
         )
     vel = dev.velocity(xd) if v is None else v
     chk = passivity_check(dev, wall, vel, position=args.position or 0.0, quantized=not args.no_quantization)

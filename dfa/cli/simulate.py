@@ -153,7 +153,7 @@ def run(args: argparse.Namespace) -> int:
         emit(wall_json(d, ctl, inp))
         return 0
     say(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
-    print_wall(ctl, inp)
+    print_wall(ctl, inp, contact=False)  # the contact line below says more (the approach)
     if approach is not None:
         say(contact_line(wp, approach[2], xd))
     say(table(simulation_rows(r, x0, v0, args.preload, phys if known else None)))

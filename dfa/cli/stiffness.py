@@ -129,10 +129,6 @@ def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp
         + ("" if ctl is None else "; B, f_c, f_bw held fixed while K varies")
     )
     print_wall(ctl, inp, wrap=False)
-    if wall.one_sided:
-        from ..render.contact import contact_text
-
-        print(f"contact: {contact_text(wall, dev.units)}")
     print(recommendation_line(rec))
     rows = kmax_rows(ans, explain=True)
     rows.append(["verdict at this speed", verdict_text(ans)])

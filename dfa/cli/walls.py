@@ -165,14 +165,21 @@ def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[
     return d
 
 
-def print_wall(wall: Wall | None, inp: Inputs | None, *, wrap: bool = True) -> None:
+def print_wall(wall: Wall | None, inp: Inputs | None, *, wrap: bool = True, contact: bool = True) -> None:
     """State the wall (nothing for the spring: its output is unchanged): its physical values, then its
-    dimensionless groups on a second line; one line, unwrapped, when ``wrap`` is False (``--explain``)."""
+    dimensionless groups on a second line; one line, unwrapped, when ``wrap`` is False (``--explain``); a
+    one-sided wall's contact on a line of its own (unless ``contact`` is False: a command that states it itself)."""
     if wall is not None and inp is not None and inp.device is not None:
+        from ..render.contact import contact_text
         from ..render.controller import controller_parts
 
         values, groups = controller_parts(wall, inp.device.period, inp.device.units, inp.device.resolution)
+        line = f"contact: {contact_text(wall, inp.device.units)}" if contact and wall.one_sided else ""
         if wrap:
             say(f"{values};\n  {groups}")
+            if line:
+                say(line)
         else:
             print(f"{values}; {groups}")
+            if line:
+                print(line)

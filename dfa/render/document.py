@@ -149,6 +149,8 @@ def outcome_text(a: DesignAnalysis) -> str:
         return head + f"the device comes to rest at sample {rest} ({number(rest * dev.period)} s)."
     if r.outcome == "unstable":
         return head + "the motion diverges (unstable)."
+    if r.outcome == "left":
+        return head + "the device leaves the one-sided wall for good (outside, moving away, nothing brings it back)."
     ph: dict[str, Any] = r.physical(dev, a.stiffness)
     step = (
         f"the force toggles over {r.force_peak_to_peak:.3g} KΔ peak-to-peak ({number(ph['force_peak_to_peak_si'])} "

@@ -111,8 +111,13 @@ def _trajectories(a: DesignAnalysis) -> ReportFigure:
         fontsize=9,
     )
     caption = (
-        f"Simulated displacement (exact sampled-data integration){_with_ctl(a)} at the design speed and just above the simulated "
-        "critical speed, each with its own time window and scale (a run that came to rest is shown up to about "
+        f"Simulated displacement (exact sampled-data integration){_with_ctl(a)} at the design speed and "
+        + (
+            "just above the simulated critical speed"
+            if a.simulated_xi_dot is not None
+            else "at twice the reference speed (no scanned speed diverged)"
+        )  # fmt: skip
+        + ", each with its own time window and scale (a run that came to rest is shown up to about "
         "four times its settling time); left axis in encoder ticks, right axis in "
         f"{u['position']}; dashed: ±1 tick."
     )

@@ -55,13 +55,17 @@ def check_rows(r: Any, quantized: bool, vu: str) -> list[list[str]]:
     crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
     if r.critical_velocity is not None:
         crit += f" ({r.critical_velocity:.4g} {vu})"
-    if r.critical_xi_dot is not None and r.xi0 != 0.0:
+    if r.critical_xi_dot is not None and r.xi0 != 0.0 and r.critical_symbol == "V":
         crit += ", a bound on the equivalent speed V, not on ξ'0"
     speed = f"{r.xi_dot:.4g} ticks/sample" + (f" ({r.velocity:.4g} {vu})" if r.velocity is not None else "")
     s0 = "½" if quantized else "0"
     rule = f"(β − ½ − d)V + (σ − {s0}) ≥ 0" + (" and σ ≥ ½" if quantized else "")
     if r.passive:
-        upto = "at every speed" if r.region == "a" else f"for speeds up to V = {r.critical_xi_dot:.4g} ticks/sample"
+        upto = (
+            "at every speed"
+            if r.region == "a"
+            else f"for speeds up to {r.critical_symbol} = {r.critical_xi_dot:.4g} ticks/sample"
+        )
         verdict = f"yes: the energy cannot grow {upto} (proven)"
     else:
         verdict = "no: no passivity guarantee (not a proof of instability)"

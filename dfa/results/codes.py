@@ -14,13 +14,15 @@ Examples
 from __future__ import annotations
 
 __all__ = [
-    "POINT_OUTCOMES", "REST", "BOUNDED", "DIVERGES", "UNDECIDED_POINT", "ZWIDTH_METHODS", "REQUIRE_PARAMETERS",
+    "POINT_OUTCOMES", "REST", "BOUNDED", "DIVERGES", "UNDECIDED_POINT", "LEFT_POINT", "ZWIDTH_METHODS",
+    "REQUIRE_PARAMETERS",
 ]  # fmt: skip
 
 #: Outcome of a Z-width grid point (index = code): every run rests; none diverges but some does not rest;
-#: some run diverges; none diverges and some run was too short to tell.
-POINT_OUTCOMES = ("rest", "bounded", "diverges", "undecided")
-REST, BOUNDED, DIVERGES, UNDECIDED_POINT = range(4)
+#: some run diverges; none diverges and some run was too short to tell; (a one-sided wall) every run rests or
+#: leaves the wall for good and some leave.
+POINT_OUTCOMES = ("rest", "bounded", "diverges", "undecided", "left")
+REST, BOUNDED, DIVERGES, UNDECIDED_POINT, LEFT_POINT = range(5)
 #: The per-method boundaries K_max(B) of a Z-width, in the order of the table and the plot.
 ZWIDTH_METHODS = ("linear", "passivity", "criterion", "df", "sim", "rest")
 #: The parameters of the inverse question (:mod:`dfa.analysis.limits.require`, ``dfa require --parameter``).

@@ -163,7 +163,10 @@ class StiffnessStatus(StatusEnum):
     OK = ("ok", "passive at this speed (proven)")
     NOT_REQUESTED = ("not_requested", "no stiffness given to assess: the limits alone")
     TOO_STIFF = ("too_stiff", "no passivity guarantee at this speed (K > K_max); not a proof of instability")
-    NOT_COVERED = ("not_covered", "no sound passivity criterion covers the wall (an amplifier lag): no verdict")
+    NOT_COVERED = (
+        "not_covered",
+        "no sound passivity criterion covers the wall (an amplifier lag, or a one-sided wall with a damper): no verdict",
+    )
 
 
 class VelocityStatus(StatusEnum):
@@ -173,7 +176,10 @@ class VelocityStatus(StatusEnum):
     ALL_SPEEDS = ("all_speeds", "passive at every speed (K <= 2b/T, or b/(T(½ + d)) with a delay)")
     BOUNDED = ("bounded", "passive up to a finite speed")
     NONE = ("none", "no passivity guarantee even at rest (K > 2c/Δ; with a damper σ < σ₀)")
-    NOT_COVERED = ("not_covered", "no sound passivity criterion covers the wall (an amplifier lag)")
+    NOT_COVERED = (
+        "not_covered",
+        "no sound passivity criterion covers the wall (an amplifier lag, or a one-sided wall with a damper)",
+    )
 
 
 class CurveStatus(StatusEnum):
@@ -214,7 +220,7 @@ class ContactOutcome(StatusEnum):
     RESTS_OFF = ("rests_off", "comes to rest off the wall (the push does not overcome friction)")
     IN_CONTACT = ("in_contact", "keeps moving (a cycle or a buzz) without leaving the wall")
     BOUNCES = ("bounces", "leaves the wall and returns, again and again, with bounded peaks")
-    GROWS = ("grows", "each bounce higher: diverged")
+    GROWS = ("grows", "diverged: past the bound (each bounce higher, or pushed through the wall)")
     LEFT = ("left", "leaves the wall for good")
     UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
 
@@ -253,7 +259,7 @@ class LimitStatus(StatusEnum):
     NOT_COVERED = (
         "not_covered",
         "not covered by the criterion: no sound passivity criterion covers an element of the wall (an amplifier lag; "
-        "a one-sided wall with a push, delay, damper, filter or hand stiffness)",
+        "a one-sided wall with a damper, filter or hand stiffness)",
     )
     NOT_LINEAR = (
         "not_linear",

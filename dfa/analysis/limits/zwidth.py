@@ -82,7 +82,7 @@ from ...model.device import Device
 from ...model.wall import Wall, WallParams
 from ...plausibility import warn_if_from_outside
 from ...results.base import Result
-from ...results.codes import BOUNDED, DIVERGES, POINT_OUTCOMES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
+from ...results.codes import BOUNDED, DIVERGES, LEFT_POINT, POINT_OUTCOMES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
 from ...results.status import LimitStatus, LinearStatus, ZWidthStatus
 from ..colgate_schenkel import colgate_schenkel_damping
 from ..linear_wall import stable_stiffness
@@ -439,11 +439,13 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
 def _point_codes(run_codes: np.ndarray) -> np.ndarray:
     """Code of each point (row) from its runs' outcome codes (:mod:`dfa.core.kernel`; module docstring).
 
-    Diverges if any run is unstable, else undecided if any run is, else rest if every run rests (or, on a
-    one-sided wall, leaves it for good), else bounded.
+    Diverges if any run is unstable, else undecided if any run is, else rest if every run rests, left if every
+    run rests or leaves a one-sided wall for good (some leave), else bounded.
     """
     out = np.full(run_codes.shape[0], BOUNDED, dtype=np.int8)
-    out[np.isin(run_codes, (kernel.REST, kernel.LEFT)).all(axis=1)] = REST  # a one-sided wall's run may leave
+    ended = np.isin(run_codes, (kernel.REST, kernel.LEFT)).all(axis=1)  # a one-sided wall's run may leave
+    out[ended & (run_codes == kernel.LEFT).any(axis=1)] = LEFT_POINT
+    out[(run_codes == kernel.REST).all(axis=1)] = REST
     out[(run_codes == kernel.UNDECIDED).any(axis=1)] = UNDECIDED_POINT
     out[(run_codes == kernel.UNSTABLE).any(axis=1)] = DIVERGES
     return out
