@@ -17,7 +17,7 @@ from collections.abc import Sequence
 
 from .._io import check_output_folder
 from ..checks import check_int, check_positive
-from ..errors import DFAError
+from .output import report_script
 from .parsing import Parser, integer, number
 
 __all__ = ["build_parser", "main", "STEM"]
@@ -63,7 +63,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     from ..render.contact import comparison_markdown
     from ..results.jsonable import dumps
 
-    try:
+    def work() -> None:
         args = build_parser().parse_args(list(sys.argv[1:] if argv is None else argv))
         check_int("--grid", args.grid, 2, "give at least 2 grid points")
         check_int("--speeds", args.speeds, 1, "simulate at least one speed")
@@ -74,19 +74,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         with staged_folder(args.out) as stage:
             (stage / f"{STEM}.md").write_text(comparison_markdown(c), encoding="utf-8")
             (stage / f"{STEM}.json").write_text(dumps(c, indent=1), encoding="utf-8")
-    except DFAError as err:
-        print(f"{PROG}: error: {' '.join(str(err).split())}", file=sys.stderr)
-        return 2
-    except SystemExit as err:  # --help
-        return int(err.code or 0)
-    except KeyboardInterrupt:
-        print(f"{PROG}: interrupted; nothing written", file=sys.stderr)
-        return 130
-    except OSError as err:
-        where = f"{err.filename!r}: " if err.filename else ""
-        print(f"{PROG}: error: {where}{err.strerror or err}; check the path and its permissions", file=sys.stderr)
-        return 1
-    return 0
+
+    return report_script(PROG, work)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from ..formatting import WIDTH, fill, number, text_table
@@ -14,6 +14,7 @@ from .inputs import Inputs
 from .parsing import UsageError
 
 __all__ = [
+    "report_script",
     "MAP_TIME_LIMIT_HOURS",
     "RATE_NAMES",
     "SIMULATE_NS_PER_SAMPLE",
@@ -209,3 +210,43 @@ def check_work_time(what: str, seconds: float, fix: str, force: bool) -> None:
 def cores(jobs: int) -> int:
     """The number of workers of ``--jobs`` (-1: every core)."""
     return (os.cpu_count() or 1) if jobs == -1 else jobs
+
+
+def report_script(prog: str, work: Callable[[], object]) -> int:
+    """Run a report script's ``work`` (parse, compute, write) and return its exit code, the one way.
+
+    The ``python -m dfa.cli.…_report`` scripts write committed reports: bad input is one line on stderr and
+    exit 2 (before any work, or from the analysis), a file that cannot be written exit 1, an interruption 130
+    with nothing written (their files are written together at the end, atomically), ``--help`` its code.
+
+    Parameters
+    ----------
+    prog : str
+        The script's name for the messages (``"python -m dfa.cli.contact_report"``).
+    work : callable
+        Everything the script does; raises on failure.
+
+    Returns
+    -------
+    int
+        0 ok, 2 bad input, 1 a file error, 130 interrupted.
+    """
+    from ..errors import DFAError
+
+    try:
+        work()
+    except DFAError as err:
+        msg = " ".join(str(err).split())
+        print(msg if msg.startswith(prog) else f"{prog}: error: {msg}", file=sys.stderr)
+        return 2
+    except SystemExit as err:  # --help
+        return int(err.code or 0)
+    except KeyboardInterrupt:
+        print(f"{prog}: interrupted; nothing written", file=sys.stderr)
+        return 130
+    except OSError as err:
+        where = f"{err.filename!r}: " if err.filename else ""
+        print(f"{prog}: error: {where}{err.strerror or err}; check the path, its permissions and free space",
+              file=sys.stderr)  # fmt: skip
+        return 1
+    return 0

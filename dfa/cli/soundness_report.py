@@ -31,9 +31,10 @@ from ..analysis.soundness import (
     one_sided_soundness,
 )
 from ..checks import check_delay, check_int
-from ..errors import DFAError, DFAValueError
+from ..errors import DFAValueError
 from ..render.files import write_soundness
 from ..render.soundness import soundness_line
+from .output import report_script
 from .parsing import Parser, integer
 
 __all__ = ["build_parser", "main"]
@@ -147,27 +148,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     int
         0 ok, 2 bad input, 1 a file error, 130 interrupted.
     """
-    try:
+
+    def work() -> None:
         args = build_parser().parse_args(list(sys.argv[1:] if argv is None else argv))
         _check(args)
         write_soundness(_records(args), args.out)
-    except DFAError as err:
-        msg = " ".join(str(err).split())
-        print(msg if msg.startswith(PROG) else f"{PROG}: error: {msg}", file=sys.stderr)
-        return 2
-    except SystemExit as err:  # --help
-        return int(err.code or 0)
-    except KeyboardInterrupt:
-        print(f"{PROG}: interrupted; nothing written", file=sys.stderr)
-        return 130
-    except OSError as err:
-        where = f"{err.filename!r}: " if err.filename else ""
-        print(
-            f"{PROG}: error: {where}{err.strerror or err}; check the path, its permissions and free space",
-            file=sys.stderr,
-        )
-        return 1
-    return 0
+
+    return report_script(PROG, work)
 
 
 if __name__ == "__main__":  # pragma: no cover
