@@ -20,6 +20,7 @@ period      up to 0.1 s        up to 0.1 s       ms or µs for s
 velocity    up to 10 m/s       up to 100 rad/s   mm/s or cm/s; °/s
 stiffness   up to 1e7 N/m      up to 1e5 N·m/rad a factor 1000 too many
 mass        up to 100 kg       up to 1 kg·m²     g for kg; g·cm² for kg·m²
+force       up to 1000 N       up to 100 N·m     mN for N; N·mm for N·m (a push)
 ==========  =================  ================  ===========================
 
 Examples
@@ -83,6 +84,8 @@ RANGES: dict[tuple[str, bool], Range] = {
     ("stiffness", True): Range(None, 1e5, "N·m/rad", (("", 1e-3),)),
     ("mass", False): Range(None, 100.0, "kg", (("g", 1e-3),)),
     ("mass", True): Range(None, 1.0, "kg·m²", (("g·cm²", 1e-7), ("kg·cm²", 1e-4))),
+    ("force", False): Range(None, 1000.0, "N", (("mN", 1e-3),)),
+    ("force", True): Range(None, 100.0, "N·m", (("N·mm", 1e-3),)),
 }  # fmt: skip
 
 
@@ -103,7 +106,8 @@ def implausible(
     Parameters
     ----------
     quantity : str
-        ``"resolution"``, ``"period"``, ``"velocity"`` (the impact speed's magnitude), ``"stiffness"`` or ``"mass"``.
+        ``"resolution"``, ``"period"``, ``"velocity"`` (the impact speed's magnitude), ``"stiffness"``, ``"mass"``
+        or ``"force"`` (an operator's push).
     value : float
         The value in SI units (rotary: rad, N·m, kg·m²); a speed's sign is ignored.
     rotary : bool, optional

@@ -148,6 +148,8 @@ def test_one_sided_cli_simulate_text_json_and_refusals(capsys):
         assert err.count("\n") == 1 and words in err, err
     assert main(argv[:-1] + ["--surface", "0.5"]) == 2
     assert "--surface needs --one-sided" in capsys.readouterr().err
+    assert main([*argv, "--push", "2000"]) == 0  # a push no hand gives: warned, not refused
+    assert "--push 2000 is above 1000 N" in capsys.readouterr().err
 
 
 def test_fig4_one_sided_map_points_are_the_approach_runs(capsys, tmp_path):

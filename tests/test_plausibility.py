@@ -64,7 +64,8 @@ def test_rotary_ranges_and_slips():
     assert implausible("resolution", 2 * 3.14159 / 2000, rotary=True) is None  # 2000 counts per revolution
     assert "did you mean 500 °/s = 8.727 rad/s?" in implausible("velocity", 500.0, rotary=True)
     assert "did you mean 63 g·cm² = 6.3e-6 kg·m²?" in implausible("mass", 63.0, rotary=True)
-    assert {q for q, _r in RANGES} == {"resolution", "period", "velocity", "stiffness", "mass"}
+    assert {q for q, _r in RANGES} == {"resolution", "period", "velocity", "stiffness", "mass", "force"}
+    assert "did you mean 2000 N·mm = 2 N·m?" in implausible("force", 2000.0, rotary=True)  # a push
 
 
 def test_non_numbers_and_non_finite_are_left_to_their_checks():

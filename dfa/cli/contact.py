@@ -53,6 +53,10 @@ def contact_elements(args: argparse.Namespace, device: Device | None) -> tuple[E
         raise UsageError(f"--surface {surface:g} is invalid: give the surface's position in ticks, e.g. 0 or 0.25")
     if push is not None and not push >= 0.0:
         raise UsageError(f"--push {push:g} is invalid: the operator's force toward the wall must be >= 0 N")
+    if push:
+        from ..plausibility import warn_implausible
+
+        warn_implausible("force", push, rotary=device.rotary, subject="--push")
     out: list[Element] = [OneSided(0.0 if surface is None else surface)]
     if push:
         out.append(Push(push))

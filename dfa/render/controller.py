@@ -196,6 +196,8 @@ def _criterion_rows(r: Any, vu: str) -> list[list[str]]:
     crit = "none" if r.critical_xi_dot is None else f"{r.critical_xi_dot:.4g} ticks/sample"
     if r.critical_velocity is not None:
         crit += f" ({r.critical_velocity:.4g} {vu})"
+    if r.critical_xi_dot == 0.0:  # a one-sided wall's storage at first contact (a push's energy) alone is too much
+        crit += ": no speed is proven, the storage at the first reading inside alone exceeds the bound"
     s0 = "σ₀" if r.quantized else "0"
     rule = f"(β − β₀)V + (σ − {s0}) ≥ 0" + (" and σ ≥ σ₀" if r.quantized else "")
     if r.passive:
