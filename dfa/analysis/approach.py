@@ -33,7 +33,7 @@ from ..errors import DFAValueError
 from ..model.elements import OneSided
 from ..model.wall import WallParams
 
-__all__ = ["approach_start", "approach_samples", "refuse_one_sided"]
+__all__ = ["approach_start", "approach_samples"]
 
 #: The filter's memory of the fresh start is forgotten to this factor by the time the device arrives.
 FORGOTTEN = 1e-16
@@ -118,26 +118,3 @@ def approach_start(
         raise DFAValueError(f"phase = {ph!r} is invalid: it must lie in [0, 1) samples; give e.g. 0.5")
     engage = OneSided.engage(float(w.kernel_args()["surface"]), quantize)  # the first position the wall sees
     return engage - v * (d - ph), v, int(d)
-
-
-def refuse_one_sided(wall: object, what: str) -> None:
-    """Refuse a one-sided wall in an analysis that does not start its runs with the approach yet.
-
-    Parameters
-    ----------
-    wall : Wall or None
-        The analysis's wall.
-    what : str
-        The analysis, for the message (``"the K_max searches"``).
-
-    Raises
-    ------
-    DFAValueError
-        For a wall with a :class:`~dfa.model.elements.OneSided` element.
-    """
-    if getattr(wall, "one_sided", False):
-        raise DFAValueError(
-            f"wall = a one-sided wall is not covered by {what} yet: their runs start at the wall's origin, not with "
-            "the approach from free space; use dfa.simulate from dfa.approach_start, dfa.stability_map, or "
-            "dfa.passivity_criterion (the lone one-sided spring)"
-        )

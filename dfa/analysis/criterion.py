@@ -629,7 +629,7 @@ class CriterionResult(Result):
         Eq. 12 generalised: the largest energy-equivalent speed V for which the criterion holds,
         (σ − σ₀)/(β₀ − β), when β < β₀ and σ >= σ₀; None when it does not exist (regions a, b, c). With
         ξ0 = 0 it is the critical initial speed abs(ξ'0); for a one-sided wall, the largest impact speed V
-        whose V' it is (:meth:`~dfa.model.elements.OneSided.impact_speed`).
+        whose V* it is (:meth:`~dfa.model.elements.OneSided.impact_speed`).
     critical_line : CriticalLine
         The line of eq. 10 for this speed through the corner (β₀, σ₀).
     equivalent_speed : float

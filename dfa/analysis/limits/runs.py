@@ -40,7 +40,6 @@ from ..simulation import (
     STABLE_AMPLITUDE,
     default_samples,
     divergence_bound,
-    preload_position,
     run_points,
     wall_run_codes,
 )
@@ -103,11 +102,10 @@ def start_points(mu: float, beta: float, sigma: float, xi_dot: float, wall: Wall
     >>> start_points(100.0, 0.3, 1.5, 2.0, WallParams())[0]
     (100.0, 0.3, 1.5, 0.0, 2.0)
     """
-    if wall.one_sided:
-        from ..maps import map_start
+    from ..maps import map_start  # the one start rule: the impact, its preload, a one-sided wall's approach
 
-        return [(mu, beta, sigma, *map_start(mu, xi_dot, False, wall))]
-    return [(mu, beta, sigma, 0.0, xi_dot), (mu, beta, sigma, preload_position(mu, xi_dot), 0.0)]
+    preloads = (False,) if wall.one_sided else (False, True)
+    return [(mu, beta, sigma, *map_start(mu, xi_dot, p, wall)) for p in preloads]
 
 
 #: An undecided design run (too short to tell) is run again this many times longer, until it is decided ...
