@@ -101,7 +101,8 @@ def simulate_ivp_ctl(mu, beta, sigma, xi0, xi_dot0, samples, ctl, *, quantize=Tr
     for h in range(samples):
         c = cmd.applied(x)
         if getattr(cmd, "inside", False):
-            push = args["push"]
+            push, approaching = args["push"], False
+        kap = 0.0 if approaching else ctl.hand_stiffness  # the operator holds the approach against the hand too
         fa = c if (fa is None or lag == 0.0) else fa
         t = 0.0
         while t < 1.0:
@@ -115,7 +116,7 @@ def simulate_ivp_ctl(mu, beta, sigma, xi0, xi_dot0, samples, ctl, *, quantize=Tr
             else:
                 s = math.copysign(1.0, v)
 
-            def rhs(_t, y, s=s, c=c, push=push):
+            def rhs(_t, y, s=s, c=c, push=push, kap=kap):
                 dfa = 0.0 if lag == 0.0 else (c - y[2]) / lag
                 return [y[1], (y[2] + push - kap * y[0] - beta * y[1] - sigma * s) / mu, dfa]
 

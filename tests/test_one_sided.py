@@ -40,14 +40,17 @@ def _wall(surface=0.0, push=0.0, **groups) -> WallParams:
     return WallParams(((OneSided, surface), *extra, *WallParams.of(**groups).groups))
 
 
-WALLS = st.builds(
-    lambda s, p, b, d, cut, lag: _wall(s, p, damping=b, delay=d, cutoff=cut, lag=lag),
+WALLS = st.builds(  # a hand stiffness (held by the operator during the approach) without a lag: no step for both
+    lambda s, p, b, d, cut, lag, h: _wall(
+        s, p, damping=b, delay=d, cutoff=cut, lag=0.0 if h else lag, hand_stiffness=h
+    ),
     st.sampled_from([0.0, 0.3, -0.4]),
     st.sampled_from([0.0, 0.3, 2.0]),
     st.sampled_from([0.0, 0.5]),
     st.integers(0, 2),
     st.sampled_from([None, 0.1]),
     st.sampled_from([0.0, 0.3]),
+    st.sampled_from([0.0, 0.0, 0.05]),
 )
 
 
@@ -103,8 +106,8 @@ def test_eq4_one_sided_approach_memory_is_the_approach_not_the_start():
 
 
 def test_one_sided_analyses_without_a_derivation_refuse():
-    """The criterion refuses a one-sided wall with a damper, filter or hand stiffness, and a push on a bilateral
-    wall; the linear loop and the describing function refuse any one-sided wall, with the reason."""
+    """The criterion refuses a one-sided wall with a damper or filter, and a push on a bilateral wall; the linear
+    loop and the describing function refuse any one-sided wall, with the reason."""
     w = _wall()
     with pytest.raises(NotCovered, match="one-sided wall with damper reached from free space"):
         _wall(damping=0.2, delay=1).corner()
@@ -439,3 +442,23 @@ def test_one_sided_design_report_runs_start_with_the_approach(tmp_path):
     assert d["analysis"]["growth_thresholds"] == {} and d["numbers"]["wall"]["push"] == 2.0
     assert d["numbers"]["null_reasons"]["/df_xi_dot"] == "not a linear loop: no describing function"
     assert not any("nyquist" in f for f in d["figures"])
+
+
+def test_eq6_one_sided_hand_stiffness_adds_its_storage_at_contact(capsys):
+    """A hand's spring on a one-sided wall: the operator holds it during the approach (the approach run is the one
+    without it, sample for sample, until the first reading inside), and the criterion's V* adds its storage at the
+    first reading inside, ½κ_h(s + δ)² at the end of δ's interval that maximises the storage; `dfa check` and
+    `dfa simulate --one-sided --hand hapticmaster` take it."""
+    mu, kap, s, v = 50.0, 0.05, 0.3, 1.3
+    with_hand, bare = _wall(s, hand_stiffness=kap), _wall(s)
+    x0, v0, d = approach_start(v, wall=with_hand)
+    a = simulate(mu, 0.2, 0.5, v0, samples=d, xi0=x0, wall=with_hand, record=True)
+    b = simulate(mu, 0.2, 0.5, v0, samples=d, xi0=x0, wall=bare, record=True)
+    np.testing.assert_array_equal(a.xi, b.xi)  # the approach: the hand's spring held by the operator
+    c = OneSided.engage(s) - s
+    storage = max(0.5 * max(e, 0.0) ** 2 + 0.5 * kap * (s + e) ** 2 for e in (c, c + v))
+    r = passivity_criterion(0.3, 1.0, v, wall=with_hand, mu=mu)
+    assert r.equivalent_speed == pytest.approx(np.sqrt(v * v + 2.0 * storage / mu), rel=1e-14)
+    argv = ["--device", "delta", "--stiffness", "20000", "--velocity", "0.05", "--one-sided", "--hand", "hapticmaster"]
+    assert main(["check", *argv, "--json"]) == 0 and json.loads(capsys.readouterr().out)["criterion"] is not None
+    assert main(["simulate", *argv, "--json"]) == 0 and json.loads(capsys.readouterr().out)["contact"] is not None

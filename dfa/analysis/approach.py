@@ -95,8 +95,8 @@ def approach_start(
     Raises
     ------
     DFAValueError
-        For V <= 0, a phase outside [0, 1), or a wall with a hand stiffness (not covered yet: the hand's spring
-        would act during the approach).
+        For V <= 0 or a phase outside [0, 1). (A hand's spring is held by the operator during the approach, as
+        friction is: the simulator's approach is the same.)
 
     See Also
     --------
@@ -107,11 +107,6 @@ def approach_start(
     if not v > 0.0:
         raise DFAValueError(f"xi_dot = {v!r} is invalid: the device must approach the wall (V > 0); give V > 0")
     w = WallParams() if wall is None else check_type("wall", wall, WallParams, "give the wall's WallParams")
-    if w.hand_stiffness > 0.0:
-        raise DFAValueError(
-            "an approach with a hand stiffness is not covered yet (the hand's spring acts during the approach); "
-            "give the hand's mass and damping only"
-        )
     d = approach_samples(w) if samples is None else check_int("samples", samples, 1, "give whole samples >= 1")
     ph = check_real("phase", phase, "give the arrival's phase in samples, in [0, 1)")
     if not 0.0 <= ph < 1.0:

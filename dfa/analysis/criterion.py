@@ -83,7 +83,7 @@ A hand holding the device
     start in. ``tests/test_hand_stiffness.py`` checks S(h) <= S(0) by exact simulation
     (:mod:`dfa.core.oscillator`) at random points the criterion calls passive.
 
-A one-sided wall reached from free space (issue 28 §1; :class:`~dfa.model.elements.OneSided`, with a delay and a push)
+A one-sided wall reached from free space (:class:`~dfa.model.elements.OneSided`, with a delay, a push, a hand)
     The wall commands c = −(q − s) while the reading q = ⌊ξ⌋ + ½ is beyond the surface s, and 0 otherwise, held
     d samples later; from the first reading inside on the operator pushes with p >= 0
     (:class:`~dfa.model.elements.Push`). Take f = −(ξ − s)⁺ (1-Lipschitz, non-increasing), H_1 = ½((ξ − s)⁺)²
@@ -110,8 +110,13 @@ A one-sided wall reached from free space (issue 28 §1; :class:`~dfa.model.eleme
     values (the passive K form an interval (0, K*], as :func:`~dfa.analysis.limits.kmax.wall_k_criterion`
     needs): with u = 1/K, β, σ, μ and p are proportional to u, and every term of μV*² grows at most in
     proportion to u (the push's p²/μ and −pc/μ; the others fall), so dV*/du <= V*/(2u); where the margin
-    g = (β₀ − β)V* + ½ − σ is <= 0 (β < β₀), g' <= (V*(β₀ − 3β)/2 − σ)/u < 0, as (β₀ − β)V* <= σ − ½. With a damper or a filter (the approach's velocity estimate, and the clip at 0
-    that keeps the wall from pulling) or a hand stiffness: not derived, refused
+    g = (β₀ − β)V* + ½ − σ is <= 0 (β < β₀), g' <= (V*(β₀ − 3β)/2 − σ)/u < 0, as (β₀ − β)V* <= σ − ½.
+    A hand's spring κ_h = k_h/K to the wall's origin (:class:`~dfa.model.elements.HandSpring`) stores exactly
+    what it takes and has no memory (as for the bilateral wall): Q gains ½κ_hξ², held by the operator during
+    the approach as friction is (the approach is unchanged), so φ(δ) gains ½κ_h(s + δ)², still convex, and
+    κ_h/μ = k_hT²/m does not change with K.
+    With a damper or a filter (the approach's velocity estimate, and the clip at 0 that keeps the wall from
+    pulling): not derived, refused
     (:meth:`dfa.model.wall.WallParams.uncovered`). ``tests/test_one_sided.py`` and ``python -m
     dfa.cli.soundness_report --one-sided`` check Q <= ½μV*² by exact simulation of the approach at random
     points the criterion calls passive.
@@ -877,7 +882,7 @@ def _one_sided_speed(xd: float, x0: float, mu: float | None, wall: WallParams, q
             "space at xi_dot and needs μ (the storage at the first reading inside enters through ½ε²/μ); pass mu "
             "and xi0 = 0"
         )
-    return OneSided.contact_speed(_surface(wall), xd, mu, wall.delay, _push(wall), quantized)
+    return OneSided.contact_speed(_surface(wall), xd, mu, wall.delay, _push(wall), quantized, wall.hand_stiffness)
 
 
 def _surface(wall: WallParams) -> float:

@@ -466,12 +466,12 @@ def criterion_soundness(
     return CriterionSoundness(delay=pop.delay, criterion=crit, points=int(points), by_case=case, seed=seed, **counts)
 
 
-def _one_sided_wall(surface: float, delay: int, push: float, bilateral: bool = False) -> WallParams:
+def _one_sided_wall(surface: float, delay: int, push: float, bilateral: bool = False, hand: float = 0.0) -> WallParams:
     """The one-sided wall of a soundness point (the bilateral spring's claim: the same wall, no push)."""
     from ..model.elements import OneSided, Push
 
     extra = ((Push, push),) if push and not bilateral else ()
-    return WallParams(((OneSided, surface), *extra, *WallParams.of(delay=delay).groups))
+    return WallParams(((OneSided, surface), *extra, *WallParams.of(delay=delay, hand_stiffness=hand).groups))
 
 
 def _one_sided_run(
@@ -493,6 +493,7 @@ def _one_sided_run(
         xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
         dl = xs - surface
         stored = 0.5 * mu * vs * vs + 0.5 * np.maximum(dl, 0.0) ** 2 - push * dl + 0.5 * push * push
+        stored = stored + 0.5 * wall.hand_stiffness * xs * xs  # a hand's spring to the wall's origin
         ratio = np.where(np.abs(xs) <= BOUND, stored / claim - 1.0, np.inf)
         ratio = np.where(np.isnan(xs) & (r.outcome is SimulationOutcome.LEFT), -1.0, ratio)  # left: nothing after
         reading = np.floor(xs) + 0.5 if q else xs
@@ -507,10 +508,11 @@ def one_sided_soundness(points: int, *, criterion: str = "one-sided", seed: int 
 
     Points: μ log-uniform in [0.1, 10⁴], V uniform in (0, 10] ticks/sample, the surface s uniform in [−1, 1]
     ticks (0 for 30 %), a delay d of 0 (half) to 3 samples, a push p = F_p/(KΔ) (none for half, else
-    log-uniform in [0.01, 10]), the encoder on for 85 %; half on the criterion's boundaries (as
+    log-uniform in [0.01, 10]), a hand's spring κ_h (30 %, log-uniform in [10⁻⁴, 1] below ½π²μ), the encoder
+    on for 85 %; half on the criterion's boundaries (as
     :func:`sample_passive_points`). Each run starts :func:`~dfa.analysis.approach.approach_start` samples
     before contact and runs :func:`run_samples` more; a violation is Q = ½μξ'² + ½((ξ − s)⁺)² − p(ξ − s) + ½p²
-    above ½μV*² (1 + 1e-9) at a sample instant from the first reading inside on, or divergence (module
+    + ½κ_hξ² above ½μV*² (1 + 1e-9) at a sample instant from the first reading inside on, or divergence (module
     docstring of :mod:`dfa.analysis.criterion`, "A one-sided wall").
 
     Parameters
@@ -527,7 +529,7 @@ def one_sided_soundness(points: int, *, criterion: str = "one-sided", seed: int 
     Returns
     -------
     CriterionSoundness
-        With ``by_case``: points with s ≠ 0, without the encoder, with a delay and with a push.
+        With ``by_case``: points with s ≠ 0, without the encoder, with a delay, with a push and with a hand.
     """
     n = check_int("points", points, minimum=1)
     crit = check_choice("criterion", criterion, ("one-sided", "bilateral"))
@@ -541,23 +543,28 @@ def one_sided_soundness(points: int, *, criterion: str = "one-sided", seed: int 
     delay = np.where(rng.random(n) < 0.5, 0, rng.integers(1, 4, n))
     push = np.where((rng.random(n) < 0.5) | bilateral, 0.0, 10.0 ** rng.uniform(-2.0, 1.0, n))
     kind = rng.choice(4, n, p=[0.5, 0.25, 0.125, 0.125])
-    walls = [_one_sided_wall(float(surface[i]), int(delay[i]), float(push[i]), bilateral) for i in range(n)]
+    # a hand's spring on 30 % (drawn last: the other fields are those of a draw without it), resonance below Nyquist
+    hand = np.where(rng.random(n) < 0.3, np.minimum(10.0 ** rng.uniform(-4.0, 0.0, n), 0.5 * np.pi**2 * mu), 0.0)
+    walls = [
+        _one_sided_wall(float(surface[i]), int(delay[i]), float(push[i]), bilateral, float(hand[i])) for i in range(n)
+    ]
     beta, sigma = np.empty(n), np.empty(n)
     for i in range(n):
         w = WallParams.of(delay=int(delay[i])) if bilateral else walls[i]
         beta[i], sigma[i] = _point(rng, "controller-aware", kind[i], xd[i], 0.0, mu[i], w, bool(quantized[i]))
     pts = dict(mu=mu, beta=beta, sigma=sigma, xi0=np.zeros(n), xi_dot=xd, kind=kind, surface=surface,
-               delay=delay, push=push, quantized=quantized)  # fmt: skip
+               delay=delay, push=push, hand_stiffness=hand, quantized=quantized)  # fmt: skip
     runs = [
         _one_sided_run(float(mu[i]), float(beta[i]), float(sigma[i]), float(xd[i]), walls[i], bool(quantized[i]),
                        bilateral)
         for i in range(n)
     ]  # fmt: skip
     ratio, at, div, ns = (np.array(c) for c in zip(*runs, strict=True))
-    counts = tally(pts, (*STATE_KEYS, "surface", "delay", "push", "quantized"), ns, ratio, at, div)
+    counts = tally(pts, (*STATE_KEYS, "surface", "delay", "push", "hand_stiffness", "quantized"), ns, ratio, at, div)
     case = {
         "surface != 0": int(np.sum(surface != 0.0)), "no encoder": int(np.sum(~quantized)),
         "delay > 0": int(np.sum(delay > 0)), "push > 0": int(np.sum(push > 0.0)),
+        "hand > 0": int(np.sum(hand > 0.0)),
     }  # fmt: skip
     return CriterionSoundness(delay=None, criterion=crit, points=n, by_case=case, seed=seed, **counts)
 

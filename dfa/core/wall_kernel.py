@@ -457,8 +457,9 @@ def _sample(
             return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 1, ext
     elif ext == push and _gone(v, fa, ring, inside, ctl):
         return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 3, ext
+    approaching = ext != push  # the operator holds the speed against friction, damping and the hand's spring
     push = ext
-    if kap > 0.0:
+    if kap > 0.0 and not approaching:
         if lag != 0.0:
             raise RuntimeError("dfa.core.wall_kernel: an amplifier lag with a hand stiffness is not covered")
         x, v, lo_t, hi_t = hand_sample(x, v, c + push, mu, beta, sigma, kap)
@@ -560,8 +561,9 @@ def _start(
     """Initial state: r_{−1} = r_0, v_{−1} = y_{−1} = 0, every past command and φ_A equal to c_0 (y = 0).
 
     A one-sided wall's run that starts outside, moving toward it (ξ'0 > 0), is an approach at constant speed: the
-    operator's force balances the friction, ``friction`` = σ + β ξ'0, until the wall first reads the device inside,
-    and is the push p from then on (:func:`_sample`); otherwise it is p throughout.
+    operator's force balances the friction, ``friction`` = σ + β ξ'0 (and a hand's spring, which it holds, so that
+    the sample is the step without it), until the wall first reads the device inside, and is the push p from then
+    on (:func:`_sample`); otherwise it is p throughout.
     """
     r0 = math.floor(x0) if quantize else x0
     base, inside = _base(r0, quantize, ctl)

@@ -912,7 +912,7 @@ class OneSided(Element):
     out is cut at 0). The device arrives from free space (:func:`dfa.analysis.approach.approach_start`), and may
     leave the wall for good (outcome ``left``). The simulator runs it exactly (:mod:`dfa.core.wall_kernel`).
 
-    The criterion covers it with a delay and a push (no damper, filter, amplifier lag or hand stiffness), for an
+    The criterion covers it with a delay, a push and a hand stiffness (no damper, filter or amplifier lag), for an
     approach at V (:mod:`dfa.analysis.criterion`, "A one-sided wall"): the corner (½ + d, ½) at the speed V*
     of :meth:`contact_speed` (V' = √(V² + ε²/μ) alone, ε = :meth:`contact_excess`). The linear bound and the
     describing function do not cover it (not a linear loop), and say so.
@@ -984,12 +984,19 @@ class OneSided(Element):
 
     @staticmethod
     def contact_speed(
-        surface: float, speed: float, mu: float, delay: int = 0, push: float = 0.0, quantized: bool = True
+        surface: float,
+        speed: float,
+        mu: float,
+        delay: int = 0,
+        push: float = 0.0,
+        quantized: bool = True,
+        hand: float = 0.0,
     ) -> float:
         """Give the criterion's speed V* of an approach at V (:mod:`dfa.analysis.criterion`, "A one-sided wall").
 
         At the first reading inside, δ = ξ − s lies in [c, c + V), c = ξ_e − s (ξ_e = :meth:`engage`), and the
-        storage Q = ½μξ'² + ½(δ⁺)² − pδ + ½p² (>= ½μξ'²) is ½μV² + φ(δ), φ convex: at most ½μV² + ½m²,
+        storage Q = ½μξ'² + ½(δ⁺)² − pδ + ½p² + ½κ_h ξ² (>= ½μξ'²; a hand's spring κ_h = k_h/K to the wall's
+        origin, held by the operator during the approach) is ½μV² + φ(δ), φ convex: at most ½μV² + ½m²,
         ½m² = max(φ(c), φ(c + V)). The d commands still pending from the approach (0) differ from the first one
         inside by at most ε_q = c + V + ½ (c + V = V without the encoder) and add at most ε_q·d·V*. Hence
         ½μV*² = ½μV² + ½m² + ε_q d V*:
@@ -1011,6 +1018,8 @@ class OneSided(Element):
             The operator's push p = F_p/(K Δ) from the first reading inside on (default 0).
         quantized : bool, optional
             With the encoder (default).
+        hand : float, optional
+            A hand's stiffness κ_h = k_h/K >= 0 (default 0).
 
         Returns
         -------
@@ -1025,8 +1034,8 @@ class OneSided(Element):
         c = OneSided.engage(surface, quantized) - surface
         top = c + speed
 
-        def phi(d: float) -> float:  # ½(δ⁺)² − pδ + ½p²: the storage beyond ½μV² at δ = ξ − s
-            return 0.5 * max(d, 0.0) ** 2 - push * d + 0.5 * push * push
+        def phi(d: float) -> float:  # ½(δ⁺)² − pδ + ½p² + ½κ_h(s + δ)²: the storage beyond ½μV² at δ = ξ − s
+            return 0.5 * max(d, 0.0) ** 2 - push * d + 0.5 * push * push + 0.5 * hand * (surface + d) ** 2
 
         m2 = 2.0 * max(phi(c), phi(top))
         if delay == 0:
@@ -1036,7 +1045,13 @@ class OneSided(Element):
 
     @staticmethod
     def impact_speed(
-        surface: float, equivalent: float, mu: float, delay: int = 0, push: float = 0.0, quantized: bool = True
+        surface: float,
+        equivalent: float,
+        mu: float,
+        delay: int = 0,
+        push: float = 0.0,
+        quantized: bool = True,
+        hand: float = 0.0,
     ) -> float:
         """Give the largest impact speed V whose :meth:`contact_speed` V* is at most ``equivalent``.
 
@@ -1056,6 +1071,8 @@ class OneSided(Element):
             The push p = F_p/(K Δ).
         quantized : bool, optional
             With the encoder (default).
+        hand : float, optional
+            A hand's stiffness κ_h = k_h/K (default 0).
 
         Returns
         -------
@@ -1069,7 +1086,7 @@ class OneSided(Element):
         9.0
         """
 
-        return largest_speed(lambda v: OneSided.contact_speed(surface, v, mu, delay, push, quantized), equivalent)
+        return largest_speed(lambda v: OneSided.contact_speed(surface, v, mu, delay, push, quantized, hand), equivalent)
 
     @staticmethod
     def engage(surface: float, quantized: bool = True) -> float:

@@ -310,22 +310,18 @@ class WallParams:
             if push:
                 return Push, push, "a constant push on a bilateral wall is not derived (a push needs a one-sided wall)"
             return None
-        others = [k for k, g in self.groups if k not in (OneSided, Delay, Push) and not k.renders_nothing(g)]
+        others = [
+            k for k, g in self.groups if k not in (OneSided, Delay, Push, HandSpring) and not k.renders_nothing(g)
+        ]
         if not others:
             return None
-        because = (
-            "a hand stiffness acts during the approach, which no part of the package derives yet (the simulator "
-            "refuses it too)"
-            if HandSpring in others
-            else "the damper's memory of the approach and its clip at 0 enter the energy; the exact simulation "
-            "covers it"
-        )
         names = ", ".join(k.key().replace("_", " ") for k in others)
         return (
             OneSided,
             self.group(OneSided),
-            f"no passivity criterion is derived yet for a one-sided wall with {names} reached from free space "
-            f"({because}; the spring with a delay and a push is covered)",
+            f"no passivity criterion is derived yet for a one-sided wall with {names} reached from free space (the "
+            "damper's memory of the approach and its clip at 0 enter the energy; the exact simulation covers it; "
+            "the spring with a delay, a push and a hand stiffness is covered)",
         )
 
     def not_covered(self) -> str | None:
