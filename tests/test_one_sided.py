@@ -455,6 +455,11 @@ def test_eq6_one_sided_hand_stiffness_adds_its_storage_at_contact(capsys):
     a = simulate(mu, 0.2, 0.5, v0, samples=d, xi0=x0, wall=with_hand, record=True)
     b = simulate(mu, 0.2, 0.5, v0, samples=d, xi0=x0, wall=bare, record=True)
     np.testing.assert_array_equal(a.xi, b.xi)  # the approach: the hand's spring held by the operator
+    # ... also when the approach's force σ + βV equals the push (the approach is a flag, not a force's value)
+    w = _wall(0.3, push=2.0, hand_stiffness=0.05)
+    x0, v0, d = approach_start(2.0, wall=w)
+    run = simulate(20.0, 0.25, 1.5, v0, samples=d + 3, xi0=x0, wall=w, record=True)
+    np.testing.assert_allclose(run.xi[: d + 1], x0 + 2.0 * np.arange(d + 1), rtol=0, atol=1e-12)
     c = OneSided.engage(s) - s
     storage = max(0.5 * max(e, 0.0) ** 2 + 0.5 * kap * (s + e) ** 2 for e in (c, c + v))
     r = passivity_criterion(0.3, 1.0, v, wall=with_hand, mu=mu)

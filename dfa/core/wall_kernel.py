@@ -324,8 +324,10 @@ def _shape(c: float, inside: bool, onesided: bool) -> float:
 
 # state of a controller run between samples (module docstring, "Period skipping"): ξ, ξ', r_{h−1}, v_{h−1},
 # y_{h−1}, φ_A, ring position; then bookkeeping: tail min and max, the period found (0: none yet)
-CX, CV, CRP, CVP, CY, CFA, CPOS, CTMIN, CTMAX, CPER, CEXT = range(11)
-NCSTATE = 11  # CEXT: the operator's force now (the approach's, σ + βV, until a one-sided wall first reads contact)
+CX, CV, CRP, CVP, CY, CFA, CPOS, CTMIN, CTMAX, CPER, CEXT, CAPP = range(12)
+#: CEXT: the operator's force now (the approach's, σ + βV, until a one-sided wall first reads contact); CAPP: 1
+#: during that approach, else 0 (a flag of its own: the approach's force may equal the push)
+NCSTATE = 12
 _REF = 6  # the reference state: ξ, ξ', r, v, y, φ_A at ref[0:6], then the d pending commands, oldest first
 
 
@@ -434,7 +436,8 @@ def _sample(
     k: SampleConstants,
     e_lag: float,
     ext: float,
-) -> tuple[float, float, float, float, float, float, int, float, float, int, float]:
+    appr: bool,
+) -> tuple[float, float, float, float, float, float, int, float, float, int, float, bool]:
     """Sample h from the state between samples (module docstring); ``model`` = (μ, β, σ, d, quantize).
 
     Returns the next state (ξ, ξ', r, v, y, φ_A, ring position), the sample's
@@ -447,19 +450,18 @@ def _sample(
     damping, pole, filtered, lag, kap, onesided, _, push = ctl
     r, vh, y, base, pos, c, inside = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl)
     if inside:
-        ext = push  # contact: the operator's force is the push from now on
+        ext, appr = push, False  # contact: the operator's force is the push from now on
     if lag == 0.0:
         fa = c
     if v == 0.0:
         ynext = pole * y + (1.0 - pole) * vh if filtered else 0.0
         cbase, cnext = _shape(base, inside, onesided), _shape(base - damping * ynext, inside, onesided)
-        if ext == push and _absorbing(v, fa, sigma, ring, cbase, cnext, kap * x - push):
-            return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 1, ext
-    elif ext == push and _gone(v, fa, ring, inside, ctl):
-        return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 3, ext
-    approaching = ext != push  # the operator holds the speed against friction, damping and the hand's spring
+        if not appr and _absorbing(v, fa, sigma, ring, cbase, cnext, kap * x - push):
+            return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 1, ext, appr
+    elif not appr and _gone(v, fa, ring, inside, ctl):
+        return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 3, ext, appr
     push = ext
-    if kap > 0.0 and not approaching:
+    if kap > 0.0 and not appr:  # the approach: the operator holds the speed against friction and the hand
         if lag != 0.0:
             raise RuntimeError("dfa.core.wall_kernel: an amplifier lag with a hand stiffness is not covered")
         x, v, lo_t, hi_t = hand_sample(x, v, c + push, mu, beta, sigma, kap)
@@ -469,7 +471,7 @@ def _sample(
     else:
         x, v, lo_t, hi_t = lag_sample(x, v, c + push, fa + push, mu, beta, sigma, lag)
         fa = c + (fa - c) * e_lag  # e_lag = e^{−1/α}
-    return x, v, r, vh, y, fa, pos, lo_t, hi_t, 0, ext
+    return x, v, r, vh, y, fa, pos, lo_t, hi_t, 0, ext, appr
 
 
 @njit(cache=True, nogil=True)
@@ -507,19 +509,19 @@ def _advance(
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
     x, v, r_prev, v_prev, y, fa = st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA]
     pos, tmin, tmax, period, ext = int(st[CPOS]), st[CTMIN], st[CTMAX], int(st[CPER]), st[CEXT]
-    push = ctl[7]
+    appr = st[CAPP] > 0.0
     record = rec_x.shape[0] > 0
     skip = skip and not record
     in_tail = h0 >= tail_start
     peak, why, skipped, h = 0.0, 0, 0, h0
     # reference: the state at sample rh (none at sample 0, where y_0 = 0 is forced, nor during an approach, whose
     # operator's force is not part of the compared state), renewed after span samples
-    rx, rh, span = (x if h0 > 0 and ext == push else np.nan), h0, (period if period > 0 else 1)
+    rx, rh, span = (x if h0 > 0 and not appr else np.nan), h0, (period if period > 0 else 1)
     if skip:
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
     while h < h1:
-        x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext = _sample(
-            x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext
+        x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
+            x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr
         )
         if absorbed:
             why = absorbed  # 1 at rest, 3 left the one-sided wall for good
@@ -547,10 +549,10 @@ def _advance(
             skipped += jump
             span = h1  # no more renewals: fewer than one period is left
         elif skip and h - rh == span:
-            rx, rh, span = (x if ext == push else np.nan), h, 2 * span
+            rx, rh, span = (x if not appr else np.nan), h, 2 * span
             _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x, v, r_prev, v_prev, y, fa
-    st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CEXT] = pos, tmin, tmax, period, ext
+    st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CEXT], st[CAPP] = pos, tmin, tmax, period, ext, 1.0 if appr else 0.0
     return h, why, peak, skipped
 
 
@@ -573,7 +575,8 @@ def _start(
         ring[i] = base0
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x0, v0, r0, 0.0, 0.0, base0
     st[CPOS], st[CTMIN], st[CTMAX], st[CPER] = 0.0, np.inf, -np.inf, 0.0
-    st[CEXT] = friction if onesided and not inside and v0 > 0.0 else ctl[7]
+    approach = onesided and not inside and v0 > 0.0
+    st[CEXT], st[CAPP] = (friction, 1.0) if approach else (ctl[7], 0.0)
 
 
 @njit(cache=True, nogil=True)
