@@ -119,3 +119,5 @@ def test_moving_history_cli_and_refusals(capsys):
         simulate(100.0, 0.3, 1.0, 1.0, 100, wall=WallParams.of(delay=1, damping=0.2), history="moving")
     with pytest.raises(dfa.DFAValueError, match="not derived with a virtual damper"):
         passivity_criterion(1.0, 1.0, 1.0, wall=WallParams.of(delay=1, damping=0.2), mu=10.0, history="moving")
+    with pytest.raises(dfa.DFAValueError, match="covered for the spring with a delay only"):  # not run by simulate
+        passivity_criterion(1.0, 1.0, 1.0, wall=WallParams.of(delay=1, hand_stiffness=0.1), mu=10.0, history="moving")

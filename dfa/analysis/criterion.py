@@ -920,6 +920,11 @@ def _check_history(history: object, wall: WallParams, mu: float | None) -> str:
             "history = 'moving' is not derived with a virtual damper or filter (the velocity estimate and the "
             "filter's state of the motion enter the energy); pass history='fresh' or drop the damper"
         )
+    if not wall.is_spring:  # a hand stiffness: the simulator does not run that start, so it is not shown sound
+        raise DFAValueError(
+            "history = 'moving' is covered for the spring with a delay only (the simulator runs that start for it "
+            "alone, so nothing else is shown sound); pass history='fresh' or drop the other elements"
+        )
     if mu is None:
         raise DFAValueError(
             "history = 'moving' needs mu: the motion's energy enters through d(d + 1)ξ'0²/(2μ); pass mu"

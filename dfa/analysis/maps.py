@@ -208,6 +208,11 @@ class StabilityMap(PlaneGrid, Result):
         if self.contact is not None:
             freeze_fields(self, {"contact": {"dtype": np.int8, "ndim": 3}})
             check_shape("contact", self.contact, shape)
+            if self.contact.size and not (0 <= self.contact.min() and self.contact.max() < len(CONTACTS)):
+                raise DFAValueError(
+                    f"contact holds codes outside 0 … {len(CONTACTS) - 1}: they index dfa.analysis.simulation.CONTACTS; "
+                    "pass the codes the simulation returned"
+                )
         object.__setattr__(self, "status", MapStatus.coerce(self.status))
 
     @property
