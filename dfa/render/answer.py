@@ -20,7 +20,7 @@ from ..formatting import WIDTH, fill, number, text_table
 from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
 from .contact import contact_text
 from .hand import device_title
-from .limits import counterexample_lines, limit_tags, none_text, passive_text
+from .limits import LEAVES, counterexample_lines, limit_tags, none_text, passive_text
 from .require import damper_line
 
 __all__ = ["WIDTH", "wrap", "recommendation_line", "recommendation_text", "stiffness_screen", "user_verdict"]
@@ -119,7 +119,7 @@ def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
             sims + _resolution(r.k_sim),
         ],
         [
-            "simulation, every impact rests" + (" or leaves" if r.wall.one_sided else ""),
+            "simulation, every impact rests" + LEAVES[r.wall.one_sided],
             _limit_cell(r.k_sim_rest, ku, notes, "simulation, rests"),
             sims + _resolution(r.k_sim_rest),
         ],

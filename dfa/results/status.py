@@ -259,7 +259,7 @@ class LimitStatus(StatusEnum):
     NOT_COVERED = (
         "not_covered",
         "not covered by the criterion: no sound passivity criterion covers an element of the wall (an amplifier lag; "
-        "a one-sided wall with a damper, filter or hand stiffness)",
+        "a one-sided wall with a damper or filter)",
     )
     NOT_LINEAR = (
         "not_linear",
