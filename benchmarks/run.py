@@ -740,7 +740,19 @@ def bench_controller_kernel(quick: bool) -> str:
 
     def ctl(c, skip=False):  # (samples run, samples integrated); skip=False integrates every sample
         st = np.empty(kernel.NSTATS)
-        args = (c.damping, c.filter_pole, c.cutoff is not None, c.lag, c.hand_stiffness, False, 0.0, 0.0)
+        args = (
+            c.damping,
+            c.filter_pole,
+            c.cutoff is not None,
+            c.lag,
+            c.hand_stiffness,
+            False,
+            0.0,
+            0.0,
+            False,
+            0,
+            math.inf,
+        )
         out = wall_kernel.run_wall_kernel(mu, beta, sigma, 0.0, v0, n, c.delay, True, 1e6, 8192, *args, e, e, st, skip)
         return out[0], out[2]
 
@@ -830,6 +842,9 @@ def bench_controller_design_answer(quick: bool) -> str:
         False,
         0.0,
         0.0,
+        False,
+        0,
+        math.inf,
         e,
         e,
         st,

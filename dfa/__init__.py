@@ -85,7 +85,16 @@ from .model.catalogue import (
     resolve_device,
 )
 from .model.device import Device, Params
-from .model.elements import AmplifierLag, Damper, Delay, HandSpring, OneSided, Push, VelocityFilter
+from .model.elements import (
+    AmplifierLag,
+    Damper,
+    Delay,
+    HandSpring,
+    OneSided,
+    PassivityController,
+    Push,
+    VelocityFilter,
+)
 from .model.grasp import hold
 from .model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
 from .model.log import DeviceLog, LogError, read_log
@@ -150,6 +159,10 @@ _LAZY = {
     "z_width": "analysis.limits.zwidth",
     "ZWidth": "analysis.limits.zwidth",
     "identify": "analysis.identify",
+    "observe": "analysis.observer",
+    "ObserverSummary": "analysis.observer",
+    "passivity_gain": "analysis.limits.passivity_gain",
+    "PassivityGain": "analysis.limits.passivity_gain",
     "Identification": "analysis.identify",
 }
 _SUBMODULES = {
@@ -203,6 +216,7 @@ __all__ = [
     "HandSpring",
     "OneSided",
     "Push",
+    "PassivityController",
     "approach_start",
     "stable_stiffness",
     "stable_region",

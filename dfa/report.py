@@ -122,12 +122,12 @@ def _wall_numbers(a: DesignAnalysis) -> dict[str, Any]:
         k_linear=None if lim is None else lim.k_linear.value,
         delay=a.delay,
         critical_xi_dot=None if r is None else r.critical_xi_dot,
-        df_xi_dot=None if a.wall.one_sided else a.threshold("zoh").xi_dot,
+        df_xi_dot=None if not a.wall.linear else a.threshold("zoh").xi_dot,
         simulated_xi_dot=a.simulated_xi_dot,
-        cycles=[] if a.wall.one_sided else [c.amplitude for c in a.threshold("half-delay").result.cycles],
+        cycles=[] if not a.wall.linear else [c.amplitude for c in a.threshold("half-delay").result.cycles],
         wall=wall_dict(a.wall, a.device.period, a.device.units, a.device.resolution),
     )
-    lag = "not covered: no passivity criterion is proven with an amplifier lag"
+    lag = f"not covered: {a.wall.params(a.device.period, a.device.resolution).not_covered()}"
     why = {
         "region": lag,
         "passive": lag,
@@ -137,7 +137,7 @@ def _wall_numbers(a: DesignAnalysis) -> dict[str, Any]:
     why["k_linear"] = "impact speed 0: no K_max" if lim is None else lim.k_linear.status.message
     why["simulated_xi_dot"] = "no scanned impact speed diverged"
     why["df_xi_dot"] = (
-        "not a linear loop: no describing function" if a.wall.one_sided else "no unstable cycle predicted"
+        "not a linear loop: no describing function" if not a.wall.linear else "no unstable cycle predicted"
     )
     return explain_nulls(to_jsonable(out), why)
 

@@ -38,6 +38,31 @@ class Commands:
         self.prev_v = 0.0
         self.y = 0.0
         self.hist: list[float] = []
+        # the passivity observer and controller (dfa.model.elements.PassivityController's docstring), plainly: the
+        # terms −φ_{h−1} v_h (the last W with a window), the controller's bookings beside the pending commands
+        self.terms: list[float] = []
+        self.booked: list[float] = []
+        self.energy = 0.0  # E_obs over the whole run
+        self.force = 0.0  # the controller's force of the last reading
+        self.ledger = (0.0, 0.0)  # the ledger before and after the controller's action at the last reading
+
+    def _controller(self, v: float, w: float, shape) -> float:
+        """The command with the passivity controller's force, from the wall's own command ``w``."""
+        a = self.ctl.kernel_args()
+        term = 0.0 if not self.hist else -self.hist[0] * v  # the command held over the sample just ended
+        self.energy += term
+        self.terms.append(term)
+        window = a["window"]
+        seen = sum(self.terms[-window:]) if window else sum(self.terms)
+        pending = sum(self.booked[1:]) if self.booked else 0.0  # commands not yet applied and observed
+        ledger = seen + pending
+        f = 0.0
+        if a["pc"] and ledger < 0.0 and v != 0.0:
+            f = max(-a["limit"], min(a["limit"], ledger / v))
+        c = shape(w + f)
+        self.force = c - shape(w)
+        self.ledger = (ledger, ledger - self.force * v)
+        return c
 
     def applied(self, x: float) -> float:
         r = math.floor(x) if self.q else x
@@ -54,12 +79,23 @@ class Commands:
         if a["onesided"]:  # pushes only beyond the surface, never pulls
             inside = q > a["surface"]
             self.inside = inside
-            c = min(-(q - a["surface"]) - self.ctl.damping * y, 0.0) if inside else 0.0
+
+            def shape(c: float) -> float:
+                return min(c, 0.0) if inside else 0.0
+
+            w = -(q - a["surface"]) - self.ctl.damping * y
         else:
-            c = -q - self.ctl.damping * y
+
+            def shape(c: float) -> float:
+                return c
+
+            w = -q - self.ctl.damping * y
+        c = self._controller(v, w, shape)
         if first:
             self.hist = [c] * (self.ctl.delay + 1)
+            self.booked = [0.0] * (self.ctl.delay + 1)
         self.hist = self.hist[1:] + [c]
+        self.booked = self.booked[1:] + [-self.force * v]
         return self.hist[0]
 
 

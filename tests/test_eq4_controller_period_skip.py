@@ -21,6 +21,7 @@ from dfa.core import kernel, wall_kernel
 from dfa.model.wall import WallParams
 
 EMPTY = np.empty(0)
+NO_PC = (False, 0, math.inf)  # no passivity controller
 
 
 def _run(mu, beta, sigma, x0, v0, n, ctl, *, quantize=True, bound=1e6, tail_len=None, skip=True):
@@ -29,7 +30,7 @@ def _run(mu, beta, sigma, x0, v0, n, ctl, *, quantize=True, bound=1e6, tail_len=
     tail = n // 4 if tail_len is None else tail_len
     args = (mu, beta, sigma, x0, v0, n, ctl.delay, quantize, bound, tail, ctl.damping, ctl.filter_pole)
     done, rest, integrated = wall_kernel.run_wall_kernel(
-        *args, ctl.cutoff is not None, ctl.lag, ctl.hand_stiffness, False, 0.0, 0.0, EMPTY, EMPTY, stats, skip
+        *args, ctl.cutoff is not None, ctl.lag, ctl.hand_stiffness, False, 0.0, 0.0, *NO_PC, EMPTY, EMPTY, stats, skip
     )
     return done, rest, integrated, stats
 
@@ -40,7 +41,7 @@ def _recorded(mu, beta, sigma, x0, v0, n, ctl, *, quantize=True, bound=1e6, tail
     tail = n // 4 if tail_len is None else tail_len
     args = (mu, beta, sigma, x0, v0, n, ctl.delay, quantize, bound, tail, ctl.damping, ctl.filter_pole)
     done, rest = wall_kernel.simulate_wall_kernel(
-        *args, ctl.cutoff is not None, ctl.lag, ctl.hand_stiffness, False, 0.0, 0.0, rx, rv, stats
+        *args, ctl.cutoff is not None, ctl.lag, ctl.hand_stiffness, False, 0.0, 0.0, *NO_PC, rx, rv, stats
     )
     return done, rest, stats, rx, rv
 
@@ -208,7 +209,7 @@ def test_eq4_serial_controller_kernel_equals_single_every_sample_runs():
     x0s, v0s = np.zeros(4), np.array([2.0, 1.0, 3.0, 0.5])
     stats, done, rest = np.empty((4, kernel.NSTATS)), np.empty(4, np.int64), np.empty(4, np.int64)
     args = (10_000, ctl.delay, True, 1e6, 2500, ctl.damping, ctl.filter_pole, False, ctl.lag, ctl.hand_stiffness,
-            False, 0.0, 0.0)  # fmt: skip
+            False, 0.0, 0.0, *NO_PC)  # fmt: skip
     wall_kernel.serial_wall_kernel(mus, betas, sigmas, x0s, v0s, *args, stats, done, rest)
     for i in range(4):
         d, r, _, s = _run(mus[i], betas[i], sigmas[i], 0.0, v0s[i], 10_000, ctl, tail_len=2500, skip=False)

@@ -156,7 +156,29 @@ def test_eq4_hand_period_skip_is_bit_identical_to_every_sample():
     from dfa.core import kernel, wall_kernel
 
     ctl = WallParams.of(damping=0.4, delay=1, hand_stiffness=0.05)
-    args = (5.0, 0.1, 0.3, 0.0, 1.5, 20_000, 1, True, 1e6, 5000, 0.4, 0.0, False, 0.0, 0.05, False, 0.0, 0.0)
+    args = (
+        5.0,
+        0.1,
+        0.3,
+        0.0,
+        1.5,
+        20_000,
+        1,
+        True,
+        1e6,
+        5000,
+        0.4,
+        0.0,
+        False,
+        0.0,
+        0.05,
+        False,
+        0.0,
+        0.0,
+        False,
+        0,
+        np.inf,
+    )
     out = []
     for skip in (True, False):
         st_ = np.empty(kernel.NSTATS)

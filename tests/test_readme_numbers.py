@@ -6,6 +6,7 @@ them fails the suite until the README says the same.
 """
 
 import json
+import math
 import re
 from pathlib import Path
 
@@ -167,3 +168,33 @@ def test_eq6_moving_history_soundness_counts_in_trust_page_match_the_committed_r
     assert ours["violations"] == 0 and ours["points"] == 100_000
     assert "finds 0 violations on 10⁵ random passive points of it," in flat
     assert f"where the fresh start's claim fails on {_int(fresh['violations'])}." in flat
+
+
+def test_passivity_controller_numbers_in_trust_page_and_cli_page_match_the_committed_run():
+    """docs/trust.md's passivity-controller numbers, and docs/cli.md's summary of them, are
+    reports/validation/passivity_controller.json's."""
+    d = json.loads((ROOT / "reports" / "validation" / "passivity_controller.json").read_text(encoding="utf-8"))
+    names = d["devices"]
+
+    def value(name: str, case: str, limit: str) -> float | None:
+        return d["limits"][names.index(name)][case][limit]["value"]
+
+    gain = {n: (value(n, "limited", "k_sim") or math.nan) / value(n, "plain", "k_sim") for n in names}
+    flat = _flat(TRUST)
+    assert f"On the {len(names)} complete catalogue devices at the design report's speed, the controller" in flat
+    light = sorted((gain["Phantom 1.0"], gain["Toolhandle"]))
+    assert f"limit {light[0]:.1f} to {light[1]:.1f} times on the Phantom 1.0 and the Toolhandle" in flat
+    assert f"and {gain['Delta']:.2f} times on the Delta" in flat
+    assert d["limits"][names.index("Impulse Engine")]["limited"]["k_sim"]["status"] == "above_range"
+    assert gain["RE35 testbed"] < 1 and f"lowered it to {gain['RE35 testbed']:.2f} times on the RE35" in flat
+    lowered = sum(1 for n in names if (value(n, "limited", "k_sim_rest") or math.inf) < value(n, "plain", "k_sim_rest"))
+    assert f"it lowered the rest limit on {lowered} of them" in flat
+    never = [n for n in names if value(n, "unlimited", "k_sim") is None]
+    assert all((value(n, "unlimited", "k_sim") or 0.0) <= value(n, "plain", "k_sim") for n in names)
+    assert f"on {len(never)} devices no stiffness was confirmed with it at all" in flat
+    fc = d["failure"]
+    assert fc["outcomes"]["plain"] == "unstable" and fc["outcomes"]["0.3"] == "unstable"
+    assert fc["outcomes"]["1"] != "unstable"
+    cli = _flat((ROOT / "docs" / "cli.md").read_text(encoding="utf-8"))
+    assert "severalfold on the lightly damped Phantom 1.0 and Toolhandle" in cli and min(light) > 3
+    assert "the textbook controller without a force limit does worse than none" in cli

@@ -168,3 +168,25 @@ def test_screen_is_rendered_from_the_result_alone():
     lines = stiffness_screen(ans, recommend_stiffness(ans))
     assert all("\n" not in line and len(line) <= WIDTH for line in lines)
     assert lines[2].startswith("recommended K = ")  # device line, wall line, then the answer
+
+
+def test_recommend_simulated_range_when_no_impact_diverged_in_the_range():
+    """k_sim above the searched range (no divergence anywhere in it): the range's top over the margin, said so in
+    the CLI line (it used to read "no simulated stiffness free of divergence", the opposite)."""
+    from dataclasses import replace
+
+    from dfa.analysis.limits.kmax import design_answer
+    from dfa.analysis.limits.recommend import recommend_stiffness
+    from dfa.analysis.limits.search import KLimit
+    from dfa.model.catalogue import get_device
+    from dfa.model.wall import Wall
+    from dfa.render.answer import recommendation_text
+    from dfa.results.status import LimitStatus, RecommendRule
+
+    dev = get_device("Impulse Engine").device
+    ans = design_answer(dev, 0.05, wall=Wall.of(1.0, amplifier_bandwidth=500.0), speeds=1, grid=6)
+    top = 1234.5
+    above = replace(ans, k_sim=KLimit(None, LimitStatus.ABOVE_RANGE, range_end=top))
+    rec = recommend_stiffness(above, 2.0)
+    assert rec.status is RecommendRule.SIMULATED_RANGE and rec.k_recommended == top / 2.0 and rec.k_basis == top
+    assert "no simulated impact diverged up to 1234.5 N/m, the top of the range searched" in recommendation_text(rec)

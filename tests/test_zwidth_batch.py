@@ -120,6 +120,9 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
         np.zeros(k, dtype=np.bool_),
         np.zeros(k),
         np.zeros(k),
+        np.zeros(k, dtype=np.bool_),
+        np.zeros(k, dtype=np.int64),
+        np.full(k, np.inf),
         stats,
         done,
         rest,
@@ -130,7 +133,7 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
         st = np.empty(NSTATS)
         dn, rs = simulate_wall_kernel(
             mu[i], beta[i], sigma[i], x0[i], v0[i], ns[i], delay, True, bounds[i], tails[i],
-            damping[i], pole[i], filtered[i], lag[i], 0.0, False, 0.0, 0.0, e, e, st,
+            damping[i], pole[i], filtered[i], lag[i], 0.0, False, 0.0, 0.0, False, 0, np.inf, e, e, st,
         )  # fmt: skip
         assert (dn, rs) == (done[i], rest[i])
         np.testing.assert_array_equal(st, stats[i])

@@ -177,8 +177,8 @@ class DesignAnalysis(Result):
             ("trajectory_high", SimulationResult), ("stability_map", StabilityMap),
         ):  # fmt: skip
             check_type(name, getattr(self, name), cls, fix)
-        if self.wall.one_sided != (self.nyquist is None):
-            raise DFAValueError(f"nyquist must be None exactly for a one-sided wall (not a linear loop); {fix}")
+        if self.wall.linear == (self.nyquist is None):
+            raise DFAValueError(f"nyquist must be None exactly for a wall that is not a linear loop; {fix}")
         if self.nyquist is not None:
             check_type("nyquist", self.nyquist, NyquistLocusResponse, fix)
         self._check_parts(fix)
@@ -218,7 +218,7 @@ class DesignAnalysis(Result):
                 f"thresholds = {format_value(self.thresholds)} is invalid: it must be a tuple of (model, GrowthThreshold) "
                 f"pairs; {fix}"
             )
-        if tuple(m for m, _ in self.thresholds) != (() if self.wall.one_sided else MODELS):
+        if tuple(m for m, _ in self.thresholds) != (MODELS if self.wall.linear else ()):
             raise DFAValueError(
                 f"thresholds are for {[m for m, _ in self.thresholds]}: they must be for {list(MODELS)}"
             )
@@ -486,14 +486,14 @@ def design_analysis(
     p, wp = dev.params(wall.stiffness), wall.params(dev.period, dev.resolution)
     head = _closed_forms(dev, wall, v)
     steps.update()
-    thr = () if wp.one_sided else tuple((m, growth_threshold(p, dev, model=m, wall=wp)) for m in MODELS)
+    thr = () if not wp.linear else tuple((m, growth_threshold(p, dev, model=m, wall=wp)) for m in MODELS)
     steps.update()
     crit = head["check"].criterion
     ref = crit.critical_xi_dot if crit is not None and crit.critical_xi_dot else max(1.0, dev.xi_dot(v))
     v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, wall=wp)
     steps.update()
     sims = _simulations(p, dev.xi_dot(v), ref, v_sim, samples, wp)
-    ny = None if wp.one_sided else _nyquist(p, thr[1][1], wp)
+    ny = None if not wp.linear else _nyquist(p, thr[1][1], wp)
     steps.update()
     smap = _map_around(p, dev.xi_dot(v), map_grid, samples, n_jobs, progress, wp)
     steps.close()

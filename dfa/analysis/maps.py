@@ -78,7 +78,7 @@ from ..checks import (
 )
 from ..core import kernel
 from ..errors import DFATypeError, DFAValueError
-from ..model.elements import OneSided, Push
+from ..model.elements import OneSided, PassivityController, Push
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
@@ -516,7 +516,8 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
 
 def _wall_arrays(wall: WallParams, contact: np.ndarray | None = None) -> dict[str, Any]:
     """The ``wall`` entry of a map file: [β_B, ν_c (NaN: no filter), α], with ``hand`` [κ_h] and a one-sided
-    wall's ``one_sided`` [s, p] and ``contact`` kinds; none for the spring (its delay is in ``settings``)."""
+    wall's ``one_sided`` [s, p] and ``contact`` kinds, a passivity controller's ``passivity_controller`` [W, f_max]
+    (inf: no limit); none for the spring (its delay is in ``settings``)."""
     if wall.is_spring:
         return {}
     cutoff = math.nan if wall.cutoff is None else wall.cutoff
@@ -526,6 +527,9 @@ def _wall_arrays(wall: WallParams, contact: np.ndarray | None = None) -> dict[st
     if wall.one_sided:
         a = wall.kernel_args()
         out["one_sided"] = np.array([a["surface"], a["push"]], dtype=float)
+    if wall.passivity_controller:
+        a = wall.kernel_args()
+        out["passivity_controller"] = np.array([a["window"], a["limit"]], dtype=float)  # limit inf: none
     if contact is not None:
         out["contact"] = contact
     return out
@@ -542,6 +546,10 @@ def _wall_from(z: np.lib.npyio.NpzFile, delay: int) -> WallParams:
     w = WallParams.of(
         damping=damping, delay=delay, cutoff=None if math.isnan(cutoff) else cutoff, lag=lag, hand_stiffness=hand
     )
+    if "passivity_controller" in z.files:
+        window, limit = (float(v) for v in z["passivity_controller"])
+        pc = (int(window), None if math.isinf(limit) else limit)
+        w = WallParams(((PassivityController, pc), *w.groups))
     if "one_sided" not in z.files:
         return w
     surface, push = (float(v) for v in z["one_sided"])

@@ -604,17 +604,73 @@ class SimulationResult(Result):
         DFAValueError
             When the run was not recorded (``record=False``).
         """
+        return self._replay("applied_force")[0]
+
+    def observed_energy(self) -> np.ndarray:
+        """The passivity observer's energy E_obs at each recorded reading, in units of KΔ² (length samples + 1).
+
+        Entry h is the energy the device has put into the wall up to reading h, E_obs(h) = −Σ_{k<=h} φ_{k−1} v_k
+        (:class:`dfa.model.elements.PassivityController`; the operator's push and the hand are not the wall's);
+        −E_obs is the energy the wall produced (positive: active). For any wall, over the whole run (a controller's
+        window bounds only what it sees). Replayed from the recorded positions by the simulator's own controller
+        step (:func:`dfa.core.wall_kernel.applied_forces`). NaN after a divergence.
+
+        Returns
+        -------
+        numpy.ndarray
+            E_obs in units of KΔ²; multiply by K Δ² for J.
+
+        Raises
+        ------
+        DFAValueError
+            When the run was not recorded (``record=False``).
+
+        Examples
+        --------
+        Without the encoder the observer is the work done on the wall exactly: the device's energy balance
+        with the spring's ledger (:class:`EnergyRecord`), −Σ∫φ ξ' dτ = −(Δ½μξ'² + Σ dissipated), at the last
+        reading.
+
+        >>> r = simulate(2.0, 1.0, 0.05, 1.5, samples=400, quantize=False, energy=True)
+        >>> e = r.energy
+        >>> lost = e.dissipated_viscous.sum() + e.dissipated_coulomb.sum()
+        >>> work = 0.5 * 2.0 * (r.xi_dot[-1] ** 2 - 1.5**2) + lost    # done by the wall on the device
+        >>> bool(abs(r.observed_energy()[-1] + work) < 1e-9)
+        True
+        """
+        return self._replay("observed_energy")[1]
+
+    def controller_force(self) -> np.ndarray:
+        """The force the passivity controller added to the command at each recorded reading (units of KΔ).
+
+        Entry h is f_h, added to the command c_h (applied d samples later; :class:`dfa.model.elements.
+        PassivityController`), 0 where it did not act and everywhere for a wall without one. NaN after a divergence.
+
+        Returns
+        -------
+        numpy.ndarray
+            The force f_h in units of KΔ (length samples + 1).
+
+        Raises
+        ------
+        DFAValueError
+            When the run was not recorded (``record=False``).
+        """
+        return self._replay("controller_force")[2]
+
+    def _replay(self, what: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(φ_A, E_obs, f) replayed from the recorded positions (:func:`dfa.core.wall_kernel.applied_forces`)."""
         if self.xi is None:
             raise DFAValueError(
-                "xi = None is invalid for applied_force(): the trajectory was not recorded; "
-                "run simulate(..., record=True)"
+                f"xi = None is invalid for {what}(): the trajectory was not recorded; run simulate(..., record=True)"
             )
-        out = np.empty(self.xi.size)
         xs = np.ascontiguousarray(self.xi, dtype=float)
-        args = _wall_args(self.wall)
-        wall_kernel.applied_forces(xs, self.delay, self.quantize, *args[:4], args[5], args[6], out)
-        out.flags.writeable = False
-        return out
+        force, energy, control = np.empty(xs.size), np.empty(xs.size), np.empty(xs.size)
+        a = _wall_args(self.wall)
+        wall_kernel.applied_forces(xs, self.delay, self.quantize, *a[:4], *a[5:7], *a[8:], force, energy, control)
+        for o in (force, energy, control):
+            o.flags.writeable = False
+        return force, energy, control
 
     def physical(self, device: Device | None, stiffness: float | None) -> dict[str, object]:
         """The run in physical units for a :class:`~dfa.model.device.Device` at stiffness K (:mod:`dfa.model.units`).
@@ -1116,11 +1172,11 @@ def wall_run_codes(
     return codes
 
 
-def _wall_args(wall: WallParams) -> tuple[float, float, bool, float, float, bool, float, float]:
-    """(β_B, a, filtered, α, κ_h, one-sided, s, p): the wall's arguments of :mod:`dfa.core.wall_kernel`
-    (:meth:`WallParams.kernel_args`)."""
+def _wall_args(wall: WallParams) -> tuple[float, float, bool, float, float, bool, float, float, bool, int, float]:
+    """(β_B, a, filtered, α, κ_h, one-sided, s, p, passivity controller, its window W, its force limit): the wall's
+    arguments of :mod:`dfa.core.wall_kernel` (:meth:`WallParams.kernel_args`)."""
     a = wall.kernel_args()
-    keys = ("damping", "pole", "filtered", "lag", "spring", "onesided", "surface", "push")
+    keys = ("damping", "pole", "filtered", "lag", "spring", "onesided", "surface", "push", "pc", "window", "limit")
     return tuple(a[k] for k in keys)
 
 

@@ -11,6 +11,7 @@ from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, say, table
 from .parsing import UsageError, number
+from .passivity import add_passivity_args
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
 
 COMMAND = "check"
@@ -26,6 +27,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--no-quantization", action="store_true", help="use eq. 7 (Δ → 0) instead of eq. 6 (default: eq. 6)")
     add_wall_args(p)
     add_contact_args(p)
+    add_passivity_args(p)
     p.add_argument(
         "--xi0",
         type=number("--xi0", "ticks"),

@@ -9,6 +9,7 @@ from .contact import add_contact_args, refuse_one_sided_flag
 from .inputs import add_device_args, resolve
 from .output import RATE_NAMES, emit, say
 from .parsing import UsageError, number
+from .passivity import add_passivity_args, refuse_passivity_flag
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json, wall_params
 
 COMMAND = "limit-cycles"
@@ -27,6 +28,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     add_wall_args(p)
     add_contact_args(p)
+    add_passivity_args(p)
     p.add_argument(
         "--max-amplitude",
         type=number("--max-amplitude", "ticks"),
@@ -60,6 +62,7 @@ def run(args: argparse.Namespace) -> int:
         args,
         "a one-sided wall is not a linear loop (a cycle that leaves the wall is not first-harmonic, and one in contact about a push's offset needs a biased describing function, not derived)",
     )
+    refuse_passivity_flag(args, "its damper switches with the observed energy, which no describing function covers")
     ctl = wall_from_args(args, inp.device, inp.stiffness)
     budget = {} if args.time_budget is None else {"time_budget": args.time_budget}
     g = growth_threshold(

@@ -26,6 +26,7 @@ from .output import (
     table,
 )
 from .parsing import UsageError, integer, number
+from .passivity import add_passivity_args
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json, wall_params
 
 if TYPE_CHECKING:
@@ -55,6 +56,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     add_wall_args(p)
     add_contact_args(p)
+    add_passivity_args(p)
     p.add_argument("--preload", action="store_true", help="spring preload instead of an initial speed (default: off)")
     p.add_argument(
         "--no-quantization", action="store_true", help="linear spring, no encoder (default: with the encoder)"

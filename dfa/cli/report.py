@@ -15,6 +15,7 @@ from .contact import add_contact_args
 from .inputs import PHYS_FLAGS, add_device_args, resolve, speed
 from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, progress, say
 from .parsing import UsageError, integer
+from .passivity import add_passivity_args
 from .walls import add_wall_args, wall_from_args
 
 COMMAND = "report"
@@ -59,6 +60,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_progress_args(p)
     add_wall_args(p)
     add_contact_args(p)
+    add_passivity_args(p)
 
 
 #: Largest validation summary ``--validation`` reads (bytes); ``dfa validate`` writes about 8 kB.

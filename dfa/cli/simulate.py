@@ -22,6 +22,7 @@ from .output import (
     table,
 )
 from .parsing import UsageError, integer, number
+from .passivity import add_observer_arg, add_passivity_args
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json, wall_params
 
 COMMAND = "simulate"
@@ -44,6 +45,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     add_wall_args(p)
     add_contact_args(p)
+    add_passivity_args(p)
     p.add_argument(
         "--preload",
         action="store_true",
@@ -60,6 +62,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="write sample, xi, xi_dot, phi (ticks, KΔ) and with a device t_s, x_m, v_m_per_s, force_n to a CSV "
         "file (default: none)",
     )
+    add_observer_arg(p)
     add_progress_args(p)
     p.add_argument(
         "--force",
@@ -98,13 +101,23 @@ def _start(args: argparse.Namespace, mu: float, xd: float) -> tuple[float, float
     return x0, v0
 
 
-def _write_trace(path: str, r: object, inp: Inputs) -> None:
+def _write_trace(path: str, r: object, inp: Inputs, observer: bool) -> None:
     from ..render.files import write_trace_csv
 
     try:
-        write_trace_csv(r, path, inp.device, inp.stiffness)
+        write_trace_csv(r, path, inp.device, inp.stiffness, observer=observer)
     except OSError as exc:
         raise UsageError(f"--trace {path!r} cannot be written: {exc.strerror}; choose a writable file") from None
+
+
+def _observer(r: Any, inp: Inputs) -> tuple[Any, dict[str, float] | None]:
+    """The passivity observer's summary of the run, and its energies and force in J and N with a device."""
+    from ..analysis.observer import observe
+
+    s = observe(r)
+    if inp.device is None or inp.stiffness is None:
+        return s, None
+    return s, s.physical(inp.device, inp.stiffness)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -128,21 +141,24 @@ def run(args: argparse.Namespace) -> int:
     x0, v0 = _start(args, p.mu, xd) if approach is None else approach[:2]
     n = args.samples if args.samples is not None else default_samples(p.mu, p.beta, p.sigma, v0, x0, quantize, wall=wp)
     n += 0 if approach is None or args.samples is not None else approach[2]  # the approach, before contact
-    if args.trace is not None and 16 * (n + 1) > MAX_RECORD_BYTES:
+    record = args.trace is not None or args.observer
+    if record and 16 * (n + 1) > MAX_RECORD_BYTES:
+        what = "--trace" if args.trace is not None else "--observer"
         raise UsageError(
-            f"--trace with --samples {n} would need {16 * (n + 1) / 1024**3:.1f} GiB of trajectory "
-            f"(limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB): drop --trace or lower --samples"
+            f"{what} with --samples {n} would need {16 * (n + 1) / 1024**3:.1f} GiB of trajectory "
+            f"(limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB): drop {what} or lower --samples"
         )
     if args.samples is not None:  # the automatic length is capped (dfa.analysis.simulation.default_samples)
         check_samples(args.samples, args.force)
     r = simulate(
-        p.mu, p.beta, p.sigma, v0, args.samples, xi0=x0, quantize=quantize, record=args.trace is not None,
+        p.mu, p.beta, p.sigma, v0, args.samples, xi0=x0, quantize=quantize, record=record,
         progress=progress(args), bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND), wall=wp,
     )  # fmt: skip
     if args.trace is not None:
-        _write_trace(args.trace, r, inp)
+        _write_trace(args.trace, r, inp, args.observer)
     known = inp.device is not None and inp.stiffness is not None
     phys = r.physical(inp.device, inp.stiffness) if known else r.physical(None, None)
+    obs = _observer(r, inp) if args.observer else None
     if args.json:
         d = r.to_dict()
         d.update(phys)
@@ -150,13 +166,20 @@ def run(args: argparse.Namespace) -> int:
         if not known:  # the same keys, null: no device, no physical units
             explain_nulls(d, dict.fromkeys(phys, NO_DEVICE) | {"velocity": NO_DEVICE})
         explain_nulls(d, r.null_reasons())
+        if obs is not None:
+            d["observer"] = obs[0].to_dict() | (obs[1] or {})
         emit(wall_json(d, ctl, inp))
         return 0
     say(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
     print_wall(ctl, inp, contact=False)  # the contact line below says more (the approach)
     if approach is not None:
         say(contact_line(wp, approach[2], xd))
-    say(table(simulation_rows(r, x0, v0, args.preload, phys if known else None)))
+    rows = simulation_rows(r, x0, v0, args.preload, phys if known else None)
+    if obs is not None:
+        from ..render.passivity import observer_rows
+
+        rows += observer_rows(*obs, None if inp.device is None else inp.device.period)
+    say(table(rows))
     if args.trace is not None:
         say(f"trace written to {args.trace}")
     return 0

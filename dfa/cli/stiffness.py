@@ -7,7 +7,7 @@ One path: the wall of the flags (the spring with its delay when none is given) i
 from __future__ import annotations
 
 import argparse
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..formatting import fill, text_table
@@ -17,6 +17,7 @@ from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, save_png
 from .parsing import number
+from .passivity import add_passivity_args
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
 
 if TYPE_CHECKING:
@@ -36,6 +37,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_device_args(p, dimensionless=False, speed=True)
     add_wall_args(p)
     add_contact_args(p)
+    add_passivity_args(p)
     p.add_argument(
         "--explain",
         action="store_true",
@@ -65,6 +67,15 @@ def _source(args: argparse.Namespace, inp: Inputs) -> str | None:
     return "catalogue" if inp.stiffness is not None else None
 
 
+def _gain(ans: KMaxResult, dev: Any, v: float) -> Any:
+    """The passivity controller's gain: the same answer for the wall without it, compared."""
+    from ..analysis.limits.kmax import design_answer
+    from ..analysis.limits.passivity_gain import gain_of
+
+    plain = design_answer(dev, v, wall=ans.wall.without_controller())
+    return gain_of(ans, plain)
+
+
 def run(args: argparse.Namespace) -> int:
     """K_max four ways for the spring or any wall (the wall's K is what is searched)."""
     from ..analysis.limits.kmax import design_answer
@@ -84,6 +95,7 @@ def run(args: argparse.Namespace) -> int:
     src = _source(args, inp)
     check_margin(args.margin)  # refused before the search, not after it
     ans = design_answer(dev, v, wall=wall, assess=k is not None, source="catalogue" if src == "catalogue" else "given")
+    gain = _gain(ans, dev, v) if wall.passivity_controller is not None else None
     rec = recommend_stiffness(ans, args.margin)
     guide = damper_guidance_for(dev, wall, v)
     if args.plot is not None:
@@ -102,6 +114,8 @@ def run(args: argparse.Namespace) -> int:
         )
         if args.plot is not None:
             out["plot"] = args.plot
+        if gain is not None:
+            out["passivity_gain"] = gain.to_dict()
         emit(wall_json(out, ctl, inp))
         return 0
     if args.explain:
@@ -110,6 +124,10 @@ def run(args: argparse.Namespace) -> int:
         from ..render.answer import stiffness_screen
 
         print("\n".join(stiffness_screen(ans, rec, guide)))
+    if gain is not None:
+        from ..render.passivity import gain_lines
+
+        print("\n".join(gain_lines(gain)))
     if args.plot is not None:
         print(f"stiffness-speed chart written to {args.plot}")
     return 0

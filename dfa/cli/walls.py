@@ -124,14 +124,16 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
     bandwidth <= 0, and wall flags without a physical device and stiffness.
     """
     from .contact import contact_elements
+    from .passivity import passivity_elements
 
     given = given_flags(args)
     hand = hand_stiffness_of(args, device)
-    contact = contact_elements(args, device)
+    contact = contact_elements(args, device) + passivity_elements(args, device)
     if not given and not hand and not contact:
         return None
     if device is None or stiffness is None:
-        given += ["--one-sided"] if contact else []
+        flags = ("one_sided", "passivity_controller")  # the contact's and the controller's own flags
+        given += ["--" + e.key().replace("_", "-") for e in contact if e.key() in flags]
         raise UsageError(
             f"{', '.join(given)} needs a physical device and stiffness (K and T turn B, f_c, f_bw into β_B, ν_c, α): "
             "give --device NAME (or --mass --damping --coulomb --resolution --period) and --stiffness K"

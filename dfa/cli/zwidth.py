@@ -13,6 +13,7 @@ from .contact import add_contact_args, contact_elements
 from .inputs import add_device_group, impact_speed, resolve
 from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, fmt, progress, save_png, say, table
 from .parsing import UsageError, integer, number
+from .passivity import add_passivity_args, passivity_elements
 from .walls import add_wall_args, check_filter_amplifier, hand_stiffness_of
 
 COMMAND = "zwidth"
@@ -39,6 +40,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     add_wall_args(p, zwidth=True)
     add_contact_args(p)
+    add_passivity_args(p)
     p.add_argument("--grid", type=integer("--grid"), default=40, metavar="N", help="points per axis (default: 40)")
     p.add_argument(
         "--speeds",
@@ -100,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
     hand = hand_stiffness_of(args, dev)  # the hand's stiffness joins the wall (dfa.HandSpring)
     wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
                    amplifier_bandwidth=args.amplifier_bandwidth, hand_stiffness=hand)  # fmt: skip
-    wall = Wall(1.0, (*wall.elements, *contact_elements(args, dev)))
+    wall = Wall(1.0, (*wall.elements, *contact_elements(args, dev), *passivity_elements(args, dev)))
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
     check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
     seconds = z_width_seconds(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs)
@@ -127,6 +129,10 @@ def run(args: argparse.Namespace) -> int:
         from ..render.contact import contact_text
 
         elements += f"; {contact_text(zw.wall, u)}"
+    if zw.wall.passivity_controller is not None:
+        from ..render.passivity import passivity_text
+
+        elements += f"; {passivity_text(zw.wall.passivity_controller, u)}"
     say(
         f"Z-width of {device_title(dev)}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}"
     )

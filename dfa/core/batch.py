@@ -60,7 +60,8 @@ def batch_wall_kernel(
     mus: FloatArray, betas: FloatArray, sigmas: FloatArray, x0s: FloatArray, v0s: FloatArray, ns: IntArray,
     delay: int, quantize: bool, bounds: FloatArray, tail_lens: IntArray,
     dampings: FloatArray, poles: FloatArray, filtered: BoolArray, lags: FloatArray, springs: FloatArray,
-    onesided: BoolArray, surfaces: FloatArray, pushes: FloatArray, stats: FloatArray, done: IntArray, rest: IntArray,
+    onesided: BoolArray, surfaces: FloatArray, pushes: FloatArray, pcs: BoolArray, windows: IntArray,
+    limits: FloatArray, stats: FloatArray, done: IntArray, rest: IntArray,
 ) -> None:  # fmt: skip
     """Independent runs with a controller, one after the other: run i is
     :func:`dfa.core.wall_kernel.simulate_wall_kernel` of its own inputs.
@@ -75,6 +76,6 @@ def batch_wall_kernel(
     for i in range(mus.shape[0]):
         done[i], rest[i] = simulate_wall_kernel(
             mus[i], betas[i], sigmas[i], x0s[i], v0s[i], ns[i], delay, quantize, bounds[i], tail_lens[i],
-            dampings[i], poles[i], filtered[i], lags[i], springs[i], onesided[i], surfaces[i], pushes[i], e, e,
-            stats[i],
+            dampings[i], poles[i], filtered[i], lags[i], springs[i], onesided[i], surfaces[i], pushes[i], pcs[i],
+            windows[i], limits[i], e, e, stats[i],
         )  # fmt: skip

@@ -122,15 +122,24 @@ from .kernel import (
 )
 from .oscillator import hand_sample
 
-__all__ = ["rho", "lag_motion", "lag_sample", "simulate_wall_kernel", "serial_wall_kernel", "applied_forces"]
+__all__ = [
+    "rho",
+    "lag_motion",
+    "lag_sample",
+    "simulate_wall_kernel",
+    "serial_wall_kernel",
+    "applied_forces",
+    "observer_size",
+]
 
 
 _ULP4 = 4.0 * 2.220446049250313e-16  # four units in the last place, relative
 MAX_PHASES = 16  # per sample; the derivation allows at most 5 (stuck, breakaway, stop, restart, stop)
 
 Model: TypeAlias = tuple[float, float, float, int, bool]  # (μ, β, σ, d, quantize) of _sample
-# (β_B, a, filtered, α, κ_h, one-sided, surface s, push p): ctl of _sample and _advance
-Controller: TypeAlias = tuple[float, float, bool, float, float, bool, float, float]
+# (β_B, a, filtered, α, κ_h, one-sided, surface s, push p, passivity controller on, its window W, its force limit):
+# ctl of _sample and _advance
+Controller: TypeAlias = tuple[float, float, bool, float, float, bool, float, float, bool, int, float]
 
 
 @njit(cache=True, inline="always")
@@ -388,6 +397,57 @@ def _same_loop(
     return True
 
 
+# the passivity observer's and controller's state (issue 30; :func:`_command`): the observed energy E (over the
+# window, as the controller sees it), the window's next position, the controller's force of this reading, the
+# observed energy over the whole run, then the controller's d + 1 bookings (beside the command ring's slots), then
+# the window's W terms
+PE, PWPOS, PF, PTOT, PBK = 0, 1, 2, 3, 4
+
+
+@njit(cache=True, inline="always")
+def observer_size(delay: int, window: int) -> int:
+    """Length of the observer's state array (:func:`_command`) for a delay of d samples and a window of W (0: none)."""
+    return PBK + delay + 1 + window
+
+
+@njit(cache=True, inline="always")
+def _observe(pcs: FloatArray, applied: float, vh: float, delay: int, window: int) -> float:
+    """E_obs(h) = E_obs(h − 1) − φ_{h−1} v_h: the energy into the wall up to reading h (KΔ²), over the last W
+    samples with a window (W > 0), into ``pcs[PE]`` (and over the whole run into ``pcs[PTOT]``).
+
+    φ_{h−1} = ``applied``, the command held over [h − 1, h) (the wall's own, its controller's force included),
+    and v_h = r_h − r_{h−1} the readings' displacement over that sample: without the encoder and an amplifier
+    lag, exactly the work the device did on the wall, −∫φ ξ' dτ over the sample (Ryu, Kim and Hannaford's
+    sampled observer; see :class:`dfa.model.elements.PassivityController`).
+    """
+    term = -applied * vh
+    pcs[PTOT] += term
+    e = pcs[PE] + term
+    if window > 0:
+        i = int(pcs[PWPOS])
+        j = PBK + delay + 1 + i
+        e -= pcs[j]
+        pcs[j] = term
+        pcs[PWPOS] = i + 1 if i + 1 < window else 0
+    pcs[PE] = e
+    return e
+
+
+@njit(cache=True, inline="always")
+def _control(pcs: FloatArray, e: float, vh: float, delay: int, pos: int, limit: float) -> float:
+    """The passivity controller's force at reading h (Hannaford and Ryu 2002): a damper α = −L/v_h² on v_h when
+    the ledger L = E_obs + (the dissipation it has booked for its forces not yet applied and observed) is
+    negative, the force −α v_h = L/v_h clipped to ±``limit``; 0 when L >= 0 or v_h = 0."""
+    pending = 0.0
+    for i in range(delay + 1):
+        if i != pos:  # slot pos holds the command just observed (applied over [h − 1, h))
+            pending += pcs[PBK + i]
+    ledger = e + pending
+    if not (ledger < 0.0 and vh != 0.0):
+        return 0.0
+    return max(-limit, min(limit, ledger / vh))
+
+
 @njit(cache=True, inline="always")
 def _command(
     x: float,
@@ -400,14 +460,20 @@ def _command(
     delay: int,
     quantize: bool,
     ctl: Controller,
+    pcs: FloatArray,
 ) -> tuple[float, float, float, float, int, float, bool]:
     """The controller at sample h (module docstring): read ξ(h), command c_h into the delay ring.
 
     Returns the reading r_h, the difference v_h, the filtered y_h, the spring's part −(r_h + ½) (a one-sided
     wall's: −(r_h + ½ − s) inside, 0 outside), the ring's new position, the command applied now, c_{h−d},
     and whether the reading is inside a one-sided wall (r_h + ½ > s; r_h > s without the encoder).
+
+    With a state ``pcs`` (non-empty: :func:`observer_size`) the passivity observer adds the sample just ended
+    (:func:`_observe`) and, with the controller on (``ctl[8]``), its force (:func:`_control`) joins the command
+    (through a one-sided wall's clip: the force it adds is what the clip lets through), its booked dissipation
+    −f v_h beside the command's slot and f in ``pcs[PF]``.
     """
-    damping, pole, filtered = ctl[0], ctl[1], ctl[2]
+    damping, pole, filtered, onesided = ctl[0], ctl[1], ctl[2], ctl[5]
     r = math.floor(x) if quantize else x
     vh = r - r_prev
     if filtered:
@@ -415,7 +481,17 @@ def _command(
     else:
         y = vh
     base, inside = _base(r, quantize, ctl)
-    ring[pos] = _shape(base - damping * y, inside, ctl[5])
+    w = base - damping * y
+    c = _shape(w, inside, onesided)
+    if pcs.shape[0] > 0:
+        e = _observe(pcs, ring[pos], vh, delay, ctl[9])
+        f = _control(pcs, e, vh, delay, pos, ctl[10]) if ctl[8] else 0.0
+        if f != 0.0:
+            cf = _shape(w + f, inside, onesided)
+            f, c = cf - c, cf
+        pcs[PF] = f
+        pcs[PBK + pos] = -f * vh
+    ring[pos] = c
     pos = pos + 1 if pos < delay else 0
     return r, vh, y, base, pos, ring[pos], inside
 
@@ -437,6 +513,7 @@ def _sample(
     e_lag: float,
     ext: float,
     appr: bool,
+    pcs: FloatArray,
 ) -> tuple[float, float, float, float, float, float, int, float, float, int, float, bool]:
     """Sample h from the state between samples (module docstring); ``model`` = (μ, β, σ, d, quantize).
 
@@ -444,11 +521,12 @@ def _sample(
     lowest and highest turning point (±inf when none), whether the loop
     was in an absorbing state at the start of the sample (then not integrated): 0 no, 1 at rest, 3 a one-sided
     wall left for good (:func:`_gone`), and the operator's force ``ext``: the push p from the first reading
-    inside a one-sided wall on (the approach's force before it; p throughout otherwise).
+    inside a one-sided wall on (the approach's force before it; p throughout otherwise). ``pcs``: the passivity
+    observer's state (:func:`_command`; empty without a passivity controller).
     """
     mu, beta, sigma, delay, quantize = model
-    damping, pole, filtered, lag, kap, onesided, _, push = ctl
-    r, vh, y, base, pos, c, inside = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl)
+    damping, pole, filtered, lag, kap, onesided, push = ctl[0], ctl[1], ctl[2], ctl[3], ctl[4], ctl[5], ctl[7]
+    r, vh, y, base, pos, c, inside = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl, pcs)
     if inside:
         ext, appr = push, False  # contact: the operator's force is the push from now on
     if lag == 0.0:
@@ -493,6 +571,7 @@ def _advance(
     rec_x: FloatArray,
     rec_v: FloatArray,
     skip: bool,
+    pcs: FloatArray,
 ) -> tuple[int, int, float, int]:
     """Samples h0 … h1 − 1 from the state ``st``; return (end, why, peak |ξ|, samples skipped).
 
@@ -501,7 +580,8 @@ def _advance(
     at sample ``end``).
     The range lies before the tail or in it. With ``skip`` (no records),
     whole periods are skipped once the loop's state repeats bit for bit
-    (Brent's cycle detection, the reference within this range; module docstring).
+    (Brent's cycle detection, the reference within this range; module docstring); not with a passivity
+    controller, whose observed energy (``pcs``) is part of the state and is not compared.
     """
     filtered, lag = ctl[2], ctl[3]
     model = (mu, beta, sigma, delay, quantize)
@@ -511,7 +591,7 @@ def _advance(
     pos, tmin, tmax, period, ext = int(st[CPOS]), st[CTMIN], st[CTMAX], int(st[CPER]), st[CEXT]
     appr = st[CAPP] > 0.0
     record = rec_x.shape[0] > 0
-    skip = skip and not record
+    skip = skip and not record and not ctl[8]
     in_tail = h0 >= tail_start
     peak, why, skipped, h = 0.0, 0, 0, h0
     # reference: the state at sample rh (none at sample 0, where y_0 = 0 is forced, nor during an approach, whose
@@ -521,7 +601,7 @@ def _advance(
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
     while h < h1:
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
-            x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr
+            x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr, pcs
         )
         if absorbed:
             why = absorbed  # 1 at rest, 3 left the one-sided wall for good
@@ -590,26 +670,39 @@ def applied_forces(
     lag: float,
     onesided: bool,
     surface: float,
+    pc: bool,
+    window: int,
+    limit: float,
     out: FloatArray,
+    energy: FloatArray,
+    control: FloatArray,
 ) -> None:
-    """The force φ_A on the device at each sample instant of a recorded run (units of KΔ) into ``out``.
+    """The force φ_A on the device at each sample instant of a recorded run (units of KΔ) into ``out``, the
+    passivity observer's energy E_obs into ``energy`` (KΔ²) and the passivity controller's force into ``control``.
 
     ``xs`` holds ξ at the instants 0 … n (:func:`simulate_wall_kernel`'s ``rec_x``, or the spring kernel's:
     the spring is this loop with β_B = 0, no filter, no lag). The controller reads only these positions, so
     replaying it on them (the same :func:`_command` and lag update as the run) gives, bit for bit, the
     command applied from instant h (c_{h−d}, held over [h, h + 1) without a lag) or, with a lag, the
-    amplifier's output at the instant; at h = n the force the next sample would apply.
+    amplifier's output at the instant; at h = n the force the next sample would apply. ``energy[h]`` is
+    E_obs(h), the energy into the wall over the readings 0 … h (:func:`_observe`; over the whole run, whatever
+    the controller's ``window``), for any wall; with ``pc`` the passivity controller acts as in the run and ``control[h]``
+    is the force it added to the command c_h (0 where it did not act).
     """
     ring, st = np.empty(delay + 1), np.empty(NCSTATE)
-    ctl = (damping, pole, filtered, lag, 0.0, onesided, surface, 0.0)  # the wall's force: no hand, no push
+    pcs = np.zeros(observer_size(delay, window))
+    ctl = (damping, pole, filtered, lag, 0.0, onesided, surface, 0.0, pc, window, limit)  # no hand, no push
     _start(st, ring, xs[0], 0.0, quantize, ctl, 0.0)
     r_prev, v_prev, y, fa, pos = st[CRP], st[CVP], st[CY], st[CFA], 0
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
     for h in range(xs.shape[0]):
         if not math.isfinite(xs[h]):  # past a divergence the record holds NaN: so does the force
             out[h:] = np.nan
+            energy[h:] = np.nan
+            control[h:] = np.nan
             break
-        r_prev, v_prev, y, _, pos, c, _ = _command(xs[h], r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl)
+        r_prev, v_prev, y, _, pos, c, _ = _command(xs[h], r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl, pcs)
+        energy[h], control[h] = pcs[PTOT], pcs[PF]
         if lag == 0.0:
             fa = c
         out[h] = fa
@@ -637,6 +730,9 @@ def run_wall_kernel(
     onesided: bool,
     surface: float,
     push: float,
+    pc: bool,
+    window: int,
+    limit: float,
     rec_x: FloatArray,
     rec_v: FloatArray,
     stats: FloatArray,
@@ -654,7 +750,7 @@ def run_wall_kernel(
     settles on a cycle of its whole state, bit for bit: of 50 001 samples, 231 are integrated.
 
     >>> e, stats = np.empty(0), np.empty(NSEG + 10)
-    >>> ctl = (0.5, math.exp(-0.2 * math.pi), True, 0.2, 0.0, False, 0.0, 0.0)
+    >>> ctl = (0.5, math.exp(-0.2 * math.pi), True, 0.2, 0.0, False, 0.0, 0.0, False, 0, math.inf)
     >>> run_wall_kernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, True)
     (50001, -1, 231)
     >>> run_wall_kernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, False)
@@ -668,8 +764,9 @@ def run_wall_kernel(
         stats[NSEG + 5] = -1.0
     st, ring, ref = np.empty(NCSTATE), np.empty(delay + 1), np.empty(_REF + delay)
     tail = np.empty(max(tail_len, 1))
-    ctl = (damping, pole, filtered, lag, spring, onesided, surface, push)
+    ctl = (damping, pole, filtered, lag, spring, onesided, surface, push, pc, window, limit)
     _start(st, ring, x0, v0, quantize, ctl, sigma + beta * v0)
+    pcs = np.zeros(observer_size(delay, window) if pc else 0)
     if record:
         rec_x[0], rec_v[0] = x0, v0
     tail_start = n - tail_len
@@ -680,7 +777,24 @@ def run_wall_kernel(
         for a, b in ((lo, cut), (cut, hi)):
             if b > a:
                 end, why, peak, skipped = _advance(
-                    st, ring, ref, a, b, mu, beta, sigma, delay, quantize, bound, ctl, tail, tail_start, rx_, rv_, skip
+                    st,
+                    ring,
+                    ref,
+                    a,
+                    b,
+                    mu,
+                    beta,
+                    sigma,
+                    delay,
+                    quantize,
+                    bound,
+                    ctl,
+                    tail,
+                    tail_start,
+                    rx_,
+                    rv_,
+                    skip,
+                    pcs,
                 )
                 integrated += end - a - skipped
                 if peak > stats[seg]:
@@ -692,6 +806,24 @@ def run_wall_kernel(
                     break
         if why != 0:
             break
+    _finish(st, tail, tail_len, n, done, rest, stats, rec_x, rec_v, record)
+    return done, rest, integrated
+
+
+@njit(cache=True, inline="always")
+def _finish(
+    st: FloatArray,
+    tail: FloatArray,
+    tail_len: int,
+    n: int,
+    done: int,
+    rest: int,
+    stats: FloatArray,
+    rec_x: FloatArray,
+    rec_v: FloatArray,
+    record: bool,
+) -> None:
+    """The run's closing statistics (the tail's, the final state) and the record after a rest (held) or a stop (NaN)."""
     x, v = st[CX], st[CV]
     if done == n and rest < 0 and tail_len > 1:
         tail_stats(tail, tail_len, st[CTMIN], st[CTMAX], stats)
@@ -700,7 +832,6 @@ def run_wall_kernel(
         for i in range(done + 1, n + 1):
             rec_x[i] = x if rest >= 0 else np.nan
             rec_v[i] = v if rest >= 0 else np.nan
-    return done, rest, integrated
 
 
 @njit(cache=True, nogil=True)
@@ -723,6 +854,9 @@ def simulate_wall_kernel(
     onesided: bool,
     surface: float,
     push: float,
+    pc: bool,
+    window: int,
+    limit: float,
     rec_x: FloatArray,
     rec_v: FloatArray,
     stats: FloatArray,
@@ -731,7 +865,9 @@ def simulate_wall_kernel(
 
     ``damping`` β_B, ``pole`` a (used when ``filtered``), ``lag`` α, ``spring`` the hand stiffness κ_h
     (:mod:`dfa.core.oscillator`; not with a lag); ``onesided`` a wall that pushes only while the reading is
-    beyond the surface ``surface`` s (ticks), ``push`` p a constant force toward the wall (KΔ). ``rec_x``/``rec_v``
+    beyond the surface ``surface`` s (ticks), ``push`` p a constant force toward the wall (KΔ); ``pc`` the passivity
+    controller on (:func:`_command`), ``window`` its observer's window W in samples (0: unbounded), ``limit`` its
+    force limit (KΔ; inf: none). ``rec_x``/``rec_v``
     (length n + 1) are written when they have that length. ``stats`` as in
     :func:`dfa.core.kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
     Unrecorded runs skip repeated periods (:func:`run_wall_kernel`; same results bit for bit).
@@ -755,6 +891,9 @@ def simulate_wall_kernel(
         onesided,
         surface,
         push,
+        pc,
+        window,
+        limit,
         rec_x,
         rec_v,
         stats,
@@ -783,6 +922,9 @@ def serial_wall_kernel(
     onesided: bool,
     surface: float,
     push: float,
+    pc: bool,
+    window: int,
+    limit: float,
     stats: FloatArray,
     done: IntArray,
     rest: IntArray,
@@ -809,6 +951,9 @@ def serial_wall_kernel(
             onesided,
             surface,
             push,
+            pc,
+            window,
+            limit,
             empty,
             empty,
             stats[i],

@@ -65,6 +65,7 @@ __all__ = [
     "HandSpring",
     "OneSided",
     "Push",
+    "PassivityController",
     "largest_speed",
     "ELEMENTS",
     "MIN_CUTOFF",
@@ -426,6 +427,22 @@ class Element(abc.ABC):
             G(e^{jω}) of hold, element and device; None for an element off the plant.
         """
         return None
+
+    @classmethod
+    def group_json(cls, g: Any) -> dict[str, Any]:
+        """Give the element's group as JSON-able entries of :meth:`dfa.model.wall.WallParams.to_dict`.
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+
+        Returns
+        -------
+        dict
+            ``{parameter.group: g}`` unless the element writes its group otherwise.
+        """
+        return {cls.parameter.group: g}
 
     def to_dict(self) -> dict[str, Any]:
         """Give the element as JSON-able data.
@@ -1186,6 +1203,163 @@ class Push(Element):
         return {"push": float(g)}
 
 
+_PC_SWITCHES = "its damper switches with the observed energy, a gain that depends on the run's history"
+_PC_NOT_COVERED = f"no passivity criterion covers a passivity controller ({_PC_SWITCHES}); the exact simulation does"
+_PC_NOT_LINEAR = (
+    f"a passivity controller is not a linear loop ({_PC_SWITCHES}): the exact linear bound and the describing "
+    "function do not cover it; the exact simulation does"
+)
+
+
+@dataclass(frozen=True)
+class PassivityController(Element):
+    """The time-domain passivity observer and controller (Hannaford and Ryu, IEEE T-RO 18(1), 2002) on the wall.
+
+    Observer: at reading h the energy the device has put into the wall (a one-port),
+
+        E_obs(h) = E_obs(h − 1) − φ_{h−1} v_h,   E_obs(0) = 0   (KΔ²; x K Δ² in J),
+
+    with v_h = r_h − r_{h−1} the velocity estimate the wall already forms (paper eq. 2: the readings' backward
+    difference) and φ_{h−1} the force the wall held over the sample just ended, [h − 1, h) (its command c_{h−1−d},
+    this controller's part included). This pairs each sample's force with the displacement the readings saw over
+    that same sample (the sampled observer of Ryu, Kim and Hannaford, IEEE T-RO 20(4), 2004); pairing it with the
+    sample's own v_h instead (the 2002 form) would lag half a sample. Without the encoder and an amplifier lag it
+    is exactly the work −Σ∫φ ξ' dτ done on the wall (by the device's energy balance, −(Δ½μξ'² + Σ dissipated)
+    with the spring's :class:`dfa.analysis.simulation.EnergyRecord`); with the encoder it differs by the readings' rounding (at most
+    ``|φ_{h−1}| + |φ_0| + Σ|φ_k − φ_{k−1}|`` in KΔ², summation by parts); with a lag it uses the command, not the
+    amplifier's output. E_obs < 0: the wall has produced energy (active). A ``window`` of W samples sums only
+    the last W terms (an unbounded observer accumulates a passive past that lets a later active spell through).
+
+    Controller: when the ledger L = E_obs(h) + B_h is negative, B_h >= 0 the dissipation it has booked for its own
+    forces still pending (the delay's d commands and the one applied now, each booked −f v at its reading), it adds
+    the damper α_h = −L/v_h² on v_h, the force f_h = −α_h v_h = L/v_h clipped to ±``force_limit``; it books
+    −f_h v_h (= −L, or less at the limit), so L after its action is >= 0 unless the limit cut it. Nothing when
+    v_h = 0. On a one-sided wall the clip to pushing only applies to the sum: f is what it lets through.
+
+    Group: (W, f_max) = (window/T rounded, force_limit/(K Δ)); no criterion, linear bound, Colgate–Schenkel or
+    describing function covers it (they refuse it by name); the exact simulator runs it.
+
+    Attributes
+    ----------
+    window : float or None
+        The observer's window in s (rounded to whole samples, at least one); None (default): unbounded.
+    force_limit : float or None
+        The most force the controller adds, in N (rotary: N·m); None (default): no limit.
+
+    Examples
+    --------
+    >>> PassivityController(window=0.05, force_limit=2.0).group(1e-3, 1000.0, resolution=1e-5)
+    (50, 200.0)
+    >>> PassivityController().group(1e-3, 1000.0)
+    (0, None)
+    """
+
+    window: float | None = None
+    force_limit: float | None = None
+    parameter: ClassVar[Parameter] = Parameter(
+        "force_limit", ("N", "N·m"), "--pc-force-limit", "N",
+        "with --passivity-controller: the most force it adds, in N (rotary: N·m) (default: no limit)",
+        "passivity_controller", "(W, f_max) = (window/T, F_max/(K Δ))",
+    )  # fmt: skip
+    colgate_schenkel: ClassVar[str | None] = "the Colgate–Schenkel condition has no energy-switched damper"
+    linear_reason: ClassVar[str | None] = _PC_NOT_LINEAR
+    #: Its flags are the controller group's (:mod:`dfa.cli.passivity`).
+    wall_flag: ClassVar[bool] = False
+    absent: ClassVar[Any] = None
+    needs_resolution: ClassVar[bool] = True
+    #: Its runs are integrated sample by sample (no period skipping: the observed energy is part of the state).
+    sweep_points: ClassVar[int] = 300
+
+    def __post_init__(self) -> None:
+        if self.window is not None:
+            fix = "give the observer's window in s, or None for an unbounded observer"
+            object.__setattr__(self, "window", check_positive("window", self.window, fix))
+        if self.force_limit is not None:
+            fix = "give the most force the controller adds in N, or None for no limit"
+            object.__setattr__(self, "force_limit", check_positive("force_limit", self.force_limit, fix))
+
+    def group(self, period: float, stiffness: float, resolution: float | None = None) -> tuple[int, float | None]:
+        """Give the controller's group (W, f_max): the window in samples (0: none), the force limit in K Δ.
+
+        Parameters
+        ----------
+        period : float
+            Sample period T in s.
+        stiffness : float
+            Virtual spring K in N/m (rotary: N·m/rad).
+        resolution : float or None
+            Encoder resolution Δ in m (rotary: rad); required with a force limit.
+
+        Returns
+        -------
+        tuple
+            (W, f_max): W >= 1 whole samples or 0 for an unbounded observer; f_max = F_max/(K Δ) or None.
+
+        Raises
+        ------
+        DFAValueError
+            For a window shorter than half a sample, or a force limit without a resolution.
+        """
+        w = 0
+        if self.window is not None:
+            w = round(self.window / period)
+            if w < 1:
+                raise DFAValueError(
+                    f"window = {format_value(self.window)} s is invalid: it must span at least one sample "
+                    f"(T = {format_value(period)} s); give a longer window, or None for an unbounded observer"
+                )
+        if self.force_limit is None:
+            return self.check_group((w, None))
+        if resolution is None:
+            raise DFAValueError(
+                "force_limit needs the encoder resolution Δ for its group F_max/(K Δ): call "
+                "Wall.params(period, resolution=Δ)"
+            )
+        return self.check_group((w, self.force_limit / (stiffness * resolution)))
+
+    @classmethod
+    def check_group(cls, value: Any) -> tuple[int, float | None]:
+        fix = "give (W, f_max): the window in whole samples (0: unbounded) and the force limit in K Δ (None: none)"
+        if not (isinstance(value, (tuple, list)) and len(value) == 2):
+            raise DFAValueError(f"passivity_controller = {format_value(value)} is invalid: {fix}")
+        w, limit = value
+        if isinstance(w, bool) or not isinstance(w, (int, np.integer)) or w < 0:
+            raise DFAValueError(f"passivity_controller window = {format_value(w)} is invalid: {fix}")
+        if limit is not None:
+            limit = check_positive("passivity_controller force limit", limit, fix)
+        return int(w), limit
+
+    @classmethod
+    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+        raise NotCovered(_PC_NOT_COVERED)
+
+    @classmethod
+    def kernel(cls, g: Any) -> dict[str, Any]:
+        w, limit = g
+        return {"pc": True, "window": int(w), "limit": math.inf if limit is None else float(limit)}
+
+    @classmethod
+    def group_json(cls, g: Any) -> dict[str, Any]:
+        return {"pc_window": int(g[0]), "pc_force_limit": g[1]}
+
+    @property
+    def value(self) -> Any:
+        """The controller's (window, force limit) in s and N (None: unbounded, no limit)."""
+        return self.window, self.force_limit
+
+    def to_dict(self) -> dict[str, Any]:
+        """Give the controller as JSON-able data.
+
+        Returns
+        -------
+        dict
+            Its key, window (s) and force limit (N), None where absent.
+        """
+        return {"element": type(self).key(), "window": self.window, "force_limit": self.force_limit, "unit": "s, N"}
+
+
 #: The registered elements, in the order a wall applies them (delay, damper, filter, amplifier, hand spring,
-#: one-sided contact, push).
-ELEMENTS: tuple[type[Element], ...] = (Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push)
+#: one-sided contact, push, passivity controller).
+ELEMENTS: tuple[type[Element], ...] = (
+    Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push, PassivityController
+)  # fmt: skip

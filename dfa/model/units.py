@@ -38,6 +38,7 @@ __all__ = [
     "force",
     "hertz",
     "physical_quantities",
+    "energy",
     "position",
     "seconds",
     "speed",
@@ -75,6 +76,13 @@ def force(device: Device | None, stiffness: float | None, steps: Any) -> Any:
     if device is None or stiffness is None or steps is None:
         return None
     return steps * (stiffness * device.resolution)
+
+
+def energy(device: Device | None, stiffness: float | None, value: Any) -> Any:
+    """E in units of KΔ² → E·K·Δ² (J; rotary J too); None without a device."""
+    if device is None or stiffness is None or value is None:
+        return None
+    return value * (stiffness * device.resolution**2)
 
 
 def suffixes(device: Device | None) -> dict[str, str]:

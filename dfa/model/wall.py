@@ -54,6 +54,7 @@ from .elements import (
     HandSpring,
     NotCovered,
     OneSided,
+    PassivityController,
     Push,
     VelocityFilter,
 )
@@ -353,11 +354,12 @@ class WallParams:
         -------
         dict
             ``delay`` (samples), ``damping`` β_B, ``pole`` a, ``filtered``, ``lag`` α, ``spring`` κ_h (the hand
-            stiffness), ``onesided``, ``surface`` s and ``push`` p, from every element.
+            stiffness), ``onesided``, ``surface`` s, ``push`` p, and the passivity controller's ``pc`` (on),
+            ``window`` W (samples; 0: unbounded) and ``limit`` (K Δ; inf: none), from every element.
         """
         out: dict[str, Any] = {
             "delay": 0, "damping": 0.0, "pole": 0.0, "filtered": False, "lag": 0.0, "spring": 0.0,
-            "onesided": False, "surface": 0.0, "push": 0.0,
+            "onesided": False, "surface": 0.0, "push": 0.0, "pc": False, "window": 0, "limit": math.inf,
         }  # fmt: skip
         for k, g in self.groups:
             for key, value in k.kernel(g).items():
@@ -384,10 +386,16 @@ class WallParams:
         Returns
         -------
         str or None
-            The first element's reason (a one-sided wall); None when the linear loop covers the wall.
+            The first element's reason (a one-sided wall, a passivity controller); None when the linear loop covers
+            the wall.
         """
         reasons = [k.linear_reason for k, _ in self.groups if k.linear_reason]
         return reasons[0] if reasons else None
+
+    @property
+    def linear(self) -> bool:
+        """True when the linear loop (exact linear bound, describing function) covers the wall (:meth:`linear_reason`)."""
+        return self.linear_reason() is None
 
     def check_linear(self) -> None:
         """Refuse a wall the linear loop does not cover (:meth:`linear_reason`), rather than treat it as bilateral.
@@ -426,6 +434,11 @@ class WallParams:
     def one_sided(self) -> bool:
         """True for a one-sided wall (:class:`~dfa.model.elements.OneSided`)."""
         return self.group(OneSided) is not None
+
+    @property
+    def passivity_controller(self) -> bool:
+        """True with a passivity controller (:class:`~dfa.model.elements.PassivityController`)."""
+        return self.group(PassivityController) is not None
 
     def plant_response(self, omega: Any) -> Any:
         """Give the continuous factor between hold and device.
@@ -499,8 +512,10 @@ class WallParams:
             ``{"damping": β_B, "delay": d, "cutoff": ν_c or None, "lag": α}`` and any further element's group.
         """
         out = {k.parameter.group: self.group(k) for k in (Damper, Delay, VelocityFilter, AmplifierLag)}
-        out.update({k.parameter.group: g for k, g in self.groups})
-        return explain_nulls(out, {"cutoff": "no velocity filter"})
+        for k, g in self.groups:
+            out.update(k.group_json(g))
+        why = {"cutoff": "no velocity filter", "pc_force_limit": "no force limit (the passivity controller's)"}
+        return explain_nulls(out, why)
 
 
 @dataclass(frozen=True)
@@ -638,6 +653,40 @@ class Wall:
         return float(self._value(Push, 0.0))
 
     @property
+    def passivity_controller(self) -> PassivityController | None:
+        """The wall's passivity controller (:class:`~dfa.model.elements.PassivityController`), or None."""
+        for e in self.elements:
+            if isinstance(e, PassivityController):
+                return e
+        return None
+
+    def linear_reason(self) -> str | None:
+        """Say why the linear loop (exact linear bound, describing function) does not cover this wall.
+
+        Returns
+        -------
+        str or None
+            The first element's reason (a one-sided wall, a passivity controller); None when it covers the wall.
+        """
+        reasons = [type(e).linear_reason for e in self.elements if type(e).linear_reason]
+        return reasons[0] if reasons else None
+
+    @property
+    def linear(self) -> bool:
+        """True when the linear loop (exact linear bound, describing function) covers the wall."""
+        return self.linear_reason() is None
+
+    def without_controller(self) -> Wall:
+        """The same wall without its passivity controller: what the controller is compared against.
+
+        Returns
+        -------
+        Wall
+            This wall's stiffness and other elements.
+        """
+        return Wall(self.stiffness, tuple(e for e in self.elements if not isinstance(e, PassivityController)))
+
+    @property
     def amplifier_time_constant(self) -> float:
         """Amplifier time constant τ_a = 1/(2π f_bw) in s (0 for an ideal amplifier)."""
         bw = self.amplifier_bandwidth
@@ -729,7 +778,7 @@ class Wall:
         dict
             Stiffness, damping, delay, filter cutoff and amplifier bandwidth (SI units, None where absent).
         """
-        out = {
+        out: dict[str, object] = {
             "stiffness": self.stiffness,
             "damping": self.damping,
             "delay": self.delay,
@@ -741,5 +790,14 @@ class Wall:
         if self.surface is not None:  # only for a one-sided wall, and its push if any
             out["one_sided_surface"] = self.surface
             out["push"] = self.push
-        why = {"filter_cutoff": "no velocity filter", "amplifier_bandwidth": "ideal amplifier (no lag)"}
+        pc = self.passivity_controller
+        if pc is not None:  # only with a passivity controller: its window (s) and force limit (N)
+            out["passivity_controller_window"] = pc.window
+            out["passivity_controller_force_limit"] = pc.force_limit
+        why = {
+            "filter_cutoff": "no velocity filter",
+            "amplifier_bandwidth": "ideal amplifier (no lag)",
+            "passivity_controller_window": "an unbounded observer (the whole run)",
+            "passivity_controller_force_limit": "no force limit",
+        }
         return explain_nulls(out, why)

@@ -21,6 +21,7 @@ from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
 from .contact import contact_text
 from .hand import device_title
 from .limits import LEAVES, counterexample_lines, limit_tags, none_text, passive_text
+from .passivity import passivity_text
 from .require import damper_line
 
 __all__ = ["WIDTH", "wrap", "recommendation_line", "recommendation_text", "stiffness_screen", "user_verdict"]
@@ -84,6 +85,12 @@ def recommendation_text(rec: Recommendation) -> str:
         why = (
             f"no proof {at}: the largest K no simulated impact diverged at, {_k(rec.k_basis, u['stiffness'])}, "
             f"divided by the gain margin {number(rec.margin, 3)} (--margin); not a proof"
+        )
+    elif rec.status is RecommendRule.SIMULATED_RANGE:
+        assert rec.k_basis is not None
+        why = (
+            f"no proof {at}: no simulated impact diverged up to {_k(rec.k_basis, u['stiffness'])}, the top of the "
+            f"range searched, divided by the gain margin {number(rec.margin, 3)} (--margin); not a proof"
         )
     else:
         return f"recommended K: none. {rec.status.message}"
@@ -185,6 +192,9 @@ def _header(r: KMaxResult) -> list[str]:
         parts.append(f"velocity filter {number(w.filter_cutoff, 4)} Hz")
     if w.amplifier_bandwidth is not None:
         parts.append(f"amplifier bandwidth {number(w.amplifier_bandwidth, 4)} Hz")
+    pc = w.passivity_controller
+    if pc is not None:
+        parts.append(passivity_text(pc, u))
     return [wrap(head), wrap(f"wall held fixed while K varies: {', '.join(parts)}")]
 
 

@@ -166,6 +166,14 @@ def controller_parts(
     if controller.hand_stiffness:  # the hand's spring acts beside the controller: named after it
         values += f"; hand stiffness k_h = {_g(controller.hand_stiffness)} {units['stiffness']}"
         groups += f", κ_h = k_h/K = {_g(p.hand_stiffness)}"
+    pc = controller.passivity_controller
+    if pc is not None:  # named after the wall it watches
+        from .passivity import passivity_text
+
+        window, limit = p.group(type(pc))
+        values += "; " + passivity_text(pc, units)
+        groups += f", W = {window} samples" if window else ""
+        groups += "" if limit is None else f", f_max = F_max/(KΔ) = {_g(limit)}"
     return values, groups
 
 
@@ -342,6 +350,13 @@ def controller_rows(
             ["operator's push F_p", f"{_g(controller.push)} {units['force']}" if controller.push else "none"],
         ]
         groups += [["p = F_p/(KΔ)", _g(dim["push"])]] if controller.push else []
+    pc = controller.passivity_controller
+    if pc is not None:  # only with a passivity controller: every other wall's table is unchanged
+        window = "the whole run" if pc.window is None else f"{_g(pc.window)} s"
+        limit = "none" if pc.force_limit is None else f"{_g(pc.force_limit)} {units['force']}"
+        hand += [["passivity controller: observer window", window], ["passivity controller: force limit", limit]]
+        groups += [["W (samples; 0: the whole run)", str(dim["pc_window"])]]
+        groups += [["f_max = F_max/(KΔ)", _g(dim["pc_force_limit"])]] if pc.force_limit is not None else []
     return [
         ["stiffness K", f"{_g(controller.stiffness, 5)} {units['stiffness']}"],
         ["virtual damping B (backward-difference velocity)", f"{_g(controller.damping)} {units['damping']}"],

@@ -79,8 +79,15 @@ def _simulated_text(a: DesignAnalysis) -> str:
 
 
 def _one_sided(a: Any) -> bool:
-    """True for a one-sided wall's analysis (no describing function; runs start with the approach)."""
+    """True for a one-sided wall's analysis (runs start with the approach)."""
     return bool(getattr(getattr(a, "wall", None), "one_sided", False))
+
+
+def _not_linear(a: Any) -> bool:
+    """True when the linear loop does not cover the analysis's wall (one-sided, a passivity controller): no
+    describing function."""
+    wall = getattr(a, "wall", None)
+    return wall is not None and not wall.linear
 
 
 def _extended_to(wall: Any) -> str:
@@ -260,12 +267,16 @@ NOT_LINEAR = (
     "No describing function: a one-sided wall is not a linear loop (it pushes only inside and leaves the wall), "
     "so first-harmonic cycles do not describe it; the exact simulation below does (`dfa map --one-sided`)."
 )
+NOT_LINEAR_PC = (
+    "No describing function: a passivity controller is not a linear loop (its damper switches with the observed "
+    "energy), so first-harmonic cycles do not describe it; the exact simulation below does."
+)
 
 
 def absence_lines(a: DesignAnalysis) -> list[str]:
     """Sentences for loop models without cycles: never an absence the search did not prove."""
-    if _one_sided(a):
-        return [NOT_LINEAR]
+    if _not_linear(a):
+        return [NOT_LINEAR if _one_sided(a) else NOT_LINEAR_PC]
     out = []
     for m, g in a.thresholds:
         res = g.result
@@ -294,7 +305,7 @@ def absence_lines(a: DesignAnalysis) -> list[str]:
 
 def growth_text(a: DesignAnalysis) -> str:
     """The exact-ZOH growth threshold, or band for a cluster, with its meaning ('' when there is none)."""
-    if _one_sided(a):
+    if _not_linear(a):
         return ""
     g, u = a.threshold("zoh"), a.device.units
     if g.amplitude is None:
@@ -360,7 +371,7 @@ def _critical_xi_dot(a: DesignAnalysis) -> float | None:
 def trust_text(a: DesignAnalysis) -> str:
     """How conservative the criterion is and how close the describing function comes, for this device."""
     v_sim, crit_xi = a.simulated_xi_dot, _critical_xi_dot(a)
-    g = None if _one_sided(a) else a.threshold("zoh")
+    g = None if _not_linear(a) else a.threshold("zoh")
     msg = []
     if v_sim and crit_xi:
         name = "The criterion" if a.is_spring else "The extended criterion"

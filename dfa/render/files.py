@@ -16,15 +16,20 @@ from ..results.jsonable import dumps
 __all__ = ["write_trace_csv", "write_validation", "write_soundness"]
 
 
-def write_trace_csv(result: Any, path: str | os.PathLike, device: Any = None, stiffness: float | None = None) -> Path:
+def write_trace_csv(
+    result: Any, path: str | os.PathLike, device: Any = None, stiffness: float | None = None, *, observer: bool = False
+) -> Path:
     """Write a recorded simulation (``record=True``) as CSV, one row per sample instant.
 
     Columns ``sample,xi,xi_dot,phi``: ticks, ticks per sample, and the force on the device φ_A in units of KΔ
     (:meth:`~dfa.analysis.simulation.SimulationResult.applied_force`). With a device (and K) the same in
     physical units beside them (:func:`dfa.model.units.trace_columns`): ``t_s`` (sample × T), ``x_m`` (ξΔ),
     ``v_m_per_s`` (ξ'Δ/T), ``force_n`` (φ_A·KΔ); rotary ``x_rad``, ``v_rad_per_s``, ``force_nm``.
-    A run that stopped early (``unstable``) is written up to its last integrated sample
-    (``samples_run``), without the NaN rows after it.
+    With ``observer`` a column ``observed_energy`` (KΔ², the passivity observer's E_obs:
+    :meth:`~dfa.analysis.simulation.SimulationResult.observed_energy`), and ``controller_phi`` (KΔ, the passivity
+    controller's force) for a wall with one; with a device ``observed_energy_j`` and ``controller_force_n``
+    (rotary ``controller_force_nm``) beside them. A run that stopped early (``unstable``) is written up to its last
+    integrated sample (``samples_run``), without the NaN rows after it.
 
     Parameters
     ----------
@@ -36,6 +41,8 @@ def write_trace_csv(result: Any, path: str | os.PathLike, device: Any = None, st
         The physical device, for the physical columns (none without it: dimensionless input).
     stiffness : float, optional
         K in N/m (rotary N·m/rad), with ``device``.
+    observer : bool, optional
+        Add the passivity observer's columns (default False).
 
     Returns
     -------
@@ -47,12 +54,17 @@ def write_trace_csv(result: Any, path: str | os.PathLike, device: Any = None, st
     from ..model import units
 
     xi, xi_dot, phi = result.xi, result.xi_dot, result.applied_force()
+    pc = observer and bool(result.wall.passivity_controller)
+    extra = ([result.observed_energy()] if observer else []) + ([result.controller_force()] if pc else [])
     # A run stopped early (diverged) holds NaN after its last sample: those rows are not data, leave them out.
     last = int(result.samples_run) + 1
     if last < xi.size and not (np.isfinite(xi[last:]).any() or np.isfinite(xi_dot[last:]).any()):
         xi, xi_dot, phi = xi[:last], xi_dot[:last], phi[:last]
+        extra = [e[:last] for e in extra]
     sample = np.arange(xi.size)
     names, cols = ["sample", "xi", "xi_dot", "phi"], [sample, xi, xi_dot, phi]
+    names += ["observed_energy", "controller_phi"][: len(extra)]
+    cols += extra
     if device is not None:
         stiffness = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
         c = units.trace_columns(device)
@@ -63,6 +75,12 @@ def write_trace_csv(result: Any, path: str | os.PathLike, device: Any = None, st
             units.speed(device, xi_dot),
             units.force(device, stiffness, phi),
         ]
+        if extra:
+            names.append("observed_energy_j")
+            cols.append(units.energy(device, stiffness, extra[0]))
+        if pc:
+            names.append(c["force"].replace("force", "controller_force"))
+            cols.append(units.force(device, stiffness, extra[1]))
     with atomic_open(path, "w") as fh:
         fh.write(",".join(names) + "\n")
         np.savetxt(fh, np.column_stack(cols), delimiter=",", fmt=["%d"] + ["%.17g"] * (len(cols) - 1))

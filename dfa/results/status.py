@@ -38,6 +38,8 @@ __all__ = [
     "SimulationOutcome",
     "BatchStatus",
     "ContactOutcome",
+    "ObserverStatus",
+    "GainStatus",
     "ComparisonStatus",
     "LimitStatus",
     "KMaxStatus",
@@ -165,7 +167,7 @@ class StiffnessStatus(StatusEnum):
     TOO_STIFF = ("too_stiff", "no passivity guarantee at this speed (K > K_max); not a proof of instability")
     NOT_COVERED = (
         "not_covered",
-        "no sound passivity criterion covers the wall (an amplifier lag, or a one-sided wall with a damper): no verdict",
+        "no sound passivity criterion covers the wall (an amplifier lag, a passivity controller, or a one-sided wall with a damper): no verdict",
     )
 
 
@@ -178,7 +180,7 @@ class VelocityStatus(StatusEnum):
     NONE = ("none", "no passivity guarantee even at rest (K > 2c/Δ; with a damper σ < σ₀)")
     NOT_COVERED = (
         "not_covered",
-        "no sound passivity criterion covers the wall (an amplifier lag, or a one-sided wall with a damper)",
+        "no sound passivity criterion covers the wall (an amplifier lag, a passivity controller, or a one-sided wall with a damper)",
     )
 
 
@@ -225,6 +227,28 @@ class ContactOutcome(StatusEnum):
     UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
 
 
+class ObserverStatus(StatusEnum):
+    """What the passivity observer saw over a run (:class:`dfa.analysis.observer.ObserverSummary`; issue 30)."""
+
+    PASSIVE = ("passive", "the wall never produced energy: the observed energy into it stayed >= 0 at every reading")
+    ACTIVE = ("active", "the wall produced energy: the observed energy into it fell below 0 at some reading")
+
+
+class GainStatus(StatusEnum):
+    """What a passivity controller's gain rests on (:class:`dfa.analysis.limits.passivity_gain.PassivityGain`)."""
+
+    OK = ("ok", "both walls' simulated limits stand as searched: monotone, decided, confirmed")
+    CAVEATS = (
+        "caveats",
+        "a simulated limit of one of the walls has caveats (non-monotone, undecided runs, lowered; see each limit)",
+    )
+    COUNTEREXAMPLE = (
+        "counterexample",
+        "an impact on the wall without the controller diverged at a stiffness the criterion proves passive: a "
+        "criterion bug (see its answer)",
+    )
+
+
 class ComparisonStatus(StatusEnum):
     """What the bilateral-versus-one-sided comparison rests on (:mod:`dfa.analysis.contact_comparison`)."""
 
@@ -258,13 +282,13 @@ class LimitStatus(StatusEnum):
     )
     NOT_COVERED = (
         "not_covered",
-        "not covered by the criterion: no sound passivity criterion covers an element of the wall (an amplifier lag; "
-        "a one-sided wall with a damper or filter)",
+        "not covered by the criterion: no sound passivity criterion covers an element of the wall (an amplifier lag, "
+        "a passivity controller; a one-sided wall with a damper or filter)",
     )
     NOT_LINEAR = (
         "not_linear",
-        "not covered: a one-sided wall is not a linear loop (it leaves the wall); the exact linear bound and the "
-        "describing function need one",
+        "not covered: the wall is not a linear loop (a one-sided wall leaves it; a passivity controller switches its "
+        "damper with the energy); the exact linear bound and the describing function need one",
     )
     NONE_PROVEN = ("none_proven", "the criterion proves no stiffness passive at this speed")
     NEVER = (
@@ -435,6 +459,11 @@ class RecommendRule(StatusEnum):
     SIMULATED = (
         "simulated",
         "no proof at this speed: the largest K no simulated impact diverged at, divided by the gain margin",
+    )
+    SIMULATED_RANGE = (
+        "simulated_range",
+        "no proof at this speed: no simulated impact diverged up to the top of the range searched; that K divided by "
+        "the gain margin (the simulated limit lies above it)",
     )
     NONE = ("none", "no K to recommend: no proof, and no simulated stiffness free of divergence, at this speed")
 

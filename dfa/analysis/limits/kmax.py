@@ -112,7 +112,7 @@ class KMaxAssessment(Result):
     growth_unknown : str or None
         Why the growth speed is unknown: ``"subtick"`` (the sub-tick caveat of
         :mod:`dfa.analysis.cycles.caveats`), ``"incomplete"`` (the cycle search was incomplete) or
-        ``"not_linear"`` (a one-sided wall: no describing function).
+        ``"not_linear"`` (a one-sided wall or a passivity controller: no describing function).
     unstable_cycles : int
         Unstable cycles predicted (describing function).
     outcomes : dict
@@ -160,7 +160,7 @@ class KMaxAssessment(Result):
                 "subtick": "unknown: the smallest unstable cycle lies below dfa.analysis.cycles.SUBTICK_LIMIT ticks "
                 "(the sub-tick caveat), where simulation has diverged from starts the first harmonic says settle",
                 "incomplete": "unknown: the cycle search was incomplete and found no unstable cycle",
-                "not_linear": "not predicted: a one-sided wall is not a linear loop (the describing function needs one)",
+                "not_linear": "not predicted: the wall is not a linear loop (the describing function needs one)",
             }.get(self.growth_unknown or "", "no growth predicted (no unstable cycle, stable linear loop)"),
             "growth_unknown": "the growth speed is known",
         }
@@ -354,8 +354,8 @@ def closed_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dic
     from K_criterion/2 to 8 × the largest closed-form bound; a wall, the criterion's verdict (none where no
     criterion covers it) and the linear loop with the wall, its grid from K_criterion/2 (else K_linear/2).
     """
-    if wall.one_sided:
-        return _one_sided_forms(dev, wall, v)
+    if not wall.linear:
+        return _nonlinear_forms(dev, wall, v)
     p = wall.params(dev.period, dev.resolution)
     kl = linear_limit(dev, wall)
     if p.is_spring:
@@ -376,11 +376,12 @@ def closed_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dic
     return crit, _limit(kl, LimitStatus.NO_STABLE_K), pub, kc, 8.0 * max(k_static(dev), kl, kc)
 
 
-def _one_sided_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dict[str, float | None], float, float]:
-    """:func:`closed_forms` of a one-sided wall: the criterion where one covers it (the lone spring, its impact
-    at v from free space), no linear bound (not a linear loop), and the grid of the wall it is in contact
-    (:meth:`~dfa.model.wall.Wall.in_contact`), from its own K_criterion/2 where it has one."""
-    _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall.in_contact(), v)
+def _nonlinear_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dict[str, float | None], float, float]:
+    """:func:`closed_forms` of a wall that is not a linear loop: the criterion where one covers it (a one-sided
+    wall's lone spring, its impact at v from free space), no linear bound, and the grid of the linear wall beneath
+    it (a one-sided wall's in contact, :meth:`~dfa.model.wall.Wall.in_contact`; without a passivity controller,
+    :meth:`~dfa.model.wall.Wall.without_controller`), from its own K_criterion/2 where it has one."""
+    _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall.in_contact().without_controller(), v)
     pub: dict[str, float | None] = dict(k_static=None, k_colgate=None, k_abbott_okamura=None)
     linear = KLimit(None, LimitStatus.NOT_LINEAR)
     if wall.params(dev.period, dev.resolution).not_covered() is not None:
@@ -411,7 +412,7 @@ def describing_limit(
     The one describing-function limit of a wall: the Z-width's column and the inverse question
     (:mod:`dfa.analysis.limits.require`) call it; the design answer computes it in the same way.
     """
-    if wall.one_sided:
+    if not wall.linear:
         return KLimit(None, LimitStatus.NOT_LINEAR)
     _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall, v)
     if not (top > 0 and math.isfinite(top)):
@@ -457,7 +458,7 @@ def _searches(ev: Evidence, v: float, k_ref: float, top: float, n_grid: int) -> 
         return none, none, none, (0.0, 0.0)
     pts = search_grid(k_ref, top, n_grid)
     xd = ev.dev.xi_dot(v)
-    k_df = KLimit(None, LimitStatus.NOT_LINEAR) if ev.wall.one_sided else df_limit(ev, pts, xd)  # describing_limit's
+    k_df = KLimit(None, LimitStatus.NOT_LINEAR) if not ev.wall.linear else df_limit(ev, pts, xd)  # describing_limit's
     k_sim = simulated_limit(ev, pts, "unstable")
     k_rest = simulated_limit(ev, pts, "rest")
     return k_df, k_sim, k_rest, (float(pts[0]), float(pts[-1]))
@@ -519,7 +520,7 @@ def _assess(ev: Evidence, k: float, source: str, velocity: float) -> KMaxAssessm
     dev = ev.dev
     g = ev.growth_xi_dot(k)
     unknown = "subtick" if g.subtick else ("incomplete" if g.xi_dot is None else None)
-    unknown = "not_linear" if ev.wall.one_sided else unknown
+    unknown = "not_linear" if not ev.wall.linear else unknown
     xi = None if g.subtick else g.xi_dot  # the sub-tick caveat: the growth speed is not a threshold to rely on
     p, w = ev.params(k)
     pts = start_points(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), w)

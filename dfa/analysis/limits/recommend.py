@@ -7,7 +7,9 @@ things. A designer needs one, with its reason. The rule:
    the largest such K. A proof needs no margin. This rule is skipped when the answer holds a counterexample.
 2. **simulated**: otherwise, the largest K at which no simulated impact up to V diverged (``k_sim``), divided
    by a gain margin (default 2, about 6 dB). This is not a proof. It holds for the simulated speeds and starts.
-3. **none**: no K is recommended when neither rule applies.
+   **simulated_range**: when no simulated impact diverged anywhere in the range searched (``k_sim`` above the
+   range), the range's top divided by the margin (the simulated limit lies above it).
+3. **none**: no K is recommended when no rule applies.
 
 Examples
 --------
@@ -55,11 +57,12 @@ class Recommendation(Result):
     basis : str or None
         The limit it comes from: ``"k_criterion"`` or ``"k_sim"`` (None under ``none``).
     k_basis : float or None
-        That limit's value.
+        That limit's value (under ``simulated_range`` the top of the range searched, a lower bound of it).
     margin : float
         Gain margin of the simulated rule (>= 1); ``k_recommended = k_basis / margin`` under ``simulated``.
     status : RecommendRule
-        The rule followed: ``proven``, ``simulated`` or ``none``.
+        The rule followed: ``proven``, ``simulated``, ``simulated_range`` (no divergence in the whole range
+        searched) or ``none``.
     """
 
     device: Device = field(metadata={"json": lambda d: d.name})
@@ -156,4 +159,8 @@ def recommend_stiffness(answer: KMaxResult, margin: float = DEFAULT_MARGIN) -> R
     if ks.value is not None and ks.value > 0:
         return Recommendation(**base, k_recommended=ks.value / m, basis="k_sim", k_basis=ks.value,
                               status=RecommendRule.SIMULATED)  # fmt: skip
+    top = ks.range_end
+    if ks.status is LimitStatus.ABOVE_RANGE and top is not None and math.isfinite(top) and top > 0:
+        return Recommendation(**base, k_recommended=top / m, basis="k_sim", k_basis=top,
+                              status=RecommendRule.SIMULATED_RANGE)  # fmt: skip
     return Recommendation(**base, k_recommended=None, basis=None, k_basis=None, status=RecommendRule.NONE)

@@ -344,7 +344,7 @@ def requirements(
     out = []
     for m in ms:
         uncovered = w.params(dev.period, dev.resolution).not_covered() if m == "criterion" else None
-        if uncovered is not None or (m != "criterion" and w.one_sided):  # a one-sided wall: not a linear loop
+        if uncovered is not None or (m != "criterion" and not w.linear):  # not a linear loop
             out += [Requirement(m, n, _current(dev, w, n), None, "at_least" if HELPS[m][n] > 0 else "at_most",
                                 RequireStatus.NOT_COVERED) for n in names]  # fmt: skip
             continue

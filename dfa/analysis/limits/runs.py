@@ -457,7 +457,7 @@ class Evidence:
 
     def growth_xi_dot(self, k: float) -> Growth:
         """The describing function's growth prediction at ``k`` (:func:`growth_at`; unknown where not representable)."""
-        if k not in self.growth and self.wall.one_sided:  # not a linear loop: nothing to predict
+        if k not in self.growth and not self.wall.linear:  # not a linear loop: nothing to predict
             self.growth[k] = Growth(None, 0, False)
         if k not in self.growth:
             try:

@@ -296,8 +296,8 @@ def _k_range(dev: Device, wall: Wall, v_top: float, design: float | None) -> tup
     """The stiffness range: from a quarter of the lowest closed-form bound to 8 × the highest (and the design K);
     a one-sided wall's bounds but the criterion's are those of the wall it is in contact."""
     kc, kl, pub, _ref, _top = closed_forms(dev, wall, v_top)
-    if wall.one_sided:
-        _kc, kl, pub, _ref, _top = closed_forms(dev, wall.in_contact(), v_top)
+    if not wall.linear:
+        _kc, kl, pub, _ref, _top = closed_forms(dev, wall.in_contact().without_controller(), v_top)
     lows = [k for k in (kl.value, pub["k_colgate"], kc.value) if k is not None and k > 0]
     spring = (pub["k_static"], pub["k_colgate"]) if pub["k_static"] is not None else (k_static(dev), kl.value)
     highs = [k for k in spring if k is not None] + ([design] if design else [])

@@ -351,8 +351,8 @@ class ZWidth(Result):
 # ----------------------------------------------------------------------------- boundaries per B
 def _linear(dev: Device, wall: Wall) -> KLimit:
     """Top of the stable K interval from K = 0 of the linear loop (exact); further intervals as ``safe_above``;
-    none for a one-sided wall (not a linear loop)."""
-    if wall.one_sided:
+    none for a wall that is not a linear loop (one-sided, a passivity controller)."""
+    if not wall.linear:
         return KLimit(None, LimitStatus.NOT_LINEAR)
     r = stable_stiffness(dev.mass, dev.damping, dev.period, wall)
     if r.status in (LinearStatus.NEVER, LinearStatus.NOT_AT_LOW_K):

@@ -1,0 +1,262 @@
+"""What a passivity controller buys and costs on the catalogue devices (issue 30): the validation table.
+
+For each catalogue device with complete values, at the design report's impact speed, the largest stiffness is
+found as :func:`~dfa.analysis.limits.kmax.design_answer` finds it for three walls (:data:`CASES`):
+
+``plain``
+    the paper's spring;
+``limited``
+    the spring with the passivity controller (:class:`~dfa.model.elements.PassivityController`, an unbounded
+    observer) whose force is limited to :data:`LIMIT_FRICTIONS` times the device's Coulomb friction c;
+``unlimited``
+    the textbook controller: no force limit.
+
+The simulated no-divergence limit (``k_sim``) and rest limit (``k_sim_rest``) are kept with their statuses (no
+criterion, linear bound or describing function covers the controller). The price, at the plain wall's own
+no-divergence limit K₀ (the stiffest it renders; an impact at V from ξ0 = 0): the rendered force against the ideal
+spring, RMS and peak over the impact (:func:`~dfa.analysis.observer.force_error`), without and with the limited
+controller, and the share of readings at which it acts. And the case :data:`FAILURE_CASE`: a force limit too low
+for the stiffness makes the controlled wall diverge.
+
+Examples
+--------
+>>> from dfa.model.catalogue import get_device
+>>> c = passivity_comparison([get_device("Impulse Engine")], grid=6, speeds=1)
+>>> c.devices, sorted(c.limits[0])
+(('Impulse Engine',), ['limited', 'plain', 'unlimited'])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+from ..checks import check_int, check_positive
+from ..errors import DFAValueError
+from ..model.catalogue import CatalogueEntry, get_device
+from ..model.device import Device
+from ..model.elements import PassivityController
+from ..model.wall import Wall
+from ..results.base import Result
+from ..results.status import ComparisonStatus
+from .contact_comparison import complete_entries
+
+__all__ = ["CASES", "LIMIT_FRICTIONS", "FAILURE_CASE", "PassivityComparison", "passivity_comparison", "impact"]
+
+#: The walls compared, in the table's order.
+CASES = ("plain", "limited", "unlimited")
+#: The limited controller's force limit, in units of the device's Coulomb friction c.
+LIMIT_FRICTIONS = 10.0
+#: A force limit that makes the controller fail: (device, K in N/m, V in m/s, the force limits compared in N).
+FAILURE_CASE = ("Phantom 1.0", 6000.0, 0.1, (0.3, 1.0))
+#: Samples of the price's runs and of the failure case's.
+IMPACT_SAMPLES = 60_000
+
+
+def _limit(lim: Any) -> dict[str, Any]:
+    """A limit as (value, status, range end): enough to say "K", "none (why)" or "> range end"."""
+    return {"value": lim.value, "status": lim.status.value, "range_end": lim.range_end}
+
+
+def _wall(case: str, dev: Device, k: float = 1.0) -> Wall:
+    """The wall of a case at stiffness K."""
+    if case == "plain":
+        return Wall(k)
+    limit = LIMIT_FRICTIONS * dev.coulomb if case == "limited" else None
+    return Wall(k, (PassivityController(force_limit=limit),))
+
+
+def impact(dev: Device, wall: Wall, velocity: float, samples: int = IMPACT_SAMPLES) -> Any:
+    """The recorded impact at ``velocity`` (m/s; rad/s) from ξ0 = 0 on ``wall`` (its K), as ``dfa simulate`` runs it.
+
+    Parameters
+    ----------
+    dev : Device
+        The device.
+    wall : Wall
+        The wall and its stiffness.
+    velocity : float
+        The impact speed.
+    samples : int, optional
+        Samples simulated.
+
+    Returns
+    -------
+    SimulationResult
+    """
+    from .simulation import simulate
+
+    p = dev.params(wall.stiffness)
+    w = wall.params(dev.period, dev.resolution)
+    return simulate(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), samples=samples, wall=w)
+
+
+def _price(dev: Device, k0: float | None, v: float) -> dict[str, Any]:
+    """Force errors (KΔ → N, N·m) of the plain and the limited wall at K₀, and the controller's share of readings."""
+    from ..model import units
+    from .observer import force_error, observe
+
+    if k0 is None:
+        return {"stiffness": None, "plain": None, "limited": None, "acting_share": None, "outcomes": None}
+    out: dict[str, Any] = {"stiffness": k0, "outcomes": {}}
+    for case in ("plain", "limited"):
+        r = impact(dev, _wall(case, dev, k0), v)
+        e = force_error(r)
+        out[case] = {name: units.force(dev, k0, getattr(e, name)) for name in ("rms", "peak", "peak_ideal")}
+        out["outcomes"][case] = r.outcome.value
+        if case == "limited":
+            out["acting_share"] = observe(r).acting_share
+    return out
+
+
+def _failure() -> dict[str, Any]:
+    """The failure case: the outcome of the plain wall and of the controller at each force limit."""
+    name, k, v, limits = FAILURE_CASE
+    dev = get_device(name).device
+    rows = {"plain": impact(dev, Wall(k), v, IMPACT_SAMPLES).outcome.value}
+    for f in limits:
+        rows[f"{f:g}"] = impact(dev, Wall(k, (PassivityController(force_limit=f),)), v).outcome.value
+    return {"device": name, "stiffness": k, "velocity": v, "force_limits": list(limits), "outcomes": rows}
+
+
+@dataclass(frozen=True)
+class PassivityComparison(Result):
+    """The largest stiffness without and with a passivity controller, and its price, per catalogue device.
+
+    Attributes
+    ----------
+    devices : tuple of str
+        The catalogue devices.
+    velocities : tuple of float
+        The impact speed of each, m/s (rotary: rad/s).
+    force_limits : tuple of float
+        The limited controller's force limit of each, N (rotary: N·m): ``limit_frictions`` × c.
+    limit_frictions : float
+        That limit in units of each device's Coulomb friction c (:data:`LIMIT_FRICTIONS`).
+    device_units : tuple of dict
+        Each device's units (``Device.units``).
+    limits : tuple of dict
+        Per device, case (:data:`CASES`) → ``k_sim``/``k_sim_rest`` → ``{"value", "status", "range_end"}``.
+    prices : tuple of dict
+        Per device, at the plain wall's no-divergence limit K₀ (``stiffness``): the force error of the ``plain``
+        and ``limited`` walls (``rms``, ``peak``, ``peak_ideal``, N; rotary N·m), the controller's
+        ``acting_share`` and the runs' ``outcomes``; None values without a K₀.
+    failure : dict
+        :data:`FAILURE_CASE`'s outcomes (``plain`` and each force limit).
+    counterexamples : int
+        Simulated divergences of the plain wall at stiffnesses the criterion proves passive (must be 0).
+    grid, speeds : int
+        The searches' grid points and impact speeds.
+    status : ComparisonStatus
+        ``ok``, or ``counterexample``.
+    """
+
+    devices: tuple[str, ...]
+    velocities: tuple[float, ...]
+    force_limits: tuple[float, ...]
+    limit_frictions: float
+    device_units: tuple[dict[str, str], ...]
+    limits: tuple[dict[str, dict[str, dict[str, Any]]], ...] = field(repr=False)
+    prices: tuple[dict[str, Any], ...] = field(repr=False)
+    failure: dict[str, Any] = field(repr=False)
+    counterexamples: int
+    grid: int
+    speeds: int
+    status: ComparisonStatus
+
+    json_properties: ClassVar[tuple[str, ...]] = ()
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "status", ComparisonStatus.coerce(self.status, "status"))
+        n = len(self.devices)
+        for name in ("velocities", "force_limits", "device_units", "limits", "prices"):
+            if len(getattr(self, name)) != n:
+                raise DFAValueError(f"{name} has {len(getattr(self, name))} entries for {n} devices: give one each")
+
+    def value(self, device: int, case: str, limit: str) -> float | None:
+        """One limit's value (None where it has none), N/m (rotary N·m/rad).
+
+        Parameters
+        ----------
+        device : int
+            The device's index.
+        case : str
+            One of :data:`CASES`.
+        limit : str
+            ``k_sim`` or ``k_sim_rest``.
+
+        Returns
+        -------
+        float or None
+        """
+        v = self.limits[device][case][limit]["value"]
+        return None if v is None else float(v)
+
+    def plot(self, ax: Any = None) -> Any:
+        """Bars of the no-divergence and rest limits per device and wall (:func:`dfa.figures.passivity_plot`).
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+        """
+        from ..figures import passivity_plot
+
+        return passivity_plot(self, ax)
+
+
+def passivity_comparison(
+    entries: Sequence[CatalogueEntry] | None = None,
+    *,
+    velocity: float | None = None,
+    grid: int = 16,
+    speeds: int = 6,
+) -> PassivityComparison:
+    """Compare the plain wall's largest stiffness with the controlled wall's, and the price (module docstring).
+
+    Parameters
+    ----------
+    entries : sequence of CatalogueEntry, optional
+        The devices (default: every catalogue device with complete values).
+    velocity : float, optional
+        Impact speed, m/s (rotary: rad/s); default 0.1 m/s (1 rad/s rotary), the design report's.
+    grid, speeds : int, optional
+        The searches' grid points and impact speeds (defaults those of ``dfa stiffness``).
+
+    Returns
+    -------
+    PassivityComparison
+    """
+    from .limits.kmax import design_answer
+
+    devs = complete_entries() if entries is None else tuple(entries)
+    if not devs:
+        raise DFAValueError("entries is empty: give at least one catalogue entry with complete values")
+    g = check_int("grid", grid, minimum=2, fix="give at least 2 grid points")
+    n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one speed")
+    if velocity is not None:
+        check_positive("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)")
+    vels, forces, units, limits, prices, bad = [], [], [], [], [], 0
+    for e in devs:
+        dev = e.device
+        v = velocity if velocity is not None else (1.0 if dev.rotary else 0.1)
+        row: dict[str, dict[str, dict[str, Any]]] = {}
+        for case in CASES:
+            r = design_answer(dev, v, wall=_wall(case, dev), grid=g, speeds=n_speeds)
+            bad += len(r.counterexamples)
+            row[case] = {name: _limit(getattr(r, name)) for name in ("k_sim", "k_sim_rest")}
+        vels.append(float(v))
+        forces.append(LIMIT_FRICTIONS * dev.coulomb)
+        units.append(dict(dev.units))
+        limits.append(row)
+        prices.append(_price(dev, row["plain"]["k_sim"]["value"], v))
+    status = ComparisonStatus.COUNTEREXAMPLE if bad else ComparisonStatus.OK
+    return PassivityComparison(
+        tuple(e.name for e in devs), tuple(vels), tuple(forces), LIMIT_FRICTIONS, tuple(units), tuple(limits), tuple(prices),
+        _failure(), bad, g, n_speeds, status,
+    )  # fmt: skip
