@@ -728,6 +728,7 @@ def bench_controller_kernel(quick: bool) -> str:
     Then the period skip (issue 16): ns per sample of the run with skipping, and the samples integrated.
     """
     from dfa.core import wall_kernel
+    from dfa.model.elements import Delay, PassivityController
     from dfa.model.wall import WallParams as CP
 
     n = 200_000 if quick else 2_000_000
@@ -740,19 +741,9 @@ def bench_controller_kernel(quick: bool) -> str:
 
     def ctl(c, skip=False):  # (samples run, samples integrated); skip=False integrates every sample
         st = np.empty(kernel.NSTATS)
-        args = (
-            c.damping,
-            c.filter_pole,
-            c.cutoff is not None,
-            c.lag,
-            c.hand_stiffness,
-            False,
-            0.0,
-            0.0,
-            False,
-            0,
-            math.inf,
-        )
+        a = c.kernel_args()
+        args = (c.damping, c.filter_pole, c.cutoff is not None, c.lag, c.hand_stiffness, False, 0.0, 0.0,
+                a["pc"], a["window"], a["limit"])  # fmt: skip
         out = wall_kernel.run_wall_kernel(mu, beta, sigma, 0.0, v0, n, c.delay, True, 1e6, 8192, *args, e, e, st, skip)
         return out[0], out[2]
 
@@ -770,6 +761,8 @@ def bench_controller_kernel(quick: bool) -> str:
         ("damper + filter ν_c = 0.1 + delay 1", CP.of(damping=0.5, cutoff=0.1, delay=1)),
         ("amplifier lag α = 0.2", CP.of(lag=0.2)),
         ("damper + filter + delay 1 + lag α = 0.2", full),
+        ("passivity controller (issue 30), unbounded observer, force limit 3", CP(((PassivityController, (0, 3.0)),))),
+        ("passivity controller, window 50 samples, delay 1", CP(((PassivityController, (50, None)), (Delay, 1)))),
     ]:
         t = per_sample(lambda c=c: ctl(c))
         rows.append(f"| {name} | {n} | {1e9 * t:.3g} | {t / base:.2f} |")
