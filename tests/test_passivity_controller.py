@@ -295,10 +295,10 @@ def test_cli_simulate_observer_text_json_and_trace(capsys, tmp_path):
     assert f"{dfa.formatting.number(s.peak_produced * joule, 4)} J at most" in text
     with open(trace) as fh:
         rows = list(csv.DictReader(fh))
-    e = np.array([float(row["observed_energy"]) for row in rows])
+    e = -np.array([float(row["produced_energy"]) for row in rows])
     f = np.array([float(row["controller_phi"]) for row in rows])
     assert np.array_equal(e, r.observed_energy()[: e.size]) and np.array_equal(f, r.controller_force()[: f.size])
-    assert float(rows[-1]["observed_energy_j"]) == pytest.approx(e[-1] * joule, rel=1e-12)
+    assert float(rows[-1]["produced_energy_j"]) == pytest.approx(-e[-1] * joule, rel=1e-12)
 
 
 def test_cli_flags_refused_with_reason(capsys):

@@ -160,7 +160,7 @@ def observe(result: Any) -> ObserverSummary:
     top = int(np.argmax(produced)) if produced.size else 0
     peak = max(float(produced[top]) if produced.size else 0.0, 0.0)
     return ObserverSummary(
-        produced=float(produced[-1]) if produced.size else 0.0,
+        produced=float(produced[-1]) + 0.0 if produced.size else 0.0,  # + 0.0: no "-0 J"
         peak_produced=peak,
         peak_sample=top if peak > 0.0 else 0,
         samples=int(produced.size),

@@ -47,7 +47,7 @@ def add_observer_arg(p: argparse.ArgumentParser) -> None:
         "--observer",
         action="store_true",
         help="report the passivity observer over the run: the energy the wall produced (positive: active), and "
-        "with --trace an observed_energy column (default: off)",
+        "with --trace a produced_energy column (default: off)",
     )
 
 
@@ -58,7 +58,8 @@ def passivity_elements(args: argparse.Namespace, device: Device | None) -> tuple
         given = [f for f, v in (("--pc-window", window), ("--pc-force-limit", limit)) if v is not None]
         if given:
             raise UsageError(
-                f"{', '.join(given)} needs --passivity-controller: they set it; add --passivity-controller"
+                f"{', '.join(given)} needs --passivity-controller (they set its window and force limit); add "
+                "--passivity-controller"
             )
         return ()
     if device is None:
@@ -66,19 +67,35 @@ def passivity_elements(args: argparse.Namespace, device: Device | None) -> tuple
             "--passivity-controller needs a physical device and stiffness (its window and force limit are in s and "
             "N): give --device NAME (or --mass --damping --coulomb --resolution --period) and --stiffness K"
         )
-    if window is not None and not 0.5 * device.period <= window < 1e6:
+    t = device.period
+    if window is not None and not (t * (1 - 1e-9) <= window <= 1e6):
         raise UsageError(
-            f"--pc-window {window:g} is invalid: the window must span at least one sample (T = {device.period:g} s); "
-            f"give a window in s of at least {device.period:g}, or drop the flag for the whole run"
+            f"--pc-window {window:g} is invalid: the window must span at least one sample (T = {t:g} s) and at most "
+            f"1e6 s; give a window in s in [{t:g}, 1e6] (it is rounded to whole samples), or drop the flag for the "
+            "whole run"
         )
-    if limit is not None and not 0.0 < limit < 1e12:
-        raise UsageError(f"--pc-force-limit {limit:g} is invalid: it must be > 0 N; give the most force it adds in N")
+    if limit is not None and not 0.0 < limit <= 1e12:
+        unit = device.units["force"]
+        raise UsageError(
+            f"--pc-force-limit {limit:g} is invalid: it must be > 0 and at most 1e12 {unit}; give the most force the "
+            f"controller adds in {unit}, or drop the flag for no limit"
+        )
     return (PassivityController(window=window, force_limit=limit),)
 
 
 def refuse_passivity_flag(args: argparse.Namespace, why: str) -> None:
-    """Refuse --passivity-controller on a command that does not cover it (UsageError, exit 2), saying why."""
-    if getattr(args, "passivity_controller", False):
+    """Refuse the controller's flags on a command that does not cover it (UsageError, exit 2), saying why."""
+    flags = [
+        f
+        for f, v in (
+            ("--passivity-controller", getattr(args, "passivity_controller", False)),
+            ("--pc-window", getattr(args, "pc_window", None) is not None),
+            ("--pc-force-limit", getattr(args, "pc_force_limit", None) is not None),
+        )
+        if v
+    ]
+    if flags:
         raise UsageError(
-            f"--passivity-controller is not covered here: {why}; use dfa simulate, map, stiffness or zwidth with it"
+            f"{', '.join(flags)} is not covered here: {why}; use dfa simulate, map, stiffness, zwidth, check or "
+            "report with --passivity-controller"
         )

@@ -1229,6 +1229,10 @@ class PassivityController(Element):
     ``|φ_{h−1}| + |φ_0| + Σ|φ_k − φ_{k−1}|`` in KΔ², summation by parts); with a lag it uses the command, not the
     amplifier's output. E_obs < 0: the wall has produced energy (active). A ``window`` of W samples sums only
     the last W terms (an unbounded observer accumulates a passive past that lets a later active spell through).
+    With the encoder, sub-tick motion that toggles the reading across one tick reads as the wall producing energy
+    at every toggle (the readings' rounding, not the device's energy): an unbounded observer accumulates it for
+    ever and the controller keeps firing on each toggle, which can sustain a buzz where the plain wall rests; a
+    window bounds it.
 
     Controller: when the ledger L = E_obs(h) + B_h is negative, B_h >= 0 the dissipation it has booked for its own
     forces still pending (the delay's d commands and the one applied now, each booked −f v at its reading), it adds

@@ -172,7 +172,7 @@ def controller_parts(
 
         window, limit = p.group(type(pc))
         values += "; " + passivity_text(pc, units)
-        groups += f", W = {window} samples" if window else ""
+        groups += f", W = {window} sample{'s' if window != 1 else ''}" if window else ""
         groups += "" if limit is None else f", f_max = F_max/(KΔ) = {_g(limit)}"
     return values, groups
 

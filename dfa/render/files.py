@@ -25,10 +25,10 @@ def write_trace_csv(
     (:meth:`~dfa.analysis.simulation.SimulationResult.applied_force`). With a device (and K) the same in
     physical units beside them (:func:`dfa.model.units.trace_columns`): ``t_s`` (sample × T), ``x_m`` (ξΔ),
     ``v_m_per_s`` (ξ'Δ/T), ``force_n`` (φ_A·KΔ); rotary ``x_rad``, ``v_rad_per_s``, ``force_nm``.
-    With ``observer`` a column ``observed_energy`` (KΔ², the passivity observer's E_obs:
-    :meth:`~dfa.analysis.simulation.SimulationResult.observed_energy`), and ``controller_phi`` (KΔ, the passivity
-    controller's force) for a wall with one; with a device ``observed_energy_j`` and ``controller_force_n``
-    (rotary ``controller_force_nm``) beside them. A run that stopped early (``unstable``) is written up to its last
+    With ``observer`` a column ``produced_energy`` (KΔ², the energy the wall has produced up to the sample, −E_obs
+    of :meth:`~dfa.analysis.simulation.SimulationResult.observed_energy`: positive when it has been active), and
+    ``controller_phi`` (KΔ, the passivity controller's force) for a wall with one; with a device
+    ``produced_energy_j`` and ``controller_force_n`` (rotary ``controller_force_nm``) beside them. A run that stopped early (``unstable``) is written up to its last
     integrated sample (``samples_run``), without the NaN rows after it.
 
     Parameters
@@ -55,7 +55,7 @@ def write_trace_csv(
 
     xi, xi_dot, phi = result.xi, result.xi_dot, result.applied_force()
     pc = observer and bool(result.wall.passivity_controller)
-    extra = ([result.observed_energy()] if observer else []) + ([result.controller_force()] if pc else [])
+    extra = ([-result.observed_energy()] if observer else []) + ([result.controller_force()] if pc else [])
     # A run stopped early (diverged) holds NaN after its last sample: those rows are not data, leave them out.
     last = int(result.samples_run) + 1
     if last < xi.size and not (np.isfinite(xi[last:]).any() or np.isfinite(xi_dot[last:]).any()):
@@ -63,7 +63,7 @@ def write_trace_csv(
         extra = [e[:last] for e in extra]
     sample = np.arange(xi.size)
     names, cols = ["sample", "xi", "xi_dot", "phi"], [sample, xi, xi_dot, phi]
-    names += ["observed_energy", "controller_phi"][: len(extra)]
+    names += ["produced_energy", "controller_phi"][: len(extra)]
     cols += extra
     if device is not None:
         stiffness = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
@@ -76,7 +76,7 @@ def write_trace_csv(
             units.force(device, stiffness, phi),
         ]
         if extra:
-            names.append("observed_energy_j")
+            names.append("produced_energy_j")
             cols.append(units.energy(device, stiffness, extra[0]))
         if pc:
             names.append(c["force"].replace("force", "controller_force"))

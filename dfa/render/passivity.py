@@ -100,7 +100,9 @@ def gain_lines(g: Any) -> list[str]:
         if lim.value is not None:
             return f"{number(lim.value, 5)} {unit}"
         top = bound(lim)
-        return f"> {number(top, 5)} {unit} (top of the range)" if top is not None else f"none ({lim.status.value})"
+        if top is not None:
+            return f"> {number(top, 5)} {unit} (top of the range)"
+        return f"none ({lim.status.value.replace('_', ' ')})"
 
     out = ["passivity controller, simulated (no proof covers it):"]
     for name, a, b, ratio in (
