@@ -46,10 +46,37 @@ class Commands:
         self.force = 0.0  # the controller's force of the last reading
         self.ledger = (0.0, 0.0)  # the ledger before and after the controller's action at the last reading
 
-    def _controller(self, v: float, w: float, shape) -> float:
+    def held(self, x: float) -> float:
+        """The energy the wall holds at ξ0 as its observer counts a slow entry: the readings walked one tick at a
+        time, at rest, from where the wall's force vanishes (r = 0 up or r = −1 down; outside a one-sided wall)."""
+        a = self.ctl.kernel_args()
+        if not self.q:  # the continuous spring: the integral of the force
+            d = x - a["surface"] if a["onesided"] else x
+            return 0.5 * d * d if (d > 0 or not a["onesided"]) else 0.0
+        r0 = math.floor(x)
+        if a["onesided"]:
+            start = math.floor(a["surface"] + 0.5) - 1  # a reading outside
+        else:
+            start = 0 if r0 >= 0 else -1
+
+        def force(r):  # the wall's command at rest at reading r
+            q = r + 0.5
+            if a["onesided"]:
+                return min(-(q - a["surface"]), 0.0) if q > a["surface"] else 0.0
+            return -q
+
+        e, r = 0.0, start
+        step = 1 if r0 >= start else -1
+        while r != r0:
+            e -= force(r) * step
+            r += step
+        return e
+
+    def _controller(self, v: float, w: float, shape, x: float) -> float:
         """The command with the passivity controller's force, from the wall's own command ``w``."""
         a = self.ctl.kernel_args()
-        term = 0.0 if not self.hist else -self.hist[0] * v  # the command held over the sample just ended
+        # the command held over the sample just ended; at the first reading the energy the wall holds
+        term = self.held(x) if not self.hist else -self.hist[0] * v
         self.energy += term
         self.terms.append(term)
         window = a["window"]
@@ -90,7 +117,7 @@ class Commands:
                 return c
 
             w = -q - self.ctl.damping * y
-        c = self._controller(v, w, shape)
+        c = self._controller(v, w, shape, x)
         if first:
             self.hist = [c] * (self.ctl.delay + 1)
             self.booked = [0.0] * (self.ctl.delay + 1)

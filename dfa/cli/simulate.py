@@ -110,6 +110,14 @@ def _write_trace(path: str, r: object, inp: Inputs, observer: bool) -> None:
         raise UsageError(f"--trace {path!r} cannot be written: {exc.strerror}; choose a writable file") from None
 
 
+def _observer_units(phys: dict[str, float] | None, inp: Inputs) -> dict[str, str]:
+    """The unit of each number of the JSON's ``observer`` record."""
+    out = {"produced": "KΔ²", "peak_produced": "KΔ²", "peak_controller_force": "KΔ", "peak_sample": "samples"}
+    if phys is not None and inp.device is not None:
+        out |= {"produced_j": "J", "peak_produced_j": "J", "peak_controller_force_n": inp.device.units["force"]}
+    return out
+
+
 def _observer(r: Any, inp: Inputs) -> tuple[Any, dict[str, float] | None]:
     """The passivity observer's summary of the run, and its energies and force in J and N with a device."""
     from ..analysis.observer import observe
@@ -167,7 +175,7 @@ def run(args: argparse.Namespace) -> int:
             explain_nulls(d, dict.fromkeys(phys, NO_DEVICE) | {"velocity": NO_DEVICE})
         explain_nulls(d, r.null_reasons())
         if obs is not None:
-            d["observer"] = obs[0].to_dict() | (obs[1] or {})
+            d["observer"] = obs[0].to_dict() | (obs[1] or {}) | {"units": _observer_units(obs[1], inp)}
         emit(wall_json(d, ctl, inp))
         return 0
     say(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")

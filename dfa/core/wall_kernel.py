@@ -130,6 +130,7 @@ __all__ = [
     "serial_wall_kernel",
     "applied_forces",
     "observer_size",
+    "held_energy",
 ]
 
 
@@ -399,9 +400,10 @@ def _same_loop(
 
 # the passivity observer's and controller's state (issue 30; :func:`_command`): the observed energy E (over the
 # window, as the controller sees it), the window's next position, the controller's force of this reading, the
-# observed energy over the whole run, then the controller's d + 1 bookings (beside the command ring's slots), then
-# the window's W terms
-PE, PWPOS, PF, PTOT, PBK = 0, 1, 2, 3, 4
+# observed energy over the whole run, the energy the wall holds at the start (counted at reading 0:
+# :func:`held_energy`), then the controller's d + 1 bookings (beside the command ring's slots), then the window's W
+# terms
+PE, PWPOS, PF, PTOT, PINIT, PBK = 0, 1, 2, 3, 4, 5
 
 
 @njit(cache=True, inline="always")
@@ -420,17 +422,48 @@ def _observe(pcs: FloatArray, applied: float, vh: float, delay: int, window: int
     lag, exactly the work the device did on the wall, −∫φ ξ' dτ over the sample (Ryu, Kim and Hannaford's
     sampled observer; see :class:`dfa.model.elements.PassivityController`).
     """
-    term = -applied * vh
+    term = -applied * vh + pcs[PINIT]  # reading 0 also counts the energy the wall holds at the start
+    pcs[PINIT] = 0.0
     pcs[PTOT] += term
     e = pcs[PE] + term
     if window > 0:
         i = int(pcs[PWPOS])
-        j = PBK + delay + 1 + i
-        e -= pcs[j]
-        pcs[j] = term
-        pcs[PWPOS] = i + 1 if i + 1 < window else 0
+        w0 = PBK + delay + 1
+        e -= pcs[w0 + i]
+        pcs[w0 + i] = term
+        if i + 1 < window:
+            pcs[PWPOS] = i + 1
+        else:  # the window wrapped: its sum afresh, so that no rounding accumulates over the run
+            pcs[PWPOS] = 0
+            e = 0.0
+            for k in range(window):
+                e += pcs[w0 + k]
     pcs[PE] = e
     return e
+
+
+@njit(cache=True, inline="always")
+def held_energy(x0: float, quantize: bool, ctl: Controller) -> float:
+    """E_obs(0): the energy the wall holds at ξ0 as its observer would have counted it had the device come there
+    slowly (at rest, one tick at a time) from where the wall's force vanishes (KΔ²); 0 at ξ0 = 0 and outside a
+    one-sided wall.
+
+    Bilateral spring: the readings' staircase −(r + ½) vanishes between r = −1 and 0, so from r = 0 up,
+    Σ_{0<=r<r0}(r + ½) = r0²/2, and from r = −1 down (|r0| − 1)²/2; without the encoder ½ξ0². A
+    one-sided wall from its first reading inside r_e = ⌊s + ½⌋: Σ_{r=r_e}^{r0−1}(r + ½ − s) = n(r_e + ½ − s) +
+    n(n − 1)/2, n = r0 − r_e; without the encoder ½((ξ0 − s)⁺)². Slow motion reads no velocity: the damper, filter
+    and delay add nothing.
+    """
+    onesided, s = ctl[5], ctl[6]
+    if not quantize:
+        d = x0 - s if onesided else x0
+        return 0.5 * d * d if (d > 0.0 or not onesided) else 0.0
+    r0 = math.floor(x0)
+    if not onesided:
+        return 0.5 * r0 * r0 if r0 >= 0.0 else 0.5 * (r0 + 1.0) * (r0 + 1.0)
+    re = math.floor(s + 0.5)
+    n = r0 - re
+    return n * (re + 0.5 - s) + 0.5 * n * (n - 1.0) if n > 0.0 else 0.0
 
 
 @njit(cache=True, inline="always")
@@ -692,6 +725,7 @@ def applied_forces(
     ring, st = np.empty(delay + 1), np.empty(NCSTATE)
     pcs = np.zeros(observer_size(delay, window))
     ctl = (damping, pole, filtered, lag, 0.0, onesided, surface, 0.0, pc, window, limit)  # no hand, no push
+    pcs[PINIT] = held_energy(xs[0], quantize, ctl)
     _start(st, ring, xs[0], 0.0, quantize, ctl, 0.0)
     r_prev, v_prev, y, fa, pos = st[CRP], st[CVP], st[CY], st[CFA], 0
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
@@ -767,6 +801,8 @@ def run_wall_kernel(
     ctl = (damping, pole, filtered, lag, spring, onesided, surface, push, pc, window, limit)
     _start(st, ring, x0, v0, quantize, ctl, sigma + beta * v0)
     pcs = np.zeros(observer_size(delay, window) if pc else 0)
+    if pc:
+        pcs[PINIT] = held_energy(x0, quantize, ctl)
     if record:
         rec_x[0], rec_v[0] = x0, v0
     tail_start = n - tail_len

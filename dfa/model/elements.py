@@ -1217,11 +1217,13 @@ class PassivityController(Element):
 
     Observer: at reading h the energy the device has put into the wall (a one-port),
 
-        E_obs(h) = E_obs(h − 1) − φ_{h−1} v_h,   E_obs(0) = 0   (KΔ²; x K Δ² in J),
+        E_obs(h) = E_obs(h − 1) − φ_{h−1} v_h,   E_obs(0) = E_0   (KΔ²; x K Δ² in J),
 
     with v_h = r_h − r_{h−1} the velocity estimate the wall already forms (paper eq. 2: the readings' backward
     difference) and φ_{h−1} the force the wall held over the sample just ended, [h − 1, h) (its command c_{h−1−d},
-    this controller's part included). This pairs each sample's force with the displacement the readings saw over
+    this controller's part included); E_0 is the energy the wall holds at the start as the observer would have
+    counted a slow entry (:func:`dfa.core.wall_kernel.held_energy`: 0 from ξ0 = 0 and outside a one-sided wall; a
+    start with the spring preloaded has received its energy). This pairs each sample's force with the displacement the readings saw over
     that same sample (the sampled observer of Ryu, Kim and Hannaford, IEEE T-RO 20(4), 2004); pairing it with the
     sample's own v_h instead (the 2002 form) would lag half a sample. Without the encoder and an amplifier lag it
     is exactly the work −Σ∫φ ξ' dτ done on the wall (by the device's energy balance, −(Δ½μξ'² + Σ dissipated)
@@ -1235,10 +1237,13 @@ class PassivityController(Element):
     window bounds it.
 
     Controller: when the ledger L = E_obs(h) + B_h is negative, B_h >= 0 the dissipation it has booked for its own
-    forces still pending (the delay's d commands and the one applied now, each booked −f v at its reading), it adds
-    the damper α_h = −L/v_h² on v_h, the force f_h = −α_h v_h = L/v_h clipped to ±``force_limit``; it books
-    −f_h v_h (= −L, or less at the limit), so L after its action is >= 0 unless the limit cut it. Nothing when
-    v_h = 0. On a one-sided wall the clip to pushing only applies to the sum: f is what it lets through.
+    forces not yet observed (those in the d commands c_{h−d} … c_{h−1}, of which c_{h−d} is applied now; each
+    booked −f v at its reading), it adds the damper α_h = −L/v_h² on v_h, the force f_h = −α_h v_h = L/v_h clipped
+    to ±``force_limit``; it books −f_h v_h (= −L, or less at the limit), so L after its action is >= 0 unless the
+    limit cut it. Nothing when v_h = 0. On a one-sided wall the clip to pushing only applies to the sum: f is what
+    it lets through. Without a force limit (the textbook controller, the default) the force L/v_h is unbounded;
+    the exact simulation shows it can make a sampled wall diverge that rests or buzzes without it (what it books,
+    −f v_h, is not what the next sample's motion dissipates), so give the actuator's limit.
 
     Group: (W, f_max) = (window/T rounded, force_limit/(K Δ)); no criterion, linear bound, Colgate–Schenkel or
     describing function covers it (they refuse it by name); the exact simulator runs it.
@@ -1248,7 +1253,8 @@ class PassivityController(Element):
     window : float or None
         The observer's window in s (rounded to whole samples, at least one); None (default): unbounded.
     force_limit : float or None
-        The most force the controller adds, in N (rotary: N·m); None (default): no limit.
+        The most force the controller adds, in N (rotary: N·m); None (default): no limit (the textbook
+        controller, which can destabilise a sampled wall: give the actuator's limit).
 
     Examples
     --------
@@ -1262,7 +1268,8 @@ class PassivityController(Element):
     force_limit: float | None = None
     parameter: ClassVar[Parameter] = Parameter(
         "force_limit", ("N", "N·m"), "--pc-force-limit", "N",
-        "with --passivity-controller: the most force it adds, in N (rotary: N·m) (default: no limit)",
+        "with --passivity-controller: the most force it adds, in N (rotary: N·m) (default: no limit, the textbook "
+        "controller, which can destabilise a sampled wall: give the actuator's limit)",
         "passivity_controller", "(W, f_max) = (window/T, F_max/(K Δ))",
     )  # fmt: skip
     colgate_schenkel: ClassVar[str | None] = "the Colgate–Schenkel condition has no energy-switched damper"
