@@ -813,25 +813,9 @@ def run_wall_kernel(
         for a, b in ((lo, cut), (cut, hi)):
             if b > a:
                 end, why, peak, skipped = _advance(
-                    st,
-                    ring,
-                    ref,
-                    a,
-                    b,
-                    mu,
-                    beta,
-                    sigma,
-                    delay,
-                    quantize,
-                    bound,
-                    ctl,
-                    tail,
-                    tail_start,
-                    rx_,
-                    rv_,
-                    skip,
-                    pcs,
-                )
+                    st, ring, ref, a, b, mu, beta, sigma, delay, quantize, bound, ctl, tail, tail_start, rx_, rv_,
+                    skip, pcs,
+                )  # fmt: skip
                 integrated += end - a - skipped
                 if peak > stats[seg]:
                     stats[seg] = peak
