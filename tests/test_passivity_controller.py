@@ -28,7 +28,7 @@ import math
 import numpy as np
 import pytest
 from cli_text import unwrap
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from reference_ctl import Commands, simulate_ivp_ctl
 
@@ -138,6 +138,7 @@ PC_WALLS = st.builds(
 )
 
 
+@settings(max_examples=30)  # each example is 150 samples of solve_ivp (the suite's time budget)
 @given(PC_WALLS, st.floats(30.0, 300.0), st.floats(0.0, 0.3), st.floats(0.0, 0.6), st.floats(0.5, 4.0))
 def test_controller_run_equals_solve_ivp_reference(wall, mu, beta, sigma, v0):
     """The kernel runs the controller exactly: whole runs against the solve_ivp loop with the controller written

@@ -35,10 +35,15 @@ def test_readme_console_check_detects_a_changed_number(tmp_path):
     """The checker can fail: one changed digit in a documented output is reported."""
     m = re.search(r"margin\s+(\d\.\d+)", CLI_PAGE)
     assert m, "the command-line page's dfa check example shows a margin row"
-    bad = CLI_PAGE.replace(m.group(0), m.group(0)[:-1] + str((int(m.group(0)[-1]) + 1) % 10), 1)
-    path = tmp_path / "cli.md"
+    start = CLI_PAGE.rindex("```console\n", 0, m.start())  # that example's block alone: its command runs once
+    block = CLI_PAGE[start : CLI_PAGE.index("```\n", m.end()) + 4]
+    assert block.count("$ dfa") >= 1
+    bad = block.replace(m.group(0), m.group(0)[:-1] + str((int(m.group(0)[-1]) + 1) % 10), 1)
+    good, path = tmp_path / "good.md", tmp_path / "cli.md"
+    good.write_text(block, encoding="utf-8")
     path.write_text(bad, encoding="utf-8")
     with contextlib.redirect_stdout(io.StringIO()):
+        assert readme_console.main(["--readme", str(good)]) == 0
         assert readme_console.main(["--readme", str(path)]) == 1
 
 
