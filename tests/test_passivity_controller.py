@@ -362,3 +362,18 @@ def test_cli_stiffness_passivity_gain_is_the_api(capsys):
     cell = f"{dfa.formatting.number(g.k_sim.value, 5)} {unit} with it" if g.k_sim.value else "with it"
     assert cell in text and "passivity controller, simulated (no proof covers it):" in text
     assert math.isfinite(g.k_sim.value or math.inf) or g.k_sim.status.value == "above_range"
+
+
+def test_passivity_report_script_refuses_bad_input_before_any_work(capsys, tmp_path):
+    """`python -m dfa.cli.passivity_report`: one line on stderr and exit 2, nothing written."""
+    from dfa.cli import passivity_report
+
+    for argv, says in (
+        (["--grid", "1"], "--grid"),
+        (["--velocity", "-1"], "--velocity"),
+        (["--speeds", "0"], "--speeds"),
+    ):
+        assert passivity_report.main([*argv, "--out", str(tmp_path / "r")]) == 2
+        err = capsys.readouterr().err
+        assert says in err and err.count("\n") == 1
+    assert not (tmp_path / "r" / "passivity_controller.md").exists()

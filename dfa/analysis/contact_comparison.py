@@ -40,7 +40,15 @@ from ..model.wall import Wall
 from ..results.base import Result
 from ..results.status import ComparisonStatus
 
-__all__ = ["CASES", "LIMITS", "PUSH_FRICTIONS", "ContactComparison", "contact_comparison", "complete_entries"]
+__all__ = [
+    "CASES",
+    "LIMITS",
+    "PUSH_FRICTIONS",
+    "ContactComparison",
+    "contact_comparison",
+    "complete_entries",
+    "limit_record",
+]
 
 #: The walls compared, in the table's order.
 CASES = ("bilateral", "one_sided", "pushed")
@@ -50,7 +58,7 @@ LIMITS = ("k_criterion", "k_sim", "k_sim_rest")
 PUSH_FRICTIONS = 2.0
 
 
-def _limit(lim: Any) -> dict[str, Any]:
+def limit_record(lim: Any) -> dict[str, Any]:
     """A limit as (value, status, range end): enough to say "K", "none (why)" or "> range end"."""
     return {"value": lim.value, "status": lim.status.value, "range_end": lim.range_end}
 
@@ -176,7 +184,7 @@ def contact_comparison(
         for case in CASES:
             r = design_answer(dev, v, wall=walls[case], grid=g, speeds=n_speeds)
             bad += len(r.counterexamples)
-            row[case] = {name: _limit(getattr(r, name)) for name in LIMITS}
+            row[case] = {name: limit_record(getattr(r, name)) for name in LIMITS}
         vels.append(float(v))
         pushes.append(float(push))
         units.append(dict(dev.units))

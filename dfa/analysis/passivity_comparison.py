@@ -40,7 +40,7 @@ from ..model.elements import PassivityController
 from ..model.wall import Wall
 from ..results.base import Result
 from ..results.status import ComparisonStatus
-from .contact_comparison import complete_entries
+from .contact_comparison import complete_entries, limit_record
 
 __all__ = ["CASES", "LIMIT_FRICTIONS", "FAILURE_CASE", "PassivityComparison", "passivity_comparison", "impact"]
 
@@ -52,11 +52,6 @@ LIMIT_FRICTIONS = 10.0
 FAILURE_CASE = ("Phantom 1.0", 6000.0, 0.1, (0.3, 1.0))
 #: Samples of the price's runs and of the failure case's.
 IMPACT_SAMPLES = 60_000
-
-
-def _limit(lim: Any) -> dict[str, Any]:
-    """A limit as (value, status, range end): enough to say "K", "none (why)" or "> range end"."""
-    return {"value": lim.value, "status": lim.status.value, "range_end": lim.range_end}
 
 
 def _wall(case: str, dev: Device, k: float = 1.0) -> Wall:
@@ -249,7 +244,7 @@ def passivity_comparison(
         for case in CASES:
             r = design_answer(dev, v, wall=_wall(case, dev), grid=g, speeds=n_speeds)
             bad += len(r.counterexamples)
-            row[case] = {name: _limit(getattr(r, name)) for name in ("k_sim", "k_sim_rest")}
+            row[case] = {name: limit_record(getattr(r, name)) for name in ("k_sim", "k_sim_rest")}
         vels.append(float(v))
         forces.append(LIMIT_FRICTIONS * dev.coulomb)
         units.append(dict(dev.units))

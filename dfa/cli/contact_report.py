@@ -15,10 +15,8 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from .._io import check_output_folder
-from ..checks import check_int, check_positive
+from .catalogue_report import catalogue_args, catalogue_parser
 from .output import report_script
-from .parsing import Parser, integer, number
 
 __all__ = ["build_parser", "main", "STEM"]
 
@@ -28,21 +26,8 @@ STEM = "one_sided_comparison"
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The parser: --out, --velocity, --grid and --speeds."""
-    ap = Parser(prog=PROG, description=(__doc__ or "").split("\n")[0])
-    ap.add_argument(
-        "--out", default="reports/validation", metavar="DIR", help="output folder (default: reports/validation)"
-    )
-    ap.add_argument(
-        "--velocity",
-        type=number("--velocity", "m/s (rotary: rad/s)"),
-        default=None,
-        metavar="V",
-        help="impact speed for every device (default: 0.1 m/s, rotary 1 rad/s, the design report's)",
-    )
-    ap.add_argument("--grid", type=integer("--grid"), default=16, help="stiffness grid points (default 16)")
-    ap.add_argument("--speeds", type=integer("--speeds"), default=6, help="impact speeds simulated (default 6)")
-    return ap
+    """The parser: --out, --velocity, --grid and --speeds (:func:`dfa.cli.catalogue_report.catalogue_parser`)."""
+    return catalogue_parser(PROG, (__doc__ or "").split("\n")[0])
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -64,12 +49,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     from ..results.jsonable import dumps
 
     def work() -> None:
-        args = build_parser().parse_args(list(sys.argv[1:] if argv is None else argv))
-        check_int("--grid", args.grid, 2, "give at least 2 grid points")
-        check_int("--speeds", args.speeds, 1, "simulate at least one speed")
-        if args.velocity is not None:
-            check_positive("--velocity", args.velocity, "give the impact speed in m/s (rotary: rad/s), > 0")
-        check_output_folder("--out", args.out, create=True)
+        args = catalogue_args(build_parser(), sys.argv[1:] if argv is None else argv)
         c = contact_comparison(velocity=args.velocity, grid=args.grid, speeds=args.speeds)
         with staged_folder(args.out) as stage:
             (stage / f"{STEM}.md").write_text(comparison_markdown(c), encoding="utf-8")

@@ -1,0 +1,71 @@
+"""The arguments every catalogue-comparison report script shares: ``--out``, ``--velocity``, ``--grid``, ``--speeds``.
+
+``python -m dfa.cli.contact_report`` and ``python -m dfa.cli.passivity_report`` compare walls on every catalogue
+device with complete values, each limit found as ``dfa stiffness`` finds it; both parse and check these flags here
+(before any work), then compute and write (:func:`dfa.cli.output.report_script`).
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Sequence
+
+from .._io import check_output_folder
+from ..checks import check_int, check_positive
+from .parsing import Parser, integer, number
+
+__all__ = ["catalogue_parser", "catalogue_args"]
+
+
+def catalogue_parser(prog: str, description: str) -> argparse.ArgumentParser:
+    """The parser: --out, --velocity, --grid and --speeds.
+
+    Parameters
+    ----------
+    prog : str
+        The script's name (``"python -m dfa.cli.contact_report"``).
+    description : str
+        What it writes, one line.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+    """
+    ap = Parser(prog=prog, description=description)
+    ap.add_argument(
+        "--out", default="reports/validation", metavar="DIR", help="output folder (default: reports/validation)"
+    )
+    ap.add_argument(
+        "--velocity",
+        type=number("--velocity", "m/s (rotary: rad/s)"),
+        default=None,
+        metavar="V",
+        help="impact speed for every device (default: 0.1 m/s, rotary 1 rad/s, the design report's)",
+    )
+    ap.add_argument("--grid", type=integer("--grid"), default=16, help="stiffness grid points (default 16)")
+    ap.add_argument("--speeds", type=integer("--speeds"), default=6, help="impact speeds simulated (default 6)")
+    return ap
+
+
+def catalogue_args(parser: argparse.ArgumentParser, argv: Sequence[str]) -> argparse.Namespace:
+    """Parse and check the arguments before any work (the package's errors name the flag and the rule).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        From :func:`catalogue_parser`.
+    argv : sequence of str
+        The arguments.
+
+    Returns
+    -------
+    argparse.Namespace
+        ``out`` (created if missing), ``velocity`` (None: each device's default), ``grid``, ``speeds``.
+    """
+    args = parser.parse_args(list(argv))
+    check_int("--grid", args.grid, 2, "give at least 2 grid points")
+    check_int("--speeds", args.speeds, 1, "simulate at least one speed")
+    if args.velocity is not None:
+        check_positive("--velocity", args.velocity, "give the impact speed in m/s (rotary: rad/s), > 0")
+    check_output_folder("--out", args.out, create=True)
+    return args
