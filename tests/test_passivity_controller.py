@@ -339,6 +339,8 @@ def test_cli_flags_refused_with_reason(capsys):
         main(["simulate", "--mu", "50", "--beta", "0", "--sigma", "0", "--xi-dot", "1", "--passivity-controller"]) == 2
     )
     assert "needs a physical device" in capsys.readouterr().err
+    assert main(["simulate", *PHANTOM, "--observer", "--samples", "60000000"]) == 2  # 40 bytes a sample: 2.2 GiB
+    assert "--observer with --samples 60000000 would need 2.2 GiB" in capsys.readouterr().err
 
 
 @pytest.mark.slow

@@ -150,10 +150,11 @@ def run(args: argparse.Namespace) -> int:
     n = args.samples if args.samples is not None else default_samples(p.mu, p.beta, p.sigma, v0, x0, quantize, wall=wp)
     n += 0 if approach is None or args.samples is not None else approach[2]  # the approach, before contact
     record = args.trace is not None or args.observer
-    if record and 16 * (n + 1) > MAX_RECORD_BYTES:
-        what = "--trace" if args.trace is not None else "--observer"
+    per = 16 + (24 if args.observer else 0)  # ξ, ξ' and, replayed for the observer, φ_A, E_obs and f
+    if record and per * (n + 1) > MAX_RECORD_BYTES:
+        what = "--observer" if args.observer else "--trace"
         raise UsageError(
-            f"{what} with --samples {n} would need {16 * (n + 1) / 1024**3:.1f} GiB of trajectory "
+            f"{what} with --samples {n} would need {per * (n + 1) / 1024**3:.1f} GiB of trajectory "
             f"(limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB): drop {what} or lower --samples"
         )
     if args.samples is not None:  # the automatic length is capped (dfa.analysis.simulation.default_samples)
