@@ -8,13 +8,16 @@ device with complete values, each limit found as ``dfa stiffness`` finds it; bot
 from __future__ import annotations
 
 import argparse
-from collections.abc import Sequence
+import sys
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
 
 from .._io import check_output_folder
 from ..checks import check_int, check_positive
 from .parsing import Parser, integer, number
 
-__all__ = ["catalogue_parser", "catalogue_args"]
+__all__ = ["catalogue_parser", "catalogue_args", "catalogue_main"]
 
 
 def catalogue_parser(prog: str, description: str) -> argparse.ArgumentParser:
@@ -69,3 +72,43 @@ def catalogue_args(parser: argparse.ArgumentParser, argv: Sequence[str]) -> argp
         check_positive("--velocity", args.velocity, "give the impact speed in m/s (rotary: rad/s), > 0")
     check_output_folder("--out", args.out, create=True)
     return args
+
+
+def catalogue_main(
+    prog: str,
+    parser: argparse.ArgumentParser,
+    argv: Sequence[str] | None,
+    compare: Callable[..., Any],
+    write: Callable[[Any, Path], None],
+) -> int:
+    """Parse, compare, write every file together; return the exit code (:func:`dfa.cli.output.report_script`).
+
+    Parameters
+    ----------
+    prog : str
+        The script's name for the messages.
+    parser : argparse.ArgumentParser
+        From :func:`catalogue_parser`.
+    argv : sequence of str or None
+        The arguments (None: ``sys.argv[1:]``).
+    compare : callable
+        The comparison, called with ``velocity``, ``grid`` and ``speeds``.
+    write : callable
+        Writes the comparison's files into the staging folder it is given (they replace those in ``--out``
+        together, atomically).
+
+    Returns
+    -------
+    int
+        0 ok, 2 bad input, 1 a file error, 130 interrupted.
+    """
+    from .._io import staged_folder
+    from .output import report_script
+
+    def work() -> None:
+        args = catalogue_args(parser, sys.argv[1:] if argv is None else argv)
+        c = compare(velocity=args.velocity, grid=args.grid, speeds=args.speeds)
+        with staged_folder(args.out) as stage:
+            write(c, stage)
+
+    return report_script(prog, work)

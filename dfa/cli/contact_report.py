@@ -14,9 +14,10 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
 
-from .catalogue_report import catalogue_args, catalogue_parser
-from .output import report_script
+from .catalogue_report import catalogue_main, catalogue_parser
 
 __all__ = ["build_parser", "main", "STEM"]
 
@@ -43,19 +44,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     int
         0 ok, 2 bad input, 1 a file error, 130 interrupted.
     """
-    from .._io import staged_folder
     from ..analysis.contact_comparison import contact_comparison
     from ..render.contact import comparison_markdown
     from ..results.jsonable import dumps
 
-    def work() -> None:
-        args = catalogue_args(build_parser(), sys.argv[1:] if argv is None else argv)
-        c = contact_comparison(velocity=args.velocity, grid=args.grid, speeds=args.speeds)
-        with staged_folder(args.out) as stage:
-            (stage / f"{STEM}.md").write_text(comparison_markdown(c), encoding="utf-8")
-            (stage / f"{STEM}.json").write_text(dumps(c, indent=1), encoding="utf-8")
+    def write(c: Any, stage: Path) -> None:
+        (stage / f"{STEM}.md").write_text(comparison_markdown(c), encoding="utf-8")
+        (stage / f"{STEM}.json").write_text(dumps(c, indent=1), encoding="utf-8")
 
-    return report_script(PROG, work)
+    return catalogue_main(PROG, build_parser(), argv, contact_comparison, write)
 
 
 if __name__ == "__main__":  # pragma: no cover
