@@ -379,3 +379,18 @@ def test_passivity_report_script_refuses_bad_input_before_any_work(capsys, tmp_p
         err = capsys.readouterr().err
         assert says in err and err.count("\n") == 1
     assert not (tmp_path / "r" / "passivity_controller.md").exists()
+
+
+def test_passivity_report_script_writes_into_a_new_folder(monkeypatch, tmp_path):
+    """The report script makes a missing --out folder (one level) and writes its three files there together."""
+    import dfa.analysis.passivity_comparison as comparison
+    from dfa.cli import passivity_report
+    from dfa.model.catalogue import get_device
+
+    whole = comparison.passivity_comparison
+    monkeypatch.setattr(comparison, "passivity_comparison", lambda **kw: whole([get_device("Impulse Engine")], **kw))
+    out = tmp_path / "new"
+    assert passivity_report.main(["--out", str(out), "--grid", "4", "--speeds", "1"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == [f"passivity_controller.{s}" for s in ("json", "md", "png")]
+    d = json.loads((out / "passivity_controller.json").read_text(encoding="utf-8"))
+    assert d["devices"] == ["Impulse Engine"] and d["grid"] == 4

@@ -102,12 +102,13 @@ def catalogue_main(
     int
         0 ok, 2 bad input, 1 a file error, 130 interrupted.
     """
-    from .._io import staged_folder
+    from .._io import make_output_folder, staged_folder
     from .output import report_script
 
     def work() -> None:
         args = catalogue_args(parser, sys.argv[1:] if argv is None else argv)
         c = compare(velocity=args.velocity, grid=args.grid, speeds=args.speeds)
+        make_output_folder("--out", args.out)  # a missing last folder is made (it was refused as a failed write)
         with staged_folder(args.out) as stage:
             write(c, stage)
 
