@@ -1223,14 +1223,15 @@ class PassivityController(Element):
     difference) and φ_{h−1} the force the wall held over the sample just ended, [h − 1, h) (its command c_{h−1−d},
     this controller's part included); E_0 is the energy the wall holds at the start as the observer would have
     counted a slow entry (:func:`dfa.core.wall_kernel.held_energy`: 0 from ξ0 = 0 and outside a one-sided wall; a
-    start with the spring preloaded has received its energy). This pairs each sample's force with the displacement the readings saw over
-    that same sample (the sampled observer of Ryu, Kim and Hannaford, IEEE T-RO 20(4), 2004); pairing it with the
-    sample's own v_h instead (the 2002 form) would lag half a sample. Without the encoder and an amplifier lag it
-    is exactly the work −Σ∫φ ξ' dτ done on the wall (by the device's energy balance, −(Δ½μξ'² + Σ dissipated)
-    with the spring's :class:`dfa.analysis.simulation.EnergyRecord`); with the encoder it differs by the readings' rounding (at most
-    ``|φ_{h−1}| + |φ_0| + Σ|φ_k − φ_{k−1}|`` in KΔ², summation by parts); with a lag it uses the command, not the
-    amplifier's output. E_obs < 0: the wall has produced energy (active). A ``window`` of W samples sums only
-    the last W terms (an unbounded observer accumulates a passive past that lets a later active spell through).
+    start with the spring preloaded has received its energy). This pairs each sample's force with the displacement
+    the readings saw over that same sample (the sampled observer of Ryu, Kim and Hannaford, IEEE T-RO 20(4), 2004);
+    pairing it with the sample's own v_h instead (the 2002 form) would lag half a sample. Without the encoder and an
+    amplifier lag it is exactly the work −Σ∫φ ξ' dτ done on the wall (by the device's energy balance, −(Δ½μξ'² + Σ
+    dissipated) with the spring's :class:`dfa.analysis.simulation.EnergyRecord`); with the encoder it differs by the
+    readings' rounding (at most ``|φ_{h−1}| + |φ_0| + Σ|φ_k − φ_{k−1}|`` in KΔ², summation by parts); with a lag it
+    uses the command, not the amplifier's output. E_obs < 0: the wall has produced energy (active). A ``window``
+    of W samples sums only the last W terms (an unbounded observer accumulates a passive past that lets a later
+    active spell through).
     With the encoder, sub-tick motion that toggles the reading across one tick reads as the wall producing energy
     at every toggle (the readings' rounding, not the device's energy): an unbounded observer accumulates it for
     ever and the controller keeps firing on each toggle, which can sustain a buzz where the plain wall rests; a
