@@ -48,6 +48,7 @@ __all__ = [
     "contact_comparison",
     "complete_entries",
     "limit_record",
+    "CatalogueComparison",
 ]
 
 #: The walls compared, in the table's order.
@@ -63,8 +64,48 @@ def limit_record(lim: Any) -> dict[str, Any]:
     return {"value": lim.value, "status": lim.status.value, "range_end": lim.range_end}
 
 
+class CatalogueComparison(Result):
+    """What the catalogue comparisons share (:class:`ContactComparison`, and the passivity controller's): one entry
+    per device in each field of :attr:`per_device`, the status coerced, and a limit's value by device and case.
+
+    Not a dataclass: each subclass is a frozen dataclass with (at least) the fields annotated here.
+    """
+
+    devices: tuple[str, ...]
+    limits: tuple[dict[str, dict[str, dict[str, Any]]], ...]
+    status: ComparisonStatus
+    #: The fields with one entry per device (each subclass names its own).
+    per_device: ClassVar[tuple[str, ...]] = ()
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "status", ComparisonStatus.coerce(self.status, "status"))
+        n = len(self.devices)
+        for name in self.per_device:
+            if len(getattr(self, name)) != n:
+                raise DFAValueError(f"{name} has {len(getattr(self, name))} entries for {n} devices: give one each")
+
+    def value(self, device: int, case: str, limit: str) -> float | None:
+        """One limit's value (None where it has none), N/m (rotary N·m/rad).
+
+        Parameters
+        ----------
+        device : int
+            The device's index.
+        case : str
+            One of the comparison's cases (``CASES`` of its module).
+        limit : str
+            One of the limits it keeps (``k_sim``, ``k_sim_rest``; ``k_criterion`` for the contact comparison).
+
+        Returns
+        -------
+        float or None
+        """
+        v = self.limits[device][case][limit]["value"]
+        return None if v is None else float(v)
+
+
 @dataclass(frozen=True)
-class ContactComparison(Result):
+class ContactComparison(CatalogueComparison):
     """The largest stiffness of the bilateral spring and of the one-sided wall, per catalogue device.
 
     Attributes
@@ -100,31 +141,8 @@ class ContactComparison(Result):
 
     json_properties: ClassVar[tuple[str, ...]] = ()
 
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "status", ComparisonStatus.coerce(self.status, "status"))
-        n = len(self.devices)
-        for name in ("velocities", "pushes", "device_units", "limits"):
-            if len(getattr(self, name)) != n:
-                raise DFAValueError(f"{name} has {len(getattr(self, name))} entries for {n} devices: give one each")
-
-    def value(self, device: int, case: str, limit: str) -> float | None:
-        """One limit's value (None where it has none), N/m.
-
-        Parameters
-        ----------
-        device : int
-            The device's index.
-        case : str
-            One of :data:`CASES`.
-        limit : str
-            One of :data:`LIMITS`.
-
-        Returns
-        -------
-        float or None
-        """
-        v = self.limits[device][case][limit]["value"]
-        return None if v is None else float(v)
+    #: The fields with one entry per device.
+    per_device: ClassVar[tuple[str, ...]] = ("velocities", "pushes", "device_units", "limits")
 
 
 def complete_entries() -> tuple[CatalogueEntry, ...]:

@@ -153,8 +153,8 @@ def observe(result: Any) -> ObserverSummary:
     dfa.PassivityController : The observer's and the controller's formulas.
     """
     n = _observed_span(result)
-    produced = -np.asarray(result.observed_energy()[:n])
-    f = np.asarray(result.controller_force()[:n])
+    _force, energy, control = result.replay()  # one replay for both
+    produced, f = -np.asarray(energy[:n]), np.asarray(control[:n])
     finite = np.isfinite(produced)
     produced, f = produced[finite], f[finite]
     top = int(np.argmax(produced)) if produced.size else 0

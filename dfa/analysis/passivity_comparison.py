@@ -38,9 +38,8 @@ from ..model.catalogue import CatalogueEntry, get_device
 from ..model.device import Device
 from ..model.elements import PassivityController
 from ..model.wall import Wall
-from ..results.base import Result
 from ..results.status import ComparisonStatus
-from .contact_comparison import complete_entries, limit_record
+from .contact_comparison import CatalogueComparison, complete_entries, limit_record
 
 __all__ = ["CASES", "LIMIT_FRICTIONS", "FAILURE_CASE", "PassivityComparison", "passivity_comparison", "impact"]
 
@@ -116,7 +115,7 @@ def _failure() -> dict[str, Any]:
 
 
 @dataclass(frozen=True)
-class PassivityComparison(Result):
+class PassivityComparison(CatalogueComparison):
     """The largest stiffness without and with a passivity controller, and its price, per catalogue device.
 
     Attributes
@@ -162,31 +161,8 @@ class PassivityComparison(Result):
 
     json_properties: ClassVar[tuple[str, ...]] = ()
 
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "status", ComparisonStatus.coerce(self.status, "status"))
-        n = len(self.devices)
-        for name in ("velocities", "force_limits", "device_units", "limits", "prices"):
-            if len(getattr(self, name)) != n:
-                raise DFAValueError(f"{name} has {len(getattr(self, name))} entries for {n} devices: give one each")
-
-    def value(self, device: int, case: str, limit: str) -> float | None:
-        """One limit's value (None where it has none), N/m (rotary N·m/rad).
-
-        Parameters
-        ----------
-        device : int
-            The device's index.
-        case : str
-            One of :data:`CASES`.
-        limit : str
-            ``k_sim`` or ``k_sim_rest``.
-
-        Returns
-        -------
-        float or None
-        """
-        v = self.limits[device][case][limit]["value"]
-        return None if v is None else float(v)
+    #: The fields with one entry per device.
+    per_device: ClassVar[tuple[str, ...]] = ("velocities", "force_limits", "device_units", "limits", "prices")
 
     def plot(self, ax: Any = None) -> Any:
         """Bars of the no-divergence and rest limits per device and wall (:func:`dfa.figures.passivity_plot`).

@@ -658,6 +658,24 @@ class SimulationResult(Result):
         """
         return self._replay("controller_force")[2]
 
+    def replay(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The applied force, the observed energy and the controller's force, from one replay of the record.
+
+        One pass of :func:`dfa.core.wall_kernel.applied_forces` gives all three; :meth:`applied_force`,
+        :meth:`observed_energy` and :meth:`controller_force` each return one of them.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            (φ_A in KΔ, E_obs in KΔ², f in KΔ), each of length samples + 1, read-only.
+
+        Raises
+        ------
+        DFAValueError
+            When the run was not recorded (``record=False``).
+        """
+        return self._replay("replay")
+
     def _replay(self, what: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(φ_A, E_obs, f) replayed from the recorded positions (:func:`dfa.core.wall_kernel.applied_forces`)."""
         if self.xi is None:

@@ -53,9 +53,10 @@ def write_trace_csv(
     from ..checks import check_positive
     from ..model import units
 
-    xi, xi_dot, phi = result.xi, result.xi_dot, result.applied_force()
+    xi, xi_dot = result.xi, result.xi_dot
+    phi, energy, control = result.replay()  # one replay for every column
     pc = observer and bool(result.wall.passivity_controller)
-    extra = ([-result.observed_energy()] if observer else []) + ([result.controller_force()] if pc else [])
+    extra = ([-energy] if observer else []) + ([control] if pc else [])
     # A run stopped early (diverged) holds NaN after its last sample: those rows are not data, leave them out.
     last = int(result.samples_run) + 1
     if last < xi.size and not (np.isfinite(xi[last:]).any() or np.isfinite(xi_dot[last:]).any()):

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..formatting import number
+from .contact import limit_cell
 
 __all__ = ["observer_rows", "passivity_text", "gain_lines", "passivity_markdown"]
 
@@ -135,12 +136,6 @@ _COMPARISON_HEAD = [
 ]
 
 
-def _cell(lim: dict[str, Any]) -> str:
-    from .contact import limit_cell
-
-    return limit_cell(lim)
-
-
 def _limits_table(c: Any) -> list[str]:
     from ..formatting import markdown_table
 
@@ -151,8 +146,8 @@ def _limits_table(c: Any) -> list[str]:
         u = c.device_units[i]
         rows.append(
             [name, f"{number(c.velocities[i], 3)} {u['velocity']}", f"{number(c.force_limits[i], 3)} {u['force']}"]
-            + [_cell(c.limits[i][case]["k_sim"]) for case in cases]
-            + [_cell(c.limits[i][case]["k_sim_rest"]) for case in cases]
+            + [limit_cell(c.limits[i][case]["k_sim"]) for case in cases]
+            + [limit_cell(c.limits[i][case]["k_sim_rest"]) for case in cases]
         )
     return ["## Largest stiffness, simulated (N/m; rotary N·m/rad)", "", markdown_table(head, rows), ""]
 
