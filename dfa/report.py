@@ -27,7 +27,7 @@ from .errors import DFATypeError, DFAValueError
 from .model.catalogue import CatalogueEntry
 from .model.device import Device
 from .model.wall import Wall
-from .results.jsonable import dumps, explain_nulls, to_jsonable
+from .results.jsonable import dumps, explain_nulls, round_floats, to_jsonable
 from .results.status import ReportStatus
 
 __all__ = ["ReportResult", "design_report", "report_name", "report_slug", "write_design_report"]
@@ -194,9 +194,9 @@ def _check_overwrite(out: Path, fmt: str, ident: dict[str, Any]) -> None:
     other = None
     if (out / meta).is_file():
         try:
-            old = json.loads((out / meta).read_text(encoding="utf-8")).get("identity")
+            old = round_floats(json.loads((out / meta).read_text(encoding="utf-8")).get("identity"))
         except (OSError, ValueError, AttributeError):
-            old = None
+            old = None  # compared at JSON's digits: a file written with more (older dfa) is the same report
         if old != ident:
             other = "a report of other inputs" if not isinstance(old, dict) else _describe(old)
     else:  # a report without its JSON: accept it only when it names the same device

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from .._io import atomic_open, staged_folder
-from ..results.jsonable import dumps
+from ..results.jsonable import JSON_DIGITS, dumps
 
 __all__ = ["write_trace_csv", "write_validation", "write_soundness"]
 
@@ -29,7 +29,7 @@ def write_trace_csv(
     of :meth:`~dfa.analysis.simulation.SimulationResult.observed_energy`: positive when it has been active), and
     ``controller_phi`` (KΔ, the passivity controller's force) for a wall with one; with a device
     ``produced_energy_j`` and ``controller_force_n`` (rotary ``controller_force_nm``) beside them. A run that stopped early (``unstable``) is written up to its last
-    integrated sample (``samples_run``), without the NaN rows after it.
+    integrated sample (``samples_run``), without the NaN rows after it. Numbers carry 12 significant digits.
 
     Parameters
     ----------
@@ -84,7 +84,9 @@ def write_trace_csv(
             cols.append(units.force(device, stiffness, extra[1]))
     with atomic_open(path, "w") as fh:
         fh.write(",".join(names) + "\n")
-        np.savetxt(fh, np.column_stack(cols), delimiter=",", fmt=["%d"] + ["%.17g"] * (len(cols) - 1))
+        # 12 significant digits (JSON's, dfa.results.jsonable.JSON_DIGITS); + 0.0 writes -0 as 0
+        table = np.column_stack(cols) + 0.0
+        np.savetxt(fh, table, delimiter=",", fmt=["%d"] + [f"%.{JSON_DIGITS}g"] * (len(cols) - 1))
     return Path(path)
 
 

@@ -7,7 +7,10 @@ Python numbers and lists, enums their value, paths text, complex numbers
 nulled silently: a dict that had a value nulled gains the key ``null_reasons``,
 mapping the JSON pointer of each nulled value (relative to that dict) to why
 (``"NaN"``, ``"+inf"``, ``"-inf"``; for arrays how many entries of each).
-:func:`dumps` is :func:`json.dumps` of the sanitised data.
+:func:`dumps` is :func:`json.dumps` of the sanitised data with every float rounded
+to :data:`JSON_DIGITS` significant digits (:func:`round_floats`): a file or a line
+of JSON carries the digits that mean something, not the last bits of one CPU's
+arithmetic, so the same inputs give the same text on every machine (issue 41).
 
 Examples
 --------
@@ -17,6 +20,8 @@ Examples
 {'a': 1.5, 'b': None, 'c': [1.0, None], 'null_reasons': {'/b': '+inf', '/c': 'NaN at 1 of 2 entries'}}
 >>> dumps([np.int64(3), float("nan")])
 '[3, null]'
+>>> dumps({"x": 0.1 + 0.2, "y": -0.0, "z": 2215.3109748349802})
+'{"x": 0.3, "y": 0.0, "z": 2215.31097483}'
 """
 
 from __future__ import annotations
@@ -30,10 +35,13 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["to_jsonable", "dumps", "explain_nulls", "NULL_REASONS_KEY"]
+__all__ = ["to_jsonable", "dumps", "explain_nulls", "round_floats", "round_sig", "NULL_REASONS_KEY", "JSON_DIGITS"]
 
 #: Key added to a dict in which values were nulled (pointer → reason).
 NULL_REASONS_KEY = "null_reasons"
+
+#: Significant digits of every float written as JSON (files and the command line's ``--json``).
+JSON_DIGITS = 12
 
 
 def _reason(x: float) -> str:
@@ -141,23 +149,74 @@ def to_jsonable(obj: Any) -> Any:
     return _walk(obj, "", {})  # a top-level dict keeps its reasons; a bare list has no place for them
 
 
-def dumps(obj: Any, **kwargs: Any) -> str:
-    """Strict JSON text of ``obj`` through :func:`to_jsonable` (keyword arguments go to :func:`json.dumps`).
+def round_sig(x: float, digits: int = JSON_DIGITS) -> float:
+    """``x`` rounded to ``digits`` significant digits (correctly rounded, by decimal formatting); -0 becomes 0.
+
+    Parameters
+    ----------
+    x : float
+        A finite number.
+    digits : int
+        Significant digits kept, 1 to 17.
+
+    Returns
+    -------
+    float
+        The nearest double to the rounded decimal, never negative zero.
+
+    Examples
+    --------
+    >>> round_sig(0.39176060908879473), round_sig(0.3917606090887948)
+    (0.391760609089, 0.391760609089)
+    >>> round_sig(-1e-320), round_sig(-0.0), round_sig(123456.789, 4)
+    (-1e-320, 0.0, 123500.0)
+    """
+    return float(f"{x:.{digits}g}") + 0.0  # + 0.0 turns -0.0 into 0.0 and leaves every other value as it is
+
+
+def round_floats(data: Any, digits: int = JSON_DIGITS) -> Any:
+    """A copy of plain JSON data (dicts, lists, numbers, text, None) with every float through :func:`round_sig`.
+
+    Parameters
+    ----------
+    data : object
+        What :func:`to_jsonable` returns.
+    digits : int
+        Significant digits kept.
+
+    Returns
+    -------
+    object
+        The same structure; integers, text, booleans and None unchanged.
+    """
+    if isinstance(data, float):
+        return round_sig(data, digits) if math.isfinite(data) else data
+    if isinstance(data, dict):
+        return {k: round_floats(v, digits) for k, v in data.items()}
+    if isinstance(data, list):
+        return [round_floats(v, digits) for v in data]
+    return data
+
+
+def dumps(obj: Any, digits: int = JSON_DIGITS, **kwargs: Any) -> str:
+    """Strict JSON text of ``obj`` through :func:`to_jsonable`, floats to ``digits`` significant digits.
 
     Parameters
     ----------
     obj : object
         As for :func:`to_jsonable`.
+    digits : int
+        Significant digits of every float (:func:`round_floats`); default :data:`JSON_DIGITS`.
     **kwargs
         ``indent``, ``sort_keys``, … of :func:`json.dumps` (``allow_nan`` is always False).
 
     Returns
     -------
     str
-        JSON without NaN or Infinity tokens.
+        JSON without NaN or Infinity tokens, ``-0`` or digits beyond ``digits``.
     """
     kwargs["allow_nan"] = False
-    return json.dumps(to_jsonable(obj), **kwargs)
+    return json.dumps(round_floats(to_jsonable(obj), digits), **kwargs)
 
 
 def explain_nulls(record: dict[str, Any], reasons: dict[str, str]) -> dict[str, Any]:
