@@ -5,6 +5,7 @@ import subprocess
 import sys
 
 import pytest
+from result_json import written
 
 import dfa
 from dfa.cli import main
@@ -85,8 +86,8 @@ def test_cli_check_json_contract(capsys):
     assert (r["region"], r["passive"], r["margin"], r["critical_xi_dot"]) == (
         api.region,
         api.passive,
-        api.margin,
-        api.critical_xi_dot,
+        written(api.margin),
+        written(api.critical_xi_dot),
     )
     c = run_json(capsys, "check", "--beta", "0.2", "--sigma", "0.3", "--xi-dot", "1")
     assert c["region"] == "c" and c["critical_xi_dot"] is None and c["passive"] is False
@@ -104,7 +105,7 @@ def test_cli_stiffness_json_contract(capsys):
     r = run_json(capsys, "stiffness", "--device", "impulse", "--velocity", "0.05", "--stiffness", "80")
     dev = dfa.get_device("impulse").device
     lim = dfa.stiffness_limits(dev, 0.05, 80.0)
-    assert r["k_criterion"]["value"] == lim.k_max and r["k_linear"]["value"] == lim.k_gil
+    assert r["k_criterion"]["value"] == written(lim.k_max) and r["k_linear"]["value"] == written(lim.k_gil)
     assert r["k_colgate"] == lim.k_colgate and r["k_abbott_okamura"] == lim.k_abbott_okamura
     assert r["assessment"]["max_passive_velocity"] == pytest.approx(lim.max_passive_velocity)
     assert r["assessment"]["verdict"] == lim.status.value and r["assessment"]["velocity_status"] == "bounded"

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from result_json import written
 from scipy import optimize
 
 import dfa
@@ -192,12 +193,12 @@ def test_cli_stiffness_four_ways_json_states_the_closed_form_numbers(capsys):
     d = json.loads(out)
     dev = dfa.get_device("impulse").device
     old = dfa.stiffness_limits(dev, 0.2).to_dict()
-    assert d["k_criterion"]["value"] == old["k_max"] and d["k_linear"]["value"] == old["k_gil"]
+    assert d["k_criterion"]["value"] == written(old["k_max"]) and d["k_linear"]["value"] == written(old["k_gil"])
     for key in ("k_static", "k_colgate", "k_abbott_okamura", "velocity", "xi_dot", "device", "delay"):
-        assert d[key] == old[key], key
+        assert d[key] == written(old[key]), key
     r = design_answer(dev, 0.2, wall=Wall.of(80.0), assess=True, source="catalogue")
     for key in ("k_linear", "k_df", "k_sim", "k_sim_rest", "k_criterion"):
-        assert d[key]["value"] == getattr(r, key).value, key
+        assert d[key]["value"] == written(getattr(r, key).value), key
     assert d["stiffness_source"] == "catalogue" and d["wall"]["stiffness"] == 80.0
     assert d["assessment"]["stiffness"] == 80.0 and d["assessment"]["outcomes"]["impact"] == "rest"
     assert d["evidence"]["simulations"] == r.evidence.simulations
@@ -263,7 +264,7 @@ def test_cli_stiffness_zero_speed_nulls_with_reason(capsys):
     d = json.loads(out)
     assert code == 0 and d["k_sim"]["value"] is None and d["k_sim"]["status"] == "not_searched"
     assert "need a speed > 0" in d["k_sim"]["null_reasons"]["/value"]
-    assert d["k_linear"]["value"] == k_gil(dfa.get_device("delta").device)
+    assert d["k_linear"]["value"] == written(k_gil(dfa.get_device("delta").device))
 
 
 def test_cli_stiffness_plot_png(capsys, tmp_path):

@@ -10,6 +10,7 @@ import pytest
 from cli_text import unwrap
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
+from result_json import written
 
 import dfa
 from dfa.analysis.cycles import (
@@ -191,7 +192,7 @@ def test_cli_prints_the_band_numbers_of_the_api(capsys):
     assert nums[3] == pytest.approx(g.xi_dot, rel=1e-3) and nums[4] == pytest.approx(g.xi_dot_high, rel=1e-3)
     assert main(["limit-cycles", "--mu", "5", "--beta", "0.48", "--sigma", "0.0201", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)["growth_threshold"]
-    assert d["band"]["high"]["amplitude"] == g.amplitude_high and d["unstable_count"] == g.unstable_count
+    assert d["band"]["high"]["amplitude"] == written(g.amplitude_high) and d["unstable_count"] == g.unstable_count
 
 
 def test_cli_prints_the_single_threshold_of_the_api_with_units(capsys):

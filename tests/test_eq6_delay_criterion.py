@@ -12,6 +12,7 @@ import pytest
 from cli_text import unwrap
 from hypothesis import example, given
 from hypothesis import strategies as st
+from result_json import written
 
 import dfa
 from dfa import classify_region, passivity_criterion
@@ -292,8 +293,8 @@ def test_cli_check_json_delay_and_initial_position(capsys):
     api = dfa.device_criterion(DEV, Wall.of(14500.0, delay=1), 0.1, position=3e-4)
     assert (r["region"], r["margin"], r["equivalent_speed"], r["delay"]) == (
         api.region,
-        api.margin,
-        api.equivalent_speed,
+        written(api.margin),
+        written(api.equivalent_speed),
         1,
     )
     assert r["xi0"] == pytest.approx(10.0) and r["position"] == 3e-4

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
+from result_json import written
 
 import dfa
 import dfa.analysis.limits.kmax as kmax
@@ -209,7 +210,9 @@ def test_cli_stiffness_controller_text_and_json(capsys, small_search):
         assert limit_text(s, "N/m", explain=True, velocity_unit="m/s") in explained
     assert main([*argv, "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
-    assert _values(d) == [r.k_criterion.value, r.k_linear.value, r.k_df.value, r.k_sim.value, r.k_sim_rest.value]
+    assert _values(d) == written(
+        [r.k_criterion.value, r.k_linear.value, r.k_df.value, r.k_sim.value, r.k_sim_rest.value]
+    )
     assert d["evidence"]["simulations"] == r.evidence.simulations
     assert d["assessment"]["source"] == "catalogue" and d["stiffness_source"] == "catalogue"
     assert d["wall"]["damping"] == 1.0 and d["wall"]["dimensionless"]["damping"] > 0 and d["status"] == r.status.value
@@ -294,11 +297,11 @@ def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search)
     assert main([*argv, "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     r = design_answer(DELTA, 0.1, wall=Wall.of(30000.0, damping=1.0), assess=True, source="given", **SMALL)
-    a = json.loads(json.dumps(r.assessment.to_dict(), allow_nan=False))
+    a = written(r.assessment.to_dict())
     assert d["assessment"] == a and d["stiffness_source"] == "--stiffness" and a["source"] == "given"
     assert a["stiffness"] == 30000.0 and a["outcomes"]["impact"] in dfa.analysis.simulation.OUTCOMES
     # the same K's limits: the answer does not depend on the K being assessed (B, f_c, f_bw, d held fixed)
-    assert d["k_sim"]["value"] == r.k_sim.value and d["k_criterion"]["value"] == r.k_criterion.value
+    assert d["k_sim"]["value"] == written(r.k_sim.value) and d["k_criterion"]["value"] == written(r.k_criterion.value)
     r14 = design_answer(DELTA, 0.1, wall=Wall.of(14500.0, damping=1.0), **SMALL)
     assert [getattr(r14, k) for k in r.limits] == [getattr(r, k) for k in r.limits]
     assert main([*argv, "--explain"]) == 0

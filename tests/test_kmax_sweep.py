@@ -11,6 +11,7 @@ import math
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from result_json import written
 
 import dfa
 import dfa.analysis.limits.kmax as kmax
@@ -193,8 +194,8 @@ def test_cli_stiffness_says_what_the_sweep_simulated(capsys, small_design):
             s["confirmation"]["sweep"]["step"] == 0.005
             and s["confirmation"]["sweep"]["start"] == d["k_criterion"]["value"]
         )
-        assert s["confirmation"] == json.loads(json.dumps(r.searches[key].confirmation.to_dict()))
-        assert s["value"] == r.searches[key].value
+        assert s["confirmation"] == written(r.searches[key].confirmation.to_dict())
+        assert s["value"] == written(r.searches[key].value)
         assert all(f["found_by"] in ("sweep", "confirmation", "earlier runs") for f in s["failures"])
 
 

@@ -136,14 +136,14 @@ def test_cli_stiffness_leads_with_the_recommendation_on_one_screen(capsys, small
     if rec["status"] == "proven":
         assert k == d["k_criterion"]["value"]
     elif rec["status"] == "simulated":
-        assert k == pytest.approx(d["k_sim"]["value"] / rec["margin"], rel=1e-12)
+        assert k == pytest.approx(d["k_sim"]["value"] / rec["margin"], rel=1e-11)  # JSON: 12 digits
 
 
 def test_cli_stiffness_margin_changes_the_simulated_recommendation(capsys, small_search, monkeypatch):
     argv = ["stiffness", "--device", "phantom", "--velocity", "0.1", "--amplifier-bandwidth", "500", "--json"]
     assert main([*argv, "--margin", "4"]) == 0
     d = json.loads(capsys.readouterr().out)
-    assert d["recommendation"]["k_recommended"] == pytest.approx(d["k_sim"]["value"] / 4, rel=1e-12)
+    assert d["recommendation"]["k_recommended"] == pytest.approx(d["k_sim"]["value"] / 4, rel=1e-11)
     monkeypatch.setattr(kmax, "design_answer", lambda *a, **k: pytest.fail("searched before refusing the margin"))
     assert main([*argv, "--margin", "0.5"]) == 2  # refused up front, before the search
     err = capsys.readouterr().err.strip().splitlines()

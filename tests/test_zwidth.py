@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from result_json import written
 
 import dfa
 import dfa.analysis.limits.zwidth as zmod
@@ -193,9 +194,9 @@ def test_cli_zwidth_json_numbers_equal_the_api(capsys):
     rec = json.loads(capsys.readouterr().out)
     api = z_width(get_device(DEV).device, V, grid=3, speeds=1, n_jobs=1)
     for m in ZWIDTH_METHODS:
-        want = [None if not math.isfinite(x) else x for x in api.boundary(m).tolist()]
+        want = written([None if not math.isfinite(x) else x for x in api.boundary(m).tolist()])
         assert rec["boundaries"][m] == want
-    assert rec["stiffness"] == api.stiffness.tolist()
+    assert rec["stiffness"] == written(api.stiffness.tolist())
 
 
 def test_cli_zwidth_text_table_prints_the_boundaries(capsys, tmp_path):
