@@ -14,7 +14,7 @@ from .inputs import add_device_group, impact_speed, resolve
 from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, fmt, progress, save_png, say, table
 from .parsing import UsageError, integer, number
 from .passivity import add_passivity_args, passivity_elements
-from .walls import add_wall_args, check_filter_amplifier, hand_stiffness_of
+from .walls import add_wall_args, check_filter_amplifier, hand_stiffness_of, wall_groups
 
 COMMAND = "zwidth"
 HELP = (
@@ -103,6 +103,7 @@ def run(args: argparse.Namespace) -> int:
     wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
                    amplifier_bandwidth=args.amplifier_bandwidth, hand_stiffness=hand)  # fmt: skip
     wall = Wall(1.0, (*wall.elements, *contact_elements(args, dev), *passivity_elements(args, dev)))
+    wall_groups(wall, dev)  # a value whose group overflows: refused naming its flag
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
     check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
     seconds = z_width_seconds(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs)
