@@ -660,9 +660,12 @@ class SimulationResult(Result):
 
     @property
     def recorded_samples(self) -> int:
-        """The last sample a trace holds: :attr:`samples_run` when the run stopped at a decided outcome (rest
-        proven, divergence, left the wall: the record after it repeats the rest state or holds NaN), else
-        :attr:`samples` (an oscillation, a buzz or an undecided run is judged over the whole run's tail)."""
+        """The last sample a trace holds, where the outcome was decided.
+
+        :attr:`samples_run` when the run stopped at a decided outcome (rest proven, divergence, left the wall: the
+        record after it repeats the rest state or holds NaN), else :attr:`samples` (an oscillation, a buzz or an
+        undecided run is judged over the whole run's tail).
+        """
         return min(int(self.samples_run), int(self.samples))
 
     def replay(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
