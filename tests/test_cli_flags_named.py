@@ -4,6 +4,8 @@ none is silently transformed and none ends in a traceback."""
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
 from dfa.analysis.linear import critical_stiffness
@@ -89,3 +91,50 @@ def test_cli_warnings_are_one_line_on_stderr(monkeypatch, capsys):
     assert main(["devices"]) == 0
     assert seen == ["dfa: warning: bracket not refined (UserWarning)\n"]
     assert warnings.formatwarning is before  # restored after the command
+
+
+DELTA = ["--device", "delta", "--velocity", "0.05"]
+
+
+@pytest.mark.parametrize(
+    "argv, typed, crossed",
+    [
+        # issue 41: "push = inf … cannot be negative", "lag = inf … cannot be negative", "xi0 = -inf …", "damping =
+        # inf …": the dimensionless group overflowed and its check named it, with a hint that did not apply
+        (["simulate", *DELTA, "--one-sided", "--push", "1e308"], "--push 1e+308 N is too large", "p = F_p/(K Δ)"),
+        (["check", *DELTA, "--one-sided", "--push", "1e308"], "--push 1e+308 N is too large", "K = 14500 N/m"),
+        (["stiffness", *DELTA, "--one-sided", "--push", "1e308"], "--push 1e+308 N is too large", "Δ = 3e-05 m"),
+        (["check", *DELTA, "--amplifier-bandwidth", "5e-324"], "--amplifier-bandwidth 5e-324 Hz is too small", "α"),
+        (["simulate", *DELTA, "--amplifier-bandwidth", "5e-324"], "--amplifier-bandwidth 5e-324 Hz", "above"),
+        (["stiffness", *DELTA, "--amplifier-bandwidth", "1e308"], "--amplifier-bandwidth 1e+308 Hz is too large", "α"),
+        (["zwidth", *DELTA, "--amplifier-bandwidth", "5e-324"], "--amplifier-bandwidth 5e-324 Hz", "overflows"),
+        (["check", *DELTA, "--position", "-1e308"], "--position -1e+308 m is too large", "ξ = x/Δ"),
+        (["check", *DELTA, "--virtual-damping", "1", "--position", "-1e308"], "--position -1e+308 m", "Δ = 3e-05 m"),
+        (
+            ["simulate", *DELTA, "--stiffness", "100", "--virtual-damping=1e308"],
+            "--virtual-damping 1e+308 N·s/m",
+            "B·T/m",
+        ),
+        (["check", *DELTA, "--virtual-damping=1e308"], "--virtual-damping 1e+308 N·s/m is too large", "B·T/m"),
+        (["stiffness", *DELTA, "--virtual-damping=1e308"], "--virtual-damping 1e+308 N·s/m is too large", "B·T/m"),
+        (["check", *DELTA, "--rotary", "--one-sided", "--push", "1e308"], "--push 1e+308 N·m is too large", "rad"),
+    ],
+)
+def test_overflowing_value_is_named_as_typed_with_the_limit_it_crossed(capsys, argv, typed, crossed):
+    err = _refused(capsys, *argv)
+    assert typed in err and crossed in err, err
+    assert "inf" not in err.replace("info", "") and "cannot be negative" not in err, err
+    assert re.search(r"; give .* (below|above) \d", err), err  # a fix that applies: the value that works
+
+
+def test_overflowing_group_names_the_physical_value_in_the_api():
+    """The API words the same error with the parameter's name and states the value that works."""
+    from dfa.model.elements import GroupRangeError
+    from dfa.model.wall import Wall
+
+    with pytest.raises(GroupRangeError, match=r"^damping = 1e\+308 N·s/m is too large: β_B = B/\(K T\) overflows"):
+        Wall.of(100.0, damping=1e308).params(1e-3, 1e-5)
+    with pytest.raises(GroupRangeError) as err:
+        Wall.of(1.0, amplifier_bandwidth=5e-324).params(1e-3)
+    least = err.value.limit  # the smallest bandwidth whose α = 1/(2π f T) a float holds
+    assert not err.value.above and Wall.of(1.0, amplifier_bandwidth=least * 1.01).params(1e-3).lag > 1e300

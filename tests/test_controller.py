@@ -83,4 +83,5 @@ def test_controller_subnormal_lag_refused_shortest_lag_runs(capsys):
     assert [r.outcome for r in runs] == ["rest", "rest"]
     assert main(["stiffness", "--device", "delta", "--velocity", "0.1", "--amplifier-bandwidth", "1e306"]) == 2
     err = capsys.readouterr().err.strip()
-    assert err.count("\n") == 0 and "lag = " in err and "no amplifier bandwidth" in err
+    assert err.count("\n") == 0 and "--amplifier-bandwidth 1e+306 Hz is too large" in err  # the value typed
+    assert "below the shortest lag" in err and "give --amplifier-bandwidth in Hz below" in err  # issue 41

@@ -167,3 +167,24 @@ def test_eq11_require_describing_function_substituted_back(capsys):
     text = capsys.readouterr().out
     assert "describing fn" in text and f"≥ {c:.4g} N (holds now)" in text
     assert all(len(line) <= 100 for line in text.splitlines())
+
+
+def test_eq11_require_period_with_a_damper_searches_both_ways():
+    """Issue 41: with a virtual damper the criterion's friction term c − KΔ/2 − BΔ/T grows with T, so a longer
+    period proves K where a shorter never does; `require` answered "no value helps" (it only tried shorter).
+
+    Here c − KΔ/2 − BΔ/T = 0.06 − 0.015 − 0.054 < 0 today; eq. 11 with the damper, solved by hand for T:
+    (b − B)ẋ − KẋT/2 + c − KΔ/2 − BΔ/T = 0, a quadratic in T whose smaller root is the least period that holds.
+    """
+    dev = Device(0.25, 0.01, 0.06, 3e-5, 3.333e-4)
+    k, v, b = 1000.0, 0.001, 0.6
+    wall = Wall.of(k, damping=b)
+    assert not criterion_passes(dev, wall, k, v)
+    r = requirements(dev, k, v, wall=wall, methods=("criterion",), parameters=("period",)).find("criterion", "period")
+    assert r.status is RequireStatus.CHANGE and r.bound == "at_least" and r.required > dev.period
+    # the root by hand: −(Kẋ/2) T² + ((b − B)ẋ + c − KΔ/2) T − BΔ = 0
+    qa, qb, qc = -0.5 * k * v, (dev.damping - b) * v + dev.coulomb - 0.5 * k * dev.resolution, -b * dev.resolution
+    roots = sorted((-qb + s * math.sqrt(qb * qb - 4 * qa * qc)) / (2 * qa) for s in (1.0, -1.0))
+    assert r.required == pytest.approx(roots[0], rel=1e-6)
+    for t, holds in ((r.required * (1 + 1e-6), True), (r.required * (1 - 1e-6), False)):
+        assert criterion_passes(*_changed(dev, wall, "period", t), k, v) is holds

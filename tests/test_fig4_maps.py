@@ -112,7 +112,8 @@ def test_cli_simulate_device_preload_and_trace(capsys, tmp_path):
     )
     out = json.loads(capsys.readouterr().out)
     rows = list(csv.reader(trace.open()))
-    assert rows[0][:4] == ["sample", "xi", "xi_dot", "phi"] and len(rows) == 502  # then t_s, x_m, … (a device)
+    assert rows[0][:4] == ["sample", "xi", "xi_dot", "phi"]  # then t_s, x_m, … (a device)
+    assert out["outcome"] == "rest" and len(rows) == out["rest_sample"] + 2  # header, samples 0 .. rest (issue 41)
     p = dfa.get_device("impulse").device.params(80.0)
     x0 = preload_position(p.mu, dfa.get_device("impulse").device.xi_dot(0.05))
     assert float(rows[1][1]) == pytest.approx(x0) and float(rows[1][2]) == 0.0
@@ -246,3 +247,29 @@ def test_stability_map_json_is_the_result_base_plus_counts(wall):
     assert d["delay"] == m.delay == (0 if wall is None else 1) and d["wall"] == to_jsonable(m.wall)
     assert (d["status"], d["status_message"]) == ("ok", m.status.message)
     assert d["counts"] == [dict(xi_dot=v, **c) for v, c in zip(m.xi_dots, m.counts(), strict=True)]
+
+
+def test_trace_stops_where_the_device_comes_to_rest_and_says_so(capsys, tmp_path):
+    # issue 41: a run that came to rest at sample 55 of 50,000 wrote 50,001 rows (the rest state repeated)
+    trace = tmp_path / "t.csv"
+    argv = ["simulate", "--device", "delta", "--velocity", "0.05", "--trace", str(trace)]
+    assert main([*argv, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["outcome"] == "rest" and out["rest_sample"] < out["samples"] // 100
+    rows = list(csv.reader(trace.open()))
+    assert len(rows) == out["rest_sample"] + 2  # header, samples 0 .. the rest sample
+    assert out["trace"]["last_sample"] == out["rest_sample"] and out["trace"]["rows"] == len(rows) - 1
+    assert "rest" in out["trace"]["ends"]
+    assert float(rows[-1][1]) == pytest.approx(out["final_xi"], abs=1e-9)
+    assert main(argv) == 0
+    text = " ".join(capsys.readouterr().out.split())  # the line wraps after a long path
+    assert f"samples 0 to {out['rest_sample']} (at rest from there on)" in text
+
+
+def test_trace_of_an_undecided_run_holds_the_whole_run_and_says_why(capsys, tmp_path):
+    trace = tmp_path / "t.csv"
+    argv = ["simulate", "--mu", "100", "--beta", "0.001", "--sigma", "0.2", "--xi-dot", "1", "--samples", "3000"]
+    assert main([*argv, "--trace", str(trace), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["samples_run"] == 3000 and out["trace"]["last_sample"] == 3000
+    assert len(list(csv.reader(trace.open()))) == 3002 and out["trace"]["ends"].startswith("the whole run")

@@ -144,11 +144,15 @@ def test_zwidth_plot_has_labelled_log_axes(zw):
     assert "N·s/m" in ax.get_xlabel() and "N/m" in ax.get_ylabel()
 
 
-def test_zwidth_plot_design_star_does_not_hide_the_criterion_point_at_b0(zw):
-    """The criterion is defined at B = 0 only here: its marker lies above the design point's star, both in the legend."""
+def test_zwidth_plot_design_star_does_not_hide_the_criterion_point_at_b0():
+    """The criterion is defined at B = 0 only here: its marker lies above the design point's star, both in the legend.
+
+    The damping axis to m/T (the default of old): its first B > 0 lies above where the criterion proves any K."""
     import matplotlib
 
     matplotlib.use("Agg")
+    dev = get_device(DEV).device
+    zw = z_width(dev, V, grid=3, speeds=1, n_jobs=1, b_range=(0.0, dev.mass / dev.period))
     crit = zw.boundary("criterion")
     assert np.isfinite(crit[0]) and np.isfinite(crit).sum() == 1  # the case of the fix: a single point at B = 0
     ax = zw.plot(design_point=(0.0, float(crit[0])))  # the star exactly on the criterion's point
@@ -222,6 +226,8 @@ def test_cli_zwidth_text_table_prints_the_boundaries(capsys, tmp_path):
         (["--device", "impulse", "--velocity", "0.1", "--grid", "500"], "grid"),
         (["--velocity", "0.1"], "device"),
         (["--device", "impulse"], "velocity"),
+        (["--device", "impulse", "--velocity", "0.1", "--damping-max", "0"], "--damping-max 0 is invalid"),
+        (["--device", "impulse", "--velocity", "0.1", "--damping-max", "inf"], "--damping-max"),
     ],
 )
 def test_cli_zwidth_errors_one_line_exit_2(argv, needle, capsys):
@@ -262,3 +268,39 @@ def test_zwidth_columns_at_B_positive_equal_dfa_stiffness_with_that_B(seed):
         want = math.nan if lim.value is None else lim.value
         got = z.boundary(col)[i]
         assert (math.isnan(got) and math.isnan(want)) or got == pytest.approx(want, rel=2 * K_RTOL), (col, got, want)
+
+
+@pytest.mark.parametrize("name, v", [("delta", 0.05), ("impulse", 0.1), ("phantom", 0.1)])
+def test_zwidth_default_damping_axis_ends_past_the_last_passivity_boundary(name, v):
+    """Issue 41: the axis ran to m/T = 750 N·s/m on the Delta while the criterion proves nothing above a few
+    N·s/m and Colgate–Schenkel nothing above b; the default top is now twice where the last of them ends, each end
+    checked against its method directly (just below it some K holds, just above none)."""
+    from dfa.analysis.colgate_schenkel import colgate_schenkel_damping
+    from dfa.analysis.limits.kmax import wall_k_criterion
+
+    dev = get_device(name).device
+    ends = zmod.damping_ends(dev, Wall(1.0), v)
+    top = zmod.default_damping_max(dev, Wall(1.0), v)
+    assert top == pytest.approx(2.0 * max(ends.values()), rel=1e-12) and top < 0.1 * dev.mass / dev.period
+    crit = ends["criterion"]
+    assert wall_k_criterion(dev, Wall.of(1.0, damping=crit * (1 - 1e-6)), v) > 0.0
+    assert wall_k_criterion(dev, Wall.of(1.0, damping=crit * (1 + 1e-6)), v) == 0.0
+    k = 1e-12 * dev.mass / dev.period**2  # Colgate–Schenkel: b above the bound at K → 0, just below its end
+    for factor, holds in ((1 - 1e-3, True), (1 + 1e-3, False)):
+        bound = colgate_schenkel_damping(Wall.of(k, damping=ends["passivity"] * factor), dev.period).damping_bound
+        assert (dev.damping > bound) is holds
+
+
+def test_cli_zwidth_damping_max_sets_the_axis_and_the_default_is_stated(capsys):
+    argv = ["zwidth", "--device", "impulse", "--velocity", "0.1", "--grid", "2", "--speeds", "1", "--jobs", "1"]
+    assert main([*argv, "--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    dev = get_device(DEV).device
+    assert rec["damping"][-1] == pytest.approx(zmod.default_damping_max(dev, Wall(1.0), V), rel=1e-9)
+    assert main([*argv, "--damping-max", "3"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "B 0 to 3 N·s/m)" in out and "\n3 " not in out
+    assert main(argv) == 0
+    assert "twice where the passivity boundaries end, --damping-max sets it" in " ".join(
+        capsys.readouterr().out.split()
+    )

@@ -1169,10 +1169,11 @@ def device_criterion(
     w = as_wall(wall)
     v = abs(check_real("velocity", velocity, "give the speed in m/s (rotary: rad/s)"))
     x0 = check_real("position", position, "give the initial position in m (rotary: rad)")
+    xi0 = device.xi(x0)  # refused with the position's own message when x0/Δ overflows
     p = device.params(w.stiffness)
     r = passivity_criterion(
         p.beta, p.sigma, device.xi_dot(v), wall=w.params(device.period, device.resolution), quantized=quantized,
-        xi0=x0 / device.resolution, mu=p.mu, history=history,
+        xi0=xi0, mu=p.mu, history=history,
     )  # fmt: skip
     crit = None if r.critical_xi_dot is None else device.velocity(r.critical_xi_dot)
     return replace(r, device=device, stiffness=w.stiffness, velocity=v, critical_velocity=crit, position=x0)

@@ -38,7 +38,7 @@ from .limits.grip import GripSweep, grip_sweep
 from .limits.kmax import KMaxResult, RunCache, check_search_range, design_answer
 from .limits.recommend import Recommendation, recommend_stiffness
 from .limits.speed_chart import StiffnessSpeedChart, check_chart_range, stiffness_speed_chart
-from .limits.zwidth import ZWidth, check_zwidth_size, z_width
+from .limits.zwidth import ZWidth, check_zwidth_size, default_damping_max, z_width
 from .loop import NyquistLocusResponse, nyquist_locus_response
 from .maps import StabilityMap, map_start, stability_map
 from .simulation import SimulationResult, divergence_bound, simulate
@@ -527,7 +527,7 @@ def _closed_forms(dev: Device, wall: Wall, v: float) -> dict[str, Any]:
 
 def _zwidth(dev: Device, v: float, wall: Wall, widen: bool, grid: int, n_jobs: int, progress: bool) -> ZWidth:
     """The Z-width at the design speed, with the wall's delay, filter and lag; B's axis holds the wall's B."""
-    b_top = dev.mass / dev.period  # z_width's default range, widened to show the controller's B
+    b_top = default_damping_max(dev, wall, v)  # z_width's default range, widened to show the controller's B
     b_range = (0.0, 1.25 * wall.damping) if widen and wall.damping > b_top else None
     return z_width(dev, v, wall=wall, grid=grid, b_range=b_range, speeds=1, n_jobs=n_jobs, progress=progress)
 

@@ -658,6 +658,16 @@ class SimulationResult(Result):
         """
         return self._replay("controller_force")[2]
 
+    @property
+    def recorded_samples(self) -> int:
+        """The last sample a trace holds, where the outcome was decided.
+
+        :attr:`samples_run` when the run stopped at a decided outcome (rest proven, divergence, left the wall: the
+        record after it repeats the rest state or holds NaN), else :attr:`samples` (an oscillation, a buzz or an
+        undecided run is judged over the whole run's tail).
+        """
+        return min(int(self.samples_run), int(self.samples))
+
     def replay(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The applied force, the observed energy and the controller's force, from one replay of the record.
 

@@ -59,6 +59,8 @@ def _criterion(args: argparse.Namespace, inp: Inputs, xd: float, v: float | None
                 "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
             )
         vel = inp.device.velocity(xd) if v is None else v
+        if args.position is not None:
+            inp.device.xi(args.position, "--position")  # x/Δ overflowing: refused naming the flag
         spring = Wall.of(inp.stiffness, delay=args.delay)
         return device_criterion(
             inp.device, spring, vel, quantized=quantized, position=args.position or 0.0, history=args.history
@@ -99,6 +101,8 @@ def _check_wall(args: argparse.Namespace, inp: Inputs, wall: Wall, xd: float, v:
             "hand-stiffness flags"
         )
     vel = dev.velocity(xd) if v is None else v
+    if args.position is not None:
+        dev.xi(args.position, "--position")  # x/Δ overflowing: refused naming the flag
     chk = passivity_check(dev, wall, vel, position=args.position or 0.0, quantized=not args.no_quantization)
     if args.json:
         emit(wall_json(chk.to_dict(), wall, inp))

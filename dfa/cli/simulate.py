@@ -60,7 +60,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--trace",
         metavar="FILE.csv",
         help="write sample, xi, xi_dot, phi (ticks, KΔ) and with a device t_s, x_m, v_m_per_s, force_n to a CSV "
-        "file (default: none)",
+        "file, one row per sample up to where the outcome was decided (rest, divergence, leaving the wall; "
+        "otherwise the whole run) (default: none)",
     )
     add_observer_arg(p)
     add_progress_args(p)
@@ -110,6 +111,14 @@ def _write_trace(path: str, r: object, inp: Inputs, observer: bool) -> None:
         raise UsageError(f"--trace {path!r} cannot be written: {exc.strerror}; choose a writable file") from None
 
 
+def _trace_record(path: str, r: Any) -> dict[str, object]:
+    """The JSON's ``trace`` record: the file, its last sample and rows, and why it ends there."""
+    from ..render.files import trace_extent
+
+    last, why = trace_extent(r)
+    return {"file": path, "last_sample": last, "rows": last + 1, "ends": why}
+
+
 def _observer_units(phys: dict[str, float] | None, inp: Inputs) -> dict[str, str]:
     """The unit of each number of the JSON's ``observer`` record."""
     out = {"produced": "KΔ²", "peak_produced": "KΔ²", "peak_controller_force": "KΔ", "peak_sample": "samples"}
@@ -132,6 +141,7 @@ def run(args: argparse.Namespace) -> int:
     """Simulate one impact; print its outcome, amplitude, frequency and final state."""
     from ..analysis.simulation import MAX_RECORD_BYTES, default_samples, divergence_bound, simulate
     from ..render.contact import contact_line
+    from ..render.files import trace_extent
     from ..render.text import simulation_rows
 
     inp = resolve(args, dimensionless=True)
@@ -177,6 +187,8 @@ def run(args: argparse.Namespace) -> int:
         explain_nulls(d, r.null_reasons())
         if obs is not None:
             d["observer"] = obs[0].to_dict() | (obs[1] or {}) | {"units": _observer_units(obs[1], inp)}
+        if args.trace is not None:
+            d["trace"] = _trace_record(args.trace, r)
         emit(wall_json(d, ctl, inp))
         return 0
     say(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
@@ -190,5 +202,6 @@ def run(args: argparse.Namespace) -> int:
         rows += observer_rows(*obs, None if inp.device is None else inp.device.period)
     say(table(rows))
     if args.trace is not None:
-        say(f"trace written to {args.trace}")
+        last, why = trace_extent(r)
+        say(f"trace written to {args.trace}: samples 0 to {last} ({why})")
     return 0

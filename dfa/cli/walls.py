@@ -28,6 +28,7 @@ __all__ = [
     "print_wall",
     "wall_from_args",
     "wall_json",
+    "wall_groups",
     "wall_params",
 ]
 
@@ -92,6 +93,23 @@ def check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
         )
 
 
+def _check_damper_rate(b: float, device: Device) -> None:
+    """Refuse a damper whose B·T/m exceeds :data:`dfa.checks.MAX_RATE` (the analyses' rule, there worded with
+    internal names), naming --virtual-damping, the value typed and the largest B that works."""
+    from ..checks import MAX_RATE, format_value
+
+    m, t = device.mass, device.period
+    if b * t / m <= MAX_RATE:
+        return
+    u = device.units
+    raise UsageError(
+        f"--virtual-damping {format_value(b)} {u['damping']} is too large: B·T/m = {b * t / m:.3g} with m = {m:g} "
+        f"{u['mass']}, T = {t:g} s must be at most {MAX_RATE:g} (the damper's time constant m/B under "
+        f"{1 / MAX_RATE:g} samples: the loop's polynomials overflow); give B in {u['damping']} below "
+        f"{MAX_RATE * m / t:.3g} (check the units)"
+    )
+
+
 def hand_stiffness_of(args: argparse.Namespace, device: Device | None) -> float:
     """The stiffness k_h of the hand holding ``device`` (0 for none), refused at or above the Nyquist resonance
     and with ``--amplifier-bandwidth``.
@@ -142,19 +160,31 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
     if b is not None and b < 0:
         bu = device.units["damping"]
         raise UsageError(f"--virtual-damping {b:g} is invalid: B must be >= 0; give the damper in {bu} (0 for none)")
+    if b is not None:
+        _check_damper_rate(b, device)
     check_filter_amplifier(args, device)
     values: dict[str, Any] = {kind.parameter.name: getattr(args, dest) for kind, (_f, dest) in WALL_FLAGS.items()}
     values["damping"] = values["damping"] or 0.0
     wall = Wall.of(stiffness, hand_stiffness=hand, **values)
     wall = Wall(stiffness, (*wall.elements, *contact)) if contact else wall
-    return None if wall.params(device.period, device.resolution).is_spring else wall
+    return None if wall_groups(wall, device).is_spring else wall
+
+
+#: How a message of the wall's groups calls each element's value: its flag (``--virtual-damping``, ``--push``).
+WALL_NAMES = {k.parameter.name: k.parameter.flag for k in ELEMENTS}
+
+
+def wall_groups(wall: Wall, device: Device) -> WallParams:
+    """The wall's dimensionless groups on ``device``; a value whose group a float cannot hold (``--push 1e308``
+    over K Δ) is refused naming its flag, the value in its unit, what overflowed and the value that works."""
+    return wall.params(device.period, device.resolution, names=WALL_NAMES, rotary=device.rotary)
 
 
 def wall_params(args: argparse.Namespace, wall: Wall | None, inp: Inputs | None) -> WallParams:
     """The dimensionless wall of a run: the wall's groups, else the spring with the --delay."""
     if wall is None or inp is None or inp.device is None:
         return WallParams.of(delay=args.delay)
-    return wall.params(inp.device.period, inp.device.resolution)
+    return wall_groups(wall, inp.device)
 
 
 def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[str, Any]:

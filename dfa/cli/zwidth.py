@@ -14,7 +14,7 @@ from .inputs import add_device_group, impact_speed, resolve
 from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, fmt, progress, save_png, say, table
 from .parsing import UsageError, integer, number
 from .passivity import add_passivity_args, passivity_elements
-from .walls import add_wall_args, check_filter_amplifier, hand_stiffness_of
+from .walls import add_wall_args, check_filter_amplifier, hand_stiffness_of, wall_groups
 
 COMMAND = "zwidth"
 HELP = (
@@ -42,6 +42,14 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_contact_args(p)
     add_passivity_args(p)
     p.add_argument("--grid", type=integer("--grid"), default=40, metavar="N", help="points per axis (default: 40)")
+    p.add_argument(
+        "--damping-max",
+        dest="damping_max",
+        type=number("--damping-max", "N·s/m (rotary: N·m·s/rad)"),
+        metavar="B",
+        help="top of the virtual damping axis in N·s/m (rotary: N·m·s/rad), from 0 (default: twice the B where "
+        "the criterion's and Colgate–Schenkel's boundaries end, at most m/T)",
+    )
     p.add_argument(
         "--speeds",
         type=integer("--speeds"),
@@ -79,6 +87,12 @@ def _refuse(args: argparse.Namespace) -> None:
         if value < least:
             raise UsageError(f"{flag} {value} is invalid: it must be a whole number >= {least}; give e.g. {flag} 4")
     check_jobs("--jobs", args.jobs)
+    top = args.damping_max
+    if top is not None and not (math.isfinite(top) and top > 0.0):
+        raise UsageError(
+            f"--damping-max {top:g} is invalid: it must be a finite number > 0 (the axis runs from B = 0); give the "
+            "largest virtual damping in N·s/m (rotary: N·m·s/rad), or drop the flag for the device's default"
+        )
 
 
 def _cell(value: float | None) -> str:
@@ -90,7 +104,7 @@ def run(args: argparse.Namespace) -> int:
     """Compute the Z-width; print K_max(B) per method."""
     from ..analysis.limits.require import damper_guidance_for
     from ..analysis.limits.zwidth import ZWIDTH_METHODS, check_zwidth_size, z_width, z_width_seconds
-    from ..render.zwidth import criterion_damper_note, non_monotone_mark, non_monotone_notes
+    from ..render.zwidth import criterion_damper_note, damping_axis_note, non_monotone_mark, non_monotone_notes
 
     _refuse(args)
     inp = resolve(args, dimensionless=False, need_stiffness=False)
@@ -103,11 +117,18 @@ def run(args: argparse.Namespace) -> int:
     wall = Wall.of(1.0, delay=args.delay, filter_cutoff=args.velocity_filter,
                    amplifier_bandwidth=args.amplifier_bandwidth, hand_stiffness=hand)  # fmt: skip
     wall = Wall(1.0, (*wall.elements, *contact_elements(args, dev), *passivity_elements(args, dev)))
+    wall_groups(wall, dev)  # a value whose group overflows: refused naming its flag
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
     check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
-    seconds = z_width_seconds(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs)
+    b_range = None if args.damping_max is None else (0.0, float(args.damping_max))
+    seconds = z_width_seconds(
+        dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, b_range=b_range
+    )  # fmt: skip
     check_work_time(f"--grid {args.grid} with --speeds {args.speeds}", seconds, "lower --grid or --speeds", args.force)
-    zw = z_width(dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, progress=progress(args))
+    zw = z_width(
+        dev, v, wall=wall, grid=args.grid, b_range=b_range, speeds=args.speeds, n_jobs=args.jobs,
+        progress=progress(args),
+    )  # fmt: skip
     if args.plot is not None:
         save_png("--plot", args.plot, zw.plot())
     if args.json:
@@ -140,7 +161,9 @@ def run(args: argparse.Namespace) -> int:
     say(table(rows, [f"B ({u['damping']})"] + [COLUMNS[m] for m in ZWIDTH_METHODS]))
     say(
         f"{zw.simulations} exact simulations on a {zw.stiffness.size} x {zw.damping.size} grid "
-        f"(K {zw.stiffness[0]:.4g} to {zw.stiffness[-1]:.4g} {u['stiffness']}); simulated limits are grid values"
+        f"(K {zw.stiffness[0]:.4g} to {zw.stiffness[-1]:.4g} {u['stiffness']}, B {zw.damping[0]:.4g} to "
+        f"{zw.damping[-1]:.4g} {u['damping']}{'' if args.damping_max else damping_axis_note()}); "
+        "simulated limits are grid values"
     )
     for line in non_monotone_notes(zw, {m: COLUMNS[m] for m in ZWIDTH_METHODS}):
         say(line)

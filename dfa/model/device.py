@@ -323,6 +323,40 @@ class Device:
         warn_if_from_outside("stiffness", k, rotary=self.rotary)
         return dimensionless_params(self, k)
 
+    def xi(self, position: float, name: str = "position") -> float:
+        """Dimensionless position ξ = x/Δ (encoder ticks) of a physical position.
+
+        Parameters
+        ----------
+        position : float
+            Position x in m (rotary: rad); its sign is kept.
+        name : str, optional
+            How a message calls it (default ``"position"``; the command line gives its flag, ``"--position"``).
+
+        Returns
+        -------
+        float
+            The position ξ in encoder ticks.
+
+        Raises
+        ------
+        DFAValueError
+            If ``position`` is not a finite number or ξ overflows a float (the message names the position in its
+            unit, the resolution it is divided by and the largest position that works).
+        """
+        unit = self.units["position"]
+        x = check_real(name, position, f"give the position in {unit}")
+        out = x / self.resolution
+        if not math.isfinite(out):
+            shown = format_value(x)
+            subject = f"{name} {shown} {unit}" if name.startswith("-") else f"{name} = {shown} {unit}"
+            top = 1.7976931348623157e308 * self.resolution
+            raise DFAValueError(
+                f"{subject} is too large: ξ = x/Δ (encoder ticks) overflows a float with Δ = {self.resolution:g} "
+                f"{unit}; give a position in {unit} of size below {top:.3g} (check the units)"
+            )
+        return out
+
     def xi_dot(self, velocity: float) -> float:
         """Dimensionless speed ξ' = ẋ T/Δ (encoder ticks per sample) of a physical speed.
 

@@ -54,6 +54,7 @@ from ..errors import DFAError, DFAValueError
 
 __all__ = [
     "Element",
+    "GroupRangeError",
     "Parameter",
     "NotCovered",
     "CommandPolynomials",
@@ -84,6 +85,9 @@ MIN_CUTOFF = 1.0e-3
 #: inf, a ZeroDivisionError compiled and NaN, "unstable", for a decaying loop in Python).
 MIN_LAG = 1e-300
 
+#: The largest float: a group above it is inf.
+_FLOAT_MAX = 1.7976931348623157e308
+
 #: Most stiffnesses one sweep of a K_max search simulates (:mod:`dfa.analysis.limits.kmax`); an element whose
 #: runs cost more per sample lowers it (:attr:`Element.sweep_points`).
 SWEEP_MAX_POINTS = 600
@@ -91,6 +95,77 @@ SWEEP_MAX_POINTS = 600
 
 class NotCovered(DFAError):
     """Raised by :meth:`Element.corner` for an element no sound passivity criterion covers; the message says why."""
+
+
+#: Units of the quantities a group is formed with: (linear, rotary).
+_K_UNITS, _T_UNITS, _D_UNITS = ("N/m", "N·m/rad"), ("s", "s"), ("m", "rad")
+
+
+class GroupRangeError(DFAValueError):
+    """An element's physical value is valid but its dimensionless group is not: it overflows a float (a damper of
+    1e308 N·s/m over K T) or falls outside the group's rule (an amplifier lag far below a sample).
+
+    The message names the physical value in its unit, the group, the quantities it is formed with and the value
+    that would work; :meth:`dfa.model.wall.Wall.params` words it with the command line's flag
+    (:meth:`message` with ``names``) and the units of a rotary device.
+
+    Parameters
+    ----------
+    parameter : Parameter
+        The element's parameter (name, units, group symbol).
+    value : float
+        The physical value (in the parameter's units).
+    why : str
+        What happens to the group, e.g. ``"overflows a float"``.
+    inputs : tuple of (str, float, (str, str))
+        The quantities the group is formed with: symbol, value, (linear unit, rotary unit).
+    limit : float
+        The value beyond which the group breaks (inf or 0: none worth giving).
+    above : bool
+        True when values above ``limit`` break it (give one below); False when values below do.
+    hint : str
+        The message's last words, in parentheses (default ``"check the units"``).
+    """
+
+    def __init__(
+        self,
+        parameter: Parameter,
+        value: float,
+        why: str,
+        inputs: tuple[tuple[str, float, tuple[str, str]], ...],
+        limit: float,
+        above: bool = True,
+        hint: str = "check the units",
+    ) -> None:
+        self.parameter, self.value, self.why, self.inputs = parameter, value, why, inputs
+        self.limit, self.above, self.hint = limit, above, hint
+        super().__init__(self.message())
+
+    def message(self, names: dict[str, str] | None = None, rotary: bool = False) -> str:
+        """The one-line message, naming the value by ``names`` (e.g. the flag: ``{"push": "--push"}``).
+
+        Parameters
+        ----------
+        names : dict, optional
+            How to call the parameter (default its name, ``push = 1e+308 N``; a flag gives ``--push 1e+308 N``).
+        rotary : bool, optional
+            Word the units of a rotary device (default linear).
+
+        Returns
+        -------
+        str
+        """
+        par, i = self.parameter, int(bool(rotary))
+        unit = par.units[i]
+        name = (names or {}).get(par.name)
+        shown = format_value(self.value)  # as typed: 5e-324, not 4.94066e-324
+        subject = f"{name} {shown} {unit}" if name else f"{par.name} = {shown} {unit}"
+        given = ", ".join(f"{sym} = {v:g} {units[i]}" for sym, v, units in self.inputs)
+        side = "large" if self.above else "small"
+        out = f"{subject} is too {side}: {par.symbol} {self.why} with {given}"
+        if 0.0 < self.limit < math.inf:
+            out += f"; give {name or par.name} in {unit} {'below' if self.above else 'above'} {self.limit:.3g}"
+        return out + f" ({self.hint})"
 
 
 class Parameter(NamedTuple):
@@ -204,6 +279,13 @@ class Element(abc.ABC):
     def value(self) -> Any:
         """The physical parameter (:attr:`parameter` names it and its unit)."""
         return getattr(self, self.parameter.name)
+
+    def _finite(self, group: float, inputs: tuple[tuple[str, float, tuple[str, str]], ...], scale: float) -> float:
+        """``group`` = value/``scale`` (formed with ``inputs``), refused when it overflows a float
+        (:class:`GroupRangeError`, naming the physical value and the largest that works)."""
+        if math.isfinite(group):
+            return group
+        raise GroupRangeError(self.parameter, float(self.value), "overflows a float", inputs, _FLOAT_MAX * scale)
 
     @abc.abstractmethod
     def group(self, period: float, stiffness: float) -> Any:
@@ -558,7 +640,8 @@ class Damper(Element):
         object.__setattr__(self, "damping", check_nonnegative("damping", self.damping, fix))
 
     def group(self, period: float, stiffness: float) -> float:
-        return self.damping / (stiffness * period)
+        kt = stiffness * period
+        return self._finite(self.damping / kt, (("K", stiffness, _K_UNITS), ("T", period, _T_UNITS)), kt)
 
     @classmethod
     def check_group(cls, value: Any) -> float:
@@ -738,7 +821,17 @@ class AmplifierLag(Element):
         return 1.0 / (2.0 * math.pi * self.amplifier_bandwidth)
 
     def group(self, period: float, stiffness: float) -> float:
-        return self.check_group(self.time_constant / period)
+        a = 1.0 / (2.0 * math.pi) / self.amplifier_bandwidth / period  # α = 1/(2π f_bw T), no product overflowing
+        inputs = (("T", period, _T_UNITS),)
+        if not math.isfinite(a):
+            least = 1.0 / (2.0 * math.pi) / _FLOAT_MAX / period
+            raise GroupRangeError(self.parameter, self.amplifier_bandwidth, "overflows a float", inputs, least, False)
+        if a < MIN_LAG:  # also 0: a lag that underflows is no lag, not silently none
+            why = f"= {a:.3g} samples is below the shortest lag, {MIN_LAG:g} samples,"
+            top = 1.0 / (2.0 * math.pi) / MIN_LAG / period
+            hint = "a lag this short is no lag: an ideal amplifier has no bandwidth given"
+            raise GroupRangeError(self.parameter, self.amplifier_bandwidth, why, inputs, top, hint=hint)
+        return self.check_group(a)
 
     @classmethod
     def check_group(cls, value: Any) -> float:
@@ -834,7 +927,8 @@ class HandSpring(Element):
         object.__setattr__(self, "hand_stiffness", check_nonnegative("hand_stiffness", self.hand_stiffness, fix))
 
     def group(self, period: float, stiffness: float) -> float:
-        return self.check_group(self.hand_stiffness / stiffness)
+        g = self._finite(self.hand_stiffness / stiffness, (("K", stiffness, _K_UNITS),), stiffness)
+        return self.check_group(g)
 
     @classmethod
     def check_group(cls, value: Any) -> float:
@@ -1184,7 +1278,9 @@ class Push(Element):
             raise DFAValueError(
                 "push needs the encoder resolution Δ for its group F_p/(K Δ): call Wall.params(period, resolution=Δ)"
             )
-        return self.check_group(self.push / (stiffness * resolution))
+        step = stiffness * resolution
+        inputs = (("K", stiffness, _K_UNITS), ("Δ", resolution, _D_UNITS))
+        return self.check_group(self._finite(self.push / step, inputs, step))
 
     @classmethod
     def check_group(cls, value: Any) -> float:
@@ -1327,7 +1423,12 @@ class PassivityController(Element):
                 "force_limit needs the encoder resolution Δ for its group F_max/(K Δ): call "
                 "Wall.params(period, resolution=Δ)"
             )
-        return self.check_group((w, self.force_limit / (stiffness * resolution)))
+        step = stiffness * resolution
+        limit = self.force_limit / step
+        if not math.isfinite(limit):
+            inputs = (("K", stiffness, _K_UNITS), ("Δ", resolution, _D_UNITS))
+            raise GroupRangeError(self.parameter, self.force_limit, "overflows a float", inputs, _FLOAT_MAX * step)
+        return self.check_group((w, limit))
 
     @classmethod
     def check_group(cls, value: Any) -> tuple[int, float | None]:

@@ -35,6 +35,7 @@ True
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -51,6 +52,7 @@ from .elements import (
     Damper,
     Delay,
     Element,
+    GroupRangeError,
     HandSpring,
     NotCovered,
     OneSided,
@@ -741,7 +743,14 @@ class Wall:
         b = Damper(damping)
         return Wall(self.stiffness, others + ((b,) if b.damping else ()))
 
-    def params(self, period: float, resolution: float | None = None) -> WallParams:
+    def params(
+        self,
+        period: float,
+        resolution: float | None = None,
+        *,
+        names: Mapping[str, str] | None = None,
+        rotary: bool = False,
+    ) -> WallParams:
         """Dimensionless groups (β_B, d, ν_c, α and any further element's) at sample period ``period``.
 
         Parameters
@@ -750,6 +759,11 @@ class Wall:
             Sample period T in s, > 0.
         resolution : float, optional
             Encoder resolution Δ in m (rotary: rad), for elements whose group needs it (a push, p = F_p/(K Δ)).
+        names : mapping, optional
+            How a message calls each element's physical value, by its parameter name (the command line passes its
+            flags, ``{"damping": "--virtual-damping"}``); default the parameter names.
+        rotary : bool, optional
+            Word a message's units for a rotary device (default linear).
 
         Returns
         -------
@@ -759,14 +773,21 @@ class Wall:
         Raises
         ------
         DFAValueError
-            If the filter cutoff is not below the Nyquist frequency 1/(2T).
+            If the filter cutoff is not below the Nyquist frequency 1/(2T), or a group a float cannot hold (a
+            damper of 1e308 N·s/m over K T; :class:`~dfa.model.elements.GroupRangeError`: the message names the
+            physical value, what overflowed and the value that works).
         """
         t = check_positive("period", period, "give the sample period T in s (1 kHz: 0.001)")
 
         def group(e: Element) -> Any:
-            if type(e).needs_resolution:
-                return e.group(t, self.stiffness, resolution=resolution)  # type: ignore[call-arg]
-            return e.group(t, self.stiffness)
+            try:
+                if type(e).needs_resolution:
+                    return e.group(t, self.stiffness, resolution=resolution)  # type: ignore[call-arg]
+                return e.group(t, self.stiffness)
+            except GroupRangeError as err:
+                if names is None and not rotary:
+                    raise
+                raise DFAValueError(err.message(dict(names or {}), rotary)) from None
 
         return WallParams(tuple((type(e), group(e)) for e in self.elements))
 

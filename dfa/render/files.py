@@ -13,7 +13,7 @@ from typing import Any
 from .._io import atomic_open, staged_folder
 from ..results.jsonable import JSON_DIGITS, dumps
 
-__all__ = ["write_trace_csv", "write_validation", "write_soundness"]
+__all__ = ["trace_extent", "write_trace_csv", "write_validation", "write_soundness"]
 
 
 def write_trace_csv(
@@ -28,8 +28,10 @@ def write_trace_csv(
     With ``observer`` a column ``produced_energy`` (KΔ², the energy the wall has produced up to the sample, −E_obs
     of :meth:`~dfa.analysis.simulation.SimulationResult.observed_energy`: positive when it has been active), and
     ``controller_phi`` (KΔ, the passivity controller's force) for a wall with one; with a device
-    ``produced_energy_j`` and ``controller_force_n`` (rotary ``controller_force_nm``) beside them. A run that stopped early (``unstable``) is written up to its last
-    integrated sample (``samples_run``), without the NaN rows after it. Numbers carry 12 significant digits.
+    ``produced_energy_j`` and ``controller_force_n`` (rotary ``controller_force_nm``) beside them. A run that
+    stopped at a decided outcome (rest proven, divergence, left the wall) is written up to that sample
+    (:attr:`~dfa.analysis.simulation.SimulationResult.recorded_samples`), without the repeated rest state or the
+    NaN rows after it; :func:`trace_extent` says where and why. Numbers carry 12 significant digits.
 
     Parameters
     ----------
@@ -57,11 +59,11 @@ def write_trace_csv(
     phi, energy, control = result.replay()  # one replay for every column
     pc = observer and bool(result.wall.passivity_controller)
     extra = ([-energy] if observer else []) + ([control] if pc else [])
-    # A run stopped early (diverged) holds NaN after its last sample: those rows are not data, leave them out.
-    last = int(result.samples_run) + 1
-    if last < xi.size and not (np.isfinite(xi[last:]).any() or np.isfinite(xi_dot[last:]).any()):
-        xi, xi_dot, phi = xi[:last], xi_dot[:last], phi[:last]
-        extra = [e[:last] for e in extra]
+    # A run stopped at a decided outcome holds after its last sample the rest state (rest proven) or NaN
+    # (diverged, left the wall): those rows are no data, the trace ends there (trace_extent says why).
+    last = result.recorded_samples + 1
+    xi, xi_dot, phi = xi[:last], xi_dot[:last], phi[:last]
+    extra = [e[:last] for e in extra]
     sample = np.arange(xi.size)
     names, cols = ["sample", "xi", "xi_dot", "phi"], [sample, xi, xi_dot, phi]
     names += ["produced_energy", "controller_phi"][: len(extra)]
@@ -88,6 +90,35 @@ def write_trace_csv(
         table = np.column_stack(cols) + 0.0
         np.savetxt(fh, table, delimiter=",", fmt=["%d"] + [f"%.{JSON_DIGITS}g"] * (len(cols) - 1))
     return Path(path)
+
+
+def trace_extent(result: Any) -> tuple[int, str]:
+    """The last sample a trace of ``result`` holds (:func:`write_trace_csv`), and why it ends there.
+
+    Parameters
+    ----------
+    result : SimulationResult
+        A run of :func:`dfa.simulate`.
+
+    Returns
+    -------
+    tuple
+        (last sample, the reason in a few words: the decided outcome, or why the whole run is written).
+    """
+    last = int(result.recorded_samples)
+    outcome = str(result.outcome.value)
+    if last < int(result.samples):
+        why = {
+            "rest": "at rest from there on",
+            "unstable": "diverged there",
+            "left": "left the wall for good there",
+        }.get(outcome, f"the run stopped there ({outcome})")
+        return last, why
+    whole = {
+        "unstable": "the whole run: its growth is judged over the run",
+        "undecided": "the whole run: still undecided at its end",
+    }
+    return last, whole.get(outcome, f"the whole run: {outcome} is judged over its tail")
 
 
 def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:

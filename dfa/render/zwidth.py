@@ -52,7 +52,8 @@ def non_monotone_notes(zw: Any, columns: dict[str, str]) -> list[str]:
 
 
 def criterion_damper_note(g: DamperGuidance, zw: Any) -> str:
-    """Why the criterion column is '-' for B > 0, and the largest B it proves a K with; empty if not the case.
+    """Why the criterion column is '-' for B > 0 (or from some B on), and the largest B it proves a K with; empty
+    if no B > 0 has a '-'.
 
     Parameters
     ----------
@@ -65,11 +66,24 @@ def criterion_damper_note(g: DamperGuidance, zw: Any) -> str:
     str
     """
     crit = zw.limits["criterion"]
-    if not any(b > 0 and lim.value is None for b, lim in zip(zw.damping, crit, strict=True)):
+    dashes = [float(b) for b, lim in zip(zw.damping, crit, strict=True) if b > 0 and lim.value is None]
+    if not dashes:
         return ""
     u = zw.device.units
-    return (
-        f"criterion '-' for B > 0: with a damper it proves no K at {number(zw.velocity, 4)} {u['velocity']} "
-        f"unless B < {number(g.max_virtual_damping, 4)} {u['damping']} (it costs friction (1 − a)BΔ/T and damping "
-        f"B); c > {number(g.min_coulomb, 4)} {u['coulomb']} would restore it at the grid's first B > 0"
+    every = len(dashes) == sum(1 for b in zw.damping if b > 0)
+    where = "for B > 0" if every else f"from B = {number(dashes[0], 4)} {u['damping']}"
+    restore = (
+        f"; c > {number(g.min_coulomb, 4)} {u['coulomb']} would restore it at the grid's first B > 0"
+        if not g.proves_some_k
+        else ""
     )
+    return (
+        f"criterion '-' {where}: with a damper it proves no K at {number(zw.velocity, 4)} {u['velocity']} "
+        f"unless B < {number(g.max_virtual_damping, 4)} {u['damping']} (it costs friction (1 − a)BΔ/T and damping "
+        f"B){restore}"
+    )
+
+
+def damping_axis_note() -> str:
+    """How the default damping axis is chosen (the grid line of ``dfa zwidth``)."""
+    return ": twice where the passivity boundaries end, --damping-max sets it"

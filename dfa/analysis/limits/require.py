@@ -17,8 +17,10 @@ parameter and run ``dfa stiffness``.
 
 How a value is found: each method's verdict at K is evaluated with the parameter changed and everything else
 held. When K holds now, the parameter is moved away (the harmful way) until it fails; when it does not, the
-helpful way until it holds. The move doubles or halves (whole samples for the delay) over a stated range, and
-the change of verdict is bisected to a relative :data:`RTOL`; the value returned is the last one at which K
+helpful way until it holds; when that way never makes K hold, the other way is searched too (a parameter
+that helps one term and costs another: with a virtual damper a longer period T costs the speed term but
+shrinks the damper's friction term (1 − a)BΔ/T, which may be what fails). The move doubles or halves (whole
+samples for the delay) over a stated range, and the change of verdict is bisected to a relative :data:`RTOL`; the value returned is the last one at which K
 holds, so at it the target K is the method's limit (``dfa stiffness`` there reads K). A parameter whose
 verdict changes more than once in the range is reported at the change nearest to today's value.
 
@@ -265,6 +267,25 @@ def _steps(x0: float, up: bool, integer: bool, scale: float, short: bool = False
     return [x0 * 0.5**i for i in range(1, n + 1)] + [0.0]
 
 
+def _search(
+    ok: Callable[[float], bool], x0: float, up: bool, name: str, scale: float, method: str
+) -> tuple[float | None, list[float]]:
+    """The value one way from ``x0`` (up: larger) where the verdict ``ok`` changes from today's, bisected to the
+    last value that holds; None when it does not change over the range. Also the values tried."""
+    integer = name == "delay"
+    now = ok(x0)
+    prev, tried = x0, []
+    for x in _steps(x0, up, integer, scale, short=method == "df"):
+        if x == 0.0 and name in ("period", "resolution"):
+            break
+        tried.append(x)
+        if ok(x) != now:
+            good, bad = (prev, x) if now else (x, prev)
+            return float(_bisect(ok, good, bad, integer, DF_RTOL if method == "df" else RTOL)), tried
+        prev = x
+    return None, tried
+
+
 def _one(dev: Device, wall: Wall, method: str, name: str, k: float, v: float) -> Requirement:
     """One parameter by one method (module docstring)."""
     helpful = HELPS[method][name]
@@ -273,7 +294,6 @@ def _one(dev: Device, wall: Wall, method: str, name: str, k: float, v: float) ->
     if method == "linear" and name in _LINEAR_BLIND:
         return Requirement(method, name, x0, None, bound, RequireStatus.NO_EFFECT, (x0, x0))
     holds = _verdict(method, k, v)
-    integer = name == "delay"
 
     def ok(x: float) -> bool:
         try:
@@ -283,19 +303,18 @@ def _one(dev: Device, wall: Wall, method: str, name: str, k: float, v: float) ->
 
     now = ok(x0)
     go_up = (helpful > 0) != now  # holds now: move the harmful way; else the helpful way
-    prev, tried = x0, [x0]
-    for x in _steps(x0, go_up, integer, _scale(dev, k, name), short=method == "df"):
-        if x == 0.0 and name in ("period", "resolution"):
-            break
-        tried.append(x)
-        if ok(x) != now:
-            good, bad = (prev, x) if now else (x, prev)
-            value = _bisect(ok, good, bad, integer, DF_RTOL if method == "df" else RTOL)
-            status = RequireStatus.MET if now else RequireStatus.CHANGE
-            return Requirement(method, name, x0, float(value), bound, status, (min(tried), max(tried)))
-        prev = x
+    scale = _scale(dev, k, name)
+    value, tried = _search(ok, x0, go_up, name, scale, method)
+    if value is None and not now:  # the usual way never helps: the other (a damper's BΔ/T shrinks as T grows)
+        value, back = _search(ok, x0, not go_up, name, scale, method)
+        tried += back
+        if value is not None:
+            bound = "at_least" if value > x0 else "at_most"
+    searched = (min([x0, *tried]), max([x0, *tried]))
+    if value is not None:
+        return Requirement(method, name, x0, value, bound, RequireStatus.MET if now else RequireStatus.CHANGE, searched)
     status = RequireStatus.ANY if now else RequireStatus.UNREACHABLE
-    return Requirement(method, name, x0, None, bound, status, (min(tried), max(tried)))
+    return Requirement(method, name, x0, None, bound, status, searched)
 
 
 def requirements(

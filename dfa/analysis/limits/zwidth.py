@@ -99,8 +99,19 @@ from .kmax import describing_limit, wall_k_criterion
 from .runs import DIVERGENCE_BOUND, SAFE, UNSAFE, RunCache, decide_undecided, start_points, starts_of
 from .search import KLimit, grid_search
 
-__all__ = ["ZWidth", "z_width", "z_width_seconds", "check_zwidth_size", "ZWIDTH_METHODS", "POINT_OUTCOMES"]
+__all__ = [
+    "ZWidth",
+    "z_width",
+    "z_width_seconds",
+    "check_zwidth_size",
+    "damping_ends",
+    "default_damping_max",
+    "ZWIDTH_METHODS",
+    "POINT_OUTCOMES",
+]
 
+#: The default damping axis ends at this multiple of the B where the last passivity boundary ends.
+DAMPING_MARGIN = 2.0
 #: Longest run of one Z-width simulation (samples); longer automatic lengths are cut (and may be undecided).
 ZWIDTH_MAX_SAMPLES = 200_000
 #: Largest planned work in simulated samples; more is refused up front.
@@ -494,10 +505,71 @@ def _grid_boundary(row: np.ndarray, ks: np.ndarray, bad: set[int]) -> KLimit:
 
 
 # ----------------------------------------------------------------------------- the analysis
-def _grids(dev: Device, wall: Wall, grid: int, k_range: Any, b_range: Any) -> tuple[np.ndarray, np.ndarray]:
-    """Default grids: B from 0 to m/T; K geometric up to 8 × the largest linear bound or static limit 2c/Δ."""
+def damping_ends(device: Device, wall: Wall, velocity: float) -> dict[str, float]:
+    """Where the passivity boundaries of the Z-width end: the largest virtual damping B (N·s/m; rotary
+    N·m·s/rad) with some K proven, by method (only those that cover the wall).
+
+    ``criterion``: :func:`~dfa.analysis.limits.require.damper_guidance`'s largest B (eq. 11 with the damper's
+    terms, K → 0, closed form). ``passivity``: Colgate–Schenkel's bound is linear in the wall's H(z), so at
+    K → 0 it is B times its value for B = 1: it ends at b over that. The linear bound, the describing function
+    and the simulations usually run on beyond m/T (a damper stabilises the linear loop): they have no end here.
+
+    Parameters
+    ----------
+    device : Device
+    wall : Wall
+        Its delay, filter and other elements are held; its stiffness and damper are replaced.
+    velocity : float
+        Impact speed, m/s (rotary: rad/s).
+
+    Returns
+    -------
+    dict
+        ``{"criterion": B, "passivity": B}``, those that cover the wall.
+    """
+    from .require import damper_guidance_for
+
+    out: dict[str, float] = {}
+    one = wall.in_contact().with_damping(1.0)
+    guide = damper_guidance_for(device, one, velocity)
+    if guide is not None:
+        out["criterion"] = float(guide.max_virtual_damping)
+    if one.params(device.period, device.resolution).colgate_schenkel_reason() is None:
+        k = 1e-9 * device.mass / device.period**2  # K → 0: the K part of the bound is negligible
+        per_b = colgate_schenkel_damping(one.with_stiffness(k), device.period).damping_bound
+        per_b -= colgate_schenkel_damping(one.with_damping(0.0).with_stiffness(k), device.period).damping_bound
+        if per_b > 0.0:
+            out["passivity"] = device.damping / per_b
+    return out
+
+
+def default_damping_max(device: Device, wall: Wall, velocity: float) -> float:
+    """The top of the Z-width's default damping axis: :data:`DAMPING_MARGIN` times where the last passivity
+    boundary ends (:func:`damping_ends`), at most m/T (the axis of old, where the damper's time constant is one
+    sample); m/T when no boundary ends inside it.
+
+    Parameters
+    ----------
+    device : Device
+    wall : Wall
+    velocity : float
+        Impact speed, m/s (rotary: rad/s).
+
+    Returns
+    -------
+    float
+        B in N·s/m (rotary: N·m·s/rad), > 0.
+    """
+    top = device.mass / device.period
+    ends = [b for b in damping_ends(device, wall, velocity).values() if 0.0 < b < top]
+    return min(top, DAMPING_MARGIN * max(ends)) if ends else top
+
+
+def _grids(dev: Device, wall: Wall, grid: int, k_range: Any, b_range: Any, v: float) -> tuple[np.ndarray, np.ndarray]:
+    """Default grids: B from 0 to :func:`default_damping_max`; K geometric up to 8 × the largest linear bound or
+    static limit 2c/Δ."""
     if b_range is None:
-        b_range = (0.0, dev.mass / dev.period)
+        b_range = (0.0, default_damping_max(dev, wall, v))
     b0 = check_nonnegative("b_range[0]", b_range[0], "give the smallest virtual damping B >= 0")
     b1 = check_positive("b_range[1]", b_range[1], "give the largest virtual damping B > 0")
     if not b1 > b0:
@@ -563,7 +635,8 @@ def z_width(
         Smallest and largest K of the geometric grid, N/m (default: from half the linear bound at the
         smallest B to 8 × the largest of the linear bound and 2c/Δ).
     b_range : (float, float), optional
-        Smallest and largest B of the linear grid, N·s/m (default: 0 to m/T).
+        Smallest and largest B of the linear grid, N·s/m (default: 0 to :func:`default_damping_max`, twice the B
+        where the criterion's and Colgate–Schenkel's boundaries end, at most m/T).
     speeds : int, optional
         Impact speeds simulated: V/speeds, …, V (default 2), each from ξ0 = 0 and from the preload.
     max_samples : int, optional
@@ -607,7 +680,7 @@ def z_width(
     progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
     workers = _workers(jobs)
     base.params(dev.period, dev.resolution)  # bad wall values (a cutoff above Nyquist): refuse first
-    ks, bs = _grids(dev, base, g, k_range, b_range)
+    ks, bs = _grids(dev, base, g, k_range, b_range, v)
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
     xi_dots = [dev.xi_dot(float(s)) for s in vs]
     tasks, work = _plan(dev, base, ks, bs, xi_dots, cap)
@@ -658,6 +731,7 @@ def z_width_seconds(
     speeds: int = 2,
     max_samples: int = ZWIDTH_MAX_SAMPLES,
     n_jobs: int = -1,
+    b_range: tuple[float, float] | None = None,
 ) -> float:
     """The planned time of :func:`z_width` with these inputs (s, wall clock): an upper estimate, before any work.
 
@@ -668,7 +742,7 @@ def z_width_seconds(
 
     Parameters
     ----------
-    device, velocity, wall, grid, speeds, max_samples, n_jobs
+    device, velocity, wall, grid, speeds, max_samples, n_jobs, b_range
         As :func:`z_width` (the inputs are not validated here: :func:`z_width` does that).
 
     Returns
@@ -685,7 +759,7 @@ def z_width_seconds(
     """
     base = Wall(1.0) if wall is None else wall
     small = min(int(grid), ESTIMATE_GRID)
-    ks, bs = _grids(device, base, small, None, None)
+    ks, bs = _grids(device, base, small, None, b_range, velocity)
     vs = velocity * np.arange(1, speeds + 1) / speeds
     _, work = _plan(device, base, ks, bs, [device.xi_dot(float(s)) for s in vs], max_samples)
     workers = max(_workers(int(n_jobs)), 1)
