@@ -8,6 +8,9 @@ from:
    :data:`PERIOD_RTOL` is refused: the model holds the force over equal samples); the resolution Δ is the
    step of the lattice the readings lie on (the smallest gap between distinct readings, refined over the whole
    range; readings off that lattice by more than :data:`GRID_RTOL` are refused). Either may be given instead.
+   A log whose numbers the fit's floats cannot hold is refused here, before any work (:func:`log_grid`): readings
+   spanning more than :data:`MAX_TICKS` ticks, forces beyond :data:`MAX_FORCE_PER_TICK` per tick, a period
+   outside :data:`PERIOD_RANGE`.
 2. **A first guess** by equation error: a smoothed second derivative of the readings (Savitzky–Golay) in
    m ẍ + b ẋ + c sgn(ẋ) = f, by non-negative least squares over the samples in motion. Biased (finite
    differences of quantized positions), it only starts the fit.
@@ -84,6 +87,9 @@ __all__ = [
     "SEGMENT",
     "SEGMENT_MAX",
     "GRID_RTOL",
+    "MAX_TICKS",
+    "MAX_FORCE_PER_TICK",
+    "PERIOD_RANGE",
 ]
 
 #: Largest distance of a sample time from the log's uniform grid, in periods (rounding of written times is
@@ -766,10 +772,13 @@ def identify(
     Raises
     ------
     LogError
-        (a DFAValueError) A log that is not on a uniform time grid or an encoder lattice, or that barely moves.
+        (a DFAValueError) A log that is not on a uniform time grid or an encoder lattice, or that barely moves;
+        before the fit, a log of more than :data:`dfa.model.log.MAX_LOG_ROWS` samples or whose numbers a float
+        cannot fit (:data:`MAX_TICKS`, :data:`MAX_FORCE_PER_TICK`, :data:`PERIOD_RANGE`); after it, identified
+        values beyond a float.
     DFAValueError, DFATypeError
         A resolution or period that is not a number > 0; a bootstrap that is not a whole number from 0 to
-        :data:`MAX_BOOTSTRAP`; a log that is not a DeviceLog.
+        :data:`MAX_BOOTSTRAP`; a log that is not a DeviceLog; a progress that is not True or False.
 
     See Also
     --------
