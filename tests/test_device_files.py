@@ -200,6 +200,8 @@ BAD_FILES = {
         "has unknown key 'sgima' in printed: did you mean 'sigma'?",
     ),
     "printed value": (_with("printed", '{ mu = "x" }'), "has printed mu = 'x': it must be a finite decimal number"),
+    "nested brackets": ("a = " + "[" * 5000 + "]" * 5000 + "\n", "nests brackets or braces too deeply"),  # fuzz
+    "nested braces": ("a = " + "{b = " * 3000 + "1" + "}" * 3000 + "\n", "nests brackets or braces too deeply"),
 }
 
 
@@ -213,6 +215,15 @@ def test_bad_files_are_one_clear_error(capsys, tmp_path, case):
     assert str(info.value).startswith(f"device file {str(path)!r}") and needle in str(info.value), str(info.value)
     err = _refused(capsys, "params", "--device-file", str(path))
     assert needle in err
+
+
+def test_a_file_with_a_byte_order_mark_is_read(capsys, tmp_path):
+    """A UTF-8 byte-order mark (Windows editors write one) is dropped, as read_log drops a CSV's (issue 41)."""
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + GOOD.encode("utf-8"))
+    assert load_device_file(path) == load_device_file(_write(tmp_path, GOOD, "plain.toml"))
+    code, out, err = _run(capsys, "params", "--device-file", str(path))
+    assert code == 0 and not err, err
 
 
 def test_missing_unreadable_and_huge_files(capsys, tmp_path):

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 
-from ..checks import check_int, check_real, check_type
+from ..checks import check_bool, check_int, check_real, check_type
 from ..errors import DFAValueError
 from ..model.elements import OneSided
 from ..model.wall import WallParams
@@ -94,8 +94,10 @@ def approach_start(
 
     Raises
     ------
+    DFATypeError
+        For a ``quantize`` that is not True or False (an array was read by its truth value).
     DFAValueError
-        For V <= 0 or a phase outside [0, 1). (A hand's spring is held by the operator during the approach, as
+        For V <= 0, a phase outside [0, 1), or a start beyond a float (V (D − phase) overflows). (A hand's spring is held by the operator during the approach, as
         friction is: the simulator's approach is the same.)
 
     See Also
@@ -108,8 +110,15 @@ def approach_start(
         raise DFAValueError(f"xi_dot = {v!r} is invalid: the device must approach the wall (V > 0); give V > 0")
     w = WallParams() if wall is None else check_type("wall", wall, WallParams, "give the wall's WallParams")
     d = approach_samples(w) if samples is None else check_int("samples", samples, 1, "give whole samples >= 1")
+    q = check_bool("quantize", quantize, "pass True (with the encoder) or False (the wall sees the surface itself)")
     ph = check_real("phase", phase, "give the arrival's phase in samples, in [0, 1)")
     if not 0.0 <= ph < 1.0:
         raise DFAValueError(f"phase = {ph!r} is invalid: it must lie in [0, 1) samples; give e.g. 0.5")
-    engage = OneSided.engage(float(w.kernel_args()["surface"]), quantize)  # the first position the wall sees
-    return engage - v * (d - ph), v, int(d)
+    engage = OneSided.engage(float(w.kernel_args()["surface"]), q)  # the first position the wall sees
+    start = engage - v * (d - ph)
+    if not math.isfinite(start):  # V (D − phase) beyond a float: the start would be −inf
+        raise DFAValueError(
+            f"xi_dot = {v!r} is invalid with samples = {d}: the start ξ0 = ξ_e − V (D − phase) = {start} overflows a "
+            "float; give an impact speed of a device, a few ticks per sample (or fewer samples)"
+        )
+    return start, v, int(d)

@@ -8,6 +8,9 @@ from:
    :data:`PERIOD_RTOL` is refused: the model holds the force over equal samples); the resolution Δ is the
    step of the lattice the readings lie on (the smallest gap between distinct readings, refined over the whole
    range; readings off that lattice by more than :data:`GRID_RTOL` are refused). Either may be given instead.
+   A log whose numbers the fit's floats cannot hold is refused here, before any work (:func:`log_grid`): readings
+   spanning more than :data:`MAX_TICKS` ticks, forces beyond :data:`MAX_FORCE_PER_TICK` per tick, a period
+   outside :data:`PERIOD_RANGE`.
 2. **A first guess** by equation error: a smoothed second derivative of the readings (Savitzky–Golay) in
    m ẍ + b ẋ + c sgn(ẋ) = f, by non-negative least squares over the samples in motion. Biased (finite
    differences of quantized positions), it only starts the fit.
@@ -50,17 +53,18 @@ Examples
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..checks import check_int, check_nonnegative, check_positive, check_real, check_type, format_value
+from ..checks import check_bool, check_int, check_nonnegative, check_positive, check_real, check_type, format_value
 from ..core.open_loop import open_loop_kernel, segments_kernel
 from ..errors import DFAValueError
-from ..model.device import Device
-from ..model.log import MIN_SAMPLES, DeviceLog, LogError
+from ..model.device import Device, device_units
+from ..model.log import MIN_SAMPLES, DeviceLog, LogError, check_rows
 from ..model.units import speed
 from ..results.base import Result
 from ..results.jsonable import explain_nulls
@@ -76,12 +80,16 @@ __all__ = [
     "estimate_period",
     "correlation_time",
     "estimate_resolution",
+    "log_grid",
     "PERIOD_RTOL",
     "BOOTSTRAP",
     "MAX_BOOTSTRAP",
     "SEGMENT",
     "SEGMENT_MAX",
     "GRID_RTOL",
+    "MAX_TICKS",
+    "MAX_FORCE_PER_TICK",
+    "PERIOD_RANGE",
 ]
 
 #: Largest distance of a sample time from the log's uniform grid, in periods (rounding of written times is
@@ -121,6 +129,18 @@ CONFOUNDED = 0.95
 LOG_MU = (-30.0, 60.0)
 #: Share of samples predicted within one tick below which the fit is called poor.
 POOR_FIT = 0.9
+#: Most ticks of the resolution the readings may span: a float holds a position there to 1e-4 of a tick (the
+#: fit's residuals are fractions of a tick); beyond, the resolution is not that of the readings' unit.
+MAX_TICKS = 1e12
+#: Largest |f|/Δ, the force per tick the fit works in (N/m; rotary N·m/rad): beyond, its sums of squares
+#: overflow a float (a force of 1e308 N, or readings of 1e-315 m with their resolution, gave a traceback).
+MAX_FORCE_PER_TICK = 1e300
+#: The sample periods T (s) the fit converts its mass back with, m = μ T²: for every μ it reaches (e^LOG_MU), m is
+#: a normal float from the first to the second (a log with time steps of 1e300 s gave m = inf).
+PERIOD_RANGE = (
+    math.sqrt(sys.float_info.min / math.exp(LOG_MU[0])),
+    math.sqrt(sys.float_info.max / math.exp(LOG_MU[1])),
+)
 
 
 def estimate_period(t: ArrayLike, source: str = "log") -> float:
@@ -610,6 +630,7 @@ def _fit_warnings(est: dict[str, Estimate], cov: np.ndarray) -> list[IdentifyWar
 
 def _ticks(lg: DeviceLog, resolution: float | None, period: float | None) -> tuple[float, float, np.ndarray]:
     """(Δ, T, the readings in whole ticks from the lowest): step 1 of the module docstring."""
+    check_rows(lg.samples, lg.source)
     dx = check_positive("resolution", resolution, "give Δ in m") if resolution is not None else None
     ts = check_positive("period", period, "give T in s") if period is not None else None
     step = float(np.median(np.diff(lg.t)))
@@ -620,6 +641,7 @@ def _ticks(lg: DeviceLog, resolution: float | None, period: float | None) -> tup
         )
     delta = dx if dx is not None else estimate_resolution(lg.x, lg.source)
     t = ts if ts is not None else estimate_period(lg.t, lg.source)
+    _check_scales(lg, delta, t, dx is not None, ts is not None)
     n = np.rint((lg.x - lg.x.min()) / delta)
     off = np.abs((lg.x - lg.x.min()) / delta - n)
     if float(np.max(off)) > (GIVEN_GRID_RTOL if dx is not None else GRID_RTOL):  # given: allow written rounding
@@ -629,6 +651,89 @@ def _ticks(lg: DeviceLog, resolution: float | None, period: float | None) -> tup
             f"{float(off[i]):.3g} ticks off; another resolution, or readings written with too few digits?"
         )
     return delta, t, n
+
+
+def log_grid(log: DeviceLog, *, resolution: float | None = None, period: float | None = None) -> tuple[float, float]:
+    """The resolution Δ and period T :func:`identify` fits ``log`` with (step 1 of the module docstring), checked.
+
+    Cheap (no fit): the command line checks its flags against the log's grid with it before the work.
+
+    Parameters
+    ----------
+    log : DeviceLog
+        The logged run.
+    resolution, period : float, optional
+        Δ (m, rotary rad) and T (s) when known, as :func:`identify` takes them.
+
+    Returns
+    -------
+    tuple of float
+        (Δ, T).
+
+    Raises
+    ------
+    LogError
+        What :func:`identify` refuses before its fit: a log off a uniform time grid or an encoder lattice, or
+        whose numbers a float cannot fit (:data:`MAX_TICKS`, :data:`MAX_FORCE_PER_TICK`, :data:`PERIOD_RANGE`).
+
+    Examples
+    --------
+    >>> log = DeviceLog(np.arange(30) * 1e-3, 1e-5 * (np.arange(30) % 7), np.ones(30))
+    >>> [round(v, 12) for v in log_grid(log)]
+    [1e-05, 0.001]
+    """
+    lg = check_type("log", log, DeviceLog, "read one with dfa.read_log(path)")
+    delta, t, _n = _ticks(lg, resolution, period)
+    return delta, t
+
+
+def _check_scales(lg: DeviceLog, delta: float, t: float, delta_given: bool, t_given: bool) -> None:
+    """Refuse a log whose numbers a float cannot fit, before the fit (:data:`MAX_TICKS`,
+    :data:`MAX_FORCE_PER_TICK`, :data:`PERIOD_RANGE`), naming the log's value or the given one and the limit."""
+    u = device_units(lg.rotary)
+    res = f"resolution = {delta:.4g} {u['resolution']}" + ("" if delta_given else " (the readings' step)")
+    slip = (
+        "give the encoder's resolution in m (rad), or leave it out to take the readings' step"
+        if delta_given
+        else "is x in m (rad)? give it in SI units, or its unit in the header (x (mm))"
+    )
+    if not math.isfinite(delta) or delta < sys.float_info.min:
+        raise LogError(f"{lg.source}: {res} is invalid: it must be a normal float >= {sys.float_info.min:.3g} (below, a "
+                       f"float holds it to a few digits and the forces per tick overflow); {slip}")  # fmt: skip
+    with np.errstate(over="ignore"):
+        span = (float(np.max(lg.x)) - float(np.min(lg.x))) / delta
+        per_tick = float(np.max(np.abs(lg.f))) / delta
+    if not span <= MAX_TICKS:
+        raise LogError(f"{lg.source}: {res} is invalid for this log: its readings span {span:.4g} ticks of it, at most "
+                       f"{MAX_TICKS:g} (beyond, a float holds a position to less than a tick); {slip}")  # fmt: skip
+    if not per_tick <= MAX_FORCE_PER_TICK:
+        f = float(np.max(np.abs(lg.f)))
+        raise LogError(
+            f"{lg.source}: column 'f' reaches {f:.4g} {u['force']}, which is {per_tick:.4g} {u['force']} per tick of "
+            f"{res}: at most {MAX_FORCE_PER_TICK:g} (beyond, the fit's sums of squares overflow a float); are f in N "
+            "(N·m) and x in m (rad)? give them in SI units, or their units in the header (f (mN))"
+        )
+    lo, hi = PERIOD_RANGE
+    if not lo <= t <= hi:
+        what = f"period = {t:.4g} s" if t_given else f"the sample period T = {t:.4g} s (the step of column 't')"
+        raise LogError(
+            f"{lg.source}: {what} is invalid: it must lie in [{lo:.3g}, {hi:.3g}] s (outside, the identified mass "
+            "m = μ T² overflows or vanishes in a float); are the times in s? give t in s, or its unit in the header "
+            "(t (ms))"
+        )
+
+
+def _check_identified(est: dict[str, Estimate], delta: float, t: float, source: str) -> None:
+    """Refuse identified values a float cannot hold (m = μ T², b = β T, c = σ Δ), naming the log's grid: the
+    message of :class:`Device` would name a mass the user never gave."""
+    m, b, c = (est[k].value for k in ("mass", "damping", "coulomb"))
+    if math.isfinite(b) and math.isfinite(c) and math.isfinite(m) and m >= sys.float_info.min:
+        return
+    raise LogError(
+        f"{source}: the fit's m = {m:.4g}, b = {b:.4g}, c = {c:.4g} (SI) overflow or vanish in a float with the log's "
+        f"period T = {t:.4g} s and resolution Δ = {delta:.4g}: are t in s, x in m (rad) and f in N (N·m)? give the "
+        "log in SI units, or the units in its header"
+    )
 
 
 def identify(
@@ -667,10 +772,13 @@ def identify(
     Raises
     ------
     LogError
-        (a DFAValueError) A log that is not on a uniform time grid or an encoder lattice, or that barely moves.
+        (a DFAValueError) A log that is not on a uniform time grid or an encoder lattice, or that barely moves;
+        before the fit, a log of more than :data:`dfa.model.log.MAX_LOG_ROWS` samples or whose numbers a float
+        cannot fit (:data:`MAX_TICKS`, :data:`MAX_FORCE_PER_TICK`, :data:`PERIOD_RANGE`); after it, identified
+        values beyond a float.
     DFAValueError, DFATypeError
         A resolution or period that is not a number > 0; a bootstrap that is not a whole number from 0 to
-        :data:`MAX_BOOTSTRAP`; a log that is not a DeviceLog.
+        :data:`MAX_BOOTSTRAP`; a log that is not a DeviceLog; a progress that is not True or False.
 
     See Also
     --------
@@ -679,12 +787,13 @@ def identify(
     """
     lg = check_type("log", log, DeviceLog, "read one with dfa.read_log(path)")
     reps = check_int("bootstrap", bootstrap, 0, "give a whole number of replicates, 0 for none")
+    show = check_bool("progress", progress, "pass True to show a progress bar over the replicates, else False")
     if reps > MAX_BOOTSTRAP:
         raise DFAValueError(
             f"bootstrap = {reps} is too many: each replicate is one more fit of the whole log (seconds each); give "
             f"at most {MAX_BOOTSTRAP} (default {BOOTSTRAP})"
         )
-    delta, t, n = _ticks(lg, resolution, period)
+    delta, t, n = _ticks(lg, resolution, period)  # refuses a log of too many rows too
     phi = lg.f / delta
     try:
         best, starts = _fit(n, phi)
@@ -697,11 +806,12 @@ def identify(
     if fit.within_one_tick < POOR_FIT:
         warns.append(IdentifyWarning.POOR_FIT)
     skip = {IdentifyWarning.LITTLE_MOTION, IdentifyWarning.POOR_FIT} & set(warns)
-    draws = _bootstrap(xi, phi, 0 if skip else reps, progress)
+    draws = _bootstrap(xi, phi, 0 if skip else reps, show)
     est = _withhold(_estimates(theta, cov, draws, delta, t), warns)
     run = _free_run(theta, n, phi)
     free = _quality(run, n)
     warns += _fit_warnings(est, cov)
+    _check_identified(est, delta, t, lg.source)
     dev = Device(est["mass"].value, est["damping"].value, est["coulomb"].value, delta, t,
                  name=name or f"device identified from {lg.source}", rotary=lg.rotary)  # fmt: skip
     v_peak = float(np.max(np.abs(np.diff(run)))) * delta / t

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from typing import Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file, check_output_folder, make_output_folder
@@ -78,7 +79,45 @@ def _check_flags(args: argparse.Namespace) -> None:
         check_output_folder("--report", args.report, create=True)
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
+    for key, flag in (("resolution", "--resolution"), ("period", "--period"), ("stiffness", "--stiffness"),
+                      ("velocity", "--velocity")):  # fmt: skip
+        if getattr(args, key) is not None:
+            warn_implausible(key, getattr(args, key), rotary=args.rotary, subject=flag)
 
+
+def _check_against_grid(args: argparse.Namespace, delta: float, t: float) -> None:
+    """Refuse --stiffness and --velocity that no device on the log's grid (Δ, T) can take, before the fit: the
+    products K T², K T and K Δ of the dimensionless groups and the speed V T/Δ in ticks must be floats."""
+    from ..model.device import device_units
+
+    u = device_units(args.rotary)
+    grid = f"the log's T = {t:.4g} s and Δ = {delta:.4g} {u['resolution']}"
+    if args.stiffness is not None:
+        k = args.stiffness
+        for what, value in (("K T²", k * t * t), ("K T", k * t), ("K Δ", k * delta)):
+            if not sys.float_info.min <= value <= sys.float_info.max:
+                way = "underflows" if value < 1.0 else "overflows"
+                raise UsageError(
+                    f"--stiffness {k:g} is invalid with {grid}: {what} {way} a float, so μ = m/(K T²), β = b/(K T) "
+                    f"and σ = c/(K Δ) cannot be formed for any device; give K in {u['stiffness']}"
+                )
+    if args.velocity is not None and not args.velocity * t / delta <= sys.float_info.max:
+        raise UsageError(
+            f"--velocity {args.velocity:g} is invalid with {grid}: the speed in ticks per sample V T/Δ overflows a "
+            f"float; give the impact speed in {u['velocity']}"
+        )
+
+
+#: How the messages of the dimensionless groups name the inputs of the closed loop (the identified device's values
+#: are no flags the user gave).
+LOOP_NAMES = {
+    "mass": "identified mass",
+    "damping": "identified damping (lower end)",
+    "coulomb": "identified Coulomb friction (lower end)",
+    "resolution": "the log's resolution",
+    "period": "the log's period",
+    "stiffness": "--stiffness",
+}
 
 #: Why a flag needs another.
 NEEDS = {
@@ -94,6 +133,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     from ..analysis.limits.kmax import design_answer
     from ..analysis.limits.recommend import recommend_stiffness
     from ..analysis.logged_cycle import compare_logged_cycle
+    from ..model.device import dimensionless_params
     from ..render.answer import stiffness_screen
     from ..render.identify import cycle_lines, loop_head, poor_fit_loop
 
@@ -103,6 +143,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
         lines += poor_fit_loop(r)
         return
     dev = r.cautious()
+    dimensionless_params(dev, args.stiffness, names=LOOP_NAMES)  # names the identified values, not as flags
     v = r.velocity_peak if args.velocity is None else args.velocity
     ans = design_answer(dev, v, wall=args.stiffness, assess=True)
     rec = recommend_stiffness(ans)
@@ -118,13 +159,14 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
 
 def run(args: argparse.Namespace) -> int:
     """Read the log, identify, optionally close the loop; print the result (text or JSON)."""
-    from ..analysis.identify import identify
+    from ..analysis.identify import identify, log_grid
     from ..model.log import read_log
     from ..render.identify import identify_lines
 
     _check_flags(args)
     try:
         log = read_log(args.log, rotary=args.rotary)
+        _check_against_grid(args, *log_grid(log, resolution=args.resolution, period=args.period))
     except DFAError as err:
         raise UsageError(str(err)) from None
     r = identify(log, resolution=args.resolution, period=args.period, name=args.name, bootstrap=args.bootstrap,

@@ -599,7 +599,7 @@ def _read_toml(path: str) -> dict:
         )
     try:
         with open(path, "rb") as fh:
-            text = fh.read(DEVICE_FILE_MAX_BYTES + 1).decode("utf-8")
+            text = fh.read(DEVICE_FILE_MAX_BYTES + 1).decode("utf-8-sig")  # a BOM (Windows editors) is dropped
     except OSError as exc:
         raise _file_error(path, f"cannot be read ({exc.strerror or exc}): check its permissions") from None
     except UnicodeDecodeError:
@@ -608,6 +608,12 @@ def _read_toml(path: str) -> dict:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise _file_error(path, f"is not valid TOML ({exc}); compare it with `dfa devices --template`") from None
+    except RecursionError:  # the reader recurses once per bracket: [[[[…]]]] of thousands
+        raise _file_error(
+            path,
+            "nests brackets or braces too deeply for the TOML reader (thousands of levels): a device file "
+            "holds one [[devices]] table of numbers and text; compare it with `dfa devices --template`",
+        ) from None
 
 
 def _unknown(path: str, keys: list[str], allowed: tuple[str, ...], where: str) -> DeviceFileError:

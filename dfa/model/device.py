@@ -433,7 +433,7 @@ class Device:
             K = m/(μ T²) in N/m (rotary: N·m/rad).
         """
         m = check_mu(mu)
-        return _stiffness("mu", m, self.mass / (m * self.period**2), "K = m/(μ T²)")
+        return _stiffness("mu", m, self.mass, self.period * self.period, "K = m/(μ T²)")
 
     def stiffness_for_beta(self, beta: float) -> float:
         """The stiffness K (N/m) at which β = b/(K T) takes the value ``beta``.
@@ -461,7 +461,7 @@ class Device:
                 "damping = 0.0 is invalid here: it must be > 0 to reach a given beta; "
                 "β = b/(K T) is zero for every K when b = 0"
             )
-        return _stiffness("beta", b, self.damping / (b * self.period), "K = b/(β T)")
+        return _stiffness("beta", b, self.damping, self.period, "K = b/(β T)")
 
     def stiffness_for_sigma(self, sigma: float) -> float:
         """The stiffness K (N/m) at which σ = c/(K Δ) takes the value ``sigma``.
@@ -489,7 +489,7 @@ class Device:
                 "coulomb = 0.0 is invalid here: it must be > 0 to reach a given sigma; "
                 "σ = c/(K Δ) is zero for every K when c = 0"
             )
-        return _stiffness("sigma", s, self.coulomb / (s * self.resolution), "K = c/(σ Δ)")
+        return _stiffness("sigma", s, self.coulomb, self.resolution, "K = c/(σ Δ)")
 
     def to_dict(self) -> dict[str, object]:
         """Physical values in SI units, with name and kind.
@@ -522,12 +522,20 @@ class Device:
         return {} if self.hand is None else {"hand": self.hand.to_dict()}
 
 
-def _stiffness(name: str, value: float, k: float, formula: str) -> float:
-    """The stiffness K solved for a group, or the package's error where it overflows a float (``sigma = 2.2e-313``
-    gave K = inf)."""
+def _stiffness(name: str, value: float, numerator: float, factor: float, formula: str) -> float:
+    """The stiffness K = numerator/(value·factor) solved for a group, or the package's error where it overflows a
+    float (``sigma = 2.2e-313`` gave K = inf; ``sigma = 1e-320`` a ZeroDivisionError, value·factor underflowing to
+    0) or vanishes below the smallest normal float (the groups at that K overflow)."""
+    den = value * factor
+    k = numerator / den if den != 0.0 else math.inf
     if not math.isfinite(k):
         raise DFAValueError(
             f"{name} = {value!r} is invalid for this device: {formula} overflows a float; give a larger {name}"
+        )
+    if k < sys.float_info.min:
+        raise DFAValueError(
+            f"{name} = {value!r} is invalid for this device: {formula} = {k:.3g} vanishes (below "
+            f"{sys.float_info.min:.3g}, where the other groups overflow); give a smaller {name}"
         )
     return k
 

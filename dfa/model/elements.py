@@ -49,7 +49,7 @@ from typing import Any, ClassVar, NamedTuple
 
 import numpy as np
 
-from ..checks import check_delay, check_nonnegative, check_positive, check_real, format_value
+from ..checks import check_bool, check_delay, check_nonnegative, check_positive, check_real, format_value
 from ..errors import DFAError, DFAValueError
 
 __all__ = [
@@ -1215,7 +1215,8 @@ class OneSided(Element):
         float
             The position ξ_e in ticks.
         """
-        return float(math.floor(surface + 0.5)) if quantized else float(surface)
+        q = check_bool("quantized", quantized, "pass True (with the encoder) or False (the surface itself)")
+        return float(math.floor(surface + 0.5)) if q else float(surface)
 
 
 @dataclass(frozen=True)

@@ -8,8 +8,8 @@ columns ``t`` (s), ``x`` (m or rad) and ``f`` (N or N·m), a unit in brackets af
 columns, and lines starting with ``#``, are ignored; commas, semicolons or tabs separate
 (with semicolons or tabs a decimal comma is read as a point: ``0,001``). Every rule a log must keep
 is checked before anything is analysed, and a bad log is refused in one line naming the row and the rule:
-missing columns, text or NaN in a number, fewer than :data:`MIN_SAMPLES` rows, time not strictly increasing, a
-file larger than :data:`MAX_LOG_BYTES` (refused before it is read).
+missing columns, text or NaN in a number, fewer than :data:`MIN_SAMPLES` rows or more than :data:`MAX_LOG_ROWS`,
+time not strictly increasing, a file larger than :data:`MAX_LOG_BYTES` (refused before it is read).
 
 Examples
 --------
@@ -24,6 +24,7 @@ from __future__ import annotations
 import csv
 import io
 import os
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -33,11 +34,25 @@ from .._io import atomic_write_text
 from ..checks import check_bool, check_int, format_value
 from ..errors import DFATypeError, DFAValueError
 
-__all__ = ["DeviceLog", "LogError", "read_log", "write_log", "MAX_LOG_BYTES", "MIN_SAMPLES", "COLUMNS"]
+__all__ = [
+    "DeviceLog",
+    "LogError",
+    "read_log",
+    "write_log",
+    "check_rows",
+    "MAX_LOG_BYTES",
+    "MAX_LOG_ROWS",
+    "MIN_SAMPLES",
+    "COLUMNS",
+]
 
-#: Largest log read (bytes): about half a million rows of three numbers, which identification fits in under
-#: 1 GB of memory; a larger file is refused before reading.
+#: Largest log read (bytes): a larger file is refused before reading (rows with other columns are long; the
+#: rows themselves are budgeted by :data:`MAX_LOG_ROWS`).
 MAX_LOG_BYTES = 20_000_000
+#: Most rows (samples) of a log: identification fits every sample, once and once per bootstrap replicate (11
+#: fits by default); a fit of 100 000 samples takes half a minute and 0.1 GB (a 560 000-row log took 643 MB and
+#: over a minute), while a few thousand samples with motion and reversals identify a device.
+MAX_LOG_ROWS = 100_000
 #: Fewest samples a log must hold to identify anything.
 MIN_SAMPLES = 20
 #: The columns a log must have: time (s), encoder reading (m or rad), held force (N or N·m).
@@ -87,6 +102,7 @@ class DeviceLog:
 
     def __post_init__(self) -> None:
         src = self.source
+        object.__setattr__(self, "rotary", check_bool("rotary", self.rotary, "pass True for rad and N·m, else False"))
         for name in COLUMNS:
             object.__setattr__(self, name, _array(name, getattr(self, name), src))
         n = {len(self.t), len(self.x), len(self.f)}
@@ -174,11 +190,48 @@ def _scales(row: list[str], where: dict[str, int], rotary: bool, source: str) ->
     return out[0], out[1], out[2]
 
 
-def _parse(text: str, source: str, rotary: bool = False) -> tuple[list[float], list[float], list[float]]:
+def check_rows(rows: int, source: str, limit: int = MAX_LOG_ROWS) -> None:
+    """Refuse a log of more than ``limit`` rows (:data:`MAX_LOG_ROWS`), naming the cap, its reason and the fix.
+
+    Examples
+    --------
+    >>> check_rows(3000, "log.csv")
+    """
+    if rows > limit:
+        raise LogError(
+            f"{source}: holds more than {limit} rows (samples), the most a log may have: identification fits every "
+            "sample, once and once per bootstrap replicate, and a fit of 100000 samples takes about half a minute; "
+            "cut the log to the part to identify (a few thousand samples with motion and reversals are enough)"
+        )
+
+
+def _rows(reader: Any, source: str) -> Iterator[list[str]]:
+    """The rows of a CSV reader; a row it cannot split is a :class:`LogError` naming the row (a cell over the csv
+    module's field limit, 131072 characters by default: a 5 MB cell raised ``_csv.Error``)."""
+    while True:
+        try:
+            row = next(reader)
+        except StopIteration:
+            return
+        except csv.Error as exc:
+            limit = "field larger than field limit" in str(exc)
+            why = (
+                f"holds a cell of more than {csv.field_size_limit()} characters" if limit else f"cannot be read ({exc})"
+            )
+            raise LogError(
+                f"{source}: row {reader.line_num} {why}: a log's cells are numbers; give a CSV log of t, x, f (cut "
+                "other columns with long text out of it)"
+            ) from None
+        yield row
+
+
+def _parse(
+    text: str, source: str, rotary: bool = False, max_rows: int = MAX_LOG_ROWS
+) -> tuple[list[float], list[float], list[float]]:
     lines = [ln for ln in text.splitlines() if not ln.lstrip().startswith("#")]  # comment lines
     first = next((ln for ln in lines if ln.strip()), "")
     delimiter = ";" if ";" in first and "," not in first else "\t" if "\t" in first and "," not in first else ","
-    rows = csv.reader(io.StringIO("\n".join(lines)), delimiter=delimiter)
+    rows = _rows(csv.reader(io.StringIO("\n".join(lines)), delimiter=delimiter), source)
     head = next(rows, None)
     if head is None or not any(c.strip() for c in head):
         raise LogError(f"{source}: the file is empty: a log needs a header (t,x,f) and one row per sample")
@@ -189,6 +242,7 @@ def _parse(text: str, source: str, rotary: bool = False) -> tuple[list[float], l
     for i, row in enumerate(rows, start=2):
         if not any(c.strip() for c in row):
             continue
+        check_rows(len(cols[0]) + 1, source, max_rows)  # before the rows past the cap are read
         for j, c in enumerate(COLUMNS):
             try:
                 cell = row[where[c]]
@@ -199,7 +253,9 @@ def _parse(text: str, source: str, rotary: bool = False) -> tuple[list[float], l
     return cols
 
 
-def read_log(path: str | os.PathLike[str], *, rotary: bool = False, max_bytes: int = MAX_LOG_BYTES) -> DeviceLog:
+def read_log(
+    path: str | os.PathLike[str], *, rotary: bool = False, max_bytes: int = MAX_LOG_BYTES, max_rows: int = MAX_LOG_ROWS
+) -> DeviceLog:
     """Read a log from a CSV file with a header naming ``t``, ``x`` and ``f`` (module docstring).
 
     Parameters
@@ -210,6 +266,9 @@ def read_log(path: str | os.PathLike[str], *, rotary: bool = False, max_bytes: i
         Positions in rad and forces in N·m (default False: m and N).
     max_bytes : int, optional
         Largest file read (default :data:`MAX_LOG_BYTES`); a larger one is refused before it is opened.
+    max_rows : int, optional
+        Most rows read (default :data:`MAX_LOG_ROWS`); a file with more is refused when its row after the cap is
+        reached (:func:`check_rows`).
 
     Returns
     -------
@@ -219,7 +278,7 @@ def read_log(path: str | os.PathLike[str], *, rotary: bool = False, max_bytes: i
     Raises
     ------
     LogError
-        (a DFAValueError) A missing or unreadable file, a file too large, no header, a missing column, a cell
+        (a DFAValueError) A missing or unreadable file, a file too large or with too many rows, no header, a missing column, a cell
         that is not a finite number, too few rows, or time not strictly increasing (the message names the row).
     DFATypeError
         A path that is not text or path-like.
@@ -233,6 +292,7 @@ def read_log(path: str | os.PathLike[str], *, rotary: bool = False, max_bytes: i
         raise DFATypeError(f"path = {format_value(path)} has type {type(path).__name__}: give the path of a CSV log")
     check_bool("rotary", rotary)
     limit = check_int("max_bytes", max_bytes, 1, "give the largest file to read, in bytes")
+    rows = check_int("max_rows", max_rows, MIN_SAMPLES, "give the most rows to read")
     src = os.fspath(path)
     try:
         size = os.stat(src).st_size
@@ -252,7 +312,7 @@ def read_log(path: str | os.PathLike[str], *, rotary: bool = False, max_bytes: i
     except (OSError, UnicodeDecodeError) as exc:
         why = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
         raise LogError(f"{src}: cannot be read ({why}); give a CSV log") from None
-    t, x, f = _parse(text, src, rotary)
+    t, x, f = _parse(text, src, rotary, rows)
     if not t:
         raise LogError(f"{src}: has a header but no rows: log at least {MIN_SAMPLES} samples")
     return DeviceLog(np.array(t), np.array(x), np.array(f), source=os.path.basename(src), rotary=rotary)

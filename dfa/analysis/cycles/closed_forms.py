@@ -207,7 +207,8 @@ def small_cycle_closed_forms(
     ok &= root < math.pi  # ω = π to rounding: M = 2cos(ω/2)/(πμω²) would be rounding noise, not a cycle
     w[damped] = np.where(ok, root, np.nan)
     status[damped] = np.where(ok, int(ClosedFormStatus.OK), int(ClosedFormStatus.NOT_SOLVED))
-    amp = 2 * np.cos(w / 2) / (math.pi * m * w * w)
+    with np.errstate(over="ignore", divide="ignore"):  # M beyond a float (σ → 0 at β = 0): inf, refused by _scalar
+        amp = 2 * np.cos(w / 2) / (math.pi * m * w * w)
     return ClosedFormCycles(amp, w, status)
 
 
@@ -250,7 +251,7 @@ def large_cycle_closed_forms(
     w = large_cycle_frequencies(m)
     den = np.sin(w / 2) - b * w
     exists = den > 0
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # M beyond a float: inf (refused by _scalar)
         amp = np.where(exists, 4 * s / (math.pi * den), np.nan)
     status = np.where(
         exists,
@@ -279,7 +280,14 @@ def _scalar(cf: ClosedFormCycles, p: Params) -> tuple[float, float] | None:
             f"beta = {p.beta!r} with mu = {p.mu!r}, sigma = {p.sigma!r} is invalid here (β/μ = {p.beta / p.mu:.3g}): "
             f"{ClosedFormStatus.NOT_SOLVED.reason}; use a smaller β/μ or dfa.limit_cycles"
         )
-    return (float(cf.amplitude), float(cf.frequency)) if int(cf.status) == ClosedFormStatus.OK else None
+    if int(cf.status) != ClosedFormStatus.OK:
+        return None
+    if not math.isfinite(float(cf.amplitude)):  # σ = 1.797e308, or σ = 1e-320 at β = 0: M beyond a float
+        raise DFAValueError(
+            f"mu = {p.mu!r}, beta = {p.beta!r}, sigma = {p.sigma!r} is invalid here: the cycle's amplitude M "
+            f"overflows a float (more than {sys.float_info.max:.4g} ticks); give the groups of a device (Table 1)"
+        )
+    return float(cf.amplitude), float(cf.frequency)
 
 
 def large_cycle_closed_form(

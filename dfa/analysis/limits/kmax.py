@@ -46,7 +46,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ...checks import check_choice, check_int, check_speed, check_type
+from ...checks import check_bool, check_choice, check_int, check_speed, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.wall import Wall
@@ -604,6 +604,7 @@ def design_answer(
     check_choice("source", source, ("given", "catalogue"))
     if cache is not None:
         check_type("cache", cache, RunCache, "pass a dfa.analysis.limits.runs.RunCache, or None")
+    assess = check_bool("assess", assess, "pass True to assess the wall's own K, or False")
     if assess and wall is None:
         raise DFAValueError("assess = True is invalid without a wall: give the wall (or its K) to assess")
     kc, kl, published, k_ref, top = closed_forms(dev, w, v)
