@@ -205,7 +205,8 @@ def test_fig4_map_panels_physical_axes_every_outcome_in_the_legend_and_the_point
     p = dev.params(k)
     m = stability_map(p.mu, [dev.xi_dot(0.05)], grid=6, samples=2000, n_jobs=1, progress=False)
     (ax,) = figures.stability_map_plot(m, device=dev, stiffness=k, point=(p.beta, p.sigma))
-    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    (legend,) = ax.figure.legends  # the panels' legend is the figure's, beside them
+    labels = [t.get_text() for t in legend.get_texts()]
     for outcome in ("rest", "chatter", "oscillating", "unstable", "undecided"):
         assert any(s.startswith(outcome) for s in labels), outcome
     assert "m/s" in ax.get_title()
@@ -216,7 +217,7 @@ def test_fig4_map_panels_physical_axes_every_outcome_in_the_legend_and_the_point
     assert right.get_ylim()[1] == pytest.approx(ax.get_ylim()[1] * k * dev.resolution)  # c = σKΔ
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     assert x0 < p.beta < x1 and y0 < p.sigma < y1
-    assert _legend_clear_of_axes(ax)
+    assert _legend_clear_of_axes(ax, legend)
 
 
 def test_fig4_outcome_colours_are_the_same_in_every_figure():
@@ -482,7 +483,8 @@ def _drawn_in_view(ax, handle) -> bool:
 
 
 def _map_legend(axes):
-    legend = next(ax.get_legend() for ax in axes if ax.get_legend() is not None)
+    fig = axes[0].figure
+    legend = next(iter(fig.legends), None) or next(ax.get_legend() for ax in axes if ax.get_legend() is not None)
     return list(zip(legend.legend_handles, [t.get_text() for t in legend.get_texts()], strict=True))
 
 
@@ -504,10 +506,11 @@ def test_fig4_controller_map_legend_draws_only_lines_in_view_and_names_the_other
     (ax,) = figures.stability_map_plot(m, device=dev, stiffness=k, point=(p.beta, p.sigma))
     entries = _map_legend([ax])
     texts = [t for _h, t in entries]
-    assert "critical line, eq. 10 with the wall: above the panels" in texts
-    corner = next(t for t in texts if t.startswith("σ = σ₀"))
-    assert "β = β₀ = " in corner and "right of the panels" in corner
-    assert not any(t.startswith("β = ½") or t == "critical line (eq. 10)" for t in texts)  # not the spring's lines
+    assert "critical line, eq. 10 with the wall: above the panel" in texts
+    assert any(t.startswith("region boundary σ = σ₀ = ") for t in texts)
+    beta0 = next(t for t in texts if t.startswith("region boundary β = β₀ = "))
+    assert beta0.endswith(": right of the panel")
+    assert not any("½" in t or t == "critical line (eq. 10)" for t in texts)  # not the spring's lines
     for handle, text in entries:
         if isinstance(handle, matplotlib.lines.Line2D) and handle.get_linestyle() != "None":
             assert _drawn_in_view(ax, handle), text
@@ -521,7 +524,8 @@ def test_fig4_spring_map_with_delay_names_its_corner_off_the_panel():
     (ax,) = figures.stability_map_plot(m)
     texts = [t for _h, t in _map_legend([ax])]
     assert "critical line (eq. 10)" in texts
-    assert "σ = ½ (β = ½ + d = 1.5: right of the panels)" in texts
+    assert "region boundary σ = ½" in texts
+    assert "region boundary β = ½ + d = 1.5: right of the panel" in texts
     for handle, text in _map_legend([ax]):
         if isinstance(handle, matplotlib.lines.Line2D) and handle.get_linestyle() != "None":
             assert _drawn_in_view(ax, handle), text
@@ -662,3 +666,88 @@ def test_report_kmax_tables_cells_short_and_the_evidence_below_them(delta_answer
         for line in lines:  # every sentence of evidence is in the list below the table
             assert line.partition(": ")[2] in below
         assert below.startswith("What the simulated limits rest on:") and below.count("\n- **") == len(lines)
+
+
+# --- issue 41 §2: the maps' legend, their secondary axes and `dfa map --plot`'s operating point --------------------
+
+#: Width of the design report's column in CSS pixels (its HTML: ``body{max-width:980px}``); a wider PNG is shrunk.
+_REPORT_COLUMN_PX = 980.0
+
+
+def _report_like_map(speeds=(0.1, 0.2)):
+    """The design report's map of the Delta (two speeds, physical axes, the operating point), on a small grid."""
+    entry = dfa.get_device("delta")
+    dev, k = entry.device, entry.stiffness
+    p = dev.params(k)
+    m = stability_map(p.mu, [dev.xi_dot(v) for v in speeds], beta_range=(0, 0.25), sigma_range=(0, 4), grid=3,
+                      samples=300, n_jobs=1, progress=False)  # fmt: skip
+    return figures.stability_map_plot(m, device=dev, stiffness=k, point=(p.beta, p.sigma))
+
+
+def test_map_legend_names_each_region_boundary_in_its_own_entry_without_equating_numbers():
+    """The Delta's map (β up to 0.25) read "σ = ½ (β = ½ = 0.5: right of the panels)": one entry for a line drawn
+    and one off the panels, with "½ = 0.5"."""
+    m = stability_map(155.2, [1.11], beta_range=(0, 0.25), sigma_range=(0, 2), grid=3, samples=300, n_jobs=1,
+                      progress=False)  # fmt: skip
+    (ax,) = figures.stability_map_plot(m)
+    entries = _map_legend([ax])
+    texts = [t for _h, t in entries]
+    assert "region boundary σ = ½" in texts
+    hidden = next(h for h, t in entries if t == "region boundary β = ½: right of the panel")
+    assert hidden.get_linestyle() == "None"  # off the panel: words, no line
+    assert not any("½ =" in t or "(" in t and "panel" in t for t in texts), texts
+
+
+def test_map_secondary_axis_labels_as_large_as_the_main_ones_and_readable_in_the_report_column():
+    """The right axis' "Coulomb c (N)" was 8 pt on an 11-inch figure the report's 980-px column shrinks to 72 %:
+    about 6 px tall. At least 9 pt as shown, and as large as the σ axis' label."""
+    axes = _report_like_map()
+    fig = axes[0].figure
+    _boxes(fig)
+    shrink = min(1.0, _REPORT_COLUMN_PX / (fig.get_figwidth() * 120.0))  # the report's PNGs are saved at 120 dpi
+    for ax in axes:
+        top, right = ax.child_axes
+        for label in (top.xaxis.label, right.yaxis.label):
+            assert label.get_fontsize() >= ax.yaxis.label.get_fontsize()
+            assert label.get_fontsize() * shrink >= 9.0, (label.get_text(), label.get_fontsize(), shrink)
+
+
+def _panel_box(ax, r) -> Bbox:
+    """A panel with its tick labels, axis labels, title and secondary axes (pixels), its legend left out."""
+    parts = [ax.get_window_extent(r), ax.xaxis.get_tightbbox(r), ax.yaxis.get_tightbbox(r)]
+    parts += [ax.title.get_window_extent(r)] if ax.get_title() else []
+    return Bbox.union(parts + [c.get_tightbbox(r) for c in ax.child_axes])
+
+
+def test_map_legend_starts_just_past_the_secondary_axis_and_clear_of_every_panel():
+    """The legend was anchored at 1.3 axes widths to clear the right axis' label, leaving a blank gap beside it."""
+    for axes in (_report_like_map(), _report_like_map((0.1,))):
+        fig = axes[0].figure
+        r = _boxes(fig)
+        legend = next(iter(fig.legends), None) or next(ax.get_legend() for ax in axes if ax.get_legend())
+        leg = legend.get_window_extent(r)
+        boxes = [_panel_box(ax, r) for ax in axes]
+        assert not any(Bbox.intersection(leg, box) for box in boxes)
+        panels = Bbox.union(boxes)
+        if leg.x0 >= panels.x1:  # beside the panels
+            assert leg.x0 - panels.x1 < 0.25 * fig.dpi  # a quarter inch at most
+        else:  # below them
+            assert panels.y0 - leg.y1 < 0.25 * fig.dpi and leg.width <= panels.width
+
+
+def test_cli_map_plot_has_the_operating_point_in_its_legend_and_draws_it_once(capsys, tmp_path, monkeypatch):
+    import dfa.cli.maps as cli
+
+    shown = []
+    real = cli.save_png
+    monkeypatch.setattr(cli, "save_png", lambda flag, path, ax: shown.append(ax) or real(flag, path, ax))
+    code, _out, err = _cli(capsys, "map", "--device", "delta", "--velocity", "0.1", "--grid", "3", "--samples", "300",
+                           "--jobs", "1", "--quiet", "--out", str(tmp_path / "m.npz"), "--plot",
+                           str(tmp_path / "m.png"))  # fmt: skip
+    assert code == 0, err
+    fig = shown[0].figure
+    texts = [t for _h, t in _map_legend([shown[0]])]
+    assert "operating point" in texts
+    for ax in (a for a in fig.axes if a.get_xlabel().startswith("β")):
+        points = [ln for ln in ax.get_lines() if ln.get_marker() == figures.POINT_STYLE["marker"]]
+        assert len(points) == 1
