@@ -163,17 +163,49 @@ _EXTRA_LINES = (
 
 #: Font size of every legend, points at the saved size (a figure is saved at its own size in inches, any dpi).
 LEGEND_FONTSIZE = 9.0
+#: Characters per line of a legend label beside a plot of many long labels (bounds, speed chart).
+LEGEND_WRAP = 32
 #: Font size of secondary texts (physical axes, insets, contour labels, notes), points.
 SMALL_FONTSIZE = 8.0
 
 
-def _legend_outside(ax, handles=None, fontsize: float = LEGEND_FONTSIZE) -> None:
-    """The legend to the right of the axes, never over the data."""
+def _legend_outside(ax, handles=None, fontsize: float = LEGEND_FONTSIZE, *, wrap: int | None = None) -> None:
+    """The legend to the right of the axes, never over the data; ``wrap``: labels broken into lines of at most
+    that many characters, so that a legend of long labels stays narrow beside its plot."""
     kw = dict(fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, framealpha=0.9)
     if handles is None:
-        ax.legend(**kw)
-    else:
-        ax.legend(handles=handles, **kw)
+        handles, _labels = ax.get_legend_handles_labels()
+    labels = [h.get_label() for h in handles]
+    ax.legend(handles, labels if wrap is None else [_wrap_label(t, wrap) for t in labels], **kw)
+
+
+def _wrap_label(text: str, width: int) -> str:
+    """``text`` in lines of at most ``width`` characters where it can be, broken only outside parentheses: after
+    ": " or ", ", or before " (" (a value stays with its unit, a parenthesis whole).
+
+    Examples
+    --------
+    >>> print(_wrap_label("Colgate–Schenkel 2b/T: 60 N/m (= A–O, linear)", 32))
+    Colgate–Schenkel 2b/T:
+    60 N/m (= A–O, linear)
+    """
+    pieces, depth, start = [], 0, 0
+    for i, ch in enumerate(text):
+        depth += (ch == "(") - (ch == ")")
+        cut = i + 1 if depth == 0 and ch == " " and text[i - 1] in ":," else None
+        if depth == 0 and text.startswith(" (", i):
+            cut = i
+        if cut is not None and cut > start:
+            pieces.append(text[start:cut])
+            start = cut
+    pieces.append(text[start:])
+    lines = [""]
+    for piece in pieces:
+        if lines[-1] and len(lines[-1] + piece.rstrip()) > width:
+            lines.append(piece.lstrip())
+        else:
+            lines[-1] += piece
+    return "\n".join(line.rstrip() for line in lines)
 
 
 def _margin(hi: float) -> float:
@@ -862,7 +894,7 @@ def stiffness_plot(curve, ax=None):
     ax.set_xlabel(f"impact speed |ẋ0| ({u['velocity']})")
     ax.set_ylabel(f"stiffness K ({u['stiffness']})")
     ax.set_title(f"{curve.device.name}: largest passive stiffness", fontsize=9)
-    _legend_outside(ax)
+    _legend_outside(ax, wrap=LEGEND_WRAP)
     ax.grid(True, which="both", alpha=0.3)
     return ax
 
@@ -948,7 +980,7 @@ def stiffness_speed_plot(chart, ax=None):
         color="0.25",
     )
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=LEGEND_FONTSIZE, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    _legend_outside(ax, wrap=LEGEND_WRAP)
     return ax
 
 

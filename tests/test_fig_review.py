@@ -751,3 +751,18 @@ def test_cli_map_plot_has_the_operating_point_in_its_legend_and_draws_it_once(ca
     for ax in (a for a in fig.axes if a.get_xlabel().startswith("β")):
         points = [ln for ln in ax.get_lines() if ln.get_marker() == figures.POINT_STYLE["marker"]]
         assert len(points) == 1
+
+
+@pytest.mark.parametrize("name", ["speed chart", "stiffness"])
+def test_bounds_legend_beside_the_plot_is_under_half_as_wide_as_it(name):
+    """The speed chart's legend (eleven long labels on one line each) was as wide as its plot: labels break after
+    a colon or comma, never inside a parenthesis or between a value and its unit."""
+    ax = _FIGURES[name]()
+    r = _boxes(ax.figure)
+    legend = ax.get_legend()
+    assert legend.get_window_extent(r).width < 0.5 * ax.get_window_extent(r).width
+    assert _legend_clear_of_axes(ax)
+    for text in legend.get_texts():
+        for line in text.get_text().split("\n"):
+            assert line.count("(") == line.count(")"), line  # a parenthesis whole on its line
+            assert not line.startswith(("N/m", "m/s", "N·m")), line  # a value keeps its unit
