@@ -185,9 +185,10 @@ def _wrap_label(text: str, width: int) -> str:
 
     Examples
     --------
-    >>> print(_wrap_label("Colgate–Schenkel 2b/T: 60 N/m (= A–O, linear)", 32))
-    Colgate–Schenkel 2b/T:
-    60 N/m (= A–O, linear)
+    >>> print(_wrap_label("exact linear bound (no encoder, no friction): 60 N/m (= A–O, C–S)", 32))
+    exact linear bound
+    (no encoder, no friction):
+    60 N/m (= A–O, C–S)
     """
     pieces, depth, start = [], 0, 0
     for i, ch in enumerate(text):
