@@ -766,3 +766,23 @@ def test_bounds_legend_beside_the_plot_is_under_half_as_wide_as_it(name):
         for line in text.get_text().split("\n"):
             assert line.count("(") == line.count(")"), line  # a parenthesis whole on its line
             assert not line.startswith(("N/m", "m/s", "N·m")), line  # a value keeps its unit
+
+
+@pytest.mark.parametrize("params", [dfa.Params(155.2, 0.00207, 2.03), dfa.Params(2.0, 0.4, 0.1)], ids=["one", "crowd"])
+def test_report_nyquist_caption_names_an_inset_only_when_one_is_drawn(params):
+    """The Delta's caption said "the inset zooms on the cycles when they crowd or lie below one tick" under a figure
+    with no inset."""
+    from types import SimpleNamespace
+
+    from dfa.render.report_figures import _nyquist
+
+    res = limit_cycles(params, model="zoh")
+    nyq = nyquist_locus_response(params, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh")
+    shown = []
+    real = figures.nyquist_plot
+    analysis = SimpleNamespace(nyquist=nyq, is_spring=True, threshold=lambda _m: SimpleNamespace(result=res))
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(figures, "nyquist_plot", lambda *a, **k: shown.append(real(*a, **k)) or shown[-1])
+        caption = _nyquist(analysis).caption
+    assert ("inset" in caption) == bool(shown[0].child_axes)
+    assert bool(shown[0].child_axes) == (len(res.cycles) > 1)
