@@ -237,9 +237,10 @@ def regions_plot(
     beta_max, sigma_max : float
         Smallest upper limits of the axes (–); the point and β = ½ + d are always inside.
     legend : bool
-        Legend to the right of the axes (default True).
+        Legend below the axes (default True; right of the axes when ``ax`` is not laid out by
+        constrained layout).
     """
-    ax = _axes(ax, figsize=(8.2, 4.4))
+    ax = _axes(ax, figsize=(5.6, 6.9) if legend else (5.6, 4.4))
     line = result.critical_line
     bmax = max(beta_max, 1.2 * result.beta, 0.6, 1.2 * line.beta0)
     smax = max(sigma_max, 1.2 * result.sigma, 0.6)
@@ -294,7 +295,7 @@ def regions_plot(
             for k in "abcde"
         ]
         lines, _labels = ax.get_legend_handles_labels()
-        _legend_outside(ax, handles + lines)
+        _panels_legend([ax], handles + lines, below=True, ncols=1)  # below: a figure as narrow as its plane
     return ax
 
 
@@ -474,14 +475,14 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
     return axes
 
 
-def _panels_legend(axes, handles: list[Artist], *, below: bool) -> None:
-    """The legend of a figure of panels, beside them (``below``: under them, in two columns, so that the figure
-    is no wider than its panels), clear of every axis label, the secondary axes' included. A figure laid out by
-    constrained layout gets a figure legend placed outside the panels by the layout; otherwise the legend goes
-    right of the last panel, past its secondary axis when it has one (measured on the drawn figure)."""
+def _panels_legend(axes, handles: list[Artist], *, below: bool, ncols: int = 2) -> None:
+    """The legend of a figure of panels, beside them (``below``: under them, in ``ncols`` columns, so that the
+    figure is no wider than its panels), clear of every axis label, the secondary axes' included. A figure laid out by constrained layout gets a figure legend placed outside the panels
+    by the layout; otherwise the legend goes right of the last panel, past its secondary axis when it has one
+    (measured on the drawn figure)."""
     fig = axes[0].figure
     if isinstance(fig.get_layout_engine(), matplotlib.layout_engine.ConstrainedLayoutEngine):
-        kw = dict(ncols=2, loc="outside lower center") if below else dict(loc="outside right upper")
+        kw = dict(ncols=ncols, loc="outside lower center") if below else dict(loc="outside right upper")
         fig.legend(handles=handles, fontsize=LEGEND_FONTSIZE, framealpha=0.9, **kw)
         return
     ax = axes[-1]

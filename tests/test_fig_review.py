@@ -38,10 +38,15 @@ def _boxes(fig):
     return fig.canvas.get_renderer()
 
 
+def _legend_of(ax):
+    """The axes' legend, or its figure's (a legend below or beside a figure's panels)."""
+    return ax.get_legend() or next(iter(ax.figure.legends))
+
+
 def _legend_clear_of_axes(ax, legend=None) -> bool:
     """The legend's box does not overlap the axes' plotting area (window extents, pixels)."""
     r = _boxes(ax.figure)
-    leg = (legend or ax.get_legend()).get_window_extent(r)
+    leg = (legend or _legend_of(ax)).get_window_extent(r)
     return not Bbox.intersection(leg, ax.get_window_extent(r))
 
 
@@ -66,7 +71,7 @@ def test_fig3_reference_speed_lines_have_distinct_styles_and_legend_entries():
     assert [ln.get_label() for ln in lines] == ["ξ'0 = 0.5", "ξ'0 = 1", "ξ'0 = 5"]
     styles = {(str(ln.get_linestyle()), ln.get_color(), ln.get_linewidth()) for ln in lines}
     assert len(styles) == 3
-    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    legend = [t.get_text() for t in _legend_of(ax).get_texts()]
     assert all(ln.get_label() in legend for ln in lines)
 
 
@@ -608,7 +613,7 @@ def _lab(colour) -> np.ndarray:
 def test_fig3_legend_names_the_operating_points_critical_line_in_words():
     r = dfa.passivity_criterion(0.00207, 2.03, 1.11, wall=WallParams.of(delay=1))
     ax = figures.regions_plot(r, xi_dots=[5.0])
-    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    texts = [t.get_text() for t in _legend_of(ax).get_texts()]
     assert "critical line at the operating point's speed, ξ'0 = 1.11, d = 1" in texts
     assert not any("(point)" in t for t in texts)
 
@@ -618,7 +623,7 @@ def test_fig3_regions_c_and_d_read_apart_in_colour_and_hatching():
     ax = figures.regions_plot(r)
     c, d = figures.REGION_COLORS["c"], figures.REGION_COLORS["d"]
     assert np.linalg.norm(_lab(c) - _lab(d)) >= 35.0  # two tints of one orange were 27 apart, mostly in lightness
-    legend = ax.get_legend()
+    legend = _legend_of(ax)
     patches = {t.get_text()[0]: h for h, t in zip(legend.legend_handles, legend.get_texts(), strict=True)
                if t.get_text()[1:2] == ":"}  # fmt: skip
     assert patches["c"].get_hatch() and not patches["d"].get_hatch()
@@ -786,3 +791,27 @@ def test_report_nyquist_caption_names_an_inset_only_when_one_is_drawn(params):
         caption = _nyquist(analysis).caption
     assert ("inset" in caption) == bool(shown[0].child_axes)
     assert bool(shown[0].child_axes) == (len(res.cycles) > 1)
+
+
+#: Width of the documentation's text column in CSS pixels: the pydata theme's article at a 1440-px-wide window,
+#: between its two sidebars (88rem page, 25 % and 17rem sidebars, 4rem of padding). A wider PNG is shrunk to it.
+_DOCS_COLUMN_PX = 720.0
+
+
+def test_fig3_legend_legible_at_the_docs_page_width():
+    """Fig. 3 (examples/fig3_regions.py, saved at 130 dpi) was 1066 px wide with its legend beside the plane: shrunk
+    to the docs' column its 9-pt legend read as 6 pt. The legend goes below the plane, and the figure is narrow
+    enough that it reads as 8 pt or more."""
+    r = dfa.passivity_criterion(beta=0.25, sigma=1.2, xi_dot=2.0)
+    ax = figures.regions_plot(r, xi_dots=[0.5, 1.0, 5.0])
+    fig = ax.figure
+    fig.set_dpi(130)
+    rend = _boxes(fig)
+    width = fig.get_tightbbox(rend).width * 130  # inches × dpi: the PNG's width
+    shrink = min(1.0, _DOCS_COLUMN_PX / width)
+    legend = _legend_of(ax)
+    assert min(t.get_fontsize() for t in legend.get_texts()) * shrink >= 8.0, (width, shrink)
+    assert _legend_clear_of_axes(ax)
+    page = fig.bbox
+    box = legend.get_window_extent(rend)
+    assert page.x0 <= box.x0 and box.x1 <= page.x1 and page.y0 <= box.y0  # on the page, not cut
