@@ -6,7 +6,7 @@ functions. Axis labels carry units: dimensionless quantities are marked (–),
 positions are in encoder ticks, time in samples (or seconds when a sample
 period is given). Given a device (``device=``), trajectories get a second axis
 in m (rotary rad) and map panels axes of damping b and Coulomb friction c at K.
-Legends sit beside the axes, never over the data; the operating point has one
+Legends sit beside the axes (below a row of panels), never over the data; the operating point has one
 style (``POINT_STYLE``) and each outcome class one colour in every figure.
 
 Examples
@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any
 
 import matplotlib
+import matplotlib.layout_engine
 import matplotlib.lines
 import matplotlib.pyplot as plt
 import matplotlib.ticker
@@ -162,17 +163,50 @@ _EXTRA_LINES = (
 
 #: Font size of every legend, points at the saved size (a figure is saved at its own size in inches, any dpi).
 LEGEND_FONTSIZE = 9.0
+#: Characters per line of a legend label beside a plot of many long labels (bounds, speed chart).
+LEGEND_WRAP = 32
 #: Font size of secondary texts (physical axes, insets, contour labels, notes), points.
 SMALL_FONTSIZE = 8.0
 
 
-def _legend_outside(ax, handles=None, fontsize: float = LEGEND_FONTSIZE) -> None:
-    """The legend to the right of the axes, never over the data."""
+def _legend_outside(ax, handles=None, fontsize: float = LEGEND_FONTSIZE, *, wrap: int | None = None) -> None:
+    """The legend to the right of the axes, never over the data; ``wrap``: labels broken into lines of at most
+    that many characters, so that a legend of long labels stays narrow beside its plot."""
     kw = dict(fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, framealpha=0.9)
     if handles is None:
-        ax.legend(**kw)
-    else:
-        ax.legend(handles=handles, **kw)
+        handles, _labels = ax.get_legend_handles_labels()
+    labels = [h.get_label() for h in handles]
+    ax.legend(handles, labels if wrap is None else [_wrap_label(t, wrap) for t in labels], **kw)
+
+
+def _wrap_label(text: str, width: int) -> str:
+    """``text`` in lines of at most ``width`` characters where it can be, broken only outside parentheses: after
+    ": " or ", ", or before " (" (a value stays with its unit, a parenthesis whole).
+
+    Examples
+    --------
+    >>> print(_wrap_label("exact linear bound (no encoder, no friction): 60 N/m (= A–O, C–S)", 32))
+    exact linear bound
+    (no encoder, no friction):
+    60 N/m (= A–O, C–S)
+    """
+    pieces, depth, start = [], 0, 0
+    for i, ch in enumerate(text):
+        depth += (ch == "(") - (ch == ")")
+        cut = i + 1 if depth == 0 and ch == " " and text[i - 1] in ":," else None
+        if depth == 0 and text.startswith(" (", i):
+            cut = i
+        if cut is not None and cut > start:
+            pieces.append(text[start:cut])
+            start = cut
+    pieces.append(text[start:])
+    lines = [""]
+    for piece in pieces:
+        if lines[-1] and len(lines[-1] + piece.rstrip()) > width:
+            lines.append(piece.lstrip())
+        else:
+            lines[-1] += piece
+    return "\n".join(line.rstrip() for line in lines)
 
 
 def _margin(hi: float) -> float:
@@ -203,9 +237,10 @@ def regions_plot(
     beta_max, sigma_max : float
         Smallest upper limits of the axes (–); the point and β = ½ + d are always inside.
     legend : bool
-        Legend to the right of the axes (default True).
+        Legend below the axes (default True; right of the axes when ``ax`` is not laid out by
+        constrained layout).
     """
-    ax = _axes(ax, figsize=(8.2, 4.4))
+    ax = _axes(ax, figsize=(5.6, 6.9) if legend else (5.6, 4.4))
     line = result.critical_line
     bmax = max(beta_max, 1.2 * result.beta, 0.6, 1.2 * line.beta0)
     smax = max(sigma_max, 1.2 * result.sigma, 0.6)
@@ -260,7 +295,7 @@ def regions_plot(
             for k in "abcde"
         ]
         lines, _labels = ax.get_legend_handles_labels()
-        _legend_outside(ax, handles + lines)
+        _panels_legend([ax], handles + lines, below=True, ncols=1)  # below: a figure as narrow as its plane
     return ax
 
 
@@ -277,12 +312,11 @@ def _physical_map_axes(ax, device, stiffness: float) -> None:
     """Secondary axes of a (β, σ) panel at the device's K: damping b = βKT and Coulomb friction c = σKΔ (Table 1)."""
     u = device.units
     kt, kd = stiffness * device.period, stiffness * device.resolution
+    size = ax.yaxis.label.get_fontsize()  # as large as the β and σ axes' labels: as readable
     top = ax.secondary_xaxis("top", functions=(lambda x: x * kt, lambda x: x / kt))
-    top.set_xlabel(f"damping b at K = {stiffness:.5g} {u['stiffness']} ({u['damping']})", fontsize=SMALL_FONTSIZE)
-    top.tick_params(labelsize=SMALL_FONTSIZE)
+    top.set_xlabel(f"damping b at K = {stiffness:.5g} {u['stiffness']} ({u['damping']})", fontsize=size)
     right = ax.secondary_yaxis("right", functions=(lambda y: y * kd, lambda y: y / kd))
-    right.set_ylabel(f"Coulomb c ({u['coulomb']})", fontsize=SMALL_FONTSIZE)
-    right.tick_params(labelsize=SMALL_FONTSIZE)
+    right.set_ylabel(f"Coulomb friction c ({u['coulomb']})", fontsize=size)
 
 
 def _speed_text(xi_dot: float, device) -> str:
@@ -318,27 +352,35 @@ def _map_line_handles(smap, drawn: list, extent: tuple[float, float, float, floa
     spring = smap.wall.is_spring
     name = "critical line (eq. 10)" if spring else "critical line, eq. 10 with the wall"
     wheres = [d[2] for d in drawn if d is not None]
+    panels = "the panels" if len(drawn) > 1 else "the panel"
     out: list[Artist] = []
     if "in view" in wheres:
         out.append(matplotlib.lines.Line2D([], [], color="#b2182b", ls="--", label=name))
     else:
         side = "above" if all(w == "above" for w in wheres) else "outside"
-        out.append(matplotlib.lines.Line2D([], [], ls="none", label=f"{name}: {side} the panels"))
+        out.append(matplotlib.lines.Line2D([], [], ls="none", label=f"{name}: {side} {panels}"))
     b0, s0, _w = next(d for d in drawn if d is not None)
     x0, x1, y0, y1 = extent
-    parts = [("β = ½ + d" if smap.delay else "β = ½") if spring else f"β = β₀ = {b0:.3g}", b0, x0, x1, "left", "right"]
-    rows = [parts]
+    rows = [(_boundary_name("β", b0, smap.delay, spring), b0, x0, x1, "left of", "right of")]
     if smap.quantize:
-        rows.append(["σ = ½" if spring else f"σ = σ₀ = {s0:.3g}", s0, y0, y1, "below", "above"])
+        rows.append((_boundary_name("σ", s0, 0, spring), s0, y0, y1, "below", "above"))
     shown = [r[0] for r in rows if r[2] <= r[1] <= r[3]]
-    hidden = [f"{r[0]}{f' = {r[1]:.3g}' if spring else ''}: {r[4] if r[1] < r[2] else r[5]} of the panels"
-              for r in rows if not r[2] <= r[1] <= r[3]]  # fmt: skip
     if shown:
-        label = ", ".join(shown) + (f" ({'; '.join(hidden)})" if hidden else "")
+        label = f"region boundar{'ies' if len(shown) > 1 else 'y'} {' and '.join(shown)}"
         out.append(matplotlib.lines.Line2D([], [], color="#2166ac", ls="-.", label=label))
-    else:
-        out.append(matplotlib.lines.Line2D([], [], ls="none", label="; ".join(hidden)))
+    for name, value, lo, hi, before, after in rows:  # each boundary off the panels: its own entry, no line
+        if not lo <= value <= hi:
+            side = before if value < lo else after
+            out.append(matplotlib.lines.Line2D([], [], ls="none", label=f"region boundary {name}: {side} {panels}"))
     return out
+
+
+def _boundary_name(symbol: str, value: float, delay: int, spring: bool) -> str:
+    """A map's region boundary in words: ``"β = ½"``, ``"β = ½ + d = 1.5"`` (a number only where the symbol is not
+    one already) or, with a controller, ``"β = β₀ = 0.31"``."""
+    if not spring:
+        return f"{symbol} = {symbol}₀ = {value:.3g}"
+    return f"{symbol} = ½ + d = {value:.3g}" if delay else f"{symbol} = ½"
 
 
 def _uniform_note(ax, outcome: np.ndarray) -> None:
@@ -362,9 +404,9 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
     (:class:`dfa.analysis.criterion.CriticalLine` with the map's delay d) is dashed, the
     region boundaries β = ½ + d, σ = ½ dash-dot; with a controller, the line of the
     criterion extended to it (corner β₀, σ₀), or none with an amplifier lag. The legend
-    (right of the panels) lists every outcome class, present or not, and the lines: those
-    outside the panels are named with their side, without a line. A panel whose grid points
-    all have one outcome says so in its middle.
+    (right of one panel, below several) lists every outcome class, present or not, the lines
+    and the operating point: a line outside the panels is named with its side, without a line.
+    A panel whose grid points all have one outcome says so in its middle.
 
     Parameters
     ----------
@@ -385,9 +427,8 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
     if axes is None:
         cols = min(n, 2)
         rows = int(math.ceil(n / cols))
-        fig, axs = plt.subplots(
-            rows, cols, figsize=(4.0 * cols + 3.0, 3.8 * rows), constrained_layout=True, squeeze=False
-        )
+        size = (4.0 * cols + (3.0 if n == 1 else 0.0), 3.8 * rows + (1.3 if n > 1 else 0.0))  # the legend beside one
+        fig, axs = plt.subplots(rows, cols, figsize=size, constrained_layout=True, squeeze=False)  # panel, else below
         axes = list(axs.ravel())
         for extra in axes[n:]:
             extra.remove()
@@ -424,17 +465,33 @@ def stability_map_plot(smap, axes=None, *, titles: bool = True, device=None, sti
             _physical_map_axes(ax, device, float(stiffness))
         if titles:
             what = "preload ≡" if smap.preload else "impact"
-            ax.set_title(
-                f"μ = {smap.mu:.4g}, {what} {_speed_text(v, device)}" + (f", delay {smap.delay}" if smap.delay else ""),
-                fontsize=8,
-            )
+            head, tail = f"μ = {smap.mu:.4g}", f"{what} {_speed_text(v, device)}"
+            tail += f", delay {smap.delay}" if smap.delay else ""
+            ax.set_title(head + (",\n" if len(head + tail) > 42 else ", ") + tail, fontsize=9)  # within the panel
     handles = _outcome_handles(bool(smap.wall.one_sided)) + _map_line_handles(smap, drawn, extent)
     if point is not None:
         handles.append(matplotlib.lines.Line2D([], [], label="operating point", **POINT_STYLE))
-    _legend_outside(axes[-1] if len(axes) <= 2 else axes[min(1, len(axes) - 1)], handles)
-    if physical:  # the right-hand secondary axis labels sit where the legend would go
-        axes[-1].get_legend().set_bbox_to_anchor((1.3, 1.0))
+    _panels_legend(axes, handles, below=len(axes) > 1)
     return axes
+
+
+def _panels_legend(axes, handles: list[Artist], *, below: bool, ncols: int = 2) -> None:
+    """The legend of a figure of panels, beside them (``below``: under them, in ``ncols`` columns, so that the
+    figure is no wider than its panels), clear of every axis label, the secondary axes' included. A figure laid out by constrained layout gets a figure legend placed outside the panels
+    by the layout; otherwise the legend goes right of the last panel, past its secondary axis when it has one
+    (measured on the drawn figure)."""
+    fig = axes[0].figure
+    if isinstance(fig.get_layout_engine(), matplotlib.layout_engine.ConstrainedLayoutEngine):
+        kw = dict(ncols=ncols, loc="outside lower center") if below else dict(loc="outside right upper")
+        fig.legend(handles=handles, fontsize=LEGEND_FONTSIZE, framealpha=0.9, **kw)
+        return
+    ax = axes[-1]
+    _legend_outside(ax, handles)
+    if ax.child_axes:  # a secondary axis' labels sit where the legend would go: start past them
+        renderer = fig.canvas.get_renderer()
+        right = max(c.get_tightbbox(renderer).x1 for c in ax.child_axes)
+        box = ax.get_window_extent(renderer)
+        ax.get_legend().set_bbox_to_anchor(((right - box.x0) / box.width + 0.02, 1.0))
 
 
 def _scaled_unit(base: str, largest: float) -> tuple[float, str]:
@@ -839,7 +896,7 @@ def stiffness_plot(curve, ax=None):
     ax.set_xlabel(f"impact speed |ẋ0| ({u['velocity']})")
     ax.set_ylabel(f"stiffness K ({u['stiffness']})")
     ax.set_title(f"{curve.device.name}: largest passive stiffness", fontsize=9)
-    _legend_outside(ax)
+    _legend_outside(ax, wrap=LEGEND_WRAP)
     ax.grid(True, which="both", alpha=0.3)
     return ax
 
@@ -925,7 +982,7 @@ def stiffness_speed_plot(chart, ax=None):
         color="0.25",
     )
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=LEGEND_FONTSIZE, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    _legend_outside(ax, wrap=LEGEND_WRAP)
     return ax
 
 

@@ -7,6 +7,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.abspath(".."))
+sys.path.insert(0, os.path.abspath("_ext"))
 
 project = "dfa"
 author = "dfa developers"
@@ -24,6 +25,7 @@ extensions = [
     "sphinx.ext.viewcode",
     "numpydoc",
     "myst_parser",
+    "dfa_docs",  # docs/_ext: plain console commands, console blocks that wrap (docs/_static/dfa.css)
 ]
 autosummary_generate = True
 
@@ -47,6 +49,7 @@ source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 exclude_patterns = ["_build"]
 suppress_warnings = ["myst.header", "myst.xref_missing"]
 html_theme = "pydata_sphinx_theme"
+html_static_path = ["_static"]
 html_title = f"dfa {release}"
 
 

@@ -126,13 +126,79 @@ def test_public_api_docstrings_complete():
     assert not problems, f"{len(problems)} docstring items missing:\n" + "\n".join(problems)
 
 
-@pytest.mark.slow
-def test_docs_site_builds_without_warnings(tmp_path):
+@pytest.fixture(scope="module")
+def docs_site(tmp_path_factory):
+    """The site built once for this module's checks: (the build's return code and stderr, its html folder)."""
     pytest.importorskip("sphinx")
     pytest.importorskip("myst_parser")
     pytest.importorskip("pydata_sphinx_theme")
+    tmp = tmp_path_factory.mktemp("docs")
     cmd = [sys.executable, "-m", "sphinx", "-b", "html", "-q", "-W", "--keep-going"]
-    cmd += ["-d", str(tmp_path / "doctrees"), str(ROOT / "docs"), str(tmp_path / "html")]
-    run = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=300)
+    cmd += ["-d", str(tmp / "doctrees"), str(ROOT / "docs"), str(tmp / "html")]
+    run = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=600)
+    return run, tmp / "html"
+
+
+@pytest.mark.slow
+def test_docs_site_builds_without_warnings(docs_site):
+    run, html = docs_site
     assert run.returncode == 0, run.stderr[-5000:]
-    assert (tmp_path / "html" / "api.html").exists()
+    assert (html / "api.html").exists()
+
+
+def _pages(html: Path) -> dict[str, str]:
+    return {p.name: p.read_text(encoding="utf-8") for p in sorted(html.glob("*.html"))}
+
+
+@pytest.mark.slow
+def test_docs_every_page_has_one_title(docs_site):
+    """The paper page showed two H1 titles (its own and the included report's); so did the README, benchmarks and
+    validation pages."""
+    _run, html = docs_site
+    titles = {name: text.count("<h1") for name, text in _pages(html).items()}
+    assert titles and all(n == 1 for n in titles.values()), {k: n for k, n in titles.items() if n != 1}
+
+
+_CONSOLE = re.compile(r'<div class="highlight-console[^"]*"><div class="highlight"><pre>(.*?)</pre>', re.S)
+
+
+@pytest.mark.slow
+def test_docs_console_commands_are_plain_text(docs_site):
+    """Pygments' console lexer coloured numbers in commands, and only in part (the 0 of ``--velocity 0.1``)."""
+    _run, html = docs_site
+    blocks = _CONSOLE.findall(_pages(html)["cli.html"])
+    commands = [line for block in blocks for line in block.splitlines() if 'class="gp"' in line]
+    assert len(commands) >= 10
+    for line in commands:
+        command = re.sub(r'<span class="gp">\$ </span>', "", line, count=1)
+        assert "<span" not in command.replace("<span></span>", ""), line
+
+
+@pytest.mark.slow
+def test_docs_console_blocks_wrap_instead_of_being_cut(docs_site):
+    """Console blocks on the command-line page were clipped at the column's right edge: their long lines wrap."""
+    _run, html = docs_site
+    assert "_static/dfa.css" in _pages(html)["cli.html"]
+    css = re.sub(r"/\*.*?\*/", "", (html / "_static" / "dfa.css").read_text(encoding="utf-8"), flags=re.S)
+    rules = dict(re.findall(r"([^{}]+)\{([^}]*)\}", css))
+    wrap = [body for sel, body in rules.items() if "highlight-console pre" in sel]
+    assert wrap and "white-space: pre-wrap" in wrap[0] and "overflow-wrap: anywhere" in wrap[0]
+
+
+def test_docs_console_lexer_gives_a_prompt_a_plain_command_and_output():
+    """docs/_ext/dfa_docs.py's lexer for ``console`` blocks: no token of a command is a number (Pygments' own lexer
+    coloured the 0 of ``0.1``); a ``\\``-continued command stays plain; a block without a final newline ends."""
+    pytest.importorskip("pygments")
+    from pygments.token import Generic, Text
+
+    sys.path.insert(0, str(ROOT / "docs" / "_ext"))
+    try:
+        from dfa_docs import ConsoleLexer
+    finally:
+        sys.path.remove(str(ROOT / "docs" / "_ext"))
+    text = "$ dfa check --velocity 0.1 \\\n    --stiffness 80\nmargin  0.9766\n\n$ dfa map --grid 3"
+    tokens = [(t, v) for t, v in ConsoleLexer().get_tokens(text) if v]
+    assert tokens[0] == (Generic.Prompt, "$ ")
+    assert [t for t, _v in tokens[1:3]] == [Text, Text] and tokens[2][1] == "    --stiffness 80\n"
+    assert (Generic.Output, "margin  0.9766\n") in tokens
+    assert tokens[-2:] == [(Generic.Prompt, "$ "), (Text, "dfa map --grid 3\n")]

@@ -141,7 +141,7 @@ def test_fig7_cli_contours_plot_physical_axes_with_device(
     for ax in panels:
         top, right = ax.child_axes
         assert top.get_xlabel() == f"damping b at K = {k:.5g} {units[0]} ({units[1]})"
-        assert right.get_ylabel() == f"Coulomb c ({units[2]})"
+        assert right.get_ylabel() == f"Coulomb friction c ({units[2]})"
         assert np.allclose(top.get_xlim(), np.array(ax.get_xlim()) * k * period)  # b = β K T (Table 1)
         assert np.allclose(right.get_ylim(), np.array(ax.get_ylim()) * k * resolution)  # c = σ K Δ
 

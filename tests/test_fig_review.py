@@ -38,10 +38,15 @@ def _boxes(fig):
     return fig.canvas.get_renderer()
 
 
+def _legend_of(ax):
+    """The axes' legend, or its figure's (a legend below or beside a figure's panels)."""
+    return ax.get_legend() or next(iter(ax.figure.legends))
+
+
 def _legend_clear_of_axes(ax, legend=None) -> bool:
     """The legend's box does not overlap the axes' plotting area (window extents, pixels)."""
     r = _boxes(ax.figure)
-    leg = (legend or ax.get_legend()).get_window_extent(r)
+    leg = (legend or _legend_of(ax)).get_window_extent(r)
     return not Bbox.intersection(leg, ax.get_window_extent(r))
 
 
@@ -66,7 +71,7 @@ def test_fig3_reference_speed_lines_have_distinct_styles_and_legend_entries():
     assert [ln.get_label() for ln in lines] == ["ξ'0 = 0.5", "ξ'0 = 1", "ξ'0 = 5"]
     styles = {(str(ln.get_linestyle()), ln.get_color(), ln.get_linewidth()) for ln in lines}
     assert len(styles) == 3
-    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    legend = [t.get_text() for t in _legend_of(ax).get_texts()]
     assert all(ln.get_label() in legend for ln in lines)
 
 
@@ -205,7 +210,8 @@ def test_fig4_map_panels_physical_axes_every_outcome_in_the_legend_and_the_point
     p = dev.params(k)
     m = stability_map(p.mu, [dev.xi_dot(0.05)], grid=6, samples=2000, n_jobs=1, progress=False)
     (ax,) = figures.stability_map_plot(m, device=dev, stiffness=k, point=(p.beta, p.sigma))
-    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    (legend,) = ax.figure.legends  # the panels' legend is the figure's, beside them
+    labels = [t.get_text() for t in legend.get_texts()]
     for outcome in ("rest", "chatter", "oscillating", "unstable", "undecided"):
         assert any(s.startswith(outcome) for s in labels), outcome
     assert "m/s" in ax.get_title()
@@ -216,7 +222,7 @@ def test_fig4_map_panels_physical_axes_every_outcome_in_the_legend_and_the_point
     assert right.get_ylim()[1] == pytest.approx(ax.get_ylim()[1] * k * dev.resolution)  # c = σKΔ
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     assert x0 < p.beta < x1 and y0 < p.sigma < y1
-    assert _legend_clear_of_axes(ax)
+    assert _legend_clear_of_axes(ax, legend)
 
 
 def test_fig4_outcome_colours_are_the_same_in_every_figure():
@@ -482,7 +488,8 @@ def _drawn_in_view(ax, handle) -> bool:
 
 
 def _map_legend(axes):
-    legend = next(ax.get_legend() for ax in axes if ax.get_legend() is not None)
+    fig = axes[0].figure
+    legend = next(iter(fig.legends), None) or next(ax.get_legend() for ax in axes if ax.get_legend() is not None)
     return list(zip(legend.legend_handles, [t.get_text() for t in legend.get_texts()], strict=True))
 
 
@@ -504,10 +511,11 @@ def test_fig4_controller_map_legend_draws_only_lines_in_view_and_names_the_other
     (ax,) = figures.stability_map_plot(m, device=dev, stiffness=k, point=(p.beta, p.sigma))
     entries = _map_legend([ax])
     texts = [t for _h, t in entries]
-    assert "critical line, eq. 10 with the wall: above the panels" in texts
-    corner = next(t for t in texts if t.startswith("σ = σ₀"))
-    assert "β = β₀ = " in corner and "right of the panels" in corner
-    assert not any(t.startswith("β = ½") or t == "critical line (eq. 10)" for t in texts)  # not the spring's lines
+    assert "critical line, eq. 10 with the wall: above the panel" in texts
+    assert any(t.startswith("region boundary σ = σ₀ = ") for t in texts)
+    beta0 = next(t for t in texts if t.startswith("region boundary β = β₀ = "))
+    assert beta0.endswith(": right of the panel")
+    assert not any("½" in t or t == "critical line (eq. 10)" for t in texts)  # not the spring's lines
     for handle, text in entries:
         if isinstance(handle, matplotlib.lines.Line2D) and handle.get_linestyle() != "None":
             assert _drawn_in_view(ax, handle), text
@@ -521,7 +529,8 @@ def test_fig4_spring_map_with_delay_names_its_corner_off_the_panel():
     (ax,) = figures.stability_map_plot(m)
     texts = [t for _h, t in _map_legend([ax])]
     assert "critical line (eq. 10)" in texts
-    assert "σ = ½ (β = ½ + d = 1.5: right of the panels)" in texts
+    assert "region boundary σ = ½" in texts
+    assert "region boundary β = ½ + d = 1.5: right of the panel" in texts
     for handle, text in _map_legend([ax]):
         if isinstance(handle, matplotlib.lines.Line2D) and handle.get_linestyle() != "None":
             assert _drawn_in_view(ax, handle), text
@@ -604,7 +613,7 @@ def _lab(colour) -> np.ndarray:
 def test_fig3_legend_names_the_operating_points_critical_line_in_words():
     r = dfa.passivity_criterion(0.00207, 2.03, 1.11, wall=WallParams.of(delay=1))
     ax = figures.regions_plot(r, xi_dots=[5.0])
-    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    texts = [t.get_text() for t in _legend_of(ax).get_texts()]
     assert "critical line at the operating point's speed, ξ'0 = 1.11, d = 1" in texts
     assert not any("(point)" in t for t in texts)
 
@@ -614,7 +623,7 @@ def test_fig3_regions_c_and_d_read_apart_in_colour_and_hatching():
     ax = figures.regions_plot(r)
     c, d = figures.REGION_COLORS["c"], figures.REGION_COLORS["d"]
     assert np.linalg.norm(_lab(c) - _lab(d)) >= 35.0  # two tints of one orange were 27 apart, mostly in lightness
-    legend = ax.get_legend()
+    legend = _legend_of(ax)
     patches = {t.get_text()[0]: h for h, t in zip(legend.legend_handles, legend.get_texts(), strict=True)
                if t.get_text()[1:2] == ":"}  # fmt: skip
     assert patches["c"].get_hatch() and not patches["d"].get_hatch()
@@ -662,3 +671,147 @@ def test_report_kmax_tables_cells_short_and_the_evidence_below_them(delta_answer
         for line in lines:  # every sentence of evidence is in the list below the table
             assert line.partition(": ")[2] in below
         assert below.startswith("What the simulated limits rest on:") and below.count("\n- **") == len(lines)
+
+
+# --- issue 41 §2: the maps' legend, their secondary axes and `dfa map --plot`'s operating point --------------------
+
+#: Width of the design report's column in CSS pixels (its HTML: ``body{max-width:980px}``); a wider PNG is shrunk.
+_REPORT_COLUMN_PX = 980.0
+
+
+def _report_like_map(speeds=(0.1, 0.2)):
+    """The design report's map of the Delta (two speeds, physical axes, the operating point), on a small grid."""
+    entry = dfa.get_device("delta")
+    dev, k = entry.device, entry.stiffness
+    p = dev.params(k)
+    m = stability_map(p.mu, [dev.xi_dot(v) for v in speeds], beta_range=(0, 0.25), sigma_range=(0, 4), grid=3,
+                      samples=300, n_jobs=1, progress=False)  # fmt: skip
+    return figures.stability_map_plot(m, device=dev, stiffness=k, point=(p.beta, p.sigma))
+
+
+def test_map_legend_names_each_region_boundary_in_its_own_entry_without_equating_numbers():
+    """The Delta's map (β up to 0.25) read "σ = ½ (β = ½ = 0.5: right of the panels)": one entry for a line drawn
+    and one off the panels, with "½ = 0.5"."""
+    m = stability_map(155.2, [1.11], beta_range=(0, 0.25), sigma_range=(0, 2), grid=3, samples=300, n_jobs=1,
+                      progress=False)  # fmt: skip
+    (ax,) = figures.stability_map_plot(m)
+    entries = _map_legend([ax])
+    texts = [t for _h, t in entries]
+    assert "region boundary σ = ½" in texts
+    hidden = next(h for h, t in entries if t == "region boundary β = ½: right of the panel")
+    assert hidden.get_linestyle() == "None"  # off the panel: words, no line
+    assert not any("½ =" in t or "(" in t and "panel" in t for t in texts), texts
+
+
+def test_map_secondary_axis_labels_as_large_as_the_main_ones_and_readable_in_the_report_column():
+    """The right axis' "Coulomb c (N)" was 8 pt on an 11-inch figure the report's 980-px column shrinks to 72 %:
+    about 6 px tall. At least 9 pt as shown, and as large as the σ axis' label."""
+    axes = _report_like_map()
+    fig = axes[0].figure
+    _boxes(fig)
+    shrink = min(1.0, _REPORT_COLUMN_PX / (fig.get_figwidth() * 120.0))  # the report's PNGs are saved at 120 dpi
+    for ax in axes:
+        top, right = ax.child_axes
+        for label in (top.xaxis.label, right.yaxis.label):
+            assert label.get_fontsize() >= ax.yaxis.label.get_fontsize()
+            assert label.get_fontsize() * shrink >= 9.0, (label.get_text(), label.get_fontsize(), shrink)
+
+
+def _panel_box(ax, r) -> Bbox:
+    """A panel with its tick labels, axis labels, title and secondary axes (pixels), its legend left out."""
+    parts = [ax.get_window_extent(r), ax.xaxis.get_tightbbox(r), ax.yaxis.get_tightbbox(r)]
+    parts += [ax.title.get_window_extent(r)] if ax.get_title() else []
+    return Bbox.union(parts + [c.get_tightbbox(r) for c in ax.child_axes])
+
+
+def test_map_legend_starts_just_past_the_secondary_axis_and_clear_of_every_panel():
+    """The legend was anchored at 1.3 axes widths to clear the right axis' label, leaving a blank gap beside it."""
+    for axes in (_report_like_map(), _report_like_map((0.1,))):
+        fig = axes[0].figure
+        r = _boxes(fig)
+        legend = next(iter(fig.legends), None) or next(ax.get_legend() for ax in axes if ax.get_legend())
+        leg = legend.get_window_extent(r)
+        boxes = [_panel_box(ax, r) for ax in axes]
+        assert not any(Bbox.intersection(leg, box) for box in boxes)
+        panels = Bbox.union(boxes)
+        if leg.x0 >= panels.x1:  # beside the panels
+            assert leg.x0 - panels.x1 < 0.25 * fig.dpi  # a quarter inch at most
+        else:  # below them
+            assert panels.y0 - leg.y1 < 0.25 * fig.dpi and leg.width <= panels.width
+
+
+def test_cli_map_plot_has_the_operating_point_in_its_legend_and_draws_it_once(capsys, tmp_path, monkeypatch):
+    import dfa.cli.maps as cli
+
+    shown = []
+    real = cli.save_png
+    monkeypatch.setattr(cli, "save_png", lambda flag, path, ax: shown.append(ax) or real(flag, path, ax))
+    code, _out, err = _cli(capsys, "map", "--device", "delta", "--velocity", "0.1", "--grid", "3", "--samples", "300",
+                           "--jobs", "1", "--quiet", "--out", str(tmp_path / "m.npz"), "--plot",
+                           str(tmp_path / "m.png"))  # fmt: skip
+    assert code == 0, err
+    fig = shown[0].figure
+    texts = [t for _h, t in _map_legend([shown[0]])]
+    assert "operating point" in texts
+    for ax in (a for a in fig.axes if a.get_xlabel().startswith("β")):
+        points = [ln for ln in ax.get_lines() if ln.get_marker() == figures.POINT_STYLE["marker"]]
+        assert len(points) == 1
+
+
+@pytest.mark.parametrize("name", ["speed chart", "stiffness"])
+def test_bounds_legend_beside_the_plot_is_under_half_as_wide_as_it(name):
+    """The speed chart's legend (eleven long labels on one line each) was as wide as its plot: labels break after
+    a colon or comma, never inside a parenthesis or between a value and its unit."""
+    ax = _FIGURES[name]()
+    r = _boxes(ax.figure)
+    legend = ax.get_legend()
+    assert legend.get_window_extent(r).width < 0.5 * ax.get_window_extent(r).width
+    assert _legend_clear_of_axes(ax)
+    for text in legend.get_texts():
+        for line in text.get_text().split("\n"):
+            assert line.count("(") == line.count(")"), line  # a parenthesis whole on its line
+            assert not line.startswith(("N/m", "m/s", "N·m")), line  # a value keeps its unit
+
+
+@pytest.mark.parametrize("params", [dfa.Params(155.2, 0.00207, 2.03), dfa.Params(2.0, 0.4, 0.1)], ids=["one", "crowd"])
+def test_report_nyquist_caption_names_an_inset_only_when_one_is_drawn(params):
+    """The Delta's caption said "the inset zooms on the cycles when they crowd or lie below one tick" under a figure
+    with no inset."""
+    from types import SimpleNamespace
+
+    from dfa.render.report_figures import _nyquist
+
+    res = limit_cycles(params, model="zoh")
+    nyq = nyquist_locus_response(params, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh")
+    shown = []
+    real = figures.nyquist_plot
+    analysis = SimpleNamespace(nyquist=nyq, is_spring=True, threshold=lambda _m: SimpleNamespace(result=res))
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(figures, "nyquist_plot", lambda *a, **k: shown.append(real(*a, **k)) or shown[-1])
+        caption = _nyquist(analysis).caption
+    assert ("inset" in caption) == bool(shown[0].child_axes)
+    assert bool(shown[0].child_axes) == (len(res.cycles) > 1)
+
+
+#: Width of the documentation's text column in CSS pixels: the pydata theme's article at a 1440-px-wide window,
+#: between its two sidebars (88rem page, 25 % and 17rem sidebars, 4rem of padding). A wider PNG is shrunk to it.
+_DOCS_COLUMN_PX = 720.0
+
+
+def test_fig3_legend_legible_at_the_docs_page_width():
+    """Fig. 3 (examples/fig3_regions.py, saved at 130 dpi) was 1066 px wide with its legend beside the plane: shrunk
+    to the docs' column its 9-pt legend read as 6 pt. The legend goes below the plane, and the figure is narrow
+    enough that it reads as 8 pt or more."""
+    r = dfa.passivity_criterion(beta=0.25, sigma=1.2, xi_dot=2.0)
+    ax = figures.regions_plot(r, xi_dots=[0.5, 1.0, 5.0])
+    fig = ax.figure
+    fig.set_dpi(130)
+    rend = _boxes(fig)
+    width = fig.get_tightbbox(rend).width * 130  # inches × dpi: the PNG's width
+    shrink = min(1.0, _DOCS_COLUMN_PX / width)
+    legend = _legend_of(ax)
+    assert min(t.get_fontsize() for t in legend.get_texts()) * shrink >= 8.0, (width, shrink)
+    assert _legend_clear_of_axes(ax)
+    page = fig.bbox
+    box = legend.get_window_extent(rend)
+    assert page.x0 <= box.x0 and box.x1 <= page.x1 and page.y0 <= box.y0  # on the page, not cut

@@ -331,7 +331,7 @@ def test_fig4_plot_colours_and_legend_per_class():
     img = np.asarray(fig.canvas.buffer_rgba())[..., :3] / 255.0
     from matplotlib.patches import Patch
 
-    legend = ax.get_legend()
+    (legend,) = fig.legends  # the panels' legend is the figure's
     leg = {
         t.get_text().split(" ")[0]: to_rgb(h.get_facecolor())
         for t, h in zip(legend.get_texts(), legend.legend_handles, strict=False)

@@ -271,3 +271,19 @@ def test_table2_hand_require_labels_the_total_damping(capsys):
     out = capsys.readouterr().out
     row = next(line for line in out.splitlines() if line.startswith("damping b + b_h (device and hand)"))
     assert f"{number(0.01 + 4.8, 4)} N·s/m" in row
+
+
+def test_table2_grip_prose_says_the_hand_mass_and_the_scanned_grips_in_words_with_units():
+    """The report read "for a hand of mass m_h = 0 kg" and "13 grips (0 and K T·2^i)": no hand mass is a hand that
+    adds none, and the scan is named by its range in N·s/m."""
+    from dfa.render.hand import grip_rows, grip_text
+
+    e = dfa.get_device("delta")
+    g = grip_sweep(e.device, e.stiffness, 0.1)
+    text, scan = grip_text(g), grip_rows(g)[-1][2]
+    assert "m_h = 0" not in text and "adds damping but no mass" in text
+    lo, hi = sorted(b for b in g.scan_damping if b > 0)[:: len(g.scan_damping) - 2]
+    assert "2^i" not in scan and "K T" not in scan
+    assert f"with no grip and with 12 grips from {number(lo, 4)} to {number(hi, 4)} N·s/m" in scan
+    held = grip_text(grip_sweep(e.device, e.stiffness, 0.1, hand_mass=0.15, simulate_scan=False))
+    assert "a hand that adds 0.15 kg to the moving mass" in held

@@ -234,9 +234,10 @@ def run(args: argparse.Namespace) -> int:
         from ..figures import stability_map_plot
 
         dev, k = (inp.device, inp.stiffness) if inp is not None else (None, None)
-        axes = stability_map_plot(m, device=dev, stiffness=k)
+        point = (inp.params.beta, inp.params.sigma) if inp is not None and inp.params is not None else None
+        axes = stability_map_plot(m, device=dev, stiffness=k, point=point)  # the point drawn and in the legend
         notes = [_point_note(r, r.physical(dev, k)) for r in runs] if runs else None
-        mark_operating_point(axes, inp, notes)
+        mark_operating_point(axes, inp, notes, marker=False)
         save_png("--plot", args.plot, axes[0])
     if args.json:
         d = m.to_dict()

@@ -117,9 +117,12 @@ def save_png(flag: str, path: str, ax: Any) -> str:
     return path
 
 
-def mark_operating_point(axes: Any, inp: Inputs | None, notes: Sequence[str] | None = None) -> None:
+def mark_operating_point(
+    axes: Any, inp: Inputs | None, notes: Sequence[str] | None = None, *, marker: bool = True
+) -> None:
     """Mark the device's (β, σ) at its K on each panel of a map or contour figure, with the panel's note (the
-    simulated outcome there, for a map) after the label."""
+    simulated outcome there, for a map) after the label; ``marker=False``: the label only (the figure drew the
+    point)."""
     if inp is None or inp.params is None:
         return
     from ..figures import POINT_STYLE
@@ -128,7 +131,8 @@ def mark_operating_point(axes: Any, inp: Inputs | None, notes: Sequence[str] | N
     unit = f" {inp.device.units['stiffness']}" if inp.device is not None else ""
     for k, ax in enumerate(axes):
         note = f": {notes[k]}" if notes is not None else ""
-        ax.plot([b], [s], **POINT_STYLE)
+        if marker:
+            ax.plot([b], [s], **POINT_STYLE)
         (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
         right, top = b > (x0 + x1) / 2, s > (y0 + y1) / 2  # the label toward the panel's middle, readable on any
         ax.annotate(  # outcome's colour

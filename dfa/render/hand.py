@@ -128,21 +128,47 @@ def grip_rows(g: GripSweep) -> list[list[str]]:
     rows = [[_GRIP_METHOD[n.method], _need_value(n, unit), _GRIP_BASIS[n.method]] for n in g.needs]
     if g.scan_damping:
         value = "none found" if g.simulated_damping is None else f"{number(g.simulated_damping, 4)} {unit}"
-        bad = {o: sum(x == o for x in g.scan_outcome) for o in ("unstable", "undecided")}
-        why = (
-            f"the impact at V {'after the approach' if g.wall.one_sided else 'from ξ0 = 0'} on {len(g.scan_damping)} "
-            f"grips (0 and K T·2^i): {bad['unstable']} "
-            f"diverged, {bad['undecided']} undecided; none from this grip up"
-        )
-        rows.append(["exact simulation", value, why])
+        rows.append(["exact simulation", value, _scan_text(g)])
     return rows
 
 
-def grip_text(g: GripSweep) -> str:
-    """The sentence above the grip table: the stiffness, speed and the hand's mass held."""
+def _scan_text(g: GripSweep) -> str:
+    """What the simulated grip scan ran, in words: ``"an impact at 0.1 m/s from the wall's surface, simulated with no
+    grip and with 12 grips from 0.07552 to 154.7 N·s/m (each twice the one before): none diverged or was
+    undecided"``."""
     u = g.device.units
+    start = "after the approach" if g.wall.one_sided else "from the wall's surface"
+    grips = sorted(b for b in g.scan_damping if b > 0)
+    scanned = "with no grip" if 0.0 in g.scan_damping else ""
+    if grips:
+        scanned += " and with " if scanned else "with "
+        scanned += (
+            f"{len(grips)} grip{'s' if len(grips) > 1 else ''} from {number(grips[0], 4)} to "
+            f"{number(grips[-1], 4)} {u['damping']} (each twice the one before)"
+            if len(grips) > 1
+            else f"one grip of {number(grips[0], 4)} {u['damping']}"
+        )
+    bad = {o: sum(x == o for x in g.scan_outcome) for o in ("unstable", "undecided")}
+    if not any(bad.values()):
+        found = "none diverged or was undecided"
+    else:
+        found = (
+            f"{bad['unstable']} diverged and {bad['undecided']} were undecided, "
+            "none of them at this grip or a firmer one"
+        )
+    return f"an impact at {number(g.velocity, 4)} {u['velocity']} {start}, simulated {scanned}: {found}"
+
+
+def grip_text(g: GripSweep) -> str:
+    """The sentence above the grip table: the stiffness, speed and the hand's mass held, in words."""
+    u = g.device.units
+    mass = (
+        "a hand that adds damping but no mass"
+        if g.hand_mass == 0.0
+        else f"a hand that adds {number(g.hand_mass, 4)} {u['mass']} to the moving mass"
+    )
     return (
         f"The least hand damping b_h with which K = {number(g.wall.stiffness, 5)} {u['stiffness']} holds at "
-        f"{number(g.velocity, 4)} {u['velocity']}, for a hand of mass m_h = {number(g.hand_mass, 4)} {u['mass']} "
-        "(a firmer grip damps more; the lightest grip is the hardest case), by each method; values are rounded up:"
+        f"{number(g.velocity, 4)} {u['velocity']}, by each method, for {mass}; a firmer grip damps more, and the "
+        "lightest grip is the hardest case. Values are rounded up:"
     )

@@ -87,10 +87,16 @@ def _nyquist(a: DesignAnalysis) -> ReportFigure | None:
     name = figures.MODEL_NAMES.get(model, model)
     caption = (
         f"Nyquist plot of the linearised loop{_with_ctl(a)} ({name} model, as the growth threshold above) against −1/D(M), "
-        "with its predicted limit cycles (filled: stable, open: unstable); the inset zooms on the cycles when "
-        "they crowd or lie below one tick."
+        f"with its predicted limit cycles (filled: stable, open: unstable){_inset_text(ax)}."
     )
     return ReportFigure("nyquist", caption, _png(ax.figure))
+
+
+def _inset_text(ax: Any) -> str:
+    """The caption's words for the Nyquist figure's zoom: only when one is drawn (an inset is a child axes)."""
+    if not ax.child_axes:
+        return ""
+    return "; the inset at the upper left zooms on the cycles (they crowd or lie below one tick)"
 
 
 def _trajectories(a: DesignAnalysis) -> ReportFigure:
