@@ -10,7 +10,9 @@ so nothing half-computed can be written.
 Backends
 --------
 ``"threads"``: a thread pool in this process (the compiled kernels release the GIL); running tasks finish
-before the interruption propagates (a thread cannot be killed), pending ones never start.
+before the interruption propagates (a thread cannot be killed), pending ones never start. The pool is started,
+waited for and joined with signals deferred (:mod:`dfa._signals`): a signal raises between two waits, never
+inside the threading module, whose locks it would leave in a wrong state.
 ``"processes"``: joblib's process pool (loky); ``"joblib"``: whatever ``joblib.parallel_config`` selects
 (e.g. dask). On an interruption the generator is closed, which cancels the pending tasks and stops the
 workers.
@@ -28,15 +30,22 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+import contextlib
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any, Protocol
 
 import numpy as np
 
-__all__ = ["run_in_order", "deal", "gather", "PARALLEL_BACKENDS"]
+from ._signals import check, deferred
+
+__all__ = ["run_in_order", "deal", "gather", "progress_bar", "PARALLEL_BACKENDS", "POLL_SECONDS"]
 
 #: Backends of :func:`run_in_order` (module docstring).
 PARALLEL_BACKENDS = ("threads", "processes", "joblib")
+
+#: Longest wait for a thread's result before a deferred interruption is raised (s): how soon Ctrl-C is obeyed
+#: once the running tasks are done.
+POLL_SECONDS = 0.05
 
 
 def deal(total: int, parts: int) -> list[np.ndarray]:
@@ -62,6 +71,30 @@ def gather(chunks: Sequence[np.ndarray], parts: Sequence[np.ndarray]) -> np.ndar
     for c, part in zip(chunks, parts, strict=True):
         out[c] = part
     return out
+
+
+@contextlib.contextmanager
+def progress_bar(**kwargs: Any) -> Iterator[Any]:
+    """A tqdm progress bar (``tqdm.auto.tqdm(**kwargs)``), closed however the block ends.
+
+    Created and closed with signals deferred (:mod:`dfa._signals`: tqdm starts and stops a monitor thread), and
+    closed when the block ends, an interruption included: a bar made with ``leave=False`` clears its line, so
+    what is printed next (the interruption's line) starts on a fresh line, never in the middle of the bar.
+
+    Parameters
+    ----------
+    **kwargs
+        tqdm's arguments (``total``, ``desc``, ``unit``, ``disable``, ``leave``, ...).
+    """
+    from tqdm.auto import tqdm
+
+    with deferred():
+        bar = tqdm(**kwargs)
+    try:
+        yield bar
+    finally:
+        with deferred():
+            bar.close()
 
 
 class _Progress(Protocol):
@@ -98,8 +131,9 @@ def run_in_order(
     if workers == 1 or len(tasks) <= 1:
         results = []
         for task, size in zip(tasks, sizes, strict=True):
-            results.append(fn(*task))
-            bar.update(size)
+            results.append(fn(*task))  # interrupted as any Python code: a signal raises where it lands
+            with deferred():
+                bar.update(size)
         return results
     if backend == "threads":
         return _threads(fn, tasks, sizes, min(workers, len(tasks)), bar)
@@ -107,19 +141,36 @@ def run_in_order(
 
 
 def _threads(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, bar) -> list:
+    """The thread pool of :func:`run_in_order`: started, waited for and joined with signals deferred
+    (:mod:`dfa._signals`: an interruption is raised between two waits, never inside the threading module)."""
     from concurrent.futures import ThreadPoolExecutor
 
-    results = []
-    with ThreadPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(fn, *task) for task in tasks]
+    results: list = []
+    futures: list = []
+    with deferred():
+        pool = ThreadPoolExecutor(max_workers=workers)
         try:
+            for task in tasks:
+                futures.append(pool.submit(fn, *task))
+                check()
             for size, fut in zip(sizes, futures, strict=True):  # in submission order
-                results.append(fut.result())
+                results.append(_result(fut))
                 bar.update(size)
         finally:
             for fut in futures:  # on an interruption: drop the tasks not started
                 fut.cancel()
+            pool.shutdown(wait=True)  # the running ones finish: a thread cannot be stopped
     return results
+
+
+def _result(fut: Any) -> Any:
+    """The result of ``fut``, waited for in steps of :data:`POLL_SECONDS` with an interruption raised between them."""
+    from concurrent.futures import wait
+
+    while not wait([fut], timeout=POLL_SECONDS).done:
+        check()
+    check()
+    return fut.result()
 
 
 def _joblib(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, backend, bar) -> list:
@@ -131,7 +182,9 @@ def _joblib(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int]
     try:
         for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
             results.append(res)
-            bar.update(size)
+            with deferred():
+                bar.update(size)
     finally:
-        gen.close()  # on an interruption: cancel the pending tasks, stop the workers
+        with deferred():
+            gen.close()  # on an interruption: cancel the pending tasks, stop the workers
     return results

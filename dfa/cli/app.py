@@ -32,6 +32,7 @@ from types import ModuleType
 from typing import Any
 
 from .._io import written_paths
+from .._signals import interrupt
 from ..errors import DFAError, ImplausibleInputWarning
 from . import (
     check,
@@ -49,7 +50,7 @@ from . import (
     zwidth,
 )
 from .compile_note import compile_note
-from .output import drop_warnings, flush_warnings, hold_warning
+from .output import close_progress_bars, drop_warnings, flush_warnings, hold_warning
 from .parsing import Parser, UsageError
 
 __all__ = ["COMMANDS", "build_parser", "main", "on_signal", "package_version"]
@@ -114,10 +115,11 @@ _SIGNALS = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM") if hasattr(si
 
 
 def on_signal(signum: int, frame: object) -> None:
-    """The handler of SIGINT and SIGTERM: ignore further signals (the clean-up must finish), raise :class:`Interrupted`."""
+    """The handler of SIGINT and SIGTERM: ignore further signals (the clean-up must finish), raise :class:`Interrupted`
+    (where it lands, or, while threads are started, waited for or joined, once that is safe: :mod:`dfa._signals`)."""
     for sig in _SIGNALS:  # a second signal must not interrupt the clean-up of the first
         signal.signal(sig, signal.SIG_IGN)
-    raise Interrupted(signum)
+    interrupt(Interrupted(signum))
 
 
 def _install_signal_handlers() -> dict[Any, Any]:
@@ -251,6 +253,7 @@ def _error(err: BaseException, before: int) -> int:
         return int(err.code or 0)
     if isinstance(err, KeyboardInterrupt):
         signum = getattr(err, "signum", int(signal.SIGINT))
+        close_progress_bars()  # the line starts on a fresh line, not after a bar's text
         print(_interrupted_line(signum, before), file=sys.stderr)
         return 128 + int(signum)
     if isinstance(err, BrokenPipeError):
