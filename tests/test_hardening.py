@@ -243,6 +243,51 @@ def test_io_staged_folder_all_or_nothing(tmp_path):
     assert sorted(os.listdir(tmp_path)) == ["figures", "r.md"] and (tmp_path / "r.md").read_text() == "new"
 
 
+# A run that stages a report and writes a file atomically in the folder argv[1], says "staged" and waits for stdin.
+_STAGING = """
+import sys
+from dfa._io import atomic_open, staged_folder
+
+with staged_folder(sys.argv[1]) as stage, atomic_open(sys.argv[1] + "/" + sys.argv[2] + ".txt", "w") as fh:
+    (stage / (sys.argv[2] + ".md")).write_text("report")
+    fh.write("file")
+    print("staged", flush=True)
+    sys.stdin.read()
+"""
+
+
+def _staging(folder, name):
+    proc = subprocess.Popen([sys.executable, "-c", _STAGING, str(folder), name], stdin=subprocess.PIPE,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)  # fmt: skip
+    assert proc.stdout.readline() == b"staged\n", proc.stderr.read()
+    return proc
+
+
+def _temporary(folder):
+    return sorted(n for n in os.listdir(folder) if n.startswith(".dfa-tmp-"))
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="flock")
+def test_io_staged_folder_removes_what_a_killed_run_left_not_a_running_one(tmp_path):
+    killed = _staging(tmp_path, "killed")
+    killed.kill()  # SIGKILL: no clean-up runs
+    killed.communicate(timeout=120)
+    left = _temporary(tmp_path)
+    assert len(left) == 2  # its stage and its .part file
+    running = _staging(tmp_path, "running")  # another run, still going on in the same folder
+    ours = set(_temporary(tmp_path)) - set(left)
+    assert len(ours) == 2
+    (tmp_path / "keep.txt").write_text("mine")
+    with _io.staged_folder(tmp_path) as stage:
+        (stage / "r.md").write_text("new")
+    assert set(_temporary(tmp_path)) == ours  # the killed run's are gone, the running one's untouched
+    assert sorted(_io.remove_stale(tmp_path)) == []
+    out, err = running.communicate(timeout=120)  # closes stdin: it finishes
+    assert running.returncode == 0, err
+    assert _temporary(tmp_path) == []
+    assert sorted(os.listdir(tmp_path)) == ["keep.txt", "r.md", "running.md", "running.txt"]
+
+
 def test_fig4_map_save_is_atomic(tmp_path, monkeypatch):
     m = dfa.stability_map(100.0, [2.0], grid=2, samples=50, n_jobs=1, progress=False)
     p = m.save(tmp_path / "m.npz")
