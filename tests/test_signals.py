@@ -14,10 +14,8 @@ import subprocess
 import sys
 import threading
 
-import numpy as np
 import pytest
 
-import dfa
 from dfa import _signals
 from dfa.cli import main
 
@@ -193,19 +191,3 @@ def test_report_progress_interrupted_in_the_map_line_starts_fresh(capsys, monkey
     head, line, tail = err.rpartition("dfa: interrupted (SIGINT); nothing written")
     assert line and tail == "\n", repr(err[-300:])
     assert head.endswith("\r") and head.rsplit("\n", 1)[-1].rsplit("\r", 2)[-2].strip() == "", repr(head[-200:])
-
-
-# ------------------------------------------------------------------ the same numbers whatever --jobs
-@TWO_CORES
-def test_map_json_and_file_same_for_jobs_1_and_2(capsys, tmp_path):
-    outs = {}
-    for jobs in (1, 2):
-        path = tmp_path / f"m{jobs}.npz"
-        argv = ["map", "--mu", "100", "--xi-dot", "1", "3", "--grid", "9", "--samples", "3000", "--quiet", "--json"]
-        assert main([*argv, "--jobs", str(jobs), "--out", str(path)]) == 0
-        outs[jobs] = (capsys.readouterr().out, dfa.load_map(path))
-    (out1, m1), (out2, m2) = outs[1], outs[2]
-    assert out1.replace("m1.npz", "m2.npz") == out2
-    np.testing.assert_array_equal(m1.outcome, m2.outcome)
-    np.testing.assert_allclose(m1.amplitude, m2.amplitude, rtol=1e-12, equal_nan=True)
-    np.testing.assert_allclose(m1.frequency, m2.frequency, rtol=1e-12, equal_nan=True)
