@@ -31,6 +31,7 @@ Examples
 from __future__ import annotations
 
 import contextlib
+import warnings
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any, Protocol
 
@@ -177,14 +178,18 @@ def _joblib(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int]
     from joblib import Parallel, delayed
 
     kw = {"backend": "loky"} if backend == "processes" else {}
-    gen = Parallel(n_jobs=workers, return_as="generator", **kw)(delayed(fn)(*task) for task in tasks)
-    results = []
+    results: list = []
+    gen = None
     try:
+        with deferred():  # joblib starts a thread here
+            gen = Parallel(n_jobs=workers, return_as="generator", **kw)(delayed(fn)(*task) for task in tasks)
         for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
             results.append(res)
             with deferred():
                 bar.update(size)
     finally:
-        with deferred():
-            gen.close()  # on an interruption: cancel the pending tasks, stop the workers
+        if gen is not None:
+            with deferred(), warnings.catch_warnings():  # joblib's count of the cancelled tasks: not news here
+                warnings.simplefilter("ignore", UserWarning)
+                gen.close()  # on an interruption: cancel the pending tasks, stop the workers
     return results

@@ -29,7 +29,8 @@ MAIN_THREAD = pytest.mark.skipif(
 #: instrumented: at ``spot`` the process signals itself right after a condition released its lock and before
 #: it waits (the window the race hit), once per "spot:SIGNAL" event of argv[1], in that order.
 #: Spots: "bar" (the first wait of the main thread: tqdm starting its monitor thread), "submit" (inside the
-#: pool's submit), "wait" (waiting for a result) and "shutdown" (joining the workers).
+#: pool's submit), "wait" (waiting for a result), "shutdown" (joining the workers) and "joblib" (joblib's
+#: generator starting its thread, the process backend).
 _AT_SPOT = r"""
 import os, signal, sys, threading
 from concurrent.futures import ThreadPoolExecutor, _base
@@ -71,11 +72,14 @@ def at_shutdown(self, *args, **kwargs):
     fire("shutdown")
     return shutdown(self, *args, **kwargs)
 ThreadPoolExecutor.shutdown = at_shutdown
+import joblib
+joblib.Parallel.__call__ = spot("joblib", joblib.Parallel.__call__)
 
-if sys.argv[2] == "api":  # dfa's API under Python's own SIGINT handler
+if sys.argv[2].startswith("api"):  # dfa's API under Python's own SIGINT handler; api-processes: on loky
     import dfa
+    how = sys.argv[2][4:] or "threads"
     try:
-        dfa.stability_map(100.0, [1.0], grid=8, samples=2000, n_jobs=2, progress=False)
+        dfa.stability_map(100.0, [1.0], grid=8, samples=2000, n_jobs=2, progress=False, backend=how)
     except KeyboardInterrupt:
         restored = signal.getsignal(signal.SIGINT) is signal.default_int_handler
         print("KeyboardInterrupt" + (", handler restored" if restored else ""), flush=True)
@@ -116,12 +120,17 @@ def test_signal_inside_the_threading_module_exits_with_its_code_and_one_line(tmp
 
 @POSIX
 @TWO_CORES
-@pytest.mark.parametrize("events", ["submit:SIGINT", "wait:SIGINT"])
-def test_api_ctrl_c_inside_the_threading_module_raises_keyboard_interrupt(tmp_path, events):
-    """The API keeps Python's own SIGINT handler: Ctrl-C at the racy spot is a KeyboardInterrupt, raised by dfa."""
-    proc = subprocess.run([sys.executable, "-c", _AT_SPOT, events, "api"], capture_output=True, cwd=tmp_path,
-                          timeout=600, check=False)  # fmt: skip
+@pytest.mark.parametrize(
+    "events, mode", [("submit:SIGINT", "api"), ("wait:SIGINT", "api"), ("joblib:SIGINT", "api-processes")]
+)
+def test_api_ctrl_c_inside_the_threading_module_raises_keyboard_interrupt(tmp_path, events, mode):
+    """The API keeps Python's own SIGINT handler: Ctrl-C at the racy spot is a KeyboardInterrupt, raised by dfa,
+    with nothing on stderr (no traceback from a thread, no warning from joblib about the cancelled tasks)."""
+    proc = subprocess.run(
+        [sys.executable, "-c", _AT_SPOT, events, mode], capture_output=True, cwd=tmp_path, timeout=600, check=False
+    )
     assert proc.returncode == 130 and proc.stdout == b"KeyboardInterrupt, handler restored\n", proc.stderr.decode()
+    assert proc.stderr == b"", proc.stderr.decode()
 
 
 def test_deferred_interruption_raised_when_the_block_ends_not_inside():
