@@ -39,7 +39,7 @@ import numpy as np
 
 from ._signals import check, deferred
 
-__all__ = ["run_in_order", "deal", "gather", "progress_bar", "PARALLEL_BACKENDS", "POLL_SECONDS"]
+__all__ = ["run_in_order", "deal", "gather", "progress_bar", "NO_BAR", "PARALLEL_BACKENDS", "POLL_SECONDS"]
 
 #: Backends of :func:`run_in_order` (module docstring).
 PARALLEL_BACKENDS = ("threads", "processes", "joblib")
@@ -102,6 +102,17 @@ class _Progress(Protocol):
     def update(self, n: int) -> Any: ...
 
 
+class _NoBar:
+    """A progress bar that shows nothing (:data:`NO_BAR`)."""
+
+    def update(self, n: int) -> None:
+        """Nothing to advance."""
+
+
+#: The ``bar`` of :func:`run_in_order` for work that shows no progress.
+NO_BAR = _NoBar()
+
+
 def run_in_order(
     fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, backend: str, bar: _Progress
 ) -> list:
@@ -120,7 +131,7 @@ def run_in_order(
     backend : {"threads", "processes", "joblib"}
         Where the workers run (module docstring); ignored with one worker.
     bar : object with ``update(n)``
-        Progress bar (tqdm).
+        Progress bar (tqdm, :func:`progress_bar`), or :data:`NO_BAR`.
 
     Returns
     -------

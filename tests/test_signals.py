@@ -91,23 +91,27 @@ sys.exit(main())
 """
 
 MAP = ["map", "--mu", "100", "--xi-dot", "1", "--grid", "8", "--samples", "2000", "--jobs", "2", "--out", "m.npz"]
+#: The stiffness limits' simulations run on their own threads (dfa.analysis.limits.runs), one per core.
+STIFFNESS = ["stiffness", "--device", "impulse", "--velocity", "0.05"]
 
 
 @POSIX
 @TWO_CORES
 @pytest.mark.parametrize(
-    "events, code",
+    "argv, events, code",
     [
-        ("submit:SIGINT", 130),
-        ("submit:SIGTERM,shutdown:SIGINT", 143),  # the second signal, while the workers are joined, changes nothing
-        ("wait:SIGINT", 130),
-        ("wait:SIGTERM", 143),
-        ("shutdown:SIGINT", 130),
-        ("bar:SIGTERM", 143),
+        (MAP, "submit:SIGINT", 130),
+        (MAP, "submit:SIGTERM,shutdown:SIGINT", 143),  # a second signal, while the workers are joined, changes nothing
+        (MAP, "wait:SIGINT", 130),
+        (MAP, "wait:SIGTERM", 143),
+        (MAP, "shutdown:SIGINT", 130),
+        (MAP + ["--progress"], "bar:SIGTERM", 143),
+        (STIFFNESS, "submit:SIGINT", 130),
+        (STIFFNESS, "wait:SIGTERM", 143),
     ],
+    ids=lambda x: x[0] if isinstance(x, list) else None,
 )
-def test_signal_inside_the_threading_module_exits_with_its_code_and_one_line(tmp_path, events, code):
-    argv = MAP + (["--progress"] if events.startswith("bar") else ["--quiet"])
+def test_signal_inside_the_threading_module_exits_with_its_code_and_one_line(tmp_path, argv, events, code):
     cmd = [sys.executable, "-c", _AT_SPOT, events, *argv]
     proc = subprocess.run(cmd, capture_output=True, cwd=tmp_path, timeout=600, check=False)
     err = proc.stderr.decode()
@@ -115,6 +119,7 @@ def test_signal_inside_the_threading_module_exits_with_its_code_and_one_line(tmp
     assert "Traceback" not in err and "Exception ignored" not in err, err
     assert proc.returncode == code, err
     assert err.replace("\r", "\n").strip().splitlines()[-1] == f"dfa: interrupted ({name}); nothing written", err
+    assert os.listdir(tmp_path) == []
     assert os.listdir(tmp_path) == []
 
 
