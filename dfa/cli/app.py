@@ -6,7 +6,9 @@ SIGTERM (one line on stderr naming what was kept: files are written atomically, 
 141 stdout was a closed pipe (``dfa devices | head -1``), ended quietly.
 
 Signals: the first SIGINT or SIGTERM unwinds the run (:class:`Interrupted`); later ones are ignored while it cleans
-up. As the program (``main()`` without ``argv``: the ``dfa`` script, ``python -m dfa.cli``) the handlers stay
+up. Where threads are started, waited for or joined (and progress bars made) the signal is raised as soon as that
+is safe, never inside the threading module (:mod:`dfa._signals`); any bar still drawn is cleared before the line.
+As the program (``main()`` without ``argv``: the ``dfa`` script, ``python -m dfa.cli``) the handlers stay
 installed to the end: a second signal while the interpreter exits (worker threads or the process pool still
 finishing) changes nothing, and a first one arriving after the run ends exits at once with its one line and
 128 + the signal's number (:func:`_exit_on_signal`), never by the signal itself nor with a traceback from
