@@ -39,7 +39,7 @@ import numpy as np
 
 from ._signals import check, deferred
 
-__all__ = ["run_in_order", "deal", "gather", "progress_bar", "NO_BAR", "PARALLEL_BACKENDS", "POLL_SECONDS"]
+__all__ = ["run_in_order", "deal", "gather", "new_bar", "progress_bar", "NO_BAR", "PARALLEL_BACKENDS", "POLL_SECONDS"]
 
 #: Backends of :func:`run_in_order` (module docstring).
 PARALLEL_BACKENDS = ("threads", "processes", "joblib")
@@ -74,6 +74,21 @@ def gather(chunks: Sequence[np.ndarray], parts: Sequence[np.ndarray]) -> np.ndar
     return out
 
 
+def new_bar(**kwargs: Any) -> Any:
+    """A tqdm progress bar (``tqdm.auto.tqdm(**kwargs)``) created with signals deferred (tqdm starts its monitor
+    thread with the first bar: :mod:`dfa._signals`). The caller closes it; :func:`progress_bar` does.
+
+    Parameters
+    ----------
+    **kwargs
+        tqdm's arguments (``iterable``, ``total``, ``desc``, ``unit``, ``disable``, ``leave``, ...).
+    """
+    from tqdm.auto import tqdm
+
+    with deferred():
+        return tqdm(**kwargs)
+
+
 @contextlib.contextmanager
 def progress_bar(**kwargs: Any) -> Iterator[Any]:
     """A tqdm progress bar (``tqdm.auto.tqdm(**kwargs)``), closed however the block ends.
@@ -87,10 +102,7 @@ def progress_bar(**kwargs: Any) -> Iterator[Any]:
     **kwargs
         tqdm's arguments (``total``, ``desc``, ``unit``, ``disable``, ``leave``, ...).
     """
-    from tqdm.auto import tqdm
-
-    with deferred():
-        bar = tqdm(**kwargs)
+    bar = new_bar(**kwargs)
     try:
         yield bar
     finally:

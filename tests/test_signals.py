@@ -108,6 +108,7 @@ STIFFNESS = ["stiffness", "--device", "impulse", "--velocity", "0.05"]
         (MAP + ["--progress"], "bar:SIGTERM", 143),
         (STIFFNESS, "submit:SIGINT", 130),
         (STIFFNESS, "wait:SIGTERM", 143),
+        (["contours", "--mu", "5", "--grid", "10", "--progress"], "bar:SIGINT", 130),  # a bar, no thread pool
     ],
     ids=lambda x: x[0] if isinstance(x, list) else None,
 )
