@@ -32,6 +32,7 @@ from __future__ import annotations
 import contextlib
 import os
 import shutil
+import stat
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
@@ -45,6 +46,7 @@ __all__ = [
     "atomic_open",
     "written_paths",
     "staged_folder",
+    "remove_stale",
     "check_output_file",
     "check_output_folder",
     "make_output_folder",
@@ -64,6 +66,10 @@ MEMORY_FRACTION = 0.5
 FALLBACK_MEMORY = 2 * 1024**3
 
 _TMP_PREFIX = ".dfa-tmp-"
+#: Temporary names tried before giving up when another run's clean-up keeps removing them (:func:`_new_temp`).
+_TEMP_TRIES = 10
+#: :func:`_hold`'s answer for a name removed before it could be locked.
+_GONE = -1
 
 #: The file types a figure is written as, by the suffix of its path (:func:`dfa.figures.save_figure`).
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
@@ -91,7 +97,8 @@ def atomic_open(path: str | os.PathLike, mode: str = "wb", encoding: str | None 
         raise DFAValueError(f"mode = {mode!r} is invalid: it must be 'wb' or 'w'")
     dest = os.fspath(path)
     folder = os.path.dirname(os.path.abspath(dest))
-    fd, tmp = tempfile.mkstemp(prefix=_TMP_PREFIX, suffix=".part", dir=folder)
+    tmp, fd, lock = _new_temp(folder, suffix=".part")
+    assert fd is not None
     try:
         fh_cm: IO[Any] = (
             os.fdopen(fd, "wb") if mode == "wb" else os.fdopen(fd, "w", encoding=encoding or "utf-8", newline="")
@@ -106,6 +113,8 @@ def atomic_open(path: str | os.PathLike, mode: str = "wb", encoding: str | None 
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
+    finally:
+        _release(lock)
     _WRITTEN.append(dest)
 
 
@@ -137,10 +146,13 @@ def staged_folder(folder: str | os.PathLike) -> Iterator[Path]:
     file, after all the work is done); on any exception the temporary folder
     is removed and ``folder`` is untouched, so it never holds a mix of an old
     and a half-written new set. Files of ``folder`` not in the new set are
-    left alone.
+    left alone, except the temporary ones a killed run left there
+    (:func:`remove_stale`, first).
     """
     dest = Path(folder)
-    stage = Path(tempfile.mkdtemp(prefix=_TMP_PREFIX, dir=os.fspath(dest)))
+    remove_stale(dest)
+    path, _, lock = _new_temp(os.fspath(dest), directory=True)
+    stage = Path(path)
     try:
         yield stage
         files = sorted(p for p in stage.rglob("*") if p.is_file())
@@ -154,6 +166,109 @@ def staged_folder(folder: str | os.PathLike) -> Iterator[Path]:
             _WRITTEN.append(os.fspath(target))
     finally:
         shutil.rmtree(stage, ignore_errors=True)
+        _release(lock)
+
+
+# ------------------------------------------------------------ temporary names, and those a killed run left
+def _new_temp(folder: str, directory: bool = False, suffix: str = "") -> tuple[str, int | None, int | None]:
+    """A new temporary file or folder ``.dfa-tmp-*`` in ``folder``, locked while in use (:func:`remove_stale`).
+
+    Returns
+    -------
+    path : str
+        The new file or folder.
+    fd : int or None
+        The file's descriptor, open for writing (None for a folder).
+    lock : int or None
+        The descriptor holding the lock (:func:`_release` when done; None where locks are not available).
+    """
+    for _ in range(_TEMP_TRIES):
+        if directory:
+            path, fd = tempfile.mkdtemp(prefix=_TMP_PREFIX, suffix=suffix, dir=folder), None
+        else:
+            fd, path = tempfile.mkstemp(prefix=_TMP_PREFIX, suffix=suffix, dir=folder)
+        lock = _hold(path)
+        if lock != _GONE:
+            return path, fd, lock
+        if fd is not None:  # another run's clean-up removed it before it was locked: make another
+            os.close(fd)
+    raise OSError(f"no temporary name could be kept in {folder!r} ({_TEMP_TRIES} were removed by another process)")
+
+
+def _hold(path: str) -> int | None:
+    """Lock ``path`` for as long as the returned descriptor stays open (the lock ends with the process, however
+    it ends); None where locks are not available, :data:`_GONE` when ``path`` was removed before it was locked."""
+    try:
+        import fcntl
+    except ImportError:  # no flock (Windows): nothing is locked, and remove_stale removes nothing
+        return None
+    try:
+        fd = os.open(path, os.O_RDONLY)
+    except FileNotFoundError:
+        return _GONE
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)  # waits while a clean-up that locked it first removes it
+        same = os.path.samestat(os.fstat(fd), os.stat(path))
+    except FileNotFoundError:
+        same = False
+    except OSError:  # a file system without locks: remove_stale cannot lock there either, so it removes nothing
+        os.close(fd)
+        return None
+    if not same:
+        os.close(fd)
+        return _GONE
+    return fd
+
+
+def _release(lock: int | None) -> None:
+    """Give up a lock of :func:`_hold` (close its descriptor)."""
+    if lock is not None:
+        with contextlib.suppress(OSError):
+            os.close(lock)
+
+
+def remove_stale(folder: str | os.PathLike) -> list[str]:
+    """Remove the temporary files and folders (``.dfa-tmp-*``) that a killed run (SIGKILL, a power cut) left in
+    ``folder``; return their paths.
+
+    Rule: an entry of this user, a regular file or a folder, whose lock no process holds. Every run holds a lock
+    on its temporary names from their creation to their removal (:func:`_new_temp`: ``flock``, which the system
+    drops when the process ends, however it ends), so the stage or file of a run still going on, in this folder,
+    by this process or another, is never touched. Where locks are not available (Windows, some network file
+    systems) nothing is removed.
+    """
+    try:
+        import fcntl
+    except ImportError:
+        return []
+    try:
+        names = sorted(n for n in os.listdir(folder) if n.startswith(_TMP_PREFIX))
+    except OSError:
+        return []
+    removed = []
+    for name in names:
+        path = os.path.join(os.fspath(folder), name)
+        try:
+            st = os.lstat(path)
+            if st.st_uid != os.getuid() or not (stat.S_ISDIR(st.st_mode) or stat.S_ISREG(st.st_mode)):
+                continue
+            fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+        except OSError:
+            continue
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)  # refused: a run holds it
+            if not os.path.samestat(os.fstat(fd), os.lstat(path)):
+                continue
+            if stat.S_ISDIR(st.st_mode):
+                shutil.rmtree(path)
+            else:
+                os.unlink(path)
+        except OSError:
+            continue
+        finally:
+            os.close(fd)
+        removed.append(path)
+    return removed
 
 
 # ------------------------------------------------------------ output-path rules
@@ -233,9 +348,15 @@ def _probe(folder: str) -> str | None:
     :func:`os.access` says yes to root for a read-only file system or ``/proc``; only trying tells.
     """
     try:
-        os.rmdir(tempfile.mkdtemp(prefix=_TMP_PREFIX, dir=folder))
+        path, _, lock = _new_temp(folder, directory=True)
     except OSError as exc:
         return exc.strerror or type(exc).__name__
+    try:
+        os.rmdir(path)
+    except OSError as exc:
+        return exc.strerror or type(exc).__name__
+    finally:
+        _release(lock)
     return None
 
 

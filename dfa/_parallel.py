@@ -10,7 +10,9 @@ so nothing half-computed can be written.
 Backends
 --------
 ``"threads"``: a thread pool in this process (the compiled kernels release the GIL); running tasks finish
-before the interruption propagates (a thread cannot be killed), pending ones never start.
+before the interruption propagates (a thread cannot be killed), pending ones never start. The pool is started,
+waited for and joined with signals deferred (:mod:`dfa._signals`): a signal raises between two waits, never
+inside the threading module, whose locks it would leave in a wrong state.
 ``"processes"``: joblib's process pool (loky); ``"joblib"``: whatever ``joblib.parallel_config`` selects
 (e.g. dask). On an interruption the generator is closed, which cancels the pending tasks and stops the
 workers.
@@ -28,15 +30,23 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+import contextlib
+import warnings
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any, Protocol
 
 import numpy as np
 
-__all__ = ["run_in_order", "deal", "gather", "PARALLEL_BACKENDS"]
+from ._signals import check, deferred
+
+__all__ = ["run_in_order", "deal", "gather", "new_bar", "progress_bar", "NO_BAR", "PARALLEL_BACKENDS", "POLL_SECONDS"]
 
 #: Backends of :func:`run_in_order` (module docstring).
 PARALLEL_BACKENDS = ("threads", "processes", "joblib")
+
+#: Longest wait for a thread's result before a deferred interruption is raised (s): how soon Ctrl-C is obeyed
+#: once the running tasks are done.
+POLL_SECONDS = 0.05
 
 
 def deal(total: int, parts: int) -> list[np.ndarray]:
@@ -64,8 +74,55 @@ def gather(chunks: Sequence[np.ndarray], parts: Sequence[np.ndarray]) -> np.ndar
     return out
 
 
+def new_bar(**kwargs: Any) -> Any:
+    """A tqdm progress bar (``tqdm.auto.tqdm(**kwargs)``) created with signals deferred (tqdm starts its monitor
+    thread with the first bar: :mod:`dfa._signals`). The caller closes it; :func:`progress_bar` does.
+
+    Parameters
+    ----------
+    **kwargs
+        tqdm's arguments (``iterable``, ``total``, ``desc``, ``unit``, ``disable``, ``leave``, ...).
+    """
+    from tqdm.auto import tqdm
+
+    with deferred():
+        return tqdm(**kwargs)
+
+
+@contextlib.contextmanager
+def progress_bar(**kwargs: Any) -> Iterator[Any]:
+    """A tqdm progress bar (``tqdm.auto.tqdm(**kwargs)``), closed however the block ends.
+
+    Created and closed with signals deferred (:mod:`dfa._signals`: tqdm starts and stops a monitor thread), and
+    closed when the block ends, an interruption included: a bar made with ``leave=False`` clears its line, so
+    what is printed next (the interruption's line) starts on a fresh line, never in the middle of the bar.
+
+    Parameters
+    ----------
+    **kwargs
+        tqdm's arguments (``total``, ``desc``, ``unit``, ``disable``, ``leave``, ...).
+    """
+    bar = new_bar(**kwargs)
+    try:
+        yield bar
+    finally:
+        with deferred():
+            bar.close()
+
+
 class _Progress(Protocol):
     def update(self, n: int) -> Any: ...
+
+
+class _NoBar:
+    """A progress bar that shows nothing (:data:`NO_BAR`)."""
+
+    def update(self, n: int) -> None:
+        """Nothing to advance."""
+
+
+#: The ``bar`` of :func:`run_in_order` for work that shows no progress.
+NO_BAR = _NoBar()
 
 
 def run_in_order(
@@ -86,7 +143,7 @@ def run_in_order(
     backend : {"threads", "processes", "joblib"}
         Where the workers run (module docstring); ignored with one worker.
     bar : object with ``update(n)``
-        Progress bar (tqdm).
+        Progress bar (tqdm, :func:`progress_bar`), or :data:`NO_BAR`.
 
     Returns
     -------
@@ -98,8 +155,9 @@ def run_in_order(
     if workers == 1 or len(tasks) <= 1:
         results = []
         for task, size in zip(tasks, sizes, strict=True):
-            results.append(fn(*task))
-            bar.update(size)
+            results.append(fn(*task))  # interrupted as any Python code: a signal raises where it lands
+            with deferred():
+                bar.update(size)
         return results
     if backend == "threads":
         return _threads(fn, tasks, sizes, min(workers, len(tasks)), bar)
@@ -107,31 +165,54 @@ def run_in_order(
 
 
 def _threads(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, bar) -> list:
+    """The thread pool of :func:`run_in_order`: started, waited for and joined with signals deferred
+    (:mod:`dfa._signals`: an interruption is raised between two waits, never inside the threading module)."""
     from concurrent.futures import ThreadPoolExecutor
 
-    results = []
-    with ThreadPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(fn, *task) for task in tasks]
+    results: list = []
+    futures: list = []
+    with deferred():
+        pool = ThreadPoolExecutor(max_workers=workers)
         try:
+            for task in tasks:
+                futures.append(pool.submit(fn, *task))
+                check()
             for size, fut in zip(sizes, futures, strict=True):  # in submission order
-                results.append(fut.result())
+                results.append(_result(fut))
                 bar.update(size)
         finally:
             for fut in futures:  # on an interruption: drop the tasks not started
                 fut.cancel()
+            pool.shutdown(wait=True)  # the running ones finish: a thread cannot be stopped
     return results
+
+
+def _result(fut: Any) -> Any:
+    """The result of ``fut``, waited for in steps of :data:`POLL_SECONDS` with an interruption raised between them."""
+    from concurrent.futures import wait
+
+    while not wait([fut], timeout=POLL_SECONDS).done:
+        check()
+    check()
+    return fut.result()
 
 
 def _joblib(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, backend, bar) -> list:
     from joblib import Parallel, delayed
 
     kw = {"backend": "loky"} if backend == "processes" else {}
-    gen = Parallel(n_jobs=workers, return_as="generator", **kw)(delayed(fn)(*task) for task in tasks)
-    results = []
+    results: list = []
+    gen = None
     try:
+        with deferred():  # joblib starts a thread here
+            gen = Parallel(n_jobs=workers, return_as="generator", **kw)(delayed(fn)(*task) for task in tasks)
         for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
             results.append(res)
-            bar.update(size)
+            with deferred():
+                bar.update(size)
     finally:
-        gen.close()  # on an interruption: cancel the pending tasks, stop the workers
+        if gen is not None:
+            with deferred(), warnings.catch_warnings():  # joblib's count of the cancelled tasks: not news here
+                warnings.simplefilter("ignore", UserWarning)
+                gen.close()  # on an interruption: cancel the pending tasks, stop the workers
     return results

@@ -243,6 +243,51 @@ def test_io_staged_folder_all_or_nothing(tmp_path):
     assert sorted(os.listdir(tmp_path)) == ["figures", "r.md"] and (tmp_path / "r.md").read_text() == "new"
 
 
+# A run that stages a report and writes a file atomically in the folder argv[1], says "staged" and waits for stdin.
+_STAGING = """
+import sys
+from dfa._io import atomic_open, staged_folder
+
+with staged_folder(sys.argv[1]) as stage, atomic_open(sys.argv[1] + "/" + sys.argv[2] + ".txt", "w") as fh:
+    (stage / (sys.argv[2] + ".md")).write_text("report")
+    fh.write("file")
+    print("staged", flush=True)
+    sys.stdin.read()
+"""
+
+
+def _staging(folder, name):
+    proc = subprocess.Popen([sys.executable, "-c", _STAGING, str(folder), name], stdin=subprocess.PIPE,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)  # fmt: skip
+    assert proc.stdout.readline() == b"staged\n", proc.stderr.read()
+    return proc
+
+
+def _temporary(folder):
+    return sorted(n for n in os.listdir(folder) if n.startswith(".dfa-tmp-"))
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="flock")
+def test_io_staged_folder_removes_what_a_killed_run_left_not_a_running_one(tmp_path):
+    killed = _staging(tmp_path, "killed")
+    killed.kill()  # SIGKILL: no clean-up runs
+    killed.communicate(timeout=120)
+    left = _temporary(tmp_path)
+    assert len(left) == 2  # its stage and its .part file
+    running = _staging(tmp_path, "running")  # another run, still going on in the same folder
+    ours = set(_temporary(tmp_path)) - set(left)
+    assert len(ours) == 2
+    (tmp_path / "keep.txt").write_text("mine")
+    with _io.staged_folder(tmp_path) as stage:
+        (stage / "r.md").write_text("new")
+    assert set(_temporary(tmp_path)) == ours  # the killed run's are gone, the running one's untouched
+    assert sorted(_io.remove_stale(tmp_path)) == []
+    out, err = running.communicate(timeout=120)  # closes stdin: it finishes
+    assert running.returncode == 0, err
+    assert _temporary(tmp_path) == []
+    assert sorted(os.listdir(tmp_path)) == ["keep.txt", "r.md", "running.md", "running.txt"]
+
+
 def test_fig4_map_save_is_atomic(tmp_path, monkeypatch):
     m = dfa.stability_map(100.0, [2.0], grid=2, samples=50, n_jobs=1, progress=False)
     p = m.save(tmp_path / "m.npz")
@@ -442,7 +487,7 @@ def test_cli_signal_after_a_file_was_kept(capsys, tmp_path, monkeypatch):
     assert dfa.load_map(out).outcome.shape == (1, 2, 2)
 
 
-def _children_gone(pgid: int, timeout: float = 10.0) -> bool:
+def _children_gone(pgid: int, timeout: float = 120.0) -> bool:
     end = time.monotonic() + timeout
     while time.monotonic() < end:
         try:
@@ -488,9 +533,8 @@ def test_cli_sigterm_stops_joblib_workers(tmp_path):
     # wait for the progress bar: the workers are running
     first = proc.stderr.read(1)
     assert first, "no progress bar"
-    time.sleep(1.0)
-    proc.send_signal(signal.SIGTERM)
-    _, err = proc.communicate(timeout=60)
+    proc.send_signal(signal.SIGTERM)  # wherever it lands (dfa._signals): the run lasts ~10 s, longer under load
+    _, err = proc.communicate(timeout=300)
     text = (first + err).decode()
     assert proc.returncode == 143, text
     assert text.replace("\r", "\n").strip().splitlines()[-1] == "dfa: interrupted (SIGTERM); nothing written"
@@ -502,6 +546,8 @@ def test_cli_sigterm_stops_joblib_workers(tmp_path):
 # Issue 27 §2: a signal while the interpreter exits (worker threads or the process pool still finishing) killed dfa
 # by the signal (status -15), or printed "Exception ignored in threading._shutdown ... KeyboardInterrupt" and
 # exited 0, because main() restored the default handlers before the process ended.
+# The worker thread runs until the test closes the process's stdin: the signal is sure to arrive while the
+# interpreter waits for it, however slow the machine (no sleep stands for "still running").
 _LATE = """
 import os, signal, sys, threading, time
 import dfa.cli.devices as devices
@@ -509,43 +555,88 @@ from dfa.cli import main
 
 
 def run(args):
-    threading.Thread(target=time.sleep, args=(2.0,)).start()  # a worker still finishing when main returns
+    threading.Thread(target=sys.stdin.buffer.read).start()  # a worker still running when main returns
     if {interrupt}:
         os.kill(os.getpid(), signal.SIGINT)
-        time.sleep(5)  # the handler raises before this ends
+        time.sleep(60)  # the handler raises before this ends
     print("done")
     return 0
 
 devices.run = run
 sys.argv = ["dfa", "devices"]
-sys.exit(main())
+code = main()
+print("returned", flush=True)
+sys.exit(code)
 """
 
 
 def _late(interrupt: bool) -> subprocess.Popen:
     code = _LATE.format(interrupt=interrupt)
-    return subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    return subprocess.Popen(
+        [sys.executable, "-c", code], stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE
+    )
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_cli_second_signal_while_exiting_keeps_the_first_code():
     proc = _late(interrupt=True)
-    first = proc.stderr.readline()  # the interruption's line: main() has returned, the thread still runs
-    assert first == b"dfa: interrupted (SIGINT); nothing written\n", first
+    assert proc.stdout.readline() == b"returned\n"  # main() has returned; the thread runs until stdin closes
     proc.send_signal(signal.SIGTERM)
-    _, err = proc.communicate(timeout=30)
-    assert proc.returncode == 130 and err == b"", (proc.returncode, err)
+    out, err = proc.communicate(timeout=120)  # closes stdin: the thread ends, then the interpreter
+    assert proc.returncode == 130 and out == b"", (proc.returncode, out, err)
+    assert err == b"dfa: interrupted (SIGINT); nothing written\n", err
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_cli_signal_after_the_run_exits_with_one_line():
     proc = _late(interrupt=False)
-    assert proc.stdout.readline() == b"done\n"  # main() has printed and returned; the thread still runs
-    time.sleep(0.2)
+    assert proc.stdout.readline() == b"done\n"
+    assert proc.stdout.readline() == b"returned\n"  # main() has returned; the thread runs until stdin closes
     proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=30)
+    _, err = proc.communicate(timeout=120)
     assert proc.returncode == 130, (proc.returncode, err)
     assert err == b"dfa: interrupted (SIGINT); nothing written\n", err
+
+
+# dfa with its thread pool's tasks held at a gate that opens when the test closes stdin, and markers on stdout:
+# "working" when the first task starts, "joining" when a pool waits for its workers. The test sends SIGINT once
+# the run works and SIGTERM while the interrupted pool is joined: each lands where it is meant to, however
+# loaded the machine (no sleep stands for "still running").
+_GATED = """
+import sys, threading
+from concurrent.futures import ThreadPoolExecutor
+
+gate, said = threading.Event(), set()
+
+def say(word):
+    if word not in said:
+        said.add(word)
+        print(word, flush=True)
+
+def opener():
+    sys.stdin.buffer.read()
+    gate.set()
+
+threading.Thread(target=opener, daemon=True).start()
+submit, shutdown = ThreadPoolExecutor.submit, ThreadPoolExecutor.shutdown
+
+def gated(fn):
+    def task(*args, **kwargs):
+        say("working")
+        gate.wait()
+        return fn(*args, **kwargs)
+    return task
+
+def joining(self, *args, **kwargs):
+    say("joining")
+    return shutdown(self, *args, **kwargs)
+
+ThreadPoolExecutor.submit = lambda self, fn, *a, **k: submit(self, gated(fn), *a, **k)
+ThreadPoolExecutor.shutdown = joining
+from dfa.cli import main
+sys.argv = ["dfa"] + sys.argv[1:]
+sys.exit(main())
+"""
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
@@ -553,28 +644,25 @@ def test_cli_signal_after_the_run_exits_with_one_line():
 @pytest.mark.parametrize(
     "argv",
     [
-        ["map", "--mu", "100", "--xi-dot", "1", "2", "--grid", "200", "--samples", "5000000", "--delay", "1"]
-        + ["--jobs", "2", "--out", "m.npz"],  # about 8 s on 2 cores: still running at the signal
+        ["map", "--mu", "100", "--xi-dot", "1", "2", "--grid", "8", "--samples", "2000", "--jobs", "2"]
+        + ["--out", "m.npz"],
         ["zwidth", "--device", "impulse", "--velocity", "0.1", "--grid", "6", "--jobs", "2", "--plot", "z.png"],
     ],
     ids=["map", "zwidth"],
 )
 def test_cli_sigint_then_sigterm_exits_130(tmp_path, argv):
-    env = dict(os.environ, PYTHONUNBUFFERED="1")
-    cmd = DFA + argv + ["--progress", "--force"] if argv[0] == "map" else DFA + argv + ["--progress"]
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, cwd=tmp_path)
-    first = proc.stderr.read(1)  # the progress bar: the run has started
-    assert first, "no progress bar"
-    time.sleep(0.5)
+    cmd = [sys.executable, "-c", _GATED, *argv, "--progress"]
+    proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=tmp_path)
+    assert proc.stdout.readline() == b"working\n"  # the thread pool runs (its tasks wait at the gate)
     proc.send_signal(signal.SIGINT)
-    time.sleep(0.3)
-    if proc.poll() is None:
-        proc.send_signal(signal.SIGTERM)
-    _, err = proc.communicate(timeout=60)
-    text = (first + err).decode()
+    assert proc.stdout.readline() == b"joining\n"  # interrupted: the pool waits for its running tasks
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=300)  # closes stdin: the gate opens, the running tasks end
+    text = err.decode()
     assert proc.returncode == 130, text
-    assert text.replace("\r", "\n").strip().splitlines()[-1].startswith("dfa: interrupted (SIGINT); "), text
+    assert text.replace("\r", "\n").strip().splitlines()[-1] == "dfa: interrupted (SIGINT); nothing written", text
     assert "Traceback" not in text and "Exception ignored" not in text
+    assert os.listdir(tmp_path) == []
 
 
 def test_cli_closed_pipe_ends_quietly():

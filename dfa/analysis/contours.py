@@ -37,6 +37,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .._io import atomic_open, check_memory
+from .._parallel import new_bar
 from ..checks import check_bool, check_choice, check_int, check_mu, check_positive, check_range, check_type
 from ..errors import DFAValueError
 from ..results.base import Result
@@ -282,8 +283,6 @@ def _large_exact(
     mu: float, beta: np.ndarray, sigma: np.ndarray, amax: float, progress: bool = False
 ) -> tuple[np.ndarray, np.ndarray]:
     """Smallest unstable cycle with M >= 1 for every (σ, β), exact D (see module docstring)."""
-    from tqdm.auto import tqdm
-
     n_all = np.arange(1, int(math.ceil(amax)) + 1)
     t = np.linspace(0.0, 1.0, 17)
     msamp = np.unique((n_all[:, None] + (t * t)[None, :]).ravel())
@@ -295,7 +294,8 @@ def _large_exact(
     rows_all = np.nonzero(sigma > 0)[0]
     if rows_all.size == 0:
         return large_m, large_w
-    for j, b in enumerate(tqdm(beta, unit="β column", desc=f"contours μ={mu:g}", disable=not progress, leave=False)):
+    bar = new_bar(iterable=beta, unit="β column", desc=f"contours μ={mu:g}", disable=not progress, leave=False)
+    for j, b in enumerate(bar):
         c = mu * wgrid**2 * np.tan(wgrid / 2) - b * wgrid  # = 4σ/(πM) on the phase curve, increasing where > 0
         ok = c > 0
         if not ok.any():

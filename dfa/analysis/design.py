@@ -21,6 +21,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from .._parallel import progress_bar
 from ..checks import check_int, check_positive, check_real, check_speed, check_type, format_value
 from ..errors import DFATypeError, DFAValueError
 from ..model.catalogue import CatalogueEntry
@@ -475,28 +476,25 @@ def design_analysis(
     >>> a.criterion.passive, round(a.limits.k_max, 1), a.outcome.outcome.value
     (True, 120.8, 'rest')
     """
-    from tqdm.auto import tqdm
-
     entry, dev, wall, v = resolve_design_inputs(device, wall, velocity)
     checked = _check_validation(validation)
     zg = check_int("zwidth_grid", zwidth_grid, 0, "give the Z-width's points per axis, or 0 for none") if (
         zwidth_grid is not None) else (0 if wall.params(dev.period, dev.resolution).is_spring else WALL_ZWIDTH_GRID)  # fmt: skip
     check_zwidth_size(zg, names=("zwidth_grid", "speeds"))  # here, before the sections that run first
-    steps = tqdm(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False)
-    p, wp = dev.params(wall.stiffness), wall.params(dev.period, dev.resolution)
-    head = _closed_forms(dev, wall, v)
-    steps.update()
-    thr = () if not wp.linear else tuple((m, growth_threshold(p, dev, model=m, wall=wp)) for m in MODELS)
-    steps.update()
-    crit = head["check"].criterion
-    ref = crit.critical_xi_dot if crit is not None and crit.critical_xi_dot else max(1.0, dev.xi_dot(v))
-    v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, wall=wp)
-    steps.update()
-    sims = _simulations(p, dev.xi_dot(v), ref, v_sim, samples, wp)
-    ny = None if not wp.linear else _nyquist(p, thr[1][1], wp)
-    steps.update()
-    smap = _map_around(p, dev.xi_dot(v), map_grid, samples, n_jobs, progress, wp)
-    steps.close()
+    with progress_bar(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False) as steps:
+        p, wp = dev.params(wall.stiffness), wall.params(dev.period, dev.resolution)
+        head = _closed_forms(dev, wall, v)
+        steps.update()
+        thr = () if not wp.linear else tuple((m, growth_threshold(p, dev, model=m, wall=wp)) for m in MODELS)
+        steps.update()
+        crit = head["check"].criterion
+        ref = crit.critical_xi_dot if crit is not None and crit.critical_xi_dot else max(1.0, dev.xi_dot(v))
+        v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, wall=wp)
+        steps.update()
+        sims = _simulations(p, dev.xi_dot(v), ref, v_sim, samples, wp)
+        ny = None if not wp.linear else _nyquist(p, thr[1][1], wp)
+        steps.update()
+        smap = _map_around(p, dev.xi_dot(v), map_grid, samples, n_jobs, progress, wp)
     figs: dict[str, Any] = dict(nyquist=ny, stability_map=smap)
     if v > 0:  # the design answer, first in the report: K_max four ways (and the spring's stiffness-speed chart)
         cache = RunCache()  # one set of runs for both: no (K, speed, start) simulated twice

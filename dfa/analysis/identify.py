@@ -60,6 +60,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._parallel import new_bar
 from ..checks import check_bool, check_int, check_nonnegative, check_positive, check_real, check_type, format_value
 from ..core.open_loop import open_loop_kernel, segments_kernel
 from ..errors import DFAValueError
@@ -475,11 +476,9 @@ def _bootstrap(xi: np.ndarray, phi: np.ndarray, reps: int, progress: bool) -> np
     """Global parameters of ``reps`` replicate logs (rows; fewer when a replicate does not move): the fitted
     model's positions ``xi`` read by an encoder whose origin is shifted by a uniform fraction of a tick, each
     identified from scratch like the log (first guess, segments, fit). Deterministic (seed 0)."""
-    from tqdm.auto import tqdm
-
     rng = np.random.default_rng(0)
     draws = []
-    for _ in tqdm(range(reps), desc="bootstrap", unit="fit", disable=not progress, leave=False):
+    for _ in new_bar(iterable=range(reps), desc="bootstrap", unit="fit", disable=not progress, leave=False):
         nb = np.floor(xi + rng.uniform())
         try:
             draws.append(_fit(nb - nb.min(), phi)[0].x[:4])

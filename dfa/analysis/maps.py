@@ -62,7 +62,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._io import atomic_open, check_memory
-from .._parallel import PARALLEL_BACKENDS, deal, gather, run_in_order
+from .._parallel import PARALLEL_BACKENDS, deal, gather, progress_bar, run_in_order
 from ..checks import (
     check_bool,
     check_bound,
@@ -688,14 +688,10 @@ def stability_map(
     tasks = [(m, pts_b[c], pts_s[c], x0[c], v0[c], *tail) for c in chunks]
     _run_chunk(m, pts_b[:1], pts_s[:1], x0[:1], v0[:1], 1, *tail[1:])  # compile or load the kernel once, first
 
-    from tqdm.auto import tqdm
-
-    bar = tqdm(total=pts_b.size, unit="run", desc=f"stability map μ={m:g}", disable=not progress, leave=False)
-    try:
+    label = f"stability map μ={m:g}"
+    with progress_bar(total=pts_b.size, unit="run", desc=label, disable=not progress, leave=False) as bar:
         # any wall: the same chunks, in order (dfa._parallel), Ctrl-C cancels the pending ones
         results = run_in_order(_run_chunk, tasks, [c.size for c in chunks], workers, how, bar)
-    finally:
-        bar.close()
     codes, amps, freqs, contact = (gather(chunks, [r[k] for r in results]).reshape(len(speeds), g, g) for k in range(4))
     out = (codes.astype(np.int8), amps, freqs, n, quantize, preload)
     kinds = contact.astype(np.int8) if w.one_sided else None

@@ -122,6 +122,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._parallel import progress_bar
 from ..checks import (
     check_beta,
     check_bool,
@@ -850,8 +851,6 @@ def _run_chunked(
     readings ξ0 − jξ'0 (j = d … 1, oldest first: a motion at ξ'0 before t = 0) instead of ξ0's. Returns
     (done, rest).
     """
-    from tqdm.auto import tqdm
-
     record, energy = rx.shape[0] == n + 1, re.shape[0] == n
     state, hist, tail = np.empty(kernel.NSTATE), np.empty(d + 1), np.empty(max(tail_len, 1))
     kernel.start(x0, v0, d, quantize, state, hist, stats)
@@ -861,8 +860,8 @@ def _run_chunked(
     if record:
         rx[0], rv[0] = x0, v0
     tail_start, done, rest = n - tail_len, n, -1
-    bar = tqdm(total=n, unit="sample", unit_scale=True, desc="simulate", disable=not progress, leave=False)
-    try:
+    bar_kw = dict(total=n, unit="sample", unit_scale=True, desc="simulate", disable=not progress, leave=False)
+    with progress_bar(**bar_kw) as bar:
         for lo, hi, k in _chunk_spans(n, tail_start):
             end, why, peak = kernel.advance(
                 state, hist, lo, hi, m, b, s, d, quantize, bnd, tail_start, tail, record, energy, rx, rv, re
@@ -875,8 +874,6 @@ def _run_chunked(
                 if why == 2:
                     stats[kernel.NSEG + 5] = 1.0
                 break
-    finally:
-        bar.close()
     kernel.finish(state, n, done, rest, tail, tail_len, m, quantize, stats, record, energy, rx, rv, re)
     return done, rest
 

@@ -6,7 +6,9 @@ SIGTERM (one line on stderr naming what was kept: files are written atomically, 
 141 stdout was a closed pipe (``dfa devices | head -1``), ended quietly.
 
 Signals: the first SIGINT or SIGTERM unwinds the run (:class:`Interrupted`); later ones are ignored while it cleans
-up. As the program (``main()`` without ``argv``: the ``dfa`` script, ``python -m dfa.cli``) the handlers stay
+up. Where threads are started, waited for or joined (and progress bars made) the signal is raised as soon as that
+is safe, never inside the threading module (:mod:`dfa._signals`); any bar still drawn is cleared before the line.
+As the program (``main()`` without ``argv``: the ``dfa`` script, ``python -m dfa.cli``) the handlers stay
 installed to the end: a second signal while the interpreter exits (worker threads or the process pool still
 finishing) changes nothing, and a first one arriving after the run ends exits at once with its one line and
 128 + the signal's number (:func:`_exit_on_signal`), never by the signal itself nor with a traceback from
@@ -32,6 +34,7 @@ from types import ModuleType
 from typing import Any
 
 from .._io import written_paths
+from .._signals import interrupt
 from ..errors import DFAError, ImplausibleInputWarning
 from . import (
     check,
@@ -49,7 +52,7 @@ from . import (
     zwidth,
 )
 from .compile_note import compile_note
-from .output import drop_warnings, flush_warnings, hold_warning
+from .output import close_progress_bars, drop_warnings, flush_warnings, hold_warning
 from .parsing import Parser, UsageError
 
 __all__ = ["COMMANDS", "build_parser", "main", "on_signal", "package_version"]
@@ -114,10 +117,11 @@ _SIGNALS = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM") if hasattr(si
 
 
 def on_signal(signum: int, frame: object) -> None:
-    """The handler of SIGINT and SIGTERM: ignore further signals (the clean-up must finish), raise :class:`Interrupted`."""
+    """The handler of SIGINT and SIGTERM: ignore further signals (the clean-up must finish), raise :class:`Interrupted`
+    (where it lands, or, while threads are started, waited for or joined, once that is safe: :mod:`dfa._signals`)."""
     for sig in _SIGNALS:  # a second signal must not interrupt the clean-up of the first
         signal.signal(sig, signal.SIG_IGN)
-    raise Interrupted(signum)
+    interrupt(Interrupted(signum))
 
 
 def _install_signal_handlers() -> dict[Any, Any]:
@@ -251,6 +255,7 @@ def _error(err: BaseException, before: int) -> int:
         return int(err.code or 0)
     if isinstance(err, KeyboardInterrupt):
         signum = getattr(err, "signum", int(signal.SIGINT))
+        close_progress_bars()  # the line starts on a fresh line, not after a bar's text
         print(_interrupted_line(signum, before), file=sys.stderr)
         return 128 + int(signum)
     if isinstance(err, BrokenPipeError):

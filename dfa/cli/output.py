@@ -23,6 +23,7 @@ __all__ = [
     "WIDTH",
     "add_progress_args",
     "check_samples",
+    "close_progress_bars",
     "cores",
     "drop_warnings",
     "emit",
@@ -177,6 +178,27 @@ def progress(args: argparse.Namespace) -> bool:
         return False
 
 
+def close_progress_bars() -> None:
+    """Close every progress bar still open (an interrupted run's), so that the next line starts on a fresh line.
+
+    dfa's bars are made with ``leave=False``: closing one clears its line and returns to the line's start, where
+    the interruption's line is then printed (it was printed after the bar's text, and the bar cleared later,
+    when it was collected). Costs nothing when tqdm was never imported.
+    """
+    std = sys.modules.get("tqdm.std")
+    if std is None:
+        return
+    for bar in sorted(getattr(std.tqdm, "_instances", ()), key=lambda b: -abs(getattr(b, "pos", 0))):
+        try:  # the innermost (lowest) bar first, as they close when unwinding
+            bar.close()
+        except Exception:  # a bar that cannot be closed must not hide the interruption's line
+            pass
+    try:
+        sys.stderr.flush()
+    except (OSError, ValueError, AttributeError):
+        pass
+
+
 def check_samples(samples: int, force: bool) -> None:
     """Refuse a run estimated over :data:`SIMULATE_TIME_LIMIT` seconds unless ``force`` (up front, with the fix)."""
     if samples < 1:
@@ -246,6 +268,7 @@ def report_script(prog: str, work: Callable[[], object]) -> int:
     except SystemExit as err:  # --help
         return int(err.code or 0)
     except KeyboardInterrupt:
+        close_progress_bars()
         print(f"{prog}: interrupted; nothing written", file=sys.stderr)
         return 130
     except OSError as err:

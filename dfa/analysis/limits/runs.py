@@ -24,12 +24,11 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Callable, Sequence
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..._parallel import deal, gather
+from ..._parallel import NO_BAR, deal, gather, run_in_order
 from ...errors import DFAValueError
 from ...model.device import Device, Params
 from ...model.wall import Wall, WallParams
@@ -231,11 +230,8 @@ def _batched_outcomes(jobs: list[tuple], delay: int, workers: int, spring: bool)
             return wall_run_codes(*pts, delay, bound[j], [walls[i] for i in j])
         return run_points(*pts, walls[j[0]], True, bound[j], STABLE_AMPLITUDE, GROWTH, SETTLE)[0]  # simulate()'s rules
 
-    if workers > 1:  # the compiled kernels release the GIL: threads overlap the chunks, results are per run
-        with ThreadPoolExecutor(max_workers=workers) as pool:
-            codes = gather(chunks, list(pool.map(chunk, chunks)))
-    else:
-        codes = gather(chunks, [chunk(j) for j in chunks])
+    # the compiled kernels release the GIL: threads overlap the chunks, results are per run, in order (dfa._parallel)
+    codes = gather(chunks, run_in_order(chunk, [(j,) for j in chunks], [1] * len(chunks), workers, "threads", NO_BAR))
     return [OUTCOMES[c] for c in codes]
 
 

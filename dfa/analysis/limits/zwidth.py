@@ -64,7 +64,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..._parallel import run_in_order
+from ..._parallel import progress_bar, run_in_order
 from ...checks import (
     check_bool,
     check_choice,
@@ -470,16 +470,11 @@ def _simulate_grid(tasks: list[tuple], jobs: int, progress: bool, label: str) ->
     result does not depend on ``jobs``; a progress bar counts the points; an interruption cancels the
     chunks not started.
     """
-    from tqdm.auto import tqdm
-
     chunks = _chunks(tasks, POINTS_PER_CALL)
-    bar = tqdm(total=len(tasks), unit="point", desc=label, disable=not progress, leave=False)
-    try:
+    with progress_bar(total=len(tasks), unit="point", desc=label, disable=not progress, leave=False) as bar:
         parts = run_in_order(
             _run_chunk, [([tasks[i] for i in c],) for c in chunks], [len(c) for c in chunks], jobs, "threads", bar
         )
-    finally:
-        bar.close()
     codes = np.empty(len(tasks), dtype=np.int8)
     for c, part in zip(chunks, parts, strict=True):
         codes[c] = part
@@ -795,15 +790,12 @@ def _assemble(
 ) -> ZWidth:
     """Limits per method from the grid and the closed forms (columns on ``workers`` threads, or processes from
     :data:`PROCESS_COLUMNS` columns on); status."""
-    from tqdm.auto import tqdm
-
     args = [(dev, wall.with_damping(float(b)), v, ks, codes[i], model) for i, b in enumerate(bs)]
-    bar = tqdm(total=len(args), unit="B", desc=f"Z-width {dev.name} boundaries", disable=not progress, leave=False)
-    try:  # in order (dfa._parallel): the result does not depend on workers; Ctrl-C cancels the columns not started
+    label = f"Z-width {dev.name} boundaries"
+    with progress_bar(total=len(args), unit="B", desc=label, disable=not progress, leave=False) as bar:
+        # in order (dfa._parallel): the result does not depend on workers; Ctrl-C cancels the columns not started
         how = "processes" if workers > 1 and len(args) >= PROCESS_COLUMNS else "threads"
         cols = run_in_order(_column, args, [1] * len(args), workers, how, bar)
-    finally:
-        bar.close()
     limits = {m: tuple(c[n] for c in cols) for n, m in enumerate(ZWIDTH_METHODS)}
     ce, lpv = _violations(codes, ks, bs, limits, dev.units["stiffness"])
     caveat = bool((codes == UNDECIDED_POINT).any()) or any(x.non_monotone for m in ("sim", "rest") for x in limits[m])

@@ -1,0 +1,208 @@
+"""Interruption of threaded runs (issue 41): a signal at any moment ends with 130 / 143 and one line.
+
+Python runs a signal handler in the main thread wherever that thread is; raising there inside the threading
+module's own code (``Condition.wait`` after it released its lock) left a lock in a wrong state:
+``RuntimeError: release unlocked lock`` from ``ThreadPoolExecutor.submit``, a traceback and exit 1. Under load
+the signal landed there by chance; these tests put it there on purpose (:data:`_AT_SPOT`), in a subprocess
+whose threading module is instrumented, so the result never depends on timing. No test sleeps and then asserts:
+each waits for a marker the run prints.
+"""
+
+import os
+import signal
+import subprocess
+import sys
+import threading
+
+import pytest
+
+from dfa import _signals
+from dfa.cli import main
+
+POSIX = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+TWO_CORES = pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="--jobs 2 needs 2 cores")
+MAIN_THREAD = pytest.mark.skipif(
+    threading.current_thread() is not threading.main_thread(), reason="signal handlers need the main thread"
+)
+
+#: Runs ``dfa`` (argv after the script's own two arguments) with every ``Condition`` of the threading module
+#: instrumented: at ``spot`` the process signals itself right after a condition released its lock and before
+#: it waits (the window the race hit), once per "spot:SIGNAL" event of argv[1], in that order.
+#: Spots: "bar" (the first wait of the main thread: tqdm starting its monitor thread), "submit" (inside the
+#: pool's submit), "wait" (waiting for a result), "shutdown" (joining the workers) and "joblib" (joblib's
+#: generator starting its thread, the process backend).
+_AT_SPOT = r"""
+import os, signal, sys, threading
+from concurrent.futures import ThreadPoolExecutor, _base
+import concurrent.futures
+
+events = [e.split(":") for e in sys.argv[1].split(",")]
+where = {"spot": "bar"}
+
+def fire(spot):
+    if events and events[0][0] == spot and threading.current_thread() is threading.main_thread():
+        sig = getattr(signal, events.pop(0)[1])
+        os.kill(os.getpid(), sig)
+
+init = threading.Condition.__init__
+def instrumented(self, lock=None):
+    init(self, lock)
+    release = self._release_save
+    def release_save():
+        saved = release()
+        fire(where["spot"])  # the lock is released, the wait not entered yet
+        return saved
+    self._release_save = release_save
+threading.Condition.__init__ = instrumented
+
+def spot(name, fn):
+    def at(*args, **kwargs):
+        where["spot"] = name
+        try:
+            return fn(*args, **kwargs)
+        finally:
+            where["spot"] = None
+    return at
+
+ThreadPoolExecutor.submit = spot("submit", ThreadPoolExecutor.submit)
+_base.Future.result = spot("wait", _base.Future.result)
+concurrent.futures.wait = spot("wait", concurrent.futures.wait)
+shutdown = ThreadPoolExecutor.shutdown
+def at_shutdown(self, *args, **kwargs):
+    fire("shutdown")
+    return shutdown(self, *args, **kwargs)
+ThreadPoolExecutor.shutdown = at_shutdown
+import joblib
+joblib.Parallel.__call__ = spot("joblib", joblib.Parallel.__call__)
+
+if sys.argv[2].startswith("api"):  # dfa's API under Python's own SIGINT handler; api-processes: on loky
+    import dfa
+    how = sys.argv[2][4:] or "threads"
+    try:
+        dfa.stability_map(100.0, [1.0], grid=8, samples=2000, n_jobs=2, progress=False, backend=how)
+    except KeyboardInterrupt:
+        restored = signal.getsignal(signal.SIGINT) is signal.default_int_handler
+        print("KeyboardInterrupt" + (", handler restored" if restored else ""), flush=True)
+        sys.exit(130)
+    sys.exit(0)
+from dfa.cli import main
+sys.argv = ["dfa"] + sys.argv[2:]
+sys.exit(main())
+"""
+
+MAP = ["map", "--mu", "100", "--xi-dot", "1", "--grid", "8", "--samples", "2000", "--jobs", "2", "--out", "m.npz"]
+#: The stiffness limits' simulations run on their own threads (dfa.analysis.limits.runs), one per core.
+STIFFNESS = ["stiffness", "--device", "impulse", "--velocity", "0.05"]
+
+
+@POSIX
+@TWO_CORES
+@pytest.mark.parametrize(
+    "argv, events, code",
+    [
+        (MAP, "submit:SIGINT", 130),
+        (MAP, "submit:SIGTERM,shutdown:SIGINT", 143),  # a second signal, while the workers are joined, changes nothing
+        (MAP, "wait:SIGINT", 130),
+        (MAP, "wait:SIGTERM", 143),
+        (MAP, "shutdown:SIGINT", 130),
+        (MAP + ["--progress"], "bar:SIGTERM", 143),
+        (STIFFNESS, "submit:SIGINT", 130),
+        (STIFFNESS, "wait:SIGTERM", 143),
+        (["contours", "--mu", "5", "--grid", "10", "--progress"], "bar:SIGINT", 130),  # a bar, no thread pool
+    ],
+    ids=lambda x: x[0] if isinstance(x, list) else None,
+)
+def test_signal_inside_the_threading_module_exits_with_its_code_and_one_line(tmp_path, argv, events, code):
+    cmd = [sys.executable, "-c", _AT_SPOT, events, *argv]
+    proc = subprocess.run(cmd, capture_output=True, cwd=tmp_path, timeout=600, check=False)
+    err = proc.stderr.decode()
+    name = events.split(",")[0].split(":")[1]
+    assert "Traceback" not in err and "Exception ignored" not in err, err
+    assert proc.returncode == code, err
+    assert err.replace("\r", "\n").strip().splitlines()[-1] == f"dfa: interrupted ({name}); nothing written", err
+    assert os.listdir(tmp_path) == []
+    assert os.listdir(tmp_path) == []
+
+
+@POSIX
+@TWO_CORES
+@pytest.mark.parametrize(
+    "events, mode", [("submit:SIGINT", "api"), ("wait:SIGINT", "api"), ("joblib:SIGINT", "api-processes")]
+)
+def test_api_ctrl_c_inside_the_threading_module_raises_keyboard_interrupt(tmp_path, events, mode):
+    """The API keeps Python's own SIGINT handler: Ctrl-C at the racy spot is a KeyboardInterrupt, raised by dfa,
+    with nothing on stderr (no traceback from a thread, no warning from joblib about the cancelled tasks)."""
+    proc = subprocess.run(
+        [sys.executable, "-c", _AT_SPOT, events, mode], capture_output=True, cwd=tmp_path, timeout=600, check=False
+    )
+    assert proc.returncode == 130 and proc.stdout == b"KeyboardInterrupt, handler restored\n", proc.stderr.decode()
+    assert proc.stderr == b"", proc.stderr.decode()
+
+
+def test_deferred_interruption_raised_when_the_block_ends_not_inside():
+    seen = []
+    with pytest.raises(KeyboardInterrupt, match="stop"), _signals.deferred():
+        _signals.interrupt(KeyboardInterrupt("stop"))
+        seen.append("went on")
+    assert seen == ["went on"]
+    with pytest.raises(KeyboardInterrupt, match="first"):  # one interruption: the failure it met is its context
+        with _signals.deferred():
+            _signals.interrupt(KeyboardInterrupt("first"))
+            raise ValueError("a worker failed meanwhile")
+    assert _signals._STATE == {"depth": 0, "pending": None}
+
+
+# ------------------------------------------------------------------ the interruption's line after progress bars
+def _interrupt_report(capsys, monkeypatch, tmp_path, target, name):
+    """``dfa report --progress`` with ``target.name`` signalling SIGINT (once, then doing its work)."""
+    original = getattr(target, name)
+    sent = []
+
+    def signalling(*args, **kwargs):
+        if not sent:
+            sent.append(True)
+            os.kill(os.getpid(), signal.SIGINT)
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(target, name, signalling)
+    code = main(["report", "--device", "impulse", "--velocity", "0.05", "--progress", "--out", str(tmp_path)])
+    return code, capsys.readouterr().err
+
+
+@MAIN_THREAD
+@POSIX
+def test_report_progress_interrupted_in_the_analysis_line_starts_fresh(capsys, monkeypatch, tmp_path):
+    import dfa.analysis.design as design
+
+    code, err = _interrupt_report(capsys, monkeypatch, tmp_path, design, "first_unstable_speed")
+    assert code == 130
+    assert "analysis Impulse Engine" in err  # the bar was drawn
+    head, line, tail = err.rpartition("dfa: interrupted (SIGINT); nothing written")
+    assert line and tail == "\n", repr(err[-300:])  # nothing after the line (no bar cleared below it)
+    assert head.endswith("\r") and head.rsplit("\n", 1)[-1].rsplit("\r", 2)[-2].strip() == "", repr(head[-200:])
+    assert os.listdir(tmp_path) == []
+
+
+@MAIN_THREAD
+@POSIX
+def test_report_progress_interrupted_in_the_map_line_starts_fresh(capsys, monkeypatch, tmp_path):
+    import dfa.analysis.design as design
+    import dfa.analysis.maps as maps
+
+    monkeypatch.setattr(design, "first_unstable_speed", lambda *a, **k: 3.0)  # quicker to the map
+    calls = []
+    run_chunk = maps._run_chunk
+
+    def second_call(*args):  # the first call compiles, before the map's bar: signal inside the map
+        calls.append(1)
+        if len(calls) == 2:
+            os.kill(os.getpid(), signal.SIGINT)
+        return run_chunk(*args)
+
+    monkeypatch.setattr(maps, "_run_chunk", second_call)
+    code = main(["report", "--device", "impulse", "--velocity", "0.05", "--progress", "--out", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert code == 130 and "stability map" in err, err
+    head, line, tail = err.rpartition("dfa: interrupted (SIGINT); nothing written")
+    assert line and tail == "\n", repr(err[-300:])
+    assert head.endswith("\r") and head.rsplit("\n", 1)[-1].rsplit("\r", 2)[-2].strip() == "", repr(head[-200:])
