@@ -129,11 +129,16 @@ def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = 
     return "\n".join(lines)
 
 
+#: Stands for the space before a percent sign while a line is wrapped: "0.5 %" is never split ("%" alone).
+_BOUND = "\x00"
+
+
 def _wrapped(text: str, room: int) -> list[str]:
     """``text`` in lines of at most ``room`` characters, joined by newlines (one cell)."""
     import textwrap
 
-    return ["\n".join(textwrap.wrap(text, room, break_on_hyphens=False)) or text]
+    lines = textwrap.wrap(text.replace(" %", _BOUND + "%"), room, break_on_hyphens=False)
+    return ["\n".join(lines).replace(_BOUND, " ") or text]
 
 
 def fill(text: str, width: int = WIDTH, indent: str = "  ") -> str:
@@ -145,9 +150,13 @@ def fill(text: str, width: int = WIDTH, indent: str = "  ") -> str:
     a b c
       d e
       f
+    >>> print(fill("steps of 0.5 %", width=12))  # a percent sign stays with its number
+    steps of
+      0.5 %
     """
     import textwrap
 
-    out = [textwrap.fill(line, width, subsequent_indent=indent, break_on_hyphens=False) if len(line) > width
+    out = [textwrap.fill(line.replace(" %", _BOUND + "%"), width, subsequent_indent=indent,
+                         break_on_hyphens=False).replace(_BOUND, " ") if len(line) > width
            else line for line in text.split("\n")]  # fmt: skip
     return "\n".join(out)

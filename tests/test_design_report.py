@@ -122,6 +122,35 @@ def test_markdown_of_a_device_named_like_markup_stays_text(impulse):
     assert "<b>" not in html and "&lt;b&gt;" in html
 
 
+def test_report_says_your_source_prints_for_a_device_files_printed_values(impulse, tmp_path):
+    """The paper's printed (μ, β, σ) are "Paper Table 2 prints" only for the catalogue's own row: a device file's
+    are its source's ("your source prints"), and a device made from `dfa devices --template` by changing the
+    physical values carries neither the Delta's printed values nor its notes."""
+    from dataclasses import replace
+
+    from dfa.analysis.design import _catalogue_notes
+    from dfa.model.catalogue import device_template, load_device_file
+
+    names = {n: n for n in ("speed_chart", "regions", "stiffness", "nyquist", "trajectories", "map")}
+
+    def report(entry):
+        return design_markdown(replace(impulse, catalogue=_catalogue_notes(entry)), names, str)
+
+    own = report(dfa.get_device("impulse"))
+    assert "Paper Table 2 prints μ = 100.78, β = 0.13, σ = 0.97; the recomputed values agree." in own
+    path = tmp_path / "mine.toml"
+    path.write_text(device_template().replace("mass = 0.25", "mass = 0.12"), encoding="utf-8")
+    mine = report(load_device_file(str(path)))
+    assert "Table 2" not in mine and "prints μ" not in mine and "Force Dimension Delta" not in mine
+    mu = 0.12 / (14500.0 * (1 / 3000) ** 2)  # μ = m/(K T²) of the changed mass
+    path.write_text(
+        device_template().replace("mass = 0.25", "mass = 0.12").replace("# printed = ", "printed = "), encoding="utf-8"
+    )
+    text = " ".join(report(load_device_file(str(path))).split())
+    assert "Paper Table 2" not in text and "Your source prints μ = 155.2, β = 0.002, σ = 2.03" in text
+    assert f"mu: printed 155.2, recomputed {mu:.4g}" in text
+
+
 def test_report_of_a_rotary_device_says_inertia_not_mass(tmp_path, capsys, no_figures):
     code, out, err = run(capsys, "report", "--device", "re35", "--stiffness", "0.5", "--velocity", "1",
                          "--out", str(tmp_path), "--format", "md", "--quiet")  # fmt: skip

@@ -75,6 +75,23 @@ def test_cli_template_round_trip(capsys, tmp_path):
         assert json.loads(from_file[1]) == json.loads(from_name[1])
 
 
+def test_template_leaves_the_examples_source_printed_and_notes_commented_out(capsys, tmp_path):
+    """`dfa devices --template`: the Delta's source, printed (μ, β, σ) and notes are placeholders, commented out,
+    so a device made from it by changing the physical values does not carry them; uncommented, they load."""
+    code, text, _ = _run(capsys, "devices", "--template")
+    assert code == 0
+    lines = text.splitlines()
+    for key in ("source", "printed", "notes"):
+        assert not any(line.startswith(f"{key} = ") for line in lines), key
+        assert any(line.startswith(f"# {key} = ") for line in lines), key  # the placeholder is there to edit
+    mine = load_device_file(_write(tmp_path, text.replace("mass = 0.25", "mass = 0.12")))
+    assert mine.printed == () and mine.notes == "" and "Diolaiti" not in mine.source
+    uncommented = "\n".join(line.removeprefix("# ") if line.startswith(("# source =", "# printed =", "# notes =")) else line
+                            for line in lines)  # fmt: skip
+    full = load_device_file(_write(tmp_path, uncommented, "full.toml"))
+    assert full.printed == get_device(DEFAULT_DEVICE).printed and full.source == get_device(DEFAULT_DEVICE).source
+
+
 def test_template_refuses_an_incomplete_row():
     with pytest.raises(DFAValueError, match="incomplete"):
         device_template(get_device("Omega"))
@@ -164,7 +181,7 @@ def test_resolve_device_takes_an_entry(tmp_path):
 
 
 # ------------------------------------------------------------------ every way a file can be wrong
-GOOD = device_template()
+GOOD = device_template(get_device(DEFAULT_DEVICE))  # every key written (the template comments some out)
 
 
 def _without(key: str) -> str:

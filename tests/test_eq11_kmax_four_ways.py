@@ -217,7 +217,9 @@ def test_cli_stiffness_custom_device_without_stiffness_prints_four(capsys):
     assert f"{r.k_sim_rest.value:.5g} N/m" in out
     assert f"{r.evidence.simulations} exact simulations" in out and "only the criterion is a proof" in out
     assert "largest passive speed" not in out  # no K to assess
-    assert re.search(r"verdict at this speed +not requested: no --stiffness given and no catalogue K", out)
+    assert re.search(
+        r"verdict at this speed +not requested: no --stiffness given, and no K in the catalogue or the device file", out
+    )
 
 
 def test_cli_stiffness_json_without_stiffness_says_not_requested(capsys):

@@ -25,6 +25,7 @@ from .._parallel import progress_bar
 from ..checks import check_int, check_positive, check_real, check_speed, check_type, format_value
 from ..errors import DFATypeError, DFAValueError
 from ..model.catalogue import CatalogueEntry
+from ..model.catalogue import catalogue as catalogue_rows
 from ..model.device import Device, Params
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
@@ -126,7 +127,8 @@ class DesignAnalysis(Result):
         How firm a grip the wall needs at K and ẋ0 (:func:`dfa.analysis.limits.grip.grip_sweep`: the bare device,
         the hand's mass held); None at speed 0.
     catalogue : dict or None
-        The paper's printed (μ, β, σ), the disagreements and the notes of a catalogue device.
+        The printed (μ, β, σ) of a device that has them, the disagreements and the notes; ``paper`` is True for
+        the catalogue's own row (the paper printed them), False for another row (a device file: its source did).
     validation : dict or None
         Summary of a validation run (:meth:`dfa.analysis.validation.Validation.summary`) passed in; never read from a file.
     samples, map_grid : int
@@ -342,9 +344,10 @@ def _catalogue_notes(entry: CatalogueEntry | None) -> dict[str, Any] | None:
     if entry is None or not entry.printed_params:
         return None
     return {
-        "printed": [[sym, entry.printed[i][1]] for i, sym in enumerate(("μ", "β", "σ")) if i < len(entry.printed)],
+        "printed": [[{"mu": "μ", "beta": "β", "sigma": "σ"}[k], text] for k, text in entry.printed],
         "discrepancies": [str(x) for x in entry.discrepancies],
         "notes": entry.notes or "",
+        "paper": entry in catalogue_rows(),  # the catalogue's own row (the paper printed it), not a device file's
     }
 
 

@@ -61,24 +61,28 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def _source(args: argparse.Namespace, inp: Inputs) -> str | None:
-    """Where the assessed K came from: --stiffness, the catalogue, or nowhere (None)."""
+    """Where the assessed K came from: --stiffness, the device file, the catalogue, or nowhere (None)."""
     if args.stiffness is not None:
         return "--stiffness"
-    return "catalogue" if inp.stiffness is not None else None
+    if inp.stiffness is None:
+        return None
+    return "device file" if getattr(args, "device_file", None) is not None else "catalogue"
 
 
-def _gain(ans: KMaxResult, dev: Any, v: float) -> Any:
-    """The passivity controller's gain: the same answer for the wall without it, compared."""
+def _plain(ans: KMaxResult, dev: Any, v: float) -> KMaxResult | None:
+    """The same answer for the wall without its passivity controller (None without one): the controller's gain,
+    and the wall recommended when the controller does not help (:func:`recommend_stiffness`'s ``plain``)."""
     from ..analysis.limits.kmax import design_answer
-    from ..analysis.limits.passivity_gain import gain_of
 
-    plain = design_answer(dev, v, wall=ans.wall.without_controller())
-    return gain_of(ans, plain)
+    if ans.wall.passivity_controller is None:
+        return None
+    return design_answer(dev, v, wall=ans.wall.without_controller())
 
 
 def run(args: argparse.Namespace) -> int:
     """K_max four ways for the spring or any wall (the wall's K is what is searched)."""
     from ..analysis.limits.kmax import design_answer
+    from ..analysis.limits.passivity_gain import gain_of
     from ..analysis.limits.recommend import check_margin, recommend_stiffness
     from ..analysis.limits.require import damper_guidance_for
 
@@ -94,9 +98,12 @@ def run(args: argparse.Namespace) -> int:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
     src = _source(args, inp)
     check_margin(args.margin)  # refused before the search, not after it
-    ans = design_answer(dev, v, wall=wall, assess=k is not None, source="catalogue" if src == "catalogue" else "given")
-    gain = _gain(ans, dev, v) if wall.passivity_controller is not None else None
-    rec = recommend_stiffness(ans, args.margin)
+    where = src if src in ("catalogue", "device file") else "given"
+    path = str(args.device_file) if where == "device file" else None
+    ans = design_answer(dev, v, wall=wall, assess=k is not None, source=where, source_file=path)
+    plain = _plain(ans, dev, v)
+    gain = None if plain is None else gain_of(ans, plain)
+    rec = recommend_stiffness(ans, args.margin, plain=plain)
     guide = damper_guidance_for(dev, wall, v)
     if args.plot is not None:
         from ..analysis.limits.speed_chart import stiffness_speed_chart
@@ -110,7 +117,10 @@ def run(args: argparse.Namespace) -> int:
         out["damper_guidance"] = None if guide is None else guide.to_dict()
         explain_nulls(
             out,
-            {"stiffness_source": "no --stiffness given and no catalogue K", "damper_guidance": "no virtual damper"},
+            {
+                "stiffness_source": "no --stiffness given, and no K in the catalogue or the device file",
+                "damper_guidance": "no virtual damper",
+            },
         )
         if args.plot is not None:
             out["plot"] = args.plot

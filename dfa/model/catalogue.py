@@ -740,7 +740,7 @@ def load_device_file(path: str | os.PathLike) -> CatalogueEntry:
     >>> import os, tempfile
     >>> path = os.path.join(tempfile.mkdtemp(), "delta.toml")
     >>> with open(path, "w", encoding="utf-8") as fh:
-    ...     _ = fh.write(device_template())
+    ...     _ = fh.write(device_template(get_device("Delta")))
     >>> load_device_file(path) == get_device("Delta")
     True
     """
@@ -791,13 +791,22 @@ _TEMPLATE_COMMENTS = {
 }
 
 
+#: The template's optional keys written commented out (:func:`device_template` without a row): the example
+#: device's own statements, not values to keep for another device.
+_PLACEHOLDERS = ("source", "printed", "notes")
+
+
 def device_template(entry: CatalogueEntry | None = None) -> str:
-    """A commented device file (TOML, the catalogue's format) that :func:`load_device_file` reads back unchanged.
+    """A commented device file (TOML, the catalogue's format) to edit, or a row that :func:`load_device_file`
+    reads back unchanged.
 
     Parameters
     ----------
     entry : CatalogueEntry, optional
-        The row to write (default the catalogue's :data:`DEFAULT_DEVICE`, a complete example to edit).
+        The row to write in full (every field; it loads back unchanged). Default: a template to edit, the
+        catalogue's :data:`DEFAULT_DEVICE` as the example values, with ``source``, ``printed`` and ``notes``
+        commented out (placeholders: the Delta's source and printed values, and a remark to replace; a device
+        made by changing the physical values would otherwise carry them as its own).
 
     Returns
     -------
@@ -818,6 +827,7 @@ def device_template(entry: CatalogueEntry | None = None) -> str:
     catalogue : The rows of the catalogue.
     """
     e = get_device(DEFAULT_DEVICE) if entry is None else entry
+    placeholders = entry is None
     if not isinstance(e, CatalogueEntry):
         raise DFATypeError(f"entry = {e!r} has type {type(e).__name__}: it must be a CatalogueEntry or None")
     if e.missing:
@@ -832,15 +842,28 @@ def device_template(entry: CatalogueEntry | None = None) -> str:
     lines = [f"{k} = {_toml_value(v)}" for k, v in values.items()]
     if e.printed:
         lines.append("printed = { " + ", ".join(f"{k} = {_toml_value(v)}" for k, v in e.printed) + " }")
-    if e.notes:
+    if placeholders:  # the example's own notes are about it, and long: a placeholder to fill in
+        lines.append(f"notes = {_toml_value('remarks on your device (assumptions, corrections)')}")
+    elif e.notes:
         lines.append(f"notes = {_toml_value(e.notes)}")
-    body = [part for line in lines for part in (f"# {_TEMPLATE_COMMENTS[line.split(' ', 1)[0]]}", line)]
+    body = []
+    for line in lines:
+        key = line.split(" ", 1)[0]
+        body += [f"# {_TEMPLATE_COMMENTS[key]}", f"# {line}" if placeholders and key in _PLACEHOLDERS else line]
     head = [
         "# A device for dfa, in the format of dfa's own catalogue: one [[devices]] table, SI units.",
         "# Use it with every command that takes a device, e.g.",
         "#   dfa check --device-file my_device.toml --velocity 0.1",
         "# Flags given with it (--mass ... --period, --counts, --stiffness, --name, --rotary) replace its values.",
         f"# The values below are the catalogue's {e.name}: put your device's in their place.",
+        *(
+            [
+                "# The keys commented out (source, printed, notes) are placeholders, not your device's: to give",
+                "# yours, remove the '# ' before the key and write your own.",
+            ]
+            if placeholders
+            else []
+        ),
         "",
         "[[devices]]",
     ]

@@ -17,10 +17,19 @@ from ..analysis.limits.recommend import Recommendation
 from ..analysis.limits.require import DamperGuidance
 from ..analysis.limits.search import KLimit
 from ..formatting import WIDTH, fill, number, text_table
-from ..results.status import RecommendRule, StiffnessStatus, VelocityStatus
+from ..results.status import LimitStatus, RecommendRule, StiffnessStatus, VelocityStatus
 from .contact import contact_text
 from .hand import device_title
-from .limits import LEAVES, counterexample_lines, limit_tags, none_text, passive_text
+from .limits import (
+    ABOVE_RANGE,
+    LEAVES,
+    counterexample_lines,
+    every_speed_bound,
+    limit_tags,
+    none_text,
+    passive_text,
+    source_text,
+)
 from .passivity import passivity_text
 from .require import damper_line
 
@@ -37,7 +46,10 @@ def _k(x: float, unit: str) -> str:
 
 
 def _limit_cell(lim: KLimit, unit: str, notes: list[str], name: str) -> str:
-    """The K cell of one method: its value, or "none"; a note mark when there is something to say."""
+    """The K cell of one method: its value, a lower bound ("> K", no failure up to the range's top), or "none";
+    a note mark when there is something to say."""
+    if lim.value is None and lim.status is LimitStatus.ABOVE_RANGE and lim.range_end is not None:
+        return f"> {_k(lim.range_end, unit)} *{_note(notes, name, ABOVE_RANGE)}"
     if lim.value is None:
         return f"none *{_note(notes, name, none_text(lim, unit))}"
     tags = limit_tags(lim, unit)
@@ -93,9 +105,50 @@ def recommendation_text(rec: Recommendation) -> str:
             f"range searched, divided by the gain margin {number(rec.margin, 3)} (--margin); not a proof"
         )
     else:
-        return f"recommended K: none. {rec.status.message}"
+        return f"recommended K: none. {rec.status.message}" + _controller_text(rec)
     assert rec.k_recommended is not None
-    return f"recommended K = {_k(rec.k_recommended, u['stiffness'])}: {why}"
+    plain = rec.controller is not None and not rec.controller.kept
+    which = ", for the wall without the passivity controller" if plain else ""
+    return f"recommended K = {_k(rec.k_recommended, u['stiffness'])}{which}: {why}{_rest_text(rec)}" + (
+        _controller_text(rec)
+    )
+
+
+def _rest_text(rec: Recommendation) -> str:
+    """The clause saying that the recommended K lies above the simulated rest limit ('' when it does not)."""
+    if not rec.above_rest:
+        return ""
+    ku = rec.device.units["stiffness"]
+    leave = " or leaves" if rec.wall.one_sided else ""
+    if rec.k_rest is None:
+        where = "every K searched for the rest limit: impacts failed to come to rest already at the lowest"
+    else:
+        where = (
+            f"the simulated rest limit, {_k(rec.k_rest, ku)} (the largest K at which every simulated impact up to V "
+            f"rests{leave})"
+        )
+    return f"; it lies above {where}: the wall may buzz or oscillate at this K"
+
+
+def _controller_text(rec: Recommendation) -> str:
+    """What the comparison with the wall without its passivity controller decided, in a sentence."""
+    c = rec.controller
+    if c is None:
+        return ""
+    ku = rec.device.units["stiffness"]
+    if c.kept:
+        other = "none" if c.plain_k_recommended is None else _k(c.plain_k_recommended, ku)
+        return f". Without the passivity controller the recommended K would be {other}"
+    textbook = "; it has no force limit (the textbook controller): --pc-force-limit N bounds its force"
+    textbook = textbook if c.force_limit is None else ""
+    if c.lowers_limit:
+        with_it = "fails already at the lowest K searched" if c.k_sim is None else f"is {_k(c.k_sim, ku)}"
+        return (
+            f". The passivity controller makes this wall worse: with it the simulated no-divergence limit {with_it}, "
+            f"against {_k(c.plain_k_sim or 0.0, ku)} without it{textbook}"
+        )
+    mine = "none" if c.k_recommended is None else _k(c.k_recommended, ku)
+    return f". With the passivity controller the recommended K would be {mine}: it gains no stiffness here{textbook}"
 
 
 def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
@@ -149,10 +202,15 @@ def _proof_text(r: KMaxResult, at: str) -> str:
     if a.velocity_status is VelocityStatus.NOT_COVERED:
         return "no criterion covers this wall"
     upto = passive_text(r)
+    if a.velocity_status is VelocityStatus.ALL_SPEEDS:
+        bound = every_speed_bound(r)
+        return "passive at every speed (proven" + (f": {bound})" if bound else ")")
     if a.verdict is StiffnessStatus.OK:
         return f"passive {at} (proven, up to {upto})"
     if a.velocity_status is VelocityStatus.NONE:
         return upto.replace("none: ", "", 1)
+    if a.max_passive_velocity == 0.0:
+        return f"no passivity guarantee {at} ({upto.removeprefix('none: ')})"
     return f"no passivity guarantee {at} (proven passive up to {upto})"
 
 
@@ -162,7 +220,7 @@ def user_verdict(r: KMaxResult) -> str:
     if a is None:
         return ""
     u = r.device.units
-    src = " (catalogue K)" if a.source == "catalogue" else ""
+    src = source_text(a)
     at = f"at {number(r.velocity, 4)} {u['velocity']}"
     runs = a.outcomes
     diverged = [s for s, o in runs.items() if o == "unstable"]

@@ -198,15 +198,20 @@ def device_rows(a: DesignAnalysis) -> list[list[str]]:
 
 
 def catalogue_text(a: DesignAnalysis) -> str:
-    """The paper's printed values of a catalogue device and their disagreements ('' for other devices)."""
+    """The printed (μ, β, σ) of a device and their disagreements ('' without them): the paper's for the
+    catalogue's own rows, "your source" for a device file's."""
     c = a.catalogue
     if not c:
         return ""
     dis = c["discrepancies"]
     return (
-        "Paper Table 2 prints "
+        ("Paper Table 2 prints " if c.get("paper", True) else "Your source prints ")
         + ", ".join(f"{sym} = {val}" for sym, val in c["printed"])
-        + ("; disagreements with the recomputed values: " + "; ".join(dis) if dis else "; the recomputed values agree.")
+        + (
+            "; disagreements with the recomputed values: " + "; ".join(dis) + "."
+            if dis
+            else "; the recomputed values agree."
+        )
         + (f" Note: {c['notes']}" if c["notes"] else "")
     )
 

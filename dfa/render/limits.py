@@ -11,7 +11,7 @@ Examples
 >>> limit_text(KLimit(517.13, non_monotone=True, safe_above=(900.0,)), "N/m")
 '517.13 N/m (non-monotone: safe again at 900 N/m)'
 >>> limit_text(KLimit(None, LimitStatus.ABOVE_RANGE, range_end=4000.0), "N/m")
-'none: no failure up to 4000 N/m, the top of the range searched'
+'> 4000 N/m: no failure up to the top of the range searched'
 """
 
 from __future__ import annotations
@@ -24,8 +24,10 @@ from ..analysis.limits.search import FINE_POINTS, FINE_STEP, SWEEP_STEP, Confirm
 from ..formatting import number
 from ..model.wall import WallParams
 from ..results.status import LimitStatus, StiffnessStatus, VelocityStatus
+from .hand import moving_symbols
 
 __all__ = [
+    "ABOVE_RANGE",
     "BELOW_K",
     "PROOF_NOTE",
     "assessment_rows",
@@ -33,12 +35,14 @@ __all__ = [
     "counterexample_lines",
     "evidence_text",
     "evidence_lines",
+    "every_speed_bound",
     "kmax_rows",
     "limit_tags",
     "limit_text",
     "none_text",
     "passive_text",
     "spring_passive_text",
+    "source_text",
     "spring_verdict_text",
     "verdict_text",
     "undecided_text",
@@ -49,6 +53,8 @@ BELOW_K = (
     "narrower unsafe bands between the swept stiffnesses, and unsafe speeds between those simulated, are not "
     "excluded: stability need not be monotone in K"
 )
+#: A limit above the range searched: its top is a lower bound (``"> 4000 N/m: "`` before it).
+ABOVE_RANGE = "no failure up to the top of the range searched"
 #: The closing line of every K_max answer.
 PROOF_NOTE = "only the criterion is a proof; the others hold for the simulated speeds, starts and stiffnesses"
 
@@ -72,10 +78,11 @@ def undecided_text(why: str | None) -> str:
 
 
 def none_text(lim: KLimit, unit: str) -> str:
-    """Why a limit has no value, with the stiffness that bounds it where there is one."""
+    """Why a limit has no value, with the stiffness that bounds it where there is one (above the range searched:
+    ``"> K_top N/m: …"``, a lower bound)."""
     s = lim.status
     if s is LimitStatus.ABOVE_RANGE and lim.range_end is not None:
-        return f"none: no failure up to {_k(lim.range_end, unit)}, the top of the range searched"
+        return f"> {_k(lim.range_end, unit)}: {ABOVE_RANGE}"
     if s is LimitStatus.BELOW_RANGE and lim.range_end is not None and lim.limited_why is not None:
         return f"none: undecided already at {_k(lim.range_end, unit)}, the lowest K searched: {undecided_text(lim.limited_why)}"
     if s is LimitStatus.BELOW_RANGE and lim.range_end is not None:
@@ -281,17 +288,36 @@ def passive_text(r: KMaxResult) -> str:
     if mpv is None:
         return f"none: {a.velocity_status.message}"
     if mpv == float("inf"):
-        cs = "2b/T" if r.delay == 0 else "b/(T(½ + d))"
-        bound = "" if r.k_colgate is None else f" (K <= {cs} = {_k(r.k_colgate, r.device.units['stiffness'])})"
-        return "every speed" + bound
+        bound = every_speed_bound(r)
+        return "every speed" + (f" ({bound})" if bound else "")
+    if mpv == 0.0:
+        return f"none: {NO_SPEED_PROVEN}" + (NO_SPEED_ONE_SIDED if r.wall.one_sided else "")
     return f"{mpv:.4g} {vu}"
+
+
+#: A largest passive speed of 0: the criterion holds at no speed > 0.
+NO_SPEED_PROVEN = "no speed is proven"
+#: Why, for a one-sided wall (its storage at first contact: the penetration, the push, the pending commands).
+NO_SPEED_ONE_SIDED = (
+    ": the storage at the first reading inside (the penetration, the push, the pending commands) alone exceeds "
+    "the criterion's bound"
+)
+
+
+def every_speed_bound(r: KMaxResult) -> str:
+    """The bound under which K is passive at every speed (``"K <= 2b/T = 10 N/m"``; '' without one)."""
+    if r.k_colgate is None:
+        return ""
+    b = moving_symbols(r.device)[1]  # a held device: (b + b_h)
+    cs = f"2{b}/T" if r.delay == 0 else f"{b}/(T(½ + d))"
+    return f"K <= {cs} = {_k(r.k_colgate, r.device.units['stiffness'])}"
 
 
 def verdict_text(r: KMaxResult) -> str:
     """The criterion's verdict on the assessed K at the impact speed, in words (what is proven, what is not)."""
     a = r.assessment
     if a is None:
-        return "not requested: no --stiffness given and no catalogue K"
+        return "not requested: no --stiffness given, and no K in the catalogue or the device file"
     not_proof = "not a proof of instability"
     if a.velocity_status is VelocityStatus.NOT_COVERED:
         return f"not covered: {a.velocity_status.message}"
@@ -304,14 +330,30 @@ def verdict_text(r: KMaxResult) -> str:
     return f"too stiff: no passivity guarantee at this speed{bound}; {not_proof}"
 
 
+def source_text(a: KMaxAssessment) -> str:
+    """Where the assessed K came from, in parentheses after it ('' for a K the user gave).
+
+    Examples
+    --------
+    >>> from dfa.analysis.limits.kmax import KMaxAssessment
+    >>> a = KMaxAssessment(800.0, "device file", 0.1, "bounded", "ok", None, None, 0, {}, "my.toml")
+    >>> source_text(a)
+    ' (the K of device file my.toml)'
+    """
+    if a.source == "catalogue":
+        return " (catalogue K)"
+    if a.source == "device file":
+        return f" (the K of device file {a.source_file})" if a.source_file else " (the device file's K)"
+    return ""
+
+
 def assessment_rows(r: KMaxResult) -> list[list[str]]:
     """Rows stating the wall's own K at the impact speed: the criterion's speed, the prediction, the runs."""
     a = r.assessment
     if a is None:
         return []
     vu = r.device.units["velocity"]
-    src = " (catalogue K)" if a.source == "catalogue" else ""
-    k = f"K = {a.stiffness:g}{src}"
+    k = f"K = {a.stiffness:g}{source_text(a)}"
     return [
         [f"largest passive speed at {k}", passive_text(r)],
         [f"predicted cycles at {k}", _growth_text(a, vu)],

@@ -19,10 +19,14 @@ def passivity_text(pc: Any, units: dict[str, str]) -> str:
     >>> passivity_text(PassivityController(window=0.05, force_limit=2.0), {"force": "N"})
     'passivity controller (window 0.05 s, force limit 2 N)'
     >>> passivity_text(PassivityController(), {"force": "N"})
-    'passivity controller (unbounded observer, no force limit)'
+    'passivity controller (unbounded observer, no force limit: the textbook controller)'
     """
     window = "unbounded observer" if pc.window is None else f"window {number(pc.window, 4)} s"
-    limit = "no force limit" if pc.force_limit is None else f"force limit {number(pc.force_limit, 4)} {units['force']}"
+    limit = (
+        "no force limit: the textbook controller"
+        if pc.force_limit is None
+        else f"force limit {number(pc.force_limit, 4)} {units['force']}"
+    )
     return f"passivity controller ({window}, {limit})"
 
 

@@ -98,7 +98,7 @@ class KMaxAssessment(Result):
     stiffness : float
         K, N/m (rotary: N·m/rad).
     source : str
-        Where K came from: ``"given"`` or ``"catalogue"``.
+        Where K came from: ``"given"``, ``"catalogue"`` or ``"device file"``.
     max_passive_velocity : float or None
         Largest speed the criterion proves passive, m/s (inf: every speed; None: ``velocity_status`` says why).
     velocity_status : VelocityStatus
@@ -118,6 +118,8 @@ class KMaxAssessment(Result):
     outcomes : dict
         Simulated outcome of an impact at V from ξ0 = 0 (``"impact"``) and from the preload (``"preload"``);
         a one-sided wall's after the approach from free space (``"approach"``).
+    source_file : str or None
+        The device file K came from, as given (``source="device file"``); None otherwise (absent from JSON).
     """
 
     stiffness: float
@@ -129,6 +131,7 @@ class KMaxAssessment(Result):
     growth_unknown: str | None
     unstable_cycles: int
     outcomes: dict[str, str] = field(default_factory=dict)
+    source_file: str | None = field(default=None, metadata={"omit_none": True})
 
     json_properties: ClassVar[tuple[str, ...]] = ("passive_at_every_speed", "growth_predicted")
 
@@ -515,7 +518,7 @@ def passive_speed(dev: Device, wall: Wall, k: float) -> tuple[float | None, Velo
     return mpv, (VelocityStatus.ALL_SPEEDS if math.isinf(mpv) else VelocityStatus.BOUNDED)
 
 
-def _assess(ev: Evidence, k: float, source: str, velocity: float) -> KMaxAssessment:
+def _assess(ev: Evidence, k: float, source: str, source_file: str | None, velocity: float) -> KMaxAssessment:
     """The wall's own stiffness at the impact speed: criterion, predicted cycles, simulated outcomes."""
     dev = ev.dev
     g = ev.growth_xi_dot(k)
@@ -532,7 +535,7 @@ def _assess(ev: Evidence, k: float, source: str, velocity: float) -> KMaxAssessm
     if vstatus is VelocityStatus.NOT_COVERED:
         verdict = StiffnessStatus.NOT_COVERED
     outcomes = dict(zip(ev.starts, outs, strict=True))
-    return KMaxAssessment(k, source, mpv, vstatus, verdict, gs, unknown, g.unstable, outcomes)
+    return KMaxAssessment(k, source, mpv, vstatus, verdict, gs, unknown, g.unstable, outcomes, source_file)
 
 
 def design_answer(
@@ -542,6 +545,7 @@ def design_answer(
     wall: Wall | float | None = None,
     assess: bool = False,
     source: str = "given",
+    source_file: str | None = None,
     speeds: int = 6,
     grid: int = 16,
     max_samples: int = DESIGN_MAX_SAMPLES,
@@ -563,7 +567,9 @@ def design_answer(
     assess : bool, optional
         Also assess the wall's own stiffness K (default False).
     source : str, optional
-        Where that K came from, for the assessment: ``"given"`` (default) or ``"catalogue"``.
+        Where that K came from, for the assessment: ``"given"`` (default), ``"catalogue"`` or ``"device file"``.
+    source_file : str, optional
+        With ``source="device file"``: the file, as the user named it (said in the verdict on K).
     speeds : int, optional
         Number of impact speeds simulated: V/speeds, 2V/speeds, …, V (default 6), each with two starts.
     grid : int, optional
@@ -601,7 +607,12 @@ def design_answer(
     n_grid = check_int("grid", grid, minimum=2, fix="give at least 2 stiffness grid points")
     cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")
     model = check_choice("df_model", df_model, DF_MODELS)
-    check_choice("source", source, ("given", "catalogue"))
+    check_choice("source", source, ("given", "catalogue", "device file"))
+    if source_file is not None and (source != "device file" or not isinstance(source_file, str)):
+        raise DFAValueError(
+            f"source_file = {source_file!r} is invalid with source = {source!r}: it names the device file K came "
+            'from (a str), with source = "device file" only'
+        )
     if cache is not None:
         check_type("cache", cache, RunCache, "pass a dfa.analysis.limits.runs.RunCache, or None")
     assess = check_bool("assess", assess, "pass True to assess the wall's own K, or False")
@@ -620,7 +631,8 @@ def design_answer(
         k_df = k_sim = k_rest = KLimit(None, LimitStatus.NOT_SEARCHED)
         k_range, ce, status = (0.0, 0.0), (), KMaxStatus.OK
     evidence = SearchEvidence(ev.speeds, ev.starts, DENSE_FACTOR, ev.runs, ev.longest, cap, model, k_range)
-    a = _assess(ev, w.stiffness, source, v) if assess else None  # its two runs are not the limits' evidence
+    # the assessment's two runs are not the limits' evidence
+    a = _assess(ev, w.stiffness, source, source_file, v) if assess else None
     return KMaxResult(
         dev, w, v, dev.xi_dot(v), kc, kl, k_df, k_sim, k_rest, published["k_static"], published["k_colgate"],
         published["k_abbott_okamura"], evidence, ce, a, status,

@@ -11,6 +11,17 @@ things. A designer needs one, with its reason. The rule:
    range), the range's top divided by the margin (the simulated limit lies above it).
 3. **none**: no K is recommended when no rule applies.
 
+Whatever the rule, the recommendation states whether K lies above the simulated rest limit (``k_sim_rest``,
+the largest K at which every simulated impact up to V comes to rest): there the wall may buzz or oscillate (the
+search found an impact that does not rest just above that limit; stability need not be monotone in K, so this is
+a warning, not a verdict on K).
+
+A wall with a passivity controller is compared with the same wall without it (``plain=``): the wall without
+the controller is recommended (by the same rules) when the controller lowers the simulated no-divergence limit,
+or when the wall without it gets at least as high a K; the recommendation says so (``controller``). The
+controller is not covered by any proof, and without a force limit (the textbook controller) it can make a
+sampled wall worse: this rule never recommends it where it does.
+
 Examples
 --------
 >>> from dfa.model.catalogue import get_device
@@ -24,8 +35,8 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from typing import ClassVar
+from dataclasses import dataclass, field, replace
+from typing import Any, ClassVar
 
 from ...checks import check_positive, check_type
 from ...errors import DFAValueError
@@ -35,10 +46,51 @@ from ...results.base import Result
 from ...results.status import KMaxStatus, LimitStatus, RecommendRule
 from .kmax import KMaxResult
 
-__all__ = ["Recommendation", "recommend_stiffness", "check_margin", "DEFAULT_MARGIN"]
+__all__ = ["ControllerChoice", "Recommendation", "recommend_stiffness", "check_margin", "DEFAULT_MARGIN"]
 
 #: Default gain margin of the simulated rule: the simulated limit divided by 2 (about 6 dB).
 DEFAULT_MARGIN = 2.0
+
+
+@dataclass(frozen=True)
+class ControllerChoice(Result):
+    """The wall with its passivity controller against the wall without it (K in N/m; rotary N·m/rad).
+
+    Attributes
+    ----------
+    kept : bool
+        True: the wall with the controller is recommended; False: the wall without it (the controller lowers
+        the simulated no-divergence limit, or the wall without it gets at least as high a K).
+    lowers_limit : bool
+        True when the controller lowers the simulated no-divergence limit (``k_sim``), or fails already at the
+        lowest K searched where the wall without it has a limit.
+    k_sim, plain_k_sim : float or None
+        The simulated no-divergence limit with the controller and without it (None: that limit has no value;
+        its answer's status says why).
+    k_recommended, plain_k_recommended : float or None
+        The K each wall is recommended on its own (None: no rule applies).
+    force_limit : float or None
+        The controller's force limit, N (rotary N·m); None: none, the textbook controller.
+    """
+
+    kept: bool
+    lowers_limit: bool
+    k_sim: float | None
+    plain_k_sim: float | None
+    k_recommended: float | None
+    plain_k_recommended: float | None
+    force_limit: float | None = None
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why a limit or a recommended K may be null: that wall's limit has no value, or no rule applies.
+
+        Returns
+        -------
+        dict of str to str
+        """
+        why = "that wall's limit has no value (its answer's status says why), or no rule recommends a K for it"
+        out = dict.fromkeys(("k_sim", "plain_k_sim", "k_recommended", "plain_k_recommended"), why)
+        return out | {"force_limit": "no force limit: the textbook controller"}
 
 
 @dataclass(frozen=True)
@@ -63,6 +115,16 @@ class Recommendation(Result):
     status : RecommendRule
         The rule followed: ``proven``, ``simulated``, ``simulated_range`` (no divergence in the whole range
         searched) or ``none``.
+    k_rest : float or None
+        The simulated rest limit of the recommended wall (``k_sim_rest``: every simulated impact up to V comes
+        to rest up to it); None when it has no value (``above_rest`` then says whether K lies above the lowest
+        K searched, where impacts already failed to rest).
+    above_rest : bool
+        True when the recommended K lies above the rest limit: the wall may buzz or oscillate there (just above
+        the limit some simulated impact up to V did not come to rest).
+    controller : ControllerChoice or None
+        With a passivity controller compared with the wall without it (``recommend_stiffness(..., plain=)``):
+        which wall is recommended and why; otherwise None (absent from JSON).
     """
 
     device: Device = field(metadata={"json": lambda d: d.name})
@@ -73,9 +135,12 @@ class Recommendation(Result):
     k_basis: float | None
     margin: float = DEFAULT_MARGIN
     status: RecommendRule = RecommendRule.NONE
+    k_rest: float | None = None
+    above_rest: bool = False
+    controller: ControllerChoice | None = field(default=None, metadata={"omit_none": True})
 
     units_of: ClassVar[dict[str, str]] = {
-        "velocity": "velocity", "k_recommended": "stiffness", "k_basis": "stiffness",
+        "velocity": "velocity", "k_recommended": "stiffness", "k_basis": "stiffness", "k_rest": "stiffness",
     }  # fmt: skip
 
     def __post_init__(self) -> None:
@@ -101,7 +166,9 @@ class Recommendation(Result):
         dict of str to str
             The rule's message for ``k_recommended``, ``basis`` and ``k_basis``.
         """
-        return {name: self.status.message for name in ("k_recommended", "basis", "k_basis")}
+        out = {name: self.status.message for name in ("k_recommended", "basis", "k_basis")}
+        out["k_rest"] = "the simulated rest limit has no value (see k_sim_rest's status in the answer)"
+        return out
 
 
 def check_margin(margin: float) -> float:
@@ -128,7 +195,9 @@ def check_margin(margin: float) -> float:
     return m
 
 
-def recommend_stiffness(answer: KMaxResult, margin: float = DEFAULT_MARGIN) -> Recommendation:
+def recommend_stiffness(
+    answer: KMaxResult, margin: float = DEFAULT_MARGIN, *, plain: KMaxResult | None = None
+) -> Recommendation:
     """One recommended stiffness for the answer's impact speed, by the rule of the module docstring.
 
     Parameters
@@ -137,20 +206,66 @@ def recommend_stiffness(answer: KMaxResult, margin: float = DEFAULT_MARGIN) -> R
         K_max four ways (:func:`dfa.analysis.limits.kmax.design_answer`).
     margin : float, optional
         Gain margin of the simulated rule, >= 1 (default 2, about 6 dB). The proven rule needs none.
+    plain : KMaxResult, optional
+        For a wall with a passivity controller: the answer of the same wall without it (same device and
+        speed, ``design_answer(device, velocity, wall=wall.without_controller())``). The wall without the
+        controller is recommended when the controller lowers the simulated limit or gains no K (module
+        docstring); ``controller`` says which and why.
 
     Returns
     -------
     Recommendation
-        The stiffness, the limit it rests on and the rule.
+        The stiffness, the limit it rests on, the rule, and whether K lies above the simulated rest limit.
 
     Raises
     ------
     DFATypeError, DFAValueError
-        If ``answer`` is not a :class:`KMaxResult` or ``margin`` is not a finite number >= 1.
+        If ``answer`` is not a :class:`KMaxResult`, ``margin`` is not a finite number >= 1, or ``plain`` is
+        not the answer of the same wall without its passivity controller.
     """
     a = check_type("answer", answer, KMaxResult, "pass the result of dfa.design_answer")
     m = check_margin(margin)
-    base = dict(device=a.device, wall=a.wall, velocity=a.velocity, margin=m)
+    if plain is None:
+        return _recommend(a, m)
+    from .passivity_gain import gain_of
+
+    gain = gain_of(a, check_type("plain", plain, KMaxResult, "pass design_answer of wall.without_controller()"))
+    own, other = _recommend(a, m), _recommend(plain, m)
+    k, kp = own.k_recommended, other.k_recommended
+    lowers = gain.gain is not None and gain.gain < 1.0
+    lowers |= a.k_sim.status is LimitStatus.BELOW_RANGE and plain.k_sim.value is not None
+    if lowers:
+        kept = False
+    else:  # the controller is kept only for a higher K (neither wall has one: the wall as given)
+        kept = kp is None or (k is not None and k > kp)
+    pc = a.wall.passivity_controller
+    assert pc is not None  # gain_of refuses a wall without one
+    choice = ControllerChoice(kept, lowers, a.k_sim.value, plain.k_sim.value, k, kp, pc.force_limit)
+    return replace(own if kept else other, controller=choice)
+
+
+def _above_rest(a: KMaxResult, k: float | None) -> tuple[float | None, bool]:
+    """The rest limit's value, and whether ``k`` lies above it (or at or above the lowest K searched, where
+    impacts already failed to rest, when it has no value)."""
+    rest = a.k_sim_rest
+    if k is None:
+        return rest.value, False
+    if rest.value is not None:
+        return rest.value, k > rest.value
+    below = rest.status is LimitStatus.BELOW_RANGE and rest.range_end is not None and k >= rest.range_end
+    return None, below
+
+
+def _recommend(a: KMaxResult, m: float) -> Recommendation:
+    """The rule of the module docstring for one answer (no comparison)."""
+    rec = _rule(a, m)
+    k_rest, above = _above_rest(a, rec.k_recommended)
+    return replace(rec, k_rest=k_rest, above_rest=above)
+
+
+def _rule(a: KMaxResult, m: float) -> Recommendation:
+    """Rules 1 to 3 of the module docstring."""
+    base: dict[str, Any] = dict(device=a.device, wall=a.wall, velocity=a.velocity, margin=m)
     kc, ks = a.k_criterion, a.k_sim
     trusted = a.status is not KMaxStatus.COUNTEREXAMPLE
     if trusted and kc.status is LimitStatus.FOUND and kc.value is not None and kc.value > 0:
