@@ -32,7 +32,7 @@ from dfa.analysis.identify import (
 from dfa.analysis.limits.closed_form import k_max_criterion
 from dfa.cli import main
 from dfa.core.open_loop import open_loop_kernel
-from dfa.formatting import number
+from dfa.formatting import number, number_at, round_at
 from dfa.model.log import DeviceLog, LogError, read_log, write_log
 from dfa.results.status import IdentifyWarning
 
@@ -158,15 +158,20 @@ def test_identify_cli_numbers_equal_the_api(tmp_path, capsys):
     d = json.loads(capsys.readouterr().out)
     for key in ("mass", "damping", "coulomb", "force_offset"):
         assert d[key]["value"] == getattr(r, key).value
-    v, cautious = r.velocity_peak, r.cautious()  # b and c at the lower ends of their intervals
-    assert cautious.damping == r.damping.low and cautious.coulomb == r.coulomb.low and cautious.mass == r.mass.value
+    v, cautious = r.velocity_peak, r.cautious()  # b and c at the lower ends of their intervals, meaningful digits
+    for e, kept in ((r.damping, cautious.damping), (r.coulomb, cautious.coulomb)):
+        assert kept == round_at(e.low, e.place, "down") and e.low - 10.0**e.place < kept <= e.low
+    assert cautious.mass == round_at(r.mass.value, r.mass.place) == pytest.approx(r.mass.value, abs=10.0**r.mass.place)
     assert d["loop"]["device"]["coulomb"] == cautious.coulomb
     assert d["loop"]["k_criterion"]["value"] == pytest.approx(float(k_max_criterion(cautious, v)), rel=1e-9)
     assert d["loop"]["k_static"] == pytest.approx(2 * cautious.coulomb / cautious.resolution, rel=1e-12)
     assert d["loop"]["velocity"] == v and d["loop"]["assessment"] is not None
     assert main(["identify", str(path), "--stiffness", "500", "--plot", str(tmp_path / "fit.png")]) == 0
     out = capsys.readouterr().out
-    assert f"{number(r.mass.value, 4)} kg" in out and f"{number(r.coulomb.value, 4)} N" in out
+    assert (
+        f"{number_at(r.mass.value, r.mass.place)} kg" in out
+        and f"{number_at(r.coulomb.value, r.coulomb.place)} N" in out
+    )
     assert "your K = 500 N/m" in out and (tmp_path / "fit.png").stat().st_size > 0
     assert max(len(line) for line in out.splitlines()) <= 100
 
@@ -508,7 +513,9 @@ def test_identify_report_is_the_identified_device(tmp_path, capsys):
     jpath = [p for p in d["report"]["paths"] if p.endswith(".json")][0]
     rep = json.loads(Path(jpath).read_text(encoding="utf-8"))
     text = json.dumps(rep)
-    assert f"{r.device.mass!r}" in text and f"{r.cautious().coulomb!r}" in text and "(cautious)" in text
+    cautious = r.cautious()  # the identified m and the lower ends of b and c, to their meaningful digits
+    assert rep["identity"]["device"]["mass"] == cautious.mass == pytest.approx(r.device.mass, rel=1e-3)
+    assert f"{cautious.coulomb!r}" in text and "(cautious)" in text
     assert main(["identify", str(path), "--report", str(tmp_path / "rep2")]) == 2
     assert "--report needs --stiffness" in capsys.readouterr().err
 

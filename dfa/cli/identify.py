@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from typing import Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file, check_output_folder, make_output_folder
@@ -88,6 +89,14 @@ NEEDS = {
 }
 
 
+def _peak_speed(v: float) -> float:
+    """The log's peak speed rounded up to the 4 digits printed (its 5th moves with the fit's last bits), so that
+    the limits are computed at the speed the output states, the same on every machine."""
+    from ..formatting import round_at
+
+    return round_at(v, math.floor(math.log10(v)) - 3, "up") if v > 0.0 and math.isfinite(v) else v
+
+
 def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], lines: list[str]) -> None:
     """K_max four ways of the cautious identified device (b, c at their lower 95 % bounds), the given K assessed,
     the logged oscillation against the predicted cycles, and the report; nothing on a poor fit."""
@@ -103,7 +112,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
         lines += poor_fit_loop(r)
         return
     dev = r.cautious()
-    v = r.velocity_peak if args.velocity is None else args.velocity
+    v = _peak_speed(r.velocity_peak) if args.velocity is None else args.velocity
     ans = design_answer(dev, v, wall=args.stiffness, assess=True)
     rec = recommend_stiffness(ans)
     out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}
