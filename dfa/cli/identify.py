@@ -7,7 +7,6 @@ import math
 from typing import Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file, check_output_folder, make_output_folder
-from ..analysis.identify import BOOTSTRAP
 from ..errors import DFAError
 from ..plausibility import warn_implausible
 from .output import add_progress_args, emit, progress, save_png, say
@@ -20,6 +19,8 @@ EXAMPLE = "dfa identify examples/logs/delta_chirp.csv --stiffness 14500"
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """The log, the grid when known, a wall to close the loop with, and the outputs."""
+    from ..analysis.identify import BOOTSTRAP  # here: the other commands' start-up does not load the fit
+
     p.add_argument("log", metavar="LOG.csv", help="the log: a CSV file with a header naming t (s), x (m), f (N)")
     p.add_argument("--resolution", type=number("--resolution", "m (rotary: rad)"), metavar="X",
                    help="encoder resolution Δ in m (rotary rad); default: from the readings")  # fmt: skip
