@@ -605,3 +605,40 @@ def test_identify_plot_zooms_on_the_end_of_a_long_log():
             lines = top.child_axes[0].get_lines()
             assert len(lines) == 2 and len(lines[1].get_xdata()) == max(ZOOM_AFTER // 4, r.samples // 20)
         plt.close("all")
+
+
+def test_identify_prints_the_same_digits_when_the_forces_move_by_their_last_bit():
+    """Issue 41: on another machine the docs' example printed f₀ 6.458e-05 for 6.459e-05 and --damping 0.0197702
+    for 0.0197704. What `dfa identify` prints of the example log (values, intervals, the cautious device and its
+    flags, the peak speed) is the same when every force moves by its last bit, as another CPU or BLAS moves the
+    arithmetic: the fit runs to convergence and each number keeps its meaningful digits only."""
+    from dfa.cli.identify import _peak_speed
+    from dfa.render.identify import identify_lines, loop_head
+
+    log = read_log(Path(__file__).resolve().parent.parent / "examples" / "logs" / "impulse_pulses.csv")
+    sign = np.random.default_rng(7).choice([-1.0, 1.0], log.samples)
+    moved = DeviceLog(log.t, log.x, log.f * (1.0 + sign * 2.2e-16), source=log.source)
+    assert np.any(moved.f != log.f)
+    a, b = identify(log), identify(moved)
+    shown = [identify_lines(r) + loop_head(r.cautious(), _peak_speed(r.velocity_peak), True) for r in (a, b)]
+    assert shown[0] == shown[1]
+    assert a.cautious().to_dict() == b.cautious().to_dict()
+
+
+def test_identify_digits_follow_the_interval_and_round_it_outward():
+    """A value and its interval are printed to the decimal place of the interval's half-width (one significant
+    digit, two from 10 to 35: the Particle Data Group's rule), the interval rounded outward; the cautious device
+    keeps the printed lower ends of b and c and the printed m."""
+    from dfa.analysis.identify import Estimate
+    from dfa.formatting import uncertainty_place
+
+    assert [uncertainty_place(h) for h in (7.8e-4, 3.4e-4, 3.6e-4, 9.9e-4, 0.0, math.inf, None)] == [
+        -4, -5, -4, -4, None, None, None]  # fmt: skip
+    b = Estimate(0.0205509, 4e-4, 0.0197745, 0.0213272)
+    assert b.place == -4 and Estimate(1.0, None, None, None, "why").place is None
+    assert [number_at(x, b.place, m) for x, m in ((b.value, "nearest"), (b.low, "down"), (b.high, "up"))] == [
+        "0.0206", "0.0197", "0.0214"]  # fmt: skip
+    assert (
+        number_at(6.4632e-05, -6) == "6.5e-05" and number_at(-2e-9, -6) == "0" and number_at(0.0090123, -4) == "0.0090"
+    )
+    assert round_at(0.0197745, -4, "down") == 0.0197 and round_at(2.3e-4, -3, "up") == 0.001
