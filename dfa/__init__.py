@@ -44,13 +44,8 @@ Examples
 'passive_below_critical_speed'
 """
 
-from .analysis.check import PassivityCheck, passivity_check
-from .analysis.colgate_schenkel import (
-    ColgateSchenkel,
-    ColgateSchenkelDamping,
-    colgate_schenkel_beta,
-    colgate_schenkel_damping,
-)
+from typing import TYPE_CHECKING
+
 from .analysis.criterion import (
     REGION_DESCRIPTIONS,
     CriterionResult,
@@ -59,19 +54,6 @@ from .analysis.criterion import (
     device_criterion,
     passivity_criterion,
 )
-from .analysis.limits.closed_form import (
-    StiffnessLimits,
-    StiffnessResponse,
-    gil_beta_critical,
-    k_abbott_okamura,
-    k_colgate,
-    k_gil,
-    k_max_criterion,
-    max_passive_velocity,
-    stiffness_limits,
-    stiffness_response,
-)
-from .analysis.linear_wall import StableRegion, StiffnessIntervals, stable_region, stable_stiffness
 from .errors import DeviceFileError, DFAError, DFATypeError, DFAValueError, ImplausibleInputWarning
 from .model.catalogue import (
     DEFAULT_DEVICE,
@@ -97,8 +79,32 @@ from .model.elements import (
 )
 from .model.grasp import hold
 from .model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
-from .model.log import DeviceLog, LogError, read_log
 from .model.wall import Wall, WallParams
+
+if TYPE_CHECKING:  # loaded on first use (_DEFERRED): `dfa check` needs none of them
+    from .analysis.check import PassivityCheck, passivity_check
+    from .analysis.colgate_schenkel import (
+        ColgateSchenkel,
+        ColgateSchenkelDamping,
+        colgate_schenkel_beta,
+        colgate_schenkel_damping,
+    )
+    from .analysis.limits.closed_form import (
+        StiffnessLimits,
+        StiffnessResponse,
+        gil_beta_critical,
+        k_abbott_okamura,
+        k_colgate,
+        k_gil,
+        k_max_criterion,
+        max_passive_velocity,
+        stiffness_limits,
+        stiffness_response,
+    )
+    from .analysis.linear_wall import StableRegion, StiffnessIntervals, stable_region, stable_stiffness
+    from .model.log import DeviceLog, LogError, read_log
+
+    __version__: str  # looked up on first use (__getattr__)
 
 #: The distribution's name on the package index ("dfa" there is an unrelated project); ``import dfa`` and
 #: the ``dfa`` command keep their names.
@@ -114,8 +120,6 @@ def _version() -> str:
     except PackageNotFoundError:  # pragma: no cover - running from a source tree that was never installed
         return "0+unknown"
 
-
-__version__ = _version()
 
 # Modules that need python-control are imported on first use: python-control
 # itself imports matplotlib, and `import dfa` must stay free of it.
@@ -165,6 +169,18 @@ _LAZY = {
     "PassivityGain": "analysis.limits.passivity_gain",
     "Identification": "analysis.identify",
 }
+#: Names of the API (listed in ``__all__`` below) whose modules load on their first use, like those of
+#: :data:`_LAZY`: ``dfa check`` and most commands need none of them, and each costs start-up time.
+_DEFERRED = {
+    **dict.fromkeys(("PassivityCheck", "passivity_check"), "analysis.check"),
+    **dict.fromkeys(("ColgateSchenkel", "ColgateSchenkelDamping", "colgate_schenkel_beta", "colgate_schenkel_damping"),
+                    "analysis.colgate_schenkel"),
+    **dict.fromkeys(("StiffnessLimits", "StiffnessResponse", "gil_beta_critical", "k_abbott_okamura", "k_colgate",
+                     "k_gil", "k_max_criterion", "max_passive_velocity", "stiffness_limits", "stiffness_response"),
+                    "analysis.limits.closed_form"),
+    **dict.fromkeys(("StableRegion", "StiffnessIntervals", "stable_region", "stable_stiffness"), "analysis.linear_wall"),
+    **dict.fromkeys(("DeviceLog", "LogError", "read_log"), "model.log"),
+}  # fmt: skip
 _SUBMODULES = {
     "core",
     "model",
@@ -183,10 +199,14 @@ _SUBMODULES = {
 def __getattr__(name: str):
     import importlib
 
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    where = _LAZY.get(name) or _DEFERRED.get(name)
+    if where is not None:
+        value = getattr(importlib.import_module(f".{where}", __name__), name)
         globals()[name] = value
         return value
+    if name == "__version__":  # importlib.metadata costs start-up time: looked up when asked
+        globals()[name] = _version()
+        return globals()[name]
     if name in _SUBMODULES:
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'dfa' has no attribute {name!r}")

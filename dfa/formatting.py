@@ -10,7 +10,17 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-__all__ = ["WIDTH", "fill", "markdown_table", "number", "percent", "text_table"]
+__all__ = [
+    "WIDTH",
+    "fill",
+    "markdown_table",
+    "number",
+    "number_at",
+    "percent",
+    "round_at",
+    "text_table",
+    "uncertainty_place",
+]
 
 #: Longest line of the default text output, characters (the answer fits one screen).
 WIDTH = 100
@@ -160,3 +170,68 @@ def fill(text: str, width: int = WIDTH, indent: str = "  ") -> str:
                          break_on_hyphens=False).replace(_BOUND, " ") if len(line) > width
            else line for line in text.split("\n")]  # fmt: skip
     return "\n".join(out)
+
+
+def uncertainty_place(half_width: float | None) -> int | None:
+    """Exponent k of the last meaningful decimal place 10^k of a value known to ± ``half_width``.
+
+    One significant digit of the half-width, two when it starts with 10 to 35 (the Particle Data Group's rule:
+    ± 0.0078 gives 10^-3, ± 0.0024 gives 10^-4). A digit below it moves with the last bits of the computation
+    (an optimizer's stopping point, another CPU): printing it would be printing noise. None for a half-width that
+    is missing, zero or not finite.
+
+    Examples
+    --------
+    >>> uncertainty_place(0.0078), uncertainty_place(0.0024), uncertainty_place(36.0), uncertainty_place(None)
+    (-3, -4, 1, None)
+    """
+    if half_width is None or not (math.isfinite(half_width) and half_width > 0.0):
+        return None
+    mantissa, exponent = f"{half_width:.2e}".split("e")
+    return int(exponent) - (1 if float(mantissa) < 3.55 else 0)
+
+
+def round_at(x: float, place: int, mode: str = "nearest") -> float:
+    """``x`` rounded at the decimal place 10^``place``: ``"nearest"`` (half to even), ``"down"`` or ``"up"``.
+
+    The result is the float nearest to a short decimal, the same on every machine for the same digits (exact
+    decimal arithmetic, no float division). A value with more than 17 significant digits above that place is
+    returned unchanged.
+
+    Examples
+    --------
+    >>> round_at(0.0197704, -4, "down"), round_at(0.0213271, -4, "up"), round_at(-2e-9, -6)
+    (0.0197, 0.0214, 0.0)
+    """
+    from decimal import ROUND_CEILING, ROUND_FLOOR, ROUND_HALF_EVEN, Decimal
+
+    rounding = {"nearest": ROUND_HALF_EVEN, "down": ROUND_FLOOR, "up": ROUND_CEILING}[mode]
+    d = Decimal(repr(float(x)))
+    if not d.is_finite() or (d != 0 and d.adjusted() - place > 17):
+        return float(x)
+    return float(d.quantize(Decimal(f"1e{place}"), rounding=rounding)) + 0.0  # + 0.0: no -0
+
+
+def number_at(x: float, place: int, mode: str = "nearest", *, scientific: bool = False) -> str:
+    """``x`` rounded at the decimal place 10^``place`` (:func:`round_at`), its trailing zeros kept.
+
+    ``scientific`` writes it with an exponent (to print the ends of an interval alike).
+
+    Examples
+    --------
+    >>> number_at(0.0090123, -4), number_at(6.4632e-05, -6), number_at(9.92e-05, -6, "up", scientific=True)
+    ('0.0090', '6.5e-05', '1.00e-04')
+    >>> number_at(7.17e-08, -7), number_at(-3e-9, -6), number_at(1234.5, 1)
+    ('1e-07', '0', '1230')
+    """
+    from decimal import Decimal
+
+    q = round_at(x, place, mode)
+    if q == 0.0:
+        return "0"
+    digits = max(1, Decimal(repr(q)).adjusted() - place + 1)
+    if scientific:
+        text = f"{q:.{digits - 1}e}"
+    else:
+        text = f"{q:.0f}" if place >= 0 else f"{q:#.{digits}g}"
+    return text.replace(".e", "e").rstrip(".")

@@ -82,8 +82,16 @@ def package_version() -> str:
     return __version__
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The ``dfa`` parser: every subcommand of :data:`COMMANDS` with its help, example and arguments."""
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The ``dfa`` parser: every subcommand of :data:`COMMANDS` with its help, example and arguments.
+
+    Parameters
+    ----------
+    command : str, optional
+        The subcommand about to run: only its arguments are added (the others keep their name and help, which is
+        all ``dfa --help`` and a misspelt command need), so that a run does not pay for the other commands'
+        arguments nor import what they need for them. Default: every subcommand's.
+    """
     parser = Parser(
         prog="dfa",
         description="Passivity, limit cycles and stiffness limits of sampled, quantized haptic devices "
@@ -100,7 +108,8 @@ def build_parser() -> argparse.ArgumentParser:
             epilog=f"example:\n  {cmd.EXAMPLE}",
             formatter_class=argparse.RawDescriptionHelpFormatter,
         )
-        cmd.add_arguments(p)
+        if command in (None, cmd.COMMAND):
+            cmd.add_arguments(p)
         p.set_defaults(func=cmd.run)
     return parser
 
@@ -284,7 +293,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         0 ok, 2 bad input, 1 a file or memory error, 128 + signal when interrupted, 141 a closed pipe.
     """
     program = argv is None  # the dfa program itself: signals are handled until the process ends
-    parser = build_parser()
+    args = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(args[0] if args and args[0] in {c.COMMAND for c in COMMANDS} else None)
     before = len(written_paths())
     old_handlers = _install_signal_handlers()
     numeric: list[str] = []  # the RuntimeWarnings of this run (_numeric_note)
@@ -295,7 +305,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             with warnings.catch_warnings():  # a slip is said on every run, not once per process as by default
                 warnings.simplefilter("always", ImplausibleInputWarning)
                 warnings.showwarning = _show_implausible(warnings.showwarning, numeric)
-                code = _run(parser, list(sys.argv[1:] if argv is None else argv))
+                code = _run(parser, args)
         except (DFAError, SystemExit, KeyboardInterrupt, BrokenPipeError, MemoryError, OSError) as err:
             (drop_warnings if isinstance(err, DFAError) else flush_warnings)()  # refused: the error line alone
             code = _error(err, before)

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from typing import Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file, check_output_folder, make_output_folder
-from ..analysis.identify import BOOTSTRAP
 from ..errors import DFAError
 from ..plausibility import warn_implausible
 from .output import add_progress_args, emit, progress, save_png, say
@@ -20,6 +20,8 @@ EXAMPLE = "dfa identify examples/logs/delta_chirp.csv --stiffness 14500"
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """The log, the grid when known, a wall to close the loop with, and the outputs."""
+    from ..analysis.identify import BOOTSTRAP  # here: the other commands' start-up does not load the fit
+
     p.add_argument("log", metavar="LOG.csv", help="the log: a CSV file with a header naming t (s), x (m), f (N)")
     p.add_argument("--resolution", type=number("--resolution", "m (rotary: rad)"), metavar="X",
                    help="encoder resolution Δ in m (rotary rad); default: from the readings")  # fmt: skip
@@ -127,6 +129,14 @@ NEEDS = {
 }
 
 
+def _peak_speed(v: float) -> float:
+    """The log's peak speed rounded up to the 4 digits printed (its 5th moves with the fit's last bits), so that
+    the limits are computed at the speed the output states, the same on every machine."""
+    from ..formatting import round_at
+
+    return round_at(v, math.floor(math.log10(v)) - 3, "up") if v > 0.0 and math.isfinite(v) else v
+
+
 def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], lines: list[str]) -> None:
     """K_max four ways of the cautious identified device (b, c at their lower 95 % bounds), the given K assessed,
     the logged oscillation against the predicted cycles, and the report; nothing on a poor fit."""
@@ -144,7 +154,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
         return
     dev = r.cautious()
     dimensionless_params(dev, args.stiffness, names=LOOP_NAMES)  # names the identified values, not as flags
-    v = r.velocity_peak if args.velocity is None else args.velocity
+    v = _peak_speed(r.velocity_peak) if args.velocity is None else args.velocity
     ans = design_answer(dev, v, wall=args.stiffness, assess=True)
     rec = recommend_stiffness(ans)
     out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}

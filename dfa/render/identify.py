@@ -6,7 +6,7 @@ import shlex
 from collections import Counter
 from typing import TYPE_CHECKING
 
-from ..formatting import fill, number, text_table
+from ..formatting import fill, number, number_at, text_table
 from ..model.units import hertz, position
 
 if TYPE_CHECKING:
@@ -18,12 +18,19 @@ __all__ = ["identify_lines", "loop_head", "device_flags", "cycle_lines", "poor_f
 
 
 def _interval(e: Estimate, unit: str) -> list[str]:
-    if e.low is None or e.high is None:
-        return [f"{number(e.value, 4)} {unit}", f"undetermined ({_short(e.undetermined)})"]
-    digits = 4
-    while digits < 8 and number(e.low, digits) == number(e.high, digits):  # a narrow interval: enough digits
-        digits += 1
-    return [f"{number(e.value, digits)} {unit}", f"{number(e.low, digits)} … {number(e.high, digits)}"]
+    """The value and its interval to their meaningful digits (:attr:`Estimate.place`: the interval rounded
+    outward); without an interval the value to 4 digits, or "–" when the log does not bound it at all (no digit
+    of it is meaningful)."""
+    from ..analysis.identify import SCATTER_WHY
+
+    if e.low is None or e.high is None or e.place is None:
+        value = "–" if e.undetermined == SCATTER_WHY else f"{number(e.value, 4)} {unit}"
+        return [value, f"undetermined ({_short(e.undetermined)})"]
+    k, ends = e.place, (e.value, e.low, e.high)
+    sci = any(x != 0.0 and not 1e-4 <= abs(x) < 1e6 for x in ends)  # the value and both ends alike
+    value, low, high = (number_at(x, k, mode, scientific=sci) for x, mode in zip(ends, ("nearest", "down", "up"),
+                                                                                   strict=True))  # fmt: skip
+    return [f"{value} {unit}", f"{low} … {high}"]
 
 
 def _short(why: str) -> str:
