@@ -441,3 +441,21 @@ def test_slow_poles_status_agrees_with_the_spectral_radius_on_both_sides_of_k_cr
         assert rho(0.5 * r.k_crit) < 1.0 < rho(2.0 * r.k_crit)
     elif r.status is LinearStatus.NEVER:
         assert all(rho(k) >= 1.0 for k in np.geomspace(1e-12, 1e6, 73) * m / t**2)
+
+
+def test_linear_crossing_cell_whose_ends_agree_in_sign_gives_the_end_nearer_zero():
+    """The exact linear bound's crossing angles (linear_wall._candidate_angles): a grid cell flagged on the array's
+    signs whose ends, evaluated one at a time, agree in sign (Im(P0 conj Q) within rounding of 0 at an end) is
+    that end, not a brentq ValueError ('f(a) and f(b) must have different signs', found by `dfa require` with a
+    damper, filter and delay, issue 41); a cell with a sign change gives a root where Im(P0 conj Q) vanishes."""
+    from dfa.analysis.linear_wall import _im_part, _root_in_cell
+
+    p0, q = np.array([1.0, -0.4, 0.3]), np.array([1.0, 0.2])
+    thetas = np.linspace(0.01, 3.1, 2000)
+    g = _im_part(p0, q, thetas)
+    i = int(np.nonzero(g[:-1] * g[1:] < 0.0)[0][0])
+    root = _root_in_cell(p0, q, thetas[i], thetas[i + 1])
+    assert thetas[i] <= root <= thetas[i + 1] and abs(float(_im_part(p0, q, root))) < 1e-12
+    a, b = thetas[i + 5], thetas[i + 6]  # one sign at both ends
+    fa, fb = float(_im_part(p0, q, a)), float(_im_part(p0, q, b))
+    assert fa * fb > 0 and _root_in_cell(p0, q, a, b) == (a if abs(fa) <= abs(fb) else b)

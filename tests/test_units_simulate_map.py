@@ -160,7 +160,9 @@ def test_trace_physical_columns_follow_the_tick_columns(capsys, tmp_path, flags,
     assert header == ["sample", "xi", "xi_dot", "phi", "t_s", "x_m", "v_m_per_s", "force_n"]
     sample, xi, xi_dot, phi, t_s, x_m, v, force = t.T
     delta, T, K = IMPULSE.resolution, IMPULSE.period, 80.0
-    assert np.array_equal(sample, np.arange(401)) and xi[-1] == d["final_xi"]
+    # the trace ends where the outcome was decided (a rest: the state repeats from there on)
+    assert np.array_equal(sample, np.arange(d["trace"]["last_sample"] + 1)) and sample.size == d["trace"]["rows"]
+    assert sample.size <= 401 and xi[-1] == d["final_xi"]
     assert np.allclose(t_s, sample * T, rtol=1e-11, atol=0)
     assert np.allclose(x_m, xi * delta, rtol=1e-11, atol=0)
     assert np.allclose(v, xi_dot * delta / T, rtol=1e-11, atol=0)

@@ -22,7 +22,7 @@ from dfa.model.wall import Wall
 def _tasks(name, v, d, fc, fbw, grid, speeds, cap=zmod.ZWIDTH_MAX_SAMPLES):
     dev = get_device(name).device
     wall = Wall.of(1.0, delay=d, filter_cutoff=fc, amplifier_bandwidth=fbw)
-    ks, bs = zmod._grids(dev, wall, grid, None, None)
+    ks, bs = zmod._grids(dev, wall, grid, None, None, v)
     vs = v * np.arange(1, speeds + 1) / speeds
     return zmod._plan(dev, wall, ks, bs, [dev.xi_dot(float(s)) for s in vs], cap)[0]
 

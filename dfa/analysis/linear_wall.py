@@ -351,8 +351,22 @@ def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
     grid = np.concatenate([[0.0], np.geomspace(1e-10, lin[1], 400, endpoint=False), lin[1:]])
     g = _im_part(p0, q, grid)
     for i in np.nonzero(g[1:-1] * g[2:] < 0.0)[0] + 1:  # from the first θ > 0: Im(P₀ Q̄) = 0 at θ = 0
-        out.append(brentq(lambda t: float(_im_part(p0, q, t)), grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15))
+        out.append(_root_in_cell(p0, q, grid[i], grid[i + 1]))
     return [_polish(p0, q, t) for t in out]
+
+
+def _root_in_cell(p0: np.ndarray, q: np.ndarray, a: float, b: float) -> float:
+    """The root of Im(P₀ Q̄) in a grid cell [a, b] whose ends changed sign on the grid.
+
+    The grid is evaluated as an array, the ends here one at a time: where Im(P₀ Q̄) is within rounding of zero at
+    an end the two can disagree on its sign, and that end is the root (to rounding).
+    """
+    from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
+
+    fa, fb = float(_im_part(p0, q, a)), float(_im_part(p0, q, b))
+    if fa * fb < 0.0:
+        return float(brentq(lambda t: float(_im_part(p0, q, t)), a, b, xtol=1e-15, rtol=1e-15))
+    return a if abs(fa) <= abs(fb) else b
 
 
 def _polish(p0: np.ndarray, q: np.ndarray, t: float) -> float:
