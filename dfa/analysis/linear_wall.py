@@ -332,7 +332,6 @@ def _im_part(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
 def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
     """Angles θ in [0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle (found in z, then polished in w),
     grid sign changes, 0 and π (P₀, Q in w = z − 1)."""
-    from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
 
     n = len(p0) - 1
     pz, qz = _to_z(p0), _to_z(q)
