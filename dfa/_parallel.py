@@ -210,9 +210,31 @@ def _joblib(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int]
             results.append(res)
             with deferred():
                 bar.update(size)
+    except BaseException:
+        _quiet_cancelled_pool()
+        raise
     finally:
         if gen is not None:
             with deferred(), warnings.catch_warnings():  # joblib's count of the cancelled tasks: not news here
                 warnings.simplefilter("ignore", UserWarning)
                 gen.close()  # on an interruption: cancel the pending tasks, stop the workers
     return results
+
+
+def _quiet_cancelled_pool() -> None:
+    """Drop what loky's manager thread raises from here on: interrupted, its pending tasks are cancelled under it.
+
+    Seen under load: ``KeyError`` in ``ExecutorManagerThread`` when the generator is closed while the thread queues
+    a task that was just cancelled, a traceback from a thread beside the interruption's one line. The run is
+    ending (the interruption propagates); any other thread's exceptions are reported as before.
+    """
+    import threading
+
+    previous = threading.excepthook
+
+    def hook(args: Any) -> None:
+        if args.thread is not None and args.thread.name == "ExecutorManagerThread":
+            return
+        previous(args)
+
+    threading.excepthook = hook

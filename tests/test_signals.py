@@ -206,3 +206,25 @@ def test_report_progress_interrupted_in_the_map_line_starts_fresh(capsys, monkey
     head, line, tail = err.rpartition("dfa: interrupted (SIGINT); nothing written")
     assert line and tail == "\n", repr(err[-300:])
     assert head.endswith("\r") and head.rsplit("\n", 1)[-1].rsplit("\r", 2)[-2].strip() == "", repr(head[-200:])
+
+
+def test_interrupted_process_pool_drops_only_lokys_manager_thread_errors(monkeypatch):
+    """Interrupted under load, loky's ExecutorManagerThread raised KeyError on a cancelled task, a traceback beside
+    the interruption's one line (test_api_ctrl_c_...[joblib] failed so): after an interruption its errors are
+    dropped, any other thread's still reach threading.excepthook."""
+    import threading
+
+    from dfa import _parallel
+
+    seen = []
+    monkeypatch.setattr(threading, "excepthook", lambda args: seen.append(args.thread.name))
+    _parallel._quiet_cancelled_pool()
+
+    def boom():
+        raise KeyError(1)
+
+    for name in ("ExecutorManagerThread", "other"):
+        t = threading.Thread(target=boom, name=name)
+        t.start()
+        t.join()
+    assert seen == ["other"]
