@@ -9,7 +9,7 @@ for it. The modules: :mod:`~dfa.cli.app` (the parser, signals, exit codes), :mod
 Examples
 --------
 >>> main(["params", "--device", "impulse", "--json"])
-{"mu": 100.00000000000001, "beta": 0.125, "sigma": 0.9554140127388535}
+{"mu": 100.0, "beta": 0.125, "sigma": 0.955414012739}
 0
 """
 

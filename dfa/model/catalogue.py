@@ -797,8 +797,7 @@ _PLACEHOLDERS = ("source", "printed", "notes")
 
 
 def device_template(entry: CatalogueEntry | None = None) -> str:
-    """A commented device file (TOML, the catalogue's format) to edit, or a row that :func:`load_device_file`
-    reads back unchanged.
+    """A commented device file to edit (TOML, the catalogue's format), or a row that reads back unchanged.
 
     Parameters
     ----------
