@@ -44,16 +44,28 @@ def fire(spot):
         sig = getattr(signal, events.pop(0)[1])
         os.kill(os.getpid(), sig)
 
+released = threading.Event()  # made before the instrumentation: the main thread passed the "bar" spot
 init = threading.Condition.__init__
 def instrumented(self, lock=None):
     init(self, lock)
     release = self._release_save
     def release_save():
         saved = release()
+        at_bar = where["spot"] == "bar" and threading.current_thread() is threading.main_thread()
         fire(where["spot"])  # the lock is released, the wait not entered yet
+        if at_bar:
+            released.set()
         return saved
     self._release_save = release_save
 threading.Condition.__init__ = instrumented
+bootstrap = threading.Thread._bootstrap_inner
+def started_late(self):
+    # a "bar" event pending: a new thread says it started only once the main thread waits for it, so that the
+    # main thread enters the wait (under load it could find the thread started and never wait: no signal sent)
+    if events and events[0][0] == "bar":
+        released.wait(60)
+    bootstrap(self)
+threading.Thread._bootstrap_inner = started_late
 
 def spot(name, fn):
     def at(*args, **kwargs):
