@@ -81,7 +81,7 @@ def written_paths() -> list[str]:
 
 
 @contextlib.contextmanager
-def atomic_open(path: str | os.PathLike, mode: str = "wb", encoding: str | None = None) -> Iterator[IO]:
+def atomic_open(path: str | os.PathLike[str], mode: str = "wb", encoding: str | None = None) -> Iterator[IO[Any]]:
     """Context manager yielding a file object whose content replaces ``path`` atomically on success.
 
     Parameters
@@ -124,20 +124,20 @@ def _umask() -> int:
     return mask
 
 
-def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
+def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
     """Write ``data`` to ``path`` atomically; return the path."""
     with atomic_open(path, "wb") as fh:
         fh.write(data)
     return Path(path)
 
 
-def atomic_write_text(path: str | os.PathLike, text: str, encoding: str = "utf-8") -> Path:
+def atomic_write_text(path: str | os.PathLike[str], text: str, encoding: str = "utf-8") -> Path:
     """Write ``text`` to ``path`` atomically; return the path."""
     return atomic_write_bytes(path, text.encode(encoding))
 
 
 @contextlib.contextmanager
-def staged_folder(folder: str | os.PathLike) -> Iterator[Path]:
+def staged_folder(folder: str | os.PathLike[str]) -> Iterator[Path]:
     """Context manager yielding an empty temporary folder inside ``folder``; its files replace those in ``folder``.
 
     Write a set of files (a report and its figures) into the yielded folder,
@@ -227,7 +227,7 @@ def _release(lock: int | None) -> None:
             os.close(lock)
 
 
-def remove_stale(folder: str | os.PathLike) -> list[str]:
+def remove_stale(folder: str | os.PathLike[str]) -> list[str]:
     """Remove the temporary files and folders (``.dfa-tmp-*``) that a killed run (SIGKILL, a power cut) left in
     ``folder``; return their paths.
 

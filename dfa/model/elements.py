@@ -45,15 +45,17 @@ import abc
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, ClassVar, NamedTuple
+from typing import Any, ClassVar, Generic, NamedTuple, TypeVar
 
 import numpy as np
+import numpy.typing as npt
 
 from ..checks import check_bool, check_delay, check_nonnegative, check_positive, check_real, format_value
 from ..errors import DFAError, DFAValueError
 
 __all__ = [
     "Element",
+    "ElementClass",
     "GroupRangeError",
     "Parameter",
     "NotCovered",
@@ -91,6 +93,16 @@ _FLOAT_MAX = 1.7976931348623157e308
 #: Most stiffnesses one sweep of a K_max search simulates (:mod:`dfa.analysis.limits.kmax`); an element whose
 #: runs cost more per sample lowers it (:attr:`Element.sweep_points`).
 SWEEP_MAX_POINTS = 600
+
+#: The type of an element's dimensionless group (float, int, or the passivity controller's (W, f_max)). Covariant:
+#: a wall holds each element class beside its own group, as ``type[Element[object]]`` (:data:`ElementClass`),
+#: the group validated by :meth:`Element.check_group` when the wall's groups are formed. A class hook taking the
+#: group (``corner(g)``) is then typed with G as a parameter, which mypy flags for a covariant variable
+#: (``type: ignore[misc]`` on the base's hooks only): each subclass's hook takes its own group type.
+G = TypeVar("G", covariant=True)
+
+#: A frequency response: a complex number for a scalar ω, an array of them for an array.
+Response = complex | npt.NDArray[np.complex128]
 
 
 class NotCovered(DFAError):
@@ -217,7 +229,7 @@ class CommandPolynomials:
         """H(z) = 1 of the paper's spring: N₁ = z = w + 1, N₂ = z − 1 = w (the backward difference), D_H = z."""
         return cls(np.array([1.0, 1.0]), np.array([1.0, 0.0]), np.array([1.0, 1.0]))
 
-    def response(self, omega: Any) -> Any:
+    def response(self, omega: npt.ArrayLike) -> Response:
         """C(e^{jω}) = (N₁ + β_B N₂)/D_H at z = e^{jω} (the command without its delay), vectorised.
 
         Examples
@@ -231,7 +243,7 @@ class CommandPolynomials:
         return complex(out) if np.ndim(out) == 0 else out
 
 
-def unit_circle_w(omega: Any) -> Any:
+def unit_circle_w(omega: npt.ArrayLike) -> Response:
     """w = e^{jω} − 1 = −2 sin²(ω/2) + j sin ω, without the cancellation of cos ω − 1 near ω = 0.
 
     Examples
@@ -245,7 +257,7 @@ def unit_circle_w(omega: Any) -> Any:
 
 
 @dataclass(frozen=True)
-class Element(abc.ABC):
+class Element(abc.ABC, Generic[G]):
     """A block of a virtual wall in physical units (module docstring); subclasses define the hooks.
 
     A subclass is a frozen dataclass with one field, its physical parameter (:attr:`parameter` names it), and
@@ -259,7 +271,7 @@ class Element(abc.ABC):
     #: Most stiffnesses a sweep of a K_max search simulates with this element in the wall.
     sweep_points: ClassVar[int] = SWEEP_MAX_POINTS
     #: The group's value when the element is absent (the wall's groups list every registered element).
-    absent: ClassVar[Any] = 0.0
+    absent: ClassVar[object] = 0.0
     #: Whether the element's flag is a row of the wall's flag table (:mod:`dfa.cli.walls`).
     wall_flag: ClassVar[bool] = True
     #: Whether its group needs the encoder resolution Δ (``group(period, stiffness, resolution=Δ)``).
@@ -267,7 +279,7 @@ class Element(abc.ABC):
     #: Why the linear loop (exact linear bound, describing function) does not cover it (None: it does).
     linear_reason: ClassVar[str | None] = None
 
-    def __init_subclass__(cls, **kwargs: Any) -> None:
+    def __init_subclass__(cls, **kwargs: object) -> None:
         super().__init_subclass__(**kwargs)
         for name, member in vars(cls).items():  # an undocumented override takes the protocol's docstring
             fn = getattr(member, "__func__", member)
@@ -276,7 +288,7 @@ class Element(abc.ABC):
                 fn.__doc__ = getattr(base, "__doc__", None)
 
     @property
-    def value(self) -> Any:
+    def value(self) -> object:
         """The physical parameter (:attr:`parameter` names it and its unit)."""
         return getattr(self, self.parameter.name)
 
@@ -285,10 +297,11 @@ class Element(abc.ABC):
         (:class:`GroupRangeError`, naming the physical value and the largest that works)."""
         if math.isfinite(group):
             return group
-        raise GroupRangeError(self.parameter, float(self.value), "overflows a float", inputs, _FLOAT_MAX * scale)
+        value = float(getattr(self, self.parameter.name))
+        raise GroupRangeError(self.parameter, value, "overflows a float", inputs, _FLOAT_MAX * scale)
 
     @abc.abstractmethod
-    def group(self, period: float, stiffness: float) -> Any:
+    def group(self, period: float, stiffness: float) -> G:
         """Give the element's dimensionless group beside paper Table 1, validated.
 
         Parameters
@@ -306,7 +319,7 @@ class Element(abc.ABC):
 
     @classmethod
     @abc.abstractmethod
-    def check_group(cls, value: Any) -> Any:
+    def check_group(cls, value: object) -> G:
         """Check a dimensionless group of this element.
 
         Parameters
@@ -326,7 +339,7 @@ class Element(abc.ABC):
         """
 
     @classmethod
-    def renders_nothing(cls, g: Any) -> bool:
+    def renders_nothing(cls, g: G) -> bool:  # type: ignore[misc]  # G is covariant (module note at G)
         """Tell whether the element with group ``g`` leaves the paper's spring unchanged (it is then left out).
 
         Parameters
@@ -342,7 +355,7 @@ class Element(abc.ABC):
         return False
 
     @classmethod
-    def spring_kernel(cls, g: Any) -> bool:
+    def spring_kernel(cls, g: G) -> bool:  # type: ignore[misc]  # G is covariant (module note at G)
         """Tell whether the spring's compiled kernel (:mod:`dfa.core.kernel`) runs the loop with this element.
 
         Parameters
@@ -358,7 +371,7 @@ class Element(abc.ABC):
         return cls.renders_nothing(g)
 
     @classmethod
-    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+    def corner(cls, g: G, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:  # type: ignore[misc]  # G is covariant (module note at G)
         """Give what the element adds to the corner (β₀, σ₀) of the passivity criterion (eq. 6 extended).
 
         Parameters
@@ -383,7 +396,7 @@ class Element(abc.ABC):
         return 0.0, 0.0
 
     @classmethod
-    def velocity_gain(cls, g: Any) -> float:
+    def velocity_gain(cls, g: G) -> float:  # type: ignore[misc]  # G is covariant (module note at G)
         """Give the element's factor on the quantization part of the damper's input (Abel summation).
 
         Parameters
@@ -416,7 +429,7 @@ class Element(abc.ABC):
         return {}
 
     @classmethod
-    def command(cls, g: Any, h: CommandPolynomials) -> CommandPolynomials:
+    def command(cls, g: G, h: CommandPolynomials) -> CommandPolynomials:  # type: ignore[misc]  # G is covariant (module note at G)
         """Apply the element to the wall's command H(z) (module docstring).
 
         Parameters
@@ -434,7 +447,7 @@ class Element(abc.ABC):
         return h
 
     @classmethod
-    def plant(cls, g: Any, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
+    def plant(cls, g: G, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:  # type: ignore[misc]  # G is covariant (module note at G)
         """Give the exact ZOH plant with this element between hold and device, or acting on the device.
 
         Parameters
@@ -455,7 +468,7 @@ class Element(abc.ABC):
         return None
 
     @classmethod
-    def low_frequency_delay(cls, g: Any) -> float:
+    def low_frequency_delay(cls, g: G) -> float:  # type: ignore[misc]  # G is covariant (module note at G)
         """Give the samples of delay the element adds at low frequency.
 
         Parameters
@@ -471,7 +484,7 @@ class Element(abc.ABC):
         return 0.0
 
     @classmethod
-    def plant_response(cls, g: Any, omega: Any) -> Any:
+    def plant_response(cls, g: G, omega: npt.ArrayLike) -> Response:  # type: ignore[misc]  # G is covariant (module note at G)
         """Give the element's continuous factor between hold and device.
 
         Parameters
@@ -489,7 +502,7 @@ class Element(abc.ABC):
         return 1.0
 
     @classmethod
-    def zoh_response(cls, g: Any, mu: float, beta: Any, omega: Any) -> Any:
+    def zoh_response(cls, g: G, mu: float, beta: npt.ArrayLike, omega: npt.ArrayLike) -> Response | None:  # type: ignore[misc]  # G is covariant (module note at G)
         """Give the exact ZOH plant's response with this element between hold and device, if it sits there.
 
         Parameters
@@ -511,7 +524,7 @@ class Element(abc.ABC):
         return None
 
     @classmethod
-    def group_json(cls, g: Any) -> dict[str, Any]:
+    def group_json(cls, g: G) -> dict[str, object]:  # type: ignore[misc]  # G is covariant (module note at G)
         """Give the element's group as JSON-able entries of :meth:`dfa.model.wall.WallParams.to_dict`.
 
         Parameters
@@ -526,7 +539,7 @@ class Element(abc.ABC):
         """
         return {cls.parameter.group: g}
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, object]:
         """Give the element as JSON-able data.
 
         Returns
@@ -551,7 +564,7 @@ class Element(abc.ABC):
 
 # ----------------------------------------------------------------------------- the built-in elements
 @dataclass(frozen=True)
-class Delay(Element):
+class Delay(Element[int]):
     """A computational delay of d whole samples: the force of sample h uses the reading of sample h − d.
 
     Adds d to β₀ (Diolaiti et al. 2006), z^{−d} to H(z), and ``delay`` to the simulator.
@@ -573,7 +586,7 @@ class Delay(Element):
         "computational delay in whole samples: the force of sample h uses the reading of sample h − D (default 0)",
         "delay", "d",
     )  # fmt: skip
-    absent: ClassVar[Any] = 0
+    absent: ClassVar[object] = 0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "delay", check_delay(self.delay))
@@ -582,19 +595,19 @@ class Delay(Element):
         return self.delay
 
     @classmethod
-    def check_group(cls, value: Any) -> int:
+    def check_group(cls, value: object) -> int:
         return check_delay(value)
 
     @classmethod
-    def renders_nothing(cls, g: Any) -> bool:
+    def renders_nothing(cls, g: int) -> bool:
         return g == 0
 
     @classmethod
-    def spring_kernel(cls, g: Any) -> bool:
+    def spring_kernel(cls, g: int) -> bool:
         return True  # the spring kernel keeps a ring of pending readings
 
     @classmethod
-    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+    def corner(cls, g: int, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
         return float(g), 0.0
 
     @classmethod
@@ -602,16 +615,16 @@ class Delay(Element):
         return {"delay": int(g)}
 
     @classmethod
-    def command(cls, g: Any, h: CommandPolynomials) -> CommandPolynomials:
+    def command(cls, g: int, h: CommandPolynomials) -> CommandPolynomials:
         return CommandPolynomials(h.spring, h.velocity, h.denominator, h.damping, h.delay + int(g))
 
     @classmethod
-    def low_frequency_delay(cls, g: Any) -> float:
+    def low_frequency_delay(cls, g: int) -> float:
         return float(g)
 
 
 @dataclass(frozen=True)
-class Damper(Element):
+class Damper(Element[float]):
     """A virtual damper B on the backward-difference velocity of the quantized position (N·s/m; N·m·s/rad).
 
     Group β_B = B/(K T). Adds β_B to β₀ and β_B times the velocity path's quantization gain to σ₀ (the
@@ -644,15 +657,15 @@ class Damper(Element):
         return self._finite(self.damping / kt, (("K", stiffness, _K_UNITS), ("T", period, _T_UNITS)), kt)
 
     @classmethod
-    def check_group(cls, value: Any) -> float:
+    def check_group(cls, value: object) -> float:
         return check_nonnegative("damping", value, "β_B = B/(K T) cannot be negative")
 
     @classmethod
-    def renders_nothing(cls, g: Any) -> bool:
+    def renders_nothing(cls, g: float) -> bool:
         return g == 0.0
 
     @classmethod
-    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+    def corner(cls, g: float, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
         return float(g), (velocity_gain * float(g) if quantized else 0.0)
 
     @classmethod
@@ -660,7 +673,7 @@ class Damper(Element):
         return {"damping": float(g)}
 
     @classmethod
-    def command(cls, g: Any, h: CommandPolynomials) -> CommandPolynomials:
+    def command(cls, g: float, h: CommandPolynomials) -> CommandPolynomials:
         return CommandPolynomials(h.spring, h.velocity, h.denominator, float(g), h.delay)
 
 
@@ -684,7 +697,7 @@ def _check_cutoff(name: str, value: object, nyquist: float, unit: str) -> float:
 
 
 @dataclass(frozen=True)
-class VelocityFilter(Element):
+class VelocityFilter(Element[float]):
     """A first-order low-pass of cutoff f_c (Hz) on the damper's velocity, discretised exactly (ZOH).
 
     y_h = a y_{h−1} + (1 − a) v_{h−1}, a = e^{−2π f_c T} (``control.c2d(..., "zoh")`` of ω_c/(s + ω_c)), so
@@ -710,7 +723,7 @@ class VelocityFilter(Element):
         "(default: no filter)",
         "cutoff", "ν_c = f_c T",
     )  # fmt: skip
-    absent: ClassVar[Any] = None
+    absent: ClassVar[object] = None
 
     def __post_init__(self) -> None:
         fix = "give the cutoff in Hz, or None for no filter"
@@ -720,7 +733,7 @@ class VelocityFilter(Element):
         return _check_cutoff("filter_cutoff", self.filter_cutoff, 0.5 / period, "Hz") * period
 
     @classmethod
-    def check_group(cls, value: Any) -> float:
+    def check_group(cls, value: object) -> float:
         return _check_cutoff("cutoff", value, 0.5, "cycles per sample")
 
     @staticmethod
@@ -761,7 +774,7 @@ class VelocityFilter(Element):
         return -math.expm1(-2.0 * math.pi * g)
 
     @classmethod
-    def velocity_gain(cls, g: Any) -> float:
+    def velocity_gain(cls, g: float) -> float:
         return cls.pole_gap(g)
 
     @classmethod
@@ -769,7 +782,7 @@ class VelocityFilter(Element):
         return {"pole": cls.pole(g), "filtered": True}
 
     @classmethod
-    def command(cls, g: Any, h: CommandPolynomials) -> CommandPolynomials:
+    def command(cls, g: float, h: CommandPolynomials) -> CommandPolynomials:
         if h.damping == 0.0:  # a filter without a damper filters nothing: its own mode is no pole of the loop
             return h
         gap = cls.pole_gap(g)  # z − a_f = w + (1 − a_f)
@@ -780,7 +793,7 @@ class VelocityFilter(Element):
 
 
 @dataclass(frozen=True)
-class AmplifierLag(Element):
+class AmplifierLag(Element[float]):
     """A current amplifier of bandwidth f_bw (Hz): a first-order lag τ_a = 1/(2π f_bw) between hold and device.
 
     τ_a dF_A/dt = F_cmd − F_A within each sample; group α = τ_a/T (samples), 0 or >= MIN_LAG. The force then
@@ -834,7 +847,7 @@ class AmplifierLag(Element):
         return self.check_group(a)
 
     @classmethod
-    def check_group(cls, value: Any) -> float:
+    def check_group(cls, value: object) -> float:
         a = check_nonnegative("lag", value, "α = τ_a/T cannot be negative (0: none)")
         if 0.0 < a < MIN_LAG:
             raise DFAValueError(
@@ -844,11 +857,11 @@ class AmplifierLag(Element):
         return a
 
     @classmethod
-    def renders_nothing(cls, g: Any) -> bool:
+    def renders_nothing(cls, g: float) -> bool:
         return g == 0.0
 
     @classmethod
-    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+    def corner(cls, g: float, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
         raise NotCovered(
             "no sound passivity criterion is proven with an amplifier lag (the force varies within a sample)"
         )
@@ -858,7 +871,7 @@ class AmplifierLag(Element):
         return {"lag": float(g)}
 
     @classmethod
-    def plant(cls, g: Any, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
+    def plant(cls, g: float, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
         if g == 0.0 or not math.isfinite(1.0 / g):  # 1/α overflowing: the lag is below rounding
             return None
         from ..core.zohlag import amplifier_zoh  # the one implementation, compiled
@@ -869,22 +882,22 @@ class AmplifierLag(Element):
         return np.array([n2, 2.0 * n2 + n1, n2 + n1 + n0]), np.polymul([1.0, 0.0], gaps)
 
     @classmethod
-    def low_frequency_delay(cls, g: Any) -> float:
+    def low_frequency_delay(cls, g: float) -> float:
         return float(g)
 
     @classmethod
-    def plant_response(cls, g: Any, omega: Any) -> Any:
+    def plant_response(cls, g: float, omega: npt.ArrayLike) -> Response:
         return 1.0 / (1.0 + 1j * np.asarray(omega, dtype=float) * g)
 
     @classmethod
-    def zoh_response(cls, g: Any, mu: float, beta: Any, omega: Any) -> Any:
+    def zoh_response(cls, g: float, mu: float, beta: npt.ArrayLike, omega: npt.ArrayLike) -> Response | None:
         from ..core.zohlag import zoh_lag_response  # the one implementation, compiled
 
         return zoh_lag_response(mu, beta, omega, g)
 
 
 @dataclass(frozen=True)
-class HandSpring(Element):
+class HandSpring(Element[float]):
     """The stiffness k_h of a hand holding the device, a spring to a fixed reference at the wall's origin.
 
     The hand's mass and damping move with the device (:meth:`dfa.Device.holding`); its stiffness acts on the
@@ -931,11 +944,11 @@ class HandSpring(Element):
         return self.check_group(g)
 
     @classmethod
-    def check_group(cls, value: Any) -> float:
+    def check_group(cls, value: object) -> float:
         return check_nonnegative("hand_stiffness", value, "κ_h = k_h/K cannot be negative (0: no hand stiffness)")
 
     @classmethod
-    def renders_nothing(cls, g: Any) -> bool:
+    def renders_nothing(cls, g: float) -> bool:
         return g == 0.0
 
     @classmethod
@@ -943,7 +956,7 @@ class HandSpring(Element):
         return {"spring": float(g)}
 
     @classmethod
-    def plant(cls, g: Any, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
+    def plant(cls, g: float, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
         # the class docstring's N_G, D_G (the state transition over one sample)
         if g == 0.0:
             return None
@@ -956,7 +969,7 @@ class HandSpring(Element):
         return np.array([big, n0]), np.array([1.0, float(rate) * h + 2.0 * w2 * big, w2 * n0])
 
     @classmethod
-    def zoh_response(cls, g: Any, mu: float, beta: Any, omega: Any) -> Any:
+    def zoh_response(cls, g: float, mu: float, beta: npt.ArrayLike, omega: npt.ArrayLike) -> Response | None:
         # G(e^{jω}) = N_G/(μ D_G) of plant(), vectorised over β (and ω) for the harmonic balance
         if g == 0.0:
             return None
@@ -1014,7 +1027,7 @@ _ONE_SIDED_LINEAR = (
 
 
 @dataclass(frozen=True)
-class OneSided(Element):
+class OneSided(Element[float]):
     """A one-sided wall: it pushes only while the reading is beyond the surface, and is zero outside.
 
     With the surface at s ticks of the encoder grid (default 0, the paper's origin; the wall occupies ξ > s) the
@@ -1048,7 +1061,7 @@ class OneSided(Element):
     colgate_schenkel: ClassVar[str | None] = _ONE_SIDED_LINEAR
     #: Its flags (--one-sided, --surface) are the contact group's (:mod:`dfa.cli.contact`).
     wall_flag: ClassVar[bool] = False
-    absent: ClassVar[Any] = None
+    absent: ClassVar[object] = None
     #: Why the linear loop (exact linear bound, describing function) does not cover the element.
     linear_reason: ClassVar[str | None] = _ONE_SIDED_LINEAR
 
@@ -1059,11 +1072,11 @@ class OneSided(Element):
         return self.surface
 
     @classmethod
-    def check_group(cls, value: Any) -> float:
+    def check_group(cls, value: object) -> float:
         return check_real("surface", value, "give the surface's position in encoder ticks (0: the paper's origin)")
 
     @classmethod
-    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+    def corner(cls, g: float, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
         return 0.0, 0.0  # the spring's corner; only alone (dfa.model.wall.WallParams.uncovered), see the class
 
     @classmethod
@@ -1220,7 +1233,7 @@ class OneSided(Element):
 
 
 @dataclass(frozen=True)
-class Push(Element):
+class Push(Element[float]):
     """The operator's constant force toward the wall (N; rotary N·m), which keeps the device in contact.
 
     The paper's bias force: F_p >= 0 pushes in +ξ, into the wall, beside the wall's force; group
@@ -1284,15 +1297,15 @@ class Push(Element):
         return self.check_group(self._finite(self.push / step, inputs, step))
 
     @classmethod
-    def check_group(cls, value: Any) -> float:
+    def check_group(cls, value: object) -> float:
         return check_nonnegative("push", value, "p = F_p/(K Δ) cannot be negative (0: no push)")
 
     @classmethod
-    def renders_nothing(cls, g: Any) -> bool:
+    def renders_nothing(cls, g: float) -> bool:
         return g == 0.0
 
     @classmethod
-    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+    def corner(cls, g: float, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
         return 0.0, 0.0  # on a one-sided wall only (WallParams.uncovered); it enters V* (OneSided.contact_speed)
 
     @classmethod
@@ -1309,7 +1322,7 @@ _PC_NOT_LINEAR = (
 
 
 @dataclass(frozen=True)
-class PassivityController(Element):
+class PassivityController(Element[tuple[int, float | None]]):
     """The time-domain passivity observer and controller (Hannaford and Ryu, IEEE T-RO 18(1), 2002) on the wall.
 
     Observer: at reading h the energy the device has put into the wall (a one-port),
@@ -1374,7 +1387,7 @@ class PassivityController(Element):
     linear_reason: ClassVar[str | None] = _PC_NOT_LINEAR
     #: Its flags are the controller group's (:mod:`dfa.cli.passivity`).
     wall_flag: ClassVar[bool] = False
-    absent: ClassVar[Any] = None
+    absent: ClassVar[object] = None
     needs_resolution: ClassVar[bool] = True
     #: Its runs are integrated sample by sample (no period skipping: the observed energy is part of the state).
     sweep_points: ClassVar[int] = 300
@@ -1432,7 +1445,7 @@ class PassivityController(Element):
         return self.check_group((w, limit))
 
     @classmethod
-    def check_group(cls, value: Any) -> tuple[int, float | None]:
+    def check_group(cls, value: object) -> tuple[int, float | None]:
         fix = "give (W, f_max): the window in whole samples (0: unbounded) and the force limit in K Δ (None: none)"
         if not (isinstance(value, (tuple, list)) and len(value) == 2):
             raise DFAValueError(f"passivity_controller = {format_value(value)} is invalid: {fix}")
@@ -1444,7 +1457,7 @@ class PassivityController(Element):
         return int(w), limit
 
     @classmethod
-    def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+    def corner(cls, g: tuple[int, float | None], *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
         raise NotCovered(_PC_NOT_COVERED)
 
     @classmethod
@@ -1453,15 +1466,15 @@ class PassivityController(Element):
         return {"pc": True, "window": int(w), "limit": math.inf if limit is None else float(limit)}
 
     @classmethod
-    def group_json(cls, g: Any) -> dict[str, Any]:
+    def group_json(cls, g: tuple[int, float | None]) -> dict[str, object]:
         return {"pc_window": int(g[0]), "pc_force_limit": g[1]}
 
     @property
-    def value(self) -> Any:
+    def value(self) -> object:
         """The controller's (window, force limit) in s and N (None: unbounded, no limit)."""
         return self.window, self.force_limit
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, object]:
         """Give the controller as JSON-able data.
 
         Returns
@@ -1472,8 +1485,11 @@ class PassivityController(Element):
         return {"element": type(self).key(), "window": self.window, "force_limit": self.force_limit, "unit": "s, N"}
 
 
+#: An element class of any group type, as a wall holds it beside its group (:class:`dfa.model.wall.WallParams`).
+ElementClass = type[Element[object]]
+
 #: The registered elements, in the order a wall applies them (delay, damper, filter, amplifier, hand spring,
 #: one-sided contact, push, passivity controller).
-ELEMENTS: tuple[type[Element], ...] = (
+ELEMENTS: tuple[ElementClass, ...] = (
     Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push, PassivityController
 )  # fmt: skip

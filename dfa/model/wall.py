@@ -35,9 +35,12 @@ True
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, TypeVar, cast
+
+import numpy as np
+import numpy.typing as npt
 
 from ..checks import check_positive, format_value
 from ..errors import DFATypeError, DFAValueError
@@ -52,14 +55,21 @@ from .elements import (
     Damper,
     Delay,
     Element,
+    ElementClass,
     GroupRangeError,
     HandSpring,
     NotCovered,
     OneSided,
     PassivityController,
     Push,
+    Response,
     VelocityFilter,
 )
+
+#: An element class (:func:`Wall.element`, :meth:`WallParams.group`).
+E = TypeVar("E", bound="Element[object]")
+#: An element's group type.
+T = TypeVar("T")
 
 __all__ = ["Wall", "WallParams", "MIN_CUTOFF", "MIN_LAG", "SPRING_CORNER"]
 
@@ -67,17 +77,16 @@ __all__ = ["Wall", "WallParams", "MIN_CUTOFF", "MIN_LAG", "SPRING_CORNER"]
 SPRING_CORNER = (0.5, 0.5)
 
 
-def _ordered(elements: Any) -> tuple[Element, ...]:
+def _ordered(elements: object) -> tuple[Element[object], ...]:
     """The elements as a tuple in the order of :data:`~dfa.model.elements.ELEMENTS` (others after, as given)."""
     if isinstance(elements, Element):
         elements = (elements,)
-    try:
-        items = tuple(elements)
-    except TypeError:
+    if not isinstance(elements, Iterable):
         raise DFATypeError(
             f"elements = {format_value(elements)} is invalid: it must be a sequence of wall elements; "
             "give e.g. (dfa.Damper(1.0), dfa.Delay(1))"
-        ) from None
+        )
+    items = tuple(elements)
     for e in items:
         if not isinstance(e, Element):
             raise DFATypeError(
@@ -118,7 +127,7 @@ class WallParams:
     (1.8, 0.8)
     """
 
-    groups: tuple[tuple[type[Element], Any], ...] = ()
+    groups: tuple[tuple[ElementClass, object], ...] = ()
 
     def __post_init__(self) -> None:
         fix = "each entry must be (element class, group), e.g. ((dfa.Damper, 0.3),); or use WallParams.of(...)"
@@ -183,14 +192,14 @@ class WallParams:
         WallParams
             The groups of the elements that render something.
         """
-        items: list[tuple[type[Element], Any]] = [
+        items: list[tuple[ElementClass, object]] = [
             (Delay, delay), (Damper, damping), (AmplifierLag, lag), (HandSpring, hand_stiffness)
         ]  # fmt: skip
         if cutoff is not None:
             items.append((VelocityFilter, cutoff))
         return cls(tuple(items))
 
-    def group(self, kind: type[Element]) -> Any:
+    def group(self, kind: type[Element[T]]) -> T | None:
         """Give the group of one element class.
 
         Parameters
@@ -205,14 +214,19 @@ class WallParams:
         """
         for k, g in self.groups:
             if k is kind:
-                return g
-        return kind.absent
+                return cast(T, g)  # the group beside ``kind`` is its own (``kind.check_group`` formed it)
+        return cast("T | None", kind.absent)
+
+    def _number(self, kind: type[Element[float]]) -> float:
+        """The group of an element whose group is a number, 0 when absent."""
+        g = self.group(kind)
+        return 0.0 if g is None else float(g)
 
     # ------------------------------------------------------------------ the built-in groups by name
     @property
     def damping(self) -> float:
         """The virtual damping β_B = B/(K T) (0 without damper)."""
-        return float(self.group(Damper))
+        return self._number(Damper)
 
     @property
     def delay(self) -> int:
@@ -227,7 +241,7 @@ class WallParams:
     @property
     def lag(self) -> float:
         """The amplifier time constant α = τ_a/T in samples (0 without amplifier lag)."""
-        return float(self.group(AmplifierLag))
+        return self._number(AmplifierLag)
 
     @property
     def filter_pole(self) -> float:
@@ -238,7 +252,7 @@ class WallParams:
     @property
     def hand_stiffness(self) -> float:
         """The hand stiffness κ_h = k_h/K (0: none; :class:`~dfa.model.elements.HandSpring`)."""
-        return float(self.group(HandSpring))
+        return self._number(HandSpring)
 
     @property
     def amplifier_pole(self) -> float:
@@ -295,7 +309,7 @@ class WallParams:
             beta0, sigma0 = beta0 + db, sigma0 + ds
         return beta0, sigma0
 
-    def uncovered(self) -> tuple[type[Element], Any, str] | None:
+    def uncovered(self) -> tuple[ElementClass, object, str] | None:
         """Find the first element no sound passivity criterion covers.
 
         Returns
@@ -411,7 +425,7 @@ class WallParams:
         if why is not None:
             raise NotCovered(why)
 
-    def plant(self, rate: float, mu: float) -> tuple[Any, Any] | None:
+    def plant(self, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
         """Give the exact ZOH plant when an element sits between hold and device, or acts on the device.
 
         Parameters
@@ -442,7 +456,7 @@ class WallParams:
         """True with a passivity controller (:class:`~dfa.model.elements.PassivityController`)."""
         return self.group(PassivityController) is not None
 
-    def plant_response(self, omega: Any) -> Any:
+    def plant_response(self, omega: npt.ArrayLike) -> Response:
         """Give the continuous factor between hold and device.
 
         Parameters
@@ -455,12 +469,12 @@ class WallParams:
         complex or numpy.ndarray
             1/(1 + jωα) with an amplifier lag, 1 without.
         """
-        out: Any = 1.0
+        out: Response = 1.0
         for k, g in self.groups:
             out = out * k.plant_response(g, omega)
         return out
 
-    def zoh_response(self, mu: float, beta: Any, omega: Any) -> Any:
+    def zoh_response(self, mu: float, beta: npt.ArrayLike, omega: npt.ArrayLike) -> Response | None:
         """Give the exact ZOH plant's response when an element sits between hold and device.
 
         Parameters
@@ -505,7 +519,7 @@ class WallParams:
 
         return min([SWEEP_MAX_POINTS] + [k.sweep_points for k, _ in self.groups])
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, object]:
         """The groups as a JSON-able dictionary, every registered element's (its ``absent`` value when absent).
 
         Returns
@@ -513,7 +527,9 @@ class WallParams:
         dict
             ``{"damping": β_B, "delay": d, "cutoff": ν_c or None, "lag": α}`` and any further element's group.
         """
-        out = {k.parameter.group: self.group(k) for k in (Damper, Delay, VelocityFilter, AmplifierLag)}
+        out: dict[str, object] = {
+            k.parameter.group: self.group(k) for k in (Damper, Delay, VelocityFilter, AmplifierLag)
+        }
         for k, g in self.groups:
             out.update(k.group_json(g))
         why = {"cutoff": "no velocity filter", "pc_force_limit": "no force limit (the passivity controller's)"}
@@ -548,7 +564,7 @@ class Wall:
     """
 
     stiffness: float
-    elements: tuple[Element, ...] = field(default=())
+    elements: tuple[Element[object], ...] = field(default=())
 
     def __post_init__(self) -> None:
         fix = "give the virtual wall stiffness K in N/m"
@@ -591,7 +607,7 @@ class Wall:
         Wall
         """
         check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
-        elements: list[Element] = []
+        elements: list[Element[object]] = []
         d = Delay(delay)
         if d.delay:
             elements.append(d)
@@ -607,60 +623,80 @@ class Wall:
             elements.append(hand)
         return cls(stiffness, tuple(elements))
 
-    def _value(self, kind: type[Element], absent: Any) -> Any:
+    def element(self, kind: type[E]) -> E | None:
+        """Give the wall's element of one class, to read its value (the push's force, a controller's window).
+
+        Parameters
+        ----------
+        kind : type
+            An element class (:mod:`dfa.model.elements`).
+
+        Returns
+        -------
+        Element or None
+            The wall's element of that class; None when the wall has none.
+
+        Examples
+        --------
+        >>> Wall.of(1000.0, damping=2.0).element(Damper)
+        Damper(damping=2.0)
+        """
         for e in self.elements:
             if isinstance(e, kind):
-                return e.value
-        return absent
+                return e
+        return None
 
     @property
     def damping(self) -> float:
         """Virtual damper B in N·s/m (0: none)."""
-        return float(self._value(Damper, 0.0))
+        e = self.element(Damper)
+        return 0.0 if e is None else float(e.damping)
 
     @property
     def delay(self) -> int:
         """Computational delay d in samples (0: none)."""
-        return int(self._value(Delay, 0))
+        e = self.element(Delay)
+        return 0 if e is None else int(e.delay)
 
     @property
     def filter_cutoff(self) -> float | None:
         """Velocity-filter cutoff f_c in Hz (None: no filter)."""
-        return self._value(VelocityFilter, None)
+        e = self.element(VelocityFilter)
+        return None if e is None else e.filter_cutoff
 
     @property
     def amplifier_bandwidth(self) -> float | None:
         """Amplifier bandwidth f_bw in Hz (None: an ideal amplifier)."""
-        return self._value(AmplifierLag, None)
+        e = self.element(AmplifierLag)
+        return None if e is None else e.amplifier_bandwidth
 
     @property
     def hand_stiffness(self) -> float:
         """Hand stiffness k_h in N/m (0: none)."""
-        return float(self._value(HandSpring, 0.0))
+        e = self.element(HandSpring)
+        return 0.0 if e is None else float(e.hand_stiffness)
 
     @property
     def one_sided(self) -> bool:
         """True for a one-sided wall (:class:`~dfa.model.elements.OneSided`)."""
-        return self._value(OneSided, None) is not None
+        return self.element(OneSided) is not None
 
     @property
     def surface(self) -> float | None:
         """A one-sided wall's surface s in encoder ticks (None for a bilateral wall)."""
-        value = self._value(OneSided, None)
-        return None if value is None else float(value)
+        e = self.element(OneSided)
+        return None if e is None else float(e.surface)
 
     @property
     def push(self) -> float:
         """The operator's push toward a one-sided wall F_p in N (rotary: N·m); 0 for none."""
-        return float(self._value(Push, 0.0))
+        e = self.element(Push)
+        return 0.0 if e is None else float(e.push)
 
     @property
     def passivity_controller(self) -> PassivityController | None:
         """The wall's passivity controller (:class:`~dfa.model.elements.PassivityController`), or None."""
-        for e in self.elements:
-            if isinstance(e, PassivityController):
-                return e
-        return None
+        return self.element(PassivityController)
 
     def linear_reason(self) -> str | None:
         """Say why the linear loop (exact linear bound, describing function) does not cover this wall.
@@ -779,7 +815,7 @@ class Wall:
         """
         t = check_positive("period", period, "give the sample period T in s (1 kHz: 0.001)")
 
-        def group(e: Element) -> Any:
+        def group(e: Element[object]) -> object:
             try:
                 if type(e).needs_resolution:
                     return e.group(t, self.stiffness, resolution=resolution)  # type: ignore[call-arg]
