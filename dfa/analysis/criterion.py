@@ -215,7 +215,7 @@ from ..checks import (
 from ..core.energy import spring_energy_core
 from ..errors import DFATypeError, DFAValueError
 from ..model.device import Device
-from ..model.elements import OneSided, largest_speed
+from ..model.elements import Coverage, OneSided, largest_speed
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.status import CriterionStatus
@@ -920,7 +920,9 @@ def _check_history(history: object, wall: WallParams, mu: float | None) -> str:
             "history = 'moving' is not derived with a virtual damper or filter (the velocity estimate and the "
             "filter's state of the motion enter the energy); pass history='fresh' or drop the damper"
         )
-    if not wall.is_spring:  # a hand stiffness: the simulator does not run that start, so it is not shown sound
+    if not wall.covers(
+        Coverage.CLOSED_FORM
+    ):  # a hand stiffness: the simulator does not run that start, so it is not shown sound
         raise DFAValueError(
             "history = 'moving' is covered for the spring with a delay only (the simulator runs that start for it "
             "alone, so nothing else is shown sound); pass history='fresh' or drop the other elements"

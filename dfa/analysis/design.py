@@ -27,6 +27,7 @@ from ..errors import DFATypeError, DFAValueError
 from ..model.catalogue import CatalogueEntry
 from ..model.catalogue import catalogue as catalogue_rows
 from ..model.device import Device, Params
+from ..model.elements import Coverage
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.jsonable import explain_nulls, to_jsonable
@@ -244,7 +245,7 @@ class DesignAnalysis(Result):
     @property
     def is_spring(self) -> bool:
         """True for the paper's spring (with its delay): no damper, filter or amplifier lag."""
-        return self.wall_params.is_spring
+        return self.wall_params.covers(Coverage.CLOSED_FORM)
 
     @property
     def criterion(self) -> CriterionResult | None:
@@ -390,7 +391,7 @@ def resolve_design_inputs(
         dev.period, dev.resolution
     )  # a filter above Nyquist or a group out of range is refused here, before any work
     check_search_range(dev, wall, v)  # so is a stiffness range no float search can run (the design answer's …
-    if v > 0 and wp.is_spring:
+    if v > 0 and wp.covers(Coverage.CLOSED_FORM):
         check_chart_range(dev, wall, wall.stiffness, v)  # … and the chart's: 8 K = inf at K = 1e308
     return entry, dev, wall, v
 
@@ -482,7 +483,7 @@ def design_analysis(
     entry, dev, wall, v = resolve_design_inputs(device, wall, velocity)
     checked = _check_validation(validation)
     zg = check_int("zwidth_grid", zwidth_grid, 0, "give the Z-width's points per axis, or 0 for none") if (
-        zwidth_grid is not None) else (0 if wall.params(dev.period, dev.resolution).is_spring else WALL_ZWIDTH_GRID)  # fmt: skip
+        zwidth_grid is not None) else (0 if wall.params(dev.period, dev.resolution).covers(Coverage.CLOSED_FORM) else WALL_ZWIDTH_GRID)  # fmt: skip
     check_zwidth_size(zg, names=("zwidth_grid", "speeds"))  # here, before the sections that run first
     with progress_bar(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False) as steps:
         p, wp = dev.params(wall.stiffness), wall.params(dev.period, dev.resolution)
@@ -502,14 +503,14 @@ def design_analysis(
     if v > 0:  # the design answer, first in the report: K_max four ways (and the spring's stiffness-speed chart)
         cache = RunCache()  # one set of runs for both: no (K, speed, start) simulated twice
         figs["design_answer"] = design_answer(dev, v, wall=wall, assess=True, cache=cache)
-        if wp.is_spring:
+        if wp.covers(Coverage.CLOSED_FORM):
             figs["speed_chart"] = stiffness_speed_chart(
                 dev, wall=wall, stiffness=wall.stiffness, velocity=v, cache=cache
             )
     if v > 0:  # how firm a grip the wall needs (the bare device, the hand's mass held)
         figs["grip"] = grip_sweep(dev.bare, wall, v, hand_mass=0.0 if dev.hand is None else dev.hand.mass)
     if v > 0 and zg:
-        figs["zwidth"] = _zwidth(dev, v, wall, not wp.is_spring, zg, n_jobs, progress)
+        figs["zwidth"] = _zwidth(dev, v, wall, not wp.covers(Coverage.CLOSED_FORM), zg, n_jobs, progress)
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )
@@ -519,7 +520,7 @@ def design_analysis(
 def _closed_forms(dev: Device, wall: Wall, v: float) -> dict[str, Any]:
     """The passivity check at the design speed; for the spring also its stiffness limits and curve (eq. 8-11)."""
     chk = passivity_check(dev, wall, v)
-    if not wall.params(dev.period, dev.resolution).is_spring:
+    if not wall.params(dev.period, dev.resolution).covers(Coverage.CLOSED_FORM):
         return dict(check=chk, limits=None, stiffness_curve=None)
     k, d = wall.stiffness, wall.params(dev.period, dev.resolution).delay
     lim = stiffness_limits(dev, v, k, delay=d)

@@ -78,7 +78,7 @@ from ..checks import (
 )
 from ..core import kernel
 from ..errors import DFATypeError, DFAValueError
-from ..model.elements import OneSided, PassivityController, Push
+from ..model.elements import Coverage, OneSided, PassivityController, Push
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
@@ -518,7 +518,7 @@ def _wall_arrays(wall: WallParams, contact: np.ndarray | None = None) -> dict[st
     """The ``wall`` entry of a map file: [β_B, ν_c (NaN: no filter), α], with ``hand`` [κ_h] and a one-sided
     wall's ``one_sided`` [s, p] and ``contact`` kinds, a passivity controller's ``passivity_controller`` [W, f_max]
     (inf: no limit); none for the spring (its delay is in ``settings``)."""
-    if wall.is_spring:
+    if wall.covers(Coverage.CLOSED_FORM):
         return {}
     cutoff = math.nan if wall.cutoff is None else wall.cutoff
     out = {"wall": np.array([wall.damping, cutoff, wall.lag], dtype=float)}
@@ -749,7 +749,7 @@ def _points(beta: np.ndarray, sigma: np.ndarray, starts: Sequence[tuple[float, f
 
 def _chunk_cost(samples: int, wall: WallParams) -> float:
     """Planned cost of one point in spring-kernel samples (:data:`CHUNK_SAMPLES`, :data:`WALL_COST`)."""
-    if wall.is_spring:
+    if wall.covers(Coverage.CLOSED_FORM):
         return float(samples)
     return samples * WALL_COST["lag" if wall.lag > 0 else "wall"]
 

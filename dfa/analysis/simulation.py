@@ -140,7 +140,7 @@ from ..checks import (
 )
 from ..core import batch, kernel, wall_kernel
 from ..errors import DFATypeError, DFAValueError
-from ..model.elements import OneSided
+from ..model.elements import Coverage, OneSided
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
@@ -338,7 +338,7 @@ def net_damping(mu: float, beta: float, wall: WallParams) -> float:
     0.3
     """
     net = beta - 0.5 - wall.delay
-    if wall.is_spring:
+    if wall.covers(Coverage.CLOSED_FORM):
         return net
     return net - wall.lag + wall.damping * damper_gain(mu, wall)
 
@@ -997,7 +997,7 @@ def simulate(
     stats = np.empty(kernel.NSTATS)
     run = (m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
     moving = _check_history(history, w)
-    if not w.is_spring:
+    if not w.covers(Coverage.CLOSED_FORM):
         done, rest = wall_kernel.simulate_wall_kernel(*run[:10], *_wall_args(w), rx, rv, stats)
     elif n > CHUNK or moving:
         done, rest = _run_chunked(*run, progress=progress, moving=moving)
@@ -1098,7 +1098,7 @@ def _check_history(history: object, wall: WallParams) -> bool:
     from ..checks import check_choice
 
     h = check_choice("history", history, ("fresh", "moving"))
-    if h == "moving" and not wall.is_spring:
+    if h == "moving" and not wall.covers(Coverage.CLOSED_FORM):
         raise DFAValueError(
             "history = 'moving' is invalid with this wall: it is run for the spring with a delay (the delay ring); "
             "pass history='fresh'"
@@ -1124,7 +1124,7 @@ def check_wall(wall: object, energy: bool = False) -> WallParams:
             f"wall = {wall!r} is invalid: it must be a WallParams or None; "
             "pass Wall.of(...).params(period) or WallParams.of(...)"
         )
-    if energy and not wall.is_spring:
+    if energy and not wall.covers(Coverage.CLOSED_FORM):
         raise DFAValueError(
             "energy = True is invalid with a damper, filter or amplifier lag in the wall: the energy "
             "bookkeeping covers the spring only; pass energy=False"
@@ -1449,7 +1449,7 @@ def run_points(
     # writable copies: a read-only view (k = 1) would be another type, compiled once more by numba
     ns = np.array(np.broadcast_to(np.asarray(n, dtype=np.int64), (k,)))
     tails = _tail_lengths(ns, mu)
-    if wall.is_spring:
+    if wall.covers(Coverage.CLOSED_FORM):
         bounds = np.array(np.broadcast_to(np.asarray(bound, dtype=float), (k,)))
         batch.batch_kernel(mu, beta, sigma, x0, v0, ns, delay, quantize, bounds, tails, stats, done, rest)
     else:

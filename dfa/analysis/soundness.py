@@ -65,6 +65,7 @@ from ..checks import check_bool, check_choice, check_delay, check_int, check_pos
 from ..core import kernel
 from ..core.storage import storage_runs
 from ..errors import DFATypeError, DFAValueError
+from ..model.elements import Coverage
 from ..model.wall import WallParams
 from ..results.status import SimulationOutcome
 from .criterion import CriterionResult, passivity_criterion
@@ -364,7 +365,9 @@ def storage_growth(pts: dict[str, np.ndarray], ns: np.ndarray) -> tuple[np.ndarr
     m = pts["mu"].shape[0]
     ratio, at, div = np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.bool_)
     walls = _walls_of(pts)
-    spring = np.array([w.is_spring for w in walls], dtype=np.bool_)  # the spring with any delay: its fast path
+    spring = np.array(
+        [w.covers(Coverage.CLOSED_FORM) for w in walls], dtype=np.bool_
+    )  # the spring with any delay: its fast path
     fast = np.flatnonzero(spring)
     if fast.size:
         r, codes, a = np.empty(fast.size), np.empty(fast.size, dtype=np.int64), np.empty(fast.size, dtype=np.int64)

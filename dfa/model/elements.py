@@ -42,6 +42,7 @@ dfa.model.elements.NotCovered: no sound passivity criterion is proven with an am
 from __future__ import annotations
 
 import abc
+import enum
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -54,6 +55,8 @@ from ..checks import check_bool, check_delay, check_nonnegative, check_positive,
 from ..errors import DFAError, DFAValueError
 
 __all__ = [
+    "Coverage",
+    "Covered",
     "Element",
     "ElementClass",
     "GroupRangeError",
@@ -103,6 +106,89 @@ G = TypeVar("G", covariant=True)
 
 #: A frequency response: a complex number for a scalar ω, an array of them for an array.
 Response = complex | npt.NDArray[np.complex128]
+
+
+class Coverage(enum.Flag):
+    """What covers a wall: which analyses are sound for it (:meth:`Element.coverage`, :meth:`Covered.covers`).
+
+    Examples
+    --------
+    >>> Damper.coverage(0.5).covers(Coverage.CRITERION | Coverage.LINEAR)
+    True
+    >>> Coverage.DESCRIBING_FUNCTION in OneSided.coverage(0.0).flags
+    False
+    """
+
+    #: The passivity criterion (eq. 6 extended; :mod:`dfa.analysis.criterion`).
+    CRITERION = enum.auto()
+    #: The exact linear bound of the sampled loop (:mod:`dfa.analysis.linear_wall`).
+    LINEAR = enum.auto()
+    #: The describing function (harmonic balance on the linear loop's frequency response).
+    DESCRIBING_FUNCTION = enum.auto()
+    #: The Colgate–Schenkel condition (:mod:`dfa.analysis.colgate_schenkel`).
+    COLGATE_SCHENKEL = enum.auto()
+    #: The paper's closed forms for the spring with any delay (eq. 11, its Jury conditions) and the spring's
+    #: compiled kernel (:mod:`dfa.core.kernel`), which runs such a loop fast.
+    CLOSED_FORM = enum.auto()
+    #: The exact simulation (:mod:`dfa.core.wall_kernel`): every registered element.
+    SIMULATION = enum.auto()
+    #: Every analysis.
+    ALL = CRITERION | LINEAR | DESCRIBING_FUNCTION | COLGATE_SCHENKEL | CLOSED_FORM | SIMULATION
+
+
+@dataclass(frozen=True)
+class Covered:
+    """What covers an element or a wall (:class:`Coverage`) and, for each analysis that does not, why.
+
+    Attributes
+    ----------
+    flags : Coverage
+        The analyses that cover it.
+    reasons : tuple of (Coverage, str)
+        For each analysis missing from ``flags`` (one flag each), the first reason it does not cover it.
+    """
+
+    flags: Coverage = Coverage.ALL
+    reasons: tuple[tuple[Coverage, str], ...] = ()
+
+    def covers(self, what: Coverage) -> bool:
+        """Tell whether every analysis of ``what`` covers it.
+
+        Parameters
+        ----------
+        what : Coverage
+            One analysis or several (``Coverage.LINEAR | Coverage.DESCRIBING_FUNCTION``).
+
+        Returns
+        -------
+        bool
+        """
+        return what in self.flags
+
+    def reason(self, what: Coverage) -> str | None:
+        """Say why an analysis does not cover it.
+
+        Parameters
+        ----------
+        what : Coverage
+            One analysis.
+
+        Returns
+        -------
+        str or None
+            The first reason given for ``what``; None when it covers it.
+        """
+        for flag, why in self.reasons:
+            if flag == what:
+                return why
+        return None
+
+    def __and__(self, other: Covered) -> Covered:
+        """What covers both: the common flags, and the first reason for each missing one."""
+        flags = self.flags & other.flags
+        known = {f for f, _ in self.reasons}
+        reasons = self.reasons + tuple((f, r) for f, r in other.reasons if f not in known)
+        return Covered(flags, tuple((f, r) for f, r in reasons if f not in flags))
 
 
 class NotCovered(DFAError):
@@ -369,6 +455,46 @@ class Element(abc.ABC, Generic[G]):
             True when the spring's kernel covers it (a delay, or a neutral element).
         """
         return cls.renders_nothing(g)
+
+    @classmethod
+    def coverage(cls, g: G) -> Covered:  # type: ignore[misc]  # G is covariant (module note at G)
+        """Give what covers the wall with this element of group ``g``, and why the rest does not.
+
+        The default reads the element's hooks: :meth:`corner` raising :class:`NotCovered` (the criterion),
+        :attr:`linear_reason` (the exact linear bound and the describing function), :attr:`colgate_schenkel`
+        and :meth:`spring_kernel` (the closed forms); a neutral group (:meth:`renders_nothing`) covers all.
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+
+        Returns
+        -------
+        Covered
+        """
+        if cls.renders_nothing(g):
+            return Covered()
+        reasons: list[tuple[Coverage, str]] = []
+        try:
+            cls.corner(g, quantized=True)
+        except NotCovered as why:
+            reasons.append((Coverage.CRITERION, str(why)))
+        if cls.linear_reason:
+            reasons += [(Coverage.LINEAR, cls.linear_reason), (Coverage.DESCRIBING_FUNCTION, cls.linear_reason)]
+        if cls.colgate_schenkel:
+            reasons.append((Coverage.COLGATE_SCHENKEL, cls.colgate_schenkel))
+        if not cls.spring_kernel(g):
+            reasons.append(
+                (
+                    Coverage.CLOSED_FORM,
+                    f"the paper's closed forms hold for the spring with a delay, not with a {cls.key().replace('_', ' ')}",
+                )
+            )
+        flags = Coverage.ALL
+        for flag, _ in reasons:
+            flags &= ~flag
+        return Covered(flags, tuple(reasons))
 
     @classmethod
     def corner(cls, g: G, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:  # type: ignore[misc]  # G is covariant (module note at G)

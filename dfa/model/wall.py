@@ -37,6 +37,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, TypeVar, cast
 
 import numpy as np
@@ -52,6 +53,8 @@ from .elements import (
     MIN_LAG,
     AmplifierLag,
     CommandPolynomials,
+    Coverage,
+    Covered,
     Damper,
     Delay,
     Element,
@@ -261,8 +264,9 @@ class WallParams:
 
     @property
     def is_spring(self) -> bool:
-        """True when the spring's compiled kernel runs the loop: the paper's spring with any delay."""
-        return all(k.spring_kernel(g) for k, g in self.groups)
+        """True when the spring's compiled kernel runs the loop: the paper's spring with any delay
+        (:attr:`~dfa.model.elements.Coverage.CLOSED_FORM`)."""
+        return self.covers(Coverage.CLOSED_FORM)
 
     # ------------------------------------------------------------------ composed mathematics
     def velocity_gain(self) -> float:
@@ -362,6 +366,54 @@ class WallParams:
         """
         reasons = [k.colgate_schenkel for k, _ in self.groups if k.colgate_schenkel]
         return "; ".join(reasons) if reasons else None
+
+    def coverage(self) -> Covered:
+        """Give what covers this wall: what all its elements cover, with the first reason for each missing part.
+
+        The criterion's and Colgate–Schenkel's reasons are the wall's (:meth:`not_covered`, which adds the rules of a
+        push and of a one-sided wall, and :meth:`colgate_schenkel_reason`).
+
+        Returns
+        -------
+        Covered
+
+        Examples
+        --------
+        >>> WallParams.of(damping=0.3, lag=0.2).coverage().flags
+        <Coverage.LINEAR|DESCRIBING_FUNCTION|SIMULATION: 38>
+        """
+        return self._coverage
+
+    @cached_property
+    def _coverage(self) -> Covered:
+        """:meth:`coverage`, formed once (the groups are frozen)."""
+        out = Covered()
+        for k, g in self.groups:
+            out = out & k.coverage(g)
+        flags, reasons = out.flags, dict(out.reasons)
+        for flag, why in (
+            (Coverage.CRITERION, self.not_covered()),
+            (Coverage.COLGATE_SCHENKEL, self.colgate_schenkel_reason()),
+        ):
+            if why is None:
+                flags, _ = flags | flag, reasons.pop(flag, None)
+            else:
+                flags, reasons[flag] = flags & ~flag, why
+        return Covered(flags, tuple(reasons.items()))
+
+    def covers(self, what: Coverage) -> bool:
+        """Tell whether every analysis of ``what`` covers this wall (:meth:`coverage`).
+
+        Parameters
+        ----------
+        what : Coverage
+            One analysis or several.
+
+        Returns
+        -------
+        bool
+        """
+        return self.coverage().covers(what)
 
     def kernel_args(self) -> dict[str, Any]:
         """Give the compiled simulator's arguments (:mod:`dfa.core.wall_kernel`).

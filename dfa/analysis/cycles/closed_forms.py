@@ -45,6 +45,7 @@ from scipy.optimize.elementwise import find_root
 from ...checks import check_beta, check_mu, check_sigma
 from ...errors import DFAValueError
 from ...model.device import Params
+from ...model.elements import Coverage
 
 if TYPE_CHECKING:
     from ...model.wall import WallParams
@@ -129,7 +130,7 @@ def _check_spring(wall: object) -> None:
     from ...model.wall import WallParams
 
     ctl = check_type("wall", wall, WallParams, "give dfa.WallParams.of(...) or None")
-    if not (ctl.is_spring and ctl.delay == 0):
+    if not (ctl.covers(Coverage.CLOSED_FORM) and ctl.delay == 0):
         raise DFAValueError(
             f"wall = {ctl.to_dict()} is invalid here: the paper's closed forms (eq. 42-45) hold for the "
             "pure spring without computational delay only; use dfa.limit_cycles(params, wall=...) "

@@ -10,6 +10,7 @@ loop with its delay: the solver then runs the spring-only code, bit for bit.
 from __future__ import annotations
 
 from ...checks import check_type
+from ...model.elements import Coverage
 from ...model.wall import WallParams
 
 __all__ = ["resolve_wall", "linear_stable_of"]
@@ -26,7 +27,7 @@ def resolve_wall(wall: object) -> tuple[WallParams, WallParams | None, int]:
     w = WallParams() if wall is None else check_type(
         "wall", wall, WallParams, "give dimensionless groups, e.g. dfa.Wall.of(K, B, ...).params(period), or None"
     )  # fmt: skip
-    return w, (None if w.is_spring else w), w.delay
+    return w, (None if w.covers(Coverage.CLOSED_FORM) else w), w.delay
 
 
 def linear_stable_of(mu: float, beta: float, wall: WallParams) -> bool:

@@ -49,6 +49,7 @@ import numpy as np
 from ...checks import check_bool, check_choice, check_int, check_speed, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
+from ...model.elements import Coverage
 from ...model.wall import Wall
 from ...results.base import Result
 from ...results.status import KMaxStatus, LimitStatus, StiffnessStatus, VelocityStatus
@@ -361,7 +362,7 @@ def closed_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dic
         return _nonlinear_forms(dev, wall, v)
     p = wall.params(dev.period, dev.resolution)
     kl = linear_limit(dev, wall)
-    if p.is_spring:
+    if p.covers(Coverage.CLOSED_FORM):
         d = p.delay
         kc = float(k_max_criterion(dev, v, d))
         pub: dict[str, float | None] = dict(
@@ -402,7 +403,7 @@ def linear_limit(dev: Device, wall: Wall) -> float:
     from ..linear_wall import stable_stiffness
 
     p = wall.params(dev.period, dev.resolution)
-    if p.is_spring:
+    if p.covers(Coverage.CLOSED_FORM):
         return float(k_gil(dev, delay=p.delay))
     return float(stable_stiffness(dev.mass, dev.damping, dev.period, wall).k_crit)
 
@@ -506,7 +507,7 @@ def passive_speed(dev: Device, wall: Wall, k: float) -> tuple[float | None, Velo
     """Largest speed (m/s) the criterion proves passive at K with ``wall``'s elements (inf: every speed; None:
     none), and its status: eq. 11-12 for the spring, the criterion with the wall otherwise."""
     p = wall.params(dev.period, dev.resolution)
-    if p.is_spring:
+    if p.covers(Coverage.CLOSED_FORM):
         mpv = max_passive_velocity(dev, k, p.delay)
     elif p.not_covered() is not None:
         return None, VelocityStatus.NOT_COVERED

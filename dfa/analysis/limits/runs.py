@@ -31,6 +31,7 @@ import numpy as np
 from ..._parallel import NO_BAR, deal, gather, run_in_order
 from ...errors import DFAValueError
 from ...model.device import Device, Params
+from ...model.elements import Coverage
 from ...model.wall import Wall, WallParams
 from ..simulation import (
     GROWTH,
@@ -202,7 +203,7 @@ def _outcomes(jobs: list[tuple]) -> list[str]:
     workers = min(len(jobs), os.cpu_count() or 1)
     outcomes = [""] * len(jobs)
     for spring in (True, False):  # the spring kernel, as simulate() routes a wall it runs, then the wall kernel
-        idx = [i for i, j in enumerate(jobs) if j[7].is_spring == spring]
+        idx = [i for i, j in enumerate(jobs) if j[7].covers(Coverage.CLOSED_FORM) == spring]
         by_delay: dict[int, list[int]] = {}
         for i in idx:
             by_delay.setdefault(jobs[i][7].delay, []).append(i)

@@ -79,6 +79,7 @@ from ...checks import (
 from ...core import kernel
 from ...errors import DFAValueError
 from ...model.device import Device
+from ...model.elements import Coverage
 from ...model.wall import Wall, WallParams
 from ...plausibility import warn_if_from_outside
 from ...results.base import Result
@@ -416,7 +417,7 @@ def _chunks(tasks: list[tuple], size: int) -> list[list[int]]:
     """
     out: list[list[int]] = []
     for i, (_, ctl) in enumerate(tasks):
-        if not out or len(out[-1]) >= size or tasks[out[-1][0]][1].is_spring != ctl.is_spring:
+        if not out or len(out[-1]) >= size or tasks[out[-1][0]][1].is_spring != ctl.covers(Coverage.CLOSED_FORM):
             out.append([])
         out[-1].append(i)
     return out
@@ -437,7 +438,7 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
 
     def codes_of(i: np.ndarray, ns: np.ndarray) -> np.ndarray:
         ns = np.asarray(ns, dtype=np.int64)
-        if w.is_spring:
+        if w.covers(Coverage.CLOSED_FORM):
             return run_points(mu[i], beta[i], sigma[i], x0[i], v0[i], ns, w, True, bound[i], STABLE_AMPLITUDE, GROWTH,
                               SETTLE)[0]  # fmt: skip
         return wall_run_codes(mu[i], beta[i], sigma[i], x0[i], v0[i], ns, w.delay, bound[i], [walls[j] for j in i])
