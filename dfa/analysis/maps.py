@@ -50,6 +50,7 @@ classes existed (their ``stable`` mixed rest with chatter).
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import zipfile
@@ -78,7 +79,7 @@ from ..checks import (
 )
 from ..core import kernel
 from ..errors import DFATypeError, DFAValueError
-from ..model.elements import Coverage, OneSided, PassivityController, Push
+from ..model.elements import Coverage
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
@@ -515,45 +516,43 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
 
 
 def _wall_arrays(wall: WallParams, contact: np.ndarray | None = None) -> dict[str, Any]:
-    """The ``wall`` entry of a map file: [β_B, ν_c (NaN: no filter), α], with ``hand`` [κ_h] and a one-sided
-    wall's ``one_sided`` [s, p] and ``contact`` kinds, a passivity controller's ``passivity_controller`` [W, f_max]
-    (inf: no limit); none for the spring (its delay is in ``settings``)."""
+    """The wall entries of a map file: ``wall_json``, the groups' JSON (:meth:`dfa.model.wall.WallParams.to_dict`),
+    and a one-sided wall's ``contact`` kinds; none for the spring (its delay is in ``settings``)."""
     if wall.covers(Coverage.CLOSED_FORM):
         return {}
-    cutoff = math.nan if wall.cutoff is None else wall.cutoff
-    out = {"wall": np.array([wall.damping, cutoff, wall.lag], dtype=float)}
-    if wall.hand_stiffness:
-        out["hand"] = np.array([wall.hand_stiffness], dtype=float)
-    if wall.one_sided:
-        a = wall.kernel_args()
-        out["one_sided"] = np.array([a["surface"], a["push"]], dtype=float)
-    if wall.passivity_controller:
-        a = wall.kernel_args()
-        out["passivity_controller"] = np.array([a["window"], a["limit"]], dtype=float)  # limit inf: none
+    out = {"wall_json": np.array(json.dumps(wall.to_dict(), sort_keys=True))}
     if contact is not None:
         out["contact"] = contact
     return out
 
 
 def _wall_from(z: np.lib.npyio.NpzFile, delay: int) -> WallParams:
-    """The wall of a map file (``wall``, or ``controller`` as earlier files named it; the spring when
-    neither is there)."""
+    """The wall of a map file: its ``wall_json`` read through the element registry
+    (:meth:`dfa.model.wall.WallParams.from_dict`); in a file written before it, the arrays ``wall`` (or
+    ``controller``), ``hand``, ``one_sided`` and ``passivity_controller`` (:func:`_legacy_wall`); the spring when
+    there are none."""
+    if "wall_json" in z.files:
+        return WallParams.from_dict(json.loads(str(z["wall_json"][()])))
+    return _legacy_wall(z, delay)
+
+
+def _legacy_wall(z: np.lib.npyio.NpzFile, delay: int) -> WallParams:
+    """The wall of a map file written before ``wall_json``: [β_B, ν_c (NaN: no filter), α] in ``wall`` (or
+    ``controller`` as earlier files named it), [κ_h] in ``hand``, a one-sided wall's [s, p] in ``one_sided``, a
+    passivity controller's [W, f_max] (inf: no limit) in ``passivity_controller``, read as the groups' record."""
     key = next((k for k in ("wall", "controller") if k in z.files), None)
     if key is None:
         return WallParams.of(delay=delay)
     damping, cutoff, lag = (float(v) for v in z[key])
-    hand = float(z["hand"][0]) if "hand" in z.files else 0.0
-    w = WallParams.of(
-        damping=damping, delay=delay, cutoff=None if math.isnan(cutoff) else cutoff, lag=lag, hand_stiffness=hand
-    )
+    record: dict[str, object] = {"damping": damping, "delay": delay, "cutoff": None if math.isnan(cutoff) else cutoff}
+    record |= {"lag": lag, "hand_stiffness": float(z["hand"][0]) if "hand" in z.files else 0.0}
     if "passivity_controller" in z.files:
         window, limit = (float(v) for v in z["passivity_controller"])
-        pc = (int(window), None if math.isinf(limit) else limit)
-        w = WallParams(((PassivityController, pc), *w.groups))
-    if "one_sided" not in z.files:
-        return w
-    surface, push = (float(v) for v in z["one_sided"])
-    return WallParams(((OneSided, surface), *(((Push, push),) if push else ()), *w.groups))
+        record |= {"pc_window": int(window), "pc_force_limit": None if math.isinf(limit) else limit}
+    if "one_sided" in z.files:
+        surface, push = (float(v) for v in z["one_sided"])
+        record |= {"one_sided": surface, "push": push}
+    return WallParams.from_dict(record)
 
 
 def _run_chunk(

@@ -42,9 +42,10 @@ dfa.model.elements.NotCovered: no sound passivity criterion is proven with an am
 from __future__ import annotations
 
 import abc
+import dataclasses
 import enum
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, ClassVar, Generic, NamedTuple, TypeVar
 
@@ -676,6 +677,82 @@ class Element(abc.ABC, Generic[G]):
         return {"element": type(self).key(), self.parameter.name: self.value, "unit": self.parameter.units[0]}
 
     @classmethod
+    def from_dict(cls, data: Mapping[str, object]) -> Element[object]:
+        """Give the element of :meth:`to_dict`'s data, its class found by its key in :data:`ELEMENTS`.
+
+        Parameters
+        ----------
+        data : mapping
+            ``{"element": key, <field>: value, ...}`` (a ``unit`` entry is ignored).
+
+        Returns
+        -------
+        Element
+
+        Examples
+        --------
+        >>> Element.from_dict(Damper(2.0).to_dict())
+        Damper(damping=2.0)
+        """
+        kind = data.get("element")
+        registry = {k.key(): k for k in ELEMENTS}
+        if kind not in registry:
+            raise DFAValueError(
+                f"element = {format_value(kind)} is invalid: it is no registered wall element; give one of "
+                f"{', '.join(registry)}"
+            )
+        cls = registry[str(kind)]
+        names = [f.name for f in dataclasses.fields(cls)]
+        return cls(**{n: data[n] for n in names if n in data})
+
+    @classmethod
+    def from_record(cls, data: Mapping[str, object]) -> Element[object] | None:
+        """Give the element a wall's record holds (:meth:`dfa.model.wall.Wall.to_dict`), by its :attr:`record_keys`.
+
+        Parameters
+        ----------
+        data : mapping
+            A wall's record.
+
+        Returns
+        -------
+        Element or None
+            None when the record has none of the element's keys, a None value, or a neutral one (a damper of 0).
+        """
+        kwargs = {name: data[key] for key, name in cls.record_keys() if key in data}
+        if not kwargs or (len(cls.record_keys()) == 1 and None in kwargs.values()):
+            return None
+        out = cls(**kwargs)
+        return None if out.value == cls.absent else out
+
+    @classmethod
+    def record_keys(cls) -> tuple[tuple[str, str], ...]:
+        """Give the keys of the element in a wall's record and the field each gives.
+
+        Returns
+        -------
+        tuple of (str, str)
+            (record key, constructor keyword); default its parameter's name for both.
+        """
+        return ((cls.parameter.name, cls.parameter.name),)
+
+    @classmethod
+    def group_from_dict(cls, data: Mapping[str, object]) -> object | None:
+        """Give the element's group from :meth:`dfa.model.wall.WallParams.to_dict` (the inverse of :meth:`group_json`).
+
+        Parameters
+        ----------
+        data : mapping
+            The groups' record.
+
+        Returns
+        -------
+        object or None
+            The group; None when absent.
+        """
+        return data.get(cls.parameter.group)
+
+    @classmethod
     def key(cls) -> str:
         """Give the element's name in outputs.
 
@@ -1194,6 +1271,10 @@ class OneSided(Element[float]):
     def __post_init__(self) -> None:
         object.__setattr__(self, "surface", self.check_group(self.surface))
 
+    @classmethod
+    def record_keys(cls) -> tuple[tuple[str, str], ...]:
+        return (("one_sided_surface", "surface"),)
+
     def group(self, period: float, stiffness: float) -> float:
         return self.surface
 
@@ -1594,6 +1675,14 @@ class PassivityController(Element[tuple[int, float | None]]):
     @classmethod
     def group_json(cls, g: tuple[int, float | None]) -> dict[str, object]:
         return {"pc_window": int(g[0]), "pc_force_limit": g[1]}
+
+    @classmethod
+    def group_from_dict(cls, data: Mapping[str, object]) -> object | None:
+        return (data["pc_window"], data.get("pc_force_limit")) if "pc_window" in data else None
+
+    @classmethod
+    def record_keys(cls) -> tuple[tuple[str, str], ...]:
+        return (("passivity_controller_window", "window"), ("passivity_controller_force_limit", "force_limit"))
 
     @property
     def value(self) -> object:

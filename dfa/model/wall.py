@@ -571,6 +571,28 @@ class WallParams:
 
         return min([SWEEP_MAX_POINTS] + [k.sweep_points for k, _ in self.groups])
 
+    @classmethod
+    def from_dict(cls, data: Mapping[str, object]) -> WallParams:
+        """Give the groups of :meth:`to_dict`'s record, each element read by its class in :data:`ELEMENTS`.
+
+        Parameters
+        ----------
+        data : mapping
+            The record (its entries for absent elements may be None or missing).
+
+        Returns
+        -------
+        WallParams
+
+        Examples
+        --------
+        >>> p = WallParams.of(damping=0.3, delay=1, cutoff=0.05)
+        >>> WallParams.from_dict(p.to_dict()) == p
+        True
+        """
+        items = [(k, k.group_from_dict(data)) for k in ELEMENTS]
+        return cls(tuple((k, g) for k, g in items if g is not None))
+
     def to_dict(self) -> dict[str, object]:
         """The groups as a JSON-able dictionary, every registered element's (its ``absent`` value when absent).
 
@@ -878,6 +900,31 @@ class Wall:
                 raise DFAValueError(err.message(dict(names or {}), rotary)) from None
 
         return WallParams(tuple((type(e), group(e)) for e in self.elements))
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, object]) -> Wall:
+        """Give the wall of :meth:`to_dict`'s record, each element read by its class in :data:`ELEMENTS`.
+
+        Parameters
+        ----------
+        data : mapping
+            The record: ``stiffness`` and each element's keys (:meth:`~dfa.model.elements.Element.record_keys`).
+
+        Returns
+        -------
+        Wall
+
+        Examples
+        --------
+        >>> w = Wall.of(1000.0, damping=2.0, delay=1, filter_cutoff=100.0)
+        >>> Wall.from_dict(w.to_dict()) == w
+        True
+        """
+        stiffness = data.get("stiffness")
+        if not isinstance(stiffness, (int, float)):
+            raise DFATypeError(f"stiffness = {format_value(stiffness)} is invalid: a wall's record gives its K in N/m")
+        items = [k.from_record(data) for k in ELEMENTS]
+        return cls(float(stiffness), tuple(e for e in items if e is not None))
 
     def to_dict(self) -> dict[str, object]:
         """The wall's physical parameters as a JSON-able dictionary.
