@@ -15,7 +15,8 @@ import argparse
 
 from ..model.device import Device
 from ..model.elements import Element, OneSided, Push
-from .parsing import UsageError, number
+from .parsing import UsageError
+from .walls import add_rows
 
 __all__ = ["add_contact_args", "contact_elements", "refuse_one_sided_flag", "CONTACT_COMMANDS"]
 
@@ -26,14 +27,8 @@ CONTACT_COMMANDS = "dfa check, simulate, map, stiffness, zwidth or report"
 def add_contact_args(p: argparse.ArgumentParser) -> None:
     """--one-sided, --surface and --push, in their own group."""
     g = p.add_argument_group("contact (default: the paper's bilateral spring)")
-    g.add_argument(
-        "--one-sided",
-        action="store_true",
-        help="a one-sided wall reached from free space: it pushes only while the reading is beyond the surface "
-        "and never pulls; the run starts in free space before contact (default: bilateral)",
-    )
-    g.add_argument("--surface", type=number("--surface", "ticks"), metavar="TICKS", help=OneSided.parameter.help)
-    g.add_argument("--push", type=number("--push", "N"), metavar="N", help=Push.parameter.help)
+    add_rows(g, OneSided)
+    add_rows(g, Push)
 
 
 def contact_elements(args: argparse.Namespace, device: Device | None) -> tuple[Element, ...]:

@@ -13,7 +13,8 @@ import argparse
 
 from ..model.device import Device
 from ..model.elements import Element, PassivityController
-from .parsing import UsageError, number
+from .parsing import UsageError
+from .walls import add_rows
 
 __all__ = ["add_passivity_args", "add_observer_arg", "passivity_elements", "refuse_passivity_flag"]
 
@@ -21,24 +22,7 @@ __all__ = ["add_passivity_args", "add_observer_arg", "passivity_elements", "refu
 def add_passivity_args(p: argparse.ArgumentParser) -> None:
     """--passivity-controller, --pc-window and --pc-force-limit, in their own group."""
     g = p.add_argument_group("passivity controller (default: none)")
-    g.add_argument(
-        "--passivity-controller",
-        action="store_true",
-        help="add the time-domain passivity observer and controller (Hannaford–Ryu): a damper that dissipates the "
-        "energy the wall has produced (default: off)",
-    )
-    g.add_argument(
-        "--pc-window",
-        type=number("--pc-window", "s"),
-        metavar="S",
-        help="with --passivity-controller: the observer's window in s (default: the whole run)",
-    )
-    g.add_argument(
-        "--pc-force-limit",
-        type=number("--pc-force-limit", "N"),
-        metavar="N",
-        help=PassivityController.parameter.help,
-    )
+    add_rows(g, PassivityController)
 
 
 def add_observer_arg(p: argparse.ArgumentParser) -> None:

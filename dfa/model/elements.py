@@ -62,6 +62,7 @@ __all__ = [
     "ElementClass",
     "GroupRangeError",
     "Parameter",
+    "FlagRow",
     "NotCovered",
     "CommandPolynomials",
     "unit_circle_w",
@@ -283,6 +284,20 @@ class Parameter(NamedTuple):
     help: str
     group: str
     symbol: str
+
+
+class FlagRow(NamedTuple):
+    """One command-line option of an element (a row of the flag table of :mod:`dfa.cli.walls`).
+
+    ``metavar`` None makes it a switch (``store_true``); ``unit`` is what its number is read in (its
+    messages' unit).
+    """
+
+    flag: str
+    dest: str
+    metavar: str | None
+    help: str
+    unit: str = ""
 
 
 @dataclass(frozen=True)
@@ -701,9 +716,9 @@ class Element(abc.ABC, Generic[G]):
                 f"element = {format_value(kind)} is invalid: it is no registered wall element; give one of "
                 f"{', '.join(registry)}"
             )
-        cls = registry[str(kind)]
-        names = [f.name for f in dataclasses.fields(cls)]
-        return cls(**{n: data[n] for n in names if n in data})
+        found = registry[str(kind)]
+        names = [f.name for f in dataclasses.fields(found)]
+        return found(**{n: data[n] for n in names if n in data})
 
     @classmethod
     def from_record(cls, data: Mapping[str, object]) -> Element[object] | None:
@@ -751,6 +766,19 @@ class Element(abc.ABC, Generic[G]):
             The group; None when absent.
         """
         return data.get(cls.parameter.group)
+
+    @classmethod
+    def flag_rows(cls) -> tuple[FlagRow, ...]:
+        """Give the element's command-line options (:mod:`dfa.cli.walls` builds the flag table from them).
+
+        Returns
+        -------
+        tuple of FlagRow
+            Default: its parameter's flag, read in its unit.
+        """
+        par = cls.parameter
+        unit = par.units[0] if par.units[0] == par.units[1] else f"{par.units[0]} (rotary: {par.units[1]})"
+        return (FlagRow(par.flag, par.flag.lstrip("-").replace("-", "_"), par.metavar, par.help, unit),)
 
     @classmethod
     def key(cls) -> str:
@@ -1275,6 +1303,16 @@ class OneSided(Element[float]):
     def record_keys(cls) -> tuple[tuple[str, str], ...]:
         return (("one_sided_surface", "surface"),)
 
+    @classmethod
+    def flag_rows(cls) -> tuple[FlagRow, ...]:
+        switch = FlagRow(
+            "--one-sided", "one_sided", None,
+            "a one-sided wall reached from free space: it pushes only while the reading is beyond the surface "
+            "and never pulls; the run starts in free space before contact (default: bilateral)",
+        )  # fmt: skip
+        par = cls.parameter
+        return (switch, FlagRow(par.flag, "surface", par.metavar, par.help, "ticks"))
+
     def group(self, period: float, stiffness: float) -> float:
         return self.surface
 
@@ -1468,6 +1506,11 @@ class Push(Element[float]):
     wall_flag: ClassVar[bool] = False
     #: Its group needs the encoder resolution Δ (:meth:`dfa.model.wall.Wall.params`).
     needs_resolution: ClassVar[bool] = True
+
+    @classmethod
+    def flag_rows(cls) -> tuple[FlagRow, ...]:
+        par = cls.parameter
+        return (FlagRow(par.flag, "push", par.metavar, par.help, "N"),)
 
     def __post_init__(self) -> None:
         fix = "give the operator's force toward the wall in N (0 for none)"
@@ -1683,6 +1726,22 @@ class PassivityController(Element[tuple[int, float | None]]):
     @classmethod
     def record_keys(cls) -> tuple[tuple[str, str], ...]:
         return (("passivity_controller_window", "window"), ("passivity_controller_force_limit", "force_limit"))
+
+    @classmethod
+    def flag_rows(cls) -> tuple[FlagRow, ...]:
+        par = cls.parameter
+        return (
+            FlagRow(
+                "--passivity-controller", "passivity_controller", None,
+                "add the time-domain passivity observer and controller (Hannaford–Ryu): a damper that dissipates the "
+                "energy the wall has produced (default: off)",
+            ),
+            FlagRow(
+                "--pc-window", "pc_window", "S",
+                "with --passivity-controller: the observer's window in s (default: the whole run)", "s",
+            ),
+            FlagRow(par.flag, "pc_force_limit", par.metavar, par.help, "N"),
+        )  # fmt: skip
 
     @property
     def value(self) -> object:
