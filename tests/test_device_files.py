@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 
 import pytest
 from result_json import written
@@ -264,3 +265,62 @@ def test_load_device_file_refuses_a_non_path():
 def test_the_package_exports_the_device_file_api():
     assert dfa.load_device_file is load_device_file and dfa.device_template is device_template
     assert issubclass(dfa.DeviceFileError, dfa.DFAValueError)
+
+
+# ----------------------------------------------------------------- the device's fields as one table (issue 42)
+def test_device_fields_table_is_what_device_catalogue_files_flags_and_template_read():
+    """Each row of DEVICE_FIELDS is a Device attribute (in order), a catalogue column, a device-file key, a flag
+    and a template comment: a field added to the table and not to one of them fails here."""
+    import dataclasses
+
+    from dfa.cli.inputs import PHYS_FLAGS
+    from dfa.model.catalogue import _FILE_KEYS, _TEMPLATE_COMMENTS, CatalogueEntry
+    from dfa.model.device import DEVICE_FIELDS, STIFFNESS, Device, device_units
+
+    names = [f.name for f in DEVICE_FIELDS]
+    device_values = [f.name for f in dataclasses.fields(Device) if f.init and f.name not in ("name", "rotary")]
+    assert names == device_values
+    entry_fields = {f.name for f in dataclasses.fields(CatalogueEntry)}
+    for f in (*DEVICE_FIELDS, STIFFNESS):
+        assert f.name in entry_fields and f.name in _FILE_KEYS
+        assert _TEMPLATE_COMMENTS[f.name] == f.comment
+        assert device_units()[f.name] == f.unit and device_units(rotary=True)[f.name] == f.rotary_unit
+    assert PHYS_FLAGS == {f.name: (f.flag, f.units) for f in DEVICE_FIELDS}
+    assert PHYS_FLAGS["mass"] == ("--mass", "kg (rotary: inertia in kg·m²)")
+    row = get_device(DEFAULT_DEVICE).to_dict()
+    assert [k for k in row if k in names] == names  # the JSON's columns in the table's order
+
+
+def test_device_fields_table_rules_are_devices_rules():
+    """The table's rule is Device's: > 0 for mass, resolution, period; >= 0 for the frictions."""
+    from dfa.model.device import DEVICE_FIELDS
+
+    rules = {f.name: f.rule.value for f in DEVICE_FIELDS}
+    assert rules == {"mass": "> 0", "damping": ">= 0", "coulomb": ">= 0", "resolution": "> 0", "period": "> 0"}
+    good = {f.name: 1e-3 for f in DEVICE_FIELDS}
+    for f in DEVICE_FIELDS:
+        for bad in (-1.0, 0.0):
+            if bad == 0.0 and f.rule.value == ">= 0":
+                assert getattr(dfa.Device(**(good | {f.name: bad})), f.name) == 0.0
+                continue
+            message = f"{f.name} = {bad} is invalid: it must be a finite number {f.rule.value}; {f.fix}"
+            with pytest.raises(DFAValueError, match="^" + re.escape(message) + "$"):
+                dfa.Device(**(good | {f.name: bad}))
+
+
+def test_device_field_row_for_an_optional_value_without_default():
+    """An optional row (absent: None, e.g. a force limit) derives its flag, units, template comment and fix."""
+    from dfa.model.device import DeviceField, Rule
+
+    row = DeviceField(
+        "max_force", "force limit", "F_max", "N", "N·m", Rule.POSITIVE, required=False, absent="unlimited"
+    )
+    assert row.flag == "--max-force"
+    assert row.units == "N (rotary: N·m)"
+    assert row.comment == "force limit F_max in N (rotary: N·m), > 0; optional, absent: unlimited"
+    assert row.fix == "give the force limit F_max in N (rotary: N·m)"
+    assert row.check(2) == 2.0
+    with pytest.raises(
+        DFAValueError, match="^max_force = 0.0 is invalid: it must be a finite number > 0; give the force"
+    ):
+        row.check(0.0)

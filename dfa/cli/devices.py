@@ -5,12 +5,22 @@ from __future__ import annotations
 import argparse
 
 from ..model.catalogue import catalogue, device_template
+from ..model.device import DEVICE_FIELDS, STIFFNESS, DeviceField
 from .output import emit, fmt, say, table
 from .parsing import UsageError
 
 COMMAND = "devices"
 HELP = "list the device catalogue (paper Table 2)"
 EXAMPLE = "dfa devices --json"
+
+#: The physical columns of the listing: the device's fields, then the stiffness K.
+_COLUMNS = (*DEVICE_FIELDS, STIFFNESS)
+
+
+def _symbol(f: DeviceField) -> str:
+    """A column's heading: the field's symbol (``"m or J"`` where a rotary device's differs)."""
+    rotary = f.rotary_symbol or f.symbol
+    return f.symbol if rotary == f.symbol else f"{f.symbol} or {rotary}"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -42,17 +52,15 @@ def run(args: argparse.Namespace) -> int:
         flags = ["incomplete"] if r.incomplete else []
         flags += [f"{d.parameter} {100 * d.relative:+.0f}%" for d in r.discrepancies]
         printed = ", ".join(pr.get(k) and f"{pr[k]:g}" or "-" for k in ("mu", "beta", "sigma")) if pr else "-"
-        phys.append([r.name, fmt(r.mass), fmt(r.damping), fmt(r.coulomb), fmt(r.resolution), fmt(r.period),
-                     fmt(r.stiffness)])  # fmt: skip
+        phys.append([r.name, *(fmt(getattr(r, f.name)) for f in _COLUMNS)])
         dims.append([r.name, fmt(p.mu if p else None), fmt(p.beta if p else None, 3), fmt(p.sigma if p else None),
                      printed, "; ".join(flags) or "ok"])  # fmt: skip
-    say(table(phys, ["device", "m or J", "b", "c", "Δ", "T", "K"]))
+    say(table(phys, ["device", *(_symbol(f) for f in _COLUMNS)]))
     say()
     say(table(dims, ["device", "μ", "β", "σ", "printed μ, β, σ", "flags"]))
     say()
-    say(
-        "SI units (linear: mass m in kg, N·s/m, N, m, s, N/m; rotary: inertia J in kg·m², N·m·s/rad, N·m, rad, s, N·m/rad)."
-    )
+    linear, rotary = (", ".join(f.unit_of(rot) for f in _COLUMNS) for rot in (False, True))
+    say(f"SI units (linear: mass m in {linear}; rotary: inertia J in {rotary}).")
     say(
         "μ, β, σ recomputed from the physical columns (paper Table 1); flags: printed value disagrees (> 5 % and beyond its last digit)."
     )

@@ -18,7 +18,7 @@ from typing import Any
 from ..checks import check_beta, check_mu, check_real, check_sigma, check_speed
 from ..errors import DFAError
 from ..model.catalogue import CatalogueEntry, get_device, load_device_file, resolve_device
-from ..model.device import Device, Params, dimensionless_params
+from ..model.device import DEVICE_FIELDS, STIFFNESS, Device, Params, dimensionless_params
 from ..model.hand import HAND_PRESETS, Hand, get_hand
 from ..plausibility import warn_implausible
 from ..render.hand import hand_label
@@ -49,21 +49,10 @@ HAND_FLAGS = {
     "hand_damping": ("--hand-damping", "N·s/m (rotary: N·m·s/rad)"),
     "hand_stiffness": ("--hand-stiffness", "N/m (rotary: N·m/rad)"),
 }
-#: The physical flags of a device: dest -> (flag, unit).
-PHYS_FLAGS = {
-    "mass": ("--mass", "kg (rotary: inertia in kg·m²)"),
-    "damping": ("--damping", "N·s/m (rotary: N·m·s/rad)"),
-    "coulomb": ("--coulomb", "N (rotary: N·m)"),
-    "resolution": ("--resolution", "m (rotary: rad)"),
-    "period": ("--period", "s"),
-}
-_PHYS_WHAT = {
-    "mass": "moving mass m",
-    "damping": "viscous friction b",
-    "coulomb": "Coulomb friction c",
-    "resolution": "encoder resolution Δ",
-    "period": "sample period T",
-}
+#: The physical flags of a device, one per field of :data:`dfa.model.device.DEVICE_FIELDS`: dest -> (flag, unit).
+PHYS_FLAGS = {f.name: (f.flag, f.units) for f in DEVICE_FIELDS}
+#: The flags a device of physical values needs (``--mass --damping --coulomb --resolution --period``).
+_DEVICE_FLAGS = " ".join(f.flag for f in DEVICE_FIELDS if f.required)
 _DIMLESS_FLAGS = {"mu": "--mu", "beta": "--beta", "sigma": "--sigma"}
 _FLAG_NAMES = {k: f for k, (f, _u) in PHYS_FLAGS.items()} | {
     "stiffness": "--stiffness",
@@ -106,13 +95,14 @@ def add_device_group(p: argparse.ArgumentParser, title: str) -> Any:
         "instead of --device; the physical flags, --counts, --stiffness, --name and --rotary replace its "
         "values; default: none",
     )
-    for key, (flag, unit) in PHYS_FLAGS.items():
+    for f in DEVICE_FIELDS:
+        default = "the catalogue value" + ("" if f.required else f", else {f.absent or 'none'}")
         g.add_argument(
-            flag,
-            dest=key,
-            type=number(flag, unit),
+            f.flag,
+            dest=f.name,
+            type=number(f.flag, f.units),
             metavar="X",
-            help=f"{_PHYS_WHAT[key]} in {unit}; default: the catalogue value",
+            help=f"{f.described} in {f.units}; default: {default}",
         )
     _add_counts_name_args(g)
     g.add_argument(
@@ -276,8 +266,7 @@ def resolve(
     if not args.device and path is None and not custom:
         raise UsageError(
             "no device given: use --device NAME (see `dfa devices`), --device-file FILE.toml (`dfa devices "
-            "--template` writes one), or --mass --damping --coulomb --resolution --period"
-            + (", or --mu --beta --sigma" if dimensionless else "")
+            f"--template` writes one), or {_DEVICE_FLAGS}" + (", or --mu --beta --sigma" if dimensionless else "")
         )
     entry = None if path is None else load_device_file(path)
     _warn_implausible(args, entry, path)  # held until the inputs are accepted (dfa.cli.output.hold_warning)
@@ -321,7 +310,7 @@ def _warn_implausible(args: argparse.Namespace, entry: CatalogueEntry | None, pa
             return  # resolve_device refuses the name, with its message
     rotary = bool(getattr(args, "rotary", False)) or (entry is not None and entry.rotary)
     counts = getattr(args, "counts", None)
-    for key in ("mass", "resolution", "period", "stiffness"):
+    for key, quantity in ((f.name, f.plausibility) for f in (*DEVICE_FIELDS, STIFFNESS) if f.plausibility):
         value, subject, hint = getattr(args, key, None), _FLAG_NAMES[key], None
         if value is None and key == "resolution" and isinstance(counts, int) and counts >= 1:
             value = (2.0 * math.pi if rotary else 1.0) / counts
@@ -329,7 +318,7 @@ def _warn_implausible(args: argparse.Namespace, entry: CatalogueEntry | None, pa
         elif value is None and path is not None and entry is not None:
             value, subject = getattr(entry, key), f"{path}: {key}"
         if value is not None:
-            warn_implausible(key, value, rotary=rotary, subject=subject, hint=hint)
+            warn_implausible(quantity, value, rotary=rotary, subject=subject, hint=hint)
 
 
 def device_given(args: argparse.Namespace) -> bool:
@@ -435,9 +424,7 @@ def plane_device(args: argparse.Namespace) -> tuple[float, Inputs | None]:
             "a hand needs a device)"
         )
     if args.mu is None and not given:
-        raise UsageError(
-            "missing --mu: give --mu, or a device (--device NAME, or --mass --damping --coulomb --resolution --period)"
-        )
+        raise UsageError(f"missing --mu: give --mu, or a device (--device NAME, or {_DEVICE_FLAGS})")
     if args.mu is not None:
         return check_mu(args.mu, "--mu"), None
     inp = resolve(args, dimensionless=False)

@@ -33,6 +33,7 @@ import os
 import re
 import stat
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from decimal import Decimal
 from functools import lru_cache
@@ -40,7 +41,7 @@ from importlib import resources
 
 from ..errors import DeviceFileError, DFAError, DFATypeError, DFAValueError
 from ..results.jsonable import explain_nulls
-from .device import Device, Params
+from .device import DEVICE_FIELDS, STIFFNESS, Device, DeviceField, Params
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -66,7 +67,13 @@ DEFAULT_DEVICE = "Delta"
 #: Relative disagreement above which a printed value is reported (5 %).
 RELATIVE_TOLERANCE = 0.05
 
-_PHYSICAL = ("mass", "damping", "coulomb", "resolution", "period")
+#: The values of a catalogue row and a device file: the device's fields and the stiffness K.
+_ROW_FIELDS: tuple[DeviceField, ...] = (*DEVICE_FIELDS, STIFFNESS)
+#: The values every complete row gives (a device file always): the device's required fields.
+_PHYSICAL = tuple(f.name for f in DEVICE_FIELDS if f.required)
+#: The names of the device's fields (the keys of ``resolve_device(overrides=...)``).
+_DEVICE_KEYS = tuple(f.name for f in DEVICE_FIELDS)
+_BY_NAME = {f.name: f for f in _ROW_FIELDS}
 
 
 @dataclass(frozen=True)
@@ -166,7 +173,7 @@ class CatalogueEntry:
     printed: tuple[tuple[str, str], ...] = field(default_factory=tuple)
 
     def __post_init__(self) -> None:
-        from ..checks import check_bool, check_choice, check_nonnegative, check_positive, format_value
+        from ..checks import check_bool, check_choice, format_value
 
         fix = "build rows with get_device or load_device_file, or give the values in SI units"
         for name in ("name", "kind", "source", "notes"):
@@ -175,10 +182,9 @@ class CatalogueEntry:
                 raise DFATypeError(
                     f"{name} = {format_value(value)} has type {type(value).__name__}: it must be text; {fix}"
                 )
-        for name in (*_PHYSICAL, "stiffness"):  # the rules of Device and of a device file; None: unknown
-            if getattr(self, name) is not None:
-                check = check_nonnegative if name in ("damping", "coulomb") else check_positive
-                object.__setattr__(self, name, check(name, getattr(self, name), fix))
+        for f in _ROW_FIELDS:  # the rules of Device and of a device file; None: unknown (or absent)
+            if getattr(self, f.name) is not None:
+                object.__setattr__(self, f.name, f.check(getattr(self, f.name), fix=fix))
         for name in ("rotary", "incomplete"):
             object.__setattr__(self, name, check_bool(name, getattr(self, name), fix))
         pairs = self.printed if isinstance(self.printed, tuple) else None
@@ -215,15 +221,8 @@ class CatalogueEntry:
                 f"(unknown: {', '.join(self.missing)}); give the missing values explicitly "
                 f"(e.g. --{self.missing[0]} on the command line)"
             )
-        return Device(
-            mass=self.mass,  # type: ignore[arg-type]
-            damping=self.damping,  # type: ignore[arg-type]
-            coulomb=self.coulomb,  # type: ignore[arg-type]
-            resolution=self.resolution,  # type: ignore[arg-type]
-            period=self.period,  # type: ignore[arg-type]
-            name=self.name,
-            rotary=self.rotary,
-        )
+        values = {f.name: getattr(self, f.name) for f in DEVICE_FIELDS}  # the required ones known (not missing)
+        return Device(name=self.name, rotary=self.rotary, **values)
 
     @property
     def params(self) -> Params | None:
@@ -262,12 +261,7 @@ class CatalogueEntry:
             "kind": self.kind,
             "rotary": self.rotary,
             "incomplete": self.incomplete,
-            "mass": self.mass,
-            "damping": self.damping,
-            "coulomb": self.coulomb,
-            "resolution": self.resolution,
-            "period": self.period,
-            "stiffness": self.stiffness,
+            **{f.name: getattr(self, f.name) for f in _ROW_FIELDS},
             "mu": None if p is None else p.mu,
             "beta": None if p is None else p.beta,
             "sigma": None if p is None else p.sigma,
@@ -285,7 +279,7 @@ class CatalogueEntry:
             "notes": self.notes,
         }
         missing = "not given by the source: the catalogue row is incomplete"
-        why = dict.fromkeys(("mass", "damping", "coulomb", "resolution", "period"), missing)
+        why = {f.name: missing if f.required else f.absent for f in DEVICE_FIELDS}
         why["stiffness"] = "the source gives no stiffness K for this device"
         why.update(dict.fromkeys(("mu", "beta", "sigma"), "not computable: the physical row is incomplete"))
         why["printed"] = "the paper prints no (μ, β, σ) for this device"
@@ -294,7 +288,7 @@ class CatalogueEntry:
 
 def _entry(raw: dict) -> CatalogueEntry:
     printed = tuple((k, str(raw.get("printed", {})[k])) for k in ("mu", "beta", "sigma") if k in raw.get("printed", {}))
-    values = {p: (float(raw[p]) if p in raw else None) for p in (*_PHYSICAL, "stiffness")}
+    values = {f.name: (float(raw[f.name]) if f.name in raw else None) for f in _ROW_FIELDS}
     entry = CatalogueEntry(
         name=raw["name"],
         kind=raw.get("kind", "haptic device"),
@@ -481,8 +475,37 @@ def resolve_device(
     >>> round(r.device.resolution, 6), r.label
     (0.003142, 'testbed, K = 0.5 N·m/rad')
     """
-    from ..checks import check_positive, format_value
-    from .device import dimensionless_params
+    _check_resolve_arguments(name, overrides, flags, label, rotary, entry)
+    fl = {k: k for k in (*_DEVICE_KEYS, "stiffness", "counts", "name")} | (flags or {})
+    given = {k: v for k, v in (overrides or {}).items() if v is not None}
+    unknown = sorted(set(given) - set(_DEVICE_KEYS))
+    if unknown:
+        raise DFAValueError(f"overrides has {unknown}: physical values are {', '.join(_DEVICE_KEYS)}")
+    if entry is None and name:
+        entry = get_device(name)
+    values: dict[str, float | None] = {k: getattr(entry, k) for k in _DEVICE_KEYS} if entry else {}
+    rotary = bool(rotary or (entry is not None and entry.rotary))
+    if counts is not None:
+        if "resolution" in given:
+            raise DFAValueError(
+                f"{fl['counts']} and {fl['resolution']} cannot both be given: the counts set the resolution"
+            )
+        given["resolution"] = _counts_resolution(counts, rotary, fl["counts"])
+    values |= {k: _BY_NAME[k].check(v, fl[k], f"give {k} in {_BY_NAME[k].units}") for k, v in given.items()}
+    missing = [fl[k] for k in _PHYSICAL if values.get(k) is None]
+    if missing:
+        _refuse_missing(entry, given, missing, fl)
+    dev = Device(name=label or (entry.name if entry else "custom device"), rotary=rotary, **values)  # type: ignore[arg-type]
+    k = _resolved_stiffness(dev, stiffness, entry, given, fl)
+    same = entry is not None and not given and (label is None or label == entry.name)
+    return ResolvedDevice(dev, k, entry if same else None)
+
+
+def _check_resolve_arguments(
+    name: object, overrides: object, flags: object, label: object, rotary: object, entry: object
+) -> None:
+    """The types of :func:`resolve_device`'s arguments, and not both a name and an entry."""
+    from ..checks import format_value
 
     for arg, mapping in (("overrides", overrides), ("flags", flags)):
         if mapping is not None and not isinstance(mapping, dict):
@@ -509,53 +532,22 @@ def resolve_device(
             f"name = {name!r} and entry = {entry.name!r} cannot both be given: give one device (a catalogue name or "
             "a device file's row)"
         )
-    fl = {k: k for k in (*_PHYSICAL, "stiffness", "counts", "name")} | (flags or {})
-    given = {k: v for k, v in (overrides or {}).items() if v is not None}
-    unknown = sorted(set(given) - set(_PHYSICAL))
-    if unknown:
-        raise DFAValueError(f"overrides has {unknown}: physical values are {', '.join(_PHYSICAL)}")
-    if entry is None and name:
-        entry = get_device(name)
-    values: dict[str, float | None] = {k: getattr(entry, k) for k in _PHYSICAL} if entry else {}
-    rotary = bool(rotary or (entry is not None and entry.rotary))
-    if counts is not None:
-        if "resolution" in given:
-            raise DFAValueError(
-                f"{fl['counts']} and {fl['resolution']} cannot both be given: the counts set the resolution"
-            )
-        given["resolution"] = _counts_resolution(counts, rotary, fl["counts"])
-    values |= _checked(given, fl)
-    missing = [fl[k] for k in _PHYSICAL if values.get(k) is None]
-    if missing:
-        _refuse_missing(entry, given, missing, fl)
-    dev = Device(name=label or (entry.name if entry else "custom device"), rotary=rotary, **values)  # type: ignore[arg-type]
+
+
+def _resolved_stiffness(
+    dev: Device, stiffness: float | None, entry: CatalogueEntry | None, given: dict, fl: dict[str, str]
+) -> float | None:
+    """K: the one given, else the row's, else None; checked > 0, with (μ, β, σ) a float can hold."""
+    from ..checks import check_positive
+    from .device import dimensionless_params
+
     k = stiffness if stiffness is not None else (entry.stiffness if entry else None)
-    if k is not None:
-        k = check_positive(fl["stiffness"], k, f"give the virtual wall stiffness K in {dev.units['stiffness']}")
-        names = {key: fl[key] for key in given} | ({"stiffness": fl["stiffness"]} if stiffness is not None else {})
-        dimensionless_params(dev, k, names)  # refuses μ, β, σ that overflow or vanish, naming these inputs
-    same = entry is not None and not given and (label is None or label == entry.name)
-    return ResolvedDevice(dev, None if k is None else float(k), entry if same else None)
-
-
-def _checked(given: dict[str, float], fl: dict[str, str]) -> dict[str, float | None]:
-    """Physical values checked: mass, resolution and period > 0; damping and Coulomb friction >= 0."""
-    from ..checks import check_nonnegative, check_positive
-
-    out: dict[str, float | None] = {}
-    for k, v in given.items():
-        check = check_positive if k in ("mass", "resolution", "period") else check_nonnegative
-        out[k] = check(fl[k], v, f"give {k} in {_UNITS[k]}")
-    return out
-
-
-_UNITS = {
-    "mass": "kg (rotary: inertia in kg·m²)",
-    "damping": "N·s/m (rotary: N·m·s/rad)",
-    "coulomb": "N (rotary: N·m)",
-    "resolution": "m (rotary: rad)",
-    "period": "s",
-}
+    if k is None:
+        return None
+    k = check_positive(fl["stiffness"], k, f"give the virtual wall stiffness K in {dev.units['stiffness']}")
+    names = {key: fl[key] for key in given} | ({"stiffness": fl["stiffness"]} if stiffness is not None else {})
+    dimensionless_params(dev, k, names)  # refuses μ, β, σ that overflow or vanish, naming these inputs
+    return float(k)
 
 
 def _refuse_missing(entry: CatalogueEntry | None, given: dict, missing: list[str], fl: dict[str, str]) -> None:
@@ -575,8 +567,9 @@ DEVICE_FILE_MAX_BYTES = 100_000
 
 _KINDS = ("haptic device", "experimental testbed", "human")
 _TEXT_KEYS = ("name", "kind", "source", "notes")
-_FILE_KEYS = ("name", "kind", "source", "rotary", *_PHYSICAL, "stiffness", "printed", "notes", "incomplete")
+_FILE_KEYS = ("name", "kind", "source", "rotary", *(f.name for f in _ROW_FIELDS), "printed", "notes", "incomplete")
 _REQUIRED = ("name", *_PHYSICAL)
+_OPTIONAL = tuple(f.name for f in _ROW_FIELDS if not f.required)
 _TEMPLATE = "`dfa devices --template > my_device.toml` writes one"
 
 
@@ -645,62 +638,87 @@ def _file_row(path: str, data: dict) -> dict:
     return rows[0]
 
 
-def _file_value(path: str, key: str, value: object) -> object:
-    """One value of a device file, checked by the rule of its key."""
-    from ..checks import check_nonnegative, check_positive, format_value
+def _file_text(path: str, key: str, value: object) -> str:
+    """``name``, ``kind``, ``source`` or ``notes`` of a device file: text, by the rule of its key."""
+    from ..checks import format_value
 
-    if key in _TEXT_KEYS:
-        if not isinstance(value, str):
-            raise _file_error(path, f"has {key} = {format_value(value)}: it must be text in quotes")
-        text = " ".join(value.split()) if key == "notes" else value.strip()
-        if key == "name" and (not text or len(text) > 100 or not text.isprintable()):
-            raise _file_error(path, f"has name = {value[:40]!r}: it must be printable text of 1 to 100 characters")
-        if key == "kind" and text not in _KINDS:
-            raise _file_error(path, f"has kind = {value[:40]!r}: it must be one of {', '.join(map(repr, _KINDS))}")
-        return text
-    if key in ("rotary", "incomplete"):
-        if not isinstance(value, bool):
-            raise _file_error(path, f"has {key} = {format_value(value)}: it must be true or false")
-        if key == "incomplete" and value:
-            raise _file_error(
-                path,
-                "has incomplete = true: a device file gives every physical value (mass, damping, coulomb, "
-                "resolution, period)",
-            )
-        return value
-    if key == "printed":
-        if not isinstance(value, dict):
-            raise _file_error(path, 'has printed that is not a table: write printed = { mu = "155.2", ... }')
-        unknown = sorted(set(value) - {"mu", "beta", "sigma"})
-        if unknown:
-            raise _unknown(path, unknown, ("mu", "beta", "sigma"), "in printed")
-        out = []
-        for k in ("mu", "beta", "sigma"):
-            if k in value:
-                v = value[k]
-                digits = ""
-                if isinstance(v, str):
-                    digits = v.strip()
-                elif isinstance(v, (int, float)) and not isinstance(v, bool):
-                    digits = repr(v)
-                try:
-                    ok = bool(digits) and math.isfinite(float(Decimal(digits)))
-                except (ArithmeticError, ValueError):
-                    ok = False
-                if not ok:
-                    raise _file_error(path, f"has printed {k} = {format_value(v)}: it must be a finite decimal number")
-                out.append((k, digits))
-        return tuple(out)
+    if not isinstance(value, str):
+        raise _file_error(path, f"has {key} = {format_value(value)}: it must be text in quotes")
+    text = " ".join(value.split()) if key == "notes" else value.strip()
+    if key == "name" and (not text or len(text) > 100 or not text.isprintable()):
+        raise _file_error(path, f"has name = {value[:40]!r}: it must be printable text of 1 to 100 characters")
+    if key == "kind" and text not in _KINDS:
+        raise _file_error(path, f"has kind = {value[:40]!r}: it must be one of {', '.join(map(repr, _KINDS))}")
+    return text
+
+
+def _file_flag(path: str, key: str, value: object) -> bool:
+    """``rotary`` or ``incomplete`` of a device file: true or false (``incomplete`` only false)."""
+    from ..checks import format_value
+
+    if not isinstance(value, bool):
+        raise _file_error(path, f"has {key} = {format_value(value)}: it must be true or false")
+    if key == "incomplete" and value:
+        raise _file_error(
+            path, f"has incomplete = true: a device file gives every physical value ({', '.join(_PHYSICAL)})"
+        )
+    return value
+
+
+def _file_printed(path: str, key: str, value: object) -> tuple[tuple[str, str], ...]:
+    """``printed`` of a device file: a table of the (μ, β, σ) a source printed, as decimal text."""
+    from ..checks import format_value
+
+    if not isinstance(value, dict):
+        raise _file_error(path, 'has printed that is not a table: write printed = { mu = "155.2", ... }')
+    unknown = sorted(set(value) - {"mu", "beta", "sigma"})
+    if unknown:
+        raise _unknown(path, unknown, ("mu", "beta", "sigma"), "in printed")
+    out = []
+    for k in (k for k in ("mu", "beta", "sigma") if k in value):
+        v = value[k]
+        digits = ""
+        if isinstance(v, str):
+            digits = v.strip()
+        elif isinstance(v, (int, float)) and not isinstance(v, bool):
+            digits = repr(v)
+        try:
+            ok = bool(digits) and math.isfinite(float(Decimal(digits)))
+        except (ArithmeticError, ValueError):
+            ok = False
+        if not ok:
+            raise _file_error(path, f"has printed {k} = {format_value(v)}: it must be a finite decimal number")
+        out.append((k, digits))
+    return tuple(out)
+
+
+def _file_number(path: str, key: str, value: object) -> float:
+    """A physical value of a device file (one of the device's fields, or the stiffness): a number by its rule."""
+    from ..checks import format_value
+
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise _file_error(
             path,
             f"has {key} = {format_value(value)}: it must be a number in SI units, without quotes (e.g. {key} = 0.25)",
         )
-    check = check_positive if key in ("mass", "resolution", "period", "stiffness") else check_nonnegative
     try:
-        return check(key, value, f"give {key} in {_UNITS.get(key, 'N/m (rotary: N·m/rad)')}")
+        return _BY_NAME[key].check(value, fix=f"give {key} in {_BY_NAME[key].units}")
     except DFAError as exc:
         raise DeviceFileError(f"device file {path!r}: {exc}") from None
+
+
+#: How each key of a device file is read and checked (its value, the file's path and the key).
+_FILE_READERS: dict[str, Callable[[str, str, object], object]] = {
+    **dict.fromkeys(_TEXT_KEYS, _file_text),
+    **dict.fromkeys(("rotary", "incomplete"), _file_flag),
+    "printed": _file_printed,
+    **dict.fromkeys((f.name for f in _ROW_FIELDS), _file_number),
+}
+
+
+def _file_value(path: str, key: str, value: object) -> object:
+    """One value of a device file, checked by the rule of its key."""
+    return _FILE_READERS[key](path, key, value)
 
 
 def load_device_file(path: str | os.PathLike) -> CatalogueEntry:
@@ -757,14 +775,19 @@ def load_device_file(path: str | os.PathLike) -> CatalogueEntry:
     if missing:
         raise _file_error(
             name,
-            f"lacks {', '.join(missing)}: a device file gives name, mass, damping, coulomb, resolution and period "
-            f"(stiffness is optional; {_TEMPLATE})",
+            f"lacks {', '.join(missing)}: a device file gives {_and(_REQUIRED)} "
+            f"({_and(_OPTIONAL)} {'is' if len(_OPTIONAL) == 1 else 'are'} optional; {_TEMPLATE})",
         )
     values = {k: _file_value(name, k, v) for k, v in row.items()}
     values.pop("incomplete", None)
     fields: dict = {"kind": "haptic device", "source": "", "notes": ""} | values
     fields["source"] = fields["source"] or f"device file {os.path.basename(name)}"
     return CatalogueEntry(**fields)
+
+
+def _and(names: tuple[str, ...]) -> str:
+    """``"a, b and c"``."""
+    return names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
 
 
 def _toml_value(value: object) -> str:
@@ -780,12 +803,7 @@ _TEMPLATE_COMMENTS = {
     "kind": '"haptic device", "experimental testbed" or "human"',
     "source": "where the values come from (a datasheet, a measurement)",
     "rotary": "true: positions in rad, forces in N·m, the mass an inertia in kg·m²",
-    "mass": "moving mass m in kg (rotary: inertia J in kg·m²), > 0",
-    "damping": "viscous friction b in N·s/m (rotary: N·m·s/rad), >= 0",
-    "coulomb": "Coulomb friction c in N (rotary: N·m), >= 0",
-    "resolution": "encoder resolution Δ in m (rotary: rad), > 0: 30 µm is 30e-6",
-    "period": "sample period T in s, > 0: a 1 kHz servo loop is 0.001",
-    "stiffness": "virtual wall stiffness K in N/m (rotary: N·m/rad), > 0; optional",
+    **{f.name: f.comment for f in _ROW_FIELDS},
     "printed": "optional: the (μ, β, σ) your source printed, compared with the recomputed ones",
     "notes": "optional remarks",
 }
@@ -835,9 +853,7 @@ def device_template(entry: CatalogueEntry | None = None) -> str:
             "value; choose a complete row"
         )
     values: dict[str, object] = {"name": e.name, "kind": e.kind, "source": e.source, "rotary": e.rotary}
-    values |= {k: getattr(e, k) for k in _PHYSICAL}
-    if e.stiffness is not None:
-        values["stiffness"] = e.stiffness
+    values |= {f.name: getattr(e, f.name) for f in _ROW_FIELDS if f.required or getattr(e, f.name) is not None}
     lines = [f"{k} = {_toml_value(v)}" for k, v in values.items()]
     if e.printed:
         lines.append("printed = { " + ", ".join(f"{k} = {_toml_value(v)}" for k, v in e.printed) + " }")

@@ -27,6 +27,8 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
+import enum
 import math
 import sys
 from dataclasses import dataclass, field
@@ -47,7 +49,16 @@ from ..errors import DFATypeError, DFAValueError
 from ..plausibility import warn_if_from_outside
 from .hand import Hand
 
-__all__ = ["Params", "Device", "dimensionless_params", "device_units"]
+__all__ = [
+    "Params",
+    "Device",
+    "DeviceField",
+    "DEVICE_FIELDS",
+    "Rule",
+    "STIFFNESS",
+    "dimensionless_params",
+    "device_units",
+]
 
 
 @dataclass(frozen=True)
@@ -84,27 +95,136 @@ class Params:
         return {"mu": self.mu, "beta": self.beta, "sigma": self.sigma}
 
 
-_LINEAR_UNITS = {
-    "mass": "kg",
-    "damping": "N·s/m",
-    "coulomb": "N",
-    "resolution": "m",
-    "period": "s",
-    "stiffness": "N/m",
-    "velocity": "m/s",
-    "position": "m",
-    "force": "N",
-}
-_ROTARY_UNITS = {
-    "mass": "kg·m²",
-    "damping": "N·m·s/rad",
-    "coulomb": "N·m",
-    "resolution": "rad",
-    "period": "s",
-    "stiffness": "N·m/rad",
-    "velocity": "rad/s",
-    "position": "rad",
-    "force": "N·m",
+class Rule(enum.Enum):
+    """The rule a device field's value obeys; its value is the rule as messages and the template write it."""
+
+    POSITIVE = "> 0"
+    NONNEGATIVE = ">= 0"
+
+    def check(self, name: str, value: object, fix: str | None = None) -> float:
+        """``value`` as a float if it obeys the rule (:func:`dfa.checks.check_positive` or
+        :func:`~dfa.checks.check_nonnegative`), else their error naming ``name`` and ``fix``."""
+        check = check_positive if self is Rule.POSITIVE else check_nonnegative
+        return check(name, value, fix)
+
+
+@dataclass(frozen=True)
+class DeviceField:
+    """One physical value of a device: the row of :data:`DEVICE_FIELDS` that every place holding it reads.
+
+    :class:`Device` (its attribute and validation), the catalogue (:class:`~dfa.model.catalogue.CatalogueEntry`,
+    its JSON), device files (their keys and rules), the template (:func:`~dfa.model.catalogue.device_template`),
+    the command line (``--mass`` ... ``--period``) and :func:`device_units` all read the table.
+
+    Attributes
+    ----------
+    name : str
+        The key everywhere: the :class:`Device` attribute, the device file's and the JSON's key; the flag is
+        ``--`` and the name with ``-`` for ``_``.
+    what : str
+        What it is, in words (``"moving mass"``).
+    symbol : str
+        Its symbol (``"m"``); ``rotary_symbol`` for a rotary device (``"J"``), default the same.
+    unit, rotary_unit : str
+        Its SI unit for a linear device (``"kg"``) and for a rotary one (``"kg·m²"``).
+    rule : Rule
+        The rule the value obeys (> 0 or >= 0).
+    required : bool
+        True when every device has it; False for an optional value whose absence (None) means ``absent``.
+    absent : str
+        What None means for an optional value (``"unlimited"``); for a required one, empty.
+    hint : str
+        The fix that :class:`Device`'s message gives; default ``give the <what> <symbol> in <units>``.
+    rotary_what : str
+        What a rotary device calls it, when not the same (``"inertia"``).
+    note : str
+        Said after the rule in the template's comment (``": 30 µm is 30e-6"``).
+    plausibility : str or None
+        The quantity of :data:`dfa.plausibility.RANGES` its value is checked against (a warning, never an
+        error); None for none.
+    """
+
+    name: str
+    what: str
+    symbol: str
+    unit: str
+    rotary_unit: str
+    rule: Rule
+    required: bool = True
+    absent: str = ""
+    hint: str = ""
+    rotary_what: str = ""
+    rotary_symbol: str = ""
+    note: str = ""
+    plausibility: str | None = None
+
+    @property
+    def flag(self) -> str:
+        """The command-line flag (``--mass``, ``--max-force``)."""
+        return "--" + self.name.replace("_", "-")
+
+    @property
+    def described(self) -> str:
+        """What it is and its symbol (``"moving mass m"``)."""
+        return f"{self.what} {self.symbol}"
+
+    @property
+    def units(self) -> str:
+        """Its units for either device (``"kg (rotary: inertia in kg·m²)"``, ``"s"``)."""
+        if self.rotary_unit == self.unit:
+            return self.unit
+        what = f"{self.rotary_what} in " if self.rotary_what else ""
+        return f"{self.unit} (rotary: {what}{self.rotary_unit})"
+
+    @property
+    def fix(self) -> str:
+        """The fix a refused value's message gives (:attr:`hint`, or ``give the <what> <symbol> in <units>``)."""
+        return self.hint or f"give the {self.described} in {self.units}"
+
+    @property
+    def comment(self) -> str:
+        """The template's comment above the key: what, units, rule, note (and ``optional``)."""
+        units = self.unit
+        if self.rotary_unit != self.unit:
+            what = f"{self.rotary_what} {self.rotary_symbol or self.symbol} in " if self.rotary_what else ""
+            units += f" (rotary: {what}{self.rotary_unit})"
+        tail = "" if self.required else f"; optional{f', absent: {self.absent}' if self.absent else ''}"
+        return f"{self.described} in {units}, {self.rule.value}{self.note}{tail}"
+
+    def unit_of(self, rotary: bool) -> str:
+        """Its unit for a rotary (``rotary``) or linear device."""
+        return self.rotary_unit if rotary else self.unit
+
+    def check(self, value: object, name: str | None = None, fix: str | None = None) -> float:
+        """``value`` as a float by :attr:`rule`; the message names ``name`` (default :attr:`name`) and ``fix``
+        (default :attr:`fix`)."""
+        return self.rule.check(self.name if name is None else name, value, self.fix if fix is None else fix)
+
+
+#: The physical values of a :class:`Device`, in its order (paper Table 1): one row each (:class:`DeviceField`).
+DEVICE_FIELDS: tuple[DeviceField, ...] = (
+    DeviceField("mass", "moving mass", "m", "kg", "kg·m²", Rule.POSITIVE, rotary_what="inertia", rotary_symbol="J",
+                hint="give the moving mass in kg (rotary: kg·m²)", plausibility="mass"),
+    DeviceField("damping", "viscous friction", "b", "N·s/m", "N·m·s/rad", Rule.NONNEGATIVE,
+                hint="give the viscous friction b in N·s/m (0 for none)"),
+    DeviceField("coulomb", "Coulomb friction", "c", "N", "N·m", Rule.NONNEGATIVE,
+                hint="give the Coulomb friction c in N (0 for none)"),
+    DeviceField("resolution", "encoder resolution", "Δ", "m", "rad", Rule.POSITIVE,
+                hint="give the encoder resolution Δ in m (rotary: rad)", note=": 30 µm is 30e-6",
+                plausibility="resolution"),
+    DeviceField("period", "sample period", "T", "s", "s", Rule.POSITIVE, hint="give the sample period T in s (1 kHz: 0.001)",
+                note=": a 1 kHz servo loop is 0.001", plausibility="period"),
+)  # fmt: skip
+
+#: The virtual wall's stiffness K that a catalogue row and a device file may give beside the device's fields.
+STIFFNESS = DeviceField("stiffness", "virtual wall stiffness", "K", "N/m", "N·m/rad", Rule.POSITIVE, required=False,
+                        plausibility="stiffness")  # fmt: skip
+
+#: The quantities that are not device fields, each with its (linear, rotary) unit.
+_OTHER_UNITS = {"velocity": ("m/s", "rad/s"), "position": ("m", "rad"), "force": ("N", "N·m")}
+_LINEAR_UNITS = {f.name: f.unit for f in (*DEVICE_FIELDS, STIFFNESS)} | {k: u for k, (u, _r) in _OTHER_UNITS.items()}
+_ROTARY_UNITS = {f.name: f.rotary_unit for f in (*DEVICE_FIELDS, STIFFNESS)} | {
+    k: r for k, (_u, r) in _OTHER_UNITS.items()
 }
 
 
@@ -176,25 +296,10 @@ class Device:
     hand: Hand | None = field(default=None, init=False)
 
     def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "mass", check_positive("mass", self.mass, "give the moving mass in kg (rotary: kg·m²)")
-        )
-        object.__setattr__(
-            self,
-            "damping",
-            check_nonnegative("damping", self.damping, "give the viscous friction b in N·s/m (0 for none)"),
-        )
-        object.__setattr__(
-            self, "coulomb", check_nonnegative("coulomb", self.coulomb, "give the Coulomb friction c in N (0 for none)")
-        )
-        object.__setattr__(
-            self,
-            "resolution",
-            check_positive("resolution", self.resolution, "give the encoder resolution Δ in m (rotary: rad)"),
-        )
-        object.__setattr__(
-            self, "period", check_positive("period", self.period, "give the sample period T in s (1 kHz: 0.001)")
-        )
+        for f in DEVICE_FIELDS:  # each value by its rule; an optional one may be absent (None)
+            value = getattr(self, f.name)
+            if value is not None or f.required:
+                object.__setattr__(self, f.name, f.check(value))
         if not isinstance(self.name, str):
             raise DFATypeError(
                 f"name = {format_value(self.name)} has type {type(self.name).__name__}: it must be text; give the device name"
@@ -204,8 +309,9 @@ class Device:
                 f"rotary = {format_value(self.rotary)} has type {type(self.rotary).__name__}: it must be True or False; pass rotary=True for a rotary joint"
             )
         object.__setattr__(self, "rotary", bool(self.rotary))
-        for quantity in ("mass", "resolution", "period"):  # a value no haptic device has: warn, naming the slip
-            warn_if_from_outside(quantity, getattr(self, quantity), rotary=self.rotary)
+        for f in DEVICE_FIELDS:  # a value no haptic device has: warn, naming the slip
+            if f.plausibility is not None and getattr(self, f.name) is not None:
+                warn_if_from_outside(f.plausibility, getattr(self, f.name), rotary=self.rotary)
 
     # ------------------------------------------------------------------ units
     @property
@@ -268,10 +374,7 @@ class Device:
                 f"hand = {hand.name!r} cannot be added: the device {self.name!r} already holds {self.hand.name!r}; "
                 "call holding() on the bare device"
             )
-        held = Device(
-            self.mass + hand.mass, self.damping + hand.damping, self.coulomb, self.resolution, self.period,
-            name=self.name, rotary=self.rotary,
-        )  # fmt: skip
+        held = dataclasses.replace(self, mass=self.mass + hand.mass, damping=self.damping + hand.damping)
         object.__setattr__(held, "hand", hand)  # not an argument of Device(): mass and damping include it
         return held
 
@@ -280,10 +383,7 @@ class Device:
         """The device without its hand (itself when none holds it): ``mass`` and ``damping`` less the hand's."""
         if self.hand is None:
             return self
-        return Device(
-            self.own_mass, self.own_damping, self.coulomb, self.resolution, self.period, name=self.name,
-            rotary=self.rotary,
-        )  # fmt: skip
+        return dataclasses.replace(self, mass=self.own_mass, damping=self.own_damping)  # hand: None, not an argument
 
     @property
     def own_mass(self) -> float:
@@ -497,18 +597,14 @@ class Device:
         Returns
         -------
         dict
-            ``name``, ``rotary``, ``mass``, ``damping``, ``coulomb``, ``resolution``, ``period``; with a hand
+            ``name``, ``rotary``, then each of :data:`DEVICE_FIELDS` (``mass``, ``damping``, ``coulomb``,
+            ``resolution``, ``period``; an optional one only when given); with a hand
             also ``hand`` (:meth:`Hand.to_dict`), and ``mass`` and ``damping`` include the hand's.
         """
-        out: dict[str, object] = {
-            "name": self.name,
-            "rotary": self.rotary,
-            "mass": self.mass,
-            "damping": self.damping,
-            "coulomb": self.coulomb,
-            "resolution": self.resolution,
-            "period": self.period,
-        }
+        out: dict[str, object] = {"name": self.name, "rotary": self.rotary}
+        for f in DEVICE_FIELDS:  # an optional value that is absent (None) is left out
+            if getattr(self, f.name) is not None or f.required:
+                out[f.name] = getattr(self, f.name)
         return out | self.hand_json()
 
     def hand_json(self) -> dict[str, object]:
