@@ -432,9 +432,10 @@ def resolve_device(
     name : str, optional
         Catalogue device (:func:`get_device` matching); None for a custom device.
     overrides : dict, optional
-        Physical values replacing the catalogue's (or all five for a custom device): ``mass`` in kg (rotary:
-        inertia in kg·m²), ``damping`` in N·s/m (N·m·s/rad), ``coulomb`` in N (N·m), ``resolution`` in m (rad),
-        ``period`` in s. None values are ignored.
+        Physical values replacing the catalogue's (or every required one for a custom device), keyed by the
+        names of :data:`~dfa.model.device.DEVICE_FIELDS`: ``mass`` in kg (rotary: inertia in kg·m²), ``damping``
+        in N·s/m (N·m·s/rad), ``coulomb`` in N (N·m), ``resolution`` in m (rad), ``period`` in s. None values are
+        ignored.
     counts : int, optional
         Encoder counts per revolution (``rotary``) or per metre, instead of ``resolution``: Δ = 2π/N rad or 1/N m.
     rotary : bool

@@ -284,6 +284,11 @@ class Device:
     ImplausibleInputWarning
         For a mass, resolution or period no haptic device has (:mod:`dfa.plausibility`: a resolution above
         1 mm is most likely µm written as m), when the device is built outside dfa (a script, a notebook).
+
+    Notes
+    -----
+    The physical values are the rows of :data:`DEVICE_FIELDS`, each checked by its rule (an optional one, absent,
+    is None); a new value is a row there and an attribute here, in the same order.
     """
 
     mass: float
