@@ -525,11 +525,10 @@ def _wall_arrays(wall: WallParams, contact: np.ndarray | None = None) -> dict[st
     if wall.hand_stiffness:
         out["hand"] = np.array([wall.hand_stiffness], dtype=float)
     if wall.one_sided:
-        a = wall.kernel_args()
-        out["one_sided"] = np.array([a["surface"], a["push"]], dtype=float)
+        out["one_sided"] = np.array([wall.surface, wall.push], dtype=float)
     if wall.passivity_controller:
-        a = wall.kernel_args()
-        out["passivity_controller"] = np.array([a["window"], a["limit"]], dtype=float)  # limit inf: none
+        window, limit = wall.group(PassivityController)
+        out["passivity_controller"] = np.array([window, math.inf if limit is None else limit], dtype=float)  # inf: none
     if contact is not None:
         out["contact"] = contact
     return out
