@@ -370,8 +370,8 @@ class WallParams:
         Returns
         -------
         numpy.ndarray
-            float64: the number of blocks B, then one block per element in the wall's order, each its code, its
-            parameter count m, its state size and its m parameters (:meth:`Element.kernel_block
+            The float64 table: the number of blocks B, then one block per element in the wall's order, each
+            its code, its parameter count m, its state size and its m parameters (:meth:`Element.kernel_block
             <dfa.model.elements.Element.kernel_block>`; the layout and the codes: :mod:`dfa.core.table`).
             ``[0.0]`` for the paper's spring.
 
