@@ -159,7 +159,11 @@ def _kernel_case(case: dict, n: int, repeat: int) -> dict:
     e, e2 = np.empty(0), np.empty((0, 4))
 
     def ours(mod=kernel):
-        mod.simulate_kernel(mu, beta, sigma, 0.0, v0, n, 0, True, 1e6, 8192, e, e, e2, np.empty(mod.NSTATS))
+        st = np.empty(mod.NSTATS)
+        if mod is kernel:
+            kernel.simulate_kernel((mu, beta, sigma), (0.0, v0), (n, 8192, 1e6, True), 0, e, e, e2, st)
+        else:  # a kernel before issue 42 takes its arguments one by one
+            mod.simulate_kernel(mu, beta, sigma, 0.0, v0, n, 0, True, 1e6, 8192, e, e, e2, st)
 
     k = kernel.sample_constants(mu, beta)
     fns = {
@@ -181,14 +185,20 @@ def _kernel_case(case: dict, n: int, repeat: int) -> dict:
 
 
 def _per_run(kernel):
-    """``kernel`` (per-run lengths, bounds and tails) called with serial_kernel's arguments (one of each for all)."""
+    """``kernel`` (per-run lengths, bounds and tails) called with the arguments one by one, as the serial kernel
+    before issue 42 and ``benchmarks/lanes_kernel.py`` take them (one of each for all)."""
 
     def run(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
         k = mus.size
-        per_run = (np.full(k, n), delay, quantize, np.full(k, bound), np.full(k, tail_len))
-        kernel(mus, betas, sigmas, x0s, v0s, *per_run, stats, done, rest)
+        runs = (np.full(k, n), np.full(k, tail_len), np.full(k, bound), quantize)
+        kernel((mus, betas, sigmas), (x0s, v0s), runs, delay, stats, done, rest)
 
     return run
+
+
+def _serial(mus, betas, sigmas, x0s, v0s, n, delay, quantize, bound, tail_len, stats, done, rest):
+    """dfa.core.kernel.serial_kernel called with the arguments one by one (as :func:`_per_run`)."""
+    kernel.serial_kernel((mus, betas, sigmas), (x0s, v0s), (n, tail_len, bound, quantize), delay, stats, done, rest)
 
 
 def bench_kernel(quick: bool) -> dict:
@@ -207,7 +217,7 @@ def bench_kernel(quick: bool) -> dict:
     tail = (nb, 0, True, 1e6, 8192)
     rows = {}
     for name, fn in (
-        ("one run at a time (dfa.core.kernel.serial_kernel)", kernel.serial_kernel),
+        ("one run at a time (dfa.core.kernel.serial_kernel)", _serial),
         ("two runs in flight (dfa.core.batch.batch_kernel, used by maps and searches)", _per_run(batch.batch_kernel)),
         ("4 lanes in registers, no period skip (benchmarks/lanes_kernel.py, an experiment)", lanes_kernel.lanes_kernel),
     ):
@@ -250,7 +260,7 @@ def bench_map_speed(quick: bool) -> dict:
         ),
     }
     tail = (n, 0, True, bound, _tail_length(n, 100.0))
-    runs["map points, one run at a time (serial_kernel), 1 core"] = lambda: kernel.serial_kernel(*pts, *tail, *outs)
+    runs["map points, one run at a time (serial_kernel), 1 core"] = lambda: _serial(*pts, *tail, *outs)
     runs["map points, two runs in flight (dfa.core.batch.batch_kernel), 1 core"] = lambda: _per_run(batch.batch_kernel)(
         *pts, *tail, *outs
     )
@@ -269,7 +279,7 @@ def bench_map_speed(quick: bool) -> dict:
         runs["map points, kernel before issue 16 (41efa15), 1 core"] = before
     plain_kernel(100.0, 0.5, 0.5, 0.0, 1.0, 10, 0, True, bound)
     seconds = {name: best_of(f, 1) for name, f in runs.items()}
-    kernel.serial_kernel(*pts, *tail, *outs)
+    _serial(*pts, *tail, *outs)
     k = kernel.sample_constants(100.0, 0.5)
     floor_ns = 1e9 * cpu_best(lambda: _chain_floor(0.0, 2.0, 1_000_000, k[2], k[1], k[4], k[5]), 3) / 1e6
     return dict(grid=g, seconds=seconds, samples_run=int(outs[1].sum()), chain_floor_ns=floor_ns)
@@ -737,14 +747,12 @@ def bench_controller_kernel(quick: bool) -> str:
 
     def spring():  # delay 1: the spring kernel skips exactly repeated periods only at d = 0
         st = np.empty(kernel.NSTATS)
-        return kernel.simulate_kernel(mu, beta, sigma, 0.0, v0, n, 1, True, 1e6, 8192, e, e, e2, st)[0]
+        return kernel.simulate_kernel((mu, beta, sigma), (0.0, v0), (n, 8192, 1e6, True), 1, e, e, e2, st)[0]
 
     def ctl(c, skip=False):  # (samples run, samples integrated); skip=False integrates every sample
         st = np.empty(kernel.NSTATS)
-        a = c.kernel_args()
-        args = (c.damping, c.filter_pole, c.cutoff is not None, c.lag, c.hand_stiffness, False, 0.0, 0.0,
-                a["pc"], a["window"], a["limit"])  # fmt: skip
-        out = wall_kernel.run_wall_kernel(mu, beta, sigma, 0.0, v0, n, c.delay, True, 1e6, 8192, *args, e, e, st, skip)
+        table = c.kernel_table()
+        out = wall_kernel.run_wall_kernel((mu, beta, sigma), (0.0, v0), (n, 8192, 1e6, True), table, e, e, st, skip)
         return out[0], out[2]
 
     def per_sample(f):
@@ -816,33 +824,7 @@ def bench_controller_design_answer(quick: bool) -> str:
 
     e, st, c = np.empty(0), np.empty(kernel.NSTATS), CP.of(damping=0.5)
     mu, beta, sigma, v0 = (CTL_RUN[k] for k in ("mu", "beta", "sigma", "xi_dot0"))
-    run = (
-        mu,
-        beta,
-        sigma,
-        0.0,
-        v0,
-        50_000,
-        0,
-        True,
-        1e6,
-        8192,
-        c.damping,
-        0.0,
-        False,
-        0.0,
-        0.0,
-        False,
-        0.0,
-        0.0,
-        False,
-        0,
-        math.inf,
-        e,
-        e,
-        st,
-        False,
-    )
+    run = ((mu, beta, sigma), (0.0, v0), (50_000, 8192, 1e6, True), c.kernel_table(), e, e, st, False)
     wall_kernel.run_wall_kernel(*run)
     one = best_of(lambda: wall_kernel.run_wall_kernel(*run), 3)
     cases = [("Delta", "0.1", ["--virtual-damping", "1"]), ("Delta", "0.1", ["--virtual-damping", "1", "--delay", "1"])]

@@ -25,8 +25,19 @@ import numpy as np
 from numba import njit
 
 from dfa.core import kernel
+from dfa.model.elements import PassivityController
 
 __all__ = ["Commands", "controller_run", "simulate_ivp_ctl", "linear_ctl_recursion"]
+
+
+def _args(ctl) -> dict:
+    """The wall's one-sided contact, push and passivity controller, read from its groups (not from the kernel table:
+    this reference stays independent of how the table is packed)."""
+    window, limit = ctl.group(PassivityController) or (0, None)
+    return {
+        "onesided": ctl.one_sided, "surface": ctl.surface, "push": ctl.push, "pc": ctl.passivity_controller,
+        "window": window, "limit": math.inf if limit is None else limit,
+    }  # fmt: skip
 
 
 class Commands:
@@ -49,7 +60,7 @@ class Commands:
     def held(self, x: float) -> float:
         """The energy the wall holds at ξ0 as its observer counts a slow entry: the readings walked one tick at a
         time, at rest, from where the wall's force vanishes (r = 0 up or r = −1 down; outside a one-sided wall)."""
-        a = self.ctl.kernel_args()
+        a = _args(self.ctl)
         if not self.q:  # the continuous spring: the integral of the force
             d = x - a["surface"] if a["onesided"] else x
             return 0.5 * d * d if (d > 0 or not a["onesided"]) else 0.0
@@ -74,7 +85,7 @@ class Commands:
 
     def _controller(self, v: float, w: float, shape, x: float) -> float:
         """The command with the passivity controller's force, from the wall's own command ``w``."""
-        a = self.ctl.kernel_args()
+        a = _args(self.ctl)
         # the command held over the sample just ended; at the first reading the energy the wall holds
         term = self.held(x) if not self.hist else -self.hist[0] * v
         self.energy += term
@@ -102,7 +113,7 @@ class Commands:
             y = 0.0 if first else a * self.y + (1.0 - a) * self.prev_v
         self.prev_r, self.prev_v, self.y = r, v, y
         q = r + 0.5 if self.q else r
-        a = self.ctl.kernel_args()
+        a = _args(self.ctl)
         if a["onesided"]:  # pushes only beyond the surface, never pulls
             inside = q > a["surface"]
             self.inside = inside
@@ -150,7 +161,7 @@ def _stuck(t, fa, c, lag, sigma):
 def simulate_ivp_ctl(mu, beta, sigma, xi0, xi_dot0, samples, ctl, *, quantize=True):
     """Reference trajectory (ξ, ξ') at the samples 0 … samples with controller ``ctl`` (WallParams)."""
     lag, kap = ctl.lag, ctl.hand_stiffness  # a hand stiffness only without a lag (the model refuses both)
-    args = ctl.kernel_args()
+    args = _args(ctl)
     q0 = math.floor(xi0) + 0.5 if quantize else xi0
     # a one-sided wall's run that starts outside moving toward it is an approach at constant speed: the
     # operator's force balances friction and damping until the wall first reads contact, then is the push

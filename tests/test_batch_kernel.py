@@ -118,10 +118,11 @@ def _kernels_agree(pts, n, delay, tail_len, bound=1e4):
 
     k = pts[0].size
     ref = (np.zeros((k, kernel.NSTATS)), np.zeros(k, np.int64), np.zeros(k, np.int64))
-    kernel.serial_kernel(*pts, n, delay, True, bound, tail_len, *ref)
-    per_run = (np.full(k, n, np.int64), delay, True, np.full(k, bound), np.full(k, tail_len, np.int64))
+    devices, initials = pts[:3], pts[3:]
+    kernel.serial_kernel(devices, initials, (n, tail_len, bound, True), delay, *ref)
+    runs = (np.full(k, n, np.int64), np.full(k, tail_len, np.int64), np.full(k, bound), True)
     got = (np.full((k, kernel.NSTATS), 7.0), np.full(k, 7, np.int64), np.full(k, 7, np.int64))
-    batch.batch_kernel(*pts, *per_run, *got)
+    batch.batch_kernel(devices, initials, runs, delay, *got)
     assert np.array_equal(ref[0].view(np.int64), got[0].view(np.int64))  # bits: ±0 and NaN payloads too
     assert np.array_equal(ref[1], got[1]) and np.array_equal(ref[2], got[2])
     return ref
@@ -140,11 +141,11 @@ def test_eq4_batch_runs_each_with_its_own_length_bound_and_tail():
     tails = (rng.random(mu.size) * ns).astype(np.int64)
     for delay in (0, 1):
         st, dn, rs = np.zeros((mu.size, kernel.NSTATS)), np.zeros(mu.size, np.int64), np.zeros(mu.size, np.int64)
-        run_batch(mu, beta, sigma, x0, v0, ns, delay, True, bounds, tails, st, dn, rs)
+        run_batch((mu, beta, sigma), (x0, v0), (ns, tails, bounds, True), delay, st, dn, rs)
         for i in range(mu.size):
             one = np.empty(kernel.NSTATS)
             e = np.empty(0)
-            args = (mu[i], beta[i], sigma[i], x0[i], v0[i], ns[i], delay, True, bounds[i], tails[i])
+            args = ((mu[i], beta[i], sigma[i]), (x0[i], v0[i]), (ns[i], tails[i], bounds[i], True), delay)
             d, r = kernel.simulate_kernel(*args, e, e, np.empty((0, 4)), one)
             assert (d, r) == (dn[i], rs[i]) and np.array_equal(one.view(np.int64), st[i].view(np.int64)), i
         assert (st[:, 8 + 5] > 0).any() and (rs >= 0).any()  # some runs pass their bound, some rest

@@ -21,16 +21,15 @@ from dfa.core import kernel, wall_kernel
 from dfa.model.wall import WallParams
 
 EMPTY = np.empty(0)
-NO_PC = (False, 0, math.inf)  # no passivity controller
 
 
 def _run(mu, beta, sigma, x0, v0, n, ctl, *, quantize=True, bound=1e6, tail_len=None, skip=True):
     """(done, rest, samples integrated, stats) of one unrecorded run of the controller kernel."""
     stats = np.empty(kernel.NSTATS)
     tail = n // 4 if tail_len is None else tail_len
-    args = (mu, beta, sigma, x0, v0, n, ctl.delay, quantize, bound, tail, ctl.damping, ctl.filter_pole)
+    run = (n, tail, bound, quantize)
     done, rest, integrated = wall_kernel.run_wall_kernel(
-        *args, ctl.cutoff is not None, ctl.lag, ctl.hand_stiffness, False, 0.0, 0.0, *NO_PC, EMPTY, EMPTY, stats, skip
+        (mu, beta, sigma), (x0, v0), run, ctl.kernel_table(), EMPTY, EMPTY, stats, skip
     )
     return done, rest, integrated, stats
 
@@ -39,10 +38,8 @@ def _recorded(mu, beta, sigma, x0, v0, n, ctl, *, quantize=True, bound=1e6, tail
     """(done, rest, stats, ξ record, ξ' record) of :func:`dfa.core.wall_kernel.simulate_wall_kernel` with records."""
     stats, rx, rv = np.empty(kernel.NSTATS), np.empty(n + 1), np.empty(n + 1)
     tail = n // 4 if tail_len is None else tail_len
-    args = (mu, beta, sigma, x0, v0, n, ctl.delay, quantize, bound, tail, ctl.damping, ctl.filter_pole)
-    done, rest = wall_kernel.simulate_wall_kernel(
-        *args, ctl.cutoff is not None, ctl.lag, ctl.hand_stiffness, False, 0.0, 0.0, *NO_PC, rx, rv, stats
-    )
+    run = (n, tail, bound, quantize)
+    done, rest = wall_kernel.simulate_wall_kernel((mu, beta, sigma), (x0, v0), run, ctl.kernel_table(), rx, rv, stats)
     return done, rest, stats, rx, rv
 
 
@@ -208,9 +205,8 @@ def test_eq4_serial_controller_kernel_equals_single_every_sample_runs():
     mus, betas, sigmas = np.full(4, 2.0), np.array([2.0, 0.5, 0.0, 1.0]), np.array([0.1, 0.3, 0.2, 0.6])
     x0s, v0s = np.zeros(4), np.array([2.0, 1.0, 3.0, 0.5])
     stats, done, rest = np.empty((4, kernel.NSTATS)), np.empty(4, np.int64), np.empty(4, np.int64)
-    args = (10_000, ctl.delay, True, 1e6, 2500, ctl.damping, ctl.filter_pole, False, ctl.lag, ctl.hand_stiffness,
-            False, 0.0, 0.0, *NO_PC)  # fmt: skip
-    wall_kernel.serial_wall_kernel(mus, betas, sigmas, x0s, v0s, *args, stats, done, rest)
+    run = (10_000, 2500, 1e6, True)
+    wall_kernel.serial_wall_kernel((mus, betas, sigmas), (x0s, v0s), run, ctl.kernel_table(), stats, done, rest)
     for i in range(4):
         d, r, _, s = _run(mus[i], betas[i], sigmas[i], 0.0, v0s[i], 10_000, ctl, tail_len=2500, skip=False)
         assert (done[i], rest[i]) == (d, r) and stats[i].tobytes() == s.tobytes()

@@ -221,32 +221,8 @@ def test_eq4_spring_controller_is_bit_identical(delay, mu, beta, sigma, v0):
     # the controller kernel itself, given the pure spring, follows the spring kernel bit for bit
     n = 3000
     rx, rv, st_ = np.empty(n + 1), np.empty(n + 1), np.empty(kernel.NSTATS)
-    done, rest = wall_kernel.simulate_wall_kernel(
-        mu,
-        beta,
-        sigma,
-        0.0,
-        v0,
-        n,
-        delay,
-        True,
-        1e6,
-        750,
-        0.0,
-        0.0,
-        False,
-        0.0,
-        0.0,
-        False,
-        0.0,
-        0.0,
-        False,
-        0,
-        math.inf,
-        rx,
-        rv,
-        st_,
-    )
+    table = WallParams.of(delay=delay).kernel_table()  # the pure spring with its delay
+    done, rest = wall_kernel.simulate_wall_kernel((mu, beta, sigma), (0.0, v0), (n, 750, 1e6, True), table, rx, rv, st_)
     ref = simulate(mu, beta, sigma, v0, samples=n, wall=WallParams.of(delay=delay))
     stop = n + 1 if rest < 0 and ref.rest_sample is None else min(done, ref.samples_run) + 1
     assert np.array_equal(rx[:stop], ref.xi[:stop], equal_nan=True)

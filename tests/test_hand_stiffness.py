@@ -156,34 +156,12 @@ def test_eq4_hand_period_skip_is_bit_identical_to_every_sample():
     from dfa.core import kernel, wall_kernel
 
     ctl = WallParams.of(damping=0.4, delay=1, hand_stiffness=0.05)
-    args = (
-        5.0,
-        0.1,
-        0.3,
-        0.0,
-        1.5,
-        20_000,
-        1,
-        True,
-        1e6,
-        5000,
-        0.4,
-        0.0,
-        False,
-        0.0,
-        0.05,
-        False,
-        0.0,
-        0.0,
-        False,
-        0,
-        np.inf,
-    )
+    device, initial, run = (5.0, 0.1, 0.3), (0.0, 1.5), (20_000, 5000, 1e6, True)
     out = []
     for skip in (True, False):
         st_ = np.empty(kernel.NSTATS)
         e = np.empty(0)
-        d, r, integrated = wall_kernel.run_wall_kernel(*args, e, e, st_, skip)
+        d, r, integrated = wall_kernel.run_wall_kernel(device, initial, run, ctl.kernel_table(), e, e, st_, skip)
         out.append((d, r, st_.tobytes(), integrated))
     assert out[0][:3] == out[1][:3] and ctl.hand_stiffness == 0.05
 

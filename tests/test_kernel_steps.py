@@ -115,7 +115,8 @@ def test_eq4_run_in_ranges_equals_one_call(case, delay):
     n, tail_len, bound = 5000, 1200, 1e3
     whole = np.empty(kernel.NSTATS)
     e, e2 = np.empty(0), np.empty((0, 4))
-    done, rest = kernel.simulate_kernel(mu, beta, sigma, x0, v0, n, delay, True, bound, tail_len, e, e, e2, whole)
+    run = (n, tail_len, bound, True)
+    done, rest = kernel.simulate_kernel((mu, beta, sigma), (x0, v0), run, delay, e, e, e2, whole)
     stats, state, hist, tail = (
         np.empty(kernel.NSTATS),
         np.empty(kernel.NSTATE),

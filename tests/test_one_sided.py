@@ -76,8 +76,8 @@ def test_eq4_one_sided_runs_against_solve_ivp(wall, mu, beta, sigma, speed):
     assert np.max(np.abs(r.xi[:k] - ix[:k])) <= 1e-8 * scale
     assert np.max(np.abs(r.xi_dot[:k] - iv[:k])) <= 1e-8 * scale
     if r.outcome == "left":  # nothing brings it back: no push, and the reference keeps moving away, outside
-        assert wall.kernel_args()["push"] == 0.0 and np.all(np.diff(ix[k - 1 :]) <= 0.0)
-        assert np.all(np.floor(ix[k - 1 :]) + 0.5 <= wall.kernel_args()["surface"])
+        assert wall.push == 0.0 and np.all(np.diff(ix[k - 1 :]) <= 0.0)
+        assert np.all(np.floor(ix[k - 1 :]) + 0.5 <= wall.surface)
 
 
 def test_eq4_one_sided_free_impact_leaves_and_a_push_keeps_contact():
@@ -124,7 +124,7 @@ def test_one_sided_analyses_without_a_derivation_refuse():
         dfa.limit_cycles(dfa.Params(100.0, 0.1, 0.3), wall=w)
     with pytest.raises(dfa.DFAValueError, match="resolution"):
         Wall(1000.0, (OneSided(0.0), Push(1.0))).params(1e-3)
-    assert Wall(1000.0, (OneSided(0.0), Push(0.9))).params(1e-3, 3e-5).kernel_args()["push"] == pytest.approx(30.0)
+    assert Wall(1000.0, (OneSided(0.0), Push(0.9))).params(1e-3, 3e-5).push == pytest.approx(30.0)
 
 
 def test_one_sided_cli_simulate_text_json_and_refusals(capsys):

@@ -178,7 +178,7 @@ def test_controller_ledger_never_below_the_bound_it_enforces(wall, mu, beta, sig
     scale = 1.0 + np.abs(energy).max()  # the window's sums differ from the reference's in their last bits
     assert np.allclose(r.controller_force()[:n], f, rtol=1e-9, atol=1e-9 * scale)
     assert np.allclose(r.observed_energy()[:n], energy, rtol=1e-12, atol=1e-9 * scale)
-    limit = wall.kernel_args()["limit"]
+    limit = wall.group(PassivityController)[1] or math.inf
     v = np.diff(np.floor(r.xi[:n]), prepend=np.floor(r.xi[0]))
     for h in range(n):
         if f[h] == 0.0:

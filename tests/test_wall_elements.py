@@ -25,7 +25,7 @@ from dfa.analysis.linear_wall import stable_stiffness
 from dfa.analysis.simulation import simulate
 from dfa.checks import check_delay
 from dfa.errors import DFAValueError
-from dfa.model.elements import CommandPolynomials, Element, NotCovered, Parameter
+from dfa.model.elements import CommandPolynomials, Element, KernelBlock, NotCovered, Parameter
 from dfa.model.wall import Wall, WallParams
 
 TOY_REASON = "the toy delay has no proven criterion (a test of the refusal path)"
@@ -60,9 +60,12 @@ class ToyDelay(Element):
     def corner(cls, g: Any, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
         raise NotCovered(TOY_REASON)
 
+    #: Its block in the kernel table is the built-in delay's (same code): the simulator adds the delays up.
+    kernel_code: ClassVar[int] = dfa.Delay.kernel_code
+
     @classmethod
-    def kernel(cls, g: Any) -> dict[str, Any]:
-        return {"delay": int(g)}
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        return KernelBlock(cls.kernel_code, (float(g),), int(g))
 
     @classmethod
     def command(cls, g: Any, h: CommandPolynomials) -> CommandPolynomials:
@@ -97,7 +100,7 @@ def test_toy_element_linear_bound_is_the_summed_delays(d):
 
 @pytest.mark.parametrize("mu, beta, sigma, v0", [(50.0, 0.8, 0.2, 1.0), (20.0, 0.3, 0.7, 3.0), (5.0, 0.1, 0.3, 2.0)])
 def test_toy_element_simulates_as_the_builtin_delay(mu, beta, sigma, v0):
-    """The simulator takes the toy's delay from its kernel arguments: bit for bit the built-in Delay(2)."""
+    """The simulator takes the toy's delay from its kernel block: bit for bit the built-in Delay(2)."""
     toy = simulate(mu, beta, sigma, v0, 4000, wall=WallParams(((dfa.Delay, 1), (ToyDelay, 1))))
     ref = simulate(mu, beta, sigma, v0, 4000, wall=WallParams.of(delay=2))
     assert toy.outcome == ref.outcome and toy.delay == ref.delay == 2

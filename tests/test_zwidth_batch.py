@@ -14,9 +14,10 @@ from dfa.analysis.limits.zwidth import z_width
 from dfa.analysis.simulation import OUTCOMES
 from dfa.core.batch import batch_wall_kernel
 from dfa.core.kernel import NSEG, NSTATS, OSCILLATING, REST, UNDECIDED, UNSTABLE
+from dfa.core.table import stack_tables
 from dfa.core.wall_kernel import simulate_wall_kernel
 from dfa.model.catalogue import get_device
-from dfa.model.wall import Wall
+from dfa.model.wall import Wall, WallParams
 
 
 def _tasks(name, v, d, fc, fbw, grid, speeds, cap=zmod.ZWIDTH_MAX_SAMPLES):
@@ -98,43 +99,23 @@ def test_eq4_batch_ckernel_equals_simulate_ckernel_run_by_run(delay):
     tails = np.maximum(2, ns // rng.integers(2, 8, k)).astype(np.int64)
     damping = np.where(rng.random(k) < 0.2, 0.0, rng.uniform(0, 3, k))
     filtered = rng.random(k) < 0.5
-    pole = np.where(filtered, rng.uniform(0.1, 0.9, k), 0.0)
+    cutoff = rng.uniform(0.02, 0.35, k)  # filter poles e^{−2πν_c} from 0.11 to 0.88
     lag = np.where(rng.random(k) < 0.4, rng.uniform(0.05, 2, k), 0.0)
+    walls = [
+        WallParams.of(damping=damping[i], delay=delay, cutoff=cutoff[i] if filtered[i] else None, lag=lag[i])
+        for i in range(k)
+    ]
+    tables = stack_tables([w.kernel_table() for w in walls])
     stats, done, rest = np.empty((k, NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
-    batch_wall_kernel(
-        mu,
-        beta,
-        sigma,
-        x0,
-        v0,
-        ns,
-        delay,
-        True,
-        bounds,
-        tails,
-        damping,
-        pole,
-        filtered,
-        lag,
-        np.zeros(k),
-        np.zeros(k, dtype=np.bool_),
-        np.zeros(k),
-        np.zeros(k),
-        np.zeros(k, dtype=np.bool_),
-        np.zeros(k, dtype=np.int64),
-        np.full(k, np.inf),
-        stats,
-        done,
-        rest,
-    )
+    batch_wall_kernel((mu, beta, sigma), (x0, v0), (ns, tails, bounds, True), tables, stats, done, rest)
     e = np.empty(0)
     seen = set()
     for i in range(k):
         st = np.empty(NSTATS)
+        run = (ns[i], tails[i], bounds[i], True)
         dn, rs = simulate_wall_kernel(
-            mu[i], beta[i], sigma[i], x0[i], v0[i], ns[i], delay, True, bounds[i], tails[i],
-            damping[i], pole[i], filtered[i], lag[i], 0.0, False, 0.0, 0.0, False, 0, np.inf, e, e, st,
-        )  # fmt: skip
+            (mu[i], beta[i], sigma[i]), (x0[i], v0[i]), run, walls[i].kernel_table(), e, e, st
+        )
         assert (dn, rs) == (done[i], rest[i])
         np.testing.assert_array_equal(st, stats[i])
         seen.add("rest" if rs >= 0 else ("bound" if st[NSEG + 5] > 0 else "full"))

@@ -114,7 +114,7 @@ def approach_start(
     ph = check_real("phase", phase, "give the arrival's phase in samples, in [0, 1)")
     if not 0.0 <= ph < 1.0:
         raise DFAValueError(f"phase = {ph!r} is invalid: it must lie in [0, 1) samples; give e.g. 0.5")
-    engage = OneSided.engage(float(w.kernel_args()["surface"]), q)  # the first position the wall sees
+    engage = OneSided.engage(w.surface, q)  # the first position the wall sees
     start = engage - v * (d - ph)
     if not math.isfinite(start):  # V (D − phase) beyond a float: the start would be −inf
         raise DFAValueError(

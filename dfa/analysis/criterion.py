@@ -887,12 +887,12 @@ def _one_sided_speed(xd: float, x0: float, mu: float | None, wall: WallParams, q
 
 def _surface(wall: WallParams) -> float:
     """The surface s of a one-sided wall, ticks."""
-    return float(wall.kernel_args()["surface"])
+    return wall.surface
 
 
 def _push(wall: WallParams) -> float:
     """The push group p of a one-sided wall (0 without one)."""
-    return float(wall.kernel_args()["push"])
+    return wall.push
 
 
 def _speed(xd: float, x0: float, mu: float | None, wall: WallParams, quantized: bool, history: str) -> float:

@@ -217,7 +217,7 @@ def force_error(result: Any) -> ForceError:
         When the run was not recorded or never entered the wall.
     """
     n = _observed_span(result)
-    s = float(result.wall.kernel_args()["surface"])
+    s = result.wall.surface
     xi, phi = np.asarray(result.xi[:n]), np.asarray(result.applied_force()[:n])
     inside = xi > s
     if not inside.any():

@@ -139,6 +139,7 @@ from ..checks import (
     format_value,
 )
 from ..core import batch, kernel, wall_kernel
+from ..core.table import stack_tables
 from ..errors import DFATypeError, DFAValueError
 from ..model.elements import Coverage, OneSided
 from ..model.wall import WallParams
@@ -695,8 +696,7 @@ class SimulationResult(Result):
             )
         xs = np.ascontiguousarray(self.xi, dtype=float)
         force, energy, control = np.empty(xs.size), np.empty(xs.size), np.empty(xs.size)
-        a = _wall_args(self.wall)
-        wall_kernel.applied_forces(xs, self.delay, self.quantize, *a[:4], *a[5:7], *a[8:], force, energy, control)
+        wall_kernel.applied_forces(xs, self.wall.kernel_table(), self.quantize, force, energy, control)
         for o in (force, energy, control):
             o.flags.writeable = False
         return force, energy, control
@@ -996,13 +996,14 @@ def simulate(
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
     stats = np.empty(kernel.NSTATS)
     run = (m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
+    device, initial, settings = (m, b, s), (x0, v0), (n, run[9], bnd, q)
     moving = _check_history(history, w)
     if not w.covers(Coverage.CLOSED_FORM):
-        done, rest = wall_kernel.simulate_wall_kernel(*run[:10], *_wall_args(w), rx, rv, stats)
+        done, rest = wall_kernel.simulate_wall_kernel(device, initial, settings, w.kernel_table(), rx, rv, stats)
     elif n > CHUNK or moving:
         done, rest = _run_chunked(*run, progress=progress, moving=moving)
     else:
-        done, rest = kernel.simulate_kernel(*run)
+        done, rest = kernel.simulate_kernel(device, initial, settings, d, rx, rv, re, stats)
     code, amp, freq, centre, fpp = kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
     suggest = max(4 * n, default_samples(m, b, s, v0, x0, q, cap=False, wall=w)) if code == kernel.UNDECIDED else None
     en = None
@@ -1078,7 +1079,7 @@ def contact_codes(
     numpy.ndarray of int8
         Indices into :data:`CONTACTS`.
     """
-    engage = OneSided.engage(float(wall.kernel_args()["surface"]), quantize)
+    engage = OneSided.engage(wall.surface, quantize)
     c = np.asarray(codes)
     idx = {k: CONTACTS.index(k) for k in CONTACTS}
     out = np.full(c.shape, idx[ContactOutcome.UNDECIDED], dtype=np.int8)
@@ -1173,36 +1174,27 @@ def wall_run_codes(
     x0: np.ndarray,
     v0: np.ndarray,
     ns: np.ndarray,
-    delay: int,
     bound: np.ndarray,
     walls: Sequence[WallParams],
 ) -> np.ndarray:
     """Outcome codes (:mod:`dfa.core.kernel`) of runs, each with its own wall, in one compiled call.
 
     Run i is what :func:`simulate` makes of (``mu[i]``, …, ``v0[i]``), ``ns[i]`` samples, bound ``bound[i]`` and
-    ``walls[i]`` (WallParams the spring kernel does not run, of delay ``delay``), bit for bit, with simulate()'s
+    ``walls[i]`` (WallParams the spring kernel does not run; its delay included), bit for bit, with simulate()'s
     tail length and default outcome rules (:func:`dfa.core.batch.batch_wall_kernel`, then
     :func:`dfa.core.kernel.classify_batch`). No GIL is held: callers may run several calls on threads.
     """
     k = mu.size
     for w in walls:
         check_hand_resonance(mu, w)
-    groups = (np.array(c) for c in zip(*map(_wall_args, walls), strict=True))
+    tables = stack_tables([w.kernel_table() for w in walls])
     stats, done, rest = np.empty((k, kernel.NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
-    run = (mu, beta, sigma, x0, v0, ns, delay, True, bound, _tail_lengths(ns, mu), *groups)
-    batch.batch_wall_kernel(*run, stats, done, rest)
+    runs = (ns, _tail_lengths(ns, mu), bound, True)
+    batch.batch_wall_kernel((mu, beta, sigma), (x0, v0), runs, tables, stats, done, rest)
     codes = np.empty(k, dtype=np.int64)
     out = (codes, np.empty(k), np.empty(k), np.empty(k), np.empty(k))
-    kernel.classify_batch(mu, ns, done, rest, stats, STABLE_AMPLITUDE, GROWTH, SETTLE, True, *out)
+    kernel.classify_batch(mu, ns, done, rest, stats, (STABLE_AMPLITUDE, GROWTH, SETTLE), True, out)
     return codes
-
-
-def _wall_args(wall: WallParams) -> tuple[float, float, bool, float, float, bool, float, float, bool, int, float]:
-    """(β_B, a, filtered, α, κ_h, one-sided, s, p, passivity controller, its window W, its force limit): the wall's
-    arguments of :mod:`dfa.core.wall_kernel` (:meth:`WallParams.kernel_args`)."""
-    a = wall.kernel_args()
-    keys = ("damping", "pole", "filtered", "lag", "spring", "onesided", "surface", "push", "pc", "window", "limit")
-    return tuple(a[k] for k in keys)
 
 
 def _measured(
@@ -1451,17 +1443,17 @@ def run_points(
     tails = _tail_lengths(ns, mu)
     if wall.covers(Coverage.CLOSED_FORM):
         bounds = np.array(np.broadcast_to(np.asarray(bound, dtype=float), (k,)))
-        batch.batch_kernel(mu, beta, sigma, x0, v0, ns, delay, quantize, bounds, tails, stats, done, rest)
+        batch.batch_kernel((mu, beta, sigma), (x0, v0), (ns, tails, bounds, quantize), delay, stats, done, rest)
     else:
+        table = wall.kernel_table()
         for t in np.unique(tails):
             j = np.flatnonzero(tails == t)
             st = np.empty((j.size, kernel.NSTATS))
             dn = np.empty(j.size, dtype=np.int64)
             rs = np.empty(j.size, dtype=np.int64)
-            pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], int(n), delay, quantize, float(bound), int(t))
-            wall_kernel.serial_wall_kernel(*pts, *_wall_args(wall), st, dn, rs)
+            settings = (int(n), int(t), float(bound), quantize)
+            wall_kernel.serial_wall_kernel((mu[j], beta[j], sigma[j]), (x0[j], v0[j]), settings, table, st, dn, rs)
             stats[j], done[j], rest[j] = st, dn, rs
-    kernel.classify_batch(
-        mu, ns, done, rest, stats, stable_amplitude, growth, settle, quantize, codes, amps, freqs, centres, fpps
-    )
+    rules = (stable_amplitude, growth, settle)
+    kernel.classify_batch(mu, ns, done, rest, stats, rules, quantize, (codes, amps, freqs, centres, fpps))
     return codes, amps, freqs, centres, fpps, done, rest, stats

@@ -485,8 +485,7 @@ def _one_sided_run(
     (dfa.analysis.criterion, "A one-sided wall"; the bilateral spring's claim: ½μV², Q without the push)."""
     from .approach import approach_start
 
-    a = wall.kernel_args()
-    surface, push = float(a["surface"]), float(a["push"])
+    surface, push = wall.surface, wall.push
     x0, v0, d = approach_start(speed, wall=wall, quantize=q)
     n = d + run_samples(mu)
     vstar = speed if bilateral else passivity_criterion(1.0, 1.0, speed, wall=wall, quantized=q, mu=mu).equivalent_speed

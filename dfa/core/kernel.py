@@ -73,6 +73,15 @@ FloatArray: TypeAlias = npt.NDArray[np.float64]
 IntArray: TypeAlias = npt.NDArray[np.int64]
 BoolArray: TypeAlias = npt.NDArray[np.bool_]
 SampleConstants: TypeAlias = tuple[float, float, float, float, float, float]  # sample_constants
+# The grouped arguments of the entry points (simulate_kernel, serial_kernel, dfa.core.batch, dfa.core.wall_kernel):
+Device: TypeAlias = tuple[float, float, float]  # (μ, β, σ) of one run
+Start: TypeAlias = tuple[float, float]  # (ξ0, ξ'0) of one run, ticks and ticks per sample
+RunSettings: TypeAlias = tuple[int, int, float, bool]  # (n samples, tail length, bound |ξ| in ticks, quantize)
+Devices: TypeAlias = tuple[FloatArray, FloatArray, FloatArray]  # (μ, β, σ) of many runs, one array each
+Starts: TypeAlias = tuple[FloatArray, FloatArray]  # (ξ0, ξ'0) of many runs
+BatchRuns: TypeAlias = tuple[IntArray, IntArray, FloatArray, bool]  # per run (n, tail length, bound); one quantize
+Rules: TypeAlias = tuple[float, float, float]  # the outcome rules (stable amplitude, growth, settle) of classify
+Outcomes: TypeAlias = tuple[IntArray, FloatArray, FloatArray, FloatArray, FloatArray]  # classify_batch's outputs
 
 # outcome codes (also the codes of dfa.analysis.maps.StabilityMap.outcome and its .npz file)
 REST = 0  # came to rest: the absorbing state was reached
@@ -502,16 +511,10 @@ def finish(
 
 @njit(cache=True, nogil=True)
 def simulate_kernel(
-    mu: float,
-    beta: float,
-    sigma: float,
-    x0: float,
-    v0: float,
-    n: int,
+    device: Device,
+    initial: Start,
+    run: RunSettings,
     delay: int,
-    quantize: bool,
-    bound: float,
-    tail_len: int,
     rec_x: FloatArray,
     rec_v: FloatArray,
     rec_e: FloatArray,
@@ -519,8 +522,9 @@ def simulate_kernel(
 ) -> tuple[int, int]:
     """Run ``n`` samples; return the number of samples done and the rest sample (−1: none).
 
-    ``rec_x``/``rec_v`` (length n + 1) and ``rec_e`` (n × 4: generated,
-    viscous, Coulomb, stored energy at the end of the sample) are written only
+    ``device`` = (μ, β, σ), ``initial`` = (ξ0, ξ'0) (ticks, ticks per sample), ``run`` = (n, tail length,
+    bound, quantize) (:data:`RunSettings`), ``delay`` d in samples. ``rec_x``/``rec_v`` (length n + 1) and
+    ``rec_e`` (n × 4: generated, viscous, Coulomb, stored energy at the end of the sample) are written only
     when they have that length; pass empty arrays otherwise. ``stats`` (length
     NSTATS) receives the segment peaks of |ξ| (at the sample instants), then
     the tail's min, max (turning points inside samples included),
@@ -531,6 +535,9 @@ def simulate_kernel(
     The run is :func:`start`, :func:`advance` over each segment (split where
     the tail starts), :func:`finish`: callers may run any ranges of samples.
     """
+    mu, beta, sigma = device
+    x0, v0 = initial
+    n, tail_len, bound, quantize = run
     record = rec_x.shape[0] == n + 1
     energy = rec_e.shape[0] == n
     state = np.empty(NSTATE)
@@ -673,17 +680,17 @@ def classify_batch(
     done: IntArray,
     rest: IntArray,
     stats: FloatArray,
-    stable_amplitude: float,
-    growth: float,
-    settle: float,
+    rules: Rules,
     quantize: bool,
-    codes: IntArray,
-    amps: FloatArray,
-    freqs: FloatArray,
-    centres: FloatArray,
-    fpps: FloatArray,
+    out: Outcomes,
 ) -> None:
-    """:func:`classify` for every run of a batch, run i of ``ns[i]`` samples (outputs written in place)."""
+    """:func:`classify` for every run of a batch, run i of ``ns[i]`` samples (outputs written in place).
+
+    ``rules`` = (stable amplitude, growth, settle) of :func:`classify`; ``out`` = (codes, amplitudes,
+    frequencies, centres, force peak-to-peaks), one array each, receives its outputs run by run.
+    """
+    stable_amplitude, growth, settle = rules
+    codes, amps, freqs, centres, fpps = out
     for i in range(mus.shape[0]):
         c, a, f, ce, fp = classify(
             ns[i], done[i], rest[i], stats[i], stable_amplitude, growth, settle, quantize, mus[i]
@@ -697,45 +704,29 @@ def classify_batch(
 
 @njit(cache=True, nogil=True)
 def serial_kernel(
-    mus: FloatArray,
-    betas: FloatArray,
-    sigmas: FloatArray,
-    x0s: FloatArray,
-    v0s: FloatArray,
-    n: int,
+    devices: Devices,
+    initials: Starts,
+    run: RunSettings,
     delay: int,
-    quantize: bool,
-    bound: float,
-    tail_len: int,
     stats: FloatArray,
     done: IntArray,
     rest: IntArray,
 ) -> None:
-    """Independent runs of ``n`` samples, one after the other; nothing recorded.
+    """Independent runs, one after the other; nothing recorded.
 
-    Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``); ``stats[i]``
+    Run i has (μ, β, σ) = (``devices[0][i]``, …) and (ξ0, ξ'0) = (``initials[0][i]``, ``initials[1][i]``);
+    every run has the settings ``run`` and the delay ``delay`` (:func:`simulate_kernel`). ``stats[i]``
     (NSTATS), ``done[i]`` and ``rest[i]`` receive what :func:`simulate_kernel`
     returns for it. :func:`dfa.core.batch.batch_kernel` runs runs of different
     lengths, bounds and tails, two in flight and bit for bit the same (about
     0.8 of this loop's time on map points; four in registers,
     ``benchmarks/lanes_kernel.py``, took more).
     """
+    mus, betas, sigmas = devices
+    x0s, v0s = initials
     empty = np.empty(0)
     empty2 = np.empty((0, 4))
     for i in range(mus.shape[0]):
         done[i], rest[i] = simulate_kernel(
-            mus[i],
-            betas[i],
-            sigmas[i],
-            x0s[i],
-            v0s[i],
-            n,
-            delay,
-            quantize,
-            bound,
-            tail_len,
-            empty,
-            empty,
-            empty2,
-            stats[i],
+            (mus[i], betas[i], sigmas[i]), (x0s[i], v0s[i]), run, delay, empty, empty, empty2, stats[i]
         )

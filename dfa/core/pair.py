@@ -46,9 +46,12 @@ from .kernel import (
     STMIN,
     SV,
     SX,
+    BatchRuns,
+    Devices,
     FloatArray,
     IntArray,
     SampleConstants,
+    Starts,
     advance,
     advance_free,
     at_rest,
@@ -236,22 +239,19 @@ def _next_range(lane: IntArray) -> bool:
 def _load(
     lane: IntArray,
     i: int,
-    x0s: FloatArray,
-    v0s: FloatArray,
-    mus: FloatArray,
-    betas: FloatArray,
-    ns: IntArray,
-    tail_lens: IntArray,
+    devices: Devices,
+    initials: Starts,
+    runs: BatchRuns,
     delay: int,
-    quantize: bool,
     state: FloatArray,
     hist: FloatArray,
     stats: FloatArray,
     consts: FloatArray,
 ) -> None:
     """Start run ``i`` in ``lane`` (state, delay ring, stats cleared, its sample constants, its first range)."""
-    start(x0s[i], v0s[i], delay, quantize, state, hist, stats[i])
-    rate, e1, p1, p2, q1, q2 = sample_constants(mus[i], betas[i])
+    ns, tail_lens, _, quantize = runs
+    start(initials[0][i], initials[1][i], delay, quantize, state, hist, stats[i])
+    rate, e1, p1, p2, q1, q2 = sample_constants(devices[0][i], devices[1][i])
     consts[0], consts[1], consts[2], consts[3], consts[4], consts[5] = rate, e1, p1, p2, q1, q2
     lane[PT], lane[SEG], lane[PART], lane[N], lane[TAIL] = i, 0, -1, ns[i], ns[i] - tail_lens[i]
     _next_range(lane)
@@ -295,88 +295,49 @@ def _book(
 
 
 def pair_kernel(
-    mus: FloatArray,
-    betas: FloatArray,
-    sigmas: FloatArray,
-    x0s: FloatArray,
-    v0s: FloatArray,
-    ns: IntArray,
-    delay: int,
-    quantize: bool,
-    bounds: FloatArray,
-    tail_lens: IntArray,
-    stats: FloatArray,
-    done: IntArray,
-    rest: IntArray,
+    devices: Devices, initials: Starts, runs: BatchRuns, delay: int, stats: FloatArray, done: IntArray, rest: IntArray
 ) -> None:
     """Independent runs, two in flight: run i is :func:`dfa.core.kernel.simulate_kernel` of its own inputs.
 
-    Run i has (μ, β, σ, ξ0, ξ'0) = (``mus[i]``, …, ``v0s[i]``), ``ns[i]`` samples, bound ``bounds[i]``
-    and tail ``tail_lens[i]``; every run has the delay ``delay``. ``stats[i]`` (NSTATS), ``done[i]`` and
-    ``rest[i]`` receive what :func:`dfa.core.kernel.simulate_kernel` returns for it, bit for bit (nothing recorded).
+    Run i has (μ, β, σ) = (``devices[0][i]``, ``devices[1][i]``, ``devices[2][i]``), (ξ0, ξ'0) =
+    (``initials[0][i]``, ``initials[1][i]``) and, from ``runs`` = (ns, tail_lens, bounds, quantize), ``ns[i]``
+    samples, tail ``tail_lens[i]`` and bound ``bounds[i]``; every run has the delay ``delay`` and the encoder
+    ``quantize``. ``stats[i]`` (NSTATS), ``done[i]`` and ``rest[i]`` receive what
+    :func:`dfa.core.kernel.simulate_kernel` returns for it, bit for bit (nothing recorded).
 
     Not compiled itself: it calls :func:`pair_free_kernel` without a delay and :func:`pair_delayed_kernel` with
     one, so that a command without a delay never compiles the delayed loops (numba compiles every branch of a
     kernel, taken or not).
     """
     if delay == 0:
-        pair_free_kernel(mus, betas, sigmas, x0s, v0s, ns, quantize, bounds, tail_lens, stats, done, rest)
+        pair_free_kernel(devices, initials, runs, stats, done, rest)
     else:
-        pair_delayed_kernel(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest)
+        pair_delayed_kernel(devices, initials, runs, delay, stats, done, rest)
 
 
 @njit(cache=True, nogil=True)
 def pair_free_kernel(
-    mus: FloatArray,
-    betas: FloatArray,
-    sigmas: FloatArray,
-    x0s: FloatArray,
-    v0s: FloatArray,
-    ns: IntArray,
-    quantize: bool,
-    bounds: FloatArray,
-    tail_lens: IntArray,
-    stats: FloatArray,
-    done: IntArray,
-    rest: IntArray,
+    devices: Devices, initials: Starts, runs: BatchRuns, stats: FloatArray, done: IntArray, rest: IntArray
 ) -> None:
     """:func:`pair_kernel` without a delay: only :func:`advance_pair` and :func:`dfa.core.kernel.advance_free` compiled."""
-    _pair_runs(mus, betas, sigmas, x0s, v0s, ns, 0, quantize, bounds, tail_lens, stats, done, rest, False)
+    _pair_runs(devices, initials, runs, 0, stats, done, rest, False)
 
 
 @njit(cache=True, nogil=True)
 def pair_delayed_kernel(
-    mus: FloatArray,
-    betas: FloatArray,
-    sigmas: FloatArray,
-    x0s: FloatArray,
-    v0s: FloatArray,
-    ns: IntArray,
-    delay: int,
-    quantize: bool,
-    bounds: FloatArray,
-    tail_lens: IntArray,
-    stats: FloatArray,
-    done: IntArray,
-    rest: IntArray,
+    devices: Devices, initials: Starts, runs: BatchRuns, delay: int, stats: FloatArray, done: IntArray, rest: IntArray
 ) -> None:
     """:func:`pair_kernel` with a delay of ``delay`` >= 1 samples: only :func:`advance_pair_delayed` and
     :func:`dfa.core.kernel.advance` compiled."""
-    _pair_runs(mus, betas, sigmas, x0s, v0s, ns, delay, quantize, bounds, tail_lens, stats, done, rest, True)
+    _pair_runs(devices, initials, runs, delay, stats, done, rest, True)
 
 
 @njit(cache=True, inline="always")
 def _pair_runs(
-    mus: FloatArray,
-    betas: FloatArray,
-    sigmas: FloatArray,
-    x0s: FloatArray,
-    v0s: FloatArray,
-    ns: IntArray,
+    devices: Devices,
+    initials: Starts,
+    runs: BatchRuns,
     delay: int,
-    quantize: bool,
-    bounds: FloatArray,
-    tail_lens: IntArray,
     stats: FloatArray,
     done: IntArray,
     rest: IntArray,
@@ -384,6 +345,8 @@ def _pair_runs(
 ) -> None:
     """The loop of :func:`pair_kernel`; ``delayed`` (a constant where it is inlined) picks the lanes' loops,
     the other branches are pruned before numba compiles them (:func:`_advance_lanes`)."""
+    mus, betas, sigmas = devices
+    _, tail_lens, bounds, quantize = runs
     lanes = np.full((2, NLANE), -1, dtype=np.int64)
     states = np.empty((2, NSTATE))
     hists = np.empty((2, delay + 1))
@@ -394,22 +357,7 @@ def _pair_runs(
     while True:
         for w in range(2):  # an empty lane takes the next run
             if lanes[w, PT] < 0 and nxt < mus.shape[0]:
-                _load(
-                    lanes[w],
-                    nxt,
-                    x0s,
-                    v0s,
-                    mus,
-                    betas,
-                    ns,
-                    tail_lens,
-                    delay,
-                    quantize,
-                    states[w],
-                    hists[w],
-                    stats,
-                    consts[w],
-                )
+                _load(lanes[w], nxt, devices, initials, runs, delay, states[w], hists[w], stats, consts[w])
                 nxt += 1
         if lanes[0, PT] < 0 and lanes[1, PT] < 0:
             return

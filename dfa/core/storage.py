@@ -49,22 +49,8 @@ def storage_runs(
         n = ns[i]
         mu = mus[i]
         tail = min(8192, max(2, n // 4))
-        done, rest = kernel.simulate_kernel(
-            mu,
-            betas[i],
-            sigmas[i],
-            x0s[i],
-            v0s[i],
-            n,
-            delays[i],
-            quantized[i],
-            1.0e6,
-            tail,
-            rx[: n + 1],
-            rv[: n + 1],
-            empty2,
-            stats,
-        )
+        device, initial, run = (mu, betas[i], sigmas[i]), (x0s[i], v0s[i]), (n, tail, 1.0e6, quantized[i])
+        done, rest = kernel.simulate_kernel(device, initial, run, delays[i], rx[: n + 1], rv[: n + 1], empty2, stats)
         c, _a, _f, _c, _fpp = kernel.classify(n, done, rest, stats, 1.0, 1.25, 1.0e-3, quantized[i], mu)
         codes[i] = c
         s0 = 0.5 * mu * v0s[i] * v0s[i] + 0.5 * x0s[i] * x0s[i]

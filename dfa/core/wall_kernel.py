@@ -89,6 +89,12 @@ integrated, then the jump. Same results bit for bit as integrating every
 sample (``run_wall_kernel(..., skip=False)``,
 ``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
 
+The wall reaches this kernel as one float64 array, its kernel table (layout and element codes:
+:mod:`dfa.core.table`; built by :meth:`dfa.model.wall.WallParams.kernel_table`). :func:`decode_table` reads it
+once per run, one loop over its blocks with a branch per element code, into the fixed tuple the hot loop reads
+(``ctl`` of :func:`_sample` and :func:`_advance`, :data:`Controller`); an unknown code is refused
+(:func:`dfa.core.table.check_table` before a call, the compiled decoder again).
+
 Energy bookkeeping is not implemented for the controller path
 (:func:`dfa.simulate` refuses ``energy=True`` with a controller).
 
@@ -111,9 +117,14 @@ from .exprel import phi1, phi2, rho
 from .jit import njit
 from .kernel import (
     NSEG,
+    Device,
+    Devices,
     FloatArray,
     IntArray,
+    RunSettings,
     SampleConstants,
+    Start,
+    Starts,
     sample_constants,
     segment_ranges,
     step,
@@ -121,8 +132,11 @@ from .kernel import (
     tail_stats,
 )
 from .oscillator import hand_sample
+from .table import DAMPER, DELAY, FILTER, HAND, HEAD, LAG, ONE_SIDED, PASSIVITY, PUSH
 
 __all__ = [
+    "decode_table",
+    "run_wall_kernel",
     "rho",
     "lag_motion",
     "lag_sample",
@@ -141,6 +155,42 @@ Model: TypeAlias = tuple[float, float, float, int, bool]  # (μ, β, σ, d, quan
 # (β_B, a, filtered, α, κ_h, one-sided, surface s, push p, passivity controller on, its window W, its force limit):
 # ctl of _sample and _advance
 Controller: TypeAlias = tuple[float, float, bool, float, float, bool, float, float, bool, int, float]
+
+
+@njit(cache=True, nogil=True)
+def decode_table(table: FloatArray) -> tuple[int, Controller]:
+    """The delay d and the hot loop's fixed tuple ``ctl`` (:data:`Controller`) of a kernel table, in one pass.
+
+    Every element's default is the paper's spring (no damper, no filter, …); a block sets its element's fields
+    (a later block of the same kind wins, the delays add up). An unknown code raises ValueError (the compiled
+    guard behind :func:`check_table`).
+    """
+    delay = 0
+    damping, pole, filtered, lag, spring = 0.0, 0.0, False, 0.0, 0.0
+    onesided, surface, push, pc, window, limit = False, 0.0, 0.0, False, 0, math.inf
+    j = 1
+    for _ in range(int(table[0])):
+        code, p = int(table[j]), j + HEAD
+        if code == DELAY:
+            delay += int(table[p])
+        elif code == DAMPER:
+            damping = table[p]
+        elif code == FILTER:
+            pole, filtered = table[p], True
+        elif code == LAG:
+            lag = table[p]
+        elif code == HAND:
+            spring = table[p]
+        elif code == ONE_SIDED:
+            onesided, surface = True, table[p]
+        elif code == PUSH:
+            push = table[p]
+        elif code == PASSIVITY:
+            pc, window, limit = True, int(table[p]), table[p + 1]
+        else:
+            raise ValueError("dfa.core.wall_kernel.decode_table: unknown element code (see check_table)")
+        j = p + int(table[j + 1])
+    return delay, (damping, pole, filtered, lag, spring, onesided, surface, push, pc, window, limit)
 
 
 @njit(cache=True, inline="always")
@@ -694,21 +744,7 @@ def _start(
 
 @njit(cache=True, nogil=True)
 def applied_forces(
-    xs: FloatArray,
-    delay: int,
-    quantize: bool,
-    damping: float,
-    pole: float,
-    filtered: bool,
-    lag: float,
-    onesided: bool,
-    surface: float,
-    pc: bool,
-    window: int,
-    limit: float,
-    out: FloatArray,
-    energy: FloatArray,
-    control: FloatArray,
+    xs: FloatArray, table: FloatArray, quantize: bool, out: FloatArray, energy: FloatArray, control: FloatArray
 ) -> None:
     """The force φ_A on the device at each sample instant of a recorded run (units of KΔ) into ``out``, the
     passivity observer's energy E_obs into ``energy`` (KΔ²) and the passivity controller's force into ``control``.
@@ -719,12 +755,15 @@ def applied_forces(
     command applied from instant h (c_{h−d}, held over [h, h + 1) without a lag) or, with a lag, the
     amplifier's output at the instant; at h = n the force the next sample would apply. ``energy[h]`` is
     E_obs(h), the energy into the wall over the readings 0 … h (:func:`_observe`; over the whole run, whatever
-    the controller's ``window``), for any wall; with ``pc`` the passivity controller acts as in the run and ``control[h]``
-    is the force it added to the command c_h (0 where it did not act).
+    the controller's ``window``), for any wall; with a passivity controller in ``table`` (the wall's kernel table,
+    :mod:`dfa.core.table`) it acts as in the run and ``control[h]`` is the force it added to the command c_h (0 where
+    it did not act). The hand spring and the push do not enter the command: they are ignored.
     """
+    delay, c = decode_table(table)
+    lag = c[3]
+    ctl = (c[0], c[1], c[2], lag, 0.0, c[5], c[6], 0.0, c[8], c[9], c[10])  # no hand, no push
     ring, st = np.empty(delay + 1), np.empty(NCSTATE)
-    pcs = np.zeros(observer_size(delay, window))
-    ctl = (damping, pole, filtered, lag, 0.0, onesided, surface, 0.0, pc, window, limit)  # no hand, no push
+    pcs = np.zeros(observer_size(delay, ctl[9]))
     pcs[PINIT] = held_energy(xs[0], quantize, ctl)
     _start(st, ring, xs[0], 0.0, quantize, ctl, 0.0)
     r_prev, v_prev, y, fa, pos = st[CRP], st[CVP], st[CY], st[CFA], 0
@@ -746,27 +785,10 @@ def applied_forces(
 
 @njit(cache=True, nogil=True)
 def run_wall_kernel(
-    mu: float,
-    beta: float,
-    sigma: float,
-    x0: float,
-    v0: float,
-    n: int,
-    delay: int,
-    quantize: bool,
-    bound: float,
-    tail_len: int,
-    damping: float,
-    pole: float,
-    filtered: bool,
-    lag: float,
-    spring: float,
-    onesided: bool,
-    surface: float,
-    push: float,
-    pc: bool,
-    window: int,
-    limit: float,
+    device: Device,
+    initial: Start,
+    run: RunSettings,
+    table: FloatArray,
     rec_x: FloatArray,
     rec_v: FloatArray,
     stats: FloatArray,
@@ -777,6 +799,7 @@ def run_wall_kernel(
     The run is each of the NSEG segments (split where the tail starts) in
     :func:`_advance`. ``skip=False`` integrates every sample (the reference
     of ``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
+    The wall's ``table`` is decoded once (:func:`decode_table`).
 
     Examples
     --------
@@ -784,12 +807,18 @@ def run_wall_kernel(
     settles on a cycle of its whole state, bit for bit: of 50 001 samples, 231 are integrated.
 
     >>> e, stats = np.empty(0), np.empty(NSEG + 10)
-    >>> ctl = (0.5, math.exp(-0.2 * math.pi), True, 0.2, 0.0, False, 0.0, 0.0, False, 0, math.inf)
-    >>> run_wall_kernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, True)
+    >>> table = np.array([4.0, DELAY, 1, 1, 1.0, DAMPER, 1, 0, 0.5, FILTER, 1, 2, math.exp(-0.2 * math.pi),
+    ...                   LAG, 1, 1, 0.2])
+    >>> run_wall_kernel((2.0, 2.0, 0.1), (0.0, 2.0), (50_001, 8192, 1e6, True), table, e, e, stats, True)
     (50001, -1, 231)
-    >>> run_wall_kernel(2.0, 2.0, 0.1, 0.0, 2.0, 50_001, 1, True, 1e6, 8192, *ctl, e, e, stats, False)
+    >>> run_wall_kernel((2.0, 2.0, 0.1), (0.0, 2.0), (50_001, 8192, 1e6, True), table, e, e, stats, False)
     (50001, -1, 50001)
     """
+    mu, beta, sigma = device
+    x0, v0 = initial
+    n, tail_len, bound, quantize = run
+    delay, ctl = decode_table(table)
+    onesided, pc, window = ctl[5], ctl[8], ctl[9]
     record = rec_x.shape[0] == n + 1
     rx_, rv_ = (rec_x, rec_v) if record else (rec_x[:0], rec_v[:0])
     for i in range(stats.shape[0]):
@@ -798,7 +827,6 @@ def run_wall_kernel(
         stats[NSEG + 5] = -1.0
     st, ring, ref = np.empty(NCSTATE), np.empty(delay + 1), np.empty(_REF + delay)
     tail = np.empty(max(tail_len, 1))
-    ctl = (damping, pole, filtered, lag, spring, onesided, surface, push, pc, window, limit)
     _start(st, ring, x0, v0, quantize, ctl, sigma + beta * v0)
     pcs = np.zeros(observer_size(delay, window) if pc else 0)
     if pc:
@@ -856,125 +884,49 @@ def _finish(
 
 @njit(cache=True, nogil=True)
 def simulate_wall_kernel(
-    mu: float,
-    beta: float,
-    sigma: float,
-    x0: float,
-    v0: float,
-    n: int,
-    delay: int,
-    quantize: bool,
-    bound: float,
-    tail_len: int,
-    damping: float,
-    pole: float,
-    filtered: bool,
-    lag: float,
-    spring: float,
-    onesided: bool,
-    surface: float,
-    push: float,
-    pc: bool,
-    window: int,
-    limit: float,
+    device: Device,
+    initial: Start,
+    run: RunSettings,
+    table: FloatArray,
     rec_x: FloatArray,
     rec_v: FloatArray,
     stats: FloatArray,
 ) -> tuple[int, int]:
-    """Run ``n`` samples with the controller; return (samples done, rest sample or −1).
+    """Run ``n`` samples with the wall; return (samples done, rest sample or −1).
 
-    ``damping`` β_B, ``pole`` a (used when ``filtered``), ``lag`` α, ``spring`` the hand stiffness κ_h
-    (:mod:`dfa.core.oscillator`; not with a lag); ``onesided`` a wall that pushes only while the reading is
-    beyond the surface ``surface`` s (ticks), ``push`` p a constant force toward the wall (KΔ); ``pc`` the passivity
-    controller on (:func:`_command`), ``window`` its observer's window W in samples (0: unbounded), ``limit`` its
-    force limit (KΔ; inf: none). ``rec_x``/``rec_v``
-    (length n + 1) are written when they have that length. ``stats`` as in
-    :func:`dfa.core.kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
+    ``device`` = (μ, β, σ), ``initial`` = (ξ0, ξ'0) (ticks, ticks per sample), ``run`` = (n, tail length,
+    bound, quantize) as for :func:`dfa.core.kernel.simulate_kernel`; ``table`` the wall's kernel table
+    (:mod:`dfa.core.table`; :meth:`dfa.model.wall.WallParams.kernel_table`): its delay d, damper β_B, filter pole a,
+    lag α, hand stiffness κ_h (:mod:`dfa.core.oscillator`; not with a lag), a one-sided wall's surface s (ticks;
+    it pushes only while the reading is beyond it) and push p (a constant force toward the wall, KΔ), and the
+    passivity controller (:func:`_command`) with its observer's window W in samples (0: unbounded) and its
+    force limit (KΔ; inf: none). ``rec_x``/``rec_v`` (length n + 1) are written when they have that length.
+    ``stats`` as in :func:`dfa.core.kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
     Unrecorded runs skip repeated periods (:func:`run_wall_kernel`; same results bit for bit).
     """
-    done, rest, _ = run_wall_kernel(
-        mu,
-        beta,
-        sigma,
-        x0,
-        v0,
-        n,
-        delay,
-        quantize,
-        bound,
-        tail_len,
-        damping,
-        pole,
-        filtered,
-        lag,
-        spring,
-        onesided,
-        surface,
-        push,
-        pc,
-        window,
-        limit,
-        rec_x,
-        rec_v,
-        stats,
-        True,
-    )
+    done, rest, _ = run_wall_kernel(device, initial, run, table, rec_x, rec_v, stats, True)
     return done, rest
 
 
 @njit(cache=True, nogil=True)
 def serial_wall_kernel(
-    mus: FloatArray,
-    betas: FloatArray,
-    sigmas: FloatArray,
-    x0s: FloatArray,
-    v0s: FloatArray,
-    n: int,
-    delay: int,
-    quantize: bool,
-    bound: float,
-    tail_len: int,
-    damping: float,
-    pole: float,
-    filtered: bool,
-    lag: float,
-    spring: float,
-    onesided: bool,
-    surface: float,
-    push: float,
-    pc: bool,
-    window: int,
-    limit: float,
+    devices: Devices,
+    initials: Starts,
+    run: RunSettings,
+    table: FloatArray,
     stats: FloatArray,
     done: IntArray,
     rest: IntArray,
 ) -> None:
-    """:func:`simulate_wall_kernel` for independent runs, one after the other; nothing recorded."""
+    """:func:`simulate_wall_kernel` for independent runs, one after the other; nothing recorded.
+
+    Run i has (μ, β, σ) = (``devices[0][i]``, …) and (ξ0, ξ'0) = (``initials[0][i]``, ``initials[1][i]``);
+    every run has the settings ``run`` and the wall ``table``.
+    """
     empty = np.empty(0)
+    mus, betas, sigmas = devices
+    x0s, v0s = initials
     for i in range(mus.shape[0]):
         done[i], rest[i] = simulate_wall_kernel(
-            mus[i],
-            betas[i],
-            sigmas[i],
-            x0s[i],
-            v0s[i],
-            n,
-            delay,
-            quantize,
-            bound,
-            tail_len,
-            damping,
-            pole,
-            filtered,
-            lag,
-            spring,
-            onesided,
-            surface,
-            push,
-            pc,
-            window,
-            limit,
-            empty,
-            empty,
-            stats[i],
+            (mus[i], betas[i], sigmas[i]), (x0s[i], v0s[i]), run, table, empty, empty, stats[i]
         )

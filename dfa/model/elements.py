@@ -9,7 +9,8 @@ rotary device uses rad, N·m, kg·m²) and states, as class attributes and class
 - :meth:`Element.corner`: its contribution to the corner (β₀, σ₀) of the passivity criterion (eq. 6 extended,
   :mod:`dfa.analysis.criterion`), or :class:`NotCovered` with the reason no sound criterion covers it;
 - :attr:`Element.colgate_schenkel`: why the Colgate–Schenkel condition does not cover it (None: it does);
-- :meth:`Element.kernel`: the arguments of the compiled simulator (:mod:`dfa.core.wall_kernel`) it sets;
+- :attr:`Element.kernel_code` and :meth:`Element.kernel_block`: its code and block in the wall's kernel table, the
+  one array the compiled simulator reads (:mod:`dfa.core.table`, :class:`KernelBlock`);
 - :meth:`Element.command` and :meth:`Element.plant`: its transfer function, as polynomials of the exact
   sampled loop (:mod:`dfa.analysis.linear_wall`), whose frequency responses the describing function uses;
 - :attr:`Element.sweep_points`: how many stiffnesses a K_max sweep may simulate with it (run cost).
@@ -53,6 +54,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ..checks import check_bool, check_delay, check_nonnegative, check_positive, check_real, format_value
+from ..core import table as kt
 from ..errors import DFAError, DFAValueError
 
 __all__ = [
@@ -63,6 +65,7 @@ __all__ = [
     "GroupRangeError",
     "Parameter",
     "FlagRow",
+    "KernelBlock",
     "NotCovered",
     "CommandPolynomials",
     "unit_circle_w",
@@ -300,6 +303,18 @@ class FlagRow(NamedTuple):
     unit: str = ""
 
 
+class KernelBlock(NamedTuple):
+    """An element's block of the wall's kernel table (:mod:`dfa.core.table`), for one group.
+
+    ``code`` is the element's code (:attr:`Element.kernel_code`), ``params`` its float parameters
+    (dimensionless: ticks, samples, KΔ) and ``state`` the floats of state it adds to the loop between samples.
+    """
+
+    code: int
+    params: tuple[float, ...]
+    state: int
+
+
 @dataclass(frozen=True)
 class CommandPolynomials:
     """The wall's command H(z) = (N₁ + β_B N₂)/(D_H z^d) as polynomials in w = z − 1 (highest power first).
@@ -380,6 +395,8 @@ class Element(abc.ABC, Generic[G]):
     needs_resolution: ClassVar[bool] = False
     #: Why the linear loop (exact linear bound, describing function) does not cover it (None: it does).
     linear_reason: ClassVar[str | None] = None
+    #: Its code in the wall's kernel table (:data:`dfa.core.table.CODES`), one per element class.
+    kernel_code: ClassVar[int]
 
     def __init_subclass__(cls, **kwargs: object) -> None:
         super().__init_subclass__(**kwargs)
@@ -554,8 +571,9 @@ class Element(abc.ABC, Generic[G]):
         return 1.0
 
     @classmethod
-    def kernel(cls, g: Any) -> dict[str, Any]:
-        """Give the compiled simulator's arguments the element sets (:mod:`dfa.core.wall_kernel`).
+    @abc.abstractmethod
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        """Give the element's block of the wall's kernel table (:mod:`dfa.core.table`).
 
         Parameters
         ----------
@@ -564,11 +582,9 @@ class Element(abc.ABC, Generic[G]):
 
         Returns
         -------
-        dict
-            Some of ``delay`` (added up), ``damping``, ``pole``, ``filtered``, ``lag``, ``spring``, ``onesided``,
-            ``surface``, ``push``.
+        KernelBlock
+            Its :attr:`kernel_code`, its float parameters (the table's column for that code) and its state size.
         """
-        return {}
 
     @classmethod
     def command(cls, g: G, h: CommandPolynomials) -> CommandPolynomials:  # type: ignore[misc]  # G is covariant (module note at G)
@@ -812,6 +828,7 @@ class Delay(Element[int]):
     """
 
     delay: int
+    kernel_code: ClassVar[int] = kt.DELAY
     parameter: ClassVar[Parameter] = Parameter(
         "delay", ("samples", "samples"), "--delay", "D",
         "computational delay in whole samples: the force of sample h uses the reading of sample h − D (default 0)",
@@ -842,8 +859,8 @@ class Delay(Element[int]):
         return float(g), 0.0
 
     @classmethod
-    def kernel(cls, g: Any) -> dict[str, Any]:
-        return {"delay": int(g)}
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        return KernelBlock(cls.kernel_code, (float(g),), int(g))  # the d pending commands
 
     @classmethod
     def command(cls, g: int, h: CommandPolynomials) -> CommandPolynomials:
@@ -873,6 +890,7 @@ class Damper(Element[float]):
     """
 
     damping: float
+    kernel_code: ClassVar[int] = kt.DAMPER
     parameter: ClassVar[Parameter] = Parameter(
         "damping", ("N·s/m", "N·m·s/rad"), "--virtual-damping", "B",
         "virtual damper B >= 0 in N·s/m (rotary: N·m·s/rad) on the backward-difference velocity (default: none)",
@@ -900,8 +918,8 @@ class Damper(Element[float]):
         return float(g), (velocity_gain * float(g) if quantized else 0.0)
 
     @classmethod
-    def kernel(cls, g: Any) -> dict[str, Any]:
-        return {"damping": float(g)}
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @classmethod
     def command(cls, g: float, h: CommandPolynomials) -> CommandPolynomials:
@@ -948,6 +966,7 @@ class VelocityFilter(Element[float]):
     """
 
     filter_cutoff: float
+    kernel_code: ClassVar[int] = kt.FILTER
     parameter: ClassVar[Parameter] = Parameter(
         "filter_cutoff", ("Hz", "Hz"), "--velocity-filter", "HZ",
         "cutoff in Hz of a first-order low-pass on the velocity, below the Nyquist frequency 1/(2T) "
@@ -1009,8 +1028,8 @@ class VelocityFilter(Element[float]):
         return cls.pole_gap(g)
 
     @classmethod
-    def kernel(cls, g: Any) -> dict[str, Any]:
-        return {"pole": cls.pole(g), "filtered": True}
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        return KernelBlock(cls.kernel_code, (cls.pole(g),), 2)  # y_{h−1}, v_{h−1}
 
     @classmethod
     def command(cls, g: float, h: CommandPolynomials) -> CommandPolynomials:
@@ -1042,6 +1061,7 @@ class AmplifierLag(Element[float]):
     """
 
     amplifier_bandwidth: float
+    kernel_code: ClassVar[int] = kt.LAG
     parameter: ClassVar[Parameter] = Parameter(
         "amplifier_bandwidth", ("Hz", "Hz"), "--amplifier-bandwidth", "HZ",
         "bandwidth in Hz of the current amplifier, a first-order lag τ_a = 1/(2π f_bw) (default: ideal)",
@@ -1098,8 +1118,8 @@ class AmplifierLag(Element[float]):
         )
 
     @classmethod
-    def kernel(cls, g: Any) -> dict[str, Any]:
-        return {"lag": float(g)}
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        return KernelBlock(cls.kernel_code, (float(g),), 1)  # φ_A
 
     @classmethod
     def plant(cls, g: float, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
@@ -1158,6 +1178,7 @@ class HandSpring(Element[float]):
     """
 
     hand_stiffness: float
+    kernel_code: ClassVar[int] = kt.HAND
     parameter: ClassVar[Parameter] = Parameter(
         "hand_stiffness", ("N/m", "N·m/rad"), "--hand-stiffness", "X",
         "hand stiffness k_h to a fixed reference at the wall's origin, in N/m (rotary: N·m/rad) (default: none)",
@@ -1183,8 +1204,8 @@ class HandSpring(Element[float]):
         return g == 0.0
 
     @classmethod
-    def kernel(cls, g: Any) -> dict[str, Any]:
-        return {"spring": float(g)}
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @classmethod
     def plant(cls, g: float, rate: float, mu: float) -> tuple[np.ndarray, np.ndarray] | None:
@@ -1279,11 +1300,12 @@ class OneSided(Element[float]):
 
     Examples
     --------
-    >>> OneSided().group(1e-3, 1000.0), OneSided.kernel(0.25)["surface"]
-    (0.0, 0.25)
+    >>> OneSided().group(1e-3, 1000.0), OneSided.kernel_block(0.25)
+    (0.0, KernelBlock(code=6, params=(0.25,), state=0))
     """
 
     surface: float = 0.0
+    kernel_code: ClassVar[int] = kt.ONE_SIDED
     parameter: ClassVar[Parameter] = Parameter(
         "surface", ("ticks", "ticks"), "--surface", "TICKS",
         "with --one-sided: the surface's position in encoder ticks (default 0, the paper's origin)",
@@ -1325,8 +1347,8 @@ class OneSided(Element[float]):
         return 0.0, 0.0  # the spring's corner; only alone (dfa.model.wall.WallParams.uncovered), see the class
 
     @classmethod
-    def kernel(cls, g: Any) -> dict[str, Any]:
-        return {"onesided": True, "surface": float(g)}
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @staticmethod
     def contact_excess(surface: float, speed: float, quantized: bool = True) -> float:
@@ -1497,6 +1519,7 @@ class Push(Element[float]):
     """
 
     push: float
+    kernel_code: ClassVar[int] = kt.PUSH
     parameter: ClassVar[Parameter] = Parameter(
         "push", ("N", "N·m"), "--push", "N",
         "with --one-sided: the operator's constant force toward the wall in N (rotary: N·m) (default: none)",
@@ -1559,8 +1582,8 @@ class Push(Element[float]):
         return 0.0, 0.0  # on a one-sided wall only (WallParams.uncovered); it enters V* (OneSided.contact_speed)
 
     @classmethod
-    def kernel(cls, g: Any) -> dict[str, Any]:
-        return {"push": float(g)}
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        return KernelBlock(cls.kernel_code, (float(g),), 0)
 
 
 _PC_SWITCHES = "its damper switches with the observed energy, a gain that depends on the run's history"
@@ -1627,6 +1650,7 @@ class PassivityController(Element[tuple[int, float | None]]):
 
     window: float | None = None
     force_limit: float | None = None
+    kernel_code: ClassVar[int] = kt.PASSIVITY
     parameter: ClassVar[Parameter] = Parameter(
         "force_limit", ("N", "N·m"), "--pc-force-limit", "N",
         "with --passivity-controller: the most force it adds, in N (rotary: N·m) (default: no limit, the textbook "
@@ -1711,9 +1735,10 @@ class PassivityController(Element[tuple[int, float | None]]):
         raise NotCovered(_PC_NOT_COVERED)
 
     @classmethod
-    def kernel(cls, g: Any) -> dict[str, Any]:
+    def kernel_block(cls, g: Any) -> KernelBlock:
         w, limit = g
-        return {"pc": True, "window": int(w), "limit": math.inf if limit is None else float(limit)}
+        params = (float(w), math.inf if limit is None else float(limit))
+        return KernelBlock(cls.kernel_code, params, 5 + int(w))  # E_obs, window position, f, total, E_0, W terms
 
     @classmethod
     def group_json(cls, g: tuple[int, float | None]) -> dict[str, object]:

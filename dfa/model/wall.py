@@ -15,7 +15,7 @@ paper's spring (eq. 1-2) and every result for it is the spring-only result.
 Dimensionless form (beside paper Table 1, τ = t/T, ξ = x/Δ, φ = F/(KΔ)): :class:`WallParams` holds each
 element's group (β_B = B/(KT), ν_c = f_c T, α = τ_a/T, d), so that φ_cmd,h = −(⌊ξ_{h−d}⌋ + ½) − β_B ỹ_{h−d},
 α φ_A' = φ_cmd − φ_A. It composes the elements' mathematics for the analyses: the criterion's corner
-(:meth:`WallParams.corner`), the simulator's arguments (:meth:`WallParams.kernel_args`), the exact sampled
+(:meth:`WallParams.corner`), the simulator's kernel table (:meth:`WallParams.kernel_table`), the exact sampled
 loop (:meth:`WallParams.command`, :meth:`WallParams.plant`).
 
 Examples
@@ -38,12 +38,13 @@ import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, TypeVar, cast
+from typing import TypeVar, cast
 
 import numpy as np
 import numpy.typing as npt
 
 from ..checks import check_positive, format_value
+from ..core.table import check_table
 from ..errors import DFATypeError, DFAValueError
 from ..plausibility import warn_if_from_outside
 from ..results.jsonable import explain_nulls
@@ -234,7 +235,8 @@ class WallParams:
     @property
     def delay(self) -> int:
         """The computational delay d in samples: what every element delays the command by (0: none)."""
-        return int(self.kernel_args()["delay"])
+        blocks = (k.kernel_block(g) for k, g in self.groups)
+        return sum(int(b.params[0]) for b in blocks if b.code == Delay.kernel_code)
 
     @property
     def cutoff(self) -> float | None:
@@ -258,14 +260,24 @@ class WallParams:
         return self._number(HandSpring)
 
     @property
+    def surface(self) -> float:
+        """A one-sided wall's surface s in encoder ticks (0 for a bilateral wall; :class:`~dfa.model.elements.OneSided`)."""
+        s = self.group(OneSided)
+        return 0.0 if s is None else float(s)
+
+    @property
+    def push(self) -> float:
+        """The push p = F_p/(K Δ) toward a one-sided wall (0: none; :class:`~dfa.model.elements.Push`)."""
+        return self._number(Push)
+
+    @property
     def amplifier_pole(self) -> float:
         """Decay e^{−1/α} of the amplifier's force error over one sample (0 without lag)."""
         return 0.0 if self.lag == 0.0 else math.exp(-1.0 / self.lag)
 
     @property
     def is_spring(self) -> bool:
-        """True when the spring's compiled kernel runs the loop: the paper's spring with any delay
-        (:attr:`~dfa.model.elements.Coverage.CLOSED_FORM`)."""
+        """True when the spring's compiled kernel runs the loop (Coverage.CLOSED_FORM: the spring, any delay)."""
         return self.covers(Coverage.CLOSED_FORM)
 
     # ------------------------------------------------------------------ composed mathematics
@@ -376,6 +388,7 @@ class WallParams:
         Returns
         -------
         Covered
+            The flags of the analyses that cover the wall, and the reason for each one that does not.
 
         Examples
         --------
@@ -412,27 +425,31 @@ class WallParams:
         Returns
         -------
         bool
+            True when the wall's coverage holds every flag of ``what``.
         """
         return self.coverage().covers(what)
 
-    def kernel_args(self) -> dict[str, Any]:
-        """Give the compiled simulator's arguments (:mod:`dfa.core.wall_kernel`).
+    def kernel_table(self) -> np.ndarray:
+        """Give the wall's kernel table, the one array the compiled simulator reads (:mod:`dfa.core.wall_kernel`).
 
         Returns
         -------
-        dict
-            ``delay`` (samples), ``damping`` β_B, ``pole`` a, ``filtered``, ``lag`` α, ``spring`` κ_h (the hand
-            stiffness), ``onesided``, ``surface`` s, ``push`` p, and the passivity controller's ``pc`` (on),
-            ``window`` W (samples; 0: unbounded) and ``limit`` (K Δ; inf: none), from every element.
+        numpy.ndarray
+            The float64 table: the number of blocks B, then one block per element in the wall's order, each
+            its code, its parameter count m, its state size and its m parameters (:meth:`Element.kernel_block
+            <dfa.model.elements.Element.kernel_block>`; the layout and the codes: :mod:`dfa.core.table`).
+            ``[0.0]`` for the paper's spring.
+
+        Examples
+        --------
+        >>> WallParams.of(damping=0.5, delay=1).kernel_table().tolist()   # Delay (code 1), Damper (code 2)
+        [2.0, 1.0, 1.0, 1.0, 1.0, 2.0, 1.0, 0.0, 0.5]
         """
-        out: dict[str, Any] = {
-            "delay": 0, "damping": 0.0, "pole": 0.0, "filtered": False, "lag": 0.0, "spring": 0.0,
-            "onesided": False, "surface": 0.0, "push": 0.0, "pc": False, "window": 0, "limit": math.inf,
-        }  # fmt: skip
+        out = [float(len(self.groups))]
         for k, g in self.groups:
-            for key, value in k.kernel(g).items():
-                out[key] = out[key] + value if key == "delay" else value
-        return out
+            code, params, state = k.kernel_block(g)
+            out += [float(code), float(len(params)), float(state), *params]
+        return check_table(np.array(out, dtype=np.float64))
 
     def command(self) -> CommandPolynomials:
         """Give the wall's command H(z) = (N₁ + β_B N₂)/(D_H z^d) as polynomials.

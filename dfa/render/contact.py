@@ -49,10 +49,9 @@ def contact_line(wall: WallParams, samples: int, speed: float) -> str:
     >>> contact_line(WallParams(((OneSided, 0.0),)), 3, 2.0)
     'contact: one-sided wall, surface at 0 ticks, no push; the run starts 3 samples before the device reaches it at 2 ticks/sample, with the memory of that approach'
     """
-    a = wall.kernel_args()
-    push = f"push p = F_p/(KΔ) = {number(a['push'], 4)}" if a["push"] else "no push"
+    push = f"push p = F_p/(KΔ) = {number(wall.push, 4)}" if wall.push else "no push"
     return (
-        f"contact: one-sided wall, surface at {number(a['surface'], 4)} ticks, {push}; the run starts {samples} "
+        f"contact: one-sided wall, surface at {number(wall.surface, 4)} ticks, {push}; the run starts {samples} "
         f"samples before the device reaches it at {number(speed, 4)} ticks/sample, with the memory of that approach"
     )
 

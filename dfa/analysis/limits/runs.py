@@ -228,7 +228,7 @@ def _batched_outcomes(jobs: list[tuple], delay: int, workers: int, spring: bool)
     def chunk(j: np.ndarray) -> np.ndarray:
         pts = (mu[j], beta[j], sigma[j], x0[j], v0[j], n[j])
         if not spring:
-            return wall_run_codes(*pts, delay, bound[j], [walls[i] for i in j])
+            return wall_run_codes(*pts, bound[j], [walls[i] for i in j])  # each wall's table holds the delay
         return run_points(*pts, walls[j[0]], True, bound[j], STABLE_AMPLITUDE, GROWTH, SETTLE)[0]  # simulate()'s rules
 
     # the compiled kernels release the GIL: threads overlap the chunks, results are per run, in order (dfa._parallel)

@@ -441,7 +441,7 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
         if w.covers(Coverage.CLOSED_FORM):
             return run_points(mu[i], beta[i], sigma[i], x0[i], v0[i], ns, w, True, bound[i], STABLE_AMPLITUDE, GROWTH,
                               SETTLE)[0]  # fmt: skip
-        return wall_run_codes(mu[i], beta[i], sigma[i], x0[i], v0[i], ns, w.delay, bound[i], [walls[j] for j in i])
+        return wall_run_codes(mu[i], beta[i], sigma[i], x0[i], v0[i], ns, bound[i], [walls[j] for j in i])
 
     every = np.arange(len(runs))
     codes, _ = decide_undecided(codes_of(every, n), n, kernel.UNDECIDED, codes_of)  # as the design runs
