@@ -24,10 +24,10 @@ from ._io import staged_folder
 from .analysis.design import DesignAnalysis, design_analysis, resolve_design_inputs
 from .checks import check_bool, check_choice, check_int, format_value
 from .errors import DFATypeError, DFAValueError
+from .jsonable import dumps, explain_nulls, round_floats, to_jsonable
 from .model.catalogue import CatalogueEntry
 from .model.device import Device
 from .model.wall import Wall
-from .results.jsonable import dumps, explain_nulls, round_floats, to_jsonable
 from .results.status import ReportStatus
 
 __all__ = ["ReportResult", "design_report", "report_name", "report_slug", "write_design_report"]

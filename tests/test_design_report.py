@@ -65,7 +65,7 @@ def test_design_analysis_numbers_equal_the_api(impulse):
 def test_design_analysis_is_frozen_and_json_able(impulse):
     with pytest.raises(AttributeError):
         impulse.stiffness = 1.0  # type: ignore[misc]
-    d = json.loads(dfa.results.jsonable.dumps(impulse.to_dict(), ensure_ascii=False))
+    d = json.loads(dfa.jsonable.dumps(impulse.to_dict(), ensure_ascii=False))
     assert d["limits"]["k_max"] == written(impulse.limits.k_max)
     assert d["criterion"]["passive"] is True and d["status"] == "ok"
     assert set(d["growth_thresholds"]) == {"half-delay", "zoh"}

@@ -32,9 +32,9 @@ from dfa.analysis.design import design_analysis
 from dfa.analysis.linear_wall import stable_stiffness
 from dfa.cli import main
 from dfa.errors import DFAValueError
+from dfa.jsonable import dumps
 from dfa.model.wall import Wall, WallParams
 from dfa.render.document import design_markdown
-from dfa.results.jsonable import dumps
 
 SMALL = dict(map_grid=5, samples=3000, n_jobs=1)  # a small map: the numbers of the text do not depend on it
 GOLDEN = Path(__file__).resolve().parent / "golden"

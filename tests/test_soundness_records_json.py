@@ -12,7 +12,7 @@ import pytest
 
 from dfa.analysis.soundness import CriterionSoundness, Population, criterion_soundness
 from dfa.errors import DFAValueError
-from dfa.results.jsonable import dumps, to_jsonable
+from dfa.jsonable import dumps, to_jsonable
 from dfa.results.status import SoundnessStatus
 
 

@@ -24,12 +24,12 @@ import numpy as np
 from .._parallel import progress_bar
 from ..checks import check_int, check_positive, check_real, check_speed, check_type, format_value
 from ..errors import DFATypeError, DFAValueError
+from ..jsonable import explain_nulls, to_jsonable
 from ..model.catalogue import CatalogueEntry
 from ..model.catalogue import catalogue as catalogue_rows
 from ..model.device import Device, Params
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
-from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import DesignStatus
 from .approach import approach_samples
 from .check import PassivityCheck, passivity_check
@@ -361,7 +361,7 @@ def _check_validation(summary: dict[str, Any] | None) -> dict[str, Any] | None:
         raise DFAValueError(
             f"validation lacks {', '.join(missing)}: pass the dict of dfa.validate(...).summary() (or None)"
         )
-    # validation.json is strict JSON (dfa.results.jsonable): a NaN summary number was stored as null; read it back as NaN
+    # validation.json is strict JSON (dfa.jsonable): a NaN summary number was stored as null; read it back as NaN
     return {k: math.nan if k in _VALIDATION_KEYS and v is None else v for k, v in summary.items()}
 
 

@@ -65,11 +65,11 @@ from ..checks import check_bool, check_int, check_nonnegative, check_positive, c
 from ..core.open_loop import open_loop_kernel, segments_kernel
 from ..errors import DFAValueError
 from ..formatting import round_at, uncertainty_place
+from ..jsonable import explain_nulls
 from ..model.device import Device, device_units
 from ..model.log import MIN_SAMPLES, DeviceLog, LogError, check_rows
 from ..model.units import speed
 from ..results.base import Result
-from ..results.jsonable import explain_nulls
 from ..results.status import IdentifyStatus, IdentifyWarning
 
 __all__ = [

@@ -140,11 +140,11 @@ from ..checks import (
 )
 from ..core import batch, kernel, wall_kernel
 from ..errors import DFATypeError, DFAValueError
+from ..jsonable import to_jsonable
 from ..model.elements import OneSided
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
-from ..results.jsonable import to_jsonable
 from ..results.status import BatchStatus, ContactOutcome, SimulationOutcome
 from .criterion import spring_energy
 

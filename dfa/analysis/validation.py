@@ -55,10 +55,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..checks import check_bool, check_choice, check_jobs, check_type
+from ..jsonable import explain_nulls, to_jsonable
 from ..model.device import Params
 from ..model.wall import WallParams
 from ..results.base import Result
-from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import ValidationStatus
 from .criterion import classify_region, passivity_criterion
 from .cycles import SUBTICK_LIMIT, growth_threshold, large_cycle_closed_form, limit_cycles

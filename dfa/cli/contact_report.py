@@ -45,8 +45,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         0 ok, 2 bad input, 1 a file error, 130 interrupted.
     """
     from ..analysis.contact_comparison import contact_comparison
+    from ..jsonable import dumps
     from ..render.contact import comparison_markdown
-    from ..results.jsonable import dumps
 
     def write(c: Any, stage: Path) -> None:
         (stage / f"{STEM}.md").write_text(comparison_markdown(c), encoding="utf-8")

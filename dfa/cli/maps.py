@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..checks import check_damping_rate
-from ..results.jsonable import explain_nulls
+from ..jsonable import explain_nulls
 from .contact import add_contact_args
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import (

@@ -47,8 +47,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     from ..analysis.passivity_comparison import passivity_comparison
     from ..figures import save_figure
+    from ..jsonable import dumps
     from ..render.passivity import passivity_markdown
-    from ..results.jsonable import dumps
 
     def write(c: Any, stage: Path) -> None:
         save_figure(c.plot()[0].figure, stage / f"{STEM}.png")

@@ -41,8 +41,8 @@ from typing import Any
 
 from ..checks import check_positive, format_value
 from ..errors import DFATypeError, DFAValueError
+from ..jsonable import explain_nulls
 from ..plausibility import warn_if_from_outside
-from ..results.jsonable import explain_nulls
 from .elements import (
     ELEMENTS,
     MIN_CUTOFF,

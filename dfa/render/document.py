@@ -12,9 +12,9 @@ from collections.abc import Callable, Mapping
 from functools import lru_cache
 from typing import Any
 
-from ..analysis.criterion import start_state_clause
 from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
+from ..results.criterion import start_state_clause
 from ..results.status import SearchStatus
 from .answer import recommendation_text
 from .contact import contact_text
@@ -468,7 +468,7 @@ def zwidth_rows(a: DesignAnalysis) -> list[list[str]]:
     """Rows of the report's Z-width: K_max(B) per method at each B of the grid ("-": undefined, see the JSON)."""
     import math
 
-    from ..analysis.limits.zwidth import ZWIDTH_METHODS
+    from ..results.codes import ZWIDTH_METHODS
 
     z = a.zwidth
     assert z is not None

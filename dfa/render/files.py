@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from .._io import atomic_open, staged_folder
-from ..results.jsonable import JSON_DIGITS, dumps
+from ..jsonable import JSON_DIGITS, dumps
 
 __all__ = ["trace_extent", "write_trace_csv", "write_validation", "write_soundness"]
 
@@ -86,7 +86,7 @@ def write_trace_csv(
             cols.append(units.force(device, stiffness, extra[1]))
     with atomic_open(path, "w") as fh:
         fh.write(",".join(names) + "\n")
-        # 12 significant digits (JSON's, dfa.results.jsonable.JSON_DIGITS); + 0.0 writes -0 as 0
+        # 12 significant digits (JSON's, dfa.jsonable.JSON_DIGITS); + 0.0 writes -0 as 0
         table = np.column_stack(cols) + 0.0
         np.savetxt(fh, table, delimiter=",", fmt=["%d"] + [f"%.{JSON_DIGITS}g"] * (len(cols) - 1))
     return Path(path)

@@ -10,9 +10,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from ..analysis.cycles import SUBTICK_LIMIT
 from ..analysis.validation import CONTROLLERS, ValidationResult
 from ..formatting import markdown_table, number, percent
+from ..results.caveats import SUBTICK_LIMIT
 
 __all__ = ["validation_markdown", "cluster_note"]
 
