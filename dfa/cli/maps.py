@@ -125,7 +125,9 @@ def _point_runs(m: StabilityMap, inp: Inputs | None, bound: float) -> tuple[Simu
     """The device's operating point simulated at each speed with the map's settings (none without a device)."""
     if inp is None or inp.params is None or inp.device is None:
         return ()
-    return m.simulate_point(inp.params.beta, inp.params.sigma, bound=bound)
+    from ..analysis.maps import simulate_point
+
+    return simulate_point(m, inp.params.beta, inp.params.sigma, bound=bound)
 
 
 def _point_note(r: SimulationResult, phys: dict[str, Any]) -> str:

@@ -9,5 +9,6 @@ A result may import the model (it carries the device and the wall), never an ana
 
 and one module per topic: :mod:`~dfa.results.limits`, :mod:`~dfa.results.require`, :mod:`~dfa.results.grip`,
 :mod:`~dfa.results.zwidth`, :mod:`~dfa.results.cycles` (with :mod:`~dfa.results.caveats`),
-:mod:`~dfa.results.criterion`, :mod:`~dfa.results.identify`. Strict JSON (:mod:`dfa.jsonable`) sits below every layer.
+:mod:`~dfa.results.criterion`, :mod:`~dfa.results.identify`, :mod:`~dfa.results.simulation`,
+:mod:`~dfa.results.maps`, :mod:`~dfa.results.contours`, :mod:`~dfa.results.linear`, :mod:`~dfa.results.observer`. Strict JSON (:mod:`dfa.jsonable`) sits below every layer.
 """
