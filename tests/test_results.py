@@ -27,14 +27,14 @@ from dfa.analysis.limits.closed_form import stiffness_limits, stiffness_response
 from dfa.analysis.loop import nyquist_locus_response
 from dfa.analysis.maps import StabilityMap, stability_map
 from dfa.analysis.simulation import simulate
-from dfa.analysis.soundness import Population, criterion_soundness
-from dfa.analysis.validation import Soundness, ValidationResult
 from dfa.cli import main
 from dfa.errors import DFAError, DFAValueError
 from dfa.jsonable import JSON_DIGITS, NULL_REASONS_KEY, dumps, round_floats, round_sig, to_jsonable
 from dfa.model.device import Params
 from dfa.model.wall import WallParams
 from dfa.results import status as status_mod
+from dfa.studies.soundness import Population, criterion_soundness
+from dfa.studies.validation import Soundness, ValidationResult
 
 ROOT = Path(__file__).resolve().parents[1]
 DEV = dfa.get_device("Delta").device

@@ -176,7 +176,7 @@ class ContourMaps(PlaneGrid, Result):
         >>> ds["large_amplitude"].dims, ds["small_frequency"].attrs["units"], ds["beta"].attrs["units"]
         (('sigma', 'beta'), 'rad/sample', '1')
         """
-        from ..results.xarray import BETA_ATTRS, SIGMA_ATTRS, import_xarray
+        from .xarray import BETA_ATTRS, SIGMA_ATTRS, import_xarray
 
         xr = import_xarray()
         names = [k for k in _ARRAYS if k not in ("beta", "sigma")]

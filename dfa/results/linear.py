@@ -151,7 +151,7 @@ class StableRegion(Result):
         """
         from ..checks import check_bool
         from ..model.device import device_units
-        from ..results.xarray import import_xarray, netcdf_attrs, physical_attrs
+        from .xarray import import_xarray, netcdf_attrs, physical_attrs
 
         rot = check_bool("rotary", rotary, "pass True for a rotary device's units, False for SI")
         u = device_units(rot)

@@ -175,7 +175,7 @@ class StabilityMap(PlaneGrid, Result):
         DFAError
             When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
         """
-        from ..results.xarray import BETA_ATTRS, SIGMA_ATTRS, XI_DOT_ATTRS, import_xarray
+        from .xarray import BETA_ATTRS, SIGMA_ATTRS, XI_DOT_ATTRS, import_xarray
 
         xr = import_xarray()
         dims = ("xi_dot", "sigma", "beta")
