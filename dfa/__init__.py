@@ -25,7 +25,7 @@ result named for the same thing:
 Every result carries its inputs and a ``status``, a member of an enum of
 :mod:`dfa.results.status` whose ``message`` says what it means; numpy arrays in results
 are read-only copies; ``to_dict()`` returns strict-JSON data (NaN and infinities
-become null, with the reason under ``null_reasons``; :mod:`dfa.results.jsonable`);
+become null, with the reason under ``null_reasons``; :mod:`dfa.jsonable`);
 results with a figure have ``.plot(ax=None)`` returning the matplotlib Axes
 (matplotlib loads then, never on ``import dfa``); maps and contours have
 ``to_xarray()`` (optional extra ``pip install 'dfa-haptics[xarray]'``).
@@ -152,10 +152,10 @@ _LAZY = {
     "load_map": "analysis.maps",
     "ContourMaps": "analysis.contours",
     "contour_maps": "analysis.contours",
-    "validate": "analysis.validation",
-    "design_report": "report",
-    "DesignAnalysis": "analysis.design",
-    "design_analysis": "analysis.design",
+    "validate": "studies.validation",
+    "design_report": "studies.report",
+    "DesignAnalysis": "studies.design",
+    "design_analysis": "studies.design",
     "design_answer": "analysis.limits.kmax",
     "KMaxResult": "analysis.limits.kmax",
     "stiffness_speed_chart": "analysis.limits.speed_chart",
@@ -188,7 +188,7 @@ _SUBMODULES = {
     "analysis",
     "figures",
     "render",
-    "report",
+    "studies",
     "cli",
     "errors",
     "checks",

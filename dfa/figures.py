@@ -1257,7 +1257,7 @@ def passivity_plot(comparison, axes=None):
     Parameters
     ----------
     comparison : PassivityComparison
-        :func:`dfa.analysis.passivity_comparison.passivity_comparison`.
+        :func:`dfa.studies.passivity_comparison.passivity_comparison`.
     axes : pair of matplotlib.axes.Axes, optional
         The no-divergence and the rest panels; a new figure when None.
 

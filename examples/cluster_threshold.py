@@ -11,8 +11,8 @@ import os
 import numpy as np
 
 import dfa
-from dfa.analysis.validation import CLUSTER_POINTS, cluster_threshold
-from dfa.render.validation import cluster_note
+from dfa.studies.validation import CLUSTER_POINTS, cluster_threshold
+from dfa.studies.validation_document import cluster_note
 
 
 def main() -> None:

@@ -6,7 +6,7 @@
 * :func:`controller_run` is the loop with damper, filter and delay (no amplifier lag)
   written as one plain compiled loop around the exact per-sample step of
   :func:`dfa.core.kernel.step`, with the storage S = ½μξ'² + ½ξ² checked at every sample
-  and turning point (formerly in the controller's soundness check, now ``dfa.analysis.soundness``; the package uses
+  and turning point (formerly in the controller's soundness check, now ``dfa.studies.soundness``; the package uses
   its simulator, :mod:`dfa.core.wall_kernel`, which ``test_eq6_controller_criterion`` compares with this).
 * :func:`linear_ctl_recursion` is the linear loop (no quantizer, σ = 0) from the
   exact ZOH discretisation (``control.c2d``) of the plant with the amplifier,

@@ -25,11 +25,11 @@ def assert_json_from_fields(result, extra=frozenset()) -> dict:
 
 
 def written(value):
-    """``value`` as the JSON output writes it (``dfa.results.jsonable.dumps``: floats to 12 significant digits).
+    """``value`` as the JSON output writes it (``dfa.jsonable.dumps``: floats to 12 significant digits).
 
     Tests that compare a number of ``--json`` (or a JSON file) with the API's compare it with this: the same
     serialiser, so equal means equal to the 12 digits JSON carries (issue 41), not to the last bit of a float.
     """
-    from dfa.results.jsonable import dumps
+    from dfa.jsonable import dumps
 
     return json.loads(dumps(value))

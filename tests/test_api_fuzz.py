@@ -296,8 +296,8 @@ class _WouldRun(Exception):
 
 #: The first piece of work of each expensive call, after its validation (replaced by _WouldRun in the fuzz).
 _WORK = {
-    "validate": ("dfa.analysis.validation", "cycle_checks"),
-    "design_report": ("dfa.report", "design_analysis"),
+    "validate": ("dfa.studies.validation", "cycle_checks"),
+    "design_report": ("dfa.studies.report", "design_analysis"),
     "stiffness_speed_chart": ("dfa.analysis.limits.speed_chart", "Evidence"),
     "z_width": ("dfa.analysis.limits.zwidth", "_plan"),
 }

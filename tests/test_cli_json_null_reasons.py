@@ -6,7 +6,7 @@ import json
 import pytest
 
 from dfa.cli import main
-from dfa.results.jsonable import explain_nulls
+from dfa.jsonable import explain_nulls
 
 _CUSTOM = ["--mass", "0.05", "--damping", "0", "--coulomb", "0.02", "--resolution", "2e-5", "--period", "0.001"]
 

@@ -84,7 +84,7 @@ def test_grid_limits_come_before_the_time_estimate_so_force_cannot_reach_them(ca
     )
     code, _, err = run(capsys, *argv)
     assert code == 2 and "--zwidth 300 is invalid: it must be at most 200" in err and not (tmp_path / "r").exists()
-    from dfa.analysis.design import design_analysis
+    from dfa.studies.design import design_analysis
 
     with pytest.raises(DFAValueError, match="zwidth_grid = 300 is invalid"):
         design_analysis(get_device("Impulse Engine"), velocity=0.1, zwidth_grid=300)

@@ -36,7 +36,7 @@ from dfa.analysis.linear_wall import (
 )
 from dfa.core.divdiff import exp_divided_difference
 from dfa.errors import DFATypeError, DFAValueError
-from dfa.results.jsonable import dumps
+from dfa.jsonable import dumps
 
 M, T = 1.0, 1e-3  # the anchor device: m = 1 kg, T = 1 ms
 

@@ -1,4 +1,4 @@
-"""Soundness of the delay-aware criterion by exact simulation (dfa.analysis.soundness, the spring with delay d as
+"""Soundness of the delay-aware criterion by exact simulation (dfa.studies.soundness, the spring with delay d as
 the wall WallParams.of(delay=d); issue 12 item 6), fast version.
 
 The full run (10⁵ points per d) is committed as reports/validation/delay_soundness.md
@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 import dfa
-from dfa.analysis import soundness
-from dfa.analysis.soundness import Population, criterion_soundness, run_samples, sample_passive_points
 from dfa.model.wall import WallParams
-from dfa.render.soundness import soundness_markdown
+from dfa.studies import soundness
+from dfa.studies.soundness import Population, criterion_soundness, run_samples, sample_passive_points
+from dfa.studies.soundness_document import soundness_markdown
 
 
 @pytest.mark.parametrize("d", [0, 1, 2, 3])

@@ -11,11 +11,11 @@ import pytest
 from result_json import assert_json_from_fields, written
 
 import dfa
-import dfa.report
-from dfa.analysis.design import design_analysis
+import dfa.studies.report
 from dfa.cli import main
 from dfa.errors import DFAValueError
-from dfa.render.document import design_markdown, markdown_to_html
+from dfa.studies.design import design_analysis
+from dfa.studies.design_document import design_markdown, markdown_to_html
 
 SMALL = dict(map_grid=5, samples=3000, n_jobs=1)  # a small map: the numbers of the text do not depend on it
 
@@ -28,13 +28,13 @@ def impulse():
 @pytest.fixture
 def small_reports(monkeypatch):
     """`dfa report` with a small stability map (the CLI path is unchanged otherwise)."""
-    monkeypatch.setattr(dfa.report, "design_analysis", partial(design_analysis, **SMALL))
+    monkeypatch.setattr(dfa.studies.report, "design_analysis", partial(design_analysis, **SMALL))
 
 
 @pytest.fixture
 def no_figures(monkeypatch, small_reports):
     """Placeholder figures (for tests of the text and the files only): drawing takes seconds."""
-    import dfa.render.report_figures as figures
+    import dfa.studies.design_figures as figures
 
     stub = lambda name: lambda a: figures.ReportFigure(name, f"caption of {name}", b"\x89PNG stub")
     monkeypatch.setattr(
@@ -65,7 +65,7 @@ def test_design_analysis_numbers_equal_the_api(impulse):
 def test_design_analysis_is_frozen_and_json_able(impulse):
     with pytest.raises(AttributeError):
         impulse.stiffness = 1.0  # type: ignore[misc]
-    d = json.loads(dfa.results.jsonable.dumps(impulse.to_dict(), ensure_ascii=False))
+    d = json.loads(dfa.jsonable.dumps(impulse.to_dict(), ensure_ascii=False))
     assert d["limits"]["k_max"] == written(impulse.limits.k_max)
     assert d["criterion"]["passive"] is True and d["status"] == "ok"
     assert set(d["growth_thresholds"]) == {"half-delay", "zoh"}
@@ -128,8 +128,8 @@ def test_report_says_your_source_prints_for_a_device_files_printed_values(impuls
     physical values carries neither the Delta's printed values nor its notes."""
     from dataclasses import replace
 
-    from dfa.analysis.design import _catalogue_notes
     from dfa.model.catalogue import device_template, load_device_file
+    from dfa.studies.design import _catalogue_notes
 
     names = {n: n for n in ("speed_chart", "regions", "stiffness", "nyquist", "trajectories", "map")}
 

@@ -59,8 +59,8 @@ def test_design_report_same_for_jobs_1_and_2(monkeypatch):
     its Z-width grid on threads and the Z-width's columns on processes as the committed report's 20 columns are
     (here from 2 columns on): the same numbers and the same Markdown with one job and with two."""
     import dfa.analysis.limits.zwidth as zwidth
-    from dfa.analysis.design import design_analysis
-    from dfa.render.document import design_markdown
+    from dfa.studies.design import design_analysis
+    from dfa.studies.design_document import design_markdown
 
     monkeypatch.setattr(zwidth, "PROCESS_COLUMNS", 2)
     runs = {}

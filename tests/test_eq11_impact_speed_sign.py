@@ -12,7 +12,6 @@ import pytest
 
 import dfa
 from dfa.analysis.check import passivity_check
-from dfa.analysis.design import design_analysis
 from dfa.analysis.limits.closed_form import stiffness_limits, stiffness_response
 from dfa.analysis.limits.kmax import design_answer
 from dfa.analysis.limits.speed_chart import stiffness_speed_chart
@@ -23,6 +22,7 @@ from dfa.cli import main
 from dfa.errors import DFAValueError
 from dfa.model.wall import Wall
 from dfa.results.status import KMaxStatus, LimitStatus
+from dfa.studies.design import design_analysis
 
 IMPULSE = ["--device", "impulse"]
 

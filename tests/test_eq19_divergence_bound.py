@@ -31,8 +31,8 @@ def test_eq19_design_analysis_finds_no_divergence_where_eq6_proves_passivity():
     """Region a (β >= ½, σ >= ½): no simulated unstable speed, and the impacts rest (the report's numbers)."""
     import dataclasses
 
-    from dfa.analysis.design import design_analysis
     from dfa.model.catalogue import get_device
+    from dfa.studies.design import design_analysis
 
     dev = dataclasses.replace(get_device("impulse").device, resolution=1e-8)
     a = design_analysis(dev, 10.0, velocity=0.5, map_grid=3, samples=30_000, n_jobs=1)

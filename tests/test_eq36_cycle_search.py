@@ -117,7 +117,7 @@ def test_cli_and_report_never_state_absence_for_an_incomplete_search(capsys):
     assert "no limit cycle predicted" not in out
     from types import SimpleNamespace
 
-    from dfa.render.document import absence_lines
+    from dfa.studies.design_document import absence_lines
 
     _dev, p = _delta_10nm()
     thr = tuple((m, growth_threshold(p, model=m, max_amplitude=1e4)) for m in ("half-delay", "zoh"))
@@ -306,8 +306,8 @@ def test_eq41_envelope_constant_from_the_expansion():
 
 # ------------------------------------------------------------- validation item 5: clusters against simulation
 def test_validation_cluster_threshold_record_matches_independent_runs():
-    from dfa.analysis.validation import CLUSTER_POINTS, cluster_threshold
-    from dfa.render.validation import cluster_note
+    from dfa.studies.validation import CLUSTER_POINTS, cluster_threshold
+    from dfa.studies.validation_document import cluster_note
 
     name, p = CLUSTER_POINTS[0]
     speeds = [0.3, 0.6, 1.0, 2.3, 2.5, 9.0]
@@ -328,7 +328,7 @@ def test_validation_cluster_threshold_record_matches_independent_runs():
 def test_validation_eq45_worst_point_above_the_zoh_linear_bound_does_not_diverge():
     """Fig. 7's worst eq. 45 ratio (exact M_u 14.6× below eq. 45): β is above the exact ZOH linear bound, and no start diverges."""
     from dfa.analysis.linear import linear_stable
-    from dfa.analysis.validation import CLUSTER_POINTS
+    from dfa.studies.validation import CLUSTER_POINTS
 
     _name, p = CLUSTER_POINTS[1]
     m45 = dfa.analysis.cycles.large_cycle_closed_form(p.mu, p.beta, p.sigma)[0]
@@ -342,7 +342,7 @@ def test_validation_eq45_worst_point_above_the_zoh_linear_bound_does_not_diverge
 def test_report_growth_paragraph_prints_the_band_of_the_api():
     from types import SimpleNamespace
 
-    from dfa.render.document import growth_text
+    from dfa.studies.design_document import growth_text
 
     dev = dfa.get_device("Delta").device
     g = growth_threshold(CLUSTER, dev, model="zoh")

@@ -283,7 +283,7 @@ def test_limit_cycle_result_json_is_the_result_base(params, kwargs):
     describing, pade_order, detail), delay, linear_model, caveat; every former key there with its value."""
     from result_json import assert_json_from_fields
 
-    from dfa.results.jsonable import to_jsonable
+    from dfa.jsonable import to_jsonable
 
     r = limit_cycles(params, **kwargs)
     d = assert_json_from_fields(r)
@@ -312,7 +312,7 @@ def test_growth_threshold_json_is_the_result_base(params, device):
     with its value."""
     from result_json import assert_json_from_fields
 
-    from dfa.results.jsonable import to_jsonable
+    from dfa.jsonable import to_jsonable
 
     if params == "delta":
         entry = dfa.get_device("Delta")

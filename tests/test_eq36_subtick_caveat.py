@@ -11,15 +11,15 @@ from cli_text import unwrap
 
 import dfa
 from dfa.analysis.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, subtick_caveat
-from dfa.analysis.cycles.caveats import SubtickCaveat
 from dfa.analysis.limits.runs import SAFE, UNDECIDED, UNSAFE, Evidence, df_verdict, growth_at
 from dfa.analysis.simulation import OUTCOMES, simulate_batch
 from dfa.model.device import Params
 from dfa.model.wall import Wall, WallParams
 from dfa.render.limits import limit_text
 from dfa.render.text import caveat_text, growth_meaning, limit_cycle_lines, limit_cycles_dict
+from dfa.results.caveats import SubtickCaveat
 
-# found by a random search (dfa.analysis.cycles.caveats): damper on a slowly filtered velocity (filter pole a = 0.974), d = 0
+# found by a random search (dfa.results.caveats): damper on a slowly filtered velocity (filter pole a = 0.974), d = 0
 P = Params(3.749, 0.0, 0.155)
 CTL = WallParams.of(damping=0.2838, cutoff=0.0042)
 
@@ -90,7 +90,7 @@ def test_eq36_no_caveat_well_above_the_first_level():
 
 
 def test_eq36_subtick_caveat_spring_alike():
-    """The paper's spring shows the same failure (random search, dfa.analysis.cycles.caveats): its result carries the caveat
+    """The paper's spring shows the same failure (random search, dfa.results.caveats): its result carries the caveat
     and, as with a wall, its describing function no longer calls impacts below M_u·ω safe (one rule)."""
     p = Params(1.2433, 0.41264, 0.21593)
     res = limit_cycles(p, model="zoh", wall=WallParams.of(delay=1))

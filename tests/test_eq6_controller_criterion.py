@@ -21,11 +21,11 @@ from reference_ctl import controller_run
 import dfa
 from dfa.analysis.criterion import CriterionResult, device_criterion, passivity_criterion
 from dfa.analysis.simulation import simulate
-from dfa.analysis.soundness import Population, criterion_soundness, sample_passive_points
 from dfa.core import kernel
 from dfa.errors import DFATypeError, DFAValueError
 from dfa.model.catalogue import get_device
 from dfa.model.wall import Wall, WallParams
+from dfa.studies.soundness import Population, criterion_soundness, sample_passive_points
 
 
 # ------------------------------------------------------------------ an independent reference loop (pure Python)

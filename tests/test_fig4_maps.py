@@ -234,8 +234,8 @@ def test_stability_map_json_is_the_result_base_plus_counts(wall):
     delay) plus ``counts`` per speed; every former key is there with its value, and ``wall`` now also for the spring."""
     from result_json import assert_json_from_fields
 
+    from dfa.jsonable import to_jsonable
     from dfa.model.wall import WallParams
-    from dfa.results.jsonable import to_jsonable
 
     w = None if wall is None else WallParams.of(damping=0.2, delay=1, cutoff=0.3)
     m = stability_map(50.0, [2.0, 5.0], grid=3, samples=1000, n_jobs=1, progress=False, wall=w)

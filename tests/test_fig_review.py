@@ -145,8 +145,8 @@ def test_fig6_nyquist_scales_to_each_device_and_skips_the_zoom_for_one_large_cyc
 
 
 def test_report_nyquist_uses_the_exact_zoh_loop_of_its_growth_threshold():
-    from dfa.analysis.design import design_analysis
-    from dfa.render.report_figures import design_figures
+    from dfa.studies.design import design_analysis
+    from dfa.studies.design_figures import design_figures
 
     # at rest (speed 0) the analysis skips the costly stiffness-speed chart; the Nyquist view is the same
     a = design_analysis(dfa.get_device("impulse"), velocity=0.0, map_grid=3, samples=2000, n_jobs=1)
@@ -655,8 +655,8 @@ def test_report_kmax_tables_cells_short_and_the_evidence_below_them(delta_answer
     from types import SimpleNamespace
 
     from dfa.render.controller import controller_limit_rows
-    from dfa.render.document import answer_rows, evidence_markdown
     from dfa.render.limits import evidence_lines
+    from dfa.studies.design_document import answer_rows, evidence_markdown
 
     dev, spring, ctl = delta_answers
     rows = answer_rows(SimpleNamespace(design_answer=spring, device=dev, is_spring=True))
@@ -779,7 +779,7 @@ def test_report_nyquist_caption_names_an_inset_only_when_one_is_drawn(params):
     with no inset."""
     from types import SimpleNamespace
 
-    from dfa.render.report_figures import _nyquist
+    from dfa.studies.design_figures import _nyquist
 
     res = limit_cycles(params, model="zoh")
     nyq = nyquist_locus_response(params, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh")

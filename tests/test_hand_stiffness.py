@@ -33,11 +33,11 @@ import dfa
 from dfa.analysis.criterion import equivalent_speed, passivity_criterion
 from dfa.analysis.linear_wall import controlled_spectral_radius, stable_stiffness
 from dfa.analysis.simulation import simulate
-from dfa.analysis.soundness import Population, criterion_soundness
 from dfa.cli import main
 from dfa.core import oscillator
 from dfa.model.elements import HandSpring
 from dfa.model.wall import Wall, WallParams
+from dfa.studies.soundness import Population, criterion_soundness
 
 finite = dict(allow_nan=False, allow_infinity=False)
 

@@ -353,8 +353,8 @@ def test_cli_output_folder_rules(capsys, tmp_path):
 
 
 def test_report_interrupted_leaves_folder_untouched(tmp_path, monkeypatch):
-    import dfa.analysis.design
-    import dfa.render.document
+    import dfa.studies.design
+    import dfa.studies.design_document
 
     (tmp_path / "keep.txt").write_text("mine")
 
@@ -362,8 +362,8 @@ def test_report_interrupted_leaves_folder_untouched(tmp_path, monkeypatch):
         raise KeyboardInterrupt
 
     # after the PNGs and the Markdown were written into the staging folder
-    monkeypatch.setattr(dfa.render.document, "design_html", fail)
-    monkeypatch.setattr(dfa.analysis.design, "first_unstable_speed", lambda *a, **k: 3.0)
+    monkeypatch.setattr(dfa.studies.design_document, "design_html", fail)
+    monkeypatch.setattr(dfa.studies.design, "first_unstable_speed", lambda *a, **k: 3.0)
     with pytest.raises(KeyboardInterrupt):
         dfa.design_report(
             dfa.get_device("impulse"), velocity=0.05, out_dir=tmp_path, fmt="both", progress=False, samples=500
@@ -1131,7 +1131,7 @@ def test_fig4_load_map_refuses_missing_and_broken_files(tmp_path):
 )
 def test_validate_refuses_bad_arguments_before_any_work(kw, word, monkeypatch):
     # found by the API fuzz: quick="" ran the full validation (minutes); n_jobs was checked after minutes of work
-    import dfa.analysis.validation as validation
+    import dfa.studies.validation as validation
 
     monkeypatch.setattr(validation, "cycle_checks", lambda *a, **k: pytest.fail("work started"))
     with pytest.raises(DFAError, match=f"^{word}"):
@@ -1142,7 +1142,7 @@ def test_validate_refuses_bad_arguments_before_any_work(kw, word, monkeypatch):
     "kw, word", [({"map_grid": 1}, "map_grid"), ({"samples": "1"}, "samples"), ({"out_dir": 3}, "out_dir")]
 )
 def test_design_report_refuses_bad_arguments_before_any_work(kw, word, tmp_path, monkeypatch):
-    import dfa.report as report
+    import dfa.studies.report as report
 
     monkeypatch.setattr(report, "design_analysis", lambda *a, **k: pytest.fail("work started"))
     with pytest.raises(DFAError, match=f"^{word}"):

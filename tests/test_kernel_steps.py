@@ -145,7 +145,7 @@ def test_eq4_run_in_ranges_equals_one_call(case, delay):
 def test_eq4_step_stays_finite_when_speed_and_force_underflow():
     """Denormal ξ' and φ of the same sign (a stop 'found' by underflow, w < 0): finite, as the kernel always was.
 
-    Found by the soundness check of random walls (dfa.analysis.soundness, seed 2024): a linear run decaying through the denormals reached
+    Found by the soundness check of random walls (dfa.studies.soundness, seed 2024): a linear run decaying through the denormals reached
     ξ' = φ = −5e-324, where log1p(y)/y at y < −1 would have been NaN.
     """
     mu, beta = 1.010500446509884, 1.8047083379647524

@@ -73,7 +73,7 @@ def test_eq6_moving_history_criterion_is_sound_where_the_fresh_claim_fails():
     start's claim (S <= ½μV²) fails at many of them (the check can fail, the pending commands must be paid for).
 
     The 10⁵-point run: ``python -m dfa.cli.soundness_report --history`` (reports/validation)."""
-    from dfa.analysis.soundness import history_soundness
+    from dfa.studies.soundness import history_soundness
 
     r = history_soundness(1500, seed=2026)
     assert r.points == 1500 and r.violations == 0 and r.criterion == "moving"

@@ -226,7 +226,7 @@ def test_eq6_one_sided_sampled_passive_points_never_exceed_the_contact_energy():
     bilateral spring's claim S <= ½μV² fails at almost every point (the check can fail).
 
     The 10⁵-point run: ``python -m dfa.cli.soundness_report --one-sided`` (reports/validation)."""
-    from dfa.analysis.soundness import one_sided_soundness
+    from dfa.studies.soundness import one_sided_soundness
 
     r = one_sided_soundness(1500, seed=2024)
     assert r.points == 1500 and r.violations == 0 and r.criterion == "one-sided"
@@ -421,8 +421,8 @@ def test_one_sided_design_report_runs_start_with_the_approach(tmp_path):
     """`dfa report --one-sided --push`: the design analysis's runs are the approach runs of dfa.simulate, no
     describing function (no thresholds, no Nyquist figure; the report says why), the contact stated, and its
     own file name; the JSON's headline numbers say why the describing function's are null."""
-    from dfa.analysis.design import design_analysis
     from dfa.analysis.maps import map_start
+    from dfa.studies.design import design_analysis
 
     dev = dfa.get_device("delta")
     w = Wall(14500.0, (OneSided(0.0), Push(2.0)))

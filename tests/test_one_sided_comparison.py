@@ -13,12 +13,12 @@ from pathlib import Path
 from result_json import written
 
 import dfa
-from dfa.analysis.contact_comparison import CASES, LIMITS, PUSH_FRICTIONS, ContactComparison, contact_comparison
 from dfa.analysis.limits.kmax import design_answer
 from dfa.cli.contact_report import STEM, main
 from dfa.model.elements import OneSided, Push
 from dfa.model.wall import Wall
-from dfa.render.contact import comparison_markdown
+from dfa.studies.contact_comparison import CASES, LIMITS, PUSH_FRICTIONS, ContactComparison, contact_comparison
+from dfa.studies.contact_document import comparison_markdown
 
 REPORT = Path(__file__).resolve().parent.parent / "reports" / "validation"
 

@@ -270,7 +270,7 @@ def test_rotary_device_force_step_in_newton_metres():
 def test_report_sentence_names_the_buzz_in_newtons_and_hertz():
     from types import SimpleNamespace
 
-    from dfa.render.document import outcome_text
+    from dfa.studies.design_document import outcome_text
 
     dev = dfa.get_device("impulse").device
     p = dev.params(255.0)

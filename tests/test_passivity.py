@@ -22,7 +22,7 @@ from result_json import assert_json_from_fields, written
 from dfa import Device, Wall, WallParams, k_colgate
 from dfa.analysis.colgate_schenkel import PassivityStatus, colgate_schenkel_beta, colgate_schenkel_damping
 from dfa.errors import DFAValueError
-from dfa.results.jsonable import dumps
+from dfa.jsonable import dumps
 
 
 def test_colgate_schenkel_spring_d0_is_eq8():

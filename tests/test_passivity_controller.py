@@ -386,7 +386,7 @@ def test_passivity_report_script_refuses_bad_input_before_any_work(capsys, tmp_p
 
 def test_passivity_report_script_writes_into_a_new_folder(monkeypatch, tmp_path):
     """The report script makes a missing --out folder (one level) and writes its three files there together."""
-    import dfa.analysis.passivity_comparison as comparison
+    import dfa.studies.passivity_comparison as comparison
     from dfa.cli import passivity_report
     from dfa.model.catalogue import get_device
 

@@ -156,7 +156,7 @@ def test_report_verdict_says_what_is_proven_and_names_speed_and_delay(report_dir
 def _verdict_text(dev, k, v, dl, crit, lim, v_sim):
     from types import SimpleNamespace
 
-    from dfa.render.document import verdict_text
+    from dfa.studies.design_document import verdict_text
 
     a = SimpleNamespace(device=dev, stiffness=k, velocity=v, delay=dl, criterion=crit, limits=lim, is_spring=True)
     a.simulated_xi_dot, a.simulated_velocity = v_sim, None if v_sim is None else dev.velocity(v_sim)

@@ -24,17 +24,17 @@ from result_json import written
 from test_cli_json_null_reasons import unexplained_nulls
 
 import dfa
-import dfa.analysis.design
 import dfa.analysis.limits.kmax
-import dfa.render.report_figures as figures
-import dfa.report
-from dfa.analysis.design import design_analysis
+import dfa.studies.design
+import dfa.studies.design_figures as figures
+import dfa.studies.report
 from dfa.analysis.linear_wall import stable_stiffness
 from dfa.cli import main
 from dfa.errors import DFAValueError
+from dfa.jsonable import dumps
 from dfa.model.wall import Wall, WallParams
-from dfa.render.document import design_markdown
-from dfa.results.jsonable import dumps
+from dfa.studies.design import design_analysis
+from dfa.studies.design_document import design_markdown
 
 SMALL = dict(map_grid=5, samples=3000, n_jobs=1)  # a small map: the numbers of the text do not depend on it
 GOLDEN = Path(__file__).resolve().parent / "golden"
@@ -53,7 +53,7 @@ def _stub(name: str):
 def small_reports():
     """`dfa report` with a small stability map and placeholder figures (drawing takes seconds)."""
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(dfa.report, "design_analysis", partial(design_analysis, **SMALL))
+        mp.setattr(dfa.studies.report, "design_analysis", partial(design_analysis, **SMALL))
         mp.setattr(figures, "FIGURES", tuple(_stub(n) for n in NAMES))
         yield mp
 
@@ -86,10 +86,10 @@ def _case(tmp: Path, flags: list[str], extra: tuple[str, ...] = ()) -> dict:
     The Z-width's grid asked for is recorded (``grids``) and run at 4 points per axis.
     """
     grids: list[int] = []
-    real = dfa.analysis.design.z_width
+    real = dfa.studies.design.z_width
     with small_reports() as mp:
         mp.setattr(
-            dfa.analysis.design, "z_width", lambda *a, **kw: grids.append(kw["grid"]) or real(*a, **{**kw, "grid": 4})
+            dfa.studies.design, "z_width", lambda *a, **kw: grids.append(kw["grid"]) or real(*a, **{**kw, "grid": 4})
         )
         data, md = report(tmp, *flags, *extra)
     return dict(
@@ -238,7 +238,7 @@ def test_controller_report_zwidth_linear_boundary_is_the_exact_bound(ctl):
 
 def test_controller_zwidth_on_by_default_and_can_be_turned_off(ctl, lag):
     """With a controller the report has a 16 x 16 Z-width unless asked otherwise (0: none)."""
-    assert ctl["grids"] == [dfa.analysis.design.WALL_ZWIDTH_GRID] == [16] and ctl["data"]["analysis"]["zwidth"]
+    assert ctl["grids"] == [dfa.studies.design.WALL_ZWIDTH_GRID] == [16] and ctl["data"]["analysis"]["zwidth"]
     a = lag["data"]["analysis"]
     assert lag["grids"] == [] and a["zwidth"] is None and "## Z-width" not in lag["md"]
     assert "zwidth_grid=0" in a["null_reasons"]["/zwidth"]
@@ -247,7 +247,7 @@ def test_controller_zwidth_on_by_default_and_can_be_turned_off(ctl, lag):
 def test_controller_report_html_self_contained_with_its_figures(tmp_path, monkeypatch):
     """Real figures: the five that take the controller (the extended criterion's regions, Nyquist, trajectories, map,
     Z-width), embedded; no spring-only figure, no PNG file."""
-    monkeypatch.setattr(dfa.report, "design_analysis", partial(design_analysis, **SMALL))
+    monkeypatch.setattr(dfa.studies.report, "design_analysis", partial(design_analysis, **SMALL))
     code, _ = call("report", *B1, "--zwidth", "3", "--out", str(tmp_path), "--format", "html")
     assert code == 0
     page = (tmp_path / "design_report_delta_controller.html").read_text(encoding="utf-8")

@@ -27,14 +27,14 @@ from dfa.analysis.limits.closed_form import stiffness_limits, stiffness_response
 from dfa.analysis.loop import nyquist_locus_response
 from dfa.analysis.maps import StabilityMap, stability_map
 from dfa.analysis.simulation import simulate
-from dfa.analysis.soundness import Population, criterion_soundness
-from dfa.analysis.validation import Soundness, ValidationResult
 from dfa.cli import main
 from dfa.errors import DFAError, DFAValueError
+from dfa.jsonable import JSON_DIGITS, NULL_REASONS_KEY, dumps, round_floats, round_sig, to_jsonable
 from dfa.model.device import Params
 from dfa.model.wall import WallParams
 from dfa.results import status as status_mod
-from dfa.results.jsonable import JSON_DIGITS, NULL_REASONS_KEY, dumps, round_floats, round_sig, to_jsonable
+from dfa.studies.soundness import Population, criterion_soundness
+from dfa.studies.validation import Soundness, ValidationResult
 
 ROOT = Path(__file__).resolve().parents[1]
 DEV = dfa.get_device("Delta").device
@@ -492,7 +492,7 @@ def test_import_dfa_and_result_helpers_load_no_matplotlib_nor_xarray():
     import subprocess
 
     code = (
-        "import sys, dfa, dfa.results.status, dfa.results.jsonable, dfa.analysis.limits.closed_form; "
+        "import sys, dfa, dfa.results.status, dfa.jsonable, dfa.analysis.limits.closed_form; "
         "print(sorted(m for m in ('matplotlib', 'xarray', 'control') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()

@@ -10,14 +10,14 @@ import pytest
 
 import dfa
 from dfa.analysis.contours import contour_maps
-from dfa.analysis.design import _check_validation, design_analysis
 from dfa.analysis.loop import nyquist_locus_response
 from dfa.errors import DFAValueError
+from dfa.jsonable import NULL_REASONS_KEY, dumps
 from dfa.model.device import Params
 from dfa.render.text import flagged_text, search_why
-from dfa.report import ReportResult
-from dfa.results.jsonable import NULL_REASONS_KEY, dumps
 from dfa.results.status import ContourStatus, DesignStatus, NyquistStatus, ReportStatus
+from dfa.studies.design import _check_validation, design_analysis
+from dfa.studies.report import ReportResult
 
 
 def _strict(d):

@@ -184,7 +184,7 @@ def _interrupt_report(capsys, monkeypatch, tmp_path, target, name):
 @MAIN_THREAD
 @POSIX
 def test_report_progress_interrupted_in_the_analysis_line_starts_fresh(capsys, monkeypatch, tmp_path):
-    import dfa.analysis.design as design
+    import dfa.studies.design as design
 
     code, err = _interrupt_report(capsys, monkeypatch, tmp_path, design, "first_unstable_speed")
     assert code == 130
@@ -198,8 +198,8 @@ def test_report_progress_interrupted_in_the_analysis_line_starts_fresh(capsys, m
 @MAIN_THREAD
 @POSIX
 def test_report_progress_interrupted_in_the_map_line_starts_fresh(capsys, monkeypatch, tmp_path):
-    import dfa.analysis.design as design
     import dfa.analysis.maps as maps
+    import dfa.studies.design as design
 
     monkeypatch.setattr(design, "first_unstable_speed", lambda *a, **k: 3.0)  # quicker to the map
     calls = []

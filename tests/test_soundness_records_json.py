@@ -1,5 +1,5 @@
-"""The soundness record (dfa.analysis.soundness.CriterionSoundness, one for both populations: the spring with a
-delay and random walls) declares its count fields once (dfa.analysis.soundness_counts.SoundnessCounts); its JSON is
+"""The soundness record (dfa.studies.soundness.CriterionSoundness, one for both populations: the spring with a
+delay and random walls) declares its count fields once (dfa.studies.soundness_counts.SoundnessCounts); its JSON is
 byte-identical to the two records declared field by field before (the declarations of commit 9829bef, kept below as
 the reference and fed the same small runs)."""
 
@@ -10,10 +10,10 @@ from dataclasses import dataclass, field
 
 import pytest
 
-from dfa.analysis.soundness import CriterionSoundness, Population, criterion_soundness
 from dfa.errors import DFAValueError
-from dfa.results.jsonable import dumps, to_jsonable
+from dfa.jsonable import dumps, to_jsonable
 from dfa.results.status import SoundnessStatus
+from dfa.studies.soundness import CriterionSoundness, Population, criterion_soundness
 
 
 class _OldCounts:
@@ -86,7 +86,7 @@ def test_soundness_records_json_byte_identical_to_the_field_by_field_declaration
 
 
 def test_soundness_records_declare_the_counts_once():
-    from dfa.analysis.soundness_counts import SoundnessCounts
+    from dfa.studies.soundness_counts import SoundnessCounts
 
     shared = {f.name for f in dataclasses.fields(SoundnessCounts)}
     assert {"points", "energy_grew", "diverged", "violations", "worst_growth", "seed"} <= shared

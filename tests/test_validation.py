@@ -91,7 +91,7 @@ def test_cli_validate_rejects_bad_jobs_before_running(capsys):
 def test_validation_controller_rows_published_for_every_controller_and_model(quick):
     """Quick set (μ = 20, β = 0.05, σ = 0.3): every controller has stable cycles that persist in simulation with
     the same controller; errors as measured when written (pooled median 21 % amplitude, 9.7 % frequency)."""
-    from dfa.analysis.validation import CONTROLLERS
+    from dfa.studies.validation import CONTROLLERS
 
     out, s = quick
     rows = s["controller_cycles"]
@@ -117,9 +117,9 @@ def test_validation_controller_record_is_the_simulated_over_predicted_ratio():
     """An independent recomputation: one record of controller_cycle_checks against limit_cycles and simulate."""
     from dfa.analysis.cycles import limit_cycles
     from dfa.analysis.simulation import simulate
-    from dfa.analysis.validation import controller_cycle_checks
     from dfa.model.device import Params
     from dfa.model.wall import WallParams
+    from dfa.studies.validation import controller_cycle_checks
 
     p, ctl = Params(20.0, 0.05, 0.3), WallParams.of(damping=0.2, cutoff=0.05)
     recs = controller_cycle_checks([p], samples=20_000, models=("half-delay",), controllers=(("f", ctl),))

@@ -245,7 +245,7 @@ def test_report_zwidth_section_states_the_api_numbers(tmp_path, capsys):
     assert "## Z-width" in md and "_zwidth.png" in md
     z = z_width(get_device(DEV).device, V, grid=3, speeds=1, n_jobs=1)
     assert f"{z.boundary('linear')[1]:.4g}" in md
-    from dfa.analysis.design import design_analysis
+    from dfa.studies.design import design_analysis
 
     a = design_analysis(get_device(DEV), velocity=V, map_grid=3, samples=2000, n_jobs=1, zwidth_grid=3)
     assert a.to_dict()["zwidth"]["boundaries"]["linear"] == z.to_dict()["boundaries"]["linear"]

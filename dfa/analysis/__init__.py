@@ -5,5 +5,5 @@ Passivity (:mod:`~dfa.analysis.criterion`, :mod:`~dfa.analysis.colgate_schenkel`
 :mod:`~dfa.analysis.loop`, :mod:`~dfa.analysis.cycles`), exact simulation and maps
 (:mod:`~dfa.analysis.simulation`, :mod:`~dfa.analysis.maps`, :mod:`~dfa.analysis.contours`), stiffness limits
 (:mod:`~dfa.analysis.limits`), soundness and validation, and the design analysis of a report
-(:mod:`~dfa.analysis.design`). Analyses import no rendering and no matplotlib beyond a result's ``.plot()``.
+(:mod:`~dfa.studies.design`). Analyses import no rendering and no matplotlib beyond a result's ``.plot()``.
 """

@@ -26,115 +26,18 @@ True
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import Any
 
-from ..checks import check_real, check_speed, check_type
-from ..errors import DFAValueError
+from ..checks import check_speed, check_type
 from ..model.device import Device
 from ..model.wall import Wall
 from ..plausibility import warn_if_from_outside
-from ..results.base import Result
+from ..results.criterion import PassivityCheck as PassivityCheck
 from ..results.status import CheckStatus
 from .colgate_schenkel import ColgateSchenkel, colgate_schenkel_beta
-from .criterion import CriterionResult, as_wall, device_criterion, start_state
+from .criterion import CriterionResult, as_wall, device_criterion
 
 __all__ = ["PassivityCheck", "passivity_check"]
-
-
-@dataclass(frozen=True)
-class PassivityCheck(Result):
-    """The passivity check of ``device`` with ``wall`` at an impact speed (module docstring).
-
-    Attributes
-    ----------
-    device : Device
-    wall : Wall
-    velocity : float
-        Impact speed, m/s (rotary: rad/s), >= 0.
-    criterion : CriterionResult or None
-        The criterion (eq. 6 extended); None where no sound criterion covers the wall (``reasons`` says why).
-    colgate_schenkel : ColgateSchenkel or None
-        The Colgate–Schenkel condition, dimensionless (β_min); None where it does not cover the wall.
-    reasons : dict of str to str
-        Why ``criterion`` or ``colgate_schenkel`` is None, by that name.
-    status : CheckStatus
-        ``passive`` (proven by the criterion), ``no_guarantee`` or ``not_covered``.
-    """
-
-    device: Device = field(metadata={"json": lambda d: d.name})
-    wall: Wall = field(metadata={"json": lambda w: w.to_dict()})
-    velocity: float
-    criterion: CriterionResult | None
-    colgate_schenkel: ColgateSchenkel | None
-    reasons: dict[str, str]
-    status: CheckStatus
-
-    json_properties: ClassVar[tuple[str, ...]] = (
-        "passive", "start_state", "colgate_schenkel_damping", "colgate_schenkel_bound", "colgate_schenkel_met",
-    )  # fmt: skip
-    units_of: ClassVar[dict[str, str]] = {
-        "velocity": "velocity", "colgate_schenkel_damping": "damping", "colgate_schenkel_bound": "damping",
-    }  # fmt: skip
-
-    def __post_init__(self) -> None:
-        fix = "PassivityCheck is built by dfa.analysis.check.passivity_check; call that instead"
-        check_type("device", self.device, Device, fix)
-        check_type("wall", self.wall, Wall, fix)
-        check_real("velocity", self.velocity, fix)
-        object.__setattr__(self, "status", CheckStatus.coerce(self.status))
-        for name in ("criterion", "colgate_schenkel"):
-            if (getattr(self, name) is None) != (name in self.reasons):
-                raise DFAValueError(f"{name} is None exactly when reasons[{name!r}] says why; {fix}")
-
-    @property
-    def covered(self) -> bool:
-        """False where no sound criterion covers the wall (an amplifier lag)."""
-        return self.criterion is not None
-
-    @property
-    def passive(self) -> bool | None:
-        """The criterion's verdict (proven passive, or no guarantee); None where not covered."""
-        return None if self.criterion is None else bool(self.criterion.passive)
-
-    @property
-    def start_state(self) -> str:
-        """The start state ``passive`` is proven for (:func:`dfa.analysis.criterion.start_state` of the wall)."""
-        return start_state(self.wall)
-
-    @property
-    def colgate_schenkel_damping(self) -> float | None:
-        """The least viscous friction b = K T β_min the condition needs, N·s/m (rotary: N·m·s/rad)."""
-        cs = self.colgate_schenkel
-        return None if cs is None else self.wall.stiffness * self.device.period * cs.beta_min
-
-    @property
-    def colgate_schenkel_bound(self) -> float | None:
-        """Any b above this meets the condition (certified, rounding included), N·s/m (rotary: N·m·s/rad)."""
-        cs = self.colgate_schenkel
-        return None if cs is None else self.wall.stiffness * self.device.period * cs.beta_bound
-
-    @property
-    def colgate_schenkel_met(self) -> bool | None:
-        """Whether the device's b meets the condition for sure (above the certified bound); None: not covered."""
-        bound = self.colgate_schenkel_bound
-        return None if bound is None else bool(self.device.damping > bound)
-
-    def null_reasons(self) -> dict[str, str]:
-        """Why each field may be null in JSON, by key.
-
-        Returns
-        -------
-        dict of str to str
-            The reasons for the criterion and the Colgate–Schenkel condition where they do not apply.
-        """
-        out = dict(self.reasons)
-        if "criterion" in out:
-            out["passive"] = f"not covered by the criterion: {out['criterion']}"
-        if "colgate_schenkel" in out:
-            for k in ("colgate_schenkel_damping", "colgate_schenkel_bound", "colgate_schenkel_met"):
-                out[k] = out["colgate_schenkel"]
-        return out
 
 
 def passivity_check(

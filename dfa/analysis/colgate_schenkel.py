@@ -49,15 +49,14 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import ClassVar
 
 import numpy as np
 
 from ..checks import check_positive, check_type
 from ..errors import DFAValueError
 from ..model.wall import Wall, WallParams
-from ..results.base import Result
+from ..results.criterion import ColgateSchenkel as ColgateSchenkel
+from ..results.criterion import ColgateSchenkelDamping as ColgateSchenkelDamping
 from ..results.status import PassivityStatus
 
 __all__ = [
@@ -122,41 +121,6 @@ def _maximise(damping: float, delay: int, pole: float | None) -> tuple[float, fl
         ylo, yhi = np.concatenate([ylo, ym]), np.concatenate([ym, yhi])
 
 
-@dataclass(frozen=True)
-class ColgateSchenkel(Result):
-    """Dimensionless Colgate–Schenkel condition: passive iff β = b/(KT) > β_min (module docstring).
-
-    Its JSON (:meth:`~dfa.results.base.Result.to_dict`) holds every field (``params`` as the wall's groups) and
-    the status's message.
-
-    Attributes
-    ----------
-    beta_min : float
-        ½ max f found (attained at ``theta``): the condition needs β above it.
-    beta_bound : float
-        Certified upper bound of ½ max f (rounding included): β above it meets the condition.
-    theta : float
-        Where the maximum was found, rad/sample (ωT), in [0, π].
-    params : WallParams
-        The controller (β_B, d, ν_c; α = 0).
-    status : PassivityStatus
-    """
-
-    beta_min: float
-    beta_bound: float
-    theta: float
-    params: WallParams
-    status: PassivityStatus
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "status", PassivityStatus.coerce(self.status))
-        if not (math.isfinite(self.beta_min) and self.beta_min <= self.beta_bound and 0.0 <= self.theta <= math.pi):
-            raise DFAValueError(
-                f"beta_min = {self.beta_min!r}, beta_bound = {self.beta_bound!r}, theta = {self.theta!r} are "
-                "invalid: they must be finite, beta_min <= beta_bound, 0 <= theta <= π; pass the computed values"
-            )
-
-
 def _refuse_uncovered(p: WallParams) -> None:
     """Refuse a wall with an element the condition does not cover (its reason), e.g. an amplifier lag."""
     why = p.colgate_schenkel_reason()
@@ -208,69 +172,6 @@ def colgate_schenkel_beta(wall: WallParams) -> ColgateSchenkel:
         PassivityStatus.CERTIFIED if ub - best <= tol + 1e3 * _EPS * max(1.0, abs(best)) else PassivityStatus.BOUNDED
     )
     return ColgateSchenkel(0.5 * best, 0.5 * ub, arg, p, status)
-
-
-@dataclass(frozen=True)
-class ColgateSchenkelDamping(Result):
-    """Minimum physical damping b for passivity of a device with ``wall`` at period T (Colgate–Schenkel).
-
-    Its JSON (:meth:`~dfa.results.base.Result.to_dict`, SI units) holds every field, the :attr:`frequency` (Hz),
-    the :attr:`status` and its message.
-
-    Attributes
-    ----------
-    damping_min : float
-        K T β_min, N·s/m (rotary: N·m·s/rad): the condition needs b above it.
-    damping_bound : float
-        K T β_bound: any b above it meets the condition (certified), N·s/m.
-    omega : float
-        Angular frequency θ/T of the maximum, rad/s.
-    wall : Wall
-        The wall (stiffness K and its elements) whose H(z) is checked.
-    period : float
-        Sampling period T, s.
-    dimensionless : ColgateSchenkel
-    """
-
-    damping_min: float
-    damping_bound: float
-    omega: float
-    wall: Wall
-    period: float
-    dimensionless: ColgateSchenkel
-
-    json_properties: ClassVar[tuple[str, ...]] = ("frequency", "status")
-
-    def __post_init__(self) -> None:
-        fix = "ColgateSchenkelDamping is built by colgate_schenkel_damping; call that instead"
-        check_type("wall", self.wall, Wall, fix)
-        check_type("dimensionless", self.dimensionless, ColgateSchenkel, fix)
-        check_positive("period", self.period, fix)
-
-    @property
-    def frequency(self) -> float:
-        """Frequency of the maximum, Hz."""
-        return self.omega / (2.0 * math.pi)
-
-    @property
-    def status(self) -> PassivityStatus:
-        """As :attr:`ColgateSchenkel.status`."""
-        return self.dimensionless.status
-
-    def passive(self, damping: float) -> bool:
-        """Tell whether a device damping meets the condition for sure (above the certified bound).
-
-        Parameters
-        ----------
-        damping : float
-            The device's viscous friction b, N·s/m (rotary: N·m·s/rad), > 0.
-
-        Returns
-        -------
-        bool
-            True if b > ``damping_bound``.
-        """
-        return check_positive("damping", damping, "give the device's viscous friction b in N·s/m") > self.damping_bound
 
 
 def colgate_schenkel_damping(wall: Wall, period: float) -> ColgateSchenkelDamping:

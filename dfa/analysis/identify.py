@@ -54,8 +54,7 @@ from __future__ import annotations
 
 import math
 import sys
-from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -64,12 +63,16 @@ from .._parallel import new_bar
 from ..checks import check_bool, check_int, check_nonnegative, check_positive, check_real, check_type, format_value
 from ..core.open_loop import open_loop_kernel, segments_kernel
 from ..errors import DFAValueError
-from ..formatting import round_at, uncertainty_place
 from ..model.device import Device, device_units
 from ..model.log import MIN_SAMPLES, DeviceLog, LogError, check_rows
-from ..model.units import speed
-from ..results.base import Result
-from ..results.jsonable import explain_nulls
+from ..results.identify import FRICTION_SHARE as FRICTION_SHARE
+from ..results.identify import FRICTION_UNRESOLVED_WHY as FRICTION_UNRESOLVED_WHY
+from ..results.identify import NO_REVERSAL_WHY as NO_REVERSAL_WHY
+from ..results.identify import POOR_FIT_WHY as POOR_FIT_WHY
+from ..results.identify import SCATTER_WHY as SCATTER_WHY
+from ..results.identify import Estimate as Estimate
+from ..results.identify import FitQuality as FitQuality
+from ..results.identify import Identification as Identification
 from ..results.status import IdentifyStatus, IdentifyWarning
 
 __all__ = [
@@ -124,9 +127,6 @@ SEGMENT_MAX = 1000
 QUANTIZATION_VARIANCE = 1.0 / 12.0
 #: Fewest samples in motion (the reading changes) for a log to count as exciting the dynamics.
 FEW_MOVING = 300
-#: Coulomb friction below this share of the largest logged force is not resolved by the log (a diverging
-#: impact with forces of kN against a friction of 1 N fits any friction within a few per cent).
-FRICTION_SHARE = 1e-4
 #: Relative half-width of an interval (±1.96 standard errors) above which an estimate is called poorly determined.
 LOOSE = 0.25
 #: |correlation| of the damping and Coulomb estimates above which they are called not separated.
@@ -213,183 +213,6 @@ def estimate_resolution(x: ArrayLike, source: str = "log") -> float:
             "(--resolution)"
         )
     return float((u[-1] - u[0]) / ticks.sum())
-
-
-@dataclass(frozen=True)
-class Estimate:
-    """One identified value, its 95 % interval [low, high] and stderr, the interval's half-width / 1.96 (SI units).
-
-    The interval comes from the fit's Jacobian and a bootstrap over the encoder's unknown origin (module
-    docstring, step 4): it covers the readings' quantization and the fit's convergence, not noise on the force
-    column or dynamics the model lacks. ``undetermined`` says why there is no interval (None): the log cannot
-    separate this value from another, or holds too little motion to bound it.
-    """
-
-    value: float
-    stderr: float | None
-    low: float | None
-    high: float | None
-    undetermined: str = ""
-
-    @property
-    def place(self) -> int | None:
-        """Exponent k of the last meaningful decimal place 10^k (:func:`dfa.formatting.uncertainty_place` of the
-        interval's wider half); None without an interval. Digits below it move with the last bits of the
-        arithmetic (the fit's stopping point), from one machine to another."""
-        if self.low is None or self.high is None:
-            return None
-        return uncertainty_place(max(self.high - self.value, self.value - self.low))
-
-    def to_dict(self) -> dict[str, Any]:
-        """The value, its standard error and interval (null with the reason when undetermined)."""
-        out: dict[str, Any] = {"value": self.value, "stderr": self.stderr, "low": self.low, "high": self.high}
-        return explain_nulls(out, dict.fromkeys(("stderr", "low", "high"), self.undetermined))
-
-
-@dataclass(frozen=True)
-class FitQuality:
-    """How well the identified device reproduces the log.
-
-    Attributes
-    ----------
-    rms_ticks : float
-        RMS distance of the predicted position from the middle of each logged tick (about 0.29 for a perfect
-        model: the position within the tick).
-    max_tick_error : int
-        Largest |predicted tick − logged tick|.
-    within_one_tick : float
-        Share of samples whose predicted tick is within one of the logged one.
-    """
-
-    rms_ticks: float
-    max_tick_error: int
-    within_one_tick: float
-
-    def to_dict(self) -> dict[str, float | int]:
-        """The three numbers."""
-        return {"rms_ticks": self.rms_ticks, "max_tick_error": self.max_tick_error,
-                "within_one_tick": self.within_one_tick}  # fmt: skip
-
-
-@dataclass(frozen=True)
-class Identification(Result):
-    """A device identified from its log (:func:`identify`).
-
-    Attributes
-    ----------
-    device : Device
-        The identified device (m, b, c, Δ, T).
-    source : str
-        The log's name.
-    samples : int
-        Samples in the log.
-    mass, damping, coulomb, force_offset : Estimate
-        m (kg), b (N·s/m), c (N) and the force offset f₀ (N; the force applied is f + f₀); rotary kg·m², N·m·s/rad,
-        N·m.
-    resolution_given, period_given : bool
-        Whether Δ and T were given (else estimated from the log).
-    segment : int
-        Samples per segment of the multiple-shooting fit (the last one may be longer).
-    bootstrap : int
-        Replicate logs whose fits set the intervals (0: the linearized intervals alone; module docstring, step 4).
-    bootstrap_requested : int
-        Replicates asked for: more than ``bootstrap`` when some did not move enough to be fitted, or when the
-        intervals were withheld (little motion, a poor fit) and none was run.
-    fit : FitQuality
-        The fit's own prediction: each segment from its fitted start.
-    free_run : FitQuality
-        The identified model run once over the whole log from the fitted start (errors accumulate).
-    warnings : tuple of IdentifyWarning
-        What the log does not excite, or a poor fit.
-    velocity_peak : float
-        Largest speed of the fitted run, m/s (rad/s).
-    segment_states : ndarray
-        One row per segment of the fit: its first sample, fitted position there (ticks from the lowest reading)
-        and velocity (ticks per sample).
-    predicted, logged : ndarray
-        The free run's position and the logged tick at each sample, in ticks from the lowest reading (the figure).
-    status : IdentifyStatus
-    """
-
-    device: Device = field(metadata={"json": lambda d: d.to_dict()})
-    source: str
-    samples: int
-    mass: Estimate
-    damping: Estimate
-    coulomb: Estimate
-    force_offset: Estimate
-    resolution_given: bool
-    period_given: bool
-    segment: int
-    bootstrap: int
-    bootstrap_requested: int
-    fit: FitQuality
-    free_run: FitQuality
-    warnings: tuple[IdentifyWarning, ...]
-    velocity_peak: float
-    segment_states: np.ndarray = field(repr=False, metadata={"json": None})
-    predicted: np.ndarray = field(repr=False, metadata={"json": None})
-    logged: np.ndarray = field(repr=False, metadata={"json": None})
-    status: IdentifyStatus = IdentifyStatus.OK
-
-    json_properties: ClassVar[tuple[str, ...]] = ("start_velocity",)
-    units_of: ClassVar[dict[str, str]] = {"velocity_peak": "velocity", "start_velocity": "velocity"}
-
-    def __post_init__(self) -> None:
-        fix = "Identification is built by dfa.identify; call that instead"
-        check_type("device", self.device, Device, fix)
-        for name in ("mass", "damping", "coulomb", "force_offset"):
-            check_type(name, getattr(self, name), Estimate, fix)
-        object.__setattr__(self, "warnings", tuple(IdentifyWarning.coerce(w) for w in self.warnings))
-        object.__setattr__(self, "status", IdentifyStatus.coerce(self.status))
-        for name in ("segment_states", "predicted", "logged"):
-            a = np.array(getattr(self, name), dtype=float)
-            a.setflags(write=False)
-            object.__setattr__(self, name, a)
-
-    @property
-    def start_velocity(self) -> float:
-        """The fitted velocity at the log's first sample, m/s (rad/s): the free run's start (the first segment's)."""
-        return float(speed(self.device, self.segment_states[0, 2]))
-
-    def cautious(self) -> Device:
-        """The identified device with b and c at the lower ends of their 95 % intervals.
-
-        Where the log does not bound them they are 0. A stiffness limit for the real device can rest on this
-        device, as every limit of :mod:`dfa` rises with damping and friction. Each value keeps its meaningful
-        digits only (:attr:`Estimate.place`; b and c rounded down, m to the nearest, to 4 significant digits
-        without an interval), so that the limits computed from it and the flags that repeat them are the same on
-        every machine.
-
-        Returns
-        -------
-        Device
-            The identified m, Δ and T with b and c lowered, named ``"<name> (cautious)"``.
-        """
-        b, c = (round_at(e.low, e.place, "down") if e.low is not None and e.place is not None else 0.0
-                for e in (self.damping, self.coulomb))  # fmt: skip
-        place = self.mass.place
-        m = round_at(self.mass.value, place) if place is not None else 0.0
-        m = m if m > 0.0 else float(f"{self.mass.value:.4g}")  # no interval, or one wider than the value
-        d = self.device
-        return Device(m, b, c, d.resolution, d.period, name=f"{d.name} (cautious)", rotary=d.rotary)
-
-    def plot(self, ax: Any = None) -> Any:
-        """The logged ticks against the identified model's free run, residual below.
-
-        Parameters
-        ----------
-        ax : pair of matplotlib Axes, optional
-            Top and bottom axes; a new figure when None.
-
-        Returns
-        -------
-        pair of matplotlib Axes
-            The trajectory axes and the residual axes (:func:`dfa.figures.plot_identification`).
-        """
-        from ..figures import plot_identification
-
-        return plot_identification(self, ax)
 
 
 def _window(n: int) -> int:
@@ -563,15 +386,6 @@ def _half(e: Estimate) -> float:
     return math.inf if e.high is None else e.high - e.value
 
 
-#: Why c and f₀ have no interval in a log without a reversal.
-NO_REVERSAL_WHY = "no reversal in the log: Coulomb friction and the force offset act the same way, only c − f₀ is seen"
-#: Why c has no interval when it is below :data:`FRICTION_SHARE` of the largest force.
-FRICTION_UNRESOLVED_WHY = f"unresolved: below {FRICTION_SHARE:g} of the largest logged force, the log cannot resolve it, whatever its fit says"
-#: Why no estimate has an interval when the fit is poor.
-POOR_FIT_WHY = (
-    "poor fit: the model does not reproduce the log (noise on the force column, or dynamics the model lacks), "
-    "so the fit's spread says nothing about the values"
-)
 #: Why no estimate has an interval in a log with little motion.
 LITTLE_MOTION_WHY = (
     "the log holds fewer than {} samples in motion: too few to bound the estimates (a fit of a device at rest "
@@ -583,8 +397,6 @@ BOOTSTRAP = 10
 MAX_BOOTSTRAP = 200
 #: Ratio of an interval's end to the estimate beyond which the estimate counts as unbounded by the log.
 SCATTER = 1e3
-#: Why an estimate has no interval when its interval would span more than :data:`SCATTER`.
-SCATTER_WHY = "the fits of the log and its replicates differ by orders of magnitude: the log does not bound it"
 
 
 def _estimates(theta: np.ndarray, cov: np.ndarray, draws: np.ndarray, delta: float, t: float) -> dict[str, Estimate]:

@@ -36,17 +36,14 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..checks import check_positive, check_type
-from ..model.device import Device
 from ..model.log import DeviceLog
-from ..model.units import hertz, position
-from ..results.base import Result
+from ..results.identify import LoggedCycle as LoggedCycle
+from ..results.identify import LoggedOscillation as LoggedOscillation
 from ..results.status import LoggedCycleStatus
 from .identify import Estimate, Identification
 
@@ -82,32 +79,6 @@ REPLAY_VELOCITIES = (-0.03, 0.0, 0.03)
 REPLAYS = len(REPLAY_POSITIONS) * len(REPLAY_VELOCITIES)
 
 
-@dataclass(frozen=True)
-class LoggedOscillation:
-    """A sustained oscillation measured on readings (:func:`measure_oscillation`).
-
-    Attributes
-    ----------
-    amplitude : float
-        Half the peak-to-peak of the readings over the tail, ticks (uncertain by ±½ tick).
-    frequency : float
-        Radians per sample.
-    periods : int
-        Full periods in the tail.
-    start : int
-        First sample of the tail.
-    """
-
-    amplitude: float
-    frequency: float
-    periods: int
-    start: int
-
-    def to_dict(self) -> dict[str, float | int]:
-        """The four numbers."""
-        return {"amplitude": self.amplitude, "frequency": self.frequency, "periods": self.periods, "start": self.start}
-
-
 def measure_oscillation(readings: ArrayLike) -> LoggedOscillation | None:
     """The sustained oscillation over the last quarter of ``readings`` (ticks), None when there is none.
 
@@ -140,66 +111,6 @@ def measure_oscillation(readings: ArrayLike) -> LoggedOscillation | None:
     crossings = up + frac
     spacing = float(np.mean(np.diff(crossings)))
     return LoggedOscillation(0.5 * float(np.ptp(tail)), 2.0 * math.pi / spacing, len(up) - 1, int(start))
-
-
-@dataclass(frozen=True)
-class LoggedCycle(Result):
-    """The log's oscillation next to the predicted limit cycles (:func:`compare_logged_cycle`).
-
-    Attributes
-    ----------
-    device : Device
-        The identified device.
-    stiffness : float
-        K of the wall the log ran against, N/m (rotary N·m/rad).
-    origin, origin_spread : float
-        The wall's origin in ticks above the lowest reading, and how far the samples' own estimates of it lie
-        from it, ticks (:func:`wall_origin`; more than a tick: the force column is not this wall).
-    logged : LoggedOscillation or None
-        The log's sustained oscillation (None: none).
-    replays : tuple of (float, float, str, float, float)
-        Each replay's damping b (N·s/m) and friction c (N), outcome (``dfa.analysis.simulation``), amplitude
-        (ticks) and frequency (rad per sample; NaN when not measured); empty when no oscillation was logged.
-    matching : int
-        Replays that end in the logged cycle.
-    describing : tuple of (float, float)
-        The describing function's stable limit cycles (amplitude in ticks, frequency in rad per sample).
-    status : LoggedCycleStatus
-    """
-
-    device: Device = field(metadata={"json": lambda d: d.to_dict()})
-    stiffness: float
-    origin: float
-    origin_spread: float
-    logged: LoggedOscillation | None
-    replays: tuple[tuple[float, float, str, float, float], ...]
-    matching: int
-    describing: tuple[tuple[float, float], ...]
-    status: LoggedCycleStatus
-
-    units_of: ClassVar[dict[str, str]] = {"stiffness": "stiffness"}
-
-    def __post_init__(self) -> None:
-        check_type("device", self.device, Device, "LoggedCycle is built by compare_logged_cycle; call that")
-        object.__setattr__(self, "status", LoggedCycleStatus.coerce(self.status))
-
-    def to_dict(self) -> dict[str, Any]:
-        """Every field, the oscillations as their numbers (null when there is none)."""
-        out = super().to_dict()
-        lg = self.logged
-        out["logged"] = None if lg is None else lg.to_dict() | {
-            "amplitude_si": position(self.device, lg.amplitude), "frequency_hz": hertz(self.device, lg.frequency)}  # fmt: skip
-        out["replays"] = [{"damping": b, "coulomb": c, "outcome": o, "amplitude": a,
-                           "frequency": None if math.isnan(w) else w} for b, c, o, a, w in self.replays]  # fmt: skip
-        out["describing"] = [{"amplitude": a, "frequency": w} for a, w in self.describing]
-        reasons = {
-            k: v for k, v in out.get("null_reasons", {}).items() if not k.startswith(("/replays", "/describing"))
-        }
-        reasons |= {f"/replays/{i}/frequency": "not measured: the replay did not settle in a cycle"
-                    for i, r in enumerate(self.replays) if math.isnan(r[4])}  # fmt: skip
-        out["null_reasons"] = reasons
-        out["units_of_cycles"] = "amplitude in ticks (amplitude_si in m or rad), frequency in rad per sample"
-        return out
 
 
 def _same(logged: LoggedOscillation, outcome: str, amplitude: float, frequency: float) -> bool:

@@ -57,12 +57,12 @@ from ..errors import DFAValueError
 from ..model.device import Params
 from ..model.wall import WallParams
 from ..results.base import Result
+from ..results.cycles import SearchEvidence
 from ..results.frozen import check_shape, freeze_fields
 from ..results.status import NyquistStatus, SearchStatus
 from ..results.summaries import OperatingPoint
 from .cycles.characteristic import inv_loop
 from .cycles.controlled import resolve_wall
-from .cycles.results import SearchEvidence
 from .describing import coulomb_equivalent_damping, quantizer_df
 from .loop_models import LOOP_MODELS, check_model, check_params
 

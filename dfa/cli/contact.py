@@ -15,8 +15,8 @@ import argparse
 
 from ..model.device import Device
 from ..model.elements import Element, OneSided, Push
+from .flag_table import add_rows
 from .parsing import UsageError
-from .walls import add_rows
 
 __all__ = ["add_contact_args", "contact_elements", "refuse_one_sided_flag", "CONTACT_COMMANDS"]
 

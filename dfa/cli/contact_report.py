@@ -1,7 +1,7 @@
 """``python -m dfa.cli.contact_report``: the bilateral spring against the one-sided wall, on the catalogue devices.
 
-Parse → call (:func:`dfa.analysis.contact_comparison.contact_comparison`) → render
-(:func:`dfa.render.contact.comparison_markdown`). Not a ``dfa`` subcommand: it regenerates the committed report::
+Parse → call (:func:`dfa.studies.contact_comparison.contact_comparison`) → render
+(:func:`dfa.studies.contact_document.comparison_markdown`). Not a ``dfa`` subcommand: it regenerates the committed report::
 
     python -m dfa.cli.contact_report --out reports/validation      # one_sided_comparison.md and .json
 
@@ -44,9 +44,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     int
         0 ok, 2 bad input, 1 a file error, 130 interrupted.
     """
-    from ..analysis.contact_comparison import contact_comparison
-    from ..render.contact import comparison_markdown
-    from ..results.jsonable import dumps
+    from ..jsonable import dumps
+    from ..studies.contact_comparison import contact_comparison
+    from ..studies.contact_document import comparison_markdown
 
     def write(c: Any, stage: Path) -> None:
         (stage / f"{STEM}.md").write_text(comparison_markdown(c), encoding="utf-8")

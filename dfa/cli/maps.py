@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..checks import check_damping_rate
-from ..results.jsonable import explain_nulls
+from ..jsonable import explain_nulls
 from .contact import add_contact_args
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import (
@@ -125,7 +125,9 @@ def _point_runs(m: StabilityMap, inp: Inputs | None, bound: float) -> tuple[Simu
     """The device's operating point simulated at each speed with the map's settings (none without a device)."""
     if inp is None or inp.params is None or inp.device is None:
         return ()
-    return m.simulate_point(inp.params.beta, inp.params.sigma, bound=bound)
+    from ..analysis.maps import simulate_point
+
+    return simulate_point(m, inp.params.beta, inp.params.sigma, bound=bound)
 
 
 def _point_note(r: SimulationResult, phys: dict[str, Any]) -> str:

@@ -9,7 +9,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from ..formatting import WIDTH, fill, number, text_table
-from ..results.jsonable import dumps
+from ..jsonable import dumps
 from .inputs import Inputs
 from .parsing import UsageError
 
@@ -84,7 +84,7 @@ def drop_warnings() -> None:
 
 
 def emit(obj: object, ensure_ascii: bool = True) -> None:
-    """Print one strict-JSON object (NaN/inf become null with the reason, :mod:`dfa.results.jsonable`)."""
+    """Print one strict-JSON object (NaN/inf become null with the reason, :mod:`dfa.jsonable`)."""
     flush_warnings()
     print(dumps(obj, ensure_ascii=ensure_ascii))
 

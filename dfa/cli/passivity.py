@@ -13,8 +13,8 @@ import argparse
 
 from ..model.device import Device
 from ..model.elements import Element, PassivityController
+from .flag_table import add_rows
 from .parsing import UsageError
-from .walls import add_rows
 
 __all__ = ["add_passivity_args", "add_observer_arg", "passivity_elements", "refuse_passivity_flag"]
 

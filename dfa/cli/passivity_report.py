@@ -1,6 +1,6 @@
 """``python -m dfa.cli.passivity_report``: what a passivity controller buys and costs, on the catalogue devices.
 
-Parse → call (:func:`dfa.analysis.passivity_comparison.passivity_comparison`) → render
+Parse → call (:func:`dfa.studies.passivity_comparison.passivity_comparison`) → render
 (:func:`dfa.render.passivity.passivity_markdown`, :func:`dfa.figures.passivity_plot`). Not a ``dfa`` subcommand:
 it regenerates the committed report (a few minutes)::
 
@@ -45,10 +45,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     int
         0 ok, 2 bad input, 1 a file error, 130 interrupted.
     """
-    from ..analysis.passivity_comparison import passivity_comparison
     from ..figures import save_figure
+    from ..jsonable import dumps
     from ..render.passivity import passivity_markdown
-    from ..results.jsonable import dumps
+    from ..studies.passivity_comparison import passivity_comparison
 
     def write(c: Any, stage: Path) -> None:
         save_figure(c.plot()[0].figure, stage / f"{STEM}.png")

@@ -101,8 +101,8 @@ def _read_validation(path: str) -> dict[str, Any]:
 
 def run(args: argparse.Namespace) -> int:
     """Write the report; print the paths written (or, with --json, the paths and the numbers stated)."""
-    from ..analysis.design import resolve_design_inputs
-    from ..report import design_report
+    from ..studies.design import resolve_design_inputs
+    from ..studies.report import design_report
 
     if (
         args.device is None

@@ -7,7 +7,7 @@ from typing import Any
 
 from .._io import check_output_file
 from ..checks import check_damping_rate
-from ..results.jsonable import explain_nulls
+from ..jsonable import explain_nulls
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import (

@@ -1,7 +1,7 @@
 """``python -m dfa.cli.soundness_report``: the passivity criterion's soundness by exact simulation, as reports.
 
-Parse → call (:func:`dfa.analysis.soundness.criterion_soundness`, this package's criterion and the one that
-ignores what each check is about) → render (:func:`dfa.render.files.write_soundness`). Not a ``dfa``
+Parse → call (:func:`dfa.studies.soundness.criterion_soundness`, this package's criterion and the one that
+ignores what each check is about) → study document (:func:`dfa.studies.soundness_document.write_soundness`). Not a ``dfa``
 subcommand: it regenerates the committed reports::
 
     python -m dfa.cli.soundness_report --points 100000 --out reports/validation           # delay_soundness.md
@@ -23,17 +23,16 @@ import sys
 from collections.abc import Sequence
 
 from .._io import check_output_folder
-from ..analysis.soundness import (
+from ..checks import check_delay, check_int
+from ..errors import DFAValueError
+from ..studies.soundness import (
     CriterionSoundness,
     Population,
     criterion_soundness,
     history_soundness,
     one_sided_soundness,
 )
-from ..checks import check_delay, check_int
-from ..errors import DFAValueError
-from ..render.files import write_soundness
-from ..render.soundness import soundness_line
+from ..studies.soundness_document import soundness_line, write_soundness
 from .output import report_script
 from .parsing import Parser, integer
 

@@ -11,8 +11,8 @@ from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..formatting import fill, text_table
+from ..jsonable import explain_nulls
 from ..model.wall import Wall
-from ..results.jsonable import explain_nulls
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, save_png
@@ -21,8 +21,8 @@ from .passivity import add_passivity_args
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
 
 if TYPE_CHECKING:
-    from ..analysis.limits.kmax import KMaxResult
-    from ..analysis.limits.recommend import Recommendation
+    from ..results.limits import KMaxResult
+    from ..results.require import Recommendation
 
 COMMAND = "stiffness"
 HELP = (
@@ -145,10 +145,10 @@ def run(args: argparse.Namespace) -> int:
 
 def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp: Inputs) -> None:
     """The full answer (``--explain``): every limit in words with what its confirmation simulated."""
-    from ..analysis.criterion import start_state_note
     from ..render.answer import recommendation_line
     from ..render.hand import device_title
     from ..render.limits import PROOF_NOTE, evidence_text, kmax_rows, verdict_text
+    from ..results.criterion import start_state_note
 
     dev, v, wall = ans.device, ans.velocity, ans.wall
     vu, d = dev.units["velocity"], wall.delay

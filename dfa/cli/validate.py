@@ -32,9 +32,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the validation, write its files together (or none), print the summary."""
-    from ..analysis.validation import validate
     from ..checks import check_jobs
-    from ..render.files import write_validation
+    from ..studies.validation import validate
+    from ..studies.validation_document import write_validation
 
     check_jobs("--jobs", args.jobs)
     check_output_folder("--out", args.out, create=True)  # the parent must exist; the folder itself is created

@@ -13,8 +13,9 @@ import math
 from typing import Any
 
 from ..model.device import Device
-from ..model.elements import ELEMENTS, Delay, Element, FlagRow
+from ..model.elements import ELEMENTS, Delay, Element
 from ..model.wall import MIN_CUTOFF, Wall, WallParams
+from .flag_table import FLAG_ROWS, add_rows
 from .inputs import Inputs
 from .output import say
 from .parsing import UsageError, delay, number
@@ -43,19 +44,6 @@ def _dest(kind: type[Element]) -> str:
 #: The flag table: element class -> (flag, argparse destination). The delay is a plain flag (default 0); the
 #: others form the wall group (default: no such element).
 WALL_FLAGS: dict[type[Element], tuple[str, str]] = {k: (k.parameter.flag, _dest(k)) for k in ELEMENTS if k.wall_flag}
-
-
-#: The one flag table: every option of every element (:meth:`~dfa.model.elements.Element.flag_rows`), by flag.
-FLAG_ROWS: dict[str, FlagRow] = {row.flag: row for k in ELEMENTS for row in k.flag_rows()}
-
-
-def add_rows(g: Any, kind: type[Element]) -> None:
-    """Add an element's options (its rows of :data:`FLAG_ROWS`) to a parser or argument group."""
-    for row in kind.flag_rows():
-        if row.metavar is None:
-            g.add_argument(row.flag, action="store_true", help=FLAG_ROWS[row.flag].help)
-        else:
-            g.add_argument(row.flag, type=number(row.flag, row.unit), metavar=row.metavar, help=row.help)
 
 
 def _add_element(g: Any, kind: type[Element], help_text: str | None = None) -> None:

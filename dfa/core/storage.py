@@ -2,7 +2,7 @@
 
 :func:`storage_runs` simulates a list of points with the spring kernel (each with its own delay and encoder
 setting) and keeps, for each, the largest relative growth of S over its samples: the fast path of the
-spring's walls in :mod:`dfa.analysis.soundness`, which checks a passivity verdict against it.
+spring's walls in :mod:`dfa.studies.soundness`, which checks a passivity verdict against it.
 """
 
 from __future__ import annotations

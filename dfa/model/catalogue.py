@@ -40,7 +40,7 @@ from functools import lru_cache
 from importlib import resources
 
 from ..errors import DeviceFileError, DFAError, DFATypeError, DFAValueError
-from ..results.jsonable import explain_nulls
+from ..jsonable import explain_nulls
 from .device import DEVICE_FIELDS, STIFFNESS, Device, DeviceField, Params
 
 if sys.version_info >= (3, 11):

@@ -46,8 +46,8 @@ import numpy.typing as npt
 from ..checks import check_positive, format_value
 from ..core.table import check_table
 from ..errors import DFATypeError, DFAValueError
+from ..jsonable import explain_nulls
 from ..plausibility import warn_if_from_outside
-from ..results.jsonable import explain_nulls
 from .elements import (
     ELEMENTS,
     MIN_CUTOFF,

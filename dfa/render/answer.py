@@ -11,12 +11,10 @@ Examples
 
 from __future__ import annotations
 
-from ..analysis.criterion import start_state_clause, start_state_note
-from ..analysis.limits.kmax import KMaxResult
-from ..analysis.limits.recommend import Recommendation
-from ..analysis.limits.require import DamperGuidance
-from ..analysis.limits.search import KLimit
 from ..formatting import WIDTH, fill, number, text_table
+from ..results.criterion import start_state_clause, start_state_note
+from ..results.limits import KLimit, KMaxResult
+from ..results.require import DamperGuidance, Recommendation
 from ..results.status import LimitStatus, RecommendRule, StiffnessStatus, VelocityStatus
 from .contact import contact_text
 from .hand import device_title

@@ -15,9 +15,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..analysis.check import PassivityCheck
 from ..formatting import number
-from ..results.jsonable import explain_nulls, to_jsonable
+from ..jsonable import explain_nulls, to_jsonable
+from ..results.criterion import PassivityCheck
 from ..results.status import CheckStatus
 
 __all__ = [

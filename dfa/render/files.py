@@ -1,4 +1,5 @@
-"""Files other than the design report: a simulated trajectory as CSV, the validation and soundness reports.
+"""Files other than the reports: a simulated trajectory as CSV (the studies write their own documents:
+:func:`dfa.studies.validation_document.write_validation`, :func:`dfa.studies.soundness_document.write_soundness`).
 
 All written atomically (:mod:`dfa._io`): a report's files appear together, or none.
 """
@@ -6,14 +7,13 @@ All written atomically (:mod:`dfa._io`): a report's files appear together, or no
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .._io import atomic_open, staged_folder
-from ..results.jsonable import JSON_DIGITS, dumps
+from .._io import atomic_open
+from ..jsonable import JSON_DIGITS
 
-__all__ = ["trace_extent", "write_trace_csv", "write_validation", "write_soundness"]
+__all__ = ["trace_extent", "write_trace_csv"]
 
 
 def write_trace_csv(
@@ -86,7 +86,7 @@ def write_trace_csv(
             cols.append(units.force(device, stiffness, extra[1]))
     with atomic_open(path, "w") as fh:
         fh.write(",".join(names) + "\n")
-        # 12 significant digits (JSON's, dfa.results.jsonable.JSON_DIGITS); + 0.0 writes -0 as 0
+        # 12 significant digits (JSON's, dfa.jsonable.JSON_DIGITS); + 0.0 writes -0 as 0
         table = np.column_stack(cols) + 0.0
         np.savetxt(fh, table, delimiter=",", fmt=["%d"] + [f"%.{JSON_DIGITS}g"] * (len(cols) - 1))
     return Path(path)
@@ -119,68 +119,3 @@ def trace_extent(result: Any) -> tuple[int, str]:
         "undecided": "the whole run: still undecided at its end",
     }
     return last, whole.get(outcome, f"the whole run: {outcome} is judged over its tail")
-
-
-def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
-    """Write ``validation.md``, ``validation.json`` and two figures into the folder ``out`` (all four, or none).
-
-    Parameters
-    ----------
-    result : ValidationResult
-        From :func:`dfa.validate`.
-    out : path
-        Folder (created if missing; its parent must exist).
-
-    Returns
-    -------
-    dict
-        The strict-JSON summary written to ``validation.json`` (:meth:`ValidationResult.to_dict`: the
-        summary, NaN as null with ``null_reasons``, and the status).
-    """
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    from .. import figures
-    from .validation import validation_markdown
-
-    os.makedirs(out, exist_ok=True)
-    summary = result.to_dict()
-    figs = {}
-    with staged_folder(out) as stage:
-        for key, fn in (("cycles", figures.cycle_error_plot), ("speeds", figures.critical_speed_plot)):
-            ax = fn(result)
-            figs[key] = f"validation_{key}.png"
-            ax.figure.savefig(stage / figs[key], dpi=120)
-            plt.close(ax.figure)
-        (stage / "validation.md").write_text(validation_markdown(result, figs), encoding="utf-8")
-        (stage / "validation.json").write_text(dumps(summary, indent=1), encoding="utf-8")
-    return summary
-
-
-def write_soundness(results: Sequence[Any], out: str | os.PathLike) -> Path:
-    """Write a soundness report, its Markdown and JSON, into the folder ``out`` (both files, or none).
-
-    Parameters
-    ----------
-    results : sequence of CriterionSoundness
-        Records of one population (:func:`dfa.analysis.soundness.criterion_soundness`): the spring's write
-        ``delay_soundness.md``/``.json``, random walls' ``controller_soundness.md``/``.json``.
-    out : path
-        Folder (created if missing; its parent must exist).
-
-    Returns
-    -------
-    Path
-        The Markdown file.
-    """
-    from .soundness import report_stem, soundness_markdown
-
-    stem = report_stem(results)
-    text = soundness_markdown(results)
-    os.makedirs(out, exist_ok=True)
-    with staged_folder(out) as stage:
-        (stage / f"{stem}.md").write_text(text, encoding="utf-8")
-        (stage / f"{stem}.json").write_text(dumps(list(results), indent=1), encoding="utf-8")
-    return Path(out) / f"{stem}.md"

@@ -9,9 +9,9 @@ from ..formatting import number
 from ..results.status import GripStatus
 
 if TYPE_CHECKING:
-    from ..analysis.limits.grip import GripNeed, GripSweep
     from ..model.device import Device
     from ..model.hand import Hand
+    from ..results.grip import GripNeed, GripSweep
 
 __all__ = [
     "hand_label", "grasp_text", "device_title", "held_name", "moving_symbols", "grip_rows", "grip_text", "at_least",

@@ -10,9 +10,8 @@ from ..formatting import fill, number, number_at, text_table
 from ..model.units import hertz, position
 
 if TYPE_CHECKING:
-    from ..analysis.identify import Estimate, Identification
-    from ..analysis.logged_cycle import LoggedCycle
     from ..model.device import Device
+    from ..results.identify import Estimate, Identification, LoggedCycle
 
 __all__ = ["identify_lines", "loop_head", "device_flags", "cycle_lines", "poor_fit_loop"]
 
@@ -21,7 +20,7 @@ def _interval(e: Estimate, unit: str) -> list[str]:
     """The value and its interval to their meaningful digits (:attr:`Estimate.place`: the interval rounded
     outward); without an interval the value to 4 digits, or "–" when the log does not bound it at all (no digit
     of it is meaningful)."""
-    from ..analysis.identify import SCATTER_WHY
+    from ..results.identify import SCATTER_WHY
 
     if e.low is None or e.high is None or e.place is None:
         value = "–" if e.undetermined == SCATTER_WHY else f"{number(e.value, 4)} {unit}"
@@ -35,7 +34,7 @@ def _interval(e: Estimate, unit: str) -> list[str]:
 
 def _short(why: str) -> str:
     """A few words for a table cell of why an estimate has no interval (the full reason is in the JSON)."""
-    from ..analysis.identify import FRICTION_UNRESOLVED_WHY, NO_REVERSAL_WHY, POOR_FIT_WHY, SCATTER_WHY
+    from ..results.identify import FRICTION_UNRESOLVED_WHY, NO_REVERSAL_WHY, POOR_FIT_WHY, SCATTER_WHY
 
     short = {NO_REVERSAL_WHY: "no reversal: only c − f₀", FRICTION_UNRESOLVED_WHY: "below the forces' resolution",
              SCATTER_WHY: "unbounded by the log", POOR_FIT_WHY: "poor fit"}  # fmt: skip

@@ -16,13 +16,20 @@ Examples
 
 from __future__ import annotations
 
-from ..analysis.criterion import start_state_clause
-from ..analysis.cycles import SUBTICK_LIMIT
-from ..analysis.limits.closed_form import StiffnessLimits
-from ..analysis.limits.kmax import KMaxAssessment, KMaxResult
-from ..analysis.limits.search import FINE_POINTS, FINE_STEP, SWEEP_STEP, Confirmation, KLimit
 from ..formatting import number
 from ..model.wall import WallParams
+from ..results.caveats import SUBTICK_LIMIT
+from ..results.criterion import start_state_clause
+from ..results.limits import (
+    FINE_POINTS,
+    FINE_STEP,
+    SWEEP_STEP,
+    Confirmation,
+    KLimit,
+    KMaxAssessment,
+    KMaxResult,
+    StiffnessLimits,
+)
 from ..results.status import LimitStatus, StiffnessStatus, VelocityStatus
 from .hand import moving_symbols
 

@@ -6,11 +6,11 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from ..formatting import number, text_table
-from ..results.jsonable import explain_nulls
+from ..jsonable import explain_nulls
 from ..results.status import GrowthStatus, SearchStatus
 
 if TYPE_CHECKING:  # annotations only: importing the limit-cycle package would load python-control (`dfa check`)
-    from ..analysis.cycles.caveats import NoRestCaveat, SubtickCaveat
+    from ..results.caveats import NoRestCaveat, SubtickCaveat
 
 __all__ = [
     "OUTCOME_TEXT",
@@ -217,7 +217,7 @@ def outside_searched_mu(mu: float) -> str:
     >>> outside_searched_mu(1e10)[:40]
     'μ = 1e+10 lies outside 1e-06 … 1e+08, wh'
     """
-    from ..analysis.cycles import SEARCHED_MU  # here: it loads the limit-cycle package
+    from ..results.cycles import SEARCHED_MU  # here: it loads the limit-cycle package
 
     return (
         f"μ = {mu:.3g} lies outside {SEARCHED_MU[0]:g} … {SEARCHED_MU[1]:g}, where cycle "
@@ -267,7 +267,7 @@ def flagged_text(maps: Any) -> str:
     str
         ``"eq. 42-43: 1 point(s) NaN, …"`` per group, joined by ``"; "``; empty when none is flagged.
     """
-    from ..analysis.cycles import ClosedFormStatus
+    from ..results.cycles import ClosedFormStatus
 
     return "; ".join(
         f"{f.equations}: {f.points} point(s) NaN, {ClosedFormStatus[f.reason.upper()].reason}" for f in maps.flagged
@@ -393,11 +393,11 @@ def _growth_dict(g: Any) -> dict[str, Any]:
 
 
 def caveat_text(c: SubtickCaveat) -> str:
-    """The sub-tick caveat (:class:`dfa.analysis.cycles.caveats.SubtickCaveat`) in words.
+    """The sub-tick caveat (:class:`dfa.results.caveats.SubtickCaveat`) in words.
 
     Examples
     --------
-    >>> from dfa.analysis.cycles.caveats import SubtickCaveat
+    >>> from dfa.results.caveats import SubtickCaveat
     >>> caveat_text(SubtickCaveat(1.014))[:62]
     'the smallest unstable cycle (M = 1.014 ticks) lies below 1.25 '
     """
@@ -411,11 +411,11 @@ def caveat_text(c: SubtickCaveat) -> str:
 
 
 def rest_caveat_text(c: NoRestCaveat) -> str:
-    """The no-rest caveat (:class:`dfa.analysis.cycles.caveats.NoRestCaveat`) in words.
+    """The no-rest caveat (:class:`dfa.results.caveats.NoRestCaveat`) in words.
 
     Examples
     --------
-    >>> from dfa.analysis.cycles.caveats import NoRestCaveat
+    >>> from dfa.results.caveats import NoRestCaveat
     >>> rest_caveat_text(NoRestCaveat(0.45))[:40]
     'σ = 0.45 < ½: the Coulomb friction canno'
     """

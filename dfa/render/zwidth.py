@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..analysis.limits.require import DamperGuidance
 from ..formatting import number
+from ..results.require import DamperGuidance
 
 __all__ = ["criterion_damper_note", "non_monotone_mark", "non_monotone_notes"]
 

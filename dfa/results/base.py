@@ -8,7 +8,7 @@ A result class subclasses :class:`Result` (``@dataclass(frozen=True)``) and decl
   the JSON records the unit of every quantity (``"units": {"k_max": "N/m", ...}``) once a device is known;
 - :meth:`Result.null_reasons`: why a field may be null for a reason other than NaN or infinity.
 
-:meth:`Result.to_dict` builds strict JSON (:mod:`dfa.results.jsonable`) from exactly these, so no result
+:meth:`Result.to_dict` builds strict JSON (:mod:`dfa.jsonable`) from exactly these, so no result
 writes its JSON by hand; a field's ``metadata={"json": fn}`` gives what it writes instead of itself (the
 device's name, say), ``metadata={"json": None}`` leaves it out, ``metadata={"omit_none": True}`` leaves it out
 when it is None (a field of some cases only).
@@ -30,7 +30,7 @@ from __future__ import annotations
 import dataclasses
 from typing import Any, ClassVar
 
-from .jsonable import explain_nulls, to_jsonable
+from ..jsonable import explain_nulls, to_jsonable
 
 __all__ = ["Result"]
 
@@ -79,7 +79,7 @@ class Result:
         -------
         dict
             Data that ``json.dumps(..., allow_nan=False)`` accepts; every null has its reason under
-            ``null_reasons`` (:mod:`dfa.results.jsonable`).
+            ``null_reasons`` (:mod:`dfa.jsonable`).
         """
         out: dict[str, Any] = {}
         for f in dataclasses.fields(self):  # type: ignore[arg-type]
@@ -102,3 +102,29 @@ class Result:
 
 
 _SELF = object()  # a field written as itself
+
+
+def figure_function(name: str) -> Any:
+    """The plotting function ``name`` of the rendering layer's figures, imported by name when a ``.plot()`` runs.
+
+    A result's ``.plot()`` draws through the rendering layer, which sits above the results: a plain import
+    (even inside the method) would be an upward edge. This is the one place that resolves it, by name and
+    only when called, so ``import dfa`` loads no matplotlib and the results import nothing above them.
+
+    Parameters
+    ----------
+    name : str
+        A function of :mod:`dfa.figures` (``"stiffness_plot"``, ...).
+
+    Returns
+    -------
+    callable
+        The plotting function.
+    """
+    import importlib
+
+    return getattr(importlib.import_module(FIGURES_MODULE), name)
+
+
+#: Where the figures live (imported by name only, by :func:`figure_function`).
+FIGURES_MODULE = "dfa.figures"

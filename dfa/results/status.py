@@ -250,7 +250,7 @@ class GainStatus(StatusEnum):
 
 
 class ComparisonStatus(StatusEnum):
-    """What the bilateral-versus-one-sided comparison rests on (:mod:`dfa.analysis.contact_comparison`)."""
+    """What the bilateral-versus-one-sided comparison rests on (:mod:`dfa.studies.contact_comparison`)."""
 
     OK = ("ok", "every limit found or bounded by its search, no counterexample")
     COUNTEREXAMPLE = (
@@ -387,26 +387,26 @@ class ContourStatus(StatusEnum):
 
 
 class SoundnessStatus(StatusEnum):
-    """Whether simulation contradicted a passivity verdict (:class:`dfa.analysis.soundness.CriterionSoundness`)."""
+    """Whether simulation contradicted a passivity verdict (:class:`dfa.studies.soundness.CriterionSoundness`)."""
 
     SOUND = ("sound", "no simulated point called passive gained energy or diverged")
     VIOLATED = ("violated", "some points called passive gained energy or diverged: the criterion is not sound here")
 
 
 class ValidationStatus(StatusEnum):
-    """Status of a validation run (:class:`dfa.analysis.validation.ValidationResult`)."""
+    """Status of a validation run (:class:`dfa.studies.validation.ValidationResult`)."""
 
     OK = ("ok", "every validation item ran")
 
 
 class DesignStatus(StatusEnum):
-    """Status of a design analysis (:class:`dfa.analysis.design.DesignAnalysis`)."""
+    """Status of a design analysis (:class:`dfa.studies.design.DesignAnalysis`)."""
 
     OK = ("ok", "every number of the design report computed")
 
 
 class ReportStatus(StatusEnum):
-    """Status of a written design report (:class:`dfa.report.ReportResult`)."""
+    """Status of a written design report (:class:`dfa.studies.report.ReportResult`)."""
 
     OK = ("ok", "every file of the report written")
 

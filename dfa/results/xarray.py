@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import DFAError
-from .jsonable import NULL_REASONS_KEY
+from ..jsonable import NULL_REASONS_KEY
 
 __all__ = [
     "import_xarray",

@@ -61,10 +61,10 @@ Modules
 :mod:`~dfa.analysis.cycles.characteristic` C(M, ω) = 1/L + D;  :mod:`~dfa.analysis.cycles.phase` the phase
 condition and ω(M);  :mod:`~dfa.analysis.cycles.search` the amplitudes sampled and the envelope stop;
 :mod:`~dfa.analysis.cycles.solve` bracketing and refinement (:func:`limit_cycles`);
-:mod:`~dfa.analysis.cycles.stability` the Loeb criterion;  :mod:`~dfa.analysis.cycles.results` the result types;
+:mod:`~dfa.analysis.cycles.stability` the Loeb criterion;  :mod:`~dfa.results.cycles` the result types;
 :mod:`~dfa.analysis.cycles.closed_forms` eq. 42-45;  :mod:`~dfa.analysis.cycles.growth` the growth band;
 :mod:`~dfa.analysis.cycles.controlled` the controller's inputs and the linear loop with it;
-:mod:`~dfa.analysis.cycles.caveats` the sub-tick caveat (where "no growth below the smallest unstable cycle" fails).
+:mod:`~dfa.results.caveats` the sub-tick caveat (where "no growth below the smallest unstable cycle" fails).
 
 Stability (Loeb criterion): a cycle is stable when
 ∂U/∂M·∂V/∂ω − ∂U/∂ω·∂V/∂M > 0, the sign that makes an amplitude increase
@@ -82,7 +82,8 @@ Examples
 from __future__ import annotations
 
 # private names re-exported for the tests and benchmarks that reach into the solver
-from .caveats import SUBTICK_LIMIT, NoRestCaveat, SubtickCaveat, no_rest_caveat, subtick_caveat
+from ...results.caveats import SUBTICK_LIMIT, NoRestCaveat, SubtickCaveat, no_rest_caveat, subtick_caveat
+from ...results.cycles import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchEvidence, SearchStatus
 from .characteristic import W_GRID, HarmonicLoop, grid_lead, inv_loop, pade_denominator  # noqa: F401
 from .closed_forms import (
     ClosedFormCycles,
@@ -96,7 +97,6 @@ from .closed_forms import (
 )
 from .growth import GrowthThreshold, growth_threshold
 from .phase import PieceOmega, phase_beta, zoh_phase_beta_grid  # noqa: F401
-from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchEvidence, SearchStatus
 from .search import INTERVAL_BUDGET, envelope_bound
 from .solve import AUTO_MAX_AMPLITUDE, DEFAULT_TIME_BUDGET, SEARCHED_MU, limit_cycles
 from .stability import limit_cycle_at  # noqa: F401

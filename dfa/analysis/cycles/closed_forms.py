@@ -31,11 +31,9 @@ Examples
 
 from __future__ import annotations
 
-import enum
 import math
 import sys
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -46,6 +44,9 @@ from ...checks import check_beta, check_mu, check_sigma
 from ...errors import DFAValueError
 from ...model.device import Params
 from ...model.elements import Coverage
+from ...results.cycles import _REASONS as _REASONS
+from ...results.cycles import ClosedFormCycles as ClosedFormCycles
+from ...results.cycles import ClosedFormStatus as ClosedFormStatus
 
 if TYPE_CHECKING:
     from ...model.wall import WallParams
@@ -60,66 +61,6 @@ __all__ = [
     "large_cycle_closed_form",
     "large_cycle_frequency",
 ]
-
-
-class ClosedFormStatus(enum.IntEnum):
-    """Why a closed-form cycle is, or is not, given at a point (:attr:`ClosedFormCycles.status`)."""
-
-    #: the closed form holds: amplitude and frequency are finite
-    OK = 0
-    #: the family does not exist here (small: σ >= ½; large: sin(ω/2) <= βω)
-    NO_CYCLE = 1
-    #: β = σ = 0 for the small family: eq. 43's root is ω = 0 with M = ∞, no cycle
-    DEGENERATE = 2
-    #: the root finder reported a failure (non-finite value, no convergence), or (small family) ω lies
-    #: within rounding of π, where eq. 42's M ∝ cos(ω/2) cannot be computed in floating point
-    NOT_SOLVED = 3
-
-    @property
-    def reason(self) -> str:
-        """One line in words."""
-        return _REASONS[self]
-
-
-_REASONS = {
-    ClosedFormStatus.OK: "ok",
-    ClosedFormStatus.NO_CYCLE: "no cycle of this family at this point",
-    ClosedFormStatus.DEGENERATE: "degenerate: with β = σ = 0 eq. 43 gives ω → 0 and M → ∞ (no cycle)",
-    ClosedFormStatus.NOT_SOLVED: (
-        "not solved here: the root finder failed (non-finite value or no convergence), or ω is within rounding "
-        "of π (β/μ too large for eq. 42-43 in floating point)"
-    ),
-}
-
-
-@dataclass(frozen=True)
-class ClosedFormCycles:
-    """Closed-form cycles over broadcast (μ, β, σ): NaN wherever ``status`` is not OK.
-
-    Attributes
-    ----------
-    amplitude : numpy.ndarray
-        M in encoder ticks (read-only).
-    frequency : numpy.ndarray
-        ω in rad per sample (read-only).
-    status : numpy.ndarray of int8
-        :class:`ClosedFormStatus` values (read-only).
-    """
-
-    amplitude: np.ndarray
-    frequency: np.ndarray
-    status: np.ndarray
-
-    def __post_init__(self) -> None:
-        for name in ("amplitude", "frequency", "status"):
-            a = np.array(getattr(self, name))  # a copy, so that the caller's array stays writeable
-            a.flags.writeable = False
-            object.__setattr__(self, name, a)
-
-    @property
-    def codes(self) -> list[ClosedFormStatus]:
-        """The status of each point as enum members (flattened)."""
-        return [ClosedFormStatus(int(s)) for s in self.status.ravel()]
 
 
 def _check_spring(wall: object) -> None:

@@ -12,12 +12,13 @@ from scipy import optimize
 from ...checks import check_choice, check_positive
 from ...model.device import Params
 from ...model.wall import WallParams
+from ...results.cycles import SEARCHED_MU as SEARCHED_MU
+from ...results.cycles import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchEvidence, SearchStatus
 from ..loop_models import check_model, check_params
 from . import search
 from .characteristic import DF_CHOICES, M_FLOOR, W_GRID, HarmonicLoop
 from .controlled import linear_stable_of, resolve_wall
 from .phase import PieceOmega, phase_pieces
-from .results import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchEvidence, SearchStatus
 from .search import envelope_bound, m_samples
 from .stability import cycles_at_crossing, make_cycle
 
@@ -141,13 +142,6 @@ AUTO_MAX_AMPLITUDE = 1.0e6
 
 #: Default wall-clock budget of one limit-cycle search (seconds).
 DEFAULT_TIME_BUDGET = 10.0
-
-
-#: μ = m/(KT²) over which the search claims completeness: there every cycle's frequency lies well inside the
-#: scanned grid ``W_GRID`` = [1e-5, π − 1e-9] rad/sample (the large family's ω ≈ 1/√μ reaches 1e-5 at μ = 1e10,
-#: a cycle near Nyquist has π − ω ≈ 20μ; ``tests/test_eq36_cycle_search.py`` checks both ends). Outside it
-#: :func:`limit_cycles` searches nothing and says so (status ``FREQUENCY_RANGE``).
-SEARCHED_MU = (1e-6, 1e8)
 
 
 def limit_cycles(

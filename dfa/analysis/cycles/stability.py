@@ -7,8 +7,8 @@ import math
 import numpy as np
 from scipy import optimize
 
+from ...results.cycles import LimitCycle
 from .characteristic import HarmonicLoop
-from .results import LimitCycle
 
 
 # ------------------------------------------------------------------- solver

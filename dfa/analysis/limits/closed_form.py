@@ -39,8 +39,7 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -50,9 +49,9 @@ from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.wall import Wall
 from ...plausibility import warn_if_from_outside
-from ...results.base import Result
-from ...results.frozen import check_shape, freeze_fields
-from ...results.status import CurveStatus, StiffnessStatus, VelocityStatus
+from ...results.limits import StiffnessLimits as StiffnessLimits
+from ...results.limits import StiffnessResponse as StiffnessResponse
+from ...results.status import StiffnessStatus, VelocityStatus
 from ..criterion import device_criterion
 from ..linear import critical_beta, critical_stiffness
 
@@ -374,108 +373,6 @@ def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> fl
     return r.critical_velocity
 
 
-@dataclass(frozen=True)
-class StiffnessLimits(Result):
-    """Stiffness limits of a device at an impact speed (all N/m, rotary N·m/rad).
-
-    Its JSON (:meth:`~dfa.results.base.Result.to_dict`, the ``dfa stiffness --json`` contract plus extras) holds
-    the fields, the device by name and ``velocity_status`` as ``max_passive_velocity_status``; an infinite
-    ``max_passive_velocity`` (every speed) is null with the reason of its status.
-
-    Attributes
-    ----------
-    device : Device
-    velocity : float
-        Impact speed abs(ẋ0) in m/s (rad/s).
-    xi_dot : float
-        The same speed in encoder ticks per sample.
-    k_max : float
-        Criterion limit (eq. 11, with the delay) at this speed.
-    k_static : float
-        2c/Δ, the limit at rest (eq. 9).
-    k_colgate : float
-        2b/T (eq. 8, Colgate & Schenkel 1997); b/(T(½ + d)) with a delay.
-    k_abbott_okamura : float
-        min(2b/T, 2c/Δ) (Abbott & Okamura 2005); min(b/(T(½ + d)), 2c/Δ) with a delay.
-    k_gil : float
-        Exact linear bound of the sampled spring with the same delay, all Jury conditions (:func:`k_gil`).
-    stiffness : float or None
-        The stiffness under study, if given.
-    max_passive_velocity : float or None
-        For ``stiffness``: largest passive speed (inf: every speed; None: none).
-    velocity_status : VelocityStatus
-        ``NOT_REQUESTED``, ``ALL_SPEEDS``, ``BOUNDED`` or ``NONE`` (codes ``"not_requested"``,
-        ``"all_speeds"``, ``"bounded"``, ``"none"``).
-    status : StiffnessStatus
-        ``OK`` (code ``"ok"``) when ``stiffness`` passes at ``velocity``, ``TOO_STIFF`` (``"too_stiff"``)
-        when it does not, ``NOT_REQUESTED`` (``"not_requested"``) when no stiffness was given.
-    delay : int
-        Computational delay d in samples.
-    """
-
-    device: Device = field(metadata={"json": lambda d: d.name})
-    velocity: float
-    xi_dot: float
-    k_max: float
-    k_static: float
-    k_colgate: float
-    k_abbott_okamura: float
-    k_gil: float
-    stiffness: float | None = None
-    max_passive_velocity: float | None = field(  # inf (every speed) is null with its status's reason
-        default=None, metadata={"json": lambda v: None if math.isinf(v) else v}
-    )
-    velocity_status: VelocityStatus = field(default=VelocityStatus.NOT_REQUESTED, metadata={"json": None})
-    status: StiffnessStatus = StiffnessStatus.NOT_REQUESTED
-    delay: int = 0
-
-    json_properties: ClassVar[tuple[str, ...]] = ("max_passive_velocity_status",)
-
-    def __post_init__(self) -> None:
-        for name in ("velocity", "xi_dot", "k_max", "k_static", "k_colgate", "k_abbott_okamura", "k_gil"):
-            if math.isnan(getattr(self, name)):
-                raise DFAValueError(f"{name} = nan is invalid: limits are numbers; build results with stiffness_limits")
-        vs = VelocityStatus.coerce(self.velocity_status, "velocity_status")
-        st = StiffnessStatus.coerce(self.status)
-        object.__setattr__(self, "velocity_status", vs)
-        object.__setattr__(self, "status", st)
-        mpv = self.max_passive_velocity
-        expected = (
-            VelocityStatus.NOT_REQUESTED
-            if self.stiffness is None
-            else (
-                VelocityStatus.NONE
-                if mpv is None
-                else (VelocityStatus.ALL_SPEEDS if math.isinf(mpv) else VelocityStatus.BOUNDED)
-            )
-        )
-        if vs is not expected or ((self.stiffness is None) != (st is StiffnessStatus.NOT_REQUESTED)):
-            raise DFAValueError(
-                f"velocity_status = {vs.value!r}, status = {st.value!r} are invalid for stiffness = {self.stiffness!r}, "
-                f"max_passive_velocity = {mpv!r}: they must agree; build results with stiffness_limits"
-            )
-
-    @property
-    def max_passive_velocity_status(self) -> VelocityStatus:
-        """:attr:`velocity_status`, under the name the JSON gives it (the status of ``max_passive_velocity``)."""
-        return self.velocity_status
-
-    def null_reasons(self) -> dict[str, str]:
-        """Why each field may be null in JSON, by key.
-
-        Returns
-        -------
-        dict of str to str
-            Why ``max_passive_velocity`` is null (by :attr:`velocity_status`) and why ``stiffness`` is.
-        """
-        why = {
-            VelocityStatus.NOT_REQUESTED: "no stiffness given",
-            VelocityStatus.ALL_SPEEDS: "passive at every speed (no finite limit)",
-            VelocityStatus.NONE: "no passivity guarantee even at rest (K > 2c/Δ)",
-        }.get(self.velocity_status, "undefined")
-        return {"max_passive_velocity": why, "stiffness": "no stiffness given to assess"}
-
-
 def stiffness_limits(
     device: Device, velocity: float, stiffness: float | None = None, delay: int = 0
 ) -> StiffnessLimits:
@@ -536,153 +433,6 @@ def stiffness_limits(
         status=status,
         delay=d,
     )
-
-
-@dataclass(frozen=True)
-class StiffnessResponse(Result):
-    """K_max (eq. 11, with the delay) over a range of impact speeds, with the speed-independent bounds (N/m).
-
-    The bounds and the chosen stiffness's largest passive speed are not recomputed:
-    they are read from :attr:`limits`, the :class:`StiffnessLimits` of the same
-    device, stiffness and delay. Its JSON (:meth:`~dfa.results.base.Result.to_dict`, device units) holds the
-    device by name, the speeds, K_max, those bounds, the stiffness, its largest passive speed and the delay
-    (:attr:`json_properties`), not :attr:`limits` itself.
-
-    Attributes
-    ----------
-    device : Device
-    velocity : numpy.ndarray
-        Impact speeds (m/s or rad/s).
-    k_max : numpy.ndarray
-        Criterion limit at each speed.
-    limits : StiffnessLimits
-        The limits at the first speed: source of ``k_static``, ``k_colgate``,
-        ``k_abbott_okamura``, ``k_gil``, ``stiffness``, ``max_passive_velocity``
-        and ``delay`` (read-only properties here).
-    status : CurveStatus
-
-    Arrays are read-only copies of the inputs.
-    """
-
-    device: Device = field(metadata={"json": lambda d: d.name})
-    velocity: np.ndarray
-    k_max: np.ndarray
-    limits: StiffnessLimits = field(metadata={"json": None})
-    status: CurveStatus = CurveStatus.OK
-
-    json_properties: ClassVar[tuple[str, ...]] = (
-        "k_static", "k_colgate", "k_abbott_okamura", "k_gil", "stiffness", "max_passive_velocity", "delay",
-    )  # fmt: skip
-
-    @property
-    def k_static(self) -> float:
-        """2c/Δ (eq. 9), N/m."""
-        return self.limits.k_static
-
-    @property
-    def k_colgate(self) -> float:
-        """2b/T (eq. 8); b/(T(½ + d)) with a delay, N/m."""
-        return self.limits.k_colgate
-
-    @property
-    def k_abbott_okamura(self) -> float:
-        """The Abbott-Okamura bound min(2b/T, 2c/Δ) (with the delay), N/m."""
-        return self.limits.k_abbott_okamura
-
-    @property
-    def k_gil(self) -> float:
-        """Exact linear bound of the sampled spring (:func:`k_gil`), N/m."""
-        return self.limits.k_gil
-
-    @property
-    def stiffness(self) -> float | None:
-        """The chosen stiffness to mark, N/m (None: none)."""
-        return self.limits.stiffness
-
-    @property
-    def max_passive_velocity(self) -> float | None:
-        """Its largest passive speed (inf: every speed; None: none), m/s."""
-        return self.limits.max_passive_velocity
-
-    @property
-    def delay(self) -> int:
-        """Computational delay d in samples."""
-        return self.limits.delay
-
-    def __post_init__(self) -> None:
-        freeze_fields(self, {"velocity": {"ndim": 1}, "k_max": {"ndim": 1}})
-        check_shape("k_max", self.k_max, self.velocity.shape)
-        object.__setattr__(self, "status", CurveStatus.coerce(self.status))
-
-    def plot(self, ax: Any = None) -> Any:
-        """K_max against impact speed with the published bounds (:func:`dfa.figures.stiffness_plot`); returns the Axes.
-
-        Parameters
-        ----------
-        ax : matplotlib.axes.Axes, optional
-            Axes to draw on; a new figure when None.
-
-        Returns
-        -------
-        matplotlib.axes.Axes
-            The axes drawn on.
-        """
-        from ...figures import stiffness_plot
-
-        return stiffness_plot(self, ax)
-
-    def to_xarray(self) -> Any:
-        """The curve as an :class:`xarray.Dataset` with the labelled dim ``velocity`` (the impact speeds).
-
-        Variable ``k_max``: the criterion's largest passive stiffness at each speed (eq. 11 with the delay).
-        Units are the device's (``device.units``: N/m and m/s; rotary N·m/rad and rad/s). Attributes hold the
-        device, the delay (samples), the speed-independent bounds ``k_static``, ``k_colgate``,
-        ``k_abbott_okamura`` and ``k_gil`` (in ``stiffness_units``), the chosen ``stiffness`` and its
-        ``max_passive_velocity`` (in ``velocity_units``; inf: every speed; absent when None) and the status.
-
-        Returns
-        -------
-        xarray.Dataset
-            K_max with the coordinate ``velocity``.
-
-        Raises
-        ------
-        DFAError
-            When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
-
-        Examples
-        --------
-        >>> from dfa.model.catalogue import get_device
-        >>> ds = stiffness_response(get_device("Impulse Engine").device, [0.01, 0.1]).to_xarray()
-        >>> ds["k_max"].dims, ds["k_max"].attrs["units"], ds["velocity"].attrs["units"]
-        (('velocity',), 'N/m', 'm/s')
-        """
-        from ...results.xarray import import_xarray, netcdf_attrs, physical_attrs
-
-        xr = import_xarray()
-        u = self.device.units
-        k_max = physical_attrs("largest passive stiffness K_max, criterion (eq. 11)", u["stiffness"])
-        return xr.Dataset(
-            {"k_max": ("velocity", np.array(self.k_max), k_max)},
-            coords={"velocity": ("velocity", np.array(self.velocity), physical_attrs("impact speed", u["velocity"]))},
-            attrs=netcdf_attrs(
-                {
-                    "device": self.device.name,
-                    "rotary": self.device.rotary,
-                    "delay": self.delay,
-                    "k_static": self.k_static,
-                    "k_colgate": self.k_colgate,
-                    "k_abbott_okamura": self.k_abbott_okamura,
-                    "k_gil": self.k_gil,
-                    "stiffness": self.stiffness,
-                    "max_passive_velocity": self.max_passive_velocity,
-                    "stiffness_units": u["stiffness"],
-                    "velocity_units": u["velocity"],
-                    "status": self.status,
-                    "status_message": self.status.message,
-                }
-            ),
-        )
 
 
 #: Deprecated alias of :class:`StiffnessResponse` (the name before the ``*_response`` → ``*Response`` scheme).

@@ -39,10 +39,7 @@ Examples
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from dataclasses import dataclass, field
-from typing import Any, ClassVar
 
 import numpy as np
 
@@ -51,7 +48,15 @@ from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.elements import Coverage
 from ...model.wall import Wall
-from ...results.base import Result
+from ...results.limits import (
+    KMaxAssessment as KMaxAssessment,
+)
+from ...results.limits import (
+    KMaxResult as KMaxResult,
+)
+from ...results.limits import (
+    SearchEvidence as SearchEvidence,
+)
 from ...results.status import KMaxStatus, LimitStatus, StiffnessStatus, VelocityStatus
 from ..criterion import as_wall, device_criterion
 from .closed_form import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
@@ -88,216 +93,6 @@ DESIGN_MAX_SAMPLES = 1_000_000
 CRITERION_RTOL = 1e-12
 #: Hold models of the describing function.
 DF_MODELS = ("half-delay", "zoh", "pade")
-
-
-@dataclass(frozen=True)
-class KMaxAssessment(Result):
-    """The wall's own stiffness K assessed at the impact speed (physical units).
-
-    Attributes
-    ----------
-    stiffness : float
-        K, N/m (rotary: N·m/rad).
-    source : str
-        Where K came from: ``"given"``, ``"catalogue"`` or ``"device file"``.
-    max_passive_velocity : float or None
-        Largest speed the criterion proves passive, m/s (inf: every speed; None: ``velocity_status`` says why).
-    velocity_status : VelocityStatus
-        ``all_speeds``, ``bounded``, ``none`` (no guarantee even at rest) or ``not_covered`` (no criterion).
-    verdict : StiffnessStatus
-        The criterion's verdict on K at the impact speed: ``ok`` (proven passive: ``max_passive_velocity``
-        >= V), ``too_stiff`` (no guarantee; not a proof of instability) or ``not_covered`` (no criterion
-        covers the wall).
-    growth_speed : float or None
-        Smallest predicted growth speed over every unstable cycle, m/s (inf: none; None: ``growth_unknown``).
-    growth_unknown : str or None
-        Why the growth speed is unknown: ``"subtick"`` (the sub-tick caveat of
-        :mod:`dfa.analysis.cycles.caveats`), ``"incomplete"`` (the cycle search was incomplete) or
-        ``"not_linear"`` (a one-sided wall or a passivity controller: no describing function).
-    unstable_cycles : int
-        Unstable cycles predicted (describing function).
-    outcomes : dict
-        Simulated outcome of an impact at V from ξ0 = 0 (``"impact"``) and from the preload (``"preload"``);
-        a one-sided wall's after the approach from free space (``"approach"``).
-    source_file : str or None
-        The device file K came from, as given (``source="device file"``); None otherwise (absent from JSON).
-    """
-
-    stiffness: float
-    source: str
-    max_passive_velocity: float | None
-    velocity_status: VelocityStatus
-    verdict: StiffnessStatus
-    growth_speed: float | None
-    growth_unknown: str | None
-    unstable_cycles: int
-    outcomes: dict[str, str] = field(default_factory=dict)
-    source_file: str | None = field(default=None, metadata={"omit_none": True})
-
-    json_properties: ClassVar[tuple[str, ...]] = ("passive_at_every_speed", "growth_predicted")
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "velocity_status", VelocityStatus.coerce(self.velocity_status, "velocity_status"))
-        object.__setattr__(self, "verdict", StiffnessStatus.coerce(self.verdict, "verdict"))
-
-    @property
-    def passive_at_every_speed(self) -> bool:
-        """True when the criterion proves K passive at every speed."""
-        return self.velocity_status is VelocityStatus.ALL_SPEEDS
-
-    @property
-    def growth_predicted(self) -> bool:
-        """True when the describing function predicts growth from a finite speed."""
-        return self.growth_speed is not None and not math.isinf(self.growth_speed)
-
-    def null_reasons(self) -> dict[str, str]:
-        """Why each field may be null in JSON, by key.
-
-        Returns
-        -------
-        dict of str to str
-            Reasons for the largest passive speed and the growth speed.
-        """
-        return {
-            "max_passive_velocity": self.velocity_status.message,
-            "growth_speed": {
-                "subtick": "unknown: the smallest unstable cycle lies below dfa.analysis.cycles.SUBTICK_LIMIT ticks "
-                "(the sub-tick caveat), where simulation has diverged from starts the first harmonic says settle",
-                "incomplete": "unknown: the cycle search was incomplete and found no unstable cycle",
-                "not_linear": "not predicted: the wall is not a linear loop (the describing function needs one)",
-            }.get(self.growth_unknown or "", "no growth predicted (no unstable cycle, stable linear loop)"),
-            "growth_unknown": "the growth speed is known",
-        }
-
-
-@dataclass(frozen=True)
-class SearchEvidence:
-    """How the searched limits were found: the simulated speeds and starts, the runs, the grid and the models.
-
-    Attributes
-    ----------
-    speeds : tuple of float
-        Impact speeds simulated in the search, m/s (rotary: rad/s), each from every start.
-    starts : tuple of str
-        ``"impact"`` (from ξ0 = 0) and ``"preload"`` (from rest, the spring preloaded to the same energy).
-    dense_factor : int
-        The confirmation runs this many times as many speeds.
-    simulations : int
-        Exact simulations the searches and confirmations rest on.
-    longest_run, max_samples : int
-        Longest run (samples) and the cap of every run.
-    df_model : str
-        Hold model of the describing function.
-    k_range : tuple of float
-        Smallest and largest stiffness of the search grid, N/m.
-    """
-
-    speeds: tuple[float, ...]
-    starts: tuple[str, ...]
-    dense_factor: int
-    simulations: int
-    longest_run: int
-    max_samples: int
-    df_model: str
-    k_range: tuple[float, float]
-
-    def to_dict(self) -> dict[str, Any]:
-        """The evidence as JSON-able data (its fields)."""
-        return dataclasses.asdict(self)
-
-
-@dataclass(frozen=True)
-class KMaxResult(Result):
-    """K_max four ways for a device, a wall and an impact speed (module docstring); stiffnesses in N/m (N·m/rad).
-
-    Attributes
-    ----------
-    device : Device
-    wall : Wall
-        The wall whose elements are held fixed while K varies (its own K is the one assessed, if asked).
-    velocity : float
-        Impact speed V, m/s (rotary: rad/s), >= 0 (at 0 the searched limits are ``not_searched``).
-    xi_dot : float
-        V in encoder ticks per sample.
-    k_criterion, k_linear, k_df, k_sim, k_sim_rest : KLimit
-        The four ways (the criterion's proof, the exact linear bound, the describing function's prediction,
-        the simulated limits), each with its status and evidence.
-    k_static, k_colgate, k_abbott_okamura : float or None
-        The spring's published bounds (eq. 9, eq. 8, Abbott-Okamura, with the delay); None for a wall with a
-        damper, filter or lag (they are the spring's).
-    evidence : SearchEvidence
-        What the searched limits rest on.
-    counterexamples : tuple of Failure
-        Divergent impacts at or below ``k_criterion`` (empty unless the criterion is wrong).
-    assessment : KMaxAssessment or None
-        The wall's own stiffness assessed, when asked.
-    status : KMaxStatus
-        ``ok``; ``caveats`` (non-monotone, undecided-limited or lowered searches); ``counterexample``.
-    """
-
-    device: Device = field(metadata={"json": lambda d: d.name})
-    wall: Wall = field(metadata={"json": lambda w: w.to_dict()})
-    velocity: float
-    xi_dot: float
-    k_criterion: KLimit
-    k_linear: KLimit
-    k_df: KLimit
-    k_sim: KLimit
-    k_sim_rest: KLimit
-    k_static: float | None
-    k_colgate: float | None
-    k_abbott_okamura: float | None
-    evidence: SearchEvidence
-    counterexamples: tuple[Failure, ...] = ()
-    assessment: KMaxAssessment | None = None
-    status: KMaxStatus = KMaxStatus.OK
-
-    json_properties: ClassVar[tuple[str, ...]] = ("delay",)
-    units_of: ClassVar[dict[str, str]] = {
-        "velocity": "velocity", "k_criterion": "stiffness", "k_linear": "stiffness", "k_df": "stiffness",
-        "k_sim": "stiffness", "k_sim_rest": "stiffness", "k_static": "stiffness", "k_colgate": "stiffness",
-        "k_abbott_okamura": "stiffness",
-    }  # fmt: skip
-
-    def __post_init__(self) -> None:
-        fix = "KMaxResult is built by dfa.design_answer; call that instead"
-        check_type("device", self.device, Device, fix)
-        check_type("wall", self.wall, Wall, fix)
-        for name in self.limits:
-            check_type(name, getattr(self, name), KLimit, fix)
-        check_type("evidence", self.evidence, SearchEvidence, fix)
-        if self.assessment is not None:
-            check_type("assessment", self.assessment, KMaxAssessment, fix)
-        object.__setattr__(self, "status", KMaxStatus.coerce(self.status))
-
-    #: The four ways' fields, in the order they are stated.
-    limits: ClassVar[tuple[str, ...]] = ("k_criterion", "k_linear", "k_df", "k_sim", "k_sim_rest")
-
-    @property
-    def delay(self) -> int:
-        """The wall's computational delay d in samples."""
-        return self.wall.delay
-
-    @property
-    def searches(self) -> dict[str, KLimit]:
-        """The three searched limits by name: ``k_df``, ``k_sim`` and ``k_sim_rest``."""
-        return {"k_df": self.k_df, "k_sim": self.k_sim, "k_sim_rest": self.k_sim_rest}
-
-    def null_reasons(self) -> dict[str, str]:
-        """Why each field may be null in JSON, by key.
-
-        Returns
-        -------
-        dict of str to str
-            Reasons for the published bounds (a wall's) and the assessment.
-        """
-        spring = "the spring's published bound (B = 0, no filter, no lag): not this wall's"
-        return {
-            "k_static": spring,
-            "k_colgate": spring,
-            "k_abbott_okamura": spring,
-            "assessment": "no stiffness given to assess (and no catalogue K)",
-        }
 
 
 # ----------------------------------------------------------------------------- the closed-form limits of a wall

@@ -10,91 +10,17 @@ The criterion, the exact linear bound and the describing function do not cover a
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from typing import Any
 
-from ...checks import check_real, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.wall import Wall
-from ...results.base import Result
+from ...results.limits import PassivityGain as PassivityGain
+from ...results.limits import _ratio as _ratio
 from ...results.status import GainStatus, KMaxStatus
 from .kmax import KMaxResult, design_answer
-from .search import KLimit
 
 __all__ = ["PassivityGain", "passivity_gain", "gain_of"]
-
-
-def _ratio(a: KLimit, b: KLimit) -> float | None:
-    """a/b of two found limits; None when either has no value."""
-    if a.value is None or b.value is None or not b.value > 0.0:
-        return None
-    return a.value / b.value
-
-
-@dataclass(frozen=True)
-class PassivityGain(Result):
-    """The simulated stiffness limits of a wall with its passivity controller and without it (N/m; N·m/rad).
-
-    Attributes
-    ----------
-    device : Device
-        The device.
-    wall : Wall
-        The wall with its passivity controller (at any K: K is what is searched).
-    velocity : float
-        The impact speed V in m/s (rad/s).
-    k_sim, k_sim_rest : KLimit
-        With the controller: the largest K no simulated impact up to V diverged at, and at which every impact
-        rests (:func:`dfa.analysis.limits.kmax.design_answer`).
-    plain_k_sim, plain_k_sim_rest : KLimit
-        The same without the controller (:meth:`dfa.model.wall.Wall.without_controller`).
-    status : GainStatus
-        ``ok``; ``caveats`` when a limit of either wall has them; ``counterexample`` from the plain wall's answer.
-    """
-
-    device: Device = field(metadata={"json": lambda d: d.name})
-    wall: Wall = field(metadata={"json": lambda w: w.to_dict()})
-    velocity: float
-    k_sim: KLimit
-    k_sim_rest: KLimit
-    plain_k_sim: KLimit
-    plain_k_sim_rest: KLimit
-    status: GainStatus = GainStatus.OK
-
-    json_properties = ("gain", "gain_rest")
-    units_of = {"velocity": "velocity"}
-
-    def __post_init__(self) -> None:
-        check_type("device", self.device, Device, "give a dfa.Device")
-        check_type("wall", self.wall, Wall, "give the dfa.Wall with its passivity controller")
-        for name in ("k_sim", "k_sim_rest", "plain_k_sim", "plain_k_sim_rest"):
-            check_type(name, getattr(self, name), KLimit, "give the KLimit of a design answer")
-        check_real("velocity", self.velocity)
-        if self.wall.passivity_controller is None:
-            raise DFAValueError("wall has no passivity controller: add dfa.PassivityController() to its elements")
-        object.__setattr__(self, "status", GainStatus.coerce(self.status))
-
-    @property
-    def gain(self) -> float | None:
-        """The no-divergence limit with the controller over the one without it (None when either has no value)."""
-        return _ratio(self.k_sim, self.plain_k_sim)
-
-    @property
-    def gain_rest(self) -> float | None:
-        """The rest limit with the controller over the one without it (None when either has no value)."""
-        return _ratio(self.k_sim_rest, self.plain_k_sim_rest)
-
-    def null_reasons(self) -> dict[str, str]:
-        """Why the gains may be null: a limit without a value (its status says why).
-
-        Returns
-        -------
-        dict of str to str
-            Reasons for ``gain`` and ``gain_rest``.
-        """
-        why = "a limit of one of the walls has no value (see its status)"
-        return {"gain": why, "gain_rest": why}
 
 
 def gain_of(with_controller: KMaxResult, plain: KMaxResult) -> PassivityGain:

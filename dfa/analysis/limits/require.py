@@ -42,16 +42,24 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import Any
 
 from ...checks import check_choice, check_nonnegative, check_positive, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.elements import Damper, Delay
 from ...model.wall import Wall
-from ...results.base import Result
-from ...results.codes import REQUIRE_PARAMETERS
+from ...results.require import ALL_METHODS as ALL_METHODS
+from ...results.require import PARAMETERS as PARAMETERS
+from ...results.require import (
+    DamperGuidance as DamperGuidance,
+)
+from ...results.require import (
+    Requirement as Requirement,
+)
+from ...results.require import (
+    Requirements as Requirements,
+)
 from ...results.status import RequireStatus
 from .kmax import criterion_passes, damper_friction_per_damping, describing_limit, linear_limit
 
@@ -70,10 +78,6 @@ __all__ = [
     "requirements",
 ]
 
-#: The parameters asked about, with their unit kind (a key of ``Device.units``; the delay in samples).
-PARAMETERS: dict[str, str] = dict(
-    zip(REQUIRE_PARAMETERS, ("period", "resolution", "coulomb", "damping", "damping", "samples"), strict=True)
-)
 #: The direction of each parameter that helps each method (+1: larger helps). The criterion: eq. 11 with the
 #: damper's terms (B costs damping and friction). The linear loop: damping of either kind helps (its stable B
 #: form an interval; the bound reported is its lower end when K holds, the least B that stabilises when not).
@@ -84,7 +88,6 @@ HELPS: dict[str, dict[str, int]] = {
 }
 #: The methods of the inverse question: by default the two that evaluate in closed form; ``"df"`` when asked.
 METHODS = ("criterion", "linear")
-ALL_METHODS = ("criterion", "linear", "df")
 #: Relative resolution of a value found by the describing function (each value tried is a K search).
 DF_RTOL = 1e-3
 #: Relative resolution of a returned value (bisection on the method's own verdict).
@@ -97,105 +100,6 @@ DF_RANGE_RATIO = 2.0**8
 DF_DELAY_RANGE = 8
 #: Parameters the linear loop does not see (it has no encoder and no Coulomb friction).
 _LINEAR_BLIND = ("resolution", "coulomb")
-
-
-@dataclass(frozen=True)
-class Requirement(Result):
-    """What one parameter must be for the target K, by one method.
-
-    Attributes
-    ----------
-    method : str
-        ``"criterion"`` (a proof) or ``"linear"`` (the linear loop's stability: necessary, not sufficient).
-    parameter : str
-        A key of :data:`PARAMETERS`.
-    current : float
-        Today's value (SI units; the delay in samples).
-    required : float or None
-        The value at which the target K is exactly the method's limit (None: see the status).
-    bound : str
-        ``"at_most"`` or ``"at_least"``: which side of ``required`` keeps the target K.
-    status : RequireStatus
-        ``met`` (K holds now; ``required`` is how far the parameter may move), ``change`` (the least change that
-        makes K hold), ``unreachable``, ``any``, ``no_effect`` or ``not_covered``.
-    searched : (float, float)
-        The range of values evaluated.
-    """
-
-    method: str
-    parameter: str
-    current: float
-    required: float | None
-    bound: str
-    status: RequireStatus
-    searched: tuple[float, float] = (0.0, 0.0)
-
-    def __post_init__(self) -> None:
-        check_choice("method", self.method, ALL_METHODS)
-        check_choice("parameter", self.parameter, tuple(PARAMETERS))
-        check_choice("bound", self.bound, ("at_most", "at_least"))
-        object.__setattr__(self, "status", RequireStatus.coerce(self.status))
-        has = self.status in (RequireStatus.MET, RequireStatus.CHANGE)
-        if (self.required is not None) != has:
-            raise DFAValueError(
-                f"required = {self.required!r} is invalid with status {self.status.value!r}: a value is given "
-                "exactly when the status is 'met' or 'change'; build it with requirements"
-            )
-
-    def null_reasons(self) -> dict[str, str]:
-        """Why ``required`` may be null (JSON): the status's message."""
-        return {"required": self.status.message}
-
-
-@dataclass(frozen=True)
-class Requirements(Result):
-    """The inverse answer for one target stiffness and speed: each parameter by each method.
-
-    Attributes
-    ----------
-    device : Device
-    wall : Wall
-        The wall held fixed, at the target stiffness.
-    velocity : float
-        Impact speed, m/s (rotary: rad/s).
-    requirements : tuple of Requirement
-        One per (method, parameter), methods first.
-    status : RequireStatus
-        ``met`` when every method holds K today, else ``change``.
-    """
-
-    device: Device = field(metadata={"json": lambda d: d.to_dict()})
-    wall: Wall = field(metadata={"json": lambda w: w.to_dict()})
-    velocity: float
-    requirements: tuple[Requirement, ...]
-    status: RequireStatus
-
-    json_properties: ClassVar[tuple[str, ...]] = ("stiffness",)
-
-    @property
-    def stiffness(self) -> float:
-        """The target stiffness K, N/m (rotary: N·m/rad)."""
-        return self.wall.stiffness
-
-    def find(self, method: str, parameter: str) -> Requirement:
-        """The requirement of one method on one parameter.
-
-        Parameters
-        ----------
-        method : str
-            One of :data:`METHODS`.
-        parameter : str
-            A key of :data:`PARAMETERS`.
-
-        Returns
-        -------
-        Requirement
-        """
-        for r in self.requirements:
-            if (r.method, r.parameter) == (method, parameter):
-                return r
-        raise DFAValueError(f"({method!r}, {parameter!r}) is not answered here: give one of {ALL_METHODS} and a key "
-                            f"of {tuple(PARAMETERS)}")  # fmt: skip
 
 
 def _changed(dev: Device, wall: Wall, name: str, x: float) -> tuple[Device, Wall]:
@@ -370,36 +274,6 @@ def requirements(
         out += [_one(dev, w, m, n, k, v) for n in names]
     met = all(r.status in (RequireStatus.MET, RequireStatus.ANY, RequireStatus.NO_EFFECT) for r in out)
     return Requirements(dev, w, v, tuple(out), RequireStatus.MET if met else RequireStatus.CHANGE)
-
-
-@dataclass(frozen=True)
-class DamperGuidance(Result):
-    """What would let the criterion prove anything with a virtual damper at a speed (K → 0, eq. 11 extended).
-
-    With the damper the criterion needs (b − B)|ẋ0| + c − (1 − a)BΔ/T > 0 and c − (1 − a)BΔ/T > 0 for some
-    K > 0 (the wall's criterion is the spring's with β − β_B and σ − (1 − a)β_B). Each field is the bound on one
-    parameter with the others held; None where no value of it helps.
-
-    Attributes
-    ----------
-    proves_some_k : bool
-        Whether some K > 0 is proven passive today.
-    max_virtual_damping : float
-        The largest B for which some K is proven, N·s/m.
-    min_coulomb : float
-        The least c, N.
-    max_resolution : float or None
-        The largest Δ, m (None: no Δ helps, the speed term alone fails).
-    """
-
-    proves_some_k: bool
-    max_virtual_damping: float
-    min_coulomb: float
-    max_resolution: float | None
-
-    def null_reasons(self) -> dict[str, str]:
-        """Why ``max_resolution`` may be null (JSON)."""
-        return {"max_resolution": "no encoder resolution helps: (B − b)·speed exceeds the Coulomb friction"}
 
 
 def damper_guidance_for(device: Device, wall: Wall, velocity: float) -> DamperGuidance | None:

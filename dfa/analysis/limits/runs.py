@@ -258,7 +258,7 @@ class Growth(NamedTuple):
     unstable cycle of an unstable linear loop lies beyond it); None: unknown (a search that failed).
     ``unstable``: number of unstable cycles. ``lower_bound``: ``xi_dot`` only bounds the growth speed from below.
     ``subtick``: the smallest unstable cycle lies below
-    :data:`dfa.analysis.cycles.SUBTICK_LIMIT` ticks (the sub-tick caveat of :mod:`dfa.analysis.cycles.caveats`),
+    :data:`dfa.analysis.cycles.SUBTICK_LIMIT` ticks (the sub-tick caveat of :mod:`dfa.results.caveats`),
     so that "no growth below ``xi_dot``" is not a prediction to rely on. ``not_searched``: μ lies outside
     :data:`dfa.analysis.cycles.SEARCHED_MU`, where the cycle search claims nothing (``xi_dot`` None).
     """
@@ -298,7 +298,7 @@ def df_verdict(growth: Growth, xi_dot: float) -> str:
 
     UNSAFE when growth is predicted from below ``xi_dot``; SAFE when it is predicted only from above, unless the
     sub-tick caveat holds (then UNDECIDED: simulation has diverged from starts the first harmonic says settle,
-    spring and wall alike, :mod:`dfa.analysis.cycles.caveats`); UNDECIDED when the prediction is unknown, or
+    spring and wall alike, :mod:`dfa.results.caveats`); UNDECIDED when the prediction is unknown, or
     only bounded from below by less than ``xi_dot`` (a search stopped at its size budget).
 
     Examples

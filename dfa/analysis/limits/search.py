@@ -29,14 +29,27 @@ import dataclasses
 import math
 import sys
 from collections.abc import Callable
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, ClassVar, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
-from ...checks import check_positive
-from ...errors import DFATypeError, DFAValueError
-from ...results.base import Result
+from ...errors import DFAValueError
+from ...results.limits import FINE_POINTS as FINE_POINTS
+from ...results.limits import FINE_STEP as FINE_STEP
+from ...results.limits import SWEEP_STEP as SWEEP_STEP
+from ...results.limits import UNDECIDED_WHY as UNDECIDED_WHY
+from ...results.limits import (
+    Confirmation as Confirmation,
+)
+from ...results.limits import (
+    Failure as Failure,
+)
+from ...results.limits import (
+    KLimit as KLimit,
+)
+from ...results.limits import (
+    SweepRecord as SweepRecord,
+)
 from ...results.status import LimitStatus
 from .runs import FAILING, SAFE, UNDECIDED, Evidence
 
@@ -72,14 +85,6 @@ __all__ = [
 
 #: Relative width at which the bisection of a searched limit stops.
 K_RTOL = 2e-3
-#: Why a judgement can be undecided (:attr:`KLimit.limited_why`), with what it means.
-UNDECIDED_WHY = {
-    "short_runs": "simulated runs too short to tell",
-    "subtick": "the sub-tick caveat: the smallest unstable cycle lies below dfa.analysis.cycles.SUBTICK_LIMIT ticks",
-    "below_reach": "a cycle search that stopped at its size budget bounds the growth speed only from below V",
-    "unknown_growth": "a cycle search that failed: the growth speed is unknown",
-    "outside_mu": "μ = m/(K T²) outside dfa.analysis.cycles.SEARCHED_MU, where the cycle search claims nothing",
-}
 #: The confirmation of a simulated limit K uses this many times the searched speeds ...
 DENSE_FACTOR = 4
 #: ... at the stiffnesses of a band below K: DENSE_RUNGS geometric rungs spanning a relative width DENSE_BAND ...
@@ -87,247 +92,8 @@ DENSE_RUNGS = 5
 DENSE_BAND = 0.03
 #: ... and at these fractions below K (where a search's bisection ended).
 DENSE_FINE = (0.001, 0.003)
-#: The sweep in K below a simulated limit: relative step between its stiffnesses (target; at most the wall's
-#: :meth:`~dfa.model.wall.WallParams.sweep_points` stiffnesses per sweep: a wider range takes a coarser step) ...
-SWEEP_STEP = 0.005
-#: ... and, just below K, a fine zone of FINE_POINTS stiffnesses K (1 - FINE_STEP)^j, j = 0 … FINE_POINTS - 1
-#: (unsafe K can lie speckled within a few tenths of a percent below a limit, red team of issue 14) ...
-FINE_STEP = 0.0005
-FINE_POINTS = 21
 #: ... lowering the candidate at most this many times (each time just below the lowest failure found).
 MAX_LOWERINGS = 200
-
-
-@dataclass(frozen=True)
-class Failure:
-    """One simulated impact that failed a limit, or was undecided (neither counts as safe).
-
-    Attributes
-    ----------
-    stiffness : float
-        K, N/m (rotary: N·m/rad).
-    velocity : float
-        Impact speed, m/s (rotary: rad/s).
-    start : str
-        ``"impact"`` (from ξ0 = 0) or ``"preload"`` (from rest, spring preloaded to the same energy).
-    outcome : str
-        The run's outcome (:class:`dfa.results.status.SimulationOutcome` code).
-    found_by : str
-        ``"sweep"`` (the sweep in K or its fine zone), ``"confirmation"`` (the dense speeds over the band)
-        or ``"earlier runs"`` (the searches', another limit's checks).
-    """
-
-    stiffness: float
-    velocity: float
-    start: str
-    outcome: str
-    found_by: str
-
-    def to_dict(self) -> dict[str, Any]:
-        """The failure as JSON-able data (its fields)."""
-        return dataclasses.asdict(self)
-
-
-@dataclass(frozen=True)
-class SweepRecord:
-    """What a sweep in K below a limit simulated, at the search speeds and both starts.
-
-    Attributes
-    ----------
-    start : float
-        Its lowest stiffness, N/m: K_criterion (``from_criterion``), or the search grid's lowest point.
-    step : float
-        Relative step between its stiffnesses (at least :data:`SWEEP_STEP`; coarser when the budget binds).
-    from_criterion : bool
-        True when it starts at K_criterion.
-    points : int
-        Stiffnesses swept, from ``start`` up to the limit (0: the limit lies below the start).
-    max_points : int
-        The sweep's budget of stiffnesses (the wall's :meth:`~dfa.model.wall.WallParams.sweep_points`).
-    coarse : bool
-        True when the budget made the step coarser than :data:`SWEEP_STEP`.
-    fine_points, fine_step : int, float
-        The fine zone just below K: :data:`FINE_POINTS` stiffnesses K (1 − fine_step)^j.
-    """
-
-    start: float
-    step: float
-    from_criterion: bool
-    points: int
-    max_points: int
-    coarse: bool
-    fine_points: int = FINE_POINTS
-    fine_step: float = FINE_STEP
-
-    def to_dict(self) -> dict[str, Any]:
-        """The sweep as JSON-able data (its fields)."""
-        return dataclasses.asdict(self)
-
-
-@dataclass(frozen=True)
-class Confirmation:
-    """What a confirmed simulated limit claims: every run at these speeds, starts and stiffnesses passed.
-
-    Attributes
-    ----------
-    limit : str
-        ``"unstable"`` (no run diverges) or ``"rest"`` (every run comes to rest); none is undecided.
-    speeds : tuple of float
-        The dense speeds of the band, m/s (rotary: rad/s), each from every start of ``starts``.
-    band : tuple of float
-        The band's relative bounds (1 − :data:`DENSE_BAND`, 1): stiffnesses in [band[0]·K, K].
-    band_stiffnesses : int
-        Stiffnesses simulated over the band.
-    search_speeds : tuple of float
-        The search speeds of the sweep, m/s.
-    sweep : SweepRecord
-        The sweep in K below the limit at the search speeds.
-    starts : tuple of str
-        The starts of every impact (:func:`dfa.analysis.limits.runs.starts_of`): ``("impact", "preload")``,
-        or a one-sided wall's ``("approach",)``.
-
-    A finite set of speeds and stiffnesses: narrower unsafe bands between the swept stiffnesses, and
-    unsafe speeds between those simulated, are not excluded (stability need not be monotone in K).
-    """
-
-    limit: str
-    speeds: tuple[float, ...]
-    band: tuple[float, float]
-    band_stiffnesses: int
-    search_speeds: tuple[float, ...]
-    sweep: SweepRecord
-    starts: tuple[str, ...] = ("impact", "preload")
-
-    def to_dict(self) -> dict[str, Any]:
-        """The confirmation as JSON-able data (its fields, the sweep nested)."""
-        return dataclasses.asdict(self)
-
-
-@dataclass(frozen=True)
-class KLimit(Result):
-    """One stiffness limit (N/m; rotary N·m/rad) and the evidence behind it; None with a status that says why.
-
-    The same record for every limit of :class:`dfa.analysis.limits.kmax.KMaxResult`: a closed form (the
-    criterion's, the exact linear bound) carries its value and status; a searched one (describing function,
-    simulation) also its search and confirmation.
-
-    Attributes
-    ----------
-    value : float or None
-        The limit; None when undefined (``status`` says why).
-    status : LimitStatus
-        ``found``; or why ``value`` is None (``above_range``, ``below_range``, ``no_range``, ``not_confirmed``,
-        ``not_covered``, ``none_proven``, ``not_searched``).
-    limited_by : float or None
-        Where an undecided judgement (runs too short to tell, or a prediction the describing function cannot
-        make) stopped the search, counted as not safe; None when a definite failure did.
-    limited_why : str or None
-        Why the judgement at ``limited_by`` was undecided (:data:`UNDECIDED_WHY`): ``short_runs`` (simulated
-        runs too short to tell), ``subtick`` (the sub-tick caveat of :mod:`dfa.analysis.cycles.caveats`),
-        ``below_reach`` (a cycle search that stopped at its size budget bounds the growth speed only from below
-        V), ``unknown_growth`` (a cycle search that failed), ``outside_mu`` (μ outside the range the cycle search
-        covers); None with ``limited_by`` None.
-    range_end : float or None
-        The stiffness that bounds the answer where ``status`` is ``above_range`` (the grid's top) or
-        ``below_range`` (its lowest point); for ``not_confirmed`` the lowest stiffness reached.
-    range_verdict : str or None
-        The judgement at the grid's lowest point for ``below_range``.
-    non_monotone : bool
-        True when grid stiffnesses above ``value`` were found safe again.
-    safe_above : tuple of float
-        Those stiffnesses.
-    undecided : tuple of float
-        Stiffnesses at which some judgement was undecided (counted as not safe).
-    first_failure : float or None
-        The smallest stiffness the search found not safe.
-    evaluations : int
-        Stiffnesses judged.
-    failures : tuple of Failure
-        Failing or undecided runs the sweep and the confirmation met above ``value`` (evidence that safety is
-        not monotone in K); non-empty means the limit was lowered from ``searched_value``.
-    searched_value : float or None
-        The limit the search found before the sweep and the confirmation (None: not confirmed, a prediction).
-    capped_at : float or None
-        The limit was capped there (``k_sim_rest`` at ``k_sim``: coming to rest implies no divergence).
-    lowerings : int
-        How many times the confirmation lowered the candidate (``not_confirmed``: it gave up after
-        :data:`MAX_LOWERINGS`).
-    confirmation : Confirmation or None
-        What a simulated limit claims (None: not confirmed by simulation).
-    """
-
-    value: float | None
-    status: LimitStatus = LimitStatus.FOUND
-    limited_by: float | None = None
-    limited_why: str | None = None
-    range_end: float | None = None
-    range_verdict: str | None = None
-    non_monotone: bool = False
-    safe_above: tuple[float, ...] = ()
-    undecided: tuple[float, ...] = ()
-    first_failure: float | None = None
-    evaluations: int = 0
-    failures: tuple[Failure, ...] = ()
-    searched_value: float | None = None
-    capped_at: float | None = None
-    lowerings: int = 0
-    confirmation: Confirmation | None = None
-
-    json_properties: ClassVar[tuple[str, ...]] = ()
-
-    def __post_init__(self) -> None:
-        fix = "a stiffness limit is a finite K > 0, or None with its status"
-        for name in ("value", "limited_by", "first_failure", "searched_value", "capped_at"):
-            if getattr(self, name) is not None:
-                check_positive(name, getattr(self, name), fix)
-        object.__setattr__(self, "status", LimitStatus.coerce(self.status))
-        if (self.value is None) == (self.status is LimitStatus.FOUND):
-            raise DFAValueError(
-                f"value = {self.value!r} is invalid with status = {self.status.value!r}: a limit has a value exactly "
-                f"when its status is found; {fix}"
-            )
-        if (self.limited_why is None) != (self.limited_by is None) or (
-            self.limited_why is not None and self.limited_why not in UNDECIDED_WHY
-        ):
-            raise DFAValueError(
-                f"limited_why = {self.limited_why!r} is invalid with limited_by = {self.limited_by!r}: give one of "
-                f"{sorted(UNDECIDED_WHY)} exactly when limited_by is set; {fix}"
-            )
-        for name in ("safe_above", "undecided", "failures"):
-            if not isinstance(getattr(self, name), tuple):
-                raise DFATypeError(f"{name} = {getattr(self, name)!r} must be a tuple; {fix}")
-        if self.confirmation is not None and not isinstance(self.confirmation, Confirmation):
-            raise DFATypeError(f"confirmation must be a Confirmation or None; {fix}")
-
-    @property
-    def lowered(self) -> bool:
-        """True when the sweep or the confirmation lowered the limit below the searched one."""
-        return bool(self.failures)
-
-    @property
-    def caveat(self) -> bool:
-        """True when the limit stands with a caveat: non-monotone, undecided, or lowered by failures."""
-        return bool(self.non_monotone or self.undecided or self.failures)
-
-    def null_reasons(self) -> dict[str, str]:
-        """Why each field may be null in JSON, by key.
-
-        Returns
-        -------
-        dict of str to str
-            The limit's status message for ``value``, and what the absence of each other field means.
-        """
-        return {
-            "value": self.status.message,
-            "limited_by": "a definite failure, not an undecided judgement, bounds the limit",
-            "limited_why": "a definite failure, not an undecided judgement, bounds the limit",
-            "range_end": "the limit lies inside the searched range",
-            "range_verdict": "the lowest stiffness searched passed",
-            "first_failure": "no stiffness searched failed",
-            "searched_value": "not a simulated search: a closed form or a prediction, with nothing to confirm",
-            "capped_at": "not capped",
-            "confirmation": "not confirmed by simulation: a closed form or a first-harmonic prediction",
-        }
 
 
 def geometric_mean(lo: float, hi: float) -> float:

@@ -30,20 +30,17 @@ from __future__ import annotations
 
 import math
 import sys
-from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 
-from ...checks import check_int, check_positive, check_real, check_speed, check_type
+from ...checks import check_int, check_positive, check_speed, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.wall import Wall
 from ...plausibility import warn_if_from_outside
-from ...results.base import Result
-from ...results.frozen import frozen_array
-from ...results.status import ChartStatus
-from ..cycles.caveats import SUBTICK_LIMIT
+from ...results.limits import UNKNOWN_DF as UNKNOWN_DF
+from ...results.limits import StiffnessSpeedChart as StiffnessSpeedChart
 from .closed_form import HAND_SPEED, k_static
 from .kmax import DESIGN_MAX_SAMPLES, closed_forms, passive_speed
 from .runs import SAFE, Evidence, Growth, RunCache, judge_outcomes
@@ -51,235 +48,11 @@ from .search import check_stiffness_range
 
 __all__ = ["StiffnessSpeedChart", "stiffness_speed_chart", "check_chart_range", "HAND_SPEED"]
 
-#: Why the describing function's largest safe speed is unknown (null) at a stiffness.
-UNKNOWN_DF = (
-    "unknown: the describing function cannot tell there (the sub-tick caveat of dfa.analysis.cycles.caveats: smallest "
-    f"unstable cycle below {SUBTICK_LIMIT:g} ticks; or an incomplete cycle search; or a one-sided wall, not a linear "
-    "loop)"
-)
-
 
 def _ro(a: Any) -> np.ndarray:
     out = np.array(a, dtype=float)
     out.setflags(write=False)
     return out
-
-
-@dataclass(frozen=True)
-class StiffnessSpeedChart(Result):
-    """Data of the stiffness–speed chart (module docstring); speeds in m/s (rad/s), K in N/m (N·m/rad).
-
-    Attributes
-    ----------
-    device : Device
-    wall : Wall
-        The wall whose elements are held fixed while K varies (:attr:`delay` its delay).
-    v_top : float
-        Top of the speed range (hand speeds).
-    stiffness : numpy.ndarray
-        Stiffness grid of the simulated and predicted curves.
-    v_df, v_sim, v_rest : numpy.ndarray
-        Largest safe speed at each K by describing function, simulation (no divergence) and simulation
-        (rest); 0: not even the slowest simulated speed; NaN (``v_df``): unknown (:data:`UNKNOWN_DF`).
-    criterion_stiffness, v_criterion : numpy.ndarray
-        A finer grid and the criterion's largest passive speed on it (0 above 2c/Δ).
-    speeds : numpy.ndarray
-        Impact speeds simulated at each K (geometric, v_top/200 to v_top).
-    k_linear : float
-        The exact linear bound (a vertical line; 0: none).
-    k_colgate, k_abbott_okamura, k_static : float or None
-        The spring's published bounds (vertical lines); None for a wall with a damper, filter or lag.
-    design_stiffness, design_velocity : float or None
-        The design point.
-    simulations : int
-        Runs simulated.
-    status : ChartStatus
-        Derived from ``v_df`` (:attr:`status`).
-    """
-
-    device: Device = field(metadata={"json": lambda d: d.name})
-    wall: Wall = field(metadata={"json": lambda w: w.to_dict()})
-    v_top: float
-    stiffness: np.ndarray = field(repr=False)
-    v_df: np.ndarray = field(repr=False)
-    v_sim: np.ndarray = field(repr=False)
-    v_rest: np.ndarray = field(repr=False)
-    criterion_stiffness: np.ndarray = field(repr=False)
-    v_criterion: np.ndarray = field(repr=False)
-    speeds: np.ndarray = field(repr=False)
-    k_linear: float
-    k_colgate: float | None
-    k_abbott_okamura: float | None
-    k_static: float | None
-    design_stiffness: float | None = None
-    design_velocity: float | None = None
-    simulations: int = 0
-
-    json_properties: ClassVar[tuple[str, ...]] = ("delay", "status")
-    units_of: ClassVar[dict[str, str]] = {
-        "v_top": "velocity", "stiffness": "stiffness", "v_df": "velocity", "v_sim": "velocity", "v_rest": "velocity",
-        "criterion_stiffness": "stiffness", "v_criterion": "velocity", "speeds": "velocity", "k_linear": "stiffness",
-        "k_colgate": "stiffness", "k_abbott_okamura": "stiffness", "k_static": "stiffness",
-        "design_stiffness": "stiffness", "design_velocity": "velocity",
-    }  # fmt: skip
-
-    def __post_init__(self) -> None:
-        fix = "StiffnessSpeedChart is built by dfa.stiffness_speed_chart; call that instead"
-        check_type("device", self.device, Device, fix)
-        check_type("wall", self.wall, Wall, fix)
-        check_positive("v_top", self.v_top, fix)
-        arrays = ("stiffness", "v_df", "v_sim", "v_rest", "criterion_stiffness", "v_criterion", "speeds")
-        for name in arrays:  # v_df holds NaN where the describing function cannot tell (documented)
-            object.__setattr__(self, name, frozen_array(name, getattr(self, name), ndim=1, finite=name != "v_df"))
-        for a, b in (("stiffness", "v_df"), ("stiffness", "v_sim"), ("stiffness", "v_rest"),
-                     ("criterion_stiffness", "v_criterion")):  # fmt: skip
-            if getattr(self, a).shape != getattr(self, b).shape:
-                raise DFAValueError(
-                    f"{b} has {getattr(self, b).size} values for {getattr(self, a).size} in {a}: "
-                    f"it must have one per stiffness; {fix}"
-                )
-        for name in ("k_linear", "k_colgate", "k_abbott_okamura", "k_static"):
-            value = getattr(self, name)
-            if value is not None and not (isinstance(value, float) and value == math.inf):  # inf: no finite bound
-                check_real(name, value, fix)
-        for name in ("design_stiffness", "design_velocity"):
-            if getattr(self, name) is not None:
-                check_real(name, getattr(self, name), fix)
-        check_int("simulations", self.simulations, 0, fix)
-
-    @property
-    def status(self) -> ChartStatus:
-        """``df_unknown`` where the describing function cannot tell at some stiffness (NaN in ``v_df``), else ``ok``.
-
-        Examples
-        --------
-        >>> from dfa.model.catalogue import get_device
-        >>> stiffness_speed_chart(get_device("Impulse Engine").device, grid=4, speeds=3).status.value
-        'ok'
-        """
-        return ChartStatus.DF_UNKNOWN if bool(np.isnan(self.v_df).any()) else ChartStatus.OK
-
-    def plot(self, ax: Any = None) -> Any:
-        """Draw the chart (:func:`dfa.figures.stiffness_speed_plot`); returns the axes.
-
-        Parameters
-        ----------
-        ax : matplotlib.axes.Axes, optional
-            Axes to draw on; a new figure when None.
-
-        Returns
-        -------
-        matplotlib.axes.Axes
-            The axes drawn on.
-        """
-        from ...figures import stiffness_speed_plot
-
-        return stiffness_speed_plot(self, ax)
-
-    def to_xarray(self) -> Any:
-        """The chart as an :class:`xarray.Dataset` with labelled dims ``stiffness`` and ``criterion_stiffness``.
-
-        Variables over ``stiffness``: ``v_df``, ``v_sim`` and ``v_rest``, the largest safe impact speed by the
-        describing function, by simulation (no divergence) and by simulation (comes to rest); over
-        ``criterion_stiffness`` (its own, finer grid): ``v_criterion``, the criterion's largest passive speed.
-        Values are the chart's: 0 where not even the slowest simulated speed is safe (the criterion: none
-        proven), NaN in ``v_df`` where the describing function cannot tell (:data:`UNKNOWN_DF`), and speeds
-        above ``v_top`` are the analysis's ``v_top`` (capped there, not here). The coordinate ``speeds`` holds
-        the impact speeds simulated at each K. Units are the device's (``device.units``: m/s and N/m; rotary
-        rad/s and N·m/rad). Attributes hold the device, ``v_top``, the closed-form bounds and the design point
-        (absent when None; in ``stiffness_units`` and ``velocity_units``), the wall held fixed (its damper
-        ``virtual_damping`` in ``damping_units``, ``delay`` in samples, ``filter_cutoff`` and
-        ``amplifier_bandwidth`` in Hz) and the number of simulations.
-
-        Returns
-        -------
-        xarray.Dataset
-            The largest safe speeds with coordinates ``stiffness``, ``criterion_stiffness`` and ``speeds``.
-
-        Raises
-        ------
-        DFAError
-            When the optional package xarray is not installed (``pip install 'dfa-haptics[xarray]'``).
-
-        Examples
-        --------
-        >>> from dfa.model.catalogue import get_device
-        >>> ds = stiffness_speed_chart(get_device("Impulse Engine").device, grid=3, speeds=2).to_xarray()
-        >>> ds["v_sim"].dims, ds["v_criterion"].dims, ds["v_sim"].attrs["units"]
-        (('stiffness',), ('criterion_stiffness',), 'm/s')
-        """
-        from ...results.xarray import import_xarray, netcdf_attrs, physical_attrs
-
-        xr = import_xarray()
-        u = self.device.units
-        capped = "at most v_top (speeds above it are reported as v_top); 0: not even the slowest simulated speed"
-        speed = {
-            "v_df": ("describing function", f"{capped}; NaN: {UNKNOWN_DF}"),
-            "v_sim": ("simulation: no divergence", capped),
-            "v_rest": ("simulation: comes to rest", capped),
-        }
-        data = {}
-        for name, (what, comment) in speed.items():
-            attrs = physical_attrs(f"largest safe impact speed, {what}", u["velocity"], comment=comment)
-            data[name] = ("stiffness", np.array(getattr(self, name)), attrs)
-        criterion = physical_attrs(
-            "largest passive impact speed, criterion (proof)", u["velocity"], comment="at most v_top; 0: none proven"
-        )
-        data["v_criterion"] = ("criterion_stiffness", np.array(self.v_criterion), criterion)
-        k_attrs = physical_attrs("virtual stiffness K", u["stiffness"])
-        return xr.Dataset(
-            data,
-            coords={
-                "stiffness": ("stiffness", np.array(self.stiffness), k_attrs),
-                "criterion_stiffness": ("criterion_stiffness", np.array(self.criterion_stiffness), k_attrs),
-                "speeds": ("speeds", np.array(self.speeds), physical_attrs("impact speed simulated", u["velocity"])),
-            },
-            attrs=netcdf_attrs(
-                {
-                    "device": self.device.name,
-                    "rotary": self.device.rotary,
-                    "v_top": self.v_top,
-                    "k_linear": self.k_linear,
-                    "k_colgate": self.k_colgate,
-                    "k_abbott_okamura": self.k_abbott_okamura,
-                    "k_static": self.k_static,
-                    "design_stiffness": self.design_stiffness,
-                    "design_velocity": self.design_velocity,
-                    "stiffness_units": u["stiffness"],
-                    "velocity_units": u["velocity"],
-                    "virtual_damping": self.wall.damping,
-                    "damping_units": u["damping"],
-                    "delay": self.delay,
-                    "filter_cutoff": self.wall.filter_cutoff,
-                    "amplifier_bandwidth": self.wall.amplifier_bandwidth,
-                    "simulations": self.simulations,
-                }
-            ),
-        )
-
-    @property
-    def delay(self) -> int:
-        """The wall's computational delay d in samples."""
-        return self.wall.delay
-
-    @property
-    def criterion_covered(self) -> bool:
-        """True when a passivity criterion covers the wall (``v_criterion`` is then a proof; else all 0)."""
-        return self.wall.params(self.device.period, self.device.resolution).not_covered() is None
-
-    def null_reasons(self) -> dict[str, str]:
-        """Why each field may be null in JSON, by key.
-
-        Returns
-        -------
-        dict of str to str
-            Reasons for the describing function's unknown speeds, the spring's bounds and the design point.
-        """
-        spring = "the spring's published bound (B = 0, no filter, no lag): not this wall's"
-        return {
-            "v_df": UNKNOWN_DF, "k_colgate": spring, "k_abbott_okamura": spring, "k_static": spring,
-            "design_stiffness": "no design point given", "design_velocity": "no design point given",
-        }  # fmt: skip
 
 
 def _largest_safe(verdicts: list[bool], speeds: np.ndarray) -> float:

@@ -1,4 +1,4 @@
-"""The validation report in words: ``validation.md`` from a :class:`~dfa.analysis.validation.ValidationResult`.
+"""The validation report in words: ``validation.md`` from a :class:`~dfa.studies.validation.ValidationResult`.
 
 :func:`validation_markdown` writes the whole report (sections 1-6), :func:`cluster_note` the section on the
 clusters of cycles (item 5, also written alone by ``examples/cluster_threshold.py``). Every number comes
@@ -7,14 +7,17 @@ from the result and its summaries; nothing is computed here.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from typing import Any
 
-from ..analysis.cycles import SUBTICK_LIMIT
-from ..analysis.validation import CONTROLLERS, ValidationResult
+from .._io import staged_folder
 from ..formatting import markdown_table, number, percent
+from ..jsonable import dumps
+from ..results.caveats import SUBTICK_LIMIT
+from .validation import CONTROLLERS, ValidationResult
 
-__all__ = ["validation_markdown", "cluster_note"]
+__all__ = ["validation_markdown", "cluster_note", "write_validation"]
 
 
 def validation_markdown(result: ValidationResult, figures: dict[str, str] | None = None) -> str:
@@ -182,7 +185,7 @@ def cluster_note(records: Sequence[dict[str, Any]]) -> str:
     Parameters
     ----------
     records : sequence of dict
-        Records of :func:`dfa.analysis.validation.cluster_threshold`.
+        Records of :func:`dfa.studies.validation.cluster_threshold`.
 
     Returns
     -------
@@ -251,3 +254,40 @@ def _pct(x: Any) -> str:
 
 def _f(x: Any) -> str:
     return number(x)
+
+
+def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
+    """Write ``validation.md``, ``validation.json`` and two figures into the folder ``out`` (all four, or none).
+
+    Parameters
+    ----------
+    result : ValidationResult
+        From :func:`dfa.validate`.
+    out : path
+        Folder (created if missing; its parent must exist).
+
+    Returns
+    -------
+    dict
+        The strict-JSON summary written to ``validation.json`` (:meth:`ValidationResult.to_dict`: the
+        summary, NaN as null with ``null_reasons``, and the status).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    from .. import figures
+
+    os.makedirs(out, exist_ok=True)
+    summary = result.to_dict()
+    figs = {}
+    with staged_folder(out) as stage:
+        for key, fn in (("cycles", figures.cycle_error_plot), ("speeds", figures.critical_speed_plot)):
+            ax = fn(result)
+            figs[key] = f"validation_{key}.png"
+            ax.figure.savefig(stage / figs[key], dpi=120)
+            plt.close(ax.figure)
+        (stage / "validation.md").write_text(validation_markdown(result, figs), encoding="utf-8")
+        (stage / "validation.json").write_text(dumps(summary, indent=1), encoding="utf-8")
+    return summary

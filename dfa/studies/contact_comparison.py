@@ -181,7 +181,7 @@ def contact_comparison(
     --------
     design_answer : The largest stiffness four ways, for one wall.
     """
-    from .limits.kmax import design_answer
+    from ..analysis.limits.kmax import design_answer
 
     devs = complete_entries() if entries is None else tuple(entries)
     if not devs:

@@ -15,7 +15,7 @@ arithmetic, so the same inputs give the same text on every machine (issue 41).
 Examples
 --------
 >>> import numpy as np
->>> from dfa.results.jsonable import dumps, to_jsonable
+>>> from dfa.jsonable import dumps, to_jsonable
 >>> to_jsonable({"a": np.float64(1.5), "b": float("inf"), "c": np.array([1.0, np.nan])})
 {'a': 1.5, 'b': None, 'c': [1.0, None], 'null_reasons': {'/b': '+inf', '/c': 'NaN at 1 of 2 entries'}}
 >>> dumps([np.int64(3), float("nan")])

@@ -61,6 +61,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from ..analysis.criterion import CriterionResult, passivity_criterion
+from ..analysis.simulation import simulate
 from ..checks import check_bool, check_choice, check_delay, check_int, check_positive, check_type
 from ..core import kernel
 from ..core.storage import storage_runs
@@ -68,8 +70,6 @@ from ..errors import DFATypeError, DFAValueError
 from ..model.elements import Coverage
 from ..model.wall import WallParams
 from ..results.status import SimulationOutcome
-from .criterion import CriterionResult, passivity_criterion
-from .simulation import simulate
 from .soundness_counts import KINDS as KINDS
 from .soundness_counts import TOLERANCE as TOLERANCE
 from .soundness_counts import SoundnessCounts, tally
@@ -483,7 +483,7 @@ def _one_sided_run(
     """(largest Q/(½μV*²) − 1 from the first reading inside on, its sample, diverged, run length) of one approach
     to a one-sided wall: Q = ½μξ'² + ½((ξ − s)⁺)² − p(ξ − s) + ½p², the bound the criterion states
     (dfa.analysis.criterion, "A one-sided wall"; the bilateral spring's claim: ½μV², Q without the push)."""
-    from .approach import approach_start
+    from ..analysis.approach import approach_start
 
     surface, push = wall.surface, wall.push
     x0, v0, d = approach_start(speed, wall=wall, quantize=q)

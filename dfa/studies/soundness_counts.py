@@ -1,6 +1,6 @@
 """What a soundness count is: its fields, checks, status and JSON, and the tally that fills them.
 
-The frozen base of :class:`dfa.analysis.soundness.CriterionSoundness` (which adds what belongs to one
+The frozen base of :class:`dfa.studies.soundness.CriterionSoundness` (which adds what belongs to one
 population of points: the spring's ``delay``, the random walls' ``by_case``), and :func:`tally`, which counts
 the simulated points of either population.
 """

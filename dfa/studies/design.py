@@ -10,7 +10,7 @@ the Nyquist locus and the Z-width, and returns a frozen :class:`DesignAnalysis`.
 
 The spring's closed forms (the stiffness limits of eq. 8-11, their curve over speeds) and the stiffness–speed
 chart are computed for the spring only: a wall's K_max is the design answer. Rendering (:mod:`dfa.render`,
-:func:`dfa.report.design_report`) only reads it. Nothing here reads or writes files.
+:func:`dfa.studies.report.design_report`) only reads it. Nothing here reads or writes files.
 """
 
 from __future__ import annotations
@@ -22,29 +22,29 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .._parallel import progress_bar
+from ..analysis.approach import approach_samples
+from ..analysis.check import PassivityCheck, passivity_check
+from ..analysis.criterion import CriterionResult
+from ..analysis.cycles import GrowthThreshold, LimitCycleResult, growth_threshold
+from ..analysis.limits.closed_form import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
+from ..analysis.limits.grip import GripSweep, grip_sweep
+from ..analysis.limits.kmax import KMaxResult, RunCache, check_search_range, design_answer
+from ..analysis.limits.recommend import Recommendation, recommend_stiffness
+from ..analysis.limits.speed_chart import StiffnessSpeedChart, check_chart_range, stiffness_speed_chart
+from ..analysis.limits.zwidth import ZWidth, check_zwidth_size, default_damping_max, z_width
+from ..analysis.loop import NyquistLocusResponse, nyquist_locus_response
+from ..analysis.maps import StabilityMap, map_start, stability_map
+from ..analysis.simulation import SimulationResult, divergence_bound, simulate
 from ..checks import check_int, check_positive, check_real, check_speed, check_type, format_value
 from ..errors import DFATypeError, DFAValueError
+from ..jsonable import explain_nulls, to_jsonable
 from ..model.catalogue import CatalogueEntry
 from ..model.catalogue import catalogue as catalogue_rows
 from ..model.device import Device, Params
 from ..model.elements import Coverage
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
-from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import DesignStatus
-from .approach import approach_samples
-from .check import PassivityCheck, passivity_check
-from .criterion import CriterionResult
-from .cycles import GrowthThreshold, LimitCycleResult, growth_threshold
-from .limits.closed_form import StiffnessLimits, StiffnessResponse, stiffness_limits, stiffness_response
-from .limits.grip import GripSweep, grip_sweep
-from .limits.kmax import KMaxResult, RunCache, check_search_range, design_answer
-from .limits.recommend import Recommendation, recommend_stiffness
-from .limits.speed_chart import StiffnessSpeedChart, check_chart_range, stiffness_speed_chart
-from .limits.zwidth import ZWidth, check_zwidth_size, default_damping_max, z_width
-from .loop import NyquistLocusResponse, nyquist_locus_response
-from .maps import StabilityMap, map_start, stability_map
-from .simulation import SimulationResult, divergence_bound, simulate
 from .validation import first_unstable_speed
 
 __all__ = ["DesignAnalysis", "design_analysis"]
@@ -131,7 +131,7 @@ class DesignAnalysis(Result):
         The printed (μ, β, σ) of a device that has them, the disagreements and the notes; ``paper`` is True for
         the catalogue's own row (the paper printed them), False for another row (a device file: its source did).
     validation : dict or None
-        Summary of a validation run (:meth:`dfa.analysis.validation.Validation.summary`) passed in; never read from a file.
+        Summary of a validation run (:meth:`dfa.studies.validation.Validation.summary`) passed in; never read from a file.
     samples, map_grid : int
         Samples per run of the speed scan and the map, and the map's points per axis (inputs of the analysis).
     status : DesignStatus
@@ -362,7 +362,7 @@ def _check_validation(summary: dict[str, Any] | None) -> dict[str, Any] | None:
         raise DFAValueError(
             f"validation lacks {', '.join(missing)}: pass the dict of dfa.validate(...).summary() (or None)"
         )
-    # validation.json is strict JSON (dfa.results.jsonable): a NaN summary number was stored as null; read it back as NaN
+    # validation.json is strict JSON (dfa.jsonable): a NaN summary number was stored as null; read it back as NaN
     return {k: math.nan if k in _VALIDATION_KEYS and v is None else v for k, v in summary.items()}
 
 
@@ -470,7 +470,7 @@ def design_analysis(
 
     See Also
     --------
-    dfa.report.design_report : This analysis rendered as Markdown and/or HTML.
+    dfa.studies.report.design_report : This analysis rendered as Markdown and/or HTML.
     design_answer : The largest stiffness four ways, for the design question alone.
 
     Examples

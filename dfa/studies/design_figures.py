@@ -1,4 +1,4 @@
-"""Figures of the design report, drawn from a :class:`~dfa.analysis.design.DesignAnalysis` only (PNG bytes in memory)."""
+"""Figures of the design report, drawn from a :class:`~dfa.studies.design.DesignAnalysis` only (PNG bytes in memory)."""
 
 from __future__ import annotations
 
@@ -6,8 +6,8 @@ import io
 from dataclasses import dataclass
 from typing import Any
 
-from ..analysis.design import DesignAnalysis
-from .hand import held_name
+from ..render.hand import held_name
+from .design import DesignAnalysis
 
 __all__ = ["ReportFigure", "design_figures"]
 
@@ -77,7 +77,7 @@ def _stiffness(a: DesignAnalysis) -> ReportFigure | None:
 
 def _nyquist(a: DesignAnalysis) -> ReportFigure | None:
     from .. import figures
-    from .controller import controller_short
+    from ..render.controller import controller_short
 
     if a.nyquist is None:  # a one-sided wall: not a linear loop
         return None
@@ -199,7 +199,7 @@ def design_figures(analysis: DesignAnalysis) -> tuple[ReportFigure, ...]:
     Parameters
     ----------
     analysis : DesignAnalysis
-        From :func:`dfa.analysis.design.design_analysis`; only read.
+        From :func:`dfa.studies.design.design_analysis`; only read.
 
     Returns
     -------

@@ -79,7 +79,7 @@ def impact(dev: Device, wall: Wall, velocity: float, samples: int = IMPACT_SAMPL
     -------
     SimulationResult
     """
-    from .simulation import simulate
+    from ..analysis.simulation import simulate
 
     p = dev.params(wall.stiffness)
     w = wall.params(dev.period, dev.resolution)
@@ -88,8 +88,8 @@ def impact(dev: Device, wall: Wall, velocity: float, samples: int = IMPACT_SAMPL
 
 def _price(dev: Device, k0: float | None, v: float) -> dict[str, Any]:
     """Force errors (KΔ → N, N·m) of the plain and the limited wall at K₀, and the controller's share of readings."""
+    from ..analysis.observer import force_error, observe
     from ..model import units
-    from .observer import force_error, observe
 
     if k0 is None:
         return {"stiffness": None, "plain": None, "limited": None, "acting_share": None, "outcomes": None}
@@ -203,7 +203,7 @@ def passivity_comparison(
     -------
     PassivityComparison
     """
-    from .limits.kmax import design_answer
+    from ..analysis.limits.kmax import design_answer
 
     devs = complete_entries() if entries is None else tuple(entries)
     if not devs:

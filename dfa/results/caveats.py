@@ -41,7 +41,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from ...errors import DFAValueError
+from ..errors import DFAValueError
 
 __all__ = ["SUBTICK_LIMIT", "SubtickCaveat", "subtick_caveat", "NoRestCaveat", "no_rest_caveat", "NO_REST_CAVEAT"]
 

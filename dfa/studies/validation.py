@@ -35,7 +35,7 @@ Six measurements, published whatever they show:
    :data:`dfa.analysis.cycles.SUBTICK_LIMIT` of the first level counted apart (the
    sub-tick caveat of :func:`dfa.analysis.cycles.subtick_caveat`).
 
-The result holds numbers and records only; :mod:`dfa.render.validation` words it (``validation.md``).
+The result holds numbers and records only; :mod:`dfa.studies.validation_document` words it (``validation.md``).
 
 Examples
 --------
@@ -54,16 +54,16 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..analysis.criterion import classify_region, passivity_criterion
+from ..analysis.cycles import SUBTICK_LIMIT, growth_threshold, large_cycle_closed_form, limit_cycles
+from ..analysis.maps import map_start, stability_map
+from ..analysis.simulation import OUTCOMES, SimulationResult, divergence_bound, simulate
 from ..checks import check_bool, check_choice, check_jobs, check_type
+from ..jsonable import explain_nulls, to_jsonable
 from ..model.device import Params
 from ..model.wall import WallParams
 from ..results.base import Result
-from ..results.jsonable import explain_nulls, to_jsonable
 from ..results.status import ValidationStatus
-from .criterion import classify_region, passivity_criterion
-from .cycles import SUBTICK_LIMIT, growth_threshold, large_cycle_closed_form, limit_cycles
-from .maps import map_start, stability_map
-from .simulation import OUTCOMES, SimulationResult, divergence_bound, simulate
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -213,7 +213,7 @@ def first_unstable_speed(
     (default the spring without delay; :func:`dfa.simulate`). Stability need not be monotone in speed: slower
     speeds between scan points may diverge too.
     """
-    from .approach import approach_samples
+    from ..analysis.approach import approach_samples
 
     w = WallParams() if wall is None else wall
     n = samples + (approach_samples(w) if w.one_sided else 0)
@@ -285,7 +285,7 @@ def cluster_threshold(name: str, p: Params, speeds: ArrayLike, samples: int) -> 
     ``last_non_diverging`` (largest scanned ξ'0 whose run did not), ``interleaved`` (non-diverging speeds above the
     first diverging one), the band ends M·ω per model, eq. 45's M·ω, and whether the exact ZOH linear loop is stable.
     """
-    from .linear import linear_stable
+    from ..analysis.linear import linear_stable
 
     speeds = np.asarray(speeds, dtype=float)
     div = np.array(

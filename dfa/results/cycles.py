@@ -2,18 +2,33 @@
 
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from ...checks import check_bool, check_nonnegative, check_positive, check_real, format_value
-from ...errors import DFATypeError, DFAValueError
-from ...model.device import Device, Params
-from ...model.wall import WallParams
-from ...results.base import Result
-from ...results.status import SearchStatus
-from ...results.summaries import OperatingPoint
+import numpy as np
+
+from ..checks import (
+    check_bool,
+    check_nonnegative,
+    check_positive,
+    check_real,
+    format_value,
+)
+from ..errors import DFATypeError, DFAValueError
+from ..model.device import Device, Params
+from ..model.wall import WallParams
+from .base import Result
 from .caveats import NO_CAVEAT, NO_REST_CAVEAT, NoRestCaveat, SubtickCaveat, no_rest_caveat, subtick_caveat
+from .status import GrowthStatus, SearchStatus
+from .summaries import OperatingPoint
+
+#: μ = m/(KT²) over which the search claims completeness: there every cycle's frequency lies well inside the
+#: scanned grid ``W_GRID`` = [1e-5, π − 1e-9] rad/sample (the large family's ω ≈ 1/√μ reaches 1e-5 at μ = 1e10,
+#: a cycle near Nyquist has π − ω ≈ 20μ; ``tests/test_eq36_cycle_search.py`` checks both ends). Outside it
+#: :func:`limit_cycles` searches nothing and says so (status ``FREQUENCY_RANGE``).
+SEARCHED_MU = (1e-6, 1e8)
 
 
 # ------------------------------------------------------------------ results
@@ -145,7 +160,7 @@ class LimitCycle(Result):
             ``amplitude_m`` (rotary: rad), ``force_amplitude_n`` (N·m), ``frequency_hz``, ``period_s``
             and ``velocity_m_s`` (rad/s, the speed amplitude M·ω).
         """
-        from ...model.units import physical_quantities
+        from ..model.units import physical_quantities
 
         return physical_quantities(
             device,
@@ -287,7 +302,7 @@ class LimitCycleResult(OperatingPoint, Result):
         dict
             The device, K, force step KΔ and units, and ``cycles``: one dict per cycle.
         """
-        from ...model.units import unit_context
+        from ..model.units import unit_context
 
         return {**unit_context(device, stiffness), "cycles": [c.physical(device, stiffness) for c in self.cycles]}
 
@@ -304,3 +319,182 @@ class LimitCycleResult(OperatingPoint, Result):
 
 class LimitCycleSearchWarning(RuntimeWarning):
     """A limit-cycle search ended incomplete because of a numerical failure."""
+
+
+class ClosedFormStatus(enum.IntEnum):
+    """Why a closed-form cycle is, or is not, given at a point (:attr:`ClosedFormCycles.status`)."""
+
+    #: the closed form holds: amplitude and frequency are finite
+    OK = 0
+    #: the family does not exist here (small: σ >= ½; large: sin(ω/2) <= βω)
+    NO_CYCLE = 1
+    #: β = σ = 0 for the small family: eq. 43's root is ω = 0 with M = ∞, no cycle
+    DEGENERATE = 2
+    #: the root finder reported a failure (non-finite value, no convergence), or (small family) ω lies
+    #: within rounding of π, where eq. 42's M ∝ cos(ω/2) cannot be computed in floating point
+    NOT_SOLVED = 3
+
+    @property
+    def reason(self) -> str:
+        """One line in words."""
+        return _REASONS[self]
+
+
+_REASONS = {
+    ClosedFormStatus.OK: "ok",
+    ClosedFormStatus.NO_CYCLE: "no cycle of this family at this point",
+    ClosedFormStatus.DEGENERATE: "degenerate: with β = σ = 0 eq. 43 gives ω → 0 and M → ∞ (no cycle)",
+    ClosedFormStatus.NOT_SOLVED: (
+        "not solved here: the root finder failed (non-finite value or no convergence), or ω is within rounding "
+        "of π (β/μ too large for eq. 42-43 in floating point)"
+    ),
+}
+
+
+@dataclass(frozen=True)
+class ClosedFormCycles:
+    """Closed-form cycles over broadcast (μ, β, σ): NaN wherever ``status`` is not OK.
+
+    Attributes
+    ----------
+    amplitude : numpy.ndarray
+        M in encoder ticks (read-only).
+    frequency : numpy.ndarray
+        ω in rad per sample (read-only).
+    status : numpy.ndarray of int8
+        :class:`ClosedFormStatus` values (read-only).
+    """
+
+    amplitude: np.ndarray
+    frequency: np.ndarray
+    status: np.ndarray
+
+    def __post_init__(self) -> None:
+        for name in ("amplitude", "frequency", "status"):
+            a = np.array(getattr(self, name))  # a copy, so that the caller's array stays writeable
+            a.flags.writeable = False
+            object.__setattr__(self, name, a)
+
+    @property
+    def codes(self) -> list[ClosedFormStatus]:
+        """The status of each point as enum members (flattened)."""
+        return [ClosedFormStatus(int(s)) for s in self.status.ravel()]
+
+
+# --------------------------------------------------------- design threshold
+@dataclass(frozen=True)
+class GrowthThreshold(Result):
+    """The describing function's growth band: from the smallest to the largest unstable cycle.
+
+    Where the large family is a single unstable cycle the band is one amplitude
+    M_u and the first-harmonic analysis predicts growth above it. Where it is a
+    cluster of alternating stable and unstable cycles (β near the linear bound,
+    D(M) oscillating about 1, eq. 41) there is no single threshold: below the
+    band every predicted cycle is stable, inside it growth depends on the initial
+    condition, above the largest unstable cycle growth is predicted (unless a
+    larger stable cycle catches it). All of this is a first-harmonic
+    approximation (eq. 36), not a proof.
+
+    Attributes
+    ----------
+    amplitude, frequency, xi_dot : float or None
+        Smallest unstable cycle: M_u (ticks), ω (rad per sample) and the speed
+        amplitude M_u·ω (ticks per sample), to compare with eq. 12.
+    result : LimitCycleResult
+        The full solution it came from.
+    position, velocity : float or None
+        M_u and M_u·ω in physical units (m or rad, m/s or rad/s) when a device was given.
+    status : GrowthStatus
+        ``OK`` (unstable cycles found), ``NO_UNSTABLE_CYCLE``, ``NO_UNSTABLE_CYCLE_SEARCHED``
+        (none up to an incomplete search's limit) or ``LINEAR_UNSTABLE``.
+    amplitude_high, frequency_high, xi_dot_high, position_high, velocity_high : float or None
+        The same for the largest unstable cycle (the top of the band).
+    unstable_count : int
+        Number of unstable cycles in the band.
+    grows_above : bool or None
+        True when no stable cycle lies above the largest unstable one, so that
+        the first-harmonic analysis predicts growth above the band.
+    """
+
+    amplitude: float | None
+    frequency: float | None
+    xi_dot: float | None
+    result: LimitCycleResult = field(metadata={"json": None})  # its numbers: band, complete, linear_stable
+    position: float | None = None
+    velocity: float | None = None
+    status: GrowthStatus = GrowthStatus.OK
+    amplitude_high: float | None = None
+    frequency_high: float | None = None
+    xi_dot_high: float | None = None
+    position_high: float | None = None
+    velocity_high: float | None = None
+    unstable_count: int = 0
+    grows_above: bool | None = None
+
+    json_properties: ClassVar[tuple[str, ...]] = ("band", "complete", "linear_stable", "linear_model", "caveat")
+
+    def __post_init__(self) -> None:
+        st = GrowthStatus.coerce(self.status)
+        object.__setattr__(self, "status", st)
+        if (st is GrowthStatus.OK) != (self.amplitude is not None) or (self.amplitude is None) != (
+            self.unstable_count == 0
+        ):
+            raise DFAValueError(
+                f"status = {st.value!r} is invalid with amplitude = {self.amplitude!r} and unstable_count = "
+                f"{self.unstable_count!r}: status OK exactly when an unstable cycle was found; build it with growth_threshold"
+            )
+
+    @property
+    def is_band(self) -> bool:
+        """True for a cluster: more than one unstable cycle."""
+        return self.unstable_count > 1
+
+    @property
+    def caveat(self) -> SubtickCaveat | None:
+        """The sub-tick caveat of the search (:attr:`LimitCycleResult.caveat`), or None.
+
+        Set when the band's bottom lies just above the first quantization level, where "no growth below it"
+        is not borne out by simulation.
+        """
+        return self.result.caveat
+
+    @property
+    def band(self) -> dict[str, dict[str, float | None]]:
+        """The band's bottom (``low``: the smallest unstable cycle) and top (``high``: the largest), each as
+        amplitude, frequency, xi_dot, position and velocity (None where undefined)."""
+        names = ("amplitude", "frequency", "xi_dot", "position", "velocity")
+        return {
+            "low": {n: getattr(self, n) for n in names},
+            "high": {n: getattr(self, f"{n}_high") for n in names},
+        }
+
+    @property
+    def complete(self) -> bool:
+        """Whether the cycle search was complete (:attr:`LimitCycleResult.complete`)."""
+        return self.result.complete
+
+    @property
+    def linear_stable(self) -> bool | None:
+        """Whether the linear loop is stable (:attr:`LimitCycleResult.linear_stable`)."""
+        return self.result.linear_stable
+
+    @property
+    def linear_model(self) -> str:
+        """The model of :attr:`linear_stable`: always the exact ZOH loop (``"zoh"``)."""
+        return "zoh"
+
+    def null_reasons(self) -> dict[str, str]:
+        """Why the caveat (:data:`~dfa.results.caveats.NO_CAVEAT`) and the band's top may be null in JSON.
+
+        Returns
+        -------
+        dict of str to str
+            The reason by key.
+        """
+        none = "no unstable cycle: no growth band"
+        phys = "no unstable cycle, or no device given (physical units need one)"
+        return {
+            "caveat": NO_CAVEAT,
+            **{n: none for n in ("amplitude_high", "frequency_high", "xi_dot_high")},
+            **{n: phys for n in ("position_high", "velocity_high")},
+        }

@@ -1,6 +1,6 @@
 """Design report of one device: verdict, stiffness limits, limit cycles, figures, and how far to trust them.
 
-:func:`design_report` = :func:`dfa.analysis.design.design_analysis` (every number) + :func:`write_design_report`
+:func:`design_report` = :func:`dfa.studies.design.design_analysis` (every number) + :func:`write_design_report`
 (figures and documents from that analysis only). Markdown (figures as PNG files in ``figures/`` beside it)
 and/or one self-contained HTML file (figures embedded, no PNG written). The files of one report appear
 together or not at all (:func:`dfa._io.staged_folder`), with ``design_report_{name}.json`` beside them: the
@@ -20,15 +20,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ._io import staged_folder
-from .analysis.design import DesignAnalysis, design_analysis, resolve_design_inputs
-from .checks import check_bool, check_choice, check_int, format_value
-from .errors import DFATypeError, DFAValueError
-from .model.catalogue import CatalogueEntry
-from .model.device import Device
-from .model.wall import Wall
-from .results.jsonable import dumps, explain_nulls, round_floats, to_jsonable
-from .results.status import ReportStatus
+from .._io import staged_folder
+from ..checks import check_bool, check_choice, check_int, format_value
+from ..errors import DFATypeError, DFAValueError
+from ..jsonable import dumps, explain_nulls, round_floats, to_jsonable
+from ..model.catalogue import CatalogueEntry
+from ..model.device import Device
+from ..model.wall import Wall
+from ..results.status import ReportStatus
+from .design import DesignAnalysis, design_analysis, resolve_design_inputs
 
 __all__ = ["ReportResult", "design_report", "report_name", "report_slug", "write_design_report"]
 
@@ -109,7 +109,7 @@ def _numbers(a: DesignAnalysis) -> dict[str, Any]:
 
 def _wall_numbers(a: DesignAnalysis) -> dict[str, Any]:
     """The headline numbers of a wall beyond the spring: the extended criterion's, K_max with the wall, its groups."""
-    from .render.controller import wall_dict
+    from ..render.controller import wall_dict
 
     p, r, lim = a.params, a.criterion, a.design_answer
     out = dict(
@@ -239,7 +239,7 @@ def write_design_report(
     Parameters
     ----------
     analysis : DesignAnalysis
-        From :func:`dfa.analysis.design.design_analysis`; only read.
+        From :func:`dfa.studies.design.design_analysis`; only read.
     out_dir : path
         Existing folder for ``design_report_{name}.md|html|json`` and, with Markdown, ``figures/``.
     fmt : {"html", "md", "both"}
@@ -256,8 +256,8 @@ def write_design_report(
     DFAValueError
         A missing folder, an unknown format, or a report of other inputs in the way (without ``force``).
     """
-    from .render.document import design_html, design_markdown
-    from .render.report_figures import design_figures
+    from .design_document import design_html, design_markdown
+    from .design_figures import design_figures
 
     fmt = check_choice("fmt", fmt, ("html", "md", "both"))
     out = Path(out_dir)
@@ -305,7 +305,7 @@ def design_report(
 ) -> ReportResult:
     """Write the design report of ``device`` with ``wall`` at impact speed ẋ0.
 
-    :func:`dfa.analysis.design.design_analysis` followed by :func:`write_design_report`.
+    :func:`dfa.studies.design.design_analysis` followed by :func:`write_design_report`.
 
     Parameters
     ----------
@@ -341,7 +341,7 @@ def design_report(
     Raises
     ------
     DFAValueError
-        Bad inputs (see :func:`dfa.analysis.design.design_analysis`), a missing folder, or a report of other inputs in the way.
+        Bad inputs (see :func:`dfa.studies.design.design_analysis`), a missing folder, or a report of other inputs in the way.
 
     See Also
     --------

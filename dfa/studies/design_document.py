@@ -1,7 +1,7 @@
 """The design report as Markdown (Jinja2 template) and as self-contained HTML (markdown-it-py).
 
-Everything here reads a :class:`~dfa.analysis.design.DesignAnalysis`; nothing computes a number the analysis does not
-hold, and nothing writes files (:func:`dfa.report.design_report` does, atomically).
+Everything here reads a :class:`~dfa.studies.design.DesignAnalysis`; nothing computes a number the analysis does not
+hold, and nothing writes files (:func:`dfa.studies.report.design_report` does, atomically).
 """
 
 from __future__ import annotations
@@ -12,15 +12,15 @@ from collections.abc import Callable, Mapping
 from functools import lru_cache
 from typing import Any
 
-from ..analysis.criterion import start_state_clause
-from ..analysis.design import DesignAnalysis
 from ..formatting import markdown_table, number, percent
+from ..render.answer import recommendation_text
+from ..render.contact import contact_text
+from ..render.hand import grasp_text, grip_rows, grip_text, held_name, moving_symbols
+from ..render.limits import spring_passive_text, spring_verdict_text
+from ..render.text import growth_meaning, outside_searched_mu, search_why
+from ..results.criterion import start_state_clause
 from ..results.status import SearchStatus
-from .answer import recommendation_text
-from .contact import contact_text
-from .hand import grasp_text, grip_rows, grip_text, held_name, moving_symbols
-from .limits import spring_passive_text, spring_verdict_text
-from .text import growth_meaning, outside_searched_mu, search_why
+from .design import DesignAnalysis
 
 __all__ = ["design_html", "design_markdown", "markdown_to_html"]
 
@@ -97,7 +97,7 @@ def _extended_to(wall: Any) -> str:
 
 def controller_verdict_text(a: DesignAnalysis) -> str:
     """The verdict with a wall controller: the extended criterion (or "not covered"), its K_max, simulation."""
-    from .controller import NOT_COVERED, not_covered_why
+    from ..render.controller import NOT_COVERED, not_covered_why
 
     dev, u, ctl, chk = a.device, a.device.units, a.wall, a.check
     text = (
@@ -357,7 +357,7 @@ def _criterion_speed_row(a: DesignAnalysis) -> list[str]:
             number(crit.critical_xi_dot),
             f"{number(crit.critical_velocity)} {u['velocity']}",
         ]
-    from .controller import NOT_COVERED
+    from ..render.controller import NOT_COVERED
 
     r = a.criterion
     if r is None:
@@ -429,7 +429,7 @@ def _template() -> Any:
 def answer_rows(a: DesignAnalysis) -> list[list[str]]:
     """Rows of the report's design answer: K_max four ways at the design speed, each with what it rests on in a
     few words (the full evidence goes below the table, :func:`evidence_markdown`)."""
-    from .limits import limit_text
+    from ..render.limits import limit_text
 
     ans = a.design_answer
     assert ans is not None
@@ -455,7 +455,7 @@ def evidence_markdown(r: Any) -> str:
     -------
     str
     """
-    from .limits import evidence_lines
+    from ..render.limits import evidence_lines
 
     items = []
     for line in evidence_lines(r):
@@ -468,7 +468,7 @@ def zwidth_rows(a: DesignAnalysis) -> list[list[str]]:
     """Rows of the report's Z-width: K_max(B) per method at each B of the grid ("-": undefined, see the JSON)."""
     import math
 
-    from ..analysis.limits.zwidth import ZWIDTH_METHODS
+    from ..results.codes import ZWIDTH_METHODS
 
     z = a.zwidth
     assert z is not None
@@ -484,7 +484,7 @@ ZWIDTH_HEADER = ("linear", "Colgate–Schenkel", "criterion (proof)", "describin
 
 def _controller_parts(a: DesignAnalysis) -> dict[str, str]:
     """The template's controller sections (empty strings for the spring: its report is unchanged)."""
-    from .controller import check_table_rows, controller_limit_rows, controller_line, controller_rows
+    from ..render.controller import check_table_rows, controller_limit_rows, controller_line, controller_rows
 
     keys = ("controller_line", "controller_table", "check_table", "climits_table", "climits_evidence", "spring_only",
             "with_ctl")  # fmt: skip
@@ -516,7 +516,7 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
     a : DesignAnalysis
         The analysis (only read).
     captions : mapping
-        Figure name → caption (:func:`dfa.render.report_figures.design_figures`).
+        Figure name → caption (:func:`dfa.studies.design_figures.design_figures`).
     src : callable
         Figure name → image address.
 

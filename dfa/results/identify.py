@@ -1,0 +1,304 @@
+"""Identification results: the estimates fitted to a logged impact (:class:`Identification`, :class:`Estimate`,
+:class:`FitQuality`) with why an estimate is unresolved, and a logged cycle (:class:`LoggedCycle`); computed in
+:mod:`dfa.analysis.identify` and :mod:`dfa.analysis.logged_cycle`."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ..checks import check_type
+from ..formatting import round_at, uncertainty_place
+from ..jsonable import explain_nulls
+from ..model.device import Device
+from ..model.units import hertz, position, speed
+from .base import Result, figure_function
+from .status import IdentifyStatus, IdentifyWarning, LoggedCycleStatus
+
+#: Coulomb friction below this share of the largest logged force is not resolved by the log (a diverging
+#: impact with forces of kN against a friction of 1 N fits any friction within a few per cent).
+FRICTION_SHARE = 1e-4
+
+#: Why c and f₀ have no interval in a log without a reversal.
+NO_REVERSAL_WHY = "no reversal in the log: Coulomb friction and the force offset act the same way, only c − f₀ is seen"
+
+
+#: Why c has no interval when it is below :data:`FRICTION_SHARE` of the largest force.
+FRICTION_UNRESOLVED_WHY = f"unresolved: below {FRICTION_SHARE:g} of the largest logged force, the log cannot resolve it, whatever its fit says"
+
+
+#: Why no estimate has an interval when the fit is poor.
+POOR_FIT_WHY = (
+    "poor fit: the model does not reproduce the log (noise on the force column, or dynamics the model lacks), "
+    "so the fit's spread says nothing about the values"
+)
+
+
+#: Why an estimate has no interval when its interval would span more than :data:`SCATTER`.
+SCATTER_WHY = "the fits of the log and its replicates differ by orders of magnitude: the log does not bound it"
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """One identified value, its 95 % interval [low, high] and stderr, the interval's half-width / 1.96 (SI units).
+
+    The interval comes from the fit's Jacobian and a bootstrap over the encoder's unknown origin (module
+    docstring, step 4): it covers the readings' quantization and the fit's convergence, not noise on the force
+    column or dynamics the model lacks. ``undetermined`` says why there is no interval (None): the log cannot
+    separate this value from another, or holds too little motion to bound it.
+    """
+
+    value: float
+    stderr: float | None
+    low: float | None
+    high: float | None
+    undetermined: str = ""
+
+    @property
+    def place(self) -> int | None:
+        """Exponent k of the last meaningful decimal place 10^k (:func:`dfa.formatting.uncertainty_place` of the
+        interval's wider half); None without an interval. Digits below it move with the last bits of the
+        arithmetic (the fit's stopping point), from one machine to another."""
+        if self.low is None or self.high is None:
+            return None
+        return uncertainty_place(max(self.high - self.value, self.value - self.low))
+
+    def to_dict(self) -> dict[str, Any]:
+        """The value, its standard error and interval (null with the reason when undetermined)."""
+        out: dict[str, Any] = {"value": self.value, "stderr": self.stderr, "low": self.low, "high": self.high}
+        return explain_nulls(out, dict.fromkeys(("stderr", "low", "high"), self.undetermined))
+
+
+@dataclass(frozen=True)
+class FitQuality:
+    """How well the identified device reproduces the log.
+
+    Attributes
+    ----------
+    rms_ticks : float
+        RMS distance of the predicted position from the middle of each logged tick (about 0.29 for a perfect
+        model: the position within the tick).
+    max_tick_error : int
+        Largest |predicted tick − logged tick|.
+    within_one_tick : float
+        Share of samples whose predicted tick is within one of the logged one.
+    """
+
+    rms_ticks: float
+    max_tick_error: int
+    within_one_tick: float
+
+    def to_dict(self) -> dict[str, float | int]:
+        """The three numbers."""
+        return {"rms_ticks": self.rms_ticks, "max_tick_error": self.max_tick_error,
+                "within_one_tick": self.within_one_tick}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Identification(Result):
+    """A device identified from its log (:func:`identify`).
+
+    Attributes
+    ----------
+    device : Device
+        The identified device (m, b, c, Δ, T).
+    source : str
+        The log's name.
+    samples : int
+        Samples in the log.
+    mass, damping, coulomb, force_offset : Estimate
+        m (kg), b (N·s/m), c (N) and the force offset f₀ (N; the force applied is f + f₀); rotary kg·m², N·m·s/rad,
+        N·m.
+    resolution_given, period_given : bool
+        Whether Δ and T were given (else estimated from the log).
+    segment : int
+        Samples per segment of the multiple-shooting fit (the last one may be longer).
+    bootstrap : int
+        Replicate logs whose fits set the intervals (0: the linearized intervals alone; module docstring, step 4).
+    bootstrap_requested : int
+        Replicates asked for: more than ``bootstrap`` when some did not move enough to be fitted, or when the
+        intervals were withheld (little motion, a poor fit) and none was run.
+    fit : FitQuality
+        The fit's own prediction: each segment from its fitted start.
+    free_run : FitQuality
+        The identified model run once over the whole log from the fitted start (errors accumulate).
+    warnings : tuple of IdentifyWarning
+        What the log does not excite, or a poor fit.
+    velocity_peak : float
+        Largest speed of the fitted run, m/s (rad/s).
+    segment_states : ndarray
+        One row per segment of the fit: its first sample, fitted position there (ticks from the lowest reading)
+        and velocity (ticks per sample).
+    predicted, logged : ndarray
+        The free run's position and the logged tick at each sample, in ticks from the lowest reading (the figure).
+    status : IdentifyStatus
+    """
+
+    device: Device = field(metadata={"json": lambda d: d.to_dict()})
+    source: str
+    samples: int
+    mass: Estimate
+    damping: Estimate
+    coulomb: Estimate
+    force_offset: Estimate
+    resolution_given: bool
+    period_given: bool
+    segment: int
+    bootstrap: int
+    bootstrap_requested: int
+    fit: FitQuality
+    free_run: FitQuality
+    warnings: tuple[IdentifyWarning, ...]
+    velocity_peak: float
+    segment_states: np.ndarray = field(repr=False, metadata={"json": None})
+    predicted: np.ndarray = field(repr=False, metadata={"json": None})
+    logged: np.ndarray = field(repr=False, metadata={"json": None})
+    status: IdentifyStatus = IdentifyStatus.OK
+
+    json_properties: ClassVar[tuple[str, ...]] = ("start_velocity",)
+    units_of: ClassVar[dict[str, str]] = {"velocity_peak": "velocity", "start_velocity": "velocity"}
+
+    def __post_init__(self) -> None:
+        fix = "Identification is built by dfa.identify; call that instead"
+        check_type("device", self.device, Device, fix)
+        for name in ("mass", "damping", "coulomb", "force_offset"):
+            check_type(name, getattr(self, name), Estimate, fix)
+        object.__setattr__(self, "warnings", tuple(IdentifyWarning.coerce(w) for w in self.warnings))
+        object.__setattr__(self, "status", IdentifyStatus.coerce(self.status))
+        for name in ("segment_states", "predicted", "logged"):
+            a = np.array(getattr(self, name), dtype=float)
+            a.setflags(write=False)
+            object.__setattr__(self, name, a)
+
+    @property
+    def start_velocity(self) -> float:
+        """The fitted velocity at the log's first sample, m/s (rad/s): the free run's start (the first segment's)."""
+        return float(speed(self.device, self.segment_states[0, 2]))
+
+    def cautious(self) -> Device:
+        """The identified device with b and c at the lower ends of their 95 % intervals.
+
+        Where the log does not bound them they are 0. A stiffness limit for the real device can rest on this
+        device, as every limit of :mod:`dfa` rises with damping and friction. Each value keeps its meaningful
+        digits only (:attr:`Estimate.place`; b and c rounded down, m to the nearest, to 4 significant digits
+        without an interval), so that the limits computed from it and the flags that repeat them are the same on
+        every machine.
+
+        Returns
+        -------
+        Device
+            The identified m, Δ and T with b and c lowered, named ``"<name> (cautious)"``.
+        """
+        b, c = (round_at(e.low, e.place, "down") if e.low is not None and e.place is not None else 0.0
+                for e in (self.damping, self.coulomb))  # fmt: skip
+        place = self.mass.place
+        m = round_at(self.mass.value, place) if place is not None else 0.0
+        m = m if m > 0.0 else float(f"{self.mass.value:.4g}")  # no interval, or one wider than the value
+        d = self.device
+        return Device(m, b, c, d.resolution, d.period, name=f"{d.name} (cautious)", rotary=d.rotary)
+
+    def plot(self, ax: Any = None) -> Any:
+        """The logged ticks against the identified model's free run, residual below.
+
+        Parameters
+        ----------
+        ax : pair of matplotlib Axes, optional
+            Top and bottom axes; a new figure when None.
+
+        Returns
+        -------
+        pair of matplotlib Axes
+            The trajectory axes and the residual axes (:func:`dfa.figures.plot_identification`).
+        """
+        plot_identification = figure_function("plot_identification")
+
+        return plot_identification(self, ax)
+
+
+@dataclass(frozen=True)
+class LoggedOscillation:
+    """A sustained oscillation measured on readings (:func:`measure_oscillation`).
+
+    Attributes
+    ----------
+    amplitude : float
+        Half the peak-to-peak of the readings over the tail, ticks (uncertain by ±½ tick).
+    frequency : float
+        Radians per sample.
+    periods : int
+        Full periods in the tail.
+    start : int
+        First sample of the tail.
+    """
+
+    amplitude: float
+    frequency: float
+    periods: int
+    start: int
+
+    def to_dict(self) -> dict[str, float | int]:
+        """The four numbers."""
+        return {"amplitude": self.amplitude, "frequency": self.frequency, "periods": self.periods, "start": self.start}
+
+
+@dataclass(frozen=True)
+class LoggedCycle(Result):
+    """The log's oscillation next to the predicted limit cycles (:func:`compare_logged_cycle`).
+
+    Attributes
+    ----------
+    device : Device
+        The identified device.
+    stiffness : float
+        K of the wall the log ran against, N/m (rotary N·m/rad).
+    origin, origin_spread : float
+        The wall's origin in ticks above the lowest reading, and how far the samples' own estimates of it lie
+        from it, ticks (:func:`wall_origin`; more than a tick: the force column is not this wall).
+    logged : LoggedOscillation or None
+        The log's sustained oscillation (None: none).
+    replays : tuple of (float, float, str, float, float)
+        Each replay's damping b (N·s/m) and friction c (N), outcome (``dfa.analysis.simulation``), amplitude
+        (ticks) and frequency (rad per sample; NaN when not measured); empty when no oscillation was logged.
+    matching : int
+        Replays that end in the logged cycle.
+    describing : tuple of (float, float)
+        The describing function's stable limit cycles (amplitude in ticks, frequency in rad per sample).
+    status : LoggedCycleStatus
+    """
+
+    device: Device = field(metadata={"json": lambda d: d.to_dict()})
+    stiffness: float
+    origin: float
+    origin_spread: float
+    logged: LoggedOscillation | None
+    replays: tuple[tuple[float, float, str, float, float], ...]
+    matching: int
+    describing: tuple[tuple[float, float], ...]
+    status: LoggedCycleStatus
+
+    units_of: ClassVar[dict[str, str]] = {"stiffness": "stiffness"}
+
+    def __post_init__(self) -> None:
+        check_type("device", self.device, Device, "LoggedCycle is built by compare_logged_cycle; call that")
+        object.__setattr__(self, "status", LoggedCycleStatus.coerce(self.status))
+
+    def to_dict(self) -> dict[str, Any]:
+        """Every field, the oscillations as their numbers (null when there is none)."""
+        out = super().to_dict()
+        lg = self.logged
+        out["logged"] = None if lg is None else lg.to_dict() | {
+            "amplitude_si": position(self.device, lg.amplitude), "frequency_hz": hertz(self.device, lg.frequency)}  # fmt: skip
+        out["replays"] = [{"damping": b, "coulomb": c, "outcome": o, "amplitude": a,
+                           "frequency": None if math.isnan(w) else w} for b, c, o, a, w in self.replays]  # fmt: skip
+        out["describing"] = [{"amplitude": a, "frequency": w} for a, w in self.describing]
+        reasons = {
+            k: v for k, v in out.get("null_reasons", {}).items() if not k.startswith(("/replays", "/describing"))
+        }
+        reasons |= {f"/replays/{i}/frequency": "not measured: the replay did not settle in a cycle"
+                    for i, r in enumerate(self.replays) if math.isnan(r[4])}  # fmt: skip
+        out["null_reasons"] = reasons
+        out["units_of_cycles"] = "amplitude in ticks (amplitude_si in m or rad), frequency in rad per sample"
+        return out
