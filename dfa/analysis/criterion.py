@@ -216,6 +216,7 @@ from ..core.energy import spring_energy_core
 from ..errors import DFATypeError, DFAValueError
 from ..model.device import Device
 from ..model.elements import OneSided, largest_speed
+from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.status import CriterionStatus
@@ -1109,9 +1110,9 @@ def as_wall(wall: object) -> Wall:
     )
 
 
+@loop_first("device, wall")
 def device_criterion(
-    device: Device,
-    wall: Wall | float,
+    loop: Loop,
     velocity: float,
     *,
     position: float = 0.0,
@@ -1122,10 +1123,10 @@ def device_criterion(
 
     Parameters
     ----------
-    device : Device
-        The physical device.
-    wall : Wall or float
-        The wall (its stiffness K in N/m, rotary N·m/rad, and elements), or K alone for the paper's spring.
+    loop : Loop
+        The device and the wall (its stiffness K in N/m, rotary N·m/rad, and elements), ``Loop(device, wall)``
+        (the wall may be K alone, the paper's spring). The former call ``device_criterion(device, wall, velocity)``
+        still works.
     velocity : float
         Largest speed of interest ẋ0 in m/s (rotary: rad/s); its sign is ignored.
     position : float, optional
@@ -1157,23 +1158,21 @@ def device_criterion(
     --------
     >>> from dfa.model.catalogue import get_device
     >>> dev = get_device("Delta").device
-    >>> r = device_criterion(dev, 14500.0, 0.1)
+    >>> r = device_criterion(Loop(dev, 14500.0), 0.1)
     >>> r.region, round(r.critical_velocity, 4)
     ('e', 0.2765)
-    >>> device_criterion(dev, Wall.of(14500.0, delay=1), 0.1).region
+    >>> device_criterion(Loop(dev, Wall.of(14500.0, delay=1)), 0.1).region
     'd'
-    >>> device_criterion(dev, Wall.of(14500.0, damping=5.0), 0.1).region     # B = 5 N·s/m
+    >>> device_criterion(Loop(dev, Wall.of(14500.0, damping=5.0)), 0.1).region     # B = 5 N·s/m
     'd'
     """
-    check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    w = as_wall(wall)
+    device, w = check_type("loop", loop, Loop, LOOP_FIX).physical("device_criterion")
     v = abs(check_real("velocity", velocity, "give the speed in m/s (rotary: rad/s)"))
     x0 = check_real("position", position, "give the initial position in m (rotary: rad)")
     xi0 = device.xi(x0)  # refused with the position's own message when x0/Δ overflows
-    p = device.params(w.stiffness)
+    p, wp = loop.groups("device_criterion")
     r = passivity_criterion(
-        p.beta, p.sigma, device.xi_dot(v), wall=w.params(device.period, device.resolution), quantized=quantized,
-        xi0=xi0, mu=p.mu, history=history,
+        p.beta, p.sigma, device.xi_dot(v), wall=wp, quantized=quantized, xi0=xi0, mu=p.mu, history=history,
     )  # fmt: skip
     crit = None if r.critical_xi_dot is None else device.velocity(r.critical_xi_dot)
     return replace(r, device=device, stiffness=w.stiffness, velocity=v, critical_velocity=crit, position=x0)

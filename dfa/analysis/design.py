@@ -27,6 +27,7 @@ from ..errors import DFATypeError, DFAValueError
 from ..model.catalogue import CatalogueEntry
 from ..model.catalogue import catalogue as catalogue_rows
 from ..model.device import Device, Params
+from ..model.loop import Loop
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.jsonable import explain_nulls, to_jsonable
@@ -518,7 +519,7 @@ def design_analysis(
 
 def _closed_forms(dev: Device, wall: Wall, v: float) -> dict[str, Any]:
     """The passivity check at the design speed; for the spring also its stiffness limits and curve (eq. 8-11)."""
-    chk = passivity_check(dev, wall, v)
+    chk = passivity_check(Loop(dev, wall), v)
     if not wall.params(dev.period, dev.resolution).is_spring:
         return dict(check=chk, limits=None, stiffness_curve=None)
     k, d = wall.stiffness, wall.params(dev.period, dev.resolution).delay

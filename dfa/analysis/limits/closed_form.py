@@ -48,6 +48,7 @@ from numpy.typing import ArrayLike
 from ...checks import check_delay, check_positive, check_real_array, check_speed, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
+from ...model.loop import Loop
 from ...model.wall import Wall
 from ...plausibility import warn_if_from_outside
 from ...results.base import Result
@@ -366,7 +367,7 @@ def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> fl
     k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     # one implementation: the criterion's own critical speed (eq. 12), so that this speed and the
     # verdict of device_criterion agree to rounding even where K T(½ + d) − b cancels
-    r = device_criterion(dev, Wall.of(k, delay=check_delay(delay)), 0.0)
+    r = device_criterion(Loop(dev, Wall.of(k, delay=check_delay(delay))), 0.0)
     if r.region in ("b", "c"):
         return None
     if r.region == "a":

@@ -49,6 +49,7 @@ import numpy as np
 from ...checks import check_bool, check_choice, check_int, check_speed, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
+from ...model.loop import Loop
 from ...model.wall import Wall
 from ...results.base import Result
 from ...results.status import KMaxStatus, LimitStatus, StiffnessStatus, VelocityStatus
@@ -303,7 +304,7 @@ class KMaxResult(Result):
 def criterion_passes(dev: Device, wall: Wall, k: float, v: float) -> bool:
     """The criterion's verdict at stiffness k; a K whose groups are not representable is not proven passive."""
     try:
-        return device_criterion(dev, wall.with_stiffness(k), v).passive
+        return device_criterion(Loop(dev, wall.with_stiffness(k)), v).passive
     except DFAValueError:  # (a one-sided wall's impact at v is monotone in K too: V'² = V² + ε²KT²/m)
         return False
 
@@ -511,7 +512,7 @@ def passive_speed(dev: Device, wall: Wall, k: float) -> tuple[float | None, Velo
     elif p.not_covered() is not None:
         return None, VelocityStatus.NOT_COVERED
     else:
-        r = device_criterion(dev, wall.with_stiffness(k), 0.0)
+        r = device_criterion(Loop(dev, wall.with_stiffness(k)), 0.0)
         mpv = None if r.sigma < r.sigma0 else (math.inf if r.critical_velocity is None else r.critical_velocity)
     if mpv is None:
         return None, VelocityStatus.NONE
