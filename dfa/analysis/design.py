@@ -403,11 +403,12 @@ def _simulations(
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
     n_traj += approach_samples(wp) if wp.one_sided else 0  # a one-sided wall's runs start with the approach
     v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
+    loop = Loop.dimensionless(p.mu, p.beta, p.sigma, wp)
 
     def run(v: float, n: int | None, rec: bool) -> SimulationResult:
         x0, v0 = map_start(p.mu, v, False, wp)  # the impact at ξ0 = 0, or a one-sided wall's approach
         return simulate(  # diverged only far beyond the impact's own travel (eq. 18-19)
-            p.mu, p.beta, p.sigma, v0, n, xi0=x0, record=rec, bound=divergence_bound(x0, v0, p.mu), wall=wp
+            loop, v0, n, xi0=x0, record=rec, bound=divergence_bound(x0, v0, p.mu)
         )
 
     return dict(

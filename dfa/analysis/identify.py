@@ -67,6 +67,7 @@ from ..errors import DFAValueError
 from ..formatting import round_at, uncertainty_place
 from ..model.device import Device, device_units
 from ..model.log import MIN_SAMPLES, DeviceLog, LogError, check_rows
+from ..model.loop import Loop
 from ..model.units import speed
 from ..results.base import Result
 from ..results.jsonable import explain_nulls
@@ -918,8 +919,8 @@ def impact_log(device: Device, stiffness: float, velocity: float, samples: int, 
 
     dev = check_type("device", device, Device, "build one with dfa.Device(...)")
     check_int("samples", samples, MIN_SAMPLES, f"a log needs at least {MIN_SAMPLES} samples")
-    p = dev.params(stiffness)
-    r = simulate(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), samples - 1, record=True)
+    loop = Loop(dev, stiffness)
+    r = simulate(loop, dev.xi_dot(velocity), samples - 1, record=True)
     assert r.xi is not None
     keep = int(np.argmax(~np.isfinite(r.xi))) if not np.all(np.isfinite(r.xi)) else samples  # up to a divergence
     force = r.applied_force()[:keep] * stiffness * dev.resolution

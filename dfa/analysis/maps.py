@@ -79,6 +79,7 @@ from ..checks import (
 from ..core import kernel
 from ..errors import DFATypeError, DFAValueError
 from ..model.elements import OneSided, PassivityController, Push
+from ..model.loop import Loop
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.frozen import check_shape, freeze_fields
@@ -289,16 +290,13 @@ class StabilityMap(PlaneGrid, Result):
         for x0, v0 in starts:
             runs.append(
                 simulate(
-                    self.mu,
-                    beta,
-                    sigma,
+                    Loop.dimensionless(self.mu, beta, sigma, self.wall),
                     v0,
                     self.samples,
                     xi0=x0,
                     quantize=self.quantize,
                     record=False,
                     bound=bound,
-                    wall=self.wall,
                 )  # fmt: skip
             )
         return tuple(runs)

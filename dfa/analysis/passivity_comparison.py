@@ -37,6 +37,7 @@ from ..errors import DFAValueError
 from ..model.catalogue import CatalogueEntry, get_device
 from ..model.device import Device
 from ..model.elements import PassivityController
+from ..model.loop import Loop
 from ..model.wall import Wall
 from ..results.status import ComparisonStatus
 from .contact_comparison import CatalogueComparison, complete_entries, limit_record
@@ -81,9 +82,7 @@ def impact(dev: Device, wall: Wall, velocity: float, samples: int = IMPACT_SAMPL
     """
     from .simulation import simulate
 
-    p = dev.params(wall.stiffness)
-    w = wall.params(dev.period, dev.resolution)
-    return simulate(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), samples=samples, wall=w)
+    return simulate(Loop(dev, wall), dev.xi_dot(velocity), samples=samples)
 
 
 def _price(dev: Device, k0: float | None, v: float) -> dict[str, Any]:

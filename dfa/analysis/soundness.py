@@ -65,6 +65,7 @@ from ..checks import check_bool, check_choice, check_delay, check_int, check_pos
 from ..core import kernel
 from ..core.storage import storage_runs
 from ..errors import DFATypeError, DFAValueError
+from ..model.loop import Loop
 from ..model.wall import WallParams
 from ..results.status import SimulationOutcome
 from .criterion import CriterionResult, passivity_criterion
@@ -330,8 +331,8 @@ def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:
     kap = c.hand_stiffness  # the hand spring's ½κ_h ξ² is stored energy (dfa.analysis.criterion)
     with np.errstate(all="ignore"):
         r = simulate(
-            mu, float(pt["beta"]), float(pt["sigma"]), v0, n, x0, quantize=bool(pt["quantized"]), wall=c,
-            bound=BOUND,
+            Loop.dimensionless(mu, float(pt["beta"]), float(pt["sigma"]), c), v0, n, x0,
+            quantize=bool(pt["quantized"]), bound=BOUND,
         )  # fmt: skip
         xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
         diverged = r.outcome is SimulationOutcome.UNSTABLE  # the compiled path's rule (module docstring)
@@ -489,7 +490,7 @@ def _one_sided_run(
     vstar = speed if bilateral else passivity_criterion(1.0, 1.0, speed, wall=wall, quantized=q, mu=mu).equivalent_speed
     claim = 0.5 * mu * vstar * vstar
     with np.errstate(all="ignore"):
-        r = simulate(mu, beta, sigma, v0, n, x0, quantize=q, wall=wall, bound=BOUND, record=True)
+        r = simulate(Loop.dimensionless(mu, beta, sigma, wall), v0, n, x0, quantize=q, bound=BOUND, record=True)
         xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
         dl = xs - surface
         stored = 0.5 * mu * vs * vs + 0.5 * np.maximum(dl, 0.0) ** 2 - push * dl + 0.5 * push * push
@@ -578,7 +579,9 @@ def _history_run(mu: float, beta: float, sigma: float, x0: float, xd: float, d: 
     vstar = passivity_criterion(1.0, 1.0, xd, wall=wall, quantized=q, xi0=x0, mu=mu, history=hist).equivalent_speed
     n = run_samples(mu)
     with np.errstate(all="ignore"):
-        r = simulate(mu, beta, sigma, xd, n, x0, quantize=q, wall=wall, bound=BOUND, record=True, history="moving")
+        r = simulate(
+            Loop.dimensionless(mu, beta, sigma, wall), xd, n, x0, quantize=q, bound=BOUND, record=True, history="moving"
+        )
         xs, vs = np.asarray(r.xi), np.asarray(r.xi_dot)
         stored = 0.5 * mu * vs * vs + 0.5 * xs * xs
         ratio = np.where(np.abs(xs) <= BOUND, stored / (0.5 * mu * vstar * vstar) - 1.0, np.inf)

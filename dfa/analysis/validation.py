@@ -56,6 +56,7 @@ from numpy.typing import ArrayLike
 
 from ..checks import check_bool, check_choice, check_jobs, check_type
 from ..model.device import Params
+from ..model.loop import Loop
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.jsonable import explain_nulls, to_jsonable
@@ -109,7 +110,7 @@ def cycle_checks(
         region = str(classify_region(p.beta, p.sigma, 0.0))
 
         def run(v: float, p: Params = p) -> SimulationResult:
-            return simulate(p.mu, p.beta, p.sigma, v, samples, record=False, wall=wall)
+            return simulate(Loop.dimensionless(p.mu, p.beta, p.sigma, wall), v, samples, record=False)
 
         for model in models:
             res = limit_cycles(p, model=model, max_amplitude=2000.0, wall=wall)
@@ -221,7 +222,7 @@ def first_unstable_speed(
     def unstable(v: float) -> bool:
         x0, v0 = map_start(p.mu, v, preload, w)
         bound = divergence_bound(x0, v0, p.mu)  # beyond the impact's own travel (eq. 18-19)
-        r = simulate(p.mu, p.beta, p.sigma, v0, n, xi0=x0, record=False, bound=bound, wall=w)
+        r = simulate(Loop.dimensionless(p.mu, p.beta, p.sigma, w), v0, n, xi0=x0, record=False, bound=bound)
         return r.outcome == "unstable"
 
     speeds = np.geomspace(v_lo, v_hi, steps)
@@ -289,7 +290,10 @@ def cluster_threshold(name: str, p: Params, speeds: ArrayLike, samples: int) -> 
 
     speeds = np.asarray(speeds, dtype=float)
     div = np.array(
-        [simulate(p.mu, p.beta, p.sigma, float(v), samples, record=False).outcome == "unstable" for v in speeds]
+        [
+            simulate(Loop.dimensionless(p.mu, p.beta, p.sigma), float(v), samples, record=False).outcome == "unstable"
+            for v in speeds
+        ]
     )
     first = float(speeds[div][0]) if div.any() else None
     last = float(speeds[~div][-1]) if (~div).any() else None

@@ -346,8 +346,12 @@ def as_loop(first: Loop | Device | Params, wall: Wall | WallParams | float | Non
             )
         return first
     if isinstance(first, Params):
-        wp = check_type("wall", wall, WallParams, _FIX_WALL_PARAMS) if wall is not None else None
-        return Loop(None, params=first, wall_params=wp)
+        if wall is not None and not isinstance(wall, WallParams):  # the former analyses' own message
+            raise DFATypeError(
+                f"wall = {wall!r} is invalid: it must be a WallParams or None; "
+                "pass Wall.of(...).params(period) or WallParams.of(...)"
+            )
+        return Loop(None, params=first, wall_params=wall)
     if isinstance(wall, WallParams):
         raise DFATypeError(
             f"wall = {format_value(wall)} has type WallParams: a device's wall must be a dfa.Wall or a stiffness "
@@ -361,18 +365,23 @@ OLD_FORMS = ("device, wall", "device, *, wall", "device, velocity, wall", "param
 
 
 def _old_call(old: str, args: tuple[Any, ...], kwargs: dict[str, Any]) -> tuple[Loop, tuple[Any, ...]]:
-    """The loop and the remaining positional arguments of a call in the former form ``old`` (kwargs: wall popped)."""
+    """The loop and the positional arguments after it of a call in the former form ``old``; the former leading
+    parameters (and ``wall``) are popped from ``kwargs``."""
+    names = old.replace(", *", "").split(", ")
+    if "*" in old:
+        names.remove("wall")
+    given = list(args[: len(names)])
+    for name in names[len(given) :]:
+        if name not in kwargs:
+            raise TypeError(f"missing the argument {name!r} (or give a dfa.Loop first)")
+        given.append(kwargs.pop(name))
+    rest = args[len(names) :]
     if old == "device, wall":
-        if len(args) >= 2:
-            return as_loop(args[0], args[1]), args[2:]
-        return as_loop(args[0], kwargs.pop("wall")), args[1:]
+        return as_loop(given[0], given[1]), rest
     if old == "device, velocity, wall":
-        if len(args) >= 3:
-            return as_loop(args[0], args[2]), (args[1], *args[3:])
-        return as_loop(args[0], kwargs.pop("wall")), args[1:]
-    if old == "mu, beta, sigma, *, wall":
-        return as_loop(Params(*args[:3]), kwargs.pop("wall", None)), args[3:]
-    return as_loop(args[0], kwargs.pop("wall", None)), args[1:]  # "device, *, wall" and "params, *, wall"
+        return as_loop(given[0], given[2]), (given[1], *rest)
+    first = Params(*given) if len(given) == 3 else given[0]
+    return as_loop(first, kwargs.pop("wall", None)), rest
 
 
 def loop_first(old: str) -> Callable[[F], F]:
@@ -399,12 +408,12 @@ def loop_first(old: str) -> Callable[[F], F]:
     def decorate(func: F) -> F:
         @functools.wraps(func)
         def loop_first_wrapper(*args: Any, **kwargs: Any) -> Any:
-            if not args or isinstance(args[0], Loop):
-                if "wall" in kwargs and args:
-                    as_loop(args[0], kwargs["wall"])  # refuses a wall beside the loop
+            if (args and isinstance(args[0], Loop)) or "loop" in kwargs:
+                if "wall" in kwargs:
+                    as_loop(args[0] if args else kwargs["loop"], kwargs["wall"])  # refuses a wall beside the loop
                 return func(*args, **kwargs)
-            loop, rest = _old_call(old, args, dict(kwargs))
-            kw = {k: v for k, v in kwargs.items() if k != "wall"}
+            kw = dict(kwargs)
+            loop, rest = _old_call(old, args, kw)
             return func(loop, *rest, **kw)
 
         return cast(F, loop_first_wrapper)
