@@ -503,7 +503,7 @@ def design_analysis(
     figs: dict[str, Any] = dict(nyquist=ny, stability_map=smap)
     if v > 0:  # the design answer, first in the report: K_max four ways (and the spring's stiffness-speed chart)
         cache = RunCache()  # one set of runs for both: no (K, speed, start) simulated twice
-        figs["design_answer"] = design_answer(dev, v, wall=wall, assess=True, cache=cache)
+        figs["design_answer"] = design_answer(Loop(dev, wall), v, assess=True, cache=cache)
         if wp.is_spring:
             figs["speed_chart"] = stiffness_speed_chart(
                 dev, wall=wall, stiffness=wall.stiffness, velocity=v, cache=cache

@@ -217,7 +217,7 @@ def passivity_comparison(
         v = velocity if velocity is not None else (1.0 if dev.rotary else 0.1)
         row: dict[str, dict[str, dict[str, Any]]] = {}
         for case in CASES:
-            r = design_answer(dev, v, wall=_wall(case, dev), grid=g, speeds=n_speeds)
+            r = design_answer(Loop(dev, _wall(case, dev)), v, grid=g, speeds=n_speeds)
             bad += len(r.counterexamples)
             row[case] = {name: limit_record(getattr(r, name)) for name in ("k_sim", "k_sim_rest")}
         vels.append(float(v))

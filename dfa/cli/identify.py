@@ -144,6 +144,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     from ..analysis.limits.recommend import recommend_stiffness
     from ..analysis.logged_cycle import compare_logged_cycle
     from ..model.device import dimensionless_params
+    from ..model.loop import Loop
     from ..render.answer import stiffness_screen
     from ..render.identify import cycle_lines, loop_head, poor_fit_loop
 
@@ -155,7 +156,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     dev = r.cautious()
     dimensionless_params(dev, args.stiffness, names=LOOP_NAMES)  # names the identified values, not as flags
     v = _peak_speed(r.velocity_peak) if args.velocity is None else args.velocity
-    ans = design_answer(dev, v, wall=args.stiffness, assess=True)
+    ans = design_answer(Loop(dev, args.stiffness), v, assess=True)
     rec = recommend_stiffness(ans)
     out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}
     lines += loop_head(dev, v, args.velocity is None) + stiffness_screen(ans, rec)

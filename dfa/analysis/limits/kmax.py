@@ -49,11 +49,11 @@ import numpy as np
 from ...checks import check_bool, check_choice, check_int, check_speed, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
-from ...model.loop import Loop
+from ...model.loop import LOOP_FIX, Loop, loop_first
 from ...model.wall import Wall
 from ...results.base import Result
 from ...results.status import KMaxStatus, LimitStatus, StiffnessStatus, VelocityStatus
-from ..criterion import as_wall, device_criterion
+from ..criterion import device_criterion
 from .closed_form import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 from .runs import Evidence, RunCache, start_points
 from .search import (
@@ -539,11 +539,11 @@ def _assess(ev: Evidence, k: float, source: str, source_file: str | None, veloci
     return KMaxAssessment(k, source, mpv, vstatus, verdict, gs, unknown, g.unstable, outcomes, source_file)
 
 
+@loop_first("device, *, wall")
 def design_answer(
-    device: Device,
+    loop: Loop,
     velocity: float,
     *,
-    wall: Wall | float | None = None,
     assess: bool = False,
     source: str = "given",
     source_file: str | None = None,
@@ -557,14 +557,14 @@ def design_answer(
 
     Parameters
     ----------
-    device : Device
-        The physical device.
+    loop : Loop
+        The device and the wall whose elements (delay d in samples, damper B in N·s/m, filter, amplifier) are
+        held fixed while K varies, ``Loop(device, wall)`` (the wall may be a stiffness K in N/m, rotary N·m/rad,
+        for the spring alone); ``Loop(device)``: the spring at no given K. The former call
+        ``design_answer(device, velocity, wall=wall)`` still works.
     velocity : float
         Impact speed V in m/s (rotary: rad/s), >= 0 (a negative is refused, not flipped). At 0 only the
         closed forms are computed; the searched limits are ``not_searched``.
-    wall : Wall or float, optional
-        The wall whose elements (delay d in samples, damper B in N·s/m, filter, amplifier) are held fixed
-        while K varies; a stiffness K in N/m (rotary N·m/rad) for the spring alone; default the spring.
     assess : bool, optional
         Also assess the wall's own stiffness K (default False).
     source : str, optional
@@ -601,9 +601,9 @@ def design_answer(
     stiffness_speed_chart : The same limits over a range of speeds.
     design_analysis : Everything the design report states.
     """
-    dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
+    dev = check_type("loop", loop, Loop, LOOP_FIX).search_device("design_answer")
     v = check_speed("velocity", velocity, dev.units["velocity"])
-    w = Wall(1.0) if wall is None else as_wall(wall)
+    wall, w = loop.wall, loop.spring
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     n_grid = check_int("grid", grid, minimum=2, fix="give at least 2 stiffness grid points")
     cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")

@@ -16,6 +16,7 @@ from typing import Any
 from ...checks import check_real, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
+from ...model.loop import Loop
 from ...model.wall import Wall
 from ...results.base import Result
 from ...results.status import GainStatus, KMaxStatus
@@ -166,6 +167,6 @@ def passivity_gain(device: Device, velocity: float, wall: Wall, **kwargs: Any) -
         )
     if not (isinstance(velocity, (int, float)) and math.isfinite(velocity) and velocity > 0):
         raise DFAValueError(f"velocity = {velocity!r} is invalid: it must be > 0 m/s; give the impact speed")
-    with_controller = design_answer(device, velocity, wall=wall, **kwargs)
-    plain = design_answer(device, velocity, wall=wall.without_controller(), **kwargs)
+    with_controller = design_answer(Loop(device, wall), velocity, **kwargs)
+    plain = design_answer(Loop(device, wall.without_controller()), velocity, **kwargs)
     return gain_of(with_controller, plain)
