@@ -69,6 +69,7 @@ from ..model.device import Device, device_units
 from ..model.log import MIN_SAMPLES, DeviceLog, LogError, check_rows
 from ..model.loop import Loop
 from ..model.units import speed
+from ..model.wall import Wall
 from ..results.base import Result
 from ..results.jsonable import explain_nulls
 from ..results.status import IdentifyStatus, IdentifyWarning
@@ -919,7 +920,7 @@ def impact_log(device: Device, stiffness: float, velocity: float, samples: int, 
 
     dev = check_type("device", device, Device, "build one with dfa.Device(...)")
     check_int("samples", samples, MIN_SAMPLES, f"a log needs at least {MIN_SAMPLES} samples")
-    loop = Loop(dev, stiffness)
+    loop = Loop(dev, Wall(stiffness))
     r = simulate(loop, dev.xi_dot(velocity), samples - 1, record=True)
     assert r.xi is not None
     keep = int(np.argmax(~np.isfinite(r.xi))) if not np.all(np.isfinite(r.xi)) else samples  # up to a divergence

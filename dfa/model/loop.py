@@ -114,9 +114,11 @@ class Loop:
             return
         check_type("device", self.device, Device, _FIX_DEVICE)
         if self.params is not None or self.wall_params is not None:
+            given = self.params if self.params is not None else self.wall_params
             raise DFAValueError(
-                "params and wall_params are formed from the device and the wall: give either a device and a wall, "
-                "Loop(device, wall), or the groups alone, Loop.dimensionless(mu, beta, sigma, wall_params)"
+                f"params = {format_value(given)} is invalid with a device: the groups are formed from the device "
+                "and the wall; give either Loop(device, wall), or the groups alone, "
+                "Loop.dimensionless(mu, beta, sigma, wall_params)"
             )
         if self.wall is None:
             return
@@ -357,7 +359,7 @@ def as_loop(first: Loop | Device | Params, wall: Wall | WallParams | float | Non
             f"wall = {format_value(wall)} has type WallParams: a device's wall must be a dfa.Wall or a stiffness "
             "K in N/m; give dfa.Wall.of(K, ...)"
         )
-    return Loop(check_type("device", first, Device, _FIX_DEVICE), wall)
+    return Loop(check_type("device", first, Device, _FIX_DEVICE), None if wall is None else _wall_of(wall))
 
 
 #: The former first parameters an analysis may still be called with (:func:`loop_first`).
