@@ -212,6 +212,7 @@ class Loop:
         Returns
         -------
         tuple of (Device, Wall)
+            The device and the wall at its K.
 
         Raises
         ------
@@ -241,6 +242,7 @@ class Loop:
         Returns
         -------
         Device
+            The loop's device.
 
         Raises
         ------
@@ -265,6 +267,7 @@ class Loop:
         Returns
         -------
         tuple of (Params, WallParams)
+            (μ, β, σ) and the wall's groups.
 
         Raises
         ------
@@ -291,8 +294,10 @@ class Loop:
 
     @property
     def spring(self) -> Wall:
-        """The physical wall, or the spring at K = 1 N/m (a placeholder K) when none is given: the elements a search
-        over K holds fixed."""
+        """The wall whose elements a search over K holds fixed: the wall, or the spring at a placeholder K = 1 N/m.
+
+        The placeholder K is never analysed: the searches set K (:meth:`~dfa.model.wall.Wall.with_stiffness`).
+        """
         return Wall(1.0) if self.wall is None else self.wall
 
     def to_dict(self) -> dict[str, Any]:
