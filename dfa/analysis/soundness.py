@@ -68,7 +68,7 @@ from ..errors import DFATypeError, DFAValueError
 from ..model.loop import Loop
 from ..model.wall import WallParams
 from ..results.status import SimulationOutcome
-from .criterion import CriterionResult, passivity_criterion
+from .criterion import CriterionResult, criterion_from_groups, passivity_criterion
 from .simulation import simulate
 from .soundness_counts import KINDS as KINDS
 from .soundness_counts import TOLERANCE as TOLERANCE
@@ -200,8 +200,8 @@ def _verdict(
     """The criterion's result at one point (β, σ) of the point (ξ'0, ξ0, μ, wall, encoder, history)."""
     seen, sees_xi0 = _seen(crit, wall)
     if sees_xi0:
-        return passivity_criterion(b, s, xd, wall=seen, quantized=q, xi0=x0, mu=mu, history=history)
-    return passivity_criterion(b, s, xd, wall=seen, quantized=q)  # V = |ξ'0|
+        return criterion_from_groups(b, s, xd, wall=seen, quantized=q, xi0=x0, mu=mu, history=history)
+    return criterion_from_groups(b, s, xd, wall=seen, quantized=q)  # V = |ξ'0|: no μ, so no loop
 
 
 def _point(
@@ -487,7 +487,11 @@ def _one_sided_run(
     surface, push = float(a["surface"]), float(a["push"])
     x0, v0, d = approach_start(speed, wall=wall, quantize=q)
     n = d + run_samples(mu)
-    vstar = speed if bilateral else passivity_criterion(1.0, 1.0, speed, wall=wall, quantized=q, mu=mu).equivalent_speed
+    vstar = (
+        speed
+        if bilateral
+        else passivity_criterion(Loop.dimensionless(mu, 1.0, 1.0, wall), speed, quantized=q).equivalent_speed
+    )
     claim = 0.5 * mu * vstar * vstar
     with np.errstate(all="ignore"):
         r = simulate(Loop.dimensionless(mu, beta, sigma, wall), v0, n, x0, quantize=q, bound=BOUND, record=True)
@@ -576,7 +580,9 @@ def _history_run(mu: float, beta: float, sigma: float, x0: float, xd: float, d: 
     start's claim, S <= ½μV², V the energy-equivalent speed)."""
     wall = WallParams.of(delay=d)
     hist = "fresh" if fresh else "moving"
-    vstar = passivity_criterion(1.0, 1.0, xd, wall=wall, quantized=q, xi0=x0, mu=mu, history=hist).equivalent_speed
+    vstar = passivity_criterion(
+        Loop.dimensionless(mu, 1.0, 1.0, wall), xd, quantized=q, xi0=x0, history=hist
+    ).equivalent_speed
     n = run_samples(mu)
     with np.errstate(all="ignore"):
         r = simulate(

@@ -113,7 +113,7 @@ def cycle_checks(
             return simulate(Loop.dimensionless(p.mu, p.beta, p.sigma, wall), v, samples, record=False)
 
         for model in models:
-            res = limit_cycles(p, model=model, max_amplitude=2000.0, wall=wall)
+            res = limit_cycles(Loop.dimensionless(p.mu, p.beta, p.sigma, wall), model=model, max_amplitude=2000.0)
             for c in res.cycles:
                 rec = dict(
                     mu=p.mu,
@@ -247,10 +247,11 @@ def critical_speeds(points: Iterable[tuple[str, Params]], samples: int = 20_000)
     """Item 2: criterion (eq. 12), describing function (M_u·ω) and simulated critical speeds, ticks per sample."""
     rows = []
     for name, p in points:
-        crit = passivity_criterion(p.beta, p.sigma, 0.0).critical_xi_dot
+        loop = Loop.dimensionless(p.mu, p.beta, p.sigma)
+        crit = passivity_criterion(loop, 0.0).critical_xi_dot
         thr = {}
         for model in ("half-delay", "zoh"):
-            un = limit_cycles(p, model=model, max_amplitude=5000.0).unstable_cycles
+            un = limit_cycles(loop, model=model, max_amplitude=5000.0).unstable_cycles
             thr[model] = un[0].amplitude * un[0].frequency if un else None
         ref = crit if crit and crit > 0 else 1.0
         v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False)
@@ -311,7 +312,7 @@ def cluster_threshold(name: str, p: Params, speeds: ArrayLike, samples: int) -> 
         linear_stable_zoh=bool(linear_stable(p.mu, p.beta)),
     )
     for model in ("half-delay", "zoh"):
-        g = growth_threshold(p, model=model)
+        g = growth_threshold(Loop.dimensionless(p.mu, p.beta, p.sigma), model=model)
         rec[f"band_{model}"] = [g.xi_dot, g.xi_dot_high]
         rec[f"band_amplitude_{model}"] = [g.amplitude, g.amplitude_high]
         rec[f"unstable_{model}"] = g.unstable_count

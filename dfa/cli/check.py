@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ..analysis.criterion import device_criterion, passivity_criterion
+from ..analysis.criterion import criterion_from_groups, device_criterion
 from ..model.loop import Loop
 from ..model.wall import Wall, WallParams
 from .contact import add_contact_args
@@ -78,7 +78,7 @@ def _criterion(args: argparse.Namespace, inp: Inputs, xd: float, v: float | None
     groups = WallParams.of(delay=args.delay)
     if args.history == "moving" and args.delay and args.mu is None:
         raise UsageError("--history moving needs --mu: the pending commands' work enters through μ; give --mu")
-    return passivity_criterion(
+    return criterion_from_groups(  # --mu is optional: the groups, not a loop
         inp.beta, inp.sigma, xd, wall=groups, quantized=quantized, xi0=x0, mu=args.mu, names=_FLAGS,
         history=args.history,
     )  # fmt: skip

@@ -57,11 +57,12 @@ def _positive(flag: str, value: float | None) -> float | None:
 
 def _report(args: argparse.Namespace, device: Any, velocity: float) -> dict[str, Any]:
     """The design report of the identified device and the wall of --stiffness (as `dfa report`), written to --report."""
+    from ..model.loop import Loop
     from ..model.wall import Wall
     from ..report import design_report
 
     make_output_folder("--report", args.report)
-    res = design_report(device, Wall.of(args.stiffness), velocity, out_dir=args.report, fmt="html",
+    res = design_report(Loop(device, Wall.of(args.stiffness)), velocity, out_dir=args.report, fmt="html",
                         progress=progress(args), force=args.force)  # fmt: skip
     return dict(res.to_dict())
 

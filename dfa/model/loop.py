@@ -48,7 +48,7 @@ F = TypeVar("F", bound=Callable[..., Any])
 #: How a message tells to build a loop.
 LOOP_FIX = "build it with dfa.Loop(device, wall), or dfa.Loop.dimensionless(mu, beta, sigma)"
 _FIX_DEVICE = "build one with dfa.Device(...) or dfa.get_device(name).device"
-_FIX_PARAMS = "build the groups with dfa.Params(mu, beta, sigma) or device.params(stiffness)"
+_FIX_PARAMS = "build it with dfa.Params(mu, beta, sigma) or device.params(stiffness)"
 _FIX_WALL_PARAMS = "give dfa.WallParams.of(...) or wall.params(period) of a dfa.Wall, or None for the spring"
 
 
@@ -371,9 +371,12 @@ def as_loop(first: Loop | Device | Params, wall: Wall | WallParams | float | Non
 OLD_FORMS = ("device, wall", "device, *, wall", "device, velocity, wall", "params, *, wall", "mu, beta, sigma, *, wall")
 
 
-def _old_call(old: str, args: tuple[Any, ...], kwargs: dict[str, Any]) -> tuple[Loop, tuple[Any, ...]]:
+def _old_call(
+    old: str, args: tuple[Any, ...], kwargs: dict[str, Any], wall_fix: str | None = None
+) -> tuple[Loop, tuple[Any, ...]]:
     """The loop and the positional arguments after it of a call in the former form ``old``; the former leading
-    parameters (and ``wall``) are popped from ``kwargs``."""
+    parameters (and ``wall``) are popped from ``kwargs``; ``wall_fix``: the former analysis's fix of a wall that is
+    not a :class:`WallParams` (its message kept)."""
     names = old.replace(", *", "").split(", ")
     if "*" in old:
         names.remove("wall")
@@ -387,11 +390,17 @@ def _old_call(old: str, args: tuple[Any, ...], kwargs: dict[str, Any]) -> tuple[
         return as_loop(given[0], given[1]), rest
     if old == "device, velocity, wall":
         return as_loop(given[0], given[2]), (given[1], *rest)
-    first = Params(*given) if len(given) == 3 else given[0]
-    return as_loop(first, kwargs.pop("wall", None)), rest
+    if len(given) == 3:
+        return as_loop(Params(*given), kwargs.pop("wall", None)), rest
+    first, wall = given[0], kwargs.pop("wall", None)
+    if old.startswith("params"):  # the former analyses' own messages
+        check_type("params", first, Params, _FIX_PARAMS)
+        if wall is not None and wall_fix is not None:
+            check_type("wall", wall, WallParams, wall_fix)
+    return as_loop(first, wall), rest
 
 
-def loop_first(old: str) -> Callable[[F], F]:
+def loop_first(old: str, *, wall_fix: str | None = None) -> Callable[[F], F]:
     """Let an analysis that takes a :class:`Loop` first still be called with its former first arguments.
 
     A call whose first argument is a :class:`Loop` goes through unchanged; any other is read in the former form
@@ -403,6 +412,9 @@ def loop_first(old: str) -> Callable[[F], F]:
         The former form, one of :data:`OLD_FORMS`: ``"device, wall"`` (the wall second), ``"device, *, wall"``
         (the wall a keyword, default none), ``"device, velocity, wall"``, ``"params, *, wall"`` (a
         :class:`Params` and the keyword ``wall``, a :class:`WallParams`), ``"mu, beta, sigma, *, wall"``.
+    wall_fix : str, optional
+        Keyword only, for the ``"params, *, wall"`` form: the fix of the former analysis's message refusing a
+        wall that is not a :class:`WallParams` (the message is kept); default :func:`as_loop`'s.
 
     Returns
     -------
@@ -420,7 +432,7 @@ def loop_first(old: str) -> Callable[[F], F]:
                     as_loop(args[0] if args else kwargs["loop"], kwargs["wall"])  # refuses a wall beside the loop
                 return func(*args, **kwargs)
             kw = dict(kwargs)
-            loop, rest = _old_call(old, args, kw)
+            loop, rest = _old_call(old, args, kw, wall_fix)
             return func(loop, *rest, **kw)
 
         return cast(F, loop_first_wrapper)
