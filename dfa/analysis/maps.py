@@ -8,6 +8,12 @@ finish. With a wall of more than a spring (``wall=``) the chunks are the same an
 the same way (:func:`dfa._parallel.run_in_order`): only the compiled kernel differs.
 An interruption (Ctrl-C) cancels the chunks not started and returns nothing.
 
+The maps keep their form (μ, the speeds, the β and σ ranges, ``wall=`` the wall's groups) rather than taking a
+:class:`~dfa.model.loop.Loop`: a loop is one point (μ, β, σ), while a map sweeps β and σ over ranges that are not
+centred on any point (the paper's Fig. 4 spans a fixed square); only μ and the wall's groups are shared by every
+point. A caller with a loop passes ``loop.params.mu`` and ``wall=loop.wall_params``, as the design analysis does
+around its operating point.
+
 Backends
 --------
 ``"threads"`` (default): the compiled kernel releases the GIL, so chunks run
