@@ -79,6 +79,7 @@ from .model.elements import (
 )
 from .model.grasp import hold
 from .model.hand import HAND_PRESETS, Hand, HandNotCovered, get_hand
+from .model.loop import Loop
 from .model.wall import Wall, WallParams
 
 if TYPE_CHECKING:  # loaded on first use (_DEFERRED): `dfa check` needs none of them
@@ -219,6 +220,7 @@ def __dir__() -> list[str]:
 __all__ = [
     "Device",
     "Params",
+    "Loop",
     "Hand",
     "HAND_PRESETS",
     "HandNotCovered",

@@ -171,6 +171,9 @@ def warn_implausible(
 
 #: Modules a value passes through between the caller and the model without being "inside" dfa.
 _PASS_THROUGH = ("dataclasses", "copy", "functools")
+#: The wrapper of :func:`dfa.model.loop.loop_first` (an analysis called with its former first arguments): it
+#: passes the user's values through, like :data:`_PASS_THROUGH`.
+_LOOP_WRAPPER = ("dfa.model.loop", "loop_first_wrapper")
 
 
 def _in_dfa(frame: FrameType) -> bool:
@@ -192,7 +195,12 @@ def _outside_level() -> int | None:
     entry = False
     while frame is not None:
         module = str(frame.f_globals.get("__name__", ""))
-        if module.startswith("dfa.model.") and not entry or module in _PASS_THROUGH:
+        if (
+            module.startswith("dfa.model.")
+            and not entry
+            or module in _PASS_THROUGH
+            or (module, frame.f_code.co_name) == _LOOP_WRAPPER
+        ):
             pass
         elif not _in_dfa(frame):
             return level

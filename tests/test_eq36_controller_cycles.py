@@ -219,7 +219,7 @@ def test_controller_bad_input():
 def _simulate_with_controller():
     from dfa.analysis import simulation
 
-    assert "wall" in inspect.signature(simulation.simulate).parameters
+    assert "loop" in inspect.signature(simulation.simulate).parameters  # the loop holds the wall
     return simulation.simulate
 
 

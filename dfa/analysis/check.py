@@ -29,28 +29,26 @@ from __future__ import annotations
 from typing import Any
 
 from ..checks import check_speed, check_type
-from ..model.device import Device
-from ..model.wall import Wall
+from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..plausibility import warn_if_from_outside
 from ..results.criterion import PassivityCheck as PassivityCheck
 from ..results.status import CheckStatus
 from .colgate_schenkel import ColgateSchenkel, colgate_schenkel_beta
-from .criterion import CriterionResult, as_wall, device_criterion
+from .criterion import CriterionResult, device_criterion
 
 __all__ = ["PassivityCheck", "passivity_check"]
 
 
-def passivity_check(
-    device: Device, wall: Wall | float, velocity: float, *, position: float = 0.0, quantized: bool = True
-) -> PassivityCheck:
-    """Check ``device`` with ``wall`` at an impact speed: the criterion and Colgate–Schenkel, where they apply.
+@loop_first("device, wall")
+def passivity_check(loop: Loop, velocity: float, *, position: float = 0.0, quantized: bool = True) -> PassivityCheck:
+    """Check the loop's device with its wall at an impact speed: the criterion and Colgate–Schenkel, where they apply.
 
     Parameters
     ----------
-    device : Device
-        The physical device.
-    wall : Wall or float
-        The wall (stiffness K in N/m, rotary N·m/rad, and its elements), or K alone for the paper's spring.
+    loop : Loop
+        The device and the wall (stiffness K in N/m, rotary N·m/rad, and its elements), ``Loop(device, wall)``
+        (the wall may be K alone, the paper's spring). The former call ``passivity_check(device, wall, velocity)``
+        still works.
     velocity : float
         Impact speed in m/s (rotary: rad/s), >= 0 (a negative is refused, not flipped).
     position : float, optional
@@ -73,16 +71,15 @@ def passivity_check(
     device_criterion : The criterion alone.
     colgate_schenkel_damping : The Colgate–Schenkel condition alone, in physical units.
     """
-    dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    w = as_wall(wall)
+    dev, w = check_type("loop", loop, Loop, LOOP_FIX).physical("passivity_check")
     v = check_speed("velocity", velocity, dev.units["velocity"])
     warn_if_from_outside("velocity", v, rotary=dev.rotary)
-    p = w.params(dev.period, dev.resolution)  # refuses a filter cutoff above the Nyquist frequency
+    _, p = loop.groups("passivity_check")  # Loop refused a filter cutoff above the Nyquist frequency
     reasons: dict[str, Any] = {}
     crit: CriterionResult | None = None
     why = p.not_covered()
     if why is None:
-        crit = device_criterion(dev, w, v, position=position, quantized=quantized)
+        crit = device_criterion(loop, v, position=position, quantized=quantized)
     else:
         reasons["criterion"] = why
     cs: ColgateSchenkel | None = None

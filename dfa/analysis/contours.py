@@ -1,6 +1,8 @@
 """Contour maps of limit-cycle amplitude and frequency over the (β, σ) plane (paper Fig. 7).
 
-For one μ and the paper's half-sample-delay loop (d = 0), two families:
+For one μ and the paper's half-sample-delay loop (d = 0), two families (the maps take μ and the β, σ ranges, not
+a :class:`~dfa.model.loop.Loop`, for the reason :mod:`dfa.analysis.maps` states: a loop is one point of the plane
+they sweep):
 
 * **small stable** cycles (M < 1). With D = 2/(πM), exact for M < 1, the
   cycle is the closed form of eq. 42-43; the exact solver finds the same

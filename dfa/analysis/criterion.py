@@ -189,10 +189,11 @@ False
 
 from __future__ import annotations
 
+import functools
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, TypeVar, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -213,8 +214,8 @@ from ..checks import (
 )
 from ..core.energy import spring_energy_core
 from ..errors import DFATypeError, DFAValueError
-from ..model.device import Device
 from ..model.elements import Coverage, OneSided, largest_speed
+from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import Wall, WallParams
 from ..results.criterion import _REGION_CODES as _REGION_CODES
 from ..results.criterion import APPROACH_NOTE as APPROACH_NOTE
@@ -236,10 +237,13 @@ from ..results.status import CriterionStatus
 if TYPE_CHECKING:
     pass
 
+F = TypeVar("F", bound=Callable[..., Any])
+
 __all__ = [
     "CriticalLine",
     "CriterionResult",
     "passivity_criterion",
+    "criterion_from_groups",
     "start_state",
     "start_state_note",
     "HISTORIES",
@@ -499,7 +503,79 @@ def _corner(wall: WallParams, quantized: bool) -> tuple[float, float]:
     return wall.corner(quantized)
 
 
+def _criterion_loop_first(func: F) -> F:
+    """Let :func:`passivity_criterion` (a :class:`Loop` first) still be called in its former form (β, σ, ξ'0, ...,
+    ``mu`` optional): such a call is :func:`criterion_from_groups`, unchanged."""
+
+    @functools.wraps(func)
+    def criterion_wrapper(*args: Any, **kwargs: Any) -> Any:
+        if (args and isinstance(args[0], Loop)) or "loop" in kwargs:
+            for name in ("wall", "mu"):
+                if name in kwargs:
+                    raise DFAValueError(
+                        f"{name} = {format_value(kwargs[name])} is invalid with a loop: the loop holds it; build the "
+                        "loop with it, Loop.dimensionless(mu, beta, sigma, wall_params)"
+                    )
+            return func(*args, **kwargs)
+        return criterion_from_groups(*args, **kwargs)
+
+    return cast(F, criterion_wrapper)
+
+
+@_criterion_loop_first
 def passivity_criterion(
+    loop: Loop,
+    xi_dot: float,
+    *,
+    quantized: bool = True,
+    xi0: float = 0.0,
+    names: Mapping[str, str] | None = None,
+    history: str = "fresh",
+) -> CriterionResult:
+    """Evaluate the passivity criterion (eq. 6, or eq. 7 without quantization) for the loop's wall at a speed.
+
+    :func:`criterion_from_groups` with the loop's groups (β, σ, μ) and its wall's (module docstring).
+
+    Parameters
+    ----------
+    loop : Loop
+        The groups (μ, β, σ) and the wall's (delay d, damper β_B, filter ν_c),
+        ``Loop.dimensionless(mu, beta, sigma, wall_params)`` or ``Loop(device, wall)``. The former call
+        ``passivity_criterion(beta, sigma, xi_dot, wall=..., mu=...)`` (μ optional) still works: it is
+        :func:`criterion_from_groups`.
+    xi_dot : float
+        Largest speed of interest ξ'0 = ẋ0 T/Δ in encoder ticks per sample; its sign is ignored.
+    quantized : bool, optional
+        True (default) for eq. 6; False for the encoder-free eq. 7.
+    xi0 : float, optional
+        Initial position ξ0 in ticks (default 0); the wall's past readings equal ξ0.
+    names : mapping of str to str, optional
+        How an overflow message names ``beta``, ``sigma`` and ``xi_dot`` (:func:`criterion_from_groups`).
+    history : {"fresh", "moving"}, optional
+        The loop's memory at t = 0 (:data:`HISTORIES`, :func:`criterion_from_groups`); default ``"fresh"``.
+
+    Returns
+    -------
+    CriterionResult
+        Region, verdict, margin, critical speed and line, with the inputs and a ``status``.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        As :func:`criterion_from_groups`; also for a loop at no given stiffness, or a ``wall`` or ``mu`` given
+        beside the loop.
+
+    See Also
+    --------
+    device_criterion : The same criterion from physical values.
+    """
+    p, wp = check_type("loop", loop, Loop, LOOP_FIX).groups("passivity_criterion")
+    return criterion_from_groups(
+        p.beta, p.sigma, xi_dot, wall=wp, quantized=quantized, xi0=xi0, mu=p.mu, names=names, history=history
+    )
+
+
+def criterion_from_groups(
     beta: float,
     sigma: float,
     xi_dot: float,
@@ -557,6 +633,7 @@ def passivity_criterion(
 
     See Also
     --------
+    passivity_criterion : The same criterion for a :class:`Loop`.
     device_criterion : The same criterion from physical values.
     classify_region : The spring's region letter over arrays of (β, σ, V, d).
     CriticalLine : The line of eq. 10.
@@ -664,9 +741,9 @@ def as_wall(wall: object) -> Wall:
     )
 
 
+@loop_first("device, wall")
 def device_criterion(
-    device: Device,
-    wall: Wall | float,
+    loop: Loop,
     velocity: float,
     *,
     position: float = 0.0,
@@ -677,10 +754,10 @@ def device_criterion(
 
     Parameters
     ----------
-    device : Device
-        The physical device.
-    wall : Wall or float
-        The wall (its stiffness K in N/m, rotary N·m/rad, and elements), or K alone for the paper's spring.
+    loop : Loop
+        The device and the wall (its stiffness K in N/m, rotary N·m/rad, and elements), ``Loop(device, wall)``
+        (the wall may be K alone, the paper's spring). The former call ``device_criterion(device, wall, velocity)``
+        still works.
     velocity : float
         Largest speed of interest ẋ0 in m/s (rotary: rad/s); its sign is ignored.
     position : float, optional
@@ -712,23 +789,19 @@ def device_criterion(
     --------
     >>> from dfa.model.catalogue import get_device
     >>> dev = get_device("Delta").device
-    >>> r = device_criterion(dev, 14500.0, 0.1)
+    >>> r = device_criterion(Loop(dev, 14500.0), 0.1)
     >>> r.region, round(r.critical_velocity, 4)
     ('e', 0.2765)
-    >>> device_criterion(dev, Wall.of(14500.0, delay=1), 0.1).region
+    >>> device_criterion(Loop(dev, Wall.of(14500.0, delay=1)), 0.1).region
     'd'
-    >>> device_criterion(dev, Wall.of(14500.0, damping=5.0), 0.1).region     # B = 5 N·s/m
+    >>> device_criterion(Loop(dev, Wall.of(14500.0, damping=5.0)), 0.1).region     # B = 5 N·s/m
     'd'
     """
-    check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    w = as_wall(wall)
+    device, w = check_type("loop", loop, Loop, LOOP_FIX).physical("device_criterion")
     v = abs(check_real("velocity", velocity, "give the speed in m/s (rotary: rad/s)"))
     x0 = check_real("position", position, "give the initial position in m (rotary: rad)")
     xi0 = device.xi(x0)  # refused with the position's own message when x0/Δ overflows
-    p = device.params(w.stiffness)
-    r = passivity_criterion(
-        p.beta, p.sigma, device.xi_dot(v), wall=w.params(device.period, device.resolution), quantized=quantized,
-        xi0=xi0, mu=p.mu, history=history,
-    )  # fmt: skip
+    p, wp = loop.groups("device_criterion")
+    r = passivity_criterion(loop, device.xi_dot(v), quantized=quantized, xi0=xi0, history=history)
     crit = None if r.critical_xi_dot is None else device.velocity(r.critical_xi_dot)
     return replace(r, device=device, stiffness=w.stiffness, velocity=v, critical_velocity=crit, position=x0)

@@ -65,6 +65,8 @@ from ..core.open_loop import open_loop_kernel, segments_kernel
 from ..errors import DFAValueError
 from ..model.device import Device, device_units
 from ..model.log import MIN_SAMPLES, DeviceLog, LogError, check_rows
+from ..model.loop import Loop
+from ..model.wall import Wall
 from ..results.identify import FRICTION_SHARE as FRICTION_SHARE
 from ..results.identify import FRICTION_UNRESOLVED_WHY as FRICTION_UNRESOLVED_WHY
 from ..results.identify import NO_REVERSAL_WHY as NO_REVERSAL_WHY
@@ -730,8 +732,8 @@ def impact_log(device: Device, stiffness: float, velocity: float, samples: int, 
 
     dev = check_type("device", device, Device, "build one with dfa.Device(...)")
     check_int("samples", samples, MIN_SAMPLES, f"a log needs at least {MIN_SAMPLES} samples")
-    p = dev.params(stiffness)
-    r = simulate(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), samples - 1, record=True)
+    loop = Loop(dev, Wall(stiffness))
+    r = simulate(loop, dev.xi_dot(velocity), samples - 1, record=True)
     assert r.xi is not None
     keep = int(np.argmax(~np.isfinite(r.xi))) if not np.all(np.isfinite(r.xi)) else samples  # up to a divergence
     force = r.applied_force()[:keep] * stiffness * dev.resolution

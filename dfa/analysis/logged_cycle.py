@@ -42,6 +42,7 @@ from numpy.typing import ArrayLike
 
 from ..checks import check_positive, check_type
 from ..model.log import DeviceLog
+from ..model.loop import Loop
 from ..results.identify import LoggedCycle as LoggedCycle
 from ..results.identify import LoggedOscillation as LoggedOscillation
 from ..results.status import LoggedCycleStatus
@@ -170,7 +171,7 @@ def compare_logged_cycle(identification: Identification, log: DeviceLog, stiffne
     if logged is None:
         return LoggedCycle(dev, k, origin, spread, None, (), 0, (), LoggedCycleStatus.NO_OSCILLATION)
     p = dev.params(k)
-    df = tuple((c.amplitude, c.frequency) for c in limit_cycles(p, model="zoh").cycles
+    df = tuple((c.amplitude, c.frequency) for c in limit_cycles(Loop.dimensionless(p.mu, p.beta, p.sigma), model="zoh").cycles
                if c.stable and c.amplitude >= DF_SMALLEST)  # fmt: skip
     states = ident.segment_states
     row = states[max(0, int(np.searchsorted(states[:, 0], logged.start, side="right")) - 1)]

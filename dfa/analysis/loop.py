@@ -55,6 +55,7 @@ from ..checks import (
 from ..core.zoh import zoh_coefficients
 from ..errors import DFAValueError
 from ..model.device import Params
+from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.cycles import SearchEvidence
@@ -62,7 +63,7 @@ from ..results.frozen import check_shape, freeze_fields
 from ..results.status import NyquistStatus, SearchStatus
 from ..results.summaries import OperatingPoint
 from .cycles.characteristic import inv_loop
-from .cycles.controlled import resolve_wall
+from .cycles.controlled import WALL_FIX, resolve_wall
 from .describing import coulomb_equivalent_damping, quantizer_df
 from .loop_models import LOOP_MODELS, check_model, check_params
 
@@ -161,21 +162,28 @@ def zoh_pulse_response(mu: ArrayLike, beta_eq: ArrayLike, omega: ArrayLike) -> c
     return (c1 * z + c0) / (mu * (z - 1.0) * (z - p))
 
 
+@loop_first("params, *, wall", wall_fix=WALL_FIX)
 def loop_response(
-    params: Params,
+    loop: Loop,
     omega: ArrayLike,
     amplitude: ArrayLike | None = None,
     *,
     model: str = "half-delay",
     pade_order: int = 4,
-    wall: WallParams | None = None,
 ) -> complex | np.ndarray:
     """Frequency response L(jω; M) of the linear part of the loop (eq. 36).
 
     Parameters
     ----------
-    params : Params
-        Dimensionless device (μ, β, σ).
+    loop : Loop
+        The loop: its groups (μ, β, σ) and its wall's (delay d, damper β_B, filter ν_c, amplifier lag α),
+        ``Loop.dimensionless(mu, beta, sigma, wall_params)`` or ``Loop(device, wall)``. The former call
+        ``loop_response(params, ..., wall=wall_params)`` still works. The wall (issue 15): its computational
+        delay d in whole samples multiplies L by
+        e^{−jωd}; a damper and filter by the command C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the
+        ZOH-exact velocity filter (1 − a)e^{−jω}/(1 − a e^{−jω}), a = e^{−2πν_c}; 1 without filter); an
+        amplifier lag enters as 1/(jωα + 1) (half-delay, Padé) or exactly inside the ZOH-sampled amplifier +
+        device (``"zoh"``, :mod:`dfa.core.zohlag`). No wall groups: the paper's spring.
     omega : float or array_like
         Frequencies ω > 0 in rad per sample (ω < π for a sampled cycle).
     amplitude : float or array_like, optional
@@ -184,12 +192,6 @@ def loop_response(
         Model of the zero-order hold (module docstring).
     pade_order : int, optional
         Order of the Padé approximation for ``model="pade"`` (default 4).
-    wall : WallParams, optional
-        The virtual wall's groups (issue 15): its computational delay d in whole samples multiplies L by
-        e^{−jωd}; a damper and filter by the command C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω}) (F the
-        ZOH-exact velocity filter (1 − a)e^{−jω}/(1 − a e^{−jω}), a = e^{−2πν_c}; 1 without filter); an
-        amplifier lag enters as 1/(jωα + 1) (half-delay, Padé) or exactly inside the ZOH-sampled amplifier +
-        device (``"zoh"``, :mod:`dfa.core.zohlag`). Default None: the paper's spring.
 
     Returns
     -------
@@ -199,7 +201,7 @@ def loop_response(
     Raises
     ------
     DFAValueError, DFATypeError
-        If ``params`` is not :class:`Params`, a frequency or amplitude is not a finite number > 0, the
+        If ``loop`` is not a :class:`Loop` with groups, a frequency or amplitude is not a finite number > 0, the
         model is unknown, or the delay or Padé order is not a valid whole number.
 
     See Also
@@ -208,7 +210,7 @@ def loop_response(
     nyquist_locus_response : The loop against the critical locus −1/D(M).
     """
 
-    p = check_params(params)
+    p, wall = check_type("loop", loop, Loop, LOOP_FIX).groups("loop_response")
     _w, ctl, d = resolve_wall(wall)
     m, d, n = check_model(model, d, pade_order)
     w = _omega(omega)
@@ -249,15 +251,15 @@ def loop_response(
     return complex(out) if out.ndim == 0 else out
 
 
+@loop_first("params, *, wall", wall_fix=WALL_FIX)
 def loop_system(
-    params: Params,
+    loop: Loop,
     amplitude: float | None = None,
     omega: float | None = None,
     *,
     model: str = "pade",
     pade_order: int = 4,
     omega_grid: ArrayLike | None = None,
-    wall: WallParams | None = None,
 ) -> control.TransferFunction | control.FrequencyResponseData:
     """The linear part as a python-control system, for python-control's own tools.
 
@@ -270,8 +272,11 @@ def loop_system(
 
     Parameters
     ----------
-    params : Params
-        Dimensionless device (μ, β, σ).
+    loop : Loop
+        The loop: its groups (μ, β, σ) and its wall, the paper's spring with a computational delay d in whole
+        samples (``Loop.dimensionless(mu, beta, sigma, WallParams.of(delay=d))``); a damper, filter or lag is
+        refused: use :func:`loop_response`. The former call ``loop_system(params, ..., wall=wall_params)`` still
+        works.
     amplitude : float, optional
         Cycle amplitude M in ticks at which the Coulomb friction is linearised (needed when σ > 0).
     omega : float, optional
@@ -282,9 +287,6 @@ def loop_system(
         Order of the Padé approximation for ``model="pade"`` (default 4).
     omega_grid : array_like, optional
         Frequencies in rad per sample of the ``"half-delay"`` FRD; default 2000 points from 1e-3 to π.
-    wall : WallParams, optional
-        The paper's spring with a computational delay d in whole samples (``WallParams.of(delay=d)``);
-        default None, no delay. A damper, filter or lag is refused: use :func:`loop_response`.
 
     Returns
     -------
@@ -294,7 +296,7 @@ def loop_system(
     Raises
     ------
     DFAValueError, DFATypeError
-        If ``params`` is not :class:`Params`, a frequency or amplitude is invalid, the model is
+        If ``loop`` is not a :class:`Loop` with groups, a frequency or amplitude is invalid, the model is
         unknown, or the delay or Padé order is not a valid whole number.
 
     See Also
@@ -302,7 +304,7 @@ def loop_system(
     loop_response : The frequency response itself, vectorised.
     """
 
-    p = check_params(params)
+    p, wall = check_type("loop", loop, Loop, LOOP_FIX).groups("loop_system")
     _w, ctl, d = resolve_wall(wall)
     if ctl is not None:
         raise DFAValueError(
@@ -321,7 +323,7 @@ def loop_system(
         return gd * control.tf([1.0], [1.0] + [0.0] * d, dt=1.0) if d else gd
     w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega_grid is None else omega_grid, "omega_grid")
     amp = None if p.sigma == 0.0 or amplitude is None else np.full_like(w, amplitude)
-    return control.frd(loop_response(p, w, amp, model=m, wall=wall), w)
+    return control.frd(loop_response(loop, w, amp, model=m), w)
 
 
 @dataclass(frozen=True)
@@ -422,9 +424,8 @@ class NyquistLocusResponse(OperatingPoint, Result):
         complex
             :func:`loop_response` with this response's model and wall.
         """
-        out = loop_response(
-            self.params, frequency, amplitude, model=self.model, pade_order=self.pade_order, wall=self.wall,
-        )  # fmt: skip
+        loop = Loop(None, params=self.params, wall_params=self.wall)
+        out = loop_response(loop, frequency, amplitude, model=self.model, pade_order=self.pade_order)
         return complex(out)
 
     def plot(self, ax: Axes | None = None, **kwargs: Any) -> Axes:
@@ -457,7 +458,8 @@ def _solver_crossings(
     """
     from .cycles.solve import limit_cycles  # imported here: it loads scipy.optimize
 
-    res = limit_cycles(p, model=model, pade_order=pade_order, max_amplitude=max_amplitude, wall=wall)
+    res = limit_cycles(Loop.dimensionless(p.mu, p.beta, p.sigma, wall), model=model, pade_order=pade_order,
+                       max_amplitude=max_amplitude)  # fmt: skip
     lo, hi = float(np.min(omega)), float(np.max(omega))
     out = [
         (c.amplitude, c.frequency, complex(-1.0 / quantizer_df(c.amplitude), 0.0))
@@ -470,22 +472,24 @@ def _solver_crossings(
     return out, NyquistStatus.SEARCH_INCOMPLETE, res.search
 
 
+@loop_first("params, *, wall", wall_fix=WALL_FIX)
 def nyquist_locus_response(
-    params: Params,
+    loop: Loop,
     amplitudes: ArrayLike | None = None,
     omega: ArrayLike | None = None,
     *,
     model: str = "half-delay",
     pade_order: int = 4,
     locus_amplitude: ArrayLike | None = None,
-    wall: WallParams | None = None,
 ) -> NyquistLocusResponse:
     """Nyquist data of the loop L(jω; M) and the critical locus −1/D(M) (paper Fig. 6).
 
     Parameters
     ----------
-    params : Params
-        Dimensionless device.
+    loop : Loop
+        The loop: its groups (μ, β, σ) and its wall's, delay included (see :func:`loop_response`),
+        ``Loop.dimensionless(mu, beta, sigma, wall_params)`` or ``Loop(device, wall)``. The former call
+        ``nyquist_locus_response(params, ..., wall=wall_params)`` still works.
     amplitudes : array_like, optional
         Amplitudes M (ticks) at which to linearise the Coulomb friction; needed
         when σ > 0 (one curve per amplitude), ignored when σ = 0.
@@ -497,8 +501,6 @@ def nyquist_locus_response(
         Order of the Padé approximation for ``model="pade"`` (default 4).
     locus_amplitude : array_like, optional
         Amplitudes of the critical locus; default 0.05 to 50 ticks.
-    wall : WallParams, optional
-        The virtual wall's groups, delay included (see :func:`loop_response`). Default None: the paper's spring.
 
     Returns
     -------
@@ -518,12 +520,12 @@ def nyquist_locus_response(
     Examples
     --------
     >>> from dfa.model.device import Params
-    >>> r = nyquist_locus_response(Params(mu=5.0, beta=0.4, sigma=0.0))
+    >>> r = nyquist_locus_response(Loop.dimensionless(mu=5.0, beta=0.4, sigma=0.0))
     >>> [(round(m, 4), round(w, 4)) for m, w, pt in r.crossings]
     [(0.7905, 0.3974), (1.0098, 0.3974)]
     """
 
-    p = check_params(params)
+    p, wall = check_type("loop", loop, Loop, LOOP_FIX).groups("nyquist_locus_response")
     wp, _ctl, d = resolve_wall(wall)
     m, d, n = check_model(model, d, pade_order)
     w = check_nonempty("omega", _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega))
@@ -536,7 +538,7 @@ def nyquist_locus_response(
     crossings: list[tuple[float, float, complex]] = []
     if p.sigma == 0.0:
         amps = np.array([np.nan])
-        curves = np.atleast_2d(loop_response(p, w, model=m, pade_order=n, wall=wp))
+        curves = np.atleast_2d(loop_response(loop, w, model=m, pade_order=n))
         crossings, status, evidence = _solver_crossings(p, m, n, w, float(la.max()), wp)
     else:
         if amplitudes is None:
@@ -545,6 +547,6 @@ def nyquist_locus_response(
                 "give the amplitudes (ticks) at which to draw it"
             )
         amps = _nonempty("amplitudes", amplitudes, "give the amplitudes M in ticks")
-        curves = np.vstack([loop_response(p, w, np.full_like(w, a), model=m, pade_order=n, wall=wp) for a in amps])
+        curves = np.vstack([loop_response(loop, w, np.full_like(w, a), model=m, pade_order=n) for a in amps])
         status, evidence = NyquistStatus.CROSSINGS_NOT_COMPUTED, None
     return NyquistLocusResponse(p, m, wp, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, evidence)

@@ -8,6 +8,12 @@ finish. With a wall of more than a spring (``wall=``) the chunks are the same an
 the same way (:func:`dfa._parallel.run_in_order`): only the compiled kernel differs.
 An interruption (Ctrl-C) cancels the chunks not started and returns nothing.
 
+The maps keep their form (μ, the speeds, the β and σ ranges, ``wall=`` the wall's groups) rather than taking a
+:class:`~dfa.model.loop.Loop`: a loop is one point (μ, β, σ), while a map sweeps β and σ over ranges that are not
+centred on any point (the paper's Fig. 4 spans a fixed square); only μ and the wall's groups are shared by every
+point. A caller with a loop passes ``loop.params.mu`` and ``wall=loop.wall_params``, as the design analysis does
+around its operating point.
+
 Backends
 --------
 ``"threads"`` (default): the compiled kernel releases the GIL, so chunks run
@@ -77,6 +83,7 @@ from ..checks import (
 from ..core import kernel
 from ..errors import DFATypeError, DFAValueError
 from ..model.elements import Coverage
+from ..model.loop import Loop
 from ..model.wall import WallParams
 from ..results.maps import StabilityMap as StabilityMap
 from .simulation import (
@@ -482,16 +489,13 @@ def simulate_point(
     for x0, v0 in starts:
         runs.append(
             simulate(
-                smap.mu,
-                beta,
-                sigma,
+                Loop.dimensionless(smap.mu, beta, sigma, smap.wall),
                 v0,
                 smap.samples,
                 xi0=x0,
                 quantize=smap.quantize,
                 record=False,
                 bound=bound,
-                wall=smap.wall,
             )  # fmt: skip
         )
     return tuple(runs)

@@ -95,18 +95,19 @@ the controller's net damping β + β_B·G − ½ − d − α in ``a``
 
 Examples
 --------
->>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000)
+>>> from dfa.model.loop import Loop
+>>> r = simulate(Loop.dimensionless(100.0, 0.3, 1.5), xi_dot0=2.0, samples=20000)
 >>> r.outcome.value, r.rest_sample is not None
 ('rest', True)
->>> r = simulate(mu=100.0, beta=0.3, sigma=0.3, xi_dot0=1.0)   # σ < ½: can never rest
+>>> r = simulate(Loop.dimensionless(100.0, 0.3, 0.3), xi_dot0=1.0)   # σ < ½: can never rest
 >>> r.outcome.value, r.force_peak_to_peak
 ('chatter', 1.0)
->>> r = simulate(mu=100.0, beta=0.0, sigma=0.2, xi_dot0=2.0, samples=20000)
+>>> r = simulate(Loop.dimensionless(100.0, 0.0, 0.2), xi_dot0=2.0, samples=20000)
 >>> r.outcome.value
 'unstable'
 >>> from dfa.model.wall import WallParams
 >>> c = WallParams.of(damping=0.5, lag=0.3)   # virtual damper β_B, amplifier lag α (samples)
->>> r = simulate(mu=100.0, beta=0.3, sigma=1.5, xi_dot0=2.0, samples=20000, wall=c)
+>>> r = simulate(Loop.dimensionless(100.0, 0.3, 1.5, c), xi_dot0=2.0, samples=20000)
 >>> r.outcome.value, r.rest_sample
 ('rest', 203)
 """
@@ -132,12 +133,14 @@ from ..checks import (
     check_nonnegative,
     check_real,
     check_sigma,
+    check_type,
     format_value,
 )
 from ..core import batch, kernel, wall_kernel
 from ..core.table import stack_tables
 from ..errors import DFAValueError
 from ..model.elements import Coverage, OneSided
+from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import WallParams
 from ..results.simulation import CONTACTS as CONTACTS
 from ..results.simulation import OUTCOMES as OUTCOMES
@@ -484,10 +487,9 @@ def _chunk_spans(n: int, tail_start: int) -> Iterator[tuple[int, int, int]]:
                 yield c, min(c + CHUNK, z), k
 
 
+@loop_first("mu, beta, sigma, *, wall")
 def simulate(
-    mu: float,
-    beta: float,
-    sigma: float,
+    loop: Loop,
     xi_dot0: float,
     samples: int | None = None,
     xi0: float = 0.0,
@@ -500,15 +502,23 @@ def simulate(
     growth: float = GROWTH,
     settle: float = SETTLE,
     progress: bool = False,
-    wall: WallParams | None = None,
     history: str = "fresh",
 ) -> SimulationResult:
     """Simulate the sampled haptic loop exactly (paper eq. 4-5) from (ξ0, ξ'0).
 
     Parameters
     ----------
-    mu, beta, sigma : float
-        Dimensionless mass (> 0), damping (>= 0) and Coulomb friction (>= 0).
+    loop : Loop
+        The loop's groups: dimensionless mass μ (> 0), damping β (>= 0) and Coulomb friction σ (>= 0), and the
+        wall's (``loop.wall_params``: computational delay d, the force of sample h using ξ(h − d), virtual damper,
+        velocity filter, amplifier lag; the paper's spring when it has none). ``Loop.dimensionless(mu, beta,
+        sigma, wall_params)``, or ``Loop(device, wall)`` at the wall's K. The spring, or a spring with any delay,
+        runs the spring kernel; otherwise :mod:`dfa.core.wall_kernel` runs the loop with the wall, exact to
+        rounding at the sample instants (one compiled call: no progress bar, no energy record). A one-sided
+        wall's run that starts outside moving toward it is an approach at constant speed (the operator's force
+        balances friction until the first reading inside, then is the wall's push; :func:`dfa.approach_start`
+        gives such a start). The former call ``simulate(mu, beta, sigma, xi_dot0, ..., wall=wall_params)``
+        still works.
     xi_dot0 : float
         Initial velocity ξ'0 in ticks per sample.
     samples : int or None
@@ -539,14 +549,6 @@ def simulate(
         (runs of more than ``CHUNK`` samples; they are integrated in chunks
         of ``CHUNK`` samples, so Ctrl-C is honoured between chunks, with
         results identical to a single pass).
-    wall : WallParams, optional
-        The wall's dimensionless groups (``Wall.of(...).params(T)``, :mod:`dfa.model.wall`): computational
-        delay d (the force of sample h uses ξ(h − d)), virtual damper, velocity filter, amplifier lag.
-        None (default), or a spring with any delay (``WallParams.of(delay=d)``), runs the spring kernel;
-        otherwise :mod:`dfa.core.wall_kernel` runs the loop with the wall, exact to rounding at the sample
-        instants (one compiled call: no progress bar, no energy record). A one-sided wall's run that starts
-        outside moving toward it is an approach at constant speed (the operator's force balances friction until
-        the first reading inside, then is the wall's push; :func:`dfa.approach_start` gives such a start).
     history : {"fresh", "moving"}, optional
         The loop's memory at t = 0: ``"fresh"`` (default: the past readings equal the first, as if at rest
         there) or ``"moving"``: the device moved at ξ'0 for the d samples before, so the d pending forces are
@@ -574,9 +576,10 @@ def simulate(
     record = check_bool("record", record, "pass True to keep the trajectory, False for the outcome only")
     energy = check_bool("energy", energy, "pass True to keep the energy bookkeeping, False for none")
     progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
-    w = check_wall(wall, energy)
+    params, wp = check_type("loop", loop, Loop, LOOP_FIX).groups("simulate")
+    w = check_wall(wp, energy)
     d = w.delay
-    m, b, s, v0, x0 = _check_run(mu, beta, sigma, xi_dot0, xi0)
+    m, b, s, v0, x0 = _check_run(params.mu, params.beta, params.sigma, xi_dot0, xi0)
     check_hand_resonance(m, w)
     q = check_quantize(quantize)
     auto = samples is None

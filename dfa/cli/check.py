@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ..analysis.criterion import device_criterion, passivity_criterion
+from ..analysis.criterion import criterion_from_groups, device_criterion
+from ..model.loop import Loop
 from ..model.wall import Wall, WallParams
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
@@ -63,7 +64,7 @@ def _criterion(args: argparse.Namespace, inp: Inputs, xd: float, v: float | None
             inp.device.xi(args.position, "--position")  # x/Δ overflowing: refused naming the flag
         spring = Wall.of(inp.stiffness, delay=args.delay)
         return device_criterion(
-            inp.device, spring, vel, quantized=quantized, position=args.position or 0.0, history=args.history
+            Loop(inp.device, spring), vel, quantized=quantized, position=args.position or 0.0, history=args.history
         )
     if args.position is not None:
         raise UsageError(
@@ -77,7 +78,7 @@ def _criterion(args: argparse.Namespace, inp: Inputs, xd: float, v: float | None
     groups = WallParams.of(delay=args.delay)
     if args.history == "moving" and args.delay and args.mu is None:
         raise UsageError("--history moving needs --mu: the pending commands' work enters through μ; give --mu")
-    return passivity_criterion(
+    return criterion_from_groups(  # --mu is optional: the groups, not a loop
         inp.beta, inp.sigma, xd, wall=groups, quantized=quantized, xi0=x0, mu=args.mu, names=_FLAGS,
         history=args.history,
     )  # fmt: skip
@@ -103,7 +104,7 @@ def _check_wall(args: argparse.Namespace, inp: Inputs, wall: Wall, xd: float, v:
     vel = dev.velocity(xd) if v is None else v
     if args.position is not None:
         dev.xi(args.position, "--position")  # x/Δ overflowing: refused naming the flag
-    chk = passivity_check(dev, wall, vel, position=args.position or 0.0, quantized=not args.no_quantization)
+    chk = passivity_check(Loop(dev, wall), vel, position=args.position or 0.0, quantized=not args.no_quantization)
     if args.json:
         emit(wall_json(chk.to_dict(), wall, inp))
         return 0

@@ -57,11 +57,12 @@ def _positive(flag: str, value: float | None) -> float | None:
 
 def _report(args: argparse.Namespace, device: Any, velocity: float) -> dict[str, Any]:
     """The design report of the identified device and the wall of --stiffness (as `dfa report`), written to --report."""
+    from ..model.loop import Loop
     from ..model.wall import Wall
     from ..studies.report import design_report
 
     make_output_folder("--report", args.report)
-    res = design_report(device, Wall.of(args.stiffness), velocity, out_dir=args.report, fmt="html",
+    res = design_report(Loop(device, Wall.of(args.stiffness)), velocity, out_dir=args.report, fmt="html",
                         progress=progress(args), force=args.force)  # fmt: skip
     return dict(res.to_dict())
 
@@ -144,6 +145,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     from ..analysis.limits.recommend import recommend_stiffness
     from ..analysis.logged_cycle import compare_logged_cycle
     from ..model.device import dimensionless_params
+    from ..model.loop import Loop
     from ..render.answer import stiffness_screen
     from ..render.identify import cycle_lines, loop_head, poor_fit_loop
 
@@ -155,7 +157,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     dev = r.cautious()
     dimensionless_params(dev, args.stiffness, names=LOOP_NAMES)  # names the identified values, not as flags
     v = _peak_speed(r.velocity_peak) if args.velocity is None else args.velocity
-    ans = design_answer(dev, v, wall=args.stiffness, assess=True)
+    ans = design_answer(Loop(dev, args.stiffness), v, assess=True)
     rec = recommend_stiffness(ans)
     out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}
     lines += loop_head(dev, v, args.velocity is None) + stiffness_screen(ans, rec)

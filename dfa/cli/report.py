@@ -120,16 +120,16 @@ def run(args: argparse.Namespace) -> int:
     summary = _read_validation(args.validation) if args.validation is not None else None
     assert inp.stiffness is not None  # resolve() refuses a device without K here
     wall = ctl if ctl is not None else Wall.of(inp.stiffness, delay=args.delay)
-    resolve_design_inputs(inp.entry or inp.device, wall, v)  # refused before any output (its ranges, issue 27)
+    _entry, loop, _v = resolve_design_inputs(inp.entry or inp.device, wall, v)  # refused before any output (issue 27)
     if args.zwidth and v is not None and v > 0:
         from ..analysis.limits.zwidth import check_zwidth_size, z_width_seconds
 
         check_zwidth_size(args.zwidth, names=("--zwidth", "--speeds"))  # before any section runs
-        seconds = z_width_seconds(inp.device, v, wall=wall, grid=args.zwidth, speeds=1)
+        seconds = z_width_seconds(loop, v, grid=args.zwidth, speeds=1)
         check_work_time(f"--zwidth {args.zwidth}", seconds, "lower --zwidth", args.force)
     make_output_folder("--out", args.out)
     res = design_report(
-        inp.entry or inp.device, wall, v, out_dir=args.out, fmt=args.format, progress=progress(args),
+        loop, v, entry=inp.entry, out_dir=args.out, fmt=args.format, progress=progress(args),
         validation=summary, force=args.force, zwidth_grid=args.zwidth,
     )  # fmt: skip
     if args.json:

@@ -8,6 +8,7 @@ from typing import Any
 from .._io import check_output_file
 from ..checks import check_damping_rate
 from ..jsonable import explain_nulls
+from ..model.loop import Loop
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import (
@@ -169,9 +170,10 @@ def run(args: argparse.Namespace) -> int:
         )
     if args.samples is not None:  # the automatic length is capped (dfa.analysis.simulation.default_samples)
         check_samples(args.samples, args.force)
+    loop = Loop.dimensionless(p.mu, p.beta, p.sigma, wp)
     r = simulate(
-        p.mu, p.beta, p.sigma, v0, args.samples, xi0=x0, quantize=quantize, record=record,
-        progress=progress(args), bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND), wall=wp,
+        loop, v0, args.samples, xi0=x0, quantize=quantize, record=record, progress=progress(args),
+        bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND),
     )  # fmt: skip
     if args.trace is not None:
         _write_trace(args.trace, r, inp, args.observer)

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..formatting import fill, text_table
 from ..jsonable import explain_nulls
+from ..model.loop import Loop
 from ..model.wall import Wall
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
@@ -76,7 +77,7 @@ def _plain(ans: KMaxResult, dev: Any, v: float) -> KMaxResult | None:
 
     if ans.wall.passivity_controller is None:
         return None
-    return design_answer(dev, v, wall=ans.wall.without_controller())
+    return design_answer(Loop(dev, ans.wall.without_controller()), v)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -100,7 +101,8 @@ def run(args: argparse.Namespace) -> int:
     check_margin(args.margin)  # refused before the search, not after it
     where = src if src in ("catalogue", "device file") else "given"
     path = str(args.device_file) if where == "device file" else None
-    ans = design_answer(dev, v, wall=wall, assess=k is not None, source=where, source_file=path)
+    loop = Loop(dev, wall)
+    ans = design_answer(loop, v, assess=k is not None, source=where, source_file=path)
     plain = _plain(ans, dev, v)
     gain = None if plain is None else gain_of(ans, plain)
     rec = recommend_stiffness(ans, args.margin, plain=plain)
@@ -108,7 +110,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plot is not None:
         from ..analysis.limits.speed_chart import stiffness_speed_chart
 
-        chart = stiffness_speed_chart(dev, wall=wall, stiffness=k, velocity=v if v > 0 else None)
+        chart = stiffness_speed_chart(loop, stiffness=k, velocity=v if v > 0 else None)
         save_png("--plot", args.plot, chart.plot())
     if args.json:
         out = ans.to_dict()

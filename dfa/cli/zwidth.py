@@ -7,6 +7,7 @@ import argparse
 import math
 
 from .._io import FIGURE_SUFFIXES, check_output_file
+from ..model.loop import Loop
 from ..model.wall import Wall
 from ..render.hand import device_title
 from .contact import add_contact_args, contact_elements
@@ -121,14 +122,12 @@ def run(args: argparse.Namespace) -> int:
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
     check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
     b_range = None if args.damping_max is None else (0.0, float(args.damping_max))
-    seconds = z_width_seconds(
-        dev, v, wall=wall, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, b_range=b_range
-    )  # fmt: skip
+    loop = Loop(dev, wall)
+    seconds = z_width_seconds(loop, v, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, b_range=b_range)
     check_work_time(f"--grid {args.grid} with --speeds {args.speeds}", seconds, "lower --grid or --speeds", args.force)
     zw = z_width(
-        dev, v, wall=wall, grid=args.grid, b_range=b_range, speeds=args.speeds, n_jobs=args.jobs,
-        progress=progress(args),
-    )  # fmt: skip
+        loop, v, grid=args.grid, b_range=b_range, speeds=args.speeds, n_jobs=args.jobs, progress=progress(args)
+    )
     if args.plot is not None:
         save_png("--plot", args.plot, zw.plot())
     if args.json:

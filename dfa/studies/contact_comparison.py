@@ -36,6 +36,7 @@ from ..checks import check_int
 from ..errors import DFAValueError
 from ..model.catalogue import CatalogueEntry, catalogue
 from ..model.elements import OneSided, Push
+from ..model.loop import Loop
 from ..model.wall import Wall
 from ..results.base import Result
 from ..results.status import ComparisonStatus
@@ -200,7 +201,7 @@ def contact_comparison(
         }
         row: dict[str, dict[str, dict[str, Any]]] = {}
         for case in CASES:
-            r = design_answer(dev, v, wall=walls[case], grid=g, speeds=n_speeds)
+            r = design_answer(Loop(dev, walls[case]), v, grid=g, speeds=n_speeds)
             bad += len(r.counterexamples)
             row[case] = {name: limit_record(getattr(r, name)) for name in LIMITS}
         vels.append(float(v))

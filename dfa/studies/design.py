@@ -15,9 +15,11 @@ chart are computed for the spring only: a wall's K_max is the design answer. Ren
 
 from __future__ import annotations
 
+import functools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import Any, ClassVar, TypeVar, cast
 
 import numpy as np
 
@@ -42,12 +44,15 @@ from ..model.catalogue import CatalogueEntry
 from ..model.catalogue import catalogue as catalogue_rows
 from ..model.device import Device, Params
 from ..model.elements import Coverage
+from ..model.loop import LOOP_FIX, Loop
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
 from ..results.status import DesignStatus
 from .validation import first_unstable_speed
 
 __all__ = ["DesignAnalysis", "design_analysis"]
+
+F = TypeVar("F", bound=Callable[..., Any])
 
 #: Loop models of the describing-function analysis, in the order the report lists them.
 MODELS = ("half-delay", "zoh")
@@ -368,10 +373,11 @@ def _check_validation(summary: dict[str, Any] | None) -> dict[str, Any] | None:
 
 def resolve_design_inputs(
     device: Device | CatalogueEntry, wall: Wall | float | None, velocity: float | None
-) -> tuple[CatalogueEntry | None, Device, Wall, float]:
-    """(catalogue entry or None, device, wall, |ẋ0|) of a design analysis, checked; the defaults filled in.
+) -> tuple[CatalogueEntry | None, Loop, float]:
+    """(catalogue entry or None, loop, |ẋ0|) of a design analysis in the former form, checked; defaults filled in.
 
-    ``wall`` is a :class:`Wall`, a stiffness K (the spring), or None (the spring at the catalogue K).
+    ``wall`` is a :class:`Wall`, a stiffness K (the spring), or None (the spring at the catalogue K). The loop's
+    groups are formed here, once (:class:`~dfa.model.loop.Loop`).
     """
     entry = device if isinstance(device, CatalogueEntry) else None
     dev = entry.device if entry is not None else device
@@ -386,20 +392,82 @@ def resolve_design_inputs(
         wall = entry.stiffness
     if not isinstance(wall, Wall):
         wall = Wall(check_positive("wall", wall, "give the wall, or the virtual wall stiffness K"))
-    v = check_speed("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1))
-    wp = wall.params(
-        dev.period, dev.resolution
-    )  # a filter above Nyquist or a group out of range is refused here, before any work
-    check_search_range(dev, wall, v)  # so is a stiffness range no float search can run (the design answer's …
-    if v > 0 and wp.covers(Coverage.CLOSED_FORM):
+    v = _design_speed(dev, velocity)
+    loop = Loop(dev, wall)  # a filter above Nyquist or a group out of range is refused here, before any work
+    _check_ranges(loop, v)
+    return entry, loop, v
+
+
+def _design_speed(dev: Device, velocity: float | None) -> float:
+    """|ẋ0| of a design analysis: ``velocity`` checked, default 0.1 m/s (1 rad/s rotary)."""
+    return check_speed("velocity", velocity if velocity is not None else (1.0 if dev.rotary else 0.1))
+
+
+def _check_ranges(loop: Loop, v: float) -> None:
+    """Refuse, before any work, a stiffness range no float search can run (the design answer's and the chart's)."""
+    dev, wall = loop.physical("design_analysis")
+    check_search_range(dev, wall, v)  # the design answer's …
+    if v > 0 and loop.groups("design_analysis")[1].covers(Coverage.CLOSED_FORM):
         check_chart_range(dev, wall, wall.stiffness, v)  # … and the chart's: 8 K = inf at K = 1e308
-    return entry, dev, wall, v
 
 
-def _simulations(
-    p: Params, xi_dot: float, ref: float, v_sim: float | None, samples: int, wp: WallParams
-) -> dict[str, Any]:
+def design_loop(loop: Loop, velocity: float | None, entry: CatalogueEntry | None = None) -> tuple[Loop, float]:
+    """(loop, |ẋ0|) of a design analysis given a loop, checked: a loop at no given K takes the catalogue K.
+
+    Parameters
+    ----------
+    loop : Loop
+        The device and the wall (K in N/m, rotary N·m/rad); ``Loop(device)`` with a catalogue ``entry``: the
+        spring at the catalogue K.
+    velocity : float or None
+        Impact speed in m/s (rotary rad/s); None: 0.1 m/s (1 rad/s rotary).
+    entry : CatalogueEntry, optional
+        The catalogue entry of the loop's device (its K, its printed values and notes).
+
+    Returns
+    -------
+    tuple of (Loop, float)
+        The loop at its K and the speed.
+
+    Raises
+    ------
+    DFAValueError, DFATypeError
+        Not a loop of a device, no stiffness, a bad speed, or a stiffness range no search can run.
+    """
+    check_type("loop", loop, Loop, LOOP_FIX)
+    if entry is not None:
+        check_type("entry", entry, CatalogueEntry, "give the device's dfa.catalogue() entry, or None")
+        if loop.wall is None and entry.stiffness is not None and loop.device is not None:
+            loop = loop.at(entry.stiffness)
+    dev, _wall = loop.physical("design_analysis")
+    v = _design_speed(dev, velocity)
+    _check_ranges(loop, v)
+    return loop, v
+
+
+def design_first(func: F) -> F:
+    """Let :func:`design_analysis` and :func:`dfa.report.design_report` (a :class:`Loop` first, the speed second,
+    the catalogue entry a keyword) still be called in the former form (device or catalogue entry, wall, velocity),
+    resolved by :func:`resolve_design_inputs`."""
+
+    @functools.wraps(func)
+    def design_first_wrapper(*args: Any, **kwargs: Any) -> Any:
+        if (args and isinstance(args[0], Loop)) or "loop" in kwargs:
+            return func(*args, **kwargs)
+        names = ("device", "wall", "velocity")
+        given = dict(zip(names, args, strict=False))
+        given.update({n: kwargs.pop(n) for n in names[len(args) :] if n in kwargs})
+        if "device" not in given:
+            raise TypeError("missing the argument 'device' (or give a dfa.Loop first)")
+        entry, loop, v = resolve_design_inputs(given["device"], given.get("wall"), given.get("velocity"))
+        return func(loop, v, *args[3:], entry=entry, **kwargs)
+
+    return cast(F, design_first_wrapper)
+
+
+def _simulations(loop: Loop, xi_dot: float, ref: float, v_sim: float | None, samples: int) -> dict[str, Any]:
     """Recorded runs for the figure and full-length runs for the outcomes, at the design speed and above."""
+    p, wp = loop.groups("design_analysis")
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
     n_traj += approach_samples(wp) if wp.one_sided else 0  # a one-sided wall's runs start with the approach
     v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
@@ -407,7 +475,7 @@ def _simulations(
     def run(v: float, n: int | None, rec: bool) -> SimulationResult:
         x0, v0 = map_start(p.mu, v, False, wp)  # the impact at ξ0 = 0, or a one-sided wall's approach
         return simulate(  # diverged only far beyond the impact's own travel (eq. 18-19)
-            p.mu, p.beta, p.sigma, v0, n, xi0=x0, record=rec, bound=divergence_bound(x0, v0, p.mu), wall=wp
+            loop, v0, n, xi0=x0, record=rec, bound=divergence_bound(x0, v0, p.mu)
         )
 
     return dict(
@@ -421,11 +489,12 @@ def _simulations(
     )
 
 
+@design_first
 def design_analysis(
-    device: Device | CatalogueEntry,
-    wall: Wall | float | None = None,
+    loop: Loop,
     velocity: float | None = None,
     *,
+    entry: CatalogueEntry | None = None,
     map_grid: int = 81,
     samples: int = 30_000,
     validation: dict[str, Any] | None = None,
@@ -433,17 +502,19 @@ def design_analysis(
     progress: bool = False,
     zwidth_grid: int | None = None,
 ) -> DesignAnalysis:
-    """Compute every number of the design report of ``device`` with ``wall`` at impact speed ẋ0.
+    """Compute every number of the design report of the loop's device with its wall at impact speed ẋ0.
 
     Parameters
     ----------
-    device : Device or CatalogueEntry
-        A catalogue entry adds the paper's printed values and notes.
-    wall : Wall or float, optional
-        The wall (:class:`dfa.Wall`: K in N/m, rotary N·m/rad, and its elements: delay, virtual damper B, velocity
-        filter, amplifier), or a stiffness K for the paper's spring; default the spring at the catalogue K.
+    loop : Loop
+        The device and the wall (:class:`dfa.Wall`: K in N/m, rotary N·m/rad, and its elements: delay, virtual
+        damper B, velocity filter, amplifier; or a stiffness K for the paper's spring), ``Loop(device, wall)``;
+        ``Loop(device)`` with a catalogue ``entry``: the spring at the catalogue K. Its groups are formed once and
+        passed to every section. The former call ``design_analysis(device_or_entry, wall, velocity)`` still works.
     velocity : float, optional
         Impact speed in m/s (rotary rad/s); default 0.1 m/s (1 rad/s rotary); >= 0 (a negative is refused).
+    entry : CatalogueEntry, optional
+        Keyword only: the catalogue entry of the loop's device, adding the paper's printed values and notes.
     map_grid, samples : int
         Points per axis of the stability map (default 81); samples per run of it and of the speed scan (30000).
     validation : dict, optional
@@ -476,62 +547,65 @@ def design_analysis(
     Examples
     --------
     >>> import dfa
-    >>> a = design_analysis(dfa.get_device("impulse"), velocity=0.05, map_grid=3, samples=2000, n_jobs=1)
+    >>> entry = dfa.get_device("impulse")
+    >>> a = design_analysis(dfa.Loop(entry.device), 0.05, entry=entry, map_grid=3, samples=2000, n_jobs=1)
     >>> a.criterion.passive, round(a.limits.k_max, 1), a.outcome.outcome.value
     (True, 120.8, 'rest')
     """
-    entry, dev, wall, v = resolve_design_inputs(device, wall, velocity)
+    loop, v = design_loop(loop, velocity, entry)
+    dev, wall = loop.physical("design_analysis")
+    p, wp = loop.groups("design_analysis")  # formed once, here
     checked = _check_validation(validation)
     zg = check_int("zwidth_grid", zwidth_grid, 0, "give the Z-width's points per axis, or 0 for none") if (
-        zwidth_grid is not None) else (0 if wall.params(dev.period, dev.resolution).covers(Coverage.CLOSED_FORM) else WALL_ZWIDTH_GRID)  # fmt: skip
+        zwidth_grid is not None) else (0 if wp.covers(Coverage.CLOSED_FORM) else WALL_ZWIDTH_GRID)  # fmt: skip
     check_zwidth_size(zg, names=("zwidth_grid", "speeds"))  # here, before the sections that run first
     with progress_bar(total=4, desc=f"analysis {dev.name}", disable=not progress, leave=False) as steps:
-        p, wp = dev.params(wall.stiffness), wall.params(dev.period, dev.resolution)
-        head = _closed_forms(dev, wall, v)
+        head = _closed_forms(loop, v)
         steps.update()
-        thr = () if not wp.linear else tuple((m, growth_threshold(p, dev, model=m, wall=wp)) for m in MODELS)
+        thr = () if not wp.linear else tuple((m, growth_threshold(loop, model=m)) for m in MODELS)
         steps.update()
         crit = head["check"].criterion
         ref = crit.critical_xi_dot if crit is not None and crit.critical_xi_dot else max(1.0, dev.xi_dot(v))
         v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False, wall=wp)
         steps.update()
-        sims = _simulations(p, dev.xi_dot(v), ref, v_sim, samples, wp)
-        ny = None if not wp.linear else _nyquist(p, thr[1][1], wp)
+        sims = _simulations(loop, dev.xi_dot(v), ref, v_sim, samples)
+        ny = None if not wp.linear else _nyquist(loop, thr[1][1])
         steps.update()
         smap = _map_around(p, dev.xi_dot(v), map_grid, samples, n_jobs, progress, wp)
     figs: dict[str, Any] = dict(nyquist=ny, stability_map=smap)
     if v > 0:  # the design answer, first in the report: K_max four ways (and the spring's stiffness-speed chart)
         cache = RunCache()  # one set of runs for both: no (K, speed, start) simulated twice
-        figs["design_answer"] = design_answer(dev, v, wall=wall, assess=True, cache=cache)
+        figs["design_answer"] = design_answer(loop, v, assess=True, cache=cache)
         if wp.covers(Coverage.CLOSED_FORM):
-            figs["speed_chart"] = stiffness_speed_chart(
-                dev, wall=wall, stiffness=wall.stiffness, velocity=v, cache=cache
-            )
+            figs["speed_chart"] = stiffness_speed_chart(loop, stiffness=wall.stiffness, velocity=v, cache=cache)
     if v > 0:  # how firm a grip the wall needs (the bare device, the hand's mass held)
         figs["grip"] = grip_sweep(dev.bare, wall, v, hand_mass=0.0 if dev.hand is None else dev.hand.mass)
     if v > 0 and zg:
-        figs["zwidth"] = _zwidth(dev, v, wall, not wp.covers(Coverage.CLOSED_FORM), zg, n_jobs, progress)
+        figs["zwidth"] = _zwidth(loop, v, not wp.covers(Coverage.CLOSED_FORM), zg, n_jobs, progress)
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )
     return DesignAnalysis(dev, wall, v, p, thresholds=thr, simulated_xi_dot=v_sim, **head, **figs, **inputs, **sims)
 
 
-def _closed_forms(dev: Device, wall: Wall, v: float) -> dict[str, Any]:
+def _closed_forms(loop: Loop, v: float) -> dict[str, Any]:
     """The passivity check at the design speed; for the spring also its stiffness limits and curve (eq. 8-11)."""
-    chk = passivity_check(dev, wall, v)
-    if not wall.params(dev.period, dev.resolution).covers(Coverage.CLOSED_FORM):
+    chk = passivity_check(loop, v)
+    dev, wall = loop.physical("design_analysis")
+    wp = loop.groups("design_analysis")[1]
+    if not wp.covers(Coverage.CLOSED_FORM):
         return dict(check=chk, limits=None, stiffness_curve=None)
-    k, d = wall.stiffness, wall.params(dev.period, dev.resolution).delay
+    k, d = wall.stiffness, wp.delay
     lim = stiffness_limits(dev, v, k, delay=d)
     return dict(check=chk, limits=lim, stiffness_curve=stiffness_response(dev, stiffness=k, delay=d))
 
 
-def _zwidth(dev: Device, v: float, wall: Wall, widen: bool, grid: int, n_jobs: int, progress: bool) -> ZWidth:
+def _zwidth(loop: Loop, v: float, widen: bool, grid: int, n_jobs: int, progress: bool) -> ZWidth:
     """The Z-width at the design speed, with the wall's delay, filter and lag; B's axis holds the wall's B."""
+    dev, wall = loop.physical("design_analysis")
     b_top = default_damping_max(dev, wall, v)  # z_width's default range, widened to show the controller's B
     b_range = (0.0, 1.25 * wall.damping) if widen and wall.damping > b_top else None
-    return z_width(dev, v, wall=wall, grid=grid, b_range=b_range, speeds=1, n_jobs=n_jobs, progress=progress)
+    return z_width(loop, v, grid=grid, b_range=b_range, speeds=1, n_jobs=n_jobs, progress=progress)
 
 
 def _map_around(
@@ -552,13 +626,12 @@ def _map_around(
     )
 
 
-def _nyquist(p: Params, zoh: GrowthThreshold, wp: WallParams) -> NyquistLocusResponse:
+def _nyquist(loop: Loop, zoh: GrowthThreshold) -> NyquistLocusResponse:
     """The Nyquist view of the exact ZOH loop (the model of the growth threshold): the locus reaches every cycle drawn."""
+    p = loop.groups("design_analysis")[0]
     res = zoh.result
     amps = [c.amplitude for c in res.cycles[:3]] if p.sigma > 0 else None
     if p.sigma > 0 and not amps:
         amps = [1.0]
     m_top = max([50.0] + [2.0 * c.amplitude for c in res.cycles])
-    return nyquist_locus_response(
-        p, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), model="zoh", wall=wp
-    )
+    return nyquist_locus_response(loop, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), model="zoh")

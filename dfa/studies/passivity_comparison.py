@@ -37,6 +37,7 @@ from ..errors import DFAValueError
 from ..model.catalogue import CatalogueEntry, get_device
 from ..model.device import Device
 from ..model.elements import PassivityController
+from ..model.loop import Loop
 from ..model.wall import Wall
 from ..results.status import ComparisonStatus
 from .contact_comparison import CatalogueComparison, complete_entries, limit_record
@@ -81,9 +82,7 @@ def impact(dev: Device, wall: Wall, velocity: float, samples: int = IMPACT_SAMPL
     """
     from ..analysis.simulation import simulate
 
-    p = dev.params(wall.stiffness)
-    w = wall.params(dev.period, dev.resolution)
-    return simulate(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), samples=samples, wall=w)
+    return simulate(Loop(dev, wall), dev.xi_dot(velocity), samples=samples)
 
 
 def _price(dev: Device, k0: float | None, v: float) -> dict[str, Any]:
@@ -218,7 +217,7 @@ def passivity_comparison(
         v = velocity if velocity is not None else (1.0 if dev.rotary else 0.1)
         row: dict[str, dict[str, dict[str, Any]]] = {}
         for case in CASES:
-            r = design_answer(dev, v, wall=_wall(case, dev), grid=g, speeds=n_speeds)
+            r = design_answer(Loop(dev, _wall(case, dev)), v, grid=g, speeds=n_speeds)
             bad += len(r.counterexamples)
             row[case] = {name: limit_record(getattr(r, name)) for name in ("k_sim", "k_sim_rest")}
         vels.append(float(v))

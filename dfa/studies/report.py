@@ -25,10 +25,9 @@ from ..checks import check_bool, check_choice, check_int, format_value
 from ..errors import DFATypeError, DFAValueError
 from ..jsonable import dumps, explain_nulls, round_floats, to_jsonable
 from ..model.catalogue import CatalogueEntry
-from ..model.device import Device
-from ..model.wall import Wall
+from ..model.loop import Loop
 from ..results.status import ReportStatus
-from .design import DesignAnalysis, design_analysis, resolve_design_inputs
+from .design import DesignAnalysis, design_analysis, design_first, design_loop
 
 __all__ = ["ReportResult", "design_report", "report_name", "report_slug", "write_design_report"]
 
@@ -142,21 +141,17 @@ def _wall_numbers(a: DesignAnalysis) -> dict[str, Any]:
     return explain_nulls(to_jsonable(out), why)
 
 
-def _beyond_spring(device: Device, wall: Wall) -> bool:
-    """True for a wall with a damper, filter or amplifier lag (its report is a separate file)."""
-    return not wall.params(device.period, device.resolution).is_spring
-
-
-def _identity(device: Device, wall: Wall, velocity: float) -> dict[str, Any]:
+def _identity(loop: Loop, velocity: float) -> dict[str, Any]:
     """What makes two reports the same report: device, stiffness, speed, delay (and the wall's elements, if any)."""
-    delay = wall.params(device.period, device.resolution).delay
+    device, wall = loop.physical("design_report")
+    wp = loop.groups("design_report")[1]
     ident: dict[str, Any] = {
         "device": device.to_dict(),
         "stiffness": wall.stiffness,
         "velocity": velocity,
-        "delay": delay,
+        "delay": wp.delay,
     }
-    if _beyond_spring(device, wall):
+    if not wp.is_spring:  # a wall with a damper, filter or amplifier lag (its report is a separate file)
         ident["controller"] = wall.to_dict()
     return json.loads(dumps(ident, ensure_ascii=False))
 
@@ -266,7 +261,7 @@ def write_design_report(
     a = analysis
     slug = report_name(a.device.name, not a.is_spring, a.device.hand is not None, a.wall.one_sided)
     docs, meta = _doc_names(slug, fmt)
-    ident = _identity(a.device, a.wall, a.velocity)
+    ident = _identity(Loop(a.device, a.wall), a.velocity)
     if not force:
         _check_overwrite(out, fmt, ident)
     figs = design_figures(analysis)
@@ -289,11 +284,12 @@ def write_design_report(
     return res
 
 
+@design_first
 def design_report(
-    device: Device | CatalogueEntry,
-    wall: Wall | float | None = None,
+    loop: Loop,
     velocity: float | None = None,
     *,
+    entry: CatalogueEntry | None = None,
     out_dir: str | os.PathLike = "reports",
     fmt: str = "html",
     progress: bool = True,
@@ -303,20 +299,23 @@ def design_report(
     force: bool = False,
     zwidth_grid: int | None = None,
 ) -> ReportResult:
-    """Write the design report of ``device`` with ``wall`` at impact speed ẋ0.
+    """Write the design report of the loop's device with its wall at impact speed ẋ0.
 
-    :func:`dfa.studies.design.design_analysis` followed by :func:`write_design_report`.
+    :func:`dfa.studies.design.design_analysis` followed by :func:`write_design_report`; the loop's groups are
+    formed once.
 
     Parameters
     ----------
-    device : Device or CatalogueEntry
-        A catalogue entry adds the paper's printed values and notes.
-    wall : Wall or float, optional
-        The wall (:class:`dfa.Wall`: K in N/m, rotary N·m/rad, and its elements: computational delay d in samples,
-        virtual damper, velocity filter, amplifier), or a stiffness K for the paper's spring; default the spring
-        at the catalogue K. A wall beyond the spring writes ``design_report_{name}_controller.*``.
+    loop : Loop
+        The device and the wall (:class:`dfa.Wall`: K in N/m, rotary N·m/rad, and its elements: computational
+        delay d in samples, virtual damper, velocity filter, amplifier; or a stiffness K for the paper's spring),
+        ``Loop(device, wall)``; ``Loop(device)`` with a catalogue ``entry``: the spring at the catalogue K. A wall
+        beyond the spring writes ``design_report_{name}_controller.*``. The former call
+        ``design_report(device_or_entry, wall, velocity, ...)`` still works.
     velocity : float, optional
         Impact speed in m/s (rotary rad/s); default 0.1 m/s (1 rad/s rotary).
+    entry : CatalogueEntry, optional
+        Keyword only: the catalogue entry of the loop's device, adding the paper's printed values and notes.
     out_dir : path
         Existing folder for the report and its ``figures/``.
     fmt : {"html", "md", "both"}
@@ -358,11 +357,11 @@ def design_report(
         )
     if not Path(out_dir).is_dir():
         raise DFAValueError(f"out_dir = {str(out_dir)!r} is invalid: the folder does not exist; create it first")
-    _entry, dev, w, v = resolve_design_inputs(device, wall, velocity)
+    loop, v = design_loop(loop, velocity, entry)
     if not force:  # before the analysis: refuse in a second, not after a minute of simulation
-        _check_overwrite(Path(out_dir), fmt, _identity(dev, w, v))
+        _check_overwrite(Path(out_dir), fmt, _identity(loop, v))
     a = design_analysis(
-        device, w, v, map_grid=map_grid, samples=samples, validation=validation, progress=progress,
+        loop, v, entry=entry, map_grid=map_grid, samples=samples, validation=validation, progress=progress,
         zwidth_grid=zwidth_grid,
     )  # fmt: skip
     return write_design_report(a, out_dir, fmt, force=force)

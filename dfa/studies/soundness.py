@@ -61,13 +61,14 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..analysis.criterion import CriterionResult, passivity_criterion
+from ..analysis.criterion import CriterionResult, criterion_from_groups, passivity_criterion
 from ..analysis.simulation import simulate
 from ..checks import check_bool, check_choice, check_delay, check_int, check_positive, check_type
 from ..core import kernel
 from ..core.storage import storage_runs
 from ..errors import DFATypeError, DFAValueError
 from ..model.elements import Coverage
+from ..model.loop import Loop
 from ..model.wall import WallParams
 from ..results.status import SimulationOutcome
 from .soundness_counts import KINDS as KINDS
@@ -200,8 +201,8 @@ def _verdict(
     """The criterion's result at one point (β, σ) of the point (ξ'0, ξ0, μ, wall, encoder, history)."""
     seen, sees_xi0 = _seen(crit, wall)
     if sees_xi0:
-        return passivity_criterion(b, s, xd, wall=seen, quantized=q, xi0=x0, mu=mu, history=history)
-    return passivity_criterion(b, s, xd, wall=seen, quantized=q)  # V = |ξ'0|
+        return criterion_from_groups(b, s, xd, wall=seen, quantized=q, xi0=x0, mu=mu, history=history)
+    return criterion_from_groups(b, s, xd, wall=seen, quantized=q)  # V = |ξ'0|: no μ, so no loop
 
 
 def _point(
@@ -331,8 +332,8 @@ def _storage_run(pt: dict[str, Any], n: int) -> tuple[float, int, bool]:
     kap = c.hand_stiffness  # the hand spring's ½κ_h ξ² is stored energy (dfa.analysis.criterion)
     with np.errstate(all="ignore"):
         r = simulate(
-            mu, float(pt["beta"]), float(pt["sigma"]), v0, n, x0, quantize=bool(pt["quantized"]), wall=c,
-            bound=BOUND,
+            Loop.dimensionless(mu, float(pt["beta"]), float(pt["sigma"]), c), v0, n, x0,
+            quantize=bool(pt["quantized"]), bound=BOUND,
         )  # fmt: skip
         xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
         diverged = r.outcome is SimulationOutcome.UNSTABLE  # the compiled path's rule (module docstring)
@@ -488,10 +489,14 @@ def _one_sided_run(
     surface, push = wall.surface, wall.push
     x0, v0, d = approach_start(speed, wall=wall, quantize=q)
     n = d + run_samples(mu)
-    vstar = speed if bilateral else passivity_criterion(1.0, 1.0, speed, wall=wall, quantized=q, mu=mu).equivalent_speed
+    vstar = (
+        speed
+        if bilateral
+        else passivity_criterion(Loop.dimensionless(mu, 1.0, 1.0, wall), speed, quantized=q).equivalent_speed
+    )
     claim = 0.5 * mu * vstar * vstar
     with np.errstate(all="ignore"):
-        r = simulate(mu, beta, sigma, v0, n, x0, quantize=q, wall=wall, bound=BOUND, record=True)
+        r = simulate(Loop.dimensionless(mu, beta, sigma, wall), v0, n, x0, quantize=q, bound=BOUND, record=True)
         xs, vs = np.asarray(r.xi)[1:], np.asarray(r.xi_dot)[1:]
         dl = xs - surface
         stored = 0.5 * mu * vs * vs + 0.5 * np.maximum(dl, 0.0) ** 2 - push * dl + 0.5 * push * push
@@ -577,10 +582,14 @@ def _history_run(mu: float, beta: float, sigma: float, x0: float, xd: float, d: 
     start's claim, S <= ½μV², V the energy-equivalent speed)."""
     wall = WallParams.of(delay=d)
     hist = "fresh" if fresh else "moving"
-    vstar = passivity_criterion(1.0, 1.0, xd, wall=wall, quantized=q, xi0=x0, mu=mu, history=hist).equivalent_speed
+    vstar = passivity_criterion(
+        Loop.dimensionless(mu, 1.0, 1.0, wall), xd, quantized=q, xi0=x0, history=hist
+    ).equivalent_speed
     n = run_samples(mu)
     with np.errstate(all="ignore"):
-        r = simulate(mu, beta, sigma, xd, n, x0, quantize=q, wall=wall, bound=BOUND, record=True, history="moving")
+        r = simulate(
+            Loop.dimensionless(mu, beta, sigma, wall), xd, n, x0, quantize=q, bound=BOUND, record=True, history="moving"
+        )
         xs, vs = np.asarray(r.xi), np.asarray(r.xi_dot)
         stored = 0.5 * mu * vs * vs + 0.5 * xs * xs
         ratio = np.where(np.abs(xs) <= BOUND, stored / (0.5 * mu * vstar * vstar) - 1.0, np.inf)

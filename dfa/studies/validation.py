@@ -61,6 +61,7 @@ from ..analysis.simulation import OUTCOMES, SimulationResult, divergence_bound, 
 from ..checks import check_bool, check_choice, check_jobs, check_type
 from ..jsonable import explain_nulls, to_jsonable
 from ..model.device import Params
+from ..model.loop import Loop
 from ..model.wall import WallParams
 from ..results.base import Result
 from ..results.status import ValidationStatus
@@ -109,10 +110,10 @@ def cycle_checks(
         region = str(classify_region(p.beta, p.sigma, 0.0))
 
         def run(v: float, p: Params = p) -> SimulationResult:
-            return simulate(p.mu, p.beta, p.sigma, v, samples, record=False, wall=wall)
+            return simulate(Loop.dimensionless(p.mu, p.beta, p.sigma, wall), v, samples, record=False)
 
         for model in models:
-            res = limit_cycles(p, model=model, max_amplitude=2000.0, wall=wall)
+            res = limit_cycles(Loop.dimensionless(p.mu, p.beta, p.sigma, wall), model=model, max_amplitude=2000.0)
             for c in res.cycles:
                 rec = dict(
                     mu=p.mu,
@@ -221,7 +222,7 @@ def first_unstable_speed(
     def unstable(v: float) -> bool:
         x0, v0 = map_start(p.mu, v, preload, w)
         bound = divergence_bound(x0, v0, p.mu)  # beyond the impact's own travel (eq. 18-19)
-        r = simulate(p.mu, p.beta, p.sigma, v0, n, xi0=x0, record=False, bound=bound, wall=w)
+        r = simulate(Loop.dimensionless(p.mu, p.beta, p.sigma, w), v0, n, xi0=x0, record=False, bound=bound)
         return r.outcome == "unstable"
 
     speeds = np.geomspace(v_lo, v_hi, steps)
@@ -246,10 +247,11 @@ def critical_speeds(points: Iterable[tuple[str, Params]], samples: int = 20_000)
     """Item 2: criterion (eq. 12), describing function (M_u·ω) and simulated critical speeds, ticks per sample."""
     rows = []
     for name, p in points:
-        crit = passivity_criterion(p.beta, p.sigma, 0.0).critical_xi_dot
+        loop = Loop.dimensionless(p.mu, p.beta, p.sigma)
+        crit = passivity_criterion(loop, 0.0).critical_xi_dot
         thr = {}
         for model in ("half-delay", "zoh"):
-            un = limit_cycles(p, model=model, max_amplitude=5000.0).unstable_cycles
+            un = limit_cycles(loop, model=model, max_amplitude=5000.0).unstable_cycles
             thr[model] = un[0].amplitude * un[0].frequency if un else None
         ref = crit if crit and crit > 0 else 1.0
         v_sim = first_unstable_speed(p, 0.2 * ref, 30.0 * ref, samples, preload=False)
@@ -289,7 +291,10 @@ def cluster_threshold(name: str, p: Params, speeds: ArrayLike, samples: int) -> 
 
     speeds = np.asarray(speeds, dtype=float)
     div = np.array(
-        [simulate(p.mu, p.beta, p.sigma, float(v), samples, record=False).outcome == "unstable" for v in speeds]
+        [
+            simulate(Loop.dimensionless(p.mu, p.beta, p.sigma), float(v), samples, record=False).outcome == "unstable"
+            for v in speeds
+        ]
     )
     first = float(speeds[div][0]) if div.any() else None
     last = float(speeds[~div][-1]) if (~div).any() else None
@@ -307,7 +312,7 @@ def cluster_threshold(name: str, p: Params, speeds: ArrayLike, samples: int) -> 
         linear_stable_zoh=bool(linear_stable(p.mu, p.beta)),
     )
     for model in ("half-delay", "zoh"):
-        g = growth_threshold(p, model=model)
+        g = growth_threshold(Loop.dimensionless(p.mu, p.beta, p.sigma), model=model)
         rec[f"band_{model}"] = [g.xi_dot, g.xi_dot_high]
         rec[f"band_amplitude_{model}"] = [g.amplitude, g.amplitude_high]
         rec[f"unstable_{model}"] = g.unstable_count

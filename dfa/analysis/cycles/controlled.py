@@ -16,6 +16,10 @@ from ...model.wall import WallParams
 __all__ = ["resolve_wall", "linear_stable_of"]
 
 
+#: How the analyses of the dimensionless loop tell to give the wall's groups (their message refusing another wall).
+WALL_FIX = "give dimensionless groups, e.g. dfa.Wall.of(K, B, ...).params(period), or None"
+
+
 def resolve_wall(wall: object) -> tuple[WallParams, WallParams | None, int]:
     """(the wall's groups; the same, or None for the spring's fast path; its delay) from the user's input.
 
@@ -24,9 +28,7 @@ def resolve_wall(wall: object) -> tuple[WallParams, WallParams | None, int]:
     DFATypeError
         If ``wall`` is neither None nor a :class:`~dfa.model.wall.WallParams`.
     """
-    w = WallParams() if wall is None else check_type(
-        "wall", wall, WallParams, "give dimensionless groups, e.g. dfa.Wall.of(K, B, ...).params(period), or None"
-    )  # fmt: skip
+    w = WallParams() if wall is None else check_type("wall", wall, WallParams, WALL_FIX)
     return w, (None if w.covers(Coverage.CLOSED_FORM) else w), w.delay
 
 

@@ -5,24 +5,32 @@ from __future__ import annotations
 from typing import Any
 
 from ...checks import check_type
+from ...errors import DFAValueError
 from ...model.device import Device, Params
+from ...model.loop import Loop, as_loop
+from ...model.wall import WallParams
 from ...results.cycles import GrowthThreshold as GrowthThreshold
 from ...results.cycles import LimitCycle
 from ...results.status import GrowthStatus, SearchStatus
+from ..loop_models import check_params
+from .controlled import WALL_FIX
 from .solve import limit_cycles
 
 
-def growth_threshold(params: Params, device: Device | None = None, **kwargs: Any) -> GrowthThreshold:
+def growth_threshold(loop: Loop | Params, device: Device | None = None, **kwargs: Any) -> GrowthThreshold:
     """Growth band of the describing function: smallest and largest unstable cycles (beyond the paper).
 
     Parameters
     ----------
-    params : Params
-        Dimensionless device (μ > 0, β >= 0, σ >= 0).
+    loop : Loop
+        The loop (its groups μ > 0, β >= 0, σ >= 0 and its wall's), ``Loop(device, wall)``, whose device
+        expresses the amplitudes and speeds in physical units, or ``Loop.dimensionless(mu, beta, sigma,
+        wall_params)``. The former call ``growth_threshold(params, device, wall=wall_params)`` still works.
     device : Device, optional
-        To express the amplitudes and speeds in physical units.
+        Only with the former call (the groups first): the device expressing the amplitudes and speeds in
+        physical units (a loop's own device does that).
     **kwargs
-        Passed to :func:`limit_cycles` (model, wall, …).
+        Passed to :func:`limit_cycles` (model, …; ``wall`` with the former call).
 
     Returns
     -------
@@ -32,16 +40,27 @@ def growth_threshold(params: Params, device: Device | None = None, **kwargs: Any
     Raises
     ------
     DFAValueError, DFATypeError
-        If ``device`` is not a :class:`Device` or :func:`limit_cycles` refuses its inputs.
+        If ``device`` is not a :class:`Device`, is given beside a loop, or :func:`limit_cycles` refuses its
+        inputs.
 
     See Also
     --------
     limit_cycles : Every cycle, stable and unstable.
     simulate : What the exact loop does from a given speed.
     """
-    if device is not None:
-        check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    res = limit_cycles(params, **kwargs)
+    if isinstance(loop, Loop):
+        if device is not None:
+            raise DFAValueError(
+                f"device = {device!r:.60} is invalid with a loop: the loop holds its device; build the loop with "
+                "it, Loop(device, wall)"
+            )
+        device = loop.device
+    else:  # the former form: the groups, the device for the units, wall= the wall's groups
+        if device is not None:
+            check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
+        wall = kwargs.pop("wall", None)
+        loop = as_loop(check_params(loop), None if wall is None else check_type("wall", wall, WallParams, WALL_FIX))
+    res = limit_cycles(loop, **kwargs)
     unstable = res.unstable_cycles
     if res.status is SearchStatus.FREQUENCY_RANGE:  # nothing searched: no claim on growth either way
         return GrowthThreshold(None, None, None, res, status=GrowthStatus.NOT_SEARCHED, grows_above=None)

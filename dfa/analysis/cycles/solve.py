@@ -9,15 +9,14 @@ import warnings
 import numpy as np
 from scipy import optimize
 
-from ...checks import check_choice, check_positive
-from ...model.device import Params
-from ...model.wall import WallParams
+from ...checks import check_choice, check_positive, check_type
+from ...model.loop import LOOP_FIX, Loop, loop_first
 from ...results.cycles import SEARCHED_MU as SEARCHED_MU
 from ...results.cycles import LimitCycle, LimitCycleResult, LimitCycleSearchWarning, SearchEvidence, SearchStatus
-from ..loop_models import check_model, check_params
+from ..loop_models import check_model
 from . import search
 from .characteristic import DF_CHOICES, M_FLOOR, W_GRID, HarmonicLoop
-from .controlled import linear_stable_of, resolve_wall
+from .controlled import WALL_FIX, linear_stable_of, resolve_wall
 from .phase import PieceOmega, phase_pieces
 from .search import envelope_bound, m_samples
 from .stability import cycles_at_crossing, make_cycle
@@ -144,22 +143,28 @@ AUTO_MAX_AMPLITUDE = 1.0e6
 DEFAULT_TIME_BUDGET = 10.0
 
 
+@loop_first("params, *, wall", wall_fix=WALL_FIX)
 def limit_cycles(
-    params: Params,
+    loop: Loop,
     *,
     model: str = "half-delay",
     pade_order: int = 4,
     max_amplitude: float | None = None,
     describing: str = "exact",
     time_budget: float = DEFAULT_TIME_BUDGET,
-    wall: WallParams | None = None,
 ) -> LimitCycleResult:
     """Every limit cycle (M, ω) of the harmonic balance 1 + D(M)L(jω; M) = 0 (eq. 36).
 
     Parameters
     ----------
-    params : Params
-        Dimensionless device (μ > 0, β >= 0, σ >= 0).
+    loop : Loop
+        The loop: its groups (μ > 0, β >= 0, σ >= 0) and its virtual wall's (:class:`dfa.WallParams`: delay d,
+        damper β_B, velocity filter ν_c, amplifier lag α), ``Loop.dimensionless(mu, beta, sigma, wall_params)``
+        or ``Loop(device, wall)``; D(M) then multiplies the wall's command C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω})
+        and its delay, and the amplifier lag 1/(jωα + 1) sits between hold and device
+        (:func:`dfa.analysis.loop.loop_response`). No wall groups: the paper's spring. A spring with a delay
+        (``is_spring``) runs the spring-only code with that delay. ``linear_stable`` is the exact linear loop with
+        the wall. The former call ``limit_cycles(params, ..., wall=wall_params)`` still works.
     model : {"half-delay", "pade", "zoh"}
         Model of the hold (:func:`dfa.analysis.loop.loop_response`); ``"zoh"`` is exact.
     pade_order : int
@@ -179,13 +184,6 @@ def limit_cycles(
         When it runs out the pieces of the phase curve not yet searched are
         skipped and the result is incomplete (status ``TIME_BUDGET``), with
         ``max_amplitude`` the amplitude below which no cycle was missed.
-    wall : WallParams, optional
-        The virtual wall's groups (:class:`dfa.WallParams`: delay d, damper β_B, velocity filter ν_c,
-        amplifier lag α); D(M) then multiplies the wall's command C(e^{jω}) = 1 + β_B(1 − e^{−jω})F(e^{jω})
-        and its delay, and the amplifier lag 1/(jωα + 1) sits between hold and device
-        (:func:`dfa.analysis.loop.loop_response`). Default None: the paper's spring. A spring with a delay
-        (``is_spring``) runs the spring-only code with that delay. ``linear_stable`` is the exact linear
-        loop with the wall.
 
     Returns
     -------
@@ -197,7 +195,7 @@ def limit_cycles(
     Raises
     ------
     DFAValueError, DFATypeError
-        If ``params`` is not :class:`Params`, the model or ``describing`` is unknown, the delay or
+        If ``loop`` is not a :class:`Loop` with groups, the model or ``describing`` is unknown, the delay or
         Padé order is not a valid whole number, or ``max_amplitude`` is not a finite number > 0.
 
     See Also
@@ -206,7 +204,7 @@ def limit_cycles(
     small_cycle_closed_form, large_cycle_closed_form : The paper's closed forms (eq. 42-45).
     nyquist_locus_response : The same balance drawn as a Nyquist plot.
     """
-    p = check_params(params)
+    p, wall = check_type("loop", loop, Loop, LOOP_FIX).groups("limit_cycles")
     w, ctl, d = resolve_wall(wall)
     m, d, n = check_model(model, d, pade_order)
     auto = max_amplitude is None

@@ -25,6 +25,16 @@ Published bounds for comparison:
   conditions and an optional delay (:mod:`dfa.analysis.linear`); it equals Gil's form for
   γ < 3.72 without delay.
 
+These bounds stay closed-form helpers of numbers (a :class:`~dfa.model.device.Device`, a speed, a stiffness K and
+a whole delay d), not analyses of a :class:`~dfa.model.loop.Loop`: they are formulas in K (solved for it, or
+vectorised over K and ẋ0) that the searches over K, the charts and the design answer evaluate at many K for one
+device, and the only wall element they cover is the delay, a plain integer. A Loop would hold one K (which these
+functions solve for or sweep) and elements they refuse (damper, filter, lag); a caller with a loop passes
+``loop.device`` and ``loop.wall_params.delay`` (``Loop(device, wall)``), as :func:`dfa.analysis.design.design_analysis`
+does. The analyses of a loop that search over K (:func:`~dfa.analysis.limits.kmax.design_answer`,
+:func:`~dfa.analysis.limits.speed_chart.stiffness_speed_chart`, :func:`~dfa.analysis.limits.zwidth.z_width`)
+take the Loop (``Loop(device)``: the spring at no given K) and call these with its device and delay.
+
 Examples
 --------
 >>> from dfa.model.catalogue import get_device
@@ -47,6 +57,7 @@ from numpy.typing import ArrayLike
 from ...checks import check_delay, check_positive, check_real_array, check_speed, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
+from ...model.loop import Loop
 from ...model.wall import Wall
 from ...plausibility import warn_if_from_outside
 from ...results.limits import StiffnessLimits as StiffnessLimits
@@ -365,7 +376,7 @@ def max_passive_velocity(device: Device, stiffness: float, delay: int = 0) -> fl
     k = check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
     # one implementation: the criterion's own critical speed (eq. 12), so that this speed and the
     # verdict of device_criterion agree to rounding even where K T(½ + d) − b cancels
-    r = device_criterion(dev, Wall.of(k, delay=check_delay(delay)), 0.0)
+    r = device_criterion(Loop(dev, Wall.of(k, delay=check_delay(delay))), 0.0)
     if r.region in ("b", "c"):
         return None
     if r.region == "a":

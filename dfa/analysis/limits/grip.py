@@ -33,6 +33,7 @@ from ...checks import check_bool, check_nonnegative, check_positive, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.hand import Hand
+from ...model.loop import Loop
 from ...model.wall import Wall
 from ...results.grip import GRIP_METHODS as GRIP_METHODS
 from ...results.grip import GripNeed as GripNeed
@@ -65,11 +66,10 @@ def _scan(dev: Device, wall: Wall, v: float, hand_mass: float) -> tuple[tuple[fl
     wp, xd = wall.params(dev.period, dev.resolution), dev.xi_dot(v)
     outcomes = []
     for b_h in dampings:
-        p = dev.holding(Hand(hand_mass, b_h)).params(wall.stiffness)
+        held = dev.holding(Hand(hand_mass, b_h))
+        p = held.params(wall.stiffness)
         x0, v0 = map_start(p.mu, xd, False, wp)
-        r = simulate(
-            p.mu, p.beta, p.sigma, v0, None, xi0=x0, record=False, bound=divergence_bound(x0, v0, p.mu), wall=wp
-        )
+        r = simulate(Loop(held, wall), v0, None, xi0=x0, record=False, bound=divergence_bound(x0, v0, p.mu))
         outcomes.append(r.outcome.value)
     return dampings, tuple(outcomes)
 

@@ -47,6 +47,7 @@ from ...checks import check_bool, check_choice, check_int, check_speed, check_ty
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.elements import Coverage
+from ...model.loop import LOOP_FIX, Loop, loop_first
 from ...model.wall import Wall
 from ...results.limits import (
     KMaxAssessment as KMaxAssessment,
@@ -58,7 +59,7 @@ from ...results.limits import (
     SearchEvidence as SearchEvidence,
 )
 from ...results.status import KMaxStatus, LimitStatus, StiffnessStatus, VelocityStatus
-from ..criterion import as_wall, device_criterion
+from ..criterion import device_criterion
 from .closed_form import k_abbott_okamura, k_colgate, k_gil, k_max_criterion, k_static, max_passive_velocity
 from .runs import Evidence, RunCache, start_points
 from .search import (
@@ -99,7 +100,7 @@ DF_MODELS = ("half-delay", "zoh", "pade")
 def criterion_passes(dev: Device, wall: Wall, k: float, v: float) -> bool:
     """The criterion's verdict at stiffness k; a K whose groups are not representable is not proven passive."""
     try:
-        return device_criterion(dev, wall.with_stiffness(k), v).passive
+        return device_criterion(Loop(dev, wall.with_stiffness(k)), v).passive
     except DFAValueError:  # (a one-sided wall's impact at v is monotone in K too: V'² = V² + ε²KT²/m)
         return False
 
@@ -307,7 +308,7 @@ def passive_speed(dev: Device, wall: Wall, k: float) -> tuple[float | None, Velo
     elif p.not_covered() is not None:
         return None, VelocityStatus.NOT_COVERED
     else:
-        r = device_criterion(dev, wall.with_stiffness(k), 0.0)
+        r = device_criterion(Loop(dev, wall.with_stiffness(k)), 0.0)
         mpv = None if r.sigma < r.sigma0 else (math.inf if r.critical_velocity is None else r.critical_velocity)
     if mpv is None:
         return None, VelocityStatus.NONE
@@ -334,11 +335,11 @@ def _assess(ev: Evidence, k: float, source: str, source_file: str | None, veloci
     return KMaxAssessment(k, source, mpv, vstatus, verdict, gs, unknown, g.unstable, outcomes, source_file)
 
 
+@loop_first("device, *, wall")
 def design_answer(
-    device: Device,
+    loop: Loop,
     velocity: float,
     *,
-    wall: Wall | float | None = None,
     assess: bool = False,
     source: str = "given",
     source_file: str | None = None,
@@ -352,14 +353,14 @@ def design_answer(
 
     Parameters
     ----------
-    device : Device
-        The physical device.
+    loop : Loop
+        The device and the wall whose elements (delay d in samples, damper B in N·s/m, filter, amplifier) are
+        held fixed while K varies, ``Loop(device, wall)`` (the wall may be a stiffness K in N/m, rotary N·m/rad,
+        for the spring alone); ``Loop(device)``: the spring at no given K. The former call
+        ``design_answer(device, velocity, wall=wall)`` still works.
     velocity : float
         Impact speed V in m/s (rotary: rad/s), >= 0 (a negative is refused, not flipped). At 0 only the
         closed forms are computed; the searched limits are ``not_searched``.
-    wall : Wall or float, optional
-        The wall whose elements (delay d in samples, damper B in N·s/m, filter, amplifier) are held fixed
-        while K varies; a stiffness K in N/m (rotary N·m/rad) for the spring alone; default the spring.
     assess : bool, optional
         Also assess the wall's own stiffness K (default False).
     source : str, optional
@@ -396,9 +397,9 @@ def design_answer(
     stiffness_speed_chart : The same limits over a range of speeds.
     design_analysis : Everything the design report states.
     """
-    dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
+    dev = check_type("loop", loop, Loop, LOOP_FIX).search_device("design_answer")
     v = check_speed("velocity", velocity, dev.units["velocity"])
-    w = Wall(1.0) if wall is None else as_wall(wall)
+    wall, w = loop.wall, loop.spring
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     n_grid = check_int("grid", grid, minimum=2, fix="give at least 2 stiffness grid points")
     cap = check_int("max_samples", max_samples, minimum=1000, fix="allow runs of at least 1000 samples")

@@ -12,9 +12,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from ...checks import check_type
 from ...errors import DFAValueError
-from ...model.device import Device
-from ...model.wall import Wall
+from ...model.loop import LOOP_FIX, Loop, loop_first
 from ...results.limits import PassivityGain as PassivityGain
 from ...results.limits import _ratio as _ratio
 from ...results.status import GainStatus, KMaxStatus
@@ -56,17 +56,17 @@ def gain_of(with_controller: KMaxResult, plain: KMaxResult) -> PassivityGain:
     return PassivityGain(a.device, a.wall, a.velocity, a.k_sim, a.k_sim_rest, b.k_sim, b.k_sim_rest, status)
 
 
-def passivity_gain(device: Device, velocity: float, wall: Wall, **kwargs: Any) -> PassivityGain:
+@loop_first("device, velocity, wall")
+def passivity_gain(loop: Loop, velocity: float, **kwargs: Any) -> PassivityGain:
     """K_max by simulation with and without the wall's passivity controller (module docstring).
 
     Parameters
     ----------
-    device : Device
-        The device.
+    loop : Loop
+        The device and a wall with a :class:`~dfa.model.elements.PassivityController` (its K is what is
+        searched), ``Loop(device, wall)``. The former call ``passivity_gain(device, velocity, wall)`` still works.
     velocity : float
         The impact speed V in m/s (rotary rad/s), > 0.
-    wall : Wall
-        A wall with a :class:`~dfa.model.elements.PassivityController` (its K is what is searched).
     **kwargs
         Passed on to both :func:`~dfa.analysis.limits.kmax.design_answer` calls (``speeds``, ``grid``, …).
 
@@ -85,13 +85,15 @@ def passivity_gain(device: Device, velocity: float, wall: Wall, **kwargs: Any) -
     design_answer : K_max four ways, for one wall.
     dfa.PassivityController : The controller.
     """
-    if not isinstance(wall, Wall) or wall.passivity_controller is None:
+    device = check_type("loop", loop, Loop, LOOP_FIX).search_device("passivity_gain")
+    wall = loop.wall
+    if wall is None or wall.passivity_controller is None:
         raise DFAValueError(
             f"wall = {wall!r} is invalid: it must be a dfa.Wall with a passivity controller; add "
             "dfa.PassivityController() to its elements"
         )
     if not (isinstance(velocity, (int, float)) and math.isfinite(velocity) and velocity > 0):
         raise DFAValueError(f"velocity = {velocity!r} is invalid: it must be > 0 m/s; give the impact speed")
-    with_controller = design_answer(device, velocity, wall=wall, **kwargs)
-    plain = design_answer(device, velocity, wall=wall.without_controller(), **kwargs)
+    with_controller = design_answer(loop, velocity, **kwargs)
+    plain = design_answer(Loop(device, wall.without_controller()), velocity, **kwargs)
     return gain_of(with_controller, plain)

@@ -278,11 +278,12 @@ def growth_at(params: Params, wall: WallParams, model: str) -> Growth:
     ``max_amplitude``) bounds the growth speed from below by the smallest speed amplitude a cycle beyond that
     reach can have, M_reach·ω_min over the searched frequencies; the growth speed is otherwise unknown (None).
     """
+    from ...model.loop import Loop
     from ...results.status import SearchStatus
     from ..cycles import limit_cycles
     from ..cycles.characteristic import W_GRID
 
-    res = limit_cycles(params, model=model, wall=wall)
+    res = limit_cycles(Loop.dimensionless(params.mu, params.beta, params.sigma, wall), model=model)
     unstable = res.unstable_cycles
     if unstable:
         return Growth(min(c.amplitude * c.frequency for c in unstable), len(unstable), res.caveat is not None)

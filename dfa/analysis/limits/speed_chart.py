@@ -21,7 +21,7 @@ design point (K, V) is marked. Draw with :meth:`StiffnessSpeedChart.plot`.
 Examples
 --------
 >>> from dfa.model.catalogue import get_device
->>> c = stiffness_speed_chart(get_device("Impulse Engine").device, grid=6, speeds=4)
+>>> c = stiffness_speed_chart(Loop(get_device("Impulse Engine").device), grid=6, speeds=4)
 >>> c.v_sim.shape, bool(c.v_top == 2.0)
 ((6,), True)
 """
@@ -37,6 +37,7 @@ import numpy as np
 from ...checks import check_int, check_positive, check_speed, check_type
 from ...errors import DFAValueError
 from ...model.device import Device
+from ...model.loop import LOOP_FIX, Loop, loop_first
 from ...model.wall import Wall
 from ...plausibility import warn_if_from_outside
 from ...results.limits import UNKNOWN_DF as UNKNOWN_DF
@@ -104,10 +105,10 @@ _MAX_COUNT = 1000
 _SMALLEST_SPEED = sys.float_info.min
 
 
+@loop_first("device, *, wall")
 def stiffness_speed_chart(
-    device: Device,
+    loop: Loop,
     *,
-    wall: Wall | None = None,
     stiffness: float | None = None,
     velocity: float | None = None,
     v_top: float | None = None,
@@ -120,11 +121,10 @@ def stiffness_speed_chart(
 
     Parameters
     ----------
-    device : Device
-        The physical device.
-    wall : Wall, optional
-        The wall whose elements (delay d in samples, damper B in N·s/m, filter, amplifier) are held fixed while
-        K varies; default the spring.
+    loop : Loop
+        The device and the wall whose elements (delay d in samples, damper B in N·s/m, filter, amplifier) are
+        held fixed while K varies, ``Loop(device, wall)``; ``Loop(device)``: the spring. The former call
+        ``stiffness_speed_chart(device, wall=wall)`` still works.
     stiffness, velocity : float, optional
         The design point (N/m; m/s), marked on the chart.
     v_top : float, optional
@@ -148,7 +148,7 @@ def stiffness_speed_chart(
     Raises
     ------
     DFAValueError, DFATypeError
-        If ``device`` is not a :class:`Device`, a speed or stiffness is not a finite number > 0, or
+        If ``loop`` is not a :class:`Loop` of a device, a speed or stiffness is not a finite number > 0, or
         another input is out of range.
 
     See Also
@@ -156,8 +156,8 @@ def stiffness_speed_chart(
     design_answer : The largest stiffness at one speed, four ways.
     stiffness_response : The criterion's K_max over speeds (no simulation).
     """
-    dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
-    w = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
+    dev = check_type("loop", loop, Loop, LOOP_FIX).search_device("stiffness_speed_chart")
+    w = loop.spring
     k_design = None if stiffness is None else check_positive("stiffness", stiffness, "give K in N/m")
     v_design = None if velocity is None else check_speed("velocity", velocity)
     for quantity, value in (("stiffness", k_design), ("velocity", v_design)):

@@ -48,7 +48,7 @@ counterexamples.
 Examples
 --------
 >>> from dfa.model.catalogue import get_device
->>> z = z_width(get_device("Impulse Engine").device, 0.1, grid=4, speeds=1, n_jobs=1)
+>>> z = z_width(Loop(get_device("Impulse Engine").device), 0.1, grid=4, speeds=1, n_jobs=1)
 >>> z.status in ("ok", "caveats"), z.counterexamples, z.stiffness.shape
 (True, (), (4,))
 >>> bool(z.boundary("linear")[0] > 0)      # the exact linear bound at B = 0: the spring's k_gil
@@ -78,6 +78,7 @@ from ...core import kernel
 from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.elements import Coverage
+from ...model.loop import LOOP_FIX, Loop, loop_first
 from ...model.wall import Wall, WallParams
 from ...plausibility import warn_if_from_outside
 from ...results.codes import BOUNDED, DIVERGES, LEFT_POINT, POINT_OUTCOMES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
@@ -378,11 +379,11 @@ def _plan(dev: Device, wall: Wall, ks: Any, bs: Any, xi_dots: Any, cap: int) -> 
     return tasks, work
 
 
+@loop_first("device, *, wall")
 def z_width(
-    device: Device,
+    loop: Loop,
     velocity: float,
     *,
-    wall: Wall | None = None,
     grid: int = 40,
     k_range: tuple[float, float] | None = None,
     b_range: tuple[float, float] | None = None,
@@ -392,17 +393,16 @@ def z_width(
     n_jobs: int = -1,
     progress: bool = False,
 ) -> ZWidth:
-    """The Z-width of ``device`` at impact speed ``velocity``: K_max(B) four ways and the simulated grid.
+    """The Z-width of the loop's device at impact speed ``velocity``: K_max(B) four ways and the simulated grid.
 
     Parameters
     ----------
-    device : Device
-        The physical device.
+    loop : Loop
+        The device and the wall whose computational delay (samples), velocity filter (Hz) and amplifier (Hz)
+        are held fixed, ``Loop(device, wall)``; its stiffness and damper are the grid's. ``Loop(device)``: the
+        spring, no delay. The former call ``z_width(device, velocity, wall=wall)`` still works.
     velocity : float
         Impact speed V, m/s (rotary: rad/s), > 0 (a negative is refused, not flipped).
-    wall : Wall, optional
-        The wall whose computational delay (samples), velocity filter (Hz) and amplifier (Hz) are held fixed;
-        its stiffness and damper are the grid's (default: the spring, no delay).
     grid : int, optional
         Points per axis (default 40, at most 200).
     k_range : (float, float), optional
@@ -441,10 +441,10 @@ def z_width(
     dfa.analysis.criterion.device_criterion : The criterion with the wall.
     dfa.analysis.limits.kmax.design_answer : The four K_max at one B.
     """
-    dev = check_type("device", device, Device, "build one with dfa.Device(...) or dfa.get_device(name).device")
+    dev = check_type("loop", loop, Loop, LOOP_FIX).search_device("z_width")
     v = check_speed("velocity", velocity, dev.units["velocity"], zero=False)
     warn_if_from_outside("velocity", v, rotary=dev.rotary)
-    base = Wall(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall or None")
+    base = loop.spring
     g = check_int("grid", grid, minimum=2, fix="give at least 2 points per axis")
     n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one impact speed")
     check_zwidth_size(g, n_speeds)
@@ -453,7 +453,6 @@ def z_width(
     jobs = check_jobs("n_jobs", n_jobs)
     progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
     workers = _workers(jobs)
-    base.params(dev.period, dev.resolution)  # bad wall values (a cutoff above Nyquist): refuse first
     ks, bs = _grids(dev, base, g, k_range, b_range, v)
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
     xi_dots = [dev.xi_dot(float(s)) for s in vs]
@@ -496,11 +495,11 @@ def _workers(jobs: int) -> int:
     return (os.cpu_count() or 1) if jobs == -1 else jobs
 
 
+@loop_first("device, *, wall")
 def z_width_seconds(
-    device: Device,
+    loop: Loop,
     velocity: float,
     *,
-    wall: Wall | None = None,
     grid: int = 40,
     speeds: int = 2,
     max_samples: int = ZWIDTH_MAX_SAMPLES,
@@ -516,8 +515,9 @@ def z_width_seconds(
 
     Parameters
     ----------
-    device, velocity, wall, grid, speeds, max_samples, n_jobs, b_range
-        As :func:`z_width` (the inputs are not validated here: :func:`z_width` does that).
+    loop, velocity, grid, speeds, max_samples, n_jobs, b_range
+        As :func:`z_width` (the inputs are not validated here: :func:`z_width` does that); the former call
+        ``z_width_seconds(device, velocity, wall=wall)`` still works.
 
     Returns
     -------
@@ -528,10 +528,10 @@ def z_width_seconds(
     --------
     >>> from dfa import get_device
     >>> dev = get_device("Impulse Engine").device
-    >>> z_width_seconds(dev, 0.1, grid=200) > 60.0 > z_width_seconds(dev, 0.1, grid=12)
+    >>> z_width_seconds(Loop(dev), 0.1, grid=200) > 60.0 > z_width_seconds(Loop(dev), 0.1, grid=12)
     True
     """
-    base = Wall(1.0) if wall is None else wall
+    device, base = loop.search_device("z_width_seconds"), loop.spring
     small = min(int(grid), ESTIMATE_GRID)
     ks, bs = _grids(device, base, small, None, b_range, velocity)
     vs = velocity * np.arange(1, speeds + 1) / speeds
