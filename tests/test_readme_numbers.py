@@ -92,19 +92,21 @@ def test_describing_function_numbers_in_readme_match_the_committed_run():
 
 
 def _public(name: str):
-    """A name of `dfa`, else of the `dfa.analysis` module that defines it (the README names both)."""
+    """A name of `dfa`, else of the `dfa.analysis` or `dfa.studies` module that defines it (the README names both)."""
     import importlib
     import pkgutil
 
     import dfa
     import dfa.analysis
+    import dfa.studies
 
     if hasattr(dfa, name):
         return getattr(dfa, name)
-    for mod in pkgutil.walk_packages(dfa.analysis.__path__, "dfa.analysis."):
-        module = importlib.import_module(mod.name)
-        if name in getattr(module, "__all__", ()):
-            return getattr(module, name)
+    for package in (dfa.analysis, dfa.studies):
+        for mod in pkgutil.walk_packages(package.__path__, package.__name__ + "."):
+            module = importlib.import_module(mod.name)
+            if name in getattr(module, "__all__", ()):
+                return getattr(module, name)
     raise AssertionError(f"the README names {name}, which no public module defines")
 
 

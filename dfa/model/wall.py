@@ -85,12 +85,15 @@ def _ordered(elements: object) -> tuple[Element[object], ...]:
     """The elements as a tuple in the order of :data:`~dfa.model.elements.ELEMENTS` (others after, as given)."""
     if isinstance(elements, Element):
         elements = (elements,)
-    if not isinstance(elements, Iterable):
+    try:  # a 0-d array is Iterable by its type yet refuses iteration
+        items = tuple(elements) if isinstance(elements, Iterable) else None
+    except TypeError:
+        items = None
+    if items is None:
         raise DFATypeError(
             f"elements = {format_value(elements)} is invalid: it must be a sequence of wall elements; "
             "give e.g. (dfa.Damper(1.0), dfa.Delay(1))"
         )
-    items = tuple(elements)
     for e in items:
         if not isinstance(e, Element):
             raise DFATypeError(
