@@ -77,6 +77,7 @@ __all__ = [
     "OneSided",
     "Push",
     "PassivityController",
+    "ForceLimit",
     "largest_speed",
     "ELEMENTS",
     "MIN_CUTOFF",
@@ -553,6 +554,27 @@ class Element(abc.ABC, Generic[G]):
             When no sound criterion covers the element (the message says why).
         """
         return 0.0, 0.0
+
+    @classmethod
+    def criterion_beside(cls, g: G, others: tuple[type[Element[object]], ...]) -> str | None:  # type: ignore[misc]  # G is covariant (module note at G)
+        """Say why the passivity criterion does not cover the element beside the wall's other elements.
+
+        :meth:`corner` judges the element alone; an element whose proof holds only with some others (the force
+        limit: the spring alone) says here why not with ``others``.
+
+        Parameters
+        ----------
+        g : float or int
+            The element's dimensionless group.
+        others : tuple of element classes
+            The wall's other elements that render something.
+
+        Returns
+        -------
+        str or None
+            The reason; None (the default) when the element's corner holds beside any others.
+        """
+        return None
 
     @classmethod
     def velocity_gain(cls, g: G) -> float:  # type: ignore[misc]  # G is covariant (module note at G)
@@ -1784,11 +1806,142 @@ class PassivityController(Element[tuple[int, float | None]]):
         return {"element": type(self).key(), "window": self.window, "force_limit": self.force_limit, "unit": "s, N"}
 
 
+_FL_NOT_LINEAR = (
+    "an actuator's force limit is not linear (the command is clipped at ±F_max): the exact linear bound does not "
+    "cover it and no describing function of the clip is implemented; the exact simulation does"
+)
+
+
+@dataclass(frozen=True)
+class ForceLimit(Element[float]):
+    """The actuator's force limit: the wall's command clipped to ±F_max (N; rotary N·m) before the amplifier.
+
+    The real device saturates: whatever the spring, damper, filter, one-sided shaping and passivity controller
+    command, the force it applies is c clipped to [−φ_max, φ_max], group φ_max = F_max/(K Δ) (so it needs the
+    encoder resolution). The clip is the last element: the command is clipped before it enters the delay line
+    and the amplifier (:func:`dfa.core.wall_kernel._clip`); a limit the command never reaches leaves a run bit
+    for bit unchanged. A run that reaches the limit in its tail without coming to rest ends ``saturated``: a
+    large motion held by the actuator, no stable wall. It is the device's ``max_force``
+    (:data:`dfa.model.device.DEVICE_FIELDS`; ``--max-force``): a catalogue device that gives one applies it.
+
+    The criterion covers the paper's spring with a force limit, unchanged (eq. 6). Its proof (paper §3) bounds
+    the energy the held staircase generates in a sample, D_G(ξ1, ξh) = ∫_{ξh}^{ξ1} (g(s) − g(ξh)) ds with
+    g(s) = ⌊s⌋ + ½, by the ZOH and quantization terms (24) + (26), which the viscous and Coulomb dissipation
+    (32), (30) exceed when (35) holds at the sample's speed. With the clip the wall commands −f(ξh),
+    f = sat(g) = max(−φ_max, min(φ_max, g)). The clip is monotone and 1-Lipschitz, and g is non-decreasing, so
+    for s between ξh and ξ1, f(s) − f(ξh) has the sign of g(s) − g(ξh) and at most its size: the integrand of
+    D_F(ξ1, ξh) = ∫_{ξh}^{ξ1} (f(s) − f(ξh)) ds lies between 0 and that of D_G, for ξ1 above or below ξh, so
+    0 <= D_F <= D_G for any two positions (D depends on the sample's end points only, whatever the path), and
+    the summed bound (33) holds for D_F. The dissipation terms are the device's on its own path. The storage
+    H_F = ½μξ'² + ∫₀^ξ f is >= ½μξ'² and radially unbounded (∫₀^ξ f grows as φ_max |ξ|), with H_F <= H_T of
+    the spring (19) at the same state: H_F never increases, so the speed stays below the criterion's speed and
+    the position bounded. With other elements (damper, filter, delay, amplifier lag, hand spring, one-sided
+    wall, push, passivity controller) the clip acts on their sum, and the decomposition of the extended
+    criterion into the spring's part and theirs no longer holds: not covered (:meth:`criterion_beside`).
+    The exact linear bound and the describing function do not cover it (a clip is not linear; no describing
+    function of it is implemented), nor Colgate–Schenkel's linear condition, nor the spring's closed forms and
+    kernel (:data:`Coverage`); the exact simulation does.
+
+    Attributes
+    ----------
+    max_force : float
+        The actuator's largest force F_max > 0 in N (rotary: N·m).
+
+    Examples
+    --------
+    >>> ForceLimit(3.0).group(1e-3, 1000.0, resolution=1e-5)     # φ_max = F_max/(K Δ)
+    300.0
+    >>> ForceLimit.coverage(300.0).covers(Coverage.CRITERION), ForceLimit.coverage(300.0).covers(Coverage.LINEAR)
+    (True, False)
+    """
+
+    max_force: float
+    kernel_code: ClassVar[int] = kt.FORCE_LIMIT
+    parameter: ClassVar[Parameter] = Parameter(
+        "max_force", ("N", "N·m"), "--max-force", "N",
+        "the actuator's force limit F_max in N (rotary: N·m): the wall's command is clipped to ±F_max (default: "
+        "the catalogue device's, else unlimited)",
+        "force_limit", "φ_max = F_max/(K Δ)",
+    )  # fmt: skip
+    colgate_schenkel: ClassVar[str | None] = (
+        "the Colgate–Schenkel condition is a linear one; the force limit clips the command (the criterion covers "
+        "the spring with a limit)"
+    )
+    linear_reason: ClassVar[str | None] = _FL_NOT_LINEAR
+    #: Its flag is the device's ``--max-force`` (a row of the device's field table, :mod:`dfa.cli.inputs`).
+    wall_flag: ClassVar[bool] = False
+    absent: ClassVar[object] = None
+    needs_resolution: ClassVar[bool] = True
+
+    def __post_init__(self) -> None:
+        fix = "give the actuator's force limit F_max in N (rotary: N·m), or no limit"
+        object.__setattr__(self, "max_force", check_positive("max_force", self.max_force, fix))
+
+    def group(self, period: float, stiffness: float, resolution: float | None = None) -> float:
+        """Give the limit's group φ_max = F_max/(K Δ), validated.
+
+        Parameters
+        ----------
+        period : float
+            Sample period T in s (unused).
+        stiffness : float
+            Virtual spring K in N/m (rotary: N·m/rad).
+        resolution : float
+            Encoder resolution Δ in m (rotary: rad); required.
+
+        Returns
+        -------
+        float
+            The limit φ_max, in units of the force step K Δ.
+
+        Raises
+        ------
+        DFAValueError
+            Without a resolution.
+        """
+        if resolution is None:
+            raise DFAValueError(
+                "max_force needs the encoder resolution Δ for its group F_max/(K Δ): call "
+                "Wall.params(period, resolution=Δ)"
+            )
+        step = stiffness * resolution
+        inputs = (("K", stiffness, _K_UNITS), ("Δ", resolution, _D_UNITS))
+        return self.check_group(self._finite(self.max_force / step, inputs, step))
+
+    @classmethod
+    def check_group(cls, value: object) -> float:
+        return check_positive("force_limit", value, "φ_max = F_max/(K Δ) must be > 0 (no limit: leave it out)")
+
+    @classmethod
+    def corner(cls, g: float, *, quantized: bool, velocity_gain: float = 1.0) -> tuple[float, float]:
+        return 0.0, 0.0  # the spring's corner, alone (criterion_beside; the class docstring's proof)
+
+    @classmethod
+    def criterion_beside(cls, g: float, others: tuple[ElementClass, ...]) -> str | None:
+        if not others:
+            return None
+        names = ", ".join(k.key().replace("_", " ") for k in others)
+        return (
+            f"no passivity criterion is derived for an actuator's force limit with {names}: the clip acts on the "
+            "sum of their forces and the spring's, and the extended criterion's decomposition no longer holds "
+            "(the spring alone with a limit is covered); the exact simulation covers it"
+        )
+
+    @classmethod
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        return KernelBlock(cls.kernel_code, (float(g),), 0)
+
+    @classmethod
+    def flag_rows(cls) -> tuple[FlagRow, ...]:
+        par = cls.parameter
+        return (FlagRow(par.flag, "max_force", par.metavar, par.help, "N"),)
+
+
 #: An element class of any group type, as a wall holds it beside its group (:class:`dfa.model.wall.WallParams`).
 ElementClass = type[Element[object]]
 
 #: The registered elements, in the order a wall applies them (delay, damper, filter, amplifier, hand spring,
-#: one-sided contact, push, passivity controller).
+#: one-sided contact, push, passivity controller, the actuator's force limit last).
 ELEMENTS: tuple[ElementClass, ...] = (
-    Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push, PassivityController
+    Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push, PassivityController, ForceLimit
 )  # fmt: skip

@@ -60,6 +60,7 @@ from .elements import (
     Delay,
     Element,
     ElementClass,
+    ForceLimit,
     GroupRangeError,
     HandSpring,
     NotCovered,
@@ -341,6 +342,9 @@ class WallParams:
                 k.corner(g, quantized=True)
             except NotCovered as why:
                 return k, g, str(why)
+            beside = k.criterion_beside(g, tuple(o for o, _ in self.groups if o is not k))
+            if beside is not None:
+                return k, g, beside
         if not self.one_sided:
             push = self.group(Push)
             if push:
@@ -970,6 +974,9 @@ class Wall:
         if pc is not None:  # only with a passivity controller: its window (s) and force limit (N)
             out["passivity_controller_window"] = pc.window
             out["passivity_controller_force_limit"] = pc.force_limit
+        limit = self.element(ForceLimit)
+        if limit is not None:  # only with an actuator's force limit (N)
+            out["max_force"] = limit.max_force
         why = {
             "filter_cutoff": "no velocity filter",
             "amplifier_bandwidth": "ideal amplifier (no lag)",
