@@ -90,9 +90,13 @@ UNSTABLE = 2  # |ξ| beyond the bound, or a growing envelope
 CHATTER = 3  # never rested; persistent, settled cycle below stable_amplitude
 UNDECIDED = 4  # the envelope is still changing at the end of the run: run longer
 LEFT = 5  # a one-sided wall left for good: outside, moving away, nothing can bring the device back
+SATURATED = 6  # bounded, never rested, the actuator's force limit reached in the tail (dfa.model.elements.ForceLimit)
 
 NSEG = 8  # segments of the run used to judge a growing or changing envelope
-NSTATS = NSEG + 10  # length of the stats array of simulate_kernel
+#: stats[SATURATION]: the wall kernel's force-limit flag (0 never reached, 1 reached before the tail only, 2 reached
+#: in the tail; always 0 for the spring's kernel, which has no force limit)
+SATURATION = NSEG + 10
+NSTATS = NSEG + 11  # length of the stats array of simulate_kernel
 
 
 _spring = njit(cache=True, inline="always")(spring_energy_core)  # H_c (eq. 18): criterion's one formula
@@ -609,6 +613,9 @@ def classify(
     * a one-sided wall's run (flag −1) is unstable only past the bound: a growing envelope is undecided, as
       its bounces carry the device away from the wall and back while its storage stays bounded (a run too
       short to see it return or stop is no divergence);
+    * saturated: within the bound, the actuator's force limit was reached in the tail (flag 2 in
+      ``stats[SATURATION]``; :class:`dfa.model.elements.ForceLimit`): a large motion held by the actuator, whatever
+      the envelope (a limit touched only before the tail leaves the outcome to the rules below);
     * unstable: |ξ| exceeded the bound, or the envelope grows: P_7 exceeds
       ``growth`` times P_4 and 1 tick, and P_4 <= P_5 <= P_6 <= P_7, in a run
       of at least 8 periods 2π√μ (shorter runs are never called unstable by
@@ -648,6 +655,8 @@ def classify(
     # without quantization the loop is linear and has no tick scale: growth needs no 1-tick floor.
     # The envelope rules need every eighth of the run to hold a full period 2π√μ of the spring:
     # within the first quarter-period |ξ| rises from the impact whatever the loop does.
+    if stats.shape[0] > SATURATION and stats[SATURATION] >= 2.0:
+        return SATURATED, amp, freq, centre, fpp
     long_enough = n >= NSEG * 2.0 * math.pi * math.sqrt(mu)
     grow = long_enough and stats[NSEG - 1] > growth * stats[NSEG // 2] and (stats[NSEG - 1] > 1.0 or not quantize)
     decay = (

@@ -5,7 +5,8 @@ Dimensionless loop (:mod:`dfa.model.wall`; time in samples, ξ = x/Δ,
 without quantization), forms v_h = r_h − r_{h−1} (r_{−1} = r_0), filters it,
 y_h = a y_{h−1} + (1 − a) v_{h−1} (y_0 = 0; y_h = v_h without filter), and
 commands c_h = −(r_h + ½) − β_B y_h (−r_h − β_B y_h without quantization),
-applied d samples later (c_{h} = c_0 for h < 0). The amplifier output obeys
+clipped to ±φ_max by an actuator's force limit (:func:`_clip`, after every
+other element), applied d samples later (c_{h} = c_0 for h < 0). The amplifier output obeys
 α φ_A' = c_{h−d} − φ_A on [h, h + 1), φ_A(0) = c_0, and the device
 μ ξ'' + β ξ' + σ sgn ξ' = φ_A.
 
@@ -117,6 +118,7 @@ from .exprel import phi1, phi2, rho
 from .jit import njit
 from .kernel import (
     NSEG,
+    SATURATION,
     Device,
     Devices,
     FloatArray,
@@ -132,7 +134,7 @@ from .kernel import (
     tail_stats,
 )
 from .oscillator import hand_sample
-from .table import DAMPER, DELAY, FILTER, HAND, HEAD, LAG, ONE_SIDED, PASSIVITY, PUSH
+from .table import DAMPER, DELAY, FILTER, FORCE_LIMIT, HAND, HEAD, LAG, ONE_SIDED, PASSIVITY, PUSH
 
 __all__ = [
     "decode_table",
@@ -152,9 +154,9 @@ _ULP4 = 4.0 * 2.220446049250313e-16  # four units in the last place, relative
 MAX_PHASES = 16  # per sample; the derivation allows at most 5 (stuck, breakaway, stop, restart, stop)
 
 Model: TypeAlias = tuple[float, float, float, int, bool]  # (μ, β, σ, d, quantize) of _sample
-# (β_B, a, filtered, α, κ_h, one-sided, surface s, push p, passivity controller on, its window W, its force limit):
-# ctl of _sample and _advance
-Controller: TypeAlias = tuple[float, float, bool, float, float, bool, float, float, bool, int, float]
+# (β_B, a, filtered, α, κ_h, one-sided, surface s, push p, passivity controller on, its window W, its force limit,
+# the actuator's force limit φ_max): ctl of _sample and _advance
+Controller: TypeAlias = tuple[float, float, bool, float, float, bool, float, float, bool, int, float, float]
 
 
 @njit(cache=True, nogil=True)
@@ -167,7 +169,7 @@ def decode_table(table: FloatArray) -> tuple[int, Controller]:
     """
     delay = 0
     damping, pole, filtered, lag, spring = 0.0, 0.0, False, 0.0, 0.0
-    onesided, surface, push, pc, window, limit = False, 0.0, 0.0, False, 0, math.inf
+    onesided, surface, push, pc, window, limit, top = False, 0.0, 0.0, False, 0, math.inf, math.inf
     j = 1
     for _ in range(int(table[0])):
         code, p = int(table[j]), j + HEAD
@@ -187,10 +189,12 @@ def decode_table(table: FloatArray) -> tuple[int, Controller]:
             push = table[p]
         elif code == PASSIVITY:
             pc, window, limit = True, int(table[p]), table[p + 1]
+        elif code == FORCE_LIMIT:
+            top = table[p]
         else:
             raise ValueError("dfa.core.wall_kernel.decode_table: unknown element code (see check_table)")
         j = p + int(table[j + 1])
-    return delay, (damping, pole, filtered, lag, spring, onesided, surface, push, pc, window, limit)
+    return delay, (damping, pole, filtered, lag, spring, onesided, surface, push, pc, window, limit, top)
 
 
 @njit(cache=True, inline="always")
@@ -384,10 +388,11 @@ def _shape(c: float, inside: bool, onesided: bool) -> float:
 
 # state of a controller run between samples (module docstring, "Period skipping"): ξ, ξ', r_{h−1}, v_{h−1},
 # y_{h−1}, φ_A, ring position; then bookkeeping: tail min and max, the period found (0: none yet)
-CX, CV, CRP, CVP, CY, CFA, CPOS, CTMIN, CTMAX, CPER, CEXT, CAPP = range(12)
+CX, CV, CRP, CVP, CY, CFA, CPOS, CTMIN, CTMAX, CPER, CEXT, CAPP, CSAT = range(13)
 #: CEXT: the operator's force now (the approach's, σ + βV, until a one-sided wall first reads contact); CAPP: 1
-#: during that approach, else 0 (a flag of its own: the approach's force may equal the push)
-NCSTATE = 12
+#: during that approach, else 0 (a flag of its own: the approach's force may equal the push); CSAT: whether a
+#: command reached the actuator's force limit (0 no, 1 before the tail, 2 in the tail: stats[SATURATION])
+NCSTATE = 13
 _REF = 6  # the reference state: ξ, ξ', r, v, y, φ_A at ref[0:6], then the d pending commands, oldest first
 
 
@@ -532,6 +537,18 @@ def _control(pcs: FloatArray, e: float, vh: float, delay: int, pos: int, limit: 
 
 
 @njit(cache=True, inline="always")
+def _clip(c: float, top: float) -> float:
+    """The actuator's force limit (:class:`dfa.model.elements.ForceLimit`): the command ``c`` clipped to ±``top``
+    (φ_max = F_max/(KΔ); inf: none), after every other element. A command within the limit is returned as it is,
+    bit for bit (no arithmetic: a limit never reached leaves the run unchanged)."""
+    if c > top:
+        return top
+    if c < -top:
+        return -top
+    return c
+
+
+@njit(cache=True, inline="always")
 def _command(
     x: float,
     r_prev: float,
@@ -554,7 +571,9 @@ def _command(
     With a state ``pcs`` (non-empty: :func:`observer_size`) the passivity observer adds the sample just ended
     (:func:`_observe`) and, with the controller on (``ctl[8]``), its force (:func:`_control`) joins the command
     (through a one-sided wall's clip: the force it adds is what the clip lets through), its booked dissipation
-    −f v_h beside the command's slot and f in ``pcs[PF]``.
+    −f v_h beside the command's slot and f in ``pcs[PF]``. Last, the actuator's force limit clips the command to
+    ±φ_max (``ctl[11]``; :func:`_clip`) before it enters the delay ring: what the controller booked is its force
+    before that clip.
     """
     damping, pole, filtered, onesided = ctl[0], ctl[1], ctl[2], ctl[5]
     r = math.floor(x) if quantize else x
@@ -574,6 +593,7 @@ def _command(
             f, c = cf - c, cf
         pcs[PF] = f
         pcs[PBK + pos] = -f * vh
+    c = _clip(c, ctl[11])
     ring[pos] = c
     pos = pos + 1 if pos < delay else 0
     return r, vh, y, base, pos, ring[pos], inside
@@ -617,6 +637,7 @@ def _sample(
     if v == 0.0:
         ynext = pole * y + (1.0 - pole) * vh if filtered else 0.0
         cbase, cnext = _shape(base, inside, onesided), _shape(base - damping * ynext, inside, onesided)
+        cbase, cnext = _clip(cbase, ctl[11]), _clip(cnext, ctl[11])  # monotone: the hull's ends, clipped
         if not appr and _absorbing(v, fa, sigma, ring, cbase, cnext, kap * x - push):
             return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 1, ext, appr
     elif not appr and _gone(v, fa, ring, inside, ctl):
@@ -672,7 +693,7 @@ def _advance(
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
     x, v, r_prev, v_prev, y, fa = st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA]
     pos, tmin, tmax, period, ext = int(st[CPOS]), st[CTMIN], st[CTMAX], int(st[CPER]), st[CEXT]
-    appr = st[CAPP] > 0.0
+    appr, sat, top = st[CAPP] > 0.0, st[CSAT], ctl[11]
     record = rec_x.shape[0] > 0
     skip = skip and not record and not ctl[8]
     in_tail = h0 >= tail_start
@@ -683,9 +704,12 @@ def _advance(
     if skip:
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
     while h < h1:
+        written = pos  # the ring slot that receives c_h
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
             x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr, pcs
         )
+        if abs(ring[written]) >= top:  # c_h at the actuator's force limit (never with no limit: top = inf)
+            sat = max(sat, 2.0 if in_tail else 1.0)
         if absorbed:
             why = absorbed  # 1 at rest, 3 left the one-sided wall for good
             break
@@ -716,6 +740,7 @@ def _advance(
             _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x, v, r_prev, v_prev, y, fa
     st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CEXT], st[CAPP] = pos, tmin, tmax, period, ext, 1.0 if appr else 0.0
+    st[CSAT] = sat
     return h, why, peak, skipped
 
 
@@ -733,11 +758,11 @@ def _start(
     r0 = math.floor(x0) if quantize else x0
     base, inside = _base(r0, quantize, ctl)
     onesided = ctl[5]
-    base0 = _shape(base, inside, onesided)
+    base0 = _clip(_shape(base, inside, onesided), ctl[11])
     for i in range(ring.shape[0]):
         ring[i] = base0
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x0, v0, r0, 0.0, 0.0, base0
-    st[CPOS], st[CTMIN], st[CTMAX], st[CPER] = 0.0, np.inf, -np.inf, 0.0
+    st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CSAT] = 0.0, np.inf, -np.inf, 0.0, 0.0
     approach = onesided and not inside and v0 > 0.0
     st[CEXT], st[CAPP] = (friction, 1.0) if approach else (ctl[7], 0.0)
 
@@ -761,7 +786,7 @@ def applied_forces(
     """
     delay, c = decode_table(table)
     lag = c[3]
-    ctl = (c[0], c[1], c[2], lag, 0.0, c[5], c[6], 0.0, c[8], c[9], c[10])  # no hand, no push
+    ctl = (c[0], c[1], c[2], lag, 0.0, c[5], c[6], 0.0, c[8], c[9], c[10], c[11])  # no hand, no push
     ring, st = np.empty(delay + 1), np.empty(NCSTATE)
     pcs = np.zeros(observer_size(delay, ctl[9]))
     pcs[PINIT] = held_energy(xs[0], quantize, ctl)
@@ -806,7 +831,8 @@ def run_wall_kernel(
     A chattering loop (μ = 2, β = 2, σ = 0.1, ξ'0 = 2; damper, filter ν_c = 0.1, delay 1, lag α = 0.2)
     settles on a cycle of its whole state, bit for bit: of 50 001 samples, 231 are integrated.
 
-    >>> e, stats = np.empty(0), np.empty(NSEG + 10)
+    >>> from dfa.core.kernel import NSTATS
+    >>> e, stats = np.empty(0), np.empty(NSTATS)
     >>> table = np.array([4.0, DELAY, 1, 1, 1.0, DAMPER, 1, 0, 0.5, FILTER, 1, 2, math.exp(-0.2 * math.pi),
     ...                   LAG, 1, 1, 0.2])
     >>> run_wall_kernel((2.0, 2.0, 0.1), (0.0, 2.0), (50_001, 8192, 1e6, True), table, e, e, stats, True)
@@ -855,6 +881,8 @@ def run_wall_kernel(
         if why != 0:
             break
     _finish(st, tail, tail_len, n, done, rest, stats, rec_x, rec_v, record)
+    if stats.shape[0] > SATURATION:
+        stats[SATURATION] = st[CSAT]
     return done, rest, integrated
 
 
@@ -900,8 +928,10 @@ def simulate_wall_kernel(
     lag α, hand stiffness κ_h (:mod:`dfa.core.oscillator`; not with a lag), a one-sided wall's surface s (ticks;
     it pushes only while the reading is beyond it) and push p (a constant force toward the wall, KΔ), and the
     passivity controller (:func:`_command`) with its observer's window W in samples (0: unbounded) and its
-    force limit (KΔ; inf: none). ``rec_x``/``rec_v`` (length n + 1) are written when they have that length.
-    ``stats`` as in :func:`dfa.core.kernel.simulate_kernel` (segment peaks, tail, bound flag, final state).
+    force limit (KΔ; inf: none), and the actuator's force limit φ_max (KΔ; inf: none) on the command. ``rec_x``/``rec_v`` (length n + 1) are written when they have that length.
+    ``stats`` as in :func:`dfa.core.kernel.simulate_kernel` (segment peaks, tail, bound flag, final state), and
+    ``stats[SATURATION]``: 0 no command reached the force limit, 1 one did before the tail only, 2 one did in the
+    tail (:func:`dfa.core.kernel.classify` calls such a run saturated).
     Unrecorded runs skip repeated periods (:func:`run_wall_kernel`; same results bit for bit).
     """
     done, rest, _ = run_wall_kernel(device, initial, run, table, rec_x, rec_v, stats, True)

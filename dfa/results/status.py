@@ -209,6 +209,11 @@ class SimulationOutcome(StatusEnum):
     CHATTER = ("chatter", "never comes to rest; the force keeps toggling below one tick of motion (a buzz)")
     UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
     LEFT = ("left", "left the one-sided wall for good: outside, moving away, and nothing brings it back")
+    SATURATED = (
+        "saturated",
+        "never comes to rest; the force reached the actuator's limit at the end of the run: a large motion held by "
+        "the actuator (the unlimited wall would oscillate or diverge), no stable wall",
+    )
 
 
 class ContactOutcome(StatusEnum):
