@@ -13,7 +13,7 @@ import math
 from typing import Any
 
 from ..model.device import Device
-from ..model.elements import ELEMENTS, Delay, Element
+from ..model.elements import ELEMENTS, Delay, Element, ForceLimit
 from ..model.wall import MIN_CUTOFF, Wall, WallParams
 from .flag_table import FLAG_ROWS, add_rows
 from .inputs import Inputs
@@ -149,12 +149,14 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
 
     given = given_flags(args)
     hand = hand_stiffness_of(args, device)
-    contact = contact_elements(args, device) + passivity_elements(args, device)
+    limit = (ForceLimit(device.max_force),) if device is not None and device.max_force is not None else ()
+    contact = contact_elements(args, device) + passivity_elements(args, device) + limit
     if not given and not hand and not contact:
         return None
     if device is None or stiffness is None:
         flags = ("one_sided", "passivity_controller")  # the contact's and the controller's own flags
         given += ["--" + e.key().replace("_", "-") for e in contact if e.key() in flags]
+        given += [ForceLimit.parameter.flag] if limit else []
         raise UsageError(
             f"{', '.join(given)} needs a physical device and stiffness (K and T turn B, f_c, f_bw into β_B, ν_c, α): "
             "give --device NAME (or --mass --damping --coulomb --resolution --period) and --stiffness K"

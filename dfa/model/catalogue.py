@@ -152,6 +152,8 @@ class CatalogueEntry:
         Virtual spring stiffness K of the row in N/m (rotary: N·m/rad).
     rotary : bool
         True when positions are angles and forces torques.
+    max_force : float or None
+        The actuator's force limit F_max in N (rotary: N·m), from a cited datasheet; None: unknown (unlimited).
     incomplete : bool
         True when some physical value is unknown.
     printed : tuple of (str, str)
@@ -170,6 +172,7 @@ class CatalogueEntry:
     stiffness: float | None = None
     rotary: bool = False
     incomplete: bool = False
+    max_force: float | None = None
     printed: tuple[tuple[str, str], ...] = field(default_factory=tuple)
 
     def __post_init__(self) -> None:

@@ -214,6 +214,9 @@ DEVICE_FIELDS: tuple[DeviceField, ...] = (
                 plausibility="resolution"),
     DeviceField("period", "sample period", "T", "s", "s", Rule.POSITIVE, hint="give the sample period T in s (1 kHz: 0.001)",
                 note=": a 1 kHz servo loop is 0.001", plausibility="period"),
+    DeviceField("max_force", "actuator force limit", "F_max", "N", "N·m", Rule.POSITIVE, required=False,
+                absent="unlimited", hint="give the actuator's force limit F_max in N (rotary: N·m), or none",
+                note=": the wall's command is clipped to ±F_max"),
 )  # fmt: skip
 
 #: The virtual wall's stiffness K that a catalogue row and a device file may give beside the device's fields.
@@ -271,6 +274,9 @@ class Device:
         A label used in reports.
     rotary : bool, optional
         True when positions are angles and forces are torques (only changes units).
+    max_force : float or None, optional
+        The actuator's force limit F_max in N (rotary: N·m), > 0; None (default): unlimited. The analyses of a
+        :class:`~dfa.model.loop.Loop` clip the wall's command to ±F_max (:class:`~dfa.model.elements.ForceLimit`).
 
     Attributes
     ----------
@@ -288,7 +294,8 @@ class Device:
     Notes
     -----
     The physical values are the rows of :data:`DEVICE_FIELDS`, each checked by its rule (an optional one, absent,
-    is None); a new value is a row there and an attribute here, in the same order.
+    is None); a new value is a row there and an attribute here, in the same order (an optional one after
+    ``rotary``, keyword only in practice: ``name`` stays the sixth positional argument).
     """
 
     mass: float
@@ -298,6 +305,7 @@ class Device:
     period: float
     name: str = "custom device"
     rotary: bool = False
+    max_force: float | None = None
     hand: Hand | None = field(default=None, init=False)
 
     def __post_init__(self) -> None:

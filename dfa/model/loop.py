@@ -39,9 +39,10 @@ import numpy as np
 from ..checks import check_positive, check_type, format_value
 from ..errors import DFATypeError, DFAValueError
 from .device import Device, Params, dimensionless_params
+from .elements import ForceLimit
 from .wall import Wall, WallParams
 
-__all__ = ["Loop", "as_loop", "loop_first", "LOOP_FIX"]
+__all__ = ["Loop", "as_loop", "limited", "loop_first", "LOOP_FIX"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -62,6 +63,27 @@ def _wall_of(wall: object) -> Wall:
         f"wall = {format_value(wall)} has type {type(wall).__name__}: it must be a dfa.Wall or a stiffness K in N/m; "
         "give e.g. dfa.Wall.of(1000.0, damping=1.0), or 1000.0 for the spring alone"
     )
+
+
+def limited(wall: Wall, device: Device) -> Wall:
+    """The wall with the device's actuator force limit (its ``max_force``, :class:`ForceLimit`) when the device
+    gives one and the wall has none (a wall's own limit, e.g. ``--max-force``, wins).
+
+    Parameters
+    ----------
+    wall : Wall
+        The wall (K in N/m and its elements).
+    device : Device
+        The device; ``max_force`` in N (rotary N·m) or None (unlimited).
+
+    Returns
+    -------
+    Wall
+        ``wall`` itself, or ``wall`` with ``ForceLimit(device.max_force)`` added.
+    """
+    if device.max_force is None or wall.element(ForceLimit) is not None:
+        return wall
+    return Wall(wall.stiffness, (*wall.elements, ForceLimit(device.max_force)))
 
 
 @dataclass(frozen=True)
@@ -122,7 +144,7 @@ class Loop:
             )
         if self.wall is None:
             return
-        wall = _wall_of(self.wall)
+        wall = limited(_wall_of(self.wall), self.device)
         dev = self.device
         if names is None:
             wp = wall.params(dev.period, dev.resolution)

@@ -17,6 +17,7 @@ from typing import Any
 
 from ..formatting import number
 from ..jsonable import explain_nulls, to_jsonable
+from ..model.elements import ForceLimit
 from ..results.criterion import PassivityCheck
 from ..results.status import CheckStatus
 
@@ -174,6 +175,10 @@ def controller_parts(
         values += "; " + passivity_text(pc, units)
         groups += f", W = {window} sample{'s' if window != 1 else ''}" if window else ""
         groups += "" if limit is None else f", f_max = F_max/(KΔ) = {_g(limit)}"
+    top = controller.element(ForceLimit)
+    if top is not None:  # the actuator's force limit, last: it clips the whole command
+        values += f"; actuator force limit F_max = {_g(top.max_force)} {units['force']}"
+        groups += f", φ_max = F_max/(KΔ) = {_g(p.group(ForceLimit))}"
     return values, groups
 
 
