@@ -84,6 +84,8 @@ def wall_dict(
         out["units"]["hand_stiffness"] = units["stiffness"]
     if "one_sided_surface" in out:
         out["units"] |= {"one_sided_surface": "ticks", "push": units["force"]}
+    if "max_force" in out:
+        out["units"]["max_force"] = units["force"]
     no_filter = "no velocity filter"
     out["dimensionless"] = explain_nulls(to_jsonable(p.to_dict()), {"cutoff": no_filter})
     why = {"filter_cutoff": no_filter, "amplifier_bandwidth": "ideal amplifier (no lag)"}

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..formatting import number, text_table
 from ..jsonable import explain_nulls
-from ..results.status import GrowthStatus, SearchStatus
+from ..results.status import GrowthStatus, SearchStatus, SimulationOutcome
 
 if TYPE_CHECKING:  # annotations only: importing the limit-cycle package would load python-control (`dfa check`)
     from ..results.caveats import NoRestCaveat, SubtickCaveat
@@ -27,15 +27,8 @@ __all__ = [
     "simulation_rows",
 ]
 
-#: One phrase per simulated outcome class (:mod:`dfa.analysis.simulation`).
-OUTCOME_TEXT = {
-    "rest": "came to rest",
-    "chatter": "never comes to rest; the force keeps toggling below one tick of motion (a buzz)",
-    "oscillating": "persistent oscillation of one tick or more",
-    "unstable": "diverged (past the bound, or a growing envelope)",
-    "undecided": "the motion is still changing at the end of the run",
-    "left": "left the one-sided wall for good: outside, moving away, and nothing brings it back",
-}
+#: One phrase per simulated outcome class (:mod:`dfa.analysis.simulation`): each member's message.
+OUTCOME_TEXT = {o.value: o.message for o in SimulationOutcome}
 
 
 def _g(x: float | None, digits: int = 4) -> str:

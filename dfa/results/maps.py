@@ -212,9 +212,9 @@ class StabilityMap(PlaneGrid, Result):
             ``{outcome name: count}`` for each initial speed, in the order of ``xi_dots`` (``left``, a one-sided
             wall's outcome, only where some run left).
         """
-        left = OUTCOMES.index("left")
+        last = OUTCOMES.index("undecided")  # the classes after it (left, saturated: an element's) only where present
         return [
-            {name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES) if code != left or np.any(o == left)}
+            {name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES) if code <= last or np.any(o == code)}
             for o in self.outcome
         ]
 

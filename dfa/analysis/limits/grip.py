@@ -78,7 +78,11 @@ def _least_safe(dampings: tuple[float, ...], outcomes: tuple[str, ...]) -> float
     """The least scanned b_h from which no firmer scanned grip diverges or is undecided (None if the firmest is)."""
     best = None
     for b_h, o in reversed(list(zip(dampings, outcomes, strict=True))):
-        if o in (SimulationOutcome.UNSTABLE.value, SimulationOutcome.UNDECIDED.value):
+        if o in (
+            SimulationOutcome.UNSTABLE.value,
+            SimulationOutcome.UNDECIDED.value,
+            SimulationOutcome.SATURATED.value,
+        ):
             break
         best = b_h
     return best

@@ -180,8 +180,11 @@ def _nonlinear_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit,
     """:func:`closed_forms` of a wall that is not a linear loop: the criterion where one covers it (a one-sided
     wall's lone spring, its impact at v from free space), no linear bound, and the grid of the linear wall beneath
     it (a one-sided wall's in contact, :meth:`~dfa.model.wall.Wall.in_contact`; without a passivity controller,
-    :meth:`~dfa.model.wall.Wall.without_controller`), from its own K_criterion/2 where it has one."""
-    _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall.in_contact().without_controller(), v)
+    :meth:`~dfa.model.wall.Wall.without_controller`; without any element that declares a ``linear_reason``, such
+    as an actuator's force limit), from its own K_criterion/2 where it has one."""
+    contact = wall.in_contact()
+    beneath = Wall(contact.stiffness, tuple(e for e in contact.elements if type(e).linear_reason is None))
+    _kc, _kl, _pub, k_ref, top = closed_forms(dev, beneath, v)
     pub: dict[str, float | None] = dict(k_static=None, k_colgate=None, k_abbott_okamura=None)
     linear = KLimit(None, LimitStatus.NOT_LINEAR)
     if wall.params(dev.period, dev.resolution).not_covered() is not None:

@@ -69,7 +69,12 @@ __all__ = [
 SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
 
 #: Outcomes that fail each simulated limit; "undecided" neither passes nor fails (it is counted as not safe).
-FAILING = {"unstable": frozenset({"unstable"}), "rest": frozenset({"oscillating", "unstable", "chatter"})}
+#: "saturated" (a large motion held by the actuator's force limit: the unlimited wall oscillates or diverges)
+#: fails both.
+FAILING = {
+    "unstable": frozenset({"unstable", "saturated"}),
+    "rest": frozenset({"oscillating", "unstable", "chatter", "saturated"}),
+}
 
 #: |ξ| (ticks) past which a design run counts as diverged: at least this, and 100 × the energy amplitude.
 DIVERGENCE_BOUND = 1.0e6
