@@ -170,9 +170,9 @@ def test_rule_defaults_are_the_documented_ones():
             1e-3,
             None,  # None: dfa.analysis.simulation.divergence_bound, max(1e6, 100(A0 + 1)) (eq. 18-19)
         )
-    assert OUTCOMES == ("rest", "oscillating", "unstable", "chatter", "undecided", "left")
+    assert OUTCOMES == ("rest", "oscillating", "unstable", "chatter", "undecided", "left", "saturated")
     codes = (kernel.REST, kernel.OSCILLATING, kernel.UNSTABLE, kernel.CHATTER, kernel.UNDECIDED, kernel.LEFT)
-    assert codes == (0, 1, 2, 3, 4, 5)
+    assert codes + (kernel.SATURATED,) == (0, 1, 2, 3, 4, 5, 6)
 
 
 def test_growth_threshold_either_side():
