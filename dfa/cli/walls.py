@@ -14,6 +14,7 @@ from typing import Any
 
 from ..model.device import Device
 from ..model.elements import ELEMENTS, Delay, Element
+from ..model.loop import with_travel
 from ..model.wall import MIN_CUTOFF, Wall, WallParams
 from .flag_table import FLAG_ROWS, add_rows
 from .inputs import Inputs
@@ -184,10 +185,12 @@ def wall_groups(wall: Wall, device: Device) -> WallParams:
 
 
 def wall_params(args: argparse.Namespace, wall: Wall | None, inp: Inputs | None) -> WallParams:
-    """The dimensionless wall of a run: the wall's groups, else the spring with the --delay."""
-    if wall is None or inp is None or inp.device is None:
-        return WallParams.of(delay=args.delay)
-    return wall_groups(wall, inp.device)
+    """The dimensionless wall of a run: the wall's groups, else the spring with the --delay; with the device's
+    travel (--travel, or the catalogue's), where the run ends at an end stop (:func:`dfa.model.loop.with_travel`)."""
+    device = None if inp is None else inp.device
+    if wall is None or device is None:
+        return with_travel(WallParams.of(delay=args.delay), device)
+    return with_travel(wall_groups(wall, device), device)
 
 
 def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[str, Any]:

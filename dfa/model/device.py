@@ -214,6 +214,9 @@ DEVICE_FIELDS: tuple[DeviceField, ...] = (
                 plausibility="resolution"),
     DeviceField("period", "sample period", "T", "s", "s", Rule.POSITIVE, hint="give the sample period T in s (1 kHz: 0.001)",
                 note=": a 1 kHz servo loop is 0.001", plausibility="period"),
+    DeviceField("travel", "travel from the centre to either end stop", "x_t", "m", "rad", Rule.POSITIVE,
+                required=False, absent="unlimited", hint="give the travel from the centre to either end stop in m "
+                "(rotary: rad), or leave it out for an unlimited one", note=" (a run ends at the stop: end_stop)"),
 )  # fmt: skip
 
 #: The virtual wall's stiffness K that a catalogue row and a device file may give beside the device's fields.
@@ -271,6 +274,10 @@ class Device:
         A label used in reports.
     rotary : bool, optional
         True when positions are angles and forces are torques (only changes units).
+    travel : float or None, optional
+        Keyword only: the travel from the centre (x = 0, where the wall's spring is zero) to either end stop, in m
+        (rotary: rad), > 0; None (default): unlimited. A :class:`~dfa.model.loop.Loop` of the device adds it to the
+        wall (:class:`~dfa.model.elements.Travel`): a run that leaves it ends there (outcome ``end_stop``).
 
     Attributes
     ----------
@@ -299,6 +306,7 @@ class Device:
     name: str = "custom device"
     rotary: bool = False
     hand: Hand | None = field(default=None, init=False)
+    travel: float | None = field(default=None, kw_only=True)
 
     def __post_init__(self) -> None:
         for f in DEVICE_FIELDS:  # each value by its rule; an optional one may be absent (None)

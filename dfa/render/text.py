@@ -35,6 +35,7 @@ OUTCOME_TEXT = {
     "unstable": "diverged (past the bound, or a growing envelope)",
     "undecided": "the motion is still changing at the end of the run",
     "left": "left the one-sided wall for good: outside, moving away, and nothing brings it back",
+    "end_stop": "reached the device's end stop: the position left its travel (--travel), where the run ends",
 }
 
 

@@ -209,12 +209,12 @@ class StabilityMap(PlaneGrid, Result):
         Returns
         -------
         list of dict
-            ``{outcome name: count}`` for each initial speed, in the order of ``xi_dots`` (``left``, a one-sided
-            wall's outcome, only where some run left).
+            ``{outcome name: count}`` for each initial speed, in the order of ``xi_dots`` (the outcomes from ``left``
+            on, a one-sided wall's and the device's end stop, only where some run ended so).
         """
         left = OUTCOMES.index("left")
         return [
-            {name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES) if code != left or np.any(o == left)}
+            {name: int(np.sum(o == code)) for code, name in enumerate(OUTCOMES) if code < left or np.any(o == code)}
             for o in self.outcome
         ]
 

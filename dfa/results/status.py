@@ -209,6 +209,7 @@ class SimulationOutcome(StatusEnum):
     CHATTER = ("chatter", "never comes to rest; the force keeps toggling below one tick of motion (a buzz)")
     UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
     LEFT = ("left", "left the one-sided wall for good: outside, moving away, and nothing brings it back")
+    END_STOP = ("end_stop", "reached the device's end stop: the position left its travel, where the run ends")
 
 
 class ContactOutcome(StatusEnum):
@@ -224,6 +225,7 @@ class ContactOutcome(StatusEnum):
     BOUNCES = ("bounces", "leaves the wall and returns, again and again, with bounded peaks")
     GROWS = ("grows", "diverged: past the bound (each bounce higher, or pushed through the wall)")
     LEFT = ("left", "leaves the wall for good")
+    END_STOP = ("end_stop", "reaches the device's end stop (carried past its travel)")
     UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
 
 
