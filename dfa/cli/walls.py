@@ -195,11 +195,15 @@ def wall_params(args: argparse.Namespace, wall: Wall | None, inp: Inputs | None)
 
 def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[str, Any]:
     """Set the record's ``"wall"`` to the wall's physical values, units and dimensionless groups (nothing for the
-    spring: its record is unchanged)."""
+    spring: its record is unchanged); with a device's travel, ``"travel"`` (m, rotary rad; its unit in
+    ``"travel_unit"``) and ``"travel_ticks"`` (ξ_travel = travel/Δ), where a run ends (``end_stop``)."""
     if wall is not None and inp is not None and inp.device is not None:
         from ..render.controller import wall_dict
 
         d["wall"] = wall_dict(wall, inp.device.period, inp.device.units, inp.device.resolution)
+    if inp is not None and inp.device is not None and inp.device.travel is not None:
+        dev = inp.device
+        d.update(travel=dev.travel, travel_unit=dev.units["position"], travel_ticks=dev.travel / dev.resolution)
     return d
 
 

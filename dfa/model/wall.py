@@ -970,6 +970,8 @@ class Wall:
         if pc is not None:  # only with a passivity controller: its window (s) and force limit (N)
             out["passivity_controller_window"] = pc.window
             out["passivity_controller_force_limit"] = pc.force_limit
+        for e in self.elements:  # any further element (the travel): its record keys, only when present
+            out.update({key: getattr(e, name) for key, name in type(e).record_keys() if key not in out})
         why = {
             "filter_cutoff": "no velocity filter",
             "amplifier_bandwidth": "ideal amplifier (no lag)",
