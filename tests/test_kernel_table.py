@@ -76,7 +76,8 @@ def test_table_layout_of_a_full_wall_in_the_walls_order():
     assert rows.shape == (2, t.size) and rows[1].tolist() == [0.0] * t.size
     assert wall_kernel.decode_table(rows[0]) == wall_kernel.decode_table(t)
     assert wall_kernel.decode_table(rows[1]) == (
-        0, (0.0, 0.0, False, 0.0, 0.0, False, 0.0, 0.0, False, 0, math.inf, math.inf)
+        0,
+        (0.0, 0.0, False, 0.0, 0.0, False, 0.0, 0.0, False, 0, math.inf, math.inf),
     )
 
 
@@ -134,7 +135,9 @@ def test_eq4_element_alone_equals_the_numerical_reference(kind, g, x0, v0):
 
 def test_unknown_code_is_refused_before_the_call_and_by_the_kernel():
     bad = np.array([2.0, table.DAMPER, 1, 0, 0.5, 99.0, 1, 0, 1.0])
-    with pytest.raises(DFAValueError, match=r"table block 1 code = 99 is invalid: the kernel knows the codes 1 Delay, .*, 10 Travel"):
+    with pytest.raises(
+        DFAValueError, match=r"table block 1 code = 99 is invalid: the kernel knows the codes 1 Delay, .*, 10 Travel"
+    ):
         table.check_table(bad)
     with pytest.raises(DFAValueError, match="parameter count = 2 is invalid"):
         table.check_table(np.array([1.0, table.DAMPER, 2, 0, 0.5, 0.5]))

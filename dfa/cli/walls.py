@@ -201,9 +201,10 @@ def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[
         from ..render.controller import wall_dict
 
         d["wall"] = wall_dict(wall, inp.device.period, inp.device.units, inp.device.resolution)
-    if inp is not None and inp.device is not None and inp.device.travel is not None:
+    travel = None if inp is None or inp.device is None else inp.device.travel
+    if inp is not None and inp.device is not None and travel is not None:
         dev = inp.device
-        d.update(travel=dev.travel, travel_unit=dev.units["position"], travel_ticks=dev.travel / dev.resolution)
+        d.update(travel=travel, travel_unit=dev.units["position"], travel_ticks=travel / dev.resolution)
     return d
 
 

@@ -107,7 +107,9 @@ def check_table(table: Any) -> FloatArray:
         code, m = table[j], table[j + 1]
         if code not in CODES:
             known = ", ".join(f"{c} {name}" for c, name in sorted(CODES.items()))
-            raise DFAValueError(f"table block {b} code = {code:g} is invalid: the kernel knows the codes {known}; {fix}")
+            raise DFAValueError(
+                f"table block {b} code = {code:g} is invalid: the kernel knows the codes {known}; {fix}"
+            )
         if m != BLOCK_PARAMS[int(code)] or j + HEAD + int(m) > table.size:
             raise DFAValueError(
                 f"table block {b} ({CODES[int(code)]}) parameter count = {m:g} is invalid: it carries "
