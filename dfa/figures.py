@@ -80,6 +80,7 @@ OUTCOME_COLORS = {
     "unstable": "#252525",
     "undecided": "#e08214",
     "left": "#9ecae1",  # a one-sided wall's run only (dfa.OneSided)
+    "end_stop": "#b2182b",  # past the device's travel only (dfa.Travel)
 }
 _OUTCOME_LABELS = {
     "rest": "rest (came to rest)",
@@ -88,6 +89,7 @@ _OUTCOME_LABELS = {
     "unstable": "unstable (diverged)",
     "undecided": "undecided (run too short)",
     "left": "left (a one-sided wall, for good)",
+    "end_stop": "end stop (past the device's travel)",
 }
 
 
