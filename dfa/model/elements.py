@@ -1854,7 +1854,7 @@ class Travel(Element[float]):
         Returns
         -------
         float
-            ξ_travel in encoder ticks.
+            The travel ξ_travel in encoder ticks.
 
         Raises
         ------
