@@ -75,6 +75,7 @@ from .model.elements import (
     OneSided,
     PassivityController,
     Push,
+    Travel,
     VelocityFilter,
 )
 from .model.grasp import hold
@@ -239,6 +240,7 @@ __all__ = [
     "OneSided",
     "Push",
     "PassivityController",
+    "Travel",
     "approach_start",
     "stable_stiffness",
     "stable_region",

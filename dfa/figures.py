@@ -81,6 +81,7 @@ OUTCOME_COLORS = {
     "undecided": "#e08214",
     "left": "#9ecae1",  # a one-sided wall's run only (dfa.OneSided)
     "saturated": "#cb181d",  # a wall with an actuator's force limit only (dfa.model.elements.ForceLimit)
+    "end_stop": "#b2182b",  # past the device's travel only (dfa.Travel)
 }
 _OUTCOME_LABELS = {
     "rest": "rest (came to rest)",
@@ -90,6 +91,7 @@ _OUTCOME_LABELS = {
     "undecided": "undecided (run too short)",
     "left": "left (a one-sided wall, for good)",
     "saturated": "saturated (held by the force limit)",
+    "end_stop": "end stop (past the device's travel)",
 }
 
 

@@ -292,11 +292,13 @@ def test_device_fields_table_is_what_device_catalogue_files_flags_and_template_r
 
 
 def test_device_fields_table_rules_are_devices_rules():
-    """The table's rule is Device's: > 0 for mass, resolution, period; >= 0 for the frictions."""
+    """The table's rule is Device's: > 0 for mass, resolution, period and the optional force limit and travel; >= 0 for the frictions."""
     from dfa.model.device import DEVICE_FIELDS
 
     rules = {f.name: f.rule.value for f in DEVICE_FIELDS}
-    assert rules == {"mass": "> 0", "damping": ">= 0", "coulomb": ">= 0", "resolution": "> 0", "period": "> 0"}
+    assert rules == {
+        "mass": "> 0", "damping": ">= 0", "coulomb": ">= 0", "resolution": "> 0", "period": "> 0", "max_force": "> 0", "travel": "> 0"
+    }  # fmt: skip
     good = {f.name: 1e-3 for f in DEVICE_FIELDS}
     for f in DEVICE_FIELDS:
         for bad in (-1.0, 0.0):

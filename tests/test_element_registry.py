@@ -23,6 +23,7 @@ from dfa.model.elements import (
     OneSided,
     PassivityController,
     Push,
+    Travel,
     VelocityFilter,
 )
 from dfa.model.wall import Wall, WallParams
@@ -32,7 +33,7 @@ SAMPLES: dict[type[Element[object]], Element[object]] = {
     k: e
     for e in (
         Delay(2), Damper(1.5), VelocityFilter(100.0), HandSpring(80.0), OneSided(0.25), Push(0.4),
-        PassivityController(window=0.05, force_limit=2.0), ForceLimit(3.0),
+        PassivityController(window=0.05, force_limit=2.0), ForceLimit(3.0), Travel(0.05),
     )
     for k in (type(e),)
 }  # fmt: skip
@@ -97,6 +98,7 @@ WALLS = [
     Wall(1000.0, (PassivityController(), Damper(1.0), Delay(1))),
     Wall(1000.0, (PassivityController(0.05, 2.0), HandSpring(100.0))),
     Wall(1000.0, (ForceLimit(3.0), Damper(1.0))),
+    Wall(1000.0, (OneSided(0.0), Push(0.5), Travel(0.1))),
     Wall(1000.0),
 ]
 

@@ -31,6 +31,7 @@ from dfa.model.elements import (
     OneSided,
     PassivityController,
     Push,
+    Travel,
     VelocityFilter,
 )
 from dfa.model.wall import WallParams
@@ -38,7 +39,7 @@ from dfa.model.wall import WallParams
 #: A group of each element that changes the loop (the one-sided wall's surface in ticks; the controller's (W, f_max)).
 GROUPS = {
     Delay: 2, Damper: 0.7, VelocityFilter: 0.05, AmplifierLag: 0.3, HandSpring: 0.08, OneSided: 0.25, Push: 0.4,
-    PassivityController: (8, 2.0), ForceLimit: 3.0,
+    PassivityController: (8, 2.0), ForceLimit: 3.0, Travel: 40.0,
 }  # fmt: skip
 E = np.empty(0)
 
@@ -77,12 +78,13 @@ def test_table_layout_of_a_full_wall_in_the_walls_order():
     assert wall_kernel.decode_table(rows[0]) == wall_kernel.decode_table(t)
     assert wall_kernel.decode_table(rows[1]) == (
         0,
-        (0.0, 0.0, False, 0.0, 0.0, False, 0.0, 0.0, False, 0, math.inf, math.inf),
+        (0.0, 0.0, False, 0.0, 0.0, False, 0.0, 0.0, False, 0, math.inf, math.inf, math.inf),
     )
 
 
 @pytest.mark.parametrize(
-    "kind, g", [(VelocityFilter, 0.05), (Push, 0.0), (HandSpring, 0.0), (AmplifierLag, 0.0), (Delay, 0)]
+    "kind, g",
+    [(VelocityFilter, 0.05), (Push, 0.0), (HandSpring, 0.0), (AmplifierLag, 0.0), (Delay, 0), (Travel, 1e9)],
 )
 @pytest.mark.parametrize("mu, beta, sigma, v0", [(2.0, 0.4, 0.1, 2.0), (50.0, 0.2, 0.8, 3.0)])
 def test_eq4_neutral_element_alone_runs_the_spring_kernel_bit_for_bit(kind, g, mu, beta, sigma, v0):
@@ -134,7 +136,9 @@ def test_eq4_element_alone_equals_the_numerical_reference(kind, g, x0, v0):
 
 def test_unknown_code_is_refused_before_the_call_and_by_the_kernel():
     bad = np.array([2.0, table.DAMPER, 1, 0, 0.5, 99.0, 1, 0, 1.0])
-    with pytest.raises(DFAValueError, match=r"table block 1 code = 99 is invalid: the kernel knows the codes 1-9"):
+    with pytest.raises(
+        DFAValueError, match=r"table block 1 code = 99 is invalid: the kernel knows the codes 1 Delay, .*, 10 Travel"
+    ):
         table.check_table(bad)
     with pytest.raises(DFAValueError, match="parameter count = 2 is invalid"):
         table.check_table(np.array([1.0, table.DAMPER, 2, 0, 0.5, 0.5]))

@@ -170,7 +170,7 @@ def test_rule_defaults_are_the_documented_ones():
             1e-3,
             None,  # None: dfa.analysis.simulation.divergence_bound, max(1e6, 100(A0 + 1)) (eq. 18-19)
         )
-    assert OUTCOMES == ("rest", "oscillating", "unstable", "chatter", "undecided", "left", "saturated")
+    assert OUTCOMES == ("rest", "oscillating", "unstable", "chatter", "undecided", "left", "saturated", "end_stop")
     codes = (kernel.REST, kernel.OSCILLATING, kernel.UNSTABLE, kernel.CHATTER, kernel.UNDECIDED, kernel.LEFT)
     assert codes + (kernel.SATURATED,) == (0, 1, 2, 3, 4, 5, 6)
 

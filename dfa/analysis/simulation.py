@@ -139,7 +139,7 @@ from ..checks import (
 from ..core import batch, kernel, wall_kernel
 from ..core.table import stack_tables
 from ..errors import DFAValueError
-from ..model.elements import Coverage, OneSided
+from ..model.elements import Coverage, OneSided, Travel
 from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import WallParams
 from ..results.simulation import CONTACTS as CONTACTS
@@ -165,6 +165,7 @@ __all__ = [
     "CHUNK",
     "check_wall",
     "wall_run_codes",
+    "mark_end_stops",
 ]
 
 
@@ -594,15 +595,18 @@ def simulate(
     rv = np.empty(n + 1) if record else np.empty(0)
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
     stats = np.empty(kernel.NSTATS)
-    run = (m, b, s, x0, v0, n, d, q, bnd, _tail_length(n, m), rx, rv, re, stats)
-    device, initial, settings = (m, b, s), (x0, v0), (n, run[9], bnd, q)
+    stop = travel_bound(bnd, w)  # the spring's kernel ends a run at the device's travel as at its bound
+    run = (m, b, s, x0, v0, n, d, q, stop, _tail_length(n, m), rx, rv, re, stats)
+    device, initial, settings = (m, b, s), (x0, v0), (n, run[9], stop, q)
     moving = _check_history(history, w)
     if not w.covers(Coverage.CLOSED_FORM):
+        settings = (n, run[9], bnd, q)  # the controller kernel's table holds the travel (its own exit test)
         done, rest = wall_kernel.simulate_wall_kernel(device, initial, settings, w.kernel_table(), rx, rv, stats)
     elif n > CHUNK or moving:
         done, rest = _run_chunked(*run, progress=progress, moving=moving)
     else:
         done, rest = kernel.simulate_kernel(device, initial, settings, d, rx, rv, re, stats)
+    mark_end_stops(stats, w, bnd)
     code, amp, freq, centre, fpp = kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
     suggest = max(4 * n, default_samples(m, b, s, v0, x0, q, cap=False, wall=w)) if code == kernel.UNDECIDED else None
     en = None
@@ -616,6 +620,52 @@ def simulate(
     )
 
 
+def travel_bound(bound: float, wall: WallParams) -> float:
+    """The bound |ξ| (ticks) the spring's kernel runs with: ``bound``, or the device's travel ξ_travel if nearer.
+
+    The spring's kernel (:mod:`dfa.core.kernel`) has no table: a wall it runs that holds a
+    :class:`~dfa.model.elements.Travel` ends its runs at the travel through this bound (the same exit test, |ξ| >
+    the bound at a sample instant, as the controller kernel's travel block), and :func:`mark_end_stops` names them.
+
+    Parameters
+    ----------
+    bound : float
+        The divergence bound in ticks.
+    wall : WallParams
+        The wall's groups.
+
+    Returns
+    -------
+    float
+        min(bound, ξ_travel); ``bound`` itself without a travel.
+    """
+    travel = wall.group(Travel)
+    return bound if travel is None else min(bound, travel)
+
+
+def mark_end_stops(stats: np.ndarray, wall: WallParams, bound: float | np.ndarray) -> None:
+    """Flag, in the runs' ``stats``, the runs the spring's kernel stopped at the device's travel (outcome ``end_stop``).
+
+    A run stopped past :func:`travel_bound` (flag 1 in ``stats[..., NSEG + 5]``) whose final |ξ| is within the
+    divergence ``bound`` stopped at the travel: its flag becomes 3, as the controller kernel sets it
+    (:mod:`dfa.core.wall_kernel`), and :func:`dfa.core.kernel.classify` gives ``end_stop``. Past ``bound`` (or NaN)
+    it stays a divergence. Nothing changes without a travel.
+
+    Parameters
+    ----------
+    stats : numpy.ndarray
+        One run's stats (:data:`dfa.core.kernel.NSTATS`) or one row per run, changed in place.
+    wall : WallParams
+        The wall's groups.
+    bound : float or numpy.ndarray
+        The divergence bound(s) in ticks, one or one per run.
+    """
+    if wall.group(Travel) is None:
+        return
+    flag, final = stats[..., kernel.NSEG + 5], np.abs(stats[..., kernel.NSEG + 6])
+    stats[..., kernel.NSEG + 5] = np.where((flag == 1.0) & (final <= bound), 3.0, flag)
+
+
 def contact_outcome(
     code: int, final_xi: float, tail_min: float, wall: WallParams, quantize: bool = True
 ) -> ContactOutcome | None:
@@ -624,7 +674,8 @@ def contact_outcome(
     The wall sees the device inside while ξ >= ξ_e = ⌊s + ½⌋ (:meth:`~dfa.model.elements.OneSided.engage`; s
     without the encoder). At rest: on the wall when the final position is inside, else off it; a bounded run
     (oscillating, chatter) is ``bounces`` when a tail sample reads outside (``tail_min`` < ξ_e: contact lost and
-    regained), else ``in_contact``; ``unstable`` is ``grows`` and ``left`` is ``left``.
+    regained), else ``in_contact``; ``unstable`` is ``grows``, ``left`` is ``left`` and ``end_stop`` (past the
+    device's travel) ``end_stop``.
 
     Parameters
     ----------
@@ -686,6 +737,7 @@ def contact_codes(
     out[bounded & ~(np.asarray(tail_min) < engage)] = idx[ContactOutcome.IN_CONTACT]
     out[c == kernel.UNSTABLE] = idx[ContactOutcome.GROWS]
     out[c == kernel.LEFT] = idx[ContactOutcome.LEFT]
+    out[c == kernel.END_STOP] = idx[ContactOutcome.END_STOP]
     return out
 
 
@@ -933,7 +985,10 @@ def run_points(
     tails = _tail_lengths(ns, mu)
     if wall.covers(Coverage.CLOSED_FORM):
         bounds = np.array(np.broadcast_to(np.asarray(bound, dtype=float), (k,)))
-        batch.batch_kernel((mu, beta, sigma), (x0, v0), (ns, tails, bounds, quantize), delay, stats, done, rest)
+        travel = wall.group(Travel)  # the device's travel, if any, is the spring kernel's bound (travel_bound)
+        stops = bounds if travel is None else np.minimum(bounds, travel)
+        batch.batch_kernel((mu, beta, sigma), (x0, v0), (ns, tails, stops, quantize), delay, stats, done, rest)
+        mark_end_stops(stats, wall, bounds)
     else:
         table = wall.kernel_table()
         for t in np.unique(tails):

@@ -14,6 +14,7 @@ from typing import Any
 
 from ..model.device import Device
 from ..model.elements import ELEMENTS, Delay, Element, ForceLimit
+from ..model.loop import with_travel
 from ..model.wall import MIN_CUTOFF, Wall, WallParams
 from .flag_table import FLAG_ROWS, add_rows
 from .inputs import Inputs
@@ -186,19 +187,26 @@ def wall_groups(wall: Wall, device: Device) -> WallParams:
 
 
 def wall_params(args: argparse.Namespace, wall: Wall | None, inp: Inputs | None) -> WallParams:
-    """The dimensionless wall of a run: the wall's groups, else the spring with the --delay."""
-    if wall is None or inp is None or inp.device is None:
-        return WallParams.of(delay=args.delay)
-    return wall_groups(wall, inp.device)
+    """The dimensionless wall of a run: the wall's groups, else the spring with the --delay; with the device's
+    travel (--travel, or the catalogue's), where the run ends at an end stop (:func:`dfa.model.loop.with_travel`)."""
+    device = None if inp is None else inp.device
+    if wall is None or device is None:
+        return with_travel(WallParams.of(delay=args.delay), device)
+    return with_travel(wall_groups(wall, device), device)
 
 
 def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[str, Any]:
     """Set the record's ``"wall"`` to the wall's physical values, units and dimensionless groups (nothing for the
-    spring: its record is unchanged)."""
+    spring: its record is unchanged); with a device's travel, ``"travel"`` (m, rotary rad; its unit in
+    ``"travel_unit"``) and ``"travel_ticks"`` (ξ_travel = travel/Δ), where a run ends (``end_stop``)."""
     if wall is not None and inp is not None and inp.device is not None:
         from ..render.controller import wall_dict
 
         d["wall"] = wall_dict(wall, inp.device.period, inp.device.units, inp.device.resolution)
+    travel = None if inp is None or inp.device is None else inp.device.travel
+    if inp is not None and inp.device is not None and travel is not None:
+        dev = inp.device
+        d.update(travel=travel, travel_unit=dev.units["position"], travel_ticks=travel / dev.resolution)
     return d
 
 

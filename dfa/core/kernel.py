@@ -91,6 +91,7 @@ CHATTER = 3  # never rested; persistent, settled cycle below stable_amplitude
 UNDECIDED = 4  # the envelope is still changing at the end of the run: run longer
 LEFT = 5  # a one-sided wall left for good: outside, moving away, nothing can bring the device back
 SATURATED = 6  # bounded, never rested, the actuator's force limit reached in the tail (dfa.model.elements.ForceLimit)
+END_STOP = 7  # past the device's travel: the run ended at an end stop (dfa.core.wall_kernel, flag 3)
 
 NSEG = 8  # segments of the run used to judge a growing or changing envelope
 #: stats[SATURATION]: the wall kernel's force-limit flag (0 never reached, 1 reached before the tail only, 2 reached
@@ -610,6 +611,9 @@ def classify(
 
     * rest: the kernel reached the absorbing state (``rest >= 0``);
     * left: the device left a one-sided wall for good (flag 2 in ``stats[NSEG + 5]``);
+    * end stop: the device passed its travel ±ξ_travel, within the bound (flag 3 in ``stats[NSEG + 5]``: the
+      controller kernel's exit test, or :func:`dfa.analysis.simulation.mark_end_stops` after this kernel's run
+      with the travel as its bound);
     * a one-sided wall's run (flag −1) is unstable only past the bound: a growing envelope is undecided, as
       its bounces carry the device away from the wall and back while its storage stays bounded (a run too
       short to see it return or stop is no divergence);
@@ -639,6 +643,8 @@ def classify(
         return REST, 0.0, np.nan, 0.0, 0.0
     if stats[NSEG + 5] == 2.0:  # the controller kernel's exit from a one-sided wall (dfa.core.wall_kernel._gone)
         return LEFT, 0.0, np.nan, 0.0, 0.0
+    if stats[NSEG + 5] == 3.0:  # an end stop: the device's travel, not the loop, ended the run
+        return END_STOP, 0.0, np.nan, 0.0, 0.0
     if stats[NSEG + 5] > 0.0:
         return UNSTABLE, np.inf, np.nan, 0.0, np.inf
     tmin = stats[NSEG]

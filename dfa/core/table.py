@@ -24,6 +24,7 @@ OneSided                  6       the surface s, ticks
 Push                      7       p, KΔ
 PassivityController       8       the window W, samples (0: unbounded), and the force limit, KΔ (inf: none)
 ForceLimit                9       φ_max = F_max/(KΔ), the actuator's limit on the command
+Travel                    10      ξ_travel, ticks: the device's end stops at ±ξ_travel (the run ends past them)
 ========================  ======  ==========================================================================
 
 ``[0.0]`` (no block) is the paper's spring. Anything after the B-th block is ignored, so tables of different
@@ -50,22 +51,24 @@ from ..errors import DFAValueError
 
 __all__ = [
     "BLOCK_PARAMS", "CODES", "DAMPER", "DELAY", "FILTER", "FORCE_LIMIT", "HAND", "HEAD", "LAG", "ONE_SIDED", "PASSIVITY", "PUSH",
-    "check_table", "stack_tables",
+    "TRAVEL", "check_table", "stack_tables",
 ]  # fmt: skip
 
 FloatArray: TypeAlias = npt.NDArray[np.float64]
 
 #: The element codes (one per element class of :mod:`dfa.model.elements`, which declares its own from these).
-DELAY, DAMPER, FILTER, LAG, HAND, ONE_SIDED, PUSH, PASSIVITY, FORCE_LIMIT = 1, 2, 3, 4, 5, 6, 7, 8, 9
+DELAY, DAMPER, FILTER, LAG, HAND, ONE_SIDED, PUSH, PASSIVITY, FORCE_LIMIT, TRAVEL = 1, 2, 3, 4, 5, 6, 7, 8, 9, 10
 #: A block's head: its code, parameter count and state size.
 HEAD = 3
 #: Each element code's name (the class of :mod:`dfa.model.elements` that declares it).
 CODES = {
     DELAY: "Delay", DAMPER: "Damper", FILTER: "VelocityFilter", LAG: "AmplifierLag", HAND: "HandSpring",
-    ONE_SIDED: "OneSided", PUSH: "Push", PASSIVITY: "PassivityController", FORCE_LIMIT: "ForceLimit",
+    ONE_SIDED: "OneSided", PUSH: "Push", PASSIVITY: "PassivityController", FORCE_LIMIT: "ForceLimit", TRAVEL: "Travel",
 }  # fmt: skip
 #: The number of parameters each code's block carries.
-BLOCK_PARAMS = {DELAY: 1, DAMPER: 1, FILTER: 1, LAG: 1, HAND: 1, ONE_SIDED: 1, PUSH: 1, PASSIVITY: 2, FORCE_LIMIT: 1}
+BLOCK_PARAMS = {
+    DELAY: 1, DAMPER: 1, FILTER: 1, LAG: 1, HAND: 1, ONE_SIDED: 1, PUSH: 1, PASSIVITY: 2, FORCE_LIMIT: 1, TRAVEL: 1,
+}  # fmt: skip
 
 
 def check_table(table: Any) -> FloatArray:
@@ -92,7 +95,7 @@ def check_table(table: Any) -> FloatArray:
     >>> check_table(np.array([1.0, 99.0, 1.0, 0.0, 0.5]))
     Traceback (most recent call last):
     ...
-    dfa.errors.DFAValueError: table block 0 code = 99 is invalid: the kernel knows the codes 1-9 (Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push, PassivityController, ForceLimit); build the table with WallParams.kernel_table()
+    dfa.errors.DFAValueError: table block 0 code = 99 is invalid: the kernel knows the codes 1 Delay, 2 Damper, 3 VelocityFilter, 4 AmplifierLag, 5 HandSpring, 6 OneSided, 7 Push, 8 PassivityController, 9 ForceLimit, 10 Travel; build the table with WallParams.kernel_table()
     """
     fix = "build the table with WallParams.kernel_table()"
     if not (isinstance(table, np.ndarray) and table.ndim == 1 and table.dtype == np.float64 and table.size >= 1):
@@ -105,9 +108,9 @@ def check_table(table: Any) -> FloatArray:
             raise DFAValueError(f"table = {table!r} is invalid: block {b} runs past its end; {fix}")
         code, m = table[j], table[j + 1]
         if code not in CODES:
-            known = ", ".join(CODES.values())
+            known = ", ".join(f"{c} {name}" for c, name in sorted(CODES.items()))
             raise DFAValueError(
-                f"table block {b} code = {code:g} is invalid: the kernel knows the codes 1-{len(CODES)} ({known}); {fix}"
+                f"table block {b} code = {code:g} is invalid: the kernel knows the codes {known}; {fix}"
             )
         if m != BLOCK_PARAMS[int(code)] or j + HEAD + int(m) > table.size:
             raise DFAValueError(

@@ -134,7 +134,7 @@ from .kernel import (
     tail_stats,
 )
 from .oscillator import hand_sample
-from .table import DAMPER, DELAY, FILTER, FORCE_LIMIT, HAND, HEAD, LAG, ONE_SIDED, PASSIVITY, PUSH
+from .table import DAMPER, DELAY, FILTER, FORCE_LIMIT, HAND, HEAD, LAG, ONE_SIDED, PASSIVITY, PUSH, TRAVEL
 
 __all__ = [
     "decode_table",
@@ -155,8 +155,8 @@ MAX_PHASES = 16  # per sample; the derivation allows at most 5 (stuck, breakaway
 
 Model: TypeAlias = tuple[float, float, float, int, bool]  # (μ, β, σ, d, quantize) of _sample
 # (β_B, a, filtered, α, κ_h, one-sided, surface s, push p, passivity controller on, its window W, its force limit,
-# the actuator's force limit φ_max): ctl of _sample and _advance
-Controller: TypeAlias = tuple[float, float, bool, float, float, bool, float, float, bool, int, float, float]
+# the actuator's force limit φ_max, the device's travel ξ_travel): ctl of _sample and _advance
+Controller: TypeAlias = tuple[float, float, bool, float, float, bool, float, float, bool, int, float, float, float]
 
 
 @njit(cache=True, nogil=True)
@@ -169,7 +169,8 @@ def decode_table(table: FloatArray) -> tuple[int, Controller]:
     """
     delay = 0
     damping, pole, filtered, lag, spring = 0.0, 0.0, False, 0.0, 0.0
-    onesided, surface, push, pc, window, limit, top = False, 0.0, 0.0, False, 0, math.inf, math.inf
+    onesided, surface, push, pc, window, limit = False, 0.0, 0.0, False, 0, math.inf
+    top, travel = math.inf, math.inf
     j = 1
     for _ in range(int(table[0])):
         code, p = int(table[j]), j + HEAD
@@ -191,10 +192,12 @@ def decode_table(table: FloatArray) -> tuple[int, Controller]:
             pc, window, limit = True, int(table[p]), table[p + 1]
         elif code == FORCE_LIMIT:
             top = table[p]
+        elif code == TRAVEL:
+            travel = table[p]
         else:
             raise ValueError("dfa.core.wall_kernel.decode_table: unknown element code (see check_table)")
         j = p + int(table[j + 1])
-    return delay, (damping, pole, filtered, lag, spring, onesided, surface, push, pc, window, limit, top)
+    return delay, (damping, pole, filtered, lag, spring, onesided, surface, push, pc, window, limit, top, travel)
 
 
 @njit(cache=True, inline="always")
@@ -679,15 +682,15 @@ def _advance(
 ) -> tuple[int, int, float, int]:
     """Samples h0 … h1 − 1 from the state ``st``; return (end, why, peak |ξ|, samples skipped).
 
-    ``ctl`` = (β_B, a, filtered, α, κ_h, one-sided, s, p); why as :func:`dfa.core.kernel.advance` (0 ran
-    through, 1 at rest at sample ``end``, 2 past ``bound`` in sample end − 1, 3 left a one-sided wall for good
-    at sample ``end``).
+    ``ctl`` = (β_B, a, filtered, α, κ_h, one-sided, s, p, ..., φ_max, ξ_travel); why as :func:`dfa.core.kernel.advance`
+    (0 ran through, 1 at rest at sample ``end``, 2 past ``bound`` in sample end − 1, 3 left a one-sided wall for
+    good at sample ``end``, 4 past the device's travel in sample end − 1: |ξ| > ξ_travel, within the bound).
     The range lies before the tail or in it. With ``skip`` (no records),
     whole periods are skipped once the loop's state repeats bit for bit
     (Brent's cycle detection, the reference within this range; module docstring); not with a passivity
     controller, whose observed energy (``pcs``) is part of the state and is not compared.
     """
-    filtered, lag = ctl[2], ctl[3]
+    filtered, lag, travel = ctl[2], ctl[3], ctl[12]
     model = (mu, beta, sigma, delay, quantize)
     k = sample_constants(mu, beta)
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
@@ -725,6 +728,9 @@ def _advance(
         h += 1
         if not ax <= bound:  # also catches NaN
             why = 2
+            break
+        if ax > travel:  # the device's end stop: the run ends there (a repeating state never reaches it)
+            why = 4
             break
         if skip and x == rx and _same_loop(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa, filtered, lag):
             period = h - rh  # the state of sample rh is back: skip the whole periods left in this range
@@ -786,7 +792,7 @@ def applied_forces(
     """
     delay, c = decode_table(table)
     lag = c[3]
-    ctl = (c[0], c[1], c[2], lag, 0.0, c[5], c[6], 0.0, c[8], c[9], c[10], c[11])  # no hand, no push
+    ctl = (c[0], c[1], c[2], lag, 0.0, c[5], c[6], 0.0, c[8], c[9], c[10], c[11], c[12])  # no hand, no push
     ring, st = np.empty(delay + 1), np.empty(NCSTATE)
     pcs = np.zeros(observer_size(delay, ctl[9]))
     pcs[PINIT] = held_energy(xs[0], quantize, ctl)
@@ -876,7 +882,7 @@ def run_wall_kernel(
                 if why != 0:
                     done, rest = end, (end if why == 1 else -1)
                     if why >= 2:
-                        stats[NSEG + 5] = 1.0 if why == 2 else 2.0  # past the bound; left
+                        stats[NSEG + 5] = float(why - 1)  # 1 past the bound, 2 left, 3 past the travel (an end stop)
                     break
         if why != 0:
             break
@@ -928,10 +934,12 @@ def simulate_wall_kernel(
     lag α, hand stiffness κ_h (:mod:`dfa.core.oscillator`; not with a lag), a one-sided wall's surface s (ticks;
     it pushes only while the reading is beyond it) and push p (a constant force toward the wall, KΔ), and the
     passivity controller (:func:`_command`) with its observer's window W in samples (0: unbounded) and its
-    force limit (KΔ; inf: none), and the actuator's force limit φ_max (KΔ; inf: none) on the command. ``rec_x``/``rec_v`` (length n + 1) are written when they have that length.
-    ``stats`` as in :func:`dfa.core.kernel.simulate_kernel` (segment peaks, tail, bound flag, final state), and
-    ``stats[SATURATION]``: 0 no command reached the force limit, 1 one did before the tail only, 2 one did in the
-    tail (:func:`dfa.core.kernel.classify` calls such a run saturated).
+    force limit (KΔ; inf: none), the actuator's force limit φ_max (KΔ; inf: none) on the command, and the device's
+    travel ξ_travel (ticks; inf: none): a sample instant with |ξ| > ξ_travel (within ``bound``) ends the run there, at
+    an end stop (flag 3 in ``stats[NSEG + 5]``, the final state that sample's). ``rec_x``/``rec_v`` (length n + 1)
+    are written when they have that length. ``stats`` as in :func:`dfa.core.kernel.simulate_kernel` (segment peaks,
+    tail, bound flag, final state), and ``stats[SATURATION]``: 0 no command reached the force limit, 1 one did
+    before the tail only, 2 one did in the tail (:func:`dfa.core.kernel.classify` calls such a run saturated).
     Unrecorded runs skip repeated periods (:func:`run_wall_kernel`; same results bit for bit).
     """
     done, rest, _ = run_wall_kernel(device, initial, run, table, rec_x, rec_v, stats, True)

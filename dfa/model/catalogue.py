@@ -148,6 +148,8 @@ class CatalogueEntry:
         Encoder resolution Δ in m (rotary: rad).
     period : float or None
         Sample period T in s.
+    travel : float or None
+        Travel from the centre to either end stop in m (rotary: rad); None: not given (unlimited).
     stiffness : float or None
         Virtual spring stiffness K of the row in N/m (rotary: N·m/rad).
     rotary : bool
@@ -169,6 +171,7 @@ class CatalogueEntry:
     coulomb: float | None = None
     resolution: float | None = None
     period: float | None = None
+    travel: float | None = None
     stiffness: float | None = None
     rotary: bool = False
     incomplete: bool = False

@@ -217,6 +217,9 @@ DEVICE_FIELDS: tuple[DeviceField, ...] = (
     DeviceField("max_force", "actuator force limit", "F_max", "N", "N·m", Rule.POSITIVE, required=False,
                 absent="unlimited", hint="give the actuator's force limit F_max in N (rotary: N·m), or none",
                 note=": the wall's command is clipped to ±F_max"),
+    DeviceField("travel", "travel from the centre to either end stop", "x_t", "m", "rad", Rule.POSITIVE,
+                required=False, absent="unlimited", hint="give the travel from the centre to either end stop in m "
+                "(rotary: rad), or leave it out for an unlimited one", note=" (a run ends at the stop: end_stop)"),
 )  # fmt: skip
 
 #: The virtual wall's stiffness K that a catalogue row and a device file may give beside the device's fields.
@@ -277,6 +280,10 @@ class Device:
     max_force : float or None, optional
         The actuator's force limit F_max in N (rotary: N·m), > 0; None (default): unlimited. The analyses of a
         :class:`~dfa.model.loop.Loop` clip the wall's command to ±F_max (:class:`~dfa.model.elements.ForceLimit`).
+    travel : float or None, optional
+        Keyword only: the travel from the centre (x = 0, where the wall's spring is zero) to either end stop, in m
+        (rotary: rad), > 0; None (default): unlimited. A :class:`~dfa.model.loop.Loop` of the device adds it to the
+        wall (:class:`~dfa.model.elements.Travel`): a run that leaves it ends there (outcome ``end_stop``).
 
     Attributes
     ----------
@@ -307,6 +314,7 @@ class Device:
     rotary: bool = False
     max_force: float | None = None
     hand: Hand | None = field(default=None, init=False)
+    travel: float | None = field(default=None, kw_only=True)
 
     def __post_init__(self) -> None:
         for f in DEVICE_FIELDS:  # each value by its rule; an optional one may be absent (None)

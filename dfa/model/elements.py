@@ -78,6 +78,7 @@ __all__ = [
     "Push",
     "PassivityController",
     "ForceLimit",
+    "Travel",
     "largest_speed",
     "ELEMENTS",
     "MIN_CUTOFF",
@@ -1937,11 +1938,107 @@ class ForceLimit(Element[float]):
         return (FlagRow(par.flag, "max_force", par.metavar, par.help, "N"),)
 
 
+_TRAVEL_INSIDE = (
+    "the criterion, the linear bounds, the describing function and the closed forms do not model the end stops: "
+    "they speak of the motion inside the travel, and a verdict (passive, stable, a predicted cycle) stays true "
+    "while the device stays inside; the exact simulation ends a run at the stop (outcome end_stop)"
+)
+
+
+@dataclass(frozen=True)
+class Travel(Element[float]):
+    """The device's travel: the distance from the centre (ξ = 0, where the wall's spring is zero) to either end stop.
+
+    A real device stops at the end of its workspace; the simulation ends a run whose position leaves
+    [−ξ_travel, ξ_travel] there, with the outcome ``end_stop`` (the kernel's exit test beside the divergence
+    bound: :mod:`dfa.core.wall_kernel`; the spring's kernel runs it with the travel as its bound,
+    :func:`dfa.analysis.simulation.mark_end_stops`). The stop is not modelled beyond that (no impact, no
+    rebound). Group ξ_travel = travel/Δ (ticks), so it needs the encoder resolution.
+
+    The value is the device's (:data:`dfa.model.device.DEVICE_FIELDS`, ``travel``; flag ``--travel``): a
+    :class:`dfa.model.loop.Loop` of a device with a travel adds this element to its wall's groups
+    (:func:`dfa.model.loop.with_travel`). Coverage: every analysis covers it, as a statement about the motion
+    inside the travel (:attr:`assumption`): they do not model the stop.
+
+    Attributes
+    ----------
+    travel : float
+        The travel in m (rotary: rad), > 0.
+
+    Examples
+    --------
+    >>> Travel(0.05).group(1e-3, 1000.0, resolution=2e-5)     # ξ_travel = travel/Δ
+    2500.0
+    >>> Travel.kernel_block(2500.0)
+    KernelBlock(code=10, params=(2500.0,), state=0)
+    """
+
+    travel: float
+    kernel_code: ClassVar[int] = kt.TRAVEL
+    parameter: ClassVar[Parameter] = Parameter(
+        "travel", ("m", "rad"), "--travel", "M",
+        "the device's travel from the centre to either end stop, in m (rotary: rad); a run ends there (end_stop) "
+        "(default: the catalogue value, else unlimited)",
+        "travel", "ξ_travel = travel/Δ (ticks)",
+    )  # fmt: skip
+    #: Its flag is the device's field (:data:`dfa.model.device.DEVICE_FIELDS`), in the device's group of options.
+    wall_flag: ClassVar[bool] = False
+    absent: ClassVar[object] = None
+    needs_resolution: ClassVar[bool] = True
+    #: What the analyses that cover it assume: the motion stays inside the travel.
+    assumption: ClassVar[str] = _TRAVEL_INSIDE
+
+    def __post_init__(self) -> None:
+        fix = "give the device's travel from the centre to either end stop in m (rotary: rad)"
+        object.__setattr__(self, "travel", check_positive("travel", self.travel, fix))
+
+    def group(self, period: float, stiffness: float, resolution: float | None = None) -> float:
+        """Give the travel's group ξ_travel = travel/Δ, validated.
+
+        Parameters
+        ----------
+        period : float
+            Sample period T in s (unused).
+        stiffness : float
+            Virtual spring K in N/m (unused).
+        resolution : float
+            Encoder resolution Δ in m (rotary: rad); required.
+
+        Returns
+        -------
+        float
+            The travel ξ_travel in encoder ticks.
+
+        Raises
+        ------
+        DFAValueError
+            Without a resolution.
+        """
+        if resolution is None:
+            raise DFAValueError(
+                "travel needs the encoder resolution Δ for its group travel/Δ: call Wall.params(period, resolution=Δ)"
+            )
+        inputs = (("Δ", resolution, _D_UNITS),)
+        return self.check_group(self._finite(self.travel / resolution, inputs, resolution))
+
+    @classmethod
+    def check_group(cls, value: object) -> float:
+        return check_positive("travel", value, "ξ_travel = travel/Δ is the travel in encoder ticks, > 0")
+
+    @classmethod
+    def spring_kernel(cls, g: float) -> bool:
+        return True  # the spring's kernel runs it with the travel as its bound (dfa.analysis.simulation)
+
+    @classmethod
+    def kernel_block(cls, g: Any) -> KernelBlock:
+        return KernelBlock(cls.kernel_code, (float(g),), 0)
+
+
 #: An element class of any group type, as a wall holds it beside its group (:class:`dfa.model.wall.WallParams`).
 ElementClass = type[Element[object]]
 
 #: The registered elements, in the order a wall applies them (delay, damper, filter, amplifier, hand spring,
-#: one-sided contact, push, passivity controller, the actuator's force limit last).
+#: one-sided contact, push, passivity controller, the actuator's force limit, the device's travel).
 ELEMENTS: tuple[ElementClass, ...] = (
-    Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push, PassivityController, ForceLimit
+    Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push, PassivityController, ForceLimit, Travel
 )  # fmt: skip

@@ -39,10 +39,10 @@ import numpy as np
 from ..checks import check_positive, check_type, format_value
 from ..errors import DFATypeError, DFAValueError
 from .device import Device, Params, dimensionless_params
-from .elements import ForceLimit
+from .elements import ForceLimit, Travel
 from .wall import Wall, WallParams
 
-__all__ = ["Loop", "as_loop", "limited", "loop_first", "LOOP_FIX"]
+__all__ = ["Loop", "as_loop", "limited", "loop_first", "with_travel", "LOOP_FIX"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -51,6 +51,35 @@ LOOP_FIX = "build it with dfa.Loop(device, wall), or dfa.Loop.dimensionless(mu, 
 _FIX_DEVICE = "build one with dfa.Device(...) or dfa.get_device(name).device"
 _FIX_PARAMS = "build it with dfa.Params(mu, beta, sigma) or device.params(stiffness)"
 _FIX_WALL_PARAMS = "give dfa.WallParams.of(...) or wall.params(period) of a dfa.Wall, or None for the spring"
+
+
+def with_travel(wall_params: WallParams, device: Device | None) -> WallParams:
+    """The wall's groups with the device's travel (:class:`~dfa.model.elements.Travel`, ξ_travel = travel/Δ) added.
+
+    A device's travel applies by default: the real device has end stops. A wall that holds its own travel keeps
+    it; a device without one (None: unlimited) leaves the groups unchanged.
+
+    Parameters
+    ----------
+    wall_params : WallParams
+        The wall's groups on the device.
+    device : Device or None
+        The device (None: no device, the groups unchanged).
+
+    Returns
+    -------
+    WallParams
+
+    Examples
+    --------
+    >>> dev = Device(0.072, 0.005, 0.038, 2e-5, 1e-3, travel=0.05)
+    >>> with_travel(WallParams(), dev).group(Travel)
+    2500.0
+    """
+    if device is None or device.travel is None or wall_params.group(Travel) is not None:
+        return wall_params
+    g = Travel(device.travel).group(device.period, 1.0, resolution=device.resolution)
+    return WallParams((*wall_params.groups, (Travel, g)))
 
 
 def _wall_of(wall: object) -> Wall:
@@ -152,7 +181,7 @@ class Loop:
             wp = wall.params(dev.period, dev.resolution, names=names, rotary=dev.rotary)
         object.__setattr__(self, "wall", wall)
         object.__setattr__(self, "params", dimensionless_params(dev, wall.stiffness))
-        object.__setattr__(self, "wall_params", wp)
+        object.__setattr__(self, "wall_params", with_travel(wp, dev))  # the device's end stops apply by default
 
     def _check_dimensionless(self) -> None:
         if self.wall is not None:

@@ -977,6 +977,8 @@ class Wall:
         limit = self.element(ForceLimit)
         if limit is not None:  # only with an actuator's force limit (N)
             out["max_force"] = limit.max_force
+        for e in self.elements:  # any further element (the travel): its record keys, only when present
+            out.update({key: getattr(e, name) for key, name in type(e).record_keys() if key not in out})
         why = {
             "filter_cutoff": "no velocity filter",
             "amplifier_bandwidth": "ideal amplifier (no lag)",

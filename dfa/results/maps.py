@@ -209,8 +209,8 @@ class StabilityMap(PlaneGrid, Result):
         Returns
         -------
         list of dict
-            ``{outcome name: count}`` for each initial speed, in the order of ``xi_dots`` (``left``, a one-sided
-            wall's outcome, only where some run left).
+            ``{outcome name: count}`` for each initial speed, in the order of ``xi_dots`` (the outcomes from ``left``
+            on, a one-sided wall's and the device's end stop, only where some run ended so).
         """
         last = OUTCOMES.index("undecided")  # the classes after it (left, saturated: an element's) only where present
         return [

@@ -214,6 +214,7 @@ class SimulationOutcome(StatusEnum):
         "never comes to rest; the force reached the actuator's limit at the end of the run: a large motion held by "
         "the actuator (the unlimited wall would oscillate or diverge), no stable wall",
     )
+    END_STOP = ("end_stop", "reached the device's end stop: the position left its travel, where the run ends")
 
 
 class ContactOutcome(StatusEnum):
@@ -229,6 +230,7 @@ class ContactOutcome(StatusEnum):
     BOUNCES = ("bounces", "leaves the wall and returns, again and again, with bounded peaks")
     GROWS = ("grows", "diverged: past the bound (each bounce higher, or pushed through the wall)")
     LEFT = ("left", "leaves the wall for good")
+    END_STOP = ("end_stop", "reaches the device's end stop (carried past its travel)")
     UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
 
 

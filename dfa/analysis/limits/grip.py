@@ -82,6 +82,7 @@ def _least_safe(dampings: tuple[float, ...], outcomes: tuple[str, ...]) -> float
             SimulationOutcome.UNSTABLE.value,
             SimulationOutcome.UNDECIDED.value,
             SimulationOutcome.SATURATED.value,
+            SimulationOutcome.END_STOP.value,
         ):
             break
         best = b_h

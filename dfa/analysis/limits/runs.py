@@ -70,10 +70,10 @@ SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
 
 #: Outcomes that fail each simulated limit; "undecided" neither passes nor fails (it is counted as not safe).
 #: "saturated" (a large motion held by the actuator's force limit: the unlimited wall oscillates or diverges)
-#: fails both.
+#: and "end_stop" (the device ran out of its travel: the wall did not hold it) fail both.
 FAILING = {
-    "unstable": frozenset({"unstable", "saturated"}),
-    "rest": frozenset({"oscillating", "unstable", "chatter", "saturated"}),
+    "unstable": frozenset({"unstable", "saturated", "end_stop"}),
+    "rest": frozenset({"oscillating", "unstable", "chatter", "saturated", "end_stop"}),
 }
 
 #: |ξ| (ticks) past which a design run counts as diverged: at least this, and 100 × the energy amplitude.

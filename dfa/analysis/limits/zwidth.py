@@ -230,7 +230,7 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
 def _point_codes(run_codes: np.ndarray) -> np.ndarray:
     """Code of each point (row) from its runs' outcome codes (:mod:`dfa.core.kernel`; module docstring).
 
-    Diverges if any run is unstable or saturated (held by the actuator's force limit), else undecided if any run is, else rest if every run rests, left if every
+    Diverges if any run is unstable, saturated (held by the actuator's force limit) or at an end stop, else undecided if any run is, else rest if every run rests, left if every
     run rests or leaves a one-sided wall for good (some leave), else bounded.
     """
     out = np.full(run_codes.shape[0], BOUNDED, dtype=np.int8)
@@ -238,7 +238,7 @@ def _point_codes(run_codes: np.ndarray) -> np.ndarray:
     out[ended & (run_codes == kernel.LEFT).any(axis=1)] = LEFT_POINT
     out[(run_codes == kernel.REST).all(axis=1)] = REST
     out[(run_codes == kernel.UNDECIDED).any(axis=1)] = UNDECIDED_POINT
-    out[np.isin(run_codes, (kernel.UNSTABLE, kernel.SATURATED)).any(axis=1)] = DIVERGES  # held by the force limit
+    out[np.isin(run_codes, (kernel.UNSTABLE, kernel.SATURATED, kernel.END_STOP)).any(axis=1)] = DIVERGES  # limit, stop
     return out
 
 
