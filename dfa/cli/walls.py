@@ -13,7 +13,7 @@ import math
 from typing import Any
 
 from ..model.device import Device
-from ..model.elements import ELEMENTS, Delay, Element
+from ..model.elements import ELEMENTS, Coverage, Delay, Element, OneSided
 from ..model.wall import MIN_CUTOFF, Wall, WallParams
 from .flag_table import FLAG_ROWS, add_rows
 from .inputs import Inputs
@@ -170,7 +170,7 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
     values["damping"] = values["damping"] or 0.0
     wall = Wall.of(stiffness, hand_stiffness=hand, **values)
     wall = Wall(stiffness, (*wall.elements, *contact)) if contact else wall
-    return None if wall_groups(wall, device).is_spring else wall
+    return None if wall_groups(wall, device).covers(Coverage.CLOSED_FORM) else wall
 
 
 #: How a message of the wall's groups calls each element's value: its flag (``--virtual-damping``, ``--push``).
@@ -209,7 +209,7 @@ def print_wall(wall: Wall | None, inp: Inputs | None, *, wrap: bool = True, cont
         from ..render.controller import controller_parts
 
         values, groups = controller_parts(wall, inp.device.period, inp.device.units, inp.device.resolution)
-        line = f"contact: {contact_text(wall, inp.device.units)}" if contact and wall.one_sided else ""
+        line = f"contact: {contact_text(wall, inp.device.units)}" if contact and wall.element(OneSided) is not None else ""
         if wrap:
             say(f"{values};\n  {groups}")
             if line:
