@@ -656,7 +656,11 @@ def criterion_from_groups(
     margin = float(_margin(b, s, v, s0, b0))
     critical = (s - s0) / (b0 - b) if (b < b0 and s >= s0) else None
     check_finite_verdict(margin, critical, {"beta": b, "sigma": s, "xi_dot": xd}, names)
-    if critical is not None and m is not None and (not w.covers(Coverage.SURFACE_START) or (hist == "moving" and w.delay)):
+    if (
+        critical is not None
+        and m is not None
+        and (not w.covers(Coverage.SURFACE_START) or (hist == "moving" and w.delay))
+    ):
         critical = largest_speed(lambda u: _speed(u, x0, m, w, q, hist), critical)  # a speed ξ'0, not V*
     return CriterionResult(
         beta=b,

@@ -213,7 +213,9 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
                 quantize=bool(quantize),
                 preload=bool(preload),
                 wall=wall,
-                contact=z["contact"].astype(np.int8) if not wall.covers(Coverage.SURFACE_START) and "contact" in z.files else None,
+                contact=z["contact"].astype(np.int8)
+                if not wall.covers(Coverage.SURFACE_START) and "contact" in z.files
+                else None,
             )
         except (DFAValueError, DFATypeError) as err:  # a value outside its rule: the file names it
             raise DFAValueError(f"map file {str(path)!r} is invalid ({err}); recompute it with `dfa map`") from None

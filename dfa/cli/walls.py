@@ -209,7 +209,9 @@ def print_wall(wall: Wall | None, inp: Inputs | None, *, wrap: bool = True, cont
         from ..render.controller import controller_parts
 
         values, groups = controller_parts(wall, inp.device.period, inp.device.units, inp.device.resolution)
-        line = f"contact: {contact_text(wall, inp.device.units)}" if contact and wall.element(OneSided) is not None else ""
+        line = (
+            f"contact: {contact_text(wall, inp.device.units)}" if contact and wall.element(OneSided) is not None else ""
+        )
         if wrap:
             say(f"{values};\n  {groups}")
             if line:

@@ -426,7 +426,11 @@ def kmax_rows(r: KMaxResult, *, explain: bool = False) -> list[list[str]]:
     for name, what in (
         ("k_df", "describing function: largest K with growth speed >= V"),
         ("k_sim", "simulation: largest K, no simulated impact up to V diverges"),
-        ("k_sim_rest", "simulation: largest K, every simulated impact up to V rests" + LEAVES[not r.wall.covers(Coverage.SURFACE_START)]),
+        (
+            "k_sim_rest",
+            "simulation: largest K, every simulated impact up to V rests"
+            + LEAVES[not r.wall.covers(Coverage.SURFACE_START)],
+        ),
     ):
         rows.append([what, limit_text(getattr(r, name), ku, explain=explain, velocity_unit=vu)])
     rows += counterexample_lines(r)

@@ -425,7 +425,9 @@ class CriterionResult(Result):
 
         ``"ξ'0"`` for a one-sided wall's impact and a moving history, ``"V"`` otherwise (ξ'0 when ξ0 = 0).
         """
-        return "ξ'0" if not self.wall.covers(Coverage.SURFACE_START) or (self.history == "moving" and self.delay) else "V"
+        return (
+            "ξ'0" if not self.wall.covers(Coverage.SURFACE_START) or (self.history == "moving" and self.delay) else "V"
+        )
 
     @property
     def beta0(self) -> float:

@@ -483,7 +483,8 @@ def _simulations(loop: Loop, xi_dot: float, ref: float, v_sim: float | None, sam
     """Recorded runs for the figure and full-length runs for the outcomes, at the design speed and above."""
     p, wp = loop.groups("design_analysis")
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
-    n_traj += 0 if wp.covers(Coverage.SURFACE_START) else approach_samples(wp)  # a one-sided wall's runs start with the approach
+    # a one-sided wall's runs start with the approach
+    n_traj += 0 if wp.covers(Coverage.SURFACE_START) else approach_samples(wp)
     v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
 
     def run(v: float, n: int | None, rec: bool) -> SimulationResult:

@@ -94,7 +94,11 @@ def _not_linear(a: Any) -> bool:
 
 def _extended_to(wall: Any) -> str:
     """What the criterion is extended to, in words."""
-    return "the damper, filter and delay" if wall.covers(Coverage.SURFACE_START) else "a one-sided wall reached from free space"
+    return (
+        "the damper, filter and delay"
+        if wall.covers(Coverage.SURFACE_START)
+        else "a one-sided wall reached from free space"
+    )
 
 
 def controller_verdict_text(a: DesignAnalysis) -> str:
@@ -545,7 +549,9 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
         answer_table=markdown_table(["largest stiffness K at this speed", "value"], answer_rows(a))
         if a.design_answer is not None and a.covers(Coverage.CLOSED_FORM)
         else "",
-        answer_evidence=evidence_markdown(a.design_answer) if a.design_answer is not None and a.covers(Coverage.CLOSED_FORM) else "",
+        answer_evidence=evidence_markdown(a.design_answer)
+        if a.design_answer is not None and a.covers(Coverage.CLOSED_FORM)
+        else "",
         cycle_table=markdown_table(
             ["loop model", "M (ticks)", "amplitude", "ω (rad/sample)", "frequency", "stability", "family"], cycles
         )

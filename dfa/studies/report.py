@@ -152,7 +152,7 @@ def _identity(loop: Loop, velocity: float) -> dict[str, Any]:
         "velocity": velocity,
         "delay": wp.delay,
     }
-    if not wp.covers(Coverage.CLOSED_FORM):  # a wall with a damper, filter or amplifier lag (its report is a separate file)
+    if not wp.covers(Coverage.CLOSED_FORM):  # a wall beyond the spring (its report is a separate file)
         ident["controller"] = wall.to_dict()
     return json.loads(dumps(ident, ensure_ascii=False))
 

@@ -196,7 +196,11 @@ def _chunks(tasks: list[tuple], size: int) -> list[list[int]]:
     """
     out: list[list[int]] = []
     for i, (_, ctl) in enumerate(tasks):
-        if not out or len(out[-1]) >= size or tasks[out[-1][0]][1].covers(Coverage.CLOSED_FORM) != ctl.covers(Coverage.CLOSED_FORM):
+        if (
+            not out
+            or len(out[-1]) >= size
+            or tasks[out[-1][0]][1].covers(Coverage.CLOSED_FORM) != ctl.covers(Coverage.CLOSED_FORM)
+        ):
             out.append([])
         out[-1].append(i)
     return out
