@@ -13,12 +13,12 @@ import math
 from typing import Any
 
 from ..model.device import Device
-from ..model.elements import ELEMENTS, Coverage, Delay, Element, OneSided
+from ..model.elements import ELEMENTS, Coverage, Damper, Delay, Element, OneSided
 from ..model.wall import MIN_CUTOFF, Wall, WallParams
-from .flag_table import FLAG_ROWS, add_rows
+from .flag_table import FLAG_ROWS, add_rows, given_rows, is_given
 from .inputs import Inputs
 from .output import say
-from .parsing import UsageError, delay, number
+from .parsing import UsageError
 
 __all__ = [
     "WALL_FLAGS",
@@ -36,29 +36,21 @@ __all__ = [
 ]
 
 
-def _dest(kind: type[Element]) -> str:
-    """The argparse destination of an element's flag (``--virtual-damping`` -> ``virtual_damping``)."""
-    return kind.parameter.flag.lstrip("-").replace("-", "_")
+#: The wall's elements by their one row of the flag table (:data:`FLAG_ROWS`): element class -> (flag, argparse
+#: destination). The delay is a plain flag (default 0); the others form the wall group (default: no such element).
+WALL_FLAGS: dict[type[Element], tuple[str, str]] = {
+    k: (row.flag, row.dest) for k in ELEMENTS if k.wall_flag for row in k.flag_rows()
+}
 
-
-#: The flag table: element class -> (flag, argparse destination). The delay is a plain flag (default 0); the
-#: others form the wall group (default: no such element).
-WALL_FLAGS: dict[type[Element], tuple[str, str]] = {k: (k.parameter.flag, _dest(k)) for k in ELEMENTS if k.wall_flag}
-
-
-def _add_element(g: Any, kind: type[Element], help_text: str | None = None) -> None:
-    par = kind.parameter
-    flag, dest = WALL_FLAGS[kind]
-    if kind is Delay:
-        g.add_argument(flag, dest=dest, type=delay, default=0, metavar=par.metavar, help=par.help)
-        return
-    unit = par.units[0] if par.units[0] == par.units[1] else f"{par.units[0]} (rotary: {par.units[1]})"
-    g.add_argument(flag, dest=dest, type=number(flag, unit), metavar=par.metavar, help=help_text or par.help)
+#: Why ``dfa zwidth`` refuses the damper's flag (its help there).
+_ZWIDTH_REFUSED = {
+    Damper.parameter.flag: "not accepted here: B is the Z-width's axis, its grid spans B from 0 (default: the grid)"
+}
 
 
 def add_wall_args(p: argparse.ArgumentParser, *, zwidth: bool = False) -> None:
     """--delay and the other elements' flags. With ``zwidth`` the damper's flag is refused (B is the Z-width's axis)."""
-    _add_element(p, Delay)
+    add_rows(p, Delay)
     title = (
         "wall (B is the Z-width's axis)"
         if zwidth
@@ -67,15 +59,12 @@ def add_wall_args(p: argparse.ArgumentParser, *, zwidth: bool = False) -> None:
     g = p.add_argument_group(title)
     for kind in WALL_FLAGS:
         if kind is not Delay:
-            refused = "not accepted here: B is the Z-width's axis, its grid spans B from 0 (default: the grid)"
-            _add_element(g, kind, refused if zwidth and WALL_FLAGS[kind][1] == "virtual_damping" else None)
+            add_rows(g, kind, _ZWIDTH_REFUSED if zwidth else None)
 
 
 def given_flags(args: argparse.Namespace) -> list[str]:
     """The wall flags given on the command line, besides --delay."""
-    return [
-        flag for kind, (flag, dest) in WALL_FLAGS.items() if kind is not Delay and getattr(args, dest, None) is not None
-    ]
+    return [flag for kind in WALL_FLAGS if kind is not Delay for flag in given_rows(args, kind)]
 
 
 def check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
@@ -153,8 +142,7 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
     if not given and not hand and not contact:
         return None
     if device is None or stiffness is None:
-        flags = ("one_sided", "passivity_controller")  # the contact's and the controller's own flags
-        given += ["--" + e.key().replace("_", "-") for e in contact if e.key() in flags]
+        given += [row.flag for row in FLAG_ROWS.values() if row.metavar is None and is_given(args, row)]  # switches
         raise UsageError(
             f"{', '.join(given)} needs a physical device and stiffness (K and T turn B, f_c, f_bw into β_B, ν_c, α): "
             "give --device NAME (or --mass --damping --coulomb --resolution --period) and --stiffness K"

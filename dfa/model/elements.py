@@ -295,10 +295,11 @@ class Parameter(NamedTuple):
 
 
 class FlagRow(NamedTuple):
-    """One command-line option of an element (a row of the flag table of :mod:`dfa.cli.walls`).
+    """One command-line option of an element (a row of the flag table of :mod:`dfa.cli.flag_table`).
 
     ``metavar`` None makes it a switch (``store_true``); ``unit`` is what its number is read in (its
-    messages' unit).
+    messages' unit); ``whole`` reads whole samples instead (``--delay``), with ``default``; ``needs`` is the switch
+    it describes (``--one-sided`` for ``--push``): given without it, the command refuses it.
     """
 
     flag: str
@@ -306,6 +307,9 @@ class FlagRow(NamedTuple):
     metavar: str | None
     help: str
     unit: str = ""
+    whole: bool = False
+    default: object = None
+    needs: str | None = None
 
 
 class KernelBlock(NamedTuple):
@@ -871,6 +875,11 @@ class Delay(Element[int]):
     def __post_init__(self) -> None:
         object.__setattr__(self, "delay", check_delay(self.delay))
 
+    @classmethod
+    def flag_rows(cls) -> tuple[FlagRow, ...]:
+        par = cls.parameter
+        return (FlagRow(par.flag, "delay", par.metavar, par.help, "samples", whole=True, default=0),)
+
     def group(self, period: float, stiffness: float) -> int:
         return self.delay
 
@@ -1371,7 +1380,7 @@ class OneSided(Element[float]):
             "and never pulls; the run starts in free space before contact (default: bilateral)",
         )  # fmt: skip
         par = cls.parameter
-        return (switch, FlagRow(par.flag, "surface", par.metavar, par.help, "ticks"))
+        return (switch, FlagRow(par.flag, "surface", par.metavar, par.help, "ticks", needs=switch.flag))
 
     def group(self, period: float, stiffness: float) -> float:
         return self.surface
@@ -1571,7 +1580,7 @@ class Push(Element[float]):
     @classmethod
     def flag_rows(cls) -> tuple[FlagRow, ...]:
         par = cls.parameter
-        return (FlagRow(par.flag, "push", par.metavar, par.help, "N"),)
+        return (FlagRow(par.flag, "push", par.metavar, par.help, "N", needs="--one-sided"),)
 
     def __post_init__(self) -> None:
         fix = "give the operator's force toward the wall in N (0 for none)"
@@ -1802,8 +1811,9 @@ class PassivityController(Element[tuple[int, float | None]]):
             FlagRow(
                 "--pc-window", "pc_window", "S",
                 "with --passivity-controller: the observer's window in s (default: the whole run)", "s",
+                needs="--passivity-controller",
             ),
-            FlagRow(par.flag, "pc_force_limit", par.metavar, par.help, "N"),
+            FlagRow(par.flag, "pc_force_limit", par.metavar, par.help, "N", needs="--passivity-controller"),
         )  # fmt: skip
 
     @property
