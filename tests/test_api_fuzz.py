@@ -72,8 +72,34 @@ def _floats(lo: float, hi: float):
 _DEVICES = [e.device for e in dfa.catalogue() if not e.incomplete]
 _TMP = tempfile.mkdtemp(prefix="dfa-api-fuzz-")
 
+#: Valid loops (every public analysis takes one first): the groups alone (μ, β, σ, with the spring, a delay or a
+#: damper), a device and the spring at no given K (the searches over K), a device and a wall of known K.
+_WALL_PARAMS = st.sampled_from([None, dfa.WallParams.of(delay=1), dfa.WallParams.of(damping=0.3, delay=1)])
+
+
+def _loop(device, wall=None):
+    """Loop(device, wall), or the device's search loop when the groups refuse the wall (a damper too fast for a
+    light device): a valid loop either way."""
+    try:
+        return dfa.Loop(device, wall)
+    except dfa.DFAError:
+        return dfa.Loop(device)
+
+
+_LOOPS = st.one_of(
+    st.builds(dfa.Loop.dimensionless, _floats(1e-2, 1e5), _floats(0.0, 2.0), _floats(0.0, 2.0), _WALL_PARAMS),
+    st.builds(_loop, st.sampled_from(_DEVICES)),
+    st.builds(_loop, st.sampled_from(_DEVICES), _floats(10.0, 5e4)),
+    st.builds(
+        _loop,
+        st.sampled_from(_DEVICES),
+        st.builds(dfa.Wall.of, _floats(10.0, 5e4), _floats(0.0, 2.0), st.integers(0, 2)),
+    ),
+)
+
 # ------------------------------------------------------------------ valid values, by parameter name
 VALID = {
+    "loop": _LOOPS,
     "mu": _floats(1e-2, 1e5),
     "beta": _floats(0.0, 2.0),
     "sigma": _floats(0.0, 2.0),

@@ -214,7 +214,7 @@ from ..checks import (
 )
 from ..core.energy import spring_energy_core
 from ..errors import DFATypeError, DFAValueError
-from ..model.elements import Coverage, OneSided, largest_speed
+from ..model.elements import Coverage, OneSided, Push, largest_speed
 from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import Wall, WallParams
 from ..results.criterion import _REGION_CODES as _REGION_CODES
@@ -449,12 +449,12 @@ def _surface(wall: WallParams) -> float:
 
 def _push(wall: WallParams) -> float:
     """The push group p of a one-sided wall (0 without one)."""
-    return wall.push
+    return wall.group(Push) or 0.0
 
 
 def _speed(xd: float, x0: float, mu: float | None, wall: WallParams, quantized: bool, history: str) -> float:
     """The criterion's speed: a one-sided wall's V*, a moving history's V*, else the energy-equivalent V."""
-    if wall.one_sided:
+    if not wall.covers(Coverage.SURFACE_START):  # the approach from free space
         return _one_sided_speed(xd, x0, mu, wall, quantized)
     v = equivalent_speed(xd, x0, mu, quantized=quantized, hand_stiffness=wall.hand_stiffness)
     if history == "moving" and mu is not None:
@@ -467,7 +467,7 @@ def _check_history(history: object, wall: WallParams, mu: float | None) -> str:
     h = check_choice("history", history, HISTORIES)
     if h == "fresh" or not wall.delay:
         return h  # no pending commands: a moving history is the fresh start
-    if wall.one_sided:
+    if not wall.covers(Coverage.SURFACE_START):
         raise DFAValueError(
             "history = 'moving' is invalid with a one-sided wall: its start is the approach from free space; "
             "pass history='fresh'"
@@ -656,7 +656,11 @@ def criterion_from_groups(
     margin = float(_margin(b, s, v, s0, b0))
     critical = (s - s0) / (b0 - b) if (b < b0 and s >= s0) else None
     check_finite_verdict(margin, critical, {"beta": b, "sigma": s, "xi_dot": xd}, names)
-    if critical is not None and m is not None and (w.one_sided or (hist == "moving" and w.delay)):
+    if (
+        critical is not None
+        and m is not None
+        and (not w.covers(Coverage.SURFACE_START) or (hist == "moving" and w.delay))
+    ):
         critical = largest_speed(lambda u: _speed(u, x0, m, w, q, hist), critical)  # a speed ξ'0, not V*
     return CriterionResult(
         beta=b,

@@ -213,7 +213,9 @@ def _load_map(path: str | os.PathLike) -> StabilityMap:
                 quantize=bool(quantize),
                 preload=bool(preload),
                 wall=wall,
-                contact=z["contact"].astype(np.int8) if wall.one_sided and "contact" in z.files else None,
+                contact=z["contact"].astype(np.int8)
+                if not wall.covers(Coverage.SURFACE_START) and "contact" in z.files
+                else None,
             )
         except (DFAValueError, DFATypeError) as err:  # a value outside its rule: the file names it
             raise DFAValueError(f"map file {str(path)!r} is invalid ({err}); recompute it with `dfa map`") from None
@@ -266,7 +268,7 @@ def _run_chunk(
     call; releases the GIL); the contact kinds are −1 for a bilateral wall."""
     mus = np.full(betas.size, mu)
     res = run_points(mus, betas, sigmas, x0s, v0s, samples, wall, quantize, bound, stable_amplitude, growth, settle)
-    if wall.one_sided:
+    if not wall.covers(Coverage.SURFACE_START):
         stats = res[7]
         contact = contact_codes(res[0], stats[:, kernel.NSEG + 6], stats[:, kernel.NSEG + 8], wall, quantize)
     else:
@@ -361,7 +363,7 @@ def stability_map(
     quantize = check_bool("quantize", quantize, "pass True (with the encoder) or False (the linear spring)")
     preload = check_bool("preload", preload, "pass True (start from the spring preload) or False (from ξ0 = 0)")
     progress = check_bool("progress", progress, "pass True to show a progress bar, False for none")
-    if w.one_sided:  # the approach's samples before contact come first
+    if not w.covers(Coverage.SURFACE_START):  # the approach's samples before contact come first
         from .approach import approach_samples
 
         n += approach_samples(w)
@@ -372,7 +374,7 @@ def stability_map(
     check_memory("grid", g, map_memory_bytes(g, len(speeds)), "lower grid (points per axis) or give fewer speeds")
     beta, sigma = np.linspace(b0, b1, g), np.linspace(s0, s1, g)
     pts_b, pts_s, x0, v0 = _points(beta, sigma, starts)
-    if preload or w.one_sided:
+    if preload or not w.covers(Coverage.SURFACE_START):
         check_bound(rules[0], float(np.max(np.abs(x0))))  # the rule simulate() applies: the bound lies beyond ξ0
     workers = (os.cpu_count() or 1) if jobs == -1 else jobs
     chunks = _chunks(pts_b.size, workers, _chunk_cost(n, w))
@@ -386,7 +388,7 @@ def stability_map(
         results = run_in_order(_run_chunk, tasks, [c.size for c in chunks], workers, how, bar)
     codes, amps, freqs, contact = (gather(chunks, [r[k] for r in results]).reshape(len(speeds), g, g) for k in range(4))
     out = (codes.astype(np.int8), amps, freqs, n, quantize, preload)
-    kinds = contact.astype(np.int8) if w.one_sided else None
+    kinds = None if w.covers(Coverage.SURFACE_START) else contact.astype(np.int8)
     return StabilityMap(m, speeds, beta, sigma, *out, wall=w, contact=kinds)
 
 
@@ -409,7 +411,7 @@ def map_start(mu: float, speed: float, preload: bool, wall: WallParams, quantize
     DFAValueError
         For a preload with a one-sided wall (its runs start with the approach).
     """
-    if wall.one_sided:
+    if not wall.covers(Coverage.SURFACE_START):
         if preload:
             raise DFAValueError(
                 "preload = True is invalid with a one-sided wall: its runs start in free space with the approach; "
@@ -425,7 +427,7 @@ def map_start(mu: float, speed: float, preload: bool, wall: WallParams, quantize
 def _map_bound(mu: float, speeds: Sequence[float], starts: Sequence[tuple[float, float]], wall: WallParams) -> float:
     """|ξ| past which a map's run diverged: beyond the fastest start's own travel
     (:func:`dfa.analysis.simulation.divergence_bound`), and beyond a one-sided wall's approach start."""
-    if wall.one_sided:
+    if not wall.covers(Coverage.SURFACE_START):
         return max(divergence_bound(x, v, mu) for x, v in starts)
     return divergence_bound(0.0, float(np.max(np.abs(speeds))), mu)
 

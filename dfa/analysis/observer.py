@@ -28,6 +28,7 @@ import numpy as np
 
 from ..checks import check_type
 from ..errors import DFAValueError
+from ..model.elements import PassivityController
 from ..results.observer import ForceError as ForceError
 from ..results.observer import ObserverSummary as ObserverSummary
 from ..results.status import ObserverStatus
@@ -84,7 +85,7 @@ def observe(result: Any) -> ObserverSummary:
         peak_produced=peak,
         peak_sample=top if peak > 0.0 else 0,
         samples=int(produced.size),
-        controller=bool(result.wall.passivity_controller),
+        controller=result.wall.group(PassivityController) is not None,
         acting=int(np.count_nonzero(f)),
         peak_controller_force=float(np.max(np.abs(f))) if f.size else 0.0,
         wall=result.wall,

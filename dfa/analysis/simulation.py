@@ -698,7 +698,7 @@ def contact_outcome(
     >>> contact_outcome(kernel.CHATTER, 0.2, -0.3, w).value, contact_outcome(kernel.REST, 0.4, 0.0, w).value
     ('bounces', 'rests')
     """
-    if not wall.one_sided:
+    if wall.covers(Coverage.SURFACE_START):  # the device cannot leave a wall that holds it
         return None
     arrays = (np.array([code]), np.array([final_xi]), np.array([tail_min]))
     return CONTACTS[int(contact_codes(*arrays, wall, quantize)[0])]

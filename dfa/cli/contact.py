@@ -15,7 +15,7 @@ import argparse
 
 from ..model.device import Device
 from ..model.elements import Element, OneSided, Push
-from .flag_table import add_rows
+from .flag_table import add_rows, needing
 from .parsing import UsageError
 
 __all__ = ["add_contact_args", "contact_elements", "refuse_one_sided_flag", "CONTACT_COMMANDS"]
@@ -35,7 +35,7 @@ def contact_elements(args: argparse.Namespace, device: Device | None) -> tuple[E
     """The contact's wall elements of the flags (none without --one-sided), or a one-line refusal (exit 2)."""
     surface, push = getattr(args, "surface", None), getattr(args, "push", None)
     if not getattr(args, "one_sided", False):
-        given = [f for f, v in (("--surface", surface), ("--push", push)) if v is not None]
+        given = needing(args, "--one-sided")
         if given:
             raise UsageError(f"{', '.join(given)} needs --one-sided: they describe a one-sided wall; add --one-sided")
         return ()

@@ -13,7 +13,7 @@ import argparse
 
 from ..model.device import Device
 from ..model.elements import Element, PassivityController
-from .flag_table import add_rows
+from .flag_table import add_rows, given_rows, needing
 from .parsing import UsageError
 
 __all__ = ["add_passivity_args", "add_observer_arg", "passivity_elements", "refuse_passivity_flag"]
@@ -39,7 +39,7 @@ def passivity_elements(args: argparse.Namespace, device: Device | None) -> tuple
     """The controller's wall element of the flags (none without --passivity-controller), or a one-line refusal."""
     window, limit = getattr(args, "pc_window", None), getattr(args, "pc_force_limit", None)
     if not getattr(args, "passivity_controller", False):
-        given = [f for f, v in (("--pc-window", window), ("--pc-force-limit", limit)) if v is not None]
+        given = needing(args, "--passivity-controller")
         if given:
             raise UsageError(
                 f"{', '.join(given)} needs --passivity-controller (they set its window and force limit); add "
@@ -69,15 +69,7 @@ def passivity_elements(args: argparse.Namespace, device: Device | None) -> tuple
 
 def refuse_passivity_flag(args: argparse.Namespace, why: str) -> None:
     """Refuse the controller's flags on a command that does not cover it (UsageError, exit 2), saying why."""
-    flags = [
-        f
-        for f, v in (
-            ("--passivity-controller", getattr(args, "passivity_controller", False)),
-            ("--pc-window", getattr(args, "pc_window", None) is not None),
-            ("--pc-force-limit", getattr(args, "pc_force_limit", None) is not None),
-        )
-        if v
-    ]
+    flags = given_rows(args, PassivityController)
     if flags:
         raise UsageError(
             f"{', '.join(flags)} is not covered here: {why}; use dfa simulate, map, stiffness, zwidth, check or "

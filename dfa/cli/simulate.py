@@ -8,6 +8,7 @@ from typing import Any
 from .._io import check_output_file
 from ..checks import check_damping_rate
 from ..jsonable import explain_nulls
+from ..model.elements import Coverage
 from ..model.loop import Loop
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
@@ -156,7 +157,7 @@ def run(args: argparse.Namespace) -> int:
     if args.trace is not None:
         check_output_file("--trace", args.trace)
     quantize = not args.no_quantization
-    approach = _approach(args, p, xd, wp, quantize) if wp.one_sided else None
+    approach = None if wp.covers(Coverage.SURFACE_START) else _approach(args, p, xd, wp, quantize)
     x0, v0 = _start(args, p.mu, xd) if approach is None else approach[:2]
     n = args.samples if args.samples is not None else default_samples(p.mu, p.beta, p.sigma, v0, x0, quantize, wall=wp)
     n += 0 if approach is None or args.samples is not None else approach[2]  # the approach, before contact

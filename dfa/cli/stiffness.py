@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..formatting import fill, text_table
 from ..jsonable import explain_nulls
+from ..model.elements import PassivityController
 from ..model.loop import Loop
 from ..model.wall import Wall
 from .contact import add_contact_args
@@ -75,7 +76,7 @@ def _plain(ans: KMaxResult, dev: Any, v: float) -> KMaxResult | None:
     and the wall recommended when the controller does not help (:func:`recommend_stiffness`'s ``plain``)."""
     from ..analysis.limits.kmax import design_answer
 
-    if ans.wall.passivity_controller is None:
+    if ans.wall.element(PassivityController) is None:
         return None
     return design_answer(Loop(dev, ans.wall.without_controller()), v)
 

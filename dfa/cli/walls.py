@@ -13,13 +13,13 @@ import math
 from typing import Any
 
 from ..model.device import Device
-from ..model.elements import ELEMENTS, Delay, Element, ForceLimit
+from ..model.elements import ELEMENTS, Coverage, Damper, Delay, Element, ForceLimit, OneSided
 from ..model.loop import with_travel
 from ..model.wall import MIN_CUTOFF, Wall, WallParams
-from .flag_table import FLAG_ROWS, add_rows
+from .flag_table import FLAG_ROWS, add_rows, given_rows, is_given
 from .inputs import Inputs
 from .output import say
-from .parsing import UsageError, delay, number
+from .parsing import UsageError
 
 __all__ = [
     "WALL_FLAGS",
@@ -37,29 +37,21 @@ __all__ = [
 ]
 
 
-def _dest(kind: type[Element]) -> str:
-    """The argparse destination of an element's flag (``--virtual-damping`` -> ``virtual_damping``)."""
-    return kind.parameter.flag.lstrip("-").replace("-", "_")
+#: The wall's elements by their one row of the flag table (:data:`FLAG_ROWS`): element class -> (flag, argparse
+#: destination). The delay is a plain flag (default 0); the others form the wall group (default: no such element).
+WALL_FLAGS: dict[type[Element], tuple[str, str]] = {
+    k: (row.flag, row.dest) for k in ELEMENTS if k.wall_flag for row in k.flag_rows()
+}
 
-
-#: The flag table: element class -> (flag, argparse destination). The delay is a plain flag (default 0); the
-#: others form the wall group (default: no such element).
-WALL_FLAGS: dict[type[Element], tuple[str, str]] = {k: (k.parameter.flag, _dest(k)) for k in ELEMENTS if k.wall_flag}
-
-
-def _add_element(g: Any, kind: type[Element], help_text: str | None = None) -> None:
-    par = kind.parameter
-    flag, dest = WALL_FLAGS[kind]
-    if kind is Delay:
-        g.add_argument(flag, dest=dest, type=delay, default=0, metavar=par.metavar, help=par.help)
-        return
-    unit = par.units[0] if par.units[0] == par.units[1] else f"{par.units[0]} (rotary: {par.units[1]})"
-    g.add_argument(flag, dest=dest, type=number(flag, unit), metavar=par.metavar, help=help_text or par.help)
+#: Why ``dfa zwidth`` refuses the damper's flag (its help there).
+_ZWIDTH_REFUSED = {
+    Damper.parameter.flag: "not accepted here: B is the Z-width's axis, its grid spans B from 0 (default: the grid)"
+}
 
 
 def add_wall_args(p: argparse.ArgumentParser, *, zwidth: bool = False) -> None:
     """--delay and the other elements' flags. With ``zwidth`` the damper's flag is refused (B is the Z-width's axis)."""
-    _add_element(p, Delay)
+    add_rows(p, Delay)
     title = (
         "wall (B is the Z-width's axis)"
         if zwidth
@@ -68,15 +60,12 @@ def add_wall_args(p: argparse.ArgumentParser, *, zwidth: bool = False) -> None:
     g = p.add_argument_group(title)
     for kind in WALL_FLAGS:
         if kind is not Delay:
-            refused = "not accepted here: B is the Z-width's axis, its grid spans B from 0 (default: the grid)"
-            _add_element(g, kind, refused if zwidth and WALL_FLAGS[kind][1] == "virtual_damping" else None)
+            add_rows(g, kind, _ZWIDTH_REFUSED if zwidth else None)
 
 
 def given_flags(args: argparse.Namespace) -> list[str]:
     """The wall flags given on the command line, besides --delay."""
-    return [
-        flag for kind, (flag, dest) in WALL_FLAGS.items() if kind is not Delay and getattr(args, dest, None) is not None
-    ]
+    return [flag for kind in WALL_FLAGS if kind is not Delay for flag in given_rows(args, kind)]
 
 
 def check_filter_amplifier(args: argparse.Namespace, device: Device) -> None:
@@ -150,14 +139,14 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
 
     given = given_flags(args)
     hand = hand_stiffness_of(args, device)
-    limit = (ForceLimit(device.max_force),) if device is not None and device.max_force is not None else ()
+    # the device's force limit (device field, --max-force); without K the Loop adds it (dfa.model.loop.limited)
+    top = None if device is None or stiffness is None else device.max_force
+    limit = () if top is None else (ForceLimit(top),)
     contact = contact_elements(args, device) + passivity_elements(args, device) + limit
     if not given and not hand and not contact:
         return None
     if device is None or stiffness is None:
-        flags = ("one_sided", "passivity_controller")  # the contact's and the controller's own flags
-        given += ["--" + e.key().replace("_", "-") for e in contact if e.key() in flags]
-        given += [ForceLimit.parameter.flag] if limit else []
+        given += [row.flag for row in FLAG_ROWS.values() if row.metavar is None and is_given(args, row)]  # switches
         raise UsageError(
             f"{', '.join(given)} needs a physical device and stiffness (K and T turn B, f_c, f_bw into β_B, ν_c, α): "
             "give --device NAME (or --mass --damping --coulomb --resolution --period) and --stiffness K"
@@ -173,7 +162,7 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
     values["damping"] = values["damping"] or 0.0
     wall = Wall.of(stiffness, hand_stiffness=hand, **values)
     wall = Wall(stiffness, (*wall.elements, *contact)) if contact else wall
-    return None if wall_groups(wall, device).is_spring else wall
+    return None if wall_groups(wall, device).covers(Coverage.CLOSED_FORM) else wall
 
 
 #: How a message of the wall's groups calls each element's value: its flag (``--virtual-damping``, ``--push``).
@@ -219,7 +208,9 @@ def print_wall(wall: Wall | None, inp: Inputs | None, *, wrap: bool = True, cont
         from ..render.controller import controller_parts
 
         values, groups = controller_parts(wall, inp.device.period, inp.device.units, inp.device.resolution)
-        line = f"contact: {contact_text(wall, inp.device.units)}" if contact and wall.one_sided else ""
+        line = (
+            f"contact: {contact_text(wall, inp.device.units)}" if contact and wall.element(OneSided) is not None else ""
+        )
         if wrap:
             say(f"{values};\n  {groups}")
             if line:

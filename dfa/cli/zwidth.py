@@ -7,6 +7,7 @@ import argparse
 import math
 
 from .._io import FIGURE_SUFFIXES, check_output_file
+from ..model.elements import OneSided, PassivityController
 from ..model.loop import Loop
 from ..model.wall import Wall
 from ..render.hand import device_title
@@ -145,14 +146,15 @@ def run(args: argparse.Namespace) -> int:
     fc, bw = zw.wall.filter_cutoff, zw.wall.amplifier_bandwidth
     elements = f"delay {zw.delay}" + (f", velocity filter {fmt(fc)} Hz" if fc is not None else "")
     elements += f", amplifier {fmt(bw)} Hz" if bw is not None else ""
-    if zw.wall.one_sided:
+    if zw.wall.element(OneSided) is not None:
         from ..render.contact import contact_text
 
         elements += f"; {contact_text(zw.wall, u)}"
-    if zw.wall.passivity_controller is not None:
+    pc = zw.wall.element(PassivityController)
+    if pc is not None:
         from ..render.passivity import passivity_text
 
-        elements += f"; {passivity_text(zw.wall.passivity_controller, u)}"
+        elements += f"; {passivity_text(pc, u)}"
     say(
         f"Z-width of {device_title(dev)}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}"
     )

@@ -71,7 +71,7 @@ def hurwitz_zeta(s: float, q: float) -> float:
     (relative error ~1e-16 for −6 <= s <= 2).
     """
     n = 20
-    total = 0.0
+    total: float = 0.0
     for k in range(n):
         x = q + k
         if x > 0.0:

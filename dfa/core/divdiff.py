@@ -73,7 +73,8 @@ def _dd(x: np.ndarray) -> float:
     y = x - x0
     if y[-1] < _SERIES_SPREAD:
         return scale * _series(y)
-    return scale * (_dd(y[1:]) - _dd(y[:-1])) / y[-1]
+    out: float = scale * (_dd(y[1:]) - _dd(y[:-1])) / y[-1]
+    return out
 
 
 @njit(cache=True)

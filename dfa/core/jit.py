@@ -34,7 +34,7 @@ from __future__ import annotations
 import functools
 import threading
 from collections.abc import Callable
-from typing import Any
+from typing import Any, Generic, ParamSpec, TypeVar, cast, overload
 
 __all__ = ["njit", "Deferred", "when_numba_loads"]
 
@@ -62,9 +62,10 @@ def _numba() -> Any:
 def _register(typeof_impl: Any) -> None:
     """Let numba type a :class:`Deferred` as its dispatcher (a compiled kernel calling a deferred one)."""
 
-    @typeof_impl.register(Deferred)
-    def _typeof_deferred(val: Deferred, c: Any) -> Any:
+    def _typeof_deferred(val: Deferred[..., Any], c: Any) -> Any:
         return typeof_impl(val.dispatcher, c)
+
+    typeof_impl.register(Deferred)(_typeof_deferred)
 
 
 def when_numba_loads(callback: Callable[[Any], None]) -> Callable[[], None]:
@@ -93,7 +94,12 @@ def when_numba_loads(callback: Callable[[Any], None]) -> Callable[[], None]:
     return withdraw
 
 
-class Deferred:
+#: A kernel's parameters and its return type: a :class:`Deferred` is called as its Python function is.
+P = ParamSpec("P")
+R = TypeVar("R")
+
+
+class Deferred(Generic[P, R]):
     """A numba kernel made and compiled on its first call (see the module docstring).
 
     Parameters
@@ -104,7 +110,7 @@ class Deferred:
         ``numba.njit``'s options (``cache``, ``inline``, …).
     """
 
-    def __init__(self, py_func: Callable[..., Any], targetoptions: dict[str, Any]) -> None:
+    def __init__(self, py_func: Callable[P, R], targetoptions: dict[str, Any]) -> None:
         self.py_func = py_func
         self.targetoptions = dict(targetoptions)
         self._dispatcher: Any = None
@@ -120,8 +126,8 @@ class Deferred:
                     self._dispatcher = numba.njit(**self.targetoptions)(self.py_func)
         return self._dispatcher
 
-    def __call__(self, *args: Any, **kwargs: Any) -> Any:
-        return self.dispatcher(*args, **kwargs)
+    def __call__(self, *args: P.args, **kwargs: P.kwargs) -> R:
+        return cast(R, self.dispatcher(*args, **kwargs))
 
     def __getattr__(self, name: str) -> Any:
         # numba's own attributes (signatures, stats, inspect_types, …); only reached for names not set above
@@ -144,17 +150,23 @@ class Deferred:
         return f"Deferred({self.py_func.__module__}.{self.py_func.__qualname__})"
 
 
-def _resolve(module: str, qualname: str) -> Deferred:
+def _resolve(module: str, qualname: str) -> Deferred[..., Any]:
     """The kernel ``module.qualname`` (unpickling a :class:`Deferred` finds the module's own)."""
     import importlib
 
     obj: Any = importlib.import_module(module)
     for part in qualname.split("."):
         obj = getattr(obj, part)
-    return obj
+    return cast("Deferred[..., Any]", obj)
 
 
-def njit(func: Callable[..., Any] | None = None, **options: Any) -> Any:
+@overload
+def njit(func: Callable[P, R], **options: Any) -> Deferred[P, R]: ...
+@overload
+def njit(func: None = None, **options: Any) -> Callable[[Callable[P, R]], Deferred[P, R]]: ...
+def njit(
+    func: Callable[P, R] | None = None, **options: Any
+) -> Deferred[P, R] | Callable[[Callable[P, R]], Deferred[P, R]]:
     """``numba.njit`` deferred to the first call: ``@njit``, ``@njit(cache=True)`` or ``njit(**o)(f)``.
 
     Parameters
@@ -171,4 +183,8 @@ def njit(func: Callable[..., Any] | None = None, **options: Any) -> Any:
     """
     if func is not None:
         return Deferred(func, options)
-    return lambda f: Deferred(f, options)
+
+    def decorate(f: Callable[P, R]) -> Deferred[P, R]:
+        return Deferred(f, options)
+
+    return decorate

@@ -483,7 +483,7 @@ def _observe(pcs: FloatArray, applied: float, vh: float, delay: int, window: int
     term = -applied * vh + pcs[PINIT]  # reading 0 also counts the energy the wall holds at the start
     pcs[PINIT] = 0.0
     pcs[PTOT] += term
-    e = pcs[PE] + term
+    e: float = pcs[PE] + term
     if window > 0:
         i = int(pcs[PWPOS])
         w0 = PBK + delay + 1
@@ -805,13 +805,13 @@ def applied_forces(
             energy[h:] = np.nan
             control[h:] = np.nan
             break
-        r_prev, v_prev, y, _, pos, c, _ = _command(xs[h], r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl, pcs)
+        r_prev, v_prev, y, _, pos, cmd, _ = _command(xs[h], r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl, pcs)
         energy[h], control[h] = pcs[PTOT], pcs[PF]
         if lag == 0.0:
-            fa = c
+            fa = cmd
         out[h] = fa
         if lag != 0.0:
-            fa = c + (fa - c) * e_lag
+            fa = cmd + (fa - cmd) * e_lag
 
 
 @njit(cache=True, nogil=True)

@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 from decimal import Decimal
 from functools import lru_cache
 from importlib import resources
+from typing import Any
 
 from ..errors import DeviceFileError, DFAError, DFATypeError, DFAValueError
 from ..jsonable import explain_nulls
@@ -292,7 +293,7 @@ class CatalogueEntry:
         return explain_nulls(out, why)
 
 
-def _entry(raw: dict) -> CatalogueEntry:
+def _entry(raw: dict[str, Any]) -> CatalogueEntry:
     printed = tuple((k, str(raw.get("printed", {})[k])) for k in ("mu", "beta", "sigma") if k in raw.get("printed", {}))
     values = {f.name: (float(raw[f.name]) if f.name in raw else None) for f in _ROW_FIELDS}
     entry = CatalogueEntry(
@@ -542,7 +543,7 @@ def _check_resolve_arguments(
 
 
 def _resolved_stiffness(
-    dev: Device, stiffness: float | None, entry: CatalogueEntry | None, given: dict, fl: dict[str, str]
+    dev: Device, stiffness: float | None, entry: CatalogueEntry | None, given: dict[str, Any], fl: dict[str, str]
 ) -> float | None:
     """K: the one given, else the row's, else None; checked > 0, with (μ, β, σ) a float can hold."""
     from ..checks import check_positive
@@ -557,7 +558,9 @@ def _resolved_stiffness(
     return float(k)
 
 
-def _refuse_missing(entry: CatalogueEntry | None, given: dict, missing: list[str], fl: dict[str, str]) -> None:
+def _refuse_missing(
+    entry: CatalogueEntry | None, given: dict[str, Any], missing: list[str], fl: dict[str, str]
+) -> None:
     if entry is not None:
         raise DFAValueError(
             f"device {entry.name!r} is incomplete in the catalogue: give {' '.join(missing)} explicitly"
@@ -584,7 +587,7 @@ def _file_error(path: str, what: str) -> DeviceFileError:
     return DeviceFileError(f"device file {path!r} {what}")
 
 
-def _read_toml(path: str) -> dict:
+def _read_toml(path: str) -> dict[str, Any]:
     """The file's TOML table; every way it cannot be read is a :class:`DeviceFileError`."""
     try:
         st = os.stat(path)
@@ -605,7 +608,8 @@ def _read_toml(path: str) -> dict:
     except UnicodeDecodeError:
         raise _file_error(path, "is not UTF-8 text: save it as a UTF-8 TOML file") from None
     try:
-        return tomllib.loads(text)
+        data: dict[str, Any] = tomllib.loads(text)
+        return data
     except tomllib.TOMLDecodeError as exc:
         raise _file_error(path, f"is not valid TOML ({exc}); compare it with `dfa devices --template`") from None
     except RecursionError:  # the reader recurses once per bracket: [[[[…]]]] of thousands
@@ -626,7 +630,7 @@ def _unknown(path: str, keys: list[str], allowed: tuple[str, ...], where: str) -
     )
 
 
-def _file_row(path: str, data: dict) -> dict:
+def _file_row(path: str, data: dict[str, Any]) -> dict[str, Any]:
     """The one ``[[devices]]`` table of a device file."""
     rows = data.get("devices")
     if set(data) - {"devices"}:
@@ -642,7 +646,8 @@ def _file_row(path: str, data: dict) -> dict:
         raise _file_error(
             path, f"holds {len(rows)} [[devices]] tables: a device file holds one device; put each in its own file"
         )
-    return rows[0]
+    row: dict[str, Any] = rows[0]
+    return row
 
 
 def _file_text(path: str, key: str, value: object) -> str:
@@ -728,7 +733,7 @@ def _file_value(path: str, key: str, value: object) -> object:
     return _FILE_READERS[key](path, key, value)
 
 
-def load_device_file(path: str | os.PathLike) -> CatalogueEntry:
+def load_device_file(path: str | os.PathLike[str]) -> CatalogueEntry:
     """Read a device of your own from a TOML file in the catalogue's format (:func:`device_template`).
 
     The file holds one ``[[devices]]`` table: ``name`` and the five physical values in SI units (``mass``,
@@ -787,7 +792,7 @@ def load_device_file(path: str | os.PathLike) -> CatalogueEntry:
         )
     values = {k: _file_value(name, k, v) for k, v in row.items()}
     values.pop("incomplete", None)
-    fields: dict = {"kind": "haptic device", "source": "", "notes": ""} | values
+    fields: dict[str, Any] = {"kind": "haptic device", "source": "", "notes": ""} | values
     fields["source"] = fields["source"] or f"device file {os.path.basename(name)}"
     return CatalogueEntry(**fields)
 

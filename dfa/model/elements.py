@@ -139,8 +139,13 @@ class Coverage(enum.Flag):
     CLOSED_FORM = enum.auto()
     #: The exact simulation (:mod:`dfa.core.wall_kernel`): every registered element.
     SIMULATION = enum.auto()
+    #: Runs that start at the wall's surface (the paper's impact ξ0 = 0 at V, the spring's preload) on a wall
+    #: that holds the device on both sides. Without it every run starts with the approach from free space
+    #: (:func:`dfa.analysis.approach.approach_start`), the criterion's speed is that approach's, and a run may leave
+    #: the wall for good (:class:`OneSided`).
+    SURFACE_START = enum.auto()
     #: Every analysis.
-    ALL = CRITERION | LINEAR | DESCRIBING_FUNCTION | COLGATE_SCHENKEL | CLOSED_FORM | SIMULATION
+    ALL = CRITERION | LINEAR | DESCRIBING_FUNCTION | COLGATE_SCHENKEL | CLOSED_FORM | SIMULATION | SURFACE_START
 
 
 @dataclass(frozen=True)
@@ -292,10 +297,11 @@ class Parameter(NamedTuple):
 
 
 class FlagRow(NamedTuple):
-    """One command-line option of an element (a row of the flag table of :mod:`dfa.cli.walls`).
+    """One command-line option of an element (a row of the flag table of :mod:`dfa.cli.flag_table`).
 
     ``metavar`` None makes it a switch (``store_true``); ``unit`` is what its number is read in (its
-    messages' unit).
+    messages' unit); ``whole`` reads whole samples instead (``--delay``), with ``default``; ``needs`` is the switch
+    it describes (``--one-sided`` for ``--push``): given without it, the command refuses it.
     """
 
     flag: str
@@ -303,6 +309,9 @@ class FlagRow(NamedTuple):
     metavar: str | None
     help: str
     unit: str = ""
+    whole: bool = False
+    default: object = None
+    needs: str | None = None
 
 
 class KernelBlock(NamedTuple):
@@ -397,6 +406,8 @@ class Element(abc.ABC, Generic[G]):
     needs_resolution: ClassVar[bool] = False
     #: Why the linear loop (exact linear bound, describing function) does not cover it (None: it does).
     linear_reason: ClassVar[str | None] = None
+    #: Further analyses that cover no wall with this element whatever its group, each with the reason.
+    never_covered: ClassVar[tuple[tuple[Coverage, str], ...]] = ()
     #: Its code in the wall's kernel table (:data:`dfa.core.table.CODES`), one per element class.
     kernel_code: ClassVar[int]
 
@@ -496,8 +507,8 @@ class Element(abc.ABC, Generic[G]):
         """Give what covers the wall with this element of group ``g``, and why the rest does not.
 
         The default reads the element's hooks: :meth:`corner` raising :class:`NotCovered` (the criterion),
-        :attr:`linear_reason` (the exact linear bound and the describing function), :attr:`colgate_schenkel`
-        and :meth:`spring_kernel` (the closed forms); a neutral group (:meth:`renders_nothing`) covers all.
+        :meth:`class_coverage` (what the class decides alone) and :meth:`spring_kernel` (the closed forms); a
+        neutral group (:meth:`renders_nothing`) covers all.
 
         Parameters
         ----------
@@ -515,10 +526,7 @@ class Element(abc.ABC, Generic[G]):
             cls.corner(g, quantized=True)
         except NotCovered as why:
             reasons.append((Coverage.CRITERION, str(why)))
-        if cls.linear_reason:
-            reasons += [(Coverage.LINEAR, cls.linear_reason), (Coverage.DESCRIBING_FUNCTION, cls.linear_reason)]
-        if cls.colgate_schenkel:
-            reasons.append((Coverage.COLGATE_SCHENKEL, cls.colgate_schenkel))
+        reasons += cls.class_coverage().reasons
         if not cls.spring_kernel(g):
             reasons.append(
                 (
@@ -526,6 +534,34 @@ class Element(abc.ABC, Generic[G]):
                     f"the paper's closed forms hold for the spring with a delay, not with a {cls.key().replace('_', ' ')}",
                 )
             )
+        flags = Coverage.ALL
+        for flag, _ in reasons:
+            flags &= ~flag
+        return Covered(flags, tuple(reasons))
+
+    @classmethod
+    def class_coverage(cls) -> Covered:
+        """Give what covers every wall with this element whatever its group, and why the rest does not.
+
+        Read from the class alone: :attr:`linear_reason` (the exact linear bound and the describing function),
+        :attr:`colgate_schenkel` and :attr:`never_covered`; the criterion and the closed forms depend on the group
+        (:meth:`coverage`) and are not ruled out here.
+
+        Returns
+        -------
+        Covered
+
+        Examples
+        --------
+        >>> Coverage.SURFACE_START in OneSided.class_coverage().flags
+        False
+        """
+        reasons: list[tuple[Coverage, str]] = []
+        if cls.linear_reason:
+            reasons += [(Coverage.LINEAR, cls.linear_reason), (Coverage.DESCRIBING_FUNCTION, cls.linear_reason)]
+        if cls.colgate_schenkel:
+            reasons.append((Coverage.COLGATE_SCHENKEL, cls.colgate_schenkel))
+        reasons += cls.never_covered
         flags = Coverage.ALL
         for flag, _ in reasons:
             flags &= ~flag
@@ -861,6 +897,11 @@ class Delay(Element[int]):
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "delay", check_delay(self.delay))
+
+    @classmethod
+    def flag_rows(cls) -> tuple[FlagRow, ...]:
+        par = cls.parameter
+        return (FlagRow(par.flag, "delay", par.metavar, par.help, "samples", whole=True, default=0),)
 
     def group(self, period: float, stiffness: float) -> int:
         return self.delay
@@ -1300,6 +1341,11 @@ _ONE_SIDED_LINEAR = (
     "Colgate–Schenkel and the describing function do not cover it; the exact simulation does"
 )
 
+_ONE_SIDED_START = (
+    "a one-sided wall holds the device only in contact: every run starts with the approach from free space and "
+    "may leave the wall for good"
+)
+
 
 @dataclass(frozen=True)
 class OneSided(Element[float]):
@@ -1340,6 +1386,7 @@ class OneSided(Element[float]):
     absent: ClassVar[object] = None
     #: Why the linear loop (exact linear bound, describing function) does not cover the element.
     linear_reason: ClassVar[str | None] = _ONE_SIDED_LINEAR
+    never_covered: ClassVar[tuple[tuple[Coverage, str], ...]] = ((Coverage.SURFACE_START, _ONE_SIDED_START),)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "surface", self.check_group(self.surface))
@@ -1356,7 +1403,7 @@ class OneSided(Element[float]):
             "and never pulls; the run starts in free space before contact (default: bilateral)",
         )  # fmt: skip
         par = cls.parameter
-        return (switch, FlagRow(par.flag, "surface", par.metavar, par.help, "ticks"))
+        return (switch, FlagRow(par.flag, "surface", par.metavar, par.help, "ticks", needs=switch.flag))
 
     def group(self, period: float, stiffness: float) -> float:
         return self.surface
@@ -1556,7 +1603,7 @@ class Push(Element[float]):
     @classmethod
     def flag_rows(cls) -> tuple[FlagRow, ...]:
         par = cls.parameter
-        return (FlagRow(par.flag, "push", par.metavar, par.help, "N"),)
+        return (FlagRow(par.flag, "push", par.metavar, par.help, "N", needs="--one-sided"),)
 
     def __post_init__(self) -> None:
         fix = "give the operator's force toward the wall in N (0 for none)"
@@ -1787,8 +1834,9 @@ class PassivityController(Element[tuple[int, float | None]]):
             FlagRow(
                 "--pc-window", "pc_window", "S",
                 "with --passivity-controller: the observer's window in s (default: the whole run)", "s",
+                needs="--passivity-controller",
             ),
-            FlagRow(par.flag, "pc_force_limit", par.metavar, par.help, "N"),
+            FlagRow(par.flag, "pc_force_limit", par.metavar, par.help, "N", needs="--passivity-controller"),
         )  # fmt: skip
 
     @property

@@ -78,6 +78,12 @@ T = TypeVar("T")
 
 __all__ = ["Wall", "WallParams", "MIN_CUTOFF", "MIN_LAG", "SPRING_CORNER"]
 
+#: The analyses an element's class decides alone, whatever its group (:meth:`Wall.covers`).
+_BY_CLASS = (
+    Coverage.LINEAR | Coverage.DESCRIBING_FUNCTION | Coverage.COLGATE_SCHENKEL | Coverage.SURFACE_START
+    | Coverage.SIMULATION
+)  # fmt: skip
+
 #: The corner (β₀, σ₀) of the paper's spring (eq. 6): (½, ½) with the encoder, (½, 0) without (eq. 7).
 SPRING_CORNER = (0.5, 0.5)
 
@@ -400,7 +406,7 @@ class WallParams:
         Examples
         --------
         >>> WallParams.of(damping=0.3, lag=0.2).coverage().flags
-        <Coverage.LINEAR|DESCRIBING_FUNCTION|SIMULATION: 38>
+        <Coverage.LINEAR|DESCRIBING_FUNCTION|SIMULATION|SURFACE_START: 102>
         """
         return self._coverage
 
@@ -795,6 +801,41 @@ class Wall:
     def passivity_controller(self) -> PassivityController | None:
         """The wall's passivity controller (:class:`~dfa.model.elements.PassivityController`), or None."""
         return self.element(PassivityController)
+
+    def covers(self, what: Coverage) -> bool:
+        """Tell whether every analysis of ``what`` covers this wall, for the analyses the elements' classes decide.
+
+        The linear loop, the describing function, Colgate–Schenkel, the start at the surface and the simulation
+        (:meth:`Element.class_coverage <dfa.model.elements.Element.class_coverage>`) need no groups; the criterion
+        and the closed forms do: ask the groups, ``wall.params(T, Δ).covers(...)`` (:meth:`WallParams.covers`).
+
+        Parameters
+        ----------
+        what : Coverage
+            One analysis or several, among those the classes decide.
+
+        Returns
+        -------
+        bool
+            True when every element class of the wall covers every flag of ``what``.
+
+        Raises
+        ------
+        DFAValueError
+            For the criterion or the closed forms.
+
+        Examples
+        --------
+        >>> from dfa.model.elements import OneSided
+        >>> Wall(100.0, (OneSided(0.25),)).covers(Coverage.SURFACE_START), Wall(100.0).covers(Coverage.LINEAR)
+        (False, True)
+        """
+        if what & ~_BY_CLASS:
+            raise DFAValueError(
+                f"what = {what!r} is invalid: whether it covers a wall depends on the elements' groups; ask "
+                "wall.params(T, Δ).covers(what), or pass one of the analyses the classes decide alone"
+            )
+        return all(type(e).class_coverage().covers(what) for e in self.elements)
 
     def linear_reason(self) -> str | None:
         """Say why the linear loop (exact linear bound, describing function) does not cover this wall.

@@ -12,6 +12,7 @@ Examples
 from __future__ import annotations
 
 from ..formatting import WIDTH, fill, number, text_table
+from ..model.elements import Coverage, OneSided, PassivityController
 from ..results.criterion import start_state_clause, start_state_note
 from ..results.limits import KLimit, KMaxResult
 from ..results.require import DamperGuidance, Recommendation
@@ -117,7 +118,7 @@ def _rest_text(rec: Recommendation) -> str:
     if not rec.above_rest:
         return ""
     ku = rec.device.units["stiffness"]
-    leave = " or leaves" if rec.wall.one_sided else ""
+    leave = "" if rec.wall.covers(Coverage.SURFACE_START) else " or leaves"
     if rec.k_rest is None:
         where = "every K searched for the rest limit: impacts failed to come to rest already at the lowest"
     else:
@@ -153,9 +154,9 @@ def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
     """(method, K, what it rests on) for each way and the spring's published bounds."""
     ku = r.device.units["stiffness"]
     n = len(r.evidence.speeds)
-    starts = "after the approach" if r.wall.one_sided else "2 starts"
+    starts = "2 starts" if r.wall.covers(Coverage.SURFACE_START) else "after the approach"
     sims = f"simulated: {n} speed{'s' if n != 1 else ''} up to V, {starts}"
-    spring = r.wall.params(r.device.period, r.device.resolution).is_spring
+    spring = r.wall.params(r.device.period, r.device.resolution).covers(Coverage.CLOSED_FORM)
     rows = [["criterion (eq. 11" + (")" if spring else ", extended)"),
              _limit_cell(r.k_criterion, ku, notes, "criterion"), "proof"]]  # fmt: skip
     published = (
@@ -177,7 +178,7 @@ def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
             sims + _resolution(r.k_sim),
         ],
         [
-            "simulation, every impact rests" + LEAVES[r.wall.one_sided],
+            "simulation, every impact rests" + LEAVES[not r.wall.covers(Coverage.SURFACE_START)],
             _limit_cell(r.k_sim_rest, ku, notes, "simulation, rests"),
             sims + _resolution(r.k_sim_rest),
         ],
@@ -239,16 +240,16 @@ def _header(r: KMaxResult) -> list[str]:
     w = r.wall
     d = f"delay {w.delay} sample{'s' if w.delay != 1 else ''}"
     head = f"{device_title(r.device)}, impact at {number(r.velocity, 4)} {u['velocity']} ({number(r.xi_dot, 4)} ticks/sample)"
-    if w.params(r.device.period, r.device.resolution).is_spring:
+    if w.params(r.device.period, r.device.resolution).covers(Coverage.CLOSED_FORM):
         return [wrap(f"{head}; the spring, {d}")]
-    parts = [contact_text(w, u)] if w.one_sided else []
+    parts = [contact_text(w, u)] if w.element(OneSided) is not None else []
     parts += [f"B = {number(w.damping, 4)} {u['damping']}"] if w.damping else []
     parts.append(d)
     if w.filter_cutoff is not None:
         parts.append(f"velocity filter {number(w.filter_cutoff, 4)} Hz")
     if w.amplifier_bandwidth is not None:
         parts.append(f"amplifier bandwidth {number(w.amplifier_bandwidth, 4)} Hz")
-    pc = w.passivity_controller
+    pc = w.element(PassivityController)
     if pc is not None:
         parts.append(passivity_text(pc, u))
     return [wrap(head), wrap(f"wall held fixed while K varies: {', '.join(parts)}")]

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..formatting import number
+from ..model.elements import Push
 from ..model.wall import Wall, WallParams
 
 __all__ = ["contact_line", "contact_text", "limit_cell"]
@@ -19,7 +20,8 @@ def contact_text(wall: Wall, units: dict[str, str]) -> str:
     >>> contact_text(Wall(1.0, (OneSided(0.25), Push(2.0))), {"force": "N"})
     'one-sided wall reached from free space (surface at 0.25 ticks), push 2 N'
     """
-    f = wall.push
+    e = wall.element(Push)
+    f = 0.0 if e is None else e.push
     push = f"push {number(f, 4)} {units.get('force', 'N')}" if f else "no push (a free impact)"
     return f"one-sided wall reached from free space (surface at {number(wall.surface, 4)} ticks), {push}"
 
@@ -46,7 +48,8 @@ def contact_line(wall: WallParams, samples: int, speed: float) -> str:
     >>> contact_line(WallParams(((OneSided, 0.0),)), 3, 2.0)
     'contact: one-sided wall, surface at 0 ticks, no push; the run starts 3 samples before the device reaches it at 2 ticks/sample, with the memory of that approach'
     """
-    push = f"push p = F_p/(KΔ) = {number(wall.push, 4)}" if wall.push else "no push"
+    p = wall.group(Push)
+    push = f"push p = F_p/(KΔ) = {number(p, 4)}" if p else "no push"
     return (
         f"contact: one-sided wall, surface at {number(wall.surface, 4)} ticks, {push}; the run starts {samples} "
         f"samples before the device reaches it at {number(speed, 4)} ticks/sample, with the memory of that approach"

@@ -17,7 +17,7 @@ from typing import Any
 
 from ..formatting import number
 from ..jsonable import explain_nulls, to_jsonable
-from ..model.elements import ForceLimit
+from ..model.elements import ForceLimit, OneSided, PassivityController, Push
 from ..results.criterion import PassivityCheck
 from ..results.status import CheckStatus
 
@@ -169,7 +169,7 @@ def controller_parts(
     if controller.hand_stiffness:  # the hand's spring acts beside the controller: named after it
         values += f"; hand stiffness k_h = {_g(controller.hand_stiffness)} {units['stiffness']}"
         groups += f", κ_h = k_h/K = {_g(p.hand_stiffness)}"
-    pc = controller.passivity_controller
+    pc = controller.element(PassivityController)
     if pc is not None:  # named after the wall it watches
         from .passivity import passivity_text
 
@@ -350,14 +350,16 @@ def controller_rows(
         else []
     )
     groups = [["κ_h = k_h/K", _g(dim["hand_stiffness"])]] if controller.hand_stiffness else []
-    if controller.one_sided:  # only for a one-sided wall: every other wall's table is unchanged
+    if controller.element(OneSided) is not None:  # only for a one-sided wall: every other wall's table is unchanged
+        push = controller.element(Push)
+        push = None if push is None or not push.push else push  # a push of 0 N is none
         hand += [
             ["contact", "one-sided wall reached from free space (pushes only inside, never pulls)"],
             ["surface s", f"{_g(controller.surface)} ticks"],
-            ["operator's push F_p", f"{_g(controller.push)} {units['force']}" if controller.push else "none"],
+            ["operator's push F_p", f"{_g(push.push)} {units['force']}" if push else "none"],
         ]
-        groups += [["p = F_p/(KΔ)", _g(dim["push"])]] if controller.push else []
-    pc = controller.passivity_controller
+        groups += [["p = F_p/(KΔ)", _g(dim["push"])]] if push else []
+    pc = controller.element(PassivityController)
     if pc is not None:  # only with a passivity controller: every other wall's table is unchanged
         window = "the whole run" if pc.window is None else f"{_g(pc.window)} s"
         limit = "none" if pc.force_limit is None else f"{_g(pc.force_limit)} {units['force']}"

@@ -54,10 +54,11 @@ def write_trace_csv(
 
     from ..checks import check_positive
     from ..model import units
+    from ..model.elements import PassivityController
 
     xi, xi_dot = result.xi, result.xi_dot
     phi, energy, control = result.replay()  # one replay for every column
-    pc = observer and bool(result.wall.passivity_controller)
+    pc = observer and result.wall.group(PassivityController) is not None
     extra = ([-energy] if observer else []) + ([control] if pc else [])
     # A run stopped at a decided outcome holds after its last sample the rest state (rest proven) or NaN
     # (diverged, left the wall): those rows are no data, the trace ends there (trace_extent says why).

@@ -6,6 +6,7 @@ import math
 from typing import TYPE_CHECKING
 
 from ..formatting import number
+from ..model.elements import Coverage
 from ..results.status import GripStatus
 
 if TYPE_CHECKING:
@@ -137,7 +138,7 @@ def _scan_text(g: GripSweep) -> str:
     grip and with 12 grips from 0.07552 to 154.7 N·s/m (each twice the one before): none diverged or was
     undecided"``."""
     u = g.device.units
-    start = "after the approach" if g.wall.one_sided else "from the wall's surface"
+    start = "from the wall's surface" if g.wall.covers(Coverage.SURFACE_START) else "after the approach"
     grips = sorted(b for b in g.scan_damping if b > 0)
     scanned = "with no grip" if 0.0 in g.scan_damping else ""
     if grips:

@@ -17,6 +17,7 @@ Examples
 from __future__ import annotations
 
 from ..formatting import number
+from ..model.elements import Coverage
 from ..model.wall import WallParams
 from ..results.caveats import SUBTICK_LIMIT
 from ..results.criterion import start_state_clause
@@ -298,7 +299,7 @@ def passive_text(r: KMaxResult) -> str:
         bound = every_speed_bound(r)
         return "every speed" + (f" ({bound})" if bound else "")
     if mpv == 0.0:
-        return f"none: {NO_SPEED_PROVEN}" + (NO_SPEED_ONE_SIDED if r.wall.one_sided else "")
+        return f"none: {NO_SPEED_PROVEN}" + ("" if r.wall.covers(Coverage.SURFACE_START) else NO_SPEED_ONE_SIDED)
     return f"{mpv:.4g} {vu}"
 
 
@@ -383,7 +384,7 @@ def outcomes_text(outcomes: dict[str, str]) -> str:
 def _criterion_row(r: KMaxResult) -> list[str]:
     ku = r.device.units["stiffness"]
     p = r.wall.params(r.device.period, r.device.resolution)
-    what = f"eq. 11, d = {p.delay}" if p.is_spring else "eq. 11 extended to the wall"
+    what = f"eq. 11, d = {p.delay}" if p.covers(Coverage.CLOSED_FORM) else "eq. 11 extended to the wall"
     return [f"criterion K_max at this speed ({what})", limit_text(r.k_criterion, ku)]
 
 
@@ -418,14 +419,18 @@ def kmax_rows(r: KMaxResult, *, explain: bool = False) -> list[list[str]]:
     u = r.device.units
     ku, vu = u["stiffness"], u["velocity"]
     p = r.wall.params(r.device.period, r.device.resolution)
-    loop = (f"all Jury conditions, delay {p.delay}" if p.delay else "all Jury conditions") if p.is_spring else (
+    loop = (f"all Jury conditions, delay {p.delay}" if p.delay else "all Jury conditions") if p.covers(Coverage.CLOSED_FORM) else (
         "the wall's loop, all Jury conditions")  # fmt: skip
     rows = [_criterion_row(r), *_published_rows(r)]
     rows.append([f"exact linear bound ({loop})", limit_text(r.k_linear, ku)])
     for name, what in (
         ("k_df", "describing function: largest K with growth speed >= V"),
         ("k_sim", "simulation: largest K, no simulated impact up to V diverges"),
-        ("k_sim_rest", "simulation: largest K, every simulated impact up to V rests" + LEAVES[r.wall.one_sided]),
+        (
+            "k_sim_rest",
+            "simulation: largest K, every simulated impact up to V rests"
+            + LEAVES[not r.wall.covers(Coverage.SURFACE_START)],
+        ),
     ):
         rows.append([what, limit_text(getattr(r, name), ku, explain=explain, velocity_unit=vu)])
     rows += counterexample_lines(r)

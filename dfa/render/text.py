@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..formatting import number, text_table
 from ..jsonable import explain_nulls
+from ..model.elements import Coverage
 from ..results.status import GrowthStatus, SearchStatus, SimulationOutcome
 
 if TYPE_CHECKING:  # annotations only: importing the limit-cycle package would load python-control (`dfa check`)
@@ -137,7 +138,8 @@ def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | No
         force = f"{_g(r.force_peak_to_peak)} KΔ" + ("" if r.quantize else " (linear spring)")
         if u is not None and u["force_peak_to_peak_si"] is not None:
             force += f" = {u['force_peak_to_peak_si']:.4g} {u['force_unit']}"
-        spring = r.wall.is_spring  # beyond the spring the levels read are the spring's part of the force only
+        # beyond the spring the levels read are the spring's part of the force only
+        spring = r.wall.covers(Coverage.CLOSED_FORM)
         label = "force peak-to-peak" if spring else "spring force peak-to-peak"
         rows.append([label, force + (" (tail)" if spring else " (tail; the wall's other forces not included)")])
     rows.append(

@@ -21,6 +21,7 @@ from ..checks import (
 )
 from ..errors import DFAValueError
 from ..model.device import Device
+from ..model.elements import Coverage
 from ..model.wall import Wall, WallParams
 from .base import Result, figure_function
 from .status import CheckStatus, CriterionStatus, PassivityStatus
@@ -424,7 +425,9 @@ class CriterionResult(Result):
 
         ``"ξ'0"`` for a one-sided wall's impact and a moving history, ``"V"`` otherwise (ξ'0 when ξ0 = 0).
         """
-        return "ξ'0" if self.wall.one_sided or (self.history == "moving" and self.delay) else "V"
+        return (
+            "ξ'0" if not self.wall.covers(Coverage.SURFACE_START) or (self.history == "moving" and self.delay) else "V"
+        )
 
     @property
     def beta0(self) -> float:

@@ -18,6 +18,7 @@ from ..checks import (
 )
 from ..errors import DFATypeError, DFAValueError
 from ..model.device import Device
+from ..model.elements import PassivityController
 from ..model.wall import Wall
 from .base import Result, figure_function
 from .caveats import SUBTICK_LIMIT
@@ -796,7 +797,7 @@ class PassivityGain(Result):
         for name in ("k_sim", "k_sim_rest", "plain_k_sim", "plain_k_sim_rest"):
             check_type(name, getattr(self, name), KLimit, "give the KLimit of a design answer")
         check_real("velocity", self.velocity)
-        if self.wall.passivity_controller is None:
+        if self.wall.element(PassivityController) is None:
             raise DFAValueError("wall has no passivity controller: add dfa.PassivityController() to its elements")
         object.__setattr__(self, "status", GainStatus.coerce(self.status))
 

@@ -101,7 +101,7 @@ class StabilityMap(PlaneGrid, Result):
                 f"outcome holds codes outside 0 … {len(OUTCOMES) - 1}: they index dfa.analysis.simulation.OUTCOMES; "
                 "pass the codes the simulation returned"
             )
-        if (self.contact is None) == self.wall.one_sided:
+        if (self.contact is None) != self.wall.covers(Coverage.SURFACE_START):
             raise DFAValueError(
                 "contact must be given exactly for a one-sided wall's map; build maps with stability_map"
             )

@@ -213,10 +213,10 @@ class DesignAnalysis(Result):
         ):  # fmt: skip
             if getattr(self, name) is not None:
                 check_type(name, getattr(self, name), cls, fix)
-        if self.is_spring and (self.limits is None or self.stiffness_curve is None):
+        if self.covers(Coverage.CLOSED_FORM) and (self.limits is None or self.stiffness_curve is None):
             raise DFAValueError(f"limits and stiffness_curve are required for the spring; {fix}")
         present = [n for n in ("limits", "stiffness_curve", "speed_chart") if getattr(self, n) is not None]
-        if not self.is_spring and present:
+        if not self.covers(Coverage.CLOSED_FORM) and present:
             raise DFAValueError(f"{', '.join(present)} hold the spring's closed forms: None for this wall; {fix}")
 
     def _check_thresholds(self, fix: str) -> None:
@@ -250,7 +250,22 @@ class DesignAnalysis(Result):
     @property
     def is_spring(self) -> bool:
         """True for the paper's spring (with its delay): no damper, filter or amplifier lag."""
-        return self.wall_params.covers(Coverage.CLOSED_FORM)
+        return self.covers(Coverage.CLOSED_FORM)
+
+    def covers(self, what: Coverage) -> bool:
+        """Tell whether every analysis of ``what`` covers the wall (:meth:`dfa.model.wall.WallParams.covers`).
+
+        Parameters
+        ----------
+        what : Coverage
+            One analysis or several (``Coverage.CLOSED_FORM``: the spring's closed forms and their sections).
+
+        Returns
+        -------
+        bool
+            True when the analysed wall's coverage holds every flag of ``what``.
+        """
+        return self.wall_params.covers(what)
 
     @property
     def criterion(self) -> CriterionResult | None:
@@ -322,7 +337,7 @@ class DesignAnalysis(Result):
             "zwidth": "impact speed 0 or zwidth_grid=0: no Z-width computed",
             "criterion": "no passivity criterion covers this wall (an amplifier lag): see check",
         }
-        if not self.is_spring:
+        if not self.covers(Coverage.CLOSED_FORM):
             why.update(limits=SPRING_ONLY, stiffness_curve=SPRING_ONLY, speed_chart=SPRING_ONLY)
         return why
 
@@ -469,7 +484,8 @@ def _simulations(loop: Loop, xi_dot: float, ref: float, v_sim: float | None, sam
     """Recorded runs for the figure and full-length runs for the outcomes, at the design speed and above."""
     p, wp = loop.groups("design_analysis")
     n_traj = int(min(samples, max(2000, 40 * 2 * math.pi * math.sqrt(p.mu))))
-    n_traj += approach_samples(wp) if wp.one_sided else 0  # a one-sided wall's runs start with the approach
+    # a one-sided wall's runs start with the approach
+    n_traj += 0 if wp.covers(Coverage.SURFACE_START) else approach_samples(wp)
     v_show = v_sim * 1.05 if v_sim is not None else 2.0 * ref
 
     def run(v: float, n: int | None, rec: bool) -> SimulationResult:

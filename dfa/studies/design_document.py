@@ -13,6 +13,7 @@ from functools import lru_cache
 from typing import Any
 
 from ..formatting import markdown_table, number, percent
+from ..model.elements import Coverage, OneSided
 from ..render.answer import recommendation_text
 from ..render.contact import contact_text
 from ..render.hand import grasp_text, grip_rows, grip_text, held_name, moving_symbols
@@ -38,7 +39,7 @@ def _samples(n: int) -> str:
 
 def verdict_text(a: DesignAnalysis) -> str:
     """The verdict paragraph: what the criterion proves, at which speed and delay, and what simulation found."""
-    if not a.is_spring:
+    if not a.covers(Coverage.CLOSED_FORM):
         return controller_verdict_text(a)
     dev, crit, lim, k, v = a.device, a.criterion, a.limits, a.stiffness, a.velocity
     assert crit is not None and lim is not None
@@ -66,7 +67,7 @@ def verdict_text(a: DesignAnalysis) -> str:
 def _simulated_text(a: DesignAnalysis) -> str:
     """What the speed scan of exact simulations found (with the controller, if any)."""
     u = a.device.units
-    with_ctl = "" if a.is_spring else " with the controller"
+    with_ctl = "" if a.covers(Coverage.CLOSED_FORM) else " with the controller"
     if a.simulated_xi_dot:
         return (
             f"In exact simulation{with_ctl} an impact at {number(a.simulated_velocity)} {u['velocity']} diverges: the "
@@ -80,7 +81,8 @@ def _simulated_text(a: DesignAnalysis) -> str:
 
 def _one_sided(a: Any) -> bool:
     """True for a one-sided wall's analysis (runs start with the approach)."""
-    return bool(getattr(getattr(a, "wall", None), "one_sided", False))
+    wall = getattr(a, "wall", None)
+    return wall is not None and not wall.covers(Coverage.SURFACE_START)
 
 
 def _not_linear(a: Any) -> bool:
@@ -92,7 +94,11 @@ def _not_linear(a: Any) -> bool:
 
 def _extended_to(wall: Any) -> str:
     """What the criterion is extended to, in words."""
-    return "a one-sided wall reached from free space" if wall.one_sided else "the damper, filter and delay"
+    return (
+        "the damper, filter and delay"
+        if wall.covers(Coverage.SURFACE_START)
+        else "a one-sided wall reached from free space"
+    )
 
 
 def controller_verdict_text(a: DesignAnalysis) -> str:
@@ -104,7 +110,7 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
         f"**Verdict.** With the wall controller below (K = {a.stiffness:g} {u['stiffness']}, virtual damping "
         f"B = {ctl.damping:g} {u['damping']}), an impact speed of {a.velocity:g} {u['velocity']} and a computational "
         f"delay of {_samples(a.delay)}"
-        + (f", a {contact_text(ctl, u)}" if ctl.one_sided else "")
+        + (f", a {contact_text(ctl, u)}" if ctl.element(OneSided) is not None else "")
         + f", the {held_name(dev)} is "
     )
     r = chk.criterion
@@ -133,7 +139,7 @@ def controller_verdict_text(a: DesignAnalysis) -> str:
 
 def spring_only_text(a: DesignAnalysis) -> str:
     """Which sections a report with a controller leaves out, and why ('' for the spring)."""
-    if a.is_spring:
+    if a.covers(Coverage.CLOSED_FORM):
         return ""
     return (
         "Not in this report: the criterion of eq. 6 for the bare spring with its stiffness limits (eq. 8–11), the "
@@ -350,7 +356,7 @@ def trust_rows(a: DesignAnalysis) -> list[list[str]]:
 def _criterion_speed_row(a: DesignAnalysis) -> list[str]:
     """The criterion's critical speed (the extended criterion's with a controller; "not covered" with a lag)."""
     u = a.device.units
-    if a.is_spring and a.criterion is not None:
+    if a.covers(Coverage.CLOSED_FORM) and a.criterion is not None:
         crit = a.criterion
         return [
             "criterion (eq. 12), guaranteed",
@@ -379,7 +385,7 @@ def trust_text(a: DesignAnalysis) -> str:
     g = None if _not_linear(a) else a.threshold("zoh")
     msg = []
     if v_sim and crit_xi:
-        name = "The criterion" if a.is_spring else "The extended criterion"
+        name = "The criterion" if a.covers(Coverage.CLOSED_FORM) else "The extended criterion"
         msg.append(f"{name} is conservative by a factor {v_sim / crit_xi:.3g} for this device")
     if v_sim and g is not None and g.xi_dot:
         msg.append(
@@ -488,12 +494,12 @@ def _controller_parts(a: DesignAnalysis) -> dict[str, str]:
 
     keys = ("controller_line", "controller_table", "check_table", "climits_table", "climits_evidence", "spring_only",
             "with_ctl")  # fmt: skip
-    if a.is_spring:
+    if a.covers(Coverage.CLOSED_FORM):
         return dict.fromkeys(keys, "")
     dev, u = a.device, a.device.units
     lim = a.design_answer
     line = controller_line(a.wall, dev.period, u, dev.resolution)
-    if a.wall.one_sided:
+    if a.wall.element(OneSided) is not None:
         line += f". Contact: {contact_text(a.wall, u)}; every simulated impact starts with the approach"
     return dict(
         controller_line=line,
@@ -541,9 +547,11 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
         catalogue_text=catalogue_text(a),
         limits_table=markdown_table(["quantity", "value"], limits_rows(a)) if a.limits is not None else "",
         answer_table=markdown_table(["largest stiffness K at this speed", "value"], answer_rows(a))
-        if a.design_answer is not None and a.is_spring
+        if a.design_answer is not None and a.covers(Coverage.CLOSED_FORM)
         else "",
-        answer_evidence=evidence_markdown(a.design_answer) if a.design_answer is not None and a.is_spring else "",
+        answer_evidence=evidence_markdown(a.design_answer)
+        if a.design_answer is not None and a.covers(Coverage.CLOSED_FORM)
+        else "",
         cycle_table=markdown_table(
             ["loop model", "M (ticks)", "amplitude", "ω (rad/sample)", "frequency", "stability", "family"], cycles
         )

@@ -6,6 +6,7 @@ import io
 from dataclasses import dataclass
 from typing import Any
 
+from ..model.elements import Coverage
 from ..render.hand import held_name
 from .design import DesignAnalysis
 
@@ -36,7 +37,7 @@ def _delay_text(dl: int) -> str:
 
 def _with_ctl(a: DesignAnalysis) -> str:
     """' with the wall controller (β_B = …, ν_c = …, α = …)' for a report with a controller, '' for the spring."""
-    if a.is_spring:
+    if a.covers(Coverage.CLOSED_FORM):
         return ""
     cp = a.wall_params
     nu = "none" if cp.cutoff is None else f"{cp.cutoff:.3g}"
@@ -82,7 +83,7 @@ def _nyquist(a: DesignAnalysis) -> ReportFigure | None:
     if a.nyquist is None:  # a one-sided wall: not a linear loop
         return None
     model = a.nyquist.model
-    ctl = None if a.is_spring else controller_short(a.wall, a.device.units)
+    ctl = None if a.covers(Coverage.CLOSED_FORM) else controller_short(a.wall, a.device.units)
     ax = figures.nyquist_plot(a.nyquist, cycles=a.threshold(model).result, controller=ctl)
     name = figures.MODEL_NAMES.get(model, model)
     caption = (
@@ -138,7 +139,7 @@ def _map(a: DesignAnalysis) -> ReportFigure:
     )
     caption = (
         f"Simulated stability{_with_ctl(a)} around the operating point (red circle) at the design speed and twice it"
-        + ("; the controller's groups are held fixed over the map" if not a.is_spring else "")
+        + ("; the controller's groups are held fixed over the map" if not a.covers(Coverage.CLOSED_FORM) else "")
         + "; "
         f"μ = {a.params.mu:.4g}. Top and right axes: the damping b and Coulomb friction c that give β and σ at "
         f"K = {a.stiffness:.4g} {a.device.units['stiffness']}. The legend lists every outcome class, present or not."
@@ -161,13 +162,13 @@ def _zwidth(a: DesignAnalysis) -> ReportFigure | None:
     if a.zwidth is None:
         return None
     z = a.zwidth
-    ax = z.plot(design_point=None if a.is_spring else (a.wall.damping, a.stiffness))
+    ax = z.plot(design_point=None if a.covers(Coverage.CLOSED_FORM) else (a.wall.damping, a.stiffness))
     caption = (
         f"Z-width of the {held_name(a.device)}{_delay_text(a.delay)} for impacts up to {z.velocity:.3g} "
         f"{a.device.units['velocity']}: largest K at each virtual damping B by the exact linear bound, passivity, "
         f"the describing function and exact simulation on a {z.stiffness.size} × {z.damping.size} grid (shaded)."
     )
-    if not a.is_spring:
+    if not a.covers(Coverage.CLOSED_FORM):
         caption += _design_point_text(ax, a)
     return ReportFigure("zwidth", caption, _png(ax.figure))
 

@@ -25,6 +25,7 @@ from ..checks import check_bool, check_choice, check_int, format_value
 from ..errors import DFATypeError, DFAValueError
 from ..jsonable import dumps, explain_nulls, round_floats, to_jsonable
 from ..model.catalogue import CatalogueEntry
+from ..model.elements import Coverage, OneSided
 from ..model.loop import Loop
 from ..results.status import ReportStatus
 from .design import DesignAnalysis, design_analysis, design_first, design_loop
@@ -89,7 +90,7 @@ def report_slug(name: str) -> str:
 def _numbers(a: DesignAnalysis) -> dict[str, Any]:
     """The headline numbers: the spring's closed forms, or for a wall its extended criterion and K_max."""
     p, crit = a.params, a.criterion
-    if a.is_spring and crit is not None and a.limits is not None:
+    if a.covers(Coverage.CLOSED_FORM) and crit is not None and a.limits is not None:
         return dict(
             mu=p.mu,
             beta=p.beta,
@@ -151,7 +152,7 @@ def _identity(loop: Loop, velocity: float) -> dict[str, Any]:
         "velocity": velocity,
         "delay": wp.delay,
     }
-    if not wp.is_spring:  # a wall with a damper, filter or amplifier lag (its report is a separate file)
+    if not wp.covers(Coverage.CLOSED_FORM):  # a wall beyond the spring (its report is a separate file)
         ident["controller"] = wall.to_dict()
     return json.loads(dumps(ident, ensure_ascii=False))
 
@@ -259,7 +260,8 @@ def write_design_report(
     if not out.is_dir():
         raise DFAValueError(f"out_dir = {str(out)!r} is invalid: the folder does not exist; create it first")
     a = analysis
-    slug = report_name(a.device.name, not a.is_spring, a.device.hand is not None, a.wall.one_sided)
+    one_sided = a.wall.element(OneSided) is not None
+    slug = report_name(a.device.name, not a.covers(Coverage.CLOSED_FORM), a.device.hand is not None, one_sided)
     docs, meta = _doc_names(slug, fmt)
     ident = _identity(Loop(a.device, a.wall), a.velocity)
     if not force:

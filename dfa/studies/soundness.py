@@ -67,7 +67,7 @@ from ..checks import check_bool, check_choice, check_delay, check_int, check_pos
 from ..core import kernel
 from ..core.storage import storage_runs
 from ..errors import DFATypeError, DFAValueError
-from ..model.elements import Coverage
+from ..model.elements import Coverage, Push
 from ..model.loop import Loop
 from ..model.wall import WallParams
 from ..results.status import SimulationOutcome
@@ -472,7 +472,7 @@ def criterion_soundness(
 
 def _one_sided_wall(surface: float, delay: int, push: float, bilateral: bool = False, hand: float = 0.0) -> WallParams:
     """The one-sided wall of a soundness point (the bilateral spring's claim: the same wall, no push)."""
-    from ..model.elements import OneSided, Push
+    from ..model.elements import OneSided
 
     extra = ((Push, push),) if push and not bilateral else ()
     return WallParams(((OneSided, surface), *extra, *WallParams.of(delay=delay, hand_stiffness=hand).groups))
@@ -486,7 +486,7 @@ def _one_sided_run(
     (dfa.analysis.criterion, "A one-sided wall"; the bilateral spring's claim: ½μV², Q without the push)."""
     from ..analysis.approach import approach_start
 
-    surface, push = wall.surface, wall.push
+    surface, push = wall.surface, wall.group(Push) or 0.0
     x0, v0, d = approach_start(speed, wall=wall, quantize=q)
     n = d + run_samples(mu)
     vstar = (

@@ -61,6 +61,7 @@ from ..analysis.simulation import OUTCOMES, SimulationResult, divergence_bound, 
 from ..checks import check_bool, check_choice, check_jobs, check_type
 from ..jsonable import explain_nulls, to_jsonable
 from ..model.device import Params
+from ..model.elements import Coverage
 from ..model.loop import Loop
 from ..model.wall import WallParams
 from ..results.base import Result
@@ -217,7 +218,7 @@ def first_unstable_speed(
     from ..analysis.approach import approach_samples
 
     w = WallParams() if wall is None else wall
-    n = samples + (approach_samples(w) if w.one_sided else 0)
+    n = samples + (0 if w.covers(Coverage.SURFACE_START) else approach_samples(w))
 
     def unstable(v: float) -> bool:
         x0, v0 = map_start(p.mu, v, preload, w)

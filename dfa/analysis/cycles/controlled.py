@@ -3,7 +3,7 @@
 With a wall (:class:`~dfa.model.wall.WallParams`) the quantizer's describing function D(M) multiplies the wall's
 command H(z) = z^{−d}·C(z) (the elements' polynomials, :meth:`~dfa.model.wall.WallParams.command`), and an
 amplifier lag sits between the hold and the device (:func:`dfa.analysis.loop.loop_response`). A wall the spring's
-fast path covers (the paper's spring with any delay, :attr:`~dfa.model.wall.WallParams.is_spring`) is the paper's
+fast path covers (the paper's spring with any delay, ``Coverage.CLOSED_FORM``) is the paper's
 loop with its delay: the solver then runs the spring-only code, bit for bit.
 """
 

@@ -14,6 +14,7 @@ from typing import Any
 
 from ...checks import check_type
 from ...errors import DFAValueError
+from ...model.elements import PassivityController
 from ...model.loop import LOOP_FIX, Loop, loop_first
 from ...results.limits import PassivityGain as PassivityGain
 from ...results.limits import _ratio as _ratio
@@ -87,7 +88,7 @@ def passivity_gain(loop: Loop, velocity: float, **kwargs: Any) -> PassivityGain:
     """
     device = check_type("loop", loop, Loop, LOOP_FIX).search_device("passivity_gain")
     wall = loop.wall
-    if wall is None or wall.passivity_controller is None:
+    if wall is None or wall.element(PassivityController) is None:
         raise DFAValueError(
             f"wall = {wall!r} is invalid: it must be a dfa.Wall with a passivity controller; add "
             "dfa.PassivityController() to its elements"

@@ -39,6 +39,7 @@ from dataclasses import replace
 from typing import Any
 
 from ...checks import check_type
+from ...model.elements import PassivityController
 from ...results.require import DEFAULT_MARGIN as DEFAULT_MARGIN
 from ...results.require import ControllerChoice as ControllerChoice
 from ...results.require import Recommendation as Recommendation
@@ -92,7 +93,7 @@ def recommend_stiffness(
         kept = False
     else:  # the controller is kept only for a higher K (neither wall has one: the wall as given)
         kept = kp is None or (k is not None and k > kp)
-    pc = a.wall.passivity_controller
+    pc = a.wall.element(PassivityController)
     assert pc is not None  # gain_of refuses a wall without one
     choice = ControllerChoice(kept, lowers, a.k_sim.value, plain.k_sim.value, k, kp, pc.force_limit)
     return replace(own if kept else other, controller=choice)

@@ -96,7 +96,7 @@ def starts_of(wall: WallParams | Wall) -> tuple[str, ...]:
     >>> starts_of(WallParams())
     ('impact', 'preload')
     """
-    return ONE_SIDED_STARTS if wall.one_sided else STARTS
+    return STARTS if wall.covers(Coverage.SURFACE_START) else ONE_SIDED_STARTS
 
 
 def start_points(mu: float, beta: float, sigma: float, xi_dot: float, wall: WallParams) -> list[tuple[float, ...]]:
@@ -109,7 +109,7 @@ def start_points(mu: float, beta: float, sigma: float, xi_dot: float, wall: Wall
     """
     from ..maps import map_start  # the one start rule: the impact, its preload, a one-sided wall's approach
 
-    preloads = (False,) if wall.one_sided else (False, True)
+    preloads = (False, True) if wall.covers(Coverage.SURFACE_START) else (False,)
     return [(mu, beta, sigma, *map_start(mu, xi_dot, p, wall)) for p in preloads]
 
 

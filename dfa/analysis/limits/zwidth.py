@@ -191,12 +191,16 @@ def _runs(dev: Device, k: float, ctl: WallParams, xi_dots: Any, cap: int) -> lis
 def _chunks(tasks: list[tuple], size: int) -> list[list[int]]:
     """Indices of the tasks in chunks of at most ``size`` consecutive points, spring and controller apart.
 
-    A pure-spring point (:attr:`~dfa.model.wall.WallParams.is_spring`: B = 0, no filter, no lag) runs
+    A pure-spring point (``Coverage.CLOSED_FORM``: B = 0, no filter, no lag) runs
     the spring kernel, as :func:`dfa.analysis.simulation.simulate` routes it; every other point the controller kernel.
     """
     out: list[list[int]] = []
     for i, (_, ctl) in enumerate(tasks):
-        if not out or len(out[-1]) >= size or tasks[out[-1][0]][1].is_spring != ctl.covers(Coverage.CLOSED_FORM):
+        if (
+            not out
+            or len(out[-1]) >= size
+            or tasks[out[-1][0]][1].covers(Coverage.CLOSED_FORM) != ctl.covers(Coverage.CLOSED_FORM)
+        ):
             out.append([])
         out[-1].append(i)
     return out
