@@ -187,7 +187,6 @@ _SUBMODULES = {
     "model",
     "results",
     "analysis",
-    "figures",
     "render",
     "studies",
     "cli",

@@ -12,7 +12,7 @@ matplotlib.use("Agg")
 import dfa
 from dfa.analysis.cycles import limit_cycles
 from dfa.analysis.loop import nyquist_locus_response
-from dfa.figures import nyquist_plot
+from dfa.render.figures import nyquist_plot
 
 
 def main(out: str, quick: bool = False) -> dict:

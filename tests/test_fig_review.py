@@ -16,7 +16,6 @@ import pytest
 from matplotlib.transforms import Bbox
 
 import dfa
-from dfa import figures
 from dfa.analysis.contours import contour_maps
 from dfa.analysis.cycles import limit_cycles
 from dfa.analysis.limits.closed_form import stiffness_response
@@ -25,6 +24,7 @@ from dfa.analysis.loop import loop_response, nyquist_locus_response
 from dfa.analysis.maps import stability_map
 from dfa.analysis.simulation import simulate
 from dfa.model.wall import WallParams
+from dfa.render import figures
 
 
 @pytest.fixture(autouse=True)
@@ -228,7 +228,7 @@ def test_fig4_map_panels_physical_axes_every_outcome_in_the_legend_and_the_point
 def test_fig4_outcome_colours_are_the_same_in_every_figure():
     from dfa.analysis.simulation import OUTCOMES
 
-    cmap = figures._outcome_cmap()
+    cmap = figures.style.outcome_cmap()
     assert [matplotlib.colors.to_hex(cmap(i)) for i in range(len(OUTCOMES))] == [
         figures.OUTCOME_COLORS[o] for o in OUTCOMES
     ]

@@ -13,7 +13,6 @@ import matplotlib.pyplot as plt
 import pytest
 
 import dfa
-from dfa import figures
 from dfa.analysis.contours import contour_maps
 from dfa.analysis.cycles import limit_cycles
 from dfa.analysis.limits.closed_form import stiffness_response
@@ -22,6 +21,7 @@ from dfa.analysis.maps import stability_map
 from dfa.analysis.simulation import simulate
 from dfa.cli import main
 from dfa.model.wall import Wall
+from dfa.render import figures
 from dfa.render.limits import spring_passive_text
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

@@ -356,7 +356,7 @@ def test_fig6_nyquist_cycle_marks_lie_on_the_locus_with_a_controller():
     (Before, the mark was the spring's L, off the controller's curve.)
     """
     from dfa.analysis.loop import nyquist_locus_response, quantizer_df
-    from dfa.figures import _cycle_points
+    from dfa.render.figures.nyquist import _cycle_points
 
     dev = dfa.get_device("impulse").device
     cp = Wall.of(80.0, 0.05, 1, 100.0, 200.0).params(dev.period)
@@ -370,7 +370,7 @@ def test_fig6_nyquist_cycle_marks_lie_on_the_locus_with_a_controller():
 
 def test_fig6_nyquist_title_names_the_controller(monkeypatch):
     """The report's Nyquist figure names its controller in the title (as its caption does), the spring's does not."""
-    from dfa.figures import MODEL_NAMES
+    from dfa.render.figures import MODEL_NAMES
 
     titles: list[str] = []
 

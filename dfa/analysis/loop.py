@@ -57,7 +57,7 @@ from ..errors import DFAValueError
 from ..model.device import Params
 from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import WallParams
-from ..results.base import Result
+from ..results.base import Result, figure_function
 from ..results.cycles import SearchEvidence
 from ..results.frozen import check_shape, freeze_fields
 from ..results.status import NyquistStatus, SearchStatus
@@ -429,22 +429,21 @@ class NyquistLocusResponse(OperatingPoint, Result):
         return complex(out)
 
     def plot(self, ax: Axes | None = None, **kwargs: Any) -> Axes:
-        """Nyquist plot against the critical locus (:func:`dfa.figures.nyquist_plot`, paper Fig. 6); returns the Axes.
+        """Nyquist plot against the critical locus (:func:`dfa.render.figures.nyquist_plot`, paper Fig. 6); returns the Axes.
 
         Parameters
         ----------
         ax : matplotlib.axes.Axes, optional
             Axes to draw on; a new figure when None.
         **kwargs
-            Passed on to :func:`dfa.figures.nyquist_plot`.
+            Passed on to :func:`dfa.render.figures.nyquist_plot`.
 
         Returns
         -------
         matplotlib.axes.Axes
             The axes drawn on.
         """
-        from ..figures import nyquist_plot
-
+        nyquist_plot = figure_function("nyquist_plot")
         return nyquist_plot(self, ax, **kwargs)
 
 

@@ -1,7 +1,7 @@
 """``python -m dfa.cli.passivity_report``: what a passivity controller buys and costs, on the catalogue devices.
 
 Parse → call (:func:`dfa.studies.passivity_comparison.passivity_comparison`) → render
-(:func:`dfa.render.passivity.passivity_markdown`, :func:`dfa.figures.passivity_plot`). Not a ``dfa`` subcommand:
+(:func:`dfa.render.passivity.passivity_markdown`, :func:`dfa.render.figures.passivity_plot`). Not a ``dfa`` subcommand:
 it regenerates the committed report (a few minutes)::
 
     python -m dfa.cli.passivity_report --out reports/validation   # passivity_controller.md, .json and .png
@@ -45,8 +45,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     int
         0 ok, 2 bad input, 1 a file error, 130 interrupted.
     """
-    from ..figures import save_figure
     from ..jsonable import dumps
+    from ..render.figures import save_figure
     from ..render.passivity import passivity_markdown
     from ..studies.passivity_comparison import passivity_comparison
 

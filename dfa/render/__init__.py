@@ -2,6 +2,8 @@
 
 - :mod:`dfa.render.text`: the tables and sentences the ``dfa`` commands print;
 - :mod:`dfa.render.files`: a trajectory as CSV (written atomically);
+- :mod:`dfa.render.figures`: the figures (matplotlib), one module per thing drawn, reached by a result's ``.plot()``
+  by name (:func:`dfa.results.base.figure_function`);
 - ``templates/``: the Jinja2 templates (the design report's, filled by :mod:`dfa.studies.design_document`).
 
 A study's own document (the design report, the validation and soundness reports, the catalogue comparisons) is

@@ -44,7 +44,7 @@ def _with_ctl(a: DesignAnalysis) -> str:
 
 
 def _regions(a: DesignAnalysis) -> ReportFigure | None:
-    from .. import figures
+    from ..render import figures
 
     crit, p, u = a.criterion, a.params, a.device.units
     if crit is None:  # a controller: the regions of eq. 6 are the spring's (the report says so)
@@ -63,7 +63,7 @@ def _regions(a: DesignAnalysis) -> ReportFigure | None:
 
 
 def _stiffness(a: DesignAnalysis) -> ReportFigure | None:
-    from .. import figures
+    from ..render import figures
 
     if a.stiffness_curve is None:  # a controller: eq. 11 is the spring's (the report says so)
         return None
@@ -76,7 +76,7 @@ def _stiffness(a: DesignAnalysis) -> ReportFigure | None:
 
 
 def _nyquist(a: DesignAnalysis) -> ReportFigure | None:
-    from .. import figures
+    from ..render import figures
     from ..render.controller import controller_short
 
     if a.nyquist is None:  # a one-sided wall: not a linear loop
@@ -102,7 +102,7 @@ def _inset_text(ax: Any) -> str:
 def _trajectories(a: DesignAnalysis) -> ReportFigure:
     import matplotlib.pyplot as plt
 
-    from .. import figures
+    from ..render import figures
 
     u, dev = a.device.units, a.device
     fig, axs = plt.subplots(2, 1, figsize=(7, 5.6), constrained_layout=True)
@@ -131,7 +131,7 @@ def _trajectories(a: DesignAnalysis) -> ReportFigure:
 
 
 def _map(a: DesignAnalysis) -> ReportFigure:
-    from .. import figures
+    from ..render import figures
 
     axs = figures.stability_map_plot(
         a.stability_map, device=a.device, stiffness=a.stiffness, point=(a.params.beta, a.params.sigma)

@@ -39,6 +39,7 @@ from ..model.device import Device
 from ..model.elements import PassivityController
 from ..model.loop import Loop
 from ..model.wall import Wall
+from ..results.base import figure_function
 from ..results.status import ComparisonStatus
 from .contact_comparison import CatalogueComparison, complete_entries, limit_record
 
@@ -164,7 +165,7 @@ class PassivityComparison(CatalogueComparison):
     per_device: ClassVar[tuple[str, ...]] = ("velocities", "force_limits", "device_units", "limits", "prices")
 
     def plot(self, ax: Any = None) -> Any:
-        """Bars of the no-divergence and rest limits per device and wall (:func:`dfa.figures.passivity_plot`).
+        """Bars of the no-divergence and rest limits per device and wall (:func:`dfa.render.figures.passivity_plot`).
 
         Parameters
         ----------
@@ -175,8 +176,7 @@ class PassivityComparison(CatalogueComparison):
         -------
         matplotlib.axes.Axes
         """
-        from ..figures import passivity_plot
-
+        passivity_plot = figure_function("passivity_plot")
         return passivity_plot(self, ax)
 
 
