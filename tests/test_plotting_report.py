@@ -80,7 +80,7 @@ def test_fig7_contour_plot(tmp_path):
 def test_nyquist_and_stiffness_and_validation_plots(tmp_path):
     p = dfa.Params(2.0, 0.4, 0.1)
     res = limit_cycles(p)
-    ax = figures.nyquist_plot(nyquist_locus_response(p, amplitudes=[1.0, 2.0]), cycles=res)
+    ax = figures.nyquist_plot(nyquist_locus_response(p, amplitudes=[1.0, 2.0], cycles=res))
     assert_units(ax)
     rendered(ax.figure, tmp_path, "nyquist")
     dev = dfa.get_device("Delta").device

@@ -83,7 +83,7 @@ def _nyquist(a: DesignAnalysis) -> ReportFigure | None:
         return None
     model = a.nyquist.model
     ctl = None if a.is_spring else controller_short(a.wall, a.device.units)
-    ax = figures.nyquist_plot(a.nyquist, cycles=a.threshold(model).result, controller=ctl)
+    ax = figures.nyquist_plot(a.nyquist, controller=ctl)
     name = figures.MODEL_NAMES.get(model, model)
     caption = (
         f"Nyquist plot of the linearised loop{_with_ctl(a)} ({name} model, as the growth threshold above) against −1/D(M), "

@@ -10,11 +10,10 @@ from .style import SMALL_FONTSIZE, legend_outside, new_axes
 MODEL_NAMES = {"half-delay": "half-sample delay", "zoh": "exact ZOH", "pade": "Padé ZOH"}
 
 
-def _cycle_points(nyq, cycles) -> list[tuple[complex, bool, float]]:
-    """(point L(jω; M) of the cycle, stable, M) for each cycle, with the Nyquist data's loop model."""
-    if cycles is None:
-        return []
-    return [(nyq.loop_at(c.frequency, c.amplitude), bool(c.stable), float(c.amplitude)) for c in cycles.cycles]
+def _cycle_points(nyq) -> list[tuple[complex, bool, float]]:
+    """(point L(jω; M) of the cycle, stable, M) for each cycle the Nyquist data marks (``nyq.cycle_marks``, placed
+    by the analysis on its loop)."""
+    return [(c.point, c.stable, c.amplitude) for c in nyq.cycle_marks or ()]
 
 
 def _nyquist_limits(nyq, pts, room: bool = False) -> tuple[tuple[float, float], tuple[float, float]]:
@@ -50,9 +49,10 @@ def _nyquist_draw(ax, nyq, pts, *, labels: bool) -> None:
     ax.axvline(0, color="0.6", lw=0.5)
 
 
-def nyquist_needs_zoom(nyq, cycles) -> bool:
-    """True when the cycles need an inset: a cycle below one tick, or several crossings within 10 % of the axis."""
-    pts = _cycle_points(nyq, cycles)
+def nyquist_needs_zoom(nyq) -> bool:
+    """True when the cycles marked (``nyq.cycle_marks``) need an inset: a cycle below one tick, or several crossings
+    within 10 % of the axis."""
+    pts = _cycle_points(nyq)
     if not pts:
         return False
     if min(m for _p, _s, m in pts) < 1.0:
@@ -62,7 +62,7 @@ def nyquist_needs_zoom(nyq, cycles) -> bool:
     return len(xs) > 1 and (max(xs) - min(xs)) < 0.1 * (x1 - x0)
 
 
-def nyquist_plot(nyq, ax=None, *, cycles=None, controller: str | None = None):
+def nyquist_plot(nyq, ax=None, *, controller: str | None = None):
     """Nyquist plot of the loop L(jω; M) against the critical locus −1/D(M), cycles marked (paper Fig. 6).
 
     The axes are scaled to the locus, the cycles and the origin; when a cycle is below one tick or several
@@ -71,23 +71,23 @@ def nyquist_plot(nyq, ax=None, *, cycles=None, controller: str | None = None):
     Parameters
     ----------
     nyq : NyquistLocusResponse
-    cycles : LimitCycleResult, optional
-        Cycles to mark (stable: filled circle, unstable: open circle), computed with the same loop model.
+        Its ``cycle_marks`` (``nyquist_locus_response(..., cycles=...)``) are marked (stable: filled circle,
+        unstable: open circle), at the points the analysis placed them on its loop.
     controller : str, optional
         The loop's wall controller in words (e.g. ``"B = 1 N·s/m, f_c = 200 Hz, d = 1"``), named in the
         title as "… loop with {controller}" in place of the delay (default: the title names the delay only).
     """
     ax = new_axes(ax, figsize=(8.4, 4.6))
-    pts = _cycle_points(nyq, cycles)
+    pts = _cycle_points(nyq)
     _nyquist_draw(ax, nyq, pts, labels=True)
-    if cycles is not None:
+    if nyq.cycle_marks is not None:
         for stable, name in ((True, "stable cycle"), (False, "unstable cycle")):
             if any(s == stable for _p, s, _m in pts):
                 ax.plot([], [], "o", mfc="k" if stable else "w", mec="k", label=name)
         if not pts:
             ax.plot([], [], " ", label="no limit cycle predicted")
     xlim, ylim = _nyquist_limits(nyq, pts)
-    window = _inset_window(nyq, pts, xlim, ylim) if nyquist_needs_zoom(nyq, cycles) else None
+    window = _inset_window(nyq, pts, xlim, ylim) if nyquist_needs_zoom(nyq) else None
     if window is not None:  # the data in the lower half, the inset above it
         ylim = (ylim[0], ylim[0] + 2.0 * (ylim[1] - ylim[0]))
     ax.set_xlim(*xlim)
