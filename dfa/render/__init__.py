@@ -9,8 +9,8 @@
 A study's own document (the design report, the validation and soundness reports, the catalogue comparisons) is
 rendered by the study (:mod:`dfa.studies`), from these pieces.
 
-Numbers are formatted by :mod:`dfa.formatting`. Analyses never import this package (import contracts in
-``pyproject.toml``).
+Numbers are formatted by :mod:`dfa.formatting`. Rendering and the analyses are independent siblings: this package
+imports no analysis, and no analysis imports it (import contracts in ``pyproject.toml``).
 """
 
 __all__: list[str] = []
