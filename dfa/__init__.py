@@ -188,7 +188,6 @@ _SUBMODULES = {
     "model",
     "results",
     "analysis",
-    "figures",
     "render",
     "studies",
     "cli",

@@ -71,7 +71,7 @@ _TEMP_TRIES = 10
 #: :func:`_hold`'s answer for a name removed before it could be locked.
 _GONE = -1
 
-#: The file types a figure is written as, by the suffix of its path (:func:`dfa.figures.save_figure`).
+#: The file types a figure is written as, by the suffix of its path (:func:`dfa.render.figures.save_figure`).
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 

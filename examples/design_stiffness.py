@@ -13,7 +13,7 @@ matplotlib.use("Agg")
 import dfa
 from dfa.analysis.limits.closed_form import stiffness_response
 from dfa.analysis.simulation import simulate
-from dfa.figures import stiffness_plot
+from dfa.render.figures import stiffness_plot
 
 
 def main(out: str, quick: bool = False) -> dict:

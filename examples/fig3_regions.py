@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 
 import dfa
-from dfa.figures import regions_plot
+from dfa.render.figures import regions_plot
 
 
 def main(out: str, quick: bool = False) -> dict:

@@ -19,7 +19,7 @@ import numpy as np
 import dfa
 from dfa.analysis.maps import stability_map
 from dfa.analysis.simulation import OUTCOMES
-from dfa.figures import stability_map_plot
+from dfa.render.figures import stability_map_plot
 
 SPEEDS = (1.0, 2.0, 5.0, 10.0)
 

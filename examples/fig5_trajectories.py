@@ -23,7 +23,7 @@ from matplotlib.patches import Patch
 import dfa
 from dfa.analysis.criterion import REGION_DESCRIPTIONS
 from dfa.analysis.simulation import preload_position, simulate
-from dfa.figures import POINT_STYLE, REGION_COLORS, regions_plot, trajectory_plot
+from dfa.render.figures import POINT_STYLE, REGION_COLORS, regions_plot, trajectory_plot
 
 
 def cases():

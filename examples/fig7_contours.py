@@ -13,7 +13,7 @@ matplotlib.use("Agg")
 import numpy as np
 
 from dfa.analysis.contours import contour_maps
-from dfa.figures import contour_plot
+from dfa.render.figures import contour_plot
 
 
 def main(out: str, quick: bool = False) -> dict:

@@ -12,14 +12,14 @@ matplotlib.use("Agg")
 import dfa
 from dfa.analysis.cycles import limit_cycles
 from dfa.analysis.loop import nyquist_locus_response
-from dfa.figures import nyquist_plot
+from dfa.render.figures import nyquist_plot
 
 
 def main(out: str, quick: bool = False) -> dict:
     p = dfa.Params(mu=2.0, beta=0.4, sigma=0.1)
     res = limit_cycles(p)
-    ny = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]])
-    ax = nyquist_plot(ny, cycles=res)
+    ny = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], cycles=res)
+    ax = nyquist_plot(ny)
     path = os.path.join(out, "nyquist.png")
     ax.figure.savefig(path, dpi=130)
     for c in res.cycles:

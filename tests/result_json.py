@@ -5,8 +5,14 @@ import json
 
 
 def json_keys(result) -> set[str]:
-    """The keys :meth:`dfa.results.base.Result.to_dict` writes: fields (but ``json: None``), json_properties, message."""
-    keys = {f.name for f in dataclasses.fields(result) if f.metadata.get("json", True) is not None}
+    """The keys :meth:`dfa.results.base.Result.to_dict` writes: fields (but ``json: None``, and an ``omit_none`` field
+    that is None), json_properties, message."""
+    keys = {
+        f.name
+        for f in dataclasses.fields(result)
+        if f.metadata.get("json", True) is not None
+        and not (f.metadata.get("omit_none") and getattr(result, f.name) is None)
+    }
     keys |= set(type(result).json_properties)
     if getattr(result, "status", None) is not None:
         keys.add("status_message")

@@ -188,3 +188,29 @@ def test_nyquist_locus_response_json_from_its_fields():
         assert d["status_message"] == r.status.message
         assert (d["search"] is None) == (p.sigma > 0)  # the solver's evidence where it ran (σ = 0)
         assert all(set(c) == {"amplitude", "frequency", "point"} for c in d["crossings"])
+
+
+@pytest.mark.parametrize("model", ["half-delay", "zoh"])
+def test_fig6_nyquist_cycle_marks_are_the_loop_at_each_cycle(model):
+    """The analysis places each cycle given (``cycles=``) at L(jω; M) of its own loop (model, wall), as
+    ``loop_response`` evaluates it, so that the figure draws the marks without an analysis; without cycles there are
+    no marks and no ``cycle_marks`` in the JSON."""
+    from dfa.analysis.cycles import limit_cycles
+
+    p, wall = dfa.Params(2.0, 0.4, 0.1), WallParams.of(damping=0.02)  # a controller: cycles off the spring's curve
+    res = limit_cycles(p, model=model, wall=wall)
+    assert res.cycles
+    amps = [c.amplitude for c in res.cycles]
+    r = nyquist_locus_response(p, amplitudes=amps, model=model, wall=wall, cycles=res)
+    assert [(m.amplitude, m.frequency, m.stable) for m in r.cycle_marks] == [
+        (c.amplitude, c.frequency, c.stable) for c in res.cycles
+    ]
+    for mark in r.cycle_marks:
+        expected = complex(loop_response(p, mark.frequency, mark.amplitude, model=model, wall=wall))
+        assert abs(mark.point - expected) <= 1e-12 * abs(expected)
+    d = assert_json_from_fields(r)
+    assert all(set(m) == {"amplitude", "frequency", "stable", "point"} for m in d["cycle_marks"])
+    bare = nyquist_locus_response(p, amplitudes=amps, model=model, wall=wall)
+    assert bare.cycle_marks is None and "cycle_marks" not in bare.to_dict()
+    with pytest.raises(dfa.DFATypeError, match="cycles"):
+        nyquist_locus_response(p, amplitudes=amps, model=model, wall=wall, cycles=res.cycles)

@@ -366,8 +366,8 @@ def test_cli_stiffness_with_delay(capsys):
 def test_fig4_map_plot_draws_the_delayed_critical_line():
     import matplotlib.pyplot as plt
 
-    from dfa import figures
     from dfa.analysis.maps import stability_map
+    from dfa.render import figures
 
     m = stability_map(
         100.0, [2.0], beta_range=(0.0, 2.0), grid=4, samples=300, n_jobs=1, progress=False, wall=WallParams.of(delay=1)
@@ -384,7 +384,7 @@ def test_fig4_map_plot_draws_the_delayed_critical_line():
 def test_fig3_regions_plot_draws_the_result_critical_line_with_delay():
     import matplotlib.pyplot as plt
 
-    from dfa import figures
+    from dfa.render import figures
 
     r = passivity_criterion(0.3, 3.0, 2.0, wall=WallParams.of(delay=1), xi0=1.0, mu=4.0)
     ax = figures.regions_plot(r, xi_dots=[1.0])

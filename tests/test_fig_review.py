@@ -16,7 +16,6 @@ import pytest
 from matplotlib.transforms import Bbox
 
 import dfa
-from dfa import figures
 from dfa.analysis.contours import contour_maps
 from dfa.analysis.cycles import limit_cycles
 from dfa.analysis.limits.closed_form import stiffness_response
@@ -25,6 +24,7 @@ from dfa.analysis.loop import loop_response, nyquist_locus_response
 from dfa.analysis.maps import stability_map
 from dfa.analysis.simulation import simulate
 from dfa.model.wall import WallParams
+from dfa.render import figures
 
 
 @pytest.fixture(autouse=True)
@@ -118,8 +118,8 @@ def test_fig6_nyquist_limits_contain_every_crossing_and_sub_tick_cycles_get_a_zo
     p = dfa.Params(mu=2.0, beta=0.4, sigma=0.1)  # a stable cycle below one tick among larger ones
     res = limit_cycles(p, model=model)
     assert min(c.amplitude for c in res.cycles) < 1.0
-    nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model=model)
-    ax = figures.nyquist_plot(nyq, cycles=res)
+    nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model=model, cycles=res)
+    ax = figures.nyquist_plot(nyq)
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     for pt in _cycle_points(nyq, res):
         assert x0 < pt.real < x1 and y0 < pt.imag < y1
@@ -136,11 +136,11 @@ def test_fig6_nyquist_scales_to_each_device_and_skips_the_zoom_for_one_large_cyc
     limits = []
     for p in (dfa.Params(155.2, 0.00207, 2.03), dfa.Params(2.0, 0.4, 0.1)):
         res = limit_cycles(p, model="zoh")
-        nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh")
-        ax = figures.nyquist_plot(nyq, cycles=res)
+        nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh", cycles=res)
+        ax = figures.nyquist_plot(nyq)
         limits.append(ax.get_ylim())
         if len(res.cycles) == 1 and res.cycles[0].amplitude >= 1.0:
-            assert not ax.child_axes and not figures.nyquist_needs_zoom(nyq, res)
+            assert not ax.child_axes and not figures.nyquist_needs_zoom(nyq)
     assert limits[0] != limits[1]  # no fixed [−2.5, 1]² window
 
 
@@ -228,7 +228,7 @@ def test_fig4_map_panels_physical_axes_every_outcome_in_the_legend_and_the_point
 def test_fig4_outcome_colours_are_the_same_in_every_figure():
     from dfa.analysis.simulation import OUTCOMES
 
-    cmap = figures._outcome_cmap()
+    cmap = figures.style.outcome_cmap()
     assert [matplotlib.colors.to_hex(cmap(i)) for i in range(len(OUTCOMES))] == [
         figures.OUTCOME_COLORS[o] for o in OUTCOMES
     ]
@@ -343,8 +343,12 @@ _FIGURES = {
     "stiffness": lambda: figures.stiffness_plot(stiffness_response(_impulse(), stiffness=80.0)),
     "speed chart": lambda: stiffness_speed_chart(_impulse(), stiffness=80.0, velocity=0.1, grid=3, speeds=2).plot(),
     "nyquist": lambda: figures.nyquist_plot(
-        nyquist_locus_response(dfa.Params(2.0, 0.4, 0.1), amplitudes=[0.3, 3.0], model="zoh"),
-        cycles=limit_cycles(dfa.Params(2.0, 0.4, 0.1), model="zoh"),
+        nyquist_locus_response(
+            dfa.Params(2.0, 0.4, 0.1),
+            amplitudes=[0.3, 3.0],
+            model="zoh",
+            cycles=limit_cycles(dfa.Params(2.0, 0.4, 0.1), model="zoh"),
+        )
     ),
     "map": lambda: figures.stability_map_plot(
         stability_map(100.0, [1.0], grid=3, samples=500, n_jobs=1, progress=False), point=(0.1, 0.9)
@@ -454,19 +458,19 @@ def test_fig6_controller_nyquist_inset_zooms_in_on_the_sub_tick_cycle():
         model="zoh",
         wall=wp,
         locus_amplitude=np.geomspace(0.05, 60, 400),
+        cycles=res,
     )
-    ax = figures.nyquist_plot(nyq, cycles=res, controller="B = 5 N·s/m, f_c = 200 Hz, d = 1")
+    ax = figures.nyquist_plot(nyq, controller="B = 5 N·s/m, f_c = 200 Hz, d = 1")
     ins = _assert_inset_zooms_in(ax)
-    small = next(c for c in res.cycles if c.amplitude < 1.0)
-    pt = nyq.loop_at(small.frequency, small.amplitude)
+    pt = next(c.point for c in nyq.cycle_marks if c.amplitude < 1.0)
     assert ins.get_xlim()[0] < pt.real < ins.get_xlim()[1] and ins.get_ylim()[0] < pt.imag < ins.get_ylim()[1]
 
 
 def test_fig6_paper_nyquist_inset_zooms_in_on_every_crossing():
     p = dfa.Params(mu=2.0, beta=0.4, sigma=0.1)
     res = limit_cycles(p, model="zoh")
-    nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh")
-    _assert_inset_zooms_in(figures.nyquist_plot(nyq, cycles=res))
+    nyq = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh", cycles=res)
+    _assert_inset_zooms_in(figures.nyquist_plot(nyq))
 
 
 # --- issue 26 §4: a map's legend draws only the lines in view; a uniform panel says so ----------------------------
@@ -782,10 +786,10 @@ def test_report_nyquist_caption_names_an_inset_only_when_one_is_drawn(params):
     from dfa.studies.design_figures import _nyquist
 
     res = limit_cycles(params, model="zoh")
-    nyq = nyquist_locus_response(params, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh")
+    nyq = nyquist_locus_response(params, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh", cycles=res)
     shown = []
     real = figures.nyquist_plot
-    analysis = SimpleNamespace(nyquist=nyq, is_spring=True, threshold=lambda _m: SimpleNamespace(result=res))
+    analysis = SimpleNamespace(nyquist=nyq, is_spring=True)
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(figures, "nyquist_plot", lambda *a, **k: shown.append(real(*a, **k)) or shown[-1])
         caption = _nyquist(analysis).caption

@@ -598,7 +598,7 @@ def test_identify_plot_zooms_on_the_end_of_a_long_log():
     an inset of its last samples, with the logged readings and the model; a short one none."""
     import matplotlib.pyplot as plt
 
-    from dfa.figures import ZOOM_AFTER
+    from dfa.render.figures import ZOOM_AFTER
 
     long_log = impact_log(CYCLE_DEVICE, CYCLE_K, 0.012, 6000)
     for log, insets in ((long_log, 1), (synthetic_log(*_excited(0.2, 1e-5, 1e-3, 5.0, 80.0, 1.0)), 0)):

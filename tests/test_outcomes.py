@@ -321,7 +321,7 @@ def test_fig4_plot_colours_and_legend_per_class():
     matplotlib.use("Agg")
     from matplotlib.colors import to_rgb
 
-    from dfa import figures
+    from dfa.render import figures
 
     m = _all_classes_map()
     axes = figures.stability_map_plot(m)

@@ -80,7 +80,8 @@ def test_hypothesis_ci_profile_is_derandomised():
 
 
 def test_import_contracts_kept():
-    # the layering rules (core -> analyses -> rendering -> CLI; matplotlib, jinja2, markdown-it only in rendering)
+    # the layering rules (core -> results -> analyses | rendering -> studies -> CLI; matplotlib, jinja2, markdown-it
+    # only in rendering)
     # are import-linter contracts in pyproject.toml; they replace tests that grepped the source for imports
     import os
     import shutil

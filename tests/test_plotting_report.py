@@ -13,7 +13,6 @@ import matplotlib.pyplot as plt
 import pytest
 
 import dfa
-from dfa import figures
 from dfa.analysis.contours import contour_maps
 from dfa.analysis.cycles import limit_cycles
 from dfa.analysis.limits.closed_form import stiffness_response
@@ -22,6 +21,7 @@ from dfa.analysis.maps import stability_map
 from dfa.analysis.simulation import simulate
 from dfa.cli import main
 from dfa.model.wall import Wall
+from dfa.render import figures
 from dfa.render.limits import spring_passive_text
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -80,7 +80,7 @@ def test_fig7_contour_plot(tmp_path):
 def test_nyquist_and_stiffness_and_validation_plots(tmp_path):
     p = dfa.Params(2.0, 0.4, 0.1)
     res = limit_cycles(p)
-    ax = figures.nyquist_plot(nyquist_locus_response(p, amplitudes=[1.0, 2.0]), cycles=res)
+    ax = figures.nyquist_plot(nyquist_locus_response(p, amplitudes=[1.0, 2.0], cycles=res))
     assert_units(ax)
     rendered(ax.figure, tmp_path, "nyquist")
     dev = dfa.get_device("Delta").device

@@ -356,21 +356,21 @@ def test_fig6_nyquist_cycle_marks_lie_on_the_locus_with_a_controller():
     (Before, the mark was the spring's L, off the controller's curve.)
     """
     from dfa.analysis.loop import nyquist_locus_response, quantizer_df
-    from dfa.figures import _cycle_points
 
     dev = dfa.get_device("impulse").device
     cp = Wall.of(80.0, 0.05, 1, 100.0, 200.0).params(dev.period)
     p = dev.params(80.0)
     res = dfa.limit_cycles(p, model="zoh", wall=cp)
     assert res.cycles
-    ny = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles], model="zoh", wall=cp)
-    for pt, _stable, m in _cycle_points(ny, res):
-        assert abs(pt - (-1.0 / quantizer_df(m))) <= 1e-8
+    ny = nyquist_locus_response(p, amplitudes=[c.amplitude for c in res.cycles], model="zoh", wall=cp, cycles=res)
+    assert len(ny.cycle_marks) == len(res.cycles)
+    for mark in ny.cycle_marks:
+        assert abs(mark.point - (-1.0 / quantizer_df(mark.amplitude))) <= 1e-8
 
 
 def test_fig6_nyquist_title_names_the_controller(monkeypatch):
     """The report's Nyquist figure names its controller in the title (as its caption does), the spring's does not."""
-    from dfa.figures import MODEL_NAMES
+    from dfa.render.figures import MODEL_NAMES
 
     titles: list[str] = []
 

@@ -38,9 +38,6 @@ True
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, ClassVar
-
 import control
 import numpy as np
 from numpy.typing import ArrayLike
@@ -57,18 +54,13 @@ from ..errors import DFAValueError
 from ..model.device import Params
 from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import WallParams
-from ..results.base import Result
-from ..results.cycles import SearchEvidence
-from ..results.frozen import check_shape, freeze_fields
+from ..results.cycles import LimitCycleResult, SearchEvidence
+from ..results.loop import CycleMark, NyquistLocusResponse
 from ..results.status import NyquistStatus, SearchStatus
-from ..results.summaries import OperatingPoint
 from .cycles.characteristic import inv_loop
 from .cycles.controlled import WALL_FIX, resolve_wall
 from .describing import coulomb_equivalent_damping, quantizer_df
 from .loop_models import LOOP_MODELS, check_model, check_params
-
-if TYPE_CHECKING:
-    from matplotlib.axes import Axes
 
 __all__ = [
     "LOOP_MODELS",
@@ -79,6 +71,7 @@ __all__ = [
     "zoh_pulse_response",
     "loop_response",
     "loop_system",
+    "CycleMark",
     "NyquistLocusResponse",
     "nyquist_locus_response",
 ]
@@ -326,128 +319,6 @@ def loop_system(
     return control.frd(loop_response(loop, w, amp, model=m), w)
 
 
-@dataclass(frozen=True)
-class NyquistLocusResponse(OperatingPoint, Result):
-    """Data of a Nyquist plot of the loop against the critical locus −1/D(M).
-
-    Its JSON (:meth:`~dfa.results.base.Result.to_dict`; complex numbers as ``{"re", "im"}``) holds the fields,
-    (μ, β, σ) of ``params`` flat, the delay, the crossings as ``{"amplitude", "frequency", "point"}`` records,
-    and ``search``, the solver's evidence (:class:`~dfa.analysis.cycles.SearchEvidence`) when it ran.
-
-    Attributes
-    ----------
-    params : Params
-        The inputs.
-    model, pade_order
-        Loop model (see :func:`loop_response`).
-    wall : WallParams
-        The wall's groups in the loop (none for the paper's spring; :attr:`delay` its delay).
-    omega : numpy.ndarray
-        Frequencies (rad per sample) of the curves.
-    amplitudes : numpy.ndarray
-        The amplitude M at which each curve was linearised (NaN when σ = 0:
-        the curve does not depend on M).
-    curves : numpy.ndarray of complex, shape (len(amplitudes), len(omega))
-        L(jω; M) for each amplitude.
-    locus_amplitude : numpy.ndarray
-        Amplitudes M of the critical locus.
-    locus : numpy.ndarray of complex
-        −1/D(M) (on the negative real axis, since D is real).
-    crossings : tuple of (M, ω, point)
-        Harmonic-balance solutions where a curve meets the locus at its own
-        amplitude: for σ = 0 (every curve is the same) the roots of the
-        limit-cycle solver (:func:`dfa.analysis.cycles.limit_cycles`, residual <= 1e-10)
-        with ω in the plotted range and M up to the locus's largest amplitude,
-        the point being −1/D(M); for σ > 0 use the solver directly.
-    status : NyquistStatus
-        ``OK``, ``CROSSINGS_NOT_COMPUTED`` (σ > 0) or ``SEARCH_INCOMPLETE`` (the solver's
-        search ended incomplete; crossings may be missing, the numbers in ``search``).
-    search : SearchEvidence or None
-        How far the limit-cycle solver's search got (σ = 0, where it runs); None when it did not run.
-
-    Arrays are read-only copies.
-    """
-
-    params: Params = field(metadata={"json": None})  # written as mu, beta, sigma
-    model: str
-    wall: WallParams
-    pade_order: int
-    omega: np.ndarray = field(repr=False)
-    amplitudes: np.ndarray
-    curves: np.ndarray = field(repr=False)
-    locus_amplitude: np.ndarray = field(repr=False)
-    locus: np.ndarray = field(repr=False)
-    crossings: tuple = field(
-        metadata={"json": lambda c: [{"amplitude": m, "frequency": w, "point": pt} for m, w, pt in c]}
-    )
-    status: NyquistStatus
-    search: SearchEvidence | None = None
-
-    json_properties: ClassVar[tuple[str, ...]] = ("mu", "beta", "sigma", "delay")
-
-    def __post_init__(self) -> None:
-        check_type("wall", self.wall, WallParams, "build it with nyquist_locus_response")
-        freeze_fields(
-            self,
-            {
-                "omega": {"ndim": 1},
-                "amplitudes": {"ndim": 1, "finite": False},
-                "curves": {"dtype": complex, "ndim": 2, "finite": False},
-                "locus_amplitude": {"ndim": 1},
-                "locus": {"dtype": complex, "ndim": 1, "finite": False},
-            },
-        )
-        check_shape("curves", self.curves, (self.amplitudes.size, self.omega.size))
-        check_shape("locus", self.locus, self.locus_amplitude.shape)
-        object.__setattr__(self, "status", NyquistStatus.coerce(self.status))
-        object.__setattr__(self, "crossings", tuple(self.crossings))
-        if self.search is not None:
-            check_type("search", self.search, SearchEvidence, "build it with nyquist_locus_response")
-
-    @property
-    def delay(self) -> int:
-        """The wall's computational delay d in samples."""
-        return self.wall.delay
-
-    def loop_at(self, frequency: float, amplitude: float) -> complex:
-        """The loop L(jω; M) of this response at one frequency and amplitude: where a cycle lies on the plot.
-
-        Parameters
-        ----------
-        frequency : float
-            The angular frequency ω in rad per sample.
-        amplitude : float
-            The amplitude M in encoder ticks.
-
-        Returns
-        -------
-        complex
-            :func:`loop_response` with this response's model and wall.
-        """
-        loop = Loop(None, params=self.params, wall_params=self.wall)
-        out = loop_response(loop, frequency, amplitude, model=self.model, pade_order=self.pade_order)
-        return complex(out)
-
-    def plot(self, ax: Axes | None = None, **kwargs: Any) -> Axes:
-        """Nyquist plot against the critical locus (:func:`dfa.figures.nyquist_plot`, paper Fig. 6); returns the Axes.
-
-        Parameters
-        ----------
-        ax : matplotlib.axes.Axes, optional
-            Axes to draw on; a new figure when None.
-        **kwargs
-            Passed on to :func:`dfa.figures.nyquist_plot`.
-
-        Returns
-        -------
-        matplotlib.axes.Axes
-            The axes drawn on.
-        """
-        from ..figures import nyquist_plot
-
-        return nyquist_plot(self, ax, **kwargs)
-
-
 def _solver_crossings(
     p: Params, model: str, pade_order: int, omega: np.ndarray, max_amplitude: float, wall: WallParams
 ) -> tuple[list[tuple[float, float, complex]], NyquistStatus, SearchEvidence]:
@@ -481,6 +352,7 @@ def nyquist_locus_response(
     model: str = "half-delay",
     pade_order: int = 4,
     locus_amplitude: ArrayLike | None = None,
+    cycles: LimitCycleResult | None = None,
 ) -> NyquistLocusResponse:
     """Nyquist data of the loop L(jω; M) and the critical locus −1/D(M) (paper Fig. 6).
 
@@ -501,11 +373,15 @@ def nyquist_locus_response(
         Order of the Padé approximation for ``model="pade"`` (default 4).
     locus_amplitude : array_like, optional
         Amplitudes of the critical locus; default 0.05 to 50 ticks.
+    cycles : LimitCycleResult, optional
+        Limit cycles to mark on the figure (from :func:`~dfa.analysis.cycles.limit_cycles` with the same loop
+        model): each is placed at its point L(jω; M) of this loop (``cycle_marks``).
 
     Returns
     -------
     NyquistLocusResponse
-        The curves, the locus and (σ = 0) the crossings from the limit-cycle solver; ``.plot()`` draws them.
+        The curves, the locus, (σ = 0) the crossings from the limit-cycle solver and the cycles to mark;
+        ``.plot()`` draws them.
 
     Raises
     ------
@@ -549,4 +425,18 @@ def nyquist_locus_response(
         amps = _nonempty("amplitudes", amplitudes, "give the amplitudes M in ticks")
         curves = np.vstack([loop_response(loop, w, np.full_like(w, a), model=m, pade_order=n) for a in amps])
         status, evidence = NyquistStatus.CROSSINGS_NOT_COMPUTED, None
-    return NyquistLocusResponse(p, m, wp, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, evidence)
+    marks = None if cycles is None else _cycle_marks(cycles, Loop(None, params=p, wall_params=wp), m, n)
+    return NyquistLocusResponse(
+        p, m, wp, n, w, amps, curves, la, locus, tuple(sorted(crossings)), status, evidence, marks
+    )
+
+
+def _cycle_marks(cycles: LimitCycleResult, loop: Loop, model: str, pade_order: int) -> tuple[CycleMark, ...]:
+    """Each cycle at its point L(jω; M) of ``loop`` (the response's groups and resolved wall), where the Nyquist
+    figure marks it."""
+    check_type("cycles", cycles, LimitCycleResult, "give the result of limit_cycles with the same loop model")
+    return tuple(
+        CycleMark(c.amplitude, c.frequency, bool(c.stable),
+                  complex(loop_response(loop, c.frequency, c.amplitude, model=model, pade_order=pade_order)))
+        for c in cycles.cycles
+    )  # fmt: skip

@@ -2,7 +2,8 @@
 
 ``python -m dfa.cli.contact_report`` and ``python -m dfa.cli.passivity_report`` compare walls on every catalogue
 device with complete values, each limit found as ``dfa stiffness`` finds it; both parse and check these flags here
-(before any work), then compute and write (:func:`dfa.cli.output.report_script`).
+(before any work), then compute and write (:func:`dfa.cli.output.report_script`). Each script is a
+:class:`CatalogueScript`: its name, its comparison and what it writes; the parser and ``main`` are the same.
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -17,7 +19,7 @@ from .._io import check_output_folder
 from ..checks import check_int, check_positive
 from .parsing import Parser, integer, number
 
-__all__ = ["catalogue_parser", "catalogue_args", "catalogue_main"]
+__all__ = ["catalogue_parser", "catalogue_args", "catalogue_main", "CatalogueScript"]
 
 
 def catalogue_parser(prog: str, description: str) -> argparse.ArgumentParser:
@@ -113,3 +115,54 @@ def catalogue_main(
             write(c, stage)
 
     return report_script(prog, work)
+
+
+@dataclass(frozen=True)
+class CatalogueScript:
+    """One catalogue-comparison report script: its parser and ``main``, from what sets it apart.
+
+    Attributes
+    ----------
+    prog : str
+        The script's name (``"python -m dfa.cli.contact_report"``).
+    description : str
+        What it writes (its module docstring: the first line describes the parser).
+    study : str
+        The comparison's dotted name (``"dfa.studies.contact_comparison.contact_comparison"``), imported when the
+        script runs and called with ``velocity``, ``grid`` and ``speeds``.
+    write : callable
+        Writes the comparison's files into the staging folder it is given (:func:`catalogue_main`).
+    """
+
+    prog: str
+    description: str
+    study: str
+    write: Callable[[Any, Path], None]
+
+    def build_parser(self) -> argparse.ArgumentParser:
+        """The parser: --out, --velocity, --grid and --speeds (:func:`catalogue_parser`).
+
+        Returns
+        -------
+        argparse.ArgumentParser
+        """
+        return catalogue_parser(self.prog, self.description.split("\n")[0])
+
+    def main(self, argv: Sequence[str] | None = None) -> int:
+        """Run the comparison and write its files; return the exit code (the script's module docstring).
+
+        Parameters
+        ----------
+        argv : sequence of str, optional
+            The arguments (default: ``sys.argv[1:]``).
+
+        Returns
+        -------
+        int
+            0 ok, 2 bad input, 1 a file error, 130 interrupted.
+        """
+        import importlib
+
+        module, _, name = self.study.rpartition(".")
+        compare = getattr(importlib.import_module(module), name)
+        return catalogue_main(self.prog, self.build_parser(), argv, compare, self.write)

@@ -11,48 +11,33 @@ interrupted (nothing written: both files are written together at the end, atomic
 
 from __future__ import annotations
 
-import argparse
 import sys
-from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .catalogue_report import catalogue_main, catalogue_parser
+from .catalogue_report import CatalogueScript
 
-__all__ = ["build_parser", "main", "STEM"]
+__all__ = ["build_parser", "main", "STEM", "SCRIPT"]
 
 PROG = "python -m dfa.cli.contact_report"
 #: The report's file name without its suffix.
 STEM = "one_sided_comparison"
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The parser: --out, --velocity, --grid and --speeds (:func:`dfa.cli.catalogue_report.catalogue_parser`)."""
-    return catalogue_parser(PROG, (__doc__ or "").split("\n")[0])
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    """Run the comparison and write its Markdown and JSON; return the exit code (module docstring).
-
-    Parameters
-    ----------
-    argv : sequence of str, optional
-        The arguments (default: ``sys.argv[1:]``).
-
-    Returns
-    -------
-    int
-        0 ok, 2 bad input, 1 a file error, 130 interrupted.
-    """
+def _write(c: Any, stage: Path) -> None:
+    """The report's Markdown and JSON."""
     from ..jsonable import dumps
-    from ..studies.contact_comparison import contact_comparison
     from ..studies.contact_document import comparison_markdown
 
-    def write(c: Any, stage: Path) -> None:
-        (stage / f"{STEM}.md").write_text(comparison_markdown(c), encoding="utf-8")
-        (stage / f"{STEM}.json").write_text(dumps(c, indent=1), encoding="utf-8")
+    (stage / f"{STEM}.md").write_text(comparison_markdown(c), encoding="utf-8")
+    (stage / f"{STEM}.json").write_text(dumps(c, indent=1), encoding="utf-8")
 
-    return catalogue_main(PROG, build_parser(), argv, contact_comparison, write)
+
+SCRIPT = CatalogueScript(PROG, __doc__ or "", "dfa.studies.contact_comparison.contact_comparison", _write)
+#: The parser: --out, --velocity, --grid and --speeds (:func:`dfa.cli.catalogue_report.catalogue_parser`).
+build_parser = SCRIPT.build_parser
+#: Run the comparison and write its files; return the exit code (module docstring).
+main = SCRIPT.main
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -109,7 +109,7 @@ def run(args: argparse.Namespace) -> int:
     if args.out is not None:
         d["out"] = str(c.save(args.out))
     if args.plot is not None:
-        from ..figures import contour_plot
+        from ..render.figures import contour_plot
 
         dev, k = (inp.device, inp.stiffness) if inp is not None else (None, None)
         axes = contour_plot(c, device=dev, stiffness=k)  # physical axes b, c like `dfa map --plot`

@@ -233,7 +233,7 @@ def run(args: argparse.Namespace) -> int:
     path = m.save(args.out)
     runs = _point_runs(m, inp, bound)
     if args.plot is not None:
-        from ..figures import stability_map_plot
+        from ..render.figures import stability_map_plot
 
         dev, k = (inp.device, inp.stiffness) if inp is not None else (None, None)
         point = (inp.params.beta, inp.params.sigma) if inp is not None and inp.params is not None else None

@@ -107,11 +107,11 @@ def fmt(x: float | None, digits: int = 4) -> str:
 
 def save_png(flag: str, path: str, ax: Any) -> str:
     """Write the figure of ``ax`` to ``path`` (checked for ``flag``), atomically, as PNG, PDF or SVG by the path's
-    suffix (:func:`dfa.figures.save_figure`); close it."""
+    suffix (:func:`dfa.render.figures.save_figure`); close it."""
     import matplotlib.pyplot as plt
 
     from .._io import FIGURE_SUFFIXES, check_output_file
-    from ..figures import save_figure
+    from ..render.figures import save_figure
 
     save_figure(ax, check_output_file(flag, path, FIGURE_SUFFIXES))
     plt.close(ax.figure)
@@ -126,7 +126,7 @@ def mark_operating_point(
     point)."""
     if inp is None or inp.params is None:
         return
-    from ..figures import POINT_STYLE
+    from ..render.figures import POINT_STYLE
 
     b, s = inp.params.beta, inp.params.sigma
     unit = f" {inp.device.units['stiffness']}" if inp.device is not None else ""

@@ -114,7 +114,7 @@ def figure_function(name: str) -> Any:
     Parameters
     ----------
     name : str
-        A function of :mod:`dfa.figures` (``"stiffness_plot"``, ...).
+        A function of :mod:`dfa.render.figures` (``"stiffness_plot"``, ...).
 
     Returns
     -------
@@ -127,4 +127,4 @@ def figure_function(name: str) -> Any:
 
 
 #: Where the figures live (imported by name only, by :func:`figure_function`).
-FIGURES_MODULE = "dfa.figures"
+FIGURES_MODULE = "dfa.render.figures"

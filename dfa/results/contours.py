@@ -138,7 +138,7 @@ class ContourMaps(PlaneGrid, Result):
         return line.beta0, line.sigma0
 
     def plot(self, ax: Any = None) -> Any:
-        """Amplitude and frequency of both families (:func:`dfa.figures.contour_plot`, paper Fig. 7).
+        """Amplitude and frequency of both families (:func:`dfa.render.figures.contour_plot`, paper Fig. 7).
 
         Parameters
         ----------

@@ -477,14 +477,14 @@ class CriterionResult(Result):
         }
 
     def plot(self, ax: Axes | None = None, **kwargs: Any) -> Axes:
-        """The (β, σ) plane with regions a-e and this point (:func:`dfa.figures.regions_plot`); returns the Axes.
+        """The (β, σ) plane with regions a-e and this point (:func:`dfa.render.figures.regions_plot`); returns the Axes.
 
         Parameters
         ----------
         ax : matplotlib.axes.Axes, optional
             Axes to draw on; a new figure when None.
         **kwargs
-            Passed on to :func:`dfa.figures.regions_plot`.
+            Passed on to :func:`dfa.render.figures.regions_plot`.
 
         Returns
         -------

@@ -211,7 +211,7 @@ class Identification(Result):
         Returns
         -------
         pair of matplotlib Axes
-            The trajectory axes and the residual axes (:func:`dfa.figures.plot_identification`).
+            The trajectory axes and the residual axes (:func:`dfa.render.figures.plot_identification`).
         """
         plot_identification = figure_function("plot_identification")
 

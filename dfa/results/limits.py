@@ -477,7 +477,7 @@ class StiffnessResponse(Result):
         object.__setattr__(self, "status", CurveStatus.coerce(self.status))
 
     def plot(self, ax: Any = None) -> Any:
-        """K_max against impact speed with the published bounds (:func:`dfa.figures.stiffness_plot`); returns the Axes.
+        """K_max against impact speed with the published bounds (:func:`dfa.render.figures.stiffness_plot`); returns the Axes.
 
         Parameters
         ----------
@@ -919,7 +919,7 @@ class StiffnessSpeedChart(Result):
         return ChartStatus.DF_UNKNOWN if bool(np.isnan(self.v_df).any()) else ChartStatus.OK
 
     def plot(self, ax: Any = None) -> Any:
-        """Draw the chart (:func:`dfa.figures.stiffness_speed_plot`); returns the axes.
+        """Draw the chart (:func:`dfa.render.figures.stiffness_speed_plot`); returns the axes.
 
         Parameters
         ----------

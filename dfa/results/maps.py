@@ -143,14 +143,14 @@ class StabilityMap(PlaneGrid, Result):
         return CriticalLine(xi_dot, b0, s0)
 
     def plot(self, ax: Sequence[Axes] | None = None, **kwargs: Any) -> list[Axes]:
-        """Outcome per (β, σ), one panel per speed (:func:`dfa.figures.stability_map_plot`, paper Fig. 4).
+        """Outcome per (β, σ), one panel per speed (:func:`dfa.render.figures.stability_map_plot`, paper Fig. 4).
 
         Parameters
         ----------
         ax : sequence of matplotlib.axes.Axes, optional
             One Axes per speed; a new figure when None.
         **kwargs
-            Passed on to :func:`dfa.figures.stability_map_plot`.
+            Passed on to :func:`dfa.render.figures.stability_map_plot`.
 
         Returns
         -------

@@ -178,14 +178,14 @@ class SimulationResult(Result):
         return self.wall.delay
 
     def plot(self, ax: Axes | None = None, **kwargs: Any) -> Axes:
-        """Displacement against time (:func:`dfa.figures.trajectory_plot`, paper Fig. 5); returns the Axes.
+        """Displacement against time (:func:`dfa.render.figures.trajectory_plot`, paper Fig. 5); returns the Axes.
 
         Parameters
         ----------
         ax : matplotlib.axes.Axes, optional
             Axes to draw on; a new figure when None.
         **kwargs
-            Passed on to :func:`dfa.figures.trajectory_plot`.
+            Passed on to :func:`dfa.render.figures.trajectory_plot`.
 
         Returns
         -------

@@ -364,7 +364,7 @@ class GrowthStatus(StatusEnum):
 
 
 class NyquistStatus(StatusEnum):
-    """What a Nyquist locus response holds (:class:`dfa.analysis.loop.NyquistLocusResponse`)."""
+    """What a Nyquist locus response holds (:class:`dfa.results.loop.NyquistLocusResponse`)."""
 
     OK = ("ok", "curves, locus and crossings computed")
     CROSSINGS_NOT_COMPUTED = (

@@ -32,14 +32,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
-from ..checks import check_int
-from ..errors import DFAValueError
-from ..model.catalogue import CatalogueEntry, catalogue
+from ..model.catalogue import CatalogueEntry
+from ..model.device import Device
 from ..model.elements import OneSided, Push
-from ..model.loop import Loop
 from ..model.wall import Wall
-from ..results.base import Result
 from ..results.status import ComparisonStatus
+from .catalogue_study import CatalogueComparison, catalogue_inputs, complete_entries, limit_record, run_catalogue_study
 
 __all__ = [
     "CASES",
@@ -58,51 +56,6 @@ CASES = ("bilateral", "one_sided", "pushed")
 LIMITS = ("k_criterion", "k_sim", "k_sim_rest")
 #: The pushed wall's push, in units of the device's Coulomb friction c.
 PUSH_FRICTIONS = 2.0
-
-
-def limit_record(lim: Any) -> dict[str, Any]:
-    """A limit as (value, status, range end): enough to say "K", "none (why)" or "> range end"."""
-    return {"value": lim.value, "status": lim.status.value, "range_end": lim.range_end}
-
-
-class CatalogueComparison(Result):
-    """What the catalogue comparisons share (:class:`ContactComparison`, and the passivity controller's): one entry
-    per device in each field of :attr:`per_device`, the status coerced, and a limit's value by device and case.
-
-    Not a dataclass: each subclass is a frozen dataclass with (at least) the fields annotated here.
-    """
-
-    devices: tuple[str, ...]
-    limits: tuple[dict[str, dict[str, dict[str, Any]]], ...]
-    status: ComparisonStatus
-    #: The fields with one entry per device (each subclass names its own).
-    per_device: ClassVar[tuple[str, ...]] = ()
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "status", ComparisonStatus.coerce(self.status, "status"))
-        n = len(self.devices)
-        for name in self.per_device:
-            if len(getattr(self, name)) != n:
-                raise DFAValueError(f"{name} has {len(getattr(self, name))} entries for {n} devices: give one each")
-
-    def value(self, device: int, case: str, limit: str) -> float | None:
-        """One limit's value (None where it has none), N/m (rotary N·m/rad).
-
-        Parameters
-        ----------
-        device : int
-            The device's index.
-        case : str
-            One of the comparison's cases (``CASES`` of its module).
-        limit : str
-            One of the limits it keeps (``k_sim``, ``k_sim_rest``; ``k_criterion`` for the contact comparison).
-
-        Returns
-        -------
-        float or None
-        """
-        v = self.limits[device][case][limit]["value"]
-        return None if v is None else float(v)
 
 
 @dataclass(frozen=True)
@@ -146,16 +99,6 @@ class ContactComparison(CatalogueComparison):
     per_device: ClassVar[tuple[str, ...]] = ("velocities", "pushes", "device_units", "limits")
 
 
-def complete_entries() -> tuple[CatalogueEntry, ...]:
-    """The catalogue devices whose values are complete (the others cannot be simulated).
-
-    Returns
-    -------
-    tuple of CatalogueEntry
-    """
-    return tuple(e for e in catalogue() if not e.incomplete)
-
-
 def contact_comparison(
     entries: Sequence[CatalogueEntry] | None = None,
     *,
@@ -181,34 +124,20 @@ def contact_comparison(
     See Also
     --------
     design_answer : The largest stiffness four ways, for one wall.
+    run_catalogue_study : The runner both catalogue comparisons share.
     """
-    from ..analysis.limits.kmax import design_answer
-
-    devs = complete_entries() if entries is None else tuple(entries)
-    if not devs:
-        raise DFAValueError("entries is empty: give at least one catalogue entry with complete values")
-    g = check_int("grid", grid, minimum=2, fix="give at least 2 grid points")
-    n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one speed")
-    vels, pushes, units, limits, bad = [], [], [], [], 0
-    for e in devs:
-        dev = e.device
-        v = velocity if velocity is not None else (1.0 if dev.rotary else 0.1)
-        push = PUSH_FRICTIONS * dev.coulomb
-        walls = {
-            "bilateral": Wall(1.0),
-            "one_sided": Wall(1.0, (OneSided(0.0),)),
-            "pushed": Wall(1.0, (OneSided(0.0), Push(push))),
-        }
-        row: dict[str, dict[str, dict[str, Any]]] = {}
-        for case in CASES:
-            r = design_answer(Loop(dev, walls[case]), v, grid=g, speeds=n_speeds)
-            bad += len(r.counterexamples)
-            row[case] = {name: limit_record(getattr(r, name)) for name in LIMITS}
-        vels.append(float(v))
-        pushes.append(float(push))
-        units.append(dict(dev.units))
-        limits.append(row)
-    status = ComparisonStatus.COUNTEREXAMPLE if bad else ComparisonStatus.OK
+    devs, g, n_speeds = catalogue_inputs(entries, grid, speeds)
+    run = run_catalogue_study(devs, velocity, g, n_speeds, _walls, LIMITS)
+    pushes = tuple(float(PUSH_FRICTIONS * e.device.coulomb) for e in devs)
     return ContactComparison(
-        tuple(e.name for e in devs), tuple(vels), tuple(pushes), tuple(units), tuple(limits), bad, g, n_speeds, status
+        run.devices, run.velocities, pushes, run.device_units, run.limits, run.counterexamples, g, n_speeds, run.status
     )
+
+
+def _walls(dev: Device) -> dict[str, Wall]:
+    """The walls of :data:`CASES` for one device, at K = 1 (the pushed wall's push :data:`PUSH_FRICTIONS` × c)."""
+    return {
+        "bilateral": Wall(1.0),
+        "one_sided": Wall(1.0, (OneSided(0.0),)),
+        "pushed": Wall(1.0, (OneSided(0.0), Push(PUSH_FRICTIONS * dev.coulomb))),
+    }

@@ -643,11 +643,13 @@ def _map_around(
 
 
 def _nyquist(loop: Loop, zoh: GrowthThreshold) -> NyquistLocusResponse:
-    """The Nyquist view of the exact ZOH loop (the model of the growth threshold): the locus reaches every cycle drawn."""
+    """The Nyquist view of the exact ZOH loop (the model of the growth threshold), its cycles marked: the locus
+    reaches every cycle drawn."""
     p = loop.groups("design_analysis")[0]
     res = zoh.result
     amps = [c.amplitude for c in res.cycles[:3]] if p.sigma > 0 else None
     if p.sigma > 0 and not amps:
         amps = [1.0]
     m_top = max([50.0] + [2.0 * c.amplitude for c in res.cycles])
-    return nyquist_locus_response(loop, amplitudes=amps, locus_amplitude=np.geomspace(0.05, m_top, 1500), model="zoh")
+    la = np.geomspace(0.05, m_top, 1500)
+    return nyquist_locus_response(loop, amplitudes=amps, locus_amplitude=la, model="zoh", cycles=res)

@@ -45,7 +45,7 @@ def _with_ctl(a: DesignAnalysis) -> str:
 
 
 def _regions(a: DesignAnalysis) -> ReportFigure | None:
-    from .. import figures
+    from ..render import figures
 
     crit, p, u = a.criterion, a.params, a.device.units
     if crit is None:  # a controller: the regions of eq. 6 are the spring's (the report says so)
@@ -64,7 +64,7 @@ def _regions(a: DesignAnalysis) -> ReportFigure | None:
 
 
 def _stiffness(a: DesignAnalysis) -> ReportFigure | None:
-    from .. import figures
+    from ..render import figures
 
     if a.stiffness_curve is None:  # a controller: eq. 11 is the spring's (the report says so)
         return None
@@ -77,14 +77,14 @@ def _stiffness(a: DesignAnalysis) -> ReportFigure | None:
 
 
 def _nyquist(a: DesignAnalysis) -> ReportFigure | None:
-    from .. import figures
+    from ..render import figures
     from ..render.controller import controller_short
 
     if a.nyquist is None:  # a one-sided wall: not a linear loop
         return None
     model = a.nyquist.model
     ctl = None if a.covers(Coverage.CLOSED_FORM) else controller_short(a.wall, a.device.units)
-    ax = figures.nyquist_plot(a.nyquist, cycles=a.threshold(model).result, controller=ctl)
+    ax = figures.nyquist_plot(a.nyquist, controller=ctl)
     name = figures.MODEL_NAMES.get(model, model)
     caption = (
         f"Nyquist plot of the linearised loop{_with_ctl(a)} ({name} model, as the growth threshold above) against −1/D(M), "
@@ -103,7 +103,7 @@ def _inset_text(ax: Any) -> str:
 def _trajectories(a: DesignAnalysis) -> ReportFigure:
     import matplotlib.pyplot as plt
 
-    from .. import figures
+    from ..render import figures
 
     u, dev = a.device.units, a.device
     fig, axs = plt.subplots(2, 1, figsize=(7, 5.6), constrained_layout=True)
@@ -132,7 +132,7 @@ def _trajectories(a: DesignAnalysis) -> ReportFigure:
 
 
 def _map(a: DesignAnalysis) -> ReportFigure:
-    from .. import figures
+    from ..render import figures
 
     axs = figures.stability_map_plot(
         a.stability_map, device=a.device, stiffness=a.stiffness, point=(a.params.beta, a.params.sigma)

@@ -32,15 +32,15 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
-from ..checks import check_int, check_positive
-from ..errors import DFAValueError
+from ..checks import check_positive
 from ..model.catalogue import CatalogueEntry, get_device
 from ..model.device import Device
 from ..model.elements import PassivityController
 from ..model.loop import Loop
 from ..model.wall import Wall
+from ..results.base import figure_function
 from ..results.status import ComparisonStatus
-from .contact_comparison import CatalogueComparison, complete_entries, limit_record
+from .catalogue_study import CatalogueComparison, catalogue_inputs, run_catalogue_study
 
 __all__ = ["CASES", "LIMIT_FRICTIONS", "FAILURE_CASE", "PassivityComparison", "passivity_comparison", "impact"]
 
@@ -60,6 +60,11 @@ def _wall(case: str, dev: Device, k: float = 1.0) -> Wall:
         return Wall(k)
     limit = LIMIT_FRICTIONS * dev.coulomb if case == "limited" else None
     return Wall(k, (PassivityController(force_limit=limit),))
+
+
+def _walls(dev: Device) -> dict[str, Wall]:
+    """The walls of :data:`CASES` for one device, at K = 1."""
+    return {case: _wall(case, dev) for case in CASES}
 
 
 def impact(dev: Device, wall: Wall, velocity: float, samples: int = IMPACT_SAMPLES) -> Any:
@@ -164,7 +169,7 @@ class PassivityComparison(CatalogueComparison):
     per_device: ClassVar[tuple[str, ...]] = ("velocities", "force_limits", "device_units", "limits", "prices")
 
     def plot(self, ax: Any = None) -> Any:
-        """Bars of the no-divergence and rest limits per device and wall (:func:`dfa.figures.passivity_plot`).
+        """Bars of the no-divergence and rest limits per device and wall (:func:`dfa.render.figures.passivity_plot`).
 
         Parameters
         ----------
@@ -175,8 +180,7 @@ class PassivityComparison(CatalogueComparison):
         -------
         matplotlib.axes.Axes
         """
-        from ..figures import passivity_plot
-
+        passivity_plot = figure_function("passivity_plot")
         return passivity_plot(self, ax)
 
 
@@ -201,32 +205,21 @@ def passivity_comparison(
     Returns
     -------
     PassivityComparison
-    """
-    from ..analysis.limits.kmax import design_answer
 
-    devs = complete_entries() if entries is None else tuple(entries)
-    if not devs:
-        raise DFAValueError("entries is empty: give at least one catalogue entry with complete values")
-    g = check_int("grid", grid, minimum=2, fix="give at least 2 grid points")
-    n_speeds = check_int("speeds", speeds, minimum=1, fix="simulate at least one speed")
+    See Also
+    --------
+    run_catalogue_study : The runner both catalogue comparisons share.
+    """
+    devs, g, n_speeds = catalogue_inputs(entries, grid, speeds)
     if velocity is not None:
         check_positive("velocity", velocity, "give the impact speed in m/s (rotary: rad/s)")
-    vels, forces, units, limits, prices, bad = [], [], [], [], [], 0
-    for e in devs:
-        dev = e.device
-        v = velocity if velocity is not None else (1.0 if dev.rotary else 0.1)
-        row: dict[str, dict[str, dict[str, Any]]] = {}
-        for case in CASES:
-            r = design_answer(Loop(dev, _wall(case, dev)), v, grid=g, speeds=n_speeds)
-            bad += len(r.counterexamples)
-            row[case] = {name: limit_record(getattr(r, name)) for name in ("k_sim", "k_sim_rest")}
-        vels.append(float(v))
-        forces.append(LIMIT_FRICTIONS * dev.coulomb)
-        units.append(dict(dev.units))
-        limits.append(row)
-        prices.append(_price(dev, row["plain"]["k_sim"]["value"], v))
-    status = ComparisonStatus.COUNTEREXAMPLE if bad else ComparisonStatus.OK
+    run = run_catalogue_study(devs, velocity, g, n_speeds, _walls, ("k_sim", "k_sim_rest"))
+    forces = tuple(LIMIT_FRICTIONS * e.device.coulomb for e in devs)
+    prices = tuple(
+        _price(e.device, row["plain"]["k_sim"]["value"], v)
+        for e, row, v in zip(devs, run.limits, run.velocities, strict=True)
+    )
     return PassivityComparison(
-        tuple(e.name for e in devs), tuple(vels), tuple(forces), LIMIT_FRICTIONS, tuple(units), tuple(limits), tuple(prices),
-        _failure(), bad, g, n_speeds, status,
+        run.devices, run.velocities, forces, LIMIT_FRICTIONS, run.device_units, run.limits, prices,
+        _failure(), run.counterexamples, g, n_speeds, run.status,
     )  # fmt: skip

@@ -64,7 +64,7 @@ from ..model.device import Params
 from ..model.elements import Coverage
 from ..model.loop import Loop
 from ..model.wall import WallParams
-from ..results.base import Result
+from ..results.base import Result, figure_function
 from ..results.status import ValidationStatus
 
 if TYPE_CHECKING:
@@ -512,12 +512,10 @@ class ValidationResult(Result):
         return to_jsonable({**super().to_dict(), **pooled})
 
     def plot(self, ax: Axes | None = None, which: str = "cycles") -> Axes:
-        """A validation figure: ``which="cycles"`` (:func:`dfa.figures.cycle_error_plot`) or ``"speeds"``
-        (:func:`dfa.figures.critical_speed_plot`); returns the Axes."""
-        from .. import figures
-
-        fn = {"cycles": figures.cycle_error_plot, "speeds": figures.critical_speed_plot}
-        return fn[check_choice("which", which, tuple(fn))](self, ax)
+        """A validation figure: ``which="cycles"`` (:func:`dfa.render.figures.cycle_error_plot`) or ``"speeds"``
+        (:func:`dfa.render.figures.critical_speed_plot`); returns the Axes."""
+        fn = {"cycles": "cycle_error_plot", "speeds": "critical_speed_plot"}
+        return figure_function(fn[check_choice("which", which, tuple(fn))])(self, ax)
 
     # ----- summaries
     def cycle_summary(self) -> list[dict]:

@@ -277,7 +277,7 @@ def write_validation(result: Any, out: str | os.PathLike) -> dict[str, Any]:
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
-    from .. import figures
+    from ..render import figures
 
     os.makedirs(out, exist_ok=True)
     summary = result.to_dict()

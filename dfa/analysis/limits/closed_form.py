@@ -453,7 +453,7 @@ StiffnessCurve = StiffnessResponse
 def stiffness_response(
     device: Device, velocity: ArrayLike | None = None, stiffness: float | None = None, delay: int = 0
 ) -> StiffnessResponse:
-    """K_max against impact speed for a device (eq. 11, with delay d), for :func:`dfa.figures.stiffness_plot`.
+    """K_max against impact speed for a device (eq. 11, with delay d), for :func:`dfa.render.figures.stiffness_plot`.
 
     Parameters
     ----------
