@@ -663,7 +663,7 @@ def test_report_kmax_tables_cells_short_and_the_evidence_below_them(delta_answer
     from dfa.studies.design_document import answer_rows, evidence_markdown
 
     dev, spring, ctl = delta_answers
-    rows = answer_rows(SimpleNamespace(design_answer=spring, device=dev, is_spring=True))
+    rows = answer_rows(SimpleNamespace(design_answer=spring, device=dev, is_spring=True, covers=lambda what: True))
     for r, tables in ((spring, [rows]), (ctl, [controller_limit_rows(ctl, dev.units)])):
         for table in tables:
             cells = [c for row in table for c in row]
@@ -789,7 +789,7 @@ def test_report_nyquist_caption_names_an_inset_only_when_one_is_drawn(params):
     nyq = nyquist_locus_response(params, amplitudes=[c.amplitude for c in res.cycles[:3]], model="zoh", cycles=res)
     shown = []
     real = figures.nyquist_plot
-    analysis = SimpleNamespace(nyquist=nyq, is_spring=True)
+    analysis = SimpleNamespace(nyquist=nyq, is_spring=True, covers=lambda what: True)
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(figures, "nyquist_plot", lambda *a, **k: shown.append(real(*a, **k)) or shown[-1])
         caption = _nyquist(analysis).caption

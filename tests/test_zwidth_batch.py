@@ -68,7 +68,8 @@ def test_eq4_zwidth_spring_points_run_the_spring_kernel_like_simulate():
 def test_eq4_zwidth_point_code_from_run_codes_is_the_per_run_rule():
     """Every combination of 3 run outcomes gives the code of the previous per-run rule (early exit included)."""
     names = {REST: "rest", OSCILLATING: "oscillating", UNSTABLE: "unstable", 3: "chatter", UNDECIDED: "undecided"}
-    assert [names[i] for i in range(5)] == list(OUTCOMES[:5]) and OUTCOMES[5:] == ("left",)  # one-sided walls only
+    assert [names[i] for i in range(5)] == list(OUTCOMES[:5])
+    assert OUTCOMES[5:] == ("left", "saturated", "end_stop")  # an element's outcomes: each only with its element
     combos = np.array(list(itertools.product(range(5), repeat=3)))
     got = zmod._point_codes(combos)
     for row, code in zip(combos, got, strict=True):
@@ -82,6 +83,10 @@ def test_eq4_zwidth_point_code_from_run_codes_is_the_per_run_rule():
         if want is None:
             want = zmod.UNDECIDED_POINT if "undecided" in outs else (zmod.REST if outs == {"rest"} else zmod.BOUNDED)
         assert code == want, row
+    # held by the force limit or stopped by the travel: the point diverges, whatever the other runs did
+    for held in (OUTCOMES.index("saturated"), OUTCOMES.index("end_stop")):
+        rows = np.array([[held, r, r] for r in range(5)] + [[r, r, held] for r in range(5)])
+        assert (zmod._point_codes(rows) == zmod.DIVERGES).all()
 
 
 @pytest.mark.parametrize("delay", [0, 2])
