@@ -158,7 +158,16 @@ def _verdict_text(dev, k, v, dl, crit, lim, v_sim):
 
     from dfa.studies.design_document import verdict_text
 
-    a = SimpleNamespace(device=dev, stiffness=k, velocity=v, delay=dl, criterion=crit, limits=lim, is_spring=True, covers=lambda what: True)
+    a = SimpleNamespace(
+        device=dev,
+        stiffness=k,
+        velocity=v,
+        delay=dl,
+        criterion=crit,
+        limits=lim,
+        is_spring=True,
+        covers=lambda what: True,
+    )
     a.simulated_xi_dot, a.simulated_velocity = v_sim, None if v_sim is None else dev.velocity(v_sim)
     return verdict_text(a)
 

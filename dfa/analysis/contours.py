@@ -40,6 +40,7 @@ from .._io import check_memory
 from .._parallel import new_bar
 from ..checks import check_bool, check_int, check_mu, check_positive, check_range
 from ..errors import DFAValueError
+from ..grids import geometric_grid
 from ..results.contours import _ARRAYS
 from ..results.contours import ContourMaps as ContourMaps
 from ..results.contours import FlaggedPoints as FlaggedPoints
@@ -65,7 +66,7 @@ def _large_exact(
     msamp = np.unique((n_all[:, None] + (t * t)[None, :]).ravel())
     msamp = msamp[msamp <= amax]
     dsamp = quantizer_df(msamp)
-    wgrid = np.concatenate([np.geomspace(1e-7, 1e-2, 2000, endpoint=False), np.linspace(1e-2, math.pi - 1e-6, 20000)])
+    wgrid = np.concatenate([geometric_grid(1e-7, 1e-2, 2000, endpoint=False), np.linspace(1e-2, math.pi - 1e-6, 20000)])
     large_m = np.full((sigma.size, beta.size), np.nan)
     large_w = np.full((sigma.size, beta.size), np.nan)
     rows_all = np.nonzero(sigma > 0)[0]

@@ -91,6 +91,7 @@ from ..checks import (
 )
 from ..core.zoh import c1_minus_c0, zoh_coefficients
 from ..errors import DFAError, DFAValueError
+from ..grids import geometric_grid
 from ..model.wall import Wall, WallParams
 
 __all__ = [
@@ -368,7 +369,7 @@ def _critical_kappa_scan(a: float, d: int) -> float:
     from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
 
     hint = a / (0.5 + d) if a < 1.0 else 2.0 * a
-    ks = np.geomspace(1e-6 * hint, 1e3 * hint, 4000)
+    ks = geometric_grid(1e-6 * hint, 1e3 * hint, 4000)
     rho = _rho(a, ks, d)
     bad = np.nonzero(rho >= 1.0)[0]
     if bad.size == 0 or bad[0] == 0:

@@ -94,6 +94,7 @@ from ..checks import (
 from ..core.zoh import zoh_coefficients
 from ..core.zohlag import amplifier_zoh
 from ..errors import DFAError, DFAValueError
+from ..grids import geometric_grid
 from ..model.elements import unit_circle_w
 from ..model.wall import Wall, WallParams
 from ..results.linear import StableRegion as StableRegion
@@ -346,7 +347,7 @@ def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
                 out.append(abs(float(np.angle(z))))
     lin = np.linspace(0.0, math.pi, 512 * (n + 1))
     # and geometrically down to 1e-10 inside the first cell: slow poles put the crossing at θ ~ 1e-4 … 1e-3
-    grid = np.concatenate([[0.0], np.geomspace(1e-10, lin[1], 400, endpoint=False), lin[1:]])
+    grid = np.concatenate([[0.0], geometric_grid(1e-10, lin[1], 400, endpoint=False), lin[1:]])
     g = _im_part(p0, q, grid)
     for i in np.nonzero(g[1:-1] * g[2:] < 0.0)[0] + 1:  # from the first θ > 0: Im(P₀ Q̄) = 0 at θ = 0
         out.append(_root_in_cell(p0, q, grid[i], grid[i + 1]))
@@ -431,7 +432,7 @@ def _check_against_grid(p0: Any, q: Any, ks: Any, intervals: Any, args: Any) -> 
     """The stable set must agree with the spectral radius on an independent geometric grid of κ."""
     low = p0[-2] / q[-1] if q[-1] != 0.0 else 0.0  # φ₁ = P₀'(w = 0)/Q(0): the scale of a crossing near z = 1
     low = low if 0.0 < low < ks[0] and math.isfinite(low) else ks[0]
-    grid = np.geomspace(low * 1e-2, ks[-1] * 1e2, 241)
+    grid = geometric_grid(low * 1e-2, ks[-1] * 1e2, 241)
     near = np.min(np.abs(np.log(grid[:, None] / ks[None, :])), axis=1) < 1e-6
     rho = _rho_rows(np.array([np.polyadd(p0, k * q) for k in grid]))
     inside = np.array([any(lo < k < hi for lo, hi in intervals) for k in grid])
@@ -483,7 +484,7 @@ def _stable_set(
         except DFAError:  # its own check failed (the clustered roots near z = 1): no interval above is listed
             pass
     p0, q = _ray(a, a_b, p)
-    grid = np.geomspace(lo, 1e4, 29)
+    grid = geometric_grid(lo, 1e4, 29)
     grid = grid[[not any(x <= k <= y for x, y in higher) for k in grid]]
     if grid.size and np.any(_rho_rows(np.array([np.polyadd(p0, k * q) for k in grid])) <= 1.0 + 1e-9):
         raise DFAError(

@@ -51,6 +51,7 @@ from ..checks import (
 )
 from ..core.zoh import zoh_coefficients
 from ..errors import DFAValueError
+from ..grids import geometric_grid
 from ..model.device import Params
 from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import WallParams
@@ -314,7 +315,7 @@ def loop_system(
     if m == "zoh":
         gd = device_zoh_tf(p, amplitude, omega)
         return gd * control.tf([1.0], [1.0] + [0.0] * d, dt=1.0) if d else gd
-    w = _omega(np.geomspace(1e-3, np.pi, 2000) if omega_grid is None else omega_grid, "omega_grid")
+    w = _omega(geometric_grid(1e-3, np.pi, 2000) if omega_grid is None else omega_grid, "omega_grid")
     amp = None if p.sigma == 0.0 or amplitude is None else np.full_like(w, amplitude)
     return control.frd(loop_response(loop, w, amp, model=m), w)
 
@@ -404,10 +405,10 @@ def nyquist_locus_response(
     p, wall = check_type("loop", loop, Loop, LOOP_FIX).groups("nyquist_locus_response")
     wp, _ctl, d = resolve_wall(wall)
     m, d, n = check_model(model, d, pade_order)
-    w = check_nonempty("omega", _omega(np.geomspace(1e-3, np.pi, 2000) if omega is None else omega))
+    w = check_nonempty("omega", _omega(geometric_grid(1e-3, np.pi, 2000) if omega is None else omega))
     la = _nonempty(  # one amplitude: a locus of one point (a 0-d array was refused by the result's shape check)
         "locus_amplitude",
-        np.geomspace(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude,
+        geometric_grid(0.05, 50.0, 1500) if locus_amplitude is None else locus_amplitude,
         "give the describing function's amplitudes in ticks",
     )
     locus = -1.0 / quantizer_df(la)

@@ -21,8 +21,6 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, ClassVar, TypeVar, cast
 
-import numpy as np
-
 from .._parallel import progress_bar
 from ..analysis.approach import approach_samples
 from ..analysis.check import PassivityCheck, passivity_check
@@ -39,6 +37,7 @@ from ..analysis.maps import StabilityMap, map_start, stability_map
 from ..analysis.simulation import SimulationResult, divergence_bound, simulate
 from ..checks import check_int, check_positive, check_real, check_speed, check_type, format_value
 from ..errors import DFATypeError, DFAValueError
+from ..grids import geometric_grid
 from ..jsonable import explain_nulls, to_jsonable
 from ..model.catalogue import CatalogueEntry
 from ..model.catalogue import catalogue as catalogue_rows
@@ -651,5 +650,5 @@ def _nyquist(loop: Loop, zoh: GrowthThreshold) -> NyquistLocusResponse:
     if p.sigma > 0 and not amps:
         amps = [1.0]
     m_top = max([50.0] + [2.0 * c.amplitude for c in res.cycles])
-    la = np.geomspace(0.05, m_top, 1500)
+    la = geometric_grid(0.05, m_top, 1500)
     return nyquist_locus_response(loop, amplitudes=amps, locus_amplitude=la, model="zoh", cycles=res)

@@ -59,6 +59,7 @@ from ..analysis.cycles import SUBTICK_LIMIT, growth_threshold, large_cycle_close
 from ..analysis.maps import map_start, stability_map
 from ..analysis.simulation import OUTCOMES, SimulationResult, divergence_bound, simulate
 from ..checks import check_bool, check_choice, check_jobs, check_type
+from ..grids import geometric_grid
 from ..jsonable import explain_nulls, to_jsonable
 from ..model.device import Params
 from ..model.elements import Coverage
@@ -226,7 +227,7 @@ def first_unstable_speed(
         r = simulate(Loop.dimensionless(p.mu, p.beta, p.sigma, w), v0, n, xi0=x0, record=False, bound=bound)
         return r.outcome == "unstable"
 
-    speeds = np.geomspace(v_lo, v_hi, steps)
+    speeds = geometric_grid(v_lo, v_hi, steps)
     prev = None
     for v in speeds:
         if unstable(v):

@@ -17,6 +17,7 @@ import numpy as np
 
 from ...core import dfcore
 from ...core.zoh import zoh_coefficients
+from ...grids import geometric_grid
 from ...model.device import Params
 from ...model.wall import WallParams
 
@@ -27,7 +28,7 @@ M_FLOOR = 1e-9
 
 
 #: Frequency grid (rad per sample) on which the phase curve is scanned before bracketing.
-W_GRID = np.concatenate([np.geomspace(1e-5, 0.05, 600, endpoint=False), np.linspace(0.05, math.pi - 1e-9, 3000)])
+W_GRID = np.concatenate([geometric_grid(1e-5, 0.05, 600, endpoint=False), np.linspace(0.05, math.pi - 1e-9, 3000)])
 W_GRID.flags.writeable = False
 
 

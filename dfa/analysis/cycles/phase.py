@@ -10,6 +10,7 @@ import numpy as np
 from scipy import optimize
 from scipy.optimize.elementwise import find_root
 
+from ...grids import geometric_grid
 from ...model.wall import WallParams
 from .characteristic import W_GRID, HarmonicLoop, inv_loop, phase_lead, wall_ratio
 
@@ -52,7 +53,7 @@ def zoh_phase_beta_grid(mu: float, d: int, wall: WallParams | None = None) -> np
 
 def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, wall: WallParams | None = None) -> np.ndarray:
     """β*(ω) of the exact ZOH loop: scan β on a log grid, bracket V's crossing with U < 0, bisect (vectorised)."""
-    bgrid = np.concatenate([[0.0], np.geomspace(1e-9, 1e5, 400)])
+    bgrid = np.concatenate([[0.0], geometric_grid(1e-9, 1e5, 400)])
     c = inv_loop(mu, bgrid[None, :], w[:, None], "zoh", d, 0, wall)
     v = c.imag
     sc = (np.sign(v[:, :-1]) != np.sign(v[:, 1:])) & (c.real[:, :-1] < 0) & (c.real[:, 1:] < 0)

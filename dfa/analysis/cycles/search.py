@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ...grids import geometric_grid
 from ..describing import DF_ENVELOPE
 from .characteristic import M_FLOOR, HarmonicLoop, inv_loop
 
@@ -30,14 +31,14 @@ def m_samples(
     """
     pts = []
     if lo < 1.0 and hi > M_FLOOR:
-        pts.append(np.geomspace(max(lo, M_FLOOR), min(1.0, hi), 400))
+        pts.append(geometric_grid(max(lo, M_FLOOR), min(1.0, hi), 400))
     reach, bound = None, min(hi, 1.0)
     if hi > 1.0:
         n0 = max(1, int(math.floor(lo)))
         n_end = int(math.ceil(min(hi, max_amp)))
         if lp.df != "exact":
             # the paper's approximations have no integer structure: a geometric grid suffices
-            pts.append(np.geomspace(max(lo, 1.0), min(hi, max_amp), 4000))
+            pts.append(geometric_grid(max(lo, 1.0), min(hi, max_amp), 4000))
             return (
                 np.unique(np.concatenate(pts)),
                 (None if hi <= max_amp else (max_amp, "max_amplitude")),

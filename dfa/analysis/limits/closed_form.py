@@ -56,6 +56,7 @@ from numpy.typing import ArrayLike
 
 from ...checks import check_delay, check_positive, check_real_array, check_speed, check_type
 from ...errors import DFAValueError
+from ...grids import geometric_grid
 from ...model.device import Device
 from ...model.loop import Loop
 from ...model.wall import Wall
@@ -487,7 +488,7 @@ def stiffness_response(
     d = check_delay(delay)
     if velocity is None:
         top = HAND_SPEED["rotary" if dev.rotary else "linear"]  # no haptic device sees impacts of 100 m/s
-        velocity = np.geomspace(min(1e-3 * dev.resolution / dev.period, 1e-3 * top), top, 200)
+        velocity = geometric_grid(min(1e-3 * dev.resolution / dev.period, 1e-3 * top), top, 200)
     fix = f"give impact speeds in {dev.units['velocity']}"
     v = np.atleast_1d(check_real_array("velocity", velocity, fix)).ravel()
     if np.any(v < 0):

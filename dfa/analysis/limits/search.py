@@ -18,7 +18,7 @@ rendering layer words them, :mod:`dfa.render.limits`):
 
 Examples
 --------
->>> s = grid_search(lambda k: "safe" if k < 3.0 else "unsafe", np.geomspace(1.0, 10.0, 5))
+>>> s = grid_search(lambda k: "safe" if k < 3.0 else "unsafe", geometric_grid(1.0, 10.0, 5))
 >>> 3.0 * (1 - K_RTOL) <= s.value < 3.0 <= s.first_failure, s.status.value
 (True, 'found')
 """
@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from ...errors import DFAValueError
+from ...grids import geometric_grid
 from ...results.limits import FINE_POINTS as FINE_POINTS
 from ...results.limits import FINE_STEP as FINE_STEP
 from ...results.limits import SWEEP_STEP as SWEEP_STEP
@@ -240,7 +241,7 @@ def check_stiffness_range(dev: Device, lo: float, hi: float, what: str, stiffnes
 def search_grid(k_ref: float, top: float, grid: int) -> np.ndarray:
     """Ascending stiffness grid from k_ref/2 to ``top``, holding k_ref itself (k_ref <= 0: from top·10⁻⁴)."""
     lo = 0.5 * k_ref if k_ref > 0 else top * 1e-4
-    pts = np.geomspace(lo, top, grid)
+    pts = geometric_grid(lo, top, grid)
     if k_ref > 0:
         pts = np.unique(np.append(pts, k_ref))
     return pts

@@ -36,6 +36,7 @@ import numpy as np
 
 from ...checks import check_int, check_positive, check_speed, check_type
 from ...errors import DFAValueError
+from ...grids import geometric_grid
 from ...model.device import Device
 from ...model.loop import LOOP_FIX, Loop, loop_first
 from ...model.wall import Wall
@@ -178,10 +179,10 @@ def stiffness_speed_chart(
             f"{arg} = {n} is invalid: it must be a whole number <= {_MAX_COUNT}; each one is a set of simulations"
         )
     n_max = check_int("max_samples", max_samples, minimum=1000, fix="give the longest run in samples")
-    vs = np.geomspace(top / 200.0, top, n_v) if n_v > 1 else np.array([top])
+    vs = geometric_grid(top / 200.0, top, n_v) if n_v > 1 else np.array([top])
     lo, hi = _k_range(dev, w, top, k_design)
     check_stiffness_range(dev, lo, hi, CHART_RANGE, k_design)
-    ks = np.geomspace(lo, hi, n_k)
+    ks = geometric_grid(lo, hi, n_k)
     if cache is not None:
         check_type("cache", cache, RunCache, "pass a dfa.analysis.limits.runs.RunCache, or None")
     ev = Evidence(dev, w, vs, n_max, "half-delay", cache)
@@ -193,7 +194,7 @@ def stiffness_speed_chart(
         v_sim.append(_largest_safe([judge_outcomes(o, "unstable") == SAFE for o in per_speed], vs))
         v_rest.append(_largest_safe([judge_outcomes(o, "rest") == SAFE for o in per_speed], vs))
         v_df.append(_df_speed(ev.growth_xi_dot(float(k)), dev, top))
-    kc = np.geomspace(lo, hi, 200)
+    kc = geometric_grid(lo, hi, 200)
     vc = []
     for k in kc:
         mpv, _status = passive_speed(dev, w, float(k))

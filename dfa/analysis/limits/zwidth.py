@@ -76,6 +76,7 @@ from ...checks import (
 )
 from ...core import kernel
 from ...errors import DFAValueError
+from ...grids import geometric_grid
 from ...model.device import Device
 from ...model.elements import Coverage
 from ...model.loop import LOOP_FIX, Loop, loop_first
@@ -367,7 +368,7 @@ def _grids(dev: Device, wall: Wall, grid: int, k_range: Any, b_range: Any, v: fl
         raise DFAValueError(
             f"k_range = ({format_value(k0)}, {format_value(k1)}) is invalid: it must satisfy low < high"
         )
-    return np.geomspace(k0, k1, grid), bs
+    return geometric_grid(k0, k1, grid), bs
 
 
 def _plan(dev: Device, wall: Wall, ks: Any, bs: Any, xi_dots: Any, cap: int) -> tuple[list[tuple], float]:
