@@ -410,6 +410,14 @@ class Element(abc.ABC, Generic[G]):
     never_covered: ClassVar[tuple[tuple[Coverage, str], ...]] = ()
     #: Its code in the wall's kernel table (:data:`dfa.core.table.CODES`), one per element class.
     kernel_code: ClassVar[int]
+    #: The device field (:data:`dfa.model.device.DEVICE_FIELDS`) whose value, when the device gives one, adds this
+    #: element to every wall on the device that has none of its own (None: no device field); its constructor takes
+    #: the value as its :attr:`parameter` (:func:`dfa.model.loop.device_elements`).
+    device_field: ClassVar[str | None] = None
+    #: Where a device's value goes: into the physical wall (True: its record and text show it, the force limit) or
+    #: into the wall's groups only (False: the runs see it, the wall's record and text do not; its group must not
+    #: depend on K, the travel).
+    device_in_wall: ClassVar[bool] = True
 
     def __init_subclass__(cls, **kwargs: object) -> None:
         super().__init_subclass__(**kwargs)
@@ -1921,6 +1929,8 @@ class ForceLimit(Element[float]):
     wall_flag: ClassVar[bool] = False
     absent: ClassVar[object] = None
     needs_resolution: ClassVar[bool] = True
+    #: The device's ``max_force`` adds it to the device's walls (their record and text show it).
+    device_field: ClassVar[str | None] = "max_force"
 
     def __post_init__(self) -> None:
         fix = "give the actuator's force limit F_max in N (rotary: N·m), or no limit"
@@ -2005,7 +2015,7 @@ class Travel(Element[float]):
 
     The value is the device's (:data:`dfa.model.device.DEVICE_FIELDS`, ``travel``; flag ``--travel``): a
     :class:`dfa.model.loop.Loop` of a device with a travel adds this element to its wall's groups
-    (:func:`dfa.model.loop.with_travel`). Coverage: every analysis covers it, as a statement about the motion
+    (:func:`dfa.model.loop.device_groups`). Coverage: every analysis covers it, as a statement about the motion
     inside the travel (:attr:`assumption`): they do not model the stop.
 
     Attributes
@@ -2035,6 +2045,10 @@ class Travel(Element[float]):
     needs_resolution: ClassVar[bool] = True
     #: What the analyses that cover it assume: the motion stays inside the travel.
     assumption: ClassVar[str] = _TRAVEL_INSIDE
+    #: The device's ``travel`` adds it to the groups of the device's walls (the runs' end stops; the wall's record
+    #: and text are unchanged, the command line states the travel beside them).
+    device_field: ClassVar[str | None] = "travel"
+    device_in_wall: ClassVar[bool] = False
 
     def __post_init__(self) -> None:
         fix = "give the device's travel from the centre to either end stop in m (rotary: rad)"
