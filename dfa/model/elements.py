@@ -81,6 +81,7 @@ __all__ = [
     "Travel",
     "largest_speed",
     "ELEMENTS",
+    "ALWAYS_RECORDED",
     "MIN_CUTOFF",
     "MIN_LAG",
     "SWEEP_MAX_POINTS",
@@ -418,6 +419,11 @@ class Element(abc.ABC, Generic[G]):
     #: into the wall's groups only (False: the runs see it, the wall's record and text do not; its group must not
     #: depend on K, the travel).
     device_in_wall: ClassVar[bool] = True
+    #: The physical value a wall's record gives for an element of :data:`ALWAYS_RECORDED` the wall does not have.
+    recorded_absent: ClassVar[object] = None
+    #: Why each of its keys in a record may be null, by key (the wall's record, :meth:`record`, and the groups',
+    #: :meth:`group_json`): the records' ``null_reasons`` (:func:`dfa.jsonable.explain_nulls`).
+    null_reasons: ClassVar[tuple[tuple[str, str], ...]] = ()
 
     def __init_subclass__(cls, **kwargs: object) -> None:
         super().__init_subclass__(**kwargs)
@@ -834,6 +840,27 @@ class Element(abc.ABC, Generic[G]):
         """
         return ((cls.parameter.name, cls.parameter.name),)
 
+    def record(self) -> dict[str, object]:
+        """Give the element's entries in a wall's record (:meth:`dfa.model.wall.Wall.to_dict`).
+
+        Returns
+        -------
+        dict
+            ``{record key: value}`` for each of :meth:`record_keys` (physical units); :meth:`from_record` reads it.
+        """
+        return {key: getattr(self, name) for key, name in type(self).record_keys()}
+
+    @classmethod
+    def absent_record(cls) -> dict[str, object]:
+        """Give the entries a wall's record holds for the element when the wall has none (:data:`ALWAYS_RECORDED`).
+
+        Returns
+        -------
+        dict
+            ``{record key: recorded_absent}`` for each of :meth:`record_keys`.
+        """
+        return {key: cls.recorded_absent for key, _ in cls.record_keys()}
+
     @classmethod
     def group_from_dict(cls, data: Mapping[str, object]) -> object | None:
         """Give the element's group from :meth:`dfa.model.wall.WallParams.to_dict` (the inverse of :meth:`group_json`).
@@ -902,6 +929,7 @@ class Delay(Element[int]):
         "delay", "d",
     )  # fmt: skip
     absent: ClassVar[object] = 0
+    recorded_absent: ClassVar[object] = 0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "delay", check_delay(self.delay))
@@ -968,6 +996,7 @@ class Damper(Element[float]):
         "virtual damper B >= 0 in N·s/m (rotary: N·m·s/rad) on the backward-difference velocity (default: none)",
         "damping", "β_B = B/(K T)",
     )  # fmt: skip
+    recorded_absent: ClassVar[object] = 0.0
 
     def __post_init__(self) -> None:
         fix = "give the virtual damping B in N·s/m (0 for none)"
@@ -1046,6 +1075,9 @@ class VelocityFilter(Element[float]):
         "cutoff", "ν_c = f_c T",
     )  # fmt: skip
     absent: ClassVar[object] = None
+    null_reasons: ClassVar[tuple[tuple[str, str], ...]] = (
+        ("filter_cutoff", "no velocity filter"), ("cutoff", "no velocity filter")
+    )  # fmt: skip
 
     def __post_init__(self) -> None:
         fix = "give the cutoff in Hz, or None for no filter"
@@ -1144,6 +1176,7 @@ class AmplifierLag(Element[float]):
     )
     #: With an amplifier lag a run costs about 18 times the spring's per sample (reports/benchmarks.md).
     sweep_points: ClassVar[int] = 150
+    null_reasons: ClassVar[tuple[tuple[str, str], ...]] = (("amplifier_bandwidth", "ideal amplifier (no lag)"),)
 
     def __post_init__(self) -> None:
         fix = "give the amplifier bandwidth in Hz, or None for an ideal amplifier"
@@ -1402,6 +1435,16 @@ class OneSided(Element[float]):
     @classmethod
     def record_keys(cls) -> tuple[tuple[str, str], ...]:
         return (("one_sided_surface", "surface"),)
+
+    def record(self) -> dict[str, object]:
+        """Give the one-sided wall's entries in a wall's record: its surface and the push, 0 until a
+        :class:`Push` of the wall gives its own (:meth:`Element.record`).
+
+        Returns
+        -------
+        dict
+        """
+        return {"one_sided_surface": self.surface, "push": 0.0}
 
     @classmethod
     def flag_rows(cls) -> tuple[FlagRow, ...]:
@@ -1826,6 +1869,12 @@ class PassivityController(Element[tuple[int, float | None]]):
     def group_from_dict(cls, data: Mapping[str, object]) -> object | None:
         return (data["pc_window"], data.get("pc_force_limit")) if "pc_window" in data else None
 
+    null_reasons: ClassVar[tuple[tuple[str, str], ...]] = (
+        ("passivity_controller_window", "an unbounded observer (the whole run)"),
+        ("passivity_controller_force_limit", "no force limit"),
+        ("pc_force_limit", "no force limit (the passivity controller's)"),
+    )
+
     @classmethod
     def record_keys(cls) -> tuple[tuple[str, str], ...]:
         return (("passivity_controller_window", "window"), ("passivity_controller_force_limit", "force_limit"))
@@ -2104,3 +2153,9 @@ ElementClass = type[Element[object]]
 ELEMENTS: tuple[ElementClass, ...] = (
     Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push, PassivityController, ForceLimit, Travel
 )  # fmt: skip
+
+#: The elements whose entries stand in every wall's record and groups' record, their absent values when the wall has
+#: none (:attr:`Element.recorded_absent`, :attr:`Element.absent`), in the records' order: the paper's spring's records
+#: (damping, delay, filter cutoff, amplifier) as they always were. Any other element's entries appear only when the
+#: wall has it, after these, in the order of :data:`ELEMENTS` (:meth:`Element.record`, :meth:`Element.group_json`).
+ALWAYS_RECORDED: tuple[ElementClass, ...] = (Damper, Delay, VelocityFilter, AmplifierLag)

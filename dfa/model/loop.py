@@ -38,9 +38,9 @@ import numpy as np
 
 from ..checks import check_positive, check_type, format_value
 from ..errors import DFATypeError, DFAValueError
-from .device import Device, Params, dimensionless_params
 from . import elements
-from .elements import Element, Travel
+from .device import Device, Params, dimensionless_params
+from .elements import Element
 from .wall import Wall, WallParams
 
 __all__ = [
@@ -113,6 +113,7 @@ def device_groups(wall_params: WallParams, device: Device | None) -> WallParams:
 
     Examples
     --------
+    >>> from dfa.model.elements import Travel
     >>> dev = Device(0.072, 0.005, 0.038, 2e-5, 1e-3, travel=0.05)
     >>> device_groups(WallParams(), dev).group(Travel)
     2500.0
