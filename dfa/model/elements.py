@@ -48,7 +48,7 @@ import enum
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any, ClassVar, Generic, NamedTuple, TypeVar
+from typing import ClassVar, Generic, NamedTuple, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -645,7 +645,7 @@ class Element(abc.ABC, Generic[G]):
 
     @classmethod
     @abc.abstractmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: G) -> KernelBlock:  # type: ignore[misc]  # G is covariant (module note at G)
         """Give the element's block of the wall's kernel table (:mod:`dfa.core.table`).
 
         Parameters
@@ -959,7 +959,7 @@ class Delay(Element[int]):
         return float(g), 0.0
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: int) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), int(g))  # the d pending commands
 
     @classmethod
@@ -1019,7 +1019,7 @@ class Damper(Element[float]):
         return float(g), (velocity_gain * float(g) if quantized else 0.0)
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @classmethod
@@ -1132,7 +1132,7 @@ class VelocityFilter(Element[float]):
         return cls.pole_gap(g)
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (cls.pole(g),), 2)  # y_{h−1}, v_{h−1}
 
     @classmethod
@@ -1223,7 +1223,7 @@ class AmplifierLag(Element[float]):
         )
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 1)  # φ_A
 
     @classmethod
@@ -1309,7 +1309,7 @@ class HandSpring(Element[float]):
         return g == 0.0
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @classmethod
@@ -1468,7 +1468,7 @@ class OneSided(Element[float]):
         return 0.0, 0.0  # the spring's corner; only alone (dfa.model.wall.WallParams.uncovered), see the class
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @staticmethod
@@ -1703,7 +1703,7 @@ class Push(Element[float]):
         return 0.0, 0.0  # on a one-sided wall only (WallParams.uncovered); it enters V* (OneSided.contact_speed)
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
 
@@ -1856,7 +1856,7 @@ class PassivityController(Element[tuple[int, float | None]]):
         raise NotCovered(_PC_NOT_COVERED)
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: tuple[int, float | None]) -> KernelBlock:
         w, limit = g
         params = (float(w), math.inf if limit is None else float(limit))
         return KernelBlock(cls.kernel_code, params, 5 + int(w))  # E_obs, window position, f, total, E_0, W terms
@@ -2036,7 +2036,7 @@ class ForceLimit(Element[float]):
         )
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @classmethod
@@ -2141,7 +2141,7 @@ class Travel(Element[float]):
         return True  # the spring's kernel runs it with the travel as its bound (dfa.analysis.simulation)
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
 
