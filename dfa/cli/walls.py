@@ -13,8 +13,8 @@ import math
 from typing import Any
 
 from ..model.device import Device
-from ..model.elements import ELEMENTS, Coverage, Damper, Delay, Element, ForceLimit, OneSided
-from ..model.loop import with_travel
+from ..model.elements import ELEMENTS, Coverage, Damper, Delay, Element, OneSided
+from ..model.loop import device_elements, device_groups
 from ..model.wall import MIN_CUTOFF, Wall, WallParams
 from .flag_table import FLAG_ROWS, add_rows, given_rows, is_given
 from .inputs import Inputs
@@ -139,9 +139,8 @@ def wall_from_args(args: argparse.Namespace, device: Device | None, stiffness: f
 
     given = given_flags(args)
     hand = hand_stiffness_of(args, device)
-    # the device's force limit (device field, --max-force); without K the Loop adds it (dfa.model.loop.limited)
-    top = None if device is None or stiffness is None else device.max_force
-    limit = () if top is None else (ForceLimit(top),)
+    # the device's elements of the physical wall (the force limit, --max-force); without K the Loop adds them
+    limit = () if stiffness is None else device_elements(device, in_wall=True)
     contact = contact_elements(args, device) + passivity_elements(args, device) + limit
     if not given and not hand and not contact:
         return None
@@ -177,11 +176,12 @@ def wall_groups(wall: Wall, device: Device) -> WallParams:
 
 def wall_params(args: argparse.Namespace, wall: Wall | None, inp: Inputs | None) -> WallParams:
     """The dimensionless wall of a run: the wall's groups, else the spring with the --delay; with the device's
-    travel (--travel, or the catalogue's), where the run ends at an end stop (:func:`dfa.model.loop.with_travel`)."""
+    groups-only elements, e.g. its travel (--travel, or the catalogue's), where the run ends at an end stop
+    (:func:`dfa.model.loop.device_groups`)."""
     device = None if inp is None else inp.device
     if wall is None or device is None:
-        return with_travel(WallParams.of(delay=args.delay), device)
-    return with_travel(wall_groups(wall, device), device)
+        return device_groups(WallParams.of(delay=args.delay), device)
+    return device_groups(wall_groups(wall, device), device)
 
 
 def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[str, Any]:

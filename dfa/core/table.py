@@ -50,7 +50,7 @@ import numpy.typing as npt
 from ..errors import DFAValueError
 
 __all__ = [
-    "BLOCK_PARAMS", "CODES", "DAMPER", "DELAY", "FILTER", "FORCE_LIMIT", "HAND", "HEAD", "LAG", "ONE_SIDED", "PASSIVITY", "PUSH",
+    "BLOCK_PARAMS", "BLOCKS", "CODES", "DAMPER", "DELAY", "FILTER", "FORCE_LIMIT", "HAND", "HEAD", "LAG", "ONE_SIDED", "PASSIVITY", "PUSH",
     "TRAVEL", "check_table", "stack_tables",
 ]  # fmt: skip
 
@@ -60,15 +60,18 @@ FloatArray: TypeAlias = npt.NDArray[np.float64]
 DELAY, DAMPER, FILTER, LAG, HAND, ONE_SIDED, PUSH, PASSIVITY, FORCE_LIMIT, TRAVEL = 1, 2, 3, 4, 5, 6, 7, 8, 9, 10
 #: A block's head: its code, parameter count and state size.
 HEAD = 3
+#: Each element code's block: the name of the class of :mod:`dfa.model.elements` that declares it (its
+#: ``kernel_code``, checked by ``tests/test_kernel_table.py``) and the number of parameters its block carries. One
+#: row per element; :data:`CODES` and :data:`BLOCK_PARAMS` are read from it.
+BLOCKS: dict[int, tuple[str, int]] = {
+    DELAY: ("Delay", 1), DAMPER: ("Damper", 1), FILTER: ("VelocityFilter", 1), LAG: ("AmplifierLag", 1),
+    HAND: ("HandSpring", 1), ONE_SIDED: ("OneSided", 1), PUSH: ("Push", 1), PASSIVITY: ("PassivityController", 2),
+    FORCE_LIMIT: ("ForceLimit", 1), TRAVEL: ("Travel", 1),
+}  # fmt: skip
 #: Each element code's name (the class of :mod:`dfa.model.elements` that declares it).
-CODES = {
-    DELAY: "Delay", DAMPER: "Damper", FILTER: "VelocityFilter", LAG: "AmplifierLag", HAND: "HandSpring",
-    ONE_SIDED: "OneSided", PUSH: "Push", PASSIVITY: "PassivityController", FORCE_LIMIT: "ForceLimit", TRAVEL: "Travel",
-}  # fmt: skip
+CODES = {code: name for code, (name, _m) in BLOCKS.items()}
 #: The number of parameters each code's block carries.
-BLOCK_PARAMS = {
-    DELAY: 1, DAMPER: 1, FILTER: 1, LAG: 1, HAND: 1, ONE_SIDED: 1, PUSH: 1, PASSIVITY: 2, FORCE_LIMIT: 1, TRAVEL: 1,
-}  # fmt: skip
+BLOCK_PARAMS = {code: m for code, (_name, m) in BLOCKS.items()}
 
 
 def check_table(table: Any) -> FloatArray:

@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 from decimal import Decimal
 from functools import lru_cache
 from importlib import resources
-from typing import Any
+from typing import Any, TypeVar
 
 from ..errors import DeviceFileError, DFAError, DFATypeError, DFAValueError
 from ..jsonable import explain_nulls
@@ -122,7 +122,27 @@ def _half_unit(printed: str) -> float:
     return 0.5 * 10.0**exponent
 
 
+T = TypeVar("T")
+
+
+def _device_columns(cls: type[T]) -> type[T]:
+    """Give ``cls`` (before ``@dataclass``) a field for every device field (:data:`DEVICE_FIELDS`) it does not declare.
+
+    Each such field is optional, keyword only, a float in the field's unit or None (unknown or absent): a new device
+    field becomes a catalogue column (its JSON, the device file's key, the template's row, the device) without a
+    per-field edit here. The fields declared in the class body (the paper's columns, the force limit, the travel)
+    keep their place and type (``tests/test_element_checklist.py`` checks that the two agree).
+    """
+    notes = cls.__dict__.get("__annotations__", {})
+    for f in DEVICE_FIELDS:
+        if f.name not in notes:
+            notes[f.name] = "float | None"
+            setattr(cls, f.name, field(default=None, kw_only=True))
+    return cls
+
+
 @dataclass(frozen=True)
+@_device_columns
 class CatalogueEntry:
     """One catalogue row: physical values (SI), printed dimensionless values, notes.
 

@@ -48,7 +48,7 @@ import enum
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any, ClassVar, Generic, NamedTuple, TypeVar
+from typing import ClassVar, Generic, NamedTuple, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -81,6 +81,7 @@ __all__ = [
     "Travel",
     "largest_speed",
     "ELEMENTS",
+    "ALWAYS_RECORDED",
     "MIN_CUTOFF",
     "MIN_LAG",
     "SWEEP_MAX_POINTS",
@@ -410,6 +411,19 @@ class Element(abc.ABC, Generic[G]):
     never_covered: ClassVar[tuple[tuple[Coverage, str], ...]] = ()
     #: Its code in the wall's kernel table (:data:`dfa.core.table.CODES`), one per element class.
     kernel_code: ClassVar[int]
+    #: The device field (:data:`dfa.model.device.DEVICE_FIELDS`) whose value, when the device gives one, adds this
+    #: element to every wall on the device that has none of its own (None: no device field); its constructor takes
+    #: the value as its :attr:`parameter` (:func:`dfa.model.loop.device_elements`).
+    device_field: ClassVar[str | None] = None
+    #: Where a device's value goes: into the physical wall (True: its record and text show it, the force limit) or
+    #: into the wall's groups only (False: the runs see it, the wall's record and text do not; its group must not
+    #: depend on K, the travel).
+    device_in_wall: ClassVar[bool] = True
+    #: The physical value a wall's record gives for an element of :data:`ALWAYS_RECORDED` the wall does not have.
+    recorded_absent: ClassVar[object] = None
+    #: Why each of its keys in a record may be null, by key (the wall's record, :meth:`record`, and the groups',
+    #: :meth:`group_json`): the records' ``null_reasons`` (:func:`dfa.jsonable.explain_nulls`).
+    null_reasons: ClassVar[tuple[tuple[str, str], ...]] = ()
 
     def __init_subclass__(cls, **kwargs: object) -> None:
         super().__init_subclass__(**kwargs)
@@ -631,7 +645,7 @@ class Element(abc.ABC, Generic[G]):
 
     @classmethod
     @abc.abstractmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: G) -> KernelBlock:  # type: ignore[misc]  # G is covariant (module note at G)
         """Give the element's block of the wall's kernel table (:mod:`dfa.core.table`).
 
         Parameters
@@ -826,6 +840,27 @@ class Element(abc.ABC, Generic[G]):
         """
         return ((cls.parameter.name, cls.parameter.name),)
 
+    def record(self) -> dict[str, object]:
+        """Give the element's entries in a wall's record (:meth:`dfa.model.wall.Wall.to_dict`).
+
+        Returns
+        -------
+        dict
+            ``{record key: value}`` for each of :meth:`record_keys` (physical units); :meth:`from_record` reads it.
+        """
+        return {key: getattr(self, name) for key, name in type(self).record_keys()}
+
+    @classmethod
+    def absent_record(cls) -> dict[str, object]:
+        """Give the entries a wall's record holds for the element when the wall has none (:data:`ALWAYS_RECORDED`).
+
+        Returns
+        -------
+        dict
+            ``{record key: recorded_absent}`` for each of :meth:`record_keys`.
+        """
+        return {key: cls.recorded_absent for key, _ in cls.record_keys()}
+
     @classmethod
     def group_from_dict(cls, data: Mapping[str, object]) -> object | None:
         """Give the element's group from :meth:`dfa.model.wall.WallParams.to_dict` (the inverse of :meth:`group_json`).
@@ -894,6 +929,7 @@ class Delay(Element[int]):
         "delay", "d",
     )  # fmt: skip
     absent: ClassVar[object] = 0
+    recorded_absent: ClassVar[object] = 0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "delay", check_delay(self.delay))
@@ -923,7 +959,7 @@ class Delay(Element[int]):
         return float(g), 0.0
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: int) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), int(g))  # the d pending commands
 
     @classmethod
@@ -960,6 +996,7 @@ class Damper(Element[float]):
         "virtual damper B >= 0 in N·s/m (rotary: N·m·s/rad) on the backward-difference velocity (default: none)",
         "damping", "β_B = B/(K T)",
     )  # fmt: skip
+    recorded_absent: ClassVar[object] = 0.0
 
     def __post_init__(self) -> None:
         fix = "give the virtual damping B in N·s/m (0 for none)"
@@ -982,7 +1019,7 @@ class Damper(Element[float]):
         return float(g), (velocity_gain * float(g) if quantized else 0.0)
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @classmethod
@@ -1038,6 +1075,9 @@ class VelocityFilter(Element[float]):
         "cutoff", "ν_c = f_c T",
     )  # fmt: skip
     absent: ClassVar[object] = None
+    null_reasons: ClassVar[tuple[tuple[str, str], ...]] = (
+        ("filter_cutoff", "no velocity filter"), ("cutoff", "no velocity filter")
+    )  # fmt: skip
 
     def __post_init__(self) -> None:
         fix = "give the cutoff in Hz, or None for no filter"
@@ -1092,7 +1132,7 @@ class VelocityFilter(Element[float]):
         return cls.pole_gap(g)
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (cls.pole(g),), 2)  # y_{h−1}, v_{h−1}
 
     @classmethod
@@ -1136,6 +1176,7 @@ class AmplifierLag(Element[float]):
     )
     #: With an amplifier lag a run costs about 18 times the spring's per sample (reports/benchmarks.md).
     sweep_points: ClassVar[int] = 150
+    null_reasons: ClassVar[tuple[tuple[str, str], ...]] = (("amplifier_bandwidth", "ideal amplifier (no lag)"),)
 
     def __post_init__(self) -> None:
         fix = "give the amplifier bandwidth in Hz, or None for an ideal amplifier"
@@ -1182,7 +1223,7 @@ class AmplifierLag(Element[float]):
         )
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 1)  # φ_A
 
     @classmethod
@@ -1268,7 +1309,7 @@ class HandSpring(Element[float]):
         return g == 0.0
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @classmethod
@@ -1395,6 +1436,16 @@ class OneSided(Element[float]):
     def record_keys(cls) -> tuple[tuple[str, str], ...]:
         return (("one_sided_surface", "surface"),)
 
+    def record(self) -> dict[str, object]:
+        """Give the one-sided wall's entries in a wall's record: its surface and the push, 0 until a
+        :class:`Push` of the wall gives its own (:meth:`Element.record`).
+
+        Returns
+        -------
+        dict
+        """
+        return {"one_sided_surface": self.surface, "push": 0.0}
+
     @classmethod
     def flag_rows(cls) -> tuple[FlagRow, ...]:
         switch = FlagRow(
@@ -1417,7 +1468,7 @@ class OneSided(Element[float]):
         return 0.0, 0.0  # the spring's corner; only alone (dfa.model.wall.WallParams.uncovered), see the class
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @staticmethod
@@ -1652,7 +1703,7 @@ class Push(Element[float]):
         return 0.0, 0.0  # on a one-sided wall only (WallParams.uncovered); it enters V* (OneSided.contact_speed)
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
 
@@ -1805,7 +1856,7 @@ class PassivityController(Element[tuple[int, float | None]]):
         raise NotCovered(_PC_NOT_COVERED)
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: tuple[int, float | None]) -> KernelBlock:
         w, limit = g
         params = (float(w), math.inf if limit is None else float(limit))
         return KernelBlock(cls.kernel_code, params, 5 + int(w))  # E_obs, window position, f, total, E_0, W terms
@@ -1817,6 +1868,12 @@ class PassivityController(Element[tuple[int, float | None]]):
     @classmethod
     def group_from_dict(cls, data: Mapping[str, object]) -> object | None:
         return (data["pc_window"], data.get("pc_force_limit")) if "pc_window" in data else None
+
+    null_reasons: ClassVar[tuple[tuple[str, str], ...]] = (
+        ("passivity_controller_window", "an unbounded observer (the whole run)"),
+        ("passivity_controller_force_limit", "no force limit"),
+        ("pc_force_limit", "no force limit (the passivity controller's)"),
+    )
 
     @classmethod
     def record_keys(cls) -> tuple[tuple[str, str], ...]:
@@ -1921,6 +1978,8 @@ class ForceLimit(Element[float]):
     wall_flag: ClassVar[bool] = False
     absent: ClassVar[object] = None
     needs_resolution: ClassVar[bool] = True
+    #: The device's ``max_force`` adds it to the device's walls (their record and text show it).
+    device_field: ClassVar[str | None] = "max_force"
 
     def __post_init__(self) -> None:
         fix = "give the actuator's force limit F_max in N (rotary: N·m), or no limit"
@@ -1977,7 +2036,7 @@ class ForceLimit(Element[float]):
         )
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
     @classmethod
@@ -2005,7 +2064,7 @@ class Travel(Element[float]):
 
     The value is the device's (:data:`dfa.model.device.DEVICE_FIELDS`, ``travel``; flag ``--travel``): a
     :class:`dfa.model.loop.Loop` of a device with a travel adds this element to its wall's groups
-    (:func:`dfa.model.loop.with_travel`). Coverage: every analysis covers it, as a statement about the motion
+    (:func:`dfa.model.loop.device_groups`). Coverage: every analysis covers it, as a statement about the motion
     inside the travel (:attr:`assumption`): they do not model the stop.
 
     Attributes
@@ -2035,6 +2094,10 @@ class Travel(Element[float]):
     needs_resolution: ClassVar[bool] = True
     #: What the analyses that cover it assume: the motion stays inside the travel.
     assumption: ClassVar[str] = _TRAVEL_INSIDE
+    #: The device's ``travel`` adds it to the groups of the device's walls (the runs' end stops; the wall's record
+    #: and text are unchanged, the command line states the travel beside them).
+    device_field: ClassVar[str | None] = "travel"
+    device_in_wall: ClassVar[bool] = False
 
     def __post_init__(self) -> None:
         fix = "give the device's travel from the centre to either end stop in m (rotary: rad)"
@@ -2078,7 +2141,7 @@ class Travel(Element[float]):
         return True  # the spring's kernel runs it with the travel as its bound (dfa.analysis.simulation)
 
     @classmethod
-    def kernel_block(cls, g: Any) -> KernelBlock:
+    def kernel_block(cls, g: float) -> KernelBlock:
         return KernelBlock(cls.kernel_code, (float(g),), 0)
 
 
@@ -2090,3 +2153,9 @@ ElementClass = type[Element[object]]
 ELEMENTS: tuple[ElementClass, ...] = (
     Delay, Damper, VelocityFilter, AmplifierLag, HandSpring, OneSided, Push, PassivityController, ForceLimit, Travel
 )  # fmt: skip
+
+#: The elements whose entries stand in every wall's record and groups' record, their absent values when the wall has
+#: none (:attr:`Element.recorded_absent`, :attr:`Element.absent`), in the records' order: the paper's spring's records
+#: (damping, delay, filter cutoff, amplifier) as they always were. Any other element's entries appear only when the
+#: wall has it, after these, in the order of :data:`ELEMENTS` (:meth:`Element.record`, :meth:`Element.group_json`).
+ALWAYS_RECORDED: tuple[ElementClass, ...] = (Damper, Delay, VelocityFilter, AmplifierLag)

@@ -38,11 +38,15 @@ import numpy as np
 
 from ..checks import check_positive, check_type, format_value
 from ..errors import DFATypeError, DFAValueError
+from . import elements
 from .device import Device, Params, dimensionless_params
-from .elements import ForceLimit, Travel
+from .elements import Element
 from .wall import Wall, WallParams
 
-__all__ = ["Loop", "as_loop", "limited", "loop_first", "with_travel", "LOOP_FIX"]
+__all__ = [
+    "Loop", "as_loop", "device_elements", "device_groups", "device_wall", "limited", "loop_first", "with_travel",
+    "LOOP_FIX",
+]  # fmt: skip
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -53,11 +57,48 @@ _FIX_PARAMS = "build it with dfa.Params(mu, beta, sigma) or device.params(stiffn
 _FIX_WALL_PARAMS = "give dfa.WallParams.of(...) or wall.params(period) of a dfa.Wall, or None for the spring"
 
 
-def with_travel(wall_params: WallParams, device: Device | None) -> WallParams:
-    """The wall's groups with the device's travel (:class:`~dfa.model.elements.Travel`, ξ_travel = travel/Δ) added.
+def device_elements(device: Device | None, *, in_wall: bool) -> tuple[Element[object], ...]:
+    """The elements a device's fields add to its walls by default: one per element class that names a device field.
 
-    A device's travel applies by default: the real device has end stops. A wall that holds its own travel keeps
-    it; a device without one (None: unlimited) leaves the groups unchanged.
+    Each element class of :data:`~dfa.model.elements.ELEMENTS` whose :attr:`~dfa.model.elements.Element.device_field`
+    the device gives (not None) is built from that value (the force limit from ``max_force``, the travel from
+    ``travel``); the one declaration that :class:`Loop` and the command line read (:func:`device_wall`,
+    :func:`device_groups`).
+
+    Parameters
+    ----------
+    device : Device or None
+        The device (None: none, no element).
+    in_wall : bool
+        Keyword only: the elements that go into the physical wall (True) or into its groups only (False), by
+        :attr:`~dfa.model.elements.Element.device_in_wall`.
+
+    Returns
+    -------
+    tuple of Element
+        In the order of :data:`~dfa.model.elements.ELEMENTS`.
+
+    Examples
+    --------
+    >>> device_elements(Device(0.072, 0.005, 0.038, 2e-5, 1e-3, max_force=3.0, travel=0.05), in_wall=True)
+    (ForceLimit(max_force=3.0),)
+    """
+    if device is None:
+        return ()
+    out: list[Element[object]] = []
+    for kind in elements.ELEMENTS:
+        value = None if kind.device_field is None else getattr(device, kind.device_field)
+        if value is not None and kind.device_in_wall == in_wall:
+            out.append(kind(**{kind.parameter.name: value}))
+    return tuple(out)
+
+
+def device_groups(wall_params: WallParams, device: Device | None) -> WallParams:
+    """The wall's groups with the device's groups-only elements added (:func:`device_elements`, ``in_wall=False``).
+
+    A device's travel applies by default (:class:`~dfa.model.elements.Travel`, ξ_travel = travel/Δ): the real
+    device has end stops. A wall that holds its own keeps it; a device without one (None: unlimited) leaves the
+    groups unchanged.
 
     Parameters
     ----------
@@ -72,14 +113,21 @@ def with_travel(wall_params: WallParams, device: Device | None) -> WallParams:
 
     Examples
     --------
+    >>> from dfa.model.elements import Travel
     >>> dev = Device(0.072, 0.005, 0.038, 2e-5, 1e-3, travel=0.05)
-    >>> with_travel(WallParams(), dev).group(Travel)
+    >>> device_groups(WallParams(), dev).group(Travel)
     2500.0
     """
-    if device is None or device.travel is None or wall_params.group(Travel) is not None:
+    held = {k for k, _ in wall_params.groups}
+    added = [e for e in device_elements(device, in_wall=False) if type(e) not in held]
+    if device is None or not added:
         return wall_params
-    g = Travel(device.travel).group(device.period, 1.0, resolution=device.resolution)
-    return WallParams((*wall_params.groups, (Travel, g)))
+    groups = Wall(1.0, tuple(added)).params(device.period, device.resolution).groups  # no group of these needs K
+    return WallParams((*wall_params.groups, *groups))
+
+
+#: The former name of :func:`device_groups` (the travel was its first groups-only element).
+with_travel = device_groups
 
 
 def _wall_of(wall: object) -> Wall:
@@ -94,25 +142,28 @@ def _wall_of(wall: object) -> Wall:
     )
 
 
-def limited(wall: Wall, device: Device) -> Wall:
-    """The wall with the device's actuator force limit (its ``max_force``, :class:`ForceLimit`) when the device
-    gives one and the wall has none (a wall's own limit, e.g. ``--max-force``, wins).
+def device_wall(wall: Wall, device: Device) -> Wall:
+    """The wall with the device's elements added (:func:`device_elements`, ``in_wall=True``) where the wall has
+    none of its own (a wall's own, e.g. ``--max-force``'s force limit, wins).
 
     Parameters
     ----------
     wall : Wall
         The wall (K in N/m and its elements).
     device : Device
-        The device; ``max_force`` in N (rotary N·m) or None (unlimited).
+        The device; e.g. its ``max_force`` in N (rotary N·m) or None (unlimited).
 
     Returns
     -------
     Wall
-        ``wall`` itself, or ``wall`` with ``ForceLimit(device.max_force)`` added.
+        ``wall`` itself, or ``wall`` with e.g. ``ForceLimit(device.max_force)`` added.
     """
-    if device.max_force is None or wall.element(ForceLimit) is not None:
-        return wall
-    return Wall(wall.stiffness, (*wall.elements, ForceLimit(device.max_force)))
+    added = [e for e in device_elements(device, in_wall=True) if wall.element(type(e)) is None]
+    return Wall(wall.stiffness, (*wall.elements, *added)) if added else wall
+
+
+#: The former name of :func:`device_wall` (the force limit was its first element).
+limited = device_wall
 
 
 @dataclass(frozen=True)
@@ -173,7 +224,7 @@ class Loop:
             )
         if self.wall is None:
             return
-        wall = limited(_wall_of(self.wall), self.device)
+        wall = device_wall(_wall_of(self.wall), self.device)
         dev = self.device
         if names is None:
             wp = wall.params(dev.period, dev.resolution)
@@ -181,7 +232,7 @@ class Loop:
             wp = wall.params(dev.period, dev.resolution, names=names, rotary=dev.rotary)
         object.__setattr__(self, "wall", wall)
         object.__setattr__(self, "params", dimensionless_params(dev, wall.stiffness))
-        object.__setattr__(self, "wall_params", with_travel(wp, dev))  # the device's end stops apply by default
+        object.__setattr__(self, "wall_params", device_groups(wp, dev))  # e.g. the device's end stops
 
     def _check_dimensionless(self) -> None:
         if self.wall is not None:

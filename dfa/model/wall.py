@@ -49,6 +49,7 @@ from ..errors import DFATypeError, DFAValueError
 from ..jsonable import explain_nulls
 from ..plausibility import warn_if_from_outside
 from .elements import (
+    ALWAYS_RECORDED,
     ELEMENTS,
     MIN_CUTOFF,
     MIN_LAG,
@@ -60,7 +61,6 @@ from .elements import (
     Delay,
     Element,
     ElementClass,
-    ForceLimit,
     GroupRangeError,
     HandSpring,
     NotCovered,
@@ -631,12 +631,10 @@ class WallParams:
         dict
             ``{"damping": β_B, "delay": d, "cutoff": ν_c or None, "lag": α}`` and any further element's group.
         """
-        out: dict[str, object] = {
-            k.parameter.group: self.group(k) for k in (Damper, Delay, VelocityFilter, AmplifierLag)
-        }
+        out: dict[str, object] = {k.parameter.group: self.group(k) for k in ALWAYS_RECORDED}
         for k, g in self.groups:
             out.update(k.group_json(g))
-        why = {"cutoff": "no velocity filter", "pc_force_limit": "no force limit (the passivity controller's)"}
+        why = {key: reason for k in ELEMENTS for key, reason in k.null_reasons}
         return explain_nulls(out, why)
 
 
@@ -999,31 +997,12 @@ class Wall:
         dict
             Stiffness, damping, delay, filter cutoff and amplifier bandwidth (SI units, None where absent).
         """
-        out: dict[str, object] = {
-            "stiffness": self.stiffness,
-            "damping": self.damping,
-            "delay": self.delay,
-            "filter_cutoff": self.filter_cutoff,
-            "amplifier_bandwidth": self.amplifier_bandwidth,
-        }
-        if self.hand_stiffness:  # only with a hand stiffness: every other wall's record is unchanged
-            out["hand_stiffness"] = self.hand_stiffness
-        if self.surface is not None:  # only for a one-sided wall, and its push if any
-            out["one_sided_surface"] = self.surface
-            out["push"] = self.push
-        pc = self.passivity_controller
-        if pc is not None:  # only with a passivity controller: its window (s) and force limit (N)
-            out["passivity_controller_window"] = pc.window
-            out["passivity_controller_force_limit"] = pc.force_limit
-        limit = self.element(ForceLimit)
-        if limit is not None:  # only with an actuator's force limit (N)
-            out["max_force"] = limit.max_force
-        for e in self.elements:  # any further element (the travel): its record keys, only when present
-            out.update({key: getattr(e, name) for key, name in type(e).record_keys() if key not in out})
-        why = {
-            "filter_cutoff": "no velocity filter",
-            "amplifier_bandwidth": "ideal amplifier (no lag)",
-            "passivity_controller_window": "an unbounded observer (the whole run)",
-            "passivity_controller_force_limit": "no force limit",
-        }
+        out: dict[str, object] = {"stiffness": self.stiffness}
+        for k in ALWAYS_RECORDED:  # the spring's record: these elements' entries, absent values where absent
+            e = self.element(k)
+            out.update(k.absent_record() if e is None else e.record())
+        for e in self.elements:  # any other element's entries (its record keys), only when the wall has it
+            if type(e) not in ALWAYS_RECORDED:
+                out.update(e.record())
+        why = {key: reason for k in ELEMENTS for key, reason in k.null_reasons}
         return explain_nulls(out, why)

@@ -36,6 +36,7 @@ __all__ = [
     "CurveStatus",
     "ChartStatus",
     "SimulationOutcome",
+    "Fails",
     "BatchStatus",
     "ContactOutcome",
     "ObserverStatus",
@@ -200,21 +201,96 @@ class ChartStatus(StatusEnum):
     )
 
 
+class Fails(enum.Flag):
+    """The simulated limits a run's outcome fails (:attr:`SimulationOutcome.fails`), declared once on the outcome.
+
+    Every reading derives from it: the limits' verdicts (:data:`dfa.analysis.limits.runs.FAILING`), the point of a
+    Z-width grid (a run failing :attr:`NO_DIVERGENCE` makes the point diverge) and the grip sweep (a grip with such a
+    run, or an undecided one, is not firm enough).
+
+    Examples
+    --------
+    >>> Fails.REST in SimulationOutcome.CHATTER.fails, Fails.NO_DIVERGENCE in SimulationOutcome.CHATTER.fails
+    (True, False)
+    """
+
+    #: Fails no limit (the run came to rest, left a one-sided wall, or is undecided: neither passes nor fails).
+    NONE = 0
+    #: Fails "no simulated impact diverges": the run diverged, or a large motion was held only by the device.
+    NO_DIVERGENCE = enum.auto()
+    #: Fails "every simulated impact comes to rest".
+    REST = enum.auto()
+    #: Fails both.
+    BOTH = NO_DIVERGENCE | REST
+
+
 class SimulationOutcome(StatusEnum):
-    """How an exact simulation ended (:mod:`dfa.analysis.simulation`); the order is the outcome code of the maps."""
+    """How an exact simulation ended (:mod:`dfa.analysis.simulation`); the order is the outcome code of the maps.
+
+    The order is also the compiled kernel's code of each outcome (:mod:`dfa.core.kernel`: ``REST = 0`` ...,
+    one constant per member, named as it). Each member declares, beside its code and message, the simulated
+    limits it fails (:class:`Fails`, :attr:`fails`): a new outcome is one member here (and its code in the kernel),
+    and the limits, the Z-width's points and the grip sweep read it.
+    """
+
+    fails: Fails
+
+    def __new__(cls, value: str, message: str, fails: Fails = Fails.NONE) -> SimulationOutcome:
+        obj = str.__new__(cls, value)
+        obj._value_ = value
+        obj.message = message
+        obj.fails = fails
+        return obj
 
     REST = ("rest", "came to rest")
-    OSCILLATING = ("oscillating", "persistent oscillation of one tick or more")
-    UNSTABLE = ("unstable", "diverged (past the bound, or a growing envelope)")
-    CHATTER = ("chatter", "never comes to rest; the force keeps toggling below one tick of motion (a buzz)")
+    OSCILLATING = ("oscillating", "persistent oscillation of one tick or more", Fails.REST)
+    UNSTABLE = ("unstable", "diverged (past the bound, or a growing envelope)", Fails.BOTH)
+    CHATTER = (
+        "chatter",
+        "never comes to rest; the force keeps toggling below one tick of motion (a buzz)",
+        Fails.REST,
+    )
     UNDECIDED = ("undecided", "the motion is still changing at the end of the run")
     LEFT = ("left", "left the one-sided wall for good: outside, moving away, and nothing brings it back")
+    #: A large motion held by the actuator's force limit (the unlimited wall oscillates or diverges): fails both.
     SATURATED = (
         "saturated",
         "never comes to rest; the force reached the actuator's limit at the end of the run: a large motion held by "
         "the actuator (the unlimited wall would oscillate or diverge), no stable wall",
+        Fails.BOTH,
     )
-    END_STOP = ("end_stop", "reached the device's end stop: the position left its travel, where the run ends")
+    #: The device ran out of its travel (the wall did not hold it): fails both.
+    END_STOP = (
+        "end_stop",
+        "reached the device's end stop: the position left its travel, where the run ends",
+        Fails.BOTH,
+    )
+
+    @classmethod
+    def failing(cls, fails: Fails) -> frozenset[str]:
+        """Give the codes of the outcomes that fail ``fails``.
+
+        Parameters
+        ----------
+        fails : Fails
+            One limit (:attr:`Fails.NO_DIVERGENCE` or :attr:`Fails.REST`).
+
+        Returns
+        -------
+        frozenset of str
+            The outcomes' codes (``"unstable"``, ...).
+
+        Examples
+        --------
+        >>> sorted(SimulationOutcome.failing(Fails.NO_DIVERGENCE))
+        ['end_stop', 'saturated', 'unstable']
+        """
+        return frozenset(o.value for o in cls if fails in o.fails)
+
+    @property
+    def code(self) -> int:
+        """The outcome's code: its place in the enum, the compiled kernel's constant of the same name."""
+        return list(type(self)).index(self)
 
 
 class ContactOutcome(StatusEnum):

@@ -38,7 +38,7 @@ from ...model.wall import Wall
 from ...results.grip import GRIP_METHODS as GRIP_METHODS
 from ...results.grip import GripNeed as GripNeed
 from ...results.grip import GripSweep as GripSweep
-from ...results.status import GripStatus, RequireStatus, SimulationOutcome
+from ...results.status import Fails, GripStatus, RequireStatus, SimulationOutcome
 from ..simulation import divergence_bound, simulate
 from .require import Requirement, requirements
 
@@ -74,16 +74,16 @@ def _scan(dev: Device, wall: Wall, v: float, hand_mass: float) -> tuple[tuple[fl
     return dampings, tuple(outcomes)
 
 
+#: The outcomes of a scanned grip that is not firm enough: those failing the no-divergence limit
+#: (:attr:`SimulationOutcome.fails`) and the undecided.
+_NOT_FIRM = SimulationOutcome.failing(Fails.NO_DIVERGENCE) | {SimulationOutcome.UNDECIDED.value}
+
+
 def _least_safe(dampings: tuple[float, ...], outcomes: tuple[str, ...]) -> float | None:
     """The least scanned b_h from which no firmer scanned grip diverges or is undecided (None if the firmest is)."""
     best = None
     for b_h, o in reversed(list(zip(dampings, outcomes, strict=True))):
-        if o in (
-            SimulationOutcome.UNSTABLE.value,
-            SimulationOutcome.UNDECIDED.value,
-            SimulationOutcome.SATURATED.value,
-            SimulationOutcome.END_STOP.value,
-        ):
+        if o in _NOT_FIRM:
             break
         best = b_h
     return best

@@ -33,6 +33,7 @@ from ...errors import DFAValueError
 from ...model.device import Device, Params
 from ...model.elements import Coverage
 from ...model.wall import Wall, WallParams
+from ...results.status import Fails, SimulationOutcome
 from ..simulation import (
     GROWTH,
     OUTCOMES,
@@ -68,12 +69,13 @@ __all__ = [
 
 SAFE, UNSAFE, UNDECIDED = "safe", "unsafe", "undecided"
 
-#: Outcomes that fail each simulated limit; "undecided" neither passes nor fails (it is counted as not safe).
-#: "saturated" (a large motion held by the actuator's force limit: the unlimited wall oscillates or diverges)
-#: and "end_stop" (the device ran out of its travel: the wall did not hold it) fail both.
+#: Outcomes that fail each simulated limit, read from the outcomes' declaration (:attr:`SimulationOutcome.fails`):
+#: "undecided" neither passes nor fails (it is counted as not safe). "saturated" (a large motion held by the
+#: actuator's force limit: the unlimited wall oscillates or diverges) and "end_stop" (the device ran out of its
+#: travel: the wall did not hold it) fail both.
 FAILING = {
-    "unstable": frozenset({"unstable", "saturated", "end_stop"}),
-    "rest": frozenset({"oscillating", "unstable", "chatter", "saturated", "end_stop"}),
+    "unstable": SimulationOutcome.failing(Fails.NO_DIVERGENCE),
+    "rest": SimulationOutcome.failing(Fails.REST),
 }
 
 #: |ξ| (ticks) past which a design run counts as diverged: at least this, and 100 × the energy amplitude.

@@ -83,7 +83,7 @@ from ...model.loop import LOOP_FIX, Loop, loop_first
 from ...model.wall import Wall, WallParams
 from ...plausibility import warn_if_from_outside
 from ...results.codes import BOUNDED, DIVERGES, LEFT_POINT, POINT_OUTCOMES, REST, UNDECIDED_POINT, ZWIDTH_METHODS
-from ...results.status import LimitStatus, LinearStatus, ZWidthStatus
+from ...results.status import Fails, LimitStatus, LinearStatus, SimulationOutcome, ZWidthStatus
 from ...results.zwidth import ZWidth as ZWidth
 from ..colgate_schenkel import colgate_schenkel_damping
 from ..linear_wall import stable_stiffness
@@ -232,18 +232,24 @@ def _run_chunk(tasks: list[tuple]) -> np.ndarray:
     return _point_codes(codes.astype(np.int64).reshape(len(tasks), -1))
 
 
+#: The kernel's codes of the outcomes that make a Z-width point diverge: those failing the no-divergence limit
+#: (:attr:`dfa.results.status.SimulationOutcome.fails`; the code is the outcome's place in the enum).
+_DIVERGES = tuple(o.code for o in SimulationOutcome if Fails.NO_DIVERGENCE in o.fails)
+
+
 def _point_codes(run_codes: np.ndarray) -> np.ndarray:
     """Code of each point (row) from its runs' outcome codes (:mod:`dfa.core.kernel`; module docstring).
 
-    Diverges if any run is unstable, saturated (held by the actuator's force limit) or at an end stop, else undecided if any run is, else rest if every run rests, left if every
-    run rests or leaves a one-sided wall for good (some leave), else bounded.
+    Diverges if any run fails the no-divergence limit (:data:`_DIVERGES`: unstable, saturated, held by the actuator's
+    force limit, or at an end stop), else undecided if any run is, else rest if every run rests, left if every run
+    rests or leaves a one-sided wall for good (some leave), else bounded.
     """
     out = np.full(run_codes.shape[0], BOUNDED, dtype=np.int8)
     ended = np.isin(run_codes, (kernel.REST, kernel.LEFT)).all(axis=1)  # a one-sided wall's run may leave
     out[ended & (run_codes == kernel.LEFT).any(axis=1)] = LEFT_POINT
     out[(run_codes == kernel.REST).all(axis=1)] = REST
     out[(run_codes == kernel.UNDECIDED).any(axis=1)] = UNDECIDED_POINT
-    out[np.isin(run_codes, (kernel.UNSTABLE, kernel.SATURATED, kernel.END_STOP)).any(axis=1)] = DIVERGES  # limit, stop
+    out[np.isin(run_codes, _DIVERGES).any(axis=1)] = DIVERGES
     return out
 
 

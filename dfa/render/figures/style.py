@@ -43,6 +43,12 @@ OUTCOME_LABELS = {
     "saturated": "saturated (held by the force limit)",
     "end_stop": "end stop (past the device's travel)",
 }
+#: A new outcome (a member of :class:`SimulationOutcome`) without a designer's colour and label above gets a default:
+#: dark red when it fails a simulated limit, grey otherwise; its code in words with its message.
+for _o in SimulationOutcome:
+    OUTCOME_COLORS.setdefault(_o.value, "#a50f15" if _o.fails else "#bdbdbd")
+    OUTCOME_LABELS.setdefault(_o.value, f"{_o.value.replace('_', ' ')} ({_o.message})")
+del _o
 
 
 def outcome_cmap() -> ListedColormap:
