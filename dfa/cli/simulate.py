@@ -197,8 +197,10 @@ def run(args: argparse.Namespace) -> int:
             d.update({k: None for k in keys if k in d})
             explain_nulls(d, dict.fromkeys(keys, SATURATED_AMPLITUDE))
         if r.outcome in ("left", "end_stop"):  # no cycle measured: the reason, not the serialiser's "NaN"
-            why = r.null_reasons()
-            d.setdefault("null_reasons", {}).update({f"/{k}": why[k] for k in ("amplitude", "force_peak_to_peak")})
+            unmeasured = r.null_reasons()
+            d.setdefault("null_reasons", {}).update(
+                {f"/{k}": unmeasured[k] for k in ("amplitude", "force_peak_to_peak")}
+            )
         explain_nulls(d, r.null_reasons())
         if obs is not None:
             d["observer"] = obs[0].to_dict() | (obs[1] or {}) | {"units": _observer_units(obs[1], inp)}

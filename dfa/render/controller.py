@@ -62,7 +62,7 @@ def travel_text(travel: float | None, resolution: float, unit: str) -> str | Non
 
     Examples
     --------
-    >>> travel_text(0.05, 2e-5, "m")[:64]
+    >>> travel_text(0.05, 2e-5, "m")[:65]
     'travel: ±0.05 m from the centre (ξ_travel = travel/Δ = 2500 ticks'
     """
     if travel is None:
