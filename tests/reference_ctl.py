@@ -1,7 +1,7 @@
 """Slow, independent references of the loop with a controller (test code, not shipped).
 
 * :func:`simulate_ivp_ctl` integrates μξ'' + βξ' + σ sgn ξ' = φ_A and the amplifier
-  α φ_A' = c − φ_A numerically (scipy ``solve_ivp``, DOP853), sample by sample,
+  α φ_A' = c − φ_A (c clipped to ±φ_max by an actuator's force limit, the push outside it) numerically (scipy ``solve_ivp``, DOP853), sample by sample,
   with events at ξ' = 0 (stop) and at |φ_A| = σ (breakaway of a stuck device).
 * :func:`controller_run` is the loop with damper, filter and delay (no amplifier lag)
   written as one plain compiled loop around the exact per-sample step of
@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit
 
 from dfa.core import kernel
-from dfa.model.elements import PassivityController
+from dfa.model.elements import ForceLimit, PassivityController
 
 __all__ = ["Commands", "controller_run", "simulate_ivp_ctl", "linear_ctl_recursion"]
 
@@ -34,9 +34,10 @@ def _args(ctl) -> dict:
     """The wall's one-sided contact, push and passivity controller, read from its groups (not from the kernel table:
     this reference stays independent of how the table is packed)."""
     window, limit = ctl.group(PassivityController) or (0, None)
+    top = ctl.group(ForceLimit)  # the actuator's force limit φ_max: the command clipped last (None: unlimited)
     return {
         "onesided": ctl.one_sided, "surface": ctl.surface, "push": ctl.push, "pc": ctl.passivity_controller,
-        "window": window, "limit": math.inf if limit is None else limit,
+        "window": window, "limit": math.inf if limit is None else limit, "top": math.inf if top is None else top,
     }  # fmt: skip
 
 
@@ -129,6 +130,7 @@ class Commands:
 
             w = -q - self.ctl.damping * y
         c = self._controller(v, w, shape, x)
+        c = max(-a["top"], min(a["top"], c))  # the actuator's force limit, after every other element
         if first:
             self.hist = [c] * (self.ctl.delay + 1)
             self.booked = [0.0] * (self.ctl.delay + 1)

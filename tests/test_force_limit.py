@@ -11,13 +11,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from dfa.analysis.approach import approach_start
 from dfa.analysis.simulation import simulate
 from dfa.cli.app import main
 from dfa.core import kernel
 from dfa.core.wall_kernel import applied_forces, run_wall_kernel
 from dfa.model.catalogue import get_device
 from dfa.model.device import Device
-from dfa.model.elements import Coverage, Damper, Delay, Element, ForceLimit
+from dfa.model.elements import Coverage, Damper, Delay, Element, ForceLimit, OneSided, Push
 from dfa.model.loop import Loop
 from dfa.model.wall import Wall, WallParams
 from dfa.results.status import SimulationOutcome
@@ -141,10 +142,90 @@ def test_cli_simulate_with_max_force_text_and_json(capsys: pytest.CaptureFixture
             "--samples", "200000"]  # fmt: skip
     assert main(argv) == 0
     out = capsys.readouterr().out
-    assert "actuator force limit F_max = 3 N" in out and "outcome         saturated" in out
+    out = " ".join(out.split())  # the table's columns widen with the force row the saturated run adds
+    assert "actuator force limit F_max = 3 N" in out and "outcome saturated" in out
     assert main([*argv, "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["outcome"] == "saturated" and d["wall"]["max_force"] == 3.0
     assert d["wall"]["dimensionless"]["force_limit"] == pytest.approx(
         3.0 / (5000.0 * 20.1e-6), rel=1e-10
     )  # JSON: 12 digits
+
+
+def _one_sided_push_limited(push: float, phi_max: float) -> WallParams:
+    """A one-sided wall at the origin with a push toward it and the actuator's force limit."""
+    return WallParams(((OneSided, 0.0), (Push, push), (ForceLimit, phi_max)))
+
+
+@pytest.mark.parametrize(
+    "mu, beta, sigma, v0, push, phi_max",
+    [
+        (50.0, 0.6, 0.6, 3.0, 1.0, 3.0),  # the limit reached at impact, then rests pushed onto the wall (p > σ)
+        (20.0, 0.3, 0.7, 1.5, 1.0, 2.0),  # a push of half the limit: rests inside, held by the clipped spring
+    ],
+)
+def test_eq4_one_sided_push_with_limit_rests_and_matches_solve_ivp(mu, beta, sigma, v0, push, phi_max) -> None:
+    # eq. 4-5 with the one-sided wall, the operator's push and the command clipped to ±φ_max: the kernel agrees with
+    # the solve_ivp reference (which clips the command, the push outside it) to 1e-8 at the sample instants, the
+    # limit is reached, and the run's rest (proven with the clipped commands) is rest, on the wall
+    from reference_ctl import simulate_ivp_ctl
+
+    wall = _one_sided_push_limited(push, phi_max)
+    x0, xd0, _ = approach_start(v0, wall=wall)
+    n = 4000
+    r = simulate(Loop.dimensionless(mu, beta, sigma, wall), xd0, n, xi0=x0)
+    assert r.outcome is SimulationOutcome.REST and r.contact is not None and r.contact.value == "rests"
+    ix, iv = simulate_ivp_ctl(mu, beta, sigma, x0, xd0, n, wall)
+    scale = max(1.0, float(np.max(np.abs(ix))))
+    assert np.max(np.abs(r.xi - ix)) <= 1e-8 * scale and np.max(np.abs(r.xi_dot - iv)) <= 1e-8 * scale
+    reach = np.floor(ix[: r.rest_sample + 1]) + 0.5  # the readings' levels: the spring's command −(⌊ξ⌋ + ½) inside
+    assert np.max(reach) > phi_max  # the limit was reached: the clip mattered for this run
+
+
+def test_simulate_saturated_force_peak_to_peak_is_the_applied_force() -> None:
+    # the saturated Phantom (K = 5000 N/m, F_max = 3 N): the applied force swings between ±F_max, so its
+    # peak-to-peak is 2 φ_max KΔ = 6 N, not the readings' 7967 KΔ (800 N); the force amplitude is no applied force
+    k = 5000.0
+    r = simulate(Loop(PHANTOM, Wall(k, (ForceLimit(3.0),))), PHANTOM.xi_dot(0.5), 200_000)
+    assert r.outcome is SimulationOutcome.SATURATED
+    phi_max = 3.0 / (k * PHANTOM.resolution)
+    assert r.force_peak_to_peak == pytest.approx(2.0 * phi_max, rel=1e-12)
+    assert r.physical(PHANTOM, k)["force_peak_to_peak_n"] == pytest.approx(6.0, rel=1e-12)
+
+
+def test_cli_simulate_saturated_reports_the_applied_force(capsys: pytest.CaptureFixture[str]) -> None:
+    argv = ["simulate", "--device", "phantom", "--stiffness", "5000", "--max-force", "3", "--velocity", "0.5",
+            "--samples", "200000"]  # fmt: skip
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "force peak-to-peak  59.7 KΔ = 6 N (tail; the applied force, clipped" in out
+    assert main([*argv, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["force_peak_to_peak_n"] == pytest.approx(6.0, rel=1e-11) and d["force_amplitude_n"] is None
+    assert "force limit" in d["null_reasons"]["/force_amplitude_n"]
+
+
+def test_stiffness_footnote_names_the_force_limit_not_a_one_sided_wall(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["stiffness", "--device", "phantom", "--max-force", "3", "--velocity", "0.05"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "none: not covered: an actuator's force limit is not linear" in out
+    assert "one-sided" not in out and "passivity controller" not in out
+    assert "wall held fixed while K varies: delay 0 samples, actuator force limit F_max = 3 N" in out
+
+
+def test_force_limit_beside_a_travel_keeps_the_criterion() -> None:
+    # the travel adds no force: the spring with a limit inside a travel is covered as the spring with a limit
+    w = WallParams.of(force_limit=30.0, travel=3000.0)
+    assert w.covers(Coverage.CRITERION) and w.corner() == (0.5, 0.5)
+
+
+def test_public_api_exports_force_limit_and_wall_keywords() -> None:
+    import dfa
+
+    assert dfa.ForceLimit is ForceLimit and "ForceLimit" in dfa.__all__
+    wall = Wall.of(1000.0, max_force=3.0, travel=0.05)
+    assert wall.elements == (ForceLimit(3.0), dfa.Travel(0.05))
+    assert Wall.of(1000.0).elements == ()
+    groups = wall.params(1e-3, 1e-5)
+    assert groups.group(ForceLimit) == pytest.approx(300.0, rel=1e-12)
+    assert WallParams.of(force_limit=300.0, travel=5000.0) == groups

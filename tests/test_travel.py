@@ -151,3 +151,36 @@ def test_device_field_is_optional_and_applies_by_default():
     assert with_travel(WallParams(), PHANTOM) == WallParams()
     with pytest.raises(DFAValueError, match="travel = 0.0 is invalid"):
         Device(0.072, 0.005, 0.038, 2e-5, 1e-3, travel=0.0)
+
+
+def test_end_stop_measures_no_amplitude_text_and_json_give_the_same_reason(capsys):
+    # a run ended at the stop measured no cycle: no "amplitude 0 ticks" (a run at rest's), but null with the reason
+    dev, loop, x0, v0 = _phantom_push()
+    r = simulate(loop, v0, xi0=x0)
+    assert np.isnan(r.amplitude) and np.isnan(r.force_peak_to_peak)
+    argv = ["simulate", "--device", "phantom", "--stiffness", "800", "--one-sided", "--push", "1", "--velocity", "0.05",
+            "--travel", str(TRAVEL)]  # fmt: skip
+    assert main(argv) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    why = r.null_reasons()["amplitude"]
+    assert "not measured: the run's outcome is end_stop" in why and f"amplitude {why}" in out
+    assert "amplitude 0 ticks" not in out
+    assert main([*argv, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["amplitude"] is None and d["amplitude_m"] is None and d["force_peak_to_peak"] is None
+    assert d["null_reasons"]["/amplitude"] == why and d["null_reasons"]["/force_peak_to_peak"] == why
+
+
+@pytest.mark.parametrize("command", [["check", "--stiffness", "1000"], ["simulate", "--stiffness", "1000"]])
+def test_verdict_with_a_travel_says_it_assumes_the_motion_inside(capsys, command):
+    # the criterion (and the other analyses) cover a travel only as statements about the motion inside it: a verdict
+    # given with a travel says so, in the text and in the JSON
+    argv = [command[0], "--device", "phantom", *command[1:], "--velocity", "0.05", "--travel", "0.05"]
+    assert main(argv) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "travel: ±0.05 m from the centre (ξ_travel = travel/Δ = 2488 ticks)" in out
+    assert "assume the motion stays inside" in out
+    assert main([*argv, "--json"]) == 0
+    assert "assume the motion stays inside" in json.loads(capsys.readouterr().out)["travel_assumption"]
+    assert main([argv[0], "--device", "phantom", *command[1:], "--velocity", "0.05"]) == 0
+    assert "travel" not in capsys.readouterr().out  # no travel, no line

@@ -55,7 +55,11 @@ frequency 2π/(mean period between upward crossings of the centre level).
 ``force_peak_to_peak`` is max − min of ⌊ξ⌋ over the tail's sample instants
 (the force levels the controller output), in units of KΔ (of ξ itself
 without quantization); multiply by K·Δ for newtons, or use
-:meth:`SimulationResult.physical`.
+:meth:`SimulationResult.physical`. A saturated run of the spring with a force
+limit gives the applied force's, the levels clipped to ±φ_max
+(:func:`applied_peak_to_peak`). A run that left a one-sided wall or ended at
+the device's end stop measured no cycle: its amplitude and force peak-to-peak
+are NaN.
 
 Default run length
 ------------------
@@ -139,7 +143,7 @@ from ..checks import (
 from ..core import batch, kernel, wall_kernel
 from ..core.table import stack_tables
 from ..errors import DFAValueError
-from ..model.elements import Coverage, OneSided, Travel
+from ..model.elements import Coverage, ForceLimit, OneSided, Travel
 from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import WallParams
 from ..results.simulation import CONTACTS as CONTACTS
@@ -608,6 +612,7 @@ def simulate(
         done, rest = kernel.simulate_kernel(device, initial, settings, d, rx, rv, re, stats)
     mark_end_stops(stats, w, bnd)
     code, amp, freq, centre, fpp = kernel.classify(n, done, rest, stats, sa, gr, st, q, m)
+    fpp = float(applied_peak_to_peak(np.array([code]), np.array([fpp]), stats[None, :], w, q)[0])
     suggest = max(4 * n, default_samples(m, b, s, v0, x0, q, cap=False, wall=w)) if code == kernel.UNDECIDED else None
     en = None
     if energy:
@@ -821,7 +826,14 @@ def wall_run_codes(
 def _measured(
     code: int, amp: float, freq: float, centre: float, fpp: float, done: int, rest: int, stats: np.ndarray
 ) -> tuple[SimulationOutcome, float, float | None, float, int | None, int, float, float, float, tuple]:
-    """Outcome … envelope fields of a :class:`SimulationResult` (in field order) from the kernel's outputs."""
+    """Outcome … envelope fields of a :class:`SimulationResult` (in field order) from the kernel's outputs.
+
+    A run that left a one-sided wall for good or ended at the device's end stop measured no cycle: its amplitude
+    and force peak-to-peak are NaN (null in JSON, with the reason of :meth:`SimulationResult.null_reasons`), not
+    the kernel's placeholder 0, which would read as a run at rest.
+    """
+    if code in (kernel.LEFT, kernel.END_STOP):
+        amp = fpp = math.nan
     return (
         list(SimulationOutcome)[code],  # OUTCOMES is in the enum's order
         float(amp),
@@ -1001,4 +1013,57 @@ def run_points(
             stats[j], done[j], rest[j] = st, dn, rs
     rules = (stable_amplitude, growth, settle)
     kernel.classify_batch(mu, ns, done, rest, stats, rules, quantize, (codes, amps, freqs, centres, fpps))
+    fpps = applied_peak_to_peak(codes, fpps, stats, wall, quantize)
     return codes, amps, freqs, centres, fpps, done, rest, stats
+
+
+#: The elements beside which the spring's force levels are the applied force (neither adds a force).
+_FORCELESS = (ForceLimit, Travel)
+
+
+def applied_peak_to_peak(
+    codes: np.ndarray, fpps: np.ndarray, stats: np.ndarray, wall: WallParams, quantize: bool
+) -> np.ndarray:
+    """The force peak-to-peak of saturated runs of the spring with a force limit: the applied force's, clipped.
+
+    The kernel measures max − min of the spring's levels ⌊ξ⌋ + ½ (ξ without the encoder) over the tail's sample
+    instants (:func:`dfa.core.kernel.classify`). A run that reaches the actuator's force limit in its tail
+    (``saturated``) applies those levels clipped to ±φ_max (:class:`~dfa.model.elements.ForceLimit`): on the spring
+    alone with a limit (and a travel, which adds no force) its applied force's peak-to-peak is
+    clip(⌊ξ_max⌋ + ½) − clip(⌊ξ_min⌋ + ½), at most 2 φ_max. Every other run keeps the kernel's value (a limit
+    not reached in the tail clips nothing there); on a wall with other elements the value stays the spring's
+    levels' (the rendering says so).
+
+    Parameters
+    ----------
+    codes : numpy.ndarray
+        The runs' outcome codes (:data:`OUTCOMES` order).
+    fpps : numpy.ndarray
+        The kernel's force peak-to-peaks in KΔ, one per run.
+    stats : numpy.ndarray
+        The runs' stats, one row per run (:data:`dfa.core.kernel.NSTATS`).
+    wall : WallParams
+        The wall's groups.
+    quantize : bool
+        With the encoder.
+
+    Returns
+    -------
+    numpy.ndarray
+        The force peak-to-peaks in KΔ (``fpps`` itself when nothing changes).
+
+    Examples
+    --------
+    >>> st = np.zeros((1, kernel.NSTATS))
+    >>> st[0, kernel.NSEG + 8], st[0, kernel.NSEG + 9] = -3983.2, 3983.7
+    >>> applied_peak_to_peak(np.array([kernel.SATURATED]), np.array([7967.0]), st, WallParams.of(force_limit=29.85), True)
+    array([59.7])
+    """
+    top = wall.group(ForceLimit)
+    if top is None or any(k not in _FORCELESS for k, _ in wall.groups):
+        return fpps
+    lo, hi = stats[:, kernel.NSEG + 8], stats[:, kernel.NSEG + 9]
+    if quantize:
+        lo, hi = np.floor(lo) + 0.5, np.floor(hi) + 0.5
+    applied = np.clip(hi, -top, top) - np.clip(lo, -top, top)
+    return np.where(codes == kernel.SATURATED, applied, fpps)

@@ -126,9 +126,10 @@ def run(args: argparse.Namespace) -> int:
         return _check_wall(args, inp, wall, xd, v)
     r = _criterion(args, inp, xd, v)
     if args.json:
-        emit(r.to_dict())
+        emit(wall_json(r.to_dict(), None, inp))  # the spring's record; with a device's travel, the travel
         return 0
     vu = inp.device.units["velocity"] if inp.device else ""
     say(inp.label)
+    print_wall(None, inp)  # the spring: nothing, but a device's travel and what the verdict assumes
     say(table(check_rows(r, not args.no_quantization, vu)))
     return 0

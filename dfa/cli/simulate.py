@@ -30,6 +30,11 @@ from .walls import add_wall_args, print_wall, wall_from_args, wall_json, wall_pa
 COMMAND = "simulate"
 #: Why a physical value is null in the JSON of a run without a device.
 NO_DEVICE = "dimensionless input: no device, so no physical units (positions in ticks, time in samples)"
+#: Why the force amplitude is null in the JSON of a saturated run.
+SATURATED_AMPLITUDE = (
+    "the actuator's force limit clipped the force in the run's tail: the amplitude times KΔ is not a force the "
+    "actuator applied (the spring alone with a limit: force_peak_to_peak is the applied force's, at most 2 F_max)"
+)
 HELP = "exact simulation of the sampled, quantized, frictional loop (eq. 4-5)"
 EXAMPLE = "dfa simulate --device delta --velocity 0.5"
 
@@ -187,6 +192,15 @@ def run(args: argparse.Namespace) -> int:
         d["velocity"] = vel
         if not known:  # the same keys, null: no device, no physical units
             explain_nulls(d, dict.fromkeys(phys, NO_DEVICE) | {"velocity": NO_DEVICE})
+        if r.outcome == "saturated":  # amplitude × KΔ is not a force the clipped actuator applies
+            keys = ("force_amplitude_n", "force_amplitude_nm")
+            d.update({k: None for k in keys if k in d})
+            explain_nulls(d, dict.fromkeys(keys, SATURATED_AMPLITUDE))
+        if r.outcome in ("left", "end_stop"):  # no cycle measured: the reason, not the serialiser's "NaN"
+            unmeasured = r.null_reasons()
+            d.setdefault("null_reasons", {}).update(
+                {f"/{k}": unmeasured[k] for k in ("amplitude", "force_peak_to_peak")}
+            )
         explain_nulls(d, r.null_reasons())
         if obs is not None:
             d["observer"] = obs[0].to_dict() | (obs[1] or {}) | {"units": _observer_units(obs[1], inp)}

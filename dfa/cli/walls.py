@@ -187,7 +187,8 @@ def wall_params(args: argparse.Namespace, wall: Wall | None, inp: Inputs | None)
 def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[str, Any]:
     """Set the record's ``"wall"`` to the wall's physical values, units and dimensionless groups (nothing for the
     spring: its record is unchanged); with a device's travel, ``"travel"`` (m, rotary rad; its unit in
-    ``"travel_unit"``) and ``"travel_ticks"`` (ξ_travel = travel/Δ), where a run ends (``end_stop``)."""
+    ``"travel_unit"``), ``"travel_ticks"`` (ξ_travel = travel/Δ), where a run ends (``end_stop``), and
+    ``"travel_assumption"`` (what the verdicts assume: the motion stays inside)."""
     if wall is not None and inp is not None and inp.device is not None:
         from ..render.controller import wall_dict
 
@@ -195,14 +196,30 @@ def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[
     travel = None if inp is None or inp.device is None else inp.device.travel
     if inp is not None and inp.device is not None and travel is not None:
         dev = inp.device
+        from ..render.controller import TRAVEL_ASSUMES
+
         d.update(travel=travel, travel_unit=dev.units["position"], travel_ticks=travel / dev.resolution)
+        d["travel_assumption"] = TRAVEL_ASSUMES
     return d
+
+
+def _print_travel(device: Device, wrap: bool) -> None:
+    """State the device's travel and what the analyses assume of it (nothing without a travel)."""
+    from ..render.controller import travel_text
+
+    line = travel_text(device.travel, device.resolution, device.units["position"])
+    if line is not None and wrap:
+        say(line)
+    elif line is not None:
+        print(line)
 
 
 def print_wall(wall: Wall | None, inp: Inputs | None, *, wrap: bool = True, contact: bool = True) -> None:
     """State the wall (nothing for the spring: its output is unchanged): its physical values, then its
     dimensionless groups on a second line; one line, unwrapped, when ``wrap`` is False (``--explain``); a
     one-sided wall's contact on a line of its own (unless ``contact`` is False: a command that states it itself)."""
+    if inp is not None and inp.device is not None:
+        _print_travel(inp.device, wrap)
     if wall is not None and inp is not None and inp.device is not None:
         from ..render.contact import contact_text
         from ..render.controller import controller_parts

@@ -2026,6 +2026,7 @@ class ForceLimit(Element[float]):
 
     @classmethod
     def criterion_beside(cls, g: float, others: tuple[ElementClass, ...]) -> str | None:
+        others = tuple(k for k in others if k is not Travel)  # the travel adds no force: the proof holds inside it
         if not others:
             return None
         names = ", ".join(k.key().replace("_", " ") for k in others)

@@ -68,6 +68,7 @@ from .elements import (
     PassivityController,
     Push,
     Response,
+    Travel,
     VelocityFilter,
 )
 
@@ -184,8 +185,10 @@ class WallParams:
         cutoff: float | None = None,
         lag: float = 0.0,
         hand_stiffness: float = 0.0,
+        force_limit: float | None = None,
+        travel: float | None = None,
     ) -> WallParams:
-        """The groups of the built-in elements: β_B, d, ν_c (None: no filter), α and κ_h.
+        """The groups of the built-in elements: β_B, d, ν_c (None: no filter), α, κ_h, φ_max and ξ_travel.
 
         Parameters
         ----------
@@ -200,17 +203,29 @@ class WallParams:
             Amplifier time constant α = τ_a/T in samples, 0 or >= MIN_LAG (default 0: no lag).
         hand_stiffness : float, optional
             Hand stiffness κ_h = k_h/K >= 0, dimensionless (default 0: none; :class:`~dfa.model.elements.HandSpring`).
+        force_limit : float or None, optional
+            The actuator's force limit φ_max = F_max/(K Δ) > 0, in units of the force step K Δ (None, the default:
+            unlimited; :class:`~dfa.model.elements.ForceLimit`).
+        travel : float or None, optional
+            The device's travel ξ_travel = travel/Δ > 0 in encoder ticks, from the centre to either end stop (None,
+            the default: unlimited; :class:`~dfa.model.elements.Travel`).
 
         Returns
         -------
         WallParams
             The groups of the elements that render something.
+
+        Examples
+        --------
+        >>> WallParams.of(force_limit=30.0, travel=3000.0).group(ForceLimit)
+        30.0
         """
         items: list[tuple[ElementClass, object]] = [
             (Delay, delay), (Damper, damping), (AmplifierLag, lag), (HandSpring, hand_stiffness)
         ]  # fmt: skip
         if cutoff is not None:
             items.append((VelocityFilter, cutoff))
+        items += [(kind, g) for kind, g in ((ForceLimit, force_limit), (Travel, travel)) if g is not None]
         return cls(tuple(items))
 
     def group(self, kind: type[Element[T]]) -> T | None:
@@ -683,6 +698,8 @@ class Wall:
         filter_cutoff: float | None = None,
         amplifier_bandwidth: float | None = None,
         hand_stiffness: float = 0.0,
+        max_force: float | None = None,
+        travel: float | None = None,
     ) -> Wall:
         """A wall of the built-in elements from their physical values (a neutral value adds no element).
 
@@ -703,10 +720,22 @@ class Wall:
         hand_stiffness : float, optional
             Stiffness k_h in N/m (rotary: N·m/rad) of a hand holding the device, a spring to a fixed reference
             at the wall's origin, >= 0 (default 0: none; :class:`~dfa.model.elements.HandSpring`).
+        max_force : float or None, optional
+            The actuator's force limit F_max in N (rotary: N·m), > 0: the wall's command is clipped to ±F_max
+            (None, the default: the wall sets none, and a :class:`~dfa.model.loop.Loop` adds its device's;
+            :class:`~dfa.model.elements.ForceLimit`).
+        travel : float or None, optional
+            The device's travel in m (rotary: rad) from the centre to either end stop, > 0 (None, the default: the
+            wall sets none, and a :class:`~dfa.model.loop.Loop` adds its device's; :class:`~dfa.model.elements.Travel`).
 
         Returns
         -------
         Wall
+
+        Examples
+        --------
+        >>> Wall.of(1000.0, max_force=3.0, travel=0.05).elements
+        (ForceLimit(max_force=3.0), Travel(travel=0.05))
         """
         check_positive("stiffness", stiffness, "give the virtual wall stiffness K in N/m")
         elements: list[Element[object]] = []
@@ -723,6 +752,10 @@ class Wall:
         hand = HandSpring(hand_stiffness)
         if hand.hand_stiffness:
             elements.append(hand)
+        if max_force is not None:
+            elements.append(ForceLimit(max_force))
+        if travel is not None:
+            elements.append(Travel(travel))
         return cls(stiffness, tuple(elements))
 
     def element(self, kind: type[E]) -> E | None:

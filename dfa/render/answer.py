@@ -12,12 +12,13 @@ Examples
 from __future__ import annotations
 
 from ..formatting import WIDTH, fill, number, text_table
-from ..model.elements import Coverage, OneSided, PassivityController
+from ..model.elements import Coverage, ForceLimit, OneSided, PassivityController
 from ..results.criterion import start_state_clause, start_state_note
 from ..results.limits import KLimit, KMaxResult
 from ..results.require import DamperGuidance, Recommendation
 from ..results.status import LimitStatus, RecommendRule, StiffnessStatus, VelocityStatus
 from .contact import contact_text
+from .controller import travel_text
 from .hand import device_title
 from .limits import (
     ABOVE_RANGE,
@@ -44,13 +45,13 @@ def _k(x: float, unit: str) -> str:
     return f"{number(x, 5)} {unit}"
 
 
-def _limit_cell(lim: KLimit, unit: str, notes: list[str], name: str) -> str:
+def _limit_cell(lim: KLimit, unit: str, notes: list[str], name: str, linear_reason: str | None = None) -> str:
     """The K cell of one method: its value, a lower bound ("> K", no failure up to the range's top), or "none";
     a note mark when there is something to say."""
     if lim.value is None and lim.status is LimitStatus.ABOVE_RANGE and lim.range_end is not None:
         return f"> {_k(lim.range_end, unit)} *{_note(notes, name, ABOVE_RANGE)}"
     if lim.value is None:
-        return f"none *{_note(notes, name, none_text(lim, unit))}"
+        return f"none *{_note(notes, name, none_text(lim, unit, linear_reason))}"
     tags = limit_tags(lim, unit)
     if not tags:
         return _k(lim.value, unit)
@@ -157,6 +158,7 @@ def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
     starts = "2 starts" if r.wall.covers(Coverage.SURFACE_START) else "after the approach"
     sims = f"simulated: {n} speed{'s' if n != 1 else ''} up to V, {starts}"
     spring = r.wall.params(r.device.period, r.device.resolution).covers(Coverage.CLOSED_FORM)
+    why = r.wall.linear_reason()  # the wall's own element's reason, where the linear loop does not cover it
     rows = [["criterion (eq. 11" + (")" if spring else ", extended)"),
              _limit_cell(r.k_criterion, ku, notes, "criterion"), "proof"]]  # fmt: skip
     published = (
@@ -168,10 +170,10 @@ def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
     rows += [
         [
             "exact linear bound",
-            _limit_cell(r.k_linear, ku, notes, "exact linear bound"),
+            _limit_cell(r.k_linear, ku, notes, "exact linear bound", why),
             "linear, no encoder or Coulomb",
         ],
-        ["describing function", _limit_cell(r.k_df, ku, notes, "describing function"), "first harmonic"],
+        ["describing function", _limit_cell(r.k_df, ku, notes, "describing function", why), "first harmonic"],
         [
             "simulation, no divergence",
             _limit_cell(r.k_sim, ku, notes, "simulation, no divergence"),
@@ -240,8 +242,10 @@ def _header(r: KMaxResult) -> list[str]:
     w = r.wall
     d = f"delay {w.delay} sample{'s' if w.delay != 1 else ''}"
     head = f"{device_title(r.device)}, impact at {number(r.velocity, 4)} {u['velocity']} ({number(r.xi_dot, 4)} ticks/sample)"
+    travel = travel_text(r.device.travel, r.device.resolution, u["position"])
+    tail = [] if travel is None else [wrap(travel)]
     if w.params(r.device.period, r.device.resolution).covers(Coverage.CLOSED_FORM):
-        return [wrap(f"{head}; the spring, {d}")]
+        return [wrap(f"{head}; the spring, {d}"), *tail]
     parts = [contact_text(w, u)] if w.element(OneSided) is not None else []
     parts += [f"B = {number(w.damping, 4)} {u['damping']}"] if w.damping else []
     parts.append(d)
@@ -252,7 +256,10 @@ def _header(r: KMaxResult) -> list[str]:
     pc = w.element(PassivityController)
     if pc is not None:
         parts.append(passivity_text(pc, u))
-    return [wrap(head), wrap(f"wall held fixed while K varies: {', '.join(parts)}")]
+    top = w.element(ForceLimit)
+    if top is not None:
+        parts.append(f"actuator force limit F_max = {number(top.max_force, 4)} {u['force']}")
+    return [wrap(head), wrap(f"wall held fixed while K varies: {', '.join(parts)}"), *tail]
 
 
 def stiffness_screen(r: KMaxResult, rec: Recommendation, guidance: DamperGuidance | None = None) -> list[str]:

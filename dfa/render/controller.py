@@ -17,7 +17,7 @@ from typing import Any
 
 from ..formatting import number
 from ..jsonable import explain_nulls, to_jsonable
-from ..model.elements import ForceLimit, OneSided, PassivityController, Push
+from ..model.elements import ForceLimit, OneSided, PassivityController, Push, Travel
 from ..results.criterion import PassivityCheck
 from ..results.status import CheckStatus
 
@@ -29,11 +29,46 @@ __all__ = [
     "controller_line",
     "controller_parts",
     "controller_short",
+    "travel_text",
 ]
 
 
 #: What a check says where no passivity criterion covers the wall (an amplifier lag).
 NOT_COVERED = CheckStatus.NOT_COVERED.message
+
+
+#: What a verdict given with a device's travel assumes (:attr:`dfa.model.elements.Travel.assumption`), short.
+TRAVEL_ASSUMES = (
+    "the criterion, the linear bounds, the describing function and the closed forms assume the motion stays inside "
+    "(their verdicts hold while it does); a simulated run that leaves it ends there (end_stop)"
+)
+
+
+def travel_text(travel: float | None, resolution: float, unit: str) -> str | None:
+    """The device's travel and what the analyses assume of it, in one sentence (None without a travel).
+
+    Parameters
+    ----------
+    travel : float or None
+        The device's travel from the centre to either end stop, m (rotary: rad); None: unlimited.
+    resolution : float
+        The encoder resolution Δ in m (rotary: rad).
+    unit : str
+        The travel's unit (``"m"`` or ``"rad"``).
+
+    Returns
+    -------
+    str or None
+
+    Examples
+    --------
+    >>> travel_text(0.05, 2e-5, "m")[:65]
+    'travel: ±0.05 m from the centre (ξ_travel = travel/Δ = 2500 ticks'
+    """
+    if travel is None:
+        return None
+    ticks = Travel(travel).group(1.0, 1.0, resolution=resolution)
+    return f"travel: ±{_g(travel)} {unit} from the centre (ξ_travel = travel/Δ = {_g(ticks)} ticks); {TRAVEL_ASSUMES}"
 
 
 def not_covered_why(chk: PassivityCheck) -> str:

@@ -85,10 +85,14 @@ def undecided_text(why: str | None) -> str:
     return _UNDECIDED.get(why or "", "an undecided judgement")
 
 
-def none_text(lim: KLimit, unit: str) -> str:
+def none_text(lim: KLimit, unit: str, linear_reason: str | None = None) -> str:
     """Why a limit has no value, with the stiffness that bounds it where there is one (above the range searched:
-    ``"> K_top N/m: …"``, a lower bound)."""
+    ``"> K_top N/m: …"``, a lower bound). A wall the linear loop does not cover says why with ``linear_reason``
+    (:meth:`dfa.model.wall.Wall.linear_reason`: its element's reason, a one-sided wall, a passivity controller, a
+    force limit), else with the status's general message."""
     s = lim.status
+    if s is LimitStatus.NOT_LINEAR and linear_reason:
+        return f"none: not covered: {linear_reason}"
     if s is LimitStatus.ABOVE_RANGE and lim.range_end is not None:
         return f"> {_k(lim.range_end, unit)}: {ABOVE_RANGE}"
     if s is LimitStatus.BELOW_RANGE and lim.range_end is not None and lim.limited_why is not None:
@@ -130,7 +134,9 @@ def limit_tags(lim: KLimit, unit: str, explain: bool = False, vu: str = "") -> l
     return tags
 
 
-def limit_text(lim: KLimit, unit: str, *, explain: bool = False, velocity_unit: str = "") -> str:
+def limit_text(
+    lim: KLimit, unit: str, *, explain: bool = False, velocity_unit: str = "", linear_reason: str | None = None
+) -> str:
     """One stiffness limit in words: its value and caveats, or why it has none.
 
     Parameters
@@ -143,6 +149,8 @@ def limit_text(lim: KLimit, unit: str, *, explain: bool = False, velocity_unit: 
         Add what a confirmed limit claims (:func:`confirmation_text`).
     velocity_unit : str, optional
         The speed unit of the confirmation (with ``explain``).
+    linear_reason : str or None, optional
+        Why the linear loop does not cover the wall (:func:`none_text`), for a limit that needs it.
 
     Returns
     -------
@@ -150,7 +158,7 @@ def limit_text(lim: KLimit, unit: str, *, explain: bool = False, velocity_unit: 
         ``"517.13 N/m"``, with caveats in parentheses; ``"none: …"`` without a value.
     """
     if lim.value is None:
-        return none_text(lim, unit)
+        return none_text(lim, unit, linear_reason)
     txt = _k(lim.value, unit)
     tags = limit_tags(lim, unit, explain, velocity_unit)
     if tags:
@@ -422,7 +430,8 @@ def kmax_rows(r: KMaxResult, *, explain: bool = False) -> list[list[str]]:
     loop = (f"all Jury conditions, delay {p.delay}" if p.delay else "all Jury conditions") if p.covers(Coverage.CLOSED_FORM) else (
         "the wall's loop, all Jury conditions")  # fmt: skip
     rows = [_criterion_row(r), *_published_rows(r)]
-    rows.append([f"exact linear bound ({loop})", limit_text(r.k_linear, ku)])
+    why = r.wall.linear_reason()
+    rows.append([f"exact linear bound ({loop})", limit_text(r.k_linear, ku, linear_reason=why)])
     for name, what in (
         ("k_df", "describing function: largest K with growth speed >= V"),
         ("k_sim", "simulation: largest K, no simulated impact up to V diverges"),
@@ -432,7 +441,7 @@ def kmax_rows(r: KMaxResult, *, explain: bool = False) -> list[list[str]]:
             + LEAVES[not r.wall.covers(Coverage.SURFACE_START)],
         ),
     ):
-        rows.append([what, limit_text(getattr(r, name), ku, explain=explain, velocity_unit=vu)])
+        rows.append([what, limit_text(getattr(r, name), ku, explain=explain, velocity_unit=vu, linear_reason=why)])
     rows += counterexample_lines(r)
     return rows + assessment_rows(r)
 

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..formatting import number, text_table
 from ..jsonable import explain_nulls
-from ..model.elements import Coverage
+from ..model.elements import Coverage, ForceLimit, Travel
 from ..results.status import GrowthStatus, SearchStatus, SimulationOutcome
 
 if TYPE_CHECKING:  # annotations only: importing the limit-cycle package would load python-control (`dfa check`)
@@ -37,9 +37,12 @@ def _g(x: float | None, digits: int = 4) -> str:
 
 
 def _amplitude_text(r: Any, amp_si: float | None, unit: str) -> str:
-    """The simulated amplitude; a diverged run has none ("unbounded"), not "inf ticks"."""
+    """The simulated amplitude; a diverged run has none ("unbounded"), not "inf ticks"; a run that left the wall or
+    ended at the end stop has none either, and says why (the JSON's null reason)."""
     if r.amplitude is not None and math.isinf(r.amplitude):
         return "unbounded (the run diverged: no amplitude to measure)"
+    if r.amplitude is not None and math.isnan(r.amplitude):
+        return str(r.null_reasons()["amplitude"])
     return f"{_g(r.amplitude)} ticks" + ("" if amp_si is None else f" = {amp_si:.4g} {unit}")
 
 
@@ -134,14 +137,8 @@ def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | No
         ["amplitude", _amplitude_text(r, amp_si, pos)],
         ["frequency", freq],
     ]
-    if r.outcome in ("chatter", "oscillating", "undecided"):
-        force = f"{_g(r.force_peak_to_peak)} KΔ" + ("" if r.quantize else " (linear spring)")
-        if u is not None and u["force_peak_to_peak_si"] is not None:
-            force += f" = {u['force_peak_to_peak_si']:.4g} {u['force_unit']}"
-        # beyond the spring the levels read are the spring's part of the force only
-        spring = r.wall.covers(Coverage.CLOSED_FORM)
-        label = "force peak-to-peak" if spring else "spring force peak-to-peak"
-        rows.append([label, force + (" (tail)" if spring else " (tail; the wall's other forces not included)")])
+    if r.outcome in ("chatter", "oscillating", "undecided", "saturated"):
+        rows.append(_force_row(r, u))
     rows.append(
         [
             "final state",
@@ -161,6 +158,24 @@ def simulation_rows(r: Any, x0: float, v0: float, preload: bool, phys: dict | No
             ]
         )
     return rows
+
+
+def _force_row(r: Any, u: dict | None) -> list[str]:
+    """The force peak-to-peak row of a bounded run: the applied force's on the spring (with a force limit: clipped
+    to ±F_max, :func:`dfa.analysis.simulation.applied_peak_to_peak`), else the spring's levels only."""
+    force = f"{_g(r.force_peak_to_peak)} KΔ" + ("" if r.quantize else " (linear spring)")
+    if u is not None and u["force_peak_to_peak_si"] is not None:
+        force += f" = {u['force_peak_to_peak_si']:.4g} {u['force_unit']}"
+    alone = all(k in (ForceLimit, Travel) for k, _ in r.wall.groups)  # the spring, with a limit or a travel
+    if r.outcome == "saturated" and alone:
+        return ["force peak-to-peak", force + " (tail; the applied force, clipped at the actuator's limit ±F_max)"]
+    if r.outcome == "saturated":
+        why = " (tail; before the actuator's limit clips it; the wall's other forces not included)"
+        return ["spring force peak-to-peak", force + why]
+    # beyond the spring the levels read are the spring's part of the force only
+    spring = alone or r.wall.covers(Coverage.CLOSED_FORM)
+    label = "force peak-to-peak" if spring else "spring force peak-to-peak"
+    return [label, force + (" (tail)" if spring else " (tail; the wall's other forces not included)")]
 
 
 def search_why(res: Any) -> str:
