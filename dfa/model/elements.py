@@ -1437,12 +1437,12 @@ class OneSided(Element[float]):
         return (("one_sided_surface", "surface"),)
 
     def record(self) -> dict[str, object]:
-        """Give the one-sided wall's entries in a wall's record: its surface and the push, 0 until a
-        :class:`Push` of the wall gives its own (:meth:`Element.record`).
+        """Give the one-sided wall's entries in a wall's record (:meth:`Element.record`).
 
         Returns
         -------
         dict
+            Its surface and the push, 0 until a :class:`Push` of the wall gives its own.
         """
         return {"one_sided_surface": self.surface, "push": 0.0}
 
@@ -1939,7 +1939,7 @@ class ForceLimit(Element[float]):
     D_F(ξ1, ξh) = ∫_{ξh}^{ξ1} (f(s) − f(ξh)) ds lies between 0 and that of D_G, for ξ1 above or below ξh, so
     0 <= D_F <= D_G for any two positions (D depends on the sample's end points only, whatever the path), and
     the summed bound (33) holds for D_F. The dissipation terms are the device's on its own path. The storage
-    H_F = ½μξ'² + ∫₀^ξ f is >= ½μξ'² and radially unbounded (∫₀^ξ f grows as φ_max |ξ|), with H_F <= H_T of
+    H_F = ½μξ'² + ∫₀^ξ f is >= ½μξ'² and radially unbounded (∫₀^ξ f grows as φ_max·abs(ξ)), with H_F <= H_T of
     the spring (19) at the same state: H_F never increases, so the speed stays below the criterion's speed and
     the position bounded. With other elements (damper, filter, delay, amplifier lag, hand spring, one-sided
     wall, push, passivity controller) the clip acts on their sum, and the decomposition of the extended

@@ -61,6 +61,7 @@ from .elements import (
     Delay,
     Element,
     ElementClass,
+    ForceLimit,
     GroupRangeError,
     HandSpring,
     NotCovered,
