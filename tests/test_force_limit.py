@@ -229,3 +229,14 @@ def test_public_api_exports_force_limit_and_wall_keywords() -> None:
     groups = wall.params(1e-3, 1e-5)
     assert groups.group(ForceLimit) == pytest.approx(300.0, rel=1e-12)
     assert WallParams.of(force_limit=300.0, travel=5000.0) == groups
+
+
+def test_cli_contours_refuses_a_force_limit_with_the_describing_functions_reason(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """The contour maps are the describing function of the paper's loop (eq. 42-45): a device's force limit is
+    not covered there, and the command says so in one line (exit 2) instead of ignoring the field."""
+    assert main(["contours", "--device", "phantom", "--max-force", "3", "--grid", "10"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--max-force 3 is not covered here" in err[0]
+    assert "no describing function of the clip" in err[0] and "dfa map or dfa simulate" in err[0]

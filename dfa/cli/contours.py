@@ -74,6 +74,25 @@ def _print(args: argparse.Namespace, c: ContourMaps, d: dict[str, Any], inp: Inp
         )
 
 
+def _refuse_uncovered_device_elements(inp: Inputs | None) -> None:
+    """Refuse a device field whose element the describing function does not cover (the force limit), saying why
+    (UsageError, exit 2): the contour maps are of the paper's loop, and a field of the device must not be ignored
+    in silence."""
+    from ..model.elements import Coverage
+    from ..model.loop import device_elements
+
+    device = None if inp is None else inp.device
+    for in_wall in (True, False):
+        for e in device_elements(device, in_wall=in_wall):
+            why = type(e).class_coverage().reason(Coverage.DESCRIBING_FUNCTION)
+            if why is not None:
+                flag = "--" + str(type(e).device_field).replace("_", "-")
+                raise UsageError(
+                    f"{flag} {e.value:g} is not covered here: {why}; drop {flag} (the maps are the paper's loop "
+                    "without it), or use dfa map or dfa simulate with it"
+                )
+
+
 def run(args: argparse.Namespace) -> int:
     """Map the small stable and the large unstable cycles over the plane; print the counts."""
     from ..analysis.contours import check_contour_memory, contour_maps, contour_seconds
@@ -89,6 +108,7 @@ def run(args: argparse.Namespace) -> int:
             "closed forms for the spring (eq. 42-45); drop the hand's stiffness (its mass and damping are taken), or "
             "use dfa limit-cycles with it"
         )
+    _refuse_uncovered_device_elements(inp)
     if not args.max_amplitude >= 1.0:
         raise UsageError(
             f"--max-amplitude {args.max_amplitude:g} is invalid: it must be >= 1 tick (the large cycle family has "
