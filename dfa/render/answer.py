@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from ..formatting import WIDTH, fill, number, text_table
 from ..model.elements import Coverage, ForceLimit, OneSided, PassivityController
-from ..results.criterion import start_state_clause, start_state_note
+from .start_state import start_state_clause, start_state_note
 from ..results.limits import KLimit, KMaxResult
 from ..results.require import DamperGuidance, Recommendation
 from ..results.status import LimitStatus, RecommendRule, StiffnessStatus, VelocityStatus

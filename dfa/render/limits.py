@@ -20,7 +20,7 @@ from ..formatting import number
 from ..model.elements import Coverage
 from ..model.wall import WallParams
 from ..results.caveats import SUBTICK_LIMIT
-from ..results.criterion import start_state_clause
+from .start_state import start_state_clause
 from ..results.limits import (
     FINE_POINTS,
     FINE_STEP,
