@@ -66,7 +66,8 @@ ABOVE_RANGE = "no failure up to the top of the range searched"
 #: The closing line of every K_max answer.
 PROOF_NOTE = "only the criterion is a proof; the others hold for the simulated speeds, starts and stiffnesses"
 
-#: What stopped a search at an undecided judgement, in a few words (:data:`~dfa.analysis.limits.search.UNDECIDED_WHY`).
+#: What stopped a search at an undecided judgement, in a few words, by its code
+#: (:class:`~dfa.results.status.UndecidedWhy`).
 _UNDECIDED = {
     "short_runs": "undecided runs (too short to tell)",
     "subtick": f"the sub-tick caveat (smallest unstable cycle below {SUBTICK_LIMIT:g} ticks)",
