@@ -531,7 +531,9 @@ def test_identify_poor_fit_gives_no_intervals_and_no_limits(tmp_path, capsys):
     log = synthetic_log(ph, np.full(3000, 0.1))
     r = identify(log, bootstrap=0)
     assert r.status.value == "poor_fit" and r.fit.within_one_tick < 0.9
-    assert all(getattr(r, k).low is None and "poor fit" in getattr(r, k).undetermined.message for k in ("mass", "damping"))
+    assert all(
+        getattr(r, k).low is None and "poor fit" in getattr(r, k).undetermined.message for k in ("mass", "damping")
+    )
     path = write_log(log, tmp_path / "push.csv")
     assert main(["identify", path, "--stiffness", "1000", "--json", "--bootstrap", "0"]) == 0
     d = json.loads(capsys.readouterr().out)

@@ -67,12 +67,12 @@ from ..model.device import Device, device_units
 from ..model.log import MIN_SAMPLES, DeviceLog, LogError, check_rows
 from ..model.loop import Loop
 from ..model.wall import Wall
-from ..results.identify import FRICTION_SHARE as FRICTION_SHARE
 from ..results.identify import FEW_MOVING as FEW_MOVING
-from ..results.identify import Undetermined
+from ..results.identify import FRICTION_SHARE as FRICTION_SHARE
 from ..results.identify import Estimate as Estimate
 from ..results.identify import FitQuality as FitQuality
 from ..results.identify import Identification as Identification
+from ..results.identify import Undetermined
 from ..results.status import IdentifyStatus, IdentifyWarning
 
 __all__ = [

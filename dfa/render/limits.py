@@ -20,7 +20,6 @@ from ..formatting import number
 from ..model.elements import Coverage
 from ..model.wall import WallParams
 from ..results.caveats import SUBTICK_LIMIT
-from .start_state import start_state_clause
 from ..results.limits import (
     FINE_POINTS,
     FINE_STEP,
@@ -33,6 +32,7 @@ from ..results.limits import (
 )
 from ..results.status import LimitStatus, StiffnessStatus, VelocityStatus
 from .hand import moving_symbols
+from .start_state import start_state_clause
 
 __all__ = [
     "ABOVE_RANGE",
