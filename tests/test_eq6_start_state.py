@@ -12,10 +12,11 @@ import json
 
 import numpy as np
 
-from dfa.analysis.criterion import passivity_criterion, start_state, start_state_note
+from dfa.analysis.criterion import passivity_criterion, start_state
 from dfa.analysis.limits.runs import EXTEND_CAP, decide_undecided
 from dfa.cli import main
 from dfa.model.wall import Wall, WallParams
+from dfa.render.start_state import start_state_note
 
 
 def test_eq6_start_state_names_only_the_memory_the_wall_has():

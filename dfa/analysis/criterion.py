@@ -218,20 +218,15 @@ from ..model.elements import Coverage, OneSided, Push, largest_speed
 from ..model.loop import LOOP_FIX, Loop, loop_first
 from ..model.wall import Wall, WallParams
 from ..results.criterion import _REGION_CODES as _REGION_CODES
-from ..results.criterion import APPROACH_NOTE as APPROACH_NOTE
-from ..results.criterion import FRESH_NOTE as FRESH_NOTE
 from ..results.criterion import HISTORIES as HISTORIES
 from ..results.criterion import REGION_DESCRIPTIONS as REGION_DESCRIPTIONS
 from ..results.criterion import CriterionResult as CriterionResult
 from ..results.criterion import CriticalLine as CriticalLine
 from ..results.criterion import _anchor as _anchor
 from ..results.criterion import _margin as _margin
-from ..results.criterion import _start_note as _start_note
 from ..results.criterion import has_memory as has_memory
 from ..results.criterion import region_of as region_of
 from ..results.criterion import start_state as start_state
-from ..results.criterion import start_state_clause as start_state_clause
-from ..results.criterion import start_state_note as start_state_note
 from ..results.status import CriterionStatus
 
 if TYPE_CHECKING:
@@ -245,10 +240,8 @@ __all__ = [
     "passivity_criterion",
     "criterion_from_groups",
     "start_state",
-    "start_state_note",
     "HISTORIES",
     "moving_history_speed",
-    "start_state_clause",
     "has_memory",
     "device_criterion",
     "classify_region",

@@ -67,14 +67,12 @@ from ..model.device import Device, device_units
 from ..model.log import MIN_SAMPLES, DeviceLog, LogError, check_rows
 from ..model.loop import Loop
 from ..model.wall import Wall
+from ..results.identify import FEW_MOVING as FEW_MOVING
 from ..results.identify import FRICTION_SHARE as FRICTION_SHARE
-from ..results.identify import FRICTION_UNRESOLVED_WHY as FRICTION_UNRESOLVED_WHY
-from ..results.identify import NO_REVERSAL_WHY as NO_REVERSAL_WHY
-from ..results.identify import POOR_FIT_WHY as POOR_FIT_WHY
-from ..results.identify import SCATTER_WHY as SCATTER_WHY
 from ..results.identify import Estimate as Estimate
 from ..results.identify import FitQuality as FitQuality
 from ..results.identify import Identification as Identification
+from ..results.identify import Undetermined
 from ..results.status import IdentifyStatus, IdentifyWarning
 
 __all__ = [
@@ -127,8 +125,6 @@ SEGMENT_MAX = 1000
 #: Variance of the residual of a right model, ticks²: the position within its tick, uniform over [−½, ½). The
 #: residual variance used for the intervals is at least this (a run mostly at rest fits its rest exactly).
 QUANTIZATION_VARIANCE = 1.0 / 12.0
-#: Fewest samples in motion (the reading changes) for a log to count as exciting the dynamics.
-FEW_MOVING = 300
 #: Relative half-width of an interval (±1.96 standard errors) above which an estimate is called poorly determined.
 LOOSE = 0.25
 #: |correlation| of the damping and Coulomb estimates above which they are called not separated.
@@ -388,11 +384,6 @@ def _half(e: Estimate) -> float:
     return math.inf if e.high is None else e.high - e.value
 
 
-#: Why no estimate has an interval in a log with little motion.
-LITTLE_MOTION_WHY = (
-    "the log holds fewer than {} samples in motion: too few to bound the estimates (a fit of a device at rest "
-    "can be far off and look exact); log a longer run with motion"
-)
 #: Replicates of the bootstrap of the intervals (:func:`identify`).
 BOOTSTRAP = 10
 #: Most replicates :func:`identify` accepts.
@@ -414,13 +405,13 @@ def _estimates(theta: np.ndarray, cov: np.ndarray, draws: np.ndarray, delta: flo
         half = np.maximum(half, float(student.ppf(0.975, len(draws) - 1)) * spread)
     m, h = math.exp(theta[0]) * t * t, float(half[0])  # the dimensionless groups at K = 1 N/m: μ = m/T² ...
     est = {"mass": Estimate(m, m * h / 1.959964, m * math.exp(-h), m * math.exp(h)) if h < math.log(SCATTER) else
-           Estimate(m, None, None, None, SCATTER_WHY)}  # fmt: skip
+           Estimate(m, None, None, None, Undetermined.SCATTER)}  # fmt: skip
     for i, key, scale in ((1, "damping", t), (2, "coulomb", delta), (3, "force_offset", delta)):  # β = b/T, σ = c/Δ
         value, hw = float(theta[i]) * scale, float(half[i]) * scale
         bounded = hw < (SCATTER - 1.0) * abs(value) or key == "force_offset" and math.isfinite(hw)
         low = value - hw if key == "force_offset" else max(0.0, value - hw)  # b, c >= 0: their range ends at 0
         est[key] = Estimate(value, hw / 1.959964, low, value + hw) if bounded else Estimate(
-            value, None, None, None, SCATTER_WHY)  # fmt: skip
+            value, None, None, None, Undetermined.SCATTER)  # fmt: skip
     return est
 
 
@@ -440,22 +431,22 @@ def _motion_warnings(n: np.ndarray, coulomb: float, f_max: float) -> list[Identi
 def _withhold(est: dict[str, Estimate], warns: list[IdentifyWarning]) -> dict[str, Estimate]:
     """The estimates without the intervals the log cannot give (little motion: none; no reversal: c and f₀;
     friction below the forces' resolution: c)."""
-    why: dict[str, str] = {}
+    why: dict[str, Undetermined] = {}
     if IdentifyWarning.POOR_FIT in warns:
-        return {k: Estimate(e.value, None, None, None, POOR_FIT_WHY) for k, e in est.items()}
+        return {k: Estimate(e.value, None, None, None, Undetermined.POOR_FIT) for k, e in est.items()}
     if IdentifyWarning.FRICTION_UNRESOLVED in warns:
-        why["coulomb"] = FRICTION_UNRESOLVED_WHY
+        why["coulomb"] = Undetermined.FRICTION_UNRESOLVED
     if IdentifyWarning.NO_REVERSAL in warns:
-        why |= dict.fromkeys(("coulomb", "force_offset"), NO_REVERSAL_WHY)
+        why |= dict.fromkeys(("coulomb", "force_offset"), Undetermined.NO_REVERSAL)
     if IdentifyWarning.LITTLE_MOTION in warns:
-        why = dict.fromkeys(est, LITTLE_MOTION_WHY.format(FEW_MOVING))
+        why = dict.fromkeys(est, Undetermined.LITTLE_MOTION)
     return {k: Estimate(e.value, None, None, None, why[k]) if k in why else e for k, e in est.items()}
 
 
 def _fit_warnings(est: dict[str, Estimate], cov: np.ndarray) -> list[IdentifyWarning]:
     """Loose estimates (of those with an interval), damping and friction not separated."""
     out = []
-    loose = [k for k, e in est.items() if k != "force_offset" and (e.undetermined == SCATTER_WHY or (
+    loose = [k for k, e in est.items() if k != "force_offset" and (e.undetermined == Undetermined.SCATTER or (
         e.high is not None and _half(e) > LOOSE * abs(e.value)))]  # fmt: skip
     sd = np.sqrt(np.maximum(np.diag(cov)[1:3], 0.0))
     if sd.min() > 0.0 and abs(cov[1, 2] / (sd[0] * sd[1])) > CONFOUNDED and {"damping", "coulomb"} & set(loose):

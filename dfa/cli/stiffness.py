@@ -151,7 +151,7 @@ def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp
     from ..render.answer import recommendation_line
     from ..render.hand import device_title
     from ..render.limits import PROOF_NOTE, evidence_text, kmax_rows, verdict_text
-    from ..results.criterion import start_state_note
+    from ..render.start_state import start_state_note
 
     dev, v, wall = ans.device, ans.velocity, ans.wall
     vu, d = dev.units["velocity"], wall.delay

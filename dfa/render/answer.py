@@ -13,7 +13,6 @@ from __future__ import annotations
 
 from ..formatting import WIDTH, fill, number, text_table
 from ..model.elements import Coverage, ForceLimit, OneSided, PassivityController
-from ..results.criterion import start_state_clause, start_state_note
 from ..results.limits import KLimit, KMaxResult
 from ..results.require import DamperGuidance, Recommendation
 from ..results.status import LimitStatus, RecommendRule, StiffnessStatus, VelocityStatus
@@ -32,6 +31,7 @@ from .limits import (
 )
 from .passivity import passivity_text
 from .require import damper_line
+from .start_state import start_state_clause, start_state_note
 
 __all__ = ["WIDTH", "wrap", "recommendation_line", "recommendation_text", "stiffness_screen", "user_verdict"]
 

@@ -11,7 +11,7 @@ from ..model.units import hertz, position
 
 if TYPE_CHECKING:
     from ..model.device import Device
-    from ..results.identify import Estimate, Identification, LoggedCycle
+    from ..results.identify import Estimate, Identification, LoggedCycle, Undetermined
 
 __all__ = ["identify_lines", "loop_head", "device_flags", "cycle_lines", "poor_fit_loop"]
 
@@ -20,10 +20,8 @@ def _interval(e: Estimate, unit: str) -> list[str]:
     """The value and its interval to their meaningful digits (:attr:`Estimate.place`: the interval rounded
     outward); without an interval the value to 4 digits, or "–" when the log does not bound it at all (no digit
     of it is meaningful)."""
-    from ..results.identify import SCATTER_WHY
-
     if e.low is None or e.high is None or e.place is None:
-        value = "–" if e.undetermined == SCATTER_WHY else f"{number(e.value, 4)} {unit}"
+        value = "–" if e.undetermined == "scatter" else f"{number(e.value, 4)} {unit}"
         return [value, f"undetermined ({_short(e.undetermined)})"]
     k, ends = e.place, (e.value, e.low, e.high)
     sci = any(x != 0.0 and not 1e-4 <= abs(x) < 1e6 for x in ends)  # the value and both ends alike
@@ -32,13 +30,20 @@ def _interval(e: Estimate, unit: str) -> list[str]:
     return [f"{value} {unit}", f"{low} … {high}"]
 
 
-def _short(why: str) -> str:
-    """A few words for a table cell of why an estimate has no interval (the full reason is in the JSON)."""
-    from ..results.identify import FRICTION_UNRESOLVED_WHY, NO_REVERSAL_WHY, POOR_FIT_WHY, SCATTER_WHY
+#: A few words for a table cell of why an estimate has no interval, by its
+#: :class:`~dfa.results.identify.Undetermined` code (the full reason, its message, is in the JSON).
+UNDETERMINED_SHORT = {
+    "no_reversal": "no reversal: only c − f₀",
+    "friction_unresolved": "below the forces' resolution",
+    "scatter": "unbounded by the log",
+    "poor_fit": "poor fit",
+    "little_motion": "too little motion",
+}
 
-    short = {NO_REVERSAL_WHY: "no reversal: only c − f₀", FRICTION_UNRESOLVED_WHY: "below the forces' resolution",
-             SCATTER_WHY: "unbounded by the log", POOR_FIT_WHY: "poor fit"}  # fmt: skip
-    return short.get(why, "too little motion")
+
+def _short(why: Undetermined | None) -> str:
+    """A few words for a table cell of why an estimate has no interval (:data:`UNDETERMINED_SHORT`)."""
+    return UNDETERMINED_SHORT.get(str(why), "too little motion")
 
 
 def identify_lines(r: Identification) -> list[str]:

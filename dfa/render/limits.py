@@ -20,7 +20,6 @@ from ..formatting import number
 from ..model.elements import Coverage
 from ..model.wall import WallParams
 from ..results.caveats import SUBTICK_LIMIT
-from ..results.criterion import start_state_clause
 from ..results.limits import (
     FINE_POINTS,
     FINE_STEP,
@@ -33,6 +32,7 @@ from ..results.limits import (
 )
 from ..results.status import LimitStatus, StiffnessStatus, VelocityStatus
 from .hand import moving_symbols
+from .start_state import start_state_clause
 
 __all__ = [
     "ABOVE_RANGE",
@@ -66,7 +66,8 @@ ABOVE_RANGE = "no failure up to the top of the range searched"
 #: The closing line of every K_max answer.
 PROOF_NOTE = "only the criterion is a proof; the others hold for the simulated speeds, starts and stiffnesses"
 
-#: What stopped a search at an undecided judgement, in a few words (:data:`~dfa.analysis.limits.search.UNDECIDED_WHY`).
+#: What stopped a search at an undecided judgement, in a few words, by its code
+#: (:class:`~dfa.results.status.UndecidedWhy`).
 _UNDECIDED = {
     "short_runs": "undecided runs (too short to tell)",
     "subtick": f"the sub-tick caveat (smallest unstable cycle below {SUBTICK_LIMIT:g} ticks)",

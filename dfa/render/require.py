@@ -7,10 +7,10 @@ Every line is at most :data:`~dfa.formatting.WIDTH` characters; the JSON carries
 from __future__ import annotations
 
 from ..formatting import WIDTH, fill, number, text_table
-from ..results.criterion import start_state_clause
 from ..results.require import ALL_METHODS, PARAMETERS, DamperGuidance, Requirement, Requirements
 from ..results.status import RequireStatus
 from .hand import device_title
+from .start_state import start_state_clause
 
 __all__ = ["LABELS", "damper_line", "require_screen", "requirement_cell"]
 

@@ -29,14 +29,6 @@ from .status import CheckStatus, CriterionStatus, PassivityStatus
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-#: The short form of the start state of a wall with memory (:func:`start_state_note`).
-FRESH_NOTE = "for a wall whose memory is fresh at t = 0"
-
-
-#: ... and of a one-sided wall's (the lone spring's: :func:`start_state`).
-APPROACH_NOTE = "for an approach from free space at the impact speed"
-
-
 #: The loop's memory at t = 0 a guarantee can be asked for: the documented fresh start, or a moving history.
 HISTORIES = ("fresh", "moving")
 
@@ -96,36 +88,6 @@ def start_state(wall: Any, history: str = "fresh") -> str:
 def has_memory(wall: Any) -> bool:
     """Whether ``wall`` (a Wall or WallParams) has memory: a delay or a damper (:func:`start_state`)."""
     return not (wall.delay == 0 and wall.damping == 0.0)
-
-
-def start_state_clause(wall: Any) -> str:
-    """``", for a wall whose memory is fresh at t = 0"`` for a wall with memory, else empty (:func:`start_state`).
-
-    Parameters
-    ----------
-    wall : Wall or WallParams
-        Anything with ``delay`` and ``damping``; :func:`start_state_note` is the same in brackets.
-
-    Returns
-    -------
-    str
-        The clause; empty for a wall without memory; a one-sided wall's :data:`APPROACH_NOTE`.
-    """
-    note = _start_note(wall)
-    return f", {note}" if note else ""
-
-
-def start_state_note(wall: Any) -> str:
-    """The same as :func:`start_state_clause` in brackets: ``" (for a wall …)"``, or empty."""
-    note = _start_note(wall)
-    return f" ({note})" if note else ""
-
-
-def _start_note(wall: Any) -> str:
-    """The short start state of a guarantee: a one-sided wall's approach, a wall with memory's fresh memory, or ""."""
-    if getattr(wall, "one_sided", False):
-        return APPROACH_NOTE
-    return FRESH_NOTE if has_memory(wall) else ""
 
 
 #: One-line meaning of each region of paper Fig. 3 for the spring (text before the first colon: short label).

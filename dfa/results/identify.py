@@ -16,29 +16,43 @@ from ..jsonable import explain_nulls
 from ..model.device import Device
 from ..model.units import hertz, position, speed
 from .base import Result, figure_function
-from .status import IdentifyStatus, IdentifyWarning, LoggedCycleStatus
+from .status import IdentifyStatus, IdentifyWarning, LoggedCycleStatus, StatusEnum
 
 #: Coulomb friction below this share of the largest logged force is not resolved by the log (a diverging
 #: impact with forces of kN against a friction of 1 N fits any friction within a few per cent).
 FRICTION_SHARE = 1e-4
 
-#: Why c and f₀ have no interval in a log without a reversal.
-NO_REVERSAL_WHY = "no reversal in the log: Coulomb friction and the force offset act the same way, only c − f₀ is seen"
+#: Fewest samples in motion (the reading changes) for a log to count as exciting the dynamics.
+FEW_MOVING = 300
 
 
-#: Why c has no interval when it is below :data:`FRICTION_SHARE` of the largest force.
-FRICTION_UNRESOLVED_WHY = f"unresolved: below {FRICTION_SHARE:g} of the largest logged force, the log cannot resolve it, whatever its fit says"
+class Undetermined(StatusEnum):
+    """Why an estimate has no interval (:attr:`Estimate.undetermined`): a short code, ``message`` its definition,
+    the JSON's null reason of the interval's ends (:mod:`dfa.render.identify` has the few words of a table cell)."""
 
-
-#: Why no estimate has an interval when the fit is poor.
-POOR_FIT_WHY = (
-    "poor fit: the model does not reproduce the log (noise on the force column, or dynamics the model lacks), "
-    "so the fit's spread says nothing about the values"
-)
-
-
-#: Why an estimate has no interval when its interval would span more than :data:`SCATTER`.
-SCATTER_WHY = "the fits of the log and its replicates differ by orders of magnitude: the log does not bound it"
+    NO_REVERSAL = (
+        "no_reversal",
+        "no reversal in the log: Coulomb friction and the force offset act the same way, only c − f₀ is seen",
+    )
+    FRICTION_UNRESOLVED = (
+        "friction_unresolved",
+        f"unresolved: below {FRICTION_SHARE:g} of the largest logged force, the log cannot resolve it, whatever its "
+        "fit says",
+    )
+    POOR_FIT = (
+        "poor_fit",
+        "poor fit: the model does not reproduce the log (noise on the force column, or dynamics the model lacks), "
+        "so the fit's spread says nothing about the values",
+    )
+    SCATTER = (
+        "scatter",
+        "the fits of the log and its replicates differ by orders of magnitude: the log does not bound it",
+    )
+    LITTLE_MOTION = (
+        "little_motion",
+        f"the log holds fewer than {FEW_MOVING} samples in motion: too few to bound the estimates (a fit of a device "
+        "at rest can be far off and look exact); log a longer run with motion",
+    )
 
 
 @dataclass(frozen=True)
@@ -47,7 +61,8 @@ class Estimate:
 
     The interval comes from the fit's Jacobian and a bootstrap over the encoder's unknown origin (module
     docstring, step 4): it covers the readings' quantization and the fit's convergence, not noise on the force
-    column or dynamics the model lacks. ``undetermined`` says why there is no interval (None): the log cannot
+    column or dynamics the model lacks. ``undetermined`` says why there is no interval (an :class:`Undetermined`
+    code, None with an interval): the log cannot
     separate this value from another, or holds too little motion to bound it.
     """
 
@@ -55,7 +70,11 @@ class Estimate:
     stderr: float | None
     low: float | None
     high: float | None
-    undetermined: str = ""
+    undetermined: Undetermined | None = None
+
+    def __post_init__(self) -> None:
+        if self.undetermined is not None:
+            object.__setattr__(self, "undetermined", Undetermined.coerce(self.undetermined, "undetermined"))
 
     @property
     def place(self) -> int | None:
@@ -69,7 +88,8 @@ class Estimate:
     def to_dict(self) -> dict[str, Any]:
         """The value, its standard error and interval (null with the reason when undetermined)."""
         out: dict[str, Any] = {"value": self.value, "stderr": self.stderr, "low": self.low, "high": self.high}
-        return explain_nulls(out, dict.fromkeys(("stderr", "low", "high"), self.undetermined))
+        why = "" if self.undetermined is None else self.undetermined.message
+        return explain_nulls(out, dict.fromkeys(("stderr", "low", "high"), why))
 
 
 @dataclass(frozen=True)

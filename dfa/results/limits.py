@@ -23,20 +23,19 @@ from ..model.wall import Wall
 from .base import Result, figure_function
 from .caveats import SUBTICK_LIMIT
 from .frozen import check_shape, freeze_fields, frozen_array
-from .status import ChartStatus, CurveStatus, GainStatus, KMaxStatus, LimitStatus, StiffnessStatus, VelocityStatus
+from .status import (
+    ChartStatus,
+    CurveStatus,
+    GainStatus,
+    KMaxStatus,
+    LimitStatus,
+    StiffnessStatus,
+    UndecidedWhy,
+    VelocityStatus,
+)
 
 if TYPE_CHECKING:
     from ..model.device import Device
-
-#: Why a judgement can be undecided (:attr:`KLimit.limited_why`), with what it means.
-UNDECIDED_WHY = {
-    "short_runs": "simulated runs too short to tell",
-    "subtick": "the sub-tick caveat: the smallest unstable cycle lies below dfa.analysis.cycles.SUBTICK_LIMIT ticks",
-    "below_reach": "a cycle search that stopped at its size budget bounds the growth speed only from below V",
-    "unknown_growth": "a cycle search that failed: the growth speed is unknown",
-    "outside_mu": "μ = m/(K T²) outside dfa.analysis.cycles.SEARCHED_MU, where the cycle search claims nothing",
-}
-
 
 #: ... and, just below K, a fine zone of FINE_POINTS stiffnesses K (1 - FINE_STEP)^j, j = 0 … FINE_POINTS - 1
 #: (unsafe K can lie speckled within a few tenths of a percent below a limit, red team of issue 14) ...
@@ -190,10 +189,10 @@ class KLimit(Result):
         Where an undecided judgement (runs too short to tell, or a prediction the describing function cannot
         make) stopped the search, counted as not safe; None when a definite failure did.
     limited_why : str or None
-        Why the judgement at ``limited_by`` was undecided (:data:`UNDECIDED_WHY`): ``short_runs`` (simulated
-        runs too short to tell), ``subtick`` (the sub-tick caveat of :mod:`dfa.analysis.cycles.caveats`),
-        ``below_reach`` (a cycle search that stopped at its size budget bounds the growth speed only from below
-        V), ``unknown_growth`` (a cycle search that failed), ``outside_mu`` (μ outside the range the cycle search
+        Why the judgement at ``limited_by`` was undecided, a code of :class:`~dfa.results.status.UndecidedWhy`:
+        ``short_runs`` (simulated runs too short to tell), ``subtick`` (the sub-tick caveat of
+        :mod:`dfa.analysis.cycles.caveats`), ``below_reach`` (a cycle search that stopped at its size budget bounds
+        the growth speed only from below V), ``unknown_growth`` (a cycle search that failed), ``outside_mu`` (μ outside the range the cycle search
         covers); None with ``limited_by`` None.
     range_end : float or None
         The stiffness that bounds the answer where ``status`` is ``above_range`` (the grid's top) or
@@ -255,11 +254,11 @@ class KLimit(Result):
                 f"when its status is found; {fix}"
             )
         if (self.limited_why is None) != (self.limited_by is None) or (
-            self.limited_why is not None and self.limited_why not in UNDECIDED_WHY
+            self.limited_why is not None and self.limited_why not in {m.value for m in UndecidedWhy}
         ):
             raise DFAValueError(
                 f"limited_why = {self.limited_why!r} is invalid with limited_by = {self.limited_by!r}: give one of "
-                f"{sorted(UNDECIDED_WHY)} exactly when limited_by is set; {fix}"
+                f"{sorted(m.value for m in UndecidedWhy)} exactly when limited_by is set; {fix}"
             )
         for name in ("safe_above", "undecided", "failures"):
             if not isinstance(getattr(self, name), tuple):

@@ -45,6 +45,7 @@ __all__ = [
     "LimitStatus",
     "KMaxStatus",
     "SearchStatus",
+    "UndecidedWhy",
     "GrowthStatus",
     "NyquistStatus",
     "MapStatus",
@@ -394,6 +395,26 @@ class KMaxStatus(StatusEnum):
     COUNTEREXAMPLE = (
         "counterexample",
         "an impact diverged at a stiffness the criterion proves passive: a criterion bug (see counterexamples)",
+    )
+
+
+class UndecidedWhy(StatusEnum):
+    """Why a judgement of a stiffness search was undecided (:attr:`dfa.results.limits.KLimit.limited_why`, which
+    holds the code; :mod:`dfa.render.limits` words it)."""
+
+    SHORT_RUNS = ("short_runs", "simulated runs too short to tell")
+    SUBTICK = (
+        "subtick",
+        "the sub-tick caveat: the smallest unstable cycle lies below dfa.analysis.cycles.SUBTICK_LIMIT ticks",
+    )
+    BELOW_REACH = (
+        "below_reach",
+        "a cycle search that stopped at its size budget bounds the growth speed only from below V",
+    )
+    UNKNOWN_GROWTH = ("unknown_growth", "a cycle search that failed: the growth speed is unknown")
+    OUTSIDE_MU = (
+        "outside_mu",
+        "μ = m/(K T²) outside dfa.analysis.cycles.SEARCHED_MU, where the cycle search claims nothing",
     )
 
 

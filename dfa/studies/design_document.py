@@ -18,8 +18,8 @@ from ..render.answer import recommendation_text
 from ..render.contact import contact_text
 from ..render.hand import grasp_text, grip_rows, grip_text, held_name, moving_symbols
 from ..render.limits import spring_passive_text, spring_verdict_text
+from ..render.start_state import start_state_clause
 from ..render.text import growth_meaning, outside_searched_mu, search_why
-from ..results.criterion import start_state_clause
 from ..results.status import SearchStatus
 from .design import DesignAnalysis
 

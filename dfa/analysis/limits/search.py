@@ -38,7 +38,6 @@ from ...grids import geometric_grid
 from ...results.limits import FINE_POINTS as FINE_POINTS
 from ...results.limits import FINE_STEP as FINE_STEP
 from ...results.limits import SWEEP_STEP as SWEEP_STEP
-from ...results.limits import UNDECIDED_WHY as UNDECIDED_WHY
 from ...results.limits import (
     Confirmation as Confirmation,
 )
@@ -68,7 +67,6 @@ __all__ = [
     "geometric_mean",
     "df_limit",
     "simulated_limit",
-    "UNDECIDED_WHY",
     "confirm",
     "search_grid",
     "check_stiffness_range",
@@ -125,7 +123,7 @@ def grid_search(
     grid : numpy.ndarray
         Ascending stiffnesses to judge first.
     why : str or callable, optional
-        What an undecided judgement means (a key of :data:`UNDECIDED_WHY`; default ``"short_runs"``), or a
+        What an undecided judgement means (a code of :class:`~dfa.results.status.UndecidedWhy`; default ``"short_runs"``), or a
         callable giving it at the stiffness where one stopped the search.
 
     Returns
