@@ -91,7 +91,7 @@ def test_eq4_segment_bounds_match_per_sample_division():
 def test_eq21_energy_terms_match_quadrature(x, v, phi, mu, beta, sigma):
     """Viscous loss β∫ξ'² and Coulomb loss σ∫|ξ'| of one sample against numerical quadrature of the motion."""
     x1, v1, xr, tstar, a, a2, tr, _stopped = kernel.step(x, v, phi, mu, sigma, *_consts(mu, beta))
-    gen, dvisc, dcoul, stored = kernel.energy_terms(x, v, x1, v1, phi, xr, tstar, a, a2, tr, mu, beta, sigma, True)
+    gen, dvisc, dcoul, stored = kernel.energy_terms(x, v, x1, v1, phi, (xr, tstar, a, a2, tr), (mu, beta, sigma), True)
     r = beta / mu
 
     def speed(t):  # ξ'(t) on the two phases (closed form)
@@ -116,6 +116,7 @@ def test_eq4_run_in_ranges_equals_one_call(case, delay):
     whole = np.empty(kernel.NSTATS)
     e, e2 = np.empty(0), np.empty((0, 4))
     run = (n, tail_len, bound, True)
+    keep = (False, False)  # no records
     done, rest = kernel.simulate_kernel((mu, beta, sigma), (x0, v0), run, delay, e, e, e2, whole)
     stats, state, hist, tail = (
         np.empty(kernel.NSTATS),
@@ -128,16 +129,14 @@ def test_eq4_run_in_ranges_equals_one_call(case, delay):
     cuts = sorted({0, n, n - tail_len, *seams, *np.random.default_rng(5).integers(0, n, 12).tolist()})
     done2, rest2 = n, -1
     for lo, hi in zip(cuts[:-1], cuts[1:], strict=True):
-        end, why, peak = kernel.advance(
-            state, hist, lo, hi, mu, beta, sigma, delay, True, bound, n - tail_len, tail, False, False, e, e, e2
-        )
+        end, why, peak = kernel.advance(state, hist, lo, hi, (mu, beta, sigma), run, delay, tail, (e, e, e2), keep)
         k = lo * kernel.NSEG // n
         stats[k] = max(stats[k], peak)
         if why:
             done2, rest2 = end, (end if why == 1 else -1)
             stats[kernel.NSEG + 5] = float(why == 2)
             break
-    kernel.finish(state, n, done2, rest2, tail, tail_len, mu, True, stats, False, False, e, e, e2)
+    kernel.finish(state, done2, rest2, mu, run, tail, stats, (e, e, e2), keep)
     assert (done2, rest2) == (done, rest)
     np.testing.assert_array_equal(stats, whole)
 

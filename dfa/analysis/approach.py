@@ -27,13 +27,25 @@ Examples
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from ..checks import check_bool, check_int, check_real, check_type
 from ..errors import DFAValueError
-from ..model.elements import OneSided
+from ..model.elements import Coverage, OneSided
+from ..model.loop import Loop
 from ..model.wall import WallParams
+from .simulation import MAX_RECORD_BYTES, default_samples, preload_position
 
-__all__ = ["approach_start", "approach_samples"]
+__all__ = [
+    "approach_start",
+    "approach_samples",
+    "SimulationPlan",
+    "plan_simulation",
+    "StartConflict",
+    "ApproachSpeedError",
+    "StartBeyondBound",
+    "RecordBudgetError",
+]
 
 #: The filter's memory of the fresh start is forgotten to this factor by the time the device arrives.
 FORGOTTEN = 1e-16
@@ -122,3 +134,143 @@ def approach_start(
             "float; give an impact speed of a device, a few ticks per sample (or fewer samples)"
         )
     return start, v, int(d)
+
+
+# ----------------------------------------------------------------------------- the plan of one simulation
+
+
+class StartConflict(DFAValueError):
+    """Start inputs that exclude each other: ``given`` (``"preload"``, ``"xi0"``) with a one-sided wall's approach
+    (``one_sided``), or the preload and ξ0 together."""
+
+    def __init__(self, given: tuple[str, ...], one_sided: bool) -> None:
+        self.given, self.one_sided = given, one_sided
+        why = "the run starts in free space before contact" if one_sided else "the preload sets ξ0 from the speed"
+        with_what = " with a one-sided wall" if one_sided else " together"
+        super().__init__(f"{' and '.join(given)} cannot be given{with_what}: {why}; give neither (or one)")
+
+
+class ApproachSpeedError(DFAValueError):
+    """A one-sided wall's run whose speed ``speed`` (ticks per sample) does not approach the wall (> 0)."""
+
+    def __init__(self, speed: float) -> None:
+        self.speed = speed
+        super().__init__(f"xi_dot = {speed!r} is invalid with a one-sided wall: the device must approach it; give > 0")
+
+
+class StartBeyondBound(DFAValueError):
+    """A start ξ0 (``xi0``, ticks; from the preload when ``preload``) at or beyond the run's bound ``bound``."""
+
+    def __init__(self, xi0: float, bound: float, preload: bool) -> None:
+        self.xi0, self.bound, self.preload = xi0, bound, preload
+        super().__init__(f"xi0 = {xi0!r} is invalid: beyond the bound of {bound:g} ticks; give a smaller start")
+
+
+class RecordBudgetError(DFAValueError):
+    """A recorded run of ``samples`` samples whose trajectory (``nbytes``) exceeds :data:`MAX_RECORD_BYTES`."""
+
+    def __init__(self, samples: int, nbytes: int) -> None:
+        self.samples, self.nbytes = samples, nbytes
+        super().__init__(
+            f"samples = {samples} is invalid with a record: {nbytes / 1024**3:.1f} GiB of trajectory (limit "
+            f"{MAX_RECORD_BYTES / 1024**3:.0f} GiB); record nothing or simulate fewer samples"
+        )
+
+
+@dataclass(frozen=True)
+class SimulationPlan:
+    """Where one run starts and how long it is (:func:`plan_simulation`).
+
+    Attributes
+    ----------
+    xi0, xi_dot0 : float
+        The start (ticks, ticks per sample).
+    samples : int
+        The run's length in samples, the approach included (the given length, or the automatic one plus D).
+    approach : int or None
+        D, the samples of a one-sided wall's approach (:func:`approach_start`); None without one.
+    """
+
+    xi0: float
+    xi_dot0: float
+    samples: int
+    approach: int | None
+
+
+def _plan_start(
+    loop: Loop, xi_dot: float, xi0: float | None, preload: bool, quantize: bool, bound: float
+) -> tuple[float, float, int | None]:
+    """(ξ0, ξ'0, D or None) of :func:`plan_simulation`."""
+    assert loop.params is not None
+    wp = loop.wall_params if loop.wall_params is not None else WallParams()
+    if not wp.covers(Coverage.SURFACE_START):  # a one-sided wall: the approach from free space
+        given = tuple(name for name, on in (("preload", preload), ("xi0", xi0 is not None)) if on)
+        if given:
+            raise StartConflict(given, True)
+        if not xi_dot > 0.0:
+            raise ApproachSpeedError(xi_dot)
+        return approach_start(xi_dot, wall=wp, quantize=quantize)
+    if preload and xi0 is not None:
+        raise StartConflict(("preload", "xi0"), False)
+    x0, v0 = (preload_position(loop.params.mu, xi_dot), 0.0) if preload else ((0.0 if xi0 is None else xi0), xi_dot)
+    if not abs(x0) < bound:
+        raise StartBeyondBound(x0, bound, preload)
+    return x0, v0, None
+
+
+def plan_simulation(
+    loop: Loop,
+    xi_dot: float,
+    *,
+    samples: int | None = None,
+    xi0: float | None = None,
+    preload: bool = False,
+    quantize: bool = True,
+    bound: float = math.inf,
+    record_bytes: int = 0,
+) -> SimulationPlan:
+    """The start and length of one run, checked before it is run (the work of ``dfa simulate`` before the run).
+
+    Parameters
+    ----------
+    loop : Loop
+        The dimensionless loop (its μ, β, σ and wall).
+    xi_dot : float
+        Speed ξ'0 in ticks per sample (signed: the direction of motion); with a one-sided wall the approach's, > 0.
+    samples : int, optional
+        The run's length; default :func:`dfa.analysis.simulation.default_samples` plus the approach's D.
+    xi0 : float, optional
+        Start position in ticks (default 0); not with ``preload`` nor a one-sided wall.
+    preload : bool, optional
+        Start at rest with the spring preloaded to the speed's kinetic energy (section 5; default False).
+    quantize : bool, optional
+        With the encoder (default).
+    bound : float, optional
+        |ξ0| must lie below it, in ticks (default: no bound).
+    record_bytes : int, optional
+        Bytes recorded per sample instant (0: no record); the n + 1 instants must fit in :data:`MAX_RECORD_BYTES`.
+
+    Returns
+    -------
+    SimulationPlan
+        (ξ0, ξ'0, samples, D).
+
+    Raises
+    ------
+    StartConflict, ApproachSpeedError, StartBeyondBound, RecordBudgetError
+        The start inputs exclude each other, a one-sided wall's speed is not > 0, ξ0 lies beyond ``bound``, or
+        the record would exceed the budget.
+
+    Examples
+    --------
+    >>> plan_simulation(Loop.dimensionless(100.0, 0.5, 0.2), 2.0, samples=1000)
+    SimulationPlan(xi0=0.0, xi_dot0=2.0, samples=1000, approach=None)
+    """
+    x0, v0, d = _plan_start(loop, xi_dot, xi0, preload, quantize, bound)
+    p, wp = loop.params, loop.wall_params
+    assert p is not None
+    n = samples if samples is not None else default_samples(p.mu, p.beta, p.sigma, v0, x0, quantize, wall=wp)
+    n += 0 if d is None or samples is not None else d  # the approach, before contact
+    if record_bytes and record_bytes * (n + 1) > MAX_RECORD_BYTES:
+        raise RecordBudgetError(n, record_bytes * (n + 1))
+    return SimulationPlan(x0, v0, n, d)

@@ -428,16 +428,10 @@ CHUNK = 1 << 22
 
 
 def _run_chunked(
-    m: float,
-    b: float,
-    s: float,
-    x0: float,
-    v0: float,
-    n: int,
+    device: kernel.Device,
+    initial: kernel.Start,
+    run: kernel.RunSettings,
     d: int,
-    quantize: bool,
-    bnd: float,
-    tail_len: int,
     rx: np.ndarray,
     rv: np.ndarray,
     re: np.ndarray,
@@ -453,9 +447,11 @@ def _run_chunked(
     delay ring, the tail extremes) lives in arrays between calls, so Ctrl-C is honoured between chunks and a
     progress bar can follow the run. Any delay. With ``moving`` the delay ring starts with the forces of the
     readings ξ0 − jξ'0 (j = d … 1, oldest first: a motion at ξ'0 before t = 0) instead of ξ0's. Returns
-    (done, rest).
+    (done, rest). The arguments are :func:`dfa.core.kernel.simulate_kernel`'s.
     """
+    (m, _, _), (x0, v0), (n, tail_len, _, quantize) = device, initial, run
     record, energy = rx.shape[0] == n + 1, re.shape[0] == n
+    records, keep = (rx, rv, re), (record, energy)
     state, hist, tail = np.empty(kernel.NSTATE), np.empty(d + 1), np.empty(max(tail_len, 1))
     kernel.start(x0, v0, d, quantize, state, hist, stats)
     if moving:  # hist[j] is read j samples from now as the force of d samples before: ξ0 − (d + 1 − j)ξ'0
@@ -467,9 +463,7 @@ def _run_chunked(
     bar_kw = dict(total=n, unit="sample", unit_scale=True, desc="simulate", disable=not progress, leave=False)
     with progress_bar(**bar_kw) as bar:
         for lo, hi, k in _chunk_spans(n, tail_start):
-            end, why, peak = kernel.advance(
-                state, hist, lo, hi, m, b, s, d, quantize, bnd, tail_start, tail, record, energy, rx, rv, re
-            )
+            end, why, peak = kernel.advance(state, hist, lo, hi, device, run, d, tail, records, keep)
             if peak > stats[k]:
                 stats[k] = peak
             bar.update(end - lo)
@@ -478,7 +472,7 @@ def _run_chunked(
                 if why == 2:
                     stats[kernel.NSEG + 5] = 1.0
                 break
-    kernel.finish(state, n, done, rest, tail, tail_len, m, quantize, stats, record, energy, rx, rv, re)
+    kernel.finish(state, done, rest, m, run, tail, stats, records, keep)
     return done, rest
 
 
@@ -600,14 +594,14 @@ def simulate(
     re = np.empty((n, 4)) if energy else np.empty((0, 4))
     stats = np.empty(kernel.NSTATS)
     stop = travel_bound(bnd, w)  # the spring's kernel ends a run at the device's travel as at its bound
-    run = (m, b, s, x0, v0, n, d, q, stop, _tail_length(n, m), rx, rv, re, stats)
-    device, initial, settings = (m, b, s), (x0, v0), (n, run[9], stop, q)
+    tail_len = _tail_length(n, m)
+    device, initial, settings = (m, b, s), (x0, v0), (n, tail_len, stop, q)
     moving = _check_history(history, w)
     if not w.covers(Coverage.CLOSED_FORM):
-        settings = (n, run[9], bnd, q)  # the controller kernel's table holds the travel (its own exit test)
+        settings = (n, tail_len, bnd, q)  # the controller kernel's table holds the travel (its own exit test)
         done, rest = wall_kernel.simulate_wall_kernel(device, initial, settings, w.kernel_table(), rx, rv, stats)
     elif n > CHUNK or moving:
-        done, rest = _run_chunked(*run, progress=progress, moving=moving)
+        done, rest = _run_chunked(device, initial, settings, d, rx, rv, re, stats, progress=progress, moving=moving)
     else:
         done, rest = kernel.simulate_kernel(device, initial, settings, d, rx, rv, re, stats)
     mark_end_stops(stats, w, bnd)

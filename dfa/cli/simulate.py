@@ -8,7 +8,6 @@ from typing import Any
 from .._io import check_output_file
 from ..checks import check_damping_rate
 from ..jsonable import explain_nulls
-from ..model.elements import Coverage
 from ..model.loop import Loop
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
@@ -79,34 +78,41 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
 
 
-def _approach(args: argparse.Namespace, p: Any, xd: float, wp: Any, quantize: bool) -> tuple[float, float, int]:
-    """(ξ0, ξ'0, D) of a one-sided wall's run: D samples of approach from free space at the speed."""
-    from ..analysis.approach import approach_start
+def _plan(args: argparse.Namespace, loop: Loop, xd: float, quantize: bool) -> Any:
+    """The run's :class:`~dfa.analysis.approach.SimulationPlan`; its typed errors as the flags' one-line messages."""
+    from ..analysis import approach as ap
 
-    given = [f for f, v in (("--preload", args.preload), ("--xi0", args.xi0 is not None)) if v]
-    if given:
+    per = 16 + (24 if args.observer else 0)  # ξ, ξ' and, replayed for the observer, φ_A, E_obs and f
+    record = args.trace is not None or args.observer
+    flags = {"preload": "--preload", "xi0": "--xi0"}
+    try:
+        return ap.plan_simulation(
+            loop, xd, samples=args.samples, xi0=args.xi0, preload=args.preload, quantize=quantize,
+            bound=SIMULATION_BOUND, record_bytes=per if record else 0,
+        )  # fmt: skip
+    except ap.StartConflict as err:
+        if not err.one_sided:
+            raise UsageError("--preload and --xi0 cannot both be given: the preload sets ξ0 from the speed") from None
         raise UsageError(
-            f"{', '.join(given)} cannot be combined with --one-sided: the run starts in free space before contact"
-        )
-    if not xd > 0.0:
-        raise UsageError(f"the speed {xd:g} is invalid with --one-sided: the device must approach the wall (> 0)")
-    return approach_start(xd, wall=wp, quantize=quantize)
-
-
-def _start(args: argparse.Namespace, mu: float, xd: float) -> tuple[float, float]:
-    """(ξ0, ξ'0) of the run: the preload of the speed's energy, or --xi0 with the speed."""
-    from ..analysis.simulation import preload_position
-
-    if args.preload and args.xi0 is not None:
-        raise UsageError("--preload and --xi0 cannot both be given: the preload sets ξ0 from the speed")
-    x0, v0 = (preload_position(mu, xd), 0.0) if args.preload else ((0.0 if args.xi0 is None else args.xi0), xd)
-    if not abs(x0) < SIMULATION_BOUND:
-        src = "--xi0" if args.xi0 is not None else "the --preload position of this speed"
+            f"{', '.join(flags[g] for g in err.given)} cannot be combined with --one-sided: the run starts in free "
+            "space before contact"
+        ) from None
+    except ap.ApproachSpeedError as err:
         raise UsageError(
-            f"ξ0 = {x0:.4g} ticks from {src} is beyond the simulation bound of {SIMULATION_BOUND:g} ticks "
+            f"the speed {err.speed:g} is invalid with --one-sided: the device must approach the wall (> 0)"
+        ) from None
+    except ap.StartBeyondBound as err:
+        src = "the --preload position of this speed" if err.preload else "--xi0"
+        raise UsageError(
+            f"ξ0 = {err.xi0:.4g} ticks from {src} is beyond the simulation bound of {SIMULATION_BOUND:g} ticks "
             "(the run would stop at once as unstable): give a smaller start"
-        )
-    return x0, v0
+        ) from None
+    except ap.RecordBudgetError as err:
+        what = "--observer" if args.observer else "--trace"
+        raise UsageError(
+            f"{what} with --samples {err.samples} would need {err.nbytes / 1024**3:.1f} GiB of trajectory "
+            f"(limit {ap.MAX_RECORD_BYTES / 1024**3:.0f} GiB): drop {what} or lower --samples"
+        ) from None
 
 
 def _write_trace(path: str, r: object, inp: Inputs, observer: bool) -> None:
@@ -146,7 +152,7 @@ def _observer(r: Any, inp: Inputs) -> tuple[Any, dict[str, float] | None]:
 
 def run(args: argparse.Namespace) -> int:
     """Simulate one impact; print its outcome, amplitude, frequency and final state."""
-    from ..analysis.simulation import MAX_RECORD_BYTES, default_samples, divergence_bound, simulate
+    from ..analysis.simulation import divergence_bound, simulate
     from ..render.contact import contact_line
     from ..render.files import trace_extent
     from ..render.text import simulation_rows
@@ -162,23 +168,14 @@ def run(args: argparse.Namespace) -> int:
     if args.trace is not None:
         check_output_file("--trace", args.trace)
     quantize = not args.no_quantization
-    approach = None if wp.covers(Coverage.SURFACE_START) else _approach(args, p, xd, wp, quantize)
-    x0, v0 = _start(args, p.mu, xd) if approach is None else approach[:2]
-    n = args.samples if args.samples is not None else default_samples(p.mu, p.beta, p.sigma, v0, x0, quantize, wall=wp)
-    n += 0 if approach is None or args.samples is not None else approach[2]  # the approach, before contact
-    record = args.trace is not None or args.observer
-    per = 16 + (24 if args.observer else 0)  # ξ, ξ' and, replayed for the observer, φ_A, E_obs and f
-    if record and per * (n + 1) > MAX_RECORD_BYTES:
-        what = "--observer" if args.observer else "--trace"
-        raise UsageError(
-            f"{what} with --samples {n} would need {per * (n + 1) / 1024**3:.1f} GiB of trajectory "
-            f"(limit {MAX_RECORD_BYTES / 1024**3:.0f} GiB): drop {what} or lower --samples"
-        )
+    loop = Loop.dimensionless(p.mu, p.beta, p.sigma, wp)
+    plan = _plan(args, loop, xd, quantize)
+    x0, v0 = plan.xi0, plan.xi_dot0
     if args.samples is not None:  # the automatic length is capped (dfa.analysis.simulation.default_samples)
         check_samples(args.samples, args.force)
-    loop = Loop.dimensionless(p.mu, p.beta, p.sigma, wp)
     r = simulate(
-        loop, v0, args.samples, xi0=x0, quantize=quantize, record=record, progress=progress(args),
+        loop, v0, args.samples, xi0=x0, quantize=quantize, record=args.trace is not None or args.observer,
+        progress=progress(args),
         bound=divergence_bound(x0, v0, p.mu, SIMULATION_BOUND),
     )  # fmt: skip
     if args.trace is not None:
@@ -210,8 +207,8 @@ def run(args: argparse.Namespace) -> int:
         return 0
     say(f"{inp.label}: μ = {p.mu:.5g}, β = {p.beta:.5g}, σ = {p.sigma:.5g}")
     print_wall(ctl, inp, contact=False)  # the contact line below says more (the approach)
-    if approach is not None:
-        say(contact_line(wp, approach[2], xd))
+    if plan.approach is not None:
+        say(contact_line(wp, plan.approach, xd))
     rows = simulation_rows(r, x0, v0, args.preload, phys if known else None)
     if obs is not None:
         from ..render.passivity import observer_rows

@@ -82,6 +82,10 @@ Starts: TypeAlias = tuple[FloatArray, FloatArray]  # (ξ0, ξ'0) of many runs
 BatchRuns: TypeAlias = tuple[IntArray, IntArray, FloatArray, bool]  # per run (n, tail length, bound); one quantize
 Rules: TypeAlias = tuple[float, float, float]  # the outcome rules (stable amplitude, growth, settle) of classify
 Outcomes: TypeAlias = tuple[IntArray, FloatArray, FloatArray, FloatArray, FloatArray]  # classify_batch's outputs
+# The grouped arguments of the resumable steps (advance, finish) and of energy_terms:
+Records: TypeAlias = tuple[FloatArray, FloatArray, FloatArray]  # (ξ, ξ' per instant: n + 1; energy terms: n × 4)
+Keep: TypeAlias = tuple[bool, bool]  # (record ξ and ξ', record the energy terms): which Records are written
+Phases: TypeAlias = tuple[float, float, float, float, float]  # (ξ_r, t*, a, a₂, t_r) of one sample (step's)
 
 # outcome codes (also the codes of dfa.analysis.maps.StabilityMap.outcome and its .npz file)
 REST = 0  # came to rest: the absorbing state was reached
@@ -201,22 +205,14 @@ def viscous(v: float, a: float, beta: float, mu: float, t: float) -> float:
 
 @njit(cache=True, inline="always")
 def energy_terms(
-    xs: float,
-    vs: float,
-    x: float,
-    v: float,
-    phi: float,
-    xr: float,
-    tstar: float,
-    a: float,
-    a2: float,
-    tr: float,
-    mu: float,
-    beta: float,
-    sigma: float,
-    quantize: bool,
+    xs: float, vs: float, x: float, v: float, phi: float, phases: Phases, device: Device, quantize: bool
 ) -> tuple[float, float, float, float]:
-    """(generated, viscous, Coulomb, stored) of one sample from (ξs, ξ's) to (ξ, ξ') (eq. 18-23)."""
+    """(generated, viscous, Coulomb, stored) of one sample from (ξs, ξ's) to (ξ, ξ') (eq. 18-23).
+
+    ``phases`` = (ξ_r, t*, a, a₂, t_r) of the sample (:func:`step`'s), ``device`` = (μ, β, σ).
+    """
+    xr, tstar, a, a2, tr = phases
+    mu, beta, sigma = device
     dvisc = viscous(vs, a, beta, mu, tstar) if tstar > 0.0 else 0.0
     dcoul = sigma * abs(xr - xs) if tstar > 0.0 else 0.0
     if tr > 0.0:
@@ -360,30 +356,30 @@ def advance(
     hist: FloatArray,
     h0: int,
     h1: int,
-    mu: float,
-    beta: float,
-    sigma: float,
+    device: Device,
+    run: RunSettings,
     delay: int,
-    quantize: bool,
-    bound: float,
-    tail_start: int,
     tail: FloatArray,
-    record: bool,
-    energy: bool,
-    rec_x: FloatArray,
-    rec_v: FloatArray,
-    rec_e: FloatArray,
+    records: Records,
+    keep: Keep,
 ) -> tuple[int, int, float]:
     """Run samples h0 … h1 − 1 from ``state``; return (end, why, peak).
 
+    ``device`` = (μ, β, σ), ``run`` = (n, tail length, bound, quantize) (:data:`RunSettings`), ``delay`` d in
+    samples, ``records`` = (rec_x, rec_v, rec_e), ``keep`` = (record, energy).
     why = 0: ran through (end = h1); 1: at rest at sample ``end`` (not
     integrated); 2: |ξ| passed ``bound`` (or NaN) in sample end − 1. ``peak``
     is the largest |ξ| at the sample instants h0 + 1 … end. Samples at or
-    after ``tail_start`` also update the tail (``tail``, min and max with the
+    after the tail's start (n − tail length) also update the tail (``tail``, min and max with the
     turning points). With ``record``, ξ and ξ' after sample h go to
     ``rec_x[h + 1]``/``rec_v[h + 1]``; with ``energy``, its energy terms to
     ``rec_e[h]`` (generated, viscous, Coulomb, stored).
     """
+    mu, beta, sigma = device
+    n, tail_len, bound, quantize = run
+    rec_x, rec_v, rec_e = records
+    record, energy = keep
+    tail_start = n - tail_len
     k = sample_constants(mu, beta)
     if delay == 0 and not record and not energy and (h1 <= tail_start or h0 >= tail_start):
         return advance_free(state, h0, h1, mu, sigma, quantize, bound, k, tail, tail_start)
@@ -408,7 +404,7 @@ def advance(
             rec_x[h + 1] = x
             rec_v[h + 1] = v
         if energy:
-            g, dv, dc, st = energy_terms(xs, vs, x, v, phi, xr, tstar, a, a2, tr, mu, beta, sigma, quantize)
+            g, dv, dc, st = energy_terms(xs, vs, x, v, phi, (xr, tstar, a, a2, tr), device, quantize)
             rec_e[h, 0] = g
             rec_e[h, 1] = dv
             rec_e[h, 2] = dc
@@ -479,21 +475,23 @@ def tail_stats(tail: FloatArray, tail_len: int, tmin: float, tmax: float, stats:
 @njit(cache=True, nogil=True)
 def finish(
     state: FloatArray,
-    n: int,
     done: int,
     rest: int,
-    tail: FloatArray,
-    tail_len: int,
     mu: float,
-    quantize: bool,
+    run: RunSettings,
+    tail: FloatArray,
     stats: FloatArray,
-    record: bool,
-    energy: bool,
-    rec_x: FloatArray,
-    rec_v: FloatArray,
-    rec_e: FloatArray,
+    records: Records,
+    keep: Keep,
 ) -> None:
-    """Tail statistics, final state, and the records past an early stop (rest state, or NaN)."""
+    """Tail statistics, final state, and the records past an early stop (rest state, or NaN).
+
+    ``done``, ``rest`` as :func:`simulate_kernel` returns them, ``mu`` μ, ``run`` = (n, tail length, bound,
+    quantize) (:data:`RunSettings`), ``records`` = (rec_x, rec_v, rec_e), ``keep`` = (record, energy).
+    """
+    n, tail_len, _, quantize = run
+    rec_x, rec_v, rec_e = records
+    record, energy = keep
     x = state[SX]
     v = state[SV]
     if done == n and rest < 0 and tail_len > 1:
@@ -540,11 +538,13 @@ def simulate_kernel(
     The run is :func:`start`, :func:`advance` over each segment (split where
     the tail starts), :func:`finish`: callers may run any ranges of samples.
     """
-    mu, beta, sigma = device
+    mu = device[0]
     x0, v0 = initial
-    n, tail_len, bound, quantize = run
+    n, tail_len, _, quantize = run
     record = rec_x.shape[0] == n + 1
     energy = rec_e.shape[0] == n
+    records = (rec_x, rec_v, rec_e)
+    keep = (record, energy)
     state = np.empty(NSTATE)
     hist = np.empty(delay + 1)
     tail = np.empty(max(tail_len, 1))
@@ -560,25 +560,7 @@ def simulate_kernel(
         why = 0
         for a, b in ((lo, cut), (cut, hi)):
             if b > a:
-                end, why, peak = advance(
-                    state,
-                    hist,
-                    a,
-                    b,
-                    mu,
-                    beta,
-                    sigma,
-                    delay,
-                    quantize,
-                    bound,
-                    tail_start,
-                    tail,
-                    record,
-                    energy,
-                    rec_x,
-                    rec_v,
-                    rec_e,
-                )
+                end, why, peak = advance(state, hist, a, b, device, run, delay, tail, records, keep)
                 if peak > stats[k]:
                     stats[k] = peak
                 if why != 0:
@@ -589,7 +571,7 @@ def simulate_kernel(
                     break
         if why != 0:
             break
-    finish(state, n, done, rest, tail, tail_len, mu, quantize, stats, record, energy, rec_x, rec_v, rec_e)
+    finish(state, done, rest, mu, run, tail, stats, records, keep)
     return done, rest
 
 

@@ -289,7 +289,8 @@ def _book(
     if why == 2:
         stats[i, NSEG + 5] = 1.0
     e = np.empty(0)
-    finish(state, n, done[i], rest[i], tail, tail_len, mu, quantize, stats[i], False, False, e, e, np.empty((0, 4)))
+    run = (n, tail_len, np.inf, quantize)  # the bound is not read by finish
+    finish(state, done[i], rest[i], mu, run, tail, stats[i], (e, e, np.empty((0, 4))), (False, False))
     lane[PT] = -1
     return False
 
@@ -424,10 +425,12 @@ def _advance_lanes(
     i = lane[PT]
     if delayed:
         e = np.empty(0)
+        device = (mus[i], betas[i], sigmas[i])
+        run = (lane[N], lane[N] - lane[TAIL], bounds[i], quantize)  # lane[TAIL] = n − tail length: its start
+        records = (e, e, np.empty((0, 4)))
         h, why, peak = advance(
-            states[w], hists[w], lane[H], lane[END], mus[i], betas[i], sigmas[i], delay, quantize, bounds[i], lane[TAIL],
-            tails[w], False, False, e, e, np.empty((0, 4)),
-        )  # fmt: skip
+            states[w], hists[w], lane[H], lane[END], device, run, delay, tails[w], records, (False, False)
+        )
     else:
         h, why, peak = advance_free(
             states[w], lane[H], lane[END], mus[i], sigmas[i], quantize, bounds[i], _kc(consts[w]), tails[w], lane[TAIL]
