@@ -211,9 +211,7 @@ def _book(slot, ints, why, n, tail_len, quantize, st, tail, smu, peaks, stats, d
                 ints[slot, HEND] = _next_event(h, hi, n - tail_len)
                 return False
     e = np.empty(0)
-    finish(
-        st[slot], n, end, rs, tail[slot], tail_len, smu[slot], quantize, stats[j], False, False, e, e, e.reshape(0, 4)
-    )
+    finish(st[slot], end, rs, smu[slot], (n, tail_len, 0.0, quantize), tail[slot], stats[j], (e, e, e.reshape(0, 4)), (False, False))
     done[j] = end
     rest[j] = rs
     return True
@@ -233,19 +231,12 @@ def _drain(slot, ints, betas, n, delay, quantize, bound, tail_len, st, hist, tai
             hist[slot],
             h,
             hend,
-            smu[slot],
-            betas[j],
-            ssig[slot],
+            (smu[slot], betas[j], ssig[slot]),
+            (n, tail_len, bound, quantize),
             delay,
-            quantize,
-            bound,
-            n - tail_len,
             tail[slot],
-            False,
-            False,
-            e,
-            e,
-            e2,
+            (e, e, e2),
+            (False, False),
         )
         if peak > peaks[slot]:
             peaks[slot] = peak
