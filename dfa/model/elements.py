@@ -446,6 +446,21 @@ class Element(abc.ABC, Generic[G]):
         value = float(getattr(self, self.parameter.name))
         raise GroupRangeError(self.parameter, value, "overflows a float", inputs, _FLOAT_MAX * scale)
 
+    def _per_force_step(self, symbol: str, stiffness: float, resolution: float | None) -> float:
+        """The element's force (its :attr:`parameter`, in N) over the force step K Δ, unvalidated.
+
+        ``symbol`` names the force in the group (F_p, F_max) for the error raised without a resolution.
+        """
+        name = self.parameter.name
+        if resolution is None:
+            raise DFAValueError(
+                f"{name} needs the encoder resolution Δ for its group {symbol}/(K Δ): call "
+                "Wall.params(period, resolution=Δ)"
+            )
+        step = stiffness * resolution
+        inputs = (("K", stiffness, _K_UNITS), ("Δ", resolution, _D_UNITS))
+        return self._finite(float(getattr(self, name)) / step, inputs, step)
+
     @abc.abstractmethod
     def group(self, period: float, stiffness: float) -> G:
         """Give the element's dimensionless group beside paper Table 1, validated.
@@ -1682,13 +1697,7 @@ class Push(Element[float]):
         DFAValueError
             Without a resolution.
         """
-        if resolution is None:
-            raise DFAValueError(
-                "push needs the encoder resolution Δ for its group F_p/(K Δ): call Wall.params(period, resolution=Δ)"
-            )
-        step = stiffness * resolution
-        inputs = (("K", stiffness, _K_UNITS), ("Δ", resolution, _D_UNITS))
-        return self.check_group(self._finite(self.push / step, inputs, step))
+        return self.check_group(self._per_force_step("F_p", stiffness, resolution))
 
     @classmethod
     def check_group(cls, value: object) -> float:
@@ -2007,14 +2016,7 @@ class ForceLimit(Element[float]):
         DFAValueError
             Without a resolution.
         """
-        if resolution is None:
-            raise DFAValueError(
-                "max_force needs the encoder resolution Δ for its group F_max/(K Δ): call "
-                "Wall.params(period, resolution=Δ)"
-            )
-        step = stiffness * resolution
-        inputs = (("K", stiffness, _K_UNITS), ("Δ", resolution, _D_UNITS))
-        return self.check_group(self._finite(self.max_force / step, inputs, step))
+        return self.check_group(self._per_force_step("F_max", stiffness, resolution))
 
     @classmethod
     def check_group(cls, value: object) -> float:
