@@ -211,7 +211,17 @@ def _book(slot, ints, why, n, tail_len, quantize, st, tail, smu, peaks, stats, d
                 ints[slot, HEND] = _next_event(h, hi, n - tail_len)
                 return False
     e = np.empty(0)
-    finish(st[slot], end, rs, smu[slot], (n, tail_len, 0.0, quantize), tail[slot], stats[j], (e, e, e.reshape(0, 4)), (False, False))
+    finish(
+        st[slot],
+        end,
+        rs,
+        smu[slot],
+        (n, tail_len, 0.0, quantize),
+        tail[slot],
+        stats[j],
+        (e, e, e.reshape(0, 4)),
+        (False, False),
+    )
     done[j] = end
     rest[j] = rs
     return True

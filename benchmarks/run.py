@@ -305,8 +305,9 @@ def bench_solver(quick: bool) -> list[dict]:
 
     from dfa.analysis import cycles as _cycles
     from dfa.analysis.cycles import limit_cycles
-    from dfa.analysis.describing import QuantizerNonlinearity, quantizer_df
+    from dfa.analysis.describing import quantizer_df
     from dfa.analysis.loop import loop_response, loop_system
+    from dfa.analysis.nonlinearities import QuantizerNonlinearity
 
     rows = []
     amps = np.linspace(0.05, 10.0, 400)

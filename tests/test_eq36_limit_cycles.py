@@ -18,8 +18,9 @@ from dfa.analysis.cycles import (
     limit_cycles,
     small_cycle_closed_form,
 )
-from dfa.analysis.describing import QuantizerNonlinearity, quantizer_df
+from dfa.analysis.describing import quantizer_df
 from dfa.analysis.loop import loop_response, loop_system
+from dfa.analysis.nonlinearities import QuantizerNonlinearity
 from dfa.model.wall import WallParams
 
 params_st = st.builds(dfa.Params, st.floats(0.5, 200.0), st.floats(0.0, 0.6), st.floats(0.0, 2.5))

@@ -14,8 +14,6 @@ from hypothesis import strategies as st
 import dfa
 from dfa.analysis.describing import (
     DF_ENVELOPE,
-    CoulombNonlinearity,
-    QuantizerNonlinearity,
     coulomb_df,
     coulomb_df_expression,
     coulomb_equivalent_damping,
@@ -26,6 +24,7 @@ from dfa.analysis.describing import (
     quantizer_df_inverse,
     quantizer_df_peak,
 )
+from dfa.analysis.nonlinearities import CoulombNonlinearity, QuantizerNonlinearity
 
 
 def eq41(m):

@@ -41,6 +41,29 @@ def test_dfa_check_loads_neither_python_control_nor_numba_nor_the_other_commands
     assert out[1] == "dfa.analysis.limits.closed_form dfa.model.log True"
 
 
+#: What the everyday design commands must not load (issue 43: python-control took 1.6 s of `dfa stiffness`'s
+#: 2.4 s): python-control (and matplotlib through it), sympy (the describing function's derivation, cached as
+#: numbers in dfa.core.dfcore) and scipy.signal, scipy.integrate and scipy.stats.
+NOT_FOR_DESIGN = ("control", "matplotlib", "sympy", "scipy.signal", "scipy.integrate", "scipy.stats")
+
+
+def test_everyday_commands_do_not_load_python_control_sympy_or_scipy_signal():
+    """`dfa stiffness` and `dfa simulate` answer without :data:`NOT_FOR_DESIGN`; `QuantizerNonlinearity` loads it."""
+    code = (
+        "import io, sys, contextlib\n"
+        "from dfa.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    assert main(['stiffness', '--device', 'impulse', '--velocity', '0.1']) == 0\n"
+        "    assert main(['simulate', '--device', 'impulse', '--velocity', '0.1', '--stiffness', '500']) == 0\n"
+        f"print(sorted(m for m in {NOT_FOR_DESIGN!r} if m in sys.modules))\n"
+        "import dfa\n"
+        "print(dfa.QuantizerNonlinearity.__module__, 'control' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split("\n")
+    assert out[0] == "[]"
+    assert out[1] == "dfa.analysis.nonlinearities True"
+
+
 def test_public_api_is_listed_and_importable():
     for name in dfa.__all__:
         assert hasattr(dfa, name), name

@@ -25,8 +25,9 @@ numeric functions with :func:`sympy.lambdify` once (cached):
 
 :func:`numeric_df` computes the describing function of any odd static
 nonlinearity by adaptive quadrature over one period and cross-checks both.
-:class:`QuantizerNonlinearity` and :class:`CoulombNonlinearity` subclass
-:class:`control.DescribingFunctionNonlinearity`, so python-control's
+:class:`~dfa.analysis.nonlinearities.QuantizerNonlinearity` and
+:class:`~dfa.analysis.nonlinearities.CoulombNonlinearity` (in their own module, so that the everyday
+commands do not load python-control) subclass :class:`control.DescribingFunctionNonlinearity`, so python-control's
 ``describing_function``, ``describing_function_response`` and
 ``describing_function_plot`` accept them. python-control's generic numeric
 describing function (``try_method=False``) uses a 100-point rectangle rule on
@@ -50,10 +51,8 @@ from collections.abc import Callable, Sequence
 from functools import lru_cache
 from typing import TYPE_CHECKING, Any
 
-import control
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy import integrate
 
 from ..checks import check_positive, check_positive_array, check_real_array, check_sigma, format_value
 from ..core import dfcore
@@ -71,8 +70,6 @@ __all__ = [
     "coulomb_equivalent_damping",
     "coulomb_df_expression",
     "numeric_df",
-    "QuantizerNonlinearity",
-    "CoulombNonlinearity",
     "quantizer_df_peak",
     "DF_ENVELOPE",
 ]
@@ -234,7 +231,7 @@ def quantizer_df(amplitude: ArrayLike) -> Any:  # float for one amplitude, else 
     --------
     quantizer_df_inverse : The amplitudes at which D takes a given value.
     quantizer_df_peak : The maximum of D over M >= 1.
-    QuantizerNonlinearity : The quantizer for python-control.
+    dfa.analysis.nonlinearities.QuantizerNonlinearity : The quantizer for python-control.
     """
     m = _amplitudes(amplitude)
     level, _dlevel = _level_functions()
@@ -420,7 +417,7 @@ def coulomb_df(amplitude: ArrayLike, sigma: float) -> float | np.ndarray:
     See Also
     --------
     coulomb_equivalent_damping : The same friction as a viscous damping.
-    CoulombNonlinearity : The friction for python-control.
+    dfa.analysis.nonlinearities.CoulombNonlinearity : The friction for python-control.
     """
     a = _amplitudes(amplitude, "amplitude")
     s = check_sigma(sigma)
@@ -515,6 +512,8 @@ def numeric_df(
     >>> round(numeric_df(lambda x: np.floor(x) + 0.5, 2.5, jumps=[1, 2]), 10) == round(quantizer_df(2.5), 10)
     True
     """
+    from scipy import integrate  # imported here: the everyday commands never integrate numerically
+
     if not callable(f):
         raise DFATypeError(
             f"f = {format_value(f)} is invalid: it must be a function of the input (an odd static nonlinearity)"
@@ -550,88 +549,3 @@ def numeric_df(
             out[idx] = 4.0 / math.pi * total / mv
     _check_finite_df("amplitude", m, out)  # quantizer_df's rule: a ratio b1/M that overflows is refused
     return float(out) if out.ndim == 0 else out
-
-
-# ----------------------------------------------------- python-control classes
-class QuantizerNonlinearity(control.DescribingFunctionNonlinearity):
-    """The encoder quantizer q(ξ) = ⌊ξ⌋ + ½ (ticks in, force ticks out) for python-control.
-
-    Its :meth:`describing_function` is the exact eq. 41 (vectorised over the
-    amplitude), so python-control's ``describing_function``,
-    ``describing_function_response`` and ``describing_function_plot`` use it.
-
-    Examples
-    --------
-    >>> import control
-    >>> q = QuantizerNonlinearity()
-    >>> q(0.3), q(-0.3), q(1.7)
-    (0.5, -0.5, 1.5)
-    >>> complex(control.describing_function(q, 1.0)).real == quantizer_df(1.0)
-    True
-    """
-
-    def __call__(self, x: ArrayLike) -> float | np.ndarray:
-        out = np.floor(np.asarray(x, dtype=float)) + 0.5
-        return float(out) if out.ndim == 0 else out
-
-    def _isstatic(self) -> bool:
-        return True
-
-    def describing_function(self, A: ArrayLike) -> float | np.ndarray:
-        """Exact D(A) of eq. 41 (real), vectorised over the amplitude A > 0 in ticks.
-
-        Parameters
-        ----------
-        A : float or array_like
-            Amplitude of the position sinusoid in ticks, > 0.
-
-        Returns
-        -------
-        float or numpy.ndarray
-            D(A), as :func:`quantizer_df`.
-        """
-        return quantizer_df(A)
-
-
-class CoulombNonlinearity(control.DescribingFunctionNonlinearity):
-    """Coulomb friction σ·sgn(v) of the velocity v, for python-control.
-
-    Parameters
-    ----------
-    sigma : float
-        Dimensionless Coulomb friction σ = c/(KΔ) >= 0.
-
-    Examples
-    --------
-    >>> c = CoulombNonlinearity(0.5)
-    >>> c(2.0), c(-2.0), c(0.0)
-    (0.5, -0.5, 0.0)
-    >>> round(c.describing_function(1.0), 6)      # 4σ/(πA) at A = 1
-    0.63662
-    """
-
-    def __init__(self, sigma: float):
-        super().__init__()
-        self.sigma = check_sigma(sigma)
-
-    def __call__(self, v: ArrayLike) -> float | np.ndarray:
-        out = self.sigma * np.sign(np.asarray(v, dtype=float))
-        return float(out) if out.ndim == 0 else out
-
-    def _isstatic(self) -> bool:
-        return True
-
-    def describing_function(self, A: ArrayLike) -> float | np.ndarray:
-        """Return 4σ/(πA), vectorised over the velocity amplitude A > 0.
-
-        Parameters
-        ----------
-        A : float or array_like
-            Amplitude of the velocity sinusoid in ticks per sample, > 0.
-
-        Returns
-        -------
-        float or numpy.ndarray
-            The describing function, as :func:`coulomb_df`.
-        """
-        return coulomb_df(A, self.sigma)

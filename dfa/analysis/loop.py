@@ -38,7 +38,8 @@ True
 
 from __future__ import annotations
 
-import control
+from typing import TYPE_CHECKING
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -62,6 +63,9 @@ from .cycles.characteristic import inv_loop
 from .cycles.controlled import WALL_FIX, resolve_wall
 from .describing import coulomb_equivalent_damping, quantizer_df
 from .loop_models import LOOP_MODELS, check_model, check_params
+
+if TYPE_CHECKING:
+    import control
 
 __all__ = [
     "LOOP_MODELS",
@@ -118,6 +122,8 @@ def device_tf(params: Params, amplitude: float | None = None, omega: float | Non
     >>> G.num[0][0].tolist(), G.den[0][0].tolist()
     ([1.0], [2.0, 0.5, 0.0])
     """
+    import control  # imported where used: python-control takes over a second to load
+
     p = check_params(params)
     b = float(equivalent_damping(p, amplitude, omega))
     return control.tf([1.0], [p.mu, b, 0.0])
@@ -125,6 +131,8 @@ def device_tf(params: Params, amplitude: float | None = None, omega: float | Non
 
 def hold_delay_tf(delay: int = 0, pade_order: int = 4) -> control.TransferFunction:
     """Padé approximation of the hold's half sample plus ``delay`` samples, e^{−s(d + ½)}."""
+    import control  # imported where used: python-control takes over a second to load
+
     _m, d, n = check_model("pade", delay, pade_order)
     num, den = control.pade(d + 0.5, n)
     return control.tf(num, den)
@@ -134,6 +142,8 @@ def device_zoh_tf(
     params: Params, amplitude: float | None = None, omega: float | None = None
 ) -> control.TransferFunction:
     """Exact ZOH discretisation (T = 1) of the device: ``control.c2d(device_tf(...), 1, 'zoh')``."""
+    import control  # imported where used: python-control takes over a second to load
+
     return control.c2d(device_tf(params, amplitude, omega), 1.0, method="zoh")
 
 
@@ -233,6 +243,8 @@ def loop_response(
         if m == "half-delay":
             out = g * np.exp(-s * (d + 0.5))
         else:
+            import control  # imported where used: python-control takes over a second to load
+
             num, den = control.pade(d + 0.5, n)
             out = g * np.polyval(num, s) / np.polyval(den, s)
     out = np.asarray(out, dtype=complex)
@@ -297,6 +309,8 @@ def loop_system(
     --------
     loop_response : The frequency response itself, vectorised.
     """
+
+    import control  # imported where used: python-control takes over a second to load
 
     p, wall = check_type("loop", loop, Loop, LOOP_FIX).groups("loop_system")
     _w, ctl, d = resolve_wall(wall)
