@@ -417,3 +417,42 @@ def test_eq11_kmax_shared_run_cache_gives_identical_results_and_simulates_once()
     assert cache.simulated == before and again.to_dict() == a.to_dict()  # nothing simulated twice
     with pytest.raises(dfa.DFATypeError, match="cache"):
         design_answer(dev, 0.2, cache={})
+
+
+@pytest.mark.parametrize("wall", [Wall.of(80.0), Wall.of(80.0, damping=0.02, delay=1)], ids=["spring", "damper"])
+def test_eq11_quick_answer_agrees_with_the_full_answer_and_simulates_nothing(wall):
+    """Issue 43: `simulate=False` (`dfa stiffness --quick`) gives the full answer's criterion (eq. 11), linear and
+    describing-function limits, the same recommendation where it rests on a proof, and runs no simulation."""
+    dev = dfa.get_device("impulse").device
+    full = design_answer(dev, 0.2, wall=wall, assess=True, grid=8, speeds=2)
+    quick = design_answer(dev, 0.2, wall=wall, assess=True, grid=8, speeds=2, simulate=False)
+    for key in ("k_criterion", "k_linear", "k_df"):
+        assert getattr(quick, key) == getattr(full, key), key
+    for key in ("k_static", "k_colgate", "k_abbott_okamura", "evidence.k_range"):
+        a, b = quick, full
+        for part in key.split("."):
+            a, b = getattr(a, part), getattr(b, part)
+        assert a == b, key
+    assert quick.k_sim.status is quick.k_sim_rest.status is LimitStatus.NOT_SIMULATED
+    assert quick.evidence.simulations == 0 and quick.assessment.outcomes == {}
+    assert full.assessment.outcomes and full.evidence.simulations > 0
+    same = ("max_passive_velocity", "velocity_status", "verdict", "growth_speed", "unstable_cycles")
+    for key in same:
+        assert getattr(quick.assessment, key) == getattr(full.assessment, key), key
+
+
+def test_cli_stiffness_quick_says_it_is_without_the_simulated_limits(capsys):
+    """`dfa stiffness --quick`: the table's limits as the full answer prints them, one row saying that nothing was
+    simulated, the closing line saying so; the JSON's simulated limits `not_simulated` with the reason."""
+    code, out, err = run(capsys, "stiffness", "--device", "impulse", "--velocity", "0.2", "--quick")
+    assert code == 0, err
+    r = design_answer(dfa.get_device("impulse").device, 0.2, wall=Wall.of(80.0), assess=True, simulate=False)
+    assert re.search(rf"criterion \(eq\. 11\) +{r.k_criterion.value:.5g} N/m +proof", out)
+    assert re.search(rf"describing function +{r.k_df.value:.5g} N/m", out)
+    assert re.search(r"simulation +not run +a quick answer \(--quick\): no simulation", out)
+    assert "without the simulated limits" in out and "no divergence" not in out and "simulated at" not in out
+    code, out, err = run(capsys, "stiffness", "--device", "impulse", "--velocity", "0.2", "--quick", "--json")
+    d = json.loads(out)
+    assert d["k_sim"]["value"] is None and d["k_sim"]["status"] == "not_simulated"
+    assert d["k_sim"]["null_reasons"]["/value"] == LimitStatus.NOT_SIMULATED.message
+    assert d["evidence"]["simulations"] == 0 and d["k_df"]["value"] == written(r.k_df.value)

@@ -47,6 +47,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "(default: one screen, lines under 100 characters)",
     )
     p.add_argument(
+        "--quick",
+        action="store_true",
+        help="a quick answer for sweeps: the criterion, the static and exact linear bounds and the describing "
+        "function, without the simulated limits (no simulation; under a second)",
+    )
+    p.add_argument(
         "--margin",
         type=number("--margin", "dimensionless units (a gain >= 1)"),
         default=2.0,
@@ -71,14 +77,14 @@ def _source(args: argparse.Namespace, inp: Inputs) -> str | None:
     return "device file" if getattr(args, "device_file", None) is not None else "catalogue"
 
 
-def _plain(ans: KMaxResult, dev: Any, v: float) -> KMaxResult | None:
+def _plain(ans: KMaxResult, dev: Any, v: float, simulate: bool = True) -> KMaxResult | None:
     """The same answer for the wall without its passivity controller (None without one): the controller's gain,
     and the wall recommended when the controller does not help (:func:`recommend_stiffness`'s ``plain``)."""
     from ..analysis.limits.kmax import design_answer
 
     if ans.wall.element(PassivityController) is None:
         return None
-    return design_answer(Loop(dev, ans.wall.without_controller()), v)
+    return design_answer(Loop(dev, ans.wall.without_controller()), v, simulate=simulate)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -103,8 +109,9 @@ def run(args: argparse.Namespace) -> int:
     where = src if src in ("catalogue", "device file") else "given"
     path = str(args.device_file) if where == "device file" else None
     loop = Loop(dev, wall)
-    ans = design_answer(loop, v, assess=k is not None, source=where, source_file=path)
-    plain = _plain(ans, dev, v)
+    simulate = not args.quick
+    ans = design_answer(loop, v, assess=k is not None, source=where, source_file=path, simulate=simulate)
+    plain = _plain(ans, dev, v, simulate)
     gain = None if plain is None else gain_of(ans, plain)
     rec = recommend_stiffness(ans, args.margin, plain=plain)
     guide = damper_guidance_for(dev, wall, v)
@@ -150,7 +157,7 @@ def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp
     """The full answer (``--explain``): every limit in words with what its confirmation simulated."""
     from ..render.answer import recommendation_line
     from ..render.hand import device_title
-    from ..render.limits import PROOF_NOTE, evidence_text, kmax_rows, verdict_text
+    from ..render.limits import PROOF_NOTE, QUICK_PROOF_NOTE, evidence_text, kmax_rows, verdict_text
     from ..render.start_state import start_state_note
 
     dev, v, wall = ans.device, ans.velocity, ans.wall
@@ -166,7 +173,8 @@ def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp
     print(text_table(rows))  # the full evidence: a row a line, however long
     if v > 0:
         print(f"evidence: {evidence_text(ans)}.")
-        note = PROOF_NOTE.replace("a proof", f"a proof{start_state_note(ans.wall)}")
+        quick = ans.evidence.simulations == 0 and ans.k_sim.status.value == "not_simulated"
+        note = (QUICK_PROOF_NOTE if quick else PROOF_NOTE).replace("a proof", f"a proof{start_state_note(ans.wall)}")
         print(fill(f"{note} (the describing function's: the first harmonic)."))
     else:
         print("impact speed 0: the describing-function and simulated limits need a speed > 0.")

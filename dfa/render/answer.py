@@ -174,6 +174,10 @@ def _method_rows(r: KMaxResult, notes: list[str]) -> list[list[str]]:
             "linear, no encoder or Coulomb",
         ],
         ["describing function", _limit_cell(r.k_df, ku, notes, "describing function", why), "first harmonic"],
+    ]
+    if r.k_sim.status is LimitStatus.NOT_SIMULATED:  # the quick answer: one row says so
+        return [*rows, ["simulation", "not run", "a quick answer (--quick): no simulation"]]
+    rows += [
         [
             "simulation, no divergence",
             _limit_cell(r.k_sim, ku, notes, "simulation, no divergence"),
@@ -230,9 +234,11 @@ def user_verdict(r: KMaxResult) -> str:
         head = f"diverges in simulation {at} from both starts; {proof}"
     elif diverged:
         head = f"diverges in simulation {at} from the {diverged[0]} start; {proof}"
-    else:
+    elif runs:
         sim = ", ".join(f"{o} ({s})" for s, o in runs.items())
         head = f"{proof}; simulated {at}: {sim}"
+    else:  # the quick answer: not simulated
+        head = proof
     return wrap(f"your K = {_k(a.stiffness, u['stiffness'])}{src}: {head}")
 
 
@@ -291,7 +297,10 @@ def stiffness_screen(r: KMaxResult, rec: Recommendation, guidance: DamperGuidanc
     verdict = user_verdict(r)
     if verdict:
         lines += ["", verdict]
-    if r.velocity > 0:
+    if r.k_sim.status is LimitStatus.NOT_SIMULATED:
+        lines.append(fill(f"only the criterion is a proof{start_state_note(r.wall)}; a quick answer, without the "
+                          "simulated limits: run without --quick for them", indent=""))  # fmt: skip
+    elif r.velocity > 0:
         lines.append(fill(f"only the criterion is a proof{start_state_note(r.wall)}; simulated limits hold at the "
                           "stiffnesses and speeds simulated (narrower unsafe bands between them are not excluded); "
                           "--explain for the evidence", indent=""))  # fmt: skip

@@ -65,6 +65,8 @@ BELOW_K = (
 ABOVE_RANGE = "no failure up to the top of the range searched"
 #: The closing line of every K_max answer.
 PROOF_NOTE = "only the criterion is a proof; the others hold for the simulated speeds, starts and stiffnesses"
+#: :data:`PROOF_NOTE` of a quick answer (``dfa stiffness --quick``: nothing simulated).
+QUICK_PROOF_NOTE = "only the criterion is a proof; a quick answer, without the simulated limits"
 
 #: What stopped a search at an undecided judgement, in a few words, by its code
 #: (:class:`~dfa.results.status.UndecidedWhy`).
@@ -231,6 +233,11 @@ def confirmation_text(c: Confirmation, unit: str, velocity_unit: str) -> str:
 def evidence_text(r: KMaxResult) -> str:
     """How the searched limits of a K_max answer were found, in one sentence (device units)."""
     e, u = r.evidence, r.device.units
+    if r.k_sim.status is LimitStatus.NOT_SIMULATED:
+        return (
+            f"a quick answer (--quick): no simulation; describing function over stiffnesses {e.k_range[0]:.4g} to "
+            f"{e.k_range[1]:.4g} {u['stiffness']}, {e.df_model} hold model, every unstable cycle"
+        )
     sp = ", ".join(f"{v:.3g}" for v in e.speeds)
     return (
         f"{e.simulations} exact simulations: impacts at {sp} {u['velocity']}, {START_WORDS[tuple(e.starts)][2]}, "
@@ -371,11 +378,13 @@ def assessment_rows(r: KMaxResult) -> list[list[str]]:
         return []
     vu = r.device.units["velocity"]
     k = f"K = {a.stiffness:g}{source_text(a)}"
-    return [
+    rows = [
         [f"largest passive speed at {k}", passive_text(r)],
         [f"predicted cycles at {k}", _growth_text(a, vu)],
-        [f"simulated at {k}, impact at V", outcomes_text(a.outcomes)],
     ]
+    if a.outcomes:  # none in a quick answer
+        rows.append([f"simulated at {k}, impact at V", outcomes_text(a.outcomes)])
+    return rows
 
 
 def outcomes_text(outcomes: dict[str, str]) -> str:

@@ -184,7 +184,7 @@ class KLimit(Result):
         The limit; None when undefined (``status`` says why).
     status : LimitStatus
         ``found``; or why ``value`` is None (``above_range``, ``below_range``, ``no_range``, ``not_confirmed``,
-        ``not_covered``, ``none_proven``, ``not_searched``).
+        ``not_covered``, ``none_proven``, ``not_searched``, ``not_simulated``).
     limited_by : float or None
         Where an undecided judgement (runs too short to tell, or a prediction the describing function cannot
         make) stopped the search, counted as not safe; None when a definite failure did.

@@ -381,6 +381,11 @@ class LimitStatus(StatusEnum):
     )
     NO_STABLE_K = ("no_stable_k", "the linear loop is unstable already at small K (no stable interval from K = 0)")
     NOT_SEARCHED = ("not_searched", "not searched: the describing-function and simulated limits need a speed > 0")
+    NOT_SIMULATED = (
+        "not_simulated",
+        "not simulated: a quick answer (dfa stiffness --quick) computes the criterion, the static and exact linear "
+        "bounds and the describing function only",
+    )
 
 
 class KMaxStatus(StatusEnum):

@@ -254,16 +254,22 @@ def _limit(k: float, why: LimitStatus) -> KLimit:
 
 
 # ----------------------------------------------------------------------------- the searches
-def _searches(ev: Evidence, v: float, k_ref: float, top: float, n_grid: int) -> tuple[KLimit, KLimit, KLimit, tuple]:
-    """K_df, K_sim, K_sim_rest over one geometric grid from k_ref/2 to ``top``, and the grid's range."""
+def _searches(
+    ev: Evidence, v: float, k_ref: float, top: float, n_grid: int, simulate: bool = True
+) -> tuple[KLimit, KLimit, KLimit, tuple]:
+    """K_df, K_sim, K_sim_rest over one geometric grid from k_ref/2 to ``top``, and the grid's range (without
+    ``simulate``: K_df alone, the simulated limits ``not_simulated``)."""
     if not (top > 0 and math.isfinite(top)):
         none = KLimit(None, LimitStatus.NO_RANGE)
         return none, none, none, (0.0, 0.0)
     pts = search_grid(k_ref, top, n_grid)
     xd = ev.dev.xi_dot(v)
     k_df = KLimit(None, LimitStatus.NOT_LINEAR) if not ev.wall.linear else df_limit(ev, pts, xd)  # describing_limit's
-    k_sim = simulated_limit(ev, pts, "unstable")
-    k_rest = simulated_limit(ev, pts, "rest")
+    if not simulate:
+        k_sim = k_rest = KLimit(None, LimitStatus.NOT_SIMULATED)
+    else:
+        k_sim = simulated_limit(ev, pts, "unstable")
+        k_rest = simulated_limit(ev, pts, "rest")
     return k_df, k_sim, k_rest, (float(pts[0]), float(pts[-1]))
 
 
@@ -318,23 +324,28 @@ def passive_speed(dev: Device, wall: Wall, k: float) -> tuple[float | None, Velo
     return mpv, (VelocityStatus.ALL_SPEEDS if math.isinf(mpv) else VelocityStatus.BOUNDED)
 
 
-def _assess(ev: Evidence, k: float, source: str, source_file: str | None, velocity: float) -> KMaxAssessment:
-    """The wall's own stiffness at the impact speed: criterion, predicted cycles, simulated outcomes."""
+def _assess(
+    ev: Evidence, k: float, source: str, source_file: str | None, velocity: float, simulate: bool = True
+) -> KMaxAssessment:
+    """The wall's own stiffness at the impact speed: criterion, predicted cycles, simulated outcomes (none
+    without ``simulate``)."""
     dev = ev.dev
     g = ev.growth_xi_dot(k)
     unknown = "subtick" if g.subtick else ("incomplete" if g.xi_dot is None else None)
     unknown = "not_linear" if not ev.wall.linear else unknown
     xi = None if g.subtick else g.xi_dot  # the sub-tick caveat: the growth speed is not a threshold to rely on
-    p, w = ev.params(k)
-    pts = start_points(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), w)
-    outs, _ = ev.cache.simulate(pts, w, ev.max_samples)  # type: ignore[arg-type]
-    ev.runs += len(pts)
+    outs: list[str] = []
+    if simulate:
+        p, w = ev.params(k)
+        pts = start_points(p.mu, p.beta, p.sigma, dev.xi_dot(velocity), w)
+        outs, _ = ev.cache.simulate(pts, w, ev.max_samples)  # type: ignore[arg-type]
+        ev.runs += len(pts)
     gs = None if xi is None else (math.inf if math.isinf(xi) else dev.velocity(xi))
     mpv, vstatus = passive_speed(dev, ev.wall, k)
     verdict = StiffnessStatus.OK if mpv is not None and mpv >= velocity else StiffnessStatus.TOO_STIFF
     if vstatus is VelocityStatus.NOT_COVERED:
         verdict = StiffnessStatus.NOT_COVERED
-    outcomes = dict(zip(ev.starts, outs, strict=True))
+    outcomes = dict(zip(ev.starts, outs, strict=True)) if simulate else {}
     return KMaxAssessment(k, source, mpv, vstatus, verdict, gs, unknown, g.unstable, outcomes, source_file)
 
 
@@ -351,6 +362,7 @@ def design_answer(
     max_samples: int = DESIGN_MAX_SAMPLES,
     df_model: str = "half-delay",
     cache: RunCache | None = None,
+    simulate: bool = True,
 ) -> KMaxResult:
     """The largest stiffness for impacts up to ``velocity``, four ways, for the spring or a wall (module docstring).
 
@@ -381,6 +393,10 @@ def design_answer(
     cache : RunCache, optional
         Runs and predictions already computed (shared with the stiffness–speed chart by the design
         analysis); a fresh one when None. The result does not depend on it.
+    simulate : bool, optional
+        False: a quick answer without simulation (``dfa stiffness --quick``): the criterion (eq. 11), the static
+        and exact linear bounds and the describing function as in the full answer, the simulated limits
+        ``not_simulated``, and the wall's own K assessed without its two impacts (default True).
 
     Returns
     -------
@@ -416,6 +432,7 @@ def design_answer(
     if cache is not None:
         check_type("cache", cache, RunCache, "pass a dfa.analysis.limits.runs.RunCache, or None")
     assess = check_bool("assess", assess, "pass True to assess the wall's own K, or False")
+    simulate = check_bool("simulate", simulate, "pass False for a quick answer without simulation, or True")
     if assess and wall is None:
         raise DFAValueError("assess = True is invalid without a wall: give the wall (or its K) to assess")
     kc, kl, published, k_ref, top = closed_forms(dev, w, v)
@@ -425,14 +442,17 @@ def design_answer(
     ev = Evidence(dev, w, vs, cap, model, RunCache() if cache is None else cache)
     # the criterion's K for the sweep and the counterexample check: None where no criterion covers the wall
     k_crit = None if kc.status is LimitStatus.NOT_COVERED else (kc.value or 0.0)
-    if v > 0:
+    if v > 0 and simulate:
         k_df, k_sim, k_rest, k_range, ce, status = searched_limits(ev, v, n_speeds, k_crit, k_ref, top, n_grid)
+    elif v > 0:  # the quick answer: the describing function's search alone, on the full answer's grid
+        k_df, k_sim, k_rest, k_range = _searches(ev, v, k_ref, top, n_grid, simulate=False)
+        ce, status = (), (KMaxStatus.CAVEATS if k_df.caveat else KMaxStatus.OK)
     else:  # no impact: nothing to search (the closed forms hold at rest)
         k_df = k_sim = k_rest = KLimit(None, LimitStatus.NOT_SEARCHED)
         k_range, ce, status = (0.0, 0.0), (), KMaxStatus.OK
     evidence = SearchEvidence(ev.speeds, ev.starts, DENSE_FACTOR, ev.runs, ev.longest, cap, model, k_range)
     # the assessment's two runs are not the limits' evidence
-    a = _assess(ev, w.stiffness, source, source_file, v) if assess else None
+    a = _assess(ev, w.stiffness, source, source_file, v, simulate) if assess else None
     return KMaxResult(
         dev, w, v, dev.xi_dot(v), kc, kl, k_df, k_sim, k_rest, published["k_static"], published["k_colgate"],
         published["k_abbott_okamura"], evidence, ce, a, status,
