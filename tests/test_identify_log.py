@@ -526,9 +526,16 @@ def test_identify_report_is_the_identified_device(tmp_path, capsys):
 
 def test_identify_poor_fit_gives_no_intervals_and_no_limits(tmp_path, capsys):
     """Found by review: a constant one-way push the model cannot follow printed a mass of 4e-17 kg with an interval
-    and stiffness limits "a proof". A poor fit now has no interval and --stiffness computes no limit."""
+    and stiffness limits "a proof". A poor fit now has no interval and --stiffness computes no limit. (Issue 43: the
+    Levenberg–Marquardt fit follows that push within a tick, with the warnings of a log that bounds little; a log
+    whose force column is the opposite of what drove the device is one the model cannot follow.)"""
     ph = dfa.get_device("phantom").device
-    log = synthetic_log(ph, np.full(3000, 0.1))
+    push = identify(synthetic_log(ph, np.full(3000, 0.1)), bootstrap=0)
+    assert push.fit.within_one_tick > 0.99 and push.status.value == "caveats"
+    assert {IdentifyWarning.NO_REVERSAL, IdentifyWarning.LOOSE_MASS} <= set(push.warnings) and push.mass.low is None
+    t = np.arange(3000) * ph.period
+    driven = synthetic_log(ph, 0.3 * np.sign(np.sin(2 * np.pi * 2.0 * t)))
+    log = DeviceLog(driven.t, driven.x, -driven.f)
     r = identify(log, bootstrap=0)
     assert r.status.value == "poor_fit" and r.fit.within_one_tick < 0.9
     assert all(

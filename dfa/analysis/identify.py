@@ -20,7 +20,10 @@ from:
    two time constants m/b, at least :data:`SEGMENT` samples (velocity, position within its first tick:
    multiple shooting, so that a small error
    does not accumulate over the whole log and trap the fit) minimise the distance, in ticks, between the
-   prediction and the middle of each logged tick (``scipy.optimize.least_squares``, sparse Jacobian). Quantization is respected: a reading says the position lies in its
+   prediction and the middle of each logged tick (Levenberg–Marquardt with Marquardt's scaling on the
+   block-arrow normal equations: 4 global parameters, 2 per segment, eliminated segment by segment; a
+   forward-difference Jacobian, the bounds by projection; it stops when the sum of squares falls by less than
+   :data:`FTOL` of itself). Quantization is respected: a reading says the position lies in its
    tick, and the residual of a right model is the position within the tick, about ±½.
 4. **The evidence.** A 95 % interval for each estimate: the larger of 1.96 standard errors from the fit's
    Jacobian (widened by the residuals' integrated autocorrelation time, :func:`correlation_time`, the residual
@@ -54,7 +57,7 @@ from __future__ import annotations
 
 import math
 import sys
-from typing import Any
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -108,13 +111,19 @@ GRID_RTOL = 1e-2
 GIVEN_GRID_RTOL = 0.25
 #: Speed (ticks per sample, smoothed) above which a sample counts as moving, for the first guess.
 MOVING = 0.2
-#: Relative step of the fit's finite-difference Jacobian (scipy's default when None).
-DIFF_STEP: float | None = None
-#: Tolerances of the fit's inner linear solver (scipy's ``lsmr``; its default 1e-6 leaves each step inexact, and
-#: the fit stops at a point that moves with the last bits of the arithmetic: b of the example impulse log by
-#: 3e-4 of its value, the interval ends of the limit cycle's c by 0.5 %; with these, 10 to 1000 times less, for
-#: about 15 % more evaluations).
-LSMR_TOLERANCES = {"atol": 1e-12, "btol": 1e-12}
+#: Relative step of the fit's forward-difference Jacobian: √ε, scipy's default.
+FD_STEP = math.sqrt(np.finfo(float).eps)
+#: Relative decrease of the sum of squares below which the fit stops (scipy's ``ftol`` is 1e-8: its fit stopped
+#: where the last bits of the arithmetic moved b of the example impulse log by 3e-4 of its value).
+FTOL = 1e-12
+#: Most Jacobians of one fit (a fit of the example logs takes 10 to 40).
+MAX_ITERATIONS = 200
+#: Starting Levenberg–Marquardt damping λ (relative to Marquardt's scaling) and the largest tried before the fit
+#: stops for want of a step that lowers its cost.
+LM_DAMPING = 1e-3
+LM_MAX_DAMPING = 1e12
+#: Smallest Marquardt scale of a segment's start parameter, relative to the largest of its kind (:func:`_marquardt_scale`).
+LOCAL_FLOOR = 1e-6
 #: Fewest samples per segment of the multiple-shooting fit (each segment starts from its own fitted state);
 #: segments span two time constants m/b of the first guess when that is longer (:func:`_segments`).
 SEGMENT = 200
@@ -221,8 +230,6 @@ def _window(n: int) -> int:
 def _first_guess(v: np.ndarray, a: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
     """(μ, β, σ) by equation error on the smoothed velocity ``v`` and acceleration ``a`` of the readings (only a
     start for the output-error fit)."""
-    from scipy.optimize import nnls
-
     moving = np.abs(v) > MOVING
     if moving.sum() < 10:
         raise LogError(
@@ -235,12 +242,27 @@ def _first_guess(v: np.ndarray, a: np.ndarray, phi: np.ndarray) -> tuple[float, 
             "log the force commanded (or the wall's force) in column f"
         )
     rows = np.column_stack([a[moving], v[moving], np.sign(v[moving])])
-    (mu, beta, sigma), _ = nnls(rows, phi[moving])
+    mu, beta, sigma = _nonnegative_least_squares(rows, phi[moving])
     scale = float(np.median(np.abs(phi[moving])) / max(np.median(np.abs(a[moving])), 1e-12))
     mu = mu if mu > 0.0 else scale
     if not (math.isfinite(mu) and mu > 0.0):
         mu = float(np.max(np.abs(phi))) or 1.0  # no acceleration seen at all: any start; the fit moves it
     return float(mu), float(beta), float(sigma)
+
+
+def _nonnegative_least_squares(rows: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """argmin ‖rows x − y‖ over x >= 0 for a few columns: the least squares on each set of free columns (the
+    others 0) whose solution is >= 0, the one of least residual (the minimum's own set is among them)."""
+    m, q = np.einsum("ni,nj->ij", rows, rows), np.einsum("ni,n->i", rows, y)
+    best, low = np.zeros(rows.shape[1]), 0.0
+    for mask in range(1, 2 ** rows.shape[1]):
+        free = np.array([mask >> i & 1 for i in range(rows.shape[1])], dtype=bool)
+        x = np.zeros(rows.shape[1])
+        x[free] = np.linalg.lstsq(m[np.ix_(free, free)], q[free], rcond=None)[0]
+        cost = float(x @ m @ x - 2.0 * q @ x)
+        if np.all(x >= 0.0) and cost < low:
+            best, low = x, cost
+    return best
 
 
 def _segments(n: int, mu: float, beta: float) -> np.ndarray:
@@ -260,8 +282,18 @@ def _derivatives(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return v, a
 
 
-def _fit(n: np.ndarray, phi: np.ndarray) -> tuple[Any, np.ndarray]:
-    """The output-error fit (step 3 of the module docstring): scipy's least-squares result (its ``x`` is
+class _Fit(NamedTuple):
+    """A converged fit: θ (``x``), the residuals (ticks), the Jacobian's global columns (n × 4) and each sample's
+    derivatives by its own segment's start position and velocity (n × 2)."""
+
+    x: np.ndarray
+    fun: np.ndarray
+    glob: np.ndarray
+    local: np.ndarray
+
+
+def _fit(n: np.ndarray, phi: np.ndarray) -> tuple[_Fit, np.ndarray]:
+    """The output-error fit (step 3 of the module docstring): the least-squares result (its ``x`` is
     θ = (log μ, β, σ, φ₀, the segments' start positions within their tick, their start velocities)) and the
     segments' starts.
 
@@ -284,23 +316,112 @@ def _predict(theta: np.ndarray, n: np.ndarray, phi: np.ndarray, starts: np.ndarr
     return into
 
 
-def _solve(n: np.ndarray, phi: np.ndarray, starts: np.ndarray, theta0: np.ndarray) -> Any:
-    """Least squares of the segments' prediction against the middles of the logged ticks, from ``theta0``."""
-    from scipy.optimize import least_squares
-    from scipy.sparse import lil_matrix
-
+def _solve(n: np.ndarray, phi: np.ndarray, starts: np.ndarray, theta0: np.ndarray) -> _Fit:
+    """Least squares of the segments' prediction against the middles of the logged ticks, from ``theta0``:
+    Levenberg–Marquardt on the block-arrow normal equations (:func:`_lm_step`), bounds by projection."""
     j = len(starts)
-    target, out = n + 0.5, np.empty(len(n))
+    target = n + 0.5
     lo = np.concatenate([[-np.inf, 0.0, 0.0, -np.inf], np.zeros(j), np.full(j, -np.inf)])
     hi = np.concatenate([[np.inf] * 4, np.ones(j), np.full(j, np.inf)])
     seg = _segment_of(starts, len(n))
-    sparsity = lil_matrix((len(n), 4 + 2 * j), dtype=int)
-    sparsity[:, :4] = 1
-    sparsity[np.arange(len(n)), 4 + seg] = 1
-    sparsity[np.arange(len(n)), 4 + j + seg] = 1
-    return least_squares(lambda th: _predict(th, n, phi, starts, out) - target, theta0, bounds=(lo, hi),
-                         jac_sparsity=sparsity, x_scale="jac", method="trf", tr_solver="lsmr", diff_step=DIFF_STEP,
-                         tr_options=LSMR_TOLERANCES)  # fmt: skip
+    theta = np.clip(theta0, lo, hi)
+    r = _predict(theta, n, phi, starts, np.empty(len(n))) - target
+    cost, lam, scale = _sum_squares(r), LM_DAMPING, np.zeros(len(theta))
+    for _ in range(MAX_ITERATIONS):
+        g, loc = _jacobian(theta, r, n, phi, starts, seg, lo, hi)
+        blocks = _normal_blocks(g, loc, r, starts)
+        scale = np.maximum(scale, _marquardt_scale(blocks))
+        grad = np.concatenate([blocks[3], blocks[4][:, 0], blocks[4][:, 1]])
+        free = ~(((theta <= lo) & (grad > 0.0)) | ((theta >= hi) & (grad < 0.0)))
+        while True:
+            trial = np.clip(theta + _lm_step(blocks, scale, lam, free), lo, hi)
+            r_new = _predict(trial, n, phi, starts, np.empty(len(n))) - target
+            cost_new = _sum_squares(r_new)
+            if cost_new < cost or lam > LM_MAX_DAMPING:
+                break
+            lam *= 4.0
+        if not cost_new < cost:
+            break  # no step along the gradient lowers the cost: a minimum to the Jacobian's precision
+        done = cost - cost_new <= FTOL * cost
+        theta, r, cost, lam = trial, r_new, cost_new, max(lam / 3.0, LM_DAMPING * 1e-6)
+        if done:
+            break
+    g, loc = _jacobian(theta, r, n, phi, starts, seg, lo, hi)
+    return _Fit(theta, r, g, loc)
+
+
+def _sum_squares(r: np.ndarray) -> float:
+    """Σ r², without BLAS (its threads wake for a long vector's dot, milliseconds on a loaded machine)."""
+    return float(np.einsum("i,i->", r, r))
+
+
+def _jacobian(
+    theta: np.ndarray, r: np.ndarray, n: np.ndarray, phi: np.ndarray, starts: np.ndarray, seg: np.ndarray,
+    lo: np.ndarray, hi: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """Forward-difference Jacobian of the residuals ``r`` at θ: the columns of the 4 global parameters (n × 4)
+    and each sample's derivatives by its own segment's start position and velocity (n × 2; the segments' starts
+    are moved together, as each sample depends on its own segment's only). Steps √ε max(1, |θ|), reversed where
+    a bound is in the way (scipy's ``approx_derivative``)."""
+    j = len(starts)
+    h = FD_STEP * np.where(theta >= 0.0, 1.0, -1.0) * np.maximum(1.0, np.abs(theta))
+    h = np.where((theta + h > hi) | (theta + h < lo), -h, h)
+    h = (theta + h) - theta
+    out, target = np.empty(len(n)), n + 0.5
+    cols = []
+    for part in (slice(0, 1), slice(1, 2), slice(2, 3), slice(3, 4), slice(4, 4 + j), slice(4 + j, None)):
+        moved = theta.copy()
+        moved[part] += h[part]
+        step = h[part][seg] if part.start >= 4 else h[part]
+        cols.append((_predict(moved, n, phi, starts, out) - target - r) / step)
+    return np.column_stack(cols[:4]), np.column_stack(cols[4:])
+
+
+def _normal_blocks(g: np.ndarray, loc: np.ndarray, r: np.ndarray, starts: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The normal equations JᵀJ, Jᵀr in blocks: (GᵀG 4 × 4, per segment Gₖᵀ Lₖ 4 × 2 and Lₖᵀ Lₖ 2 × 2, Gᵀr,
+    per segment Lₖᵀ r); G the global columns, Lₖ the segment's own two (no BLAS: its threads cost more than
+    these sums on a loaded machine)."""
+    a = np.einsum("ni,nj->ij", g, g)
+    b = np.add.reduceat(g[:, :, None] * loc[:, None, :], starts, axis=0)
+    c = np.add.reduceat(loc[:, :, None] * loc[:, None, :], starts, axis=0)
+    return a, b, c, np.einsum("ni,n->i", g, r), np.add.reduceat(loc * r[:, None], starts, axis=0)
+
+
+def _marquardt_scale(blocks: tuple[np.ndarray, ...]) -> np.ndarray:
+    """The diagonal of JᵀJ, each segment's start position and velocity at least :data:`LOCAL_FLOOR` of the largest
+    of its kind: a segment that starts at rest (its velocity exactly 0, where the prediction has a kink) would
+    otherwise get a scale near 0 and every step along it."""
+    c = blocks[2]
+    p, v = c[:, 0, 0], c[:, 1, 1]
+    return np.concatenate(
+        [np.diag(blocks[0]), np.maximum(p, LOCAL_FLOOR * p.max()), np.maximum(v, LOCAL_FLOOR * v.max())]
+    )
+
+
+def _lm_step(blocks: tuple[np.ndarray, ...], scale: np.ndarray, lam: float, free: np.ndarray) -> np.ndarray:
+    """The Levenberg–Marquardt step δ of (JᵀJ + λ D) δ = −Jᵀr (D: the largest diagonal of JᵀJ seen, Marquardt's
+    scaling), the parameters not ``free`` held (a bound the gradient pushes against): the segments' 2 × 2 blocks
+    eliminated (Schur complement), a 4 × 4 system left."""
+    a, b, c, gg, gl = blocks
+    j = len(c)
+    d = 1.0 / np.sqrt(np.maximum(scale, 1e-300))
+    dg, dl = d[:4], np.column_stack([d[4 : 4 + j], d[4 + j :]])
+    fg, fl = free[:4].astype(float), np.column_stack([free[4 : 4 + j], free[4 + j :]]).astype(float)
+    sg, sl = dg * fg, dl * fl  # scaled, frozen ones zeroed
+    a_s = a * np.outer(sg, sg) + np.diag(lam + (1.0 - fg))
+    b_s = b * sg[None, :, None] * sl[:, None, :]
+    c_s = c * sl[:, :, None] * sl[:, None, :]
+    c_s[:, 0, 0] += lam + 1.0 - fl[:, 0]
+    c_s[:, 1, 1] += lam + 1.0 - fl[:, 1]
+    g_s, l_s = gg * sg, gl * sl
+    det = c_s[:, 0, 0] * c_s[:, 1, 1] - c_s[:, 0, 1] * c_s[:, 1, 0]
+    c_inv = np.stack([np.stack([c_s[:, 1, 1], -c_s[:, 0, 1]], 1), np.stack([-c_s[:, 1, 0], c_s[:, 0, 0]], 1)], 1)
+    c_inv /= det[:, None, None]
+    bc = np.einsum("kab,kbc->kac", b_s, c_inv)
+    schur = a_s - np.einsum("kac,kdc->ad", bc, b_s)
+    step_g = np.linalg.solve(schur, -g_s + np.einsum("kac,kc->a", bc, l_s))
+    step_l = np.einsum("kab,kb->ka", c_inv, -l_s - np.einsum("kab,a->kb", b_s, step_g))
+    return np.concatenate([step_g * sg, step_l[:, 0] * sl[:, 0], step_l[:, 1] * sl[:, 1]])
 
 
 def _segment_of(starts: np.ndarray, samples: int) -> np.ndarray:
@@ -308,12 +429,12 @@ def _segment_of(starts: np.ndarray, samples: int) -> np.ndarray:
     return np.searchsorted(starts, np.arange(samples), side="right") - 1
 
 
-def _linear_covariance(best: Any, starts: np.ndarray) -> np.ndarray:
+def _linear_covariance(best: _Fit, starts: np.ndarray) -> np.ndarray:
     """Covariance of the 4 global parameters from the fit's Jacobian (step 4 of the module docstring): residual
     variance (at least quantization's 1/12) × correlation time × (JᵀJ)⁻¹ with the segments' starts eliminated."""
     n, j = len(best.fun), len(starts)
     s2 = max(float(best.fun @ best.fun) / max(1, n - len(best.x)), QUANTIZATION_VARIANCE)
-    return s2 * correlation_time(best.fun) * _global_covariance(best.jac.tocsc(), _segment_of(starts, n), j)
+    return s2 * correlation_time(best.fun) * _global_covariance(best.glob, best.local, _segment_of(starts, n), j)
 
 
 def _bootstrap(xi: np.ndarray, phi: np.ndarray, reps: int, progress: bool) -> np.ndarray:
@@ -331,12 +452,9 @@ def _bootstrap(xi: np.ndarray, phi: np.ndarray, reps: int, progress: bool) -> np
     return np.array(draws).reshape(-1, 4)
 
 
-def _global_covariance(jac: Any, seg: np.ndarray, j: int) -> np.ndarray:
+def _global_covariance(g: np.ndarray, local: np.ndarray, seg: np.ndarray, j: int) -> np.ndarray:
     """(JᵀJ)⁻¹ of the 4 global parameters with each segment's 2 start parameters eliminated (Schur complement)."""
-    g = jac[:, :4].toarray()
     a = g.T @ g
-    local = np.column_stack([np.asarray(jac[:, 4 : 4 + j].sum(axis=1)).ravel(),
-                             np.asarray(jac[:, 4 + j :].sum(axis=1)).ravel()])  # one nonzero each per row: its segment's  # fmt: skip
     for k in range(j):
         rows = seg == k
         lk, gk = local[rows], g[rows]
@@ -397,12 +515,12 @@ def _estimates(theta: np.ndarray, cov: np.ndarray, draws: np.ndarray, delta: flo
     the larger of 1.96 linearized standard errors and Student's t quantile × the replicates' spread about the
     estimate (their bias included); the intervals of b and c end at 0 at the lowest (their range), the mass's is
     symmetric in log m."""
-    from scipy.stats import t as student
+    from scipy.special import stdtrit  # Student's t quantile (what scipy.stats.t.ppf calls), without scipy.stats
 
     half = 1.959964 * np.sqrt(np.maximum(np.diag(cov), 0.0))
     if len(draws) >= 2:
         spread = np.sqrt(np.sum((draws - theta[:4]) ** 2, axis=0) / (len(draws) - 1))
-        half = np.maximum(half, float(student.ppf(0.975, len(draws) - 1)) * spread)
+        half = np.maximum(half, float(stdtrit(len(draws) - 1, 0.975)) * spread)
     m, h = math.exp(theta[0]) * t * t, float(half[0])  # the dimensionless groups at K = 1 N/m: μ = m/T² ...
     est = {"mass": Estimate(m, m * h / 1.959964, m * math.exp(-h), m * math.exp(h)) if h < math.log(SCATTER) else
            Estimate(m, None, None, None, Undetermined.SCATTER)}  # fmt: skip
