@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import sys
 from collections.abc import Callable, Sequence
@@ -22,6 +23,7 @@ __all__ = [
     "SIMULATION_BOUND",
     "WIDTH",
     "add_progress_args",
+    "working",
     "check_samples",
     "close_progress_bars",
     "cores",
@@ -176,6 +178,17 @@ def progress(args: argparse.Namespace) -> bool:
         return sys.stderr.isatty()
     except (AttributeError, ValueError):
         return False
+
+
+def working(args: argparse.Namespace) -> contextlib.AbstractContextManager[None]:
+    """The progress line of a command's work (:func:`dfa.progress.progress_line`): on a terminal's stderr after 2 s,
+    never with ``--json`` or ``--quiet`` nor in a pipe; with ``--progress``, always. Wrap the computation only, not
+    the printing of the answer (the line is cleared when the block ends)."""
+    from ..progress import progress_line
+
+    if getattr(args, "json", False) or getattr(args, "quiet", False):
+        return contextlib.nullcontext()
+    return progress_line(sys.stderr, force=bool(getattr(args, "progress", False)))
 
 
 def close_progress_bars() -> None:

@@ -7,7 +7,7 @@ import argparse
 from ..model.wall import Wall
 from ..results.codes import REQUIRE_PARAMETERS
 from .inputs import add_device_args, resolve, speed
-from .output import emit
+from .output import emit, working
 from .parsing import UsageError
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
 
@@ -54,7 +54,8 @@ def run(args: argparse.Namespace) -> int:
     wall = ctl if ctl is not None else Wall.of(k, delay=args.delay)
     methods = (*METHODS, "df") if args.describing_function else METHODS
     names = tuple(args.parameter) if args.parameter else REQUIRE_PARAMETERS
-    req = requirements(dev, k, v, wall=wall, methods=methods, parameters=names)
+    with working(args):
+        req = requirements(dev, k, v, wall=wall, methods=methods, parameters=names)
     if args.json:
         emit(wall_json(req.to_dict(), ctl, inp))
         return 0

@@ -7,6 +7,7 @@ One path: the wall of the flags (the spring with its delay when none is given) i
 from __future__ import annotations
 
 import argparse
+import time
 from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
@@ -15,9 +16,10 @@ from ..jsonable import explain_nulls
 from ..model.elements import PassivityController
 from ..model.loop import Loop
 from ..model.wall import Wall
+from ..progress import runs_counted
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
-from .output import emit, save_png
+from .output import emit, save_png, working
 from .parsing import number
 from .passivity import add_passivity_args
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
@@ -110,16 +112,20 @@ def run(args: argparse.Namespace) -> int:
     path = str(args.device_file) if where == "device file" else None
     loop = Loop(dev, wall)
     simulate = not args.quick
-    ans = design_answer(loop, v, assess=k is not None, source=where, source_file=path, simulate=simulate)
-    plain = _plain(ans, dev, v, simulate)
-    gain = None if plain is None else gain_of(ans, plain)
-    rec = recommend_stiffness(ans, args.margin, plain=plain)
-    guide = damper_guidance_for(dev, wall, v)
-    if args.plot is not None:
-        from ..analysis.limits.speed_chart import stiffness_speed_chart
+    start, runs = time.perf_counter(), runs_counted()
+    with working(args):
+        ans = design_answer(loop, v, assess=k is not None, source=where, source_file=path, simulate=simulate)
+        plain = _plain(ans, dev, v, simulate)
+        gain = None if plain is None else gain_of(ans, plain)
+        rec = recommend_stiffness(ans, args.margin, plain=plain)
+        guide = damper_guidance_for(dev, wall, v)
+        if args.plot is not None:
+            from ..analysis.limits.speed_chart import stiffness_speed_chart
 
-        chart = stiffness_speed_chart(loop, stiffness=k, velocity=v if v > 0 else None)
+            chart = stiffness_speed_chart(loop, stiffness=k, velocity=v if v > 0 else None)
+    if args.plot is not None:
         save_png("--plot", args.plot, chart.plot())
+    work = (time.perf_counter() - start, runs_counted() - runs)
     if args.json:
         out = ans.to_dict()
         out["stiffness_source"] = src
@@ -139,7 +145,10 @@ def run(args: argparse.Namespace) -> int:
         emit(wall_json(out, ctl, inp))
         return 0
     if args.explain:
+        from ..render.answer import work_line
+
         _print_explained(ans, rec, ctl, inp)
+        print(work_line(*work))
     else:
         from ..render.answer import stiffness_screen
 

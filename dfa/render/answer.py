@@ -307,3 +307,17 @@ def stiffness_screen(r: KMaxResult, rec: Recommendation, guidance: DamperGuidanc
     else:
         lines.append("impact speed 0: the describing-function and simulated limits need a speed > 0")
     return "\n".join(lines).split("\n")
+
+
+def work_line(seconds: float, runs: int) -> str:
+    """The last line of ``dfa stiffness --explain``: how long the answer took and how many simulations it ran.
+
+    Examples
+    --------
+    >>> work_line(2.345, 1234)
+    'answered in 2.3 s (wall clock, this machine), 1234 simulations run'
+    >>> work_line(0.0123, 0)
+    'answered in 0.012 s (wall clock, this machine), no simulation run'
+    """
+    runs_text = "no simulation run" if runs == 0 else f"{runs} simulation{'s' if runs != 1 else ''} run"
+    return f"answered in {number(seconds, 2)} s (wall clock, this machine), {runs_text}"

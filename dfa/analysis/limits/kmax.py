@@ -49,6 +49,7 @@ from ...model.device import Device
 from ...model.elements import Coverage
 from ...model.loop import LOOP_FIX, Loop, loop_first
 from ...model.wall import Wall
+from ...progress import stage
 from ...results.limits import (
     KMaxAssessment as KMaxAssessment,
 )
@@ -71,6 +72,7 @@ from .search import (
     confirm,
     df_limit,
     search_grid,
+    search_steps,
     simulated_limit,
 )
 
@@ -264,12 +266,18 @@ def _searches(
         return none, none, none, (0.0, 0.0)
     pts = search_grid(k_ref, top, n_grid)
     xd = ev.dev.xi_dot(v)
-    k_df = KLimit(None, LimitStatus.NOT_LINEAR) if not ev.wall.linear else df_limit(ev, pts, xd)  # describing_limit's
+    steps = search_steps(pts)
+    with stage("K_df, describing function", steps, "judgement"):
+        k_df = (
+            KLimit(None, LimitStatus.NOT_LINEAR) if not ev.wall.linear else df_limit(ev, pts, xd)
+        )  # describing_limit's
     if not simulate:
         k_sim = k_rest = KLimit(None, LimitStatus.NOT_SIMULATED)
     else:
-        k_sim = simulated_limit(ev, pts, "unstable")
-        k_rest = simulated_limit(ev, pts, "rest")
+        with stage("K_sim, no divergence: simulating", steps, "judgement"):
+            k_sim = simulated_limit(ev, pts, "unstable")
+        with stage("K_sim_rest, every impact rests: simulating", steps, "judgement"):
+            k_rest = simulated_limit(ev, pts, "rest")
     return k_df, k_sim, k_rest, (float(pts[0]), float(pts[-1]))
 
 
@@ -296,9 +304,10 @@ def searched_limits(
         k_lo, by_criterion = (kc, True) if kc else (k_range[0], False)
         budget = ev.wall.params(ev.dev.period, ev.dev.resolution).sweep_points()
         sweep = Sweep.up_to(k_lo, by_criterion, max(found), budget)
-        ev.prefetch(sweep.points(max(found)))  # one threaded batch for both limits
-        k_sim = confirm(k_sim, ev, dense, "unstable", sweep, k_range[0])
-        k_rest = confirm(k_rest, ev, dense, "rest", sweep, k_range[0], k_sim.value)
+        with stage("sweep in K and confirmation at more speeds: simulating"):
+            ev.prefetch(sweep.points(max(found)))  # one threaded batch for both limits
+            k_sim = confirm(k_sim, ev, dense, "unstable", sweep, k_range[0])
+            k_rest = confirm(k_rest, ev, dense, "rest", sweep, k_range[0], k_sim.value)
     ev.runs += dense.runs
     ce = tuple(Failure(c["stiffness"], c["velocity"], c["start"], c["outcome"], "search") for c in
                ev.counterexamples(kc) + dense.counterexamples(kc))  # fmt: skip

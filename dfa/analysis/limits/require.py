@@ -49,6 +49,7 @@ from ...errors import DFAValueError
 from ...model.device import Device
 from ...model.elements import Damper, Delay
 from ...model.wall import Wall
+from ...progress import advance, stage
 from ...results.require import ALL_METHODS as ALL_METHODS
 from ...results.require import PARAMETERS as PARAMETERS
 from ...results.require import (
@@ -265,13 +266,17 @@ def requirements(
     if not names or not ms:
         raise DFAValueError("methods and parameters must each name at least one; give e.g. methods=('criterion',)")
     out = []
-    for m in ms:
-        uncovered = w.params(dev.period, dev.resolution).not_covered() if m == "criterion" else None
-        if uncovered is not None or (m != "criterion" and not w.linear):  # not a linear loop
-            out += [Requirement(m, n, _current(dev, w, n), None, "at_least" if HELPS[m][n] > 0 else "at_most",
-                                RequireStatus.NOT_COVERED) for n in names]  # fmt: skip
-            continue
-        out += [_one(dev, w, m, n, k, v) for n in names]
+    with stage("requirements: one parameter by one method at a time", len(ms) * len(names), "parameter"):
+        for m in ms:
+            uncovered = w.params(dev.period, dev.resolution).not_covered() if m == "criterion" else None
+            if uncovered is not None or (m != "criterion" and not w.linear):  # not a linear loop
+                out += [Requirement(m, n, _current(dev, w, n), None, "at_least" if HELPS[m][n] > 0 else "at_most",
+                                    RequireStatus.NOT_COVERED) for n in names]  # fmt: skip
+                advance(step=len(names), unit="parameter")
+                continue
+            for n in names:
+                out.append(_one(dev, w, m, n, k, v))
+                advance(unit="parameter")
     met = all(r.status in (RequireStatus.MET, RequireStatus.ANY, RequireStatus.NO_EFFECT) for r in out)
     return Requirements(dev, w, v, tuple(out), RequireStatus.MET if met else RequireStatus.CHANGE)
 

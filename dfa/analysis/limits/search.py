@@ -35,6 +35,7 @@ import numpy as np
 
 from ...errors import DFAValueError
 from ...grids import geometric_grid
+from ...progress import advance
 from ...results.limits import FINE_POINTS as FINE_POINTS
 from ...results.limits import FINE_STEP as FINE_STEP
 from ...results.limits import SWEEP_STEP as SWEEP_STEP
@@ -69,6 +70,7 @@ __all__ = [
     "simulated_limit",
     "confirm",
     "search_grid",
+    "search_steps",
     "check_stiffness_range",
     "MU_RANGE",
     "band",
@@ -131,7 +133,7 @@ def grid_search(
     KLimit
         ``found`` with the search's evidence, or ``above_range``/``below_range``.
     """
-    verdicts = [judge(float(k)) for k in grid]
+    verdicts = [_judged(judge, float(k)) for k in grid]
     undecided = {float(k) for k, v in zip(grid, verdicts, strict=True) if v == UNDECIDED}
     bad = [i for i, v in enumerate(verdicts) if v != SAFE]
     if not bad:
@@ -151,7 +153,7 @@ def grid_search(
     hi_verdict = verdicts[i]
     while hi - lo > K_RTOL * hi:
         mid = geometric_mean(lo, hi)
-        v = judge(mid)
+        v = _judged(judge, mid)
         n += 1
         if v == UNDECIDED:
             undecided.add(mid)
@@ -165,6 +167,20 @@ def grid_search(
         non_monotone=bool(safe_above), safe_above=safe_above,
         undecided=tuple(sorted(undecided)), first_failure=hi, evaluations=n,
     )  # fmt: skip
+
+
+def _judged(judge: Callable[[float], str], k: float) -> str:
+    """``judge(k)``, one judgement for the progress line (:func:`dfa.progress.advance`)."""
+    verdict = judge(k)
+    advance(unit="judgement")
+    return verdict
+
+
+def search_steps(grid: np.ndarray) -> int:
+    """Judgements :func:`grid_search` makes on ``grid`` when it bisects once (the progress line's estimate): the
+    grid's points and the bisection of one grid step to :data:`K_RTOL`."""
+    ratio = float(grid[1] / grid[0]) if len(grid) > 1 else 2.0
+    return len(grid) + max(1, math.ceil(math.log2(max(ratio - 1.0, K_RTOL) / K_RTOL)))
 
 
 def df_limit(ev: Evidence, grid: np.ndarray, xi_dot: float) -> KLimit:

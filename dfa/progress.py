@@ -1,0 +1,187 @@
+"""One progress line for long work: the analyses say what they do, a command shows it (issue 43).
+
+The analyses never print. They name their stage of work (:func:`stage`: what, and how many steps when that is
+known) and count the simulations they run (:func:`advance`); both cost a lock and an attribute read when
+nothing listens. A command line that wants a line (a terminal, no ``--json``) opens one with
+:func:`progress_line`: after :data:`DELAY` seconds of work it shows, on stderr, one updating line with the
+stage, how far it is, the runs so far and the time left where a stage knows its size, and clears it when the
+work ends. Work shorter than the delay shows nothing; tqdm is imported only when a line is due to appear.
+
+Examples
+--------
+>>> import io
+>>> out = io.StringIO()
+>>> with progress_line(out, delay=0.0, force=True):
+...     with stage("searching K", total=2):
+...         advance(1)
+...         advance(1)
+>>> "searching K" in out.getvalue()
+True
+>>> with stage("nobody listens", total=3):   # no line open: nothing happens
+...     advance(3)
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import threading
+import time
+from collections.abc import Iterator
+from typing import Any, TextIO
+
+from ._parallel import new_bar
+from ._signals import deferred
+
+__all__ = ["DELAY", "stage", "advance", "progress_line", "runs_counted"]
+
+#: Seconds of work before the line appears (the environment variable ``DFA_PROGRESS_DELAY`` overrides it).
+DELAY = 2.0
+#: Seconds between two refreshes of a shown line when the work reports nothing.
+TICK = 0.5
+
+_LOCK = threading.RLock()
+
+
+class _Line:
+    """The open line: its stream, its start, the stage, the runs; the tqdm bar once shown."""
+
+    def __init__(self, stream: TextIO, delay: float) -> None:
+        self.stream, self.delay, self.start = stream, delay, time.monotonic()
+        self.what: str = "working"
+        self.total: int | None = None
+        self.done = self.runs = 0
+        self.stage_start, self.unit = self.start, "step"
+        self.bar: Any = None
+
+    def refresh(self) -> None:
+        """Show or update the line once the delay has passed (the caller holds the lock)."""
+        now = time.monotonic()
+        if self.bar is None:
+            if now - self.start < self.delay:
+                return
+            self.bar = new_bar(file=self.stream, leave=False, dynamic_ncols=True, mininterval=0.0,
+                               bar_format="{desc}")  # fmt: skip
+        self.bar.set_description_str(self.text(now), refresh=False)
+        self.bar.refresh()
+
+    def text(self, now: float) -> str:
+        """What the line says: the stage, the runs so far, how far and the time left where the stage knows its
+        size (from the stage's own pace), the time since the work began."""
+        runs = "" if not self.runs else f" ({self.runs} run{'s' if self.runs != 1 else ''})"
+        out = f"{self.what}{runs}"
+        if self.total:
+            out += f": step {min(self.done, self.total)} of about {self.total}"
+            if self.done > 0:
+                left = (now - self.stage_start) / self.done * max(self.total - self.done, 0)
+                out += f", about {_clock(left)} left"
+        return f"{out}; {_clock(now - self.start)} elapsed"
+
+
+def _clock(seconds: float) -> str:
+    """Seconds as m:ss."""
+    m, s = divmod(int(round(seconds)), 60)
+    return f"{m}:{s:02d}"
+
+
+_OPEN: list[_Line] = []
+_COUNTED: list[int] = [0]
+
+
+def stage(what: str, total: int | None = None, unit: str = "step") -> contextlib.AbstractContextManager[None]:
+    """The stage of work ``what`` (a few words), of ``total`` steps when known; the previous stage after it.
+
+    Parameters
+    ----------
+    what : str
+        What the work does, e.g. ``"K_sim: grid of 16 stiffnesses"``.
+    total : int, optional
+        How many steps (:func:`advance` calls' ``step``) the stage takes; None when unknown (no estimate).
+    unit : str, optional
+        What a step is: only :func:`advance` calls of the same ``unit`` count (a stiffness search's judgements
+        inside a stage counting parameters do not).
+    """
+    return _stage(what, total, unit)
+
+
+@contextlib.contextmanager
+def _stage(what: str, total: int | None, unit: str) -> Iterator[None]:
+    with _LOCK:
+        line = _OPEN[-1] if _OPEN else None
+        saved = None if line is None else (line.what, line.total, line.done, line.stage_start, line.unit)
+        if line is not None:
+            line.what, line.total, line.done, line.stage_start, line.unit = what, total, 0, time.monotonic(), unit
+            line.refresh()
+    try:
+        yield
+    finally:
+        if line is not None and saved is not None:
+            with _LOCK:
+                line.what, line.total, line.done, line.stage_start, line.unit = saved
+                line.refresh()
+
+
+def advance(runs: int = 0, step: int = 1, unit: str = "step") -> None:
+    """``runs`` simulations run and ``step`` steps of ``unit`` done (thread-safe; steps count in a stage of
+    that unit only)."""
+    with _LOCK:
+        _COUNTED[0] += runs
+        if _OPEN:
+            line = _OPEN[-1]
+            line.runs += runs
+            line.done += step if unit == line.unit else 0
+            line.refresh()
+
+
+def runs_counted() -> int:
+    """Simulations counted by :func:`advance` in this process so far (a command's ``--explain`` takes the
+    difference over its work)."""
+    with _LOCK:
+        return _COUNTED[0]
+
+
+@contextlib.contextmanager
+def progress_line(stream: TextIO, delay: float | None = None, force: bool = False) -> Iterator[None]:
+    """Open the progress line on ``stream`` for the work of the block: only on a terminal, unless ``force``.
+
+    Parameters
+    ----------
+    stream : file
+        Where the line goes (stderr).
+    delay : float, optional
+        Seconds before the line appears (default :data:`DELAY`, or ``DFA_PROGRESS_DELAY``).
+    force : bool, optional
+        Show the line even when ``stream`` is not a terminal (``--progress``).
+    """
+    try:
+        tty = bool(stream.isatty())
+    except (AttributeError, ValueError):
+        tty = False
+    if not (tty or force):
+        yield
+        return
+    wait = float(os.environ.get("DFA_PROGRESS_DELAY", DELAY)) if delay is None else delay
+    line = _Line(stream, wait)
+    stop = threading.Event()
+    ticker = threading.Thread(target=_tick, args=(line, stop), name="dfa-progress", daemon=True)
+    with _LOCK:
+        _OPEN.append(line)
+    with deferred():  # a signal while a thread starts is raised after it (dfa._signals)
+        ticker.start()
+    try:
+        yield
+    finally:
+        stop.set()
+        with deferred():
+            ticker.join()
+            with _LOCK:
+                _OPEN.remove(line)
+                if line.bar is not None:
+                    line.bar.close()
+
+
+def _tick(line: _Line, stop: threading.Event) -> None:
+    """Refresh the line every :data:`TICK` seconds (the time shown moves during a long kernel call)."""
+    while not stop.wait(TICK):
+        with _LOCK:
+            line.refresh()
