@@ -33,7 +33,7 @@ from typing import Any, TextIO
 from ._parallel import new_bar
 from ._signals import deferred
 
-__all__ = ["DELAY", "stage", "advance", "progress_line", "runs_counted"]
+__all__ = ["DELAY", "stage", "advance", "progress_line", "runs_counted", "samples_counted"]
 
 #: Seconds of work before the line appears (the environment variable ``DFA_PROGRESS_DELAY`` overrides it).
 DELAY = 2.0
@@ -85,7 +85,7 @@ def _clock(seconds: float) -> str:
 
 
 _OPEN: list[_Line] = []
-_COUNTED: list[int] = [0]
+_COUNTED: list[int] = [0, 0]  # runs, samples
 
 
 def stage(what: str, total: int | None = None, unit: str = "step") -> contextlib.AbstractContextManager[None]:
@@ -121,11 +121,12 @@ def _stage(what: str, total: int | None, unit: str) -> Iterator[None]:
                 line.refresh()
 
 
-def advance(runs: int = 0, step: int = 1, unit: str = "step") -> None:
-    """``runs`` simulations run and ``step`` steps of ``unit`` done (thread-safe; steps count in a stage of
-    that unit only)."""
+def advance(runs: int = 0, step: int = 1, unit: str = "step", samples: int = 0) -> None:
+    """``runs`` simulations of ``samples`` samples in all run, and ``step`` steps of ``unit`` done (thread-safe;
+    steps count in a stage of that unit only)."""
     with _LOCK:
         _COUNTED[0] += runs
+        _COUNTED[1] += samples
         if _OPEN:
             line = _OPEN[-1]
             line.runs += runs
@@ -138,6 +139,12 @@ def runs_counted() -> int:
     difference over its work)."""
     with _LOCK:
         return _COUNTED[0]
+
+
+def samples_counted() -> int:
+    """Samples of the simulations counted by :func:`advance` in this process so far (the benchmarks' count)."""
+    with _LOCK:
+        return _COUNTED[1]
 
 
 @contextlib.contextmanager

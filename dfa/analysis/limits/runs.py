@@ -364,7 +364,7 @@ class RunCache:
         if todo:
             outs, lengths = simulate_points([k[0] for k in todo], [k[1] for k in todo], max_samples)
             self.simulated += len(todo)
-            advance(runs=len(todo), step=0)  # the progress line's count of runs
+            advance(runs=len(todo), step=0, samples=int(sum(lengths)))  # the progress line's count of runs
             self.runs.update({k: (o, n) for k, o, n in zip(todo, outs, lengths, strict=True)})
         return [self.runs[k][0] for k in keys], [self.runs[k][1] for k in keys]
 
