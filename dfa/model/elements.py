@@ -48,6 +48,7 @@ import enum
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from functools import cached_property
 from typing import ClassVar, Generic, NamedTuple, TypeVar
 
 import numpy as np
@@ -367,9 +368,15 @@ class CommandPolynomials:
         (1+0j)
         """
         w = unit_circle_w(omega)
-        num = np.polyadd(self.spring, self.damping * self.velocity)
-        out = np.polyval(num, w) / np.polyval(self.denominator, w)
+        out = np.polyval(self.numerator, w) / np.polyval(self.denominator, w)
         return complex(out) if np.ndim(out) == 0 else out
+
+    @cached_property
+    def numerator(self) -> np.ndarray:
+        """N₁ + β_B N₂ in w (highest power first), formed once (the polynomials are frozen; read-only)."""
+        out = np.polyadd(self.spring, self.damping * self.velocity)
+        out.flags.writeable = False
+        return out
 
 
 def unit_circle_w(omega: npt.ArrayLike) -> Response:

@@ -19,6 +19,7 @@ from ...core import dfcore
 from ...core.zoh import zoh_coefficients
 from ...grids import geometric_grid
 from ...model.device import Params
+from ...model.elements import CommandPolynomials
 from ...model.wall import WallParams
 
 DF_CHOICES = ("exact", "small", "unity")
@@ -114,7 +115,14 @@ def wall_ratio(wall: WallParams, omega: float | np.ndarray) -> complex | np.ndar
     :meth:`dfa.model.wall.WallParams.command`), P the continuous factor between hold and device
     (:meth:`~dfa.model.wall.WallParams.plant_response`, 1/(1 + jωα) with an amplifier lag)."""
     w = np.asarray(omega, dtype=float)
-    return 1.0 / (wall.plant_response(w) * wall.command().response(w))
+    return 1.0 / (wall.plant_response(w) * wall_command(wall).response(w))
+
+
+@lru_cache(maxsize=64)
+def wall_command(wall: WallParams) -> CommandPolynomials:
+    """The wall's command polynomials (:meth:`dfa.model.wall.WallParams.command`), formed once per wall: the
+    root finders of a limit-cycle search evaluate the wall's response thousands of times."""
+    return wall.command()
 
 
 def _inv_loop_wall(
@@ -134,10 +142,10 @@ def _inv_loop_wall(
         out = inv_loop(mu, beq, omega, model, delay, pade_order)
         if wall.hand_stiffness > 0.0:  # the hand spring acts on the device behind the hold: + κ_h in its inverse
             out = out + _rotation(w, model, delay, pade_order) * wall.hand_stiffness
-        out = out * (wall_ratio(wall, w) if model != "zoh" else 1.0 / wall.command().response(w))
+        out = out * (wall_ratio(wall, w) if model != "zoh" else 1.0 / wall_command(wall).response(w))
     else:
         z = np.exp(1j * w)
-        out = z**delay / (g * wall.command().response(w))
+        out = z**delay / (g * wall_command(wall).response(w))
     return complex(out) if scalar else out
 
 

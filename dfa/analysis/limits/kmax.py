@@ -84,6 +84,8 @@ __all__ = [
     "closed_forms",
     "check_search_range",
     "wall_k_criterion",
+    "damper_forbids",
+    "max_proven_damping",
     "searched_limits",
     "passive_speed",
     "damper_friction_per_damping",
@@ -125,17 +127,77 @@ def damper_friction_per_damping(dev: Device, wall: Wall) -> float:
     return wall.params(dev.period, dev.resolution).velocity_gain() * dev.resolution / dev.period
 
 
+def max_proven_damping(dev: Device, wall: Wall, v: float) -> float:
+    """The largest virtual damping B (N·s/m; rotary N·m·s/rad) with which the criterion proves some K at speed v.
+
+    Eq. 11 with the damper's terms, K → 0: multiplied by KΔ, its conditions σ >= σ₀ and (β − β₀)V + σ − σ₀ >= 0
+    read c − (1 − a)BΔ/T >= O(K) and (b − B)v + c − (1 − a)BΔ/T >= O(K) (the O(K) terms, ½ + d in β₀ and ½ in σ₀,
+    only shrink what is proven), so B < min(c/((1 − a)Δ/T), (bv + c)/(v + (1 − a)Δ/T)) (the one formula of
+    :func:`dfa.analysis.limits.require.damper_guidance`; :func:`damper_friction_per_damping`).
+
+    Parameters
+    ----------
+    dev : Device
+    wall : Wall
+        Its velocity filter (pole a; 0 without) is read.
+    v : float
+        Impact speed, m/s (rotary: rad/s), >= 0.
+
+    Returns
+    -------
+    float
+        B in N·s/m (rotary: N·m·s/rad).
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> round(max_proven_damping(get_device("Delta").device, Wall(1.0), 0.1), 3)
+    4.653
+    """
+    b, c = dev.damping, dev.coulomb
+    per_b = damper_friction_per_damping(dev, wall)
+    return min(c / per_b, (b * v + c) / (v + per_b))
+
+
+#: Relative margin by which a damper B must exceed :func:`max_proven_damping` for :func:`damper_forbids`: far above
+#: the rounding of the criterion's groups (σ = c/(KΔ), β_B = B/(KT), ...) at any K.
+NEVER_MARGIN = 1e-9
+
+
+def damper_forbids(dev: Device, wall: Wall, v: float) -> bool:
+    """Whether the criterion proves no K passive at speed v because of the wall's damper: B above
+    (1 + :data:`NEVER_MARGIN`) × :func:`max_proven_damping`.
+
+    Then at every K > 0 one of the criterion's conditions fails (:func:`max_proven_damping`: the speed V >= v of a
+    one-sided wall's impact only adds (b − B)(V − v) <= 0 where B > b, and where B <= b the first term of the min
+    is the one exceeded, σ < σ₀ whatever V; every element adds >= 0 to β₀ and σ₀), so :func:`wall_k_criterion`'s
+    halving down to 1e-300 N/m (about a thousand verdicts) ends at 0: it returns 0 at once.
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> dev = get_device("Delta").device
+    >>> damper_forbids(dev, Wall.of(1.0, damping=4.7), 0.1), damper_forbids(dev, Wall.of(1.0, damping=4.6), 0.1)
+    (True, False)
+    """
+    return wall.damping > (1.0 + NEVER_MARGIN) * max_proven_damping(dev, wall, abs(v))
+
+
 def wall_k_criterion(dev: Device, wall: Wall, v: float) -> float:
     """Largest K the criterion proves passive with ``wall``'s elements at speed v (bisection; 0 if none).
 
     The passive K form an interval (0, K*]: both conditions of the criterion are linear and decreasing in K
-    (module docstring). Found on the criterion's own verdict, to a relative :data:`CRITERION_RTOL`.
+    (module docstring). Found on the criterion's own verdict, to a relative :data:`CRITERION_RTOL`. Where it
+    fails at K = 1 and the damper is above the largest with which it proves any K (:func:`damper_forbids`), 0
+    without the halving (the same value: the criterion proves no K).
     """
     lo, hi = 0.0, 1.0
     while criterion_passes(dev, wall, hi, v):  # the criterion fails for K large enough (σ₀ grows with K)
         lo, hi = hi, 2.0 * hi
         if hi > 1e300:
             raise DFAValueError("the criterion passes at every stiffness: check the device's friction values")
+    if lo == 0.0 and damper_forbids(dev, wall, v):
+        return 0.0
     if lo == 0.0:
         lo = hi
         while lo > 1e-300 and not criterion_passes(dev, wall, lo, v):
@@ -149,18 +211,24 @@ def wall_k_criterion(dev: Device, wall: Wall, v: float) -> float:
     return lo
 
 
-def closed_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dict[str, float | None], float, float]:
+def closed_forms(
+    dev: Device, wall: Wall, v: float, *, k_criterion: float | None = None, k_linear: float | None = None
+) -> tuple[KLimit, KLimit, dict[str, float | None], float, float]:
     """K_criterion and K_linear as limits, the published bounds, and the search grid's reference K and top.
 
     The spring (any delay) takes the closed forms of eq. 11 and the exact linear bound k_gil, and the grid
     from K_criterion/2 to 8 × the largest closed-form bound; a wall, the criterion's verdict (none where no
     criterion covers it) and the linear loop with the wall, its grid from K_criterion/2 (else K_linear/2).
+    A caller that has already computed a wall's :func:`wall_k_criterion` or :func:`linear_limit` (the Z-width's
+    columns) passes them as ``k_criterion`` and ``k_linear`` (N/m): they replace those calls for a linear wall
+    other than the spring, nothing else (the spring's are closed forms).
     """
     if not wall.linear:
         return _nonlinear_forms(dev, wall, v)
     p = wall.params(dev.period, dev.resolution)
-    kl = linear_limit(dev, wall)
-    if p.covers(Coverage.CLOSED_FORM):
+    spring = p.covers(Coverage.CLOSED_FORM)
+    kl = k_linear if k_linear is not None and not spring else linear_limit(dev, wall)
+    if spring:
         d = p.delay
         kc = float(k_max_criterion(dev, v, d))
         pub: dict[str, float | None] = dict(
@@ -172,7 +240,7 @@ def closed_forms(dev: Device, wall: Wall, v: float) -> tuple[KLimit, KLimit, dic
     if p.not_covered() is not None:
         crit = KLimit(None, LimitStatus.NOT_COVERED)
         return crit, _limit(kl, LimitStatus.NO_STABLE_K), pub, kl, 8.0 * max(k_static(dev), kl)
-    kc = wall_k_criterion(dev, wall, v)
+    kc = wall_k_criterion(dev, wall, v) if k_criterion is None else k_criterion
     never = dev.coulomb <= wall.damping * damper_friction_per_damping(dev, wall)
     crit = _limit(kc, LimitStatus.NEVER if never else LimitStatus.NONE_PROVEN)
     return crit, _limit(kl, LimitStatus.NO_STABLE_K), pub, kc, 8.0 * max(k_static(dev), kl, kc)
@@ -210,16 +278,26 @@ def linear_limit(dev: Device, wall: Wall) -> float:
 
 
 def describing_limit(
-    dev: Device, wall: Wall, v: float, model: str = "half-delay", cache: RunCache | None = None, grid: int = 16
+    dev: Device,
+    wall: Wall,
+    v: float,
+    model: str = "half-delay",
+    cache: RunCache | None = None,
+    grid: int = 16,
+    *,
+    k_criterion: float | None = None,
+    k_linear: float | None = None,
 ) -> KLimit:
     """K_df of :func:`design_answer` for ``wall`` at speed v: the same grid (:func:`closed_forms`) and search.
 
     The one describing-function limit of a wall: the Z-width's column and the inverse question
     (:mod:`dfa.analysis.limits.require`) call it; the design answer computes it in the same way.
+    ``k_criterion`` and ``k_linear``: the wall's :func:`wall_k_criterion` and :func:`linear_limit` (N/m) where the
+    caller has them (:func:`closed_forms`), so that they are not computed twice.
     """
     if not wall.linear:
         return KLimit(None, LimitStatus.NOT_LINEAR)
-    _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall, v)
+    _kc, _kl, _pub, k_ref, top = closed_forms(dev, wall, v, k_criterion=k_criterion, k_linear=k_linear)
     if not (top > 0 and math.isfinite(top)):
         return KLimit(None, LimitStatus.NO_RANGE)
     ev = Evidence(dev, wall, np.array([v]), DESIGN_MAX_SAMPLES, model, RunCache() if cache is None else cache)

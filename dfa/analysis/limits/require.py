@@ -62,7 +62,7 @@ from ...results.require import (
     Requirements as Requirements,
 )
 from ...results.status import RequireStatus
-from .kmax import criterion_passes, damper_friction_per_damping, describing_limit, linear_limit
+from .kmax import criterion_passes, damper_friction_per_damping, describing_limit, linear_limit, max_proven_damping
 
 __all__ = [
     "PARAMETERS",
@@ -327,7 +327,7 @@ def damper_guidance(device: Device, wall: Wall, velocity: float) -> DamperGuidan
     b, c, big_b = device.damping, device.coulomb, wall.damping
     per_b = damper_friction_per_damping(device, wall)  # eq. 11's (1 − a)Δ/T per unit of B
     speed_cost = max(0.0, (big_b - b) * v)  # the friction the speed term needs when B exceeds b
-    max_b = min(c / per_b, (b * v + c) / (v + per_b))
+    max_b = max_proven_damping(device, wall, v)
     room = c - speed_cost  # what friction is left for the damper's (1 − a)BΔ/T
     if big_b == 0:
         max_res: float | None = math.inf

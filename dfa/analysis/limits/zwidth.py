@@ -144,13 +144,21 @@ DF_GRID = 16
 def _linear(dev: Device, wall: Wall) -> KLimit:
     """Top of the stable K interval from K = 0 of the linear loop (exact); further intervals as ``safe_above``;
     none for a wall that is not a linear loop (one-sided, a passivity controller)."""
+    return _linear_bound(dev, wall)[0]
+
+
+def _linear_bound(dev: Device, wall: Wall) -> tuple[KLimit, float | None]:
+    """:func:`_linear` and the stable interval's top as :func:`~dfa.analysis.limits.kmax.linear_limit` gives it
+    (N/m; None for a wall that is not a linear loop): one :func:`~dfa.analysis.linear_wall.stable_stiffness`."""
     if not wall.linear:
-        return KLimit(None, LimitStatus.NOT_LINEAR)
+        return KLimit(None, LimitStatus.NOT_LINEAR), None
     r = stable_stiffness(dev.mass, dev.damping, dev.period, wall)
     if r.status in (LinearStatus.NEVER, LinearStatus.NOT_AT_LOW_K):
-        return KLimit(None, LimitStatus.NO_STABLE_K, safe_above=tuple(float(lo) for lo, _ in r.intervals))
+        return KLimit(None, LimitStatus.NO_STABLE_K, safe_above=tuple(float(lo) for lo, _ in r.intervals)), float(
+            r.k_crit
+        )
     more = tuple(float(lo) for lo, _ in r.intervals[1:])
-    return KLimit(r.k_crit, non_monotone=bool(more), safe_above=more)
+    return KLimit(r.k_crit, non_monotone=bool(more), safe_above=more), float(r.k_crit)
 
 
 def _colgate_schenkel(dev: Device, wall: Wall, ks: np.ndarray) -> KLimit:
@@ -166,12 +174,13 @@ def _colgate_schenkel(dev: Device, wall: Wall, ks: np.ndarray) -> KLimit:
     return grid_search(judge, ks)
 
 
-def _criterion(dev: Device, wall: Wall, v: float) -> KLimit:
-    """The largest K the criterion proves passive at this wall (:func:`~dfa.analysis.limits.kmax.wall_k_criterion`)."""
+def _criterion(dev: Device, wall: Wall, v: float) -> tuple[KLimit, float | None]:
+    """The largest K the criterion proves passive at this wall (:func:`~dfa.analysis.limits.kmax.wall_k_criterion`),
+    as a limit and as the bisection's value (N/m; 0: none proven; None: no criterion covers the wall)."""
     if wall.params(dev.period, dev.resolution).not_covered() is not None:
-        return KLimit(None, LimitStatus.NOT_COVERED)
+        return KLimit(None, LimitStatus.NOT_COVERED), None
     k = wall_k_criterion(dev, wall, v)
-    return KLimit(k) if k > 0.0 else KLimit(None, LimitStatus.NONE_PROVEN)
+    return (KLimit(k) if k > 0.0 else KLimit(None, LimitStatus.NONE_PROVEN)), k
 
 
 # ----------------------------------------------------------------------------- simulation of the grid
@@ -553,12 +562,18 @@ def z_width_seconds(
 
 
 def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, row: np.ndarray, model: str) -> list[KLimit]:
-    """The limit of every method (:data:`ZWIDTH_METHODS` order) at one B (``wall`` has that damper)."""
+    """The limit of every method (:data:`ZWIDTH_METHODS` order) at one B (``wall`` has that damper).
+
+    The linear bound and the criterion's bisection are computed once: the describing function's search grid
+    (:func:`~dfa.analysis.limits.kmax.closed_forms`) takes their values.
+    """
+    linear, k_linear = _linear_bound(dev, wall)
+    criterion, k_criterion = _criterion(dev, wall, v)
     return [
-        _linear(dev, wall),
+        linear,
         _colgate_schenkel(dev, wall, ks),
-        _criterion(dev, wall, v),
-        describing_limit(dev, wall, v, model, RunCache(), DF_GRID),  # the design answer's k_df
+        criterion,
+        describing_limit(dev, wall, v, model, RunCache(), DF_GRID, k_criterion=k_criterion, k_linear=k_linear),
         _grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}),
         _grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}),
     ]
