@@ -90,6 +90,18 @@ integrated, then the jump. Same results bit for bit as integrating every
 sample (``run_wall_kernel(..., skip=False)``,
 ``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
 
+With a passivity controller (issue 43) the observer's energy E is state
+too, and an unbounded observer's accumulates: it never repeats. The loop
+reads it only through the controller's force, which is 0 at v_h = 0, 0
+while the ledger is >= 0 and exactly ± its limit while the ledger is
+below −limit·|v_h|; a chattering loop whose controller is held at its limit
+(E falling every period) or idle (E rising) repeats bit for bit once E is
+beyond what the rest of the run can bring back (:func:`_pc_repeats`, with
+a bound on the rounding of E's sum). The skip is taken only then, E left
+where it was (whole periods of the same run earlier: the forces repeat from
+it too). A windowed observer is never skipped
+(``tests/test_eq4_passivity_controller_period_skip.py``).
+
 The wall reaches this kernel as one float64 array, its kernel table (layout and element codes:
 :mod:`dfa.core.table`; built by :meth:`dfa.model.wall.WallParams.kernel_table`). :func:`decode_table` reads it
 once per run, one loop over its blocks with a branch per element code, into the fixed tuple the hot loop reads
@@ -459,9 +471,19 @@ def _same_loop(
 # the passivity observer's and controller's state (issue 30; :func:`_command`): the observed energy E (over the
 # window, as the controller sees it), the window's next position, the controller's force of this reading, the
 # observed energy over the whole run, the energy the wall holds at the start (counted at reading 0:
-# :func:`held_energy`), then the controller's d + 1 bookings (beside the command ring's slots), then the window's W
+# :func:`held_energy`), then what period skipping reads (:func:`_pc_repeats`; written by :func:`_observe` and
+# :func:`_control`, read by nothing else): over the readings since the skip's reference, the sums of the observer's
+# terms' positive parts, of their negative parts' magnitudes, of the terms, of their magnitudes, the largest
+# magnitude, the largest |v_h| at a reading where the force was held at its limit, and the modes met (bits of
+# IDLE, HELD, DEPENDS); then the controller's d + 1 bookings (beside the command ring's slots), then the window's W
 # terms
-PE, PWPOS, PF, PTOT, PINIT, PBK = 0, 1, 2, 3, 4, 5
+PE, PWPOS, PF, PTOT, PINIT = 0, 1, 2, 3, 4
+AUP, ADN, ASUM, AABS, AMAX, AVH, AMODE = 5, 6, 7, 8, 9, 10, 11
+PBK = 12
+#: the controller's force at a reading with v_h ≠ 0 (:func:`_control`): 0 as the ledger is >= 0 (IDLE), at its limit
+#: (HELD), or a value that depends on the observed energy itself (DEPENDS); at v_h = 0 it is 0 whatever the energy
+IDLE, HELD, DEPENDS = 1, 2, 4
+_U = 2.0**-53  # the unit roundoff of a double: |fl(a ∘ b) − a ∘ b| <= u |a ∘ b|
 
 
 @njit(cache=True, inline="always")
@@ -483,6 +505,12 @@ def _observe(pcs: FloatArray, applied: float, vh: float, delay: int, window: int
     term = -applied * vh + pcs[PINIT]  # reading 0 also counts the energy the wall holds at the start
     pcs[PINIT] = 0.0
     pcs[PTOT] += term
+    a = abs(term)  # what period skipping reads (:func:`_pc_repeats`)
+    pcs[AUP] += max(term, 0.0)
+    pcs[ADN] += max(-term, 0.0)
+    pcs[ASUM] += term
+    pcs[AABS] += a
+    pcs[AMAX] = max(pcs[AMAX], a)
     e: float = pcs[PE] + term
     if window > 0:
         i = int(pcs[PWPOS])
@@ -528,15 +556,77 @@ def held_energy(x0: float, quantize: bool, ctl: Controller) -> float:
 def _control(pcs: FloatArray, e: float, vh: float, delay: int, pos: int, limit: float) -> float:
     """The passivity controller's force at reading h (Hannaford and Ryu 2002): a damper α = −L/v_h² on v_h when
     the ledger L = E_obs + (the dissipation it has booked for its forces not yet applied and observed) is
-    negative, the force −α v_h = L/v_h clipped to ±``limit``; 0 when L >= 0 or v_h = 0."""
+    negative, the force −α v_h = L/v_h clipped to ±``limit``; 0 when L >= 0 or v_h = 0. The reading's mode
+    (:data:`IDLE`, :data:`HELD`, :data:`DEPENDS`; none at v_h = 0) joins ``pcs[AMODE]``, and |v_h| of a held force
+    ``pcs[AVH]`` (period skipping: :func:`_pc_repeats`)."""
     pending = 0.0
     for i in range(delay + 1):
         if i != pos:  # slot pos holds the command just observed (applied over [h − 1, h))
             pending += pcs[PBK + i]
     ledger = e + pending
     if not (ledger < 0.0 and vh != 0.0):
+        if vh != 0.0:
+            pcs[AMODE] = float(int(pcs[AMODE]) | (IDLE if ledger >= 0.0 else DEPENDS))  # NaN: DEPENDS
         return 0.0
-    return max(-limit, min(limit, ledger / vh))
+    q = ledger / vh
+    if q <= -limit or q >= limit:
+        pcs[AMODE] = float(int(pcs[AMODE]) | HELD)
+        pcs[AVH] = max(pcs[AVH], abs(vh))
+    else:
+        pcs[AMODE] = float(int(pcs[AMODE]) | DEPENDS)
+    return max(-limit, min(limit, q))
+
+
+@njit(cache=True, inline="always")
+def _pc_reset(pcs: FloatArray) -> None:
+    """Start the sums :func:`_pc_repeats` reads afresh (at the skip's reference)."""
+    for i in range(AUP, PBK):
+        pcs[i] = 0.0
+
+
+@njit(cache=True, nogil=True)
+def _pc_repeats(pcs: FloatArray, delay: int, limit: float, period: int, remaining: int) -> bool:
+    """Whether a passivity controller's force repeats with the loop's state for the ``remaining`` readings of the run.
+
+    Called when the loop's state (:func:`_same_loop`) is back after ``period`` readings, with the sums of
+    those readings in ``pcs`` (:func:`_pc_reset` at the reference). An unbounded observer's energy E is no part
+    of that state (it accumulates), but the controller reads it only through its force f, which is 0 at v_h = 0,
+    0 while the ledger L = E + (booked) is >= 0 (IDLE), and exactly ±``limit`` while |L/v_h| >= limit with L < 0
+    (HELD): fl(L/v_h) lies beyond the representable limit whenever the exact quotient does. So if every reading
+    of the period had v_h = 0 or one of these modes (not both), and the observer's energy cannot leave that mode's
+    side over the rest of the run, every later force is the period's, bit for bit, and the loop repeats (by
+    induction over the readings). The terms t = −φ v_h repeat with the state; E after i more terms lies within
+    E_h + (their exact sum) ± i u E_max (one rounding, at most u |result|, per addition; E_max = 2(|E| + R max|t|)
+    bounds |E| over the R remaining readings), and the exact sum of i terms is m ΔE + (a partial sum of one
+    period), so at most Σt⁺ when ΔE = Σt <= 0 and at least −Σt⁻ when ΔE >= 0. The bookings still pending (d of
+    the d + 1 slots) are each at most limit·max|v_h| (held) or 0 (idle), or the one stored now. HELD: ΔE <= 0 and E + Σt⁺ + (the
+    bookings) + limit·max|v_h| + (rounding) <= 0; IDLE: ΔE >= 0 and E − Σt⁻ − (the bookings) − (rounding) >= 0; a
+    period with v_h = 0 throughout: always. The rounding allowance is twice these bounds plus (P + d + 8) u times
+    every magnitude summed (the sums' and the check's own roundings). NaN or inf anywhere: False. A skip then
+    leaves E where it was (a state of the same run, shifted by whole periods: the forces repeat from it as well).
+    """
+    modes = int(pcs[AMODE])
+    if modes & DEPENDS or (modes & IDLE and modes & HELD):
+        return False
+    if modes == 0:
+        return True  # v_h = 0 at every reading: the force is 0 whatever the energy
+    held = modes & HELD != 0
+    vmax = pcs[AVH] if held else 0.0
+    e, tabs, rem = pcs[PE], pcs[AABS], float(remaining)
+    bk, least = 0.0, math.inf  # d of the d + 1 slots are pending at a reading: at most all but the least
+    for i in range(delay + 1):
+        b = max(abs(pcs[PBK + i]), limit * vmax)
+        bk += b
+        least = min(least, b)
+    bk -= least
+    emax = 2.0 * (abs(e) + rem * pcs[AMAX])
+    slack = 2.0 * (rem * _U * emax + (period + delay + 8) * _U * (abs(e) + tabs + bk + limit * vmax))
+    drift = (period + 1) * _U * tabs  # the rounding of ΔE = Σt
+    if not (math.isfinite(slack) and math.isfinite(e) and math.isfinite(bk)):
+        return False
+    if held:
+        return pcs[ASUM] + drift <= 0.0 and e + pcs[AUP] + bk + limit * vmax + slack <= 0.0
+    return pcs[ASUM] - drift >= 0.0 and e - pcs[ADN] - bk - slack >= 0.0
 
 
 @njit(cache=True, inline="always")
@@ -679,16 +769,18 @@ def _advance(
     rec_v: FloatArray,
     skip: bool,
     pcs: FloatArray,
+    n: int,
 ) -> tuple[int, int, float, int]:
-    """Samples h0 … h1 − 1 from the state ``st``; return (end, why, peak |ξ|, samples skipped).
+    """Samples h0 … h1 − 1 of a run of ``n`` samples from the state ``st``; return (end, why, peak |ξ|, samples skipped).
 
     ``ctl`` = (β_B, a, filtered, α, κ_h, one-sided, s, p, ..., φ_max, ξ_travel); why as :func:`dfa.core.kernel.advance`
     (0 ran through, 1 at rest at sample ``end``, 2 past ``bound`` in sample end − 1, 3 left a one-sided wall for
     good at sample ``end``, 4 past the device's travel in sample end − 1: |ξ| > ξ_travel, within the bound).
     The range lies before the tail or in it. With ``skip`` (no records),
     whole periods are skipped once the loop's state repeats bit for bit
-    (Brent's cycle detection, the reference within this range; module docstring); not with a passivity
-    controller, whose observed energy (``pcs``) is part of the state and is not compared.
+    (Brent's cycle detection, the reference within this range; module docstring). With a passivity controller
+    (an unbounded observer) only when its force provably repeats with the state to the run's end
+    (:func:`_pc_repeats`; its accumulating energy ``pcs`` is not compared); not with a windowed observer.
     """
     filtered, lag, travel = ctl[2], ctl[3], ctl[12]
     model = (mu, beta, sigma, delay, quantize)
@@ -698,7 +790,8 @@ def _advance(
     pos, tmin, tmax, period, ext = int(st[CPOS]), st[CTMIN], st[CTMAX], int(st[CPER]), st[CEXT]
     appr, sat, top = st[CAPP] > 0.0, st[CSAT], ctl[11]
     record = rec_x.shape[0] > 0
-    skip = skip and not record and not ctl[8]
+    pc = ctl[8]
+    skip = skip and not record and (not pc or ctl[9] == 0)
     in_tail = h0 >= tail_start
     peak, why, skipped, h = 0.0, 0, 0, h0
     # reference: the state at sample rh (none at sample 0, where y_0 = 0 is forced, nor during an approach, whose
@@ -706,6 +799,8 @@ def _advance(
     rx, rh, span = (x if h0 > 0 and not appr else np.nan), h0, (period if period > 0 else 1)
     if skip:
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
+        if pc:
+            _pc_reset(pcs)
     while h < h1:
         written = pos  # the ring slot that receives c_h
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
@@ -734,6 +829,10 @@ def _advance(
             break
         if skip and x == rx and _same_loop(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa, filtered, lag):
             period = h - rh  # the state of sample rh is back: skip the whole periods left in this range
+            if pc and not _pc_repeats(pcs, delay, ctl[10], period, n - h + 1):
+                rh, span = h, 2 * period  # the controller's force may yet change: look again one period on
+                _pc_reset(pcs)
+                continue
             jump = (h1 - h) // period * period
             if in_tail:
                 for i in range(h, h + jump):
@@ -744,6 +843,8 @@ def _advance(
         elif skip and h - rh == span:
             rx, rh, span = (x if not appr else np.nan), h, 2 * span
             _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
+            if pc:
+                _pc_reset(pcs)
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x, v, r_prev, v_prev, y, fa
     st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CEXT], st[CAPP] = pos, tmin, tmax, period, ext, 1.0 if appr else 0.0
     st[CSAT] = sat
@@ -830,6 +931,18 @@ def run_wall_kernel(
     The run is each of the NSEG segments (split where the tail starts) in
     :func:`_advance`. ``skip=False`` integrates every sample (the reference
     of ``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
+
+With a passivity controller (issue 43) the observer's energy E is state
+too, and an unbounded observer's accumulates: it never repeats. The loop
+reads it only through the controller's force, which is 0 at v_h = 0, 0
+while the ledger is >= 0 and exactly ± its limit while the ledger is
+below −limit·|v_h|; a chattering loop whose controller is held at its limit
+(E falling every period) or idle (E rising) repeats bit for bit once E is
+beyond what the rest of the run can bring back (:func:`_pc_repeats`, with
+a bound on the rounding of E's sum). The skip is taken only then, E left
+where it was (whole periods of the same run earlier: the forces repeat from
+it too). A windowed observer is never skipped
+(``tests/test_eq4_passivity_controller_period_skip.py``).
     The wall's ``table`` is decoded once (:func:`decode_table`).
 
     Examples
@@ -874,7 +987,7 @@ def run_wall_kernel(
             if b > a:
                 end, why, peak, skipped = _advance(
                     st, ring, ref, a, b, mu, beta, sigma, delay, quantize, bound, ctl, tail, tail_start, rx_, rv_,
-                    skip, pcs,
+                    skip, pcs, n,
                 )  # fmt: skip
                 integrated += end - a - skipped
                 if peak > stats[seg]:
