@@ -15,7 +15,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from dfa.core import kernel, wall_kernel
-from dfa.core.wall_kernel import AABS, ADN, AMAX, AMODE, ASUM, AUP, AVH, DEPENDS, HELD, IDLE, PBK, PE
+from dfa.core.wall_kernel import DEPENDS, HELD, IDLE, PBK, PE
 from dfa.model.elements import PassivityController
 from dfa.model.wall import WallParams
 
@@ -121,23 +121,23 @@ def test_eq4_passivity_controller_skip_is_exact_on_a_seeded_sweep():
 
 
 def _observer(mode, e, terms, vmax=0.0, bookings=(0.0,)):
-    """An observer state after one period of ``terms`` with the modes ``mode`` (bits), for :func:`_pc_repeats`."""
+    """An observer at energy ``e`` after one period of ``terms`` with the modes ``mode`` (bits), and what
+    :func:`_pc_track` kept over it (E at its start, E's range, modes, max |v_h|), for :func:`_pc_repeats`."""
     pcs = np.zeros(PBK + len(bookings))
-    t = np.asarray(terms, float)
-    pcs[PE], pcs[AMODE], pcs[AVH] = e, float(mode), vmax
-    pcs[AUP], pcs[ADN], pcs[ASUM] = t[t > 0].sum(), -t[t < 0].sum(), t.sum()
-    pcs[AABS], pcs[AMAX] = np.abs(t).sum(), np.abs(t).max()
-    pcs[PBK:] = bookings
-    return pcs
+    pcs[PE], pcs[PBK:] = e, bookings
+    es = e - np.sum(terms) + np.concatenate(([0.0], np.cumsum(terms)))
+    return pcs, (float(es[0]), float(es.min()), float(es.max()), mode, vmax)
 
 
-def _repeats(pcs, limit=1.0, period=2, remaining=10**6):
-    return wall_kernel._pc_repeats(pcs, len(pcs) - PBK - 1, limit, period, remaining)
+def _repeats(observer, limit=1.0, period=2, remaining=10**6):
+    pcs, track = observer
+    return wall_kernel._pc_repeats(pcs, len(pcs) - PBK - 1, limit, period, remaining, track)
 
 
 def test_eq4_passivity_controller_held_needs_energy_below_its_reach():
-    """HELD: E + Σt⁺ + bookings + limit·max|v_h| must stay below 0 with the rounding of 10⁶ more readings."""
-    terms = [-0.75, 0.25]  # ΔE = −0.5 a period, at most +0.25 within one
+    """HELD: E + (its rise within a period) + bookings + limit·max|v_h| must stay below 0 with the rounding of 10⁶
+    more readings."""
+    terms = [0.25, -0.75]  # ΔE = −0.5 a period, rising by 0.25 within one
     assert _repeats(_observer(HELD, -100.0, terms, vmax=1.0))
     assert _repeats(_observer(HELD, -1.26, terms, vmax=1.0))
     assert not _repeats(_observer(HELD, -1.25, terms, vmax=1.0))  # exactly at the limit: not with the rounding
@@ -148,8 +148,8 @@ def test_eq4_passivity_controller_held_needs_energy_below_its_reach():
 
 
 def test_eq4_passivity_controller_idle_needs_energy_above_its_reach():
-    """IDLE: ΔE >= 0 and E − Σt⁻ − bookings above 0 with the rounding."""
-    terms = [0.75, -0.25]
+    """IDLE: ΔE >= 0 and E − (its fall within a period) − bookings above 0 with the rounding."""
+    terms = [-0.25, 0.75]
     assert _repeats(_observer(IDLE, 1.0, terms))
     assert not _repeats(_observer(IDLE, 0.25, terms))
     assert not _repeats(_observer(IDLE, 100.0, [-0.75, 0.25]))  # E falling: the controller fires some day

@@ -471,15 +471,10 @@ def _same_loop(
 # the passivity observer's and controller's state (issue 30; :func:`_command`): the observed energy E (over the
 # window, as the controller sees it), the window's next position, the controller's force of this reading, the
 # observed energy over the whole run, the energy the wall holds at the start (counted at reading 0:
-# :func:`held_energy`), then what period skipping reads (:func:`_pc_repeats`; written by :func:`_observe` and
-# :func:`_control`, read by nothing else): over the readings since the skip's reference, the sums of the observer's
-# terms' positive parts, of their negative parts' magnitudes, of the terms, of their magnitudes, the largest
-# magnitude, the largest |v_h| at a reading where the force was held at its limit, and the modes met (bits of
-# IDLE, HELD, DEPENDS); then the controller's d + 1 bookings (beside the command ring's slots), then the window's W
-# terms
-PE, PWPOS, PF, PTOT, PINIT = 0, 1, 2, 3, 4
-AUP, ADN, ASUM, AABS, AMAX, AVH, AMODE = 5, 6, 7, 8, 9, 10, 11
-PBK = 12
+# :func:`held_energy`), the mode of this reading's force (0 at v_h = 0, else IDLE, HELD or DEPENDS: what period
+# skipping reads, :func:`_pc_repeats`), then the controller's d + 1 bookings (beside the command ring's slots), then
+# the window's W terms
+PE, PWPOS, PF, PTOT, PINIT, PMODE, PBK = 0, 1, 2, 3, 4, 5, 6
 #: the controller's force at a reading with v_h ≠ 0 (:func:`_control`): 0 as the ledger is >= 0 (IDLE), at its limit
 #: (HELD), or a value that depends on the observed energy itself (DEPENDS); at v_h = 0 it is 0 whatever the energy
 IDLE, HELD, DEPENDS = 1, 2, 4
@@ -505,12 +500,6 @@ def _observe(pcs: FloatArray, applied: float, vh: float, delay: int, window: int
     term = -applied * vh + pcs[PINIT]  # reading 0 also counts the energy the wall holds at the start
     pcs[PINIT] = 0.0
     pcs[PTOT] += term
-    a = abs(term)  # what period skipping reads (:func:`_pc_repeats`)
-    pcs[AUP] += max(term, 0.0)
-    pcs[ADN] += max(-term, 0.0)
-    pcs[ASUM] += term
-    pcs[AABS] += a
-    pcs[AMAX] = max(pcs[AMAX], a)
     e: float = pcs[PE] + term
     if window > 0:
         i = int(pcs[PWPOS])
@@ -557,76 +546,79 @@ def _control(pcs: FloatArray, e: float, vh: float, delay: int, pos: int, limit: 
     """The passivity controller's force at reading h (Hannaford and Ryu 2002): a damper α = −L/v_h² on v_h when
     the ledger L = E_obs + (the dissipation it has booked for its forces not yet applied and observed) is
     negative, the force −α v_h = L/v_h clipped to ±``limit``; 0 when L >= 0 or v_h = 0. The reading's mode
-    (:data:`IDLE`, :data:`HELD`, :data:`DEPENDS`; none at v_h = 0) joins ``pcs[AMODE]``, and |v_h| of a held force
-    ``pcs[AVH]`` (period skipping: :func:`_pc_repeats`)."""
+    (:data:`IDLE`, :data:`HELD`, :data:`DEPENDS`; 0 at v_h = 0) into ``pcs[PMODE]`` (period skipping:
+    :func:`_pc_repeats`)."""
     pending = 0.0
     for i in range(delay + 1):
         if i != pos:  # slot pos holds the command just observed (applied over [h − 1, h))
             pending += pcs[PBK + i]
     ledger = e + pending
     if not (ledger < 0.0 and vh != 0.0):
-        if vh != 0.0:
-            pcs[AMODE] = float(int(pcs[AMODE]) | (IDLE if ledger >= 0.0 else DEPENDS))  # NaN: DEPENDS
+        pcs[PMODE] = 0.0 if vh == 0.0 else (IDLE if ledger >= 0.0 else DEPENDS)  # NaN: DEPENDS
         return 0.0
     q = ledger / vh
-    if q <= -limit or q >= limit:
-        pcs[AMODE] = float(int(pcs[AMODE]) | HELD)
-        pcs[AVH] = max(pcs[AVH], abs(vh))
-    else:
-        pcs[AMODE] = float(int(pcs[AMODE]) | DEPENDS)
+    pcs[PMODE] = HELD if (q <= -limit or q >= limit) else DEPENDS
     return max(-limit, min(limit, q))
 
 
 @njit(cache=True, inline="always")
-def _pc_reset(pcs: FloatArray) -> None:
-    """Start the sums :func:`_pc_repeats` reads afresh (at the skip's reference)."""
-    for i in range(AUP, PBK):
-        pcs[i] = 0.0
+def _pc_track(pcs: FloatArray, lo: float, hi: float, modes: int, vmax: float, vh: float) -> tuple[float, float, int, float]:
+    """One more reading of a tracked period (:func:`_pc_repeats`): the range of E, the modes met, the largest
+    |v_h| at a held force."""
+    e, m = pcs[PE], int(pcs[PMODE])
+    if m == HELD:
+        vmax = max(vmax, abs(vh))
+    return min(lo, e), max(hi, e), modes | m, vmax
 
 
 @njit(cache=True, nogil=True)
-def _pc_repeats(pcs: FloatArray, delay: int, limit: float, period: int, remaining: int) -> bool:
+def _pc_repeats(
+    pcs: FloatArray, delay: int, limit: float, period: int, remaining: int, track: tuple[float, float, float, int, float]
+) -> bool:
     """Whether a passivity controller's force repeats with the loop's state for the ``remaining`` readings of the run.
 
-    Called when the loop's state (:func:`_same_loop`) is back after ``period`` readings, with the sums of
-    those readings in ``pcs`` (:func:`_pc_reset` at the reference). An unbounded observer's energy E is no part
-    of that state (it accumulates), but the controller reads it only through its force f, which is 0 at v_h = 0,
-    0 while the ledger L = E + (booked) is >= 0 (IDLE), and exactly ±``limit`` while |L/v_h| >= limit with L < 0
-    (HELD): fl(L/v_h) lies beyond the representable limit whenever the exact quotient does. So if every reading
-    of the period had v_h = 0 or one of these modes (not both), and the observer's energy cannot leave that mode's
-    side over the rest of the run, every later force is the period's, bit for bit, and the loop repeats (by
-    induction over the readings). The terms t = −φ v_h repeat with the state; E after i more terms lies within
-    E_h + (their exact sum) ± i u E_max (one rounding, at most u |result|, per addition; E_max = 2(|E| + R max|t|)
-    bounds |E| over the R remaining readings), and the exact sum of i terms is m ΔE + (a partial sum of one
-    period), so at most Σt⁺ when ΔE = Σt <= 0 and at least −Σt⁻ when ΔE >= 0. The bookings still pending (d of
-    the d + 1 slots) are each at most limit·max|v_h| (held) or 0 (idle), or the one stored now. HELD: ΔE <= 0 and E + Σt⁺ + (the
-    bookings) + limit·max|v_h| + (rounding) <= 0; IDLE: ΔE >= 0 and E − Σt⁻ − (the bookings) − (rounding) >= 0; a
-    period with v_h = 0 throughout: always. The rounding allowance is twice these bounds plus (P + d + 8) u times
-    every magnitude summed (the sums' and the check's own roundings). NaN or inf anywhere: False. A skip then
-    leaves E where it was (a state of the same run, shifted by whole periods: the forces repeat from it as well).
+    Called when the loop's state (:func:`_same_loop`) is back after ``period`` readings over which ``track`` =
+    (E at the start, least and largest E, the modes met, the largest |v_h| at a held force; :func:`_pc_track`) was
+    kept. An unbounded observer's energy E is no part of that state (it accumulates), but the controller reads it
+    only through its force f, which is 0 at v_h = 0, 0 while the ledger L = E + (booked) is >= 0 (IDLE), and
+    exactly ±``limit`` while |L/v_h| >= limit with L < 0 (HELD): fl(L/v_h) lies beyond the representable limit
+    whenever the exact quotient does. So if every reading of the period had v_h = 0 or one of these modes (not
+    both), and E cannot leave that mode's side over the rest of the run, every later force is the period's, bit
+    for bit, and the loop repeats (by induction over the readings). The terms t = −φ v_h repeat with the state.
+    Each addition to E rounds by at most u |result|: the period's exact sum ΔE and its exact partial sums lie
+    within (P + 2) u max|E| of E_h − E_0 and of (E over the period) − E_0; E after i more readings lies within
+    E_h + m ΔE + (a partial sum) ± i u E_max, E_max bounding |E| over the R remaining readings. So E stays at most
+    E_h + (max E − E_0) (+ rounding) when ΔE <= 0, and at least E_h − (E_0 − min E) when ΔE >= 0. The bookings
+    pending (d of the d + 1 slots) are each at most limit·max|v_h| (held) or 0 (idle), or the one stored now.
+    HELD: ΔE <= 0 and E + rise + bookings + limit·max|v_h| + rounding <= 0; IDLE: ΔE >= 0 and E − fall − bookings
+    − rounding >= 0; a period with v_h = 0 throughout: always. Every rounding allowance is doubled, plus (P + d +
+    8) u times every magnitude (the check's own roundings). NaN or inf anywhere: False. A skip leaves E where it
+    was (a state of the same run whole periods earlier: the forces repeat from it as well).
     """
-    modes = int(pcs[AMODE])
+    e0, lo, hi, modes, vmax = track
     if modes & DEPENDS or (modes & IDLE and modes & HELD):
         return False
     if modes == 0:
         return True  # v_h = 0 at every reading: the force is 0 whatever the energy
     held = modes & HELD != 0
-    vmax = pcs[AVH] if held else 0.0
-    e, tabs, rem = pcs[PE], pcs[AABS], float(remaining)
+    f = limit * vmax if held else 0.0
     bk, least = 0.0, math.inf  # d of the d + 1 slots are pending at a reading: at most all but the least
     for i in range(delay + 1):
-        b = max(abs(pcs[PBK + i]), limit * vmax)
+        b = max(abs(pcs[PBK + i]), f)
         bk += b
         least = min(least, b)
     bk -= least
-    emax = 2.0 * (abs(e) + rem * pcs[AMAX])
-    slack = 2.0 * (rem * _U * emax + (period + delay + 8) * _U * (abs(e) + tabs + bk + limit * vmax))
-    drift = (period + 1) * _U * tabs  # the rounding of ΔE = Σt
-    if not (math.isfinite(slack) and math.isfinite(e) and math.isfinite(bk)):
+    e, rem = pcs[PE], float(remaining)
+    loc = max(abs(lo), abs(hi))
+    err = (period + 2) * _U * loc  # the rounding of the period's sums
+    de = e - e0
+    efut = 2.0 * (abs(e) + (rem / period + 1.0) * (abs(de) + err) + (hi - lo) + err)
+    slack = 2.0 * (rem * _U * efut + err + (period + delay + 8) * _U * (loc + (hi - lo) + bk + f))
+    if not (math.isfinite(slack) and math.isfinite(bk)):
         return False
     if held:
-        return pcs[ASUM] + drift <= 0.0 and e + pcs[AUP] + bk + limit * vmax + slack <= 0.0
-    return pcs[ASUM] - drift >= 0.0 and e - pcs[ADN] - bk - slack >= 0.0
+        return de + err <= 0.0 and e + (hi - e0) + bk + f + slack <= 0.0
+    return de - err >= 0.0 and e - (e0 - lo) - bk - slack >= 0.0
 
 
 @njit(cache=True, inline="always")
@@ -799,13 +791,15 @@ def _advance(
     rx, rh, span = (x if h0 > 0 and not appr else np.nan), h0, (period if period > 0 else 1)
     if skip:
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
-        if pc:
-            _pc_reset(pcs)
+    # a passivity controller's period under watch (:func:`_pc_track`): E at its start, E's range, modes, max |v_h|
+    tracking, e0, elo, ehi, modes, vmax = False, 0.0, 0.0, 0.0, 0, 0.0
     while h < h1:
-        written = pos  # the ring slot that receives c_h
+        written, r_old = pos, r_prev  # the ring slot that receives c_h; r_{h−1}
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
             x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr, pcs
         )
+        if tracking:
+            elo, ehi, modes, vmax = _pc_track(pcs, elo, ehi, modes, vmax, r_prev - r_old)
         if abs(ring[written]) >= top:  # c_h at the actuator's force limit (never with no limit: top = inf)
             sat = max(sat, 2.0 if in_tail else 1.0)
         if absorbed:
@@ -829,9 +823,12 @@ def _advance(
             break
         if skip and x == rx and _same_loop(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa, filtered, lag):
             period = h - rh  # the state of sample rh is back: skip the whole periods left in this range
-            if pc and not _pc_repeats(pcs, delay, ctl[10], period, n - h + 1):
-                rh, span = h, 2 * period  # the controller's force may yet change: look again one period on
-                _pc_reset(pcs)
+            track = (e0, elo, ehi, modes, vmax)
+            if pc and not (tracking and _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track)):
+                # the controller's force may yet change: watch it over the next period, from this same state
+                tracking, rh, span = True, h, 2 * period
+                e0 = elo = ehi = pcs[PE]
+                modes, vmax = 0, 0.0
                 continue
             jump = (h1 - h) // period * period
             if in_tail:
@@ -843,8 +840,7 @@ def _advance(
         elif skip and h - rh == span:
             rx, rh, span = (x if not appr else np.nan), h, 2 * span
             _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
-            if pc:
-                _pc_reset(pcs)
+            tracking = False
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x, v, r_prev, v_prev, y, fa
     st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CEXT], st[CAPP] = pos, tmin, tmax, period, ext, 1.0 if appr else 0.0
     st[CSAT] = sat
