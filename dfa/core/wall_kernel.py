@@ -562,7 +562,9 @@ def _control(pcs: FloatArray, e: float, vh: float, delay: int, pos: int, limit: 
 
 
 @njit(cache=True, inline="always")
-def _pc_track(pcs: FloatArray, lo: float, hi: float, modes: int, vmax: float, vh: float) -> tuple[float, float, int, float]:
+def _pc_track(
+    pcs: FloatArray, lo: float, hi: float, modes: int, vmax: float, vh: float
+) -> tuple[float, float, int, float]:
     """One more reading of a tracked period (:func:`_pc_repeats`): the range of E, the modes met, the largest
     |v_h| at a held force."""
     e, m = pcs[PE], int(pcs[PMODE])
@@ -573,7 +575,12 @@ def _pc_track(pcs: FloatArray, lo: float, hi: float, modes: int, vmax: float, vh
 
 @njit(cache=True, nogil=True)
 def _pc_repeats(
-    pcs: FloatArray, delay: int, limit: float, period: int, remaining: int, track: tuple[float, float, float, int, float]
+    pcs: FloatArray,
+    delay: int,
+    limit: float,
+    period: int,
+    remaining: int,
+    track: tuple[float, float, float, int, float],
 ) -> bool:
     """Whether a passivity controller's force repeats with the loop's state for the ``remaining`` readings of the run.
 
@@ -927,18 +934,6 @@ def run_wall_kernel(
     The run is each of the NSEG segments (split where the tail starts) in
     :func:`_advance`. ``skip=False`` integrates every sample (the reference
     of ``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
-
-With a passivity controller (issue 43) the observer's energy E is state
-too, and an unbounded observer's accumulates: it never repeats. The loop
-reads it only through the controller's force, which is 0 at v_h = 0, 0
-while the ledger is >= 0 and exactly ± its limit while the ledger is
-below −limit·|v_h|; a chattering loop whose controller is held at its limit
-(E falling every period) or idle (E rising) repeats bit for bit once E is
-beyond what the rest of the run can bring back (:func:`_pc_repeats`, with
-a bound on the rounding of E's sum). The skip is taken only then, E left
-where it was (whole periods of the same run earlier: the forces repeat from
-it too). A windowed observer is never skipped
-(``tests/test_eq4_passivity_controller_period_skip.py``).
     The wall's ``table`` is decoded once (:func:`decode_table`).
 
     Examples
