@@ -621,7 +621,7 @@ def _pc_repeats(
     de = e - e0
     efut = 2.0 * (abs(e) + (rem / period + 1.0) * (abs(de) + err) + (hi - lo) + err)
     slack = 2.0 * (rem * _U * efut + err + (period + delay + 8) * _U * (loc + (hi - lo) + bk + f))
-    if not (math.isfinite(slack) and math.isfinite(bk)):
+    if not (math.isfinite(slack) and math.isfinite(bk) and rem * _U < 0.25):  # E_max holds while R u <= 1/2
         return False
     if held:
         return de + err <= 0.0 and e + (hi - e0) + bk + f + slack <= 0.0
