@@ -90,6 +90,18 @@ integrated, then the jump. Same results bit for bit as integrating every
 sample (``run_wall_kernel(..., skip=False)``,
 ``tests/test_eq4_controller_period_skip.py``); records switch skipping off.
 
+With a passivity controller (issue 43) the observer's energy E is state
+too, and an unbounded observer's accumulates: it never repeats. The loop
+reads it only through the controller's force, which is 0 at v_h = 0, 0
+while the ledger is >= 0 and exactly ± its limit while the ledger is
+below −limit·|v_h|; a chattering loop whose controller is held at its limit
+(E falling every period) or idle (E rising) repeats bit for bit once E is
+beyond what the rest of the run can bring back (:func:`_pc_repeats`, with
+a bound on the rounding of E's sum). The skip is taken only then, E left
+where it was (whole periods of the same run earlier: the forces repeat from
+it too). A windowed observer is never skipped
+(``tests/test_eq4_passivity_controller_period_skip.py``).
+
 The wall reaches this kernel as one float64 array, its kernel table (layout and element codes:
 :mod:`dfa.core.table`; built by :meth:`dfa.model.wall.WallParams.kernel_table`). :func:`decode_table` reads it
 once per run, one loop over its blocks with a branch per element code, into the fixed tuple the hot loop reads
@@ -459,9 +471,14 @@ def _same_loop(
 # the passivity observer's and controller's state (issue 30; :func:`_command`): the observed energy E (over the
 # window, as the controller sees it), the window's next position, the controller's force of this reading, the
 # observed energy over the whole run, the energy the wall holds at the start (counted at reading 0:
-# :func:`held_energy`), then the controller's d + 1 bookings (beside the command ring's slots), then the window's W
-# terms
-PE, PWPOS, PF, PTOT, PINIT, PBK = 0, 1, 2, 3, 4, 5
+# :func:`held_energy`), the mode of this reading's force (0 at v_h = 0, else IDLE, HELD or DEPENDS: what period
+# skipping reads, :func:`_pc_repeats`), then the controller's d + 1 bookings (beside the command ring's slots), then
+# the window's W terms
+PE, PWPOS, PF, PTOT, PINIT, PMODE, PBK = 0, 1, 2, 3, 4, 5, 6
+#: the controller's force at a reading with v_h ≠ 0 (:func:`_control`): 0 as the ledger is >= 0 (IDLE), at its limit
+#: (HELD), or a value that depends on the observed energy itself (DEPENDS); at v_h = 0 it is 0 whatever the energy
+IDLE, HELD, DEPENDS = 1, 2, 4
+_U = 2.0**-53  # the unit roundoff of a double: |fl(a ∘ b) − a ∘ b| <= u |a ∘ b|
 
 
 @njit(cache=True, inline="always")
@@ -528,15 +545,87 @@ def held_energy(x0: float, quantize: bool, ctl: Controller) -> float:
 def _control(pcs: FloatArray, e: float, vh: float, delay: int, pos: int, limit: float) -> float:
     """The passivity controller's force at reading h (Hannaford and Ryu 2002): a damper α = −L/v_h² on v_h when
     the ledger L = E_obs + (the dissipation it has booked for its forces not yet applied and observed) is
-    negative, the force −α v_h = L/v_h clipped to ±``limit``; 0 when L >= 0 or v_h = 0."""
+    negative, the force −α v_h = L/v_h clipped to ±``limit``; 0 when L >= 0 or v_h = 0. The reading's mode
+    (:data:`IDLE`, :data:`HELD`, :data:`DEPENDS`; 0 at v_h = 0) into ``pcs[PMODE]`` (period skipping:
+    :func:`_pc_repeats`)."""
     pending = 0.0
     for i in range(delay + 1):
         if i != pos:  # slot pos holds the command just observed (applied over [h − 1, h))
             pending += pcs[PBK + i]
     ledger = e + pending
     if not (ledger < 0.0 and vh != 0.0):
+        pcs[PMODE] = 0.0 if vh == 0.0 else (IDLE if ledger >= 0.0 else DEPENDS)  # NaN: DEPENDS
         return 0.0
-    return max(-limit, min(limit, ledger / vh))
+    q = ledger / vh
+    pcs[PMODE] = HELD if (q <= -limit or q >= limit) else DEPENDS
+    return max(-limit, min(limit, q))
+
+
+@njit(cache=True, inline="always")
+def _pc_track(
+    pcs: FloatArray, lo: float, hi: float, modes: int, vmax: float, vh: float
+) -> tuple[float, float, int, float]:
+    """One more reading of a tracked period (:func:`_pc_repeats`): the range of E, the modes met, the largest
+    |v_h| at a held force."""
+    e, m = pcs[PE], int(pcs[PMODE])
+    if m == HELD:
+        vmax = max(vmax, abs(vh))
+    return min(lo, e), max(hi, e), modes | m, vmax
+
+
+@njit(cache=True, nogil=True)
+def _pc_repeats(
+    pcs: FloatArray,
+    delay: int,
+    limit: float,
+    period: int,
+    remaining: int,
+    track: tuple[float, float, float, int, float],
+) -> bool:
+    """Whether a passivity controller's force repeats with the loop's state for the ``remaining`` readings of the run.
+
+    Called when the loop's state (:func:`_same_loop`) is back after ``period`` readings over which ``track`` =
+    (E at the start, least and largest E, the modes met, the largest |v_h| at a held force; :func:`_pc_track`) was
+    kept. An unbounded observer's energy E is no part of that state (it accumulates), but the controller reads it
+    only through its force f, which is 0 at v_h = 0, 0 while the ledger L = E + (booked) is >= 0 (IDLE), and
+    exactly ±``limit`` while |L/v_h| >= limit with L < 0 (HELD): fl(L/v_h) lies beyond the representable limit
+    whenever the exact quotient does. So if every reading of the period had v_h = 0 or one of these modes (not
+    both), and E cannot leave that mode's side over the rest of the run, every later force is the period's, bit
+    for bit, and the loop repeats (by induction over the readings). The terms t = −φ v_h repeat with the state.
+    Each addition to E rounds by at most u |result|: the period's exact sum ΔE and its exact partial sums lie
+    within (P + 2) u max|E| of E_h − E_0 and of (E over the period) − E_0; E after i more readings lies within
+    E_h + m ΔE + (a partial sum) ± i u E_max, E_max bounding |E| over the R remaining readings. So E stays at most
+    E_h + (max E − E_0) (+ rounding) when ΔE <= 0, and at least E_h − (E_0 − min E) when ΔE >= 0. The bookings
+    pending (d of the d + 1 slots) are each at most limit·max|v_h| (held) or 0 (idle), or the one stored now.
+    HELD: ΔE <= 0 and E + rise + bookings + limit·max|v_h| + rounding <= 0; IDLE: ΔE >= 0 and E − fall − bookings
+    − rounding >= 0; a period with v_h = 0 throughout: always. Every rounding allowance is doubled, plus (P + d +
+    8) u times every magnitude (the check's own roundings). NaN or inf anywhere: False. A skip leaves E where it
+    was (a state of the same run whole periods earlier: the forces repeat from it as well).
+    """
+    e0, lo, hi, modes, vmax = track
+    if modes & DEPENDS or (modes & IDLE and modes & HELD):
+        return False
+    if modes == 0:
+        return True  # v_h = 0 at every reading: the force is 0 whatever the energy
+    held = modes & HELD != 0
+    f = limit * vmax if held else 0.0
+    bk, least = 0.0, math.inf  # d of the d + 1 slots are pending at a reading: at most all but the least
+    for i in range(delay + 1):
+        b = max(abs(pcs[PBK + i]), f)
+        bk += b
+        least = min(least, b)
+    bk -= least
+    e, rem = pcs[PE], float(remaining)
+    loc = max(abs(lo), abs(hi))
+    err = (period + 2) * _U * loc  # the rounding of the period's sums
+    de = e - e0
+    efut = 2.0 * (abs(e) + (rem / period + 1.0) * (abs(de) + err) + (hi - lo) + err)
+    slack = 2.0 * (rem * _U * efut + err + (period + delay + 8) * _U * (loc + (hi - lo) + bk + f))
+    if not (math.isfinite(slack) and math.isfinite(bk) and rem * _U < 0.25):  # E_max holds while R u <= 1/2
+        return False
+    if held:
+        return de + err <= 0.0 and e + (hi - e0) + bk + f + slack <= 0.0
+    return de - err >= 0.0 and e - (e0 - lo) - bk - slack >= 0.0
 
 
 @njit(cache=True, inline="always")
@@ -679,16 +768,18 @@ def _advance(
     rec_v: FloatArray,
     skip: bool,
     pcs: FloatArray,
+    n: int,
 ) -> tuple[int, int, float, int]:
-    """Samples h0 … h1 − 1 from the state ``st``; return (end, why, peak |ξ|, samples skipped).
+    """Samples h0 … h1 − 1 of a run of ``n`` samples from the state ``st``; return (end, why, peak |ξ|, samples skipped).
 
     ``ctl`` = (β_B, a, filtered, α, κ_h, one-sided, s, p, ..., φ_max, ξ_travel); why as :func:`dfa.core.kernel.advance`
     (0 ran through, 1 at rest at sample ``end``, 2 past ``bound`` in sample end − 1, 3 left a one-sided wall for
     good at sample ``end``, 4 past the device's travel in sample end − 1: |ξ| > ξ_travel, within the bound).
     The range lies before the tail or in it. With ``skip`` (no records),
     whole periods are skipped once the loop's state repeats bit for bit
-    (Brent's cycle detection, the reference within this range; module docstring); not with a passivity
-    controller, whose observed energy (``pcs``) is part of the state and is not compared.
+    (Brent's cycle detection, the reference within this range; module docstring). With a passivity controller
+    (an unbounded observer) only when its force provably repeats with the state to the run's end
+    (:func:`_pc_repeats`; its accumulating energy ``pcs`` is not compared); not with a windowed observer.
     """
     filtered, lag, travel = ctl[2], ctl[3], ctl[12]
     model = (mu, beta, sigma, delay, quantize)
@@ -698,7 +789,8 @@ def _advance(
     pos, tmin, tmax, period, ext = int(st[CPOS]), st[CTMIN], st[CTMAX], int(st[CPER]), st[CEXT]
     appr, sat, top = st[CAPP] > 0.0, st[CSAT], ctl[11]
     record = rec_x.shape[0] > 0
-    skip = skip and not record and not ctl[8]
+    pc = ctl[8]
+    skip = skip and not record and (not pc or ctl[9] == 0)
     in_tail = h0 >= tail_start
     peak, why, skipped, h = 0.0, 0, 0, h0
     # reference: the state at sample rh (none at sample 0, where y_0 = 0 is forced, nor during an approach, whose
@@ -706,11 +798,15 @@ def _advance(
     rx, rh, span = (x if h0 > 0 and not appr else np.nan), h0, (period if period > 0 else 1)
     if skip:
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
+    # a passivity controller's period under watch (:func:`_pc_track`): E at its start, E's range, modes, max |v_h|
+    tracking, e0, elo, ehi, modes, vmax = False, 0.0, 0.0, 0.0, 0, 0.0
     while h < h1:
-        written = pos  # the ring slot that receives c_h
+        written, r_old = pos, r_prev  # the ring slot that receives c_h; r_{h−1}
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
             x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr, pcs
         )
+        if tracking:
+            elo, ehi, modes, vmax = _pc_track(pcs, elo, ehi, modes, vmax, r_prev - r_old)
         if abs(ring[written]) >= top:  # c_h at the actuator's force limit (never with no limit: top = inf)
             sat = max(sat, 2.0 if in_tail else 1.0)
         if absorbed:
@@ -734,6 +830,13 @@ def _advance(
             break
         if skip and x == rx and _same_loop(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa, filtered, lag):
             period = h - rh  # the state of sample rh is back: skip the whole periods left in this range
+            track = (e0, elo, ehi, modes, vmax)
+            if pc and not (tracking and _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track)):
+                # the controller's force may yet change: watch it over the next period, from this same state
+                tracking, rh, span = True, h, 2 * period
+                e0 = elo = ehi = pcs[PE]
+                modes, vmax = 0, 0.0
+                continue
             jump = (h1 - h) // period * period
             if in_tail:
                 for i in range(h, h + jump):
@@ -744,6 +847,7 @@ def _advance(
         elif skip and h - rh == span:
             rx, rh, span = (x if not appr else np.nan), h, 2 * span
             _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
+            tracking = False
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x, v, r_prev, v_prev, y, fa
     st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CEXT], st[CAPP] = pos, tmin, tmax, period, ext, 1.0 if appr else 0.0
     st[CSAT] = sat
@@ -874,7 +978,7 @@ def run_wall_kernel(
             if b > a:
                 end, why, peak, skipped = _advance(
                     st, ring, ref, a, b, mu, beta, sigma, delay, quantize, bound, ctl, tail, tail_start, rx_, rv_,
-                    skip, pcs,
+                    skip, pcs, n,
                 )  # fmt: skip
                 integrated += end - a - skipped
                 if peak > stats[seg]:
