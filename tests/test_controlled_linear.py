@@ -444,18 +444,51 @@ def test_slow_poles_status_agrees_with_the_spectral_radius_on_both_sides_of_k_cr
 
 
 def test_linear_crossing_cell_whose_ends_agree_in_sign_gives_the_end_nearer_zero():
-    """The exact linear bound's crossing angles (linear_wall._candidate_angles): a grid cell flagged on the array's
-    signs whose ends, evaluated one at a time, agree in sign (Im(P0 conj Q) within rounding of 0 at an end) is
+    """The exact linear bound's crossing angles (linear_wall._candidate_angles, _roots_in_cells): a grid cell
+    whose ends agree in sign (Im(P0 conj Q) within rounding of 0 at an end) is
     that end, not a brentq ValueError ('f(a) and f(b) must have different signs', found by `dfa require` with a
     damper, filter and delay, issue 41); a cell with a sign change gives a root where Im(P0 conj Q) vanishes."""
-    from dfa.analysis.linear_wall import _im_part, _root_in_cell
+    from dfa.analysis.linear_wall import _im_part, _roots_in_cells
 
     p0, q = np.array([1.0, -0.4, 0.3]), np.array([1.0, 0.2])
     thetas = np.linspace(0.01, 3.1, 2000)
     g = _im_part(p0, q, thetas)
     i = int(np.nonzero(g[:-1] * g[1:] < 0.0)[0][0])
-    root = _root_in_cell(p0, q, thetas[i], thetas[i + 1])
+    a, b = thetas[[i, i + 5]], thetas[[i + 1, i + 6]]  # a sign change; then one sign at both ends
+    fa, fb = _im_part(p0, q, a), _im_part(p0, q, b)
+    root, end = _roots_in_cells(p0, q, a, b, fa, fb)
     assert thetas[i] <= root <= thetas[i + 1] and abs(float(_im_part(p0, q, root))) < 1e-12
-    a, b = thetas[i + 5], thetas[i + 6]  # one sign at both ends
-    fa, fb = float(_im_part(p0, q, a)), float(_im_part(p0, q, b))
-    assert fa * fb > 0 and _root_in_cell(p0, q, a, b) == (a if abs(fa) <= abs(fb) else b)
+    assert fa[1] * fb[1] > 0 and end == (a[1] if abs(fa[1]) <= abs(fb[1]) else b[1])
+
+
+@pytest.mark.parametrize(
+    ("b", "big_b", "fc", "fbw", "d"),
+    [(0.01, 1.0, 200.0, None, 1), (0.5, 2.0, 50.0, 300.0, 3), (0.01, 1.0, 200.0, None, 12), (2.0, 0.0, None, 80.0, 5)],
+)
+def test_linear_crossing_angles_match_a_dense_scan_and_k_crit_the_spectral_radius(b, big_b, fc, fbw, d):
+    """The crossing angles of the exact linear bound (linear_wall._candidate_angles: sign changes of Im(P0 conj Q)
+    on its grid, bisected to neighbouring floats all at once) against an independent scan 16 times denser: every
+    sign change of the dense scan lies within one of its cells of a candidate; and K_crit against a bisection of
+    the spectral radius of the closed loop (rho(K) = 1 to 1e-12 relative), which uses no crossing at all: the
+    same to 1e-9 relative."""
+    from dfa.analysis.linear_wall import _candidate_angles, _im_part, _ray, controlled_spectral_radius
+
+    m, t = 0.25, 1.0 / 3000.0
+    wall = Wall.of(1.0, damping=big_b, delay=d, filter_cutoff=fc, amplifier_bandwidth=fbw)
+    p = wall.params(t)
+    p0, q = _ray(b * t / m, big_b * t / m, p)
+    cand = np.sort(_candidate_angles(p0, q))
+    dense = np.linspace(0.0, math.pi, 16 * 512 * len(p0))[1:]
+    g = _im_part(p0, q, dense)
+    for i in np.nonzero(g[:-1] * g[1:] < 0.0)[0]:
+        assert np.any((cand >= dense[i] - 1e-12) & (cand <= dense[i + 1] + 1e-12)), dense[i]
+    r = stable_stiffness(m, b, t, wall)
+
+    def rho(k):
+        return controlled_spectral_radius(m / (k * t * t), b / (k * t), wall.with_stiffness(k).params(t))
+
+    lo, hi = 0.5 * r.k_crit, 2.0 * r.k_crit
+    assert rho(lo) < 1.0 < rho(hi)
+    while hi - lo > 1e-12 * hi:
+        lo, hi = (0.5 * (lo + hi), hi) if rho(0.5 * (lo + hi)) < 1.0 else (lo, 0.5 * (lo + hi))
+    assert r.k_crit == pytest.approx(lo, rel=1e-9)

@@ -39,7 +39,10 @@ infinity as κ → ∞ (unstable for large K). Stability can change only at a κ
 where a root lies on the unit circle, i.e. κ = −P₀(z)/Q(z) real and positive on
 |z| = 1: at z = −1, and at z = e^{jθ} where Im(P₀ Q̄) = 0 — the unit-circle roots
 of R(z) = P₀(z) z^n Q(1/z) − Q(z) z^n P₀(1/z) (n = deg P₀), joined with the sign
-changes of Im(P₀ Q̄) on a dense θ grid, each polished by bracketing. Between
+changes of Im(P₀ Q̄) on a dense θ grid (512(n + 1) cells, the first refined geometrically to θ = 1e-10),
+each polished by bracketing: every cell of the grid whose ends differ in sign holds a root and is bisected,
+all cells at once as arrays, until its ends are neighbouring floats (no crossing between grid cells is
+missed, and none is found less tightly than to the last bit at which Im(P₀ Q̄) changes sign). Between
 consecutive candidates the stability is constant; it is decided by the spectral
 radius at the geometric mean, and the resulting stable set (one interval, several,
 or none) is checked against the spectral radius on an independent geometric grid
@@ -329,77 +332,124 @@ def _im_part(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
     return np.imag(_pq(p0, q, unit_circle_w(theta))[0])
 
 
-def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> list[float]:
+def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Angles θ in [0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle (found in z, then polished in w),
-    grid sign changes, 0 and π (P₀, Q in w = z − 1)."""
+    grid sign changes, 0 and π (P₀, Q in w = z − 1).
 
+    Every sign change of Im(P₀ Q̄) between neighbouring points of the angle grid (512(n + 1) uniform cells on
+    [0, π], the first one refined geometrically down to θ = 1e-10) is a cell holding a root, and every such cell
+    is refined (:func:`_roots_in_cells`, all cells at once) by bisection on the sign until its ends are
+    neighbouring floats: no crossing between grid cells is missed, and each is found to the last bit of θ at
+    which Im(P₀ Q̄), evaluated in w, changes sign (at least as tight as the 1e-15 of the ``brentq`` it
+    replaces). The roots of R on the circle (np.roots in z: a few digits) are polished by :func:`_polish_all`.
+    """
     n = len(p0) - 1
     pz, qz = _to_z(p0), _to_z(q)
     qp = np.concatenate([np.zeros(n + 1 - len(qz)), qz])
     r: np.ndarray = np.polysub(np.polymul(pz, qp[::-1]), np.polymul(qp, pz[::-1]))
-    out = [math.pi]
+    ends = [math.pi]
     if abs(p0[-1]) > 1e-9 * np.abs(p0).sum():  # P₀(z = 1) = P₀(w = 0)
-        out.append(0.0)  # z = 1 is a root of P₀ for the device (κ = 0); a crossing only for other pairs
+        ends.append(0.0)  # z = 1 is a root of P₀ for the device (κ = 0); a crossing only for other pairs
+    found = []
     nz = np.nonzero(np.abs(r) > 0.0)[0]
     if nz.size:
         for z in np.roots(r[nz[0] :]):
             if abs(abs(z) - 1.0) < 1e-4 and abs(np.angle(z)) > 1e-12:
-                out.append(abs(float(np.angle(z))))
+                found.append(abs(float(np.angle(z))))
     lin = np.linspace(0.0, math.pi, 512 * (n + 1))
     # and geometrically down to 1e-10 inside the first cell: slow poles put the crossing at θ ~ 1e-4 … 1e-3
     grid = np.concatenate([[0.0], geometric_grid(1e-10, lin[1], 400, endpoint=False), lin[1:]])
     g = _im_part(p0, q, grid)
-    for i in np.nonzero(g[1:-1] * g[2:] < 0.0)[0] + 1:  # from the first θ > 0: Im(P₀ Q̄) = 0 at θ = 0
-        out.append(_root_in_cell(p0, q, grid[i], grid[i + 1]))
-    return [_polish(p0, q, t) for t in out]
+    i = np.nonzero(g[1:-1] * g[2:] < 0.0)[0] + 1  # from the first θ > 0: Im(P₀ Q̄) = 0 at θ = 0
+    cells = _roots_in_cells(p0, q, grid[i], grid[i + 1], g[i], g[i + 1])
+    return np.concatenate([ends, _polish_all(p0, q, np.array(found)), cells])
 
 
-def _root_in_cell(p0: np.ndarray, q: np.ndarray, a: float, b: float) -> float:
-    """The root of Im(P₀ Q̄) in a grid cell [a, b] whose ends changed sign on the grid.
+def _roots_in_cells(
+    p0: np.ndarray, q: np.ndarray, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray
+) -> np.ndarray:
+    """A root of Im(P₀ Q̄) in each cell [a, b] whose end values ``fa``, ``fb`` differ in sign, all cells at once.
 
-    The grid is evaluated as an array, the ends here one at a time: where Im(P₀ Q̄) is within rounding of zero at
-    an end the two can disagree on its sign, and that end is the root (to rounding).
+    Bisection on the sign, vectorised over the cells, until the ends of every cell are neighbouring floats (at
+    most ~60 halvings from a grid cell; the number of steps is bounded by the float format): the end where
+    |Im(P₀ Q̄)| is smaller is returned, or the midpoint where it is exactly 0. A cell whose ends agree in sign
+    (Im(P₀ Q̄) within rounding of zero at an end) is that end, the one nearer zero.
+
+    Examples
+    --------
+    >>> p0, q = np.array([1.0, -0.4, 0.3]), np.array([1.0, 0.2])
+    >>> a, b = np.array([0.5]), np.array([1.5])
+    >>> t = _roots_in_cells(p0, q, a, b, _im_part(p0, q, a), _im_part(p0, q, b))
+    >>> bool(abs(_im_part(p0, q, t[0])) < 1e-15)
+    True
     """
-    from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
+    lo, hi = np.array(a, dtype=float), np.array(b, dtype=float)
+    flo, fhi = np.array(fa, dtype=float), np.array(fb, dtype=float)
+    act = np.nonzero(flo * fhi < 0.0)[0]
+    while act.size:
+        mid = 0.5 * (lo[act] + hi[act])
+        open_ = (mid > lo[act]) & (mid < hi[act])
+        act, mid = act[open_], mid[open_]
+        if not act.size:
+            break
+        fm = _im_part(p0, q, mid)
+        zero = fm == 0.0
+        low = (np.sign(fm) == np.sign(flo[act])) & ~zero  # the root lies in [mid, hi]
+        lo[act[low]], flo[act[low]] = mid[low], fm[low]
+        high = ~low & ~zero
+        hi[act[high]], fhi[act[high]] = mid[high], fm[high]
+        lo[act[zero]], hi[act[zero]], flo[act[zero]], fhi[act[zero]] = mid[zero], mid[zero], 0.0, 0.0
+        act = act[~zero]
+    return np.where(np.abs(flo) <= np.abs(fhi), lo, hi)
 
-    fa, fb = float(_im_part(p0, q, a)), float(_im_part(p0, q, b))
-    if fa * fb < 0.0:
-        return float(brentq(lambda t: float(_im_part(p0, q, t)), a, b, xtol=1e-15, rtol=1e-15))
-    return a if abs(fa) <= abs(fb) else b
 
+def _polish_all(p0: np.ndarray, q: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Refine roots θ of Im(P₀ Q̄) (from np.roots in z) by bracketing nearby, all at once.
 
-def _polish(p0: np.ndarray, q: np.ndarray, t: float) -> float:
-    """Refine a root θ of Im(P₀ Q̄) by bracketing nearby (kept as is at a tangency or at π)."""
-    from scipy.optimize import brentq  # imported here: scipy.optimize takes about 0.3 s to load
-
-    if t >= math.pi or t <= 0.0:
-        return min(max(t, 0.0), math.pi)
-    f0 = float(_im_part(p0, q, t))
-    for rel in (1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 1e-2):
-        lo, hi = t * (1.0 - rel), min(t * (1.0 + rel), math.pi)
-        for x, y in ((lo, t), (t, hi)):
-            if float(_im_part(p0, q, x)) * float(_im_part(p0, q, y)) < 0.0 or f0 == 0.0:
-                return t if f0 == 0.0 else brentq(lambda s: float(_im_part(p0, q, s)), x, y, xtol=1e-16, rtol=1e-15)
-    return t
+    For each θ the first bracket (θ(1 − r), θ) or (θ, θ(1 + r)), r = 1e-12, 1e-9, …, 1e-2 (capped at π), with a
+    sign change is bisected to neighbouring floats (:func:`_roots_in_cells`); a θ with none (a tangency) or at
+    which Im(P₀ Q̄) = 0 exactly is kept as is.
+    """
+    t = np.asarray(t, dtype=float)
+    if not t.size:
+        return t
+    rels = np.array([1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 1e-2])
+    lo, hi = t[:, None] * (1.0 - rels), np.minimum(t[:, None] * (1.0 + rels), math.pi)
+    pts = np.stack([lo, t[:, None] + 0.0 * rels, t[:, None] + 0.0 * rels, hi], axis=-1)  # (θ, r, pair ends)
+    f = _im_part(p0, q, pts.reshape(-1)).reshape(pts.shape).reshape(t.size, -1, 2)  # pairs (lo, θ), (θ, hi)
+    ok = f[..., 0] * f[..., 1] < 0.0
+    f0 = _im_part(p0, q, t)
+    has = ok.any(axis=1) & (f0 != 0.0) & (t < math.pi)  # π is kept as is
+    first = np.argmax(ok, axis=1)[has]
+    x = pts.reshape(t.size, -1, 2)[has, first]
+    fx = f[has, first]
+    out = t.copy()
+    out[has] = _roots_in_cells(p0, q, x[:, 0], x[:, 1], fx[:, 0], fx[:, 1])
+    return out
 
 
 def _crossings(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Every κ > 0 at which a root of P₀ + κQ lies on the unit circle, ascending, without repeats."""
-    ks = []
-    for t in _candidate_angles(p0, q):
-        w = unit_circle_w(t) if 0.0 < t < math.pi else complex(-2.0 if t >= math.pi else 0.0, 0.0)
-        pq, qw = _pq(p0, q, w)
-        qq = abs(qw) ** 2
-        if qq > 0.0:
-            k = -pq.real / qq
-            if k > 0.0 and math.isfinite(k) and abs(pq.imag) <= 1e-6 * abs(pq):
-                ks.append(k)
-    ks.sort()
+    t = _candidate_angles(p0, q)
+    inner = (t > 0.0) & (t < math.pi)
+    w = np.where(inner, unit_circle_w(np.where(inner, t, 1.0)), np.where(t >= math.pi, -2.0 + 0j, 0j))
+    pq, qw = _pq(p0, q, w)
+    qq = np.abs(qw) ** 2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        k = -pq.real / qq
+    keep = (qq > 0.0) & (k > 0.0) & np.isfinite(k) & (np.abs(pq.imag) <= 1e-6 * np.abs(pq))
+    ks = np.sort(k[keep])
     out: list[float] = []
-    for k in ks:
-        if not out or k > out[-1] * (1.0 + 1e-10):
-            out.append(k)
+    for kk in ks:
+        if not out or kk > out[-1] * (1.0 + 1e-10):
+            out.append(float(kk))
     return np.array(out)
+
+
+def _ray_rows(p0: np.ndarray, q: np.ndarray, kappa: np.ndarray) -> np.ndarray:
+    """P₀ + κQ at each κ, one row each (w = z − 1, highest power first; ``np.polyadd`` per κ, as an array)."""
+    qp = np.concatenate([np.zeros(len(p0) - len(q)), q])
+    return np.asarray(p0[None, :] + np.asarray(kappa, dtype=float)[:, None] * qp[None, :])
 
 
 def _stable_kappa(a: float, a_b: float, wall: WallParams, mu: float = 1.0) -> list[tuple[float, float]]:
@@ -414,7 +464,7 @@ def _ray_intervals(p0: np.ndarray, q: np.ndarray, args: tuple) -> list[tuple[flo
     if ks.size == 0:
         ks = np.array([1.0])  # no crossing: stability is the same for every κ (then unstable, deg Q < deg P₀)
     probes = np.concatenate([[0.5 * ks[0]], np.sqrt(ks[1:] * ks[:-1]), [2.0 * ks[-1]]])
-    stable = _rho_rows(np.array([np.polyadd(p0, k * q) for k in probes])) < 1.0
+    stable = _rho_rows(_ray_rows(p0, q, probes)) < 1.0
     edges = np.concatenate([[0.0], ks, [math.inf]])
     out: list[tuple[float, float]] = []
     for i, s in enumerate(stable):
@@ -434,7 +484,7 @@ def _check_against_grid(p0: Any, q: Any, ks: Any, intervals: Any, args: Any) -> 
     low = low if 0.0 < low < ks[0] and math.isfinite(low) else ks[0]
     grid = geometric_grid(low * 1e-2, ks[-1] * 1e2, 241)
     near = np.min(np.abs(np.log(grid[:, None] / ks[None, :])), axis=1) < 1e-6
-    rho = _rho_rows(np.array([np.polyadd(p0, k * q) for k in grid]))
+    rho = _rho_rows(_ray_rows(p0, q, grid))
     inside = np.array([any(lo < k < hi for lo, hi in intervals) for k in grid])
     bad = ~near & (np.abs(rho - 1.0) > 1e-9) & ((rho < 1.0) != inside)
     if np.any(bad) or any(math.isinf(hi) for _, hi in intervals):
@@ -486,7 +536,7 @@ def _stable_set(
     p0, q = _ray(a, a_b, p)
     grid = geometric_grid(lo, 1e4, 29)
     grid = grid[[not any(x <= k <= y for x, y in higher) for k in grid]]
-    if grid.size and np.any(_rho_rows(np.array([np.polyadd(p0, k * q) for k in grid])) <= 1.0 + 1e-9):
+    if grid.size and np.any(_rho_rows(_ray_rows(p0, q, grid)) <= 1.0 + 1e-9):
         raise DFAError(
             f"the loop with (bT/m, BT/m, ν_c, α, d) = {(a, a_b, p.cutoff, p.lag, p.delay)!r} is stable at a large K "
             "outside the listed intervals although (b + B)T/m is small: please report this as a bug"
