@@ -52,7 +52,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--quick",
         action="store_true",
         help="a quick answer for sweeps: the criterion, the static and exact linear bounds and the describing "
-        "function, without the simulated limits (no simulation; under a second)",
+        "function, without the simulated limits (no simulation; under a second; default: the full answer)",
     )
     p.add_argument(
         "--margin",

@@ -750,26 +750,10 @@ def _sample(
 
 @njit(cache=True, nogil=True)
 def _advance(
-    st: FloatArray,
-    ring: FloatArray,
-    ref: FloatArray,
-    h0: int,
-    h1: int,
-    mu: float,
-    beta: float,
-    sigma: float,
-    delay: int,
-    quantize: bool,
-    bound: float,
-    ctl: Controller,
-    tail: FloatArray,
-    tail_start: int,
-    rec_x: FloatArray,
-    rec_v: FloatArray,
-    skip: bool,
-    pcs: FloatArray,
-    n: int,
-) -> tuple[int, int, float, int]:
+    st: FloatArray, ring: FloatArray, ref: FloatArray, h0: int, h1: int, mu: float, beta: float, sigma: float,
+    delay: int, quantize: bool, bound: float, ctl: Controller, tail: FloatArray, tail_start: int,
+    rec_x: FloatArray, rec_v: FloatArray, skip: bool, pcs: FloatArray, n: int,
+) -> tuple[int, int, float, int]:  # fmt: skip
     """Samples h0 … h1 − 1 of a run of ``n`` samples from the state ``st``; return (end, why, peak |ξ|, samples skipped).
 
     ``ctl`` = (β_B, a, filtered, α, κ_h, one-sided, s, p, ..., φ_max, ξ_travel); why as :func:`dfa.core.kernel.advance`
