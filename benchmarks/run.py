@@ -986,6 +986,20 @@ def _counted(argv: list[str]) -> tuple[int, int]:
     return progress.runs_counted() - runs, progress.samples_counted() - samples
 
 
+def _zwidth_simulations(argv: list[str]) -> int:
+    """The simulations a `dfa zwidth` command runs (its JSON's ``simulations``)."""
+    import contextlib
+    import io
+    import json
+
+    from dfa.cli.app import main as dfa_main
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
+        dfa_main([*argv, "--json", "--quiet"])
+    return int(json.loads(out.getvalue())["simulations"])
+
+
 def bench_commands(quick: bool) -> str:
     """The everyday commands (issue 43): fresh-process wall time against `python -c "import numpy"` timed in the
     same run, and the runs and samples each simulates."""
@@ -1004,20 +1018,28 @@ def bench_commands(quick: bool) -> str:
         log = _identify_log(folder)
         for command, goal in COMMANDS[:2] if quick else COMMANDS:
             argv = command.format(log=log).split()
-            start(dfa_cmd + argv)  # the kernels compiled and cached, the files in the page cache
-            t = sorted(start(dfa_cmd + argv) for _ in range(3))[1]
+            if goal is not None and goal < 5.0:  # quick ones: a warm-up, then the median of 3
+                start(dfa_cmd + argv)  # the kernels compiled and cached, the files in the page cache
+                t = sorted(start(dfa_cmd + argv) for _ in range(3))[1]
+            else:  # the slow ones: one run (the kernels are cached by the commands before)
+                t = start(dfa_cmd + argv)
             runs, samples = _counted(argv)
+            if argv[0] == "zwidth":  # its grid runs outside the design searches' run cache: its JSON counts them
+                runs, samples = _zwidth_simulations(argv), float("nan")
             met = "–" if goal is None else (f"≤ {goal:g} s: " + ("met" if t <= goal else "NOT met"))
             shown = command.format(log="delta_chirp_16k.csv")
-            rows.append(f"| `dfa {shown}` | {t:.2f} | {t / numpy_t:.1f} | {runs} | {samples:.3g} | {met} |")
+            sampled = "–" if samples != samples else f"{samples:.3g}"  # NaN: not counted
+            rows.append(f"| `dfa {shown}` | {t:.2f} | {t / numpy_t:.1f} | {runs} | {sampled} | {met} |")
     return "\n".join([
         "",
         "## Everyday commands (issue 43)",
         "",
-        "Each command in a fresh process, the median of 3 runs after one that fills the caches; × is the time over",
+        "Each command in a fresh process: the median of 3 runs after one that fills the caches (one run for those",
+        "with a goal of 5 s or more, or none); × is the time over",
         f'`python -c "import numpy"` ({numpy_t:.3f} s, best of 5) timed in the same run. Runs and samples: what the',
         "command simulates through the design searches' run cache, counted in-process (samples are the runs'",
-        "lengths: a run that rests or diverges stops earlier). The identify log: 16,000 samples of the Delta driven",
+        "lengths: a run that rests or diverges stops earlier; the Z-width's grid: its JSON's count, samples not",
+        "counted). The identify log: 16,000 samples of the Delta driven",
         "by a chirp (written by the benchmark with `synthetic_log`).",
         "",
         "| command | seconds | × import numpy | runs | samples | goal |",
