@@ -17,6 +17,7 @@ from ..model.elements import PassivityController
 from ..model.loop import Loop
 from ..model.wall import Wall
 from ..progress import runs_counted
+from ..results.status import LimitStatus
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, save_png, working
@@ -182,7 +183,7 @@ def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp
     print(text_table(rows))  # the full evidence: a row a line, however long
     if v > 0:
         print(f"evidence: {evidence_text(ans)}.")
-        quick = ans.evidence.simulations == 0 and ans.k_sim.status.value == "not_simulated"
+        quick = ans.k_sim.status is LimitStatus.NOT_SIMULATED
         note = (QUICK_PROOF_NOTE if quick else PROOF_NOTE).replace("a proof", f"a proof{start_state_note(ans.wall)}")
         print(fill(f"{note} (the describing function's: the first harmonic)."))
     else:

@@ -33,7 +33,9 @@ from .passivity import passivity_text
 from .require import damper_line
 from .start_state import start_state_clause, start_state_note
 
-__all__ = ["WIDTH", "wrap", "recommendation_line", "recommendation_text", "stiffness_screen", "user_verdict"]
+__all__ = [
+    "WIDTH", "wrap", "recommendation_line", "recommendation_text", "stiffness_screen", "user_verdict", "work_line",
+]  # fmt: skip
 
 
 def wrap(text: str, indent: str = "  ") -> str:

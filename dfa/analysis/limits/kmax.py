@@ -345,10 +345,8 @@ def _searches(
     pts = search_grid(k_ref, top, n_grid)
     xd = ev.dev.xi_dot(v)
     steps = search_steps(pts)
-    with stage("K_df, describing function", steps, "judgement"):
-        k_df = (
-            KLimit(None, LimitStatus.NOT_LINEAR) if not ev.wall.linear else df_limit(ev, pts, xd)
-        )  # describing_limit's
+    with stage("K_df, describing function", steps, "judgement"):  # describing_limit's search
+        k_df = df_limit(ev, pts, xd) if ev.wall.linear else KLimit(None, LimitStatus.NOT_LINEAR)
     if not simulate:
         k_sim = k_rest = KLimit(None, LimitStatus.NOT_SIMULATED)
     else:
