@@ -32,6 +32,7 @@ from ..._parallel import NO_BAR, deal, gather, run_in_order
 from ...errors import DFAValueError
 from ...model.device import Device, Params
 from ...model.elements import Coverage
+from ...model.loop import device_groups
 from ...model.wall import Wall, WallParams
 from ...progress import advance
 from ...results.status import Fails, SimulationOutcome
@@ -413,11 +414,14 @@ class Evidence:
         return starts_of(self.wall)
 
     def params(self, k: float) -> tuple[Params, WallParams]:
-        """The device's groups (μ, β, σ) and the wall's at stiffness ``k``.
+        """The device's groups (μ, β, σ) and the wall's at stiffness ``k``, with the device's groups-only elements
+        (its travel: a run that leaves it ends at the end stop, ``end_stop``, which fails both simulated limits;
+        :func:`dfa.model.loop.device_groups`).
 
         Raises DFAValueError when a group is not representable at ``k``.
         """
-        return self.dev.params(k), self.wall.with_stiffness(k).params(self.dev.period, self.dev.resolution)
+        w = self.wall.with_stiffness(k).params(self.dev.period, self.dev.resolution)
+        return self.dev.params(k), device_groups(w, self.dev)
 
     def outcomes(self, k: float) -> list[tuple[float, str, str]]:
         """(ξ'0, start, outcome) of every impact simulated at stiffness ``k``."""
