@@ -416,9 +416,7 @@ def _candidate_angles(ray: _Ray) -> np.ndarray:
     return np.concatenate([ends, _polish_all(ray, np.array(found)), cells])
 
 
-def _roots_in_cells(
-    ray: _Ray, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray
-) -> np.ndarray:
+def _roots_in_cells(ray: _Ray, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
     """A root of Im(P₀ Q̄) in each cell [a, b] whose end values ``fa``, ``fb`` differ in sign, all cells at once.
 
     Bisection on the sign, vectorised over the cells, until the ends of every cell are neighbouring floats (at
