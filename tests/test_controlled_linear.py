@@ -29,6 +29,7 @@ from dfa.analysis.colgate_schenkel import colgate_schenkel_damping
 from dfa.analysis.linear import characteristic_polynomial, critical_stiffness, linear_stable, spectral_radius
 from dfa.analysis.linear_wall import (
     LinearStatus,
+    _Ray,
     _ray_intervals,
     amplifier_zoh_coefficients,
     stable_region,
@@ -255,7 +256,7 @@ def test_ray_with_several_intervals_vs_dense_scan():
                    0.3891335795425942, 0.1831520815358585, 0.02654394356156959])  # fmt: skip
     q = np.array([2.2110571623347774, 0.011622013918882693, -0.7581270719825384, -1.0256240581930005,
                   -0.2011986994848956, -0.629343213365391])  # fmt: skip
-    iv = _ray_intervals(_in_w(p0), _in_w(q), ())  # the ray analysis takes its polynomials in w = z − 1
+    iv = _ray_intervals(_Ray(_in_w(p0), np.zeros(1), _in_w(q), 0), ())  # P₀ = z^0 A + 0 and Q, in w = z − 1
     assert len(iv) == 2 and iv[0][0] == 0.0
     ks = np.linspace(1e-4, 0.7, 7001)
     rho = np.array([max(abs(np.roots(np.polyadd(p0, k * q)))) for k in ks])
@@ -450,14 +451,14 @@ def test_linear_crossing_cell_whose_ends_agree_in_sign_gives_the_end_nearer_zero
     damper, filter and delay, issue 41); a cell with a sign change gives a root where Im(P0 conj Q) vanishes."""
     from dfa.analysis.linear_wall import _im_part, _roots_in_cells
 
-    p0, q = np.array([1.0, -0.4, 0.3]), np.array([1.0, 0.2])
+    ray = _Ray(np.array([1.0, -0.4, 0.3]), np.zeros(1), np.array([1.0, 0.2]), 0)  # P₀ = A, Q in w
     thetas = np.linspace(0.01, 3.1, 2000)
-    g = _im_part(p0, q, thetas)
+    g = _im_part(ray, thetas)
     i = int(np.nonzero(g[:-1] * g[1:] < 0.0)[0][0])
     a, b = thetas[[i, i + 5]], thetas[[i + 1, i + 6]]  # a sign change; then one sign at both ends
-    fa, fb = _im_part(p0, q, a), _im_part(p0, q, b)
-    root, end = _roots_in_cells(p0, q, a, b, fa, fb)
-    assert thetas[i] <= root <= thetas[i + 1] and abs(float(_im_part(p0, q, root))) < 1e-12
+    fa, fb = _im_part(ray, a), _im_part(ray, b)
+    root, end = _roots_in_cells(ray, a, b, fa, fb)
+    assert thetas[i] <= root <= thetas[i + 1] and abs(float(_im_part(ray, root))) < 1e-12
     assert fa[1] * fb[1] > 0 and end == (a[1] if abs(fa[1]) <= abs(fb[1]) else b[1])
 
 
@@ -476,10 +477,10 @@ def test_linear_crossing_angles_match_a_dense_scan_and_k_crit_the_spectral_radiu
     m, t = 0.25, 1.0 / 3000.0
     wall = Wall.of(1.0, damping=big_b, delay=d, filter_cutoff=fc, amplifier_bandwidth=fbw)
     p = wall.params(t)
-    p0, q = _ray(b * t / m, big_b * t / m, p)
-    cand = np.sort(_candidate_angles(p0, q))
-    dense = np.linspace(0.0, math.pi, 16 * 512 * len(p0))[1:]
-    g = _im_part(p0, q, dense)
+    ray = _ray(b * t / m, big_b * t / m, p)
+    cand = np.sort(_candidate_angles(ray))
+    dense = np.linspace(0.0, math.pi, 16 * 512 * (len(ray.a) + d))[1:]  # deg P₀ + 1 = deg A + d + 1
+    g = _im_part(ray, dense)
     for i in np.nonzero(g[:-1] * g[1:] < 0.0)[0]:
         assert np.any((cand >= dense[i] - 1e-12) & (cand <= dense[i + 1] + 1e-12)), dense[i]
     r = stable_stiffness(m, b, t, wall)

@@ -57,6 +57,15 @@ device's, filter's and amplifier's poles cluster near z = 1. Expanded in powers 
 six digits there (K_crit 6e-7 high with a 0.5 Hz filter and a 0.08 Hz amplifier at T = 2.8 ms);
 ``tests/test_controlled_linear.py`` checks K_crit to 1e-12 against a 60-digit construction.
 
+Long delays. The delay's z^d is never expanded in w: P₀ = z^d A + B with A = D_G D_H/z^d, B = a_B N_G N₂ and Q
+of low degree in w, and on the circle z^d = e^{jdθ} multiplies A(w) (exact at θ = 0 and π). Expanded as
+(w + 1)^d its terms reach 3^d at z = −1 (all digits lost from d ≈ 32: a false 'never', K_crit = 0). The
+spectral radius is that of a state matrix: (B + κQ)/A in controllable canonical form in w closed through a
+d-sample shift register (exact zeros and ones), its eigenvalues taken as w = z − 1 as before; the angle grid
+keeps 512(n + 1) cells, n = d + deg A, for the d oscillations of e^{jdθ}. For every accepted delay (<= 100
+samples) the bound agrees with an independent shift-register loop to 1e-8
+(``tests/test_linear_wall_long_delay.py``); for small d the numbers are those of the full expansion to rounding.
+
 Tiny rates. For (b + B)T/m <= :data:`SERIES_RATE` = 1e-4 the roots cluster at z = 1
 (|z| − 1 = O((b + B)T/m)) and the crossing lies at θ = O(√rate), deep inside the first
 cell of the angle scan (which is refined geometrically down to θ = 1e-10 for it); in
@@ -81,7 +90,7 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -151,12 +160,26 @@ def _plant(a: float, wall: WallParams, mu: float) -> tuple[np.ndarray, np.ndarra
     return np.array([c1, c1 + c0]), np.array([1.0, -math.expm1(-float(a)), 0.0])
 
 
-def _command(wall: WallParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(N₁, N₂, D_H) with H = (N₁ + β_B N₂)/D_H (module docstring) in w = z − 1, highest power first: the
-    elements' polynomials (:meth:`dfa.model.wall.WallParams.command`), the delay's z^d = (w + 1)^d in D_H."""
+def _command(wall: WallParams) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """(N₁, N₂, D_H/z^d, d) with H = (N₁ + β_B N₂)/D_H (module docstring) in w = z − 1, highest power first: the
+    elements' polynomials (:meth:`dfa.model.wall.WallParams.command`); the delay's z^d is kept apart (never
+    expanded as (w + 1)^d, whose terms reach 3^d on the circle: all digits lost from d ≈ 32 on)."""
     h = wall.command()
-    shift = np.array([math.comb(h.delay, k) for k in range(h.delay + 1)], dtype=float)  # (w + 1)^d
-    return h.spring, h.velocity, np.polymul(h.denominator, shift)
+    return h.spring, h.velocity, h.denominator, int(h.delay)
+
+
+class _Ray(NamedTuple):
+    """κχ = P₀ + κQ with P₀ = z^d A + B: A, B, Q in w = z − 1, highest power first (deg B, deg Q < deg A)."""
+
+    a: np.ndarray
+    b: np.ndarray
+    q: np.ndarray
+    d: int
+
+
+def _shift_z(pz: np.ndarray, d: int) -> np.ndarray:
+    """z^d times a polynomial in z (highest power first): d zeros appended, exactly."""
+    return np.concatenate([pz, np.zeros(d)])
 
 
 def _to_z(pw: np.ndarray) -> np.ndarray:
@@ -189,33 +212,53 @@ def controlled_characteristic_polynomial(mu: float, beta: float, params: WallPar
 
     (z(z − 1)² + (½z + ½)(1.5z − 0.5) at μ = 1, β = 0, β_B = ½.)
     """
-    return _to_z(_characteristic_w(mu, beta, params))
+    r = _characteristic_ray(mu, beta, params)
+    return np.asarray(np.polyadd(_shift_z(_to_z(r.a), r.d), _to_z(r.b)))
 
 
-def _characteristic_w(mu: float, beta: float, params: WallParams) -> np.ndarray:
-    """χ of :func:`controlled_characteristic_polynomial` in w = z − 1 (checked inputs)."""
+def _characteristic_ray(mu: float, beta: float, params: WallParams) -> _Ray:
+    """χ = z^d A + B of :func:`controlled_characteristic_polynomial`, A and B in w = z − 1 (checked inputs)."""
     m, b = check_mu(mu), check_beta(beta)
     params = check_type("params", params, WallParams, "give a dfa.WallParams")
     ng, dg = _plant(b / m, params, m)
-    n1, n2, dh = _command(params)
-    return np.asarray(np.polyadd(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2))))
+    n1, n2, dh, d = _command(params)
+    return _Ray(m * np.polymul(dg, dh), np.polymul(ng, np.polyadd(n1, params.damping * n2)), np.zeros(1), d)
 
 
-def _rho_rows(rows: np.ndarray) -> np.ndarray:
-    """Spectral radius max |1 + w| over the roots w of each polynomial in w = z − 1 (row, highest power first,
-    leading coefficient != 0): roots clustered near z = 1 keep their accuracy in w."""
-    rows = np.atleast_2d(rows)
-    n = rows.shape[1] - 1
-    comp = np.zeros((rows.shape[0], n, n))
-    comp[:, 0, :] = -rows[:, 1:] / rows[:, :1]
-    idx = np.arange(n - 1)
-    comp[:, idx + 1, idx] = 1.0
-    return np.max(np.abs(1.0 + np.linalg.eigvals(comp)), axis=-1)
+def _rho(ray: _Ray, kappa: Any) -> np.ndarray:
+    """Spectral radius of z^d A + B + κQ at each κ, from the eigenvalues w = z − 1 of a state matrix minus I.
+
+    The loop 1 + z^{−d}(B + κQ)/A = 0 as a state space: (B + κQ)/A (strictly proper) in controllable canonical
+    form in w (the companion of A in w, as before: roots clustered near z = 1 keep their accuracy), closed
+    through a d-sample shift register (the delay: exact zeros and ones, its z^d never expanded). Its
+    characteristic polynomial is z^d A + B + κQ over A's leading coefficient, for any d >= 0.
+    """
+    kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
+    lead = ray.a[0]
+    m, d = len(ray.a) - 1, ray.d
+    if max(len(ray.b), len(ray.q)) > m:
+        raise DFAError(f"the loop's polynomials {ray!r} are not strictly proper: please report this as a bug")
+    c = np.zeros((kappa.size, m))
+    for poly, scale in ((ray.b, np.ones_like(kappa)), (ray.q, kappa)):
+        c[:, m - len(poly) :] += scale[:, None] * (poly / lead)[None, :]
+    n = m + d
+    mat = np.zeros((kappa.size, n, n))
+    mat[:, 0, :m] = -ray.a[1:] / lead
+    mat[:, np.arange(1, m), np.arange(m - 1)] = 1.0
+    if d == 0:
+        mat[:, 0, :m] -= c  # the error e = −y fed back at once
+    else:
+        mat[:, 0, n - 1] = -1.0  # e = −(the register's last state) into the first state of (B + κQ)/A
+        mat[:, m, :m] = c  # the register's first state takes y
+        idx = np.arange(m, n)
+        mat[:, idx, idx] = -1.0  # the shift minus I
+        mat[:, idx[1:], idx[:-1]] = 1.0
+    return np.asarray(np.max(np.abs(1.0 + np.linalg.eigvals(mat)), axis=-1))
 
 
 def controlled_spectral_radius(mu: float, beta: float, params: WallParams) -> float:
     """Largest root modulus of :func:`controlled_characteristic_polynomial` (< 1: asymptotically stable)."""
-    return float(_rho_rows(_characteristic_w(mu, beta, params))[0])
+    return float(_rho(_characteristic_ray(mu, beta, params), 0.0)[0])
 
 
 # ----------------------------------------------------------------------------- the stiffness ray
@@ -312,27 +355,32 @@ def series_kappa(a: float, a_b: float, wall: WallParams) -> tuple[float, float] 
     return rho_l, float(np.dot(re, powers))
 
 
-def _ray(a: float, a_b: float, wall: WallParams, mu: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
-    """(P₀, Q) of κχ = P₀ + κQ at fixed a = bT/m and a_B = BT/m (module docstring); ``wall`` gives the
-    elements' structure (a filter counts only with a damper, a_B > 0) and ``mu`` its μ (a hand spring's
+def _ray(a: float, a_b: float, wall: WallParams, mu: float = 1.0) -> _Ray:
+    """P₀ = z^d A + B and Q of κχ = P₀ + κQ at fixed a = bT/m and a_B = BT/m (module docstring); ``wall`` gives
+    the elements' structure (a filter counts only with a damper, a_B > 0) and ``mu`` its μ (a hand spring's
     ω² = κ_h/μ = k_h T²/m is fixed on the ray)."""
     ng, dg = _plant(a, wall, mu)
-    n1, n2, dh = _command(wall)
-    return np.polyadd(np.polymul(dg, dh), a_b * np.polymul(ng, n2)), np.polymul(ng, n1)
+    n1, n2, dh, d = _command(wall)
+    return _Ray(np.polymul(dg, dh), a_b * np.polymul(ng, n2), np.polymul(ng, n1), d)
 
 
-def _pq(p0: np.ndarray, q: np.ndarray, w: Any) -> tuple[Any, Any]:
-    """(P₀ conj(Q), Q) at w = z − 1, in the polynomials' own basis (full accuracy)."""
-    qw = np.polyval(q, w)
-    return np.polyval(p0, w) * np.conj(qw), qw
+def _pq(ray: _Ray, theta: Any) -> tuple[Any, Any]:
+    """(P₀ conj(Q), Q) at z = e^{jθ}, 0 <= θ <= π: A, B and Q in w = e^{jθ} − 1 (full accuracy near z = 1), the
+    delay's z^d = e^{jdθ} on its own (exact at θ = 0 and π)."""
+    t = np.asarray(theta, dtype=float)
+    end = t >= math.pi
+    w = np.where(end, -2.0 + 0j, unit_circle_w(np.where(end, 1.0, t)))
+    zd = np.where(end, (-1.0) ** ray.d + 0j, np.exp(1j * ray.d * t))
+    qw = np.polyval(ray.q, w)
+    return (zd * np.polyval(ray.a, w) + np.polyval(ray.b, w)) * np.conj(qw), qw
 
 
-def _im_part(p0: np.ndarray, q: np.ndarray, theta: Any) -> Any:
+def _im_part(ray: _Ray, theta: Any) -> Any:
     """Im(P₀ Q̄) at z = e^{jθ}."""
-    return np.imag(_pq(p0, q, unit_circle_w(theta))[0])
+    return np.imag(_pq(ray, theta)[0])
 
 
-def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
+def _candidate_angles(ray: _Ray) -> np.ndarray:
     """Angles θ in [0, π] where Im(P₀ Q̄)(e^{jθ}) = 0: roots of R on the circle (found in z, then polished in w),
     grid sign changes, 0 and π (P₀, Q in w = z − 1).
 
@@ -341,14 +389,17 @@ def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
     is refined (:func:`_roots_in_cells`, all cells at once) by bisection on the sign until its ends are
     neighbouring floats: no crossing between grid cells is missed, and each is found to the last bit of θ at
     which Im(P₀ Q̄), evaluated in w, changes sign (at least as tight as the 1e-15 of the ``brentq`` it
-    replaces). The roots of R on the circle (np.roots in z: a few digits) are polished by :func:`_polish_all`.
+    replaces). The roots of R on the circle (np.roots in z, P₀ = z^d A + B with the shift exact: a few digits)
+    are polished by :func:`_polish_all`.
     """
-    n = len(p0) - 1
-    pz, qz = _to_z(p0), _to_z(q)
+    pz = np.polyadd(_shift_z(_to_z(ray.a), ray.d), _to_z(ray.b))
+    n = len(pz) - 1
+    qz = _to_z(ray.q)
     qp = np.concatenate([np.zeros(n + 1 - len(qz)), qz])
     r: np.ndarray = np.polysub(np.polymul(pz, qp[::-1]), np.polymul(qp, pz[::-1]))
     ends = [math.pi]
-    if abs(p0[-1]) > 1e-9 * np.abs(p0).sum():  # P₀(z = 1) = P₀(w = 0)
+    p_one = ray.a[-1] + ray.b[-1]  # P₀(z = 1) = A(w = 0) + B(0)
+    if abs(p_one) > 1e-9 * (np.abs(ray.a).sum() + np.abs(ray.b).sum()):
         ends.append(0.0)  # z = 1 is a root of P₀ for the device (κ = 0); a crossing only for other pairs
     found = []
     nz = np.nonzero(np.abs(r) > 0.0)[0]
@@ -359,15 +410,13 @@ def _candidate_angles(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
     lin = np.linspace(0.0, math.pi, 512 * (n + 1))
     # and geometrically down to 1e-10 inside the first cell: slow poles put the crossing at θ ~ 1e-4 … 1e-3
     grid = np.concatenate([[0.0], geometric_grid(1e-10, lin[1], 400, endpoint=False), lin[1:]])
-    g = _im_part(p0, q, grid)
+    g = _im_part(ray, grid)
     i = np.nonzero(g[1:-1] * g[2:] < 0.0)[0] + 1  # from the first θ > 0: Im(P₀ Q̄) = 0 at θ = 0
-    cells = _roots_in_cells(p0, q, grid[i], grid[i + 1], g[i], g[i + 1])
-    return np.concatenate([ends, _polish_all(p0, q, np.array(found)), cells])
+    cells = _roots_in_cells(ray, grid[i], grid[i + 1], g[i], g[i + 1])
+    return np.concatenate([ends, _polish_all(ray, np.array(found)), cells])
 
 
-def _roots_in_cells(
-    p0: np.ndarray, q: np.ndarray, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray
-) -> np.ndarray:
+def _roots_in_cells(ray: _Ray, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
     """A root of Im(P₀ Q̄) in each cell [a, b] whose end values ``fa``, ``fb`` differ in sign, all cells at once.
 
     Bisection on the sign, vectorised over the cells, until the ends of every cell are neighbouring floats (at
@@ -377,10 +426,10 @@ def _roots_in_cells(
 
     Examples
     --------
-    >>> p0, q = np.array([1.0, -0.4, 0.3]), np.array([1.0, 0.2])
+    >>> ray = _Ray(np.array([1.0, -0.4, 0.3]), np.zeros(1), np.array([1.0, 0.2]), 0)  # P₀, Q in w
     >>> a, b = np.array([0.5]), np.array([1.5])
-    >>> t = _roots_in_cells(p0, q, a, b, _im_part(p0, q, a), _im_part(p0, q, b))
-    >>> bool(abs(_im_part(p0, q, t[0])) < 1e-15)
+    >>> t = _roots_in_cells(ray, a, b, _im_part(ray, a), _im_part(ray, b))
+    >>> bool(abs(_im_part(ray, t[0])) < 1e-15)
     True
     """
     lo, hi = np.array(a, dtype=float), np.array(b, dtype=float)
@@ -392,7 +441,7 @@ def _roots_in_cells(
         act, mid = act[open_], mid[open_]
         if not act.size:
             break
-        fm = _im_part(p0, q, mid)
+        fm = _im_part(ray, mid)
         zero = fm == 0.0
         low = (np.sign(fm) == np.sign(flo[act])) & ~zero  # the root lies in [mid, hi]
         lo[act[low]], flo[act[low]] = mid[low], fm[low]
@@ -403,7 +452,7 @@ def _roots_in_cells(
     return np.where(np.abs(flo) <= np.abs(fhi), lo, hi)
 
 
-def _polish_all(p0: np.ndarray, q: np.ndarray, t: np.ndarray) -> np.ndarray:
+def _polish_all(ray: _Ray, t: np.ndarray) -> np.ndarray:
     """Refine roots θ of Im(P₀ Q̄) (from np.roots in z) by bracketing nearby, all at once.
 
     For each θ the first bracket (θ(1 − r), θ) or (θ, θ(1 + r)), r = 1e-12, 1e-9, …, 1e-2 (capped at π), with a
@@ -416,24 +465,22 @@ def _polish_all(p0: np.ndarray, q: np.ndarray, t: np.ndarray) -> np.ndarray:
     rels = np.array([1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 1e-2])
     lo, hi = t[:, None] * (1.0 - rels), np.minimum(t[:, None] * (1.0 + rels), math.pi)
     pts = np.stack([lo, t[:, None] + 0.0 * rels, t[:, None] + 0.0 * rels, hi], axis=-1)  # (θ, r, pair ends)
-    f = _im_part(p0, q, pts.reshape(-1)).reshape(pts.shape).reshape(t.size, -1, 2)  # pairs (lo, θ), (θ, hi)
+    f = _im_part(ray, pts.reshape(-1)).reshape(pts.shape).reshape(t.size, -1, 2)  # pairs (lo, θ), (θ, hi)
     ok = f[..., 0] * f[..., 1] < 0.0
-    f0 = _im_part(p0, q, t)
+    f0 = _im_part(ray, t)
     has = ok.any(axis=1) & (f0 != 0.0) & (t < math.pi)  # π is kept as is
     first = np.argmax(ok, axis=1)[has]
     x = pts.reshape(t.size, -1, 2)[has, first]
     fx = f[has, first]
     out = t.copy()
-    out[has] = _roots_in_cells(p0, q, x[:, 0], x[:, 1], fx[:, 0], fx[:, 1])
+    out[has] = _roots_in_cells(ray, x[:, 0], x[:, 1], fx[:, 0], fx[:, 1])
     return out
 
 
-def _crossings(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
+def _crossings(ray: _Ray) -> np.ndarray:
     """Every κ > 0 at which a root of P₀ + κQ lies on the unit circle, ascending, without repeats."""
-    t = _candidate_angles(p0, q)
-    inner = (t > 0.0) & (t < math.pi)
-    w = np.where(inner, unit_circle_w(np.where(inner, t, 1.0)), np.where(t >= math.pi, -2.0 + 0j, 0j))
-    pq, qw = _pq(p0, q, w)
+    t = _candidate_angles(ray)
+    pq, qw = _pq(ray, np.maximum(t, 0.0))
     qq = np.abs(qw) ** 2
     with np.errstate(divide="ignore", invalid="ignore"):
         k = -pq.real / qq
@@ -446,25 +493,18 @@ def _crossings(p0: np.ndarray, q: np.ndarray) -> np.ndarray:
     return np.array(out)
 
 
-def _ray_rows(p0: np.ndarray, q: np.ndarray, kappa: np.ndarray) -> np.ndarray:
-    """P₀ + κQ at each κ, one row each (w = z − 1, highest power first; ``np.polyadd`` per κ, as an array)."""
-    qp = np.concatenate([np.zeros(len(p0) - len(q)), q])
-    return np.asarray(p0[None, :] + np.asarray(kappa, dtype=float)[:, None] * qp[None, :])
-
-
 def _stable_kappa(a: float, a_b: float, wall: WallParams, mu: float = 1.0) -> list[tuple[float, float]]:
     """The stable set in κ = KT²/m as a list of open intervals (lo, hi), lo = 0 for the one from κ = 0+."""
-    p0, q = _ray(a, a_b, wall, mu)
-    return _ray_intervals(p0, q, (a, a_b, wall.cutoff, wall.lag, wall.delay))
+    return _ray_intervals(_ray(a, a_b, wall, mu), (a, a_b, wall.cutoff, wall.lag, wall.delay))
 
 
-def _ray_intervals(p0: np.ndarray, q: np.ndarray, args: tuple) -> list[tuple[float, float]]:
+def _ray_intervals(ray: _Ray, args: tuple) -> list[tuple[float, float]]:
     """Stable set in κ of P₀ + κQ (deg Q < deg P₀) as open intervals; ``args`` names the case in errors."""
-    ks = _crossings(p0, q)
+    ks = _crossings(ray)
     if ks.size == 0:
         ks = np.array([1.0])  # no crossing: stability is the same for every κ (then unstable, deg Q < deg P₀)
     probes = np.concatenate([[0.5 * ks[0]], np.sqrt(ks[1:] * ks[:-1]), [2.0 * ks[-1]]])
-    stable = _rho_rows(_ray_rows(p0, q, probes)) < 1.0
+    stable = _rho(ray, probes) < 1.0
     edges = np.concatenate([[0.0], ks, [math.inf]])
     out: list[tuple[float, float]] = []
     for i, s in enumerate(stable):
@@ -474,17 +514,20 @@ def _ray_intervals(p0: np.ndarray, q: np.ndarray, args: tuple) -> list[tuple[flo
             out[-1] = (out[-1][0], float(edges[i + 1]))  # a candidate that is not a boundary
         else:
             out.append((float(edges[i]), float(edges[i + 1])))
-    _check_against_grid(p0, q, ks, out, args)
+    _check_against_grid(ray, ks, out, args)
     return out
 
 
-def _check_against_grid(p0: Any, q: Any, ks: Any, intervals: Any, args: Any) -> None:
+def _check_against_grid(ray: _Ray, ks: Any, intervals: Any, args: Any) -> None:
     """The stable set must agree with the spectral radius on an independent geometric grid of κ."""
-    low = p0[-2] / q[-1] if q[-1] != 0.0 else 0.0  # φ₁ = P₀'(w = 0)/Q(0): the scale of a crossing near z = 1
+    a1, a0 = (ray.a[-2], ray.a[-1]) if len(ray.a) > 1 else (0.0, ray.a[-1])
+    b1 = ray.b[-2] if len(ray.b) > 1 else 0.0
+    p1, q0 = a1 + ray.d * a0 + b1, ray.q[-1]  # P₀'(w = 0), with (1 + w)^d = 1 + dw + …, and Q(0)
+    low = p1 / q0 if q0 != 0.0 else 0.0  # φ₁ = P₀'(w = 0)/Q(0): the scale of a crossing near z = 1
     low = low if 0.0 < low < ks[0] and math.isfinite(low) else ks[0]
     grid = geometric_grid(low * 1e-2, ks[-1] * 1e2, 241)
     near = np.min(np.abs(np.log(grid[:, None] / ks[None, :])), axis=1) < 1e-6
-    rho = _rho_rows(_ray_rows(p0, q, grid))
+    rho = _rho(ray, grid)
     inside = np.array([any(lo < k < hi for lo, hi in intervals) for k in grid])
     bad = ~near & (np.abs(rho - 1.0) > 1e-9) & ((rho < 1.0) != inside)
     if np.any(bad) or any(math.isinf(hi) for _, hi in intervals):
@@ -533,10 +576,9 @@ def _stable_set(
             higher = [iv for iv in _stable_kappa(a, a_b, p) if iv[0] >= lo]
         except DFAError:  # its own check failed (the clustered roots near z = 1): no interval above is listed
             pass
-    p0, q = _ray(a, a_b, p)
     grid = geometric_grid(lo, 1e4, 29)
     grid = grid[[not any(x <= k <= y for x, y in higher) for k in grid]]
-    if grid.size and np.any(_rho_rows(_ray_rows(p0, q, grid)) <= 1.0 + 1e-9):
+    if grid.size and np.any(_rho(_ray(a, a_b, p), grid) <= 1.0 + 1e-9):
         raise DFAError(
             f"the loop with (bT/m, BT/m, ν_c, α, d) = {(a, a_b, p.cutoff, p.lag, p.delay)!r} is stable at a large K "
             "outside the listed intervals although (b + B)T/m is small: please report this as a bug"
