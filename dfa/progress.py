@@ -51,7 +51,7 @@ class _Line:
         self.what: str = "working"
         self.total: int | None = None
         self.done = self.runs = 0
-        self.stage_start, self.unit = self.start, "step"
+        self.stage_start, self.unit, self.eta = self.start, "step", True
         self.bar: Any = None
 
     def refresh(self) -> None:
@@ -66,16 +66,19 @@ class _Line:
         self.bar.refresh()
 
     def text(self, now: float) -> str:
-        """What the line says: the stage, the runs so far, how far and the time left where the stage knows its
-        size (from the stage's own pace), the time since the work began."""
-        runs = "" if not self.runs else f" ({self.runs} run{'s' if self.runs != 1 else ''})"
-        out = f"{self.what}{runs}"
+        """What the line says, short (a terminal's width): the stage, how far (n/~N), the time left where the stage
+        knows its size and its steps cost alike (from the stage's own pace), the time since the work began, the
+        runs so far."""
+        parts = [self.what]
         if self.total:
-            out += f": step {min(self.done, self.total)} of about {self.total}"
-            if self.done > 0:
+            parts[0] += f": {min(self.done, self.total)}/~{self.total}"
+            if self.done > 0 and self.eta:
                 left = (now - self.stage_start) / self.done * max(self.total - self.done, 0)
-                out += f", about {_clock(left)} left"
-        return f"{out}; {_clock(now - self.start)} elapsed"
+                parts.append(f"~{_clock(left)} left")
+        parts.append(f"{_clock(now - self.start)} elapsed")
+        if self.runs:
+            parts.append(f"{self.runs} run{'s' if self.runs != 1 else ''}")
+        return ", ".join(parts)
 
 
 def _clock(seconds: float) -> str:
@@ -88,7 +91,9 @@ _OPEN: list[_Line] = []
 _COUNTED: list[int] = [0, 0]  # runs, samples
 
 
-def stage(what: str, total: int | None = None, unit: str = "step") -> contextlib.AbstractContextManager[None]:
+def stage(
+    what: str, total: int | None = None, unit: str = "step", eta: bool = True
+) -> contextlib.AbstractContextManager[None]:
     """The stage of work ``what`` (a few words), of ``total`` steps when known; the previous stage after it.
 
     Parameters
@@ -100,24 +105,27 @@ def stage(what: str, total: int | None = None, unit: str = "step") -> contextlib
     unit : str, optional
         What a step is: only :func:`advance` calls of the same ``unit`` count (a stiffness search's judgements
         inside a stage counting parameters do not).
+    eta : bool, optional
+        Estimate the time left from the stage's pace (default True); False where its steps differ widely in cost.
     """
-    return _stage(what, total, unit)
+    return _stage(what, total, unit, eta)
 
 
 @contextlib.contextmanager
-def _stage(what: str, total: int | None, unit: str) -> Iterator[None]:
+def _stage(what: str, total: int | None, unit: str, eta: bool) -> Iterator[None]:
     with _LOCK:
         line = _OPEN[-1] if _OPEN else None
-        saved = None if line is None else (line.what, line.total, line.done, line.stage_start, line.unit)
+        saved = None if line is None else (line.what, line.total, line.done, line.stage_start, line.unit, line.eta)
         if line is not None:
-            line.what, line.total, line.done, line.stage_start, line.unit = what, total, 0, time.monotonic(), unit
+            line.what, line.total, line.done, line.unit, line.eta = what, total, 0, unit, eta
+            line.stage_start = time.monotonic()
             line.refresh()
     try:
         yield
     finally:
         if line is not None and saved is not None:
             with _LOCK:
-                line.what, line.total, line.done, line.stage_start, line.unit = saved
+                line.what, line.total, line.done, line.stage_start, line.unit, line.eta = saved
                 line.refresh()
 
 

@@ -456,3 +456,22 @@ def test_cli_stiffness_quick_says_it_is_without_the_simulated_limits(capsys):
     assert d["k_sim"]["value"] is None and d["k_sim"]["status"] == "not_simulated"
     assert d["k_sim"]["null_reasons"]["/value"] == LimitStatus.NOT_SIMULATED.message
     assert d["evidence"]["simulations"] == 0 and d["k_df"]["value"] == written(r.k_df.value)
+
+
+def test_cli_stiffness_quick_without_a_proof_says_nothing_was_simulated(capsys):
+    """No proof at this speed and no simulation: the recommendation says the simulated limits were not computed
+    (not that none is free of divergence), and the answer's status is `not_simulated`, not `ok`."""
+    argv = ["stiffness", "--device", "phantom", "--velocity", "0.1", "--virtual-damping", "0.5", "--delay", "2"]
+    code, out, err = run(capsys, *argv, "--quick", "--json")
+    assert code == 0, err
+    d = json.loads(out)
+    assert d["k_criterion"]["value"] is None  # the case: no proof
+    assert d["recommendation"]["status"] == "not_simulated" and d["recommendation"]["k_recommended"] is None
+    assert d["status"] == "not_simulated" and "nothing simulated" in d["status_message"]
+    code, out, err = run(capsys, *argv, "--quick")
+    assert "simulated limits were not computed" in " ".join(out.split()) and "free of divergence" not in out
+
+
+def test_cli_stiffness_quick_refuses_plot(capsys):
+    code, out, err = run(capsys, "stiffness", "--device", "impulse", "--velocity", "0.2", "--quick", "--plot", "k.png")
+    assert code == 2 and err.count("\n") == 1 and "--plot" in err and "--quick" in err and out == ""

@@ -32,8 +32,8 @@ def test_progress_line_shows_the_stage_how_far_and_the_runs_after_the_delay():
             progress.advance(runs=3, unit="judgement")
             progress.advance(unit="parameter")  # another unit's step: not this stage's
     text = out.getvalue().replace("\r", "\n")
-    assert "searching (3 runs): step 1 of about 4" in text
-    assert "step 2 of about 4" not in text
+    assert "searching: 1/~4, ~0:00 left, 0:00 elapsed, 3 runs" in text
+    assert "2/~4" not in text
 
 
 def test_progress_line_silent_before_its_delay_and_off_a_terminal():
@@ -84,10 +84,10 @@ def _run_on_a_terminal(argv):
 @pytest.mark.skipif(sys.platform == "win32", reason="pseudo-terminals are POSIX")
 def test_cli_stiffness_progress_line_on_a_terminal_never_in_json_or_a_pipe(capsys):
     out, tty = _run_on_a_terminal(STIFFNESS)
-    assert "K_sim, no divergence: simulating" in tty and re.search(r"step \d+ of about \d+", tty)
+    assert "K_sim (no divergence): " in tty and re.search(r": \d+/~\d+, ~\d:\d\d left, \d:\d\d elapsed", tty)
     assert "K_sim" not in out  # the answer on stdout holds no line of progress
     _out, tty_json = _run_on_a_terminal([*STIFFNESS, "--json"])
-    assert "simulating" not in tty_json
+    assert "K_sim" not in tty_json and "elapsed" not in tty_json
     piped = subprocess.run(
         [sys.executable, "-c", "import sys; from dfa.cli.app import main; sys.exit(main(sys.argv[1:]))", *STIFFNESS],
         capture_output=True, text=True, env=dict(os.environ, DFA_PROGRESS_DELAY="0"), check=True,
@@ -98,7 +98,8 @@ def test_cli_stiffness_progress_line_on_a_terminal_never_in_json_or_a_pipe(capsy
 def test_cli_stiffness_explain_ends_with_its_time_and_the_simulations_it_ran(capsys):
     assert main([*STIFFNESS, "--explain"]) == 0
     last = capsys.readouterr().out.rstrip("\n").splitlines()[-1]
-    m = re.fullmatch(r"answered in ([0-9.]+) s \(wall clock, this machine\), (\d+) simulations run", last)
+    m = re.fullmatch(r"answered in ([0-9.]+) s \(wall clock, this machine\); (\d+) runs simulated \(repeats taken "
+                     r"from the cache\)", last)  # fmt: skip
     assert m is not None, last
     cache = RunCache()
     design_answer(Loop(get_device("impulse").device, Wall.of(80.0)), 0.2, assess=True, cache=cache)

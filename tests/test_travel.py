@@ -184,3 +184,26 @@ def test_verdict_with_a_travel_says_it_assumes_the_motion_inside(capsys, command
     assert "assume the motion stays inside" in json.loads(capsys.readouterr().out)["travel_assumption"]
     assert main([argv[0], "--device", "phantom", *command[1:], "--velocity", "0.05"]) == 0
     assert "travel" not in capsys.readouterr().out  # no travel, no line
+
+
+def test_design_search_runs_end_at_the_device_travel():
+    """The stiffness searches simulate the device as it is, end stops included: with a travel of 5 ticks an impact
+    at 5 ticks a sample leaves it at once (end_stop, which fails both simulated limits), while the criterion, a
+    statement about the motion inside the travel, is unchanged."""
+    import dataclasses
+
+    from dfa.analysis.limits.kmax import design_answer
+    from dfa.model.wall import Wall
+
+    dev = get_device("phantom").device
+    short = dataclasses.replace(dev, travel=5.0 * dev.resolution)
+    free = design_answer(Loop(dev, Wall.of(1015.0)), 0.1, assess=True, grid=6, speeds=2)
+    ends = design_answer(Loop(short, Wall.of(1015.0)), 0.1, assess=True, grid=6, speeds=2)
+    assert ends.k_criterion == free.k_criterion
+    assert set(ends.assessment.outcomes.values()) == {"end_stop"}
+    assert "end_stop" not in free.assessment.outcomes.values()
+    assert free.k_sim.value is not None and ends.k_sim.value is None
+    # independent check: the same impact by simulate() with the device's travel ends at the end stop
+    p = short.params(1015.0)
+    w = with_travel(Wall.of(1015.0).params(short.period, short.resolution), short)
+    assert simulate(p.mu, p.beta, p.sigma, short.xi_dot(0.1), wall=w, record=False).outcome == "end_stop"

@@ -21,7 +21,7 @@ from ..results.status import LimitStatus
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, save_png, working
-from .parsing import number
+from .parsing import UsageError, number
 from .passivity import add_passivity_args
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
 
@@ -107,6 +107,11 @@ def run(args: argparse.Namespace) -> int:
     wall = ctl if ctl is not None else Wall.of(1.0 if k is None else k, delay=args.delay)
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
+        if args.quick:
+            raise UsageError(
+                "dfa stiffness: --plot draws the simulated limits, which --quick does not compute: drop --quick or "
+                "--plot"
+            )
     src = _source(args, inp)
     check_margin(args.margin)  # refused before the search, not after it
     where = src if src in ("catalogue", "device file") else "given"
@@ -146,10 +151,7 @@ def run(args: argparse.Namespace) -> int:
         emit(wall_json(out, ctl, inp))
         return 0
     if args.explain:
-        from ..render.answer import work_line
-
         _print_explained(ans, rec, ctl, inp)
-        print(work_line(*work))
     else:
         from ..render.answer import stiffness_screen
 
@@ -160,6 +162,10 @@ def run(args: argparse.Namespace) -> int:
         print("\n".join(gain_lines(gain)))
     if args.plot is not None:
         print(f"stiffness-speed chart written to {args.plot}")
+    if args.explain:  # the last line: how long the answer took
+        from ..render.answer import work_line
+
+        print(work_line(*work))
     return 0
 
 

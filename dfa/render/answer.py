@@ -314,12 +314,17 @@ def stiffness_screen(r: KMaxResult, rec: Recommendation, guidance: DamperGuidanc
 def work_line(seconds: float, runs: int) -> str:
     """The last line of ``dfa stiffness --explain``: how long the answer took and how many simulations it ran.
 
+    ``runs`` counts the runs simulated: a run the searches ask for again is taken from the run cache, so the
+    evidence's count of simulations (what the searches asked for) can be larger.
+
     Examples
     --------
     >>> work_line(2.345, 1234)
-    'answered in 2.3 s (wall clock, this machine), 1234 simulations run'
+    'answered in 2.3 s (wall clock, this machine); 1234 runs simulated (repeats taken from the cache)'
     >>> work_line(0.0123, 0)
-    'answered in 0.012 s (wall clock, this machine), no simulation run'
+    'answered in 0.012 s (wall clock, this machine); no simulation run'
     """
-    runs_text = "no simulation run" if runs == 0 else f"{runs} simulation{'s' if runs != 1 else ''} run"
-    return f"answered in {number(seconds, 2)} s (wall clock, this machine), {runs_text}"
+    if runs == 0:
+        return f"answered in {number(seconds, 2)} s (wall clock, this machine); no simulation run"
+    ran = f"{runs} run{'s' if runs != 1 else ''} simulated (repeats taken from the cache)"
+    return f"answered in {number(seconds, 2)} s (wall clock, this machine); {ran}"

@@ -6,7 +6,9 @@ Every line is at most :data:`~dfa.formatting.WIDTH` characters; the JSON carries
 
 from __future__ import annotations
 
-from ..formatting import WIDTH, fill, number, text_table
+import math
+
+from ..formatting import WIDTH, fill, number, round_at, text_table
 from ..results.require import ALL_METHODS, PARAMETERS, DamperGuidance, Requirement, Requirements
 from ..results.status import RequireStatus
 from .hand import device_title
@@ -41,6 +43,21 @@ def _unit(units: dict[str, str], name: str, value: float = 0.0) -> str:
     return ("sample" if value == 1 else "samples") if kind == "samples" else units[kind]
 
 
+def _safe(x: float, bound: str) -> str:
+    """``x`` at 4 significant digits rounded toward the side where K holds: up for a lower bound (≥), down for
+    an upper bound (≤), so that the printed value itself meets the requirement.
+
+    Examples
+    --------
+    >>> _safe(0.821000000238, "at_least"), _safe(1.49913e-04, "at_most"), _safe(0.0, "at_least")
+    ('0.8211', '0.0001499', '0')
+    """
+    if x == 0.0 or not math.isfinite(x):
+        return number(x, 4)
+    place = math.floor(math.log10(abs(x))) - 3
+    return number(round_at(x, place, "up" if bound == "at_least" else "down"), 4)
+
+
 def requirement_cell(r: Requirement, units: dict[str, str]) -> str:
     """One table cell: ``"≤ 17.38 ms (holds)"``-like text, or what the status says instead of a value.
 
@@ -57,8 +74,7 @@ def requirement_cell(r: Requirement, units: dict[str, str]) -> str:
     if r.required is None:
         return _CELL[r.status]
     sign = "≤" if r.bound == "at_most" else "≥"
-    digits = 0 if r.parameter == "delay" else 4
-    value = f"{r.required:.0f}" if digits == 0 else number(r.required, 4)
+    value = f"{r.required:.0f}" if r.parameter == "delay" else _safe(r.required, r.bound)
     now = "holds now" if r.status is RequireStatus.MET else "change"
     return f"{sign} {value} {_unit(units, r.parameter, r.required)} ({now})"
 

@@ -278,11 +278,11 @@ class Recommendation(Result):
         check_type("wall", self.wall, Wall, fix)
         object.__setattr__(self, "status", RecommendRule.coerce(self.status))
         check_margin(self.margin)
-        none = self.status is RecommendRule.NONE
+        none = self.status in (RecommendRule.NONE, RecommendRule.NOT_SIMULATED)
         if none != (self.k_recommended is None) or none != (self.basis is None):
             raise DFAValueError(
                 f"k_recommended = {self.k_recommended!r}, basis = {self.basis!r} are invalid for the rule "
-                f"{self.status.value!r}: both must be None exactly under 'none'; {fix}"
+                f"{self.status.value!r}: both must be None exactly under 'none' and 'not_simulated'; {fix}"
             )
         if self.k_recommended is not None and not (math.isfinite(self.k_recommended) and self.k_recommended > 0):
             raise DFAValueError(f"k_recommended = {self.k_recommended!r} is invalid: it must be finite and > 0; {fix}")

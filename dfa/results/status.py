@@ -401,6 +401,10 @@ class KMaxStatus(StatusEnum):
         "counterexample",
         "an impact diverged at a stiffness the criterion proves passive: a criterion bug (see counterexamples)",
     )
+    NOT_SIMULATED = (
+        "not_simulated",
+        "a quick answer: the criterion, the linear bounds and the describing function; nothing simulated or confirmed",
+    )
 
 
 class UndecidedWhy(StatusEnum):
@@ -575,6 +579,11 @@ class RecommendRule(StatusEnum):
         "the gain margin (the simulated limit lies above it)",
     )
     NONE = ("none", "no K to recommend: no proof, and no simulated stiffness free of divergence, at this speed")
+    NOT_SIMULATED = (
+        "not_simulated",
+        "no K to recommend: no proof at this speed, and the simulated limits were not computed (a quick answer, "
+        "--quick); run without --quick for them",
+    )
 
 
 class RequireStatus(StatusEnum):

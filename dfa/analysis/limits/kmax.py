@@ -345,14 +345,14 @@ def _searches(
     pts = search_grid(k_ref, top, n_grid)
     xd = ev.dev.xi_dot(v)
     steps = search_steps(pts)
-    with stage("K_df, describing function", steps, "judgement"):  # describing_limit's search
+    with stage("K_df (describing function)", steps, "judgement"):  # describing_limit's search
         k_df = df_limit(ev, pts, xd) if ev.wall.linear else KLimit(None, LimitStatus.NOT_LINEAR)
     if not simulate:
         k_sim = k_rest = KLimit(None, LimitStatus.NOT_SIMULATED)
     else:
-        with stage("K_sim, no divergence: simulating", steps, "judgement"):
+        with stage("K_sim (no divergence)", steps, "judgement"):
             k_sim = simulated_limit(ev, pts, "unstable")
-        with stage("K_sim_rest, every impact rests: simulating", steps, "judgement"):
+        with stage("K_sim_rest (every impact rests)", steps, "judgement"):
             k_rest = simulated_limit(ev, pts, "rest")
     return k_df, k_sim, k_rest, (float(pts[0]), float(pts[-1]))
 
@@ -380,7 +380,7 @@ def searched_limits(
         k_lo, by_criterion = (kc, True) if kc else (k_range[0], False)
         budget = ev.wall.params(ev.dev.period, ev.dev.resolution).sweep_points()
         sweep = Sweep.up_to(k_lo, by_criterion, max(found), budget)
-        with stage("sweep in K and confirmation at more speeds: simulating"):
+        with stage("sweep in K and confirmation"):
             ev.prefetch(sweep.points(max(found)))  # one threaded batch for both limits
             k_sim = confirm(k_sim, ev, dense, "unstable", sweep, k_range[0])
             k_rest = confirm(k_rest, ev, dense, "rest", sweep, k_range[0], k_sim.value)
@@ -531,7 +531,7 @@ def design_answer(
         k_df, k_sim, k_rest, k_range, ce, status = searched_limits(ev, v, n_speeds, k_crit, k_ref, top, n_grid)
     elif v > 0:  # the quick answer: the describing function's search alone, on the full answer's grid
         k_df, k_sim, k_rest, k_range = _searches(ev, v, k_ref, top, n_grid, simulate=False)
-        ce, status = (), (KMaxStatus.CAVEATS if k_df.caveat else KMaxStatus.OK)
+        ce, status = (), KMaxStatus.NOT_SIMULATED
     else:  # no impact: nothing to search (the closed forms hold at rest)
         k_df = k_sim = k_rest = KLimit(None, LimitStatus.NOT_SEARCHED)
         k_range, ce, status = (0.0, 0.0), (), KMaxStatus.OK

@@ -133,4 +133,5 @@ def _rule(a: KMaxResult, m: float) -> Recommendation:
     if ks.status is LimitStatus.ABOVE_RANGE and top is not None and math.isfinite(top) and top > 0:
         return Recommendation(**base, k_recommended=top / m, basis="k_sim", k_basis=top,
                               status=RecommendRule.SIMULATED_RANGE)  # fmt: skip
-    return Recommendation(**base, k_recommended=None, basis=None, k_basis=None, status=RecommendRule.NONE)
+    none = RecommendRule.NOT_SIMULATED if ks.status is LimitStatus.NOT_SIMULATED else RecommendRule.NONE
+    return Recommendation(**base, k_recommended=None, basis=None, k_basis=None, status=none)

@@ -266,7 +266,7 @@ def requirements(
     if not names or not ms:
         raise DFAValueError("methods and parameters must each name at least one; give e.g. methods=('criterion',)")
     out = []
-    with stage("requirements: one parameter by one method at a time", len(ms) * len(names), "parameter"):
+    with stage("requirements", len(ms) * len(names), "parameter", eta=False):
         for m in ms:
             uncovered = w.params(dev.period, dev.resolution).not_covered() if m == "criterion" else None
             if uncovered is not None or (m != "criterion" and not w.linear):  # not a linear loop
