@@ -158,7 +158,9 @@ def test_eq36_subtick_assessed_stiffness_says_why_its_growth_speed_is_unknown(ca
     }
     argv = ["stiffness", "--device", "impulse", "--velocity", "0.02", "--stiffness", "540"]
     assert main([*argv, "--explain"]) == 0
-    row = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("predicted cycles at K = 540"))
+    row = next(
+        line for line in capsys.readouterr().out.splitlines() if line.startswith("predicted cycles at K = 540 N/m")
+    )
     assert reasons["subtick"] in row and "search incomplete" not in row and reasons["incomplete"] not in row
     assert main([*argv, "--json"]) == 0
     a = json.loads(capsys.readouterr().out)["assessment"]

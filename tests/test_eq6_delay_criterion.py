@@ -330,7 +330,7 @@ def test_cli_stiffness_above_static_limit_is_answered_not_crashed(capsys):
     assert row(out, "verdict at this speed") == (
         f"too stiff: no passivity guarantee even at rest (K > 2c/Δ = {static:.5g} N/m); not a proof of instability"
     )
-    assert row(out, "largest passive speed at K = 60000").startswith("none: no passivity guarantee even at rest")
+    assert row(out, "largest passive speed at K = 60000 N/m").startswith("none: no passivity guarantee even at rest")
     code, out, _ = run(capsys, "stiffness", "--device", "delta", "--velocity", "0.1", "--stiffness", "60000", "--json")
     a = json.loads(out)["assessment"]
     assert a["velocity_status"] == "none" and a["verdict"] == "too_stiff" and a["max_passive_velocity"] is None

@@ -165,3 +165,26 @@ def test_log_grid_is_what_identify_fits_with():
     assert delta == pytest.approx(1e-5, rel=1e-9) and t == pytest.approx(1e-3, rel=1e-9)
     r = identify(LOG, bootstrap=0)
     assert json.loads(json.dumps(r.device.to_dict()))["resolution"] == pytest.approx(delta, rel=1e-12)
+
+
+def test_read_log_skips_blank_lines_before_the_header_and_names_a_file_of_comments_only(tmp_path):
+    """A Markdown file (a comment line, a blank line, prose) is refused for its header, not called empty; blank
+    lines before a log's header are skipped; a file of comments only is said to be that."""
+    prose = tmp_path / "README.md"
+    prose.write_text("# Example logs\n\nLogs to try dfa identify on\n", encoding="utf-8")
+    with pytest.raises(LogError, match="the header 'Logs to try dfa identify on' has no column"):
+        read_log(prose)
+    comments = tmp_path / "c.csv"
+    comments.write_text("# only\n\n# comments\n", encoding="utf-8")
+    with pytest.raises(LogError, match="holds only comment lines"):
+        read_log(comments)
+    empty = tmp_path / "e.csv"
+    empty.write_text("", encoding="utf-8")
+    with pytest.raises(LogError, match="the file is empty"):
+        read_log(empty)
+    log = synthetic_log(dfa.get_device("impulse").device, np.full(40, 0.05))
+    good = tmp_path / "g.csv"
+    dfa.model.log.write_log(log, good)
+    blank = tmp_path / "b.csv"
+    blank.write_text("\n\n" + good.read_text(encoding="utf-8"), encoding="utf-8")
+    assert np.array_equal(read_log(blank).x, read_log(good).x)

@@ -200,7 +200,7 @@ def test_cli_stiffness_controller_text_and_json(capsys, small_search):
     fresh = PROOF_NOTE.replace("a proof", "a proof (for a wall whose memory is fresh at t = 0)")  # a damper's memory
     assert fresh in " ".join(out.split()) and "only the criterion is a proof" in out
     assert "simulated speeds, starts and stiffnesses" in out
-    assert "largest passive speed at K = 14500 (catalogue K)" in out
+    assert "largest passive speed at K = 14500 N/m (catalogue K)" in out
     a = r.assessment
     assert f"{a.max_passive_velocity:.4g} m/s" in out
     assert f"{a.outcomes['impact']} (from ξ0 = 0), {a.outcomes['preload']} (preload)" in out
@@ -306,7 +306,7 @@ def test_cli_stiffness_controller_assesses_given_stiffness(capsys, small_search)
     assert [getattr(r14, k) for k in r.limits] == [getattr(r, k) for k in r.limits]
     assert main([*argv, "--explain"]) == 0
     out = capsys.readouterr().out
-    assert "simulated at K = 30000, impact at V" in out and "predicted cycles at K = 30000" in out
+    assert "simulated at K = 30000 N/m, impact at V" in out and "predicted cycles at K = 30000 N/m" in out
 
 
 #: The criterion's row of `dfa stiffness` and of the report with a damper, filter or delay.

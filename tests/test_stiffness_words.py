@@ -58,7 +58,7 @@ def test_stiffness_names_the_device_file_its_k_came_from(capsys, tmp_path):
     assert d["assessment"]["source"] == "device file" and d["assessment"]["source_file"] == str(path)
     assert main(["stiffness", *argv, "--explain"]) == 0
     explained = capsys.readouterr().out
-    assert f"largest passive speed at K = 80 (the K of device file {path})" in explained
+    assert f"largest passive speed at K = 80 N/m (the K of device file {path})" in explained
     assert "catalogue K" not in explained
     assert main(["stiffness", *argv, "--stiffness", "70", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)

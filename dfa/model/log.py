@@ -233,8 +233,11 @@ def _parse(
     delimiter = ";" if ";" in first and "," not in first else "\t" if "\t" in first and "," not in first else ","
     rows = _rows(csv.reader(io.StringIO("\n".join(lines)), delimiter=delimiter), source)
     head = next(rows, None)
-    if head is None or not any(c.strip() for c in head):
-        raise LogError(f"{source}: the file is empty: a log needs a header (t,x,f) and one row per sample")
+    while head is not None and not any(c.strip() for c in head):  # blank lines before the header
+        head = next(rows, None)
+    if head is None:
+        what = "is empty" if not text.strip() else "holds only comment lines (#) and blank lines"
+        raise LogError(f"{source}: the file {what}: a log needs a header (t,x,f) and one row per sample")
     where = _header(head, source)
     scale = _scales(head, where, rotary, source)
     comma = delimiter != ","  # a decimal comma (3,25) where the separator is not one (spreadsheet exports)

@@ -377,7 +377,7 @@ def assessment_rows(r: KMaxResult) -> list[list[str]]:
     if a is None:
         return []
     vu = r.device.units["velocity"]
-    k = f"K = {a.stiffness:g}{source_text(a)}"
+    k = f"K = {a.stiffness:g} {r.device.units['stiffness']}{source_text(a)}"
     rows = [
         [f"largest passive speed at {k}", passive_text(r)],
         [f"predicted cycles at {k}", _growth_text(a, vu)],
