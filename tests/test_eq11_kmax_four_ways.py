@@ -245,7 +245,7 @@ def test_cli_stiffness_json_without_stiffness_says_not_requested(capsys):
 def test_cli_stiffness_catalogue_k_is_assessed_and_said(capsys):
     code, out, _ = run(capsys, "stiffness", "--device", "phantom", "--velocity", "0.2", "--explain")
     assert code == 0
-    assert "at K = 1015 (catalogue K)" in out and "unstable (from ξ0 = 0)" in out
+    assert "at K = 1015 N/m (catalogue K)" in out and "unstable (from ξ0 = 0)" in out
     code, out, _ = run(
         capsys, "stiffness", "--device", "phantom", "--velocity", "0.2", "--stiffness", "300", "--explain"
     )
