@@ -19,6 +19,7 @@ Examples
 from __future__ import annotations
 
 import decimal
+import functools
 
 import numpy as np
 
@@ -62,7 +63,13 @@ def geometric_grid(start: float, stop: float, num: int, *, endpoint: bool = True
         )
     if int(num) != num or num < 1:
         raise DFAValueError(f"num = {num!r} is invalid: it must be a whole number >= 1; give the number of points")
-    n = int(num)
+    return _grid(lo, hi, int(num), bool(endpoint)).copy()  # a copy: the caller may write into its grid
+
+
+@functools.lru_cache(maxsize=512)
+def _grid(lo: float, hi: float, n: int, endpoint: bool) -> np.ndarray:
+    """:func:`geometric_grid`'s points, formed once per (start, stop, num, endpoint): the searches ask for the
+    same grids again and again, and a grid of 2000 points takes milliseconds in decimal arithmetic."""
     steps = n - 1 if endpoint else n
     if n == 1 or steps == 0:
         return np.array([lo])

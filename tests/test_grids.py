@@ -52,3 +52,13 @@ def test_geometric_grid_speed_chart_point_is_off_the_printed_rounding_boundary()
 def test_geometric_grid_refuses_what_has_no_geometric_grid(args, match):
     with pytest.raises(DFAValueError, match=match):
         geometric_grid(*args)
+
+
+def test_geometric_grid_formed_once_and_each_caller_gets_its_own_copy():
+    """The grid is cached by its arguments (issue 43: the searches ask for the same grids again and again); a
+    caller that writes into its grid changes no later caller's."""
+    first = geometric_grid(3.0, 7.0e3, 50)
+    expected = first.copy()
+    first[:] = -1.0
+    again = geometric_grid(3.0, 7.0e3, 50)
+    assert np.array_equal(again, expected) and again is not first
