@@ -178,3 +178,24 @@ def test_recommend_with_plain_refuses_an_answer_of_another_wall():
     other = design_answer(dev, 0.0, wall=Wall.of(80.0, damping=0.1))
     with pytest.raises(dfa.DFAValueError, match="plain is not the answer of the same wall"):
         recommend_stiffness(ans, plain=other)
+
+
+def test_no_guarantee_prints_its_proven_speed_below_the_impact_speed():
+    """A new user's finding: "no passivity guarantee at 0.1 m/s (proven passive up to 0.1 m/s)". The proven
+    speed just below the impact speed prints with the digits that show it below (eq. 12's critical speed)."""
+    import re
+
+    from dfa.analysis.limits.closed_form import k_max_criterion, max_passive_velocity
+    from dfa.analysis.limits.kmax import design_answer
+    from dfa.model.wall import Wall
+    from dfa.render.answer import user_verdict
+
+    dev, v = dfa.get_device("delta").device, 0.1
+    k = float(k_max_criterion(dev, v, 0)) * (1.0 + 1e-6)  # just too stiff: proven up to just below 0.1 m/s
+    mpv = float(max_passive_velocity(dev, k, 0))
+    assert mpv < v and f"{mpv:.4g}" == "0.1"  # the case: 4 digits would print the impact speed itself
+    r = design_answer(dev, v, wall=Wall.of(k), assess=True, grid=4, speeds=1)
+    text = " ".join(user_verdict(r).split())
+    m = re.search(r"no passivity guarantee at [0-9.]+ m/s \(proven passive up to ([0-9.]+) m/s\)", text)
+    assert m is not None, text
+    assert float(m.group(1)) < v and abs(float(m.group(1)) - mpv) <= 1e-6 * mpv

@@ -316,7 +316,24 @@ def passive_text(r: KMaxResult) -> str:
         return "every speed" + (f" ({bound})" if bound else "")
     if mpv == 0.0:
         return f"none: {NO_SPEED_PROVEN}" + ("" if r.wall.covers(Coverage.SURFACE_START) else NO_SPEED_ONE_SIDED)
-    return f"{mpv:.4g} {vu}"
+    return f"{_below(mpv, r.velocity)} {vu}"
+
+
+def _below(speed: float, velocity: float) -> str:
+    """``speed`` at 4 significant digits, more where those would not print it below the impact ``velocity`` it
+    lies below: "no passivity guarantee at 0.1 m/s (proven passive up to 0.09999 m/s)", not "up to 0.1 m/s".
+
+    Examples
+    --------
+    >>> _below(0.0999998, 0.1), _below(0.0999998, 0.05), _below(0.27652, 0.1)
+    ('0.0999998', '0.1', '0.2765')
+    """
+    digits = 4
+    text = f"{speed:.{digits}g}"
+    while speed < velocity and float(text) >= velocity and digits < 17:
+        digits += 1
+        text = f"{speed:.{digits}g}"
+    return text
 
 
 #: A largest passive speed of 0: the criterion holds at no speed > 0.
