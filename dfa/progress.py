@@ -24,6 +24,7 @@ True
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import os
 import threading
 import time
@@ -43,15 +44,26 @@ TICK = 0.5
 _LOCK = threading.RLock()
 
 
+@dataclasses.dataclass
+class _Stage:
+    """A stage of work: what it does, its size in steps of ``unit`` (None: unknown), whether its pace estimates
+    the time left, when it began, the steps done."""
+
+    what: str
+    total: int | None
+    unit: str
+    eta: bool
+    start: float
+    done: int = 0
+
+
 class _Line:
     """The open line: its stream, its start, the stage, the runs; the tqdm bar once shown."""
 
     def __init__(self, stream: TextIO, delay: float) -> None:
         self.stream, self.delay, self.start = stream, delay, time.monotonic()
-        self.what: str = "working"
-        self.total: int | None = None
-        self.done = self.runs = 0
-        self.stage_start, self.unit, self.eta = self.start, "step", True
+        self.stage = _Stage("working", None, "step", True, self.start)
+        self.runs = 0
         self.bar: Any = None
 
     def refresh(self) -> None:
@@ -69,11 +81,12 @@ class _Line:
         """What the line says, short (a terminal's width): the stage, how far (n/~N), the time left where the stage
         knows its size and its steps cost alike (from the stage's own pace), the time since the work began, the
         runs so far."""
-        parts = [self.what]
-        if self.total:
-            parts[0] += f": {min(self.done, self.total)}/~{self.total}"
-            if self.done > 0 and self.eta:
-                left = (now - self.stage_start) / self.done * max(self.total - self.done, 0)
+        st = self.stage
+        parts = [st.what]
+        if st.total:
+            parts[0] += f": {min(st.done, st.total)}/~{st.total}"
+            if st.done > 0 and st.eta:
+                left = (now - st.start) / st.done * max(st.total - st.done, 0)
                 parts.append(f"~{_clock(left)} left")
         parts.append(f"{_clock(now - self.start)} elapsed")
         if self.runs:
@@ -91,9 +104,8 @@ _OPEN: list[_Line] = []
 _COUNTED: list[int] = [0, 0]  # runs, samples
 
 
-def stage(
-    what: str, total: int | None = None, unit: str = "step", eta: bool = True
-) -> contextlib.AbstractContextManager[None]:
+@contextlib.contextmanager
+def stage(what: str, total: int | None = None, unit: str = "step", eta: bool = True) -> Iterator[None]:
     """The stage of work ``what`` (a few words), of ``total`` steps when known; the previous stage after it.
 
     Parameters
@@ -108,24 +120,17 @@ def stage(
     eta : bool, optional
         Estimate the time left from the stage's pace (default True); False where its steps differ widely in cost.
     """
-    return _stage(what, total, unit, eta)
-
-
-@contextlib.contextmanager
-def _stage(what: str, total: int | None, unit: str, eta: bool) -> Iterator[None]:
     with _LOCK:
         line = _OPEN[-1] if _OPEN else None
-        saved = None if line is None else (line.what, line.total, line.done, line.stage_start, line.unit, line.eta)
         if line is not None:
-            line.what, line.total, line.done, line.unit, line.eta = what, total, 0, unit, eta
-            line.stage_start = time.monotonic()
+            saved, line.stage = line.stage, _Stage(what, total, unit, eta, time.monotonic())
             line.refresh()
     try:
         yield
     finally:
-        if line is not None and saved is not None:
+        if line is not None:
             with _LOCK:
-                line.what, line.total, line.done, line.stage_start, line.unit, line.eta = saved
+                line.stage = saved
                 line.refresh()
 
 
@@ -138,7 +143,7 @@ def advance(runs: int = 0, step: int = 1, unit: str = "step", samples: int = 0) 
         if _OPEN:
             line = _OPEN[-1]
             line.runs += runs
-            line.done += step if unit == line.unit else 0
+            line.stage.done += step if unit == line.stage.unit else 0
             line.refresh()
 
 

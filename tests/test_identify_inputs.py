@@ -188,3 +188,17 @@ def test_read_log_skips_blank_lines_before_the_header_and_names_a_file_of_commen
     blank = tmp_path / "b.csv"
     blank.write_text("\n\n" + good.read_text(encoding="utf-8"), encoding="utf-8")
     assert np.array_equal(read_log(blank).x, read_log(good).x)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_first_guess_nonnegative_least_squares_equals_scipy_nnls(seed):
+    """The first guess's three-column non-negative least squares (written out to spare `dfa identify` the import
+    of scipy.optimize) against scipy's nnls, an independent solver, on random problems with active bounds."""
+    from scipy.optimize import nnls
+
+    rng = np.random.default_rng(seed)
+    rows = rng.normal(size=(500, 3))
+    y = rows @ np.array([1.5, -0.7, 0.3]) * rng.choice([1.0, -1.0]) + 0.1 * rng.normal(size=500)
+    ours = identify_module._nonnegative_least_squares(rows, y)
+    theirs, _ = nnls(rows, y)
+    np.testing.assert_allclose(ours, theirs, rtol=1e-9, atol=1e-12)

@@ -25,18 +25,21 @@ NOT_FOR_CHECK = (
 )  # fmt: skip
 
 
+def _loaded_by(commands: list[list[str]], modules: tuple[str, ...], then: str) -> list[str]:
+    """In a fresh interpreter: run each dfa command (its output discarded, exit 0 asserted), print which of
+    ``modules`` are loaded (a sorted list), then ``import dfa`` and run the line ``then``; return the lines."""
+    runs = "".join(f"    assert main({argv!r}) == 0\n" for argv in commands)
+    code = (
+        "import io, sys, contextlib\nfrom dfa.cli import main\nwith contextlib.redirect_stdout(io.StringIO()):\n"
+        f"{runs}print(sorted(m for m in {modules!r} if m in sys.modules))\nimport dfa\n{then}"
+    )
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split("\n")
+
+
 def test_dfa_check_loads_neither_python_control_nor_numba_nor_the_other_commands_analyses():
     """`dfa check` starts fast: its text needs none of :data:`NOT_FOR_CHECK`; they still load when used."""
-    code = (
-        "import io, sys, contextlib\n"
-        "from dfa.cli import main\n"
-        "with contextlib.redirect_stdout(io.StringIO()):\n"
-        "    assert main(['check', '--device', 'delta', '--velocity', '0.1']) == 0\n"
-        f"print(sorted(m for m in {NOT_FOR_CHECK!r} if m in sys.modules))\n"
-        "import dfa\n"
-        "print(dfa.stiffness_limits.__module__, dfa.read_log.__module__, dfa.__version__ == dfa._version())"
-    )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split("\n")
+    then = "print(dfa.stiffness_limits.__module__, dfa.read_log.__module__, dfa.__version__ == dfa._version())"
+    out = _loaded_by([["check", "--device", "delta", "--velocity", "0.1"]], NOT_FOR_CHECK, then)
     assert out[0] == "[]"
     assert out[1] == "dfa.analysis.limits.closed_form dfa.model.log True"
 
@@ -49,17 +52,11 @@ NOT_FOR_DESIGN = ("control", "matplotlib", "sympy", "scipy.signal", "scipy.integ
 
 def test_everyday_commands_do_not_load_python_control_sympy_or_scipy_signal():
     """`dfa stiffness` and `dfa simulate` answer without :data:`NOT_FOR_DESIGN`; `QuantizerNonlinearity` loads it."""
-    code = (
-        "import io, sys, contextlib\n"
-        "from dfa.cli import main\n"
-        "with contextlib.redirect_stdout(io.StringIO()):\n"
-        "    assert main(['stiffness', '--device', 'impulse', '--velocity', '0.1']) == 0\n"
-        "    assert main(['simulate', '--device', 'impulse', '--velocity', '0.1', '--stiffness', '500']) == 0\n"
-        f"print(sorted(m for m in {NOT_FOR_DESIGN!r} if m in sys.modules))\n"
-        "import dfa\n"
-        "print(dfa.QuantizerNonlinearity.__module__, 'control' in sys.modules)"
-    )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split("\n")
+    commands = [
+        ["stiffness", "--device", "impulse", "--velocity", "0.1"],
+        ["simulate", "--device", "impulse", "--velocity", "0.1", "--stiffness", "500"],
+    ]
+    out = _loaded_by(commands, NOT_FOR_DESIGN, "print(dfa.QuantizerNonlinearity.__module__, 'control' in sys.modules)")
     assert out[0] == "[]"
     assert out[1] == "dfa.analysis.nonlinearities True"
 

@@ -252,7 +252,10 @@ def _first_guess(v: np.ndarray, a: np.ndarray, phi: np.ndarray) -> tuple[float, 
 
 def _nonnegative_least_squares(rows: np.ndarray, y: np.ndarray) -> np.ndarray:
     """argmin ‖rows x − y‖ over x >= 0 for a few columns: the least squares on each set of free columns (the
-    others 0) whose solution is >= 0, the one of least residual (the minimum's own set is among them)."""
+    others 0) whose solution is >= 0, the one of least residual (the minimum's own set is among them).
+
+    ``scipy.optimize.nnls`` solves the same problem; importing scipy.optimize costs about 0.3 s of `dfa identify`,
+    which needs nothing else from it (tests/test_identify_inputs.py checks the two agree)."""
     m, q = np.einsum("ni,nj->ij", rows, rows), np.einsum("ni,n->i", rows, y)
     best, low = np.zeros(rows.shape[1]), 0.0
     for mask in range(1, 2 ** rows.shape[1]):
