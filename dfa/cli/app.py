@@ -48,6 +48,7 @@ from . import (
     require,
     simulate,
     stiffness,
+    tune,
     validate,
     zwidth,
 )
@@ -60,7 +61,7 @@ __all__ = ["COMMANDS", "build_parser", "main", "on_signal", "package_version"]
 #: The subcommands, in the order of ``dfa --help``: each module has COMMAND, HELP, EXAMPLE, add_arguments, run.
 COMMANDS: tuple[ModuleType, ...] = (
     devices, params, check, stiffness, require, simulate, maps, limit_cycles, contours, report, validate, zwidth,
-    identify,
+    identify, tune,
 )  # fmt: skip
 
 
@@ -197,6 +198,7 @@ def _run(parser: argparse.ArgumentParser, argv: list[str]) -> int:
         parser.print_help()
         return 2
     args = parser.parse_args(argv)
+    args.argv = list(argv)  # the command line as given (a command that prints a command to run next reads it)
     if getattr(args, "func", None) is None:
         raise UsageError("dfa: error: give a COMMAND (see `dfa --help`)")
     with compile_note(args.command):  # one line on a terminal while kernels compile (first run only)

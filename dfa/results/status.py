@@ -23,6 +23,8 @@ from typing import Any
 from ..errors import DFAValueError
 
 __all__ = [
+    "TuneStatus",
+    "TunedStatus",
     "StatusEnum",
     "RequireStatus",
     "GripStatus",
@@ -658,3 +660,22 @@ class IdentifyWarning(StatusEnum):
         "the Coulomb friction is poorly determined (95 % interval wider than ±25 %, or unbounded)",
     )
     POOR_FIT = ("poor_fit", "fewer than 90 % of the samples are predicted within one tick")
+
+
+class TuneStatus(StatusEnum):
+    """What a tuning found (:func:`dfa.analysis.limits.tune.tune`)."""
+
+    TUNED = ("tuned", "a wall with the elements allowed gets a higher recommended K than the plain wall")
+    PLAIN_BEST = ("plain_best", "no wall with the elements allowed gets a higher recommended K than the plain wall")
+    NONE = (
+        "none",
+        "no wall tried has a recommended K at this speed within the force error allowed (no proof and no simulated K "
+        "free of divergence, or too large a force error)",
+    )
+
+
+class TunedStatus(StatusEnum):
+    """How far one candidate wall of a tuning was taken (:class:`dfa.results.tune.TunedWall`)."""
+
+    SIMULATED = ("simulated", "its stiffness searched in full: proof, simulated limits and the recommendation")
+    SCREENED = ("screened", "screened only (criterion and exact linear bound): ranked below the walls simulated")

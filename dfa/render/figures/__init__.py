@@ -48,10 +48,12 @@ from .style import (
     SIGMA_LABEL,
 )
 from .trajectory import trajectory_plot
+from .tune import tune_plot
 from .validation import critical_speed_plot, cycle_error_plot
 from .zwidth import ZWIDTH_COLORS, plot_zwidth
 
 __all__ = [
+    "tune_plot",
     "regions_plot",
     "stability_map_plot",
     "trajectory_plot",

@@ -1,0 +1,324 @@
+"""The wall with the largest recommended stiffness among the elements an engineer allows (issue 44).
+
+:func:`tune` tries every combination of the sample periods, delays, virtual dampers and velocity-filter cutoffs
+allowed (each list has a default), in three stages:
+
+1. **Screen** every candidate with the quick answer (:func:`dfa.analysis.limits.kmax.design_answer` with
+   ``simulate=False``): the criterion's K (eq. 11, extended to the wall) and the exact linear bound (the describing
+   function's K where the linear loop does not cover the wall). The screen's K is the larger of the proven K and
+   that bound over the margin; its force error there comes from one short simulated impact. The walls whose error
+   is within :data:`SCREEN_SLACK` times the cap come first, by screen's K. It recommends nothing.
+2. **Simulate** the plain wall (the given wall without a virtual damper, velocity filter or passivity controller,
+   at the device's own period) and the ``evaluate`` best-screened others in full, and recommend each wall's K by the
+   one rule of :func:`dfa.analysis.limits.recommend.recommend_stiffness`: the largest proven K, or the simulated
+   no-divergence limit over the margin, said as such.
+3. **Passivity controller**: for each force limit allowed, the best simulated wall with the controller, compared
+   with the same wall without it (the rule recommends the controller only where it raises K).
+
+Each simulated wall's fidelity at its recommended K follows from one simulated impact
+(:func:`dfa.analysis.fidelity.force_error`). Only stages 2 and 3 recommend: the screen's ranking decides which walls
+are simulated, so a wall ranked low by the screen and never simulated could still do better (the result lists the
+screened walls, and ``evaluate`` simulates more).
+
+Defaults: the device's own period; the wall's delay; B = 0 and the 1-2-5 values from the largest damper with which
+the criterion still proves some K (:func:`dfa.analysis.limits.kmax.max_proven_damping`) up to m/T (half of where the
+backward-difference damper on the bare mass becomes unstable, BT/m = 2); no filter and the 1-2-5 cutoff nearest
+below a tenth of the sample rate; no passivity controller (simulating one takes tens of seconds per force limit).
+
+Examples
+--------
+>>> from dfa.model.catalogue import get_device
+>>> from dfa.model.loop import Loop
+>>> r = tune(Loop(get_device("impulse").device), 0.05, dampings=[0.0, 0.5], cutoffs=[None], evaluate=1)
+>>> r.status.value, r.walls[0].wall.damping, r.best.wall.damping
+('tuned', 0.0, 0.5)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import math
+from collections.abc import Sequence
+
+from ...checks import check_positive
+from ...errors import DFAValueError
+from ...model.device import Device
+from ...model.elements import Damper, Delay, PassivityController, VelocityFilter
+from ...model.loop import Loop
+from ...model.wall import MIN_CUTOFF, Wall
+from ...progress import advance, stage
+from ...results.require import DEFAULT_MARGIN, check_margin
+from ...results.status import TunedStatus, TuneStatus
+from ...results.tune import TunedWall, TuneResult
+from ..fidelity import force_error
+from .kmax import KMaxResult, design_answer, max_proven_damping
+from .recommend import recommend_stiffness
+
+__all__ = ["tune", "default_dampings", "default_cutoffs", "series_125", "MAX_CANDIDATES", "DEFAULT_MAX_FORCE_ERROR"]
+
+#: The most candidate walls one tuning screens (about 0.3 s each): more is refused up front.
+MAX_CANDIDATES = 200
+#: The default cap on the best wall's force error (a fraction of the ideal spring's peak force).
+DEFAULT_MAX_FORCE_ERROR = 0.5
+#: The screen ranks first the walls whose force error at the screen's K is within this factor of the cap: the error
+#: at the recommended K differs (the screen's K is not it), by a few per cent of the peak force on the catalogue's
+#: devices.
+SCREEN_SLACK = 1.25
+#: The most values one default list holds.
+_MAX_DEFAULT = 6
+
+
+def series_125(lo: float, hi: float) -> list[float]:
+    """The 1-2-5 values (1, 2, 5 × 10ⁿ) in [lo, hi], ascending: round numbers a command line repeats exactly.
+
+    Examples
+    --------
+    >>> series_125(0.12, 16.0)
+    [0.2, 0.5, 1.0, 2.0, 5.0, 10.0]
+    """
+    if not (0.0 < lo <= hi and math.isfinite(hi)):
+        return []
+    out = []
+    for n in range(math.floor(math.log10(lo)) - 1, math.ceil(math.log10(hi)) + 1):
+        for m in (1, 2, 5):
+            x = float(f"{m}e{n}")  # the decimal 1-2-5 value itself, not m·10ⁿ rounded twice
+            if lo <= x <= hi:
+                out.append(x)
+    return out
+
+
+def default_dampings(device: Device, wall: Wall, velocity: float) -> tuple[float, ...]:
+    """0 and the 1-2-5 dampers from the largest with which the criterion proves some K up to m/T (module
+    docstring), at most six (the largest kept), N·s/m (rotary N·m·s/rad).
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> default_dampings(get_device("impulse").device, Wall(1.0), 0.05)
+    (0.0, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0)
+    """
+    hi = device.mass / device.period
+    lo = max_proven_damping(device, wall.without_controller(), velocity)
+    lo = lo if lo > 0.0 else hi / 100.0
+    return (0.0, *series_125(lo, hi)[-_MAX_DEFAULT:])
+
+
+def default_cutoffs(device: Device) -> tuple[float | None, ...]:
+    """No filter, and the 1-2-5 cutoff nearest below a tenth of the sample rate (Hz).
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> default_cutoffs(get_device("impulse").device)     # T = 2 ms: 500 Hz sampling
+    (None, 50.0)
+    """
+    fs = 1.0 / device.period
+    below = series_125(max(MIN_CUTOFF * fs, fs / 1000.0), fs / 10.0)
+    return (None, below[-1]) if below else (None,)
+
+
+def _check_lists(
+    device: Device, dampings: Sequence[float], cutoffs: Sequence[float | None], delays: Sequence[int],
+    periods: Sequence[float], pc_limits: Sequence[float],
+) -> None:  # fmt: skip
+    """Refuse an empty list, a negative damper, a delay that is not a whole number >= 0, a period <= 0, a force
+    limit <= 0, a cutoff outside (0, Nyquist) of the shortest period, or too many candidates."""
+    for name, values in (("dampings", dampings), ("cutoffs", cutoffs), ("delays", delays), ("periods", periods)):
+        if len(values) == 0:
+            raise DFAValueError(f"{name} = [] is invalid: give at least one value, or None for the default")
+    for b in dampings:
+        if not (isinstance(b, (int, float)) and math.isfinite(b) and b >= 0.0):
+            raise DFAValueError(f"dampings value {b!r} is invalid: a virtual damper B is a finite number >= 0 N·s/m")
+    for d in delays:
+        if not (isinstance(d, int) and d >= 0):
+            raise DFAValueError(f"delays value {d!r} is invalid: a delay is a whole number of samples >= 0")
+    for t in periods:
+        check_positive("periods value", t, "give sample periods in s, e.g. [0.001, 0.002]")
+    for f in pc_limits:
+        check_positive("pc_limits value", f, "give the passivity controller's force limits in N (rotary N·m)")
+    nyquist = 0.5 / max(periods)
+    for fc in cutoffs:
+        if fc is not None and not (isinstance(fc, (int, float)) and 0.0 < fc < nyquist):
+            raise DFAValueError(
+                f"cutoffs value {fc!r} is invalid: a filter cutoff lies in (0, {nyquist:.6g}) Hz, below the Nyquist "
+                f"frequency of the longest period {max(periods):g} s; give a lower cutoff or None (no filter)"
+            )
+    n = len(dampings) * len(cutoffs) * len(delays) * len(periods)
+    if n > MAX_CANDIDATES:
+        raise DFAValueError(
+            f"{len(dampings)} dampings x {len(cutoffs)} cutoffs x {len(delays)} delays x {len(periods)} periods = {n} "
+            f"candidate walls is too many: at most {MAX_CANDIDATES} (about 0.3 s each); give shorter lists"
+        )
+
+
+def _plain(wall: Wall) -> Wall:
+    """The wall without a virtual damper, velocity filter or passivity controller."""
+    tuned = (Damper, VelocityFilter, PassivityController)
+    return Wall(wall.stiffness, tuple(e for e in wall.elements if not isinstance(e, tuned)))
+
+
+def _candidate(base: Wall, delay: int, damping: float, cutoff: float | None) -> Wall:
+    """The plain wall with this delay, damper and filter (the delay replaces the wall's own)."""
+    w = Wall.of(base.stiffness, damping=damping, delay=delay, filter_cutoff=cutoff)
+    others = tuple(e for e in base.elements if not isinstance(e, Delay))
+    return Wall(base.stiffness, w.elements + others)
+
+
+def _screen_of(ans: KMaxResult, margin: float) -> float:
+    """The screen's K: the larger of the proven K and the linear bound (else the describing function's) over the
+    margin; 0 where none is finite."""
+    proven = ans.k_criterion.value or 0.0
+    bound = ans.k_linear.value if ans.k_linear.value is not None else ans.k_df.value
+    est = max(proven, (bound or 0.0) / margin)
+    return est if math.isfinite(est) else 0.0
+
+
+def _simulated(
+    device: Device, wall: Wall, velocity: float, margin: float, screen: TunedWall, plain: KMaxResult | None = None
+) -> tuple[TunedWall, KMaxResult]:
+    """The wall searched in full, its recommendation and its fidelity at the recommended K (and its answer)."""
+    ans = design_answer(Loop(device, wall), velocity)
+    rec = recommend_stiffness(ans, margin, plain=plain)
+    error = share = None
+    if rec.k_recommended is not None:
+        chosen = rec.wall if rec.controller is None or rec.controller.kept else rec.wall.without_controller()
+        error, share = force_error(Loop(device, chosen.with_stiffness(rec.k_recommended)), velocity)
+    tuned = TunedWall(device, wall, screen.screen, screen.screen_force_error, rec, error, share, TunedStatus.SIMULATED)
+    return tuned, ans
+
+
+def _screened(
+    device: Device, base: Wall, velocity: float, margin: float, lists: tuple[Sequence, ...]
+) -> list[TunedWall]:
+    """Every candidate (period x delay x damper x cutoff), screened by its quick answer."""
+    periods, delays, dampings, cutoffs = lists
+    combos = list(itertools.product(periods, delays, dampings, cutoffs))
+    out = []
+    with stage("screening the walls", len(combos), "wall"):
+        for t, d, b, fc in combos:
+            dev = device if t == device.period else dataclasses.replace(device, period=float(t))
+            wall = _candidate(base, d, float(b), None if fc is None else float(fc))
+            ans = design_answer(Loop(dev, wall), velocity, simulate=False)
+            k = float(_screen_of(ans, margin))
+            error = force_error(Loop(dev, wall.with_stiffness(k)), velocity)[0] if k > 0.0 else None
+            out.append(TunedWall(dev, wall, k, error))
+            advance(step=1, unit="wall")
+    return out
+
+
+def _within(error: float | None, cap: float | None) -> bool:
+    """Whether a force error is known and within the cap (always without a cap)."""
+    return cap is None or (error is not None and error <= cap)
+
+
+def _ranked(walls: list[TunedWall]) -> list[TunedWall]:
+    """The simulated walls by recommended K (largest first; none last), then the screened by screen."""
+
+    def key(w: TunedWall) -> tuple[int, float]:
+        if w.status is TunedStatus.SIMULATED:
+            return (0, -(w.k_recommended if w.k_recommended is not None else -1.0))
+        return (1, -w.screen)
+
+    return sorted(walls, key=key)
+
+
+def tune(
+    loop: Loop,
+    velocity: float,
+    *,
+    dampings: Sequence[float] | None = None,
+    cutoffs: Sequence[float | None] | None = None,
+    delays: Sequence[int] | None = None,
+    periods: Sequence[float] | None = None,
+    pc_limits: Sequence[float] = (),
+    margin: float = DEFAULT_MARGIN,
+    evaluate: int = 3,
+    max_force_error: float | None = DEFAULT_MAX_FORCE_ERROR,
+) -> TuneResult:
+    """The wall with the largest recommended stiffness among the elements allowed, and the trade-off (module docstring).
+
+    Parameters
+    ----------
+    loop : Loop
+        The device and the wall whose other elements are held (a one-sided contact, the device's force limit, an
+        amplifier; its stiffness is ignored): ``Loop(device)`` for the spring.
+    velocity : float
+        Impact speed V, m/s (rotary rad/s), > 0.
+    dampings : sequence of float, optional
+        Virtual dampers B to try, N·s/m (rotary N·m·s/rad), >= 0 (0: none). Default: :func:`default_dampings`.
+    cutoffs : sequence of float or None, optional
+        Velocity-filter cutoffs to try, Hz, below the Nyquist frequency (None: no filter). Default:
+        :func:`default_cutoffs`.
+    delays : sequence of int, optional
+        Delays to try, whole samples >= 0. Default: the wall's delay.
+    periods : sequence of float, optional
+        Sample periods the hardware offers, s. Default: the device's period.
+    pc_limits : sequence of float, optional
+        Force limits of a passivity controller to try on the best wall, N (rotary N·m). Default: none (no
+        controller tried; each takes tens of seconds to simulate).
+    margin : float, optional
+        Gain margin of the simulated rule, >= 1 (default 2, about 6 dB).
+    evaluate : int, optional
+        How many of the best-screened walls besides the plain one are simulated in full (default 3), >= 1.
+
+    max_force_error : float or None, optional
+        The largest force error (RMS over the first contact, a fraction of the ideal spring's peak force;
+        :func:`dfa.analysis.fidelity.force_error`) of a wall that can be the best (default 0.5); None: any. A wall
+        above it is listed, not chosen: a heavy damper buys K with a wall that feels like a damper.
+
+    Returns
+    -------
+    TuneResult
+        The plain wall first, then the other simulated walls by recommended K, then the screened ones.
+
+    Raises
+    ------
+    DFAValueError
+        For a speed that is not > 0, an empty or invalid list, too many candidates (:data:`MAX_CANDIDATES`) or
+        ``evaluate`` < 1.
+    """
+    device = loop.search_device("tune")
+    check_positive("velocity", velocity, "give the impact speed in m/s (rotary rad/s), e.g. 0.05")
+    check_margin(margin)
+    if max_force_error is not None:
+        check_positive("max_force_error", max_force_error, "give a fraction of the peak force, e.g. 0.5, or None")
+    if not (isinstance(evaluate, int) and evaluate >= 1):
+        raise DFAValueError(f"evaluate = {evaluate!r} is invalid: simulate at least 1 wall besides the plain one")
+    base = _plain(loop.spring)
+    dampings = default_dampings(device, base, velocity) if dampings is None else tuple(dampings)
+    cutoffs = default_cutoffs(device) if cutoffs is None else tuple(cutoffs)
+    delays = (base.delay,) if delays is None else tuple(delays)
+    periods = (device.period,) if periods is None else tuple(periods)
+    _check_lists(device, dampings, cutoffs, delays, periods, tuple(pc_limits))
+    plain = _candidate(base, base.delay, 0.0, None)
+    screened = _screened(device, base, velocity, margin, (periods, delays, dampings, cutoffs))
+    others = [w for w in screened if not (w.wall == plain and w.device == device)]
+    plain_screen = next((w for w in screened if w not in others), None)
+    if plain_screen is None:  # the lists leave the plain wall out: screen it too
+        plain_screen = _screened(device, base, velocity, margin, ((device.period,), (base.delay,), (0.0,), (None,)))[0]
+    loose = None if max_force_error is None else SCREEN_SLACK * max_force_error  # the screen's K is not the K chosen
+    others.sort(key=lambda w: (not _within(w.screen_force_error, loose), -w.screen))
+    with stage("simulating the best walls", 1 + min(evaluate, len(others)) + len(pc_limits), "wall", eta=False):
+        first, plain_ans = _simulated(device, plain, velocity, margin, plain_screen)
+        advance(step=1, unit="wall")
+        done = [(first, plain_ans)]
+        for w in others[:evaluate]:
+            done.append(_simulated(w.device, w.wall, velocity, margin, w))
+            advance(step=1, unit="wall")
+        faithful = [p for p in done if _within(p[0].force_error, max_force_error)] or done[:1]
+        best_tuned, best_ans = max(faithful, key=lambda p: p[0].k_recommended or -1.0)
+        for limit in pc_limits:
+            wall = Wall(best_tuned.wall.stiffness, (*best_tuned.wall.elements, PassivityController(force_limit=limit)))
+            done.append(_simulated(best_tuned.device, wall, velocity, margin, best_tuned, plain=best_ans))
+            advance(step=1, unit="wall")
+    walls = (first, *_ranked([t for t, _a in done[1:]] + others[evaluate:]))
+    cap = None if max_force_error is None else float(max_force_error)
+    out = TuneResult(device, float(velocity), float(margin), cap, walls)
+    return dataclasses.replace(out, status=_status(out))
+
+
+def _status(r: TuneResult) -> TuneStatus:
+    """tuned: the best wall is not the plain one; plain_best: it is; none: no wall within the cap has a K."""
+    i = r.best_index
+    return TuneStatus.NONE if i is None else (TuneStatus.PLAIN_BEST if i == 0 else TuneStatus.TUNED)

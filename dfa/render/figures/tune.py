@@ -1,0 +1,60 @@
+"""The tuning's trade-off: recommended stiffness against force error, one point per simulated wall."""
+
+from __future__ import annotations
+
+from ...results.status import RecommendRule
+from ..tune import wall_label
+from .style import SMALL_FONTSIZE, legend_outside, new_axes
+
+
+def tune_plot(result, ax=None):
+    """Recommended K (across, log) against the force error (up, %) of every simulated wall of a tuning.
+
+    Parameters
+    ----------
+    result : TuneResult
+        From :func:`dfa.tune`.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Notes
+    -----
+    A filled marker is a proven K (eq. 11, extended), a hollow one the simulated limit over the margin (not a
+    proof); red where the recommended K lies above the simulated rest limit (the wall may buzz there). The plain
+    wall is the square. Up and to the left is a stiffer-feeling, less faithful wall; the best trade-off lies low
+    and to the right. Walls without a recommended K or a force error are left out.
+    """
+    ax = new_axes(ax, figsize=(8.0, 4.8))
+    u = result.device.units
+    drawn = {}
+    for i, w in enumerate(result.walls):
+        k, e = w.k_recommended, w.force_error
+        if k is None or e is None:
+            continue
+        rec = w.recommendation
+        proven = rec.status is RecommendRule.PROVEN
+        colour = "#b2182b" if rec.above_rest else "#2166ac"
+        key = (proven, rec.above_rest, i == 0)
+        label = (
+            ("plain wall, " if i == 0 else "")
+            + ("proven K" if proven else "simulated K / margin")
+            + (", may buzz" if rec.above_rest else ", rests")
+        )
+        ax.plot([k], [100.0 * e], ls="none", marker="s" if i == 0 else "o", ms=8, color=colour,
+                mfc=colour if proven else "white", mew=1.6, label=label if key not in drawn else None)  # fmt: skip
+        drawn[key] = True
+        ax.annotate(
+            wall_label(w.wall, w.device, u, result.device.period), (k, 100.0 * e), xytext=(6, 4),
+            textcoords="offset points", fontsize=SMALL_FONTSIZE,
+        )  # fmt: skip
+    ax.set_xscale("log")
+    ax.set_xlabel(f"recommended stiffness K ({u['stiffness']})")
+    ax.set_ylabel("force error over the first contact (% of peak)")
+    ax.set_title(f"{result.device.name}: stiffness against fidelity at {result.velocity:g} {u['velocity']}")
+    ax.grid(True, which="both", alpha=0.3)
+    legend_outside(ax)
+    return ax

@@ -1,0 +1,131 @@
+"""A tuning in words: the table of the best walls, the plain one first, and the wall chosen (``dfa tune``).
+
+Examples
+--------
+>>> from dfa.model.catalogue import get_device
+>>> from dfa.model.wall import Wall
+>>> dev = get_device("impulse").device
+>>> wall_label(Wall.of(1.0, damping=2.0, filter_cutoff=50.0), dev, dev.units)
+'B 2 N·s/m, f_c 50 Hz'
+>>> wall_label(Wall(1.0), dev, dev.units)
+'spring'
+"""
+
+from __future__ import annotations
+
+from ..formatting import number, text_table
+from ..model.device import Device
+from ..model.elements import Damper, Delay, PassivityController, VelocityFilter
+from ..model.wall import Wall
+from ..results.status import RecommendRule, TunedStatus, TuneStatus
+from ..results.tune import TunedWall, TuneResult
+from .answer import recommendation_text, wrap
+
+__all__ = ["wall_label", "tune_rows", "tune_screen", "TUNE_HEADER"]
+
+#: The columns of the tuning's table.
+TUNE_HEADER = ["", "wall", "K", "rule", "at K", "force error", "controller acts"]
+
+_RULES = {
+    RecommendRule.PROVEN: "proven",
+    RecommendRule.SIMULATED: "simulated / margin",
+    RecommendRule.SIMULATED_RANGE: "top of range / margin",
+    RecommendRule.NONE: "none",
+}
+
+
+def wall_label(wall: Wall, device: Device, units: dict[str, str], period: float | None = None) -> str:
+    """The tuned elements of a wall in a few words (the others are the tuning's, the same in every row); the sample
+    period when it is not ``period``."""
+    parts = []
+    if device.period != period and period is not None:
+        parts.append(f"T {number(device.period * 1e3, 4)} ms")
+    d = wall.element(Delay)
+    if d is not None:
+        parts.append(f"delay {d.delay}")
+    b = wall.element(Damper)
+    if b is not None:
+        parts.append(f"B {number(b.damping, 4)} {units['damping']}")
+    f = wall.element(VelocityFilter)
+    if f is not None:
+        parts.append(f"f_c {number(f.filter_cutoff, 4)} Hz")
+    pc = wall.element(PassivityController)
+    if pc is not None:
+        limit = "no limit" if pc.force_limit is None else f"{number(pc.force_limit, 4)} {units['force']}"
+        parts.append(f"PC {limit}")
+    return ", ".join(parts) if parts else "spring"
+
+
+def _pct(x: float | None) -> str:
+    """A fraction in per cent: whole per cents from 10 %, two digits below (``2.04`` → ``'204 %'``)."""
+    if x is None:
+        return "–"
+    return f"{100 * x:.0f} %" if x >= 0.1 else f"{number(100 * x, 2)} %"
+
+
+def _at_k(w: TunedWall) -> str:
+    rec = w.recommendation
+    if rec is None or rec.k_recommended is None:
+        return "–"
+    return "may buzz" if rec.above_rest else "rests"
+
+
+def _row(i: int, w: TunedWall, r: TuneResult) -> list[str]:
+    u = r.device.units
+    label = wall_label(w.wall, w.device, u, r.device.period) + (" (plain)" if i == 0 else "")
+    rec = w.recommendation
+    if rec is None:
+        return [str(i + 1), label, f"~{number(w.screen, 5)}", "screened only", "–", _pct(w.screen_force_error), "–"]
+    k = "none" if rec.k_recommended is None else number(rec.k_recommended, 5)
+    ctl, err = _pct(w.controller_share), _pct(w.force_error)
+    if not r.faithful(w) and w.force_error is not None:
+        err += " (over cap)"
+    kept = rec.controller is not None and not rec.controller.kept
+    rule = _RULES.get(rec.status, rec.status.value) + (" (without PC)" if kept else "")
+    return [str(i + 1), label, k, rule, _at_k(w), err, ctl]
+
+
+def tune_rows(r: TuneResult, *, screened: bool = False) -> list[list[str]]:
+    """The table's rows: the simulated walls (plain first), and with ``screened`` the walls only screened."""
+    return [_row(i, w, r) for i, w in enumerate(r.walls) if screened or w.status is TunedStatus.SIMULATED]
+
+
+def _best_lines(r: TuneResult) -> list[str]:
+    best = r.best
+    if best is None or best.recommendation is None:
+        return [wrap(f"no wall to recommend: {r.status.message}.")]
+    rec = best.recommendation
+    label = wall_label(best.wall, best.device, r.device.units, r.device.period)
+    plain = r.walls[0].k_recommended
+    gain = ""
+    if r.status is TuneStatus.TUNED and plain is not None and best.k_recommended is not None:
+        gain = f" ({number(best.k_recommended / plain, 3)}× the plain wall's)"
+    elif r.status is TuneStatus.PLAIN_BEST:
+        gain = " (no element allowed does better than the plain wall)"
+    return [wrap(f"best: {label}{gain}; {recommendation_text(rec)}.")]
+
+
+def tune_screen(r: TuneResult, export: str | None = None, *, screened: bool = False) -> list[str]:
+    """One screen: what was tried, the table, the best wall and its recommendation, and how to export it.
+
+    Parameters
+    ----------
+    r : TuneResult
+    export : str, optional
+        The command that exports the best wall (the command line knows its flags).
+    screened : bool, optional
+        List the walls only screened too (default False: the simulated ones).
+    """
+    u = r.device.units
+    n_sim = len(r.simulated)
+    head = (
+        f"{r.device.name}, impact speed {number(r.velocity, 4)} {u['velocity']}: {len(r.walls)} walls screened, "
+        f"{n_sim} simulated in full; K in {u['stiffness']}; force error: RMS over the first contact, % of the ideal "
+        "spring's peak force"
+        + ("" if r.max_force_error is None else f", at most {_pct(r.max_force_error)} for the best")
+    )
+    lines = [wrap(head), text_table(tune_rows(r, screened=screened), TUNE_HEADER)]
+    lines += _best_lines(r)
+    if export is not None and r.best is not None:
+        lines.append(f"export: {export}")
+    return lines

@@ -1,0 +1,210 @@
+"""dfa tune (issue 44): the tuned wall is never below the plain one, its rule is honest (a proven K re-checked by the
+criterion, a simulated one re-simulated), the force error agrees with an independent computation, and the command
+line prints the numbers of the result."""
+
+import functools
+import json
+import math
+
+import numpy as np
+import pytest
+from cli_text import unwrap
+
+import dfa
+import dfa.analysis.limits.tune as tune_mod
+from dfa.analysis.criterion import device_criterion
+from dfa.analysis.fidelity import contact_samples, force_error
+from dfa.analysis.limits.kmax import design_answer, max_proven_damping
+from dfa.analysis.limits.tune import default_cutoffs, default_dampings, series_125, tune
+from dfa.analysis.simulation import preload_position, simulate
+from dfa.cli import main
+from dfa.errors import DFAValueError
+from dfa.model.loop import Loop
+from dfa.model.wall import Wall
+from dfa.results.status import RecommendRule, TunedStatus, TuneStatus
+from dfa.results.tune import TuneResult
+
+SMALL = {"speeds": 2, "grid": 6}
+V = 0.05
+LISTS = {"dampings": [0.0, 0.5, 2.0], "cutoffs": [None, 50.0], "evaluate": 2}
+
+
+@pytest.fixture(scope="module")
+def impulse():
+    return dfa.get_device("impulse").device
+
+
+@pytest.fixture(scope="module")
+def tuned(impulse):
+    mp = pytest.MonkeyPatch()
+    mp.setattr(tune_mod, "design_answer", functools.partial(design_answer, **SMALL))
+    try:
+        yield tune(Loop(impulse), V, **LISTS)
+    finally:
+        mp.undo()
+
+
+def test_series_125_is_the_round_values_in_the_range():
+    assert series_125(0.12, 16.0) == [0.2, 0.5, 1.0, 2.0, 5.0, 10.0]
+    assert series_125(1.0, 1.0) == [1.0]
+    assert series_125(3.0, 4.0) == [] and series_125(0.0, 1.0) == []
+    for x in series_125(1e-4, 1e4):  # each is the decimal value itself, repeatable on a command line
+        assert float(repr(x)) == x and repr(x).strip("0.e-+").lstrip("0")[0] in "125"
+
+
+def test_default_lists_span_the_proven_damper_to_m_over_t(impulse):
+    ds = default_dampings(impulse, Wall(1.0), V)
+    assert ds[0] == 0.0 and 1 <= len(ds) - 1 <= 6
+    lo, hi = max_proven_damping(impulse, Wall(1.0), V), impulse.mass / impulse.period
+    assert all(lo <= b <= hi for b in ds[1:])
+    assert default_cutoffs(impulse) == (None, 50.0)  # 500 Hz sampling: the 1-2-5 value below 50 Hz
+
+
+def test_tune_plain_wall_first_and_never_better_than_the_best(tuned):
+    assert isinstance(tuned, TuneResult)
+    plain = tuned.walls[0]
+    assert plain.status is TunedStatus.SIMULATED and plain.wall.damping == 0.0 and plain.wall.filter_cutoff is None
+    best = tuned.best
+    assert best is not None and best.k_recommended >= plain.k_recommended
+    assert tuned.status is (TuneStatus.PLAIN_BEST if best is plain else TuneStatus.TUNED)
+    assert len(tuned.walls) == 3 * 2  # every combination listed once
+    ks = [w.k_recommended for w in tuned.simulated[1:]]
+    assert ks == sorted(ks, reverse=True)
+    assert len(tuned.simulated) == 1 + LISTS["evaluate"]
+
+
+def test_tune_best_respects_the_force_error_cap(tuned):
+    for w in tuned.walls:
+        if w.k_recommended is not None and w.k_recommended > tuned.best.k_recommended:
+            assert w.force_error > tuned.max_force_error  # a stiffer wall was passed over only for its fidelity
+
+
+def _diverges(dev, wall, k, v, n=20000):
+    """Any impact at V/2 or V, from ξ0 = 0 or the preload, that diverges at stiffness k."""
+    loop = Loop(dev, wall.with_stiffness(k))
+    for s in (v / 2, v):
+        xd = dev.xi_dot(s)
+        for x0, v0 in ((0.0, xd), (preload_position(loop.params.mu, xd), 0.0)):
+            if simulate(loop, v0, n, x0, record=False).outcome == "unstable":
+                return True
+    return False
+
+
+def test_eq11_tuned_rules_are_honest(tuned, impulse):
+    """A proven K is passive by the criterion's own verdict; a simulated one diverges in no re-simulated impact."""
+    checked = 0
+    for w in tuned.simulated:
+        rec = w.recommendation
+        if rec.status is RecommendRule.PROVEN:
+            assert device_criterion(Loop(w.device, w.wall.with_stiffness(rec.k_recommended * (1 - 1e-6))), V).passive
+            checked += 1
+        elif rec.status is RecommendRule.SIMULATED:
+            assert rec.k_recommended == pytest.approx(rec.k_basis / tuned.margin, rel=1e-15)
+            assert not _diverges(w.device, w.wall, rec.k_recommended, V)
+            checked += 1
+    assert checked >= 2
+
+
+def test_tuned_recommendation_equals_design_answer_of_that_wall(tuned):
+    """Two answers to one question: the tuning's K for its best wall is what dfa stiffness's path recommends."""
+    from dfa.analysis.limits.recommend import recommend_stiffness
+
+    best = tuned.best
+    ans = design_answer(Loop(best.device, best.wall), V, **SMALL)
+    assert recommend_stiffness(ans, tuned.margin).k_recommended == pytest.approx(best.k_recommended, rel=1e-12)
+
+
+def _force_error_by_hand(dev, wall, v):
+    """The force error from the trajectory with numpy alone: −(r + ½) − β_B (r_h − r_{h−1}), delay 0, no filter."""
+    loop = Loop(dev, wall)
+    p, wp = loop.groups("test")
+    xd = dev.xi_dot(v)
+    n = contact_samples(p.mu, 0)
+    xs = simulate(loop, xd, max(10 * n, 200)).xi[: n + 1]
+    r = np.floor(xs)
+    vh = np.diff(r, prepend=r[0])
+    beta_b = wall.damping / (wall.stiffness * dev.period)
+    phi = -(r + 0.5) - beta_b * vh
+    return math.sqrt(np.mean((phi + xs) ** 2)) / (xd * math.sqrt(p.mu))
+
+
+@pytest.mark.parametrize(("k", "b"), [(100.0, 0.0), (400.0, 0.0), (300.0, 0.5), (900.0, 2.0)])
+def test_force_error_agrees_with_the_trajectory_computed_by_hand(impulse, k, b):
+    wall = Wall.of(k, damping=b)
+    e, share = force_error(Loop(impulse, wall), V)
+    assert share is None
+    assert e == pytest.approx(_force_error_by_hand(impulse, wall, V), rel=1e-12)
+    if b == 0.0:  # the encoder alone: |φ_A − φ_ideal| <= ½ at every instant
+        p = impulse.params(k)
+        assert e <= 0.5 / (impulse.xi_dot(V) * math.sqrt(p.mu))
+
+
+def test_force_error_counts_the_controller_samples(impulse):
+    pc = dfa.PassivityController(force_limit=0.05)
+    e, share = force_error(Loop(impulse, Wall(2000.0, (dfa.Damper(0.2), pc))), V)
+    assert e is not None and share is not None and 0.0 <= share <= 1.0
+
+
+def test_tune_json_carries_the_table_numbers(tuned):
+    d = tuned.to_dict()
+    json.dumps(d, allow_nan=False)
+    assert d["status"] == tuned.status.value and d["best_index"] == tuned.best_index
+    first = d["walls"][0]
+    assert first["recommendation"]["k_recommended"] == pytest.approx(tuned.walls[0].k_recommended, rel=1e-11)
+    assert d["walls"][-1]["status"] in ("screened", "simulated")
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"dampings": [-1.0]}, "^dampings value"),
+        ({"cutoffs": [300.0]}, "^cutoffs value"),
+        ({"delays": [1.5]}, "^delays value"),
+        ({"dampings": []}, "^dampings"),
+        ({"dampings": list(range(30)), "cutoffs": [None, 10.0, 20.0, 50.0, 100.0], "delays": [0, 1]}, "too many"),
+        ({"evaluate": 0}, "^evaluate"),
+        ({"max_force_error": -0.5}, "^max_force_error"),
+    ],
+)
+def test_tune_refuses_bad_lists_up_front(impulse, kwargs, match):
+    with pytest.raises(DFAValueError, match=match):
+        tune(Loop(impulse), V, **kwargs)
+
+
+@pytest.fixture
+def small_tune(monkeypatch):
+    monkeypatch.setattr(tune_mod, "design_answer", functools.partial(design_answer, **SMALL))
+
+
+def test_cli_tune_prints_the_result_numbers_and_an_export_command(capsys, small_tune):
+    argv = ["tune", "--device", "impulse", "--velocity", "0.05", "--dampings", "0,0.5,2", "--cutoffs", "none,50",
+            "--evaluate", "2"]  # fmt: skip
+    assert main(argv) == 0
+    text = unwrap(capsys.readouterr().out)
+    assert main([*argv, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    best = d["walls"][d["best_index"]]
+    k = best["recommendation"]["k_recommended"]
+    assert f"recommended K = {float(f'{k:.5g}'):g} N/m" in text or f"recommended K = {k:.5g} N/m" in text
+    row = next(line for line in text.splitlines() if line.startswith("1 ") and "(plain)" in line)
+    assert f"{d['walls'][0]['recommendation']['k_recommended']:.5g}" in row
+    cmd = d["export_command"]
+    assert cmd.startswith("dfa export --device impulse --velocity 0.05") and "--dampings" not in cmd
+    assert f"export: {cmd}" in text
+    b = best["wall"]["damping"]
+    assert (f"--virtual-damping {b!r}" in cmd) == (b > 0)
+
+
+@pytest.mark.parametrize(
+    ("extra", "match"),
+    [
+        (["--virtual-damping", "1"], "--virtual-damping is not taken here"),
+        (["--dampings", "0,-1"], "--dampings"),
+        (["--cutoffs", "none,abc"], "--cutoffs"),
+        (["--max-force-error", "0"], "--max-force-error"),
+    ],
+)
+def test_cli_tune_bad_input_is_one_line_and_exit_2(capsys, extra, match):
+    assert main(["tune", "--device", "impulse", "--velocity", "0.05", *extra]) == 2
+    err = capsys.readouterr().err.strip()
+    assert match in err and len(err.splitlines()) == 1 and "Traceback" not in err
