@@ -954,6 +954,7 @@ COMMANDS = [
         "require --device delta --stiffness 20000 --velocity 0.1 --virtual-damping 1 --velocity-filter 200 --delay 1",
         None,
     ),
+    ("tune --device impulse --velocity 0.05", 40.0),
 ]
 
 
