@@ -21,15 +21,15 @@ from ..results.status import RecommendRule, TunedStatus, TuneStatus
 from ..results.tune import TunedWall, TuneResult
 from .answer import recommendation_text, wrap
 
-__all__ = ["wall_label", "tune_rows", "tune_screen", "TUNE_HEADER"]
+__all__ = ["wall_label", "tune_rows", "tune_screen", "command_lines", "TUNE_HEADER"]
 
 #: The columns of the tuning's table.
-TUNE_HEADER = ["", "wall", "K", "rule", "at K", "force error", "controller acts"]
+TUNE_HEADER = ["", "wall", "K", "rule", "at K", "rests to K", "force error", "PC acts"]
 
 _RULES = {
     RecommendRule.PROVEN: "proven",
-    RecommendRule.SIMULATED: "simulated / margin",
-    RecommendRule.SIMULATED_RANGE: "top of range / margin",
+    RecommendRule.SIMULATED: "sim. / margin",
+    RecommendRule.SIMULATED_RANGE: "range / margin",
     RecommendRule.NONE: "none",
 }
 
@@ -75,14 +75,24 @@ def _row(i: int, w: TunedWall, r: TuneResult) -> list[str]:
     label = wall_label(w.wall, w.device, u, r.device.period) + (" (plain)" if i == 0 else "")
     rec = w.recommendation
     if rec is None:
-        return [str(i + 1), label, f"~{number(w.screen, 5)}", "screened only", "–", _pct(w.screen_force_error), "–"]
+        return [
+            str(i + 1),
+            label,
+            f"~{number(w.screen, 5)}",
+            "screened only",
+            "–",
+            "–",
+            _pct(w.screen_force_error),
+            "–",
+        ]
     k = "none" if rec.k_recommended is None else number(rec.k_recommended, 5)
     ctl, err = _pct(w.controller_share), _pct(w.force_error)
     if not r.faithful(w) and w.force_error is not None:
-        err += " (over cap)"
+        err += " > cap"
     kept = rec.controller is not None and not rec.controller.kept
     rule = _RULES.get(rec.status, rec.status.value) + (" (without PC)" if kept else "")
-    return [str(i + 1), label, k, rule, _at_k(w), err, ctl]
+    rest = "–" if rec.k_rest is None else number(rec.k_rest, 5)
+    return [str(i + 1), label, k, rule, _at_k(w), rest, err, ctl]
 
 
 def tune_rows(r: TuneResult, *, screened: bool = False) -> list[list[str]]:
@@ -115,17 +125,49 @@ def tune_screen(r: TuneResult, export: str | None = None, *, screened: bool = Fa
         The command that exports the best wall (the command line knows its flags).
     screened : bool, optional
         List the walls only screened too (default False: the simulated ones).
+
+    Returns
+    -------
+    list of str
+        Lines under :data:`dfa.render.answer.WIDTH` characters but the table's (a row a line).
     """
     u = r.device.units
     n_sim = len(r.simulated)
     head = (
         f"{r.device.name}, impact speed {number(r.velocity, 4)} {u['velocity']}: {len(r.walls)} walls screened, "
-        f"{n_sim} simulated in full; K in {u['stiffness']}; force error: RMS over the first contact, % of the ideal "
-        "spring's peak force"
-        + ("" if r.max_force_error is None else f", at most {_pct(r.max_force_error)} for the best")
+        f"{n_sim} simulated in full; K in {u['stiffness']}; rule: proven, or the simulated limit over the margin; "
+        "rests to K: the simulated rest limit; force error: RMS over the first contact, % of the ideal spring's peak "
+        "force" + ("" if r.max_force_error is None else f", at most {_pct(r.max_force_error)} for the best")
     )
     lines = [wrap(head), text_table(tune_rows(r, screened=screened), TUNE_HEADER)]
     lines += _best_lines(r)
     if export is not None and r.best is not None:
-        lines.append(f"export: {export}")
+        lines += ["export the best wall:", *command_lines(export)]
     return lines
+
+
+def command_lines(command: str, width: int = 96) -> list[str]:
+    r"""A shell command on lines under ``width`` characters, continued with a backslash (copy-paste runs it whole);
+    a flag stays on the line of its value.
+
+    Examples
+    --------
+    >>> print("\n".join(command_lines("dfa export --device impulse --velocity 0.05", width=34)))
+      dfa export --device impulse \
+        --velocity 0.05
+    """
+    words = command.split(" ")
+    groups: list[str] = []
+    for w in words:
+        if groups and groups[-1].startswith("--") and " " not in groups[-1] and not w.startswith("--"):
+            groups[-1] += " " + w
+        else:
+            groups.append(w)
+    out, line = [], "  "
+    for g in groups:
+        if line.strip() and len(line) + 1 + len(g) + 2 > width:
+            out.append(line + " \\")
+            line = "    " + g
+        else:
+            line = f"{line} {g}" if line.strip() else line + g
+    return [*out, line]

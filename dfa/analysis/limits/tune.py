@@ -55,7 +55,16 @@ from ..fidelity import force_error
 from .kmax import KMaxResult, design_answer, max_proven_damping
 from .recommend import recommend_stiffness
 
-__all__ = ["tune", "TuneResult", "TunedWall", "default_dampings", "default_cutoffs", "series_125", "MAX_CANDIDATES", "DEFAULT_MAX_FORCE_ERROR"]
+__all__ = [
+    "tune",
+    "TuneResult",
+    "TunedWall",
+    "default_dampings",
+    "default_cutoffs",
+    "series_125",
+    "MAX_CANDIDATES",
+    "DEFAULT_MAX_FORCE_ERROR",
+]
 
 #: The most candidate walls one tuning screens (about 0.3 s each): more is refused up front.
 MAX_CANDIDATES = 200
