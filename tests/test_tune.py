@@ -214,3 +214,28 @@ def test_cli_tune_bad_input_is_one_line_and_exit_2(capsys, extra, match):
     assert main(["tune", "--device", "impulse", "--velocity", "0.05", *extra]) == 2
     err = capsys.readouterr().err.strip()
     assert match in err and len(err.splitlines()) == 1 and "Traceback" not in err
+
+
+def test_report_deployable_wall_section_states_the_tuned_numbers(small_tune, monkeypatch):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from dfa.studies.design import design_analysis
+    from dfa.studies.design_document import design_markdown
+    from dfa.studies.design_figures import design_figures
+
+    monkeypatch.setattr(tune_mod, "default_dampings", lambda dev, wall, v: (0.0, 0.5))
+    monkeypatch.setattr(tune_mod, "default_cutoffs", lambda dev: (None,))
+    entry = dfa.get_device("impulse")
+    a = design_analysis(dfa.Loop(entry.device), V, entry=entry, map_grid=3, samples=2000, n_jobs=1, tune=True)
+    assert a.tuned is not None and a.tuned.velocity == V
+    figs = design_figures(a)
+    assert "tune" in [f.name for f in figs]
+    md = design_markdown(a, {f.name: f.caption for f in figs}, lambda n: f"{n}.png")
+    section = md.split("## Deployable wall", 1)[1].split("\n## ", 1)[0]
+    for w in a.tuned.simulated:
+        assert f"{w.k_recommended:.5g}" in section
+    assert "$ dfa export --device impulse --velocity 0.05 " in section
+    best = a.tuned.best
+    assert (f"--virtual-damping {best.wall.damping!r}" in section) == (best.wall.damping > 0)
+    assert "(tune.png)" in section

@@ -57,6 +57,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="Z-width section on an N x N grid (K against virtual damping B; default: none for the spring, "
         "16 with a wall flag; 0: none)",
     )
+    p.add_argument(
+        "--tune",
+        action="store_true",
+        help="add the deployable wall: dfa tune with its default lists at this speed, and the dfa export command that "
+        "writes the best wall (about 40 s; default: none)",
+    )
     add_progress_args(p)
     add_wall_args(p)
     add_contact_args(p)
@@ -130,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
     make_output_folder("--out", args.out)
     res = design_report(
         loop, v, entry=inp.entry, out_dir=args.out, fmt=args.format, progress=progress(args),
-        validation=summary, force=args.force, zwidth_grid=args.zwidth,
+        validation=summary, force=args.force, zwidth_grid=args.zwidth, tune=args.tune,
     )  # fmt: skip
     if args.json:
         emit(res.to_dict(), ensure_ascii=False)

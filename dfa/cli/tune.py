@@ -157,29 +157,10 @@ def export_command(argv: Sequence[str], parser: argparse.ArgumentParser, best: A
         if not own:
             kept += argv[i : i + step]
         i += step
-    return " ".join(["dfa", "export", *map(shlex.quote, kept), *_wall_flags(best, device), "--format", "c",
+    from ..render.tune import wall_flags
+
+    return " ".join(["dfa", "export", *map(shlex.quote, kept), *wall_flags(best, device), "--format", "c",
                      "--out", "wall.h"])  # fmt: skip
-
-
-def _wall_flags(best: Any, device: Any) -> list[str]:
-    """The best wall's tuned elements as flags (repr: the exact doubles)."""
-    from ..model.elements import Damper, Delay, PassivityController, VelocityFilter
-
-    w, out = best.wall, []
-    if best.device.period != device.period:
-        out += ["--period", repr(best.device.period)]
-    pairs = ((Delay, "--delay", "delay"), (Damper, "--virtual-damping", "damping"),
-             (VelocityFilter, "--velocity-filter", "filter_cutoff"))  # fmt: skip
-    for kind, flag, attr in pairs:
-        e = w.element(kind)
-        if e is not None:
-            out += [flag, repr(getattr(e, attr))]
-    pc = w.element(PassivityController)
-    if pc is not None:
-        out += ["--passivity-controller"] + (
-            [] if pc.force_limit is None else ["--pc-force-limit", repr(pc.force_limit)]
-        )
-    return out
 
 
 def _check_cutoffs(args: argparse.Namespace, period: float) -> None:

@@ -21,7 +21,16 @@ from ..results.status import RecommendRule, TunedStatus, TuneStatus
 from ..results.tune import TunedWall, TuneResult
 from .answer import recommendation_text, wrap
 
-__all__ = ["wall_label", "tune_rows", "tune_screen", "command_lines", "TUNE_HEADER"]
+__all__ = [
+    "best_text",
+    "export_command",
+    "wall_label",
+    "wall_flags",
+    "tune_rows",
+    "tune_screen",
+    "command_lines",
+    "TUNE_HEADER",
+]
 
 #: The columns of the tuning's table.
 TUNE_HEADER = ["", "wall", "K", "rule", "at K", "rests to K", "force error", "PC acts"]
@@ -54,6 +63,33 @@ def wall_label(wall: Wall, device: Device, units: dict[str, str], period: float 
         limit = "no limit" if pc.force_limit is None else f"{number(pc.force_limit, 4)} {units['force']}"
         parts.append(f"PC {limit}")
     return ", ".join(parts) if parts else "spring"
+
+
+def wall_flags(tuned: TunedWall, device: Device) -> list[str]:
+    """A tuned wall's varied elements as command-line flags (each element's own flag; ``repr``: the exact doubles),
+    with ``--period`` where it runs at another period than ``device``'s.
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> dev = get_device("impulse").device
+    >>> wall_flags(TunedWall(dev, Wall.of(1.0, damping=2.0, delay=1), 100.0), dev)
+    ['--delay', '1', '--virtual-damping', '2.0']
+    """
+    w, out = tuned.wall, []
+    if tuned.device.period != device.period:
+        out += ["--period", repr(tuned.device.period)]
+    for kind, attr in ((Delay, "delay"), (Damper, "damping"), (VelocityFilter, "filter_cutoff")):
+        e = w.element(kind)
+        if e is not None:
+            out += [kind.parameter.flag, repr(getattr(e, attr))]
+    pc = w.element(PassivityController)
+    if pc is not None:
+        switch, window, limit = (row.flag for row in PassivityController.flag_rows())
+        out.append(switch)
+        out += [] if pc.window is None else [window, repr(pc.window)]
+        out += [] if pc.force_limit is None else [limit, repr(pc.force_limit)]
+    return out
 
 
 def _pct(x: float | None) -> str:
@@ -100,10 +136,11 @@ def tune_rows(r: TuneResult, *, screened: bool = False) -> list[list[str]]:
     return [_row(i, w, r) for i, w in enumerate(r.walls) if screened or w.status is TunedStatus.SIMULATED]
 
 
-def _best_lines(r: TuneResult) -> list[str]:
+def best_text(r: TuneResult) -> str:
+    """The best wall and its recommendation in one paragraph (unwrapped: the report's; the screen wraps it)."""
     best = r.best
     if best is None or best.recommendation is None:
-        return [wrap(f"no wall to recommend: {r.status.message}.")]
+        return f"no wall to recommend: {r.status.message}."
     rec = best.recommendation
     label = wall_label(best.wall, best.device, r.device.units, r.device.period)
     plain = r.walls[0].k_recommended
@@ -112,7 +149,20 @@ def _best_lines(r: TuneResult) -> list[str]:
         gain = f" ({number(best.k_recommended / plain, 3)}× the plain wall's)"
     elif r.status is TuneStatus.PLAIN_BEST:
         gain = " (no element allowed does better than the plain wall)"
-    return [wrap(f"best: {label}{gain}; {recommendation_text(rec)}.")]
+    return f"best: {label}{gain}; {recommendation_text(rec)}."
+
+
+def export_command(r: TuneResult, device_flags: str) -> str | None:
+    """``dfa export`` of the best wall: the device's flags, the speed and margin, the wall's flags (None: no best).
+
+    ``dfa export --velocity`` searches the same wall at the same speed by the same rule: the same K.
+    """
+    best = r.best
+    if best is None:
+        return None
+    margin = [] if r.margin == 2.0 else ["--margin", repr(r.margin)]
+    words = ["dfa", "export", device_flags, "--velocity", repr(r.velocity), *margin, *wall_flags(best, r.device)]
+    return " ".join([*words, "--format", "c", "--out", "wall.h"])
 
 
 def tune_screen(r: TuneResult, export: str | None = None, *, screened: bool = False) -> list[str]:
@@ -140,7 +190,7 @@ def tune_screen(r: TuneResult, export: str | None = None, *, screened: bool = Fa
         "force" + ("" if r.max_force_error is None else f", at most {_pct(r.max_force_error)} for the best")
     )
     lines = [wrap(head), text_table(tune_rows(r, screened=screened), TUNE_HEADER)]
-    lines += _best_lines(r)
+    lines.append(wrap(best_text(r)))
     if export is not None and r.best is not None:
         lines += ["export the best wall:", *command_lines(export)]
     return lines

@@ -31,6 +31,8 @@ from ..analysis.limits.grip import GripSweep, grip_sweep
 from ..analysis.limits.kmax import KMaxResult, RunCache, check_search_range, design_answer
 from ..analysis.limits.recommend import Recommendation, recommend_stiffness
 from ..analysis.limits.speed_chart import StiffnessSpeedChart, check_chart_range, stiffness_speed_chart
+from ..analysis.limits.tune import TuneResult
+from ..analysis.limits.tune import tune as tune_wall
 from ..analysis.limits.zwidth import ZWidth, check_zwidth_size, default_damping_max, z_width
 from ..analysis.loop import NyquistLocusResponse, nyquist_locus_response
 from ..analysis.maps import StabilityMap, map_start, stability_map
@@ -131,6 +133,9 @@ class DesignAnalysis(Result):
     grip : GripSweep or None
         How firm a grip the wall needs at K and ẋ0 (:func:`dfa.analysis.limits.grip.grip_sweep`: the bare device,
         the hand's mass held); None at speed 0.
+    tuned : TuneResult or None
+        The deployable wall: :func:`dfa.tune` with its default lists at the design speed, the wall's other elements
+        held (``tune=True``); None at speed 0 or when not asked.
     catalogue : dict or None
         The printed (μ, β, σ) of a device that has them, the disagreements and the notes; ``paper`` is True for
         the catalogue's own row (the paper printed them), False for another row (a device file: its source did).
@@ -162,6 +167,7 @@ class DesignAnalysis(Result):
     speed_chart: StiffnessSpeedChart | None = field(default=None, repr=False)
     zwidth: ZWidth | None = field(default=None, repr=False)
     grip: GripSweep | None = field(default=None, repr=False)
+    tuned: TuneResult | None = field(default=None, repr=False)
     catalogue: dict[str, Any] | None = None
     validation: dict[str, Any] | None = None
     samples: int = 30_000
@@ -208,7 +214,7 @@ class DesignAnalysis(Result):
         """The optional parts' types; the spring's closed forms only for the spring."""
         for name, cls in (
             ("limits", StiffnessLimits), ("stiffness_curve", StiffnessResponse), ("design_answer", KMaxResult),
-            ("speed_chart", StiffnessSpeedChart), ("zwidth", ZWidth),
+            ("speed_chart", StiffnessSpeedChart), ("zwidth", ZWidth), ("tuned", TuneResult),
         ):  # fmt: skip
             if getattr(self, name) is not None:
                 check_type(name, getattr(self, name), cls, fix)
@@ -516,6 +522,7 @@ def design_analysis(
     n_jobs: int = -1,
     progress: bool = False,
     zwidth_grid: int | None = None,
+    tune: bool = False,
 ) -> DesignAnalysis:
     """Compute every number of the design report of the loop's device with its wall at impact speed ẋ0.
 
@@ -542,6 +549,9 @@ def design_analysis(
     zwidth_grid : int or None
         Points per axis of the report's Z-width (one impact speed, :func:`dfa.analysis.limits.zwidth.z_width`);
         default None: none for the spring, :data:`WALL_ZWIDTH_GRID` (16) for a wall beyond it; 0: none.
+    tune : bool
+        Add the deployable wall (:func:`dfa.tune` with its default lists at the design speed; about 40 s;
+        default False).
 
     Returns
     -------
@@ -597,6 +607,8 @@ def design_analysis(
         figs["grip"] = grip_sweep(dev.bare, wall, v, hand_mass=0.0 if dev.hand is None else dev.hand.mass)
     if v > 0 and zg:
         figs["zwidth"] = _zwidth(loop, v, not wp.covers(Coverage.CLOSED_FORM), zg, n_jobs, progress)
+    if v > 0 and tune:
+        figs["tuned"] = tune_wall(loop, v)
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )

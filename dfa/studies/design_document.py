@@ -12,6 +12,7 @@ from collections.abc import Callable, Mapping
 from functools import lru_cache
 from typing import Any
 
+from ..errors import DFAValueError
 from ..formatting import markdown_table, number, percent
 from ..model.elements import Coverage, OneSided
 from ..render.answer import recommendation_text
@@ -514,6 +515,32 @@ def _controller_parts(a: DesignAnalysis) -> dict[str, str]:
     )  # fmt: skip
 
 
+def _device_flags(a: DesignAnalysis) -> str:
+    """The device as ``dfa export`` takes it: its catalogue name when the catalogue's device is this one, else its
+    physical values (6 significant digits)."""
+    from ..model.catalogue import get_device
+    from ..render.identify import device_flags
+
+    try:
+        same = get_device(a.device.name).device == a.device
+    except DFAValueError:
+        same = False
+    return f"--device {a.device.name.split()[0].lower()}" if same else device_flags(a.device)
+
+
+def _tune_parts(a: DesignAnalysis) -> dict[str, str]:
+    """The deployable wall's table, best wall and export command ('' without a tuning)."""
+    if a.tuned is None:
+        return {"tune_table": "", "tune_best": "", "export_command": ""}
+    from ..render.tune import TUNE_HEADER, best_text, export_command, tune_rows
+
+    return {
+        "tune_table": markdown_table(["#", *TUNE_HEADER[1:]], tune_rows(a.tuned)),
+        "tune_best": best_text(a.tuned),
+        "export_command": export_command(a.tuned, _device_flags(a)) or "",
+    }
+
+
 def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callable[[str], str]) -> str:
     """The report as Markdown; ``src(name)`` gives each figure's link (a relative path or a data URI).
 
@@ -539,6 +566,7 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
         if a.recommendation is None
         else recommendation_text(a.recommendation).removeprefix("recommended "),
         **_controller_parts(a),
+        **_tune_parts(a),
         device_table=markdown_table(["quantity", "value"], device_rows(a)),
         grip_text=grip_text(a.grip) if a.grip is not None else "",
         grip_table=markdown_table(["method", "least hand damping b_h", "rests on"], grip_rows(a.grip))

@@ -173,6 +173,18 @@ def _zwidth(a: DesignAnalysis) -> ReportFigure | None:
     return ReportFigure("zwidth", caption, _png(ax.figure))
 
 
+def _tuned(a: DesignAnalysis) -> ReportFigure | None:
+    if a.tuned is None:
+        return None
+    ax = a.tuned.plot()
+    caption = (
+        f"The walls tuned for the {held_name(a.device)} at {a.tuned.velocity:.3g} {a.device.units['velocity']}: "
+        "recommended K against the force error over the first contact; filled: proven, hollow: the simulated limit "
+        "over the margin; red: above the simulated rest limit (may buzz)."
+    )
+    return ReportFigure("tune", caption, _png(ax.figure))
+
+
 def _design_point_text(ax: Any, a: DesignAnalysis) -> str:
     """The caption's sentence about the controller's (B, K), starred on the Z-width by its ``plot``."""
     b, k = a.wall.damping, a.stiffness
@@ -191,7 +203,7 @@ def _design_point_text(ax: Any, a: DesignAnalysis) -> str:
 
 
 #: The report's figures in the order they appear.
-FIGURES = (_speed_chart, _regions, _stiffness, _nyquist, _trajectories, _map, _zwidth)
+FIGURES = (_speed_chart, _regions, _stiffness, _nyquist, _trajectories, _map, _zwidth, _tuned)
 
 
 def design_figures(analysis: DesignAnalysis) -> tuple[ReportFigure, ...]:

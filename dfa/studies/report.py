@@ -300,6 +300,7 @@ def design_report(
     validation: dict[str, Any] | None = None,
     force: bool = False,
     zwidth_grid: int | None = None,
+    tune: bool = False,
 ) -> ReportResult:
     """Write the design report of the loop's device with its wall at impact speed ẋ0.
 
@@ -333,6 +334,9 @@ def design_report(
     zwidth_grid : int or None
         Points per axis of a Z-width section (:func:`dfa.analysis.limits.zwidth.z_width`); None (default): no
         section for the spring, a 16 × 16 one for a wall beyond it; 0: none.
+    tune : bool
+        Add the "deployable wall" section: :func:`dfa.tune` with its default lists at the report's speed, and the
+        ``dfa export`` command that writes the best wall for the firmware (about 40 s; default False).
 
     Returns
     -------
@@ -364,6 +368,6 @@ def design_report(
         _check_overwrite(Path(out_dir), fmt, _identity(loop, v))
     a = design_analysis(
         loop, v, entry=entry, map_grid=map_grid, samples=samples, validation=validation, progress=progress,
-        zwidth_grid=zwidth_grid,
+        zwidth_grid=zwidth_grid, tune=check_bool("tune", tune, "pass True for the deployable wall, False for none"),
     )  # fmt: skip
     return write_design_report(a, out_dir, fmt, force=force)
