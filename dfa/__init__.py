@@ -171,6 +171,8 @@ _LAZY = {
     "passivity_gain": "analysis.limits.passivity_gain",
     "PassivityGain": "analysis.limits.passivity_gain",
     "Identification": "analysis.identify",
+    "export": "render.export",
+    "DeployableWall": "results.deploy",
 }
 #: Names of the API (listed in ``__all__`` below) whose modules load on their first use, like those of
 #: :data:`_LAZY`: ``dfa check`` and most commands need none of them, and each costs start-up time.

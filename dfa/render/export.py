@@ -135,7 +135,9 @@ def _origin(dep: DeployableWall) -> list[str]:
     if dep.rule is DeployRule.PROVEN:
         why = f"the largest K the criterion proves passive at this speed (K_criterion = {dep.k_basis:.6g})."
     else:
-        limit = "the simulated no-divergence limit" if dep.rule is DeployRule.SIMULATED else "the top of the range searched"
+        limit = (
+            "the simulated no-divergence limit" if dep.rule is DeployRule.SIMULATED else "the top of the range searched"
+        )
         why = (
             f"no proof at this speed; {limit}, {dep.k_basis:.6g} {u['stiffness']} (no simulated impact up to this "
             f"speed diverged below it), divided by the gain margin {dep.margin:g}. Not a proof."
@@ -351,7 +353,7 @@ def yaml_text(dep: DeployableWall) -> str:
              "pc_window": "s", "pc_force_limit": u["force"], "max_force": u["force"], "velocity": u["velocity"]}  # fmt: skip
     params = _parameters(dep) | {"units": units, "not_exported": dep.not_exported or None, "provenance": provenance}
     data = {YAML_NODE: {"ros__parameters": _no_nulls(to_jsonable(params))}}
-    return str(yaml.safe_dump(data, sort_keys=False, allow_unicode=True, default_flow_style=False))
+    return str(yaml.safe_dump(data, sort_keys=False, allow_unicode=True, default_flow_style=False, width=120))
 
 
 def json_text(dep: DeployableWall) -> str:

@@ -103,7 +103,7 @@ def device_from_dict(data: Mapping[str, Any]) -> Device:
     missing = [f.name for f in DEVICE_FIELDS if f.required and f.name not in data]
     if missing:
         raise DFAValueError(f"device record lacks {', '.join(missing)}: give every field of Device.to_dict()")
-    values = {f.name: data.get(f.name) for f in DEVICE_FIELDS}
+    values: dict[str, Any] = {f.name: data.get(f.name) for f in DEVICE_FIELDS}
     dev = Device(**values, name=str(data.get("name", "custom device")), rotary=bool(data.get("rotary", False)))
     hand = data.get("hand")
     if hand is not None:
@@ -177,7 +177,9 @@ class DeployableWall(Result):
             value = getattr(self, name)
             absent = given or (name == "margin" and self.rule is DeployRule.PROVEN)
             if absent and value is not None:
-                raise DFAValueError(f"{name} = {value!r} is invalid under the rule {self.rule.value!r}: it must be None; {_FIX}")
+                raise DFAValueError(
+                    f"{name} = {value!r} is invalid under the rule {self.rule.value!r}: it must be None; {_FIX}"
+                )
             if not absent and not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
                 raise DFAValueError(
                     f"{name} = {value!r} is invalid under the rule {self.rule.value!r}: it must be a finite number "
@@ -265,9 +267,9 @@ class DeployableWall(Result):
         missing = [k for k in ("device", "wall", "rule") if k not in data]
         if missing:
             raise DFAValueError(f"record lacks {', '.join(missing)}: give DeployableWall.to_dict()'s record")
-        opt = {k: data.get(k) for k in ("velocity", "margin", "k_basis", "command")}
+        opt: dict[str, Any] = {k: data.get(k) for k in ("velocity", "margin", "k_basis", "command")}
         version = data.get("dfa_version")
-        extra = {} if version is None else {"dfa_version": version}
+        extra: dict[str, Any] = {} if version is None else {"dfa_version": version}
         return cls(device_from_dict(data["device"]), _wall_from(data["wall"]), rule=data["rule"], **opt, **extra)
 
     # ------------------------------------------------------------------ derived
