@@ -112,11 +112,17 @@ def export(source: object, format: str = "c", *, command: str | None = None) -> 
     Returns
     -------
     str
+        The header, the YAML or the JSON, ready to write to a file.
 
     Raises
     ------
     DFAValueError
         For an unknown format, or a recommendation with no K.
+
+    See Also
+    --------
+    DeployableWall : The wall to deploy, its provenance and its JSON.
+    c_header, yaml_text, json_text : Each format.
     """
     if format not in FORMATS:
         raise DFAValueError(f"format = {format!r} is invalid: it must be one of {', '.join(FORMATS)}; give e.g. 'c'")

@@ -327,6 +327,7 @@ class DeployableWall(Result):
         Returns
         -------
         dict of str to str
+            Field name to the reason it is null.
         """
         return {
             "velocity": "the stiffness was given: no impact speed chose it",
