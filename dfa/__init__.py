@@ -175,6 +175,8 @@ _LAZY = {
     "TuneResult": "analysis.limits.tune",
     "TunedWall": "analysis.limits.tune",
     "force_error": "analysis.fidelity",
+    "export": "render.export",
+    "DeployableWall": "results.deploy",
 }
 #: Names of the API (listed in ``__all__`` below) whose modules load on their first use, like those of
 #: :data:`_LAZY`: ``dfa check`` and most commands need none of them, and each costs start-up time.

@@ -40,6 +40,7 @@ from . import (
     check,
     contours,
     devices,
+    export,
     identify,
     limit_cycles,
     maps,
@@ -60,8 +61,8 @@ __all__ = ["COMMANDS", "build_parser", "main", "on_signal", "package_version"]
 
 #: The subcommands, in the order of ``dfa --help``: each module has COMMAND, HELP, EXAMPLE, add_arguments, run.
 COMMANDS: tuple[ModuleType, ...] = (
-    devices, params, check, stiffness, require, simulate, maps, limit_cycles, contours, report, validate, zwidth,
-    identify, tune,
+    devices, params, check, stiffness, require, tune, export, simulate, maps, limit_cycles, contours, report,
+    validate, zwidth, identify,
 )  # fmt: skip
 
 

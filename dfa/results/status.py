@@ -58,6 +58,7 @@ __all__ = [
     "ReportStatus",
     "ZWidthStatus",
     "RecommendRule",
+    "DeployRule",
     "LinearStatus",
     "PassivityStatus",
 ]
@@ -586,6 +587,16 @@ class RecommendRule(StatusEnum):
         "no K to recommend: no proof at this speed, and the simulated limits were not computed (a quick answer, "
         "--quick); run without --quick for them",
     )
+
+
+class DeployRule(StatusEnum):
+    """The rule behind an exported wall's stiffness (:class:`dfa.results.deploy.DeployableWall`): a recommendation's
+    rule (:class:`RecommendRule`, those that give a K) or ``given``."""
+
+    PROVEN = (RecommendRule.PROVEN.value, RecommendRule.PROVEN.message)
+    SIMULATED = (RecommendRule.SIMULATED.value, RecommendRule.SIMULATED.message)
+    SIMULATED_RANGE = (RecommendRule.SIMULATED_RANGE.value, RecommendRule.SIMULATED_RANGE.message)
+    GIVEN = ("given", "the stiffness was given: no impact speed or rule chose it, and nothing here proves it passive")
 
 
 class RequireStatus(StatusEnum):
