@@ -239,3 +239,33 @@ def test_report_deployable_wall_section_states_the_tuned_numbers(small_tune, mon
     best = a.tuned.best
     assert (f"--virtual-damping {best.wall.damping!r}" in section) == (best.wall.damping > 0)
     assert "(tune.png)" in section
+
+
+def test_cli_tune_export_and_the_printed_export_command_give_the_same_wall(capsys, monkeypatch, tmp_path):
+    """The loop from the answer to the firmware: --export writes the best wall; the printed dfa export command
+    searches the same wall at the same speed and exports the same K (two answers to one question agree)."""
+    import shlex
+
+    import dfa.analysis.limits.kmax as kmax
+    from dfa.results.deploy import DeployableWall
+
+    small = functools.partial(design_answer, **SMALL)
+    monkeypatch.setattr(tune_mod, "design_answer", small)
+    monkeypatch.setattr(kmax, "design_answer", small)
+    out = tmp_path / "best.json"
+    argv = ["tune", "--device", "impulse", "--velocity", "0.05", "--dampings", "0,0.5", "--cutoffs", "none",
+            "--export", str(out), "--json"]  # fmt: skip
+    assert main(argv) == 0
+    d = json.loads(capsys.readouterr().out)
+    best = d["walls"][d["best_index"]]
+    dep = DeployableWall.from_dict(json.loads(out.read_text()))
+    assert dep.stiffness == pytest.approx(best["recommendation"]["k_recommended"], rel=1e-12)
+    assert dep.rule.value == best["recommendation"]["status"] and dep.velocity == V
+    assert dep.command.startswith("dfa tune --device impulse")
+    cmd = shlex.split(d["export_command"])
+    assert cmd[:2] == ["dfa", "export"] and cmd[cmd.index("--format") + 1] == "c"
+    again = cmd[1 : cmd.index("--format")] + ["--format", "json"]
+    assert main(again) == 0
+    dep2 = DeployableWall.from_dict(json.loads(capsys.readouterr().out))
+    assert dep2.stiffness == pytest.approx(dep.stiffness, rel=1e-12) and dep2.rule is dep.rule
+    assert dep2.wall.damping == dep.wall.damping and dep2.device == dep.device

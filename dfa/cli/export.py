@@ -83,12 +83,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
 
 
-def command_line() -> str:
-    """The command line that runs now, as ``dfa export ...`` (quoted for a shell)."""
-    argv = sys.argv[1:]
-    if COMMAND in argv:
-        argv = argv[argv.index(COMMAND) + 1 :]
-    return shlex.join(["dfa", COMMAND, *argv])
+def command_line(args: argparse.Namespace, command: str = COMMAND) -> str:
+    """The command line that runs now, as ``dfa <command> ...`` (quoted for a shell; the argv the parser read)."""
+    argv = list(getattr(args, "argv", sys.argv[1:]))
+    if command in argv:
+        argv = argv[argv.index(command) + 1 :]
+    return shlex.join(["dfa", command, *argv])
 
 
 def _from_file(args: argparse.Namespace) -> DeployableWall:
@@ -146,7 +146,7 @@ def deployable(args: argparse.Namespace) -> DeployableWall:
     if args.source is not None:
         dep = _from_file(args)
         made = "" if dep.command is None else f" (the wall of: {dep.command})"
-        return replace(dep, command=command_line() + made)
+        return replace(dep, command=command_line(args) + made)
     if args.velocity is not None and args.stiffness is not None:
         raise UsageError(
             "--velocity and --stiffness cannot both be given: give --stiffness K to export that K, or --velocity V "
@@ -156,7 +156,7 @@ def deployable(args: argparse.Namespace) -> DeployableWall:
     inp = resolve(args, dimensionless=False, need_stiffness=args.velocity is None)
     dev = inp.device
     assert dev is not None
-    command = command_line()
+    command = command_line(args)
     k = inp.stiffness
     if args.velocity is None:
         assert k is not None

@@ -7,7 +7,9 @@ renders the table (:func:`dfa.render.tune.tune_screen`) and says how to export t
 from __future__ import annotations
 
 import argparse
+import os
 import shlex
+import sys
 import time
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -37,7 +39,9 @@ _TUNED = {
 }
 #: This command's own options with a value, left out of the export command it prints.
 _OWN = ("--dampings", "--cutoffs", "--delays", "--periods", "--pc-limits", "--evaluate", "--max-force-error",
-        "--plot", "--delay", "--period")  # fmt: skip
+        "--plot", "--delay", "--period", "--export")  # fmt: skip
+#: --export's formats by the file's suffix.
+_FORMATS = {".h": "c", ".yaml": "yaml", ".yml": "yaml", ".json": "json"}
 _OWN_SWITCHES = ("--json", "--all", "--quiet")
 
 
@@ -119,6 +123,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--all", action="store_true", help="list the walls only screened too (default: the simulated)")
     p.add_argument("--plot", metavar="FILE", help="write the chart of K against force error to FILE: .png, .pdf or "
                    ".svg by its suffix (default: none)")  # fmt: skip
+    p.add_argument("--export", metavar="FILE", help="write the best wall for the firmware to FILE, by its suffix: "
+                   ".h (C99 header), .yaml or .json, as dfa export does (default: none)")  # fmt: skip
     p.set_defaults(tune_parser=p)  # the export command it prints leaves out this command's own options
 
 
@@ -175,6 +181,25 @@ def _check_cutoffs(args: argparse.Namespace, period: float) -> None:
             )
 
 
+def _write_export(args: argparse.Namespace, r: Any) -> str | None:
+    """--export: the best wall written as dfa export writes it (format by the suffix); None when not asked.
+
+    Without a best wall nothing is written (the command says so after the table, exit 1)."""
+    best = r.best
+    if args.export is None or best is None or best.recommendation is None:
+        return None
+    from .._io import atomic_write_text
+    from ..render.export import export
+    from ..results.deploy import DeployableWall
+    from .export import command_line
+
+    rec = best.recommendation
+    dep = DeployableWall.from_recommendation(rec, command_line(args, COMMAND))
+    fmt = _FORMATS[os.path.splitext(args.export)[1].lower()]
+    atomic_write_text(args.export, export(dep, fmt))
+    return str(args.export)
+
+
 def run(args: argparse.Namespace) -> int:
     """Tune the wall, print the table (or JSON) and the export command."""
     from ..analysis.limits.recommend import check_margin
@@ -192,6 +217,8 @@ def run(args: argparse.Namespace) -> int:
     wall = held if held is not None else Wall.of(1.0, delay=args.delay)
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
+    if args.export is not None:
+        check_output_file("--export", args.export, tuple(_FORMATS))
     check_margin(args.margin)
     cap = None if args.max_force_error is None else args.max_force_error / 100.0
     start, runs = time.perf_counter(), runs_counted()
@@ -204,16 +231,23 @@ def run(args: argparse.Namespace) -> int:
     best = r.best
     argv = args.argv[args.argv.index(COMMAND) + 1 :]
     cmd = None if best is None else export_command(argv, args.tune_parser, best, dev)
+    written = _write_export(args, r)
     if args.json:
         out = r.to_dict()
         out["export_command"] = cmd
+        out["export"] = written
         emit(wall_json(out, held, inp))
-        return 0
+        return 0 if args.export is None or written is not None else 1
     from ..render.answer import work_line
     from ..render.tune import tune_screen
 
     print("\n".join(tune_screen(r, cmd, screened=args.all)))
     if args.plot is not None:
         print(f"chart of K against force error written to {args.plot}")
+    if written is not None:
+        print(f"the best wall written to {written}")
+    if args.export is not None and written is None:
+        print(f"dfa tune: --export {args.export}: nothing written: {r.status.message}", file=sys.stderr)
+        return 1
     print(work_line(time.perf_counter() - start, runs_counted() - runs))
     return 0
