@@ -30,7 +30,7 @@ VALIDATION_SUMMARY := $(wildcard reports/validation/validation.json)
 # The default device's report with its 20 × 20 Z-width: it reproduces the committed reports/design_report_delta.*
 # and reports/figures/delta_* byte for byte (git status stays clean).
 report: $(STAMP)
-	$(BIN)/dfa report --out reports --format both --zwidth 20 $(if $(VALIDATION_SUMMARY),--validation $(VALIDATION_SUMMARY))
+	$(BIN)/dfa report --out reports --format both --zwidth 20 --tune $(if $(VALIDATION_SUMMARY),--validation $(VALIDATION_SUMMARY))
 
 # The whole suite (doctests included), and beside it format, lint, layering and types (their output is printed
 # when the suite ends; either failing fails the target). Work stealing: an idle worker takes tests queued on the

@@ -183,7 +183,7 @@ RESULTS = {
 
 #: Calls that take seconds when every argument is valid: only their refusals are fuzzed
 #: (a valid draw is replaced by a call with one argument known to be refused).
-EXPENSIVE = {"validate", "design_report", "stiffness_speed_chart", "z_width"}
+EXPENSIVE = {"validate", "design_report", "stiffness_speed_chart", "z_width", "tune"}
 
 #: Examples per name under ``ci`` (the profile's default for the rest); costly names get fewer.
 EXAMPLES = {
@@ -326,6 +326,7 @@ _WORK = {
     "design_report": ("dfa.studies.report", "design_analysis"),
     "stiffness_speed_chart": ("dfa.analysis.limits.speed_chart", "Evidence"),
     "z_width": ("dfa.analysis.limits.zwidth", "_plan"),
+    "tune": ("dfa.analysis.limits.tune", "_screened"),
 }
 
 

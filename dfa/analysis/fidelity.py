@@ -29,12 +29,16 @@ import math
 
 import numpy as np
 
-from ..checks import check_positive
+from ..checks import check_positive, check_type
+from ..errors import DFAValueError
 from ..model.elements import OneSided, PassivityController
 from ..model.loop import Loop
 from .simulation import simulate
 
-__all__ = ["force_error", "contact_samples"]
+__all__ = ["force_error", "contact_samples", "MAX_MU"]
+
+#: The largest μ = m/(K T²) whose first contact :func:`force_error` simulates (about 31,000 samples of contact).
+MAX_MU = 1e8
 
 
 def contact_samples(mu: float, delay: int) -> int:
@@ -79,12 +83,28 @@ def force_error(loop: Loop, velocity: float) -> tuple[float | None, float | None
     Raises
     ------
     DFAValueError
-        If ``velocity`` is not a finite number > 0, or the loop has no stiffness.
+        If ``velocity`` is not a finite number > 0, or the loop has no device or no stiffness.
+    DFATypeError
+        If ``loop`` is not a :class:`~dfa.model.loop.Loop`.
+
+    See Also
+    --------
+    dfa.tune : The force error of each tuned wall at its recommended K.
     """
+    check_type("loop", loop, Loop, "give Loop(device, wall) with the wall's stiffness")
     check_positive("velocity", velocity, "give the impact speed in m/s (rotary rad/s)")
+    if loop.device is None:
+        raise DFAValueError(
+            "loop = a dimensionless loop is invalid for force_error: the impact speed is physical; give "
+            "Loop(device, wall)"
+        )
     params, wp = loop.groups("force_error")
-    assert loop.device is not None
     xi_dot = loop.device.xi_dot(velocity)
+    if not params.mu <= MAX_MU:
+        raise DFAValueError(
+            f"loop = a wall of μ = {params.mu:.4g} is invalid for force_error: its first contact lasts more than "
+            f"{contact_samples(MAX_MU, 0)} samples (μ <= {MAX_MU:g}); give a stiffer wall or a longer sample period"
+        )
     n_c = contact_samples(params.mu, wp.delay)
     run = simulate(loop, xi_dot, samples=max(10 * n_c, 200), record=True)
     force, _energy, control = run.replay()

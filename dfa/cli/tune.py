@@ -10,14 +10,12 @@ import argparse
 import os
 import shlex
 import sys
-import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..model.loop import Loop
 from ..model.wall import Wall
-from ..progress import runs_counted
 from .contact import add_contact_args
 from .inputs import add_device_args, resolve, speed
 from .output import emit, save_png, working
@@ -221,7 +219,6 @@ def run(args: argparse.Namespace) -> int:
         check_output_file("--export", args.export, tuple(_FORMATS))
     check_margin(args.margin)
     cap = None if args.max_force_error is None else args.max_force_error / 100.0
-    start, runs = time.perf_counter(), runs_counted()
     with working(args):
         r = tune(Loop(dev, wall), v, dampings=args.dampings, cutoffs=args.cutoffs, delays=args.delays,
                  periods=args.periods, pc_limits=args.pc_limits, margin=args.margin, evaluate=args.evaluate,
@@ -238,7 +235,6 @@ def run(args: argparse.Namespace) -> int:
         out["export"] = written
         emit(wall_json(out, held, inp))
         return 0 if args.export is None or written is not None else 1
-    from ..render.answer import work_line
     from ..render.tune import tune_screen
 
     print("\n".join(tune_screen(r, cmd, screened=args.all)))
@@ -249,5 +245,4 @@ def run(args: argparse.Namespace) -> int:
     if args.export is not None and written is None:
         print(f"dfa tune: --export {args.export}: nothing written: {r.status.message}", file=sys.stderr)
         return 1
-    print(work_line(time.perf_counter() - start, runs_counted() - runs))
     return 0

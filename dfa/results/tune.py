@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 from ..checks import check_type
-from ..errors import DFAValueError
+from ..errors import DFATypeError, DFAValueError
 from ..model.device import Device
 from ..model.wall import Wall
 from .base import Result, figure_function
@@ -97,7 +97,13 @@ class TunedWall(Result):
         return None if self.recommendation is None else self.recommendation.k_recommended
 
     def null_reasons(self) -> dict[str, str]:
-        """Why a field may be null (JSON)."""
+        """Why a field may be null (JSON).
+
+        Returns
+        -------
+        dict of str to str
+            Reasons by field name.
+        """
         return {
             "recommendation": "screened only: not among the walls simulated",
             "force_error": "screened only, or no K is recommended",
@@ -141,6 +147,10 @@ class TuneResult(Result):
     def __post_init__(self) -> None:
         fix = "TuneResult is built by dfa.tune; call that instead"
         check_type("device", self.device, Device, fix)
+        if not isinstance(self.walls, (tuple, list)):
+            raise DFATypeError(
+                f"walls = {self.walls!r} has type {type(self.walls).__name__}: it must be a tuple; {fix}"
+            )
         check_margin(self.margin)
         _fraction("max_force_error", self.max_force_error, fix)
         object.__setattr__(self, "walls", tuple(self.walls))
@@ -157,8 +167,13 @@ class TuneResult(Result):
 
     @property
     def best_index(self) -> int | None:
-        """Index in :attr:`walls` of the wall with the largest recommended K within :attr:`max_force_error` (the
-        plain one on a tie); None if none."""
+        """Index in :attr:`walls` of the best wall (the stiffest within :attr:`max_force_error`); None if none.
+
+        Returns
+        -------
+        int or None
+            The wall with the largest recommended K whose force error is within the cap (the plain one on a tie).
+        """
         best, k = None, -math.inf
         for i, w in enumerate(self.walls):
             if not self.faithful(w):
@@ -168,7 +183,18 @@ class TuneResult(Result):
         return best
 
     def faithful(self, wall: TunedWall) -> bool:
-        """Whether a wall's force error is within :attr:`max_force_error` (always, without a cap)."""
+        """Whether a wall's force error is within :attr:`max_force_error` (always, without a cap).
+
+        Parameters
+        ----------
+        wall : TunedWall
+            One of :attr:`walls`.
+
+        Returns
+        -------
+        bool
+            True when its force error is known and at most the cap, or there is no cap.
+        """
         cap = self.max_force_error
         return cap is None or (wall.force_error is not None and wall.force_error <= cap)
 
@@ -179,7 +205,13 @@ class TuneResult(Result):
         return None if i is None else self.walls[i]
 
     def null_reasons(self) -> dict[str, str]:
-        """Why ``best_index`` may be null (JSON)."""
+        """Why ``best_index`` and ``max_force_error`` may be null (JSON).
+
+        Returns
+        -------
+        dict of str to str
+            Reasons by field name.
+        """
         return {
             "best_index": "no wall has a recommended K at this speed within the force error allowed",
             "max_force_error": "no cap on the force error",
@@ -196,5 +228,6 @@ class TuneResult(Result):
         Returns
         -------
         matplotlib.axes.Axes
+            The axes drawn on.
         """
         return figure_function("tune_plot")(self, ax)

@@ -167,7 +167,7 @@ class DesignAnalysis(Result):
     speed_chart: StiffnessSpeedChart | None = field(default=None, repr=False)
     zwidth: ZWidth | None = field(default=None, repr=False)
     grip: GripSweep | None = field(default=None, repr=False)
-    tuned: TuneResult | None = field(default=None, repr=False)
+    tuned: TuneResult | None = field(default=None, repr=False, metadata={"omit_none": True})
     catalogue: dict[str, Any] | None = None
     validation: dict[str, Any] | None = None
     samples: int = 30_000

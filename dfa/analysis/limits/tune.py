@@ -41,8 +41,10 @@ import itertools
 import math
 from collections.abc import Sequence
 
-from ...checks import check_positive
-from ...errors import DFAValueError
+import numpy as np
+
+from ...checks import check_positive, check_type
+from ...errors import DFATypeError, DFAValueError
 from ...model.device import Device
 from ...model.elements import Damper, Delay, PassivityController, VelocityFilter
 from ...model.loop import Loop
@@ -286,7 +288,15 @@ def tune(
     DFAValueError
         For a speed that is not > 0, an empty or invalid list, too many candidates (:data:`MAX_CANDIDATES`) or
         ``evaluate`` < 1.
+    DFATypeError
+        If ``loop`` is not a :class:`~dfa.model.loop.Loop`.
+
+    See Also
+    --------
+    design_answer : The largest stiffness of one wall, four ways.
+    dfa.export : The best wall for the firmware (``TuneResult.best.recommendation``).
     """
+    check_type("loop", loop, Loop, "give Loop(device) or Loop(device, wall)")
     device = loop.search_device("tune")
     check_positive("velocity", velocity, "give the impact speed in m/s (rotary rad/s), e.g. 0.05")
     check_margin(margin)
@@ -294,6 +304,13 @@ def tune(
         check_positive("max_force_error", max_force_error, "give a fraction of the peak force, e.g. 0.5, or None")
     if not (isinstance(evaluate, int) and evaluate >= 1):
         raise DFAValueError(f"evaluate = {evaluate!r} is invalid: simulate at least 1 wall besides the plain one")
+    for name, values in (("dampings", dampings), ("cutoffs", cutoffs), ("delays", delays), ("periods", periods),
+                         ("pc_limits", pc_limits)):  # fmt: skip
+        if values is not None and not isinstance(values, (list, tuple, np.ndarray)):
+            raise DFATypeError(
+                f"{name} = {values!r} has type {type(values).__name__}: it must be a list of values (or None for "
+                "the default)"
+            )
     base = _plain(loop.spring)
     dampings = default_dampings(device, base, velocity) if dampings is None else tuple(dampings)
     cutoffs = default_cutoffs(device) if cutoffs is None else tuple(cutoffs)
