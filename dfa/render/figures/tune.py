@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from matplotlib.ticker import NullFormatter
+
 from ...results.status import RecommendRule
 from ..tune import wall_label
 from .style import SMALL_FONTSIZE, legend_outside, new_axes
@@ -26,7 +28,8 @@ def tune_plot(result, ax=None):
     A filled marker is a proven K (eq. 11, extended), a hollow one the simulated limit over the margin (not a
     proof); red where the recommended K lies above the simulated rest limit (the wall may buzz there). The plain
     wall is the square. Up and to the left is a stiffer-feeling, less faithful wall; the best trade-off lies low
-    and to the right. Walls without a recommended K or a force error are left out.
+    and to the right. The star is the best wall, the dashed line the force-error cap. Walls without a recommended K
+    or a force error are left out.
     """
     ax = new_axes(ax, figsize=(8.0, 4.8))
     u = result.device.units
@@ -51,7 +54,16 @@ def tune_plot(result, ax=None):
             wall_label(w.wall, w.device, u, result.device.period), (k, 100.0 * e), xytext=(6, 4),
             textcoords="offset points", fontsize=SMALL_FONTSIZE,
         )  # fmt: skip
+    best = result.best
+    if best is not None and best.k_recommended is not None and best.force_error is not None:
+        ax.plot([best.k_recommended], [100.0 * best.force_error], ls="none", marker="*", ms=16, color="#e08214",
+                zorder=0, label="best (stiffest within the cap)")  # fmt: skip
+    if result.max_force_error is not None:
+        ax.axhline(100.0 * result.max_force_error, color="0.4", ls="--", lw=1.0, label="force-error cap")
     ax.set_xscale("log")
+    ax.xaxis.set_minor_formatter(NullFormatter())  # the decades' labels only: the minor ones overlap
+    ax.margins(x=0.2, y=0.15)
+    ax.set_ylim(bottom=0.0)
     ax.set_xlabel(f"recommended stiffness K ({u['stiffness']})")
     ax.set_ylabel("force error over the first contact (% of peak)")
     ax.set_title(f"{result.device.name}: stiffness against fidelity at {result.velocity:g} {u['velocity']}")
