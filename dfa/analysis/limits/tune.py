@@ -212,10 +212,18 @@ def _screened(
             wall = _candidate(base, d, float(b), None if fc is None else float(fc))
             ans = design_answer(Loop(dev, wall), velocity, simulate=False)
             k = float(_screen_of(ans, margin))
-            error = force_error(Loop(dev, wall.with_stiffness(k)), velocity)[0] if k > 0.0 else None
+            error = _screen_error(Loop(dev, wall.with_stiffness(k)), velocity) if k > 0.0 else None
             out.append(TunedWall(dev, wall, k, error))
             advance(step=1, unit="wall")
     return out
+
+
+def _screen_error(loop: Loop, velocity: float) -> float | None:
+    """The force error at the screen's K (None where the impact is too long to simulate: a very soft wall)."""
+    try:
+        return force_error(loop, velocity)[0]
+    except DFAValueError:
+        return None
 
 
 def _within(error: float | None, cap: float | None) -> bool:
