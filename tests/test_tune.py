@@ -269,3 +269,17 @@ def test_cli_tune_export_and_the_printed_export_command_give_the_same_wall(capsy
     dep2 = DeployableWall.from_dict(json.loads(capsys.readouterr().out))
     assert dep2.stiffness == pytest.approx(dep.stiffness, rel=1e-12) and dep2.rule is dep.rule
     assert dep2.wall.damping == dep.wall.damping and dep2.device == dep.device
+
+
+def test_tune_passivity_controller_is_compared_with_the_same_wall_without_it(impulse, small_tune):
+    """--pc-limits: the best wall with the controller, recommended by recommend_stiffness's rule against the same
+    wall without it (kept only where it raises K); how often it acts is a share of the samples."""
+    r = tune(Loop(impulse), V, dampings=[0.0], cutoffs=[None], pc_limits=[0.05], evaluate=1)
+    plain, with_pc = r.walls[0], next(w for w in r.walls if w.wall.element(dfa.PassivityController) is not None)
+    choice = with_pc.recommendation.controller
+    assert choice is not None and choice.plain_k_recommended == pytest.approx(plain.k_recommended, rel=1e-12)
+    if choice.kept:
+        assert with_pc.k_recommended > plain.k_recommended and 0.0 <= with_pc.controller_share <= 1.0
+    else:  # the wall without the controller is what is recommended: its K, no controller share
+        assert with_pc.k_recommended == pytest.approx(plain.k_recommended, rel=1e-12)
+        assert with_pc.controller_share is None
