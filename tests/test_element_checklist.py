@@ -193,3 +193,16 @@ def test_catalogue_entry_has_a_field_per_device_field(monkeypatch: pytest.Monkey
 
     assert Row("x", stroke=0.01).stroke == 0.01 and Row("x").stroke is None  # type: ignore[attr-defined,call-arg]
     assert {f.name for f in dataclasses.fields(Row)} == {"name", *(f.name for f in (*DEVICE_FIELDS, extra))}
+
+
+def test_every_element_declares_whether_the_firmware_runs_it() -> None:
+    """``dfa export`` reads each element's own ``firmware`` declaration (True, or whose it is): none is inherited, so
+    a new element the export does not know is refused, never dropped silently."""
+    from dfa.results.deploy import FIRMWARE, OUTSIDE
+
+    for kind in ELEMENTS:
+        assert "firmware" in vars(kind), kind.__name__
+        assert kind.firmware is True or (isinstance(kind.firmware, str) and kind.firmware)
+    assert set(FIRMWARE) | set(OUTSIDE) == set(ELEMENTS) and not set(FIRMWARE) & set(OUTSIDE)
+    with pytest.raises(AttributeError):
+        Stroke.firmware  # the toy declares none: the export refuses a wall with it  # noqa: B018

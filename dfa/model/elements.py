@@ -418,6 +418,10 @@ class Element(abc.ABC, Generic[G]):
     never_covered: ClassVar[tuple[tuple[Coverage, str], ...]] = ()
     #: Its code in the wall's kernel table (:data:`dfa.core.table.CODES`), one per element class.
     kernel_code: ClassVar[int]
+    #: Whether the firmware runs it (True: ``dfa export``'s C header implements it, :mod:`dfa.render.export`), or,
+    #: a string, whose it is instead (the hardware's, the operator's): an export leaves it out and says so. Every
+    #: element declares it (no default: an element the export does not know is refused, never dropped).
+    firmware: ClassVar[bool | str]
     #: The device field (:data:`dfa.model.device.DEVICE_FIELDS`) whose value, when the device gives one, adds this
     #: element to every wall on the device that has none of its own (None: no device field); its constructor takes
     #: the value as its :attr:`parameter` (:func:`dfa.model.loop.device_elements`).
@@ -945,6 +949,7 @@ class Delay(Element[int]):
 
     delay: int
     kernel_code: ClassVar[int] = kt.DELAY
+    firmware: ClassVar[bool | str] = True
     parameter: ClassVar[Parameter] = Parameter(
         "delay", ("samples", "samples"), "--delay", "D",
         "computational delay in whole samples: the force of sample h uses the reading of sample h − D (default 0)",
@@ -1013,6 +1018,7 @@ class Damper(Element[float]):
 
     damping: float
     kernel_code: ClassVar[int] = kt.DAMPER
+    firmware: ClassVar[bool | str] = True
     parameter: ClassVar[Parameter] = Parameter(
         "damping", ("N·s/m", "N·m·s/rad"), "--virtual-damping", "B",
         "virtual damper B >= 0 in N·s/m (rotary: N·m·s/rad) on the backward-difference velocity (default: none)",
@@ -1090,6 +1096,7 @@ class VelocityFilter(Element[float]):
 
     filter_cutoff: float
     kernel_code: ClassVar[int] = kt.FILTER
+    firmware: ClassVar[bool | str] = True
     parameter: ClassVar[Parameter] = Parameter(
         "filter_cutoff", ("Hz", "Hz"), "--velocity-filter", "HZ",
         "cutoff in Hz of a first-order low-pass on the velocity, below the Nyquist frequency 1/(2T) "
@@ -1188,6 +1195,7 @@ class AmplifierLag(Element[float]):
 
     amplifier_bandwidth: float
     kernel_code: ClassVar[int] = kt.LAG
+    firmware: ClassVar[bool | str] = "the current amplifier's lag (hardware)"
     parameter: ClassVar[Parameter] = Parameter(
         "amplifier_bandwidth", ("Hz", "Hz"), "--amplifier-bandwidth", "HZ",
         "bandwidth in Hz of the current amplifier, a first-order lag τ_a = 1/(2π f_bw) (default: ideal)",
@@ -1306,6 +1314,7 @@ class HandSpring(Element[float]):
 
     hand_stiffness: float
     kernel_code: ClassVar[int] = kt.HAND
+    firmware: ClassVar[bool | str] = "the hand's stiffness (the operator)"
     parameter: ClassVar[Parameter] = Parameter(
         "hand_stiffness", ("N/m", "N·m/rad"), "--hand-stiffness", "X",
         "hand stiffness k_h to a fixed reference at the wall's origin, in N/m (rotary: N·m/rad) (default: none)",
@@ -1438,6 +1447,7 @@ class OneSided(Element[float]):
 
     surface: float = 0.0
     kernel_code: ClassVar[int] = kt.ONE_SIDED
+    firmware: ClassVar[bool | str] = True
     parameter: ClassVar[Parameter] = Parameter(
         "surface", ("ticks", "ticks"), "--surface", "TICKS",
         "with --one-sided: the surface's position in encoder ticks (default 0, the paper's origin)",
@@ -1663,6 +1673,7 @@ class Push(Element[float]):
 
     push: float
     kernel_code: ClassVar[int] = kt.PUSH
+    firmware: ClassVar[bool | str] = "the operator's push toward the wall (the operator)"
     parameter: ClassVar[Parameter] = Parameter(
         "push", ("N", "N·m"), "--push", "N",
         "with --one-sided: the operator's constant force toward the wall in N (rotary: N·m) (default: none)",
@@ -1788,6 +1799,7 @@ class PassivityController(Element[tuple[int, float | None]]):
     window: float | None = None
     force_limit: float | None = None
     kernel_code: ClassVar[int] = kt.PASSIVITY
+    firmware: ClassVar[bool | str] = True
     parameter: ClassVar[Parameter] = Parameter(
         "force_limit", ("N", "N·m"), "--pc-force-limit", "N",
         "with --passivity-controller: the most force it adds, in N (rotary: N·m) (default: no limit, the textbook "
@@ -1979,6 +1991,7 @@ class ForceLimit(Element[float]):
 
     max_force: float
     kernel_code: ClassVar[int] = kt.FORCE_LIMIT
+    firmware: ClassVar[bool | str] = True
     parameter: ClassVar[Parameter] = Parameter(
         "max_force", ("N", "N·m"), "--max-force", "N",
         "the actuator's force limit F_max in N (rotary: N·m): the wall's command is clipped to ±F_max (default: "
@@ -2092,6 +2105,7 @@ class Travel(Element[float]):
 
     travel: float
     kernel_code: ClassVar[int] = kt.TRAVEL
+    firmware: ClassVar[bool | str] = "the device's end stops (hardware)"
     parameter: ClassVar[Parameter] = Parameter(
         "travel", ("m", "rad"), "--travel", "M",
         "the device's travel from the centre to either end stop, in m (rotary: rad); a run ends there (end_stop) "

@@ -34,19 +34,7 @@ from typing import Any, ClassVar
 from ..checks import check_type
 from ..errors import DFATypeError, DFAValueError
 from ..model.device import DEVICE_FIELDS, Device
-from ..model.elements import (
-    AmplifierLag,
-    Damper,
-    Delay,
-    Element,
-    ForceLimit,
-    HandSpring,
-    OneSided,
-    PassivityController,
-    Push,
-    Travel,
-    VelocityFilter,
-)
+from ..model.elements import ELEMENTS, Element, Travel
 from ..model.hand import Hand
 from ..model.loop import Loop
 from ..model.wall import Wall, WallParams
@@ -56,15 +44,11 @@ from .status import DeployRule, RecommendRule
 
 __all__ = ["DeployableWall", "FIRMWARE", "OUTSIDE", "device_from_dict", "package_version"]
 
-#: The wall's elements that run in the firmware, in the order the command forms (:mod:`dfa.core.wall_kernel`).
-FIRMWARE: tuple[type[Element[Any]], ...] = (Delay, Damper, VelocityFilter, OneSided, PassivityController, ForceLimit)
-#: The modelled elements that are not the firmware's, and whose they are.
-OUTSIDE: dict[type[Element[Any]], str] = {
-    AmplifierLag: "the current amplifier's lag (hardware)",
-    HandSpring: "the hand's stiffness (the operator)",
-    Push: "the operator's push toward the wall (the operator)",
-    Travel: "the device's end stops (hardware)",
-}
+#: The wall's elements that run in the firmware (each element's :attr:`~dfa.model.elements.Element.firmware`), in
+#: the registry's order.
+FIRMWARE: tuple[type[Element[Any]], ...] = tuple(k for k in ELEMENTS if k.firmware is True)
+#: The modelled elements that are not the firmware's, and whose they are (each element's declaration).
+OUTSIDE: dict[type[Element[Any]], str] = {k: k.firmware for k in ELEMENTS if isinstance(k.firmware, str)}
 _FIX = "build it with DeployableWall.from_recommendation(rec) or DeployableWall.given(Loop(device, wall))"
 
 
