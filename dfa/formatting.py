@@ -22,8 +22,8 @@ __all__ = [
     "uncertainty_place",
 ]
 
-#: Longest line of the default text output, characters (the answer fits one screen).
-WIDTH = 100
+#: Longest line of the default text output, characters: under 100 (the answer fits one screen).
+WIDTH = 99
 
 
 def number(x: float | int | None, digits: int = 4, *, none: str = "–", inf: str = "∞") -> str:

@@ -27,8 +27,8 @@ LABELS = {
 }
 _METHOD_HEADS = {
     "criterion": "criterion (proof)",
-    "linear": "linear loop (necessary)",
-    "df": "describing fn (1st harmonic)",
+    "linear": "linear (necessary)",
+    "df": "describing function",
 }
 _CELL = {
     RequireStatus.UNREACHABLE: "no value helps",
