@@ -18,7 +18,7 @@ from ..model.loop import Loop
 from ..model.wall import Wall
 from .contact import add_contact_args
 from .inputs import add_device_args, resolve, speed
-from .output import emit, save_png, working
+from .output import add_progress_args, emit, save_png, working
 from .parsing import UsageError, integer, number
 from .walls import add_wall_args, wall_from_args, wall_json
 
@@ -40,7 +40,7 @@ _OWN = ("--dampings", "--cutoffs", "--delays", "--periods", "--pc-limits", "--ev
         "--plot", "--delay", "--period", "--export")  # fmt: skip
 #: --export's formats by the file's suffix.
 _FORMATS = {".h": "c", ".yaml": "yaml", ".yml": "yaml", ".json": "json"}
-_OWN_SWITCHES = ("--json", "--all", "--quiet")
+_OWN_SWITCHES = ("--json", "--all", "--quiet", "--progress", "--allow-buzz")
 
 
 def listed(
@@ -118,6 +118,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--margin", type=number("--margin", "dimensionless units (a gain >= 1)"), default=2.0,
                    metavar="G", help="gain margin >= 1 of a K without proof: the simulated limit divided by G "
                    "(default 2, about 6 dB)")  # fmt: skip
+    p.add_argument(
+        "--allow-buzz",
+        action="store_true",
+        help="the best wall may be one that buzzes at its K (above "
+        "its simulated rest limit) (default: the stiffest wall that comes to rest, where one does)",
+    )
+    add_progress_args(p)
     p.add_argument("--all", action="store_true", help="list the walls only screened too (default: the simulated)")
     p.add_argument("--plot", metavar="FILE", help="write the chart of K against force error to FILE: .png, .pdf or "
                    ".svg by its suffix (default: none)")  # fmt: skip
@@ -131,15 +138,22 @@ def _refuse_tuned(args: argparse.Namespace) -> None:
     for dest, (flag, instead) in _TUNED.items():
         if getattr(args, dest, None) not in (None, False):
             raise UsageError(f"dfa tune: {flag} is not taken here: the tuning varies it; give {instead}")
+    if args.stiffness is not None:
+        raise UsageError(
+            "dfa tune: --stiffness is not taken here: the tuning searches K for each wall; drop it (dfa stiffness "
+            "--stiffness K assesses one K)"
+        )
 
 
 def _percent_or_none(text: str) -> float | None:
-    """--max-force-error: a number of per cent > 0, or 'none'."""
+    """--max-force-error: a number of per cent in (0, 100], or 'none'."""
     if text.strip().lower() == "none":
         return None
     value = number("--max-force-error", "per cent")(text)
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"{text[:40]!r} is invalid: --max-force-error takes a per cent > 0 or 'none'")
+    if not 0 < value <= 100:
+        raise argparse.ArgumentTypeError(
+            f"{text[:40]!r} is invalid: --max-force-error takes a per cent in (0, 100] (e.g. 50) or 'none'"
+        )
     return value
 
 
@@ -174,8 +188,8 @@ def _check_cutoffs(args: argparse.Namespace, period: float) -> None:
     for fc in args.cutoffs or []:
         if fc is not None and not fc < nyquist:
             raise UsageError(
-                f"--cutoffs {fc:g} is invalid: a filter cutoff lies below the Nyquist frequency {nyquist:.6g} Hz of the "
-                f"longest period tried, {longest:g} s; give lower cutoffs, or none for no filter"
+                f"--cutoffs {fc:g} is invalid: a filter cutoff must lie below the Nyquist frequency {nyquist:.6g} Hz of "
+                f"the longest period tried, {longest:g} s; give lower cutoffs, or none for no filter"
             )
 
 
@@ -222,7 +236,7 @@ def run(args: argparse.Namespace) -> int:
     with working(args):
         r = tune(Loop(dev, wall), v, dampings=args.dampings, cutoffs=args.cutoffs, delays=args.delays,
                  periods=args.periods, pc_limits=args.pc_limits, margin=args.margin, evaluate=args.evaluate,
-                 max_force_error=cap)  # fmt: skip
+                 max_force_error=cap, require_rest=not args.allow_buzz)  # fmt: skip
     if args.plot is not None:
         save_png("--plot", args.plot, r.plot())
     best = r.best

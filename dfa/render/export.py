@@ -43,6 +43,7 @@ from ..model.loop import Loop
 from ..results.deploy import DeployableWall
 from ..results.require import Recommendation
 from ..results.status import DeployRule
+from ..results.tune import TunedWall, TuneResult
 from .hand import device_title
 
 __all__ = ["FORMATS", "c_header", "export", "json_text", "yaml_text", "deployable"]
@@ -72,11 +73,12 @@ def _literal(x: float) -> str:
 
 def deployable(source: object, command: str | None = None) -> DeployableWall:
     """The wall to export of ``source``: a :class:`DeployableWall` (as it is), a :class:`Recommendation` (its K and
-    rule) or a :class:`Loop` with a stiffness (rule ``given``).
+    rule), a tuning (:func:`dfa.tune`'s best wall) or one of its walls, or a :class:`Loop` with a stiffness (rule
+    ``given``).
 
     Parameters
     ----------
-    source : DeployableWall, Recommendation or Loop
+    source : DeployableWall, Recommendation, TuneResult, TunedWall or Loop
         What to export.
     command : str or None, optional
         The command line that made it, for a Recommendation or a Loop (default None).
@@ -87,13 +89,23 @@ def deployable(source: object, command: str | None = None) -> DeployableWall:
     """
     if isinstance(source, DeployableWall):
         return source
+    if isinstance(source, TuneResult):
+        if source.best is None:
+            raise DFAValueError(f"source = a tuning with no best wall is invalid: {source.status.message}")
+        source = source.best
+    if isinstance(source, TunedWall):
+        if source.recommendation is None:
+            raise DFAValueError(
+                "source = a wall only screened is invalid: it has no recommended K; give a simulated one"
+            )
+        source = source.recommendation
     if isinstance(source, Recommendation):
         return DeployableWall.from_recommendation(source, command)
     if isinstance(source, Loop):
         return DeployableWall.given(source, command)
     raise DFATypeError(
         f"source of type {type(source).__name__} is invalid: give a dfa.DeployableWall, a Recommendation "
-        "(dfa.recommend_stiffness) or a dfa.Loop(device, wall) with its stiffness"
+        "(dfa.recommend_stiffness), a dfa.tune result or a dfa.Loop(device, wall) with its stiffness"
     )
 
 
@@ -348,7 +360,12 @@ def yaml_text(dep: DeployableWall) -> str:
     import yaml
 
     u = dep.device.units
-    wall = {"stiffness": dep.wall.stiffness, "elements": [e.to_dict() for e in dep.wall.elements]}
+    # a ROS parameter holds maps and lists of plain values, no list of maps: the elements by their names
+    elements = {}
+    for e in dep.wall.elements:
+        record = e.to_dict()
+        elements[record.pop("element")] = record
+    wall = {"stiffness": dep.wall.stiffness, "elements": elements}
     provenance = {
         "device": dep.device.to_dict(), "wall": wall, "velocity": dep.velocity, "rule": dep.rule.value,
         "rule_message": dep.rule.message, "margin": dep.margin, "k_basis": dep.k_basis, "command": dep.command,
@@ -357,7 +374,9 @@ def yaml_text(dep: DeployableWall) -> str:
     units = {"stiffness": u["stiffness"], "resolution": u["position"], "period": "s", "force_step": u["force"],
              "delay": "samples", "damping": u["damping"], "filter_cutoff": "Hz", "surface": "counts",
              "pc_window": "s", "pc_force_limit": u["force"], "max_force": u["force"], "velocity": u["velocity"]}  # fmt: skip
-    params = _parameters(dep) | {"units": units, "not_exported": dep.not_exported or None, "provenance": provenance}
+    numbers = _no_nulls(to_jsonable(_parameters(dep)))
+    units = {k: v for k, v in units.items() if k in numbers or k == "velocity"}  # the units of the values given
+    params = numbers | {"units": units, "not_exported": dep.not_exported or None, "provenance": provenance}
     data = {YAML_NODE: {"ros__parameters": _no_nulls(to_jsonable(params))}}
     return str(yaml.safe_dump(data, sort_keys=False, allow_unicode=True, default_flow_style=False, width=120))
 

@@ -6,7 +6,7 @@ Examples
 >>> from dfa.model.wall import Wall
 >>> dev = get_device("impulse").device
 >>> wall_label(Wall.of(1.0, damping=2.0, filter_cutoff=50.0), dev, dev.units)
-'B 2 N·s/m, f_c 50 Hz'
+'B 2 N·s/m, filter 50 Hz'
 >>> wall_label(Wall(1.0), dev, dev.units)
 'spring'
 """
@@ -57,7 +57,7 @@ def wall_label(wall: Wall, device: Device, units: dict[str, str], period: float 
         parts.append(f"B {number(b.damping, 4)} {units['damping']}")
     f = wall.element(VelocityFilter)
     if f is not None:
-        parts.append(f"f_c {number(f.filter_cutoff, 4)} Hz")
+        parts.append(f"filter {number(f.filter_cutoff, 4)} Hz")
     pc = wall.element(PassivityController)
     if pc is not None:
         limit = "no limit" if pc.force_limit is None else f"{number(pc.force_limit, 4)} {units['force']}"
@@ -148,8 +148,22 @@ def best_text(r: TuneResult) -> str:
     if r.status is TuneStatus.TUNED and plain is not None and best.k_recommended is not None:
         gain = f" ({number(best.k_recommended / plain, 3)}× the plain wall's)"
     elif r.status is TuneStatus.PLAIN_BEST:
-        gain = " (no element allowed does better than the plain wall)"
-    return f"best: {label}{gain}; {recommendation_text(rec)}."
+        gain = (
+            " (no other wall allowed "
+            + ("rests at" if r.require_rest and r.rests(best) else "gets")
+            + (" a higher recommended K within the force-error cap)")
+        )
+    buzz = ""
+    if r.require_rest and not r.rests(best):
+        buzz = " No wall within the force-error cap comes to rest at its recommended K: this one may buzz."
+    return f"best: {label}{gain}; {recommendation_text(rec)}.{buzz}"
+
+
+def choice_text(r: TuneResult) -> str:
+    """How the best wall is chosen, in a few words."""
+    cap = "" if r.max_force_error is None else f" with a force error of at most {_pct(r.max_force_error)}"
+    rest = " that comes to rest at its K (where one does)" if r.require_rest else ""
+    return f"the best wall is the stiffest{rest}{cap}"
 
 
 def export_command(r: TuneResult, device_flags: str) -> str | None:
@@ -163,6 +177,10 @@ def export_command(r: TuneResult, device_flags: str) -> str | None:
     margin = [] if r.margin == 2.0 else ["--margin", repr(r.margin)]
     words = ["dfa", "export", device_flags, "--velocity", repr(r.velocity), *margin, *wall_flags(best, r.device)]
     return " ".join([*words, "--format", "c", "--out", "wall.h"])
+
+
+def _walls(n: int) -> str:
+    return f"{n} wall{'s' if n != 1 else ''}"
 
 
 def tune_screen(r: TuneResult, export: str | None = None, *, screened: bool = False) -> list[str]:
@@ -184,10 +202,10 @@ def tune_screen(r: TuneResult, export: str | None = None, *, screened: bool = Fa
     u = r.device.units
     n_sim = len(r.simulated)
     head = (
-        f"{r.device.name}, impact speed {number(r.velocity, 4)} {u['velocity']}: {len(r.walls)} walls screened, "
+        f"{r.device.name}, impact speed {number(r.velocity, 4)} {u['velocity']}: {_walls(len(r.walls))} tried, "
         f"{n_sim} simulated in full; K in {u['stiffness']}; rule: proven, or the simulated limit over the margin; "
-        "rests to K: the simulated rest limit; force error: RMS over the first contact, % of the ideal spring's peak "
-        "force" + ("" if r.max_force_error is None else f", at most {_pct(r.max_force_error)} for the best")
+        "rests to K: the simulated rest limit; force error: RMS over the first contact at the wall's own K, % of the "
+        f"ideal spring's peak force; {choice_text(r)}"
     )
     lines = [wrap(head), text_table(tune_rows(r, screened=screened), TUNE_HEADER)]
     lines.append(wrap(best_text(r)))

@@ -97,11 +97,14 @@ def device_from_dict(data: Mapping[str, Any]) -> Device:
 
 
 def _wall_from(data: Any) -> Wall:
-    """The wall of a record: :meth:`Wall.to_dict`'s, or ``{"stiffness": K, "elements": [Element.to_dict(), ...]}``
-    (the YAML's, which holds no nulls)."""
+    """The wall of a record: :meth:`Wall.to_dict`'s, ``{"stiffness": K, "elements": [Element.to_dict(), ...]}``, or
+    the YAML's ``{"stiffness": K, "elements": {name: record without "element", ...}}`` (no nulls, no list of maps:
+    ROS parameters hold neither)."""
     if not isinstance(data, Mapping):
         raise DFATypeError(f"wall = {data!r} is invalid: it must be a wall's record (Wall.to_dict())")
     elements = data.get("elements")
+    if isinstance(elements, Mapping):  # the YAML's: each element's record under its name
+        elements = [{"element": name, **record} for name, record in elements.items()]
     if isinstance(elements, list):
         return Wall(float(data["stiffness"]), tuple(Element.from_dict(e) for e in elements))
     return Wall.from_dict(data)

@@ -40,7 +40,8 @@ class TunedWall(Result):
     device : Device
         The device at the candidate's sample period (``period``, s).
     wall : Wall
-        The candidate's elements (its stiffness is what the tuning searches: read K from ``recommendation``).
+        The candidate's elements at its recommended K (simulated), or at the screen's K (screened; 1 N/m, a
+        placeholder, when the screen gives none).
     screen : float
         The quick screen's stiffness (N/m; rotary N·m/rad): the larger of the criterion's K and the exact linear
         bound over the margin (0 where neither gives one). It ranks the candidates for simulation; it is never
@@ -126,6 +127,9 @@ class TuneResult(Result):
         Gain margin of the simulated rule (>= 1).
     max_force_error : float or None
         The largest force error (a fraction of the ideal peak force) of a wall that can be the best; None: any.
+    require_rest : bool
+        True: the best wall must come to rest at its recommended K (not above its simulated rest limit) where any
+        wall within the cap does; False: a wall that may buzz can be the best.
     walls : tuple of TunedWall
         The plain wall first (the given wall without a virtual damper, velocity filter or passivity controller, at
         the device's period), then the other simulated walls by recommended K (largest first), then the walls only
@@ -138,6 +142,7 @@ class TuneResult(Result):
     velocity: float
     margin: float
     max_force_error: float | None
+    require_rest: bool
     walls: tuple[TunedWall, ...]
     status: TuneStatus = TuneStatus.NONE
 
@@ -153,6 +158,8 @@ class TuneResult(Result):
             )
         check_margin(self.margin)
         _fraction("max_force_error", self.max_force_error, fix)
+        if not isinstance(self.require_rest, bool):
+            raise DFATypeError(f"require_rest = {self.require_rest!r} is invalid: it must be a bool; {fix}")
         object.__setattr__(self, "walls", tuple(self.walls))
         if not self.walls or self.walls[0].status is not TunedStatus.SIMULATED:
             raise DFAValueError(f"walls = {self.walls!r} is invalid: the plain wall, simulated, comes first; {fix}")
@@ -167,20 +174,41 @@ class TuneResult(Result):
 
     @property
     def best_index(self) -> int | None:
-        """Index in :attr:`walls` of the best wall (the stiffest within :attr:`max_force_error`); None if none.
+        """Index in :attr:`walls` of the best wall: the stiffest within the cap that rests (module docstring).
 
         Returns
         -------
         int or None
-            The wall with the largest recommended K whose force error is within the cap (the plain one on a tie).
+            The wall with the largest recommended K whose force error is within :attr:`max_force_error` and, with
+            :attr:`require_rest`, that comes to rest at that K, where any does (else the stiffest within the cap; the
+            plain one on a tie); None when no wall within the cap has a recommended K.
         """
+        candidates = [i for i, w in enumerate(self.walls) if w.k_recommended is not None and self.faithful(w)]
+        if self.require_rest and any(self.rests(self.walls[i]) for i in candidates):
+            candidates = [i for i in candidates if self.rests(self.walls[i])]
         best, k = None, -math.inf
-        for i, w in enumerate(self.walls):
-            if not self.faithful(w):
-                continue
-            if w.k_recommended is not None and w.k_recommended > k:
-                best, k = i, w.k_recommended
+        for i in candidates:
+            kr = self.walls[i].k_recommended
+            if kr is not None and kr > k:
+                best, k = i, kr
         return best
+
+    @staticmethod
+    def rests(wall: TunedWall) -> bool:
+        """Whether a simulated wall comes to rest at its recommended K (not above its simulated rest limit).
+
+        Parameters
+        ----------
+        wall : TunedWall
+            One of :attr:`walls`.
+
+        Returns
+        -------
+        bool
+            False for a wall only screened or without a recommended K.
+        """
+        rec = wall.recommendation
+        return rec is not None and rec.k_recommended is not None and not rec.above_rest
 
     def faithful(self, wall: TunedWall) -> bool:
         """Whether a wall's force error is within :attr:`max_force_error` (always, without a cap).

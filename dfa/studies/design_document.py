@@ -531,13 +531,14 @@ def _device_flags(a: DesignAnalysis) -> str:
 def _tune_parts(a: DesignAnalysis) -> dict[str, str]:
     """The deployable wall's table, best wall and export command ('' without a tuning)."""
     if a.tuned is None:
-        return {"tune_table": "", "tune_best": "", "export_command": ""}
-    from ..render.tune import TUNE_HEADER, best_text, export_command, tune_rows
+        return {"tune_table": "", "tune_best": "", "export_command": "", "tune_choice": ""}
+    from ..render.tune import TUNE_HEADER, best_text, choice_text, export_command, tune_rows
 
     return {
         "tune_table": markdown_table(["#", *TUNE_HEADER[1:]], tune_rows(a.tuned)),
         "tune_best": best_text(a.tuned),
         "export_command": export_command(a.tuned, _device_flags(a)) or "",
+        "tune_choice": choice_text(a.tuned),
     }
 
 

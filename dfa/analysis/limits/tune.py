@@ -43,7 +43,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ...checks import check_positive, check_type
+from ...checks import check_bool, check_positive, check_type
 from ...errors import DFATypeError, DFAValueError
 from ...model.device import Device
 from ...model.elements import Damper, Delay, PassivityController, VelocityFilter
@@ -152,7 +152,7 @@ def _check_lists(
     for fc in cutoffs:
         if fc is not None and not (isinstance(fc, (int, float)) and 0.0 < fc < nyquist):
             raise DFAValueError(
-                f"cutoffs value {fc!r} is invalid: a filter cutoff lies in (0, {nyquist:.6g}) Hz, below the Nyquist "
+                f"cutoffs value {fc!r} is invalid: a filter cutoff must lie in (0, {nyquist:.6g}) Hz, below the Nyquist "
                 f"frequency of the longest period {max(periods):g} s; give a lower cutoff or None (no filter)"
             )
     n = len(dampings) * len(cutoffs) * len(delays) * len(periods)
@@ -195,7 +195,8 @@ def _simulated(
     if rec.k_recommended is not None:
         chosen = rec.wall if rec.controller is None or rec.controller.kept else rec.wall.without_controller()
         error, share = force_error(Loop(device, chosen.with_stiffness(rec.k_recommended)), velocity)
-    tuned = TunedWall(device, wall, screen.screen, screen.screen_force_error, rec, error, share, TunedStatus.SIMULATED)
+    at = wall if rec.k_recommended is None else wall.with_stiffness(rec.k_recommended)
+    tuned = TunedWall(device, at, screen.screen, screen.screen_force_error, rec, error, share, TunedStatus.SIMULATED)
     return tuned, ans
 
 
@@ -213,7 +214,7 @@ def _screened(
             ans = design_answer(Loop(dev, wall), velocity, simulate=False)
             k = float(_screen_of(ans, margin))
             error = _screen_error(Loop(dev, wall.with_stiffness(k)), velocity) if k > 0.0 else None
-            out.append(TunedWall(dev, wall, k, error))
+            out.append(TunedWall(dev, wall.with_stiffness(k) if k > 0.0 else wall, k, error))
             advance(step=1, unit="wall")
     return out
 
@@ -254,6 +255,7 @@ def tune(
     margin: float = DEFAULT_MARGIN,
     evaluate: int = 3,
     max_force_error: float | None = DEFAULT_MAX_FORCE_ERROR,
+    require_rest: bool = True,
 ) -> TuneResult:
     """The wall with the largest recommended stiffness among the elements allowed, and the trade-off (module docstring).
 
@@ -284,7 +286,12 @@ def tune(
     max_force_error : float or None, optional
         The largest force error (RMS over the first contact, a fraction of the ideal spring's peak force;
         :func:`dfa.analysis.fidelity.force_error`) of a wall that can be the best (default 0.5); None: any. A wall
-        above it is listed, not chosen: a heavy damper buys K with a wall that feels like a damper.
+        above it is listed, not chosen: a heavy damper buys K with a wall that feels like a damper. At most 1
+        (100 %).
+    require_rest : bool, optional
+        The best wall must come to rest at its recommended K where any wall within the cap does (default True): a
+        wall that buzzes at its K (above its simulated rest limit) is listed, not chosen. False: the stiffest within
+        the cap, buzzing or not.
 
     Returns
     -------
@@ -309,7 +316,13 @@ def tune(
     check_positive("velocity", velocity, "give the impact speed in m/s (rotary rad/s), e.g. 0.05")
     check_margin(margin)
     if max_force_error is not None:
-        check_positive("max_force_error", max_force_error, "give a fraction of the peak force, e.g. 0.5, or None")
+        fraction = check_positive("max_force_error", max_force_error, "give a fraction of the peak force, e.g. 0.5")
+        if not fraction <= 1.0:
+            raise DFAValueError(
+                f"max_force_error = {max_force_error!r} is invalid: it is a fraction of the ideal spring's peak force, "
+                "at most 1 (100 %); give e.g. 0.5 for 50 %, or None for no cap"
+            )
+    rest = check_bool("require_rest", require_rest, "pass True to choose among walls that rest, False for any")
     if not (isinstance(evaluate, int) and evaluate >= 1):
         raise DFAValueError(f"evaluate = {evaluate!r} is invalid: simulate at least 1 wall besides the plain one")
     for name, values in (("dampings", dampings), ("cutoffs", cutoffs), ("delays", delays), ("periods", periods),
@@ -327,7 +340,7 @@ def tune(
     _check_lists(device, dampings, cutoffs, delays, periods, tuple(pc_limits))
     plain = _candidate(base, base.delay, 0.0, None)
     screened = _screened(device, base, velocity, margin, (periods, delays, dampings, cutoffs))
-    others = [w for w in screened if not (w.wall == plain and w.device == device)]
+    others = [w for w in screened if not (w.wall.elements == plain.elements and w.device == device)]
     plain_screen = next((w for w in screened if w not in others), None)
     if plain_screen is None:  # the lists leave the plain wall out: screen it too
         plain_screen = _screened(device, base, velocity, margin, ((device.period,), (base.delay,), (0.0,), (None,)))[0]
@@ -343,12 +356,13 @@ def tune(
         faithful = [p for p in done if _within(p[0].force_error, max_force_error)] or done[:1]
         best_tuned, best_ans = max(faithful, key=lambda p: p[0].k_recommended or -1.0)
         for limit in pc_limits:
-            wall = Wall(best_tuned.wall.stiffness, (*best_tuned.wall.elements, PassivityController(force_limit=limit)))
+            held = best_ans.wall  # the wall its answer searched (at the placeholder K the search varies)
+            wall = Wall(held.stiffness, (*held.elements, PassivityController(force_limit=limit)))
             done.append(_simulated(best_tuned.device, wall, velocity, margin, best_tuned, plain=best_ans))
             advance(step=1, unit="wall")
     walls = (first, *_ranked([t for t, _a in done[1:]] + others[evaluate:]))
     cap = None if max_force_error is None else float(max_force_error)
-    out = TuneResult(device, float(velocity), float(margin), cap, walls)
+    out = TuneResult(device, float(velocity), float(margin), cap, rest, walls)
     return dataclasses.replace(out, status=_status(out))
 
 
