@@ -314,3 +314,10 @@ def test_export_of_a_tuning_is_its_best_walls_recommendation(tuned):
         return x is not None
 
     assert plain_lists(yaml.safe_load(dfa.export(tuned, "yaml")))
+
+
+@pytest.mark.parametrize(("name", "head"), [("w.yaml", "dfa_wall:"), ("w.json", "{"), ("w.h", "/*")])
+def test_cli_export_format_follows_the_out_suffix(capsys, tmp_path, name, head):
+    out = tmp_path / name
+    assert main(["export", "--device", "impulse", "--stiffness", "100", "--out", str(out)]) == 0
+    assert out.read_text().startswith(head)

@@ -72,9 +72,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--format",
         choices=("c", "yaml", "json"),
-        default="c",
+        default=None,
         help="c: a self-contained C99 header (constants and the wall's reference implementation); yaml: a parameter "
-        "file for ros2_control-style configurations; json: the record --from reads (default: c)",
+        "file for ros2_control-style configurations; json: the record --from reads (default: by the suffix of "
+        "--out, .h, .yaml/.yml or .json; c on stdout)",
     )
     p.add_argument(
         "--out",
@@ -177,6 +178,9 @@ def run(args: argparse.Namespace) -> int:
     """Export the wall: the text on stdout, or in --out."""
     from ..render.export import export
 
+    if args.format is None:  # by the file's suffix; c on stdout or an unknown suffix (refused just below)
+        suffix = os.path.splitext(args.out or "")[1].lower()
+        args.format = next((f for f, sfx in SUFFIXES.items() if suffix in sfx), "c")
     if args.out is not None:
         check_output_file("--out", args.out, SUFFIXES[args.format])
     dep = deployable(args)
