@@ -12,12 +12,15 @@ one-axis device felt along the wall's normal there; the device is only as good a
   (``--quick``) never simulates.
 - :func:`worst_check` (``dfa check``): the criterion's margin (β − β₀)V + (σ − σ₀) (eq. 6) of each configuration
   at the wall's K; the limiting one has the smallest (one not covered by the criterion limits the most).
-- An inertia matrix without a normal: :func:`worst_direction` searches the normal of the worst answer. The
-  criterion's K (eq. 11) does not depend on the mass; the simulated limits do; so the search evaluates the
-  command's own number (for ``dfa stiffness`` the quick answer's, ranked by the recommended K and then by the
-  describing-function limit, which depends on the mass) over a Fibonacci hemisphere of normals, the axes and the
-  eigenvectors of M (the directions of the extreme masses), then refines the best by a shrinking pattern search
-  on the sphere. The full answer is then computed along the worst normal found.
+- An inertia matrix without a normal: :func:`worst_direction` searches the normal of the worst answer over a
+  Fibonacci hemisphere of normals, the axes and the eigenvectors of M (the directions of the extreme masses),
+  then refines the best by a shrinking pattern search on the sphere (about 100 to 150 normals). ``dfa check``
+  evaluates its margin. The criterion's K (eq. 11) does not depend on the mass, the simulated limits do: ``dfa
+  stiffness`` first searches the criterion's K alone (closed form); where it proves a K along every normal and
+  that K changes with the direction (per-axis friction, damping or resolution), that is the recommended K and
+  the search is done. Otherwise it searches the quick answer's rank (the recommended K, then the describing
+  function's limit, which depends on the mass; ~0.1 s a normal, so 10 to 20 s a configuration). The full answer
+  is then computed along the worst normal found.
 
 Examples
 --------
@@ -50,8 +53,9 @@ __all__ = ["worst_direction", "worst_stiffness", "worst_check", "DEFAULT_NORMALS
 
 #: Normals sampled on the hemisphere before the pattern search refines the best.
 DEFAULT_NORMALS = 32
-_REFINEMENTS = 5  # halvings of the pattern search's step (its last step: the spacing / 32, about 1°)
+_REFINEMENTS = 8  # halvings of the pattern search's step (its last step: the spacing / 256, about 0.1°)
 
+_R2 = math.sqrt(2.0)
 Objective = Callable[[np.ndarray], tuple[float, ...]]
 
 
@@ -70,7 +74,11 @@ def _rotate(n: np.ndarray, axis: np.ndarray, angle: float) -> np.ndarray:
 
 
 def worst_direction(
-    objective: Objective, inertia: Sequence[Sequence[float]] | np.ndarray, *, samples: int = DEFAULT_NORMALS
+    objective: Objective,
+    inertia: Sequence[Sequence[float]] | np.ndarray,
+    *,
+    samples: int = DEFAULT_NORMALS,
+    refinements: int = _REFINEMENTS,
 ) -> tuple[tuple[float, float, float], tuple[float, ...], int]:
     """The wall normal where ``objective`` is smallest (module docstring): sampled, then refined.
 
@@ -82,6 +90,8 @@ def worst_direction(
         The inertia matrix M (3 × 3); its eigenvectors are among the normals tried.
     samples : int, optional
         Normals on the Fibonacci hemisphere (default :data:`DEFAULT_NORMALS`), >= 1.
+    refinements : int, optional
+        Halvings of the pattern search's step, from the hemisphere's spacing (default 8: about 0.1° at the end).
 
     Returns
     -------
@@ -106,13 +116,14 @@ def worst_direction(
     best = cands[min(range(len(cands)), key=values.__getitem__)]
     best_value = f(best)
     step = math.sqrt(2.0 * math.pi / count)  # the spacing of the hemisphere's normals, rad
-    for _ in range(_REFINEMENTS):
+    for _ in range(refinements):
         improved = True
         while improved:
             improved = False
             a = np.cross(best, [1.0, 0.0, 0.0] if abs(best[0]) < 0.9 else [0.0, 1.0, 0.0])
             a /= float(np.linalg.norm(a))
-            for axis in (a, -a, np.cross(best, a), -np.cross(best, a)):
+            b = np.cross(best, a)
+            for axis in (a, -a, b, -b, (a + b) / _R2, -(a + b) / _R2, (a - b) / _R2, (b - a) / _R2):
                 trial = _rotate(best, axis, step)
                 value = f(trial)
                 if value < best_value:
@@ -127,7 +138,7 @@ def worst_direction(
 def _row(c: Configuration, dev: Device, value: float | None, rule: str, normal: Any, count: int) -> ConfigurationRow:
     return ConfigurationRow(
         c.name, dev.own_mass, dev.own_damping, dev.coulomb, dev.resolution, value, rule,
-        normal=None if normal is None else tuple(float(x) for x in normal), searched=c.directional,
+        normal=None if normal is None else (float(normal[0]), float(normal[1]), float(normal[2])), searched=c.directional,
         evaluations=count, pose=c.pose,
     )  # fmt: skip
 
@@ -166,6 +177,37 @@ def _quick_key(rec: Any, ans: Any, margin: float) -> tuple[float, float]:
     return (k, k_df)
 
 
+def _stiffness_direction(
+    c: Configuration, device: Device, wall: Wall, velocity: float, margin: float, normals: int
+) -> tuple[tuple[float, float, float], int]:
+    """The worst normal of a directional configuration for ``dfa stiffness``, and the normals evaluated.
+
+    First the criterion's K alone (eq. 11 extended, closed form, under a millisecond a normal): where it proves
+    a K along every normal tried and that K changes with the direction, it is the recommended K (the proven
+    rule) and its smallest is the worst direction. Otherwise (no proof, or the same K along every normal: no
+    per-axis friction, damping or resolution) the quick answer's rank (:func:`_quick_key`, ~0.1 s a normal,
+    over a coarser refinement)."""
+    from .limits.kmax import closed_forms
+
+    seen: list[float] = []
+
+    def criterion(n: np.ndarray) -> tuple[float, ...]:
+        kc = closed_forms(c.device_at(device, n), wall, velocity)[0].value
+        seen.append(math.inf if kc is None else float(kc))
+        return (seen[-1],)
+
+    normal, _v, count = worst_direction(criterion, c.inertia, samples=normals)  # type: ignore[arg-type]
+    if all(math.isfinite(k) for k in seen) and max(seen) - min(seen) > 1e-9 * max(seen):
+        return normal, count
+
+    def key(n: np.ndarray) -> tuple[float, ...]:
+        ans, rec = _answer(c.device_at(device, n), wall, velocity, margin, False, {})
+        return _quick_key(rec, ans, margin)
+
+    normal, _v, more = worst_direction(key, c.inertia, samples=normals, refinements=4)  # type: ignore[arg-type]
+    return normal, count + more
+
+
 def worst_stiffness(
     device: Device,
     configurations: Sequence[Configuration],
@@ -196,8 +238,8 @@ def worst_stiffness(
     normals : int, optional
         Normals sampled for a configuration without one (default :data:`DEFAULT_NORMALS`).
     **answer
-        Passed to :func:`~dfa.analysis.limits.kmax.design_answer` for the limiting configuration's full answer
-        (``assess``, ``source``, ``source_file``).
+        Passed to :func:`~dfa.analysis.limits.kmax.design_answer` for the full answers (``assess``, ``source``,
+        ``source_file``: the verdict on the device's K in the limiting configuration's answer).
 
     Returns
     -------
@@ -220,22 +262,18 @@ def worst_stiffness(
     for c in confs:
         normal, count = c.normal, 1
         if c.directional:
-
-            def key(n: np.ndarray, c: Configuration = c) -> tuple[float, ...]:
-                ans, rec = _answer(c.device_at(device, n), wall, velocity, margin, False, {})
-                return _quick_key(rec, ans, margin)
-
-            normal, _v, count = worst_direction(key, c.inertia, samples=normals)  # type: ignore[arg-type]
+            normal, count = _stiffness_direction(c, device, wall, velocity, margin, normals)
         dev = c.device_at(device, normal)
         ans, rec = _answer(dev, wall, velocity, margin, False, {})
         if simulate and rec.status is not RecommendRule.PROVEN:  # no proof: the simulated rule needs the runs
-            ans, rec = full[c.name] = _answer(dev, wall, velocity, margin, True, {})
+            ans, rec = full[c.name] = _answer(dev, wall, velocity, margin, True, answer)
         rows.append(_row(c, dev, rec.k_recommended, rec.status.value, normal, count))
     worst = _limiting(rows)
     c = next(x for x in confs if x.name == worst.name)
-    reuse = not answer and worst.name in full  # the full answer, already computed without assess/source
-    details = full[worst.name] if reuse else _answer(c.device_at(device, worst.normal), wall, velocity, margin,
-                                                     simulate, answer)  # fmt: skip
+    if worst.name in full:  # its full answer, already computed
+        details = full[worst.name]
+    else:
+        details = _answer(c.device_at(device, worst.normal), wall, velocity, margin, simulate, answer)
     status = ConfigurationStatus.NONE if worst.value is None else ConfigurationStatus.FOUND
     return WorstConfiguration(device, float(velocity), "k_recommended", tuple(rows), worst.name, status,
                               simulated=simulate, details=details)  # fmt: skip

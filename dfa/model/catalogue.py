@@ -332,7 +332,7 @@ def _check_configurations(configurations: object) -> None:
             f"configurations = {format_value(configurations)} is invalid: it must be a tuple of Configuration; "
             "read them from a device file (load_device_file)"
         )
-    names = [c.name for c in configurations]  # type: ignore[union-attr]
+    names = [c.name for c in configurations if isinstance(c, Configuration)]  # type: ignore[attr-defined]
     if len(set(names)) != len(names):
         raise DFAValueError(f"configurations = {names} is invalid: each configuration needs its own name")
 
@@ -348,7 +348,7 @@ def _entry(raw: dict[str, Any]) -> CatalogueEntry:
         rotary=bool(raw.get("rotary", False)),
         incomplete=bool(raw.get("incomplete", False)),
         printed=printed,
-        **values,
+        **values,  # type: ignore[arg-type]
     )
     if bool(entry.missing) and not entry.incomplete:
         raise RuntimeError(f"catalogue row {entry.name!r} lacks {entry.missing} but is not marked incomplete")

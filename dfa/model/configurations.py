@@ -259,7 +259,12 @@ class Configuration:
     pose: Vector | None = None
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name.strip() or len(self.name) > 100 or not self.name.isprintable():
+        if (
+            not isinstance(self.name, str)
+            or not self.name.strip()
+            or len(self.name) > 100
+            or not self.name.isprintable()
+        ):
             raise DFAValueError(
                 f"name = {format_value(self.name)} is invalid: a configuration's name must be printable text of 1 to "
                 "100 characters; give it a name such as 'far left'"
@@ -327,7 +332,7 @@ class Configuration:
             if normal is not None:
                 raise DFAValueError(f"normal = {format_value(normal)} is invalid for configuration {self.name!r}: "
                                     "it has no inertia matrix; drop the normal")  # fmt: skip
-            return values | {k: float(v) for k in _VALUE_KEYS if (v := getattr(self, k)) is not None}  # type: ignore[arg-type]
+            return values | {k: float(v) for k in _VALUE_KEYS if (v := getattr(self, k)) is not None}
         n = self.normal if normal is None else unit_normal(normal)
         if n is None:
             raise DFAValueError(
@@ -362,7 +367,10 @@ class Configuration:
         if not isinstance(base, Device):
             raise DFATypeError(f"base = {format_value(base)} has type {type(base).__name__}: it must be a Device")
         values = self.along(base, normal)
-        dev = dataclasses.replace(base.bare, name=f"{base.name} [{self.name}]", **values)
+        dev = dataclasses.replace(
+            base.bare, name=f"{base.name} [{self.name}]", mass=values["mass"], damping=values["damping"],
+            coulomb=values["coulomb"], resolution=values["resolution"],
+        )  # fmt: skip
         return dev if base.hand is None else dev.held_by(base.hand)
 
     def to_dict(self) -> dict[str, Any]:

@@ -102,8 +102,9 @@ class WorstConfiguration(Result):
         The name of the limiting configuration: the smallest value, or the first without one.
     status : ConfigurationStatus
         ``found`` or ``none`` (the limiting configuration has no value).
-    simulated : bool
-        For ``k_recommended``: whether the rows come from the full answer (True) or the quick one (``--quick``).
+    simulated : bool or None
+        For ``k_recommended``: whether the rows come from the full answer (True) or the quick one (``--quick``);
+        None (absent from JSON) for ``margin``.
     details : tuple
         The limiting configuration's full results (the answer and its recommendation, or the check), for the
         command's screen; not in the JSON (the command writes them).
@@ -115,7 +116,7 @@ class WorstConfiguration(Result):
     rows: tuple[ConfigurationRow, ...]
     limiting: str
     status: ConfigurationStatus = ConfigurationStatus.FOUND
-    simulated: bool = True
+    simulated: bool | None = field(default=None, metadata={"omit_none": True})
     details: tuple[Any, ...] = field(default=(), metadata={"json": None})
 
     units_of: ClassVar[dict[str, str]] = {"velocity": "velocity"}
