@@ -118,10 +118,12 @@ def run(args: argparse.Namespace) -> int:
     """Print the criterion's region, verdict, margin and critical speed (and Colgate–Schenkel with a wall)."""
     from ..render.text import check_rows
 
-    inp = resolve(args, dimensionless=True, need_mu=False)
+    inp = resolve(args, dimensionless=True, need_mu=False, configurations=True)
     xd, v = speed(args, inp)
     assert xd is not None
     wall = wall_from_args(args, inp.device, inp.stiffness)
+    if inp.configurations:  # a device file's configurations: the smallest margin of them
+        return _worst(args, inp, wall, xd, v)
     if wall is not None:
         return _check_wall(args, inp, wall, xd, v)
     r = _criterion(args, inp, xd, v)
@@ -132,4 +134,48 @@ def run(args: argparse.Namespace) -> int:
     say(inp.label)
     print_wall(None, inp)  # the spring: nothing, but a device's travel and what the verdict assumes
     say(table(check_rows(r, not args.no_quantization, vu)))
+    return 0
+
+
+def _worst(args: argparse.Namespace, inp: Inputs, wall: Wall | None, xd: float, v: float | None) -> int:
+    """The criterion's margin of every configuration of the device file at K, the limiting one named and its
+    check (:func:`dfa.analysis.configurations.worst_check`)."""
+    from ..analysis.configurations import worst_check
+    from ..formatting import text_table
+    from ..render.configurations import configuration_header, configuration_rows, limiting_line
+    from ..render.controller import check_table_rows
+    from ..render.text import check_rows
+
+    dev = inp.device
+    assert dev is not None and inp.stiffness is not None
+    if args.xi0 is not None:
+        raise UsageError(
+            "--xi0 is for dimensionless input: with a device give the initial position as --position (m, rad)"
+        )
+    vel = dev.velocity(xd) if v is None else v
+    if args.position is not None:
+        dev.xi(args.position, "--position")  # x/Δ overflowing: refused naming the flag
+    if wall is not None and args.history != "fresh":
+        raise UsageError(
+            f"--history {args.history} is derived for the spring with a delay only; drop it or the wall flags"
+        )
+    loop_wall = wall if wall is not None else Wall.of(inp.stiffness, delay=args.delay)
+    kw: dict[str, Any] = dict(position=args.position or 0.0, quantized=not args.no_quantization)
+    if args.history != "fresh":
+        kw["history"] = args.history
+    w = worst_check(dev, inp.configurations, vel, loop_wall, **kw)
+    (detail,) = w.details
+    if args.json:
+        out = w.to_dict()
+        out["check"] = detail.to_dict()
+        emit(wall_json(out, wall, inp))
+        return 0
+    say(inp.label)
+    print_wall(wall, inp)
+    say(text_table(configuration_rows(w), configuration_header(w)))  # a row a line, however wide
+    say(limiting_line(w))
+    say()
+    vu = dev.units["velocity"]
+    rows = check_rows(detail, not args.no_quantization, vu) if hasattr(detail, "region") else check_table_rows(detail)
+    say(table(rows))
     return 0

@@ -17,7 +17,8 @@ from typing import Any
 
 from ..checks import check_beta, check_mu, check_real, check_sigma, check_speed
 from ..errors import DFAError
-from ..model.catalogue import CatalogueEntry, get_device, load_device_file, resolve_device
+from ..model.catalogue import CatalogueEntry, ResolvedDevice, get_device, load_device_file, resolve_device
+from ..model.configurations import Configuration
 from ..model.device import DEVICE_FIELDS, STIFFNESS, Device, Params, dimensionless_params
 from ..model.hand import HAND_PRESETS, Hand, get_hand
 from ..plausibility import warn_implausible
@@ -61,8 +62,19 @@ _FLAG_NAMES = {k: f for k, (f, _u) in PHYS_FLAGS.items()} | {
 }
 
 
+#: The commands that answer for the worst of a device file's configurations (the others analyse one).
+CONFIGURATION_COMMANDS = ("stiffness", "check")
+
+
 def _add_counts_name_args(g: Any) -> None:
-    """--counts and --name, for every command that takes a device."""
+    """--counts, --name and --configuration, for every command that takes a device."""
+    g.add_argument(
+        "--configuration",
+        metavar="NAME",
+        help="one of the device file's [[devices.configurations]] (its values along the wall's normal); "
+        f"default: dfa {' and dfa '.join(CONFIGURATION_COMMANDS)} answer for the worst of them, the other commands "
+        "need this flag when the file has configurations",
+    )
     g.add_argument(
         "--counts",
         type=integer("--counts"),
@@ -217,6 +229,7 @@ class Inputs:
     stiffness: float | None
     label: str
     entry: CatalogueEntry | None = None  # the catalogue row, when the device is that row unchanged
+    configurations: tuple[Configuration, ...] = ()  # the device file's, for the worst (`device` is the device's own)
 
 
 def _dimensionless(args: argparse.Namespace, phys_given: list[str], dim_given: list[str], need_mu: bool) -> Inputs:
@@ -245,12 +258,19 @@ def _dimensionless(args: argparse.Namespace, phys_given: list[str], dim_given: l
 
 
 def resolve(
-    args: argparse.Namespace, *, dimensionless: bool, need_mu: bool = True, need_stiffness: bool = True
+    args: argparse.Namespace,
+    *,
+    dimensionless: bool,
+    need_mu: bool = True,
+    need_stiffness: bool = True,
+    configurations: bool = False,
 ) -> Inputs:
     """Turn device/physical/dimensionless flags into parameters, rejecting contradictions.
 
     With ``need_stiffness=False`` a device without any stiffness (no --stiffness, no catalogue K) gives
-    ``params=None`` and ``stiffness=None``.
+    ``params=None`` and ``stiffness=None``. A device file's configurations: ``--configuration NAME`` makes the
+    device that configuration's; without it a command that answers for the worst (``configurations=True``) gets
+    them in ``Inputs.configurations`` (``device`` the device's own), any other is refused with one line.
     """
     phys_given = [k for k in PHYS_FLAGS if getattr(args, k, None) is not None]
     dim_given = [k for k in _DIMLESS_FLAGS if getattr(args, k, None) is not None] if dimensionless else []
@@ -280,18 +300,53 @@ def resolve(
         label=getattr(args, "name", None),
         flags=_FLAG_NAMES,
     )
+    confs = _configurations(args, entry, path, configurations)
+    if len(confs) == 1 and getattr(args, "configuration", None) is not None and not confs[0].directional:
+        r, confs = ResolvedDevice(confs[0].device_at(r.device), r.stiffness), ()  # one configuration: its device
     dev, label, entry = r.device, r.label, r.entry
     hand = resolve_hand(args, dev.rotary)
     if hand is not None:
         dev = dev.held_by(hand)  # its stiffness joins the wall (dfa.cli.walls.wall_from_args: dfa.HandSpring)
         label, entry = f"{label}, held by {hand_label(hand, dev.units)}", None  # no longer the catalogue row
     if r.stiffness is None and not need_stiffness:
-        return Inputs(None, math.nan, math.nan, dev, None, label, entry)
+        return Inputs(None, math.nan, math.nan, dev, None, label, entry, confs)
     if r.stiffness is None:
         where = f"device file {path!r} gives no stiffness" if path is not None else "no catalogue stiffness"
         raise UsageError(f"missing --stiffness: {where} for {dev.name!r}; give K in {dev.units['stiffness']}")
     p = dimensionless_params(dev, r.stiffness)  # resolve_device has refused groups that overflow or vanish
-    return Inputs(p, p.beta, p.sigma, dev, r.stiffness, label, entry)
+    return Inputs(p, p.beta, p.sigma, dev, r.stiffness, label, entry, confs)
+
+
+def _configurations(
+    args: argparse.Namespace, entry: CatalogueEntry | None, path: str | None, worst: bool
+) -> tuple[Configuration, ...]:
+    """The configurations a command analyses: --configuration's one, every one (``worst``), or none; refused with
+    one line for a name the file lacks, and for a command that does not answer for the worst."""
+    name = getattr(args, "configuration", None)
+    confs = () if entry is None else entry.configurations
+    command = f"dfa {getattr(args, 'command', None) or 'this command'}"
+    answering = f"dfa {' and dfa '.join(CONFIGURATION_COMMANDS)}"
+    if name is not None:
+        if not confs:
+            where = f"device file {path!r} has" if path is not None else "a catalogue device or flags have"
+            raise UsageError(f"--configuration {name!r} needs configurations: {where} none; give a device file with "
+                             "[[devices.configurations]] tables, or drop --configuration")  # fmt: skip
+        chosen = [c for c in confs if c.name == name]
+        if not chosen:
+            raise UsageError(f"--configuration {name!r} is not in device file {path!r}: choose one of "
+                             f"{', '.join(repr(c.name) for c in confs)}")  # fmt: skip
+        if chosen[0].directional and not worst:
+            raise UsageError(f"--configuration {name!r} has an inertia matrix but no normal: {command} needs "
+                             f"one direction; give normal = [nx, ny, nz] in the file, or use {answering}, which "
+                             "search the worst direction")  # fmt: skip
+        return (chosen[0],)
+    if confs and not worst:
+        raise UsageError(
+            f"device file {path!r} has {len(confs)} configurations ({', '.join(repr(c.name) for c in confs[:5])}"
+            f"{', ...' if len(confs) > 5 else ''}): {command} analyses one; give --configuration NAME "
+            f"({answering} answer for the worst of them)"
+        )
+    return confs
 
 
 def _device_file(args: argparse.Namespace) -> str | None:

@@ -97,7 +97,7 @@ def run(args: argparse.Namespace) -> int:
     from ..analysis.limits.recommend import check_margin, recommend_stiffness
     from ..analysis.limits.require import damper_guidance_for
 
-    inp = resolve(args, dimensionless=False, need_stiffness=False)
+    inp = resolve(args, dimensionless=False, need_stiffness=False, configurations=True)
     dev = inp.device
     assert dev is not None
     _xd, v = speed(args, inp)
@@ -118,6 +118,8 @@ def run(args: argparse.Namespace) -> int:
     path = str(args.device_file) if where == "device file" else None
     loop = Loop(dev, wall)
     simulate = not args.quick
+    if inp.configurations:  # a device file's configurations: the worst of them
+        return _worst(args, inp, wall, ctl, v, dict(assess=k is not None, source=where, source_file=path))
     start, runs = time.perf_counter(), runs_counted()
     with working(args):
         ans = design_answer(loop, v, assess=k is not None, source=where, source_file=path, simulate=simulate)
@@ -194,3 +196,44 @@ def _print_explained(ans: KMaxResult, rec: Recommendation, ctl: Wall | None, inp
         print(fill(f"{note} (the describing function's: the first harmonic)."))
     else:
         print("impact speed 0: the describing-function and simulated limits need a speed > 0.")
+
+
+def _worst(args: argparse.Namespace, inp: Inputs, wall: Wall, ctl: Wall | None, v: float, kw: dict[str, Any]) -> int:
+    """The recommended stiffness of every configuration of the device file, the limiting one named and its full
+    answer (:func:`dfa.analysis.configurations.worst_stiffness`)."""
+    from ..analysis.configurations import worst_stiffness
+    from ..analysis.limits.require import damper_guidance_for
+    from ..render.answer import stiffness_screen
+    from ..render.configurations import configuration_header, configuration_rows, limiting_line
+
+    assert inp.device is not None
+    with working(args):
+        w = worst_stiffness(inp.device, inp.configurations, v, wall=wall, margin=args.margin, simulate=not args.quick,
+                            **kw)  # fmt: skip
+        ans, rec = w.details
+        guide = damper_guidance_for(ans.device, wall, v)
+        if args.plot is not None:
+            from ..analysis.limits.speed_chart import stiffness_speed_chart
+
+            chart = stiffness_speed_chart(
+                Loop(ans.device, wall), stiffness=inp.stiffness, velocity=v if v > 0 else None
+            )
+    if args.plot is not None:
+        save_png("--plot", args.plot, chart.plot())
+    if args.json:
+        out = w.to_dict()
+        out["answer"] = ans.to_dict()
+        out["recommendation"] = rec.to_dict()
+        out["damper_guidance"] = None if guide is None else guide.to_dict()
+        explain_nulls(out, {"damper_guidance": "no virtual damper"})
+        if args.plot is not None:
+            out["plot"] = args.plot
+        emit(wall_json(out, ctl, inp))
+        return 0
+    print(text_table(configuration_rows(w), configuration_header(w)))
+    print(limiting_line(w))
+    print()
+    print("\n".join(stiffness_screen(ans, rec, guide)))
+    if args.plot is not None:
+        print(f"stiffness-speed chart of {w.limiting} written to {args.plot}")
+    return 0

@@ -42,6 +42,7 @@ from typing import Any, TypeVar
 
 from ..errors import DeviceFileError, DFAError, DFATypeError, DFAValueError
 from ..jsonable import explain_nulls
+from .configurations import Configuration, configurations_from_toml
 from .device import DEVICE_FIELDS, STIFFNESS, Device, DeviceField, Params
 
 if sys.version_info >= (3, 11):
@@ -181,6 +182,9 @@ class CatalogueEntry:
         True when some physical value is unknown.
     printed : tuple of (str, str)
         The (μ, β, σ) printed in the paper, as ``(name, decimal string)`` pairs.
+    configurations : tuple of Configuration
+        A device file's ``[[devices.configurations]]`` (:mod:`dfa.model.configurations`): the dynamics at its
+        poses; empty for the catalogue's rows.
     """
 
     name: str
@@ -198,9 +202,12 @@ class CatalogueEntry:
     incomplete: bool = False
     max_force: float | None = None
     printed: tuple[tuple[str, str], ...] = field(default_factory=tuple)
+    configurations: tuple[Configuration, ...] = field(default_factory=tuple)
 
     def __post_init__(self) -> None:
         from ..checks import check_bool, check_choice, format_value
+
+        _check_configurations(self.configurations)
 
         fix = "build rows with get_device or load_device_file, or give the values in SI units"
         for name in ("name", "kind", "source", "notes"):
@@ -310,7 +317,24 @@ class CatalogueEntry:
         why["stiffness"] = "the source gives no stiffness K for this device"
         why.update(dict.fromkeys(("mu", "beta", "sigma"), "not computable: the physical row is incomplete"))
         why["printed"] = "the paper prints no (μ, β, σ) for this device"
+        if self.configurations:  # a device file's poses (issue 46); absent for the catalogue's rows
+            out["configurations"] = [c.to_dict() for c in self.configurations]
         return explain_nulls(out, why)
+
+
+def _check_configurations(configurations: object) -> None:
+    """A row's configurations: a tuple of :class:`Configuration` with distinct names."""
+    from ..checks import format_value
+
+    ok = isinstance(configurations, tuple) and all(isinstance(c, Configuration) for c in configurations)
+    if not ok:
+        raise DFATypeError(
+            f"configurations = {format_value(configurations)} is invalid: it must be a tuple of Configuration; "
+            "read them from a device file (load_device_file)"
+        )
+    names = [c.name for c in configurations if isinstance(c, Configuration)]  # type: ignore[attr-defined]
+    if len(set(names)) != len(names):
+        raise DFAValueError(f"configurations = {names} is invalid: each configuration needs its own name")
 
 
 def _entry(raw: dict[str, Any]) -> CatalogueEntry:
@@ -324,7 +348,7 @@ def _entry(raw: dict[str, Any]) -> CatalogueEntry:
         rotary=bool(raw.get("rotary", False)),
         incomplete=bool(raw.get("incomplete", False)),
         printed=printed,
-        **values,
+        **values,  # type: ignore[arg-type]
     )
     if bool(entry.missing) and not entry.incomplete:
         raise RuntimeError(f"catalogue row {entry.name!r} lacks {entry.missing} but is not marked incomplete")
@@ -597,7 +621,10 @@ DEVICE_FILE_MAX_BYTES = 100_000
 
 _KINDS = ("haptic device", "experimental testbed", "human")
 _TEXT_KEYS = ("name", "kind", "source", "notes")
-_FILE_KEYS = ("name", "kind", "source", "rotary", *(f.name for f in _ROW_FIELDS), "printed", "notes", "incomplete")
+_FILE_KEYS = (
+    "name", "kind", "source", "rotary", *(f.name for f in _ROW_FIELDS), "printed", "notes", "incomplete",
+    "configurations",
+)  # fmt: skip
 _REQUIRED = ("name", *_PHYSICAL)
 _OPTIONAL = tuple(f.name for f in _ROW_FIELDS if not f.required)
 _TEMPLATE = "`dfa devices --template > my_device.toml` writes one"
@@ -739,11 +766,20 @@ def _file_number(path: str, key: str, value: object) -> float:
         raise DeviceFileError(f"device file {path!r}: {exc}") from None
 
 
+def _file_configurations(path: str, key: str, value: object) -> tuple[Configuration, ...]:
+    """``[[devices.configurations]]`` of a device file (:func:`~dfa.model.configurations.configurations_from_toml`)."""
+    try:
+        return configurations_from_toml(value, f"device file {path!r}")
+    except DFAError as exc:
+        raise DeviceFileError(str(exc)) from None
+
+
 #: How each key of a device file is read and checked (its value, the file's path and the key).
 _FILE_READERS: dict[str, Callable[[str, str, object], object]] = {
     **dict.fromkeys(_TEXT_KEYS, _file_text),
     **dict.fromkeys(("rotary", "incomplete"), _file_flag),
     "printed": _file_printed,
+    "configurations": _file_configurations,
     **dict.fromkeys((f.name for f in _ROW_FIELDS), _file_number),
 }
 
@@ -758,7 +794,8 @@ def load_device_file(path: str | os.PathLike[str]) -> CatalogueEntry:
 
     The file holds one ``[[devices]]`` table: ``name`` and the five physical values in SI units (``mass``,
     ``damping``, ``coulomb``, ``resolution``, ``period``) are required; ``stiffness``, ``rotary``, ``kind``,
-    ``source``, ``notes`` and ``printed`` (the (μ, β, σ) a source printed) are optional.
+    ``source``, ``notes`` and ``printed`` (the (μ, β, σ) a source printed) are optional, and so are
+    ``[[devices.configurations]]`` tables (:mod:`dfa.model.configurations`: the dynamics at the device's poses).
 
     Parameters
     ----------

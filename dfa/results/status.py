@@ -61,6 +61,7 @@ __all__ = [
     "DeployRule",
     "LinearStatus",
     "PassivityStatus",
+    "ConfigurationStatus",
 ]
 
 
@@ -690,3 +691,14 @@ class TunedStatus(StatusEnum):
 
     SIMULATED = ("simulated", "its stiffness searched in full: proof, simulated limits and the recommendation")
     SCREENED = ("screened", "screened only (criterion and exact linear bound): ranked below the walls simulated")
+
+
+class ConfigurationStatus(StatusEnum):
+    """The worst configuration of a device (:class:`dfa.results.configurations.WorstConfiguration`, issue 46)."""
+
+    FOUND = ("found", "the limiting configuration has the smallest value of all (the wall must hold there)")
+    NONE = (
+        "none",
+        "the limiting configuration has no value: no recommended stiffness (or no covered margin) there, so none "
+        "holds for the device",
+    )

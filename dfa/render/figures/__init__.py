@@ -30,6 +30,7 @@ Examples
 """
 
 from ..._io import FIGURE_SUFFIXES
+from .configurations import configurations_plot
 from .contours import contour_plot
 from .identify import ZOOM_AFTER, plot_identification
 from .maps import stability_map_plot
@@ -53,6 +54,7 @@ from .validation import critical_speed_plot, cycle_error_plot
 from .zwidth import ZWIDTH_COLORS, plot_zwidth
 
 __all__ = [
+    "configurations_plot",
     "tune_plot",
     "regions_plot",
     "stability_map_plot",

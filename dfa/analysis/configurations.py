@@ -1,0 +1,357 @@
+"""The worst configuration of a device whose dynamics change over its workspace (issue 46).
+
+A device with configurations (:mod:`dfa.model.configurations`) is analysed once per configuration, as the
+one-axis device felt along the wall's normal there; the device is only as good as its worst configuration:
+
+- :func:`worst_stiffness` (``dfa stiffness``): the recommended stiffness
+  (:func:`~dfa.analysis.limits.kmax.design_answer` and :func:`~dfa.analysis.limits.recommend.recommend_stiffness`)
+  of each configuration; the limiting one has the smallest (a configuration with none limits the most).
+  Timing: every configuration gets the quick answer (no simulation, ~0.1 s); the full answer (with the simulated
+  limits, seconds) only where the quick one proves no K (the criterion's K, eq. 11, is the full answer's
+  recommendation too wherever it is proven) and for the limiting configuration (its screen). ``simulate=False``
+  (``--quick``) never simulates.
+- :func:`worst_check` (``dfa check``): the criterion's margin (β − β₀)V + (σ − σ₀) (eq. 6) of each configuration
+  at the wall's K; the limiting one has the smallest (one not covered by the criterion limits the most).
+- An inertia matrix without a normal: :func:`worst_direction` searches the normal of the worst answer over a
+  Fibonacci hemisphere of normals, the axes and the eigenvectors of M (the directions of the extreme masses),
+  then refines the best by a shrinking pattern search on the sphere (about 100 to 150 normals). ``dfa check``
+  evaluates its margin. The criterion's K (eq. 11) does not depend on the mass, the simulated limits do: ``dfa
+  stiffness`` first searches the criterion's K alone (closed form); where it proves a K along every normal and
+  that K changes with the direction (per-axis friction, damping or resolution), that is the recommended K and
+  the search is done. Otherwise it searches the quick answer's rank (the recommended K, then the describing
+  function's limit, which depends on the mass; ~0.1 s a normal, so 10 to 20 s a configuration). The full answer
+  is then computed along the worst normal found.
+
+Examples
+--------
+>>> import numpy as np
+>>> f = lambda n: (float(n @ np.diag([3.0, 2.0, 1.0]) @ n),)   # smallest along z
+>>> n, value, count = worst_direction(f, np.eye(3), samples=16)
+>>> [round(abs(x), 6) for x in n], round(value[0], 9)
+([0.0, 0.0, 1.0], 1.0)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+
+from ..checks import check_int, check_type
+from ..errors import DFAValueError
+from ..model.configurations import Configuration, fibonacci_normals
+from ..model.device import Device
+from ..model.elements import PassivityController
+from ..model.loop import Loop
+from ..model.wall import Wall
+from ..results.configurations import ConfigurationRow, WorstConfiguration
+from ..results.status import ConfigurationStatus, RecommendRule
+
+__all__ = ["worst_direction", "worst_stiffness", "worst_check", "DEFAULT_NORMALS"]
+
+#: Normals sampled on the hemisphere before the pattern search refines the best.
+DEFAULT_NORMALS = 32
+_REFINEMENTS = 8  # halvings of the pattern search's step (its last step: the spacing / 256, about 0.1°)
+
+_R2 = math.sqrt(2.0)
+Objective = Callable[[np.ndarray], tuple[float, ...]]
+
+
+def _candidates(inertia: np.ndarray, samples: int) -> np.ndarray:
+    """The hemisphere's normals, the axes and the eigenvectors of M (each with z >= 0: n and −n are one wall)."""
+    _w, vecs = np.linalg.eigh(inertia)
+    extra = np.vstack([np.eye(3), vecs.T])
+    extra = np.where(extra[:, 2:3] < 0.0, -extra, extra)
+    return np.vstack([fibonacci_normals(samples), extra])
+
+
+def _rotate(n: np.ndarray, axis: np.ndarray, angle: float) -> np.ndarray:
+    """n turned by ``angle`` (rad) towards the tangent ``axis``, kept a unit vector."""
+    out = math.cos(angle) * n + math.sin(angle) * axis
+    return out / float(np.linalg.norm(out))
+
+
+def worst_direction(
+    objective: Objective,
+    inertia: Sequence[Sequence[float]] | np.ndarray,
+    *,
+    samples: int = DEFAULT_NORMALS,
+    refinements: int = _REFINEMENTS,
+) -> tuple[tuple[float, float, float], tuple[float, ...], int]:
+    """The wall normal where ``objective`` is smallest (module docstring): sampled, then refined.
+
+    Parameters
+    ----------
+    objective : callable
+        A unit normal (ndarray of 3) to a tuple of floats, compared in order (smaller is worse).
+    inertia : array-like
+        The inertia matrix M (3 × 3); its eigenvectors are among the normals tried.
+    samples : int, optional
+        Normals on the Fibonacci hemisphere (default :data:`DEFAULT_NORMALS`), >= 1.
+    refinements : int, optional
+        Halvings of the pattern search's step, from the hemisphere's spacing (default 8: about 0.1° at the end).
+
+    Returns
+    -------
+    normal : tuple of float
+        The worst unit normal found.
+    value : tuple of float
+        The objective there.
+    evaluations : int
+        How many normals were evaluated.
+    """
+    count = check_int("samples", samples, 1, "give the number of normals to sample, e.g. 32")
+    seen: dict[tuple[float, ...], tuple[float, ...]] = {}
+
+    def f(n: np.ndarray) -> tuple[float, ...]:
+        key = tuple(np.round(n, 12) * (1.0 if n[2] >= 0 else -1.0))
+        if key not in seen:
+            seen[key] = tuple(objective(n))
+        return seen[key]
+
+    cands = _candidates(np.asarray(inertia, dtype=float), count)
+    values = [f(n) for n in cands]
+    best = cands[min(range(len(cands)), key=values.__getitem__)]
+    best_value = f(best)
+    step = math.sqrt(2.0 * math.pi / count)  # the spacing of the hemisphere's normals, rad
+    for _ in range(refinements):
+        improved = True
+        while improved:
+            improved = False
+            a = np.cross(best, [1.0, 0.0, 0.0] if abs(best[0]) < 0.9 else [0.0, 1.0, 0.0])
+            a /= float(np.linalg.norm(a))
+            b = np.cross(best, a)
+            for axis in (a, -a, b, -b, (a + b) / _R2, -(a + b) / _R2, (a - b) / _R2, (b - a) / _R2):
+                trial = _rotate(best, axis, step)
+                value = f(trial)
+                if value < best_value:
+                    best, best_value, improved = trial, value, True
+                    break
+        step /= 2.0
+    if best[2] < 0.0:
+        best = -best
+    return (float(best[0]), float(best[1]), float(best[2])), best_value, len(seen)
+
+
+def _row(c: Configuration, dev: Device, value: float | None, rule: str, normal: Any, count: int) -> ConfigurationRow:
+    return ConfigurationRow(
+        c.name, dev.own_mass, dev.own_damping, dev.coulomb, dev.resolution, value, rule,
+        normal=None if normal is None else (float(normal[0]), float(normal[1]), float(normal[2])), searched=c.directional,
+        evaluations=count, pose=c.pose,
+    )  # fmt: skip
+
+
+def _limiting(rows: list[ConfigurationRow]) -> ConfigurationRow:
+    """The row without a value (the first), else the smallest value (the first of equal ones)."""
+    return min(rows, key=lambda r: (r.value is not None, -math.inf if r.value is None else r.value))
+
+
+def _check_inputs(device: object, configurations: object) -> tuple[Configuration, ...]:
+    check_type("device", device, Device, "give the device whose configurations these are")
+    if not isinstance(configurations, (tuple, list)) or not configurations:
+        raise DFAValueError("configurations = [] is invalid: give at least one Configuration (a device file's)")
+    for c in configurations:
+        check_type("configurations", c, Configuration, "give dfa.model.configurations.Configuration objects")
+    return tuple(configurations)
+
+
+def _answer(dev: Device, wall: Wall, velocity: float, margin: float, simulate: bool, kw: dict[str, Any]) -> Any:
+    """The answer and recommendation of one one-axis device (with the wall without its controller, if any)."""
+    from .limits.kmax import design_answer
+    from .limits.recommend import recommend_stiffness
+
+    ans = design_answer(Loop(dev, wall), velocity, simulate=simulate, **kw)
+    plain = None
+    if wall.element(PassivityController) is not None:
+        plain = design_answer(Loop(dev, wall.without_controller()), velocity, simulate=simulate)
+    return ans, recommend_stiffness(ans, margin, plain=plain)
+
+
+def _quick_key(rec: Any, ans: Any, margin: float) -> tuple[float, float]:
+    """The quick answer's rank: its recommended K, else the describing function's limit over the margin (an
+    estimate of the simulated rule); then the describing function's limit (it depends on the mass)."""
+    k_df = ans.k_df.value if ans.k_df.value is not None else math.inf
+    k = rec.k_recommended if rec.k_recommended is not None else k_df / margin
+    return (k, k_df)
+
+
+def _stiffness_direction(
+    c: Configuration, device: Device, wall: Wall, velocity: float, margin: float, normals: int
+) -> tuple[tuple[float, float, float], int]:
+    """The worst normal of a directional configuration for ``dfa stiffness``, and the normals evaluated.
+
+    First the criterion's K alone (eq. 11 extended, closed form, under a millisecond a normal): where it proves
+    a K along every normal tried and that K changes with the direction, it is the recommended K (the proven
+    rule) and its smallest is the worst direction. Otherwise (no proof, or the same K along every normal: no
+    per-axis friction, damping or resolution) the quick answer's rank (:func:`_quick_key`, ~0.1 s a normal,
+    over a coarser refinement)."""
+    from .limits.kmax import closed_forms
+
+    seen: list[float] = []
+
+    def criterion(n: np.ndarray) -> tuple[float, ...]:
+        kc = closed_forms(c.device_at(device, n), wall, velocity)[0].value
+        seen.append(math.inf if kc is None else float(kc))
+        return (seen[-1],)
+
+    normal, _v, count = worst_direction(criterion, c.inertia, samples=normals)  # type: ignore[arg-type]
+    if all(math.isfinite(k) for k in seen) and max(seen) - min(seen) > 1e-9 * max(seen):
+        return normal, count
+
+    def key(n: np.ndarray) -> tuple[float, ...]:
+        ans, rec = _answer(c.device_at(device, n), wall, velocity, margin, False, {})
+        return _quick_key(rec, ans, margin)
+
+    normal, _v, more = worst_direction(key, c.inertia, samples=normals, refinements=4)  # type: ignore[arg-type]
+    return normal, count + more
+
+
+def worst_stiffness(
+    device: Device,
+    configurations: Sequence[Configuration],
+    velocity: float,
+    *,
+    wall: Wall | None = None,
+    margin: float = 2.0,
+    simulate: bool = True,
+    normals: int = DEFAULT_NORMALS,
+    **answer: Any,
+) -> WorstConfiguration:
+    """The recommended stiffness of every configuration and the limiting one (module docstring).
+
+    Parameters
+    ----------
+    device : Device
+        The device (its own values fill what a configuration does not give; its hand is kept).
+    configurations : sequence of Configuration
+        At least one.
+    velocity : float
+        Impact speed V, m/s (rotary rad/s), >= 0.
+    wall : Wall, optional
+        The wall whose elements are held fixed while K varies (default the spring, ``Wall.of(1.0)``).
+    margin : float, optional
+        Gain margin of the simulated rule (default 2).
+    simulate : bool, optional
+        False: the quick answer only (``--quick``); default True.
+    normals : int, optional
+        Normals sampled for a configuration without one (default :data:`DEFAULT_NORMALS`).
+    **answer
+        Passed to :func:`~dfa.analysis.limits.kmax.design_answer` for the full answers (``assess``, ``source``,
+        ``source_file``: the verdict on the device's K in the limiting configuration's answer).
+
+    Returns
+    -------
+    WorstConfiguration
+        ``quantity="k_recommended"``; ``details`` the limiting configuration's (answer, recommendation).
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> dev = get_device("impulse").device
+    >>> cs = (Configuration("near"), Configuration("slippery", coulomb=0.012))
+    >>> w = worst_stiffness(dev, cs, 0.1, simulate=False)
+    >>> w.limiting, [round(r.value, 2) for r in w.rows]
+    ('slippery', [101.17, 54.47])
+    """
+    confs = _check_inputs(device, configurations)
+    wall = Wall.of(1.0) if wall is None else check_type("wall", wall, Wall, "give a dfa.Wall")
+    rows: list[ConfigurationRow] = []
+    full: dict[str, Any] = {}
+    for c in confs:
+        normal, count = c.normal, 1
+        if c.directional:
+            normal, count = _stiffness_direction(c, device, wall, velocity, margin, normals)
+        dev = c.device_at(device, normal)
+        ans, rec = _answer(dev, wall, velocity, margin, False, {})
+        if simulate and rec.status is not RecommendRule.PROVEN:  # no proof: the simulated rule needs the runs
+            ans, rec = full[c.name] = _answer(dev, wall, velocity, margin, True, answer)
+        rows.append(_row(c, dev, rec.k_recommended, rec.status.value, normal, count))
+    worst = _limiting(rows)
+    c = next(x for x in confs if x.name == worst.name)
+    if worst.name in full:  # its full answer, already computed
+        details = full[worst.name]
+    else:
+        details = _answer(c.device_at(device, worst.normal), wall, velocity, margin, simulate, answer)
+    status = ConfigurationStatus.NONE if worst.value is None else ConfigurationStatus.FOUND
+    return WorstConfiguration(device, float(velocity), "k_recommended", tuple(rows), worst.name, status,
+                              simulated=simulate, details=details)  # fmt: skip
+
+
+def _criterion(dev: Device, wall: Wall, velocity: float, kw: dict[str, Any]) -> Any:
+    """The check of one one-axis device: the criterion (or the passivity check with the wall's elements)."""
+    from .check import passivity_check
+    from .criterion import device_criterion
+
+    if kw.get("history", "fresh") != "fresh":
+        return device_criterion(Loop(dev, wall), velocity, **kw)
+    return passivity_check(Loop(dev, wall), velocity, **kw)
+
+
+def _margin(result: Any) -> tuple[float | None, str]:
+    crit = getattr(result, "criterion", result)
+    if crit is None:
+        return None, "not_covered"
+    return float(crit.margin), crit.status.value
+
+
+def worst_check(
+    device: Device,
+    configurations: Sequence[Configuration],
+    velocity: float,
+    wall: Wall,
+    *,
+    normals: int = DEFAULT_NORMALS,
+    **check: Any,
+) -> WorstConfiguration:
+    """The criterion's margin of every configuration at the wall's K and the limiting one (module docstring).
+
+    Parameters
+    ----------
+    device : Device
+    configurations : sequence of Configuration
+    velocity : float
+        Impact speed, m/s (rotary rad/s), >= 0.
+    wall : Wall
+        The wall (its K and elements).
+    normals : int, optional
+        Normals sampled for a configuration without one.
+    **check
+        ``position``, ``quantized``, ``history`` of :func:`~dfa.analysis.criterion.device_criterion`
+        (``history="fresh"``: :func:`~dfa.analysis.check.passivity_check`, which covers a wall's elements).
+
+    Returns
+    -------
+    WorstConfiguration
+        ``quantity="margin"``; ``details`` the limiting configuration's check.
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> dev = get_device("impulse").device
+    >>> w = worst_check(dev, (Configuration("a"), Configuration("coarse", resolution=628e-6)), 0.05, Wall.of(80.0))
+    >>> w.limiting, w.rows[1].value < w.rows[0].value
+    ('coarse', True)
+    """
+    confs = _check_inputs(device, configurations)
+    check_type("wall", wall, Wall, "give a dfa.Wall (its K and elements)")
+    rows: list[ConfigurationRow] = []
+    results: dict[str, Any] = {}
+    for c in confs:
+        normal, count = c.normal, 1
+        if c.directional:
+
+            def key(n: np.ndarray, c: Configuration = c) -> tuple[float, ...]:
+                m, _rule = _margin(_criterion(c.device_at(device, n), wall, velocity, check))
+                return (-math.inf if m is None else m,)
+
+            normal, _v, count = worst_direction(key, c.inertia, samples=normals)  # type: ignore[arg-type]
+        dev = c.device_at(device, normal)
+        results[c.name] = _criterion(dev, wall, velocity, check)
+        value, rule = _margin(results[c.name])
+        rows.append(_row(c, dev, value, rule, normal, count))
+    worst = _limiting(rows)
+    status = ConfigurationStatus.NONE if worst.value is None else ConfigurationStatus.FOUND
+    return WorstConfiguration(device, float(velocity), "margin", tuple(rows), worst.name, status,
+                              details=(results[worst.name],))  # fmt: skip
