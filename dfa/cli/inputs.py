@@ -63,7 +63,7 @@ _FLAG_NAMES = {k: f for k, (f, _u) in PHYS_FLAGS.items()} | {
 
 
 #: The commands that answer for the worst of a device file's configurations (the others analyse one).
-CONFIGURATION_COMMANDS = ("stiffness", "check")
+CONFIGURATION_COMMANDS = ("stiffness", "check", "report")
 
 
 def _add_counts_name_args(g: Any) -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import os
 import stat
@@ -10,6 +11,7 @@ from typing import Any
 
 from .._io import check_output_folder, make_output_folder
 from ..model.catalogue import DEFAULT_DEVICE
+from ..model.loop import Loop
 from ..model.wall import Wall
 from .contact import add_contact_args
 from .inputs import PHYS_FLAGS, add_device_args, resolve, speed
@@ -105,6 +107,22 @@ def _read_validation(path: str) -> dict[str, Any]:
     return data
 
 
+def _limiting(inp: Any, wall: Wall, v: float | None) -> tuple[Loop, Any]:
+    """A device file's configurations answered (:func:`dfa.analysis.configurations.worst_stiffness`) and the loop of
+    the limiting one (its device, the wall at the file's K), for its report."""
+    from ..analysis.configurations import worst_stiffness
+
+    if v is None or not v > 0:
+        raise UsageError(
+            "dfa report: a device file with configurations needs --velocity V > 0 (the limiting configuration is the "
+            "one with the smallest recommended K at V), or --configuration NAME"
+        )
+    worst = worst_stiffness(inp.device, inp.configurations, v, wall=wall.with_stiffness(1.0))
+    ans, _rec = worst.details
+    limiting = dataclasses.replace(ans.device, name=f"{inp.device.name} ({worst.limiting})")
+    return Loop(limiting, wall), worst
+
+
 def run(args: argparse.Namespace) -> int:
     """Write the report; print the paths written (or, with --json, the paths and the numbers stated)."""
     from ..studies.design import resolve_design_inputs
@@ -117,7 +135,7 @@ def run(args: argparse.Namespace) -> int:
     ):
         args.device = DEFAULT_DEVICE
     check_output_folder("--out", args.out, create=True)  # created (one level) once the inputs pass
-    inp = resolve(args, dimensionless=False)
+    inp = resolve(args, dimensionless=False, configurations=True)
     assert inp.device is not None
     ctl = wall_from_args(args, inp.device, inp.stiffness)  # None: the spring (no flag, or B = 0 without filter/lag)
     if args.zwidth is not None and args.zwidth < 0:
@@ -133,10 +151,14 @@ def run(args: argparse.Namespace) -> int:
         check_zwidth_size(args.zwidth, names=("--zwidth", "--speeds"))  # before any section runs
         seconds = z_width_seconds(loop, v, grid=args.zwidth, speeds=1)
         check_work_time(f"--zwidth {args.zwidth}", seconds, "lower --zwidth", args.force)
+    worst = None
+    if inp.configurations:  # the limiting configuration's report, with a row per configuration
+        loop, worst = _limiting(inp, wall, v)
     make_output_folder("--out", args.out)
     res = design_report(
-        loop, v, entry=inp.entry, out_dir=args.out, fmt=args.format, progress=progress(args),
-        validation=summary, force=args.force, zwidth_grid=args.zwidth, tune=args.tune,
+        loop, v, entry=None if worst is not None else inp.entry, out_dir=args.out, fmt=args.format,
+        progress=progress(args), validation=summary, force=args.force, zwidth_grid=args.zwidth, tune=args.tune,
+        configurations=worst,
     )  # fmt: skip
     if args.json:
         emit(res.to_dict(), ensure_ascii=False)

@@ -48,6 +48,7 @@ from ..model.elements import Coverage
 from ..model.loop import LOOP_FIX, Loop
 from ..model.wall import Wall, WallParams
 from ..results.base import Result
+from ..results.configurations import WorstConfiguration
 from ..results.status import DesignStatus
 from .validation import first_unstable_speed
 
@@ -133,6 +134,9 @@ class DesignAnalysis(Result):
     grip : GripSweep or None
         How firm a grip the wall needs at K and ẋ0 (:func:`dfa.analysis.limits.grip.grip_sweep`: the bare device,
         the hand's mass held); None at speed 0.
+    configurations : WorstConfiguration or None
+        A device file's configurations (:func:`dfa.analysis.configurations.worst_stiffness`): the report is the
+        limiting configuration's, with a row per configuration; None for a device without configurations.
     tuned : TuneResult or None
         The deployable wall: :func:`dfa.tune` with its default lists at the design speed, the wall's other elements
         held (``tune=True``); None at speed 0 or when not asked.
@@ -168,6 +172,7 @@ class DesignAnalysis(Result):
     zwidth: ZWidth | None = field(default=None, repr=False)
     grip: GripSweep | None = field(default=None, repr=False)
     tuned: TuneResult | None = field(default=None, repr=False, metadata={"omit_none": True})
+    configurations: WorstConfiguration | None = field(default=None, repr=False, metadata={"omit_none": True})
     catalogue: dict[str, Any] | None = None
     validation: dict[str, Any] | None = None
     samples: int = 30_000
@@ -215,6 +220,7 @@ class DesignAnalysis(Result):
         for name, cls in (
             ("limits", StiffnessLimits), ("stiffness_curve", StiffnessResponse), ("design_answer", KMaxResult),
             ("speed_chart", StiffnessSpeedChart), ("zwidth", ZWidth), ("tuned", TuneResult),
+            ("configurations", WorstConfiguration),
         ):  # fmt: skip
             if getattr(self, name) is not None:
                 check_type(name, getattr(self, name), cls, fix)
@@ -523,6 +529,7 @@ def design_analysis(
     progress: bool = False,
     zwidth_grid: int | None = None,
     tune: bool = False,
+    configurations: WorstConfiguration | None = None,
 ) -> DesignAnalysis:
     """Compute every number of the design report of the loop's device with its wall at impact speed ẋ0.
 
@@ -552,6 +559,9 @@ def design_analysis(
     tune : bool
         Add the deployable wall (:func:`dfa.tune` with its default lists at the design speed; about 40 s;
         default False).
+    configurations : WorstConfiguration or None
+        A device file's configurations, already answered (the loop's device is the limiting one): a row per
+        configuration in the report (default None).
 
     Returns
     -------
@@ -609,6 +619,10 @@ def design_analysis(
         figs["zwidth"] = _zwidth(loop, v, not wp.covers(Coverage.CLOSED_FORM), zg, n_jobs, progress)
     if v > 0 and tune:
         figs["tuned"] = tune_wall(loop, v)
+    if configurations is not None:
+        figs["configurations"] = check_type(
+            "configurations", configurations, WorstConfiguration, "give worst_stiffness's"
+        )
     inputs: dict[str, Any] = dict(
         catalogue=_catalogue_notes(entry), validation=checked, samples=samples, map_grid=map_grid
     )

@@ -528,6 +528,21 @@ def _device_flags(a: DesignAnalysis) -> str:
     return f"--device {a.device.name.split()[0].lower()}" if same else device_flags(a.device)
 
 
+def _configuration_parts(a: DesignAnalysis) -> dict[str, str]:
+    """The configurations' table and the limiting one ('' without configurations)."""
+    w = a.configurations
+    if w is None:
+        return {"configuration_table": "", "configuration_line": ""}
+    from ..render.configurations import configuration_header, configuration_rows, limiting_line
+
+    header = configuration_header(w)
+    header[-1] = "limiting"
+    return {
+        "configuration_table": markdown_table(header, configuration_rows(w)),
+        "configuration_line": limiting_line(w),
+    }
+
+
 def _tune_parts(a: DesignAnalysis) -> dict[str, str]:
     """The deployable wall's table, best wall and export command ('' without a tuning)."""
     if a.tuned is None:
@@ -568,6 +583,7 @@ def design_markdown(a: DesignAnalysis, captions: Mapping[str, str], src: Callabl
         else recommendation_text(a.recommendation).removeprefix("recommended "),
         **_controller_parts(a),
         **_tune_parts(a),
+        **_configuration_parts(a),
         device_table=markdown_table(["quantity", "value"], device_rows(a)),
         grip_text=grip_text(a.grip) if a.grip is not None else "",
         grip_table=markdown_table(["method", "least hand damping b_h", "rests on"], grip_rows(a.grip))

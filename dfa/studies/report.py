@@ -301,6 +301,7 @@ def design_report(
     force: bool = False,
     zwidth_grid: int | None = None,
     tune: bool = False,
+    configurations: Any = None,
 ) -> ReportResult:
     """Write the design report of the loop's device with its wall at impact speed ẋ0.
 
@@ -337,6 +338,9 @@ def design_report(
     tune : bool
         Add the "deployable wall" section: :func:`dfa.tune` with its default lists at the report's speed, and the
         ``dfa export`` command that writes the best wall for the firmware (about 40 s; default False).
+    configurations : WorstConfiguration or None
+        A device file's configurations answered by :func:`dfa.analysis.configurations.worst_stiffness`, the loop's
+        device being the limiting one: a row per configuration, the limiting one marked (default None).
 
     Returns
     -------
@@ -369,5 +373,6 @@ def design_report(
     a = design_analysis(
         loop, v, entry=entry, map_grid=map_grid, samples=samples, validation=validation, progress=progress,
         zwidth_grid=zwidth_grid, tune=check_bool("tune", tune, "pass True for the deployable wall, False for none"),
+        configurations=configurations,
     )  # fmt: skip
     return write_design_report(a, out_dir, fmt, force=force)
