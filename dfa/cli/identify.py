@@ -141,13 +141,14 @@ def _peak_speed(v: float) -> float:
 def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], lines: list[str]) -> None:
     """K_max four ways of the cautious identified device (b, c at their lower 95 % bounds), the given K assessed,
     the logged oscillation against the predicted cycles, and the report; nothing on a poor fit."""
+    from ..analysis.identify import period_effect
     from ..analysis.limits.kmax import design_answer
     from ..analysis.limits.recommend import recommend_stiffness
     from ..analysis.logged_cycle import compare_logged_cycle
     from ..model.device import dimensionless_params
     from ..model.loop import Loop
     from ..render.answer import stiffness_screen
-    from ..render.identify import cycle_lines, loop_head, poor_fit_loop
+    from ..render.identify import cycle_lines, loop_head, period_effect_lines, poor_fit_loop
 
     if r.status.value == "poor_fit":
         out["loop"] = None
@@ -161,6 +162,10 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     rec = recommend_stiffness(ans)
     out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}
     lines += loop_head(dev, v, args.velocity is None) + stiffness_screen(ans, rec)
+    if r.timing.exceeds:  # the limits hold at T: how the proof moves at the longest period logged
+        eff = period_effect(dev, r.timing, v)
+        out["loop"]["period_effect"] = eff.to_dict()
+        lines += period_effect_lines(eff, dev.units["stiffness"])
     cyc = compare_logged_cycle(r, log, args.stiffness)
     out["cycle"] = cyc.to_dict()
     lines += cycle_lines(cyc)

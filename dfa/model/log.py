@@ -9,7 +9,8 @@ columns, and lines starting with ``#``, are ignored; commas, semicolons or tabs 
 (with semicolons or tabs a decimal comma is read as a point: ``0,001``). Every rule a log must keep
 is checked before anything is analysed, and a bad log is refused in one line naming the row and the rule:
 missing columns, text or NaN in a number, fewer than :data:`MIN_SAMPLES` rows or more than :data:`MAX_LOG_ROWS`,
-time not strictly increasing, a file larger than :data:`MAX_LOG_BYTES` (refused before it is read).
+time going backwards (a row repeating the time before it is kept: identification counts it as a repeated
+sample and drops it), a file larger than :data:`MAX_LOG_BYTES` (refused before it is read).
 
 Examples
 --------
@@ -87,7 +88,8 @@ class DeviceLog:
     Parameters
     ----------
     t, x, f : array_like
-        One value per sample, finite; ``t`` strictly increasing; at least :data:`MIN_SAMPLES` samples.
+        One value per sample, finite; ``t`` never decreasing (a repeated time is a repeated sample, which
+        identification drops and counts); at least :data:`MIN_SAMPLES` samples.
     source : str, optional
         Where the log came from (a file name), for messages and outputs.
     rotary : bool, optional
@@ -113,12 +115,14 @@ class DeviceLog:
                 f"{src}: {len(self.t)} samples is too few: a log needs at least {MIN_SAMPLES}; log a longer run"
             )
         dt = np.diff(self.t)
-        bad = np.flatnonzero(~(dt > 0.0))
+        bad = np.flatnonzero(~(dt >= 0.0))
         if bad.size:
             raise LogError(
-                f"{src}: time is not strictly increasing at row {bad[0] + 3} (t = {format_value(float(self.t[bad[0] + 1]))}"
+                f"{src}: time goes backwards at row {bad[0] + 3} (t = {format_value(float(self.t[bad[0] + 1]))}"
                 f" after {format_value(float(self.t[bad[0]]))}); give the samples in time order, one row each"
             )
+        if not dt.any():
+            raise LogError(f"{src}: every row has the same time: give the samples' times in column 't'")
 
     @property
     def samples(self) -> int:
@@ -282,7 +286,7 @@ def read_log(
     ------
     LogError
         (a DFAValueError) A missing or unreadable file, a file too large or with too many rows, no header, a missing column, a cell
-        that is not a finite number, too few rows, or time not strictly increasing (the message names the row).
+        that is not a finite number, too few rows, or time going backwards (the message names the row).
     DFATypeError
         A path that is not text or path-like.
 

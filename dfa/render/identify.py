@@ -11,9 +11,17 @@ from ..model.units import hertz, position
 
 if TYPE_CHECKING:
     from ..model.device import Device
-    from ..results.identify import Estimate, Identification, LoggedCycle, Undetermined
+    from ..results.identify import Estimate, Identification, LoggedCycle, PeriodEffect, Timing, Undetermined
 
-__all__ = ["identify_lines", "loop_head", "device_flags", "cycle_lines", "poor_fit_loop"]
+__all__ = [
+    "identify_lines",
+    "loop_head",
+    "device_flags",
+    "cycle_lines",
+    "poor_fit_loop",
+    "timing_lines",
+    "period_effect_lines",
+]
 
 
 def _interval(e: Estimate, unit: str) -> list[str]:
@@ -61,7 +69,8 @@ def identify_lines(r: Identification) -> list[str]:
     ]
     fit = r.fit
     lines = [
-        fill(f"{r.source}: {r.samples} samples, {number(r.samples * dev.period, 4)} s; {grid}"),
+        fill(f"{r.source}: {r.samples} samples, {number(len(r.logged) * dev.period, 4)} s; {grid}"),
+        *timing_lines(r.timing),
         "",
         *text_table(rows, ["identified", "value", "95 % interval"]).splitlines(),
         fill(_interval_note(r)),
@@ -76,6 +85,11 @@ def identify_lines(r: Identification) -> list[str]:
         fill(
             f"run once over the whole log from its start, the model predicts {100 * r.free_run.within_one_tick:.4g} "
             f"% of the samples within one tick (largest error {r.free_run.max_tick_error})"
+            + (
+                f", across the log's {_count(r.timing.gaps, 'gap')} with their forces interpolated"
+                if r.timing.gaps
+                else ""
+            )
         ),
         fill(f"status {r.status.value}: {r.status.message}"),
     ]
@@ -150,3 +164,48 @@ def poor_fit_loop(r: Identification) -> list[str]:
     return ["", fill(f"no stiffness limits: the identified model reproduces only {100 * r.fit.within_one_tick:.3g} % "
                      "of the log within one tick, so no limit computed from it would hold for the device; log a run "
                      "with less noise on the force column, or check the log's units and columns")]  # fmt: skip
+
+
+def _count(k: int, what: str) -> str:
+    """``k`` things, plural when not one."""
+    return f"{k} {what}{'' if k == 1 else 's'}"
+
+
+def _seconds(x: float) -> str:
+    """A time to 3 significant digits in s, ms or µs."""
+    for scale, unit in ((1.0, "s"), (1e-3, "ms"), (1e-6, "µs")):
+        if abs(x) >= scale:
+            return f"{number(x / scale, 3)} {unit}"
+    return f"{number(x / 1e-9, 3)} ns"
+
+
+def timing_lines(tm: Timing) -> list[str]:
+    """What the time column says beyond its period: jitter beyond what the analyses absorb, dropped and repeated
+    samples (nothing for a clean log)."""
+    parts = []
+    if tm.exceeds:
+        parts.append(
+            f"the periods jitter by {_seconds(tm.jitter_s)} (standard deviation), up to {_seconds(tm.jitter_max_s)} "
+            f"({number(100 * tm.jitter_max_s / tm.period, 3)} % of T; longest period {_seconds(tm.period_max)}), "
+            "more than the 1 % the fixed-period analyses absorb"
+        )
+    if tm.dropped:
+        parts.append(
+            f"{_count(tm.dropped, 'sample')} dropped in {_count(tm.gaps, 'gap')} (their readings left out of the fit, "
+            "a segment started after each gap)"
+        )
+    if tm.repeated:
+        parts.append(f"{_count(tm.repeated, 'repeated row')} (the time of the row before) left out")
+    return [fill("timing: " + "; ".join(parts))] if parts else []
+
+
+def period_effect_lines(e: PeriodEffect, unit: str) -> list[str]:
+    """How the proven limit (eq. 11) moves from T to the longest logged period."""
+    return [
+        "",
+        fill(
+            f"at the longest logged period, {_seconds(e.period_max)} instead of T = {_seconds(e.period)}, the "
+            f"criterion's K_max (eq. 11, the same device and speed) is {number(e.k_criterion_max, 5)} {unit} instead "
+            f"of {number(e.k_criterion, 5)} {unit}: every limit above takes each sample to last T"
+        ),
+    ]

@@ -117,6 +117,82 @@ class FitQuality:
                 "within_one_tick": self.within_one_tick}  # fmt: skip
 
 
+#: Largest departure of a logged period from T, relative to T, that the fixed-period analyses absorb: every
+#: analysis takes each sample to last exactly T, and a limit such as eq. 11 moves about as much as T does.
+JITTER_RTOL = 0.01
+
+
+@dataclass(frozen=True)
+class Timing:
+    """The log's time column: the period the fit takes, how the logged periods depart from it, and the samples
+    the log lacks or repeats (:func:`dfa.analysis.identify.log_timing`).
+
+    Attributes
+    ----------
+    period : float
+        T, s: the slope of the times against the sample index (dropped samples counted), or the given period.
+    jitter_s : float
+        Standard deviation of the logged periods (the steps of one sample), s.
+    jitter_max_s : float
+        Largest |step − T| over the steps of one sample, s.
+    period_max : float
+        Longest step of one sample, s.
+    dropped : int
+        Samples missing from the log: a step of k periods (k >= 2) lacks k − 1; the fit holds the force over them
+        and leaves their readings out.
+    gaps : int
+        Steps that lack samples.
+    repeated : int
+        Rows whose time repeats the row before (a step under half a period): dropped from the fit.
+    """
+
+    period: float
+    jitter_s: float
+    jitter_max_s: float
+    period_max: float
+    dropped: int
+    gaps: int
+    repeated: int
+
+    @property
+    def exceeds(self) -> bool:
+        """Whether a logged period departs from T by more than :data:`JITTER_RTOL` of it (the fixed-period
+        analyses' assumption fails)."""
+        return self.jitter_max_s > JITTER_RTOL * self.period
+
+    def to_dict(self) -> dict[str, Any]:
+        """The numbers, in s, and whether the jitter exceeds what the analyses assume."""
+        return {"period_s": self.period, "jitter_s": self.jitter_s, "jitter_max_s": self.jitter_max_s,
+                "period_max_s": self.period_max, "dropped": self.dropped, "gaps": self.gaps,
+                "repeated": self.repeated, "jitter_exceeds": self.exceeds, "jitter_rtol": JITTER_RTOL}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class PeriodEffect:
+    """How the proven stiffness limit (eq. 11, the cautious device) moves from T to the longest logged period.
+
+    Attributes
+    ----------
+    period, period_max : float
+        T and the longest logged period, s.
+    velocity : float
+        Impact speed, m/s (rad/s).
+    k_criterion, k_criterion_max : float
+        The criterion's K_max at T and at the longest period, N/m (rotary N·m/rad).
+    """
+
+    period: float
+    period_max: float
+    velocity: float
+    k_criterion: float
+    k_criterion_max: float
+
+    def to_dict(self) -> dict[str, float]:
+        """The five numbers (SI)."""
+        return {"period_s": self.period, "period_max_s": self.period_max, "velocity": self.velocity,
+                "k_criterion": self.k_criterion, "k_criterion_at_period_max": self.k_criterion_max}  # fmt: skip
+
+
 @dataclass(frozen=True)
 class Identification(Result):
     """A device identified from its log (:func:`identify`).
@@ -145,6 +221,8 @@ class Identification(Result):
         The fit's own prediction: each segment from its fitted start.
     free_run : FitQuality
         The identified model run once over the whole log from the fitted start (errors accumulate).
+    timing : Timing
+        The time column: T, jitter, dropped and repeated samples.
     warnings : tuple of IdentifyWarning
         What the log does not excite, or a poor fit.
     velocity_peak : float
@@ -171,6 +249,7 @@ class Identification(Result):
     bootstrap_requested: int
     fit: FitQuality
     free_run: FitQuality
+    timing: Timing
     warnings: tuple[IdentifyWarning, ...]
     velocity_peak: float
     segment_states: np.ndarray = field(repr=False, metadata={"json": None})

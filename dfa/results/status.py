@@ -671,6 +671,11 @@ class IdentifyWarning(StatusEnum):
         "the Coulomb friction is poorly determined (95 % interval wider than ±25 %, or unbounded)",
     )
     POOR_FIT = ("poor_fit", "fewer than 90 % of the samples are predicted within one tick")
+    JITTER = (
+        "jitter",
+        "a logged period departs from T by more than 1 % of it: every analysis takes each sample to last T, and its "
+        "limits move about as much as the period does",
+    )
 
 
 class TuneStatus(StatusEnum):
