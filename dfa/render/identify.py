@@ -10,6 +10,7 @@ from ..formatting import fill, number, number_at, text_table
 from ..model.units import hertz, position
 
 if TYPE_CHECKING:
+    from ..model.catalogue import CatalogueEntry
     from ..model.device import Device
     from ..results.identify import Estimate, Identification, LoggedCycle, PeriodEffect, Timing, Undetermined
 
@@ -21,6 +22,9 @@ __all__ = [
     "poor_fit_loop",
     "timing_lines",
     "period_effect_lines",
+    "device_source",
+    "device_notes",
+    "device_file",
 ]
 
 
@@ -209,3 +213,42 @@ def period_effect_lines(e: PeriodEffect, unit: str) -> list[str]:
             f"of {number(e.k_criterion, 5)} {unit}: every limit above takes each sample to last T"
         ),
     ]
+
+
+def device_source(r: Identification, date: str) -> str:
+    """A device file's source: the log's name and date."""
+    return f"identified by dfa identify from the log {r.source} of {date}"
+
+
+def device_notes(r: Identification) -> str:
+    """A device file's notes: the 95 % intervals, the fit and the warnings."""
+    u = r.device.units
+    rows = (("m", r.mass, u["mass"]), ("b", r.damping, u["damping"]), ("c", r.coulomb, u["force"]),
+            ("f₀", r.force_offset, u["force"]))  # fmt: skip
+    parts = []
+    for key, e, unit in rows:
+        value, interval = _interval(e, unit)
+        parts.append(f"{key} = {value}, 95 % interval {interval}")
+    warn = "; ".join(w.value for w in r.warnings) or "none"
+    return (
+        f"{'; '.join(parts)}; {r.samples} samples, {100 * r.fit.within_one_tick:.4g} % predicted within one tick; "
+        f"status {r.status.value}; warnings: {warn}. The values are the identified ones; a limit that must hold "
+        "takes b and c at the lower ends of their intervals (dfa identify --stiffness)."
+    )
+
+
+def device_file(entry: CatalogueEntry, r: Identification) -> str:
+    """The device file of an identified device: the catalogue's format (:func:`device_template`, which reads back
+    unchanged), under a header that says where it comes from."""
+    from ..model.catalogue import device_template
+
+    body = device_template(entry)
+    head = [
+        f"# The device identified by `dfa identify` from the log {r.source}: m, b, c the identified values,",
+        "# Δ and T the log's; the 95 % intervals are in the notes. Use it with every command that takes a device,",
+        f"#   dfa check --device-file FILE.toml --velocity {number(r.velocity_peak, 3)}",
+        "# Flags given with it (--mass ... --period, --stiffness, --name) replace its values.",
+        "",
+        "",
+    ]
+    return "\n".join(head) + body[body.index("\n[[devices]]") + 1 :]

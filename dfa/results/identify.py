@@ -1,12 +1,13 @@
 """Identification results: the estimates fitted to a logged impact (:class:`Identification`, :class:`Estimate`,
-:class:`FitQuality`) with why an estimate is unresolved, and a logged cycle (:class:`LoggedCycle`); computed in
-:mod:`dfa.analysis.identify` and :mod:`dfa.analysis.logged_cycle`."""
+:class:`FitQuality`, :class:`Timing`) with why an estimate is unresolved, the identified device as a catalogue row
+(:func:`identified_entry`), and a logged cycle (:class:`LoggedCycle`); computed in :mod:`dfa.analysis.identify`
+and :mod:`dfa.analysis.logged_cycle`."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -17,6 +18,9 @@ from ..model.device import Device
 from ..model.units import hertz, position, speed
 from .base import Result, figure_function
 from .status import IdentifyStatus, IdentifyWarning, LoggedCycleStatus, StatusEnum
+
+if TYPE_CHECKING:
+    from ..model.catalogue import CatalogueEntry
 
 #: Coulomb friction below this share of the largest logged force is not resolved by the log (a diverging
 #: impact with forces of kN against a friction of 1 N fits any friction within a few per cent).
@@ -401,3 +405,39 @@ class LoggedCycle(Result):
         out["null_reasons"] = reasons
         out["units_of_cycles"] = "amplitude in ticks (amplitude_si in m or rad), frequency in rad per sample"
         return out
+
+
+def identified_entry(r: Identification, *, source: str, notes: str, stiffness: float | None = None) -> CatalogueEntry:
+    """The identified device as a catalogue row (:class:`dfa.model.catalogue.CatalogueEntry`), for a device file.
+
+    m, b and c are the identified values to their meaningful digits (:attr:`Estimate.place`; 4 significant digits
+    without an interval), so that the file is the same on every machine; Δ and T are the log's (12 digits).
+
+    Parameters
+    ----------
+    r : Identification
+        The identification.
+    source, notes : str
+        The row's source (the log's name and date) and notes (the intervals; :mod:`dfa.render.identify` words them).
+    stiffness : float, optional
+        The wall's K the row gives (N/m; rotary N·m/rad); default none.
+
+    Returns
+    -------
+    CatalogueEntry
+        A complete row of kind "haptic device" named after the identified device.
+    """
+    from ..model.catalogue import CatalogueEntry
+
+    check_type("r", r, Identification, "identify a log with dfa.identify(...)")
+
+    def digits(e: Estimate) -> float:
+        return round_at(e.value, e.place) if e.place is not None else float(f"{e.value:.4g}")
+
+    m = digits(r.mass)
+    m = m if m > 0.0 else float(f"{r.mass.value:.4g}")
+    b, c = (max(0.0, digits(e)) for e in (r.damping, r.coulomb))
+    d = r.device  # Δ and T to 12 digits: the last bits of a slope or a lattice's step are no part of them
+    return CatalogueEntry(d.name[:100], "haptic device", source, notes, mass=m, damping=b, coulomb=c,
+                          resolution=float(f"{d.resolution:.12g}"), period=float(f"{d.period:.12g}"),
+                          stiffness=stiffness, rotary=d.rotary)  # fmt: skip
