@@ -95,16 +95,34 @@ def identify_lines(r: Identification) -> list[str]:
                 else ""
             )
         ),
+        *_noise_lines(r),
         fill(f"status {r.status.value}: {r.status.message}"),
     ]
     lines += [fill(f"warning: {w.message}") for w in r.warnings]
     return lines
 
 
+def _noise_lines(r: Identification) -> list[str]:
+    """The force noise that explains the residuals beyond quantization (nothing when none is estimated)."""
+    if not r.force_noise > 0.0:
+        return []
+    u = r.device.units
+    return [fill(
+        f"force noise: about {number(r.force_noise, 3)} {u['force']} ({number(100 * r.force_noise_relative, 2)} % of "
+        "the force's standard deviation) on the force column explains the residuals beyond the encoder's "
+        "quantization" + ("; the intervals include it" if r.status.value != "poor_fit" else
+                          ", more than the 25 % a fit's misfit is put down to"))]  # fmt: skip
+
+
 def _interval_note(r: Identification) -> str:
     """How the intervals were made, and what they leave out."""
     if all(e.low is None for e in (r.mass, r.damping, r.coulomb, r.force_offset)):
         return "no intervals: the log does not bound the values (the table says why)"
+    if r.force_noise > 0.0:
+        return (
+            f"intervals from the fit's Jacobian with the force noise estimated below and {r.bootstrap} replicate fits "
+            "with the encoder's origin shifted and fresh force noise; they leave out dynamics the model lacks"
+        )
     if r.bootstrap:
         how = f"from the fit and {r.bootstrap} replicate fits with the encoder's origin shifted"
         if r.bootstrap < r.bootstrap_requested:
@@ -166,8 +184,10 @@ def loop_head(device: Device, velocity: float, measured: bool) -> list[str]:
 def poor_fit_loop(r: Identification) -> list[str]:
     """What --stiffness says when the fit is poor: no limits."""
     return ["", fill(f"no stiffness limits: the identified model reproduces only {100 * r.fit.within_one_tick:.3g} % "
-                     "of the log within one tick, so no limit computed from it would hold for the device; log a run "
-                     "with less noise on the force column, or check the log's units and columns")]  # fmt: skip
+                     "of the log within one tick, and noise on the force column would have to be "
+                     f"{number(100 * r.force_noise_relative, 2)} % of the force's spread to explain that, so no limit "
+                     "computed from it would hold for the device; check the log's units and columns (is f the force "
+                     "that drove x?), or the device has dynamics the model lacks")]  # fmt: skip
 
 
 def _count(k: int, what: str) -> str:

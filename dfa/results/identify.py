@@ -45,8 +45,9 @@ class Undetermined(StatusEnum):
     )
     POOR_FIT = (
         "poor_fit",
-        "poor fit: the model does not reproduce the log (noise on the force column, or dynamics the model lacks), "
-        "so the fit's spread says nothing about the values",
+        "poor fit: the model does not reproduce the log, and noise on the force column does not explain it (dynamics "
+        "the model lacks, or a force column that is not what drove the device), so the fit's spread says nothing "
+        "about the values",
     )
     SCATTER = (
         "scatter",
@@ -64,8 +65,8 @@ class Estimate:
     """One identified value, its 95 % interval [low, high] and stderr, the interval's half-width / 1.96 (SI units).
 
     The interval comes from the fit's Jacobian and a bootstrap over the encoder's unknown origin (module
-    docstring, step 4): it covers the readings' quantization and the fit's convergence, not noise on the force
-    column or dynamics the model lacks. ``undetermined`` says why there is no interval (an :class:`Undetermined`
+    docstring, step 4): it covers the readings' quantization, the fit's convergence and the force noise the
+    residuals show (:attr:`Identification.force_noise`), not dynamics the model lacks. ``undetermined`` says why there is no interval (an :class:`Undetermined`
     code, None with an interval): the log cannot
     separate this value from another, or holds too little motion to bound it.
     """
@@ -227,6 +228,11 @@ class Identification(Result):
         The identified model run once over the whole log from the fitted start (errors accumulate).
     timing : Timing
         The time column: T, jitter, dropped and repeated samples.
+    force_noise : float
+        Standard deviation of the noise on the force column that explains the residuals beyond the encoder's
+        quantization, N (rotary N·m); 0 when the residuals are quantization's alone.
+    force_noise_relative : float
+        The same relative to the logged force's standard deviation.
     warnings : tuple of IdentifyWarning
         What the log does not excite, or a poor fit.
     velocity_peak : float
@@ -254,6 +260,8 @@ class Identification(Result):
     fit: FitQuality
     free_run: FitQuality
     timing: Timing
+    force_noise: float
+    force_noise_relative: float
     warnings: tuple[IdentifyWarning, ...]
     velocity_peak: float
     segment_states: np.ndarray = field(repr=False, metadata={"json": None})
@@ -262,7 +270,8 @@ class Identification(Result):
     status: IdentifyStatus = IdentifyStatus.OK
 
     json_properties: ClassVar[tuple[str, ...]] = ("start_velocity",)
-    units_of: ClassVar[dict[str, str]] = {"velocity_peak": "velocity", "start_velocity": "velocity"}
+    units_of: ClassVar[dict[str, str]] = {"velocity_peak": "velocity", "start_velocity": "velocity",
+                                          "force_noise": "force"}  # fmt: skip
 
     def __post_init__(self) -> None:
         fix = "Identification is built by dfa.identify; call that instead"
