@@ -709,6 +709,8 @@ def _withhold(est: dict[str, Estimate], warns: list[IdentifyWarning]) -> dict[st
         why |= dict.fromkeys(("coulomb", "force_offset"), Undetermined.NO_REVERSAL)
     if IdentifyWarning.LITTLE_MOTION in warns:
         why = dict.fromkeys(est, Undetermined.LITTLE_MOTION)
+    if IdentifyWarning.CONSTANT_FORCE in warns:
+        why = dict.fromkeys(est, Undetermined.CONSTANT_FORCE)
     return {k: Estimate(e.value, None, None, None, why[k]) if k in why else e for k, e in est.items()}
 
 
@@ -916,14 +918,14 @@ def identify(
     except LogError as err:
         raise LogError(f"{lg.source}: {err}") from None
     theta, xi = best.x, _predict(best.x, n, phi, starts, np.empty(len(n)))
-    noise = _noise(best, xi, w, starts)
+    spread = float(np.std(lg.f))
+    noise = _noise(best, xi, w, starts) if spread > 0.0 else _Noise(0.0, np.zeros((4, 4)))
     cov = _linear_covariance(best, starts, int(w.sum()), noise)
     fit = _quality(xi, n, w)
-    spread = float(np.std(lg.f))
-    relative = noise.level * delta / spread if spread > 0.0 else math.inf * noise.level
+    relative = noise.level * delta / spread if spread > 0.0 else 0.0
     warns = _motion_warnings(n, float(theta[2]) * delta, float(np.max(np.abs(lg.f))))
-    warns += _noise_warnings(fit, relative)
-    skip = {IdentifyWarning.LITTLE_MOTION, IdentifyWarning.POOR_FIT} & set(warns)
+    warns += _noise_warnings(fit, relative) if spread > 0.0 else [IdentifyWarning.CONSTANT_FORCE]
+    skip = {IdentifyWarning.LITTLE_MOTION, IdentifyWarning.POOR_FIT, IdentifyWarning.CONSTANT_FORCE} & set(warns)
     draws = _bootstrap(xi, phi, w, 0 if skip else reps, show, noise.level)
     est = _withhold(_estimates(theta, cov, draws, delta, t), warns)
     run = _free_run(theta, n, phi)
@@ -937,8 +939,34 @@ def identify(
         IdentifyStatus.CAVEATS if warns else IdentifyStatus.OK)  # fmt: skip
     return Identification(dev, lg.source, lg.samples, est["mass"], est["damping"], est["coulomb"],
                           est["force_offset"], resolution is not None, period is not None, int(len(n) // len(starts)),
-                          len(draws), reps, fit, free, timing, noise.level * delta, relative, tuple(warns), v_peak, _states(theta, n, starts), run, n,
+                          len(draws), reps, fit, free, timing, noise.level * delta, relative,
+                          _confounded(cov, est, warns) if spread > 0.0 else (), tuple(warns), v_peak, _states(theta, n, starts), run, n,
                           status)  # fmt: skip
+
+
+#: The global parameters in the order of θ and the covariance (m as log μ).
+GLOBAL = ("mass", "damping", "coulomb", "force_offset")
+
+
+def _confounded(
+    cov: np.ndarray, est: dict[str, Estimate], warns: list[IdentifyWarning]
+) -> tuple[tuple[str, str, float], ...]:
+    """The pairs of global parameters whose estimates the log does not tell apart: |correlation| above
+    :data:`CONFOUNDED` in the fit's covariance (first, second, correlation) and one of m, b, c in the pair poorly
+    determined (interval wider than ±:data:`LOOSE`, or none; a correlated pair whose intervals are narrow is told
+    apart); not the pairs a warning names already (no reversal: c and f₀; damping and friction not separated)."""
+    loose = {i for i, k in enumerate(GLOBAL[:3]) if est[k].high is None or _half(est[k]) > LOOSE * abs(est[k].value)}
+    sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    said = {(2, 3)} if IdentifyWarning.NO_REVERSAL in warns else set()
+    said |= {(1, 2)} if IdentifyWarning.DAMPING_FRICTION_CONFOUNDED in warns else set()
+    out = []
+    for i in range(4):
+        for k in range(i + 1, 4):
+            if (i, k) in said or not {i, k} & loose:
+                continue
+            if sd[i] > 0.0 and sd[k] > 0.0 and abs(cov[i, k] / (sd[i] * sd[k])) > CONFOUNDED:
+                out.append((GLOBAL[i], GLOBAL[k], float(cov[i, k] / (sd[i] * sd[k]))))
+    return tuple(out)
 
 
 def _noise_warnings(fit: FitQuality, relative: float) -> list[IdentifyWarning]:

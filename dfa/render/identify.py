@@ -50,6 +50,7 @@ UNDETERMINED_SHORT = {
     "scatter": "unbounded by the log",
     "poor_fit": "poor fit",
     "little_motion": "too little motion",
+    "constant_force": "constant force",
 }
 
 
@@ -99,7 +100,30 @@ def identify_lines(r: Identification) -> list[str]:
         fill(f"status {r.status.value}: {r.status.message}"),
     ]
     lines += [fill(f"warning: {w.message}") for w in r.warnings]
+    lines += [fill(f"warning: {confounded_text(a, b, rho)}") for a, b, rho in r.confounded]
     return lines
+
+
+#: What each parameter is called in a sentence.
+PARAMETER_NAMES = {"mass": "the mass m", "damping": "the damping b", "coulomb": "the Coulomb friction c",
+                   "force_offset": "the force offset f₀"}  # fmt: skip
+
+#: The motion that tells each pair of parameters apart.
+SEPARATING_MOTION = {
+    ("mass", "damping"): "force steps faster than the time constant m/b, so that the device accelerates before its "
+    "speed settles",
+    ("mass", "coulomb"): "force steps that start and stop the device, at different force levels",
+    ("mass", "force_offset"): "force steps of different sizes, so that the accelerations differ",
+    ("damping", "coulomb"): "motion both fast and slow (forces of several levels, each held until the speed settles)",
+    ("damping", "force_offset"): "motion at several speeds in both directions",
+    ("coulomb", "force_offset"): "reversals: motion in both directions (friction reverses, an offset does not)",
+}
+
+
+def confounded_text(a: str, b: str, rho: float) -> str:
+    """Which parameter the log cannot tell from which, and the motion that would."""
+    return (f"the log cannot tell {PARAMETER_NAMES[a]} from {PARAMETER_NAMES[b]} (their estimates' correlation "
+            f"{rho:.3f}): log {SEPARATING_MOTION[(a, b)]}")  # fmt: skip
 
 
 def _noise_lines(r: Identification) -> list[str]:

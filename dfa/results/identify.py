@@ -53,6 +53,11 @@ class Undetermined(StatusEnum):
         "scatter",
         "the fits of the log and its replicates differ by orders of magnitude: the log does not bound it",
     )
+    CONSTANT_FORCE = (
+        "constant_force",
+        "the force column is constant: the log shows only the balance b v + c = f + f₀ where the speed settles, "
+        "which fits many devices; log a force that changes",
+    )
     LITTLE_MOTION = (
         "little_motion",
         f"the log holds fewer than {FEW_MOVING} samples in motion: too few to bound the estimates (a fit of a device "
@@ -233,6 +238,9 @@ class Identification(Result):
         quantization, N (rotary N·m); 0 when the residuals are quantization's alone.
     force_noise_relative : float
         The same relative to the logged force's standard deviation.
+    confounded : tuple of (str, str, float)
+        Pairs of estimates the log does not tell apart (their correlation beyond 0.95 in the fit's covariance), with
+        the correlation (:mod:`dfa.render.identify` says what motion would).
     warnings : tuple of IdentifyWarning
         What the log does not excite, or a poor fit.
     velocity_peak : float
@@ -262,6 +270,7 @@ class Identification(Result):
     timing: Timing
     force_noise: float
     force_noise_relative: float
+    confounded: tuple[tuple[str, str, float], ...]
     warnings: tuple[IdentifyWarning, ...]
     velocity_peak: float
     segment_states: np.ndarray = field(repr=False, metadata={"json": None})

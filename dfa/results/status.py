@@ -675,6 +675,11 @@ class IdentifyWarning(StatusEnum):
         "fewer than 90 % of the samples are predicted within one tick, and noise on the force column explains the "
         "misfit only if it exceeds 25 % of the force's spread: the model does not reproduce the log",
     )
+    CONSTANT_FORCE = (
+        "constant_force",
+        "the force column holds one value: the log shows only where the device's speed settles (b v + c = f + f₀), "
+        "not m, b, c and f₀ apart; log a force that changes (steps up and down, reversing the motion)",
+    )
     FORCE_NOISE = (
         "force_noise",
         "the residuals exceed the encoder's quantization: noise on the force column explains them, and the intervals "
