@@ -4,8 +4,11 @@ A log (:class:`dfa.model.log.DeviceLog`) holds, per sample, the encoder reading 
 and the force f_h held over the sample. :func:`identify` estimates what every analysis of :mod:`dfa` starts
 from:
 
-1. **The grid.** The sample period T is the median step of ``t`` (a log whose steps differ by more than
-   :data:`PERIOD_RTOL` is refused: the model holds the force over equal samples); the resolution Δ is the
+1. **The grid.** Each step of ``t`` spans a whole number of periods of its median step (within
+   :data:`PERIOD_RTOL`, else it is refused): one, several (samples the log dropped: their readings are left out
+   of the fit, whose segments restart after the gap) or none (a repeated row, dropped); the sample period T is
+   the slope of the times against the sample index, and the jitter of the steps is reported
+   (:func:`log_timing`, :class:`Timing`: the model holds the force over equal samples); the resolution Δ is the
    step of the lattice the readings lie on (the smallest gap between distinct readings, refined over the whole
    range; readings off that lattice by more than :data:`GRID_RTOL` are refused). Either may be given instead.
    A log whose numbers the fit's floats cannot hold is refused here, before any work (:func:`log_grid`): readings
@@ -33,7 +36,10 @@ from:
    about the estimate (:data:`BOOTSTRAP` replicates; their bias included). The Jacobian alone is too narrow:
    the residual is the position within a tick, not independent noise, and on 80 noiseless synthetic logs of
    random devices its intervals held the truth 56 to 95 % of the time, the bootstrapped ones 94 to 100 % on free
-   motion (impacts: 78 % for c, with warnings). Without a
+   motion (impacts: 78 % for c, with warnings). Residuals beyond quantization are put down to white noise on
+   the force column (:func:`_noise`): its level estimated from their sum of squares, its covariance added to the
+   Jacobian's (a sandwich), fresh noise of that level on each replicate's force column; with 2 to 5 % noise the
+   intervals held the truth in 46 to 50 of 50 logs (``benchmarks/identify_noise_coverage.py``). Without a
    reversal c and f₀ get no interval (only c − f₀ is seen); with fewer than :data:`FEW_MOVING` samples in
    motion no estimate does (a device that rests fits many devices). Then the share of samples whose predicted
    tick is within one of the logged one, and warnings when the log does not excite a parameter
@@ -75,6 +81,8 @@ from ..results.identify import FRICTION_SHARE as FRICTION_SHARE
 from ..results.identify import Estimate as Estimate
 from ..results.identify import FitQuality as FitQuality
 from ..results.identify import Identification as Identification
+from ..results.identify import PeriodEffect as PeriodEffect
+from ..results.identify import Timing as Timing
 from ..results.identify import Undetermined
 from ..results.status import IdentifyStatus, IdentifyWarning
 
@@ -86,6 +94,10 @@ __all__ = [
     "synthetic_log",
     "impact_log",
     "estimate_period",
+    "log_timing",
+    "period_effect",
+    "Timing",
+    "PeriodEffect",
     "correlation_time",
     "estimate_resolution",
     "log_grid",
@@ -100,9 +112,10 @@ __all__ = [
     "PERIOD_RANGE",
 ]
 
-#: Largest distance of a sample time from the log's uniform grid, in periods (rounding of written times is
-#: far below it; a gap or a missed sample is a whole period).
-PERIOD_RTOL = 0.1
+#: Largest distance of a step of the times from a whole number of periods, in periods: a step within it spans
+#: that many samples (a gap of dropped samples, or a repeated one), a step beyond it is refused (it cannot say how
+#: many samples it spans). The jitter within it is reported (:class:`Timing`).
+PERIOD_RTOL = 0.25
 #: Largest relative difference of a given period from the median step of the log's times.
 GIVEN_PERIOD_RTOL = 0.01
 #: Largest distance of a reading from the lattice of the estimated resolution, in ticks.
@@ -141,8 +154,16 @@ CONFOUNDED = 0.95
 #: Range of μ = m/T² (at K = 1 N/m) the fit's prediction clamps its log μ to: 1e-13 to 1e26, far beyond any
 #: device, so that a fit that runs away stays finite (μ = 0 would divide by zero).
 LOG_MU = (-30.0, 60.0)
-#: Share of samples predicted within one tick below which the fit is called poor.
+#: Share of samples predicted within one tick below which the fit is called poor, unless noise on the force column
+#: of at most :data:`NOISE_MAX` of its spread explains the residuals.
 POOR_FIT = 0.9
+#: Largest force noise (standard deviation, relative to the logged force's) that a fit's misfit is put down to: a
+#: model that needs more to explain the log does not reproduce it (a force column of the wrong sign needs 100 % and
+#: more; 5 % noise, 5 %).
+NOISE_MAX = 0.25
+#: Mean square residual, in units of quantization's 1/12, up to which the residuals count as quantization alone (no
+#: force noise is estimated: the clean logs' intervals are those of the encoder; a clean log's is 1.0 ± a few %).
+NOISE_FLOOR = 1.5
 #: Most ticks of the resolution the readings may span: a float holds a position there to 1e-4 of a tick (the
 #: fit's residuals are fractions of a tick); beyond, the resolution is not that of the readings' unit.
 MAX_TICKS = 1e12
@@ -157,12 +178,76 @@ PERIOD_RANGE = (
 )
 
 
+def _sample_steps(times: np.ndarray, source: str) -> np.ndarray:
+    """The whole number of periods each step of ``times`` spans (0: a repeated sample, 2 or more: dropped ones),
+    against the median of the positive steps; a step off a whole number by more than :data:`PERIOD_RTOL` is
+    refused, naming its row (it cannot say how many samples it spans)."""
+    steps = np.diff(times)
+    step = float(np.median(steps[steps > 0.0]))
+    k = np.rint(steps / step)
+    jump = np.abs(steps / step - k) > PERIOD_RTOL
+    if jump.any():
+        i = int(np.flatnonzero(jump)[0]) + 1
+        raise LogError(
+            f"{source}: the sample period is not uniform: row {i + 2} (t = {float(times[i]):.9g} s) comes "
+            f"{float(steps[i - 1]):.6g} s after the row before it, {float(steps[i - 1]) / step:.3g} of the median "
+            f"step {step:.6g} s, not a whole number of samples; cut the log there and identify the parts, or log "
+            "equal samples"
+        )
+    return k.astype(np.int64)
+
+
+def log_timing(t: ArrayLike, source: str = "log", period: float | None = None) -> tuple[Timing, np.ndarray]:
+    """The log's timing and each kept row's sample index (step 1 of the module docstring).
+
+    Each step of the times spans a whole number of periods (within :data:`PERIOD_RTOL`): one, several (the log
+    dropped samples between the two rows) or none (the row repeats the sample before it, and is dropped). T is
+    the slope of the kept rows' times against their sample index (rounded times, 3 kHz written to the µs, lie on
+    that line within their rounding), or ``period`` when given; the jitter is the spread of the steps of one
+    sample.
+
+    Parameters
+    ----------
+    t : array_like
+        The times, s, never decreasing.
+    source : str, optional
+        The log's name, for messages.
+    period : float, optional
+        T when given, s.
+
+    Returns
+    -------
+    tuple of (Timing, ndarray of int)
+        The timing, and the sample index of each row (-1 for a repeated row, which the fit drops).
+
+    Examples
+    --------
+    >>> tm, index = log_timing([0.0, 1e-3, 2e-3, 2e-3, 4e-3, 5e-3])
+    >>> round(tm.period, 12), tm.dropped, tm.repeated, index.tolist()
+    (0.001, 1, 1, [0, 1, 2, -1, 4, 5])
+    """
+    times = np.asarray(t, dtype=float)
+    k = _sample_steps(times, source)
+    index = np.concatenate([[0], np.cumsum(k)])
+    kept = np.concatenate([[True], k > 0])
+    h = index[kept].astype(float)
+    slope = float(np.polyfit(h, times[kept] - times[0], 1)[0]) if period is None else float(period)
+    one = np.diff(times)[k == 1]
+    jitter = float(np.std(one)) if one.size else 0.0
+    worst = float(np.max(np.abs(one - slope))) if one.size else 0.0
+    longest = float(np.max(one)) if one.size else slope
+    timing = Timing(slope, jitter, worst, longest, int(np.sum(np.maximum(k - 1, 0))), int(np.sum(k > 1)),
+                    int(np.sum(k == 0)))  # fmt: skip
+    return timing, np.where(kept, index, -1)
+
+
 def estimate_period(t: ArrayLike, source: str = "log") -> float:
-    """The sample period T (s): the slope of the straight line through the times against their index.
+    """The sample period T (s): the slope of the straight line through the times against their sample index.
 
     Times rounded when they were written (3 kHz logged to the µs: steps of 333 and 334 µs) lie on that line to
-    within their rounding; a time off it by more than :data:`PERIOD_RTOL` of a period (a gap, a missed or
-    doubled sample) is refused, naming the row.
+    within their rounding; a step that spans several periods counts them (dropped samples,
+    :func:`log_timing`); a step off a whole number of periods by more than :data:`PERIOD_RTOL` is refused,
+    naming the row.
 
     Examples
     --------
@@ -171,29 +256,7 @@ def estimate_period(t: ArrayLike, source: str = "log") -> float:
     >>> round(estimate_period(np.round(np.arange(3000) / 3000.0, 6)) * 3000.0, 5)   # µs rounding at 3 kHz
     1.0
     """
-    times = np.asarray(t, dtype=float)
-    steps = np.diff(times)
-    step = float(np.median(steps))
-    jump = np.abs(steps - step) > PERIOD_RTOL * step
-    if jump.any():  # a gap, a missed or a doubled sample: name the row after it
-        i = int(np.flatnonzero(jump)[0]) + 1
-        raise LogError(
-            f"{source}: the sample period is not uniform: row {i + 2} (t = {float(times[i]):.9g} s) comes "
-            f"{float(steps[i - 1]):.6g} s after the row before it, the other steps are "
-            f"{step:.6g} s; cut the log at the gap and identify the parts, or log equal samples"
-        )
-    h = np.arange(times.size, dtype=float)
-    slope, start = np.polyfit(h, times - times[0], 1)
-    off = np.abs(times - times[0] - (start + slope * h)) > PERIOD_RTOL * slope
-    if off.any():
-        i = int(np.flatnonzero(off)[0])
-        raise LogError(
-            f"{source}: the sample period is not uniform: row {i + 2} (t = {format_value(float(times[i]))} s) is "
-            f"off the grid of the other samples (period {format_value(float(slope))} s) by more than "
-            f"{PERIOD_RTOL:g} of a period; give a log of equal samples, cut it to a part without gaps, or give "
-            "--period"
-        )
-    return float(slope)
+    return log_timing(t, source)[0].period
 
 
 def estimate_resolution(x: ArrayLike, source: str = "log") -> float:
@@ -295,19 +358,25 @@ class _Fit(NamedTuple):
     local: np.ndarray
 
 
-def _fit(n: np.ndarray, phi: np.ndarray) -> tuple[_Fit, np.ndarray]:
+def _fit(n: np.ndarray, phi: np.ndarray, w: np.ndarray) -> tuple[_Fit, np.ndarray]:
     """The output-error fit (step 3 of the module docstring): the least-squares result (its ``x`` is
     θ = (log μ, β, σ, φ₀, the segments' start positions within their tick, their start velocities)) and the
     segments' starts.
 
     Multiple shooting: each segment (:func:`_segments`) starts from its own state (its position within the
     first tick and its velocity, fitted), so that an error of the start does not carry over the whole log.
+    ``w`` weighs each sample's residual (0: a sample the log dropped); each segment starts at a logged sample, and
+    a new one after each gap (the force over a dropped sample is not known, and what it did is the new start's).
     """
     v, a = _derivatives(n)
     mu, beta, sigma = _first_guess(v, a, phi)
     starts = _segments(len(n), mu, beta)
+    if not w.all():
+        logged = np.flatnonzero(w)
+        after = np.flatnonzero((w[1:] > 0) & (w[:-1] == 0)) + 1
+        starts = np.unique(np.r_[logged[np.searchsorted(logged, starts).clip(max=logged.size - 1)], after])
     theta0 = np.concatenate([[math.log(mu), beta, sigma, 0.0], np.full(len(starts), 0.5), v[starts]])
-    return _solve(n, phi, starts, theta0), starts
+    return _solve(n, phi, w, starts, theta0), starts
 
 
 def _predict(theta: np.ndarray, n: np.ndarray, phi: np.ndarray, starts: np.ndarray, into: np.ndarray) -> np.ndarray:
@@ -319,26 +388,25 @@ def _predict(theta: np.ndarray, n: np.ndarray, phi: np.ndarray, starts: np.ndarr
     return into
 
 
-def _solve(n: np.ndarray, phi: np.ndarray, starts: np.ndarray, theta0: np.ndarray) -> _Fit:
+def _solve(n: np.ndarray, phi: np.ndarray, w: np.ndarray, starts: np.ndarray, theta0: np.ndarray) -> _Fit:
     """Least squares of the segments' prediction against the middles of the logged ticks, from ``theta0``:
     Levenberg–Marquardt on the block-arrow normal equations (:func:`_lm_step`), bounds by projection."""
     j = len(starts)
-    target = n + 0.5
     lo = np.concatenate([[-np.inf, 0.0, 0.0, -np.inf], np.zeros(j), np.full(j, -np.inf)])
     hi = np.concatenate([[np.inf] * 4, np.ones(j), np.full(j, np.inf)])
     seg = _segment_of(starts, len(n))
     theta = np.clip(theta0, lo, hi)
-    r = _predict(theta, n, phi, starts, np.empty(len(n))) - target
+    r = _residual(theta, n, phi, w, starts, np.empty(len(n)))
     cost, lam, scale = _sum_squares(r), LM_DAMPING, np.zeros(len(theta))
     for _ in range(MAX_ITERATIONS):
-        g, loc = _jacobian(theta, r, n, phi, starts, seg, lo, hi)
+        g, loc = _jacobian(theta, r, n, phi, w, starts, seg, lo, hi)
         blocks = _normal_blocks(g, loc, r, starts)
         scale = np.maximum(scale, _marquardt_scale(blocks))
         grad = np.concatenate([blocks[3], blocks[4][:, 0], blocks[4][:, 1]])
         free = ~(((theta <= lo) & (grad > 0.0)) | ((theta >= hi) & (grad < 0.0)))
         while True:
             trial = np.clip(theta + _lm_step(blocks, scale, lam, free), lo, hi)
-            r_new = _predict(trial, n, phi, starts, np.empty(len(n))) - target
+            r_new = _residual(trial, n, phi, w, starts, np.empty(len(n)))
             cost_new = _sum_squares(r_new)
             if cost_new < cost or lam > LM_MAX_DAMPING:
                 break
@@ -349,8 +417,15 @@ def _solve(n: np.ndarray, phi: np.ndarray, starts: np.ndarray, theta0: np.ndarra
         theta, r, cost, lam = trial, r_new, cost_new, max(lam / 3.0, LM_DAMPING * 1e-6)
         if done:
             break
-    g, loc = _jacobian(theta, r, n, phi, starts, seg, lo, hi)
+    g, loc = _jacobian(theta, r, n, phi, w, starts, seg, lo, hi)
     return _Fit(theta, r, g, loc)
+
+
+def _residual(
+    theta: np.ndarray, n: np.ndarray, phi: np.ndarray, w: np.ndarray, starts: np.ndarray, into: np.ndarray
+) -> np.ndarray:
+    """The weighted distance (ticks) of the segments' prediction from the middle of each logged tick."""
+    return (_predict(theta, n, phi, starts, into) - (n + 0.5)) * w
 
 
 def _sum_squares(r: np.ndarray) -> float:
@@ -359,8 +434,8 @@ def _sum_squares(r: np.ndarray) -> float:
 
 
 def _jacobian(
-    theta: np.ndarray, r: np.ndarray, n: np.ndarray, phi: np.ndarray, starts: np.ndarray, seg: np.ndarray,
-    lo: np.ndarray, hi: np.ndarray,
+    theta: np.ndarray, r: np.ndarray, n: np.ndarray, phi: np.ndarray, w: np.ndarray, starts: np.ndarray,
+    seg: np.ndarray, lo: np.ndarray, hi: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """Forward-difference Jacobian of the residuals ``r`` at θ: the columns of the 4 global parameters (n × 4)
     and each sample's derivatives by its own segment's start position and velocity (n × 2; the segments' starts
@@ -370,13 +445,13 @@ def _jacobian(
     h = FD_STEP * np.where(theta >= 0.0, 1.0, -1.0) * np.maximum(1.0, np.abs(theta))
     h = np.where((theta + h > hi) | (theta + h < lo), -h, h)
     h = (theta + h) - theta
-    out, target = np.empty(len(n)), n + 0.5
+    out = np.empty(len(n))
     cols = []
     for part in (slice(0, 1), slice(1, 2), slice(2, 3), slice(3, 4), slice(4, 4 + j), slice(4 + j, None)):
         moved = theta.copy()
         moved[part] += h[part]
         step = h[part][seg] if part.start >= 4 else h[part]
-        cols.append((_predict(moved, n, phi, starts, out) - target - r) / step)
+        cols.append((_residual(moved, n, phi, w, starts, out) - r) / step)
     return np.column_stack(cols[:4]), np.column_stack(cols[4:])
 
 
@@ -432,24 +507,97 @@ def _segment_of(starts: np.ndarray, samples: int) -> np.ndarray:
     return np.searchsorted(starts, np.arange(samples), side="right") - 1
 
 
-def _linear_covariance(best: _Fit, starts: np.ndarray) -> np.ndarray:
+def _linear_covariance(best: _Fit, starts: np.ndarray, logged: int, noise: _Noise | None = None) -> np.ndarray:
     """Covariance of the 4 global parameters from the fit's Jacobian (step 4 of the module docstring): residual
-    variance (at least quantization's 1/12) × correlation time × (JᵀJ)⁻¹ with the segments' starts eliminated."""
+    variance (at least quantization's 1/12) × correlation time × (JᵀJ)⁻¹ with the segments' starts eliminated.
+    With force noise (``noise``): quantization's 1/12 × (JᵀJ)⁻¹ plus the noise's own (:func:`_noise`)."""
     n, j = len(best.fun), len(starts)
-    s2 = max(float(best.fun @ best.fun) / max(1, n - len(best.x)), QUANTIZATION_VARIANCE)
-    return s2 * correlation_time(best.fun) * _global_covariance(best.glob, best.local, _segment_of(starts, n), j)
+    cov = _global_covariance(best.glob, best.local, _segment_of(starts, n), j)
+    if noise is not None and noise.level > 0.0:
+        return QUANTIZATION_VARIANCE * cov + noise.covariance
+    s2 = max(float(best.fun @ best.fun) / max(1, logged - len(best.x)), QUANTIZATION_VARIANCE)
+    return s2 * correlation_time(best.fun) * cov
 
 
-def _bootstrap(xi: np.ndarray, phi: np.ndarray, reps: int, progress: bool) -> np.ndarray:
+class _Noise(NamedTuple):
+    """Noise on the force column estimated from the residuals (:func:`_noise`): its standard deviation (force per
+    tick) and the covariance of the 4 global parameters it causes."""
+
+    level: float
+    covariance: np.ndarray
+
+
+def _impulse(theta: np.ndarray, length: int) -> np.ndarray:
+    """Position (ticks) 1, 2, ..., ``length`` samples after a unit force per tick held over one sample, of the
+    device moving (m ẍ + b ẋ = f, linear: Coulomb friction only shifts the force in motion)."""
+    mu = math.exp(min(max(float(theta[0]), LOG_MU[0]), LOG_MU[1]))
+    r = max(float(theta[1]), 0.0) / mu  # the decay per sample, b T/m
+    j = np.arange(length, dtype=float)
+    if r < 1e-6:
+        return (0.5 + j) / mu
+    x1 = (r + math.expm1(-r)) / (mu * r * r)
+    return x1 + (-math.expm1(-r) / (mu * r)) * (-np.expm1(-r * j) / r)
+
+
+def _noise(best: _Fit, xi: np.ndarray, w: np.ndarray, starts: np.ndarray) -> _Noise:
+    """Force noise from the residuals: the method of moments on the residuals' sum of squares.
+
+    A force error e_i held over sample i moves every later position of its segment by g(h − i) e_i
+    (:func:`_impulse`, while the device moves: a device stuck by friction does not feel it); the fit of the
+    segment's start absorbs part of it (the projection I − H on the start's two columns). The residuals' expected
+    sum of squares is quantization's 1/12 per sample plus s² Σ ‖(I − H) G‖²: s² follows, 0 when the residuals are
+    those of quantization alone (their mean square below :data:`NOISE_FLOOR` × 1/12). The global parameters'
+    covariance from the noise is then s² A⁻¹ (Σ Jₖᵀ Gₖ Gₖᵀ Jₖ) A⁻¹ (the sandwich, A = JᵀJ, segments' starts
+    included)."""
+    n, j = len(best.fun), len(starts)
+    dof = max(1.0, float(w.sum()) - len(best.x))
+    rss = float(best.fun @ best.fun)
+    if rss / dof <= NOISE_FLOOR * QUANTIZATION_VARIANCE:
+        return _Noise(0.0, np.zeros((4, 4)))
+    moving = np.r_[np.diff(xi) != 0.0, False].astype(float)
+    ends = np.r_[starts[1:], n]
+    g = _impulse(best.x, int(np.max(ends - starts)))
+    kappa, size = 0.0, 4 + 2 * j
+    a, b = np.zeros((size, size)), np.zeros((size, size))
+    for k, (lo, hi) in enumerate(zip(starts, ends, strict=True)):
+        m = hi - lo
+        col = np.r_[0.0, g[: m - 1]]
+        sens = _toeplitz(col) * moving[lo:hi][None, :] * w[lo:hi][:, None]  # rows: residuals, columns: forces
+        loc = best.local[lo:hi]
+        absorbed = loc @ np.linalg.pinv(loc.T @ loc) @ (loc.T @ sens)
+        kappa += float(np.sum((sens - absorbed) ** 2))
+        jac = np.column_stack([best.glob[lo:hi], loc])
+        idx = np.r_[0:4, 4 + k, 4 + j + k]
+        a[np.ix_(idx, idx)] += jac.T @ jac
+        proj = sens.T @ jac
+        b[np.ix_(idx, idx)] += proj.T @ proj
+    s2 = max(0.0, (rss - QUANTIZATION_VARIANCE * dof) / kappa) if kappa > 0.0 else 0.0
+    inv = np.linalg.pinv(a)
+    return _Noise(math.sqrt(s2), s2 * (inv @ b @ inv)[:4, :4])
+
+
+def _toeplitz(col: np.ndarray) -> np.ndarray:
+    """The lower-triangular Toeplitz matrix whose first column is ``col`` (entry (h, i) = col[h − i], h >= i)."""
+    m = len(col)
+    h = np.arange(m)
+    d = h[:, None] - h[None, :]
+    return np.where(d >= 0, col[np.clip(d, 0, m - 1)], 0.0)
+
+
+def _bootstrap(
+    xi: np.ndarray, phi: np.ndarray, w: np.ndarray, reps: int, progress: bool, noise: float = 0.0
+) -> np.ndarray:
     """Global parameters of ``reps`` replicate logs (rows; fewer when a replicate does not move): the fitted
     model's positions ``xi`` read by an encoder whose origin is shifted by a uniform fraction of a tick, each
-    identified from scratch like the log (first guess, segments, fit). Deterministic (seed 0)."""
-    rng = np.random.default_rng(0)
+    identified from scratch like the log (first guess, segments, fit), its force column with fresh noise of the
+    level estimated (``noise``, force per tick; none when 0). Deterministic (seeds 0 and 1)."""
+    rng, noisy = np.random.default_rng(0), np.random.default_rng(1)
     draws = []
     for _ in new_bar(iterable=range(reps), desc="bootstrap", unit="fit", disable=not progress, leave=False):
         nb = np.floor(xi + rng.uniform())
         try:
-            draws.append(_fit(nb - nb.min(), phi)[0].x[:4])
+            logged = phi + noisy.normal(0.0, noise, phi.size) if noise > 0.0 else phi
+            draws.append(_fit(nb - nb.min(), logged, w)[0].x[:4])
         except LogError:  # a replicate too still to fit: its log says nothing either way
             continue
     return np.array(draws).reshape(-1, 4)
@@ -561,6 +709,8 @@ def _withhold(est: dict[str, Estimate], warns: list[IdentifyWarning]) -> dict[st
         why |= dict.fromkeys(("coulomb", "force_offset"), Undetermined.NO_REVERSAL)
     if IdentifyWarning.LITTLE_MOTION in warns:
         why = dict.fromkeys(est, Undetermined.LITTLE_MOTION)
+    if IdentifyWarning.CONSTANT_FORCE in warns:
+        why = dict.fromkeys(est, Undetermined.CONSTANT_FORCE)
     return {k: Estimate(e.value, None, None, None, why[k]) if k in why else e for k, e in est.items()}
 
 
@@ -576,20 +726,24 @@ def _fit_warnings(est: dict[str, Estimate], cov: np.ndarray) -> list[IdentifyWar
     return out
 
 
-def _ticks(lg: DeviceLog, resolution: float | None, period: float | None) -> tuple[float, float, np.ndarray]:
-    """(Δ, T, the readings in whole ticks from the lowest): step 1 of the module docstring."""
+def _ticks(
+    lg: DeviceLog, resolution: float | None, period: float | None
+) -> tuple[float, Timing, np.ndarray, np.ndarray]:
+    """(Δ, the timing, each row's sample index (-1: a repeated row), the readings in whole ticks from the lowest):
+    step 1 of the module docstring."""
     check_rows(lg.samples, lg.source)
     dx = check_positive("resolution", resolution, "give Δ in m") if resolution is not None else None
     ts = check_positive("period", period, "give T in s") if period is not None else None
-    step = float(np.median(np.diff(lg.t)))
+    dt = np.diff(lg.t)
+    step = float(np.median(dt[dt > 0.0]))
     if ts is not None and abs(step / ts - 1.0) > GIVEN_PERIOD_RTOL:
         raise LogError(
             f"{lg.source}: period = {format_value(ts)} s disagrees with the log's times (their step is {step:.6g} s): "
             "give the period the log was sampled at, or leave it out"
         )
+    timing, index = log_timing(lg.t, lg.source, ts)
     delta = dx if dx is not None else estimate_resolution(lg.x, lg.source)
-    t = ts if ts is not None else estimate_period(lg.t, lg.source)
-    _check_scales(lg, delta, t, dx is not None, ts is not None)
+    _check_scales(lg, delta, timing.period, dx is not None, ts is not None)
     n = np.rint((lg.x - lg.x.min()) / delta)
     off = np.abs((lg.x - lg.x.min()) / delta - n)
     if float(np.max(off)) > (GIVEN_GRID_RTOL if dx is not None else GRID_RTOL):  # given: allow written rounding
@@ -598,7 +752,22 @@ def _ticks(lg: DeviceLog, resolution: float | None, period: float | None) -> tup
             f"{lg.source}: the readings are not whole ticks of resolution = {format_value(delta)}: row {i + 2} is "
             f"{float(off[i]):.3g} ticks off; another resolution, or readings written with too few digits?"
         )
-    return delta, t, n
+    return delta, timing, index, n
+
+
+def _on_grid(index: np.ndarray, n: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The readings and forces on the grid of every sample, and each sample's weight in the fit (1: logged, 0:
+    dropped by the log: its reading that of the sample before, unknown, and its force interpolated between the
+    logged ones, a guess the fit does not rest on, :func:`_fit`). Repeated rows (index -1) are left out."""
+    keep = index >= 0
+    rows, where = n[keep], index[keep]
+    observed = np.zeros(int(where[-1]) + 1, dtype=bool)
+    observed[where] = True
+    slot = np.zeros(observed.size, dtype=np.int64)
+    slot[where] = np.arange(where.size)
+    slot = np.maximum.accumulate(slot)  # each sample takes the last logged row at or before it
+    force = np.interp(np.arange(observed.size), where, phi[keep]) if not observed.all() else phi[keep]
+    return rows[slot], force, observed.astype(float)
 
 
 def log_grid(log: DeviceLog, *, resolution: float | None = None, period: float | None = None) -> tuple[float, float]:
@@ -631,8 +800,8 @@ def log_grid(log: DeviceLog, *, resolution: float | None = None, period: float |
     [1e-05, 0.001]
     """
     lg = check_type("log", log, DeviceLog, "read one with dfa.read_log(path)")
-    delta, t, _n = _ticks(lg, resolution, period)
-    return delta, t
+    delta, timing, _index, _n = _ticks(lg, resolution, period)
+    return delta, timing.period
 
 
 def _check_scales(lg: DeviceLog, delta: float, t: float, delta_given: bool, t_given: bool) -> None:
@@ -741,24 +910,27 @@ def identify(
             f"bootstrap = {reps} is too many: each replicate is one more fit of the whole log (seconds each); give "
             f"at most {MAX_BOOTSTRAP} (default {BOOTSTRAP})"
         )
-    delta, t, n = _ticks(lg, resolution, period)  # refuses a log of too many rows too
-    phi = lg.f / delta
+    delta, timing, index, rows = _ticks(lg, resolution, period)  # refuses a log of too many rows too
+    t = timing.period
+    n, phi, w = _on_grid(index, rows, lg.f / delta)
     try:
-        best, starts = _fit(n, phi)
+        best, starts = _fit(n, phi, w)
     except LogError as err:
         raise LogError(f"{lg.source}: {err}") from None
     theta, xi = best.x, _predict(best.x, n, phi, starts, np.empty(len(n)))
-    cov = _linear_covariance(best, starts)
-    fit = _quality(xi, n)
+    spread = float(np.std(lg.f))
+    noise = _noise(best, xi, w, starts) if spread > 0.0 else _Noise(0.0, np.zeros((4, 4)))
+    cov = _linear_covariance(best, starts, int(w.sum()), noise)
+    fit = _quality(xi, n, w)
+    relative = noise.level * delta / spread if spread > 0.0 else 0.0
     warns = _motion_warnings(n, float(theta[2]) * delta, float(np.max(np.abs(lg.f))))
-    if fit.within_one_tick < POOR_FIT:
-        warns.append(IdentifyWarning.POOR_FIT)
-    skip = {IdentifyWarning.LITTLE_MOTION, IdentifyWarning.POOR_FIT} & set(warns)
-    draws = _bootstrap(xi, phi, 0 if skip else reps, show)
+    warns += _noise_warnings(fit, relative) if spread > 0.0 else [IdentifyWarning.CONSTANT_FORCE]
+    skip = {IdentifyWarning.LITTLE_MOTION, IdentifyWarning.POOR_FIT, IdentifyWarning.CONSTANT_FORCE} & set(warns)
+    draws = _bootstrap(xi, phi, w, 0 if skip else reps, show, noise.level)
     est = _withhold(_estimates(theta, cov, draws, delta, t), warns)
     run = _free_run(theta, n, phi)
-    free = _quality(run, n)
-    warns += _fit_warnings(est, cov)
+    free = _quality(run, n, w)
+    warns += _fit_warnings(est, cov) + ([IdentifyWarning.JITTER] if timing.exceeds else [])
     _check_identified(est, delta, t, lg.source)
     dev = Device(est["mass"].value, est["damping"].value, est["coulomb"].value, delta, t,
                  name=name or f"device identified from {lg.source}", rotary=lg.rotary)  # fmt: skip
@@ -767,8 +939,42 @@ def identify(
         IdentifyStatus.CAVEATS if warns else IdentifyStatus.OK)  # fmt: skip
     return Identification(dev, lg.source, lg.samples, est["mass"], est["damping"], est["coulomb"],
                           est["force_offset"], resolution is not None, period is not None, int(len(n) // len(starts)),
-                          len(draws), reps, fit, free, tuple(warns), v_peak, _states(theta, n, starts), run, n,
+                          len(draws), reps, fit, free, timing, noise.level * delta, relative,
+                          _confounded(cov, est, warns) if spread > 0.0 else (), tuple(warns), v_peak, _states(theta, n, starts), run, n,
                           status)  # fmt: skip
+
+
+#: The global parameters in the order of θ and the covariance (m as log μ).
+GLOBAL = ("mass", "damping", "coulomb", "force_offset")
+
+
+def _confounded(
+    cov: np.ndarray, est: dict[str, Estimate], warns: list[IdentifyWarning]
+) -> tuple[tuple[str, str, float], ...]:
+    """The pairs of global parameters whose estimates the log does not tell apart: |correlation| above
+    :data:`CONFOUNDED` in the fit's covariance (first, second, correlation) and one of m, b, c in the pair poorly
+    determined (interval wider than ±:data:`LOOSE`, or none; a correlated pair whose intervals are narrow is told
+    apart); not the pairs a warning names already (no reversal: c and f₀; damping and friction not separated)."""
+    loose = {i for i, k in enumerate(GLOBAL[:3]) if est[k].high is None or _half(est[k]) > LOOSE * abs(est[k].value)}
+    sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    said = {(2, 3)} if IdentifyWarning.NO_REVERSAL in warns else set()
+    said |= {(1, 2)} if IdentifyWarning.DAMPING_FRICTION_CONFOUNDED in warns else set()
+    out = []
+    for i in range(4):
+        for k in range(i + 1, 4):
+            if (i, k) in said or not {i, k} & loose:
+                continue
+            if sd[i] > 0.0 and sd[k] > 0.0 and abs(cov[i, k] / (sd[i] * sd[k])) > CONFOUNDED:
+                out.append((GLOBAL[i], GLOBAL[k], float(cov[i, k] / (sd[i] * sd[k]))))
+    return tuple(out)
+
+
+def _noise_warnings(fit: FitQuality, relative: float) -> list[IdentifyWarning]:
+    """A poor fit (fewer than :data:`POOR_FIT` of the samples within a tick, and more force noise than
+    :data:`NOISE_MAX` needed to explain it), or force noise that explains the residuals."""
+    if fit.within_one_tick < POOR_FIT and not relative <= NOISE_MAX:
+        return [IdentifyWarning.POOR_FIT]
+    return [IdentifyWarning.FORCE_NOISE] if relative > 0.0 else []
 
 
 def _states(theta: np.ndarray, n: np.ndarray, starts: np.ndarray) -> np.ndarray:
@@ -777,8 +983,9 @@ def _states(theta: np.ndarray, n: np.ndarray, starts: np.ndarray) -> np.ndarray:
     return np.column_stack([starts, n[starts] + theta[4 : 4 + j], theta[4 + j :]])
 
 
-def _quality(xi: np.ndarray, n: np.ndarray) -> FitQuality:
-    """How a prediction ξ (ticks) matches the logged ticks n."""
+def _quality(xi: np.ndarray, n: np.ndarray, w: np.ndarray) -> FitQuality:
+    """How a prediction ξ (ticks) matches the logged ticks n, over the samples the log holds (``w`` > 0)."""
+    xi, n = xi[w > 0], n[w > 0]
     ticks = np.floor(xi) - n
     return FitQuality(float(np.sqrt(np.mean((xi - n - 0.5) ** 2))), int(np.max(np.abs(ticks))),
                       float(np.mean(np.abs(ticks) <= 1.0)))  # fmt: skip
@@ -851,3 +1058,45 @@ def impact_log(device: Device, stiffness: float, velocity: float, samples: int, 
     force = r.applied_force()[:keep] * stiffness * dev.resolution
     t = np.arange(keep) * dev.period
     return DeviceLog(t, dev.resolution * np.floor(r.xi[:keep]), force, source=source, rotary=dev.rotary)
+
+
+def period_effect(device: Device, timing: Timing, velocity: float, delay: int = 0) -> PeriodEffect:
+    """The criterion's K_max (eq. 11) of ``device`` at its period T and at the longest period of the log.
+
+    Every analysis takes each sample to last T; a sample that lasts longer loses passivity first (eq. 11 falls
+    as T grows), so the limit at the longest logged period is where a log's jitter can take the proof.
+
+    Parameters
+    ----------
+    device : Device
+        The device (its T is the log's).
+    timing : Timing
+        The log's timing (:func:`log_timing`).
+    velocity : float
+        Impact speed, m/s (rad/s), >= 0.
+    delay : int, optional
+        Computational delay in samples (default 0).
+
+    Returns
+    -------
+    PeriodEffect
+        K_max at T and at the longest period.
+
+    Examples
+    --------
+    >>> dev = Device(0.1, 0.5, 0.2, 1e-5, 1e-3)
+    >>> tm = Timing(1e-3, 1e-5, 5e-5, 1.05e-3, 0, 0, 0)
+    >>> e = period_effect(dev, tm, 0.05)
+    >>> e.k_criterion_max < e.k_criterion
+    True
+    """
+    import dataclasses
+
+    from .limits.closed_form import k_max_criterion
+
+    dev = check_type("device", device, Device, "build one with dfa.Device(...)")
+    tm = check_type("timing", timing, Timing, "take it from dfa.identify(...).timing")
+    v = check_nonnegative("velocity", velocity, "give the impact speed in m/s (rad/s)")
+    slow = dataclasses.replace(dev, period=max(tm.period_max, dev.period))
+    return PeriodEffect(dev.period, slow.period, v, float(k_max_criterion(dev, v, delay)),
+                        float(k_max_criterion(slow, v, delay)))  # fmt: skip

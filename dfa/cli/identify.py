@@ -28,6 +28,15 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--period", type=number("--period", "s"), metavar="X",
                    help="sample period T in s; default: from the times")  # fmt: skip
     p.add_argument("--rotary", action="store_true", help="the log is in rad and N·m (default: m and N)")
+    p.add_argument("--columns", type=_columns, metavar="t=NAME,x=NAME,f=NAME",
+                   help="the header's names of the time, position and force columns (default: t, x, f)")  # fmt: skip
+    for c, what, example in (("t", "times", "ms"), ("x", "positions", "mm, or counts with --resolution"),
+                             ("f", "forces", "mN")):  # fmt: skip
+        p.add_argument(f"--{c}-unit", metavar="UNIT", help=f"unit of the {what} when the header gives none "
+                       f"(e.g. {example}); default: the header's, else SI")  # fmt: skip
+    p.add_argument("--write-device", metavar="FILE.toml", help="write the identified device as a device file (the "
+                   "catalogue's format, the intervals in its notes) that every command takes with --device-file; "
+                   "default: none")  # fmt: skip
     p.add_argument("--name", type=name, metavar="TEXT", help="name of the identified device (default: from the file)")
     p.add_argument("--stiffness", type=number("--stiffness", "N/m"), metavar="K",
                    help="close the loop: K_max four ways of the identified device with b and c at the lower ends of "
@@ -47,6 +56,21 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    ".svg); default: none")  # fmt: skip
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout (default: text)")
     add_progress_args(p)
+
+
+def _columns(text: str) -> dict[str, str]:
+    """``t=time,x=pos,f=force``: the header's name of each column."""
+    out: dict[str, str] = {}
+    for part in text.split(","):
+        key, sep, value = part.partition("=")
+        key, value = key.strip().lower(), value.strip()
+        if not sep or key not in ("t", "x", "f") or not value or key in out:
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is not t=NAME,x=NAME,f=NAME: give each of t, x, f at most once, with its name as the "
+                "header writes it"
+            )
+        out[key] = value
+    return out
 
 
 def _positive(flag: str, value: float | None) -> float | None:
@@ -82,6 +106,10 @@ def _check_flags(args: argparse.Namespace) -> None:
         check_output_folder("--report", args.report, create=True)
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
+    if getattr(args, "write_device", None) is not None:
+        check_output_file("--write-device", args.write_device, (".toml",))
+    if (getattr(args, "x_unit", None) or "").strip().lower() == "counts" and args.resolution is None:
+        raise UsageError("--x-unit counts needs --resolution: the encoder's resolution in m (rad) per count")
     for key, flag in (("resolution", "--resolution"), ("period", "--period"), ("stiffness", "--stiffness"),
                       ("velocity", "--velocity")):  # fmt: skip
         if getattr(args, key) is not None:
@@ -141,13 +169,14 @@ def _peak_speed(v: float) -> float:
 def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], lines: list[str]) -> None:
     """K_max four ways of the cautious identified device (b, c at their lower 95 % bounds), the given K assessed,
     the logged oscillation against the predicted cycles, and the report; nothing on a poor fit."""
+    from ..analysis.identify import period_effect
     from ..analysis.limits.kmax import design_answer
     from ..analysis.limits.recommend import recommend_stiffness
     from ..analysis.logged_cycle import compare_logged_cycle
     from ..model.device import dimensionless_params
     from ..model.loop import Loop
     from ..render.answer import stiffness_screen
-    from ..render.identify import cycle_lines, loop_head, poor_fit_loop
+    from ..render.identify import cycle_lines, loop_head, period_effect_lines, poor_fit_loop
 
     if r.status.value == "poor_fit":
         out["loop"] = None
@@ -161,12 +190,36 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     rec = recommend_stiffness(ans)
     out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}
     lines += loop_head(dev, v, args.velocity is None) + stiffness_screen(ans, rec)
+    if r.timing.exceeds:  # the limits hold at T: how the proof moves at the longest period logged
+        eff = period_effect(dev, r.timing, v)
+        out["loop"]["period_effect"] = eff.to_dict()
+        lines += period_effect_lines(eff, dev.units["stiffness"])
     cyc = compare_logged_cycle(r, log, args.stiffness)
     out["cycle"] = cyc.to_dict()
     lines += cycle_lines(cyc)
     if args.report is not None:
         out["report"] = _report(args, dev, v)
         lines += [f"written {p}" for p in out["report"]["paths"]]
+
+
+def _write_device(args: argparse.Namespace, r: Any) -> str:
+    """The identified device as a device file (--write-device); refused after a poor fit."""
+    import datetime
+    import os
+
+    from .._io import atomic_write_text
+    from ..render.identify import device_file, device_notes, device_source
+    from ..results.identify import identified_entry
+
+    if r.status.value == "poor_fit":
+        raise UsageError(
+            f"--write-device {args.write_device}: not written: the identified model does not reproduce the log "
+            "(status poor_fit), so its values are no device"
+        )
+    stamp = datetime.datetime.fromtimestamp(os.stat(args.log).st_mtime, tz=datetime.timezone.utc)
+    entry = identified_entry(r, source=device_source(r, stamp.date().isoformat()), notes=device_notes(r),
+                             stiffness=args.stiffness)  # fmt: skip
+    return str(atomic_write_text(args.write_device, device_file(entry, r)))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -177,7 +230,8 @@ def run(args: argparse.Namespace) -> int:
 
     _check_flags(args)
     try:
-        log = read_log(args.log, rotary=args.rotary)
+        units = {c: getattr(args, f"{c}_unit") for c in ("t", "x", "f") if getattr(args, f"{c}_unit")}
+        log = read_log(args.log, rotary=args.rotary, columns=args.columns, units=units, count=args.resolution)
         _check_against_grid(args, *log_grid(log, resolution=args.resolution, period=args.period))
     except DFAError as err:
         raise UsageError(str(err)) from None
@@ -193,6 +247,9 @@ def run(args: argparse.Namespace) -> int:
     if args.plot is not None:
         out["plot"] = save_png("--plot", args.plot, r.plot()[0])
         lines.append(f"written {out['plot']}")
+    if args.write_device is not None:
+        out["device_file"] = _write_device(args, r)
+        lines.append(f"written {out['device_file']} (use it with --device-file)")
     if args.json:
         emit(out, ensure_ascii=False)
         return 0

@@ -9,7 +9,8 @@ columns, and lines starting with ``#``, are ignored; commas, semicolons or tabs 
 (with semicolons or tabs a decimal comma is read as a point: ``0,001``). Every rule a log must keep
 is checked before anything is analysed, and a bad log is refused in one line naming the row and the rule:
 missing columns, text or NaN in a number, fewer than :data:`MIN_SAMPLES` rows or more than :data:`MAX_LOG_ROWS`,
-time not strictly increasing, a file larger than :data:`MAX_LOG_BYTES` (refused before it is read).
+time going backwards (a row repeating the time before it is kept: identification counts it as a repeated
+sample and drops it), a file larger than :data:`MAX_LOG_BYTES` (refused before it is read).
 
 Examples
 --------
@@ -26,12 +27,12 @@ import io
 import os
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from .._io import atomic_write_text
-from ..checks import check_bool, check_int, format_value
+from ..checks import check_bool, check_int, check_positive, format_value
 from ..errors import DFATypeError, DFAValueError
 
 __all__ = [
@@ -57,6 +58,8 @@ MAX_LOG_ROWS = 100_000
 MIN_SAMPLES = 20
 #: The columns a log must have: time (s), encoder reading (m or rad), held force (N or N·m).
 COLUMNS = ("t", "x", "f")
+#: The unit of positions given as encoder counts (multiplied by the resolution).
+COUNTS = "counts"
 
 
 class LogError(DFAValueError):
@@ -87,7 +90,8 @@ class DeviceLog:
     Parameters
     ----------
     t, x, f : array_like
-        One value per sample, finite; ``t`` strictly increasing; at least :data:`MIN_SAMPLES` samples.
+        One value per sample, finite; ``t`` never decreasing (a repeated time is a repeated sample, which
+        identification drops and counts); at least :data:`MIN_SAMPLES` samples.
     source : str, optional
         Where the log came from (a file name), for messages and outputs.
     rotary : bool, optional
@@ -113,12 +117,14 @@ class DeviceLog:
                 f"{src}: {len(self.t)} samples is too few: a log needs at least {MIN_SAMPLES}; log a longer run"
             )
         dt = np.diff(self.t)
-        bad = np.flatnonzero(~(dt > 0.0))
+        bad = np.flatnonzero(~(dt >= 0.0))
         if bad.size:
             raise LogError(
-                f"{src}: time is not strictly increasing at row {bad[0] + 3} (t = {format_value(float(self.t[bad[0] + 1]))}"
+                f"{src}: time goes backwards at row {bad[0] + 3} (t = {format_value(float(self.t[bad[0] + 1]))}"
                 f" after {format_value(float(self.t[bad[0]]))}); give the samples in time order, one row each"
             )
+        if not dt.any():
+            raise LogError(f"{src}: every row has the same time: give the samples' times in column 't'")
 
     @property
     def samples(self) -> int:
@@ -131,20 +137,25 @@ class DeviceLog:
         return float(self.t[-1] - self.t[0])
 
 
-def _header(row: list[str], source: str) -> dict[str, int]:
+def _header(row: list[str], source: str, columns: dict[str, str] | None = None) -> dict[str, int]:
+    """Where each of t, x, f is in the header (by its name, or the name ``columns`` gives it)."""
     names = [c.split("(")[0].split("[")[0].strip().lower() for c in row]  # "t (s)", "x [m]": the name before a unit
-    twice = [c for c in COLUMNS if names.count(c) > 1]
+    wanted = {c: (columns or {}).get(c, c).strip().lower() for c in COLUMNS}
+    twice = [c for c in COLUMNS if names.count(wanted[c]) > 1]
     if twice:
         raise LogError(
-            f"{source}: the header names column {twice[0]!r} {names.count(twice[0])} times: name each of t, x, f once"
+            f"{source}: the header names column {wanted[twice[0]]!r} {names.count(wanted[twice[0]])} times: name each "
+            "of t, x, f once"
         )
-    missing = [c for c in COLUMNS if c not in names]
+    missing = [c for c in COLUMNS if wanted[c] not in names]
     if missing:
+        named = ", ".join(repr(wanted[m]) + ("" if wanted[m] == m else f" (for {m})") for m in missing)
         raise LogError(
-            f"{source}: the header {','.join(row)!r} has no column {', '.join(repr(m) for m in missing)}: a log needs "
-            "a header with t (s), x (m, the encoder reading) and f (N, the force held over each sample)"
+            f"{source}: the header {','.join(row)!r} has no column {named}: a log needs "
+            "a header with t (s), x (m, the encoder reading) and f (N, the force held over each sample), or their "
+            "names in --columns t=NAME,x=NAME,f=NAME"
         )
-    return {c: names.index(c) for c in COLUMNS}
+    return {c: names.index(wanted[c]) for c in COLUMNS}
 
 
 #: Units a header may give each column, and their factor to SI (linear; rotary below).
@@ -169,22 +180,35 @@ def _unit(cell: str) -> str | None:
     return None
 
 
-def _scales(row: list[str], where: dict[str, int], rotary: bool, source: str) -> tuple[float, float, float]:
-    """The factor that brings each column to SI, from the units in the header (1 where none is written)."""
+def _scales(
+    row: list[str], where: dict[str, int], rotary: bool, source: str, units: dict[str, str], count: float | None
+) -> tuple[float, float, float]:
+    """The factor that brings each column to SI, from the units in the header or ``units`` (1 where none is
+    written; positions in ``counts`` are multiplied by ``count``, the encoder's resolution)."""
     table = ROTARY_UNITS if rotary else UNITS
     out = []
     for c in COLUMNS:
-        unit = _unit(row[where[c]])
+        written, given = _unit(row[where[c]]), units.get(c)
+        if written and given and written.lower() != given.strip().lower():
+            raise LogError(
+                f"{source}: column {c!r} is in {written!r} by the header but --{c}-unit says {given!r}: give the unit "
+                "once, or the one the header writes"
+            )
+        unit = given or written
         if not unit:
             out.append(1.0)
             continue
-        key = unit.lower()
+        key = unit.strip().lower()
+        if c == "x" and key == COUNTS:
+            if count is None:
+                raise LogError(f"{source}: positions in counts need the encoder's resolution: give --resolution")
+            out.append(count)
+            continue
         if key not in table[c]:
-            kinds = ", ".join(table[c])
+            kinds = ", ".join(table[c]) + (f", {COUNTS}" if c == "x" else "")
             other = " (a rotary log? give --rotary)" if not rotary and key in ROTARY_UNITS[c] else ""
             raise LogError(
-                f"{source}: column {c!r} is in {unit!r}{other}: give it in one of {kinds}, or write the header "
-                "without a unit for SI"
+                f"{source}: column {c!r} is in {unit!r}{other}: give it in one of {kinds}, or without a unit for SI"
             )
         out.append(table[c][key])
     return out[0], out[1], out[2]
@@ -225,9 +249,18 @@ def _rows(reader: Any, source: str) -> Iterator[list[str]]:
         yield row
 
 
+class _Layout(NamedTuple):
+    """How a log's columns are named and in what units (:func:`read_log`'s ``columns``, ``units``, ``count``)."""
+
+    columns: dict[str, str] | None = None
+    units: dict[str, str] | None = None
+    per_count: float | None = None
+
+
 def _parse(
-    text: str, source: str, rotary: bool = False, max_rows: int = MAX_LOG_ROWS
+    text: str, source: str, rotary: bool = False, max_rows: int = MAX_LOG_ROWS, layout: _Layout | None = None
 ) -> tuple[list[float], list[float], list[float]]:
+    layout = layout or _Layout()
     lines = [ln for ln in text.splitlines() if not ln.lstrip().startswith("#")]  # comment lines
     first = next((ln for ln in lines if ln.strip()), "")
     delimiter = ";" if ";" in first and "," not in first else "\t" if "\t" in first and "," not in first else ","
@@ -238,8 +271,8 @@ def _parse(
     if head is None:
         what = "is empty" if not text.strip() else "holds only comment lines (#) and blank lines"
         raise LogError(f"{source}: the file {what}: a log needs a header (t,x,f) and one row per sample")
-    where = _header(head, source)
-    scale = _scales(head, where, rotary, source)
+    where = _header(head, source, layout.columns)
+    scale = _scales(head, where, rotary, source, layout.units or {}, layout.per_count)
     comma = delimiter != ","  # a decimal comma (3,25) where the separator is not one (spreadsheet exports)
     cols: tuple[list[float], list[float], list[float]] = ([], [], [])
     for i, row in enumerate(rows, start=2):
@@ -257,7 +290,14 @@ def _parse(
 
 
 def read_log(
-    path: str | os.PathLike[str], *, rotary: bool = False, max_bytes: int = MAX_LOG_BYTES, max_rows: int = MAX_LOG_ROWS
+    path: str | os.PathLike[str],
+    *,
+    rotary: bool = False,
+    max_bytes: int = MAX_LOG_BYTES,
+    max_rows: int = MAX_LOG_ROWS,
+    columns: dict[str, str] | None = None,
+    units: dict[str, str] | None = None,
+    count: float | None = None,
 ) -> DeviceLog:
     """Read a log from a CSV file with a header naming ``t``, ``x`` and ``f`` (module docstring).
 
@@ -272,6 +312,14 @@ def read_log(
     max_rows : int, optional
         Most rows read (default :data:`MAX_LOG_ROWS`); a file with more is refused when its row after the cap is
         reached (:func:`check_rows`).
+    columns : dict, optional
+        The header's names of the columns ``t``, ``x``, ``f`` (``{"t": "time", "x": "pos"}``; default: their
+        own names).
+    units : dict, optional
+        The unit of a column whose header gives none (``{"x": "mm"}``; :data:`UNITS`, rotary
+        :data:`ROTARY_UNITS`; positions may be ``"counts"``, with ``count``); a header's own unit must agree.
+    count : float, optional
+        The encoder's resolution (m, rotary rad) that positions in counts are multiplied by.
 
     Returns
     -------
@@ -282,7 +330,7 @@ def read_log(
     ------
     LogError
         (a DFAValueError) A missing or unreadable file, a file too large or with too many rows, no header, a missing column, a cell
-        that is not a finite number, too few rows, or time not strictly increasing (the message names the row).
+        that is not a finite number, too few rows, or time going backwards (the message names the row).
     DFATypeError
         A path that is not text or path-like.
 
@@ -315,10 +363,25 @@ def read_log(
     except (OSError, UnicodeDecodeError) as exc:
         why = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
         raise LogError(f"{src}: cannot be read ({why}); give a CSV log") from None
-    t, x, f = _parse(text, src, rotary, rows)
+    t, x, f = _parse(text, src, rotary, rows, _layout(columns, units, count))
     if not t:
         raise LogError(f"{src}: has a header but no rows: log at least {MIN_SAMPLES} samples")
     return DeviceLog(np.array(t), np.array(x), np.array(f), source=os.path.basename(src), rotary=rotary)
+
+
+def _layout(columns: dict[str, str] | None, units: dict[str, str] | None, count: float | None) -> _Layout:
+    """``columns``, ``units`` and ``count`` of :func:`read_log`, checked."""
+    for what, given in (("columns", columns), ("units", units)):
+        if given is None:
+            continue
+        if not isinstance(given, dict) or not all(isinstance(k, str) and isinstance(v, str) for k, v in given.items()):
+            raise DFATypeError(f"{what} = {format_value(given)} must be a dict of text, e.g. {{'x': 'pos'}}")
+        bad = sorted(set(given) - set(COLUMNS))
+        if bad:
+            raise DFAValueError(f"{what} names column {bad[0]!r}: the columns are t, x and f")
+    if count is not None:
+        check_positive("count", count, "give the encoder's resolution in m (rad)")
+    return _Layout(columns, units, count)
 
 
 def write_log(log: DeviceLog, path: str | os.PathLike[str]) -> str:

@@ -10,10 +10,22 @@ from ..formatting import fill, number, number_at, text_table
 from ..model.units import hertz, position
 
 if TYPE_CHECKING:
+    from ..model.catalogue import CatalogueEntry
     from ..model.device import Device
-    from ..results.identify import Estimate, Identification, LoggedCycle, Undetermined
+    from ..results.identify import Estimate, Identification, LoggedCycle, PeriodEffect, Timing, Undetermined
 
-__all__ = ["identify_lines", "loop_head", "device_flags", "cycle_lines", "poor_fit_loop"]
+__all__ = [
+    "identify_lines",
+    "loop_head",
+    "device_flags",
+    "cycle_lines",
+    "poor_fit_loop",
+    "timing_lines",
+    "period_effect_lines",
+    "device_source",
+    "device_notes",
+    "device_file",
+]
 
 
 def _interval(e: Estimate, unit: str) -> list[str]:
@@ -38,6 +50,7 @@ UNDETERMINED_SHORT = {
     "scatter": "unbounded by the log",
     "poor_fit": "poor fit",
     "little_motion": "too little motion",
+    "constant_force": "constant force",
 }
 
 
@@ -61,7 +74,8 @@ def identify_lines(r: Identification) -> list[str]:
     ]
     fit = r.fit
     lines = [
-        fill(f"{r.source}: {r.samples} samples, {number(r.samples * dev.period, 4)} s; {grid}"),
+        fill(f"{r.source}: {r.samples} samples, {number(len(r.logged) * dev.period, 4)} s; {grid}"),
+        *timing_lines(r.timing),
         "",
         *text_table(rows, ["identified", "value", "95 % interval"]).splitlines(),
         fill(_interval_note(r)),
@@ -76,17 +90,63 @@ def identify_lines(r: Identification) -> list[str]:
         fill(
             f"run once over the whole log from its start, the model predicts {100 * r.free_run.within_one_tick:.4g} "
             f"% of the samples within one tick (largest error {r.free_run.max_tick_error})"
+            + (
+                f", across the log's {_count(r.timing.gaps, 'gap')} with their forces interpolated"
+                if r.timing.gaps
+                else ""
+            )
         ),
+        *_noise_lines(r),
         fill(f"status {r.status.value}: {r.status.message}"),
     ]
     lines += [fill(f"warning: {w.message}") for w in r.warnings]
+    lines += [fill(f"warning: {confounded_text(a, b, rho)}") for a, b, rho in r.confounded]
     return lines
+
+
+#: What each parameter is called in a sentence.
+PARAMETER_NAMES = {"mass": "the mass m", "damping": "the damping b", "coulomb": "the Coulomb friction c",
+                   "force_offset": "the force offset f₀"}  # fmt: skip
+
+#: The motion that tells each pair of parameters apart.
+SEPARATING_MOTION = {
+    ("mass", "damping"): "force steps faster than the time constant m/b, so that the device accelerates before its "
+    "speed settles",
+    ("mass", "coulomb"): "force steps that start and stop the device, at different force levels",
+    ("mass", "force_offset"): "force steps of different sizes, so that the accelerations differ",
+    ("damping", "coulomb"): "motion both fast and slow (forces of several levels, each held until the speed settles)",
+    ("damping", "force_offset"): "motion at several speeds in both directions",
+    ("coulomb", "force_offset"): "reversals: motion in both directions (friction reverses, an offset does not)",
+}
+
+
+def confounded_text(a: str, b: str, rho: float) -> str:
+    """Which parameter the log cannot tell from which, and the motion that would."""
+    return (f"the log cannot tell {PARAMETER_NAMES[a]} from {PARAMETER_NAMES[b]} (their estimates' correlation "
+            f"{rho:.3f}): log {SEPARATING_MOTION[(a, b)]}")  # fmt: skip
+
+
+def _noise_lines(r: Identification) -> list[str]:
+    """The force noise that explains the residuals beyond quantization (nothing when none is estimated)."""
+    if not r.force_noise > 0.0:
+        return []
+    u = r.device.units
+    return [fill(
+        f"force noise: about {number(r.force_noise, 3)} {u['force']} ({number(100 * r.force_noise_relative, 2)} % of "
+        "the force's standard deviation) on the force column explains the residuals beyond the encoder's "
+        "quantization" + ("; the intervals include it" if r.status.value != "poor_fit" else
+                          ", more than the 25 % a fit's misfit is put down to"))]  # fmt: skip
 
 
 def _interval_note(r: Identification) -> str:
     """How the intervals were made, and what they leave out."""
     if all(e.low is None for e in (r.mass, r.damping, r.coulomb, r.force_offset)):
         return "no intervals: the log does not bound the values (the table says why)"
+    if r.force_noise > 0.0:
+        return (
+            f"intervals from the fit's Jacobian with the force noise estimated below and {r.bootstrap} replicate fits "
+            "with the encoder's origin shifted and fresh force noise; they leave out dynamics the model lacks"
+        )
     if r.bootstrap:
         how = f"from the fit and {r.bootstrap} replicate fits with the encoder's origin shifted"
         if r.bootstrap < r.bootstrap_requested:
@@ -148,5 +208,91 @@ def loop_head(device: Device, velocity: float, measured: bool) -> list[str]:
 def poor_fit_loop(r: Identification) -> list[str]:
     """What --stiffness says when the fit is poor: no limits."""
     return ["", fill(f"no stiffness limits: the identified model reproduces only {100 * r.fit.within_one_tick:.3g} % "
-                     "of the log within one tick, so no limit computed from it would hold for the device; log a run "
-                     "with less noise on the force column, or check the log's units and columns")]  # fmt: skip
+                     "of the log within one tick, and noise on the force column would have to be "
+                     f"{number(100 * r.force_noise_relative, 2)} % of the force's spread to explain that, so no limit "
+                     "computed from it would hold for the device; check the log's units and columns (is f the force "
+                     "that drove x?), or the device has dynamics the model lacks")]  # fmt: skip
+
+
+def _count(k: int, what: str) -> str:
+    """``k`` things, plural when not one."""
+    return f"{k} {what}{'' if k == 1 else 's'}"
+
+
+def _seconds(x: float) -> str:
+    """A time to 3 significant digits in s, ms or µs."""
+    for scale, unit in ((1.0, "s"), (1e-3, "ms"), (1e-6, "µs")):
+        if abs(x) >= scale:
+            return f"{number(x / scale, 3)} {unit}"
+    return f"{number(x / 1e-9, 3)} ns"
+
+
+def timing_lines(tm: Timing) -> list[str]:
+    """What the time column says beyond its period: jitter beyond what the analyses absorb, dropped and repeated
+    samples (nothing for a clean log)."""
+    parts = []
+    if tm.exceeds:
+        parts.append(
+            f"the periods jitter by {_seconds(tm.jitter_s)} (standard deviation), up to {_seconds(tm.jitter_max_s)} "
+            f"({number(100 * tm.jitter_max_s / tm.period, 3)} % of T; longest period {_seconds(tm.period_max)}), "
+            "more than the 1 % the fixed-period analyses absorb"
+        )
+    if tm.dropped:
+        parts.append(
+            f"{_count(tm.dropped, 'sample')} dropped in {_count(tm.gaps, 'gap')} (their readings left out of the fit, "
+            "a segment started after each gap)"
+        )
+    if tm.repeated:
+        parts.append(f"{_count(tm.repeated, 'repeated row')} (the time of the row before) left out")
+    return [fill("timing: " + "; ".join(parts))] if parts else []
+
+
+def period_effect_lines(e: PeriodEffect, unit: str) -> list[str]:
+    """How the proven limit (eq. 11) moves from T to the longest logged period."""
+    return [
+        "",
+        fill(
+            f"at the longest logged period, {_seconds(e.period_max)} instead of T = {_seconds(e.period)}, the "
+            f"criterion's K_max (eq. 11, the same device and speed) is {number(e.k_criterion_max, 5)} {unit} instead "
+            f"of {number(e.k_criterion, 5)} {unit}: every limit above takes each sample to last T"
+        ),
+    ]
+
+
+def device_source(r: Identification, date: str) -> str:
+    """A device file's source: the log's name and date."""
+    return f"identified by dfa identify from the log {r.source} of {date}"
+
+
+def device_notes(r: Identification) -> str:
+    """A device file's notes: the 95 % intervals, the fit and the warnings."""
+    u = r.device.units
+    rows = (("m", r.mass, u["mass"]), ("b", r.damping, u["damping"]), ("c", r.coulomb, u["force"]),
+            ("f₀", r.force_offset, u["force"]))  # fmt: skip
+    parts = []
+    for key, e, unit in rows:
+        value, interval = _interval(e, unit)
+        parts.append(f"{key} = {value}, 95 % interval {interval}")
+    warn = "; ".join(w.value for w in r.warnings) or "none"
+    return (
+        f"{'; '.join(parts)}; {r.samples} samples, {100 * r.fit.within_one_tick:.4g} % predicted within one tick; "
+        f"status {r.status.value}; warnings: {warn}. The values are the identified ones; a limit that must hold "
+        "takes b and c at the lower ends of their intervals (dfa identify --stiffness)."
+    )
+
+
+def device_file(entry: CatalogueEntry, r: Identification) -> str:
+    """The device file of an identified device: the catalogue's format (:func:`device_template`, which reads back
+    unchanged), under a header that says where it comes from."""
+    from ..model.catalogue import device_template
+
+    body = device_template(entry)
+    head = [
+        f"# The device identified by `dfa identify` from the log {r.source}: m, b, c the identified values,",
+        "# Δ and T the log's; the 95 % intervals are in the notes. Use it with every command that takes a device,",
+        f"#   dfa check --device-file FILE.toml --velocity {number(r.velocity_peak, 3)}",
+        "# Flags given with it (--mass ... --period, --stiffness, --name) replace its values.",
+        "",
+        "",
+    ]
+    return "\n".join(head) + body[body.index("\n[[devices]]") + 1 :]

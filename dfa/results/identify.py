@@ -1,12 +1,13 @@
 """Identification results: the estimates fitted to a logged impact (:class:`Identification`, :class:`Estimate`,
-:class:`FitQuality`) with why an estimate is unresolved, and a logged cycle (:class:`LoggedCycle`); computed in
-:mod:`dfa.analysis.identify` and :mod:`dfa.analysis.logged_cycle`."""
+:class:`FitQuality`, :class:`Timing`) with why an estimate is unresolved, the identified device as a catalogue row
+(:func:`identified_entry`), and a logged cycle (:class:`LoggedCycle`); computed in :mod:`dfa.analysis.identify`
+and :mod:`dfa.analysis.logged_cycle`."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -17,6 +18,9 @@ from ..model.device import Device
 from ..model.units import hertz, position, speed
 from .base import Result, figure_function
 from .status import IdentifyStatus, IdentifyWarning, LoggedCycleStatus, StatusEnum
+
+if TYPE_CHECKING:
+    from ..model.catalogue import CatalogueEntry
 
 #: Coulomb friction below this share of the largest logged force is not resolved by the log (a diverging
 #: impact with forces of kN against a friction of 1 N fits any friction within a few per cent).
@@ -41,12 +45,18 @@ class Undetermined(StatusEnum):
     )
     POOR_FIT = (
         "poor_fit",
-        "poor fit: the model does not reproduce the log (noise on the force column, or dynamics the model lacks), "
-        "so the fit's spread says nothing about the values",
+        "poor fit: the model does not reproduce the log, and noise on the force column does not explain it (dynamics "
+        "the model lacks, or a force column that is not what drove the device), so the fit's spread says nothing "
+        "about the values",
     )
     SCATTER = (
         "scatter",
         "the fits of the log and its replicates differ by orders of magnitude: the log does not bound it",
+    )
+    CONSTANT_FORCE = (
+        "constant_force",
+        "the force column is constant: the log shows only the balance b v + c = f + f₀ where the speed settles, "
+        "which fits many devices; log a force that changes",
     )
     LITTLE_MOTION = (
         "little_motion",
@@ -60,8 +70,8 @@ class Estimate:
     """One identified value, its 95 % interval [low, high] and stderr, the interval's half-width / 1.96 (SI units).
 
     The interval comes from the fit's Jacobian and a bootstrap over the encoder's unknown origin (module
-    docstring, step 4): it covers the readings' quantization and the fit's convergence, not noise on the force
-    column or dynamics the model lacks. ``undetermined`` says why there is no interval (an :class:`Undetermined`
+    docstring, step 4): it covers the readings' quantization, the fit's convergence and the force noise the
+    residuals show (:attr:`Identification.force_noise`), not dynamics the model lacks. ``undetermined`` says why there is no interval (an :class:`Undetermined`
     code, None with an interval): the log cannot
     separate this value from another, or holds too little motion to bound it.
     """
@@ -117,6 +127,82 @@ class FitQuality:
                 "within_one_tick": self.within_one_tick}  # fmt: skip
 
 
+#: Largest departure of a logged period from T, relative to T, that the fixed-period analyses absorb: every
+#: analysis takes each sample to last exactly T, and a limit such as eq. 11 moves about as much as T does.
+JITTER_RTOL = 0.01
+
+
+@dataclass(frozen=True)
+class Timing:
+    """The log's time column: the period the fit takes, how the logged periods depart from it, and the samples
+    the log lacks or repeats (:func:`dfa.analysis.identify.log_timing`).
+
+    Attributes
+    ----------
+    period : float
+        T, s: the slope of the times against the sample index (dropped samples counted), or the given period.
+    jitter_s : float
+        Standard deviation of the logged periods (the steps of one sample), s.
+    jitter_max_s : float
+        Largest |step − T| over the steps of one sample, s.
+    period_max : float
+        Longest step of one sample, s.
+    dropped : int
+        Samples missing from the log: a step of k periods (k >= 2) lacks k − 1; the fit holds the force over them
+        and leaves their readings out.
+    gaps : int
+        Steps that lack samples.
+    repeated : int
+        Rows whose time repeats the row before (a step under half a period): dropped from the fit.
+    """
+
+    period: float
+    jitter_s: float
+    jitter_max_s: float
+    period_max: float
+    dropped: int
+    gaps: int
+    repeated: int
+
+    @property
+    def exceeds(self) -> bool:
+        """Whether a logged period departs from T by more than :data:`JITTER_RTOL` of it (the fixed-period
+        analyses' assumption fails)."""
+        return self.jitter_max_s > JITTER_RTOL * self.period
+
+    def to_dict(self) -> dict[str, Any]:
+        """The numbers, in s, and whether the jitter exceeds what the analyses assume."""
+        return {"period_s": self.period, "jitter_s": self.jitter_s, "jitter_max_s": self.jitter_max_s,
+                "period_max_s": self.period_max, "dropped": self.dropped, "gaps": self.gaps,
+                "repeated": self.repeated, "jitter_exceeds": self.exceeds, "jitter_rtol": JITTER_RTOL}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class PeriodEffect:
+    """How the proven stiffness limit (eq. 11, the cautious device) moves from T to the longest logged period.
+
+    Attributes
+    ----------
+    period, period_max : float
+        T and the longest logged period, s.
+    velocity : float
+        Impact speed, m/s (rad/s).
+    k_criterion, k_criterion_max : float
+        The criterion's K_max at T and at the longest period, N/m (rotary N·m/rad).
+    """
+
+    period: float
+    period_max: float
+    velocity: float
+    k_criterion: float
+    k_criterion_max: float
+
+    def to_dict(self) -> dict[str, float]:
+        """The five numbers (SI)."""
+        return {"period_s": self.period, "period_max_s": self.period_max, "velocity": self.velocity,
+                "k_criterion": self.k_criterion, "k_criterion_at_period_max": self.k_criterion_max}  # fmt: skip
+
+
 @dataclass(frozen=True)
 class Identification(Result):
     """A device identified from its log (:func:`identify`).
@@ -145,6 +231,16 @@ class Identification(Result):
         The fit's own prediction: each segment from its fitted start.
     free_run : FitQuality
         The identified model run once over the whole log from the fitted start (errors accumulate).
+    timing : Timing
+        The time column: T, jitter, dropped and repeated samples.
+    force_noise : float
+        Standard deviation of the noise on the force column that explains the residuals beyond the encoder's
+        quantization, N (rotary N·m); 0 when the residuals are quantization's alone.
+    force_noise_relative : float
+        The same relative to the logged force's standard deviation.
+    confounded : tuple of (str, str, float)
+        Pairs of estimates the log does not tell apart (their correlation beyond 0.95 in the fit's covariance), with
+        the correlation (:mod:`dfa.render.identify` says what motion would).
     warnings : tuple of IdentifyWarning
         What the log does not excite, or a poor fit.
     velocity_peak : float
@@ -171,6 +267,10 @@ class Identification(Result):
     bootstrap_requested: int
     fit: FitQuality
     free_run: FitQuality
+    timing: Timing
+    force_noise: float
+    force_noise_relative: float
+    confounded: tuple[tuple[str, str, float], ...]
     warnings: tuple[IdentifyWarning, ...]
     velocity_peak: float
     segment_states: np.ndarray = field(repr=False, metadata={"json": None})
@@ -179,7 +279,8 @@ class Identification(Result):
     status: IdentifyStatus = IdentifyStatus.OK
 
     json_properties: ClassVar[tuple[str, ...]] = ("start_velocity",)
-    units_of: ClassVar[dict[str, str]] = {"velocity_peak": "velocity", "start_velocity": "velocity"}
+    units_of: ClassVar[dict[str, str]] = {"velocity_peak": "velocity", "start_velocity": "velocity",
+                                          "force_noise": "force"}  # fmt: skip
 
     def __post_init__(self) -> None:
         fix = "Identification is built by dfa.identify; call that instead"
@@ -322,3 +423,39 @@ class LoggedCycle(Result):
         out["null_reasons"] = reasons
         out["units_of_cycles"] = "amplitude in ticks (amplitude_si in m or rad), frequency in rad per sample"
         return out
+
+
+def identified_entry(r: Identification, *, source: str, notes: str, stiffness: float | None = None) -> CatalogueEntry:
+    """The identified device as a catalogue row (:class:`dfa.model.catalogue.CatalogueEntry`), for a device file.
+
+    m, b and c are the identified values to their meaningful digits (:attr:`Estimate.place`; 4 significant digits
+    without an interval), so that the file is the same on every machine; Δ and T are the log's (12 digits).
+
+    Parameters
+    ----------
+    r : Identification
+        The identification.
+    source, notes : str
+        The row's source (the log's name and date) and notes (the intervals; :mod:`dfa.render.identify` words them).
+    stiffness : float, optional
+        The wall's K the row gives (N/m; rotary N·m/rad); default none.
+
+    Returns
+    -------
+    CatalogueEntry
+        A complete row of kind "haptic device" named after the identified device.
+    """
+    from ..model.catalogue import CatalogueEntry
+
+    check_type("r", r, Identification, "identify a log with dfa.identify(...)")
+
+    def digits(e: Estimate) -> float:
+        return round_at(e.value, e.place) if e.place is not None else float(f"{e.value:.4g}")
+
+    m = digits(r.mass)
+    m = m if m > 0.0 else float(f"{r.mass.value:.4g}")
+    b, c = (max(0.0, digits(e)) for e in (r.damping, r.coulomb))
+    d = r.device  # Δ and T to 12 digits: the last bits of a slope or a lattice's step are no part of them
+    return CatalogueEntry(d.name[:100], "haptic device", source, notes, mass=m, damping=b, coulomb=c,
+                          resolution=float(f"{d.resolution:.12g}"), period=float(f"{d.period:.12g}"),
+                          stiffness=stiffness, rotary=d.rotary)  # fmt: skip

@@ -624,7 +624,7 @@ class IdentifyStatus(StatusEnum):
     """How far an identification from a log can be used (:class:`dfa.analysis.identify.Identification`)."""
 
     OK = ("ok", "identified: the fit reproduces the log segment by segment, and every parameter is excited")
-    CAVEATS = ("caveats", "identified, with warnings: the log does not excite every parameter well")
+    CAVEATS = ("caveats", "identified, with the warnings below (what the log does not excite or show well)")
     POOR_FIT = ("poor_fit", "the identified model does not reproduce the log: its values are not to be trusted")
 
 
@@ -671,7 +671,26 @@ class IdentifyWarning(StatusEnum):
         "loose_coulomb",
         "the Coulomb friction is poorly determined (95 % interval wider than ±25 %, or unbounded)",
     )
-    POOR_FIT = ("poor_fit", "fewer than 90 % of the samples are predicted within one tick")
+    POOR_FIT = (
+        "poor_fit",
+        "fewer than 90 % of the samples are predicted within one tick, and noise on the force column explains the "
+        "misfit only if it exceeds 25 % of the force's spread: the model does not reproduce the log",
+    )
+    CONSTANT_FORCE = (
+        "constant_force",
+        "the force column holds one value: the log shows only where the device's speed settles (b v + c = f + f₀), "
+        "not m, b, c and f₀ apart; log a force that changes (steps up and down, reversing the motion)",
+    )
+    FORCE_NOISE = (
+        "force_noise",
+        "the residuals exceed the encoder's quantization: noise on the force column explains them, and the intervals "
+        "include it",
+    )
+    JITTER = (
+        "jitter",
+        "a logged period departs from T by more than 1 % of it: every analysis takes each sample to last T, and its "
+        "limits move about as much as the period does",
+    )
 
 
 class TuneStatus(StatusEnum):
