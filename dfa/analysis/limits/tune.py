@@ -30,8 +30,12 @@ Examples
 >>> from dfa.model.catalogue import get_device
 >>> from dfa.model.loop import Loop
 >>> r = tune(Loop(get_device("impulse").device), 0.05, dampings=[0.0, 0.5], cutoffs=[None], evaluate=1)
->>> r.status.value, r.walls[0].wall.damping, r.best.wall.damping
-('tuned', 0.0, 0.5)
+>>> r.status.value, r.walls[0].wall.damping, r.best.wall.damping   # the damped wall buzzes at its K
+('plain_best', 0.0, 0.0)
+>>> r.walls[1].recommendation.above_rest, r.walls[1].k_recommended > r.walls[0].k_recommended
+(True, True)
+>>> dataclasses.replace(r, require_rest=False).best.wall.damping     # the stiffest, buzzing or not
+0.5
 """
 
 from __future__ import annotations
