@@ -154,6 +154,8 @@ VALID = {
     "locus_amplitude": st.one_of(st.none(), st.just(np.array([0.5, 2.0, 10.0]))),
     "omega_grid": st.one_of(st.none(), st.just(np.geomspace(1e-2, 3.0, 50))),
     "quick": st.just(True),
+    "tune": st.just(False),  # design_analysis's tuning is dfa.tune, fuzzed on its own (EXPENSIVE)
+    "configurations": st.none(),  # a WorstConfiguration is built by worst_stiffness, not drawn
 }
 
 #: Names that are not callables: checked to be the documented constants.
