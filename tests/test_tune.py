@@ -321,3 +321,10 @@ def test_cli_export_format_follows_the_out_suffix(capsys, tmp_path, name, head):
     out = tmp_path / name
     assert main(["export", "--device", "impulse", "--stiffness", "100", "--out", str(out)]) == 0
     assert out.read_text().startswith(head)
+
+
+def test_cli_export_without_stiffness_or_velocity_says_which_k(capsys, tmp_path):
+    assert main(["export", "--device", "impulse", "--out", str(tmp_path / "w.h")]) == 0
+    err = capsys.readouterr().err
+    k = dfa.get_device("impulse").stiffness
+    assert f"own K = {k:g} N/m, rule 'given'" in err and len(err.strip().splitlines()) == 1 and len(err) < 100

@@ -161,6 +161,9 @@ def deployable(args: argparse.Namespace) -> DeployableWall:
     k = inp.stiffness
     if args.velocity is None:
         assert k is not None
+        if args.stiffness is None:  # the device file's or the catalogue's K: said, not silent
+            print(f"dfa export: no --stiffness or --velocity: the device's own K = {k:g} {dev.units['stiffness']}, "
+                  "rule 'given'", file=sys.stderr)  # fmt: skip
         ctl = wall_from_args(args, dev, k)
         wall = ctl if ctl is not None else Wall.of(k, delay=args.delay)
         return DeployableWall.given(Loop(dev, wall), command)
