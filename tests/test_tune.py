@@ -167,7 +167,8 @@ def test_tune_json_carries_the_table_numbers(tuned):
     ("kwargs", "match"),
     [
         ({"dampings": [-1.0]}, "^dampings value"),
-        ({"cutoffs": [300.0]}, "^cutoffs value"),
+        ({"cutoffs": [300.0]}, "^filter_cutoff = 300.0 is invalid: it must be below the Nyquist"),
+        ({"cutoffs": [0.01]}, "^filter_cutoff = 0.01 is invalid: it must be at least"),
         ({"delays": [1.5]}, "^delays value"),
         ({"dampings": []}, "^dampings"),
         ({"dampings": list(range(30)), "cutoffs": [None, 10.0, 20.0, 50.0, 100.0], "delays": [0, 1]}, "too many"),

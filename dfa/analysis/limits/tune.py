@@ -152,13 +152,15 @@ def _check_lists(
         check_positive("periods value", t, "give sample periods in s, e.g. [0.001, 0.002]")
     for f in pc_limits:
         check_positive("pc_limits value", f, "give the passivity controller's force limits in N (rotary N·m)")
-    nyquist = 0.5 / max(periods)
-    for fc in cutoffs:
-        if fc is not None and not (isinstance(fc, (int, float)) and 0.0 < fc < nyquist):
+    for fc in cutoffs:  # the filter's own rule (at least MIN_CUTOFF cycles per sample, below Nyquist) at every period
+        if fc is None:
+            continue
+        if not isinstance(fc, (int, float)):
             raise DFAValueError(
-                f"cutoffs value {fc!r} is invalid: a filter cutoff must lie in (0, {nyquist:.6g}) Hz, below the Nyquist "
-                f"frequency of the longest period {max(periods):g} s; give a lower cutoff or None (no filter)"
+                f"cutoffs value {fc!r} is invalid: a filter cutoff is a number of Hz, or None (no filter)"
             )
+        for t in periods:
+            Wall.of(1.0, filter_cutoff=float(fc)).params(float(t), device.resolution)
     n = len(dampings) * len(cutoffs) * len(delays) * len(periods)
     if n > MAX_CANDIDATES:
         raise DFAValueError(
