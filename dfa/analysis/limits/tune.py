@@ -29,7 +29,8 @@ Examples
 --------
 >>> from dfa.model.catalogue import get_device
 >>> from dfa.model.loop import Loop
->>> r = tune(Loop(get_device("impulse").device), 0.05, dampings=[0.0, 0.5], cutoffs=[None], evaluate=1)
+>>> small = {"speeds": 2, "grid": 6}        # a coarser search than the default, for the example
+>>> r = tune(Loop(get_device("impulse").device), 0.05, dampings=[0.0, 0.5], cutoffs=[None], evaluate=1, search=small)
 >>> r.status.value, r.walls[0].wall.damping, r.best.wall.damping   # the damped wall buzzes at its K
 ('plain_best', 0.0, 0.0)
 >>> r.walls[1].recommendation.above_rest, r.walls[1].k_recommended > r.walls[0].k_recommended
@@ -44,6 +45,7 @@ import dataclasses
 import itertools
 import math
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -80,6 +82,8 @@ DEFAULT_MAX_FORCE_ERROR = 0.5
 #: at the recommended K differs (the screen's K is not it), by a few per cent of the peak force on the catalogue's
 #: devices.
 SCREEN_SLACK = 1.25
+#: The keywords of design_answer a tuning's ``search`` may set.
+_SEARCH_KEYS = frozenset({"speeds", "grid", "max_samples", "df_model"})
 #: The most values one default list holds.
 _MAX_DEFAULT = 6
 
@@ -192,10 +196,11 @@ def _screen_of(ans: KMaxResult, margin: float) -> float:
 
 
 def _simulated(
-    device: Device, wall: Wall, velocity: float, margin: float, screen: TunedWall, plain: KMaxResult | None = None
-) -> tuple[TunedWall, KMaxResult]:
+    device: Device, wall: Wall, velocity: float, margin: float, screen: TunedWall, plain: KMaxResult | None = None,
+    search: dict[str, Any] | None = None,
+) -> tuple[TunedWall, KMaxResult]:  # fmt: skip
     """The wall searched in full, its recommendation and its fidelity at the recommended K (and its answer)."""
-    ans = design_answer(Loop(device, wall), velocity)
+    ans = design_answer(Loop(device, wall), velocity, **(search or {}))
     rec = recommend_stiffness(ans, margin, plain=plain)
     error = share = None
     if rec.k_recommended is not None:
@@ -207,8 +212,9 @@ def _simulated(
 
 
 def _screened(
-    device: Device, base: Wall, velocity: float, margin: float, lists: tuple[Sequence, ...]
-) -> list[TunedWall]:
+    device: Device, base: Wall, velocity: float, margin: float, lists: tuple[Sequence, ...],
+    search: dict[str, Any] | None = None,
+) -> list[TunedWall]:  # fmt: skip
     """Every candidate (period x delay x damper x cutoff), screened by its quick answer."""
     periods, delays, dampings, cutoffs = lists
     combos = list(itertools.product(periods, delays, dampings, cutoffs))
@@ -217,7 +223,7 @@ def _screened(
         for t, d, b, fc in combos:
             dev = device if t == device.period else dataclasses.replace(device, period=float(t))
             wall = _candidate(base, d, float(b), None if fc is None else float(fc))
-            ans = design_answer(Loop(dev, wall), velocity, simulate=False)
+            ans = design_answer(Loop(dev, wall), velocity, simulate=False, **(search or {}))
             k = float(_screen_of(ans, margin))
             error = _screen_error(Loop(dev, wall.with_stiffness(k)), velocity) if k > 0.0 else None
             out.append(TunedWall(dev, wall.with_stiffness(k) if k > 0.0 else wall, k, error))
@@ -262,6 +268,7 @@ def tune(
     evaluate: int = 3,
     max_force_error: float | None = DEFAULT_MAX_FORCE_ERROR,
     require_rest: bool = True,
+    search: dict[str, Any] | None = None,
 ) -> TuneResult:
     """The wall with the largest recommended stiffness among the elements allowed, and the trade-off (module docstring).
 
@@ -298,6 +305,9 @@ def tune(
         The best wall must come to rest at its recommended K where any wall within the cap does (default True): a
         wall that buzzes at its K (above its simulated rest limit) is listed, not chosen. False: the stiffest within
         the cap, buzzing or not.
+    search : dict, optional
+        Keyword arguments of every stiffness search (:func:`~dfa.analysis.limits.kmax.design_answer`'s ``speeds``,
+        ``grid``, ``max_samples``); default its own (6 speeds, a 16-point grid).
 
     Returns
     -------
@@ -329,6 +339,11 @@ def tune(
                 "at most 1 (100 %); give e.g. 0.5 for 50 %, or None for no cap"
             )
     rest = check_bool("require_rest", require_rest, "pass True to choose among walls that rest, False for any")
+    if search is not None and not (isinstance(search, dict) and set(search) <= _SEARCH_KEYS):
+        raise DFATypeError(
+            f"search = {search!r} is invalid: it must be None or a dict of {', '.join(sorted(_SEARCH_KEYS))} "
+            "(design_answer's keywords)"
+        )
     if not (isinstance(evaluate, int) and evaluate >= 1):
         raise DFAValueError(f"evaluate = {evaluate!r} is invalid: simulate at least 1 wall besides the plain one")
     for name, values in (("dampings", dampings), ("cutoffs", cutoffs), ("delays", delays), ("periods", periods),
@@ -345,26 +360,27 @@ def tune(
     periods = (device.period,) if periods is None else tuple(periods)
     _check_lists(device, dampings, cutoffs, delays, periods, tuple(pc_limits))
     plain = _candidate(base, base.delay, 0.0, None)
-    screened = _screened(device, base, velocity, margin, (periods, delays, dampings, cutoffs))
+    screened = _screened(device, base, velocity, margin, (periods, delays, dampings, cutoffs), search)
     others = [w for w in screened if not (w.wall.elements == plain.elements and w.device == device)]
     plain_screen = next((w for w in screened if w not in others), None)
     if plain_screen is None:  # the lists leave the plain wall out: screen it too
-        plain_screen = _screened(device, base, velocity, margin, ((device.period,), (base.delay,), (0.0,), (None,)))[0]
+        lists = ((device.period,), (base.delay,), (0.0,), (None,))
+        plain_screen = _screened(device, base, velocity, margin, lists, search)[0]
     loose = None if max_force_error is None else SCREEN_SLACK * max_force_error  # the screen's K is not the K chosen
     others.sort(key=lambda w: (not _within(w.screen_force_error, loose), -w.screen))
     with stage("simulating the best walls", 1 + min(evaluate, len(others)) + len(pc_limits), "wall", eta=False):
-        first, plain_ans = _simulated(device, plain, velocity, margin, plain_screen)
+        first, plain_ans = _simulated(device, plain, velocity, margin, plain_screen, search=search)
         advance(step=1, unit="wall")
         done = [(first, plain_ans)]
         for w in others[:evaluate]:
-            done.append(_simulated(w.device, w.wall, velocity, margin, w))
+            done.append(_simulated(w.device, w.wall, velocity, margin, w, search=search))
             advance(step=1, unit="wall")
         faithful = [p for p in done if _within(p[0].force_error, max_force_error)] or done[:1]
         best_tuned, best_ans = max(faithful, key=lambda p: p[0].k_recommended or -1.0)
         for limit in pc_limits:
             held = best_ans.wall  # the wall its answer searched (at the placeholder K the search varies)
             wall = Wall(held.stiffness, (*held.elements, PassivityController(force_limit=limit)))
-            done.append(_simulated(best_tuned.device, wall, velocity, margin, best_tuned, plain=best_ans))
+            done.append(_simulated(best_tuned.device, wall, velocity, margin, best_tuned, best_ans, search))
             advance(step=1, unit="wall")
     walls = (first, *_ranked([t for t, _a in done[1:]] + others[evaluate:]))
     cap = None if max_force_error is None else float(max_force_error)
