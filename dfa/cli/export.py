@@ -23,7 +23,7 @@ from ..model.wall import Wall
 from .contact import add_contact_args
 from .inputs import add_device_group, device_given, resolve, speed
 from .output import working
-from .parsing import UsageError, number
+from .parsing import UsageError, add_margin_arg, number
 from .passivity import add_passivity_args
 from .walls import add_wall_args, given_flags, wall_from_args
 
@@ -61,14 +61,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_wall_args(p)
     add_contact_args(p)
     add_passivity_args(p)
-    p.add_argument(
-        "--margin",
-        type=number("--margin", "dimensionless units (a gain >= 1)"),
-        default=2.0,
-        metavar="G",
-        help="with --velocity: gain margin >= 1 of the recommended K when no proof exists (the simulated "
-        "no-divergence limit divided by G; default 2, about 6 dB)",
-    )
+    add_margin_arg(p, "with --velocity: ")
     p.add_argument(
         "--format",
         choices=("c", "yaml", "json"),

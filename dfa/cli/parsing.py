@@ -16,7 +16,7 @@ from typing import Any
 from ..checks import MAX_DELAY
 from ..errors import DFAValueError
 
-__all__ = ["NEGATIVE_NUMBER", "UsageError", "Parser", "number", "integer", "name", "delay"]
+__all__ = ["NEGATIVE_NUMBER", "UsageError", "Parser", "number", "integer", "name", "delay", "add_margin_arg"]
 
 
 class UsageError(DFAValueError):
@@ -145,3 +145,16 @@ def delay(text: str) -> int:
             "in samples of the servo period (e.g. 1)"
         )
     return out
+
+
+def add_margin_arg(p: Any, when: str = "") -> None:
+    """``--margin G``: the gain margin >= 1 of a recommended K without proof (``dfa stiffness``, ``tune``, ``export``),
+    ``when`` a prefix of its help (``"with --velocity: "``)."""
+    p.add_argument(
+        "--margin",
+        type=number("--margin", "dimensionless units (a gain >= 1)"),
+        default=2.0,
+        metavar="G",
+        help=f"{when}gain margin >= 1 of the recommended K when no proof exists: the simulated no-divergence limit "
+        "divided by G (default 2, about 6 dB)",
+    )

@@ -21,7 +21,7 @@ from ..results.status import LimitStatus
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, save_png, working
-from .parsing import UsageError, number
+from .parsing import UsageError, add_margin_arg
 from .passivity import add_passivity_args
 from .walls import add_wall_args, print_wall, wall_from_args, wall_json
 
@@ -55,14 +55,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="a quick answer for sweeps: the criterion, the static and exact linear bounds and the describing "
         "function, without the simulated limits (no simulation; under a second; default: the full answer)",
     )
-    p.add_argument(
-        "--margin",
-        type=number("--margin", "dimensionless units (a gain >= 1)"),
-        default=2.0,
-        metavar="G",
-        help="gain margin >= 1 of the recommended K when no proof exists: the simulated no-divergence limit "
-        "divided by G (default 2, about 6 dB)",
-    )
+    add_margin_arg(p)
     p.add_argument(
         "--plot",
         metavar="FILE",

@@ -19,7 +19,7 @@ from ..model.wall import Wall
 from .contact import add_contact_args
 from .inputs import add_device_args, resolve, speed
 from .output import add_progress_args, emit, save_png, working
-from .parsing import UsageError, integer, number
+from .parsing import UsageError, add_margin_arg, integer, number
 from .walls import add_wall_args, wall_from_args, wall_json
 
 COMMAND = "tune"
@@ -115,9 +115,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     g.add_argument("--max-force-error", type=_percent_or_none, default=50.0,
                    metavar="PCT", help="the best wall's largest force error, %% of the ideal spring's peak force, "
                    "or 'none' (default 50)")  # fmt: skip
-    p.add_argument("--margin", type=number("--margin", "dimensionless units (a gain >= 1)"), default=2.0,
-                   metavar="G", help="gain margin >= 1 of a K without proof: the simulated limit divided by G "
-                   "(default 2, about 6 dB)")  # fmt: skip
+    add_margin_arg(p)
     p.add_argument(
         "--allow-buzz",
         action="store_true",
