@@ -22,13 +22,24 @@ from .base import Result, figure_function
 from .require import Recommendation, check_margin
 from .status import TunedStatus, TuneStatus
 
-__all__ = ["TunedWall", "TuneResult"]
+__all__ = ["TunedWall", "TuneResult", "within_cap"]
 
 
 def _fraction(name: str, x: float | None, fix: str) -> None:
     """Refuse a fraction that is not None or a number in [0, ∞) (a force error may exceed 1; a share may not)."""
     if x is not None and not (isinstance(x, float) and x >= 0.0 and math.isfinite(x)):
         raise DFAValueError(f"{name} = {x!r} is invalid: it must be None or a finite float >= 0; {fix}")
+
+
+def within_cap(error: float | None, cap: float | None) -> bool:
+    """Whether a force error is known and at most ``cap`` (always, without a cap): the one rule of the tuning's cap.
+
+    Examples
+    --------
+    >>> within_cap(0.4, 0.5), within_cap(None, 0.5), within_cap(None, None)
+    (True, False, True)
+    """
+    return cap is None or (error is not None and error <= cap)
 
 
 @dataclass(frozen=True)
@@ -223,8 +234,7 @@ class TuneResult(Result):
         bool
             True when its force error is known and at most the cap, or there is no cap.
         """
-        cap = self.max_force_error
-        return cap is None or (wall.force_error is not None and wall.force_error <= cap)
+        return within_cap(wall.force_error, self.max_force_error)
 
     @property
     def best(self) -> TunedWall | None:

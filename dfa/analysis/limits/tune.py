@@ -58,7 +58,7 @@ from ...model.wall import MIN_CUTOFF, Wall
 from ...progress import advance, stage
 from ...results.require import DEFAULT_MARGIN, check_margin
 from ...results.status import TunedStatus, TuneStatus
-from ...results.tune import TunedWall, TuneResult
+from ...results.tune import TunedWall, TuneResult, within_cap
 from ..fidelity import force_error
 from .kmax import KMaxResult, design_answer, max_proven_damping
 from .recommend import recommend_stiffness
@@ -239,11 +239,6 @@ def _screen_error(loop: Loop, velocity: float) -> float | None:
         return None
 
 
-def _within(error: float | None, cap: float | None) -> bool:
-    """Whether a force error is known and within the cap (always without a cap)."""
-    return cap is None or (error is not None and error <= cap)
-
-
 def _ranked(walls: list[TunedWall]) -> list[TunedWall]:
     """The simulated walls by recommended K (largest first; none last), then the screened by screen."""
 
@@ -367,7 +362,7 @@ def tune(
         lists = ((device.period,), (base.delay,), (0.0,), (None,))
         plain_screen = _screened(device, base, velocity, margin, lists, search)[0]
     loose = None if max_force_error is None else SCREEN_SLACK * max_force_error  # the screen's K is not the K chosen
-    others.sort(key=lambda w: (not _within(w.screen_force_error, loose), -w.screen))
+    others.sort(key=lambda w: (not within_cap(w.screen_force_error, loose), -w.screen))
     with stage("simulating the best walls", 1 + min(evaluate, len(others)) + len(pc_limits), "wall", eta=False):
         first, plain_ans = _simulated(device, plain, velocity, margin, plain_screen, search=search)
         advance(step=1, unit="wall")
@@ -375,7 +370,7 @@ def tune(
         for w in others[:evaluate]:
             done.append(_simulated(w.device, w.wall, velocity, margin, w, search=search))
             advance(step=1, unit="wall")
-        faithful = [p for p in done if _within(p[0].force_error, max_force_error)] or done[:1]
+        faithful = [p for p in done if within_cap(p[0].force_error, max_force_error)] or done[:1]
         best_tuned, best_ans = max(faithful, key=lambda p: p[0].k_recommended or -1.0)
         for limit in pc_limits:
             held = best_ans.wall  # the wall its answer searched (at the placeholder K the search varies)
