@@ -253,7 +253,7 @@ def test_cli_velocity_filter_below_the_floor_names_the_flag(capsys, cutoff):
     typed and the allowed range in plain numbers; the floor as printed is accepted (red team)."""
     assert main(["check", "--device", "delta", "--velocity", "0.1", "--velocity-filter", cutoff]) == 2
     err = capsys.readouterr().err.strip()
-    assert err.startswith(f"dfa: error: --velocity-filter {cutoff} is invalid") and "\n" not in err
+    assert err.startswith(f"dfa check: error: --velocity-filter {cutoff} is invalid") and "\n" not in err
     assert "at least 3 Hz" in err and "[3, 1500)" in err and "filter_cutoff" not in err
     assert main(["check", "--device", "delta", "--velocity", "0.1", "--velocity-filter", "3"]) == 0
 

@@ -320,6 +320,8 @@ def test_cli_fuzz(tmp_path, capsys, monkeypatch, chunk):
         codes[code] += 1
         if code == 2:
             assert err.count("\n") == 1 and err.startswith("dfa"), f"invocation {i}: dfa {argv!r}: {err!r}"
+            prog = f"dfa {argv[0]}" if argv[0] != "nosuch" else "dfa"  # one prefix for a command's every error
+            assert err.startswith(f"{prog}: error: "), f"invocation {i}: dfa {argv!r}: {err!r}"
         elif "--json" in argv:
             json.loads(out)
     # the run exercised both outcomes, and nothing wrote where it should not

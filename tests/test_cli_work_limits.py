@@ -31,7 +31,7 @@ def test_work_over_the_time_limit_is_refused_in_one_line_before_any_work(capsys,
     argv = tuple(str(tmp_path / "r") if a == "unused" else a for a in argv)
     code, out, err = run(capsys, *argv)
     assert code == 2 and out == ""
-    assert err.count("\n") == 1 and err.startswith(f"dfa: error: {flags} could take up to ")
+    assert err.count("\n") == 1 and err.startswith(f"dfa {argv[0]}: error: {flags} could take up to ")
     assert f"(estimated; limit {output.WORK_TIME_LIMIT:g} s)" in err and err.rstrip().endswith(", or add --force")
     assert not (tmp_path / "r").exists()  # the report's folder is not made either
 

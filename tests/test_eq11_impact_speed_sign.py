@@ -31,7 +31,7 @@ def _refused(capsys, *argv: str) -> str:
     code = main(list(argv))
     out, err = capsys.readouterr()
     assert code == 2, (argv, out, err)
-    assert err.count("\n") == 1 and err.startswith("dfa: error: ") and "Traceback" not in err, err
+    assert err.count("\n") == 1 and err.startswith(f"dfa {argv[0]}: error: ") and "Traceback" not in err, err
     assert out == ""
     return err
 

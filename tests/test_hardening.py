@@ -99,7 +99,7 @@ def test_cli_mass_1e_320_refused_not_nan(capsys):
 
 def test_cli_physical_flag_errors_name_the_flag(capsys):
     err = refused(capsys, "params", *IMPULSE, "--mass", "-1")
-    assert err.startswith("dfa: error: --mass")
+    assert err.startswith("dfa params: error: --mass")
     err = refused(capsys, "params", *IMPULSE, "--stiffness", "1e-310")
     assert "--stiffness = 1e-310" in err and "μ = m/(K T²) overflows" in err
 

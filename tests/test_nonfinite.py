@@ -48,7 +48,7 @@ def test_cli_refused_start_prints_one_line_without_runtime_warnings():
     # found: "dfa: warning: overflow encountered in multiply (RuntimeWarning)" before the error line
     p = run_dfa("simulate", "--mu", "5", "--beta", "0.1", "--sigma", "0.3", "--xi-dot", "1e300")
     assert p.returncode == 2
-    assert p.stderr.count("\n") == 1 and p.stderr.startswith("dfa: error: xi_dot = 1e+300"), p.stderr
+    assert p.stderr.count("\n") == 1 and p.stderr.startswith("dfa simulate: error: xi_dot = 1e+300"), p.stderr
     assert "overflows a float" in p.stderr
 
 
@@ -75,7 +75,9 @@ def test_default_samples_refuses_an_overflowing_start_without_a_warning():
 def test_simulate_huge_damping_rate_refused_not_a_false_divergence(capsys):
     # found: `dfa simulate --mu 1 --beta 1e308 --sigma 0 --xi-dot 10` said "unstable: diverged", final ξ = nan
     err = refused(capsys, "simulate", "--mu", "1", "--beta", "1e308", "--sigma", "0", "--xi-dot", "10")
-    assert err.startswith("dfa: error: --beta = 1e+308 is invalid with --mu = 1: β/μ = bT/m must be at most 1e+08")
+    assert err.startswith(
+        "dfa simulate: error: --beta = 1e+308 is invalid with --mu = 1: β/μ = bT/m must be at most 1e+08"
+    )
     with pytest.raises(DFAValueError, match=r"β/μ = bT/m must be at most 1e\+08"):
         dfa.simulate(1.0, 1e308, 0.0, 10.0)
     with pytest.raises(DFAValueError, match="β/μ"):
@@ -106,7 +108,7 @@ def test_check_margin_or_critical_speed_that_overflows_is_refused(capsys):
     # found: `dfa check --mu 100 --beta 1e308 --sigma 1 --xi-dot 2` printed "margin inf"
     err = refused(capsys, "check", "--mu", "100", "--beta", "1e308", "--sigma", "1", "--xi-dot", "2")
     assert err.startswith(
-        "dfa: error: --beta = 1e+308, --sigma = 1, --xi-dot = 2 are invalid together: the criterion's"
+        "dfa check: error: --beta = 1e+308, --sigma = 1, --xi-dot = 2 are invalid together: the criterion's"
     )
     assert "margin" in err and "inf" not in err.split(":")[2]
     # found: `... --beta 0 --sigma 1e308 --xi-dot 1` printed "critical speed inf ticks/sample"

@@ -224,7 +224,7 @@ def test_cli_device_file_values_are_named_by_file_and_key(capsys, tmp_path):
 def test_cli_a_refused_run_prints_its_error_line_alone(capsys):
     """The warnings are held until the inputs are accepted: exit 2 is one line on stderr, as ever."""
     code, _out, err = _run(capsys, "params", *DELTA, "--period", "1e300")
-    assert code == 2 and err.count("\n") == 1 and err.startswith("dfa: error:") and "--period" in err, err
+    assert code == 2 and err.count("\n") == 1 and err.startswith("dfa params: error:") and "--period" in err, err
     code, _out, err = _run(capsys, "check", *DELTA, "--period", "1", "--velocity", "-1")
     assert code == 2 and err.count("\n") == 1 and "--velocity" in err, err
     code, out, err = _run(capsys, "check", *DELTA, "--period", "1", "--velocity", "0.1")  # accepted: warned

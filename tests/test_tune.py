@@ -186,9 +186,19 @@ def small_tune(monkeypatch):
     monkeypatch.setattr(tune_mod, "design_answer", functools.partial(design_answer, **SMALL))
 
 
-def test_cli_tune_prints_the_result_numbers_and_an_export_command(capsys, small_tune):
+def test_cli_tune_prints_the_result_numbers_and_an_export_command(capsys, small_tune, monkeypatch):
     argv = ["tune", "--device", "impulse", "--velocity", "0.05", "--dampings", "0,0.5", "--cutoffs", "none,50",
             "--evaluate", "1"]  # fmt: skip
+    runs: list[tuple[tuple, dict, object]] = []
+    original = tune_mod.tune
+
+    def tune_once(*args, **kwargs):  # the text and the JSON render one tuning: the second call reuses the first
+        if not runs:
+            runs.append((args, kwargs, original(*args, **kwargs)))
+        assert repr((args, kwargs)) == repr(runs[0][:2]), "the --json run tunes the same walls"
+        return runs[0][2]
+
+    monkeypatch.setattr(tune_mod, "tune", tune_once)
     assert main(argv) == 0
     out = capsys.readouterr().out
     text = unwrap(out)

@@ -198,7 +198,10 @@ def _run(parser: argparse.ArgumentParser, argv: list[str]) -> int:
     if not argv:  # bare `dfa`: the help, and exit code 2 (no command ran)
         parser.print_help()
         return 2
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    if extra:  # said by the command's name, as its other errors are (argparse's top parser would say `dfa:`)
+        command = getattr(args, "command", None)
+        raise UsageError(f"dfa{' ' + command if command else ''}: error: unrecognized arguments: {' '.join(extra)}")
     args.argv = list(argv)  # the command line as given (a command that prints a command to run next reads it)
     if getattr(args, "func", None) is None:
         raise UsageError("dfa: error: give a COMMAND (see `dfa --help`)")
@@ -257,11 +260,12 @@ def _ignore_signals() -> None:
         signal.signal(sig, signal.SIG_IGN)
 
 
-def _error(err: BaseException, before: int) -> int:
-    """The exit code of an exception (module docstring), with its one line on stderr."""
+def _error(err: BaseException, before: int, prog: str = "dfa") -> int:
+    """The exit code of an exception (module docstring), with its one line on stderr, which starts with ``prog``
+    (``dfa COMMAND``, as argparse's own errors do, or ``dfa`` before a command is known)."""
     if isinstance(err, DFAError):
         msg = str(err)
-        print((msg if msg.startswith("dfa") else f"dfa: error: {msg}").replace("\n", " "), file=sys.stderr)
+        print((msg if msg.startswith("dfa") else f"{prog}: error: {msg}").replace("\n", " "), file=sys.stderr)
         return 2
     if isinstance(err, SystemExit):  # --help and --version
         return int(err.code or 0)
@@ -274,11 +278,13 @@ def _error(err: BaseException, before: int) -> int:
         _quiet_stdout()
         return 141
     if isinstance(err, MemoryError):
-        print("dfa: error: out of memory; lower --grid, --samples or the number of speeds", file=sys.stderr)
+        print(f"{prog}: error: out of memory; lower --grid, --samples or the number of speeds", file=sys.stderr)
         return 1
     assert isinstance(err, OSError)
     where = f"{err.filename!r}: " if err.filename else ""
-    print(f"dfa: error: {where}{err.strerror or err}; check the path, its permissions and free space", file=sys.stderr)
+    print(
+        f"{prog}: error: {where}{err.strerror or err}; check the path, its permissions and free space", file=sys.stderr
+    )
     return 1
 
 
@@ -297,7 +303,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     program = argv is None  # the dfa program itself: signals are handled until the process ends
     args = list(sys.argv[1:] if argv is None else argv)
-    parser = build_parser(args[0] if args and args[0] in {c.COMMAND for c in COMMANDS} else None)
+    command = args[0] if args and args[0] in {c.COMMAND for c in COMMANDS} else None
+    parser = build_parser(command)
+    prog = f"dfa {command}" if command else "dfa"  # every error line of a command starts alike
     before = len(written_paths())
     old_handlers = _install_signal_handlers()
     numeric: list[str] = []  # the RuntimeWarnings of this run (_numeric_note)
@@ -311,7 +319,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 code = _run(parser, args)
         except (DFAError, SystemExit, KeyboardInterrupt, BrokenPipeError, MemoryError, OSError) as err:
             (drop_warnings if isinstance(err, DFAError) else flush_warnings)()  # refused: the error line alone
-            code = _error(err, before)
+            code = _error(err, before, prog)
         else:
             note = _numeric_note(numeric)
             if note:
@@ -320,12 +328,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         try:  # a buffered stdout meets a closed pipe here, not at exit ("Exception ignored ...", exit 120)
             sys.stdout.flush()
         except BrokenPipeError as err:
-            code = _error(err, before)
+            code = _error(err, before, prog)
         except (OSError, ValueError, AttributeError):  # no stdout, or a closed one: nothing left to say
             pass
         return code
     except KeyboardInterrupt as err:  # the first signal while the outcome is being printed: its line too
-        return _error(err, before)
+        return _error(err, before, prog)
     finally:
         warnings.formatwarning = old_format
         _after_run(old_handlers, program, before)

@@ -85,7 +85,7 @@ def number(flag: str, unit: str) -> Callable[[str], float]:
             )
             raise argparse.ArgumentTypeError(
                 f"{text[:40]!r} is {what}: {flag} takes a finite decimal number in {unit}, written with ASCII digits "
-                "(e.g. 0.25, -3, 1e-3; no '_', no other scripts)"
+                "(e.g. 0.25, 3, 1e-3; no '_', no other scripts)"
             )
         value = float(text)
         if not math.isfinite(value):
