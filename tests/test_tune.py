@@ -339,3 +339,20 @@ def test_cli_export_without_stiffness_or_velocity_says_which_k(capsys, tmp_path)
     err = capsys.readouterr().err
     k = dfa.get_device("impulse").stiffness
     assert f"own K = {k:g} N/m, rule 'given'" in err and len(err.strip().splitlines()) == 1 and len(err) < 100
+
+
+def test_tune_table_marks_every_force_error_beyond_the_cap(tuned):
+    """Screened rows too (their error at the screen's K): '> cap' exactly where the error exceeds the cap."""
+    from dfa.render.tune import tune_rows
+
+    errors = [w.force_error if w.recommendation is not None else w.screen_force_error for w in tuned.walls]
+    known = sorted(e for e in errors if e is not None)
+    assert len(known) >= 3, errors
+    cap = (known[0] + known[1]) / 2  # between the two smallest: every other known error is beyond it
+    r = dataclasses.replace(tuned, max_force_error=cap)
+    rows = tune_rows(r, screened=True)
+    assert len(rows) == len(r.walls)
+    marked = [row[6].endswith(" > cap") for row in rows]
+    assert marked == [e is not None and e > cap for e in errors]
+    assert any(marked) and not all(marked)
+    assert any(m and w.recommendation is None for m, w in zip(marked, r.walls, strict=True)), "a screened row is marked"

@@ -18,7 +18,7 @@ from ..model.device import Device
 from ..model.elements import Damper, Delay, PassivityController, VelocityFilter
 from ..model.wall import Wall
 from ..results.status import RecommendRule, TunedStatus, TuneStatus
-from ..results.tune import TunedWall, TuneResult
+from ..results.tune import TunedWall, TuneResult, within_cap
 from .answer import recommendation_text, wrap
 
 __all__ = [
@@ -106,25 +106,20 @@ def _at_k(w: TunedWall) -> str:
     return "may buzz" if rec.above_rest else "rests"
 
 
+def _over_cap(error: float | None, r: TuneResult) -> str:
+    """`` > cap`` after a known force error beyond the tuning's cap (one rule: :func:`within_cap`), else ``''``."""
+    return " > cap" if error is not None and not within_cap(error, r.max_force_error) else ""
+
+
 def _row(i: int, w: TunedWall, r: TuneResult) -> list[str]:
     u = r.device.units
     label = wall_label(w.wall, w.device, u, r.device.period) + (" (plain)" if i == 0 else "")
     rec = w.recommendation
     if rec is None:
-        return [
-            str(i + 1),
-            label,
-            f"~{number(w.screen, 5)}",
-            "screened only",
-            "–",
-            "–",
-            _pct(w.screen_force_error),
-            "–",
-        ]
+        err = _pct(w.screen_force_error) + _over_cap(w.screen_force_error, r)
+        return [str(i + 1), label, f"~{number(w.screen, 5)}", "screened only", "–", "–", err, "–"]
     k = "none" if rec.k_recommended is None else number(rec.k_recommended, 5)
-    ctl, err = _pct(w.controller_share), _pct(w.force_error)
-    if not r.faithful(w) and w.force_error is not None:
-        err += " > cap"
+    ctl, err = _pct(w.controller_share), _pct(w.force_error) + _over_cap(w.force_error, r)
     kept = rec.controller is not None and not rec.controller.kept
     rule = _RULES.get(rec.status, rec.status.value) + (" (without PC)" if kept else "")
     rest = "–" if rec.k_rest is None else number(rec.k_rest, 5)
