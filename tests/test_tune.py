@@ -356,3 +356,36 @@ def test_tune_table_marks_every_force_error_beyond_the_cap(tuned):
     assert marked == [e is not None and e > cap for e in errors]
     assert any(marked) and not all(marked)
     assert any(m and w.recommendation is None for m, w in zip(marked, r.walls, strict=True)), "a screened row is marked"
+
+
+def test_tune_plot_labels_every_wall_inside_the_axes(tuned, monkeypatch):
+    """The chart (K across, force error up): a label per drawn wall, none reaching the frame (the rightmost wall's
+    label reached it), and numbers on the stiffness axis even when the walls span less than a decade. Every label
+    as long as the longest a tuning writes (every element varied)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    import dfa.render.figures.tune as tune_figure
+
+    longest = "T 0.5 ms, delay 2, B 2000 N·s/m, filter 1000 Hz, PC 0.5 N"
+    monkeypatch.setattr(tune_figure, "wall_label", lambda *args: longest)
+    ax = tuned.plot()
+    try:
+        fig = ax.figure
+        fig.canvas.draw()
+        r = fig.canvas.get_renderer()
+        box = ax.get_window_extent(r)
+        notes = [t for t in ax.texts if t.get_text()]
+        drawn = [w for w in tuned.walls if w.k_recommended is not None and w.force_error is not None]
+        assert len(notes) == len(drawn) >= 2
+        for t in notes:
+            e = t.get_window_extent(r)
+            assert box.x0 <= e.x0 and e.x1 <= box.x1 and box.y0 <= e.y0 and e.y1 <= box.y1, t.get_text()
+        lo, hi = ax.get_xlim()
+        shown = [t for t in ax.get_xticklabels() if t.get_text() and lo <= t.get_position()[0] <= hi]
+        assert len(shown) >= 2 and all(float(t.get_text()) > 0 for t in shown)
+        assert "stiffness" in ax.get_xlabel() and "force error" in ax.get_ylabel()
+    finally:
+        plt.close(ax.figure)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from matplotlib.ticker import NullFormatter
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ...results.status import RecommendRule
 from ..tune import wall_label
@@ -33,7 +33,7 @@ def tune_plot(result, ax=None):
     """
     ax = new_axes(ax, figsize=(8.0, 4.8))
     u = result.device.units
-    drawn = {}
+    drawn, notes = {}, []
     for i, w in enumerate(result.walls):
         k, e = w.k_recommended, w.force_error
         if k is None or e is None:
@@ -50,10 +50,10 @@ def tune_plot(result, ax=None):
         ax.plot([k], [100.0 * e], ls="none", marker="s" if i == 0 else "o", ms=8, color=colour,
                 mfc=colour if proven else "white", mew=1.6, label=label if key not in drawn else None)  # fmt: skip
         drawn[key] = True
-        ax.annotate(
+        notes.append(ax.annotate(
             wall_label(w.wall, w.device, u, result.device.period), (k, 100.0 * e), xytext=(6, 4),
             textcoords="offset points", fontsize=SMALL_FONTSIZE,
-        )  # fmt: skip
+        ))  # fmt: skip
     best = result.best
     if best is not None and best.k_recommended is not None and best.force_error is not None:
         ax.plot([best.k_recommended], [100.0 * best.force_error], ls="none", marker="*", ms=16, color="#e08214",
@@ -61,7 +61,9 @@ def tune_plot(result, ax=None):
     if result.max_force_error is not None:
         ax.axhline(100.0 * result.max_force_error, color="0.4", ls="--", lw=1.0, label="force-error cap")
     ax.set_xscale("log")
-    ax.xaxis.set_minor_formatter(NullFormatter())  # the decades' labels only: the minor ones overlap
+    ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))  # 1-2-5 labels: a span under a decade has some
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda x, _pos: f"{x:g}"))
+    ax.xaxis.set_minor_formatter(NullFormatter())  # the other minor ticks unlabelled: their labels overlap
     ax.margins(x=0.2, y=0.15)
     ax.set_ylim(bottom=0.0)
     ax.set_xlabel(f"recommended stiffness K ({u['stiffness']})")
@@ -69,4 +71,17 @@ def tune_plot(result, ax=None):
     ax.set_title(f"{result.device.name}: stiffness against fidelity at {result.velocity:g} {u['velocity']}")
     ax.grid(True, which="both", alpha=0.3)
     legend_outside(ax)
+    _labels_inside(ax, notes)
     return ax
+
+
+def _labels_inside(ax, notes) -> None:
+    """A point's label to its left where, to its right, it would reach the axes' frame (measured once the figure is
+    laid out: a draw)."""
+    ax.figure.canvas.draw()
+    renderer = ax.figure.canvas.get_renderer()
+    frame = ax.get_window_extent(renderer)
+    for note in notes:
+        if note.get_window_extent(renderer).x1 > frame.x1:
+            note.set_position((-6, 4))
+            note.set_horizontalalignment("right")
