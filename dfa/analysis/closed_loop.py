@@ -67,7 +67,7 @@ from ..model.loop import Loop
 from ..model.wall import Wall, WallParams
 from ..results.closed_loop import WALL_SHARE, ClosedLoopEvidence, ContactMeasure, WallForceCheck
 from ..results.simulation import CONTACTS, OUTCOMES
-from ..results.status import ClosedLoopStatus, ContactOutcome, SimulationOutcome, WallCheckStatus
+from ..results.status import ClosedLoopStatus, SimulationOutcome, WallCheckStatus
 from .identify import Identification, run_positions
 from .logged_cycle import AMPLITUDE_TOL, FREQUENCY_TOL
 from .simulation import GROWTH, SETTLE, STABLE_AMPLITUDE, contact_codes, simulate
@@ -224,7 +224,7 @@ def measure_contact(readings: np.ndarray, mu: float, wall: WallParams, *, diverg
         contact = CONTACTS[int(idx[0])]
     depth = float(np.max(n[inside]) - engage) if impacts else 0.0
     return ContactMeasure(int(n.size), impacts, int(np.argmax(inside)) if impacts else -1, int(inside.sum()), depth,
-                          SimulationOutcome(OUTCOMES[int(code)]), contact, float(amp), float(freq))  # fmt: skip
+                          SimulationOutcome.coerce(OUTCOMES[int(code)], "outcome"), contact, float(amp), float(freq))  # fmt: skip
 
 
 def _same(a: ContactMeasure, b: ContactMeasure) -> bool:

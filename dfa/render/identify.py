@@ -11,9 +11,9 @@ from ..model.units import hertz, position
 
 if TYPE_CHECKING:
     from ..model.catalogue import CatalogueEntry
+    from ..model.device import Device
     from ..model.wall import Wall
     from ..results.closed_loop import ClosedLoopEvidence, ContactMeasure, WallForceCheck
-    from ..model.device import Device
     from ..results.identify import Estimate, Identification, LoggedCycle, PeriodEffect, Timing, Undetermined
 
 __all__ = [

@@ -120,7 +120,9 @@ class ContactMeasure:
             out["penetration_si"] = position(device, self.penetration)
             out["amplitude_si"] = _finite(position(device, self.amplitude))
             out["frequency_hz"] = _finite(hertz(device, self.frequency))
-        why = "no cycle measured: " + ("at rest" if self.outcome is SimulationOutcome.REST else "the tail did not settle")
+        why = "no cycle measured: " + (
+            "at rest" if self.outcome is SimulationOutcome.REST else "the tail did not settle"
+        )
         reasons = {k: why for k in ("amplitude", "frequency", "amplitude_si", "frequency_hz")}
         return explain_nulls(out, reasons | {"contact": "a bilateral wall: no contact outcome"})
 
