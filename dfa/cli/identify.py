@@ -110,10 +110,14 @@ def _check_flags(args: argparse.Namespace) -> None:
     for flag, needs in (("--velocity", "--stiffness"), ("--report", "--stiffness"), ("--force", "--report"),
                         ("--wall-on", "--stiffness"), ("--virtual-damping", "--wall-on"), ("--delay", "--wall-on"),
                         ("--one-sided", "--wall-on")):  # fmt: skip
-        if getattr(args, _dest(flag)) not in (None, False, 0) and getattr(args, _dest(needs)) in (None, False):
+        if getattr(args, _dest(flag), None) not in (None, False, 0) and getattr(args, _dest(needs), None) in (
+            None,
+            False,
+        ):
             raise UsageError(f"{flag} needs {needs}: {NEEDS[flag]}")
-    if args.virtual_damping is not None and not args.virtual_damping >= 0.0:
-        raise UsageError(f"--virtual-damping {args.virtual_damping:g} is invalid: B must be >= 0 (0 for none)")
+    b = getattr(args, "virtual_damping", None)
+    if b is not None and not b >= 0.0:
+        raise UsageError(f"--virtual-damping {b:g} is invalid: B must be >= 0 (0 for none)")
     if args.velocity is not None and not args.velocity >= 0.0:
         raise UsageError(f"--velocity {args.velocity:g} is invalid: give the impact speed, >= 0")
     if args.bootstrap < 0:
@@ -206,7 +210,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
         out["loop"] = None
         out.setdefault("null_reasons", {})["/loop"] = "poor fit: no limits for a model that does not reproduce the log"
         lines += poor_fit_loop(r)
-        if args.wall_on:
+        if getattr(args, "wall_on", False):
             out["closed_loop"] = None
             out["null_reasons"]["/closed_loop"] = "poor fit: no prediction from a model that does not reproduce the log"
         return
@@ -223,7 +227,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}
     lines += loop_head(dev, v, args.velocity is None) + stiffness_screen(ans, rec)
     if r.timing.exceeds:  # the limits hold at T: how the proof moves at the longest period logged
-        eff = period_effect(dev, r.timing, v, args.delay)
+        eff = period_effect(dev, r.timing, v, getattr(args, "delay", 0))
         out["loop"]["period_effect"] = eff.to_dict()
         lines += period_effect_lines(eff, dev.units["stiffness"])
     if isinstance(wall, float) or wall.elements == ():  # the paper's spring: its cycles replayed across the intervals
@@ -233,7 +237,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     else:
         out["cycle"] = None
         out.setdefault("null_reasons", {})["/cycle"] = "the logged wall is not the paper's spring: see closed_loop"
-    if args.wall_on:
+    if getattr(args, "wall_on", False):
         _wall_on(args, r, log, out, lines)
     if args.report is not None:
         out["report"] = _report(args, dev, v)
@@ -244,7 +248,7 @@ def _logged_wall(args: argparse.Namespace) -> Any:
     """The wall of --stiffness, --virtual-damping, --delay, --one-sided with --wall-on; None without."""
     from ..analysis.closed_loop import logged_wall
 
-    if not args.wall_on:
+    if not getattr(args, "wall_on", False):
         return None
     return logged_wall(args.stiffness, damping=args.virtual_damping or 0.0, delay=args.delay,
                        one_sided=args.one_sided)  # fmt: skip
