@@ -217,8 +217,8 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     dev = r.cautious()
     dimensionless_params(dev, args.stiffness, names=LOOP_NAMES)  # names the identified values, not as flags
     v = _peak_speed(r.velocity_peak) if args.velocity is None else args.velocity
-    wall = _logged_wall(args) or args.stiffness
     try:
+        wall = _logged_wall(args) or args.stiffness
         loop = Loop(dev, wall)
     except DFAError as err:  # a damper too strong for the identified mass (B T/m), say
         raise UsageError(str(err)) from None
