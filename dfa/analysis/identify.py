@@ -84,6 +84,7 @@ from ..results.identify import Identification as Identification
 from ..results.identify import PeriodEffect as PeriodEffect
 from ..results.identify import Timing as Timing
 from ..results.identify import Undetermined
+from ..results.simulation import SimulationResult
 from ..results.status import IdentifyStatus, IdentifyWarning
 
 __all__ = [
@@ -93,6 +94,7 @@ __all__ = [
     "identify",
     "synthetic_log",
     "impact_log",
+    "run_positions",
     "estimate_period",
     "log_timing",
     "period_effect",
@@ -1040,24 +1042,77 @@ def synthetic_log(
     return DeviceLog(np.arange(f.size) * t, delta * np.floor(xi), logged, source=source, rotary=dev.rotary)
 
 
-def impact_log(device: Device, stiffness: float, velocity: float, samples: int, *, source: str = "impact") -> DeviceLog:
-    """A log of an impact on the paper's spring (exact simulation): readings and the wall's force, per sample.
+def impact_log(
+    device: Device, stiffness: float | Wall, velocity: float, samples: int, *, source: str = "impact"
+) -> DeviceLog:
+    """A log of an impact on a wall (exact simulation): readings and the wall's force, per sample.
 
-    The device arrives at ``velocity`` (m/s) at the wall's origin; the logged force is the wall's,
-    −KΔ(⌊x/Δ⌋ + ½) (paper eq. 2), which identification takes as the held force like any other. A run that
+    The device arrives at ``velocity`` (m/s) at the wall's origin (the first reading inside); the logged force is
+    the wall's, applied over each sample: for the paper's spring −KΔ(⌊x/Δ⌋ + ½) (paper eq. 2), for a
+    :class:`~dfa.model.wall.Wall` (a damper, a delay, one-sided: :func:`dfa.analysis.closed_loop.logged_wall`)
+    its force replayed from the run, which identification takes as the held force like any other. A run that
     diverges is logged up to its divergence.
+
+    Parameters
+    ----------
+    device : Device
+        The device.
+    stiffness : float or Wall
+        K of the paper's spring in N/m (rotary N·m/rad), or the wall.
+    velocity : float
+        Impact speed, m/s (rad/s).
+    samples : int
+        Samples logged, at least :data:`dfa.model.log.MIN_SAMPLES`.
+    source : str, optional
+        The log's name (default ``"impact"``).
+
+    Returns
+    -------
+    DeviceLog
+        Times hT, readings Δ⌊x/Δ⌋ in the wall's frame, the wall's force.
     """
     from .simulation import simulate
 
     dev = check_type("device", device, Device, "build one with dfa.Device(...)")
     check_int("samples", samples, MIN_SAMPLES, f"a log needs at least {MIN_SAMPLES} samples")
-    loop = Loop(dev, Wall(stiffness))
-    r = simulate(loop, dev.xi_dot(velocity), samples - 1, record=True)
-    assert r.xi is not None
-    keep = int(np.argmax(~np.isfinite(r.xi))) if not np.all(np.isfinite(r.xi)) else samples  # up to a divergence
-    force = r.applied_force()[:keep] * stiffness * dev.resolution
+    wall = stiffness if isinstance(stiffness, Wall) else Wall(stiffness)
+    r = simulate(Loop(dev, wall), dev.xi_dot(velocity), samples - 1, record=True)
+    xi = run_positions(r)
+    keep = int(np.argmax(~np.isfinite(xi))) if not np.all(np.isfinite(xi)) else samples  # up to a divergence
+    force = np.nan_to_num(r.applied_force(), nan=0.0)[:keep] * wall.stiffness * dev.resolution
     t = np.arange(keep) * dev.period
-    return DeviceLog(t, dev.resolution * np.floor(r.xi[:keep]), force, source=source, rotary=dev.rotary)
+    return DeviceLog(t, dev.resolution * np.floor(xi[:keep]), force, source=source, rotary=dev.rotary)
+
+
+def run_positions(run: SimulationResult) -> np.ndarray:
+    """A recorded run's positions ξ (ticks) at every instant, continued past a one-sided wall's exit.
+
+    The simulator ends a run that left a one-sided wall for good (outcome ``left``: outside, moving away, no
+    force will act again) and records NaN after it; here the device moves on freely from its last state (the
+    exact per-sample solution under no force, :func:`dfa.core.open_loop.open_loop_kernel`), as a log of it would
+    go on. Any other run's record is returned as it is (NaN past a divergence).
+
+    Parameters
+    ----------
+    run : SimulationResult
+        A recorded run (``record=True``).
+
+    Returns
+    -------
+    numpy.ndarray
+        ξ at the instants 0 … samples, ticks.
+    """
+    sim = check_type("run", run, SimulationResult, "simulate with record=True")
+    if sim.xi is None or sim.xi_dot is None:
+        raise DFAValueError("run.xi = None is invalid: the trajectory was not recorded; simulate with record=True")
+    xi = np.array(sim.xi, dtype=float)
+    if sim.outcome.value != "left" or np.all(np.isfinite(xi)):
+        return xi
+    last = int(np.flatnonzero(np.isfinite(xi))[-1])
+    rest = np.empty(xi.size - last)
+    open_loop_kernel(float(xi[last]), float(sim.xi_dot[last]), np.zeros(rest.size), sim.mu, sim.beta, sim.sigma, rest)
+    xi[last:] = rest
+    return xi
 
 
 def period_effect(device: Device, timing: Timing, velocity: float, delay: int = 0) -> PeriodEffect:

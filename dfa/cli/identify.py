@@ -11,7 +11,7 @@ from .._io import FIGURE_SUFFIXES, check_output_file, check_output_folder, make_
 from ..errors import DFAError
 from ..plausibility import warn_implausible
 from .output import add_progress_args, emit, progress, save_png, say
-from .parsing import UsageError, integer, name, number
+from .parsing import UsageError, delay, integer, name, number
 
 COMMAND = "identify"
 HELP = "identify a device (m, b, c, Δ, T) from a logged run (CSV with t, x, f)"
@@ -43,6 +43,18 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    "their 95 %% intervals (as `dfa stiffness`), a wall "
                    "of stiffness K in N/m (rotary N·m/rad) assessed, and a sustained oscillation in a log of that "
                    "wall set next to the predicted limit cycles; default: none")  # fmt: skip
+    g = p.add_argument_group("the wall the log was taken with (default: a free-motion log)")
+    g.add_argument("--wall-on", action="store_true", help="the log was taken with the wall of --stiffness on "
+                   "(and --virtual-damping, --delay, --one-sided; x in the wall's frame, the wall at x = 0 occupying "
+                   "x >= 0; f the force it applied): check f against that wall's law and set the logged contact "
+                   "beside the exact simulation of the identified device with that wall; default: off")  # fmt: skip
+    g.add_argument("--virtual-damping", type=number("--virtual-damping", "N·s/m"), metavar="B",
+                   help="with --wall-on: the wall's virtual damper in N·s/m (rotary N·m·s/rad) on the "
+                   "backward-difference velocity (default: none)")  # fmt: skip
+    g.add_argument("--delay", type=delay, default=0, metavar="D", help="with --wall-on: the wall's computational "
+                   "delay in whole samples: the force of sample h uses the reading of sample h − D (default 0)")  # fmt: skip
+    g.add_argument("--one-sided", action="store_true", help="with --wall-on: the wall pushes only while the reading "
+                   "is inside (x >= 0) and never pulls (default: the paper's bilateral spring)")  # fmt: skip
     p.add_argument("--velocity", type=number("--velocity", "m/s"), metavar="V",
                    help="impact speed for --stiffness in m/s (rad/s); default: the log's peak speed")  # fmt: skip
     p.add_argument("--bootstrap", type=integer("--bootstrap"), default=BOOTSTRAP, metavar="N",
@@ -95,9 +107,17 @@ def _check_flags(args: argparse.Namespace) -> None:
     """Refuse flag values and combinations that cannot run, before the log is read."""
     for flag in ("--resolution", "--period", "--stiffness"):
         _positive(flag, getattr(args, flag[2:]))
-    for flag, needs in (("--velocity", "--stiffness"), ("--report", "--stiffness"), ("--force", "--report")):
-        if getattr(args, flag[2:]) not in (None, False) and getattr(args, needs[2:]) is None:
+    for flag, needs in (("--velocity", "--stiffness"), ("--report", "--stiffness"), ("--force", "--report"),
+                        ("--wall-on", "--stiffness"), ("--virtual-damping", "--wall-on"), ("--delay", "--wall-on"),
+                        ("--one-sided", "--wall-on")):  # fmt: skip
+        if getattr(args, _dest(flag), None) not in (None, False, 0) and getattr(args, _dest(needs), None) in (
+            None,
+            False,
+        ):
             raise UsageError(f"{flag} needs {needs}: {NEEDS[flag]}")
+    b = getattr(args, "virtual_damping", None)
+    if b is not None and not b >= 0.0:
+        raise UsageError(f"--virtual-damping {b:g} is invalid: B must be >= 0 (0 for none)")
     if args.velocity is not None and not args.velocity >= 0.0:
         raise UsageError(f"--velocity {args.velocity:g} is invalid: give the impact speed, >= 0")
     if args.bootstrap < 0:
@@ -114,6 +134,10 @@ def _check_flags(args: argparse.Namespace) -> None:
                       ("velocity", "--velocity")):  # fmt: skip
         if getattr(args, key) is not None:
             warn_implausible(key, getattr(args, key), rotary=args.rotary, subject=flag)
+
+
+def _dest(flag: str) -> str:
+    return flag[2:].replace("-", "_")
 
 
 def _check_against_grid(args: argparse.Namespace, delta: float, t: float) -> None:
@@ -155,6 +179,10 @@ NEEDS = {
     "--velocity": "it is the impact speed of the wall the device is checked with",
     "--report": "the report is of the identified device and a wall of K",
     "--force": "it lets --report replace a report made for another device",
+    "--wall-on": "the wall the log was taken with is a spring of stiffness K",
+    "--virtual-damping": "it describes the wall the log was taken with",
+    "--delay": "it describes the wall the log was taken with",
+    "--one-sided": "it describes the wall the log was taken with",
 }
 
 
@@ -182,24 +210,61 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
         out["loop"] = None
         out.setdefault("null_reasons", {})["/loop"] = "poor fit: no limits for a model that does not reproduce the log"
         lines += poor_fit_loop(r)
+        if getattr(args, "wall_on", False):
+            out["closed_loop"] = None
+            out["null_reasons"]["/closed_loop"] = "poor fit: no prediction from a model that does not reproduce the log"
         return
     dev = r.cautious()
     dimensionless_params(dev, args.stiffness, names=LOOP_NAMES)  # names the identified values, not as flags
     v = _peak_speed(r.velocity_peak) if args.velocity is None else args.velocity
-    ans = design_answer(Loop(dev, args.stiffness), v, assess=True)
+    try:
+        wall = _logged_wall(args) or args.stiffness
+        loop = Loop(dev, wall)
+    except DFAError as err:  # a damper too strong for the identified mass (B T/m), say
+        raise UsageError(str(err)) from None
+    ans = design_answer(loop, v, assess=True)
     rec = recommend_stiffness(ans)
     out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}
     lines += loop_head(dev, v, args.velocity is None) + stiffness_screen(ans, rec)
     if r.timing.exceeds:  # the limits hold at T: how the proof moves at the longest period logged
-        eff = period_effect(dev, r.timing, v)
+        eff = period_effect(dev, r.timing, v, getattr(args, "delay", 0))
         out["loop"]["period_effect"] = eff.to_dict()
         lines += period_effect_lines(eff, dev.units["stiffness"])
-    cyc = compare_logged_cycle(r, log, args.stiffness)
-    out["cycle"] = cyc.to_dict()
-    lines += cycle_lines(cyc)
+    if isinstance(wall, float) or wall.elements == ():  # the paper's spring: its cycles replayed across the intervals
+        cyc = compare_logged_cycle(r, log, args.stiffness)
+        out["cycle"] = cyc.to_dict()
+        lines += cycle_lines(cyc)
+    else:
+        out["cycle"] = None
+        out.setdefault("null_reasons", {})["/cycle"] = "the logged wall is not the paper's spring: see closed_loop"
+    if getattr(args, "wall_on", False):
+        _wall_on(args, r, log, out, lines)
     if args.report is not None:
         out["report"] = _report(args, dev, v)
         lines += [f"written {p}" for p in out["report"]["paths"]]
+
+
+def _logged_wall(args: argparse.Namespace) -> Any:
+    """The wall of --stiffness, --virtual-damping, --delay, --one-sided with --wall-on; None without."""
+    from ..analysis.closed_loop import logged_wall
+
+    if not getattr(args, "wall_on", False):
+        return None
+    return logged_wall(args.stiffness, damping=args.virtual_damping or 0.0, delay=args.delay,
+                       one_sided=args.one_sided)  # fmt: skip
+
+
+def _wall_on(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], lines: list[str]) -> None:
+    """The log's force column against the wall, its contact beside the prediction (--wall-on)."""
+    from ..analysis.closed_loop import closed_loop_evidence
+    from ..render.identify import closed_loop_lines
+
+    try:
+        ev = closed_loop_evidence(r, log, _logged_wall(args))
+    except DFAError as err:
+        raise UsageError(str(err)) from None
+    out["closed_loop"] = ev.to_dict()
+    lines += closed_loop_lines(ev)
 
 
 def _write_device(args: argparse.Namespace, r: Any) -> str:

@@ -12,6 +12,8 @@ from ..model.units import hertz, position
 if TYPE_CHECKING:
     from ..model.catalogue import CatalogueEntry
     from ..model.device import Device
+    from ..model.wall import Wall
+    from ..results.closed_loop import ClosedLoopEvidence, ContactMeasure, WallForceCheck
     from ..results.identify import Estimate, Identification, LoggedCycle, PeriodEffect, Timing, Undetermined
 
 __all__ = [
@@ -19,6 +21,8 @@ __all__ = [
     "loop_head",
     "device_flags",
     "cycle_lines",
+    "closed_loop_lines",
+    "wall_text",
     "poor_fit_loop",
     "timing_lines",
     "period_effect_lines",
@@ -185,6 +189,63 @@ def cycle_lines(c: LoggedCycle) -> list[str]:
     cycles = ", ".join(f"{number(a, 3)} ticks at {number(hertz(dev, w), 4)} Hz"
                        for a, w in c.describing) or "none"  # fmt: skip
     lines.append(fill(f"describing function's stable cycles (eq. 36-45, exact hold): {cycles}"))
+    return lines
+
+
+def wall_text(wall: Wall, units: dict[str, str]) -> str:
+    """The logged wall in a few words: K, B, the delay, one-sided or bilateral."""
+    from ..model.elements import Damper, Delay, OneSided
+
+    damper, lag, side = wall.element(Damper), wall.element(Delay), wall.element(OneSided)
+    parts = [f"K = {number(wall.stiffness, 4)} {units['stiffness']}"]
+    parts += [f"B = {number(damper.damping, 4)} {units['damping']}"] if damper is not None else []
+    parts += [f"delay {lag.delay} sample{'s' if lag.delay != 1 else ''}"] if lag is not None else []
+    return ", ".join(parts) + (", one-sided" if side is not None else ", bilateral")
+
+
+def _check_line(c: WallForceCheck) -> str:
+    """The force column against the wall's law, in one sentence."""
+    u = c.device.units
+    head = (f"{c.within * 100:.3g} % of {c.samples} samples within ½ K Δ = {number(c.force_step, 3)} {u['force']} of "
+            f"the wall's law of the readings, largest miss {number(c.max_mismatch, 2)} {u['force']}")  # fmt: skip
+    if c.status.value == "consistent":
+        return fill(f"force column: the wall's ({head})")
+    ratio = "" if c.ratio != c.ratio else f"; logged/law where it pushes: {number(c.ratio, 3)}"
+    return fill(f"warning: force column: {c.status.message} ({head}{ratio})")
+
+
+def _measure_rows(m: ContactMeasure | None, dev: Device) -> list[str]:
+    """One column of the contact table."""
+    if m is None:
+        return ["–"] * 7
+    u = dev.units
+    cyc = m.outcome.value in ("oscillating", "chatter", "undecided") and m.amplitude == m.amplitude
+    amp = f"{number(m.amplitude, 3)} ticks ({number(position(dev, m.amplitude), 3)} {u['resolution']})" if cyc else "–"
+    hz = f"{number(hertz(dev, m.frequency), 4)} Hz" if cyc and m.frequency == m.frequency else "–"
+    depth = f"{number(m.penetration, 4)} ticks ({number(position(dev, m.penetration), 3)} {u['resolution']})"
+    return [str(m.impacts), str(m.contact_samples), depth, m.outcome.value,
+            "–" if m.contact is None else m.contact.value, amp, hz]  # fmt: skip
+
+
+def closed_loop_lines(e: ClosedLoopEvidence) -> list[str]:
+    """A log taken with the wall on: the force check, the logged contact beside the prediction
+    (:mod:`dfa.analysis.closed_loop`)."""
+    dev = e.device
+    lines = ["", f"logged with the wall on: {wall_text(e.wall, dev.units)}", _check_line(e.check)]
+    if e.predicted is None:
+        return [*lines, fill(f"contact: {e.status.message}")]
+    names = ["impacts", "samples inside", "deepest reading", "outcome", "contact", "amplitude (±½ tick)", "frequency"]
+    rows = [[n, a, b] for n, a, b in zip(names, _measure_rows(e.logged, dev), _measure_rows(e.predicted, dev),
+                                             strict=True)]  # fmt: skip
+    speed = f"{number(e.impact_speed, 4)} {dev.units['velocity']}"
+    lines.append(fill(f"contact from sample {e.start} at the fitted {speed}, against the exact simulation of the "
+                      "identified device with this wall over the rest of the log:"))  # fmt: skip
+    lines += text_table(rows, ["", "logged", "predicted"]).split("\n")
+    after = e.eventual.value if e.eventual is not None else "–"
+    contact = e.eventual_contact.value if e.eventual_contact is not None else after
+    after += f" ({contact})" if contact != after else ""
+    lines.append(fill(f"the simulation run on (50 000 samples or more) ends: {after}"))
+    lines.append(fill(f"contact {e.status.value}: {e.status.message}"))
     return lines
 
 

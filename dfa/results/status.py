@@ -31,6 +31,8 @@ __all__ = [
     "IdentifyStatus",
     "IdentifyWarning",
     "LoggedCycleStatus",
+    "WallCheckStatus",
+    "ClosedLoopStatus",
     "CriterionStatus",
     "CheckStatus",
     "StiffnessStatus",
@@ -642,6 +644,34 @@ class LoggedCycleStatus(StatusEnum):
         "delay or filter, or dynamics the model lacks",
     )
     NO_OSCILLATION = ("no_oscillation", "the log ends without a sustained oscillation")
+
+
+class WallCheckStatus(StatusEnum):
+    """Whether a log's force column is the given wall's law of its readings
+    (:class:`dfa.results.closed_loop.WallForceCheck`)."""
+
+    CONSISTENT = ("consistent", "the force column is the given wall's force of the logged readings")
+    MISMATCH = (
+        "mismatch",
+        "the force column is not the given wall's force of the logged readings: another K, B or delay, the wall "
+        "elsewhere than x = 0, or a force logged when computed rather than when applied",
+    )
+
+
+class ClosedLoopStatus(StatusEnum):
+    """How the logged contact compares with the prediction for the identified device and the logged wall
+    (:class:`dfa.results.closed_loop.ClosedLoopEvidence`)."""
+
+    AGREES = (
+        "agrees",
+        "the logged contact is the one the exact simulation predicts for the identified device and this wall",
+    )
+    DIFFERS = (
+        "differs",
+        "the logged contact is not the one predicted for the identified device and this wall: another wall, "
+        "values outside their intervals, or dynamics the model lacks",
+    )
+    NO_CONTACT = ("no_contact", "the log holds no reading inside the wall (x >= 0): no contact to compare")
 
 
 class IdentifyWarning(StatusEnum):
