@@ -29,7 +29,18 @@ from .inputs import Inputs
 from .output import working
 from .parsing import UsageError
 
-__all__ = ["MARGIN", "STIFFNESS", "RULES", "limiting", "configuration_json", "configuration_line", "pinned"]
+__all__ = [
+    "MARGIN",
+    "STIFFNESS",
+    "RULES",
+    "limiting",
+    "configuration_json",
+    "configuration_line",
+    "pinned",
+    "add_configurations_plot_arg",
+    "check_configurations_plot",
+    "write_configurations_plot",
+]
 
 #: The rule of a command given a stiffness (``dfa check``'s).
 MARGIN = "smallest_margin"
@@ -145,3 +156,42 @@ def pinned(inp: Inputs) -> tuple[str, ...]:
     if row.normal is not None:
         out += ("--normal", ",".join(repr(float(x)) for x in row.normal))
     return out
+
+
+def add_configurations_plot_arg(p: argparse.ArgumentParser) -> None:
+    """``--configurations-plot FILE``: the figure of every configuration's answer (``dfa stiffness``, ``dfa check``)."""
+    p.add_argument(
+        "--configurations-plot",
+        dest="configurations_plot",
+        metavar="FILE",
+        help="write the figure of every configuration's answer to FILE, .png, .pdf or .svg by its suffix: over the "
+        "pose grid when every configuration has a pose (the limiting one starred), else a bar each; needs a device "
+        "file with configurations (default: none)",
+    )
+
+
+def check_configurations_plot(args: argparse.Namespace, inp: Inputs) -> None:
+    """--configurations-plot: refused (exit 2) without configurations to draw, or for a file it cannot write."""
+    from .._io import FIGURE_SUFFIXES, check_output_file
+
+    path = getattr(args, "configurations_plot", None)
+    if path is None:
+        return
+    if not inp.configurations:
+        raise UsageError(
+            f"--configurations-plot {path!r} needs a device file with [[devices.configurations]]: "
+            + ("--configuration chose one device" if getattr(args, "configuration", None) else "the device has none")
+            + "; drop the flag, or give such a file without --configuration"
+        )
+    check_output_file("--configurations-plot", path, FIGURE_SUFFIXES)
+
+
+def write_configurations_plot(args: argparse.Namespace, w: Any) -> str | None:
+    """Write ``w.plot()`` (:class:`~dfa.results.configurations.WorstConfiguration`) to --configurations-plot,
+    atomically; None when not asked."""
+    from .output import save_png
+
+    path = getattr(args, "configurations_plot", None)
+    if path is None:
+        return None
+    return save_png("--configurations-plot", path, w.plot())
