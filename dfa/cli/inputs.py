@@ -131,7 +131,8 @@ def _add_counts_name_args(g: Any, command: str) -> None:
         type=_normal_arg,
         metavar="NX,NY,NZ",
         help="the wall's normal for the configurations with an inertia matrix, three numbers (made a unit vector, "
-        "stated), replacing the file's normal and the search of the worst direction; default: the file's normal, "
+        "stated; a leading minus needs '=': --normal=-1,0,0), replacing the file's normal and the search of the worst "
+        "direction; default: the file's normal, "
         "else the worst direction",
     )
     g.add_argument(
