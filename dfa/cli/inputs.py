@@ -108,7 +108,8 @@ def _normal_arg(text: str) -> tuple[float, float, float]:
         values = []
     if len(values) != 3 or not all(math.isfinite(x) for x in values):
         raise argparse.ArgumentTypeError(
-            f"{text[:40]!r} is invalid: --normal takes three finite numbers separated by commas, e.g. --normal 0,0,1"
+            f"{text[:40]!r} is not three numbers: --normal takes three finite numbers separated by commas, e.g. "
+            "--normal 0,0,1"
         )
     if not any(values):
         raise argparse.ArgumentTypeError(
