@@ -199,3 +199,18 @@ def test_tune_prints_an_export_command_pinned_to_the_configuration_it_tuned():
     cmd = export_command(argv, sub, TunedWall(dev, Wall.of(1.0), 100.0), dev, pin)
     assert cmd.startswith("dfa export --device-file arm.toml --velocity 0.05 --configuration far --normal 0.0,0.6,0.8")
     assert "near" not in cmd and "--dampings" not in cmd
+
+
+@pytest.mark.slow  # one full answer (~4 s): the one end-to-end check of the stiffness rule outside dfa stiffness
+def test_export_velocity_exports_the_smallest_recommended_k_of_dfa_stiffness(capsys, tmp_path):
+    path = tmp_path / "arm.toml"
+    path.write_text(HEAD.replace("period = 0.002", "period = 0.001").replace("stiffness = 80.0\n", "")
+                    + "".join("\n[[devices.configurations]]\n" + t + "\n" for t in TWO), encoding="utf-8")  # fmt: skip
+    code, out, err = _run(capsys, "export", "--device-file", str(path), "--velocity", "0.1", "--format", "json")
+    assert code == 0 and err.startswith("dfa export: limiting configuration: slippery (recommended K")
+    got = json.loads(out)
+    rows = _json(capsys, "stiffness", "--device-file", str(path), "--velocity", "0.1", "--quick")["rows"]
+    ks = {r["name"]: r["value"] for r in rows}  # dfa stiffness's rule: the proven K of each, the smallest limits
+    assert min(ks, key=ks.__getitem__) == "slippery" and got["rule"] == "proven"
+    assert got["wall"]["stiffness"] == pytest.approx(ks["slippery"], rel=1e-12)
+    assert got["device"]["name"] == "Arm [slippery]"
