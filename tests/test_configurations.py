@@ -204,10 +204,8 @@ def test_two_configurations_of_one_name_are_refused(tmp_path):
         load_device_file(_file(tmp_path, 'name = "a"', 'name = "a"\nmass = 0.1'))
 
 
-def test_other_commands_need_configuration_and_a_name_the_file_has(capsys, tmp_path):
+def test_configuration_must_name_one_the_file_has(capsys, tmp_path):
     path = _file(tmp_path, 'name = "near"', 'name = "far"\nmass = 0.064')
-    code, _out, err = _run(capsys, "params", "--device-file", path)
-    assert code == 2 and err.count("\n") == 1 and "--configuration NAME" in err and "dfa params" in err
     code, _out, err = _run(capsys, "params", "--device-file", path, "--configuration", "farther")
     assert code == 2 and "'near', 'far'" in err
     code, _out, err = _run(capsys, "params", "--device", "impulse", "--configuration", "far")
@@ -219,10 +217,21 @@ def test_other_commands_need_configuration_and_a_name_the_file_has(capsys, tmp_p
     assert got["mu"] == pytest.approx(one["mu"], rel=1e-12) and got["sigma"] == pytest.approx(one["sigma"], rel=1e-12)
 
 
-def test_a_directional_configuration_needs_a_normal_outside_stiffness_and_check(capsys, tmp_path):
-    path = _file(tmp_path, 'name = "pose"\ninertia = [[0.05, 0, 0], [0, 0.04, 0], [0, 0, 0.03]]')
-    code, _out, err = _run(capsys, "params", "--device-file", path, "--configuration", "pose")
-    assert code == 2 and "no normal" in err and err.count("\n") == 1
+def test_a_directional_configuration_elsewhere_is_its_worst_direction_named(capsys, tmp_path):
+    path = _file(tmp_path, 'name = "pose"\ninertia = [[0.05, 0, 0], [0, 0.04, 0], [0, 0, 0.03]]\n'
+                 "resolution = [314e-6, 628e-6, 400e-6]")  # fmt: skip
+    code, out, err = _run(capsys, "params", "--device-file", path, "--configuration", "pose", "--json")
+    assert code == 0, err
+    got = json.loads(out)
+    normal = got["configuration"]["normal"]
+    assert got["configuration"]["rows"][0]["searched"] is True
+    d = np.array([314e-6, 628e-6, 400e-6])  # σ = c/(K Δ_n) is smallest where Δ_n = Σ|n_i| Δ_i is largest: n ∝ Δ
+    assert np.abs(normal) == pytest.approx(d / np.linalg.norm(d), abs=1e-3)
+    pinned = json.loads(_run(capsys, "params", "--device-file", path, "--normal=" + ",".join(map(repr, normal)),
+                             "--json")[1])  # fmt: skip
+    assert (pinned["mu"], pinned["sigma"]) == (got["mu"], got["sigma"])  # two answers to one question agree
+    code, out, _ = _run(capsys, "params", "--device-file", path)
+    assert code == 0 and "along the worst n = (" in out
 
 
 def test_check_json_and_table_name_the_smallest_margin(capsys, tmp_path):

@@ -8,6 +8,7 @@ from typing import Any
 from ..analysis.criterion import criterion_from_groups, device_criterion
 from ..model.loop import Loop
 from ..model.wall import Wall, WallParams
+from .configurations import add_configurations_plot_arg, check_configurations_plot, write_configurations_plot
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, say, table
@@ -29,6 +30,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_wall_args(p)
     add_contact_args(p)
     add_passivity_args(p)
+    add_configurations_plot_arg(p)
     p.add_argument(
         "--xi0",
         type=number("--xi0", "ticks"),
@@ -119,6 +121,7 @@ def run(args: argparse.Namespace) -> int:
     from ..render.text import check_rows
 
     inp = resolve(args, dimensionless=True, need_mu=False, configurations=True)
+    check_configurations_plot(args, inp)
     xd, v = speed(args, inp)
     assert xd is not None
     wall = wall_from_args(args, inp.device, inp.stiffness)
@@ -165,9 +168,12 @@ def _worst(args: argparse.Namespace, inp: Inputs, wall: Wall | None, xd: float, 
         kw["history"] = args.history
     w = worst_check(dev, inp.configurations, vel, loop_wall, **kw)
     (detail,) = w.details
+    figure = write_configurations_plot(args, w)
     if args.json:
         out = w.to_dict()
         out["check"] = detail.to_dict()
+        if figure is not None:
+            out["configurations_plot"] = figure
         emit(wall_json(out, wall, inp))
         return 0
     say(inp.label)
@@ -178,4 +184,6 @@ def _worst(args: argparse.Namespace, inp: Inputs, wall: Wall | None, xd: float, 
     vu = dev.units["velocity"]
     rows = check_rows(detail, not args.no_quantization, vu) if hasattr(detail, "region") else check_table_rows(detail)
     say(table(rows))
+    if figure is not None:
+        say(f"configurations figure written to {figure}")
     return 0

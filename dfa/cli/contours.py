@@ -7,6 +7,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
+from .configurations import MARGIN, configuration_json, configuration_line, limiting
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import (
     WORK_TIME_LIMIT,
@@ -64,6 +65,9 @@ def _print(args: argparse.Namespace, c: ContourMaps, d: dict[str, Any], inp: Inp
         from ..render.text import flagged_text  # here: it loads the limit-cycle package
 
         say(f"flagged (NaN): {flagged_text(c)}")
+    line = configuration_line(inp)
+    if line is not None:
+        say(line)
     if inp is not None and inp.params is not None and inp.device is not None and inp.stiffness is not None:
         u = inp.device.units
         say(
@@ -102,6 +106,10 @@ def run(args: argparse.Namespace) -> int:
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
     mu, inp = plane_device(args)
+    if inp is not None and inp.configurations:  # the smallest margin at speed 0 (σ − σ₀); the plane is its μ
+        inp = limiting(args, inp, MARGIN)
+        assert inp.params is not None
+        mu = inp.params.mu
     if inp is not None and inp.device is not None and inp.device.hand is not None and inp.device.hand.stiffness:
         raise UsageError(
             f"--hand-stiffness {inp.device.hand.stiffness:g} is not covered here: the contour maps are the paper's "
@@ -136,6 +144,7 @@ def run(args: argparse.Namespace) -> int:
         mark_operating_point(axes, inp)
         d["plot"] = save_png("--plot", args.plot, axes[0])
     d.update(device_json(inp))
+    d.update(configuration_json(inp))
     if inp is not None and inp.device is not None and inp.stiffness is not None:
         d["frequency_hz_per_rad_per_sample"] = 1.0 / (2.0 * math.pi * inp.device.period)
     if args.json:

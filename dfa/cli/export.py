@@ -20,8 +20,9 @@ from .._io import atomic_write_text, check_output_file
 from ..errors import DFAError
 from ..model.loop import Loop
 from ..model.wall import Wall
+from .configurations import MARGIN, STIFFNESS, configuration_line, limiting
 from .contact import add_contact_args
-from .inputs import add_device_group, device_given, resolve, speed
+from .inputs import Inputs, add_device_group, device_given, resolve, speed
 from .output import working
 from .parsing import UsageError, add_margin_arg, number
 from .passivity import add_passivity_args
@@ -29,6 +30,7 @@ from .walls import add_wall_args, given_flags, wall_from_args
 
 if TYPE_CHECKING:
     from ..results.deploy import DeployableWall
+    from ..results.require import Recommendation
 
 COMMAND = "export"
 HELP = (
@@ -116,7 +118,6 @@ def _recommended(args: argparse.Namespace, loop: Loop, v: float, command: str) -
     from ..analysis.limits.kmax import design_answer
     from ..analysis.limits.recommend import recommend_stiffness
     from ..model.elements import PassivityController
-    from ..results.deploy import DeployableWall
 
     with working(args):
         ans = design_answer(loop, v)
@@ -124,6 +125,13 @@ def _recommended(args: argparse.Namespace, loop: Loop, v: float, command: str) -
         if ans.wall.element(PassivityController) is not None:
             plain = design_answer(Loop(loop.device, ans.wall.without_controller()), v)
         rec = recommend_stiffness(ans, args.margin, plain=plain)
+    return _deployable(v, rec, command)
+
+
+def _deployable(v: float, rec: Recommendation, command: str) -> DeployableWall:
+    """The recommended K as a wall to deploy; refused (exit 2) without one."""
+    from ..results.deploy import DeployableWall
+
     if rec.k_recommended is None:
         raise UsageError(
             f"--velocity {v:g}: no K to export: {rec.status.message}; give the stiffness with --stiffness K "
@@ -147,7 +155,7 @@ def deployable(args: argparse.Namespace) -> DeployableWall:
             "to export the K recommended for V"
         )
     args.xi_dot = None  # dfa.cli.inputs.speed reads it; export takes speeds in physical units only
-    inp = resolve(args, dimensionless=False, need_stiffness=args.velocity is None)
+    inp = resolve(args, dimensionless=False, need_stiffness=args.velocity is None, configurations=True)
     dev = inp.device
     assert dev is not None
     command = command_line(args)
@@ -158,6 +166,11 @@ def deployable(args: argparse.Namespace) -> DeployableWall:
             print(f"dfa export: no --stiffness or --velocity: the device's own K = {k:g} {dev.units['stiffness']}, "
                   "rule 'given'", file=sys.stderr)  # fmt: skip
         ctl = wall_from_args(args, dev, k)
+        if inp.configurations:  # K given: the smallest margin at speed 0, σ − σ₀ (dfa check's rule)
+            inp = _limiting(args, limiting(args, inp, MARGIN, wall=ctl))
+            dev = inp.device
+            assert dev is not None
+            ctl = wall_from_args(args, dev, k)
         wall = ctl if ctl is not None else Wall.of(k, delay=args.delay)
         return DeployableWall.given(Loop(dev, wall), command)
     _xd, v = speed(args, inp)
@@ -167,7 +180,19 @@ def deployable(args: argparse.Namespace) -> DeployableWall:
     check_margin(args.margin)
     ctl = wall_from_args(args, dev, 1.0)  # K is what is searched: any K states the elements
     wall = ctl if ctl is not None else Wall.of(1.0, delay=args.delay)
+    if inp.configurations:  # K searched: the smallest recommended K (dfa stiffness's rule), its answer exported
+        inp = _limiting(args, limiting(args, inp, STIFFNESS, velocity=v, wall=wall, margin=args.margin))
+        assert inp.worst is not None
+        return _deployable(v, inp.worst.details[1], command)
     return _recommended(args, Loop(dev, wall), v, command)
+
+
+def _limiting(args: argparse.Namespace, inp: Inputs) -> Inputs:
+    """The limiting configuration named on stderr (stdout may be the export itself)."""
+    line = configuration_line(inp)
+    if line is not None:
+        print(f"dfa export: {line}", file=sys.stderr)
+    return inp
 
 
 def run(args: argparse.Namespace) -> int:

@@ -10,6 +10,7 @@ file's key) and the likely slip (:mod:`dfa.plausibility`).
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -18,11 +19,12 @@ from typing import Any
 from ..checks import check_beta, check_mu, check_real, check_sigma, check_speed
 from ..errors import DFAError
 from ..model.catalogue import CatalogueEntry, ResolvedDevice, get_device, load_device_file, resolve_device
-from ..model.configurations import Configuration
+from ..model.configurations import Configuration, unit_normal
 from ..model.device import DEVICE_FIELDS, STIFFNESS, Device, Params, dimensionless_params
 from ..model.hand import HAND_PRESETS, Hand, get_hand
 from ..plausibility import warn_implausible
 from ..render.hand import hand_label
+from ..results.configurations import WorstConfiguration
 from .parsing import UsageError, integer, name, number
 
 __all__ = [
@@ -62,18 +64,77 @@ _FLAG_NAMES = {k: f for k, (f, _u) in PHYS_FLAGS.items()} | {
 }
 
 
-#: The commands that answer for the worst of a device file's configurations (the others analyse one).
+#: The commands that answer for the worst of a device file's configurations, with a table of every one.
 CONFIGURATION_COMMANDS = ("stiffness", "check", "report")
+#: The commands whose limiting configuration has the smallest recommended K (dfa stiffness's rule): the rest
+#: of the --configuration help.
+_STIFFNESS_RULE = {
+    "stiffness": "",
+    "report": "",
+    "tune": ", the held wall's elements",
+    "zwidth": " with the Z-width's wall, whose K_max(B) rows are then that configuration's (not a minimum over "
+    "every configuration, row by row)",
+}
+#: The commands that answer every configuration, the limiting one marked.
+_ALL_ROWS = {
+    "params": "a row per configuration, the limiting one (the smallest margin σ − σ₀ at speed 0, eq. 6) marked"
+}
+#: The commands whose limiting configuration has the smallest criterion margin: (the speed, the rest of the help).
+_MARGIN_RULE = {
+    "simulate": ("|--velocity|", ""),
+    "limit-cycles": ("speed 0 (σ − σ₀)", ""),
+    "contours": ("speed 0 (σ − σ₀)", "; the plane is its μ"),
+    "map": ("the largest --velocity, else 0", "; the plane is its μ"),
+    "export": ("speed 0 (σ − σ₀)", " with --stiffness; with --velocity the smallest recommended K (as dfa stiffness)"),
+}
 
 
-def _add_counts_name_args(g: Any) -> None:
-    """--counts, --name and --configuration, for every command that takes a device."""
+def configuration_rule(command: str) -> str:
+    """How ``command`` chooses the limiting configuration (its --configuration help; docs/cli.md)."""
+    if command in _STIFFNESS_RULE:
+        return "the smallest recommended K at the speed (as dfa stiffness)" + _STIFFNESS_RULE[command]
+    if command in _ALL_ROWS:
+        return _ALL_ROWS[command]
+    speed, rest = _MARGIN_RULE.get(command, ("the speed", ""))
+    return f"the smallest criterion margin (eq. 6) at K and {speed} (as dfa check){rest}"
+
+
+def _normal_arg(text: str) -> tuple[float, float, float]:
+    """--normal NX,NY,NZ: three finite numbers, not all zero (made a unit vector where it is used)."""
+    items = [t.strip() for t in text.split(",")]
+    try:
+        values = [float(t) for t in items]
+    except ValueError:
+        values = []
+    if len(values) != 3 or not all(math.isfinite(x) for x in values):
+        raise argparse.ArgumentTypeError(
+            f"{text[:40]!r} is not three numbers: --normal takes three finite numbers separated by commas, e.g. "
+            "--normal 0,0,1"
+        )
+    if not any(values):
+        raise argparse.ArgumentTypeError(
+            f"{text[:40]!r} is invalid: a normal must have a length > 0; give e.g. --normal 0,0,1"
+        )
+    return (values[0], values[1], values[2])
+
+
+def _add_counts_name_args(g: Any, command: str) -> None:
+    """--counts, --name, --configuration and --normal, for every command that takes a device."""
     g.add_argument(
         "--configuration",
         metavar="NAME",
-        help="one of the device file's [[devices.configurations]] (its values along the wall's normal); "
-        f"default: dfa {' and dfa '.join(CONFIGURATION_COMMANDS)} answer for the worst of them, the other commands "
-        "need this flag when the file has configurations",
+        help="one of the device file's [[devices.configurations]] (its values along the wall's normal; one "
+        "without a normal along its worst direction); default: the limiting one, named in the output: "
+        + configuration_rule(command),
+    )
+    g.add_argument(
+        "--normal",
+        type=_normal_arg,
+        metavar="NX,NY,NZ",
+        help="the wall's normal for the configurations with an inertia matrix, three numbers (made a unit vector, "
+        "stated; a leading minus needs '=': --normal=-1,0,0), replacing the file's normal and the search of the worst "
+        "direction; default: the file's normal, "
+        "else the worst direction",
     )
     g.add_argument(
         "--counts",
@@ -116,7 +177,7 @@ def add_device_group(p: argparse.ArgumentParser, title: str) -> Any:
             metavar="X",
             help=f"{f.described} in {f.units}; default: {default}",
         )
-    _add_counts_name_args(g)
+    _add_counts_name_args(g, p.prog.split()[-1])
     g.add_argument(
         "--stiffness",
         type=number("--stiffness", "N/m"),
@@ -230,12 +291,14 @@ class Inputs:
     label: str
     entry: CatalogueEntry | None = None  # the catalogue row, when the device is that row unchanged
     configurations: tuple[Configuration, ...] = ()  # the device file's, for the worst (`device` is the device's own)
+    worst: WorstConfiguration | None = None  # every configuration's row, when `device` is the limiting one's
+    rule: str | None = None  # how the limiting one was chosen (dfa.cli.configurations.MARGIN or STIFFNESS)
 
 
 def _dimensionless(args: argparse.Namespace, phys_given: list[str], dim_given: list[str], need_mu: bool) -> Inputs:
     others = (["--device"] if args.device else []) + (["--device-file"] if _device_file(args) else [])
     others += [PHYS_FLAGS[k][0] for k in phys_given]
-    others += [f"--{k}" for k in ("counts", "name") if getattr(args, k, None) is not None]
+    others += [f"--{k}" for k in ("counts", "name", "configuration", "normal") if getattr(args, k, None) is not None]
     others += ["--stiffness"] if args.stiffness is not None else []
     others += ["--velocity"] if getattr(args, "velocity", None) is not None else []
     others += ["--hand"] if getattr(args, "hand", None) is not None else []
@@ -301,7 +364,8 @@ def resolve(
         flags=_FLAG_NAMES,
     )
     confs = _configurations(args, entry, path, configurations)
-    if len(confs) == 1 and getattr(args, "configuration", None) is not None and not confs[0].directional:
+    one = getattr(args, "configuration", None) is not None and getattr(args, "normal", None) is None
+    if len(confs) == 1 and one and not confs[0].directional:
         r, confs = ResolvedDevice(confs[0].device_at(r.device), r.stiffness), ()  # one configuration: its device
     dev, label, entry = r.device, r.label, r.entry
     hand = resolve_hand(args, dev.rotary)
@@ -335,11 +399,13 @@ def _configurations(
         if not chosen:
             raise UsageError(f"--configuration {name!r} is not in device file {path!r}: choose one of "
                              f"{', '.join(repr(c.name) for c in confs)}")  # fmt: skip
-        if chosen[0].directional and not worst:
+        confs = _with_normal(args, (chosen[0],), path)
+        if confs[0].directional and not worst:
             raise UsageError(f"--configuration {name!r} has an inertia matrix but no normal: {command} needs "
-                             f"one direction; give normal = [nx, ny, nz] in the file, or use {answering}, which "
-                             "search the worst direction")  # fmt: skip
-        return (chosen[0],)
+                             f"one direction; give normal = [nx, ny, nz] in the file or --normal, or use "
+                             f"{answering}, which search the worst direction")  # fmt: skip
+        return confs
+    confs = _with_normal(args, confs, path)
     if confs and not worst:
         raise UsageError(
             f"device file {path!r} has {len(confs)} configurations ({', '.join(repr(c.name) for c in confs[:5])}"
@@ -347,6 +413,29 @@ def _configurations(
             f"({answering} answer for the worst of them)"
         )
     return confs
+
+
+def _with_normal(
+    args: argparse.Namespace, confs: tuple[Configuration, ...], path: str | None
+) -> tuple[Configuration, ...]:
+    """The configurations with --normal (a unit vector) in place of the file's normal, for those with an inertia
+    matrix; refused with one line when none has one."""
+    given = getattr(args, "normal", None)
+    if given is None:
+        return confs
+    text = ",".join(f"{x:g}" for x in given)
+    if not any(c.inertia is not None for c in confs):
+        where = f"device file {path!r}" if path is not None else "a catalogue device or flags"
+        if not confs:
+            has = f"{where} has no configurations"
+        elif len(confs) == 1:
+            has = f"configuration {confs[0].name!r} has none"
+        else:
+            has = f"no configuration of {where} has one"
+        raise UsageError(f"--normal {text} needs an inertia matrix: {has}; give [[devices.configurations]] with "
+                         "inertia = [[...], [...], [...]] in a device file, or drop --normal")  # fmt: skip
+    n = unit_normal(given, "--normal")
+    return tuple(dataclasses.replace(c, normal=n) if c.inertia is not None else c for c in confs)
 
 
 def _device_file(args: argparse.Namespace) -> str | None:
@@ -482,7 +571,7 @@ def plane_device(args: argparse.Namespace) -> tuple[float, Inputs | None]:
         raise UsageError(f"missing --mu: give --mu, or a device (--device NAME, or {_DEVICE_FLAGS})")
     if args.mu is not None:
         return check_mu(args.mu, "--mu"), None
-    inp = resolve(args, dimensionless=False)
+    inp = resolve(args, dimensionless=False, configurations=True)  # the caller chooses the limiting one
     assert inp.params is not None and inp.device is not None
     speeds = getattr(args, "velocity", None) or []
     if speeds:  # the largest initial speed (a sign is refused later, with the flag's message)

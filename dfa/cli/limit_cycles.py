@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..checks import check_damping_rate
+from .configurations import MARGIN, limiting
 from .contact import add_contact_args, refuse_one_sided_flag
 from .inputs import add_device_args, resolve
 from .output import RATE_NAMES, emit, say
@@ -54,7 +55,9 @@ def run(args: argparse.Namespace) -> int:
     for flag, value in (("--max-amplitude", args.max_amplitude), ("--time-budget", args.time_budget)):
         if value is not None and not value > 0:
             raise UsageError(f"{flag} {value:g} is invalid: it must be > 0; give e.g. {flag} 10")
-    inp = resolve(args, dimensionless=True)
+    inp = resolve(args, dimensionless=True, configurations=True)
+    if inp.configurations:  # the smallest margin at speed 0, σ − σ₀ (dfa check's rule without a speed)
+        inp = limiting(args, inp, MARGIN, wall=wall_from_args(args, inp.device, inp.stiffness))
     p = inp.params
     assert p is not None
     check_damping_rate(p.beta, p.mu, RATE_NAMES[inp.device is None])

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..checks import check_damping_rate
 from ..jsonable import explain_nulls
+from .configurations import MARGIN, limiting
 from .contact import add_contact_args
 from .inputs import Inputs, add_plane_args, device_json, outside_note, plane_device
 from .output import (
@@ -219,6 +220,11 @@ def run(args: argparse.Namespace) -> int:
     if args.plot is not None:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
     mu, inp = plane_device(args)
+    if inp is not None and inp.configurations:  # the smallest margin at the largest speed; the plane is its μ
+        top_v = max(abs(x) for x in args.velocity) if args.velocity else None
+        inp = limiting(args, inp, MARGIN, velocity=top_v, wall=wall_from_args(args, inp.device, inp.stiffness))
+        assert inp.params is not None
+        mu = inp.params.mu
     speeds = _speeds(args, inp)
     _check_work(args, speeds)
     top = max(args.beta_range + ([inp.params.beta] if inp is not None and inp.params is not None else []))

@@ -6,6 +6,7 @@ import argparse
 
 from ..model.wall import Wall
 from ..results.codes import REQUIRE_PARAMETERS
+from .configurations import MARGIN, limiting
 from .inputs import add_device_args, resolve, speed
 from .output import emit, working
 from .parsing import UsageError
@@ -42,14 +43,16 @@ def run(args: argparse.Namespace) -> int:
     """Each parameter by the criterion (a proof) and by the linear loop (necessary), the others held."""
     from ..analysis.limits.require import METHODS, requirements
 
-    inp = resolve(args, dimensionless=False, need_stiffness=False)
-    dev = inp.device
-    assert dev is not None
+    inp = resolve(args, dimensionless=False, need_stiffness=False, configurations=True)
     if args.stiffness is None:
         raise UsageError("dfa require needs the target stiffness: give --stiffness K in N/m (rotary: N·m/rad)")
     k = float(args.stiffness)
     _xd, v = speed(args, inp)
     assert v is not None
+    if inp.configurations:  # the target K is given: the smallest margin there (dfa check's rule)
+        inp = limiting(args, inp, MARGIN, velocity=v, wall=wall_from_args(args, inp.device, k))
+    dev = inp.device
+    assert dev is not None
     ctl = wall_from_args(args, dev, k)
     wall = ctl if ctl is not None else Wall.of(k, delay=args.delay)
     methods = (*METHODS, "df") if args.describing_function else METHODS

@@ -9,6 +9,7 @@ from .._io import check_output_file
 from ..checks import check_damping_rate
 from ..jsonable import explain_nulls
 from ..model.loop import Loop
+from .configurations import MARGIN, limiting
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import (
@@ -157,7 +158,10 @@ def run(args: argparse.Namespace) -> int:
     from ..render.files import trace_extent
     from ..render.text import simulation_rows
 
-    inp = resolve(args, dimensionless=True)
+    inp = resolve(args, dimensionless=True, configurations=True)
+    if inp.configurations:  # the smallest margin at |--velocity| (dfa check's rule), then that one's run
+        _xd, v = speed(args, inp, signed=True)
+        inp = limiting(args, inp, MARGIN, velocity=v, wall=wall_from_args(args, inp.device, inp.stiffness))
     p = inp.params
     assert p is not None
     check_damping_rate(p.beta, p.mu, RATE_NAMES[inp.device is None])

@@ -18,6 +18,7 @@ from ..model.loop import Loop
 from ..model.wall import Wall
 from ..progress import runs_counted
 from ..results.status import LimitStatus
+from .configurations import add_configurations_plot_arg, check_configurations_plot, write_configurations_plot
 from .contact import add_contact_args
 from .inputs import Inputs, add_device_args, resolve, speed
 from .output import emit, save_png, working
@@ -56,6 +57,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "function, without the simulated limits (no simulation; under a second; default: the full answer)",
     )
     add_margin_arg(p)
+    add_configurations_plot_arg(p)
     p.add_argument(
         "--plot",
         metavar="FILE",
@@ -105,6 +107,7 @@ def run(args: argparse.Namespace) -> int:
                 "dfa stiffness: --plot draws the simulated limits, which --quick does not compute: drop --quick or "
                 "--plot"
             )
+    check_configurations_plot(args, inp)
     src = _source(args, inp)
     check_margin(args.margin)  # refused before the search, not after it
     where = src if src in ("catalogue", "device file") else "given"
@@ -213,6 +216,7 @@ def _worst(args: argparse.Namespace, inp: Inputs, wall: Wall, ctl: Wall | None, 
             )
     if args.plot is not None:
         save_png("--plot", args.plot, chart.plot())
+    figure = write_configurations_plot(args, w)
     if args.json:
         out = w.to_dict()
         out["answer"] = ans.to_dict()
@@ -221,6 +225,8 @@ def _worst(args: argparse.Namespace, inp: Inputs, wall: Wall, ctl: Wall | None, 
         explain_nulls(out, {"damper_guidance": "no virtual damper"})
         if args.plot is not None:
             out["plot"] = args.plot
+        if figure is not None:
+            out["configurations_plot"] = figure
         emit(wall_json(out, ctl, inp))
         return 0
     print(text_table(configuration_rows(w), configuration_header(w)))
@@ -229,4 +235,6 @@ def _worst(args: argparse.Namespace, inp: Inputs, wall: Wall, ctl: Wall | None, 
     print("\n".join(stiffness_screen(ans, rec, guide)))
     if args.plot is not None:
         print(f"stiffness-speed chart of {w.limiting} written to {args.plot}")
+    if figure is not None:
+        print(f"configurations figure written to {figure}")
     return 0

@@ -16,6 +16,7 @@ from typing import Any
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..model.loop import Loop
 from ..model.wall import Wall
+from .configurations import STIFFNESS, configuration_line, limiting, pinned
 from .contact import add_contact_args
 from .inputs import add_device_args, resolve, speed
 from .output import add_progress_args, emit, save_png, working
@@ -155,12 +156,15 @@ def _percent_or_none(text: str) -> float | None:
     return value
 
 
-def export_command(argv: Sequence[str], parser: argparse.ArgumentParser, best: Any, device: Any) -> str:
+def export_command(
+    argv: Sequence[str], parser: argparse.ArgumentParser, best: Any, device: Any, pin: Sequence[str] = ()
+) -> str:
     """``dfa export`` with the device and speed flags given here and the best wall's flags: the same answer.
 
     The flags of this command alone (the lists, --plot, --json, ...) are left out; the best wall's delay, period,
     damper, filter and controller are appended. ``dfa export --velocity`` searches the same wall at the same speed
-    with the same rule, so it recommends the same K.
+    with the same rule, so it recommends the same K. ``pin``: the flags of the device file's configuration tuned
+    (``--configuration NAME`` and its ``--normal``, :func:`dfa.cli.configurations.pinned`), in place of any given.
     """
     takes = {s: a.nargs != 0 for a in parser._actions for s in a.option_strings}
     kept: list[str] = []
@@ -168,13 +172,14 @@ def export_command(argv: Sequence[str], parser: argparse.ArgumentParser, best: A
     while i < len(argv):
         tok = argv[i]
         flag = tok.split("=", 1)[0]
-        own = flag in _OWN or flag in _OWN_SWITCHES
+        own = flag in _OWN or flag in _OWN_SWITCHES or (bool(pin) and flag in ("--configuration", "--normal"))
         step = 2 if takes.get(flag, False) and "=" not in tok else 1
         if not own:
             kept += argv[i : i + step]
         i += step
     from ..render.tune import wall_flags
 
+    kept += list(pin)
     return " ".join(["dfa", "export", *map(shlex.quote, kept), *wall_flags(best, device), "--format", "c",
                      "--out", "wall.h"])  # fmt: skip
 
@@ -216,7 +221,7 @@ def run(args: argparse.Namespace) -> int:
     from ..analysis.limits.tune import tune
 
     _refuse_tuned(args)
-    inp = resolve(args, dimensionless=False, need_stiffness=False)
+    inp = resolve(args, dimensionless=False, need_stiffness=False, configurations=True)
     dev = inp.device
     assert dev is not None
     _xd, v = speed(args, inp)
@@ -230,6 +235,10 @@ def run(args: argparse.Namespace) -> int:
     if args.export is not None:
         check_output_file("--export", args.export, tuple(_FORMATS))
     check_margin(args.margin)
+    if inp.configurations:  # the smallest recommended K with the held wall (dfa stiffness's rule), then tuned
+        inp = limiting(args, inp, STIFFNESS, velocity=v, wall=wall, margin=args.margin)
+        dev = inp.device
+        assert dev is not None
     cap = None if args.max_force_error is None else args.max_force_error / 100.0
     with working(args):
         r = tune(Loop(dev, wall), v, dampings=args.dampings, cutoffs=args.cutoffs, delays=args.delays,
@@ -239,7 +248,7 @@ def run(args: argparse.Namespace) -> int:
         save_png("--plot", args.plot, r.plot())
     best = r.best
     argv = args.argv[args.argv.index(COMMAND) + 1 :]
-    cmd = None if best is None else export_command(argv, args.tune_parser, best, dev)
+    cmd = None if best is None else export_command(argv, args.tune_parser, best, dev, pinned(inp))
     written = _write_export(args, r)
     if args.json:
         out = r.to_dict()
@@ -249,6 +258,9 @@ def run(args: argparse.Namespace) -> int:
         return 0 if args.export is None or written is not None else 1
     from ..render.tune import tune_screen
 
+    line = configuration_line(inp)
+    if line is not None:
+        print(line)
     print("\n".join(tune_screen(r, cmd, screened=args.all)))
     if args.plot is not None:
         print(f"chart of K against force error written to {args.plot}")

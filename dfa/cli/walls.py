@@ -189,6 +189,10 @@ def wall_json(d: dict[str, Any], wall: Wall | None, inp: Inputs | None) -> dict[
     spring: its record is unchanged); with a device's travel, ``"travel"`` (m, rotary rad; its unit in
     ``"travel_unit"``), ``"travel_ticks"`` (ξ_travel = travel/Δ), where a run ends (``end_stop``), and
     ``"travel_assumption"`` (what the verdicts assume: the motion stays inside)."""
+    if inp is not None and inp.worst is not None:
+        from .configurations import configuration_json
+
+        d.update(configuration_json(inp))
     if wall is not None and inp is not None and inp.device is not None:
         from ..render.controller import wall_dict
 
@@ -218,6 +222,10 @@ def print_wall(wall: Wall | None, inp: Inputs | None, *, wrap: bool = True, cont
     """State the wall (nothing for the spring: its output is unchanged): its physical values, then its
     dimensionless groups on a second line; one line, unwrapped, when ``wrap`` is False (``--explain``); a
     one-sided wall's contact on a line of its own (unless ``contact`` is False: a command that states it itself)."""
+    if inp is not None and inp.worst is not None:  # the device file's configuration answered for, named
+        from .configurations import configuration_line
+
+        (say if wrap else print)(configuration_line(inp))
     if inp is not None and inp.device is not None:
         _print_travel(inp.device, wrap)
     if wall is not None and inp is not None and inp.device is not None:

@@ -11,6 +11,7 @@ from ..model.elements import OneSided, PassivityController
 from ..model.loop import Loop
 from ..model.wall import Wall
 from ..render.hand import device_title
+from .configurations import STIFFNESS, configuration_json, configuration_line, limiting
 from .contact import add_contact_args, contact_elements
 from .inputs import add_device_group, impact_speed, resolve
 from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, fmt, progress, save_png, say, table
@@ -25,6 +26,8 @@ HELP = (
 )
 EXAMPLE = "dfa zwidth --device impulse --velocity 0.1 --grid 20"
 
+#: What the Z-width of a device file with configurations is (its text; docs/cli.md).
+ZWIDTH_NOTE = "not the minimum over every configuration, B by B"
 #: Column titles of the table, by method (dfa.analysis.limits.zwidth.ZWIDTH_METHODS).
 COLUMNS = {"linear": "linear", "passivity": "C-S passivity", "criterion": "criterion", "df": "describing fn",
            "sim": "sim (no div.)", "rest": "sim (rest)"}  # fmt: skip
@@ -109,7 +112,7 @@ def run(args: argparse.Namespace) -> int:
     from ..render.zwidth import criterion_damper_note, damping_axis_note, non_monotone_mark, non_monotone_notes
 
     _refuse(args)
-    inp = resolve(args, dimensionless=False, need_stiffness=False)
+    inp = resolve(args, dimensionless=False, need_stiffness=False, configurations=True)
     dev = inp.device
     assert dev is not None
     check_filter_amplifier(args, dev)
@@ -121,6 +124,11 @@ def run(args: argparse.Namespace) -> int:
     wall = Wall(1.0, (*wall.elements, *contact_elements(args, dev), *passivity_elements(args, dev)))
     wall_groups(wall, dev)  # a value whose group overflows: refused naming its flag
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
+    if inp.configurations:  # the smallest recommended K with this wall (dfa stiffness's rule): its Z-width
+        inp = limiting(args, inp, STIFFNESS, velocity=v, wall=wall)
+        dev = inp.device
+        assert dev is not None
+        wall_groups(wall, dev)
     check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
     b_range = None if args.damping_max is None else (0.0, float(args.damping_max))
     loop = Loop(dev, wall)
@@ -135,6 +143,9 @@ def run(args: argparse.Namespace) -> int:
         rec = zw.to_dict()
         if args.plot is not None:
             rec["plot"] = args.plot
+        rec |= configuration_json(inp)
+        if "configuration" in rec:
+            rec["configuration"]["note"] = f"the Z-width is that configuration's, {ZWIDTH_NOTE}"
         emit(rec)
         return 0
     u = dev.units
@@ -158,6 +169,9 @@ def run(args: argparse.Namespace) -> int:
     say(
         f"Z-width of {device_title(dev)}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}"
     )
+    line = configuration_line(inp)
+    if line is not None:
+        say(f"{line}; the Z-width is that configuration's ({ZWIDTH_NOTE})")
     say(f"K_max(B) in {u['stiffness']} ('-': undefined, see --json for the reason)")
     say(table(rows, [f"B ({u['damping']})"] + [COLUMNS[m] for m in ZWIDTH_METHODS]))
     say(

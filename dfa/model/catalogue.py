@@ -898,7 +898,7 @@ def device_template(entry: CatalogueEntry | None = None) -> str:
     -------
     str
         The file's text: a header saying how to use it, then one ``[[devices]]`` table, each key under a comment
-        with its unit and rule.
+        with its unit and rule, then the row's ``[[devices.configurations]]`` tables (issue 46), if any.
 
     Raises
     ------
@@ -951,4 +951,19 @@ def device_template(entry: CatalogueEntry | None = None) -> str:
         "",
         "[[devices]]",
     ]
-    return "\n".join(head + body) + "\n"
+    return "\n".join(head + body + _configuration_tables(e.configurations)) + "\n"
+
+
+def _configuration_tables(configurations: tuple[Configuration, ...]) -> list[str]:
+    """The ``[[devices.configurations]]`` tables of a row (issue 46): each configuration's given keys, every number
+    as its shortest round-tripping decimal (``load_device_file`` reads the same doubles back)."""
+    if not configurations:
+        return []
+    out = [
+        "",
+        "# configurations: the values felt along the wall's normal at a pose (mass, damping, coulomb, resolution",
+        "# that differ, or inertia with per-axis values and an optional normal); docs/cli.md, configurations",
+    ]
+    for c in configurations:
+        out += ["", "[[devices.configurations]]", *(f"{k} = {_toml_value(v)}" for k, v in c.to_dict().items())]
+    return out

@@ -74,6 +74,7 @@ CONFIGURATION_KEYS = ("name", *_VALUE_KEYS, "inertia", "normal", "pose")
 #: Most configurations a device file may list (a pose grid of 30 × 30 is 900).
 MAX_CONFIGURATIONS = 1000
 _FIELDS = {f.name: f for f in DEVICE_FIELDS}
+_UNIT = 4.0 * float(np.finfo(float).eps)  # a length this close to 1 is a unit vector's (unit_normal)
 _SYMMETRY = 1e-9  # relative asymmetry of an inertia matrix refused (above rounding of printed values)
 
 Vector = tuple[float, float, float]
@@ -142,13 +143,14 @@ def check_inertia(value: object, name: str = "inertia") -> Matrix:
 
 
 def unit_normal(value: object, name: str = "normal") -> Vector:
-    """A wall normal as a unit vector (three finite numbers, not all zero; its length is divided out)."""
+    """A wall normal as a unit vector (three finite numbers, not all zero; its length is divided out, unless it is
+    1 to within 4 ulps: a normal written back from a unit vector reads back as the same doubles)."""
     fix = "give the wall's normal as three numbers, e.g. normal = [0, 0, 1]"
     v = np.array(_vector(name, value, fix))
     norm = float(np.linalg.norm(v))
     if not norm > 0.0 or not math.isfinite(norm):
         raise DFAValueError(f"{name} = {format_value(value)} is invalid: a normal must have a length > 0; {fix}")
-    u = v / norm
+    u = v if abs(norm - 1.0) <= _UNIT else v / norm  # a unit vector kept: normalising twice changes the last bits
     return (float(u[0]), float(u[1]), float(u[2]))
 
 

@@ -69,12 +69,23 @@ def configuration_rows(w: WorstConfiguration) -> list[list[str]]:
 
 
 def limiting_line(w: WorstConfiguration) -> str:
-    """One line naming the limiting configuration and its number (or why it has none)."""
+    """One line naming the limiting configuration (its normal, if any) and its number (or why it has none)."""
     n = len(w.rows)
     what = _WHAT[w.quantity]
+    name = w.limiting + _along(w.row)
     if w.status is ConfigurationStatus.NONE:
-        return (f"limiting configuration: {w.limiting} (no {what} there: {w.row.rule}; none holds for the device "
+        return (f"limiting configuration: {name} (no {what} there: {w.row.rule}; none holds for the device "
                 f"over its {n} configurations)")  # fmt: skip
     unit = f" {w.value_unit}" if w.quantity == "k_recommended" else ""
-    plural = "s" if n != 1 else ""
-    return f"limiting configuration: {w.limiting} ({what} {number(w.value)}{unit}, the smallest of {n} configuration{plural})"
+    if n == 1:
+        return f"configuration: {name} ({what} {number(w.value)}{unit})"
+    return f"limiting configuration: {name} ({what} {number(w.value)}{unit}, the smallest of {n} configurations)"
+
+
+def _along(row: object) -> str:
+    """`` along n = (x, y, z)`` (``worst n`` when searched) for a row with a normal; empty without one."""
+    n = getattr(row, "normal", None)
+    if n is None:
+        return ""
+    word = "the worst n" if getattr(row, "searched", False) else "n"
+    return f" along {word} = (" + ", ".join(f"{x:.3g}" for x in n) + ")"
