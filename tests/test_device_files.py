@@ -326,3 +326,18 @@ def test_device_field_row_for_an_optional_value_without_default():
         DFAValueError, match="^max_force = 0.0 is invalid: it must be a finite number > 0; give the force"
     ):
         row.check(0.0)
+
+
+def test_cli_device_given_a_device_file_points_to_device_file(capsys, tmp_path):
+    """`--device examples/x.toml` (a file where a catalogue name goes) says to give --device-file, which reads it."""
+    from pathlib import Path
+
+    from dfa.cli import main
+
+    path = Path(__file__).parents[1] / "examples" / "arm_configurations.toml"
+    assert main(["params", "--device", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("dfa params: error: --device ")
+    assert f"give --device-file {path}" in err
+    assert main(["params", "--device-file", str(path)]) == 0
+    assert "limiting configuration" in capsys.readouterr().out

@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import math
+import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -345,6 +346,11 @@ def resolve(
         raise UsageError(
             f"--device {args.device!r} and --device-file {path!r} cannot both be given: give one device (a catalogue "
             "name or your file; flags such as --mass replace either's values)"
+        )
+    if args.device and os.path.isfile(args.device) and args.device.lower().endswith(".toml"):
+        raise UsageError(
+            f"--device {args.device!r} is a file, and --device takes a catalogue name: give --device-file "
+            f"{args.device} for a device file"
         )
     if not args.device and path is None and not custom:
         raise UsageError(
