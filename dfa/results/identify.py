@@ -238,6 +238,10 @@ class Identification(Result):
         quantization, N (rotary N·m); 0 when the residuals are quantization's alone.
     force_noise_relative : float
         The same relative to the logged force's standard deviation.
+    position_noise : float
+        Standard deviation of the white noise on the readings beyond their quantization, m (rotary rad): noise of
+        more than :data:`dfa.analysis.identify.POSITION_NOISE_MIN` tick (an analog sensor, a noisy encoder); 0 when
+        the readings are quantization's alone. :attr:`position_noise_ticks` in ticks.
     confounded : tuple of (str, str, float)
         Pairs of estimates the log does not tell apart (their correlation beyond 0.95 in the fit's covariance), with
         the correlation (:mod:`dfa.render.identify` says what motion would).
@@ -270,6 +274,7 @@ class Identification(Result):
     timing: Timing
     force_noise: float
     force_noise_relative: float
+    position_noise: float
     confounded: tuple[tuple[str, str, float], ...]
     warnings: tuple[IdentifyWarning, ...]
     velocity_peak: float
@@ -278,9 +283,9 @@ class Identification(Result):
     logged: np.ndarray = field(repr=False, metadata={"json": None})
     status: IdentifyStatus = IdentifyStatus.OK
 
-    json_properties: ClassVar[tuple[str, ...]] = ("start_velocity",)
+    json_properties: ClassVar[tuple[str, ...]] = ("start_velocity", "position_noise_ticks")
     units_of: ClassVar[dict[str, str]] = {"velocity_peak": "velocity", "start_velocity": "velocity",
-                                          "force_noise": "force"}  # fmt: skip
+                                          "force_noise": "force", "position_noise": "resolution"}  # fmt: skip
 
     def __post_init__(self) -> None:
         fix = "Identification is built by dfa.identify; call that instead"
@@ -298,6 +303,11 @@ class Identification(Result):
     def start_velocity(self) -> float:
         """The fitted velocity at the log's first sample, m/s (rad/s): the free run's start (the first segment's)."""
         return float(speed(self.device, self.segment_states[0, 2]))
+
+    @property
+    def position_noise_ticks(self) -> float:
+        """:attr:`position_noise` in ticks of the resolution."""
+        return self.position_noise / self.device.resolution
 
     def cautious(self) -> Device:
         """The identified device with b and c at the lower ends of their 95 % intervals.
