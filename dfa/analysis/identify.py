@@ -91,6 +91,7 @@ from ..results.identify import Identification as Identification
 from ..results.identify import PeriodEffect as PeriodEffect
 from ..results.identify import Timing as Timing
 from ..results.identify import Undetermined
+from ..results.limits import KMaxResult
 from ..results.simulation import SimulationResult
 from ..results.status import IdentifyStatus, IdentifyWarning
 
@@ -107,6 +108,7 @@ __all__ = [
     "period_effect",
     "Timing",
     "PeriodEffect",
+    "PERIOD_EFFECT_GRID",
     "correlation_time",
     "estimate_resolution",
     "log_grid",
@@ -1198,11 +1200,24 @@ def run_positions(run: SimulationResult) -> np.ndarray:
     return xi
 
 
-def period_effect(device: Device, timing: Timing, velocity: float, delay: int = 0) -> PeriodEffect:
-    """The criterion's K_max (eq. 11) of ``device`` at its period T and at the longest period of the log.
+#: Points of the stiffness grid of the design answer at the longest logged period (:func:`period_effect`): half the
+#: default 16 (the grid only brackets each limit, which bisection refines to the same 2·10⁻³; the speeds are the
+#: default's): one extra answer at about half the cost of the one at T.
+PERIOD_EFFECT_GRID = 8
+
+
+def period_effect(
+    device: Device, timing: Timing, velocity: float, delay: int = 0, *, answer: KMaxResult | None = None
+) -> PeriodEffect:
+    """The criterion's K_max (eq. 11) of ``device`` at its period T and at the longest period of the log, and with
+    ``answer`` the recommended stiffness at both.
 
     Every analysis takes each sample to last T; a sample that lasts longer loses passivity first (eq. 11 falls
-    as T grows), so the limit at the longest logged period is where a log's jitter can take the proof.
+    as T grows), so the limit at the longest logged period is where a log's jitter can take the proof. The
+    simulated limits move too (a longer sample holds the force longer): with the design answer at T (``answer``,
+    :func:`dfa.analysis.limits.kmax.design_answer`), one more answer of the same wall at the longest period (the
+    same speeds, a grid of :data:`PERIOD_EFFECT_GRID` points) and the recommended stiffness of each
+    (:func:`dfa.analysis.limits.recommend.recommend_stiffness`, its default margin).
 
     Parameters
     ----------
@@ -1213,12 +1228,14 @@ def period_effect(device: Device, timing: Timing, velocity: float, delay: int = 
     velocity : float
         Impact speed, m/s (rad/s), >= 0.
     delay : int, optional
-        Computational delay in samples (default 0).
+        Computational delay in samples of the criterion (default 0).
+    answer : KMaxResult, optional
+        The design answer of ``device`` (its wall, at ``velocity``) at T; default none: the criterion alone.
 
     Returns
     -------
     PeriodEffect
-        K_max at T and at the longest period.
+        K_max at T and at the longest period, and the recommended stiffness at both with ``answer``.
 
     Examples
     --------
@@ -1236,5 +1253,19 @@ def period_effect(device: Device, timing: Timing, velocity: float, delay: int = 
     tm = check_type("timing", timing, Timing, "take it from dfa.identify(...).timing")
     v = check_nonnegative("velocity", velocity, "give the impact speed in m/s (rad/s)")
     slow = dataclasses.replace(dev, period=max(tm.period_max, dev.period))
-    return PeriodEffect(dev.period, slow.period, v, float(k_max_criterion(dev, v, delay)),
-                        float(k_max_criterion(slow, v, delay)))  # fmt: skip
+    k, k_slow = float(k_max_criterion(dev, v, delay)), float(k_max_criterion(slow, v, delay))
+    if answer is None:
+        return PeriodEffect(dev.period, slow.period, v, k, k_slow)
+    from .limits.kmax import design_answer
+    from .limits.recommend import recommend_stiffness
+
+    ans = check_type("answer", answer, KMaxResult, "pass dfa.design_answer(Loop(device, wall), velocity)")
+    if ans.device != dev or ans.velocity != v:
+        raise DFAValueError(
+            f"answer is invalid: it is the design answer of {ans.device.name!r} at {ans.velocity:g}, not of device "
+            f"{dev.name!r} at velocity = {v:g}; pass design_answer(Loop(device, wall), velocity) of these"
+        )
+    rec = recommend_stiffness(ans)
+    rec_slow = recommend_stiffness(design_answer(Loop(slow, ans.wall), v, grid=PERIOD_EFFECT_GRID))
+    return PeriodEffect(dev.period, slow.period, v, k, k_slow, rec.k_recommended, rec_slow.k_recommended,
+                        rec.status.value, rec_slow.status.value, PERIOD_EFFECT_GRID)  # fmt: skip

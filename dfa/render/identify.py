@@ -300,7 +300,7 @@ def _count(k: int, what: str) -> str:
 def _seconds(x: float) -> str:
     """A time to 3 significant digits in s, ms or µs."""
     for scale, unit in ((1.0, "s"), (1e-3, "ms"), (1e-6, "µs")):
-        if abs(x) >= scale:
+        if abs(x) >= scale * (1.0 - 5e-4):  # what rounds to 1 at 3 digits (T = 0.9999999 ms is 1 ms)
             return f"{number(x / scale, 3)} {unit}"
     return f"{number(x / 1e-9, 3)} ns"
 
@@ -326,8 +326,8 @@ def timing_lines(tm: Timing) -> list[str]:
 
 
 def period_effect_lines(e: PeriodEffect, unit: str) -> list[str]:
-    """How the proven limit (eq. 11) moves from T to the longest logged period."""
-    return [
+    """How the proven limit (eq. 11) and the recommended stiffness move from T to the longest logged period."""
+    lines = [
         "",
         fill(
             f"at the longest logged period, {_seconds(e.period_max)} instead of T = {_seconds(e.period)}, the "
@@ -335,6 +335,16 @@ def period_effect_lines(e: PeriodEffect, unit: str) -> list[str]:
             f"of {number(e.k_criterion, 5)} {unit}: every limit above takes each sample to last T"
         ),
     ]
+    if e.rule is None:
+        return lines
+
+    def rec(k: float | None, rule: str | None) -> str:
+        return "none" if k is None else f"{number(k, 5)} {unit} ({rule})"
+
+    lines.append(fill(
+        f"recommended stiffness (the rule above; the same wall and speeds, a stiffness grid of {e.grid} points): "
+        f"{rec(e.k_recommended_max, e.rule_max)} at the longest logged period, {rec(e.k_recommended, e.rule)} at T"))  # fmt: skip
+    return lines
 
 
 def device_source(r: Identification, date: str) -> str:
