@@ -39,7 +39,7 @@ from:
    motion (impacts: 78 % for c, with warnings). Residuals beyond quantization are put down to white noise on
    the force column (:func:`_noise`): its level estimated from their sum of squares, its covariance added to the
    Jacobian's (a sandwich), fresh noise of that level on each replicate's force column; with 2 to 5 % noise the
-   intervals held the truth in 46 to 50 of 50 logs (``benchmarks/identify_noise_coverage.py``). Noise on the
+   intervals held the truth in 48 to 50 of 50 logs (``benchmarks/identify_noise_coverage.py``). Noise on the
    readings beyond their tick (an analog sensor, a noisy encoder) changes the residuals independently from one
    sample to the next, where force noise moves them smoothly: its variance is a sixth of the residuals' mean square
    second difference less quantization's 1/12 (:func:`_white`); above :data:`POSITION_NOISE_MIN` tick the fit is
