@@ -176,8 +176,8 @@ NOISE_MAX = 0.25
 #: force noise is estimated: the clean logs' intervals are those of the encoder; a clean log's is 1.0 ± a few %).
 NOISE_FLOOR = 1.5
 #: Standard deviation of white noise on the readings beyond their quantization, ticks, above which the log is taken to
-#: carry position noise (:func:`_white`): a clean log's successive residual differences give at most 1/8 tick²
-#: (quantization alone), so its level reads 0 to 0.2 ticks; below this, quantization's 1/12 stands for the readings.
+#: carry position noise (:func:`_white`): a clean log's residual second differences give at most 1/6 tick²
+#: (quantization alone), so its level reads 0 to 0.29 ticks; below this, quantization's 1/12 stands for the readings.
 POSITION_NOISE_MIN = 0.5
 #: Standard errors by which the residuals' mean square must exceed the white variance of noisy readings for force
 #: noise to be estimated beside the position noise (:func:`_noise`): noise on the readings hides force noise below it.
