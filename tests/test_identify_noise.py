@@ -47,24 +47,31 @@ def test_issue_goal_five_percent_noise_on_12000_samples(tmp_path, capsys):
     assert main(["identify", path, "--bootstrap", "0", "--stiffness", "2000", "--velocity", "0.05", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["loop"]["recommendation"]["k_recommended"] > 0 and d["force_noise_relative"] == pytest.approx(
-        r.force_noise_relative, rel=1e-9
+        r.force_noise_relative,
+        rel=1e-6,  # the CSV holds the log to its written digits
     )
 
 
 def test_intervals_cover_the_truth_under_noise_over_seeds():
     """2 % noise on 4000 samples, 12 seeds, the Jacobian's intervals with the noise term alone (no bootstrap): each
     parameter's 95 % interval holds the truth in at least 9 of 12 (at a true 95 %, 9 or more in 99.8 % of such
-    studies; these hold 9 to 11: the Jacobian's are a little narrow for m, which the bootstrap corrects, 49 of 50
-    in reports/identify_noise_coverage.md)."""
+    studies; over seeds 0 to 99 these held m 95, b 93, c 93 of 100, and the bootstrapped ones more, in
+    reports/identify_noise_coverage.md). The noise level is unbiased: its ratio to the drawn one averages within 8 %
+    of 1 over these seeds (0.95; 0.99 over 100 seeds). With only the segments' starts taken off the noise's share of
+    the residuals (not the global parameters' 15 %), it averaged 0.91 over 100 seeds."""
     dev, force = _excited(4000)
     covered = {"mass": 0, "damping": 0, "coulomb": 0}
+    ratio = []
     for seed in range(12):
-        r = identify(synthetic_log(dev, force, force_noise=0.02 * np.std(force), seed=100 + seed), bootstrap=0)
+        log = synthetic_log(dev, force, force_noise=0.02 * np.std(force), seed=100 + seed)
+        r = identify(log, bootstrap=0)
         assert r.status.value != "poor_fit"
+        ratio.append(r.force_noise_relative / (np.std(log.f - force) / np.std(log.f)))
         for k in covered:
             e = getattr(r, k)
             covered[k] += e.low <= getattr(dev, k) <= e.high
     assert min(covered.values()) >= 9, covered
+    assert np.mean(ratio) == pytest.approx(1.0, abs=0.08), ratio
 
 
 def test_a_clean_log_estimates_no_noise_and_a_wrong_force_column_is_still_a_poor_fit():

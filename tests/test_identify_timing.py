@@ -121,3 +121,30 @@ def test_cli_prints_and_writes_the_timing(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "2 samples dropped in 2 gaps" in out and "1 repeated row " in out and "% of T" in out
     assert "at the longest logged period" in out and "warning: a logged period departs from T" in out
+
+
+def test_period_effect_recommends_at_the_longest_period_eq11_when_proven(tmp_path, capsys):
+    """Jitter of 2 % of T, --stiffness 1000 --velocity 0.05: the recommended stiffness at T is the loop's, and at the
+    longest logged period, where the rule is the proof, eq. 11 of the cautious device written out at that period;
+    text and JSON. An answer of another device is refused."""
+    log = _log()
+    t = log.t + np.random.default_rng(3).normal(0.0, 0.02 * DEV.period, log.samples)
+    path = write_log(DeviceLog(t, log.x, log.f), tmp_path / "jitter.csv")
+    args = ["identify", path, "--bootstrap", "0", "--stiffness", "1000", "--velocity", "0.05"]
+    assert main([*args, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)["loop"]
+    e, dev = d["period_effect"], d["device"]
+    assert e["k_recommended"] == d["recommendation"]["k_recommended"] and e["grid_at_period_max"] == 8
+    assert e["rule"] == e["rule_at_period_max"] == "proven"
+    b, c, res = dev["damping"], dev["coulomb"], dev["resolution"]
+    eq11 = min(2 * c / res, (b * 0.05 + c) / (e["period_max_s"] * 0.05 / 2 + res / 2))
+    assert e["k_recommended_at_period_max"] == pytest.approx(eq11, rel=1e-9)
+    assert e["k_recommended_at_period_max"] < e["k_recommended"]
+    assert main(args) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert f"{e['k_recommended_at_period_max']:.5g} N/m (proven) at the longest logged period" in out
+    with pytest.raises(dfa.DFAValueError, match="answer is invalid"):
+        from dfa.analysis.limits.kmax import design_answer
+        from dfa.model.loop import Loop
+
+        period_effect(DEV, log_timing(t)[0], 0.05, answer=design_answer(Loop(DEV, 1000.0), 0.1, grid=4, speeds=1))

@@ -39,7 +39,14 @@ from:
    motion (impacts: 78 % for c, with warnings). Residuals beyond quantization are put down to white noise on
    the force column (:func:`_noise`): its level estimated from their sum of squares, its covariance added to the
    Jacobian's (a sandwich), fresh noise of that level on each replicate's force column; with 2 to 5 % noise the
-   intervals held the truth in 46 to 50 of 50 logs (``benchmarks/identify_noise_coverage.py``). Without a
+   intervals held the truth in 48 to 50 of 50 logs (``benchmarks/identify_noise_coverage.py``). Noise on the
+   readings beyond their tick (an analog sensor, a noisy encoder) changes the residuals independently from one
+   sample to the next, where force noise moves them smoothly: its variance is a sixth of the residuals' mean square
+   second difference less quantization's 1/12 (:func:`_white`); above :data:`POSITION_NOISE_MIN` tick the fit is
+   run again with the segments' starts free of their first reading's tick, the Jacobian's intervals take that white
+   variance for quantization's, force noise is estimated beyond it (:data:`NOISE_Z`) and the replicates' readings
+   get fresh noise of that level before their encoder; with 2 to 5 ticks the intervals held the truth in 37 to 40
+   of 40 logs. Without a
    reversal c and f₀ get no interval (only c − f₀ is seen); with fewer than :data:`FEW_MOVING` samples in
    motion no estimate does (a device that rests fits many devices). Then the share of samples whose predicted
    tick is within one of the logged one, and warnings when the log does not excite a parameter
@@ -84,6 +91,7 @@ from ..results.identify import Identification as Identification
 from ..results.identify import PeriodEffect as PeriodEffect
 from ..results.identify import Timing as Timing
 from ..results.identify import Undetermined
+from ..results.limits import KMaxResult
 from ..results.simulation import SimulationResult
 from ..results.status import IdentifyStatus, IdentifyWarning
 
@@ -100,6 +108,7 @@ __all__ = [
     "period_effect",
     "Timing",
     "PeriodEffect",
+    "PERIOD_EFFECT_GRID",
     "correlation_time",
     "estimate_resolution",
     "log_grid",
@@ -166,6 +175,13 @@ NOISE_MAX = 0.25
 #: Mean square residual, in units of quantization's 1/12, up to which the residuals count as quantization alone (no
 #: force noise is estimated: the clean logs' intervals are those of the encoder; a clean log's is 1.0 ± a few %).
 NOISE_FLOOR = 1.5
+#: Standard deviation of white noise on the readings beyond their quantization, ticks, above which the log is taken to
+#: carry position noise (:func:`_white`): a clean log's residual second differences give at most 1/6 tick²
+#: (quantization alone), so its level reads 0 to 0.29 ticks; below this, quantization's 1/12 stands for the readings.
+POSITION_NOISE_MIN = 0.5
+#: Standard errors by which the residuals' mean square must exceed the white variance of noisy readings for force
+#: noise to be estimated beside the position noise (:func:`_noise`): noise on the readings hides force noise below it.
+NOISE_Z = 2.0
 #: Most ticks of the resolution the readings may span: a float holds a position there to 1e-4 of a tick (the
 #: fit's residuals are fractions of a tick); beyond, the resolution is not that of the readings' unit.
 MAX_TICKS = 1e12
@@ -360,7 +376,7 @@ class _Fit(NamedTuple):
     local: np.ndarray
 
 
-def _fit(n: np.ndarray, phi: np.ndarray, w: np.ndarray) -> tuple[_Fit, np.ndarray]:
+def _fit(n: np.ndarray, phi: np.ndarray, w: np.ndarray, noisy: bool = False) -> tuple[_Fit, np.ndarray]:
     """The output-error fit (step 3 of the module docstring): the least-squares result (its ``x`` is
     θ = (log μ, β, σ, φ₀, the segments' start positions within their tick, their start velocities)) and the
     segments' starts.
@@ -369,6 +385,8 @@ def _fit(n: np.ndarray, phi: np.ndarray, w: np.ndarray) -> tuple[_Fit, np.ndarra
     first tick and its velocity, fitted), so that an error of the start does not carry over the whole log.
     ``w`` weighs each sample's residual (0: a sample the log dropped); each segment starts at a logged sample, and
     a new one after each gap (the force over a dropped sample is not known, and what it did is the new start's).
+    ``noisy``: the readings carry noise beyond their tick (:func:`_white`), so a segment's start is not within its
+    first reading's tick: it starts from the smoothed readings, unbounded.
     """
     v, a = _derivatives(n)
     mu, beta, sigma = _first_guess(v, a, phi)
@@ -377,8 +395,44 @@ def _fit(n: np.ndarray, phi: np.ndarray, w: np.ndarray) -> tuple[_Fit, np.ndarra
         logged = np.flatnonzero(w)
         after = np.flatnonzero((w[1:] > 0) & (w[:-1] == 0)) + 1
         starts = np.unique(np.r_[logged[np.searchsorted(logged, starts).clip(max=logged.size - 1)], after])
-    theta0 = np.concatenate([[math.log(mu), beta, sigma, 0.0], np.full(len(starts), 0.5), v[starts]])
-    return _solve(n, phi, w, starts, theta0), starts
+    pos = _smoothed(n)[starts] - n[starts] + 0.5 if noisy else np.full(len(starts), 0.5)
+    theta0 = np.concatenate([[math.log(mu), beta, sigma, 0.0], pos, v[starts]])
+    return _solve(n, phi, w, starts, theta0, noisy), starts
+
+
+def _smoothed(n: np.ndarray) -> np.ndarray:
+    """The readings ``n`` smoothed (Savitzky–Golay, :func:`_window`), ticks."""
+    from scipy.signal import savgol_filter
+
+    return np.asarray(savgol_filter(n.astype(float), _window(len(n)), 3))
+
+
+def _fit_readings(n: np.ndarray, phi: np.ndarray, w: np.ndarray) -> tuple[_Fit, np.ndarray, float]:
+    """The fit (:func:`_fit`), its segments' starts and the noise on the readings beyond their quantization (ticks,
+    0 when none: :func:`_white`); refitted with the segments' starts free of their first tick when there is."""
+    best, starts = _fit(n, phi, w)
+    position = math.sqrt(max(0.0, _white(best.fun, w, starts) - QUANTIZATION_VARIANCE))
+    if position <= POSITION_NOISE_MIN:
+        return best, starts, 0.0
+    best, starts = _fit(n, phi, w, noisy=True)
+    return best, starts, math.sqrt(max(0.0, _white(best.fun, w, starts) - QUANTIZATION_VARIANCE))
+
+
+def _white(r: np.ndarray, w: np.ndarray, starts: np.ndarray) -> float:
+    """Variance (ticks²) of the white part of the residuals ``r``: a sixth of the mean square of their second
+    differences over three successive logged samples of a segment.
+
+    White noise of variance s² on the readings gives second differences of mean square 6 s², and the reading's
+    quantization 1/12 more to s² (a noisy position read by an encoder is off its tick by a uniform amount). What
+    moves the residuals smoothly hardly shows: a model error or noise on the force column changes them through the
+    device's two integrations (5 % force noise on the example device: 0.007 tick per sample²; a force column of the
+    wrong sign, 0.02). A clean log's quantization gives at most 1 per second difference (a wrap of the tick every
+    other sample), 1/6 here, below :data:`POSITION_NOISE_MIN` once quantization's 1/12 is taken off."""
+    ok = (w[2:] > 0.0) & (w[1:-1] > 0.0) & (w[:-2] > 0.0)
+    first = np.r_[starts[1:] - 2, starts[1:] - 1]
+    ok[first[(first >= 0) & (first < ok.size)]] = False  # a segment's first residuals do not follow the ones before
+    d = np.diff(r, 2)[ok]
+    return float(np.einsum("i,i->", d, d)) / (6.0 * d.size) if d.size else 0.0
 
 
 def _predict(theta: np.ndarray, n: np.ndarray, phi: np.ndarray, starts: np.ndarray, into: np.ndarray) -> np.ndarray:
@@ -390,12 +444,15 @@ def _predict(theta: np.ndarray, n: np.ndarray, phi: np.ndarray, starts: np.ndarr
     return into
 
 
-def _solve(n: np.ndarray, phi: np.ndarray, w: np.ndarray, starts: np.ndarray, theta0: np.ndarray) -> _Fit:
+def _solve(
+    n: np.ndarray, phi: np.ndarray, w: np.ndarray, starts: np.ndarray, theta0: np.ndarray, noisy: bool = False
+) -> _Fit:
     """Least squares of the segments' prediction against the middles of the logged ticks, from ``theta0``:
-    Levenberg–Marquardt on the block-arrow normal equations (:func:`_lm_step`), bounds by projection."""
+    Levenberg–Marquardt on the block-arrow normal equations (:func:`_lm_step`), bounds by projection (a segment's
+    start within its first tick, unless the readings are ``noisy``)."""
     j = len(starts)
-    lo = np.concatenate([[-np.inf, 0.0, 0.0, -np.inf], np.zeros(j), np.full(j, -np.inf)])
-    hi = np.concatenate([[np.inf] * 4, np.ones(j), np.full(j, np.inf)])
+    lo = np.concatenate([[-np.inf, 0.0, 0.0, -np.inf], np.full(j, -np.inf if noisy else 0.0), np.full(j, -np.inf)])
+    hi = np.concatenate([[np.inf] * 4, np.full(j, np.inf if noisy else 1.0), np.full(j, np.inf)])
     seg = _segment_of(starts, len(n))
     theta = np.clip(theta0, lo, hi)
     r = _residual(theta, n, phi, w, starts, np.empty(len(n)))
@@ -509,12 +566,18 @@ def _segment_of(starts: np.ndarray, samples: int) -> np.ndarray:
     return np.searchsorted(starts, np.arange(samples), side="right") - 1
 
 
-def _linear_covariance(best: _Fit, starts: np.ndarray, logged: int, noise: _Noise | None = None) -> np.ndarray:
+def _linear_covariance(
+    best: _Fit, starts: np.ndarray, logged: int, noise: _Noise | None = None, white: float | None = None
+) -> np.ndarray:
     """Covariance of the 4 global parameters from the fit's Jacobian (step 4 of the module docstring): residual
     variance (at least quantization's 1/12) × correlation time × (JᵀJ)⁻¹ with the segments' starts eliminated.
-    With force noise (``noise``): quantization's 1/12 × (JᵀJ)⁻¹ plus the noise's own (:func:`_noise`)."""
+    With force noise (``noise``): quantization's 1/12 × (JᵀJ)⁻¹ plus the noise's own (:func:`_noise`). With noise
+    on the readings: the white residuals' variance ``white`` (:func:`_white`) × (JᵀJ)⁻¹ plus the force noise's."""
     n, j = len(best.fun), len(starts)
     cov = _global_covariance(best.glob, best.local, _segment_of(starts, n), j)
+    extra = noise.covariance if noise is not None else np.zeros((4, 4))
+    if white is not None:
+        return white * cov + extra
     if noise is not None and noise.level > 0.0:
         return QUANTIZATION_VARIANCE * cov + noise.covariance
     s2 = max(float(best.fun @ best.fun) / max(1, logged - len(best.x)), QUANTIZATION_VARIANCE)
@@ -541,40 +604,46 @@ def _impulse(theta: np.ndarray, length: int) -> np.ndarray:
     return x1 + (-math.expm1(-r) / (mu * r)) * (-np.expm1(-r * j) / r)
 
 
-def _noise(best: _Fit, xi: np.ndarray, w: np.ndarray, starts: np.ndarray) -> _Noise:
+def _noise(best: _Fit, xi: np.ndarray, w: np.ndarray, starts: np.ndarray, white: float | None = None) -> _Noise:
     """Force noise from the residuals: the method of moments on the residuals' sum of squares.
 
     A force error e_i held over sample i moves every later position of its segment by g(h − i) e_i
-    (:func:`_impulse`, while the device moves: a device stuck by friction does not feel it); the fit of the
-    segment's start absorbs part of it (the projection I − H on the start's two columns). The residuals' expected
-    sum of squares is quantization's 1/12 per sample plus s² Σ ‖(I − H) G‖²: s² follows, 0 when the residuals are
+    (:func:`_impulse`, while the device moves: a device stuck by friction does not feel it); the fit absorbs part of
+    it (the projection P = J A⁻¹ Jᵀ on all its columns: the segments' starts and the 4 global parameters, which on a
+    4000-sample log take 15 % of it). The residuals' expected sum of squares is quantization's 1/12 per degree of
+    freedom (N − p) plus s² ‖(I − P) G‖² (the same correction for the noise: with the segments' starts alone taken
+    off, the level came out 10 % low at 4000 samples): s² follows, 0 when the residuals are
     those of quantization alone (their mean square below :data:`NOISE_FLOOR` × 1/12). The global parameters'
     covariance from the noise is then s² A⁻¹ (Σ Jₖᵀ Gₖ Gₖᵀ Jₖ) A⁻¹ (the sandwich, A = JᵀJ, segments' starts
-    included)."""
+    included). Readings with noise beyond their tick (:func:`_white`): their white variance ``white`` stands for
+    quantization's 1/12, and force noise is estimated when the mean square residual exceeds it by more than
+    :data:`NOISE_Z` standard errors of the difference (√(6/N) of it: the two estimates' own spreads, 2/N and 3.9/N
+    of its square, added)."""
     n, j = len(best.fun), len(starts)
     dof = max(1.0, float(w.sum()) - len(best.x))
     rss = float(best.fun @ best.fun)
-    if rss / dof <= NOISE_FLOOR * QUANTIZATION_VARIANCE:
+    floor = NOISE_FLOOR * QUANTIZATION_VARIANCE if white is None else white * (1.0 + NOISE_Z * math.sqrt(6.0 / dof))
+    white = QUANTIZATION_VARIANCE if white is None else white
+    if rss / dof <= floor:
         return _Noise(0.0, np.zeros((4, 4)))
     moving = np.r_[np.diff(xi) != 0.0, False].astype(float)
     ends = np.r_[starts[1:], n]
     g = _impulse(best.x, int(np.max(ends - starts)))
-    kappa, size = 0.0, 4 + 2 * j
+    total, size = 0.0, 4 + 2 * j
     a, b = np.zeros((size, size)), np.zeros((size, size))
     for k, (lo, hi) in enumerate(zip(starts, ends, strict=True)):
         m = hi - lo
         col = np.r_[0.0, g[: m - 1]]
         sens = _toeplitz(col) * moving[lo:hi][None, :] * w[lo:hi][:, None]  # rows: residuals, columns: forces
-        loc = best.local[lo:hi]
-        absorbed = loc @ np.linalg.pinv(loc.T @ loc) @ (loc.T @ sens)
-        kappa += float(np.sum((sens - absorbed) ** 2))
-        jac = np.column_stack([best.glob[lo:hi], loc])
+        total += float(np.einsum("ij,ij->", sens, sens))
+        jac = np.column_stack([best.glob[lo:hi], best.local[lo:hi]])
         idx = np.r_[0:4, 4 + k, 4 + j + k]
         a[np.ix_(idx, idx)] += jac.T @ jac
         proj = sens.T @ jac
         b[np.ix_(idx, idx)] += proj.T @ proj
-    s2 = max(0.0, (rss - QUANTIZATION_VARIANCE * dof) / kappa) if kappa > 0.0 else 0.0
     inv = np.linalg.pinv(a)
+    kappa = total - float(np.trace(inv @ b))  # ‖(I − P) G‖², P = J A⁻¹ Jᵀ: what the whole fit absorbs taken off
+    s2 = max(0.0, (rss - white * dof) / kappa) if kappa > 0.0 else 0.0
     return _Noise(math.sqrt(s2), s2 * (inv @ b @ inv)[:4, :4])
 
 
@@ -587,19 +656,21 @@ def _toeplitz(col: np.ndarray) -> np.ndarray:
 
 
 def _bootstrap(
-    xi: np.ndarray, phi: np.ndarray, w: np.ndarray, reps: int, progress: bool, noise: float = 0.0
-) -> np.ndarray:
+    xi: np.ndarray, phi: np.ndarray, w: np.ndarray, reps: int, progress: bool, noise: float = 0.0,
+    position: float = 0.0,
+) -> np.ndarray:  # fmt: skip
     """Global parameters of ``reps`` replicate logs (rows; fewer when a replicate does not move): the fitted
     model's positions ``xi`` read by an encoder whose origin is shifted by a uniform fraction of a tick, each
     identified from scratch like the log (first guess, segments, fit), its force column with fresh noise of the
-    level estimated (``noise``, force per tick; none when 0). Deterministic (seeds 0 and 1)."""
-    rng, noisy = np.random.default_rng(0), np.random.default_rng(1)
+    level estimated (``noise``, force per tick; none when 0), its readings with fresh noise of the level estimated
+    before the encoder (``position``, ticks; none when 0). Deterministic (seeds 0, 1 and 2)."""
+    rng, noisy, jitter = np.random.default_rng(0), np.random.default_rng(1), np.random.default_rng(2)
     draws = []
     for _ in new_bar(iterable=range(reps), desc="bootstrap", unit="fit", disable=not progress, leave=False):
-        nb = np.floor(xi + rng.uniform())
+        nb = np.floor(xi + rng.uniform() + (jitter.normal(0.0, position, xi.size) if position > 0.0 else 0.0))
         try:
             logged = phi + noisy.normal(0.0, noise, phi.size) if noise > 0.0 else phi
-            draws.append(_fit(nb - nb.min(), logged, w)[0].x[:4])
+            draws.append(_fit(nb - nb.min(), logged, w, position > 0.0)[0].x[:4])
         except LogError:  # a replicate too still to fit: its log says nothing either way
             continue
     return np.array(draws).reshape(-1, 4)
@@ -916,19 +987,26 @@ def identify(
     t = timing.period
     n, phi, w = _on_grid(index, rows, lg.f / delta)
     try:
-        best, starts = _fit(n, phi, w)
+        best, starts, position = _fit_readings(n, phi, w)
     except LogError as err:
         raise LogError(f"{lg.source}: {err}") from None
     theta, xi = best.x, _predict(best.x, n, phi, starts, np.empty(len(n)))
+    white = position**2 + QUANTIZATION_VARIANCE if position > 0.0 else QUANTIZATION_VARIANCE
     spread = float(np.std(lg.f))
-    noise = _noise(best, xi, w, starts) if spread > 0.0 else _Noise(0.0, np.zeros((4, 4)))
-    cov = _linear_covariance(best, starts, int(w.sum()), noise)
+    noise = (
+        _noise(best, xi, w, starts, white if position > 0.0 else None)
+        if spread > 0.0
+        else _Noise(0.0, np.zeros((4, 4)))
+    )
+    cov = _linear_covariance(best, starts, int(w.sum()), noise, white if position > 0.0 else None)
     fit = _quality(xi, n, w)
     relative = noise.level * delta / spread if spread > 0.0 else 0.0
-    warns = _motion_warnings(n, float(theta[2]) * delta, float(np.max(np.abs(lg.f))))
+    warns = _motion_warnings(np.floor(xi) if position > 0.0 else n, float(theta[2]) * delta,
+                             float(np.max(np.abs(lg.f))))  # fmt: skip
+    warns += [IdentifyWarning.POSITION_NOISE] if position > 0.0 else []
     warns += _noise_warnings(fit, relative) if spread > 0.0 else [IdentifyWarning.CONSTANT_FORCE]
     skip = {IdentifyWarning.LITTLE_MOTION, IdentifyWarning.POOR_FIT, IdentifyWarning.CONSTANT_FORCE} & set(warns)
-    draws = _bootstrap(xi, phi, w, 0 if skip else reps, show, noise.level)
+    draws = _bootstrap(xi, phi, w, 0 if skip else reps, show, noise.level, position)
     est = _withhold(_estimates(theta, cov, draws, delta, t), warns)
     run = _free_run(theta, n, phi)
     free = _quality(run, n, w)
@@ -941,7 +1019,7 @@ def identify(
         IdentifyStatus.CAVEATS if warns else IdentifyStatus.OK)  # fmt: skip
     return Identification(dev, lg.source, lg.samples, est["mass"], est["damping"], est["coulomb"],
                           est["force_offset"], resolution is not None, period is not None, int(len(n) // len(starts)),
-                          len(draws), reps, fit, free, timing, noise.level * delta, relative,
+                          len(draws), reps, fit, free, timing, noise.level * delta, relative, position * delta,
                           _confounded(cov, est, warns) if spread > 0.0 else (), tuple(warns), v_peak, _states(theta, n, starts), run, n,
                           status)  # fmt: skip
 
@@ -1001,6 +1079,7 @@ def synthetic_log(
     v0: float = 0.0,
     force_offset: float = 0.0,
     force_noise: float = 0.0,
+    position_noise: float = 0.0,
     seed: int = 0,
     source: str = "synthetic",
 ) -> DeviceLog:
@@ -1018,8 +1097,11 @@ def synthetic_log(
         A force added to what is applied but not logged (an amplifier offset), N (default 0).
     force_noise : float, optional
         Standard deviation of noise on the logged force column, N (default 0): the log is not what was applied.
+    position_noise : float, optional
+        Standard deviation of noise on the position before the encoder reads it, m (rotary rad; default 0): the
+        readings are Δ⌊(x + e)/Δ⌋ (an analog sensor read by a converter, a noisy encoder).
     seed : int, optional
-        Seed of the noise (default 0).
+        Seed of the noise (default 0; the position noise is drawn after the force noise).
     source : str, optional
         The log's name (default ``"synthetic"``).
 
@@ -1033,12 +1115,15 @@ def synthetic_log(
     if f.ndim != 1 or f.size == 0 or not np.all(np.isfinite(f)):
         raise DFAValueError("force must be a one-dimensional array of finite forces in N, one per sample")
     noise = check_nonnegative("force_noise", force_noise, "give the noise's standard deviation in N")
+    jitter = check_nonnegative("position_noise", position_noise, "give the noise's standard deviation in m")
     offset = check_real("force_offset", force_offset, "give the offset in N")
     xi = np.empty(f.size)
     delta, t = dev.resolution, dev.period
     open_loop_kernel(x0 / delta, v0 * t / delta, (f + offset) / delta, dev.mass / (t * t),
                      dev.damping / t, dev.coulomb / delta, xi)  # fmt: skip
-    logged = f + (np.random.default_rng(seed).normal(0.0, noise, f.size) if noise > 0.0 else 0.0)
+    rng = np.random.default_rng(seed)
+    logged = f + (rng.normal(0.0, noise, f.size) if noise > 0.0 else 0.0)
+    xi += rng.normal(0.0, jitter / delta, f.size) if jitter > 0.0 else 0.0
     return DeviceLog(np.arange(f.size) * t, delta * np.floor(xi), logged, source=source, rotary=dev.rotary)
 
 
@@ -1115,11 +1200,24 @@ def run_positions(run: SimulationResult) -> np.ndarray:
     return xi
 
 
-def period_effect(device: Device, timing: Timing, velocity: float, delay: int = 0) -> PeriodEffect:
-    """The criterion's K_max (eq. 11) of ``device`` at its period T and at the longest period of the log.
+#: Points of the stiffness grid of the design answer at the longest logged period (:func:`period_effect`): half the
+#: default 16 (the grid only brackets each limit, which bisection refines to the same 2·10⁻³; the speeds are the
+#: default's): one extra answer at about half the cost of the one at T.
+PERIOD_EFFECT_GRID = 8
+
+
+def period_effect(
+    device: Device, timing: Timing, velocity: float, delay: int = 0, *, answer: KMaxResult | None = None
+) -> PeriodEffect:
+    """The criterion's K_max (eq. 11) of ``device`` at its period T and at the longest period of the log, and with
+    ``answer`` the recommended stiffness at both.
 
     Every analysis takes each sample to last T; a sample that lasts longer loses passivity first (eq. 11 falls
-    as T grows), so the limit at the longest logged period is where a log's jitter can take the proof.
+    as T grows), so the limit at the longest logged period is where a log's jitter can take the proof. The
+    simulated limits move too (a longer sample holds the force longer): with the design answer at T (``answer``,
+    :func:`dfa.analysis.limits.kmax.design_answer`), one more answer of the same wall at the longest period (the
+    same speeds, a grid of :data:`PERIOD_EFFECT_GRID` points) and the recommended stiffness of each
+    (:func:`dfa.analysis.limits.recommend.recommend_stiffness`, its default margin).
 
     Parameters
     ----------
@@ -1130,12 +1228,14 @@ def period_effect(device: Device, timing: Timing, velocity: float, delay: int = 
     velocity : float
         Impact speed, m/s (rad/s), >= 0.
     delay : int, optional
-        Computational delay in samples (default 0).
+        Computational delay in samples of the criterion (default 0).
+    answer : KMaxResult, optional
+        The design answer of ``device`` (its wall, at ``velocity``) at T; default none: the criterion alone.
 
     Returns
     -------
     PeriodEffect
-        K_max at T and at the longest period.
+        K_max at T and at the longest period, and the recommended stiffness at both with ``answer``.
 
     Examples
     --------
@@ -1153,5 +1253,19 @@ def period_effect(device: Device, timing: Timing, velocity: float, delay: int = 
     tm = check_type("timing", timing, Timing, "take it from dfa.identify(...).timing")
     v = check_nonnegative("velocity", velocity, "give the impact speed in m/s (rad/s)")
     slow = dataclasses.replace(dev, period=max(tm.period_max, dev.period))
-    return PeriodEffect(dev.period, slow.period, v, float(k_max_criterion(dev, v, delay)),
-                        float(k_max_criterion(slow, v, delay)))  # fmt: skip
+    k, k_slow = float(k_max_criterion(dev, v, delay)), float(k_max_criterion(slow, v, delay))
+    if answer is None:
+        return PeriodEffect(dev.period, slow.period, v, k, k_slow)
+    from .limits.kmax import design_answer
+    from .limits.recommend import recommend_stiffness
+
+    ans = check_type("answer", answer, KMaxResult, "pass dfa.design_answer(Loop(device, wall), velocity)")
+    if ans.device != dev or ans.velocity != v:
+        raise DFAValueError(
+            f"answer is invalid: it is the design answer of {ans.device.name!r} at {ans.velocity:g}, not of device "
+            f"{dev.name!r} at velocity = {v:g}; pass design_answer(Loop(device, wall), velocity) of these"
+        )
+    rec = recommend_stiffness(ans)
+    rec_slow = recommend_stiffness(design_answer(Loop(slow, ans.wall), v, grid=PERIOD_EFFECT_GRID))
+    return PeriodEffect(dev.period, slow.period, v, k, k_slow, rec.k_recommended, rec_slow.k_recommended,
+                        rec.status.value, rec_slow.status.value, PERIOD_EFFECT_GRID)  # fmt: skip

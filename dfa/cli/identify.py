@@ -227,7 +227,7 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}
     lines += loop_head(dev, v, args.velocity is None) + stiffness_screen(ans, rec)
     if r.timing.exceeds:  # the limits hold at T: how the proof moves at the longest period logged
-        eff = period_effect(dev, r.timing, v, getattr(args, "delay", 0))
+        eff = period_effect(dev, r.timing, v, getattr(args, "delay", 0), answer=ans)
         out["loop"]["period_effect"] = eff.to_dict()
         lines += period_effect_lines(eff, dev.units["stiffness"])
     if isinstance(wall, float) or wall.elements == ():  # the paper's spring: its cycles replayed across the intervals

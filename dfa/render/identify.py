@@ -15,6 +15,7 @@ if TYPE_CHECKING:
     from ..model.wall import Wall
     from ..results.closed_loop import ClosedLoopEvidence, ContactMeasure, WallForceCheck
     from ..results.identify import Estimate, Identification, LoggedCycle, PeriodEffect, Timing, Undetermined
+    from ..results.status import IdentifyWarning
 
 __all__ = [
     "identify_lines",
@@ -103,7 +104,7 @@ def identify_lines(r: Identification) -> list[str]:
         *_noise_lines(r),
         fill(f"status {r.status.value}: {r.status.message}"),
     ]
-    lines += [fill(f"warning: {w.message}") for w in r.warnings]
+    lines += [fill(f"warning: {_warning_text(r, w)}") for w in r.warnings]
     lines += [fill(f"warning: {confounded_text(a, b, rho)}") for a, b, rho in r.confounded]
     return lines
 
@@ -130,12 +131,27 @@ def confounded_text(a: str, b: str, rho: float) -> str:
             f"{rho:.3f}): log {SEPARATING_MOTION[(a, b)]}")  # fmt: skip
 
 
+def _warning_text(r: Identification, w: IdentifyWarning) -> str:
+    """A warning's sentence; the position noise's with its level in ticks."""
+    if w.value == "position_noise":
+        return f"{number(r.position_noise_ticks, 2)} ticks of noise on the readings (standard deviation): {w.message}"
+    return w.message
+
+
 def _noise_lines(r: Identification) -> list[str]:
-    """The force noise that explains the residuals beyond quantization (nothing when none is estimated)."""
-    if not r.force_noise > 0.0:
-        return []
+    """The noise on the readings and on the force column that explains the residuals beyond quantization (nothing
+    when none is estimated)."""
     u = r.device.units
-    return [fill(
+    out = []
+    if r.position_noise > 0.0:
+        out.append(fill(
+            f"position noise: about {number(r.position_noise_ticks, 2)} ticks ({number(r.position_noise, 3)} "
+            f"{u['resolution']}) of white noise on the readings beyond their quantization, measured on the residuals' "
+            "second differences; the fit's segments start off their first reading's tick and the intervals include "
+            "it"))  # fmt: skip
+    if not r.force_noise > 0.0:
+        return out
+    return out + [fill(
         f"force noise: about {number(r.force_noise, 3)} {u['force']} ({number(100 * r.force_noise_relative, 2)} % of "
         "the force's standard deviation) on the force column explains the residuals beyond the encoder's "
         "quantization" + ("; the intervals include it" if r.status.value != "poor_fit" else
@@ -146,10 +162,11 @@ def _interval_note(r: Identification) -> str:
     """How the intervals were made, and what they leave out."""
     if all(e.low is None for e in (r.mass, r.damping, r.coulomb, r.force_offset)):
         return "no intervals: the log does not bound the values (the table says why)"
-    if r.force_noise > 0.0:
+    if r.force_noise > 0.0 or r.position_noise > 0.0:
+        which = " and ".join(k for k, v in (("force", r.force_noise), ("position", r.position_noise)) if v > 0.0)
         return (
-            f"intervals from the fit's Jacobian with the force noise estimated below and {r.bootstrap} replicate fits "
-            "with the encoder's origin shifted and fresh force noise; they leave out dynamics the model lacks"
+            f"intervals from the fit's Jacobian with the {which} noise estimated below and {r.bootstrap} replicate "
+            f"fits with the encoder's origin shifted and fresh {which} noise; they leave out dynamics the model lacks"
         )
     if r.bootstrap:
         how = f"from the fit and {r.bootstrap} replicate fits with the encoder's origin shifted"
@@ -283,7 +300,7 @@ def _count(k: int, what: str) -> str:
 def _seconds(x: float) -> str:
     """A time to 3 significant digits in s, ms or µs."""
     for scale, unit in ((1.0, "s"), (1e-3, "ms"), (1e-6, "µs")):
-        if abs(x) >= scale:
+        if abs(x) >= scale * (1.0 - 5e-4):  # what rounds to 1 at 3 digits (T = 0.9999999 ms is 1 ms)
             return f"{number(x / scale, 3)} {unit}"
     return f"{number(x / 1e-9, 3)} ns"
 
@@ -309,8 +326,8 @@ def timing_lines(tm: Timing) -> list[str]:
 
 
 def period_effect_lines(e: PeriodEffect, unit: str) -> list[str]:
-    """How the proven limit (eq. 11) moves from T to the longest logged period."""
-    return [
+    """How the proven limit (eq. 11) and the recommended stiffness move from T to the longest logged period."""
+    lines = [
         "",
         fill(
             f"at the longest logged period, {_seconds(e.period_max)} instead of T = {_seconds(e.period)}, the "
@@ -318,6 +335,16 @@ def period_effect_lines(e: PeriodEffect, unit: str) -> list[str]:
             f"of {number(e.k_criterion, 5)} {unit}: every limit above takes each sample to last T"
         ),
     ]
+    if e.rule is None:
+        return lines
+
+    def rec(k: float | None, rule: str | None) -> str:
+        return "none" if k is None else f"{number(k, 5)} {unit} ({rule})"
+
+    lines.append(fill(
+        f"recommended stiffness (the rule above; the same wall and speeds, a stiffness grid of {e.grid} points): "
+        f"{rec(e.k_recommended_max, e.rule_max)} at the longest logged period, {rec(e.k_recommended, e.rule)} at T"))  # fmt: skip
+    return lines
 
 
 def device_source(r: Identification, date: str) -> str:

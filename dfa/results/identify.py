@@ -179,7 +179,8 @@ class Timing:
 
 @dataclass(frozen=True)
 class PeriodEffect:
-    """How the proven stiffness limit (eq. 11, the cautious device) moves from T to the longest logged period.
+    """How the proven stiffness limit (eq. 11, the cautious device) and the recommended stiffness move from T to the
+    longest logged period.
 
     Attributes
     ----------
@@ -189,6 +190,14 @@ class PeriodEffect:
         Impact speed, m/s (rad/s).
     k_criterion, k_criterion_max : float
         The criterion's K_max at T and at the longest period, N/m (rotary N·m/rad).
+    k_recommended, k_recommended_max : float or None
+        The recommended stiffness (:func:`dfa.analysis.limits.recommend.recommend_stiffness`'s rule) of the design
+        answer at T and of the one at the longest period, N/m; None when no answer was given, or no K is recommended.
+    rule, rule_max : str or None
+        The rule each rests on (``proven``, ``simulated``, ``simulated_range``, ``none``); None without an answer.
+    grid : int or None
+        Points of the stiffness grid of the answer at the longest period (the same speeds as the one at T, a coarser
+        grid; bisection refines either limit to the same 2·10⁻³); None without an answer.
     """
 
     period: float
@@ -196,11 +205,22 @@ class PeriodEffect:
     velocity: float
     k_criterion: float
     k_criterion_max: float
+    k_recommended: float | None = None
+    k_recommended_max: float | None = None
+    rule: str | None = None
+    rule_max: str | None = None
+    grid: int | None = None
 
-    def to_dict(self) -> dict[str, float]:
-        """The five numbers (SI)."""
-        return {"period_s": self.period, "period_max_s": self.period_max, "velocity": self.velocity,
-                "k_criterion": self.k_criterion, "k_criterion_at_period_max": self.k_criterion_max}  # fmt: skip
+    def to_dict(self) -> dict[str, Any]:
+        """The numbers (SI), the rules, and why a recommendation is null."""
+        out = {"period_s": self.period, "period_max_s": self.period_max, "velocity": self.velocity,
+               "k_criterion": self.k_criterion, "k_criterion_at_period_max": self.k_criterion_max,
+               "k_recommended": self.k_recommended, "k_recommended_at_period_max": self.k_recommended_max,
+               "rule": self.rule, "rule_at_period_max": self.rule_max, "grid_at_period_max": self.grid}  # fmt: skip
+        none = "no design answer given" if self.rule is None else "no stiffness is recommended (rule none)"
+        slow = "no design answer given" if self.rule_max is None else "no stiffness is recommended (rule none)"
+        return explain_nulls(out, {"k_recommended": none, "rule": none, "grid_at_period_max": none,
+                                   "k_recommended_at_period_max": slow, "rule_at_period_max": slow})  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -238,6 +258,10 @@ class Identification(Result):
         quantization, N (rotary N·m); 0 when the residuals are quantization's alone.
     force_noise_relative : float
         The same relative to the logged force's standard deviation.
+    position_noise : float
+        Standard deviation of the white noise on the readings beyond their quantization, m (rotary rad): noise of
+        more than :data:`dfa.analysis.identify.POSITION_NOISE_MIN` tick (an analog sensor, a noisy encoder); 0 when
+        the readings are quantization's alone. :attr:`position_noise_ticks` in ticks.
     confounded : tuple of (str, str, float)
         Pairs of estimates the log does not tell apart (their correlation beyond 0.95 in the fit's covariance), with
         the correlation (:mod:`dfa.render.identify` says what motion would).
@@ -270,6 +294,7 @@ class Identification(Result):
     timing: Timing
     force_noise: float
     force_noise_relative: float
+    position_noise: float
     confounded: tuple[tuple[str, str, float], ...]
     warnings: tuple[IdentifyWarning, ...]
     velocity_peak: float
@@ -278,9 +303,9 @@ class Identification(Result):
     logged: np.ndarray = field(repr=False, metadata={"json": None})
     status: IdentifyStatus = IdentifyStatus.OK
 
-    json_properties: ClassVar[tuple[str, ...]] = ("start_velocity",)
+    json_properties: ClassVar[tuple[str, ...]] = ("start_velocity", "position_noise_ticks")
     units_of: ClassVar[dict[str, str]] = {"velocity_peak": "velocity", "start_velocity": "velocity",
-                                          "force_noise": "force"}  # fmt: skip
+                                          "force_noise": "force", "position_noise": "resolution"}  # fmt: skip
 
     def __post_init__(self) -> None:
         fix = "Identification is built by dfa.identify; call that instead"
@@ -298,6 +323,11 @@ class Identification(Result):
     def start_velocity(self) -> float:
         """The fitted velocity at the log's first sample, m/s (rad/s): the free run's start (the first segment's)."""
         return float(speed(self.device, self.segment_states[0, 2]))
+
+    @property
+    def position_noise_ticks(self) -> float:
+        """:attr:`position_noise` in ticks of the resolution."""
+        return self.position_noise / self.device.resolution
 
     def cautious(self) -> Device:
         """The identified device with b and c at the lower ends of their 95 % intervals.

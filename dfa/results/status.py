@@ -716,6 +716,12 @@ class IdentifyWarning(StatusEnum):
         "the residuals exceed the encoder's quantization: noise on the force column explains them, and the intervals "
         "include it",
     )
+    POSITION_NOISE = (
+        "position_noise",
+        "the readings carry noise beyond their quantization (white, from one sample to the next: an analog sensor or "
+        "a noisy encoder): the fit and its intervals include it, but the analyses model the readings as quantized "
+        "alone, and a wall fed such readings pushes with its noise",
+    )
     JITTER = (
         "jitter",
         "a logged period departs from T by more than 1 % of it: every analysis takes each sample to last T, and its "
