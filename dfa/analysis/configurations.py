@@ -63,7 +63,14 @@ from ..model.wall import Wall
 from ..results.configurations import ConfigurationRow, WorstConfiguration
 from ..results.status import ConfigurationStatus, LimitStatus, RecommendRule
 
-__all__ = ["worst_direction", "worst_stiffness", "worst_check", "DEFAULT_NORMALS"]
+__all__ = [
+    "worst_direction",
+    "worst_stiffness",
+    "worst_check",
+    "worst_z_width",
+    "z_width_common_ranges",
+    "DEFAULT_NORMALS",
+]
 
 #: Normals sampled on the hemisphere before the pattern search refines the best.
 DEFAULT_NORMALS = 32
@@ -509,3 +516,123 @@ def worst_check(
     status = ConfigurationStatus.NONE if worst.value is None else ConfigurationStatus.FOUND
     return WorstConfiguration(device, float(velocity), "margin", tuple(rows), worst.name, status,
                               details=(results[worst.name],))  # fmt: skip
+
+
+def z_width_common_ranges(
+    devices: Sequence[Device], wall: Wall, velocity: float, b_range: tuple[float, float] | None = None
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The one K and B grid of several devices' Z-widths: the union of each one's default ranges (N/m, N·s/m).
+
+    Parameters
+    ----------
+    devices : sequence of Device
+        The one-axis devices (a device file's configurations, :meth:`Configuration.device_at`).
+    wall : Wall
+        The wall whose elements the Z-width holds (its K and damper are the grid's).
+    velocity : float
+        Impact speed, m/s (rotary rad/s), > 0.
+    b_range : (float, float), optional
+        The B axis, N·s/m (default: the union of the devices' defaults).
+
+    Returns
+    -------
+    ((float, float), (float, float))
+        The K range and the B range.
+    """
+    from .limits.zwidth import z_width_ranges
+
+    ends = [z_width_ranges(Loop(d, wall), velocity, b_range) for d in devices]
+    k_range = (min(e[0][0] for e in ends), max(e[0][1] for e in ends))
+    return k_range, (min(e[1][0] for e in ends), max(e[1][1] for e in ends))
+
+
+#: The order of the simulated outcomes from least to most severe: a point of the Z-width of several devices is
+#: the most severe of theirs (each boundary's failing set, {bounded, diverges, undecided} for ``rest`` and
+#: {diverges, undecided} for ``sim``, is a top segment of this order).
+_SEVERITY = ("rest", "left", "bounded", "undecided", "diverges")
+
+
+def _limit_rank(x: Any) -> tuple[int, float]:
+    """The order of one B's limits over devices: none (no K: below the range, not covered, no stable K) first,
+    then the values, then none above the range (every K of the grid)."""
+    if x.value is not None:
+        return (1, float(x.value))
+    return (2, math.inf) if x.status is LimitStatus.ABOVE_RANGE else (0, 0.0)
+
+
+def worst_z_width(
+    device: Device,
+    devices: Sequence[tuple[str, Device]],
+    velocity: float,
+    wall: Wall,
+    **zwidth: Any,
+) -> Any:
+    """The Z-width of a device whose dynamics change over its workspace: inside only where inside for all.
+
+    Every configuration's one-axis device gets its Z-width (:func:`~dfa.analysis.limits.zwidth.z_width`) on one
+    grid (:func:`z_width_common_ranges`); at each B, each method's K_max is the smallest over the configurations
+    (a limit without value: none below the range, not covered, no stable K, counts as the smallest; above the range
+    as the largest), with the evidence of the configuration that gives it, named in ``limiting``; a grid point's
+    outcome is the most severe of the configurations' (so the simulated boundaries of the outcome grid are the
+    minima too). Counterexamples of every configuration are kept, each with its configuration's name.
+
+    Parameters
+    ----------
+    device : Device
+        The device (its name and units head the result).
+    devices : sequence of (str, Device)
+        The configurations' names and one-axis devices (a directional configuration along its worst normal under
+        ``dfa stiffness``'s rule), at least one.
+    velocity : float
+        Impact speed, m/s (rotary rad/s), > 0.
+    wall : Wall
+        The wall whose elements are held (K and damper are the grid's).
+    **zwidth
+        ``grid``, ``b_range``, ``speeds``, ``max_samples``, ``df_model``, ``n_jobs``, ``progress`` of
+        :func:`~dfa.analysis.limits.zwidth.z_width` (``k_range`` is the common grid's).
+
+    Returns
+    -------
+    ZWidth
+        The minimum over the configurations, ``limiting`` naming each method's configuration B by B.
+
+    Examples
+    --------
+    >>> from dfa.model.catalogue import get_device
+    >>> dev = get_device("impulse").device
+    >>> pair = [(c.name, c.device_at(dev)) for c in (Configuration("a"), Configuration("slippery", coulomb=0.012))]
+    >>> z = worst_z_width(dev, pair, 0.1, Wall.of(1.0), grid=2, speeds=1, n_jobs=1)
+    >>> z.limiting["criterion"][0]  # at B = 0 the criterion proves the smaller K with less friction
+    'slippery'
+    """
+    from ..results.codes import POINT_OUTCOMES, ZWIDTH_METHODS
+    from ..results.status import ZWidthStatus
+    from .limits.zwidth import z_width
+
+    check_type("device", device, Device, "give the device whose configurations these are")
+    if not devices:
+        raise DFAValueError("devices = [] is invalid: give at least one (name, Device) pair")
+    k_range, b_range = z_width_common_ranges([d for _n, d in devices], wall, velocity, zwidth.pop("b_range", None))
+    zws = [z_width(Loop(d, wall), velocity, k_range=k_range, b_range=b_range, **zwidth) for _n, d in devices]
+    names = [n for n, _d in devices]
+    nb = zws[0].damping.size
+    limits: dict[str, tuple[Any, ...]] = {}
+    limiting: dict[str, tuple[str, ...]] = {}
+    for m in ZWIDTH_METHODS:
+        picks = [min(range(len(zws)), key=lambda j: _limit_rank(zws[j].limits[m][i])) for i in range(nb)]
+        limits[m] = tuple(zws[j].limits[m][i] for i, j in enumerate(picks))
+        limiting[m] = tuple(names[j] for j in picks)
+    rank = np.array([_SEVERITY.index(o) for o in POINT_OUTCOMES])
+    codes = np.stack([z.outcome for z in zws])
+    worst = np.take_along_axis(codes, np.argmax(rank[codes], axis=0)[None], axis=0)[0].astype(codes.dtype)
+    ce = tuple(c | {"configuration": n} for n, z in zip(names, zws, strict=True) for c in z.counterexamples)
+    lpv = tuple(
+        c | {"configuration": n} for n, z in zip(names, zws, strict=True) for c in z.linear_passivity_violations
+    )
+    caveat = any(z.status is ZWidthStatus.CAVEATS for z in zws)
+    status = ZWidthStatus.COUNTEREXAMPLE if ce else (ZWidthStatus.CAVEATS if caveat else ZWidthStatus.OK)
+    z0 = zws[0]
+    return type(z0)(
+        device, z0.wall, z0.velocity, z0.speeds, z0.stiffness.copy(), z0.damping.copy(), limits, worst,
+        z0.max_samples, sum(z.simulations for z in zws), z0.df_model, ce, lpv, status, limiting=limiting,
+    )  # fmt: skip
