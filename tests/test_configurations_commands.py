@@ -249,3 +249,29 @@ def test_zwidth_of_two_configurations_is_the_minimum_of_their_z_widths_b_by_b(ca
             if len({v for v in values}) > 1:  # a tie names the first
                 assert zw["limiting"][m][i] == names[j], (m, i)
     assert zw["limiting"]["criterion"][0] == "slippery"  # less friction: a smaller proven K at B = 0
+
+
+def test_devices_template_of_a_device_file_writes_it_back_and_it_round_trips(capsys, tmp_path):
+    path = _file(tmp_path, *TWO, f'name = "pose"\ninertia = {INERTIA}\ncoulomb = [0.03, 0.02, 0.025]\npose = [0.1, 0, 0]')
+    code, out, _ = _run(capsys, "devices", "--template", "--device-file", path)
+    assert code == 0 and out.count("[[devices.configurations]]") == 3
+    back = tmp_path / "back.toml"
+    back.write_text(out, encoding="utf-8")
+    assert load_device_file(str(back)) == load_device_file(path)  # every value and configuration, read back
+    code, again, _ = _run(capsys, "devices", "--template", "--device-file", str(back))
+    assert code == 0 and again == out  # a fixed point: written twice, the same text
+    code, out, _ = _run(capsys, "devices", "--template", "--device", "impulse")
+    assert code == 0 and 'name = "Impulse Engine"' in out and "[[devices.configurations]]" not in out
+
+
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        (("--device", "impulse"), "needs --template"),
+        (("--template", "--device", "impulse", "--device-file", "x.toml"), "cannot both be given"),
+        (("--template", "--device-file", "missing.toml"), "cannot be read"),
+    ],
+)
+def test_devices_template_flags_are_refused_with_one_line(capsys, argv, words):
+    code, out, err = _run(capsys, "devices", *argv)
+    assert code == 2 and out == "" and err.count("\n") == 1 and words in err, err
