@@ -252,7 +252,9 @@ def test_zwidth_of_two_configurations_is_the_minimum_of_their_z_widths_b_by_b(ca
 
 
 def test_devices_template_of_a_device_file_writes_it_back_and_it_round_trips(capsys, tmp_path):
-    path = _file(tmp_path, *TWO, f'name = "pose"\ninertia = {INERTIA}\ncoulomb = [0.03, 0.02, 0.025]\npose = [0.1, 0, 0]')
+    path = _file(
+        tmp_path, *TWO, f'name = "pose"\ninertia = {INERTIA}\ncoulomb = [0.03, 0.02, 0.025]\npose = [0.1, 0, 0]'
+    )
     code, out, _ = _run(capsys, "devices", "--template", "--device-file", path)
     assert code == 0 and out.count("[[devices.configurations]]") == 3
     back = tmp_path / "back.toml"
