@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..errors import DFAError
-from ..model.catalogue import catalogue, device_template, get_device, load_device_file
+from ..model.catalogue import CatalogueEntry, catalogue, device_template, get_device, load_device_file
 from ..model.device import DEVICE_FIELDS, STIFFNESS, DeviceField
 from .output import emit, fmt, say, table
 from .parsing import UsageError
@@ -48,7 +48,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
 
 
-def _row(args: argparse.Namespace) -> object:
+def _row(args: argparse.Namespace) -> CatalogueEntry | None:
     """The row --template writes in full: --device-file's (its configurations too) or --device's; None: the
     template to edit."""
     if args.device_file is not None and args.device is not None:
