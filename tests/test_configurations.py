@@ -14,10 +14,19 @@ import math
 import numpy as np
 import pytest
 
-from dfa.analysis.configurations import worst_check, worst_direction, worst_stiffness
+from dfa.analysis.configurations import (
+    _answer,
+    _quick_key,
+    _QuickRank,
+    _worst_mass,
+    worst_check,
+    worst_direction,
+    worst_stiffness,
+)
 from dfa.analysis.criterion import device_criterion
 from dfa.analysis.limits.kmax import design_answer
 from dfa.analysis.limits.recommend import recommend_stiffness
+from dfa.analysis.limits.search import GridBracket, grid_search
 from dfa.cli import main
 from dfa.errors import DeviceFileError, DFAValueError
 from dfa.model.catalogue import get_device, load_device_file
@@ -288,3 +297,63 @@ def test_the_pose_grid_figure_stars_the_limiting_pose():
     star = [c for c in ax.collections if len(c.get_offsets()) == 1]
     assert len(star) == 1 and tuple(star[0].get_offsets()[0]) == pytest.approx((0.10, 0.05))
     assert ax.get_xlabel() == "pose x (m)"
+
+
+# ----------------------------------------------------------------------------- the speed of the worst direction
+@pytest.mark.parametrize("seed", range(40))
+def test_grid_bracket_judges_lazily_to_grid_searchs_value_bit_for_bit(seed):
+    # a judge that is not monotone in K (safe again above a failure), as a describing function's may be
+    rng = np.random.default_rng(seed)
+    grid = np.geomspace(1.0, 100.0, int(rng.integers(2, 12)))
+    edges = np.sort(rng.uniform(0.5, 150.0, int(rng.integers(0, 5))))
+
+    def judge(k: float) -> str:
+        return "safe" if int(np.searchsorted(edges, k)) % 2 == 0 else ("undecided" if seed % 3 == 0 else "unsafe")
+
+    eager = grid_search(judge, grid)
+    lazy = GridBracket(judge, grid)
+    while not lazy.exact:
+        lo, hi = lazy.bounds
+        truth = math.inf if eager.value is None else eager.value
+        assert lo <= truth <= hi  # the bounds hold at every step
+        lazy.refine()
+    assert lazy.value == eager.value and lazy.judgements <= eager.evaluations
+
+
+def test_quick_rank_orders_normals_as_the_full_quick_keys_do():
+    # the lazy rank (judged only until a comparison is decided) against the old path, the whole quick answer per
+    # normal: every pair ordered alike, and each rank, judged to the end, is the quick answer's key
+    c = Configuration("pose", inertia=INERTIA, coulomb=(0.03, 0.0, 0.025))  # along y the criterion proves no K (c = 0)
+    wall, v = Wall.of(1.0), 0.05
+    normals = [np.array(n) / np.linalg.norm(n) for n in ([1, 0, 0], [0, 1, 0], [0, 0.2, 1], [0.3, 0.9, 0.1])]
+    keys = []
+    for n in normals:
+        ans, rec = _answer(c.device_at(IMPULSE, n), wall, v, 2.0, False, {})
+        keys.append(_quick_key(rec, ans, 2.0))
+    ranks = [_QuickRank(c.device_at(IMPULSE, n), wall, v, 2.0) for n in normals]
+    assert any(math.isinf(k[0]) or k[0] == k[1] / 2.0 for k in keys)  # a normal without proof is among them
+    for i, j in [(i, j) for i in range(4) for j in range(4) if i != j]:
+        assert (ranks[i] < ranks[j]) == (keys[i] < keys[j]), (i, j)
+    for r, k in zip(ranks, keys, strict=True):
+        while not r.exact:
+            r.bracket.refine()
+        assert (r.parts()[0][0], r.parts()[1][0]) == k
+
+
+def test_a_configuration_without_per_axis_values_is_searched_over_its_masses():
+    # the one-axis device depends on n through m_n = 1/(nᵀ M⁻¹ n) alone: the search over the sphere is one over
+    # [λ_min, λ_max] (a function of the mass smallest between the samples, against the sphere's search)
+    lam = np.linalg.eigvalsh(INERTIA)
+    target = lam[0] + 0.613 * (lam[2] - lam[0])
+    masses: list[float] = []
+
+    def f(n: np.ndarray) -> tuple[float]:
+        m = effective_mass(INERTIA, n)
+        masses.append(m)
+        return (abs(m - target) / (lam[2] - lam[0]),)
+
+    n1, v1, count = _worst_mass(f, INERTIA, 17, 8)
+    assert min(masses) == pytest.approx(lam[0], rel=1e-12) and max(masses) == pytest.approx(lam[2], rel=1e-12)
+    assert v1 == f(np.array(n1)) and effective_mass(INERTIA, n1) == pytest.approx(target, rel=1e-3)
+    _n2, v2, count2 = worst_direction(f, INERTIA, refinements=8)
+    assert v1[0] <= v2[0] + 1e-12 and count < count2 / 2

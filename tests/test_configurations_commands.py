@@ -9,11 +9,13 @@ axis is the one-axis device with m_n = 1/(M⁻¹)_ii (numpy's inverse); the devi
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 import pytest
 
 from dfa.analysis.criterion import device_criterion
+from dfa.analysis.limits.zwidth import z_width
 from dfa.cli import main
 from dfa.cli.tune import export_command
 from dfa.model.catalogue import device_template, load_device_file
@@ -214,3 +216,64 @@ def test_export_velocity_exports_the_smallest_recommended_k_of_dfa_stiffness(cap
     assert min(ks, key=ks.__getitem__) == "slippery" and got["rule"] == "proven"
     assert got["wall"]["stiffness"] == pytest.approx(ks["slippery"], rel=1e-12)
     assert got["device"]["name"] == "Arm [slippery]"
+
+
+def _lowest(values: list) -> tuple[int, float | None]:
+    """The index of the smallest of a B's limits over configurations (a limit without value, first), and it."""
+    j = min(range(len(values)), key=lambda i: (values[i] is not None, values[i] or 0.0))
+    return j, values[j]
+
+
+@pytest.mark.slow  # three Z-widths of 3 × 3 (their describing-function columns): about 5 s
+def test_zwidth_of_two_configurations_is_the_minimum_of_their_z_widths_b_by_b(capsys, tmp_path):
+    path = tmp_path / "two.toml"
+    path.write_text(HEAD.replace("stiffness = 80.0\n", "") + '\n[[devices.configurations]]\nname = "near"\n'
+                    '\n[[devices.configurations]]\nname = "slippery"\ncoulomb = 0.012\n', encoding="utf-8")  # fmt: skip
+    code, out, _ = _run(capsys, "zwidth", "--device-file", str(path), "--velocity", "0.1", "--grid", "3",
+                        "--speeds", "1", "--jobs", "1", "--json")  # fmt: skip
+    assert code == 0
+    zw = json.loads(out)
+    assert zw["configuration"]["rule"] == "minimum_per_damping"
+    ks, bs = zw["stiffness"], zw["damping"]
+    singles = {}  # each configuration's own Z-width on the same grid, by flags (its device file is not read)
+    for name, c in (("near", 0.024), ("slippery", 0.012)):
+        dev = Device(0.032, 0.02, c, 314e-6, 0.002, name=name)
+        singles[name] = z_width(Loop(dev), 0.1, grid=3, k_range=(ks[0], ks[-1]), b_range=(bs[0], bs[-1]), speeds=1,
+                                n_jobs=1).boundaries  # fmt: skip
+    names = list(singles)
+    for m in ("linear", "criterion", "df", "sim", "rest"):
+        for i in range(3):
+            values = [None if math.isnan(singles[n][m][i]) else float(singles[n][m][i]) for n in names]
+            j, low = _lowest(values)
+            assert zw["boundaries"][m][i] == (None if low is None else pytest.approx(low, rel=1e-9)), (m, i)
+            if len({v for v in values}) > 1:  # a tie names the first
+                assert zw["limiting"][m][i] == names[j], (m, i)
+    assert zw["limiting"]["criterion"][0] == "slippery"  # less friction: a smaller proven K at B = 0
+
+
+def test_devices_template_of_a_device_file_writes_it_back_and_it_round_trips(capsys, tmp_path):
+    path = _file(
+        tmp_path, *TWO, f'name = "pose"\ninertia = {INERTIA}\ncoulomb = [0.03, 0.02, 0.025]\npose = [0.1, 0, 0]'
+    )
+    code, out, _ = _run(capsys, "devices", "--template", "--device-file", path)
+    assert code == 0 and out.count("[[devices.configurations]]") == 3
+    back = tmp_path / "back.toml"
+    back.write_text(out, encoding="utf-8")
+    assert load_device_file(str(back)) == load_device_file(path)  # every value and configuration, read back
+    code, again, _ = _run(capsys, "devices", "--template", "--device-file", str(back))
+    assert code == 0 and again == out  # a fixed point: written twice, the same text
+    code, out, _ = _run(capsys, "devices", "--template", "--device", "impulse")
+    assert code == 0 and 'name = "Impulse Engine"' in out and "[[devices.configurations]]" not in out
+
+
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        (("--device", "impulse"), "needs --template"),
+        (("--template", "--device", "impulse", "--device-file", "x.toml"), "cannot both be given"),
+        (("--template", "--device-file", "missing.toml"), "cannot be read"),
+    ],
+)
+def test_devices_template_flags_are_refused_with_one_line(capsys, argv, words):
+    code, out, err = _run(capsys, "devices", *argv)
+    assert code == 2 and out == "" and err.count("\n") == 1 and words in err, err

@@ -8,9 +8,10 @@ devices; a command answers for the limiting one and names it:
   (eq. 6) at its K and impact speed, :func:`dfa.analysis.configurations.worst_check` (``dfa check``'s rule); a
   command without a speed (``limit-cycles``, ``contours``, ``params``, ``export --stiffness``) takes V = 0, the
   margin σ − σ₀;
-- a command that *searches* a stiffness (``tune``, ``export --velocity``, ``zwidth``): the configuration with the
+- a command that *searches* a stiffness (``tune``, ``export --velocity``): the configuration with the
   smallest recommended K at its speed, :func:`dfa.analysis.configurations.worst_stiffness` (``dfa stiffness``'s
-  rule).
+  rule); ``zwidth`` takes the minimum over every configuration B by B instead
+  (:func:`dfa.analysis.configurations.worst_z_width`).
 
 :func:`limiting` turns :class:`~dfa.cli.inputs.Inputs` with configurations into the inputs of the limiting
 configuration's one-axis device (``Inputs.worst`` keeps every row); :func:`configuration_json` is its record in

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from ..model.catalogue import catalogue, device_template
+from ..errors import DFAError
+from ..model.catalogue import CatalogueEntry, catalogue, device_template, get_device, load_device_file
 from ..model.device import DEVICE_FIELDS, STIFFNESS, DeviceField
 from .output import emit, fmt, say, table
 from .parsing import UsageError
@@ -32,6 +33,34 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="print a commented device file (TOML, the catalogue's format) to fill in and use with --device-file: "
         "`dfa devices --template > my_device.toml` (default: the catalogue)",
     )
+    p.add_argument(
+        "--device-file",
+        dest="device_file",
+        metavar="FILE.toml",
+        help="with --template: write this device file's row in full instead (every value, and its "
+        "[[devices.configurations]] tables), a file that reads back unchanged (default: the template to edit)",
+    )
+    p.add_argument(
+        "--device",
+        metavar="NAME",
+        help="with --template: write this catalogue device's row in full instead, to start a file from it "
+        "(default: the template to edit)",
+    )
+
+
+def _row(args: argparse.Namespace) -> CatalogueEntry | None:
+    """The row --template writes in full: --device-file's (its configurations too) or --device's; None: the
+    template to edit."""
+    if args.device_file is not None and args.device is not None:
+        raise UsageError("--device-file and --device cannot both be given to --template: give the one row to write")
+    try:
+        if args.device_file is not None:
+            return load_device_file(args.device_file)
+        if args.device is not None:
+            return get_device(args.device)
+    except DFAError as exc:
+        raise UsageError(str(exc)) from None
+    return None
 
 
 def run(args: argparse.Namespace) -> int:
@@ -39,8 +68,12 @@ def run(args: argparse.Namespace) -> int:
     if args.template:
         if args.json:
             raise UsageError("--template and --json cannot both be given: the template is TOML; give one of them")
-        print(device_template(), end="")
+        print(device_template(_row(args)), end="")
         return 0
+    for flag, value in (("--device-file", args.device_file), ("--device", args.device)):
+        if value is not None:
+            raise UsageError(f"{flag} {value!r} needs --template: it chooses the row the template writes; add "
+                             "--template, or drop the flag for the catalogue")  # fmt: skip
     rows = catalogue()
     if args.json:
         emit([r.to_dict() for r in rows])

@@ -4,17 +4,29 @@ function and simulation, with the wall's delay, filter and amplifier held fixed.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
+from typing import Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
 from ..model.elements import OneSided, PassivityController
 from ..model.loop import Loop
 from ..model.wall import Wall
 from ..render.hand import device_title
-from .configurations import STIFFNESS, configuration_json, configuration_line, limiting
 from .contact import add_contact_args, contact_elements
-from .inputs import add_device_group, impact_speed, resolve
-from .output import WORK_TIME_LIMIT, add_progress_args, check_work_time, emit, fmt, progress, save_png, say, table
+from .inputs import Inputs, add_device_group, impact_speed, resolve
+from .output import (
+    WORK_TIME_LIMIT,
+    add_progress_args,
+    check_work_time,
+    emit,
+    fmt,
+    progress,
+    save_png,
+    say,
+    table,
+    working,
+)
 from .parsing import UsageError, integer, number
 from .passivity import add_passivity_args, passivity_elements
 from .walls import add_wall_args, check_filter_amplifier, hand_stiffness_of, wall_groups
@@ -26,8 +38,9 @@ HELP = (
 )
 EXAMPLE = "dfa zwidth --device impulse --velocity 0.1 --grid 20"
 
-#: What the Z-width of a device file with configurations is (its text; docs/cli.md).
-ZWIDTH_NOTE = "not the minimum over every configuration, B by B"
+#: The Z-width of a device file with configurations: its rule and its text (docs/cli.md).
+MINIMUM = "minimum_per_damping"
+ZWIDTH_NOTE = "the minimum over them B by B (a point is inside only if inside for every configuration)"
 #: Column titles of the table, by method (dfa.analysis.limits.zwidth.ZWIDTH_METHODS).
 COLUMNS = {"linear": "linear", "passivity": "C-S passivity", "criterion": "criterion", "df": "describing fn",
            "sim": "sim (no div.)", "rest": "sim (rest)"}  # fmt: skip
@@ -100,6 +113,31 @@ def _refuse(args: argparse.Namespace) -> None:
         )
 
 
+def _over_configurations(
+    args: argparse.Namespace, inp: Inputs, wall: Wall, v: float, b_range: tuple[float, float] | None
+) -> tuple[Any, Inputs]:
+    """The Z-width of every configuration on one grid, the minimum B by B (:func:`worst_z_width`); the inputs
+    with their rows (a directional configuration along its worst normal under dfa stiffness's rule)."""
+    from ..analysis.configurations import worst_stiffness, worst_z_width, z_width_common_ranges
+    from ..analysis.limits.zwidth import z_width_seconds
+
+    dev = inp.device
+    assert dev is not None
+    with working(args):
+        w = worst_stiffness(dev, inp.configurations, v, wall=wall, simulate=False)
+    devices = [(c.name, c.device_at(dev, r.normal)) for c, r in zip(inp.configurations, w.rows, strict=True)]
+    for _n, d in devices:
+        wall_groups(wall, d)
+    _k, b_all = z_width_common_ranges([d for _n, d in devices], wall, v, b_range)
+    seconds = sum(z_width_seconds(Loop(d, wall), v, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs,
+                                  b_range=b_all) for _n, d in devices)  # fmt: skip
+    what = f"--grid {args.grid} with --speeds {args.speeds} over {len(devices)} configurations"
+    check_work_time(what, seconds, "lower --grid or --speeds, or choose one with --configuration", args.force)
+    zw = worst_z_width(dev, devices, v, wall, grid=args.grid, b_range=b_range, speeds=args.speeds,
+                       n_jobs=args.jobs, progress=progress(args))  # fmt: skip
+    return zw, dataclasses.replace(inp, configurations=(), worst=w, rule=MINIMUM)
+
+
 def _cell(value: float | None) -> str:
     """A K_max cell: ``-`` where the limit is undefined (None or not finite)."""
     return fmt(value if value is not None and math.isfinite(value) else None)
@@ -124,34 +162,37 @@ def run(args: argparse.Namespace) -> int:
     wall = Wall(1.0, (*wall.elements, *contact_elements(args, dev), *passivity_elements(args, dev)))
     wall_groups(wall, dev)  # a value whose group overflows: refused naming its flag
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
-    if inp.configurations:  # the smallest recommended K with this wall (dfa stiffness's rule): its Z-width
-        inp = limiting(args, inp, STIFFNESS, velocity=v, wall=wall)
+    b_range = None if args.damping_max is None else (0.0, float(args.damping_max))
+    check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
+    if inp.configurations:  # the minimum over the configurations, B by B
+        zw, inp = _over_configurations(args, inp, wall, v, b_range)
         dev = inp.device
         assert dev is not None
-        wall_groups(wall, dev)
-    check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
-    b_range = None if args.damping_max is None else (0.0, float(args.damping_max))
-    loop = Loop(dev, wall)
-    seconds = z_width_seconds(loop, v, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, b_range=b_range)
-    check_work_time(f"--grid {args.grid} with --speeds {args.speeds}", seconds, "lower --grid or --speeds", args.force)
-    zw = z_width(
-        loop, v, grid=args.grid, b_range=b_range, speeds=args.speeds, n_jobs=args.jobs, progress=progress(args)
-    )
+    else:
+        loop = Loop(dev, wall)
+        seconds = z_width_seconds(loop, v, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, b_range=b_range)
+        check_work_time(f"--grid {args.grid} with --speeds {args.speeds}", seconds, "lower --grid or --speeds",
+                        args.force)  # fmt: skip
+        zw = z_width(
+            loop, v, grid=args.grid, b_range=b_range, speeds=args.speeds, n_jobs=args.jobs, progress=progress(args)
+        )
     if args.plot is not None:
         save_png("--plot", args.plot, zw.plot())
     if args.json:
         rec = zw.to_dict()
         if args.plot is not None:
             rec["plot"] = args.plot
-        rec |= configuration_json(inp)
-        if "configuration" in rec:
-            rec["configuration"]["note"] = f"the Z-width is that configuration's, {ZWIDTH_NOTE}"
+        if inp.worst is not None:  # the rows: each configuration's one-axis device (and dfa stiffness's normal)
+            rec["configuration"] = {
+                "rule": MINIMUM, "rule_text": ZWIDTH_NOTE, "rows": [r.to_dict() for r in inp.worst.rows],
+            }  # fmt: skip
         emit(rec)
         return 0
     u = dev.units
     rows = [
         [fmt(float(b))]
         + [_cell(lim.value) + non_monotone_mark(lim.non_monotone) for lim in (zw.limits[m][i] for m in ZWIDTH_METHODS)]
+        + ([zw.limiting["sim"][i]] if zw.limiting else [])
         for i, b in enumerate(zw.damping)
     ]
     fc, bw = zw.wall.filter_cutoff, zw.wall.amplifier_bandwidth
@@ -169,11 +210,16 @@ def run(args: argparse.Namespace) -> int:
     say(
         f"Z-width of {device_title(dev)}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}"
     )
-    line = configuration_line(inp)
-    if line is not None:
-        say(f"{line}; the Z-width is that configuration's ({ZWIDTH_NOTE})")
+    if zw.limiting:
+        n = len(inp.worst.rows) if inp.worst else 0
+        say(f"{n} configurations, {ZWIDTH_NOTE}; 'sim by' names the configuration of the simulated limit per B "
+            "(--json: every method's)")  # fmt: skip
     say(f"K_max(B) in {u['stiffness']} ('-': undefined, see --json for the reason)")
-    say(table(rows, [f"B ({u['damping']})"] + [COLUMNS[m] for m in ZWIDTH_METHODS]))
+    say(
+        table(
+            rows, [f"B ({u['damping']})"] + [COLUMNS[m] for m in ZWIDTH_METHODS] + (["sim by"] if zw.limiting else [])
+        )
+    )
     say(
         f"{zw.simulations} exact simulations on a {zw.stiffness.size} x {zw.damping.size} grid "
         f"(K {zw.stiffness[0]:.4g} to {zw.stiffness[-1]:.4g} {u['stiffness']}, B {zw.damping[0]:.4g} to "

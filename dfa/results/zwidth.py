@@ -55,6 +55,10 @@ class ZWidth(Result):
         Divergent grid points below the Colgate–Schenkel boundary (linear model; not a proof for the device).
     status : ZWidthStatus
         ``ok``, ``caveats`` (undecided points or non-monotone columns) or ``counterexample``.
+    limiting : dict of str to tuple of str, optional
+        The Z-width of a device file's configurations (the minimum over them, B by B): per method, the name of the
+        configuration whose limit each B takes (:func:`dfa.analysis.configurations.worst_z_width`); None (absent
+        from JSON) for one device.
     """
 
     device: Device = field(metadata={"json": lambda d: d.name})
@@ -71,6 +75,7 @@ class ZWidth(Result):
     counterexamples: tuple[dict[str, object], ...] = ()
     linear_passivity_violations: tuple[dict[str, object], ...] = ()
     status: ZWidthStatus = ZWidthStatus.OK
+    limiting: dict[str, tuple[str, ...]] | None = field(default=None, metadata={"omit_none": True})
 
     json_properties: ClassVar[tuple[str, ...]] = ("delay", "boundaries", "outcome_layout")
     units_of: ClassVar[dict[str, str]] = {"velocity": "velocity", "stiffness": "stiffness", "damping": "damping"}
@@ -88,6 +93,10 @@ class ZWidth(Result):
         for name in ZWIDTH_METHODS:
             if len(self.limits[name]) != nb or not all(isinstance(x, KLimit) for x in self.limits[name]):
                 raise DFAValueError(f"limits[{name!r}] must hold one KLimit per B ({nb}); {fix}")
+        if self.limiting is not None and (
+            set(self.limiting) != set(ZWIDTH_METHODS) or any(len(v) != nb for v in self.limiting.values())
+        ):
+            raise DFAValueError(f"limiting must name one configuration per B ({nb}) for each method; {fix}")
         st = ZWidthStatus.coerce(self.status)
         object.__setattr__(self, "status", st)
         if (st is ZWidthStatus.COUNTEREXAMPLE) != bool(self.counterexamples):

@@ -65,6 +65,7 @@ __all__ = [
     "KLimit",
     "Sweep",
     "grid_search",
+    "GridBracket",
     "geometric_mean",
     "df_limit",
     "simulated_limit",
@@ -167,6 +168,75 @@ def grid_search(
         non_monotone=bool(safe_above), safe_above=safe_above,
         undecided=tuple(sorted(undecided)), first_failure=hi, evaluations=n,
     )  # fmt: skip
+
+
+class GridBracket:
+    """:func:`grid_search`'s value, judged lazily: an interval that holds it, narrowed one judgement at a time.
+
+    The same judgements in the same order as :func:`grid_search` (the grid ascending up to the first non-safe
+    point, then the bisection), stopped whenever the caller knows enough: after the grid points
+    ``grid[0..j-1]`` were judged safe the value is >= ``grid[j-1]`` (or there is none, ``above_range``); after
+    the first non-safe grid point ``grid[i]`` it lies in [lo, hi) of the bisection. Once :attr:`exact`,
+    :attr:`value` is :func:`grid_search`'s ``value`` bit for bit (None for ``above_range`` or ``below_range``).
+    It does not judge the grid points above the first failure (``safe_above``: :func:`grid_search` reports them).
+
+    Examples
+    --------
+    >>> b = GridBracket(lambda k: "safe" if k < 3.0 else "unsafe", geometric_grid(1.0, 10.0, 5))
+    >>> b.bounds
+    (1.0, inf)
+    >>> while not b.exact:
+    ...     b.refine()
+    >>> b.value == grid_search(lambda k: "safe" if k < 3.0 else "unsafe", geometric_grid(1.0, 10.0, 5)).value
+    True
+    """
+
+    def __init__(self, judge: Callable[[float], str], grid: np.ndarray):
+        self.judge, self.grid = judge, [float(k) for k in grid]
+        self.next = 0  # the next grid point to judge (every one below it safe)
+        self.lo, self.hi = self.grid[0], math.inf  # the value's interval (inf: none found above yet)
+        self.exact = False
+        self.value: float | None = None
+        self.judgements = 0
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        """(lo, hi) with lo <= value <= hi, N/m; no value (either end of the range) counts as +inf here."""
+        if self.exact:
+            v = math.inf if self.value is None else self.value
+            return v, v
+        return self.lo, self.hi
+
+    def refine(self) -> None:
+        """One more judgement (nothing once :attr:`exact`)."""
+        if self.exact:
+            return
+        if self.hi == math.inf:  # the grid, ascending
+            k = self.grid[self.next]
+            verdict = self.judge(k)
+            self.judgements += 1
+            if verdict == SAFE:
+                self.lo, self.next = k, self.next + 1
+                if self.next == len(self.grid):  # above_range
+                    self.exact = True
+            elif self.next == 0:  # below_range
+                self.exact = True
+            else:
+                self.hi = k
+            self._settle()
+            return
+        mid = geometric_mean(self.lo, self.hi)
+        self.judgements += 1
+        if self.judge(mid) == SAFE:
+            self.lo = mid
+        else:
+            self.hi = mid
+        self._settle()
+
+    def _settle(self) -> None:
+        """Exact once the bisection is as narrow as :func:`grid_search` makes it."""
+        if not self.exact and self.hi < math.inf and not self.hi - self.lo > K_RTOL * self.hi:
+            self.exact, self.value = True, self.lo
 
 
 def _judged(judge: Callable[[float], str], k: float) -> str:

@@ -107,6 +107,7 @@ __all__ = [
     "check_zwidth_size",
     "damping_ends",
     "default_damping_max",
+    "z_width_ranges",
     "ZWIDTH_METHODS",
     "POINT_OUTCOMES",
 ]
@@ -384,6 +385,24 @@ def _grids(dev: Device, wall: Wall, grid: int, k_range: Any, b_range: Any, v: fl
             f"k_range = ({format_value(k0)}, {format_value(k1)}) is invalid: it must satisfy low < high"
         )
     return geometric_grid(k0, k1, grid), bs
+
+
+@loop_first("device, *, wall")
+def z_width_ranges(
+    loop: Loop, velocity: float, b_range: tuple[float, float] | None = None
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The K and B ranges :func:`z_width` takes by default for this loop (N/m and N·s/m): its grids' ends.
+
+    The Z-width of several devices on one grid (a device file's configurations) spans the union of theirs.
+
+    Returns
+    -------
+    ((float, float), (float, float))
+        (K low, K high) and (B low, B high).
+    """
+    dev = check_type("loop", loop, Loop, LOOP_FIX).search_device("z_width_ranges")
+    ks, bs = _grids(dev, loop.spring, 2, None, b_range, velocity)
+    return (float(ks[0]), float(ks[-1])), (float(bs[0]), float(bs[-1]))
 
 
 def _plan(dev: Device, wall: Wall, ks: Any, bs: Any, xi_dots: Any, cap: int) -> tuple[list[tuple], float]:

@@ -40,7 +40,8 @@ _STAR: dict[str, Any] = {"marker": "*", "ms": 16, "color": "k", "mfc": "gold", "
 def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
     """The Z-width of a device: B across, K up (log), one line per method, the simulated region shaded.
 
-    The simulated boundaries are values of the K grid and are drawn as markers, one per B, never joined
+    The Z-width of a device file's configurations (``zw.limiting``) names the configuration of the simulated
+    boundary beside each of its markers. The simulated boundaries are values of the K grid and are drawn as markers, one per B, never joined
     (a line would claim stiffnesses between the grid's and draw an isolated grid value as a spike). A
     method defined at a single B (often the criterion, at B = 0 only) is a marker drawn above
     everything else, the design point's star included, so that neither hides the other. The shades are
@@ -81,13 +82,19 @@ def plot_zwidth(zw, ax=None, design_point: tuple[float, float] | None = None):
         if np.isfinite(y).any():
             lone = {"zorder": _LONE["zorder"]} if m in _ZWIDTH_GRID_VALUED else _LONE
             ax.plot(bs, y, label=label, **{**style, **(lone if np.isfinite(y).sum() < 2 else {})})
+    if zw.limiting:  # a device file's configurations: which one limits the simulated boundary at each B
+        for b, k, name in zip(bs, zw.boundary("sim"), zw.limiting["sim"], strict=True):
+            if np.isfinite(k):
+                ax.annotate(name, (b, k), xytext=(4, 4), textcoords="offset points", fontsize=7, color="#b2182b")
     ax.set_yscale("log")
     ax.set_ylim(kedges[0], kedges[-1])
     ax.set_xlim(bedges[0], bedges[-1])
     ax.set_xlabel(f"virtual damping B ({u['damping']})")
     ax.set_ylabel(f"virtual stiffness K ({u['stiffness']})")
     contact = ", one-sided wall reached from free space" if zw.wall.one_sided else ""
-    ax.set_title(f"Z-width of {zw.device.name}, impacts up to {zw.velocity:.3g} {u['velocity']}{contact}", fontsize=9)
+    over = " (the minimum over its configurations, B by B)" if zw.limiting else ""
+    ax.set_title(f"Z-width of {zw.device.name}{over}, impacts up to {zw.velocity:.3g} {u['velocity']}{contact}",
+                 fontsize=9)  # fmt: skip
     if design_point is not None:
         b, k = design_point
         lo, hi = kedges[0], kedges[-1]
