@@ -357,3 +357,31 @@ def test_a_configuration_without_per_axis_values_is_searched_over_its_masses():
     assert v1 == f(np.array(n1)) and effective_mass(INERTIA, n1) == pytest.approx(target, rel=1e-3)
     _n2, v2, count2 = worst_direction(f, INERTIA, refinements=8)
     assert v1[0] <= v2[0] + 1e-12 and count < count2 / 2
+
+
+def test_worst_direction_rank_counts_a_limit_below_the_range_as_most_limiting():
+    """A normal whose describing-function limit lies below the range searched (cycles predicted already at the
+    smallest K) is the most limiting, never the least: the full key and the lazy bracket agree."""
+    import types
+
+    from dfa.analysis.configurations import _quick_key
+    from dfa.analysis.limits.search import GridBracket, geometric_grid
+    from dfa.results.status import LimitStatus
+
+    def ans(value, status):
+        return types.SimpleNamespace(k_df=types.SimpleNamespace(value=value, status=status))
+
+    rec = types.SimpleNamespace(k_recommended=None)
+    below = _quick_key(rec, ans(None, LimitStatus.BELOW_RANGE), 2.0)
+    found = _quick_key(rec, ans(500.0, LimitStatus.FOUND), 2.0)
+    above = _quick_key(rec, ans(None, LimitStatus.ABOVE_RANGE), 2.0)
+    assert below < found < above and below == (0.0, 0.0)
+    grid = geometric_grid(100.0, 1e4, 8)
+    b = GridBracket(lambda k: "unsafe", grid)
+    assert b.bounds == (0.0, math.inf)  # nothing judged: the value may lie anywhere, below the range included
+    b.refine()
+    assert b.exact and b.value is None and b.bounds == (0.0, 0.0)
+    a = GridBracket(lambda k: "safe", grid)
+    while not a.exact:
+        a.refine()
+    assert a.value is None and a.bounds == (math.inf, math.inf)

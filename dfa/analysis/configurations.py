@@ -194,8 +194,12 @@ def _answer(dev: Device, wall: Wall, velocity: float, margin: float, simulate: b
 
 def _quick_key(rec: Any, ans: Any, margin: float) -> tuple[float, float]:
     """The quick answer's rank: its recommended K, else the describing function's limit over the margin (an
-    estimate of the simulated rule); then the describing function's limit (it depends on the mass)."""
-    k_df = ans.k_df.value if ans.k_df.value is not None else math.inf
+    estimate of the simulated rule); then the describing function's limit (it depends on the mass). A limit with
+    no value counts as 0 below the range searched (cycles predicted at the smallest K: the most limiting) and as
+    inf otherwise (none predicted)."""
+    k_df = ans.k_df.value
+    if k_df is None:
+        k_df = 0.0 if ans.k_df.status is LimitStatus.BELOW_RANGE else math.inf
     k = rec.k_recommended if rec.k_recommended is not None else k_df / margin
     return (k, k_df)
 
@@ -250,9 +254,14 @@ class _QuickRank:
                 return decided
             open_ = [r for r in (self, other) if not r.exact]
             # the one further from its value: the grid's (hi = inf) from the lower point, else the wider bracket
-            pick = min(open_, key=lambda r: (-math.log(r.parts()[1][1] / r.parts()[1][0]), r.parts()[1][0]))
+            pick = min(open_, key=lambda r: (-_spread(*r.parts()[1]), r.parts()[1][0]))
             assert pick.bracket is not None
             pick.bracket.refine()
+
+
+def _spread(lo: float, hi: float) -> float:
+    """hi / lo of an interval of stiffnesses: inf while nothing is judged safe (lo = 0) or nothing failed."""
+    return math.inf if not lo > 0.0 else hi / lo
 
 
 def _less(a: Sequence[tuple[float, float]], b: Sequence[tuple[float, float]]) -> bool | None:

@@ -184,7 +184,7 @@ class GridBracket:
     --------
     >>> b = GridBracket(lambda k: "safe" if k < 3.0 else "unsafe", geometric_grid(1.0, 10.0, 5))
     >>> b.bounds
-    (1.0, inf)
+    (0.0, inf)
     >>> while not b.exact:
     ...     b.refine()
     >>> b.value == grid_search(lambda k: "safe" if k < 3.0 else "unsafe", geometric_grid(1.0, 10.0, 5)).value
@@ -194,16 +194,18 @@ class GridBracket:
     def __init__(self, judge: Callable[[float], str], grid: np.ndarray):
         self.judge, self.grid = judge, [float(k) for k in grid]
         self.next = 0  # the next grid point to judge (every one below it safe)
-        self.lo, self.hi = self.grid[0], math.inf  # the value's interval (inf: none found above yet)
+        self.lo, self.hi = 0.0, math.inf  # the value's interval (0: nothing judged safe yet; inf: none found above)
         self.exact = False
         self.value: float | None = None
+        self.below = False  # below_range: the first grid point already not safe
         self.judgements = 0
 
     @property
     def bounds(self) -> tuple[float, float]:
-        """(lo, hi) with lo <= value <= hi, N/m; no value (either end of the range) counts as +inf here."""
+        """(lo, hi) with lo <= value <= hi, N/m; no value counts as +inf above the range (nothing failed) and as 0
+        below it (the smallest stiffness already fails: the most limiting, never the least)."""
         if self.exact:
-            v = math.inf if self.value is None else self.value
+            v = (0.0 if self.below else math.inf) if self.value is None else self.value
             return v, v
         return self.lo, self.hi
 
@@ -220,7 +222,7 @@ class GridBracket:
                 if self.next == len(self.grid):  # above_range
                     self.exact = True
             elif self.next == 0:  # below_range
-                self.exact = True
+                self.exact = self.below = True
             else:
                 self.hi = k
             self._settle()
