@@ -360,3 +360,23 @@ def test_every_flag_in_every_form(tmp_path, capsys, monkeypatch, cmd):
             runs += 1
     assert runs == 3 * len(VALUE_FLAGS[cmd])
     assert os.listdir(tmp_path) == [] or cmd in ("devices",), os.listdir(tmp_path)
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["require", "--device", "delta", "--velocity", "0.1"],
+        ["tune", "--device", "impulse"],
+        ["tune", "--device", "impulse", "--velocity", "0.05", "--virtual-damping", "1"],
+        ["export", "--device", "impulse", "--stiffness", "-1"],
+        ["zwidth", "--device", "delta", "--velocity", "0.1", "--grid", "x"],
+        ["identify", "no-such-log.csv", "--bootstrap", "-1"],
+        ["stiffness", "--device", "delta", "--velocity", "0.1", "--bogus"],
+    ],
+    ids=lambda argv: " ".join(argv[:1]),
+)
+def test_cli_every_command_refuses_with_its_own_prefix(capsys, argv):
+    """The commands the sweep above does not draw: a refusal is one line starting `dfa COMMAND: error: `."""
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"dfa {argv[0]}: error: "), err

@@ -105,10 +105,18 @@ def test_written_device_file_reads_back_with_the_identified_values(logs, tmp_pat
     assert "si.csv" in e.source and date in e.source and e.kind == "haptic device"
     assert e.notes.count("95 % interval") == 4 and "status ok" in e.notes
     for argv in (["params"], ["check", "--velocity", "0.05"], ["simulate", "--velocity", "0.05", "--samples", "100"],
-                 ["limit-cycles", "--max-amplitude", "5"], ["stiffness", "--velocity", "0.05", "--quick"]):  # fmt: skip
+                 ["limit-cycles", "--max-amplitude", "5"], ["stiffness", "--velocity", "0.05", "--quick"],
+                 ["require", "--velocity", "0.05", "--stiffness", "500"]):  # fmt: skip
         assert main([argv[0], "--device-file", str(path), *argv[1:]]) == 0, argv
         out = capsys.readouterr().out
         assert "device identified from si.csv" in out, argv
+    for argv, name in ((["map", "--grid", "4", "--velocity", "0.05"], "m.npz"), (["contours", "--grid", "20"], "c.npz"),
+                       (["export", "--format", "json"], "w.json")):  # fmt: skip  # files: their written line
+        out_file = tmp_path / name
+        assert main([argv[0], "--device-file", str(path), *argv[1:], "--out", str(out_file)]) == 0, argv
+        capsys.readouterr()
+        assert out_file.stat().st_size > 0, argv
+    assert json.loads((tmp_path / "w.json").read_text())["wall"]["stiffness"] == 500.0  # the file's K, exported
 
 
 @pytest.mark.filterwarnings("ignore::dfa.plausibility.ImplausibleInputWarning")  # the poor fit's mass

@@ -45,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
 
     inp = resolve(args, dimensionless=False, need_stiffness=False, configurations=True)
     if args.stiffness is None:
-        raise UsageError("dfa require needs the target stiffness: give --stiffness K in N/m (rotary: N·m/rad)")
+        raise UsageError("the target stiffness is missing: give --stiffness K in N/m (rotary: N·m/rad)")
     k = float(args.stiffness)
     _xd, v = speed(args, inp)
     assert v is not None

@@ -136,7 +136,7 @@ def _refuse_tuned(args: argparse.Namespace) -> None:
     """The tuned elements' own flags are refused: the lists say what is tried."""
     for dest, (flag, instead) in _TUNED.items():
         if getattr(args, dest, None) not in (None, False):
-            raise UsageError(f"dfa tune: {flag} is not taken here: the tuning varies it; give {instead}")
+            raise UsageError(f"{flag} is not taken here: the tuning varies it; give {instead}")
     if args.stiffness is not None:
         raise UsageError(
             "dfa tune: --stiffness is not taken here: the tuning searches K for each wall; drop it (dfa stiffness "
@@ -226,7 +226,7 @@ def run(args: argparse.Namespace) -> int:
     assert dev is not None
     _xd, v = speed(args, inp)
     if v is None or v <= 0:
-        raise UsageError("dfa tune: give the impact speed, --velocity V > 0 (m/s; rotary rad/s)")
+        raise UsageError("the impact speed is missing: give --velocity V > 0 (m/s; rotary rad/s)")
     _check_cutoffs(args, dev.period)
     held = wall_from_args(args, dev, 1.0)
     wall = held if held is not None else Wall.of(1.0, delay=args.delay)
