@@ -799,10 +799,11 @@ def wall_run_codes(
 ) -> np.ndarray:
     """Outcome codes (:mod:`dfa.core.kernel`) of runs, each with its own wall, in one compiled call.
 
-    Run i is what :func:`simulate` makes of (``mu[i]``, …, ``v0[i]``), ``ns[i]`` samples, bound ``bound[i]`` and
-    ``walls[i]`` (WallParams the spring kernel does not run; its delay included), bit for bit, with simulate()'s
-    tail length and default outcome rules (:func:`dfa.core.batch.batch_wall_kernel`, then
-    :func:`dfa.core.kernel.classify_batch`). No GIL is held: callers may run several calls on threads.
+    Run i's outcome is what :func:`simulate` makes of (``mu[i]``, …, ``v0[i]``), ``ns[i]`` samples, bound
+    ``bound[i]`` and ``walls[i]`` (WallParams the spring kernel does not run; its delay included), with simulate()'s
+    tail length and default outcome rules (:func:`dfa.core.batch.batch_wall_outcomes`, then
+    :func:`dfa.core.kernel.classify_batch`): a run is integrated until its outcome is proven
+    (:func:`dfa.core.wall_kernel.outcome_wall_kernel`). No GIL is held: callers may run several calls on threads.
     """
     k = mu.size
     for w in walls:
@@ -810,10 +811,11 @@ def wall_run_codes(
     tables = stack_tables([w.kernel_table() for w in walls])
     stats, done, rest = np.empty((k, kernel.NSTATS)), np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64)
     runs = (ns, _tail_lengths(ns, mu), bound, True)
-    batch.batch_wall_kernel((mu, beta, sigma), (x0, v0), runs, tables, stats, done, rest)
+    rules = (STABLE_AMPLITUDE, GROWTH, SETTLE)
+    batch.batch_wall_outcomes((mu, beta, sigma), (x0, v0), runs, tables, rules, stats, done, rest)
     codes = np.empty(k, dtype=np.int64)
     out = (codes, np.empty(k), np.empty(k), np.empty(k), np.empty(k))
-    kernel.classify_batch(mu, ns, done, rest, stats, (STABLE_AMPLITUDE, GROWTH, SETTLE), True, out)
+    kernel.classify_batch(mu, ns, done, rest, stats, rules, True, out)
     return codes
 
 

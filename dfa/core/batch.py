@@ -8,7 +8,9 @@ after the other (:func:`dfa.core.kernel.serial_kernel`) on the points of a stabi
 
 :func:`batch_wall_kernel` runs runs with a wall one after the other (each run its own kernel table,
 :meth:`dfa.model.wall.WallParams.kernel_table`; each :func:`dfa.core.wall_kernel.simulate_wall_kernel` alone,
-bit for bit): :func:`dfa.analysis.limits.zwidth.z_width` runs a chunk of grid points per call.
+bit for bit): :func:`dfa.analysis.limits.zwidth.z_width` runs a chunk of grid points per call. :func:`batch_wall_outcomes`
+runs them for their outcomes alone (:func:`dfa.core.wall_kernel.outcome_wall_kernel`: the outcome bit for bit, the
+other statistics within a proven bound), what the searches read.
 
 Developers: numba keys the cached kernels of this module on this file alone, while they compile in
 :mod:`dfa.core.kernel` and :mod:`dfa.core.wall_kernel`; dfa's cache folder is named after every file of
@@ -21,11 +23,11 @@ from __future__ import annotations
 import numpy as np
 
 from .jit import njit
-from .kernel import BatchRuns, Devices, FloatArray, IntArray, Starts
+from .kernel import BatchRuns, Devices, FloatArray, IntArray, Rules, Starts
 from .pair import pair_kernel
-from .wall_kernel import simulate_wall_kernel
+from .wall_kernel import outcome_wall_kernel, simulate_wall_kernel
 
-__all__ = ["batch_kernel", "batch_wall_kernel"]
+__all__ = ["batch_kernel", "batch_wall_kernel", "batch_wall_outcomes"]
 
 
 def batch_kernel(
@@ -71,4 +73,30 @@ def batch_wall_kernel(
         done[i], rest[i] = simulate_wall_kernel(
             (mus[i], betas[i], sigmas[i]), (x0s[i], v0s[i]), (ns[i], tail_lens[i], bounds[i], quantize), tables[i],
             e, e, stats[i],
+        )  # fmt: skip
+
+
+@njit(cache=True, nogil=True)
+def batch_wall_outcomes(
+    devices: Devices,
+    initials: Starts,
+    runs: BatchRuns,
+    tables: FloatArray,
+    rules: Rules,
+    stats: FloatArray,
+    done: IntArray,
+    rest: IntArray,
+) -> None:
+    """:func:`batch_wall_kernel` for the runs' outcomes alone: run i is
+    :func:`dfa.core.wall_kernel.outcome_wall_kernel` of its own inputs with the outcome ``rules`` (stable
+    amplitude, growth, settle) of :func:`dfa.core.kernel.classify`, whose outcome of ``stats[i]`` is the
+    every-sample run's.
+    """
+    mus, betas, sigmas = devices
+    x0s, v0s = initials
+    ns, tail_lens, bounds, quantize = runs
+    for i in range(mus.shape[0]):
+        done[i], rest[i], _ = outcome_wall_kernel(
+            (mus[i], betas[i], sigmas[i]), (x0s[i], v0s[i]), (ns[i], tail_lens[i], bounds[i], quantize), tables[i],
+            stats[i], rules,
         )  # fmt: skip

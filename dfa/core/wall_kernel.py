@@ -102,6 +102,36 @@ where it was (whole periods of the same run earlier: the forces repeat from
 it too). A windowed observer is never skipped
 (``tests/test_eq4_passivity_controller_period_skip.py``).
 
+Outcome-only runs (issue 43; :func:`outcome_wall_kernel`, what the searches
+run). A chattering loop can return to its state in everything but ξ: a
+controller held at its limit makes ξ' return bit for bit while ξ, a running
+sum, drifts by rounding (an ulp a period), so the skip above never finds its
+period. With the encoder, no amplifier lag, no hand and a bilateral wall, ξ
+enters the loop only through its reading ⌊ξ⌋ (the commands, the observer, the
+rest and exit tests read the readings), and one sample (:func:`dfa.core.kernel.step`,
+eq. 4-5) computes ξ' from ξ' and the force alone and adds to ξ at most three
+terms computed from them alone. So when every part of the state but ξ equals
+that of P samples earlier and ξ has moved by δ (at most :data:`_XTOL`), one
+more period from this state is integrated with its least distance of ξ to a
+change of reading (the margin), its largest |ξ|, |ξ'| and |φ|, and again
+returns with ξ moved by δ. Then ρ = 4u(max|ξ| + 1 + max|ξ'| + (max|φ| + σ)/μ)
+bounds the rounding of one sample's additions to ξ, the exact sum S of the
+terms one period adds obeys |S| <= |δ| + Pρ, and by induction over the R
+samples left (the readings equal the period's while ξ stays within the margin,
+so every command, ξ' and, by :func:`_pc_repeats`, the controller's force repeat)
+ξ at sample h + mP + i lies within E = (R/P + 2)(|δ| + 2Pρ) of its value at
+h + i. The proof asks E < 1/4, the margin above 2E + 2ρ and max|ξ| + 2E within
+the divergence bound and the travel; the run then skips whole periods as above
+(every sample it integrates later is one of the run's own, shifted by whole
+periods, so the phase is kept), and every statistic of ξ (segment peaks, tail
+samples and extremes, turning points) lies within 2E + 4ρ of the every-sample
+run's while the flags (rest, bound, travel, saturation) are the same.
+:func:`_robust` decides each rule of :func:`dfa.core.kernel.classify` with that
+margin; where one is not decided the run is integrated again with the exact
+skip alone. The outcome is then the every-sample run's; the other statistics
+need not be (no result shows them: :func:`dfa.simulate` never runs this path).
+(``tests/test_eq4_outcome_only_runs.py``.)
+
 The wall reaches this kernel as one float64 array, its kernel table (layout and element codes:
 :mod:`dfa.core.table`; built by :meth:`dfa.model.wall.WallParams.kernel_table`). :func:`decode_table` reads it
 once per run, one loop over its blocks with a branch per element code, into the fixed tuple the hot loop reads
@@ -129,16 +159,23 @@ import numpy as np
 from .exprel import phi1, phi2, rho
 from .jit import njit
 from .kernel import (
+    CHATTER,
     NSEG,
+    OSCILLATING,
+    SATURATED,
     SATURATION,
+    UNDECIDED,
+    UNSTABLE,
     Device,
     Devices,
     FloatArray,
     IntArray,
+    Rules,
     RunSettings,
     SampleConstants,
     Start,
     Starts,
+    classify,
     sample_constants,
     segment_ranges,
     step,
@@ -151,6 +188,7 @@ from .table import DAMPER, DELAY, FILTER, FORCE_LIMIT, HAND, HEAD, LAG, ONE_SIDE
 __all__ = [
     "decode_table",
     "run_wall_kernel",
+    "outcome_wall_kernel",
     "rho",
     "lag_motion",
     "lag_sample",
@@ -403,11 +441,13 @@ def _shape(c: float, inside: bool, onesided: bool) -> float:
 
 # state of a controller run between samples (module docstring, "Period skipping"): ξ, ξ', r_{h−1}, v_{h−1},
 # y_{h−1}, φ_A, ring position; then bookkeeping: tail min and max, the period found (0: none yet)
-CX, CV, CRP, CVP, CY, CFA, CPOS, CTMIN, CTMAX, CPER, CEXT, CAPP, CSAT = range(13)
+CX, CV, CRP, CVP, CY, CFA, CPOS, CTMIN, CTMAX, CPER, CEXT, CAPP, CSAT, CPRF, CERR = range(15)
 #: CEXT: the operator's force now (the approach's, σ + βV, until a one-sided wall first reads contact); CAPP: 1
 #: during that approach, else 0 (a flag of its own: the approach's force may equal the push); CSAT: whether a
-#: command reached the actuator's force limit (0 no, 1 before the tail, 2 in the tail: stats[SATURATION])
-NCSTATE = 13
+#: command reached the actuator's force limit (0 no, 1 before the tail, 2 in the tail: stats[SATURATION]); CPRF, CERR:
+#: an outcome-only run's proven period (0: none) and the bound on how far its statistics of ξ may lie from the
+#: every-sample run's (:func:`_drift_bound`, "Outcome-only runs" in the module docstring)
+NCSTATE = 15
 _REF = 6  # the reference state: ξ, ξ', r, v, y, φ_A at ref[0:6], then the d pending commands, oldest first
 
 
@@ -479,6 +519,8 @@ PE, PWPOS, PF, PTOT, PINIT, PMODE, PBK = 0, 1, 2, 3, 4, 5, 6
 #: (HELD), or a value that depends on the observed energy itself (DEPENDS); at v_h = 0 it is 0 whatever the energy
 IDLE, HELD, DEPENDS = 1, 2, 4
 _U = 2.0**-53  # the unit roundoff of a double: |fl(a ∘ b) − a ∘ b| <= u |a ∘ b|
+#: An outcome-only run's approximate return: ξ within this many ticks of the reference (the rest proven, or not)
+_XTOL = 1e-9
 
 
 @njit(cache=True, inline="always")
@@ -748,11 +790,31 @@ def _sample(
     return x, v, r, vh, y, fa, pos, lo_t, hi_t, 0, ext, appr
 
 
+@njit(cache=True, inline="always")
+def _margin(x: float) -> float:
+    """How far ξ lies from the nearest change of its reading ⌊ξ⌋ (ticks): min(ξ − ⌊ξ⌋, ⌊ξ⌋ + 1 − ξ)."""
+    r = math.floor(x)
+    return min(x - r, r + 1.0 - x)
+
+
+@njit(cache=True, inline="always")
+def _drift_bound(
+    delta: float, period: int, remaining: int, ymax: float, vmax: float, fmax: float, mu: float, sigma: float
+) -> tuple[float, float]:
+    """(E, ρ) of an outcome-only run's proven period ("Outcome-only runs" in the module docstring): ρ bounds the
+    rounding of one sample's update of ξ (three additions of terms |ξ'φ₁| <= |ξ'|, |(σ ± φ)φ₂/μ| <= (σ + |φ|)/μ
+    to |ξ| <= ``ymax`` + 1), E how far ξ may drift from the period's values over the ``remaining`` samples:
+    (R/P + 2)(|δ| + 2Pρ), δ the period's measured drift."""
+    rho = 4.0 * _U * (ymax + 1.0 + vmax + (fmax + sigma) / mu)
+    m = remaining // period + 2
+    return m * (abs(delta) + 2.0 * period * rho), rho
+
+
 @njit(cache=True, nogil=True)
 def _advance(
     st: FloatArray, ring: FloatArray, ref: FloatArray, h0: int, h1: int, mu: float, beta: float, sigma: float,
     delay: int, quantize: bool, bound: float, ctl: Controller, tail: FloatArray, tail_start: int,
-    rec_x: FloatArray, rec_v: FloatArray, skip: bool, pcs: FloatArray, n: int,
+    rec_x: FloatArray, rec_v: FloatArray, skip: bool, pcs: FloatArray, n: int, approx: bool,
 ) -> tuple[int, int, float, int]:  # fmt: skip
     """Samples h0 … h1 − 1 of a run of ``n`` samples from the state ``st``; return (end, why, peak |ξ|, samples skipped).
 
@@ -764,6 +826,8 @@ def _advance(
     (Brent's cycle detection, the reference within this range; module docstring). With a passivity controller
     (an unbounded observer) only when its force provably repeats with the state to the run's end
     (:func:`_pc_repeats`; its accumulating energy ``pcs`` is not compared); not with a windowed observer.
+    With ``approx`` (an outcome-only run) also when every part of the state but ξ repeats bit for bit and ξ has
+    drifted by at most :data:`_XTOL`, once one more period proves the rest of the run ("Outcome-only runs").
     """
     filtered, lag, travel = ctl[2], ctl[3], ctl[12]
     model = (mu, beta, sigma, delay, quantize)
@@ -775,6 +839,9 @@ def _advance(
     record = rec_x.shape[0] > 0
     pc = ctl[8]
     skip = skip and not record and (not pc or ctl[9] == 0)
+    # an approximate return of ξ is provable only where ξ enters the loop through its reading alone (module docstring)
+    apx = approx and skip and quantize and lag == 0.0 and ctl[4] == 0.0 and not ctl[5]
+    proven = int(st[CPRF])  # the proven period of an outcome-only run (0: none yet)
     in_tail = h0 >= tail_start
     peak, why, skipped, h = 0.0, 0, 0, h0
     # reference: the state at sample rh (none at sample 0, where y_0 = 0 is forced, nor during an approach, whose
@@ -784,13 +851,18 @@ def _advance(
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
     # a passivity controller's period under watch (:func:`_pc_track`): E at its start, E's range, modes, max |v_h|
     tracking, e0, elo, ehi, modes, vmax = False, 0.0, 0.0, 0.0, 0, 0.0
+    # an approximate return under proof: the period's least margin of ξ to a reading's change, largest |ξ|, |ξ'|, |φ|
+    verifying, marg, ymax, wmax, fmax = False, np.inf, 0.0, 0.0, 0.0
     while h < h1:
-        written, r_old = pos, r_prev  # the ring slot that receives c_h; r_{h−1}
+        written, r_old, v_old = pos, r_prev, v  # the ring slot that receives c_h; r_{h−1}; ξ' at the sample's start
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
             x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr, pcs
         )
         if tracking:
             elo, ehi, modes, vmax = _pc_track(pcs, elo, ehi, modes, vmax, r_prev - r_old)
+        if verifying:
+            marg, ymax = min(marg, _margin(x)), max(ymax, abs(x))
+            wmax, fmax = max(wmax, abs(v_old), abs(v)), max(fmax, abs(fa + ext))
         if abs(ring[written]) >= top:  # c_h at the actuator's force limit (never with no limit: top = inf)
             sat = max(sat, 2.0 if in_tail else 1.0)
         if absorbed:
@@ -812,12 +884,33 @@ def _advance(
         if ax > travel:  # the device's end stop: the run ends there (a repeating state never reaches it)
             why = 4
             break
-        if skip and x == rx and _same_loop(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa, filtered, lag):
-            period = h - rh  # the state of sample rh is back: skip the whole periods left in this range
+        exact = _same(x, rx)  # ξ back bit for bit (rx is ref[0]; NaN: no reference), or within _XTOL (approx)
+        back = exact or (apx and abs(x - rx) <= _XTOL)
+        if (
+            skip and back and (proven == 0 or (h - rh) % proven == 0)
+            and _same_loop(ref, ring, pos, delay, rx, v, r_prev, v_prev, y, fa, filtered, lag)
+        ):  # fmt: skip
+            period = h - rh  # the state of sample rh is back (ξ within _XTOL when approx): skip the whole periods left
             track = (e0, elo, ehi, modes, vmax)
-            if pc and not (tracking and _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track)):
+            if not exact and proven == 0:  # an approximate return: one more period proves the rest of the run, or not
+                if verifying:
+                    err, rho = _drift_bound(x - rx, period, n - h, ymax, wmax, fmax, mu, sigma)
+                    ok = err < 0.25 and marg > 2.0 * err + 2.0 * rho and ymax + 2.0 * err <= min(bound, travel)
+                    ok = ok and (not pc or _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track))
+                    verifying = False
+                    if ok:
+                        proven = period
+                        st[CPRF], st[CERR] = float(period), max(st[CERR], 2.0 * err + 4.0 * rho)
+                if proven == 0:  # watch the next period from this state
+                    verifying, tracking, rx, rh, span = True, pc, x, h, 2 * period
+                    marg, ymax, wmax, fmax = np.inf, 0.0, 0.0, 0.0
+                    e0 = elo = ehi = pcs[PE] if pc else 0.0
+                    modes, vmax = 0, 0.0
+                    _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
+                    continue
+            elif pc and proven == 0 and not (tracking and _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track)):
                 # the controller's force may yet change: watch it over the next period, from this same state
-                tracking, rh, span = True, h, 2 * period
+                tracking, rh, span, verifying = True, h, 2 * period, False
                 e0 = elo = ehi = pcs[PE]
                 modes, vmax = 0, 0.0
                 continue
@@ -828,10 +921,11 @@ def _advance(
             h += jump
             skipped += jump
             span = h1  # no more renewals: fewer than one period is left
+            verifying = False
         elif skip and h - rh == span:
             rx, rh, span = (x if not appr else np.nan), h, 2 * span
             _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
-            tracking = False
+            tracking = verifying = False
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x, v, r_prev, v_prev, y, fa
     st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CEXT], st[CAPP] = pos, tmin, tmax, period, ext, 1.0 if appr else 0.0
     st[CSAT] = sat
@@ -856,7 +950,7 @@ def _start(
     for i in range(ring.shape[0]):
         ring[i] = base0
     st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x0, v0, r0, 0.0, 0.0, base0
-    st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CSAT] = 0.0, np.inf, -np.inf, 0.0, 0.0
+    st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CSAT], st[CPRF], st[CERR] = 0.0, np.inf, -np.inf, 0.0, 0.0, 0.0, 0.0
     approach = onesided and not inside and v0 > 0.0
     st[CEXT], st[CAPP] = (friction, 1.0) if approach else (ctl[7], 0.0)
 
@@ -934,6 +1028,39 @@ def run_wall_kernel(
     >>> run_wall_kernel((2.0, 2.0, 0.1), (0.0, 2.0), (50_001, 8192, 1e6, True), table, e, e, stats, False)
     (50001, -1, 50001)
     """
+    done, rest, integrated, _ = _run_wall(
+        device, initial, run, table, rec_x, rec_v, stats, skip, (1.0, 1.25, 1e-3), False
+    )
+    return done, rest, integrated
+
+
+@njit(cache=True, nogil=True)
+def outcome_wall_kernel(
+    device: Device, initial: Start, run: RunSettings, table: FloatArray, stats: FloatArray, rules: Rules
+) -> tuple[int, int, int]:
+    """:func:`simulate_wall_kernel`'s run for its outcome alone; return (done, rest, samples integrated).
+
+    The outcome :func:`dfa.core.kernel.classify` gives ``stats`` with ``rules`` (stable amplitude, growth,
+    settle) is the every-sample run's; the other statistics of ξ may differ from its by a bound far below the
+    margins of the outcome's rules ("Outcome-only runs" in the module docstring): a run whose state returns
+    with ξ drifted by rounding alone (a passivity controller held at its limit while the device chatters) stops
+    being integrated once the rest of the run is proven, and is run again in full where the proof does not
+    decide the outcome.
+    """
+    e = np.empty(0)
+    done, rest, integrated, sure = _run_wall(device, initial, run, table, e, e, stats, True, rules, True)
+    if not sure:
+        done, rest, integrated, _ = _run_wall(device, initial, run, table, e, e, stats, True, rules, False)
+    return done, rest, integrated
+
+
+@njit(cache=True, nogil=True)
+def _run_wall(
+    device: Device, initial: Start, run: RunSettings, table: FloatArray, rec_x: FloatArray, rec_v: FloatArray,
+    stats: FloatArray, skip: bool, rules: Rules, approx: bool,
+) -> tuple[int, int, int, bool]:  # fmt: skip
+    """:func:`run_wall_kernel`, with ``approx`` an outcome-only run (:func:`outcome_wall_kernel`); the fourth value
+    says whether the outcome of ``stats`` under ``rules`` is the every-sample run's (:func:`_robust`)."""
     mu, beta, sigma = device
     x0, v0 = initial
     n, tail_len, bound, quantize = run
@@ -962,7 +1089,7 @@ def run_wall_kernel(
             if b > a:
                 end, why, peak, skipped = _advance(
                     st, ring, ref, a, b, mu, beta, sigma, delay, quantize, bound, ctl, tail, tail_start, rx_, rv_,
-                    skip, pcs, n,
+                    skip, pcs, n, approx,
                 )  # fmt: skip
                 integrated += end - a - skipped
                 if peak > stats[seg]:
@@ -977,7 +1104,51 @@ def run_wall_kernel(
     _finish(st, tail, tail_len, n, done, rest, stats, rec_x, rec_v, record)
     if stats.shape[0] > SATURATION:
         stats[SATURATION] = st[CSAT]
-    return done, rest, integrated
+    sure = st[CERR] == 0.0 or _robust(n, done, rest, stats, tail, tail_len, rules, mu, st[CERR])
+    return done, rest, integrated, sure
+
+
+@njit(cache=True, nogil=True)
+def _robust(
+    n: int, done: int, rest: int, stats: FloatArray, tail: FloatArray, tail_len: int, rules: Rules, mu: float,
+    err: float,
+) -> bool:  # fmt: skip
+    """Whether :func:`dfa.core.kernel.classify` gives ``stats`` the outcome it gives every run whose statistics of ξ
+    lie within ``err`` of these (segment peaks, tail extremes, tail samples; the flags and the saturation exact):
+    each rule of classify is decided with that margin ("Outcome-only runs" in the module docstring)."""
+    stable, growth, settle = rules
+    if rest >= 0 or done != n or stats[NSEG + 5] != 0.0 or tail_len < 2 or not math.isfinite(err):
+        return False
+    code = classify(n, done, rest, stats, stable, growth, settle, True, mu)[0]
+    if stats[SATURATION] >= 2.0:
+        return code == SATURATED  # the commands repeat exactly: so does the saturation flag
+    top, mid = stats[NSEG - 1], stats[NSEG // 2]
+    long_enough = n >= NSEG * 2.0 * math.pi * math.sqrt(mu)
+    may = long_enough and top + err > growth * (mid - err) and top + err > 1.0
+    must = long_enough and top - err > growth * (mid + err) and top - err > 1.0
+    for i in range(NSEG - 4, NSEG - 1):
+        may = may and stats[i + 1] + 2.0 * err >= stats[i]
+        must = must and stats[i + 1] - 2.0 * err >= stats[i]
+    if must:
+        return code == UNSTABLE
+    if may:
+        return False
+    hi = max(stats[NSEG - 3], stats[NSEG - 2], stats[NSEG - 1])
+    lo = min(stats[NSEG - 3], stats[NSEG - 2], stats[NSEG - 1])
+    centre, e2 = 0.5 * (stats[NSEG] + stats[NSEG + 1]), 2.0 * err
+    sure, maybe = 0, 0  # upward crossings of the centre certain, and possible, within the margin
+    for i in range(1, tail_len):
+        y0, y1 = tail[i - 1] - centre, tail[i] - centre
+        sure += 1 if (y0 < -e2 and y1 >= e2) else 0
+        maybe += 1 if (y0 < e2 and y1 >= -e2) else 0
+    if hi - lo - e2 > settle * (hi + err) or maybe < 2:
+        return code == UNDECIDED
+    if hi - lo + e2 > settle * (hi - err) or sure < 2:
+        return False
+    amp = 0.5 * (stats[NSEG + 1] - stats[NSEG])
+    if amp + err < stable:
+        return code == CHATTER
+    return amp - err >= stable and code == OSCILLATING
 
 
 @njit(cache=True, inline="always")
