@@ -13,6 +13,9 @@ import math
 
 import numpy as np
 import pytest
+from configuration_files import INERTIA
+from configuration_files import device_file as _file
+from configuration_files import run_cli as _run
 
 from dfa.analysis.configurations import (
     _answer,
@@ -27,7 +30,6 @@ from dfa.analysis.criterion import device_criterion
 from dfa.analysis.limits.kmax import design_answer
 from dfa.analysis.limits.recommend import recommend_stiffness
 from dfa.analysis.limits.search import GridBracket, grid_search
-from dfa.cli import main
 from dfa.errors import DeviceFileError, DFAValueError
 from dfa.model.catalogue import get_device, load_device_file
 from dfa.model.configurations import Configuration, effective_mass, fibonacci_normals
@@ -36,29 +38,8 @@ from dfa.model.loop import Loop
 from dfa.model.wall import Wall
 
 IMPULSE = get_device("impulse").device  # m 0.032 kg, b 0.02 N·s/m, c 0.024 N, Δ 314 µm, T 1 ms
-HEAD = """[[devices]]
-name = "Arm"
-mass = 0.032
-damping = 0.02
-coulomb = 0.024
-resolution = 314e-6
-period = 0.002
-stiffness = 80.0
-"""
-INERTIA = [[0.05, 0.01, 0.0], [0.01, 0.04, 0.005], [0.0, 0.005, 0.03]]
+
 PER_AXIS = dict(damping=(0.02, 0.01, 0.04), coulomb=(0.03, 0.02, 0.025), resolution=(314e-6, 200e-6, 400e-6))
-
-
-def _run(capsys, *argv: str) -> tuple[int, str, str]:
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def _file(tmp_path, *tables: str) -> str:
-    path = tmp_path / "arm.toml"
-    path.write_text(HEAD + "".join("\n[[devices.configurations]]\n" + t + "\n" for t in tables), encoding="utf-8")
-    return str(path)
 
 
 def _flags(mass: float, coulomb: float) -> list[str]:

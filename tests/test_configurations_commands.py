@@ -13,10 +13,12 @@ import math
 
 import numpy as np
 import pytest
+from configuration_files import HEAD, INERTIA
+from configuration_files import device_file as _file
+from configuration_files import run_cli as _run
 
 from dfa.analysis.criterion import device_criterion
 from dfa.analysis.limits.zwidth import z_width
-from dfa.cli import main
 from dfa.cli.tune import export_command
 from dfa.model.catalogue import device_template, load_device_file
 from dfa.model.configurations import Configuration
@@ -24,30 +26,8 @@ from dfa.model.device import Device
 from dfa.model.loop import Loop
 from dfa.model.wall import Wall
 
-HEAD = """[[devices]]
-name = "Arm"
-mass = 0.032
-damping = 0.02
-coulomb = 0.024
-resolution = 314e-6
-period = 0.002
-stiffness = 80.0
-"""
 #: Two configurations: at 0.05 m/s the slippery one has the smaller margin (less friction, eq. 6).
 TWO = ('name = "near"', 'name = "slippery"\ncoulomb = 0.012')
-INERTIA = [[0.05, 0.01, 0.0], [0.01, 0.04, 0.005], [0.0, 0.005, 0.03]]
-
-
-def _run(capsys, *argv: str) -> tuple[int, str, str]:
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def _file(tmp_path, *tables: str) -> str:
-    path = tmp_path / "arm.toml"
-    path.write_text(HEAD + "".join("\n[[devices.configurations]]\n" + t + "\n" for t in tables), encoding="utf-8")
-    return str(path)
 
 
 def _json(capsys, *argv: str) -> dict:
