@@ -104,7 +104,16 @@ def test_closed_loop_cli_text_and_json_carry_the_numbers(tmp_path, capsys):
     assert lg["outcome"] == pr["outcome"] == truth.outcome.value == "rest" and d["status"] == "agrees"
     assert lg["penetration_si"] == pytest.approx(lg["penetration"] * 1e-5)
     assert d["null_reasons"]["/eventual_contact"] and lg["null_reasons"]["/frequency"].startswith("no cycle")
-    assert main(args) == 0
+    assert main(args) == 0  # one screen: the check's share and a short table
+    out = capsys.readouterr().out
+    assert "wall on: K = 2000 N/m, bilateral; force column the wall's (100 % within ½ K Δ)" in out
+    rows = {line[:26].strip(): line[26:].split("  ") for line in out.splitlines()[-6:-2]}
+    rows = {k: [c.strip() for c in v if c.strip()] for k, v in rows.items()}
+    inside = [f"{m['impacts']} / {m['contact_samples']}" for m in (lg, pr)]
+    assert rows["impacts / samples inside"] == inside and rows["outcome"] == ["rest", "rest"]
+    assert rows["deepest reading"] == [f"{number(m['penetration'], 4)} ticks" for m in (lg, pr)]
+    assert out.splitlines()[-2].startswith("contact agrees") and out.splitlines()[-1].startswith("--explain")
+    assert main([*args, "--explain"]) == 0  # the evidence: the full table, in ticks and m
     out = capsys.readouterr().out
     assert "logged with the wall on: K = 2000 N/m, bilateral" in out
     assert f"100 % of {d['check']['samples']} samples within ½ K Δ = 0.02 N" in out
