@@ -302,9 +302,9 @@ def closed_loop_screen(e: ClosedLoopEvidence) -> list[str]:
                                      zip(_contact_rows(e.logged) + [_outcome(e.logged, dev)],
                                          _contact_rows(e.predicted) + [_outcome(e.predicted, dev)], strict=True),
                                      strict=True)]  # fmt: skip
-    speed = f"{number(e.impact_speed, 4)} {dev.units['velocity']}"
     head = [f"contact from sample {e.start}", "logged", "predicted"]
     lines += text_table([head, *rows], width=WIDTH).splitlines()  # no rule under the head: one screen
-    lines.append(fill(f"contact {e.status.value} (impact at {speed}; the simulation run on ends: "
-                      f"{'–' if e.eventual is None else e.eventual.value})"))  # fmt: skip
+    after = "–" if e.eventual is None else e.eventual.value
+    lines.append(fill(f"contact {e.status.value} ({e.matching} of {len(e.replays)} replays within the intervals "
+                      f"match; run on, it ends {after})"))  # fmt: skip
     return lines
