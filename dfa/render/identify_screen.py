@@ -54,7 +54,7 @@ WARNING_SHORT = {
 #: Each status in a few words, when no warning follows it.
 STATUS_SHORT = {
     "ok": "identified; the fit reproduces the log, and every parameter is excited",
-    "caveats": "identified, with caveats",
+    "caveats": "identified; its caveat is the noise above",
     "poor_fit": "the model does not reproduce the log: its values are not to be trusted",
 }
 
