@@ -9,6 +9,7 @@ measure of the log's readings; a spring of another K, whose force column is the 
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import warnings
 
@@ -63,6 +64,57 @@ def test_eq4_closed_loop_log_contact_is_the_simulators(tmp_path, case):
     assert e.logged.impacts >= 1 and e.logged.first_contact == 0
 
 
+@pytest.mark.parametrize("case", list(CASES))
+def test_eq4_closed_loop_replays_across_the_intervals(tmp_path, case):
+    """The prediction is replayed with b and c at the ends of their 95 % intervals and at their values (each pair
+    once; 0 and the value where the log does not bound one); the identified values' replay is the prediction, the
+    count is of replays whose contact is the logged one, and ``agrees`` needs the prediction itself to match."""
+    dev, w, _v, path = _log(tmp_path, case)
+    log = read_log(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = identify(log, bootstrap=0)
+    e = closed_loop_evidence(r, log, w)
+    grid = {(b, c) for b in _ends(r.damping) for c in _ends(r.coulomb)}
+    assert {(b, c) for b, c, _o, _m in e.replays} == grid and len(e.replays) == len(grid)
+    nominal = [m for b, c, o, m in e.replays if (b, c) == (r.device.damping, r.device.coulomb)]
+    assert nominal == [True] and e.status.value == "agrees"
+    assert e.matching == sum(m for *_x, m in e.replays) >= 1
+    for _b, _c, o, m in e.replays:  # a replay that matches has the logged outcome, one that does not another
+        assert (o == e.logged.outcome.value) or not m
+    d = e.to_dict()
+    assert d["matching"] == e.matching and len(d["replays"]) == len(e.replays)
+
+
+def _ends(est):
+    """An estimate's interval ends and its value (0 and the value when unbounded)."""
+    return sorted({0.0, est.value} if est.low is None else {est.low, est.value, est.high})
+
+
+def test_eq4_closed_loop_differs_only_when_no_device_in_the_intervals_matches(tmp_path):
+    """The chatter on a spring with a damper: with c at the top of its interval the exact simulation rests
+    (independent: the simulator's own outcome of that device's run), while the truth chatters. An identification
+    whose values put c at that top, its interval unchanged, is ``within_intervals`` (replays inside the interval
+    chatter as logged); with the interval shrunk onto the top as well, no replay matches: ``differs``."""
+    dev, w, v, path = _log(tmp_path, "chatter")
+    log = read_log(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = identify(log, bootstrap=0)
+    top = r.coulomb.high
+    high_c = dataclasses.replace(r.device, coulomb=top)
+    assert simulate(Loop(high_c, w), high_c.xi_dot(v), record=False).outcome.value == "rest"
+    assert simulate(Loop(dev, w), dev.xi_dot(v), record=False).outcome.value == "chatter"
+    assert r.coulomb.low <= dev.coulomb <= top and r.damping.low <= dev.damping <= r.damping.high
+    e = closed_loop_evidence(dataclasses.replace(r, device=high_c), log, w)
+    assert e.logged.outcome.value == "chatter" and e.predicted.outcome.value == "rest"
+    assert e.status.value == "within_intervals" and 1 <= e.matching < len(e.replays)
+    assert all(not m for _b, c, _o, m in e.replays if c == top)
+    pinned = dataclasses.replace(r.coulomb, value=top, low=top, high=top)
+    e = closed_loop_evidence(dataclasses.replace(r, device=high_c, coulomb=pinned), log, w)
+    assert e.status.value == "differs" and e.matching == 0 and "within their 95 % intervals" in e.status.message
+
+
 def test_eq4_closed_loop_identifies_m_b_c():
     """Identification uses the wall's force as the applied force, in contact or not: a growing oscillation against
     a spring with a damper and a delay gives m, b within 1 % and c within 5 % of the truth."""
@@ -104,7 +156,16 @@ def test_closed_loop_cli_text_and_json_carry_the_numbers(tmp_path, capsys):
     assert lg["outcome"] == pr["outcome"] == truth.outcome.value == "rest" and d["status"] == "agrees"
     assert lg["penetration_si"] == pytest.approx(lg["penetration"] * 1e-5)
     assert d["null_reasons"]["/eventual_contact"] and lg["null_reasons"]["/frequency"].startswith("no cycle")
-    assert main(args) == 0
+    assert main(args) == 0  # one screen: the check's share and a short table
+    out = capsys.readouterr().out
+    assert "wall on: K = 2000 N/m, bilateral; force column the wall's (100 % within ½ K Δ)" in out
+    rows = {line[:26].strip(): line[26:].split("  ") for line in out.splitlines()[-6:-2]}
+    rows = {k: [c.strip() for c in v if c.strip()] for k, v in rows.items()}
+    inside = [f"{m['impacts']} / {m['contact_samples']}" for m in (lg, pr)]
+    assert rows["impacts / samples inside"] == inside and rows["outcome"] == ["rest", "rest"]
+    assert rows["deepest reading"] == [f"{number(m['penetration'], 4)} ticks" for m in (lg, pr)]
+    assert out.splitlines()[-2].startswith("contact agrees") and out.splitlines()[-1].startswith("--explain")
+    assert main([*args, "--explain"]) == 0  # the evidence: the full table, in ticks and m
     out = capsys.readouterr().out
     assert "logged with the wall on: K = 2000 N/m, bilateral" in out
     assert f"100 % of {d['check']['samples']} samples within ½ K Δ = 0.02 N" in out

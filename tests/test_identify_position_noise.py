@@ -107,5 +107,8 @@ def test_cli_names_the_position_noise_in_ticks(tmp_path, capsys):
     assert main(["identify", path, "--bootstrap", "0"]) == 0
     out = capsys.readouterr().out
     level = f"{d['position_noise_ticks']:.2g}"
+    assert f"noise beyond quantization: readings {level} ticks" in out
+    assert main(["identify", path, "--bootstrap", "0", "--explain"]) == 0
+    out = capsys.readouterr().out
     assert f"warning: {level} ticks of noise on the readings" in out
     assert f"position noise: about {level} ticks" in out and "with the position noise estimated below" in out

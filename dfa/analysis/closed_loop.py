@@ -36,6 +36,11 @@ What is checked and compared
    :data:`dfa.analysis.logged_cycle.AMPLITUDE_TOL` and the frequencies within
    :data:`dfa.analysis.logged_cycle.FREQUENCY_TOL`. The same run over the simulator's default length gives
    its eventual outcome (the log may end before the contact settles).
+4. **Across the intervals**: the same run, from the same fitted state, is replayed with b and c at the ends of
+   their 95 % intervals and at their values (0 and the value where the log does not bound one), as
+   :func:`dfa.analysis.logged_cycle.compare_logged_cycle` replays the paper's spring; a prediction for the
+   identified values that differs from the log is ``within_intervals`` when a replay's contact is the logged
+   one, and ``differs`` only when none is.
 
 Examples
 --------
@@ -53,6 +58,7 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -69,7 +75,7 @@ from ..results.closed_loop import WALL_SHARE, ClosedLoopEvidence, ContactMeasure
 from ..results.simulation import CONTACTS, OUTCOMES
 from ..results.status import ClosedLoopStatus, SimulationOutcome, WallCheckStatus
 from .identify import Identification, run_positions
-from .logged_cycle import AMPLITUDE_TOL, FREQUENCY_TOL
+from .logged_cycle import AMPLITUDE_TOL, FREQUENCY_TOL, _span
 from .simulation import GROWTH, SETTLE, STABLE_AMPLITUDE, contact_codes, simulate
 
 __all__ = [
@@ -269,8 +275,8 @@ def closed_loop_evidence(identification: Identification, log: DeviceLog, wall: W
     Returns
     -------
     ClosedLoopEvidence
-        The wall check, the logged and the predicted contact, the simulator's eventual outcome; ``agrees``,
-        ``differs`` or ``no_contact``.
+        The wall check, the logged and the predicted contact, the simulator's eventual outcome, the replays across
+        the intervals; ``agrees``, ``within_intervals``, ``differs`` or ``no_contact``.
 
     Raises
     ------
@@ -295,15 +301,37 @@ def closed_loop_evidence(identification: Identification, log: DeviceLog, wall: W
     n = np.asarray(ident.logged, dtype=float) + base  # on the fit's sample grid (a dropped sample: the one before)
     logged = measure_contact(n, mu, wp)
     if not logged.impacts:
-        return ClosedLoopEvidence(dev, w, check, logged, None, None, None, -1, math.nan, ClosedLoopStatus.NO_CONTACT)
+        return ClosedLoopEvidence(dev, w, check, logged, None, None, None, -1, math.nan, ClosedLoopStatus.NO_CONTACT,
+                                  (), 0)  # fmt: skip
     start = logged.first_contact
     x0, v0 = _state_at(ident, lg, start, base)
     loop = Loop(dev, w)
+    predicted = _predict(loop, n, start, x0, v0, mu, wp)
+    eventual = simulate(loop, v0, xi0=x0, record=False)
+    replays = []
+    for b in _span(ident.damping):
+        for c in _span(ident.coulomb):
+            other = loop if (b, c) == (dev.damping, dev.coulomb) else Loop(_with(dev, b, c), w)
+            m = predicted if other is loop else _predict(other, n, start, x0, v0, mu, wp)
+            replays.append((b, c, m.outcome.value, _same(logged, m)))
+    matching = sum(r[3] for r in replays)
+    if _same(logged, predicted):
+        status = ClosedLoopStatus.AGREES
+    else:
+        status = ClosedLoopStatus.WITHIN_INTERVALS if matching else ClosedLoopStatus.DIFFERS
+    return ClosedLoopEvidence(dev, w, check, logged, predicted, eventual.outcome, eventual.contact, start,
+                              v0 * dev.resolution / dev.period, status, tuple(replays), int(matching))  # fmt: skip
+
+
+def _with(dev: Device, damping: float, coulomb: float) -> Device:
+    """The device with another b (N·s/m) and c (N)."""
+    return dataclasses.replace(dev, damping=damping, coulomb=coulomb)
+
+
+def _predict(loop: Loop, n: np.ndarray, start: int, x0: float, v0: float, mu: float, wp: WallParams) -> ContactMeasure:
+    """The contact of the loop's exact run from (x0 ticks, v0 ticks per sample) at ``start`` over the rest of the
+    log, measured with the log's readings ``n`` before it kept."""
     run = simulate(loop, v0, max(1, n.size - start - 1), xi0=x0, record=True)
     xs = run_positions(run)[: n.size - start]
     finite = xs[np.isfinite(xs)]
-    predicted = measure_contact(np.concatenate([n[:start], np.floor(finite)]), mu, wp, diverged=finite.size < xs.size)
-    eventual = simulate(loop, v0, xi0=x0, record=False)
-    status = ClosedLoopStatus.AGREES if _same(logged, predicted) else ClosedLoopStatus.DIFFERS
-    return ClosedLoopEvidence(dev, w, check, logged, predicted, eventual.outcome, eventual.contact, start,
-                              v0 * dev.resolution / dev.period, status)  # fmt: skip
+    return measure_contact(np.concatenate([n[:start], np.floor(finite)]), mu, wp, diverged=finite.size < xs.size)

@@ -66,6 +66,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    "another device (default: refuse)")  # fmt: skip
     p.add_argument("--plot", metavar="FILE", help="write the log against the identified model to FILE (.png, .pdf, "
                    ".svg); default: none")  # fmt: skip
+    p.add_argument("--explain", action="store_true", help="the full evidence: the fit and each warning in words, "
+                   "the noise, K_max four ways with its notes, the contact in full (default: one screen, lines under "
+                   "100 characters)")  # fmt: skip
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout (default: text)")
     add_progress_args(p)
 
@@ -194,9 +197,11 @@ def _peak_speed(v: float) -> float:
     return round_at(v, math.floor(math.log10(v)) - 3, "up") if v > 0.0 and math.isfinite(v) else v
 
 
-def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], lines: list[str]) -> None:
+def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], lines: list[str],
+                short: list[str]) -> None:  # fmt: skip
     """K_max four ways of the cautious identified device (b, c at their lower 95 % bounds), the given K assessed,
-    the logged oscillation against the predicted cycles, and the report; nothing on a poor fit."""
+    the logged oscillation against the predicted cycles, and the report; nothing on a poor fit. ``lines`` gets the
+    full text (--explain), ``short`` the default screen."""
     from ..analysis.identify import period_effect
     from ..analysis.limits.kmax import design_answer
     from ..analysis.limits.recommend import recommend_stiffness
@@ -205,11 +210,13 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     from ..model.loop import Loop
     from ..render.answer import stiffness_screen
     from ..render.identify import cycle_lines, loop_head, period_effect_lines, poor_fit_loop
+    from ..render.identify_screen import cycle_screen, loop_screen, period_effect_screen, poor_fit_screen
 
     if r.status.value == "poor_fit":
         out["loop"] = None
         out.setdefault("null_reasons", {})["/loop"] = "poor fit: no limits for a model that does not reproduce the log"
         lines += poor_fit_loop(r)
+        short += poor_fit_screen(r)
         if getattr(args, "wall_on", False):
             out["closed_loop"] = None
             out["null_reasons"]["/closed_loop"] = "poor fit: no prediction from a model that does not reproduce the log"
@@ -226,22 +233,27 @@ def _close_loop(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any],
     rec = recommend_stiffness(ans)
     out["loop"] = ans.to_dict() | {"recommendation": rec.to_dict(), "device": dev.to_dict()}
     lines += loop_head(dev, v, args.velocity is None) + stiffness_screen(ans, rec)
+    short += loop_screen(ans, rec, args.velocity is None)
     if r.timing.exceeds:  # the limits hold at T: how the proof moves at the longest period logged
         eff = period_effect(dev, r.timing, v, getattr(args, "delay", 0), answer=ans)
         out["loop"]["period_effect"] = eff.to_dict()
         lines += period_effect_lines(eff, dev.units["stiffness"])
+        short += period_effect_screen(eff, dev.units["stiffness"])
     if isinstance(wall, float) or wall.elements == ():  # the paper's spring: its cycles replayed across the intervals
         cyc = compare_logged_cycle(r, log, args.stiffness)
         out["cycle"] = cyc.to_dict()
         lines += cycle_lines(cyc)
+        short += cycle_screen(cyc)
     else:
         out["cycle"] = None
         out.setdefault("null_reasons", {})["/cycle"] = "the logged wall is not the paper's spring: see closed_loop"
     if getattr(args, "wall_on", False):
-        _wall_on(args, r, log, out, lines)
+        _wall_on(args, r, log, out, lines, short)
     if args.report is not None:
         out["report"] = _report(args, dev, v)
-        lines += [f"written {p}" for p in out["report"]["paths"]]
+        written = [f"written {p}" for p in out["report"]["paths"]]
+        lines += written
+        short += written
 
 
 def _logged_wall(args: argparse.Namespace) -> Any:
@@ -254,10 +266,12 @@ def _logged_wall(args: argparse.Namespace) -> Any:
                        one_sided=args.one_sided)  # fmt: skip
 
 
-def _wall_on(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], lines: list[str]) -> None:
+def _wall_on(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], lines: list[str],
+             short: list[str]) -> None:  # fmt: skip
     """The log's force column against the wall, its contact beside the prediction (--wall-on)."""
     from ..analysis.closed_loop import closed_loop_evidence
     from ..render.identify import closed_loop_lines
+    from ..render.identify_screen import closed_loop_screen
 
     try:
         ev = closed_loop_evidence(r, log, _logged_wall(args))
@@ -265,6 +279,7 @@ def _wall_on(args: argparse.Namespace, r: Any, log: Any, out: dict[str, Any], li
         raise UsageError(str(err)) from None
     out["closed_loop"] = ev.to_dict()
     lines += closed_loop_lines(ev)
+    short += closed_loop_screen(ev)
 
 
 def _write_device(args: argparse.Namespace, r: Any) -> str:
@@ -292,6 +307,7 @@ def run(args: argparse.Namespace) -> int:
     from ..analysis.identify import identify, log_grid
     from ..model.log import read_log
     from ..render.identify import identify_lines
+    from ..render.identify_screen import EXPLAIN_LINE, identify_screen
 
     _check_flags(args)
     try:
@@ -306,18 +322,19 @@ def run(args: argparse.Namespace) -> int:
                       ("period", "times in ms? give t in s")):  # fmt: skip
         warn_implausible(key, getattr(r.device, key), rotary=args.rotary, subject=f"identified {key}", hint=hint)
     out = r.to_dict()
-    lines = identify_lines(r)
+    lines, short = identify_lines(r), identify_screen(r)
     if args.stiffness is not None:
-        _close_loop(args, r, log, out, lines)
+        _close_loop(args, r, log, out, lines, short)
+    written = []
     if args.plot is not None:
         out["plot"] = save_png("--plot", args.plot, r.plot()[0])
-        lines.append(f"written {out['plot']}")
+        written.append(f"written {out['plot']}")
     if args.write_device is not None:
         out["device_file"] = _write_device(args, r)
-        lines.append(f"written {out['device_file']} (use it with --device-file)")
+        written.append(f"written {out['device_file']} (use it with --device-file)")
     if args.json:
         emit(out, ensure_ascii=False)
         return 0
-    for line in lines:
+    for line in [*lines, *written] if args.explain else [*short, *written, EXPLAIN_LINE]:
         say(line)
     return 0

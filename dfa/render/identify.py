@@ -262,6 +262,10 @@ def closed_loop_lines(e: ClosedLoopEvidence) -> list[str]:
     contact = e.eventual_contact.value if e.eventual_contact is not None else after
     after += f" ({contact})" if contact != after else ""
     lines.append(fill(f"the simulation run on (50 000 samples or more) ends: {after}"))
+    if e.replays:
+        outs = ", ".join(f"{n} {o}" for o, n in sorted(Counter(o for _b, _c, o, _m in e.replays).items()))
+        lines.append(fill(f"replayed with b and c at the ends of their 95 % intervals and at their values: "
+                          f"{e.matching} of {len(e.replays)} reproduce the logged contact (outcomes: {outs})"))  # fmt: skip
     lines.append(fill(f"contact {e.status.value}: {e.status.message}"))
     return lines
 

@@ -158,6 +158,13 @@ class ClosedLoopEvidence(Result):
     impact_speed : float
         Fitted speed at ``start``, m/s (rad/s); NaN without contact.
     status : ClosedLoopStatus
+        ``agrees`` (the identified values' prediction is the logged contact), ``within_intervals`` (it is not, a
+        replay's is), ``differs`` (no replay's is) or ``no_contact``.
+    replays : tuple of (float, float, str, bool)
+        The same run with b (N·s/m) and c (N) at the ends of their 95 % intervals and at their values: b, c, the
+        outcome over the log's samples, whether the contact is the logged one (empty without contact).
+    matching : int
+        Replays whose contact is the logged one.
     """
 
     device: Device = field(metadata={"json": lambda d: d.to_dict()})
@@ -170,6 +177,13 @@ class ClosedLoopEvidence(Result):
     start: int
     impact_speed: float
     status: ClosedLoopStatus
+    replays: tuple[tuple[float, float, str, bool], ...] = field(
+        default=(),
+        metadata={
+            "json": lambda rs: [{"damping": b, "coulomb": c, "outcome": o, "matches": m} for b, c, o, m in rs]
+        },  # fmt: skip
+    )
+    matching: int = 0
 
     units_of: ClassVar[dict[str, str]] = {"impact_speed": "velocity"}
 

@@ -666,10 +666,15 @@ class ClosedLoopStatus(StatusEnum):
         "agrees",
         "the logged contact is the one the exact simulation predicts for the identified device and this wall",
     )
+    WITHIN_INTERVALS = (
+        "within_intervals",
+        "the logged contact is not the one predicted for the identified values, but it is for a device with b and c "
+        "within their 95 % intervals and this wall",
+    )
     DIFFERS = (
         "differs",
-        "the logged contact is not the one predicted for the identified device and this wall: another wall, "
-        "values outside their intervals, or dynamics the model lacks",
+        "the logged contact is not the one predicted for any device with b and c within their 95 % intervals and "
+        "this wall: another wall, values outside their intervals, or dynamics the model lacks",
     )
     NO_CONTACT = ("no_contact", "the log holds no reading inside the wall (x >= 0): no contact to compare")
 
