@@ -490,7 +490,7 @@ def test_sec5_logged_limit_cycle_is_the_predicted_one(tmp_path, capsys, speed):
     assert main(["identify", str(path), "--stiffness", str(2 * CYCLE_K), "--bootstrap", "0"]) == 0
     out = capsys.readouterr().out
     hz = number(measured.frequency / (2 * math.pi * 1e-3), 4)
-    assert f"oscillation: {number(measured.amplitude, 3)} ticks at {hz} Hz" in out
+    assert f"oscillation at the end: {number(measured.amplitude, 3)} ticks at {hz} Hz" in out
     assert "not predicted (0 of " in out and "is not the paper's spring of K = 2000 N/m" in out
 
 

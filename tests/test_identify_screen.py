@@ -73,7 +73,7 @@ def test_identify_default_is_one_screen_and_explain_holds_the_rest(noisy_cycle, 
     rows = {line[:26].strip(): line[26:].split("  ") for line in short[-6:-2]}
     got = [c.strip() for c in rows["impacts / samples inside"] if c.strip()]
     assert got == [f"{m.impacts} / {m.contact_samples}" for m in (ev.logged, ev.predicted)]
-    assert f"oscillation: {number(cyc.logged.amplitude, 3)} ticks" in " ".join(short)
-    assert f"({cyc.matching} of {len(cyc.replays)} exact replays end in it)" in " ".join(short)
+    assert f"oscillation at the end: {number(cyc.logged.amplitude, 3)} ticks" in " ".join(short)
+    assert f"({cyc.matching} of {len(cyc.replays)} replays end in it)" in " ".join(short)
     assert short[-2].startswith(f"contact {ev.status.value} ")
     assert _block(full, short[2:8])  # the table of values is the full text's

@@ -254,10 +254,10 @@ def cycle_screen(c: LoggedCycle) -> list[str]:
         lines.append(fill(f"warning: the force column is not the paper's spring of K = {number(c.stiffness, 4)} "
                           f"{u['stiffness']}"))  # fmt: skip
     hz = number(hertz(dev, c.logged.frequency), 4)
-    head = f"oscillation: {number(c.logged.amplitude, 3)} ticks at {hz} Hz"
+    head = f"oscillation at the end: {number(c.logged.amplitude, 3)} ticks at {hz} Hz"  # the tail's, not the contact's
     amp = f"({number(position(dev, c.logged.amplitude), 3)} {u['resolution']})"
     verdict = "predicted" if c.matching else "not predicted"
-    lines.append(fill(f"{head} {amp}: {verdict} ({c.matching} of {len(c.replays)} exact replays end in it)"))
+    lines.append(fill(f"{head} {amp}: {verdict} ({c.matching} of {len(c.replays)} replays end in it)"))
     return lines
 
 
