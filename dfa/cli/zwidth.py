@@ -143,10 +143,46 @@ def _cell(value: float | None) -> str:
     return fmt(value if value is not None and math.isfinite(value) else None)
 
 
+def _compute(
+    args: argparse.Namespace, inp: Inputs, wall: Wall, v: float, b_range: tuple[float, float] | None
+) -> tuple[Any, Inputs]:
+    """The Z-width (the minimum over a file's configurations, B by B), refused up front when it would take longer
+    than the work limit; and the inputs (the limiting configuration's, with configurations)."""
+    from ..analysis.limits.zwidth import z_width, z_width_seconds
+
+    if inp.configurations:  # the minimum over the configurations, B by B
+        return _over_configurations(args, inp, wall, v, b_range)
+    loop = Loop(inp.device, wall)
+    seconds = z_width_seconds(loop, v, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, b_range=b_range)
+    check_work_time(f"--grid {args.grid} with --speeds {args.speeds}", seconds, "lower --grid or --speeds",
+                    args.force)  # fmt: skip
+    zw = z_width(
+        loop, v, grid=args.grid, b_range=b_range, speeds=args.speeds, n_jobs=args.jobs, progress=progress(args)
+    )
+    return zw, inp
+
+
+def _elements(zw: Any, u: dict[str, str]) -> str:
+    """The wall's elements besides the damper the Z-width varies: delay, filter, amplifier, contact, controller."""
+    fc, bw = zw.wall.filter_cutoff, zw.wall.amplifier_bandwidth
+    elements = f"delay {zw.delay}" + (f", velocity filter {fmt(fc)} Hz" if fc is not None else "")
+    elements += f", amplifier {fmt(bw)} Hz" if bw is not None else ""
+    if zw.wall.element(OneSided) is not None:
+        from ..render.contact import contact_text
+
+        elements += f"; {contact_text(zw.wall, u)}"
+    pc = zw.wall.element(PassivityController)
+    if pc is not None:
+        from ..render.passivity import passivity_text
+
+        elements += f"; {passivity_text(pc, u)}"
+    return elements
+
+
 def run(args: argparse.Namespace) -> int:
     """Compute the Z-width; print K_max(B) per method."""
     from ..analysis.limits.require import damper_guidance_for
-    from ..analysis.limits.zwidth import ZWIDTH_METHODS, check_zwidth_size, z_width, z_width_seconds
+    from ..analysis.limits.zwidth import ZWIDTH_METHODS, check_zwidth_size
     from ..render.zwidth import criterion_damper_note, damping_axis_note, non_monotone_mark, non_monotone_notes
 
     _refuse(args)
@@ -164,18 +200,9 @@ def run(args: argparse.Namespace) -> int:
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
     b_range = None if args.damping_max is None else (0.0, float(args.damping_max))
     check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
-    if inp.configurations:  # the minimum over the configurations, B by B
-        zw, inp = _over_configurations(args, inp, wall, v, b_range)
-        dev = inp.device
-        assert dev is not None
-    else:
-        loop = Loop(dev, wall)
-        seconds = z_width_seconds(loop, v, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, b_range=b_range)
-        check_work_time(f"--grid {args.grid} with --speeds {args.speeds}", seconds, "lower --grid or --speeds",
-                        args.force)  # fmt: skip
-        zw = z_width(
-            loop, v, grid=args.grid, b_range=b_range, speeds=args.speeds, n_jobs=args.jobs, progress=progress(args)
-        )
+    zw, inp = _compute(args, inp, wall, v, b_range)
+    dev = inp.device
+    assert dev is not None
     if args.plot is not None:
         save_png("--plot", args.plot, zw.plot())
     if args.json:
@@ -195,20 +222,9 @@ def run(args: argparse.Namespace) -> int:
         + ([zw.limiting["sim"][i]] if zw.limiting else [])
         for i, b in enumerate(zw.damping)
     ]
-    fc, bw = zw.wall.filter_cutoff, zw.wall.amplifier_bandwidth
-    elements = f"delay {zw.delay}" + (f", velocity filter {fmt(fc)} Hz" if fc is not None else "")
-    elements += f", amplifier {fmt(bw)} Hz" if bw is not None else ""
-    if zw.wall.element(OneSided) is not None:
-        from ..render.contact import contact_text
-
-        elements += f"; {contact_text(zw.wall, u)}"
-    pc = zw.wall.element(PassivityController)
-    if pc is not None:
-        from ..render.passivity import passivity_text
-
-        elements += f"; {passivity_text(pc, u)}"
     say(
-        f"Z-width of {device_title(dev)}: impacts up to {zw.velocity:.4g} {u['velocity']}, {elements}; status {zw.status}"
+        f"Z-width of {device_title(dev)}: impacts up to {zw.velocity:.4g} {u['velocity']}, {_elements(zw, u)}; "
+        f"status {zw.status}"
     )
     if zw.limiting:
         n = len(inp.worst.rows) if inp.worst else 0

@@ -810,6 +810,111 @@ def _drift_bound(
     return m * (abs(delta) + 2.0 * period * rho), rho
 
 
+#: The statistics of a period under proof before its first sample: largest |ξ|, |ξ'|, |φ|; least margin (:func:`_seen`).
+_UNSEEN = (0.0, 0.0, 0.0, np.inf)
+
+
+@njit(cache=True, inline="always")
+def _seen(
+    seen: tuple[float, float, float, float], x: float, v_old: float, v: float, force: float
+) -> tuple[float, float, float, float]:
+    """A period under proof with one more sample: the largest |ξ|, |ξ'| (at the sample's start and end) and |φ|,
+    the least margin of ξ to a reading's change (:func:`_margin`)."""
+    ymax, wmax, fmax, marg = seen
+    return max(ymax, abs(x)), max(wmax, abs(v_old), abs(v)), max(fmax, abs(force)), min(marg, _margin(x))
+
+
+@njit(cache=True, inline="always")
+def _pc_fresh(pcs: FloatArray, pc: bool) -> tuple[float, float, float, int, float]:
+    """A passivity controller's period watched from now (:func:`_pc_track`): E at its start, E's range, modes, the
+    largest |v_h| (E = 0 without a controller)."""
+    e = pcs[PE] if pc else 0.0
+    return e, e, e, 0, 0.0
+
+
+@njit(cache=True, inline="always")
+def _pc_tracked(
+    pcs: FloatArray, track: tuple[float, float, float, int, float], vh: float
+) -> tuple[float, float, float, int, float]:
+    """A watched period (:func:`_pc_fresh`) with one more reading (:func:`_pc_track`); E at its start kept."""
+    e0, elo, ehi, modes, vmax = track
+    elo, ehi, modes, vmax = _pc_track(pcs, elo, ehi, modes, vmax, vh)
+    return e0, elo, ehi, modes, vmax
+
+
+@njit(cache=True, inline="always")
+def _ended(ax: float, bound: float, travel: float) -> int:
+    """Why a run ends at |ξ| = ``ax``: 2 past the divergence ``bound`` (NaN too), 4 past the device's ``travel``
+    (its end stop: a repeating state never reaches it), else 0."""
+    if not ax <= bound:
+        return 2
+    if ax > travel:
+        return 4
+    return 0
+
+
+@njit(cache=True, inline="always")
+def _loaded(
+    st: FloatArray,
+) -> tuple[float, float, float, float, float, float, int, float, float, int, float, bool, float]:
+    """The run's state from ``st`` (as :func:`_store` writes it): ξ, ξ', r, v, y, φ_A, ring position, the tail's
+    extremes, the period, the operator's force, approaching, saturated."""
+    return (st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA], int(st[CPOS]), st[CTMIN], st[CTMAX], int(st[CPER]),
+            st[CEXT], st[CAPP] > 0.0, st[CSAT])  # fmt: skip
+
+
+@njit(cache=True, inline="always")
+def _kept(
+    x: float, v: float, h: int, rec_x: FloatArray, rec_v: FloatArray, record: bool, tail: FloatArray, in_tail: bool,
+    tail_start: int, lo_t: float, hi_t: float, tmin: float, tmax: float,
+) -> tuple[float, float]:  # fmt: skip
+    """Sample h's state recorded (with ``record``) and, in the tail, kept with the tail's extremes (returned)."""
+    if record:
+        rec_x[h + 1], rec_v[h + 1] = x, v
+    if in_tail:
+        tail[h - tail_start] = x
+        tmin, tmax = tail_extremes(x, lo_t, lo_t < np.inf, tmin, tmax)
+        tmin, tmax = tail_extremes(x, hi_t, hi_t > -np.inf, tmin, tmax)
+    return tmin, tmax
+
+
+@njit(cache=True, inline="always")
+def _proved(
+    st: FloatArray, drift: float, period: int, remaining: int, seen: tuple[float, float, float, float],
+    model: tuple[float, float, float, int, bool], limit: float, pc_changes: bool,
+) -> int:  # fmt: skip
+    """``period`` when the period just watched proves the rest of an outcome-only run, else 0 ("Outcome-only runs"
+    in the module docstring): the drift bound E < ¼, the least margin ``seen[3]`` of ξ to a reading's change above
+    2E + 2ρ, the largest |ξ| ``seen[0]`` plus 2E within ``limit`` (the divergence bound and the travel), and no
+    change of a passivity controller's force (``pc_changes``); records the period and the statistics' error in
+    ``st``."""
+    ymax, wmax, fmax, marg = seen
+    err, rho = _drift_bound(drift, period, remaining, ymax, wmax, fmax, model[0], model[2])
+    if err < 0.25 and marg > 2.0 * err + 2.0 * rho and ymax + 2.0 * err <= limit and not pc_changes:
+        st[CPRF], st[CERR] = float(period), max(st[CERR], 2.0 * err + 4.0 * rho)
+        return period
+    return 0
+
+
+@njit(cache=True, inline="always")
+def _jumped(tail: FloatArray, in_tail: bool, h: int, h1: int, period: int, tail_start: int) -> int:
+    """The samples of the whole periods left before h1, skipped: the tail's copied from the period before."""
+    jump = (h1 - h) // period * period
+    if in_tail:
+        for i in range(h, h + jump):
+            tail[i - tail_start] = tail[i - period - tail_start]
+    return jump
+
+
+@njit(cache=True, inline="always")
+def _store(st: FloatArray, values: tuple[float, ...]) -> None:
+    """The run's state back into ``st`` at the end of a range (CX … CAPP in order, then CSAT)."""
+    x, v, r_prev, v_prev, y, fa, pos, tmin, tmax, period, ext, appr, sat = values
+    st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x, v, r_prev, v_prev, y, fa
+    st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CEXT], st[CAPP] = pos, tmin, tmax, period, ext, appr
+    st[CSAT] = sat
+
+
 @njit(cache=True, nogil=True)
 def _advance(
     st: FloatArray, ring: FloatArray, ref: FloatArray, h0: int, h1: int, mu: float, beta: float, sigma: float,
@@ -833,56 +938,41 @@ def _advance(
     model = (mu, beta, sigma, delay, quantize)
     k = sample_constants(mu, beta)
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
-    x, v, r_prev, v_prev, y, fa = st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA]
-    pos, tmin, tmax, period, ext = int(st[CPOS]), st[CTMIN], st[CTMAX], int(st[CPER]), st[CEXT]
-    appr, sat, top = st[CAPP] > 0.0, st[CSAT], ctl[11]
-    record = rec_x.shape[0] > 0
-    pc = ctl[8]
+    x, v, r_prev, v_prev, y, fa, pos, tmin, tmax, period, ext, appr, sat = _loaded(st)
+    record, pc, top = rec_x.shape[0] > 0, ctl[8], ctl[11]
     skip = skip and not record and (not pc or ctl[9] == 0)
     # an approximate return of ξ is provable only where ξ enters the loop through its reading alone (module docstring)
     apx = approx and skip and quantize and lag == 0.0 and ctl[4] == 0.0 and not ctl[5]
     proven = int(st[CPRF])  # the proven period of an outcome-only run (0: none yet)
-    in_tail = h0 >= tail_start
-    peak, why, skipped, h = 0.0, 0, 0, h0
+    in_tail, peak, why, skipped, h = h0 >= tail_start, 0.0, 0, 0, h0
     # reference: the state at sample rh (none at sample 0, where y_0 = 0 is forced, nor during an approach, whose
     # operator's force is not part of the compared state), renewed after span samples
     rx, rh, span = (x if h0 > 0 and not appr else np.nan), h0, (period if period > 0 else 1)
     if skip:
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
-    # a passivity controller's period under watch (:func:`_pc_track`): E at its start, E's range, modes, max |v_h|
-    tracking, e0, elo, ehi, modes, vmax = False, 0.0, 0.0, 0.0, 0, 0.0
-    # an approximate return under proof: the period's least margin of ξ to a reading's change, largest |ξ|, |ξ'|, |φ|
-    verifying, marg, ymax, wmax, fmax = False, np.inf, 0.0, 0.0, 0.0
+    tracking, track = False, _pc_fresh(pcs, False)  # a passivity controller's period under watch (_pc_fresh)
+    verifying, seen = False, _UNSEEN  # an approximate return under proof: the period's statistics (_seen)
     while h < h1:
         written, r_old, v_old = pos, r_prev, v  # the ring slot that receives c_h; r_{h−1}; ξ' at the sample's start
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
             x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr, pcs
         )
         if tracking:
-            elo, ehi, modes, vmax = _pc_track(pcs, elo, ehi, modes, vmax, r_prev - r_old)
+            track = _pc_tracked(pcs, track, r_prev - r_old)
         if verifying:
-            marg, ymax = min(marg, _margin(x)), max(ymax, abs(x))
-            wmax, fmax = max(wmax, abs(v_old), abs(v)), max(fmax, abs(fa + ext))
+            seen = _seen(seen, x, v_old, v, fa + ext)
         if abs(ring[written]) >= top:  # c_h at the actuator's force limit (never with no limit: top = inf)
             sat = max(sat, 2.0 if in_tail else 1.0)
         if absorbed:
             why = absorbed  # 1 at rest, 3 left the one-sided wall for good
             break
-        if record:
-            rec_x[h + 1], rec_v[h + 1] = x, v
         ax = abs(x)
         if ax > peak:
             peak = ax
-        if in_tail:
-            tail[h - tail_start] = x
-            tmin, tmax = tail_extremes(x, lo_t, lo_t < np.inf, tmin, tmax)
-            tmin, tmax = tail_extremes(x, hi_t, hi_t > -np.inf, tmin, tmax)
+        tmin, tmax = _kept(x, v, h, rec_x, rec_v, record, tail, in_tail, tail_start, lo_t, hi_t, tmin, tmax)
         h += 1
-        if not ax <= bound:  # also catches NaN
-            why = 2
-            break
-        if ax > travel:  # the device's end stop: the run ends there (a repeating state never reaches it)
-            why = 4
+        why = _ended(ax, bound, travel)
+        if why:
             break
         exact = _same(x, rx)  # ξ back bit for bit (rx is ref[0]; NaN: no reference), or within _XTOL (approx)
         back = exact or (apx and abs(x - rx) <= _XTOL)
@@ -891,33 +981,22 @@ def _advance(
             and _same_loop(ref, ring, pos, delay, rx, v, r_prev, v_prev, y, fa, filtered, lag)
         ):  # fmt: skip
             period = h - rh  # the state of sample rh is back (ξ within _XTOL when approx): skip the whole periods left
-            track = (e0, elo, ehi, modes, vmax)
             if not exact and proven == 0:  # an approximate return: one more period proves the rest of the run, or not
                 if verifying:
-                    err, rho = _drift_bound(x - rx, period, n - h, ymax, wmax, fmax, mu, sigma)
-                    ok = err < 0.25 and marg > 2.0 * err + 2.0 * rho and ymax + 2.0 * err <= min(bound, travel)
-                    ok = ok and (not pc or _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track))
+                    proven = _proved(st, x - rx, period, n - h, seen, model, min(bound, travel),
+                                     pc and not _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track))  # fmt: skip
                     verifying = False
-                    if ok:
-                        proven = period
-                        st[CPRF], st[CERR] = float(period), max(st[CERR], 2.0 * err + 4.0 * rho)
                 if proven == 0:  # watch the next period from this state
                     verifying, tracking, rx, rh, span = True, pc, x, h, 2 * period
-                    marg, ymax, wmax, fmax = np.inf, 0.0, 0.0, 0.0
-                    e0 = elo = ehi = pcs[PE] if pc else 0.0
-                    modes, vmax = 0, 0.0
+                    seen, track = _UNSEEN, _pc_fresh(pcs, pc)
                     _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
                     continue
             elif pc and proven == 0 and not (tracking and _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track)):
                 # the controller's force may yet change: watch it over the next period, from this same state
                 tracking, rh, span, verifying = True, h, 2 * period, False
-                e0 = elo = ehi = pcs[PE]
-                modes, vmax = 0, 0.0
+                track = _pc_fresh(pcs, True)
                 continue
-            jump = (h1 - h) // period * period
-            if in_tail:
-                for i in range(h, h + jump):
-                    tail[i - tail_start] = tail[i - period - tail_start]
+            jump = _jumped(tail, in_tail, h, h1, period, tail_start)
             h += jump
             skipped += jump
             span = h1  # no more renewals: fewer than one period is left
@@ -926,9 +1005,7 @@ def _advance(
             rx, rh, span = (x if not appr else np.nan), h, 2 * span
             _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
             tracking = verifying = False
-    st[CX], st[CV], st[CRP], st[CVP], st[CY], st[CFA] = x, v, r_prev, v_prev, y, fa
-    st[CPOS], st[CTMIN], st[CTMAX], st[CPER], st[CEXT], st[CAPP] = pos, tmin, tmax, period, ext, 1.0 if appr else 0.0
-    st[CSAT] = sat
+    _store(st, (x, v, r_prev, v_prev, y, fa, float(pos), tmin, tmax, float(period), ext, 1.0 if appr else 0.0, sat))
     return h, why, peak, skipped
 
 
