@@ -864,18 +864,23 @@ def _loaded(
 
 
 @njit(cache=True, inline="always")
-def _kept(
-    x: float, v: float, h: int, rec_x: FloatArray, rec_v: FloatArray, record: bool, tail: FloatArray, in_tail: bool,
-    tail_start: int, lo_t: float, hi_t: float, tmin: float, tmax: float,
-) -> tuple[float, float]:  # fmt: skip
-    """Sample h's state recorded (with ``record``) and, in the tail, kept with the tail's extremes (returned)."""
-    if record:
-        rec_x[h + 1], rec_v[h + 1] = x, v
-    if in_tail:
-        tail[h - tail_start] = x
-        tmin, tmax = tail_extremes(x, lo_t, lo_t < np.inf, tmin, tmax)
-        tmin, tmax = tail_extremes(x, hi_t, hi_t > -np.inf, tmin, tmax)
-    return tmin, tmax
+def _peak(peak: float, ax: float) -> float:
+    """The largest |ξ| so far (a NaN ``ax`` leaves it: the bound's test catches NaN)."""
+    return ax if ax > peak else peak
+
+
+@njit(cache=True, inline="always")
+def _extremes(x: float, lo_t: float, hi_t: float, tmin: float, tmax: float) -> tuple[float, float]:
+    """The tail's extremes with sample h's ξ and the turning points within it (:func:`tail_extremes`)."""
+    tmin, tmax = tail_extremes(x, lo_t, lo_t < np.inf, tmin, tmax)
+    return tail_extremes(x, hi_t, hi_t > -np.inf, tmin, tmax)
+
+
+@njit(cache=True, inline="always")
+def _saturation(sat: float, at_limit: bool, in_tail: bool) -> float:
+    """The saturation flag: 1 once a command reached the actuator's force limit before the tail, 2 in the tail
+    (never with no limit: the limit is inf)."""
+    return max(sat, 2.0 if in_tail else 1.0) if at_limit else sat
 
 
 @njit(cache=True, inline="always")
@@ -933,6 +938,8 @@ def _advance(
     (:func:`_pc_repeats`; its accumulating energy ``pcs`` is not compared); not with a windowed observer.
     With ``approx`` (an outcome-only run) also when every part of the state but ξ repeats bit for bit and ξ has
     drifted by at most :data:`_XTOL`, once one more period proves the rest of the run ("Outcome-only runs").
+    The reference of the cycle check is the state at sample ``rh`` (none at sample 0, where y_0 = 0 is forced, nor
+    during an approach, whose operator's force is not part of the compared state), renewed after ``span`` samples.
     """
     filtered, lag, travel = ctl[2], ctl[3], ctl[12]
     model = (mu, beta, sigma, delay, quantize)
@@ -945,8 +952,6 @@ def _advance(
     apx = approx and skip and quantize and lag == 0.0 and ctl[4] == 0.0 and not ctl[5]
     proven = int(st[CPRF])  # the proven period of an outcome-only run (0: none yet)
     in_tail, peak, why, skipped, h = h0 >= tail_start, 0.0, 0, 0, h0
-    # reference: the state at sample rh (none at sample 0, where y_0 = 0 is forced, nor during an approach, whose
-    # operator's force is not part of the compared state), renewed after span samples
     rx, rh, span = (x if h0 > 0 and not appr else np.nan), h0, (period if period > 0 else 1)
     if skip:
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
@@ -961,15 +966,17 @@ def _advance(
             track = _pc_tracked(pcs, track, r_prev - r_old)
         if verifying:
             seen = _seen(seen, x, v_old, v, fa + ext)
-        if abs(ring[written]) >= top:  # c_h at the actuator's force limit (never with no limit: top = inf)
-            sat = max(sat, 2.0 if in_tail else 1.0)
+        sat = _saturation(sat, abs(ring[written]) >= top, in_tail)  # c_h at the actuator's force limit
         if absorbed:
             why = absorbed  # 1 at rest, 3 left the one-sided wall for good
             break
+        if record:  # the arrays are written here, not in a helper: passing them costs a reference count a sample
+            rec_x[h + 1], rec_v[h + 1] = x, v
         ax = abs(x)
-        if ax > peak:
-            peak = ax
-        tmin, tmax = _kept(x, v, h, rec_x, rec_v, record, tail, in_tail, tail_start, lo_t, hi_t, tmin, tmax)
+        peak = _peak(peak, ax)
+        if in_tail:
+            tail[h - tail_start] = x
+            tmin, tmax = _extremes(x, lo_t, hi_t, tmin, tmax)
         h += 1
         why = _ended(ax, bound, travel)
         if why:
