@@ -372,6 +372,9 @@ def test_every_flag_in_every_form(tmp_path, capsys, monkeypatch, cmd):
         ["zwidth", "--device", "delta", "--velocity", "0.1", "--grid", "x"],
         ["identify", "no-such-log.csv", "--bootstrap", "-1"],
         ["stiffness", "--device", "delta", "--velocity", "0.1", "--bogus"],
+        ["stiffness", "--device", "delta", "--velocity", "0.1", "--quick", "--plot", "k.png"],
+        ["tune", "--device", "impulse", "--velocity", "0.05", "--stiffness", "100"],
+        ["report", "--device-file", "examples/arm_configurations.toml", "--out", "unused-report"],
     ],
     ids=lambda argv: " ".join(argv[:1]),
 )

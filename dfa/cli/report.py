@@ -114,7 +114,7 @@ def _limiting(inp: Any, wall: Wall, v: float | None) -> tuple[Loop, Any]:
 
     if v is None or not v > 0:
         raise UsageError(
-            "dfa report: a device file with configurations needs --velocity V > 0 (the limiting configuration is the "
+            "a device file with configurations needs --velocity V > 0 (the limiting configuration is the "
             "one with the smallest recommended K at V), or --configuration NAME"
         )
     worst = worst_stiffness(inp.device, inp.configurations, v, wall=wall.with_stiffness(1.0))

@@ -104,8 +104,7 @@ def run(args: argparse.Namespace) -> int:
         check_output_file("--plot", args.plot, FIGURE_SUFFIXES)
         if args.quick:
             raise UsageError(
-                "dfa stiffness: --plot draws the simulated limits, which --quick does not compute: drop --quick or "
-                "--plot"
+                "--plot draws the simulated limits, which --quick does not compute: drop --quick or --plot"
             )
     check_configurations_plot(args, inp)
     src = _source(args, inp)

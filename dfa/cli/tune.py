@@ -139,7 +139,7 @@ def _refuse_tuned(args: argparse.Namespace) -> None:
             raise UsageError(f"{flag} is not taken here: the tuning varies it; give {instead}")
     if args.stiffness is not None:
         raise UsageError(
-            "dfa tune: --stiffness is not taken here: the tuning searches K for each wall; drop it (dfa stiffness "
+            "--stiffness is not taken here: the tuning searches K for each wall; drop it (dfa stiffness "
             "--stiffness K assesses one K)"
         )
 
