@@ -44,16 +44,22 @@ def _log(tmp_path, case):
     return dev, w, v, path
 
 
+def _identified(path):
+    """The log read back from its CSV file and identified (no bootstrap; the closed-loop logs' warnings, such as
+    little motion, are not what these tests check)."""
+    log = read_log(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return log, identify(log, bootstrap=0)
+
+
 @pytest.mark.parametrize("case", list(CASES))
 def test_eq4_closed_loop_log_contact_is_the_simulators(tmp_path, case):
     """The wall's force column is that wall's law of the readings (to rounding); the log's contact, measured on its
     readings, is the outcome the simulator gives the true run (its own classifier over its default length), and
     the prediction for the identified device agrees with it."""
     dev, w, v, path = _log(tmp_path, case)
-    log = read_log(path)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        r = identify(log, bootstrap=0)
+    log, r = _identified(path)
     e = closed_loop_evidence(r, log, w)
     truth = simulate(Loop(dev, w), dev.xi_dot(v), record=False)
     assert e.check.status.value == "consistent" and e.check.within == 1.0
@@ -70,10 +76,7 @@ def test_eq4_closed_loop_replays_across_the_intervals(tmp_path, case):
     once; 0 and the value where the log does not bound one); the identified values' replay is the prediction, the
     count is of replays whose contact is the logged one, and ``agrees`` needs the prediction itself to match."""
     dev, w, _v, path = _log(tmp_path, case)
-    log = read_log(path)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        r = identify(log, bootstrap=0)
+    log, r = _identified(path)
     e = closed_loop_evidence(r, log, w)
     grid = {(b, c) for b in _ends(r.damping) for c in _ends(r.coulomb)}
     assert {(b, c) for b, c, _o, _m in e.replays} == grid and len(e.replays) == len(grid)
@@ -97,10 +100,7 @@ def test_eq4_closed_loop_differs_only_when_no_device_in_the_intervals_matches(tm
     whose values put c at that top, its interval unchanged, is ``within_intervals`` (replays inside the interval
     chatter as logged); with the interval shrunk onto the top as well, no replay matches: ``differs``."""
     dev, w, v, path = _log(tmp_path, "chatter")
-    log = read_log(path)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        r = identify(log, bootstrap=0)
+    log, r = _identified(path)
     top = r.coulomb.high
     high_c = dataclasses.replace(r.device, coulomb=top)
     assert simulate(Loop(high_c, w), high_c.xi_dot(v), record=False).outcome.value == "rest"
