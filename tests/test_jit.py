@@ -66,3 +66,79 @@ def test_when_numba_loads_runs_now_once_numba_is_loaded_and_withdraw_is_harmless
     withdraw = jit.when_numba_loads(seen.append)
     withdraw()
     assert len(seen) == 1 and seen[0].__name__ == "numba"
+
+
+_QUICK_CASES = "[('delta', {}, 0.1), ('phantom', {'damping': 1.0}, 0.1), ('impulse', {'delay': 1}, 0.05)]"
+_QUICK_SCRIPT = f"""
+import json, sys
+import dfa
+from dfa.analysis.limits.kmax import design_answer
+from dfa.core.jit import interpreted
+from dfa.model.loop import Loop
+from dfa.model.wall import Wall
+
+from dfa.cli import main
+
+with interpreted():
+    out = [design_answer(Loop(dfa.get_device(n).device, Wall.of(1.0, **w)), v, simulate=False).to_dict()
+           for n, w, v in {_QUICK_CASES}]
+assert main(["stiffness", "--device", "delta", "--velocity", "0.1", "--quick", "--json"]) == 0  # its own block
+print(json.dumps({{"numba": "numba" in sys.modules, "answers": out}}))
+"""
+
+
+def _numbers_close(a, b, path="") -> None:
+    """The same JSON, every number within 1e-12 relative (interpreted and compiled run the same source)."""
+    if isinstance(a, dict):
+        assert a.keys() == b.keys(), path
+        for k in a:
+            _numbers_close(a[k], b[k], f"{path}.{k}")
+    elif isinstance(a, list):
+        assert len(a) == len(b), path
+        for i, (x, y) in enumerate(zip(a, b, strict=True)):
+            _numbers_close(x, y, f"{path}[{i}]")
+    elif isinstance(a, float) and isinstance(b, float):
+        assert math.isclose(a, b, rel_tol=1e-12, abs_tol=1e-300) or (math.isnan(a) and math.isnan(b)), (path, a, b)
+    else:
+        assert a == b, (path, a, b)
+
+
+def test_interpreted_quick_answer_equals_the_compiled_one_and_never_loads_numba():
+    """``dfa stiffness --quick``'s work (eq. 6, 11, the exact linear bound, the describing function's limit) run
+    interpreted in a fresh process: numba never loads, and every number equals the compiled answer's here."""
+    import ast
+    import json
+    import subprocess
+    import sys
+
+    import dfa
+    from dfa.analysis.limits.kmax import design_answer
+    from dfa.model.loop import Loop
+    from dfa.model.wall import Wall
+
+    done = subprocess.run([sys.executable, "-c", _QUICK_SCRIPT], capture_output=True, text=True, check=True)
+    got = json.loads(done.stdout.splitlines()[-1])
+    assert got["numba"] is False
+    for (name, wall, v), answer in zip(ast.literal_eval(_QUICK_CASES), got["answers"], strict=True):
+        compiled = design_answer(Loop(dfa.get_device(name).device, Wall.of(1.0, **wall)), v, simulate=False)
+        exprel.phi1(0.5)  # compiled here: the comparison is against numba's code
+        _numbers_close(answer, json.loads(json.dumps(compiled.to_dict())))
+        assert answer["k_df"]["value"] > 0  # a describing-function limit was found, interpreted
+
+
+def test_interpreted_block_past_its_budget_runs_compiled_and_a_raising_call_runs_compiled():
+    fresh = jit.njit(cache=False)(exprel.phi1.py_func)
+    with jit.interpreted(budget=2):
+        assert fresh(0.25) == exprel.phi1(0.25) and fresh._dispatcher is None  # interpreted
+        fresh(0.5)
+        assert fresh._dispatcher is None
+        fresh(0.75)  # the budget spent: compiled from here
+        assert fresh._dispatcher is not None
+
+    def inverse(x):
+        return 1.0 / x  # Python raises ZeroDivisionError; numba's error_model="numpy" returns inf
+
+    inv = jit.njit(cache=False, error_model="numpy")(inverse)
+    with jit.interpreted():
+        assert inv(0.0) == math.inf and inv._dispatcher is not None
+    assert jit._INTERPRET_CALLS[0] == 0  # the block closed

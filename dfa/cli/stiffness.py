@@ -7,10 +7,12 @@ One path: the wall of the flags (the spring with its delay when none is given) i
 from __future__ import annotations
 
 import argparse
+import contextlib
 import time
 from typing import TYPE_CHECKING, Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
+from ..core.jit import interpreted
 from ..formatting import fill, text_table
 from ..jsonable import explain_nulls
 from ..model.elements import PassivityController
@@ -116,7 +118,8 @@ def run(args: argparse.Namespace) -> int:
     if inp.configurations:  # a device file's configurations: the worst of them
         return _worst(args, inp, wall, ctl, v, dict(assess=k is not None, source=where, source_file=path))
     start, runs = time.perf_counter(), runs_counted()
-    with working(args):
+    kernels = interpreted() if args.quick else contextlib.nullcontext()  # a quick answer need not load numba
+    with working(args), kernels:
         ans = design_answer(loop, v, assess=k is not None, source=where, source_file=path, simulate=simulate)
         plain = _plain(ans, dev, v, simulate)
         gain = None if plain is None else gain_of(ans, plain)

@@ -13,7 +13,12 @@ A compiled kernel may call a deferred one: numba sees through a :class:`Deferred
 - :func:`_numba` registers its type with numba (``typeof`` of its dispatcher) before anything compiles, since
   every compilation starts from a :class:`Deferred`'s first call.
 
-One implementation runs: a Python caller calls the compiled dispatcher, never the Python function.
+One implementation runs: a Python caller calls the compiled dispatcher, never the Python function, except
+inside :func:`interpreted`, where a one-shot answer that needs only a few thousand scalar kernel calls (``dfa
+stiffness --quick``) runs the same Python source instead of loading numba (about 0.6 s, most of that answer's
+time). The source is numba's input unchanged, so both give the same numbers (``tests/test_jit.py`` compares
+them bit for bit); where Python raises and the compiled code would not (a float division by zero, an
+overflowing ``math.exp``: numba returns inf or NaN), the call is made again compiled.
 
 Examples
 --------
@@ -31,12 +36,15 @@ True
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any, Generic, ParamSpec, TypeVar, cast, overload
 
-__all__ = ["njit", "Deferred", "when_numba_loads"]
+import numpy as np
+
+__all__ = ["njit", "Deferred", "when_numba_loads", "interpreted"]
 
 _REGISTERED: list[bool] = []
 _WAITING: list[Callable[[Any], None]] = []
@@ -94,6 +102,69 @@ def when_numba_loads(callback: Callable[[Any], None]) -> Callable[[], None]:
     return withdraw
 
 
+#: Kernel calls :func:`interpreted` still allows: the calls left (0 outside it). Past them, numba loads and the
+#: rest of the block runs compiled: interpreting pays only while the work is small.
+_INTERPRET_CALLS: list[int] = [0]
+#: The calls one :func:`interpreted` block may interpret (``dfa stiffness --quick`` on the catalogue: 3·10⁴-10⁵,
+#: 0.1-0.3 s; numba's load is about 0.6 s).
+INTERPRET_BUDGET = 400_000
+
+
+@contextlib.contextmanager
+def interpreted(budget: int = INTERPRET_BUDGET) -> Iterator[None]:
+    """Run kernels not yet compiled as their Python source inside the block, for at most ``budget`` calls.
+
+    A command answering once with little kernel work (``dfa stiffness --quick``: no simulation) then does not
+    load numba; a kernel already compiled in this process stays compiled, and past ``budget`` calls numba loads
+    and the rest runs compiled. The numbers are the same either way (module docstring).
+
+    Parameters
+    ----------
+    budget : int, optional
+        Kernel calls interpreted at most (default :data:`INTERPRET_BUDGET`).
+
+    Yields
+    ------
+    None
+
+    See Also
+    --------
+    njit : the deferred kernels this applies to.
+
+    Examples
+    --------
+    >>> @njit(cache=False)
+    ... def half(x):
+    ...     return 0.5 * x
+    >>> with interpreted():
+    ...     half(3.0)
+    1.5
+    >>> half._dispatcher is None     # never compiled
+    True
+    """
+    with _LOCK:
+        before = _INTERPRET_CALLS[0]
+        _INTERPRET_CALLS[0] = max(before, int(budget))
+    try:
+        yield
+    finally:
+        with _LOCK:
+            _INTERPRET_CALLS[0] = before
+
+
+def _interpret(func: Callable[..., Any], args: tuple[Any, ...], kwargs: dict[str, Any]) -> tuple[bool, Any]:
+    """(True, func(*args)) within :func:`interpreted`'s budget, with numpy's floating errors silent as numba's
+    are; (False, None) past it or where Python raises and the compiled code would not."""
+    if _INTERPRET_CALLS[0] <= 0:
+        return False, None
+    _INTERPRET_CALLS[0] -= 1
+    try:
+        with np.errstate(all="ignore"):
+            return True, func(*args, **kwargs)
+    except (ArithmeticError, ValueError):
+        return False, None
+
+
 #: A kernel's parameters and its return type: a :class:`Deferred` is called as its Python function is.
 P = ParamSpec("P")
 R = TypeVar("R")
@@ -127,6 +198,10 @@ class Deferred(Generic[P, R]):
         return self._dispatcher
 
     def __call__(self, *args: P.args, **kwargs: P.kwargs) -> R:
+        if self._dispatcher is None and _INTERPRET_CALLS[0] > 0:
+            done, value = _interpret(self.py_func, args, kwargs)
+            if done:
+                return cast(R, value)
         return cast(R, self.dispatcher(*args, **kwargs))
 
     def __getattr__(self, name: str) -> Any:
