@@ -105,7 +105,7 @@ def markdown_table(header: Sequence[object], rows: Sequence[Sequence[object]], a
 
 
 def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = None, width: int | None = None) -> str:
-    """Columns aligned with two spaces for the terminal; a dashed rule under the header.
+    """Columns aligned with two spaces for the terminal; a dashed rule under the header (none under an empty one).
 
     With ``width``, a last cell that would make its line longer is wrapped, its continuation lines indented
     to the last column (the other columns are never wrapped).
@@ -117,6 +117,11 @@ def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = 
     ----  -----
     β     0.5
     σ     12
+    >>> print(text_table([["far", 2250, "◀ limiting"], ["near", 1125, ""]], ["pose", "μ", ""]))
+    pose  μ
+    ----  ----
+    far   2250  ◀ limiting
+    near  1125
     >>> print(text_table([["verdict", "no passivity guarantee at this speed"]], width=30))
     verdict  no passivity
              guarantee at this
@@ -135,7 +140,8 @@ def text_table(rows: Sequence[Sequence[object]], header: Sequence[str] | None = 
         lines.append("  ".join(c.ljust(w) for c, w in zip([*r[:-1], first], widths, strict=False)).rstrip())
         lines += [" " * lead + m for m in more]
     if header:
-        lines.insert(1, "  ".join("-" * w for w in widths))
+        rule = ["-" if str(h).strip() else " " for h in header]
+        lines.insert(1, "  ".join(r * w for r, w in zip(rule, widths, strict=True)).rstrip())
     return "\n".join(lines)
 
 
