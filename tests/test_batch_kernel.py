@@ -3,6 +3,7 @@
 The grids mix rest, chatter, oscillation, divergence, delay, β = 0 and σ = 0.
 """
 
+import re
 import sys
 from collections import Counter
 from pathlib import Path
@@ -201,6 +202,21 @@ def test_eq4_design_searches_batch_equals_simulate_per_point(delay):
         bound = divergence_bound(x0, v, m, DIVERGENCE_BOUND)
         assert o == simulate(m, b, s, v, n, xi0=x0, record=False, bound=bound, wall=wall).outcome
     assert {"rest", "unstable"} <= set(outs)  # not one trivial class
+
+
+@pytest.mark.parametrize(
+    ("bad", "named"),
+    [((-1.0, 0.1, 0.5, 0.0, 1.0), "mu"), ((100.0, -0.1, 0.5, 0.0, 1.0), "beta"),
+     ((100.0, 0.1, 0.5, 0.0, float("nan")), "nan"), ((100.0, 1e308, 0.5, 0.0, 1.0), "β/μ = bT/m")],
+)  # fmt: skip
+def test_eq4_design_searches_refuse_a_point_simulate_refuses(bad, named):
+    """simulate_points checks its points in one pass (not point by point): a bad one is still refused, named."""
+    from dfa.analysis.limits.runs import simulate_points
+    from dfa.errors import DFAValueError
+
+    good = (100.0, 0.1, 0.5, 0.0, 1.0)
+    with pytest.raises(DFAValueError, match=re.escape(named)):
+        simulate_points([good, bad], [WallParams.of()] * 2, 1000)
 
 
 def test_eq4_tail_length_of_a_huge_mass_is_a_quarter_run_without_overflow():

@@ -255,8 +255,30 @@ def divergence_bound(xi0: float, xi_dot0: float, mu: float, floor: float = 1.0e6
     >>> divergence_bound(0.0, 1.0e5, 800.0) > 2.8e8
     True
     """
-    amp0 = _start_amplitude(xi0, xi_dot0, check_mu(mu))
+    return _bound_of(_start_amplitude(xi0, xi_dot0, check_mu(mu)), floor)
+
+
+def _bound_of(amp0: float, floor: float) -> float:
+    """The divergence bound max(floor, 100 (A₀ + 1)) of a start of energy amplitude A₀ (:func:`divergence_bound`)."""
     return max(floor, 100.0 * (amp0 + 1.0))
+
+
+def run_bounds(
+    mu: float, beta: float, sigma: float, xi_dot0: float, xi0: float, wall: WallParams, floor: float
+) -> tuple[int, float]:
+    """(:func:`default_samples`, :func:`divergence_bound`) of a run whose groups and wall are already checked (a
+    search's points, built from a valid device's groups): one energy amplitude for both, no validation (the
+    searches ask for thousands; the checks were most of their cost).
+
+    Examples
+    --------
+    >>> w = WallParams.of()
+    >>> run_bounds(100.0, 0.3, 1.5, 2.0, 0.0, w, 1.0e6) == (default_samples(100.0, 0.3, 1.5, 2.0, wall=w),
+    ...                                                   divergence_bound(0.0, 2.0, 100.0, 1.0e6))
+    True
+    """
+    amp0 = _start_amplitude(xi0, xi_dot0, mu)
+    return _samples_of(mu, beta, sigma, amp0, wall), _bound_of(amp0, floor)
 
 
 def _start_amplitude(xi0: float, xi_dot0: float, mu: float, quantize: bool = True) -> float:
@@ -396,7 +418,11 @@ def default_samples(
     w = check_wall(wall)
     m, b, s, v0, x0 = _check_run(mu, beta, sigma, xi_dot0, xi0)
     cap = check_bool("cap", cap, "pass True to cap the length at MAX_DEFAULT_SAMPLES, False for no cap")
-    amp0 = _start_amplitude(x0, v0, m, check_quantize(quantize))
+    return _samples_of(m, b, s, _start_amplitude(x0, v0, m, check_quantize(quantize)), w, cap)
+
+
+def _samples_of(m: float, b: float, s: float, amp0: float, w: WallParams, cap: bool = True) -> int:
+    """:func:`default_samples` of checked groups and the start's energy amplitude A₀ (:func:`_start_amplitude`)."""
     td = _decay_time(m, net_damping(m, b, w), s, amp0)
     top = MAX_DEFAULT_SAMPLES if cap else 10 * MAX_DEFAULT_SAMPLES
     n = 2.0 * td + 40.0 * 2.0 * math.pi * math.sqrt(m)
@@ -863,10 +889,12 @@ def _check_record_size(n: int, record: bool, energy: bool) -> None:
         )
 
 
-def _check_points(
+def check_run_inputs(
     mu: ArrayLike, beta: ArrayLike, sigma: ArrayLike, xi_dot0: ArrayLike, xi0: ArrayLike
 ) -> tuple[np.ndarray, ...]:
-    """Broadcast the per-run inputs to 1-D float arrays, each element checked as :func:`simulate` checks it."""
+    """Broadcast the per-run inputs to 1-D float arrays, each element checked as :func:`simulate` checks it
+    (:func:`simulate_batch`'s and the searches' :func:`dfa.analysis.limits.runs.simulate_points`' check, one
+    numpy pass however many runs)."""
     try:
         arrs = np.broadcast_arrays(
             *(np.atleast_1d(np.asarray(a, dtype=float)) for a in (mu, beta, sigma, xi_dot0, xi0))
@@ -926,7 +954,7 @@ def simulate_batch(
     ['rest', 'unstable']
     """
     w = check_wall(wall)
-    m, b, s, v0, x0 = _check_points(mu, beta, sigma, xi_dot0, xi0)
+    m, b, s, v0, x0 = check_run_inputs(mu, beta, sigma, xi_dot0, xi0)
     n = check_int("samples", samples, minimum=1, fix="simulate at least one sample")
     if bound is None:  # one bound for the batch: beyond the largest start's travel (divergence_bound)
         bound = max(divergence_bound(float(a), float(c), float(mm)) for a, c, mm in zip(x0, v0, m, strict=True))

@@ -41,8 +41,8 @@ from ..simulation import (
     OUTCOMES,
     SETTLE,
     STABLE_AMPLITUDE,
-    default_samples,
-    divergence_bound,
+    check_run_inputs,
+    run_bounds,
     run_points,
     wall_run_codes,
 )
@@ -194,9 +194,11 @@ def simulate_points(
     if len(walls) != len(points):
         raise DFAValueError(f"walls has {len(walls)} entries for {len(points)} points: give one per point")
     jobs, extend = [], []
+    if points:  # every point checked as simulate checks it, in one numpy pass (not point by point: their cost)
+        mu_, beta_, sigma_, xi0_, xi_dot0_ = zip(*points, strict=True)
+        check_run_inputs(mu_, beta_, sigma_, xi_dot0_, xi0_)
     for (mu, beta, sigma, xi0, xi_dot0), w in zip(points, walls, strict=True):
-        natural = default_samples(mu, beta, sigma, xi_dot0, xi0, wall=w)
-        bound = divergence_bound(xi0, xi_dot0, mu, DIVERGENCE_BOUND)
+        natural, bound = run_bounds(mu, beta, sigma, xi_dot0, xi0, w, DIVERGENCE_BOUND)  # checked groups
         jobs.append((mu, beta, sigma, xi_dot0, min(natural, max_samples), xi0, bound, w))
         extend.append(natural <= max_samples)  # cut to max_samples already: longer runs would only take time
 
