@@ -46,7 +46,10 @@ from:
    run again with the segments' starts free of their first reading's tick, the Jacobian's intervals take that white
    variance for quantization's, force noise is estimated beyond it (:data:`NOISE_Z`) and the replicates' readings
    get fresh noise of that level before their encoder; with 2 to 5 ticks the intervals held the truth in 37 to 40
-   of 40 logs. Without a
+   of 40 logs. Such a fit is poor when its residuals' mean square exceeds :data:`POSITION_MISFIT` times that white
+   variance (white noise gives 1; with force noise of :data:`NOISE_MAX` on half a tick, about 90 on the tests'
+   logs): a misfit's jumps, a
+   diverging log's with force noise, read as noise on the readings, which would otherwise absorb it. Without a
    reversal c and f₀ get no interval (only c − f₀ is seen); with fewer than :data:`FEW_MOVING` samples in
    motion no estimate does (a device that rests fits many devices). Then the share of samples whose predicted
    tick is within one of the logged one, and warnings when the log does not excite a parameter
@@ -85,6 +88,7 @@ from ..model.loop import Loop
 from ..model.wall import Wall
 from ..results.identify import FEW_MOVING as FEW_MOVING
 from ..results.identify import FRICTION_SHARE as FRICTION_SHARE
+from ..results.identify import POSITION_MISFIT as POSITION_MISFIT
 from ..results.identify import Estimate as Estimate
 from ..results.identify import FitQuality as FitQuality
 from ..results.identify import Identification as Identification
@@ -1060,7 +1064,8 @@ def identify(
     warns = _motion_warnings(np.floor(xi) if position > 0.0 else n, float(theta[2]) * delta,
                              float(np.max(np.abs(lg.f))))  # fmt: skip
     warns += [IdentifyWarning.POSITION_NOISE] if position > 0.0 else []
-    warns += _noise_warnings(fit, relative) if spread > 0.0 else [IdentifyWarning.CONSTANT_FORCE]
+    warns += _noise_warnings(fit, relative, white if position > 0.0 else None) if spread > 0.0 else [
+        IdentifyWarning.CONSTANT_FORCE]  # fmt: skip
     skip = {IdentifyWarning.LITTLE_MOTION, IdentifyWarning.POOR_FIT, IdentifyWarning.CONSTANT_FORCE} & set(warns)
     draws = _bootstrap(xi, phi, w, 0 if skip else reps, show, noise.level, position)
     est = _withhold(_estimates(theta, cov, draws, delta, t), warns)
@@ -1105,10 +1110,14 @@ def _confounded(
     return tuple(out)
 
 
-def _noise_warnings(fit: FitQuality, relative: float) -> list[IdentifyWarning]:
+def _noise_warnings(fit: FitQuality, relative: float, white: float | None = None) -> list[IdentifyWarning]:
     """A poor fit (fewer than :data:`POOR_FIT` of the samples within a tick, and more force noise than
-    :data:`NOISE_MAX` needed to explain it), or force noise that explains the residuals."""
+    :data:`NOISE_MAX` needed to explain it; with noise on the readings of white variance ``white`` (ticks²,
+    :func:`_white`), also residuals whose mean square exceeds :data:`POSITION_MISFIT` times it), or force noise
+    that explains the residuals."""
     if fit.within_one_tick < POOR_FIT and not relative <= NOISE_MAX:
+        return [IdentifyWarning.POOR_FIT]
+    if white is not None and not fit.rms_ticks**2 <= POSITION_MISFIT * white:
         return [IdentifyWarning.POOR_FIT]
     return [IdentifyWarning.FORCE_NOISE] if relative > 0.0 else []
 

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 from ..formatting import fill, number, number_at, text_table
 from ..model.units import hertz, position
+from ..results.identify import POSITION_MISFIT
 
 if TYPE_CHECKING:
     from ..model.catalogue import CatalogueEntry
@@ -131,10 +132,25 @@ def confounded_text(a: str, b: str, rho: float) -> str:
             f"{rho:.3f}): log {SEPARATING_MOTION[(a, b)]}")  # fmt: skip
 
 
+def _misfit_ratio(r: Identification) -> float | None:
+    """The residuals' mean square over the readings' white level (position noise² + 1/12, ticks²) when that is what
+    made the fit poor (beyond :data:`~dfa.results.identify.POSITION_MISFIT`), else None."""
+    if r.position_noise_ticks <= 0.0:
+        return None
+    ratio = r.fit.rms_ticks**2 / (r.position_noise_ticks**2 + 1.0 / 12.0)
+    return ratio if ratio > POSITION_MISFIT else None
+
+
 def _warning_text(r: Identification, w: IdentifyWarning) -> str:
-    """A warning's sentence; the position noise's with its level in ticks."""
+    """A warning's sentence; the position noise's with its level in ticks; a poor fit's with the rule that made it."""
     if w.value == "position_noise":
         return f"{number(r.position_noise_ticks, 2)} ticks of noise on the readings (standard deviation): {w.message}"
+    ratio = _misfit_ratio(r) if w.value == "poor_fit" else None
+    if ratio is not None:
+        return (f"poor fit: the residuals' mean square is {number(ratio, 3)} times the readings' white level (their "
+                f"noise's square and quantization's 1/12), more than the {POSITION_MISFIT:g} that noise on the readings "
+                "and the force column explains: a misfit whose jumps read as noise; the model does not reproduce the "
+                "log")  # fmt: skip
     return w.message
 
 
@@ -147,14 +163,15 @@ def _noise_lines(r: Identification) -> list[str]:
         out.append(fill(
             f"position noise: about {number(r.position_noise_ticks, 2)} ticks ({number(r.position_noise, 3)} "
             f"{u['resolution']}) of white noise on the readings beyond their quantization, measured on the residuals' "
-            "second differences; the fit's segments start off their first reading's tick and the intervals include "
-            "it"))  # fmt: skip
+            "second differences; the fit's segments start off their first reading's tick"
+            + (" and the intervals include it" if r.status.value != "poor_fit" else "")))  # fmt: skip
     if not r.force_noise > 0.0:
         return out
     return out + [fill(
         f"force noise: about {number(r.force_noise, 3)} {u['force']} ({number(100 * r.force_noise_relative, 2)} % of "
         "the force's standard deviation) on the force column explains the residuals beyond the encoder's "
         "quantization" + ("; the intervals include it" if r.status.value != "poor_fit" else
+                          ", but the fit is poor (below)" if _misfit_ratio(r) is not None else
                           ", more than the 25 % a fit's misfit is put down to"))]  # fmt: skip
 
 
