@@ -181,19 +181,29 @@ def _interval_note(r: Identification) -> str:
         return "no intervals: the log does not bound the values (the table says why)"
     if r.force_noise > 0.0 or r.position_noise > 0.0:
         which = " and ".join(k for k, v in (("force", r.force_noise), ("position", r.position_noise)) if v > 0.0)
-        return (
-            f"intervals from the fit's Jacobian with the {which} noise estimated below and {r.bootstrap} replicate "
-            f"fits with the encoder's origin shifted and fresh {which} noise; they leave out dynamics the model lacks"
-        )
-    if r.bootstrap:
-        how = f"from the fit and {r.bootstrap} replicate fits with the encoder's origin shifted"
+        noise = f" with the {which} noise estimated below"
+        how = _replicates(r, f"from the fit's Jacobian{noise} and", f" and fresh {which} noise", f",{noise}")
+        return f"intervals {how}; they leave out dynamics the model lacks"
+    how = _replicates(r, "from the fit and", "", "")
+    return f"intervals {how}; they leave out noise on the force column and dynamics the model lacks"
+
+
+def _replicates(r: Identification, with_fits: str, fresh: str, noise: str) -> str:
+    """How the intervals were made, from the replicates that were fitted: ``with_fits`` and their number (their
+    readings with the encoder's origin shifted and ``fresh`` noise), else the Jacobian alone (``noise``: with the
+    noise estimated) and why: none asked for, none moved enough to fit, or one, whose spread is not taken."""
+    if r.bootstrap >= 2:
+        how = f"{with_fits} {r.bootstrap} replicate fits with the encoder's origin shifted{fresh}"
         if r.bootstrap < r.bootstrap_requested:
             how += f" ({r.bootstrap_requested - r.bootstrap} of {r.bootstrap_requested} replicates too still to fit)"
-    elif r.bootstrap_requested:
-        how = "from the fit's Jacobian alone (no replicate moved enough to fit): too narrow, a lower bound"
-    else:
-        how = "from the fit's Jacobian alone (--bootstrap 0): too narrow, read them as a lower bound"
-    return f"intervals {how}; they leave out noise on the force column and dynamics the model lacks"
+        return how
+    if r.bootstrap == 1:
+        return (
+            f"from the fit's Jacobian alone (one replicate fit: a spread needs two){noise}: too narrow, a lower bound"
+        )
+    if r.bootstrap_requested:
+        return f"from the fit's Jacobian alone (no replicate moved enough to fit){noise}: too narrow, a lower bound"
+    return f"from the fit's Jacobian alone (--bootstrap 0){noise}: too narrow, read them as a lower bound"
 
 
 def cycle_lines(c: LoggedCycle) -> list[str]:
