@@ -85,34 +85,48 @@ def block_normal(
     gr[:] = 0.0
     for j in range(starts.shape[0]):
         end = starts[j + 1] if j + 1 < starts.shape[0] else n
-        sa = np.zeros((4, 4))
-        sb = np.zeros((4, 2))
-        sc = np.zeros((2, 2))
-        sg = np.zeros(4)
-        sl = np.zeros(2)
+        a00 = a10 = a11 = a20 = a21 = a22 = a30 = a31 = a32 = a33 = 0.0  # this segment's GᵀG, lower triangle
+        b00 = b01 = b10 = b11 = b20 = b21 = b30 = b31 = 0.0  # GᵀL
+        c00 = c10 = c11 = g0 = g1 = g2 = g3 = l0r = l1r = 0.0  # LᵀL, Gᵀr, Lᵀr
         for h in range(starts[j], end):
-            rh = r[h]
-            l0, l1 = jac[h, 4], jac[h, 5]
-            for u in range(4):
-                gu = jac[h, u]
-                sg[u] += gu * rh
-                sb[u, 0] += gu * l0
-                sb[u, 1] += gu * l1
-                for s in range(u + 1):
-                    sa[u, s] += gu * jac[h, s]
-            sc[0, 0] += l0 * l0
-            sc[1, 0] += l1 * l0
-            sc[1, 1] += l1 * l1
-            sl[0] += l0 * rh
-            sl[1] += l1 * rh
-        for u in range(4):
-            gr[u] += sg[u]
-            for s in range(u + 1):
-                a[u, s] += sa[u, s]
-                a[s, u] = a[u, s]
-        b[j, :, :] = sb
-        c[j, 0, 0], c[j, 1, 0], c[j, 0, 1], c[j, 1, 1] = sc[0, 0], sc[1, 0], sc[1, 0], sc[1, 1]
-        lr[j, 0], lr[j, 1] = sl[0], sl[1]
+            j0, j1, j2, j3, l0, l1, rh = jac[h, 0], jac[h, 1], jac[h, 2], jac[h, 3], jac[h, 4], jac[h, 5], r[h]
+            a00 += j0 * j0
+            a10 += j1 * j0
+            a11 += j1 * j1
+            a20 += j2 * j0
+            a21 += j2 * j1
+            a22 += j2 * j2
+            a30 += j3 * j0
+            a31 += j3 * j1
+            a32 += j3 * j2
+            a33 += j3 * j3
+            b00 += j0 * l0
+            b01 += j0 * l1
+            b10 += j1 * l0
+            b11 += j1 * l1
+            b20 += j2 * l0
+            b21 += j2 * l1
+            b30 += j3 * l0
+            b31 += j3 * l1
+            c00 += l0 * l0
+            c10 += l1 * l0
+            c11 += l1 * l1
+            g0 += j0 * rh
+            g1 += j1 * rh
+            g2 += j2 * rh
+            g3 += j3 * rh
+            l0r += l0 * rh
+            l1r += l1 * rh
+        for u, s, value in ((0, 0, a00), (1, 0, a10), (1, 1, a11), (2, 0, a20), (2, 1, a21), (2, 2, a22),
+                            (3, 0, a30), (3, 1, a31), (3, 2, a32), (3, 3, a33)):  # fmt: skip
+            a[u, s] += value
+            if s != u:
+                a[s, u] += value
+        b[j, 0, 0], b[j, 0, 1], b[j, 1, 0], b[j, 1, 1] = b00, b01, b10, b11
+        b[j, 2, 0], b[j, 2, 1], b[j, 3, 0], b[j, 3, 1] = b20, b21, b30, b31
+        c[j, 0, 0], c[j, 1, 0], c[j, 0, 1], c[j, 1, 1] = c00, c10, c10, c11
+        gr[0], gr[1], gr[2], gr[3] = gr[0] + g0, gr[1] + g1, gr[2] + g2, gr[3] + g3
+        lr[j, 0], lr[j, 1] = l0r, l1r
 
 
 @njit(cache=True, nogil=True)
