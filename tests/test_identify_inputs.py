@@ -202,3 +202,78 @@ def test_first_guess_nonnegative_least_squares_equals_scipy_nnls(seed):
     ours = identify_module._nonnegative_least_squares(rows, y)
     theirs, _ = nnls(rows, y)
     np.testing.assert_allclose(ours, theirs, rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("size", [5, 6, 10, 31, 95, 4000])
+@pytest.mark.parametrize("deriv", [0, 1, 2])
+def test_first_guess_savgol_equals_scipy_savgol_filter(size, deriv):
+    """The readings' Savitzky–Golay smoothing and derivatives (written out to spare `dfa identify` the import of
+    scipy.signal) against scipy's savgol_filter in its default mode, edges included, on quantized random walks
+    (windows of 5 to 31 samples)."""
+    from scipy.signal import savgol_filter
+
+    n = np.floor(np.cumsum(np.random.default_rng(size).normal(0.0, 3.0, size)))
+    ours = identify_module._savgol(n, deriv)
+    theirs = savgol_filter(n, identify_module._window(size), 3, deriv=deriv)
+    np.testing.assert_allclose(ours, theirs, rtol=0.0, atol=1e-12 * max(1.0, float(np.max(np.abs(n)))))
+
+
+def test_intervals_t_quantile_equals_scipy_stdtrit():
+    """Student's t quantile of the bootstrap's intervals (written out to spare `dfa identify` the import of
+    scipy.special) against scipy's stdtrit for every count of replicates identify takes; and the closed forms
+    at 1 and 2 degrees of freedom (tan(0.475 π), √(2/(1 − 0.95²)) · 0.95)."""
+    from scipy.special import stdtrit
+
+    from dfa.analysis.identify import MAX_BOOTSTRAP
+
+    ours = np.array([identify_module._t_quantile(df) for df in range(1, MAX_BOOTSTRAP)])
+    np.testing.assert_allclose(ours, stdtrit(np.arange(1, MAX_BOOTSTRAP), 0.975), rtol=1e-13)
+    assert identify_module._t_quantile(1) == pytest.approx(np.tan(0.475 * np.pi), rel=1e-14)
+    assert identify_module._t_quantile(2) == pytest.approx(0.95 * np.sqrt(2.0 / (1.0 - 0.95**2)), rel=1e-14)
+
+
+def _fit_problem() -> tuple[np.ndarray, ...]:
+    """A fitted log's readings, forces, weights, segments' starts, θ and bounds (a dropped sample included)."""
+    log = _moving_log(1500)
+    keep = np.r_[0:700, 701:1500]
+    delta, timing, index, rows = identify_module._ticks(DeviceLog(log.t[keep], log.x[keep], log.f[keep]), None, None)
+    n, phi, w = identify_module._on_grid(index, rows, log.f[keep] / delta)
+    best, starts = identify_module._fit(n, phi, w)
+    j = len(starts)
+    lo = np.concatenate([[-np.inf, 0.0, 0.0, -np.inf], np.zeros(j), np.full(j, -np.inf)])
+    hi = np.concatenate([[np.inf] * 4, np.ones(j), np.full(j, np.inf)])
+    return n, phi, w, starts, best.x, lo, hi
+
+
+def test_fit_jacobian_equals_column_by_column_forward_differences():
+    """The fit's Jacobian, its six moved predictions run in one compiled call, against the forward differences
+    taken one parameter group at a time with the prediction of the fit itself (_residual): bit for bit."""
+    n, phi, w, starts, theta, lo, hi = _fit_problem()
+    j = len(starts)
+    seg = identify_module._segment_of(starts, len(n))
+    r = identify_module._residual(theta, n, phi, w, starts, np.empty(len(n)))
+    jac = identify_module._jacobian(theta, r, n, phi, w, starts, seg, lo, hi)
+    h = identify_module.FD_STEP * np.where(theta >= 0.0, 1.0, -1.0) * np.maximum(1.0, np.abs(theta))
+    h = np.where((theta + h > hi) | (theta + h < lo), -h, h)
+    h = (theta + h) - theta
+    for k, part in enumerate((slice(0, 1), slice(1, 2), slice(2, 3), slice(3, 4), slice(4, 4 + j), slice(4 + j, None))):
+        moved = theta.copy()
+        moved[part] += h[part]
+        step = h[part][seg] if k >= 4 else h[part]
+        column = (identify_module._residual(moved, n, phi, w, starts, np.empty(len(n))) - r) / step
+        np.testing.assert_array_equal(jac[:, k], column)
+
+
+def test_fit_normal_blocks_equal_numpy_sums():
+    """The block-arrow normal equations summed in one compiled pass against numpy's sums of the same products
+    (GᵀG, per segment GₖᵀLₖ, LₖᵀLₖ, Lₖᵀr, and Gᵀr), at a point away from the minimum (Jᵀr not near 0)."""
+    n, phi, w, starts, theta, lo, hi = _fit_problem()
+    theta = theta * 1.01
+    r = identify_module._residual(theta, n, phi, w, starts, np.empty(len(n)))
+    jac = identify_module._jacobian(theta, r, n, phi, w, starts, identify_module._segment_of(starts, len(n)), lo, hi)
+    g, loc = jac[:, :4], jac[:, 4:]
+    numpy_sums = (g.T @ g, np.add.reduceat(g[:, :, None] * loc[:, None, :], starts, axis=0),
+                  np.add.reduceat(loc[:, :, None] * loc[:, None, :], starts, axis=0), g.T @ r,
+                  np.add.reduceat(loc * r[:, None], starts, axis=0))  # fmt: skip
+    for ours, theirs in zip(identify_module._normal_blocks(jac, r, starts), numpy_sums, strict=True):
+        np.testing.assert_allclose(ours, theirs, rtol=1e-10, atol=1e-10 * float(np.max(np.abs(theirs))))

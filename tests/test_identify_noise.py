@@ -82,3 +82,28 @@ def test_a_clean_log_estimates_no_noise_and_a_wrong_force_column_is_still_a_poor
     with pytest.warns(dfa.ImplausibleInputWarning):
         wrong = identify(DeviceLog(log.t, log.x, -log.f), bootstrap=0)
     assert wrong.status.value == "poor_fit" and wrong.force_noise_relative > NOISE_MAX
+
+
+@pytest.mark.parametrize(
+    ("bootstrap", "position", "expected"),
+    [
+        ("0", 0.0, "intervals from the fit's Jacobian alone (--bootstrap 0), with the force noise estimated below: "
+         "too narrow, read them as a lower bound; they leave out dynamics the model lacks"),
+        ("1", 0.0, "intervals from the fit's Jacobian alone (one replicate fit: a spread needs two), with the force "
+         "noise estimated below: too narrow, a lower bound;"),
+        ("2", 0.0, "intervals from the fit's Jacobian with the force noise estimated below and 2 replicate fits with "
+         "the encoder's origin shifted and fresh force noise; they leave out dynamics the model lacks"),
+        ("0", 2e-5, "intervals from the fit's Jacobian alone (--bootstrap 0), with the force and position noise "
+         "estimated below: too narrow, read them as a lower bound;"),
+    ],
+)  # fmt: skip
+def test_explain_interval_note_counts_the_replicates_with_noise(tmp_path, capsys, bootstrap, position, expected):
+    """Found by review: with force noise and --bootstrap 0, --explain said the intervals came "from the fit's Jacobian
+    ... and 0 replicate fits". No replicate: the Jacobian alone, named a lower bound as without noise; one: its
+    spread is not taken (a spread needs two), so the same; two: counted."""
+    dev, force = _excited(3000)
+    log = synthetic_log(dev, force, force_noise=0.05 * np.std(force), position_noise=position, seed=4)
+    path = write_log(log, tmp_path / "noisy.csv")
+    assert main(["identify", path, "--bootstrap", bootstrap, "--explain"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert expected in out and "0 replicate" not in out and "1 replicate fits" not in out

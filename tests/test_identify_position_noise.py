@@ -17,9 +17,17 @@ import numpy as np
 import pytest
 
 import dfa
-from dfa.analysis.identify import POSITION_NOISE_MIN, _white, identify, synthetic_log
+from dfa.analysis.identify import (
+    POSITION_MISFIT,
+    POSITION_NOISE_MIN,
+    QUANTIZATION_VARIANCE,
+    _white,
+    identify,
+    impact_log,
+    synthetic_log,
+)
 from dfa.cli import main
-from dfa.model.log import write_log
+from dfa.model.log import DeviceLog, write_log
 from dfa.results.status import IdentifyWarning
 
 DEV = dfa.Device(0.32, 4.0, 0.2, 1e-5, 1e-3)
@@ -112,3 +120,81 @@ def test_cli_names_the_position_noise_in_ticks(tmp_path, capsys):
     out = capsys.readouterr().out
     assert f"warning: {level} ticks of noise on the readings" in out
     assert f"position noise: about {level} ticks" in out and "with the position noise estimated below" in out
+
+
+def _diverging(force_noise: float, position_noise: float) -> DeviceLog:
+    """The Delta's impact on a spring of 3·10⁵ N/m at 0.1 m/s, far above its limits: 415 samples to the divergence,
+    the readings spanning 2·10⁶ ticks; white noise on the force column (``force_noise`` of its spread) and on the
+    position before the encoder (``position_noise`` ticks), seed 1."""
+    dev = dfa.get_device("delta").device
+    log = impact_log(dev, 3e5, 0.1, 3000, source="diverging.csv")
+    rng = np.random.default_rng(1)
+    f = log.f + rng.normal(0.0, force_noise * float(np.std(log.f)), log.f.size)
+    ticks = np.floor(log.x / dev.resolution + 0.5 + rng.normal(0.0, position_noise, log.x.size))
+    return DeviceLog(log.t, dev.resolution * ticks, f, source=log.source)
+
+
+def _misfit_ratio(r) -> float:
+    """The residuals' mean square over the white variance of the readings (position noise² + 1/12), in ticks², from
+    the numbers the user reads (fit RMS, position noise)."""
+    return r.fit.rms_ticks**2 / (r.position_noise_ticks**2 + QUANTIZATION_VARIANCE)
+
+
+@pytest.mark.parametrize(("force_noise", "position_noise"), [(0.02, 0.0), (0.1, 5.0), (1.0, 43.0)])
+def test_position_misfit_a_diverging_noisy_log_is_a_poor_fit(force_noise, position_noise):
+    """Found by a helper: a diverging log with noise read tens to thousands of ticks of "position noise" (a misfit's
+    jumps read as white noise) and got caveats. Its residuals' mean square is hundreds of times that white level, beyond
+    POSITION_MISFIT: poor fit, no intervals, and the status and warning say so (--json)."""
+    r = identify(_diverging(force_noise, position_noise), bootstrap=2)
+    assert r.position_noise_ticks > POSITION_NOISE_MIN and _misfit_ratio(r) > POSITION_MISFIT
+    assert r.status.value == "poor_fit" and IdentifyWarning.POOR_FIT in r.warnings and r.bootstrap == 0
+    assert all(getattr(r, k).high is None for k in ("mass", "damping", "coulomb", "force_offset"))
+
+
+def test_position_misfit_poor_fit_in_the_cli(tmp_path, capsys):
+    """The numbers users read: the JSON's status and warning, and its fit RMS and position noise, whose ratio is the
+    rule's; the text's status line."""
+    path = write_log(_diverging(0.1, 0.0), tmp_path / "diverging.csv")
+    assert main(["identify", path, "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["status"] == "poor_fit" and "poor_fit" in d["warnings"]
+    ratio = d["fit"]["rms_ticks"] ** 2 / (d["position_noise_ticks"] ** 2 + 1.0 / 12.0)
+    assert ratio > POSITION_MISFIT and d["mass"]["low"] is None
+    assert main(["identify", path]) == 0
+    assert "status poor_fit, " in capsys.readouterr().out
+    assert main(["identify", path, "--explain"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert f"warning: poor fit: the residuals' mean square is {ratio:.3g} times the readings' white level" in out
+    assert f"more than the {POSITION_MISFIT:g} that noise on the readings" in out
+    assert "fit is poor (below)" in out and "more than the 25 %" not in out
+
+
+@pytest.mark.parametrize(
+    ("log", "force_noise"),
+    [
+        (lambda: synthetic_log(DEV, _force(4000), position_noise=2e-5, seed=3), 0.0),
+        (lambda: synthetic_log(DEV, _force(4000), position_noise=5e-5, seed=3), 0.0),
+        (
+            lambda: synthetic_log(
+                DEV, _force(4000), position_noise=2e-5, force_noise=0.25 * np.std(_force(4000)), seed=3
+            ),
+            0.25,
+        ),  # fmt: skip
+        (
+            lambda: synthetic_log(
+                DEV, _force(4000), position_noise=0.6e-5, force_noise=0.25 * np.std(_force(4000)), seed=3
+            ),
+            0.25,
+        ),  # fmt: skip
+        (lambda: _diverging(0.0, 5.0), 0.0),
+        (lambda: _diverging(0.0, 43.0), 0.0),
+    ],
+)
+def test_position_misfit_genuinely_noisy_logs_are_no_poor_fit(log, force_noise):
+    """Readings with 2 and 5 ticks of white noise, alone or with 25 % force noise (the most NOISE_MAX lets through;
+    at 0.6 tick the ratio is the largest, about 70), and the diverging log's readings with 5 and 43 ticks and no
+    force noise: the level is estimated, the residuals stay within POSITION_MISFIT of it, no poor fit."""
+    r = identify(log(), bootstrap=0)
+    assert IdentifyWarning.POSITION_NOISE in r.warnings and r.status.value == "caveats"
+    assert IdentifyWarning.POOR_FIT not in r.warnings and _misfit_ratio(r) < POSITION_MISFIT / 2.0
+    assert (r.force_noise_relative > 0.15) == (force_noise > 0.0)

@@ -46,7 +46,10 @@ from:
    run again with the segments' starts free of their first reading's tick, the Jacobian's intervals take that white
    variance for quantization's, force noise is estimated beyond it (:data:`NOISE_Z`) and the replicates' readings
    get fresh noise of that level before their encoder; with 2 to 5 ticks the intervals held the truth in 37 to 40
-   of 40 logs. Without a
+   of 40 logs. Such a fit is poor when its residuals' mean square exceeds :data:`POSITION_MISFIT` times that white
+   variance (white noise gives 1; with force noise of :data:`NOISE_MAX` on half a tick, about 90 on the tests'
+   logs): a misfit's jumps, a
+   diverging log's with force noise, read as noise on the readings, which would otherwise absorb it. Without a
    reversal c and f₀ get no interval (only c − f₀ is seen); with fewer than :data:`FEW_MOVING` samples in
    motion no estimate does (a device that rests fits many devices). Then the share of samples whose predicted
    tick is within one of the logged one, and warnings when the log does not excite a parameter
@@ -77,7 +80,7 @@ from numpy.typing import ArrayLike
 
 from .._parallel import new_bar
 from ..checks import check_bool, check_int, check_nonnegative, check_positive, check_real, check_type, format_value
-from ..core.open_loop import open_loop_kernel, segments_kernel
+from ..core.open_loop import block_normal, open_loop_kernel, segments_jacobian, segments_kernel
 from ..errors import DFAValueError
 from ..model.device import Device, device_units
 from ..model.log import MIN_SAMPLES, DeviceLog, LogError, check_rows
@@ -85,6 +88,7 @@ from ..model.loop import Loop
 from ..model.wall import Wall
 from ..results.identify import FEW_MOVING as FEW_MOVING
 from ..results.identify import FRICTION_SHARE as FRICTION_SHARE
+from ..results.identify import POSITION_MISFIT as POSITION_MISFIT
 from ..results.identify import Estimate as Estimate
 from ..results.identify import FitQuality as FitQuality
 from ..results.identify import Identification as Identification
@@ -360,10 +364,33 @@ def _segments(n: int, mu: float, beta: float) -> np.ndarray:
 
 def _derivatives(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Smoothed velocity and acceleration of the readings ``n`` (ticks per sample, per sample²)."""
-    from scipy.signal import savgol_filter
+    return _savgol(n, 1), _savgol(n, 2)
 
-    v, a = (savgol_filter(n.astype(float), _window(len(n)), 3, deriv=k) for k in (1, 2))
-    return v, a
+
+def _savgol(n: np.ndarray, deriv: int) -> np.ndarray:
+    """The ``deriv``-th derivative (per sample^deriv) of the cubic Savitzky–Golay smoothing of ``n`` over
+    :func:`_window` samples: in the interior the least-squares cubic of the window about each sample; the first
+    and last half-windows from the cubic of the first and last window (what ``scipy.signal.savgol_filter(n,
+    window, 3, deriv)`` computes in its default mode ``interp``, to rounding; importing scipy.signal costs about
+    0.6 s of ``dfa identify``, which needs nothing else from it: tests/test_identify_inputs.py checks the two
+    agree)."""
+    x = np.asarray(n, dtype=float)
+    size = _window(len(x))
+    half = size // 2
+    pos = np.arange(size, dtype=float) - half  # positions within a window, about its middle
+    power = np.arange(4)
+    vander = pos[:, None] ** power  # the cubic's basis over one window
+    fit = np.linalg.pinv(vander)  # 4 × size: the window's data to the cubic's coefficients
+    at = np.zeros((size, 4))  # the deriv-th derivative of each basis power at each position
+    k = power >= deriv
+    fall = np.array([math.perm(int(p), deriv) for p in power[k]], dtype=float)
+    at[:, k] = fall * pos[:, None] ** (power[k] - deriv)
+    weights = at @ fit  # row i: the window's data to the derivative at its position i
+    out = np.empty_like(x)
+    out[half : len(x) - half] = np.convolve(x, weights[half][::-1], mode="valid")
+    out[:half] = weights[:half] @ x[:size]
+    out[len(x) - half :] = weights[size - half :] @ x[len(x) - size :]
+    return out
 
 
 class _Fit(NamedTuple):
@@ -401,10 +428,8 @@ def _fit(n: np.ndarray, phi: np.ndarray, w: np.ndarray, noisy: bool = False) -> 
 
 
 def _smoothed(n: np.ndarray) -> np.ndarray:
-    """The readings ``n`` smoothed (Savitzky–Golay, :func:`_window`), ticks."""
-    from scipy.signal import savgol_filter
-
-    return np.asarray(savgol_filter(n.astype(float), _window(len(n)), 3))
+    """The readings ``n`` smoothed (Savitzky–Golay, :func:`_savgol`), ticks."""
+    return _savgol(n, 0)
 
 
 def _fit_readings(n: np.ndarray, phi: np.ndarray, w: np.ndarray) -> tuple[_Fit, np.ndarray, float]:
@@ -458,8 +483,8 @@ def _solve(
     r = _residual(theta, n, phi, w, starts, np.empty(len(n)))
     cost, lam, scale = _sum_squares(r), LM_DAMPING, np.zeros(len(theta))
     for _ in range(MAX_ITERATIONS):
-        g, loc = _jacobian(theta, r, n, phi, w, starts, seg, lo, hi)
-        blocks = _normal_blocks(g, loc, r, starts)
+        jac = _jacobian(theta, r, n, phi, w, starts, seg, lo, hi)
+        blocks = _normal_blocks(jac, r, starts)
         scale = np.maximum(scale, _marquardt_scale(blocks))
         grad = np.concatenate([blocks[3], blocks[4][:, 0], blocks[4][:, 1]])
         free = ~(((theta <= lo) & (grad > 0.0)) | ((theta >= hi) & (grad < 0.0)))
@@ -476,8 +501,8 @@ def _solve(
         theta, r, cost, lam = trial, r_new, cost_new, max(lam / 3.0, LM_DAMPING * 1e-6)
         if done:
             break
-    g, loc = _jacobian(theta, r, n, phi, w, starts, seg, lo, hi)
-    return _Fit(theta, r, g, loc)
+    jac = _jacobian(theta, r, n, phi, w, starts, seg, lo, hi)
+    return _Fit(theta, r, jac[:, :4], jac[:, 4:])
 
 
 def _residual(
@@ -495,33 +520,37 @@ def _sum_squares(r: np.ndarray) -> float:
 def _jacobian(
     theta: np.ndarray, r: np.ndarray, n: np.ndarray, phi: np.ndarray, w: np.ndarray, starts: np.ndarray,
     seg: np.ndarray, lo: np.ndarray, hi: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
-    """Forward-difference Jacobian of the residuals ``r`` at θ: the columns of the 4 global parameters (n × 4)
+) -> np.ndarray:  # fmt: skip
+    """Forward-difference Jacobian of the residuals ``r`` at θ: the columns of the 4 global parameters
     and each sample's derivatives by its own segment's start position and velocity (n × 2; the segments' starts
     are moved together, as each sample depends on its own segment's only). Steps √ε max(1, |θ|), reversed where
-    a bound is in the way (scipy's ``approx_derivative``)."""
+    a bound is in the way (scipy's ``approx_derivative``). The six moved predictions run in one compiled call
+    (:func:`dfa.core.open_loop.segments_jacobian`), each as :func:`_predict` runs it: the n × 6 columns."""
     j = len(starts)
     h = FD_STEP * np.where(theta >= 0.0, 1.0, -1.0) * np.maximum(1.0, np.abs(theta))
     h = np.where((theta + h > hi) | (theta + h < lo), -h, h)
     h = (theta + h) - theta
-    out = np.empty(len(n))
-    cols = []
-    for part in (slice(0, 1), slice(1, 2), slice(2, 3), slice(3, 4), slice(4, 4 + j), slice(4 + j, None)):
-        moved = theta.copy()
-        moved[part] += h[part]
-        step = h[part][seg] if part.start >= 4 else h[part]
-        cols.append((_residual(moved, n, phi, w, starts, out) - r) / step)
-    return np.column_stack(cols[:4]), np.column_stack(cols[4:])
+    moved = np.tile(theta, (6, 1))
+    for k, part in enumerate((slice(0, 1), slice(1, 2), slice(2, 3), slice(3, 4), slice(4, 4 + j), slice(4 + j, None))):
+        moved[k, part] += h[part]
+    params = np.column_stack([moved[:, 3], [math.exp(min(max(float(t0), LOG_MU[0]), LOG_MU[1])) for t0 in moved[:, 0]],
+                              moved[:, 1], moved[:, 2]])  # fmt: skip
+    steps = np.vstack([np.repeat(h[:4, None], j, axis=1), h[None, 4 : 4 + j], h[None, 4 + j :]])
+    out = np.empty((len(n), 6))
+    segments_jacobian(n[starts] + moved[:, 4 : 4 + j], np.ascontiguousarray(moved[:, 4 + j :]), starts, phi, params,
+                      n + 0.5, w, r, steps, out)  # fmt: skip
+    return out
 
 
-def _normal_blocks(g: np.ndarray, loc: np.ndarray, r: np.ndarray, starts: np.ndarray) -> tuple[np.ndarray, ...]:
+def _normal_blocks(jac: np.ndarray, r: np.ndarray, starts: np.ndarray) -> tuple[np.ndarray, ...]:
     """The normal equations JᵀJ, Jᵀr in blocks: (GᵀG 4 × 4, per segment Gₖᵀ Lₖ 4 × 2 and Lₖᵀ Lₖ 2 × 2, Gᵀr,
-    per segment Lₖᵀ r); G the global columns, Lₖ the segment's own two (no BLAS: its threads cost more than
-    these sums on a loaded machine)."""
-    a = np.einsum("ni,nj->ij", g, g)
-    b = np.add.reduceat(g[:, :, None] * loc[:, None, :], starts, axis=0)
-    c = np.add.reduceat(loc[:, :, None] * loc[:, None, :], starts, axis=0)
-    return a, b, c, np.einsum("ni,n->i", g, r), np.add.reduceat(loc * r[:, None], starts, axis=0)
+    per segment Lₖᵀ r); G the global columns of ``jac`` (:func:`_jacobian`), Lₖ the segment's own two (summed in one compiled pass,
+    :func:`dfa.core.open_loop.block_normal`)."""
+    j = len(starts)
+    a, b, c = np.empty((4, 4)), np.empty((j, 4, 2)), np.empty((j, 2, 2))
+    gr, lr = np.empty(4), np.empty((j, 2))
+    block_normal(jac, r, starts, a, b, c, gr, lr)
+    return a, b, c, gr, lr
 
 
 def _marquardt_scale(blocks: tuple[np.ndarray, ...]) -> np.ndarray:
@@ -666,7 +695,8 @@ def _bootstrap(
     before the encoder (``position``, ticks; none when 0). Deterministic (seeds 0, 1 and 2)."""
     rng, noisy, jitter = np.random.default_rng(0), np.random.default_rng(1), np.random.default_rng(2)
     draws = []
-    for _ in new_bar(iterable=range(reps), desc="bootstrap", unit="fit", disable=not progress, leave=False):
+    bar = new_bar(iterable=range(reps), desc="bootstrap", unit="fit", leave=False) if progress else range(reps)
+    for _ in bar:  # no bar, no tqdm (importing it costs about 0.05 s)
         nb = np.floor(xi + rng.uniform() + (jitter.normal(0.0, position, xi.size) if position > 0.0 else 0.0))
         try:
             logged = phi + noisy.normal(0.0, noise, phi.size) if noise > 0.0 else phi
@@ -739,12 +769,10 @@ def _estimates(theta: np.ndarray, cov: np.ndarray, draws: np.ndarray, delta: flo
     the larger of 1.96 linearized standard errors and Student's t quantile × the replicates' spread about the
     estimate (their bias included); the intervals of b and c end at 0 at the lowest (their range), the mass's is
     symmetric in log m."""
-    from scipy.special import stdtrit  # Student's t quantile (what scipy.stats.t.ppf calls), without scipy.stats
-
     half = 1.959964 * np.sqrt(np.maximum(np.diag(cov), 0.0))
     if len(draws) >= 2:
         spread = np.sqrt(np.sum((draws - theta[:4]) ** 2, axis=0) / (len(draws) - 1))
-        half = np.maximum(half, float(stdtrit(len(draws) - 1, 0.975)) * spread)
+        half = np.maximum(half, _t_quantile(len(draws) - 1) * spread)
     m, h = math.exp(theta[0]) * t * t, float(half[0])  # the dimensionless groups at K = 1 N/m: μ = m/T² ...
     est = {"mass": Estimate(m, m * h / 1.959964, m * math.exp(-h), m * math.exp(h)) if h < math.log(SCATTER) else
            Estimate(m, None, None, None, Undetermined.SCATTER)}  # fmt: skip
@@ -755,6 +783,38 @@ def _estimates(theta: np.ndarray, cov: np.ndarray, draws: np.ndarray, delta: flo
         est[key] = Estimate(value, hw / 1.959964, low, value + hw) if bounded else Estimate(
             value, None, None, None, Undetermined.SCATTER)  # fmt: skip
     return est
+
+
+def _t_two_sided(theta: float, df: int) -> float:
+    """P(|T| < √df tan θ) of Student's t with ``df`` degrees of freedom, a whole number >= 1 (Abramowitz and
+    Stegun 26.7.3 and 26.7.4: a finite sum of powers of cos θ)."""
+    c2, s = math.cos(theta) ** 2, math.sin(theta)
+    if df % 2 == 1:
+        term, total = math.cos(theta), 0.0
+        for k in range(1, (df - 1) // 2 + 1):  # cos θ, (2/3) cos³ θ, (2·4)/(3·5) cos⁵ θ, ...
+            total += term
+            term *= c2 * (2 * k) / (2 * k + 1)
+        return 2.0 / math.pi * (theta + s * total)
+    term, total = 1.0, 0.0
+    for k in range(1, df // 2 + 1):  # 1, ½ cos² θ, (1·3)/(2·4) cos⁴ θ, ...
+        total += term
+        term *= c2 * (2 * k - 1) / (2 * k)
+    return s * total
+
+
+def _t_quantile(df: int, level: float = 0.95) -> float:
+    """The two-sided ``level`` quantile of Student's t with ``df`` degrees of freedom (a whole number >= 1): the t
+    of P(|T| < t) = ``level`` (0.975 one-sided), by bisection on θ = atan(t/√df) to the last bit
+    (:func:`_t_two_sided`). ``scipy.special.stdtrit`` computes the same; importing scipy.special costs about
+    0.2 s of ``dfa identify``, which needs nothing else from it (tests/test_identify_inputs.py checks the two
+    agree)."""
+    lo, hi = 0.0, math.pi / 2.0
+    while True:
+        mid = 0.5 * (lo + hi)
+        if not lo < mid < hi:
+            break
+        lo, hi = (mid, hi) if _t_two_sided(mid, df) < level else (lo, mid)
+    return math.sqrt(df) * math.tan(0.5 * (lo + hi))
 
 
 def _motion_warnings(n: np.ndarray, coulomb: float, f_max: float) -> list[IdentifyWarning]:
@@ -1004,7 +1064,8 @@ def identify(
     warns = _motion_warnings(np.floor(xi) if position > 0.0 else n, float(theta[2]) * delta,
                              float(np.max(np.abs(lg.f))))  # fmt: skip
     warns += [IdentifyWarning.POSITION_NOISE] if position > 0.0 else []
-    warns += _noise_warnings(fit, relative) if spread > 0.0 else [IdentifyWarning.CONSTANT_FORCE]
+    warns += _noise_warnings(fit, relative, white if position > 0.0 else None) if spread > 0.0 else [
+        IdentifyWarning.CONSTANT_FORCE]  # fmt: skip
     skip = {IdentifyWarning.LITTLE_MOTION, IdentifyWarning.POOR_FIT, IdentifyWarning.CONSTANT_FORCE} & set(warns)
     draws = _bootstrap(xi, phi, w, 0 if skip else reps, show, noise.level, position)
     est = _withhold(_estimates(theta, cov, draws, delta, t), warns)
@@ -1049,10 +1110,14 @@ def _confounded(
     return tuple(out)
 
 
-def _noise_warnings(fit: FitQuality, relative: float) -> list[IdentifyWarning]:
+def _noise_warnings(fit: FitQuality, relative: float, white: float | None = None) -> list[IdentifyWarning]:
     """A poor fit (fewer than :data:`POOR_FIT` of the samples within a tick, and more force noise than
-    :data:`NOISE_MAX` needed to explain it), or force noise that explains the residuals."""
+    :data:`NOISE_MAX` needed to explain it; with noise on the readings of white variance ``white`` (ticks²,
+    :func:`_white`), also residuals whose mean square exceeds :data:`POSITION_MISFIT` times it), or force noise
+    that explains the residuals."""
     if fit.within_one_tick < POOR_FIT and not relative <= NOISE_MAX:
+        return [IdentifyWarning.POOR_FIT]
+    if white is not None and not fit.rms_ticks**2 <= POSITION_MISFIT * white:
         return [IdentifyWarning.POOR_FIT]
     return [IdentifyWarning.FORCE_NOISE] if relative > 0.0 else []
 

@@ -9,6 +9,7 @@ modules import numpy, numba, one another and dfa's errors only:
 - :mod:`~dfa.core.kernel`: the exact simulator of the paper's loop, a spring wall (eq. 4-5);
 - :mod:`~dfa.core.wall_kernel`: the same with a damper, velocity filter, delay and amplifier lag;
 - :mod:`~dfa.core.table`: the wall's kernel table, the one array that carries a wall's elements to that kernel;
+- :mod:`~dfa.core.open_loop`: the device driven by logged forces, and the identification fit's compiled sums;
 - :mod:`~dfa.core.pair` and :mod:`~dfa.core.batch`: many runs in one compiled call;
 - :mod:`~dfa.core.storage`: runs that record the storage function, for the soundness checks;
 - :mod:`~dfa.core.dfcore`: the quantizer's describing function (eq. 41) in compiled sums;

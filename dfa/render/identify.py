@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 from ..formatting import fill, number, number_at, text_table
 from ..model.units import hertz, position
+from ..results.identify import POSITION_MISFIT
 
 if TYPE_CHECKING:
     from ..model.catalogue import CatalogueEntry
@@ -131,10 +132,25 @@ def confounded_text(a: str, b: str, rho: float) -> str:
             f"{rho:.3f}): log {SEPARATING_MOTION[(a, b)]}")  # fmt: skip
 
 
+def _misfit_ratio(r: Identification) -> float | None:
+    """The residuals' mean square over the readings' white level (position noise² + 1/12, ticks²) when that is what
+    made the fit poor (beyond :data:`~dfa.results.identify.POSITION_MISFIT`), else None."""
+    if r.position_noise_ticks <= 0.0:
+        return None
+    ratio = r.fit.rms_ticks**2 / (r.position_noise_ticks**2 + 1.0 / 12.0)
+    return ratio if ratio > POSITION_MISFIT else None
+
+
 def _warning_text(r: Identification, w: IdentifyWarning) -> str:
-    """A warning's sentence; the position noise's with its level in ticks."""
+    """A warning's sentence; the position noise's with its level in ticks; a poor fit's with the rule that made it."""
     if w.value == "position_noise":
         return f"{number(r.position_noise_ticks, 2)} ticks of noise on the readings (standard deviation): {w.message}"
+    ratio = _misfit_ratio(r) if w.value == "poor_fit" else None
+    if ratio is not None:
+        return (f"poor fit: the residuals' mean square is {number(ratio, 3)} times the readings' white level (their "
+                f"noise's square and quantization's 1/12), more than the {POSITION_MISFIT:g} that noise on the readings "
+                "and the force column explains: a misfit whose jumps read as noise; the model does not reproduce the "
+                "log")  # fmt: skip
     return w.message
 
 
@@ -147,14 +163,15 @@ def _noise_lines(r: Identification) -> list[str]:
         out.append(fill(
             f"position noise: about {number(r.position_noise_ticks, 2)} ticks ({number(r.position_noise, 3)} "
             f"{u['resolution']}) of white noise on the readings beyond their quantization, measured on the residuals' "
-            "second differences; the fit's segments start off their first reading's tick and the intervals include "
-            "it"))  # fmt: skip
+            "second differences; the fit's segments start off their first reading's tick"
+            + (" and the intervals include it" if r.status.value != "poor_fit" else "")))  # fmt: skip
     if not r.force_noise > 0.0:
         return out
     return out + [fill(
         f"force noise: about {number(r.force_noise, 3)} {u['force']} ({number(100 * r.force_noise_relative, 2)} % of "
         "the force's standard deviation) on the force column explains the residuals beyond the encoder's "
         "quantization" + ("; the intervals include it" if r.status.value != "poor_fit" else
+                          ", but the fit is poor (below)" if _misfit_ratio(r) is not None else
                           ", more than the 25 % a fit's misfit is put down to"))]  # fmt: skip
 
 
@@ -164,19 +181,29 @@ def _interval_note(r: Identification) -> str:
         return "no intervals: the log does not bound the values (the table says why)"
     if r.force_noise > 0.0 or r.position_noise > 0.0:
         which = " and ".join(k for k, v in (("force", r.force_noise), ("position", r.position_noise)) if v > 0.0)
-        return (
-            f"intervals from the fit's Jacobian with the {which} noise estimated below and {r.bootstrap} replicate "
-            f"fits with the encoder's origin shifted and fresh {which} noise; they leave out dynamics the model lacks"
-        )
-    if r.bootstrap:
-        how = f"from the fit and {r.bootstrap} replicate fits with the encoder's origin shifted"
+        noise = f" with the {which} noise estimated below"
+        how = _replicates(r, f"from the fit's Jacobian{noise} and", f" and fresh {which} noise", f",{noise}")
+        return f"intervals {how}; they leave out dynamics the model lacks"
+    how = _replicates(r, "from the fit and", "", "")
+    return f"intervals {how}; they leave out noise on the force column and dynamics the model lacks"
+
+
+def _replicates(r: Identification, with_fits: str, fresh: str, noise: str) -> str:
+    """How the intervals were made, from the replicates that were fitted: ``with_fits`` and their number (their
+    readings with the encoder's origin shifted and ``fresh`` noise), else the Jacobian alone (``noise``: with the
+    noise estimated) and why: none asked for, none moved enough to fit, or one, whose spread is not taken."""
+    if r.bootstrap >= 2:
+        how = f"{with_fits} {r.bootstrap} replicate fits with the encoder's origin shifted{fresh}"
         if r.bootstrap < r.bootstrap_requested:
             how += f" ({r.bootstrap_requested - r.bootstrap} of {r.bootstrap_requested} replicates too still to fit)"
-    elif r.bootstrap_requested:
-        how = "from the fit's Jacobian alone (no replicate moved enough to fit): too narrow, a lower bound"
-    else:
-        how = "from the fit's Jacobian alone (--bootstrap 0): too narrow, read them as a lower bound"
-    return f"intervals {how}; they leave out noise on the force column and dynamics the model lacks"
+        return how
+    if r.bootstrap == 1:
+        return (
+            f"from the fit's Jacobian alone (one replicate fit: a spread needs two){noise}: too narrow, a lower bound"
+        )
+    if r.bootstrap_requested:
+        return f"from the fit's Jacobian alone (no replicate moved enough to fit){noise}: too narrow, a lower bound"
+    return f"from the fit's Jacobian alone (--bootstrap 0){noise}: too narrow, read them as a lower bound"
 
 
 def cycle_lines(c: LoggedCycle) -> list[str]:

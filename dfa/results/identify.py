@@ -29,6 +29,14 @@ FRICTION_SHARE = 1e-4
 #: Fewest samples in motion (the reading changes) for a log to count as exciting the dynamics.
 FEW_MOVING = 300
 
+#: Largest ratio of the residuals' mean square to the white variance of noisy readings (the position noise's square
+#: plus quantization's 1/12, :mod:`dfa.analysis.identify`) of a fit that reproduces the log: white noise gives 1, force noise
+#: on top of it more (0.6 tick and 21 % force noise on the free-motion logs of tests/test_identify_position_noise.py:
+#: 69; 0.5 tick and 25 %, about 90). Beyond it the residuals are not noise on the readings but a misfit whose jumps
+#: read as white noise (diverging logs with force noise read 330 to 4600 ticks of "position noise" at ratios of 420
+#: to 1700): the fit is poor, whatever force noise would explain.
+POSITION_MISFIT = 200.0
+
 
 class Undetermined(StatusEnum):
     """Why an estimate has no interval (:attr:`Estimate.undetermined`): a short code, ``message`` its definition,

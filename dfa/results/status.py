@@ -709,7 +709,8 @@ class IdentifyWarning(StatusEnum):
     POOR_FIT = (
         "poor_fit",
         "fewer than 90 % of the samples are predicted within one tick, and noise on the force column explains the "
-        "misfit only if it exceeds 25 % of the force's spread: the model does not reproduce the log",
+        "misfit only if it exceeds 25 % of the force's spread; or, with noise on the readings, the residuals' mean "
+        "square exceeds 200 times their white level: the model does not reproduce the log",
     )
     CONSTANT_FORCE = (
         "constant_force",
