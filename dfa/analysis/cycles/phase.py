@@ -179,14 +179,32 @@ class PieceOmega:
     def __init__(self, lp: HarmonicLoop, ws: np.ndarray, ms: np.ndarray):
         order = np.argsort(ms)
         self.lp, self.ms, self.ws = lp, ms[order], ws[order]
+        self._known: dict[float, float] = {}
+        self._wanted: list[np.ndarray] = []
 
     def _brackets(self, m: float | np.ndarray) -> tuple[Any, Any]:
         k = np.clip(np.searchsorted(self.ms, m), 1, self.ms.size - 1)
         return self.ws[k - 1], self.ws[k]
 
+    def want(self, m: np.ndarray) -> None:
+        """Amplitudes whose ω the next call solves as well, in the same run of the root finder.
+
+        The root finder is elementwise (each amplitude's iterations are its own), so an ω does not depend on
+        the amplitudes solved beside it: asking early only saves the root finder's fixed cost of a run.
+        """
+        self._wanted.append(np.asarray(m, dtype=float).ravel())
+
     def __call__(self, m: np.ndarray) -> np.ndarray:
-        wa, wb = self._brackets(m)
-        return _omega_for_m(self.lp, m, wa, wb)
+        """ω(M) at the amplitudes ``m`` (and those :meth:`want` asked for), each solved once per piece."""
+        m = np.asarray(m, dtype=float)
+        known = self._known
+        new = [x for x in np.concatenate([m.ravel(), *self._wanted]).tolist() if x not in known]
+        self._wanted = []
+        if new:
+            todo = np.array(list(dict.fromkeys(new)))
+            wa, wb = self._brackets(todo)
+            known.update(zip(todo.tolist(), _omega_for_m(self.lp, todo, wa, wb).tolist(), strict=True))
+        return np.array([known[x] for x in m.ravel().tolist()], dtype=float).reshape(m.shape)
 
     def scalar(self, m: float) -> float:
         """The same for one amplitude, by Brent's method on the scalar loop inverse (same end rule as the vector path)."""
