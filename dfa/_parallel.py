@@ -39,7 +39,17 @@ import numpy as np
 
 from ._signals import check, deferred
 
-__all__ = ["run_in_order", "deal", "gather", "new_bar", "progress_bar", "NO_BAR", "PARALLEL_BACKENDS", "POLL_SECONDS"]
+__all__ = [
+    "run_in_order",
+    "started_in_order",
+    "deal",
+    "gather",
+    "new_bar",
+    "progress_bar",
+    "NO_BAR",
+    "PARALLEL_BACKENDS",
+    "POLL_SECONDS",
+]
 
 #: Backends of :func:`run_in_order` (module docstring).
 PARALLEL_BACKENDS = ("threads", "processes", "joblib")
@@ -198,18 +208,22 @@ def _result(fut: Any) -> Any:
 
 
 def _joblib(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, backend, bar) -> list:
+    with _dispatched(fn, tasks, workers, backend) as gen:
+        return _collected(gen, sizes, bar)
+
+
+@contextlib.contextmanager
+def _dispatched(fn: Callable[..., Any], tasks: Sequence[tuple], workers: int, backend: str) -> Iterator[Any]:
+    """joblib's generator of ``fn(*task)`` in submission order, dispatched to the workers on entry; closed on exit
+    (which cancels the tasks not started and stops the workers, quietly on an interruption)."""
     from joblib import Parallel, delayed
 
     kw = {"backend": "loky"} if backend == "processes" else {}
-    results: list = []
     gen = None
     try:
         with deferred():  # joblib starts a thread here
             gen = Parallel(n_jobs=workers, return_as="generator", **kw)(delayed(fn)(*task) for task in tasks)
-        for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
-            results.append(res)
-            with deferred():
-                bar.update(size)
+        yield gen
     except BaseException:
         _quiet_cancelled_pool()
         raise
@@ -218,7 +232,48 @@ def _joblib(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int]
             with deferred(), warnings.catch_warnings():  # joblib's count of the cancelled tasks: not news here
                 warnings.simplefilter("ignore", UserWarning)
                 gen.close()  # on an interruption: cancel the pending tasks, stop the workers
+
+
+def _collected(gen: Any, sizes: Sequence[int], bar: _Progress) -> list:
+    """The results of a :func:`_dispatched` generator, advancing ``bar`` by each task's size as it arrives."""
+    results: list = []
+    for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
+        results.append(res)
+        with deferred():
+            bar.update(size)
     return results
+
+
+@contextlib.contextmanager
+def started_in_order(
+    fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, backend: str
+) -> Iterator[Callable[[_Progress], list]]:
+    """:func:`run_in_order` started on entry and collected later: the block gets ``collect(bar)``, which returns
+    the results in the order of ``tasks`` (the same as :func:`run_in_order`'s).
+
+    With worker processes (``"processes"`` or ``"joblib"``, more than one worker and task) the tasks are
+    dispatched at once: the workers start (a second or two of imports each) and work while this process does
+    something else, such as a Z-width's planning and simulations on threads. Otherwise they run when collected.
+    Leaving the block before collecting (an error, an interruption) cancels the tasks not started.
+
+    Parameters
+    ----------
+    fn, tasks, sizes, workers, backend
+        As :func:`run_in_order`.
+
+    Examples
+    --------
+    >>> with started_in_order(pow, [(2, 3), (3, 2)], [1, 1], 1, "processes") as collect:
+    ...     collect(NO_BAR)
+    [8, 9]
+    """
+    if len(sizes) != len(tasks):
+        raise ValueError(f"sizes has {len(sizes)} entries for {len(tasks)} tasks: give one size per task")
+    if workers == 1 or len(tasks) <= 1 or backend == "threads":
+        yield lambda bar: run_in_order(fn, tasks, sizes, workers, backend, bar)
+        return
+    with _dispatched(fn, tasks, min(workers, len(tasks)), backend) as gen:
+        yield lambda bar: _collected(gen, sizes, bar)
 
 
 def _quiet_cancelled_pool() -> None:

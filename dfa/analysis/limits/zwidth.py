@@ -62,7 +62,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._parallel import progress_bar, run_in_order
+from ..._parallel import progress_bar, run_in_order, started_in_order
 from ...checks import (
     check_bool,
     check_choice,
@@ -495,14 +495,22 @@ def z_width(
     ks, bs = _grids(dev, base, g, k_range, b_range, v)
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
     xi_dots = [dev.xi_dot(float(s)) for s in vs]
-    tasks, work = _plan(dev, base, ks, bs, xi_dots, cap)
-    if work > MAX_WORK_SAMPLES:
-        raise DFAValueError(
-            f"grid = {g} is invalid with speeds = {n_speeds} and max_samples = {cap}: the Z-width would simulate "
-            f"{work:.3g} samples (limit {MAX_WORK_SAMPLES:.3g}); lower the grid, the speeds or max_samples"
-        )
-    codes = _simulate_grid(tasks, workers, progress, f"Z-width {dev.name}").reshape(g, g)
-    return _assemble(dev, base, v, vs, ks, bs, codes, cap, len(tasks), model, workers, progress)
+    # the boundary columns start first: in worker processes they (and the workers' start) overlap the planning and
+    # the simulations on threads, which need no boundary (dfa._parallel.started_in_order)
+    args = [(dev, base.with_damping(float(b)), v, ks, model) for b in bs]
+    how = "processes" if workers > 1 and len(args) >= PROCESS_COLUMNS else "threads"
+    with started_in_order(_column, args, [1] * len(args), workers, how) as columns:
+        tasks, work = _plan(dev, base, ks, bs, xi_dots, cap)
+        if work > MAX_WORK_SAMPLES:
+            raise DFAValueError(
+                f"grid = {g} is invalid with speeds = {n_speeds} and max_samples = {cap}: the Z-width would simulate "
+                f"{work:.3g} samples (limit {MAX_WORK_SAMPLES:.3g}); lower the grid, the speeds or max_samples"
+            )
+        codes = _simulate_grid(tasks, workers, progress, f"Z-width {dev.name}").reshape(g, g)
+        label = f"Z-width {dev.name} boundaries"
+        with progress_bar(total=len(args), unit="B", desc=label, disable=not progress, leave=False) as bar:
+            cols = columns(bar)  # in order: the result does not depend on workers
+    return _assemble(dev, base, v, vs, ks, bs, codes, cap, len(tasks), model, cols)
 
 
 def check_zwidth_size(grid: int, speeds: int = 1, names: tuple[str, str] = ("grid", "speeds")) -> None:
@@ -580,8 +588,9 @@ def z_width_seconds(
     return (samples * NS_PER_SAMPLE * 1e-9 + grid * COLUMN_SECONDS) / workers
 
 
-def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, row: np.ndarray, model: str) -> list[KLimit]:
-    """The limit of every method (:data:`ZWIDTH_METHODS` order) at one B (``wall`` has that damper).
+def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, model: str) -> list[KLimit]:
+    """The limits at one B (``wall`` has that damper) of the methods that do not simulate: linear, passivity,
+    criterion and describing function (:data:`ZWIDTH_METHODS` order).
 
     The linear bound and the criterion's bisection are computed once: the describing function's search grid
     (:func:`~dfa.analysis.limits.kmax.closed_forms`) takes their values.
@@ -593,8 +602,6 @@ def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, row: np.ndarray, 
         _colgate_schenkel(dev, wall, ks),
         criterion,
         describing_limit(dev, wall, v, model, RunCache(), DF_GRID, k_criterion=k_criterion, k_linear=k_linear),
-        _grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}),
-        _grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}),
     ]
 
 
@@ -609,17 +616,17 @@ def _assemble(
     cap: int,
     n_points: int,
     model: str,
-    workers: int,
-    progress: bool = False,
+    columns: list[list[KLimit]],
 ) -> ZWidth:
-    """Limits per method from the grid and the closed forms (columns on ``workers`` threads, or processes from
-    :data:`PROCESS_COLUMNS` columns on); status."""
-    args = [(dev, wall.with_damping(float(b)), v, ks, codes[i], model) for i, b in enumerate(bs)]
-    label = f"Z-width {dev.name} boundaries"
-    with progress_bar(total=len(args), unit="B", desc=label, disable=not progress, leave=False) as bar:
-        # in order (dfa._parallel): the result does not depend on workers; Ctrl-C cancels the columns not started
-        how = "processes" if workers > 1 and len(args) >= PROCESS_COLUMNS else "threads"
-        cols = run_in_order(_column, args, [1] * len(args), workers, how, bar)
+    """Limits per method from the boundary columns (:func:`_column`) and the simulated grid's rows; status."""
+    cols = [
+        [
+            *c,
+            _grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}),
+            _grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}),
+        ]
+        for c, row in zip(columns, codes, strict=True)
+    ]
     limits = {m: tuple(c[n] for c in cols) for n, m in enumerate(ZWIDTH_METHODS)}
     ce, lpv = _violations(codes, ks, bs, limits, dev.units["stiffness"])
     caveat = bool((codes == UNDECIDED_POINT).any()) or any(x.non_monotone for m in ("sim", "rest") for x in limits[m])
