@@ -230,6 +230,8 @@ class HarmonicLoop:
 
     def d(self, m: float | np.ndarray) -> float | np.ndarray:
         """D(M) (compiled eq. 41 for the exact describing function; M > 0 is the solver's own)."""
+        if self.df == "exact" and isinstance(m, float):  # one amplitude of a root finder: no array made
+            return dfcore.df_value(m)
         m = np.asarray(m, dtype=float)
         if self.df == "exact":
             return dfcore.df_array(m.ravel()).reshape(m.shape) if m.ndim else dfcore.df_value(float(m))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import bisect
 import math
 from functools import lru_cache
 from typing import Any
@@ -181,6 +182,8 @@ class PieceOmega:
         self.lp, self.ms, self.ws = lp, ms[order], ws[order]
         self._known: dict[float, float] = {}
         self._wanted: list[np.ndarray] = []
+        self._ms_list: list[float] | None = None  # the sorted pieces as lists, for the scalar path's brackets
+        self._ws_list: list[float] = []
 
     def _brackets(self, m: float | np.ndarray) -> tuple[Any, Any]:
         k = np.clip(np.searchsorted(self.ms, m), 1, self.ms.size - 1)
@@ -208,7 +211,10 @@ class PieceOmega:
 
     def scalar(self, m: float) -> float:
         """The same for one amplitude, by Brent's method on the scalar loop inverse (same end rule as the vector path)."""
-        wa, wb = (float(x) for x in self._brackets(m))
+        if self._ms_list is None:
+            self._ms_list, self._ws_list = self.ms.tolist(), self.ws.tolist()
+        k = min(max(bisect.bisect_left(self._ms_list, m), 1), len(self._ms_list) - 1)  # as _brackets: searchsorted
+        wa, wb = self._ws_list[k - 1], self._ws_list[k]
         lp = self.lp
 
         def v(w: float) -> float:
