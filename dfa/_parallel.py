@@ -251,10 +251,13 @@ def started_in_order(
     """:func:`run_in_order` started on entry and collected later: the block gets ``collect(bar)``, which returns
     the results in the order of ``tasks`` (the same as :func:`run_in_order`'s).
 
-    With worker processes (``"processes"`` or ``"joblib"``, more than one worker and task) the tasks are
-    dispatched at once: the workers start (a second or two of imports each) and work while this process does
-    something else, such as a Z-width's planning and simulations on threads. Otherwise they run when collected.
-    Leaving the block before collecting (an error, an interruption) cancels the tasks not started.
+    With ``"processes"`` and more than one worker and task, ``workers − 1`` worker processes start on entry and
+    take the tasks from the front, one at a time, while this process does something else (a Z-width's planning
+    and simulations on threads); ``collect`` then takes tasks from the back in this process until the two meet,
+    and waits for the workers' (:class:`_Claims`: each task runs once, in one place). This process is one of the
+    workers: one worker process fewer to start (a second or two of imports each). With ``"joblib"`` the tasks
+    are dispatched on entry (:func:`_dispatched`); otherwise they run when collected. Leaving the block before
+    collecting (an error, an interruption) cancels the tasks not started.
 
     Parameters
     ----------
@@ -271,9 +274,72 @@ def started_in_order(
         raise ValueError(f"sizes has {len(sizes)} entries for {len(tasks)} tasks: give one size per task")
     if workers == 1 or len(tasks) <= 1 or backend == "threads":
         yield lambda bar: run_in_order(fn, tasks, sizes, workers, backend, bar)
-        return
-    with _dispatched(fn, tasks, min(workers, len(tasks)), backend) as gen:
-        yield lambda bar: _collected(gen, sizes, bar)
+    elif backend == "joblib":
+        with _dispatched(fn, tasks, min(workers, len(tasks)), backend) as gen:
+            yield lambda bar: _collected(gen, sizes, bar)
+    else:
+        claims = _Claims(fn, tasks, min(workers, len(tasks)) - 1)
+        try:
+            yield lambda bar: claims.collect(sizes, bar)
+        finally:
+            claims.cancel()
+
+
+class _Claims:
+    """Tasks taken from the front by worker processes (loky's, one in flight per worker) and from the back by this
+    process (:func:`started_in_order`), each task once: a claim is made under a lock."""
+
+    def __init__(self, fn: Callable[..., Any], tasks: Sequence[tuple], processes: int):
+        import threading
+
+        from joblib.externals.loky import get_reusable_executor
+
+        self.fn, self.tasks = fn, tasks
+        self.front, self.back, self.stopped = 0, len(tasks), False
+        self.futures: dict[int, Any] = {}
+        self.lock = threading.RLock()
+        with deferred():  # loky starts its threads and processes here
+            self.executor = get_reusable_executor(max_workers=processes, timeout=300)
+            for _ in range(processes):
+                self._feed()
+
+    def _feed(self, _done: Any = None) -> None:
+        """Submit the next task from the front (called again as each finishes, from loky's thread)."""
+        with self.lock:
+            if self.stopped or self.front >= self.back:
+                return
+            i, self.front = self.front, self.front + 1
+            fut = self.executor.submit(self.fn, *self.tasks[i])
+            self.futures[i] = fut
+        fut.add_done_callback(self._feed)
+
+    def _take_back(self) -> int | None:
+        with self.lock:
+            if self.stopped or self.back <= self.front:
+                return None
+            self.back -= 1
+            return self.back
+
+    def collect(self, sizes: Sequence[int], bar: _Progress) -> list:
+        """Every result in the order of the tasks: this process's from the back, then the workers'."""
+        results: list = [None] * len(self.tasks)
+        while (i := self._take_back()) is not None:
+            results[i] = self.fn(*self.tasks[i])  # interrupted as any Python code: a signal raises where it lands
+            with deferred():
+                bar.update(sizes[i])
+        with self.lock:
+            ahead = sorted(self.futures.items())
+        for i, fut in ahead:
+            results[i] = _result(fut)
+            bar.update(sizes[i])
+        return results
+
+    def cancel(self) -> None:
+        """No more tasks: those not started are cancelled (running ones finish in their worker)."""
+        with self.lock:
+            self.stopped = True
+            for fut in self.futures.values():
+                fut.cancel()
 
 
 def _quiet_cancelled_pool() -> None:

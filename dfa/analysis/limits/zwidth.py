@@ -132,9 +132,10 @@ ESTIMATE_GRID = 6
 #: Grid points per compiled call of the simulations (every run of each point; one chunk per thread task).
 POINTS_PER_CALL = 16
 #: Fewest values of B whose boundary columns run in worker processes when several workers are asked (fewer:
-#: threads). A column is mostly the describing-function scan, pure Python that holds the GIL (about 0.25 s of
+#: threads). A column is mostly the describing-function scan, pure Python that holds the GIL (about 0.2 s of
 #: one core per column on the catalogue devices): on threads it runs on one core whatever the workers; a
-#: worker process starts in about 2 s of one core (imports), once per session (joblib reuses its workers).
+#: worker process starts in about 1.5 s of one core (imports), once per session (loky reuses its workers). This
+#: process is one of the workers (:func:`dfa._parallel.started_in_order`): n workers start n − 1 processes.
 PROCESS_COLUMNS = 16
 
 #: Points of the describing function's search grid at each B (as :func:`~dfa.analysis.limits.kmax.design_answer`).
@@ -457,9 +458,9 @@ def z_width(
     df_model : {"half-delay", "zoh", "pade"}, optional
         Hold model of the describing function.
     n_jobs : int, optional
-        Workers (-1: all cores): threads for the simulations; for the per-B boundaries threads, or worker
-        processes from :data:`PROCESS_COLUMNS` values of B on (their describing-function scans hold the GIL).
-        The result does not depend on it.
+        Workers (-1: all cores): threads for the simulations; for the per-B boundaries threads, or from
+        :data:`PROCESS_COLUMNS` values of B on this process and n_jobs − 1 worker processes, started before the
+        simulations (their describing-function scans hold the GIL). The result does not depend on it.
     progress : bool, optional
         Show a progress bar on stderr.
 
