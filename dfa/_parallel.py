@@ -285,6 +285,40 @@ def started_in_order(
             claims.cancel()
 
 
+#: Seconds an idle worker process of :func:`started_in_order` lives (loky's reusable executor): one setting, so that
+#: the processes :func:`warm_processes` starts are those the tasks then use.
+IDLE_SECONDS = 300
+
+
+def warm_processes(workers: int, module: str) -> None:
+    """Start now the worker processes of :func:`started_in_order` with ``workers`` and ``"processes"`` (``workers −
+    1`` of them), each importing ``module``: their start (a second or two of imports) overlaps what this process
+    does until the tasks come. Nothing with one worker.
+
+    Parameters
+    ----------
+    workers : int
+        The workers the tasks will be started with (>= 1).
+    module : str
+        The module whose import the tasks need, e.g. ``"dfa.analysis.limits.zwidth"``.
+    """
+    if workers <= 1:
+        return
+    from joblib.externals.loky import get_reusable_executor
+
+    with deferred():  # loky starts its threads and processes here
+        executor = get_reusable_executor(max_workers=workers - 1, timeout=IDLE_SECONDS)
+        for _ in range(workers - 1):
+            executor.submit(_import, module)
+
+
+def _import(module: str) -> None:
+    """Import ``module`` (in a worker process, :func:`warm_processes`)."""
+    import importlib
+
+    importlib.import_module(module)
+
+
 class _Claims:
     """Tasks taken from the front by worker processes (loky's, one in flight per worker) and from the back by this
     process (:func:`started_in_order`), each task once: a claim is made under a lock."""
@@ -299,7 +333,7 @@ class _Claims:
         self.futures: dict[int, Any] = {}
         self.lock = threading.RLock()
         with deferred():  # loky starts its threads and processes here
-            self.executor = get_reusable_executor(max_workers=processes, timeout=300)
+            self.executor = get_reusable_executor(max_workers=processes, timeout=IDLE_SECONDS)
             for _ in range(processes):
                 self._feed()
 

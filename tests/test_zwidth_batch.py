@@ -145,6 +145,7 @@ def test_zwidth_boundary_columns_in_worker_processes_equal_one_thread(monkeypatc
 
     monkeypatch.setattr(zmod, "run_in_order", spy)
     monkeypatch.setattr(zmod, "started_in_order", spy_started)
+    zmod.start_workers(3, 2)  # the worker process started ahead (as the command line does) is the one used
     two = z_width(dev, 0.1, grid=3, speeds=1, n_jobs=2, wall=Wall.of(1.0, delay=1, filter_cutoff=100.0)).to_dict()
     # the columns are dispatched to the workers first, then the simulations run on threads beside them
     assert calls == [("_column", "processes"), ("_run_chunk", "threads")]

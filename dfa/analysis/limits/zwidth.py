@@ -62,7 +62,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._parallel import progress_bar, run_in_order, started_in_order
+from ..._parallel import progress_bar, run_in_order, started_in_order, warm_processes
 from ...checks import (
     check_bool,
     check_choice,
@@ -104,6 +104,7 @@ __all__ = [
     "ZWidth",
     "z_width",
     "z_width_seconds",
+    "start_workers",
     "check_zwidth_size",
     "damping_ends",
     "default_damping_max",
@@ -536,6 +537,33 @@ def check_zwidth_size(grid: int, speeds: int = 1, names: tuple[str, str] = ("gri
 
 #: What a speed limit counts (the message of :func:`check_zwidth_size`).
 _PER_POINT = "impact speeds per grid point (each simulated from two starts)"
+
+
+def start_workers(grid: int, n_jobs: int = -1) -> None:
+    """Start now the worker processes :func:`z_width` with this grid and ``n_jobs`` will run its boundary columns
+    in (none below :data:`PROCESS_COLUMNS` values of B or with one worker), so that their start (a second or two
+    of imports each) overlaps the caller's work until then (the command line's inputs and time estimate).
+
+    Parameters
+    ----------
+    grid : int
+        Points per axis of the coming :func:`z_width`.
+    n_jobs : int, optional
+        Its workers (-1: all cores).
+
+    Returns
+    -------
+    None
+        The processes start in the background; :func:`z_width` takes them up (its result does not depend on them).
+
+    See Also
+    --------
+    z_width : The Z-width that then uses them.
+    dfa._parallel.warm_processes : The processes started.
+    """
+    workers = _workers(check_jobs("n_jobs", n_jobs))
+    if workers > 1 and int(grid) >= PROCESS_COLUMNS:
+        warm_processes(min(workers, int(grid)), __name__)
 
 
 def _workers(jobs: int) -> int:
