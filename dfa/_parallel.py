@@ -285,8 +285,9 @@ def started_in_order(
             claims.cancel()
 
 
-#: Seconds an idle worker process of :func:`started_in_order` lives (loky's reusable executor): one setting, so that
-#: the processes :func:`warm_processes` starts are those the tasks then use.
+#: Seconds an idle worker process of :func:`started_in_order` lives (joblib's reusable loky executor, the one its
+#: ``Parallel`` uses; other settings restart its workers): one setting, so that the processes :func:`warm_processes`
+#: starts are those the tasks then use.
 IDLE_SECONDS = 300
 
 
@@ -304,10 +305,10 @@ def warm_processes(workers: int, module: str) -> None:
     """
     if workers <= 1:
         return
-    from joblib.externals.loky import get_reusable_executor
+    from joblib.executor import get_memmapping_executor
 
     with deferred():  # loky starts its threads and processes here
-        executor = get_reusable_executor(max_workers=workers - 1, timeout=IDLE_SECONDS)
+        executor = get_memmapping_executor(workers - 1, timeout=IDLE_SECONDS)
         for _ in range(workers - 1):
             executor.submit(_import, module)
 
@@ -326,14 +327,14 @@ class _Claims:
     def __init__(self, fn: Callable[..., Any], tasks: Sequence[tuple], processes: int):
         import threading
 
-        from joblib.externals.loky import get_reusable_executor
+        from joblib.executor import get_memmapping_executor
 
         self.fn, self.tasks = fn, tasks
         self.front, self.back, self.stopped = 0, len(tasks), False
         self.futures: dict[int, Any] = {}
         self.lock = threading.RLock()
         with deferred():  # loky starts its threads and processes here
-            self.executor = get_reusable_executor(max_workers=processes, timeout=IDLE_SECONDS)
+            self.executor = get_memmapping_executor(processes, timeout=IDLE_SECONDS)
             for _ in range(processes):
                 self._feed()
 
