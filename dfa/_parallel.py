@@ -39,7 +39,17 @@ import numpy as np
 
 from ._signals import check, deferred
 
-__all__ = ["run_in_order", "deal", "gather", "new_bar", "progress_bar", "NO_BAR", "PARALLEL_BACKENDS", "POLL_SECONDS"]
+__all__ = [
+    "run_in_order",
+    "started_in_order",
+    "deal",
+    "gather",
+    "new_bar",
+    "progress_bar",
+    "NO_BAR",
+    "PARALLEL_BACKENDS",
+    "POLL_SECONDS",
+]
 
 #: Backends of :func:`run_in_order` (module docstring).
 PARALLEL_BACKENDS = ("threads", "processes", "joblib")
@@ -198,18 +208,22 @@ def _result(fut: Any) -> Any:
 
 
 def _joblib(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, backend, bar) -> list:
+    with _dispatched(fn, tasks, workers, backend) as gen:
+        return _collected(gen, sizes, bar)
+
+
+@contextlib.contextmanager
+def _dispatched(fn: Callable[..., Any], tasks: Sequence[tuple], workers: int, backend: str) -> Iterator[Any]:
+    """joblib's generator of ``fn(*task)`` in submission order, dispatched to the workers on entry; closed on exit
+    (which cancels the tasks not started and stops the workers, quietly on an interruption)."""
     from joblib import Parallel, delayed
 
     kw = {"backend": "loky"} if backend == "processes" else {}
-    results: list = []
     gen = None
     try:
         with deferred():  # joblib starts a thread here
             gen = Parallel(n_jobs=workers, return_as="generator", **kw)(delayed(fn)(*task) for task in tasks)
-        for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
-            results.append(res)
-            with deferred():
-                bar.update(size)
+        yield gen
     except BaseException:
         _quiet_cancelled_pool()
         raise
@@ -218,7 +232,149 @@ def _joblib(fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int]
             with deferred(), warnings.catch_warnings():  # joblib's count of the cancelled tasks: not news here
                 warnings.simplefilter("ignore", UserWarning)
                 gen.close()  # on an interruption: cancel the pending tasks, stop the workers
+
+
+def _collected(gen: Any, sizes: Sequence[int], bar: _Progress) -> list:
+    """The results of a :func:`_dispatched` generator, advancing ``bar`` by each task's size as it arrives."""
+    results: list = []
+    for size, res in zip(sizes, gen, strict=False):  # the generator yields in submission order
+        results.append(res)
+        with deferred():
+            bar.update(size)
     return results
+
+
+@contextlib.contextmanager
+def started_in_order(
+    fn: Callable[..., Any], tasks: Sequence[tuple], sizes: Sequence[int], workers: int, backend: str
+) -> Iterator[Callable[[_Progress], list]]:
+    """:func:`run_in_order` started on entry and collected later: the block gets ``collect(bar)``, which returns
+    the results in the order of ``tasks`` (the same as :func:`run_in_order`'s).
+
+    With ``"processes"`` and more than one worker and task, ``workers − 1`` worker processes start on entry and
+    take the tasks from the front, one at a time, while this process does something else (a Z-width's planning
+    and simulations on threads); ``collect`` then takes tasks from the back in this process until the two meet,
+    and waits for the workers' (:class:`_Claims`: each task runs once, in one place). This process is one of the
+    workers: one worker process fewer to start (a second or two of imports each). With ``"joblib"`` the tasks
+    are dispatched on entry (:func:`_dispatched`); otherwise they run when collected. Leaving the block before
+    collecting (an error, an interruption) cancels the tasks not started.
+
+    Parameters
+    ----------
+    fn, tasks, sizes, workers, backend
+        As :func:`run_in_order`.
+
+    Examples
+    --------
+    >>> with started_in_order(pow, [(2, 3), (3, 2)], [1, 1], 1, "processes") as collect:
+    ...     collect(NO_BAR)
+    [8, 9]
+    """
+    if len(sizes) != len(tasks):
+        raise ValueError(f"sizes has {len(sizes)} entries for {len(tasks)} tasks: give one size per task")
+    if workers == 1 or len(tasks) <= 1 or backend == "threads":
+        yield lambda bar: run_in_order(fn, tasks, sizes, workers, backend, bar)
+    elif backend == "joblib":
+        with _dispatched(fn, tasks, min(workers, len(tasks)), backend) as gen:
+            yield lambda bar: _collected(gen, sizes, bar)
+    else:
+        claims = _Claims(fn, tasks, min(workers, len(tasks)) - 1)
+        try:
+            yield lambda bar: claims.collect(sizes, bar)
+        finally:
+            claims.cancel()
+
+
+#: Seconds an idle worker process of :func:`started_in_order` lives (joblib's reusable loky executor, the one its
+#: ``Parallel`` uses; other settings restart its workers): one setting, so that the processes :func:`warm_processes`
+#: starts are those the tasks then use.
+IDLE_SECONDS = 300
+
+
+def warm_processes(workers: int, module: str) -> None:
+    """Start now the worker processes of :func:`started_in_order` with ``workers`` and ``"processes"`` (``workers −
+    1`` of them), each importing ``module``: their start (a second or two of imports) overlaps what this process
+    does until the tasks come. Nothing with one worker.
+
+    Parameters
+    ----------
+    workers : int
+        The workers the tasks will be started with (>= 1).
+    module : str
+        The module whose import the tasks need, e.g. ``"dfa.analysis.limits.zwidth"``.
+    """
+    if workers <= 1:
+        return
+    from joblib.executor import get_memmapping_executor
+
+    with deferred():  # loky starts its threads and processes here
+        executor = get_memmapping_executor(workers - 1, timeout=IDLE_SECONDS)
+        for _ in range(workers - 1):
+            executor.submit(_import, module)
+
+
+def _import(module: str) -> None:
+    """Import ``module`` (in a worker process, :func:`warm_processes`)."""
+    import importlib
+
+    importlib.import_module(module)
+
+
+class _Claims:
+    """Tasks taken from the front by worker processes (loky's, one in flight per worker) and from the back by this
+    process (:func:`started_in_order`), each task once: a claim is made under a lock."""
+
+    def __init__(self, fn: Callable[..., Any], tasks: Sequence[tuple], processes: int):
+        import threading
+
+        from joblib.executor import get_memmapping_executor
+
+        self.fn, self.tasks = fn, tasks
+        self.front, self.back, self.stopped = 0, len(tasks), False
+        self.futures: dict[int, Any] = {}
+        self.lock = threading.RLock()
+        with deferred():  # loky starts its threads and processes here
+            self.executor = get_memmapping_executor(processes, timeout=IDLE_SECONDS)
+            for _ in range(processes):
+                self._feed()
+
+    def _feed(self, _done: Any = None) -> None:
+        """Submit the next task from the front (called again as each finishes, from loky's thread)."""
+        with self.lock:
+            if self.stopped or self.front >= self.back:
+                return
+            i, self.front = self.front, self.front + 1
+            fut = self.executor.submit(self.fn, *self.tasks[i])
+            self.futures[i] = fut
+        fut.add_done_callback(self._feed)
+
+    def _take_back(self) -> int | None:
+        with self.lock:
+            if self.stopped or self.back <= self.front:
+                return None
+            self.back -= 1
+            return self.back
+
+    def collect(self, sizes: Sequence[int], bar: _Progress) -> list:
+        """Every result in the order of the tasks: this process's from the back, then the workers'."""
+        results: list = [None] * len(self.tasks)
+        while (i := self._take_back()) is not None:
+            results[i] = self.fn(*self.tasks[i])  # interrupted as any Python code: a signal raises where it lands
+            with deferred():
+                bar.update(sizes[i])
+        with self.lock:
+            ahead = sorted(self.futures.items())
+        for i, fut in ahead:
+            results[i] = _result(fut)
+            bar.update(sizes[i])
+        return results
+
+    def cancel(self) -> None:
+        """No more tasks: those not started are cancelled (running ones finish in their worker)."""
+        with self.lock:
+            self.stopped = True
+            for fut in self.futures.values():
+                fut.cancel()
 
 
 def _quiet_cancelled_pool() -> None:

@@ -60,6 +60,6 @@ def test_eq11_zwidth_column_df_limit_equals_describing_limit_alone(b):
     dev = get_device("Delta").device
     wall = Wall.of(1.0, delay=1).with_damping(b)
     ks, _ = zmod._grids(dev, Wall.of(1.0, delay=1), 4, None, (0.0, 8.0), 0.1)
-    col = zmod._column(dev, wall, 0.1, ks, zmod.np.zeros(ks.size, dtype=zmod.np.int8), "half-delay")
+    col = zmod._column(dev, wall, 0.1, ks, "half-delay")
     alone = describing_limit(dev, wall, 0.1, "half-delay", None, zmod.DF_GRID)
     assert col[zmod.ZWIDTH_METHODS.index("df")] == alone

@@ -118,7 +118,7 @@ def test_eq36_subtick_caveat_named_in_the_zwidth_df_reason():
     ev = Evidence(dev, wall, np.array([v]), 10**6, "zoh")
     assert ev.predicted(1000.0, 0.01) == UNDECIDED and ev.growth_xi_dot(1000.0).subtick
     ks = np.array([900.0, 1000.0])
-    k_df = _column(dev, wall, v, ks, np.zeros(2, dtype=np.int8), "zoh")[3]
+    k_df = _column(dev, wall, v, ks, "zoh")[3]
     assert k_df.limited_by is not None and ev.growth_xi_dot(k_df.limited_by).subtick
     assert k_df.limited_by in k_df.undecided and k_df.caveat
     why = limit_text(k_df, "N/m")

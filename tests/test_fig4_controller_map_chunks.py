@@ -20,7 +20,7 @@ import pytest
 
 import dfa.analysis.limits.zwidth as zmod
 import dfa.analysis.maps as maps
-from dfa._parallel import run_in_order
+from dfa._parallel import run_in_order, started_in_order
 from dfa.analysis.maps import stability_map
 from dfa.analysis.simulation import OUTCOMES, divergence_bound, simulate
 from dfa.cli import main
@@ -140,6 +140,20 @@ def test_parallel_run_in_order_any_workers_and_interruption():
     with pytest.raises(KeyboardInterrupt):
         run_in_order(stop_at_third, tasks, [1] * 20, 2, "threads", _Bar())
     assert len(started) < 20  # the tasks not started were cancelled
+
+
+def test_parallel_started_in_order_collects_run_in_order_results_and_cancels_on_error():
+    """Work started ahead (worker processes dispatched on entry) gives run_in_order's results in order; an error
+    before collecting leaves the block and cancels the rest."""
+    tasks = [(i, 3) for i in range(12)]
+    want = run_in_order(pow, tasks, [1] * 12, 1, "threads", _Bar())
+    for workers, backend in ((1, "processes"), (2, "threads"), (2, "processes")):
+        bar = _Bar()
+        with started_in_order(pow, tasks, [2] * 12, workers, backend) as collect:
+            assert collect(bar) == want == [i**3 for i in range(12)]
+        assert bar.updates == [2] * 12
+    with pytest.raises(RuntimeError, match="before collecting"), started_in_order(pow, tasks, [1] * 12, 2, "processes"):
+        raise RuntimeError("before collecting")
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")

@@ -133,13 +133,20 @@ def test_zwidth_boundary_columns_in_worker_processes_equal_one_thread(monkeypatc
     one = z_width(dev, 0.1, wall=Wall.of(1.0, delay=1, filter_cutoff=100.0), grid=3, speeds=1, n_jobs=1).to_dict()
     monkeypatch.setattr(zmod, "PROCESS_COLUMNS", 2)
     calls = []
-    real = zmod.run_in_order
+    real, started = zmod.run_in_order, zmod.started_in_order
 
     def spy(fn, tasks, sizes, workers, backend, bar):
         calls.append((fn.__name__, backend))
         return real(fn, tasks, sizes, workers, backend, bar)
 
+    def spy_started(fn, tasks, sizes, workers, backend):
+        calls.append((fn.__name__, backend))
+        return started(fn, tasks, sizes, workers, backend)
+
     monkeypatch.setattr(zmod, "run_in_order", spy)
+    monkeypatch.setattr(zmod, "started_in_order", spy_started)
+    zmod.start_workers(3, 2)  # the worker process started ahead (as the command line does) is the one used
     two = z_width(dev, 0.1, grid=3, speeds=1, n_jobs=2, wall=Wall.of(1.0, delay=1, filter_cutoff=100.0)).to_dict()
-    assert calls == [("_run_chunk", "threads"), ("_column", "processes")]
+    # the columns are dispatched to the workers first, then the simulations run on threads beside them
+    assert calls == [("_column", "processes"), ("_run_chunk", "threads")]
     assert json.dumps(one, sort_keys=True) == json.dumps(two, sort_keys=True)

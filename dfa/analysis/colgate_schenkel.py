@@ -49,6 +49,7 @@ Examples
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
@@ -75,12 +76,29 @@ _EPS = np.finfo(float).eps
 
 def _f(theta: np.ndarray, damping: float, delay: int, pole: float | None) -> np.ndarray:
     """f(θ) = D_d(θ) − 2β_B Re{e^{−j(d+1)θ} F(e^{jθ})} (module docstring), vectorised."""
+    dirichlet, re = _terms(theta, delay, pole)
+    return dirichlet - 2.0 * damping * re
+
+
+def _terms(theta: np.ndarray, delay: int, pole: float | None) -> tuple[np.ndarray, np.ndarray]:
+    """D_d(θ) and Re{e^{−j(d+1)θ} F(e^{jθ})}: f's terms that do not depend on β_B."""
     half = np.sin(0.5 * theta)
     with np.errstate(invalid="ignore", divide="ignore"):
         dirichlet = np.where(half == 0.0, 2.0 * delay + 1.0, np.sin((delay + 0.5) * theta) / half)
     z = np.exp(1j * theta)
     filt = 1.0 if pole is None else (1.0 - pole) / (z - pole)
-    return dirichlet - 2.0 * damping * np.real(z ** (-(delay + 1)) * filt)
+    return dirichlet, np.real(z ** (-(delay + 1)) * filt)
+
+
+@lru_cache(maxsize=32)
+def _grid_terms(delay: int, pole: float | None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The branch and bound's first grid on [0, π] and f's terms there (:func:`_terms`), formed once per delay and
+    filter: a stiffness search evaluates f at many β_B = B/(KT) of one wall (read-only arrays)."""
+    x = np.linspace(0.0, math.pi, _GRID + 1)
+    out = (x, *_terms(x, delay, pole))
+    for a in out:
+        a.flags.writeable = False
+    return out
 
 
 def _curvature(damping: float, delay: int, pole: float | None) -> float:
@@ -97,8 +115,8 @@ def _maximise(damping: float, delay: int, pole: float | None) -> tuple[float, fl
     """(best f, θ of the best, certified upper bound of max f, evaluations): branch and bound on [0, π]."""
     l2 = _curvature(damping, delay, pole)
     slack = 64.0 * _EPS * (2.0 * delay + 1.0 + 2.0 * damping)  # rounding of one evaluation of f, generously
-    x = np.linspace(0.0, math.pi, _GRID + 1)
-    y = _f(x, damping, delay, pole)
+    x, dirichlet, re = _grid_terms(delay, pole)
+    y = dirichlet - 2.0 * damping * re  # _f on the first grid
     i = int(np.argmax(y))
     best, arg = float(y[i]), float(x[i])
     lo, hi, ylo, yhi = x[:-1], x[1:], y[:-1], y[1:]

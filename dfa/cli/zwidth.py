@@ -182,7 +182,7 @@ def _elements(zw: Any, u: dict[str, str]) -> str:
 def run(args: argparse.Namespace) -> int:
     """Compute the Z-width; print K_max(B) per method."""
     from ..analysis.limits.require import damper_guidance_for
-    from ..analysis.limits.zwidth import ZWIDTH_METHODS, check_zwidth_size
+    from ..analysis.limits.zwidth import ZWIDTH_METHODS, check_zwidth_size, start_workers
     from ..render.zwidth import criterion_damper_note, damping_axis_note, non_monotone_mark, non_monotone_notes
 
     _refuse(args)
@@ -200,6 +200,7 @@ def run(args: argparse.Namespace) -> int:
     v = impact_speed("--velocity", args.velocity, inp, zero=False)
     b_range = None if args.damping_max is None else (0.0, float(args.damping_max))
     check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
+    start_workers(args.grid, args.jobs)  # the columns' worker processes start while the estimate and plan run
     zw, inp = _compute(args, inp, wall, v, b_range)
     dev = inp.device
     assert dev is not None

@@ -19,7 +19,7 @@ from ...core import dfcore
 from ...core.zoh import zoh_coefficients
 from ...grids import geometric_grid
 from ...model.device import Params
-from ...model.elements import CommandPolynomials
+from ...model.elements import CommandPolynomials, Element
 from ...model.wall import WallParams
 
 DF_CHOICES = ("exact", "small", "unity")
@@ -136,6 +136,8 @@ def _inv_loop_wall(
 ) -> Any:
     """1/L(jω) with a wall (see :func:`inv_loop`); plain complex for scalars."""
     scalar = np.ndim(omega) == 0 and np.ndim(beq) == 0
+    if scalar and model != "zoh":
+        return _inv_loop_wall_scalar(mu, float(beq), float(omega), model, delay, pade_order, wall)
     w = omega if omega is W_GRID else np.asarray(omega, dtype=float)
     g = wall.zoh_response(mu, beq, w) if model == "zoh" else None
     if g is None:
@@ -147,6 +149,50 @@ def _inv_loop_wall(
         z = np.exp(1j * w)
         out = z**delay / (g * wall_command(wall).response(w))
     return complex(out) if scalar else out
+
+
+def _inv_loop_wall_scalar(
+    mu: float, b: float, w: float, model: str, delay: int, pade_order: int, wall: WallParams
+) -> complex:
+    """:func:`_inv_loop_wall` for one (β_eq, ω) of the half-delay and Padé models, in plain complex arithmetic:
+    the same terms as the vector path (the hand spring's κ_h e^{jφ}, then :func:`wall_ratio_scalar`)."""
+    out = _inv_loop_scalar(mu, b, w, model, delay, pade_order)
+    kap = _command_coefficients(wall)[2]
+    if kap > 0.0:  # the hand spring acts on the device behind the hold: + κ_h in its inverse
+        out += cmath.exp(1j * phase_lead(w, model, delay, pade_order)) * kap
+    return out * wall_ratio_scalar(wall, w)
+
+
+def wall_ratio_scalar(wall: WallParams, w: float) -> complex:
+    """:func:`wall_ratio` at one frequency ω (rad per sample), in plain complex arithmetic.
+
+    The command C(e^{jω}) = N(w)/D(w) at w = e^{jω} − 1 = −2 sin²(ω/2) + j sin ω by Horner's rule on the
+    polynomials' coefficients (:class:`~dfa.model.elements.CommandPolynomials`): the root finders of a limit-cycle
+    search call this tens of thousands of times, where numpy's per-call overhead on scalars was most of the
+    search's time. The value agrees with :func:`wall_ratio`'s to rounding (numpy's array arithmetic may fuse
+    multiply-adds).
+    """
+    num, den, _kap, plain = _command_coefficients(wall)
+    s = math.sin(0.5 * w)
+    z1 = complex(-2.0 * s * s, math.sin(w))
+    n, d = 0j, 0j
+    for c in num:
+        n = n * z1 + c
+    for c in den:
+        d = d * z1 + c
+    plant = 1.0 if plain else complex(wall.plant_response(w))
+    return 1.0 / (plant * (n / d))
+
+
+@lru_cache(maxsize=64)
+def _command_coefficients(wall: WallParams) -> tuple[tuple[float, ...], tuple[float, ...], float, bool]:
+    """The command's numerator and denominator coefficients in w (floats, highest power first), κ_h, and whether
+    the plant factor between hold and device is 1 (no element overrides :meth:`Element.plant_response`), formed
+    once per wall."""
+    cmd = wall_command(wall)
+    base = Element.plant_response.__func__  # type: ignore[attr-defined]
+    plain = all(getattr(k.plant_response, "__func__", None) is base for k, _ in wall.groups)
+    return tuple(map(float, cmd.numerator)), tuple(map(float, cmd.denominator)), float(wall.hand_stiffness), plain
 
 
 @lru_cache(maxsize=64)
@@ -176,10 +222,16 @@ class HarmonicLoop:
         return self.params.beta + 4.0 * self.params.sigma / (math.pi * np.asarray(m) * np.asarray(w))
 
     def inv(self, m: float | np.ndarray, w: float | np.ndarray) -> Any:
+        if self.wall is not None and self.model != "zoh" and isinstance(m, float) and isinstance(w, float):
+            p = self.params  # one (M, ω) of a root finder: the plain-complex path, without the dispatch
+            beq = p.beta + 4.0 * p.sigma / (math.pi * m * w)
+            return _inv_loop_wall_scalar(p.mu, beq, w, self.model, self.delay, self.pade_order, self.wall)
         return inv_loop(self.params.mu, self.beq(m, w), w, self.model, self.delay, self.pade_order, self.wall)
 
     def d(self, m: float | np.ndarray) -> float | np.ndarray:
         """D(M) (compiled eq. 41 for the exact describing function; M > 0 is the solver's own)."""
+        if self.df == "exact" and isinstance(m, float):  # one amplitude of a root finder: no array made
+            return dfcore.df_value(m)
         m = np.asarray(m, dtype=float)
         if self.df == "exact":
             return dfcore.df_array(m.ravel()).reshape(m.shape) if m.ndim else dfcore.df_value(float(m))

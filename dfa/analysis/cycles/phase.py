@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import bisect
 import math
 from functools import lru_cache
 from typing import Any
@@ -12,7 +13,7 @@ from scipy.optimize.elementwise import find_root
 
 from ...grids import geometric_grid
 from ...model.wall import WallParams
-from .characteristic import W_GRID, HarmonicLoop, inv_loop, phase_lead, wall_ratio
+from .characteristic import W_GRID, HarmonicLoop, inv_loop, phase_lead, wall_ratio, wall_ratio_scalar
 
 # --------------------------------------------------------------- phase curve
 
@@ -109,25 +110,19 @@ def phase_pieces(lp: HarmonicLoop) -> list[tuple[np.ndarray, np.ndarray]]:
     beta, sigma = lp.params.beta, lp.params.sigma
     excess = bs - beta
     valid = np.isfinite(excess) & (excess > 0)
-    out = []
-    i = 0
+    out: list[tuple[np.ndarray, np.ndarray]] = []
     n = w.size
-    while i < n:
-        if not valid[i]:
-            i += 1
-            continue
-        j = i
-        while j + 1 < n and valid[j + 1]:
-            j += 1
+    # the runs [i, j] of valid grid points (the edges of the valid mask)
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], valid.astype(np.int8), [0]))))
+    for i, j in zip(edges[::2].tolist(), (edges[1::2] - 1).tolist(), strict=True):
         ws = w[i : j + 1]
         ms = 4 * sigma / (math.pi * ws * excess[i : j + 1])
         # add the exact point where β* = β (M = ∞) at either end, when the curve crosses there
         ends = []
         for k_in, k_out in ((i, i - 1), (j, j + 1)):
             if 0 <= k_out < n and np.isfinite(excess[k_out]) and excess[k_out] <= 0:
-                f = lambda x: float(phase_beta(lp, np.array([x]))[0] - beta)
                 try:
-                    ends.append((k_in, optimize.brentq(f, min(w[k_in], w[k_out]), max(w[k_in], w[k_out]), xtol=1e-15)))
+                    ends.append((k_in, _infinite_end(lp, float(w[k_in]), float(w[k_out]))))
                 except ValueError:
                     pass
         if i == 0 and beta == 0.0:
@@ -139,15 +134,44 @@ def phase_pieces(lp: HarmonicLoop) -> list[tuple[np.ndarray, np.ndarray]]:
             else:
                 ws = np.concatenate([ws, [w0]])
                 ms = np.concatenate([ms, [np.inf]])
-        # split into monotone runs of M
-        dm = np.sign(np.diff(ms))  # ±inf differences at an M = ∞ end keep their sign
-        start = 0
-        for k in range(1, dm.size + 1):
-            if k == dm.size or dm[k] != dm[start]:
-                out.append((ws[start : k + 1], ms[start : k + 1]))
-                start = k
-        i = j + 1
+        out += _monotone_runs(ws, ms)
     return out
+
+
+def _monotone_runs(ws: np.ndarray, ms: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """A run of the phase curve split into monotone runs of M, neighbours sharing their end point."""
+    dm = np.sign(np.diff(ms))  # ±inf differences at an M = ∞ end keep their sign
+    if not dm.size:
+        return []
+    cuts = [0, *(np.flatnonzero(dm[1:] != dm[:-1]) + 1).tolist(), dm.size]
+    return [(ws[a : b + 1], ms[a : b + 1]) for a, b in zip(cuts[:-1], cuts[1:], strict=False)]
+
+
+def _infinite_end(lp: HarmonicLoop, w_in: float, w_out: float) -> float:
+    """The frequency between two grid points where β*(ω) = β (an M = ∞ end of a piece), by Brent's method;
+    β* at one frequency in plain float arithmetic for the half-delay and Padé models (:func:`_phase_beta_scalar`).
+    Raises ValueError when the ends do not bracket it."""
+    beta = lp.params.beta
+    if lp.model == "zoh":
+        f = lambda x: float(phase_beta(lp, np.array([x]))[0] - beta)
+    else:
+        f = lambda x: _phase_beta_scalar(lp, x) - beta
+    return float(optimize.brentq(f, min(w_in, w_out), max(w_in, w_out), xtol=1e-15))
+
+
+def _phase_beta_scalar(lp: HarmonicLoop, w: float) -> float:
+    """:func:`phase_beta` at one frequency of the half-delay and Padé models (NaN where there is none)."""
+    th = phase_lead(w, lp.model, lp.delay, lp.pade_order)
+    mu = lp.params.mu
+    if lp.wall is not None:
+        r = wall_ratio_scalar(lp.wall, w)
+        th = th + math.atan2(r.imag, r.real)
+        kap = lp.wall.hand_stiffness
+        if kap > 0.0:  # as _hand_phase_beta
+            a = mu * w * w - kap
+            c, t = math.cos(th), math.tan(th)
+            return a * t / w if (a / c > 0.0) and (a * t >= 0.0) else math.nan
+    return mu * w * math.tan(th) if th % (2 * math.pi) < math.pi / 2 else math.nan
 
 
 class PieceOmega:
@@ -156,18 +180,41 @@ class PieceOmega:
     def __init__(self, lp: HarmonicLoop, ws: np.ndarray, ms: np.ndarray):
         order = np.argsort(ms)
         self.lp, self.ms, self.ws = lp, ms[order], ws[order]
+        self._known: dict[float, float] = {}
+        self._wanted: list[np.ndarray] = []
+        self._ms_list: list[float] | None = None  # the sorted pieces as lists, for the scalar path's brackets
+        self._ws_list: list[float] = []
 
     def _brackets(self, m: float | np.ndarray) -> tuple[Any, Any]:
         k = np.clip(np.searchsorted(self.ms, m), 1, self.ms.size - 1)
         return self.ws[k - 1], self.ws[k]
 
+    def want(self, m: np.ndarray) -> None:
+        """Amplitudes whose ω the next call solves as well, in the same run of the root finder.
+
+        The root finder is elementwise (each amplitude's iterations are its own), so an ω does not depend on
+        the amplitudes solved beside it: asking early only saves the root finder's fixed cost of a run.
+        """
+        self._wanted.append(np.asarray(m, dtype=float).ravel())
+
     def __call__(self, m: np.ndarray) -> np.ndarray:
-        wa, wb = self._brackets(m)
-        return _omega_for_m(self.lp, m, wa, wb)
+        """ω(M) at the amplitudes ``m`` (and those :meth:`want` asked for), each solved once per piece."""
+        m = np.asarray(m, dtype=float)
+        known = self._known
+        new = [x for x in np.concatenate([m.ravel(), *self._wanted]).tolist() if x not in known]
+        self._wanted = []
+        if new:
+            todo = np.array(list(dict.fromkeys(new)))
+            wa, wb = self._brackets(todo)
+            known.update(zip(todo.tolist(), _omega_for_m(self.lp, todo, wa, wb).tolist(), strict=True))
+        return np.array([known[x] for x in m.ravel().tolist()], dtype=float).reshape(m.shape)
 
     def scalar(self, m: float) -> float:
         """The same for one amplitude, by Brent's method on the scalar loop inverse (same end rule as the vector path)."""
-        wa, wb = (float(x) for x in self._brackets(m))
+        if self._ms_list is None:
+            self._ms_list, self._ws_list = self.ms.tolist(), self.ws.tolist()
+        k = min(max(bisect.bisect_left(self._ms_list, m), 1), len(self._ms_list) - 1)  # as _brackets: searchsorted
+        wa, wb = self._ws_list[k - 1], self._ws_list[k]
         lp = self.lp
 
         def v(w: float) -> float:

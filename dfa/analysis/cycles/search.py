@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import functools
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -45,26 +47,20 @@ def m_samples(
                 min(hi, max_amp),
             )
         near = np.arange(n0, min(n_end, 32) + 1)
-        if w_inf is not None:  # −U at the piece's far end: M = ∞, where β_eq = β (at ω = 0 the loop inverse is 0)
-            u_far = (
-                0.0
-                if w_inf == 0.0
-                else -float(
-                    np.real(inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order, lp.wall))
-                )
-            )
-        else:  # a finite far end (hi, its ω)
-            u_far = -float(np.real(lp.inv(float(hi), float(omega_of(np.array([hi]))[0]))))
-        far, n_stop, budget_hit = _far_intervals(lp, max(n0, 33), n_end, u_far, omega_of, lo, hi)
+        # n + t² resolves the √ at each integer; far out D's excursions are tiny and self-similar: fewer points
+        t_near, t_far = np.linspace(0.0, 1.0, 25), np.linspace(0.0, 1.0, 9)
+        near_grid = (near[:, None] + (t_near * t_near)[None, :]).ravel()
+        # the samples known before the far intervals: their ω in the root finder's first run (PieceOmega.want)
+        omega_of.want(np.concatenate([*pts, near_grid[(near_grid >= lo) & (near_grid <= min(hi, max_amp))]]))
+        if w_inf is None:  # a finite far end: its ω solved with the first far block's (PieceOmega.want)
+            omega_of.want(np.array([hi]))
+        far_u = functools.partial(_far_end_u, lp, hi, w_inf, omega_of)
+        far, n_stop, budget_hit = _far_intervals(lp, max(n0, 33), n_end, far_u, omega_of, lo, hi)
         if budget_hit:
             reach = (float(n_stop), "budget")
         elif n_stop >= n_end and hi > max_amp:
             reach = (max_amp, "max_amplitude")
-        # n + t² resolves the √ at each integer; far out D's excursions are tiny and self-similar: fewer points
-        t_near, t_far = np.linspace(0.0, 1.0, 25), np.linspace(0.0, 1.0, 9)
-        grid = np.concatenate(
-            [(near[:, None] + (t_near * t_near)[None, :]).ravel(), (far[:, None] + (t_far * t_far)[None, :]).ravel()]
-        )
+        grid = np.concatenate([near_grid, (far[:, None] + (t_far * t_far)[None, :]).ravel()])
         top = min(hi, max_amp, float(n_stop) + 1.0)
         bound = top
         pts.append(grid[(grid >= lo) & (grid <= top)])
@@ -73,14 +69,30 @@ def m_samples(
     return np.unique(np.concatenate(pts)), reach, bound
 
 
+def _far_end_u(lp: HarmonicLoop, hi: float, w_inf: float | None, omega_of: PieceOmega) -> float:
+    """−U at the piece's far end: at M = ∞ (at ``w_inf``), where β_eq = β (at ω = 0 the loop inverse is 0), else at
+    the finite far end ``hi`` and its ω."""
+    if w_inf is None:
+        return -float(np.real(lp.inv(float(hi), float(omega_of(np.array([hi]))[0]))))
+    if w_inf == 0.0:
+        return 0.0
+    return -float(np.real(inv_loop(lp.params.mu, lp.params.beta, w_inf, lp.model, lp.delay, lp.pade_order, lp.wall)))
+
+
 def _far_intervals(
-    lp: HarmonicLoop, n_from: int, n_end: int, u_far: float, omega_of: PieceOmega, lo: float, hi: float
+    lp: HarmonicLoop,
+    n_from: int,
+    n_end: int,
+    far_u: Callable[[], float],
+    omega_of: PieceOmega,
+    lo: float,
+    hi: float,
 ) -> tuple[np.ndarray, int, bool]:
     """Far intervals [n, n + 1] (n >= n_from > 32) that can hold a root, up to the envelope stop.
 
     −U = −Re(1/L) along the piece decides both, under the premise that far out −U moves
-    monotonically in M along a monotone piece, towards ``u_far`` (its value at the piece's far end;
-    at M = ∞, where β_eq = β):
+    monotonically in M along a monotone piece, towards ``u_far = far_u()`` (its value at the piece's far
+    end; at M = ∞, where β_eq = β; evaluated after the first block, whose run of the root finder solves its ω):
     (1) the stop: the first block start n where −U(n) and u_far lie on one side of 1, both farther
         from 1 than the envelope 0.38 n^{-3/2}: no root exists beyond (eq. 41 envelope);
     (2) which intervals to sample: a block [n_a, n_b] whose two ends have −U on one side of 1, farther
@@ -92,11 +104,14 @@ def _far_intervals(
         return np.array([], dtype=np.int64), n_end, False
     kept: list[np.ndarray] = []
     count, start = 0, n_from
+    u_far: float | None = None
     while start <= n_end:
         step = max(1, start // 128)
         edges = np.unique(np.minimum(start + step * np.arange(0, 257), n_end + 1)).astype(float)
         with np.errstate(divide="ignore", invalid="ignore"):
             u = -np.real(lp.inv(np.clip(edges, lo, hi), omega_of(np.clip(edges, lo, hi)))) - 1.0
+        if u_far is None:
+            u_far = far_u()
         ns = edges[:-1]
         env = DF_ENVELOPE * ns**-1.5
         a, b = u[:-1], u[1:]

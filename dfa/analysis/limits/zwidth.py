@@ -62,7 +62,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._parallel import progress_bar, run_in_order
+from ..._parallel import progress_bar, run_in_order, started_in_order, warm_processes
 from ...checks import (
     check_bool,
     check_choice,
@@ -104,6 +104,7 @@ __all__ = [
     "ZWidth",
     "z_width",
     "z_width_seconds",
+    "start_workers",
     "check_zwidth_size",
     "damping_ends",
     "default_damping_max",
@@ -132,9 +133,10 @@ ESTIMATE_GRID = 6
 #: Grid points per compiled call of the simulations (every run of each point; one chunk per thread task).
 POINTS_PER_CALL = 16
 #: Fewest values of B whose boundary columns run in worker processes when several workers are asked (fewer:
-#: threads). A column is mostly the describing-function scan, pure Python that holds the GIL (about 0.25 s of
+#: threads). A column is mostly the describing-function scan, pure Python that holds the GIL (about 0.2 s of
 #: one core per column on the catalogue devices): on threads it runs on one core whatever the workers; a
-#: worker process starts in about 2 s of one core (imports), once per session (joblib reuses its workers).
+#: worker process starts in about 1.5 s of one core (imports), once per session (loky reuses its workers). This
+#: process is one of the workers (:func:`dfa._parallel.started_in_order`): n workers start n − 1 processes.
 PROCESS_COLUMNS = 16
 
 #: Points of the describing function's search grid at each B (as :func:`~dfa.analysis.limits.kmax.design_answer`).
@@ -457,9 +459,9 @@ def z_width(
     df_model : {"half-delay", "zoh", "pade"}, optional
         Hold model of the describing function.
     n_jobs : int, optional
-        Workers (-1: all cores): threads for the simulations; for the per-B boundaries threads, or worker
-        processes from :data:`PROCESS_COLUMNS` values of B on (their describing-function scans hold the GIL).
-        The result does not depend on it.
+        Workers (-1: all cores): threads for the simulations; for the per-B boundaries threads, or from
+        :data:`PROCESS_COLUMNS` values of B on this process and n_jobs − 1 worker processes, started before the
+        simulations (their describing-function scans hold the GIL). The result does not depend on it.
     progress : bool, optional
         Show a progress bar on stderr.
 
@@ -495,14 +497,22 @@ def z_width(
     ks, bs = _grids(dev, base, g, k_range, b_range, v)
     vs = v * np.arange(1, n_speeds + 1) / n_speeds
     xi_dots = [dev.xi_dot(float(s)) for s in vs]
-    tasks, work = _plan(dev, base, ks, bs, xi_dots, cap)
-    if work > MAX_WORK_SAMPLES:
-        raise DFAValueError(
-            f"grid = {g} is invalid with speeds = {n_speeds} and max_samples = {cap}: the Z-width would simulate "
-            f"{work:.3g} samples (limit {MAX_WORK_SAMPLES:.3g}); lower the grid, the speeds or max_samples"
-        )
-    codes = _simulate_grid(tasks, workers, progress, f"Z-width {dev.name}").reshape(g, g)
-    return _assemble(dev, base, v, vs, ks, bs, codes, cap, len(tasks), model, workers, progress)
+    # the boundary columns start first: in worker processes they (and the workers' start) overlap the planning and
+    # the simulations on threads, which need no boundary (dfa._parallel.started_in_order)
+    args = [(dev, base.with_damping(float(b)), v, ks, model) for b in bs]
+    how = "processes" if workers > 1 and len(args) >= PROCESS_COLUMNS else "threads"
+    with started_in_order(_column, args, [1] * len(args), workers, how) as columns:
+        tasks, work = _plan(dev, base, ks, bs, xi_dots, cap)
+        if work > MAX_WORK_SAMPLES:
+            raise DFAValueError(
+                f"grid = {g} is invalid with speeds = {n_speeds} and max_samples = {cap}: the Z-width would simulate "
+                f"{work:.3g} samples (limit {MAX_WORK_SAMPLES:.3g}); lower the grid, the speeds or max_samples"
+            )
+        codes = _simulate_grid(tasks, workers, progress, f"Z-width {dev.name}").reshape(g, g)
+        label = f"Z-width {dev.name} boundaries"
+        with progress_bar(total=len(args), unit="B", desc=label, disable=not progress, leave=False) as bar:
+            cols = columns(bar)  # in order: the result does not depend on workers
+    return _assemble(dev, base, v, vs, ks, bs, codes, cap, len(tasks), model, cols)
 
 
 def check_zwidth_size(grid: int, speeds: int = 1, names: tuple[str, str] = ("grid", "speeds")) -> None:
@@ -527,6 +537,33 @@ def check_zwidth_size(grid: int, speeds: int = 1, names: tuple[str, str] = ("gri
 
 #: What a speed limit counts (the message of :func:`check_zwidth_size`).
 _PER_POINT = "impact speeds per grid point (each simulated from two starts)"
+
+
+def start_workers(grid: int, n_jobs: int = -1) -> None:
+    """Start now the worker processes :func:`z_width` with this grid and ``n_jobs`` will run its boundary columns
+    in (none below :data:`PROCESS_COLUMNS` values of B or with one worker), so that their start (a second or two
+    of imports each) overlaps the caller's work until then (the command line's inputs and time estimate).
+
+    Parameters
+    ----------
+    grid : int
+        Points per axis of the coming :func:`z_width`.
+    n_jobs : int, optional
+        Its workers (-1: all cores).
+
+    Returns
+    -------
+    None
+        The processes start in the background; :func:`z_width` takes them up (its result does not depend on them).
+
+    See Also
+    --------
+    z_width : The Z-width that then uses them.
+    dfa._parallel.warm_processes : The processes started.
+    """
+    workers = _workers(check_jobs("n_jobs", n_jobs))
+    if workers > 1 and int(grid) >= PROCESS_COLUMNS:
+        warm_processes(min(workers, int(grid)), __name__)
 
 
 def _workers(jobs: int) -> int:
@@ -580,8 +617,9 @@ def z_width_seconds(
     return (samples * NS_PER_SAMPLE * 1e-9 + grid * COLUMN_SECONDS) / workers
 
 
-def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, row: np.ndarray, model: str) -> list[KLimit]:
-    """The limit of every method (:data:`ZWIDTH_METHODS` order) at one B (``wall`` has that damper).
+def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, model: str) -> list[KLimit]:
+    """The limits at one B (``wall`` has that damper) of the methods that do not simulate: linear, passivity,
+    criterion and describing function (:data:`ZWIDTH_METHODS` order).
 
     The linear bound and the criterion's bisection are computed once: the describing function's search grid
     (:func:`~dfa.analysis.limits.kmax.closed_forms`) takes their values.
@@ -593,8 +631,6 @@ def _column(dev: Device, wall: Wall, v: float, ks: np.ndarray, row: np.ndarray, 
         _colgate_schenkel(dev, wall, ks),
         criterion,
         describing_limit(dev, wall, v, model, RunCache(), DF_GRID, k_criterion=k_criterion, k_linear=k_linear),
-        _grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}),
-        _grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}),
     ]
 
 
@@ -609,17 +645,17 @@ def _assemble(
     cap: int,
     n_points: int,
     model: str,
-    workers: int,
-    progress: bool = False,
+    columns: list[list[KLimit]],
 ) -> ZWidth:
-    """Limits per method from the grid and the closed forms (columns on ``workers`` threads, or processes from
-    :data:`PROCESS_COLUMNS` columns on); status."""
-    args = [(dev, wall.with_damping(float(b)), v, ks, codes[i], model) for i, b in enumerate(bs)]
-    label = f"Z-width {dev.name} boundaries"
-    with progress_bar(total=len(args), unit="B", desc=label, disable=not progress, leave=False) as bar:
-        # in order (dfa._parallel): the result does not depend on workers; Ctrl-C cancels the columns not started
-        how = "processes" if workers > 1 and len(args) >= PROCESS_COLUMNS else "threads"
-        cols = run_in_order(_column, args, [1] * len(args), workers, how, bar)
+    """Limits per method from the boundary columns (:func:`_column`) and the simulated grid's rows; status."""
+    cols = [
+        [
+            *c,
+            _grid_boundary(row, ks, {DIVERGES, UNDECIDED_POINT}),
+            _grid_boundary(row, ks, {BOUNDED, DIVERGES, UNDECIDED_POINT}),
+        ]
+        for c, row in zip(columns, codes, strict=True)
+    ]
     limits = {m: tuple(c[n] for c in cols) for n, m in enumerate(ZWIDTH_METHODS)}
     ce, lpv = _violations(codes, ks, bs, limits, dev.units["stiffness"])
     caveat = bool((codes == UNDECIDED_POINT).any()) or any(x.non_monotone for m in ("sim", "rest") for x in limits[m])
