@@ -10,7 +10,9 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import types
 
+import numpy as np
 import pytest
 
 from dfa.analysis.limits.kmax import criterion_passes, linear_limit, wall_k_criterion
@@ -94,6 +96,30 @@ def test_eq11_damper_guidance_is_where_the_criterion_starts_proving():
     for r_, proves in ((g2.max_resolution * 0.999, True), (g2.max_resolution * 1.001, False)):
         d2 = dataclasses.replace(dev, resolution=r_)
         assert (wall_k_criterion(d2, Wall.of(1.0, damping=0.1), v) > 0) == proves
+
+
+def test_eq11_strictest_damper_guidance_is_the_configuration_proving_the_smallest_damper():
+    """Over configurations (a Z-width's minimum), the guidance is the one whose criterion stops at the smallest B
+    (eq. 11 per device), named; the criterion proves a K with B just below it in every configuration."""
+    from dfa.analysis.limits.require import strictest_damper_guidance
+    from dfa.render.zwidth import criterion_damper_note
+
+    v, wall = 0.1, Wall.of(1.0, damping=0.5)
+    devices = [("light", CUSTOM), ("rough", dataclasses.replace(CUSTOM, coulomb=3 * CUSTOM.coulomb))]
+    name, g = strictest_damper_guidance(devices, wall, v)
+    each = {n: damper_guidance(d, wall, v).max_virtual_damping for n, d in devices}
+    assert name == min(each, key=each.__getitem__) == "light" and g.max_virtual_damping == each["light"]
+    for _n, d in devices:
+        assert wall_k_criterion(d, Wall.of(1.0, damping=0.999 * g.max_virtual_damping), v) > 0
+    assert strictest_damper_guidance(devices, Wall.of(1.0), v) is None  # no damper: nothing to guide
+
+    class _ZW:  # the two fields the note reads besides the criterion's column
+        damping = np.array([0.0, 0.5])
+        limits = {"criterion": [types.SimpleNamespace(value=1.0), types.SimpleNamespace(value=None)]}
+        device, velocity = CUSTOM, v
+
+    note = criterion_damper_note(g, _ZW(), name)
+    assert note.endswith("(configuration light, the strictest)") and "criterion '-' for B > 0" in note
 
 
 def test_eq11_require_refuses_bad_input():

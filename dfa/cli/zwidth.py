@@ -9,6 +9,7 @@ import math
 from typing import Any
 
 from .._io import FIGURE_SUFFIXES, check_output_file
+from ..model.device import Device
 from ..model.elements import OneSided, PassivityController
 from ..model.loop import Loop
 from ..model.wall import Wall
@@ -115,9 +116,10 @@ def _refuse(args: argparse.Namespace) -> None:
 
 def _over_configurations(
     args: argparse.Namespace, inp: Inputs, wall: Wall, v: float, b_range: tuple[float, float] | None
-) -> tuple[Any, Inputs]:
+) -> tuple[Any, Inputs, list[tuple[str, Device]]]:
     """The Z-width of every configuration on one grid, the minimum B by B (:func:`worst_z_width`); the inputs
-    with their rows (a directional configuration along its worst normal under dfa stiffness's rule)."""
+    with their rows (a directional configuration along its worst normal under dfa stiffness's rule); each
+    configuration's name and one-axis device."""
     from ..analysis.configurations import worst_stiffness, worst_z_width, z_width_common_ranges
     from ..analysis.limits.zwidth import z_width_seconds
 
@@ -135,7 +137,7 @@ def _over_configurations(
     check_work_time(what, seconds, "lower --grid or --speeds, or choose one with --configuration", args.force)
     zw = worst_z_width(dev, devices, v, wall, grid=args.grid, b_range=b_range, speeds=args.speeds,
                        n_jobs=args.jobs, progress=progress(args))  # fmt: skip
-    return zw, dataclasses.replace(inp, configurations=(), worst=w, rule=MINIMUM)
+    return zw, dataclasses.replace(inp, configurations=(), worst=w, rule=MINIMUM), devices
 
 
 def _cell(value: float | None) -> str:
@@ -145,13 +147,15 @@ def _cell(value: float | None) -> str:
 
 def _compute(
     args: argparse.Namespace, inp: Inputs, wall: Wall, v: float, b_range: tuple[float, float] | None
-) -> tuple[Any, Inputs]:
+) -> tuple[Any, Inputs, list[tuple[str, Device]]]:
     """The Z-width (the minimum over a file's configurations, B by B), refused up front when it would take longer
-    than the work limit; and the inputs (the limiting configuration's, with configurations)."""
+    than the work limit; the inputs (the limiting configuration's, with configurations); the devices it
+    covers, named (one, unnamed, without configurations)."""
     from ..analysis.limits.zwidth import z_width, z_width_seconds
 
     if inp.configurations:  # the minimum over the configurations, B by B
         return _over_configurations(args, inp, wall, v, b_range)
+    assert inp.device is not None
     loop = Loop(inp.device, wall)
     seconds = z_width_seconds(loop, v, grid=args.grid, speeds=args.speeds, n_jobs=args.jobs, b_range=b_range)
     check_work_time(f"--grid {args.grid} with --speeds {args.speeds}", seconds, "lower --grid or --speeds",
@@ -159,7 +163,7 @@ def _compute(
     zw = z_width(
         loop, v, grid=args.grid, b_range=b_range, speeds=args.speeds, n_jobs=args.jobs, progress=progress(args)
     )
-    return zw, inp
+    return zw, inp, [("", inp.device)]
 
 
 def _elements(zw: Any, u: dict[str, str]) -> str:
@@ -181,7 +185,7 @@ def _elements(zw: Any, u: dict[str, str]) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the Z-width; print K_max(B) per method."""
-    from ..analysis.limits.require import damper_guidance_for
+    from ..analysis.limits.require import strictest_damper_guidance
     from ..analysis.limits.zwidth import ZWIDTH_METHODS, check_zwidth_size, start_workers
     from ..render.zwidth import criterion_damper_note, damping_axis_note, non_monotone_mark, non_monotone_notes
 
@@ -201,7 +205,7 @@ def run(args: argparse.Namespace) -> int:
     b_range = None if args.damping_max is None else (0.0, float(args.damping_max))
     check_zwidth_size(args.grid, args.speeds, ("--grid", "--speeds"))  # before the estimate: --force cannot lift it
     start_workers(args.grid, args.jobs)  # the columns' worker processes start while the estimate and plan run
-    zw, inp = _compute(args, inp, wall, v, b_range)
+    zw, inp, devices = _compute(args, inp, wall, v, b_range)
     dev = inp.device
     assert dev is not None
     if args.plot is not None:
@@ -246,9 +250,9 @@ def run(args: argparse.Namespace) -> int:
     for line in non_monotone_notes(zw, {m: COLUMNS[m] for m in ZWIDTH_METHODS}):
         say(line)
     first = next((float(b) for b in zw.damping if b > 0), None)
-    guide = None if first is None else damper_guidance_for(dev, zw.wall.with_damping(first), zw.velocity)
+    guide = None if first is None else strictest_damper_guidance(devices, zw.wall.with_damping(first), zw.velocity)
     if guide is not None:
-        note = criterion_damper_note(guide, zw)
+        note = criterion_damper_note(guide[1], zw, guide[0])
         if note:
             say(note)
     if zw.counterexamples:

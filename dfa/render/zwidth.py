@@ -27,6 +27,8 @@ def non_monotone_notes(zw: Any, columns: dict[str, str]) -> list[str]:
     Parameters
     ----------
     zw : ZWidth
+    configuration : str, optional
+        The configuration ``g`` is of (default "": a single device).
         From :func:`dfa.analysis.limits.zwidth.z_width`.
     columns : dict of str to str
         Column heading of each method.
@@ -51,9 +53,9 @@ def non_monotone_notes(zw: Any, columns: dict[str, str]) -> list[str]:
     return out
 
 
-def criterion_damper_note(g: DamperGuidance, zw: Any) -> str:
+def criterion_damper_note(g: DamperGuidance, zw: Any, configuration: str = "") -> str:
     """Why the criterion column is '-' for B > 0 (or from some B on), and the largest B it proves a K with; empty
-    if no B > 0 has a '-'.
+    if no B > 0 has a '-'. Over configurations, ``g`` is the strictest one's, named ``configuration``.
 
     Parameters
     ----------
@@ -80,7 +82,7 @@ def criterion_damper_note(g: DamperGuidance, zw: Any) -> str:
     return (
         f"criterion '-' {where}: with a damper it proves no K at {number(zw.velocity, 4)} {u['velocity']} "
         f"unless B < {number(g.max_virtual_damping, 4)} {u['damping']} (it costs friction (1 − a)BΔ/T and damping "
-        f"B){restore}"
+        f"B){restore}" + (f" (configuration {configuration}, the strictest)" if configuration else "")
     )
 
 

@@ -41,7 +41,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from ...checks import check_choice, check_nonnegative, check_positive, check_type
@@ -76,6 +76,7 @@ __all__ = [
     "Requirements",
     "damper_guidance",
     "damper_guidance_for",
+    "strictest_damper_guidance",
     "requirements",
 ]
 
@@ -299,6 +300,33 @@ def damper_guidance_for(device: Device, wall: Wall, velocity: float) -> DamperGu
     if wall.damping == 0 or wall.params(device.period, device.resolution).not_covered() is not None:
         return None
     return damper_guidance(device, wall, velocity)
+
+
+def strictest_damper_guidance(
+    devices: Sequence[tuple[str, Device]], wall: Wall, velocity: float
+) -> tuple[str, DamperGuidance] | None:
+    """:func:`damper_guidance_for` of the configuration whose damper bound is the smallest (the criterion's column
+    of a Z-width over configurations is their minimum: the first to prove no K limits it), with its name.
+
+    Parameters
+    ----------
+    devices : sequence of (str, Device)
+        Each configuration's name and one-axis device.
+    wall : Wall
+    velocity : float
+        Impact speed, m/s (rotary: rad/s), >= 0.
+
+    Returns
+    -------
+    (str, DamperGuidance) or None
+        None where no configuration has guidance (no damper, or no criterion covers the wall).
+
+    See Also
+    --------
+    damper_guidance_for : one device's.
+    """
+    found = [(n, g) for n, d in devices if (g := damper_guidance_for(d, wall, velocity)) is not None]
+    return min(found, key=lambda ng: ng[1].max_virtual_damping) if found else None
 
 
 def damper_guidance(device: Device, wall: Wall, velocity: float) -> DamperGuidance:
