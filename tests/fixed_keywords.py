@@ -20,3 +20,28 @@ def fixed_keywords(func: Callable[..., Any], **fixed: Any) -> Callable[..., Any]
         return func(*args, **{**kwargs, **fixed})
 
     return call
+
+
+#: A small stability map for `dfa report` in tests whose checks do not read the map (its numbers are its own).
+SMALL_MAP = {"map_grid": 3, "samples": 2000, "n_jobs": 1}
+#: Small searches of the design answer (K_max four ways) and of the stiffness-speed chart (the report's first
+#: section and figure), for tests that check other sections: 2 speeds, 6 grid points (the searches' defaults
+#: are 6 and 16, the chart's 14 and 24).
+SMALL_SEARCH = {"speeds": 2, "grid": 6}
+
+
+def small_report_map(monkeypatch: Any) -> None:
+    """`dfa report` (``design_report``) with :data:`SMALL_MAP`'s map instead of its 81 × 81 on every core."""
+    import dfa.studies.report
+    from dfa.studies.design import design_analysis
+
+    monkeypatch.setattr(dfa.studies.report, "design_analysis", fixed_keywords(design_analysis, **SMALL_MAP))
+
+
+def small_design_searches(monkeypatch: Any) -> None:
+    """The design analysis' answer and stiffness-speed chart searched with :data:`SMALL_SEARCH` (for tests of
+    other sections: the answer's numbers are then the small search's own)."""
+    import dfa.studies.design as design
+
+    monkeypatch.setattr(design, "design_answer", fixed_keywords(design.design_answer, **SMALL_SEARCH))
+    monkeypatch.setattr(design, "stiffness_speed_chart", fixed_keywords(design.stiffness_speed_chart, **SMALL_SEARCH))
