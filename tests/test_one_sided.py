@@ -20,7 +20,7 @@ import json
 
 import numpy as np
 import pytest
-from fixed_keywords import small_report_map
+from fixed_keywords import small_design_searches, small_report_map
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from reference_ctl import simulate_ivp_ctl
@@ -434,7 +434,8 @@ def test_one_sided_design_report_runs_start_with_the_approach(tmp_path, monkeypa
     r = simulate(p.mu, p.beta, p.sigma, v0, xi0=x0, wall=wp)
     assert (a.outcome.outcome, a.outcome.rest_sample, a.outcome.final_xi) == (r.outcome, r.rest_sample, r.final_xi)
     assert a.outcome.contact is not None and a.grip is not None
-    small_report_map(monkeypatch)  # the text and JSON checked below do not read the stability map
+    small_report_map(monkeypatch)  # the text and JSON checked below read neither the map nor K_max's search
+    small_design_searches(monkeypatch)
     assert main(["report", "--device", "delta", "--one-sided", "--push", "2", "--zwidth", "0", "--out", str(tmp_path),
                  "--format", "md"]) == 0  # fmt: skip
     text = " ".join((tmp_path / "design_report_delta_one_sided.md").read_text(encoding="utf-8").split())
