@@ -83,7 +83,7 @@ def test_eq6_controller_k_criterion_sound_by_simulation(ctl):
 def test_controller_k_linear_matches_a_linear_simulation_scan(ctl):
     """Without encoder and Coulomb friction the loop is linear: it decays below K_linear and diverges above."""
     dev = Device(mass=0.1, damping=1.0, coulomb=0.0, resolution=1e-5, period=1e-3)
-    kl = design_answer(dev, 0.1, wall=ctl, speeds=1, grid=4).k_linear.value  # the search does not matter here
+    kl = design_answer(dev, 0.1, wall=ctl, simulate=False).k_linear.value  # the quick answer: its exact linear bound
     assert kl is not None and kl > 0
     for k, diverges in ((0.9 * kl, False), (1.1 * kl, True)):
         c = Wall.of(k, ctl.damping, ctl.delay, ctl.filter_cutoff, ctl.amplifier_bandwidth).params(dev.period)
