@@ -4,6 +4,7 @@
 import json
 
 import pytest
+from fixed_keywords import small_design_searches, small_report_map
 
 from dfa.cli import main
 from dfa.jsonable import explain_nulls
@@ -77,7 +78,9 @@ def test_unexplained_nulls_walker_can_fail():
 
 
 @pytest.mark.parametrize("name", list(CASES))
-def test_cli_json_every_null_has_a_reason(name, capsys, tmp_path):
+def test_cli_json_every_null_has_a_reason(name, capsys, tmp_path, monkeypatch):
+    small_report_map(monkeypatch)  # the report's nulls and reasons are its sections', whatever the searches' sizes
+    small_design_searches(monkeypatch)
     argv = [a.replace("{tmp}", str(tmp_path)) for a in CASES[name]]
     code = main(argv)
     out, err = capsys.readouterr()

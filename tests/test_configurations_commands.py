@@ -16,7 +16,9 @@ import pytest
 from configuration_files import HEAD, INERTIA
 from configuration_files import device_file as _file
 from configuration_files import run_cli as _run
+from fixed_keywords import fixed_keywords
 
+import dfa.analysis.limits.kmax as kmax
 from dfa.analysis.criterion import device_criterion
 from dfa.analysis.limits.zwidth import z_width
 from dfa.cli.tune import export_command
@@ -183,8 +185,10 @@ def test_tune_prints_an_export_command_pinned_to_the_configuration_it_tuned():
     assert "near" not in cmd and "--dampings" not in cmd
 
 
-@pytest.mark.slow  # one full answer (~4 s): the one end-to-end check of the stiffness rule outside dfa stiffness
-def test_export_velocity_exports_the_smallest_recommended_k_of_dfa_stiffness(capsys, tmp_path):
+@pytest.mark.slow  # one full answer: the one end-to-end check of the stiffness rule outside dfa stiffness
+def test_export_velocity_exports_the_smallest_recommended_k_of_dfa_stiffness(capsys, tmp_path, monkeypatch):
+    # the full answer's simulated limits searched small (2 speeds, 6 points): the K exported is the criterion's proof
+    monkeypatch.setattr(kmax, "design_answer", fixed_keywords(kmax.design_answer, speeds=2, grid=6))
     path = tmp_path / "arm.toml"
     path.write_text(HEAD.replace("period = 0.002", "period = 0.001").replace("stiffness = 80.0\n", "")
                     + "".join("\n[[devices.configurations]]\n" + t + "\n" for t in TWO), encoding="utf-8")  # fmt: skip

@@ -5,6 +5,7 @@ from collections import defaultdict
 from pathlib import Path
 
 import pytest
+from fixed_keywords import small_design_searches
 
 from dfa.analysis.configurations import worst_stiffness
 from dfa.model.catalogue import load_device_file
@@ -16,7 +17,8 @@ from dfa.studies.design_document import design_markdown
 ARM = Path(__file__).resolve().parent.parent / "examples" / "arm_configurations.toml"
 
 
-def test_report_rows_per_configuration_and_the_limiting_one_marked():
+def test_report_rows_per_configuration_and_the_limiting_one_marked(monkeypatch):
+    small_design_searches(monkeypatch)  # the section's rows are worst_stiffness's, not the spring's own search
     entry = load_device_file(ARM)
     w = worst_stiffness(entry.device, entry.configurations, 0.1, simulate=False)
     ans, _rec = w.details

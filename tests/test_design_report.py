@@ -5,9 +5,9 @@ from __future__ import annotations
 import json
 import math
 import re
-from functools import partial
 
 import pytest
+from fixed_keywords import fixed_keywords
 from result_json import assert_json_from_fields, written
 
 import dfa
@@ -28,7 +28,7 @@ def impulse():
 @pytest.fixture
 def small_reports(monkeypatch):
     """`dfa report` with a small stability map (the CLI path is unchanged otherwise)."""
-    monkeypatch.setattr(dfa.studies.report, "design_analysis", partial(design_analysis, **SMALL))
+    monkeypatch.setattr(dfa.studies.report, "design_analysis", fixed_keywords(design_analysis, **SMALL))
 
 
 @pytest.fixture

@@ -11,6 +11,7 @@ from collections import defaultdict
 
 import numpy as np
 import pytest
+from fixed_keywords import small_design_searches
 
 import dfa
 from dfa.cli import main
@@ -63,6 +64,7 @@ def test_design_report_same_for_jobs_1_and_2(monkeypatch):
     from dfa.studies.design_document import design_markdown
 
     monkeypatch.setattr(zwidth, "PROCESS_COLUMNS", 2)
+    small_design_searches(monkeypatch)  # K_max and the stiffness-speed chart take no jobs: small searches
     runs = {}
     for jobs in (1, 2):
         a = design_analysis(

@@ -183,12 +183,23 @@ def test_eq11_stiffness_and_zwidth_say_what_restores_the_proof_with_a_damper(cap
     assert f"unless B < {g.max_virtual_damping:.4g} N·s/m" in out
 
 
-def test_eq11_require_describing_function_substituted_back(capsys):
+def test_eq11_require_describing_function_substituted_back(capsys, monkeypatch):
     """`--describing-function`: at the least Coulomb friction returned, K_df (the design answer's) is the target K;
     a little less friction and it falls below (each value to DF_RTOL). Text and JSON agree."""
+    import dfa.analysis.limits.require as require_mod
     from dfa.analysis.limits.kmax import describing_limit
     from dfa.analysis.limits.require import DF_RTOL
 
+    runs: list[tuple[str, object]] = []
+    original = require_mod.requirements
+
+    def requirements_once(*args, **kwargs):  # the text run renders the JSON run's requirements: one search
+        if not runs:
+            runs.append((repr((args, kwargs)), original(*args, **kwargs)))
+        assert repr((args, kwargs)) == runs[0][0], "the text run asks for the same requirements"
+        return runs[0][1]
+
+    monkeypatch.setattr(require_mod, "requirements", requirements_once)
     dev, k, v = get_device("delta").device, 20000.0, 0.1
     argv = ["require", "--device", "delta", "--stiffness", "20000", "--velocity", "0.1", "--describing-function",
             "--parameter", "coulomb"]  # fmt: skip

@@ -8,6 +8,7 @@ import json
 import numpy as np
 import pytest
 from cli_text import unwrap
+from fixed_keywords import fixed_keywords
 
 import dfa
 from dfa.analysis.cycles import SUBTICK_LIMIT, growth_threshold, limit_cycles, subtick_caveat
@@ -143,11 +144,15 @@ def test_eq36_subtick_caveat_printed_by_dfa_limit_cycles(capsys):
     assert d["growth_threshold"]["caveat"] == d["caveat"] and "Caveat:" in d["growth_threshold"]["meaning"]
 
 
-def test_eq36_subtick_assessed_stiffness_says_why_its_growth_speed_is_unknown(capsys):
+def test_eq36_subtick_assessed_stiffness_says_why_its_growth_speed_is_unknown(capsys, monkeypatch):
     """Impulse Engine at K = 540 N/m: the smallest unstable cycle lies below SUBTICK_LIMIT (the caveat), so the
     assessment of that K in `dfa stiffness` states the sub-tick reason, not "search incomplete" (text and JSON)."""
+    import dfa.analysis.limits.kmax as kmax
     from dfa.analysis.limits.kmax import KMaxAssessment
     from dfa.cli import main
+
+    # the limits searched small (2 speeds, 6 points): the assessment of the given K is its own, at any search size
+    monkeypatch.setattr(kmax, "design_answer", fixed_keywords(kmax.design_answer, speeds=2, grid=6))
 
     e = dfa.get_device("impulse").device
     p = e.params(540.0)

@@ -17,6 +17,7 @@ import warnings
 
 import numpy as np
 import pytest
+from fixed_keywords import small_design_searches
 from hypothesis import example, given
 from hypothesis import strategies as st
 
@@ -364,10 +365,12 @@ def test_report_interrupted_leaves_folder_untouched(tmp_path, monkeypatch):
     # after the PNGs and the Markdown were written into the staging folder
     monkeypatch.setattr(dfa.studies.design_document, "design_html", fail)
     monkeypatch.setattr(dfa.studies.design, "first_unstable_speed", lambda *a, **k: 3.0)
+    small_design_searches(monkeypatch)  # the report's numbers are not read: small searches and map
     with pytest.raises(KeyboardInterrupt):
         dfa.design_report(
-            dfa.get_device("impulse"), velocity=0.05, out_dir=tmp_path, fmt="both", progress=False, samples=500
-        )
+            dfa.get_device("impulse"), velocity=0.05, out_dir=tmp_path, fmt="both", progress=False, samples=500,
+            map_grid=3,
+        )  # fmt: skip
     assert sorted(os.listdir(tmp_path)) == ["keep.txt"]
 
 
@@ -1165,9 +1168,10 @@ def test_cli_eq36_zoh_at_the_linear_bound_huge_max_amplitude_ends(capsys, amax):
 
 
 @pytest.mark.slow
-def test_report_too_stiff_writes_the_report(tmp_path):
+def test_report_too_stiff_writes_the_report(tmp_path, monkeypatch):
     # issue 17: any K above the static limit 2c/Δ crashed `dfa report` (TypeError) after writing its figures
-    # (the CLI only parses and calls this; a small map keeps the test short)
+    # (the CLI only parses and calls this; a small map and small searches keep the test short)
+    small_design_searches(monkeypatch)
     res = dfa.design_report(
         dfa.get_device("delta"), 60000.0, 0.1, out_dir=tmp_path, fmt="md", progress=False, map_grid=3, samples=500
     )

@@ -158,7 +158,7 @@ def _growth(dev, k, b, d=0):
 @pytest.mark.parametrize("b, d", [(1.0, 0), (0.5, 1)])
 def test_eq36_controller_k_df_against_limit_cycles(b, d):
     v = 0.1
-    r = design_answer(DELTA, v, wall=Wall.of(14500.0, damping=b, delay=d), **SMALL)
+    r = design_answer(DELTA, v, wall=Wall.of(14500.0, damping=b, delay=d), simulate=False)  # k_df as in the full
     s = r.k_df
     assert s.value is not None and s.first_failure is not None
     xd = DELTA.xi_dot(v)
@@ -328,7 +328,7 @@ def test_eq6_extended_zero_criterion_k_reason_in_the_api_and_report_rows():
     """The reason for no criterion K is the analysis' (the status of KMaxResult.k_criterion), worded by
     dfa.render.limits for the CLI and the report's K_max rows alike."""
     e = dfa.get_device("impulse").device
-    r = design_answer(e, 0.1, wall=Wall.of(80.0, damping=0.5), **SMALL)
+    r = design_answer(e, 0.1, wall=Wall.of(80.0, damping=0.5), simulate=False)  # the criterion's row is read
     assert r.k_criterion.value is None and r.k_criterion.status is LimitStatus.NEVER
     assert "σ >= σ₀ needs c/Δ > (1 − a)B/T" in r.k_criterion.status.message
     row = dict(controller_limit_rows(r, e.units))

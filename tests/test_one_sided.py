@@ -20,6 +20,7 @@ import json
 
 import numpy as np
 import pytest
+from fixed_keywords import small_design_searches, small_report_map
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from reference_ctl import simulate_ivp_ctl
@@ -417,7 +418,7 @@ def test_one_sided_cli_limit_cycles_refuses_with_the_reason(capsys, tmp_path):
     assert not any(tmp_path.iterdir())
 
 
-def test_one_sided_design_report_runs_start_with_the_approach(tmp_path):
+def test_one_sided_design_report_runs_start_with_the_approach(tmp_path, monkeypatch):
     """`dfa report --one-sided --push`: the design analysis's runs are the approach runs of dfa.simulate, no
     describing function (no thresholds, no Nyquist figure; the report says why), the contact stated, and its
     own file name; the JSON's headline numbers say why the describing function's are null."""
@@ -433,6 +434,8 @@ def test_one_sided_design_report_runs_start_with_the_approach(tmp_path):
     r = simulate(p.mu, p.beta, p.sigma, v0, xi0=x0, wall=wp)
     assert (a.outcome.outcome, a.outcome.rest_sample, a.outcome.final_xi) == (r.outcome, r.rest_sample, r.final_xi)
     assert a.outcome.contact is not None and a.grip is not None
+    small_report_map(monkeypatch)  # the text and JSON checked below read neither the map nor K_max's search
+    small_design_searches(monkeypatch)
     assert main(["report", "--device", "delta", "--one-sided", "--push", "2", "--zwidth", "0", "--out", str(tmp_path),
                  "--format", "md"]) == 0  # fmt: skip
     text = " ".join((tmp_path / "design_report_delta_one_sided.md").read_text(encoding="utf-8").split())

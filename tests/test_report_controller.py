@@ -15,11 +15,11 @@ import importlib.util
 import io
 import json
 import re
-from functools import partial
 from pathlib import Path
 
 import pytest
 from cli_text import unwrap
+from fixed_keywords import fixed_keywords
 from result_json import written
 from test_cli_json_null_reasons import unexplained_nulls
 
@@ -53,7 +53,7 @@ def _stub(name: str):
 def small_reports():
     """`dfa report` with a small stability map and placeholder figures (drawing takes seconds)."""
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(dfa.studies.report, "design_analysis", partial(design_analysis, **SMALL))
+        mp.setattr(dfa.studies.report, "design_analysis", fixed_keywords(design_analysis, **SMALL))
         mp.setattr(figures, "FIGURES", tuple(_stub(n) for n in NAMES))
         yield mp
 
@@ -247,7 +247,7 @@ def test_controller_zwidth_on_by_default_and_can_be_turned_off(ctl, lag):
 def test_controller_report_html_self_contained_with_its_figures(tmp_path, monkeypatch):
     """Real figures: the five that take the controller (the extended criterion's regions, Nyquist, trajectories, map,
     Z-width), embedded; no spring-only figure, no PNG file."""
-    monkeypatch.setattr(dfa.studies.report, "design_analysis", partial(design_analysis, **SMALL))
+    monkeypatch.setattr(dfa.studies.report, "design_analysis", fixed_keywords(design_analysis, **SMALL))
     code, _ = call("report", *B1, "--zwidth", "3", "--out", str(tmp_path), "--format", "html")
     assert code == 0
     page = (tmp_path / "design_report_delta_controller.html").read_text(encoding="utf-8")

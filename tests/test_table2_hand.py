@@ -14,6 +14,7 @@ import math
 from pathlib import Path
 
 import pytest
+from fixed_keywords import small_design_searches, small_report_map
 
 import dfa
 from dfa.analysis.limits.grip import GripSweep, grip_sweep
@@ -240,8 +241,10 @@ def test_table2_grip_scan_and_json():
     assert isinstance(g, GripSweep) and math.isfinite(g.hand_mass)
 
 
-def test_table2_hand_report_states_grasp_and_grip(tmp_path: Path, capsys):
+def test_table2_hand_report_states_grasp_and_grip(tmp_path: Path, capsys, monkeypatch):
     """`dfa report --hand paper` writes a separate _held report stating the grasp and the grip table's numbers."""
+    small_report_map(monkeypatch)  # the grasp and the grip table read neither the stability map nor K_max's search
+    small_design_searches(monkeypatch)
     code = main(["report", "--device", "phantom", "--hand", "paper", "--velocity", "0.1", "--out", str(tmp_path),
                  "--format", "md", "--quiet"])  # fmt: skip
     written = capsys.readouterr()

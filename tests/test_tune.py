@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pytest
 from cli_text import unwrap
+from fixed_keywords import fixed_keywords
 
 import dfa
 import dfa.analysis.limits.tune as tune_mod
@@ -240,16 +241,26 @@ def test_report_deployable_wall_section_states_the_tuned_numbers(small_tune, mon
     import matplotlib
 
     matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    import dfa.studies.design as design_mod
+    import dfa.studies.design_figures as design_figures_mod
     from dfa.studies.design import design_analysis
     from dfa.studies.design_document import design_markdown
     from dfa.studies.design_figures import design_figures
 
     monkeypatch.setattr(tune_mod, "default_dampings", lambda dev, wall, v: (0.0, 0.5))
     monkeypatch.setattr(tune_mod, "default_cutoffs", lambda dev: (None,))
+    # the spring's own answer and stiffness-speed chart, other sections than this one: small searches too
+    monkeypatch.setattr(design_mod, "design_answer", fixed_keywords(design_answer, **SMALL))
+    monkeypatch.setattr(design_mod, "stiffness_speed_chart", fixed_keywords(design_mod.stiffness_speed_chart, **SMALL))
     entry = dfa.get_device("impulse")
     a = design_analysis(dfa.Loop(entry.device), V, entry=entry, map_grid=3, samples=2000, n_jobs=1, tune=True)
     assert a.tuned is not None and a.tuned.velocity == V
+    saved = []  # each figure drawn, but not written as a PNG (the section's text and its link are checked here)
+    monkeypatch.setattr(design_figures_mod, "_png", lambda fig: saved.append(fig) or plt.close(fig) or b"")
     figs = design_figures(a)
+    assert len(saved) == len(figs)
     assert "tune" in [f.name for f in figs]
     md = design_markdown(a, {f.name: f.caption for f in figs}, lambda n: f"{n}.png")
     section = md.split("## Deployable wall", 1)[1].split("\n## ", 1)[0]
@@ -291,9 +302,12 @@ def test_cli_tune_export_and_the_printed_export_command_give_the_same_wall(capsy
     assert dep2.wall.damping == dep.wall.damping and dep2.device == dep.device
 
 
-def test_tune_passivity_controller_is_compared_with_the_same_wall_without_it(impulse, small_tune):
+def test_tune_passivity_controller_is_compared_with_the_same_wall_without_it(impulse, monkeypatch):
     """--pc-limits: the best wall with the controller, recommended by recommend_stiffness's rule against the same
     wall without it (kept only where it raises K); how often it acts is a share of the samples."""
+    # small searches with runs of at most 10⁵ samples (the controller's search ran 7.5 s extending runs to 10⁶;
+    # shorter runs end undecided sooner): the comparison with the plain wall is the rule's at any size
+    monkeypatch.setattr(tune_mod, "design_answer", functools.partial(design_answer, **SMALL, max_samples=100_000))
     r = tune(Loop(impulse), V, dampings=[0.0], cutoffs=[None], pc_limits=[0.05], evaluate=1)
     plain, with_pc = r.walls[0], next(w for w in r.walls if w.wall.element(dfa.PassivityController) is not None)
     choice = with_pc.recommendation.controller
