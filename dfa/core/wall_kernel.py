@@ -750,7 +750,7 @@ def _sample(
     e_lag: float,
     ext: float,
     appr: bool,
-    pcs: FloatArray,
+    cmd: tuple[float, float, float, float, int, float, bool],
 ) -> tuple[float, float, float, float, float, float, int, float, float, int, float, bool]:
     """Sample h from the state between samples (module docstring); ``model`` = (μ, β, σ, d, quantize).
 
@@ -758,12 +758,13 @@ def _sample(
     lowest and highest turning point (±inf when none), whether the loop
     was in an absorbing state at the start of the sample (then not integrated): 0 no, 1 at rest, 3 a one-sided
     wall left for good (:func:`_gone`), and the operator's force ``ext``: the push p from the first reading
-    inside a one-sided wall on (the approach's force before it; p throughout otherwise). ``pcs``: the passivity
-    observer's state (:func:`_command`; empty without a passivity controller).
+    inside a one-sided wall on (the approach's force before it; p throughout otherwise). ``cmd``: what
+    :func:`_command` returned at this sample (the caller runs it: an inline helper that takes the observer's array
+    and the ring as well costs a reference count of each a sample, a third of the controller kernel's time).
     """
-    mu, beta, sigma, delay, quantize = model
+    mu, beta, sigma, _, _ = model
     damping, pole, filtered, lag, kap, onesided, push = ctl[0], ctl[1], ctl[2], ctl[3], ctl[4], ctl[5], ctl[7]
-    r, vh, y, base, pos, c, inside = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl, pcs)
+    r, vh, y, base, pos, c, inside = cmd
     if inside:
         ext, appr = push, False  # contact: the operator's force is the push from now on
     if lag == 0.0:
@@ -959,8 +960,9 @@ def _advance(
     verifying, seen = False, _UNSEEN  # an approximate return under proof: the period's statistics (_seen)
     while h < h1:
         written, r_old, v_old = pos, r_prev, v  # the ring slot that receives c_h; r_{h−1}; ξ' at the sample's start
+        cmd = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl, pcs)  # c_h into the ring
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
-            x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr, pcs
+            x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr, cmd
         )
         if tracking:
             track = _pc_tracked(pcs, track, r_prev - r_old)
