@@ -391,32 +391,45 @@ def _inside(c: float, sigma: float) -> bool:
 
 
 @njit(cache=True, inline="always")
-def _absorbing(v: float, fa: float, sigma: float, ring: FloatArray, cbase: float, cnext: float, held: float) -> bool:
+def _extent(ring: FloatArray) -> tuple[float, float]:
+    """The least and the largest command in the delay ring (both NaN when one is NaN): all that the rest and exit
+    tests read of it (:func:`_absorbing`, :func:`_gone`), so that the per-sample helpers take no array (an inline
+    helper that takes one costs a reference count a sample)."""
+    lo, hi = math.inf, -math.inf
+    for i in range(ring.shape[0]):
+        c = ring[i]
+        if not c == c:
+            return math.nan, math.nan
+        lo, hi = min(lo, c), max(hi, c)
+    return lo, hi
+
+
+@njit(cache=True, inline="always")
+def _absorbing(
+    v: float, fa: float, sigma: float, pending: tuple[float, float], cbase: float, cnext: float, held: float
+) -> bool:
     """The proven rest state (module docstring): stuck, and every future command and φ_A within [−σ, σ] of
     ``held`` = κ_h ξ − p (the hand spring's force less the push; ξ does not change while stuck). ``cbase`` is
     the command at this reading with y = 0, ``cnext`` with y_{h+1} (a one-sided wall's clip keeps the
-    commands between them: it is monotone in y)."""
+    commands between them: it is monotone in y); ``pending`` the ring's least and largest command
+    (:func:`_extent`): fl(c − held) is monotone in c, so every command of the ring lies within σ of ``held``
+    exactly when both do (NaN in neither)."""
     if v != 0.0 or not _inside(fa - held, sigma) or not _inside(cbase - held, sigma):
         return False
     if not _inside(cnext - held, sigma):
         return False
-    for i in range(ring.shape[0]):
-        if not _inside(ring[i] - held, sigma):
-            return False
-    return True
+    return _inside(pending[0] - held, sigma) and _inside(pending[1] - held, sigma)
 
 
 @njit(cache=True, inline="always")
-def _gone(v: float, fa: float, ring: FloatArray, inside: bool, ctl: Controller) -> bool:
+def _gone(v: float, fa: float, pending: tuple[float, float], inside: bool, ctl: Controller) -> bool:
     """A one-sided wall left for good: the reading outside, the device moving away (ξ' < 0), no push and no hand
     spring (nothing can bring it back: friction and damping only oppose the motion), and no force pending
-    (every command in the delay line and φ_A zero). Every later reading is outside, so every command is 0."""
+    (every command in the delay line, between the ring's least and largest ``pending`` (:func:`_extent`), and φ_A
+    zero). Every later reading is outside, so every command is 0."""
     if not ctl[5] or inside or not v < 0.0 or ctl[7] != 0.0 or ctl[4] != 0.0 or fa != 0.0:
         return False
-    for i in range(ring.shape[0]):
-        if ring[i] != 0.0:
-            return False
-    return True
+    return pending[0] == 0.0 and pending[1] == 0.0
 
 
 @njit(cache=True, inline="always")
@@ -742,7 +755,7 @@ def _sample(
     y: float,
     fa: float,
     pos: int,
-    ring: FloatArray,
+    pending: tuple[float, float],
     h: int,
     model: Model,
     ctl: Controller,
@@ -750,7 +763,7 @@ def _sample(
     e_lag: float,
     ext: float,
     appr: bool,
-    pcs: FloatArray,
+    cmd: tuple[float, float, float, float, int, float, bool],
 ) -> tuple[float, float, float, float, float, float, int, float, float, int, float, bool]:
     """Sample h from the state between samples (module docstring); ``model`` = (μ, β, σ, d, quantize).
 
@@ -758,12 +771,15 @@ def _sample(
     lowest and highest turning point (±inf when none), whether the loop
     was in an absorbing state at the start of the sample (then not integrated): 0 no, 1 at rest, 3 a one-sided
     wall left for good (:func:`_gone`), and the operator's force ``ext``: the push p from the first reading
-    inside a one-sided wall on (the approach's force before it; p throughout otherwise). ``pcs``: the passivity
-    observer's state (:func:`_command`; empty without a passivity controller).
+    inside a one-sided wall on (the approach's force before it; p throughout otherwise). ``cmd``: what
+    :func:`_command` returned at this sample, and ``pending`` the ring's least and largest command after it
+    (:func:`_extent`; read only at ξ' = 0 and with a one-sided wall): the caller runs both, as an inline helper
+    that takes the observer's array or the ring costs a reference count of each a sample, a third of the
+    controller kernel's time.
     """
-    mu, beta, sigma, delay, quantize = model
+    mu, beta, sigma, _, _ = model
     damping, pole, filtered, lag, kap, onesided, push = ctl[0], ctl[1], ctl[2], ctl[3], ctl[4], ctl[5], ctl[7]
-    r, vh, y, base, pos, c, inside = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl, pcs)
+    r, vh, y, base, pos, c, inside = cmd
     if inside:
         ext, appr = push, False  # contact: the operator's force is the push from now on
     if lag == 0.0:
@@ -772,9 +788,9 @@ def _sample(
         ynext = pole * y + (1.0 - pole) * vh if filtered else 0.0
         cbase, cnext = _shape(base, inside, onesided), _shape(base - damping * ynext, inside, onesided)
         cbase, cnext = _clip(cbase, ctl[11]), _clip(cnext, ctl[11])  # monotone: the hull's ends, clipped
-        if not appr and _absorbing(v, fa, sigma, ring, cbase, cnext, kap * x - push):
+        if not appr and _absorbing(v, fa, sigma, pending, cbase, cnext, kap * x - push):
             return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 1, ext, appr
-    elif not appr and _gone(v, fa, ring, inside, ctl):
+    elif not appr and _gone(v, fa, pending, inside, ctl):
         return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 3, ext, appr
     push = ext
     if kap > 0.0 and not appr:  # the approach: the operator holds the speed against friction and the hand
@@ -959,13 +975,13 @@ def _advance(
     verifying, seen = False, _UNSEEN  # an approximate return under proof: the period's statistics (_seen)
     while h < h1:
         written, r_old, v_old = pos, r_prev, v  # the ring slot that receives c_h; r_{h−1}; ξ' at the sample's start
+        cmd = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl, pcs)  # c_h into the ring
+        ends = _extent(ring) if (v == 0.0 or ctl[5]) else (0.0, 0.0)  # what the rest and exit tests read of the ring
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
-            x, v, r_prev, v_prev, y, fa, pos, ring, h, model, ctl, k, e_lag, ext, appr, pcs
+            x, v, r_prev, v_prev, y, fa, pos, ends, h, model, ctl, k, e_lag, ext, appr, cmd
         )
-        if tracking:
-            track = _pc_tracked(pcs, track, r_prev - r_old)
-        if verifying:
-            seen = _seen(seen, x, v_old, v, fa + ext)
+        track = _pc_tracked(pcs, track, r_prev - r_old) if tracking else track
+        seen = _seen(seen, x, v_old, v, fa + ext) if verifying else seen
         sat = _saturation(sat, abs(ring[written]) >= top, in_tail)  # c_h at the actuator's force limit
         if absorbed:
             why = absorbed  # 1 at rest, 3 left the one-sided wall for good
