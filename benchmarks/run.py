@@ -1022,7 +1022,8 @@ def bench_commands(quick: bool) -> str:
             if goal is not None and goal < 5.0:  # quick ones: a warm-up, then the median of 3
                 start(dfa_cmd + argv)  # the kernels compiled and cached, the files in the page cache
                 t = sorted(start(dfa_cmd + argv) for _ in range(3))[1]
-            else:  # the slow ones: one run (the kernels are cached by the commands before)
+            else:  # the slow ones: one run after one that compiles what the commands before did not (its workers')
+                start(dfa_cmd + argv)
                 t = start(dfa_cmd + argv)
             runs, samples = _counted(argv)
             if argv[0] == "zwidth":  # its grid runs outside the design searches' run cache: its JSON counts them
@@ -1035,8 +1036,9 @@ def bench_commands(quick: bool) -> str:
         "",
         "## Everyday commands (issue 43)",
         "",
-        "Each command in a fresh process: the median of 3 runs after one that fills the caches (one run for those",
-        "with a goal of 5 s or more, or none), dfa's bytecode compiled first as pip does; × is the time over",
+        "Each command in a fresh process: the median of 3 runs after one that fills the caches (for those with a",
+        "goal of 5 s or more, or none: one run after that one), dfa's bytecode compiled first as pip does; × is the",
+        "time over",
         f'`python -c "import numpy"` ({numpy_t:.3f} s, best of 5) timed in the same run. Runs and samples: what the',
         "command simulates through the design searches' run cache, counted in-process (samples are the runs'",
         "lengths: a run that rests or diverges stops earlier; the Z-width's grid: its JSON's count, samples not",
