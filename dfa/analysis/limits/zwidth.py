@@ -91,8 +91,7 @@ from ..simulation import (
     GROWTH,
     SETTLE,
     STABLE_AMPLITUDE,
-    default_samples,
-    divergence_bound,
+    run_bounds,
     run_points,
     wall_run_codes,
 )
@@ -196,8 +195,8 @@ def _runs(dev: Device, k: float, ctl: WallParams, xi_dots: Any, cap: int) -> lis
         for _mu, _b, _s, x0, v0 in start_points(p.mu, p.beta, p.sigma, xd, ctl):
             # run length from the loop's time scales with the controller's net damping (an estimate: a run
             # too short to tell is "undecided", never a verdict)
-            n = min(default_samples(p.mu, p.beta, p.sigma, v0, x0, wall=ctl), cap)
-            out.append((p.mu, p.beta, p.sigma, x0, v0, n, divergence_bound(x0, v0, p.mu, DIVERGENCE_BOUND)))
+            n, bound = run_bounds(p.mu, p.beta, p.sigma, v0, x0, ctl, DIVERGENCE_BOUND)  # a valid device's groups
+            out.append((p.mu, p.beta, p.sigma, x0, v0, min(n, cap), bound))
     return out
 
 
