@@ -1812,7 +1812,9 @@ class PassivityController(Element[tuple[int, float | None]]):
     wall_flag: ClassVar[bool] = False
     absent: ClassVar[object] = None
     needs_resolution: ClassVar[bool] = True
-    #: Its runs are integrated sample by sample (no period skipping: the observed energy is part of the state).
+    #: Its runs cost more than the spring's: the observed energy is part of the state, so a period repeats (and is
+    #: skipped) only once the controller holds at its limit, and a chatter whose ξ drifts by rounding is integrated
+    #: until its outcome is proven (:mod:`dfa.core.wall_kernel`, "Outcome-only runs").
     sweep_points: ClassVar[int] = 300
 
     def __post_init__(self) -> None:
