@@ -43,8 +43,10 @@ def fire(spot):
     if events and events[0][0] == spot and threading.current_thread() is threading.main_thread():
         sig = getattr(signal, events.pop(0)[1])
         os.kill(os.getpid(), sig)
+        fired.set()
 
 released = threading.Event()  # made before the instrumentation: the main thread passed the "bar" spot
+fired = threading.Event()  # a signal was sent (the threads held for "submit", "joblib" and "wait" go on)
 init = threading.Condition.__init__
 def instrumented(self, lock=None):
     init(self, lock)
@@ -64,6 +66,8 @@ def started_late(self):
     # main thread enters the wait (under load it could find the thread started and never wait: no signal sent)
     if events and events[0][0] == "bar":
         released.wait(60)
+    elif events and events[0][0] in ("submit", "joblib") and where["spot"] == events[0][0]:
+        fired.wait(60)  # a thread started at the spot: likewise, the main thread then waits for its start
     bootstrap(self)
 threading.Thread._bootstrap_inner = started_late
 
@@ -86,6 +90,16 @@ def at_shutdown(self, *args, **kwargs):
 ThreadPoolExecutor.shutdown = at_shutdown
 import joblib
 joblib.Parallel.__call__ = spot("joblib", joblib.Parallel.__call__)
+
+import dfa.analysis.maps as maps
+run_chunk = maps._run_chunk
+def chunk_after_the_wait(*args):
+    # a "wait" event pending: a map's chunk ends only once the main thread waits for it (a small chunk could end
+    # before the main thread asks for its result, which then never waits: no signal sent)
+    if events and events[0][0] == "wait" and threading.current_thread() is not threading.main_thread():
+        fired.wait(60)
+    return run_chunk(*args)
+maps._run_chunk = chunk_after_the_wait
 
 if sys.argv[2].startswith("api"):  # dfa's API under Python's own SIGINT handler; api-processes: on loky
     import dfa
