@@ -206,7 +206,8 @@ def test_eq4_design_searches_batch_equals_simulate_per_point(delay):
 
 @pytest.mark.parametrize(
     ("bad", "named"),
-    [((-1.0, 0.1, 0.5, 0.0, 1.0), "mu"), ((100.0, -0.1, 0.5, 0.0, 1.0), "beta"),
+    [((-1.0, 0.1, 0.5, 0.0, 1.0), "mu"), ((1e-320, 0.1, 0.5, 0.0, 1.0), "1/μ overflows"),
+     ((100.0, -0.1, 0.5, 0.0, 1.0), "beta"),
      ((100.0, 0.1, 0.5, 0.0, float("nan")), "nan"), ((100.0, 1e308, 0.5, 0.0, 1.0), "β/μ = bT/m")],
 )  # fmt: skip
 def test_eq4_design_searches_refuse_a_point_simulate_refuses(bad, named):

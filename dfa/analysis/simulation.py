@@ -119,6 +119,7 @@ Examples
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Iterator, Sequence
 from fractions import Fraction
 
@@ -905,7 +906,8 @@ def check_run_inputs(
         ) from None
     out = tuple(np.ascontiguousarray(a.ravel()) for a in arrs)
     m, b, s, v, x = out
-    bad = ~(np.isfinite(m) & (m > 0) & np.isfinite(b) & (b >= 0) & np.isfinite(s) & (s >= 0))
+    # μ a normal number (check_mu's rule: 1/μ must not overflow), β, σ >= 0, all finite
+    bad = ~(np.isfinite(m) & (m >= sys.float_info.min) & np.isfinite(b) & (b >= 0) & np.isfinite(s) & (s >= 0))
     bad |= ~(np.isfinite(v) & np.isfinite(x))
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
