@@ -528,7 +528,7 @@ def _same_loop(
 # skipping reads, :func:`_pc_repeats`), then the controller's d + 1 bookings (beside the command ring's slots), then
 # the window's W terms
 PE, PWPOS, PF, PTOT, PINIT, PMODE, PBK = 0, 1, 2, 3, 4, 5, 6
-#: the controller's force at a reading with v_h ≠ 0 (:func:`_control`): 0 as the ledger is >= 0 (IDLE), at its limit
+#: the controller's force at a reading with v_h ≠ 0 (:func:`_pc_force`): 0 as the ledger is >= 0 (IDLE), at its limit
 #: (HELD), or a value that depends on the observed energy itself (DEPENDS); at v_h = 0 it is 0 whatever the energy
 IDLE, HELD, DEPENDS = 1, 2, 4
 _U = 2.0**-53  # the unit roundoff of a double: |fl(a ∘ b) − a ∘ b| <= u |a ∘ b|
@@ -557,18 +557,28 @@ def _observe(pcs: FloatArray, applied: float, vh: float, delay: int, window: int
     pcs[PTOT] += term
     e: float = pcs[PE] + term
     if window > 0:
-        i = int(pcs[PWPOS])
-        w0 = PBK + delay + 1
-        e -= pcs[w0 + i]
-        pcs[w0 + i] = term
-        if i + 1 < window:
-            pcs[PWPOS] = i + 1
-        else:  # the window wrapped: its sum afresh, so that no rounding accumulates over the run
-            pcs[PWPOS] = 0
-            e = 0.0
-            for k in range(window):
-                e += pcs[w0 + k]
+        e = _windowed(pcs, e, term, delay, window)
     pcs[PE] = e
+    return e
+
+
+@njit(cache=True, nogil=True)
+def _windowed(pcs: FloatArray, e: float, term: float, delay: int, window: int) -> float:
+    """A windowed observer's E (:func:`_observe`): ``e`` = E + ``term`` less the term that leaves the last W, the
+    new term stored in its place; at each wrap the window's sum afresh, so that no rounding accumulates over the
+    run. Not inlined: only a windowed observer's runs call it (an inlined helper that takes an array costs a
+    reference count a sample, :func:`_advance`)."""
+    i = int(pcs[PWPOS])
+    w0 = PBK + delay + 1
+    e -= pcs[w0 + i]
+    pcs[w0 + i] = term
+    if i + 1 < window:
+        pcs[PWPOS] = i + 1
+    else:
+        pcs[PWPOS] = 0
+        e = 0.0
+        for k in range(window):
+            e += pcs[w0 + k]
     return e
 
 
@@ -597,32 +607,48 @@ def held_energy(x0: float, quantize: bool, ctl: Controller) -> float:
 
 
 @njit(cache=True, inline="always")
-def _control(pcs: FloatArray, e: float, vh: float, delay: int, pos: int, limit: float) -> float:
-    """The passivity controller's force at reading h (Hannaford and Ryu 2002): a damper α = −L/v_h² on v_h when
-    the ledger L = E_obs + (the dissipation it has booked for its forces not yet applied and observed) is
-    negative, the force −α v_h = L/v_h clipped to ±``limit``; 0 when L >= 0 or v_h = 0. The reading's mode
-    (:data:`IDLE`, :data:`HELD`, :data:`DEPENDS`; 0 at v_h = 0) into ``pcs[PMODE]`` (period skipping:
-    :func:`_pc_repeats`)."""
+def _pending(pcs: FloatArray, delay: int, pos: int) -> float:
+    """The dissipation the passivity controller has booked for its forces not yet applied and observed: the
+    bookings of the d + 1 slots but slot ``pos``, which holds the command just observed (applied over [h − 1, h)),
+    summed in slot order."""
     pending = 0.0
     for i in range(delay + 1):
-        if i != pos:  # slot pos holds the command just observed (applied over [h − 1, h))
+        if i != pos:
             pending += pcs[PBK + i]
-    ledger = e + pending
+    return pending
+
+
+@njit(cache=True, inline="always")
+def _pc_force(ledger: float, vh: float, limit: float) -> tuple[float, int]:
+    """The passivity controller's force at reading h (Hannaford and Ryu 2002): a damper α = −L/v_h² on v_h when
+    the ledger L = E_obs + (:func:`_pending`) is negative, the force −α v_h = L/v_h clipped to ±``limit``; 0 when
+    L >= 0 or v_h = 0. And the reading's mode (:data:`IDLE`, :data:`HELD`, :data:`DEPENDS`; 0 at v_h = 0; NaN:
+    DEPENDS), what period skipping reads (:func:`_pc_repeats`)."""
     if not (ledger < 0.0 and vh != 0.0):
-        pcs[PMODE] = 0.0 if vh == 0.0 else (IDLE if ledger >= 0.0 else DEPENDS)  # NaN: DEPENDS
-        return 0.0
+        return 0.0, (0 if vh == 0.0 else (IDLE if ledger >= 0.0 else DEPENDS))
     q = ledger / vh
-    pcs[PMODE] = HELD if (q <= -limit or q >= limit) else DEPENDS
-    return max(-limit, min(limit, q))
+    return max(-limit, min(limit, q)), (HELD if (q <= -limit or q >= limit) else DEPENDS)
+
+
+@njit(cache=True, inline="always")
+def _controlled(
+    ledger: float, vh: float, w: float, c: float, inside: bool, ctl: Controller
+) -> tuple[float, float, int]:
+    """The controller's force f (:func:`_pc_force`, its limit ``ctl[10]``) joined to the wall's command ``c``: the
+    command (w + f) through a one-sided wall's clip (:func:`_shape`), and the force it lets through; and the mode."""
+    f, mode = _pc_force(ledger, vh, ctl[10])
+    if f != 0.0:
+        cf = _shape(w + f, inside, ctl[5])
+        f, c = cf - c, cf
+    return f, c, mode
 
 
 @njit(cache=True, inline="always")
 def _pc_track(
-    pcs: FloatArray, lo: float, hi: float, modes: int, vmax: float, vh: float
+    e: float, m: int, lo: float, hi: float, modes: int, vmax: float, vh: float
 ) -> tuple[float, float, int, float]:
-    """One more reading of a tracked period (:func:`_pc_repeats`): the range of E, the modes met, the largest
-    |v_h| at a held force."""
-    e, m = pcs[PE], int(pcs[PMODE])
+    """One more reading of a tracked period (:func:`_pc_repeats`) at energy ``e`` and mode ``m``: the range of E,
+    the modes met, the largest |v_h| at a held force."""
     if m == HELD:
         vmax = max(vmax, abs(vh))
     return min(lo, e), max(hi, e), modes | m, vmax
@@ -696,6 +722,25 @@ def _clip(c: float, top: float) -> float:
 
 
 @njit(cache=True, inline="always")
+def _reading(
+    x: float, r_prev: float, v_prev: float, y: float, h: int, quantize: bool, ctl: Controller
+) -> tuple[float, float, float, float, float, float, bool]:
+    """The wall's reading at sample h (:func:`_command` without the observer and the ring): r_h, v_h, y_h, the
+    spring's part, w = that part − β_B y_h, the command c = w shaped by a one-sided wall (:func:`_shape`), and
+    whether the reading is inside it."""
+    damping, pole, filtered = ctl[0], ctl[1], ctl[2]
+    r = math.floor(x) if quantize else x
+    vh = r - r_prev
+    if filtered:
+        y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
+    else:
+        y = vh
+    base, inside = _base(r, quantize, ctl)
+    w = base - damping * y
+    return r, vh, y, base, w, _shape(w, inside, ctl[5]), inside
+
+
+@njit(cache=True, inline="always")
 def _command(
     x: float,
     r_prev: float,
@@ -716,28 +761,19 @@ def _command(
     and whether the reading is inside a one-sided wall (r_h + ½ > s; r_h > s without the encoder).
 
     With a state ``pcs`` (non-empty: :func:`observer_size`) the passivity observer adds the sample just ended
-    (:func:`_observe`) and, with the controller on (``ctl[8]``), its force (:func:`_control`) joins the command
+    (:func:`_observe`) and, with the controller on (``ctl[8]``), its force (:func:`_controlled`) joins the command
     (through a one-sided wall's clip: the force it adds is what the clip lets through), its booked dissipation
     −f v_h beside the command's slot and f in ``pcs[PF]``. Last, the actuator's force limit clips the command to
     ±φ_max (``ctl[11]``; :func:`_clip`) before it enters the delay ring: what the controller booked is its force
     before that clip.
     """
-    damping, pole, filtered, onesided = ctl[0], ctl[1], ctl[2], ctl[5]
-    r = math.floor(x) if quantize else x
-    vh = r - r_prev
-    if filtered:
-        y = pole * y + (1.0 - pole) * v_prev if h > 0 else 0.0
-    else:
-        y = vh
-    base, inside = _base(r, quantize, ctl)
-    w = base - damping * y
-    c = _shape(w, inside, onesided)
+    r, vh, y, base, w, c, inside = _reading(x, r_prev, v_prev, y, h, quantize, ctl)
     if pcs.shape[0] > 0:
         e = _observe(pcs, ring[pos], vh, delay, ctl[9])
-        f = _control(pcs, e, vh, delay, pos, ctl[10]) if ctl[8] else 0.0
-        if f != 0.0:
-            cf = _shape(w + f, inside, onesided)
-            f, c = cf - c, cf
+        f = 0.0
+        if ctl[8]:
+            f, c, mode = _controlled(e + _pending(pcs, delay, pos), vh, w, c, inside, ctl)
+            pcs[PMODE] = mode
         pcs[PF] = f
         pcs[PBK + pos] = -f * vh
     c = _clip(c, ctl[11])
@@ -850,11 +886,12 @@ def _pc_fresh(pcs: FloatArray, pc: bool) -> tuple[float, float, float, int, floa
 
 @njit(cache=True, inline="always")
 def _pc_tracked(
-    pcs: FloatArray, track: tuple[float, float, float, int, float], vh: float
+    track: tuple[float, float, float, int, float], e: float, m: int, vh: float
 ) -> tuple[float, float, float, int, float]:
-    """A watched period (:func:`_pc_fresh`) with one more reading (:func:`_pc_track`); E at its start kept."""
+    """A watched period (:func:`_pc_fresh`) with one more reading at energy ``e`` and mode ``m``
+    (:func:`_pc_track`); E at its start kept."""
     e0, elo, ehi, modes, vmax = track
-    elo, ehi, modes, vmax = _pc_track(pcs, elo, ehi, modes, vmax, vh)
+    elo, ehi, modes, vmax = _pc_track(e, m, elo, ehi, modes, vmax, vh)
     return e0, elo, ehi, modes, vmax
 
 
@@ -936,6 +973,54 @@ def _store(st: FloatArray, values: tuple[float, ...]) -> None:
     st[CSAT] = sat
 
 
+@njit(cache=True, inline="always")
+def _observed(pcs: FloatArray, e: float, total: float, held: float, mode: int) -> None:
+    """The observer's state that :func:`_advance` keeps in locals back into ``pcs`` (nothing without an observer)."""
+    if pcs.shape[0] > 0:
+        pcs[PE], pcs[PTOT], pcs[PINIT], pcs[PMODE] = e, total, held, mode
+
+
+@njit(cache=True, nogil=True)
+def _returned(
+    st: FloatArray, ref: FloatArray, ring: FloatArray, pcs: FloatArray, e: float, tail: FloatArray,
+    loop: tuple[float, float, float, float, float, float, int], exact: bool, at: tuple[int, int, int, int, bool],
+    watch: tuple[int, bool, bool, float, int, int, tuple[float, float, float, float],
+                 tuple[float, float, float, int, float]],
+    model: Model, ctl: Controller, limit: float,
+) -> tuple[int, int, int, int, bool, bool, float, int, int, tuple[float, float, float, float],
+           tuple[float, float, float, int, float]]:  # fmt: skip
+    """:func:`_advance` at sample h = ``at[0]`` of its range (h1, the run's n, the tail's start, whether in it
+    follow), where the loop's state ``loop`` (ξ, ξ', r, v, y, φ_A, ring position) is back at the reference's, bit
+    for bit (``exact``) or with ξ within :data:`_XTOL`: the period P found, and the whole periods left skipped
+    once nothing can change them (module docstring: a passivity controller's force proven to repeat,
+    :func:`_pc_repeats`; an approximate return proven over one more period, :func:`_proved`), else one more period
+    watched from here. ``watch`` = (the proven period, verifying, tracking, the reference's ξ and sample, the
+    span to its renewal, the watched period's statistics :func:`_seen` and :func:`_pc_tracked`). Returns P, h
+    after the skip, the samples skipped and ``watch`` updated; ``e`` is the observer's E, kept in a local by
+    :func:`_advance`, into ``pcs`` (what :func:`_pc_repeats` and :func:`_pc_fresh` read). Not inlined: it runs
+    at returns of the state alone, and an inlined helper that takes arrays costs a reference count each."""
+    if pcs.shape[0] > 0:
+        pcs[PE] = e
+    x, v, r_prev, v_prev, y, fa, pos = loop
+    h, h1, n, tail_start, in_tail = at
+    proven, verifying, tracking, rx, rh, span, seen, track = watch
+    delay, pc = model[3], ctl[8]
+    period = h - rh
+    if not exact and proven == 0:  # an approximate return: one more period proves the rest of the run, or not
+        if verifying:
+            changes = pc and not _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track)
+            proven = _proved(st, x - rx, period, n - h, seen, model, limit, changes)
+            verifying = False
+        if proven == 0:  # watch the next period from this state
+            _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
+            return period, h, 0, proven, True, pc, x, h, 2 * period, _UNSEEN, _pc_fresh(pcs, pc)
+    elif pc and proven == 0 and not (tracking and _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track)):
+        # the controller's force may yet change: watch it over the next period, from this same state
+        return period, h, 0, proven, False, True, rx, h, 2 * period, seen, _pc_fresh(pcs, True)
+    jump = _jumped(tail, in_tail, h, h1, period, tail_start)
+    return period, h + jump, jump, proven, False, tracking, rx, rh, h1, seen, track  # no renewals: < 1 period left
+
+
 @njit(cache=True, nogil=True)
 def _advance(
     st: FloatArray, ring: FloatArray, ref: FloatArray, h0: int, h1: int, mu: float, beta: float, sigma: float,
@@ -962,7 +1047,7 @@ def _advance(
     k = sample_constants(mu, beta)
     e_lag = math.exp(-1.0 / lag) if lag > 0.0 else 0.0
     x, v, r_prev, v_prev, y, fa, pos, tmin, tmax, period, ext, appr, sat = _loaded(st)
-    record, pc, top = rec_x.shape[0] > 0, ctl[8], ctl[11]
+    record, pc, top, obs = rec_x.shape[0] > 0, ctl[8], ctl[11], pcs.shape[0] > 0
     skip = skip and not record and (not pc or ctl[9] == 0)
     # an approximate return of ξ is provable only where ξ enters the loop through its reading alone (module docstring)
     apx = approx and skip and quantize and lag == 0.0 and ctl[4] == 0.0 and not ctl[5]
@@ -973,16 +1058,31 @@ def _advance(
         _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
     tracking, track = False, _pc_fresh(pcs, False)  # a passivity controller's period under watch (_pc_fresh)
     verifying, seen = False, _UNSEEN  # an approximate return under proof: the period's statistics (_seen)
+    # the observer's E, E over the run, the held energy still to count and the controller's mode: locals (_command)
+    pe, ptot, pinit, pmode = (pcs[PE], pcs[PTOT], pcs[PINIT], int(pcs[PMODE])) if obs else (0.0, 0.0, 0.0, 0)
     while h < h1:
-        written, r_old, v_old = pos, r_prev, v  # the ring slot that receives c_h; r_{h−1}; ξ' at the sample's start
-        cmd = _command(x, r_prev, v_prev, y, pos, ring, h, delay, quantize, ctl, pcs)  # c_h into the ring
+        r_old, v_old = r_prev, v  # r_{h−1}; ξ' at the sample's start
+        r, vh, yh, base, w, c, inside = _reading(x, r_prev, v_prev, y, h, quantize, ctl)
+        if obs:  # _command's observer and controller, inline (an inlined helper taking pcs costs a count a sample)
+            term = -ring[pos] * vh + pinit  # _observe
+            pinit, ptot, pe = 0.0, ptot + term, pe + term
+            pe = _windowed(pcs, pe, term, delay, ctl[9]) if ctl[9] > 0 else pe
+            pend = 0.0
+            for i in range(delay + 1 if pc else 0):  # _pending (slot pos holds the command just observed)
+                pend += pcs[PBK + i] if i != pos else 0.0  # pend is never −0: adding +0 leaves it bit for bit
+            f, c, pmode = _controlled(pe + pend, vh, w, c, inside, ctl) if pc else (0.0, c, pmode)
+            pcs[PBK + pos] = -f * vh
+        c = _clip(c, top)
+        sat = _saturation(sat, abs(c) >= top, in_tail)  # c_h at the actuator's force limit
+        ring[pos] = c  # c_h into the ring
+        pos = pos + 1 if pos < delay else 0
         ends = _extent(ring) if (v == 0.0 or ctl[5]) else (0.0, 0.0)  # what the rest and exit tests read of the ring
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
-            x, v, r_prev, v_prev, y, fa, pos, ends, h, model, ctl, k, e_lag, ext, appr, cmd
-        )
-        track = _pc_tracked(pcs, track, r_prev - r_old) if tracking else track
+            x, v, r_prev, v_prev, y, fa, pos, ends, h, model, ctl, k, e_lag, ext, appr,
+            (r, vh, yh, base, pos, ring[pos], inside),
+        )  # fmt: skip
+        track = _pc_tracked(track, pe, pmode, r_prev - r_old) if tracking else track
         seen = _seen(seen, x, v_old, v, fa + ext) if verifying else seen
-        sat = _saturation(sat, abs(ring[written]) >= top, in_tail)  # c_h at the actuator's force limit
         if absorbed:
             why = absorbed  # 1 at rest, 3 left the one-sided wall for good
             break
@@ -1003,31 +1103,16 @@ def _advance(
             skip and back and (proven == 0 or (h - rh) % proven == 0)
             and _same_loop(ref, ring, pos, delay, rx, v, r_prev, v_prev, y, fa, filtered, lag)
         ):  # fmt: skip
-            period = h - rh  # the state of sample rh is back (ξ within _XTOL when approx): skip the whole periods left
-            if not exact and proven == 0:  # an approximate return: one more period proves the rest of the run, or not
-                if verifying:
-                    proven = _proved(st, x - rx, period, n - h, seen, model, min(bound, travel),
-                                     pc and not _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track))  # fmt: skip
-                    verifying = False
-                if proven == 0:  # watch the next period from this state
-                    verifying, tracking, rx, rh, span = True, pc, x, h, 2 * period
-                    seen, track = _UNSEEN, _pc_fresh(pcs, pc)
-                    _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
-                    continue
-            elif pc and proven == 0 and not (tracking and _pc_repeats(pcs, delay, ctl[10], period, n - h + 1, track)):
-                # the controller's force may yet change: watch it over the next period, from this same state
-                tracking, rh, span, verifying = True, h, 2 * period, False
-                track = _pc_fresh(pcs, True)
-                continue
-            jump = _jumped(tail, in_tail, h, h1, period, tail_start)
-            h += jump
+            period, h, jump, proven, verifying, tracking, rx, rh, span, seen, track = _returned(
+                st, ref, ring, pcs, pe, tail, (x, v, r_prev, v_prev, y, fa, pos), exact, (h, h1, n, tail_start, in_tail),
+                (proven, verifying, tracking, rx, rh, span, seen, track), model, ctl, min(bound, travel),
+            )  # fmt: skip
             skipped += jump
-            span = h1  # no more renewals: fewer than one period is left
-            verifying = False
         elif skip and h - rh == span:
             rx, rh, span = (x if not appr else np.nan), h, 2 * span
             _keep(ref, ring, pos, delay, x, v, r_prev, v_prev, y, fa)
             tracking = verifying = False
+    _observed(pcs, pe, ptot, pinit, pmode)
     _store(st, (x, v, r_prev, v_prev, y, fa, float(pos), tmin, tmax, float(period), ext, 1.0 if appr else 0.0, sat))
     return h, why, peak, skipped
 
