@@ -626,7 +626,7 @@ def _pc_force(ledger: float, vh: float, limit: float) -> tuple[float, int]:
     DEPENDS), what period skipping reads (:func:`_pc_repeats`)."""
     if not (ledger < 0.0 and vh != 0.0):
         return 0.0, (0 if vh == 0.0 else (IDLE if ledger >= 0.0 else DEPENDS))
-    q = ledger / vh
+    q = ledger if vh == 1.0 else (-ledger if vh == -1.0 else ledger / vh)  # ± a tick: exact, without a division
     return max(-limit, min(limit, q)), (HELD if (q <= -limit or q >= limit) else DEPENDS)
 
 
@@ -1079,7 +1079,7 @@ def _advance(
         ends = _extent(ring) if (v == 0.0 or ctl[5]) else (0.0, 0.0)  # what the rest and exit tests read of the ring
         x, v, r_prev, v_prev, y, fa, pos, lo_t, hi_t, absorbed, ext, appr = _sample(
             x, v, r_prev, v_prev, y, fa, pos, ends, h, model, ctl, k, e_lag, ext, appr,
-            (r, vh, yh, base, pos, ring[pos], inside),
+            (r, vh, yh, base, pos, c if delay == 0 else ring[pos], inside),  # d = 0: c_h, not read back
         )  # fmt: skip
         track = _pc_tracked(track, pe, pmode, r_prev - r_old) if tracking else track
         seen = _seen(seen, x, v_old, v, fa + ext) if verifying else seen
