@@ -141,6 +141,17 @@ once per run, one loop over its blocks with a branch per element code, into the 
 Energy bookkeeping is not implemented for the controller path
 (:func:`dfa.simulate` refuses ``energy=True`` with a controller).
 
+The hot loop (:func:`_advance`) passes no array to a per-sample helper: numba counts a reference on each array
+an inlined helper takes, at every call, a sizeable part of a controller sample. So it reads the wall's command
+(:func:`_reading`), runs the passivity observer and controller inline with their state in local variables (E, E over
+the whole run, the held energy still to count, the controller's mode; the bookings and a window's terms stay in
+the observer's array, read and written in the loop itself; a window's update is a call of its own,
+:func:`_windowed`), writes the command into the delay ring, and hands the sample its outputs. :func:`_command` is
+the same controller on the observer's array, what :func:`applied_forces` replays: a recorded run steps under the
+forces the replay gives, bit for bit (``tests/test_eq4_passivity_controller_locals.py``). The controller's quotient
+L/v_h is taken without a division at v_h = ±1 (exact), and at d = 0 the command applied is c_h itself, not read
+back from the ring.
+
 Developers: this module compiles in :func:`dfa.core.kernel.step`,
 :func:`~dfa.core.kernel.sample_constants`, :func:`~dfa.core.kernel.tail_stats`,
 :func:`~dfa.core.kernel.tail_extremes` and :mod:`dfa.core.exprel`; numba keys its
