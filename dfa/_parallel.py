@@ -314,10 +314,15 @@ def warm_processes(workers: int, module: str) -> None:
 
 
 def _import(module: str) -> None:
-    """Import ``module`` (in a worker process, :func:`warm_processes`)."""
+    """Import ``module`` (in a worker process, :func:`warm_processes`); at the worker's exit, freeze the objects then
+    alive out of the garbage collector (:func:`gc.freeze`), so that its interpreter ends without collecting numba's
+    and scipy's objects: the command's own exit waits for its workers' (about 0.2 s less, issue 43)."""
+    import atexit
+    import gc
     import importlib
 
     importlib.import_module(module)
+    atexit.register(gc.freeze)
 
 
 class _Claims:

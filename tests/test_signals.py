@@ -254,3 +254,42 @@ def test_interrupted_process_pool_drops_only_lokys_manager_thread_errors(monkeyp
         t.start()
         t.join()
     assert seen == ["other"]
+
+
+_EXIT_SCRIPT = r"""
+import gc, io, sys
+from dfa.cli import main
+frozen = gc.get_freeze_count()
+code = main(["params", "--device", "delta", "--stiffness", "1000"])  # in-process: nothing frozen
+assert gc.get_freeze_count() == frozen, "an in-process main froze the collector"
+sys.argv = ["dfa", "params", "--device", "delta", "--stiffness", "1000", "--json"]
+code = main()  # the program: frozen once done, its output already written
+print("frozen" if gc.get_freeze_count() > frozen else "not frozen", file=sys.stderr)
+sys.exit(code)
+"""
+
+
+def test_program_exit_freezes_the_collector_after_its_output_and_in_process_calls_do_not():
+    """``dfa`` as the program freezes the objects alive once its command is done (gc.freeze: the interpreter's last
+    collections skip them, issue 43); its output and exit code are those of before; ``main(argv)`` in a caller's
+    process never freezes."""
+    import json
+
+    proc = subprocess.run([sys.executable, "-c", _EXIT_SCRIPT], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr.strip().splitlines()[-1] == "frozen"
+    assert json.loads(proc.stdout.strip().splitlines()[-1])["mu"] == 2250.0
+
+
+def test_worker_warm_up_freezes_the_collector_at_the_workers_exit(monkeypatch):
+    """A worker process's warm-up (dfa._parallel._import) imports the module and registers gc.freeze to run at
+    its exit, so that the worker's interpreter ends without collecting numba's objects (the command waits for it)."""
+    import atexit
+    import gc
+
+    from dfa import _parallel
+
+    registered = []
+    monkeypatch.setattr(atexit, "register", lambda fn, *a, **k: registered.append(fn))
+    _parallel._import("json")
+    assert registered == [gc.freeze]
