@@ -281,15 +281,26 @@ def test_program_exit_freezes_the_collector_after_its_output_and_in_process_call
     assert json.loads(proc.stdout.strip().splitlines()[-1])["mu"] == 2250.0
 
 
-def test_worker_warm_up_freezes_the_collector_at_the_workers_exit(monkeypatch):
-    """A worker process's warm-up (dfa._parallel._import) imports the module and registers gc.freeze to run at
-    its exit, so that the worker's interpreter ends without collecting numba's objects (the command waits for it)."""
+def test_worker_warm_up_runs_the_modules_warm_worker_and_freezes_the_collector_at_exit(monkeypatch):
+    """A worker process's warm-up (dfa._parallel._import) imports the module, runs its ``warm_worker()`` when it has
+    one (the Z-width's loads numba there, while the worker waits for its first column), and registers gc.freeze to
+    run at the worker's exit (its interpreter then ends without collecting numba's objects; the command waits)."""
     import atexit
     import gc
+    import types
 
     from dfa import _parallel
+    from dfa.analysis.limits import zwidth
 
-    registered = []
+    registered, warmed = [], []
     monkeypatch.setattr(atexit, "register", lambda fn, *a, **k: registered.append(fn))
-    _parallel._import("json")
-    assert registered == [gc.freeze]
+    _parallel._import("json")  # no warm_worker: imported only
+    fake = types.ModuleType("dfa_fake_warm")
+    fake.warm_worker = lambda: warmed.append(True)  # type: ignore[attr-defined]
+    monkeypatch.setitem(sys.modules, "dfa_fake_warm", fake)
+    _parallel._import("dfa_fake_warm")
+    assert registered == [gc.freeze, gc.freeze] and warmed == [True]
+    zwidth.warm_worker()
+    from dfa.core import exprel
+
+    assert exprel._phi_flat._dispatcher is not None  # numba loaded, the column's first kernel ready
