@@ -254,3 +254,53 @@ def test_interrupted_process_pool_drops_only_lokys_manager_thread_errors(monkeyp
         t.start()
         t.join()
     assert seen == ["other"]
+
+
+_EXIT_SCRIPT = r"""
+import gc, io, sys
+from dfa.cli import main
+frozen = gc.get_freeze_count()
+code = main(["params", "--device", "delta", "--stiffness", "1000"])  # in-process: nothing frozen
+assert gc.get_freeze_count() == frozen, "an in-process main froze the collector"
+sys.argv = ["dfa", "params", "--device", "delta", "--stiffness", "1000", "--json"]
+code = main()  # the program: frozen once done, its output already written
+print("frozen" if gc.get_freeze_count() > frozen else "not frozen", file=sys.stderr)
+sys.exit(code)
+"""
+
+
+def test_program_exit_freezes_the_collector_after_its_output_and_in_process_calls_do_not():
+    """``dfa`` as the program freezes the objects alive once its command is done (gc.freeze: the interpreter's last
+    collections skip them, issue 43); its output and exit code are those of before; ``main(argv)`` in a caller's
+    process never freezes."""
+    import json
+
+    proc = subprocess.run([sys.executable, "-c", _EXIT_SCRIPT], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr.strip().splitlines()[-1] == "frozen"
+    assert json.loads(proc.stdout.strip().splitlines()[-1])["mu"] == 2250.0
+
+
+def test_worker_warm_up_runs_the_modules_warm_worker_and_freezes_the_collector_at_exit(monkeypatch):
+    """A worker process's warm-up (dfa._parallel._import) imports the module, runs its ``warm_worker()`` when it has
+    one (the Z-width's loads numba there, while the worker waits for its first column), and registers gc.freeze to
+    run at the worker's exit (its interpreter then ends without collecting numba's objects; the command waits)."""
+    import atexit
+    import gc
+    import types
+
+    from dfa import _parallel
+    from dfa.analysis.limits import zwidth
+
+    registered, warmed = [], []
+    monkeypatch.setattr(atexit, "register", lambda fn, *a, **k: registered.append(fn))
+    _parallel._import("json")  # no warm_worker: imported only
+    fake = types.ModuleType("dfa_fake_warm")
+    fake.warm_worker = lambda: warmed.append(True)  # type: ignore[attr-defined]
+    monkeypatch.setitem(sys.modules, "dfa_fake_warm", fake)
+    _parallel._import("dfa_fake_warm")
+    assert registered == [gc.freeze, gc.freeze] and warmed == [True]
+    zwidth.warm_worker()
+    from dfa.core import exprel
+
+    assert exprel._phi_flat._dispatcher is not None  # numba loaded, the column's first kernel ready

@@ -14,6 +14,7 @@ modules import numpy, numba, one another and dfa's errors only:
 - :mod:`~dfa.core.storage`: runs that record the storage function, for the soundness checks;
 - :mod:`~dfa.core.dfcore`: the quantizer's describing function (eq. 41) in compiled sums;
 - :mod:`~dfa.core.divdiff` and :mod:`~dfa.core.zohlag`: the ZOH pulse transfer with an amplifier lag;
+- :mod:`~dfa.core.bracket`: many bracketed roots at once, each element on its own (ω(M) of the limit-cycle search);
 - :mod:`~dfa.core.cache`: the cache folder of the compiled kernels (no kernel; imports no numba).
 
 Analyses (:mod:`dfa.analysis.simulation`, :mod:`dfa.analysis.describing`, …) call these with validated dimensionless

@@ -44,7 +44,7 @@ from typing import Any, Generic, ParamSpec, TypeVar, cast, overload
 
 import numpy as np
 
-__all__ = ["njit", "Deferred", "when_numba_loads", "interpreted"]
+__all__ = ["njit", "Deferred", "when_numba_loads", "interpreted", "interpreting"]
 
 _REGISTERED: list[bool] = []
 _WAITING: list[Callable[[Any], None]] = []
@@ -150,6 +150,25 @@ def interpreted(budget: int = INTERPRET_BUDGET) -> Iterator[None]:
     finally:
         with _LOCK:
             _INTERPRET_CALLS[0] = before
+
+
+def interpreting(kernel: Deferred[..., Any]) -> bool:
+    """Whether a call of ``kernel`` now would run its Python source: inside :func:`interpreted`, within its budget,
+    the kernel not compiled yet. A caller with an array form of the same arithmetic runs that instead of a
+    kernel's element loop interpreted (:func:`dfa.core.bracket.bracketed_roots`).
+
+    Examples
+    --------
+    >>> @njit(cache=False)
+    ... def half(x):
+    ...     return 0.5 * x
+    >>> with interpreted():
+    ...     interpreting(half)
+    True
+    >>> interpreting(half)
+    False
+    """
+    return kernel._dispatcher is None and _INTERPRET_CALLS[0] > 0
 
 
 def _interpret(func: Callable[..., Any], args: tuple[Any, ...], kwargs: dict[str, Any]) -> tuple[bool, Any]:

@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 from scipy import optimize
-from scipy.optimize.elementwise import find_root
 
+from ...core.bracket import bracketed_roots
 from ...grids import geometric_grid
 from ...model.wall import WallParams
 from .characteristic import W_GRID, HarmonicLoop, inv_loop, phase_lead, wall_ratio, wall_ratio_scalar
@@ -86,7 +86,8 @@ def _zoh_phase_beta(mu: float, d: int, w: np.ndarray, wall: WallParams | None = 
 
 
 def _omega_for_m(lp: HarmonicLoop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray) -> np.ndarray:
-    """Solve V(M, ω) = 0 for ω in the brackets [wa, wb] (scipy's elementwise find_root).
+    """Solve V(M, ω) = 0 for ω in the brackets [wa, wb] (:func:`dfa.core.bracket.bracketed_roots`: elementwise,
+    the tolerances of scipy's ``find_root``, compiled steps).
 
     Where V does not change sign over a bracket (a root at an end, to rounding), the end with the
     smaller |V| is returned: the same rule as :meth:`PieceOmega.scalar`, so that the scan and the
@@ -98,9 +99,14 @@ def _omega_for_m(lp: HarmonicLoop, m: np.ndarray, wa: np.ndarray, wb: np.ndarray
     no_change = (va == 0.0) | (vb == 0.0) | ((va < 0) == (vb < 0))
     if no_change.all():
         return end
-    res = find_root(lambda w, mm: lp.inv(mm, w).imag, (wa, wb), args=(m,))
-    # elementwise Chandrupatla: a failure (status != 0 where the ends bracket) gives NaN, never an end
-    return np.where(no_change, end, np.where(res.status == 0, res.x, np.nan))
+    change = ~no_change
+    x, _ = bracketed_roots(
+        lambda w, mm: lp.inv(mm, w).imag, wa[change], wb[change], va[change], vb[change], (m[change],)
+    )
+    # a failure (no convergence, a non-finite V) gives NaN, never an end
+    out = end.astype(float)
+    out[change] = x
+    return out
 
 
 def phase_pieces(lp: HarmonicLoop) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -180,7 +186,7 @@ class PieceOmega:
     def __init__(self, lp: HarmonicLoop, ws: np.ndarray, ms: np.ndarray):
         order = np.argsort(ms)
         self.lp, self.ms, self.ws = lp, ms[order], ws[order]
-        self._known: dict[float, float] = {}
+        self._known_m, self._known_w = np.empty(0), np.empty(0)  # amplitudes solved (ascending) and their ω
         self._wanted: list[np.ndarray] = []
         self._ms_list: list[float] | None = None  # the sorted pieces as lists, for the scalar path's brackets
         self._ws_list: list[float] = []
@@ -198,16 +204,27 @@ class PieceOmega:
         self._wanted.append(np.asarray(m, dtype=float).ravel())
 
     def __call__(self, m: np.ndarray) -> np.ndarray:
-        """ω(M) at the amplitudes ``m`` (and those :meth:`want` asked for), each solved once per piece."""
+        """ω(M) at the amplitudes ``m`` (and those :meth:`want` asked for), each solved once per piece.
+
+        The amplitudes solved are kept sorted with their ω; a call solves the new ones (each once, however often
+        asked) in one run of the root finder and looks every asked one up by :func:`numpy.searchsorted`.
+        """
         m = np.asarray(m, dtype=float)
-        known = self._known
-        new = [x for x in np.concatenate([m.ravel(), *self._wanted]).tolist() if x not in known]
+        asked = np.concatenate([m.ravel(), *self._wanted])
         self._wanted = []
-        if new:
-            todo = np.array(list(dict.fromkeys(new)))
-            wa, wb = self._brackets(todo)
-            known.update(zip(todo.tolist(), _omega_for_m(self.lp, todo, wa, wb).tolist(), strict=True))
-        return np.array([known[x] for x in m.ravel().tolist()], dtype=float).reshape(m.shape)
+        new = np.unique(asked[~self._known(asked)])
+        if new.size:
+            wa, wb = self._brackets(new)
+            ms = np.concatenate([self._known_m, new])
+            order = np.argsort(ms, kind="stable")
+            self._known_m = ms[order]
+            self._known_w = np.concatenate([self._known_w, _omega_for_m(self.lp, new, wa, wb)])[order]
+        return self._known_w[np.searchsorted(self._known_m, m.ravel())].reshape(m.shape)
+
+    def _known(self, m: np.ndarray) -> np.ndarray:
+        """Whether each amplitude of ``m`` is solved already."""
+        k = np.minimum(np.searchsorted(self._known_m, m), max(self._known_m.size - 1, 0))
+        return self._known_m[k] == m if self._known_m.size else np.zeros(m.shape, dtype=bool)
 
     def scalar(self, m: float) -> float:
         """The same for one amplitude, by Brent's method on the scalar loop inverse (same end rule as the vector path)."""

@@ -565,6 +565,16 @@ def start_workers(grid: int, n_jobs: int = -1) -> None:
         warm_processes(min(workers, int(grid)), __name__)
 
 
+def warm_worker() -> None:
+    """Load numba and a compiled kernel of the boundary columns (the linear bound's φ₂) in a worker process that
+    :func:`start_workers` started, while it waits for its first column (:func:`dfa._parallel.warm_processes`):
+    numba's start, about 0.45 s of one core, then overlaps this process's planning instead of delaying that
+    column (issue 43)."""
+    from ...core import exprel
+
+    exprel.phi2_array(np.zeros(1))
+
+
 def _workers(jobs: int) -> int:
     """The workers of ``n_jobs`` (-1: every core)."""
     return (os.cpu_count() or 1) if jobs == -1 else jobs
