@@ -150,7 +150,10 @@ the observer's array, read and written in the loop itself; a window's update is 
 the same controller on the observer's array, what :func:`applied_forces` replays: a recorded run steps under the
 forces the replay gives, bit for bit (``tests/test_eq4_passivity_controller_locals.py``). The controller's quotient
 L/v_h is taken without a division at v_h = ±1 (exact), and at d = 0 the command applied is c_h itself, not read
-back from the ring.
+back from the ring. With the controller held at its limit on a bilateral wall with the encoder (the chatter of the
+searches' confirmations) its force −limit·v_h is formed without a branch on v_h (:func:`_pc_command`), and without a
+damper the command is the spring's part itself (−(r + ½) − 0·y is that part, bit for bit): shorter dependency chains
+a sample, the same bits.
 
 Developers: this module compiles in :func:`dfa.core.kernel.step`,
 :func:`~dfa.core.kernel.sample_constants`, :func:`~dfa.core.kernel.tail_stats`,
@@ -655,6 +658,28 @@ def _controlled(
 
 
 @njit(cache=True, inline="always")
+def _pc_command(
+    ledger: float, vh: float, w: float, c: float, inside: bool, ctl: Controller, quantize: bool
+) -> tuple[float, float, int]:
+    """:func:`_controlled` as :func:`_advance` runs it: the same force, command and mode, bit for bit, and with the
+    controller held at its limit (or v_h = 0) on a bilateral wall with the encoder, no branch on v_h's value.
+
+    There v_h = r_h − r_{h−1} is a whole number and the command ``c`` is w (no clip yet): with a finite ``ctl[10]`` =
+    limit > 0, a ledger L <= −limit, |v_h| <= 1 and w finite and not ±0 (−(r_h + ½) is not zero), :func:`_pc_force`
+    gives f = −limit·v_h at v_h = ±1 (|L/v_h| = |L| >= limit: held, mode :data:`HELD`) and f = +0, mode 0 at v_h = 0,
+    and :func:`_controlled` the command w + f and the force (w + f) − w; at v_h = ±0, w + (−limit·v_h) = w ± 0 = w and
+    w − w = +0, that f. Both computed here
+    without branching on v_h: in a chatter (the sign of v_h changing at random) a branch on it mispredicts, on the
+    loop's dependency chain (the reading, the force, the next sample's motion)."""
+    limit = ctl[10]
+    if quantize and not ctl[5] and 0.0 < limit < math.inf and ledger <= -limit and abs(vh) <= 1.0:
+        if 0.0 < abs(w) < math.inf:
+            cf = w + -limit * vh  # at v_h = ±0: w ± 0 = w (w is not ±0)
+            return cf - w, cf, HELD * int(abs(vh))
+    return _controlled(ledger, vh, w, c, inside, ctl)
+
+
+@njit(cache=True, inline="always")
 def _pc_track(
     e: float, m: int, lo: float, hi: float, modes: int, vmax: float, vh: float
 ) -> tuple[float, float, int, float]:
@@ -738,7 +763,9 @@ def _reading(
 ) -> tuple[float, float, float, float, float, float, bool]:
     """The wall's reading at sample h (:func:`_command` without the observer and the ring): r_h, v_h, y_h, the
     spring's part, w = that part − β_B y_h, the command c = w shaped by a one-sided wall (:func:`_shape`), and
-    whether the reading is inside it."""
+    whether the reading is inside it. Without a damper, with the encoder, w is the spring's part itself (that is not
+    −0, so subtracting 0·y = ±0 from it changes nothing while y is finite): one product and one difference fewer on
+    the loop's dependency chain."""
     damping, pole, filtered = ctl[0], ctl[1], ctl[2]
     r = math.floor(x) if quantize else x
     vh = r - r_prev
@@ -747,7 +774,7 @@ def _reading(
     else:
         y = vh
     base, inside = _base(r, quantize, ctl)
-    w = base - damping * y
+    w = base if (damping == 0.0 and quantize and abs(y) < math.inf) else base - damping * y  # base is not −0: exact
     return r, vh, y, base, w, _shape(w, inside, ctl[5]), inside
 
 
@@ -1081,7 +1108,7 @@ def _advance(
             pend = 0.0
             for i in range(delay + 1 if pc else 0):  # _pending (slot pos holds the command just observed)
                 pend += pcs[PBK + i] if i != pos else 0.0  # pend is never −0: adding +0 leaves it bit for bit
-            f, c, pmode = _controlled(pe + pend, vh, w, c, inside, ctl) if pc else (0.0, c, pmode)
+            f, c, pmode = _pc_command(pe + pend, vh, w, c, inside, ctl, quantize) if pc else (0.0, c, pmode)
             pcs[PBK + pos] = -f * vh
         c = _clip(c, top)
         sat = _saturation(sat, abs(c) >= top, in_tail)  # c_h at the actuator's force limit
