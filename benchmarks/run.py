@@ -808,6 +808,70 @@ def bench_controller_kernel(quick: bool) -> str:
     )
 
 
+def bench_wall_pair(quick: bool) -> str:
+    """ns per sample of the searches' chatter with a passivity controller held at its limit, one run at a time
+    (:func:`dfa.core.wall_kernel.outcome_wall_kernel`) and two in flight (:func:`dfa.core.wall_pair.pair_wall_outcomes`).
+
+    Four runs of the slow search of issue 43 (the Phantom's groups near 5200 N/m, its controller's limit 10 σ), each
+    integrated in every sample (none returns); the same samples done and rest samples both ways.
+    """
+    from dfa.analysis.simulation import GROWTH, SETTLE, STABLE_AMPLITUDE
+    from dfa.core import wall_kernel
+    from dfa.core.table import stack_tables
+    from dfa.core.wall_pair import pair_wall_outcomes
+    from dfa.model.elements import PassivityController
+    from dfa.model.wall import WallParams as CP
+
+    n = 100_000 if quick else 1_000_000
+    cases = [  # (μ, β, σ, ξ0, ξ'0)
+        (13.808895307045114, 0.0009589510629892442, 0.3625884616277739, 0.0, 2.4875621890547266),
+        (14.391414037758391, 0.0009994037526221105, 0.3778840059665691, 6.275335919322973, 0.0),
+        (13.913981388447178, 0.0009662487075310541, 0.36534777001174185, 4.613867744687147, 0.0),
+        (14.08512512156689, 0.0009781336889977009, 0.36984159384987686, 0.0, 2.0729684908789383),
+    ]
+    k, rules = len(cases), (STABLE_AMPLITUDE, GROWTH, SETTLE)
+    mu, beta, sigma, x0, v0 = (np.array(c) for c in zip(*cases, strict=True))
+    tables = stack_tables([CP(((PassivityController, (0, 10.0 * c[2])),)).kernel_table() for c in cases])
+    runs = (np.full(k, n), np.array([_tail_length(n, m) for m in mu]), np.full(k, 1e6), True)
+    outs, integrated = {}, []
+
+    def alone():
+        st = np.empty((k, kernel.NSTATS))
+        res = [wall_kernel.outcome_wall_kernel((mu[i], beta[i], sigma[i]), (x0[i], v0[i]),
+                                               (n, runs[1][i], 1e6, True), tables[i], st[i], rules)
+               for i in range(k)]  # fmt: skip
+        outs["alone"] = [r[:2] for r in res]
+        integrated[:] = [r[2] for r in res]
+
+    def paired():
+        st, done, rest = np.empty((k, kernel.NSTATS)), np.empty(k, np.int64), np.empty(k, np.int64)
+        pair_wall_outcomes((mu, beta, sigma), (x0, v0), runs, tables, rules, st, done, rest)
+        outs["paired"] = list(zip(done.tolist(), rest.tolist(), strict=True))
+
+    t_alone = min(cpu_best(alone, 1) for _ in range(3)) / (k * n)
+    t_pair = min(cpu_best(paired, 1) for _ in range(3)) / (k * n)
+    same = "yes" if outs["alone"] == outs["paired"] else "NO"
+    every = "every sample" if integrated == [n] * k else f"{sum(integrated)} of {k * n} samples"
+    return (
+        "\n".join(
+            [
+                "",
+                "## Two wall runs in flight (issue 43): the passivity controller's chatter",
+                "",
+                f"Four runs of the slow search (μ ≈ 14, β ≈ 0.001, σ ≈ 0.37, controller limit 10 σ, {n} samples each,",
+                f"{every} integrated), CPU time per sample, best of 3. The lanes overlap the two runs' dependency",
+                "chains (`dfa.core.wall_pair`); the searches take them for the walls `pairable` accepts.",
+                "",
+                "| kernel | ns per sample | × one at a time | same done and rest |",
+                "|---|---:|---:|---|",
+                f"| one run at a time (`outcome_wall_kernel`) | {1e9 * t_alone:.3g} | 1.00 | |",
+                f"| two in flight (`pair_wall_outcomes`) | {1e9 * t_pair:.3g} | {t_pair / t_alone:.2f} | {same} |",
+            ]
+        )
+        + "\n"
+    )
+
+
 def bench_controller_design_answer(quick: bool) -> str:
     """`dfa stiffness --device X --velocity V --virtual-damping B --json` (K_max four ways with a controller).
 
@@ -1078,6 +1142,7 @@ def main() -> int:
     text += bench_commands(args.quick)
     text += bench_design_answer(args.quick)
     text += bench_controller_kernel(args.quick)
+    text += bench_wall_pair(args.quick)
     text += bench_controller_design_answer(args.quick)
     text += bench_zwidth(args.quick)
     with open(args.out, "w", encoding="utf-8") as fh:

@@ -10,7 +10,8 @@ after the other (:func:`dfa.core.kernel.serial_kernel`) on the points of a stabi
 :meth:`dfa.model.wall.WallParams.kernel_table`; each :func:`dfa.core.wall_kernel.simulate_wall_kernel` alone,
 bit for bit): :func:`dfa.analysis.limits.zwidth.z_width` runs a chunk of grid points per call. :func:`batch_wall_outcomes`
 runs them for their outcomes alone (:func:`dfa.core.wall_kernel.outcome_wall_kernel`: the outcome bit for bit, the
-other statistics within a proven bound), what the searches read.
+other statistics within a proven bound), what the searches read, two in flight where the wall allows
+(:mod:`dfa.core.wall_pair`).
 
 Developers: numba keys the cached kernels of this module on this file alone, while they compile in
 :mod:`dfa.core.kernel` and :mod:`dfa.core.wall_kernel`; dfa's cache folder is named after every file of
@@ -25,7 +26,8 @@ import numpy as np
 from .jit import njit
 from .kernel import BatchRuns, Devices, FloatArray, IntArray, Rules, Starts
 from .pair import pair_kernel
-from .wall_kernel import outcome_wall_kernel, simulate_wall_kernel
+from .wall_kernel import simulate_wall_kernel
+from .wall_pair import pair_wall_outcomes
 
 __all__ = ["batch_kernel", "batch_wall_kernel", "batch_wall_outcomes"]
 
@@ -76,7 +78,6 @@ def batch_wall_kernel(
         )  # fmt: skip
 
 
-@njit(cache=True, nogil=True)
 def batch_wall_outcomes(
     devices: Devices,
     initials: Starts,
@@ -87,16 +88,12 @@ def batch_wall_outcomes(
     done: IntArray,
     rest: IntArray,
 ) -> None:
-    """:func:`batch_wall_kernel` for the runs' outcomes alone: run i is
+    """:func:`batch_wall_kernel` for the runs' outcomes alone: run i has the outcome of
     :func:`dfa.core.wall_kernel.outcome_wall_kernel` of its own inputs with the outcome ``rules`` (stable
     amplitude, growth, settle) of :func:`dfa.core.kernel.classify`, whose outcome of ``stats[i]`` is the
     every-sample run's.
+
+    Two runs in flight where their walls allow (:func:`dfa.core.wall_pair.pair_wall_outcomes`); a Python function,
+    not a kernel, so that the lanes compile in their own module's cache alone.
     """
-    mus, betas, sigmas = devices
-    x0s, v0s = initials
-    ns, tail_lens, bounds, quantize = runs
-    for i in range(mus.shape[0]):
-        done[i], rest[i], _ = outcome_wall_kernel(
-            (mus[i], betas[i], sigmas[i]), (x0s[i], v0s[i]), (ns[i], tail_lens[i], bounds[i], quantize), tables[i],
-            stats[i], rules,
-        )  # fmt: skip
+    pair_wall_outcomes(devices, initials, runs, tables, rules, stats, done, rest)

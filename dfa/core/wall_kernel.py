@@ -155,6 +155,12 @@ searches' confirmations) its force −limit·v_h is formed without a branch on v
 damper the command is the spring's part itself (−(r + ½) − 0·y is that part, bit for bit): shorter dependency chains
 a sample, the same bits.
 
+The searches run outcome-only runs two at a time where the wall allows (:mod:`dfa.core.wall_pair`): each lane runs
+this loop's operations for a wall without delay, filter, lag or hand, sharing :func:`_reading`, :func:`_pc_command`,
+:func:`_contact` (the absorbing tests of :func:`_sample`) and :func:`stepped` (its step without a lag or a hand), and
+hands a range to :func:`_advance` where its state returns. An element added to this loop runs in those lanes only
+once its update is written there too (:data:`dfa.core.wall_pair.LANE_CODES`).
+
 Developers: this module compiles in :func:`dfa.core.kernel.step`,
 :func:`~dfa.core.kernel.sample_constants`, :func:`~dfa.core.kernel.tail_stats`,
 :func:`~dfa.core.kernel.tail_extremes` and :mod:`dfa.core.exprel`; numba keys its
@@ -852,8 +858,35 @@ def _sample(
     controller kernel's time.
     """
     mu, beta, sigma, _, _ = model
-    damping, pole, filtered, lag, kap, onesided, push = ctl[0], ctl[1], ctl[2], ctl[3], ctl[4], ctl[5], ctl[7]
+    lag, kap = ctl[3], ctl[4]
     r, vh, y, base, pos, c, inside = cmd
+    fa, ext, appr, absorbed = _contact(x, v, y, fa, pending, sigma, ctl, ext, appr, (vh, base, c, inside))
+    if absorbed:
+        return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, absorbed, ext, appr
+    push = ext
+    if kap > 0.0 and not appr:  # the approach: the operator holds the speed against friction and the hand
+        if lag != 0.0:
+            raise RuntimeError("dfa.core.wall_kernel: an amplifier lag with a hand stiffness is not covered")
+        x, v, lo_t, hi_t = hand_sample(x, v, c + push, mu, beta, sigma, kap)
+    elif lag == 0.0:
+        x, v, lo_t, hi_t = stepped(x, v, c + push, mu, sigma, k)
+    else:
+        x, v, lo_t, hi_t = lag_sample(x, v, c + push, fa + push, mu, beta, sigma, lag)
+        fa = c + (fa - c) * e_lag  # e_lag = e^{−1/α}
+    return x, v, r, vh, y, fa, pos, lo_t, hi_t, 0, ext, appr
+
+
+@njit(cache=True, inline="always")
+def _contact(
+    x: float, v: float, y: float, fa: float, pending: tuple[float, float], sigma: float, ctl: Controller, ext: float,
+    appr: bool, cmd: tuple[float, float, float, bool],
+) -> tuple[float, float, bool, int]:  # fmt: skip
+    """What :func:`_sample` settles before the motion: φ_A (the command itself without a lag), the operator's force and
+    the approach (the push from the first reading inside a one-sided wall), and whether the loop is in an absorbing
+    state (0 no, 1 at rest, 3 a one-sided wall left for good). ``cmd`` = (v_h, the spring's part, the command
+    applied, inside) of this sample, ``y`` its y_h."""
+    damping, pole, filtered, lag, kap, onesided, push = ctl[0], ctl[1], ctl[2], ctl[3], ctl[4], ctl[5], ctl[7]
+    vh, base, c, inside = cmd
     if inside:
         ext, appr = push, False  # contact: the operator's force is the push from now on
     if lag == 0.0:
@@ -863,21 +896,21 @@ def _sample(
         cbase, cnext = _shape(base, inside, onesided), _shape(base - damping * ynext, inside, onesided)
         cbase, cnext = _clip(cbase, ctl[11]), _clip(cnext, ctl[11])  # monotone: the hull's ends, clipped
         if not appr and _absorbing(v, fa, sigma, pending, cbase, cnext, kap * x - push):
-            return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 1, ext, appr
+            return fa, ext, appr, 1
     elif not appr and _gone(v, fa, pending, inside, ctl):
-        return x, v, r_prev, v_prev, y, fa, pos, np.inf, -np.inf, 3, ext, appr
-    push = ext
-    if kap > 0.0 and not appr:  # the approach: the operator holds the speed against friction and the hand
-        if lag != 0.0:
-            raise RuntimeError("dfa.core.wall_kernel: an amplifier lag with a hand stiffness is not covered")
-        x, v, lo_t, hi_t = hand_sample(x, v, c + push, mu, beta, sigma, kap)
-    elif lag == 0.0:
-        x, v, xr, _, _, _, _, stopped = step(x, v, c + push, mu, sigma, k)
-        lo_t, hi_t = (xr, xr) if stopped else (np.inf, -np.inf)
-    else:
-        x, v, lo_t, hi_t = lag_sample(x, v, c + push, fa + push, mu, beta, sigma, lag)
-        fa = c + (fa - c) * e_lag  # e_lag = e^{−1/α}
-    return x, v, r, vh, y, fa, pos, lo_t, hi_t, 0, ext, appr
+        return fa, ext, appr, 3
+    return fa, ext, appr, 0
+
+
+@njit(cache=True, inline="always")
+def stepped(
+    x: float, v: float, phi: float, mu: float, sigma: float, k: SampleConstants
+) -> tuple[float, float, float, float]:
+    """One sample without a lag or a hand (:func:`dfa.core.kernel.step` under the force ``phi``): ξ, ξ' and the
+    sample's lowest and highest turning point (±inf when none)."""
+    x, v, xr, _, _, _, _, stopped = step(x, v, phi, mu, sigma, k)
+    lo_t, hi_t = (xr, xr) if stopped else (np.inf, -np.inf)
+    return x, v, lo_t, hi_t
 
 
 @njit(cache=True, inline="always")
@@ -1288,19 +1321,13 @@ def _run_wall(
     x0, v0 = initial
     n, tail_len, bound, quantize = run
     delay, ctl = decode_table(table)
-    onesided, pc, window = ctl[5], ctl[8], ctl[9]
+    pc, window = ctl[8], ctl[9]
     record = rec_x.shape[0] == n + 1
     rx_, rv_ = (rec_x, rec_v) if record else (rec_x[:0], rec_v[:0])
-    for i in range(stats.shape[0]):
-        stats[i] = 0.0
-    if onesided:  # flag −1: a one-sided wall's run, never unstable by its envelope alone (kernel.classify)
-        stats[NSEG + 5] = -1.0
     st, ring, ref = np.empty(NCSTATE), np.empty(delay + 1), np.empty(_REF + delay)
     tail = np.empty(max(tail_len, 1))
-    _start(st, ring, x0, v0, quantize, ctl, sigma + beta * v0)
     pcs = np.zeros(observer_size(delay, window) if pc else 0)
-    if pc:
-        pcs[PINIT] = held_energy(x0, quantize, ctl)
+    begin_run(st, ring, pcs, stats, device, initial, quantize, ctl)
     if record:
         rec_x[0], rec_v[0] = x0, v0
     tail_start = n - tail_len
@@ -1325,10 +1352,40 @@ def _run_wall(
         if why != 0:
             break
     _finish(st, tail, tail_len, n, done, rest, stats, rec_x, rec_v, record)
+    return done, rest, integrated, close_run(st, tail, tail_len, n, done, rest, stats, rules, mu)
+
+
+@njit(cache=True, inline="always")
+def begin_run(
+    st: FloatArray, ring: FloatArray, pcs: FloatArray, stats: FloatArray, device: Device, initial: Start,
+    quantize: bool, ctl: Controller,
+) -> None:  # fmt: skip
+    """A run's start (:func:`_run_wall`, and the lanes of :mod:`dfa.core.wall_pair`): ``stats`` cleared (a one-sided
+    wall's flag −1 set), the state ``st`` and the ring (:func:`_start`), the observer ``pcs`` (empty without a
+    passivity controller) zeroed with the energy the wall holds at ξ0 (:func:`held_energy`)."""
+    _, beta, sigma = device
+    x0, v0 = initial
+    for i in range(stats.shape[0]):
+        stats[i] = 0.0
+    if ctl[5]:  # flag −1: a one-sided wall's run, never unstable by its envelope alone (kernel.classify)
+        stats[NSEG + 5] = -1.0
+    _start(st, ring, x0, v0, quantize, ctl, sigma + beta * v0)
+    for i in range(pcs.shape[0]):
+        pcs[i] = 0.0
+    if pcs.shape[0] > 0:
+        pcs[PINIT] = held_energy(x0, quantize, ctl)
+
+
+@njit(cache=True, inline="always")
+def close_run(
+    st: FloatArray, tail: FloatArray, tail_len: int, n: int, done: int, rest: int, stats: FloatArray, rules: Rules,
+    mu: float,
+) -> bool:  # fmt: skip
+    """A run's saturation flag into ``stats`` once :func:`_finish` has run, and whether its outcome under ``rules`` is
+    the every-sample run's (no approximate return proven, or one that decides every rule: :func:`_robust`)."""
     if stats.shape[0] > SATURATION:
         stats[SATURATION] = st[CSAT]
-    sure = st[CERR] == 0.0 or _robust(n, done, rest, stats, tail, tail_len, rules, mu, st[CERR])
-    return done, rest, integrated, sure
+    return st[CERR] == 0.0 or _robust(n, done, rest, stats, tail, tail_len, rules, mu, st[CERR])
 
 
 @njit(cache=True, nogil=True)

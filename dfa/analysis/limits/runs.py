@@ -210,8 +210,10 @@ def simulate_points(
 
 
 #: Runs per chunk of a batch of wall runs (:func:`_batched_outcomes`): each chunk is one compiled call (about 30 µs
-#: of Python beside 6 µs a run), and a batch's threads finish within about one chunk of each other.
-WALL_CHUNK = 4
+#: of Python beside 6 µs a run) that keeps two of its runs in flight (:mod:`dfa.core.wall_pair`): 16 pair more of
+#: the long chatters than 4 (82 % against 47 % of their samples on the passivity controller's confirmations), while a
+#: batch's threads still finish within about one chunk of each other (``reports/benchmarks.md``).
+WALL_CHUNK = 16
 
 
 def _outcomes(jobs: list[tuple]) -> list[str]:
@@ -239,8 +241,8 @@ def _batched_outcomes(jobs: list[tuple], delay: int, workers: int, spring: bool)
         return []
     mu, beta, sigma, v0, n, x0, bound = (np.array(c) for c in list(zip(*jobs, strict=True))[:7])
     walls = [j[7] for j in jobs]
-    # the wall's runs in small chunks: their cost is known only once run (a chattering run integrates every sample,
-    # its neighbour skips its periods), and the pool hands the next chunk to whichever thread is free
+    # the wall's runs in chunks: their cost is known only once run (a chattering run integrates every sample, its
+    # neighbour skips its periods), and the pool hands the next chunk to whichever thread is free
     chunks = deal(len(jobs), 4 * workers if spring else max(4 * workers, -(-len(jobs) // WALL_CHUNK)))
 
     def chunk(j: np.ndarray) -> np.ndarray:
