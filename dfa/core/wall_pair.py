@@ -261,7 +261,7 @@ def _settings(i: int, lane: IntArray, devices: Devices, runs: BatchRuns, tables:
     return model, ctl, sample_constants(mu, beta), runs[2][i], ctl[12], in_tail, True, lane[END], lane[TAIL]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, nogil=True)
 def _alone(
     i: int, lane: IntArray, st: FloatArray, ring: FloatArray, ref: FloatArray, pcs: FloatArray, tail: FloatArray,
     devices: Devices, runs: BatchRuns, tables: FloatArray,
@@ -279,7 +279,7 @@ def _alone(
     return why, peak
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, nogil=True)
 def _over(
     w: int, why: int, lanes: IntArray, states: FloatArray, tails: FloatArray, devices: Devices, initials: Starts,
     runs: BatchRuns, tables: FloatArray, rules: Rules, outs: tuple[FloatArray, IntArray, IntArray],
@@ -303,7 +303,7 @@ def _over(
     lane[PT] = -1
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, nogil=True)
 def _load(
     w: int, i: int, lanes: IntArray, states: FloatArray, rings: FloatArray, refs: FloatArray, pcss: FloatArray,
     devices: Devices, initials: Starts, runs: BatchRuns, tables: FloatArray, stats: FloatArray,
