@@ -185,3 +185,12 @@ def test_eq4_wall_pair_ends_as_the_kernel_alone(bound):
         (13.9, 0.001, 0.36, 0.0, 2.5, 5000, _pc(3.6), bound),
     ]
     _assert_same_outcomes(cases)
+
+
+def test_eq4_wall_pair_lanes_walk_the_ranges_of_the_spring_lanes():
+    """The lanes take their next range with dfa.core.pair's walk, on the same first columns of their state."""
+    from dfa.core import pair, wall_pair
+
+    spring = (pair.PT, pair.SEG, pair.PART, pair.H, pair.END, pair.N, pair.TAIL)
+    assert spring == (wall_pair.PT, wall_pair.SEG, wall_pair.PART, wall_pair.H, wall_pair.END, wall_pair.N,
+                      wall_pair.TAIL)  # fmt: skip

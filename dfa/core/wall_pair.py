@@ -37,7 +37,8 @@ from typing import TypeAlias
 import numpy as np
 
 from .jit import njit
-from .kernel import NSEG, BatchRuns, Devices, FloatArray, IntArray, Rules, Starts, sample_constants, segment_ranges
+from .kernel import NSEG, BatchRuns, Devices, FloatArray, IntArray, Rules, Starts, sample_constants
+from .pair import _next_range as next_range
 from .table import DAMPER, DELAY, FORCE_LIMIT, HEAD, PASSIVITY, PUSH, TRAVEL
 from .wall_kernel import (
     _REF,
@@ -80,7 +81,8 @@ from .wall_kernel import (
 __all__ = ["advance_wall_pair", "pair_wall_outcomes", "pairable"]
 
 # integer state of a lane: run index (-1: none), segment, part (0: before the tail, 1: in it), next sample, range
-# end, the run's length, where its tail starts, the reference's sample, the span to its renewal, the observer's size
+# end, the run's length, where its tail starts (the columns of dfa.core.pair's lanes, in its order), the reference's
+# sample, the span to its renewal, the observer's size
 PT, SEG, PART, H, END, N, TAIL, RH, SPAN, OBS = range(10)
 NLANE = 10
 # a lane's reference state (ξ, ξ', r_{h−1}; ξ NaN: none) beside its integer state
@@ -231,24 +233,15 @@ def advance_wall_pair(
 
 @njit(cache=True, inline="always")
 def _next_range(lane: IntArray, ref: FloatArray, st: FloatArray) -> bool:
-    """Move ``lane`` to its run's next nonempty range, its cycle check's reference taken at the range's start as
-    :func:`dfa.core.wall_kernel._advance` takes it; False when no range is left (:func:`dfa.core.pair._next_range`'s
-    order: segment k = 0 … NSEG − 1, each split where the tail starts)."""
-    n, tail_start = lane[N], lane[TAIL]
-    while True:
-        lane[PART] += 1
-        if lane[PART] == 2:
-            lane[PART] = 0
-            lane[SEG] += 1
-        if lane[SEG] == NSEG:
-            return False
-        lo, cut, hi = segment_ranges(lane[SEG], n, tail_start)
-        a, b = (lo, cut) if lane[PART] == 0 else (cut, hi)
-        if b > a:
-            period = int(st[CPER])
-            lane[H], lane[END], lane[RH], lane[SPAN] = a, b, a, (period if period > 0 else 1)
-            ref[RX], ref[RV], ref[RR] = (st[CX] if a > 0 else np.nan), st[CV], st[CRP]
-            return True
+    """Move ``lane`` to its run's next nonempty range (:func:`dfa.core.pair._next_range`: the lanes share the first
+    columns of its integer state), its cycle check's reference taken at the range's start as
+    :func:`dfa.core.wall_kernel._advance` takes it; False when no range is left."""
+    if not next_range(lane):
+        return False
+    period, a = int(st[CPER]), lane[H]
+    lane[RH], lane[SPAN] = a, (period if period > 0 else 1)
+    ref[RX], ref[RV], ref[RR] = (st[CX] if a > 0 else np.nan), st[CV], st[CRP]
+    return True
 
 
 @njit(cache=True, inline="always")
