@@ -1285,7 +1285,7 @@ def run_wall_kernel(
     (50001, -1, 50001)
     """
     done, rest, integrated, _ = _run_wall(
-        device, initial, run, table, rec_x, rec_v, stats, skip, (1.0, 1.25, 1e-3), False
+        device, initial, run, table, rec_x, rec_v, stats, _unliteral(skip), (1.0, 1.25, 1e-3), _unliteral(False)
     )
     return done, rest, integrated
 
@@ -1303,11 +1303,21 @@ def outcome_wall_kernel(
     being integrated once the rest of the run is proven, and is run again in full where the proof does not
     decide the outcome.
     """
-    e = np.empty(0)
-    done, rest, integrated, sure = _run_wall(device, initial, run, table, e, e, stats, True, rules, True)
+    e, yes, no = np.empty(0), _unliteral(True), _unliteral(False)
+    done, rest, integrated, sure = _run_wall(device, initial, run, table, e, e, stats, yes, rules, yes)
     if not sure:
-        done, rest, integrated, _ = _run_wall(device, initial, run, table, e, e, stats, True, rules, False)
+        done, rest, integrated, _ = _run_wall(device, initial, run, table, e, e, stats, yes, rules, no)
     return done, rest, integrated
+
+
+@njit(cache=True, inline="always")
+def _unliteral(flag: bool) -> bool:
+    """``flag`` typed as numba types a bool computed at run time, never as the literal ``True`` or ``False``.
+
+    The kernels pass their flags to :func:`_run_wall` and :func:`_advance` through it, so that every caller
+    shares one compiled copy of each: numba compiles a kernel again for each literal argument (about 25 s each
+    on a cold cache, in every process that compiles), while the flags only feed run-time tests."""
+    return bool(flag)
 
 
 @njit(cache=True, nogil=True)
@@ -1481,7 +1491,7 @@ def simulate_wall_kernel(
     before the tail only, 2 one did in the tail (:func:`dfa.core.kernel.classify` calls such a run saturated).
     Unrecorded runs skip repeated periods (:func:`run_wall_kernel`; same results bit for bit).
     """
-    done, rest, _ = run_wall_kernel(device, initial, run, table, rec_x, rec_v, stats, True)
+    done, rest, _ = run_wall_kernel(device, initial, run, table, rec_x, rec_v, stats, _unliteral(True))
     return done, rest
 
 

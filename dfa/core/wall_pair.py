@@ -70,6 +70,7 @@ from .wall_kernel import (
     _same,
     _saturation,
     _store,
+    _unliteral,
     begin_run,
     close_run,
     decode_table,
@@ -263,10 +264,10 @@ def _alone(
     reference from here); returns (why, peak) and leaves the next sample in the lane."""
     model, ctl, _, bound, _, _, _, h1, tail_start = _settings(i, lane, devices, runs, tables)
     mu, beta, sigma, delay, _ = model
-    e = np.empty(0)
+    e, yes = np.empty(0), _unliteral(True)
     h, why, peak, _ = _advance(
-        st, ring, ref, lane[H], h1, mu, beta, sigma, delay, runs[3], bound, ctl, tail, tail_start, e, e, True, pcs,
-        lane[N], True,
+        st, ring, ref, lane[H], h1, mu, beta, sigma, delay, runs[3], bound, ctl, tail, tail_start, e, e, yes, pcs,
+        lane[N], yes,
     )  # fmt: skip
     lane[H] = h
     return why, peak
@@ -290,8 +291,9 @@ def _over(
     _finish(states[w], tails[w], tail_len, n, d, r, stats[i], e, e, False)
     if not close_run(states[w], tails[w], tail_len, n, d, r, stats[i], rules, devices[0][i]):
         device, initial = (devices[0][i], devices[1][i], devices[2][i]), (initials[0][i], initials[1][i])
-        run = (n, tail_len, runs[2][i], runs[3])  # runs[3], not the literal True: one compiled _run_wall
-        d, r, _, _ = _run_wall(device, initial, run, tables[i], e, e, stats[i], True, rules, False)
+        run = (n, tail_len, runs[2][i], runs[3])  # runs[3] and _unliteral, not literals: one compiled _run_wall
+        yes, no = _unliteral(True), _unliteral(False)
+        d, r, _, _ = _run_wall(device, initial, run, tables[i], e, e, stats[i], yes, rules, no)
     done[i], rest[i] = d, r
     lane[PT] = -1
 
@@ -343,8 +345,8 @@ def pair_wall_outcomes(
                     run = (ns[i], tail_lens[i], bounds[i], quantize)
                     device, initial = (devices[0][i], devices[1][i], devices[2][i]), (initials[0][i], initials[1][i])
                     done[i], rest[i], _ = outcome_wall_kernel(device, initial, run, tables[i], stats[i], rules)
-                elif lanes[w, H] >= lanes[w, END]:  # a run of no samples
-                    _over(w, 0, lanes, states, tails, devices, initials, runs, tables, rules, outs)
+                elif lanes[w, H] >= lanes[w, END]:  # a run of no samples (np.int64: one compiled _over)
+                    _over(w, np.int64(0), lanes, states, tails, devices, initials, runs, tables, rules, outs)
         ia, ib = lanes[0, PT], lanes[1, PT]
         if ia < 0 and ib < 0:
             return
