@@ -66,6 +66,25 @@ def spring_and_rest() -> None:
     with contextlib.redirect_stdout(io.StringIO()):
         cli(["stiffness", "--device", "delta", "--velocity", "0.1"])
         cli(["check", "--device", "delta", "--velocity", "0.1", "--stiffness", "2000", "--amplifier-bandwidth", "300"])
+    scalar_kernels()
+
+
+def scalar_kernels() -> None:
+    """Kernels of a few seconds each that the tests also call directly: one sample with the amplifier lag and with
+    the hand, the amplifier's sampled lag, the quantizer's inverse describing function, the force replay on a
+    writable record (the export's check)."""
+    import numpy as np
+
+    from dfa.analysis.describing import quantizer_df_inverse
+    from dfa.core import oscillator, wall_kernel, zohlag
+    from dfa.model.wall import WallParams
+
+    wall_kernel.lag_sample(0.0, 1.0, 0.0, 0.0, 2.0, 0.5, 0.1, 0.5)
+    oscillator.hand_sample(0.0, 1.0, 0.0, 2.0, 0.5, 0.1, 0.2)
+    zohlag.amplifier_zoh(0.5, 2.0)
+    quantizer_df_inverse(0.5)
+    xs, out, energy, control = np.zeros(4), np.empty(4), np.empty(4), np.empty(4)
+    wall_kernel.applied_forces(xs, WallParams.of(delay=1).kernel_table(), True, out, energy, control)
 
 
 GROUPS: dict[str, Callable[[], None]] = {"wall_chain": wall_chain, "spring_and_rest": spring_and_rest}

@@ -12,8 +12,8 @@ from __future__ import annotations
 import compile_kernels
 import pytest
 
+from dfa.core import dfcore, oscillator, pair, wall_kernel, wall_pair, zohlag
 from dfa.core import kernel as spring_kernel
-from dfa.core import pair, wall_kernel, wall_pair
 
 #: The kernels each group is there for: the costly ones to compile (tens of seconds on a cold cache).
 EXPECTED = {
@@ -23,6 +23,10 @@ EXPECTED = {
         pair.pair_free_kernel,
         pair.pair_delayed_kernel,
         wall_kernel.applied_forces,
+        wall_kernel.lag_sample,
+        oscillator.hand_sample,
+        zohlag.amplifier_zoh,
+        dfcore.df_inverse,
     ),
 }
 
