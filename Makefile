@@ -38,16 +38,13 @@ report: $(STAMP)
 # The whole suite (doctests included), and beside it format, lint, layering and types (their output is printed
 # when the suite ends; either failing fails the target). Work stealing: an idle worker takes tests queued on the
 # other (with the default distribution one worker sat idle while the other finished its slow tests: 392 s against
-# 294 s for the same suite on 2 cores). Lint beside the suite instead of after it: 15 s less on 2 cores. Beside
-# them, tests/compile_kernels.py compiles the big kernels once, in two processes (on a cold cache both workers would
-# each compile them, at the same time; with a warm cache it only loads them): the workers collect the tests
-# meanwhile and run them once it has written .cache/kernels.done (its exit code; DFA_TESTS_AFTER, tests/conftest.py).
+# 294 s for the same suite on 2 cores). Lint beside the suite instead of after it: 15 s less on 2 cores. Before the
+# suite, tests/compile_kernels.py compiles the big kernels once, in two processes, beside lint (on a cold cache both
+# workers would each compile them, at the same time); with a warm cache it only loads them.
 test: $(STAMP)
-	@mkdir -p .cache; rm -f .cache/kernels.done; \
-	$(MAKE) --no-print-directory lint > .cache/lint.log 2>&1 & lint=$$!; \
-	( $(BIN)/python tests/compile_kernels.py; echo $$? > .cache/kernels.part; mv .cache/kernels.part .cache/kernels.done ) & \
-	DFA_TESTS_AFTER=.cache/kernels.done HYPOTHESIS_PROFILE=ci $(BIN)/python -m pytest -q -n 2 --dist worksteal; \
-	tests=$$?; warmed=$$(cat .cache/kernels.done 2>/dev/null || echo 1); \
+	@mkdir -p .cache; $(MAKE) --no-print-directory lint > .cache/lint.log 2>&1 & lint=$$!; \
+	$(BIN)/python tests/compile_kernels.py; warmed=$$?; \
+	HYPOTHESIS_PROFILE=ci $(BIN)/python -m pytest -q -n 2 --dist worksteal; tests=$$?; \
 	wait $$lint; linted=$$?; cat .cache/lint.log; \
 	if [ $$tests -ne 0 ] || [ $$linted -ne 0 ] || [ $$warmed -ne 0 ]; then \
 	echo "make test: tests exit $$tests, lint exit $$linted, kernel warm-up exit $$warmed"; exit 1; fi
