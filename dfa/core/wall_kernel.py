@@ -1336,12 +1336,12 @@ def _run_wall(
     rx_, rv_ = (rec_x, rec_v) if record else (rec_x[:0], rec_v[:0])
     st, ring, ref = np.empty(NCSTATE), np.empty(delay + 1), np.empty(_REF + delay)
     tail = np.empty(max(tail_len, 1))
-    pcs = np.zeros(observer_size(delay, window) if pc else 0)
+    pcs = np.empty(observer_size(delay, window) if pc else 0)  # zeroed by begin_run
     begin_run(st, ring, pcs, stats, device, initial, quantize, ctl)
     if record:
         rec_x[0], rec_v[0] = x0, v0
     tail_start = n - tail_len
-    done, rest, integrated = n, -1, 0
+    end, why, integrated = n, 0, 0
     for seg in range(NSEG):
         lo, cut, hi = segment_ranges(seg, n, tail_start)
         why = 0
@@ -1355,14 +1355,28 @@ def _run_wall(
                 if peak > stats[seg]:
                     stats[seg] = peak
                 if why != 0:
-                    done, rest = end, (end if why == 1 else -1)
-                    if why >= 2:
-                        stats[NSEG + 5] = float(why - 1)  # 1 past the bound, 2 left, 3 past the travel (an end stop)
                     break
         if why != 0:
             break
-    _finish(st, tail, tail_len, n, done, rest, stats, rec_x, rec_v, record)
-    return done, rest, integrated, close_run(st, tail, tail_len, n, done, rest, stats, rules, mu)
+    done, rest, sure = end_run(st, tail, tail_len, n, end, why, stats, rules, mu, rec_x, rec_v)
+    return done, rest, integrated, sure
+
+
+@njit(cache=True, nogil=True)
+def end_run(
+    st: FloatArray, tail: FloatArray, tail_len: int, n: int, end: int, why: int, stats: FloatArray, rules: Rules,
+    mu: float, rec_x: FloatArray, rec_v: FloatArray,
+) -> tuple[int, int, bool]:  # fmt: skip
+    """A run's end (:func:`_run_wall`, and the lanes of :mod:`dfa.core.wall_pair`): ``why`` as :func:`_advance`'s at
+    sample ``end`` (0: it ran through its ``n`` samples); the flag of a run past the bound, out of a one-sided wall or
+    past the travel into ``stats``, its statistics finished (:func:`_finish`, the records when ``rec_x`` has n + 1
+    entries) and closed (:func:`close_run`). Returns (samples done, rest sample or −1, whether the outcome under
+    ``rules`` is the every-sample run's). Not inlined: it runs once a run, and its callers compile it once."""
+    done, rest = (end, end if why == 1 else -1) if why != 0 else (n, -1)
+    if why >= 2:
+        stats[NSEG + 5] = float(why - 1)  # 1 past the bound, 2 left, 3 past the travel (an end stop)
+    _finish(st, tail, tail_len, n, done, rest, stats, rec_x, rec_v, rec_x.shape[0] == n + 1)
+    return done, rest, close_run(st, tail, tail_len, n, done, rest, stats, rules, mu)
 
 
 @njit(cache=True, inline="always")

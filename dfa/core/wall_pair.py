@@ -37,7 +37,7 @@ from typing import TypeAlias
 import numpy as np
 
 from .jit import njit
-from .kernel import NSEG, BatchRuns, Devices, FloatArray, IntArray, Rules, Starts, sample_constants
+from .kernel import BatchRuns, Devices, FloatArray, IntArray, Rules, Starts, sample_constants
 from .pair import _next_range as next_range
 from .table import DAMPER, DELAY, FORCE_LIMIT, HEAD, PASSIVITY, PUSH, TRAVEL
 from .wall_kernel import (
@@ -61,7 +61,6 @@ from .wall_kernel import (
     _contact,
     _ended,
     _extremes,
-    _finish,
     _loaded,
     _pc_command,
     _peak,
@@ -72,8 +71,8 @@ from .wall_kernel import (
     _store,
     _unliteral,
     begin_run,
-    close_run,
     decode_table,
+    end_run,
     observer_size,
     outcome_wall_kernel,
     stepped,
@@ -284,12 +283,9 @@ def _over(
     stats, done, rest = outs
     lane = lanes[w]
     i, n, h = lane[PT], lane[N], lane[H]
-    d, r = (h if why != 0 else n), (h if why == 1 else -1)
-    if why >= 2:
-        stats[i, NSEG + 5] = float(why - 1)  # 1 past the bound, 3 past the travel (_run_wall's flags)
     tail_len, e = n - lane[TAIL], np.empty(0)
-    _finish(states[w], tails[w], tail_len, n, d, r, stats[i], e, e, False)
-    if not close_run(states[w], tails[w], tail_len, n, d, r, stats[i], rules, devices[0][i]):
+    d, r, sure = end_run(states[w], tails[w], tail_len, n, h, why, stats[i], rules, devices[0][i], e, e)
+    if not sure:
         device, initial = (devices[0][i], devices[1][i], devices[2][i]), (initials[0][i], initials[1][i])
         run = (n, tail_len, runs[2][i], runs[3])  # runs[3] and _unliteral, not literals: one compiled _run_wall
         yes, no = _unliteral(True), _unliteral(False)
