@@ -46,7 +46,7 @@ def wall_chain() -> None:
 
 def spring_and_rest() -> None:
     """The spring's kernels (one run, runs in flight with and without a delay) and the smaller ones: the describing
-    function's and the cycle search's (the everyday answer, ``dfa stiffness``), the amplifier's sampled lag."""
+    function's and the cycle search's (the everyday answer, ``dfa stiffness``), then :func:`scalar_kernels`."""
     import contextlib
     import io
 
@@ -65,7 +65,6 @@ def spring_and_rest() -> None:
         simulate_points([(p.mu, p.beta, p.sigma, 0.0, xd)] * 2, [WallParams.of(delay=delay)] * 2, 2_000)
     with contextlib.redirect_stdout(io.StringIO()):
         cli(["stiffness", "--device", "delta", "--velocity", "0.1"])
-        cli(["check", "--device", "delta", "--velocity", "0.1", "--stiffness", "2000", "--amplifier-bandwidth", "300"])
     scalar_kernels()
 
 
