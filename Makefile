@@ -19,7 +19,9 @@ $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	@# the distribution was renamed dfa -> dfa-haptics: drop an old editable install of this checkout
 	@$(BIN)/python -m pip uninstall --quiet --yes dfa >/dev/null 2>&1 || true
-	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[dev]'
+	@# --no-compile: pip would byte-compile every file of every package (sympy, scipy, matplotlib, ...: 45 s of the
+	@# install against 23 s without); Python writes the bytecode of the modules it imports, once, on first import
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check --no-compile -e '.[dev]'
 	@# the bytecode pip writes for a regular install (an editable one, with PYTHONDONTWRITEBYTECODE set, would
 	@# compile every module again in every command: about 0.15 s of `dfa stiffness --quick`)
 	@$(BIN)/python -m compileall -q dfa >/dev/null
