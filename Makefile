@@ -19,9 +19,11 @@ $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	@# the distribution was renamed dfa -> dfa-haptics: drop an old editable install of this checkout
 	@$(BIN)/python -m pip uninstall --quiet --yes dfa >/dev/null 2>&1 || true
-	@# --no-compile: pip would byte-compile every file of every package (sympy, scipy, matplotlib, ...: 45 s of the
-	@# install against 23 s without); Python writes the bytecode of the modules it imports, once, on first import
+	@# pip byte-compiles every file of every package on one core (sympy, scipy, matplotlib, ...: 45 s of a fresh
+	@# install); compileall does it on every core (36 s in all on 2 cores). Not left to the first imports: with
+	@# PYTHONDONTWRITEBYTECODE set, as on CI, every process would compile what it imports again (the suite +50 s).
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check --no-compile -e '.[dev]'
+	@$(BIN)/python -m compileall -q -j 0 "$$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')" >/dev/null || true
 	@# the bytecode pip writes for a regular install (an editable one, with PYTHONDONTWRITEBYTECODE set, would
 	@# compile every module again in every command: about 0.15 s of `dfa stiffness --quick`)
 	@$(BIN)/python -m compileall -q dfa >/dev/null
